@@ -1,0 +1,111 @@
+"""Input errors and run statuses, as enumerations of messages that tell the fix.
+
+Every error raised for bad user input is an :class:`InputError` built from a
+:class:`Problem`: the message names the field, the value received and what to do
+instead.  Runs that cannot proceed do not raise: they end with a :class:`Status`.
+"""
+
+from __future__ import annotations
+
+import enum
+from typing import Any
+
+
+class Problem(enum.Enum):
+    """What can be wrong with an input, and how to fix it (``{...}`` are filled in)."""
+
+    NOT_FINITE = ("is not a finite number", "give a finite real number (no NaN or inf)")
+    NOT_A_NUMBER = ("is not a real number", "give a real number such as 0.05")
+    NOT_POSITIVE = ("must be > 0", "give a positive value in {unit}")
+    NEGATIVE = ("must be >= 0", "give a value >= 0 in {unit}")
+    EMPTY = ("is empty", "give at least one value")
+    NOT_INCREASING = (
+        "must be strictly increasing",
+        "sort the values and remove repeats, e.g. [0.015, 0.04]",
+    )
+    LENGTH_MISMATCH = (
+        "has {got} values but {expected} are needed",
+        "give one breakpoint fewer than slopes (n slopes change at n-1 breakpoints)",
+    )
+    NOT_ONE_OF = ("is not one of {choices}", "use one of {choices}")
+    UNKNOWN_KEY = ("is not a known key", "remove it or use one of {choices}")
+    MISSING_KEY = ("is missing", "add it; the keys are {choices}")
+    WRONG_TYPE = ("has type {got}, not {expected}", "give a {expected}")
+    NOT_1D = ("must be a one-dimensional array", "pass a flat sequence of numbers")
+    TOO_SHORT = ("has {got} samples", "give at least {expected} samples")
+    BAD_TOML = ("is not valid TOML ({detail})", "fix the syntax at the place named")
+    NO_FILE = ("does not exist", "check the path")
+
+    @property
+    def why(self) -> str:
+        return self.value[0]
+
+    @property
+    def fix(self) -> str:
+        return self.value[1]
+
+
+class InputError(ValueError):
+    """Bad input: names the field, the value and the fix.
+
+    Attributes
+    ----------
+    field : str
+        Dotted name of the offending field, e.g. ``"isolator.breakpoints"``.
+    value : Any
+        The value received.
+    problem : Problem
+        Which rule the value breaks.
+    """
+
+    def __init__(self, problem: Problem, field: str, value: Any, **details: Any) -> None:
+        self.problem = problem
+        self.field = field
+        self.value = value
+        self._details = details
+        why = problem.why.format(**details)
+        fix = problem.fix.format(**details)
+        super().__init__(f"{field} = {value!r} {why}. Fix: {fix}.")
+
+    def relabel(self, old_prefix: str, new_prefix: str) -> "InputError":
+        """The same error with the field's leading ``old_prefix`` renamed (for nested tables)."""
+        field = self.field
+        if field.startswith(old_prefix):
+            field = new_prefix + field[len(old_prefix):]
+        return InputError(self.problem, field, self.value, **self._details)
+
+
+class Status(enum.IntEnum):
+    """How a simulation ended (``Run.status``); negative values mean it stopped early."""
+
+    SUCCESS = 0
+    ZENO = -1
+    MAX_EVENTS = -2
+    DEGENERATE_PHASE = -3
+    STEP_FAILED = -4
+
+    @property
+    def message(self) -> str:
+        return _STATUS_MESSAGES[self]
+
+
+_STATUS_MESSAGES = {
+    Status.SUCCESS: "The run reached its end time.",
+    Status.ZENO: (
+        "Stopped early: events accumulate in finite time (e.g. endless contacts with a stiff, "
+        "undamped bumper). Add bumper damping or shorten the duration; the state at the stop "
+        "is in final_state."
+    ),
+    Status.MAX_EVENTS: (
+        "Stopped early: the run reached max_events. Raise max_events or shorten the duration; "
+        "what was computed up to the stop is kept."
+    ),
+    Status.DEGENERATE_PHASE: (
+        "Stopped early: a phase of motion is an undamped linear oscillator forced exactly at its "
+        "natural frequency (no bounded closed form). Add a little damping or detune the forcing."
+    ),
+    Status.STEP_FAILED: (
+        "Stopped early: the integrator for a nonlinear contact law could not meet the tolerance "
+        "with a positive step. Loosen rtol or check the contact law's parameters."
+    ),
+}

@@ -1,0 +1,448 @@
+"""The event-driven simulation kernel: arrays and scalars in, arrays out.
+
+The run is cut into sub-intervals, each inside one phase of motion (fixed isolator state,
+fixed contacts, one piece of the excitation) and short against the phase's periods.  On
+each sub-interval the trajectory is known in closed form (linear phases) or from one
+Dormand-Prince step (nonlinear contact laws); every event function is checked for a
+crossing or a graze and the earliest root is located by Brent's method.  The sub-interval
+is then integrated exactly (Gauss-Legendre quadrature of the energy flows), its extrema
+are found from the zeros of their rates, and the state jumps at the event.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..model.contact_laws import law_energy, law_force, law_is_linear, law_linear_coefficients, law_relax
+from ._isolator import iso_advance, iso_energy, iso_events, iso_linear, iso_transition
+from .._jit import jit
+from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A_WORK, ACC_L,
+                      ACC_R, ACT_CONTACT, ACT_RELEASE, CONTACT_COLS, D, DEF_L, DEF_R, E_ACTION,
+                      E_ALPHA, E_BETA, E_DIR, E_GAMMA, E_INDEX, E_KIND, E_SIDE, EV_COLS,
+                      EVENT_COLS, EXTREMA_LEN, IN_L, IN_R, KIND_LINEAR, KIND_RELEASE,
+                      LEDGER_LEN, MODE_LINEAR, MODE_NUMERIC, N_ACC, P_AX0, P_AX1, P_AXH, P_C,
+                      P_CD, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_INL, P_INR, P_K, P_KISO,
+                      P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR,
+                      P_RISO, P_V0, P_W, PH_LEN, SAMPLE_COLS, SIDE_L, SIDE_NONE, SIDE_R, T, V)
+from ._linear import linear_setup
+from ._numeric import dp5_step
+from ._trajectory import (ROUNDING, W_AABS_RATE, W_FORCE_RATE, W_VELOCITY, abs_acceleration_rate,
+                          brent, contact_force, event_value, locate_event, phase_eval,
+                          table_acceleration)
+
+SUCCESS, ZENO, MAX_EVENTS, DEGENERATE_PHASE, STEP_FAILED = 0, -1, -2, -3, -4
+EXC_HARMONIC = 0
+SUBINTERVALS_PER_PERIOD = 16.0
+ZENO_REPEATS = 200
+GAUSS_X = np.array([-0.8611363115940526, -0.3399810435848563, 0.3399810435848563, 0.8611363115940526])
+GAUSS_W = np.array([0.3478548451374638, 0.6521451548625461, 0.6521451548625461, 0.3478548451374638])
+XTOL_S = 1e-15
+
+
+@jit
+def _grow(buf, n):
+    if n < buf.shape[0]:
+        return buf
+    out = np.empty((2 * buf.shape[0], buf.shape[1]))
+    out[:n] = buf[:n]
+    return out
+
+
+@jit
+def _put(buf, n, x0, x1, x2, x3=0.0, x4=0.0, x5=0.0, x6=0.0, x7=0.0, x8=0.0):
+    """Write a row of up to 9 values (the buffer's width) at row ``n``."""
+    vals = (x0, x1, x2, x3, x4, x5, x6, x7, x8)
+    for j in range(buf.shape[1]):
+        buf[n, j] = vals[j]
+
+
+@jit
+def _excitation_piece(kind, exc_p, rec_t, rec_a, t):
+    """Base acceleration from ``t`` on: ``(a0, a1, amp, omega, phase, t_next)`` such that
+    ``A(t + tau) = a0 + a1 tau + amp sin(omega tau + phase)`` until ``t_next``."""
+    if kind == EXC_HARMONIC:
+        omega = exc_p[1]
+        phase = np.fmod(omega * t + exc_p[2], 2.0 * math.pi)
+        return 0.0, 0.0, exc_p[0], omega, phase, np.inf
+    n = rec_t.size
+    if t < rec_t[0]:
+        return 0.0, 0.0, 0.0, 0.0, 0.0, rec_t[0]
+    if t >= rec_t[n - 1]:
+        return 0.0, 0.0, 0.0, 0.0, 0.0, np.inf
+    j = np.searchsorted(rec_t, t, side="right") - 1
+    slope = (rec_a[j + 1] - rec_a[j]) / (rec_t[j + 1] - rec_t[j])
+    return rec_a[j] + slope * (t - rec_t[j]), slope, 0.0, 0.0, 0.0, rec_t[j + 1]
+
+
+@jit
+def _outputs(st, d, v, mass, c_d, slopes, breaks, rule, gap_l, gap_r, law_l, p_l, law_r, p_r):
+    """``(abs_acceleration, isolator_force, left bumper force, right bumper force)`` at (d, v)."""
+    k, r0 = iso_linear(slopes, breaks, rule, st)
+    f_iso = k * d + r0 + c_d * v
+    f_l = 0.0
+    f_r = 0.0
+    if st[IN_L] != 0.0:
+        f_l = law_force(law_l, p_l, -d - gap_l, -v)[0]
+    if st[IN_R] != 0.0:
+        f_r = law_force(law_r, p_r, d - gap_r, v)[0]
+    return -(f_iso + f_r - f_l) / mass, f_iso, f_l, f_r
+
+
+@jit
+def _energies(st, mass, slopes, breaks, rule, law_l, p_l, law_r, p_r):
+    return (0.5 * mass * st[V] ** 2, iso_energy(slopes, breaks, rule, st, st[D]),
+            law_energy(law_l, p_l, st[DEF_L]) + law_energy(law_r, p_r, st[DEF_R]))
+
+
+@jit
+def _bumper_events(st, has_b, gap_l, gap_r, law_l, law_r, evs, n):
+    if not has_b:
+        return n
+    for side in (SIDE_L, SIDE_R):
+        sign = -1.0 if side == SIDE_L else 1.0
+        gap = gap_l if side == SIDE_L else gap_r
+        in_contact = st[IN_L] if side == SIDE_L else st[IN_R]
+        row = evs[n]
+        row[E_SIDE] = SIDE_NONE
+        row[E_GAMMA] = 0.0
+        row[E_INDEX] = side
+        row[E_DIR] = 0.0
+        row[E_KIND] = KIND_LINEAR
+        if in_contact == 0.0:
+            # surface at sign*(gap + relaxing compression): g = gap + d(t) - sign*D
+            row[E_ALPHA] = gap
+            row[E_BETA] = -sign
+            row[E_SIDE] = side
+            row[E_ACTION] = ACT_CONTACT
+            n += 1
+        else:
+            # compression sign*D - gap back to zero, or the law's force-based release
+            row[E_ALPHA] = -gap
+            row[E_BETA] = sign
+            row[E_ACTION] = ACT_RELEASE
+            n += 1
+            row = evs[n]
+            row[:] = evs[n - 1]
+            row[E_KIND] = KIND_RELEASE
+            row[E_SIDE] = side
+            n += 1
+    return n
+
+
+@jit
+def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
+               law_r, p_r, a0, a1, amp, omega, phase):
+    """Fill ``ph`` for the sub-interval starting at the current state; return (k, c)."""
+    k_iso, r_iso = iso_linear(slopes, breaks, rule, st)
+    k = k_iso
+    c = c_d
+    r0 = r_iso
+    ph[P_NLL] = 0.0
+    ph[P_NLR] = 0.0
+    ph[P_INL] = 0.0
+    ph[P_INR] = 0.0
+    if has_b:
+        if st[IN_L] != 0.0:
+            ph[P_INL] = 1.0
+            if law_is_linear(law_l):
+                kb, cb = law_linear_coefficients(law_l, p_l)
+                k += kb
+                c += cb
+                r0 += kb * gap_l
+            else:
+                ph[P_NLL] = 1.0
+        if st[IN_R] != 0.0:
+            ph[P_INR] = 1.0
+            if law_is_linear(law_r):
+                kb, cb = law_linear_coefficients(law_r, p_r)
+                k += kb
+                c += cb
+                r0 -= kb * gap_r
+            else:
+                ph[P_NLR] = 1.0
+    ph[P_M] = mass
+    ph[P_C] = c
+    ph[P_K] = k
+    ph[P_P0] = -r0 - mass * a0
+    ph[P_P1] = -mass * a1
+    ph[P_H] = -mass * amp
+    ph[P_W] = omega
+    ph[P_PHI] = phase
+    ph[P_AX0] = a0
+    ph[P_AX1] = a1
+    ph[P_AXH] = amp
+    ph[P_D0] = st[D]
+    ph[P_V0] = st[V]
+    ph[P_MODE] = MODE_NUMERIC if (ph[P_NLL] != 0.0 or ph[P_NLR] != 0.0) else MODE_LINEAR
+    ph[P_GAPL] = gap_l
+    ph[P_GAPR] = gap_r
+    ph[P_LAWL] = law_l
+    ph[P_PL:P_PL + 4] = p_l
+    ph[P_LAWR] = law_r
+    ph[P_PR:P_PR + 4] = p_r
+    ph[P_DL0] = st[DEF_L]
+    ph[P_DR0] = st[DEF_R]
+    ph[P_CD] = c_d
+    ph[P_KISO] = k_iso
+    ph[P_RISO] = r_iso
+    return k, c
+
+
+@jit
+def _accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs):
+    """Integrals, extrema and contact statistics over ``[t0, t0 + tau]`` of one sub-interval."""
+    mass = ph[P_M]
+    c_d = ph[P_CD]
+    half = 0.5 * tau
+    in_l = ph[P_INL] != 0.0
+    in_r = ph[P_INR] != 0.0
+    if tau > 0.0:
+        for q in range(4):
+            tq = half * (1.0 + GAUSS_X[q])
+            wq = half * GAUSS_W[q]
+            d, v, a = phase_eval(ph, tq)
+            ledger[0] -= wq * mass * table_acceleration(ph, tq) * v
+            ledger[1] += wq * c_d * v * v
+            for side in (SIDE_L, SIDE_R):
+                if (side == SIDE_L and in_l) or (side == SIDE_R and in_r):
+                    f, fel, _, rate = contact_force(ph, side, d, v, a)
+                    acc = ACC_L if side == SIDE_L else ACC_R
+                    st[acc + A_IMPULSE] += wq * f
+                    st[acc + A_WORK] += wq * f * rate
+                    ledger[3] += wq * (f - fel) * rate
+    # displacement extrema (and the bumpers' maximum compression)
+    t_vel = -1.0
+    if v0 * v1 < 0.0:
+        t_vel = brent(W_VELOCITY, 0, ph, evs, 0.0, tau, v0, v1, XTOL_S)
+    for j in range(3):
+        if j == 0:
+            tj, dj = 0.0, d0
+        elif j == 1:
+            tj, dj = tau, d1
+        else:
+            if t_vel < 0.0:
+                break
+            tj = t_vel
+            dj = phase_eval(ph, tj)[0]
+        if dj > extrema[0]:
+            extrema[0] = dj
+            extrema[1] = t0 + tj
+        if dj < extrema[2]:
+            extrema[2] = dj
+            extrema[3] = t0 + tj
+        if in_l:
+            st[ACC_L + A_MAXCOMP] = max(st[ACC_L + A_MAXCOMP], -dj - ph[P_GAPL])
+        if in_r:
+            st[ACC_R + A_MAXCOMP] = max(st[ACC_R + A_MAXCOMP], dj - ph[P_GAPR])
+    # absolute acceleration extrema
+    r0 = abs_acceleration_rate(ph, d0, v0, a0)
+    r1 = abs_acceleration_rate(ph, d1, v1, a1)
+    _track_abs_acceleration(extrema, t0, a0 + table_acceleration(ph, 0.0))
+    _track_abs_acceleration(extrema, t0 + tau, a1 + table_acceleration(ph, tau))
+    if r0 * r1 < 0.0:
+        tm = brent(W_AABS_RATE, 0, ph, evs, 0.0, tau, r0, r1, XTOL_S)
+        dm, vm, am = phase_eval(ph, tm)
+        _track_abs_acceleration(extrema, t0 + tm, am + table_acceleration(ph, tm))
+    # peak contact forces
+    for side in (SIDE_L, SIDE_R):
+        if (side == SIDE_L and in_l) or (side == SIDE_R and in_r):
+            acc = ACC_L if side == SIDE_L else ACC_R
+            fa, _, ra, _ = contact_force(ph, side, d0, v0, a0)
+            fb, _, rb, _ = contact_force(ph, side, d1, v1, a1)
+            peak = max(fa, fb)
+            if ra * rb < 0.0:
+                tm = brent(W_FORCE_RATE, side, ph, evs, 0.0, tau, ra, rb, XTOL_S)
+                dm, vm, am = phase_eval(ph, tm)
+                peak = max(peak, contact_force(ph, side, dm, vm, am)[0])
+            st[acc + A_PEAK] = max(st[acc + A_PEAK], peak)
+
+
+@jit
+def _track_abs_acceleration(extrema, t, a):
+    if abs(a) > extrema[4]:
+        extrema[4] = abs(a)
+        extrema[5] = t
+        extrema[6] = a
+
+
+@jit
+def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
+               exc_kind, exc_p, rec_t, rec_a, state0, t_end, sample_dt, rtol, max_events):
+    """Simulate from ``state0`` to ``t_end``.
+
+    Returns ``(state, samples, n_samples, contacts, n_contacts, events, n_events, ledger,
+    extrema, status)``; see ``_layout`` for the columns.
+    """
+    st = state0.copy()
+    t_run0 = st[T]
+    samples = np.empty((256, SAMPLE_COLS))
+    contacts = np.empty((16, CONTACT_COLS))
+    events = np.empty((64, EVENT_COLS))
+    n_s = 0
+    n_c = 0
+    n_e = 0
+    ledger = np.zeros(LEDGER_LEN)
+    extrema = np.array([st[D], t_run0, st[D], t_run0, 0.0, t_run0, 0.0])
+    ph = np.zeros(PH_LEN)
+    evs = np.zeros((2 * (slopes.size - 1) + 6, EV_COLS))
+    kin0, iso0, bmp0 = _energies(st, mass, slopes, breaks, rule, law_l, p_l, law_r, p_r)
+    status = SUCCESS
+    zero_run = 0
+    h_num = 1e-4
+    atol_d = rtol * 1e-3
+    atol_v = rtol * 1e-2
+    a_abs, f_iso, f_l, f_r = _outputs(st, st[D], st[V], mass, c_d, slopes, breaks, rule,
+                                      gap_l, gap_r, law_l, p_l, law_r, p_r)
+    _put(samples, 0, t_run0, st[D], st[V], a_abs, f_iso, f_l, f_r)
+    n_s = 1
+    _track_abs_acceleration(extrema, t_run0, a_abs)
+    j_next = 1
+    while st[T] < t_end:
+        t = st[T]
+        a0x, a1x, amp, omega, phase, t_knot = _excitation_piece(exc_kind, exc_p, rec_t, rec_a, t)
+        k, c = _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l,
+                          p_l, law_r, p_r, a0x, a1x, amp, omega, phase)
+        rate = math.sqrt(abs(k) / mass + (0.5 * c / mass) ** 2)
+        h = 2.0 * math.pi / (SUBINTERVALS_PER_PERIOD * max(rate, omega, 1e-300))
+        t_stop = min(t_knot, t_end)
+        to_stop = h >= t_stop - t
+        if to_stop:
+            h = t_stop - t
+        if ph[P_MODE] == MODE_LINEAR:
+            if not linear_setup(ph):
+                status = DEGENERATE_PHASE
+                break
+            d1, v1, a1 = phase_eval(ph, h)
+        else:
+            if h_num < h:
+                h = h_num
+                to_stop = False
+            while True:
+                d1, v1, a1, ed, ev = dp5_step(ph, h)
+                err = max(abs(ed) / (atol_d + rtol * max(abs(st[D]), abs(d1))),
+                          abs(ev) / (atol_v + rtol * max(abs(st[V]), abs(v1))))
+                if err <= 1.0:
+                    h_num = h * (5.0 if err == 0.0 else min(5.0, 0.9 * err ** -0.2))
+                    break
+                h *= max(0.2, 0.9 * err ** -0.2)
+                to_stop = False
+                if h <= 1e-15 * max(1.0, abs(t)):
+                    status = STEP_FAILED
+                    break
+            if status != SUCCESS:
+                break
+        d0, v0 = st[D], st[V]
+        a0 = phase_eval(ph, 0.0)[2]
+        n_ev = iso_events(slopes, breaks, rule, st, evs, 0)
+        n_ev = _bumper_events(st, has_b, gap_l, gap_r, law_l, law_r, evs, n_ev)
+        tau = h
+        i_ev = -1
+        for i in range(n_ev):
+            g0, gp0, sc0 = event_value(evs, i, ph, 0.0, d0, v0, a0)
+            g1, gp1, sc1 = event_value(evs, i, ph, h, d1, v1, a1)
+            tol0 = ROUNDING * sc0
+            if g0 > tol0 and g1 > 0.0 and not (gp0 < 0.0 and gp1 > 0.0):
+                continue
+            r = locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, ROUNDING * sc1, XTOL_S)
+            if r >= 0.0 and (r < tau or (i_ev < 0 and r <= tau)):
+                tau = r
+                i_ev = i
+        if i_ev >= 0:
+            to_stop = False
+            if tau < h:
+                d1, v1, a1 = phase_eval(ph, tau)
+        _accumulate(ph, st, t, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs)
+        # samples strictly inside (t, t + tau]
+        if sample_dt > 0.0:
+            while True:
+                ts = t_run0 + j_next * sample_dt
+                if ts > t + tau or ts > t_end:
+                    break
+                ds, vs, _ = phase_eval(ph, ts - t)
+                samples = _grow(samples, n_s)
+                out = _outputs(st, ds, vs, mass, c_d, slopes, breaks, rule, gap_l, gap_r,
+                               law_l, p_l, law_r, p_r)
+                _put(samples, n_s, ts, ds, vs, out[0], out[1], out[2], out[3])
+                n_s += 1
+                j_next += 1
+        # advance the state to the end of the sub-interval
+        for side in (SIDE_L, SIDE_R):
+            idx = DEF_L if side == SIDE_L else DEF_R
+            law = law_l if side == SIDE_L else law_r
+            p = p_l if side == SIDE_L else p_r
+            if (st[IN_L] if side == SIDE_L else st[IN_R]) != 0.0:
+                gap = gap_l if side == SIDE_L else gap_r
+                st[idx] = max(0.0, (-d1 if side == SIDE_L else d1) - gap)
+            elif st[idx] > 0.0:
+                relaxed = law_relax(law, p, st[idx], tau)[0]
+                ledger[3] += law_energy(law, p, st[idx]) - law_energy(law, p, relaxed)
+                st[idx] = relaxed
+        ledger[2] += iso_advance(slopes, breaks, rule, st, d0, d1)
+        st[D] = d1
+        st[V] = v1
+        st[T] = t_stop if to_stop else t + tau
+        if i_ev < 0:
+            continue
+        # the event: jump of the state
+        action = int(evs[i_ev, E_ACTION])
+        index = int(evs[i_ev, E_INDEX])
+        t_ev = st[T]
+        if action == ACT_CONTACT:
+            acc = ACC_L if index == SIDE_L else ACC_R
+            st[IN_L if index == SIDE_L else IN_R] = 1.0
+            comp = st[DEF_L if index == SIDE_L else DEF_R]
+            st[acc + A_TSTART] = t_ev
+            st[acc + A_VIN] = st[V]
+            st[acc + A_DSTART] = comp
+            st[acc + A_IMPULSE] = 0.0
+            st[acc + A_PEAK] = 0.0
+            st[acc + A_MAXCOMP] = comp
+            st[acc + A_WORK] = 0.0
+        elif action == ACT_RELEASE:
+            acc = ACC_L if index == SIDE_L else ACC_R
+            st[IN_L if index == SIDE_L else IN_R] = 0.0
+            contacts = _grow(contacts, n_c)
+            _put(contacts, n_c, float(index), st[acc + A_TSTART], t_ev, st[acc + A_VIN], st[V],
+                 st[acc + A_IMPULSE], st[acc + A_PEAK], st[acc + A_MAXCOMP], st[acc + A_WORK])
+            n_c += 1
+        else:
+            iso_transition(slopes, breaks, rule, st, action, index, evs[i_ev, E_DIR])
+        events = _grow(events, n_e)
+        _put(events, n_e, t_ev, float(action), float(index))
+        n_e += 1
+        a_abs, f_iso, f_l, f_r = _outputs(st, st[D], st[V], mass, c_d, slopes, breaks, rule,
+                                          gap_l, gap_r, law_l, p_l, law_r, p_r)
+        _track_abs_acceleration(extrema, t_ev, a_abs)
+        if sample_dt >= 0.0:
+            samples = _grow(samples, n_s)
+            _put(samples, n_s, t_ev, st[D], st[V], a_abs, f_iso, f_l, f_r)
+            n_s += 1
+        zero_run = zero_run + 1 if tau <= 1e-12 * max(1.0, abs(t)) else 0
+        if zero_run > ZENO_REPEATS:
+            status = ZENO
+            break
+        if n_e >= max_events:
+            status = MAX_EVENTS
+            break
+    # the last sample, and the contacts still going on
+    if samples[n_s - 1, 0] < st[T]:
+        samples = _grow(samples, n_s)
+        out = _outputs(st, st[D], st[V], mass, c_d, slopes, breaks, rule, gap_l, gap_r,
+                       law_l, p_l, law_r, p_r)
+        _put(samples, n_s, st[T], st[D], st[V], out[0], out[1], out[2], out[3])
+        n_s += 1
+    for side in (SIDE_L, SIDE_R):
+        if (st[IN_L] if side == SIDE_L else st[IN_R]) != 0.0:
+            acc = ACC_L if side == SIDE_L else ACC_R
+            contacts = _grow(contacts, n_c)
+            _put(contacts, n_c, float(side), st[acc + A_TSTART], np.nan, st[acc + A_VIN], np.nan,
+                 st[acc + A_IMPULSE], st[acc + A_PEAK], st[acc + A_MAXCOMP], st[acc + A_WORK])
+            n_c += 1
+    kin1, iso1, bmp1 = _energies(st, mass, slopes, breaks, rule, law_l, p_l, law_r, p_r)
+    ledger[4] = kin1 - kin0
+    ledger[5] = iso1 - iso0
+    ledger[6] = bmp1 - bmp0
+    return (st, samples[:n_s].copy(), contacts[:n_c].copy(), events[:n_e].copy(), ledger,
+            extrema, status)

@@ -1,0 +1,47 @@
+"""Index constants shared by the compiled kernels and their Python wrapper.
+
+Numba freezes module-level integers as compile-time constants, so these are safe to use
+inside ``@jit`` functions and cost nothing.
+"""
+
+# ---- state vector (float64), length STATE_BASE + 2 * (n_branches - 1)
+T = 0            # time, s
+D = 1            # displacement relative to the table, m
+V = 2            # velocity relative to the table, m/s
+DEF_L = 3        # compression of the left bumper, m (>= 0)
+DEF_R = 4        # compression of the right bumper, m
+IN_L = 5         # 1.0 while in contact with the left bumper
+IN_R = 6         # 1.0 while in contact with the right bumper
+REGION = 7       # backbone branch of the elastic rule: 0 centre, +-j the j-th outer branch
+ACC_L = 8        # contact accumulators of the left bumper (N_ACC values)
+ACC_R = 15       # ... of the right bumper
+N_ACC = 7
+A_TSTART, A_VIN, A_DSTART, A_IMPULSE, A_PEAK, A_MAXCOMP, A_WORK = 0, 1, 2, 3, 4, 5, 6
+STATE_BASE = 22  # then u_i (n-1 plastic slips, m), then s_i (n-1 slip directions, -1/0/+1)
+
+# ---- phase descriptor (float64), see _linear.py and _numeric.py
+P_M, P_C, P_K, P_P0, P_P1, P_H, P_W, P_PHI = 0, 1, 2, 3, 4, 5, 6, 7
+P_S, P_Q2, P_ROOT, P_B0, P_B1, P_B2, P_B3, P_ZR, P_ZI, P_Y0, P_Y1 = 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18
+P_D0, P_V0, P_MODE, P_NLL, P_NLR, P_GAPL, P_GAPR = 19, 20, 21, 22, 23, 24, 25
+P_LAWL, P_PL, P_LAWR, P_PR = 26, 27, 31, 32          # law id, then 4 parameters
+P_DL0, P_DR0, P_CD, P_AX0, P_AX1, P_AXH = 36, 37, 38, 39, 40, 41
+P_INL, P_INR, P_KISO, P_RISO = 42, 43, 44, 45
+PH_LEN = 46
+MODE_LINEAR = 0.0
+MODE_NUMERIC = 1.0
+
+# ---- events: rows of (kind, alpha, beta, gamma, relax_side, action, index, direction)
+E_KIND, E_ALPHA, E_BETA, E_GAMMA, E_SIDE, E_ACTION, E_INDEX, E_DIR = 0, 1, 2, 3, 4, 5, 6, 7
+EV_COLS = 8
+KIND_LINEAR = 0   # g = alpha + beta D + gamma V (+ compression of the relaxing bumper E_SIDE)
+KIND_RELEASE = 1  # the contact law's release function on side E_SIDE
+SIDE_NONE, SIDE_L, SIDE_R = -1, 0, 1
+ACT_YIELD, ACT_REVERSAL, ACT_REGION, ACT_CONTACT, ACT_RELEASE = 0, 1, 2, 3, 4
+EVENT_NAMES = ("yield", "reversal", "branch", "contact_start", "contact_end")
+
+# ---- outputs
+SAMPLE_COLS = 7   # t, D, V, abs_acceleration, isolator_force, bumper_force_left, bumper_force_right
+CONTACT_COLS = 9  # side, t_start, t_end, v_in, v_out, impulse, peak_force, max_compression, work
+EVENT_COLS = 3    # t, action, index
+LEDGER_LEN = 7    # input, viscous, hysteretic, bumper dissipation, d(kinetic), d(isolator), d(bumper)
+EXTREMA_LEN = 7   # D max, t, D min, t, |a_abs| max, t, a_abs there

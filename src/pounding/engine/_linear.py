@@ -1,0 +1,100 @@
+"""Closed-form solution of one linear phase of motion.
+
+Within a phase the motion obeys ``M D'' + c D' + k D = P0 + P1 tau + H sin(w tau + phi)``
+with constant coefficients (``tau`` is the time since the phase start).  The solution is a
+particular solution (polynomial plus sinusoid) plus the free response
+``exp(A tau) y0`` of the 2x2 system, written so that every damping regime (under-,
+critically and over-damped, ``k = 0``, ``c = 0``) is evaluated without cancellation.
+"""
+
+from __future__ import annotations
+
+import math
+
+from .._jit import jit
+from ._layout import (P_B0, P_B1, P_B2, P_B3, P_C, P_D0, P_H, P_K, P_M, P_P0, P_P1, P_PHI,
+                      P_Q2, P_ROOT, P_S, P_V0, P_W, P_Y0, P_Y1, P_ZI, P_ZR)
+
+
+@jit
+def linear_setup(ph):
+    """Fill the derived coefficients of ``ph`` from M, c, k, forcing, D0 and V0.
+
+    Returns False when the phase has no bounded closed form (undamped, exactly resonant).
+    """
+    m, c, k = ph[P_M], ph[P_C], ph[P_K]
+    p0, p1, h, w = ph[P_P0], ph[P_P1], ph[P_H], ph[P_W]
+    s = -0.5 * c / m
+    q2 = s * s - k / m
+    ph[P_S] = s
+    ph[P_Q2] = q2
+    ph[P_ROOT] = math.sqrt(abs(q2))
+    # polynomial particular solution b0 + b1 t + b2 t^2 + b3 t^3
+    if k != 0.0:
+        b1 = p1 / k
+        ph[P_B0], ph[P_B1], ph[P_B2], ph[P_B3] = (p0 - c * b1) / k, b1, 0.0, 0.0
+    elif c != 0.0:
+        b2 = 0.5 * p1 / c
+        ph[P_B0], ph[P_B1], ph[P_B2], ph[P_B3] = 0.0, (p0 - 2.0 * m * b2) / c, b2, 0.0
+    else:
+        ph[P_B0], ph[P_B1], ph[P_B2], ph[P_B3] = 0.0, 0.0, 0.5 * p0 / m, p1 / (6.0 * m)
+    # harmonic particular solution Im(Z exp(i(w t + phi))), Z = H / (k - m w^2 + i c w)
+    zr = 0.0
+    zi = 0.0
+    if h != 0.0:
+        re = k - m * w * w
+        im = c * w
+        den = re * re + im * im
+        scale = k * k + (m * w * w) ** 2
+        if den <= 1e-24 * scale:
+            return False
+        zr = h * re / den
+        zi = -h * im / den
+    ph[P_ZR] = zr
+    ph[P_ZI] = zi
+    sp = math.sin(ph[P_PHI])
+    cp = math.cos(ph[P_PHI])
+    ph[P_Y0] = ph[P_D0] - (ph[P_B0] + zr * sp + zi * cp)
+    ph[P_Y1] = ph[P_V0] - (ph[P_B1] + w * (zr * cp - zi * sp))
+    return True
+
+
+@jit
+def _free_response(ph, tau):
+    """``exp(s tau) * (C(tau), S(tau))`` with ``exp(A tau) = e^{s tau}(C I + S (A - s I))``."""
+    s = ph[P_S]
+    q2 = ph[P_Q2]
+    r = ph[P_ROOT]
+    z = q2 * tau * tau
+    if abs(z) < 1e-3:
+        cc = 1.0 + z * (0.5 + z * (1.0 / 24.0 + z / 720.0))
+        ss = tau * (1.0 + z * (1.0 / 6.0 + z * (1.0 / 120.0 + z / 5040.0)))
+        e = math.exp(s * tau)
+        return e * cc, e * ss
+    if q2 < 0.0:
+        e = math.exp(s * tau)
+        return e * math.cos(r * tau), e * math.sin(r * tau) / r
+    ep = math.exp((s + r) * tau)
+    em = math.exp((s - r) * tau)
+    return 0.5 * (ep + em), 0.5 * (ep - em) / r
+
+
+@jit
+def linear_eval(ph, tau):
+    """Displacement (m), velocity (m/s) and relative acceleration (m/s^2) at ``tau`` (s)."""
+    m, c, k = ph[P_M], ph[P_C], ph[P_K]
+    w = ph[P_W]
+    th = w * tau + ph[P_PHI]
+    st = math.sin(th)
+    ct = math.cos(th)
+    b1, b2, b3 = ph[P_B1], ph[P_B2], ph[P_B3]
+    zr, zi = ph[P_ZR], ph[P_ZI]
+    dp = ph[P_B0] + tau * (b1 + tau * (b2 + tau * b3)) + zr * st + zi * ct
+    vp = b1 + tau * (2.0 * b2 + 3.0 * b3 * tau) + w * (zr * ct - zi * st)
+    ec, es = _free_response(ph, tau)
+    s = ph[P_S]
+    y0, y1 = ph[P_Y0], ph[P_Y1]
+    d = dp + ec * y0 + es * (y1 - s * y0)
+    v = vp + ec * y1 + es * (s * y1 - (k / m) * y0)
+    a = (ph[P_P0] + ph[P_P1] * tau + ph[P_H] * st - c * v - k * d) / m
+    return d, v, a

@@ -1,0 +1,203 @@
+"""The trajectory inside one sub-interval of a phase, and root finding on it.
+
+Everything the event locator needs is a scalar function of the time ``tau`` since the
+start of the sub-interval: an event function or its rate, the velocity (displacement
+extrema), the rate of the absolute acceleration, the rate of a contact force.
+:func:`traj_value` evaluates any of them by name, and :func:`brent` finds their roots.
+"""
+
+from __future__ import annotations
+
+import math
+
+from ..model.contact_laws import law_force, law_relax, law_release
+from .._jit import jit
+from ._layout import (E_ALPHA, E_BETA, E_GAMMA, E_KIND, E_SIDE, KIND_LINEAR, MODE_LINEAR,
+                      P_AX0, P_AX1, P_AXH, P_C, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_INL,
+                      P_INR, P_K, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_PHI, P_PL, P_PR,
+                      P_V0, P_W, SIDE_L, SIDE_R)
+from ._linear import linear_eval
+from ._numeric import dp5_step, phase_rhs
+
+W_EVENT, W_EVENT_RATE, W_VELOCITY, W_AABS_RATE, W_FORCE_RATE = 0, 1, 2, 3, 4
+ROUNDING = 256.0 * 2.220446049250313e-16  # relative size of rounding noise in event values
+
+
+@jit
+def phase_eval(ph, tau):
+    """Displacement, velocity and relative acceleration ``tau`` s into the sub-interval."""
+    if ph[P_MODE] == MODE_LINEAR:
+        return linear_eval(ph, tau)
+    if tau == 0.0:
+        return ph[P_D0], ph[P_V0], phase_rhs(ph, 0.0, ph[P_D0], ph[P_V0])
+    d, v, a, _, _ = dp5_step(ph, tau)
+    return d, v, a
+
+
+@jit
+def table_acceleration(ph, tau):
+    """Base acceleration (m/s^2) ``tau`` s into the sub-interval."""
+    return ph[P_AX0] + ph[P_AX1] * tau + ph[P_AXH] * math.sin(ph[P_W] * tau + ph[P_PHI])
+
+
+@jit
+def contact_force(ph, side, d, v, a):
+    """Bumper ``side`` in contact: ``(force N, elastic part N, d(force)/dt N/s, compression rate m/s)``."""
+    if side == SIDE_L:
+        dd, dv, da = -d - ph[P_GAPL], -v, -a
+        f, fel, fd, fv = law_force(int(ph[P_LAWL]), ph[P_PL:P_PL + 4], dd, dv)
+    else:
+        dd, dv, da = d - ph[P_GAPR], v, a
+        f, fel, fd, fv = law_force(int(ph[P_LAWR]), ph[P_PR:P_PR + 4], dd, dv)
+    return f, fel, fd * dv + fv * da, dv
+
+
+@jit
+def abs_acceleration_rate(ph, d, v, a):
+    """Time derivative of the absolute acceleration (m/s^3): ``-(d/dt restoring force) / M``."""
+    rate = ph[P_C] * a + ph[P_K] * v
+    if ph[P_NLR] != 0.0:
+        rate += contact_force(ph, SIDE_R, d, v, a)[2]
+    if ph[P_NLL] != 0.0:
+        rate -= contact_force(ph, SIDE_L, d, v, a)[2]
+    return -rate / ph[P_M]
+
+
+@jit
+def event_value(evs, i, ph, tau, d, v, a):
+    """Event ``i`` at ``tau``: ``(value, rate, scale)``; it fires when value crosses zero downwards.
+
+    ``scale`` is the size of the terms summed, so that ``ROUNDING * scale`` is the noise level.
+    """
+    side = int(evs[i, E_SIDE])
+    if evs[i, E_KIND] == KIND_LINEAR:
+        alpha, beta, gamma = evs[i, E_ALPHA], evs[i, E_BETA], evs[i, E_GAMMA]
+        g = alpha + beta * d + gamma * v
+        gp = beta * v + gamma * a
+        scale = abs(alpha) + abs(beta * d) + abs(gamma * v)
+        if side == SIDE_L:
+            r, rr = law_relax(int(ph[P_LAWL]), ph[P_PL:P_PL + 4], ph[P_DL0], tau)
+            g += r
+            gp += rr
+            scale += r
+        elif side == SIDE_R:
+            r, rr = law_relax(int(ph[P_LAWR]), ph[P_PR:P_PR + 4], ph[P_DR0], tau)
+            g += r
+            gp += rr
+            scale += r
+        return g, gp, scale
+    if side == SIDE_L:
+        law, p = int(ph[P_LAWL]), ph[P_PL:P_PL + 4]
+        dd, dv, da = -d - ph[P_GAPL], -v, -a
+    else:
+        law, p = int(ph[P_LAWR]), ph[P_PR:P_PR + 4]
+        dd, dv, da = d - ph[P_GAPR], v, a
+    g, gp = law_release(law, p, dd, dv, da)
+    scale = law_release(law, p, abs(dd), abs(dv), 0.0)[0]
+    return g, gp, scale
+
+
+@jit
+def traj_value(what, idx, ph, evs, tau):
+    """The scalar function ``what`` (a ``W_*`` constant) of the trajectory at ``tau``."""
+    d, v, a = phase_eval(ph, tau)
+    if what == W_EVENT:
+        return event_value(evs, idx, ph, tau, d, v, a)[0]
+    if what == W_EVENT_RATE:
+        return event_value(evs, idx, ph, tau, d, v, a)[1]
+    if what == W_VELOCITY:
+        return v
+    if what == W_AABS_RATE:
+        return abs_acceleration_rate(ph, d, v, a)
+    return contact_force(ph, idx, d, v, a)[2]
+
+
+@jit
+def brent(what, idx, ph, evs, xa, xb, fa, fb, xtol):
+    """Root of ``traj_value(what, idx, ...)`` in ``[xa, xb]`` given values of opposite sign.
+
+    Brent's method (as scipy's ``brentq``); returns the end of the bracket closest to the root.
+    """
+    if fa == 0.0:
+        return xa
+    if fb == 0.0:
+        return xb
+    xpre, xcur = xa, xb
+    fpre, fcur = fa, fb
+    xblk = xpre
+    fblk = fpre
+    spre = 0.0
+    scur = 0.0
+    for _ in range(200):
+        if fpre != 0.0 and fcur != 0.0 and (fpre < 0.0) != (fcur < 0.0):
+            xblk = xpre
+            fblk = fpre
+            spre = scur = xcur - xpre
+        if abs(fblk) < abs(fcur):
+            xpre, xcur, xblk = xcur, xblk, xcur
+            fpre, fcur, fblk = fcur, fblk, fcur
+        delta = 0.5 * (xtol + 4.0 * 2.220446049250313e-16 * abs(xcur))
+        sbis = 0.5 * (xblk - xcur)
+        if fcur == 0.0 or abs(sbis) < delta:
+            break
+        if abs(spre) > delta and abs(fcur) < abs(fpre):
+            if xpre == xblk:
+                stry = -fcur * (xcur - xpre) / (fcur - fpre)
+            else:
+                dpre = (fpre - fcur) / (xpre - xcur)
+                dblk = (fblk - fcur) / (xblk - xcur)
+                stry = -fcur * (fblk * dblk - fpre * dpre) / (dblk * dpre * (fblk - fpre))
+            if 2.0 * abs(stry) < min(abs(spre), 3.0 * abs(sbis) - delta):
+                spre = scur
+                scur = stry
+            else:
+                spre = sbis
+                scur = sbis
+        else:
+            spre = sbis
+            scur = sbis
+        xpre = xcur
+        fpre = fcur
+        if abs(scur) > delta:
+            xcur += scur
+        else:
+            xcur += delta if sbis > 0.0 else -delta
+        fcur = traj_value(what, idx, ph, evs, xcur)
+    return xcur
+
+
+@jit
+def locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, tol1, xtol):
+    """First time in ``[0, h]`` at which event ``i`` fires, or -1.0.
+
+    ``g`` and ``gp`` are the event's value and rate at both ends.  A value within ``tol0`` of
+    zero at the start means the trajectory has just left (or sits on) that boundary: it
+    fires only if the value then clearly goes negative.  A dip below zero between two
+    positive ends (a graze) is found from the zero of the rate.
+    """
+    if g0 > tol0:
+        if g1 <= 0.0:
+            return brent(W_EVENT, i, ph, evs, 0.0, h, g0, g1, xtol)
+        if gp0 < 0.0 and gp1 > 0.0:
+            tm = brent(W_EVENT_RATE, i, ph, evs, 0.0, h, gp0, gp1, xtol)
+            d, v, a = phase_eval(ph, tm)
+            gm, _, sc = event_value(evs, i, ph, tm, d, v, a)
+            if gm < -ROUNDING * sc:
+                return brent(W_EVENT, i, ph, evs, 0.0, tm, g0, gm, xtol)
+        return -1.0
+    if g1 >= -tol1:
+        if gp0 < 0.0 and gp1 > 0.0:
+            tm = brent(W_EVENT_RATE, i, ph, evs, 0.0, h, gp0, gp1, xtol)
+            d, v, a = phase_eval(ph, tm)
+            gm, _, sc = event_value(evs, i, ph, tm, d, v, a)
+            if gm < -ROUNDING * sc:
+                return 0.0
+        return -1.0
+    tp = h
+    for _ in range(60):
+        tp *= 0.5
+        d, v, a = phase_eval(ph, tp)
+        gp, _, sc = event_value(evs, i, ph, tp, d, v, a)
+        if gp > ROUNDING * sc:
+            return brent(W_EVENT, i, ph, evs, tp, h, gp, g1, xtol)
+    return 0.0

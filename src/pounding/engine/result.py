@@ -1,0 +1,189 @@
+"""What a simulation returns: the run, its state and its energy ledger."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, fields
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import pandas as pd
+
+from .._errors import Status
+from ._layout import DEF_L, DEF_R, IN_L, IN_R, REGION, STATE_BASE
+from ._layout import D as I_D
+from ._layout import T as I_T
+from ._layout import V as I_V
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..excitation import Excitation
+    from ..model import Oscillator
+
+
+@dataclass(frozen=True, eq=False)
+class State:
+    """Complete state of the system at one instant, from which a run continues exactly.
+
+    Build one at rest with :meth:`at_rest`; every :class:`Run` has its ``final_state``.
+    The raw vector (``vector``) also holds the isolator's internal variables and the
+    running totals of a contact in progress, so that a continued run reports that contact
+    whole.
+    """
+
+    vector: np.ndarray = field(repr=False)
+
+    def __post_init__(self) -> None:
+        vec = np.array(self.vector, dtype=float)
+        vec.setflags(write=False)
+        object.__setattr__(self, "vector", vec)
+
+    @classmethod
+    def at_rest(cls, oscillator: "Oscillator", time_s: float = 0.0, displacement_m: float = 0.0,
+                velocity_m_s: float = 0.0) -> "State":
+        """The virgin isolator and relaxed bumpers, with the given time and motion."""
+        n_sp = oscillator.isolator.n_branches - 1
+        vec = np.zeros(STATE_BASE + 2 * n_sp)
+        vec[I_T], vec[I_D], vec[I_V] = time_s, displacement_m, velocity_m_s
+        return cls(vec)
+
+    @property
+    def time_s(self) -> float:
+        return float(self.vector[I_T])
+
+    @property
+    def displacement_m(self) -> float:
+        return float(self.vector[I_D])
+
+    @property
+    def velocity_m_s(self) -> float:
+        return float(self.vector[I_V])
+
+    @property
+    def bumper_compression_m(self) -> tuple[float, float]:
+        """Compression of the (left, right) bumper, m."""
+        return float(self.vector[DEF_L]), float(self.vector[DEF_R])
+
+    @property
+    def in_contact(self) -> tuple[bool, bool]:
+        """Whether the mass touches the (left, right) bumper."""
+        return bool(self.vector[IN_L]), bool(self.vector[IN_R])
+
+    @property
+    def isolator_branch(self) -> int:
+        """Backbone branch of an ``elastic`` isolator (0: centre, +-j: j-th outer branch)."""
+        return int(self.vector[REGION])
+
+    @property
+    def plastic_slips_m(self) -> np.ndarray:
+        """Slip ``u_i`` of each elastic-perfectly-plastic spring of a ``kinematic`` isolator, m."""
+        n_sp = (self.vector.size - STATE_BASE) // 2
+        return self.vector[STATE_BASE:STATE_BASE + n_sp].copy()
+
+    def __repr__(self) -> str:
+        return (f"State(time_s={self.time_s:.6g}, displacement_m={self.displacement_m:.6g}, "
+                f"velocity_m_s={self.velocity_m_s:.6g}, in_contact={self.in_contact})")
+
+
+@dataclass(frozen=True)
+class EnergyLedger:
+    """Where the energy went over a run, J.
+
+    ``input_work`` (work of the inertial forcing ``-M A(t)`` on the relative motion) equals
+    the changes of the stored energies plus the dissipated ones; ``residual`` is what is
+    left, a check on the integration (it is at rounding level for an exact run).
+    """
+
+    input_work: float
+    kinetic: float
+    isolator_elastic: float
+    bumper_elastic: float
+    viscous: float
+    hysteretic: float
+    bumper_dissipation: float
+
+    @property
+    def residual(self) -> float:
+        """``input_work`` minus every stored and dissipated term, J."""
+        return self.input_work - (self.kinetic + self.isolator_elastic + self.bumper_elastic
+                                   + self.viscous + self.hysteretic + self.bumper_dissipation)
+
+    def to_series(self) -> pd.Series:
+        data = {f.name: getattr(self, f.name) for f in fields(self)}
+        data["residual"] = self.residual
+        return pd.Series(data, name="energy_J")
+
+
+HISTORY_COLUMNS = ("t", "displacement", "velocity", "abs_acceleration", "isolator_force",
+                   "bumper_force_left", "bumper_force_right")
+CONTACT_COLUMNS = ("side", "t_start", "t_end", "v_in", "v_out", "impulse", "peak_force",
+                   "max_compression", "bumper_dissipation")
+
+
+@dataclass(frozen=True, eq=False)
+class Run:
+    """Result of :func:`pounding.simulate`.
+
+    Attributes
+    ----------
+    t, displacement, velocity, abs_acceleration : ndarray, shape (n,)
+        Sampled histories in s, m, m/s and m/s^2 (relative motion; absolute acceleration
+        ``D'' + A``); samples on the uniform grid plus one at every event (after its jump).
+    isolator_force, bumper_force_left, bumper_force_right : ndarray, shape (n,)
+        ``R_d + C_d D'`` and the bumpers' push (>= 0), N.
+    displacement_max, displacement_min, abs_acceleration_max : float
+        Exact extrema over the run (located events, independent of the sampling), m, m/s^2;
+        the ``*_time_s`` attributes give when.
+    contacts : DataFrame
+        One row per contact: ``side`` ("left"/"right"), ``t_start``, ``t_end`` (s),
+        ``v_in``, ``v_out`` (relative velocity at start and end, m/s), ``impulse`` (N s),
+        ``peak_force`` (N), ``max_compression`` (m), ``bumper_dissipation`` (J: energy the
+        bumper took from the mass, dissipated by its dashpot during contact or while it
+        recovers).  A contact still going on at the end has NaN ``t_end`` and ``v_out``.
+    events : DataFrame
+        Every event: ``t``, ``kind`` (yield, reversal, branch, contact_start, contact_end),
+        ``index`` (spring or side).
+    energy : EnergyLedger
+    final_state : State
+    status : Status
+        ``Status.SUCCESS`` (0) or why the run stopped early (negative); see ``message``.
+    """
+
+    t: np.ndarray = field(repr=False)
+    displacement: np.ndarray = field(repr=False)
+    velocity: np.ndarray = field(repr=False)
+    abs_acceleration: np.ndarray = field(repr=False)
+    isolator_force: np.ndarray = field(repr=False)
+    bumper_force_left: np.ndarray = field(repr=False)
+    bumper_force_right: np.ndarray = field(repr=False)
+    displacement_max: float
+    displacement_max_time_s: float
+    displacement_min: float
+    displacement_min_time_s: float
+    abs_acceleration_max: float
+    abs_acceleration_max_time_s: float
+    contacts: pd.DataFrame = field(repr=False)
+    events: pd.DataFrame = field(repr=False)
+    energy: EnergyLedger
+    final_state: State
+    status: Status
+    message: str
+    oscillator: "Oscillator" = field(repr=False)
+    excitation: "Excitation" = field(repr=False)
+
+    @property
+    def success(self) -> bool:
+        return self.status == Status.SUCCESS
+
+    @property
+    def excursion_m(self) -> float:
+        """``E = D_max - D_min`` over the run, m."""
+        return self.displacement_max - self.displacement_min
+
+    def to_dataframe(self) -> pd.DataFrame:
+        """The sampled histories, one row per sample, columns as the attributes (SI units)."""
+        return pd.DataFrame({name: getattr(self, name) for name in HISTORY_COLUMNS})
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> list:
+        """Plot displacement and absolute acceleration against time; see :func:`pounding.plots.plot_run`."""
+        from ..plots import plot_run
+
+        return plot_run(self, ax=ax, **kwargs)

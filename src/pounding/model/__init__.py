@@ -1,0 +1,8 @@
+"""What the system is: mass, isolator, bumpers and their contact laws."""
+
+from .bumpers import Bumpers
+from .contact_laws import HuntCrossley, KelvinVoigt
+from .isolator import Isolator
+from .oscillator import Oscillator
+
+__all__ = ["Bumpers", "HuntCrossley", "Isolator", "KelvinVoigt", "Oscillator"]

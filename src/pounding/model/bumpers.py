@@ -1,0 +1,78 @@
+"""Two massless bumpers behind gaps, one on each side of the mass."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, ClassVar, Optional
+
+from .._checks import non_negative
+from .._errors import InputError, Problem
+from .contact_laws import LAWS, ContactLaw, law_to_dict
+
+
+@dataclass(frozen=True)
+class Bumpers:
+    """Left and right bumpers, each behind its gap (the paper's YBs configuration).
+
+    A bumper only pushes.  Contact with the right bumper starts when the displacement ``D``
+    reaches ``gap_right + d_R(t)``, where ``d_R >= 0`` is the bumper's current compression
+    (it may not have recovered from the previous contact); contact ends when the force would
+    become a pull; in between contacts the bumper relaxes by its own law.  Mirror for left.
+
+    Parameters
+    ----------
+    gap_left, gap_right : float
+        Distances in m from the mass at rest to each bumper's free surface, >= 0.  The
+        paper's total gap is ``gap_left + gap_right = 0.03`` m.
+    law : KelvinVoigt or HuntCrossley
+        Contact law of the left bumper, and of the right one unless ``law_right`` is given.
+    law_right : KelvinVoigt or HuntCrossley, optional
+        Contact law of the right bumper when it differs from the left one.
+    """
+
+    gap_left: float
+    gap_right: float
+    law: ContactLaw
+    law_right: Optional[ContactLaw] = None
+
+    FIELDS: ClassVar[tuple[str, ...]] = ("gap_left", "gap_right", "law", "law_right")
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "gap_left", non_negative("bumpers.gap_left", self.gap_left, "m"))
+        object.__setattr__(self, "gap_right", non_negative("bumpers.gap_right", self.gap_right, "m"))
+        for name in ("law", "law_right"):
+            value = getattr(self, name)
+            if value is None and name == "law_right":
+                continue
+            if not isinstance(value, tuple(LAWS.values())):
+                raise InputError(Problem.WRONG_TYPE, f"bumpers.{name}", value,
+                                 got=type(value).__name__,
+                                 expected="contact law (KelvinVoigt or HuntCrossley)")
+
+    @property
+    def left(self) -> ContactLaw:
+        """Contact law of the left bumper."""
+        return self.law
+
+    @property
+    def right(self) -> ContactLaw:
+        """Contact law of the right bumper."""
+        return self.law if self.law_right is None else self.law_right
+
+    @property
+    def total_gap(self) -> float:
+        """``Delta = gap_left + gap_right`` in m."""
+        return self.gap_left + self.gap_right
+
+    def mirrored(self) -> "Bumpers":
+        """The same bumpers seen in a mirror (left and right swapped)."""
+        if self.law_right is None:
+            return Bumpers(self.gap_right, self.gap_left, self.law)
+        return Bumpers(self.gap_right, self.gap_left, self.law_right, self.law)
+
+    def to_dict(self) -> dict[str, Any]:
+        out: dict[str, Any] = {"gap_left": self.gap_left, "gap_right": self.gap_right,
+                               "law": law_to_dict(self.law)}
+        if self.law_right is not None:
+            out["law_right"] = law_to_dict(self.law_right)
+        return out

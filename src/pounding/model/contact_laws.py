@@ -1,0 +1,210 @@
+"""Bumper contact laws: the one place where a law is defined.
+
+A law relates the bumper's compression ``d`` (m, >= 0) and compression rate ``dd`` (m/s)
+to the force it pushes with (N).  Bumpers are massless, so out of contact a bumper relaxes
+by ``force(d, dd) = 0``; in contact ``d`` follows the mass, and contact ends when the force
+would become a pull.  Adding a law means: a frozen dataclass here with a ``LAW_ID`` and
+``params()``, a line in :data:`LAWS`, and a branch in each compiled ``law_*`` function below.
+Nothing else in the package needs to change.
+
+Laws whose force is linear in ``(d, dd)`` (:class:`KelvinVoigt`) keep every phase of motion
+a linear ODE, which the engine solves in closed form; the others are integrated numerically
+during contact.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any, ClassVar, Union
+
+import numpy as np
+
+from .._checks import non_negative, positive, real
+from .._errors import InputError, Problem
+from .._jit import jit
+
+KELVIN_VOIGT = 0
+HUNT_CROSSLEY = 1
+N_LAW_PARAMS = 4
+
+
+@dataclass(frozen=True)
+class KelvinVoigt:
+    """Linear spring in parallel with a linear dashpot (the paper's bumper).
+
+    Force ``F = stiffness * d + damping * dd`` for compression ``d >= 0``.  Out of contact
+    the bumper relaxes as ``d(t) = d0 exp(-t stiffness / damping)``.
+
+    Parameters
+    ----------
+    stiffness : float
+        Spring constant ``K_b`` in N/m, > 0.
+    damping : float
+        Dashpot constant ``C_b`` in N s/m, >= 0 (0: the bumper recovers instantly).
+    """
+
+    stiffness: float
+    damping: float = 0.0
+
+    TYPE: ClassVar[str] = "kelvin_voigt"
+    LAW_ID: ClassVar[int] = KELVIN_VOIGT
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "stiffness", positive("law.stiffness", self.stiffness, "N/m"))
+        object.__setattr__(self, "damping", non_negative("law.damping", self.damping, "N s/m"))
+
+    def params(self) -> np.ndarray:
+        """Parameters as the compiled kernels take them, shape (4,)."""
+        return np.array([self.stiffness, self.damping, 0.0, 0.0])
+
+    @property
+    def relaxation_time_s(self) -> float:
+        """Time constant ``C_b / K_b`` of the free recovery, s."""
+        return self.damping / self.stiffness
+
+
+@dataclass(frozen=True)
+class HuntCrossley:
+    """Hunt-Crossley law: ``F = stiffness * d**exponent + damping * d**exponent * dd``.
+
+    The dashpot grows with the indentation, so the force starts at zero on contact and
+    the contact dissipates more at higher impact velocity.  Out of contact the massless
+    bumper recovers at the constant rate ``stiffness / damping`` (m/s).
+
+    Parameters
+    ----------
+    stiffness : float
+        ``k`` in N/m**exponent, > 0.
+    exponent : float
+        ``n`` >= 1 (1.5: Hertz contact).
+    damping : float
+        ``c`` in N s/m**(exponent + 1), >= 0.
+    """
+
+    stiffness: float
+    exponent: float = 1.5
+    damping: float = 0.0
+
+    TYPE: ClassVar[str] = "hunt_crossley"
+    LAW_ID: ClassVar[int] = HUNT_CROSSLEY
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "stiffness", positive("law.stiffness", self.stiffness, "N/m^n"))
+        exponent = real("law.exponent", self.exponent)
+        if exponent < 1.0:
+            raise InputError(Problem.NOT_ONE_OF, "law.exponent", self.exponent,
+                             choices="values >= 1 (1.5 is Hertzian contact)")
+        object.__setattr__(self, "exponent", exponent)
+        object.__setattr__(self, "damping", non_negative("law.damping", self.damping, "N s/m^(n+1)"))
+
+    def params(self) -> np.ndarray:
+        """Parameters as the compiled kernels take them, shape (4,)."""
+        return np.array([self.stiffness, self.damping, self.exponent, 0.0])
+
+
+ContactLaw = Union[KelvinVoigt, HuntCrossley]
+LAWS: dict[str, type] = {KelvinVoigt.TYPE: KelvinVoigt, HuntCrossley.TYPE: HuntCrossley}
+
+
+def law_to_dict(law: ContactLaw) -> dict[str, Any]:
+    """The law as a TOML-ready table: ``type`` plus its fields."""
+    out: dict[str, Any] = {"type": law.TYPE}
+    out.update({name: getattr(law, name) for name in law.__dataclass_fields__})
+    return out
+
+
+def law_from_dict(table: dict[str, Any], field: str) -> ContactLaw:
+    """Build a law from a TOML table with a ``type`` key; unknown keys are errors."""
+    if not isinstance(table, dict):
+        raise InputError(Problem.WRONG_TYPE, field, table, got=type(table).__name__, expected="table")
+    kind = table.get("type")
+    if kind not in LAWS:
+        raise InputError(Problem.NOT_ONE_OF, f"{field}.type", kind, choices=", ".join(map(repr, LAWS)))
+    cls = LAWS[kind]
+    allowed = set(cls.__dataclass_fields__)
+    for key in table:
+        if key != "type" and key not in allowed:
+            raise InputError(Problem.UNKNOWN_KEY, f"{field}.{key}", table[key],
+                             choices=", ".join(sorted(allowed | {"type"})))
+    kwargs = {k: v for k, v in table.items() if k != "type"}
+    try:
+        return cls(**kwargs)
+    except InputError as exc:  # name the field by its place in the file
+        raise exc.relabel("law", field) from None
+    except TypeError:
+        missing = sorted(allowed - set(kwargs))
+        raise InputError(Problem.MISSING_KEY, f"{field}.{missing[0]}", None,
+                         choices=", ".join(sorted(allowed))) from None
+
+
+# --------------------------------------------------------------------------- compiled side
+@jit
+def law_is_linear(law):
+    """True when the force is linear in (d, dd): every phase stays a linear ODE."""
+    return law == KELVIN_VOIGT
+
+
+@jit
+def law_linear_coefficients(law, p):
+    """(stiffness N/m, damping N s/m) of a linear law."""
+    return p[0], p[1]
+
+
+@jit
+def law_force(law, p, d, dd):
+    """Force of the bumper at compression ``d`` (m) and rate ``dd`` (m/s).
+
+    Returns ``(force, elastic_part, dforce/dd, dforce/d(dd))``.
+    """
+    if law == KELVIN_VOIGT:
+        return p[0] * d + p[1] * dd, p[0] * d, p[0], p[1]
+    # HUNT_CROSSLEY
+    dpos = d if d > 0.0 else 0.0
+    n = p[2]
+    dn = dpos**n
+    if dpos > 0.0:
+        slope = n * dpos ** (n - 1.0)
+    else:
+        slope = 1.0 if n == 1.0 else 0.0
+    return dn * (p[0] + p[1] * dd), p[0] * dn, slope * (p[0] + p[1] * dd), p[1] * dn
+
+
+@jit
+def law_energy(law, p, d):
+    """Elastic energy stored at compression ``d`` (J)."""
+    if law == KELVIN_VOIGT:
+        return 0.5 * p[0] * d * d
+    dpos = d if d > 0.0 else 0.0
+    return p[0] * dpos ** (p[2] + 1.0) / (p[2] + 1.0)
+
+
+@jit
+def law_relax(law, p, d0, tau):
+    """Free recovery of a massless bumper: compression and its rate ``tau`` s after ``d0``."""
+    if d0 <= 0.0:
+        return 0.0, 0.0
+    if law == KELVIN_VOIGT:
+        if p[1] <= 0.0:
+            return 0.0, 0.0
+        rate = p[0] / p[1]
+        d = d0 * math.exp(-rate * tau)
+        return d, -rate * d
+    if p[1] <= 0.0:
+        return 0.0, 0.0
+    speed = p[0] / p[1]
+    d = d0 - speed * tau
+    if d <= 0.0:
+        return 0.0, 0.0
+    return d, -speed
+
+
+@jit
+def law_release(law, p, d, dd, ddd):
+    """A smooth function that crosses zero downwards when the force would turn into a pull.
+
+    Returns ``(value, rate)`` for compression ``d``, rate ``dd`` and acceleration ``ddd``.
+    """
+    if law == KELVIN_VOIGT:
+        return p[0] * d + p[1] * dd, p[0] * dd + p[1] * ddd
+    return p[0] + p[1] * dd, p[1] * ddd

@@ -1,0 +1,99 @@
+"""The isolator: a symmetric multi-linear backbone, a hysteresis rule and a linear dashpot."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, ClassVar, Literal
+
+import numpy as np
+
+from .._checks import increasing, non_negative, one_of, positive, real_tuple
+from .._errors import InputError, Problem
+
+HYSTERESIS_RULES = ("kinematic", "elastic")
+
+
+@dataclass(frozen=True)
+class Isolator:
+    """Isolator ("damper") of the paper: rate-independent force ``R_d`` plus ``C_d * dD/dt``.
+
+    The backbone of ``R_d`` is symmetric and multi-linear: slope ``slopes[j]`` between
+    breakpoints ``breakpoints[j-1]`` and ``breakpoints[j]`` (with ``breakpoints[-1] = 0`` and
+    the last slope running to infinity).  Any number of branches; softening (decreasing
+    slopes, the paper's case) or hardening (real rubber bearings at large drift).
+
+    Parameters
+    ----------
+    slopes : sequence of float, shape (n,)
+        Branch stiffnesses ``K_1 ... K_n`` in N/m.  The first must be > 0, the others >= 0.
+    breakpoints : sequence of float, shape (n - 1,)
+        Displacements ``0 < D_1 < ... < D_{n-1}`` in m where the slope changes.
+    hysteresis : {"kinematic", "elastic"}
+        ``"kinematic"``: Masing / kinematic hardening, built exactly as a spring of slope
+        ``K_n`` in parallel with ``n - 1`` elastic-perfectly-plastic springs (spring ``i`` of
+        stiffness ``K_i - K_{i+1}`` slips at ``D_i``), as SAP2000's multi-linear plastic link.
+        ``"elastic"``: the force follows the backbone both ways (no hysteresis).
+    damping : float
+        Linear dashpot ``C_d`` in N s/m, >= 0.
+
+    Notes
+    -----
+    With a hardening backbone some of the parallel springs have negative stiffness; the
+    construction stays exact (Masing loops) but such a spring returns energy while slipping,
+    and strongly hardening backbones can give loops of negative area, as Masing's rule does.
+    """
+
+    slopes: tuple[float, ...]
+    breakpoints: tuple[float, ...] = ()
+    hysteresis: Literal["kinematic", "elastic"] = "kinematic"
+    damping: float = 0.0
+
+    FIELDS: ClassVar[tuple[str, ...]] = ("slopes", "breakpoints", "hysteresis", "damping")
+
+    def __post_init__(self) -> None:
+        slopes = real_tuple("isolator.slopes", self.slopes)
+        if not slopes:
+            raise InputError(Problem.EMPTY, "isolator.slopes", list(self.slopes))
+        positive("isolator.slopes[0]", slopes[0], "N/m")
+        for j, k in enumerate(slopes[1:], start=1):
+            non_negative(f"isolator.slopes[{j}]", k, "N/m")
+        breakpoints = real_tuple("isolator.breakpoints", self.breakpoints)
+        if len(breakpoints) != len(slopes) - 1:
+            raise InputError(Problem.LENGTH_MISMATCH, "isolator.breakpoints", list(breakpoints),
+                             got=len(breakpoints), expected=len(slopes) - 1)
+        for j, d in enumerate(breakpoints):
+            positive(f"isolator.breakpoints[{j}]", d, "m")
+        increasing("isolator.breakpoints", breakpoints)
+        one_of("isolator.hysteresis", self.hysteresis, HYSTERESIS_RULES)
+        object.__setattr__(self, "slopes", slopes)
+        object.__setattr__(self, "breakpoints", breakpoints)
+        object.__setattr__(self, "damping", non_negative("isolator.damping", self.damping, "N s/m"))
+
+    @property
+    def n_branches(self) -> int:
+        """Number of backbone branches ``n``."""
+        return len(self.slopes)
+
+    @property
+    def yield_forces(self) -> np.ndarray:
+        """Backbone force at each breakpoint, N, shape (n - 1,) (the paper's "yielding forces")."""
+        return self.backbone(np.asarray(self.breakpoints))
+
+    def backbone(self, displacement: Any) -> np.ndarray:
+        """Backbone force (N) at displacement(s) in m, any shape; odd in the displacement."""
+        d = np.asarray(displacement, dtype=float)
+        a = np.abs(d)
+        force = self.slopes[0] * np.minimum(a, self.breakpoints[0] if self.breakpoints else np.inf)
+        edges = (*self.breakpoints, np.inf)
+        for j in range(1, self.n_branches):
+            force = force + self.slopes[j] * np.clip(a - edges[j - 1], 0.0, edges[j] - edges[j - 1])
+        return np.sign(d) * force
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"slopes": list(self.slopes), "breakpoints": list(self.breakpoints),
+                "hysteresis": self.hysteresis, "damping": self.damping}
+
+    def kernel_arrays(self) -> tuple[np.ndarray, np.ndarray, int]:
+        """``(slopes, breakpoints, rule)`` as the compiled engine takes them."""
+        return (np.array(self.slopes, dtype=float), np.array(self.breakpoints, dtype=float),
+                HYSTERESIS_RULES.index(self.hysteresis))

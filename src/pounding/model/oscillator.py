@@ -1,0 +1,117 @@
+"""The whole system: a mass on an isolator, optionally between two bumpers; TOML in and out."""
+
+from __future__ import annotations
+
+import tomllib
+from dataclasses import dataclass, replace
+from pathlib import Path
+from typing import Any, ClassVar, Optional, Union
+
+import tomli_w
+
+from .._checks import positive
+from .._errors import InputError, Problem
+from .bumpers import Bumpers
+from .contact_laws import law_from_dict
+from .isolator import Isolator
+
+PathLike = Union[str, Path]
+
+
+@dataclass(frozen=True)
+class Oscillator:
+    """Single-degree-of-freedom base-isolated mass, optionally bounded by bumpers.
+
+    Equation of motion (``D``: displacement of the mass relative to the table, m)::
+
+        M D'' + C_d D' + R_d(D) + F_bR - F_bL = -M A(t)
+
+    Parameters
+    ----------
+    mass : float
+        ``M`` in kg, > 0.
+    isolator : Isolator
+        Backbone, hysteresis rule and dashpot of the isolator.
+    bumpers : Bumpers or None
+        ``None`` is the paper's NBs configuration (no bumpers).
+    """
+
+    mass: float
+    isolator: Isolator
+    bumpers: Optional[Bumpers] = None
+
+    FIELDS: ClassVar[tuple[str, ...]] = ("mass", "isolator", "bumpers")
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "mass", positive("mass", self.mass, "kg"))
+        if not isinstance(self.isolator, Isolator):
+            raise InputError(Problem.WRONG_TYPE, "isolator", self.isolator,
+                             got=type(self.isolator).__name__, expected="Isolator")
+        if self.bumpers is not None and not isinstance(self.bumpers, Bumpers):
+            raise InputError(Problem.WRONG_TYPE, "bumpers", self.bumpers,
+                             got=type(self.bumpers).__name__, expected="Bumpers or None")
+
+    def without_bumpers(self) -> "Oscillator":
+        """The same mass and isolator in the NBs configuration."""
+        return replace(self, bumpers=None)
+
+    def mirrored(self) -> "Oscillator":
+        """The system seen in a mirror: gaps and bumper laws swap sides."""
+        return replace(self, bumpers=None if self.bumpers is None else self.bumpers.mirrored())
+
+    # ------------------------------------------------------------------ TOML
+    def to_dict(self) -> dict[str, Any]:
+        """The system as nested tables with the constructor's field names."""
+        out: dict[str, Any] = {"mass": self.mass, "isolator": self.isolator.to_dict()}
+        if self.bumpers is not None:
+            out["bumpers"] = self.bumpers.to_dict()
+        return out
+
+    @classmethod
+    def from_dict(cls, table: dict[str, Any]) -> "Oscillator":
+        """Build from nested tables; every key is checked and unknown keys are errors."""
+        _check_keys(table, "", cls.FIELDS, required=("mass", "isolator"))
+        iso_table = table["isolator"]
+        _check_keys(iso_table, "isolator.", Isolator.FIELDS, required=("slopes",))
+        isolator = Isolator(**iso_table)
+        bumpers = None
+        if "bumpers" in table:
+            b = table["bumpers"]
+            _check_keys(b, "bumpers.", Bumpers.FIELDS, required=("gap_left", "gap_right", "law"))
+            law_right = b.get("law_right")
+            bumpers = Bumpers(
+                gap_left=b["gap_left"], gap_right=b["gap_right"],
+                law=law_from_dict(b["law"], "bumpers.law"),
+                law_right=None if law_right is None else law_from_dict(law_right, "bumpers.law_right"),
+            )
+        return cls(mass=table["mass"], isolator=isolator, bumpers=bumpers)
+
+    @classmethod
+    def from_toml(cls, path: PathLike) -> "Oscillator":
+        """Read a system from a TOML file (see ``examples/paper_printed_ybs.toml``)."""
+        path = Path(path)
+        if not path.is_file():
+            raise InputError(Problem.NO_FILE, "path", str(path))
+        try:
+            table = tomllib.loads(path.read_text(encoding="utf-8"))
+        except tomllib.TOMLDecodeError as exc:
+            raise InputError(Problem.BAD_TOML, str(path), "...", detail=str(exc)) from None
+        return cls.from_dict(table)
+
+    def to_toml(self, path: PathLike) -> Path:
+        """Write the system to a TOML file that :meth:`from_toml` reads back identically."""
+        path = Path(path)
+        path.write_text(tomli_w.dumps(self.to_dict()), encoding="utf-8")
+        return path
+
+
+def _check_keys(table: Any, prefix: str, allowed: tuple[str, ...], required: tuple[str, ...]) -> None:
+    if not isinstance(table, dict):
+        raise InputError(Problem.WRONG_TYPE, prefix.rstrip(".") or "system", table,
+                         got=type(table).__name__, expected="table")
+    for key in table:
+        if key not in allowed:
+            raise InputError(Problem.UNKNOWN_KEY, prefix + key, table[key], choices=", ".join(allowed))
+    for key in required:
+        if key not in table:
+            raise InputError(Problem.MISSING_KEY, prefix + key, None, choices=", ".join(allowed))

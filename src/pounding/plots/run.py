@@ -1,0 +1,48 @@
+"""Plots of one run."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..engine.result import Run
+
+
+def plot_run(run: "Run", ax: Any = None, *, contacts: bool = True) -> list:
+    """Displacement (left axis, mm) and absolute acceleration (right axis, g) against time.
+
+    Parameters
+    ----------
+    run : Run
+        A result of :func:`pounding.simulate`.
+    ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted); a twin axis is added for the acceleration.
+    contacts : bool
+        Shade the contact intervals.
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(8, 3.5), constrained_layout=True)
+    artists = list(ax.plot(run.t, run.displacement * 1e3, color="C0", lw=1.0, label="D"))
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("D [mm]", color="C0")
+    twin = ax.twinx()
+    artists += twin.plot(run.t, run.abs_acceleration / 9.81, color="C3", lw=0.8, label="a_abs")
+    twin.set_ylabel("absolute acceleration [g]", color="C3")
+    if contacts and len(run.contacts):
+        ends = run.contacts["t_end"].fillna(run.t[-1]).to_numpy()
+        for start, end in zip(run.contacts["t_start"].to_numpy(), ends):
+            artists.append(ax.axvspan(start, end, color="0.85", lw=0))
+    b = run.oscillator.bumpers
+    if b is not None:
+        for y in (-b.gap_left, b.gap_right):
+            artists.append(ax.axhline(y * 1e3, color="0.4", ls=":", lw=0.8))
+    ax.set_xlim(float(np.min(run.t)), float(np.max(run.t)))
+    return artists

@@ -1,0 +1,184 @@
+"""A slow, obviously-correct reference: scipy's solve_ivp (DOP853) with events.
+
+It restates the model of MODEL.md §1 directly, without sharing code with the engine:
+the isolator as parallel springs (kinematic) or a backbone (elastic), Kelvin-Voigt or
+Hunt-Crossley bumpers whose relaxation between contacts is evaluated in closed form.
+Integration restarts at every event.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+import pounding as pd_
+
+
+@dataclass
+class RefResult:
+    t: float
+    d: float
+    v: float
+    contact_starts: list = field(default_factory=list)  # (side, t)
+    contact_ends: list = field(default_factory=list)
+    u: np.ndarray | None = None
+
+
+def _law(law):
+    if isinstance(law, pd_.KelvinVoigt):
+        k, c = law.stiffness, law.damping
+
+        def force(d, dd):
+            return k * d + c * dd
+
+        def relax(d0, tau):
+            return 0.0 if c == 0 else d0 * math.exp(-k / c * tau)
+
+        def release(d, dd):
+            return k * d + c * dd
+    else:
+        k, n, c = law.stiffness, law.exponent, law.damping
+
+        def force(d, dd):
+            return max(d, 0.0) ** n * (k + c * dd)
+
+        def relax(d0, tau):
+            return 0.0 if c == 0 else max(0.0, d0 - k / c * tau)
+
+        def release(d, dd):
+            return k + c * dd
+    return force, relax, release
+
+
+def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10, atol=1e-13):
+    iso = osc.isolator
+    K = np.array(iso.slopes)
+    Db = np.array(iso.breakpoints)
+    n_sp = len(Db)
+    ki = K[:-1] - K[1:]
+    u = np.zeros(n_sp)
+    s = np.zeros(n_sp)
+    m, cd = osc.mass, iso.damping
+    kinematic = iso.hysteresis == "kinematic"
+    b = osc.bumpers
+    sides = []
+    if b is not None:
+        sides = [(-1.0, b.gap_left, *_law(b.left)), (1.0, b.gap_right, *_law(b.right))]
+    comp = [0.0, 0.0]        # compression at t_rel
+    t_rel = [0.0, 0.0]
+    inc = [False, False]
+    accel = exc.acceleration
+    res = RefResult(0.0, d0, v0)
+    t, d, v = 0.0, d0, v0
+
+    def iso_force(dd):
+        if kinematic:
+            f = K[-1] * dd
+            for i in range(n_sp):
+                f += ki[i] * (s[i] * Db[i] if s[i] != 0 else dd - u[i])
+            return f
+        return float(iso.backbone(dd))
+
+    def bump_force(j, dd, vv):
+        sign, gap, force, _, _ = sides[j]
+        return force(sign * dd - gap, sign * vv)
+
+    def rhs(tt, y):
+        dd, vv = y
+        f = iso_force(dd) + cd * vv
+        for j in range(len(sides)):
+            if inc[j]:
+                f += sides[j][0] * bump_force(j, dd, vv)
+        return [vv, -f / m - float(accel(tt))]
+
+    def build_events():
+        evs = []
+        if kinematic:
+            for i in range(n_sp):
+                if s[i] == 0:
+                    evs.append((lambda tt, y, i=i: Db[i] + u[i] - y[0], ("yield", i, 1.0)))
+                    evs.append((lambda tt, y, i=i: Db[i] - u[i] + y[0], ("yield", i, -1.0)))
+            if np.any(s != 0):
+                sd = s[s != 0][0]
+                evs.append((lambda tt, y, sd=sd: sd * y[1], ("rev", 0, 0.0)))
+        else:
+            for e in np.concatenate([-Db, Db]):
+                sgn = 1.0 if d < e else -1.0
+                evs.append((lambda tt, y, e=e, sgn=sgn: sgn * (e - y[0]), ("region", 0, 0.0)))
+        for j in range(len(sides)):
+            if inc[j]:
+                evs.append((lambda tt, y, j=j: sides[j][0] * y[0] - sides[j][1], ("end", j, 0.0)))
+                evs.append((lambda tt, y, j=j: sides[j][4](sides[j][0] * y[0] - sides[j][1],
+                                                           sides[j][0] * y[1]), ("end", j, 0.0)))
+            else:
+                evs.append((lambda tt, y, j=j: sides[j][1] + sides[j][3](comp[j], tt - t_rel[j])
+                            - sides[j][0] * y[0], ("start", j, 0.0)))
+        return evs
+
+    def apply(kind, idx, direction):
+        if kind == "yield":
+            s[idx] = direction
+            u[idx] = d - direction * Db[idx]
+        elif kind == "rev":
+            for i in range(n_sp):
+                if s[i] != 0:
+                    u[i] = d - s[i] * Db[i]
+            s[:] = 0
+        elif kind == "start":
+            inc[idx] = True
+            res.contact_starts.append((idx, t))
+        elif kind == "end":
+            inc[idx] = False
+            comp[idx] = max(0.0, sides[idx][0] * d - sides[idx][1])
+            t_rel[idx] = t
+            res.contact_ends.append((idx, t))
+
+    def immediate(evs):
+        """An event sitting at zero and heading negative fires at once (coincident events)."""
+        dt = 1e-9
+        for f, info in evs:
+            g0 = f(t, [d, v])
+            if abs(g0) < 1e-12:
+                a = rhs(t, [d, v])[1]
+                g1 = f(t + dt, [d + v * dt + 0.5 * a * dt * dt, v + a * dt])
+                if g1 < -1e-16:
+                    return info
+        return None
+
+    while t < t_end - 1e-15:
+        evs = build_events()
+        info = immediate(evs)
+        if info is not None:
+            apply(*info)
+            continue
+        funcs = []
+        for f, _ in evs:
+            def ev(tt, y, f=f):
+                return f(tt, y)
+            ev.terminal = True
+            ev.direction = -1
+            funcs.append(ev)
+        t_start = t
+        sol = solve_ivp(rhs, (t, t_end), [d, v], method="DOP853", rtol=rtol, atol=atol, events=funcs)
+        hit = None
+        for k_ev, te in enumerate(sol.t_events):
+            for n_t, tt in enumerate(te):
+                if tt > t_start + 1e-12 and (hit is None or tt < hit[0]):
+                    hit = (tt, k_ev, sol.y_events[k_ev][n_t])
+        if hit is None:
+            t, d, v = sol.t[-1], sol.y[0, -1], sol.y[1, -1]
+            if sol.status == 1 and t < t_end:
+                continue
+            break
+        t, (d, v) = hit[0], hit[2]
+        apply(*evs[hit[1]][1])
+        if kinematic:
+            for i in range(n_sp):
+                if s[i] != 0:
+                    u[i] = d - s[i] * Db[i]
+    res.t, res.d, res.v = t, d, v
+    res.u = u
+    return res
