@@ -12,7 +12,7 @@ import math
 
 from ..model.contact_laws import law_force, law_relax, law_release
 from .._jit import jit
-from ._layout import (E_ALPHA, E_BETA, E_GAMMA, E_KIND, E_SIDE, KIND_LINEAR, MODE_LINEAR,
+from ._layout import (E_ALPHA, E_BETA, E_GAMMA, E_KIND, E_SIDE, KIND_LINEAR, MODE_LINEAR, SIDE_NONE,
                       P_AX0, P_AX1, P_AXH, P_C, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_INL,
                       P_INR, P_K, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_PHI, P_PL, P_PR,
                       P_V0, P_W, SIDE_L, SIDE_R)
@@ -113,6 +113,54 @@ def traj_value(what, idx, ph, evs, tau):
 
 
 @jit
+def _value_and_rate(what, idx, ph, evs, tau):
+    d, v, a = phase_eval(ph, tau)
+    if what == W_EVENT:
+        g, gp, _ = event_value(evs, idx, ph, tau, d, v, a)
+        return g, gp
+    return v, a  # W_VELOCITY
+
+
+@jit
+def newton(what, idx, ph, evs, xa, xb, fa, fb, xtol):
+    """Root of an event function (``W_EVENT``) or of the velocity (``W_VELOCITY``) in
+    ``[xa, xb]`` given values of opposite sign: Newton's method on the analytic rate,
+    kept inside the shrinking bracket by bisection (``rtsafe``)."""
+    if fa == 0.0:
+        return xa
+    if fb == 0.0:
+        return xb
+    lo, hi = (xa, xb) if fa < 0.0 else (xb, xa)  # f(lo) < 0 < f(hi)
+    x = xa - fa * (xb - xa) / (fb - fa)
+    dx_old = abs(xb - xa)
+    dx = dx_old
+    for _ in range(100):
+        f, fp = _value_and_rate(what, idx, ph, evs, x)
+        if f == 0.0:
+            return x
+        if f < 0.0:
+            lo = x
+        else:
+            hi = x
+        newton_ok = fp != 0.0
+        if newton_ok:
+            step = f / fp
+            x_new = x - step
+            newton_ok = ((x_new - lo) * (x_new - hi) < 0.0) and abs(2.0 * step) <= dx_old
+        dx_old = dx
+        if newton_ok:
+            dx = abs(step)
+            x = x_new
+        else:
+            x_new = 0.5 * (lo + hi)
+            dx = abs(x_new - x)
+            x = x_new
+        if dx < xtol + 4.0 * 2.220446049250313e-16 * abs(x):
+            return x
+    return x
+
+
+@jit
 def brent(what, idx, ph, evs, xa, xb, fa, fb, xtol):
     """Root of ``traj_value(what, idx, ...)`` in ``[xa, xb]`` given values of opposite sign.
 
@@ -167,37 +215,46 @@ def brent(what, idx, ph, evs, xa, xb, fa, fb, xtol):
 
 
 @jit
-def locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, tol1, xtol):
+def locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, tol1, xtol, t_vel, d_vel):
     """First time in ``[0, h]`` at which event ``i`` fires, or -1.0.
 
     ``g`` and ``gp`` are the event's value and rate at both ends.  A value within ``tol0`` of
     zero at the start means the trajectory has just left (or sits on) that boundary: it
     fires only if the value then clearly goes negative.  A dip below zero between two
-    positive ends (a graze) is found from the zero of the rate.
+    positive ends (a graze) is found from the zero of the rate; for events that depend on
+    the displacement alone that zero is the velocity's, ``t_vel`` (displacement ``d_vel``;
+    -1 if the velocity keeps its sign).
     """
-    if g0 > tol0:
-        if g1 <= 0.0:
-            return brent(W_EVENT, i, ph, evs, 0.0, h, g0, g1, xtol)
-        if gp0 < 0.0 and gp1 > 0.0:
-            tm = brent(W_EVENT_RATE, i, ph, evs, 0.0, h, gp0, gp1, xtol)
-            d, v, a = phase_eval(ph, tm)
-            gm, _, sc = event_value(evs, i, ph, tm, d, v, a)
-            if gm < -ROUNDING * sc:
-                return brent(W_EVENT, i, ph, evs, 0.0, tm, g0, gm, xtol)
+    if g0 > tol0 and g1 <= 0.0:
+        return newton(W_EVENT, i, ph, evs, 0.0, h, g0, g1, xtol)
+    if g0 <= tol0 and g1 < -tol1:
+        tp = h
+        for _ in range(60):
+            tp *= 0.5
+            d, v, a = phase_eval(ph, tp)
+            gp, _, sc = event_value(evs, i, ph, tp, d, v, a)
+            if gp > ROUNDING * sc:
+                return newton(W_EVENT, i, ph, evs, tp, h, gp, g1, xtol)
+        return 0.0
+    if not (gp0 < 0.0 and gp1 > 0.0):
         return -1.0
-    if g1 >= -tol1:
-        if gp0 < 0.0 and gp1 > 0.0:
-            tm = brent(W_EVENT_RATE, i, ph, evs, 0.0, h, gp0, gp1, xtol)
-            d, v, a = phase_eval(ph, tm)
-            gm, _, sc = event_value(evs, i, ph, tm, d, v, a)
-            if gm < -ROUNDING * sc:
-                return 0.0
+    # a local minimum inside: does it dip below zero?
+    displacement_only = evs[i, E_KIND] == KIND_LINEAR and evs[i, E_GAMMA] == 0.0 and (
+        int(evs[i, E_SIDE]) == SIDE_NONE
+        or (int(evs[i, E_SIDE]) == SIDE_L and ph[P_DL0] == 0.0)
+        or (int(evs[i, E_SIDE]) == SIDE_R and ph[P_DR0] == 0.0))
+    if displacement_only:
+        if t_vel < 0.0:
+            return -1.0
+        tm = t_vel
+        gm = evs[i, E_ALPHA] + evs[i, E_BETA] * d_vel
+        sc = abs(evs[i, E_ALPHA]) + abs(evs[i, E_BETA] * d_vel)
+    else:
+        tm = brent(W_EVENT_RATE, i, ph, evs, 0.0, h, gp0, gp1, xtol)
+        d, v, a = phase_eval(ph, tm)
+        gm, _, sc = event_value(evs, i, ph, tm, d, v, a)
+    if gm >= -ROUNDING * sc:
         return -1.0
-    tp = h
-    for _ in range(60):
-        tp *= 0.5
-        d, v, a = phase_eval(ph, tp)
-        gp, _, sc = event_value(evs, i, ph, tp, d, v, a)
-        if gp > ROUNDING * sc:
-            return brent(W_EVENT, i, ph, evs, tp, h, gp, g1, xtol)
-    return 0.0
+    if g0 <= tol0:
+        return 0.0  # it leaves the boundary on the wrong side at once
+    return newton(W_EVENT, i, ph, evs, 0.0, tm, g0, gm, xtol)

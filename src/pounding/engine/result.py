@@ -3,13 +3,14 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field, fields
+from functools import cached_property
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pandas as pd
 
 from .._errors import Status
-from ._layout import DEF_L, DEF_R, IN_L, IN_R, REGION, STATE_BASE
+from ._layout import DEF_L, DEF_R, EVENT_NAMES, IN_L, IN_R, REGION, STATE_BASE
 from ._layout import D as I_D
 from ._layout import T as I_T
 from ._layout import V as I_V
@@ -132,6 +133,8 @@ class Run:
     displacement_max, displacement_min, abs_acceleration_max : float
         Exact extrema over the run (located events, independent of the sampling), m, m/s^2;
         the ``*_time_s`` attributes give when.
+    contact_table, event_table : ndarray
+        The raw arrays behind ``contacts`` and ``events`` (side coded 0 left, 1 right).
     contacts : DataFrame
         One row per contact: ``side`` ("left"/"right"), ``t_start``, ``t_end`` (s),
         ``v_in``, ``v_out`` (relative velocity at start and end, m/s), ``impulse`` (N s),
@@ -160,14 +163,31 @@ class Run:
     displacement_min_time_s: float
     abs_acceleration_max: float
     abs_acceleration_max_time_s: float
-    contacts: pd.DataFrame = field(repr=False)
-    events: pd.DataFrame = field(repr=False)
+    contact_table: np.ndarray = field(repr=False)
+    event_table: np.ndarray = field(repr=False)
     energy: EnergyLedger
     final_state: State
     status: Status
     message: str
     oscillator: "Oscillator" = field(repr=False)
     excitation: "Excitation" = field(repr=False)
+
+    @cached_property
+    def contacts(self) -> pd.DataFrame:
+        """One row per contact (see the class docstring), built on first use."""
+        df = pd.DataFrame(self.contact_table, columns=list(CONTACT_COLUMNS))
+        df["side"] = np.where(self.contact_table[:, 0] == 0.0, "left", "right")
+        return df
+
+    @cached_property
+    def events(self) -> pd.DataFrame:
+        """Every event: time ``t`` (s), ``kind`` and ``index`` (spring or side), built on first use."""
+        codes = self.event_table[:, 1].astype(int)
+        return pd.DataFrame({
+            "t": self.event_table[:, 0],
+            "kind": pd.Categorical.from_codes(codes, categories=list(EVENT_NAMES)),
+            "index": self.event_table[:, 2].astype(int),
+        })
 
     @property
     def success(self) -> bool:

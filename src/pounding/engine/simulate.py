@@ -5,7 +5,6 @@ from __future__ import annotations
 from typing import Optional
 
 import numpy as np
-import pandas as pd
 
 from .._checks import non_negative, positive
 from .._errors import InputError, Problem, Status
@@ -13,8 +12,7 @@ from ..excitation import Harmonic, Record
 from ..model import Oscillator
 from ..model.contact_laws import KelvinVoigt
 from ._kernel import run_kernel
-from ._layout import EVENT_NAMES
-from .result import CONTACT_COLUMNS, EnergyLedger, Run, State
+from .result import EnergyLedger, Run, State
 
 _NO_LAW = KelvinVoigt(1.0, 0.0)  # stands in for absent bumpers (never touched)
 
@@ -98,13 +96,6 @@ def simulate(
         t0 + duration, 1.0 / rate if rate > 0 else 0.0, rtol, int(max_events))
     status = Status(int(status))
 
-    contact_df = pd.DataFrame(contacts, columns=list(CONTACT_COLUMNS))
-    contact_df["side"] = np.where(contact_df["side"].to_numpy() == 0.0, "left", "right")
-    event_df = pd.DataFrame({
-        "t": events[:, 0],
-        "kind": pd.Categorical.from_codes(events[:, 1].astype(int), categories=list(EVENT_NAMES)),
-        "index": events[:, 2].astype(int),
-    })
     energy = EnergyLedger(
         input_work=ledger[0], kinetic=ledger[4], isolator_elastic=ledger[5],
         bumper_elastic=ledger[6], viscous=ledger[1], hysteretic=ledger[2],
@@ -116,5 +107,5 @@ def simulate(
         displacement_max=float(extrema[0]), displacement_max_time_s=float(extrema[1]),
         displacement_min=float(extrema[2]), displacement_min_time_s=float(extrema[3]),
         abs_acceleration_max=float(extrema[4]), abs_acceleration_max_time_s=float(extrema[5]),
-        contacts=contact_df, events=event_df, energy=energy, final_state=State(st),
+        contact_table=contacts, event_table=events, energy=energy, final_state=State(st),
         status=status, message=status.message, oscillator=oscillator, excitation=excitation)

@@ -15,7 +15,7 @@ during contact.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import MISSING, dataclass, fields
 from typing import Any, ClassVar, Union
 
 import numpy as np
@@ -110,7 +110,7 @@ LAWS: dict[str, type] = {KelvinVoigt.TYPE: KelvinVoigt, HuntCrossley.TYPE: HuntC
 def law_to_dict(law: ContactLaw) -> dict[str, Any]:
     """The law as a TOML-ready table: ``type`` plus its fields."""
     out: dict[str, Any] = {"type": law.TYPE}
-    out.update({name: getattr(law, name) for name in law.__dataclass_fields__})
+    out.update({f.name: getattr(law, f.name) for f in fields(law)})
     return out
 
 
@@ -122,20 +122,19 @@ def law_from_dict(table: dict[str, Any], field: str) -> ContactLaw:
     if kind not in LAWS:
         raise InputError(Problem.NOT_ONE_OF, f"{field}.type", kind, choices=", ".join(map(repr, LAWS)))
     cls = LAWS[kind]
-    allowed = set(cls.__dataclass_fields__)
+    allowed = {f.name for f in fields(cls)}
+    required = [f.name for f in fields(cls) if f.default is MISSING]
     for key in table:
         if key != "type" and key not in allowed:
             raise InputError(Problem.UNKNOWN_KEY, f"{field}.{key}", table[key],
                              choices=", ".join(sorted(allowed | {"type"})))
-    kwargs = {k: v for k, v in table.items() if k != "type"}
+    for key in required:
+        if key not in table:
+            raise InputError(Problem.MISSING_KEY, f"{field}.{key}", None, choices=", ".join(sorted(allowed)))
     try:
-        return cls(**kwargs)
+        return cls(**{k: v for k, v in table.items() if k != "type"})
     except InputError as exc:  # name the field by its place in the file
         raise exc.relabel("law", field) from None
-    except TypeError:
-        missing = sorted(allowed - set(kwargs))
-        raise InputError(Problem.MISSING_KEY, f"{field}.{missing[0]}", None,
-                         choices=", ".join(sorted(allowed))) from None
 
 
 # --------------------------------------------------------------------------- compiled side

@@ -1,0 +1,35 @@
+"""Hypothesis strategies: random systems and excitations covering the model's range."""
+
+from __future__ import annotations
+
+from hypothesis import strategies as st
+
+import pounding as pd_
+
+
+@st.composite
+def isolators(draw, hysteresis=None):
+    n = draw(st.integers(1, 4))
+    slopes = [draw(st.floats(5e3, 8e4))]
+    for _ in range(n - 1):
+        slopes.append(slopes[-1] * draw(st.floats(0.05, 3.0)))  # softening or hardening
+    breaks = sorted(draw(st.lists(st.floats(0.002, 0.06), min_size=n - 1, max_size=n - 1, unique=True)))
+    if any(b - a < 1e-3 for a, b in zip(breaks, breaks[1:])):
+        breaks = [0.004 * (j + 1) for j in range(n - 1)]
+    rule = hysteresis or draw(st.sampled_from(["kinematic", "elastic"]))
+    return pd_.Isolator(slopes, breaks, rule, draw(st.floats(1.0, 5000.0)))
+
+
+@st.composite
+def oscillators(draw, bumpers=True, hysteresis=None):
+    iso = draw(isolators(hysteresis))
+    b = None
+    if bumpers:
+        law = pd_.KelvinVoigt(draw(st.floats(1e5, 3e6)), draw(st.floats(1.0, 5000.0)))
+        b = pd_.Bumpers(draw(st.floats(0.003, 0.03)), draw(st.floats(0.003, 0.03)), law)
+    return pd_.Oscillator(draw(st.floats(100.0, 1500.0)), iso, b)
+
+
+@st.composite
+def harmonics(draw):
+    return pd_.Harmonic(draw(st.floats(0.03, 0.4)), draw(st.floats(0.5, 5.0)), draw(st.floats(0.0, 6.28)))

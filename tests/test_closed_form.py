@@ -1,0 +1,76 @@
+"""Closed forms: the linear oscillator, free and forced."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+
+import pounding as pd_
+
+
+def _steady_state(m, k, c, a_t, omega, t):
+    z = -m * a_t / (k - m * omega**2 + 1j * c * omega)
+    return np.imag(z * np.exp(1j * omega * t)), np.imag(1j * omega * z * np.exp(1j * omega * t))
+
+
+@settings(max_examples=30, deadline=None)
+@given(m=st.floats(50, 2000), k=st.floats(1e3, 1e5), zeta=st.floats(0.05, 0.5),
+       a_g=st.floats(0.01, 0.5), f=st.floats(0.2, 6.0))
+def test_linear_isolator_reaches_closed_form_steady_state(m, k, zeta, a_g, f):
+    c = 2 * zeta * math.sqrt(k * m)
+    osc = pd_.Oscillator(m, pd_.Isolator((k,), damping=c))
+    exc = pd_.Harmonic(a_g, f)
+    decay_s = 40.0 / (zeta * math.sqrt(k / m))  # e^-40: transients gone
+    warm = pd_.simulate(osc, exc, decay_s, sample_rate_hz=0)
+    run = pd_.simulate(osc, exc, 2.0 / f, warm.final_state, sample_rate_hz=200 * f)
+    d_ss, v_ss = _steady_state(m, k, c, exc.peak_m_s2, exc.omega_rad_s, run.t)
+    amp = abs(m * exc.peak_m_s2 / (k - m * exc.omega_rad_s**2 + 1j * c * exc.omega_rad_s))
+    np.testing.assert_allclose(run.displacement, d_ss, rtol=0, atol=1e-9 * amp)
+    np.testing.assert_allclose(run.velocity, v_ss, rtol=0, atol=1e-9 * amp * exc.omega_rad_s)
+    # exact extrema, and the absolute acceleration of a linear system
+    assert run.excursion_m == pytest.approx(2 * amp, rel=1e-9)
+    a_abs_amp = abs((k + 1j * c * exc.omega_rad_s) * (-exc.peak_m_s2) / (k - m * exc.omega_rad_s**2
+                                                                        + 1j * c * exc.omega_rad_s))
+    assert run.abs_acceleration_max == pytest.approx(a_abs_amp, rel=1e-9)
+
+
+@pytest.mark.parametrize("zeta", [0.0, 0.3, 1.0, 2.5])
+def test_free_vibration_every_damping_regime(zeta):
+    m, k = 200.0, 8e3
+    wn = math.sqrt(k / m)
+    c = 2 * zeta * math.sqrt(k * m)
+    osc = pd_.Oscillator(m, pd_.Isolator((k,), damping=c))
+    v0 = 0.3
+    run = pd_.simulate(osc, pd_.Record([0.0, 1.0], [0.0, 0.0]), 3.0,
+                       pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=500)
+    t = run.t
+    if zeta < 1:
+        wd = wn * math.sqrt(1 - zeta**2)
+        exact = v0 / wd * np.exp(-zeta * wn * t) * np.sin(wd * t)
+    elif zeta == 1:
+        exact = v0 * t * np.exp(-wn * t)
+    else:
+        r = wn * math.sqrt(zeta**2 - 1)
+        exact = v0 / r * np.exp(-zeta * wn * t) * np.sinh(r * t)
+    np.testing.assert_allclose(run.displacement, exact, rtol=0, atol=1e-12)
+
+
+def test_plastic_isolator_with_zero_final_slope_and_no_damping():
+    # elastic-perfectly-plastic isolator (k = 0 once slipping, c = 0): exercises the k = c = 0 phase
+    osc = pd_.Oscillator(100.0, pd_.Isolator((1e4, 0.0), (0.01,)))
+    run = pd_.simulate(osc, pd_.Harmonic(0.3, 1.0), 5.0, sample_rate_hz=0)
+    assert run.success
+    assert abs(run.energy.residual) <= 1e-8 * max(abs(run.energy.input_work), 1e-12)
+    assert run.energy.hysteretic > 0
+
+
+def test_undamped_resonance_ends_with_a_status():
+    m, k = 100.0, 1e4
+    osc = pd_.Oscillator(m, pd_.Isolator((k,)))
+    run = pd_.simulate(osc, pd_.Harmonic(0.1, math.sqrt(k / m) / (2 * math.pi)), 1.0)
+    assert run.status == pd_.Status.DEGENERATE_PHASE
+    assert "damping" in run.message

@@ -1,0 +1,148 @@
+"""Invariants: energy balance, bumpers never pull, mirror symmetry, continuation, statuses."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from strategies import harmonics, oscillators
+
+import pounding as pd_
+
+SETTINGS = settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+
+
+def _flows(e):
+    return max(abs(e.input_work), abs(e.kinetic), e.viscous + abs(e.hysteretic) + e.bumper_dissipation)
+
+
+@SETTINGS
+@given(osc=oscillators(), exc=harmonics())
+def test_energy_ledger_closes_from_rest(osc, exc):
+    run = pd_.simulate(osc, exc, 3.0, sample_rate_hz=0)
+    e = run.energy
+    assert abs(e.residual) <= 1e-8 * e.input_work
+    assert e.viscous >= 0 and e.bumper_dissipation >= -1e-12 * e.input_work
+
+
+@SETTINGS
+@given(osc=oscillators(), exc=harmonics(), v0=st.floats(-0.8, 0.8))
+def test_energy_ledger_closes_from_motion(osc, exc, v0):
+    # the input work can then be a small difference of large flows: compare with the largest
+    run = pd_.simulate(osc, exc, 3.0, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=0)
+    assert abs(run.energy.residual) <= 1e-8 * _flows(run.energy)
+
+
+@pytest.mark.parametrize("v0", [0.0, 0.5])
+def test_energy_ledger_closes_with_hunt_crossley(v0):
+    # a nonlinear law is integrated numerically: the ledger closes to the integration tolerance
+    law = pd_.HuntCrossley(5e8, 1.5, 2e8)
+    osc = pd_.Oscillator(500.0, pd_.Isolator((38e3, 18e3, 2e3), (0.015, 0.04), damping=500.0),
+                         pd_.Bumpers(0.01, 0.01, law))
+    run = pd_.simulate(osc, pd_.Harmonic(0.2, 1.5), 4.0, pd_.State.at_rest(osc, velocity_m_s=v0))
+    assert len(run.contacts) > 3
+    assert abs(run.energy.residual) <= 1e-8 * _flows(run.energy)
+
+
+@SETTINGS
+@given(osc=oscillators(), exc=harmonics(), v0=st.floats(-0.8, 0.8))
+def test_bumpers_never_pull(osc, exc, v0):
+    run = pd_.simulate(osc, exc, 3.0, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=2000)
+    k = osc.bumpers.law.stiffness
+    tiny = 1e-9 * k * 1e-3  # rounding level of a force of a millimetre's compression
+    assert run.bumper_force_left.min() >= -tiny
+    assert run.bumper_force_right.min() >= -tiny
+    if len(run.contacts):
+        done = run.contacts.dropna()
+        assert (done["impulse"] > 0).all()
+        assert (done["t_end"] > done["t_start"]).all()
+        assert (done["max_compression"] >= 0).all()
+        # contact starts towards the bumper and ends away from it
+        sign = np.where(done["side"] == "right", 1.0, -1.0)
+        assert (sign * done["v_in"] >= 0).all() and (sign * done["v_out"] <= 0).all()
+
+
+@SETTINGS
+@given(osc=oscillators(), exc=harmonics(), v0=st.floats(-0.8, 0.8))
+def test_mirror_symmetry(osc, exc, v0):
+    state = pd_.State.at_rest(osc, velocity_m_s=v0)
+    run = pd_.simulate(osc, exc, 2.0, state, sample_rate_hz=100)
+    mirror = pd_.simulate(osc.mirrored(), exc.negated(), 2.0,
+                          pd_.State.at_rest(osc, velocity_m_s=-v0), sample_rate_hz=100)
+    scale = max(run.displacement_max, -run.displacement_min)
+    np.testing.assert_allclose(mirror.displacement, -run.displacement, atol=1e-9 * scale, rtol=0)
+    assert mirror.displacement_max == pytest.approx(-run.displacement_min, abs=1e-9 * scale)
+    assert mirror.abs_acceleration_max == pytest.approx(run.abs_acceleration_max, rel=1e-9)
+    assert len(mirror.contacts) == len(run.contacts)
+    if len(run.contacts):
+        swapped = run.contacts["side"].map({"left": "right", "right": "left"})
+        assert list(mirror.contacts["side"]) == list(swapped)
+        np.testing.assert_allclose(mirror.contacts["t_start"], run.contacts["t_start"], atol=1e-10)
+
+
+@SETTINGS
+@given(osc=oscillators(), exc=harmonics(), v0=st.floats(-0.8, 0.8), split=st.floats(0.1, 2.9))
+def test_chained_runs_equal_one_long_run(osc, exc, v0, split):
+    state = pd_.State.at_rest(osc, velocity_m_s=v0)
+    whole = pd_.simulate(osc, exc, 3.0, state, sample_rate_hz=0)
+    first = pd_.simulate(osc, exc, split, state, sample_rate_hz=0)
+    second = pd_.simulate(osc, exc, 3.0 - split, first.final_state, sample_rate_hz=0)
+    scale = max(whole.displacement_max, -whole.displacement_min)
+    assert second.final_state.time_s == pytest.approx(3.0, abs=1e-12)
+    assert second.final_state.displacement_m == pytest.approx(whole.final_state.displacement_m, abs=1e-9 * scale)
+    np.testing.assert_allclose(second.final_state.vector, whole.final_state.vector, rtol=1e-7, atol=1e-9)
+    # a contact cut by the split is reported unfinished by the first run and whole by the second
+    joined = list(first.contacts.dropna()["t_start"]) + list(second.contacts["t_start"])
+    np.testing.assert_allclose(joined, whole.contacts["t_start"], atol=1e-9)
+    if len(whole.contacts):
+        np.testing.assert_allclose(second.contacts.dropna()["impulse"].sum() + first.contacts.dropna()["impulse"].sum(),
+                                   whole.contacts.dropna()["impulse"].sum(), rtol=1e-7)
+    assert max(first.displacement_max, second.displacement_max) == pytest.approx(whole.displacement_max,
+                                                                                 abs=1e-9 * scale)
+
+
+def test_extrema_do_not_depend_on_sampling():
+    osc = pd_.presets.paper_printed()
+    state = pd_.State.at_rest(osc, velocity_m_s=0.6)
+    runs = [pd_.simulate(osc, pd_.Harmonic(0.05, 2.2), 3.0, state, sample_rate_hz=r) for r in (0, 37, 5000)]
+    for run in runs[1:]:
+        assert run.displacement_max == runs[0].displacement_max
+        assert run.abs_acceleration_max == runs[0].abs_acceleration_max
+    # sampled values never exceed the exact extrema
+    assert runs[2].displacement.max() <= runs[0].displacement_max
+    assert np.abs(runs[2].abs_acceleration).max() <= runs[0].abs_acceleration_max * (1 + 1e-12)
+
+
+def test_max_events_ends_with_a_status():
+    osc = pd_.presets.paper_printed()
+    run = pd_.simulate(osc, pd_.Harmonic(0.05, 2.2), 10.0, pd_.State.at_rest(osc, velocity_m_s=0.6),
+                       max_events=5)
+    assert run.status == pd_.Status.MAX_EVENTS and not run.success
+    assert len(run.events) == 5 and run.final_state.time_s < 10.0
+    assert "max_events" in run.message
+
+
+def test_stiff_undamped_bumper_at_zero_gap_finishes():
+    # the hardest case for event logic: the mass rests against rigid-ish bumpers on both sides
+    osc = pd_.Oscillator(10.0, pd_.Isolator((1e3,)), pd_.Bumpers(0.0, 0.0, pd_.KelvinVoigt(1e9, 0.0)))
+    run = pd_.simulate(osc, pd_.Harmonic(0.5, 3.0), 1.0, sample_rate_hz=0, max_events=200_000)
+    assert run.status in (pd_.Status.SUCCESS, pd_.Status.ZENO, pd_.Status.MAX_EVENTS)
+    assert run.message
+
+
+def test_history_samples_and_dataframe():
+    osc = pd_.presets.paper_printed()
+    run = pd_.simulate(osc, pd_.Harmonic(0.05, 2.2), 2.0, pd_.State.at_rest(osc, velocity_m_s=0.6),
+                       sample_rate_hz=100)
+    df = run.to_dataframe()
+    assert list(df.columns) == ["t", "displacement", "velocity", "abs_acceleration", "isolator_force",
+                                "bumper_force_left", "bumper_force_right"]
+    assert df["t"].iloc[0] == 0.0 and df["t"].iloc[-1] == pytest.approx(2.0)
+    assert np.all(np.diff(df["t"]) >= 0)
+    # every uniform sample is there, plus one per event
+    assert len(df) == 201 + len(run.events)
+    # absolute acceleration is the restoring force over the mass
+    total = df["isolator_force"] + df["bumper_force_right"] - df["bumper_force_left"]
+    np.testing.assert_allclose(df["abs_acceleration"], -total / osc.mass, rtol=1e-9, atol=1e-9)
+    assert set(run.events["kind"]) <= {"yield", "reversal", "branch", "contact_start", "contact_end"}

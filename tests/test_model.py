@@ -1,0 +1,126 @@
+"""Construction, validation (errors that name field, value and fix) and TOML round trips."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import pounding as pd_
+from pounding import InputError
+
+
+def _raises(fn, *fragments):
+    with pytest.raises(InputError) as info:
+        fn()
+    msg = str(info.value)
+    for frag in fragments:
+        assert frag in msg, msg
+    assert "Fix:" in msg
+    return info.value
+
+
+def test_paper_printed_values_exactly():
+    osc = pd_.presets.paper_printed()
+    assert osc.mass == 500.0
+    assert osc.isolator.slopes == (38e3, 18e3, 2e3)
+    assert osc.isolator.breakpoints == (0.015, 0.04)
+    assert osc.isolator.damping == 1.0
+    assert osc.bumpers.gap_left == osc.bumpers.gap_right == 0.015
+    assert osc.bumpers.law == pd_.KelvinVoigt(1.46e6, 5.0)
+    assert osc.bumpers.total_gap == pytest.approx(0.03)
+    assert pd_.presets.paper_printed(bumpers=False).bumpers is None
+    np.testing.assert_allclose(osc.isolator.yield_forces, [570.0, 1020.0])
+
+
+def test_backbone_is_odd_and_piecewise_linear():
+    iso = pd_.Isolator((10.0, 5.0, 20.0), (1.0, 2.0))
+    d = np.array([-3.0, -1.5, 0.0, 0.5, 1.0, 1.5, 2.0, 3.0])
+    np.testing.assert_allclose(iso.backbone(d), [-35.0, -12.5, 0.0, 5.0, 10.0, 12.5, 15.0, 35.0])
+
+
+@pytest.mark.parametrize("mass", [0.0, -1.0])
+def test_non_positive_mass(mass):
+    iso = pd_.Isolator((1e4,))
+    _raises(lambda: pd_.Oscillator(mass, iso), "mass", repr(mass), "> 0")
+
+
+def test_breakpoints_not_increasing():
+    _raises(lambda: pd_.Isolator((3.0, 2.0, 1.0), (0.04, 0.015)), "isolator.breakpoints", "increasing")
+
+
+def test_slopes_and_breakpoints_mismatch():
+    _raises(lambda: pd_.Isolator((3.0, 2.0, 1.0), (0.01,)), "isolator.breakpoints", "2 are needed")
+
+
+def test_negative_gap_and_stiffness():
+    law = pd_.KelvinVoigt(1e6, 5.0)
+    _raises(lambda: pd_.Bumpers(-0.01, 0.01, law), "bumpers.gap_left", "-0.01", ">= 0")
+    _raises(lambda: pd_.KelvinVoigt(-1.0, 5.0), "law.stiffness", "> 0")
+    _raises(lambda: pd_.Isolator((1e4, -1.0), (0.01,)), "isolator.slopes[1]", ">= 0")
+
+
+@pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
+def test_nan_and_inf_anywhere(bad):
+    law = pd_.KelvinVoigt(1e6, 5.0)
+    _raises(lambda: pd_.Oscillator(bad, pd_.Isolator((1e4,))), "mass", "finite")
+    _raises(lambda: pd_.Isolator((1e4, bad), (0.01,)), "isolator.slopes[1]", "finite")
+    _raises(lambda: pd_.Isolator((1e4, 1e3), (bad,)), "isolator.breakpoints[0]", "finite")
+    _raises(lambda: pd_.Isolator((1e4,), damping=bad), "isolator.damping", "finite")
+    _raises(lambda: pd_.Bumpers(0.01, bad, law), "bumpers.gap_right", "finite")
+    _raises(lambda: pd_.KelvinVoigt(1e6, bad), "law.damping", "finite")
+    _raises(lambda: pd_.Harmonic(bad, 2.0), "a_g", "finite")
+    _raises(lambda: pd_.Harmonic(0.05, bad), "freq_hz", "finite")
+    _raises(lambda: pd_.Record([0.0, 1.0], [0.0, bad]), "record.accel[1]", "finite")
+    osc = pd_.presets.paper_printed()
+    _raises(lambda: pd_.simulate(osc, pd_.Harmonic(0.05, 2.0), bad), "duration", "finite")
+
+
+def test_record_time_must_increase():
+    _raises(lambda: pd_.Record([0.0, 0.1, 0.1, 0.2], [0, 1, 2, 3]), "record.t[1:3]", "increasing")
+    _raises(lambda: pd_.Record([0.0, 1.0], [0.0]), "record.accel")
+    _raises(lambda: pd_.Record([0.0], [0.0]), "record.t", "at least 2")
+
+
+def test_bad_simulate_arguments():
+    osc = pd_.presets.paper_printed()
+    exc = pd_.Harmonic(0.05, 2.0)
+    _raises(lambda: pd_.simulate(osc, exc, -1.0), "duration", "> 0")
+    _raises(lambda: pd_.simulate(osc, exc, 1.0, sample_rate_hz=-5), "sample_rate_hz")
+    _raises(lambda: pd_.simulate(osc, exc, 1.0, rtol=0.5), "rtol")
+    _raises(lambda: pd_.simulate("system.toml", exc, 1.0), "oscillator", "Oscillator")
+    _raises(lambda: pd_.simulate(osc, 0.05, 1.0), "excitation", "Harmonic")
+    other = pd_.Oscillator(500.0, pd_.Isolator((1e4,)))
+    _raises(lambda: pd_.simulate(osc, exc, 1.0, pd_.State.at_rest(other)), "state")
+
+
+def test_toml_round_trip(tmp_path):
+    for osc in (pd_.presets.paper_printed(), pd_.presets.paper_printed(bumpers=False),
+                pd_.Oscillator(300.0, pd_.Isolator((1e4, 3e4), (0.02,), "elastic", 50.0),
+                               pd_.Bumpers(0.01, 0.02, pd_.HuntCrossley(1e8, 1.5, 1e7),
+                                           pd_.KelvinVoigt(2e6, 10.0)))):
+        path = osc.to_toml(tmp_path / "system.toml")
+        assert pd_.Oscillator.from_toml(path) == osc
+
+
+def test_toml_unknown_key(tmp_path):
+    text = pd_.presets.paper_printed().to_toml(tmp_path / "a.toml").read_text()
+    (tmp_path / "b.toml").write_text(text.replace("damping = 1.0", "dampnig = 1.0"))
+    _raises(lambda: pd_.Oscillator.from_toml(tmp_path / "b.toml"), "isolator.dampnig", "not a known key")
+    (tmp_path / "c.toml").write_text("colour = 'red'\n" + text)
+    _raises(lambda: pd_.Oscillator.from_toml(tmp_path / "c.toml"), "colour")
+    (tmp_path / "d.toml").write_text(text.replace("kelvin_voigt", "maxwell"))
+    _raises(lambda: pd_.Oscillator.from_toml(tmp_path / "d.toml"), "bumpers.law.type", "kelvin_voigt")
+    (tmp_path / "e.toml").write_text(text.replace("stiffness = 1460000.0", "stiffness = -1.0"))
+    _raises(lambda: pd_.Oscillator.from_toml(tmp_path / "e.toml"), "bumpers.law.stiffness", "> 0")
+    (tmp_path / "f.toml").write_text(text.replace("stiffness = 1460000.0", "stiffness = nan"))
+    _raises(lambda: pd_.Oscillator.from_toml(tmp_path / "f.toml"), "bumpers.law.stiffness", "finite")
+    _raises(lambda: pd_.Oscillator.from_toml(tmp_path / "missing.toml"), "does not exist")
+
+
+def test_example_file_is_the_printed_preset():
+    from pathlib import Path
+
+    path = Path(__file__).parents[1] / "examples" / "paper_printed_ybs.toml"
+    assert pd_.Oscillator.from_toml(path) == pd_.presets.paper_printed()
