@@ -88,6 +88,9 @@ class Status(enum.IntEnum):
     def message(self) -> str:
         return _STATUS_MESSAGES[self]
 
+    def __str__(self) -> str:
+        return self.name
+
 
 _STATUS_MESSAGES = {
     Status.SUCCESS: "The run reached its end time.",

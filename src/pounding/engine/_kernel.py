@@ -21,8 +21,8 @@ from .._jit import jit
 from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A_WORK, ACC_L,
                       ACC_R, ACT_CONTACT, ACT_RELEASE, CONTACT_COLS, D, DEF_L, DEF_R, E_ACTION,
                       E_ALPHA, E_BETA, E_DIR, E_GAMMA, E_INDEX, E_KIND, E_SIDE, EV_COLS,
-                      EVENT_COLS, EXTREMA_LEN, IN_L, IN_R, KIND_LINEAR, KIND_RELEASE,
-                      LEDGER_LEN, MODE_LINEAR, MODE_NUMERIC, N_ACC, P_AX0, P_AX1, P_AXH, P_C,
+                      EVENT_COLS, IN_L, IN_R, KIND_LINEAR, KIND_RELEASE,
+                      LEDGER_LEN, MODE_LINEAR, MODE_NUMERIC, P_AX0, P_AX1, P_AXH, P_C,
                       P_CD, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_INL, P_INR, P_K, P_KISO,
                       P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR,
                       P_RISO, P_V0, P_W, PH_LEN, SAMPLE_COLS, SIDE_L, SIDE_NONE, SIDE_R, T, V)

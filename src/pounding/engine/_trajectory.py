@@ -13,8 +13,7 @@ import math
 from ..model.contact_laws import law_force, law_relax, law_release
 from .._jit import jit
 from ._layout import (E_ALPHA, E_BETA, E_GAMMA, E_KIND, E_SIDE, KIND_LINEAR, MODE_LINEAR, SIDE_NONE,
-                      P_AX0, P_AX1, P_AXH, P_C, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_INL,
-                      P_INR, P_K, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_PHI, P_PL, P_PR,
+                      P_AX0, P_AX1, P_AXH, P_C, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_K, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_PHI, P_PL, P_PR,
                       P_V0, P_W, SIDE_L, SIDE_R)
 from ._linear import linear_eval
 from ._numeric import dp5_step, phase_rhs
