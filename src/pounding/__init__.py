@@ -4,15 +4,18 @@ The public surface is re-exported here; modules with a leading underscore are pr
 """
 
 from . import presets
-from ._errors import InputError, Problem, Status
+from ._errors import InputError, Interrupted, Problem, Status
 from .engine import EnergyLedger, Run, State, simulate
 from .excitation import Harmonic, Record
+from .metrics import HysteresisLoop, impact_table
 from .model import Bumpers, HuntCrossley, Isolator, KelvinVoigt, Oscillator
+from .protocols import CampaignResult, SweepResult, campaign, paper_frequencies_hz, sweep
 
 __version__ = "0.1.0"
 
 __all__ = [
-    "Bumpers", "EnergyLedger", "Harmonic", "HuntCrossley", "InputError", "Isolator",
-    "KelvinVoigt", "Oscillator", "Problem", "Record", "Run", "State", "Status", "presets",
-    "simulate",
+    "Bumpers", "CampaignResult", "EnergyLedger", "Harmonic", "HuntCrossley", "HysteresisLoop",
+    "InputError", "Interrupted", "Isolator", "KelvinVoigt", "Oscillator", "Problem", "Record",
+    "Run", "State", "Status", "SweepResult", "campaign", "impact_table", "paper_frequencies_hz",
+    "presets", "simulate", "sweep",
 ]

@@ -76,3 +76,15 @@ def float_array(field: str, values: Any, min_len: int = 1) -> np.ndarray:
         i = int(bad[0])
         raise InputError(Problem.NOT_FINITE, f"{field}[{i}]", float(arr[i]))
     return arr
+
+
+def integer(field: str, value: Any, minimum: int) -> int:
+    """Return ``value`` as an int >= ``minimum`` (bools and fractions refused)."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        if isinstance(value, (float, np.floating)) and float(value).is_integer():
+            value = int(value)
+        else:
+            raise InputError(Problem.NOT_INTEGER, field, value, minimum=minimum)
+    if value < minimum:
+        raise InputError(Problem.NOT_INTEGER, field, value, minimum=minimum)
+    return int(value)

@@ -35,6 +35,11 @@ class Problem(enum.Enum):
     TOO_SHORT = ("has {got} samples", "give at least {expected} samples")
     BAD_TOML = ("is not valid TOML ({detail})", "fix the syntax at the place named")
     NO_FILE = ("does not exist", "check the path")
+    NOT_INTEGER = ("must be a whole number >= {minimum}", "give an integer >= {minimum}")
+    TOO_SMALL = ("must be >= {minimum}", "give a value >= {minimum}{hint}")
+    DUPLICATE = ("repeats {repeated}", "give each value once")
+    NOT_IN_RESULT = ("is not in this result", "use one of {choices}")
+    NOT_STARTED = ("has no finished step", "run at least one step before asking for {what}")
 
     @property
     def why(self) -> str:
@@ -73,6 +78,24 @@ class InputError(ValueError):
         if field.startswith(old_prefix):
             field = new_prefix + field[len(old_prefix):]
         return InputError(self.problem, field, self.value, **self._details)
+
+
+class Interrupted(KeyboardInterrupt):
+    """Ctrl-C during a long run; ``partial`` holds what was finished (the rest is NaN).
+
+    It is a ``KeyboardInterrupt``, so scripts stop as usual; catch it to keep the work::
+
+        try:
+            result = pounding.campaign(nbs, ybs)
+        except pounding.Interrupted as stop:
+            result = stop.partial
+    """
+
+    def __init__(self, partial: Any, done: int, total: int) -> None:
+        super().__init__(f"interrupted after {done} of {total} steps; the finished ones are in .partial")
+        self.partial = partial
+        self.done = done
+        self.total = total
 
 
 class Status(enum.IntEnum):

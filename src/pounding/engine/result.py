@@ -189,6 +189,15 @@ class Run:
             "index": self.event_table[:, 2].astype(int),
         })
 
+    @cached_property
+    def impacts(self) -> pd.DataFrame:
+        """The paper's per-impact quantities (Sect. 3.5), one row per contact: ``side``,
+        ``t_start`` and restitution, contact time, impulse, mean and peak force, ``E_d`` and
+        the bumper's own dissipation; see :func:`pounding.impact_table`."""
+        from ..metrics import impact_table
+
+        return impact_table(self.contact_table, self.oscillator.mass)
+
     @property
     def success(self) -> bool:
         return self.status == Status.SUCCESS

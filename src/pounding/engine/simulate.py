@@ -4,9 +4,7 @@ from __future__ import annotations
 
 from typing import Optional
 
-import numpy as np
-
-from .._checks import non_negative, positive
+from .._checks import integer, non_negative, positive
 from .._errors import InputError, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
@@ -77,8 +75,7 @@ def simulate(
     rtol = positive("rtol", rtol, "(relative)")
     if rtol > 1e-3:
         raise InputError(Problem.NOT_ONE_OF, "rtol", rtol, choices="values in (0, 1e-3]")
-    if isinstance(max_events, bool) or not isinstance(max_events, (int, np.integer)) or max_events < 1:
-        raise InputError(Problem.NOT_ONE_OF, "max_events", max_events, choices="integers >= 1")
+    max_events = integer("max_events", max_events, 1)
     if state is None:
         state = State.at_rest(oscillator)
     elif not isinstance(state, State):

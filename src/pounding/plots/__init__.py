@@ -1,5 +1,6 @@
 """Figures, apart from computing: every function takes ``ax=`` and returns its artists."""
 
 from .run import plot_run
+from .sweep import plot_campaign, plot_hysteresis, plot_sweep
 
-__all__ = ["plot_run"]
+__all__ = ["plot_campaign", "plot_hysteresis", "plot_run", "plot_sweep"]

@@ -1,0 +1,61 @@
+"""Hysteresis loops of the inertia force (paper Figs. 7 and 15)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import pandas as pd
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..engine.result import Run
+
+
+@dataclass(frozen=True, eq=False)
+class HysteresisLoop:
+    """``r = F_I / (M g)`` against ``d = D / Delta`` over whole steady cycles.
+
+    Attributes
+    ----------
+    d, r : ndarray, shape (n,)
+        Normalized displacement and inertia force (``F_I = M a_abs``), every event
+        instant included.
+    t : ndarray, shape (n,)
+        Times, s.
+    freq_hz, a_g, total_gap_m : float
+        The step and the length ``Delta`` that normalizes ``D``.
+    cycles : int
+        Forcing cycles covered (the period multiple of the response).
+    bumper_surfaces_d : tuple of float or None
+        Where the bumpers' free surfaces are in ``d``: ``(-g_L / Delta, g_R / Delta)``.
+    """
+
+    d: np.ndarray = field(repr=False)
+    r: np.ndarray = field(repr=False)
+    t: np.ndarray = field(repr=False)
+    freq_hz: float
+    a_g: float
+    total_gap_m: float
+    cycles: int
+    bumper_surfaces_d: tuple[float, float] | None = None
+
+    @classmethod
+    def from_run(cls, run: "Run", total_gap_m: float, freq_hz: float, a_g: float,
+                 cycles: int) -> "HysteresisLoop":
+        g = run.excitation.g
+        b = run.oscillator.bumpers
+        surfaces = None if b is None else (-b.gap_left / total_gap_m, b.gap_right / total_gap_m)
+        return cls(d=run.displacement / total_gap_m, r=run.abs_acceleration / g, t=run.t,
+                   freq_hz=freq_hz, a_g=a_g, total_gap_m=total_gap_m, cycles=cycles,
+                   bumper_surfaces_d=surfaces)
+
+    def to_dataframe(self) -> pd.DataFrame:
+        """Columns ``t`` (s), ``d`` and ``r`` (dimensionless)."""
+        return pd.DataFrame({"t": self.t, "d": self.d, "r": self.r})
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> list:
+        """Draw the loop; see :func:`pounding.plots.plot_hysteresis`."""
+        from ..plots import plot_hysteresis
+
+        return plot_hysteresis(self, ax=ax, **kwargs)

@@ -1,0 +1,33 @@
+"""Per-impact tables from a run's contacts."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from ._impacts import IMPACT_COLUMNS, N_IMPACT, impact_row
+
+
+def impact_table(contact_table: np.ndarray, mass_kg: float) -> pd.DataFrame:
+    """The paper's per-impact quantities (Sect. 3.5), one row per contact.
+
+    Parameters
+    ----------
+    contact_table : ndarray, shape (n, 9)
+        ``Run.contact_table`` (side coded 0 left, 1 right).
+    mass_kg : float
+        The impacting mass ``M``.
+
+    Returns
+    -------
+    DataFrame
+        ``side``, ``t_start`` (s) and the columns of
+        :data:`~pounding.metrics._impacts.IMPACT_COLUMNS`; see :func:`impact_row`.
+    """
+    values = np.empty((contact_table.shape[0], N_IMPACT))
+    for i in range(contact_table.shape[0]):
+        impact_row(contact_table[i], float(mass_kg), values[i])
+    df = pd.DataFrame(values, columns=list(IMPACT_COLUMNS))
+    df.insert(0, "t_start", contact_table[:, 1])
+    df.insert(0, "side", np.where(contact_table[:, 0] == 0.0, "left", "right"))
+    return df

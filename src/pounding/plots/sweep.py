@@ -1,0 +1,129 @@
+"""Plots of sweeps: alpha and eta against nu (paper Figs. 4-5), hysteresis loops (Figs. 7, 15)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..metrics import HysteresisLoop
+    from ..protocols.campaign import CampaignResult
+    from ..protocols.sweep_result import SweepResult
+
+DIRECTION_STYLE = {"up": {"ls": "-", "marker": "^"}, "down": {"ls": "--", "marker": "v"}}
+
+
+def plot_sweep(sweeps: "SweepResult | Sequence[SweepResult]", ax: Any = None, *,
+               label: str | None = None, color: Any = None) -> list:
+    """alpha (top) and eta, or e without bumpers (bottom), against nu.
+
+    Up sweeps are drawn solid with upward markers, down sweeps dashed with downward ones.
+
+    Parameters
+    ----------
+    sweeps : SweepResult or sequence of them
+        E.g. ``[up, down]`` of the same system and a_G.
+    ax : pair of matplotlib Axes, optional
+        ``(ax_alpha, ax_excursion)``; a new two-panel figure if omitted.
+    label : str, optional
+        Legend label prefix (default ``a_G = ...``).
+    color : optional
+        One colour for all the sweeps given (default: one per a_G).
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    import matplotlib.pyplot as plt
+
+    if not isinstance(sweeps, Sequence):
+        sweeps = [sweeps]
+    if ax is None:
+        _, ax = plt.subplots(2, 1, figsize=(7, 6), sharex=True, constrained_layout=True)
+    ax_a, ax_e = ax
+    artists: list = []
+    colours: dict[float, Any] = {}
+    for sw in sweeps:
+        df = sw.to_dataframe().iloc[: sw.steps_done].sort_values("freq_hz")
+        c = color if color is not None else colours.setdefault(sw.a_g, f"C{len(colours)}")
+        style = DIRECTION_STYLE[sw.direction]
+        text = f"{label or f'a_G = {sw.a_g:g}'} ({sw.direction})"
+        has_gap = sw.oscillator.bumpers is not None
+        y = df["eta"] if has_gap else df["e"]
+        artists += ax_a.plot(df["nu"], df["alpha"], color=c, ms=4, label=text, **style)
+        artists += ax_e.plot(df["nu"], y, color=c, ms=4, label=text, **style)
+        unsteady = ~df["steady"].to_numpy(dtype=bool)
+        if np.any(unsteady):
+            artists.append(ax_a.scatter(df["nu"][unsteady], df["alpha"][unsteady], s=40,
+                                        facecolors="none", edgecolors="k", lw=0.8, zorder=3))
+    ax_a.set_ylabel("alpha = max|a_abs| / A_t")
+    kinds = {sw.oscillator.bumpers is not None for sw in sweeps}
+    ax_e.set_ylabel("eta = E / Delta" if kinds == {True} else
+                    "e = E / D_tmax" if kinds == {False} else "eta (YBs) / e (NBs)")
+    ax_e.set_xlabel("nu = f / f_R")
+    if any(sw.oscillator.bumpers is not None for sw in sweeps):
+        artists.append(ax_e.axhline(1.0, color="0.5", lw=0.8, ls=":"))
+    ax_a.legend(fontsize="small")
+    return artists
+
+
+def plot_hysteresis(loop: "HysteresisLoop", ax: Any = None, **line_kwargs: Any) -> list:
+    """``r = F_I / (M g)`` against ``d = D / Delta`` (paper Figs. 7 and 15).
+
+    Parameters
+    ----------
+    loop : HysteresisLoop
+        From :meth:`SweepResult.hysteresis_loop`.
+    ax : matplotlib Axes, optional
+    **line_kwargs
+        Passed to ``ax.plot``.
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(5, 4), constrained_layout=True)
+    line_kwargs.setdefault("lw", 1.0)
+    line_kwargs.setdefault("label", f"a_G = {loop.a_g:g}, f = {loop.freq_hz:g} Hz")
+    artists = list(ax.plot(loop.d, loop.r, **line_kwargs))
+    for x in loop.bumper_surfaces_d or ():  # where contact begins with relaxed bumpers
+        artists.append(ax.axvline(x, color="0.6", lw=0.6, ls=":"))
+    ax.set_xlabel("d = D / Delta")
+    ax.set_ylabel("r = F_I / (M g)")
+    ax.legend(fontsize="small")
+    return artists
+
+
+def plot_campaign(result: "CampaignResult", ax: Any = None) -> list:
+    """alpha (top) and eta or e (bottom) against nu, NBs left and YBs right (Figs. 4-5).
+
+    Parameters
+    ----------
+    result : CampaignResult
+    ax : 2-by-n array of matplotlib Axes, optional
+        One column per configuration in the campaign; a new figure if omitted.
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    import matplotlib.pyplot as plt
+
+    confs = list(dict.fromkeys(key[0] for key in result.sweeps))
+    if ax is None:
+        _, ax = plt.subplots(2, len(confs), figsize=(6 * len(confs), 6), sharex=True,
+                             squeeze=False, constrained_layout=True)
+    ax = np.asarray(ax).reshape(2, len(confs))
+    a_gs = sorted({key[1] for key in result.sweeps})
+    artists: list = []
+    for j, conf in enumerate(confs):
+        for (c, ag, _), sw in result.sweeps.items():
+            if c == conf:
+                artists += plot_sweep(sw, ax=(ax[0, j], ax[1, j]), color=f"C{a_gs.index(ag)}")
+        ax[0, j].set_title(conf)
+    return artists

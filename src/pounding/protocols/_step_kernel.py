@@ -1,0 +1,164 @@
+"""One frequency step of a stepped-sine sweep, compiled: cycles until steady, then measure.
+
+The step is run one forcing cycle at a time by the event-exact engine (the state carried
+over is exact, so cutting at cycle ends changes nothing).  After each cycle the state at
+the cycle end (the stroboscopic sample, table phase 0) is kept; the response is steady
+with period multiple ``k`` when the last ``m`` strobes repeat those ``k`` cycles earlier
+to within ``steady_rtol`` of the response amplitude, after allowing for how slowly the
+strobes still converge.  Only arrays and scalars go in and out (it ships to workers).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .._jit import jit
+from ..engine._kernel import EXC_HARMONIC, SUCCESS, run_kernel
+from ..engine._layout import D, STATE_BASE, T, V
+from ..metrics._impacts import SIDE_SUMS, add_impacts
+
+# per-cycle record: exact extrema, then the impact sums of both sides
+CY_DMAX, CY_DMIN, CY_AMAX = 0, 1, 2
+CY_SUMS = 3
+CYCLE_COLS = CY_SUMS + 2 * SIDE_SUMS
+# the measurement window: extrema, number of cycles, impact sums (left then right)
+W_DMAX, W_DMIN, W_AMAX, W_CYCLES = 0, 1, 2, 3
+W_SUMS = 4
+WINDOW_COLS = W_SUMS + 2 * SIDE_SUMS
+AMPLITUDE_FLOOR_M = 1e-12
+
+
+@jit
+def _strobe_distance(strobe, a, b, tol_d, tol_v):
+    """Largest component of ``|strobe[a] - strobe[b]|`` in units of the tolerances."""
+    dist = abs(strobe[a, 1] - strobe[b, 1]) / tol_v
+    for q in range(strobe.shape[1]):
+        if q != 1:
+            dist = max(dist, abs(strobe[a, q] - strobe[b, q]) / tol_d)
+    return dist
+
+
+@jit
+def periodicity(strobe, cyc, n, window, max_period, steady_rtol, omega, round_window):
+    """Smallest period multiple ``k`` with which the last cycles repeat, or 0.
+
+    Returns ``(k, m)``: ``m`` is the window of cycles that repeat (``window`` rounded up
+    to a multiple of ``k`` when ``round_window``).  The distance to the periodic orbit is
+    estimated as ``d_1 / (1 - rho)`` with ``d_1`` the latest strobe difference and
+    ``rho`` its ratio to the previous one (geometric convergence).
+    """
+    amp = AMPLITUDE_FLOOR_M
+    for j in range(max(0, n - window), n):
+        amp = max(amp, 0.5 * (cyc[j, CY_DMAX] - cyc[j, CY_DMIN]))
+    tol_d = steady_rtol * amp
+    tol_v = tol_d * omega
+    for k in range(1, max_period + 1):
+        m = window
+        if round_window:
+            m = k * ((window + k - 1) // k)
+        if n < m + 2 * k:
+            continue
+        ok = True
+        for j in range(m):
+            if _strobe_distance(strobe, n - 1 - j, n - 1 - j - k, tol_d, tol_v) > 1.0:
+                ok = False
+                break
+        if not ok:
+            continue
+        d1 = _strobe_distance(strobe, n - 1, n - 1 - k, tol_d, tol_v)
+        d0 = _strobe_distance(strobe, n - 1 - k, n - 1 - 2 * k, tol_d, tol_v)
+        rho = d1 / d0 if d0 > 0.0 else 0.0
+        if rho < 1.0 and d1 <= 1.0 - rho:
+            return _smallest_period(strobe, n, k, window, round_window, tol_d, tol_v, steady_rtol)
+    return 0, window
+
+
+@jit
+def _smallest_period(strobe, n, k, window, round_window, tol_d, tol_v, steady_rtol):
+    """The least divisor ``p`` of ``k`` with which the window also repeats, loosely.
+
+    A transient that decays while rotating can make the lag-``k`` differences small
+    before the lag-1 ones; once the orbit is within tolerance at lag ``k``, a response of
+    period ``p | k`` shows lag-``p`` differences of the order of the tolerance, a true
+    period-``k`` response ones of the order of its amplitude.
+    """
+    loose = max(1.0, min(100.0, 1e-2 / steady_rtol))
+    for p in range(1, k):
+        if k % p != 0:
+            continue
+        m = p * ((window + p - 1) // p) if round_window else window
+        ok = n >= m + p
+        j = 0
+        while ok and j < m:
+            ok = _strobe_distance(strobe, n - 1 - j, n - 1 - j - p, tol_d, tol_v) <= loose
+            j += 1
+        if ok:
+            return p, m
+    m = k * ((window + k - 1) // k) if round_window else window
+    return k, m
+
+
+@jit
+def step_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
+                amp, omega, state0, adaptive, n_cycles, measure_cycles, steady_rtol, max_period,
+                rtol, max_events):
+    """Hold the harmonic ``amp sin(omega (t - t0))`` from ``state0`` (time ``t0``).
+
+    ``adaptive``: stop as soon as the response is periodic (at most ``n_cycles``
+    cycles); otherwise run exactly ``n_cycles``.  The last ``measure_cycles`` (rounded up
+    to whole periods when adaptive and steady) are measured.
+
+    Returns ``(state, cycles_run, period_multiple, window, window_state, status)`` with
+    ``period_multiple`` 0 when not periodic and ``window`` of length ``WINDOW_COLS``.
+    """
+    period = 2.0 * math.pi / omega
+    t0 = state0[T]
+    exc_p = np.array([amp, omega, -(omega * t0)])  # A(t0) = 0 exactly: phase 0 at the step start
+    no_record = np.zeros(1)
+    n_sp = (state0.size - STATE_BASE) // 2
+    strobe = np.empty((n_cycles, 2 + n_sp))
+    starts = np.empty((n_cycles, state0.size))
+    cyc = np.zeros((n_cycles, CYCLE_COLS))
+    st = state0.copy()
+    status = SUCCESS
+    n = 0
+    k = 0
+    m = measure_cycles
+    sums = np.zeros((1, 2 * SIDE_SUMS))
+    while n < n_cycles:
+        starts[n] = st
+        st, _, contacts, _, _, extrema, status = run_kernel(
+            mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
+            EXC_HARMONIC, exc_p, no_record, no_record, st, t0 + (n + 1) * period, -1.0, rtol,
+            max_events)
+        cyc[n, CY_DMAX] = extrema[0]
+        cyc[n, CY_DMIN] = extrema[2]
+        cyc[n, CY_AMAX] = extrema[4]
+        sums[0] = 0.0
+        add_impacts(contacts, mass, sums, 0)
+        cyc[n, CY_SUMS:] = sums[0]
+        strobe[n, 0] = st[D]
+        strobe[n, 1] = st[V]
+        strobe[n, 2:] = st[STATE_BASE:STATE_BASE + n_sp]
+        n += 1
+        if status != SUCCESS:
+            break
+        if adaptive:
+            k, m = periodicity(strobe, cyc, n, measure_cycles, max_period, steady_rtol, omega, True)
+            if k > 0:
+                break
+    if not adaptive or k == 0:
+        k, m = periodicity(strobe, cyc, n, measure_cycles, max_period, steady_rtol, omega, False)
+    m = min(m, n)
+    window = np.zeros(WINDOW_COLS)
+    window[W_DMAX] = -np.inf
+    window[W_DMIN] = np.inf
+    window[W_CYCLES] = m
+    for j in range(n - m, n):
+        window[W_DMAX] = max(window[W_DMAX], cyc[j, CY_DMAX])
+        window[W_DMIN] = min(window[W_DMIN], cyc[j, CY_DMIN])
+        window[W_AMAX] = max(window[W_AMAX], cyc[j, CY_AMAX])
+        window[W_SUMS:] += cyc[j, CY_SUMS:]
+    return st, n, k, window, starts[n - m].copy(), status

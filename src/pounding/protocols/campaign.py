@@ -1,0 +1,267 @@
+"""The paper's test matrix (MODEL.md §2): NBs and YBs sweeps up and down, in parallel.
+
+Independent sweeps run on worker threads: the compiled kernels release the GIL, so the
+threads use every core without copying anything.  A sweep is a :class:`SweepPlan`, plain
+data, so another executor (processes, Dask) can run the same plans.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import os
+import threading
+from collections.abc import Sequence
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import pandas as pd
+
+from .._checks import integer, real_tuple
+from .._errors import InputError, Interrupted, Problem
+from ..model import Oscillator
+from ._progress import Progress, progress_reporter
+from .sweep import PAPER_F_REF_HZ, PAPER_OMEGA_MIN_RAD_S, SweepPlan, make_plan, run_plan
+from .sweep_result import SIDE_COLUMNS, STEP_COLUMNS, SweepResult
+
+if TYPE_CHECKING:  # pragma: no cover
+    import xarray as xr
+
+PAPER_NBS_A_G = (0.03, 0.05, 0.1)
+PAPER_YBS_A_G = (0.03, 0.05, 0.075, 0.1)
+CONFIGURATIONS = ("NBs", "YBs")
+DIRECTIONS = ("up", "down")
+_BOOL_COLUMNS = ("contact", "steady")
+_DATA_COLUMNS = tuple(c for c in STEP_COLUMNS if c not in ("freq_hz", "nu")) + tuple(
+    f"{c}{s}" for s in ("_left", "_right") for c in SIDE_COLUMNS)
+
+
+@dataclass(frozen=True, eq=False)
+class CampaignResult:
+    """Result of :func:`pounding.campaign`.
+
+    Attributes
+    ----------
+    dataset : xarray.Dataset
+        Every step's metrics on dims ``(configuration, a_g, direction, freq_hz)``; NaN
+        (and ``ran`` False) where a sweep is not part of the matrix or did not finish.
+    sweeps : dict
+        ``(configuration, a_g, direction) -> SweepResult`` for the sweeps that ran.
+    complete : bool
+        False after an interruption.
+    """
+
+    dataset: "xr.Dataset" = field(repr=False)
+    sweeps: dict = field(repr=False)
+    complete: bool
+
+    def sweep(self, configuration: str, a_g: float, direction: str) -> SweepResult:
+        """One sweep of the campaign."""
+        for (conf, ag, d), sw in self.sweeps.items():
+            if conf == configuration and d == direction and abs(ag - a_g) <= 1e-12:
+                return sw
+        keys = ", ".join(f"({c!r}, {a:g}, {d!r})" for c, a, d in self.sweeps)
+        raise InputError(Problem.NOT_IN_RESULT, "(configuration, a_g, direction)",
+                         (configuration, a_g, direction), choices=keys)
+
+    def to_netcdf(self, path: str | Path) -> Path:
+        """Save :attr:`dataset` to netCDF (read back with ``xarray.open_dataset``)."""
+        path = Path(path)
+        self.dataset.to_netcdf(path)
+        return path
+
+    def table2(self) -> pd.DataFrame:
+        """Analogue of the paper's Table 2: maximum alpha and excursion, resonance, contact range.
+
+        One row per sweep: ``configuration``, ``a_g``, ``direction``, ``nu_r``, ``alpha``
+        (max), ``eta`` (max E / Delta, YBs), ``e`` (max E / D_tmax), ``contact_nu_min``,
+        ``contact_nu_max`` (the contact range ``Delta nu_C``, NaN without contact).
+        """
+        rows = []
+        for (conf, ag, d), sw in self.sweeps.items():
+            df = sw.to_dataframe().iloc[: sw.steps_done]
+            rng = sw.contact_range_hz
+            rows.append({"configuration": conf, "a_g": ag, "direction": d, "nu_r": sw.nu_r,
+                         "alpha": sw.alpha_max, "eta": df["eta"].max(), "e": df["e"].max(),
+                         "contact_nu_min": np.nan if rng is None else rng[0] / sw.f_ref_hz,
+                         "contact_nu_max": np.nan if rng is None else rng[1] / sw.f_ref_hz})
+        return pd.DataFrame(rows)
+
+    def _at_resonance(self, columns: dict[str, Any]) -> pd.DataFrame:
+        """YBs rows of ``name: column(step, sweep)`` at each sweep's resonance step."""
+        rows = []
+        for (conf, ag, d), sw in self.sweeps.items():
+            if conf != "YBs":
+                continue
+            step = sw.to_dataframe().iloc[sw.step_index(sw.resonance_hz)]
+            row = {"configuration": conf, "a_g": ag, "direction": d, "nu_r": sw.nu_r}
+            row.update({name: column(step, sw) for name, column in columns.items()})
+            rows.append(row)
+        return pd.DataFrame(rows)
+
+    def table3(self) -> pd.DataFrame:
+        """Analogue of Table 3 (YBs, at the resonance step): ``mean_force_over_mg``
+        (``F_m / (M g)``), ``contact_time_ms`` and ``peak_force_over_mg``."""
+        def mg(sw: SweepResult) -> float:
+            return sw.oscillator.mass * sw.g
+
+        return self._at_resonance({
+            "mean_force_over_mg": lambda step, sw: step["mean_force_n"] / mg(sw),
+            "contact_time_ms": lambda step, sw: step["contact_time_s"] * 1e3,
+            "peak_force_over_mg": lambda step, sw: step["peak_force_n"] / mg(sw)})
+
+    def table4(self) -> pd.DataFrame:
+        """Analogue of Table 4 (YBs, at the resonance step): ``dissipated_energy_per_mass``
+        (``E_d / M``, m^2/s^2) and ``restitution`` ``s``."""
+        return self._at_resonance({
+            "dissipated_energy_per_mass": lambda step, sw: step["dissipated_energy_j"] / sw.oscillator.mass,
+            "restitution": lambda step, sw: step["restitution"]})
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> list:
+        """alpha and eta/e against nu for both configurations; see :func:`pounding.plots.plot_campaign`."""
+        from ..plots import plot_campaign
+
+        return plot_campaign(self, ax=ax, **kwargs)
+
+
+def campaign(
+    nbs_system: Oscillator | None,
+    ybs_system: Oscillator | None,
+    *,
+    nbs_a_g: Sequence[float] = PAPER_NBS_A_G,
+    ybs_a_g: Sequence[float] = PAPER_YBS_A_G,
+    freqs_hz: np.ndarray | None = None,
+    directions: Sequence[str] = DIRECTIONS,
+    steady: str = "adaptive",
+    cycles: int | None = None,
+    measure_cycles: int = 5,
+    max_cycles: int | None = None,
+    steady_rtol: float = 1e-6,
+    max_period: int = 8,
+    omega_min_rad_s: float = PAPER_OMEGA_MIN_RAD_S,
+    f_ref_hz: float = PAPER_F_REF_HZ,
+    workers: int | None = None,
+    progress: Progress = False,
+) -> CampaignResult:
+    """The shaking-table campaign: every (configuration, a_G, direction) sweep, in parallel.
+
+    Each sweep starts from rest (down sweeps at the highest frequency).
+
+    Parameters
+    ----------
+    nbs_system, ybs_system : Oscillator or None
+        The system without bumpers (NBs) and with them (YBs); None leaves that
+        configuration out.
+    nbs_a_g, ybs_a_g : sequence of float
+        Table accelerations in g (default the paper's: 0.03, 0.05, 0.1 and 0.03, 0.05,
+        0.075, 0.1).
+    freqs_hz, steady, cycles, measure_cycles, max_cycles, steady_rtol, max_period, omega_min_rad_s, f_ref_hz
+        As :func:`pounding.sweep` (defaults: 0.5 to 5.0 Hz by 0.1, adaptive).
+    directions : sequence of {"up", "down"}
+    workers : int, optional
+        Worker threads (default: the machine's cores).
+    progress : bool or callable
+        True: a progress bar over all steps; a callable gets the number of steps finished.
+
+    Returns
+    -------
+    CampaignResult
+        ``.dataset`` (dims configuration, a_g, direction, freq_hz; saves to netCDF),
+        ``.sweeps``, ``.table2()``, ``.table3()``, ``.table4()``.
+
+    Raises
+    ------
+    Interrupted
+        On Ctrl-C; ``partial`` is a CampaignResult with the finished steps.
+    """
+    systems = {"NBs": (nbs_system, nbs_a_g), "YBs": (ybs_system, ybs_a_g)}
+    if nbs_system is None and ybs_system is None:
+        raise InputError(Problem.MISSING_KEY, "nbs_system, ybs_system", (None, None),
+                         choices="at least one of the two systems")
+    if len(set(directions)) != len(tuple(directions)) or not directions:
+        raise InputError(Problem.NOT_ONE_OF, "directions", directions,
+                         choices="'up', 'down' or both, each once")
+    plans: list[tuple[tuple[str, float, str], SweepPlan]] = []
+    for conf, (osc, a_gs) in systems.items():
+        if osc is None:
+            continue
+        field_name = f"{conf.lower()}_system"
+        if not isinstance(osc, Oscillator):
+            raise InputError(Problem.WRONG_TYPE, field_name, osc, got=type(osc).__name__,
+                             expected="pounding.Oscillator")
+        if (osc.bumpers is None) != (conf == "NBs"):
+            fix = "oscillator.without_bumpers()" if conf == "NBs" else "an Oscillator with Bumpers"
+            raise InputError(Problem.WRONG_TYPE, field_name, osc,
+                             got="a system " + ("with" if osc.bumpers else "without") + " bumpers",
+                             expected=fix)
+        for ag in real_tuple(f"{conf.lower()}_a_g", a_gs):
+            for d in directions:
+                plan = make_plan(osc, ag, freqs_hz, d, steady=steady, cycles=cycles,
+                                 measure_cycles=measure_cycles, max_cycles=max_cycles,
+                                 steady_rtol=steady_rtol, max_period=max_period,
+                                 omega_min_rad_s=omega_min_rad_s, f_ref_hz=f_ref_hz,
+                                 label=f"{conf} a_G={ag:g} {d}")
+                plans.append(((conf, ag, d), plan))
+    n_workers = integer("workers", (os.cpu_count() or 1) if workers is None else workers, 1)
+    total = sum(p.freqs_hz.size for _, p in plans)
+    stop = threading.Event()
+    sweeps: dict[tuple[str, float, str], SweepResult] = {}
+    interrupted = False
+    with progress_reporter(progress, total, "campaign") as advance:
+        with cf.ThreadPoolExecutor(max_workers=n_workers, thread_name_prefix="pounding") as pool:
+            futures = {pool.submit(run_plan, plan, advance, stop): key for key, plan in plans}
+            try:
+                pending = set(futures)
+                while pending:
+                    _, pending = cf.wait(pending, timeout=0.2)
+            except KeyboardInterrupt:
+                interrupted = True
+                stop.set()
+                for fut in futures:
+                    fut.cancel()
+            for fut, key in futures.items():
+                if fut.cancelled():
+                    continue
+                try:
+                    sweeps[key] = fut.result()
+                except Interrupted as partial:
+                    sweeps[key] = partial.partial
+    ordered = {key: sweeps[key] for key, _ in plans if key in sweeps}
+    result = CampaignResult(_dataset(ordered, plans, not interrupted), ordered, not interrupted)
+    if interrupted:
+        raise Interrupted(result, sum(sw.steps_done for sw in ordered.values()), total)
+    return result
+
+
+def _dataset(sweeps: dict, plans: list, complete: bool) -> "xr.Dataset":
+    import xarray as xr
+
+    confs = [c for c in CONFIGURATIONS if any(k[0] == c for k, _ in plans)]
+    a_gs = sorted({k[1] for k, _ in plans})
+    dirs = [d for d in DIRECTIONS if any(k[2] == d for k, _ in plans)]
+    freqs = np.unique(np.concatenate([p.freqs_hz for _, p in plans]))
+    shape = (len(confs), len(a_gs), len(dirs), freqs.size)
+    data = {c: np.full(shape, np.nan) for c in _DATA_COLUMNS}
+    for c in (*_BOOL_COLUMNS, "ran"):
+        data[c] = np.zeros(shape, dtype=bool)
+    for (conf, ag, d), sw in sweeps.items():
+        idx = (confs.index(conf), a_gs.index(ag), dirs.index(d))
+        df = sw.to_dataframe().iloc[: sw.steps_done]
+        cols = np.searchsorted(freqs, df["freq_hz"].to_numpy())
+        for c in _DATA_COLUMNS:
+            data[c][idx + (cols,)] = df[c].to_numpy()
+        data["ran"][idx + (cols,)] = True
+    dims = ("configuration", "a_g", "direction", "freq_hz")
+    ds = xr.Dataset({c: (dims, v) for c, v in data.items()},
+                    coords={"configuration": confs, "a_g": a_gs, "direction": dirs, "freq_hz": freqs})
+    first = plans[0][1]
+    ds = ds.assign_coords(nu=("freq_hz", freqs / first.f_ref_hz))
+    ds["freq_hz"].attrs["units"] = "Hz"
+    ds.attrs.update({"steady_mode": first.steady, "cycles": first.cycles,
+                     "measure_cycles": first.measure_cycles, "f_ref_hz": first.f_ref_hz,
+                     "omega_min_rad_s": first.omega_min_rad_s, "complete": int(complete)})
+    for conf in confs:
+        osc = next(p.oscillator for k, p in plans if k[0] == conf)
+        ds.attrs[f"system_{conf}"] = osc.to_toml()
+    return ds

@@ -1,0 +1,299 @@
+"""Stepped-sine sweeps (MODEL.md §2): the virtual shaking table, one frequency after another.
+
+:func:`sweep` validates, builds a :class:`SweepPlan` and runs it; the plan is plain data
+and :func:`run_plan` needs nothing else, so campaigns hand plans to worker threads.
+"""
+
+from __future__ import annotations
+
+import math
+import threading
+from dataclasses import dataclass
+from typing import Literal
+
+import numpy as np
+
+from .._checks import float_array, integer, one_of, positive
+from .._errors import InputError, Interrupted, Problem, Status
+from ..engine import State
+from ..engine._layout import T
+from ..engine.simulate import kernel_system
+from ..excitation import STANDARD_GRAVITY, Harmonic
+from ..model import Oscillator
+from ._progress import Progress, progress_reporter
+from ._step_kernel import WINDOW_COLS, step_kernel
+from .sweep_result import SweepResult
+
+Direction = Literal["up", "down"]
+SteadyMode = Literal["adaptive", "fixed"]
+
+PAPER_OMEGA_MIN_RAD_S = 2.0 * math.pi * 0.6  # what the paper's D_tmax values imply (MODEL.md §3)
+PAPER_F_REF_HZ = 1.0
+
+
+def paper_frequencies_hz() -> np.ndarray:
+    """The paper's steps: 0.5 to 5.0 Hz by 0.1 Hz (46 values)."""
+    return np.arange(5, 51) / 10.0
+
+
+@dataclass(frozen=True, eq=False)
+class SweepPlan:
+    """Everything a sweep needs, validated (build it with :func:`sweep` or :func:`make_plan`).
+
+    ``freqs_hz`` is in stepping order.  ``cycles`` is the number of cycles per step in the
+    fixed mode and the maximum in the adaptive mode.
+    """
+
+    oscillator: Oscillator
+    a_g: float
+    freqs_hz: np.ndarray
+    direction: str
+    steady: str
+    cycles: int
+    measure_cycles: int
+    steady_rtol: float
+    max_period: int
+    omega_min_rad_s: float
+    f_ref_hz: float
+    rtol: float
+    max_events_per_cycle: int
+    state: State | None
+    label: str = ""
+
+
+def make_plan(
+    oscillator: Oscillator,
+    a_g: float,
+    freqs_hz: np.ndarray | None = None,
+    direction: str = "up",
+    *,
+    steady: str = "adaptive",
+    cycles: int | None = None,
+    measure_cycles: int = 5,
+    max_cycles: int | None = None,
+    steady_rtol: float = 1e-6,
+    max_period: int = 8,
+    omega_min_rad_s: float = PAPER_OMEGA_MIN_RAD_S,
+    f_ref_hz: float = PAPER_F_REF_HZ,
+    state: State | None = None,
+    rtol: float = 1e-10,
+    max_events_per_cycle: int = 1_000_000,
+    label: str = "",
+) -> SweepPlan:
+    """Validate the arguments of :func:`sweep` into a plan (same parameters)."""
+    if not isinstance(oscillator, Oscillator):
+        raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator,
+                         got=type(oscillator).__name__, expected="pounding.Oscillator")
+    a_g = positive("a_g", a_g, "g (e.g. 0.05)")
+    freqs = paper_frequencies_hz() if freqs_hz is None else float_array("freqs_hz", freqs_hz)
+    for i, f in enumerate(freqs):
+        positive(f"freqs_hz[{i}]", f, "Hz")
+    unique, counts = np.unique(freqs, return_counts=True)
+    if np.any(counts > 1):
+        raise InputError(Problem.DUPLICATE, "freqs_hz", freqs.tolist(),
+                         repeated=unique[counts > 1].tolist())
+    one_of("direction", direction, ("up", "down"))
+    freqs = np.sort(freqs) if direction == "up" else np.sort(freqs)[::-1].copy()
+    one_of("steady", steady, ("adaptive", "fixed"))
+    measure_cycles = integer("measure_cycles", measure_cycles, 1)
+    if steady == "fixed":
+        if max_cycles is not None:
+            raise InputError(Problem.NOT_ONE_OF, "max_cycles", max_cycles,
+                             choices="None with steady='fixed' (the fixed mode runs exactly `cycles`)")
+        n_cycles = integer("cycles", 30 if cycles is None else cycles, 1)
+        if n_cycles < measure_cycles:
+            raise InputError(Problem.TOO_SMALL, "cycles", n_cycles, minimum=measure_cycles,
+                             hint=" (at least measure_cycles, which are the last of them)")
+    else:
+        if cycles is not None:
+            raise InputError(Problem.NOT_ONE_OF, "cycles", cycles,
+                             choices="None with steady='adaptive' (use max_cycles, or steady='fixed')")
+        n_cycles = integer("max_cycles", 500 if max_cycles is None else max_cycles, 1)
+        if n_cycles < measure_cycles + 2:
+            raise InputError(Problem.TOO_SMALL, "max_cycles", n_cycles, minimum=measure_cycles + 2,
+                             hint=" (steadiness is judged on measure_cycles + 2 cycles at least)")
+    steady_rtol = positive("steady_rtol", steady_rtol, "(relative to the response amplitude)")
+    if steady_rtol > 0.1:
+        raise InputError(Problem.NOT_ONE_OF, "steady_rtol", steady_rtol, choices="values in (0, 0.1]")
+    max_period = integer("max_period", max_period, 1)
+    omega_min_rad_s = positive("omega_min_rad_s", omega_min_rad_s, "rad/s")
+    f_ref_hz = positive("f_ref_hz", f_ref_hz, "Hz")
+    rtol = positive("rtol", rtol, "(relative)")
+    if rtol > 1e-3:
+        raise InputError(Problem.NOT_ONE_OF, "rtol", rtol, choices="values in (0, 1e-3]")
+    max_events_per_cycle = integer("max_events_per_cycle", max_events_per_cycle, 1)
+    if state is not None:
+        if not isinstance(state, State):
+            raise InputError(Problem.WRONG_TYPE, "state", state, got=type(state).__name__,
+                             expected="pounding.State (e.g. sweep_result.final_state)")
+        expected = State.at_rest(oscillator).vector.size
+        if state.vector.size != expected:
+            raise InputError(Problem.LENGTH_MISMATCH, "state", state, got=state.vector.size,
+                             expected=expected)
+    return SweepPlan(oscillator, a_g, freqs, direction, steady, n_cycles, measure_cycles, steady_rtol,
+                     max_period, omega_min_rad_s, f_ref_hz, rtol, max_events_per_cycle, state, label)
+
+
+def sweep(
+    oscillator: Oscillator,
+    a_g: float,
+    freqs_hz: np.ndarray | None = None,
+    direction: Direction = "up",
+    *,
+    steady: SteadyMode = "adaptive",
+    cycles: int | None = None,
+    measure_cycles: int = 5,
+    max_cycles: int | None = None,
+    steady_rtol: float = 1e-6,
+    max_period: int = 8,
+    omega_min_rad_s: float = PAPER_OMEGA_MIN_RAD_S,
+    f_ref_hz: float = PAPER_F_REF_HZ,
+    state: State | None = None,
+    rtol: float = 1e-10,
+    max_events_per_cycle: int = 1_000_000,
+    progress: Progress = False,
+) -> SweepResult:
+    """Stepped-sine sweep: hold each frequency in turn, the state carried over, and measure.
+
+    Every step starts at table phase 0 (``A = 0`` at the step boundary, so the table
+    acceleration is continuous) and lasts whole cycles.
+
+    Parameters
+    ----------
+    oscillator : Oscillator
+        The system (with bumpers: YBs; without: NBs).
+    a_g : float
+        Peak table acceleration in g (``A_t = a_g * 9.81`` m/s^2), > 0.
+    freqs_hz : array_like, shape (n,), optional
+        Step frequencies in Hz, any order, no repeats (default: 0.5 to 5.0 by 0.1).
+    direction : {"up", "down"}
+        Step through them increasing or decreasing.
+    steady : {"adaptive", "fixed"}
+        ``"adaptive"`` (default): a step ends as soon as the stroboscopic samples (the
+        state at every cycle end) repeat with some period multiple ``k <= max_period`` over
+        the measurement window, to within ``steady_rtol``, or after ``max_cycles``.
+        ``"fixed"``: every step lasts ``cycles`` cycles, as a lab's schedule.
+    cycles : int, optional
+        Cycles per step in the fixed mode (default 30).
+    measure_cycles : int
+        Cycles measured at the end of each step (default 5; adaptive: rounded up to a
+        multiple of the period multiple).
+    max_cycles : int, optional
+        Most cycles per step in the adaptive mode (default 500); a step that reaches it
+        without becoming periodic has ``steady`` False and is measured on its last
+        ``measure_cycles``.
+    steady_rtol : float
+        Periodicity tolerance, relative to the response amplitude (displacement; velocity
+        scaled by Omega), on the estimated distance to the periodic orbit.
+    max_period : int
+        Largest period multiple (subharmonic order) looked for.
+    omega_min_rad_s : float
+        ``Omega_min`` of ``e = E / D_tmax`` with ``D_tmax = A_t / Omega_min^2``; default
+        ``2 pi 0.6`` rad/s, what the paper's D_tmax values imply.
+    f_ref_hz : float
+        ``f_R`` of ``nu = f / f_R`` (default 1.0 Hz as the paper).
+    state : State, optional
+        Start (default: at rest at t = 0), e.g. another sweep's ``final_state``.
+    rtol : float
+        Tolerance of the numerical integration of nonlinear contact laws (see
+        :func:`simulate`).
+    max_events_per_cycle : int
+        A cycle with more events stops the sweep with ``Status.MAX_EVENTS``.
+    progress : bool or callable
+        True: a progress bar; a callable is called with the number of steps just finished.
+
+    Returns
+    -------
+    SweepResult
+        Per step: alpha, excursion, eta, e, contacts and the impact characterization per
+        side, steadiness and period multiple; the resonance, contact range and jumps.
+
+    Raises
+    ------
+    InputError
+        For a bad argument (names it, the value and the fix).
+    Interrupted
+        On Ctrl-C; its ``partial`` holds the finished steps.
+    """
+    plan = make_plan(oscillator, a_g, freqs_hz, direction, steady=steady, cycles=cycles,
+                     measure_cycles=measure_cycles, max_cycles=max_cycles, steady_rtol=steady_rtol,
+                     max_period=max_period, omega_min_rad_s=omega_min_rad_s, f_ref_hz=f_ref_hz,
+                     state=state, rtol=rtol, max_events_per_cycle=max_events_per_cycle)
+    with progress_reporter(progress, plan.freqs_hz.size,
+                           f"sweep {direction}, a_G = {plan.a_g:g}") as advance:
+        result = run_plan(plan, advance)
+    return result
+
+
+def run_plan(plan: SweepPlan, advance=None, stop: threading.Event | None = None) -> SweepResult:
+    """Run a validated plan step by step; ``advance(1)`` after each step.
+
+    Stops between steps when ``stop`` is set or on Ctrl-C, and then raises
+    :class:`~pounding.Interrupted` carrying the finished steps.
+    """
+    osc = plan.oscillator
+    system = kernel_system(osc)
+    n_steps = plan.freqs_hz.size
+    state = (plan.state or State.at_rest(osc)).vector.copy()
+    n_state = state.size
+    window = np.full((n_steps, WINDOW_COLS), np.nan)
+    cycles_run = np.zeros(n_steps, dtype=np.int64)
+    period_multiple = np.zeros(n_steps, dtype=np.int64)
+    window_states = np.full((n_steps, n_state), np.nan)
+    step_start_s = np.full(n_steps, np.nan)
+    status = Status.SUCCESS
+    done = 0
+    interrupted = False
+    adaptive = plan.steady == "adaptive"
+    try:
+        for i, f in enumerate(plan.freqs_hz):
+            if stop is not None and stop.is_set():
+                interrupted = True
+                break
+            exc = Harmonic(plan.a_g, f)
+            step_start_s[i] = state[T]
+            state, n, k, win, win_state, code = step_kernel(
+                *system, exc.peak_m_s2, exc.omega_rad_s, state, adaptive, plan.cycles,
+                plan.measure_cycles, plan.steady_rtol, plan.max_period, plan.rtol,
+                plan.max_events_per_cycle)
+            window[i] = win
+            cycles_run[i] = n
+            period_multiple[i] = k
+            window_states[i] = win_state
+            done = i + 1
+            if advance is not None:
+                advance(1)
+            if code != 0:
+                status = Status(int(code))
+                break
+    except KeyboardInterrupt:
+        interrupted = True
+    result = SweepResult(
+        oscillator=osc, a_g=plan.a_g, freqs_hz=plan.freqs_hz, direction=plan.direction,
+        steady_mode=plan.steady, cycles=plan.cycles, measure_cycles=plan.measure_cycles,
+        omega_min_rad_s=plan.omega_min_rad_s, f_ref_hz=plan.f_ref_hz, g=STANDARD_GRAVITY,
+        window=window, cycles_run=cycles_run, period_multiple=period_multiple,
+        window_states=window_states, step_start_s=step_start_s,
+        steps_done=done, final_state=State(state), status=status,
+        message=_message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted))
+    if interrupted:
+        raise Interrupted(result, done, n_steps)
+    return result
+
+
+def _message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted) -> str:
+    if interrupted:
+        return f"Interrupted after {done} of {n_steps} steps; the others are NaN."
+    if status != Status.SUCCESS:
+        return (f"Stopped at step {done} of {n_steps} ({plan.freqs_hz[done - 1]:g} Hz): "
+                f"{status.message}")
+    not_steady = int(np.sum(period_multiple[:done] == 0))
+    if plan.steady == "adaptive":
+        if not_steady:
+            return (f"{not_steady} of {n_steps} steps reached max_cycles = {plan.cycles} without "
+                    f"a periodic response (steady False); raise max_cycles or add damping.")
+        return f"All {n_steps} steps reached a periodic steady state."
+    if not_steady:
+        return (f"Fixed schedule of {plan.cycles} cycles: {not_steady} of {n_steps} steps were not "
+                f"periodic over their last {plan.measure_cycles} cycles (steady False).")
+    return f"Fixed schedule of {plan.cycles} cycles: every step was periodic when measured."

@@ -1,0 +1,306 @@
+"""What a sweep returns: per-step metrics, with the resonance, contact range and jumps."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import pandas as pd
+
+from .._checks import positive
+from .._errors import InputError, Problem, Status
+from ..engine import State
+from ..metrics._impacts import IMPACT_COLUMNS, S_COUNT, S_N_RESTITUTION, S_SUMS, SIDE_SUMS
+from ._step_kernel import W_AMAX, W_CYCLES, W_DMAX, W_DMIN, W_SUMS
+
+if TYPE_CHECKING:  # pragma: no cover
+    import xarray as xr
+
+    from ..metrics import HysteresisLoop
+    from ..model import Oscillator
+
+# the columns of SweepResult.to_dataframe(), in order
+STEP_COLUMNS = ("freq_hz", "nu", "alpha", "excursion_m", "displacement_max_m", "displacement_min_m",
+                "eta", "e", "contact", "contacts_per_cycle", *IMPACT_COLUMNS, "steady",
+                "period_multiple", "cycles_run")
+SIDE_COLUMNS = ("contacts_per_cycle", *IMPACT_COLUMNS)
+SIDES = ("left", "right")
+DEFAULT_JUMP_RATIO = 1.5
+
+
+@dataclass(frozen=True, eq=False)
+class SweepResult:
+    """Result of :func:`pounding.sweep`: one row of metrics per frequency step.
+
+    The metrics are measured over each step's last cycles (the window) and are exact
+    (event-located extrema, every contact whole).  Use :meth:`to_dataframe` /
+    :meth:`to_xarray` for the table, :attr:`nu_r`, :attr:`contact_range_hz` and
+    :meth:`jumps` for the sweep's features, :meth:`hysteresis_loop` for Figs. 7/15 and
+    :meth:`plot` for alpha and eta against nu.
+
+    Attributes
+    ----------
+    freqs_hz : ndarray, shape (n,)
+        Step frequencies in stepping order (increasing "up", decreasing "down").
+    window : ndarray, shape (n, WINDOW_COLS)
+        Raw window measurements (NaN for steps not run); see ``_step_kernel``.
+    cycles_run, period_multiple : ndarray of int, shape (n,)
+        Cycles each step ran; period multiple of its steady response (0: not periodic).
+    window_states : ndarray, shape (n, n_state)
+        The exact state at the start of each step's window (what loops restart from).
+    step_start_s : ndarray, shape (n,)
+        When each step began (table phase 0 there), s.
+    steps_done : int
+        Steps finished (fewer than n after an early stop or an interruption).
+    final_state : State
+        State after the last step (continue with ``sweep(..., state=final_state)``).
+    status, message
+        ``Status.SUCCESS`` or why the sweep stopped early, and a summary in words.
+    """
+
+    oscillator: "Oscillator" = field(repr=False)
+    a_g: float
+    freqs_hz: np.ndarray = field(repr=False)
+    direction: str
+    steady_mode: str
+    cycles: int
+    measure_cycles: int
+    omega_min_rad_s: float
+    f_ref_hz: float
+    g: float
+    window: np.ndarray = field(repr=False)
+    cycles_run: np.ndarray = field(repr=False)
+    period_multiple: np.ndarray = field(repr=False)
+    window_states: np.ndarray = field(repr=False)
+    step_start_s: np.ndarray = field(repr=False)
+    steps_done: int
+    final_state: State = field(repr=False)
+    status: Status
+    message: str
+
+    # ---- derived scalars
+    @property
+    def peak_m_s2(self) -> float:
+        """``A_t = a_g g``, m/s^2."""
+        return self.a_g * self.g
+
+    @property
+    def d_tmax_m(self) -> float:
+        """``D_tmax = A_t / Omega_min^2``, m (normalizes ``e``)."""
+        return self.peak_m_s2 / self.omega_min_rad_s**2
+
+    @property
+    def total_gap_m(self) -> float:
+        """``Delta = g_L + g_R`` (NaN without bumpers), m."""
+        b = self.oscillator.bumpers
+        return math.nan if b is None else b.total_gap
+
+    @property
+    def success(self) -> bool:
+        return self.status == Status.SUCCESS and self.steps_done == self.freqs_hz.size
+
+    # ---- the table
+    @cached_property
+    def _table(self) -> pd.DataFrame:
+        w = self.window
+        excursion = w[:, W_DMAX] - w[:, W_DMIN]
+        cols: dict[str, Any] = {
+            "freq_hz": self.freqs_hz,
+            "nu": self.freqs_hz / self.f_ref_hz,
+            "alpha": w[:, W_AMAX] / self.peak_m_s2,
+            "excursion_m": excursion,
+            "displacement_max_m": w[:, W_DMAX],
+            "displacement_min_m": w[:, W_DMIN],
+            "eta": excursion / self.total_gap_m,
+            "e": excursion / self.d_tmax_m,
+        }
+        sides = [w[:, W_SUMS + j * SIDE_SUMS: W_SUMS + (j + 1) * SIDE_SUMS] for j in range(2)]
+        both = sides[0] + sides[1]
+        count = both[:, S_COUNT]
+        ran = np.arange(w.shape[0]) < self.steps_done
+        cols["contact"] = np.where(ran, count > 0, False)
+        per_side: dict[str, np.ndarray] = {}
+        for name, sums in (("", both), ("_left", sides[0]), ("_right", sides[1])):
+            for key, value in _impact_means(sums, w[:, W_CYCLES]).items():
+                per_side[key + name] = value
+        cols.update({k: per_side[k] for k in SIDE_COLUMNS})
+        cols["steady"] = np.where(ran, self.period_multiple > 0, False)
+        cols["period_multiple"] = self.period_multiple
+        cols["cycles_run"] = self.cycles_run
+        for side in ("_left", "_right"):
+            cols.update({k + side: per_side[k + side] for k in SIDE_COLUMNS})
+        return pd.DataFrame(cols)
+
+    def to_dataframe(self) -> pd.DataFrame:
+        """One row per step in stepping order (SI units; NaN where a step did not run).
+
+        Columns: ``freq_hz``, ``nu``, ``alpha``, ``excursion_m`` (``E``),
+        ``displacement_max_m``, ``displacement_min_m``, ``eta`` (``E / Delta``, NaN
+        without bumpers), ``e`` (``E / D_tmax``), ``contact``, ``contacts_per_cycle``,
+        the impact means over the window (both sides pooled): ``restitution``,
+        ``contact_time_s``, ``impulse_n_s``, ``mean_force_n``, ``peak_force_n``,
+        ``dissipated_energy_j`` (``E_d``), ``bumper_dissipation_j``; ``steady``,
+        ``period_multiple``, ``cycles_run``; then the impact columns per side with
+        suffixes ``_left`` and ``_right``.
+        """
+        return self._table.copy()
+
+    def to_xarray(self) -> "xr.Dataset":
+        """The table as a Dataset on ``freq_hz`` (increasing), with ``nu`` and the step order."""
+        import xarray as xr
+
+        df = self._table.copy()
+        df["step"] = np.arange(len(df))
+        df = df.sort_values("freq_hz").set_index("freq_hz")
+        ds = xr.Dataset.from_dataframe(df.drop(columns=["nu"]))
+        ds = ds.assign_coords(nu=("freq_hz", df["nu"].to_numpy()))
+        for name in ("contact", "steady"):
+            ds[name] = ds[name].astype(bool)
+        ds["freq_hz"].attrs["units"] = "Hz"
+        ds.attrs.update(self._attrs())
+        return ds
+
+    def _attrs(self) -> dict[str, Any]:
+        return {"a_g": self.a_g, "direction": self.direction, "steady_mode": self.steady_mode,
+                "cycles": self.cycles, "measure_cycles": self.measure_cycles,
+                "omega_min_rad_s": self.omega_min_rad_s, "f_ref_hz": self.f_ref_hz,
+                "total_gap_m": self.total_gap_m, "d_tmax_m": self.d_tmax_m,
+                "status": str(self.status), "message": self.message,
+                "system": self.oscillator.to_toml()}
+
+    # ---- the sweep's features
+    def _done(self) -> pd.DataFrame:
+        df = self._table.iloc[: self.steps_done]
+        if df.empty:
+            raise InputError(Problem.NOT_STARTED, "sweep", self.direction, what="its features")
+        return df
+
+    @property
+    def resonance_hz(self) -> float:
+        """Frequency of the step with the largest alpha (the pseudo-resonance ``f``), Hz."""
+        df = self._done()
+        return float(df["freq_hz"].iloc[int(np.nanargmax(df["alpha"].to_numpy()))])
+
+    @property
+    def nu_r(self) -> float:
+        """The pseudo-resonance ``nu_R = f / f_R`` where alpha peaks."""
+        return self.resonance_hz / self.f_ref_hz
+
+    @property
+    def alpha_max(self) -> float:
+        return float(np.nanmax(self._done()["alpha"]))
+
+    @property
+    def contact_freqs_hz(self) -> np.ndarray:
+        """Frequencies of the steps with contact, increasing, Hz."""
+        df = self._done()
+        return np.sort(df.loc[df["contact"], "freq_hz"].to_numpy())
+
+    @property
+    def contact_range_hz(self) -> tuple[float, float] | None:
+        """``(lowest, highest)`` frequency with contact, Hz (None if no contact); the
+        paper's contact range ``Delta nu_C`` is this divided by ``f_ref_hz``."""
+        f = self.contact_freqs_hz
+        return None if f.size == 0 else (float(f[0]), float(f[-1]))
+
+    def jumps(self, ratio: float = DEFAULT_JUMP_RATIO) -> pd.DataFrame:
+        """Where the response leaves one branch for another along the sweep.
+
+        A jump is a step-to-step change of alpha or of the excursion by a factor
+        ``ratio`` or more (default 1.5), in stepping order.
+
+        Returns
+        -------
+        DataFrame
+            ``freq_from_hz``, ``freq_to_hz``, ``alpha_from``, ``alpha_to``,
+            ``excursion_from_m``, ``excursion_to_m``, ``contact_from``, ``contact_to``,
+            ``kind`` ("up" when the response grows, "down" when it drops).
+        """
+        ratio = positive("ratio", ratio, "(a factor > 1)")
+        if ratio <= 1.0:
+            raise InputError(Problem.TOO_SMALL, "ratio", ratio, minimum="1 (exclusive)", hint="")
+        df = self._done()
+        a = df["alpha"].to_numpy()
+        e = df["excursion_m"].to_numpy()
+        rows = []
+        for i in range(len(df) - 1):
+            ra = a[i + 1] / a[i]
+            re = e[i + 1] / e[i]
+            if max(ra, 1 / ra, re, 1 / re) >= ratio:
+                rows.append({
+                    "freq_from_hz": df["freq_hz"].iloc[i], "freq_to_hz": df["freq_hz"].iloc[i + 1],
+                    "alpha_from": a[i], "alpha_to": a[i + 1],
+                    "excursion_from_m": e[i], "excursion_to_m": e[i + 1],
+                    "contact_from": bool(df["contact"].iloc[i]), "contact_to": bool(df["contact"].iloc[i + 1]),
+                    "kind": "up" if max(ra, re) >= max(1 / ra, 1 / re) else "down"})
+        columns = ["freq_from_hz", "freq_to_hz", "alpha_from", "alpha_to", "excursion_from_m",
+                   "excursion_to_m", "contact_from", "contact_to", "kind"]
+        return pd.DataFrame(rows, columns=columns)
+
+    def step_index(self, freq_hz: float) -> int:
+        """Index (stepping order) of the step at ``freq_hz`` (to 1e-9 Hz)."""
+        f = positive("freq_hz", freq_hz, "Hz")
+        hits = np.flatnonzero(np.abs(self.freqs_hz[: self.steps_done] - f) <= 1e-9 * max(1.0, f))
+        if hits.size == 0:
+            choices = ", ".join(f"{x:g}" for x in self.freqs_hz[: self.steps_done])
+            raise InputError(Problem.NOT_IN_RESULT, "freq_hz", freq_hz, choices=choices or "(none)")
+        return int(hits[0])
+
+    def hysteresis_loop(self, freq_hz: float, *, total_gap_m: float | None = None,
+                        points_per_cycle: int = 2000) -> "HysteresisLoop":
+        """The loop ``r = F_I / (M g)`` against ``d = D / Delta`` of one step (Figs. 7, 15).
+
+        The step's window is re-run exactly from its saved state over one period of the
+        response (``period_multiple`` cycles, or one cycle if it was not periodic), with
+        dense samples and every event instant.
+
+        Parameters
+        ----------
+        freq_hz : float
+            A step of this sweep.
+        total_gap_m : float, optional
+            ``Delta`` (default: the bumpers' total gap; required without bumpers, e.g.
+            0.03 for the paper's NBs loops).
+        points_per_cycle : int
+            Uniform samples per forcing cycle.
+        """
+        from .._checks import integer
+        from ..engine import simulate
+        from ..excitation import Harmonic
+        from ..metrics import HysteresisLoop
+
+        i = self.step_index(freq_hz)
+        if total_gap_m is None:
+            if self.oscillator.bumpers is None:
+                raise InputError(Problem.MISSING_KEY, "total_gap_m", None,
+                                 choices="a length in m to normalize D (no bumpers here), e.g. 0.03")
+            total_gap_m = self.total_gap_m
+        total_gap_m = positive("total_gap_m", total_gap_m, "m")
+        points = integer("points_per_cycle", points_per_cycle, 8)
+        f = float(self.freqs_hz[i])
+        state = State(self.window_states[i])
+        omega = 2 * math.pi * f
+        n_cyc = max(1, int(self.period_multiple[i]))
+        exc = Harmonic(self.a_g, f, phase=-(omega * float(self.step_start_s[i])), g=self.g)
+        run = simulate(self.oscillator, exc, n_cyc / f, state, sample_rate_hz=points * f)
+        return HysteresisLoop.from_run(run, total_gap_m, f, self.a_g, n_cyc)
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> list:
+        """alpha and eta (e without bumpers) against nu; see :func:`pounding.plots.plot_sweep`."""
+        from ..plots import plot_sweep
+
+        return plot_sweep(self, ax=ax, **kwargs)
+
+
+def _impact_means(sums: np.ndarray, window_cycles: np.ndarray) -> dict[str, np.ndarray]:
+    """Window means of the impact quantities from per-side sums (NaN without contact)."""
+    count = sums[:, S_COUNT]
+    with np.errstate(invalid="ignore", divide="ignore"):
+        out = {"contacts_per_cycle": count / window_cycles}
+        for j, name in enumerate(IMPACT_COLUMNS):
+            n = sums[:, S_N_RESTITUTION] if j == 0 else count
+            out[name] = np.where(n > 0, sums[:, S_SUMS + j] / np.where(n > 0, n, 1.0), np.nan)
+    return out
