@@ -25,6 +25,11 @@ class RefResult:
     contact_starts: list = field(default_factory=list)  # (side, t)
     contact_ends: list = field(default_factory=list)
     u: np.ndarray | None = None
+    state: dict | None = None       # pass back as ``state=`` to continue exactly
+    completed: list = field(default_factory=list)  # (side, t_start, v_in, t_end, v_out)
+    d_max: float = -math.inf        # with measure=True: extrema over the run
+    d_min: float = math.inf
+    a_abs_max: float = 0.0
 
 
 def _law(law):
@@ -53,7 +58,13 @@ def _law(law):
     return force, relax, release
 
 
-def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10, atol=1e-15):
+def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10, atol=1e-15,
+              state=None, measure=False, sample_dt=2e-5):
+    """Integrate to ``t_end`` from rest at t = 0 (or from ``state``, a previous result's).
+
+    ``measure``: also the extrema of D (at velocity zeros, located as events) and of
+    |a_abs| (dense output sampled every ``sample_dt`` s, and at every event).
+    """
     iso = osc.isolator
     K = np.array(iso.slopes)
     Db = np.array(iso.breakpoints)
@@ -73,6 +84,12 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
     accel = exc.acceleration
     res = RefResult(0.0, d0, v0)
     t, d, v = 0.0, d0, v0
+    open_start = [None, None]   # (t, v) of the contact going on at each side
+    if state is not None:
+        t, d, v = state["t"], state["d"], state["v"]
+        u, s = state["u"].copy(), state["s"].copy()
+        comp, t_rel, inc = list(state["comp"]), list(state["t_rel"]), list(state["inc"])
+        open_start = list(state["open_start"])
 
     def iso_force(dd):
         if kinematic:
@@ -132,11 +149,14 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
         elif kind == "start":
             inc[idx] = True
             res.contact_starts.append((idx, t))
+            open_start[idx] = (t, v)
         elif kind == "end":
             inc[idx] = False
             comp[idx] = max(0.0, sides[idx][0] * d - sides[idx][1])
             t_rel[idx] = t
             res.contact_ends.append((idx, t))
+            res.completed.append((idx, *open_start[idx], t, v))
+            open_start[idx] = None
 
     def immediate(evs):
         """An event sitting at zero and heading negative fires at once (coincident events)."""
@@ -152,6 +172,21 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
                     return info
         return None
 
+    def a_abs(tt, dd, vv):
+        f = iso_force(dd) + cd * vv
+        for j in range(len(sides)):
+            if inc[j]:
+                f = f + sides[j][0] * bump_force(j, dd, vv)
+        return -f / m
+
+    def track(tt, dd, vv):
+        """Extrema at the samples (arrays) of one phase."""
+        res.d_max = max(res.d_max, float(np.max(dd)))
+        res.d_min = min(res.d_min, float(np.min(dd)))
+        res.a_abs_max = max(res.a_abs_max, float(np.max(np.abs(a_abs(tt, dd, vv)))))
+
+    if measure:
+        track(np.array([t]), np.array([d]), np.array([v]))
     spins = 0
     while t < t_end - 1e-15:
         spins += 1
@@ -169,13 +204,30 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
             ev.terminal = True
             ev.direction = -1
             funcs.append(ev)
+        if measure:
+            def vel_zero(tt, y):
+                return y[1]
+            funcs.append(vel_zero)
         t_start = t
-        sol = solve_ivp(rhs, (t, t_end), [d, v], method="DOP853", rtol=rtol, atol=atol, events=funcs)
+        sol = solve_ivp(rhs, (t, t_end), [d, v], method="DOP853", rtol=rtol, atol=atol, events=funcs,
+                        dense_output=measure)
+        if measure:
+            ye = sol.y_events[-1]
+            if len(ye):
+                res.d_max = max(res.d_max, float(np.max(ye[:, 0])))
+                res.d_min = min(res.d_min, float(np.min(ye[:, 0])))
+            sol.t_events = sol.t_events[:-1]
+            sol.y_events = sol.y_events[:-1]
         hit = None
         for k_ev, te in enumerate(sol.t_events):
             for n_t, tt in enumerate(te):
                 if tt > t_start and (hit is None or tt < hit[0]):
                     hit = (tt, k_ev, sol.y_events[k_ev][n_t])
+        if measure:
+            t_hit = sol.t[-1] if hit is None else hit[0]
+            ts = np.append(np.arange(t_start, t_hit, sample_dt), t_hit)
+            ys = sol.sol(ts)
+            track(ts, ys[0], ys[1])
         if hit is None:
             t, d, v = sol.t[-1], sol.y[0, -1], sol.y[1, -1]
             if sol.status == 1 and t < t_end:
@@ -183,10 +235,14 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
             break
         t, (d, v) = hit[0], hit[2]
         apply(*evs[hit[1]][1])
+        if measure:
+            track(np.array([t]), np.array([d]), np.array([v]))
         if kinematic:
             for i in range(n_sp):
                 if s[i] != 0:
                     u[i] = d - s[i] * Db[i]
     res.t, res.d, res.v = t, d, v
     res.u = u
+    res.state = {"t": t, "d": d, "v": v, "u": u.copy(), "s": s.copy(), "comp": list(comp),
+                 "t_rel": list(t_rel), "inc": list(inc), "open_start": list(open_start)}
     return res

@@ -22,8 +22,10 @@ def _flows(e):
 def test_energy_ledger_closes_from_rest(osc, exc):
     run = pd_.simulate(osc, exc, 3.0, sample_rate_hz=0)
     e = run.energy
-    assert abs(e.residual) <= 1e-8 * e.input_work
-    assert e.viscous >= 0 and e.bumper_dissipation >= -1e-12 * e.input_work
+    # a hardening Masing loop can return energy (negative hysteretic term, see Isolator), and
+    # then the input work can be negative: compare with the largest flow
+    assert abs(e.residual) <= 1e-8 * _flows(e)
+    assert e.viscous >= 0 and e.bumper_dissipation >= -1e-12 * _flows(e)
 
 
 @SETTINGS

@@ -22,13 +22,13 @@ REFERENCE_RTOL = 1e-13
 REFERENCE_ATOL = 1e-17
 
 
-def _compare(osc, exc, v0=0.0, duration=DURATION_S, time_tol=1e-8, state_rtol=1e-7):
+def _compare(osc, exc, v0=0.0, duration=DURATION_S, time_tol=1e-8, state_rtol=1e-7, drawn=False):
     run = pd_.simulate(osc, exc, duration, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=0)
     assert run.success, run.message
     ref = reference(osc, exc, duration, v0=v0, rtol=REFERENCE_RTOL, atol=REFERENCE_ATOL)
     starts = run.contacts[["side", "t_start"]]
-    # shallow grazes are below what either solver can resolve the same way
-    assume(len(run.contacts) == 0 or run.contacts["max_compression"].min() > 1e-7)
+    if drawn:  # hypothesis: shallow grazes are below what either solver resolves the same way
+        assume(len(run.contacts) == 0 or run.contacts["max_compression"].min() > 1e-7)
     assert len(starts) == len(ref.contact_starts)
     ref_sides = ["left" if s == 0 else "right" for s, _ in ref.contact_starts]
     assert list(starts["side"]) == ref_sides
@@ -43,7 +43,7 @@ def _compare(osc, exc, v0=0.0, duration=DURATION_S, time_tol=1e-8, state_rtol=1e
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(osc=oscillators(), exc=harmonics(), v0=st.floats(-0.8, 0.8))
 def test_random_systems_match_reference(osc, exc, v0):
-    _compare(osc, exc, v0)
+    _compare(osc, exc, v0, drawn=True)
 
 
 def test_paper_preset_matches_reference_with_coincident_yield_and_contact():

@@ -321,7 +321,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         a0x, a1x, amp, omega, phase, t_knot = _excitation_piece(exc_kind, exc_p, rec_t, rec_a, t)
         k, c = _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l,
                           p_l, law_r, p_r, a0x, a1x, amp, omega, phase)
-        rate = math.sqrt(abs(k) / mass + (0.5 * c / mass) ** 2)
+        # fastest rate of the phase: its frequency, or its fastest decay when overdamped
+        rate = max(math.sqrt(abs(k) / mass + (0.5 * c / mass) ** 2), abs(c) / mass)
         h = 2.0 * math.pi / (SUBINTERVALS_PER_PERIOD * max(rate, omega, 1e-300))
         t_stop = min(t_knot, t_end)
         to_stop = h >= t_stop - t

@@ -93,16 +93,30 @@ class Oscillator:
         if not path.is_file():
             raise InputError(Problem.NO_FILE, "path", str(path))
         try:
-            table = tomllib.loads(path.read_text(encoding="utf-8"))
-        except tomllib.TOMLDecodeError as exc:
-            raise InputError(Problem.BAD_TOML, str(path), "...", detail=str(exc)) from None
-        return cls.from_dict(table)
+            return cls.from_toml_text(path.read_text(encoding="utf-8"))
+        except InputError as exc:
+            if exc.problem is Problem.BAD_TOML:
+                raise exc.relabel("text", str(path)) from None
+            raise
 
     def to_toml(self, path: PathLike) -> Path:
         """Write the system to a TOML file that :meth:`from_toml` reads back identically."""
         path = Path(path)
-        path.write_text(tomli_w.dumps(self.to_dict()), encoding="utf-8")
+        path.write_text(self.to_toml_text(), encoding="utf-8")
         return path
+
+    def to_toml_text(self) -> str:
+        """The TOML text of :meth:`to_toml` (stored in results' metadata)."""
+        return tomli_w.dumps(self.to_dict())
+
+    @classmethod
+    def from_toml_text(cls, text: str) -> "Oscillator":
+        """Read a system from TOML text (e.g. a saved result's ``system`` attribute)."""
+        try:
+            table = tomllib.loads(text)
+        except tomllib.TOMLDecodeError as exc:
+            raise InputError(Problem.BAD_TOML, "text", "...", detail=str(exc)) from None
+        return cls.from_dict(table)
 
 
 def _check_keys(table: Any, prefix: str, allowed: tuple[str, ...], required: tuple[str, ...]) -> None:

@@ -41,13 +41,25 @@ def _strobe_distance(strobe, a, b, tol_d, tol_v):
 
 
 @jit
+def _window_distance(strobe, n, k, first, last, tol_d, tol_v):
+    """Largest lag-``k`` strobe difference over cycles ``n-1-first`` down to ``n-last``."""
+    out = 0.0
+    for j in range(first, last):
+        out = max(out, _strobe_distance(strobe, n - 1 - j, n - 1 - j - k, tol_d, tol_v))
+    return out
+
+
+@jit
 def periodicity(strobe, cyc, n, window, max_period, steady_rtol, omega, round_window):
     """Smallest period multiple ``k`` with which the last cycles repeat, or 0.
 
     Returns ``(k, m)``: ``m`` is the window of cycles that repeat (``window`` rounded up
-    to a multiple of ``k`` when ``round_window``).  The distance to the periodic orbit is
-    estimated as ``d_1 / (1 - rho)`` with ``d_1`` the latest strobe difference and
-    ``rho`` its ratio to the previous one (geometric convergence).
+    to a multiple of ``k`` when ``round_window``).  The lag-``k`` differences of the last
+    ``m`` strobes must be within tolerance, and so must the estimated distance to the
+    periodic orbit, ``d / (1 - r^k)``: ``d`` the largest of those differences and ``r``
+    the per-cycle convergence ratio, from ``d`` and the largest difference of the ``m``
+    strobes before (maxima over several cycles, so that a transient that rotates from
+    one strobe to the next cannot pass by a lucky phase).
     """
     amp = AMPLITUDE_FLOOR_M
     for j in range(max(0, n - window), n):
@@ -58,19 +70,16 @@ def periodicity(strobe, cyc, n, window, max_period, steady_rtol, omega, round_wi
         m = window
         if round_window:
             m = k * ((window + k - 1) // k)
-        if n < m + 2 * k:
+        if n < 2 * m + k:
             continue
-        ok = True
-        for j in range(m):
-            if _strobe_distance(strobe, n - 1 - j, n - 1 - j - k, tol_d, tol_v) > 1.0:
-                ok = False
-                break
-        if not ok:
+        recent = _window_distance(strobe, n, k, 0, m, tol_d, tol_v)
+        if recent > 1.0:
             continue
-        d1 = _strobe_distance(strobe, n - 1, n - 1 - k, tol_d, tol_v)
-        d0 = _strobe_distance(strobe, n - 1 - k, n - 1 - 2 * k, tol_d, tol_v)
-        rho = d1 / d0 if d0 > 0.0 else 0.0
-        if rho < 1.0 and d1 <= 1.0 - rho:
+        older = _window_distance(strobe, n, k, m, 2 * m, tol_d, tol_v)
+        ratio = recent / older if older > 0.0 else 0.0
+        if ratio >= 1.0:
+            continue
+        if recent <= 1.0 - ratio ** (k / m):
             return _smallest_period(strobe, n, k, window, round_window, tol_d, tol_v, steady_rtol)
     return 0, window
 

@@ -263,5 +263,5 @@ def _dataset(sweeps: dict, plans: list, complete: bool) -> "xr.Dataset":
                      "omega_min_rad_s": first.omega_min_rad_s, "complete": int(complete)})
     for conf in confs:
         osc = next(p.oscillator for k, p in plans if k[0] == conf)
-        ds.attrs[f"system_{conf}"] = osc.to_toml()
+        ds.attrs[f"system_{conf}"] = osc.to_toml_text()
     return ds

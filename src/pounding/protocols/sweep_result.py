@@ -169,7 +169,7 @@ class SweepResult:
                 "omega_min_rad_s": self.omega_min_rad_s, "f_ref_hz": self.f_ref_hz,
                 "total_gap_m": self.total_gap_m, "d_tmax_m": self.d_tmax_m,
                 "status": str(self.status), "message": self.message,
-                "system": self.oscillator.to_toml()}
+                "system": self.oscillator.to_toml_text()}
 
     # ---- the sweep's features
     def _done(self) -> pd.DataFrame:
