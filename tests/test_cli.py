@@ -33,3 +33,42 @@ def test_simulate_preset_and_errors():
     assert bad.exit_code == 2 and "freq_hz" in bad.output and "Fix" in bad.output
     missing = runner.invoke(app, ["simulate", "nope.toml", "--a-g", "0.05", "--freq", "1"])
     assert missing.exit_code == 2 and "does not exist" in missing.output
+
+
+def test_sweep_writes_the_issue_columns(tmp_path):
+    out, nc, png = tmp_path / "sweep.csv", tmp_path / "sweep.nc", tmp_path / "sweep.png"
+    result = runner.invoke(app, ["sweep", str(EXAMPLE), "--a-g", "0.05", "--direction", "down", "--fmin", "1.0",
+                                 "--fmax", "2.0", "--fstep", "0.5", "--steady", "fixed", "--cycles", "6",
+                                 "--out", str(out), "--netcdf", str(nc), "--plot", str(png)])
+    assert result.exit_code == 0, result.output
+    assert "nu_R" in result.output and "contact range [Hz]" in result.output
+    df = pd.read_csv(out)
+    assert list(df.columns) == ["freq_hz", "alpha", "excursion_m", "eta", "e", "contact", "contacts_per_cycle",
+                                "restitution", "contact_time_s", "mean_force_n", "peak_force_n",
+                                "dissipated_energy_j", "steady", "period_multiple"]
+    assert list(df["freq_hz"]) == [2.0, 1.5, 1.0]
+    assert nc.stat().st_size > 0 and png.stat().st_size > 0
+
+
+def test_sweep_errors_exit_2_with_the_fix():
+    bad = runner.invoke(app, ["sweep", "--preset", "paper-printed", "--a-g", "0.05", "--direction", "left"])
+    assert bad.exit_code == 2 and "direction" in bad.output and "Fix" in bad.output
+    bad = runner.invoke(app, ["sweep", "--preset", "paper-printed", "--a-g", "0.05", "--cycles", "5"])
+    assert bad.exit_code == 2 and "--cycles is for --steady fixed" in bad.output
+    bad = runner.invoke(app, ["sweep", "--preset", "nope", "--a-g", "0.05"])
+    assert bad.exit_code == 2 and "paper-printed" in bad.output
+
+
+def test_campaign_writes_dataset_tables_and_figure(tmp_path):
+    out = tmp_path / "run"
+    result = runner.invoke(app, ["campaign", "--preset", "paper-printed", "--out", str(out), "--fmin", "1.0",
+                                 "--fmax", "2.0", "--fstep", "1.0", "--steady", "fixed", "--cycles", "4",
+                                 "--measure-cycles", "2"])
+    assert result.exit_code == 0, result.output
+    for name in ("campaign.nc", "steps.csv", "table2.csv", "table3.csv", "table4.csv", "campaign.png"):
+        assert (out / name).stat().st_size > 0, name
+    assert len(pd.read_csv(out / "table2.csv")) == 14
+    steps = pd.read_csv(out / "steps.csv")
+    assert len(steps) == 14 * 2 and {"configuration", "a_g", "direction", "freq_hz", "alpha"} <= set(steps.columns)
+    bad = runner.invoke(app, ["campaign", "--out", str(out)])
+    assert bad.exit_code == 2 and "--preset" in bad.output

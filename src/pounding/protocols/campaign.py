@@ -65,6 +65,10 @@ class CampaignResult:
         raise InputError(Problem.NOT_IN_RESULT, "(configuration, a_g, direction)",
                          (configuration, a_g, direction), choices=keys)
 
+    def _started(self) -> list:
+        """The sweeps with at least one finished step (all of them unless interrupted)."""
+        return [(key, sw) for key, sw in self.sweeps.items() if sw.steps_done > 0]
+
     def to_netcdf(self, path: str | Path) -> Path:
         """Save :attr:`dataset` to netCDF (read back with ``xarray.open_dataset``)."""
         path = Path(path)
@@ -79,7 +83,7 @@ class CampaignResult:
         ``contact_nu_max`` (the contact range ``Delta nu_C``, NaN without contact).
         """
         rows = []
-        for (conf, ag, d), sw in self.sweeps.items():
+        for (conf, ag, d), sw in self._started():
             df = sw.to_dataframe().iloc[: sw.steps_done]
             rng = sw.contact_range_hz
             rows.append({"configuration": conf, "a_g": ag, "direction": d, "nu_r": sw.nu_r,
@@ -91,7 +95,7 @@ class CampaignResult:
     def _at_resonance(self, columns: dict[str, Any]) -> pd.DataFrame:
         """YBs rows of ``name: column(step, sweep)`` at each sweep's resonance step."""
         rows = []
-        for (conf, ag, d), sw in self.sweeps.items():
+        for (conf, ag, d), sw in self._started():
             if conf != "YBs":
                 continue
             step = sw.to_dataframe().iloc[sw.step_index(sw.resonance_hz)]
@@ -214,7 +218,9 @@ def campaign(
             try:
                 pending = set(futures)
                 while pending:
-                    _, pending = cf.wait(pending, timeout=0.2)
+                    done, pending = cf.wait(pending, timeout=0.2, return_when=cf.FIRST_COMPLETED)
+                    if any(isinstance(fut.exception(), Interrupted) for fut in done):
+                        raise KeyboardInterrupt  # a worker was interrupted (e.g. by a callback)
             except KeyboardInterrupt:
                 interrupted = True
                 stop.set()
