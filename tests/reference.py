@@ -32,6 +32,12 @@ class RefResult:
     a_abs_max: float = 0.0
 
 
+class ReferenceStalled(RuntimeError):
+    """An event that fires again and again at the same instant: a degenerate graze (the
+    mass moving with the relaxing bumper surface at zero force) that this simple
+    reference cannot step past."""
+
+
 def _law(law):
     if isinstance(law, pd_.KelvinVoigt):
         k, c = law.stiffness, law.damping
@@ -188,6 +194,7 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
     if measure:
         track(np.array([t]), np.array([d]), np.array([v]))
     spins = 0
+    stalled = 0
     while t < t_end - 1e-15:
         spins += 1
         if spins > 100_000:
@@ -229,6 +236,9 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
             ys = sol.sol(ts)
             track(ts, ys[0], ys[1])
         if hit is None:
+            stalled = stalled + 1 if sol.t[-1] <= t_start else 0
+            if stalled > 50:  # e.g. the mass rides the relaxing bumper surface at zero force
+                raise ReferenceStalled(f"reference made no progress at t = {t_start}")
             t, d, v = sol.t[-1], sol.y[0, -1], sol.y[1, -1]
             if sol.status == 1 and t < t_end:
                 continue

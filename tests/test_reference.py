@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
-from reference import reference
+from reference import ReferenceStalled, reference
 from strategies import harmonics, oscillators
 
 import pounding as pd_
@@ -25,7 +25,12 @@ REFERENCE_ATOL = 1e-17
 def _compare(osc, exc, v0=0.0, duration=DURATION_S, time_tol=1e-8, state_rtol=1e-7, drawn=False):
     run = pd_.simulate(osc, exc, duration, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=0)
     assert run.success, run.message
-    ref = reference(osc, exc, duration, v0=v0, rtol=REFERENCE_RTOL, atol=REFERENCE_ATOL)
+    try:
+        ref = reference(osc, exc, duration, v0=v0, rtol=REFERENCE_RTOL, atol=REFERENCE_ATOL)
+    except ReferenceStalled:
+        if not drawn:
+            raise
+        assume(False)  # a degenerate graze the reference cannot step past
     starts = run.contacts[["side", "t_start"]]
     if drawn:  # hypothesis: shallow grazes are below what either solver resolves the same way
         assume(len(run.contacts) == 0 or run.contacts["max_compression"].min() > 1e-7)
