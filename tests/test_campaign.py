@@ -111,6 +111,8 @@ def test_campaign_interruption_keeps_finished_steps():
     ((None, pd_.presets.paper_printed()), {"ybs_a_g": (0.05, math.nan)}, "ybs_a_g[1]"),
     ((None, pd_.presets.paper_printed()), {"directions": ("up", "up")}, "directions"),
     ((None, pd_.presets.paper_printed()), {"workers": 0}, "workers"),
+    ((None, pd_.presets.paper_printed()), {"cycle": 30}, "cycle"),
+    ((None, pd_.presets.paper_printed()), {"steady": "fixed", "cycles": 0}, "cycles"),
 ])
 def test_bad_campaign_arguments(args, kwargs, field):
     with pytest.raises(pd_.InputError) as info:

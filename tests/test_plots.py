@@ -8,6 +8,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 import pounding as pd_  # noqa: E402
+from pounding.plots import plot_sweep  # noqa: E402
 
 
 def test_run_plot_on_given_axes():
@@ -20,4 +21,30 @@ def test_run_plot_on_given_axes():
     # one shaded span per contact, one dotted line per bumper surface
     spans = [a for a in artists if a.__class__.__name__ in ("Polygon", "Rectangle")]
     assert len(spans) == len(run.contacts)
+    plt.close(fig)
+
+
+def test_sweep_plot_distinguishes_up_and_down():
+    osc = pd_.presets.paper_printed()
+    kw = dict(steady="fixed", cycles=3, measure_cycles=2)
+    up = pd_.sweep(osc, 0.05, [1.0, 1.5, 2.0], "up", **kw)
+    down = pd_.sweep(osc, 0.05, [1.0, 1.5, 2.0], "down", **kw)
+    fig, axes = plt.subplots(2, 1)
+    artists = plot_sweep([up, down], ax=axes)
+    lines = [a for a in artists if a.__class__.__name__ == "Line2D" and a.axes is axes[0]]
+    assert {line.get_linestyle() for line in lines} == {"-", "--"}
+    assert {line.get_marker() for line in lines} == {"^", "v"}
+    assert axes[1].get_ylabel() == "eta = E / Delta" and axes[1].get_xlabel() == "nu = f / f_R"
+    # the printed system never settles: unsteady steps are ringed
+    assert any(a.__class__.__name__ == "PathCollection" for a in artists)
+    plt.close(fig)
+
+
+def test_hysteresis_loop_plot():
+    osc = pd_.presets.paper_printed()
+    res = pd_.sweep(osc, 0.05, [1.5], steady="fixed", cycles=3, measure_cycles=2)
+    fig, ax = plt.subplots()
+    artists = res.hysteresis_loop(1.5).plot(ax=ax)
+    assert artists[0].axes is ax and ax.get_xlabel() == "d = D / Delta"
+    assert len(artists) == 3  # the loop and the two bumper surfaces
     plt.close(fig)

@@ -22,7 +22,7 @@ from .._checks import integer, real_tuple
 from .._errors import InputError, Interrupted, Problem
 from ..model import Oscillator
 from ._progress import Progress, progress_reporter
-from .sweep import PAPER_F_REF_HZ, PAPER_OMEGA_MIN_RAD_S, SweepPlan, make_plan, run_plan
+from .sweep import SweepPlan, make_plan, run_plan
 from .sweep_result import SIDE_COLUMNS, STEP_COLUMNS, SweepResult
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -31,6 +31,8 @@ if TYPE_CHECKING:  # pragma: no cover
 PAPER_NBS_A_G = (0.03, 0.05, 0.1)
 PAPER_YBS_A_G = (0.03, 0.05, 0.075, 0.1)
 CONFIGURATIONS = ("NBs", "YBs")
+SWEEP_OPTIONS = ("steady", "cycles", "measure_cycles", "max_cycles", "steady_rtol", "max_period",
+                 "omega_min_rad_s", "f_ref_hz", "rtol", "max_events_per_cycle")
 DIRECTIONS = ("up", "down")
 _BOOL_COLUMNS = ("contact", "steady")
 _DATA_COLUMNS = tuple(c for c in STEP_COLUMNS if c not in ("freq_hz", "nu")) + tuple(
@@ -137,16 +139,9 @@ def campaign(
     ybs_a_g: Sequence[float] = PAPER_YBS_A_G,
     freqs_hz: np.ndarray | None = None,
     directions: Sequence[str] = DIRECTIONS,
-    steady: str = "adaptive",
-    cycles: int | None = None,
-    measure_cycles: int = 5,
-    max_cycles: int | None = None,
-    steady_rtol: float = 1e-6,
-    max_period: int = 8,
-    omega_min_rad_s: float = PAPER_OMEGA_MIN_RAD_S,
-    f_ref_hz: float = PAPER_F_REF_HZ,
     workers: int | None = None,
     progress: Progress = False,
+    **sweep_options: Any,
 ) -> CampaignResult:
     """The shaking-table campaign: every (configuration, a_G, direction) sweep, in parallel.
 
@@ -160,13 +155,18 @@ def campaign(
     nbs_a_g, ybs_a_g : sequence of float
         Table accelerations in g (default the paper's: 0.03, 0.05, 0.1 and 0.03, 0.05,
         0.075, 0.1).
-    freqs_hz, steady, cycles, measure_cycles, max_cycles, steady_rtol, max_period, omega_min_rad_s, f_ref_hz
-        As :func:`pounding.sweep` (defaults: 0.5 to 5.0 Hz by 0.1, adaptive).
+    freqs_hz : array_like, optional
+        Step frequencies, Hz (default: 0.5 to 5.0 by 0.1).
     directions : sequence of {"up", "down"}
     workers : int, optional
         Worker threads (default: the machine's cores).
     progress : bool or callable
         True: a progress bar over all steps; a callable gets the number of steps finished.
+    **sweep_options
+        The keyword arguments of :func:`pounding.sweep`, the same for every sweep:
+        ``steady``, ``cycles``, ``measure_cycles``, ``max_cycles``, ``steady_rtol``,
+        ``max_period``, ``omega_min_rad_s``, ``f_ref_hz``, ``rtol``,
+        ``max_events_per_cycle`` (default: adaptive).
 
     Returns
     -------
@@ -179,6 +179,10 @@ def campaign(
     Interrupted
         On Ctrl-C; ``partial`` is a CampaignResult with the finished steps.
     """
+    unknown = sorted(set(sweep_options) - set(SWEEP_OPTIONS))
+    if unknown:
+        raise InputError(Problem.UNKNOWN_KEY, unknown[0], sweep_options[unknown[0]],
+                         choices=", ".join(SWEEP_OPTIONS))
     systems = {"NBs": (nbs_system, nbs_a_g), "YBs": (ybs_system, ybs_a_g)}
     if nbs_system is None and ybs_system is None:
         raise InputError(Problem.MISSING_KEY, "nbs_system, ybs_system", (None, None),
@@ -201,11 +205,7 @@ def campaign(
                              expected=fix)
         for ag in real_tuple(f"{conf.lower()}_a_g", a_gs):
             for d in directions:
-                plan = make_plan(osc, ag, freqs_hz, d, steady=steady, cycles=cycles,
-                                 measure_cycles=measure_cycles, max_cycles=max_cycles,
-                                 steady_rtol=steady_rtol, max_period=max_period,
-                                 omega_min_rad_s=omega_min_rad_s, f_ref_hz=f_ref_hz,
-                                 label=f"{conf} a_G={ag:g} {d}")
+                plan = make_plan(osc, ag, freqs_hz, d, label=f"{conf} a_G={ag:g} {d}", **sweep_options)
                 plans.append(((conf, ag, d), plan))
     n_workers = integer("workers", (os.cpu_count() or 1) if workers is None else workers, 1)
     total = sum(p.freqs_hz.size for _, p in plans)
