@@ -8,6 +8,7 @@ model updating.
 
 from __future__ import annotations
 
+from ._checks import one_of
 from .model import Bumpers, Isolator, KelvinVoigt, Oscillator
 
 PAPER_MASS_KG = 500.0
@@ -42,7 +43,5 @@ PRESETS = {"paper-printed": paper_printed}
 
 def by_name(name: str, bumpers: bool = True) -> Oscillator:
     """A preset by its CLI name (see :data:`PRESETS`)."""
-    from ._checks import one_of
-
     one_of("preset", name, PRESETS)
     return PRESETS[name](bumpers=bumpers)

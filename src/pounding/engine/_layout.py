@@ -44,4 +44,3 @@ SAMPLE_COLS = 7   # t, D, V, abs_acceleration, isolator_force, bumper_force_left
 CONTACT_COLS = 9  # side, t_start, t_end, v_in, v_out, impulse, peak_force, max_compression, work
 EVENT_COLS = 3    # t, action, index
 LEDGER_LEN = 7    # input, viscous, hysteretic, bumper dissipation, d(kinetic), d(isolator), d(bumper)
-EXTREMA_LEN = 7   # D max, t, D min, t, |a_abs| max, t, a_abs there

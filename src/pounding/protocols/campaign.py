@@ -205,7 +205,7 @@ def campaign(
                              expected=fix)
         for ag in real_tuple(f"{conf.lower()}_a_g", a_gs):
             for d in directions:
-                plan = make_plan(osc, ag, freqs_hz, d, label=f"{conf} a_G={ag:g} {d}", **sweep_options)
+                plan = make_plan(osc, ag, freqs_hz, d, **sweep_options)
                 plans.append(((conf, ag, d), plan))
     n_workers = integer("workers", (os.cpu_count() or 1) if workers is None else workers, 1)
     total = sum(p.freqs_hz.size for _, p in plans)

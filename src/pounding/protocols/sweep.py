@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 import threading
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Literal
 
@@ -58,7 +59,6 @@ class SweepPlan:
     rtol: float
     max_events_per_cycle: int
     state: State | None
-    label: str = ""
 
 
 def make_plan(
@@ -78,7 +78,6 @@ def make_plan(
     state: State | None = None,
     rtol: float = 1e-10,
     max_events_per_cycle: int = 1_000_000,
-    label: str = "",
 ) -> SweepPlan:
     """Validate the arguments of :func:`sweep` into a plan (same parameters)."""
     if not isinstance(oscillator, Oscillator):
@@ -131,7 +130,7 @@ def make_plan(
             raise InputError(Problem.LENGTH_MISMATCH, "state", state, got=state.vector.size,
                              expected=expected)
     return SweepPlan(oscillator, a_g, freqs, direction, steady, n_cycles, measure_cycles, steady_rtol,
-                     max_period, omega_min_rad_s, f_ref_hz, rtol, max_events_per_cycle, state, label)
+                     max_period, omega_min_rad_s, f_ref_hz, rtol, max_events_per_cycle, state)
 
 
 def sweep(
@@ -225,7 +224,8 @@ def sweep(
     return result
 
 
-def run_plan(plan: SweepPlan, advance=None, stop: threading.Event | None = None) -> SweepResult:
+def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
+             stop: threading.Event | None = None) -> SweepResult:
     """Run a validated plan step by step; ``advance(1)`` after each step.
 
     Stops between steps when ``stop`` is set or on Ctrl-C, and then raises

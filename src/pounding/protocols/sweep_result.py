@@ -10,7 +10,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import pandas as pd
 
-from .._checks import positive
+from .._checks import integer, positive
 from .._errors import InputError, Problem, Status
 from ..engine import State
 from ..metrics._impacts import IMPACT_COLUMNS, S_COUNT, S_N_RESTITUTION, S_SUMS, SIDE_SUMS
@@ -267,7 +267,6 @@ class SweepResult:
         points_per_cycle : int
             Uniform samples per forcing cycle.
         """
-        from .._checks import integer
         from ..engine import simulate
         from ..excitation import Harmonic
         from ..metrics import HysteresisLoop
