@@ -3,7 +3,7 @@
 The public surface is re-exported here; modules with a leading underscore are private.
 """
 
-from . import presets
+from . import data, presets
 from ._errors import InputError, Interrupted, Problem, Status
 from .engine import EnergyLedger, Run, State, simulate
 from .excitation import Harmonic, Record
@@ -17,5 +17,5 @@ __all__ = [
     "Bumpers", "CampaignResult", "EnergyLedger", "Harmonic", "HuntCrossley", "HysteresisLoop",
     "InputError", "Interrupted", "Isolator", "KelvinVoigt", "Oscillator", "Problem", "Record",
     "Run", "State", "Status", "SweepResult", "campaign", "impact_table", "paper_frequencies_hz",
-    "presets", "simulate", "sweep",
+    "data", "presets", "simulate", "sweep",
 ]

@@ -54,7 +54,7 @@ def simulate(
     a_g: float = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
     freq: float = typer.Option(..., "--freq", help="Excitation frequency, Hz."),
     duration: float = typer.Option(20.0, "--duration", help="Simulated time, s."),
-    preset: Optional[str] = typer.Option(None, "--preset", help="Use a built-in system: paper-printed."),
+    preset: Optional[str] = typer.Option(None, "--preset", help="Use a built-in system: paper-printed or paper-damped."),
     no_bumpers: bool = typer.Option(False, "--no-bumpers", help="With --preset: the NBs configuration."),
     sample_rate: float = typer.Option(1000.0, "--sample-rate", help="History samples per second, Hz."),
     velocity: float = typer.Option(0.0, "--velocity", help="Initial velocity relative to the table, m/s."),
@@ -133,7 +133,7 @@ def sweep(
     a_g: float = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
     direction: str = typer.Option("up", "--direction", help="up or down."),
     out: Optional[Path] = typer.Option(None, "--out", help="Write the per-step table (CSV)."),
-    preset: Optional[str] = typer.Option(None, "--preset", help="Use a built-in system: paper-printed."),
+    preset: Optional[str] = typer.Option(None, "--preset", help="Use a built-in system: paper-printed or paper-damped."),
     no_bumpers: bool = typer.Option(False, "--no-bumpers", help="With --preset: the NBs configuration."),
     fmin: float = typer.Option(0.5, "--fmin", help="Lowest frequency, Hz."),
     fmax: float = typer.Option(5.0, "--fmax", help="Highest frequency, Hz."),
@@ -200,7 +200,7 @@ def _save_figure(draw: Callable, path: Path) -> None:
 @app.command()
 def campaign(
     out: Path = typer.Option(..., "--out", help="Directory for campaign.nc, steps.csv, table2-4.csv, campaign.png."),
-    preset: Optional[str] = typer.Option(None, "--preset", help="Built-in system for both configurations."),
+    preset: Optional[str] = typer.Option(None, "--preset", help="Built-in system for both configurations: paper-printed or paper-damped."),
     nbs: Optional[Path] = typer.Option(None, "--nbs", help="NBs system TOML (instead of --preset)."),
     ybs: Optional[Path] = typer.Option(None, "--ybs", help="YBs system TOML (instead of --preset)."),
     fmin: float = typer.Option(0.5, "--fmin", help="Lowest frequency, Hz."),
@@ -256,6 +256,58 @@ def campaign(
     console.print(f"campaign.nc, steps.csv, table2-4.csv, campaign.png -> {out}")
     if not complete:
         raise typer.Exit(code=130)
+
+
+@app.command()
+def reproduce(
+    preset: Optional[str] = typer.Option(None, "--preset",
+                                         help="Built-in system (default: the best the package has, paper-damped)."),
+    nbs: Optional[Path] = typer.Option(None, "--nbs", help="NBs system TOML (instead of --preset)."),
+    ybs: Optional[Path] = typer.Option(None, "--ybs", help="YBs system TOML (instead of --preset)."),
+    out: Path = typer.Option(Path("report"), "--out", help="Directory for index.html, tables and figures."),
+    fmin: float = typer.Option(0.5, "--fmin", help="Lowest frequency, Hz."),
+    fmax: float = typer.Option(5.0, "--fmax", help="Highest frequency, Hz."),
+    fstep: float = typer.Option(0.1, "--fstep", help="Frequency step, Hz."),
+    workers: Optional[int] = typer.Option(None, "--workers", help="Parallel sweeps (default: all cores)."),
+) -> None:
+    """The paper's tables and figures from the model, beside the measurements, in one HTML report."""
+    from . import presets
+    from ._errors import Interrupted
+    from .model import Oscillator
+    from .reports import reproduce as write_report
+
+    try:
+        if preset is not None and (nbs or ybs):
+            raise typer.BadParameter("give --preset or --nbs and --ybs, not both")
+        if nbs or ybs:
+            if not (nbs and ybs):
+                raise typer.BadParameter("give both --nbs and --ybs (the report compares the two configurations)")
+            nbs_osc, ybs_osc = Oscillator.from_toml(nbs), Oscillator.from_toml(ybs)
+            label = f"{nbs} (NBs) and {ybs} (YBs)"
+        else:
+            name = preset or presets.BEST_PRESET
+            nbs_osc, ybs_osc = presets.by_name(name, bumpers=False), presets.by_name(name)
+            label = f"preset {name}" + ("" if preset else " (the default: the package's best)")
+        report = write_report(nbs_osc, ybs_osc, out, system_label=label,
+                              freqs_hz=_frequencies(fmin, fmax, fstep), workers=workers, progress=True)
+    except InputError as exc_:
+        _fail(exc_)
+        return
+    except Interrupted as stop:
+        err_console.print(f"[yellow]{escape(str(stop))}; no report written[/]")
+        raise typer.Exit(code=130) from None
+    t2 = report.comparisons["2"]
+    summary = Table(title=f"Table 2, model ({escape(label)}) beside measured (paper)")
+    for col in ("cfg", "a_G", "dir", "nu_R model", "nu_R meas.", "alpha model", "alpha meas.",
+                "eta|e model", "eta|e meas."):
+        summary.add_column(col)
+    for _, row in t2.iterrows():
+        q = "eta" if row["configuration"] == "YBs" else "e"
+        summary.add_row(row["configuration"], f"{row['a_g']:g}", row["direction"],
+                        *(f"{row[c]:.3g}" for c in ("nu_r_model", "nu_r_measured", "alpha_model",
+                                                    "alpha_measured", f"{q}_model", f"{q}_measured")))
+    console.print(summary)
+    console.print(f"report -> {report.index_html} (tables CSV, {len(report.figures)} figures PNG)")
 
 
 if __name__ == "__main__":  # pragma: no cover

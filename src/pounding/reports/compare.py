@@ -1,0 +1,47 @@
+"""Model beside measurement: the paper's Tables 2, 3 and 4 with the differences."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from ..data import measured, paper_measurements
+from ..protocols.campaign import CampaignResult
+
+# per table: the quantities compared, as named in CampaignResult.tableN() and in the data
+TABLE_QUANTITIES = {
+    "2": ("nu_r", "alpha", "eta", "e", "contact_nu_min", "contact_nu_max"),
+    "3": ("mean_force_over_mg", "contact_time_ms"),
+    "4": ("dissipated_energy_per_mass", "restitution"),
+}
+# quantities whose printed values cannot be compared numerically (MODEL.md §4)
+NOT_COMPARABLE = {"mean_force_over_mg"}
+
+
+def comparison(result: CampaignResult, table: str) -> pd.DataFrame:
+    """One of Tables 2-4: model (each sweep direction) beside measured, with ``model - measured``.
+
+    Returns
+    -------
+    DataFrame
+        ``configuration``, ``a_g``, ``direction``, then per quantity ``<q>_model``,
+        ``<q>_measured`` and ``<q>_diff``; rows only for the (configuration, a_g) pairs the
+        paper measured.  Quantities whose printed scale is unclear have NaN differences.
+    """
+    model = {"2": result.table2, "3": result.table3, "4": result.table4}[table]()
+    meas = measured(table)
+    merged = model.merge(meas, on=["configuration", "a_g"], how="inner", suffixes=("_model", "_measured"))
+    out = merged[["configuration", "a_g", "direction"]].copy()
+    for q in TABLE_QUANTITIES[table]:
+        m = merged[q + "_model"] if q + "_model" in merged else pd.Series(np.nan, index=merged.index)
+        x = merged[q + "_measured"] if q + "_measured" in merged else pd.Series(np.nan, index=merged.index)
+        out[q + "_model"] = m
+        out[q + "_measured"] = x
+        out[q + "_diff"] = np.nan if q in NOT_COMPARABLE else m - x
+    return out.reset_index(drop=True)
+
+
+def inconsistency_notes() -> pd.DataFrame:
+    """The measured values that carry a note (MODEL.md §5), for the report."""
+    df = paper_measurements()
+    return df[df["note"] != ""][["source", "configuration", "a_g", "quantity", "value", "note"]]

@@ -1,0 +1,273 @@
+"""The analogues of the paper's Figs. 4-11 and 14-17, model beside the measured points.
+
+:func:`paper_figures` returns every figure by name (``fig04`` ...).  The paper gives its
+curves only as figures: what is overlaid as measured are the numbers it prints (Tables
+2-4, Sects. 3.2-3.4), as hollow black markers at the resonance they were read at.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import pandas as pd
+
+from ..data import paper_measurements
+from ..plots.sweep import DIRECTION_STYLE, plot_hysteresis
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.figure import Figure
+
+    from ..protocols.campaign import CampaignResult
+
+NU = r"$\nu = f/f_R$ [-]"
+ALPHA = r"$\alpha = A_{max}/A_t$ [-]"
+ETA = r"$\eta = E/\Delta$ [-]"
+E_NBS = r"$e = E/D_{tmax}$ [-]"
+A_G = r"$a_G = A_t/g$ [-]"
+MEASURED = dict(marker="o", mfc="none", mec="k", ls="none", ms=8, mew=1.5)
+CONF_STYLE = {"NBs": dict(color="tab:blue", marker="o"), "YBs": dict(color="tab:red", marker="*", ms=10)}
+LOOP_A_G = (0.05, 0.075, 0.1)   # Fig. 7
+FRF_A_G = (0.03, 0.05, 0.1)     # Fig. 8
+
+
+def measured_value(quantity: str, configuration: str) -> pd.Series:
+    """A measured quantity by a_G (from :func:`pounding.data.paper_measurements`)."""
+    df = paper_measurements()
+    df = df[(df["quantity"] == quantity) & (df["configuration"] == configuration) & df["a_g"].notna()]
+    return df.set_index("a_g")["value"]
+
+
+def total_gap_m(result: "CampaignResult") -> float:
+    """``Delta`` of the YBs system, or the paper's 0.03 m without one (normalizes NBs too)."""
+    for (conf, _, _), sw in result.sweeps.items():
+        if conf == "YBs":
+            return sw.total_gap_m
+    return float(paper_measurements().query("quantity == 'total_gap_m'")["value"].iloc[0])
+
+
+def steps(result: "CampaignResult") -> pd.DataFrame:
+    """Every finished step, long form, with ``e_gap`` = E / Delta for both configurations."""
+    df = result.dataset.to_dataframe().reset_index()
+    df = df[df["ran"]].copy()
+    df["e_gap"] = df["excursion_m"] / total_gap_m(result)
+    return df
+
+
+def maxima(result: "CampaignResult") -> pd.DataFrame:
+    """Per sweep: ``nu_r``, ``alpha`` and ``e_gap`` maxima, and the impacts at resonance."""
+    df = steps(result)
+    rows = []
+    for (conf, ag, d), sub in df.groupby(["configuration", "a_g", "direction"]):
+        at = sub.loc[sub["alpha"].idxmax()]
+        rows.append({"configuration": conf, "a_g": ag, "direction": d, "nu_r": at["nu"],
+                     "alpha": at["alpha"], "e_gap": sub["e_gap"].max(),
+                     "mean_force_over_mg": at["mean_force_n"] / _mg(result, conf, ag, d),
+                     "contact_time_ms": at["contact_time_s"] * 1e3,
+                     "dissipated_energy_per_mass": at["dissipated_energy_j"] / _mass(result, conf, ag, d),
+                     "restitution": at["restitution"]})
+    return pd.DataFrame(rows)
+
+
+def _mass(result, conf, ag, d) -> float:
+    return result.sweeps[(conf, ag, d)].oscillator.mass
+
+
+def _mg(result, conf, ag, d) -> float:
+    sw = result.sweeps[(conf, ag, d)]
+    return sw.oscillator.mass * sw.g
+
+
+def _figure(title: str, panels: int = 2, sharex: bool = True):
+    import matplotlib.pyplot as plt
+
+    fig, axes = plt.subplots(panels, 1, figsize=(6.5, 3.4 * panels), sharex=sharex, squeeze=False,
+                             constrained_layout=True)
+    fig.suptitle(title)
+    return fig, axes[:, 0]
+
+
+def _frf(df: pd.DataFrame, conf: str, a_gs, y: str, axes, colour_of=None, conf_label=False) -> None:
+    for i, ag in enumerate(a_gs):
+        for d, sub in df[(df["configuration"] == conf) & np.isclose(df["a_g"], ag)].groupby("direction"):
+            colour = colour_of(conf, i) if colour_of else f"C{i}"
+            style = dict(DIRECTION_STYLE[d], ms=3, lw=1.0, color=colour)
+            label = f"{conf + ' ' if conf_label else ''}a_G = {ag:g} ({d})"
+            axes[0].plot(sub["nu"], sub["alpha"], label=label, **style)
+            axes[1].plot(sub["nu"], sub[y], **style)
+
+
+def _measured_peaks(axes, conf: str, y: str, a_gs=None) -> None:
+    nu = measured_value("nu_r", conf)
+    alpha = measured_value("alpha", conf)
+    other = _measured_excursion(conf, y)
+    keep = [ag for ag in nu.index if a_gs is None or any(np.isclose(ag, a_gs))]
+    axes[0].plot(nu[keep], alpha[keep], label="measured peak (paper)", **MEASURED)
+    axes[1].plot(nu[keep], other.reindex(keep), **MEASURED)
+
+
+def _measured_excursion(conf: str, y: str) -> pd.Series:
+    if y == "e":
+        return measured_value("e", conf)
+    if conf == "YBs":
+        return measured_value("eta", conf)
+    return measured_value("excursion_max_m", "NBs") / float(
+        paper_measurements().query("quantity == 'total_gap_m'")["value"].iloc[0])
+
+
+def fig04(result, df):
+    fig, ax = _figure("Fig. 4 analogue: NBs pseudo-FRFs (a) acceleration, (b) excursion")
+    _frf(df, "NBs", sorted(df.loc[df["configuration"] == "NBs", "a_g"].unique()), "e", ax)
+    _measured_peaks(ax, "NBs", "e")
+    ax[0].set_ylabel(ALPHA), ax[1].set_ylabel(E_NBS), ax[1].set_xlabel(NU)
+    ax[0].legend(fontsize="x-small", ncol=2)
+    return fig
+
+
+def fig05(result, df):
+    fig, ax = _figure("Fig. 5 analogue: YBs pseudo-FRFs (a) acceleration, (b) excursion")
+    _frf(df, "YBs", sorted(df.loc[df["configuration"] == "YBs", "a_g"].unique()), "eta", ax)
+    _measured_peaks(ax, "YBs", "eta")
+    ax[1].axhline(1.0, color="0.5", lw=0.8, ls=":")
+    ax[0].set_ylabel(ALPHA), ax[1].set_ylabel(ETA), ax[1].set_xlabel(NU)
+    ax[0].legend(fontsize="x-small", ncol=2)
+    return fig
+
+
+def _versus_a_g(ax, peaks: pd.DataFrame, conf: str, y: str, measured: pd.Series | None, label: str) -> None:
+    for d, sub in peaks[peaks["configuration"] == conf].groupby("direction"):
+        style = dict(CONF_STYLE[conf], ls=DIRECTION_STYLE[d]["ls"])
+        ax.plot(sub["a_g"], sub[y], label=f"{label} model ({d})", **style)
+    if measured is not None and len(measured):
+        ax.plot(measured.index, measured.to_numpy(), label=f"{label} measured", **MEASURED)
+
+
+def fig06(result, df):
+    peaks = maxima(result)
+    fig, ax = _figure("Fig. 6 analogue: YBs maxima against the table acceleration")
+    _versus_a_g(ax[0], peaks, "YBs", "alpha", measured_value("alpha", "YBs"), "YBs")
+    _versus_a_g(ax[1], peaks, "YBs", "e_gap", measured_value("eta", "YBs"), "YBs")
+    ax[0].set_ylabel(ALPHA), ax[1].set_ylabel(ETA), ax[1].set_xlabel(A_G)
+    ax[0].legend(fontsize="x-small")
+    return fig
+
+
+def _loops(result, a_gs, title, linestyle="-"):
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(6.5, 5), constrained_layout=True)
+    fig.suptitle(title)
+    for i, ag in enumerate(a_gs):
+        sw = result.sweeps.get(("YBs", ag, "up"))
+        if sw is None or sw.steps_done == 0:
+            continue
+        loop = sw.hysteresis_loop(sw.resonance_hz)
+        plot_hysteresis(loop, ax=ax, color=f"C{i}", ls=linestyle,
+                        label=f"model a_G = {ag:g}, nu_R = {sw.nu_r:g}")
+    ax.set_xlabel(r"$d = D/\Delta$ [-]"), ax.set_ylabel(r"$r = F_I/(M g)$ [-]")
+    return fig
+
+
+def fig07(result, df):
+    return _loops(result, LOOP_A_G, "Fig. 7 analogue: YBs inertia force against displacement at resonance")
+
+
+def fig08(result, df):
+    fig, ax = _figure("Fig. 8 analogue: NBs and YBs pseudo-FRFs (excursion over the YBs gap)")
+    for conf in ("NBs", "YBs"):
+        _frf(df, conf, FRF_A_G, "e_gap", ax, colour_of=lambda c, i: f"C{i + (3 if c == 'YBs' else 0)}",
+             conf_label=True)
+    ax[0].set_ylabel(ALPHA), ax[1].set_ylabel(ETA), ax[1].set_xlabel(NU)
+    ax[0].legend(fontsize="x-small", ncol=2)
+    return fig
+
+
+def _nbs_vs_ybs(result, title, x: str, xlabel: str):
+    peaks = maxima(result)
+    fig, ax = _figure(title, sharex=True)
+    for conf in ("NBs", "YBs"):
+        meas_alpha = measured_value("alpha", conf)
+        meas_e = _measured_excursion(conf, "eta")
+        if x == "a_g":
+            _versus_a_g(ax[0], peaks, conf, "alpha", meas_alpha, conf)
+            _versus_a_g(ax[1], peaks, conf, "e_gap", meas_e, conf)
+        else:  # against the resonance: the envelope of the peaks
+            for d, sub in peaks[peaks["configuration"] == conf].groupby("direction"):
+                style = dict(CONF_STYLE[conf], ls=DIRECTION_STYLE[d]["ls"])
+                ax[0].plot(sub["nu_r"], sub["alpha"], label=f"{conf} model ({d})", **style)
+                ax[1].plot(sub["nu_r"], sub["e_gap"], **style)
+            nu = measured_value("nu_r", conf)
+            ax[0].plot(nu, meas_alpha.reindex(nu.index), label=f"{conf} measured", **MEASURED)
+            ax[1].plot(nu, meas_e.reindex(nu.index), **MEASURED)
+    ax[0].set_ylabel(ALPHA), ax[1].set_ylabel(ETA), ax[1].set_xlabel(xlabel)
+    ax[0].legend(fontsize="x-small")
+    return fig
+
+
+def fig09(result, df):
+    return _nbs_vs_ybs(result, "Fig. 9 analogue: NBs vs YBs maxima against the table acceleration", "a_g", A_G)
+
+
+def fig10(result, df):
+    peaks = maxima(result)
+    fig, ax = _figure("Fig. 10 analogue: mean contact force and contact time at resonance (YBs)")
+    _versus_a_g(ax[0], peaks, "YBs", "mean_force_over_mg", None, "YBs")
+    printed = measured_value("mean_force_over_mg", "YBs")
+    twin = ax[0].twinx()
+    twin.plot(printed.index, printed.to_numpy(), label="measured, as printed (scale unclear)", **MEASURED)
+    twin.set_ylabel(r"printed $F_m/(M g) \times 10^{-3}$ (scale unclear)")
+    twin.legend(fontsize="x-small", loc="lower right")
+    _versus_a_g(ax[1], peaks, "YBs", "contact_time_ms", measured_value("contact_time_ms", "YBs"), "YBs")
+    ax[0].set_ylabel(r"$F_m/(M g)$ [-] (model)"), ax[1].set_ylabel(r"$\Delta t_c$ [ms]"), ax[1].set_xlabel(A_G)
+    ax[0].legend(fontsize="x-small", loc="upper left")
+    ax[1].legend(fontsize="x-small")
+    return fig
+
+
+def fig11(result, df):
+    peaks = maxima(result)
+    fig, ax = _figure("Fig. 11 analogue: dissipated energy and restitution at resonance (YBs)")
+    _versus_a_g(ax[0], peaks, "YBs", "dissipated_energy_per_mass",
+                measured_value("dissipated_energy_per_mass", "YBs"), "YBs")
+    _versus_a_g(ax[1], peaks, "YBs", "restitution", measured_value("restitution", "YBs"), "YBs")
+    ax[0].set_ylabel(r"$E_d/M$ [m$^2$/s$^2$]"), ax[1].set_ylabel(r"$s = -v_o/v_i$ [-]"), ax[1].set_xlabel(A_G)
+    ax[0].legend(fontsize="x-small")
+    return fig
+
+
+def fig14(result, df):
+    fig, ax = _figure("Fig. 14 analogue: YBs, a_G = 0.05 (dashed: model; markers: measured peak)")
+    sub = df[(df["configuration"] == "YBs") & np.isclose(df["a_g"], 0.05)]
+    for d, part in sub.groupby("direction"):
+        style = dict(ls="--", marker=DIRECTION_STYLE[d]["marker"], ms=3, lw=1.0,
+                     color="C0" if d == "up" else "C1")
+        ax[0].plot(part["nu"], part["alpha"], label=f"model ({d})", **style)
+        ax[1].plot(part["nu"], part["eta"], **style)
+    _measured_peaks(ax, "YBs", "eta", a_gs=[0.05])
+    ax[0].set_ylabel(ALPHA), ax[1].set_ylabel(ETA), ax[1].set_xlabel(NU)
+    ax[0].legend(fontsize="x-small")
+    return fig
+
+
+def fig15(result, df):
+    return _loops(result, (0.05,), "Fig. 15 analogue: YBs, a_G = 0.05, at resonance (dashed: model)", "--")
+
+
+def fig16(result, df):
+    return _nbs_vs_ybs(result, "Fig. 16 analogue: NBs (circles) and YBs (stars) maxima at their resonance",
+                       "nu_r", r"$\nu_R$ [-]")
+
+
+def fig17(result, df):
+    return _nbs_vs_ybs(result, "Fig. 17 analogue: NBs (circles) vs YBs (stars) against the table acceleration",
+                       "a_g", A_G)
+
+
+FIGURES = {"fig04": fig04, "fig05": fig05, "fig06": fig06, "fig07": fig07, "fig08": fig08, "fig09": fig09,
+           "fig10": fig10, "fig11": fig11, "fig14": fig14, "fig15": fig15, "fig16": fig16, "fig17": fig17}
+
+
+def paper_figures(result: "CampaignResult") -> dict[str, "Figure"]:
+    """Every figure analogue, by name (``fig04`` ... ``fig17``)."""
+    df = steps(result)
+    return {name: make(result, df) for name, make in FIGURES.items()}

@@ -1,0 +1,91 @@
+"""``reproduce``: run the paper's campaign and write its tables and figures beside the measurements."""
+
+from __future__ import annotations
+
+import datetime as _dt
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from .. import __version__
+from ..model import Oscillator
+from ..protocols import CampaignResult, campaign
+from ..protocols._progress import Progress
+from .compare import comparison, inconsistency_notes
+from .figures import paper_figures
+from .html import write_page
+
+TABLE_TITLES = {"2": "Table 2: maximum non-dimensional accelerations and excursions",
+                "3": "Table 3: impact characterization at resonance, contact forces and times",
+                "4": "Table 4: impact characterization at resonance, dissipated energies and restitution"}
+
+
+@dataclass(frozen=True)
+class Report:
+    """What :func:`reproduce` wrote, and the campaign behind it."""
+
+    out_dir: Path
+    index_html: Path
+    tables: dict[str, Path]
+    figures: dict[str, Path]
+    campaign: CampaignResult
+    comparisons: dict[str, pd.DataFrame]
+
+
+def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Path = "report", *,
+              system_label: str = "custom systems", freqs_hz: Any = None, workers: int | None = None,
+              progress: Progress = False, **sweep_options: Any) -> Report:
+    """Run the paper's campaign and write Tables 2-4 (CSV), the figure analogues (PNG) and
+    ``index.html`` into ``out_dir``.
+
+    Parameters
+    ----------
+    nbs_system, ybs_system : Oscillator
+        Without and with bumpers.
+    out_dir : path
+        Created if needed; files in it are overwritten.
+    system_label : str
+        How the page names the systems (e.g. the preset).
+    freqs_hz, workers, progress, **sweep_options
+        As :func:`pounding.campaign` (default: the paper's grid, adaptive steady state).
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out = Path(out_dir)
+    out.mkdir(parents=True, exist_ok=True)
+    result = campaign(nbs_system, ybs_system, freqs_hz=freqs_hz, workers=workers, progress=progress,
+                      **sweep_options)
+    result.to_netcdf(out / "campaign.nc")
+    comparisons = {t: comparison(result, t) for t in ("2", "3", "4")}
+    tables = {}
+    for t, df in comparisons.items():
+        tables[t] = out / f"table{t}.csv"
+        df.to_csv(tables[t], index=False)
+    figures, captions = {}, {}
+    for name, fig in paper_figures(result).items():
+        figures[name] = out / f"{name}.png"
+        captions[name] = fig.get_suptitle()
+        fig.savefig(figures[name], dpi=110)
+        plt.close(fig)
+    ds = result.dataset
+    settings = {k: ds.attrs[k] for k in ("steady_mode", "cycles", "measure_cycles", "f_ref_hz",
+                                         "omega_min_rad_s")}
+    settings.update({"frequencies [Hz]": f"{float(ds.freq_hz.min()):g} to {float(ds.freq_hz.max()):g} "
+                                         f"({ds.freq_hz.size} steps)",
+                     "pounding": __version__, "written": _dt.datetime.now().isoformat(timespec="seconds")})
+    statuses = pd.DataFrame([{"configuration": c, "a_g": a, "direction": d, "steps": sw.steps_done,
+                              "not steady": int((~sw.to_dataframe()["steady"]).sum()), "message": sw.message}
+                             for (c, a, d), sw in result.sweeps.items()])
+    systems = {k.removeprefix("system_"): v for k, v in ds.attrs.items() if k.startswith("system_")}
+    index = write_page(
+        out / "index.html", title="pounding: the paper's tables and figures, model beside measurement",
+        system_label=system_label, systems=systems, settings=settings,
+        tables={TABLE_TITLES[t]: df for t, df in comparisons.items()},
+        figures={name: (path, captions[name]) for name, path in figures.items()},
+        notes=inconsistency_notes(), statuses=statuses)
+    return Report(out, index, tables, figures, result, comparisons)

@@ -1,0 +1,124 @@
+"""`pounding reproduce`: files written, the page in a real browser, the measured data."""
+
+from __future__ import annotations
+
+import shutil
+from pathlib import Path
+
+import pandas as pd
+import pytest
+from typer.testing import CliRunner
+
+import pounding as pd_
+from pounding.cli import app
+from pounding.data import measured, paper_measurements
+from pounding.reports import reproduce
+
+FIGURES = ["fig04", "fig05", "fig06", "fig07", "fig08", "fig09", "fig10", "fig11", "fig14", "fig15", "fig16",
+           "fig17"]
+
+
+@pytest.fixture(scope="module")
+def report(tmp_path_factory):
+    ybs = pd_.presets.paper_damped()
+    out = tmp_path_factory.mktemp("report")
+    return reproduce(ybs.without_bumpers(), ybs, out, system_label="paper-damped (test)",
+                     freqs_hz=[1.0, 1.5, 2.0, 2.5], steady="fixed", cycles=6, measure_cycles=2)
+
+
+def test_reduced_report_writes_every_file(report):
+    out = report.out_dir
+    for name in ["index.html", "table2.csv", "table3.csv", "table4.csv"] + [f"{f}.png" for f in FIGURES]:
+        assert (out / name).stat().st_size > 0, name
+    t2 = pd.read_csv(out / "table2.csv")
+    assert {"alpha_model", "alpha_measured", "alpha_diff", "nu_r_model", "eta_measured"} <= set(t2.columns)
+    assert len(t2) == 14  # 7 measured (configuration, a_G) pairs, up and down
+    row = t2.query("configuration == 'YBs' and a_g == 0.05 and direction == 'up'").iloc[0]
+    assert row["alpha_measured"] == 16.80
+    assert row["alpha_diff"] == pytest.approx(row["alpha_model"] - 16.80)
+    t3 = pd.read_csv(out / "table3.csv")
+    assert t3["mean_force_over_mg_diff"].isna().all()  # printed scale unclear: not differenced
+    page = (out / "index.html").read_text(encoding="utf-8")
+    assert page.count("<img src='data:image/png;base64,") == len(FIGURES)
+    assert "paper-damped (test)" in page and "[isolator]" in page and "0.02073" in page
+    assert "1.96/1.80 = 1.09" in page  # the notes on the paper's inconsistencies
+
+
+def _browser():
+    chromium, driver = shutil.which("chromium"), shutil.which("chromedriver")
+    if not (chromium and driver):
+        pytest.skip("headless Chromium not installed (Debian packages chromium and chromium-driver; "
+                    ".ci/run installs them)")
+    webdriver = pytest.importorskip("selenium.webdriver", reason="selenium not installed (pip install -e '.[test]')")
+    from selenium.webdriver.chrome.service import Service
+
+    options = webdriver.ChromeOptions()
+    options.binary_location = chromium
+    for flag in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
+                 "--disable-background-networking", "--disable-component-update", "--disable-sync",
+                 "--disable-dev-shm-usage"):
+        options.add_argument(flag)
+    options.set_capability("goog:loggingPrefs", {"browser": "ALL"})
+    return webdriver.Chrome(service=Service(driver), options=options)
+
+
+def test_page_opens_offline_in_headless_chromium(report):
+    browser = _browser()
+    try:
+        browser.get(Path(report.index_html).resolve().as_uri())
+        widths = browser.execute_script(
+            "return Array.from(document.images).map(i => i.complete ? i.naturalWidth : 0);")
+        assert len(widths) == len(FIGURES) and all(w > 0 for w in widths), widths
+        errors = [e for e in browser.get_log("browser") if e["level"] in ("SEVERE", "ERROR")]
+        assert errors == []
+        assert "Table 2" in browser.find_element("tag name", "body").text
+    finally:
+        browser.quit()
+
+
+# the paper's Tables 2-4, typed in again from the paper (not read from the package data)
+PAPER_TABLES = {
+    ("NBs", 0.03): {"nu_r": 1.2, "alpha": 1.80, "e": 1.03},
+    ("NBs", 0.05): {"nu_r": 1.1, "alpha": 2.99, "e": 1.72},
+    ("NBs", 0.1): {"nu_r": 1.0, "alpha": 3.89, "e": 2.48},
+    ("YBs", 0.03): {"nu_r": 1.3, "alpha": 1.96, "eta": 1.04, "contact_nu_min": 1.3, "contact_nu_max": 1.3,
+                    "mean_force_over_mg": 0, "contact_time_ms": 9, "dissipated_energy_per_mass": 0,
+                    "restitution": 1},
+    ("YBs", 0.05): {"nu_r": 2.2, "alpha": 16.80, "eta": 1.23, "contact_nu_min": 0.7, "contact_nu_max": 2.3,
+                    "mean_force_over_mg": 14, "contact_time_ms": 15, "dissipated_energy_per_mass": 3.81e-4,
+                    "restitution": 0.89},
+    ("YBs", 0.075): {"nu_r": 2.5, "alpha": 16.18, "eta": 1.25, "contact_nu_min": 0.7, "contact_nu_max": 2.6,
+                     "mean_force_over_mg": 12, "contact_time_ms": 23, "dissipated_energy_per_mass": 17.6e-4,
+                     "restitution": 0.80},
+    ("YBs", 0.1): {"nu_r": 2.9, "alpha": 15.04, "eta": 1.29, "contact_nu_min": 0.7, "contact_nu_max": 3.1,
+                   "mean_force_over_mg": 7, "contact_time_ms": 31, "dissipated_energy_per_mass": 15.52e-4,
+                   "restitution": 0.75},
+}
+
+
+def test_every_number_of_tables_2_to_4_is_in_the_package_data():
+    tables = pd.concat([measured(t) for t in ("2", "3", "4")]).groupby(["configuration", "a_g"]).first()
+    n = 0
+    for (conf, a_g), values in PAPER_TABLES.items():
+        for quantity, value in values.items():
+            assert tables.loc[(conf, a_g), quantity] == pytest.approx(value, rel=1e-12), (conf, a_g, quantity)
+            n += 1
+    assert n == 9 + 4 * 9
+    data = paper_measurements()
+    assert (data["source"] != "").all()
+    assert data.query("quantity == 'd_tmax_m'")["value"].tolist() == [0.02073, 0.03455, 0.0691]
+    assert data.query("quantity == 'acceleration_ratio'")["value"].tolist() == [1.9, 5.62, 3.87]
+    assert data.query("quantity == 'excursion_ratio'")["value"].tolist() == [0.88, 0.62, 0.23]
+    assert data.query("quantity == 'excursion_max_m'")["value"].tolist() == [0.0356, 0.0593, 0.171]
+    flagged = data[data["note"].str.contains("inconsistent")]
+    assert set(flagged["quantity"]) == {"e", "acceleration_ratio"}
+
+
+def test_cli_reproduce_on_a_reduced_grid(tmp_path):
+    out = tmp_path / "rep"
+    result = CliRunner().invoke(app, ["reproduce", "--out", str(out), "--fmin", "1.0", "--fmax", "2.0",
+                                      "--fstep", "0.5"])
+    assert result.exit_code == 0, result.output
+    assert (out / "index.html").is_file() and "Table 2" in result.output
+    bad = CliRunner().invoke(app, ["reproduce", "--nbs", "x.toml"])
+    assert bad.exit_code == 2 and "--ybs" in bad.output
