@@ -18,7 +18,7 @@ figure { display: inline-block; margin: .5em; vertical-align: top; }
 figure img { max-width: 520px; border: 1px solid #ddd; }
 figcaption { font-size: .85em; max-width: 520px; }
 pre { background: #f7f7f7; padding: .8em; overflow-x: auto; }
-.note { color: #8a4b00; }
+.note { color: #8a4b00; } .wide { overflow-x: auto; }
 """
 
 # what MODEL.md §5 says does not add up in the paper, shown on every report
@@ -41,7 +41,8 @@ PAPER_INCONSISTENCIES = (
 
 
 def _table(df: pd.DataFrame) -> str:
-    return df.to_html(index=False, float_format=lambda x: f"{x:.4g}", na_rep="", border=0)
+    table = df.to_html(index=False, float_format=lambda x: f"{x:.4g}", na_rep="", border=0)
+    return f"<div class='wide'>{table}</div>"
 
 
 def _image(path: Path) -> str:
