@@ -19,6 +19,19 @@ console = Console()
 err_console = Console(stderr=True)
 
 
+# options shared by several commands (one definition each)
+OPT_FMIN = typer.Option(0.5, "--fmin", help="Lowest frequency, Hz.")
+OPT_FMAX = typer.Option(5.0, "--fmax", help="Highest frequency, Hz.")
+OPT_FSTEP = typer.Option(0.1, "--fstep", help="Frequency step, Hz.")
+OPT_STEADY = typer.Option("adaptive", "--steady", help="adaptive (until periodic) or fixed.")
+OPT_CYCLES = typer.Option(None, "--cycles", help="Cycles per step with --steady fixed (30).")
+OPT_MEASURE_CYCLES = typer.Option(5, "--measure-cycles", help="Cycles measured at the end of a step.")
+OPT_MAX_CYCLES = typer.Option(None, "--max-cycles", help="Most cycles per step, adaptive (500).")
+OPT_WORKERS = typer.Option(None, "--workers", help="Parallel sweeps (default: all cores).")
+OPT_NBS = typer.Option(None, "--nbs", help="NBs system TOML (instead of --preset).")
+OPT_YBS = typer.Option(None, "--ybs", help="YBs system TOML (instead of --preset).")
+
+
 def _fail(exc: Exception) -> None:
     err_console.print(f"[bold red]error:[/] {escape(str(exc))}")
     raise typer.Exit(code=2)
@@ -135,13 +148,13 @@ def sweep(
     out: Optional[Path] = typer.Option(None, "--out", help="Write the per-step table (CSV)."),
     preset: Optional[str] = typer.Option(None, "--preset", help="Use a built-in system: paper-printed or paper-damped."),
     no_bumpers: bool = typer.Option(False, "--no-bumpers", help="With --preset: the NBs configuration."),
-    fmin: float = typer.Option(0.5, "--fmin", help="Lowest frequency, Hz."),
-    fmax: float = typer.Option(5.0, "--fmax", help="Highest frequency, Hz."),
-    fstep: float = typer.Option(0.1, "--fstep", help="Frequency step, Hz."),
-    steady: str = typer.Option("adaptive", "--steady", help="adaptive (until periodic) or fixed."),
-    cycles: Optional[int] = typer.Option(None, "--cycles", help="Cycles per step with --steady fixed (30)."),
-    measure_cycles: int = typer.Option(5, "--measure-cycles", help="Cycles measured at the end of a step."),
-    max_cycles: Optional[int] = typer.Option(None, "--max-cycles", help="Most cycles per step, adaptive (500)."),
+    fmin: float = OPT_FMIN,
+    fmax: float = OPT_FMAX,
+    fstep: float = OPT_FSTEP,
+    steady: str = OPT_STEADY,
+    cycles: Optional[int] = OPT_CYCLES,
+    measure_cycles: int = OPT_MEASURE_CYCLES,
+    max_cycles: Optional[int] = OPT_MAX_CYCLES,
     netcdf: Optional[Path] = typer.Option(None, "--netcdf", help="Also write the result as netCDF."),
     plot: Optional[Path] = typer.Option(None, "--plot", help="Also draw alpha and eta against nu (PNG, PDF...)."),
 ) -> None:
@@ -201,16 +214,16 @@ def _save_figure(draw: Callable, path: Path) -> None:
 def campaign(
     out: Path = typer.Option(..., "--out", help="Directory for campaign.nc, steps.csv, table2-4.csv, campaign.png."),
     preset: Optional[str] = typer.Option(None, "--preset", help="Built-in system for both configurations: paper-printed or paper-damped."),
-    nbs: Optional[Path] = typer.Option(None, "--nbs", help="NBs system TOML (instead of --preset)."),
-    ybs: Optional[Path] = typer.Option(None, "--ybs", help="YBs system TOML (instead of --preset)."),
-    fmin: float = typer.Option(0.5, "--fmin", help="Lowest frequency, Hz."),
-    fmax: float = typer.Option(5.0, "--fmax", help="Highest frequency, Hz."),
-    fstep: float = typer.Option(0.1, "--fstep", help="Frequency step, Hz."),
-    steady: str = typer.Option("adaptive", "--steady", help="adaptive (until periodic) or fixed."),
-    cycles: Optional[int] = typer.Option(None, "--cycles", help="Cycles per step with --steady fixed (30)."),
-    measure_cycles: int = typer.Option(5, "--measure-cycles", help="Cycles measured at the end of a step."),
-    max_cycles: Optional[int] = typer.Option(None, "--max-cycles", help="Most cycles per step, adaptive (500)."),
-    workers: Optional[int] = typer.Option(None, "--workers", help="Parallel sweeps (default: all cores)."),
+    nbs: Optional[Path] = OPT_NBS,
+    ybs: Optional[Path] = OPT_YBS,
+    fmin: float = OPT_FMIN,
+    fmax: float = OPT_FMAX,
+    fstep: float = OPT_FSTEP,
+    steady: str = OPT_STEADY,
+    cycles: Optional[int] = OPT_CYCLES,
+    measure_cycles: int = OPT_MEASURE_CYCLES,
+    max_cycles: Optional[int] = OPT_MAX_CYCLES,
+    workers: Optional[int] = OPT_WORKERS,
 ) -> None:
     """The paper's matrix: NBs at a_G 0.03, 0.05, 0.1 and YBs at 0.03, 0.05, 0.075, 0.1, up and down."""
     from . import presets
@@ -262,13 +275,13 @@ def campaign(
 def reproduce(
     preset: Optional[str] = typer.Option(None, "--preset",
                                          help="Built-in system (default: the best the package has, paper-damped)."),
-    nbs: Optional[Path] = typer.Option(None, "--nbs", help="NBs system TOML (instead of --preset)."),
-    ybs: Optional[Path] = typer.Option(None, "--ybs", help="YBs system TOML (instead of --preset)."),
+    nbs: Optional[Path] = OPT_NBS,
+    ybs: Optional[Path] = OPT_YBS,
     out: Path = typer.Option(Path("report"), "--out", help="Directory for index.html, tables and figures."),
-    fmin: float = typer.Option(0.5, "--fmin", help="Lowest frequency, Hz."),
-    fmax: float = typer.Option(5.0, "--fmax", help="Highest frequency, Hz."),
-    fstep: float = typer.Option(0.1, "--fstep", help="Frequency step, Hz."),
-    workers: Optional[int] = typer.Option(None, "--workers", help="Parallel sweeps (default: all cores)."),
+    fmin: float = OPT_FMIN,
+    fmax: float = OPT_FMAX,
+    fstep: float = OPT_FSTEP,
+    workers: Optional[int] = OPT_WORKERS,
 ) -> None:
     """The paper's tables and figures from the model, beside the measurements, in one HTML report."""
     from . import presets

@@ -15,6 +15,33 @@ from .result import EnergyLedger, Run, State
 _NO_LAW = KelvinVoigt(1.0, 0.0)  # stands in for absent bumpers (never touched)
 
 
+def check_oscillator(oscillator: Oscillator) -> None:
+    if not isinstance(oscillator, Oscillator):
+        raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator,
+                         got=type(oscillator).__name__, expected="pounding.Oscillator")
+
+
+def check_rtol(rtol: float) -> float:
+    """The integration tolerance of nonlinear contact laws, in (0, 1e-3]."""
+    rtol = positive("rtol", rtol, "(relative)")
+    if rtol > 1e-3:
+        raise InputError(Problem.NOT_ONE_OF, "rtol", rtol, choices="values in (0, 1e-3]")
+    return rtol
+
+
+def check_state(state: Optional[State], oscillator: Oscillator) -> State:
+    """``state``, or rest at t = 0 when None; it must belong to a system like ``oscillator``."""
+    if state is None:
+        return State.at_rest(oscillator)
+    if not isinstance(state, State):
+        raise InputError(Problem.WRONG_TYPE, "state", state, got=type(state).__name__,
+                         expected="pounding.State (e.g. run.final_state)")
+    expected = State.at_rest(oscillator).vector.size
+    if state.vector.size != expected:
+        raise InputError(Problem.LENGTH_MISMATCH, "state", state, got=state.vector.size, expected=expected)
+    return state
+
+
 def kernel_system(oscillator: Oscillator) -> tuple:
     """The oscillator as the kernel's leading arguments (arrays and scalars only)."""
     slopes, breaks, rule = oscillator.isolator.kernel_arrays()
@@ -64,27 +91,15 @@ def simulate(
     Run
         Histories, exact extrema, contacts, energy ledger, final state, status and message.
     """
-    if not isinstance(oscillator, Oscillator):
-        raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator,
-                         got=type(oscillator).__name__, expected="pounding.Oscillator")
+    check_oscillator(oscillator)
     if not isinstance(excitation, (Harmonic, Record)):
         raise InputError(Problem.WRONG_TYPE, "excitation", excitation,
                          got=type(excitation).__name__, expected="pounding.Harmonic or pounding.Record")
     duration = positive("duration", duration, "s")
     rate = non_negative("sample_rate_hz", sample_rate_hz, "Hz")
-    rtol = positive("rtol", rtol, "(relative)")
-    if rtol > 1e-3:
-        raise InputError(Problem.NOT_ONE_OF, "rtol", rtol, choices="values in (0, 1e-3]")
+    rtol = check_rtol(rtol)
     max_events = integer("max_events", max_events, 1)
-    if state is None:
-        state = State.at_rest(oscillator)
-    elif not isinstance(state, State):
-        raise InputError(Problem.WRONG_TYPE, "state", state, got=type(state).__name__,
-                         expected="pounding.State (e.g. run.final_state)")
-    expected = State.at_rest(oscillator).vector.size
-    if state.vector.size != expected:
-        raise InputError(Problem.LENGTH_MISMATCH, "state", state,
-                         got=state.vector.size, expected=expected)
+    state = check_state(state, oscillator)
 
     exc_kind, exc_p, rec_t, rec_a = excitation.kernel_arrays()
     t0 = state.time_s
