@@ -7,7 +7,7 @@ curves only as figures: what is overlaid as measured are the numbers it prints (
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pandas as pd
@@ -54,9 +54,10 @@ def steps(result: "CampaignResult") -> pd.DataFrame:
     return df
 
 
-def maxima(result: "CampaignResult") -> pd.DataFrame:
-    """Per sweep: ``nu_r``, ``alpha`` and ``e_gap`` maxima, and the impacts at resonance."""
-    df = steps(result)
+def maxima(result: "CampaignResult", df: pd.DataFrame | None = None) -> pd.DataFrame:
+    """Per sweep: ``nu_r``, ``alpha`` and ``e_gap`` maxima, and the impacts at resonance
+    (``df``: :func:`steps` of the result, if already at hand)."""
+    df = steps(result) if df is None else df
     rows = []
     for (conf, ag, d), sub in df.groupby(["configuration", "a_g", "direction"]):
         at = sub.loc[sub["alpha"].idxmax()]
@@ -115,7 +116,7 @@ def _measured_excursion(conf: str, y: str) -> pd.Series:
         paper_measurements().query("quantity == 'total_gap_m'")["value"].iloc[0])
 
 
-def fig04(result, df):
+def fig04(result, df, peaks):
     fig, ax = _figure("Fig. 4 analogue: NBs pseudo-FRFs (a) acceleration, (b) excursion")
     _frf(df, "NBs", sorted(df.loc[df["configuration"] == "NBs", "a_g"].unique()), "e", ax)
     _measured_peaks(ax, "NBs", "e")
@@ -124,7 +125,7 @@ def fig04(result, df):
     return fig
 
 
-def fig05(result, df):
+def fig05(result, df, peaks):
     fig, ax = _figure("Fig. 5 analogue: YBs pseudo-FRFs (a) acceleration, (b) excursion")
     _frf(df, "YBs", sorted(df.loc[df["configuration"] == "YBs", "a_g"].unique()), "eta", ax)
     _measured_peaks(ax, "YBs", "eta")
@@ -142,8 +143,7 @@ def _versus_a_g(ax, peaks: pd.DataFrame, conf: str, y: str, measured: pd.Series 
         ax.plot(measured.index, measured.to_numpy(), label=f"{label} measured", **MEASURED)
 
 
-def fig06(result, df):
-    peaks = maxima(result)
+def fig06(result, df, peaks):
     fig, ax = _figure("Fig. 6 analogue: YBs maxima against the table acceleration")
     _versus_a_g(ax[0], peaks, "YBs", "alpha", measured_value("alpha", "YBs"), "YBs")
     _versus_a_g(ax[1], peaks, "YBs", "e_gap", measured_value("eta", "YBs"), "YBs")
@@ -168,11 +168,11 @@ def _loops(result, a_gs, title, linestyle="-"):
     return fig
 
 
-def fig07(result, df):
+def fig07(result, df, peaks):
     return _loops(result, LOOP_A_G, "Fig. 7 analogue: YBs inertia force against displacement at resonance")
 
 
-def fig08(result, df):
+def fig08(result, df, peaks):
     fig, ax = _figure("Fig. 8 analogue: NBs and YBs pseudo-FRFs (excursion over the YBs gap)")
     for conf in ("NBs", "YBs"):
         _frf(df, conf, FRF_A_G, "e_gap", ax, colour_of=lambda c, i: f"C{i + (3 if c == 'YBs' else 0)}",
@@ -182,8 +182,7 @@ def fig08(result, df):
     return fig
 
 
-def _nbs_vs_ybs(result, title, x: str, xlabel: str):
-    peaks = maxima(result)
+def _nbs_vs_ybs(peaks, title, x: str, xlabel: str):
     fig, ax = _figure(title, sharex=True)
     for conf in ("NBs", "YBs"):
         meas_alpha = measured_value("alpha", conf)
@@ -204,12 +203,11 @@ def _nbs_vs_ybs(result, title, x: str, xlabel: str):
     return fig
 
 
-def fig09(result, df):
-    return _nbs_vs_ybs(result, "Fig. 9 analogue: NBs vs YBs maxima against the table acceleration", "a_g", A_G)
+def fig09(result, df, peaks):
+    return _nbs_vs_ybs(peaks, "Fig. 9 analogue: NBs vs YBs maxima against the table acceleration", "a_g", A_G)
 
 
-def fig10(result, df):
-    peaks = maxima(result)
+def fig10(result, df, peaks):
     fig, ax = _figure("Fig. 10 analogue: mean contact force and contact time at resonance (YBs)")
     _versus_a_g(ax[0], peaks, "YBs", "mean_force_over_mg", None, "YBs")
     printed = measured_value("mean_force_over_mg", "YBs")
@@ -224,8 +222,7 @@ def fig10(result, df):
     return fig
 
 
-def fig11(result, df):
-    peaks = maxima(result)
+def fig11(result, df, peaks):
     fig, ax = _figure("Fig. 11 analogue: dissipated energy and restitution at resonance (YBs)")
     _versus_a_g(ax[0], peaks, "YBs", "dissipated_energy_per_mass",
                 measured_value("dissipated_energy_per_mass", "YBs"), "YBs")
@@ -235,7 +232,7 @@ def fig11(result, df):
     return fig
 
 
-def fig14(result, df):
+def fig14(result, df, peaks):
     fig, ax = _figure("Fig. 14 analogue: YBs, a_G = 0.05 (dashed: model; markers: measured peak)")
     sub = df[(df["configuration"] == "YBs") & np.isclose(df["a_g"], 0.05)]
     for d, part in sub.groupby("direction"):
@@ -249,17 +246,17 @@ def fig14(result, df):
     return fig
 
 
-def fig15(result, df):
+def fig15(result, df, peaks):
     return _loops(result, (0.05,), "Fig. 15 analogue: YBs, a_G = 0.05, at resonance (dashed: model)", "--")
 
 
-def fig16(result, df):
-    return _nbs_vs_ybs(result, "Fig. 16 analogue: NBs (circles) and YBs (stars) maxima at their resonance",
+def fig16(result, df, peaks):
+    return _nbs_vs_ybs(peaks, "Fig. 16 analogue: NBs (circles) and YBs (stars) maxima at their resonance",
                        "nu_r", r"$\nu_R$ [-]")
 
 
-def fig17(result, df):
-    return _nbs_vs_ybs(result, "Fig. 17 analogue: NBs (circles) vs YBs (stars) against the table acceleration",
+def fig17(result, df, peaks):
+    return _nbs_vs_ybs(peaks, "Fig. 17 analogue: NBs (circles) vs YBs (stars) against the table acceleration",
                        "a_g", A_G)
 
 
@@ -270,4 +267,5 @@ FIGURES = {"fig04": fig04, "fig05": fig05, "fig06": fig06, "fig07": fig07, "fig0
 def paper_figures(result: "CampaignResult") -> dict[str, "Figure"]:
     """Every figure analogue, by name (``fig04`` ... ``fig17``)."""
     df = steps(result)
-    return {name: make(result, df) for name, make in FIGURES.items()}
+    peaks = maxima(result, df)
+    return {name: make(result, df, peaks) for name, make in FIGURES.items()}
