@@ -123,7 +123,8 @@ class Record:
         return f"Record(n={self.t.size}, t=[{self.t[0]:g}, {self.t[-1]:g}] s)"
 
     def kernel_arrays(self) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
-        return RECORD, np.zeros(3), np.ascontiguousarray(self.t), np.ascontiguousarray(self.accel)
+        # writable copies: a read-only array is another type to Numba, hence another compilation
+        return RECORD, np.zeros(3), np.array(self.t, dtype=float), np.array(self.accel, dtype=float)
 
 
 Excitation = Union[Harmonic, Record]

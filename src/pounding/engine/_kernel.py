@@ -15,7 +15,7 @@ import math
 
 import numpy as np
 
-from ..model.contact_laws import law_energy, law_force, law_is_linear, law_linear_coefficients, law_relax
+from ..model.contact_laws import N_LAW_PARAMS, law_energy, law_force, law_is_linear, law_linear_coefficients, law_relax
 from ._isolator import iso_advance, iso_energy, iso_events, iso_linear, iso_transition
 from .._jit import jit
 from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A_WORK, ACC_L,
@@ -28,7 +28,7 @@ from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A
                       P_RISO, P_V0, P_W, PH_LEN, SAMPLE_COLS, SIDE_L, SIDE_NONE, SIDE_R, T, V)
 from ._linear import linear_setup
 from ._numeric import dp5_step
-from ._trajectory import (ROUNDING, W_AABS_RATE, W_FORCE_RATE, W_VELOCITY, abs_acceleration_rate,
+from ._trajectory import (NO_INDEX, ROUNDING, W_AABS_RATE, W_FORCE_RATE, W_VELOCITY, abs_acceleration_rate,
                           brent, contact_force, event_value, locate_event, newton, phase_eval,
                           table_acceleration)
 
@@ -53,13 +53,18 @@ def _grow(buf, n):
     if n < buf.shape[0]:
         return buf
     out = np.empty((2 * buf.shape[0], buf.shape[1]))
-    out[:n] = buf[:n]
+    for i in range(n):  # loops, not slice assignment: no shape-check code to compile
+        for j in range(buf.shape[1]):
+            out[i, j] = buf[i, j]
     return out
 
 
 @jit
-def _put(buf, n, x0, x1, x2, x3=0.0, x4=0.0, x5=0.0, x6=0.0, x7=0.0, x8=0.0):
-    """Write a row of up to 9 values (the buffer's width) at row ``n``."""
+def _put(buf, n, x0, x1, x2, x3, x4, x5, x6, x7, x8):
+    """Write the first ``buf.shape[1]`` of these 9 values at row ``n``.
+
+    Every call passes all nine (no defaults): one compiled version serves every buffer.
+    """
     vals = (x0, x1, x2, x3, x4, x5, x6, x7, x8)
     for j in range(buf.shape[1]):
         buf[n, j] = vals[j]
@@ -78,7 +83,15 @@ def _excitation_piece(kind, exc_p, rec_t, rec_a, t):
         return 0.0, 0.0, 0.0, 0.0, 0.0, rec_t[0]
     if t >= rec_t[n - 1]:
         return 0.0, 0.0, 0.0, 0.0, 0.0, np.inf
-    j = np.searchsorted(rec_t, t, side="right") - 1
+    # the sample interval holding t: rec_t[j] <= t < rec_t[j + 1] (bisection; rec_t increases)
+    j = 0
+    hi = n - 1
+    while hi - j > 1:
+        mid = (j + hi) // 2
+        if rec_t[mid] <= t:
+            j = mid
+        else:
+            hi = mid
     slope = (rec_a[j + 1] - rec_a[j]) / (rec_t[j + 1] - rec_t[j])
     return rec_a[j] + slope * (t - rec_t[j]), slope, 0.0, 0.0, 0.0, rec_t[j + 1]
 
@@ -140,7 +153,8 @@ def _bumper_events(st, has_b, gap_l, gap_r, law_l, law_r, evs, n):
             row[E_ACTION] = ACT_RELEASE
             n += 1
             row = evs[n]
-            row[:] = evs[n - 1]
+            for j in range(EV_COLS):
+                row[j] = evs[n - 1, j]
             row[E_KIND] = KIND_RELEASE
             row[E_SIDE] = side
             n += 1
@@ -195,9 +209,10 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law
     ph[P_GAPL] = gap_l
     ph[P_GAPR] = gap_r
     ph[P_LAWL] = law_l
-    ph[P_PL:P_PL + 4] = p_l
     ph[P_LAWR] = law_r
-    ph[P_PR:P_PR + 4] = p_r
+    for j in range(N_LAW_PARAMS):
+        ph[P_PL + j] = p_l[j]
+        ph[P_PR + j] = p_r[j]
     ph[P_DL0] = st[DEF_L]
     ph[P_DR0] = st[DEF_R]
     ph[P_CD] = c_d
@@ -259,7 +274,7 @@ def _accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t
     _track_abs_acceleration(extrema, t0, a0 + table_acceleration(ph, 0.0))
     _track_abs_acceleration(extrema, t0 + tau, a1 + table_acceleration(ph, tau))
     if r0 * r1 < 0.0:
-        tm = brent(W_AABS_RATE, 0, ph, evs, 0.0, tau, r0, r1, XTOL_EXTREMUM_S)
+        tm = brent(W_AABS_RATE, NO_INDEX, ph, evs, 0.0, tau, r0, r1, XTOL_EXTREMUM_S)
         dm, vm, am = phase_eval(ph, tm)
         _track_abs_acceleration(extrema, t0 + tm, am + table_acceleration(ph, tm))
     # peak contact forces
@@ -297,9 +312,9 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
     samples = np.empty((256, SAMPLE_COLS))
     contacts = np.empty((16, CONTACT_COLS))
     events = np.empty((64, EVENT_COLS))
-    n_s = 0
-    n_c = 0
-    n_e = 0
+    n_s = np.int64(0)  # typed, not literal, counters: see _layout.py
+    n_c = np.int64(0)
+    n_e = np.int64(0)
     ledger = np.zeros(LEDGER_LEN)
     extrema = np.array([st[D], t_run0, st[D], t_run0, 0.0, t_run0, 0.0])
     ph = np.zeros(PH_LEN)
@@ -312,8 +327,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
     atol_v = rtol * 1e-2
     a_abs, f_iso, f_l, f_r = _outputs(st, st[D], st[V], mass, c_d, slopes, breaks, rule,
                                       gap_l, gap_r, law_l, p_l, law_r, p_r)
-    _put(samples, 0, t_run0, st[D], st[V], a_abs, f_iso, f_l, f_r)
-    n_s = 1
+    _put(samples, n_s, t_run0, st[D], st[V], a_abs, f_iso, f_l, f_r, 0.0, 0.0)
+    n_s += 1
     _track_abs_acceleration(extrema, t_run0, a_abs)
     j_next = 1
     while st[T] < t_end:
@@ -323,7 +338,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
                           p_l, law_r, p_r, a0x, a1x, amp, omega, phase)
         # fastest rate of the phase: its frequency, or its fastest decay when overdamped
         rate = max(math.sqrt(abs(k) / mass + (0.5 * c / mass) ** 2), abs(c) / mass)
-        h = 2.0 * math.pi / (SUBINTERVALS_PER_PERIOD * max(rate, omega, 1e-300))
+        h = 2.0 * math.pi / (SUBINTERVALS_PER_PERIOD * max(max(rate, omega), 1e-300))
         t_stop = min(t_knot, t_end)
         to_stop = h >= t_stop - t
         if to_stop:
@@ -360,7 +375,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         t_vel = -1.0
         d_vel = 0.0
         if v0 * v1 < 0.0:
-            t_vel = newton(W_VELOCITY, 0, ph, evs, 0.0, h, v0, v1, XTOL_S)
+            t_vel = newton(W_VELOCITY, NO_INDEX, ph, evs, 0.0, h, v0, v1, XTOL_S)
             d_vel = phase_eval(ph, t_vel)[0]
         tau = h
         i_ev = -1
@@ -391,7 +406,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
                 ds, vs, as_ = phase_eval(ph, ts - t)
                 samples = _grow(samples, n_s)
                 out = _outputs_in_phase(ph, ts - t, ds, vs, as_)
-                _put(samples, n_s, ts, ds, vs, out[0], out[1], out[2], out[3])
+                _put(samples, n_s, ts, ds, vs, out[0], out[1], out[2], out[3], 0.0, 0.0)
                 n_s += 1
                 j_next += 1
         # advance the state to the end of the sub-interval
@@ -437,14 +452,14 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         else:
             iso_transition(slopes, breaks, rule, st, action, index, evs[i_ev, E_DIR])
         events = _grow(events, n_e)
-        _put(events, n_e, t_ev, float(action), float(index))
+        _put(events, n_e, t_ev, float(action), float(index), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
         n_e += 1
         a_abs, f_iso, f_l, f_r = _outputs(st, st[D], st[V], mass, c_d, slopes, breaks, rule,
                                           gap_l, gap_r, law_l, p_l, law_r, p_r)
         _track_abs_acceleration(extrema, t_ev, a_abs)
         if sample_dt >= 0.0:
             samples = _grow(samples, n_s)
-            _put(samples, n_s, t_ev, st[D], st[V], a_abs, f_iso, f_l, f_r)
+            _put(samples, n_s, t_ev, st[D], st[V], a_abs, f_iso, f_l, f_r, 0.0, 0.0)
             n_s += 1
         zero_run = zero_run + 1 if tau <= 1e-12 * max(1.0, abs(t)) else 0
         if zero_run > ZENO_REPEATS:
@@ -458,7 +473,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         samples = _grow(samples, n_s)
         out = _outputs(st, st[D], st[V], mass, c_d, slopes, breaks, rule, gap_l, gap_r,
                        law_l, p_l, law_r, p_r)
-        _put(samples, n_s, st[T], st[D], st[V], out[0], out[1], out[2], out[3])
+        _put(samples, n_s, st[T], st[D], st[V], out[0], out[1], out[2], out[3], 0.0, 0.0)
         n_s += 1
     for side in (SIDE_L, SIDE_R):
         if (st[IN_L] if side == SIDE_L else st[IN_R]) != 0.0:

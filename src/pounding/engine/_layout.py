@@ -4,6 +4,8 @@ Numba freezes module-level integers as compile-time constants, so these are safe
 inside ``@jit`` functions and cost nothing.
 """
 
+import numpy as np
+
 # ---- state vector (float64), length STATE_BASE + 2 * (n_branches - 1)
 T = 0            # time, s
 D = 1            # displacement relative to the table, m
@@ -35,8 +37,11 @@ E_KIND, E_ALPHA, E_BETA, E_GAMMA, E_SIDE, E_ACTION, E_INDEX, E_DIR = 0, 1, 2, 3,
 EV_COLS = 8
 KIND_LINEAR = 0   # g = alpha + beta D + gamma V (+ compression of the relaxing bumper E_SIDE)
 KIND_RELEASE = 1  # the contact law's release function on side E_SIDE
-SIDE_NONE, SIDE_L, SIDE_R = -1, 0, 1
-ACT_YIELD, ACT_REVERSAL, ACT_REGION, ACT_CONTACT, ACT_RELEASE = 0, 1, 2, 3, 4
+# Codes that compiled functions pass to each other as arguments are typed integers
+# (np.int64), not Python ints: Numba gives a Python-int constant argument a literal type
+# and compiles the callee once more for each literal value (see _jit.py).
+SIDE_NONE, SIDE_L, SIDE_R = np.int64(-1), np.int64(0), np.int64(1)
+ACT_YIELD, ACT_REVERSAL, ACT_REGION, ACT_CONTACT, ACT_RELEASE = (np.int64(k) for k in range(5))
 EVENT_NAMES = ("yield", "reversal", "branch", "contact_start", "contact_end")
 
 # ---- outputs

@@ -10,6 +10,8 @@ from __future__ import annotations
 
 import math
 
+import numpy as np
+
 from ..model.contact_laws import law_force, law_relax, law_release
 from .._jit import jit
 from ._layout import (E_ALPHA, E_BETA, E_GAMMA, E_KIND, E_SIDE, KIND_LINEAR, MODE_LINEAR, SIDE_NONE,
@@ -18,7 +20,9 @@ from ._layout import (E_ALPHA, E_BETA, E_GAMMA, E_KIND, E_SIDE, KIND_LINEAR, MOD
 from ._linear import linear_eval
 from ._numeric import dp5_step, phase_rhs
 
-W_EVENT, W_EVENT_RATE, W_VELOCITY, W_AABS_RATE, W_FORCE_RATE = 0, 1, 2, 3, 4
+# typed integers, not literals: one compiled root finder for all of them (see _layout.py)
+W_EVENT, W_EVENT_RATE, W_VELOCITY, W_AABS_RATE, W_FORCE_RATE = (np.int64(k) for k in range(5))
+NO_INDEX = np.int64(0)  # the ``idx`` argument for the functions that take none
 ROUNDING = 256.0 * 2.220446049250313e-16  # relative size of rounding noise in event values
 
 

@@ -28,6 +28,7 @@ W_DMAX, W_DMIN, W_AMAX, W_CYCLES = 0, 1, 2, 3
 W_SUMS = 4
 WINDOW_COLS = W_SUMS + 2 * SIDE_SUMS
 AMPLITUDE_FLOOR_M = 1e-12
+FIRST_CYCLE = np.int64(0)  # a typed zero for arguments (a literal 0 costs a compilation)
 
 
 @jit
@@ -72,7 +73,7 @@ def periodicity(strobe, cyc, n, window, max_period, steady_rtol, omega, round_wi
             m = k * ((window + k - 1) // k)
         if n < 2 * m + k:
             continue
-        recent = _window_distance(strobe, n, k, 0, m, tol_d, tol_v)
+        recent = _window_distance(strobe, n, k, FIRST_CYCLE, m, tol_d, tol_v)
         if recent > 1.0:
             continue
         older = _window_distance(strobe, n, k, m, 2 * m, tol_d, tol_v)
@@ -124,7 +125,10 @@ def step_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l
     """
     period = 2.0 * math.pi / omega
     t0 = state0[T]
-    exc_p = np.array([amp, omega, -(omega * t0)])  # A(t0) = 0 exactly: phase 0 at the step start
+    exc_p = np.empty(3)  # amplitude, omega, phase: A(t0) = 0 exactly, phase 0 at the step start
+    exc_p[0] = amp
+    exc_p[1] = omega
+    exc_p[2] = -(omega * t0)
     no_record = np.zeros(1)
     n_sp = (state0.size - STATE_BASE) // 2
     strobe = np.empty((n_cycles, 2 + n_sp))
@@ -136,30 +140,36 @@ def step_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l
     k = 0
     m = measure_cycles
     sums = np.zeros((1, 2 * SIDE_SUMS))
+    exc_kind = np.int64(EXC_HARMONIC)  # a typed int, not a literal: one run_kernel for all callers
     while n < n_cycles:
-        starts[n] = st
+        for q in range(st.size):  # element loops, not slice assignment (less to compile)
+            starts[n, q] = st[q]
         st, _, contacts, _, _, extrema, status = run_kernel(
             mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
-            EXC_HARMONIC, exc_p, no_record, no_record, st, t0 + (n + 1) * period, -1.0, rtol,
+            exc_kind, exc_p, no_record, no_record, st, t0 + (n + 1) * period, -1.0, rtol,
             max_events)
         cyc[n, CY_DMAX] = extrema[0]
         cyc[n, CY_DMIN] = extrema[2]
         cyc[n, CY_AMAX] = extrema[4]
         sums[0] = 0.0
-        add_impacts(contacts, mass, sums, 0)
-        cyc[n, CY_SUMS:] = sums[0]
+        add_impacts(contacts, mass, sums, FIRST_CYCLE)
+        for q in range(2 * SIDE_SUMS):
+            cyc[n, CY_SUMS + q] = sums[0, q]
         strobe[n, 0] = st[D]
         strobe[n, 1] = st[V]
-        strobe[n, 2:] = st[STATE_BASE:STATE_BASE + n_sp]
+        for q in range(n_sp):
+            strobe[n, 2 + q] = st[STATE_BASE + q]
         n += 1
         if status != SUCCESS:
             break
         if adaptive:
-            k, m = periodicity(strobe, cyc, n, measure_cycles, max_period, steady_rtol, omega, True)
+            k, m = periodicity(strobe, cyc, n, measure_cycles, max_period, steady_rtol, omega, adaptive)
             if k > 0:
                 break
     if not adaptive or k == 0:
-        k, m = periodicity(strobe, cyc, n, measure_cycles, max_period, steady_rtol, omega, False)
+        # not rounded (``adaptive and k > 0`` is False here; a runtime bool, not a literal)
+        k, m = periodicity(strobe, cyc, n, measure_cycles, max_period, steady_rtol, omega,
+                           adaptive and k > 0)
     m = min(m, n)
     window = np.zeros(WINDOW_COLS)
     window[W_DMAX] = -np.inf
@@ -169,5 +179,6 @@ def step_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l
         window[W_DMAX] = max(window[W_DMAX], cyc[j, CY_DMAX])
         window[W_DMIN] = min(window[W_DMIN], cyc[j, CY_DMIN])
         window[W_AMAX] = max(window[W_AMAX], cyc[j, CY_AMAX])
-        window[W_SUMS:] += cyc[j, CY_SUMS:]
+        for q in range(2 * SIDE_SUMS):
+            window[W_SUMS + q] += cyc[j, CY_SUMS + q]
     return st, n, k, window, starts[n - m].copy(), status

@@ -1,0 +1,47 @@
+"""Compile-time guard: every compiled function of the package is specialised only once.
+
+Numba compiles a function again for each new argument type, and a Python-int constant
+argument (or a counter initialised from one) is a literal type of its own, as is a
+read-only array.  Each extra specialisation costs a compilation on first use (cold start
+is an issue 5 target), so a typical session, run in a fresh process, must leave exactly
+one signature per dispatcher.
+"""
+
+from __future__ import annotations
+
+import json
+import subprocess
+import sys
+import textwrap
+
+SESSION = textwrap.dedent("""
+    import gc, json
+    import numpy as np
+    from numba.core.registry import CPUDispatcher
+    import pounding as p
+
+    osc = p.presets.paper_printed()
+    p.simulate(osc, p.Harmonic(0.05, 2.2), 1.0, sample_rate_hz=100.0)
+    run = p.simulate(osc, p.Harmonic(0.05, 2.2), 3.0, p.State.at_rest(osc, velocity_m_s=0.6))
+    run.impacts
+    hc = p.Oscillator(500.0, osc.isolator, p.Bumpers(0.015, 0.015, p.HuntCrossley(1e8, 1.5, 1e5)))
+    p.simulate(hc, p.Harmonic(0.05, 2.2), 2.0, p.State.at_rest(hc, velocity_m_s=0.6))
+    el = p.Oscillator(500.0, p.Isolator(osc.isolator.slopes, osc.isolator.breakpoints, "elastic", 10.0),
+                      osc.bumpers)
+    t = np.linspace(0.0, 2.0, 201)
+    p.simulate(el, p.Record(t, np.sin(7.0 * t)), 2.0)
+    p.sweep(osc, 0.05, [1.0, 1.1], steady="fixed", cycles=3, measure_cycles=1)
+    p.sweep(osc, 0.05, [1.0, 1.1], max_cycles=40)
+    many = {}
+    for obj in gc.get_objects():
+        if isinstance(obj, CPUDispatcher) and obj.py_func.__module__.startswith("pounding"):
+            if len(obj.signatures) > 1:
+                many[obj.py_func.__qualname__] = [str(s) for s in obj.signatures]
+    print(json.dumps(many))
+""")
+
+
+def test_each_compiled_function_has_one_specialisation():
+    out = subprocess.run([sys.executable, "-c", SESSION], capture_output=True, text=True, check=True)
+    many = json.loads(out.stdout.strip().splitlines()[-1])
+    assert many == {}, f"compiled more than once (pass typed ints, writable arrays): {many}"
