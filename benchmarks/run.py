@@ -1,0 +1,267 @@
+"""pounding against OpenSeesPy and scipy on the same work, in the same run (issue 5).
+
+    pip install -e ".[bench]"      # the peers (openseespy); scipy comes with pounding
+    python benchmarks/run.py       # about 3 minutes; --quick for a smoke run, --no-write
+                                   # to leave benchmarks/RESULTS.md alone
+
+Work: the printed YBs system (``presets.paper_printed()``, kinematic isolator).
+  1. a stepped sweep, a_G = 0.05, up, 0.5 to 5.0 Hz, 30 cycles per step, the last 5 measured;
+  2. one long run, 60 s at 2.2 Hz from v0 = 0.6 m/s (the impacting branch), the last 5
+     cycles measured.
+Per tool: wall time, simulated seconds per wall second, and the largest relative error of
+alpha and eta (over the steps) against a converged reference: pounding at rtol 1e-12,
+cross-checked against OpenSeesPy at a 0.125 ms step.  Then pounding/peer speed ratios, the
+whole campaign on one core and on all, and the cold start (a fresh process: first call
+including compilation, with an empty and with a filled Numba cache).  The table goes to
+benchmarks/RESULTS.md between its ``run.py`` markers, with the machine's description.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import platform
+import subprocess
+import sys
+import tempfile
+import time
+from datetime import date
+from pathlib import Path
+
+import numpy as np
+
+import pounding as pd_
+import peers
+
+HERE = Path(__file__).resolve().parent
+RESULTS = HERE / "RESULTS.md"
+BEGIN, END = "<!-- run.py: begin -->", "<!-- run.py: end -->"
+A_G, CYCLES, MEASURED = 0.05, 30, 5
+LONG_F_HZ, LONG_S, LONG_V0 = 2.2, 60.0, 0.6
+TARGET_SPEED, TARGET_ERROR = 200.0, 100.0
+TARGET_CAMPAIGN_S, TARGET_COLD_S, TARGET_WARM_S = 0.5, 10.0, 2.0
+
+
+def machine() -> str:
+    cpu = platform.processor() or platform.machine()
+    try:
+        for line in Path("/proc/cpuinfo").read_text().splitlines():
+            if line.startswith("model name"):
+                cpu = line.split(":", 1)[1].strip()
+                break
+    except OSError:
+        pass
+    mem = ""
+    try:
+        kb = int(Path("/proc/meminfo").read_text().split()[1])
+        mem = f", {kb / 2**20:.0f} GiB"
+    except (OSError, ValueError, IndexError):
+        pass
+    import numba
+    import scipy
+    return (f"{cpu}, {os.cpu_count()} cores{mem}, {platform.system()} {platform.release()}; "
+            f"Python {platform.python_version()}, NumPy {np.__version__}, SciPy {scipy.__version__}, "
+            f"Numba {numba.__version__}, pounding {pd_.__version__ if hasattr(pd_, '__version__') else 'dev'}")
+
+
+# pounding's linear phases are closed forms, so its default rtol (which only steers the
+# numeric contact laws) gives the reference's numbers to the last digit: its error is
+# counted as this floor, the size of the rounding noise in alpha and eta
+ERROR_FLOOR = 1e-12
+
+
+def errors(outcome, ref, keep=None):
+    """Largest relative error of alpha and of eta over the steps (those of ``keep`` only)."""
+    keep = np.ones(ref.alpha.size, bool) if keep is None else keep
+    return (float(np.max(np.abs(outcome.alpha[keep] / ref.alpha[keep] - 1.0))),
+            float(np.max(np.abs(outcome.eta[keep] / ref.eta[keep] - 1.0))))
+
+
+def fmt_error(e: float) -> str:
+    return f"< {ERROR_FLOOR:.0e}" if e < ERROR_FLOOR else f"{e:.1e}"
+
+
+def table(title, outcomes, ref, pounding_row, keep=None):
+    lines = [f"**{title}**", "",
+             "| tool | wall s | simulated s / wall s | alpha error | eta error | pounding speed / tool |",
+             "| --- | ---: | ---: | ---: | ---: | ---: |"]
+    for o in outcomes:
+        ea, ee = errors(o, ref, keep)
+        ratio = pounding_row.rate / o.rate
+        lines.append(f"| {o.tool} | {o.wall_s:.4g} | {o.rate:,.0f} | {fmt_error(ea)} | {fmt_error(ee)} "
+                     f"| {ratio:,.0f} |")
+    return lines
+
+
+def verdict(ok: bool) -> str:
+    return "met" if ok else "**missed**"
+
+
+COLD = """
+import sys, time
+t0 = time.perf_counter()
+import pounding as p
+t1 = time.perf_counter()
+osc = p.presets.paper_printed()
+if sys.argv[1] == "simulate":
+    p.simulate(osc, p.Harmonic(0.05, 2.2), 1.0)
+else:
+    p.campaign(osc.without_bumpers(), osc, freqs_hz=[1.0, 2.0], steady="fixed", cycles=3, measure_cycles=1)
+t2 = time.perf_counter()
+print(t1 - t0, t2 - t1)
+"""
+
+
+def first_call(what: str, cache_dir: str) -> tuple[float, float]:
+    """(import s, first call s) in a fresh process using ``cache_dir`` as Numba's cache."""
+    env = dict(os.environ, NUMBA_CACHE_DIR=cache_dir)
+    out = subprocess.run([sys.executable, "-c", COLD, what], env=env, capture_output=True, text=True, check=True)
+    imp, call = out.stdout.split()[-2:]
+    return float(imp), float(call)
+
+
+def campaign_times(repeats: int) -> list[tuple[int, float, float]]:
+    ybs = pd_.presets.paper_printed()
+    nbs = ybs.without_bumpers()
+    kw = dict(steady="fixed", cycles=CYCLES, measure_cycles=MEASURED)
+    freqs = pd_.paper_frequencies_hz()
+    simulated = float(np.sum(CYCLES / freqs)) * (3 + 4) * 2
+    pd_.campaign(nbs, ybs, **kw)
+    rows = []
+    for workers in sorted({1, os.cpu_count() or 1}):
+        best = min(_timed(lambda: pd_.campaign(nbs, ybs, workers=workers, **kw)) for _ in range(repeats))
+        rows.append((workers, best, simulated / best))
+    return rows
+
+
+def _timed(fn) -> float:
+    t0 = time.perf_counter()
+    fn()
+    return time.perf_counter() - t0
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--quick", action="store_true", help="fewer frequencies, shorter runs: a smoke test")
+    ap.add_argument("--no-write", action="store_true", help="print only; leave RESULTS.md alone")
+    args = ap.parse_args()
+    freqs = pd_.paper_frequencies_hz()
+    long_s = LONG_S
+    if args.quick:
+        freqs, long_s = freqs[::9], 10.0
+    osc = pd_.presets.paper_printed()
+    exc = pd_.Harmonic(A_G, LONG_F_HZ)
+    print(f"machine: {machine()}")
+    ops, missing = peers.load_opensees()
+    if missing:
+        print(f"OpenSeesPy: not measured: {missing}")
+
+    print("\n[1] stepped sweep (YBs, a_G = 0.05, up, 30 cycles per step, last 5 measured)")
+    ref = peers.pounding_sweep(osc, A_G, freqs, CYCLES, MEASURED, rtol=1e-12, repeats=1)
+    sweep_rows = [peers.pounding_sweep(osc, A_G, freqs, CYCLES, MEASURED)]
+    cross = None
+    if ops is not None:
+        sweep_rows.append(peers.opensees_sweep(ops, osc, A_G, freqs, CYCLES, MEASURED, 1e-3))
+        cross = peers.opensees_sweep(ops, osc, A_G, freqs, CYCLES, MEASURED, 0.125e-3)
+        sweep_rows.append(cross)
+    for rtol, atol in ((1e-6, 1e-9), (1e-10, 1e-13)):
+        sweep_rows.append(peers.scipy_sweep(osc, A_G, freqs, CYCLES, MEASURED, rtol, atol))
+    ill = peers.ill_conditioned_steps(osc, A_G, freqs, CYCLES, MEASURED, ref)
+    print("\n".join(table("sweep, well-conditioned steps", sweep_rows, ref, sweep_rows[0], ~ill)))
+    print(f"ill-conditioned steps (left out of the errors): {freqs[ill]} Hz")
+
+    print(f"\n[2] one long run ({long_s:g} s at {LONG_F_HZ} Hz from v0 = {LONG_V0} m/s, last 5 cycles measured)")
+    lref = peers.pounding_long(osc, exc, long_s, LONG_V0, MEASURED, rtol=1e-12, repeats=1)
+    long_rows = [peers.pounding_long(osc, exc, long_s, LONG_V0, MEASURED)]
+    if ops is not None:
+        long_rows.append(peers.opensees_long(ops, osc, exc, long_s, LONG_V0, MEASURED, 1e-3))
+        long_rows.append(peers.opensees_long(ops, osc, exc, long_s, LONG_V0, MEASURED, 0.125e-3))
+    for rtol, atol in ((1e-6, 1e-9), (1e-10, 1e-13)):
+        long_rows.append(peers.scipy_long(osc, exc, long_s, LONG_V0, MEASURED, rtol, atol))
+    print("\n".join(table("long run", long_rows, lref, long_rows[0])))
+
+    print("\n[3] the whole campaign (14 sweeps x 46 steps x 30 cycles, fixed mode), warm, best of 5")
+    camp = campaign_times(2 if args.quick else 5)
+    for workers, wall, rate in camp:
+        print(f"  {workers} worker(s): {wall:.3f} s ({rate:,.0f} simulated s / wall s)")
+
+    print("\n[4] cold start: a fresh process, first call including compilation")
+    cold = {}
+    for what in ("simulate", "campaign"):
+        with tempfile.TemporaryDirectory() as cache:
+            cold[what] = (first_call(what, cache), first_call(what, cache))
+        (i0, c0), (i1, c1) = cold[what]
+        print(f"  first {what}: {c0:.1f} s with an empty Numba cache, {c1:.2f} s with it filled "
+              f"(import {i0:.2f} s / {i1:.2f} s)")
+
+    lines = report(freqs, ill, sweep_rows, ref, cross, long_rows, lref, camp, cold, ops is not None, missing)
+    print("\n" + "\n".join(lines[-8:]))
+    if not args.no_write and not args.quick:
+        write_results(lines)
+        print(f"\nwritten to {RESULTS}")
+
+
+def report(freqs, ill, sweep_rows, ref, cross, long_rows, lref, camp, cold, have_ops, missing):
+    lines = [BEGIN, f"## `python benchmarks/run.py` ({date.today().isoformat()})", "",
+             f"Machine: {machine()}.", "",
+             f"System: `presets.paper_printed()` (YBs, kinematic isolator). Reference: pounding at rtol "
+             f"1e-12; errors are the largest relative error over the {int((~ill).sum())} well-conditioned "
+             f"steps of {len(freqs)}.", ""]
+    lines += table(f"Stepped sweep: a_G = {A_G}, up, {freqs[0]:g}-{freqs[-1]:g} Hz, {CYCLES} cycles per step "
+                   f"(last {MEASURED} measured), {sweep_rows[0].simulated_s:,.0f} simulated s",
+                   sweep_rows, ref, sweep_rows[0], ~ill) + [""]
+    worst = ", ".join(f"{o.tool.split(',')[0].split(' (')[0]}{o.tool[o.tool.find(' dt'):] if ' dt' in o.tool else ''}"
+                      f"{' ' + o.tool[o.tool.find('(rtol'):] if '(rtol' in o.tool else ''} {errors(o, ref)[0]:.1e}"
+                      for o in sweep_rows[1:])
+    lines += [f"Ill-conditioned steps, left out above: {', '.join(f'{f:g}' for f in freqs[ill])} Hz (a 1e-9 "
+              f"change of the mass moves alpha or eta by more than 1e-6 there: the sweep grazes the bumpers "
+              f"and the barely damped transient decides what follows). Over all steps the largest alpha "
+              f"errors are: {worst}.", ""]
+    lines += table(f"Long run: {long_rows[0].simulated_s:g} s at {LONG_F_HZ} Hz from v0 = {LONG_V0} m/s "
+                   f"(last {MEASURED} cycles measured)", long_rows, lref, long_rows[0]) + [""]
+    if cross is not None:
+        ea, ee = errors(cross, ref, ~ill)
+        e1a, e1e = errors(sweep_rows[1], ref, ~ill)
+        lines += [f"Cross-check of the reference: OpenSeesPy at 0.125 ms agrees with it to {ea:.1e} (alpha) "
+                  f"and {ee:.1e} (eta); at 1 ms to {e1a:.1e} and {e1e:.1e}: it converges towards the "
+                  f"reference.", ""]
+    lines += ["| campaign, warm (best of 5) | wall s | simulated s / wall s |", "| --- | ---: | ---: |"]
+    lines += [f"| {w} worker(s) | {wall:.3f} | {rate:,.0f} |" for w, wall, rate in camp] + [""]
+    lines += ["| cold start (fresh process) | empty Numba cache, s | filled cache, s |", "| --- | ---: | ---: |"]
+    lines += [f"| first `{what}` (plus import) | {c[0][1]:.1f} (+{c[0][0]:.1f}) | {c[1][1]:.2f} (+{c[1][0]:.2f}) |"
+              for what, c in cold.items()] + [""]
+    lines += ["Targets:"]
+    if have_ops:
+        for name, rows, r, keep in (("sweep", sweep_rows, ref, ~ill), ("long run", long_rows, lref, None)):
+            speed = rows[0].rate / rows[1].rate
+            err_ratio = min(e1 / max(e0, ERROR_FLOOR)
+                            for e0, e1 in zip(errors(rows[0], r, keep), errors(rows[1], r, keep)))
+            lines.append(f"- {name}: {speed:,.0f} x OpenSeesPy's speed at 1 ms (target {TARGET_SPEED:g}): "
+                         f"{verdict(speed >= TARGET_SPEED)}; error {err_ratio:.1e} x smaller (target "
+                         f"{TARGET_ERROR:g}; pounding's error counted as {ERROR_FLOOR:g}): {verdict(err_ratio >= TARGET_ERROR)}.")
+    else:
+        lines.append(f"- OpenSeesPy targets not measured: {missing}.")
+    best_camp = min(w for _, w, _ in camp)
+    cold_s = max(c[0][1] for c in cold.values())
+    warm_s = max(c[1][1] + c[1][0] for c in cold.values())
+    lines += [f"- campaign {best_camp:.3f} s warm (target {TARGET_CAMPAIGN_S} s): {verdict(best_camp <= TARGET_CAMPAIGN_S)}.",
+              f"- cold start {cold_s:.1f} s, first call (target {TARGET_COLD_S:g} s): {verdict(cold_s <= TARGET_COLD_S)}.",
+              f"- warm-cache start {warm_s:.2f} s, import and first call (target {TARGET_WARM_S:g} s): "
+              f"{verdict(warm_s <= TARGET_WARM_S)}.", END]
+    return lines
+
+
+def write_results(lines):
+    text = RESULTS.read_text() if RESULTS.exists() else "# Benchmark results\n"
+    block = "\n".join(lines)
+    if BEGIN in text and END in text:
+        head, rest = text.split(BEGIN, 1)
+        text = head + block + rest.split(END, 1)[1]
+    else:
+        head, _, tail = text.partition("\n")
+        text = f"{head}\n\n{block}\n{tail}"
+    RESULTS.write_text(text)
+
+
+if __name__ == "__main__":
+    main()
