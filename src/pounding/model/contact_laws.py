@@ -207,3 +207,10 @@ def law_release(law, p, d, dd, ddd):
     if law == KELVIN_VOIGT:
         return p[0] * d + p[1] * dd, p[0] * dd + p[1] * ddd
     return p[0] + p[1] * dd, p[1] * ddd
+
+
+@jit
+def law_force_many(law, p, d, dd, out):
+    """``law_force`` at each ``(d[i], dd[i])`` into ``out[i]`` (N): arrays of one shape (n,)."""
+    for i in range(d.size):
+        out[i] = law_force(law, p, d[i], dd[i])[0]
