@@ -42,8 +42,10 @@ class Outcome:
         return self.simulated_s / self.wall_s
 
 
-def step_durations_s(freqs_hz, cycles: int) -> np.ndarray:
-    return cycles / np.asarray(freqs_hz, dtype=float)
+def sweep_outcome(tool, wall_s, freqs_hz, cycles, alpha, eta) -> Outcome:
+    """A sweep's outcome: the simulated time is ``cycles`` periods of every step."""
+    simulated_s = float(np.sum(cycles / np.asarray(freqs_hz, dtype=float)))
+    return Outcome(tool, wall_s, simulated_s, np.asarray(alpha, dtype=float), np.asarray(eta, dtype=float))
 
 
 # --------------------------------------------------------------------------- pounding
@@ -56,8 +58,7 @@ def pounding_sweep(osc, a_g, freqs_hz, cycles, measure, rtol=1e-10, repeats=15) 
         res = pd_.sweep(osc, a_g, freqs_hz, "up", **kw)
         best = min(best, time.perf_counter() - t0)
     df = res.to_dataframe()
-    return Outcome(f"pounding (rtol {rtol:g})", best, float(step_durations_s(freqs_hz, cycles).sum()),
-                   df["alpha"].to_numpy(), df["eta"].to_numpy())
+    return sweep_outcome(f"pounding (rtol {rtol:g})", best, freqs_hz, cycles, df["alpha"], df["eta"])
 
 
 def ill_conditioned_steps(osc, a_g, freqs_hz, cycles, measure, ref, rel_change=1e-9, tol=1e-6):
@@ -106,9 +107,8 @@ def scipy_sweep(osc, a_g, freqs_hz, cycles, measure, rtol, atol) -> Outcome:
         state, t = res.state, t_end
         alpha.append(res.a_abs_max / exc.peak_m_s2)
         eta.append((res.d_max - res.d_min) / gap)
-    wall = time.perf_counter() - t0
-    return Outcome(f"scipy solve_ivp DOP853 + events (rtol {rtol:g})", wall,
-                   float(step_durations_s(freqs_hz, cycles).sum()), np.array(alpha), np.array(eta))
+    return sweep_outcome(f"scipy solve_ivp DOP853 + events (rtol {rtol:g})", time.perf_counter() - t0,
+                         freqs_hz, cycles, alpha, eta)
 
 
 def scipy_long(osc, exc, duration_s, v0, measure, rtol, atol) -> Outcome:
@@ -232,9 +232,8 @@ def opensees_sweep(ops, osc, a_g, freqs_hz, cycles, measure, dt_s) -> Outcome:
         a_max, exc = model.hold(peak, f, cycles / f, measure / f)
         alpha.append(a_max / peak)
         eta.append(exc / gap)
-    wall = time.perf_counter() - t0
-    return Outcome(f"OpenSeesPy, Newmark + Newton, dt {dt_s * 1e3:g} ms", wall,
-                   float(step_durations_s(freqs_hz, cycles).sum()), np.array(alpha), np.array(eta))
+    return sweep_outcome(f"OpenSeesPy, Newmark + Newton, dt {dt_s * 1e3:g} ms", time.perf_counter() - t0,
+                         freqs_hz, cycles, alpha, eta)
 
 
 def opensees_long(ops, osc, exc, duration_s, v0, measure, dt_s) -> Outcome:
