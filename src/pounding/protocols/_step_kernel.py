@@ -28,7 +28,7 @@ W_DMAX, W_DMIN, W_AMAX, W_CYCLES = 0, 1, 2, 3
 W_SUMS = 4
 WINDOW_COLS = W_SUMS + 2 * SIDE_SUMS
 AMPLITUDE_FLOOR_M = 1e-12
-FIRST_CYCLE = np.int64(0)  # a typed zero for arguments (a literal 0 costs a compilation)
+TYPED_ZERO = np.int64(0)  # a typed zero for arguments (a literal 0 costs a compilation)
 
 
 @jit
@@ -73,7 +73,7 @@ def periodicity(strobe, cyc, n, window, max_period, steady_rtol, omega, round_wi
             m = k * ((window + k - 1) // k)
         if n < 2 * m + k:
             continue
-        recent = _window_distance(strobe, n, k, FIRST_CYCLE, m, tol_d, tol_v)
+        recent = _window_distance(strobe, n, k, TYPED_ZERO, m, tol_d, tol_v)
         if recent > 1.0:
             continue
         older = _window_distance(strobe, n, k, m, 2 * m, tol_d, tol_v)
@@ -152,7 +152,7 @@ def step_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l
         cyc[n, CY_DMIN] = extrema[2]
         cyc[n, CY_AMAX] = extrema[4]
         sums[0] = 0.0
-        add_impacts(contacts, mass, sums, FIRST_CYCLE)
+        add_impacts(contacts, mass, sums, TYPED_ZERO)
         for q in range(2 * SIDE_SUMS):
             cyc[n, CY_SUMS + q] = sums[0, q]
         strobe[n, 0] = st[D]
