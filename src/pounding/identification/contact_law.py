@@ -129,8 +129,10 @@ def fit_contact_law(
     elif time_s is not None:
         t = float_array("time_s", time_s)
         _same_length("time_s", t, d)
-        if np.any(np.diff(t) <= 0.0):
-            raise InputError(Problem.NOT_INCREASING, "time_s", "array")
+        bad = np.flatnonzero(np.diff(t) <= 0.0)
+        if bad.size:  # name the first sample that does not come after the one before
+            i = int(bad[0]) + 1
+            raise InputError(Problem.NOT_INCREASING, f"time_s[{i - 1}:{i + 1}]", [float(t[i - 1]), float(t[i])])
         v = np.gradient(d, t, edge_order=2)
     else:
         raise InputError(Problem.MISSING_INPUT, "time_s", None,
