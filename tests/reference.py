@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
 
 import pounding as pd_
 
@@ -62,6 +63,31 @@ def _law(law):
         def release(d, dd):
             return k + c * dd
     return force, relax, release
+
+
+def _stepped_over_graze(evs, minima, sol, t_start):
+    """The earliest event whose function dips below zero and back inside one solver step.
+
+    Events are checked at step ends only; a minimum (located as an event of the rate) with
+    a negative value means a crossing was stepped over, and so does a negative value where
+    the run stops (a minimum that coincides with another event, which ended the run just
+    before the minimum's own event could be reported).  The crossing is found on the dense output
+    between the last step end before the minimum, where the value is still positive, and
+    the minimum.  Returns ``(t, index, y)`` or None.
+    """
+    hit = None
+    for k_ev, te in enumerate(minima):
+        f = evs[k_ev][0]
+        for tm in [*te, sol.t[-1]]:
+            if tm <= t_start or f(tm, sol.sol(tm)) >= -1e-12 or (hit is not None and tm >= hit[0]):
+                continue
+            ends = [tt for tt in sol.t if t_start <= tt < tm]
+            lo = next((tt for tt in reversed(ends) if f(tt, sol.sol(tt)) > 0.0), None)
+            if lo is None:  # negative since the start: the boundary just left, not a graze
+                continue
+            root = brentq(lambda tt: f(tt, sol.sol(tt)), lo, tm, xtol=1e-16, rtol=8.9e-16)
+            hit = (root, k_ev, sol.sol(root))
+    return hit
 
 
 def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10, atol=1e-15,
@@ -211,13 +237,22 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
             ev.terminal = True
             ev.direction = -1
             funcs.append(ev)
+        n_evs = len(funcs)
+        for f, _ in evs:  # minima of the event functions: grazes a solver step stepped over
+            def ev_min(tt, y, f=f):
+                h = 1e-6
+                yp = rhs(tt, y)
+                return (f(tt + h, [y[0] + h * yp[0], y[1] + h * yp[1]])
+                        - f(tt - h, [y[0] - h * yp[0], y[1] - h * yp[1]])) / (2.0 * h)
+            ev_min.direction = 1
+            funcs.append(ev_min)
         if measure:
             def vel_zero(tt, y):
                 return y[1]
             funcs.append(vel_zero)
         t_start = t
         sol = solve_ivp(rhs, (t, t_end), [d, v], method="DOP853", rtol=rtol, atol=atol, events=funcs,
-                        dense_output=measure)
+                        dense_output=True)
         if measure:
             ye = sol.y_events[-1]
             if len(ye):
@@ -225,7 +260,9 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
                 res.d_min = min(res.d_min, float(np.min(ye[:, 0])))
             sol.t_events = sol.t_events[:-1]
             sol.y_events = sol.y_events[:-1]
-        hit = None
+        minima = sol.t_events[n_evs:]
+        sol.t_events = sol.t_events[:n_evs]
+        hit = _stepped_over_graze(evs, minima, sol, t_start)
         for k_ev, te in enumerate(sol.t_events):
             for n_t, tt in enumerate(te):
                 if tt > t_start and (hit is None or tt < hit[0]):
