@@ -17,7 +17,7 @@ import numpy as np
 
 from ..model.contact_laws import N_LAW_PARAMS, law_energy, law_force, law_is_linear, law_linear_coefficients, law_relax
 from ._isolator import iso_advance, iso_energy, iso_events, iso_linear, iso_transition
-from .._jit import jit
+from .._jit import jit, jit_entry
 from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A_WORK, ACC_L,
                       ACC_R, ACT_CONTACT, ACT_RELEASE, CONTACT_COLS, D, DEF_L, DEF_R, E_ACTION,
                       E_ALPHA, E_BETA, E_DIR, E_GAMMA, E_INDEX, E_KIND, E_SIDE, EV_COLS,
@@ -299,7 +299,7 @@ def _track_abs_acceleration(extrema, t, a):
         extrema[6] = a
 
 
-@jit
+@jit_entry
 def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
                exc_kind, exc_p, rec_t, rec_a, state0, t_end, sample_dt, rtol, max_events):
     """Simulate from ``state0`` to ``t_end``.

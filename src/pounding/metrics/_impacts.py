@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from .._jit import jit
+from .._jit import jit, jit_entry
 
 # columns of the engine's contact table (see engine/_layout.py CONTACT_COLS)
 C_SIDE, C_TSTART, C_TEND, C_VIN, C_VOUT, C_IMPULSE, C_PEAK, C_MAXCOMP, C_WORK = range(9)
@@ -21,7 +21,7 @@ N_IMPACT = len(IMPACT_COLUMNS)
 I_RESTITUTION = 0
 
 
-@jit
+@jit_entry
 def impact_row(contact, mass, out):
     """Fill ``out`` (length ``N_IMPACT``) from one contact-table row.
 

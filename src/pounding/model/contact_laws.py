@@ -22,7 +22,7 @@ import numpy as np
 
 from .._checks import non_negative, positive, real
 from .._errors import InputError, Problem
-from .._jit import jit
+from .._jit import jit, jit_entry
 
 KELVIN_VOIGT = 0
 HUNT_CROSSLEY = 1
@@ -209,7 +209,7 @@ def law_release(law, p, d, dd, ddd):
     return p[0] + p[1] * dd, p[1] * ddd
 
 
-@jit
+@jit_entry
 def law_force_many(law, p, d, dd, out):
     """``law_force`` at each ``(d[i], dd[i])`` into ``out[i]`` (N): arrays of one shape (n,)."""
     for i in range(d.size):

@@ -14,7 +14,7 @@ import math
 
 import numpy as np
 
-from .._jit import jit
+from .._jit import jit, jit_entry
 from ..engine._kernel import EXC_HARMONIC, SUCCESS, run_kernel
 from ..engine._layout import D, STATE_BASE, T, V
 from ..metrics._impacts import SIDE_SUMS, add_impacts
@@ -110,7 +110,7 @@ def _smallest_period(strobe, n, k, window, round_window, tol_d, tol_v, steady_rt
     return k, m
 
 
-@jit
+@jit_entry
 def step_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
                 amp, omega, state0, adaptive, n_cycles, measure_cycles, steady_rtol, max_period,
                 rtol, max_events):
