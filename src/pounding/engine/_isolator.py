@@ -10,12 +10,15 @@ Two hysteresis rules share the backbone ``slopes`` / ``breaks``:
 
 from __future__ import annotations
 
+import numpy as np
+
 from .._jit import jit
 from ._layout import D as I_D
 from ._layout import (ACT_REGION, ACT_REVERSAL, ACT_YIELD, E_ACTION, E_ALPHA, E_BETA, E_DIR,
                       E_GAMMA, E_INDEX, E_KIND, E_SIDE, KIND_LINEAR, REGION, SIDE_NONE,
                       STATE_BASE)
 
+NO_SPRING = np.int64(0)  # the index of events that concern no spring (typed: see _layout.py)
 RULE_KINEMATIC = 0
 RULE_ELASTIC = 1
 
@@ -109,13 +112,13 @@ def iso_events(slopes, breaks, rule, st, evs, n):
         a = abs(r)
         if r >= 0:
             if a < n_sp:
-                n = _add(evs, n, breaks[a], -1.0, 0.0, ACT_REGION, 0, 1.0)
+                n = _add(evs, n, breaks[a], -1.0, 0.0, ACT_REGION, NO_SPRING, 1.0)
             lower = breaks[a - 1] if r > 0 else -breaks[0]
-            n = _add(evs, n, -lower, 1.0, 0.0, ACT_REGION, 0, -1.0)
+            n = _add(evs, n, -lower, 1.0, 0.0, ACT_REGION, NO_SPRING, -1.0)
         else:
-            n = _add(evs, n, -breaks[a - 1], -1.0, 0.0, ACT_REGION, 0, 1.0)
+            n = _add(evs, n, -breaks[a - 1], -1.0, 0.0, ACT_REGION, NO_SPRING, 1.0)
             if a < n_sp:
-                n = _add(evs, n, breaks[a], 1.0, 0.0, ACT_REGION, 0, -1.0)
+                n = _add(evs, n, breaks[a], 1.0, 0.0, ACT_REGION, NO_SPRING, -1.0)
         return n
     slip_dir = 0.0
     for i in range(n_sp):
@@ -127,7 +130,7 @@ def iso_events(slopes, breaks, rule, st, evs, n):
         else:
             slip_dir = s
     if slip_dir != 0.0:
-        n = _add(evs, n, 0.0, 0.0, slip_dir, ACT_REVERSAL, 0, 0.0)
+        n = _add(evs, n, 0.0, 0.0, slip_dir, ACT_REVERSAL, NO_SPRING, 0.0)
     return n
 
 

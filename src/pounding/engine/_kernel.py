@@ -370,7 +370,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         a0 = (ph[P_P0] + ph[P_H] * math.sin(ph[P_PHI]) - ph[P_C] * v0 - ph[P_K] * d0) / mass
         if ph[P_MODE] != MODE_LINEAR:
             a0 = phase_eval(ph, 0.0)[2]
-        n_ev = iso_events(slopes, breaks, rule, st, evs, 0)
+        n_ev = iso_events(slopes, breaks, rule, st, evs, np.int64(0))  # typed, not literal
         n_ev = _bumper_events(st, has_b, gap_l, gap_r, law_l, law_r, evs, n_ev)
         t_vel = -1.0
         d_vel = 0.0
