@@ -7,7 +7,7 @@ from . import data, presets
 from ._errors import InputError, Interrupted, Problem, Status
 from .engine import EnergyLedger, Run, State, simulate
 from .excitation import Harmonic, Record
-from .identification import ContactLawFit, fit_contact_law
+from .identification import ContactLawFit, Identification, ModelFamily, Targets, fit_contact_law, identify, paper_targets
 from .metrics import HysteresisLoop, impact_table
 from .model import Bumpers, HuntCrossley, Isolator, KelvinVoigt, Oscillator
 from .protocols import CampaignResult, SweepResult, campaign, paper_frequencies_hz, sweep
@@ -15,8 +15,8 @@ from .protocols import CampaignResult, SweepResult, campaign, paper_frequencies_
 __version__ = "0.1.0"
 
 __all__ = [
-    "Bumpers", "CampaignResult", "ContactLawFit", "EnergyLedger", "Harmonic", "HuntCrossley", "HysteresisLoop",
+    "Bumpers", "CampaignResult", "ContactLawFit", "Identification", "ModelFamily", "Targets", "EnergyLedger", "Harmonic", "HuntCrossley", "HysteresisLoop",
     "InputError", "Interrupted", "Isolator", "KelvinVoigt", "Oscillator", "Problem", "Record",
     "Run", "State", "Status", "SweepResult", "campaign", "impact_table", "paper_frequencies_hz",
-    "data", "fit_contact_law", "presets", "simulate", "sweep",
+    "data", "fit_contact_law", "identify", "paper_targets", "presets", "simulate", "sweep",
 ]

@@ -39,6 +39,36 @@ _DATA_COLUMNS = tuple(c for c in STEP_COLUMNS if c not in ("freq_hz", "nu")) + t
     f"{c}{s}" for s in ("_left", "_right") for c in SIDE_COLUMNS)
 
 
+TABLE2_QUANTITIES = ("nu_r", "alpha", "eta", "e", "contact_nu_min", "contact_nu_max")
+TABLE3_QUANTITIES = ("mean_force_over_mg", "contact_time_ms", "peak_force_over_mg")
+TABLE4_QUANTITIES = ("dissipated_energy_per_mass", "restitution")
+
+
+def sweep_quantities(sw: SweepResult) -> dict[str, float]:
+    """The paper's per-sweep quantities (Tables 2-4) of one sweep, by their table names.
+
+    Table 2's are over the sweep (``nu_r``, max ``alpha``, ``eta``, ``e``, the contact
+    range in ``nu``); Tables 3 and 4's are the impact means at the resonance step
+    (``contact_time_ms``, ``restitution``, ``mean_force_over_mg``, ``peak_force_over_mg``,
+    ``dissipated_energy_per_mass`` in m^2/s^2).  NaN where a quantity does not exist
+    (no contact, no bumpers).
+    """
+    df = sw.to_dataframe().iloc[: sw.steps_done]
+    rng = sw.contact_range_hz
+    step = df.iloc[sw.step_index(sw.resonance_hz)]
+    mg = sw.oscillator.mass * sw.g
+    return {
+        "nu_r": sw.nu_r, "alpha": sw.alpha_max, "eta": df["eta"].max(), "e": df["e"].max(),
+        "contact_nu_min": np.nan if rng is None else rng[0] / sw.f_ref_hz,
+        "contact_nu_max": np.nan if rng is None else rng[1] / sw.f_ref_hz,
+        "mean_force_over_mg": step["mean_force_n"] / mg,
+        "contact_time_ms": step["contact_time_s"] * 1e3,
+        "peak_force_over_mg": step["peak_force_n"] / mg,
+        "dissipated_energy_per_mass": step["dissipated_energy_j"] / sw.oscillator.mass,
+        "restitution": step["restitution"],
+    }
+
+
 @dataclass(frozen=True, eq=False)
 class CampaignResult:
     """Result of :func:`pounding.campaign`.
@@ -84,45 +114,26 @@ class CampaignResult:
         (max), ``eta`` (max E / Delta, YBs), ``e`` (max E / D_tmax), ``contact_nu_min``,
         ``contact_nu_max`` (the contact range ``Delta nu_C``, NaN without contact).
         """
-        rows = []
-        for (conf, ag, d), sw in self._started():
-            df = sw.to_dataframe().iloc[: sw.steps_done]
-            rng = sw.contact_range_hz
-            rows.append({"configuration": conf, "a_g": ag, "direction": d, "nu_r": sw.nu_r,
-                         "alpha": sw.alpha_max, "eta": df["eta"].max(), "e": df["e"].max(),
-                         "contact_nu_min": np.nan if rng is None else rng[0] / sw.f_ref_hz,
-                         "contact_nu_max": np.nan if rng is None else rng[1] / sw.f_ref_hz})
-        return pd.DataFrame(rows)
+        return self._rows(TABLE2_QUANTITIES, yb_only=False)
 
-    def _at_resonance(self, columns: dict[str, Any]) -> pd.DataFrame:
-        """YBs rows of ``name: column(step, sweep)`` at each sweep's resonance step."""
+    def _rows(self, quantities: tuple[str, ...], yb_only: bool) -> pd.DataFrame:
         rows = []
         for (conf, ag, d), sw in self._started():
-            if conf != "YBs":
+            if yb_only and conf != "YBs":
                 continue
-            step = sw.to_dataframe().iloc[sw.step_index(sw.resonance_hz)]
-            row = {"configuration": conf, "a_g": ag, "direction": d, "nu_r": sw.nu_r}
-            row.update({name: column(step, sw) for name, column in columns.items()})
-            rows.append(row)
+            q = sweep_quantities(sw)
+            rows.append({"configuration": conf, "a_g": ag, "direction": d, **{k: q[k] for k in quantities}})
         return pd.DataFrame(rows)
 
     def table3(self) -> pd.DataFrame:
         """Analogue of Table 3 (YBs, at the resonance step): ``mean_force_over_mg``
         (``F_m / (M g)``), ``contact_time_ms`` and ``peak_force_over_mg``."""
-        def mg(sw: SweepResult) -> float:
-            return sw.oscillator.mass * sw.g
-
-        return self._at_resonance({
-            "mean_force_over_mg": lambda step, sw: step["mean_force_n"] / mg(sw),
-            "contact_time_ms": lambda step, sw: step["contact_time_s"] * 1e3,
-            "peak_force_over_mg": lambda step, sw: step["peak_force_n"] / mg(sw)})
+        return self._rows(("nu_r",) + TABLE3_QUANTITIES, yb_only=True)
 
     def table4(self) -> pd.DataFrame:
         """Analogue of Table 4 (YBs, at the resonance step): ``dissipated_energy_per_mass``
         (``E_d / M``, m^2/s^2) and ``restitution`` ``s``."""
-        return self._at_resonance({
-            "dissipated_energy_per_mass": lambda step, sw: step["dissipated_energy_j"] / sw.oscillator.mass,
-            "restitution": lambda step, sw: step["restitution"]})
+        return self._rows(("nu_r",) + TABLE4_QUANTITIES, yb_only=True)
 
     def plot(self, ax: Any = None, **kwargs: Any) -> list:
         """alpha and eta/e against nu for both configurations; see :func:`pounding.plots.plot_campaign`."""

@@ -1,0 +1,174 @@
+"""A model family for model updating: which system, and which of its numbers are free.
+
+The family fixes the structure (mass, number of backbone branches, hysteresis rule,
+contact law) and names every number of it; each number is either fixed (``fixed``) or
+fitted within bounds (the ``bounds`` of :func:`pounding.identify`).  Names:
+
+- ``slope_1`` ... ``slope_n``: backbone slopes, N/m (any order of size: hardening allowed);
+- ``breakpoint_1`` ... ``breakpoint_{n-1}``: backbone breakpoints, m (increasing);
+- ``isolator_damping``: ``C_d``, N s/m;
+- ``bumper_stiffness``, ``bumper_damping`` (and ``bumper_exponent`` for Hunt-Crossley):
+  the contact law's parameters, both bumpers alike;
+- ``gap``: the gap on each side, m.
+
+TOML (``pounding identify ... --family FAMILY.toml``)::
+
+    mass = 500.0
+    branches = 3
+    hysteresis = "kinematic"
+    law = "kelvin_voigt"
+    [fixed]
+    gap = 0.015
+    [bounds]
+    slope_1 = [20e3, 60e3]
+    isolator_damping = [100.0, 3000.0]
+"""
+
+from __future__ import annotations
+
+import tomllib
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .._checks import integer, one_of, positive, real
+from .._errors import InputError, Problem
+from ..model import Bumpers, HuntCrossley, Isolator, KelvinVoigt, Oscillator
+
+FAMILY_KEYS = ("mass", "branches", "hysteresis", "law", "fixed", "bounds")
+LAW_PARAMETERS = {"kelvin_voigt": ("bumper_stiffness", "bumper_damping"),
+                  "hunt_crossley": ("bumper_stiffness", "bumper_exponent", "bumper_damping")}
+
+
+@dataclass(frozen=True)
+class ModelFamily:
+    """The structure of the fitted system and the values of its fixed numbers.
+
+    Parameters
+    ----------
+    mass : float
+        kg, > 0 (weighed, never fitted).
+    branches : int
+        Number of backbone slopes ``n`` (>= 1).
+    hysteresis : {"kinematic", "elastic"}
+    law : {"kelvin_voigt", "hunt_crossley"}
+        The bumpers' contact law.
+    fixed : dict
+        ``name -> value`` for the numbers not fitted (names in the module docstring).
+    """
+
+    mass: float
+    branches: int = 3
+    hysteresis: str = "kinematic"
+    law: str = "kelvin_voigt"
+    fixed: dict[str, float] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "mass", positive("family.mass", self.mass, "kg"))
+        object.__setattr__(self, "branches", integer("family.branches", self.branches, 1))
+        one_of("family.hysteresis", self.hysteresis, ("kinematic", "elastic"))
+        one_of("family.law", self.law, tuple(LAW_PARAMETERS))
+        if not isinstance(self.fixed, dict):
+            raise InputError(Problem.WRONG_TYPE, "family.fixed", self.fixed, got=type(self.fixed).__name__,
+                             expected="dict of name -> value")
+        names = self.parameter_names
+        fixed = {}
+        for name, value in self.fixed.items():
+            if name not in names:
+                raise InputError(Problem.UNKNOWN_KEY, f"family.fixed.{name}", value, choices=", ".join(names))
+            fixed[name] = real(f"family.fixed.{name}", value)
+        object.__setattr__(self, "fixed", fixed)
+
+    @property
+    def parameter_names(self) -> tuple[str, ...]:
+        """Every number of the family, fixed or free, in a fixed order."""
+        n = self.branches
+        return (tuple(f"slope_{i + 1}" for i in range(n)) + tuple(f"breakpoint_{i + 1}" for i in range(n - 1))
+                + ("isolator_damping",) + LAW_PARAMETERS[self.law] + ("gap",))
+
+    def free_names(self, bounds: dict[str, Any]) -> tuple[str, ...]:
+        """The names ``bounds`` frees, checked: every number is fixed or bounded, not both."""
+        names = self.parameter_names
+        for name in bounds:
+            if name not in names:
+                raise InputError(Problem.UNKNOWN_KEY, f"bounds.{name}", bounds[name], choices=", ".join(names))
+            if name in self.fixed:
+                raise InputError(Problem.DUPLICATE, f"bounds.{name}", bounds[name],
+                                 repeated="a number the family fixes; fix it or bound it, not both")
+        for name in names:
+            if name not in bounds and name not in self.fixed:
+                raise InputError(Problem.MISSING_KEY, f"bounds.{name}", None,
+                                 choices=f"give it bounds [low, high] or a fixed value; names: {', '.join(names)}")
+        return tuple(n for n in names if n in bounds)
+
+    def oscillator(self, values: dict[str, float]) -> Oscillator:
+        """The YBs system for ``values`` (free numbers) plus the fixed ones.
+
+        Raises :class:`~pounding.InputError` when they make no valid system (e.g.
+        breakpoints out of order).
+        """
+        p = {**self.fixed, **values}
+        n = self.branches
+        isolator = Isolator(tuple(p[f"slope_{i + 1}"] for i in range(n)),
+                            tuple(p[f"breakpoint_{i + 1}"] for i in range(n - 1)), self.hysteresis,
+                            p["isolator_damping"])
+        if self.law == "kelvin_voigt":
+            law: Any = KelvinVoigt(p["bumper_stiffness"], p["bumper_damping"])
+        else:
+            law = HuntCrossley(p["bumper_stiffness"], p["bumper_exponent"], p["bumper_damping"])
+        return Oscillator(self.mass, isolator, Bumpers(p["gap"], p["gap"], law))
+
+    def values_of(self, oscillator: Oscillator) -> dict[str, float]:
+        """Every number of the family read from a system of this family (YBs)."""
+        iso, b = oscillator.isolator, oscillator.bumpers
+        if b is None or iso.n_branches != self.branches or b.law.TYPE != self.law:
+            raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator, got="another structure",
+                             expected=f"a YBs system with {self.branches} branches and {self.law} bumpers")
+        out = {f"slope_{i + 1}": float(k) for i, k in enumerate(iso.slopes)}
+        out.update({f"breakpoint_{i + 1}": float(x) for i, x in enumerate(iso.breakpoints)})
+        out["isolator_damping"] = float(iso.damping)
+        out["bumper_stiffness"] = float(b.law.stiffness)
+        out["bumper_damping"] = float(b.law.damping)
+        if self.law == "hunt_crossley":
+            out["bumper_exponent"] = float(b.law.exponent)
+        out["gap"] = float(b.gap_left)
+        return out
+
+    @classmethod
+    def from_toml(cls, path: str | Path) -> tuple["ModelFamily", dict[str, tuple[float, float]]]:
+        """Read a family and its bounds (format in the module docstring)."""
+        path = Path(path)
+        if not path.is_file():
+            raise InputError(Problem.NO_FILE, "family", str(path))
+        try:
+            table = tomllib.loads(path.read_text(encoding="utf-8"))
+        except tomllib.TOMLDecodeError as exc:
+            raise InputError(Problem.BAD_TOML, str(path), "...", detail=str(exc)) from None
+        for key in table:
+            if key not in FAMILY_KEYS:
+                raise InputError(Problem.UNKNOWN_KEY, key, table[key], choices=", ".join(FAMILY_KEYS))
+        if "mass" not in table:
+            raise InputError(Problem.MISSING_KEY, "mass", None, choices=", ".join(FAMILY_KEYS))
+        bounds = table.get("bounds", {})
+        family = cls(table["mass"], table.get("branches", 3), table.get("hysteresis", "kinematic"),
+                     table.get("law", "kelvin_voigt"), table.get("fixed", {}))
+        return family, check_bounds(family, bounds)
+
+
+def check_bounds(family: ModelFamily, bounds: Any) -> dict[str, tuple[float, float]]:
+    """``bounds`` as ``name -> (low, high)`` floats, checked (finite, low < high, known names)."""
+    if not isinstance(bounds, dict) or not bounds:
+        raise InputError(Problem.EMPTY, "bounds", bounds)
+    out = {}
+    for name in family.free_names(bounds):
+        pair = bounds[name]
+        if not isinstance(pair, (list, tuple, np.ndarray)) or len(pair) != 2:
+            raise InputError(Problem.WRONG_TYPE, f"bounds.{name}", pair, got=type(pair).__name__,
+                             expected="pair [low, high]")
+        low, high = real(f"bounds.{name}[0]", pair[0]), real(f"bounds.{name}[1]", pair[1])
+        if not low < high:
+            raise InputError(Problem.NOT_INCREASING, f"bounds.{name}", list(pair))
+        out[name] = (low, high)
+    return out

@@ -1,0 +1,305 @@
+"""``identify``: fit a model family's free numbers so that the simulated campaign matches
+measured targets (weighted least squares; differential evolution, then local refinement).
+
+One evaluation runs every sweep the targets need (``Targets.cases``) with the candidate
+system and compares the per-sweep quantities (:func:`pounding.protocols.campaign.sweep_quantities`)
+with the targets.  Candidates of one generation are evaluated on worker threads (the
+compiled kernels release the GIL).  The free numbers are searched on ``[0, 1]`` scaled
+from their bounds, logarithmically when a bound spans a decade or more.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import math
+import os
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+from scipy.optimize import differential_evolution, least_squares
+
+from .._checks import integer
+from .._errors import InputError, Interrupted, Problem, Status
+from ..model import Oscillator
+from ..protocols._progress import Progress, progress_reporter
+from ..protocols.campaign import sweep_quantities
+from ..protocols.sweep import make_plan, paper_frequencies_hz, sweep
+from .family import ModelFamily, check_bounds
+from .targets import Targets
+
+# residual of a target the candidate cannot produce (NaN: no contact, failed run), in tolerances
+MISSING_RESIDUAL = 10.0
+DEFAULT_SWEEP = {"steady": "fixed", "cycles": 30, "measure_cycles": 5}
+
+
+@dataclass(frozen=True, eq=False)
+class Identification:
+    """Result of :func:`pounding.identify`.
+
+    Attributes
+    ----------
+    parameters : dict
+        The fitted free numbers, ``name -> value`` (units in :mod:`~pounding.identification.family`).
+    oscillator : Oscillator
+        The fitted YBs system (``.without_bumpers()`` for NBs); ``to_toml`` writes it.
+    residuals : pandas.DataFrame
+        One row per target: ``configuration``, ``a_g``, ``direction``, ``quantity``,
+        ``target``, ``model``, ``difference`` (model - target), ``allowed`` (the tolerance in
+        the quantity's unit), ``normalized`` (difference / allowed, times the weight) and
+        ``within`` (``|normalized| <= 1``).
+    cost : float
+        Sum of squared normalized residuals (a NaN model value counts as
+        :data:`MISSING_RESIDUAL` tolerances).
+    n_evaluations : int
+        Campaign evaluations used.
+    status, message
+        ``Status.SUCCESS`` (an interrupted fit raises :class:`~pounding.Interrupted`, whose
+        ``partial`` is the best candidate so far, with a message that says so).
+    family, bounds
+        What was fitted.
+    """
+
+    parameters: dict[str, float]
+    oscillator: Oscillator
+    residuals: pd.DataFrame = field(repr=False)
+    cost: float
+    n_evaluations: int
+    status: Status
+    message: str
+    family: ModelFamily = field(repr=False)
+    bounds: dict[str, tuple[float, float]] = field(repr=False)
+
+    @property
+    def success(self) -> bool:
+        return self.status == Status.SUCCESS
+
+    @property
+    def n_within(self) -> int:
+        """How many targets are met."""
+        return int(self.residuals["within"].sum())
+
+    def to_dataframe(self) -> pd.DataFrame:
+        """The residual table (a copy of :attr:`residuals`)."""
+        return self.residuals.copy()
+
+    def parameter_table(self) -> pd.DataFrame:
+        """``name``, ``value``, ``low``, ``high`` and ``at_bound`` per free number."""
+        rows = []
+        for name, value in self.parameters.items():
+            low, high = self.bounds[name]
+            span = high - low
+            rows.append({"name": name, "value": value, "low": low, "high": high,
+                         "at_bound": min(value - low, high - value) <= 1e-3 * span})
+        return pd.DataFrame(rows)
+
+    def to_toml(self, path: str | Path) -> Path:
+        """Write the fitted system (YBs) to TOML (read back with ``Oscillator.from_toml``)."""
+        return self.oscillator.to_toml(path)
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> list:
+        """Normalized residual per target against the +-1 band; see
+        :func:`pounding.plots.plot_identification`."""
+        from ..plots import plot_identification
+
+        return plot_identification(self, ax=ax, **kwargs)
+
+
+def evaluate(oscillator: Oscillator, targets: Targets, *, freqs_hz: Any = None,
+             **sweep_options: Any) -> pd.DataFrame:
+    """Run the sweeps the targets need with ``oscillator`` (YBs; NBs is it without bumpers)
+    and return the residual table of :class:`Identification`.
+
+    ``sweep_options`` are :func:`pounding.sweep`'s (default: fixed 30 cycles, last 5 measured).
+    """
+    model = _model_values(oscillator, targets, freqs_hz, {**DEFAULT_SWEEP, **sweep_options})
+    return _residual_table(targets, model)
+
+
+def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, seed: int = 0,
+             workers: int | None = None, freqs_hz: Any = None, popsize: int = 10, maxiter: int = 30,
+             refine: bool = True, x0: dict[str, float] | None = None, progress: Progress = False,
+             **sweep_options: Any) -> Identification:
+    """Fit the free numbers of ``family`` to measured ``targets``.
+
+    Minimises the sum of squared normalized residuals (see :class:`~pounding.Targets`):
+    differential evolution over the bounds (global, reproducible with ``seed``), then
+    trust-region least squares from its best point (``refine``).
+
+    Parameters
+    ----------
+    targets : Targets
+        E.g. :func:`pounding.paper_targets` or ``Targets.from_toml``.
+    family : ModelFamily
+        Structure and fixed numbers.
+    bounds : dict
+        ``name -> (low, high)`` for every free number (low < high, finite).
+    seed : int
+        Seed of the global stage; the same seed gives the same result.
+    workers : int, optional
+        Threads evaluating candidates (default: the machine's cores).
+    freqs_hz : array_like, optional
+        Sweep steps (default the paper's 0.5 to 5.0 Hz by 0.1).
+    popsize, maxiter : int
+        Differential evolution's population per free number and generations.
+    refine : bool
+        Polish the best candidate with ``scipy.optimize.least_squares``.
+    x0 : dict, optional
+        A starting guess for the free numbers (joins the first population).
+    progress : bool or callable
+        True: a progress bar over the generations.
+    **sweep_options
+        :func:`pounding.sweep`'s options (default: fixed 30 cycles, last 5 measured).
+
+    Returns
+    -------
+    Identification
+
+    Raises
+    ------
+    InputError
+        Bad targets, family or bounds (names the field and the fix).
+    Interrupted
+        On Ctrl-C; ``partial`` is the Identification of the best candidate so far.
+    """
+    if not isinstance(targets, Targets):
+        raise InputError(Problem.WRONG_TYPE, "targets", targets, got=type(targets).__name__,
+                         expected="pounding.Targets (paper_targets() or Targets.from_toml)")
+    if not isinstance(family, ModelFamily):
+        raise InputError(Problem.WRONG_TYPE, "family", family, got=type(family).__name__,
+                         expected="pounding.ModelFamily")
+    bounds = check_bounds(family, bounds)
+    names = tuple(bounds)
+    n_workers = integer("workers", (os.cpu_count() or 1) if workers is None else workers, 1)
+    popsize = integer("popsize", popsize, 2)
+    maxiter = integer("maxiter", maxiter, 0)
+    options = {**DEFAULT_SWEEP, **sweep_options}
+    scale = _Scale(bounds)
+    cases_freqs = paper_frequencies_hz() if freqs_hz is None else freqs_hz
+    _model_values(family.oscillator(scale.values(np.full(len(names), 0.5))), targets, cases_freqs,
+                  options, check_only=True)  # bad options fail here, not in a worker
+    best = {"cost": math.inf, "u": None, "n": 0}
+
+    def residuals(u: np.ndarray) -> np.ndarray:
+        r = _normalized(targets, _try_model(family, scale.values(u), targets, cases_freqs, options))
+        cost = float(r @ r)
+        best["n"] += 1
+        if cost < best["cost"]:
+            best["cost"], best["u"] = cost, np.array(u, dtype=float)
+        return r
+
+    def cost(u: np.ndarray) -> float:
+        r = residuals(u)
+        return float(r @ r)
+
+    init: Any = "latinhypercube"
+    if x0 is not None:
+        rng = np.random.default_rng(seed)
+        pop = rng.uniform(size=(popsize * len(names), len(names)))
+        pop[0] = scale.units({k: x0[k] for k in names})
+        init = pop
+    interrupted = False
+    with progress_reporter(progress, maxiter + int(refine), "identify") as advance, \
+            cf.ThreadPoolExecutor(max_workers=n_workers, thread_name_prefix="pounding-fit") as pool:
+        try:
+            if maxiter > 0:
+                differential_evolution(
+                    cost, [(0.0, 1.0)] * len(names), seed=seed, popsize=popsize, maxiter=maxiter,
+                    init=init, polish=False, tol=0.0, updating="deferred", workers=pool.map,
+                    callback=lambda *a, **k: advance(1))
+            else:
+                cost(scale.units({k: (x0 or {}).get(k, 0.5 * sum(bounds[k])) for k in names}))
+            if refine:
+                least_squares(residuals, np.clip(best["u"], 0.0, 1.0), bounds=(0.0, 1.0), diff_step=1e-3,
+                              x_scale=1.0, xtol=1e-10, ftol=1e-10, max_nfev=40 * len(names))
+                advance(1)
+        except KeyboardInterrupt:
+            interrupted = True
+    if best["u"] is None:
+        raise Interrupted(None, 0, maxiter)
+    params = scale.values(best["u"])
+    osc = family.oscillator(params)
+    table = evaluate(osc, targets, freqs_hz=cases_freqs, **options)
+    n_ok = int(table["within"].sum())
+    message = (f"{n_ok} of {len(table)} targets within tolerance after {best['n']} evaluations; "
+               f"cost {best['cost']:.4g}.")
+    if interrupted:
+        message = "Interrupted: the best candidate so far. " + message
+    result = Identification(params, osc, table, best["cost"], best["n"], Status.SUCCESS, message, family, bounds)
+    if interrupted:
+        raise Interrupted(result, best["n"], None)
+    return result
+
+
+class _Scale:
+    """Free numbers <-> unit cube (logarithmic where a bound spans a decade or more)."""
+
+    def __init__(self, bounds: dict[str, tuple[float, float]]):
+        self.names = tuple(bounds)
+        lo = np.array([b[0] for b in bounds.values()])
+        hi = np.array([b[1] for b in bounds.values()])
+        self.log = (lo > 0.0) & (hi >= 10.0 * lo)
+        self.lo = np.where(self.log, np.log(np.where(self.log, lo, 1.0)), lo)
+        self.hi = np.where(self.log, np.log(np.where(self.log, hi, 1.0)), hi)
+
+    def values(self, u: np.ndarray) -> dict[str, float]:
+        x = self.lo + np.clip(u, 0.0, 1.0) * (self.hi - self.lo)
+        x = np.where(self.log, np.exp(x), x)
+        return {n: float(v) for n, v in zip(self.names, x)}
+
+    def units(self, values: dict[str, float]) -> np.ndarray:
+        x = np.array([values[n] for n in self.names], dtype=float)
+        x = np.where(self.log, np.log(np.abs(x) + (x == 0)), x)
+        return np.clip((x - self.lo) / (self.hi - self.lo), 0.0, 1.0)
+
+
+def _model_values(oscillator: Oscillator, targets: Targets, freqs_hz: Any, options: dict,
+                  check_only: bool = False) -> dict:
+    """``(configuration, a_g, direction) -> sweep_quantities`` for every case of the targets."""
+    out = {}
+    for conf, a_g, direction in targets.cases:
+        osc = oscillator if conf == "YBs" else oscillator.without_bumpers()
+        if check_only:
+            make_plan(osc, a_g, freqs_hz, direction, **options)
+            continue
+        out[(conf, a_g, direction)] = sweep_quantities(sweep(osc, a_g, freqs_hz, direction, **options))
+    return out
+
+
+def _try_model(family: ModelFamily, values: dict, targets: Targets, freqs_hz: Any, options: dict) -> dict | None:
+    """As :func:`_model_values` for a candidate; None when it is no valid system or a run fails."""
+    try:
+        osc = family.oscillator(values)
+    except InputError:
+        return None  # e.g. breakpoints out of order: every target missing
+    return _model_values(osc, targets, freqs_hz, options)
+
+
+def _model_column(targets: Targets, model: dict | None) -> np.ndarray:
+    t = targets.table
+    if model is None:
+        return np.full(len(t), np.nan)
+    return np.array([model[(c, float(a), d)][q] for c, a, d, q in
+                     t[["configuration", "a_g", "direction", "quantity"]].itertuples(index=False)], dtype=float)
+
+
+def _normalized(targets: Targets, model: dict | None) -> np.ndarray:
+    r = (_model_column(targets, model) - targets.table["value"].to_numpy()) / targets.allowed
+    r = r * targets.table["weight"].to_numpy()
+    return np.where(np.isfinite(r), r, MISSING_RESIDUAL)
+
+
+def _residual_table(targets: Targets, model: dict) -> pd.DataFrame:
+    t = targets.table
+    values = _model_column(targets, model)
+    out = t[["configuration", "a_g", "direction", "quantity"]].copy()
+    out["target"] = t["value"]
+    out["model"] = values
+    out["difference"] = values - t["value"].to_numpy()
+    out["allowed"] = targets.allowed
+    out["normalized"] = out["difference"] / out["allowed"] * t["weight"]
+    out["within"] = out["normalized"].abs() <= 1.0
+    return out.reset_index(drop=True)
+

@@ -1,0 +1,45 @@
+"""Plot of a model updating result: each target's normalized residual against the +-1 band."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..identification.identify import Identification
+
+
+def plot_identification(fit: "Identification", ax: Any = None) -> list:
+    """Horizontal bars of ``(model - target) / allowed`` per target; within +-1 is met.
+
+    Parameters
+    ----------
+    fit : Identification
+        A result of :func:`pounding.identify`.
+    ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    import matplotlib.pyplot as plt
+
+    df = fit.to_dataframe()
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.5, 0.22 * len(df) + 1.2))
+    r = df["normalized"].to_numpy(dtype=float)
+    shown = np.clip(np.nan_to_num(r, nan=0.0), -5.0, 5.0)
+    colors = np.where(df["within"].to_numpy(), "C2", "C3")
+    labels = [f"{c} {a:g} {d} {q}" for c, a, d, q in
+              df[["configuration", "a_g", "direction", "quantity"]].itertuples(index=False)]
+    y = np.arange(len(df))
+    artists = list(ax.barh(y, shown, color=colors))
+    artists.append(ax.axvspan(-1.0, 1.0, color="0.9", zorder=0))
+    ax.set_yticks(y, labels, fontsize="x-small")
+    ax.invert_yaxis()
+    ax.set_xlim(-5.2, 5.2)
+    ax.set_xlabel("(model - target) / tolerance (clipped at +-5)")
+    ax.set_title(f"{fit.n_within} of {len(df)} targets met", fontsize="small")
+    return artists
