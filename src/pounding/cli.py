@@ -1,4 +1,4 @@
-"""Command line: ``pounding simulate``, ``pounding sweep`` and ``pounding campaign``."""
+"""Command line: ``pounding simulate``, ``sweep``, ``campaign``, ``reproduce`` and ``identify``."""
 
 from __future__ import annotations
 
@@ -321,6 +321,60 @@ def reproduce(
                                                     "alpha_measured", f"{q}_model", f"{q}_measured")))
     console.print(summary)
     console.print(f"report -> {report.index_html} (tables CSV, {len(report.figures)} figures PNG)")
+
+
+@app.command()
+def identify(
+    targets: Optional[Path] = typer.Argument(None, help="Targets TOML (see examples/). Omit for --paper."),
+    family: Path = typer.Option(..., "--family", help="Model family TOML: structure, fixed numbers, bounds."),
+    out: Path = typer.Option(Path("calibrated.toml"), "--out", help="Write the fitted YBs system (TOML)."),
+    paper: bool = typer.Option(False, "--paper", help="Fit the paper's Tables 2-4 (instead of TARGETS.toml)."),
+    residuals: Optional[Path] = typer.Option(None, "--residuals", help="Also write the residual table (CSV)."),
+    seed: int = typer.Option(0, "--seed", help="Seed of the global search (same seed, same result)."),
+    maxiter: int = typer.Option(30, "--maxiter", help="Generations of differential evolution."),
+    popsize: int = typer.Option(10, "--popsize", help="Population per free number."),
+    fmin: float = OPT_FMIN,
+    fmax: float = OPT_FMAX,
+    fstep: float = OPT_FSTEP,
+    cycles: int = typer.Option(30, "--cycles", help="Cycles per step (fixed schedule, as the lab)."),
+    workers: Optional[int] = OPT_WORKERS,
+) -> None:
+    """Model updating: fit a family's free numbers so that the simulated sweeps match measured targets."""
+    from ._errors import Interrupted
+    from .identification import ModelFamily, Targets, identify as run_identify, paper_targets
+
+    try:
+        if (targets is None) == (not paper):
+            raise typer.BadParameter("give either TARGETS.toml or --paper (one of them)")
+        goal = paper_targets() if paper else Targets.from_toml(targets)
+        fam, bounds = ModelFamily.from_toml(family)
+        fit = run_identify(goal, fam, bounds, seed=seed, maxiter=maxiter, popsize=popsize, workers=workers,
+                           freqs_hz=_frequencies(fmin, fmax, fstep), cycles=cycles, progress=True)
+    except InputError as exc_:
+        _fail(exc_)
+        return
+    except Interrupted as stop:
+        if stop.partial is None:
+            raise typer.Exit(code=130) from None
+        fit = stop.partial
+        err_console.print("[yellow]interrupted: writing the best candidate so far[/]")
+    params = Table(title="fitted numbers")
+    for col in ("name", "value", "low", "high", "at bound"):
+        params.add_column(col)
+    for row in fit.parameter_table().itertuples(index=False):
+        params.add_row(row.name, f"{row.value:.6g}", f"{row.low:g}", f"{row.high:g}", "yes" if row.at_bound else "")
+    console.print(params)
+    table = Table(title="residuals (model - target) / tolerance")
+    for col in ("cfg", "a_G", "dir", "quantity", "target", "model", "normalized", "met"):
+        table.add_column(col)
+    for row in fit.residuals.itertuples(index=False):
+        table.add_row(row.configuration, f"{row.a_g:g}", row.direction, row.quantity, f"{row.target:.4g}",
+                      f"{row.model:.4g}", f"{row.normalized:+.2f}", "yes" if row.within else "[red]no[/]")
+    console.print(table)
+    fit.to_toml(out)
+    if residuals is not None:
+        fit.to_dataframe().to_csv(residuals, index=False)
+    console.print(f"{escape(fit.message)}\nfitted system -> {out}")
 
 
 if __name__ == "__main__":  # pragma: no cover

@@ -246,12 +246,12 @@ class _Scale:
 
     def values(self, u: np.ndarray) -> dict[str, float]:
         x = self.lo + np.clip(u, 0.0, 1.0) * (self.hi - self.lo)
-        x = np.where(self.log, np.exp(x), x)
+        x[self.log] = np.exp(x[self.log])
         return {n: float(v) for n, v in zip(self.names, x)}
 
     def units(self, values: dict[str, float]) -> np.ndarray:
         x = np.array([values[n] for n in self.names], dtype=float)
-        x = np.where(self.log, np.log(np.abs(x) + (x == 0)), x)
+        x[self.log] = np.log(np.maximum(x[self.log], np.exp(self.lo[self.log])))
         return np.clip((x - self.lo) / (self.hi - self.lo), 0.0, 1.0)
 
 

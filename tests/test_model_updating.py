@@ -1,0 +1,168 @@
+"""Model updating (issue 6): ``identify`` recovers what made its targets, bad targets get
+clear errors, and the shipped calibrated preset reproduces its stored residuals."""
+
+from __future__ import annotations
+
+import matplotlib
+import numpy as np
+import pandas as pd
+import pytest
+from typer.testing import CliRunner
+
+import pounding as pd_
+from pounding.cli import app
+from pounding.identification import evaluate
+
+matplotlib.use("Agg")
+
+FREQS_HZ = np.arange(0.5, 4.01, 0.25)
+FAST = dict(freqs_hz=FREQS_HZ, cycles=20)
+PRINTED_BACKBONE = {"slope_1": 38e3, "slope_2": 18e3, "slope_3": 2e3, "breakpoint_1": 0.015,
+                    "breakpoint_2": 0.04, "gap": 0.015}
+
+
+def _self_made_targets(osc, cases):
+    """Targets whose values are what ``osc`` itself gives (so the truth is a zero residual)."""
+    recs = [dict(configuration=c, a_g=a, quantity=q, value=1.0) for c, a, qs in cases for q in qs]
+    model = evaluate(osc, pd_.Targets.from_records(recs), **FAST)["model"]
+    for rec, value in zip(recs, model):
+        rec["value"] = float(value)
+    return pd_.Targets.from_records(recs)
+
+
+def test_bumper_and_damping_numbers_are_recovered():
+    family = pd_.ModelFamily(500.0, 3, "kinematic", "kelvin_voigt", fixed=PRINTED_BACKBONE)
+    truth = {"isolator_damping": 1000.0, "bumper_stiffness": 1.46e6, "bumper_damping": 400.0}
+    targets = _self_made_targets(family.oscillator(truth), [
+        ("NBs", 0.05, ("alpha", "e")), ("YBs", 0.05, ("alpha", "eta", "contact_time_ms", "restitution")),
+        ("YBs", 0.1, ("alpha", "eta", "contact_time_ms", "restitution"))])
+    bounds = {"isolator_damping": (300.0, 3000.0), "bumper_stiffness": (3e5, 5e6), "bumper_damping": (50.0, 2000.0)}
+    fit = pd_.identify(targets, family, bounds, seed=1, maxiter=15, popsize=8, **FAST)
+    for name, value in truth.items():
+        assert fit.parameters[name] == pytest.approx(value, rel=0.02), name
+    assert fit.n_within == len(targets)
+    assert fit.residuals["normalized"].abs().max() < 1e-3
+    assert fit.oscillator.bumpers.law.damping == pytest.approx(400.0, rel=0.02)
+
+
+def test_backbone_numbers_are_recovered():
+    fixed = {k: v for k, v in PRINTED_BACKBONE.items() if k not in ("slope_1", "breakpoint_1")}
+    family = pd_.ModelFamily(500.0, 3, "kinematic", "kelvin_voigt",
+                             fixed={**fixed, "bumper_stiffness": 1.46e6, "bumper_damping": 400.0})
+    truth = {"slope_1": 38e3, "breakpoint_1": 0.015, "isolator_damping": 800.0}
+    targets = _self_made_targets(family.oscillator(truth), [
+        ("NBs", a, ("alpha", "e")) for a in (0.03, 0.05, 0.1)])
+    bounds = {"slope_1": (20e3, 60e3), "breakpoint_1": (0.005, 0.035), "isolator_damping": (200.0, 3000.0)}
+    fit = pd_.identify(targets, family, bounds, seed=2, maxiter=15, popsize=8, **FAST)
+    for name, value in truth.items():
+        assert fit.parameters[name] == pytest.approx(value, rel=0.02), name
+
+
+def test_same_seed_same_result():
+    family = pd_.ModelFamily(500.0, 3, "kinematic", "kelvin_voigt",
+                             fixed={**PRINTED_BACKBONE, "bumper_stiffness": 1.46e6, "bumper_damping": 400.0})
+    targets = pd_.Targets.from_records([dict(configuration="NBs", a_g=0.05, quantity="alpha", value=2.5)])
+    runs = [pd_.identify(targets, family, {"isolator_damping": (200.0, 3000.0)}, seed=3, maxiter=3,
+                         popsize=4, refine=False, workers=w, **FAST) for w in (1, 2)]
+    assert runs[0].parameters == runs[1].parameters
+
+
+BASE = dict(configuration="YBs", a_g=0.05, quantity="alpha", value=16.8)
+
+
+@pytest.mark.parametrize("change, field", [
+    ({"colour": "red"}, "target[0].colour"),
+    ({"value": float("nan")}, "target[0].value"),
+    ({"quantity": "nu_r", "value": -1.1}, "target[0].value"),
+    ({"a_g": -0.05}, "target[0].a_g"),
+    ({"quantity": "alfa"}, "target[0].quantity"),
+    ({"configuration": "ybs"}, "target[0].configuration"),
+    ({"direction": "sideways"}, "target[0].direction"),
+    ({"tolerance": 0.0}, "target[0].tolerance"),
+])
+def test_bad_targets_name_the_field(change, field):
+    with pytest.raises(pd_.InputError) as err:
+        pd_.Targets.from_records([{**BASE, **change}])
+    assert err.value.field == field
+    assert "Fix:" in str(err.value)
+
+
+def test_missing_and_repeated_targets_are_refused():
+    rec = dict(BASE)
+    del rec["value"]
+    with pytest.raises(pd_.InputError, match=r"target\[0\]\.value"):
+        pd_.Targets.from_records([rec])
+    with pytest.raises(pd_.InputError, match="repeats"):
+        pd_.Targets.from_records([BASE, BASE])
+
+
+def test_bad_toml_targets(tmp_path):
+    path = tmp_path / "t.toml"
+    path.write_text('[[target]]\nconfiguration = "YBs"\na_g = 0.05\nquantity = "alpha"\nvalue = nan\n')
+    with pytest.raises(pd_.InputError, match=r"target\[0\]\.value"):
+        pd_.Targets.from_toml(path)
+    path.write_text('[[targets]]\nvalue = 1\n')
+    with pytest.raises(pd_.InputError, match="targets.*not a known key"):
+        pd_.Targets.from_toml(path)
+    path.write_text('[[target]\n')
+    with pytest.raises(pd_.InputError, match="not valid TOML"):
+        pd_.Targets.from_toml(path)
+
+
+@pytest.mark.parametrize("bounds, field", [
+    ({"isolator_damping": (3000.0, 100.0), "bumper_stiffness": (1e5, 1e6), "bumper_damping": (1.0, 10.0)},
+     "bounds.isolator_damping"),
+    ({"isolator_damping": (100.0, float("nan")), "bumper_stiffness": (1e5, 1e6), "bumper_damping": (1.0, 10.0)},
+     "bounds.isolator_damping[1]"),
+    ({"isolator_damping": (100.0, 300.0), "bumper_stiffness": (1e5, 1e6)}, "bounds.bumper_damping"),
+    ({"isolator_damping": (100.0, 300.0), "bumper_stiffness": (1e5, 1e6), "bumper_damping": (1.0, 10.0),
+      "slope_9": (1.0, 2.0)}, "bounds.slope_9"),
+    ({"isolator_damping": (100.0, 300.0), "bumper_stiffness": (1e5, 1e6), "bumper_damping": (1.0, 10.0),
+      "gap": (0.01, 0.02)}, "bounds.gap"),
+    ({"isolator_damping": 100.0, "bumper_stiffness": (1e5, 1e6), "bumper_damping": (1.0, 10.0)},
+     "bounds.isolator_damping"),
+])
+def test_bad_bounds_name_the_field(bounds, field):
+    family = pd_.ModelFamily(500.0, 3, fixed=PRINTED_BACKBONE)
+    targets = pd_.Targets.from_records([BASE])
+    with pytest.raises(pd_.InputError) as err:
+        pd_.identify(targets, family, bounds, maxiter=1)
+    assert err.value.field == field
+
+
+def test_family_refuses_unknown_fixed_numbers():
+    with pytest.raises(pd_.InputError, match="family.fixed.slope_4"):
+        pd_.ModelFamily(500.0, 3, fixed={"slope_4": 1.0})
+
+
+def test_paper_targets_cover_the_tables():
+    t = pd_.paper_targets().table
+    assert set(t["quantity"]) == {"nu_r", "alpha", "eta", "e", "contact_nu_min", "contact_nu_max",
+                                  "contact_time_ms", "restitution"}
+    assert len(t[(t.configuration == "YBs") & (t.quantity == "contact_time_ms")]) == 4
+    assert ((t.configuration == "NBs") & (t.a_g == 0.03) & (t.quantity == "e")).sum() == 0  # misprinted
+    yb = t[(t.configuration == "YBs") & (t.quantity == "alpha")].set_index("a_g")["value"]
+    assert yb[0.05] == 16.8
+
+
+def test_cli_identify_writes_a_system(tmp_path):
+    out = tmp_path / "fit.toml"
+    res_csv = tmp_path / "res.csv"
+    runner = CliRunner()
+    result = runner.invoke(app, ["identify", "examples/targets.toml", "--family", "examples/family.toml",
+                                 "--out", str(out), "--residuals", str(res_csv), "--maxiter", "2",
+                                 "--popsize", "3", "--fmin", "0.5", "--fmax", "4", "--fstep", "0.25",
+                                 "--cycles", "10"])
+    assert result.exit_code == 0, result.output
+    fitted = pd_.Oscillator.from_toml(out)
+    assert fitted.bumpers is not None and fitted.isolator.slopes == (38e3, 18e3, 2e3)
+    assert len(pd.read_csv(res_csv)) == 5
+    bad = runner.invoke(app, ["identify", "--family", "examples/family.toml"])
+    assert bad.exit_code != 0
+
+
+def test_identification_plot_returns_artists():
+    family = pd_.ModelFamily(500.0, 3, fixed={**PRINTED_BACKBONE, "bumper_stiffness": 1.46e6, "bumper_damping": 5.0})
+    targets = pd_.Targets.from_records([dict(configuration="NBs", a_g=0.05, quantity="alpha", value=2.5)])
+    fit = pd_.identify(targets, family, {"isolator_damping": (200.0, 3000.0)}, maxiter=0, refine=False, **FAST)
+    assert len(fit.plot()) == 2
