@@ -67,7 +67,7 @@ def simulate(
     a_g: float = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
     freq: float = typer.Option(..., "--freq", help="Excitation frequency, Hz."),
     duration: float = typer.Option(20.0, "--duration", help="Simulated time, s."),
-    preset: Optional[str] = typer.Option(None, "--preset", help="Use a built-in system: paper-printed or paper-damped."),
+    preset: Optional[str] = typer.Option(None, "--preset", help="Use a built-in system: paper-printed, paper-damped or paper-calibrated."),
     no_bumpers: bool = typer.Option(False, "--no-bumpers", help="With --preset: the NBs configuration."),
     sample_rate: float = typer.Option(1000.0, "--sample-rate", help="History samples per second, Hz."),
     velocity: float = typer.Option(0.0, "--velocity", help="Initial velocity relative to the table, m/s."),
@@ -146,7 +146,7 @@ def sweep(
     a_g: float = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
     direction: str = typer.Option("up", "--direction", help="up or down."),
     out: Optional[Path] = typer.Option(None, "--out", help="Write the per-step table (CSV)."),
-    preset: Optional[str] = typer.Option(None, "--preset", help="Use a built-in system: paper-printed or paper-damped."),
+    preset: Optional[str] = typer.Option(None, "--preset", help="Use a built-in system: paper-printed, paper-damped or paper-calibrated."),
     no_bumpers: bool = typer.Option(False, "--no-bumpers", help="With --preset: the NBs configuration."),
     fmin: float = OPT_FMIN,
     fmax: float = OPT_FMAX,
@@ -213,7 +213,7 @@ def _save_figure(draw: Callable, path: Path) -> None:
 @app.command()
 def campaign(
     out: Path = typer.Option(..., "--out", help="Directory for campaign.nc, steps.csv, table2-4.csv, campaign.png."),
-    preset: Optional[str] = typer.Option(None, "--preset", help="Built-in system for both configurations: paper-printed or paper-damped."),
+    preset: Optional[str] = typer.Option(None, "--preset", help="Built-in system for both configurations: paper-printed, paper-damped or paper-calibrated."),
     nbs: Optional[Path] = OPT_NBS,
     ybs: Optional[Path] = OPT_YBS,
     fmin: float = OPT_FMIN,
@@ -274,7 +274,7 @@ def campaign(
 @app.command()
 def reproduce(
     preset: Optional[str] = typer.Option(None, "--preset",
-                                         help="Built-in system (default: the best the package has, paper-damped)."),
+                                         help="Built-in system (default: the best the package has, paper-calibrated)."),
     nbs: Optional[Path] = OPT_NBS,
     ybs: Optional[Path] = OPT_YBS,
     out: Path = typer.Option(Path("report"), "--out", help="Directory for index.html, tables and figures."),
@@ -301,7 +301,9 @@ def reproduce(
             name = preset or presets.BEST_PRESET
             nbs_osc, ybs_osc = presets.by_name(name, bumpers=False), presets.by_name(name)
             label = f"preset {name}" + ("" if preset else " (the default: the package's best)")
-        report = write_report(nbs_osc, ybs_osc, out, system_label=label,
+        beside = {"paper-printed": presets.paper_printed()}
+        beside[label if (nbs or ybs) else (preset or presets.BEST_PRESET)] = ybs_osc
+        report = write_report(nbs_osc, ybs_osc, out, system_label=label, beside=beside,
                               freqs_hz=_frequencies(fmin, fmax, fstep), workers=workers, progress=True)
     except InputError as exc_:
         _fail(exc_)

@@ -13,11 +13,13 @@ from .. import __version__
 from ..model import Oscillator
 from ..protocols import CampaignResult, campaign
 from ..protocols._progress import Progress
+from ..identification import evaluate, paper_targets
 from .compare import comparison, inconsistency_notes
 from .figures import paper_figures
 from .html import write_page
 
-TABLE_TITLES = {"2": "Table 2: maximum non-dimensional accelerations and excursions",
+TABLE_TITLES = {"targets": "Calibration targets (Tables 2-4; sweeps up, fixed 30 cycles per step): systems side by side",
+                "2": "Table 2: maximum non-dimensional accelerations and excursions",
                 "3": "Table 3: impact characterization at resonance, contact forces and times",
                 "4": "Table 4: impact characterization at resonance, dissipated energies and restitution"}
 
@@ -34,9 +36,33 @@ class Report:
     comparisons: dict[str, pd.DataFrame]
 
 
+def targets_beside(systems: dict[str, Oscillator]) -> pd.DataFrame:
+    """The paper's targets (:func:`pounding.paper_targets`) with each YBs system's model value
+    beside them: sweeps up, fixed 30 cycles per step, as the calibration ran.
+
+    Returns
+    -------
+    DataFrame
+        ``configuration``, ``a_g``, ``quantity``, ``measured``, ``allowed`` (the tolerance),
+        then per system ``<label>`` (model value) and ``<label> met`` (within tolerance).
+    """
+    targets = paper_targets()
+    out = None
+    for label, osc in systems.items():
+        res = evaluate(osc, targets)
+        if out is None:
+            out = res[["configuration", "a_g", "quantity"]].copy()
+            out["measured"] = res["target"]
+            out["allowed"] = res["allowed"]
+        out[label] = res["model"]
+        out[f"{label} met"] = res["within"]
+    return out
+
+
 def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Path = "report", *,
               system_label: str = "custom systems", freqs_hz: Any = None, workers: int | None = None,
-              progress: Progress = False, **sweep_options: Any) -> Report:
+              progress: Progress = False, beside: dict[str, Oscillator] | None = None,
+              **sweep_options: Any) -> Report:
     """Run the paper's campaign and write Tables 2-4 (CSV), the figure analogues (PNG) and
     ``index.html`` into ``out_dir``.
 
@@ -50,6 +76,10 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
         How the page names the systems (e.g. the preset).
     freqs_hz, workers, progress, **sweep_options
         As :func:`pounding.campaign` (default: the paper's grid, adaptive steady state).
+    beside : dict, optional
+        ``label -> YBs system``: the report adds a table of the paper's targets with these
+        systems' model values side by side (:func:`targets_beside`), e.g. the calibrated
+        preset beside the printed one.
     """
     import matplotlib
 
@@ -66,6 +96,10 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
     for t, df in comparisons.items():
         tables[t] = out / f"table{t}.csv"
         df.to_csv(tables[t], index=False)
+    if beside:
+        comparisons["targets"] = targets_beside(beside)
+        tables["targets"] = out / "targets.csv"
+        comparisons["targets"].to_csv(tables["targets"], index=False)
     figures, captions = {}, {}
     for name, fig in paper_figures(result).items():
         figures[name] = out / f"{name}.png"
