@@ -166,3 +166,15 @@ def test_identification_plot_returns_artists():
     targets = pd_.Targets.from_records([dict(configuration="NBs", a_g=0.05, quantity="alpha", value=2.5)])
     fit = pd_.identify(targets, family, {"isolator_damping": (200.0, 3000.0)}, maxiter=0, refine=False, **FAST)
     assert len(fit.plot()) == 2
+
+
+def test_calibrated_preset_reproduces_its_stored_residuals():
+    stored = pd_.presets.paper_calibrated_residuals()
+    now = evaluate(pd_.presets.paper_calibrated(), pd_.paper_targets())
+    assert list(now["quantity"]) == list(stored["quantity"])
+    assert list(now["a_g"]) == list(stored["a_g"])
+    np.testing.assert_allclose(now["model"], stored["model"], rtol=1e-9, atol=0, equal_nan=True)
+    assert list(now["within"]) == list(stored["within"])
+    osc = pd_.presets.paper_calibrated()
+    assert osc.isolator.n_branches == 4 and osc.bumpers.gap_left == 0.015
+    assert pd_.presets.by_name("paper-calibrated", bumpers=False).bumpers is None

@@ -15,9 +15,9 @@ import math
 
 import numpy as np
 
-from ..model.contact_laws import N_LAW_PARAMS, law_energy, law_force, law_is_linear, law_linear_coefficients, law_relax
+from ..model.contact_laws import AT_START, N_LAW_PARAMS, law_energy, law_force, law_is_linear, law_linear_coefficients, law_relax
 from ._isolator import iso_advance, iso_energy, iso_events, iso_linear, iso_transition
-from .._jit import jit, jit_entry
+from .._jit import jit, jit_alloc, jit_entry
 from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A_WORK, ACC_L,
                       ACC_R, ACT_CONTACT, ACT_RELEASE, CONTACT_COLS, D, DEF_L, DEF_R, E_ACTION,
                       E_ALPHA, E_BETA, E_DIR, E_GAMMA, E_INDEX, E_KIND, E_SIDE, EV_COLS,
@@ -48,7 +48,7 @@ XTOL_S = 1e-15          # event instants and displacement extrema, s
 XTOL_EXTREMUM_S = 1e-10  # instants of other extrema: the value's error is quadratic in it
 
 
-@jit
+@jit_alloc
 def _grow(buf, n):
     if n < buf.shape[0]:
         return buf
@@ -104,9 +104,9 @@ def _outputs(st, d, v, mass, c_d, slopes, breaks, rule, gap_l, gap_r, law_l, p_l
     f_l = 0.0
     f_r = 0.0
     if st[IN_L] != 0.0:
-        f_l = law_force(law_l, p_l, -d - gap_l, -v)[0]
+        f_l = law_force(law_l, p_l, AT_START, -d - gap_l, -v)[0]
     if st[IN_R] != 0.0:
-        f_r = law_force(law_r, p_r, d - gap_r, v)[0]
+        f_r = law_force(law_r, p_r, AT_START, d - gap_r, v)[0]
     return -(f_iso + f_r - f_l) / mass, f_iso, f_l, f_r
 
 
@@ -418,7 +418,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
                 gap = gap_l if side == SIDE_L else gap_r
                 st[idx] = max(0.0, (-d1 if side == SIDE_L else d1) - gap)
             elif st[idx] > 0.0:
-                relaxed = law_relax(law, p, st[idx], tau)[0]
+                relaxed = law_relax(law, p, AT_START, st[idx], tau)[0]
                 ledger[3] += law_energy(law, p, st[idx]) - law_energy(law, p, relaxed)
                 st[idx] = relaxed
         ledger[2] += iso_advance(slopes, breaks, rule, st, d0, d1)

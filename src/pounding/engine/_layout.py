@@ -26,6 +26,7 @@ P_M, P_C, P_K, P_P0, P_P1, P_H, P_W, P_PHI = 0, 1, 2, 3, 4, 5, 6, 7
 P_S, P_Q2, P_ROOT, P_B0, P_B1, P_B2, P_B3, P_ZR, P_ZI, P_Y0, P_Y1 = 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18
 P_D0, P_V0, P_MODE, P_NLL, P_NLR, P_GAPL, P_GAPR = 19, 20, 21, 22, 23, 24, 25
 P_LAWL, P_PL, P_LAWR, P_PR = 26, 27, 31, 32          # law id, then 4 parameters
+PL_AT, PR_AT = np.int64(P_PL), np.int64(P_PR)  # as offsets for the law_* functions (typed)
 P_DL0, P_DR0, P_CD, P_AX0, P_AX1, P_AXH = 36, 37, 38, 39, 40, 41
 P_INL, P_INR, P_KISO, P_RISO = 42, 43, 44, 45
 PH_LEN = 46

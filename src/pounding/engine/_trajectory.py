@@ -15,7 +15,7 @@ import numpy as np
 from ..model.contact_laws import law_force, law_relax, law_release
 from .._jit import jit
 from ._layout import (E_ALPHA, E_BETA, E_GAMMA, E_KIND, E_SIDE, KIND_LINEAR, MODE_LINEAR, SIDE_NONE,
-                      P_AX0, P_AX1, P_AXH, P_C, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_K, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_PHI, P_PL, P_PR,
+                      P_AX0, P_AX1, P_AXH, P_C, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_K, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_PHI, PL_AT, PR_AT,
                       P_V0, P_W, SIDE_L, SIDE_R)
 from ._linear import linear_eval
 from ._numeric import dp5_step, phase_rhs
@@ -48,10 +48,10 @@ def contact_force(ph, side, d, v, a):
     """Bumper ``side`` in contact: ``(force N, elastic part N, d(force)/dt N/s, compression rate m/s)``."""
     if side == SIDE_L:
         dd, dv, da = -d - ph[P_GAPL], -v, -a
-        f, fel, fd, fv = law_force(int(ph[P_LAWL]), ph[P_PL:P_PL + 4], dd, dv)
+        f, fel, fd, fv = law_force(int(ph[P_LAWL]), ph, PL_AT, dd, dv)
     else:
         dd, dv, da = d - ph[P_GAPR], v, a
-        f, fel, fd, fv = law_force(int(ph[P_LAWR]), ph[P_PR:P_PR + 4], dd, dv)
+        f, fel, fd, fv = law_force(int(ph[P_LAWR]), ph, PR_AT, dd, dv)
     return f, fel, fd * dv + fv * da, dv
 
 
@@ -79,24 +79,24 @@ def event_value(evs, i, ph, tau, d, v, a):
         gp = beta * v + gamma * a
         scale = abs(alpha) + abs(beta * d) + abs(gamma * v)
         if side == SIDE_L:
-            r, rr = law_relax(int(ph[P_LAWL]), ph[P_PL:P_PL + 4], ph[P_DL0], tau)
+            r, rr = law_relax(int(ph[P_LAWL]), ph, PL_AT, ph[P_DL0], tau)
             g += r
             gp += rr
             scale += r
         elif side == SIDE_R:
-            r, rr = law_relax(int(ph[P_LAWR]), ph[P_PR:P_PR + 4], ph[P_DR0], tau)
+            r, rr = law_relax(int(ph[P_LAWR]), ph, PR_AT, ph[P_DR0], tau)
             g += r
             gp += rr
             scale += r
         return g, gp, scale
     if side == SIDE_L:
-        law, p = int(ph[P_LAWL]), ph[P_PL:P_PL + 4]
+        law, o = int(ph[P_LAWL]), PL_AT
         dd, dv, da = -d - ph[P_GAPL], -v, -a
     else:
-        law, p = int(ph[P_LAWR]), ph[P_PR:P_PR + 4]
+        law, o = int(ph[P_LAWR]), PR_AT
         dd, dv, da = d - ph[P_GAPR], v, a
-    g, gp = law_release(law, p, dd, dv, da)
-    scale = law_release(law, p, abs(dd), abs(dv), 0.0)[0]
+    g, gp = law_release(law, ph, o, dd, dv, da)
+    scale = law_release(law, ph, o, abs(dd), abs(dv), 0.0)[0]
     return g, gp, scale
 
 

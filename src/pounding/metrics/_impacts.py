@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from .._jit import jit, jit_entry
+from .._jit import jit, jit_alloc, jit_entry
 
 # columns of the engine's contact table (see engine/_layout.py CONTACT_COLS)
 C_SIDE, C_TSTART, C_TEND, C_VIN, C_VOUT, C_IMPULSE, C_PEAK, C_MAXCOMP, C_WORK = range(9)
@@ -51,7 +51,7 @@ S_SUMS = 2           # then the sums of the N_IMPACT columns
 SIDE_SUMS = S_SUMS + N_IMPACT
 
 
-@jit
+@jit_alloc
 def add_impacts(contacts, mass, sums, row):
     """Add the completed contacts of ``contacts`` to ``sums[row, side * SIDE_SUMS + ...]``."""
     vals = np.empty(N_IMPACT)

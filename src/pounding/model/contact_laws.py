@@ -27,6 +27,10 @@ from .._jit import jit, jit_entry
 KELVIN_VOIGT = 0
 HUNT_CROSSLEY = 1
 N_LAW_PARAMS = 4
+# The compiled ``law_*`` functions read a law's parameters at ``p[o:o + N_LAW_PARAMS]``
+# (``o`` an offset, so that the engine passes its phase record without slicing it: a
+# slice costs a reference-count increment and decrement on every call).
+AT_START = np.int64(0)  # the offset of a bare parameter array (typed: see engine/_layout.py)
 
 
 @dataclass(frozen=True)
@@ -151,22 +155,23 @@ def law_linear_coefficients(law, p):
 
 
 @jit
-def law_force(law, p, d, dd):
+def law_force(law, p, o, d, dd):
     """Force of the bumper at compression ``d`` (m) and rate ``dd`` (m/s).
 
     Returns ``(force, elastic_part, dforce/dd, dforce/d(dd))``.
     """
+    k, c = p[o], p[o + 1]
     if law == KELVIN_VOIGT:
-        return p[0] * d + p[1] * dd, p[0] * d, p[0], p[1]
+        return k * d + c * dd, k * d, k, c
     # HUNT_CROSSLEY
     dpos = d if d > 0.0 else 0.0
-    n = p[2]
+    n = p[o + 2]
     dn = dpos**n
     if dpos > 0.0:
         slope = n * dpos ** (n - 1.0)
     else:
         slope = 1.0 if n == 1.0 else 0.0
-    return dn * (p[0] + p[1] * dd), p[0] * dn, slope * (p[0] + p[1] * dd), p[1] * dn
+    return dn * (k + c * dd), k * dn, slope * (k + c * dd), c * dn
 
 
 @jit
@@ -179,19 +184,19 @@ def law_energy(law, p, d):
 
 
 @jit
-def law_relax(law, p, d0, tau):
+def law_relax(law, p, o, d0, tau):
     """Free recovery of a massless bumper: compression and its rate ``tau`` s after ``d0``."""
     if d0 <= 0.0:
         return 0.0, 0.0
     if law == KELVIN_VOIGT:
-        if p[1] <= 0.0:
+        if p[o + 1] <= 0.0:
             return 0.0, 0.0
-        rate = p[0] / p[1]
+        rate = p[o] / p[o + 1]
         d = d0 * math.exp(-rate * tau)
         return d, -rate * d
-    if p[1] <= 0.0:
+    if p[o + 1] <= 0.0:
         return 0.0, 0.0
-    speed = p[0] / p[1]
+    speed = p[o] / p[o + 1]
     d = d0 - speed * tau
     if d <= 0.0:
         return 0.0, 0.0
@@ -199,18 +204,18 @@ def law_relax(law, p, d0, tau):
 
 
 @jit
-def law_release(law, p, d, dd, ddd):
+def law_release(law, p, o, d, dd, ddd):
     """A smooth function that crosses zero downwards when the force would turn into a pull.
 
     Returns ``(value, rate)`` for compression ``d``, rate ``dd`` and acceleration ``ddd``.
     """
     if law == KELVIN_VOIGT:
-        return p[0] * d + p[1] * dd, p[0] * dd + p[1] * ddd
-    return p[0] + p[1] * dd, p[1] * ddd
+        return p[o] * d + p[o + 1] * dd, p[o] * dd + p[o + 1] * ddd
+    return p[o] + p[o + 1] * dd, p[o + 1] * ddd
 
 
 @jit_entry
 def law_force_many(law, p, d, dd, out):
     """``law_force`` at each ``(d[i], dd[i])`` into ``out[i]`` (N): arrays of one shape (n,)."""
     for i in range(d.size):
-        out[i] = law_force(law, p, d[i], dd[i])[0]
+        out[i] = law_force(law, p, AT_START, d[i], dd[i])[0]
