@@ -10,6 +10,7 @@ one signature per dispatcher.
 from __future__ import annotations
 
 import json
+import os
 import subprocess
 import sys
 import textwrap
@@ -41,7 +42,10 @@ SESSION = textwrap.dedent("""
 """)
 
 
-def test_each_compiled_function_has_one_specialisation():
-    out = subprocess.run([sys.executable, "-c", SESSION], capture_output=True, text=True, check=True)
+def test_each_compiled_function_has_one_specialisation(tmp_path):
+    # an empty cache: with a filled one, a kernel loads its callees' code with its own and
+    # their dispatchers never see (nor count) the types they are called with
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
+    out = subprocess.run([sys.executable, "-c", SESSION], capture_output=True, text=True, check=True, env=env)
     many = json.loads(out.stdout.strip().splitlines()[-1])
     assert many == {}, f"compiled more than once (pass typed ints, writable arrays): {many}"

@@ -26,7 +26,7 @@ from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A
                       P_CD, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_INL, P_INR, P_K, P_KISO,
                       P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR,
                       P_RISO, P_V0, P_W, PH_LEN, SAMPLE_COLS, SIDE_L, SIDE_NONE, SIDE_R, T, V)
-from ._linear import linear_setup
+from ._linear import fill_nodes, linear_eval_node, linear_setup, nodes_valid
 from ._numeric import dp5_step
 from ._trajectory import (NO_INDEX, ROUNDING, W_AABS_RATE, W_FORCE_RATE, W_VELOCITY, abs_acceleration_rate,
                           brent, contact_force, event_value, locate_event, newton, phase_eval,
@@ -44,6 +44,7 @@ _LX2 = math.sqrt(1.0 / 3.0 + 2.0 * math.sqrt(7.0) / 21.0)
 LOBATTO_X = np.array([0.0, 0.5 - 0.5 * _LX2, 0.5 - 0.5 * _LX1, 0.5 + 0.5 * _LX1, 0.5 + 0.5 * _LX2, 1.0])
 LOBATTO_W = np.array([1.0 / 30.0, (14.0 - math.sqrt(7.0)) / 60.0, (14.0 + math.sqrt(7.0)) / 60.0,
                       (14.0 + math.sqrt(7.0)) / 60.0, (14.0 - math.sqrt(7.0)) / 60.0, 1.0 / 30.0])
+FIRST_NODE, LAST_NODE = np.int64(1), np.int64(5)  # the interior and end nodes (typed ints)
 XTOL_S = 1e-15          # event instants and displacement extrema, s
 XTOL_EXTREMUM_S = 1e-10  # instants of other extrema: the value's error is quadratic in it
 
@@ -222,13 +223,21 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law
 
 
 @jit
-def _accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t_vel, d_vel):
-    """Integrals, extrema and contact statistics over ``[t0, t0 + tau]`` of one sub-interval."""
+def _accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t_vel, d_vel, with_energy):
+    """Integrals, extrema and contact statistics over ``[t0, t0 + tau]`` of one sub-interval
+    (the energy integrals outside contacts only ``with_energy``)."""
     mass = ph[P_M]
     c_d = ph[P_CD]
     in_l = ph[P_INL] != 0.0
     in_r = ph[P_INR] != 0.0
-    if tau > 0.0:
+    linear = ph[P_MODE] == MODE_LINEAR
+    at_nodes = linear and nodes_valid(ph, tau)  # a full sub-interval: reuse the node values
+    if at_nodes:
+        fill_nodes(ph, tau, LOBATTO_X, FIRST_NODE, LAST_NODE - 1)
+    # a linear phase gives the table's force from its equation of motion, without a sine:
+    # M A = P0 + M a0 - M a - c V - k D  (the ramp terms cancel: P1 = -M a1)
+    m_a0 = ph[P_P0] + mass * ph[P_AX0]
+    if tau > 0.0 and (with_energy or in_l or in_r):
         for q in range(6):
             tq = tau * LOBATTO_X[q]
             wq = tau * LOBATTO_W[q]
@@ -236,9 +245,15 @@ def _accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t
                 d, v, a = d0, v0, a0
             elif q == 5:
                 d, v, a = d1, v1, a1
+            elif at_nodes:
+                d, v, a = linear_eval_node(ph, tq, q)
             else:
                 d, v, a = phase_eval(ph, tq)
-            ledger[0] -= wq * mass * table_acceleration(ph, tq) * v
+            if linear:
+                table_force = m_a0 - mass * a - ph[P_C] * v - ph[P_K] * d
+            else:
+                table_force = mass * table_acceleration(ph, tq)
+            ledger[0] -= wq * table_force * v
             ledger[1] += wq * c_d * v * v
             for side in (SIDE_L, SIDE_R):
                 if (side == SIDE_L and in_l) or (side == SIDE_R and in_r):
@@ -301,8 +316,11 @@ def _track_abs_acceleration(extrema, t, a):
 
 @jit_entry
 def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
-               exc_kind, exc_p, rec_t, rec_a, state0, t_end, sample_dt, rtol, max_events):
+               exc_kind, exc_p, rec_t, rec_a, state0, t_end, sample_dt, rtol, max_events, with_energy):
     """Simulate from ``state0`` to ``t_end``.
+
+    ``with_energy`` False skips the energy quadrature outside contacts (a sweep needs the
+    contacts' impulse and work, not the ledger); the ledger is then NaN.
 
     Returns ``(state, samples, n_samples, contacts, n_contacts, events, n_events, ledger,
     extrema, status)``; see ``_layout`` for the columns.
@@ -347,7 +365,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
             if not linear_setup(ph):
                 status = DEGENERATE_PHASE
                 break
-            d1, v1, a1 = phase_eval(ph, h)
+            fill_nodes(ph, h, LOBATTO_X, LAST_NODE, LAST_NODE)
+            d1, v1, a1 = linear_eval_node(ph, h, LAST_NODE)
         else:
             if h_num < h:
                 h = h_num
@@ -396,7 +415,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
                 d1, v1, a1 = phase_eval(ph, tau)
         if t_vel > tau:
             t_vel = -1.0
-        _accumulate(ph, st, t, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t_vel, d_vel)
+        _accumulate(ph, st, t, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t_vel, d_vel, with_energy)
         # samples strictly inside (t, t + tau]
         if sample_dt > 0.0:
             while True:
@@ -486,5 +505,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
     ledger[4] = kin1 - kin0
     ledger[5] = iso1 - iso0
     ledger[6] = bmp1 - bmp0
+    if not with_energy:
+        for j in range(LEDGER_LEN):
+            ledger[j] = np.nan
     return (st, samples[:n_s].copy(), contacts[:n_c].copy(), events[:n_e].copy(), ledger,
             extrema, status)

@@ -29,7 +29,13 @@ P_LAWL, P_PL, P_LAWR, P_PR = 26, 27, 31, 32          # law id, then 4 parameters
 PL_AT, PR_AT = np.int64(P_PL), np.int64(P_PR)  # as offsets for the law_* functions (typed)
 P_DL0, P_DR0, P_CD, P_AX0, P_AX1, P_AXH = 36, 37, 38, 39, 40, 41
 P_INL, P_INR, P_KISO, P_RISO = 42, 43, 44, 45
-PH_LEN = 46
+P_SPHI, P_CPHI = 46, 47                              # sin and cos of the forcing phase
+# the transcendental values at the quadrature nodes tau = h * x_q (q = 1..5) of a full
+# sub-interval, reused while the phase's (h, w, s, q2) stay the same: see _linear.py
+P_NKEY = 48          # h, w, s, q2 the nodes were computed for (4 values)
+P_NODES = 52         # per node q: sin(w tau), cos(w tau), and the free response's two terms
+N_NODES = 6          # nodes 0..5 (0 unused: tau = 0)
+PH_LEN = P_NODES + 4 * N_NODES
 MODE_LINEAR = 0.0
 MODE_NUMERIC = 1.0
 

@@ -12,8 +12,9 @@ from __future__ import annotations
 import math
 
 from .._jit import jit
-from ._layout import (P_B0, P_B1, P_B2, P_B3, P_C, P_D0, P_H, P_K, P_M, P_P0, P_P1, P_PHI,
-                      P_Q2, P_ROOT, P_S, P_V0, P_W, P_Y0, P_Y1, P_ZI, P_ZR)
+from ._layout import (N_NODES, P_B0, P_B1, P_B2, P_B3, P_C, P_CPHI, P_D0, P_H, P_K, P_M, P_NKEY,
+                      P_NODES, P_P0, P_P1, P_PHI, P_Q2, P_ROOT, P_S, P_SPHI, P_V0, P_W, P_Y0, P_Y1,
+                      P_ZI, P_ZR)
 
 
 @jit
@@ -54,6 +55,8 @@ def linear_setup(ph):
     ph[P_ZI] = zi
     sp = math.sin(ph[P_PHI])
     cp = math.cos(ph[P_PHI])
+    ph[P_SPHI] = sp
+    ph[P_CPHI] = cp
     ph[P_Y0] = ph[P_D0] - (ph[P_B0] + zr * sp + zi * cp)
     ph[P_Y1] = ph[P_V0] - (ph[P_B1] + w * (zr * cp - zi * sp))
     return True
@@ -82,16 +85,63 @@ def _free_response(ph, tau):
 @jit
 def linear_eval(ph, tau):
     """Displacement (m), velocity (m/s) and relative acceleration (m/s^2) at ``tau`` (s)."""
+    th = ph[P_W] * tau + ph[P_PHI]
+    ec, es = _free_response(ph, tau)
+    return _combine(ph, tau, math.sin(th), math.cos(th), ec, es)
+
+
+@jit
+def nodes_valid(ph, h):
+    """True when the node values of ``ph`` were computed for this phase and sub-interval ``h``."""
+    return (ph[P_NKEY] == h and ph[P_NKEY + 1] == ph[P_W] and ph[P_NKEY + 2] == ph[P_S]
+            and ph[P_NKEY + 3] == ph[P_Q2])
+
+
+@jit
+def fill_nodes(ph, h, x, first, last):
+    """Compute the transcendental values at ``tau = h * x[q]`` for ``first <= q <= last``.
+
+    A full sub-interval of a phase has the same length ``h`` as the one before it (the
+    length depends on the phase's frequencies only), so the sines and exponentials at its
+    quadrature nodes are the same: only the forcing phase changes, which
+    :func:`linear_eval_node` adds by angle addition.
+    """
+    if not nodes_valid(ph, h):
+        ph[P_NKEY] = h
+        ph[P_NKEY + 1] = ph[P_W]
+        ph[P_NKEY + 2] = ph[P_S]
+        ph[P_NKEY + 3] = ph[P_Q2]
+        for q in range(N_NODES):
+            ph[P_NODES + 4 * q] = math.nan  # every node stale
+    for q in range(first, last + 1):
+        j = P_NODES + 4 * q
+        if math.isnan(ph[j]):
+            tau = h * x[q]
+            ec, es = _free_response(ph, tau)
+            ph[j] = math.sin(ph[P_W] * tau)
+            ph[j + 1] = math.cos(ph[P_W] * tau)
+            ph[j + 2] = ec
+            ph[j + 3] = es
+
+
+@jit
+def linear_eval_node(ph, tau, q):
+    """:func:`linear_eval` at node ``q`` (``tau = h * x[q]``) from the values of :func:`fill_nodes`."""
+    j = P_NODES + 4 * q
+    sw, cw = ph[j], ph[j + 1]
+    sp, cp = ph[P_SPHI], ph[P_CPHI]
+    return _combine(ph, tau, sw * cp + cw * sp, cw * cp - sw * sp, ph[j + 2], ph[j + 3])
+
+
+@jit
+def _combine(ph, tau, st, ct, ec, es):
+    """The solution at ``tau`` given ``sin``/``cos`` of the forcing angle and the free response."""
     m, c, k = ph[P_M], ph[P_C], ph[P_K]
     w = ph[P_W]
-    th = w * tau + ph[P_PHI]
-    st = math.sin(th)
-    ct = math.cos(th)
     b1, b2, b3 = ph[P_B1], ph[P_B2], ph[P_B3]
     zr, zi = ph[P_ZR], ph[P_ZI]
     dp = ph[P_B0] + tau * (b1 + tau * (b2 + tau * b3)) + zr * st + zi * ct
     vp = b1 + tau * (2.0 * b2 + 3.0 * b3 * tau) + w * (zr * ct - zi * st)
-    ec, es = _free_response(ph, tau)
     s = ph[P_S]
     y0, y1 = ph[P_Y0], ph[P_Y1]
     d = dp + ec * y0 + es * (y1 - s * y0)

@@ -105,7 +105,7 @@ def simulate(
     t0 = state.time_s
     st, samples, contacts, events, ledger, extrema, status = run_kernel(
         *kernel_system(oscillator), exc_kind, exc_p, rec_t, rec_a, state.vector.copy(),
-        t0 + duration, 1.0 / rate if rate > 0 else 0.0, rtol, int(max_events))
+        t0 + duration, 1.0 / rate if rate > 0 else 0.0, rtol, int(max_events), True)
     status = Status(int(status))
 
     energy = EnergyLedger(

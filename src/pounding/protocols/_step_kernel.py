@@ -29,6 +29,7 @@ W_SUMS = 4
 WINDOW_COLS = W_SUMS + 2 * SIDE_SUMS
 AMPLITUDE_FLOOR_M = 1e-12
 TYPED_ZERO = np.int64(0)  # a typed zero for arguments (a literal 0 costs a compilation)
+NO_ENERGY = np.bool_(False)  # typed too: a literal False would compile run_kernel once more
 
 
 @jit
@@ -147,7 +148,7 @@ def step_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l
         st, _, contacts, _, _, extrema, status = run_kernel(
             mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
             exc_kind, exc_p, no_record, no_record, st, t0 + (n + 1) * period, -1.0, rtol,
-            max_events)
+            max_events, NO_ENERGY)  # a step measures extrema and contacts, not the ledger
         cyc[n, CY_DMAX] = extrema[0]
         cyc[n, CY_DMIN] = extrema[2]
         cyc[n, CY_AMAX] = extrema[4]
