@@ -231,12 +231,10 @@ def _accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t
     in_l = ph[P_INL] != 0.0
     in_r = ph[P_INR] != 0.0
     linear = ph[P_MODE] == MODE_LINEAR
+    m_a0 = ph[P_P0] + mass * ph[P_AX0]
     at_nodes = linear and nodes_valid(ph, tau)  # a full sub-interval: reuse the node values
     if at_nodes:
         fill_nodes(ph, tau, LOBATTO_X, FIRST_NODE, LAST_NODE - 1)
-    # a linear phase gives the table's force from its equation of motion, without a sine:
-    # M A = P0 + M a0 - M a - c V - k D  (the ramp terms cancel: P1 = -M a1)
-    m_a0 = ph[P_P0] + mass * ph[P_AX0]
     if tau > 0.0 and (with_energy or in_l or in_r):
         for q in range(6):
             tq = tau * LOBATTO_X[q]
@@ -249,11 +247,7 @@ def _accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t
                 d, v, a = linear_eval_node(ph, tq, q)
             else:
                 d, v, a = phase_eval(ph, tq)
-            if linear:
-                table_force = m_a0 - mass * a - ph[P_C] * v - ph[P_K] * d
-            else:
-                table_force = mass * table_acceleration(ph, tq)
-            ledger[0] -= wq * table_force * v
+            ledger[0] -= wq * mass * (_abs_acceleration(ph, linear, m_a0, tq, d, v, a) - a) * v
             ledger[1] += wq * c_d * v * v
             for side in (SIDE_L, SIDE_R):
                 if (side == SIDE_L and in_l) or (side == SIDE_R and in_r):
@@ -286,12 +280,12 @@ def _accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t
     # absolute acceleration extrema
     r0 = abs_acceleration_rate(ph, d0, v0, a0)
     r1 = abs_acceleration_rate(ph, d1, v1, a1)
-    _track_abs_acceleration(extrema, t0, a0 + table_acceleration(ph, 0.0))
-    _track_abs_acceleration(extrema, t0 + tau, a1 + table_acceleration(ph, tau))
+    _track_abs_acceleration(extrema, t0, _abs_acceleration(ph, linear, m_a0, 0.0, d0, v0, a0))
+    _track_abs_acceleration(extrema, t0 + tau, _abs_acceleration(ph, linear, m_a0, tau, d1, v1, a1))
     if r0 * r1 < 0.0:
         tm = brent(W_AABS_RATE, NO_INDEX, ph, evs, 0.0, tau, r0, r1, XTOL_EXTREMUM_S)
         dm, vm, am = phase_eval(ph, tm)
-        _track_abs_acceleration(extrema, t0 + tm, am + table_acceleration(ph, tm))
+        _track_abs_acceleration(extrema, t0 + tm, _abs_acceleration(ph, linear, m_a0, tm, dm, vm, am))
     # peak contact forces
     for side in (SIDE_L, SIDE_R):
         if (side == SIDE_L and in_l) or (side == SIDE_R and in_r):
@@ -304,6 +298,18 @@ def _accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t
                 dm, vm, am = phase_eval(ph, tm)
                 peak = max(peak, contact_force(ph, side, dm, vm, am)[0])
             st[acc + A_PEAK] = max(st[acc + A_PEAK], peak)
+
+
+@jit
+def _abs_acceleration(ph, linear, m_a0, tau, d, v, a):
+    """Absolute acceleration (m/s^2) at ``tau`` given the relative motion there.
+
+    A linear phase gives it from its equation of motion, without a sine:
+    ``M a_abs = P0 + M a0 - c V - k D`` (``m_a0`` is ``P0 + M a0``; the ramp terms cancel).
+    """
+    if linear:
+        return (m_a0 - ph[P_C] * v - ph[P_K] * d) / ph[P_M]
+    return a + table_acceleration(ph, tau)
 
 
 @jit
