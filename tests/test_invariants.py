@@ -116,6 +116,23 @@ def test_extrema_do_not_depend_on_sampling():
     assert np.abs(runs[2].abs_acceleration).max() <= runs[0].abs_acceleration_max * (1 + 1e-12)
 
 
+def test_exact_peaks_bound_dense_samples_closely():
+    # the extrema of |a_abs| and of each contact force come from roots of their rates; dense
+    # samples never exceed them and come within the change over half a sample interval
+    osc = pd_.presets.paper_damped()
+    run = pd_.simulate(osc, pd_.Harmonic(0.1, 2.5), 3.0, pd_.State.at_rest(osc, velocity_m_s=0.6),
+                       sample_rate_hz=200_000)
+    a_abs = np.abs(run.abs_acceleration)
+    assert a_abs.max() <= run.abs_acceleration_max * (1 + 1e-12)
+    assert a_abs.max() >= run.abs_acceleration_max * (1 - 1e-6)
+    assert len(run.contacts) >= 4
+    for _, c in run.contacts.dropna().iterrows():
+        inside = (run.t >= c["t_start"]) & (run.t <= c["t_end"])
+        force = (run.bumper_force_left if c["side"] == "left" else run.bumper_force_right)[inside]
+        assert force.max() <= c["peak_force"] * (1 + 1e-12)
+        assert force.max() >= c["peak_force"] * (1 - 1e-6)
+
+
 def test_max_events_ends_with_a_status():
     osc = pd_.presets.paper_printed()
     run = pd_.simulate(osc, pd_.Harmonic(0.05, 2.2), 10.0, pd_.State.at_rest(osc, velocity_m_s=0.6),

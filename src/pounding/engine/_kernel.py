@@ -283,7 +283,10 @@ def _accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t
     _track_abs_acceleration(extrema, t0, _abs_acceleration(ph, linear, m_a0, 0.0, d0, v0, a0))
     _track_abs_acceleration(extrema, t0 + tau, _abs_acceleration(ph, linear, m_a0, tau, d1, v1, a1))
     if r0 * r1 < 0.0:
-        tm = brent(W_AABS_RATE, NO_INDEX, ph, evs, 0.0, tau, r0, r1, XTOL_EXTREMUM_S)
+        if linear:
+            tm = newton(W_AABS_RATE, NO_INDEX, ph, evs, 0.0, tau, r0, r1, XTOL_EXTREMUM_S)
+        else:
+            tm = brent(W_AABS_RATE, NO_INDEX, ph, evs, 0.0, tau, r0, r1, XTOL_EXTREMUM_S)
         dm, vm, am = phase_eval(ph, tm)
         _track_abs_acceleration(extrema, t0 + tm, _abs_acceleration(ph, linear, m_a0, tm, dm, vm, am))
     # peak contact forces
@@ -294,7 +297,10 @@ def _accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t
             fb, _, rb, _ = contact_force(ph, side, d1, v1, a1)
             peak = max(fa, fb)
             if ra * rb < 0.0:
-                tm = brent(W_FORCE_RATE, side, ph, evs, 0.0, tau, ra, rb, XTOL_EXTREMUM_S)
+                if linear:
+                    tm = newton(W_FORCE_RATE, side, ph, evs, 0.0, tau, ra, rb, XTOL_EXTREMUM_S)
+                else:
+                    tm = brent(W_FORCE_RATE, side, ph, evs, 0.0, tau, ra, rb, XTOL_EXTREMUM_S)
                 dm, vm, am = phase_eval(ph, tm)
                 peak = max(peak, contact_force(ph, side, dm, vm, am)[0])
             st[acc + A_PEAK] = max(st[acc + A_PEAK], peak)

@@ -15,7 +15,7 @@ import numpy as np
 from ..model.contact_laws import law_force, law_relax, law_release
 from .._jit import jit
 from ._layout import (E_ALPHA, E_BETA, E_GAMMA, E_KIND, E_SIDE, KIND_LINEAR, MODE_LINEAR, SIDE_NONE,
-                      P_AX0, P_AX1, P_AXH, P_C, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_K, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_PHI, PL_AT, PR_AT,
+                      P_AX0, P_AX1, P_AXH, P_C, P_D0, P_H, P_P1, P_DL0, P_DR0, P_GAPL, P_GAPR, P_K, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_PHI, P_PL, P_PR, PL_AT, PR_AT,
                       P_V0, P_W, SIDE_L, SIDE_R)
 from ._linear import linear_eval
 from ._numeric import dp5_step, phase_rhs
@@ -121,14 +121,28 @@ def _value_and_rate(what, idx, ph, evs, tau):
     if what == W_EVENT:
         g, gp, _ = event_value(evs, idx, ph, tau, d, v, a)
         return g, gp
-    return v, a  # W_VELOCITY
+    if what == W_VELOCITY:
+        return v, a
+    # rates of a linear phase (W_AABS_RATE, W_FORCE_RATE) and their derivatives, from the
+    # jerk: M j = P1 + H w cos(w tau + phi) - c a - k v
+    jerk = (ph[P_P1] + ph[P_H] * ph[P_W] * math.cos(ph[P_W] * tau + ph[P_PHI]) - ph[P_C] * a
+            - ph[P_K] * v) / ph[P_M]
+    if what == W_AABS_RATE:
+        return -(ph[P_C] * a + ph[P_K] * v) / ph[P_M], -(ph[P_C] * jerk + ph[P_K] * a) / ph[P_M]
+    # W_FORCE_RATE of a Kelvin-Voigt bumper: F = k_b x + c_b x' with x' = +-V
+    sign, k_b, c_b = 1.0, ph[P_PR], ph[P_PR + 1]
+    if idx == SIDE_L:
+        sign, k_b, c_b = -1.0, ph[P_PL], ph[P_PL + 1]
+    return sign * (k_b * v + c_b * a), sign * (k_b * a + c_b * jerk)
 
 
 @jit
 def newton(what, idx, ph, evs, xa, xb, fa, fb, xtol):
-    """Root of an event function (``W_EVENT``) or of the velocity (``W_VELOCITY``) in
-    ``[xa, xb]`` given values of opposite sign: Newton's method on the analytic rate,
-    kept inside the shrinking bracket by bisection (``rtsafe``)."""
+    """Root of an event function (``W_EVENT``), of the velocity (``W_VELOCITY``) or, in a
+    linear phase with Kelvin-Voigt contacts, of the absolute acceleration's or a contact
+    force's rate (``W_AABS_RATE``, ``W_FORCE_RATE``) in ``[xa, xb]`` given values of
+    opposite sign: Newton's method on the analytic rate, kept inside the shrinking bracket
+    by bisection (``rtsafe``)."""
     if fa == 0.0:
         return xa
     if fb == 0.0:
