@@ -25,7 +25,7 @@ from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A
                       LEDGER_LEN, MODE_LINEAR, MODE_NUMERIC, P_AX0, P_AX1, P_AXH, P_C,
                       P_CD, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_INL, P_INR, P_K, P_KISO,
                       P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR,
-                      P_RISO, P_V0, P_W, PH_LEN, SAMPLE_COLS, SIDE_L, SIDE_NONE, SIDE_R, T, V)
+                      P_RISO, P_SPHI, P_V0, P_W, PH_LEN, SAMPLE_COLS, SIDE_L, SIDE_NONE, SIDE_R, T, V)
 from ._linear import fill_nodes, linear_eval_node, linear_setup, nodes_valid
 from ._numeric import dp5_step
 from ._trajectory import (NO_INDEX, ROUNDING, W_AABS_RATE, W_FORCE_RATE, W_VELOCITY, abs_acceleration_rate,
@@ -398,8 +398,9 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
             if status != SUCCESS:
                 break
         d0, v0 = st[D], st[V]
-        a0 = (ph[P_P0] + ph[P_H] * math.sin(ph[P_PHI]) - ph[P_C] * v0 - ph[P_K] * d0) / mass
-        if ph[P_MODE] != MODE_LINEAR:
+        if ph[P_MODE] == MODE_LINEAR:  # sin(phi) is linear_setup's
+            a0 = (ph[P_P0] + ph[P_H] * ph[P_SPHI] - ph[P_C] * v0 - ph[P_K] * d0) / mass
+        else:
             a0 = phase_eval(ph, 0.0)[2]
         n_ev = iso_events(slopes, breaks, rule, st, evs, np.int64(0))  # typed, not literal
         n_ev = _bumper_events(st, has_b, gap_l, gap_r, law_l, law_r, evs, n_ev)

@@ -86,13 +86,14 @@ class Identification:
         return self.residuals.copy()
 
     def parameter_table(self) -> pd.DataFrame:
-        """``name``, ``value``, ``low``, ``high`` and ``at_bound`` per free number."""
+        """``name``, ``value``, ``low``, ``high`` and ``at_bound`` (within 0.1 % of the searched
+        range, logarithmic for bounds a decade or more apart) per free number."""
+        units = _Scale(self.bounds).units(self.parameters)  # the searched scale (log for wide bounds)
         rows = []
-        for name, value in self.parameters.items():
+        for (name, value), u in zip(self.parameters.items(), units):
             low, high = self.bounds[name]
-            span = high - low
             rows.append({"name": name, "value": value, "low": low, "high": high,
-                         "at_bound": min(value - low, high - value) <= 1e-3 * span})
+                         "at_bound": min(u, 1.0 - u) <= 1e-3})
         return pd.DataFrame(rows)
 
     def to_toml(self, path: str | Path) -> Path:
