@@ -349,6 +349,10 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
     extrema = np.array([st[D], t_run0, st[D], t_run0, 0.0, t_run0, 0.0])
     ph = np.zeros(PH_LEN)
     evs = np.zeros((2 * (slopes.size - 1) + 6, EV_COLS))
+    # event values at the end of a full sub-interval without event are those at the start of
+    # the next one (same events, same state): kept to save evaluating them twice
+    ev_end = np.empty((evs.shape[0], 3))
+    reuse_ends = False
     kin0, iso0, bmp0 = _energies(st, mass, slopes, breaks, rule, law_l, p_l, law_r, p_r)
     status = SUCCESS
     zero_run = 0
@@ -412,8 +416,14 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         tau = h
         i_ev = -1
         for i in range(n_ev):
-            g0, gp0, sc0 = event_value(evs, i, ph, 0.0, d0, v0, a0)
+            if reuse_ends:
+                g0, gp0, sc0 = ev_end[i, 0], ev_end[i, 1], ev_end[i, 2]
+            else:
+                g0, gp0, sc0 = event_value(evs, i, ph, 0.0, d0, v0, a0)
             g1, gp1, sc1 = event_value(evs, i, ph, h, d1, v1, a1)
+            ev_end[i, 0] = g1
+            ev_end[i, 1] = gp1
+            ev_end[i, 2] = sc1
             tol0 = ROUNDING * sc0
             if g0 > tol0 and g1 > 0.0 and not (gp0 < 0.0 and gp1 > 0.0):
                 continue
@@ -422,6 +432,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
             if r >= 0.0 and (r < tau or (i_ev < 0 and r <= tau)):
                 tau = r
                 i_ev = i
+        reuse_ends = i_ev < 0 and not to_stop and ph[P_MODE] == MODE_LINEAR
         if i_ev >= 0:
             to_stop = False
             if tau < h:
