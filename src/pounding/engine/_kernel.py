@@ -26,7 +26,7 @@ from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A
                       P_CD, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_INL, P_INR, P_K, P_KISO,
                       P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR,
                       P_RISO, P_SPHI, P_V0, P_W, PH_LEN, SAMPLE_COLS, SIDE_L, SIDE_NONE, SIDE_R, T, V)
-from ._linear import fill_nodes, linear_eval_node, linear_setup, nodes_valid
+from ._linear import fill_nodes, linear_eval_node, linear_setup, linear_start, nodes_valid
 from ._numeric import dp5_step
 from ._trajectory import (NO_INDEX, ROUNDING, W_AABS_RATE, W_FORCE_RATE, W_VELOCITY, abs_acceleration_rate,
                           brent, contact_force, event_value, locate_event, newton, phase_eval,
@@ -349,10 +349,13 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
     extrema = np.array([st[D], t_run0, st[D], t_run0, 0.0, t_run0, 0.0])
     ph = np.zeros(PH_LEN)
     evs = np.zeros((2 * (slopes.size - 1) + 6, EV_COLS))
-    # event values at the end of a full sub-interval without event are those at the start of
-    # the next one (same events, same state): kept to save evaluating them twice
+    # After a full sub-interval without event in a linear phase under harmonic forcing, the
+    # next one continues the same phase (``continuing``): same coefficients, length and
+    # events, and the event values at the end of one are those at the start of the next.
     ev_end = np.empty((evs.shape[0], 3))
-    reuse_ends = False
+    continuing = False
+    h_phase = 0.0
+    n_ev = np.int64(0)
     kin0, iso0, bmp0 = _energies(st, mass, slopes, breaks, rule, law_l, p_l, law_r, p_r)
     status = SUCCESS
     zero_run = 0
@@ -368,16 +371,30 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
     while st[T] < t_end:
         t = st[T]
         a0x, a1x, amp, omega, phase, t_knot = _excitation_piece(exc_kind, exc_p, rec_t, rec_a, t)
-        k, c = _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l,
-                          p_l, law_r, p_r, a0x, a1x, amp, omega, phase)
-        # fastest rate of the phase: its frequency, or its fastest decay when overdamped
-        rate = max(math.sqrt(abs(k) / mass + (0.5 * c / mass) ** 2), abs(c) / mass)
-        h = 2.0 * math.pi / (SUBINTERVALS_PER_PERIOD * max(max(rate, omega), 1e-300))
+        if continuing:
+            # the same linear phase under harmonic forcing: only the start values move
+            ph[P_PHI] = phase
+            ph[P_D0] = st[D]
+            ph[P_V0] = st[V]
+            ph[P_DL0] = st[DEF_L]
+            ph[P_DR0] = st[DEF_R]
+            h = h_phase
+        else:
+            k, c = _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l,
+                              p_l, law_r, p_r, a0x, a1x, amp, omega, phase)
+            # fastest rate of the phase: its frequency, or its fastest decay when overdamped
+            rate = max(math.sqrt(abs(k) / mass + (0.5 * c / mass) ** 2), abs(c) / mass)
+            h = 2.0 * math.pi / (SUBINTERVALS_PER_PERIOD * max(max(rate, omega), 1e-300))
+            h_phase = h
         t_stop = min(t_knot, t_end)
         to_stop = h >= t_stop - t
         if to_stop:
             h = t_stop - t
-        if ph[P_MODE] == MODE_LINEAR:
+        if continuing:
+            linear_start(ph)
+            fill_nodes(ph, h, LOBATTO_X, LAST_NODE, LAST_NODE)
+            d1, v1, a1 = linear_eval_node(ph, h, LAST_NODE)
+        elif ph[P_MODE] == MODE_LINEAR:
             if not linear_setup(ph):
                 status = DEGENERATE_PHASE
                 break
@@ -406,8 +423,9 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
             a0 = (ph[P_P0] + ph[P_H] * ph[P_SPHI] - ph[P_C] * v0 - ph[P_K] * d0) / mass
         else:
             a0 = phase_eval(ph, 0.0)[2]
-        n_ev = iso_events(slopes, breaks, rule, st, evs, np.int64(0))  # typed, not literal
-        n_ev = _bumper_events(st, has_b, gap_l, gap_r, law_l, law_r, evs, n_ev)
+        if not continuing:  # (a phase's events stay the same until one of them fires)
+            n_ev = iso_events(slopes, breaks, rule, st, evs, np.int64(0))  # typed, not literal
+            n_ev = _bumper_events(st, has_b, gap_l, gap_r, law_l, law_r, evs, n_ev)
         t_vel = -1.0
         d_vel = 0.0
         if v0 * v1 < 0.0:
@@ -416,7 +434,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         tau = h
         i_ev = -1
         for i in range(n_ev):
-            if reuse_ends:
+            if continuing:
                 g0, gp0, sc0 = ev_end[i, 0], ev_end[i, 1], ev_end[i, 2]
             else:
                 g0, gp0, sc0 = event_value(evs, i, ph, 0.0, d0, v0, a0)
@@ -432,7 +450,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
             if r >= 0.0 and (r < tau or (i_ev < 0 and r <= tau)):
                 tau = r
                 i_ev = i
-        reuse_ends = i_ev < 0 and not to_stop and ph[P_MODE] == MODE_LINEAR
+        continuing = (i_ev < 0 and not to_stop and ph[P_MODE] == MODE_LINEAR
+                      and exc_kind == EXC_HARMONIC)
         if i_ev >= 0:
             to_stop = False
             if tau < h:

@@ -53,13 +53,22 @@ def linear_setup(ph):
         zi = -h * im / den
     ph[P_ZR] = zr
     ph[P_ZI] = zi
+    linear_start(ph)
+    return True
+
+
+@jit
+def linear_start(ph):
+    """The free response's initial values from ``P_D0``, ``P_V0`` and the forcing phase
+    ``P_PHI``: all :func:`linear_setup` redoes when only those changed (a sub-interval
+    continuing a phase under harmonic forcing)."""
+    zr, zi, w = ph[P_ZR], ph[P_ZI], ph[P_W]
     sp = math.sin(ph[P_PHI])
     cp = math.cos(ph[P_PHI])
     ph[P_SPHI] = sp
     ph[P_CPHI] = cp
     ph[P_Y0] = ph[P_D0] - (ph[P_B0] + zr * sp + zi * cp)
     ph[P_Y1] = ph[P_V0] - (ph[P_B1] + w * (zr * cp - zi * sp))
-    return True
 
 
 @jit
