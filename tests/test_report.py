@@ -5,6 +5,7 @@ from __future__ import annotations
 import shutil
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 import pytest
 from typer.testing import CliRunner
@@ -120,5 +121,11 @@ def test_cli_reproduce_on_a_reduced_grid(tmp_path):
                                       "--fstep", "0.5"])
     assert result.exit_code == 0, result.output
     assert (out / "index.html").is_file() and "Table 2" in result.output
+    assert "paper-calibrated" in result.output  # the default preset
+    beside = pd.read_csv(out / "targets.csv")  # the calibration targets, printed preset beside
+    assert {"measured", "allowed", "paper-printed", "paper-calibrated", "paper-calibrated met"} <= set(beside.columns)
+    stored = pd_.presets.paper_calibrated_residuals()
+    np.testing.assert_allclose(beside["paper-calibrated"], stored["model"], rtol=1e-9)
+    assert "Calibration targets" in (out / "index.html").read_text(encoding="utf-8")
     bad = CliRunner().invoke(app, ["reproduce", "--nbs", "x.toml"])
     assert bad.exit_code == 2 and "--ybs" in bad.output

@@ -12,6 +12,11 @@ assignment compiles a shape-error path that formats strings).  ``tests/test_comp
 fails when a dispatcher ends up with more than one signature.  Functions that only compiled
 code calls get no Python wrapper and no reference counting (:data:`jit`, or :data:`jit_alloc`
 when they allocate); the entry points keep both (:data:`jit_entry`).
+
+Developers: Numba's cache does not notice when a cached kernel's callees in *other files*
+change (``step_kernel`` in ``protocols/`` holds the engine's code from ``engine/``).  After
+editing the engine, clear the caches (``find src -name '*.nb[ic]' -delete``) or set
+``NUMBA_CACHE_DIR`` to a fresh folder; an installed release changes every file at once.
 """
 
 from __future__ import annotations
