@@ -178,3 +178,20 @@ def test_calibrated_preset_reproduces_its_stored_residuals():
     osc = pd_.presets.paper_calibrated()
     assert osc.isolator.n_branches == 4 and osc.bumpers.gap_left == 0.015
     assert pd_.presets.by_name("paper-calibrated", bumpers=False).bumpers is None
+
+
+def test_ctrl_c_keeps_the_best_candidate():
+    family = pd_.ModelFamily(500.0, 3, fixed={**PRINTED_BACKBONE, "bumper_stiffness": 1.46e6, "bumper_damping": 5.0})
+    targets = pd_.Targets.from_records([dict(configuration="NBs", a_g=0.05, quantity="alpha", value=2.5)])
+    calls = []
+
+    def stop_after_first_generation(n):
+        calls.append(n)
+        raise KeyboardInterrupt
+
+    with pytest.raises(pd_.Interrupted) as stop:
+        pd_.identify(targets, family, {"isolator_damping": (200.0, 3000.0)}, maxiter=5, popsize=3,
+                     progress=stop_after_first_generation, **FAST)
+    fit = stop.value.partial
+    assert isinstance(fit, pd_.Identification) and fit.message.startswith("Interrupted") and not fit.complete
+    assert 200.0 <= fit.parameters["isolator_damping"] <= 3000.0 and len(fit.residuals) == 1

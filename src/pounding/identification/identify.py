@@ -56,8 +56,10 @@ class Identification:
     n_evaluations : int
         Campaign evaluations used.
     status, message
-        ``Status.SUCCESS`` (an interrupted fit raises :class:`~pounding.Interrupted`, whose
-        ``partial`` is the best candidate so far, with a message that says so).
+        ``Status.SUCCESS``, and what was reached.
+    complete : bool
+        False for the ``partial`` of the :class:`~pounding.Interrupted` that Ctrl-C raises:
+        the best candidate so far.
     family, bounds
         What was fitted.
     """
@@ -71,6 +73,7 @@ class Identification:
     message: str
     family: ModelFamily = field(repr=False)
     bounds: dict[str, tuple[float, float]] = field(repr=False)
+    complete: bool = True
 
     @property
     def success(self) -> bool:
@@ -228,7 +231,8 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
                f"cost {best['cost']:.4g}.")
     if interrupted:
         message = "Interrupted: the best candidate so far. " + message
-    result = Identification(params, osc, table, best["cost"], best["n"], Status.SUCCESS, message, family, bounds)
+    result = Identification(params, osc, table, best["cost"], best["n"], Status.SUCCESS, message, family, bounds,
+                            complete=not interrupted)
     if interrupted:
         raise Interrupted(result, best["n"], None)
     return result
