@@ -3,6 +3,8 @@ clear errors, and the shipped calibrated preset reproduces its stored residuals.
 
 from __future__ import annotations
 
+import importlib
+
 import matplotlib
 import numpy as np
 import pandas as pd
@@ -135,6 +137,15 @@ def test_family_refuses_unknown_fixed_numbers():
         pd_.ModelFamily(500.0, 3, fixed={"slope_4": 1.0})
 
 
+def test_one_frequency_step_off_is_within_the_target():
+    targets = pd_.Targets.from_records([dict(configuration="NBs", a_g=0.05, quantity="nu_r", value=1.0)])
+    residual_table = importlib.import_module("pounding.identification.identify")._residual_table
+    table = residual_table(targets, {("NBs", 0.05, "up"): {"nu_r": 1.1}})
+    assert table["normalized"].iloc[0] > 1.0 and bool(table["within"].iloc[0])
+    table = residual_table(targets, {("NBs", 0.05, "up"): {"nu_r": 1.2}})
+    assert not bool(table["within"].iloc[0])
+
+
 def test_paper_targets_cover_the_tables():
     t = pd_.paper_targets().table
     assert set(t["quantity"]) == {"nu_r", "alpha", "eta", "e", "contact_nu_min", "contact_nu_max",
@@ -165,7 +176,7 @@ def test_identification_plot_returns_artists():
     family = pd_.ModelFamily(500.0, 3, fixed={**PRINTED_BACKBONE, "bumper_stiffness": 1.46e6, "bumper_damping": 5.0})
     targets = pd_.Targets.from_records([dict(configuration="NBs", a_g=0.05, quantity="alpha", value=2.5)])
     fit = pd_.identify(targets, family, {"isolator_damping": (200.0, 3000.0)}, maxiter=0, refine=False, **FAST)
-    assert len(fit.plot()) == 2
+    assert len(fit.plot()) == 3  # the bar, the marker, the +-1 band
 
 
 def test_calibrated_preset_reproduces_its_stored_residuals():

@@ -33,6 +33,7 @@ from .targets import Targets
 # residual of a target the candidate cannot produce (NaN: no contact, failed run), in tolerances
 MISSING_RESIDUAL = 10.0
 DEFAULT_SWEEP = {"steady": "fixed", "cycles": 30, "measure_cycles": 5}
+WITHIN_SLACK = 1e-9  # a target is met when |normalized residual| <= 1 + this (rounding)
 
 
 @dataclass(frozen=True, eq=False)
@@ -49,7 +50,7 @@ class Identification:
         One row per target: ``configuration``, ``a_g``, ``direction``, ``quantity``,
         ``target``, ``model``, ``difference`` (model - target), ``allowed`` (the tolerance in
         the quantity's unit), ``normalized`` (difference / allowed, times the weight) and
-        ``within`` (``|normalized| <= 1``).
+        ``within`` (``|normalized| <= 1``, up to rounding).
     cost : float
         Sum of squared normalized residuals (a NaN model value counts as
         :data:`MISSING_RESIDUAL` tolerances).
@@ -305,6 +306,7 @@ def _residual_table(targets: Targets, model: dict) -> pd.DataFrame:
     out["difference"] = values - t["value"].to_numpy()
     out["allowed"] = targets.allowed
     out["normalized"] = out["difference"] / out["allowed"] * t["weight"]
-    out["within"] = out["normalized"].abs() <= 1.0
+    # (1 + 1e-9: a nu_R one 0.1 step off is (1.1 - 1.0) / 0.1 = 1.0000000000000009, and met)
+    out["within"] = out["normalized"].abs() <= 1.0 + WITHIN_SLACK
     return out.reset_index(drop=True)
 

@@ -36,6 +36,7 @@ def plot_identification(fit: "Identification", ax: Any = None) -> list:
               df[["configuration", "a_g", "direction", "quantity"]].itertuples(index=False)]
     y = np.arange(len(df))
     artists = list(ax.barh(y, shown, color=colors))
+    artists.append(ax.scatter(shown, y, c=colors, s=12, zorder=3))  # a zero residual shows too
     artists.append(ax.axvspan(-1.0, 1.0, color="0.9", zorder=0))
     ax.set_yticks(y, labels, fontsize="x-small")
     ax.invert_yaxis()
