@@ -6,10 +6,14 @@ residual table, which the tests check the preset still reproduces).
 
 Family: the paper's 500 kg mass and 15 mm gaps; a kinematic isolator with four backbone
 branches (hardening allowed: MODEL.md §5 says the measured NBs accelerations need it),
-free C_d, and Kelvin-Voigt bumpers with free stiffness and damping.  Targets:
+free C_d, and bumpers with a free law (Kelvin-Voigt by default, or Hunt-Crossley).  Targets:
 ``pounding.paper_targets()`` (Tables 2-4, sweeps up, fixed 30 cycles per step as the lab).
+The shipped preset came from (about 5 minutes on 2 cores; docs/calibration.md)::
 
-    python scripts/calibrate_paper.py [--law kelvin_voigt] [--maxiter 25] [--popsize 10] [--seed 6]
+    python scripts/calibrate_paper.py --maxiter 40
+
+Options: ``--law hunt_crossley``, ``--popsize``, ``--seed``, ``--workers``, ``--rtol`` (of a
+nonlinear law's integration), ``--out DIR`` (write elsewhere than the package data).
 """
 
 from __future__ import annotations
