@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import math
+import tomllib
 from collections.abc import Iterable, Sequence
+from pathlib import Path
 from typing import Any
 
 import numpy as np
@@ -88,3 +90,22 @@ def integer(field: str, value: Any, minimum: int) -> int:
     if value < minimum:
         raise InputError(Problem.NOT_INTEGER, field, value, minimum=minimum)
     return int(value)
+
+
+def read_toml(field: str, path: Any, keys: Sequence[str]) -> dict:
+    """The top-level table of the TOML file ``path``, whose keys must be among ``keys``.
+
+    Raises :class:`InputError` naming ``field`` for a missing file, the file for bad TOML,
+    and the key for an unknown one.
+    """
+    path = Path(path)
+    if not path.is_file():
+        raise InputError(Problem.NO_FILE, field, str(path))
+    try:
+        table = tomllib.loads(path.read_text(encoding="utf-8"))
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(Problem.BAD_TOML, str(path), "...", detail=str(exc)) from None
+    for key in table:
+        if key not in keys:
+            raise InputError(Problem.UNKNOWN_KEY, key, table[key], choices=", ".join(keys))
+    return table

@@ -4,9 +4,9 @@ The run is cut into sub-intervals, each inside one phase of motion (fixed isolat
 fixed contacts, one piece of the excitation) and short against the phase's periods.  On
 each sub-interval the trajectory is known in closed form (linear phases) or from one
 Dormand-Prince step (nonlinear contact laws); every event function is checked for a
-crossing or a graze and the earliest root is located by Brent's method.  The sub-interval
-is then integrated exactly (Gauss-Legendre quadrature of the energy flows), its extrema
-are found from the zeros of their rates, and the state jumps at the event.
+crossing or a graze and the earliest root is located by Newton's method kept inside the
+bracket.  What the sub-interval adds to the run (energy integrals, extrema, contact
+statistics) is ``_subinterval.accumulate``'s; then the state jumps at the event.
 """
 
 from __future__ import annotations
@@ -26,27 +26,17 @@ from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A
                       P_CD, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_INL, P_INR, P_K, P_KISO,
                       P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR,
                       P_RISO, P_SPHI, P_V0, P_W, PH_LEN, SAMPLE_COLS, SIDE_L, SIDE_NONE, SIDE_R, T, V)
-from ._linear import fill_nodes, linear_eval_node, linear_setup, linear_start, nodes_valid
+from ._linear import fill_nodes, linear_eval_node, linear_setup, linear_start
+from ._subinterval import LAST_NODE, LOBATTO_X, accumulate, track_abs_acceleration
 from ._numeric import dp5_step
-from ._trajectory import (NO_INDEX, ROUNDING, W_AABS_RATE, W_FORCE_RATE, W_VELOCITY, abs_acceleration_rate,
-                          brent, contact_force, event_value, locate_event, newton, phase_eval,
+from ._trajectory import (NO_INDEX, ROUNDING, W_VELOCITY, contact_force, event_value, locate_event, newton, phase_eval,
                           table_acceleration)
 
 SUCCESS, ZENO, MAX_EVENTS, DEGENERATE_PHASE, STEP_FAILED = 0, -1, -2, -3, -4
 EXC_HARMONIC = 0
 SUBINTERVALS_PER_PERIOD = 8.0
 ZENO_REPEATS = 200
-# Gauss-Lobatto rule with 6 nodes on [0, 1], exact to degree 9 (the end nodes are known).
-# The energy integrands are products (V^2, A V): twice the motion's frequency, so with
-# SUBINTERVALS_PER_PERIOD = 8 the relative error per sub-interval stays near 1e-11.
-_LX1 = math.sqrt(1.0 / 3.0 - 2.0 * math.sqrt(7.0) / 21.0)
-_LX2 = math.sqrt(1.0 / 3.0 + 2.0 * math.sqrt(7.0) / 21.0)
-LOBATTO_X = np.array([0.0, 0.5 - 0.5 * _LX2, 0.5 - 0.5 * _LX1, 0.5 + 0.5 * _LX1, 0.5 + 0.5 * _LX2, 1.0])
-LOBATTO_W = np.array([1.0 / 30.0, (14.0 - math.sqrt(7.0)) / 60.0, (14.0 + math.sqrt(7.0)) / 60.0,
-                      (14.0 + math.sqrt(7.0)) / 60.0, (14.0 - math.sqrt(7.0)) / 60.0, 1.0 / 30.0])
-FIRST_NODE, LAST_NODE = np.int64(1), np.int64(5)  # the interior and end nodes (typed ints)
 XTOL_S = 1e-15          # event instants and displacement extrema, s
-XTOL_EXTREMUM_S = 1e-10  # instants of other extrema: the value's error is quadratic in it
 
 
 @jit_alloc
@@ -222,110 +212,6 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law
     return k, c
 
 
-@jit
-def _accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t_vel, d_vel, with_energy):
-    """Integrals, extrema and contact statistics over ``[t0, t0 + tau]`` of one sub-interval
-    (the energy integrals outside contacts only ``with_energy``)."""
-    mass = ph[P_M]
-    c_d = ph[P_CD]
-    in_l = ph[P_INL] != 0.0
-    in_r = ph[P_INR] != 0.0
-    linear = ph[P_MODE] == MODE_LINEAR
-    m_a0 = ph[P_P0] + mass * ph[P_AX0]
-    at_nodes = linear and nodes_valid(ph, tau)  # a full sub-interval: reuse the node values
-    if at_nodes:
-        fill_nodes(ph, tau, LOBATTO_X, FIRST_NODE, LAST_NODE - 1)
-    if tau > 0.0 and (with_energy or in_l or in_r):
-        for q in range(6):
-            tq = tau * LOBATTO_X[q]
-            wq = tau * LOBATTO_W[q]
-            if q == 0:
-                d, v, a = d0, v0, a0
-            elif q == 5:
-                d, v, a = d1, v1, a1
-            elif at_nodes:
-                d, v, a = linear_eval_node(ph, tq, q)
-            else:
-                d, v, a = phase_eval(ph, tq)
-            ledger[0] -= wq * mass * (_abs_acceleration(ph, linear, m_a0, tq, d, v, a) - a) * v
-            ledger[1] += wq * c_d * v * v
-            for side in (SIDE_L, SIDE_R):
-                if (side == SIDE_L and in_l) or (side == SIDE_R and in_r):
-                    f, fel, _, rate = contact_force(ph, side, d, v, a)
-                    acc = ACC_L if side == SIDE_L else ACC_R
-                    st[acc + A_IMPULSE] += wq * f
-                    st[acc + A_WORK] += wq * f * rate
-                    ledger[3] += wq * (f - fel) * rate
-    # displacement extrema (and the bumpers' maximum compression)
-    for j in range(3):
-        if j == 0:
-            tj, dj = 0.0, d0
-        elif j == 1:
-            tj, dj = tau, d1
-        else:
-            if t_vel < 0.0:
-                break
-            tj = t_vel
-            dj = d_vel
-        if dj > extrema[0]:
-            extrema[0] = dj
-            extrema[1] = t0 + tj
-        if dj < extrema[2]:
-            extrema[2] = dj
-            extrema[3] = t0 + tj
-        if in_l:
-            st[ACC_L + A_MAXCOMP] = max(st[ACC_L + A_MAXCOMP], -dj - ph[P_GAPL])
-        if in_r:
-            st[ACC_R + A_MAXCOMP] = max(st[ACC_R + A_MAXCOMP], dj - ph[P_GAPR])
-    # absolute acceleration extrema
-    r0 = abs_acceleration_rate(ph, d0, v0, a0)
-    r1 = abs_acceleration_rate(ph, d1, v1, a1)
-    _track_abs_acceleration(extrema, t0, _abs_acceleration(ph, linear, m_a0, 0.0, d0, v0, a0))
-    _track_abs_acceleration(extrema, t0 + tau, _abs_acceleration(ph, linear, m_a0, tau, d1, v1, a1))
-    if r0 * r1 < 0.0:
-        if linear:
-            tm = newton(W_AABS_RATE, NO_INDEX, ph, evs, 0.0, tau, r0, r1, XTOL_EXTREMUM_S)
-        else:
-            tm = brent(W_AABS_RATE, NO_INDEX, ph, evs, 0.0, tau, r0, r1, XTOL_EXTREMUM_S)
-        dm, vm, am = phase_eval(ph, tm)
-        _track_abs_acceleration(extrema, t0 + tm, _abs_acceleration(ph, linear, m_a0, tm, dm, vm, am))
-    # peak contact forces
-    for side in (SIDE_L, SIDE_R):
-        if (side == SIDE_L and in_l) or (side == SIDE_R and in_r):
-            acc = ACC_L if side == SIDE_L else ACC_R
-            fa, _, ra, _ = contact_force(ph, side, d0, v0, a0)
-            fb, _, rb, _ = contact_force(ph, side, d1, v1, a1)
-            peak = max(fa, fb)
-            if ra * rb < 0.0:
-                if linear:
-                    tm = newton(W_FORCE_RATE, side, ph, evs, 0.0, tau, ra, rb, XTOL_EXTREMUM_S)
-                else:
-                    tm = brent(W_FORCE_RATE, side, ph, evs, 0.0, tau, ra, rb, XTOL_EXTREMUM_S)
-                dm, vm, am = phase_eval(ph, tm)
-                peak = max(peak, contact_force(ph, side, dm, vm, am)[0])
-            st[acc + A_PEAK] = max(st[acc + A_PEAK], peak)
-
-
-@jit
-def _abs_acceleration(ph, linear, m_a0, tau, d, v, a):
-    """Absolute acceleration (m/s^2) at ``tau`` given the relative motion there.
-
-    A linear phase gives it from its equation of motion, without a sine:
-    ``M a_abs = P0 + M a0 - c V - k D`` (``m_a0`` is ``P0 + M a0``; the ramp terms cancel).
-    """
-    if linear:
-        return (m_a0 - ph[P_C] * v - ph[P_K] * d) / ph[P_M]
-    return a + table_acceleration(ph, tau)
-
-
-@jit
-def _track_abs_acceleration(extrema, t, a):
-    if abs(a) > extrema[4]:
-        extrema[4] = abs(a)
-        extrema[5] = t
-        extrema[6] = a
-
-
 @jit_entry
 def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
                exc_kind, exc_p, rec_t, rec_a, state0, t_end, sample_dt, rtol, max_events, with_energy):
@@ -366,7 +252,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
                                       gap_l, gap_r, law_l, p_l, law_r, p_r)
     _put(samples, n_s, t_run0, st[D], st[V], a_abs, f_iso, f_l, f_r, 0.0, 0.0)
     n_s += 1
-    _track_abs_acceleration(extrema, t_run0, a_abs)
+    track_abs_acceleration(extrema, t_run0, a_abs)
     j_next = 1
     while st[T] < t_end:
         t = st[T]
@@ -458,7 +344,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
                 d1, v1, a1 = phase_eval(ph, tau)
         if t_vel > tau:
             t_vel = -1.0
-        _accumulate(ph, st, t, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t_vel, d_vel, with_energy)
+        accumulate(ph, st, t, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t_vel, d_vel, with_energy)
         # samples strictly inside (t, t + tau]
         if sample_dt > 0.0:
             while True:
@@ -518,7 +404,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         n_e += 1
         a_abs, f_iso, f_l, f_r = _outputs(st, st[D], st[V], mass, c_d, slopes, breaks, rule,
                                           gap_l, gap_r, law_l, p_l, law_r, p_r)
-        _track_abs_acceleration(extrema, t_ev, a_abs)
+        track_abs_acceleration(extrema, t_ev, a_abs)
         if sample_dt >= 0.0:
             samples = _grow(samples, n_s)
             _put(samples, n_s, t_ev, st[D], st[V], a_abs, f_iso, f_l, f_r, 0.0, 0.0)

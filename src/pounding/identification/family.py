@@ -26,14 +26,13 @@ TOML (``pounding identify ... --family FAMILY.toml``)::
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from .._checks import integer, one_of, positive, real
+from .._checks import integer, one_of, positive, read_toml, real
 from .._errors import InputError, Problem
 from ..model import Bumpers, HuntCrossley, Isolator, KelvinVoigt, Oscillator
 
@@ -137,18 +136,9 @@ class ModelFamily:
         return out
 
     @classmethod
-    def from_toml(cls, path: str | Path) -> tuple["ModelFamily", dict[str, tuple[float, float]]]:
+    def from_toml(cls, path: str | Path) -> tuple[ModelFamily, dict[str, tuple[float, float]]]:
         """Read a family and its bounds (format in the module docstring)."""
-        path = Path(path)
-        if not path.is_file():
-            raise InputError(Problem.NO_FILE, "family", str(path))
-        try:
-            table = tomllib.loads(path.read_text(encoding="utf-8"))
-        except tomllib.TOMLDecodeError as exc:
-            raise InputError(Problem.BAD_TOML, str(path), "...", detail=str(exc)) from None
-        for key in table:
-            if key not in FAMILY_KEYS:
-                raise InputError(Problem.UNKNOWN_KEY, key, table[key], choices=", ".join(FAMILY_KEYS))
+        table = read_toml("family", path, FAMILY_KEYS)
         if "mass" not in table:
             raise InputError(Problem.MISSING_KEY, "mass", None, choices=", ".join(FAMILY_KEYS))
         bounds = table.get("bounds", {})

@@ -24,7 +24,6 @@ TOML (``pounding identify TARGETS.toml``)::
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -32,7 +31,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .._checks import positive, real
+from .._checks import positive, read_toml, real
 from .._errors import InputError, Problem
 from ..data import paper_measurements
 
@@ -98,7 +97,7 @@ class Targets:
 
     @classmethod
     def from_records(cls, records: list[dict[str, Any]], *, defaults: dict[str, Any] | None = None,
-                     tolerances: dict[str, Any] | None = None) -> "Targets":
+                     tolerances: dict[str, Any] | None = None) -> Targets:
         """Build and check targets from dicts with the keys of :data:`TARGET_KEYS`.
 
         ``defaults`` may set ``direction``; ``tolerances`` maps a quantity to
@@ -163,18 +162,9 @@ class Targets:
         return cls(pd.DataFrame(rows, columns=list(COLUMNS)))
 
     @classmethod
-    def from_toml(cls, path: str | Path) -> "Targets":
+    def from_toml(cls, path: str | Path) -> Targets:
         """Read targets from a TOML file (format in the module docstring)."""
-        path = Path(path)
-        if not path.is_file():
-            raise InputError(Problem.NO_FILE, "targets", str(path))
-        try:
-            table = tomllib.loads(path.read_text(encoding="utf-8"))
-        except tomllib.TOMLDecodeError as exc:
-            raise InputError(Problem.BAD_TOML, str(path), "...", detail=str(exc)) from None
-        for key in table:
-            if key not in ("defaults", "tolerances", "target"):
-                raise InputError(Problem.UNKNOWN_KEY, key, table[key], choices="defaults, tolerances, target")
+        table = read_toml("targets", path, ("defaults", "tolerances", "target"))
         if "target" not in table:
             raise InputError(Problem.MISSING_KEY, "target", None, choices="[[target]] tables")
         return cls.from_records(table["target"], defaults=table.get("defaults"), tolerances=table.get("tolerances"))

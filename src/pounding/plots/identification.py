@@ -10,7 +10,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..identification.identify import Identification
 
 
-def plot_identification(fit: "Identification", ax: Any = None) -> list:
+def plot_identification(fit: Identification, ax: Any = None) -> list:
     """Horizontal bars of ``(model - target) / allowed`` per target; within +-1 is met.
 
     Parameters

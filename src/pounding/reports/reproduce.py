@@ -10,10 +10,10 @@ from typing import Any
 import pandas as pd
 
 from .. import __version__
+from ..identification import evaluate, paper_targets
 from ..model import Oscillator
 from ..protocols import CampaignResult, campaign
 from ..protocols._progress import Progress
-from ..identification import evaluate, paper_targets
 from .compare import comparison, inconsistency_notes
 from .figures import paper_figures
 from .html import write_page
