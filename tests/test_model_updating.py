@@ -206,3 +206,20 @@ def test_ctrl_c_keeps_the_best_candidate():
     fit = stop.value.partial
     assert isinstance(fit, pd_.Identification) and fit.message.startswith("Interrupted") and not fit.complete
     assert 200.0 <= fit.parameters["isolator_damping"] <= 3000.0 and len(fit.residuals) == 1
+
+
+def test_a_start_guess_must_name_the_free_numbers():
+    family = pd_.ModelFamily(500.0, 3, fixed={**PRINTED_BACKBONE, "bumper_stiffness": 1.46e6, "bumper_damping": 5.0})
+    targets = pd_.Targets.from_records([dict(configuration="NBs", a_g=0.05, quantity="alpha", value=2.5)])
+    with pytest.raises(pd_.InputError, match="x0.gap"):
+        pd_.identify(targets, family, {"isolator_damping": (200.0, 3000.0)}, x0={"gap": 0.01}, **FAST)
+    with pytest.raises(pd_.InputError, match="x0.isolator_damping"):
+        pd_.identify(targets, family, {"isolator_damping": (200.0, 3000.0)}, x0={}, **FAST)
+
+
+def test_a_family_that_makes_no_valid_system_is_an_error():
+    fixed = {**PRINTED_BACKBONE, "slope_2": -18e3, "bumper_stiffness": 1.46e6, "bumper_damping": 5.0}
+    family = pd_.ModelFamily(500.0, 3, fixed=fixed)
+    targets = pd_.Targets.from_records([dict(configuration="NBs", a_g=0.05, quantity="alpha", value=2.5)])
+    with pytest.raises(pd_.InputError, match="slopes"):
+        pd_.identify(targets, family, {"isolator_damping": (200.0, 3000.0)}, maxiter=1, popsize=2, **FAST)

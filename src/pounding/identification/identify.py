@@ -13,6 +13,7 @@ from __future__ import annotations
 import concurrent.futures as cf
 import math
 import os
+import threading
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -152,7 +153,7 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     refine : bool
         Polish the best candidate with ``scipy.optimize.least_squares``.
     x0 : dict, optional
-        A starting guess for the free numbers (joins the first population).
+        A starting guess for every free number (joins the first population).
     progress : bool or callable
         True: a progress bar over the generations.
     **sweep_options
@@ -183,16 +184,35 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     options = {**DEFAULT_SWEEP, **sweep_options}
     scale = _Scale(bounds)
     cases_freqs = paper_frequencies_hz() if freqs_hz is None else freqs_hz
-    _model_values(family.oscillator(scale.values(np.full(len(names), 0.5))), targets, cases_freqs,
-                  options, check_only=True)  # bad options fail here, not in a worker
-    best = {"cost": math.inf, "u": None, "n": 0}
+    if x0 is not None:
+        unknown = sorted(set(x0) ^ set(names))
+        if unknown:
+            raise InputError(Problem.UNKNOWN_KEY if unknown[0] in x0 else Problem.MISSING_KEY,
+                             f"x0.{unknown[0]}", x0.get(unknown[0]), choices=", ".join(names))
+    try:  # bad sweep options fail here, not in a worker
+        probe = family.oscillator(scale.values(np.full(len(names), 0.5)))
+    except InputError:
+        probe = None  # the middle of the bounds is no valid system (breakpoints out of order)
+    if probe is not None:
+        _model_values(probe, targets, cases_freqs, options, check_only=True)
+    best: dict[str, Any] = {"cost": math.inf, "u": None, "n": 0, "valid": 0, "error": None}
+    lock = threading.Lock()  # candidates are evaluated on several threads
 
     def residuals(u: np.ndarray) -> np.ndarray:
-        r = _normalized(targets, _try_model(family, scale.values(u), targets, cases_freqs, options))
+        values = scale.values(u)
+        try:
+            model = _model_values(family.oscillator(values), targets, cases_freqs, options)
+        except InputError as exc:  # no valid system (e.g. breakpoints out of order): all missing
+            model = None
+            best["error"] = exc
+        r = _normalized(targets, model)
         cost = float(r @ r)
-        best["n"] += 1
-        if cost < best["cost"]:
-            best["cost"], best["u"] = cost, np.array(u, dtype=float)
+        with lock:
+            best["n"] += 1
+            best["valid"] += model is not None
+            # ties go to the smaller u, so the result does not depend on the threads' order
+            if cost < best["cost"] or (cost == best["cost"] and tuple(u) < tuple(best["u"])):
+                best["cost"], best["u"] = cost, np.array(u, dtype=float)
         return r
 
     def cost(u: np.ndarray) -> float:
@@ -224,6 +244,8 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
             interrupted = True
     if best["u"] is None:
         raise Interrupted(None, 0, maxiter)
+    if best["valid"] == 0 and best["error"] is not None:
+        raise best["error"]  # no candidate made a valid system: the family's fixed numbers or bounds
     params = scale.values(best["u"])
     osc = family.oscillator(params)
     table = evaluate(osc, targets, freqs_hz=cases_freqs, **options)
@@ -272,15 +294,6 @@ def _model_values(oscillator: Oscillator, targets: Targets, freqs_hz: Any, optio
             continue
         out[(conf, a_g, direction)] = sweep_quantities(sweep(osc, a_g, freqs_hz, direction, **options))
     return out
-
-
-def _try_model(family: ModelFamily, values: dict, targets: Targets, freqs_hz: Any, options: dict) -> dict | None:
-    """As :func:`_model_values` for a candidate; None when it is no valid system or a run fails."""
-    try:
-        osc = family.oscillator(values)
-    except InputError:
-        return None  # e.g. breakpoints out of order: every target missing
-    return _model_values(osc, targets, freqs_hz, options)
 
 
 def _model_column(targets: Targets, model: dict | None) -> np.ndarray:
