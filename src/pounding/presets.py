@@ -80,7 +80,8 @@ def paper_calibrated(bumpers: bool = True) -> Oscillator:
 
 
 def paper_calibrated_residuals() -> "pd.DataFrame":
-    """The residual table stored when :func:`paper_calibrated` was fitted (``Identification.residuals``)."""
+    """The residual table of :func:`paper_calibrated` against :func:`pounding.paper_targets`, as
+    stored with it (the columns of ``Identification.residuals``; a test re-evaluates it)."""
     import pandas as pd
 
     with resources.files("pounding.data").joinpath(CALIBRATED_RESIDUALS_FILE).open("r", encoding="utf-8") as fh:
