@@ -92,10 +92,7 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t_
     track_abs_acceleration(extrema, t0, _abs_acceleration(ph, linear, m_a0, 0.0, d0, v0, a0))
     track_abs_acceleration(extrema, t0 + tau, _abs_acceleration(ph, linear, m_a0, tau, d1, v1, a1))
     if r0 * r1 < 0.0:
-        if linear:
-            tm = newton(W_AABS_RATE, NO_INDEX, ph, evs, 0.0, tau, r0, r1, XTOL_EXTREMUM_S)
-        else:
-            tm = brent(W_AABS_RATE, NO_INDEX, ph, evs, 0.0, tau, r0, r1, XTOL_EXTREMUM_S)
+        tm = _extremum_time(W_AABS_RATE, NO_INDEX, linear, ph, evs, tau, r0, r1)
         dm, vm, am = phase_eval(ph, tm)
         track_abs_acceleration(extrema, t0 + tm, _abs_acceleration(ph, linear, m_a0, tm, dm, vm, am))
     # peak contact forces
@@ -106,13 +103,19 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t_
             fb, _, rb, _ = contact_force(ph, side, d1, v1, a1)
             peak = max(fa, fb)
             if ra * rb < 0.0:
-                if linear:
-                    tm = newton(W_FORCE_RATE, side, ph, evs, 0.0, tau, ra, rb, XTOL_EXTREMUM_S)
-                else:
-                    tm = brent(W_FORCE_RATE, side, ph, evs, 0.0, tau, ra, rb, XTOL_EXTREMUM_S)
+                tm = _extremum_time(W_FORCE_RATE, side, linear, ph, evs, tau, ra, rb)
                 dm, vm, am = phase_eval(ph, tm)
                 peak = max(peak, contact_force(ph, side, dm, vm, am)[0])
             st[acc + A_PEAK] = max(st[acc + A_PEAK], peak)
+
+
+@jit
+def _extremum_time(what, idx, linear, ph, evs, tau, rate0, rate1):
+    """Zero in ``[0, tau]`` of the rate ``what`` (values ``rate0``, ``rate1`` of opposite signs at
+    the ends): Newton on the analytic jerk in a linear phase, Brent's method otherwise."""
+    if linear:
+        return newton(what, idx, ph, evs, 0.0, tau, rate0, rate1, XTOL_EXTREMUM_S)
+    return brent(what, idx, ph, evs, 0.0, tau, rate0, rate1, XTOL_EXTREMUM_S)
 
 
 @jit

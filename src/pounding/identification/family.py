@@ -99,7 +99,7 @@ class ModelFamily:
         for name in names:
             if name not in bounds and name not in self.fixed:
                 raise InputError(Problem.MISSING_KEY, f"bounds.{name}", None,
-                                 choices=f"give it bounds [low, high] or a fixed value; names: {', '.join(names)}")
+                                 choices=f"{', '.join(names)} (each bounded here or fixed in the family)")
         return tuple(n for n in names if n in bounds)
 
     def oscillator(self, values: dict[str, float]) -> Oscillator:
