@@ -36,6 +36,15 @@ def test_energy_ledger_closes_from_motion(osc, exc, v0):
     assert abs(run.energy.residual) <= 1e-8 * _flows(run.energy)
 
 
+def test_energy_ledger_closes_on_a_stiff_lightly_damped_contact():
+    # hypothesis found it: 6-point quadrature left 1.0002e-8 of the largest flow here
+    iso = pd_.Isolator((5000.0,), (), "kinematic", 1.0)
+    osc = pd_.Oscillator(479.0, iso, pd_.Bumpers(0.0032341707548241504, 0.03, pd_.KelvinVoigt(2326413.0, 4.0)))
+    run = pd_.simulate(osc, pd_.Harmonic(0.34375, 1.0, phase=1.4765625), 3.0, sample_rate_hz=0)
+    assert len(run.contacts) == 13
+    assert abs(run.energy.residual) <= 1e-8 * _flows(run.energy)
+
+
 @pytest.mark.parametrize("v0", [0.0, 0.5])
 def test_energy_ledger_closes_with_hunt_crossley(v0):
     # a nonlinear law is integrated numerically: the ledger closes to the integration tolerance

@@ -34,7 +34,7 @@ P_SPHI, P_CPHI = 46, 47                              # sin and cos of the forcin
 # sub-interval, reused while the phase's (h, w, s, q2) stay the same: see _linear.py
 P_NKEY = 48          # h, w, s, q2 the nodes were computed for (4 values)
 P_NODES = 52         # per node q: sin(w tau), cos(w tau), and the free response's two terms
-N_NODES = 6          # nodes 0..5 (0 unused: tau = 0)
+N_NODES = 7          # quadrature nodes 0..6 (0 unused: tau = 0)
 PH_LEN = P_NODES + 4 * N_NODES
 MODE_LINEAR = 0.0
 MODE_NUMERIC = 1.0

@@ -1,7 +1,7 @@
 """What one sub-interval adds to a run: its integrals, extrema and contact statistics.
 
 Energy flows (input work, viscous, bumper dashpot) and each contact's impulse and work are
-integrated by 6-point Gauss-Lobatto quadrature of the exact trajectory; the extrema of the
+integrated by 7-point Gauss-Lobatto quadrature of the exact trajectory; the extrema of the
 displacement come from the velocity's zero (located by the kernel), those of the absolute
 acceleration and of contact forces from the zeros of their rates.
 """
@@ -13,21 +13,29 @@ import math
 import numpy as np
 
 from .._jit import jit
-from ._layout import (A_IMPULSE, A_MAXCOMP, A_PEAK, A_WORK, ACC_L, ACC_R, MODE_LINEAR, P_AX0, P_C,
+from ._layout import (N_NODES, A_IMPULSE, A_MAXCOMP, A_PEAK, A_WORK, ACC_L, ACC_R, MODE_LINEAR, P_AX0, P_C,
                       P_CD, P_GAPL, P_GAPR, P_INL, P_INR, P_K, P_M, P_MODE, P_P0, SIDE_L, SIDE_R)
 from ._linear import fill_nodes, linear_eval_node, nodes_valid
 from ._trajectory import (NO_INDEX, W_AABS_RATE, W_FORCE_RATE, abs_acceleration_rate, brent,
                           contact_force, newton, phase_eval, table_acceleration)
 
-# Gauss-Lobatto rule with 6 nodes on [0, 1], exact to degree 9 (the end nodes are known).
-# The energy integrands are products (V^2, A V): twice the motion's frequency, so with
-# SUBINTERVALS_PER_PERIOD = 8 the relative error per sub-interval stays near 1e-11.
-_LX1 = math.sqrt(1.0 / 3.0 - 2.0 * math.sqrt(7.0) / 21.0)
-_LX2 = math.sqrt(1.0 / 3.0 + 2.0 * math.sqrt(7.0) / 21.0)
-LOBATTO_X = np.array([0.0, 0.5 - 0.5 * _LX2, 0.5 - 0.5 * _LX1, 0.5 + 0.5 * _LX1, 0.5 + 0.5 * _LX2, 1.0])
-LOBATTO_W = np.array([1.0 / 30.0, (14.0 - math.sqrt(7.0)) / 60.0, (14.0 + math.sqrt(7.0)) / 60.0,
-                      (14.0 + math.sqrt(7.0)) / 60.0, (14.0 - math.sqrt(7.0)) / 60.0, 1.0 / 30.0])
-FIRST_NODE, LAST_NODE = np.int64(1), np.int64(5)  # the interior and end nodes (typed ints)
+
+
+def _lobatto(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes and weights of the ``n``-point Gauss-Lobatto rule on [0, 1] (exact to degree 2n - 3)."""
+    legendre = np.polynomial.legendre.Legendre.basis(n - 1)
+    x = np.concatenate([[-1.0], np.sort(legendre.deriv().roots().real), [1.0]])
+    w = 2.0 / (n * (n - 1) * legendre(x) ** 2)
+    return 0.5 * (x + 1.0), 0.5 * w
+
+
+# The energy integrands are products (V^2, A V) at twice the motion's frequency, over
+# sub-intervals of 1/8 of its period.  Measured on a stiff, lightly damped contact (3 s,
+# 13 impacts), the energy ledger closes to 1.0e-8 of the largest flow with 6 nodes, 1.1e-11
+# with 7 and 8.6e-13 with 8; 7 nodes cost about 5 % of a run.
+N_LOBATTO = N_NODES
+LOBATTO_X, LOBATTO_W = _lobatto(N_LOBATTO)
+FIRST_NODE, LAST_NODE = np.int64(1), np.int64(N_LOBATTO - 1)  # the interior and end nodes (typed)
 XTOL_EXTREMUM_S = 1e-10  # instants of other extrema: the value's error is quadratic in it
 
 
@@ -45,12 +53,12 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t_
     if at_nodes:
         fill_nodes(ph, tau, LOBATTO_X, FIRST_NODE, LAST_NODE - 1)
     if tau > 0.0 and (with_energy or in_l or in_r):
-        for q in range(6):
+        for q in range(N_LOBATTO):
             tq = tau * LOBATTO_X[q]
             wq = tau * LOBATTO_W[q]
             if q == 0:
                 d, v, a = d0, v0, a0
-            elif q == 5:
+            elif q == LAST_NODE:
                 d, v, a = d1, v1, a1
             elif at_nodes:
                 d, v, a = linear_eval_node(ph, tq, q)
