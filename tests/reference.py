@@ -27,7 +27,9 @@ class RefResult:
     contact_ends: list = field(default_factory=list)
     u: np.ndarray | None = None
     state: dict | None = None       # pass back as ``state=`` to continue exactly
-    completed: list = field(default_factory=list)  # (side, t_start, v_in, t_end, v_out)
+    completed: list = field(default_factory=list)  # (side, t_start, v_in, t_end, v_out, impulse, work)
+    viscous: float = 0.0            # int c_d V^2 dt, J
+    input_work: float = 0.0         # -int M A_g V dt, J
     d_max: float = -math.inf        # with measure=True: extrema over the run
     d_min: float = math.inf
     a_abs_max: float = 0.0
@@ -116,9 +118,12 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
     accel = exc.acceleration
     res = RefResult(0.0, d0, v0)
     t, d, v = 0.0, d0, v0
-    open_start = [None, None]   # (t, v) of the contact going on at each side
+    open_start = [None, None]   # (t, v, impulse and work integrals then) of the contact going on
+    # integrals carried as extra ODE states: impulse and work of each bumper, viscous, input
+    acc = np.zeros(6)
     if state is not None:
         t, d, v = state["t"], state["d"], state["v"]
+        acc = state["acc"].copy()
         u, s = state["u"].copy(), state["s"].copy()
         comp, t_rel, inc = list(state["comp"]), list(state["t_rel"]), list(state["inc"])
         open_start = list(state["open_start"])
@@ -136,12 +141,17 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
         return force(sign * dd - gap, sign * vv)
 
     def rhs(tt, y):
-        dd, vv = y
+        dd, vv = y[0], y[1]
         f = iso_force(dd) + cd * vv
+        rates = [0.0, 0.0, 0.0, 0.0]
         for j in range(len(sides)):
             if inc[j]:
-                f += sides[j][0] * bump_force(j, dd, vv)
-        return [vv, -f / m - float(accel(tt))]
+                fb = bump_force(j, dd, vv)
+                f += sides[j][0] * fb
+                rates[j] = fb
+                rates[2 + j] = fb * sides[j][0] * vv
+        ag = float(accel(tt))
+        return [vv, -f / m - ag, *rates, cd * vv * vv, -m * ag * vv]
 
     def build_events():
         evs = []
@@ -181,13 +191,14 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
         elif kind == "start":
             inc[idx] = True
             res.contact_starts.append((idx, t))
-            open_start[idx] = (t, v)
+            open_start[idx] = (t, v, acc[idx], acc[2 + idx])
         elif kind == "end":
             inc[idx] = False
             comp[idx] = max(0.0, sides[idx][0] * d - sides[idx][1])
             t_rel[idx] = t
             res.contact_ends.append((idx, t))
-            res.completed.append((idx, *open_start[idx], t, v))
+            t0, v_in, imp0, work0 = open_start[idx]
+            res.completed.append((idx, t0, v_in, t, v, acc[idx] - imp0, acc[2 + idx] - work0))
             open_start[idx] = None
 
     def immediate(evs):
@@ -251,7 +262,7 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
                 return y[1]
             funcs.append(vel_zero)
         t_start = t
-        sol = solve_ivp(rhs, (t, t_end), [d, v], method="DOP853", rtol=rtol, atol=atol, events=funcs,
+        sol = solve_ivp(rhs, (t, t_end), [d, v, *acc], method="DOP853", rtol=rtol, atol=atol, events=funcs,
                         dense_output=True)
         if measure:
             ye = sol.y_events[-1]
@@ -277,10 +288,12 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
             if stalled > 50:  # e.g. the mass rides the relaxing bumper surface at zero force
                 raise ReferenceStalled(f"reference made no progress at t = {t_start}")
             t, d, v = sol.t[-1], sol.y[0, -1], sol.y[1, -1]
+            acc = sol.y[2:, -1].copy()
             if sol.status == 1 and t < t_end:
                 continue
             break
-        t, (d, v) = hit[0], hit[2]
+        t, d, v = hit[0], hit[2][0], hit[2][1]
+        acc = np.array(hit[2][2:])
         apply(*evs[hit[1]][1])
         if measure:
             track(np.array([t]), np.array([d]), np.array([v]))
@@ -289,7 +302,9 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
                 if s[i] != 0:
                     u[i] = d - s[i] * Db[i]
     res.t, res.d, res.v = t, d, v
+    res.viscous, res.input_work = acc[4], acc[5]
     res.u = u
     res.state = {"t": t, "d": d, "v": v, "u": u.copy(), "s": s.copy(), "comp": list(comp),
-                 "t_rel": list(t_rel), "inc": list(inc), "open_start": list(open_start)}
+                 "t_rel": list(t_rel), "inc": list(inc), "open_start": list(open_start),
+                 "acc": acc.copy()}
     return res

@@ -74,3 +74,46 @@ def test_undamped_resonance_ends_with_a_status():
     run = pd_.simulate(osc, pd_.Harmonic(0.1, math.sqrt(k / m) / (2 * math.pi)), 1.0)
     assert run.status == pd_.Status.DEGENERATE_PHASE
     assert "damping" in run.message
+
+
+@settings(max_examples=20, deadline=None)
+@given(m=st.floats(50, 2000), k=st.floats(1e3, 1e5), zeta=st.floats(0.05, 0.5),
+       a_g=st.floats(0.01, 0.5), f=st.floats(0.2, 6.0), span=st.floats(0.3, 3.0))
+def test_steady_state_energy_flows_match_closed_form(m, k, zeta, a_g, f, span):
+    # started on the steady-state orbit, V = W cos(w t + psi): int c V^2 and -int M A_g V over
+    # any window in closed form
+    c = 2 * zeta * math.sqrt(k * m)
+    osc = pd_.Oscillator(m, pd_.Isolator((k,), damping=c))
+    exc = pd_.Harmonic(a_g, f)
+    w, a_t = exc.omega_rad_s, exc.peak_m_s2
+    z = -m * a_t / (k - m * w**2 + 1j * c * w)           # D = Im(z e^{i w t})
+    state = pd_.State.at_rest(osc, displacement_m=z.imag, velocity_m_s=(1j * w * z).imag)
+    t1 = span / f
+    run = pd_.simulate(osc, exc, t1, state, sample_rate_hz=0)
+    amp, psi = abs(w * z), np.angle(z)                    # V = amp cos(w t + psi)
+    viscous = c * amp**2 * (t1 / 2 + (math.sin(2 * (w * t1 + psi)) - math.sin(2 * psi)) / (4 * w))
+    # sin(w t) cos(w t + psi) = (sin(2 w t + psi) - sin(psi)) / 2
+    sin_v = amp / 2 * (-(math.cos(2 * w * t1 + psi) - math.cos(psi)) / (2 * w) - math.sin(psi) * t1)
+    # the terms' size: the integrands' amplitudes over the window
+    assert run.energy.viscous == pytest.approx(viscous, abs=1e-12 * c * amp**2 * t1)
+    assert run.energy.input_work == pytest.approx(-m * a_t * sin_v, abs=1e-12 * m * a_t * amp * t1)
+
+
+def test_energy_rule_module_is_what_its_generator_writes():
+    # _hermite.py is generated (unrolled); a hand edit or a changed generator must not drift apart
+    import importlib.util
+    from pathlib import Path
+    path = Path(__file__).resolve().parents[1] / "scripts" / "generate_hermite.py"
+    spec = importlib.util.spec_from_file_location("generate_hermite", path)
+    gen = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(gen)
+    assert gen.TARGET.read_text() == gen.source()
+    # the rule is exact to degree 2p + 1 and no further
+    p = gen.ORDER
+    c = gen.weights(p)
+    for n in range(2 * p + 3):
+        rule = sum(c[k] * (math.perm(n, k) * (k == n) + (-1) ** k * math.perm(n, k)) for k in range(p + 1))
+        if n <= 2 * p + 1:
+            assert rule == pytest.approx(1.0 / (n + 1), rel=1e-14)
+        else:
+            assert abs(rule - 1.0 / (n + 1)) > 1e-12

@@ -42,6 +42,19 @@ def _compare(osc, exc, v0=0.0, duration=DURATION_S, time_tol=1e-8, state_rtol=1e
     scale_v = max(np.abs(run.velocity).max(), 1e-6)
     assert abs(run.final_state.displacement_m - ref.d) <= state_rtol * scale_d
     assert abs(run.final_state.velocity_m_s - ref.v) <= state_rtol * scale_v
+    # the integrals (the reference carries them as extra ODE states): each finished contact's
+    # impulse and work, and the viscous and input energies
+    done = run.contacts.dropna()
+    assert len(done) == len(ref.completed)
+    if len(done):
+        impulse = np.array([c[5] for c in ref.completed])
+        work = np.array([c[6] for c in ref.completed])
+        np.testing.assert_allclose(done["impulse"], impulse, rtol=state_rtol)
+        np.testing.assert_allclose(done["bumper_dissipation"], work, rtol=0,
+                                   atol=state_rtol * np.abs(work).max())
+    flows = max(abs(ref.input_work), ref.viscous, 1e-12)
+    assert abs(run.energy.viscous - ref.viscous) <= state_rtol * flows
+    assert abs(run.energy.input_work - ref.input_work) <= state_rtol * flows
     return run, ref
 
 

@@ -26,8 +26,8 @@ from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A
                       P_CD, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_INL, P_INR, P_K, P_KISO,
                       P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR,
                       P_RISO, P_SPHI, P_V0, P_W, PH_LEN, SAMPLE_COLS, SIDE_L, SIDE_NONE, SIDE_R, T, V)
-from ._linear import fill_nodes, linear_eval_node, linear_setup, linear_start
-from ._subinterval import LAST_NODE, LOBATTO_X, accumulate, track_abs_acceleration
+from ._linear import fill_end, linear_eval_end, linear_setup, linear_start
+from ._subinterval import accumulate, track_abs_acceleration
 from ._numeric import dp5_step
 from ._trajectory import (NO_INDEX, ROUNDING, W_VELOCITY, contact_force, event_value, locate_event, newton, phase_eval,
                           table_acceleration)
@@ -278,14 +278,14 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
             h = t_stop - t
         if continuing:
             linear_start(ph)
-            fill_nodes(ph, h, LOBATTO_X, LAST_NODE, LAST_NODE)
-            d1, v1, a1 = linear_eval_node(ph, h, LAST_NODE)
+            fill_end(ph, h)
+            d1, v1, a1 = linear_eval_end(ph, h)
         elif ph[P_MODE] == MODE_LINEAR:
             if not linear_setup(ph):
                 status = DEGENERATE_PHASE
                 break
-            fill_nodes(ph, h, LOBATTO_X, LAST_NODE, LAST_NODE)
-            d1, v1, a1 = linear_eval_node(ph, h, LAST_NODE)
+            fill_end(ph, h)
+            d1, v1, a1 = linear_eval_end(ph, h)
         else:
             if h_num < h:
                 h = h_num

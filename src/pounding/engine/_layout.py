@@ -30,12 +30,11 @@ PL_AT, PR_AT = np.int64(P_PL), np.int64(P_PR)  # as offsets for the law_* functi
 P_DL0, P_DR0, P_CD, P_AX0, P_AX1, P_AXH = 36, 37, 38, 39, 40, 41
 P_INL, P_INR, P_KISO, P_RISO = 42, 43, 44, 45
 P_SPHI, P_CPHI = 46, 47                              # sin and cos of the forcing phase
-# the transcendental values at the quadrature nodes tau = h * x_q (q = 1..5) of a full
-# sub-interval, reused while the phase's (h, w, s, q2) stay the same: see _linear.py
-P_NKEY = 48          # h, w, s, q2 the nodes were computed for (4 values)
-P_NODES = 52         # per node q: sin(w tau), cos(w tau), and the free response's two terms
-N_NODES = 7          # quadrature nodes 0..6 (0 unused: tau = 0)
-PH_LEN = P_NODES + 4 * N_NODES
+# the transcendental values at the end tau = h of a full sub-interval, reused while the
+# phase's (h, w, s, q2) stay the same: see _linear.py
+P_NKEY = 48          # h, w, s, q2 the end values were computed for (4 values)
+P_NODE = 52          # sin(w h), cos(w h), and the free response's two terms at h
+PH_LEN = P_NODE + 4
 MODE_LINEAR = 0.0
 MODE_NUMERIC = 1.0
 

@@ -1,7 +1,9 @@
 """What one sub-interval adds to a run: its integrals, extrema and contact statistics.
 
 Energy flows (input work, viscous, bumper dashpot) and each contact's impulse and work are
-integrated by 7-point Gauss-Lobatto quadrature of the exact trajectory; the extrema of the
+integrated by a two-point Hermite rule on the derivatives at the sub-interval's ends in
+linear phases (``_linear.linear_integrals``), by 7-point Gauss-Lobatto quadrature of the
+numerical solution with a nonlinear contact law; the extrema of the
 displacement come from the velocity's zero (located by the kernel), those of the absolute
 acceleration and of contact forces from the zeros of their rates.
 """
@@ -13,9 +15,10 @@ import math
 import numpy as np
 
 from .._jit import jit
-from ._layout import (N_NODES, A_IMPULSE, A_MAXCOMP, A_PEAK, A_WORK, ACC_L, ACC_R, MODE_LINEAR, P_AX0, P_C,
-                      P_CD, P_GAPL, P_GAPR, P_INL, P_INR, P_K, P_M, P_MODE, P_P0, SIDE_L, SIDE_R)
-from ._linear import fill_nodes, linear_eval_node, nodes_valid
+from ._layout import (A_IMPULSE, A_MAXCOMP, A_PEAK, A_WORK, ACC_L, ACC_R, MODE_LINEAR, P_AX0, P_C,
+                      P_CD, P_GAPL, P_GAPR, P_INL, P_INR, P_K, P_M, P_MODE, P_P0, P_PL, P_PR, SIDE_L,
+                      SIDE_R)
+from ._linear import linear_angle, linear_integrals
 from ._trajectory import (NO_INDEX, W_AABS_RATE, W_FORCE_RATE, abs_acceleration_rate, brent,
                           contact_force, newton, phase_eval, table_acceleration)
 
@@ -29,13 +32,14 @@ def _lobatto(n: int) -> tuple[np.ndarray, np.ndarray]:
     return 0.5 * (x + 1.0), 0.5 * w
 
 
-# The energy integrands are products (V^2, A V) at twice the motion's frequency, over
-# sub-intervals of 1/8 of its period.  Measured on a stiff, lightly damped contact (3 s,
-# 13 impacts), the energy ledger closes to 1.0e-8 of the largest flow with 6 nodes, 1.1e-11
-# with 7 and 8.6e-13 with 8; 7 nodes cost about 5 % of a run.
-N_LOBATTO = N_NODES
+# Phases with a nonlinear contact law (the others use linear_integrals' Hermite rule): the
+# integrands are products (V^2, A V) at twice the motion's frequency, over sub-intervals of
+# 1/8 of its period.  Measured on a stiff, lightly damped contact (3 s, 13 impacts), the
+# energy ledger closed to 1.0e-8 of the largest flow with 6 nodes, 1.1e-11 with 7 and
+# 8.6e-13 with 8.
+N_LOBATTO = 7
 LOBATTO_X, LOBATTO_W = _lobatto(N_LOBATTO)
-FIRST_NODE, LAST_NODE = np.int64(1), np.int64(N_LOBATTO - 1)  # the interior and end nodes (typed)
+LAST_NODE = N_LOBATTO - 1
 XTOL_EXTREMUM_S = 1e-10  # instants of other extrema: the value's error is quadratic in it
 
 
@@ -49,10 +53,24 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t_
     in_r = ph[P_INR] != 0.0
     linear = ph[P_MODE] == MODE_LINEAR
     m_a0 = ph[P_P0] + mass * ph[P_AX0]
-    at_nodes = linear and nodes_valid(ph, tau)  # a full sub-interval: reuse the node values
-    if at_nodes:
-        fill_nodes(ph, tau, LOBATTO_X, FIRST_NODE, LAST_NODE - 1)
-    if tau > 0.0 and (with_energy or in_l or in_r):
+    if tau > 0.0 and linear and (with_energy or in_l or in_r):
+        s1, c1 = linear_angle(ph, tau)
+        i_vv, i_d, i_gv = linear_integrals(ph, tau, d0, v0, a0, d1, v1, a1, s1, c1)
+        ledger[0] -= mass * i_gv
+        ledger[1] += c_d * i_vv
+        for side in (SIDE_L, SIDE_R):
+            if (side == SIDE_L and in_l) or (side == SIDE_R and in_r):
+                # a linear law is Kelvin-Voigt: F = k_b x + c_b x', compression x = +-D - gap
+                if side == SIDE_L:
+                    sign, gap, k_b, c_b, acc = -1.0, ph[P_GAPL], ph[P_PL], ph[P_PL + 1], ACC_L
+                else:
+                    sign, gap, k_b, c_b, acc = 1.0, ph[P_GAPR], ph[P_PR], ph[P_PR + 1], ACC_R
+                x0 = sign * d0 - gap
+                x1 = sign * d1 - gap
+                st[acc + A_IMPULSE] += k_b * (sign * i_d - gap * tau) + c_b * (x1 - x0)
+                st[acc + A_WORK] += 0.5 * k_b * (x1 * x1 - x0 * x0) + c_b * i_vv
+                ledger[3] += c_b * i_vv
+    elif tau > 0.0 and (with_energy or in_l or in_r):
         for q in range(N_LOBATTO):
             tq = tau * LOBATTO_X[q]
             wq = tau * LOBATTO_W[q]
@@ -60,8 +78,6 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t_
                 d, v, a = d0, v0, a0
             elif q == LAST_NODE:
                 d, v, a = d1, v1, a1
-            elif at_nodes:
-                d, v, a = linear_eval_node(ph, tq, q)
             else:
                 d, v, a = phase_eval(ph, tq)
             ledger[0] -= wq * mass * (_abs_acceleration(ph, linear, m_a0, tq, d, v, a) - a) * v
