@@ -151,6 +151,7 @@ def newton(what, idx, ph, evs, xa, xb, fa, fb, xtol):
     x = xa - fa * (xb - xa) / (fb - fa)
     dx_old = abs(xb - xa)
     dx = dx_old
+    prev_newton = 0.0  # the previous Newton step's size (0: it was a bisection)
     for _ in range(100):
         f, fp = _value_and_rate(what, idx, ph, evs, x)
         if f == 0.0:
@@ -168,11 +169,19 @@ def newton(what, idx, ph, evs, xa, xb, fa, fb, xtol):
         if newton_ok:
             dx = abs(step)
             x = x_new
+            tol = xtol + 4.0 * 2.220446049250313e-16 * abs(x)
+            # converging quadratically (dx = C prev^2), the next step would be C dx^2 =
+            # dx^3 / prev^2: when that is below the tolerance, x is the root to it already
+            if dx < prev_newton and dx * dx * dx < tol * prev_newton * prev_newton:
+                return x
+            prev_newton = dx
         else:
             x_new = 0.5 * (lo + hi)
             dx = abs(x_new - x)
             x = x_new
-        if dx < xtol + 4.0 * 2.220446049250313e-16 * abs(x):
+            tol = xtol + 4.0 * 2.220446049250313e-16 * abs(x)
+            prev_newton = 0.0
+        if dx < tol:
             return x
     return x
 
