@@ -26,7 +26,7 @@ from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A
                       P_CD, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_INL, P_INR, P_K, P_KISO,
                       P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR,
                       P_RISO, P_SPHI, P_V0, P_W, PH_LEN, SAMPLE_COLS, SIDE_L, SIDE_NONE, SIDE_R, T, V)
-from ._linear import fill_end, linear_eval_end, linear_setup, linear_start
+from ._linear import fill_end, linear_eval_angle, linear_eval_end, linear_setup, linear_start
 from ._subinterval import accumulate, track_abs_acceleration
 from ._numeric import dp5_step
 from ._trajectory import (NO_INDEX, ROUNDING, W_VELOCITY, contact_force, event_value, locate_event, newton, phase_eval,
@@ -41,6 +41,10 @@ XTOL_S = 1e-15          # event instants and displacement extrema, s
 
 @jit_alloc
 def _grow(buf, n):
+    """``buf`` with room for row ``n``: twice as many rows once it is full.
+
+    Callers test ``n >= buf.shape[0]`` first: a call costs reference counting.
+    """
     if n < buf.shape[0]:
         return buf
     out = np.empty((2 * buf.shape[0], buf.shape[1]))
@@ -279,14 +283,15 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         if continuing:
             linear_start(ph)
             fill_end(ph, h)
-            d1, v1, a1 = linear_eval_end(ph, h)
+            d1, v1, a1, s1, c1 = linear_eval_end(ph, h)
         elif ph[P_MODE] == MODE_LINEAR:
             if not linear_setup(ph):
                 status = DEGENERATE_PHASE
                 break
             fill_end(ph, h)
-            d1, v1, a1 = linear_eval_end(ph, h)
+            d1, v1, a1, s1, c1 = linear_eval_end(ph, h)
         else:
+            s1 = c1 = 0.0  # (the forcing angle serves linear phases only)
             if h_num < h:
                 h = h_num
                 to_stop = False
@@ -341,10 +346,14 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         if i_ev >= 0:
             to_stop = False
             if tau < h:
-                d1, v1, a1 = phase_eval(ph, tau)
+                if ph[P_MODE] == MODE_LINEAR:
+                    d1, v1, a1, s1, c1 = linear_eval_angle(ph, tau)
+                else:
+                    d1, v1, a1 = phase_eval(ph, tau)
         if t_vel > tau:
             t_vel = -1.0
-        accumulate(ph, st, t, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t_vel, d_vel, with_energy)
+        accumulate(ph, st, t, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema, evs, t_vel, d_vel,
+                   with_energy)
         # samples strictly inside (t, t + tau]
         if sample_dt > 0.0:
             while True:
@@ -352,7 +361,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
                 if ts > t + tau or ts > t_end:
                     break
                 ds, vs, as_ = phase_eval(ph, ts - t)
-                samples = _grow(samples, n_s)
+                if n_s >= samples.shape[0]:
+                    samples = _grow(samples, n_s)
                 out = _outputs_in_phase(ph, ts - t, ds, vs, as_)
                 _put(samples, n_s, ts, ds, vs, out[0], out[1], out[2], out[3], 0.0, 0.0)
                 n_s += 1
@@ -393,20 +403,23 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         elif action == ACT_RELEASE:
             acc = ACC_L if index == SIDE_L else ACC_R
             st[IN_L if index == SIDE_L else IN_R] = 0.0
-            contacts = _grow(contacts, n_c)
+            if n_c >= contacts.shape[0]:
+                contacts = _grow(contacts, n_c)
             _put(contacts, n_c, float(index), st[acc + A_TSTART], t_ev, st[acc + A_VIN], st[V],
                  st[acc + A_IMPULSE], st[acc + A_PEAK], st[acc + A_MAXCOMP], st[acc + A_WORK])
             n_c += 1
         else:
             iso_transition(slopes, breaks, rule, st, action, index, evs[i_ev, E_DIR])
-        events = _grow(events, n_e)
+        if n_e >= events.shape[0]:
+            events = _grow(events, n_e)
         _put(events, n_e, t_ev, float(action), float(index), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
         n_e += 1
         a_abs, f_iso, f_l, f_r = _outputs(st, st[D], st[V], mass, c_d, slopes, breaks, rule,
                                           gap_l, gap_r, law_l, p_l, law_r, p_r)
         track_abs_acceleration(extrema, t_ev, a_abs)
         if sample_dt >= 0.0:
-            samples = _grow(samples, n_s)
+            if n_s >= samples.shape[0]:
+                samples = _grow(samples, n_s)
             _put(samples, n_s, t_ev, st[D], st[V], a_abs, f_iso, f_l, f_r, 0.0, 0.0)
             n_s += 1
         zero_run = zero_run + 1 if tau <= 1e-12 * max(1.0, abs(t)) else 0
@@ -418,7 +431,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
             break
     # the last sample, and the contacts still going on
     if samples[n_s - 1, 0] < st[T]:
-        samples = _grow(samples, n_s)
+        if n_s >= samples.shape[0]:
+            samples = _grow(samples, n_s)
         out = _outputs(st, st[D], st[V], mass, c_d, slopes, breaks, rule, gap_l, gap_r,
                        law_l, p_l, law_r, p_r)
         _put(samples, n_s, st[T], st[D], st[V], out[0], out[1], out[2], out[3], 0.0, 0.0)
@@ -426,7 +440,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
     for side in (SIDE_L, SIDE_R):
         if (st[IN_L] if side == SIDE_L else st[IN_R]) != 0.0:
             acc = ACC_L if side == SIDE_L else ACC_R
-            contacts = _grow(contacts, n_c)
+            if n_c >= contacts.shape[0]:
+                contacts = _grow(contacts, n_c)
             _put(contacts, n_c, float(side), st[acc + A_TSTART], np.nan, st[acc + A_VIN], np.nan,
                  st[acc + A_IMPULSE], st[acc + A_PEAK], st[acc + A_MAXCOMP], st[acc + A_WORK])
             n_c += 1

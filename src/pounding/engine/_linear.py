@@ -129,22 +129,23 @@ def fill_end(ph, h):
 
 
 @jit
-def linear_angle(ph, tau):
-    """``sin`` and ``cos`` of the forcing angle ``w tau + phi`` (from the end values when
-    ``tau`` is the full sub-interval's length)."""
-    if end_valid(ph, tau):
-        sw, cw = ph[P_NODE], ph[P_NODE + 1]
-        sp, cp = ph[P_SPHI], ph[P_CPHI]
-        return sw * cp + cw * sp, cw * cp - sw * sp
-    th = ph[P_W] * tau + ph[P_PHI]
-    return math.sin(th), math.cos(th)
+def linear_eval_end(ph, h):
+    """:func:`linear_eval_angle` at ``tau = h`` from the values of :func:`fill_end`."""
+    sw, cw = ph[P_NODE], ph[P_NODE + 1]
+    sp, cp = ph[P_SPHI], ph[P_CPHI]
+    st, ct = sw * cp + cw * sp, cw * cp - sw * sp
+    d, v, a = _combine(ph, h, st, ct, ph[P_NODE + 2], ph[P_NODE + 3])
+    return d, v, a, st, ct
 
 
 @jit
-def linear_eval_end(ph, h):
-    """:func:`linear_eval` at ``tau = h`` from the values of :func:`fill_end`."""
-    st, ct = linear_angle(ph, h)
-    return _combine(ph, h, st, ct, ph[P_NODE + 2], ph[P_NODE + 3])
+def linear_eval_angle(ph, tau):
+    """:func:`linear_eval`, and the sine and cosine of the forcing angle at ``tau``."""
+    th = ph[P_W] * tau + ph[P_PHI]
+    st, ct = math.sin(th), math.cos(th)
+    ec, es = _free_response(ph, tau)
+    d, v, a = _combine(ph, tau, st, ct, ec, es)
+    return d, v, a, st, ct
 
 
 @jit

@@ -18,7 +18,7 @@ from .._jit import jit
 from ._layout import (A_IMPULSE, A_MAXCOMP, A_PEAK, A_WORK, ACC_L, ACC_R, MODE_LINEAR, P_AX0, P_C,
                       P_CD, P_GAPL, P_GAPR, P_INL, P_INR, P_K, P_M, P_MODE, P_P0, P_PL, P_PR, SIDE_L,
                       SIDE_R)
-from ._linear import linear_angle, linear_integrals
+from ._linear import linear_integrals
 from ._trajectory import (NO_INDEX, W_AABS_RATE, W_FORCE_RATE, abs_acceleration_rate, brent,
                           contact_force, newton, phase_eval, table_acceleration)
 
@@ -44,9 +44,11 @@ XTOL_EXTREMUM_S = 1e-10  # instants of other extrema: the value's error is quadr
 
 
 @jit
-def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t_vel, d_vel, with_energy):
+def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema, evs, t_vel, d_vel,
+               with_energy):
     """Integrals, extrema and contact statistics over ``[t0, t0 + tau]`` of one sub-interval
-    (the energy integrals outside contacts only ``with_energy``)."""
+    (the energy integrals outside contacts only ``with_energy``); ``s1``, ``c1``: sine and
+    cosine of the forcing angle at its end (linear phases)."""
     mass = ph[P_M]
     c_d = ph[P_CD]
     in_l = ph[P_INL] != 0.0
@@ -54,7 +56,6 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, ledger, extrema, evs, t_
     linear = ph[P_MODE] == MODE_LINEAR
     m_a0 = ph[P_P0] + mass * ph[P_AX0]
     if tau > 0.0 and linear and (with_energy or in_l or in_r):
-        s1, c1 = linear_angle(ph, tau)
         i_vv, i_d, i_gv = linear_integrals(ph, tau, d0, v0, a0, d1, v1, a1, s1, c1)
         ledger[0] -= mass * i_gv
         ledger[1] += c_d * i_vv

@@ -241,6 +241,13 @@ def brent(what, idx, ph, evs, xa, xb, fa, fb, xtol):
 
 
 @jit
+def _velocity_only(evs, i):
+    """True when event ``i`` is ``gamma V`` alone: its root is the velocity's zero."""
+    return (evs[i, E_KIND] == KIND_LINEAR and evs[i, E_ALPHA] == 0.0 and evs[i, E_BETA] == 0.0
+            and int(evs[i, E_SIDE]) == SIDE_NONE)
+
+
+@jit
 def locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, tol1, xtol, t_vel, d_vel):
     """First time in ``[0, h]`` at which event ``i`` fires, or -1.0.
 
@@ -252,6 +259,8 @@ def locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, tol1, xtol, t_vel, d_vel
     -1 if the velocity keeps its sign).
     """
     if g0 > tol0 and g1 <= 0.0:
+        if t_vel >= 0.0 and _velocity_only(evs, i):
+            return t_vel  # (a slip reversal: the velocity's zero, located already)
         return newton(W_EVENT, i, ph, evs, 0.0, h, g0, g1, xtol)
     if g0 <= tol0 and g1 < -tol1:
         tp = h
