@@ -26,7 +26,7 @@ from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A
                       P_CD, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_INL, P_INR, P_K, P_KISO,
                       P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR,
                       P_RISO, P_SPHI, P_V0, P_W, PH_LEN, SAMPLE_COLS, SIDE_L, SIDE_NONE, SIDE_R, T, V)
-from ._linear import fill_end, linear_eval_angle, linear_eval_end, linear_setup, linear_start
+from ._linear import fill_end, linear_eval_angle, linear_eval_end, linear_setup, linear_start, reset_ends
 from ._subinterval import accumulate, track_abs_acceleration
 from ._numeric import dp5_step
 from ._trajectory import (NO_INDEX, ROUNDING, W_VELOCITY, contact_force, event_value, locate_event, newton, phase_eval,
@@ -238,6 +238,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
     ledger = np.zeros(LEDGER_LEN)
     extrema = np.array([st[D], t_run0, st[D], t_run0, 0.0, t_run0, 0.0])
     ph = np.zeros(PH_LEN)
+    reset_ends(ph)
     evs = np.zeros((2 * (slopes.size - 1) + 6, EV_COLS))
     # After a full sub-interval without event in a linear phase under harmonic forcing, the
     # next one continues the same phase (``continuing``): same coefficients, length and

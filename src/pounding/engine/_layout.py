@@ -34,7 +34,11 @@ P_SPHI, P_CPHI = 46, 47                              # sin and cos of the forcin
 # phase's (h, w, s, q2) stay the same: see _linear.py
 P_NKEY = 48          # h, w, s, q2 the end values were computed for (4 values)
 P_NODE = 52          # sin(w h), cos(w h), and the free response's two terms at h
-PH_LEN = P_NODE + 4
+# ... and those of the last phases met (a steady motion cycles through a few), 8 values each
+P_ENDS = 56
+N_ENDS = 8
+P_ENDS_NEXT = P_ENDS + 8 * N_ENDS   # the slot the next new phase takes
+PH_LEN = P_ENDS_NEXT + 1
 MODE_LINEAR = 0.0
 MODE_NUMERIC = 1.0
 

@@ -13,7 +13,7 @@ import math
 
 from .._jit import jit
 from ._hermite import hermite_end
-from ._layout import (P_AX0, P_AX1, P_AXH, P_B0, P_B1, P_B2, P_B3, P_C, P_CPHI, P_D0, P_H, P_K, P_M, P_NKEY,
+from ._layout import (N_ENDS, P_ENDS, P_ENDS_NEXT, P_AX0, P_AX1, P_AXH, P_B0, P_B1, P_B2, P_B3, P_C, P_CPHI, P_D0, P_H, P_K, P_M, P_NKEY,
                       P_NODE, P_P0, P_P1, P_PHI, P_Q2, P_ROOT, P_S, P_SPHI, P_V0, P_W, P_Y0, P_Y1,
                       P_ZI, P_ZR)
 
@@ -108,24 +108,46 @@ def end_valid(ph, h):
 
 
 @jit
+def reset_ends(ph):
+    """Forget every phase's end values (at the start of a run)."""
+    ph[P_NKEY] = math.nan
+    for j in range(N_ENDS):
+        ph[P_ENDS + 8 * j] = math.nan
+    ph[P_ENDS_NEXT] = 0.0
+
+
+@jit
 def fill_end(ph, h):
     """Compute the transcendental values at ``tau = h`` unless they are those of this phase.
 
     A full sub-interval of a phase has the same length ``h`` as the one before it (the
     length depends on the phase's frequencies only), so the sines and exponentials at its
     end are the same: only the forcing phase changes, which :func:`linear_eval_end` adds
-    by angle addition.
+    by angle addition.  A steady motion goes through the same few phases again and again:
+    the values of the last ``N_ENDS`` phases are kept.
     """
-    if not end_valid(ph, h):
-        ph[P_NKEY] = h
-        ph[P_NKEY + 1] = ph[P_W]
-        ph[P_NKEY + 2] = ph[P_S]
-        ph[P_NKEY + 3] = ph[P_Q2]
-        ec, es = _free_response(ph, h)
-        ph[P_NODE] = math.sin(ph[P_W] * h)
-        ph[P_NODE + 1] = math.cos(ph[P_W] * h)
-        ph[P_NODE + 2] = ec
-        ph[P_NODE + 3] = es
+    if end_valid(ph, h):
+        return
+    w, s, q2 = ph[P_W], ph[P_S], ph[P_Q2]
+    for j in range(N_ENDS):
+        o = P_ENDS + 8 * j
+        if ph[o] == h and ph[o + 1] == w and ph[o + 2] == s and ph[o + 3] == q2:
+            for i in range(8):
+                ph[P_NKEY + i] = ph[o + i]  # key and values: P_NODE follows P_NKEY
+            return
+    ph[P_NKEY] = h
+    ph[P_NKEY + 1] = w
+    ph[P_NKEY + 2] = s
+    ph[P_NKEY + 3] = q2
+    ec, es = _free_response(ph, h)
+    ph[P_NODE] = math.sin(w * h)
+    ph[P_NODE + 1] = math.cos(w * h)
+    ph[P_NODE + 2] = ec
+    ph[P_NODE + 3] = es
+    o = P_ENDS + 8 * int(ph[P_ENDS_NEXT])
+    for i in range(8):
+        ph[o + i] = ph[P_NKEY + i]
+    ph[P_ENDS_NEXT] = (ph[P_ENDS_NEXT] + 1.0) % N_ENDS
 
 
 @jit
