@@ -80,7 +80,8 @@ def timed(run, rounds=ROUNDS, min_wall_s=ROUND_MIN_S):
 def pounding_sweep(osc, a_g, freqs_hz, cycles, measure, rtol=1e-10, rounds=ROUNDS) -> Outcome:
     kw = dict(steady="fixed", cycles=cycles, measure_cycles=measure, rtol=rtol)
     pd_.sweep(osc, a_g, freqs_hz, "up", **kw)  # compiled (or loaded) before timing
-    best, res = timed(lambda: pd_.sweep(osc, a_g, freqs_hz, "up", **kw), rounds, ROUND_MIN_S if rounds > 1 else 0.0)
+    best, res = timed(lambda: pd_.sweep(osc, a_g, freqs_hz, "up", **kw), rounds,
+                      ROUND_MIN_S if rounds > 1 else 0.0)
     df = res.to_dataframe()
     return sweep_outcome(f"pounding (rtol {rtol:g})", best, freqs_hz, cycles, df["alpha"], df["eta"])
 

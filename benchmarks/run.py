@@ -207,9 +207,9 @@ def report(freqs, ill, sweep_rows, ref, cross, long_rows, lref, camp, cold, have
              f"System: `presets.paper_printed()` (YBs, kinematic isolator). Reference: pounding at rtol "
              f"1e-12; errors are the largest relative error over the {int((~ill).sum())} well-conditioned "
              f"steps of {len(freqs)}.", "",
-             f"Timing: pounding and OpenSeesPy at 1 ms, the best of {peers.ROUNDS} rounds, each round the mean "
-             f"wall time of runs repeated back to back for at least {peers.ROUND_MIN_S:g} s (one run of a peer); "
-             f"the other peers, one run.", ""]
+             f"Timing: pounding and OpenSeesPy at 1 ms, the best of {peers.ROUNDS} rounds, each round the "
+             f"mean wall time of runs repeated back to back for at least {peers.ROUND_MIN_S:g} s (one run "
+             f"of a peer); the other peers, one run.", ""]
     lines += table(f"Stepped sweep: a_G = {A_G}, up, {freqs[0]:g}-{freqs[-1]:g} Hz, {CYCLES} cycles per step "
                    f"(last {MEASURED} measured), {sweep_rows[0].simulated_s:,.0f} simulated s",
                    sweep_rows, ref, sweep_rows[0], ~ill) + [""]

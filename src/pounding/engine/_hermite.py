@@ -16,12 +16,13 @@ def hermite_end(cm, km, w, hm, p1m, axh, ax0, ax1, tau, d, v, a, s_th, c_th, T, 
 
     The sub-interval's start (``tau = 0``, ``sgn = 1``) and end (``tau = T``, ``sgn = -1``)
     each give ``sum_k c_k T^(k+1) sgn^k f^(k)`` for the three integrands ``f``; the integrals are
-    the sums of both ends' shares.  The phase: ``D'' = p1m tau + hm sin(w tau + phi) - cm D' - km D``
-    (per unit mass, plus a constant), table acceleration ``A_g = ax0 + ax1 tau + axh sin(w tau + phi)``;
+    the sums of both ends' shares.  The phase, per unit mass and up to a constant:
+    ``D'' = p1m tau + hm sin(w tau + phi) - cm D' - km D``; the table acceleration:
+    ``A_g = ax0 + ax1 tau + axh sin(w tau + phi)``;
     ``s_th``, ``c_th``: sine and cosine of the forcing angle at the end.
     """
-    # derivatives of the displacement, D_n (n = 0..9), and of the table acceleration, G_n
-    # (n = 0..8); M D_(n+2) = F^(n) - c D_(n+1) - k D_n, F^(n) harmonic for n >= 2
+    # derivatives of the displacement, D_n (n = 0..9), and of the table acceleration,
+    # G_n (n = 0..8); M D_(n+2) = F^(n) - c D_(n+1) - k D_n, F^(n) harmonic for n >= 2
     D0 = d
     D1 = v
     D2 = a

@@ -13,9 +13,9 @@ import math
 
 from .._jit import jit
 from ._hermite import hermite_end
-from ._layout import (N_ENDS, P_ENDS, P_ENDS_NEXT, P_AX0, P_AX1, P_AXH, P_B0, P_B1, P_B2, P_B3, P_C, P_CPHI, P_D0, P_H, P_K, P_M, P_NKEY,
-                      P_NODE, P_P0, P_P1, P_PHI, P_Q2, P_ROOT, P_S, P_SPHI, P_V0, P_W, P_Y0, P_Y1,
-                      P_ZI, P_ZR)
+from ._layout import (N_ENDS, P_AX0, P_AX1, P_AXH, P_B0, P_B1, P_B2, P_B3, P_C, P_CPHI, P_D0, P_ENDS,
+                      P_ENDS_NEXT, P_H, P_K, P_M, P_NKEY, P_NODE, P_P0, P_P1, P_PHI, P_Q2, P_ROOT, P_S,
+                      P_SPHI, P_V0, P_W, P_Y0, P_Y1, P_ZI, P_ZR)
 
 
 @jit
@@ -95,9 +95,8 @@ def _free_response(ph, tau):
 @jit
 def linear_eval(ph, tau):
     """Displacement (m), velocity (m/s) and relative acceleration (m/s^2) at ``tau`` (s)."""
-    th = ph[P_W] * tau + ph[P_PHI]
-    ec, es = _free_response(ph, tau)
-    return _combine(ph, tau, math.sin(th), math.cos(th), ec, es)
+    d, v, a, _, _ = linear_eval_angle(ph, tau)
+    return d, v, a
 
 
 @jit
@@ -185,7 +184,6 @@ def _combine(ph, tau, st, ct, ec, es):
     v = vp + ec * y1 + es * (s * y1 - (k / m) * y0)
     a = (ph[P_P0] + ph[P_P1] * tau + ph[P_H] * st - c * v - k * d) / m
     return d, v, a
-
 
 
 @jit

@@ -61,7 +61,7 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
         ledger[1] += c_d * i_vv
         for side in (SIDE_L, SIDE_R):
             if (side == SIDE_L and in_l) or (side == SIDE_R and in_r):
-                # a linear law is Kelvin-Voigt: F = k_b x + c_b x', compression x = +-D - gap
+                # a linear law: F = k_b x + c_b x' (law_linear_coefficients), compression x = +-D - gap
                 if side == SIDE_L:
                     sign, gap, k_b, c_b, acc = -1.0, ph[P_GAPL], ph[P_PL], ph[P_PL + 1], ACC_L
                 else:
