@@ -55,12 +55,14 @@ ROUND_MIN_S = 0.25    # a round of a short run repeats it back to back for at le
 
 def timed(run, rounds=ROUNDS, min_wall_s=ROUND_MIN_S):
     """``(wall s per run, last result)``: the best over ``rounds`` rounds of the mean wall time
-    of ``run()`` repeated back to back for at least ``min_wall_s``.
+    of ``run()`` repeated back to back for at least ``min_wall_s`` (one round: one run).
 
     The same for every tool: a round of a peer's run that lasts longer than ``min_wall_s`` is one
     run.  The machines here are shared and noisy for stretches of tens of ms; a best of single
     runs of 1 ms would pick quiet moments that a peer's 0.25 s run cannot.
     """
+    if rounds == 1:
+        min_wall_s = 0.0
     best = math.inf
     result = None
     for _ in range(rounds):
@@ -80,8 +82,7 @@ def timed(run, rounds=ROUNDS, min_wall_s=ROUND_MIN_S):
 def pounding_sweep(osc, a_g, freqs_hz, cycles, measure, rtol=1e-10, rounds=ROUNDS) -> Outcome:
     kw = dict(steady="fixed", cycles=cycles, measure_cycles=measure, rtol=rtol)
     pd_.sweep(osc, a_g, freqs_hz, "up", **kw)  # compiled (or loaded) before timing
-    best, res = timed(lambda: pd_.sweep(osc, a_g, freqs_hz, "up", **kw), rounds,
-                      ROUND_MIN_S if rounds > 1 else 0.0)
+    best, res = timed(lambda: pd_.sweep(osc, a_g, freqs_hz, "up", **kw), rounds)
     df = res.to_dataframe()
     return sweep_outcome(f"pounding (rtol {rtol:g})", best, freqs_hz, cycles, df["alpha"], df["eta"])
 
@@ -108,7 +109,7 @@ def pounding_long(osc, exc, duration_s, v0, measure, rtol=1e-10, rounds=ROUNDS) 
         return pd_.simulate(osc, exc, measure * exc.period_s, first.final_state, sample_rate_hz=0, rtol=rtol)
 
     run()
-    best, last = timed(run, rounds, ROUND_MIN_S if rounds > 1 else 0.0)
+    best, last = timed(run, rounds)
     gap = osc.bumpers.gap_left + osc.bumpers.gap_right
     return Outcome(f"pounding (rtol {rtol:g})", best, duration_s,
                    np.array([last.abs_acceleration_max / exc.peak_m_s2]), np.array([last.excursion_m / gap]))
