@@ -325,7 +325,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         t_vel = -1.0
         d_vel = 0.0
         if v0 * v1 < 0.0:
-            t_vel = newton(W_VELOCITY, NO_INDEX, ph, evs, 0.0, h, v0, v1, XTOL_S)
+            t_vel = newton(W_VELOCITY, NO_INDEX, ph, evs, 0.0, h, v0, v1, a0, a1, XTOL_S)
             d_vel = phase_eval(ph, t_vel)[0]
         tau = h
         i_ev = -1

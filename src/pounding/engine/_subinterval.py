@@ -139,7 +139,7 @@ def _extremum_time(what, idx, linear, ph, evs, tau, rate0, rate1):
     """Zero in ``[0, tau]`` of the rate ``what`` (values ``rate0``, ``rate1`` of opposite signs at
     the ends): Newton on the analytic jerk in a linear phase, Brent's method otherwise."""
     if linear:
-        return newton(what, idx, ph, evs, 0.0, tau, rate0, rate1, XTOL_EXTREMUM_S)
+        return newton(what, idx, ph, evs, 0.0, tau, rate0, rate1, math.nan, math.nan, XTOL_EXTREMUM_S)
     return brent(what, idx, ph, evs, 0.0, tau, rate0, rate1, XTOL_EXTREMUM_S)
 
 

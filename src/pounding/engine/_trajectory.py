@@ -137,18 +137,53 @@ def _value_and_rate(what, idx, ph, evs, tau):
 
 
 @jit
-def newton(what, idx, ph, evs, xa, xb, fa, fb, xtol):
+def _cubic_root(fa, fb, sa, sb):
+    """Root in ``(0, 1)`` of the cubic Hermite interpolant with values ``fa``, ``fb`` (of
+    opposite signs) and slopes ``sa``, ``sb`` (per unit of the interval) at 0 and 1.
+
+    For a smooth function on an interval of length ``h`` the cubic's root is within
+    ``O(h^4)`` of the function's, the secant's within ``O(h^2)``.  Newton's method on the
+    cubic from the secant's root, to 1e-10 of the interval (closer than the guess needs to
+    be); the secant's root when a slope is NaN or an iterate leaves the interval.
+    """
+    t_secant = fa / (fa - fb)
+    t = t_secant
+    if math.isnan(sa) or math.isnan(sb):
+        return t_secant
+    c2 = 3.0 * (fb - fa) - 2.0 * sa - sb
+    c3 = 2.0 * (fa - fb) + sa + sb
+    for _ in range(8):
+        p = fa + t * (sa + t * (c2 + t * c3))
+        dp = sa + t * (2.0 * c2 + 3.0 * t * c3)
+        if dp == 0.0:
+            return t_secant
+        step = p / dp
+        t -= step
+        if not 0.0 < t < 1.0:
+            return t_secant
+        if abs(step) < 1e-10:
+            break
+    return t
+
+
+@jit
+def newton(what, idx, ph, evs, xa, xb, fa, fb, ra, rb, xtol):
     """Root of an event function (``W_EVENT``), of the velocity (``W_VELOCITY``) or, in a
     linear phase with Kelvin-Voigt contacts, of the absolute acceleration's or a contact
-    force's rate (``W_AABS_RATE``, ``W_FORCE_RATE``) in ``[xa, xb]`` given values of
-    opposite sign: Newton's method on the analytic rate, kept inside the shrinking bracket
-    by bisection (``rtsafe``)."""
+    force's rate (``W_AABS_RATE``, ``W_FORCE_RATE``) in ``[xa, xb]`` given values ``fa``,
+    ``fb`` of opposite sign: Newton's method on the analytic rate, kept inside the
+    shrinking bracket by bisection (``rtsafe``).
+
+    ``ra``, ``rb``: the function's rates at ``xa`` and ``xb`` when known (NaN otherwise);
+    then the first guess is the root of the cubic through both ends' values and rates
+    (:func:`_cubic_root`) instead of the secant's, and an event instant takes one
+    evaluation fewer."""
     if fa == 0.0:
         return xa
     if fb == 0.0:
         return xb
     lo, hi = (xa, xb) if fa < 0.0 else (xb, xa)  # f(lo) < 0 < f(hi)
-    x = xa - fa * (xb - xa) / (fb - fa)
+    x = xa + (xb - xa) * _cubic_root(fa, fb, ra * (xb - xa), rb * (xb - xa))
     dx_old = abs(xb - xa)
     dx = dx_old
     prev_newton = 0.0  # the previous Newton step's size (0: it was a bisection)
@@ -261,15 +296,15 @@ def locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, tol1, xtol, t_vel, d_vel
     if g0 > tol0 and g1 <= 0.0:
         if t_vel >= 0.0 and _velocity_only(evs, i):
             return t_vel  # (a slip reversal: the velocity's zero, located already)
-        return newton(W_EVENT, i, ph, evs, 0.0, h, g0, g1, xtol)
+        return newton(W_EVENT, i, ph, evs, 0.0, h, g0, g1, gp0, gp1, xtol)
     if g0 <= tol0 and g1 < -tol1:
         tp = h
         for _ in range(60):
             tp *= 0.5
             d, v, a = phase_eval(ph, tp)
-            gp, _, sc = event_value(evs, i, ph, tp, d, v, a)
-            if gp > ROUNDING * sc:
-                return newton(W_EVENT, i, ph, evs, tp, h, gp, g1, xtol)
+            gt, gpt, sc = event_value(evs, i, ph, tp, d, v, a)
+            if gt > ROUNDING * sc:
+                return newton(W_EVENT, i, ph, evs, tp, h, gt, g1, gpt, gp1, xtol)
         return 0.0
     if not (gp0 < 0.0 and gp1 > 0.0):
         return -1.0
@@ -292,4 +327,4 @@ def locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, tol1, xtol, t_vel, d_vel
         return -1.0
     if g0 <= tol0:
         return 0.0  # it leaves the boundary on the wrong side at once
-    return newton(W_EVENT, i, ph, evs, 0.0, tm, g0, gm, xtol)
+    return newton(W_EVENT, i, ph, evs, 0.0, tm, g0, gm, gp0, 0.0, xtol)  # (tm: the rate's zero)
