@@ -217,3 +217,31 @@ def test_bad_arguments_name_the_field_and_the_fix(kwargs, field):
 def test_paper_frequencies():
     f = paper_frequencies_hz()
     assert f.size == 46 and f[0] == 0.5 and f[-1] == 5.0 and f[22] == 2.7
+
+
+@pytest.mark.parametrize("size, ratio, steady", [
+    (1e-15, -1.02, True),   # rounding noise that does not shrink: converged all the same
+    (1e-5, 0.9999, False),  # 10 tolerances from its orbit, and hardly decaying
+    (1e-5, 0.5, True),      # decaying fast: within tolerance of its orbit after 40 cycles
+])
+def test_periodicity_of_strobes_at_and_above_rounding_noise(size, ratio, steady):
+    import numba
+
+    from pounding.protocols._step_kernel import CY_DMAX, CY_DMIN, CYCLE_COLS, periodicity
+
+    @numba.njit
+    def period(strobe, cyc, n):  # steady_rtol 1e-6, windows of 5 cycles
+        return periodicity(strobe, cyc, n, np.int64(5), np.int64(4), 1e-6, 2.0 * math.pi, False)
+
+    n = 40
+    amplitude = 0.01
+    cyc = np.zeros((n, CYCLE_COLS))
+    cyc[:, CY_DMAX], cyc[:, CY_DMIN] = amplitude, -amplitude
+    # strobes of a period-1 orbit plus a deviation (relative to the amplitude) multiplied by
+    # ``ratio`` each cycle
+    deviation = size * amplitude * ratio ** np.arange(n)
+    strobe = np.zeros((n, 4))
+    strobe[:, 0] = 0.3 * amplitude + deviation
+    strobe[:, 1] = 0.02 + deviation
+    k, _ = period(strobe, cyc, np.int64(n))
+    assert k == (1 if steady else 0)
