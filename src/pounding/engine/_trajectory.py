@@ -137,33 +137,27 @@ def _value_and_rate(what, idx, ph, evs, tau):
 
 
 @jit
-def _cubic_root(fa, fb, sa, sb):
-    """Root in ``(0, 1)`` of the cubic Hermite interpolant with values ``fa``, ``fb`` (of
+def _root_guess(fa, fb, sa, sb):
+    """First guess in ``(0, 1)`` at the root of a function with values ``fa``, ``fb`` (of
     opposite signs) and slopes ``sa``, ``sb`` (per unit of the interval) at 0 and 1.
 
-    For a smooth function on an interval of length ``h`` the cubic's root is within
-    ``O(h^4)`` of the function's, the secant's within ``O(h^2)``.  Newton's method on the
-    cubic from the secant's root, to 1e-10 of the interval (closer than the guess needs to
-    be); the secant's root when a slope is NaN or an iterate leaves the interval.
+    Inverse cubic Hermite interpolation: the instant as a cubic in the function's value,
+    through both ends with slopes ``1 / sa`` and ``1 / sb``, at value 0.  For a smooth
+    function monotone on an interval of length ``h`` it is within ``O(h^4)`` of the root,
+    the secant's within ``O(h^2)``.  The secant's root when a slope is NaN or of the wrong
+    sign (not monotone), or the guess falls outside the interval.
     """
-    t_secant = fa / (fa - fb)
-    t = t_secant
-    if math.isnan(sa) or math.isnan(sb):
-        return t_secant
-    c2 = 3.0 * (fb - fa) - 2.0 * sa - sb
-    c3 = 2.0 * (fa - fb) + sa + sb
-    for _ in range(8):
-        p = fa + t * (sa + t * (c2 + t * c3))
-        dp = sa + t * (2.0 * c2 + 3.0 * t * c3)
-        if dp == 0.0:
-            return t_secant
-        step = p / dp
-        t -= step
-        if not 0.0 < t < 1.0:
-            return t_secant
-        if abs(step) < 1e-10:
-            break
-    return t
+    df = fb - fa
+    x = -fa / df  # the secant's root
+    ra = df / sa
+    rb = df / sb
+    if not (ra > 0.0 and rb > 0.0):  # (False for NaN)
+        return x
+    x2 = x * x
+    t = x2 * (3.0 - 2.0 * x) + ra * x * (1.0 - x) * (1.0 - x) + rb * x2 * (x - 1.0)
+    if 0.0 < t < 1.0:
+        return t
+    return x
 
 
 @jit
@@ -175,15 +169,14 @@ def newton(what, idx, ph, evs, xa, xb, fa, fb, ra, rb, xtol):
     shrinking bracket by bisection (``rtsafe``).
 
     ``ra``, ``rb``: the function's rates at ``xa`` and ``xb`` when known (NaN otherwise);
-    then the first guess is the root of the cubic through both ends' values and rates
-    (:func:`_cubic_root`) instead of the secant's, and an event instant takes one
-    evaluation fewer."""
+    then the first guess is an inverse cubic interpolation (:func:`_root_guess`) instead of
+    the secant's root, and an event instant takes one evaluation fewer."""
     if fa == 0.0:
         return xa
     if fb == 0.0:
         return xb
     lo, hi = (xa, xb) if fa < 0.0 else (xb, xa)  # f(lo) < 0 < f(hi)
-    x = xa + (xb - xa) * _cubic_root(fa, fb, ra * (xb - xa), rb * (xb - xa))
+    x = xa + (xb - xa) * _root_guess(fa, fb, ra * (xb - xa), rb * (xb - xa))
     dx_old = abs(xb - xa)
     dx = dx_old
     prev_newton = 0.0  # the previous Newton step's size (0: it was a bisection)
