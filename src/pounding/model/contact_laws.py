@@ -27,6 +27,8 @@ from .._jit import jit, jit_entry
 KELVIN_VOIGT = 0
 HUNT_CROSSLEY = 1
 N_LAW_PARAMS = 4
+MIN_NORMAL = 2.2250738585072014e-308  # the smallest normal double
+EXP_NORMAL_LIMIT = 708.39  # exp(-x) is below it for larger x
 # The compiled ``law_*`` functions read a law's parameters at ``p[o:o + N_LAW_PARAMS]``
 # (``o`` an offset, so that the engine passes its phase record without slicing it: a
 # slice costs a reference-count increment and decrement on every call).
@@ -192,7 +194,14 @@ def law_relax(law, p, o, d0, tau):
         if p[o + 1] <= 0.0:
             return 0.0, 0.0
         rate = p[o] / p[o + 1]
-        d = d0 * math.exp(-rate * tau)
+        x = rate * tau
+        # relaxed below the smallest normal double: exactly 0 (else exp() takes its slow
+        # underflow path, and subnormal arithmetic slows every event value after it)
+        if x > EXP_NORMAL_LIMIT:
+            return 0.0, 0.0
+        d = d0 * math.exp(-x)
+        if d < MIN_NORMAL:
+            return 0.0, 0.0
         return d, -rate * d
     if p[o + 1] <= 0.0:
         return 0.0, 0.0
