@@ -250,6 +250,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
     ev_end = np.empty((evs.shape[0], 3))
     continuing = False
     h_phase = 0.0
+    s1 = c1 = 0.0  # the forcing angle's sine and cosine at the end of the last sub-interval
+    t_last = h_last = 0.0  # its start and length
     n_ev = np.int64(0)
     kin0, iso0, bmp0 = _energies(st, mass, slopes, breaks, rule, law_l, p_l, law_r, p_r)
     status = SUCCESS
@@ -286,7 +288,12 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         if to_stop:
             h = t_stop - t
         if continuing:
-            linear_start(ph)
+            # the forcing angle where the last sub-interval ended (by angle addition), moved on
+            # by the rounding of the clock, t - t_last - h: without it the difference between
+            # this angle and the clock's, omega t + phase, would grow sub-interval after
+            # sub-interval (first order suffices: the rounding is ~1e-16 t)
+            wd = omega * ((t - t_last) - h_last)
+            linear_start(ph, s1 + wd * c1, c1 - wd * s1)
             fill_end(ph, h)
             d1, v1, a1, s1, c1 = linear_eval_end(ph, h)
         elif ph[P_MODE] == MODE_LINEAR:
@@ -388,6 +395,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         st[D] = d1
         st[V] = v1
         st[T] = t_stop if to_stop else t + tau
+        t_last = t
+        h_last = tau
         if i_ev < 0:
             continue
         # the event: jump of the state

@@ -54,18 +54,18 @@ def linear_setup(ph):
         zi = -h * im / den
     ph[P_ZR] = zr
     ph[P_ZI] = zi
-    linear_start(ph)
+    linear_start(ph, math.sin(ph[P_PHI]), math.cos(ph[P_PHI]))
     return True
 
 
 @jit
-def linear_start(ph):
-    """The free response's initial values from ``P_D0``, ``P_V0`` and the forcing phase
-    ``P_PHI``: all :func:`linear_setup` redoes when only those changed (a sub-interval
-    continuing a phase under harmonic forcing)."""
+def linear_start(ph, sp, cp):
+    """The free response's initial values from ``P_D0``, ``P_V0`` and the sine ``sp`` and
+    cosine ``cp`` of the forcing phase ``P_PHI``: all :func:`linear_setup` redoes when only
+    those changed (a sub-interval continuing a phase under harmonic forcing, which passes
+    the previous sub-interval's end values: its forcing angle by angle addition, equal to
+    ``P_PHI``'s sine and cosine but for rounding)."""
     zr, zi, w = ph[P_ZR], ph[P_ZI], ph[P_W]
-    sp = math.sin(ph[P_PHI])
-    cp = math.cos(ph[P_PHI])
     ph[P_SPHI] = sp
     ph[P_CPHI] = cp
     ph[P_Y0] = ph[P_D0] - (ph[P_B0] + zr * sp + zi * cp)
