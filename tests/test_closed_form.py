@@ -38,6 +38,21 @@ def test_linear_isolator_reaches_closed_form_steady_state(m, k, zeta, a_g, f):
     assert run.abs_acceleration_max == pytest.approx(a_abs_amp, rel=1e-9)
 
 
+def test_a_long_run_stays_on_the_closed_form_steady_state():
+    # 3000 s of one linear phase: 53,000 sub-intervals each continuing the last one's forcing
+    # angle; the clock's rounding must not pile up between that angle and the clock's
+    m, k, zeta, a_g, f = 500.0, 2e4, 0.05, 0.1, 2.2
+    c = 2 * zeta * math.sqrt(k * m)
+    osc = pd_.Oscillator(m, pd_.Isolator((k,), damping=c))
+    exc = pd_.Harmonic(a_g, f)
+    warm = pd_.simulate(osc, exc, 3000.0, sample_rate_hz=0)
+    run = pd_.simulate(osc, exc, 2.0 / f, warm.final_state, sample_rate_hz=200 * f)
+    d_ss, _ = _steady_state(m, k, c, exc.peak_m_s2, exc.omega_rad_s, run.t)
+    amp = abs(m * exc.peak_m_s2 / (k - m * exc.omega_rad_s**2 + 1j * c * exc.omega_rad_s))
+    np.testing.assert_allclose(run.displacement, d_ss, rtol=0, atol=1e-10 * amp)
+
+
+
 @pytest.mark.parametrize("zeta", [0.0, 0.3, 1.0, 2.5])
 def test_free_vibration_every_damping_regime(zeta):
     m, k = 200.0, 8e3
