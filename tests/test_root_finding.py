@@ -45,3 +45,18 @@ def test_without_usable_slopes_the_guess_is_the_secants_root():
     assert root_guess(-1.0, 2.0, 0.0, 3.0) == pytest.approx(secant, rel=1e-15)  # flat at one end
     # a guess outside the interval: slopes that bend the inverse cubic past an end
     assert root_guess(-1.0, 2.0, 100.0, 0.05) == pytest.approx(secant, rel=1e-15)
+
+
+def test_a_stationary_value_at_the_root_follows_from_the_last_evaluation():
+    from pounding.engine._trajectory import value_at_root
+
+    @numba.njit
+    def at_root(root, x, value, f, fp):
+        return value_at_root(root, x, value, f, fp)
+
+    # sin(t + 0.3) is stationary at t = pi/2 - 0.3; Newton last evaluated its rate 1e-4 s away
+    root = 0.5 * math.pi - 0.3
+    for x in (root - 1e-4, root + 1e-4):
+        value, rate, rate_of_rate = math.sin(x + 0.3), math.cos(x + 0.3), -math.sin(x + 0.3)
+        assert abs(value - 1.0) > 1e-9  # the value there is off by dt^2 / 2
+        assert at_root(root, x, value, rate, rate_of_rate) == pytest.approx(1.0, abs=1e-15)

@@ -30,7 +30,7 @@ from ._linear import fill_end, linear_eval_angle, linear_eval_end, linear_setup,
 from ._subinterval import accumulate, track_abs_acceleration
 from ._numeric import dp5_step
 from ._trajectory import (NO_INDEX, ROUNDING, W_VELOCITY, contact_force, event_value, locate_event, newton, phase_eval,
-                          table_acceleration)
+                          table_acceleration, value_at_root)
 
 SUCCESS, ZENO, MAX_EVENTS, DEGENERATE_PHASE, STEP_FAILED = 0, -1, -2, -3, -4
 EXC_HARMONIC = 0
@@ -332,8 +332,12 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         t_vel = -1.0
         d_vel = 0.0
         if v0 * v1 < 0.0:
-            t_vel = newton(W_VELOCITY, NO_INDEX, ph, evs, 0.0, h, v0, v1, a0, a1, XTOL_S)
-            d_vel = phase_eval(ph, t_vel)[0]
+            t_vel, xe, _, _, de, ve, ae = newton(W_VELOCITY, NO_INDEX, ph, evs, 0.0, h, v0, v1, a0, a1,
+                                                 XTOL_S)
+            if xe == xe:  # the displacement, stationary there, from Newton's last evaluation
+                d_vel = value_at_root(t_vel, xe, de, ve, ae)
+            else:
+                d_vel = phase_eval(ph, t_vel)[0]
         tau = h
         i_ev = -1
         for i in range(n_ev):

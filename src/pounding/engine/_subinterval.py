@@ -20,7 +20,7 @@ from ._layout import (A_IMPULSE, A_MAXCOMP, A_PEAK, A_WORK, ACC_L, ACC_R, MODE_L
                       SIDE_R)
 from ._linear import linear_integrals
 from ._trajectory import (NO_INDEX, W_AABS_RATE, W_FORCE_RATE, abs_acceleration_rate, brent,
-                          contact_force, newton, phase_eval, table_acceleration)
+                          contact_force, newton, phase_eval, table_acceleration, value_at_root)
 
 
 
@@ -117,9 +117,13 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
     track_abs_acceleration(extrema, t0, _abs_acceleration(ph, linear, m_a0, 0.0, d0, v0, a0))
     track_abs_acceleration(extrema, t0 + tau, _abs_acceleration(ph, linear, m_a0, tau, d1, v1, a1))
     if r0 * r1 < 0.0:
-        tm = _extremum_time(W_AABS_RATE, NO_INDEX, linear, ph, evs, tau, r0, r1)
-        dm, vm, am = phase_eval(ph, tm)
-        track_abs_acceleration(extrema, t0 + tm, _abs_acceleration(ph, linear, m_a0, tm, dm, vm, am))
+        tm, xe, fe, fpe, de, ve, ae = _extremum_time(W_AABS_RATE, NO_INDEX, linear, ph, evs, tau, r0, r1)
+        if xe == xe:  # from Newton's last evaluation, one small step away
+            am = value_at_root(tm, xe, _abs_acceleration(ph, linear, m_a0, xe, de, ve, ae), fe, fpe)
+        else:
+            dm, vm, am = phase_eval(ph, tm)
+            am = _abs_acceleration(ph, linear, m_a0, tm, dm, vm, am)
+        track_abs_acceleration(extrema, t0 + tm, am)
     # peak contact forces
     for side in (SIDE_L, SIDE_R):
         if (side == SIDE_L and in_l) or (side == SIDE_R and in_r):
@@ -128,19 +132,26 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
             fb, _, rb, _ = contact_force(ph, side, d1, v1, a1)
             peak = max(fa, fb)
             if ra * rb < 0.0:
-                tm = _extremum_time(W_FORCE_RATE, side, linear, ph, evs, tau, ra, rb)
-                dm, vm, am = phase_eval(ph, tm)
-                peak = max(peak, contact_force(ph, side, dm, vm, am)[0])
+                tm, xe, fe, fpe, de, ve, ae = _extremum_time(W_FORCE_RATE, side, linear, ph, evs, tau, ra, rb)
+                if xe == xe:
+                    fm = value_at_root(tm, xe, contact_force(ph, side, de, ve, ae)[0], fe, fpe)
+                else:
+                    dm, vm, am = phase_eval(ph, tm)
+                    fm = contact_force(ph, side, dm, vm, am)[0]
+                peak = max(peak, fm)
             st[acc + A_PEAK] = max(st[acc + A_PEAK], peak)
 
 
 @jit
 def _extremum_time(what, idx, linear, ph, evs, tau, rate0, rate1):
     """Zero in ``[0, tau]`` of the rate ``what`` (values ``rate0``, ``rate1`` of opposite signs at
-    the ends): Newton on the analytic jerk in a linear phase, Brent's method otherwise."""
+    the ends): Newton on the analytic jerk in a linear phase, Brent's method otherwise.
+
+    Returns ``newton``'s tuple (the root, then its last evaluation; NaN after Brent's)."""
     if linear:
         return newton(what, idx, ph, evs, 0.0, tau, rate0, rate1, math.nan, math.nan, XTOL_EXTREMUM_S)
-    return brent(what, idx, ph, evs, 0.0, tau, rate0, rate1, XTOL_EXTREMUM_S)
+    nan = math.nan
+    return brent(what, idx, ph, evs, 0.0, tau, rate0, rate1, XTOL_EXTREMUM_S), nan, nan, nan, nan, nan, nan
 
 
 @jit

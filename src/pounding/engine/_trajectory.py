@@ -117,23 +117,25 @@ def traj_value(what, idx, ph, evs, tau):
 
 @jit
 def _value_and_rate(what, idx, ph, evs, tau):
+    """``newton``'s function and its rate at ``tau``, then the motion there ``(d, v, a)``."""
     d, v, a = phase_eval(ph, tau)
     if what == W_EVENT:
         g, gp, _ = event_value(evs, idx, ph, tau, d, v, a)
-        return g, gp
+        return g, gp, d, v, a
     if what == W_VELOCITY:
-        return v, a
+        return v, a, d, v, a
     # rates of a linear phase (W_AABS_RATE, W_FORCE_RATE) and their derivatives, from the
     # jerk: M j = P1 + H w cos(w tau + phi) - c a - k v
     jerk = (ph[P_P1] + ph[P_H] * ph[P_W] * math.cos(ph[P_W] * tau + ph[P_PHI]) - ph[P_C] * a
             - ph[P_K] * v) / ph[P_M]
     if what == W_AABS_RATE:
-        return -(ph[P_C] * a + ph[P_K] * v) / ph[P_M], -(ph[P_C] * jerk + ph[P_K] * a) / ph[P_M]
+        return (-(ph[P_C] * a + ph[P_K] * v) / ph[P_M], -(ph[P_C] * jerk + ph[P_K] * a) / ph[P_M],
+                d, v, a)
     # W_FORCE_RATE of a Kelvin-Voigt bumper: F = k_b x + c_b x' with x' = +-V
     sign, k_b, c_b = 1.0, ph[P_PR], ph[P_PR + 1]
     if idx == SIDE_L:
         sign, k_b, c_b = -1.0, ph[P_PL], ph[P_PL + 1]
-    return sign * (k_b * v + c_b * a), sign * (k_b * a + c_b * jerk)
+    return sign * (k_b * v + c_b * a), sign * (k_b * a + c_b * jerk), d, v, a
 
 
 @jit
@@ -170,20 +172,30 @@ def newton(what, idx, ph, evs, xa, xb, fa, fb, ra, rb, xtol):
 
     ``ra``, ``rb``: the function's rates at ``xa`` and ``xb`` when known (NaN otherwise);
     then the first guess is an inverse cubic interpolation (:func:`_root_guess`) instead of
-    the secant's root, and an event instant takes one evaluation fewer."""
+    the secant's root, and an event instant takes one evaluation fewer.
+
+    Returns ``(root, x, f, fp, d, v, a)``: the root, and the last point evaluated with the
+    function, its rate and the motion there (``x`` NaN when none was).  The root is one
+    small step ``root - x`` from it, so a value stationary at the root (an extremum: the
+    displacement at a velocity zero) follows from a second-order Taylor step
+    (:func:`value_at_root`) without evaluating the closed form again.
+    """
+    nan = math.nan
     if fa == 0.0:
-        return xa
+        return xa, nan, nan, nan, nan, nan, nan
     if fb == 0.0:
-        return xb
+        return xb, nan, nan, nan, nan, nan, nan
     lo, hi = (xa, xb) if fa < 0.0 else (xb, xa)  # f(lo) < 0 < f(hi)
     x = xa + (xb - xa) * _root_guess(fa, fb, ra * (xb - xa), rb * (xb - xa))
     dx_old = abs(xb - xa)
     dx = dx_old
     prev_newton = 0.0  # the previous Newton step's size (0: it was a bisection)
+    xe = f = fp = d = v = a = nan
     for _ in range(100):
-        f, fp = _value_and_rate(what, idx, ph, evs, x)
+        xe = x
+        f, fp, d, v, a = _value_and_rate(what, idx, ph, evs, x)
         if f == 0.0:
-            return x
+            break
         if f < 0.0:
             lo = x
         else:
@@ -201,7 +213,7 @@ def newton(what, idx, ph, evs, xa, xb, fa, fb, ra, rb, xtol):
             # converging quadratically (dx = C prev^2), the next step would be C dx^2 =
             # dx^3 / prev^2: when that is below the tolerance, x is the root to it already
             if dx < prev_newton and dx * dx * dx < tol * prev_newton * prev_newton:
-                return x
+                break
             prev_newton = dx
         else:
             x_new = 0.5 * (lo + hi)
@@ -210,8 +222,18 @@ def newton(what, idx, ph, evs, xa, xb, fa, fb, ra, rb, xtol):
             tol = xtol + 4.0 * 2.220446049250313e-16 * abs(x)
             prev_newton = 0.0
         if dx < tol:
-            return x
-    return x
+            break
+    return x, xe, f, fp, d, v, a
+
+
+@jit
+def value_at_root(root, x, value, f, fp):
+    """A quantity stationary at ``newton``'s root, from its value at the last point ``x``
+    evaluated, where its rate ``f`` and the rate's derivative ``fp`` were: second-order
+    Taylor, exact to ``O((root - x)^3)`` (``root - x`` is Newton's last step, below its
+    tolerance or ``tol^(1/3) step^(2/3)`` by the quadratic stopping rule)."""
+    dt = root - x
+    return value + dt * (f + 0.5 * dt * fp)
 
 
 @jit
@@ -289,7 +311,7 @@ def locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, tol1, xtol, t_vel, d_vel
     if g0 > tol0 and g1 <= 0.0:
         if t_vel >= 0.0 and _velocity_only(evs, i):
             return t_vel  # (a slip reversal: the velocity's zero, located already)
-        return newton(W_EVENT, i, ph, evs, 0.0, h, g0, g1, gp0, gp1, xtol)
+        return newton(W_EVENT, i, ph, evs, 0.0, h, g0, g1, gp0, gp1, xtol)[0]
     if g0 <= tol0 and g1 < -tol1:
         tp = h
         for _ in range(60):
@@ -297,7 +319,7 @@ def locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, tol1, xtol, t_vel, d_vel
             d, v, a = phase_eval(ph, tp)
             gt, gpt, sc = event_value(evs, i, ph, tp, d, v, a)
             if gt > ROUNDING * sc:
-                return newton(W_EVENT, i, ph, evs, tp, h, gt, g1, gpt, gp1, xtol)
+                return newton(W_EVENT, i, ph, evs, tp, h, gt, g1, gpt, gp1, xtol)[0]
         return 0.0
     if not (gp0 < 0.0 and gp1 > 0.0):
         return -1.0
@@ -320,4 +342,4 @@ def locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, tol1, xtol, t_vel, d_vel
         return -1.0
     if g0 <= tol0:
         return 0.0  # it leaves the boundary on the wrong side at once
-    return newton(W_EVENT, i, ph, evs, 0.0, tm, g0, gm, gp0, 0.0, xtol)  # (tm: the rate's zero)
+    return newton(W_EVENT, i, ph, evs, 0.0, tm, g0, gm, gp0, 0.0, xtol)[0]  # (tm: the rate's zero)
