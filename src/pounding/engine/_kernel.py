@@ -334,7 +334,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         if v0 * v1 < 0.0:
             t_vel, xe, _, _, de, ve, ae = newton(W_VELOCITY, NO_INDEX, ph, evs, 0.0, h, v0, v1, a0, a1,
                                                  XTOL_S)
-            if xe == xe:  # the displacement, stationary there, from Newton's last evaluation
+            if not math.isnan(xe):  # the displacement, stationary there, from Newton's last evaluation
                 d_vel = value_at_root(t_vel, xe, de, ve, ae)
             else:
                 d_vel = phase_eval(ph, t_vel)[0]

@@ -118,7 +118,7 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
     track_abs_acceleration(extrema, t0 + tau, _abs_acceleration(ph, linear, m_a0, tau, d1, v1, a1))
     if r0 * r1 < 0.0:
         tm, xe, fe, fpe, de, ve, ae = _extremum_time(W_AABS_RATE, NO_INDEX, linear, ph, evs, tau, r0, r1)
-        if xe == xe:  # from Newton's last evaluation, one small step away
+        if not math.isnan(xe):  # from Newton's last evaluation, one small step away
             am = value_at_root(tm, xe, _abs_acceleration(ph, linear, m_a0, xe, de, ve, ae), fe, fpe)
         else:
             dm, vm, am = phase_eval(ph, tm)
@@ -133,7 +133,7 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
             peak = max(fa, fb)
             if ra * rb < 0.0:
                 tm, xe, fe, fpe, de, ve, ae = _extremum_time(W_FORCE_RATE, side, linear, ph, evs, tau, ra, rb)
-                if xe == xe:
+                if not math.isnan(xe):
                     fm = value_at_root(tm, xe, contact_force(ph, side, de, ve, ae)[0], fe, fpe)
                 else:
                     dm, vm, am = phase_eval(ph, tm)
