@@ -117,13 +117,14 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
     track_abs_acceleration(extrema, t0, _abs_acceleration(ph, linear, m_a0, 0.0, d0, v0, a0))
     track_abs_acceleration(extrema, t0 + tau, _abs_acceleration(ph, linear, m_a0, tau, d1, v1, a1))
     if r0 * r1 < 0.0:
-        tm, xe, fe, fpe, de, ve, ae = _extremum_time(W_AABS_RATE, NO_INDEX, linear, ph, evs, tau, r0, r1)
+        tm, xe, fe, fpe, de, ve, ae = _extremum_time(W_AABS_RATE, NO_INDEX, linear, ph, evs, tau,
+                                                     r0, r1)
         if not math.isnan(xe):  # from Newton's last evaluation, one small step away
-            am = value_at_root(tm, xe, _abs_acceleration(ph, linear, m_a0, xe, de, ve, ae), fe, fpe)
+            a_abs = value_at_root(tm, xe, _abs_acceleration(ph, linear, m_a0, xe, de, ve, ae), fe, fpe)
         else:
             dm, vm, am = phase_eval(ph, tm)
-            am = _abs_acceleration(ph, linear, m_a0, tm, dm, vm, am)
-        track_abs_acceleration(extrema, t0 + tm, am)
+            a_abs = _abs_acceleration(ph, linear, m_a0, tm, dm, vm, am)
+        track_abs_acceleration(extrema, t0 + tm, a_abs)
     # peak contact forces
     for side in (SIDE_L, SIDE_R):
         if (side == SIDE_L and in_l) or (side == SIDE_R and in_r):
@@ -132,7 +133,8 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
             fb, _, rb, _ = contact_force(ph, side, d1, v1, a1)
             peak = max(fa, fb)
             if ra * rb < 0.0:
-                tm, xe, fe, fpe, de, ve, ae = _extremum_time(W_FORCE_RATE, side, linear, ph, evs, tau, ra, rb)
+                tm, xe, fe, fpe, de, ve, ae = _extremum_time(W_FORCE_RATE, side, linear, ph, evs,
+                                                             tau, ra, rb)
                 if not math.isnan(xe):
                     fm = value_at_root(tm, xe, contact_force(ph, side, de, ve, ae)[0], fe, fpe)
                 else:
