@@ -72,6 +72,17 @@ def event_value(evs, i, ph, tau, d, v, a):
 
     ``scale`` is the size of the terms summed, so that ``ROUNDING * scale`` is the noise level.
     """
+    if evs[i, E_KIND] == KIND_LINEAR and int(evs[i, E_SIDE]) == SIDE_NONE:
+        # the isolator's events (most of them): linear in the motion, small enough to inline
+        alpha, beta, gamma = evs[i, E_ALPHA], evs[i, E_BETA], evs[i, E_GAMMA]
+        return (alpha + beta * d + gamma * v, beta * v + gamma * a,
+                abs(alpha) + abs(beta * d) + abs(gamma * v))
+    return _bumper_event_value(evs, i, ph, tau, d, v, a)
+
+
+@jit
+def _bumper_event_value(evs, i, ph, tau, d, v, a):
+    """:func:`event_value` of a bumper's event: contact (the surface relaxing) or release."""
     side = int(evs[i, E_SIDE])
     if evs[i, E_KIND] == KIND_LINEAR:
         alpha, beta, gamma = evs[i, E_ALPHA], evs[i, E_BETA], evs[i, E_GAMMA]
@@ -80,15 +91,9 @@ def event_value(evs, i, ph, tau, d, v, a):
         scale = abs(alpha) + abs(beta * d) + abs(gamma * v)
         if side == SIDE_L:
             r, rr = law_relax(int(ph[P_LAWL]), ph, PL_AT, ph[P_DL0], tau)
-            g += r
-            gp += rr
-            scale += r
-        elif side == SIDE_R:
+        else:
             r, rr = law_relax(int(ph[P_LAWR]), ph, PR_AT, ph[P_DR0], tau)
-            g += r
-            gp += rr
-            scale += r
-        return g, gp, scale
+        return g + r, gp + rr, scale + r
     if side == SIDE_L:
         law, o = int(ph[P_LAWL]), PL_AT
         dd, dv, da = -d - ph[P_GAPL], -v, -a
