@@ -150,6 +150,15 @@ def fill_end(ph, h):
 
 
 @jit
+def forcing_angle(ph, tau):
+    """Sine and cosine of the forcing angle ``tau`` s into a linear phase's sub-interval."""
+    wt = ph[P_W] * tau
+    sw, cw = math.sin(wt), math.cos(wt)
+    sp, cp = ph[P_SPHI], ph[P_CPHI]
+    return sw * cp + cw * sp, cw * cp - sw * sp
+
+
+@jit
 def linear_eval_end(ph, h):
     """:func:`linear_eval_angle` at ``tau = h`` from the values of :func:`fill_end`."""
     sw, cw = ph[P_NODE], ph[P_NODE + 1]
@@ -161,9 +170,14 @@ def linear_eval_end(ph, h):
 
 @jit
 def linear_eval_angle(ph, tau):
-    """:func:`linear_eval`, and the sine and cosine of the forcing angle at ``tau``."""
-    th = ph[P_W] * tau + ph[P_PHI]
-    st, ct = math.sin(th), math.cos(th)
+    """:func:`linear_eval`, and the sine and cosine of the forcing angle at ``tau``.
+
+    The angle is ``P_SPHI``, ``P_CPHI``'s plus ``w tau`` by angle addition, as at the end
+    (:func:`linear_eval_end`): the start's sine and cosine are the phase's reference (a
+    continuing sub-interval carries them over from the last one's end, so they can differ
+    from those of ``P_PHI``, the clock's angle, by its rounding: 1e-14 after 3 s at 30 rad/s).
+    """
+    st, ct = forcing_angle(ph, tau)
     ec, es = _free_response(ph, tau)
     d, v, a = _combine(ph, tau, st, ct, ec, es)
     return d, v, a, st, ct

@@ -17,7 +17,7 @@ from .._jit import jit
 from ._layout import (E_ALPHA, E_BETA, E_GAMMA, E_KIND, E_SIDE, KIND_LINEAR, MODE_LINEAR, SIDE_NONE,
                       P_AX0, P_AX1, P_AXH, P_C, P_D0, P_H, P_P1, P_DL0, P_DR0, P_GAPL, P_GAPR, P_K, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_PHI, P_PL, P_PR, PL_AT, PR_AT,
                       P_V0, P_W, SIDE_L, SIDE_R)
-from ._linear import linear_eval
+from ._linear import forcing_angle, linear_eval
 from ._numeric import dp5_step, phase_rhs
 
 # typed integers, not literals: one compiled root finder for all of them (see _layout.py)
@@ -131,7 +131,7 @@ def _value_and_rate(what, idx, ph, evs, tau):
         return v, a, d, v, a
     # rates of a linear phase (W_AABS_RATE, W_FORCE_RATE) and their derivatives, from the
     # jerk: M j = P1 + H w cos(w tau + phi) - c a - k v
-    jerk = (ph[P_P1] + ph[P_H] * ph[P_W] * math.cos(ph[P_W] * tau + ph[P_PHI]) - ph[P_C] * a
+    jerk = (ph[P_P1] + ph[P_H] * ph[P_W] * forcing_angle(ph, tau)[1] - ph[P_C] * a
             - ph[P_K] * v) / ph[P_M]
     if what == W_AABS_RATE:
         return (-(ph[P_C] * a + ph[P_K] * v) / ph[P_M], -(ph[P_C] * jerk + ph[P_K] * a) / ph[P_M],
