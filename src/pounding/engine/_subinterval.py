@@ -117,7 +117,7 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
     track_abs_acceleration(extrema, t0, _abs_acceleration(ph, linear, m_a0, 0.0, d0, v0, a0))
     track_abs_acceleration(extrema, t0 + tau, _abs_acceleration(ph, linear, m_a0, tau, d1, v1, a1))
     if r0 * r1 < 0.0:
-        tm, xe, fe, fpe, de, ve, ae = _extremum_time(W_AABS_RATE, NO_INDEX, linear, ph, evs, tau,
+        tm, xe, fe, fpe, de, ve, ae = extremum_time(W_AABS_RATE, NO_INDEX, linear, ph, evs, tau,
                                                      r0, r1)
         if not math.isnan(xe):  # from Newton's last evaluation, one small step away
             a_abs = value_at_root(tm, xe, _abs_acceleration(ph, linear, m_a0, xe, de, ve, ae), fe, fpe)
@@ -133,7 +133,7 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
             fb, _, rb, _ = contact_force(ph, side, d1, v1, a1)
             peak = max(fa, fb)
             if ra * rb < 0.0:
-                tm, xe, fe, fpe, de, ve, ae = _extremum_time(W_FORCE_RATE, side, linear, ph, evs,
+                tm, xe, fe, fpe, de, ve, ae = extremum_time(W_FORCE_RATE, side, linear, ph, evs,
                                                              tau, ra, rb)
                 if not math.isnan(xe):
                     fm = value_at_root(tm, xe, contact_force(ph, side, de, ve, ae)[0], fe, fpe)
@@ -145,7 +145,7 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
 
 
 @jit
-def _extremum_time(what, idx, linear, ph, evs, tau, rate0, rate1):
+def extremum_time(what, idx, linear, ph, evs, tau, rate0, rate1):
     """Zero in ``[0, tau]`` of the rate ``what`` (values ``rate0``, ``rate1`` of opposite signs at
     the ends): Newton on the analytic jerk in a linear phase, Brent's method otherwise.
 

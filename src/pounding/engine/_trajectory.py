@@ -21,7 +21,8 @@ from ._linear import forcing_angle, linear_eval
 from ._numeric import dp5_step, phase_rhs
 
 # typed integers, not literals: one compiled root finder for all of them (see _layout.py)
-W_EVENT, W_EVENT_RATE, W_VELOCITY, W_AABS_RATE, W_FORCE_RATE = (np.int64(k) for k in range(5))
+W_EVENT, W_EVENT_RATE, W_VELOCITY, W_AABS_RATE, W_FORCE_RATE, W_ACCELERATION = (np.int64(k)
+                                                                       for k in range(6))
 NO_INDEX = np.int64(0)  # the ``idx`` argument for the functions that take none
 ROUNDING = 256.0 * 2.220446049250313e-16  # relative size of rounding noise in event values
 
@@ -117,6 +118,8 @@ def traj_value(what, idx, ph, evs, tau):
         return v
     if what == W_AABS_RATE:
         return abs_acceleration_rate(ph, d, v, a)
+    if what == W_ACCELERATION:
+        return a
     return contact_force(ph, idx, d, v, a)[2]
 
 
@@ -129,10 +132,12 @@ def _value_and_rate(what, idx, ph, evs, tau):
         return g, gp, d, v, a
     if what == W_VELOCITY:
         return v, a, d, v, a
-    # rates of a linear phase (W_AABS_RATE, W_FORCE_RATE) and their derivatives, from the
-    # jerk: M j = P1 + H w cos(w tau + phi) - c a - k v
+    # a linear phase's acceleration and rates (W_AABS_RATE, W_FORCE_RATE) and their
+    # derivatives, from the jerk: M j = P1 + H w cos(w tau + phi) - c a - k v
     jerk = (ph[P_P1] + ph[P_H] * ph[P_W] * forcing_angle(ph, tau)[1] - ph[P_C] * a
             - ph[P_K] * v) / ph[P_M]
+    if what == W_ACCELERATION:
+        return a, jerk, d, v, a
     if what == W_AABS_RATE:
         return (-(ph[P_C] * a + ph[P_K] * v) / ph[P_M], -(ph[P_C] * jerk + ph[P_K] * a) / ph[P_M],
                 d, v, a)
@@ -170,8 +175,9 @@ def _root_guess(fa, fb, sa, sb):
 @jit
 def newton(what, idx, ph, evs, xa, xb, fa, fb, ra, rb, xtol):
     """Root of an event function (``W_EVENT``), of the velocity (``W_VELOCITY``) or, in a
-    linear phase with Kelvin-Voigt contacts, of the absolute acceleration's or a contact
-    force's rate (``W_AABS_RATE``, ``W_FORCE_RATE``) in ``[xa, xb]`` given values ``fa``,
+    linear phase with Kelvin-Voigt contacts, of the acceleration (``W_ACCELERATION``), the
+    absolute acceleration's or a contact force's rate (``W_AABS_RATE``, ``W_FORCE_RATE``) in
+    ``[xa, xb]`` given values ``fa``,
     ``fb`` of opposite sign: Newton's method on the analytic rate, kept inside the
     shrinking bracket by bisection (``rtsafe``).
 
