@@ -1,9 +1,11 @@
 """The engine against a slow, obviously-correct reference (solve_ivp DOP853 with events).
 
-The reference runs at rtol 1e-13 (atol 1e-17), tighter than the 1e-10 first planned: on
+The reference runs at rtol 1e-13 (atol 1e-18), tighter than the 1e-10 first planned: on
 lightly damped, strongly driven systems (C_d = 1 N s/m) hypothesis found the rtol-1e-10
 reference stepping over a 0.09 mm contact and the rtol-1e-12 one off by 3e-5 s in a contact
-time, where the engine agreed with the rtol-1e-13 reference to 8e-14 s.
+time, where the engine agreed with the rtol-1e-13 reference to 8e-14 s.  With atol 1e-17 it
+put two contact starts of a heavily damped system 1.3e-8 and 6.5e-8 s late; at 1e-18 they
+agree with the engine to 5e-10 s.
 """
 
 from __future__ import annotations
@@ -19,7 +21,7 @@ import pounding as pd_
 
 DURATION_S = 2.0
 REFERENCE_RTOL = 1e-13
-REFERENCE_ATOL = 1e-17
+REFERENCE_ATOL = 1e-18
 
 
 def _compare(osc, exc, v0=0.0, duration=DURATION_S, time_tol=1e-8, state_rtol=1e-7, drawn=False):
@@ -49,7 +51,12 @@ def _compare(osc, exc, v0=0.0, duration=DURATION_S, time_tol=1e-8, state_rtol=1e
     if len(done):
         impulse = np.array([c[5] for c in ref.completed])
         work = np.array([c[6] for c in ref.completed])
-        np.testing.assert_allclose(done["impulse"], impulse, rtol=state_rtol)
+        # relative to the run's largest impulse, as the work below: a soft touch's impulse is
+        # as sensitive to its timing as its start force (c v_in) makes it, and the reference's
+        # timing is good to ~1e-8 s (a 0.068 N s touch: 0.067906, 0.067927, 0.067931 N s at
+        # rtol 1e-12, 1e-13, 1e-14)
+        np.testing.assert_allclose(done["impulse"], impulse, rtol=0,
+                                   atol=state_rtol * np.abs(impulse).max())
         np.testing.assert_allclose(done["bumper_dissipation"], work, rtol=0,
                                    atol=state_rtol * np.abs(work).max())
     flows = max(abs(ref.input_work), ref.viscous, 1e-12)
@@ -97,3 +104,16 @@ def test_record_excitation_matches_reference():
     ref = reference(osc, exc, 2.5, rtol=REFERENCE_RTOL, atol=REFERENCE_ATOL)
     assert len(run.contacts) == len(ref.contact_starts) > 0
     np.testing.assert_allclose(run.contacts["t_start"], [t for _, t in ref.contact_starts], atol=1e-8)
+
+
+def test_contact_whose_approach_falls_inside_one_sub_interval():
+    # found by hypothesis: the mass leaves the left bumper, turns, grazes it again (1.8617 s,
+    # 7 mm/s, impulse 3.1 N s) and turns away, all within one sub-interval whose ends both
+    # move away from it; the velocity has two zeros there, and the sub-interval is cut at its turn
+    osc = pd_.Oscillator(
+        787.1202416151971,
+        pd_.Isolator((5000.0, 3946.6582280663747, 7642.1249964793815, 18378.06831428684),
+                     (0.002530710224170039, 0.01, 0.03980834724589737), "elastic", 3527.5470437792387),
+        pd_.Bumpers(0.00728297379150962, 0.024003438936117012, pd_.KelvinVoigt(2785435.395559004, 3124.5322847623297)))
+    run, ref = _compare(osc, pd_.Harmonic(1 / 3, 0.5, phase=3.6355805352757975), v0=0.7092215248149507)
+    assert len(run.contacts) == 10 and run.contacts["t_start"].iloc[-1] == pytest.approx(1.8616782439, abs=1e-8)
