@@ -53,16 +53,17 @@ ROUNDS = 3            # every timed tool: the best of this many rounds
 ROUND_MIN_S = 0.25    # a round of a short run repeats it back to back for at least this long
 
 
-def timed(run, rounds=ROUNDS, min_wall_s=ROUND_MIN_S):
+def timed(run, rounds=ROUNDS, min_wall_s=None):
     """``(wall s per run, last result)``: the best over ``rounds`` rounds of the mean wall time
-    of ``run()`` repeated back to back for at least ``min_wall_s`` (one round: one run).
+    of ``run()`` repeated back to back for at least ``min_wall_s`` (by default ``ROUND_MIN_S``,
+    and 0 for a single round: one run).
 
     The same for every tool: a round of a peer's run that lasts longer than ``min_wall_s`` is one
     run.  The machines here are shared and noisy for stretches of tens of ms; a best of single
     runs of 1 ms would pick quiet moments that a peer's 0.25 s run cannot.
     """
-    if rounds == 1:
-        min_wall_s = 0.0
+    if min_wall_s is None:
+        min_wall_s = ROUND_MIN_S if rounds > 1 else 0.0
     best = math.inf
     result = None
     for _ in range(rounds):
@@ -78,11 +79,26 @@ def timed(run, rounds=ROUNDS, min_wall_s=ROUND_MIN_S):
     return best, result
 
 
+def alternating(tools, rounds=ROUNDS):
+    """The best ``Outcome`` of each of ``tools`` (functions of ``min_wall_s`` timing one round of
+    a tool), calling them ``rounds`` times in turn (a, b, a, b, ...): every tool meets the
+    machine's slow and quiet stretches alike, where ``rounds`` rounds of one tool and then of
+    the next could meet a slow stretch with one tool only."""
+    best = [None] * len(tools)
+    for _ in range(rounds):
+        for i, tool in enumerate(tools):
+            out = tool(ROUND_MIN_S)
+            if best[i] is None or out.wall_s < best[i].wall_s:
+                best[i] = out
+    return best
+
+
 # --------------------------------------------------------------------------- pounding
-def pounding_sweep(osc, a_g, freqs_hz, cycles, measure, rtol=1e-10, rounds=ROUNDS) -> Outcome:
+def pounding_sweep(osc, a_g, freqs_hz, cycles, measure, rtol=1e-10, rounds=ROUNDS,
+                   min_wall_s=None) -> Outcome:
     kw = dict(steady="fixed", cycles=cycles, measure_cycles=measure, rtol=rtol)
     pd_.sweep(osc, a_g, freqs_hz, "up", **kw)  # compiled (or loaded) before timing
-    best, res = timed(lambda: pd_.sweep(osc, a_g, freqs_hz, "up", **kw), rounds)
+    best, res = timed(lambda: pd_.sweep(osc, a_g, freqs_hz, "up", **kw), rounds, min_wall_s)
     df = res.to_dataframe()
     return sweep_outcome(f"pounding (rtol {rtol:g})", best, freqs_hz, cycles, df["alpha"], df["eta"])
 
@@ -100,7 +116,8 @@ def ill_conditioned_steps(osc, a_g, freqs_hz, cycles, measure, ref, rel_change=1
     return change > tol
 
 
-def pounding_long(osc, exc, duration_s, v0, measure, rtol=1e-10, rounds=ROUNDS) -> Outcome:
+def pounding_long(osc, exc, duration_s, v0, measure, rtol=1e-10, rounds=ROUNDS,
+                  min_wall_s=None) -> Outcome:
     state = pd_.State.at_rest(osc, velocity_m_s=v0)
     lead = duration_s - measure * exc.period_s
 
@@ -109,7 +126,7 @@ def pounding_long(osc, exc, duration_s, v0, measure, rtol=1e-10, rounds=ROUNDS) 
         return pd_.simulate(osc, exc, measure * exc.period_s, first.final_state, sample_rate_hz=0, rtol=rtol)
 
     run()
-    best, last = timed(run, rounds)
+    best, last = timed(run, rounds, min_wall_s)
     gap = osc.bumpers.gap_left + osc.bumpers.gap_right
     return Outcome(f"pounding (rtol {rtol:g})", best, duration_s,
                    np.array([last.abs_acceleration_max / exc.peak_m_s2]), np.array([last.excursion_m / gap]))
@@ -244,7 +261,8 @@ class OpenSeesModel:
         return a_max, d_max - d_min
 
 
-def opensees_sweep(ops, osc, a_g, freqs_hz, cycles, measure, dt_s, rounds=ROUNDS) -> Outcome:
+def opensees_sweep(ops, osc, a_g, freqs_hz, cycles, measure, dt_s, rounds=ROUNDS,
+                   min_wall_s=None) -> Outcome:
     peak = a_g * pd_.excitation.STANDARD_GRAVITY
     gap = osc.bumpers.gap_left + osc.bumpers.gap_right
 
@@ -257,12 +275,13 @@ def opensees_sweep(ops, osc, a_g, freqs_hz, cycles, measure, dt_s, rounds=ROUNDS
             eta.append(exc / gap)
         return alpha, eta
 
-    wall, (alpha, eta) = timed(run, rounds)
+    wall, (alpha, eta) = timed(run, rounds, min_wall_s)
     return sweep_outcome(f"OpenSeesPy, Newmark + Newton, dt {dt_s * 1e3:g} ms", wall,
                          freqs_hz, cycles, alpha, eta)
 
 
-def opensees_long(ops, osc, exc, duration_s, v0, measure, dt_s, rounds=ROUNDS) -> Outcome:
+def opensees_long(ops, osc, exc, duration_s, v0, measure, dt_s, rounds=ROUNDS,
+                  min_wall_s=None) -> Outcome:
     gap = osc.bumpers.gap_left + osc.bumpers.gap_right
 
     def run():
@@ -270,6 +289,6 @@ def opensees_long(ops, osc, exc, duration_s, v0, measure, dt_s, rounds=ROUNDS) -
         model.set_velocity(v0)
         return model.hold(exc.peak_m_s2, exc.freq_hz, duration_s, measure * exc.period_s)
 
-    wall, (a_max, excursion) = timed(run, rounds)
+    wall, (a_max, excursion) = timed(run, rounds, min_wall_s)
     return Outcome(f"OpenSeesPy, Newmark + Newton, dt {dt_s * 1e3:g} ms", wall, duration_s,
                    np.array([a_max / exc.peak_m_s2]), np.array([excursion / gap]))
