@@ -140,6 +140,16 @@ def _timed(fn) -> float:
     return time.perf_counter() - t0
 
 
+def pounding_and_opensees(pounding, opensees, ops, *work) -> list:
+    """pounding's and OpenSeesPy's (1 ms step) outcomes on the same ``work`` (the tools'
+    shared leading arguments), their timed rounds alternating (``peers.alternating``);
+    OpenSeesPy's left out when it is not installed."""
+    tools = [lambda s: pounding(*work, rounds=1, min_wall_s=s)]
+    if ops is not None:
+        tools.append(lambda s: opensees(ops, *work, 1e-3, rounds=1, min_wall_s=s))
+    return peers.alternating(tools)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--quick", action="store_true", help="fewer frequencies, shorter runs: a smoke test")
@@ -158,11 +168,8 @@ def main() -> None:
 
     print("\n[1] stepped sweep (YBs, a_G = 0.05, up, 30 cycles per step, last 5 measured)")
     ref = peers.pounding_sweep(osc, A_G, freqs, CYCLES, MEASURED, rtol=1e-12, rounds=1)
-    tools = [lambda s: peers.pounding_sweep(osc, A_G, freqs, CYCLES, MEASURED, rounds=1, min_wall_s=s)]
-    if ops is not None:
-        tools.append(lambda s: peers.opensees_sweep(ops, osc, A_G, freqs, CYCLES, MEASURED, 1e-3, rounds=1,
-                                                    min_wall_s=s))
-    sweep_rows = peers.alternating(tools)
+    sweep_rows = pounding_and_opensees(peers.pounding_sweep, peers.opensees_sweep, ops,
+                                       osc, A_G, freqs, CYCLES, MEASURED)
     cross = None
     if ops is not None:
         cross = peers.opensees_sweep(ops, osc, A_G, freqs, CYCLES, MEASURED, 0.125e-3, rounds=1)
@@ -175,11 +182,8 @@ def main() -> None:
 
     print(f"\n[2] one long run ({long_s:g} s at {LONG_F_HZ} Hz from v0 = {LONG_V0} m/s, last 5 cycles measured)")
     lref = peers.pounding_long(osc, exc, long_s, LONG_V0, MEASURED, rtol=1e-12, rounds=1)
-    tools = [lambda s: peers.pounding_long(osc, exc, long_s, LONG_V0, MEASURED, rounds=1, min_wall_s=s)]
-    if ops is not None:
-        tools.append(lambda s: peers.opensees_long(ops, osc, exc, long_s, LONG_V0, MEASURED, 1e-3, rounds=1,
-                                                   min_wall_s=s))
-    long_rows = peers.alternating(tools)
+    long_rows = pounding_and_opensees(peers.pounding_long, peers.opensees_long, ops,
+                                      osc, exc, long_s, LONG_V0, MEASURED)
     if ops is not None:
         long_rows.append(peers.opensees_long(ops, osc, exc, long_s, LONG_V0, MEASURED, 0.125e-3, rounds=1))
     for rtol, atol in ((1e-6, 1e-9), (1e-10, 1e-13)):
