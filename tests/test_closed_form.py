@@ -52,7 +52,6 @@ def test_a_long_run_stays_on_the_closed_form_steady_state():
     np.testing.assert_allclose(run.displacement, d_ss, rtol=0, atol=1e-10 * amp)
 
 
-
 @pytest.mark.parametrize("zeta", [0.0, 0.3, 1.0, 2.5])
 def test_free_vibration_every_damping_regime(zeta):
     m, k = 200.0, 8e3
