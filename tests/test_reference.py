@@ -115,5 +115,5 @@ def test_contact_whose_approach_falls_inside_one_sub_interval():
         pd_.Isolator((5000.0, 3946.6582280663747, 7642.1249964793815, 18378.06831428684),
                      (0.002530710224170039, 0.01, 0.03980834724589737), "elastic", 3527.5470437792387),
         pd_.Bumpers(0.00728297379150962, 0.024003438936117012, pd_.KelvinVoigt(2785435.395559004, 3124.5322847623297)))
-    run, ref = _compare(osc, pd_.Harmonic(1 / 3, 0.5, phase=3.6355805352757975), v0=0.7092215248149507)
+    run, _ = _compare(osc, pd_.Harmonic(1 / 3, 0.5, phase=3.6355805352757975), v0=0.7092215248149507)
     assert len(run.contacts) == 10 and run.contacts["t_start"].iloc[-1] == pytest.approx(1.8616782439, abs=1e-8)
