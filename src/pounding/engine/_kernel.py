@@ -27,9 +27,9 @@ from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A
                       P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR,
                       P_RISO, P_SPHI, P_V0, P_W, PH_LEN, SAMPLE_COLS, SIDE_L, SIDE_NONE, SIDE_R, T, V)
 from ._linear import fill_end, linear_eval_angle, linear_eval_end, linear_setup, linear_start, reset_ends
-from ._subinterval import accumulate, extremum_time, track_abs_acceleration
+from ._subinterval import accumulate, track_abs_acceleration, velocity_turn
 from ._numeric import dp5_step
-from ._trajectory import (NO_INDEX, ROUNDING, W_ACCELERATION, W_VELOCITY, contact_force, event_value, locate_event, newton, phase_eval,
+from ._trajectory import (NO_INDEX, ROUNDING, W_VELOCITY, contact_force, event_value, locate_event, newton, phase_eval,
                           table_acceleration, value_at_root)
 
 SUCCESS, ZENO, MAX_EVENTS, DEGENERATE_PHASE, STEP_FAILED = 0, -1, -2, -3, -4
@@ -64,33 +64,6 @@ def _put(buf, n, x0, x1, x2, x3, x4, x5, x6, x7, x8):
     vals = (x0, x1, x2, x3, x4, x5, x6, x7, x8)
     for j in range(buf.shape[1]):
         buf[n, j] = vals[j]
-
-
-@jit
-def _may_turn_back(h, v0, v1, a0, a1):
-    """False when the velocity, ``v0`` and ``v1`` (same sign) at the ends of a sub-interval of
-    length ``h`` with accelerations ``a0`` and ``a1`` (opposite signs), surely keeps its sign.
-
-    The cubic through the ends' values and slopes puts the velocity's turn at ``v_c``; its
-    error is ``h^4 max|v''''| / 384``, about ``1e-3 h max|a|`` on a sub-interval of 1/8 of the
-    fastest period.  The sign is sure when ``v_c`` is on the ends' side by a quarter of
-    ``h max(|a0|, |a1|)``.
-    """
-    s0 = h * a0
-    s1 = h * a1
-    c2 = 3.0 * (v1 - v0) - 2.0 * s0 - s1
-    c3 = 2.0 * (v0 - v1) + s0 + s1
-    # the turn: the root in (0, 1) of p'(x) = s0 + 2 c2 x + 3 c3 x^2 (p'(0) = s0 and p'(1) =
-    # s1 have opposite signs, so there is one), by the stable quadratic formula
-    disc = max(c2 * c2 - 3.0 * c3 * s0, 0.0)
-    q = -(c2 + math.copysign(math.sqrt(disc), c2))
-    x = s0 / q if q != 0.0 else 0.5  # (the root of the two that stays finite as c3 -> 0)
-    if not 0.0 <= x <= 1.0 and c3 != 0.0:
-        x = q / (3.0 * c3)
-    x = min(max(x, 0.0), 1.0)
-    v_c = v0 + x * (s0 + x * (c2 + x * c3))
-    margin = 0.25 * max(abs(s0), abs(s1))
-    return not (v_c * v0 > 0.0 and abs(v_c) > margin)
 
 
 @jit
@@ -356,22 +329,12 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         if not continuing:  # (a phase's events stay the same until one of them fires)
             n_ev = iso_events(slopes, breaks, rule, st, evs, np.int64(0))  # typed, not literal
             n_ev = _bumper_events(st, has_b, gap_l, gap_r, law_l, law_r, evs, n_ev)
-        if v0 * v1 > 0.0 and a0 * a1 < 0.0 and _may_turn_back(h, v0, v1, a0, a1):
-            # The velocity turns inside the sub-interval, and where it turns it may have
-            # crossed zero and come back: two zeros, a dip of the displacement that no end
-            # shows (a graze of a bumper's surface between two ends moving away from it).
-            # Cut the sub-interval at the turn; each part then has one zero at most.
-            linear = ph[P_MODE] == MODE_LINEAR
-            t_a, xe, fe, fpe, de, ve, ae = extremum_time(W_ACCELERATION, NO_INDEX, linear, ph, evs, h,
-                                                         a0, a1)
-            if not math.isnan(xe):  # the velocity, stationary there, from Newton's last evaluation
-                v_a = value_at_root(t_a, xe, ve, fe, fpe)
-            else:
-                v_a = phase_eval(ph, t_a)[1]
-            if v_a * v0 < 0.0 and 0.0 < t_a < h:
+        if v0 * v1 > 0.0 and a0 * a1 < 0.0:  # the velocity turns inside, keeping its sign?
+            t_a = velocity_turn(ph, evs, h, v0, v1, a0, a1)
+            if t_a > 0.0:  # two velocity zeros: cut the sub-interval where it turns
                 h = t_a
                 to_stop = False
-                if linear:
+                if ph[P_MODE] == MODE_LINEAR:
                     d1, v1, a1, s1, c1 = linear_eval_angle(ph, h)
                 else:
                     d1, v1, a1 = phase_eval(ph, h)

@@ -5,7 +5,9 @@ integrated by a two-point Hermite rule on the derivatives at the sub-interval's 
 linear phases (``_linear.linear_integrals``), by 7-point Gauss-Lobatto quadrature of the
 numerical solution with a nonlinear contact law; the extrema of the
 displacement come from the velocity's zero (located by the kernel), those of the absolute
-acceleration and of contact forces from the zeros of their rates.
+acceleration and of contact forces from the zeros of their rates.  Before all that,
+:func:`velocity_turn` tells the kernel where to cut a sub-interval whose velocity has two
+zeros (it turns inside), so that each part has one at most.
 """
 
 from __future__ import annotations
@@ -19,8 +21,8 @@ from ._layout import (A_IMPULSE, A_MAXCOMP, A_PEAK, A_WORK, ACC_L, ACC_R, MODE_L
                       P_CD, P_GAPL, P_GAPR, P_INL, P_INR, P_K, P_M, P_MODE, P_P0, P_PL, P_PR, SIDE_L,
                       SIDE_R)
 from ._linear import linear_integrals
-from ._trajectory import (NO_INDEX, W_AABS_RATE, W_FORCE_RATE, abs_acceleration_rate, brent,
-                          contact_force, newton, phase_eval, table_acceleration, value_at_root)
+from ._trajectory import (NO_INDEX, W_AABS_RATE, W_ACCELERATION, W_FORCE_RATE, abs_acceleration_rate,
+                          brent, contact_force, newton, phase_eval, table_acceleration, value_at_root)
 
 
 
@@ -40,7 +42,7 @@ def _lobatto(n: int) -> tuple[np.ndarray, np.ndarray]:
 N_LOBATTO = 7
 LOBATTO_X, LOBATTO_W = _lobatto(N_LOBATTO)
 LAST_NODE = N_LOBATTO - 1
-XTOL_EXTREMUM_S = 1e-10  # instants of other extrema: the value's error is quadratic in it
+XTOL_EXTREMUM_S = 1e-10  # instants of extrema other than events': the value's error is quadratic in it
 
 
 @jit
@@ -154,6 +156,54 @@ def extremum_time(what, idx, linear, ph, evs, tau, rate0, rate1):
         return newton(what, idx, ph, evs, 0.0, tau, rate0, rate1, math.nan, math.nan, XTOL_EXTREMUM_S)
     nan = math.nan
     return brent(what, idx, ph, evs, 0.0, tau, rate0, rate1, XTOL_EXTREMUM_S), nan, nan, nan, nan, nan, nan
+
+
+@jit
+def _may_turn_back(h, v0, v1, a0, a1):
+    """False when the velocity, ``v0`` and ``v1`` (same sign) at the ends of a sub-interval of
+    length ``h`` with accelerations ``a0`` and ``a1`` (opposite signs), surely keeps its sign.
+
+    The cubic through the ends' values and slopes puts the velocity's turn at ``v_c``; its
+    error is ``h^4 max|v''''| / 384``, about ``1e-3 h max|a|`` on a sub-interval of 1/8 of the
+    fastest period.  The sign is sure when ``v_c`` is on the ends' side by a quarter of
+    ``h max(|a0|, |a1|)``.
+    """
+    s0 = h * a0
+    s1 = h * a1
+    c2 = 3.0 * (v1 - v0) - 2.0 * s0 - s1
+    c3 = 2.0 * (v0 - v1) + s0 + s1
+    # the turn: the root in (0, 1) of p'(x) = s0 + 2 c2 x + 3 c3 x^2 (p'(0) = s0 and p'(1) =
+    # s1 have opposite signs, so there is one), by the stable quadratic formula
+    disc = max(c2 * c2 - 3.0 * c3 * s0, 0.0)
+    q = -(c2 + math.copysign(math.sqrt(disc), c2))
+    x = s0 / q if q != 0.0 else 0.5  # (the root of the two that stays finite as c3 -> 0)
+    if not 0.0 <= x <= 1.0 and c3 != 0.0:
+        x = q / (3.0 * c3)
+    x = min(max(x, 0.0), 1.0)
+    v_c = v0 + x * (s0 + x * (c2 + x * c3))
+    margin = 0.25 * max(abs(s0), abs(s1))
+    return not (v_c * v0 > 0.0 and abs(v_c) > margin)
+
+
+@jit
+def velocity_turn(ph, evs, h, v0, v1, a0, a1):
+    """Where to cut a sub-interval of length ``h`` whose velocity has two zeros, or -1.0.
+
+    For ``v0``, ``v1`` of one sign and ``a0``, ``a1`` of opposite signs (the caller's test):
+    the velocity turns inside, and where it turns it may have crossed zero and come back, a
+    dip of the displacement that no end shows (a graze of a bumper's surface between two ends
+    moving away from it).  Returns the turn when the velocity changed sign there; cut there,
+    each part has one zero at most.
+    """
+    if not _may_turn_back(h, v0, v1, a0, a1):
+        return -1.0
+    t_a, xe, fe, fpe, _, ve, _ = extremum_time(W_ACCELERATION, NO_INDEX, ph[P_MODE] == MODE_LINEAR, ph,
+                                               evs, h, a0, a1)
+    if not math.isnan(xe):  # the velocity, stationary there, from Newton's last evaluation
+        v_a = value_at_root(t_a, xe, ve, fe, fpe)
+    else:
+        v_a = phase_eval(ph, t_a)[1]
+    return t_a if v_a * v0 < 0.0 and 0.0 < t_a < h else -1.0
 
 
 @jit
