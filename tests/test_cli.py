@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 
 import pandas as pd
@@ -72,3 +73,21 @@ def test_campaign_writes_dataset_tables_and_figure(tmp_path):
     assert len(steps) == 14 * 2 and {"configuration", "a_g", "direction", "freq_hz", "alpha"} <= set(steps.columns)
     bad = runner.invoke(app, ["campaign", "--out", str(out)])
     assert bad.exit_code == 2 and "--preset" in bad.output
+
+
+def test_warm_up_says_what_it_compiled_or_loaded_and_where():
+    result = runner.invoke(app, ["warm-up"])
+    assert result.exit_code == 0, result.output
+    first = result.output.splitlines()[0]
+    # in this process some kernels may have run already, others not
+    counts = re.findall(r"(\d) kernels? (?:compiled and cached|loaded from Numba's cache|already in memory)", first)
+    assert sum(int(n) for n in counts) == 4 and first.endswith(" s)"), first
+    assert "cache:" in result.output
+
+
+def test_warm_up_message_counts_each_kind():
+    from pounding import WarmUp
+
+    w = WarmUp(seconds=14.23, compiled=("run_kernel", "step_kernel"), loaded=("impact_row",),
+               in_memory=(), cache_dirs=("/c",))
+    assert w.message == "2 kernels compiled and cached, 1 kernel loaded from Numba's cache (14.2 s)"

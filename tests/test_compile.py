@@ -21,6 +21,7 @@ SESSION = textwrap.dedent("""
     from numba.core.registry import CPUDispatcher
     import pounding as p
 
+    warm = p.warm_up()  # first: what it compiles must serve the session below as it is
     osc = p.presets.paper_printed()
     p.simulate(osc, p.Harmonic(0.05, 2.2), 1.0, sample_rate_hz=100.0)
     run = p.simulate(osc, p.Harmonic(0.05, 2.2), 3.0, p.State.at_rest(osc, velocity_m_s=0.6))
@@ -34,12 +35,17 @@ SESSION = textwrap.dedent("""
     p.sweep(osc, 0.05, [1.0, 1.1], steady="fixed", cycles=3, measure_cycles=1)
     p.sweep(osc, 0.05, [1.0, 1.1], max_cycles=40)
     many = {}
+    entries = []  # the kernels Python calls (with a Python wrapper)
     for obj in gc.get_objects():
         if isinstance(obj, CPUDispatcher) and obj.py_func.__module__.startswith("pounding"):
             if len(obj.signatures) > 1:
                 many[obj.py_func.__qualname__] = [str(s) for s in obj.signatures]
-    print(json.dumps(many))
+            if not obj.targetoptions.get("no_cpython_wrapper", False):
+                entries.append(obj.py_func.__name__)
+    print(json.dumps({"many": many, "entries": sorted(entries), "compiled": warm.compiled,
+                      "loaded": warm.loaded}))
 """)
+KERNELS = ["run_kernel", "step_kernel", "impact_row", "law_force_many"]
 
 
 def test_each_compiled_function_has_one_specialisation(tmp_path):
@@ -47,5 +53,16 @@ def test_each_compiled_function_has_one_specialisation(tmp_path):
     # their dispatchers never see (nor count) the types they are called with
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
     out = subprocess.run([sys.executable, "-c", SESSION], capture_output=True, text=True, check=True, env=env)
-    many = json.loads(out.stdout.strip().splitlines()[-1])
+    report = json.loads(out.stdout.strip().splitlines()[-1])
+    many = report["many"]
     assert many == {}, f"compiled more than once (pass typed ints, writable arrays): {many}"
+    # warm_up compiled every kernel Python calls, with the types the session then used
+    assert report["entries"] == sorted(KERNELS)
+    assert report["compiled"] == KERNELS and report["loaded"] == []
+    # and a new process loads them all from the cache it filled
+    again = subprocess.run([sys.executable, "-c", "import json, pounding as p; w = p.warm_up(); "
+                            "print(json.dumps([w.compiled, w.loaded, w.message]))"],
+                           capture_output=True, text=True, check=True, env=env)
+    compiled, loaded, message = json.loads(again.stdout.strip().splitlines()[-1])
+    assert compiled == [] and loaded == KERNELS, message
+    assert message.startswith("4 kernels loaded from Numba's cache ("), message

@@ -5,6 +5,7 @@ The public surface is re-exported here; modules with a leading underscore are pr
 
 from . import data, presets
 from ._errors import InputError, Interrupted, Problem, Status
+from ._warm_up import WarmUp, warm_up
 from .engine import EnergyLedger, Run, State, simulate
 from .excitation import Harmonic, Record
 from .identification import ContactLawFit, Identification, ModelFamily, Targets, fit_contact_law, identify, paper_targets
@@ -19,4 +20,5 @@ __all__ = [
     "InputError", "Interrupted", "Isolator", "KelvinVoigt", "Oscillator", "Problem", "Record",
     "Run", "State", "Status", "SweepResult", "campaign", "impact_table", "paper_frequencies_hz",
     "data", "fit_contact_law", "identify", "paper_targets", "presets", "simulate", "sweep",
+    "WarmUp", "warm_up",
 ]

@@ -1,4 +1,5 @@
-"""Command line: ``pounding simulate``, ``sweep``, ``campaign``, ``reproduce`` and ``identify``."""
+"""Command line: ``pounding simulate``, ``sweep``, ``campaign``, ``reproduce``, ``identify`` and
+``warm-up``."""
 
 from __future__ import annotations
 
@@ -377,6 +378,18 @@ def identify(
     if residuals is not None:
         fit.to_dataframe().to_csv(residuals, index=False)
     console.print(f"{escape(fit.message)}\nfitted system -> {out}")
+
+
+@app.command("warm-up")
+def warm_up() -> None:
+    """Compile the engine now (10-20 s once after installing; later sessions load it in ~1 s)."""
+    from ._warm_up import warm_up as run_warm_up
+
+    with console.status("compiling pounding's kernels (once after installing: 10-20 s) ..."):
+        report = run_warm_up()
+    console.print(escape(report.message))
+    for folder in report.cache_dirs:
+        console.print(f"  cache: {escape(folder)}")
 
 
 if __name__ == "__main__":  # pragma: no cover
