@@ -4,7 +4,8 @@ Numba compiles a function again for each new argument type, and a Python-int con
 argument (or a counter initialised from one) is a literal type of its own, as is a
 read-only array.  Each extra specialisation costs a compilation on first use (cold start
 is an issue 5 target), so a typical session, run in a fresh process, must leave exactly
-one signature per dispatcher.
+one signature per dispatcher.  ``pounding.warm_up`` compiles ahead of time: it must cover every
+kernel Python calls, with the same types, and a new process must then load them all.
 """
 
 from __future__ import annotations
