@@ -13,7 +13,6 @@ from typing import Any
 
 import numpy as np
 import pandas as pd
-from scipy.optimize import minimize_scalar, nnls
 
 from .._checks import float_array, one_of, real
 from .._errors import InputError, Problem
@@ -84,6 +83,8 @@ def _nnls_fit(d, v, force, exponent=None):
         cols = np.column_stack([dn, dn * v])
     scale = np.linalg.norm(cols, axis=0)
     scale[scale == 0.0] = 1.0  # columns of very different sizes: solve the scaled problem
+    from scipy.optimize import nnls  # here: scipy.optimize costs 0.3 s of `import pounding`
+
     (k, c), resid = nnls(cols / scale, force)
     return k / scale[0], c / scale[1], resid
 
@@ -153,6 +154,8 @@ def fit_contact_law(
             raise InputError(Problem.TOO_SMALL, "exponent_bounds[0]", lo, minimum=1, hint=" (1: linear contact)")
         if hi <= lo:
             raise InputError(Problem.NOT_INCREASING, "exponent_bounds", list(exponent_bounds))
+        from scipy.optimize import minimize_scalar
+
         best = minimize_scalar(lambda n: _nnls_fit(d, v, force, n)[2], bounds=(lo, hi), method="bounded",
                                options={"xatol": 1e-10})
         k, c, _ = _nnls_fit(d, v, force, best.x)

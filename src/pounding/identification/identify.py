@@ -20,7 +20,6 @@ from typing import Any
 
 import numpy as np
 import pandas as pd
-from scipy.optimize import differential_evolution, least_squares
 
 from .._checks import integer
 from .._errors import InputError, Interrupted, Problem, Status
@@ -225,6 +224,8 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
         pop = rng.uniform(size=(popsize * len(names), len(names)))
         pop[0] = scale.units({k: x0[k] for k in names})
         init = pop
+    from scipy.optimize import differential_evolution, least_squares  # (0.3 s of import: here)
+
     interrupted = False
     with progress_reporter(progress, maxiter + int(refine), "identify") as advance, \
             cf.ThreadPoolExecutor(max_workers=n_workers, thread_name_prefix="pounding-fit") as pool:
