@@ -4,7 +4,7 @@ The public surface is re-exported here; modules with a leading underscore are pr
 """
 
 from . import data, presets
-from ._errors import InputError, Interrupted, Problem, Status
+from ._errors import InputError, Interrupted, PoundingWarning, Problem, Status
 from ._warm_up import WarmUp, warm_up
 from .engine import EnergyLedger, Run, State, simulate
 from .excitation import Harmonic, Record
@@ -17,7 +17,7 @@ __version__ = "0.1.0"
 
 __all__ = [
     "Bumpers", "CampaignResult", "ContactLawFit", "Identification", "ModelFamily", "Targets", "EnergyLedger", "Harmonic", "HuntCrossley", "HysteresisLoop",
-    "InputError", "Interrupted", "Isolator", "KelvinVoigt", "Oscillator", "Problem", "Record",
+    "InputError", "Interrupted", "PoundingWarning", "Isolator", "KelvinVoigt", "Oscillator", "Problem", "Record",
     "Run", "State", "Status", "SweepResult", "campaign", "impact_table", "paper_frequencies_hz",
     "data", "fit_contact_law", "identify", "paper_targets", "presets", "simulate", "sweep",
     "WarmUp", "warm_up",

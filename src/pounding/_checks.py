@@ -3,19 +3,25 @@
 from __future__ import annotations
 
 import math
+import os
 import tomllib
+import warnings
 from collections.abc import Iterable, Sequence
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
-from ._errors import InputError, Problem
+from ._errors import InputError, PoundingWarning, Problem
+
+# Integers beyond this are no count anyone means (cycles, events, iterations): refused, so
+# that no array or loop is sized from them.
+MAX_COUNT = 10**12
 
 
 def real(field: str, value: Any) -> float:
     """Return ``value`` as a finite float, or raise naming ``field``."""
-    if isinstance(value, bool):
+    if isinstance(value, (bool, str, bytes)):  # (text that reads as a number is still text)
         raise InputError(Problem.NOT_A_NUMBER, field, value)
     try:
         out = float(value)
@@ -80,16 +86,77 @@ def float_array(field: str, values: Any, min_len: int = 1) -> np.ndarray:
     return arr
 
 
-def integer(field: str, value: Any, minimum: int) -> int:
-    """Return ``value`` as an int >= ``minimum`` (bools and fractions refused)."""
+def integer(field: str, value: Any, minimum: int, maximum: int = MAX_COUNT, fix: str = "") -> int:
+    """Return ``value`` as an int in ``[minimum, maximum]`` (bools and fractions refused).
+
+    ``fix`` says what to do instead of a value above ``maximum``.
+    """
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
-        if isinstance(value, (float, np.floating)) and float(value).is_integer():
+        if isinstance(value, (float, np.floating)) and math.isfinite(value) and float(value).is_integer():
             value = int(value)
         else:
             raise InputError(Problem.NOT_INTEGER, field, value, minimum=minimum)
     if value < minimum:
         raise InputError(Problem.NOT_INTEGER, field, value, minimum=minimum)
+    if value > maximum:
+        raise InputError(Problem.TOO_LARGE, field, value, maximum=maximum, what="",
+                         fix=fix or f"give at most {maximum:g}")
     return int(value)
+
+
+def at_most(field: str, value: float, maximum: float, what: str, fix: str) -> float:
+    """``value`` if ``|value| <= maximum``, else an error (magnitudes beyond any real system)."""
+    if abs(value) > maximum:
+        raise InputError(Problem.TOO_LARGE, field, value, maximum=maximum, what=what, fix=fix)
+    return value
+
+
+def plausible(field: str, value: float, low: float, high: float, meant: str) -> None:
+    """Warn (:class:`PoundingWarning`) when ``value`` is outside ``[low, high]``.
+
+    ``meant`` says what was probably meant, e.g. "gaps are in m: 15 mm is 0.015".
+    """
+    if not low <= value <= high:
+        warnings.warn(f"{field} = {value!r} is outside the plausible range [{low:g}, {high:g}]: {meant}.",
+                      PoundingWarning, stacklevel=4)
+
+
+def boolean(field: str, value: Any) -> bool:
+    """A true bool (TOML ``true``/``false``): strings such as ``"false"`` are refused."""
+    if isinstance(value, (bool, np.bool_)):
+        return bool(value)
+    raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__, expected="true or false")
+
+
+def input_path(field: str, path: Any) -> Path:
+    """An existing file to read: its type, existence and kind are checked."""
+    if not isinstance(path, (str, os.PathLike)):
+        raise InputError(Problem.WRONG_TYPE, field, path, got=type(path).__name__,
+                         expected="path (str or pathlib.Path)")
+    path = Path(path)
+    if path.is_dir():
+        raise InputError(Problem.NOT_A_FILE, field, str(path))
+    if not path.is_file():
+        raise InputError(Problem.NO_FILE, field, str(path), cwd=os.getcwd())
+    return path
+
+
+def read_text(field: str, path: Any) -> str:
+    """The UTF-8 text of the file ``path`` (bad paths and encodings raise naming ``field``)."""
+    path = input_path(field, path)
+    try:
+        return path.read_text(encoding="utf-8")
+    except UnicodeDecodeError as exc:
+        raise InputError(Problem.BAD_ENCODING, field, str(path),
+                         detail=f"byte {exc.start}: {exc.object[exc.start:exc.start + 1]!r}") from None
+
+
+def parse_toml(name: str, text: str) -> dict:
+    """TOML text as a table; syntax errors name ``name`` (the file) and the place."""
+    try:
+        return tomllib.loads(text)
+    except tomllib.TOMLDecodeError as exc:
+        raise InputError(Problem.BAD_TOML, name, "...", detail=str(exc)) from None
 
 
 def read_toml(field: str, path: Any, keys: Sequence[str]) -> dict:
@@ -98,13 +165,8 @@ def read_toml(field: str, path: Any, keys: Sequence[str]) -> dict:
     Raises :class:`InputError` naming ``field`` for a missing file, the file for bad TOML,
     and the key for an unknown one.
     """
-    path = Path(path)
-    if not path.is_file():
-        raise InputError(Problem.NO_FILE, field, str(path))
-    try:
-        table = tomllib.loads(path.read_text(encoding="utf-8"))
-    except tomllib.TOMLDecodeError as exc:
-        raise InputError(Problem.BAD_TOML, str(path), "...", detail=str(exc)) from None
+    text = read_text(field, path)
+    table = parse_toml(str(path), text)
     for key in table:
         if key not in keys:
             raise InputError(Problem.UNKNOWN_KEY, key, table[key], choices=", ".join(keys))

@@ -19,14 +19,21 @@ class Problem(enum.Enum):
     NOT_POSITIVE = ("must be > 0", "give a positive value in {unit}")
     NEGATIVE = ("must be >= 0", "give a value >= 0 in {unit}")
     EMPTY = ("is empty", "give at least one value")
-    NOT_INCREASING = (
-        "must be strictly increasing",
-        "sort the values and remove repeats, e.g. [0.015, 0.04]",
-    )
-    LENGTH_MISMATCH = (
+    NOT_INCREASING = ("must be strictly increasing", "sort the values and remove repeats")
+    LENGTH_MISMATCH = ("has {got} values but {expected} are needed", "give {expected} values{hint}")
+    BREAKPOINT_COUNT = (
         "has {got} values but {expected} are needed",
         "give one breakpoint fewer than slopes (n slopes change at n-1 breakpoints)",
     )
+    OUT_OF_RANGE = ("is outside {range}", "give a value in {range}{hint}")
+    TOO_LARGE = ("is larger than {maximum:g}{what}", "{fix}")
+    OVER_BUDGET = ("needs about {estimate} integration steps ({why}), more than the budget max_steps = "
+                   "{budget}", "{fix}, or raise max_steps")
+    BAD_STATE = ("{why}", "{fix}")
+    BAD_ENCODING = ("is not UTF-8 text ({detail})", "save the file as UTF-8 (TOML files are UTF-8)")
+    NOT_A_FILE = ("is a directory, not a file", "give the path of a file")
+    BAD_OUTPUT = ("{why}", "{fix}")
+    WRONG_MODE = ("applies to {mode} only", "{fix}")
     NOT_ONE_OF = ("is not one of {choices}", "use one of {choices}")
     UNKNOWN_KEY = ("is not a known key", "remove it or use one of {choices}")
     MISSING_KEY = ("is missing", "add it; the keys are {choices}")
@@ -34,7 +41,7 @@ class Problem(enum.Enum):
     NOT_1D = ("must be a one-dimensional array", "pass a flat sequence of numbers")
     TOO_SHORT = ("has {got} samples", "give at least {expected} samples")
     BAD_TOML = ("is not valid TOML ({detail})", "fix the syntax at the place named")
-    NO_FILE = ("does not exist", "check the path")
+    NO_FILE = ("does not exist", "check the path (relative paths start in {cwd})")
     NOT_INTEGER = ("must be a whole number >= {minimum}", "give an integer >= {minimum}")
     TOO_SMALL = ("must be >= {minimum}", "give a value >= {minimum}{hint}")
     DUPLICATE = ("repeats {repeated}", "give each value once")
@@ -84,6 +91,13 @@ class InputError(ValueError):
         return InputError(self.problem, field, self.value, **self._details)
 
 
+class PoundingWarning(UserWarning):
+    """A valid but implausible input: the message says what was probably meant.
+
+    Silence one with ``warnings.filterwarnings("ignore", category=pounding.PoundingWarning)``.
+    """
+
+
 class Interrupted(KeyboardInterrupt):
     """Ctrl-C during a long run; ``partial`` holds what was finished (the rest is NaN).
 
@@ -95,8 +109,9 @@ class Interrupted(KeyboardInterrupt):
             result = stop.partial
     """
 
-    def __init__(self, partial: Any, done: int, total: int) -> None:
-        super().__init__(f"interrupted after {done} of {total} steps; the finished ones are in .partial")
+    def __init__(self, partial: Any, done: Any, total: Any, unit: str = "steps") -> None:
+        of = "" if total is None else f" of {total:g}"
+        super().__init__(f"interrupted after {done:g}{of} {unit}; what was finished is in .partial")
         self.partial = partial
         self.done = done
         self.total = total
@@ -110,6 +125,9 @@ class Status(enum.IntEnum):
     MAX_EVENTS = -2
     DEGENERATE_PHASE = -3
     STEP_FAILED = -4
+    INTERRUPTED = -5
+    BUDGET = -6
+    NONFINITE = -7
 
     @property
     def message(self) -> str:
@@ -137,5 +155,18 @@ _STATUS_MESSAGES = {
     Status.STEP_FAILED: (
         "Stopped early: the integrator for a nonlinear contact law could not meet the tolerance "
         "with a positive step. Loosen rtol or check the contact law's parameters."
+    ),
+    Status.INTERRUPTED: (
+        "Stopped early by Ctrl-C; what was computed up to the stop is kept (final_state "
+        "continues from there)."
+    ),
+    Status.BUDGET: (
+        "Stopped early: the run used its whole work budget (max_steps integration steps). "
+        "Raise max_steps or shorten the duration; what was computed up to the stop is kept."
+    ),
+    Status.NONFINITE: (
+        "Stopped early: the numbers left the range of floating point (inf or NaN), so nothing "
+        "after that point can be trusted. Check the magnitudes of the system and the excitation "
+        "(SI units: m, kg, N, s)."
     ),
 }

@@ -13,13 +13,18 @@ from typing import Union
 
 import numpy as np
 
-from ._checks import float_array, positive, real
+from ._checks import at_most, float_array, plausible, positive, real
 from ._errors import InputError, Problem
 
 STANDARD_GRAVITY = 9.81  # m/s^2, the value the paper uses
 
 HARMONIC = 0
 RECORD = 1
+# refused beyond: no shaking table or earthquake comes near (a unit error, or overflow ahead)
+MAX_A_G = 1e3
+MAX_ACCEL_M_S2 = MAX_A_G * STANDARD_GRAVITY
+MAX_FREQ_HZ = 1e6
+MAX_TIME_S = 1e9
 
 
 @dataclass(frozen=True)
@@ -45,10 +50,16 @@ class Harmonic:
     g: float = STANDARD_GRAVITY
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "a_g", real("a_g", self.a_g))
-        object.__setattr__(self, "freq_hz", positive("freq_hz", self.freq_hz, "Hz"))
-        object.__setattr__(self, "phase", real("phase", self.phase))
-        object.__setattr__(self, "g", positive("g", self.g, "m/s^2"))
+        a_g = at_most("a_g", real("a_g", self.a_g), MAX_A_G, " g", "a_g is in g: 0.05 is 5 % of g")
+        plausible("a_g", abs(a_g), 0.0, 5.0, "a_g is the peak table acceleration in g (0.05 is 5 % of g)")
+        freq = at_most("freq_hz", positive("freq_hz", self.freq_hz, "Hz"), MAX_FREQ_HZ, " Hz",
+                       "give it in Hz")
+        plausible("freq_hz", freq, 0.0, 1e3, "the frequency is in Hz, not rad/s")
+        phase = real("phase", self.phase)
+        g = at_most("g", positive("g", self.g, "m/s^2"), MAX_A_G, " m/s^2", "give g in m/s^2 (9.81)")
+        plausible("g", g, 1.0, 30.0, "g is gravity's acceleration in m/s^2 (9.81 on Earth)")
+        for name, value in (("a_g", a_g), ("freq_hz", freq), ("phase", phase), ("g", g)):
+            object.__setattr__(self, name, value)
 
     @property
     def peak_m_s2(self) -> float:
@@ -96,11 +107,18 @@ class Record:
         accel = float_array("record.accel", self.accel, min_len=2)
         if accel.size != t.size:
             raise InputError(Problem.LENGTH_MISMATCH, "record.accel", f"array of {accel.size}",
-                             got=accel.size, expected=t.size)
+                             got=accel.size, expected=t.size, hint=" (one acceleration per time in record.t)")
         steps = np.diff(t)
         if np.any(steps <= 0.0):
             i = int(np.flatnonzero(steps <= 0.0)[0])
             raise InputError(Problem.NOT_INCREASING, f"record.t[{i}:{i + 2}]", t[i:i + 2].tolist())
+        i = int(np.argmax(np.abs(t)))
+        at_most(f"record.t[{i}]", float(t[i]), MAX_TIME_S, " s", "give the times in s")
+        i = int(np.argmax(np.abs(accel)))
+        at_most(f"record.accel[{i}]", float(accel[i]), MAX_ACCEL_M_S2, " m/s^2 (1000 g)",
+                "give the acceleration in m/s^2 (Record.from_g takes units of g)")
+        plausible(f"record.accel[{i}]", abs(float(accel[i])), 0.0, 5.0 * STANDARD_GRAVITY,
+                  "the acceleration is in m/s^2 (use Record.from_g for units of g)")
         t.setflags(write=False)
         accel.setflags(write=False)
         object.__setattr__(self, "t", t)

@@ -17,10 +17,13 @@ import numpy as np
 
 from ..model.contact_laws import AT_START, N_LAW_PARAMS, law_energy, law_force, law_is_linear, law_linear_coefficients, law_relax
 from ._isolator import iso_advance, iso_energy, iso_events, iso_linear, iso_transition
-from .._jit import jit, jit_alloc, jit_entry
+from .._jit import jit, jit_entry
+from ._buffers import grow as _grow
+from ._buffers import put as _put
 from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A_WORK, ACC_L,
-                      ACC_R, ACT_CONTACT, ACT_RELEASE, CONTACT_COLS, D, DEF_L, DEF_R, E_ACTION,
-                      E_ALPHA, E_BETA, E_DIR, E_GAMMA, E_INDEX, E_KIND, E_SIDE, EV_COLS,
+                      ACC_R, ACT_CONTACT, ACT_RELEASE, CONTACT_COLS, CTL_BUDGET, CTL_STOP, CTL_WORK,
+                      D, DEF_L, DEF_R, E_ACTION, E_ALPHA, E_BETA, E_DIR, E_GAMMA, E_INDEX, E_KIND, E_SIDE,
+                      EV_COLS,
                       EVENT_COLS, IN_L, IN_R, KIND_LINEAR, KIND_RELEASE,
                       LEDGER_LEN, MODE_LINEAR, MODE_NUMERIC, P_AX0, P_AX1, P_AXH, P_C,
                       P_CD, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_INL, P_INR, P_K, P_KISO,
@@ -32,38 +35,15 @@ from ._numeric import dp5_step
 from ._trajectory import (NO_INDEX, ROUNDING, W_VELOCITY, contact_force, event_value, locate_event, newton, phase_eval,
                           table_acceleration, value_at_root)
 
-SUCCESS, ZENO, MAX_EVENTS, DEGENERATE_PHASE, STEP_FAILED = 0, -1, -2, -3, -4
+SUCCESS, ZENO, MAX_EVENTS, DEGENERATE_PHASE, STEP_FAILED, INTERRUPTED, BUDGET, NONFINITE = (
+    0, -1, -2, -3, -4, -5, -6, -7)
 EXC_HARMONIC = 0
 TWO_PI = 2.0 * math.pi
 SUBINTERVALS_PER_PERIOD = 8.0
 ZENO_REPEATS = 200
 XTOL_S = 1e-15          # event instants and displacement extrema, s
-
-
-@jit_alloc
-def _grow(buf, n):
-    """``buf`` with room for row ``n``: twice as many rows once it is full.
-
-    Callers test ``n >= buf.shape[0]`` first: a call costs reference counting.
-    """
-    if n < buf.shape[0]:
-        return buf
-    out = np.empty((2 * buf.shape[0], buf.shape[1]))
-    for i in range(n):  # loops, not slice assignment: no shape-check code to compile
-        for j in range(buf.shape[1]):
-            out[i, j] = buf[i, j]
-    return out
-
-
-@jit
-def _put(buf, n, x0, x1, x2, x3, x4, x5, x6, x7, x8):
-    """Write the first ``buf.shape[1]`` of these 9 values at row ``n``.
-
-    Every call passes all nine (no defaults): one compiled version serves every buffer.
-    """
-    vals = (x0, x1, x2, x3, x4, x5, x6, x7, x8)
-    for j in range(buf.shape[1]):
-        buf[n, j] = vals[j]
+DBL_MAX = 1.7976931348623157e308
+POLL_EVERY = 64         # sub-intervals between two looks at the run control (about 30 us)
 
 
 @jit
@@ -222,11 +202,16 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law
 
 @jit_entry
 def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
-               exc_kind, exc_p, rec_t, rec_a, state0, t_end, sample_dt, rtol, max_events, with_energy):
+               exc_kind, exc_p, rec_t, rec_a, state0, t_end, sample_dt, rtol, max_events, with_energy,
+               ctl):
     """Simulate from ``state0`` to ``t_end``.
 
     ``with_energy`` False skips the energy quadrature outside contacts (a sweep needs the
-    contacts' impulse and work, not the ledger); the ledger is then NaN.
+    contacts' impulse and work, not the ledger); the ledger is then NaN.  ``ctl`` is the
+    run control (``_layout.CTL_*``): the loop stops with ``INTERRUPTED`` as soon as
+    ``ctl[CTL_STOP]`` is set (by another thread) and with ``BUDGET`` when the sub-intervals
+    counted in ``ctl[CTL_WORK]`` reach ``ctl[CTL_BUDGET]``; it adds its own to the count.
+    A state that leaves floating point (inf, NaN) stops it with ``NONFINITE``.
 
     Returns ``(state, samples, n_samples, contacts, n_contacts, events, n_events, ledger,
     extrema, status)``; see ``_layout`` for the columns.
@@ -265,7 +250,20 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
     n_s += 1
     track_abs_acceleration(extrema, t_run0, a_abs)
     j_next = 1
+    work = np.int64(0)
+    work_left = ctl[CTL_BUDGET] - ctl[CTL_WORK]
+    next_poll = np.int64(0)
     while st[T] < t_end:
+        # the run control, polled every POLL_EVERY sub-intervals (one compare in between)
+        if work >= next_poll:
+            if ctl[CTL_STOP] != 0:
+                status = INTERRUPTED
+                break
+            if work >= work_left:
+                status = BUDGET
+                break
+            next_poll = min(work + POLL_EVERY, work_left)
+        work += 1
         t = st[T]
         a0x, a1x, amp, omega, phase, t_knot = _excitation_piece(exc_kind, exc_p, rec_t, rec_a, t)
         if continuing:
@@ -404,6 +402,9 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
                 relaxed = law_relax(law, p, AT_START, st[idx], tau)[0]
                 ledger[3] += law_energy(law, p, st[idx]) - law_energy(law, p, relaxed)
                 st[idx] = relaxed
+        if not (abs(d1) <= DBL_MAX and abs(v1) <= DBL_MAX):  # inf or NaN: nothing after it holds
+            status = NONFINITE
+            break
         ledger[2] += iso_advance(slopes, breaks, rule, st, d0, d1)
         st[D] = d1
         st[V] = v1
@@ -472,6 +473,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
             _put(contacts, n_c, float(side), st[acc + A_TSTART], np.nan, st[acc + A_VIN], np.nan,
                  st[acc + A_IMPULSE], st[acc + A_PEAK], st[acc + A_MAXCOMP], st[acc + A_WORK])
             n_c += 1
+    ctl[CTL_WORK] += work
     kin1, iso1, bmp1 = _energies(st, mass, slopes, breaks, rule, law_l, p_l, law_r, p_r)
     ledger[4] = kin1 - kin0
     ledger[5] = iso1 - iso0

@@ -59,3 +59,9 @@ SAMPLE_COLS = 7   # t, D, V, abs_acceleration, isolator_force, bumper_force_left
 CONTACT_COLS = 9  # side, t_start, t_end, v_in, v_out, impulse, peak_force, max_compression, work
 EVENT_COLS = 3    # t, action, index
 LEDGER_LEN = 7    # input, viscous, hysteretic, bumper dissipation, d(kinetic), d(isolator), d(bumper)
+
+# ---- run control (int64 array shared between Python and the kernels, see _control.py)
+CTL_STOP = 0     # set to 1 by Python (Ctrl-C): kernels return with INTERRUPTED at once
+CTL_WORK = 1     # sub-intervals done so far, added to by every kernel call sharing the array
+CTL_BUDGET = 2   # kernels return with BUDGET once CTL_WORK would pass it
+CTL_LEN = 3

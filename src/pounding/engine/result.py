@@ -9,7 +9,8 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import pandas as pd
 
-from .._errors import Status
+from .._checks import at_most, real
+from .._errors import InputError, Problem, Status
 from ._layout import DEF_L, DEF_R, EVENT_NAMES, IN_L, IN_R, REGION, STATE_BASE
 from ._layout import D as I_D
 from ._layout import T as I_T
@@ -33,17 +34,54 @@ class State:
     vector: np.ndarray = field(repr=False)
 
     def __post_init__(self) -> None:
-        vec = np.array(self.vector, dtype=float)
+        vec = _state_vector(self.vector)
         vec.setflags(write=False)
         object.__setattr__(self, "vector", vec)
 
     @classmethod
     def at_rest(cls, oscillator: "Oscillator", time_s: float = 0.0, displacement_m: float = 0.0,
                 velocity_m_s: float = 0.0) -> "State":
-        """The virgin isolator and relaxed bumpers, with the given time and motion."""
-        n_sp = oscillator.isolator.n_branches - 1
+        """Relaxed bumpers and an isolator on its backbone, with the given time and motion.
+
+        Parameters
+        ----------
+        oscillator : Oscillator
+            The system the state is for.
+        time_s : float
+            Time, s.
+        displacement_m : float
+            Displacement relative to the table, m, between the bumpers' surfaces
+            (``-gap_left <= D <= gap_right``).  The isolator is where a slow push from 0
+            would leave it (on the backbone).
+        velocity_m_s : float
+            Velocity relative to the table, m/s.
+        """
+        from ..model import Oscillator
+
+        if not isinstance(oscillator, Oscillator):
+            raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator, got=type(oscillator).__name__,
+                             expected="pounding.Oscillator")
+        time_s = at_most("time_s", real("time_s", time_s), MAX_TIME_S, " s", "give the time in s")
+        d = at_most("displacement_m", real("displacement_m", displacement_m), MAX_DISPLACEMENT_M, " m",
+                    "give the displacement in m")
+        v = at_most("velocity_m_s", real("velocity_m_s", velocity_m_s), MAX_VELOCITY_M_S, " m/s",
+                    "give the velocity in m/s")
+        b = oscillator.bumpers
+        if b is not None and not -b.gap_left <= d <= b.gap_right:
+            side, surface = ("left", -b.gap_left) if d < 0 else ("right", b.gap_right)
+            raise InputError(Problem.BAD_STATE, "displacement_m", d,
+                             why=f"is inside the {side} bumper, whose surface is at {surface:g} m",
+                             fix=f"give a displacement between {-b.gap_left:g} and {b.gap_right:g} m "
+                                 "(a state in contact comes from a run's final_state)")
+        iso = oscillator.isolator
+        n_sp = iso.n_branches - 1
         vec = np.zeros(STATE_BASE + 2 * n_sp)
-        vec[I_T], vec[I_D], vec[I_V] = time_s, displacement_m, velocity_m_s
+        vec[I_T], vec[I_D], vec[I_V] = time_s, d, v
+        breaks = np.asarray(iso.breakpoints)
+        if iso.hysteresis == "elastic":
+            vec[REGION] = np.sign(d) * np.searchsorted(breaks, abs(d), side="right")
+        else:  # the springs that a monotonic push to d made slip keep that slip
+            vec[STATE_BASE:STATE_BASE + n_sp] = d - np.clip(d, -breaks, breaks)
         return cls(vec)
 
     @property
@@ -82,6 +120,51 @@ class State:
     def __repr__(self) -> str:
         return (f"State(time_s={self.time_s:.6g}, displacement_m={self.displacement_m:.6g}, "
                 f"velocity_m_s={self.velocity_m_s:.6g}, in_contact={self.in_contact})")
+
+
+MAX_TIME_S = 1e12
+MAX_DISPLACEMENT_M = 1e6
+MAX_VELOCITY_M_S = 1e6
+
+
+def _bad_state(field: str, value: Any, why: str, fix: str) -> InputError:
+    return InputError(Problem.BAD_STATE, f"state.{field}", value, why=why, fix=fix)
+
+
+_FROM_A_RUN = "start from State.at_rest(...) or a run's final_state"
+
+
+def _state_vector(vector: Any) -> np.ndarray:
+    """The raw state vector, checked for what holds whatever the system (see ``_layout``)."""
+    try:
+        vec = np.array(vector, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(Problem.NOT_A_NUMBER, "state.vector", vector) from None
+    if vec.ndim != 1 or vec.size < STATE_BASE or (vec.size - STATE_BASE) % 2:
+        raise _bad_state("vector", f"array of shape {vec.shape}",
+                         f"is no state vector (length {STATE_BASE} + 2 x (isolator branches - 1))",
+                         _FROM_A_RUN)
+    bad = np.flatnonzero(~np.isfinite(vec))
+    if bad.size:
+        raise InputError(Problem.NOT_FINITE, f"state.vector[{bad[0]}]", float(vec[bad[0]]))
+    for i, name, limit in ((I_T, "time_s", MAX_TIME_S), (I_D, "displacement_m", MAX_DISPLACEMENT_M),
+                           (I_V, "velocity_m_s", MAX_VELOCITY_M_S)):
+        at_most(f"state.{name}", float(vec[i]), limit, "", _FROM_A_RUN)
+    for i, name in ((DEF_L, "bumper_compression_m[0]"), (DEF_R, "bumper_compression_m[1]")):
+        if vec[i] < 0.0:
+            raise _bad_state(name, float(vec[i]), "is negative (a compression is >= 0)", _FROM_A_RUN)
+    for i, name in ((IN_L, "in_contact[0]"), (IN_R, "in_contact[1]")):
+        if vec[i] not in (0.0, 1.0):
+            raise _bad_state(name, float(vec[i]), "is not a contact flag (0 or 1)", _FROM_A_RUN)
+    if not float(vec[REGION]).is_integer():
+        raise _bad_state("isolator_branch", float(vec[REGION]), "is not a whole number", _FROM_A_RUN)
+    n_sp = (vec.size - STATE_BASE) // 2
+    dirs = vec[STATE_BASE + n_sp:]
+    bad = np.flatnonzero(~np.isin(dirs, (-1.0, 0.0, 1.0)))
+    if bad.size:
+        raise _bad_state(f"vector[{STATE_BASE + n_sp + bad[0]}]", float(dirs[bad[0]]),
+                         "is not a slip direction (-1, 0 or 1)", _FROM_A_RUN)
+    return vec
 
 
 @dataclass(frozen=True)
@@ -146,6 +229,8 @@ class Run:
         ``index`` (spring or side).
     energy : EnergyLedger
     final_state : State
+    sample_rate_hz : float
+        Rate of the uniform history samples, Hz (0: events only).
     status : Status
         ``Status.SUCCESS`` (0) or why the run stopped early (negative); see ``message``.
     """
@@ -171,6 +256,7 @@ class Run:
     message: str
     oscillator: "Oscillator" = field(repr=False)
     excitation: "Excitation" = field(repr=False)
+    sample_rate_hz: float = 1000.0
 
     @cached_property
     def contacts(self) -> pd.DataFrame:

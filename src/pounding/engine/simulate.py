@@ -4,12 +4,17 @@ from __future__ import annotations
 
 from typing import Optional
 
+import numpy as np
+
 from .._checks import integer, non_negative, positive
-from .._errors import InputError, Problem, Status
+from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
 from ..model.contact_laws import KelvinVoigt
+from ._control import (DEFAULT_MAX_STEPS, check_budget, isolator_rate, new_control, run_interruptibly,
+                       steps_per_second)
 from ._kernel import run_kernel
+from ._layout import REGION, STATE_BASE
 from .result import EnergyLedger, Run, State
 
 _NO_LAW = KelvinVoigt(1.0, 0.0)  # stands in for absent bumpers (never touched)
@@ -24,8 +29,9 @@ def check_oscillator(oscillator: Oscillator) -> None:
 def check_rtol(rtol: float) -> float:
     """The integration tolerance of nonlinear contact laws, in (0, 1e-3]."""
     rtol = positive("rtol", rtol, "(relative)")
-    if rtol > 1e-3:
-        raise InputError(Problem.NOT_ONE_OF, "rtol", rtol, choices="values in (0, 1e-3]")
+    if not 1e-14 <= rtol <= 1e-3:
+        raise InputError(Problem.OUT_OF_RANGE, "rtol", rtol, range="[1e-14, 1e-3]",
+                         hint=" (below 1e-14 the steps cannot meet it in double precision)")
     return rtol
 
 
@@ -38,8 +44,65 @@ def check_state(state: Optional[State], oscillator: Oscillator) -> State:
                          expected="pounding.State (e.g. run.final_state)")
     expected = State.at_rest(oscillator).vector.size
     if state.vector.size != expected:
-        raise InputError(Problem.LENGTH_MISMATCH, "state", state, got=state.vector.size, expected=expected)
+        raise InputError(Problem.BAD_STATE, "state", state,
+                         why=f"has {state.vector.size} numbers where this system's states have {expected} "
+                             "(it is from a system with another number of isolator branches)",
+                         fix="start from State.at_rest(oscillator) or a final_state of this system")
+    _check_state_fits(state, oscillator)
     return state
+
+
+def _check_state_fits(state: State, oscillator: Oscillator) -> None:
+    """A state the system can be in: contacts, bumper surfaces and isolator springs agree.
+
+    Tolerances are relative (1e-9 of the system's lengths): a run's final state holds the
+    rounding of its last event.
+    """
+    vec = state.vector
+    d = state.displacement_m
+    iso = oscillator.isolator
+    b = oscillator.bumpers
+    lengths = [abs(d), 1e-3, *iso.breakpoints] + ([b.gap_left, b.gap_right] if b else [])
+    tol = 1e-9 * max(lengths)
+    fix = "start from State.at_rest(oscillator) or a final_state of this system"
+
+    def bad(field: str, value: float, why: str) -> InputError:
+        return InputError(Problem.BAD_STATE, f"state.{field}", value, why=why, fix=fix)
+
+    comp = state.bumper_compression_m
+    touching = state.in_contact
+    if b is None:
+        if any(touching) or any(comp):
+            raise bad("in_contact", touching, "has a bumper in contact or compressed, but the system has no "
+                                              "bumpers")
+    else:
+        for j, (side, gap, sign) in enumerate((("left", b.gap_left, -1.0), ("right", b.gap_right, 1.0))):
+            depth = sign * d - gap  # how far the mass is beyond this bumper's free surface
+            if touching[j] and abs(depth - comp[j]) > tol:
+                raise bad(f"bumper_compression_m[{j}]", comp[j],
+                          f"differs from the {side} bumper's depth {depth:g} m at the state's displacement "
+                          "while in contact")
+            if not touching[j] and depth - comp[j] > tol:
+                raise bad("displacement_m", d, f"is inside the {side} bumper (its surface is at "
+                                               f"{sign * (gap + comp[j]):g} m) while not in contact")
+    n_sp = iso.n_branches - 1
+    if iso.hysteresis == "elastic":
+        region = int(vec[REGION])
+        edges = (0.0, *iso.breakpoints, np.inf)
+        a = abs(region)
+        wrong_side = region != 0 and np.sign(region) != np.sign(d)
+        if a > n_sp or not edges[a] - tol <= abs(d) <= edges[a + 1] + tol or wrong_side:
+            raise bad("isolator_branch", region, f"is not the backbone branch of displacement {d:g} m")
+        return
+    if vec[REGION] != 0.0:
+        raise bad("isolator_branch", vec[REGION], "is set, but a kinematic isolator has no branch state")
+    for i, brk in enumerate(iso.breakpoints):
+        strain = d - vec[STATE_BASE + i]
+        direction = vec[STATE_BASE + n_sp + i]
+        beyond = abs(strain) > brk + tol if direction == 0.0 else abs(strain - direction * brk) > tol
+        if beyond:
+            raise bad(f"plastic_slips_m[{i}]", float(vec[STATE_BASE + i]),
+                      f"leaves spring {i}'s strain {strain:g} m beyond its yield displacement {brk:g} m")
 
 
 def kernel_system(oscillator: Oscillator) -> tuple:
@@ -54,6 +117,29 @@ def kernel_system(oscillator: Oscillator) -> tuple:
             gap_l, gap_r, left.LAW_ID, left.params(), right.LAW_ID, right.params())
 
 
+MAX_AUTO_SAMPLES = 1_000_000     # the default history's length at most (56 MB)
+MAX_SAMPLES = 50_000_000         # refused beyond (2.8 GB of history)
+DEFAULT_SAMPLE_RATE_HZ = 1000.0
+
+
+def history_rate(sample_rate_hz: Optional[float], duration: float) -> float:
+    """The history's sample rate: as asked (checked against memory), or the default.
+
+    The default (``None``) is 1 kHz, lowered for long runs so that the history holds at
+    most ``MAX_AUTO_SAMPLES`` uniform samples: memory grows with what was asked for.
+    """
+    if sample_rate_hz is None:
+        return min(DEFAULT_SAMPLE_RATE_HZ, MAX_AUTO_SAMPLES / duration)
+    rate = non_negative("sample_rate_hz", sample_rate_hz, "Hz")
+    if duration * rate > MAX_SAMPLES:
+        raise InputError(Problem.TOO_LARGE, "sample_rate_hz", sample_rate_hz, maximum=MAX_SAMPLES / duration,
+                         what=f" Hz for {duration:g} s: {duration * rate:.3g} samples, "
+                              f"{56 * duration * rate / 1e9:.3g} GB of history",
+                         fix="lower it or shorten the duration (extrema, contacts and energies are exact "
+                             "without samples: sample_rate_hz=0 keeps the events only)")
+    return rate
+
+
 def simulate(
     oscillator: Oscillator,
     excitation: Harmonic | Record,
@@ -61,8 +147,9 @@ def simulate(
     state: Optional[State] = None,
     *,
     rtol: float = 1e-10,
-    sample_rate_hz: float = 1000.0,
+    sample_rate_hz: Optional[float] = None,
     max_events: int = 10_000_000,
+    max_steps: int = DEFAULT_MAX_STEPS,
 ) -> Run:
     """Simulate the oscillator under a base excitation, exactly at every non-smooth instant.
 
@@ -80,44 +167,77 @@ def simulate(
     rtol : float
         Relative tolerance of the numerical integration of nonlinear contact laws; phases
         with a linear law are solved in closed form, to rounding.
-    sample_rate_hz : float
-        Rate of the uniform history samples, Hz (0: only the start, the events and the end).
-        Extrema, contacts and energies are exact whatever the rate.
+    sample_rate_hz : float, optional
+        Rate of the uniform history samples, Hz; 0: only the start, the events and the
+        end.  Default: 1 kHz, lowered for runs over 1000 s so that the history holds at most
+        a million samples (``run.sample_rate_hz`` says which).  Extrema, contacts and
+        energies are exact whatever the rate.
     max_events : int
         The run stops with ``Status.MAX_EVENTS`` after this many events.
+    max_steps : int
+        Work budget: the run stops with ``Status.BUDGET`` after this many integration steps
+        (sub-intervals: about 8 per period of the fastest motion, plus one per event).  A
+        run whose estimate exceeds it is refused before it starts.
 
     Returns
     -------
     Run
         Histories, exact extrema, contacts, energy ledger, final state, status and message.
+        A run that stops early keeps what it computed; ``status`` and ``message`` say why.
+
+    Raises
+    ------
+    InputError
+        A bad argument, or a run estimated to need more than ``max_steps``.
+    Interrupted
+        On Ctrl-C: ``partial`` is the run up to the stop (status ``INTERRUPTED``).
     """
     check_oscillator(oscillator)
     if not isinstance(excitation, (Harmonic, Record)):
         raise InputError(Problem.WRONG_TYPE, "excitation", excitation,
                          got=type(excitation).__name__, expected="pounding.Harmonic or pounding.Record")
     duration = positive("duration", duration, "s")
-    rate = non_negative("sample_rate_hz", sample_rate_hz, "Hz")
     rtol = check_rtol(rtol)
     max_events = integer("max_events", max_events, 1)
+    max_steps = integer("max_steps", max_steps, 1)
     state = check_state(state, oscillator)
+    rate = history_rate(sample_rate_hz, duration)
+    t0 = state.time_s
+    omega = excitation.omega_rad_s if isinstance(excitation, Harmonic) else 0.0
+    iso_rate, why = isolator_rate(oscillator)
+    per_s = float(steps_per_second(iso_rate, omega))
+    if omega > iso_rate:
+        why = f"the forcing, {omega:.3g} rad/s"
+    knots = 0
+    if isinstance(excitation, Record):
+        knots = int(np.count_nonzero((excitation.t >= t0) & (excitation.t <= t0 + duration)))
+        why += f", and {knots} record samples"
+    check_budget("duration", duration, per_s * duration + knots, max_steps, why,
+                 "shorten the duration, or check the system's numbers (SI units: kg, N/m, N s/m)")
 
     exc_kind, exc_p, rec_t, rec_a = excitation.kernel_arrays()
-    t0 = state.time_s
-    st, samples, contacts, events, ledger, extrema, status = run_kernel(
+    ctl = new_control(max_steps)
+    st, samples, contacts, events, ledger, extrema, status = run_interruptibly(lambda: run_kernel(
         *kernel_system(oscillator), exc_kind, exc_p, rec_t, rec_a, state.vector.copy(),
-        t0 + duration, 1.0 / rate if rate > 0 else 0.0, rtol, int(max_events), True)
+        t0 + duration, 1.0 / rate if rate > 0 else 0.0, rtol, int(max_events), True, ctl), [ctl])
     status = Status(int(status))
+    if status == Status.SUCCESS and not (np.all(np.isfinite(ledger)) and np.all(np.isfinite(extrema))):
+        status = Status.NONFINITE
 
     energy = EnergyLedger(
         input_work=ledger[0], kinetic=ledger[4], isolator_elastic=ledger[5],
         bumper_elastic=ledger[6], viscous=ledger[1], hysteretic=ledger[2],
         bumper_dissipation=ledger[3])
     cols = samples.T
-    return Run(
+    run = Run(
         t=cols[0], displacement=cols[1], velocity=cols[2], abs_acceleration=cols[3],
         isolator_force=cols[4], bumper_force_left=cols[5], bumper_force_right=cols[6],
         displacement_max=float(extrema[0]), displacement_max_time_s=float(extrema[1]),
         displacement_min=float(extrema[2]), displacement_min_time_s=float(extrema[3]),
         abs_acceleration_max=float(extrema[4]), abs_acceleration_max_time_s=float(extrema[5]),
         contact_table=contacts, event_table=events, energy=energy, final_state=State(st),
-        status=status, message=status.message, oscillator=oscillator, excitation=excitation)
+        status=status, message=status.message, oscillator=oscillator, excitation=excitation,
+        sample_rate_hz=rate)
+    if status == Status.INTERRUPTED:
+        raise Interrupted(run, round(run.final_state.time_s - t0, 6), duration, "simulated seconds")
+    return run

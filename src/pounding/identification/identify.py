@@ -244,7 +244,7 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
         except KeyboardInterrupt:
             interrupted = True
     if best["u"] is None:
-        raise Interrupted(None, 0, maxiter)
+        raise Interrupted(None, 0, None, "evaluations")
     if best["valid"] == 0 and best["error"] is not None:
         raise best["error"]  # no candidate made a valid system: the family's fixed numbers or bounds
     params = scale.values(best["u"])
@@ -258,7 +258,7 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     result = Identification(params, osc, table, best["cost"], best["n"], Status.SUCCESS, message, family, bounds,
                             complete=not interrupted)
     if interrupted:
-        raise Interrupted(result, best["n"], None)
+        raise Interrupted(result, best["n"], None, "evaluations")
     return result
 
 

@@ -5,9 +5,12 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, ClassVar, Optional
 
-from .._checks import non_negative
+from .._checks import at_most, non_negative, plausible
 from .._errors import InputError, Problem
 from .contact_laws import LAWS, ContactLaw, law_to_dict
+
+
+MAX_GAP_M = 1e3  # refused beyond (a unit error)
 
 
 @dataclass(frozen=True)
@@ -38,8 +41,11 @@ class Bumpers:
     FIELDS: ClassVar[tuple[str, ...]] = ("gap_left", "gap_right", "law", "law_right")
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "gap_left", non_negative("bumpers.gap_left", self.gap_left, "m"))
-        object.__setattr__(self, "gap_right", non_negative("bumpers.gap_right", self.gap_right, "m"))
+        for name in ("gap_left", "gap_right"):
+            gap = non_negative(f"bumpers.{name}", getattr(self, name), "m")
+            at_most(f"bumpers.{name}", gap, MAX_GAP_M, " m", "give the gap in m (15 mm is 0.015)")
+            plausible(f"bumpers.{name}", gap, 0.0, 0.5, "gaps are in m (15 mm is 0.015)")
+            object.__setattr__(self, name, gap)
         for name in ("law", "law_right"):
             value = getattr(self, name)
             if value is None and name == "law_right":

@@ -15,12 +15,12 @@ during contact.
 from __future__ import annotations
 
 import math
-from dataclasses import MISSING, dataclass, fields
+from dataclasses import dataclass, fields
 from typing import Any, ClassVar, Union
 
 import numpy as np
 
-from .._checks import non_negative, positive, real
+from .._checks import at_most, non_negative, positive, real
 from .._errors import InputError, Problem
 from .._jit import jit, jit_entry
 
@@ -33,6 +33,13 @@ EXP_NORMAL_LIMIT = 708.39  # exp(-x) is below it for larger x
 # (``o`` an offset, so that the engine passes its phase record without slicing it: a
 # slice costs a reference-count increment and decrement on every call).
 AT_START = np.int64(0)  # the offset of a bare parameter array (typed: see engine/_layout.py)
+MAX_LAW_COEFFICIENT = 1e18  # stiffness or damping beyond any bumper (N/m^n, N s/m^(n+1)): refused
+MAX_EXPONENT = 10.0
+
+
+def _coefficient(field: str, value: Any, unit: str, strict: bool) -> float:
+    out = positive(field, value, unit) if strict else non_negative(field, value, unit)
+    return at_most(field, out, MAX_LAW_COEFFICIENT, f" {unit}", f"give it in {unit}")
 
 
 @dataclass(frozen=True)
@@ -57,8 +64,8 @@ class KelvinVoigt:
     LAW_ID: ClassVar[int] = KELVIN_VOIGT
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "stiffness", positive("law.stiffness", self.stiffness, "N/m"))
-        object.__setattr__(self, "damping", non_negative("law.damping", self.damping, "N s/m"))
+        object.__setattr__(self, "stiffness", _coefficient("law.stiffness", self.stiffness, "N/m", True))
+        object.__setattr__(self, "damping", _coefficient("law.damping", self.damping, "N s/m", False))
 
     def params(self) -> np.ndarray:
         """Parameters as the compiled kernels take them, shape (4,)."""
@@ -96,13 +103,13 @@ class HuntCrossley:
     LAW_ID: ClassVar[int] = HUNT_CROSSLEY
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "stiffness", positive("law.stiffness", self.stiffness, "N/m^n"))
+        object.__setattr__(self, "stiffness", _coefficient("law.stiffness", self.stiffness, "N/m^n", True))
         exponent = real("law.exponent", self.exponent)
-        if exponent < 1.0:
-            raise InputError(Problem.NOT_ONE_OF, "law.exponent", self.exponent,
-                             choices="values >= 1 (1.5 is Hertzian contact)")
+        if not 1.0 <= exponent <= MAX_EXPONENT:
+            raise InputError(Problem.OUT_OF_RANGE, "law.exponent", self.exponent,
+                             range=f"[1, {MAX_EXPONENT:g}]", hint=" (1.5 is Hertzian contact)")
         object.__setattr__(self, "exponent", exponent)
-        object.__setattr__(self, "damping", non_negative("law.damping", self.damping, "N s/m^(n+1)"))
+        object.__setattr__(self, "damping", _coefficient("law.damping", self.damping, "N s/m^(n+1)", False))
 
     def params(self) -> np.ndarray:
         """Parameters as the compiled kernels take them, shape (4,)."""
@@ -121,7 +128,11 @@ def law_to_dict(law: ContactLaw) -> dict[str, Any]:
 
 
 def law_from_dict(table: dict[str, Any], field: str) -> ContactLaw:
-    """Build a law from a TOML table with a ``type`` key; unknown keys are errors."""
+    """Build a law from a TOML table with a ``type`` key; unknown and missing keys are errors.
+
+    Every field of the law must be given, defaults included: a table whose ``type`` was
+    changed would otherwise be read with the new law's defaults filling what it lacks.
+    """
     if not isinstance(table, dict):
         raise InputError(Problem.WRONG_TYPE, field, table, got=type(table).__name__, expected="table")
     kind = table.get("type")
@@ -129,14 +140,15 @@ def law_from_dict(table: dict[str, Any], field: str) -> ContactLaw:
         raise InputError(Problem.NOT_ONE_OF, f"{field}.type", kind, choices=", ".join(map(repr, LAWS)))
     cls = LAWS[kind]
     allowed = {f.name for f in fields(cls)}
-    required = [f.name for f in fields(cls) if f.default is MISSING]
+    required = [f.name for f in fields(cls)]
     for key in table:
         if key != "type" and key not in allowed:
             raise InputError(Problem.UNKNOWN_KEY, f"{field}.{key}", table[key],
                              choices=", ".join(sorted(allowed | {"type"})))
     for key in required:
         if key not in table:
-            raise InputError(Problem.MISSING_KEY, f"{field}.{key}", None, choices=", ".join(sorted(allowed)))
+            raise InputError(Problem.MISSING_KEY, f"{field}.{key}", None,
+                             choices=", ".join(sorted(allowed)) + f" (a {kind} law needs every one of them)")
     try:
         return cls(**{k: v for k, v in table.items() if k != "type"})
     except InputError as exc:  # name the field by its place in the file

@@ -2,20 +2,20 @@
 
 from __future__ import annotations
 
-import tomllib
 from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, ClassVar, Optional, Union
 
 import tomli_w
 
-from .._checks import positive
+from .._checks import at_most, parse_toml, plausible, positive, read_text
 from .._errors import InputError, Problem
 from .bumpers import Bumpers
 from .contact_laws import law_from_dict
 from .isolator import Isolator
 
 PathLike = Union[str, Path]
+MAX_MASS_KG = 1e12  # refused beyond (a unit error)
 
 
 @dataclass(frozen=True)
@@ -43,7 +43,10 @@ class Oscillator:
     FIELDS: ClassVar[tuple[str, ...]] = ("mass", "isolator", "bumpers")
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "mass", positive("mass", self.mass, "kg"))
+        mass = positive("mass", self.mass, "kg")
+        at_most("mass", mass, MAX_MASS_KG, " kg", "give the mass in kg")
+        plausible("mass", mass, 1e-3, 1e9, "the mass is in kg (500 kg is 500.0)")
+        object.__setattr__(self, "mass", mass)
         if not isinstance(self.isolator, Isolator):
             raise InputError(Problem.WRONG_TYPE, "isolator", self.isolator,
                              got=type(self.isolator).__name__, expected="Isolator")
@@ -89,11 +92,9 @@ class Oscillator:
     @classmethod
     def from_toml(cls, path: PathLike) -> "Oscillator":
         """Read a system from a TOML file (see ``examples/paper_printed_ybs.toml``)."""
-        path = Path(path)
-        if not path.is_file():
-            raise InputError(Problem.NO_FILE, "path", str(path))
+        text = read_text("path", path)
         try:
-            return cls.from_toml_text(path.read_text(encoding="utf-8"))
+            return cls.from_toml_text(text)
         except InputError as exc:
             if exc.problem is Problem.BAD_TOML:
                 raise exc.relabel("text", str(path)) from None
@@ -112,11 +113,9 @@ class Oscillator:
     @classmethod
     def from_toml_text(cls, text: str) -> "Oscillator":
         """Read a system from TOML text (e.g. a saved result's ``system`` attribute)."""
-        try:
-            table = tomllib.loads(text)
-        except tomllib.TOMLDecodeError as exc:
-            raise InputError(Problem.BAD_TOML, "text", "...", detail=str(exc)) from None
-        return cls.from_dict(table)
+        if not isinstance(text, str):
+            raise InputError(Problem.WRONG_TYPE, "text", text, got=type(text).__name__, expected="str")
+        return cls.from_dict(parse_toml("text", text))
 
 
 def _check_keys(table: Any, prefix: str, allowed: tuple[str, ...], required: tuple[str, ...]) -> None:

@@ -124,7 +124,7 @@ def _smallest_period(strobe, n, k, window, round_window, tol_d, tol_v, steady_rt
 @jit_entry
 def step_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
                 amp, omega, state0, adaptive, n_cycles, measure_cycles, steady_rtol, max_period,
-                rtol, max_events):
+                rtol, max_events, ctl):
     """Hold the harmonic ``amp sin(omega (t - t0))`` from ``state0`` (time ``t0``).
 
     ``adaptive``: stop as soon as the response is periodic (at most ``n_cycles``
@@ -133,6 +133,8 @@ def step_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l
 
     Returns ``(state, cycles_run, period_multiple, window, window_state, status)`` with
     ``period_multiple`` 0 when not periodic and ``window`` of length ``WINDOW_COLS``.
+    ``ctl`` is the run control of ``run_kernel`` (Ctrl-C and the work budget), shared by
+    every cycle.
     """
     period = 2.0 * math.pi / omega
     t0 = state0[T]
@@ -158,7 +160,7 @@ def step_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l
         st, _, contacts, _, _, extrema, status = run_kernel(
             mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
             exc_kind, exc_p, no_record, no_record, st, t0 + (n + 1) * period, -1.0, rtol,
-            max_events, NO_ENERGY)  # a step measures extrema and contacts, not the ledger
+            max_events, NO_ENERGY, ctl)  # a step measures extrema and contacts, not the ledger
         cyc[n, CY_DMAX] = extrema[0]
         cyc[n, CY_DMIN] = extrema[2]
         cyc[n, CY_AMAX] = extrema[4]

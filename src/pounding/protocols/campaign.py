@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import concurrent.futures as cf
 import os
-import threading
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -21,6 +20,7 @@ import pandas as pd
 from .._checks import integer, real_tuple
 from .._errors import InputError, Interrupted, Problem
 from ..model import Oscillator
+from ..engine._control import new_control, request_stop
 from ._progress import Progress, progress_reporter
 from .sweep import SweepPlan, make_plan, run_plan
 from .sweep_result import SIDE_COLUMNS, STEP_COLUMNS, SweepResult
@@ -32,7 +32,7 @@ PAPER_NBS_A_G = (0.03, 0.05, 0.1)
 PAPER_YBS_A_G = (0.03, 0.05, 0.075, 0.1)
 CONFIGURATIONS = ("NBs", "YBs")
 SWEEP_OPTIONS = ("steady", "cycles", "measure_cycles", "max_cycles", "steady_rtol", "max_period",
-                 "omega_min_rad_s", "f_ref_hz", "rtol", "max_events_per_cycle")
+                 "omega_min_rad_s", "f_ref_hz", "rtol", "max_events_per_cycle", "max_steps")
 DIRECTIONS = ("up", "down")
 _BOOL_COLUMNS = ("contact", "steady")
 _DATA_COLUMNS = tuple(c for c in STEP_COLUMNS if c not in ("freq_hz", "nu")) + tuple(
@@ -220,12 +220,13 @@ def campaign(
                 plans.append(((conf, ag, d), plan))
     n_workers = integer("workers", (os.cpu_count() or 1) if workers is None else workers, 1)
     total = sum(p.freqs_hz.size for _, p in plans)
-    stop = threading.Event()
+    controls = [new_control(plan.max_steps) for _, plan in plans]  # one budget per sweep
     sweeps: dict[tuple[str, float, str], SweepResult] = {}
     interrupted = False
     with progress_reporter(progress, total, "campaign") as advance:
         with cf.ThreadPoolExecutor(max_workers=n_workers, thread_name_prefix="pounding") as pool:
-            futures = {pool.submit(run_plan, plan, advance, stop): key for key, plan in plans}
+            futures = {pool.submit(run_plan, plan, advance, ctl): key
+                       for (key, plan), ctl in zip(plans, controls)}
             try:
                 pending = set(futures)
                 while pending:
@@ -234,16 +235,21 @@ def campaign(
                         raise KeyboardInterrupt  # a worker was interrupted (e.g. by a callback)
             except KeyboardInterrupt:
                 interrupted = True
-                stop.set()
+                request_stop(controls)  # running kernels return within a sub-interval
                 for fut in futures:
                     fut.cancel()
             for fut, key in futures.items():
                 if fut.cancelled():
                     continue
-                try:
-                    sweeps[key] = fut.result()
-                except Interrupted as partial:
-                    sweeps[key] = partial.partial
+                while True:  # more Ctrl-C while the workers return: keep collecting
+                    try:
+                        sweeps[key] = fut.result()
+                    except Interrupted as partial:
+                        sweeps[key] = partial.partial
+                    except KeyboardInterrupt:
+                        request_stop(controls)
+                        continue
+                    break
     ordered = {key: sweeps[key] for key, _ in plans if key in sweeps}
     result = CampaignResult(_dataset(ordered, plans, not interrupted), ordered, not interrupted)
     if interrupted:

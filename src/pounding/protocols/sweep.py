@@ -7,19 +7,20 @@ and :func:`run_plan` needs nothing else, so campaigns hand plans to worker threa
 from __future__ import annotations
 
 import math
-import threading
 from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 
-from .._checks import float_array, integer, one_of, positive
+from .._checks import at_most, float_array, integer, one_of, plausible, positive
 from .._errors import InputError, Interrupted, Problem, Status
 from ..engine import State
 from ..engine._layout import T
+from ..engine._control import (DEFAULT_MAX_STEPS, check_budget, isolator_rate, new_control,
+                               run_interruptibly, steps_per_second, stop_requested)
 from ..engine.simulate import check_oscillator, check_rtol, check_state, kernel_system
-from ..excitation import STANDARD_GRAVITY, Harmonic
+from ..excitation import MAX_FREQ_HZ, STANDARD_GRAVITY, Harmonic
 from ..model import Oscillator
 from ._progress import Progress, progress_reporter
 from ._step_kernel import WINDOW_COLS, step_kernel
@@ -30,6 +31,8 @@ SteadyMode = Literal["adaptive", "fixed"]
 
 PAPER_OMEGA_MIN_RAD_S = 2.0 * math.pi * 0.6  # what the paper's D_tmax values imply (MODEL.md §3)
 PAPER_F_REF_HZ = 1.0
+MAX_STEPS_PER_SWEEP = 100_000
+MAX_CYCLES_PER_STEP = 1_000_000
 
 
 def paper_frequencies_hz() -> np.ndarray:
@@ -59,6 +62,7 @@ class SweepPlan:
     rtol: float
     max_events_per_cycle: int
     state: State | None
+    max_steps: int
 
 
 def make_plan(
@@ -78,13 +82,20 @@ def make_plan(
     state: State | None = None,
     rtol: float = 1e-10,
     max_events_per_cycle: int = 1_000_000,
+    max_steps: int = DEFAULT_MAX_STEPS,
 ) -> SweepPlan:
     """Validate the arguments of :func:`sweep` into a plan (same parameters)."""
     check_oscillator(oscillator)
-    a_g = positive("a_g", a_g, "g (e.g. 0.05)")
+    a_g = Harmonic(positive("a_g", a_g, "g (e.g. 0.05)"), 1.0).a_g  # its magnitude checks
     freqs = paper_frequencies_hz() if freqs_hz is None else float_array("freqs_hz", freqs_hz)
-    for i, f in enumerate(freqs):
-        positive(f"freqs_hz[{i}]", f, "Hz")
+    if freqs.size > MAX_STEPS_PER_SWEEP:
+        raise InputError(Problem.TOO_LARGE, "freqs_hz", f"array of {freqs.size}", maximum=MAX_STEPS_PER_SWEEP,
+                         what=" frequency steps", fix="give fewer frequencies (a coarser step)")
+    bad = np.flatnonzero(~((freqs > 0.0) & (freqs <= 1e3)))  # (vectorised: a sweep may have many)
+    for i in bad[:1]:
+        f = positive(f"freqs_hz[{i}]", float(freqs[i]), "Hz")
+        at_most(f"freqs_hz[{i}]", f, MAX_FREQ_HZ, " Hz", "give it in Hz")
+        plausible(f"freqs_hz[{i}]", f, 0.0, 1e3, "the frequencies are in Hz, not rad/s")
     unique, counts = np.unique(freqs, return_counts=True)
     if np.any(counts > 1):
         raise InputError(Problem.DUPLICATE, "freqs_hz", freqs.tolist(),
@@ -92,35 +103,45 @@ def make_plan(
     one_of("direction", direction, ("up", "down"))
     freqs = np.sort(freqs) if direction == "up" else np.sort(freqs)[::-1].copy()
     one_of("steady", steady, ("adaptive", "fixed"))
-    measure_cycles = integer("measure_cycles", measure_cycles, 1)
+    measure_cycles = integer("measure_cycles", measure_cycles, 1, MAX_CYCLES_PER_STEP)
     if steady == "fixed":
         if max_cycles is not None:
-            raise InputError(Problem.NOT_ONE_OF, "max_cycles", max_cycles,
-                             choices="None with steady='fixed' (the fixed mode runs exactly `cycles`)")
-        n_cycles = integer("cycles", 30 if cycles is None else cycles, 1)
+            raise InputError(Problem.WRONG_MODE, "max_cycles", max_cycles, mode="steady='adaptive'",
+                             fix="leave it None with steady='fixed' (the fixed mode runs exactly `cycles`)")
+        n_cycles = integer("cycles", 30 if cycles is None else cycles, 1, MAX_CYCLES_PER_STEP)
         if n_cycles < measure_cycles:
             raise InputError(Problem.TOO_SMALL, "cycles", n_cycles, minimum=measure_cycles,
                              hint=" (at least measure_cycles, which are the last of them)")
     else:
         if cycles is not None:
-            raise InputError(Problem.NOT_ONE_OF, "cycles", cycles,
-                             choices="None with steady='adaptive' (use max_cycles, or steady='fixed')")
-        n_cycles = integer("max_cycles", 500 if max_cycles is None else max_cycles, 1)
+            raise InputError(Problem.WRONG_MODE, "cycles", cycles, mode="steady='fixed'",
+                             fix="leave it None with steady='adaptive' (use max_cycles), or give "
+                                 "steady='fixed'")
+        n_cycles = integer("max_cycles", 500 if max_cycles is None else max_cycles, 1, MAX_CYCLES_PER_STEP)
         if n_cycles < 2 * measure_cycles + 1:
             raise InputError(Problem.TOO_SMALL, "max_cycles", n_cycles, minimum=2 * measure_cycles + 1,
                              hint=" (steadiness compares the window with the cycles before it)")
     steady_rtol = positive("steady_rtol", steady_rtol, "(relative to the response amplitude)")
-    if steady_rtol > 0.1:
-        raise InputError(Problem.NOT_ONE_OF, "steady_rtol", steady_rtol, choices="values in (0, 0.1]")
-    max_period = integer("max_period", max_period, 1)
+    if not 1e-13 <= steady_rtol <= 0.1:
+        raise InputError(Problem.OUT_OF_RANGE, "steady_rtol", steady_rtol, range="[1e-13, 0.1]",
+                         hint=" (below 1e-12 is rounding noise)")
+    max_period = integer("max_period", max_period, 1, 1000)
     omega_min_rad_s = positive("omega_min_rad_s", omega_min_rad_s, "rad/s")
     f_ref_hz = positive("f_ref_hz", f_ref_hz, "Hz")
     rtol = check_rtol(rtol)
     max_events_per_cycle = integer("max_events_per_cycle", max_events_per_cycle, 1)
+    max_steps = integer("max_steps", max_steps, 1)
     if state is not None:
         check_state(state, oscillator)
+    # the least work the sweep can take: every step's fewest cycles
+    least_cycles = n_cycles if steady == "fixed" else min(n_cycles, 2 * measure_cycles + 1)
+    rate, why = isolator_rate(oscillator)
+    estimate = float(np.sum(steps_per_second(rate, 2.0 * math.pi * freqs) * least_cycles / freqs))
+    check_budget("freqs_hz", f"{freqs.size} steps of {least_cycles}+ cycles", estimate, max_steps,
+                 f"at least {least_cycles} cycles at each of {freqs.size} frequencies; {why}",
+                 "sweep fewer frequencies or cycles, or check the system's numbers (SI units)")
     return SweepPlan(oscillator, a_g, freqs, direction, steady, n_cycles, measure_cycles, steady_rtol,
-                     max_period, omega_min_rad_s, f_ref_hz, rtol, max_events_per_cycle, state)
+                     max_period, omega_min_rad_s, f_ref_hz, rtol, max_events_per_cycle, state, max_steps)
 
 
 def sweep(
@@ -140,6 +161,7 @@ def sweep(
     state: State | None = None,
     rtol: float = 1e-10,
     max_events_per_cycle: int = 1_000_000,
+    max_steps: int = DEFAULT_MAX_STEPS,
     progress: Progress = False,
 ) -> SweepResult:
     """Stepped-sine sweep: hold each frequency in turn, the state carried over, and measure.
@@ -188,6 +210,10 @@ def sweep(
         :func:`simulate`).
     max_events_per_cycle : int
         A cycle with more events stops the sweep with ``Status.MAX_EVENTS``.
+    max_steps : int
+        Work budget of the whole sweep in integration steps (see :func:`simulate`): the
+        sweep stops with ``Status.BUDGET`` once it is used; a sweep whose fewest cycles are
+        estimated to need more is refused before it starts.
     progress : bool or callable
         True: a progress bar; a callable is called with the number of steps just finished.
 
@@ -207,20 +233,25 @@ def sweep(
     plan = make_plan(oscillator, a_g, freqs_hz, direction, steady=steady, cycles=cycles,
                      measure_cycles=measure_cycles, max_cycles=max_cycles, steady_rtol=steady_rtol,
                      max_period=max_period, omega_min_rad_s=omega_min_rad_s, f_ref_hz=f_ref_hz,
-                     state=state, rtol=rtol, max_events_per_cycle=max_events_per_cycle)
+                     state=state, rtol=rtol, max_events_per_cycle=max_events_per_cycle, max_steps=max_steps)
+    ctl = new_control(plan.max_steps)
     with progress_reporter(progress, plan.freqs_hz.size,
                            f"sweep {direction}, a_G = {plan.a_g:g}") as advance:
-        result = run_plan(plan, advance)
-    return result
+        # on a helper thread, so that Ctrl-C stops the step kernel at once (engine/_control.py)
+        return run_interruptibly(lambda: run_plan(plan, advance, ctl), [ctl])
 
 
 def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
-             stop: threading.Event | None = None) -> SweepResult:
+             control: np.ndarray | None = None) -> SweepResult:
     """Run a validated plan step by step; ``advance(1)`` after each step.
 
-    Stops between steps when ``stop`` is set or on Ctrl-C, and then raises
-    :class:`~pounding.Interrupted` carrying the finished steps.
+    ``control`` is the run control the step kernels poll (``engine._control``; default a
+    fresh one with the plan's budget): another thread stops the sweep with
+    ``request_stop([control])``.  On such a stop (or a KeyboardInterrupt raised by
+    ``advance``) the unfinished step is dropped and :class:`~pounding.Interrupted` is
+    raised, carrying the finished steps.
     """
+    ctl = new_control(plan.max_steps) if control is None else control
     osc = plan.oscillator
     system = kernel_system(osc)
     n_steps = plan.freqs_hz.size
@@ -237,15 +268,20 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
     adaptive = plan.steady == "adaptive"
     try:
         for i, f in enumerate(plan.freqs_hz):
-            if stop is not None and stop.is_set():
+            if stop_requested(ctl):
                 interrupted = True
                 break
             exc = Harmonic(plan.a_g, f)
-            step_start_s[i] = state[T]
+            start = state
             state, n, k, win, win_state, code = step_kernel(
-                *system, exc.peak_m_s2, exc.omega_rad_s, state, adaptive, plan.cycles,
+                *system, exc.peak_m_s2, exc.omega_rad_s, start, adaptive, plan.cycles,
                 plan.measure_cycles, plan.steady_rtol, plan.max_period, plan.rtol,
-                plan.max_events_per_cycle)
+                plan.max_events_per_cycle, ctl)
+            if code == Status.INTERRUPTED:  # the step did not finish: drop it
+                state = start
+                interrupted = True
+                break
+            step_start_s[i] = start[T]
             window[i] = win
             cycles_run[i] = n
             period_multiple[i] = k
