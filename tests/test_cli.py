@@ -21,10 +21,17 @@ def test_simulate_writes_contacts_and_history(tmp_path):
     assert result.exit_code == 0, result.output
     assert "D max / min [mm]" in result.output
     df = pd.read_csv(contacts)
-    assert list(df.columns) == ["side", "t_start", "t_end", "v_in", "v_out", "impulse", "peak_force",
-                                "max_compression", "bumper_dissipation"]
+    assert list(df.columns) == ["side", "t_start_s", "t_end_s", "v_in_m_s", "v_out_m_s", "impulse_n_s",
+                                "peak_force_n", "max_compression_m", "bumper_dissipation_j"]
     assert len(df) > 10
-    assert pd.read_csv(history)["t"].iloc[-1] == 5.0
+    hist = pd.read_csv(history, keep_default_na=False)
+    assert list(hist.columns) == ["t_s", "displacement_m", "velocity_m_s", "abs_acceleration_m_s2",
+                                  "isolator_force_n", "bumper_force_left_n", "bumper_force_right_n", "event"]
+    assert hist["t_s"].iloc[-1] == 5.0
+    # repeated time stamps are events (the state just after the jump), and say which
+    repeated = hist["t_s"].duplicated(keep="first")
+    assert repeated.any() and (hist.loc[repeated, "event"] != "").all()
+    assert (hist["event"] == "contact_start").sum() == len(df)
 
 
 def test_simulate_preset_and_errors():

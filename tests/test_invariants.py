@@ -166,11 +166,13 @@ def test_history_samples_and_dataframe():
                        sample_rate_hz=100)
     df = run.to_dataframe()
     assert list(df.columns) == ["t", "displacement", "velocity", "abs_acceleration", "isolator_force",
-                                "bumper_force_left", "bumper_force_right"]
+                                "bumper_force_left", "bumper_force_right", "event"]
     assert df["t"].iloc[0] == 0.0 and df["t"].iloc[-1] == pytest.approx(2.0)
     assert np.all(np.diff(df["t"]) >= 0)
-    # every uniform sample is there, plus one per event
+    # every uniform sample is there, plus one per event, which names it
     assert len(df) == 201 + len(run.events)
+    assert list(df.loc[df["event"] != "", "event"]) == list(run.events["kind"])
+    np.testing.assert_array_equal(df.loc[df["event"] != "", "t"], run.events["t"])
     # absolute acceleration is the restoring force over the mass
     total = df["isolator_force"] + df["bumper_force_right"] - df["bumper_force_left"]
     np.testing.assert_allclose(df["abs_acceleration"], -total / osc.mass, rtol=1e-9, atol=1e-9)

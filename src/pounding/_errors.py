@@ -34,6 +34,7 @@ class Problem(enum.Enum):
     NOT_A_FILE = ("is a directory, not a file", "give the path of a file")
     BAD_OUTPUT = ("{why}", "{fix}")
     WRONG_MODE = ("applies to {mode} only", "{fix}")
+    WRONG_CONFIGURATION = ("is a system {got}", "{fix}")
     NOT_ONE_OF = ("is not one of {choices}", "use one of {choices}")
     UNKNOWN_KEY = ("is not a known key", "remove it or use one of {choices}")
     MISSING_KEY = ("is missing", "add it; the keys are {choices}")

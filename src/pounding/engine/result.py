@@ -198,6 +198,12 @@ class EnergyLedger:
 
 HISTORY_COLUMNS = ("t", "displacement", "velocity", "abs_acceleration", "isolator_force",
                    "bumper_force_left", "bumper_force_right")
+HISTORY_UNITS = {"t": "t_s", "displacement": "displacement_m", "velocity": "velocity_m_s",
+                 "abs_acceleration": "abs_acceleration_m_s2", "isolator_force": "isolator_force_n",
+                 "bumper_force_left": "bumper_force_left_n", "bumper_force_right": "bumper_force_right_n"}
+CONTACT_UNITS = {"t_start": "t_start_s", "t_end": "t_end_s", "v_in": "v_in_m_s", "v_out": "v_out_m_s",
+                 "impulse": "impulse_n_s", "peak_force": "peak_force_n", "max_compression": "max_compression_m",
+                 "bumper_dissipation": "bumper_dissipation_j"}
 CONTACT_COLUMNS = ("side", "t_start", "t_end", "v_in", "v_out", "impulse", "peak_force",
                    "max_compression", "bumper_dissipation")
 
@@ -293,9 +299,35 @@ class Run:
         """``E = D_max - D_min`` over the run, m."""
         return self.displacement_max - self.displacement_min
 
-    def to_dataframe(self) -> pd.DataFrame:
-        """The sampled histories, one row per sample, columns as the attributes (SI units)."""
-        return pd.DataFrame({name: getattr(self, name) for name in HISTORY_COLUMNS})
+    def to_dataframe(self, units: bool = False) -> pd.DataFrame:
+        """The sampled histories, one row per sample, columns as the attributes (SI units).
+
+        The column ``event`` names the event after which a row was taken (``contact_start``,
+        ``yield``, ...; empty for the uniform samples): an event's row holds the state just
+        after its jump, so it may share its time with the row before it.  With ``units``
+        the columns' names carry their units (``t_s``, ``displacement_m``, ...), as in the
+        CSV files the command line writes.
+        """
+        df = pd.DataFrame({name: getattr(self, name) for name in HISTORY_COLUMNS})
+        df["event"] = self._event_labels()
+        return df.rename(columns=HISTORY_UNITS) if units else df
+
+    def _event_labels(self) -> np.ndarray:
+        """Per history row, the event it was taken after ("" for the uniform samples)."""
+        labels = np.full(self.t.size, "", dtype=object)
+        times = self.event_table[:, 0]
+        if times.size == 0 or self.t.size == 0:
+            return labels
+        # an event's row is the last of the rows at its time (the uniform grid may have one
+        # just before the jump); k events at one instant take the last k such rows, in order
+        last = np.searchsorted(self.t, times, side="right") - 1
+        first_of_group = np.searchsorted(times, times, side="left")
+        group_size = np.searchsorted(times, times, side="right") - first_of_group
+        rows = last - (group_size - 1 - (np.arange(times.size) - first_of_group))
+        ok = (rows >= 0) & (self.t[np.clip(rows, 0, None)] == times)
+        names = np.array(EVENT_NAMES, dtype=object)[self.event_table[:, 1].astype(int)]
+        labels[rows[ok]] = names[ok]
+        return labels
 
     def plot(self, ax: Any = None, **kwargs: Any) -> list:
         """Plot displacement and absolute acceleration against time; see :func:`pounding.plots.plot_run`."""

@@ -101,8 +101,14 @@ class Identification:
         return pd.DataFrame(rows)
 
     def to_toml(self, path: str | Path) -> Path:
-        """Write the fitted system (YBs) to TOML (read back with ``Oscillator.from_toml``)."""
-        return self.oscillator.to_toml(path)
+        """Write the fitted system (YBs) to TOML (read back with ``Oscillator.from_toml``).
+
+        A ``[meta]`` table says how it was made: ``partial = true`` for an interrupted fit
+        (the best candidate so far), the cost, the evaluations and the targets met.
+        """
+        meta = {"written_by": "pounding identify", "partial": not self.complete, "cost": float(self.cost),
+                "evaluations": int(self.n_evaluations), "targets_met": f"{self.n_within} of {len(self.residuals)}"}
+        return self.oscillator.to_toml(path, meta=meta)
 
     def plot(self, ax: Any = None, **kwargs: Any) -> list:
         """Normalized residual per target against the +-1 band; see

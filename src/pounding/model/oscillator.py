@@ -73,6 +73,11 @@ class Oscillator:
     @classmethod
     def from_dict(cls, table: dict[str, Any]) -> "Oscillator":
         """Build from nested tables; every key is checked and unknown keys are errors."""
+        if "meta" in table:  # notes about the file (who wrote it, whether it is partial): not the system
+            if not isinstance(table["meta"], dict):
+                raise InputError(Problem.WRONG_TYPE, "meta", table["meta"], got=type(table["meta"]).__name__,
+                                 expected="table of notes")
+            table = {k: v for k, v in table.items() if k != "meta"}
         _check_keys(table, "", cls.FIELDS, required=("mass", "isolator"))
         iso_table = table["isolator"]
         _check_keys(iso_table, "isolator.", Isolator.FIELDS, required=("slopes",))
@@ -100,15 +105,22 @@ class Oscillator:
                 raise exc.relabel("text", str(path)) from None
             raise
 
-    def to_toml(self, path: PathLike) -> Path:
-        """Write the system to a TOML file that :meth:`from_toml` reads back identically."""
-        path = Path(path)
-        path.write_text(self.to_toml_text(), encoding="utf-8")
-        return path
+    def to_toml(self, path: PathLike, meta: Optional[dict[str, Any]] = None) -> Path:
+        """Write the system to a TOML file that :meth:`from_toml` reads back identically.
 
-    def to_toml_text(self) -> str:
+        ``meta``: notes written as a ``[meta]`` table (e.g. ``{"partial": True}``); readers
+        skip it.  The file is written atomically (complete or not at all).
+        """
+        from .._io import output_file, write_text
+
+        return write_text(output_file("path", path, (".toml",)), self.to_toml_text(meta))
+
+    def to_toml_text(self, meta: Optional[dict[str, Any]] = None) -> str:
         """The TOML text of :meth:`to_toml` (stored in results' metadata)."""
-        return tomli_w.dumps(self.to_dict())
+        table = self.to_dict()
+        if meta:
+            table["meta"] = dict(meta)
+        return tomli_w.dumps(table)
 
     @classmethod
     def from_toml_text(cls, text: str) -> "Oscillator":

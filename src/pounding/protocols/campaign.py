@@ -103,9 +103,9 @@ class CampaignResult:
 
     def to_netcdf(self, path: str | Path) -> Path:
         """Save :attr:`dataset` to netCDF (read back with ``xarray.open_dataset``)."""
-        path = Path(path)
-        self.dataset.to_netcdf(path)
-        return path
+        from .._io import atomic_write, output_file
+
+        return atomic_write(output_file("path", path), self.dataset.to_netcdf)
 
     def table2(self) -> pd.DataFrame:
         """Analogue of the paper's Table 2: maximum alpha and excursion, resonance, contact range.
@@ -210,10 +210,11 @@ def campaign(
             raise InputError(Problem.WRONG_TYPE, field_name, osc, got=type(osc).__name__,
                              expected="pounding.Oscillator")
         if (osc.bumpers is None) != (conf == "NBs"):
-            fix = "oscillator.without_bumpers()" if conf == "NBs" else "an Oscillator with Bumpers"
-            raise InputError(Problem.WRONG_TYPE, field_name, osc,
-                             got="a system " + ("with" if osc.bumpers else "without") + " bumpers",
-                             expected=fix)
+            fix = ("give the system without bumpers (oscillator.without_bumpers()); were the NBs and "
+                   "YBs systems swapped?" if conf == "NBs" else
+                   "give a system with bumpers; were the NBs and YBs systems swapped?")
+            raise InputError(Problem.WRONG_CONFIGURATION, field_name, f"Oscillator(mass={osc.mass:g}, ...)",
+                             got="with bumpers" if osc.bumpers else "without bumpers", fix=fix)
         for ag in real_tuple(f"{conf.lower()}_a_g", a_gs):
             for d in directions:
                 plan = make_plan(osc, ag, freqs_hz, d, **sweep_options)

@@ -8,6 +8,8 @@ from pathlib import Path
 
 import pandas as pd
 
+from .._io import write_text
+
 CSS = """
 body { font-family: system-ui, sans-serif; margin: 2em auto; max-width: 1100px; color: #222; }
 h1 { font-size: 1.6em; } h2 { border-bottom: 1px solid #ccc; padding-bottom: .2em; margin-top: 2em; }
@@ -74,5 +76,5 @@ def write_page(path: Path, *, title: str, system_label: str, systems: dict[str, 
     parts += [f"<li class='note'>{e(n)}</li>" for n in PAPER_INCONSISTENCIES]
     parts.append("</ul><h3>Measured values with a note</h3>")
     parts += [_table(notes), "</body></html>"]
-    path.write_text("\n".join(parts), encoding="utf-8")
+    write_text(path, "\n".join(parts))
     return path

@@ -16,6 +16,7 @@ from ..protocols import CampaignResult, campaign
 from ..protocols._progress import Progress
 from .compare import comparison, inconsistency_notes
 from .figures import paper_figures
+from .._io import atomic_write, output_dir
 from .html import write_page
 
 TABLE_TITLES = {"targets": "Calibration targets (Tables 2-4; sweeps up, fixed 30 cycles per step): systems side by side",
@@ -86,25 +87,22 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    out = Path(out_dir)
-    out.mkdir(parents=True, exist_ok=True)
+    out = output_dir("out_dir", out_dir)  # before the campaign: no work lost to a bad path
     result = campaign(nbs_system, ybs_system, freqs_hz=freqs_hz, workers=workers, progress=progress,
                       **sweep_options)
+    out.mkdir(parents=True, exist_ok=True)
     result.to_netcdf(out / "campaign.nc")
     comparisons = {t: comparison(result, t) for t in ("2", "3", "4")}
-    tables = {}
-    for t, df in comparisons.items():
-        tables[t] = out / f"table{t}.csv"
-        df.to_csv(tables[t], index=False)
     if beside:
         comparisons["targets"] = targets_beside(beside)
-        tables["targets"] = out / "targets.csv"
-        comparisons["targets"].to_csv(tables["targets"], index=False)
+    tables = {t: out / ("targets.csv" if t == "targets" else f"table{t}.csv") for t in comparisons}
+    for t, df in comparisons.items():
+        atomic_write(tables[t], lambda tmp, df=df: df.to_csv(tmp, index=False))
     figures, captions = {}, {}
     for name, fig in paper_figures(result).items():
         figures[name] = out / f"{name}.png"
         captions[name] = fig.get_suptitle()
-        fig.savefig(figures[name], dpi=110)
+        atomic_write(figures[name], lambda tmp, fig=fig: fig.savefig(tmp, dpi=110))
         plt.close(fig)
     ds = result.dataset
     settings = {k: ds.attrs[k] for k in ("steady_mode", "cycles", "measure_cycles", "f_ref_hz",

@@ -1,0 +1,204 @@
+"""The Typer app and what every command shares: errors, Ctrl-C, outputs, systems, frequencies."""
+
+from __future__ import annotations
+
+import contextlib
+import functools
+import signal
+import threading
+from collections.abc import Callable, Iterable, Iterator
+from pathlib import Path
+from typing import Any, Optional
+
+import typer
+from rich.console import Console
+from rich.markup import escape
+from rich.table import Table
+
+from .._errors import InputError, Problem
+from .._io import FIGURE_SUFFIXES, atomic_write, output_dir, output_file
+
+app = typer.Typer(add_completion=False, no_args_is_help=True,
+                  help="pounding: base-isolated masses pounding against deformable bumpers.")
+console = Console()
+err_console = Console(stderr=True)
+INTERRUPTED_EXIT = 130  # the shell's code for a command ended by Ctrl-C (128 + SIGINT)
+NO_METAVAR = ""  # flags show no "<bool>" in the help
+
+
+def _version(value: bool) -> None:
+    if value:
+        from .. import __version__
+
+        console.print(f"pounding {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _main(version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
+                                       metavar=NO_METAVAR, help="Print the version and exit.")) -> None:
+    """Simulate, sweep and analyse impacting base-isolated oscillators."""
+
+
+# options shared by several commands (one definition each)
+OPT_FMIN = typer.Option(0.5, "--fmin", help="Lowest frequency, Hz.")
+OPT_FMAX = typer.Option(5.0, "--fmax", help="Highest frequency, Hz.")
+OPT_FSTEP = typer.Option(0.1, "--fstep", help="Frequency step, Hz.")
+OPT_STEADY = typer.Option("adaptive", "--steady", help="adaptive (until periodic) or fixed.")
+OPT_CYCLES = typer.Option(None, "--cycles", help="Cycles per step with --steady fixed (30).")
+OPT_MEASURE_CYCLES = typer.Option(5, "--measure-cycles", help="Cycles measured at the end of a step.")
+OPT_MAX_CYCLES = typer.Option(None, "--max-cycles", help="Most cycles per step, adaptive (500).")
+OPT_WORKERS = typer.Option(None, "--workers", help="Parallel sweeps (default: all cores).")
+OPT_NBS = typer.Option(None, "--nbs", help="NBs system TOML (instead of --preset).")
+OPT_YBS = typer.Option(None, "--ybs", help="YBs system TOML (instead of --preset).")
+OPT_PRESET = typer.Option(None, "--preset",
+                          help="Use a built-in system: paper-printed, paper-damped or paper-calibrated.")
+OPT_NO_BUMPERS = typer.Option(False, "--no-bumpers", metavar=NO_METAVAR,
+                              help="With --preset: the NBs configuration.")
+MAX_FREQUENCIES = 100_000
+
+
+def command(name: Optional[str] = None) -> Callable:
+    """Register a command whose bad input exits 2 with the InputError's line, and whose Ctrl-C
+    (outside the places that save partial results) exits 130 saying nothing was written."""
+
+    def register(fn: Callable) -> Callable:
+        @functools.wraps(fn)
+        def run(*args: Any, **kwargs: Any) -> Any:
+            with _first_interrupt_only():
+                try:
+                    return fn(*args, **kwargs)
+                except InputError as exc:
+                    fail(exc)
+                except KeyboardInterrupt:
+                    interrupted("nothing was written")
+
+        return app.command(name)(run)
+
+    return register
+
+
+@contextlib.contextmanager
+def _first_interrupt_only() -> Iterator[None]:
+    """Only the first Ctrl-C of a command interrupts; the ones after it (a burst of them) are
+    ignored, so that saving what the first one left is not cut short."""
+    if threading.current_thread() is not threading.main_thread():
+        yield
+        return
+    count = [0]
+
+    def handler(signum: int, frame: Any) -> None:
+        count[0] += 1
+        if count[0] == 1:
+            raise KeyboardInterrupt
+
+    previous = signal.signal(signal.SIGINT, handler)
+    try:
+        yield
+    finally:
+        # once interrupted, the command is ending with 130: a Ctrl-C more while the process
+        # exits (after the default handler is back) would otherwise kill it by the signal
+        signal.signal(signal.SIGINT, signal.SIG_IGN if count[0] else previous)
+
+
+def fail(exc: Exception) -> None:
+    err_console.print(f"[bold red]error:[/] {escape(str(exc))}")
+    raise typer.Exit(code=2)
+
+
+def interrupted(kept: str) -> None:
+    """One line saying what Ctrl-C left, then exit 130."""
+    err_console.print(f"[yellow]interrupted: {escape(kept)}[/]")
+    raise typer.Exit(code=INTERRUPTED_EXIT)
+
+
+def kv_table(title: str) -> tuple[Table, Callable[[str, str], None]]:
+    """A two-column summary table and its ``add(label, value)`` (labels may hold [units])."""
+    table = Table(title=escape(title), show_header=False)
+
+    def add(label: str, value: str) -> None:
+        table.add_row(escape(label), escape(value))
+
+    return table, add
+
+
+def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True):
+    from .. import presets
+    from ..model import Oscillator
+
+    if (path is None) == (preset is None):
+        raise typer.BadParameter("give either SYSTEM.toml or --preset NAME (one of them)")
+    return Oscillator.from_toml(path) if path is not None else presets.by_name(preset, bumpers=bumpers)
+
+
+def frequencies(fmin: float, fmax: float, fstep: float):
+    """``fmin, fmin + fstep, ...`` up to ``fmax`` (inclusive within rounding), Hz."""
+    import numpy as np
+
+    from .._checks import positive
+
+    fmin = positive("--fmin", fmin, "Hz")
+    fmax = positive("--fmax", fmax, "Hz")
+    fstep = positive("--fstep", fstep, "Hz")
+    if fmax < fmin:
+        raise InputError(Problem.BAD_OUTPUT, "--fmax", fmax, why=f"is below --fmin {fmin:g}",
+                         fix="give fmin <= fmax")
+    n = int(np.floor((fmax - fmin) / fstep * (1.0 + 1e-9) + 1e-9))  # steps that stay within fmax
+    if n + 1 > MAX_FREQUENCIES:
+        raise InputError(Problem.TOO_LARGE, "--fstep", fstep, maximum=MAX_FREQUENCIES,
+                         what=f" frequencies from {fmin:g} to {fmax:g} Hz at this step",
+                         fix=f"give a step of at least {(fmax - fmin) / (MAX_FREQUENCIES - 1):.3g} Hz")
+    return np.round(fmin + fstep * np.arange(n + 1), 10)
+
+
+def steady_options(steady: str, cycles: Optional[int], max_cycles: Optional[int]) -> dict:
+    if steady == "fixed":
+        return {"steady": "fixed", "cycles": cycles}
+    if cycles is not None:
+        raise typer.BadParameter("--cycles is for --steady fixed; use --max-cycles with adaptive")
+    return {"steady": steady, "max_cycles": max_cycles}
+
+
+def files(**paths: tuple[Optional[Path], Optional[Iterable[str]]]) -> dict[str, Optional[Path]]:
+    """Check output files before any work: ``name=(path or None, known suffixes or None)``."""
+    return {name: None if path is None else output_file(f"--{name.replace('_', '-')}", path, suffixes)
+            for name, (path, suffixes) in paths.items()}
+
+
+def folder(name: str, path: Path) -> Path:
+    """Check an output directory before any work (created later, when there is something to write)."""
+    return output_dir(name, path)
+
+
+def figure_path(name: str, path: Optional[Path]) -> Optional[Path]:
+    return None if path is None else output_file(name, path, FIGURE_SUFFIXES)
+
+
+def save_figure(draw: Callable, path: Path) -> None:
+    """Draw with ``draw()`` (it returns artists) and save the figure atomically."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    artists = draw()
+    fig = artists[0].figure
+    try:
+        atomic_write(path, lambda tmp: fig.savefig(tmp, dpi=150))
+    finally:
+        plt.close(fig)
+    console.print(f"figure -> {path}")
+
+
+def write_csv(df: Any, path: Path) -> None:
+    atomic_write(path, lambda tmp: df.to_csv(tmp, index=False))
+
+
+def compile_notice() -> None:
+    """Say so when the engine is about to be compiled (first use after installing), instead of
+    a progress bar standing at 0 for 20 s."""
+    from .._warm_up import kernels_cached
+
+    if not kernels_cached():
+        err_console.print("compiling the engine, once per installation, about 20 s "
+                          "('pounding warm-up' does it ahead of time) ...")

@@ -1,0 +1,155 @@
+"""``pounding reproduce``, ``identify`` and ``warm-up``."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+from rich.markup import escape
+from rich.table import Table
+
+from .._errors import Interrupted
+from .._io import interrupts_deferred
+from ._app import (
+    NO_METAVAR,
+    OPT_FMAX,
+    OPT_FMIN,
+    OPT_FSTEP,
+    OPT_NBS,
+    OPT_WORKERS,
+    OPT_YBS,
+    command,
+    compile_notice,
+    console,
+    err_console,
+    files,
+    folder,
+    frequencies,
+    interrupted,
+    write_csv,
+)
+
+
+@command()
+def reproduce(
+    preset: Optional[str] = typer.Option(None, "--preset",
+                                         help="Built-in system (default: the package's best, paper-calibrated)."),
+    nbs: Optional[Path] = OPT_NBS,
+    ybs: Optional[Path] = OPT_YBS,
+    out: Path = typer.Option(Path("report"), "--out", help="Directory for index.html, tables and figures."),
+    fmin: float = OPT_FMIN,
+    fmax: float = OPT_FMAX,
+    fstep: float = OPT_FSTEP,
+    workers: Optional[int] = OPT_WORKERS,
+) -> None:
+    """The paper's tables and figures from the model, beside the measurements, in one HTML report."""
+    from .. import presets
+    from ..model import Oscillator
+    from ..reports import reproduce as write_report
+
+    out = folder("--out", out)
+    if preset is not None and (nbs or ybs):
+        raise typer.BadParameter("give --preset or --nbs and --ybs, not both")
+    if nbs or ybs:
+        if not (nbs and ybs):
+            raise typer.BadParameter("give both --nbs and --ybs (the report compares the two configurations)")
+        nbs_osc, ybs_osc = Oscillator.from_toml(nbs), Oscillator.from_toml(ybs)
+        label = f"{nbs} (NBs) and {ybs} (YBs)"
+    else:
+        name = preset or presets.BEST_PRESET
+        nbs_osc, ybs_osc = presets.by_name(name, bumpers=False), presets.by_name(name)
+        label = f"preset {name}" + ("" if preset else " (the default: the package's best)")
+    beside = {"paper-printed": presets.paper_printed()}
+    beside[label if (nbs or ybs) else (preset or presets.BEST_PRESET)] = ybs_osc
+    freqs = frequencies(fmin, fmax, fstep)
+    compile_notice()
+    try:
+        report = write_report(nbs_osc, ybs_osc, out, system_label=label, beside=beside, freqs_hz=freqs,
+                              workers=workers, progress=True)
+    except Interrupted as stop:
+        interrupted(f"{stop}; no report written (a report of part of the campaign would mislead)")
+    t2 = report.comparisons["2"]
+    summary = Table(title=f"Table 2, model ({escape(label)}) beside measured (paper)")
+    for col in ("cfg", "a_G", "dir", "nu_R model", "nu_R meas.", "alpha model", "alpha meas.",
+                "eta|e model", "eta|e meas."):
+        summary.add_column(col)
+    for _, row in t2.iterrows():
+        q = "eta" if row["configuration"] == "YBs" else "e"
+        summary.add_row(row["configuration"], f"{row['a_g']:g}", row["direction"],
+                        *(f"{row[c]:.3g}" for c in ("nu_r_model", "nu_r_measured", "alpha_model",
+                                                    "alpha_measured", f"{q}_model", f"{q}_measured")))
+    console.print(summary)
+    console.print(f"report -> {report.index_html} (tables CSV, {len(report.figures)} figures PNG)")
+
+
+@command()
+def identify(
+    targets: Optional[Path] = typer.Argument(None, metavar="TARGETS.toml",
+                                             help="Targets TOML (see examples/). Omit for --paper."),
+    family: Path = typer.Option(..., "--family", help="Model family TOML: structure, fixed numbers, bounds."),
+    out: Path = typer.Option(Path("calibrated.toml"), "--out", help="Write the fitted YBs system (TOML)."),
+    paper: bool = typer.Option(False, "--paper", metavar=NO_METAVAR,
+                               help="Fit the paper's Tables 2-4 (instead of TARGETS.toml)."),
+    residuals: Optional[Path] = typer.Option(None, "--residuals", help="Also write the residual table (CSV)."),
+    seed: int = typer.Option(0, "--seed", help="Seed of the global search (same seed, same result)."),
+    maxiter: int = typer.Option(30, "--maxiter", help="Generations of differential evolution."),
+    popsize: int = typer.Option(10, "--popsize", help="Population per free number."),
+    fmin: float = OPT_FMIN,
+    fmax: float = OPT_FMAX,
+    fstep: float = OPT_FSTEP,
+    cycles: int = typer.Option(30, "--cycles", help="Cycles per step (fixed schedule, as the lab)."),
+    workers: Optional[int] = OPT_WORKERS,
+) -> None:
+    """Model updating: fit a family's free numbers so that the simulated sweeps match measured targets."""
+    from ..identification import ModelFamily, Targets, paper_targets
+    from ..identification import identify as run_identify
+
+    paths = files(out=(out, (".toml",)), residuals=(residuals, (".csv",)))
+    if (targets is None) == (not paper):
+        raise typer.BadParameter("give either TARGETS.toml or --paper (one of them)")
+    goal = paper_targets() if paper else Targets.from_toml(targets)
+    fam, bounds = ModelFamily.from_toml(family)
+    compile_notice()
+    complete = True
+    try:
+        fit = run_identify(goal, fam, bounds, seed=seed, maxiter=maxiter, popsize=popsize, workers=workers,
+                           freqs_hz=frequencies(fmin, fmax, fstep), cycles=cycles, progress=True)
+    except Interrupted as stop:
+        if stop.partial is None:
+            interrupted("no candidate was evaluated; nothing was written")
+        fit, complete = stop.partial, False
+    params = Table(title="fitted numbers")
+    for col in ("name", "value", "low", "high", "at bound"):
+        params.add_column(col)
+    for row in fit.parameter_table().itertuples(index=False):
+        params.add_row(row.name, f"{row.value:.6g}", f"{row.low:g}", f"{row.high:g}",
+                       "yes" if row.at_bound else "")
+    console.print(params)
+    table = Table(title="residuals (model - target) / tolerance")
+    for col in ("cfg", "a_G", "dir", "quantity", "target", "model", "normalized", "met"):
+        table.add_column(col)
+    for row in fit.residuals.itertuples(index=False):
+        table.add_row(row.configuration, f"{row.a_g:g}", row.direction, row.quantity, f"{row.target:.4g}",
+                      f"{row.model:.4g}", f"{row.normalized:+.2f}", "yes" if row.within else "[red]no[/]")
+    console.print(table)
+    with interrupts_deferred() as held:
+        fit.to_toml(paths["out"])
+        if paths["residuals"] is not None:
+            write_csv(fit.to_dataframe(), paths["residuals"])
+    console.print(f"{escape(fit.message)}\nfitted system -> {paths['out']}")
+    if not complete or held:
+        err_console.print(f"[yellow]{paths['out']} holds the best candidate so far and says partial = true[/]")
+        interrupted(f"the best of {fit.n_evaluations} evaluations is in {paths['out']}")
+
+
+@command("warm-up")
+def warm_up() -> None:
+    """Compile the engine now (10-20 s once after installing; later sessions load it in ~1 s)."""
+    from .._warm_up import warm_up as run_warm_up
+
+    with console.status("compiling pounding's kernels (once after installing: 10-20 s) ..."):
+        report = run_warm_up()
+    console.print(escape(report.message))
+    for cache in report.cache_dirs:
+        console.print(f"  cache: {escape(cache)}")

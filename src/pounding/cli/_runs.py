@@ -1,0 +1,259 @@
+"""``pounding simulate``, ``sweep`` and ``campaign``."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+from rich.markup import escape
+from rich.table import Table
+
+from .._errors import Interrupted
+from .._io import atomic_write, interrupts_deferred
+from ._app import (
+    OPT_CYCLES,
+    OPT_FMAX,
+    OPT_FMIN,
+    OPT_FSTEP,
+    OPT_MAX_CYCLES,
+    OPT_MEASURE_CYCLES,
+    OPT_NBS,
+    OPT_NO_BUMPERS,
+    OPT_PRESET,
+    OPT_STEADY,
+    OPT_WORKERS,
+    OPT_YBS,
+    command,
+    compile_notice,
+    console,
+    err_console,
+    figure_path,
+    files,
+    folder,
+    frequencies,
+    interrupted,
+    kv_table,
+    save_figure,
+    steady_options,
+    system,
+    write_csv,
+)
+
+CSV = (".csv",)
+NETCDF = (".nc", ".nc4", ".netcdf")
+
+
+@command()
+def simulate(
+    system_file: Optional[Path] = typer.Argument(None, metavar="SYSTEM.toml",
+                                                 help="System TOML (see examples/). Omit to use --preset."),
+    a_g: float = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
+    freq: float = typer.Option(..., "--freq", help="Excitation frequency, Hz."),
+    duration: float = typer.Option(20.0, "--duration", help="Simulated time, s."),
+    preset: Optional[str] = OPT_PRESET,
+    no_bumpers: bool = OPT_NO_BUMPERS,
+    sample_rate: Optional[float] = typer.Option(
+        None, "--sample-rate", help="History samples per second, Hz (default 1000, fewer for runs over 1000 s; "
+                                    "0: the events only)."),
+    velocity: float = typer.Option(0.0, "--velocity", help="Initial velocity relative to the table, m/s."),
+    contacts: Optional[Path] = typer.Option(None, "--contacts", help="Write the contact table (CSV)."),
+    history: Optional[Path] = typer.Option(None, "--history", help="Write the sampled histories (CSV)."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Draw displacement and acceleration (PNG, PDF...)."),
+) -> None:
+    """Simulate one harmonic excitation and summarise the run (exact extrema, contacts, energy)."""
+    from ..engine import State
+    from ..engine import simulate as run_simulation
+    from ..engine.result import CONTACT_UNITS
+    from ..excitation import Harmonic
+
+    out = files(contacts=(contacts, CSV), history=(history, CSV))
+    plot = figure_path("--plot", plot)
+    osc = system(system_file, preset, bumpers=not no_bumpers)
+    exc = Harmonic(a_g, freq)
+    start = State.at_rest(osc, velocity_m_s=velocity)
+    wants_history = history is not None or plot is not None
+    rate = sample_rate if wants_history else 0.0  # nothing to sample for: the events only
+    compile_notice()
+    complete = True
+    try:
+        with console.status(f"simulating {duration:g} s at {freq:g} Hz, a_G = {a_g:g} ..."):
+            run = run_simulation(osc, exc, duration, start, sample_rate_hz=rate)
+    except Interrupted as stop:
+        run, complete = stop.partial, False
+    label = system_file or preset
+    table, add_row = kv_table(f"{label}: a_G = {a_g:g}, f = {freq:g} Hz, {run.final_state.time_s:g} s")
+    add_row("status", run.message)
+    add_row("D max / min [mm]", f"{run.displacement_max * 1e3:.4f} / {run.displacement_min * 1e3:.4f}")
+    add_row("max |abs. acceleration| [g]", f"{run.abs_acceleration_max / exc.g:.4f}")
+    alpha = run.abs_acceleration_max / abs(exc.peak_m_s2) if exc.a_g != 0 else float("nan")
+    add_row("alpha = max|a_abs| / A_t", f"{alpha:.4f}" if exc.a_g != 0 else "- (a_G = 0)")
+    n = len(run.contacts)
+    add_row("contacts", f"{n} ({(run.contacts['side'] == 'left').sum()} left)" if n else "0")
+    done = run.impacts.dropna(subset=["contact_time_s"])
+    if len(done):
+        add_row("mean restitution s", f"{done['restitution'].mean():.4f}")
+        add_row("mean contact time [ms]", f"{done['contact_time_s'].mean() * 1e3:.3f}")
+        add_row("max peak force [kN]", f"{done['peak_force_n'].max() / 1e3:.3f}")
+    e = run.energy
+    add_row("energy in / residual [J]", f"{e.input_work:.6g} / {e.residual:.2e}")
+    console.print(table)
+    with interrupts_deferred() as held:  # the files are written whole, whatever Ctrl-C comes
+        if out["contacts"] is not None:
+            write_csv(run.contacts.rename(columns=CONTACT_UNITS), out["contacts"])
+            console.print(f"contacts -> {out['contacts']}")
+        if out["history"] is not None:
+            write_csv(run.to_dataframe(units=True), out["history"])
+            note = " (events only: --sample-rate 0)" if run.sample_rate_hz == 0 else ""
+            console.print(f"history -> {out['history']}{note}")
+        if plot is not None:
+            save_figure(run.plot, plot)
+    if not complete or held:
+        interrupted(f"the run up to t = {run.final_state.time_s:g} s of {duration:g} s is in the summary"
+                    + (" and the files written" if any(out.values()) or plot else ""))
+    if not run.success:
+        raise typer.Exit(code=1)
+
+
+# the columns of `pounding sweep --out`, as issue 3 names them
+SWEEP_CSV_COLUMNS = ["freq_hz", "alpha", "excursion_m", "eta", "e", "contact", "contacts_per_cycle",
+                     "restitution", "contact_time_s", "mean_force_n", "peak_force_n",
+                     "dissipated_energy_j", "steady", "period_multiple"]
+
+
+@command()
+def sweep(
+    system_file: Optional[Path] = typer.Argument(None, metavar="SYSTEM.toml",
+                                                 help="System TOML (see examples/). Omit to use --preset."),
+    a_g: float = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
+    direction: str = typer.Option("up", "--direction", help="up or down."),
+    out: Optional[Path] = typer.Option(None, "--out", help="Write the per-step table (CSV)."),
+    preset: Optional[str] = OPT_PRESET,
+    no_bumpers: bool = OPT_NO_BUMPERS,
+    fmin: float = OPT_FMIN,
+    fmax: float = OPT_FMAX,
+    fstep: float = OPT_FSTEP,
+    steady: str = OPT_STEADY,
+    cycles: Optional[int] = OPT_CYCLES,
+    measure_cycles: int = OPT_MEASURE_CYCLES,
+    max_cycles: Optional[int] = OPT_MAX_CYCLES,
+    netcdf: Optional[Path] = typer.Option(None, "--netcdf", help="Also write the result as netCDF (.nc)."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Also draw alpha and eta against nu (PNG, PDF...)."),
+) -> None:
+    """Stepped-sine sweep: each frequency held until steady (or for fixed cycles), state carried over."""
+    from ..protocols import sweep as run_sweep
+
+    paths = files(out=(out, CSV), netcdf=(netcdf, NETCDF))
+    plot = figure_path("--plot", plot)
+    osc = system(system_file, preset, bumpers=not no_bumpers)
+    freqs = frequencies(fmin, fmax, fstep)
+    options = steady_options(steady, cycles, max_cycles)
+    from ..protocols.sweep import make_plan
+
+    make_plan(osc, a_g, freqs, direction, measure_cycles=measure_cycles, **options)  # all checks, no work
+    compile_notice()
+    try:
+        result = run_sweep(osc, a_g, freqs, direction, measure_cycles=measure_cycles, progress=True, **options)
+    except Interrupted as stop:
+        result = stop.partial
+    table, add = kv_table(f"{system_file or preset}: sweep {result.direction}, a_G = {a_g:g}")
+    add("status", result.message)
+    if result.steps_done:
+        add("nu_R (alpha peak)", f"{result.nu_r:g}")
+        add("alpha max", f"{result.alpha_max:.4f}")
+        rng = result.contact_range_hz
+        add("contact range [Hz]", "none" if rng is None else f"{rng[0]:g} - {rng[1]:g}")
+        jumps = result.jumps()
+        add("jumps [Hz]", ", ".join(f"{a:g}->{b:g} ({k})" for a, b, k in
+                                    zip(jumps["freq_from_hz"], jumps["freq_to_hz"], jumps["kind"])) or "none")
+    console.print(table)
+    complete = result.steps_done == result.freqs_hz.size
+    with interrupts_deferred() as held:
+        if paths["out"] is not None:
+            write_csv(result.to_dataframe()[SWEEP_CSV_COLUMNS].iloc[: result.steps_done], paths["out"])
+            console.print(f"per-step table -> {paths['out']}")
+        if paths["netcdf"] is not None:
+            atomic_write(paths["netcdf"], lambda tmp: result.to_xarray().to_netcdf(tmp))
+            console.print(f"dataset -> {paths['netcdf']}")
+        if plot is not None and result.steps_done:
+            save_figure(result.plot, plot)
+    if not complete and result.status == 0 or held:
+        interrupted(f"{result.steps_done} of {result.freqs_hz.size} steps finished; they are in the "
+                    "summary" + (" and the files written" if any(paths.values()) or plot else ""))
+    if not result.success:
+        raise typer.Exit(code=1)
+
+
+@command()
+def campaign(
+    out: Path = typer.Option(..., "--out", help="Directory for campaign.nc, steps.csv, table2-4.csv, "
+                                                "campaign.png."),
+    preset: Optional[str] = typer.Option(None, "--preset", help="Built-in system for both configurations: "
+                                                                "paper-printed, paper-damped or paper-calibrated."),
+    nbs: Optional[Path] = OPT_NBS,
+    ybs: Optional[Path] = OPT_YBS,
+    fmin: float = OPT_FMIN,
+    fmax: float = OPT_FMAX,
+    fstep: float = OPT_FSTEP,
+    steady: str = OPT_STEADY,
+    cycles: Optional[int] = OPT_CYCLES,
+    measure_cycles: int = OPT_MEASURE_CYCLES,
+    max_cycles: Optional[int] = OPT_MAX_CYCLES,
+    workers: Optional[int] = OPT_WORKERS,
+) -> None:
+    """The paper's matrix: NBs at a_G 0.03, 0.05, 0.1 and YBs at 0.03, 0.05, 0.075, 0.1, up and down."""
+    from .. import presets
+    from ..model import Oscillator
+    from ..protocols import campaign as run_campaign
+
+    out = folder("--out", out)
+    if preset is not None and (nbs or ybs):
+        raise typer.BadParameter("give --preset or --nbs/--ybs, not both")
+    if preset is not None:
+        nbs_osc, ybs_osc = presets.by_name(preset, bumpers=False), presets.by_name(preset)
+    elif nbs or ybs:
+        nbs_osc = Oscillator.from_toml(nbs) if nbs else None
+        ybs_osc = Oscillator.from_toml(ybs) if ybs else None
+    else:
+        raise typer.BadParameter("give --preset NAME, or --nbs and/or --ybs TOML files")
+    compile_notice()
+    complete = True
+    try:
+        result = run_campaign(nbs_osc, ybs_osc, freqs_hz=frequencies(fmin, fmax, fstep),
+                              measure_cycles=measure_cycles, workers=workers,
+                              progress=True, **steady_options(steady, cycles, max_cycles))
+    except Interrupted as stop:
+        err_console.print(f"[yellow]{escape(str(stop))}; saving them[/]")
+        result, complete = stop.partial, False
+    with interrupts_deferred() as held:  # every file whole, whatever Ctrl-C comes meanwhile
+        _save_campaign(result, out)
+    summary = Table(title="Table 2 analogue (model)")
+    table2 = result.table2()
+    for col in ("configuration", "a_g", "direction", "nu_r", "alpha", "eta", "e", "contact_nu_min",
+                "contact_nu_max"):
+        summary.add_column(col)
+    for _, row in table2.iterrows():
+        summary.add_row(*(f"{row[c]:.4g}" if isinstance(row[c], float) else str(row[c]) for c in
+                          ("configuration", "a_g", "direction", "nu_r", "alpha", "eta", "e", "contact_nu_min",
+                           "contact_nu_max")))
+    console.print(summary)
+    console.print(f"campaign.nc, steps.csv, table2-4.csv, campaign.png -> {out}")
+    if not complete or held:
+        done = sum(sw.steps_done for sw in result.sweeps.values())
+        interrupted(f"{done} steps finished; they are in {out} (campaign.nc has complete = 0, the tables a "
+                    "'complete' column)")
+
+
+def _save_campaign(result, out: Path) -> None:
+    """The campaign's files; each table says per sweep whether it finished (``complete``)."""
+    out.mkdir(parents=True, exist_ok=True)
+    result.to_netcdf(out / "campaign.nc")
+    steps = result.dataset.to_dataframe().reset_index()
+    write_csv(steps[steps["ran"]].drop(columns=["ran"]), out / "steps.csv")
+    finished = {key: sw.steps_done == sw.freqs_hz.size for key, sw in result.sweeps.items()}
+    for name, df in (("table2", result.table2()), ("table3", result.table3()), ("table4", result.table4())):
+        df = df.copy()
+        df["complete"] = [finished[(c, a, d)] for c, a, d in zip(df["configuration"], df["a_g"], df["direction"])]
+        write_csv(df, out / f"{name}.csv")
+    if result.sweeps:
+        save_figure(result.plot, out / "campaign.png")
