@@ -91,15 +91,16 @@ def integer(field: str, value: Any, minimum: int, maximum: int = MAX_COUNT, fix:
 
     ``fix`` says what to do instead of a value above ``maximum``.
     """
+    given = value
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
         if isinstance(value, (float, np.floating)) and math.isfinite(value) and float(value).is_integer():
             value = int(value)
         else:
-            raise InputError(Problem.NOT_INTEGER, field, value, minimum=minimum)
+            raise InputError(Problem.NOT_INTEGER, field, given, minimum=minimum)
     if value < minimum:
-        raise InputError(Problem.NOT_INTEGER, field, value, minimum=minimum)
+        raise InputError(Problem.NOT_INTEGER, field, given, minimum=minimum)
     if value > maximum:
-        raise InputError(Problem.TOO_LARGE, field, value, maximum=maximum, what="",
+        raise InputError(Problem.TOO_LARGE, field, given, maximum=maximum, what="",
                          fix=fix or f"give at most {maximum:g}")
     return int(value)
 
@@ -125,7 +126,8 @@ def boolean(field: str, value: Any) -> bool:
     """A true bool (TOML ``true``/``false``): strings such as ``"false"`` are refused."""
     if isinstance(value, (bool, np.bool_)):
         return bool(value)
-    raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__, expected="true or false")
+    raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__,
+                     expected="boolean (true or false, unquoted in TOML)")
 
 
 def input_path(field: str, path: Any) -> Path:

@@ -1,4 +1,5 @@
-"""The paper's measurements, shipped with the package (``paper_measurements.csv``)."""
+"""Data shipped with the package: the paper's measurements (``paper_measurements.csv``) and a
+synthetic cyclic bumper test (``bumper_cyclic_test.csv``)."""
 
 from __future__ import annotations
 
@@ -7,6 +8,7 @@ from importlib import resources
 import pandas as pd
 
 MEASUREMENTS_FILE = "paper_measurements.csv"
+BUMPER_TEST_FILE = "bumper_cyclic_test.csv"
 
 
 def paper_measurements() -> pd.DataFrame:
@@ -34,3 +36,21 @@ def measured(table: str) -> pd.DataFrame:
     df = paper_measurements()
     df = df[(df["table"] == table) & df["a_g"].notna()]
     return df.pivot_table(index=["configuration", "a_g"], columns="quantity", values="value").reset_index()
+
+
+def bumper_cyclic_test() -> pd.DataFrame:
+    """A synthetic cyclic force-displacement test of a bumper, for :func:`pounding.fit_contact_law`.
+
+    The protocol of the paper's MTS tests (Sect. 2.2, Fig. 3): two cycles each at 0.5, 1.0,
+    1.5 and 2.0 Hz of +-10 mm around 10 mm of compression, 100 samples a cycle.  The forces
+    come from a Hunt-Crossley law (stiffness 1.46e7 N/m^1.5, exponent 1.5, damping 2e7
+    N s/m^2.5) with 1 % noise (``scripts/make_bumper_test.py``): the paper publishes its loops
+    as figures only, so this is not a measurement.
+
+    Returns
+    -------
+    DataFrame
+        ``time_s``, ``freq_hz``, ``compression_m`` (>= 0), ``force_n``, one row per sample (800).
+    """
+    with resources.files(__package__).joinpath(BUMPER_TEST_FILE).open("r", encoding="utf-8") as fh:
+        return pd.read_csv(fh)

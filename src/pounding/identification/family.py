@@ -66,7 +66,8 @@ class ModelFamily:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "mass", positive("family.mass", self.mass, "kg"))
-        object.__setattr__(self, "branches", integer("family.branches", self.branches, 1))
+        object.__setattr__(self, "branches", integer("family.branches", self.branches, 1, MAX_BRANCHES,
+                                                                fix=f"give at most {MAX_BRANCHES} backbone branches"))
         one_of("family.hysteresis", self.hysteresis, ("kinematic", "elastic"))
         one_of("family.law", self.law, tuple(LAW_PARAMETERS))
         if not isinstance(self.fixed, dict):
@@ -147,9 +148,15 @@ class ModelFamily:
         return family, check_bounds(family, bounds)
 
 
+MAX_BRANCHES = 50
+
+
 def check_bounds(family: ModelFamily, bounds: Any) -> dict[str, tuple[float, float]]:
     """``bounds`` as ``name -> (low, high)`` floats, checked (finite, low < high, known names)."""
-    if not isinstance(bounds, dict) or not bounds:
+    if not isinstance(bounds, dict):
+        raise InputError(Problem.WRONG_TYPE, "bounds", bounds, got=type(bounds).__name__,
+                         expected="dict of name -> (low, high), e.g. {\"isolator_damping\": (100, 5000)}")
+    if not bounds:
         raise InputError(Problem.EMPTY, "bounds", bounds)
     out = {}
     for name in family.free_names(bounds):

@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .._checks import integer
+from .._checks import boolean, integer, real
 from .._errors import InputError, Interrupted, Problem, Status
 from ..model import Oscillator
 from ..protocols._progress import Progress, progress_reporter
@@ -33,6 +33,8 @@ from .targets import Targets
 # residual of a target the candidate cannot produce (NaN: no contact, failed run), in tolerances
 MISSING_RESIDUAL = 10.0
 DEFAULT_SWEEP = {"steady": "fixed", "cycles": 30, "measure_cycles": 5}
+MAX_EVALUATIONS = 1_000_000  # campaign evaluations at most (each runs every sweep the targets need)
+MAX_WORKERS = 1024
 WITHIN_SLACK = 1e-9  # a target is met when |normalized residual| <= 1 + this (rounding)
 
 
@@ -183,17 +185,32 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
                          expected="pounding.ModelFamily")
     bounds = check_bounds(family, bounds)
     names = tuple(bounds)
-    n_workers = integer("workers", (os.cpu_count() or 1) if workers is None else workers, 1)
-    popsize = integer("popsize", popsize, 2)
-    maxiter = integer("maxiter", maxiter, 0)
+    n_workers = integer("workers", (os.cpu_count() or 1) if workers is None else workers, 1, MAX_WORKERS)
+    popsize = integer("popsize", popsize, 2, MAX_EVALUATIONS)
+    maxiter = integer("maxiter", maxiter, 0, MAX_EVALUATIONS)
+    seed = integer("seed", seed, 0, 2**32 - 1)
+    refine = boolean("refine", refine)
+    evaluations = (maxiter + 1) * popsize * len(names) + (40 * len(names) if refine else 0)
+    if evaluations > MAX_EVALUATIONS:
+        raise InputError(Problem.TOO_MUCH_WORK, "maxiter", maxiter, estimate=f"{evaluations:.3g}",
+                         unit=f"evaluations ((maxiter + 1) x popsize x {len(names)} free numbers, each running "
+                              "the targets' sweeps)", budget=f"{MAX_EVALUATIONS:.3g}",
+                         fix="lower maxiter or popsize (30 and 10 are the defaults)")
     options = {**DEFAULT_SWEEP, **sweep_options}
     scale = _Scale(bounds)
     cases_freqs = paper_frequencies_hz() if freqs_hz is None else freqs_hz
     if x0 is not None:
+        if not isinstance(x0, dict):
+            raise InputError(Problem.WRONG_TYPE, "x0", x0, got=type(x0).__name__, expected="dict name -> value")
         unknown = sorted(set(x0) ^ set(names))
         if unknown:
             raise InputError(Problem.UNKNOWN_KEY if unknown[0] in x0 else Problem.MISSING_KEY,
                              f"x0.{unknown[0]}", x0.get(unknown[0]), choices=", ".join(names))
+        for k in names:
+            low, high = bounds[k]
+            if not low <= real(f"x0.{k}", x0[k]) <= high:
+                raise InputError(Problem.OUT_OF_RANGE, f"x0.{k}", x0[k], range=f"the bounds [{low:g}, {high:g}]",
+                                 hint="")
     try:  # bad sweep options fail here, not in a worker
         probe = family.oscillator(scale.values(np.full(len(names), 0.5)))
     except InputError:

@@ -31,7 +31,8 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .._checks import positive, read_toml, real
+from .._checks import at_most, boolean, positive, read_toml, real
+from ..excitation import MAX_A_G
 from .._errors import InputError, Problem
 from ..data import paper_measurements
 
@@ -103,6 +104,11 @@ class Targets:
         ``defaults`` may set ``direction``; ``tolerances`` maps a quantity to
         ``{"tolerance": x, "relative": bool}`` (else :data:`DEFAULT_TOLERANCES`).
         """
+        for name, table in (("defaults", defaults), ("tolerances", tolerances)):
+            if table is not None and not isinstance(table, dict):
+                raise InputError(Problem.WRONG_TYPE, name, table, got=type(table).__name__,
+                                 expected="table" + (" such as {direction = \"up\"}" if name == "defaults" else
+                                                     " of quantity = {tolerance = x, relative = true}"))
         defaults = dict(defaults or {})
         for key in defaults:
             if key != "direction":
@@ -117,8 +123,10 @@ class Targets:
                 if key not in ("tolerance", "relative"):
                     raise InputError(Problem.UNKNOWN_KEY, f"tolerances.{q}.{key}", spec[key],
                                      choices="tolerance, relative")
-            tol = positive(f"tolerances.{q}.tolerance", spec.get("tolerance", tol_table[q][0]), "the quantity's unit")
-            tol_table[q] = (tol, bool(spec.get("relative", tol_table[q][1])))
+            tol = positive(f"tolerances.{q}.tolerance", spec.get("tolerance", tol_table[q][0]),
+                           "the quantity's unit")
+            relative = boolean(f"tolerances.{q}.relative", spec.get("relative", tol_table[q][1]))
+            tol_table[q] = (tol, relative)
         if not isinstance(records, list) or not records:
             raise InputError(Problem.EMPTY, "target", records)
         rows = []
@@ -140,7 +148,8 @@ class Targets:
             if direction not in DIRECTIONS:
                 raise InputError(Problem.NOT_ONE_OF, f"{where}.direction", direction, choices=", ".join(DIRECTIONS))
             quantity = _known_quantity(f"{where}.quantity", rec["quantity"])
-            a_g = positive(f"{where}.a_g", rec["a_g"], "g")
+            a_g = at_most(f"{where}.a_g", positive(f"{where}.a_g", rec["a_g"], "g"), MAX_A_G, " g",
+                          "a_g is in g: 0.05 is 5 % of g")
             value = real(f"{where}.value", rec["value"])
             if quantity in POSITIVE_QUANTITIES and value <= 0.0:
                 raise InputError(Problem.NOT_POSITIVE, f"{where}.value", rec["value"],
@@ -149,10 +158,7 @@ class Targets:
             if "tolerance" in rec:
                 tol = positive(f"{where}.tolerance", rec["tolerance"], "the quantity's unit (or a fraction when relative)")
             if "relative" in rec:
-                relative = rec["relative"]
-                if not isinstance(relative, bool):
-                    raise InputError(Problem.WRONG_TYPE, f"{where}.relative", relative,
-                                     got=type(relative).__name__, expected="true or false")
+                relative = boolean(f"{where}.relative", rec["relative"])
             weight = positive(f"{where}.weight", rec.get("weight", 1.0), "(a factor)")
             key = (conf, a_g, direction, quantity)
             if key in seen:
