@@ -48,13 +48,20 @@ def non_negative(field: str, value: Any, unit: str) -> float:
 
 def real_tuple(field: str, values: Any) -> tuple[float, ...]:
     """A sequence of finite floats as a tuple (a scalar counts as one value)."""
-    if isinstance(values, (str, bytes)):
+    if values is None or isinstance(values, (str, bytes, dict)):
         raise InputError(Problem.NOT_A_NUMBER, field, values)
-    if np.ndim(values) == 0:
-        values = [values]
-    if np.ndim(values) != 1:
-        raise InputError(Problem.NOT_1D, field, values)
-    return tuple(real(f"{field}[{i}]", v) for i, v in enumerate(values))
+    if isinstance(values, np.ndarray):
+        if values.ndim > 1:
+            raise InputError(Problem.NOT_1D, field, f"array of shape {values.shape}")
+        items = list(values.reshape(-1))
+    elif isinstance(values, (list, tuple)):
+        items = list(values)
+    else:
+        items = [values]
+    for i, v in enumerate(items):
+        if isinstance(v, (list, tuple, dict, np.ndarray)):
+            raise InputError(Problem.NOT_1D, f"{field}[{i}]", v)
+    return tuple(real(f"{field}[{i}]", v) for i, v in enumerate(items))
 
 
 def increasing(field: str, values: Sequence[float]) -> None:
@@ -64,7 +71,7 @@ def increasing(field: str, values: Sequence[float]) -> None:
 
 def one_of(field: str, value: Any, choices: Iterable[str]) -> str:
     choices = tuple(choices)
-    if value not in choices:
+    if not isinstance(value, str) or value not in choices:
         raise InputError(Problem.NOT_ONE_OF, field, value, choices=", ".join(map(repr, choices)))
     return value
 

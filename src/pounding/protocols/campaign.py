@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import pandas as pd
 
-from .._checks import integer, real_tuple
+from .._checks import integer, one_of, real_tuple
 from .._errors import InputError, Interrupted, Problem
 from ..model import Oscillator
 from ..engine._control import new_control, request_stop
@@ -198,9 +198,13 @@ def campaign(
     if nbs_system is None and ybs_system is None:
         raise InputError(Problem.MISSING_KEY, "nbs_system, ybs_system", (None, None),
                          choices="at least one of the two systems")
-    if len(set(directions)) != len(tuple(directions)) or not directions:
-        raise InputError(Problem.NOT_ONE_OF, "directions", directions,
-                         choices="'up', 'down' or both, each once")
+    if isinstance(directions, str) or not isinstance(directions, (list, tuple)) or not directions:
+        raise InputError(Problem.WRONG_TYPE, "directions", directions, got=type(directions).__name__,
+                         expected="list of 'up' and/or 'down', e.g. ['up', 'down']")
+    for i, d in enumerate(directions):
+        one_of(f"directions[{i}]", d, DIRECTIONS)
+    if len(set(directions)) != len(directions):
+        raise InputError(Problem.DUPLICATE, "directions", list(directions), repeated="a direction")
     plans: list[tuple[tuple[str, float, str], SweepPlan]] = []
     for conf, (osc, a_gs) in systems.items():
         if osc is None:
