@@ -129,3 +129,46 @@ def test_cli_reproduce_on_a_reduced_grid(tmp_path):
     assert "Calibration targets" in (out / "index.html").read_text(encoding="utf-8")
     bad = CliRunner().invoke(app, ["reproduce", "--nbs", "x.toml"])
     assert bad.exit_code == 2 and "--ybs" in bad.output
+
+
+def test_page_reads_well_headers_in_words_percent_differences_and_the_paper_cited(report):
+    page = (report.out_dir / "index.html").read_text(encoding="utf-8")
+    assert "MODEL.md" not in page  # a file users do not have
+    assert "A preliminary experimental study about two-sided impacting SDOF oscillator" in page
+    assert "difference [%]" in page and "nu_r_model" not in page and "alpha_diff" not in page
+    assert ">True<" not in page and ">False<" not in page
+    assert "restitution s = -v_o/v_i slightly above 1" in page
+    t2 = report.comparisons["2"]
+    row = t2.query("configuration == 'YBs' and a_g == 0.05 and direction == 'up'").iloc[0]
+    assert row["alpha_diff_pct"] == pytest.approx(100 * (row["alpha_model"] - 16.80) / 16.80)
+
+
+def test_figures_tell_their_markers_apart(report):
+    import matplotlib.pyplot as plt
+    from matplotlib.colors import to_rgba
+
+    from pounding.reports.figures import paper_figures
+
+    figs = paper_figures(report.campaign)
+    try:
+        for name in ("fig04", "fig05"):  # one measured peak per a_G, each in its curve's colour
+            peaks = [ln for ln in figs[name].axes[0].lines if ln.get_label().startswith("measured peak")]
+            assert len(peaks) >= 3
+            assert len({to_rgba(ln.get_markeredgecolor()) for ln in peaks}) == len(peaks)
+        for name in ("fig09", "fig16", "fig17"):  # NBs and YBs measured in shapes of their own
+            measured = {ln.get_label(): ln.get_marker() for ln in figs[name].axes[0].lines
+                        if "measured" in ln.get_label()}
+            assert measured["NBs measured"] != measured["YBs measured"]
+        for name in ("fig10", "fig11"):  # up and down sweeps look different, legend included
+            lines = {ln.get_label(): ln for ln in figs[name].axes[1].lines}
+            up, down = lines["YBs model (up sweep)"], lines["YBs model (down sweep)"]
+            assert (up.get_linestyle(), up.get_markerfacecolor()) != (down.get_linestyle(),
+                                                                        down.get_markerfacecolor())
+        assert len(figs["fig10"].axes) == 2  # measured forces on the model's axis, no second scale
+        for name in ("fig07", "fig15"):  # the bumpers at d = +-1, as the paper's figures
+            ax = figs[name].axes[0]
+            surfaces = sorted(ln.get_xdata()[0] for ln in ax.lines if ln.get_linestyle() == ":")
+            assert surfaces[0] == pytest.approx(-1.0) and surfaces[-1] == pytest.approx(1.0)
+            assert "+-1" in ax.get_xlabel() or "pm 1" in ax.get_xlabel()
+    finally:
+        plt.close("all")

@@ -6,6 +6,7 @@ import contextlib
 import functools
 import signal
 import threading
+import warnings
 from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 from typing import Any, Optional
@@ -15,7 +16,7 @@ from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
 
-from .._errors import InputError, Problem
+from .._errors import InputError, PoundingWarning, Problem
 from .._io import FIGURE_SUFFIXES, atomic_write, output_dir, output_file
 
 app = typer.Typer(add_completion=False, no_args_is_help=True,
@@ -65,7 +66,7 @@ def command(name: Optional[str] = None) -> Callable:
     def register(fn: Callable) -> Callable:
         @functools.wraps(fn)
         def run(*args: Any, **kwargs: Any) -> Any:
-            with _first_interrupt_only():
+            with _first_interrupt_only(), _warnings_as_lines():
                 try:
                     return fn(*args, **kwargs)
                 except InputError as exc:
@@ -76,6 +77,23 @@ def command(name: Optional[str] = None) -> Callable:
         return app.command(name)(run)
 
     return register
+
+
+@contextlib.contextmanager
+def _warnings_as_lines() -> Iterator[None]:
+    """PoundingWarnings (implausible values) as one yellow line each, without Python's file and line."""
+    def show(message: Any, category: type, filename: str, lineno: int, file: Any = None, line: Any = None) -> None:
+        if issubclass(category, PoundingWarning):
+            err_console.print(f"[yellow]warning:[/] {escape(str(message))}")
+        else:
+            previous(message, category, filename, lineno, file, line)
+
+    previous = warnings.showwarning
+    warnings.showwarning = show
+    try:
+        yield
+    finally:
+        warnings.showwarning = previous
 
 
 @contextlib.contextmanager

@@ -80,7 +80,8 @@ class Oscillator:
             table = {k: v for k, v in table.items() if k != "meta"}
         _check_keys(table, "", cls.FIELDS, required=("mass", "isolator"))
         iso_table = table["isolator"]
-        _check_keys(iso_table, "isolator.", Isolator.FIELDS, required=("slopes",))
+        # every field, defaults included: a file says what the system is
+        _check_keys(iso_table, "isolator.", Isolator.FIELDS, required=Isolator.FIELDS)
         isolator = Isolator(**iso_table)
         bumpers = None
         if "bumpers" in table:

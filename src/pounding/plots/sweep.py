@@ -69,14 +69,18 @@ def plot_sweep(sweeps: "SweepResult | Sequence[SweepResult]", ax: Any = None, *,
     return artists
 
 
-def plot_hysteresis(loop: "HysteresisLoop", ax: Any = None, **line_kwargs: Any) -> list:
-    """``r = F_I / (M g)`` against ``d = D / Delta`` (paper Figs. 7 and 15).
+def plot_hysteresis(loop: "HysteresisLoop", ax: Any = None, *, per: str = "total_gap",
+                    **line_kwargs: Any) -> list:
+    """``r = F_I / (M g)`` against ``d`` (paper Figs. 7 and 15).
 
     Parameters
     ----------
     loop : HysteresisLoop
         From :meth:`SweepResult.hysteresis_loop`.
     ax : matplotlib Axes, optional
+    per : {"total_gap", "half_gap"}
+        ``d = D / Delta`` (the paper's definition, Sect. 3.3: symmetric bumpers at +-0.5), or
+        ``d = D / (Delta / 2)`` (bumpers at +-1, where the paper's Figs. 7 and 15 draw them).
     **line_kwargs
         Passed to ``ax.plot``.
 
@@ -90,10 +94,13 @@ def plot_hysteresis(loop: "HysteresisLoop", ax: Any = None, **line_kwargs: Any) 
         _, ax = plt.subplots(figsize=(5, 4), constrained_layout=True)
     line_kwargs.setdefault("lw", 1.0)
     line_kwargs.setdefault("label", f"a_G = {loop.a_g:g}, f = {loop.freq_hz:g} Hz")
-    artists = list(ax.plot(loop.d, loop.r, **line_kwargs))
+    from .._checks import one_of
+
+    scale = {"total_gap": 1.0, "half_gap": 2.0}[one_of("per", per, ("total_gap", "half_gap"))]
+    artists = list(ax.plot(scale * loop.d, loop.r, **line_kwargs))
     for x in loop.bumper_surfaces_d or ():  # where contact begins with relaxed bumpers
-        artists.append(ax.axvline(x, color="0.6", lw=0.6, ls=":"))
-    ax.set_xlabel("d = D / Delta")
+        artists.append(ax.axvline(scale * x, color="0.6", lw=0.6, ls=":"))
+    ax.set_xlabel("d = D / Delta" if per == "total_gap" else "d = 2 D / Delta (bumpers at +-1, as the paper's figures)")
     ax.set_ylabel("r = F_I / (M g)")
     ax.legend(fontsize="small")
     return artists

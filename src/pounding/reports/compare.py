@@ -14,7 +14,7 @@ TABLE_QUANTITIES = {
     "3": ("mean_force_over_mg", "contact_time_ms"),
     "4": ("dissipated_energy_per_mass", "restitution"),
 }
-# quantities whose printed values cannot be compared numerically (MODEL.md §4)
+# quantities whose printed values cannot be compared numerically (Table 3's scale factor is unclear)
 NOT_COMPARABLE = {"mean_force_over_mg"}
 
 
@@ -25,8 +25,10 @@ def comparison(result: CampaignResult, table: str) -> pd.DataFrame:
     -------
     DataFrame
         ``configuration``, ``a_g``, ``direction``, then per quantity ``<q>_model``,
-        ``<q>_measured`` and ``<q>_diff``; rows only for the (configuration, a_g) pairs the
-        paper measured.  Quantities whose printed scale is unclear have NaN differences.
+        ``<q>_measured``, ``<q>_diff`` (model - measured) and ``<q>_diff_pct`` (the difference
+        in percent of the measured value, NaN where that is 0); rows only for the
+        (configuration, a_g) pairs the paper measured.  Quantities whose printed scale is
+        unclear have NaN differences.
     """
     model = {"2": result.table2, "3": result.table3, "4": result.table4}[table]()
     meas = measured(table)
@@ -38,10 +40,13 @@ def comparison(result: CampaignResult, table: str) -> pd.DataFrame:
         out[q + "_model"] = m
         out[q + "_measured"] = x
         out[q + "_diff"] = np.nan if q in NOT_COMPARABLE else m - x
+        with np.errstate(divide="ignore", invalid="ignore"):
+            pct = 100.0 * (m - x) / x.abs()
+        out[q + "_diff_pct"] = np.nan if q in NOT_COMPARABLE else pct.where(x != 0)
     return out.reset_index(drop=True)
 
 
 def inconsistency_notes() -> pd.DataFrame:
-    """The measured values that carry a note (MODEL.md §5), for the report."""
+    """The measured values that carry a note (inconsistent or unclear in the paper), for the report."""
     df = paper_measurements()
     return df[df["note"] != ""][["source", "configuration", "a_g", "quantity", "value", "note"]]

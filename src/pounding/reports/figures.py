@@ -2,7 +2,8 @@
 
 :func:`paper_figures` returns every figure by name (``fig04`` ...).  The paper gives its
 curves only as figures: what is overlaid as measured are the numbers it prints (Tables
-2-4, Sects. 3.2-3.4), as hollow black markers at the resonance they were read at.
+2-4, Sects. 3.2-3.4), as hollow markers at the resonance they were read at: in the colour of
+their a_G's curve in the pseudo-FRFs, in a shape of their own per configuration elsewhere.
 """
 
 from __future__ import annotations
@@ -27,6 +28,10 @@ E_NBS = r"$e = E/D_{tmax}$ [-]"
 A_G = r"$a_G = A_t/g$ [-]"
 MEASURED = dict(marker="o", mfc="none", mec="k", ls="none", ms=8, mew=1.5)
 CONF_STYLE = {"NBs": dict(color="tab:blue", marker="o"), "YBs": dict(color="tab:red", marker="*", ms=10)}
+# measured points: hollow, black-edged, in the shape of their configuration's model markers
+MEASURED_OF = {"NBs": dict(MEASURED, marker="s"), "YBs": dict(MEASURED, marker="P", ms=9)}
+# up and down sweeps: solid with filled markers, dashed with hollow ones (legend entries differ)
+DIRECTION_LOOK = {"up": dict(ls="-"), "down": dict(ls="--", mfc="none")}
 LOOP_A_G = (0.05, 0.075, 0.1)   # Fig. 7
 FRF_A_G = (0.03, 0.05, 0.1)     # Fig. 8
 
@@ -98,13 +103,19 @@ def _frf(df: pd.DataFrame, conf: str, a_gs, y: str, axes, colour_of=None, conf_l
             axes[1].plot(sub["nu"], sub[y], **style)
 
 
-def _measured_peaks(axes, conf: str, y: str, a_gs=None) -> None:
+def _measured_peaks(axes, conf: str, y: str, a_gs) -> None:
+    """The paper's measured peak of each a_G, in the colour of that a_G's model curves
+    (``a_gs`` in the order :func:`_frf` coloured them)."""
     nu = measured_value("nu_r", conf)
     alpha = measured_value("alpha", conf)
     other = _measured_excursion(conf, y)
-    keep = [ag for ag in nu.index if a_gs is None or any(np.isclose(ag, a_gs))]
-    axes[0].plot(nu[keep], alpha[keep], label="measured peak (paper)", **MEASURED)
-    axes[1].plot(nu[keep], other.reindex(keep), **MEASURED)
+    for i, ag in enumerate(a_gs):
+        match = [m for m in nu.index if np.isclose(m, ag)]
+        if not match:
+            continue
+        style = dict(MEASURED, mec=f"C{i}", mew=2.0)
+        axes[0].plot(nu[match], alpha[match], label=f"measured peak a_G = {ag:g} (paper)", **style)
+        axes[1].plot(nu[match], other.reindex(match), **style)
 
 
 def _measured_excursion(conf: str, y: str) -> pd.Series:
@@ -118,8 +129,9 @@ def _measured_excursion(conf: str, y: str) -> pd.Series:
 
 def fig04(result, df, peaks):
     fig, ax = _figure("Fig. 4 analogue: NBs pseudo-FRFs (a) acceleration, (b) excursion")
-    _frf(df, "NBs", sorted(df.loc[df["configuration"] == "NBs", "a_g"].unique()), "e", ax)
-    _measured_peaks(ax, "NBs", "e")
+    a_gs = sorted(df.loc[df["configuration"] == "NBs", "a_g"].unique())
+    _frf(df, "NBs", a_gs, "e", ax)
+    _measured_peaks(ax, "NBs", "e", a_gs)
     ax[0].set_ylabel(ALPHA), ax[1].set_ylabel(E_NBS), ax[1].set_xlabel(NU)
     ax[0].legend(fontsize="x-small", ncol=2)
     return fig
@@ -127,8 +139,9 @@ def fig04(result, df, peaks):
 
 def fig05(result, df, peaks):
     fig, ax = _figure("Fig. 5 analogue: YBs pseudo-FRFs (a) acceleration, (b) excursion")
-    _frf(df, "YBs", sorted(df.loc[df["configuration"] == "YBs", "a_g"].unique()), "eta", ax)
-    _measured_peaks(ax, "YBs", "eta")
+    a_gs = sorted(df.loc[df["configuration"] == "YBs", "a_g"].unique())
+    _frf(df, "YBs", a_gs, "eta", ax)
+    _measured_peaks(ax, "YBs", "eta", a_gs)
     ax[1].axhline(1.0, color="0.5", lw=0.8, ls=":")
     ax[0].set_ylabel(ALPHA), ax[1].set_ylabel(ETA), ax[1].set_xlabel(NU)
     ax[0].legend(fontsize="x-small", ncol=2)
@@ -137,10 +150,9 @@ def fig05(result, df, peaks):
 
 def _versus_a_g(ax, peaks: pd.DataFrame, conf: str, y: str, measured: pd.Series | None, label: str) -> None:
     for d, sub in peaks[peaks["configuration"] == conf].groupby("direction"):
-        style = dict(CONF_STYLE[conf], ls=DIRECTION_STYLE[d]["ls"])
-        ax.plot(sub["a_g"], sub[y], label=f"{label} model ({d})", **style)
+        ax.plot(sub["a_g"], sub[y], label=f"{label} model ({d} sweep)", **CONF_STYLE[conf], **DIRECTION_LOOK[d])
     if measured is not None and len(measured):
-        ax.plot(measured.index, measured.to_numpy(), label=f"{label} measured", **MEASURED)
+        ax.plot(measured.index, measured.to_numpy(), label=f"{label} measured", **MEASURED_OF[conf])
 
 
 def fig06(result, df, peaks):
@@ -162,9 +174,11 @@ def _loops(result, a_gs, title, linestyle="-"):
         if sw is None or sw.steps_done == 0:
             continue
         loop = sw.hysteresis_loop(sw.resonance_hz)
-        plot_hysteresis(loop, ax=ax, color=f"C{i}", ls=linestyle,
+        plot_hysteresis(loop, ax=ax, per="half_gap", color=f"C{i}", ls=linestyle,
                         label=f"model a_G = {ag:g}, nu_R = {sw.nu_r:g}")
-    ax.set_xlabel(r"$d = D/\Delta$ [-]"), ax.set_ylabel(r"$r = F_I/(M g)$ [-]")
+    # as the paper's figures: bumpers at d = +-1 (its text defines d = D/Delta, which puts them at +-0.5)
+    ax.set_xlabel(r"$d = D/(\Delta/2)$ [-]: bumpers at $\pm 1$, as in the paper's figures")
+    ax.set_ylabel(r"$r = F_I/(M g)$ [-]")
     return fig
 
 
@@ -192,12 +206,12 @@ def _nbs_vs_ybs(peaks, title, x: str, xlabel: str):
             _versus_a_g(ax[1], peaks, conf, "e_gap", meas_e, conf)
         else:  # against the resonance: the envelope of the peaks
             for d, sub in peaks[peaks["configuration"] == conf].groupby("direction"):
-                style = dict(CONF_STYLE[conf], ls=DIRECTION_STYLE[d]["ls"])
-                ax[0].plot(sub["nu_r"], sub["alpha"], label=f"{conf} model ({d})", **style)
+                style = dict(CONF_STYLE[conf], **DIRECTION_LOOK[d])
+                ax[0].plot(sub["nu_r"], sub["alpha"], label=f"{conf} model ({d} sweep)", **style)
                 ax[1].plot(sub["nu_r"], sub["e_gap"], **style)
             nu = measured_value("nu_r", conf)
-            ax[0].plot(nu, meas_alpha.reindex(nu.index), label=f"{conf} measured", **MEASURED)
-            ax[1].plot(nu, meas_e.reindex(nu.index), **MEASURED)
+            ax[0].plot(nu, meas_alpha.reindex(nu.index), label=f"{conf} measured", **MEASURED_OF[conf])
+            ax[1].plot(nu, meas_e.reindex(nu.index), **MEASURED_OF[conf])
     ax[0].set_ylabel(ALPHA), ax[1].set_ylabel(ETA), ax[1].set_xlabel(xlabel)
     ax[0].legend(fontsize="x-small")
     return fig
@@ -211,12 +225,12 @@ def fig10(result, df, peaks):
     fig, ax = _figure("Fig. 10 analogue: mean contact force and contact time at resonance (YBs)")
     _versus_a_g(ax[0], peaks, "YBs", "mean_force_over_mg", None, "YBs")
     printed = measured_value("mean_force_over_mg", "YBs")
-    twin = ax[0].twinx()
-    twin.plot(printed.index, printed.to_numpy(), label="measured, as printed (scale unclear)", **MEASURED)
-    twin.set_ylabel(r"printed $F_m/(M g) \times 10^{-3}$ (scale unclear)")
-    twin.legend(fontsize="x-small", loc="lower right")
+    # on the same axis as the model, as printed: Table 3's scale factor is unclear, and a second
+    # axis with its own scale would make any miss look like agreement
+    ax[0].plot(printed.index, printed.to_numpy(), label="YBs measured, as printed (Table 3's scale unclear)",
+               **MEASURED_OF["YBs"])
     _versus_a_g(ax[1], peaks, "YBs", "contact_time_ms", measured_value("contact_time_ms", "YBs"), "YBs")
-    ax[0].set_ylabel(r"$F_m/(M g)$ [-] (model)"), ax[1].set_ylabel(r"$\Delta t_c$ [ms]"), ax[1].set_xlabel(A_G)
+    ax[0].set_ylabel(r"$F_m/(M g)$ [-]"), ax[1].set_ylabel(r"$\Delta t_c$ [ms]"), ax[1].set_xlabel(A_G)
     ax[0].legend(fontsize="x-small", loc="upper left")
     ax[1].legend(fontsize="x-small")
     return fig
@@ -240,7 +254,7 @@ def fig14(result, df, peaks):
                      color="C0" if d == "up" else "C1")
         ax[0].plot(part["nu"], part["alpha"], label=f"model ({d})", **style)
         ax[1].plot(part["nu"], part["eta"], **style)
-    _measured_peaks(ax, "YBs", "eta", a_gs=[0.05])
+    _measured_peaks(ax, "YBs", "eta", [0.05])
     ax[0].set_ylabel(ALPHA), ax[1].set_ylabel(ETA), ax[1].set_xlabel(NU)
     ax[0].legend(fontsize="x-small")
     return fig

@@ -11,19 +11,43 @@ import pandas as pd
 from .._io import write_text
 
 CSS = """
-body { font-family: system-ui, sans-serif; margin: 2em auto; max-width: 1100px; color: #222; }
+body { font-family: system-ui, sans-serif; margin: 2em auto; max-width: 1100px; padding: 0 1em; color: #222; }
 h1 { font-size: 1.6em; } h2 { border-bottom: 1px solid #ccc; padding-bottom: .2em; margin-top: 2em; }
-table { border-collapse: collapse; font-size: .85em; margin: .5em 0 1.5em; }
-th, td { border: 1px solid #ccc; padding: .25em .5em; text-align: right; }
-th { background: #f3f3f3; } td:first-child, th:first-child { text-align: left; }
-figure { display: inline-block; margin: .5em; vertical-align: top; }
-figure img { max-width: 520px; border: 1px solid #ddd; }
+table { border-collapse: collapse; font-size: .8em; margin: .5em 0 1.5em; max-width: 100%; }
+th, td { border: 1px solid #ccc; padding: .2em .4em; text-align: right; }
+th { background: #f3f3f3; white-space: normal; text-align: center; }
+td:first-child, th:first-child { text-align: left; }
+figure { display: inline-block; margin: .5em; vertical-align: top; max-width: 100%; }
+figure img { max-width: min(520px, 100%); border: 1px solid #ddd; }
 figcaption { font-size: .85em; max-width: 520px; }
 pre { background: #f7f7f7; padding: .8em; overflow-x: auto; }
-.note { color: #8a4b00; } .wide { overflow-x: auto; }
+.note { color: #8a4b00; } .wide { overflow-x: auto; } .cite { font-size: .95em; }
 """
 
-# what MODEL.md §5 says does not add up in the paper, shown on every report
+PAPER = ("\u201cA preliminary experimental study about two-sided impacting SDOF oscillator under harmonic "
+         "excitation\u201d: shaking-table tests of a 500 kg mass on a high-damping rubber bearing between two "
+         "EPDM bumpers, stepped sines of 0.5 to 5 Hz at a_G = 0.03 to 0.1 (its Sects. 2-5, Tables 2-4, "
+         "Figs. 4-17). Its authors and venue are not given in the copy this package was built from.")
+# quantities, in words with units, for the page's headers (the CSV files keep the short names)
+QUANTITY_WORDS = {
+    "nu_r": "resonance \u03bd_R [-]", "alpha": "peak acceleration \u03b1 [-]", "eta": "excursion \u03b7 = E/\u0394 [-]",
+    "e": "excursion e = E/D_tmax [-]", "contact_nu_min": "contact from \u03bd [-]",
+    "contact_nu_max": "contact to \u03bd [-]", "mean_force_over_mg": "mean contact force F_m/(M g) [-]",
+    "contact_time_ms": "contact time [ms]", "dissipated_energy_per_mass": "dissipated energy E_d/M [m\u00b2/s\u00b2]",
+    "restitution": "restitution s [-]", "peak_force_over_mg": "peak contact force / (M g) [-]",
+    "excursion": "excursion: \u03b7 = E/\u0394 (YBs), e = E/D_tmax (NBs) [-]",
+}
+PART_WORDS = {"model": "model", "measured": "measured", "diff_pct": "difference [%]"}
+KEY_WORDS = {"configuration": "configuration", "a_g": "a_G [-]", "direction": "sweep", "quantity": "quantity",
+             "measured": "measured", "allowed": "tolerance", "steps": "steps done", "message": "message"}
+READING_NOTES = (
+    "A restitution s = -v_o/v_i slightly above 1 (1.003, say) is possible and not an error: during a contact "
+    "the isolator and the shaking table also work on the mass, so s measures the whole system, not the "
+    "bumper alone.",
+    "Differences are (model - measured) / measured in percent; the CSV files beside this page also hold "
+    "them in the quantities' own units.",
+)
+# what does not add up in the paper, shown on every report
 PAPER_INCONSISTENCIES = (
     "With C_d = 1 N s/m (as printed) the isolator has about 0.01 % of critical damping: no steady state "
     "is reached in a reasonable time and YBs up-sweeps keep impacting to 5 Hz with alpha 40-140. Read as "
@@ -38,13 +62,62 @@ PAPER_INCONSISTENCIES = (
     "Table 3's scale factor for F_m/(M g) ('x 10^-3') is unclear: those values are shown as printed and "
     "not differenced.",
     "Fig. 7's text places flight at -1 < d < 1 with d = D/Delta, which would need D over the half gap; "
-    "d = D/Delta (MODEL.md) puts the bumpers at d = -0.5 and 0.5 here.",
+    "the loops here follow the paper's figures (d = D/(Delta/2), bumpers at +-1).",
 )
 
 
+GROUPS_PER_TABLE = 3  # quantity groups of (model, measured, difference) per HTML table: fits 1366 px
+
+
+def _excursion_merged(df: pd.DataFrame) -> pd.DataFrame:
+    """eta (YBs) and e (NBs) as one quantity: each configuration has only one of them measured."""
+    if not all(f"{q}_model" in df.columns for q in ("eta", "e")) or "configuration" not in df.columns:
+        return df
+    ybs = df["configuration"] == "YBs"
+    for part in PART_WORDS:
+        df[f"excursion_{part}"] = df[f"eta_{part}"].where(ybs, df[f"e_{part}"])
+    cols = list(df.columns)
+    order = [c for c in cols if not c.startswith(("eta_", "e_", "excursion_"))]
+    after = [c for c in order if cols.index(c) > cols.index("eta_model")]  # where eta was
+    at = order.index(after[0]) if after else len(order)
+    order[at:at] = [f"excursion_{part}" for part in PART_WORDS]
+    return df[order]
+
+
+def _for_people(df: pd.DataFrame) -> pd.DataFrame:
+    """Headers in words with units (grouped by quantity where a table compares model and
+    measurement), differences in percent only, flags as yes / no."""
+    df = _excursion_merged(df.copy())
+    for col in df.columns:
+        if df[col].dtype == bool:
+            df[col] = df[col].map({True: "yes", False: "no"})
+    compared = [q for q in QUANTITY_WORDS if f"{q}_model" in df.columns]
+    if not compared:
+        return df.rename(columns=lambda c: KEY_WORDS.get(c, QUANTITY_WORDS.get(c, c.replace("_", " "))))
+    keys = [c for c in df.columns if not any(c.startswith(f"{q}_") for q in compared)]
+    columns = [("", KEY_WORDS.get(c, c)) for c in keys]
+    parts = [df[keys]]
+    for q in compared:
+        for part, words in PART_WORDS.items():
+            if f"{q}_{part}" in df.columns:
+                parts.append(df[[f"{q}_{part}"]])
+                columns.append((QUANTITY_WORDS[q], words))
+    out = pd.concat(parts, axis=1)
+    out.columns = pd.MultiIndex.from_tuples(columns)
+    return out
+
+
 def _table(df: pd.DataFrame) -> str:
-    table = df.to_html(index=False, float_format=lambda x: f"{x:.4g}", na_rep="", border=0)
-    return f"<div class='wide'>{table}</div>"
+    """The table as HTML; a wide comparison split into tables of ``GROUPS_PER_TABLE`` quantities."""
+    df = _for_people(df)
+    pieces = [df]
+    if isinstance(df.columns, pd.MultiIndex):
+        keys = [c for c in df.columns if c[0] == ""]
+        groups = list(dict.fromkeys(c[0] for c in df.columns if c[0] != ""))
+        pieces = [df[keys + [c for c in df.columns if c[0] in groups[i:i + GROUPS_PER_TABLE]]]
+                  for i in range(0, len(groups), GROUPS_PER_TABLE)]
+    return "".join(f"<div class='wide'>{p.to_html(index=False, float_format=lambda x: f'{x:.4g}', na_rep='', border=0)}"
+                   "</div>" for p in pieces)
 
 
 def _image(path: Path) -> str:
@@ -59,9 +132,11 @@ def write_page(path: Path, *, title: str, system_label: str, systems: dict[str, 
     e = html.escape
     parts = [f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{e(title)}</title>",
              f"<style>{CSS}</style></head><body>", f"<h1>{e(title)}</h1>",
+             f"<p class='cite'>The paper: {e(PAPER)}</p>",
              f"<p>System: <b>{e(system_label)}</b>. Model values come from the campaign below (each sweep "
-             "direction a row); measured values are the paper's (package data, "
-             "<code>pounding.data.paper_measurements()</code>); <i>diff</i> is model minus measured.</p>",
+             "direction a row); measured values are the paper's, as printed (package data, "
+             "<code>pounding.data.paper_measurements()</code>); differences are (model - measured) / "
+             "measured in percent.</p>",
              "<h2>Campaign</h2>", _table(pd.DataFrame([settings])), _table(statuses)]
     for name, df in tables.items():
         parts += [f"<h2>{e(name)}</h2>", _table(df)]
@@ -72,7 +147,9 @@ def write_page(path: Path, *, title: str, system_label: str, systems: dict[str, 
     parts.append("<h2>System parameters</h2>")
     for conf, text in systems.items():
         parts += [f"<h3>{e(conf)}</h3>", f"<pre>{e(text)}</pre>"]
-    parts.append("<h2>Notes on the paper (MODEL.md §5)</h2><ul>")
+    parts.append("<h2>Reading the results</h2><ul>")
+    parts += [f"<li>{e(n)}</li>" for n in READING_NOTES]
+    parts.append("</ul><h2>What in the paper does not add up</h2><ul>")
     parts += [f"<li class='note'>{e(n)}</li>" for n in PAPER_INCONSISTENCIES]
     parts.append("</ul><h3>Measured values with a note</h3>")
     parts += [_table(notes), "</body></html>"]
