@@ -25,10 +25,48 @@ import pounding as pd_
 TIMEOUT_S = 30
 EXAMPLES = int(os.environ.get("POUNDING_FUZZ_EXAMPLES", "40"))  # per entry point; more for a deeper look
 NAN, INF = float("nan"), float("inf")
-SCALARS = [NAN, INF, -INF, 1e300, -1e300, 1e-300, -1e-300, 0.0, -1.0, -0.0, 2**70, 1.5, True, None, "0.05",
-           b"1", [1.0], {}, (), object(), np.float32(np.nan), np.int64(-3), complex(1, 1)]
-ARRAYS = [[], [NAN], [INF, 1.0], [[1.0, 2.0], [3.0, 4.0]], [3.0, 2.0, 1.0], [1.0, 1.0], "abc", None, 5.0,
-          [1e300, 2e300], [-1.0, 0.0], [0.0], [1.0, "x"], np.zeros((0, 2)), [1e-300, 2e-300]]
+SCALARS = [
+    NAN,
+    INF,
+    -INF,
+    1e300,
+    -1e300,
+    1e-300,
+    -1e-300,
+    0.0,
+    -1.0,
+    -0.0,
+    2**70,
+    1.5,
+    True,
+    None,
+    "0.05",
+    b"1",
+    [1.0],
+    {},
+    (),
+    object(),
+    np.float32(np.nan),
+    np.int64(-3),
+    complex(1, 1),
+]
+ARRAYS = [
+    [],
+    [NAN],
+    [INF, 1.0],
+    [[1.0, 2.0], [3.0, 4.0]],
+    [3.0, 2.0, 1.0],
+    [1.0, 1.0],
+    "abc",
+    None,
+    5.0,
+    [1e300, 2e300],
+    [-1.0, 0.0],
+    [0.0],
+    [1.0, "x"],
+    np.zeros((0, 2)),
+    [1e-300, 2e-300],
+]
 
 ISO = pd_.Isolator([38e3, 18e3, 2e3], [0.015, 0.04], "kinematic", 1000.0)
 LAW = pd_.KelvinVoigt(1.46e6, 5.0)
@@ -38,35 +76,97 @@ EXC = pd_.Harmonic(0.05, 2.2)
 
 # entry point -> (call, valid keyword arguments, which of them take arrays)
 ENTRIES = {
-    "Isolator": (pd_.Isolator, {"slopes": [38e3, 18e3, 2e3], "breakpoints": [0.015, 0.04],
-                                "hysteresis": "kinematic", "damping": 1000.0}, {"slopes", "breakpoints"}),
+    "Isolator": (
+        pd_.Isolator,
+        {
+            "slopes": [38e3, 18e3, 2e3],
+            "breakpoints": [0.015, 0.04],
+            "hysteresis": "kinematic",
+            "damping": 1000.0,
+        },
+        {"slopes", "breakpoints"},
+    ),
     "KelvinVoigt": (pd_.KelvinVoigt, {"stiffness": 1.46e6, "damping": 5.0}, set()),
     "HuntCrossley": (pd_.HuntCrossley, {"stiffness": 1e8, "exponent": 1.5, "damping": 1e5}, set()),
     "Bumpers": (pd_.Bumpers, {"gap_left": 0.015, "gap_right": 0.015, "law": LAW, "law_right": None}, set()),
     "Oscillator": (pd_.Oscillator, {"mass": 500.0, "isolator": ISO, "bumpers": BUMPERS}, set()),
     "Harmonic": (pd_.Harmonic, {"a_g": 0.05, "freq_hz": 2.2, "phase": 0.0, "g": 9.81}, set()),
     "Record": (pd_.Record, {"t": [0.0, 0.5, 1.0], "accel": [0.0, 1.0, 0.0]}, {"t", "accel"}),
-    "State.at_rest": (pd_.State.at_rest, {"oscillator": OSC, "time_s": 0.0, "displacement_m": 0.0,
-                                          "velocity_m_s": 0.6}, set()),
+    "State.at_rest": (
+        pd_.State.at_rest,
+        {"oscillator": OSC, "time_s": 0.0, "displacement_m": 0.0, "velocity_m_s": 0.6},
+        set(),
+    ),
     "State": (pd_.State, {"vector": pd_.State.at_rest(OSC).vector}, {"vector"}),
-    "simulate": (pd_.simulate, {"oscillator": OSC, "excitation": EXC, "duration": 2.0, "state": None,
-                                "rtol": 1e-10, "sample_rate_hz": 100.0, "max_events": 10**6,
-                                "max_steps": 10**7}, set()),
-    "sweep": (pd_.sweep, {"oscillator": OSC, "a_g": 0.05, "freqs_hz": [2.0, 2.2], "direction": "up",
-                          "steady": "fixed", "cycles": 4, "measure_cycles": 2, "steady_rtol": 1e-6,
-                          "max_period": 4, "omega_min_rad_s": 3.77, "f_ref_hz": 1.0, "rtol": 1e-10,
-                          "max_events_per_cycle": 10**5, "max_steps": 10**7}, {"freqs_hz"}),
-    "campaign": (pd_.campaign, {"nbs_system": OSC.without_bumpers(), "ybs_system": OSC, "nbs_a_g": [0.05],
-                                "ybs_a_g": [0.05], "freqs_hz": [2.0], "directions": ["up"], "workers": 1,
-                                "steady": "fixed", "cycles": 3, "measure_cycles": 1},
-                 {"nbs_a_g", "ybs_a_g", "freqs_hz", "directions"}),
-    "fit_contact_law": (pd_.fit_contact_law, {"displacement_m": [0.0, 1e-3, 2e-3, 1e-3, 0.0],
-                                              "force_n": [0.0, 1.5e3, 3e3, 1.4e3, 0.0],
-                                              "time_s": [0.0, 0.1, 0.2, 0.3, 0.4], "law": "kelvin_voigt"},
-                        {"displacement_m", "force_n", "time_s"}),
-    "Targets.from_records": (pd_.Targets.from_records,
-                             {"records": [{"configuration": "YBs", "a_g": 0.05, "quantity": "alpha",
-                                           "value": 16.8}], "defaults": None, "tolerances": None}, set()),
+    "simulate": (
+        pd_.simulate,
+        {
+            "oscillator": OSC,
+            "excitation": EXC,
+            "duration": 2.0,
+            "state": None,
+            "rtol": 1e-10,
+            "sample_rate_hz": 100.0,
+            "max_events": 10**6,
+            "max_steps": 10**7,
+        },
+        set(),
+    ),
+    "sweep": (
+        pd_.sweep,
+        {
+            "oscillator": OSC,
+            "a_g": 0.05,
+            "freqs_hz": [2.0, 2.2],
+            "direction": "up",
+            "steady": "fixed",
+            "cycles": 4,
+            "measure_cycles": 2,
+            "steady_rtol": 1e-6,
+            "max_period": 4,
+            "omega_min_rad_s": 3.77,
+            "f_ref_hz": 1.0,
+            "rtol": 1e-10,
+            "max_events_per_cycle": 10**5,
+            "max_steps": 10**7,
+        },
+        {"freqs_hz"},
+    ),
+    "campaign": (
+        pd_.campaign,
+        {
+            "nbs_system": OSC.without_bumpers(),
+            "ybs_system": OSC,
+            "nbs_a_g": [0.05],
+            "ybs_a_g": [0.05],
+            "freqs_hz": [2.0],
+            "directions": ["up"],
+            "workers": 1,
+            "steady": "fixed",
+            "cycles": 3,
+            "measure_cycles": 1,
+        },
+        {"nbs_a_g", "ybs_a_g", "freqs_hz", "directions"},
+    ),
+    "fit_contact_law": (
+        pd_.fit_contact_law,
+        {
+            "displacement_m": [0.0, 1e-3, 2e-3, 1e-3, 0.0],
+            "force_n": [0.0, 1.5e3, 3e3, 1.4e3, 0.0],
+            "time_s": [0.0, 0.1, 0.2, 0.3, 0.4],
+            "law": "kelvin_voigt",
+        },
+        {"displacement_m", "force_n", "time_s"},
+    ),
+    "Targets.from_records": (
+        pd_.Targets.from_records,
+        {
+            "records": [{"configuration": "YBs", "a_g": 0.05, "quantity": "alpha", "value": 16.8}],
+            "defaults": None,
+            "tolerances": None,
+        },
+        set(),
+    ),
     "Oscillator.from_toml_text": (pd_.Oscillator.from_toml_text, {"text": OSC.to_toml_text()}, set()),
 }
 
@@ -87,8 +187,13 @@ def _alarm(seconds: int):
 
 def _finite_if_success(result) -> None:
     if isinstance(result, pd_.Run) and result.success:
-        values = [result.displacement_max, result.displacement_min, result.abs_acceleration_max,
-                  *vars(result.energy).values(), *result.final_state.vector]
+        values = [
+            result.displacement_max,
+            result.displacement_min,
+            result.abs_acceleration_max,
+            *vars(result.energy).values(),
+            *result.final_state.vector,
+        ]
         assert all(math.isfinite(v) for v in values), result
     if isinstance(result, pd_.SweepResult) and result.success:
         assert np.isfinite(result.window[: result.steps_done]).all(), result
@@ -116,14 +221,20 @@ def _call_with(entry: str, replaced: dict):
 def _bad_arguments(draw, entry: str) -> dict:
     _, kwargs, arrays = ENTRIES[entry]
     names = draw(st.lists(st.sampled_from(sorted(kwargs)), min_size=1, max_size=2, unique=True))
-    return {name: draw(st.sampled_from(ARRAYS + SCALARS[:8] if name in arrays else SCALARS + ARRAYS[:4]))
-            for name in names}
+    return {
+        name: draw(st.sampled_from(ARRAYS + SCALARS[:8] if name in arrays else SCALARS + ARRAYS[:4]))
+        for name in names
+    }
 
 
 @pytest.mark.parametrize("entry", sorted(ENTRIES))
 def test_bad_arguments_get_an_input_error_or_a_documented_warning(entry):
-    @settings(max_examples=EXAMPLES, deadline=None, derandomize=True,
-              suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+    @settings(
+        max_examples=EXAMPLES,
+        deadline=None,
+        derandomize=True,
+        suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much],
+    )
     @given(_bad_arguments(entry))
     def check(replaced):
         _call_with(entry, replaced)

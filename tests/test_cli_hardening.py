@@ -37,20 +37,32 @@ def test_version_and_flags_without_bool_placeholders():
         assert "<bool>" not in line, line
 
 
-@pytest.mark.parametrize("args, words", [
-    (["campaign", "--preset", "paper-damped", "--out", "{file}"], "is a file"),
-    (["reproduce", "--out", "{file}"], "is a file"),
-    (["identify", "--paper", "--family", str(EXAMPLES / "family.toml"), "--out", "{tmp}/missing/x.toml"],
-     "does not exist"),
-    (["sweep", YBS, "--a-g", "0.05", "--plot", "{tmp}/s.xyz"], "extension"),
-    (["simulate", YBS, "--a-g", "0.05", "--freq", "2.2", "--history", "{tmp}"], "is a directory"),
-    (["simulate", YBS, "--a-g", "0.05", "--freq", "2.2", "--contacts", "{tmp}/c.txt"], "extension"),
-    (["simulate", "{tmp}", "--a-g", "0.05", "--freq", "2.2"], "is a directory"),
-    (["simulate", YBS, "--a-g", "0.05", "--freq", "2.2", "--velocity", "inf"], "velocity_m_s"),
-    (["simulate", YBS, "--a-g", "0.05", "--freq", "2.2", "--velocity", "nan"], "velocity_m_s"),
-    (["sweep", YBS, "--a-g", "0.05", "--fstep", "1e-7"], "--fstep"),
-    (["campaign", "--nbs", YBS, "--ybs", NBS, "--out", "{tmp}/c"], "swapped"),
-])
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["campaign", "--preset", "paper-damped", "--out", "{file}"], "is a file"),
+        (["reproduce", "--out", "{file}"], "is a file"),
+        (
+            [
+                "identify",
+                "--paper",
+                "--family",
+                str(EXAMPLES / "family.toml"),
+                "--out",
+                "{tmp}/missing/x.toml",
+            ],
+            "does not exist",
+        ),
+        (["sweep", YBS, "--a-g", "0.05", "--plot", "{tmp}/s.xyz"], "extension"),
+        (["simulate", YBS, "--a-g", "0.05", "--freq", "2.2", "--history", "{tmp}"], "is a directory"),
+        (["simulate", YBS, "--a-g", "0.05", "--freq", "2.2", "--contacts", "{tmp}/c.txt"], "extension"),
+        (["simulate", "{tmp}", "--a-g", "0.05", "--freq", "2.2"], "is a directory"),
+        (["simulate", YBS, "--a-g", "0.05", "--freq", "2.2", "--velocity", "inf"], "velocity_m_s"),
+        (["simulate", YBS, "--a-g", "0.05", "--freq", "2.2", "--velocity", "nan"], "velocity_m_s"),
+        (["sweep", YBS, "--a-g", "0.05", "--fstep", "1e-7"], "--fstep"),
+        (["campaign", "--nbs", YBS, "--ybs", NBS, "--out", "{tmp}/c"], "swapped"),
+    ],
+)
 def test_bad_inputs_and_outputs_fail_at_once_naming_them(tmp_path, args, words):
     existing = tmp_path / "existing.txt"
     existing.write_text("keep me")
@@ -79,20 +91,44 @@ def test_zero_table_acceleration_and_a_narrow_range():
 
 def test_simulate_plot_and_an_events_only_history(tmp_path):
     png, hist = tmp_path / "run.png", tmp_path / "h.csv"
-    out = _run("simulate", YBS, "--a-g", "0.05", "--freq", "2.2", "--duration", "3", "--velocity", "0.6",
-               "--plot", str(png), "--history", str(hist), "--sample-rate", "0")
+    out = _run(
+        "simulate",
+        YBS,
+        "--a-g",
+        "0.05",
+        "--freq",
+        "2.2",
+        "--duration",
+        "3",
+        "--velocity",
+        "0.6",
+        "--plot",
+        str(png),
+        "--history",
+        str(hist),
+        "--sample-rate",
+        "0",
+    )
     assert out.exit_code == 0, out.output
     assert png.stat().st_size > 10_000 and "events only" in out.output
     df = pd.read_csv(hist, keep_default_na=False)
     assert (df["event"].iloc[1:-1] != "").all()  # every row but the first and last is an event's
 
 
-def _interrupt(args: list[str], tmp_path: Path, wait_s: float, marker: str | None = None) -> subprocess.CompletedProcess:
+def _interrupt(
+    args: list[str], tmp_path: Path, wait_s: float, marker: str | None = None
+) -> subprocess.CompletedProcess:
     """Run the command, send SIGINT twice 30 ms apart after ``wait_s`` s (or once ``marker`` is
     printed), and return what it did."""
     env = dict(os.environ, COLUMNS="200")
-    proc = subprocess.Popen([sys.executable, "-m", "pounding.cli", *args], cwd=tmp_path, env=env,
-                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "pounding.cli", *args],
+        cwd=tmp_path,
+        env=env,
+        stdout=subprocess.PIPE,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
     time.sleep(wait_s)
     proc.send_signal(signal.SIGINT)
     time.sleep(0.03)
@@ -112,8 +148,11 @@ def _compiled():
 
 def test_two_ctrl_c_in_a_campaign_keep_the_finished_steps_readable(tmp_path):
     # 3000 cycles a step: about a minute, long enough to interrupt after a few sweeps' steps
-    done = _interrupt(["campaign", "--preset", "paper-damped", "--out", "out", "--steady", "fixed",
-                       "--cycles", "3000"], tmp_path, 5.0)
+    done = _interrupt(
+        ["campaign", "--preset", "paper-damped", "--out", "out", "--steady", "fixed", "--cycles", "3000"],
+        tmp_path,
+        5.0,
+    )
     assert done.returncode == 130, done.stderr
     assert "interrupted" in done.stderr and "Traceback" not in done.stderr
     out = tmp_path / "out"
@@ -126,8 +165,25 @@ def test_two_ctrl_c_in_a_campaign_keep_the_finished_steps_readable(tmp_path):
 
 
 def test_two_ctrl_c_in_a_simulate_keep_the_run_so_far(tmp_path):
-    done = _interrupt(["simulate", "--preset", "paper-printed", "--a-g", "0.05", "--freq", "2.2",
-                       "--duration", "1e6", "--velocity", "0.6", "--contacts", "c.csv"], tmp_path, 3.0)
+    done = _interrupt(
+        [
+            "simulate",
+            "--preset",
+            "paper-printed",
+            "--a-g",
+            "0.05",
+            "--freq",
+            "2.2",
+            "--duration",
+            "1e6",
+            "--velocity",
+            "0.6",
+            "--contacts",
+            "c.csv",
+        ],
+        tmp_path,
+        3.0,
+    )
     assert done.returncode == 130, done.stderr
     assert "interrupted: the run up to t = " in done.stderr
     contacts = pd.read_csv(tmp_path / "c.csv")
@@ -137,8 +193,22 @@ def test_two_ctrl_c_in_a_simulate_keep_the_run_so_far(tmp_path):
 def test_two_ctrl_c_in_identify_write_a_partial_toml(tmp_path):
     family = tmp_path / "family.toml"
     family.write_text((EXAMPLES / "family.toml").read_text())
-    done = _interrupt(["identify", "--paper", "--family", str(family), "--out", "fit.toml",
-                       "--maxiter", "50", "--popsize", "10"], tmp_path, 8.0)
+    done = _interrupt(
+        [
+            "identify",
+            "--paper",
+            "--family",
+            str(family),
+            "--out",
+            "fit.toml",
+            "--maxiter",
+            "50",
+            "--popsize",
+            "10",
+        ],
+        tmp_path,
+        8.0,
+    )
     assert done.returncode == 130, done.stderr
     text = (tmp_path / "fit.toml").read_text()
     assert tomllib.loads(text)["meta"]["partial"] is True

@@ -71,7 +71,8 @@ def test_budget_stops_a_run_that_then_continues_as_one_long_run():
     assert rest.final_state.displacement_m == pytest.approx(whole.final_state.displacement_m, abs=1e-9)
     assert len(first.contacts.dropna()) + len(rest.contacts) == len(whole.contacts)
     assert max(first.abs_acceleration_max, rest.abs_acceleration_max) == pytest.approx(
-        whole.abs_acceleration_max, rel=1e-9)
+        whole.abs_acceleration_max, rel=1e-9
+    )
 
 
 def test_a_sweep_stops_at_its_budget_with_a_status():
@@ -106,9 +107,12 @@ class _nothing:
 
 def test_sweep_counts_and_cycles_are_bounded_before_any_array_is_sized():
     osc = pd_.presets.paper_damped()
-    for kwargs, field in (({"max_cycles": 1e300}, "max_cycles"), ({"cycles": 10**13, "steady": "fixed"}, "cycles"),
-                          ({"freqs_hz": np.linspace(0.5, 5, 200_001)}, "freqs_hz"),
-                          ({"max_events_per_cycle": 2**70}, "max_events_per_cycle")):
+    for kwargs, field in (
+        ({"max_cycles": 1e300}, "max_cycles"),
+        ({"cycles": 10**13, "steady": "fixed"}, "cycles"),
+        ({"freqs_hz": np.linspace(0.5, 5, 200_001)}, "freqs_hz"),
+        ({"max_events_per_cycle": 2**70}, "max_events_per_cycle"),
+    ):
         with pytest.raises(pd_.InputError) as info:
             pd_.sweep(osc, 0.05, **kwargs)
         assert info.value.field == field

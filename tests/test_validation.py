@@ -22,14 +22,17 @@ def _raises(call, field: str, problem: Problem | None = None) -> pd_.InputError:
     return info.value
 
 
-@pytest.mark.parametrize("kwargs, field", [
-    ({"velocity_m_s": np.nan}, "velocity_m_s"),
-    ({"velocity_m_s": np.inf}, "velocity_m_s"),
-    ({"displacement_m": -1.0}, "displacement_m"),   # far inside the left bumper
-    ({"displacement_m": 0.0151}, "displacement_m"),
-    ({"time_s": "0"}, "time_s"),
-    ({"velocity_m_s": 1e300}, "velocity_m_s"),
-])
+@pytest.mark.parametrize(
+    "kwargs, field",
+    [
+        ({"velocity_m_s": np.nan}, "velocity_m_s"),
+        ({"velocity_m_s": np.inf}, "velocity_m_s"),
+        ({"displacement_m": -1.0}, "displacement_m"),  # far inside the left bumper
+        ({"displacement_m": 0.0151}, "displacement_m"),
+        ({"time_s": "0"}, "time_s"),
+        ({"velocity_m_s": 1e300}, "velocity_m_s"),
+    ],
+)
 def test_at_rest_refuses_bad_motion(kwargs, field):
     _raises(lambda: pd_.State.at_rest(OSC, **kwargs), field)
 
@@ -42,11 +45,14 @@ def test_at_rest_puts_a_displaced_isolator_on_its_backbone():
         assert run.isolator_force[0] == pytest.approx(ISO.backbone(0.05), rel=1e-12)
 
 
-@pytest.mark.parametrize("index, value, field", [
-    (2, np.nan, "state.vector[2]"),              # velocity NaN
-    (6, 7.5, "state.in_contact[1]"),             # a contact flag of 7.5
-    (3, -1e-3, "state.bumper_compression_m[0]"),
-])
+@pytest.mark.parametrize(
+    "index, value, field",
+    [
+        (2, np.nan, "state.vector[2]"),  # velocity NaN
+        (6, 7.5, "state.in_contact[1]"),  # a contact flag of 7.5
+        (3, -1e-3, "state.bumper_compression_m[0]"),
+    ],
+)
 def test_raw_states_are_checked(index, value, field):
     vec = pd_.State.at_rest(OSC).vector.copy()
     vec[index] = value
@@ -60,15 +66,21 @@ def test_a_state_must_fit_the_system():
     _raises(lambda: pd_.simulate(OSC, pd_.Harmonic(0.05, 2.2), 1.0, state), "state.displacement_m")
     vec = pd_.State.at_rest(OSC).vector.copy()
     vec[6] = 1.0  # in contact on the right, but the mass is at 0
-    _raises(lambda: pd_.simulate(OSC, pd_.Harmonic(0.05, 2.2), 1.0, pd_.State(vec)),
-            "state.bumper_compression_m[1]")
+    _raises(
+        lambda: pd_.simulate(OSC, pd_.Harmonic(0.05, 2.2), 1.0, pd_.State(vec)),
+        "state.bumper_compression_m[1]",
+    )
     vec = pd_.State.at_rest(OSC).vector.copy()
     vec[4] = 1e-3  # a compressed bumper on a system without bumpers
-    _raises(lambda: pd_.simulate(OSC.without_bumpers(), pd_.Harmonic(0.05, 2.2), 1.0, pd_.State(vec)),
-            "state.in_contact")
+    _raises(
+        lambda: pd_.simulate(OSC.without_bumpers(), pd_.Harmonic(0.05, 2.2), 1.0, pd_.State(vec)),
+        "state.in_contact",
+    )
     vec = pd_.State.at_rest(OSC, displacement_m=0.01).vector.copy()
     vec[22] = -0.02  # a slip that leaves spring 0 strained beyond its yield displacement
-    _raises(lambda: pd_.simulate(OSC, pd_.Harmonic(0.05, 2.2), 1.0, pd_.State(vec)), "state.plastic_slips_m[0]")
+    _raises(
+        lambda: pd_.simulate(OSC, pd_.Harmonic(0.05, 2.2), 1.0, pd_.State(vec)), "state.plastic_slips_m[0]"
+    )
 
 
 def test_final_states_of_runs_always_fit():
@@ -79,30 +91,36 @@ def test_final_states_of_runs_always_fit():
         pd_.simulate(OSC, pd_.Harmonic(0.1, 2.9), 0.1, part.final_state)
 
 
-@pytest.mark.parametrize("make, field", [
-    (lambda: pd_.Harmonic(1e300, 2.2), "a_g"),
-    (lambda: pd_.Harmonic(0.05, 2.2, g=1e300), "g"),
-    (lambda: pd_.Harmonic(0.05, 1e300), "freq_hz"),
-    (lambda: pd_.Record([0.0, 1.0], [0.0, 1e300]), "record.accel[1]"),
-    (lambda: pd_.Isolator([1e300], []), "isolator.slopes[0]"),
-    (lambda: pd_.Isolator([38e3], [], damping=1e300), "isolator.damping"),
-    (lambda: pd_.KelvinVoigt(1e300, 5.0), "law.stiffness"),
-    (lambda: pd_.HuntCrossley(1e8, 1e300, 1.0), "law.exponent"),
-    (lambda: pd_.Bumpers(1e300, 0.015, pd_.KelvinVoigt(1e6)), "bumpers.gap_left"),
-    (lambda: pd_.Oscillator(1e300, ISO), "mass"),
-    (lambda: pd_.sweep(OSC, 1e300), "a_g"),
-])
+@pytest.mark.parametrize(
+    "make, field",
+    [
+        (lambda: pd_.Harmonic(1e300, 2.2), "a_g"),
+        (lambda: pd_.Harmonic(0.05, 2.2, g=1e300), "g"),
+        (lambda: pd_.Harmonic(0.05, 1e300), "freq_hz"),
+        (lambda: pd_.Record([0.0, 1.0], [0.0, 1e300]), "record.accel[1]"),
+        (lambda: pd_.Isolator([1e300], []), "isolator.slopes[0]"),
+        (lambda: pd_.Isolator([38e3], [], damping=1e300), "isolator.damping"),
+        (lambda: pd_.KelvinVoigt(1e300, 5.0), "law.stiffness"),
+        (lambda: pd_.HuntCrossley(1e8, 1e300, 1.0), "law.exponent"),
+        (lambda: pd_.Bumpers(1e300, 0.015, pd_.KelvinVoigt(1e6)), "bumpers.gap_left"),
+        (lambda: pd_.Oscillator(1e300, ISO), "mass"),
+        (lambda: pd_.sweep(OSC, 1e300), "a_g"),
+    ],
+)
 def test_magnitudes_that_would_overflow_are_refused(make, field):
     _raises(make, field)
 
 
-@pytest.mark.parametrize("make, words", [
-    (lambda: pd_.Bumpers(15.0, 15.0, pd_.KelvinVoigt(1e6)), "15 mm is 0.015"),
-    (lambda: pd_.Oscillator(1e-6, ISO), "kg"),
-    (lambda: pd_.Harmonic(10.0, 2.2), "in g"),
-    (lambda: pd_.Harmonic(0.05, 5e3), "Hz"),
-    (lambda: pd_.Harmonic(0.05, 2.2, g=981.0), "9.81 on Earth"),
-])
+@pytest.mark.parametrize(
+    "make, words",
+    [
+        (lambda: pd_.Bumpers(15.0, 15.0, pd_.KelvinVoigt(1e6)), "15 mm is 0.015"),
+        (lambda: pd_.Oscillator(1e-6, ISO), "kg"),
+        (lambda: pd_.Harmonic(10.0, 2.2), "in g"),
+        (lambda: pd_.Harmonic(0.05, 5e3), "Hz"),
+        (lambda: pd_.Harmonic(0.05, 2.2, g=981.0), "9.81 on Earth"),
+    ],
+)
 def test_implausible_values_warn_with_what_was_meant(make, words):
     with pytest.warns(pd_.PoundingWarning, match=words):
         make()
@@ -111,18 +129,26 @@ def test_implausible_values_warn_with_what_was_meant(make, words):
 def test_wrong_lengths_and_orders_get_their_own_fix():
     err = _raises(lambda: pd_.Record([0.0, 1.0, 2.0], [0.0, 1.0]), "record.accel", Problem.LENGTH_MISMATCH)
     assert "breakpoint" not in str(err)
-    err = _raises(lambda: pd_.Record([0.0, 1.0, 1.0], [0.0, 1.0, 2.0]), "record.t[1:3]", Problem.NOT_INCREASING)
+    err = _raises(
+        lambda: pd_.Record([0.0, 1.0, 1.0], [0.0, 1.0, 2.0]), "record.t[1:3]", Problem.NOT_INCREASING
+    )
     assert "0.015" not in str(err)
     err = _raises(lambda: pd_.Isolator([1.0, 2.0], []), "isolator.breakpoints", Problem.BREAKPOINT_COUNT)
     assert "one breakpoint fewer" in str(err)
     vec = pd_.State.at_rest(OSC).vector
-    err = _raises(lambda: pd_.simulate(OSC.without_bumpers(), pd_.Harmonic(0.05, 2.2), 1.0,
-                                       pd_.State(np.append(vec, [0.0, 0.0]))), "state")
+    err = _raises(
+        lambda: pd_.simulate(
+            OSC.without_bumpers(), pd_.Harmonic(0.05, 2.2), 1.0, pd_.State(np.append(vec, [0.0, 0.0]))
+        ),
+        "state",
+    )
     assert "breakpoint" not in str(err)
 
 
 def test_a_law_table_must_give_every_field(tmp_path):
-    text = pd_.presets.paper_printed().to_toml_text().replace('type = "kelvin_voigt"', 'type = "hunt_crossley"')
+    text = (
+        pd_.presets.paper_printed().to_toml_text().replace('type = "kelvin_voigt"', 'type = "hunt_crossley"')
+    )
     err = _raises(lambda: pd_.Oscillator.from_toml_text(text), "bumpers.law.exponent", Problem.MISSING_KEY)
     assert "hunt_crossley" in str(err)
 
@@ -140,6 +166,8 @@ def test_files_that_are_not_utf8_text_or_not_files(tmp_path):
 
 
 def test_tolerance_ranges_say_the_range():
-    err = _raises(lambda: pd_.simulate(OSC, pd_.Harmonic(0.05, 2.2), 1.0, rtol=0.5), "rtol", Problem.OUT_OF_RANGE)
+    err = _raises(
+        lambda: pd_.simulate(OSC, pd_.Harmonic(0.05, 2.2), 1.0, rtol=0.5), "rtol", Problem.OUT_OF_RANGE
+    )
     assert "[1e-14, 1e-3]" in str(err)
     _raises(lambda: pd_.sweep(OSC, 0.05, steady_rtol=1.0), "steady_rtol", Problem.OUT_OF_RANGE)

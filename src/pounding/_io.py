@@ -27,20 +27,34 @@ FIGURE_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg", ".eps", ".ps", ".tif
 
 def _as_path(field: str, path: Any) -> Path:
     if not isinstance(path, (str, os.PathLike)) or str(path) == "":
-        raise InputError(Problem.WRONG_TYPE, field, path, got=type(path).__name__,
-                         expected="path (a non-empty str or pathlib.Path)")
+        raise InputError(
+            Problem.WRONG_TYPE,
+            field,
+            path,
+            got=type(path).__name__,
+            expected="path (a non-empty str or pathlib.Path)",
+        )
     return Path(path)
 
 
 def _writable_parent(field: str, path: Path) -> None:
     parent = path.parent if str(path.parent) else Path(".")
     if not parent.is_dir():
-        raise InputError(Problem.BAD_OUTPUT, field, str(path),
-                         why=f"is in a folder that does not exist ({parent})",
-                         fix="create the folder first or give another path")
+        raise InputError(
+            Problem.BAD_OUTPUT,
+            field,
+            str(path),
+            why=f"is in a folder that does not exist ({parent})",
+            fix="create the folder first or give another path",
+        )
     if not os.access(parent, os.W_OK | os.X_OK):
-        raise InputError(Problem.BAD_OUTPUT, field, str(path),
-                         why=f"is in a folder you cannot write to ({parent})", fix="give a path in a writable folder")
+        raise InputError(
+            Problem.BAD_OUTPUT,
+            field,
+            str(path),
+            why=f"is in a folder you cannot write to ({parent})",
+            fix="give a path in a writable folder",
+        )
 
 
 def output_file(field: str, path: Any, suffixes: Iterable[str] | None = None) -> Path:
@@ -58,17 +72,31 @@ def output_file(field: str, path: Any, suffixes: Iterable[str] | None = None) ->
     path = _as_path(field, path)
     if path.is_dir():
         example = path / ("out" + next(iter(suffixes or [".csv"])))
-        raise InputError(Problem.BAD_OUTPUT, field, str(path), why="is a directory",
-                         fix=f"give a file name, e.g. {example}")
+        raise InputError(
+            Problem.BAD_OUTPUT,
+            field,
+            str(path),
+            why="is a directory",
+            fix=f"give a file name, e.g. {example}",
+        )
     if suffixes is not None:
         suffixes = tuple(suffixes)
         if path.suffix.lower() not in suffixes:
-            raise InputError(Problem.BAD_OUTPUT, field, str(path),
-                             why=f"has the extension {path.suffix or '(none)'!r}, not a format written here",
-                             fix="end the name with one of " + ", ".join(suffixes))
+            raise InputError(
+                Problem.BAD_OUTPUT,
+                field,
+                str(path),
+                why=f"has the extension {path.suffix or '(none)'!r}, not a format written here",
+                fix="end the name with one of " + ", ".join(suffixes),
+            )
     if path.exists() and not os.access(path, os.W_OK):
-        raise InputError(Problem.BAD_OUTPUT, field, str(path), why="exists and cannot be overwritten",
-                         fix="give another path or make it writable")
+        raise InputError(
+            Problem.BAD_OUTPUT,
+            field,
+            str(path),
+            why="exists and cannot be overwritten",
+            fix="give another path or make it writable",
+        )
     _writable_parent(field, path)
     return path
 
@@ -77,14 +105,24 @@ def output_dir(field: str, path: Any) -> Path:
     """``path`` as a directory that exists or can be created, checked before any work."""
     path = _as_path(field, path)
     if path.exists() and not path.is_dir():
-        raise InputError(Problem.BAD_OUTPUT, field, str(path), why="is a file, not a directory",
-                         fix="give a directory (it is created if missing)")
+        raise InputError(
+            Problem.BAD_OUTPUT,
+            field,
+            str(path),
+            why="is a file, not a directory",
+            fix="give a directory (it is created if missing)",
+        )
     probe = path
     while not probe.exists():
         probe = probe.parent
     if not probe.is_dir() or not os.access(probe, os.W_OK | os.X_OK):
-        raise InputError(Problem.BAD_OUTPUT, field, str(path), why=f"cannot be created in {probe}",
-                         fix="give a directory in a writable place")
+        raise InputError(
+            Problem.BAD_OUTPUT,
+            field,
+            str(path),
+            why=f"cannot be created in {probe}",
+            fix="give a directory in a writable place",
+        )
     return path
 
 

@@ -19,8 +19,11 @@ from rich.table import Table
 from .._errors import InputError, PoundingWarning, Problem
 from .._io import FIGURE_SUFFIXES, atomic_write, output_dir, output_file
 
-app = typer.Typer(add_completion=False, no_args_is_help=True,
-                  help="pounding: base-isolated masses pounding against deformable bumpers.")
+app = typer.Typer(
+    add_completion=False,
+    no_args_is_help=True,
+    help="pounding: base-isolated masses pounding against deformable bumpers.",
+)
 console = Console()
 err_console = Console(stderr=True)
 INTERRUPTED_EXIT = 130  # the shell's code for a command ended by Ctrl-C (128 + SIGINT)
@@ -36,8 +39,16 @@ def _version(value: bool) -> None:
 
 
 @app.callback()
-def _main(version: bool = typer.Option(False, "--version", callback=_version, is_eager=True,
-                                       metavar=NO_METAVAR, help="Print the version and exit.")) -> None:
+def _main(
+    version: bool = typer.Option(
+        False,
+        "--version",
+        callback=_version,
+        is_eager=True,
+        metavar=NO_METAVAR,
+        help="Print the version and exit.",
+    ),
+) -> None:
     """Simulate, sweep and analyse impacting base-isolated oscillators."""
 
 
@@ -52,10 +63,12 @@ OPT_MAX_CYCLES = typer.Option(None, "--max-cycles", help="Most cycles per step, 
 OPT_WORKERS = typer.Option(None, "--workers", help="Parallel sweeps (default: all cores).")
 OPT_NBS = typer.Option(None, "--nbs", help="NBs system TOML (instead of --preset).")
 OPT_YBS = typer.Option(None, "--ybs", help="YBs system TOML (instead of --preset).")
-OPT_PRESET = typer.Option(None, "--preset",
-                          help="Use a built-in system: paper-printed, paper-damped or paper-calibrated.")
-OPT_NO_BUMPERS = typer.Option(False, "--no-bumpers", metavar=NO_METAVAR,
-                              help="With --preset: the NBs configuration.")
+OPT_PRESET = typer.Option(
+    None, "--preset", help="Use a built-in system: paper-printed, paper-damped or paper-calibrated."
+)
+OPT_NO_BUMPERS = typer.Option(
+    False, "--no-bumpers", metavar=NO_METAVAR, help="With --preset: the NBs configuration."
+)
 MAX_FREQUENCIES = 100_000
 
 
@@ -82,7 +95,10 @@ def command(name: Optional[str] = None) -> Callable:
 @contextlib.contextmanager
 def _warnings_as_lines() -> Iterator[None]:
     """PoundingWarnings (implausible values) as one yellow line each, without Python's file and line."""
-    def show(message: Any, category: type, filename: str, lineno: int, file: Any = None, line: Any = None) -> None:
+
+    def show(
+        message: Any, category: type, filename: str, lineno: int, file: Any = None, line: Any = None
+    ) -> None:
         if issubclass(category, PoundingWarning):
             err_console.print(f"[yellow]warning:[/] {escape(str(message))}")
         else:
@@ -159,13 +175,19 @@ def frequencies(fmin: float, fmax: float, fstep: float):
     fmax = positive("--fmax", fmax, "Hz")
     fstep = positive("--fstep", fstep, "Hz")
     if fmax < fmin:
-        raise InputError(Problem.BAD_OUTPUT, "--fmax", fmax, why=f"is below --fmin {fmin:g}",
-                         fix="give fmin <= fmax")
+        raise InputError(
+            Problem.BAD_OUTPUT, "--fmax", fmax, why=f"is below --fmin {fmin:g}", fix="give fmin <= fmax"
+        )
     n = int(np.floor((fmax - fmin) / fstep * (1.0 + 1e-9) + 1e-9))  # steps that stay within fmax
     if n + 1 > MAX_FREQUENCIES:
-        raise InputError(Problem.TOO_LARGE, "--fstep", fstep, maximum=MAX_FREQUENCIES,
-                         what=f" frequencies from {fmin:g} to {fmax:g} Hz at this step",
-                         fix=f"give a step of at least {(fmax - fmin) / (MAX_FREQUENCIES - 1):.3g} Hz")
+        raise InputError(
+            Problem.TOO_LARGE,
+            "--fstep",
+            fstep,
+            maximum=MAX_FREQUENCIES,
+            what=f" frequencies from {fmin:g} to {fmax:g} Hz at this step",
+            fix=f"give a step of at least {(fmax - fmin) / (MAX_FREQUENCIES - 1):.3g} Hz",
+        )
     return np.round(fmin + fstep * np.arange(n + 1), 10)
 
 
@@ -179,8 +201,10 @@ def steady_options(steady: str, cycles: Optional[int], max_cycles: Optional[int]
 
 def files(**paths: tuple[Optional[Path], Optional[Iterable[str]]]) -> dict[str, Optional[Path]]:
     """Check output files before any work: ``name=(path or None, known suffixes or None)``."""
-    return {name: None if path is None else output_file(f"--{name.replace('_', '-')}", path, suffixes)
-            for name, (path, suffixes) in paths.items()}
+    return {
+        name: None if path is None else output_file(f"--{name.replace('_', '-')}", path, suffixes)
+        for name, (path, suffixes) in paths.items()
+    }
 
 
 def folder(name: str, path: Path) -> Path:
@@ -218,5 +242,7 @@ def compile_notice() -> None:
     from .._warm_up import kernels_cached
 
     if not kernels_cached():
-        err_console.print("compiling the engine, once per installation, about 20 s "
-                          "('pounding warm-up' does it ahead of time) ...")
+        err_console.print(
+            "compiling the engine, once per installation, about 20 s "
+            "('pounding warm-up' does it ahead of time) ..."
+        )

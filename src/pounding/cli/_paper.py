@@ -33,8 +33,9 @@ from ._app import (
 
 @command()
 def reproduce(
-    preset: Optional[str] = typer.Option(None, "--preset",
-                                         help="Built-in system (default: the package's best, paper-calibrated)."),
+    preset: Optional[str] = typer.Option(
+        None, "--preset", help="Built-in system (default: the package's best, paper-calibrated)."
+    ),
     nbs: Optional[Path] = OPT_NBS,
     ybs: Optional[Path] = OPT_YBS,
     out: Path = typer.Option(Path("report"), "--out", help="Directory for index.html, tables and figures."),
@@ -65,33 +66,67 @@ def reproduce(
     freqs = frequencies(fmin, fmax, fstep)
     compile_notice()
     try:
-        report = write_report(nbs_osc, ybs_osc, out, system_label=label, beside=beside, freqs_hz=freqs,
-                              workers=workers, progress=True)
+        report = write_report(
+            nbs_osc,
+            ybs_osc,
+            out,
+            system_label=label,
+            beside=beside,
+            freqs_hz=freqs,
+            workers=workers,
+            progress=True,
+        )
     except Interrupted as stop:
         interrupted(f"{stop}; no report written (a report of part of the campaign would mislead)")
     t2 = report.comparisons["2"]
     summary = Table(title=f"Table 2, model ({escape(label)}) beside measured (paper)")
-    for col in ("cfg", "a_G", "dir", "nu_R model", "nu_R meas.", "alpha model", "alpha meas.",
-                "eta|e model", "eta|e meas."):
+    for col in (
+        "cfg",
+        "a_G",
+        "dir",
+        "nu_R model",
+        "nu_R meas.",
+        "alpha model",
+        "alpha meas.",
+        "eta|e model",
+        "eta|e meas.",
+    ):
         summary.add_column(col)
     for _, row in t2.iterrows():
         q = "eta" if row["configuration"] == "YBs" else "e"
-        summary.add_row(row["configuration"], f"{row['a_g']:g}", row["direction"],
-                        *(f"{row[c]:.3g}" for c in ("nu_r_model", "nu_r_measured", "alpha_model",
-                                                    "alpha_measured", f"{q}_model", f"{q}_measured")))
+        summary.add_row(
+            row["configuration"],
+            f"{row['a_g']:g}",
+            row["direction"],
+            *(
+                f"{row[c]:.3g}"
+                for c in (
+                    "nu_r_model",
+                    "nu_r_measured",
+                    "alpha_model",
+                    "alpha_measured",
+                    f"{q}_model",
+                    f"{q}_measured",
+                )
+            ),
+        )
     console.print(summary)
     console.print(f"report -> {report.index_html} (tables CSV, {len(report.figures)} figures PNG)")
 
 
 @command()
 def identify(
-    targets: Optional[Path] = typer.Argument(None, metavar="TARGETS.toml",
-                                             help="Targets TOML (see examples/). Omit for --paper."),
+    targets: Optional[Path] = typer.Argument(
+        None, metavar="TARGETS.toml", help="Targets TOML (see examples/). Omit for --paper."
+    ),
     family: Path = typer.Option(..., "--family", help="Model family TOML: structure, fixed numbers, bounds."),
     out: Path = typer.Option(Path("calibrated.toml"), "--out", help="Write the fitted YBs system (TOML)."),
-    paper: bool = typer.Option(False, "--paper", metavar=NO_METAVAR,
-                               help="Fit the paper's Tables 2-4 (instead of TARGETS.toml)."),
-    residuals: Optional[Path] = typer.Option(None, "--residuals", help="Also write the residual table (CSV)."),
+    paper: bool = typer.Option(
+        False, "--paper", metavar=NO_METAVAR, help="Fit the paper's Tables 2-4 (instead of TARGETS.toml)."
+    ),
+    residuals: Optional[Path] = typer.Option(
+        None, "--residuals", help="Also write the residual table (CSV)."
+    ),
     seed: int = typer.Option(0, "--seed", help="Seed of the global search (same seed, same result)."),
     maxiter: int = typer.Option(30, "--maxiter", help="Generations of differential evolution."),
     popsize: int = typer.Option(10, "--popsize", help="Population per free number."),
@@ -113,8 +148,18 @@ def identify(
     compile_notice()
     complete = True
     try:
-        fit = run_identify(goal, fam, bounds, seed=seed, maxiter=maxiter, popsize=popsize, workers=workers,
-                           freqs_hz=frequencies(fmin, fmax, fstep), cycles=cycles, progress=True)
+        fit = run_identify(
+            goal,
+            fam,
+            bounds,
+            seed=seed,
+            maxiter=maxiter,
+            popsize=popsize,
+            workers=workers,
+            freqs_hz=frequencies(fmin, fmax, fstep),
+            cycles=cycles,
+            progress=True,
+        )
     except Interrupted as stop:
         if stop.partial is None:
             interrupted("no candidate was evaluated; nothing was written")
@@ -123,15 +168,24 @@ def identify(
     for col in ("name", "value", "low", "high", "at bound"):
         params.add_column(col)
     for row in fit.parameter_table().itertuples(index=False):
-        params.add_row(row.name, f"{row.value:.6g}", f"{row.low:g}", f"{row.high:g}",
-                       "yes" if row.at_bound else "")
+        params.add_row(
+            row.name, f"{row.value:.6g}", f"{row.low:g}", f"{row.high:g}", "yes" if row.at_bound else ""
+        )
     console.print(params)
     table = Table(title="residuals (model - target) / tolerance")
     for col in ("cfg", "a_G", "dir", "quantity", "target", "model", "normalized", "met"):
         table.add_column(col)
     for row in fit.residuals.itertuples(index=False):
-        table.add_row(row.configuration, f"{row.a_g:g}", row.direction, row.quantity, f"{row.target:.4g}",
-                      f"{row.model:.4g}", f"{row.normalized:+.2f}", "yes" if row.within else "[red]no[/]")
+        table.add_row(
+            row.configuration,
+            f"{row.a_g:g}",
+            row.direction,
+            row.quantity,
+            f"{row.target:.4g}",
+            f"{row.model:.4g}",
+            f"{row.normalized:+.2f}",
+            "yes" if row.within else "[red]no[/]",
+        )
     console.print(table)
     with interrupts_deferred() as held:
         fit.to_toml(paths["out"])
@@ -139,7 +193,9 @@ def identify(
             write_csv(fit.to_dataframe(), paths["residuals"])
     console.print(f"{escape(fit.message)}\nfitted system -> {paths['out']}")
     if not complete or held:
-        err_console.print(f"[yellow]{paths['out']} holds the best candidate so far and says partial = true[/]")
+        err_console.print(
+            f"[yellow]{paths['out']} holds the best candidate so far and says partial = true[/]"
+        )
         interrupted(f"the best of {fit.n_evaluations} evaluations is in {paths['out']}")
 
 

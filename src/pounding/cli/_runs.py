@@ -46,20 +46,25 @@ NETCDF = (".nc", ".nc4", ".netcdf")
 
 @command()
 def simulate(
-    system_file: Optional[Path] = typer.Argument(None, metavar="SYSTEM.toml",
-                                                 help="System TOML (see examples/). Omit to use --preset."),
+    system_file: Optional[Path] = typer.Argument(
+        None, metavar="SYSTEM.toml", help="System TOML (see examples/). Omit to use --preset."
+    ),
     a_g: float = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
     freq: float = typer.Option(..., "--freq", help="Excitation frequency, Hz."),
     duration: float = typer.Option(20.0, "--duration", help="Simulated time, s."),
     preset: Optional[str] = OPT_PRESET,
     no_bumpers: bool = OPT_NO_BUMPERS,
     sample_rate: Optional[float] = typer.Option(
-        None, "--sample-rate", help="History samples per second, Hz (default 1000, fewer for runs over 1000 s; "
-                                    "0: the events only)."),
+        None,
+        "--sample-rate",
+        help="History samples per second, Hz (default 1000, fewer for runs over 1000 s; 0: the events only).",
+    ),
     velocity: float = typer.Option(0.0, "--velocity", help="Initial velocity relative to the table, m/s."),
     contacts: Optional[Path] = typer.Option(None, "--contacts", help="Write the contact table (CSV)."),
     history: Optional[Path] = typer.Option(None, "--history", help="Write the sampled histories (CSV)."),
-    plot: Optional[Path] = typer.Option(None, "--plot", help="Draw displacement and acceleration (PNG, PDF...)."),
+    plot: Optional[Path] = typer.Option(
+        None, "--plot", help="Draw displacement and acceleration (PNG, PDF...)."
+    ),
 ) -> None:
     """Simulate one harmonic excitation and summarise the run (exact extrema, contacts, energy)."""
     from ..engine import State
@@ -109,22 +114,38 @@ def simulate(
         if plot is not None:
             save_figure(run.plot, plot)
     if not complete or held:
-        interrupted(f"the run up to t = {run.final_state.time_s:g} s of {duration:g} s is in the summary"
-                    + (" and the files written" if any(out.values()) or plot else ""))
+        interrupted(
+            f"the run up to t = {run.final_state.time_s:g} s of {duration:g} s is in the summary"
+            + (" and the files written" if any(out.values()) or plot else "")
+        )
     if not run.success:
         raise typer.Exit(code=1)
 
 
 # the columns of `pounding sweep --out`, as issue 3 names them
-SWEEP_CSV_COLUMNS = ["freq_hz", "alpha", "excursion_m", "eta", "e", "contact", "contacts_per_cycle",
-                     "restitution", "contact_time_s", "mean_force_n", "peak_force_n",
-                     "dissipated_energy_j", "steady", "period_multiple"]
+SWEEP_CSV_COLUMNS = [
+    "freq_hz",
+    "alpha",
+    "excursion_m",
+    "eta",
+    "e",
+    "contact",
+    "contacts_per_cycle",
+    "restitution",
+    "contact_time_s",
+    "mean_force_n",
+    "peak_force_n",
+    "dissipated_energy_j",
+    "steady",
+    "period_multiple",
+]
 
 
 @command()
 def sweep(
-    system_file: Optional[Path] = typer.Argument(None, metavar="SYSTEM.toml",
-                                                 help="System TOML (see examples/). Omit to use --preset."),
+    system_file: Optional[Path] = typer.Argument(
+        None, metavar="SYSTEM.toml", help="System TOML (see examples/). Omit to use --preset."
+    ),
     a_g: float = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
     direction: str = typer.Option("up", "--direction", help="up or down."),
     out: Optional[Path] = typer.Option(None, "--out", help="Write the per-step table (CSV)."),
@@ -138,7 +159,9 @@ def sweep(
     measure_cycles: int = OPT_MEASURE_CYCLES,
     max_cycles: Optional[int] = OPT_MAX_CYCLES,
     netcdf: Optional[Path] = typer.Option(None, "--netcdf", help="Also write the result as netCDF (.nc)."),
-    plot: Optional[Path] = typer.Option(None, "--plot", help="Also draw alpha and eta against nu (PNG, PDF...)."),
+    plot: Optional[Path] = typer.Option(
+        None, "--plot", help="Also draw alpha and eta against nu (PNG, PDF...)."
+    ),
 ) -> None:
     """Stepped-sine sweep: each frequency held until steady (or for fixed cycles), state carried over."""
     from ..protocols import sweep as run_sweep
@@ -153,7 +176,9 @@ def sweep(
     make_plan(osc, a_g, freqs, direction, measure_cycles=measure_cycles, **options)  # all checks, no work
     compile_notice()
     try:
-        result = run_sweep(osc, a_g, freqs, direction, measure_cycles=measure_cycles, progress=True, **options)
+        result = run_sweep(
+            osc, a_g, freqs, direction, measure_cycles=measure_cycles, progress=True, **options
+        )
     except Interrupted as stop:
         result = stop.partial
     table, add = kv_table(f"{system_file or preset}: sweep {result.direction}, a_G = {a_g:g}")
@@ -164,8 +189,14 @@ def sweep(
         rng = result.contact_range_hz
         add("contact range [Hz]", "none" if rng is None else f"{rng[0]:g} - {rng[1]:g}")
         jumps = result.jumps()
-        add("jumps [Hz]", ", ".join(f"{a:g}->{b:g} ({k})" for a, b, k in
-                                    zip(jumps["freq_from_hz"], jumps["freq_to_hz"], jumps["kind"])) or "none")
+        add(
+            "jumps [Hz]",
+            ", ".join(
+                f"{a:g}->{b:g} ({k})"
+                for a, b, k in zip(jumps["freq_from_hz"], jumps["freq_to_hz"], jumps["kind"])
+            )
+            or "none",
+        )
     console.print(table)
     complete = result.steps_done == result.freqs_hz.size
     with interrupts_deferred() as held:
@@ -178,18 +209,24 @@ def sweep(
         if plot is not None and result.steps_done:
             save_figure(result.plot, plot)
     if not complete and result.status == 0 or held:
-        interrupted(f"{result.steps_done} of {result.freqs_hz.size} steps finished; they are in the "
-                    "summary" + (" and the files written" if any(paths.values()) or plot else ""))
+        interrupted(
+            f"{result.steps_done} of {result.freqs_hz.size} steps finished; they are in the "
+            "summary" + (" and the files written" if any(paths.values()) or plot else "")
+        )
     if not result.success:
         raise typer.Exit(code=1)
 
 
 @command()
 def campaign(
-    out: Path = typer.Option(..., "--out", help="Directory for campaign.nc, steps.csv, table2-4.csv, "
-                                                "campaign.png."),
-    preset: Optional[str] = typer.Option(None, "--preset", help="Built-in system for both configurations: "
-                                                                "paper-printed, paper-damped or paper-calibrated."),
+    out: Path = typer.Option(
+        ..., "--out", help="Directory for campaign.nc, steps.csv, table2-4.csv, campaign.png."
+    ),
+    preset: Optional[str] = typer.Option(
+        None,
+        "--preset",
+        help="Built-in system for both configurations: paper-printed, paper-damped or paper-calibrated.",
+    ),
     nbs: Optional[Path] = OPT_NBS,
     ybs: Optional[Path] = OPT_YBS,
     fmin: float = OPT_FMIN,
@@ -219,9 +256,15 @@ def campaign(
     compile_notice()
     complete = True
     try:
-        result = run_campaign(nbs_osc, ybs_osc, freqs_hz=frequencies(fmin, fmax, fstep),
-                              measure_cycles=measure_cycles, workers=workers,
-                              progress=True, **steady_options(steady, cycles, max_cycles))
+        result = run_campaign(
+            nbs_osc,
+            ybs_osc,
+            freqs_hz=frequencies(fmin, fmax, fstep),
+            measure_cycles=measure_cycles,
+            workers=workers,
+            progress=True,
+            **steady_options(steady, cycles, max_cycles),
+        )
     except Interrupted as stop:
         err_console.print(f"[yellow]{escape(str(stop))}; saving them[/]")
         result, complete = stop.partial, False
@@ -229,19 +272,43 @@ def campaign(
         _save_campaign(result, out)
     summary = Table(title="Table 2 analogue (model)")
     table2 = result.table2()
-    for col in ("configuration", "a_g", "direction", "nu_r", "alpha", "eta", "e", "contact_nu_min",
-                "contact_nu_max"):
+    for col in (
+        "configuration",
+        "a_g",
+        "direction",
+        "nu_r",
+        "alpha",
+        "eta",
+        "e",
+        "contact_nu_min",
+        "contact_nu_max",
+    ):
         summary.add_column(col)
     for _, row in table2.iterrows():
-        summary.add_row(*(f"{row[c]:.4g}" if isinstance(row[c], float) else str(row[c]) for c in
-                          ("configuration", "a_g", "direction", "nu_r", "alpha", "eta", "e", "contact_nu_min",
-                           "contact_nu_max")))
+        summary.add_row(
+            *(
+                f"{row[c]:.4g}" if isinstance(row[c], float) else str(row[c])
+                for c in (
+                    "configuration",
+                    "a_g",
+                    "direction",
+                    "nu_r",
+                    "alpha",
+                    "eta",
+                    "e",
+                    "contact_nu_min",
+                    "contact_nu_max",
+                )
+            )
+        )
     console.print(summary)
     console.print(f"campaign.nc, steps.csv, table2-4.csv, campaign.png -> {out}")
     if not complete or held:
         done = sum(sw.steps_done for sw in result.sweeps.values())
-        interrupted(f"{done} steps finished; they are in {out} (campaign.nc has complete = 0, the tables a "
-                    "'complete' column)")
+        interrupted(
+            f"{done} steps finished; they are in {out} (campaign.nc has complete = 0, the tables a "
+            "'complete' column)"
+        )
 
 
 def _save_campaign(result, out: Path) -> None:
@@ -253,7 +320,9 @@ def _save_campaign(result, out: Path) -> None:
     finished = {key: sw.steps_done == sw.freqs_hz.size for key, sw in result.sweeps.items()}
     for name, df in (("table2", result.table2()), ("table3", result.table3()), ("table4", result.table4())):
         df = df.copy()
-        df["complete"] = [finished[(c, a, d)] for c, a, d in zip(df["configuration"], df["a_g"], df["direction"])]
+        df["complete"] = [
+            finished[(c, a, d)] for c, a, d in zip(df["configuration"], df["a_g"], df["direction"])
+        ]
         write_csv(df, out / f"{name}.csv")
     if result.sweeps:
         save_figure(result.plot, out / "campaign.png")

@@ -95,8 +95,10 @@ def isolator_rate(oscillator: Oscillator) -> tuple[float, str]:
     c = iso.damping
     m = oscillator.mass
     rate = max(math.sqrt(k / m + (0.5 * c / m) ** 2), c / m)
-    return rate, (f"the isolator's fastest motion {rate:.3g} rad/s: stiffness {k:.3g} N/m, damping "
-                  f"{c:.3g} N s/m, mass {m:.3g} kg")
+    return rate, (
+        f"the isolator's fastest motion {rate:.3g} rad/s: stiffness {k:.3g} N/m, damping "
+        f"{c:.3g} N s/m, mass {m:.3g} kg"
+    )
 
 
 def steps_per_second(rate_rad_s: float, omega_rad_s: Any) -> Any:
@@ -107,5 +109,12 @@ def steps_per_second(rate_rad_s: float, omega_rad_s: Any) -> Any:
 def check_budget(field: str, value: Any, estimate: float, budget: int, why: str, fix: str) -> None:
     """Refuse, naming ``field``, a request whose estimated sub-intervals exceed ``budget``."""
     if estimate > budget:
-        raise InputError(Problem.OVER_BUDGET, field, value, estimate=f"{estimate:.3g}",
-                         budget=f"{budget:.3g}", why=why, fix=fix)
+        raise InputError(
+            Problem.OVER_BUDGET,
+            field,
+            value,
+            estimate=f"{estimate:.3g}",
+            budget=f"{budget:.3g}",
+            why=why,
+            fix=fix,
+        )

@@ -202,7 +202,8 @@ HISTORY_UNITS = {"t": "t_s", "displacement": "displacement_m", "velocity": "velo
                  "abs_acceleration": "abs_acceleration_m_s2", "isolator_force": "isolator_force_n",
                  "bumper_force_left": "bumper_force_left_n", "bumper_force_right": "bumper_force_right_n"}
 CONTACT_UNITS = {"t_start": "t_start_s", "t_end": "t_end_s", "v_in": "v_in_m_s", "v_out": "v_out_m_s",
-                 "impulse": "impulse_n_s", "peak_force": "peak_force_n", "max_compression": "max_compression_m",
+                 "impulse": "impulse_n_s", "peak_force": "peak_force_n",
+                 "max_compression": "max_compression_m",
                  "bumper_dissipation": "bumper_dissipation_j"}
 CONTACT_COLUMNS = ("side", "t_start", "t_end", "v_in", "v_out", "impulse", "peak_force",
                    "max_compression", "bumper_dissipation")

@@ -11,8 +11,14 @@ from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
 from ..model.contact_laws import KelvinVoigt
-from ._control import (DEFAULT_MAX_STEPS, check_budget, isolator_rate, new_control, run_interruptibly,
-                       steps_per_second)
+from ._control import (
+    DEFAULT_MAX_STEPS,
+    check_budget,
+    isolator_rate,
+    new_control,
+    run_interruptibly,
+    steps_per_second,
+)
 from ._kernel import run_kernel
 from ._layout import REGION, STATE_BASE
 from .result import EnergyLedger, Run, State

@@ -109,7 +109,8 @@ class Identification:
         (the best candidate so far), the cost, the evaluations and the targets met.
         """
         meta = {"written_by": "pounding identify", "partial": not self.complete, "cost": float(self.cost),
-                "evaluations": int(self.n_evaluations), "targets_met": f"{self.n_within} of {len(self.residuals)}"}
+                "evaluations": int(self.n_evaluations),
+                "targets_met": f"{self.n_within} of {len(self.residuals)}"}
         return self.oscillator.to_toml(path, meta=meta)
 
     def plot(self, ax: Any = None, **kwargs: Any) -> list:
@@ -193,7 +194,8 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     evaluations = (maxiter + 1) * popsize * len(names) + (40 * len(names) if refine else 0)
     if evaluations > MAX_EVALUATIONS:
         raise InputError(Problem.TOO_MUCH_WORK, "maxiter", maxiter, estimate=f"{evaluations:.3g}",
-                         unit=f"evaluations ((maxiter + 1) x popsize x {len(names)} free numbers, each running "
+                         unit=f"evaluations ((maxiter + 1) x popsize x {len(names)} free numbers, each "
+                              "running "
                               "the targets' sweeps)", budget=f"{MAX_EVALUATIONS:.3g}",
                          fix="lower maxiter or popsize (30 and 10 are the defaults)")
     options = {**DEFAULT_SWEEP, **sweep_options}
@@ -201,7 +203,8 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     cases_freqs = paper_frequencies_hz() if freqs_hz is None else freqs_hz
     if x0 is not None:
         if not isinstance(x0, dict):
-            raise InputError(Problem.WRONG_TYPE, "x0", x0, got=type(x0).__name__, expected="dict name -> value")
+            raise InputError(Problem.WRONG_TYPE, "x0", x0, got=type(x0).__name__,
+                             expected="dict name -> value")
         unknown = sorted(set(x0) ^ set(names))
         if unknown:
             raise InputError(Problem.UNKNOWN_KEY if unknown[0] in x0 else Problem.MISSING_KEY,
@@ -209,8 +212,8 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
         for k in names:
             low, high = bounds[k]
             if not low <= real(f"x0.{k}", x0[k]) <= high:
-                raise InputError(Problem.OUT_OF_RANGE, f"x0.{k}", x0[k], range=f"the bounds [{low:g}, {high:g}]",
-                                 hint="")
+                raise InputError(Problem.OUT_OF_RANGE, f"x0.{k}", x0[k],
+                                 range=f"the bounds [{low:g}, {high:g}]", hint="")
     try:  # bad sweep options fail here, not in a worker
         probe = family.oscillator(scale.values(np.full(len(names), 0.5)))
     except InputError:

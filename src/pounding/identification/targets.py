@@ -32,9 +32,9 @@ import numpy as np
 import pandas as pd
 
 from .._checks import at_most, boolean, positive, read_toml, real
-from ..excitation import MAX_A_G
 from .._errors import InputError, Problem
 from ..data import paper_measurements
+from ..excitation import MAX_A_G
 
 # quantity -> (tolerance, relative): the targets (nu_R within one 0.1 Hz step, alpha
 # 10 %, eta or e 5 %, contact times 30 %, restitution 0.05)

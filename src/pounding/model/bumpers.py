@@ -9,7 +9,6 @@ from .._checks import at_most, non_negative, plausible
 from .._errors import InputError, Problem
 from .contact_laws import LAWS, ContactLaw, law_to_dict
 
-
 MAX_GAP_M = 1e3  # refused beyond (a unit error)
 
 

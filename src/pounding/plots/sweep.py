@@ -100,7 +100,8 @@ def plot_hysteresis(loop: "HysteresisLoop", ax: Any = None, *, per: str = "total
     artists = list(ax.plot(scale * loop.d, loop.r, **line_kwargs))
     for x in loop.bumper_surfaces_d or ():  # where contact begins with relaxed bumpers
         artists.append(ax.axvline(scale * x, color="0.6", lw=0.6, ls=":"))
-    ax.set_xlabel("d = D / Delta" if per == "total_gap" else "d = 2 D / Delta (bumpers at +-1, as the paper's figures)")
+    ax.set_xlabel("d = D / Delta" if per == "total_gap"
+                  else "d = 2 D / Delta (bumpers at +-1, as the paper's figures)")
     ax.set_ylabel("r = F_I / (M g)")
     ax.legend(fontsize="small")
     return artists

@@ -150,7 +150,8 @@ def fig05(result, df, peaks):
 
 def _versus_a_g(ax, peaks: pd.DataFrame, conf: str, y: str, measured: pd.Series | None, label: str) -> None:
     for d, sub in peaks[peaks["configuration"] == conf].groupby("direction"):
-        ax.plot(sub["a_g"], sub[y], label=f"{label} model ({d} sweep)", **CONF_STYLE[conf], **DIRECTION_LOOK[d])
+        ax.plot(sub["a_g"], sub[y], label=f"{label} model ({d} sweep)", **CONF_STYLE[conf],
+                **DIRECTION_LOOK[d])
     if measured is not None and len(measured):
         ax.plot(measured.index, measured.to_numpy(), label=f"{label} measured", **MEASURED_OF[conf])
 

@@ -25,15 +25,18 @@ pre { background: #f7f7f7; padding: .8em; overflow-x: auto; }
 """
 
 PAPER = ("\u201cA preliminary experimental study about two-sided impacting SDOF oscillator under harmonic "
-         "excitation\u201d: shaking-table tests of a 500 kg mass on a high-damping rubber bearing between two "
+         "excitation\u201d: shaking-table tests of a 500 kg mass on a high-damping rubber bearing between "
+         "two "
          "EPDM bumpers, stepped sines of 0.5 to 5 Hz at a_G = 0.03 to 0.1 (its Sects. 2-5, Tables 2-4, "
          "Figs. 4-17). Its authors and venue are not given in the copy this package was built from.")
 # quantities, in words with units, for the page's headers (the CSV files keep the short names)
 QUANTITY_WORDS = {
-    "nu_r": "resonance \u03bd_R [-]", "alpha": "peak acceleration \u03b1 [-]", "eta": "excursion \u03b7 = E/\u0394 [-]",
+    "nu_r": "resonance \u03bd_R [-]", "alpha": "peak acceleration \u03b1 [-]",
+    "eta": "excursion \u03b7 = E/\u0394 [-]",
     "e": "excursion e = E/D_tmax [-]", "contact_nu_min": "contact from \u03bd [-]",
     "contact_nu_max": "contact to \u03bd [-]", "mean_force_over_mg": "mean contact force F_m/(M g) [-]",
-    "contact_time_ms": "contact time [ms]", "dissipated_energy_per_mass": "dissipated energy E_d/M [m\u00b2/s\u00b2]",
+    "contact_time_ms": "contact time [ms]",
+    "dissipated_energy_per_mass": "dissipated energy E_d/M [m\u00b2/s\u00b2]",
     "restitution": "restitution s [-]", "peak_force_over_mg": "peak contact force / (M g) [-]",
     "excursion": "excursion: \u03b7 = E/\u0394 (YBs), e = E/D_tmax (NBs) [-]",
 }
@@ -116,8 +119,8 @@ def _table(df: pd.DataFrame) -> str:
         groups = list(dict.fromkeys(c[0] for c in df.columns if c[0] != ""))
         pieces = [df[keys + [c for c in df.columns if c[0] in groups[i:i + GROUPS_PER_TABLE]]]
                   for i in range(0, len(groups), GROUPS_PER_TABLE)]
-    return "".join(f"<div class='wide'>{p.to_html(index=False, float_format=lambda x: f'{x:.4g}', na_rep='', border=0)}"
-                   "</div>" for p in pieces)
+    html_of = [p.to_html(index=False, float_format=lambda x: f"{x:.4g}", na_rep="", border=0) for p in pieces]
+    return "".join(f"<div class='wide'>{t}</div>" for t in html_of)
 
 
 def _image(path: Path) -> str:
