@@ -39,6 +39,15 @@ class State:
         object.__setattr__(self, "vector", vec)
 
     @classmethod
+    def _from_kernel(cls, vector: np.ndarray) -> "State":
+        """A state the engine itself produced: not checked again (a kernel's final state)."""
+        state = object.__new__(cls)
+        vec = np.array(vector, dtype=float)
+        vec.setflags(write=False)
+        object.__setattr__(state, "vector", vec)
+        return state
+
+    @classmethod
     def at_rest(cls, oscillator: "Oscillator", time_s: float = 0.0, displacement_m: float = 0.0,
                 velocity_m_s: float = 0.0) -> "State":
         """Relaxed bumpers and an isolator on its backbone, with the given time and motion.
@@ -160,7 +169,7 @@ def _state_vector(vector: Any) -> np.ndarray:
         raise _bad_state("isolator_branch", float(vec[REGION]), "is not a whole number", _FROM_A_RUN)
     n_sp = (vec.size - STATE_BASE) // 2
     dirs = vec[STATE_BASE + n_sp:]
-    bad = np.flatnonzero(~np.isin(dirs, (-1.0, 0.0, 1.0)))
+    bad = np.flatnonzero((dirs != -1.0) & (dirs != 0.0) & (dirs != 1.0))
     if bad.size:
         raise _bad_state(f"vector[{STATE_BASE + n_sp + bad[0]}]", float(dirs[bad[0]]),
                          "is not a slip direction (-1, 0 or 1)", _FROM_A_RUN)

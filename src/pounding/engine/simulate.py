@@ -14,6 +14,7 @@ from ..model.contact_laws import KelvinVoigt
 from ._control import (
     DEFAULT_MAX_STEPS,
     check_budget,
+    contact_rate,
     isolator_rate,
     new_control,
     run_interruptibly,
@@ -48,7 +49,7 @@ def check_state(state: Optional[State], oscillator: Oscillator) -> State:
     if not isinstance(state, State):
         raise InputError(Problem.WRONG_TYPE, "state", state, got=type(state).__name__,
                          expected="pounding.State (e.g. run.final_state)")
-    expected = State.at_rest(oscillator).vector.size
+    expected = STATE_BASE + 2 * (oscillator.isolator.n_branches - 1)
     if state.vector.size != expected:
         raise InputError(Problem.BAD_STATE, "state", state,
                          why=f"has {state.vector.size} numbers where this system's states have {expected} "
@@ -123,6 +124,9 @@ def kernel_system(oscillator: Oscillator) -> tuple:
             gap_l, gap_r, left.LAW_ID, left.params(), right.LAW_ID, right.params())
 
 
+# a run whose every sub-interval (and event) fits in this many returns within about 0.1 s: it
+# runs in the caller's thread (Ctrl-C then lands when it returns)
+DIRECT_CALL_STEPS = 50_000
 MAX_AUTO_SAMPLES = 1_000_000     # the default history's length at most (56 MB)
 MAX_SAMPLES = 50_000_000         # refused beyond (2.8 GB of history)
 DEFAULT_SAMPLE_RATE_HZ = 1000.0
@@ -221,11 +225,14 @@ def simulate(
     check_budget("duration", duration, per_s * duration + knots, max_steps, why,
                  "shorten the duration, or check the system's numbers (SI units: kg, N/m, N s/m)")
 
+    # at most this many sub-intervals (every phase as fast as the fastest), plus one per event
+    most = float(steps_per_second(contact_rate(oscillator), omega)) * duration + knots
     exc_kind, exc_p, rec_t, rec_a = excitation.kernel_arrays()
     ctl = new_control(max_steps)
     st, samples, contacts, events, ledger, extrema, status = run_interruptibly(lambda: run_kernel(
         *kernel_system(oscillator), exc_kind, exc_p, rec_t, rec_a, state.vector.copy(),
-        t0 + duration, 1.0 / rate if rate > 0 else 0.0, rtol, int(max_events), True, ctl), [ctl])
+        t0 + duration, 1.0 / rate if rate > 0 else 0.0, rtol, int(max_events), True, ctl), [ctl],
+        direct=most < DIRECT_CALL_STEPS)
     status = Status(int(status))
     if status == Status.SUCCESS and not (np.all(np.isfinite(ledger)) and np.all(np.isfinite(extrema))):
         status = Status.NONFINITE
@@ -241,7 +248,7 @@ def simulate(
         displacement_max=float(extrema[0]), displacement_max_time_s=float(extrema[1]),
         displacement_min=float(extrema[2]), displacement_min_time_s=float(extrema[3]),
         abs_acceleration_max=float(extrema[4]), abs_acceleration_max_time_s=float(extrema[5]),
-        contact_table=contacts, event_table=events, energy=energy, final_state=State(st),
+        contact_table=contacts, event_table=events, energy=energy, final_state=State._from_kernel(st),
         status=status, message=status.message, oscillator=oscillator, excitation=excitation,
         sample_rate_hz=rate)
     if status == Status.INTERRUPTED:

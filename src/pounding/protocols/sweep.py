@@ -300,7 +300,7 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
         omega_min_rad_s=plan.omega_min_rad_s, f_ref_hz=plan.f_ref_hz, g=STANDARD_GRAVITY,
         window=window, cycles_run=cycles_run, period_multiple=period_multiple,
         window_states=window_states, step_start_s=step_start_s,
-        steps_done=done, final_state=State(state), status=status,
+        steps_done=done, final_state=State._from_kernel(state), status=status,
         message=_message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted))
     if interrupted:
         raise Interrupted(result, done, n_steps)

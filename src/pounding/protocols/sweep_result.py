@@ -280,7 +280,7 @@ class SweepResult:
         total_gap_m = positive("total_gap_m", total_gap_m, "m")
         points = integer("points_per_cycle", points_per_cycle, 8)
         f = float(self.freqs_hz[i])
-        state = State(self.window_states[i])
+        state = State._from_kernel(self.window_states[i])
         omega = 2 * math.pi * f
         n_cyc = max(1, int(self.period_multiple[i]))
         exc = Harmonic(self.a_g, f, phase=-(omega * float(self.step_start_s[i])), g=self.g)
