@@ -23,10 +23,10 @@ import numpy as np
 
 from .._errors import InputError, Problem
 from ..model import Oscillator
+from ._kernel import SUBINTERVALS_PER_PERIOD
 from ._layout import CTL_BUDGET, CTL_LEN, CTL_STOP
 
 R = TypeVar("R")
-SUBINTERVALS_PER_PERIOD = 8.0  # as the kernel (_kernel.SUBINTERVALS_PER_PERIOD)
 DEFAULT_MAX_STEPS = 100_000_000  # about 1-3 minutes of one core
 
 
