@@ -130,3 +130,16 @@ def test_campaign_plot_returns_artists():
     artists = res.plot()
     assert len(artists) >= 8
     assert np.isfinite(res.dataset["alpha"].sel(configuration="YBs").values).all()
+
+
+def test_tables_keep_their_columns_without_a_ybs_step():
+    # an NBs-only campaign (or one interrupted before a YBs step finished) has no Table 3 or 4
+    # rows; the CLI then writes the tables with a 'complete' column, which needs the key columns
+    nbs = pd_.presets.paper_printed(bumpers=False)
+    res = pd_.campaign(nbs, None, nbs_a_g=(0.05,), directions=("up",), freqs_hz=[1.0], steady="fixed",
+                       cycles=3, measure_cycles=2)
+    assert len(res.table2()) == 1
+    for table, quantities in ((res.table3(), ["mean_force_over_mg", "contact_time_ms", "peak_force_over_mg"]),
+                              (res.table4(), ["dissipated_energy_per_mass", "restitution"])):
+        assert table.empty
+        assert list(table.columns) == ["configuration", "a_g", "direction", "nu_r", *quantities]

@@ -147,9 +147,11 @@ def _compiled():
 
 
 def test_two_ctrl_c_in_a_campaign_keep_the_finished_steps_readable(tmp_path):
-    # 3000 cycles a step: about a minute, long enough to interrupt after a few sweeps' steps
+    # 20000 cycles a step: the first steps (0.5 Hz, 40000 s) take about half a second, the
+    # whole campaign (6.4e6 simulated s) about a minute on two cores; at 3000 cycles a faster
+    # machine finished all 644 steps within the 5 s before the interrupt
     done = _interrupt(
-        ["campaign", "--preset", "paper-damped", "--out", "out", "--steady", "fixed", "--cycles", "3000"],
+        ["campaign", "--preset", "paper-damped", "--out", "out", "--steady", "fixed", "--cycles", "20000"],
         tmp_path,
         5.0,
     )

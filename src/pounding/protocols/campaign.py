@@ -117,13 +117,16 @@ class CampaignResult:
         return self._rows(TABLE2_QUANTITIES, yb_only=False)
 
     def _rows(self, quantities: tuple[str, ...], yb_only: bool) -> pd.DataFrame:
+        columns = ["configuration", "a_g", "direction", *quantities]
         rows = []
         for (conf, ag, d), sw in self._started():
             if yb_only and conf != "YBs":
                 continue
             q = sweep_quantities(sw)
-            rows.append({"configuration": conf, "a_g": ag, "direction": d, **{k: q[k] for k in quantities}})
-        return pd.DataFrame(rows)
+            rows.append([conf, ag, d, *(q[k] for k in quantities)])
+        # the columns even without rows: an NBs-only campaign, or one interrupted before any
+        # YBs step finished, has empty Tables 3 and 4
+        return pd.DataFrame(rows, columns=columns)
 
     def table3(self) -> pd.DataFrame:
         """Analogue of Table 3 (YBs, at the resonance step): ``mean_force_over_mg``
