@@ -21,12 +21,18 @@ def isolators(draw, hysteresis=None):
 
 
 @st.composite
-def oscillators(draw, bumpers=True, hysteresis=None):
+def oscillators(draw, bumpers=True, hysteresis=None, gaps="open"):
+    """``gaps``: "open" (3 to 30 mm each side) or "zero" (0 on one side or both: the mass at
+    rest touches that bumper)."""
     iso = draw(isolators(hysteresis))
     b = None
     if bumpers:
         law = pd_.KelvinVoigt(draw(st.floats(1e5, 3e6)), draw(st.floats(1.0, 5000.0)))
-        b = pd_.Bumpers(draw(st.floats(0.003, 0.03)), draw(st.floats(0.003, 0.03)), law)
+        gap = st.floats(0.003, 0.03)
+        left, right = draw(gap), draw(gap)
+        if gaps == "zero":
+            left, right = draw(st.sampled_from([(0.0, 0.0), (0.0, right), (left, 0.0)]))
+        b = pd_.Bumpers(left, right, law)
     return pd_.Oscillator(draw(st.floats(100.0, 1500.0)), iso, b)
 
 

@@ -11,6 +11,7 @@ from strategies import harmonics, oscillators
 import pounding as pd_
 
 SETTINGS = settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+ANY_GAP = st.one_of(oscillators(), oscillators(gaps="zero"))  # open gaps, or the mass touching a bumper
 
 
 def _flows(e):
@@ -18,7 +19,7 @@ def _flows(e):
 
 
 @SETTINGS
-@given(osc=oscillators(), exc=harmonics())
+@given(osc=ANY_GAP, exc=harmonics())
 def test_energy_ledger_closes_from_rest(osc, exc):
     run = pd_.simulate(osc, exc, 3.0, sample_rate_hz=0)
     e = run.energy
@@ -29,7 +30,7 @@ def test_energy_ledger_closes_from_rest(osc, exc):
 
 
 @SETTINGS
-@given(osc=oscillators(), exc=harmonics(), v0=st.floats(-0.8, 0.8))
+@given(osc=ANY_GAP, exc=harmonics(), v0=st.floats(-0.8, 0.8))
 def test_energy_ledger_closes_from_motion(osc, exc, v0):
     # the input work can then be a small difference of large flows: compare with the largest
     run = pd_.simulate(osc, exc, 3.0, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=0)
@@ -58,7 +59,7 @@ def test_energy_ledger_closes_with_hunt_crossley(v0):
 
 
 @SETTINGS
-@given(osc=oscillators(), exc=harmonics(), v0=st.floats(-0.8, 0.8))
+@given(osc=ANY_GAP, exc=harmonics(), v0=st.floats(-0.8, 0.8))
 def test_bumpers_never_pull(osc, exc, v0):
     run = pd_.simulate(osc, exc, 3.0, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=2000)
     k = osc.bumpers.law.stiffness
@@ -76,7 +77,7 @@ def test_bumpers_never_pull(osc, exc, v0):
 
 
 @SETTINGS
-@given(osc=oscillators(), exc=harmonics(), v0=st.floats(-0.8, 0.8))
+@given(osc=ANY_GAP, exc=harmonics(), v0=st.floats(-0.8, 0.8))
 def test_mirror_symmetry(osc, exc, v0):
     state = pd_.State.at_rest(osc, velocity_m_s=v0)
     run = pd_.simulate(osc, exc, 2.0, state, sample_rate_hz=100)
@@ -96,22 +97,49 @@ def test_mirror_symmetry(osc, exc, v0):
 @SETTINGS
 @given(osc=oscillators(), exc=harmonics(), v0=st.floats(-0.8, 0.8), split=st.floats(0.1, 2.9))
 def test_chained_runs_equal_one_long_run(osc, exc, v0, split):
+    _check_chained(osc, exc, v0, split)
+
+
+@SETTINGS
+@given(osc=oscillators(gaps="zero"), exc=harmonics(), v0=st.floats(-0.8, 0.8), split=st.floats(0.1, 2.9))
+def test_chained_runs_equal_one_long_run_at_zero_gap(osc, exc, v0, split):
+    # (two 2 + 18 s runs of the zero-gap reproducer made 2 + 105 contacts where one made 10)
+    _check_chained(osc, exc, v0, split)
+
+
+def _check_chained(osc, exc, v0, split):
+    """A run continued from a final state equals one long run, to rounding as the system
+    amplifies it.  The split changes the sub-intervals' ends, hence the rounding; a stiff
+    bumper hit again and again by a nearly undamped mass amplifies it (hypothesis, zero gap:
+    4e-14 s in a contact time at the split, 9e-11 s 15 impacts later).  How much, is measured
+    by the same run with the forcing's phase moved by 1e-15 rad (``nudged``): within 1e-9 of
+    the scale plus 100 times that difference (measured: the chained runs' differences were
+    0.5 to 0.8 times the nudged run's)."""
     state = pd_.State.at_rest(osc, velocity_m_s=v0)
     whole = pd_.simulate(osc, exc, 3.0, state, sample_rate_hz=0)
     first = pd_.simulate(osc, exc, split, state, sample_rate_hz=0)
     second = pd_.simulate(osc, exc, 3.0 - split, first.final_state, sample_rate_hz=0)
+    nudged = pd_.simulate(osc, pd_.Harmonic(exc.a_g, exc.freq_hz, exc.phase + 1e-15, exc.g), 3.0, state,
+                          sample_rate_hz=0)
     scale = max(whole.displacement_max, -whole.displacement_min)
+    assert whole.success and second.success, (whole.message, second.message)
     assert second.final_state.time_s == pytest.approx(3.0, abs=1e-12)
-    assert second.final_state.displacement_m == pytest.approx(whole.final_state.displacement_m, abs=1e-9 * scale)
-    np.testing.assert_allclose(second.final_state.vector, whole.final_state.vector, rtol=1e-7, atol=1e-9)
+    spread = np.abs(nudged.final_state.vector - whole.final_state.vector)
+    assert abs(second.final_state.displacement_m - whole.final_state.displacement_m) <= (
+        1e-9 * scale + 100 * spread[1])
+    np.testing.assert_array_less(np.abs(second.final_state.vector - whole.final_state.vector),
+                                 1e-7 * np.abs(whole.final_state.vector) + 1e-9 + 100 * spread)
     # a contact cut by the split is reported unfinished by the first run and whole by the second
     joined = list(first.contacts.dropna()["t_start"]) + list(second.contacts["t_start"])
-    np.testing.assert_allclose(joined, whole.contacts["t_start"], atol=1e-9)
+    t_spread = 0.0
+    if len(nudged.contacts) == len(whole.contacts) and len(whole.contacts):
+        t_spread = np.abs(nudged.contacts["t_start"].to_numpy() - whole.contacts["t_start"].to_numpy()).max()
+    np.testing.assert_allclose(joined, whole.contacts["t_start"], rtol=0, atol=1e-9 + 100 * t_spread)
     if len(whole.contacts):
         np.testing.assert_allclose(second.contacts.dropna()["impulse"].sum() + first.contacts.dropna()["impulse"].sum(),
                                    whole.contacts.dropna()["impulse"].sum(), rtol=1e-7)
-    assert max(first.displacement_max, second.displacement_max) == pytest.approx(whole.displacement_max,
-                                                                                 abs=1e-9 * scale)
+    assert abs(max(first.displacement_max, second.displacement_max) - whole.displacement_max) <= (
+        1e-9 * scale + 100 * abs(nudged.displacement_max - whole.displacement_max))
 
 
 def test_extrema_do_not_depend_on_sampling():

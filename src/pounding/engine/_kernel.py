@@ -15,64 +15,35 @@ import math
 
 import numpy as np
 
-from ..model.contact_laws import AT_START, N_LAW_PARAMS, law_energy, law_force, law_is_linear, law_linear_coefficients, law_relax
-from ._isolator import iso_advance, iso_energy, iso_events, iso_linear, iso_transition
 from .._jit import jit, jit_entry
+from ..model.contact_laws import (AT_START, N_LAW_PARAMS, law_energy, law_force, law_is_linear,
+                                  law_linear_coefficients, law_relax)
 from ._buffers import grow as _grow
 from ._buffers import put as _put
-from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A_WORK, ACC_L,
-                      ACC_R, ACT_CONTACT, ACT_RELEASE, CONTACT_COLS, CTL_BUDGET, CTL_STOP, CTL_WORK,
-                      D, DEF_L, DEF_R, E_ACTION, E_ALPHA, E_BETA, E_DIR, E_GAMMA, E_INDEX, E_KIND, E_SIDE,
-                      EV_COLS,
-                      EVENT_COLS, IN_L, IN_R, KIND_LINEAR, KIND_RELEASE,
-                      LEDGER_LEN, MODE_LINEAR, MODE_NUMERIC, P_AX0, P_AX1, P_AXH, P_C,
-                      P_CD, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_INL, P_INR, P_K, P_KISO,
-                      P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR,
-                      P_RISO, P_SPHI, P_V0, P_W, PH_LEN, SAMPLE_COLS, SIDE_L, SIDE_NONE, SIDE_R, T, V)
+from ._forcing import EXC_HARMONIC, RESOLUTION, excitation_piece, run_scales
+from ._isolator import iso_advance, iso_energy, iso_events, iso_linear, iso_transition
+from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A_WORK, ACC_L, ACC_R,
+                      ACT_CONTACT, ACT_RELEASE, CONTACT_COLS, CTL_BUDGET, CTL_STOP, CTL_WORK, DEF_L, DEF_R,
+                      E_ACTION, E_ALPHA, E_BETA, E_DIR, E_GAMMA, E_INDEX, E_KIND, E_SIDE, EV_COLS, EVENT_COLS,
+                      IN_L, IN_R, KIND_LINEAR, KIND_RELEASE, LEDGER_LEN, MODE_LINEAR, MODE_NUMERIC, P_AX0,
+                      P_AX1, P_AXH, P_C, P_CD, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_INL, P_INR, P_K,
+                      P_KISO, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR,
+                      P_RISO, P_SPHI, P_V0, P_VROUND, P_VRUN, P_W, P_XROUND, P_XRUN, PH_LEN, SAMPLE_COLS,
+                      SIDE_L, SIDE_NONE, SIDE_R, D, T, V)
 from ._linear import fill_end, linear_eval_angle, linear_eval_end, linear_setup, linear_start, reset_ends
-from ._subinterval import accumulate, track_abs_acceleration, velocity_turn
 from ._numeric import dp5_step
-from ._trajectory import (NO_INDEX, ROUNDING, W_VELOCITY, contact_force, event_value, locate_event, newton, phase_eval,
-                          table_acceleration, value_at_root)
+from ._subinterval import accumulate, track_abs_acceleration, velocity_turn
+from ._trajectory import (NO_INDEX, ROUNDING, W_VELOCITY, contact_force, event_value, locate_event, newton,
+                          phase_eval, table_acceleration, value_at_root)
 
 SUCCESS, ZENO, MAX_EVENTS, DEGENERATE_PHASE, STEP_FAILED, INTERRUPTED, BUDGET, NONFINITE = (
     0, -1, -2, -3, -4, -5, -6, -7)
-EXC_HARMONIC = 0
-TWO_PI = 2.0 * math.pi
 SUBINTERVALS_PER_PERIOD = 8.0
 ZENO_REPEATS = 200
 XTOL_S = 1e-15          # event instants and displacement extrema, s
 DBL_MAX = 1.7976931348623157e308
+TINY_SPEED = 1e-300     # m/s: the velocity of a start at rest, for the direction it moves
 POLL_EVERY = 64         # sub-intervals between two looks at the run control (about 30 us)
-
-
-@jit
-def _excitation_piece(kind, exc_p, rec_t, rec_a, t):
-    """Base acceleration from ``t`` on: ``(a0, a1, amp, omega, phase, t_next)`` such that
-    ``A(t + tau) = a0 + a1 tau + amp sin(omega tau + phase)`` until ``t_next``."""
-    if kind == EXC_HARMONIC:
-        omega = exc_p[1]
-        # the angle reduced to [0, 2 pi): as exact as the angle itself (np.fmod is a call into
-        # Numba's C helpers, 2 % of a run)
-        angle = omega * t + exc_p[2]
-        phase = angle - TWO_PI * math.floor(angle / TWO_PI)
-        return 0.0, 0.0, exc_p[0], omega, phase, np.inf
-    n = rec_t.size
-    if t < rec_t[0]:
-        return 0.0, 0.0, 0.0, 0.0, 0.0, rec_t[0]
-    if t >= rec_t[n - 1]:
-        return 0.0, 0.0, 0.0, 0.0, 0.0, np.inf
-    # the sample interval holding t: rec_t[j] <= t < rec_t[j + 1] (bisection; rec_t increases)
-    j = 0
-    hi = n - 1
-    while hi - j > 1:
-        mid = (j + hi) // 2
-        if rec_t[mid] <= t:
-            j = mid
-        else:
-            hi = mid
-    slope = (rec_a[j + 1] - rec_a[j]) / (rec_t[j + 1] - rec_t[j])
-    return rec_a[j] + slope * (t - rec_t[j]), slope, 0.0, 0.0, 0.0, rec_t[j + 1]
 
 
 @jit
@@ -126,16 +97,17 @@ def _bumper_events(st, has_b, gap_l, gap_r, law_l, law_r, evs, n):
             row[E_ACTION] = ACT_CONTACT
             n += 1
         else:
-            # compression sign*D - gap back to zero, or the law's force-based release
+            # compression sign*D - gap back to zero, or the law's force-based release (the side
+            # given so that both are rounded against the run's lengths, as the contact start)
             row[E_ALPHA] = -gap
             row[E_BETA] = sign
             row[E_ACTION] = ACT_RELEASE
+            row[E_SIDE] = side
             n += 1
             row = evs[n]
             for j in range(EV_COLS):
                 row[j] = evs[n - 1, j]
             row[E_KIND] = KIND_RELEASE
-            row[E_SIDE] = side
             n += 1
     return n
 
@@ -185,6 +157,8 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law
     ph[P_D0] = st[D]
     ph[P_V0] = st[V]
     ph[P_MODE] = MODE_NUMERIC if (ph[P_NLL] != 0.0 or ph[P_NLR] != 0.0) else MODE_LINEAR
+    ph[P_XROUND] = ph[P_XRUN]  # (a linear phase's linear_setup adds its closed form's terms)
+    ph[P_VROUND] = ph[P_VRUN]
     ph[P_GAPL] = gap_l
     ph[P_GAPR] = gap_r
     ph[P_LAWL] = law_l
@@ -228,6 +202,10 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
     extrema = np.array([st[D], t_run0, st[D], t_run0, 0.0, t_run0, 0.0])
     ph = np.zeros(PH_LEN)
     reset_ends(ph)
+    ph[P_XRUN], ph[P_VRUN] = run_scales(mass, slopes, exc_kind, exc_p, rec_a, gap_l, gap_r, breaks)
+    v_res = RESOLUTION * ph[P_VRUN]
+    impulse_res = mass * v_res
+    depth_res = RESOLUTION * ph[P_XRUN]
     evs = np.zeros((2 * (slopes.size - 1) + 6, EV_COLS))
     # After a full sub-interval without event in a linear phase under harmonic forcing, the
     # next one continues the same phase (``continuing``): same coefficients, length and
@@ -265,7 +243,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
             next_poll = min(work + POLL_EVERY, work_left)
         work += 1
         t = st[T]
-        a0x, a1x, amp, omega, phase, t_knot = _excitation_piece(exc_kind, exc_p, rec_t, rec_a, t)
+        a0x, a1x, amp, omega, phase, t_knot = excitation_piece(exc_kind, exc_p, rec_t, rec_a, t)
         if continuing:
             # the same linear phase under harmonic forcing: only the start values move
             ph[P_PHI] = phase
@@ -327,8 +305,16 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         if not continuing:  # (a phase's events stay the same until one of them fires)
             n_ev = iso_events(slopes, breaks, rule, st, evs, np.int64(0))  # typed, not literal
             n_ev = _bumper_events(st, has_b, gap_l, gap_r, law_l, law_r, evs, n_ev)
-        if v0 * v1 > 0.0 and a0 * a1 < 0.0:  # the velocity turns inside, keeping its sign?
-            t_a = velocity_turn(ph, evs, h, v0, v1, a0, a1)
+        # A start at rest (t = 0, or the mass at rest against a bumper) moves the way a0
+        # points: the sign tests below and the events' rates at the start take the velocity as
+        # the smallest of that sign.  With 0 itself, an event of the displacement alone would
+        # start with rate 0, and a dip into it at once (the table pushing a mass resting
+        # against a bumper at zero gap into it, then back) would go unseen.
+        v0s = v0
+        if v0 == 0.0 and a0 != 0.0:
+            v0s = math.copysign(TINY_SPEED, a0)
+        if v0s * v1 > 0.0 and a0 * a1 < 0.0:  # the velocity turns inside, keeping its sign?
+            t_a = velocity_turn(ph, evs, h, v0s, v1, a0, a1)
             if t_a > 0.0:  # two velocity zeros: cut the sub-interval where it turns
                 h = t_a
                 to_stop = False
@@ -338,8 +324,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
                     d1, v1, a1 = phase_eval(ph, h)
         t_vel = -1.0
         d_vel = 0.0
-        if v0 * v1 < 0.0:
-            t_vel, xe, _, _, de, ve, ae = newton(W_VELOCITY, NO_INDEX, ph, evs, 0.0, h, v0, v1, a0, a1,
+        if v0s * v1 < 0.0:
+            t_vel, xe, _, _, de, ve, ae = newton(W_VELOCITY, NO_INDEX, ph, evs, 0.0, h, v0s, v1, a0, a1,
                                                  XTOL_S)
             if not math.isnan(xe):  # the displacement, stationary there, from Newton's last evaluation
                 d_vel = value_at_root(t_vel, xe, de, ve, ae)
@@ -351,7 +337,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
             if continuing:
                 g0, gp0, sc0 = ev_end[i, 0], ev_end[i, 1], ev_end[i, 2]
             else:
-                g0, gp0, sc0 = event_value(evs, i, ph, 0.0, d0, v0, a0)
+                g0, gp0, sc0 = event_value(evs, i, ph, 0.0, d0, v0s, a0)
             g1, gp1, sc1 = event_value(evs, i, ph, h, d1, v1, a1)
             ev_end[i, 0] = g1
             ev_end[i, 1] = gp1
@@ -422,7 +408,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
             st[IN_L if index == SIDE_L else IN_R] = 1.0
             comp = st[DEF_L if index == SIDE_L else DEF_R]
             st[acc + A_TSTART] = t_ev
-            st[acc + A_VIN] = st[V]
+            # below the resolution the mass met the surface at rest (its restitution is NaN)
+            st[acc + A_VIN] = st[V] if abs(st[V]) > v_res else 0.0
             st[acc + A_DSTART] = comp
             st[acc + A_IMPULSE] = 0.0
             st[acc + A_PEAK] = 0.0
@@ -431,11 +418,16 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         elif action == ACT_RELEASE:
             acc = ACC_L if index == SIDE_L else ACC_R
             st[IN_L if index == SIDE_L else IN_R] = 0.0
-            if n_c >= contacts.shape[0]:
-                contacts = _grow(contacts, n_c)
-            _put(contacts, n_c, float(index), st[acc + A_TSTART], t_ev, st[acc + A_VIN], st[V],
-                 st[acc + A_IMPULSE], st[acc + A_PEAK], st[acc + A_MAXCOMP], st[acc + A_WORK])
-            n_c += 1
+            # a touch below the resolution in both depth and impulse (a graze, or a mass resting
+            # on a bumper that pushes with zero force) is no impact: the motion went through it
+            # exactly, the contact table leaves it out
+            if (st[acc + A_MAXCOMP] - st[acc + A_DSTART] > depth_res
+                    or abs(st[acc + A_IMPULSE]) > impulse_res):
+                if n_c >= contacts.shape[0]:
+                    contacts = _grow(contacts, n_c)
+                _put(contacts, n_c, float(index), st[acc + A_TSTART], t_ev, st[acc + A_VIN], st[V],
+                     st[acc + A_IMPULSE], st[acc + A_PEAK], st[acc + A_MAXCOMP], st[acc + A_WORK])
+                n_c += 1
         else:
             iso_transition(slopes, breaks, rule, st, action, index, evs[i_ev, E_DIR])
         if n_e >= events.shape[0]:

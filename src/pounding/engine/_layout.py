@@ -38,7 +38,15 @@ P_NODE = 52          # sin(w h), cos(w h), and the free response's two terms at 
 P_ENDS = 56
 N_ENDS = 8
 P_ENDS_NEXT = P_ENDS + 8 * N_ENDS   # the slot the next new phase takes
-PH_LEN = P_ENDS_NEXT + 1
+# the run's length (m) and velocity (m/s) scales, set once per run (_kernel.run_scales), and
+# the phase's: the larger of those and the sizes of the terms its closed form adds (a nearly
+# resonant particular solution of 50 m cancelled by the free response to 1e-8 m).  What the
+# bumpers' event values are rounded against, not the displacement itself
+P_XRUN = P_ENDS_NEXT + 1
+P_VRUN = P_ENDS_NEXT + 2
+P_XROUND = P_ENDS_NEXT + 3
+P_VROUND = P_ENDS_NEXT + 4
+PH_LEN = P_ENDS_NEXT + 5
 MODE_LINEAR = 0.0
 MODE_NUMERIC = 1.0
 

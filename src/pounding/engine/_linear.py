@@ -15,7 +15,7 @@ from .._jit import jit
 from ._hermite import hermite_end
 from ._layout import (N_ENDS, P_AX0, P_AX1, P_AXH, P_B0, P_B1, P_B2, P_B3, P_C, P_CPHI, P_D0, P_ENDS,
                       P_ENDS_NEXT, P_H, P_K, P_M, P_NKEY, P_NODE, P_P0, P_P1, P_PHI, P_Q2, P_ROOT, P_S,
-                      P_SPHI, P_V0, P_W, P_Y0, P_Y1, P_ZI, P_ZR)
+                      P_SPHI, P_V0, P_VROUND, P_VRUN, P_W, P_XROUND, P_XRUN, P_Y0, P_Y1, P_ZI, P_ZR)
 
 
 @jit
@@ -54,6 +54,10 @@ def linear_setup(ph):
         zi = -h * im / den
     ph[P_ZR] = zr
     ph[P_ZI] = zi
+    # the rounding scales of the displacement and velocity the closed form adds up
+    amp = math.sqrt(zr * zr + zi * zi)
+    ph[P_XROUND] = max(ph[P_XRUN], abs(ph[P_B0]) + amp)
+    ph[P_VROUND] = max(ph[P_VRUN], abs(ph[P_B1]) + w * amp)
     linear_start(ph, math.sin(ph[P_PHI]), math.cos(ph[P_PHI]))
     return True
 

@@ -12,11 +12,12 @@ import math
 
 import numpy as np
 
-from ..model.contact_laws import law_force, law_relax, law_release
 from .._jit import jit
-from ._layout import (E_ALPHA, E_BETA, E_GAMMA, E_KIND, E_SIDE, KIND_LINEAR, MODE_LINEAR, SIDE_NONE,
-                      P_AX0, P_AX1, P_AXH, P_C, P_D0, P_H, P_P1, P_DL0, P_DR0, P_GAPL, P_GAPR, P_K, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_PHI, P_PL, P_PR, PL_AT, PR_AT,
-                      P_V0, P_W, SIDE_L, SIDE_R)
+from ..model.contact_laws import law_force, law_relax, law_release
+from ._layout import (ACT_CONTACT, E_ACTION, E_ALPHA, E_BETA, E_GAMMA, E_KIND, E_SIDE, KIND_LINEAR,
+                      MODE_LINEAR, P_AX0, P_AX1, P_AXH, P_C, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_K,
+                      P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P1, P_PHI, P_PL, P_PR, P_V0, P_VROUND, P_W,
+                      P_XROUND, PL_AT, PR_AT, SIDE_L, SIDE_NONE, SIDE_R)
 from ._linear import forcing_angle, linear_eval
 from ._numeric import dp5_step, phase_rhs
 
@@ -89,7 +90,12 @@ def _bumper_event_value(evs, i, ph, tau, d, v, a):
         alpha, beta, gamma = evs[i, E_ALPHA], evs[i, E_BETA], evs[i, E_GAMMA]
         g = alpha + beta * d + gamma * v
         gp = beta * v + gamma * a
-        scale = abs(alpha) + abs(beta * d) + abs(gamma * v)
+        # the mass's displacement is rounded relative to the run's and the phase's lengths
+        # (ph[P_XROUND]), not to its own size: at gap 0, after a release near D = 0, it is 1e-8 m
+        # made of terms of 1e-2 m
+        scale = abs(alpha) + abs(beta * d) + abs(gamma * v) + ph[P_XROUND]
+        if evs[i, E_ACTION] != ACT_CONTACT:  # the compression back to zero: no surface relaxing
+            return g, gp, scale
         if side == SIDE_L:
             r, rr = law_relax(int(ph[P_LAWL]), ph, PL_AT, ph[P_DL0], tau)
         else:
@@ -102,7 +108,7 @@ def _bumper_event_value(evs, i, ph, tau, d, v, a):
         law, o = int(ph[P_LAWR]), PR_AT
         dd, dv, da = d - ph[P_GAPR], v, a
     g, gp = law_release(law, ph, o, dd, dv, da)
-    scale = law_release(law, ph, o, abs(dd), abs(dv), 0.0)[0]
+    scale = law_release(law, ph, o, abs(dd) + ph[P_XROUND], abs(dv) + ph[P_VROUND], 0.0)[0]
     return g, gp, scale
 
 
@@ -335,16 +341,18 @@ def locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, tol1, xtol, t_vel, d_vel
     if not (gp0 < 0.0 and gp1 > 0.0):
         return -1.0
     # a local minimum inside: does it dip below zero?
+    side = int(evs[i, E_SIDE])
     displacement_only = evs[i, E_KIND] == KIND_LINEAR and evs[i, E_GAMMA] == 0.0 and (
-        int(evs[i, E_SIDE]) == SIDE_NONE
-        or (int(evs[i, E_SIDE]) == SIDE_L and ph[P_DL0] == 0.0)
-        or (int(evs[i, E_SIDE]) == SIDE_R and ph[P_DR0] == 0.0))
+        side == SIDE_NONE or evs[i, E_ACTION] != ACT_CONTACT
+        or (side == SIDE_L and ph[P_DL0] == 0.0) or (side == SIDE_R and ph[P_DR0] == 0.0))
     if displacement_only:
         if t_vel < 0.0:
             return -1.0
         tm = t_vel
         gm = evs[i, E_ALPHA] + evs[i, E_BETA] * d_vel
         sc = abs(evs[i, E_ALPHA]) + abs(evs[i, E_BETA] * d_vel)
+        if side != SIDE_NONE:  # a bumper's: rounded against the phase's lengths, as event_value
+            sc += ph[P_XROUND]
     else:
         tm = brent(W_EVENT_RATE, i, ph, evs, 0.0, h, gp0, gp1, xtol)
         d, v, a = phase_eval(ph, tm)

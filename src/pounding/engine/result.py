@@ -240,6 +240,13 @@ class Run:
         ``peak_force`` (N), ``max_compression`` (m), ``bumper_dissipation`` (J: energy the
         bumper took from the mass, dissipated by its dashpot during contact or while it
         recovers).  A contact still going on at the end has NaN ``t_end`` and ``v_out``.
+        Resolution: a touch whose added compression and impulse are both below 1e-9 of the
+        run's scales (its length scale, the largest of the total gap, the first breakpoint and
+        the table's acceleration over ``w^2``; ``M`` times its velocity scale, that length
+        times ``w``, the faster of the forcing and the isolator's first branch) is no impact
+        and not listed, though the motion goes through it exactly; an incoming velocity below
+        1e-9 of the velocity scale is recorded as 0 (the mass met the surface at rest, e.g.
+        at zero gap: its restitution is NaN).
     events : DataFrame
         Every event: ``t``, ``kind`` (yield, reversal, branch, contact_start, contact_end),
         ``index`` (spring or side).

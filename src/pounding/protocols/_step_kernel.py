@@ -15,7 +15,8 @@ import math
 import numpy as np
 
 from .._jit import jit, jit_entry
-from ..engine._kernel import EXC_HARMONIC, SUCCESS, run_kernel
+from ..engine._forcing import EXC_HARMONIC
+from ..engine._kernel import SUCCESS, run_kernel
 from ..engine._layout import D, STATE_BASE, T, V
 from ..metrics._impacts import SIDE_SUMS, add_impacts
 

@@ -114,7 +114,8 @@ class SweepResult:
             "excursion_m": excursion,
             "displacement_max_m": w[:, W_DMAX],
             "displacement_min_m": w[:, W_DMIN],
-            "eta": excursion / self.total_gap_m,
+            # (undefined at zero gap, as without bumpers)
+            "eta": excursion / self.total_gap_m if self.total_gap_m > 0 else np.full_like(excursion, np.nan),
             "e": excursion / self.d_tmax_m,
         }
         sides = [w[:, W_SUMS + j * SIDE_SUMS: W_SUMS + (j + 1) * SIDE_SUMS] for j in range(2)]
@@ -273,9 +274,10 @@ class SweepResult:
 
         i = self.step_index(freq_hz)
         if total_gap_m is None:
-            if self.oscillator.bumpers is None:
+            if not self.total_gap_m > 0:  # (NaN without bumpers)
+                why = "no bumpers here" if self.oscillator.bumpers is None else "the gaps are zero"
                 raise InputError(Problem.MISSING_KEY, "total_gap_m", None,
-                                 choices="a length in m to normalize D (no bumpers here), e.g. 0.03")
+                                 choices=f"a length in m to normalize D ({why}), e.g. 0.03")
             total_gap_m = self.total_gap_m
         total_gap_m = positive("total_gap_m", total_gap_m, "m")
         points = integer("points_per_cycle", points_per_cycle, 8)

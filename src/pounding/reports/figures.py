@@ -44,9 +44,10 @@ def measured_value(quantity: str, configuration: str) -> pd.Series:
 
 
 def total_gap_m(result: "CampaignResult") -> float:
-    """``Delta`` of the YBs system, or the paper's 0.03 m without one (normalizes NBs too)."""
+    """``Delta`` of the YBs system, or the paper's 0.03 m without one or at zero gap (normalizes
+    NBs too)."""
     for (conf, _, _), sw in result.sweeps.items():
-        if conf == "YBs":
+        if conf == "YBs" and sw.total_gap_m > 0:
             return sw.total_gap_m
     return float(paper_measurements().query("quantity == 'total_gap_m'")["value"].iloc[0])
 
