@@ -172,3 +172,20 @@ def test_figures_tell_their_markers_apart(report):
             assert "+-1" in ax.get_xlabel() or "pm 1" in ax.get_xlabel()
     finally:
         plt.close("all")
+
+
+def test_the_page_opens_with_the_verdict(report):
+    v = report.verdict
+    assert v.total == 36 and v.met == int(v.residuals["within"].sum())
+    page = (report.out_dir / "index.html").read_text(encoding="utf-8")
+    assert page.index("<h2>Verdict</h2>") < page.index("<h2>Campaign</h2>")
+    assert f"meets {v.met} of 36 targets" in page and "Worst misses" in page
+    worst = v.worst_misses
+    assert (worst["normalized"].abs().diff().dropna() <= 0).all()  # worst first
+    row = worst.iloc[0]
+    assert row["difference_pct"] == pytest.approx(100 * (row["model"] - row["target"]) / abs(row["target"]))
+    # the paper's a_G = 0.03 accelerations, too low for a sinusoidal response of their excursions
+    assert len(v.flags) == 2 and "Are the measurements consistent?" in page
+    flagged = v.residuals[v.residuals["flagged"]]
+    assert set(zip(flagged["configuration"], flagged["a_g"], flagged["quantity"])) == {
+        ("NBs", 0.03, "alpha"), ("YBs", 0.03, "alpha")}

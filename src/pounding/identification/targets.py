@@ -49,8 +49,10 @@ DEFAULT_TOLERANCES: dict[str, tuple[float, bool]] = {
     "restitution": (0.05, False),
     "dissipated_energy_per_mass": (0.30, True),
     "peak_force_over_mg": (0.30, True),
+    "excursion_max_m": (0.05, True),
 }
-POSITIVE_QUANTITIES = ("nu_r", "contact_nu_min", "contact_nu_max", "contact_time_ms", "alpha", "eta", "e")
+POSITIVE_QUANTITIES = ("nu_r", "contact_nu_min", "contact_nu_max", "contact_time_ms", "alpha", "eta", "e",
+                       "excursion_max_m")
 CONFIGURATIONS = ("NBs", "YBs")
 DIRECTIONS = ("up", "down")
 TARGET_KEYS = ("configuration", "a_g", "quantity", "value", "direction", "tolerance", "relative", "weight")
@@ -175,6 +177,18 @@ class Targets:
             raise InputError(Problem.MISSING_KEY, "target", None, choices="[[target]] tables")
         return cls.from_records(table["target"], defaults=table.get("defaults"), tolerances=table.get("tolerances"))
 
+    def check_consistency(self, mass_kg: float, gap_total_m: float, **kwargs: Any) -> pd.DataFrame:
+        """Flag measured combinations that no mass obeying Newton's law can produce.
+
+        See :func:`pounding.identification.consistency.check_consistency` (``g``,
+        ``f_ref_hz`` and ``omega_min_rad_s`` as keywords): one row per check and case, with
+        the bound that the case's other numbers imply and ``consistent`` False where the
+        measured value misses it by more than its tolerance.
+        """
+        from .consistency import check_consistency
+
+        return check_consistency(self, mass_kg, gap_total_m, **kwargs)
+
     def to_toml_text(self) -> str:
         """TOML that :meth:`from_toml` reads back to the same targets."""
         import tomli_w
@@ -187,15 +201,23 @@ class Targets:
         return tomli_w.dumps({"target": recs})
 
 
-def paper_targets(direction: str = "up") -> Targets:
+def paper_targets(direction: str = "up", quantities: tuple[str, ...] = PAPER_QUANTITIES) -> Targets:
     """The paper's shaking-table results as targets: Table 2 (``nu_r``, ``alpha``, ``eta``
     or ``e``, the contact range), Table 3 contact times and Table 4 restitution, with the
-    issue's tolerances (:data:`DEFAULT_TOLERANCES`).
+    issue's tolerances (:data:`DEFAULT_TOLERANCES`): 36 numbers.
 
+    ``quantities`` chooses others (names of :data:`DEFAULT_TOLERANCES`), e.g. the NBs
+    ``excursion_max_m`` of Sect. 3.2 and Table 4's ``dissipated_energy_per_mass`` for
+    :meth:`Targets.check_consistency` (``consistency.CONSISTENCY_QUANTITIES``).
     Left out: :data:`PAPER_EXCLUDED` (values MODEL.md §5 shows to be misprinted).
     """
+    if isinstance(quantities, str) or not isinstance(quantities, (tuple, list)) or not quantities:
+        raise InputError(Problem.WRONG_TYPE, "quantities", quantities, got=type(quantities).__name__,
+                         expected="a non-empty tuple of quantity names, e.g. ('alpha', 'nu_r')")
+    for i, q in enumerate(quantities):
+        _known_quantity(f"quantities[{i}]", q)
     df = paper_measurements()
-    df = df[df["table"].isin(["2", "3", "4"]) & df["quantity"].isin(PAPER_QUANTITIES) & df["a_g"].notna()]
+    df = df[df["configuration"].isin(CONFIGURATIONS) & df["quantity"].isin(quantities) & df["a_g"].notna()]
     records = []
     for row in df.itertuples(index=False):
         if (row.configuration, float(row.a_g), row.quantity) in PAPER_EXCLUDED:

@@ -48,7 +48,7 @@ def sweep_quantities(sw: SweepResult) -> dict[str, float]:
     """The paper's per-sweep quantities (Tables 2-4) of one sweep, by their table names.
 
     Table 2's are over the sweep (``nu_r``, max ``alpha``, ``eta``, ``e``, the contact
-    range in ``nu``); Tables 3 and 4's are the impact means at the resonance step
+    range in ``nu``; and the largest excursion ``excursion_max_m``, m); Tables 3 and 4's are the impact means at the resonance step
     (``contact_time_ms``, ``restitution``, ``mean_force_over_mg``, ``peak_force_over_mg``,
     ``dissipated_energy_per_mass`` in m^2/s^2).  NaN where a quantity does not exist
     (no contact, no bumpers).
@@ -59,6 +59,7 @@ def sweep_quantities(sw: SweepResult) -> dict[str, float]:
     mg = sw.oscillator.mass * sw.g
     return {
         "nu_r": sw.nu_r, "alpha": sw.alpha_max, "eta": df["eta"].max(), "e": df["e"].max(),
+        "excursion_max_m": df["excursion_m"].max(),
         "contact_nu_min": np.nan if rng is None else rng[0] / sw.f_ref_hz,
         "contact_nu_max": np.nan if rng is None else rng[1] / sw.f_ref_hz,
         "mean_force_over_mg": step["mean_force_n"] / mg,

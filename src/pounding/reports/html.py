@@ -5,6 +5,7 @@ from __future__ import annotations
 import base64
 import html
 from pathlib import Path
+from typing import Any
 
 import pandas as pd
 
@@ -38,6 +39,7 @@ QUANTITY_WORDS = {
     "contact_time_ms": "contact time [ms]",
     "dissipated_energy_per_mass": "dissipated energy E_d/M [m\u00b2/s\u00b2]",
     "restitution": "restitution s [-]", "peak_force_over_mg": "peak contact force / (M g) [-]",
+    "excursion_max_m": "largest excursion E [m]",
     "excursion": "excursion: \u03b7 = E/\u0394 (YBs), e = E/D_tmax (NBs) [-]",
 }
 PART_WORDS = {"model": "model", "measured": "measured", "diff_pct": "difference [%]"}
@@ -123,6 +125,29 @@ def _table(df: pd.DataFrame) -> str:
     return "".join(f"<div class='wide'>{t}</div>" for t in html_of)
 
 
+def _verdict(v: Any, system_label: str) -> list[str]:
+    """The opening section: targets met, the worst misses in percent, the consistency flags."""
+    e = html.escape
+    parts = ["<h2>Verdict</h2>",
+             f"<p><b>{e(system_label)}</b> {e(v.summary())}. Targets: the paper's Tables 2-4 "
+             "(<code>pounding.paper_targets()</code>), sweeps up with a fixed 30 cycles per step, the NBs system "
+             "being the YBs one without its bumpers; a target is met within its tolerance.</p>"]
+    if len(v.worst_misses):
+        misses = v.worst_misses.rename(columns={"target": "measured", "difference_pct": "difference [%]",
+                                                "normalized": "in tolerances", "flagged": "flagged below"})
+        parts += ["<h3>Worst misses</h3>", _table(misses)]
+    parts.append("<h3>Are the measurements consistent?</h3>")
+    if len(v.flags):
+        parts += [f"<p>{len(v.flags)} combination(s) of the paper's numbers miss a bound by more than their "
+                  "tolerances (<code>Targets.check_consistency</code>): kind <i>law</i>, no system obeying "
+                  "Newton's law produces them; kind <i>sinusoidal</i>, no near-sinusoidal response does, "
+                  "which a model of a smooth isolator near resonance gives.</p>",
+                  _table(v.flags.rename(columns={"measured": "measured", "bound": "least possible"}))]
+    else:
+        parts.append("<p>Every measured combination passes the consistency checks.</p>")
+    return parts
+
+
 def _image(path: Path) -> str:
     data = base64.b64encode(path.read_bytes()).decode("ascii")
     return f"data:image/png;base64,{data}"
@@ -130,17 +155,21 @@ def _image(path: Path) -> str:
 
 def write_page(path: Path, *, title: str, system_label: str, systems: dict[str, str], settings: dict,
                tables: dict[str, pd.DataFrame], figures: dict[str, tuple[Path, str]],
-               notes: pd.DataFrame, statuses: pd.DataFrame) -> Path:
-    """Write ``index.html``: every image embedded, so the page opens from disk, offline."""
+               notes: pd.DataFrame, statuses: pd.DataFrame, verdict: Any = None) -> Path:
+    """Write ``index.html``: every image embedded, so the page opens from disk, offline.
+
+    ``verdict`` (a :class:`~pounding.reports.verdict.Verdict`) opens the page."""
     e = html.escape
     parts = [f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{e(title)}</title>",
              f"<style>{CSS}</style></head><body>", f"<h1>{e(title)}</h1>",
-             f"<p class='cite'>The paper: {e(PAPER)}</p>",
-             f"<p>System: <b>{e(system_label)}</b>. Model values come from the campaign below (each sweep "
-             "direction a row); measured values are the paper's, as printed (package data, "
-             "<code>pounding.data.paper_measurements()</code>); differences are (model - measured) / "
-             "measured in percent.</p>",
-             "<h2>Campaign</h2>", _table(pd.DataFrame([settings])), _table(statuses)]
+             f"<p class='cite'>The paper: {e(PAPER)}</p>"]
+    if verdict is not None:
+        parts += _verdict(verdict, system_label)
+    parts += [f"<p>System: <b>{e(system_label)}</b>. Model values come from the campaign below (each sweep "
+              "direction a row); measured values are the paper's, as printed (package data, "
+              "<code>pounding.data.paper_measurements()</code>); differences are (model - measured) / "
+              "measured in percent.</p>",
+              "<h2>Campaign</h2>", _table(pd.DataFrame([settings])), _table(statuses)]
     for name, df in tables.items():
         parts += [f"<h2>{e(name)}</h2>", _table(df)]
     parts.append("<h2>Figures</h2>")

@@ -18,6 +18,7 @@ from .compare import comparison, inconsistency_notes
 from .figures import paper_figures
 from .._io import atomic_write, output_dir
 from .html import write_page
+from .verdict import Verdict, verdict
 
 TABLE_TITLES = {"targets": "Calibration targets (Tables 2-4; sweeps up, fixed 30 cycles per step): systems side by side",
                 "2": "Table 2: maximum non-dimensional accelerations and excursions",
@@ -35,11 +36,15 @@ class Report:
     figures: dict[str, Path]
     campaign: CampaignResult
     comparisons: dict[str, pd.DataFrame]
+    verdict: Verdict
 
 
-def targets_beside(systems: dict[str, Oscillator]) -> pd.DataFrame:
+def targets_beside(systems: dict[str, Oscillator], evaluated: dict[int, pd.DataFrame] | None = None
+                   ) -> pd.DataFrame:
     """The paper's targets (:func:`pounding.paper_targets`) with each YBs system's model value
     beside them: sweeps up, fixed 30 cycles per step, as the calibration ran.
+
+    ``evaluated`` maps ``id(system)`` to its residual table where it was computed already.
 
     Returns
     -------
@@ -48,9 +53,10 @@ def targets_beside(systems: dict[str, Oscillator]) -> pd.DataFrame:
         then per system ``<label>`` (model value) and ``<label> met`` (within tolerance).
     """
     targets = paper_targets()
+    evaluated = evaluated or {}
     out = None
     for label, osc in systems.items():
-        res = evaluate(osc, targets)
+        res = evaluated[id(osc)] if id(osc) in evaluated else evaluate(osc, targets)
         if out is None:
             out = res[["configuration", "a_g", "quantity"]].copy()
             out["measured"] = res["target"]
@@ -93,8 +99,10 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
     out.mkdir(parents=True, exist_ok=True)
     result.to_netcdf(out / "campaign.nc")
     comparisons = {t: comparison(result, t) for t in ("2", "3", "4")}
+    own = evaluate(ybs_system, paper_targets())  # the verdict: the paper's targets, sweeps up, fixed
+    judged = verdict(own)
     if beside:
-        comparisons["targets"] = targets_beside(beside)
+        comparisons["targets"] = targets_beside(beside, {id(ybs_system): own})
     tables = {t: out / ("targets.csv" if t == "targets" else f"table{t}.csv") for t in comparisons}
     for t, df in comparisons.items():
         atomic_write(tables[t], lambda tmp, df=df: df.to_csv(tmp, index=False))
@@ -119,5 +127,5 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
         system_label=system_label, systems=systems, settings=settings,
         tables={TABLE_TITLES[t]: df for t, df in comparisons.items()},
         figures={name: (path, captions[name]) for name, path in figures.items()},
-        notes=inconsistency_notes(), statuses=statuses)
-    return Report(out, index, tables, figures, result, comparisons)
+        notes=inconsistency_notes(), statuses=statuses, verdict=judged)
+    return Report(out, index, tables, figures, result, comparisons, judged)
