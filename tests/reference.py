@@ -35,6 +35,11 @@ class RefResult:
     a_abs_max: float = 0.0
 
 
+class ReferenceFailed(RuntimeError):
+    """solve_ivp could not meet the tolerance (e.g. rtol 1e-13 at the start of a Jankowski
+    contact, whose dashpot c0 d^((n-1)/2) has an unbounded derivative at d = 0)."""
+
+
 class ReferenceStalled(RuntimeError):
     """An event that fires again and again at the same instant: a degenerate graze (the
     mass moving with the relaxing bumper surface at zero force) that this simple
@@ -53,6 +58,19 @@ def _law(law):
 
         def release(d, dd):
             return k * d + c * dd
+    elif isinstance(law, pd_.Jankowski):
+        k, n = law.stiffness, law.exponent
+        c0 = 2.0 * law.damping_ratio * math.sqrt(law.effective_mass * law.stiffness)
+
+        def force(d, dd):  # the dashpot c0 d^((n-1)/2) on the approach only
+            d = max(d, 0.0)
+            return k * d**n + (c0 * d ** (0.5 * (n - 1.0)) * dd if dd > 0.0 else 0.0)
+
+        def relax(d0, tau):  # no dashpot on the recovery: back at once
+            return 0.0
+
+        def release(d, dd):  # never pulls: the contact ends with the compression
+            return 1.0
     else:
         k, n, c = law.stiffness, law.exponent, law.damping
 
@@ -280,6 +298,8 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
         t_start = t
         sol = solve_ivp(rhs, (t, t_end), [d, v, *acc], method="DOP853", rtol=rtol, atol=atol, events=funcs,
                         dense_output=True)
+        if sol.status < 0:  # (it used to stop there silently, as if the run had ended)
+            raise ReferenceFailed(f"solve_ivp failed at t = {sol.t[-1]}: {sol.message}")
         if measure:
             ye = sol.y_events[-1]
             if len(ye):

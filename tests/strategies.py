@@ -21,19 +21,25 @@ def isolators(draw, hysteresis=None):
 
 
 @st.composite
-def oscillators(draw, bumpers=True, hysteresis=None, gaps="open"):
+def oscillators(draw, bumpers=True, hysteresis=None, gaps="open", law="kelvin_voigt"):
     """``gaps``: "open" (3 to 30 mm each side) or "zero" (0 on one side or both: the mass at
-    rest touches that bumper)."""
+    rest touches that bumper).  ``law``: "kelvin_voigt" or "jankowski" (its effective mass the
+    system's)."""
     iso = draw(isolators(hysteresis))
+    mass = draw(st.floats(100.0, 1500.0))
     b = None
     if bumpers:
-        law = pd_.KelvinVoigt(draw(st.floats(1e5, 3e6)), draw(st.floats(1.0, 5000.0)))
+        if law == "jankowski":
+            law = pd_.Jankowski(draw(st.floats(1e7, 3e9)), draw(st.floats(0.0, 1.0)), mass,
+                                draw(st.floats(1.0, 2.0)))
+        else:
+            law = pd_.KelvinVoigt(draw(st.floats(1e5, 3e6)), draw(st.floats(1.0, 5000.0)))
         gap = st.floats(0.003, 0.03)
         left, right = draw(gap), draw(gap)
         if gaps == "zero":
             left, right = draw(st.sampled_from([(0.0, 0.0), (0.0, right), (left, 0.0)]))
         b = pd_.Bumpers(left, right, law)
-    return pd_.Oscillator(draw(st.floats(100.0, 1500.0)), iso, b)
+    return pd_.Oscillator(mass, iso, b)
 
 
 @st.composite

@@ -88,6 +88,11 @@ ENTRIES = {
     ),
     "KelvinVoigt": (pd_.KelvinVoigt, {"stiffness": 1.46e6, "damping": 5.0}, set()),
     "HuntCrossley": (pd_.HuntCrossley, {"stiffness": 1e8, "exponent": 1.5, "damping": 1e5}, set()),
+    "Jankowski": (pd_.Jankowski, {"stiffness": 1e8, "damping_ratio": 0.3, "effective_mass": 500.0, "exponent": 1.5},
+                  set()),
+    "Jankowski.from_restitution": (pd_.Jankowski.from_restitution,
+                                   {"stiffness": 1e8, "restitution": 0.8, "effective_mass": 500.0, "exponent": 1.5},
+                                   set()),
     "Bumpers": (pd_.Bumpers, {"gap_left": 0.015, "gap_right": 0.015, "law": LAW, "law_right": None}, set()),
     "Oscillator": (pd_.Oscillator, {"mass": 500.0, "isolator": ISO, "bumpers": BUMPERS}, set()),
     "Harmonic": (pd_.Harmonic, {"a_g": 0.05, "freq_hz": 2.2, "phase": 0.0, "g": 9.81}, set()),
@@ -168,6 +173,12 @@ ENTRIES = {
         set(),
     ),
     "Oscillator.from_toml_text": (pd_.Oscillator.from_toml_text, {"text": OSC.to_toml_text()}, set()),
+    "paper_targets": (pd_.paper_targets, {"direction": "up", "quantities": ("alpha", "nu_r")}, {"quantities"}),
+    "Targets.check_consistency": (
+        pd_.paper_targets().check_consistency,
+        {"mass_kg": 500.0, "gap_total_m": 0.03, "g": 9.81, "f_ref_hz": 1.0, "omega_min_rad_s": 3.77},
+        set(),
+    ),
 }
 
 

@@ -24,11 +24,13 @@ REFERENCE_RTOL = 1e-13
 REFERENCE_ATOL = 1e-18
 
 
-def _compare(osc, exc, v0=0.0, duration=DURATION_S, time_tol=1e-8, state_rtol=1e-7, drawn=False):
-    run = pd_.simulate(osc, exc, duration, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=0)
+def _compare(osc, exc, v0=0.0, duration=DURATION_S, time_tol=1e-8, state_rtol=1e-7, drawn=False,
+             ref_rtol=REFERENCE_RTOL, ref_atol=REFERENCE_ATOL, rtol=1e-10):
+    run = pd_.simulate(osc, exc, duration, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=0,
+                       rtol=rtol)
     assert run.success, run.message
     try:
-        ref = reference(osc, exc, duration, v0=v0, rtol=REFERENCE_RTOL, atol=REFERENCE_ATOL)
+        ref = reference(osc, exc, duration, v0=v0, rtol=ref_rtol, atol=ref_atol)
     except ReferenceStalled:
         if not drawn:
             raise
@@ -57,8 +59,12 @@ def _compare(osc, exc, v0=0.0, duration=DURATION_S, time_tol=1e-8, state_rtol=1e
         # rtol 1e-12, 1e-13, 1e-14)
         np.testing.assert_allclose(done["impulse"], impulse, rtol=0,
                                    atol=state_rtol * np.abs(impulse).max())
+        # the work relative to the largest of itself and the impacts' kinetic energy: an elastic
+        # law's contacts do no work (Jankowski with xi = 0: 1e-12 J of integration error per
+        # contact against the reference's 4e-14 J, where the largest work was 8e-14 J)
+        energy = 0.5 * osc.mass * float(np.max(done["v_in"].to_numpy() ** 2))
         np.testing.assert_allclose(done["bumper_dissipation"], work, rtol=0,
-                                   atol=state_rtol * np.abs(work).max())
+                                   atol=state_rtol * max(np.abs(work).max(), energy))
     flows = max(abs(ref.input_work), ref.viscous, 1e-12)
     assert abs(run.energy.viscous - ref.viscous) <= state_rtol * flows
     assert abs(run.energy.input_work - ref.input_work) <= state_rtol * flows

@@ -17,7 +17,7 @@ import numpy as np
 
 from .._jit import jit, jit_entry
 from ..model.contact_laws import (AT_START, N_LAW_PARAMS, law_energy, law_force, law_is_linear,
-                                  law_linear_coefficients, law_relax)
+                                  law_linear_coefficients, law_relax, law_switches_at_rest)
 from ._buffers import grow as _grow
 from ._buffers import put as _put
 from ._forcing import EXC_HARMONIC, RESOLUTION, excitation_piece, run_scales
@@ -44,6 +44,13 @@ XTOL_S = 1e-15          # event instants and displacement extrema, s
 DBL_MAX = 1.7976931348623157e308
 TINY_SPEED = 1e-300     # m/s: the velocity of a start at rest, for the direction it moves
 POLL_EVERY = 64         # sub-intervals between two looks at the run control (about 30 us)
+
+
+@jit
+def _law_switches(ph):
+    """True when a bumper in contact has a law whose form changes with the sign of its rate."""
+    return ((ph[P_NLL] != 0.0 and law_switches_at_rest(int(ph[P_LAWL])))
+            or (ph[P_NLR] != 0.0 and law_switches_at_rest(int(ph[P_LAWR]))))
 
 
 @jit
@@ -313,6 +320,15 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         v0s = v0
         if v0 == 0.0 and a0 != 0.0:
             v0s = math.copysign(TINY_SPEED, a0)
+        if v0s * v1 < 0.0 and ph[P_MODE] != MODE_LINEAR and _law_switches(ph):
+            # a law whose force changes form with the sign of the compression rate (Jankowski's
+            # dashpot acts on the approach only): end the numerical step where the velocity is
+            # zero, so that no step straddles the kink
+            t_v = newton(W_VELOCITY, NO_INDEX, ph, evs, 0.0, h, v0s, v1, a0, a1, XTOL_S)[0]
+            if 0.0 < t_v < h:
+                h = t_v
+                to_stop = False
+                d1, v1, a1 = phase_eval(ph, h)
         if v0s * v1 > 0.0 and a0 * a1 < 0.0:  # the velocity turns inside, keeping its sign?
             t_a = velocity_turn(ph, evs, h, v0s, v1, a0, a1)
             if t_a > 0.0:  # two velocity zeros: cut the sub-interval where it turns

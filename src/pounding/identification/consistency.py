@@ -41,7 +41,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pandas as pd
 
-from .._checks import positive
+from .._checks import at_most, positive
 from ..protocols.sweep import PAPER_F_REF_HZ, PAPER_OMEGA_MIN_RAD_S
 
 if TYPE_CHECKING:
@@ -81,11 +81,13 @@ def check_consistency(targets: Targets, mass_kg: float, gap_total_m: float, *, g
         numbers allow), ``consistent`` (``measured + allowed >= bound``), ``margin``
         (``(measured - bound) / allowed``: below -1 flags it) and ``explanation``.
     """
-    mass_kg = positive("mass_kg", mass_kg, "kg")
-    gap_total_m = positive("gap_total_m", gap_total_m, "m")
-    g = positive("g", g, "m/s^2")
-    f_ref_hz = positive("f_ref_hz", f_ref_hz, "Hz")
-    omega_min_rad_s = positive("omega_min_rad_s", omega_min_rad_s, "rad/s")
+    mass_kg = at_most("mass_kg", positive("mass_kg", mass_kg, "kg"), 1e12, " kg", "give the mass in kg")
+    gap_total_m = at_most("gap_total_m", positive("gap_total_m", gap_total_m, "m"), 10.0, " m",
+                          "give the gap in m (30 mm is 0.03)")
+    g = at_most("g", positive("g", g, "m/s^2"), 1000.0, " m/s^2", "give g in m/s^2 (9.81)")
+    f_ref_hz = at_most("f_ref_hz", positive("f_ref_hz", f_ref_hz, "Hz"), 1e4, " Hz", "give it in Hz (the paper's 1.0)")
+    omega_min_rad_s = at_most("omega_min_rad_s", positive("omega_min_rad_s", omega_min_rad_s, "rad/s"), 1e5,
+                              " rad/s", "give it in rad/s (the paper's 2 pi 0.6 = 3.77)")
     table = targets.table.assign(allowed=targets.allowed)
     rows: list[dict] = []
     for (conf, a_g, direction), case in table.groupby(["configuration", "a_g", "direction"], sort=True):

@@ -14,9 +14,9 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .._checks import float_array, one_of, real
+from .._checks import float_array, one_of, positive, real
 from .._errors import InputError, Problem
-from ..model.contact_laws import LAWS, ContactLaw, HuntCrossley, KelvinVoigt, law_force_many
+from ..model.contact_laws import LAWS, ContactLaw, HuntCrossley, Jankowski, KelvinVoigt, law_force_many
 
 MIN_SAMPLES_IN_CONTACT = 3
 
@@ -27,7 +27,7 @@ class ContactLawFit:
 
     Attributes
     ----------
-    law : KelvinVoigt or HuntCrossley
+    law : KelvinVoigt, HuntCrossley or Jankowski
         The fitted law, ready for :class:`pounding.Bumpers`.
     rms_n : float
         Root-mean-square residual force, N, over the samples in compression.
@@ -73,11 +73,14 @@ def _force(law: ContactLaw, d: np.ndarray, v: np.ndarray) -> np.ndarray:
     return out
 
 
-def _nnls_fit(d, v, force, exponent=None):
+def _nnls_fit(d, v, force, exponent=None, law=HuntCrossley.TYPE):
     """Non-negative (stiffness, damping) and the residual norm: ``F = k d + c v`` (Kelvin-Voigt,
-    ``exponent`` None) or ``F = d^n (k + c v)`` (Hunt-Crossley)."""
+    ``exponent`` None), ``F = d^n (k + c v)`` (Hunt-Crossley) or ``F = k d^n + c d^((n-1)/2) v``
+    while ``v > 0`` (Jankowski)."""
     if exponent is None:
         cols = np.column_stack([d, v])
+    elif law == Jankowski.TYPE:
+        cols = np.column_stack([d**exponent, d ** (0.5 * (exponent - 1.0)) * np.maximum(v, 0.0)])
     else:
         dn = d**exponent
         cols = np.column_stack([dn, dn * v])
@@ -97,6 +100,7 @@ def fit_contact_law(
     velocity_m_s: Any = None,
     law: str = KelvinVoigt.TYPE,
     exponent_bounds: tuple[float, float] = (1.0, 3.0),
+    effective_mass_kg: float | None = None,
 ) -> ContactLawFit:
     """Fit a bumper law to a measured force-displacement history.
 
@@ -111,16 +115,25 @@ def fit_contact_law(
         derivative (second order).  Give this or ``velocity_m_s``.
     velocity_m_s : array_like, shape (n,), optional
         Compression rate, m/s, when it was measured.
-    law : {"kelvin_voigt", "hunt_crossley"}
-        ``F = k d + c v`` or ``F = d^n (k + c v)``.
+    law : {"kelvin_voigt", "hunt_crossley", "jankowski"}
+        ``F = k d + c v``, ``F = d^n (k + c v)`` or ``F = k d^n + 2 xi sqrt(m k d^(n-1)) v``
+        while ``v > 0`` (``k d^n`` while ``v <= 0``).
     exponent_bounds : (float, float)
-        Search range of the Hunt-Crossley exponent ``n`` (>= 1).
+        Search range of the exponent ``n`` (>= 1) of Hunt-Crossley and Jankowski.
+    effective_mass_kg : float, optional
+        Jankowski's effective mass, kg (the impacting mass ``M``): required for that law, whose
+        damping ratio is the fitted dashpot factor over ``2 sqrt(m k)``.
 
     Returns
     -------
     ContactLawFit
     """
     one_of("law", law, LAWS)
+    if law == Jankowski.TYPE:
+        if effective_mass_kg is None:
+            raise InputError(Problem.MISSING_INPUT, "effective_mass_kg", None,
+                             what="effective_mass_kg (kg, the impacting mass): Jankowski's damping ratio needs it")
+        effective_mass_kg = positive("effective_mass_kg", effective_mass_kg, "kg")
     d = float_array("displacement_m", displacement_m, min_len=MIN_SAMPLES_IN_CONTACT)
     force = float_array("force_n", force_n, min_len=MIN_SAMPLES_IN_CONTACT)
     _same_length("force_n", force, d)
@@ -156,10 +169,14 @@ def fit_contact_law(
             raise InputError(Problem.NOT_INCREASING, "exponent_bounds", list(exponent_bounds))
         from scipy.optimize import minimize_scalar
 
-        best = minimize_scalar(lambda n: _nnls_fit(d, v, force, n)[2], bounds=(lo, hi), method="bounded",
+        best = minimize_scalar(lambda n: _nnls_fit(d, v, force, n, law)[2], bounds=(lo, hi), method="bounded",
                                options={"xatol": 1e-10})
-        k, c, _ = _nnls_fit(d, v, force, best.x)
-        fitted = HuntCrossley(max(k, np.finfo(float).tiny), float(best.x), c)
+        k, c, _ = _nnls_fit(d, v, force, best.x, law)
+        k = max(k, np.finfo(float).tiny)
+        if law == Jankowski.TYPE:
+            fitted = Jankowski(k, c / (2.0 * np.sqrt(effective_mass_kg * k)), effective_mass_kg, float(best.x))
+        else:
+            fitted = HuntCrossley(k, float(best.x), c)
     resid = force - _force(fitted, d, v)
     rms = float(np.sqrt(np.mean(resid**2)))
     var = float(np.var(force))

@@ -31,7 +31,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .._checks import at_most, boolean, positive, read_toml, real
+from .._checks import at_most, boolean, one_of, positive, read_toml, real
 from .._errors import InputError, Problem
 from ..data import paper_measurements
 from ..excitation import MAX_A_G
@@ -211,6 +211,7 @@ def paper_targets(direction: str = "up", quantities: tuple[str, ...] = PAPER_QUA
     :meth:`Targets.check_consistency` (``consistency.CONSISTENCY_QUANTITIES``).
     Left out: :data:`PAPER_EXCLUDED` (values MODEL.md §5 shows to be misprinted).
     """
+    one_of("direction", direction, DIRECTIONS)
     if isinstance(quantities, str) or not isinstance(quantities, (tuple, list)) or not quantities:
         raise InputError(Problem.WRONG_TYPE, "quantities", quantities, got=type(quantities).__name__,
                          expected="a non-empty tuple of quantity names, e.g. ('alpha', 'nu_r')")
@@ -228,6 +229,6 @@ def paper_targets(direction: str = "up", quantities: tuple[str, ...] = PAPER_QUA
 
 
 def _known_quantity(field: str, quantity: Any) -> str:
-    if quantity not in DEFAULT_TOLERANCES:
+    if not isinstance(quantity, str) or quantity not in DEFAULT_TOLERANCES:
         raise InputError(Problem.NOT_ONE_OF, field, quantity, choices=", ".join(DEFAULT_TOLERANCES))
     return quantity

@@ -26,6 +26,7 @@ from .._jit import jit, jit_entry
 
 KELVIN_VOIGT = 0
 HUNT_CROSSLEY = 1
+JANKOWSKI = 2
 N_LAW_PARAMS = 4
 MIN_NORMAL = 2.2250738585072014e-308  # the smallest normal double
 EXP_NORMAL_LIMIT = 708.39  # exp(-x) is below it for larger x
@@ -35,11 +36,20 @@ EXP_NORMAL_LIMIT = 708.39  # exp(-x) is below it for larger x
 AT_START = np.int64(0)  # the offset of a bare parameter array (typed: see engine/_layout.py)
 MAX_LAW_COEFFICIENT = 1e18  # stiffness or damping beyond any bumper (N/m^n, N s/m^(n+1)): refused
 MAX_EXPONENT = 10.0
+MAX_DAMPING_RATIO = 100.0  # Jankowski's xi: 10 already gives a restitution of about 0.03
 
 
 def _coefficient(field: str, value: Any, unit: str, strict: bool) -> float:
     out = positive(field, value, unit) if strict else non_negative(field, value, unit)
     return at_most(field, out, MAX_LAW_COEFFICIENT, f" {unit}", f"give it in {unit}")
+
+
+def _exponent(value: Any) -> float:
+    exponent = real("law.exponent", value)
+    if not 1.0 <= exponent <= MAX_EXPONENT:
+        raise InputError(Problem.OUT_OF_RANGE, "law.exponent", value,
+                         range=f"[1, {MAX_EXPONENT:g}]", hint=" (1.5 is Hertzian contact)")
+    return exponent
 
 
 @dataclass(frozen=True)
@@ -104,11 +114,7 @@ class HuntCrossley:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "stiffness", _coefficient("law.stiffness", self.stiffness, "N/m^n", True))
-        exponent = real("law.exponent", self.exponent)
-        if not 1.0 <= exponent <= MAX_EXPONENT:
-            raise InputError(Problem.OUT_OF_RANGE, "law.exponent", self.exponent,
-                             range=f"[1, {MAX_EXPONENT:g}]", hint=" (1.5 is Hertzian contact)")
-        object.__setattr__(self, "exponent", exponent)
+        object.__setattr__(self, "exponent", _exponent(self.exponent))
         object.__setattr__(self, "damping", _coefficient("law.damping", self.damping, "N s/m^(n+1)", False))
 
     def params(self) -> np.ndarray:
@@ -116,8 +122,72 @@ class HuntCrossley:
         return np.array([self.stiffness, self.damping, self.exponent, 0.0])
 
 
-ContactLaw = Union[KelvinVoigt, HuntCrossley]
-LAWS: dict[str, type] = {KelvinVoigt.TYPE: KelvinVoigt, HuntCrossley.TYPE: HuntCrossley}
+@dataclass(frozen=True)
+class Jankowski:
+    """Jankowski's nonlinear viscoelastic impact law (OpenSees' ``JankowskiImpact``).
+
+    ``F = stiffness * d**exponent + c(d) * dd`` while the bumper is compressed further
+    (``dd > 0``, the approach) and ``F = stiffness * d**exponent`` while it recovers: the
+    dashpot ``c(d) = 2 damping_ratio sqrt(effective_mass * stiffness * d**(exponent - 1))``
+    works on the approach only, so the force never pulls and the contact ends when the
+    compression is back to zero.  Out of contact the massless bumper recovers at once.
+
+    Parameters
+    ----------
+    stiffness : float
+        ``k_h`` in N/m**exponent, > 0.
+    damping_ratio : float
+        ``xi`` >= 0; :meth:`from_restitution` gives the one of a target restitution.
+    effective_mass : float
+        ``m1 m2 / (m1 + m2)`` in kg, > 0: the impacting mass ``M`` for a bumper on a rigid stand.
+    exponent : float
+        ``n`` in [1, 10] (1.5: Hertz contact, Jankowski's choice).
+
+    Notes
+    -----
+    R. Jankowski, Earthquake Engng Struct. Dyn. 34 (2005) 595-611 and 35 (2006) 517-524.
+    """
+
+    stiffness: float
+    damping_ratio: float
+    effective_mass: float
+    exponent: float = 1.5
+
+    TYPE: ClassVar[str] = "jankowski"
+    LAW_ID: ClassVar[int] = JANKOWSKI
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "stiffness", _coefficient("law.stiffness", self.stiffness, "N/m^n", True))
+        object.__setattr__(self, "exponent", _exponent(self.exponent))
+        ratio = non_negative("law.damping_ratio", self.damping_ratio, "(a ratio)")
+        object.__setattr__(self, "damping_ratio", at_most("law.damping_ratio", ratio, MAX_DAMPING_RATIO, "",
+                                                          "xi is a ratio: 0.35 gives a restitution of about 0.65"))
+        mass = positive("law.effective_mass", self.effective_mass, "kg")
+        object.__setattr__(self, "effective_mass", at_most("law.effective_mass", mass, MAX_LAW_COEFFICIENT, " kg",
+                                                           "give it in kg"))
+
+    @classmethod
+    def from_restitution(cls, stiffness: float, restitution: float, effective_mass: float,
+                         exponent: float = 1.5) -> Jankowski:
+        """The law whose damping ratio gives restitution ``e`` in (0, 1] (Jankowski 2006):
+        ``xi = 9 sqrt(5) / 2 * (1 - e^2) / (e (e (9 pi - 16) + 16))``."""
+        e = real("restitution", restitution)
+        if not 0.0 < e <= 1.0:
+            raise InputError(Problem.OUT_OF_RANGE, "restitution", restitution, range="(0, 1]",
+                             hint=" (1: no loss)")
+        xi = 4.5 * math.sqrt(5.0) * (1.0 - e * e) / (e * (e * (9.0 * math.pi - 16.0) + 16.0))
+        return cls(stiffness, xi, effective_mass, exponent)
+
+    def params(self) -> np.ndarray:
+        """Parameters as the compiled kernels take them, shape (4,): stiffness, the dashpot's
+        factor ``2 xi sqrt(m_eff k)``, the exponent."""
+        c0 = 2.0 * self.damping_ratio * math.sqrt(self.effective_mass * self.stiffness)
+        return np.array([self.stiffness, c0, self.exponent, 0.0])
+
+
+ContactLaw = Union[KelvinVoigt, HuntCrossley, Jankowski]
+LAWS: dict[str, type] = {KelvinVoigt.TYPE: KelvinVoigt, HuntCrossley.TYPE: HuntCrossley,
+                         Jankowski.TYPE: Jankowski}
 
 
 def law_to_dict(law: ContactLaw) -> dict[str, Any]:
@@ -163,6 +233,13 @@ def law_is_linear(law):
 
 
 @jit
+def law_switches_at_rest(law):
+    """True when the force changes form where the compression rate changes sign (Jankowski's
+    dashpot works on the approach only): the engine ends a numerical step there."""
+    return law == JANKOWSKI
+
+
+@jit
 def law_linear_coefficients(law, p):
     """(stiffness N/m, damping N s/m) of a linear law."""
     return p[0], p[1]
@@ -177,7 +254,6 @@ def law_force(law, p, o, d, dd):
     k, c = p[o], p[o + 1]
     if law == KELVIN_VOIGT:
         return k * d + c * dd, k * d, k, c
-    # HUNT_CROSSLEY
     dpos = d if d > 0.0 else 0.0
     n = p[o + 2]
     dn = dpos**n
@@ -185,7 +261,13 @@ def law_force(law, p, o, d, dd):
         slope = n * dpos ** (n - 1.0)
     else:
         slope = 1.0 if n == 1.0 else 0.0
-    return dn * (k + c * dd), k * dn, slope * (k + c * dd), c * dn
+    if law == HUNT_CROSSLEY:
+        return dn * (k + c * dd), k * dn, slope * (k + c * dd), c * dn
+    # JANKOWSKI: the dashpot c d^((n-1)/2) on the approach only
+    if dd <= 0.0 or dpos <= 0.0:
+        return k * dn, k * dn, k * slope, 0.0
+    root = dpos ** (0.5 * (n - 1.0))
+    return (k * dn + c * root * dd, k * dn, k * slope + 0.5 * (n - 1.0) * c * root / dpos * dd, c * root)
 
 
 @jit
@@ -193,7 +275,7 @@ def law_energy(law, p, d):
     """Elastic energy stored at compression ``d`` (J)."""
     if law == KELVIN_VOIGT:
         return 0.5 * p[0] * d * d
-    dpos = d if d > 0.0 else 0.0
+    dpos = d if d > 0.0 else 0.0  # (Hunt-Crossley and Jankowski: the spring k d^n)
     return p[0] * dpos ** (p[2] + 1.0) / (p[2] + 1.0)
 
 
@@ -215,7 +297,7 @@ def law_relax(law, p, o, d0, tau):
         if d < MIN_NORMAL:
             return 0.0, 0.0
         return d, -rate * d
-    if p[o + 1] <= 0.0:
+    if law == JANKOWSKI or p[o + 1] <= 0.0:  # (Jankowski's recovery has no dashpot)
         return 0.0, 0.0
     speed = p[o] / p[o + 1]
     d = d0 - speed * tau
@@ -232,6 +314,8 @@ def law_release(law, p, o, d, dd, ddd):
     """
     if law == KELVIN_VOIGT:
         return p[o] * d + p[o + 1] * dd, p[o] * dd + p[o + 1] * ddd
+    if law == JANKOWSKI:  # never pulls: the contact ends with the compression
+        return 1.0, 0.0
     return p[o] + p[o + 1] * dd, p[o + 1] * ddd
 
 
