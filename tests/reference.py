@@ -58,6 +58,29 @@ def _law(law):
 
         def release(d, dd):
             return k * d + c * dd
+    elif isinstance(law, pd_.MultilinearBumper):
+        c = law.damping
+
+        def backbone(d):
+            return float(law.backbone(max(d, 0.0)))
+
+        def force(d, dd):
+            return backbone(d) + c * dd
+
+        cache = {}
+
+        def relax(d0, tau):  # c d' = -R(d), integrated once per relaxation and kept
+            if c == 0 or d0 <= 0.0:
+                return 0.0
+            if cache.get("d0") != d0 or cache["t"] < tau:
+                span = max(tau, 1.0) * 2.0
+                sol = solve_ivp(lambda t, y: [-backbone(y[0]) / c], (0.0, span), [d0], method="DOP853",
+                                rtol=1e-13, atol=1e-20, dense_output=True)
+                cache.update(d0=d0, t=span, sol=sol.sol)
+            return max(float(cache["sol"](tau)[0]), 0.0)
+
+        def release(d, dd):
+            return backbone(d) + c * dd
     elif isinstance(law, pd_.Jankowski):
         k, n = law.stiffness, law.exponent
         c0 = 2.0 * law.damping_ratio * math.sqrt(law.effective_mass * law.stiffness)

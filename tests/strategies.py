@@ -23,13 +23,26 @@ def isolators(draw, hysteresis=None):
 @st.composite
 def oscillators(draw, bumpers=True, hysteresis=None, gaps="open", law="kelvin_voigt"):
     """``gaps``: "open" (3 to 30 mm each side) or "zero" (0 on one side or both: the mass at
-    rest touches that bumper).  ``law``: "kelvin_voigt" or "jankowski" (its effective mass the
-    system's)."""
+    rest touches that bumper).  ``law``: "kelvin_voigt", "multilinear" or "jankowski" (its
+    effective mass the system's)."""
     iso = draw(isolators(hysteresis))
     mass = draw(st.floats(100.0, 1500.0))
     b = None
     if bumpers:
-        if law == "jankowski":
+        if law == "multilinear":  # 2 to 4 branches, each softer or stiffer than the one before
+            n = draw(st.integers(2, 4))
+            slopes = [draw(st.floats(1e5, 3e6))]
+            for j in range(n - 1):
+                if j < n - 2:  # a flat, soft or stiff branch inside
+                    slopes.append(slopes[-1] * draw(st.sampled_from([0.0, 0.1, 0.5, 2.0, 5.0])))
+                else:  # the last one stiffer than the first (a real bumper stiffens once compressed:
+                    # a flat last branch let 100 kg through 24 cm, where the reference stalls)
+                    slopes.append(max(slopes[-1], slopes[0]) * draw(st.sampled_from([2.0, 5.0])))
+            breaks = sorted(draw(st.lists(st.floats(3e-4, 0.01), min_size=n - 1, max_size=n - 1, unique=True)))
+            if any(b - a < 1e-4 for a, b in zip(breaks, breaks[1:])):
+                breaks = [0.001 * (j + 1) for j in range(n - 1)]
+            law = pd_.MultilinearBumper(slopes, breaks, draw(st.floats(1.0, 5000.0)))
+        elif law == "jankowski":
             law = pd_.Jankowski(draw(st.floats(1e7, 3e9)), draw(st.floats(0.0, 1.0)), mass,
                                 draw(st.floats(1.0, 2.0)))
         else:

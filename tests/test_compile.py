@@ -75,3 +75,26 @@ def test_import_leaves_the_optimizers_for_model_updating():
     code = "import sys, pounding; print('scipy.optimize' in sys.modules)"
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "False"
+
+
+def test_caches_of_changed_sources_are_cleared(tmp_path, monkeypatch):
+    # Numba keys a cache to its own file: a kernel cached before a callee in another file (or
+    # engine/_layout.py's indices) changed would load stale code, so _jit clears the caches
+    # when any compiled source's size or time changed since they were written
+    from pounding._jit import clear_stale_caches
+
+    monkeypatch.delenv("NUMBA_CACHE_DIR", raising=False)
+    (tmp_path / "engine" / "__pycache__").mkdir(parents=True)
+    source = tmp_path / "engine" / "_layout.py"
+    source.write_text("P_X = 1\n")
+    cache = tmp_path / "engine" / "__pycache__" / "_kernel.run_kernel-1.py311.nbi"
+    cache.write_bytes(b"index")
+    assert clear_stale_caches(tmp_path) and not cache.exists()  # no stamp yet: cleared
+    cache.write_bytes(b"index")
+    assert not clear_stale_caches(tmp_path) and cache.exists()  # nothing changed: kept
+    source.write_text("P_X = 2\n")
+    os.utime(source, ns=(source.stat().st_atime_ns, source.stat().st_mtime_ns + 10**9))
+    assert clear_stale_caches(tmp_path) and not cache.exists()  # a source changed: cleared
+    (tmp_path / "cli.py").write_text("x = 1\n")  # not compiled code: the caches stay
+    cache.write_bytes(b"index")
+    assert not clear_stale_caches(tmp_path) and cache.exists()

@@ -71,9 +71,17 @@ def test_bumpers_never_pull(osc, exc, v0):
         assert (done["impulse"] > 0).all()
         assert (done["t_end"] > done["t_start"]).all()
         assert (done["max_compression"] >= 0).all()
-        # contact starts towards the bumper and ends away from it
+        # contact starts towards the bumper's surface and ends away from the bumper: the surface
+        # of a bumper still recovering from the last contact moves out at (k/c) d_start, so it
+        # can catch a mass that moves away from the bumper more slowly (zero gap: v_in = +6 mm/s
+        # into the left bumper, its surface coming out at 9 mm/s)
         sign = np.where(done["side"] == "right", 1.0, -1.0)
-        assert (sign * done["v_in"] >= 0).all() and (sign * done["v_out"] <= 0).all()
+        gap = np.where(done["side"] == "right", osc.bumpers.gap_right, osc.bumpers.gap_left)
+        at_start = run.displacement[np.searchsorted(run.t, done["t_start"].to_numpy(), side="right") - 1]
+        d_start = np.maximum(sign * at_start - gap, 0.0)
+        recovering = osc.bumpers.law.stiffness / osc.bumpers.law.damping * d_start
+        assert (sign * done["v_in"] + recovering >= -1e-12).all()
+        assert (sign * done["v_out"] <= 0).all()
 
 
 @SETTINGS

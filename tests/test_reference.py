@@ -225,7 +225,8 @@ def test_a_start_at_rounding_level_velocity_against_a_bumper_at_zero_gap():
     run = pd_.simulate(osc, exc, 3.0, pd_.State.at_rest(osc, velocity_m_s=2.220446049250313e-16),
                        sample_rate_hz=0)
     assert run.success, run.message
-    assert run.contacts.iloc[0]["t_start"] == 0.0 and run.contacts.iloc[0]["v_in"] == 0.0
+    # (the contact starts where the mass turns back, 1.4e-16 s in: at rest against the bumper)
+    assert run.contacts.iloc[0]["t_start"] < 1e-15 and run.contacts.iloc[0]["v_in"] == 0.0
     # the reference cannot start there (its compression event dips to -1e-32 m within 1e-16 s,
     # and it stops at that root again and again): it runs from rest, which the rounding-level
     # start must not differ from

@@ -17,19 +17,20 @@ import numpy as np
 
 from .._jit import jit, jit_entry
 from ..model.contact_laws import (AT_START, N_LAW_PARAMS, law_energy, law_force, law_is_linear,
-                                  law_linear_coefficients, law_relax, law_switches_at_rest)
+                                  law_linear_branch, law_relax)
 from ._buffers import grow as _grow
 from ._buffers import put as _put
+from ._bumpers import bumper_events, law_switches, relax_horizon
 from ._forcing import EXC_HARMONIC, RESOLUTION, excitation_piece, run_scales
 from ._isolator import iso_advance, iso_energy, iso_events, iso_linear, iso_transition
-from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A_WORK, ACC_L, ACC_R,
-                      ACT_CONTACT, ACT_RELEASE, CONTACT_COLS, CTL_BUDGET, CTL_STOP, CTL_WORK, DEF_L, DEF_R,
-                      E_ACTION, E_ALPHA, E_BETA, E_DIR, E_GAMMA, E_INDEX, E_KIND, E_SIDE, EV_COLS, EVENT_COLS,
-                      IN_L, IN_R, KIND_LINEAR, KIND_RELEASE, LEDGER_LEN, MODE_LINEAR, MODE_NUMERIC, P_AX0,
-                      P_AX1, P_AXH, P_C, P_CD, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_INL, P_INR, P_K,
-                      P_KISO, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR,
-                      P_RISO, P_SPHI, P_V0, P_VROUND, P_VRUN, P_W, P_XROUND, P_XRUN, PH_LEN, SAMPLE_COLS,
-                      SIDE_L, SIDE_NONE, SIDE_R, D, T, V)
+from ._layout import (ACC_L, ACC_R, ACT_CONTACT, ACT_LAW_BRANCH, ACT_RELEASE, A_DSTART, A_IMPULSE, A_MAXCOMP,
+                      A_PEAK, A_TSTART, A_VIN, A_WORK, CONTACT_COLS, CTL_BUDGET, CTL_STOP, CTL_WORK, D, DEF_L,
+                      DEF_R, EVENT_COLS, EV_COLS, E_ACTION, E_DIR, E_INDEX, IN_L, IN_R, LEDGER_LEN,
+                      MODE_LINEAR, MODE_NUMERIC, PH_LEN, P_AX0, P_AX1, P_AXH, P_C, P_CBL, P_CBR, P_CD, P_D0,
+                      P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_INL, P_INR, P_JBL, P_JBR, P_K, P_KBL, P_KBR,
+                      P_KISO, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR, P_RBL,
+                      P_RBR, P_RISO, P_SPHI, P_V0, P_VROUND, P_VRUN, P_W, P_XROUND, P_XRUN, SAMPLE_COLS,
+                      SIDE_L, SIDE_R, T, V)
 from ._linear import fill_end, linear_eval_angle, linear_eval_end, linear_setup, linear_start, reset_ends
 from ._numeric import dp5_step
 from ._subinterval import accumulate, track_abs_acceleration, velocity_turn
@@ -44,13 +45,6 @@ XTOL_S = 1e-15          # event instants and displacement extrema, s
 DBL_MAX = 1.7976931348623157e308
 TINY_SPEED = 1e-300     # m/s: the velocity of a start at rest, for the direction it moves
 POLL_EVERY = 64         # sub-intervals between two looks at the run control (about 30 us)
-
-
-@jit
-def _law_switches(ph):
-    """True when a bumper in contact has a law whose form changes with the sign of its rate."""
-    return ((ph[P_NLL] != 0.0 and law_switches_at_rest(int(ph[P_LAWL])))
-            or (ph[P_NLR] != 0.0 and law_switches_at_rest(int(ph[P_LAWR]))))
 
 
 @jit
@@ -83,43 +77,6 @@ def _energies(st, mass, slopes, breaks, rule, law_l, p_l, law_r, p_r):
 
 
 @jit
-def _bumper_events(st, has_b, gap_l, gap_r, law_l, law_r, evs, n):
-    if not has_b:
-        return n
-    for side in (SIDE_L, SIDE_R):
-        sign = -1.0 if side == SIDE_L else 1.0
-        gap = gap_l if side == SIDE_L else gap_r
-        in_contact = st[IN_L] if side == SIDE_L else st[IN_R]
-        row = evs[n]
-        row[E_SIDE] = SIDE_NONE
-        row[E_GAMMA] = 0.0
-        row[E_INDEX] = side
-        row[E_DIR] = 0.0
-        row[E_KIND] = KIND_LINEAR
-        if in_contact == 0.0:
-            # surface at sign*(gap + relaxing compression): g = gap + d(t) - sign*D
-            row[E_ALPHA] = gap
-            row[E_BETA] = -sign
-            row[E_SIDE] = side
-            row[E_ACTION] = ACT_CONTACT
-            n += 1
-        else:
-            # compression sign*D - gap back to zero, or the law's force-based release (the side
-            # given so that both are rounded against the run's lengths, as the contact start)
-            row[E_ALPHA] = -gap
-            row[E_BETA] = sign
-            row[E_ACTION] = ACT_RELEASE
-            row[E_SIDE] = side
-            n += 1
-            row = evs[n]
-            for j in range(EV_COLS):
-                row[j] = evs[n - 1, j]
-            row[E_KIND] = KIND_RELEASE
-            n += 1
-    return n
-
-
-@jit
 def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
                law_r, p_r, a0, a1, amp, omega, phase):
     """Fill ``ph`` for the sub-interval starting at the current state; return (k, c)."""
@@ -131,23 +88,28 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law
     ph[P_NLR] = 0.0
     ph[P_INL] = 0.0
     ph[P_INR] = 0.0
+    for j in range(8):  # the linear laws' branches (P_KBL ... P_JBR): none in contact yet
+        ph[P_KBL + j] = 0.0
     if has_b:
         if st[IN_L] != 0.0:
             ph[P_INL] = 1.0
             if law_is_linear(law_l):
-                kb, cb = law_linear_coefficients(law_l, p_l)
+                # F_L = kb x + rb + cb x' with x = -D - gap_l pushes the mass to the right
+                kb, cb, rb, jb = law_linear_branch(law_l, p_l, AT_START, st[DEF_L], -st[V])
                 k += kb
                 c += cb
-                r0 += kb * gap_l
+                r0 += kb * gap_l - rb
+                ph[P_KBL], ph[P_CBL], ph[P_RBL], ph[P_JBL] = kb, cb, rb, float(jb)
             else:
                 ph[P_NLL] = 1.0
         if st[IN_R] != 0.0:
             ph[P_INR] = 1.0
             if law_is_linear(law_r):
-                kb, cb = law_linear_coefficients(law_r, p_r)
+                kb, cb, rb, jb = law_linear_branch(law_r, p_r, AT_START, st[DEF_R], st[V])
                 k += kb
                 c += cb
-                r0 -= kb * gap_r
+                r0 += rb - kb * gap_r
+                ph[P_KBR], ph[P_CBR], ph[P_RBR], ph[P_JBR] = kb, cb, rb, float(jb)
             else:
                 ph[P_NLR] = 1.0
     ph[P_M] = mass
@@ -213,7 +175,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
     v_res = RESOLUTION * ph[P_VRUN]
     impulse_res = mass * v_res
     depth_res = RESOLUTION * ph[P_XRUN]
-    evs = np.zeros((2 * (slopes.size - 1) + 6, EV_COLS))
+    evs = np.zeros((2 * (slopes.size - 1) + 10, EV_COLS))  # (+ 2 x 2 bumper branch edges)
     # After a full sub-interval without event in a linear phase under harmonic forcing, the
     # next one continues the same phase (``continuing``): same coefficients, length and
     # events, and the event values at the end of one are those at the start of the next.
@@ -267,6 +229,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
             h = 2.0 * math.pi / (SUBINTERVALS_PER_PERIOD * max(max(rate, omega), 1e-300))
             h_phase = h
         t_stop = min(t_knot, t_end)
+        if has_b:  # a relaxing bumper's surface changes its law at a branch's end: no sub-interval past it
+            t_stop = min(t_stop, t + relax_horizon(st, law_l, p_l, law_r, p_r))
         to_stop = h >= t_stop - t
         if to_stop:
             h = t_stop - t
@@ -311,7 +275,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
             a0 = phase_eval(ph, 0.0)[2]
         if not continuing:  # (a phase's events stay the same until one of them fires)
             n_ev = iso_events(slopes, breaks, rule, st, evs, np.int64(0))  # typed, not literal
-            n_ev = _bumper_events(st, has_b, gap_l, gap_r, law_l, law_r, evs, n_ev)
+            n_ev = bumper_events(st, ph, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r, evs, n_ev)
         # A start at rest (t = 0, or the mass at rest against a bumper) moves the way a0
         # points: the sign tests below and the events' rates at the start take the velocity as
         # the smallest of that sign.  With 0 itself, an event of the displacement alone would
@@ -320,7 +284,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         v0s = v0
         if v0 == 0.0 and a0 != 0.0:
             v0s = math.copysign(TINY_SPEED, a0)
-        if v0s * v1 < 0.0 and ph[P_MODE] != MODE_LINEAR and _law_switches(ph):
+        if v0s * v1 < 0.0 and ph[P_MODE] != MODE_LINEAR and law_switches(ph):
             # a law whose force changes form with the sign of the compression rate (Jankowski's
             # dashpot acts on the approach only): end the numerical step where the velocity is
             # zero, so that no step straddles the kink
@@ -444,7 +408,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
                 _put(contacts, n_c, float(index), st[acc + A_TSTART], t_ev, st[acc + A_VIN], st[V],
                      st[acc + A_IMPULSE], st[acc + A_PEAK], st[acc + A_MAXCOMP], st[acc + A_WORK])
                 n_c += 1
-        else:
+        elif action != ACT_LAW_BRANCH:  # (a bumper's next branch is the next phase's: no jump)
             iso_transition(slopes, breaks, rule, st, action, index, evs[i_ev, E_DIR])
         if n_e >= events.shape[0]:
             events = _grow(events, n_e)

@@ -6,6 +6,8 @@ inside ``@jit`` functions and cost nothing.
 
 import numpy as np
 
+from ..model.contact_laws import N_LAW_PARAMS
+
 # ---- state vector (float64), length STATE_BASE + 2 * (n_branches - 1)
 T = 0            # time, s
 D = 1            # displacement relative to the table, m
@@ -25,17 +27,24 @@ STATE_BASE = 22  # then u_i (n-1 plastic slips, m), then s_i (n-1 slip direction
 P_M, P_C, P_K, P_P0, P_P1, P_H, P_W, P_PHI = 0, 1, 2, 3, 4, 5, 6, 7
 P_S, P_Q2, P_ROOT, P_B0, P_B1, P_B2, P_B3, P_ZR, P_ZI, P_Y0, P_Y1 = 8, 9, 10, 11, 12, 13, 14, 15, 16, 17, 18
 P_D0, P_V0, P_MODE, P_NLL, P_NLR, P_GAPL, P_GAPR = 19, 20, 21, 22, 23, 24, 25
-P_LAWL, P_PL, P_LAWR, P_PR = 26, 27, 31, 32          # law id, then 4 parameters
+P_LAWL = 26                                   # left law id, then its N_LAW_PARAMS parameters
+P_PL = P_LAWL + 1
+P_LAWR = P_PL + N_LAW_PARAMS                  # right law id and parameters
+P_PR = P_LAWR + 1
 PL_AT, PR_AT = np.int64(P_PL), np.int64(P_PR)  # as offsets for the law_* functions (typed)
-P_DL0, P_DR0, P_CD, P_AX0, P_AX1, P_AXH = 36, 37, 38, 39, 40, 41
-P_INL, P_INR, P_KISO, P_RISO = 42, 43, 44, 45
-P_SPHI, P_CPHI = 46, 47                              # sin and cos of the forcing phase
+P_DL0 = P_PR + N_LAW_PARAMS
+P_DR0, P_CD, P_AX0, P_AX1, P_AXH = P_DL0 + 1, P_DL0 + 2, P_DL0 + 3, P_DL0 + 4, P_DL0 + 5
+P_INL, P_INR, P_KISO, P_RISO = P_DL0 + 6, P_DL0 + 7, P_DL0 + 8, P_DL0 + 9
+P_SPHI, P_CPHI = P_DL0 + 10, P_DL0 + 11       # sin and cos of the forcing phase
+# a linear law's branch in this phase, per side: F = k x + r + c x' (law_linear_branch)
+P_KBL, P_CBL, P_RBL, P_JBL = P_DL0 + 12, P_DL0 + 13, P_DL0 + 14, P_DL0 + 15
+P_KBR, P_CBR, P_RBR, P_JBR = P_DL0 + 16, P_DL0 + 17, P_DL0 + 18, P_DL0 + 19
 # the transcendental values at the end tau = h of a full sub-interval, reused while the
 # phase's (h, w, s, q2) stay the same: see _linear.py
-P_NKEY = 48          # h, w, s, q2 the end values were computed for (4 values)
-P_NODE = 52          # sin(w h), cos(w h), and the free response's two terms at h
+P_NKEY = P_DL0 + 20  # h, w, s, q2 the end values were computed for (4 values)
+P_NODE = P_NKEY + 4  # sin(w h), cos(w h), and the free response's two terms at h
 # ... and those of the last phases met (a steady motion cycles through a few), 8 values each
-P_ENDS = 56
+P_ENDS = P_NODE + 4
 N_ENDS = 8
 P_ENDS_NEXT = P_ENDS + 8 * N_ENDS   # the slot the next new phase takes
 # the run's length (m) and velocity (m/s) scales, set once per run (_kernel.run_scales), and
@@ -59,8 +68,8 @@ KIND_RELEASE = 1  # the contact law's release function on side E_SIDE
 # (np.int64), not Python ints: Numba gives a Python-int constant argument a literal type
 # and compiles the callee once more for each literal value (see _jit.py).
 SIDE_NONE, SIDE_L, SIDE_R = np.int64(-1), np.int64(0), np.int64(1)
-ACT_YIELD, ACT_REVERSAL, ACT_REGION, ACT_CONTACT, ACT_RELEASE = (np.int64(k) for k in range(5))
-EVENT_NAMES = ("yield", "reversal", "branch", "contact_start", "contact_end")
+ACT_YIELD, ACT_REVERSAL, ACT_REGION, ACT_CONTACT, ACT_RELEASE, ACT_LAW_BRANCH = (np.int64(k) for k in range(6))
+EVENT_NAMES = ("yield", "reversal", "branch", "contact_start", "contact_end", "bumper_branch")
 
 # ---- outputs
 SAMPLE_COLS = 7   # t, D, V, abs_acceleration, isolator_force, bumper_force_left, bumper_force_right

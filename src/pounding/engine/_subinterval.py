@@ -18,8 +18,8 @@ import numpy as np
 
 from .._jit import jit
 from ._layout import (A_IMPULSE, A_MAXCOMP, A_PEAK, A_WORK, ACC_L, ACC_R, MODE_LINEAR, P_AX0, P_C,
-                      P_CD, P_GAPL, P_GAPR, P_INL, P_INR, P_K, P_M, P_MODE, P_P0, P_PL, P_PR, SIDE_L,
-                      SIDE_R)
+                      P_CBL, P_CBR, P_CD, P_GAPL, P_GAPR, P_INL, P_INR, P_K, P_KBL, P_KBR, P_M, P_MODE, P_P0,
+                      P_RBL, P_RBR, SIDE_L, SIDE_R)
 from ._linear import linear_integrals
 from ._trajectory import (NO_INDEX, W_AABS_RATE, W_ACCELERATION, W_FORCE_RATE, abs_acceleration_rate,
                           brent, contact_force, newton, phase_eval, table_acceleration, value_at_root)
@@ -63,15 +63,16 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
         ledger[1] += c_d * i_vv
         for side in (SIDE_L, SIDE_R):
             if (side == SIDE_L and in_l) or (side == SIDE_R and in_r):
-                # a linear law: F = k_b x + c_b x' (law_linear_coefficients), compression x = +-D - gap
+                # a linear law's branch: F = k_b x + r_b + c_b x' (law_linear_branch), compression
+                # x = +-D - gap
                 if side == SIDE_L:
-                    sign, gap, k_b, c_b, acc = -1.0, ph[P_GAPL], ph[P_PL], ph[P_PL + 1], ACC_L
+                    sign, gap, k_b, c_b, r_b, acc = -1.0, ph[P_GAPL], ph[P_KBL], ph[P_CBL], ph[P_RBL], ACC_L
                 else:
-                    sign, gap, k_b, c_b, acc = 1.0, ph[P_GAPR], ph[P_PR], ph[P_PR + 1], ACC_R
+                    sign, gap, k_b, c_b, r_b, acc = 1.0, ph[P_GAPR], ph[P_KBR], ph[P_CBR], ph[P_RBR], ACC_R
                 x0 = sign * d0 - gap
                 x1 = sign * d1 - gap
-                st[acc + A_IMPULSE] += k_b * (sign * i_d - gap * tau) + c_b * (x1 - x0)
-                st[acc + A_WORK] += 0.5 * k_b * (x1 * x1 - x0 * x0) + c_b * i_vv
+                st[acc + A_IMPULSE] += k_b * (sign * i_d - gap * tau) + r_b * tau + c_b * (x1 - x0)
+                st[acc + A_WORK] += 0.5 * k_b * (x1 * x1 - x0 * x0) + r_b * (x1 - x0) + c_b * i_vv
                 ledger[3] += c_b * i_vv
     elif tau > 0.0 and (with_energy or in_l or in_r):
         for q in range(N_LOBATTO):

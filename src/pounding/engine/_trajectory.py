@@ -15,9 +15,9 @@ import numpy as np
 from .._jit import jit
 from ..model.contact_laws import law_force, law_relax, law_release
 from ._layout import (ACT_CONTACT, E_ACTION, E_ALPHA, E_BETA, E_GAMMA, E_KIND, E_SIDE, KIND_LINEAR,
-                      MODE_LINEAR, P_AX0, P_AX1, P_AXH, P_C, P_D0, P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_K,
-                      P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P1, P_PHI, P_PL, P_PR, P_V0, P_VROUND, P_W,
-                      P_XROUND, PL_AT, PR_AT, SIDE_L, SIDE_NONE, SIDE_R)
+                      MODE_LINEAR, P_AX0, P_AX1, P_AXH, P_C, P_CBL, P_CBR, P_D0, P_DL0, P_DR0, P_GAPL,
+                      P_GAPR, P_H, P_K, P_KBL, P_KBR, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P1, P_PHI,
+                      P_V0, P_VROUND, P_W, P_XROUND, PL_AT, PR_AT, SIDE_L, SIDE_NONE, SIDE_R)
 from ._linear import forcing_angle, linear_eval
 from ._numeric import dp5_step, phase_rhs
 
@@ -148,9 +148,9 @@ def _value_and_rate(what, idx, ph, evs, tau):
         return (-(ph[P_C] * a + ph[P_K] * v) / ph[P_M], -(ph[P_C] * jerk + ph[P_K] * a) / ph[P_M],
                 d, v, a)
     # W_FORCE_RATE of a Kelvin-Voigt bumper: F = k_b x + c_b x' with x' = +-V
-    sign, k_b, c_b = 1.0, ph[P_PR], ph[P_PR + 1]
+    sign, k_b, c_b = 1.0, ph[P_KBR], ph[P_CBR]  # (the linear law's branch in this phase)
     if idx == SIDE_L:
-        sign, k_b, c_b = -1.0, ph[P_PL], ph[P_PL + 1]
+        sign, k_b, c_b = -1.0, ph[P_KBL], ph[P_CBL]
     return sign * (k_b * v + c_b * a), sign * (k_b * a + c_b * jerk), d, v, a
 
 
@@ -329,6 +329,10 @@ def locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, tol1, xtol, t_vel, d_vel
         if t_vel >= 0.0 and _velocity_only(evs, i):
             return t_vel  # (a slip reversal: the velocity's zero, located already)
         return newton(W_EVENT, i, ph, evs, 0.0, h, g0, g1, gp0, gp1, xtol)[0]
+    side = int(evs[i, E_SIDE])
+    displacement_only = evs[i, E_KIND] == KIND_LINEAR and evs[i, E_GAMMA] == 0.0 and (
+        side == SIDE_NONE or evs[i, E_ACTION] != ACT_CONTACT
+        or (side == SIDE_L and ph[P_DL0] == 0.0) or (side == SIDE_R and ph[P_DR0] == 0.0))
     if g0 <= tol0 and g1 < -tol1:
         tp = h
         for _ in range(60):
@@ -337,14 +341,17 @@ def locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, tol1, xtol, t_vel, d_vel
             gt, gpt, sc = event_value(evs, i, ph, tp, d, v, a)
             if gt > ROUNDING * sc:
                 return newton(W_EVENT, i, ph, evs, tp, h, gt, g1, gpt, gp1, xtol)[0]
+        if gp0 > 0.0 and gp1 < 0.0:
+            # it first rose, by less than the rounding, and came back: where it turned (a mass at
+            # a bumper's surface moving away at 1e-9 m/s and turned back within 1e-5 s, 8e-15 m
+            # out: started at once, the contact released at once, and again, ZENO)
+            if displacement_only and t_vel >= 0.0:
+                return t_vel
+            return brent(W_EVENT_RATE, i, ph, evs, 0.0, h, gp0, gp1, xtol)
         return 0.0
     if not (gp0 < 0.0 and gp1 > 0.0):
         return -1.0
     # a local minimum inside: does it dip below zero?
-    side = int(evs[i, E_SIDE])
-    displacement_only = evs[i, E_KIND] == KIND_LINEAR and evs[i, E_GAMMA] == 0.0 and (
-        side == SIDE_NONE or evs[i, E_ACTION] != ACT_CONTACT
-        or (side == SIDE_L and ph[P_DL0] == 0.0) or (side == SIDE_R and ph[P_DR0] == 0.0))
     if displacement_only:
         if t_vel < 0.0:
             return -1.0

@@ -20,16 +20,18 @@ from typing import Any, ClassVar, Union
 
 import numpy as np
 
-from .._checks import at_most, non_negative, positive, real
+from .._checks import at_most, increasing, non_negative, positive, real, real_tuple
 from .._errors import InputError, Problem
 from .._jit import jit, jit_entry
+from ._multilinear import EXP_NORMAL_LIMIT, MIN_NORMAL, ml_branch, ml_energy, ml_relax, ml_relax_horizon
 
 KELVIN_VOIGT = 0
 HUNT_CROSSLEY = 1
 JANKOWSKI = 2
-N_LAW_PARAMS = 4
-MIN_NORMAL = 2.2250738585072014e-308  # the smallest normal double
-EXP_NORMAL_LIMIT = 708.39  # exp(-x) is below it for larger x
+MULTILINEAR = 3
+N_LAW_PARAMS = 10  # (MultilinearBumper: damping, branch count, 4 slopes, 3 breakpoints)
+MAX_BRANCHES = 4
+BRANCH_TIE = 1e-9  # relative: a compression this close to a breakpoint is at it (law_linear_branch)
 # The compiled ``law_*`` functions read a law's parameters at ``p[o:o + N_LAW_PARAMS]``
 # (``o`` an offset, so that the engine passes its phase record without slicing it: a
 # slice costs a reference-count increment and decrement on every call).
@@ -42,6 +44,13 @@ MAX_DAMPING_RATIO = 100.0  # Jankowski's xi: 10 already gives a restitution of a
 def _coefficient(field: str, value: Any, unit: str, strict: bool) -> float:
     out = positive(field, value, unit) if strict else non_negative(field, value, unit)
     return at_most(field, out, MAX_LAW_COEFFICIENT, f" {unit}", f"give it in {unit}")
+
+
+def _padded(values: list[float]) -> np.ndarray:
+    """A law's parameters as the compiled kernels take them, shape (N_LAW_PARAMS,)."""
+    out = np.zeros(N_LAW_PARAMS)
+    out[: len(values)] = values
+    return out
 
 
 def _exponent(value: Any) -> float:
@@ -78,8 +87,8 @@ class KelvinVoigt:
         object.__setattr__(self, "damping", _coefficient("law.damping", self.damping, "N s/m", False))
 
     def params(self) -> np.ndarray:
-        """Parameters as the compiled kernels take them, shape (4,)."""
-        return np.array([self.stiffness, self.damping, 0.0, 0.0])
+        """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,)."""
+        return _padded([self.stiffness, self.damping])
 
     @property
     def relaxation_time_s(self) -> float:
@@ -118,8 +127,8 @@ class HuntCrossley:
         object.__setattr__(self, "damping", _coefficient("law.damping", self.damping, "N s/m^(n+1)", False))
 
     def params(self) -> np.ndarray:
-        """Parameters as the compiled kernels take them, shape (4,)."""
-        return np.array([self.stiffness, self.damping, self.exponent, 0.0])
+        """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,)."""
+        return _padded([self.stiffness, self.damping, self.exponent])
 
 
 @dataclass(frozen=True)
@@ -160,11 +169,12 @@ class Jankowski:
         object.__setattr__(self, "stiffness", _coefficient("law.stiffness", self.stiffness, "N/m^n", True))
         object.__setattr__(self, "exponent", _exponent(self.exponent))
         ratio = non_negative("law.damping_ratio", self.damping_ratio, "(a ratio)")
-        object.__setattr__(self, "damping_ratio", at_most("law.damping_ratio", ratio, MAX_DAMPING_RATIO, "",
-                                                          "xi is a ratio: 0.35 gives a restitution of about 0.65"))
+        ratio = at_most("law.damping_ratio", ratio, MAX_DAMPING_RATIO, "",
+                        "xi is a ratio: 0.35 gives a restitution of about 0.65")
+        object.__setattr__(self, "damping_ratio", ratio)
         mass = positive("law.effective_mass", self.effective_mass, "kg")
-        object.__setattr__(self, "effective_mass", at_most("law.effective_mass", mass, MAX_LAW_COEFFICIENT, " kg",
-                                                           "give it in kg"))
+        mass = at_most("law.effective_mass", mass, MAX_LAW_COEFFICIENT, " kg", "give it in kg")
+        object.__setattr__(self, "effective_mass", mass)
 
     @classmethod
     def from_restitution(cls, stiffness: float, restitution: float, effective_mass: float,
@@ -179,21 +189,90 @@ class Jankowski:
         return cls(stiffness, xi, effective_mass, exponent)
 
     def params(self) -> np.ndarray:
-        """Parameters as the compiled kernels take them, shape (4,): stiffness, the dashpot's
-        factor ``2 xi sqrt(m_eff k)``, the exponent."""
+        """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,): stiffness, the
+        dashpot's factor ``2 xi sqrt(m_eff k)``, the exponent."""
         c0 = 2.0 * self.damping_ratio * math.sqrt(self.effective_mass * self.stiffness)
-        return np.array([self.stiffness, c0, self.exponent, 0.0])
+        return _padded([self.stiffness, c0, self.exponent])
 
 
-ContactLaw = Union[KelvinVoigt, HuntCrossley, Jankowski]
+@dataclass(frozen=True)
+class MultilinearBumper:
+    """A bumper whose spring is multi-linear in compression, with a dashpot in parallel.
+
+    ``F = R(d) + damping * dd``: the backbone ``R`` has slope ``slopes[j]`` between
+    ``breakpoints[j - 1]`` and ``breakpoints[j]`` (from 0, on to any depth), elastic (loading and
+    unloading on it).  The paper's D-shaped hollow EPDM bumper (Fig. 3): an initial branch, a
+    soft one (even flat) while the hole collapses, a steep one once it has closed.  Piecewise
+    linear, so every phase of motion stays closed-form, as with :class:`KelvinVoigt` (one slope
+    is exactly Kelvin-Voigt).  Out of contact the massless bumper relaxes by
+    ``damping * dd = -R(d)``, branch by branch in closed form.
+
+    Parameters
+    ----------
+    slopes : sequence of float, shape (n,)
+        ``n`` from 1 to 4 slopes, N/m: the first > 0, the others >= 0.
+    breakpoints : sequence of float, shape (n - 1,)
+        Compressions where the slope changes, m, > 0 and increasing.
+    damping : float
+        Dashpot constant in N s/m, >= 0 (0: the bumper recovers instantly).
+    """
+
+    slopes: tuple[float, ...]
+    breakpoints: tuple[float, ...] = ()
+    damping: float = 0.0
+
+    TYPE: ClassVar[str] = "multilinear"
+    LAW_ID: ClassVar[int] = MULTILINEAR
+
+    def __post_init__(self) -> None:
+        slopes = real_tuple("law.slopes", self.slopes)
+        if not 1 <= len(slopes) <= MAX_BRANCHES:
+            raise InputError(Problem.OUT_OF_RANGE, "law.slopes", list(slopes),
+                             range=f"1 to {MAX_BRANCHES} slopes", hint=" (one per branch of the backbone)")
+        positive("law.slopes[0]", slopes[0], "N/m")
+        for j, k in enumerate(slopes):
+            non_negative(f"law.slopes[{j}]", k, "N/m")
+            at_most(f"law.slopes[{j}]", k, MAX_LAW_COEFFICIENT, " N/m", "give the slopes in N/m")
+        breakpoints = real_tuple("law.breakpoints", self.breakpoints)
+        if len(breakpoints) != len(slopes) - 1:
+            raise InputError(Problem.BREAKPOINT_COUNT, "law.breakpoints", list(breakpoints),
+                             got=len(breakpoints), expected=len(slopes) - 1)
+        for j, d in enumerate(breakpoints):
+            positive(f"law.breakpoints[{j}]", d, "m")
+            at_most(f"law.breakpoints[{j}]", d, 10.0, " m", "give the breakpoints in m (5 mm is 0.005)")
+        increasing("law.breakpoints", breakpoints)
+        object.__setattr__(self, "slopes", slopes)
+        object.__setattr__(self, "breakpoints", breakpoints)
+        object.__setattr__(self, "damping", _coefficient("law.damping", self.damping, "N s/m", False))
+
+    def params(self) -> np.ndarray:
+        """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,): damping, the
+        number of slopes, the slopes (4 places), the breakpoints (3 places)."""
+        out = _padded([self.damping, float(len(self.slopes))])
+        out[2:2 + len(self.slopes)] = self.slopes
+        out[6:6 + len(self.breakpoints)] = self.breakpoints
+        return out
+
+    def backbone(self, compression_m: Any) -> np.ndarray:
+        """``R(d)`` in N at compressions ``d`` (m, >= 0), shape as given."""
+        d = np.asarray(compression_m, dtype=float)
+        edges = np.concatenate([[0.0], self.breakpoints])
+        forces = np.concatenate([[0.0], np.cumsum(np.diff(edges) * np.array(self.slopes[:-1]))])
+        j = np.clip(np.searchsorted(edges, d, side="right") - 1, 0, len(self.slopes) - 1)
+        return forces[j] + np.array(self.slopes)[j] * (d - edges[j])
+
+
+ContactLaw = Union[KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper]
 LAWS: dict[str, type] = {KelvinVoigt.TYPE: KelvinVoigt, HuntCrossley.TYPE: HuntCrossley,
-                         Jankowski.TYPE: Jankowski}
+                         Jankowski.TYPE: Jankowski, MultilinearBumper.TYPE: MultilinearBumper}
 
 
 def law_to_dict(law: ContactLaw) -> dict[str, Any]:
     """The law as a TOML-ready table: ``type`` plus its fields."""
     out: dict[str, Any] = {"type": law.TYPE}
-    out.update({f.name: getattr(law, f.name) for f in fields(law)})
+    for f in fields(law):
+        value = getattr(law, f.name)
+        out[f.name] = list(value) if isinstance(value, tuple) else value
     return out
 
 
@@ -228,8 +307,47 @@ def law_from_dict(table: dict[str, Any], field: str) -> ContactLaw:
 # --------------------------------------------------------------------------- compiled side
 @jit
 def law_is_linear(law):
-    """True when the force is linear in (d, dd): every phase stays a linear ODE."""
-    return law == KELVIN_VOIGT
+    """True when the force is linear in (d, dd) on each branch: every phase stays a linear ODE."""
+    return law == KELVIN_VOIGT or law == MULTILINEAR
+
+
+@jit
+def law_linear_branch(law, p, o, d, dd):
+    """``(stiffness N/m, damping N s/m, offset N, branch)`` of a linear law at compression
+    ``d``: ``F = stiffness d + offset + damping dd`` on that branch.  At a breakpoint the branch
+    the compression is heading into (the sign of its rate ``dd``): "at" to ``BRANCH_TIE`` of the
+    breakpoint, since an event instant is located to 1e-15 s (at 0.5 m/s, 1.5e-12 of a 0.3 mm
+    breakpoint: with a tighter tie the branch's end fired again and again, ZENO)."""
+    if law == KELVIN_VOIGT:
+        return p[o], p[o + 1], 0.0, 0
+    n = int(p[o + 1])
+    j = ml_branch(p, o, d)[2]
+    if j < n - 1 and dd > 0.0 and abs(d - p[o + 6 + j]) <= BRANCH_TIE * p[o + 6 + j]:
+        j += 1
+    elif j > 0 and dd < 0.0 and abs(d - p[o + 5 + j]) <= BRANCH_TIE * p[o + 5 + j]:
+        j -= 1
+    return law_branch_coefficients(law, p, o, j)
+
+
+@jit
+def law_branch_coefficients(law, p, o, j):
+    """:func:`law_linear_branch`'s numbers for branch ``j`` of a linear law."""
+    if law == KELVIN_VOIGT:
+        return p[o], p[o + 1], 0.0, 0
+    lower = 0.0 if j == 0 else p[o + 5 + j]
+    force, k, _, _ = ml_branch(p, o, lower)
+    k = p[o + 2 + j]
+    return k, p[o], force - k * lower, j
+
+
+@jit
+def law_branch_edges(law, p, o, j):
+    """Compressions (m) where branch ``j`` of a linear law ends, below and above: -1.0 for none
+    (the lowest branch starts at 0, where the contact ends anyway)."""
+    if law != MULTILINEAR:
+        return -1.0, -1.0
+    n = int(p[o + 1])
+    return (p[o + 5 + j] if j > 0 else -1.0), (p[o + 6 + j] if j < n - 1 else -1.0)
 
 
 @jit
@@ -237,12 +355,6 @@ def law_switches_at_rest(law):
     """True when the force changes form where the compression rate changes sign (Jankowski's
     dashpot works on the approach only): the engine ends a numerical step there."""
     return law == JANKOWSKI
-
-
-@jit
-def law_linear_coefficients(law, p):
-    """(stiffness N/m, damping N s/m) of a linear law."""
-    return p[0], p[1]
 
 
 @jit
@@ -254,6 +366,9 @@ def law_force(law, p, o, d, dd):
     k, c = p[o], p[o + 1]
     if law == KELVIN_VOIGT:
         return k * d + c * dd, k * d, k, c
+    if law == MULTILINEAR:
+        force, slope, _, _ = ml_branch(p, o, d)
+        return force + k * dd, force, slope, k
     dpos = d if d > 0.0 else 0.0
     n = p[o + 2]
     dn = dpos**n
@@ -275,6 +390,8 @@ def law_energy(law, p, d):
     """Elastic energy stored at compression ``d`` (J)."""
     if law == KELVIN_VOIGT:
         return 0.5 * p[0] * d * d
+    if law == MULTILINEAR:
+        return ml_energy(p, d)
     dpos = d if d > 0.0 else 0.0  # (Hunt-Crossley and Jankowski: the spring k d^n)
     return p[0] * dpos ** (p[2] + 1.0) / (p[2] + 1.0)
 
@@ -297,6 +414,8 @@ def law_relax(law, p, o, d0, tau):
         if d < MIN_NORMAL:
             return 0.0, 0.0
         return d, -rate * d
+    if law == MULTILINEAR:
+        return ml_relax(p, o, d0, tau)
     if law == JANKOWSKI or p[o + 1] <= 0.0:  # (Jankowski's recovery has no dashpot)
         return 0.0, 0.0
     speed = p[o] / p[o + 1]
@@ -304,6 +423,15 @@ def law_relax(law, p, o, d0, tau):
     if d <= 0.0:
         return 0.0, 0.0
     return d, -speed
+
+
+@jit
+def law_relax_horizon(law, p, o, d0):
+    """Time (s) until the free recovery from ``d0`` changes form (a multi-linear law's next
+    branch); inf for the laws whose recovery is one formula."""
+    if law == MULTILINEAR:
+        return ml_relax_horizon(p, o, d0)
+    return math.inf
 
 
 @jit
@@ -316,6 +444,9 @@ def law_release(law, p, o, d, dd, ddd):
         return p[o] * d + p[o + 1] * dd, p[o] * dd + p[o + 1] * ddd
     if law == JANKOWSKI:  # never pulls: the contact ends with the compression
         return 1.0, 0.0
+    if law == MULTILINEAR:
+        force, slope, _, _ = ml_branch(p, o, d)
+        return force + p[o] * dd, slope * dd + p[o] * ddd
     return p[o] + p[o + 1] * dd, p[o + 1] * ddd
 
 
