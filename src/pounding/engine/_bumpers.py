@@ -5,7 +5,7 @@ from __future__ import annotations
 import math
 
 from .._jit import jit
-from ..model.contact_laws import AT_START, law_branch_edges, law_relax_horizon, law_switches_at_rest
+from ..model.contact_laws import AT_START, MULTILINEAR, law_branch_edges, law_relax_horizon, law_switches_at_rest
 from ._layout import (ACT_CONTACT, ACT_LAW_BRANCH, ACT_RELEASE, E_ACTION, E_ALPHA, E_BETA, E_DIR, E_GAMMA,
                       E_INDEX, E_KIND, E_SIDE, EV_COLS, DEF_L, DEF_R, IN_L, IN_R, KIND_LINEAR, KIND_RELEASE, P_JBL, P_JBR,
                       P_LAWL, P_LAWR, P_NLL, P_NLR, SIDE_L, SIDE_NONE, SIDE_R)
@@ -24,8 +24,8 @@ def bumper_events(st, ph, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r, evs, n):
         sign = -1.0 if side == SIDE_L else 1.0
         gap = gap_l if side == SIDE_L else gap_r
         in_contact = st[IN_L] if side == SIDE_L else st[IN_R]
-        if in_contact != 0.0:  # the ends of a multi-linear law's branch (compression x = sign D - gap)
-            law = law_l if side == SIDE_L else law_r
+        law = law_l if side == SIDE_L else law_r
+        if in_contact != 0.0 and law == MULTILINEAR:  # its branch's ends (compression x = sign D - gap)
             lower, upper = law_branch_edges(law, p_l if side == SIDE_L else p_r, AT_START,
                                             int(ph[P_JBL] if side == SIDE_L else ph[P_JBR]))
             for edge, up in ((lower, False), (upper, True)):

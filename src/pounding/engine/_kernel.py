@@ -16,7 +16,7 @@ import math
 import numpy as np
 
 from .._jit import jit, jit_entry
-from ..model.contact_laws import (AT_START, N_LAW_PARAMS, law_energy, law_force, law_is_linear,
+from ..model.contact_laws import (AT_START, MULTILINEAR, N_LAW_PARAMS, law_energy, law_force, law_is_linear,
                                   law_linear_branch, law_relax)
 from ._buffers import grow as _grow
 from ._buffers import put as _put
@@ -88,8 +88,7 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law
     ph[P_NLR] = 0.0
     ph[P_INL] = 0.0
     ph[P_INR] = 0.0
-    for j in range(8):  # the linear laws' branches (P_KBL ... P_JBR): none in contact yet
-        ph[P_KBL + j] = 0.0
+    # (P_KBL ... P_JBR, a linear law's branch, are read only while that side is in contact)
     if has_b:
         if st[IN_L] != 0.0:
             ph[P_INL] = 1.0
@@ -128,16 +127,8 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law
     ph[P_MODE] = MODE_NUMERIC if (ph[P_NLL] != 0.0 or ph[P_NLR] != 0.0) else MODE_LINEAR
     ph[P_XROUND] = ph[P_XRUN]  # (a linear phase's linear_setup adds its closed form's terms)
     ph[P_VROUND] = ph[P_VRUN]
-    ph[P_GAPL] = gap_l
-    ph[P_GAPR] = gap_r
-    ph[P_LAWL] = law_l
-    ph[P_LAWR] = law_r
-    for j in range(N_LAW_PARAMS):
-        ph[P_PL + j] = p_l[j]
-        ph[P_PR + j] = p_r[j]
     ph[P_DL0] = st[DEF_L]
     ph[P_DR0] = st[DEF_R]
-    ph[P_CD] = c_d
     ph[P_KISO] = k_iso
     ph[P_RISO] = r_iso
     return k, c
@@ -172,6 +163,15 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
     ph = np.zeros(PH_LEN)
     reset_ends(ph)
     ph[P_XRUN], ph[P_VRUN] = run_scales(mass, slopes, exc_kind, exc_p, rec_a, gap_l, gap_r, breaks)
+    # what stays the same all run (set once: a phase's record is rewritten some 10,000 times a sweep)
+    ph[P_GAPL] = gap_l
+    ph[P_GAPR] = gap_r
+    ph[P_LAWL] = law_l
+    ph[P_LAWR] = law_r
+    for j in range(N_LAW_PARAMS):
+        ph[P_PL + j] = p_l[j]
+        ph[P_PR + j] = p_r[j]
+    ph[P_CD] = c_d
     v_res = RESOLUTION * ph[P_VRUN]
     impulse_res = mass * v_res
     depth_res = RESOLUTION * ph[P_XRUN]
@@ -181,6 +181,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
     # events, and the event values at the end of one are those at the start of the next.
     ev_end = np.empty((evs.shape[0], 3))
     continuing = False
+    t_horizon = np.inf
+    has_ml = has_b and (law_l == MULTILINEAR or law_r == MULTILINEAR)  # (the only law with a horizon)
     h_phase = 0.0
     s1 = c1 = 0.0  # the forcing angle's sine and cosine at the end of the last sub-interval
     t_last = h_last = 0.0  # its start and length
@@ -224,13 +226,15 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         else:
             k, c = _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l,
                               p_l, law_r, p_r, a0x, a1x, amp, omega, phase)
+            # a relaxing bumper's surface changes its law at a branch's end: no sub-interval past
+            # it (a phase that continues never reaches it: the sub-interval that does ends there)
+            if has_ml:
+                t_horizon = t + relax_horizon(st, law_l, p_l, law_r, p_r)
             # fastest rate of the phase: its frequency, or its fastest decay when overdamped
             rate = max(math.sqrt(abs(k) / mass + (0.5 * c / mass) ** 2), abs(c) / mass)
             h = 2.0 * math.pi / (SUBINTERVALS_PER_PERIOD * max(max(rate, omega), 1e-300))
             h_phase = h
-        t_stop = min(t_knot, t_end)
-        if has_b:  # a relaxing bumper's surface changes its law at a branch's end: no sub-interval past it
-            t_stop = min(t_stop, t + relax_horizon(st, law_l, p_l, law_r, p_r))
+        t_stop = min(t_knot, t_end, t_horizon)
         to_stop = h >= t_stop - t
         if to_stop:
             h = t_stop - t

@@ -54,8 +54,9 @@ def linear_setup(ph):
         zi = -h * im / den
     ph[P_ZR] = zr
     ph[P_ZI] = zi
-    # the rounding scales of the displacement and velocity the closed form adds up
-    amp = math.sqrt(zr * zr + zi * zi)
+    # the rounding scales of the displacement and velocity the closed form adds up (|zr| + |zi|
+    # for the particular solution's amplitude: a scale, no square root needed)
+    amp = abs(zr) + abs(zi)
     ph[P_XROUND] = max(ph[P_XRUN], abs(ph[P_B0]) + amp)
     ph[P_VROUND] = max(ph[P_VRUN], abs(ph[P_B1]) + w * amp)
     linear_start(ph, math.sin(ph[P_PHI]), math.cos(ph[P_PHI]))

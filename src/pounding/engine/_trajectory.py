@@ -315,6 +315,17 @@ def _velocity_only(evs, i):
 
 
 @jit
+def _displacement_only(evs, i, ph):
+    """True when event ``i`` depends on the displacement alone (its extremum is the velocity's
+    zero): the isolator's, a bumper's compression or branch end, a contact start against a
+    bumper at rest."""
+    side = int(evs[i, E_SIDE])
+    return evs[i, E_KIND] == KIND_LINEAR and evs[i, E_GAMMA] == 0.0 and (
+        side == SIDE_NONE or evs[i, E_ACTION] != ACT_CONTACT
+        or (side == SIDE_L and ph[P_DL0] == 0.0) or (side == SIDE_R and ph[P_DR0] == 0.0))
+
+
+@jit
 def locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, tol1, xtol, t_vel, d_vel):
     """First time in ``[0, h]`` at which event ``i`` fires, or -1.0.
 
@@ -329,10 +340,6 @@ def locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, tol1, xtol, t_vel, d_vel
         if t_vel >= 0.0 and _velocity_only(evs, i):
             return t_vel  # (a slip reversal: the velocity's zero, located already)
         return newton(W_EVENT, i, ph, evs, 0.0, h, g0, g1, gp0, gp1, xtol)[0]
-    side = int(evs[i, E_SIDE])
-    displacement_only = evs[i, E_KIND] == KIND_LINEAR and evs[i, E_GAMMA] == 0.0 and (
-        side == SIDE_NONE or evs[i, E_ACTION] != ACT_CONTACT
-        or (side == SIDE_L and ph[P_DL0] == 0.0) or (side == SIDE_R and ph[P_DR0] == 0.0))
     if g0 <= tol0 and g1 < -tol1:
         tp = h
         for _ in range(60):
@@ -345,13 +352,15 @@ def locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, tol1, xtol, t_vel, d_vel
             # it first rose, by less than the rounding, and came back: where it turned (a mass at
             # a bumper's surface moving away at 1e-9 m/s and turned back within 1e-5 s, 8e-15 m
             # out: started at once, the contact released at once, and again, ZENO)
-            if displacement_only and t_vel >= 0.0:
+            if _displacement_only(evs, i, ph) and t_vel >= 0.0:
                 return t_vel
             return brent(W_EVENT_RATE, i, ph, evs, 0.0, h, gp0, gp1, xtol)
         return 0.0
     if not (gp0 < 0.0 and gp1 > 0.0):
         return -1.0
     # a local minimum inside: does it dip below zero?
+    side = int(evs[i, E_SIDE])
+    displacement_only = _displacement_only(evs, i, ph)
     if displacement_only:
         if t_vel < 0.0:
             return -1.0
