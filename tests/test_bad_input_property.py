@@ -166,6 +166,29 @@ ENTRIES = {
         },
         {"displacement_m", "force_n", "time_s"},
     ),
+    "fit_contact_law multilinear": (
+        pd_.fit_contact_law,
+        {
+            "displacement_m": [0.0, 1e-3, 2e-3, 3e-3, 2e-3, 1e-3, 0.0],
+            "force_n": [0.0, 1.5e3, 3e3, 6e3, 2.9e3, 1.4e3, 0.0],
+            "time_s": [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6],
+            "law": "multilinear",
+            "breakpoints": [1.5e-3],
+            "n_branches": 2,
+        },
+        {"displacement_m", "force_n", "time_s", "breakpoints"},
+    ),
+    "rank_contact_laws": (
+        pd_.rank_contact_laws,
+        {
+            "displacement_m": [0.0, 1e-3, 2e-3, 3e-3, 2e-3, 1e-3, 0.0],
+            "force_n": [0.0, 1.5e3, 3e3, 6e3, 2.9e3, 1.4e3, 0.0],
+            "time_s": [0.0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6],
+            "effective_mass_kg": 500.0,
+            "n_branches": 2,
+        },
+        {"displacement_m", "force_n", "time_s"},
+    ),
     "Targets.from_records": (
         pd_.Targets.from_records,
         {

@@ -101,3 +101,58 @@ def test_toml_round_trip_and_bad_values(tmp_path):
         with pytest.raises(pd_.InputError) as info:
             pd_.MultilinearBumper(**args)
         assert info.value.field == field
+
+
+def _loops(law, freqs_hz=(0.5, 1.0, 2.0)):
+    """The paper's Fig. 3 protocol: +-8 mm about 10 mm of precompression, at each frequency."""
+    d, v = [], []
+    for f in freqs_hz:
+        t = np.linspace(0.0, 2.0 / f, 801)
+        d.append(0.01 + 0.008 * np.sin(2 * np.pi * f * t))
+        v.append(0.008 * 2 * np.pi * f * np.cos(2 * np.pi * f * t))
+    d, v = np.concatenate(d), np.concatenate(v)
+    force = np.empty_like(d)
+    law_force_many(law.LAW_ID, law.params(), d, v, force)
+    return d, v, force
+
+
+def test_fit_contact_law_recovers_a_multilinear_law_and_ranks_it_first():
+    truth = pd_.MultilinearBumper((1.46e6, 1e5, 5e6), (0.003, 0.012), 500.0)
+    d, v, force = _loops(truth)
+    fit = pd_.fit_contact_law(d, force, velocity_m_s=v, law="multilinear")  # breakpoints searched
+    np.testing.assert_allclose(fit.law.slopes, truth.slopes, rtol=0.02)
+    np.testing.assert_allclose(fit.law.breakpoints, truth.breakpoints, rtol=0.02)
+    assert fit.law.damping == pytest.approx(truth.damping, rel=0.02)
+    given = pd_.fit_contact_law(d, force, velocity_m_s=v, law="multilinear", breakpoints=[0.003, 0.012])
+    np.testing.assert_allclose(given.law.slopes, truth.slopes, rtol=1e-9)
+    ranked = pd_.rank_contact_laws(d, force, velocity_m_s=v, effective_mass_kg=500.0)
+    assert list(ranked["law"])[0] == "multilinear" and len(ranked) == 4
+    assert (ranked["rms_n"].diff().dropna() >= 0).all()
+    with pytest.raises(pd_.InputError) as info:
+        pd_.fit_contact_law(d, force, velocity_m_s=v, law="multilinear", breakpoints=[0.012, 0.003])
+    assert info.value.field == "law.breakpoints"
+
+
+@pytest.mark.parametrize("truth", [pd_.KelvinVoigt(1.46e6, 500.0), pd_.HuntCrossley(1.46e7, 1.5, 2e7),
+                                   pd_.Jankowski(2e8, 0.35, 500.0, 1.4)])
+def test_rank_contact_laws_puts_the_law_that_made_the_loops_first(truth):
+    # (a multi-linear law reproduces Kelvin-Voigt's loops as well: the tie goes to the simpler law)
+    d, v, force = _loops(truth)
+    ranked = pd_.rank_contact_laws(d, force, velocity_m_s=v, effective_mass_kg=500.0)
+    assert ranked["law"].iloc[0] == truth.TYPE
+    assert ranked["fit"].iloc[0].rms_n < 1e-6 * 1e4
+
+
+def test_a_release_right_after_a_branch_end_is_not_missed():
+    # hypothesis found it: the phase began where the compression came down to the first
+    # breakpoint, and the release function took its rate there from the flat branch above (the
+    # compression's own, by position) instead of the phase's branch below: it seemed to rise, the
+    # dip below zero went unseen and the bumper pulled 66 N (14 N in a neighbouring case)
+    osc = pd_.Oscillator(1059.0, pd_.Isolator((66778.0, 16694.5, 16694.5), (0.01171875, 0.03125), "kinematic", 1.0),
+                         pd_.Bumpers(0.015625, 0.0234375,
+                                     pd_.MultilinearBumper((585709.0, 0.0, 2928545.0), (0.001, 0.008359693642010411),
+                                                           2769.0)))
+    exc = pd_.Harmonic(0.328125, 0.53125, 4.7890625)
+    run = pd_.simulate(osc, exc, 3.0, pd_.State.at_rest(osc, velocity_m_s=-0.390625), sample_rate_hz=2000)
+    assert run.success and run.bumper_force_left.min() >= 0.0 and run.bumper_force_right.min() >= 0.0
+    _compare(osc, exc, v0=-0.390625, duration=1.5)

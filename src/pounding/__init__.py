@@ -8,7 +8,8 @@ from ._errors import InputError, Interrupted, PoundingWarning, Problem, Status
 from ._warm_up import WarmUp, warm_up
 from .engine import EnergyLedger, Run, State, simulate
 from .excitation import Harmonic, Record
-from .identification import ContactLawFit, Identification, ModelFamily, Targets, fit_contact_law, identify, paper_targets
+from .identification import (ContactLawFit, Identification, ModelFamily, Targets, fit_contact_law, identify,
+                             paper_targets, rank_contact_laws)
 from .metrics import HysteresisLoop, impact_table
 from .model import Bumpers, HuntCrossley, Isolator, Jankowski, KelvinVoigt, MultilinearBumper, Oscillator
 from .protocols import CampaignResult, SweepResult, campaign, paper_frequencies_hz, sweep
@@ -19,6 +20,6 @@ __all__ = [
     "Bumpers", "CampaignResult", "ContactLawFit", "Identification", "ModelFamily", "Targets", "EnergyLedger", "Harmonic", "HuntCrossley", "HysteresisLoop",
     "InputError", "Interrupted", "PoundingWarning", "Isolator", "Jankowski", "MultilinearBumper", "KelvinVoigt", "Oscillator", "Problem", "Record",
     "Run", "State", "Status", "SweepResult", "campaign", "impact_table", "paper_frequencies_hz",
-    "data", "fit_contact_law", "identify", "paper_targets", "presets", "simulate", "sweep",
+    "data", "fit_contact_law", "identify", "paper_targets", "rank_contact_laws", "presets", "simulate", "sweep",
     "WarmUp", "warm_up",
 ]

@@ -13,10 +13,10 @@ import math
 import numpy as np
 
 from .._jit import jit
-from ..model.contact_laws import law_force, law_relax, law_release
+from ..model.contact_laws import law_force, law_is_linear, law_relax, law_release
 from ._layout import (ACT_CONTACT, E_ACTION, E_ALPHA, E_BETA, E_GAMMA, E_KIND, E_SIDE, KIND_LINEAR,
                       MODE_LINEAR, P_AX0, P_AX1, P_AXH, P_C, P_CBL, P_CBR, P_D0, P_DL0, P_DR0, P_GAPL,
-                      P_GAPR, P_H, P_K, P_KBL, P_KBR, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P1, P_PHI,
+                      P_GAPR, P_H, P_K, P_KBL, P_KBR, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P1, P_PHI, P_RBL, P_RBR,
                       P_V0, P_VROUND, P_W, P_XROUND, PL_AT, PR_AT, SIDE_L, SIDE_NONE, SIDE_R)
 from ._linear import forcing_angle, linear_eval
 from ._numeric import dp5_step, phase_rhs
@@ -104,10 +104,19 @@ def _bumper_event_value(evs, i, ph, tau, d, v, a):
     if side == SIDE_L:
         law, o = int(ph[P_LAWL]), PL_AT
         dd, dv, da = -d - ph[P_GAPL], -v, -a
+        kb, cb, rb = ph[P_KBL], ph[P_CBL], ph[P_RBL]
     else:
         law, o = int(ph[P_LAWR]), PR_AT
         dd, dv, da = d - ph[P_GAPR], v, a
-    g, gp = law_release(law, ph, o, dd, dv, da)
+        kb, cb, rb = ph[P_KBR], ph[P_CBR], ph[P_RBR]
+    if law_is_linear(law):
+        # the phase's own branch (kb x + rb + cb x'), not the one the compression is in: at a
+        # breakpoint that branch's slope is the one the motion heads into (with the slope of the
+        # branch above, a release right after coming down to a breakpoint had the wrong rate,
+        # and the bumper pulled 14 N, unseen)
+        g, gp = kb * dd + rb + cb * dv, kb * dv + cb * da
+    else:
+        g, gp = law_release(law, ph, o, dd, dv, da)
     scale = law_release(law, ph, o, abs(dd) + ph[P_XROUND], abs(dv) + ph[P_VROUND], 0.0)[0]
     return g, gp, scale
 

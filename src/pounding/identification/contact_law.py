@@ -14,9 +14,10 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .._checks import float_array, one_of, positive, real
+from .._checks import float_array, integer, one_of, positive, real, real_tuple
 from .._errors import InputError, Problem
-from ..model.contact_laws import LAWS, ContactLaw, HuntCrossley, Jankowski, KelvinVoigt, law_force_many
+from ..model.contact_laws import (LAWS, MAX_BRANCHES, ContactLaw, HuntCrossley, Jankowski, KelvinVoigt,
+                                  MultilinearBumper, law_force_many)
 
 MIN_SAMPLES_IN_CONTACT = 3
 
@@ -92,6 +93,51 @@ def _nnls_fit(d, v, force, exponent=None, law=HuntCrossley.TYPE):
     return k / scale[0], c / scale[1], resid
 
 
+def _segments(d: np.ndarray, breakpoints: np.ndarray) -> np.ndarray:
+    """How much of each compression lies on each branch: ``R(d) = segments @ slopes``, shape (n, m)."""
+    edges = np.concatenate([[0.0], breakpoints, [np.inf]])
+    return np.clip(d[:, None] - edges[None, :-1], 0.0, np.diff(edges)[None, :])
+
+
+def _multilinear_fit(d, v, force, breakpoints):
+    """Non-negative slopes and damping of a multi-linear law with these breakpoints, and the
+    residual norm (``F = segments(d) @ slopes + c v``)."""
+    cols = np.column_stack([_segments(d, breakpoints), v])
+    scale = np.linalg.norm(cols, axis=0)
+    scale[scale == 0.0] = 1.0
+    from scipy.optimize import nnls
+
+    x, resid = nnls(cols / scale, force)
+    x = x / scale
+    return x[:-1], x[-1], resid
+
+
+def _multilinear_search(d, v, force, n_branches):
+    """Breakpoints minimising the residual: Nelder-Mead on their fractions of the deepest
+    compression, from a grid of starts (the residual is piecewise smooth in them)."""
+    from itertools import combinations
+
+    from scipy.optimize import minimize
+
+    top = float(d.max())
+
+    def breaks_of(u):
+        return top * np.sort(np.clip(u, 1e-3, 1.0 - 1e-3))
+
+    def cost(u):
+        b = breaks_of(u)
+        if np.any(np.diff(b) <= 1e-6 * top):
+            return np.inf
+        return _multilinear_fit(d, v, force, b)[2]
+
+    grid = np.linspace(0.1, 0.9, 9)
+    starts = sorted(combinations(grid, n_branches - 1), key=lambda u: cost(np.array(u)))[:3]
+    best = min((minimize(cost, np.array(u), method="Nelder-Mead",
+                         options={"xatol": 1e-10, "fatol": 0.0, "maxiter": 600 * n_branches}) for u in starts),
+               key=lambda r: r.fun)
+    return breaks_of(best.x)
+
+
 def fit_contact_law(
     displacement_m: Any,
     force_n: Any,
@@ -101,6 +147,8 @@ def fit_contact_law(
     law: str = KelvinVoigt.TYPE,
     exponent_bounds: tuple[float, float] = (1.0, 3.0),
     effective_mass_kg: float | None = None,
+    breakpoints: Any = None,
+    n_branches: int = 3,
 ) -> ContactLawFit:
     """Fit a bumper law to a measured force-displacement history.
 
@@ -115,20 +163,30 @@ def fit_contact_law(
         derivative (second order).  Give this or ``velocity_m_s``.
     velocity_m_s : array_like, shape (n,), optional
         Compression rate, m/s, when it was measured.
-    law : {"kelvin_voigt", "hunt_crossley", "jankowski"}
-        ``F = k d + c v``, ``F = d^n (k + c v)`` or ``F = k d^n + 2 xi sqrt(m k d^(n-1)) v``
-        while ``v > 0`` (``k d^n`` while ``v <= 0``).
+    law : {"kelvin_voigt", "hunt_crossley", "jankowski", "multilinear"}
+        ``F = k d + c v``, ``F = d^n (k + c v)``, ``F = k d^n + 2 xi sqrt(m k d^(n-1)) v``
+        while ``v > 0`` (``k d^n`` while ``v <= 0``), or ``F = R(d) + c v`` with a multi-linear ``R``.
     exponent_bounds : (float, float)
         Search range of the exponent ``n`` (>= 1) of Hunt-Crossley and Jankowski.
     effective_mass_kg : float, optional
         Jankowski's effective mass, kg (the impacting mass ``M``): required for that law, whose
         damping ratio is the fitted dashpot factor over ``2 sqrt(m k)``.
+    breakpoints : sequence of float, optional
+        A multi-linear law's breakpoints, m (its slopes and damping then come from
+        non-negative least squares); default: searched, for ``n_branches`` branches.
+    n_branches : int
+        Branches of a multi-linear law whose breakpoints are searched (1 to 4; default 3: the
+        D-shaped bumper's stiff start, soft plateau and steep rise).
 
     Returns
     -------
     ContactLawFit
     """
     one_of("law", law, LAWS)
+    n_branches = integer("n_branches", n_branches, 1, MAX_BRANCHES)
+    if breakpoints is not None and law != MultilinearBumper.TYPE:
+        raise InputError(Problem.NOT_ONE_OF, "law", law,
+                         choices="'multilinear' (breakpoints are a multi-linear law's; leave them out otherwise)")
     if law == Jankowski.TYPE:
         if effective_mass_kg is None:
             raise InputError(Problem.MISSING_INPUT, "effective_mass_kg", None,
@@ -160,6 +218,15 @@ def fit_contact_law(
     if law == KelvinVoigt.TYPE:
         k, c, _ = _nnls_fit(d, v, force)
         fitted: ContactLaw = KelvinVoigt(max(k, np.finfo(float).tiny), c)
+    elif law == MultilinearBumper.TYPE:
+        if breakpoints is None:
+            b = np.empty(0) if n_branches == 1 else _multilinear_search(d, v, force, n_branches)
+        else:
+            b = np.array(MultilinearBumper((1.0,) * (len(real_tuple("breakpoints", breakpoints)) + 1),
+                                           breakpoints).breakpoints)  # (checked as the law checks them)
+        slopes, c, _ = _multilinear_fit(d, v, force, b)
+        slopes[0] = max(slopes[0], np.finfo(float).tiny)
+        fitted = MultilinearBumper(tuple(slopes), tuple(b), c)
     else:
         lo = real("exponent_bounds[0]", exponent_bounds[0])
         hi = real("exponent_bounds[1]", exponent_bounds[1])
@@ -188,3 +255,34 @@ def _same_length(field: str, arr: np.ndarray, ref: np.ndarray) -> None:
     if arr.size != ref.size:
         raise InputError(Problem.SIZE_MISMATCH, field, f"array of {arr.size}", got=arr.size,
                          expected=ref.size, other="displacement_m")
+
+
+def rank_contact_laws(displacement_m: Any, force_n: Any, *, time_s: Any = None, velocity_m_s: Any = None,
+                      effective_mass_kg: float | None = None, n_branches: int = 3) -> pd.DataFrame:
+    """Fit every contact law to one test and rank them by residual (the paper's Fig. 3 question:
+    which law describes the bumper).
+
+    Arguments as :func:`fit_contact_law`; Jankowski's law is fitted only with
+    ``effective_mass_kg``.  Laws whose residuals agree to 1e-6 are ranked by their number of
+    parameters (fewer first: a multi-linear law with equal slopes is Kelvin-Voigt).
+
+    Returns
+    -------
+    DataFrame
+        One row per law, best first: ``law`` (its type), ``rms_n``, ``r_squared``,
+        ``parameters`` (their count) and ``fit`` (the :class:`ContactLawFit`).
+    """
+    counts = {KelvinVoigt.TYPE: 2, HuntCrossley.TYPE: 3, Jankowski.TYPE: 3,
+              MultilinearBumper.TYPE: 2 * integer("n_branches", n_branches, 1, MAX_BRANCHES)}
+    rows = []
+    for name in LAWS:
+        if name == Jankowski.TYPE and effective_mass_kg is None:
+            continue
+        fit = fit_contact_law(displacement_m, force_n, time_s=time_s, velocity_m_s=velocity_m_s, law=name,
+                              effective_mass_kg=effective_mass_kg, n_branches=n_branches)
+        rows.append({"law": name, "rms_n": fit.rms_n, "r_squared": fit.r_squared, "parameters": counts[name],
+                     "fit": fit})
+    df = pd.DataFrame(rows)
+    best = float(df["rms_n"].min())
+    df["_rms"] = np.where(df["rms_n"] <= best * (1.0 + 1e-6) + 1e-300, best, df["rms_n"])  # ties
+    return df.sort_values(["_rms", "parameters"]).drop(columns="_rms").reset_index(drop=True)

@@ -1,0 +1,11 @@
+"""Hypothesis profiles: random examples on developers' machines (they keep exploring, and
+.hypothesis/ remembers what failed), the same examples every time in CI (``CI=true``), so that
+a landing does not depend on the draw: a new failure found locally becomes a regression test."""
+
+import os
+
+from hypothesis import settings
+
+settings.register_profile("ci", derandomize=True, database=None)
+if os.environ.get("CI", "").lower() in ("1", "true", "yes"):
+    settings.load_profile("ci")
