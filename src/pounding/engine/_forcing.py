@@ -64,32 +64,3 @@ def run_scales(mass, slopes, exc_kind, exc_p, rec_a, gap_l, gap_r, breaks):
     if breaks.size > 0:
         x = max(x, breaks[0])
     return x, x * w
-
-
-@jit
-def _excitation_piece(kind, exc_p, rec_t, rec_a, t):
-    """Base acceleration from ``t`` on: ``(a0, a1, amp, omega, phase, t_next)`` such that
-    ``A(t + tau) = a0 + a1 tau + amp sin(omega tau + phase)`` until ``t_next``."""
-    if kind == EXC_HARMONIC:
-        omega = exc_p[1]
-        # the angle reduced to [0, 2 pi): as exact as the angle itself (np.fmod is a call into
-        # Numba's C helpers, 2 % of a run)
-        angle = omega * t + exc_p[2]
-        phase = angle - TWO_PI * math.floor(angle / TWO_PI)
-        return 0.0, 0.0, exc_p[0], omega, phase, np.inf
-    n = rec_t.size
-    if t < rec_t[0]:
-        return 0.0, 0.0, 0.0, 0.0, 0.0, rec_t[0]
-    if t >= rec_t[n - 1]:
-        return 0.0, 0.0, 0.0, 0.0, 0.0, np.inf
-    # the sample interval holding t: rec_t[j] <= t < rec_t[j + 1] (bisection; rec_t increases)
-    j = 0
-    hi = n - 1
-    while hi - j > 1:
-        mid = (j + hi) // 2
-        if rec_t[mid] <= t:
-            j = mid
-        else:
-            hi = mid
-    slope = (rec_a[j + 1] - rec_a[j]) / (rec_t[j + 1] - rec_t[j])
-    return rec_a[j] + slope * (t - rec_t[j]), slope, 0.0, 0.0, 0.0, rec_t[j + 1]

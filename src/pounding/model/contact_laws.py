@@ -20,7 +20,7 @@ from typing import Any, ClassVar, Union
 
 import numpy as np
 
-from .._checks import at_most, increasing, non_negative, positive, real, real_tuple
+from .._checks import at_most, backbone, non_negative, positive, real
 from .._errors import InputError, Problem
 from .._jit import jit, jit_entry
 from ._multilinear import EXP_NORMAL_LIMIT, MIN_NORMAL, ml_branch, ml_energy, ml_relax, ml_relax_horizon
@@ -225,22 +225,11 @@ class MultilinearBumper:
     LAW_ID: ClassVar[int] = MULTILINEAR
 
     def __post_init__(self) -> None:
-        slopes = real_tuple("law.slopes", self.slopes)
-        if not 1 <= len(slopes) <= MAX_BRANCHES:
+        slopes, breakpoints = backbone("law", self.slopes, self.breakpoints, MAX_LAW_COEFFICIENT, " N/m",
+                                       "give the slopes in N/m", 10.0, "give the breakpoints in m (5 mm is 0.005)")
+        if len(slopes) > MAX_BRANCHES:
             raise InputError(Problem.OUT_OF_RANGE, "law.slopes", list(slopes),
                              range=f"1 to {MAX_BRANCHES} slopes", hint=" (one per branch of the backbone)")
-        positive("law.slopes[0]", slopes[0], "N/m")
-        for j, k in enumerate(slopes):
-            non_negative(f"law.slopes[{j}]", k, "N/m")
-            at_most(f"law.slopes[{j}]", k, MAX_LAW_COEFFICIENT, " N/m", "give the slopes in N/m")
-        breakpoints = real_tuple("law.breakpoints", self.breakpoints)
-        if len(breakpoints) != len(slopes) - 1:
-            raise InputError(Problem.BREAKPOINT_COUNT, "law.breakpoints", list(breakpoints),
-                             got=len(breakpoints), expected=len(slopes) - 1)
-        for j, d in enumerate(breakpoints):
-            positive(f"law.breakpoints[{j}]", d, "m")
-            at_most(f"law.breakpoints[{j}]", d, 10.0, " m", "give the breakpoints in m (5 mm is 0.005)")
-        increasing("law.breakpoints", breakpoints)
         object.__setattr__(self, "slopes", slopes)
         object.__setattr__(self, "breakpoints", breakpoints)
         object.__setattr__(self, "damping", _coefficient("law.damping", self.damping, "N s/m", False))

@@ -7,8 +7,7 @@ from typing import Any, ClassVar, Literal
 
 import numpy as np
 
-from .._checks import at_most, increasing, non_negative, one_of, plausible, positive, real_tuple
-from .._errors import InputError, Problem
+from .._checks import at_most, backbone, non_negative, one_of, plausible
 
 HYSTERESIS_RULES = ("kinematic", "elastic")
 # magnitudes beyond any real isolator (refused: the engine's numbers would overflow)
@@ -55,25 +54,13 @@ class Isolator:
     FIELDS: ClassVar[tuple[str, ...]] = ("slopes", "breakpoints", "hysteresis", "damping")
 
     def __post_init__(self) -> None:
-        slopes = real_tuple("isolator.slopes", self.slopes)
-        if not slopes:
-            raise InputError(Problem.EMPTY, "isolator.slopes", list(self.slopes))
-        positive("isolator.slopes[0]", slopes[0], "N/m")
-        for j, k in enumerate(slopes[1:], start=1):
-            non_negative(f"isolator.slopes[{j}]", k, "N/m")
-        for j, k in enumerate(slopes):
-            at_most(f"isolator.slopes[{j}]", k, MAX_STIFFNESS_N_M, " N/m, stiffer than any isolator",
-                    "give the slopes in N/m (38 kN/m is 38000.0)")
-        breakpoints = real_tuple("isolator.breakpoints", self.breakpoints)
-        if len(breakpoints) != len(slopes) - 1:
-            raise InputError(Problem.BREAKPOINT_COUNT, "isolator.breakpoints", list(breakpoints),
-                             got=len(breakpoints), expected=len(slopes) - 1)
+        slopes, breakpoints = backbone("isolator", self.slopes, self.breakpoints, MAX_STIFFNESS_N_M,
+                                       " N/m, stiffer than any isolator",
+                                       "give the slopes in N/m (38 kN/m is 38000.0)", MAX_BREAKPOINT_M,
+                                       "give the breakpoints in m")
         for j, d in enumerate(breakpoints):
-            positive(f"isolator.breakpoints[{j}]", d, "m")
-            at_most(f"isolator.breakpoints[{j}]", d, MAX_BREAKPOINT_M, " m", "give the breakpoints in m")
             plausible(f"isolator.breakpoints[{j}]", d, 0.0, 1.0,
                       "breakpoints are displacements in m (15 mm is 0.015)")
-        increasing("isolator.breakpoints", breakpoints)
         one_of("isolator.hysteresis", self.hysteresis, HYSTERESIS_RULES)
         damping = non_negative("isolator.damping", self.damping, "N s/m")
         at_most("isolator.damping", damping, MAX_DAMPING_N_S_M, " N s/m", "give the damping in N s/m")
