@@ -111,6 +111,7 @@ def reproduce(
             ),
         )
     console.print(summary)
+    console.print(f"verdict: {escape(label)} {escape(report.verdict.summary())}")
     console.print(f"report -> {report.index_html} (tables CSV, {len(report.figures)} figures PNG)")
 
 
