@@ -234,3 +234,16 @@ def test_a_start_at_rounding_level_velocity_against_a_bumper_at_zero_gap():
     assert len(run.contacts) == len(at_rest.contacts) > 10
     np.testing.assert_allclose(run.contacts["t_start"], at_rest.contacts["t_start"], rtol=0, atol=1e-12)
     np.testing.assert_allclose(run.final_state.vector, at_rest.final_state.vector, rtol=1e-9, atol=1e-15)
+
+
+def test_a_reversal_at_two_springs_yield_limits_goes_on():
+    # the velocity's zero 24 um from where two of the isolator's springs yield: the displacement
+    # there, rounded against its own size (2.4e-5 m, where the closed form adds terms of 0.05 m),
+    # dipped 1e-17 m into the yield: yield, yield, reversal at one instant, then ZENO (hypothesis,
+    # through a multi-linear bumper's run; the isolator alone does it from that state)
+    iso = pd_.Isolator((9086.836321883336, 7644.658349531726, 15289.316699063453, 45867.95009719036),
+                       (0.007338493842865274, 0.01, 0.034363046343273494), "kinematic", 1475.7164032625662)
+    osc = pd_.Oscillator(431.65195135800826, iso, pd_.Bumpers(0.019606345909735097, 0.01, pd_.MultilinearBumper(
+        (1645109.2874424418, 8225546.437212209), (0.001,), 3164.432917562191)))
+    run, _ = _compare(osc, pd_.Harmonic(1 / 3, 0.578452952273553, 0.001), v0=0.5)
+    assert (run.events["kind"] == "reversal").sum() >= 3

@@ -375,9 +375,10 @@ def locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, tol1, xtol, t_vel, d_vel
             return -1.0
         tm = t_vel
         gm = evs[i, E_ALPHA] + evs[i, E_BETA] * d_vel
-        sc = abs(evs[i, E_ALPHA]) + abs(evs[i, E_BETA] * d_vel)
-        if side != SIDE_NONE:  # a bumper's: rounded against the phase's lengths, as event_value
-            sc += ph[P_XROUND]
+        # the displacement at the velocity's zero is rounded against the phase's lengths, for the
+        # isolator's events too (a reversal 24 um from the yield of two springs at once: a
+        # rounding-level dip of 1e-17 m into a yield, yield and reversal again and again, ZENO)
+        sc = abs(evs[i, E_ALPHA]) + abs(evs[i, E_BETA]) * (abs(d_vel) + ph[P_XROUND])
     else:
         tm = brent(W_EVENT_RATE, i, ph, evs, 0.0, h, gp0, gp1, xtol)
         d, v, a = phase_eval(ph, tm)
