@@ -368,7 +368,6 @@ def locate_event(i, ph, evs, h, g0, gp0, tol0, g1, gp1, tol1, xtol, t_vel, d_vel
     if not (gp0 < 0.0 and gp1 > 0.0):
         return -1.0
     # a local minimum inside: does it dip below zero?
-    side = int(evs[i, E_SIDE])
     displacement_only = _displacement_only(evs, i, ph)
     if displacement_only:
         if t_vel < 0.0:
