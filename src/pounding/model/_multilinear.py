@@ -33,6 +33,14 @@ def ml_branch(p, o, d):
 
 
 @jit
+def ml_branch_line(p, o, j):
+    """Branch ``j``'s line: ``(slope, offset, lower end)`` with ``R(d) = slope d + offset`` on it."""
+    lower = 0.0 if j == 0 else p[o + 5 + j]
+    k = p[o + 2 + j]
+    return k, ml_branch(p, o, lower)[0] - k * lower, lower
+
+
+@jit
 def ml_energy(p, d):
     """The area under the backbone up to ``d`` (J), branch by branch."""
     n = int(p[1])
@@ -56,13 +64,10 @@ def _down_branch(p, o, d):
     time to reach it from d)``, with ``d`` within ``TIE`` above a breakpoint counted below it
     (the recovery that reached a breakpoint goes on, down)."""
     c = p[o]
-    _, k, j, offset = ml_branch(p, o, d)
+    j = ml_branch(p, o, d)[2]
     if j > 0 and d <= p[o + 5 + j] * (1.0 + TIE):
         j -= 1
-        k = p[o + 2 + j]
-        lower = 0.0 if j == 0 else p[o + 5 + j]
-        offset = ml_branch(p, o, lower)[0] - k * lower
-    lower = 0.0 if j == 0 else p[o + 5 + j]
+    k, offset, lower = ml_branch_line(p, o, j)
     if j == 0:
         return k, offset, lower, math.inf
     if k > 0.0:

@@ -23,7 +23,8 @@ import numpy as np
 from .._checks import at_most, backbone, non_negative, positive, real
 from .._errors import InputError, Problem
 from .._jit import jit, jit_entry
-from ._multilinear import EXP_NORMAL_LIMIT, MIN_NORMAL, ml_branch, ml_energy, ml_relax, ml_relax_horizon
+from ._multilinear import (EXP_NORMAL_LIMIT, MIN_NORMAL, ml_branch, ml_branch_line, ml_energy, ml_relax,
+                           ml_relax_horizon)
 
 KELVIN_VOIGT = 0
 HUNT_CROSSLEY = 1
@@ -323,10 +324,8 @@ def law_branch_coefficients(law, p, o, j):
     """:func:`law_linear_branch`'s numbers for branch ``j`` of a linear law."""
     if law == KELVIN_VOIGT:
         return p[o], p[o + 1], 0.0, 0
-    lower = 0.0 if j == 0 else p[o + 5 + j]
-    force, k, _, _ = ml_branch(p, o, lower)
-    k = p[o + 2 + j]
-    return k, p[o], force - k * lower, j
+    k, offset, _ = ml_branch_line(p, o, j)
+    return k, p[o], offset, j
 
 
 @jit
