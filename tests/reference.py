@@ -3,7 +3,10 @@
 It restates the model of MODEL.md §1 directly, without sharing code with the engine:
 the isolator as parallel springs (kinematic) or a backbone (elastic), Kelvin-Voigt or
 Hunt-Crossley bumpers whose relaxation between contacts is evaluated in closed form.
-Integration restarts at every event.
+Integration restarts at every event.  The elastic-plastic law is restated as OpenSees
+defines ``ImpactMaterial``: its force is the state (elastic moves of slope K1 from the force
+where the branch began, held between the yield and unloading lines), not the engine's
+plastic offset.
 """
 
 from __future__ import annotations
@@ -46,7 +49,64 @@ class ReferenceStalled(RuntimeError):
     reference cannot step past."""
 
 
+class _ElasticPlasticState:
+    """The force of an elastic-plastic bumper as its state: on the elastic branch
+    ``f_ref + K1 (d - d_ref)``, else on the yield line or the unloading line."""
+
+    def __init__(self, law):
+        self.k1, self.k2, self.dy = law.stiffness, law.post_yield_stiffness, law.yield_compression
+        self.reset()
+
+    def reset(self):
+        self.mode, self.f_ref, self.d_ref = "elastic", 0.0, 0.0
+
+    def snapshot(self):
+        return (self.mode, self.f_ref, self.d_ref)
+
+    def restore(self, snap):
+        self.mode, self.f_ref, self.d_ref = snap
+
+    def upper(self, d):
+        return self.k1 * self.dy + self.k2 * (d - self.dy)
+
+    def force(self, d, dd):
+        if self.mode == "yield":
+            return self.upper(d)
+        if self.mode == "unload":
+            return self.k2 * d
+        return self.f_ref + self.k1 * (d - self.d_ref)
+
+    def events(self):
+        """``(g(d, dd), new mode)``: fires when g crosses zero downwards."""
+        if self.mode == "yield":
+            return [(lambda d, dd: dd, "elastic")]
+        if self.mode == "unload":
+            return [(lambda d, dd: -dd, "elastic")]
+        out = [(lambda d, dd: self.upper(d) - self.force(d, dd), "yield")]
+        if self.f_ref > 0.0:  # (from the unloaded start the unloading line is met at 0, the contact's end)
+            out.append((lambda d, dd: self.force(d, dd) - self.k2 * d, "unload"))
+        return out
+
+    def switch(self, mode, d):
+        if mode == "elastic":
+            self.f_ref, self.d_ref = self.force(d, 0.0), d
+        self.mode = mode
+
+
 def _law(law):
+    if isinstance(law, pd_.ElasticPlastic):
+        hyst = _ElasticPlasticState(law)
+
+        def force(d, dd):
+            return hyst.force(max(d, 0.0), dd)
+
+        def relax(d0, tau):  # no dashpot: unloaded at once
+            return 0.0
+
+        def release(d, dd):  # never pulls: the contact ends with the compression
+            return 1.0
+
+        return force, relax, release, hyst
     if isinstance(law, pd_.KelvinVoigt):
         k, c = law.stiffness, law.damping
 
@@ -105,7 +165,7 @@ def _law(law):
 
         def release(d, dd):
             return k + c * dd
-    return force, relax, release
+    return force, relax, release, None
 
 
 def _stepped_over_graze(evs, minima, sol, t_start):
@@ -168,6 +228,9 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
         u, s = state["u"].copy(), state["s"].copy()
         comp, t_rel, inc = list(state["comp"]), list(state["t_rel"]), list(state["inc"])
         open_start = list(state["open_start"])
+        for j, snap in enumerate(state["laws"]):
+            if snap is not None:
+                sides[j][5].restore(snap)
 
     def iso_force(dd):
         if kinematic:
@@ -178,7 +241,7 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
         return float(iso.backbone(dd))
 
     def bump_force(j, dd, vv):
-        sign, gap, force, _, _ = sides[j]
+        sign, gap, force = sides[j][:3]
         return force(sign * dd - gap, sign * vv)
 
     def rhs(tt, y):
@@ -212,6 +275,10 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
                 evs.append((lambda tt, y, e=e, sgn=sgn: sgn * (e - y[0]), ("region", 0, 0.0)))
         for j in range(len(sides)):
             if inc[j]:
+                if sides[j][5] is not None:  # a law's own events (in the compression and its rate)
+                    for g, mode in sides[j][5].events():
+                        evs.append((lambda tt, y, j=j, g=g: g(sides[j][0] * y[0] - sides[j][1], sides[j][0] * y[1]),
+                                    ("law", j, mode)))
                 evs.append((lambda tt, y, j=j: sides[j][0] * y[0] - sides[j][1], ("end", j, 0.0)))
                 evs.append((lambda tt, y, j=j: sides[j][4](sides[j][0] * y[0] - sides[j][1],
                                                            sides[j][0] * y[1]), ("end", j, 0.0)))
@@ -229,8 +296,12 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
                 if s[i] != 0:
                     u[i] = d - s[i] * Db[i]
             s[:] = 0
+        elif kind == "law":
+            sides[idx][5].switch(direction, sides[idx][0] * d - sides[idx][1])
         elif kind == "start":
             inc[idx] = True
+            if sides[idx][5] is not None:
+                sides[idx][5].reset()
             res.contact_starts.append((idx, t))
             open_start[idx] = (t, v, acc[idx], acc[2 + idx])
         elif kind == "end":
@@ -365,5 +436,5 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
     res.u = u
     res.state = {"t": t, "d": d, "v": v, "u": u.copy(), "s": s.copy(), "comp": list(comp),
                  "t_rel": list(t_rel), "inc": list(inc), "open_start": list(open_start),
-                 "acc": acc.copy()}
+                 "acc": acc.copy(), "laws": [None if sd[5] is None else sd[5].snapshot() for sd in sides]}
     return res

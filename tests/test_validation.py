@@ -6,6 +6,7 @@ import numpy as np
 import pytest
 
 import pounding as pd_
+from pounding.engine._layout import DEF_R, IN_R, STATE_BASE, Z_L, Z_R
 from pounding._errors import Problem
 
 ISO = pd_.Isolator([38e3, 18e3, 2e3], [0.015, 0.04], "kinematic", 1000.0)
@@ -77,10 +78,17 @@ def test_a_state_must_fit_the_system():
         "state.in_contact",
     )
     vec = pd_.State.at_rest(OSC, displacement_m=0.01).vector.copy()
-    vec[22] = -0.02  # a slip that leaves spring 0 strained beyond its yield displacement
+    vec[STATE_BASE] = -0.02  # a slip that leaves spring 0 strained beyond its yield displacement
     _raises(
         lambda: pd_.simulate(OSC, pd_.Harmonic(0.05, 2.2), 1.0, pd_.State(vec)), "state.plastic_slips_m[0]"
     )
+    vec = pd_.State.at_rest(OSC).vector.copy()
+    vec[Z_L] = 1e-3  # a law state for a Kelvin-Voigt bumper, which has none
+    _raises(lambda: pd_.simulate(OSC, pd_.Harmonic(0.05, 2.2), 1.0, pd_.State(vec)), f"state.vector[{Z_L}]")
+    ep = pd_.Oscillator(500.0, OSC.isolator, pd_.Bumpers(0.015, 0.015, pd_.ElasticPlastic(2e6, 2e5, 0.002)))
+    vec = pd_.State.at_rest(ep, displacement_m=0.015).vector.copy()
+    vec[IN_R], vec[DEF_R], vec[Z_R] = 1.0, 0.0, 0.01  # an offset whose elastic branch starts deeper
+    _raises(lambda: pd_.simulate(ep, pd_.Harmonic(0.05, 2.2), 1.0, pd_.State(vec)), f"state.vector[{Z_R}]")
 
 
 def test_final_states_of_runs_always_fit():

@@ -5,10 +5,11 @@ from __future__ import annotations
 import math
 
 from .._jit import jit
-from ..model.contact_laws import AT_START, MULTILINEAR, law_branch_edges, law_relax_horizon, law_switches_at_rest
+from ..model.contact_laws import (AT_START, EDGE_DOWN_STATE, EDGE_UP_STATE, law_branch_edges, law_is_linear,
+                                  law_relax_horizon, law_switches_at_rest, law_turn_sign)
 from ._layout import (ACT_CONTACT, ACT_LAW_BRANCH, ACT_RELEASE, E_ACTION, E_ALPHA, E_BETA, E_DIR, E_GAMMA,
                       E_INDEX, E_KIND, E_SIDE, EV_COLS, DEF_L, DEF_R, IN_L, IN_R, KIND_LINEAR, KIND_RELEASE, P_JBL, P_JBR,
-                      P_LAWL, P_LAWR, P_NLL, P_NLR, SIDE_L, SIDE_NONE, SIDE_R)
+                      P_LAWL, P_LAWR, P_NLL, P_NLR, SIDE_L, SIDE_NONE, SIDE_R, Z_L, Z_R)
 
 
 @jit
@@ -16,7 +17,9 @@ def bumper_events(st, ph, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r, evs, n):
     """Append the bumpers' event rows to ``evs`` from row ``n`` on; return the new count.
 
     Out of contact, the contact start against the relaxing surface; in contact, the compression
-    back to zero and the law's force-based release, and a multi-linear law's branch ends.
+    back to zero and the law's force-based release, and a linear law's branch ends: where the
+    compression leaves the branch (a multi-linear law's breakpoints, an elastic-plastic law's
+    lines), or where the compression rate turns (an elastic-plastic law leaving a line).
     """
     if not has_b:
         return n
@@ -25,9 +28,22 @@ def bumper_events(st, ph, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r, evs, n):
         gap = gap_l if side == SIDE_L else gap_r
         in_contact = st[IN_L] if side == SIDE_L else st[IN_R]
         law = law_l if side == SIDE_L else law_r
-        if in_contact != 0.0 and law == MULTILINEAR:  # its branch's ends (compression x = sign D - gap)
+        if in_contact != 0.0 and law_is_linear(law):  # its branch's ends (compression x = sign D - gap)
+            z = st[Z_L] if side == SIDE_L else st[Z_R]
             lower, upper = law_branch_edges(law, p_l if side == SIDE_L else p_r, AT_START,
-                                            int(ph[P_JBL] if side == SIDE_L else ph[P_JBR]))
+                                            int(ph[P_JBL] if side == SIDE_L else ph[P_JBR]), z)
+            turn = law_turn_sign(law, z)
+            if turn != 0.0:  # the compression rate sign V (of sign ``turn`` on the branch) crossing zero
+                row = evs[n]
+                row[E_KIND] = KIND_LINEAR
+                row[E_ALPHA] = 0.0
+                row[E_BETA] = 0.0
+                row[E_GAMMA] = turn * sign
+                row[E_SIDE] = SIDE_NONE  # (a velocity: rounded as the isolator's reversals are)
+                row[E_ACTION] = ACT_LAW_BRANCH
+                row[E_INDEX] = side
+                row[E_DIR] = 0.0
+                n += 1
             for edge, up in ((lower, False), (upper, True)):
                 if edge < 0.0:
                     continue
@@ -39,7 +55,7 @@ def bumper_events(st, ph, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r, evs, n):
                 row[E_SIDE] = side
                 row[E_ACTION] = ACT_LAW_BRANCH
                 row[E_INDEX] = side
-                row[E_DIR] = 0.0
+                row[E_DIR] = EDGE_UP_STATE if up else EDGE_DOWN_STATE
                 n += 1
         row = evs[n]
         row[E_SIDE] = SIDE_NONE

@@ -16,8 +16,8 @@ import math
 import numpy as np
 
 from .._jit import jit, jit_entry
-from ..model.contact_laws import (AT_START, MULTILINEAR, N_LAW_PARAMS, law_energy, law_force, law_is_linear,
-                                  law_linear_branch, law_relax)
+from ..model.contact_laws import (AT_START, MULTILINEAR, N_LAW_PARAMS, law_after_event, law_energy, law_force,
+                                  law_is_linear, law_linear_branch, law_relax)
 from ._buffers import grow as _grow
 from ._buffers import put as _put
 from ._bumpers import bumper_events, law_switches, relax_horizon
@@ -30,7 +30,7 @@ from ._layout import (ACC_L, ACC_R, ACT_CONTACT, ACT_LAW_BRANCH, ACT_RELEASE, A_
                       P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_INL, P_INR, P_JBL, P_JBR, P_K, P_KBL, P_KBR,
                       P_KISO, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR, P_RBL,
                       P_RBR, P_RISO, P_SPHI, P_V0, P_VROUND, P_VRUN, P_W, P_XROUND, P_XRUN, SAMPLE_COLS,
-                      SIDE_L, SIDE_R, T, V)
+                      SIDE_L, SIDE_R, T, V, Z_L, Z_R)
 from ._linear import fill_end, linear_eval_angle, linear_eval_end, linear_setup, linear_start, reset_ends
 from ._numeric import dp5_step
 from ._subinterval import accumulate, track_abs_acceleration, velocity_turn
@@ -55,9 +55,9 @@ def _outputs(st, d, v, mass, c_d, slopes, breaks, rule, gap_l, gap_r, law_l, p_l
     f_l = 0.0
     f_r = 0.0
     if st[IN_L] != 0.0:
-        f_l = law_force(law_l, p_l, AT_START, -d - gap_l, -v)[0]
+        f_l = law_force(law_l, p_l, AT_START, -d - gap_l, -v, st[Z_L])[0]
     if st[IN_R] != 0.0:
-        f_r = law_force(law_r, p_r, AT_START, d - gap_r, v)[0]
+        f_r = law_force(law_r, p_r, AT_START, d - gap_r, v, st[Z_R])[0]
     return -(f_iso + f_r - f_l) / mass, f_iso, f_l, f_r
 
 
@@ -73,7 +73,7 @@ def _outputs_in_phase(ph, tau, d, v, a):
 @jit
 def _energies(st, mass, slopes, breaks, rule, law_l, p_l, law_r, p_r):
     return (0.5 * mass * st[V] ** 2, iso_energy(slopes, breaks, rule, st, st[D]),
-            law_energy(law_l, p_l, st[DEF_L]) + law_energy(law_r, p_r, st[DEF_R]))
+            law_energy(law_l, p_l, st[DEF_L], st[Z_L]) + law_energy(law_r, p_r, st[DEF_R], st[Z_R]))
 
 
 @jit
@@ -94,7 +94,7 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law
             ph[P_INL] = 1.0
             if law_is_linear(law_l):
                 # F_L = kb x + rb + cb x' with x = -D - gap_l pushes the mass to the right
-                kb, cb, rb, jb = law_linear_branch(law_l, p_l, AT_START, st[DEF_L], -st[V])
+                kb, cb, rb, jb = law_linear_branch(law_l, p_l, AT_START, st[DEF_L], -st[V], st[Z_L])
                 k += kb
                 c += cb
                 r0 += kb * gap_l - rb
@@ -104,7 +104,7 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law
         if st[IN_R] != 0.0:
             ph[P_INR] = 1.0
             if law_is_linear(law_r):
-                kb, cb, rb, jb = law_linear_branch(law_r, p_r, AT_START, st[DEF_R], st[V])
+                kb, cb, rb, jb = law_linear_branch(law_r, p_r, AT_START, st[DEF_R], st[V], st[Z_R])
                 k += kb
                 c += cb
                 r0 += rb - kb * gap_r
@@ -370,7 +370,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
                 st[idx] = max(0.0, (-d1 if side == SIDE_L else d1) - gap)
             elif st[idx] > 0.0:
                 relaxed = law_relax(law, p, AT_START, st[idx], tau)[0]
-                ledger[3] += law_energy(law, p, st[idx]) - law_energy(law, p, relaxed)
+                ledger[3] += law_energy(law, p, st[idx], 0.0) - law_energy(law, p, relaxed, 0.0)
                 st[idx] = relaxed
         if not (abs(d1) <= DBL_MAX and abs(v1) <= DBL_MAX):  # inf or NaN: nothing after it holds
             status = NONFINITE
@@ -390,6 +390,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         if action == ACT_CONTACT:
             acc = ACC_L if index == SIDE_L else ACC_R
             st[IN_L if index == SIDE_L else IN_R] = 1.0
+            st[Z_L if index == SIDE_L else Z_R] = 0.0  # (a law with a state starts unloaded)
             comp = st[DEF_L if index == SIDE_L else DEF_R]
             st[acc + A_TSTART] = t_ev
             # below the resolution the mass met the surface at rest (its restitution is NaN)
@@ -402,6 +403,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         elif action == ACT_RELEASE:
             acc = ACC_L if index == SIDE_L else ACC_R
             st[IN_L if index == SIDE_L else IN_R] = 0.0
+            st[Z_L if index == SIDE_L else Z_R] = 0.0
             # a touch below the resolution in both depth and impulse (a graze, or a mass resting
             # on a bumper that pushes with zero force) is no impact: the motion went through it
             # exactly, the contact table leaves it out
@@ -412,7 +414,13 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
                 _put(contacts, n_c, float(index), st[acc + A_TSTART], t_ev, st[acc + A_VIN], st[V],
                      st[acc + A_IMPULSE], st[acc + A_PEAK], st[acc + A_MAXCOMP], st[acc + A_WORK])
                 n_c += 1
-        elif action != ACT_LAW_BRANCH:  # (a bumper's next branch is the next phase's: no jump)
+        elif action == ACT_LAW_BRANCH:  # the next branch is the next phase's; a law's state may change
+            iz = Z_L if index == SIDE_L else Z_R
+            if index == SIDE_L:
+                st[iz] = law_after_event(law_l, p_l, AT_START, st[iz], st[DEF_L], evs[i_ev, E_DIR])
+            else:
+                st[iz] = law_after_event(law_r, p_r, AT_START, st[iz], st[DEF_R], evs[i_ev, E_DIR])
+        else:
             iso_transition(slopes, breaks, rule, st, action, index, evs[i_ev, E_DIR])
         if n_e >= events.shape[0]:
             events = _grow(events, n_e)

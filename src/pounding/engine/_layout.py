@@ -21,7 +21,9 @@ ACC_L = 8        # contact accumulators of the left bumper (N_ACC values)
 ACC_R = 15       # ... of the right bumper
 N_ACC = 7
 A_TSTART, A_VIN, A_DSTART, A_IMPULSE, A_PEAK, A_MAXCOMP, A_WORK = 0, 1, 2, 3, 4, 5, 6
-STATE_BASE = 22  # then u_i (n-1 plastic slips, m), then s_i (n-1 slip directions, -1/0/+1)
+Z_L = 22         # the left bumper's law state (contact_laws.law_after_event; 0 for a stateless law)
+Z_R = 23         # ... the right one's
+STATE_BASE = 24  # then u_i (n-1 plastic slips, m), then s_i (n-1 slip directions, -1/0/+1)
 
 # ---- phase descriptor (float64), see _linear.py and _numeric.py
 P_M, P_C, P_K, P_P0, P_P1, P_H, P_W, P_PHI = 0, 1, 2, 3, 4, 5, 6, 7

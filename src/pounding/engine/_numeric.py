@@ -33,9 +33,9 @@ def bumper_forces(ph, d, v):
     fl = 0.0
     fr = 0.0
     if ph[P_NLL] != 0.0:
-        fl = law_force(int(ph[P_LAWL]), ph, PL_AT, -d - ph[P_GAPL], -v)[0]
+        fl = law_force(int(ph[P_LAWL]), ph, PL_AT, -d - ph[P_GAPL], -v, 0.0)[0]
     if ph[P_NLR] != 0.0:
-        fr = law_force(int(ph[P_LAWR]), ph, PR_AT, d - ph[P_GAPR], v)[0]
+        fr = law_force(int(ph[P_LAWR]), ph, PR_AT, d - ph[P_GAPR], v, 0.0)[0]
     return fl, fr
 
 

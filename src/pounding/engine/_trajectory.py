@@ -47,13 +47,24 @@ def table_acceleration(ph, tau):
 
 @jit
 def contact_force(ph, side, d, v, a):
-    """Bumper ``side`` in contact: ``(force N, elastic part N, d(force)/dt N/s, compression rate m/s)``."""
+    """Bumper ``side`` in contact: ``(force N, elastic part N, d(force)/dt N/s, compression rate m/s)``.
+
+    A linear law's force is its phase's branch's (``kb x + rb + cb x'``): a law with a state
+    (elastic-plastic) has it from there, not from the compression alone."""
     if side == SIDE_L:
         dd, dv, da = -d - ph[P_GAPL], -v, -a
-        f, fel, fd, fv = law_force(int(ph[P_LAWL]), ph, PL_AT, dd, dv)
+        law = int(ph[P_LAWL])
+        if law_is_linear(law):
+            fel = ph[P_KBL] * dd + ph[P_RBL]
+            return fel + ph[P_CBL] * dv, fel, ph[P_KBL] * dv + ph[P_CBL] * da, dv
+        f, fel, fd, fv = law_force(law, ph, PL_AT, dd, dv, 0.0)
     else:
         dd, dv, da = d - ph[P_GAPR], v, a
-        f, fel, fd, fv = law_force(int(ph[P_LAWR]), ph, PR_AT, dd, dv)
+        law = int(ph[P_LAWR])
+        if law_is_linear(law):
+            fel = ph[P_KBR] * dd + ph[P_RBR]
+            return fel + ph[P_CBR] * dv, fel, ph[P_KBR] * dv + ph[P_CBR] * da, dv
+        f, fel, fd, fv = law_force(law, ph, PR_AT, dd, dv, 0.0)
     return f, fel, fd * dv + fv * da, dv
 
 

@@ -2,7 +2,7 @@
 
 from __future__ import annotations
 
-from typing import Optional
+from typing import Any, Optional
 
 import numpy as np
 
@@ -10,7 +10,8 @@ from .._checks import integer, non_negative, positive
 from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
-from ..model.contact_laws import KelvinVoigt
+from ..model._elastic_plastic import EP_UNLOAD, EP_YIELD
+from ..model.contact_laws import ElasticPlastic, KelvinVoigt
 from ._control import (
     DEFAULT_MAX_STEPS,
     check_budget,
@@ -21,7 +22,7 @@ from ._control import (
     steps_per_second,
 )
 from ._kernel import run_kernel
-from ._layout import REGION, STATE_BASE
+from ._layout import REGION, STATE_BASE, Z_L, Z_R
 from .result import EnergyLedger, Run, State
 
 _NO_LAW = KelvinVoigt(1.0, 0.0)  # stands in for absent bumpers (never touched)
@@ -92,6 +93,7 @@ def _check_state_fits(state: State, oscillator: Oscillator) -> None:
             if not touching[j] and depth - comp[j] > tol:
                 raise bad("displacement_m", d, f"is inside the {side} bumper (its surface is at "
                                                f"{sign * (gap + comp[j]):g} m) while not in contact")
+            _check_law_state(vec[(Z_L, Z_R)[j]], (b.left, b.right)[j], touching[j], comp[j], tol, j, bad)
     n_sp = iso.n_branches - 1
     if iso.hysteresis == "elastic":
         region = int(vec[REGION])
@@ -110,6 +112,25 @@ def _check_state_fits(state: State, oscillator: Oscillator) -> None:
         if beyond:
             raise bad(f"plastic_slips_m[{i}]", float(vec[STATE_BASE + i]),
                       f"leaves spring {i}'s strain {strain:g} m beyond its yield displacement {brk:g} m")
+
+
+def _check_law_state(z: float, law: Any, touching: bool, comp: float, tol: float, j: int, bad: Any) -> None:
+    """A bumper law's own state (``_layout.Z_L``): 0 out of contact and for a stateless law; for
+    an elastic-plastic law in contact, a line's code or a plastic offset whose elastic branch
+    holds the compression."""
+    field = f"vector[{(Z_L, Z_R)[j]}]"
+    if not touching or not isinstance(law, ElasticPlastic):
+        if z != 0.0:
+            raise bad(field, z, "is a bumper law's state, but that bumper has none (a stateless law, or "
+                                "out of contact)")
+        return
+    if z in (EP_YIELD, EP_UNLOAD):
+        return
+    k1, k2, dy = law.stiffness, law.post_yield_stiffness, law.yield_compression
+    low = k1 * z / (k1 - k2)
+    if z < 0.0 or not low - tol <= comp <= low + dy + tol:
+        raise bad(field, z, f"is no plastic offset of the {('left', 'right')[j]} bumper at compression {comp:g} m "
+                            "(its elastic branch would not hold it)")
 
 
 def kernel_system(oscillator: Oscillator) -> tuple:

@@ -16,8 +16,8 @@ import pandas as pd
 
 from .._checks import float_array, integer, one_of, positive, real, real_tuple
 from .._errors import InputError, Problem
-from ..model.contact_laws import (LAWS, MAX_BRANCHES, ContactLaw, HuntCrossley, Jankowski, KelvinVoigt,
-                                  MultilinearBumper, law_force_many)
+from ..model.contact_laws import (ELASTIC_PLASTIC, LAWS, MAX_BRANCHES, N_LAW_PARAMS, ContactLaw, ElasticPlastic,
+                                  HuntCrossley, Jankowski, KelvinVoigt, MultilinearBumper, law_force_many)
 
 MIN_SAMPLES_IN_CONTACT = 3
 
@@ -138,6 +138,46 @@ def _multilinear_search(d, v, force, n_branches):
     return breaks_of(best.x)
 
 
+def _elastic_plastic_force(k1, ratio, dy, d):
+    p = np.zeros(N_LAW_PARAMS)
+    p[:3] = k1, ratio * k1, dy
+    out = np.empty(d.size)
+    law_force_many(ELASTIC_PLASTIC, p, d, d, out)
+    return out
+
+
+def _elastic_plastic_search(d, force):
+    """``(K1, K2, delta_y)`` of the elastic-plastic law closest to the path: the force is
+    ``K1`` times that of the law with ``K1 = 1``, so a grid over ``delta_y`` and ``K2 / K1``
+    with ``K1`` by linear least squares, then a local least-squares polish of all three (in
+    logarithms, the ratio through a logistic: every trial stays a valid law)."""
+    from scipy.optimize import least_squares
+
+    d = np.ascontiguousarray(d)
+    top = float(d.max())
+    best = (np.inf, 0.0, 0.0, 0.0)
+    for dy in top * np.geomspace(0.01, 0.9, 15):
+        for ratio in (0.003, 0.03, 0.1, 0.3, 0.6, 0.9):
+            unit = _elastic_plastic_force(1.0, ratio, dy, d)
+            k1 = float(unit @ force) / max(float(unit @ unit), 1e-300)
+            if k1 <= 0.0:
+                continue
+            cost = float(np.sum((force - k1 * unit) ** 2))
+            if cost < best[0]:
+                best = (cost, k1, ratio, dy)
+    if not np.isfinite(best[0]):
+        raise InputError(Problem.NOT_POSITIVE, "force_n", "forces no elastic-plastic law gives",
+                         unit="N, compression positive (is the sign of the force the other way?)")
+    _, k1, ratio, dy = best
+
+    def resid(x):
+        return _elastic_plastic_force(np.exp(x[0]), 1.0 / (1.0 + np.exp(-x[1])), np.exp(x[2]), d) - force
+
+    x0 = np.array([np.log(k1), np.log(ratio / (1.0 - ratio)), np.log(dy)])
+    x = least_squares(resid, x0, x_scale=1.0, xtol=1e-14, ftol=1e-14, gtol=1e-14, diff_step=1e-7).x
+    return float(np.exp(x[0])), float(np.exp(x[0]) / (1.0 + np.exp(-x[1]))), float(np.exp(x[2]))
+
+
 def fit_contact_law(
     displacement_m: Any,
     force_n: Any,
@@ -163,9 +203,11 @@ def fit_contact_law(
         derivative (second order).  Give this or ``velocity_m_s``.
     velocity_m_s : array_like, shape (n,), optional
         Compression rate, m/s, when it was measured.
-    law : {"kelvin_voigt", "hunt_crossley", "jankowski", "multilinear"}
+    law : {"kelvin_voigt", "hunt_crossley", "jankowski", "multilinear", "elastic_plastic"}
         ``F = k d + c v``, ``F = d^n (k + c v)``, ``F = k d^n + 2 xi sqrt(m k d^(n-1)) v``
-        while ``v > 0`` (``k d^n`` while ``v <= 0``), or ``F = R(d) + c v`` with a multi-linear ``R``.
+        while ``v > 0`` (``k d^n`` while ``v <= 0``), ``F = R(d) + c v`` with a multi-linear ``R``,
+        or :class:`ElasticPlastic` (rate-independent: its force follows the samples in compression in
+        their order, from an unloaded bumper; searched over a grid, then polished by least squares).
     exponent_bounds : (float, float)
         Search range of the exponent ``n`` (>= 1) of Hunt-Crossley and Jankowski.
     effective_mass_kg : float, optional
@@ -227,6 +269,8 @@ def fit_contact_law(
         slopes, c, _ = _multilinear_fit(d, v, force, b)
         slopes[0] = max(slopes[0], np.finfo(float).tiny)
         fitted = MultilinearBumper(tuple(slopes), tuple(b), c)
+    elif law == ElasticPlastic.TYPE:
+        fitted = ElasticPlastic(*_elastic_plastic_search(d, force))
     else:
         lo = real("exponent_bounds[0]", exponent_bounds[0])
         hi = real("exponent_bounds[1]", exponent_bounds[1])
@@ -272,7 +316,7 @@ def rank_contact_laws(displacement_m: Any, force_n: Any, *, time_s: Any = None, 
         One row per law, best first: ``law`` (its type), ``rms_n``, ``r_squared``,
         ``parameters`` (their count) and ``fit`` (the :class:`ContactLawFit`).
     """
-    counts = {KelvinVoigt.TYPE: 2, HuntCrossley.TYPE: 3, Jankowski.TYPE: 3,
+    counts = {KelvinVoigt.TYPE: 2, HuntCrossley.TYPE: 3, Jankowski.TYPE: 3, ElasticPlastic.TYPE: 3,
               MultilinearBumper.TYPE: 2 * integer("n_branches", n_branches, 1, MAX_BRANCHES)}
     rows = []
     for name in LAWS:

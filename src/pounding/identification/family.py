@@ -8,7 +8,9 @@ fitted within bounds (the ``bounds`` of :func:`pounding.identify`).  Names:
 - ``breakpoint_1`` ... ``breakpoint_{n-1}``: backbone breakpoints, m (increasing);
 - ``isolator_damping``: ``C_d``, N s/m;
 - ``bumper_stiffness``, ``bumper_damping`` (and ``bumper_exponent`` for Hunt-Crossley):
-  the contact law's parameters, both bumpers alike;
+  the contact law's parameters, both bumpers alike; for the elastic-plastic law
+  ``bumper_stiffness`` (K1, N/m), ``bumper_post_yield_ratio`` (K2 / K1, in (0, 1)) and
+  ``bumper_yield_compression`` (m);
 - ``gap``: the gap on each side, m.
 
 TOML (``pounding identify ... --family FAMILY.toml``)::
@@ -34,11 +36,12 @@ import numpy as np
 
 from .._checks import integer, one_of, positive, read_toml, real
 from .._errors import InputError, Problem
-from ..model import Bumpers, HuntCrossley, Isolator, KelvinVoigt, Oscillator
+from ..model import Bumpers, ElasticPlastic, HuntCrossley, Isolator, KelvinVoigt, Oscillator
 
 FAMILY_KEYS = ("mass", "branches", "hysteresis", "law", "fixed", "bounds")
 LAW_PARAMETERS = {"kelvin_voigt": ("bumper_stiffness", "bumper_damping"),
-                  "hunt_crossley": ("bumper_stiffness", "bumper_exponent", "bumper_damping")}
+                  "hunt_crossley": ("bumper_stiffness", "bumper_exponent", "bumper_damping"),
+                  "elastic_plastic": ("bumper_stiffness", "bumper_post_yield_ratio", "bumper_yield_compression")}
 
 
 @dataclass(frozen=True)
@@ -52,7 +55,7 @@ class ModelFamily:
     branches : int
         Number of backbone slopes ``n`` (>= 1).
     hysteresis : {"kinematic", "elastic"}
-    law : {"kelvin_voigt", "hunt_crossley"}
+    law : {"kelvin_voigt", "hunt_crossley", "elastic_plastic"}
         The bumpers' contact law.
     fixed : dict
         ``name -> value`` for the numbers not fitted (names in the module docstring).
@@ -116,6 +119,12 @@ class ModelFamily:
                             p["isolator_damping"])
         if self.law == "kelvin_voigt":
             law: Any = KelvinVoigt(p["bumper_stiffness"], p["bumper_damping"])
+        elif self.law == "elastic_plastic":
+            ratio = p["bumper_post_yield_ratio"]
+            if not 0.0 < ratio < 1.0:
+                raise InputError(Problem.OUT_OF_RANGE, "bumper_post_yield_ratio", ratio, range="(0, 1)",
+                                 hint=" (K2 / K1: the yield line is the softer one)")
+            law = ElasticPlastic(p["bumper_stiffness"], ratio * p["bumper_stiffness"], p["bumper_yield_compression"])
         else:
             law = HuntCrossley(p["bumper_stiffness"], p["bumper_exponent"], p["bumper_damping"])
         return Oscillator(self.mass, isolator, Bumpers(p["gap"], p["gap"], law))
@@ -130,6 +139,11 @@ class ModelFamily:
         out.update({f"breakpoint_{i + 1}": float(x) for i, x in enumerate(iso.breakpoints)})
         out["isolator_damping"] = float(iso.damping)
         out["bumper_stiffness"] = float(b.law.stiffness)
+        if self.law == "elastic_plastic":
+            out["bumper_post_yield_ratio"] = float(b.law.post_yield_stiffness / b.law.stiffness)
+            out["bumper_yield_compression"] = float(b.law.yield_compression)
+            out["gap"] = float(b.gap_left)
+            return out
         out["bumper_damping"] = float(b.law.damping)
         if self.law == "hunt_crossley":
             out["bumper_exponent"] = float(b.law.exponent)

@@ -26,9 +26,9 @@ class Bumpers:
     gap_left, gap_right : float
         Distances in m from the mass at rest to each bumper's free surface, >= 0.  The
         paper's total gap is ``gap_left + gap_right = 0.03`` m.
-    law : KelvinVoigt, HuntCrossley, Jankowski or MultilinearBumper
+    law : KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper or ElasticPlastic
         Contact law of the left bumper, and of the right one unless ``law_right`` is given.
-    law_right : KelvinVoigt, HuntCrossley, Jankowski or MultilinearBumper, optional
+    law_right : KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper or ElasticPlastic, optional
         Contact law of the right bumper when it differs from the left one.
     """
 
@@ -52,7 +52,7 @@ class Bumpers:
             if not isinstance(value, tuple(LAWS.values())):
                 raise InputError(Problem.WRONG_TYPE, f"bumpers.{name}", value,
                                  got=type(value).__name__,
-                                 expected="contact law (KelvinVoigt, HuntCrossley, Jankowski or MultilinearBumper)")
+                                 expected="contact law (KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper or ElasticPlastic)")
 
     @property
     def left(self) -> ContactLaw:

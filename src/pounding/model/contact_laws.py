@@ -23,6 +23,8 @@ import numpy as np
 from .._checks import at_most, backbone, non_negative, positive, real
 from .._errors import InputError, Problem
 from .._jit import jit, jit_entry
+from ._elastic_plastic import (EP_UNLOAD, EP_YIELD, EP_YIELD_BRANCH, ep_after_event, ep_edges, ep_energy, ep_force, ep_force_path,
+                               ep_line, ep_turn_sign)
 from ._multilinear import (EXP_NORMAL_LIMIT, MIN_NORMAL, ml_branch, ml_branch_line, ml_energy, ml_relax,
                            ml_relax_horizon)
 
@@ -30,6 +32,7 @@ KELVIN_VOIGT = 0
 HUNT_CROSSLEY = 1
 JANKOWSKI = 2
 MULTILINEAR = 3
+ELASTIC_PLASTIC = 4
 N_LAW_PARAMS = 10  # (MultilinearBumper: damping, branch count, 4 slopes, 3 breakpoints)
 MAX_BRANCHES = 4
 BRANCH_TIE = 1e-9  # relative: a compression this close to a breakpoint is at it (law_linear_branch)
@@ -252,9 +255,83 @@ class MultilinearBumper:
         return forces[j] + np.array(self.slopes)[j] * (d - edges[j])
 
 
-ContactLaw = Union[KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper]
+@dataclass(frozen=True)
+class ElasticPlastic:
+    """An elastic-plastic impact law: yield in compression, stiffer elastic unloading
+    (the bilinear law of OpenSees' ``ImpactMaterial``, Muthukumar and DesRoches 2006).
+
+    The force starts along ``stiffness * d``; past ``yield_compression`` it follows the yield
+    line ``stiffness * dy + post_yield_stiffness * (d - dy)``; it unloads with ``stiffness``
+    down to the line ``post_yield_stiffness * d`` and along that back to zero.  Between the two
+    lines it moves elastically, ``stiffness * (d - z)`` with ``z`` the plastic offset.  So an
+    impact below the yield velocity ``dy sqrt(stiffness / M)`` is elastic (restitution 1) and
+    one above it dissipates the more and lasts the longer the faster it comes
+    (:meth:`restitution`).  No dashpot: the force is rate-independent, never pulls, and the
+    contact ends when the compression is back to zero; out of contact the bumper is unloaded
+    (the next contact starts from ``z = 0``).  Piecewise linear, so every phase of motion stays
+    closed-form.
+
+    Parameters
+    ----------
+    stiffness : float
+        ``K1``, the elastic (initial and unloading) stiffness, N/m, > 0.
+    post_yield_stiffness : float
+        ``K2``, N/m, with 0 < ``K2`` < ``K1``.
+    yield_compression : float
+        ``delta_y``, the compression where it first yields, m, > 0.
+    """
+
+    stiffness: float
+    post_yield_stiffness: float
+    yield_compression: float
+
+    TYPE: ClassVar[str] = "elastic_plastic"
+    LAW_ID: ClassVar[int] = ELASTIC_PLASTIC
+
+    def __post_init__(self) -> None:
+        k1 = _coefficient("law.stiffness", self.stiffness, "N/m", True)
+        k2 = _coefficient("law.post_yield_stiffness", self.post_yield_stiffness, "N/m", True)
+        if not k2 < k1:
+            raise InputError(Problem.OUT_OF_RANGE, "law.post_yield_stiffness", self.post_yield_stiffness,
+                             range=f"(0, {k1:g}) N/m",
+                             hint=" (below the elastic stiffness: the yield line is the softer one)")
+        dy = positive("law.yield_compression", self.yield_compression, "m")
+        dy = at_most("law.yield_compression", dy, 10.0, " m", "give it in m (2 mm is 0.002)")
+        object.__setattr__(self, "stiffness", k1)
+        object.__setattr__(self, "post_yield_stiffness", k2)
+        object.__setattr__(self, "yield_compression", dy)
+
+    def params(self) -> np.ndarray:
+        """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,): K1, K2, delta_y."""
+        return _padded([self.stiffness, self.post_yield_stiffness, self.yield_compression])
+
+    def yield_velocity_m_s(self, mass_kg: float) -> float:
+        """Impact velocity (m/s) of a free mass ``mass_kg`` below which the contact is elastic."""
+        return self.yield_compression * math.sqrt(self.stiffness / positive("mass_kg", mass_kg, "kg"))
+
+    def restitution(self, mass_kg: float, velocity_m_s: Any) -> np.ndarray:
+        """Coefficient of restitution of a free mass hitting the bumper at ``velocity_m_s``
+        (m/s, >= 0, any shape): 1 below the yield velocity, then
+        ``sqrt(E_back / (M v^2 / 2))`` with ``E_back`` the elastic energy at the deepest compression."""
+        m = positive("mass_kg", mass_kg, "kg")
+        v = np.abs(np.asarray(velocity_m_s, dtype=float))
+        k1, k2, dy = self.stiffness, self.post_yield_stiffness, self.yield_compression
+        energy = 0.5 * m * v * v
+        # deepest compression: 1/2 k1 dy^2 + k1 dy s + 1/2 k2 s^2 = energy, s = d_max - dy >= 0
+        e_y = 0.5 * k1 * dy * dy
+        s = np.where(energy > e_y, (-k1 * dy + np.sqrt((k1 * dy) ** 2 + 2.0 * k2 * np.maximum(energy - e_y, 0.0)))
+                     / k2, 0.0)
+        f = k1 * dy + k2 * s
+        dp = (k1 - k2) * s / k1
+        back = 0.5 * f * f / k1 + 0.5 * k1 * k2 * dp * dp / (k1 - k2)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return np.where(energy > e_y, np.sqrt(back / np.where(energy > 0, energy, 1.0)), 1.0)
+
+
+ContactLaw = Union[KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper, ElasticPlastic]
 LAWS: dict[str, type] = {KelvinVoigt.TYPE: KelvinVoigt, HuntCrossley.TYPE: HuntCrossley,
-                         Jankowski.TYPE: Jankowski, MultilinearBumper.TYPE: MultilinearBumper}
+                         Jankowski.TYPE: Jankowski, MultilinearBumper.TYPE: MultilinearBumper,
+                         ElasticPlastic.TYPE: ElasticPlastic}
 
 
 def law_to_dict(law: ContactLaw) -> dict[str, Any]:
@@ -298,18 +375,28 @@ def law_from_dict(table: dict[str, Any], field: str) -> ContactLaw:
 @jit
 def law_is_linear(law):
     """True when the force is linear in (d, dd) on each branch: every phase stays a linear ODE."""
-    return law == KELVIN_VOIGT or law == MULTILINEAR
+    return law == KELVIN_VOIGT or law == MULTILINEAR or law == ELASTIC_PLASTIC
 
 
 @jit
-def law_linear_branch(law, p, o, d, dd):
+def law_is_hysteretic(law):
+    """True when the law has a state of its own (``z``, kept per bumper) and dissipates on a branch."""
+    return law == ELASTIC_PLASTIC
+
+
+@jit
+def law_linear_branch(law, p, o, d, dd, z):
     """``(stiffness N/m, damping N s/m, offset N, branch)`` of a linear law at compression
-    ``d``: ``F = stiffness d + offset + damping dd`` on that branch.  At a breakpoint the branch
+    ``d`` (rate ``dd``, state ``z``): ``F = stiffness d + offset + damping dd`` on that branch.
+    An elastic-plastic law's branch is its state's.  At a multi-linear law's breakpoint the branch
     the compression is heading into (the sign of its rate ``dd``): "at" to ``BRANCH_TIE`` of the
     breakpoint, since an event instant is located to 1e-15 s (at 0.5 m/s, 1.5e-12 of a 0.3 mm
     breakpoint: with a tighter tie the branch's end fired again and again, ZENO)."""
     if law == KELVIN_VOIGT:
         return p[o], p[o + 1], 0.0, 0
+    if law == ELASTIC_PLASTIC:
+        k, r, j = ep_line(p, o, z)
+        return k, 0.0, r, j
     n = int(p[o + 1])
     j = ml_branch(p, o, d)[2]
     if j < n - 1 and dd > 0.0 and abs(d - p[o + 6 + j]) <= BRANCH_TIE * p[o + 6 + j]:
@@ -321,7 +408,7 @@ def law_linear_branch(law, p, o, d, dd):
 
 @jit
 def law_branch_coefficients(law, p, o, j):
-    """:func:`law_linear_branch`'s numbers for branch ``j`` of a linear law."""
+    """:func:`law_linear_branch`'s numbers for branch ``j`` of a stateless linear law."""
     if law == KELVIN_VOIGT:
         return p[o], p[o + 1], 0.0, 0
     k, offset, _ = ml_branch_line(p, o, j)
@@ -329,13 +416,51 @@ def law_branch_coefficients(law, p, o, j):
 
 
 @jit
-def law_branch_edges(law, p, o, j):
-    """Compressions (m) where branch ``j`` of a linear law ends, below and above: -1.0 for none
-    (the lowest branch starts at 0, where the contact ends anyway)."""
+def law_branch_edges(law, p, o, j, z):
+    """Compressions (m) where branch ``j`` (state ``z``) of a linear law ends, below and above:
+    -1.0 for none (the lowest branch starts at 0, where the contact ends anyway).  Crossing the
+    lower one leads to state ``EP_UNLOAD``, the upper one to ``EP_YIELD`` (an elastic-plastic
+    law's lines; :func:`law_after_event`)."""
+    if law == ELASTIC_PLASTIC:
+        return ep_edges(p, o, z)
     if law != MULTILINEAR:
         return -1.0, -1.0
     n = int(p[o + 1])
     return (p[o + 5 + j] if j > 0 else -1.0), (p[o + 6 + j] if j < n - 1 else -1.0)
+
+
+EDGE_DOWN_STATE = EP_UNLOAD  # the state code an event row of the lower and upper edge carries
+EDGE_UP_STATE = EP_YIELD
+
+
+@jit
+def law_branch_loss(law, p, o, j, d0, d1):
+    """Energy (J) the spring of branch ``j`` dissipates as the compression goes from ``d0`` to
+    ``d1`` on it (a dashpot's is apart): an elastic-plastic law's yield line dissipates
+    ``(k1 - k2) dy`` per metre (its force minus the rate ``k2 d`` of the energy it stores);
+    every other branch is elastic."""
+    if law == ELASTIC_PLASTIC and j == EP_YIELD_BRANCH:
+        return (p[o] - p[o + 1]) * p[o + 2] * (d1 - d0)
+    return 0.0
+
+
+@jit
+def law_turn_sign(law, z):
+    """+1 (or -1) when the branch of state ``z`` ends where the compression rate, positive (or
+    negative) on it, crosses zero: an elastic-plastic law's lines.  0 for the other branches."""
+    if law == ELASTIC_PLASTIC:
+        return ep_turn_sign(z)
+    return 0.0
+
+
+@jit
+def law_after_event(law, p, o, z, d, code):
+    """The law's state after one of its branch events at compression ``d``: ``code`` is the
+    event row's (:data:`EDGE_DOWN_STATE`, :data:`EDGE_UP_STATE`, or 0 for a turn).  A stateless
+    law keeps ``z``."""
+    if law == ELASTIC_PLASTIC:
+        return ep_after_event(p, o, z, d, code)
+    return z
 
 
 @jit
@@ -346,14 +471,17 @@ def law_switches_at_rest(law):
 
 
 @jit
-def law_force(law, p, o, d, dd):
-    """Force of the bumper at compression ``d`` (m) and rate ``dd`` (m/s).
+def law_force(law, p, o, d, dd, z):
+    """Force of the bumper at compression ``d`` (m), rate ``dd`` (m/s) and law state ``z``.
 
     Returns ``(force, elastic_part, dforce/dd, dforce/d(dd))``.
     """
     k, c = p[o], p[o + 1]
     if law == KELVIN_VOIGT:
         return k * d + c * dd, k * d, k, c
+    if law == ELASTIC_PLASTIC:
+        f = ep_force(p, o, d, z)
+        return f, f, ep_line(p, o, z)[0], 0.0
     if law == MULTILINEAR:
         force, slope, _, _ = ml_branch(p, o, d)
         return force + k * dd, force, slope, k
@@ -374,12 +502,14 @@ def law_force(law, p, o, d, dd):
 
 
 @jit
-def law_energy(law, p, d):
-    """Elastic energy stored at compression ``d`` (J)."""
+def law_energy(law, p, d, z):
+    """Elastic energy stored at compression ``d`` (J), law state ``z``."""
     if law == KELVIN_VOIGT:
         return 0.5 * p[0] * d * d
     if law == MULTILINEAR:
         return ml_energy(p, d)
+    if law == ELASTIC_PLASTIC:
+        return ep_energy(p, AT_START, d, z)
     dpos = d if d > 0.0 else 0.0  # (Hunt-Crossley and Jankowski: the spring k d^n)
     return p[0] * dpos ** (p[2] + 1.0) / (p[2] + 1.0)
 
@@ -404,7 +534,7 @@ def law_relax(law, p, o, d0, tau):
         return d, -rate * d
     if law == MULTILINEAR:
         return ml_relax(p, o, d0, tau)
-    if law == JANKOWSKI or p[o + 1] <= 0.0:  # (Jankowski's recovery has no dashpot)
+    if law == JANKOWSKI or law == ELASTIC_PLASTIC or p[o + 1] <= 0.0:  # (no dashpot: back at once)
         return 0.0, 0.0
     speed = p[o] / p[o + 1]
     d = d0 - speed * tau
@@ -432,6 +562,8 @@ def law_release(law, p, o, d, dd, ddd):
         return p[o] * d + p[o + 1] * dd, p[o] * dd + p[o + 1] * ddd
     if law == JANKOWSKI:  # never pulls: the contact ends with the compression
         return 1.0, 0.0
+    if law == ELASTIC_PLASTIC:  # (never pulls either; the engine uses its phase's branch)
+        return p[o] * d, p[o] * dd
     if law == MULTILINEAR:
         force, slope, _, _ = ml_branch(p, o, d)
         return force + p[o] * dd, slope * dd + p[o] * ddd
@@ -440,6 +572,10 @@ def law_release(law, p, o, d, dd, ddd):
 
 @jit_entry
 def law_force_many(law, p, d, dd, out):
-    """``law_force`` at each ``(d[i], dd[i])`` into ``out[i]`` (N): arrays of one shape (n,)."""
+    """``law_force`` at each ``(d[i], dd[i])`` into ``out[i]`` (N): arrays of one shape (n,).
+    A hysteretic law's state follows the path from the unloaded state, sample by sample."""
+    if law == ELASTIC_PLASTIC:
+        ep_force_path(p, AT_START, d, out)
+        return
     for i in range(d.size):
-        out[i] = law_force(law, p, AT_START, d[i], dd[i])[0]
+        out[i] = law_force(law, p, AT_START, d[i], dd[i], 0.0)[0]

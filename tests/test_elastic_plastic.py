@@ -1,0 +1,150 @@
+"""The elastic-plastic impact law (issue 16): closed-form restitution of a free impact, random
+systems against the reference (which restates OpenSees' ImpactMaterial with the force as its
+state), the energy ledger, no pull, chained runs, the fit from loops it generated."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from strategies import harmonics, oscillators
+from test_reference import _compare
+
+import pounding as pd_
+from pounding.model.contact_laws import law_force_many
+
+SETTINGS = settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+LAW = pd_.ElasticPlastic(2e6, 2e5, 0.002)
+
+
+def _free_impact(law, v0, mass=500.0):
+    """``mass`` at v0 into the right bumper, an isolator of 1e-9 N/m, no table motion."""
+    osc = pd_.Oscillator(mass, pd_.Isolator((1e-9,), (), "elastic", 0.0), pd_.Bumpers(0.05, 0.01, law))
+    return pd_.simulate(osc, pd_.Harmonic(0.0, 1.0), 0.01 / v0 + 0.3, pd_.State.at_rest(osc, velocity_m_s=v0),
+                        sample_rate_hz=0)
+
+
+def _path_forces(law, d):
+    out = np.empty(d.size)
+    law_force_many(law.LAW_ID, law.params(), np.ascontiguousarray(d), np.ascontiguousarray(d), out)
+    return out
+
+
+def test_free_impacts_meet_the_closed_form_restitution():
+    v_yield = LAW.yield_velocity_m_s(500.0)
+    assert v_yield == pytest.approx(0.002 * np.sqrt(2e6 / 500.0))
+    times = []
+    for v0 in (0.5 * v_yield, 0.99 * v_yield, 1.5 * v_yield, 4.0 * v_yield, 20.0 * v_yield):
+        run = _free_impact(LAW, v0)
+        c = run.contacts.iloc[0]
+        e = -c["v_out"] / c["v_in"]
+        assert e == pytest.approx(float(LAW.restitution(500.0, v0)), abs=1e-12)
+        # the dissipated energy is the kinetic energy lost, and the ledger closes
+        assert c["bumper_dissipation"] == pytest.approx(0.5 * 500.0 * (v0**2 - c["v_out"] ** 2), rel=1e-10, abs=1e-12)
+        assert abs(run.energy.residual) < 1e-12 * 0.5 * 500.0 * v0**2
+        times.append(c["t_end"] - c["t_start"])
+    assert times[0] == pytest.approx(np.pi * np.sqrt(500.0 / 2e6), rel=1e-9)  # elastic: half a period
+    assert float(LAW.restitution(500.0, 0.99 * v_yield)) == 1.0
+    assert times[1] < times[2] < times[3] < times[4]  # contacts lengthen with the impact velocity
+    e = LAW.restitution(500.0, np.array([1.5, 4.0]) * v_yield)
+    assert 1.0 > e[0] > e[1]  # and restitution falls above the yield velocity
+
+
+def test_a_deep_contact_goes_elastic_yield_elastic_unload():
+    run = _free_impact(LAW, 4.0 * LAW.yield_velocity_m_s(500.0))
+    c = run.contacts.iloc[0]
+    inside = run.events[(run.events["t"] > c["t_start"]) & (run.events["t"] < c["t_end"])]
+    assert list(inside["kind"]) == ["bumper_branch"] * 3  # onto the yield line, turned, onto the unloading line
+    assert c["max_compression"] > LAW.yield_compression
+
+
+@SETTINGS
+@given(osc=oscillators(law="elastic_plastic"), exc=harmonics(), v0=st.floats(-0.8, 0.8))
+def test_random_elastic_plastic_systems_match_reference(osc, exc, v0):
+    _compare(osc, exc, v0=v0, drawn=True)
+
+
+@SETTINGS
+@given(osc=oscillators(law="elastic_plastic"), exc=harmonics(), v0=st.floats(-0.8, 0.8))
+def test_elastic_plastic_ledger_closes_and_the_bumper_never_pulls(osc, exc, v0):
+    run = pd_.simulate(osc, exc, 3.0, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=2000)
+    e = run.energy
+    flows = max(abs(e.input_work), abs(e.kinetic), e.viscous + abs(e.hysteretic) + e.bumper_dissipation)
+    assert abs(e.residual) <= 1e-10 * flows
+    assert e.bumper_dissipation >= -1e-10 * flows
+    assert run.bumper_force_left.min() >= 0.0 and run.bumper_force_right.min() >= 0.0
+    done = run.contacts.dropna()
+    assert (done["bumper_dissipation"] >= -1e-9 * max(1.0, float(done["bumper_dissipation"].abs().max() if len(done) else 1))).all()
+
+
+@SETTINGS
+@given(osc=oscillators(law="elastic_plastic"), exc=harmonics(), v0=st.floats(-0.8, 0.8),
+       cut=st.floats(0.2, 2.8))
+def test_a_chained_run_equals_one_run(osc, exc, v0, cut):
+    start = pd_.State.at_rest(osc, velocity_m_s=v0)
+    whole = pd_.simulate(osc, exc, 3.0, start, sample_rate_hz=0)
+    first = pd_.simulate(osc, exc, cut, start, sample_rate_hz=0)
+    second = pd_.simulate(osc, exc, 3.0 - cut, first.final_state, sample_rate_hz=0)
+    scale = max(abs(whole.displacement_max), abs(whole.displacement_min), 1e-6)
+    assert abs(second.final_state.displacement_m - whole.final_state.displacement_m) <= 1e-7 * scale
+
+
+def test_mirror_symmetry():
+    osc = pd_.Oscillator(500.0, pd_.Isolator((2e4, 5e3), (0.01,), "kinematic", 300.0), pd_.Bumpers(0.012, 0.012, LAW))
+    a = pd_.simulate(osc, pd_.Harmonic(0.2, 1.8), 4.0, sample_rate_hz=500)
+    b = pd_.simulate(osc, pd_.Harmonic(-0.2, 1.8), 4.0, sample_rate_hz=500)
+    assert len(a.contacts) > 4
+    np.testing.assert_allclose(a.displacement, -b.displacement, rtol=0, atol=1e-12)
+
+
+def test_path_forces_stay_between_the_lines_and_unload_with_k1():
+    d = np.concatenate([np.linspace(0.0, 0.01, 200), np.linspace(0.01, 0.006, 100), np.linspace(0.006, 0.012, 150)])
+    f = _path_forces(LAW, d)
+    k1, k2, dy = LAW.stiffness, LAW.post_yield_stiffness, LAW.yield_compression
+    assert np.all(f >= k2 * d - 1e-9) and np.all(f <= k1 * dy + k2 * (d - dy) + 1e-9)
+    np.testing.assert_allclose(f[:20], k1 * d[:20])  # elastic at first
+    np.testing.assert_allclose(np.diff(f[200:230]) / np.diff(d[200:230]), k1)  # unloading with K1
+
+
+@pytest.mark.parametrize("truth", [pd_.ElasticPlastic(3e6, 4e5, 0.004), pd_.ElasticPlastic(1.5e6, 1e4, 0.0015)])
+def test_fit_contact_law_recovers_an_elastic_plastic_law_and_ranks_it_first(truth):
+    # the paper's Fig. 3 test: +-10 mm around 10 mm of precompression, at 1 Hz, growing in
+    t = np.linspace(0.0, 6.0, 3000)
+    d = 0.010 + 0.010 * np.sin(2.0 * np.pi * t) * np.minimum(1.0, t / 2.0)
+    f = _path_forces(truth, d)
+    fit = pd_.fit_contact_law(d, f, time_s=t, law="elastic_plastic").law
+    for name in ("stiffness", "post_yield_stiffness", "yield_compression"):
+        assert getattr(fit, name) == pytest.approx(getattr(truth, name), rel=0.02)
+    ranked = pd_.rank_contact_laws(d, f, time_s=t)
+    assert ranked["law"].iloc[0] == "elastic_plastic"
+
+
+def test_bad_parameters_are_named():
+    with pytest.raises(pd_.InputError, match="law.post_yield_stiffness"):
+        pd_.ElasticPlastic(1e6, 2e6, 0.002)
+    with pytest.raises(pd_.InputError, match="law.yield_compression"):
+        pd_.ElasticPlastic(1e6, 1e5, 0.0)
+    with pytest.raises(pd_.InputError, match="law.stiffness"):
+        pd_.ElasticPlastic(float("nan"), 1e5, 0.002)
+    with pytest.raises(pd_.InputError, match="mass_kg"):
+        LAW.restitution(-1.0, 0.3)
+
+
+def test_toml_round_trip(tmp_path):
+    osc = pd_.Oscillator(500.0, pd_.Isolator((2e4,), ()), pd_.Bumpers(0.015, 0.015, LAW))
+    path = tmp_path / "ep.toml"
+    osc.to_toml(path)
+    assert pd_.Oscillator.from_toml(path) == osc
+
+
+def test_model_family_builds_and_reads_elastic_plastic_systems():
+    family = pd_.ModelFamily(500.0, branches=1, law="elastic_plastic", fixed={"gap": 0.015})
+    values = {"slope_1": 3e4, "isolator_damping": 500.0, "bumper_stiffness": 2e7,
+              "bumper_post_yield_ratio": 0.05, "bumper_yield_compression": 0.001}
+    osc = family.oscillator(values)
+    assert osc.bumpers.law == pd_.ElasticPlastic(2e7, 1e6, 0.001)
+    back = family.values_of(osc)
+    assert back == pytest.approx({**values, "gap": 0.015})
+    with pytest.raises(pd_.InputError, match="bumper_post_yield_ratio"):
+        family.oscillator({**values, "bumper_post_yield_ratio": 1.0})
