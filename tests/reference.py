@@ -57,7 +57,7 @@ class _ElasticPlasticState:
         self.k1, self.k2, self.dy = law.stiffness, law.post_yield_stiffness, law.yield_compression
         self.reset()
 
-    def reset(self):
+    def reset(self, rate=0.0):
         self.mode, self.f_ref, self.d_ref = "elastic", 0.0, 0.0
 
     def snapshot(self):
@@ -93,7 +93,41 @@ class _ElasticPlasticState:
         self.mode = mode
 
 
+class _HertzdampState:
+    """Hertzdamp's damping, chosen when a contact starts (OpenSees: xi_norm K_h / v_in)."""
+
+    def __init__(self, law):
+        self.k, self.xi_norm = law.stiffness, law.xi_norm
+        self.xi = 0.0
+
+    def reset(self, rate=0.0):
+        self.xi = self.xi_norm * self.k / rate if rate > 0.0 else 0.0
+
+    def snapshot(self):
+        return self.xi
+
+    def restore(self, snap):
+        self.xi = snap
+
+    def events(self):
+        return []
+
+
 def _law(law):
+    if isinstance(law, pd_.Hertzdamp):
+        hd = _HertzdampState(law)
+        k, n = law.stiffness, law.exponent
+
+        def force(d, dd):
+            return max(d, 0.0) ** n * (k + hd.xi * dd)
+
+        def relax(d0, tau):  # at the constant speed k / xi, with the last contact's xi
+            return 0.0 if hd.xi == 0 else max(0.0, d0 - k / hd.xi * tau)
+
+        def release(d, dd):
+            return k + hd.xi * dd
+
+        return force, relax, release, hd
     if isinstance(law, pd_.ElasticPlastic):
         hyst = _ElasticPlasticState(law)
 
@@ -301,7 +335,7 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
         elif kind == "start":
             inc[idx] = True
             if sides[idx][5] is not None:
-                sides[idx][5].reset()
+                sides[idx][5].reset(sides[idx][0] * v)
             res.contact_starts.append((idx, t))
             open_start[idx] = (t, v, acc[idx], acc[2 + idx])
         elif kind == "end":

@@ -23,8 +23,8 @@ def isolators(draw, hysteresis=None):
 @st.composite
 def oscillators(draw, bumpers=True, hysteresis=None, gaps="open", law="kelvin_voigt"):
     """``gaps``: "open" (3 to 30 mm each side) or "zero" (0 on one side or both: the mass at
-    rest touches that bumper).  ``law``: "kelvin_voigt", "multilinear", "elastic_plastic" or
-    "jankowski" (its effective mass the system's)."""
+    rest touches that bumper).  ``law``: "kelvin_voigt", "multilinear", "elastic_plastic",
+    "hertzdamp" or "jankowski" (its effective mass the system's)."""
     iso = draw(isolators(hysteresis))
     mass = draw(st.floats(100.0, 1500.0))
     b = None
@@ -45,6 +45,8 @@ def oscillators(draw, bumpers=True, hysteresis=None, gaps="open", law="kelvin_vo
         elif law == "elastic_plastic":  # yield from 0.3 to 5 mm, K2 from nearly flat to nearly K1
             k1 = draw(st.floats(1e5, 3e6))
             law = pd_.ElasticPlastic(k1, k1 * draw(st.sampled_from([0.01, 0.1, 0.3, 0.8])), draw(st.floats(3e-4, 5e-3)))
+        elif law == "hertzdamp":  # restitution about 0.5 to 1
+            law = pd_.Hertzdamp(draw(st.floats(1e7, 3e9)), draw(st.floats(0.0, 1.6)), draw(st.floats(1.0, 2.0)))
         elif law == "jankowski":
             law = pd_.Jankowski(draw(st.floats(1e7, 3e9)), draw(st.floats(0.0, 1.0)), mass,
                                 draw(st.floats(1.0, 2.0)))

@@ -16,8 +16,9 @@ import math
 import numpy as np
 
 from .._jit import jit, jit_entry
-from ..model.contact_laws import (AT_START, MULTILINEAR, N_LAW_PARAMS, law_after_event, law_energy, law_force,
-                                  law_is_linear, law_linear_branch, law_relax)
+from ..model.contact_laws import (AT_START, MULTILINEAR, N_LAW_PARAMS, law_after_event, law_contact_state,
+                                  law_energy, law_force, law_is_linear, law_linear_branch, law_relax,
+                                  law_release_state)
 from ._buffers import grow as _grow
 from ._buffers import put as _put
 from ._bumpers import bumper_events, law_switches, relax_horizon
@@ -29,7 +30,7 @@ from ._layout import (ACC_L, ACC_R, ACT_CONTACT, ACT_LAW_BRANCH, ACT_RELEASE, A_
                       MODE_LINEAR, MODE_NUMERIC, PH_LEN, P_AX0, P_AX1, P_AXH, P_C, P_CBL, P_CBR, P_CD, P_D0,
                       P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_INL, P_INR, P_JBL, P_JBR, P_K, P_KBL, P_KBR,
                       P_KISO, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR, P_RBL,
-                      P_RBR, P_RISO, P_SPHI, P_V0, P_VROUND, P_VRUN, P_W, P_XROUND, P_XRUN, SAMPLE_COLS,
+                      P_RBR, P_RISO, P_SPHI, P_V0, P_VROUND, P_VRUN, P_W, P_XROUND, P_XRUN, P_LZL, P_LZR, SAMPLE_COLS,
                       SIDE_L, SIDE_R, T, V, Z_L, Z_R)
 from ._linear import fill_end, linear_eval_angle, linear_eval_end, linear_setup, linear_start, reset_ends
 from ._numeric import dp5_step
@@ -129,6 +130,8 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law
     ph[P_VROUND] = ph[P_VRUN]
     ph[P_DL0] = st[DEF_L]
     ph[P_DR0] = st[DEF_R]
+    ph[P_LZL] = st[Z_L]
+    ph[P_LZR] = st[Z_R]
     ph[P_KISO] = k_iso
     ph[P_RISO] = r_iso
     return k, c
@@ -369,7 +372,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
                 gap = gap_l if side == SIDE_L else gap_r
                 st[idx] = max(0.0, (-d1 if side == SIDE_L else d1) - gap)
             elif st[idx] > 0.0:
-                relaxed = law_relax(law, p, AT_START, st[idx], tau)[0]
+                relaxed = law_relax(law, p, AT_START, st[idx], tau, st[Z_L if side == SIDE_L else Z_R])[0]
                 ledger[3] += law_energy(law, p, st[idx], 0.0) - law_energy(law, p, relaxed, 0.0)
                 st[idx] = relaxed
         if not (abs(d1) <= DBL_MAX and abs(v1) <= DBL_MAX):  # inf or NaN: nothing after it holds
@@ -390,11 +393,14 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         if action == ACT_CONTACT:
             acc = ACC_L if index == SIDE_L else ACC_R
             st[IN_L if index == SIDE_L else IN_R] = 1.0
-            st[Z_L if index == SIDE_L else Z_R] = 0.0  # (a law with a state starts unloaded)
             comp = st[DEF_L if index == SIDE_L else DEF_R]
             st[acc + A_TSTART] = t_ev
             # below the resolution the mass met the surface at rest (its restitution is NaN)
             st[acc + A_VIN] = st[V] if abs(st[V]) > v_res else 0.0
+            if index == SIDE_L:  # (a law with a state starts unloaded; Hertzdamp's damping from v_in)
+                st[Z_L] = law_contact_state(law_l, p_l, AT_START, -st[acc + A_VIN])
+            else:
+                st[Z_R] = law_contact_state(law_r, p_r, AT_START, st[acc + A_VIN])
             st[acc + A_DSTART] = comp
             st[acc + A_IMPULSE] = 0.0
             st[acc + A_PEAK] = 0.0
@@ -403,7 +409,10 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         elif action == ACT_RELEASE:
             acc = ACC_L if index == SIDE_L else ACC_R
             st[IN_L if index == SIDE_L else IN_R] = 0.0
-            st[Z_L if index == SIDE_L else Z_R] = 0.0
+            if index == SIDE_L:
+                st[Z_L] = law_release_state(law_l, st[Z_L])
+            else:
+                st[Z_R] = law_release_state(law_r, st[Z_R])
             # a touch below the resolution in both depth and impulse (a graze, or a mass resting
             # on a bumper that pushes with zero force) is no impact: the motion went through it
             # exactly, the contact table leaves it out

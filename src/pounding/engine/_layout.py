@@ -57,7 +57,9 @@ P_XRUN = P_ENDS_NEXT + 1
 P_VRUN = P_ENDS_NEXT + 2
 P_XROUND = P_ENDS_NEXT + 3
 P_VROUND = P_ENDS_NEXT + 4
-PH_LEN = P_ENDS_NEXT + 5
+P_LZL = P_ENDS_NEXT + 5  # the bumpers' law states (Z_L, Z_R) for this phase
+P_LZR = P_ENDS_NEXT + 6
+PH_LEN = P_ENDS_NEXT + 7
 MODE_LINEAR = 0.0
 MODE_NUMERIC = 1.0
 

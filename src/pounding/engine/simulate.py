@@ -11,7 +11,7 @@ from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
 from ..model._elastic_plastic import EP_UNLOAD, EP_YIELD
-from ..model.contact_laws import ElasticPlastic, KelvinVoigt
+from ..model.contact_laws import ElasticPlastic, Hertzdamp, KelvinVoigt
 from ._control import (
     DEFAULT_MAX_STEPS,
     check_budget,
@@ -115,10 +115,14 @@ def _check_state_fits(state: State, oscillator: Oscillator) -> None:
 
 
 def _check_law_state(z: float, law: Any, touching: bool, comp: float, tol: float, j: int, bad: Any) -> None:
-    """A bumper law's own state (``_layout.Z_L``): 0 out of contact and for a stateless law; for
-    an elastic-plastic law in contact, a line's code or a plastic offset whose elastic branch
-    holds the compression."""
+    """A bumper law's own state (``_layout.Z_L``): 0 for a stateless law; Hertzdamp's damping,
+    >= 0; for an elastic-plastic law 0 out of contact, in contact a line's code or a plastic
+    offset whose elastic branch holds the compression."""
     field = f"vector[{(Z_L, Z_R)[j]}]"
+    if isinstance(law, Hertzdamp):
+        if z < 0.0:
+            raise bad(field, z, "is a Hertzdamp bumper's damping, which is >= 0")
+        return
     if not touching or not isinstance(law, ElasticPlastic):
         if z != 0.0:
             raise bad(field, z, "is a bumper law's state, but that bumper has none (a stateless law, or "

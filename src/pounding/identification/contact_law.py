@@ -17,7 +17,8 @@ import pandas as pd
 from .._checks import float_array, integer, one_of, positive, real, real_tuple
 from .._errors import InputError, Problem
 from ..model.contact_laws import (ELASTIC_PLASTIC, LAWS, MAX_BRANCHES, N_LAW_PARAMS, ContactLaw, ElasticPlastic,
-                                  HuntCrossley, Jankowski, KelvinVoigt, MultilinearBumper, law_force_many)
+                                  Hertzdamp, HuntCrossley, Jankowski, KelvinVoigt, MultilinearBumper,
+                                  law_force_many)
 
 MIN_SAMPLES_IN_CONTACT = 3
 
@@ -225,6 +226,11 @@ def fit_contact_law(
     ContactLawFit
     """
     one_of("law", law, LAWS)
+    if law == Hertzdamp.TYPE:
+        raise InputError(Problem.NOT_ONE_OF, "law", law,
+                         choices=", ".join(repr(k) for k in LAWS if k != Hertzdamp.TYPE)
+                         + " (Hertzdamp's damping is set by each impact's velocity, which a cyclic test has not: "
+                           "fit 'hunt_crossley', whose damping c is Hertzdamp's xi_norm k / v_in)")
     n_branches = integer("n_branches", n_branches, 1, MAX_BRANCHES)
     if breakpoints is not None and law != MultilinearBumper.TYPE:
         raise InputError(Problem.NOT_ONE_OF, "law", law,
@@ -307,7 +313,7 @@ def rank_contact_laws(displacement_m: Any, force_n: Any, *, time_s: Any = None, 
     which law describes the bumper).
 
     Arguments as :func:`fit_contact_law`; Jankowski's law is fitted only with
-    ``effective_mass_kg``.  Laws whose residuals agree to 1e-6 are ranked by their number of
+    ``effective_mass_kg``, and Hertzdamp never (its damping is each impact's).  Laws whose residuals agree to 1e-6 are ranked by their number of
     parameters (fewer first: a multi-linear law with equal slopes is Kelvin-Voigt).
 
     Returns
@@ -320,7 +326,7 @@ def rank_contact_laws(displacement_m: Any, force_n: Any, *, time_s: Any = None, 
               MultilinearBumper.TYPE: 2 * integer("n_branches", n_branches, 1, MAX_BRANCHES)}
     rows = []
     for name in LAWS:
-        if name == Jankowski.TYPE and effective_mass_kg is None:
+        if (name == Jankowski.TYPE and effective_mass_kg is None) or name == Hertzdamp.TYPE:
             continue
         fit = fit_contact_law(displacement_m, force_n, time_s=time_s, velocity_m_s=velocity_m_s, law=name,
                               effective_mass_kg=effective_mass_kg, n_branches=n_branches)

@@ -26,9 +26,9 @@ class Bumpers:
     gap_left, gap_right : float
         Distances in m from the mass at rest to each bumper's free surface, >= 0.  The
         paper's total gap is ``gap_left + gap_right = 0.03`` m.
-    law : KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper or ElasticPlastic
+    law : KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper, ElasticPlastic or Hertzdamp
         Contact law of the left bumper, and of the right one unless ``law_right`` is given.
-    law_right : KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper or ElasticPlastic, optional
+    law_right : KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper, ElasticPlastic or Hertzdamp, optional
         Contact law of the right bumper when it differs from the left one.
     """
 
@@ -52,7 +52,7 @@ class Bumpers:
             if not isinstance(value, tuple(LAWS.values())):
                 raise InputError(Problem.WRONG_TYPE, f"bumpers.{name}", value,
                                  got=type(value).__name__,
-                                 expected="contact law (KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper or ElasticPlastic)")
+                                 expected="contact law (KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper, ElasticPlastic or Hertzdamp)")
 
     @property
     def left(self) -> ContactLaw:

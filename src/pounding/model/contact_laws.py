@@ -33,6 +33,7 @@ HUNT_CROSSLEY = 1
 JANKOWSKI = 2
 MULTILINEAR = 3
 ELASTIC_PLASTIC = 4
+HERTZDAMP = 5
 N_LAW_PARAMS = 10  # (MultilinearBumper: damping, branch count, 4 slopes, 3 breakpoints)
 MAX_BRANCHES = 4
 BRANCH_TIE = 1e-9  # relative: a compression this close to a breakpoint is at it (law_linear_branch)
@@ -328,10 +329,60 @@ class ElasticPlastic:
             return np.where(energy > e_y, np.sqrt(back / np.where(energy > 0, energy, 1.0)), 1.0)
 
 
-ContactLaw = Union[KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper, ElasticPlastic]
+@dataclass(frozen=True)
+class Hertzdamp:
+    """Hertz contact with damping set by each impact's velocity (OpenSees' ``Hertzdamp``).
+
+    ``F = (stiffness + xi * dd) * d**exponent`` with ``xi = xi_norm * stiffness / v_in``, ``v_in``
+    the compression rate when the contact starts: a Hunt-Crossley law whose damping is chosen
+    anew at every impact, so that the restitution hardly depends on the impact velocity
+    (Ye, Li and Zhu 2009: ``xi_norm = 8 (1 - e) / (5 e)``, :meth:`from_restitution`).  A contact
+    met at rest has ``xi = 0``.  The contact ends when the force would pull; out of contact the
+    bumper recovers at ``stiffness / xi`` m/s (as Hunt-Crossley's, with its last ``xi``).
+
+    Parameters
+    ----------
+    stiffness : float
+        ``K_h`` in N/m**exponent, > 0.
+    xi_norm : float
+        The normalised damping, >= 0 (0: elastic).
+    exponent : float
+        ``n`` in [1, 10] (1.5: Hertz contact, the default).
+    """
+
+    stiffness: float
+    xi_norm: float
+    exponent: float = 1.5
+
+    TYPE: ClassVar[str] = "hertzdamp"
+    LAW_ID: ClassVar[int] = HERTZDAMP
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "stiffness", _coefficient("law.stiffness", self.stiffness, "N/m^n", True))
+        xi = non_negative("law.xi_norm", self.xi_norm, "(a ratio)")
+        xi = at_most("law.xi_norm", xi, MAX_DAMPING_RATIO, "", "xi_norm is a ratio: 0.3 gives a restitution of about 0.84")
+        object.__setattr__(self, "xi_norm", xi)
+        object.__setattr__(self, "exponent", _exponent(self.exponent))
+
+    @classmethod
+    def from_restitution(cls, stiffness: float, restitution: float, exponent: float = 1.5) -> Hertzdamp:
+        """The law of Ye et al.'s estimate for restitution ``e`` in (0, 1]: ``xi_norm = 8 (1 - e) / (5 e)``."""
+        e = real("restitution", restitution)
+        if not 0.0 < e <= 1.0:
+            raise InputError(Problem.OUT_OF_RANGE, "restitution", restitution, range="(0, 1]",
+                             hint=" (1: no loss)")
+        return cls(stiffness, 1.6 * (1.0 - e) / e, exponent)
+
+    def params(self) -> np.ndarray:
+        """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,): stiffness, xi_norm,
+        the exponent (the damping itself is the bumper's state, set at each contact's start)."""
+        return _padded([self.stiffness, self.xi_norm, self.exponent])
+
+
+ContactLaw = Union[KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper, ElasticPlastic, Hertzdamp]
 LAWS: dict[str, type] = {KelvinVoigt.TYPE: KelvinVoigt, HuntCrossley.TYPE: HuntCrossley,
                          Jankowski.TYPE: Jankowski, MultilinearBumper.TYPE: MultilinearBumper,
-                         ElasticPlastic.TYPE: ElasticPlastic}
+                         ElasticPlastic.TYPE: ElasticPlastic, Hertzdamp.TYPE: Hertzdamp}
 
 
 def law_to_dict(law: ContactLaw) -> dict[str, Any]:
@@ -379,9 +430,21 @@ def law_is_linear(law):
 
 
 @jit
-def law_is_hysteretic(law):
-    """True when the law has a state of its own (``z``, kept per bumper) and dissipates on a branch."""
-    return law == ELASTIC_PLASTIC
+def law_contact_state(law, p, o, rate):
+    """The law's state when a contact starts with compression rate ``rate`` (m/s, 0 at rest):
+    Hertzdamp's damping ``xi_norm k / rate`` (0 at rest), an elastic-plastic law unloaded (0)."""
+    if law == HERTZDAMP and rate > 0.0:
+        return p[o + 1] * p[o] / rate
+    return 0.0
+
+
+@jit
+def law_release_state(law, z):
+    """The law's state once the contact has ended: Hertzdamp keeps its damping (the bumper
+    recovers with it), an elastic-plastic law is unloaded."""
+    if law == HERTZDAMP:
+        return z
+    return 0.0
 
 
 @jit
@@ -487,12 +550,14 @@ def law_force(law, p, o, d, dd, z):
         return force + k * dd, force, slope, k
     dpos = d if d > 0.0 else 0.0
     n = p[o + 2]
+    if law == HERTZDAMP:  # Hunt-Crossley with the damping of this contact
+        c = z
     dn = dpos**n
     if dpos > 0.0:
         slope = n * dpos ** (n - 1.0)
     else:
         slope = 1.0 if n == 1.0 else 0.0
-    if law == HUNT_CROSSLEY:
+    if law == HUNT_CROSSLEY or law == HERTZDAMP:
         return dn * (k + c * dd), k * dn, slope * (k + c * dd), c * dn
     # JANKOWSKI: the dashpot c d^((n-1)/2) on the approach only
     if dd <= 0.0 or dpos <= 0.0:
@@ -510,13 +575,14 @@ def law_energy(law, p, d, z):
         return ml_energy(p, d)
     if law == ELASTIC_PLASTIC:
         return ep_energy(p, AT_START, d, z)
-    dpos = d if d > 0.0 else 0.0  # (Hunt-Crossley and Jankowski: the spring k d^n)
+    dpos = d if d > 0.0 else 0.0  # (Hunt-Crossley, Jankowski and Hertzdamp: the spring k d^n)
     return p[0] * dpos ** (p[2] + 1.0) / (p[2] + 1.0)
 
 
 @jit
-def law_relax(law, p, o, d0, tau):
-    """Free recovery of a massless bumper: compression and its rate ``tau`` s after ``d0``."""
+def law_relax(law, p, o, d0, tau, z):
+    """Free recovery of a massless bumper: compression and its rate ``tau`` s after ``d0``
+    (law state ``z``)."""
     if d0 <= 0.0:
         return 0.0, 0.0
     if law == KELVIN_VOIGT:
@@ -534,9 +600,10 @@ def law_relax(law, p, o, d0, tau):
         return d, -rate * d
     if law == MULTILINEAR:
         return ml_relax(p, o, d0, tau)
-    if law == JANKOWSKI or law == ELASTIC_PLASTIC or p[o + 1] <= 0.0:  # (no dashpot: back at once)
+    c = z if law == HERTZDAMP else p[o + 1]
+    if law == JANKOWSKI or law == ELASTIC_PLASTIC or c <= 0.0:  # (no dashpot: back at once)
         return 0.0, 0.0
-    speed = p[o] / p[o + 1]
+    speed = p[o] / c
     d = d0 - speed * tau
     if d <= 0.0:
         return 0.0, 0.0
@@ -553,10 +620,11 @@ def law_relax_horizon(law, p, o, d0):
 
 
 @jit
-def law_release(law, p, o, d, dd, ddd):
+def law_release(law, p, o, d, dd, ddd, z):
     """A smooth function that crosses zero downwards when the force would turn into a pull.
 
-    Returns ``(value, rate)`` for compression ``d``, rate ``dd`` and acceleration ``ddd``.
+    Returns ``(value, rate)`` for compression ``d``, rate ``dd``, acceleration ``ddd`` and law
+    state ``z``.
     """
     if law == KELVIN_VOIGT:
         return p[o] * d + p[o + 1] * dd, p[o] * dd + p[o + 1] * ddd
@@ -567,7 +635,8 @@ def law_release(law, p, o, d, dd, ddd):
     if law == MULTILINEAR:
         force, slope, _, _ = ml_branch(p, o, d)
         return force + p[o] * dd, slope * dd + p[o] * ddd
-    return p[o] + p[o + 1] * dd, p[o + 1] * ddd
+    c = z if law == HERTZDAMP else p[o + 1]
+    return p[o] + c * dd, c * ddd
 
 
 @jit_entry
