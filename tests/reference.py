@@ -82,9 +82,15 @@ class _ElasticPlasticState:
             return [(lambda d, dd: dd, "elastic")]
         if self.mode == "unload":
             return [(lambda d, dd: -dd, "elastic")]
-        out = [(lambda d, dd: self.upper(d) - self.force(d, dd), "yield")]
+        # where the elastic line meets the yield line and the unloading line, as compressions: the
+        # difference of the forces there cancels to rounding of the force (1e-13 N of 500 N), and
+        # a turn on the yield line flipped between the two modes at one instant
+        k1, k2 = self.k1, self.k2
+        x_up = ((k1 - k2) * self.dy + k1 * self.d_ref - self.f_ref) / (k1 - k2)
+        out = [(lambda d, dd: x_up - d, "yield")]
         if self.f_ref > 0.0:  # (from the unloaded start the unloading line is met at 0, the contact's end)
-            out.append((lambda d, dd: self.force(d, dd) - self.k2 * d, "unload"))
+            x_low = (k1 * self.d_ref - self.f_ref) / (k1 - k2)
+            out.append((lambda d, dd: d - x_low, "unload"))
         return out
 
     def switch(self, mode, d):

@@ -50,6 +50,7 @@ class Problem(enum.Enum):
     NOT_IN_RESULT = ("is not in this result", "use one of {choices}")
     NOT_STARTED = ("has no finished step", "run at least one step before asking for {what}")
     MISSING_INPUT = ("is missing", "give {what}")
+    NO_FIT = ("{why}", "{fix}")
     SIZE_MISMATCH = ("has {got} values but {expected} are needed", "give one value per sample of {other}")
     TOO_FEW_IN_CONTACT = ("has {got} samples in compression", "give at least {expected} samples with "
                           "compression > 0 (displacement is the bumper's compression, m)")

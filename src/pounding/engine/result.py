@@ -11,7 +11,7 @@ import pandas as pd
 
 from .._checks import at_most, real
 from .._errors import InputError, Problem, Status
-from ._layout import DEF_L, DEF_R, EVENT_NAMES, IN_L, IN_R, REGION, STATE_BASE
+from ._layout import DEF_L, DEF_R, EVENT_NAMES, IN_L, IN_R, REGION, STATE_BASE, Z_L, Z_R
 from ._layout import D as I_D
 from ._layout import T as I_T
 from ._layout import V as I_V
@@ -114,6 +114,13 @@ class State:
     def in_contact(self) -> tuple[bool, bool]:
         """Whether the mass touches the (left, right) bumper."""
         return bool(self.vector[IN_L]), bool(self.vector[IN_R])
+
+    @property
+    def bumper_law_state(self) -> tuple[float, float]:
+        """The (left, right) bumper law's own state: an elastic-plastic law's plastic offset (m,
+        >= 0) or its line (-1 the yield line, -2 the unloading line); Hertzdamp's damping of the
+        last contact (N s/m^(n+1)); 0 for the other laws."""
+        return float(self.vector[Z_L]), float(self.vector[Z_R])
 
     @property
     def isolator_branch(self) -> int:

@@ -21,6 +21,7 @@ from ..model.contact_laws import (ELASTIC_PLASTIC, LAWS, MAX_BRANCHES, N_LAW_PAR
                                   law_force_many)
 
 MIN_SAMPLES_IN_CONTACT = 3
+MIN_RATIO = 1e-6  # the elastic-plastic fit's least K2 / K1
 
 
 @dataclass(frozen=True, eq=False)
@@ -29,8 +30,9 @@ class ContactLawFit:
 
     Attributes
     ----------
-    law : KelvinVoigt, HuntCrossley or Jankowski
-        The fitted law, ready for :class:`pounding.Bumpers`.
+    law : KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper or ElasticPlastic
+        The fitted law, ready for :class:`pounding.Bumpers`.  (An elastic-plastic law's force
+        depends on the path: :meth:`predict` takes the samples in order, from an unloaded bumper.)
     rms_n : float
         Root-mean-square residual force, N, over the samples in compression.
     r_squared : float
@@ -167,16 +169,20 @@ def _elastic_plastic_search(d, force):
             if cost < best[0]:
                 best = (cost, k1, ratio, dy)
     if not np.isfinite(best[0]):
-        raise InputError(Problem.NOT_POSITIVE, "force_n", "forces no elastic-plastic law gives",
-                         unit="N, compression positive (is the sign of the force the other way?)")
+        raise InputError(Problem.NO_FIT, "force_n", "the forces given",
+                         why="fit no elastic-plastic law (they fall as the bumper is compressed)",
+                         fix="give the force the bumper pushes with, positive in compression")
     _, k1, ratio, dy = best
 
+    def ratio_of(u):  # K2 / K1 kept in [1e-6, 1 - 1e-6]: a valid law, and no degenerate flat line
+        return float(np.clip(1.0 / (1.0 + np.exp(-u)), MIN_RATIO, 1.0 - MIN_RATIO))
+
     def resid(x):
-        return _elastic_plastic_force(np.exp(x[0]), 1.0 / (1.0 + np.exp(-x[1])), np.exp(x[2]), d) - force
+        return _elastic_plastic_force(np.exp(x[0]), ratio_of(x[1]), np.exp(x[2]), d) - force
 
     x0 = np.array([np.log(k1), np.log(ratio / (1.0 - ratio)), np.log(dy)])
     x = least_squares(resid, x0, x_scale=1.0, xtol=1e-14, ftol=1e-14, gtol=1e-14, diff_step=1e-7).x
-    return float(np.exp(x[0])), float(np.exp(x[0]) / (1.0 + np.exp(-x[1]))), float(np.exp(x[2]))
+    return float(np.exp(x[0])), float(np.exp(x[0]) * ratio_of(x[1])), float(np.exp(x[2]))
 
 
 def fit_contact_law(
@@ -254,6 +260,8 @@ def fit_contact_law(
             i = int(bad[0]) + 1
             raise InputError(Problem.NOT_INCREASING, f"time_s[{i - 1}:{i + 1}]", [float(t[i - 1]), float(t[i])])
         v = np.gradient(d, t, edge_order=2)
+    elif law == ElasticPlastic.TYPE:  # rate-independent: the rate is not needed
+        v = np.zeros_like(d)
     else:
         raise InputError(Problem.MISSING_INPUT, "time_s", None,
                          what="time_s (sample times) or velocity_m_s: the damping needs the rate")
@@ -328,8 +336,13 @@ def rank_contact_laws(displacement_m: Any, force_n: Any, *, time_s: Any = None, 
     for name in LAWS:
         if (name == Jankowski.TYPE and effective_mass_kg is None) or name == Hertzdamp.TYPE:
             continue
-        fit = fit_contact_law(displacement_m, force_n, time_s=time_s, velocity_m_s=velocity_m_s, law=name,
-                              effective_mass_kg=effective_mass_kg, n_branches=n_branches)
+        try:
+            fit = fit_contact_law(displacement_m, force_n, time_s=time_s, velocity_m_s=velocity_m_s, law=name,
+                                  effective_mass_kg=effective_mass_kg, n_branches=n_branches)
+        except InputError as exc:
+            if exc.problem is not Problem.NO_FIT:
+                raise
+            continue  # (a law that cannot describe the test at all is left out of the ranking)
         rows.append({"law": name, "rms_n": fit.rms_n, "r_squared": fit.r_squared, "parameters": counts[name],
                      "fit": fit})
     df = pd.DataFrame(rows)

@@ -10,7 +10,9 @@ fitted within bounds (the ``bounds`` of :func:`pounding.identify`).  Names:
 - ``bumper_stiffness``, ``bumper_damping`` (and ``bumper_exponent`` for Hunt-Crossley):
   the contact law's parameters, both bumpers alike; for the elastic-plastic law
   ``bumper_stiffness`` (K1, N/m), ``bumper_post_yield_ratio`` (K2 / K1, in (0, 1)) and
-  ``bumper_yield_compression`` (m);
+  ``bumper_yield_compression`` (m); for the multi-linear bumper ``bumper_slope_1`` ...
+  ``bumper_slope_k`` (N/m), ``bumper_breakpoint_1`` ... ``bumper_breakpoint_{k-1}`` (m) and
+  ``bumper_damping`` (N s/m), ``k`` the family's ``bumper_branches``;
 - ``gap``: the gap on each side, m.
 
 TOML (``pounding identify ... --family FAMILY.toml``)::
@@ -36,12 +38,13 @@ import numpy as np
 
 from .._checks import integer, one_of, positive, read_toml, real
 from .._errors import InputError, Problem
-from ..model import Bumpers, ElasticPlastic, HuntCrossley, Isolator, KelvinVoigt, Oscillator
+from ..model import Bumpers, ElasticPlastic, HuntCrossley, Isolator, KelvinVoigt, MultilinearBumper, Oscillator
 
-FAMILY_KEYS = ("mass", "branches", "hysteresis", "law", "fixed", "bounds")
+FAMILY_KEYS = ("mass", "branches", "hysteresis", "law", "fixed", "bounds", "bumper_branches")
 LAW_PARAMETERS = {"kelvin_voigt": ("bumper_stiffness", "bumper_damping"),
                   "hunt_crossley": ("bumper_stiffness", "bumper_exponent", "bumper_damping"),
-                  "elastic_plastic": ("bumper_stiffness", "bumper_post_yield_ratio", "bumper_yield_compression")}
+                  "elastic_plastic": ("bumper_stiffness", "bumper_post_yield_ratio", "bumper_yield_compression"),
+                  "multilinear": ()}  # (named by its number of branches: ModelFamily.law_parameters)
 
 
 @dataclass(frozen=True)
@@ -55,10 +58,13 @@ class ModelFamily:
     branches : int
         Number of backbone slopes ``n`` (>= 1).
     hysteresis : {"kinematic", "elastic"}
-    law : {"kelvin_voigt", "hunt_crossley", "elastic_plastic"}
+    law : {"kelvin_voigt", "hunt_crossley", "elastic_plastic", "multilinear"}
         The bumpers' contact law.
     fixed : dict
         ``name -> value`` for the numbers not fitted (names in the module docstring).
+    bumper_branches : int
+        Slopes of a multi-linear bumper's backbone (1 to 4; default 3: the D-shaped bumper's
+        stiff start, plateau and steep rise); ignored by the other laws.
     """
 
     mass: float
@@ -66,8 +72,12 @@ class ModelFamily:
     hysteresis: str = "kinematic"
     law: str = "kelvin_voigt"
     fixed: dict[str, float] = field(default_factory=dict)
+    bumper_branches: int = 3
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "bumper_branches", integer("family.bumper_branches", self.bumper_branches, 1,
+                                                            MAX_BUMPER_BRANCHES,
+                                                            fix=f"give 1 to {MAX_BUMPER_BRANCHES} bumper slopes"))
         object.__setattr__(self, "mass", positive("family.mass", self.mass, "kg"))
         object.__setattr__(self, "branches", integer("family.branches", self.branches, 1, MAX_BRANCHES,
                                                                 fix=f"give at most {MAX_BRANCHES} backbone branches"))
@@ -89,7 +99,16 @@ class ModelFamily:
         """Every number of the family, fixed or free, in a fixed order."""
         n = self.branches
         return (tuple(f"slope_{i + 1}" for i in range(n)) + tuple(f"breakpoint_{i + 1}" for i in range(n - 1))
-                + ("isolator_damping",) + LAW_PARAMETERS[self.law] + ("gap",))
+                + ("isolator_damping",) + self.law_parameters + ("gap",))
+
+    @property
+    def law_parameters(self) -> tuple[str, ...]:
+        """The contact law's numbers, in a fixed order."""
+        if self.law != "multilinear":
+            return LAW_PARAMETERS[self.law]
+        k = self.bumper_branches
+        return (tuple(f"bumper_slope_{i + 1}" for i in range(k)) + tuple(f"bumper_breakpoint_{i + 1}" for i in range(k - 1))
+                + ("bumper_damping",))
 
     def free_names(self, bounds: dict[str, Any]) -> tuple[str, ...]:
         """The names ``bounds`` frees, checked: every number is fixed or bounded, not both."""
@@ -119,6 +138,10 @@ class ModelFamily:
                             p["isolator_damping"])
         if self.law == "kelvin_voigt":
             law: Any = KelvinVoigt(p["bumper_stiffness"], p["bumper_damping"])
+        elif self.law == "multilinear":
+            k = self.bumper_branches
+            law = MultilinearBumper(tuple(p[f"bumper_slope_{i + 1}"] for i in range(k)),
+                                    tuple(p[f"bumper_breakpoint_{i + 1}"] for i in range(k - 1)), p["bumper_damping"])
         elif self.law == "elastic_plastic":
             ratio = p["bumper_post_yield_ratio"]
             if not 0.0 < ratio < 1.0:
@@ -132,12 +155,19 @@ class ModelFamily:
     def values_of(self, oscillator: Oscillator) -> dict[str, float]:
         """Every number of the family read from a system of this family (YBs)."""
         iso, b = oscillator.isolator, oscillator.bumpers
-        if b is None or iso.n_branches != self.branches or b.law.TYPE != self.law:
+        if (b is None or iso.n_branches != self.branches or b.law.TYPE != self.law
+                or (self.law == "multilinear" and len(b.law.slopes) != self.bumper_branches)):
             raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator, got="another structure",
                              expected=f"a YBs system with {self.branches} branches and {self.law} bumpers")
         out = {f"slope_{i + 1}": float(k) for i, k in enumerate(iso.slopes)}
         out.update({f"breakpoint_{i + 1}": float(x) for i, x in enumerate(iso.breakpoints)})
         out["isolator_damping"] = float(iso.damping)
+        if self.law == "multilinear":
+            out.update({f"bumper_slope_{i + 1}": float(k) for i, k in enumerate(b.law.slopes)})
+            out.update({f"bumper_breakpoint_{i + 1}": float(x) for i, x in enumerate(b.law.breakpoints)})
+            out["bumper_damping"] = float(b.law.damping)
+            out["gap"] = float(b.gap_left)
+            return out
         out["bumper_stiffness"] = float(b.law.stiffness)
         if self.law == "elastic_plastic":
             out["bumper_post_yield_ratio"] = float(b.law.post_yield_stiffness / b.law.stiffness)
@@ -158,11 +188,12 @@ class ModelFamily:
             raise InputError(Problem.MISSING_KEY, "mass", None, choices=", ".join(FAMILY_KEYS))
         bounds = table.get("bounds", {})
         family = cls(table["mass"], table.get("branches", 3), table.get("hysteresis", "kinematic"),
-                     table.get("law", "kelvin_voigt"), table.get("fixed", {}))
+                     table.get("law", "kelvin_voigt"), table.get("fixed", {}), table.get("bumper_branches", 3))
         return family, check_bounds(family, bounds)
 
 
 MAX_BRANCHES = 50
+MAX_BUMPER_BRANCHES = 4  # (contact_laws.MAX_BRANCHES)
 
 
 def check_bounds(family: ModelFamily, bounds: Any) -> dict[str, tuple[float, float]]:

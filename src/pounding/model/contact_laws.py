@@ -265,9 +265,11 @@ class ElasticPlastic:
     line ``stiffness * dy + post_yield_stiffness * (d - dy)``; it unloads with ``stiffness``
     down to the line ``post_yield_stiffness * d`` and along that back to zero.  Between the two
     lines it moves elastically, ``stiffness * (d - z)`` with ``z`` the plastic offset.  So an
-    impact below the yield velocity ``dy sqrt(stiffness / M)`` is elastic (restitution 1) and
-    one above it dissipates the more and lasts the longer the faster it comes
-    (:meth:`restitution`).  No dashpot: the force is rate-independent, never pulls, and the
+    impact below the yield velocity ``dy sqrt(stiffness / M)`` is elastic (restitution 1); one
+    above it lasts the longer the faster it comes, and its restitution falls to a least value
+    and then rises slowly back towards 1 (the yield line dissipates ``(K1 - K2) dy`` per metre
+    of compression, while the energy brought grows as the square of the velocity: for
+    ``K2 = K1 / 20``, 0.48 at 3 yield velocities, 0.67 at 10, 0.92 at 50; :meth:`restitution`).  No dashpot: the force is rate-independent, never pulls, and the
     contact ends when the compression is back to zero; out of contact the bumper is unloaded
     (the next contact starts from ``z = 0``).  Piecewise linear, so every phase of motion stays
     closed-form.
@@ -315,7 +317,16 @@ class ElasticPlastic:
         (m/s, >= 0, any shape): 1 below the yield velocity, then
         ``sqrt(E_back / (M v^2 / 2))`` with ``E_back`` the elastic energy at the deepest compression."""
         m = positive("mass_kg", mass_kg, "kg")
-        v = np.abs(np.asarray(velocity_m_s, dtype=float))
+        try:
+            v = np.asarray(velocity_m_s, dtype=float)
+        except (TypeError, ValueError):
+            raise InputError(Problem.NOT_A_NUMBER, "velocity_m_s", velocity_m_s) from None
+        bad = ~np.isfinite(v) | (v < 0.0)
+        if bad.any():
+            first = float(v[bad][0]) if v.ndim else float(v)
+            if not np.isfinite(first):
+                raise InputError(Problem.NOT_FINITE, "velocity_m_s", first)
+            raise InputError(Problem.NEGATIVE, "velocity_m_s", first, unit="m/s (an impact speed)")
         k1, k2, dy = self.stiffness, self.post_yield_stiffness, self.yield_compression
         energy = 0.5 * m * v * v
         # deepest compression: 1/2 k1 dy^2 + k1 dy s + 1/2 k2 s^2 = energy, s = d_max - dy >= 0
@@ -337,8 +348,9 @@ class Hertzdamp:
     the compression rate when the contact starts: a Hunt-Crossley law whose damping is chosen
     anew at every impact, so that the restitution hardly depends on the impact velocity
     (Ye, Li and Zhu 2009: ``xi_norm = 8 (1 - e) / (5 e)``, :meth:`from_restitution`).  A contact
-    met at rest has ``xi = 0``.  The contact ends when the force would pull; out of contact the
-    bumper recovers at ``stiffness / xi`` m/s (as Hunt-Crossley's, with its last ``xi``).
+    met at rest has ``xi = 0``.  Unlike OpenSees' material, which pulls until the gap reopens and
+    then resets, the contact ends when the force would pull, as for every law here; out of
+    contact the bumper recovers at ``stiffness / xi`` m/s (as Hunt-Crossley's, with its last ``xi``).
 
     Parameters
     ----------
@@ -368,8 +380,9 @@ class Hertzdamp:
     def from_restitution(cls, stiffness: float, restitution: float, exponent: float = 1.5) -> Hertzdamp:
         """The law of Ye et al.'s estimate for restitution ``e`` in (0, 1]: ``xi_norm = 8 (1 - e) / (5 e)``."""
         e = real("restitution", restitution)
-        if not 0.0 < e <= 1.0:
-            raise InputError(Problem.OUT_OF_RANGE, "restitution", restitution, range="(0, 1]",
+        least = 1.6 / (1.6 + MAX_DAMPING_RATIO)  # (xi_norm at most MAX_DAMPING_RATIO)
+        if not least <= e <= 1.0:
+            raise InputError(Problem.OUT_OF_RANGE, "restitution", restitution, range=f"[{least:.3g}, 1]",
                              hint=" (1: no loss)")
         return cls(stiffness, 1.6 * (1.0 - e) / e, exponent)
 
@@ -630,8 +643,10 @@ def law_release(law, p, o, d, dd, ddd, z):
         return p[o] * d + p[o + 1] * dd, p[o] * dd + p[o + 1] * ddd
     if law == JANKOWSKI:  # never pulls: the contact ends with the compression
         return 1.0, 0.0
-    if law == ELASTIC_PLASTIC:  # (never pulls either; the engine uses its phase's branch)
-        return p[o] * d, p[o] * dd
+    if law == ELASTIC_PLASTIC:  # (never pulls either; the engine uses its phase's branch and this
+        # for the size of its terms: the branch's, as on the unloading line K2 may be 1e-9 K1)
+        k, r, _ = ep_line(p, o, z)
+        return k * d + abs(r), k * dd
     if law == MULTILINEAR:
         force, slope, _, _ = ml_branch(p, o, d)
         return force + p[o] * dd, slope * dd + p[o] * ddd
