@@ -188,7 +188,21 @@ def test_calibrated_preset_reproduces_its_stored_residuals():
     assert list(now["within"]) == list(stored["within"])
     osc = pd_.presets.paper_calibrated()
     assert osc.isolator.n_branches == 4 and osc.bumpers.gap_left == 0.015
+    assert isinstance(osc.bumpers.law, pd_.MultilinearBumper) and len(osc.bumpers.law.slopes) == 3
     assert pd_.presets.by_name("paper-calibrated", bumpers=False).bumpers is None
+
+
+def test_the_first_calibrated_preset_is_kept_and_reproduces_its_residuals():
+    stored = pd_.presets.paper_calibrated_v1_residuals()
+    v1 = pd_.presets.by_name("paper-calibrated-v1")
+    assert isinstance(v1.bumpers.law, pd_.KelvinVoigt)
+    now = evaluate(v1, pd_.paper_targets())
+    np.testing.assert_allclose(now["model"], stored["model"], rtol=1e-9, atol=0, equal_nan=True)
+    assert list(now["within"]) == list(stored["within"])
+    # the shipped preset is the better fit by the fit's own measure
+    cost = {name: float((table["normalized"] ** 2).sum()) for name, table in
+            (("v1", stored), ("now", pd_.presets.paper_calibrated_residuals()))}
+    assert cost["now"] < cost["v1"]
 
 
 def test_ctrl_c_keeps_the_best_candidate():

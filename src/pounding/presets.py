@@ -4,7 +4,8 @@
 MODEL.md §5: with ``C_d = 1 N s/m`` the isolator has about 0.01 % of critical damping, so
 these values do not reproduce the paper's measured curves.  ``paper_damped``: the same with
 ``C_d = 1 kN s/m``, MODEL.md §5's reading.  ``paper_calibrated``: fitted to the paper's
-Tables 2-4 by model updating (``scripts/calibrate_paper.py``).
+Tables 2-4 by model updating (``scripts/calibrate_paper.py``), multi-linear bumpers;
+``paper_calibrated_v1``: the first such fit, Kelvin-Voigt bumpers.
 """
 
 from __future__ import annotations
@@ -63,32 +64,56 @@ PAPER_DAMPED_C_D_N_S_M = 1_000.0
 
 CALIBRATED_FILE = "paper_calibrated.toml"
 CALIBRATED_RESIDUALS_FILE = "paper_calibrated_residuals.csv"
+CALIBRATED_V1_FILE = "paper_calibrated_v1.toml"
+CALIBRATED_V1_RESIDUALS_FILE = "paper_calibrated_v1_residuals.csv"
+
+
+def _data_system(name: str, bumpers: bool) -> Oscillator:
+    with resources.files("pounding.data").joinpath(name).open("r", encoding="utf-8") as fh:
+        osc = Oscillator.from_toml_text(fh.read())
+    return osc if bumpers else osc.without_bumpers()
+
+
+def _data_table(name: str) -> "pd.DataFrame":
+    import pandas as pd
+
+    with resources.files("pounding.data").joinpath(name).open("r", encoding="utf-8") as fh:
+        return pd.read_csv(fh)
 
 
 def paper_calibrated(bumpers: bool = True) -> Oscillator:
     """The paper's system calibrated against its own Tables 2-4 (``pounding.identify``).
 
-    Made by ``scripts/calibrate_paper.py``: the paper's mass and 15 mm gaps, a kinematic
-    isolator with four backbone branches (hardening allowed), and Kelvin-Voigt bumpers,
+    Made by ``scripts/calibrate_paper.py --law multilinear --from-preset``: the paper's mass
+    and 15 mm gaps, a kinematic isolator with four backbone branches (hardening allowed), and
+    multi-linear bumpers of three slopes (the D-shaped bumper's start, softer middle and rise),
     every other number fitted to :func:`pounding.paper_targets` (sweeps up, 30 cycles per
-    step).  Its residuals are :func:`paper_calibrated_residuals`; the targets it cannot
-    reach, and why, are in ``docs/calibration.md``.
+    step), starting from :func:`paper_calibrated_v1`.  Its residuals are
+    :func:`paper_calibrated_residuals`; the targets it cannot reach, and why, are in
+    ``docs/calibration.md``.
     """
-    with resources.files("pounding.data").joinpath(CALIBRATED_FILE).open("r", encoding="utf-8") as fh:
-        osc = Oscillator.from_toml_text(fh.read())
-    return osc if bumpers else osc.without_bumpers()
+    return _data_system(CALIBRATED_FILE, bumpers)
+
+
+def paper_calibrated_v1(bumpers: bool = True) -> Oscillator:
+    """The first calibrated preset (issue 6): the same isolator family with Kelvin-Voigt bumpers
+    (``scripts/calibrate_paper.py --maxiter 40``); residuals :func:`paper_calibrated_v1_residuals`."""
+    return _data_system(CALIBRATED_V1_FILE, bumpers)
 
 
 def paper_calibrated_residuals() -> "pd.DataFrame":
     """The residual table of :func:`paper_calibrated` against :func:`pounding.paper_targets`, as
     stored with it (the columns of ``Identification.residuals``; a test re-evaluates it)."""
-    import pandas as pd
-
-    with resources.files("pounding.data").joinpath(CALIBRATED_RESIDUALS_FILE).open("r", encoding="utf-8") as fh:
-        return pd.read_csv(fh)
+    return _data_table(CALIBRATED_RESIDUALS_FILE)
 
 
-PRESETS = {"paper-printed": paper_printed, "paper-damped": paper_damped, "paper-calibrated": paper_calibrated}
+def paper_calibrated_v1_residuals() -> "pd.DataFrame":
+    """The residual table of :func:`paper_calibrated_v1`, as stored with it."""
+    return _data_table(CALIBRATED_V1_RESIDUALS_FILE)
+
+
+PRESETS = {"paper-printed": paper_printed, "paper-damped": paper_damped, "paper-calibrated": paper_calibrated,
+           "paper-calibrated-v1": paper_calibrated_v1}
 # what `pounding reproduce` uses unless told otherwise: the preset closest to the measurements
 BEST_PRESET = "paper-calibrated"
 
