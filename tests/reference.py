@@ -128,7 +128,9 @@ def _law(law):
             return max(d, 0.0) ** n * (k + hd.xi * dd)
 
         def relax(d0, tau):  # at the constant speed k / xi, with the last contact's xi
-            return 0.0 if hd.xi == 0 else max(0.0, d0 - k / hd.xi * tau)
+            if d0 <= 0.0 or hd.xi == 0 or k / hd.xi == math.inf:  # (a dashpot of 1e-316: none)
+                return 0.0
+            return max(0.0, d0 - k / hd.xi * tau)
 
         def release(d, dd):
             return k + hd.xi * dd

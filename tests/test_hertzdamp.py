@@ -106,3 +106,4 @@ def test_every_slot_name_of_the_layout_is_bound_once():
     assert len(names) == len(set(names)), sorted({n for n in names if names.count(n) > 1})
     slots = {n: getattr(layout, n) for n in set(names) if n.startswith("P_") and isinstance(getattr(layout, n), int)}
     assert len(set(slots.values())) == len(slots)
+
