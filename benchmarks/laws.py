@@ -3,9 +3,9 @@
     python benchmarks/laws.py          # about a minute; --repeats N (default 5)
 
 Work: the whole campaign of the paper (NBs and YBs, 7 sweeps each, 46 steps of 30 cycles, fixed
-mode) on one core, warm, best of N, on the calibrated isolator with each bumper law:
+mode) on one core, warm, best of N, on the first calibrated isolator (v1) with each bumper law:
 
-- Kelvin-Voigt, the calibrated preset's;
+- Kelvin-Voigt, that preset's;
 - a multi-linear law of one slope (the same system: what the multi-linear code path costs);
 - the D-shaped multi-linear bumper (stiff, a plateau, steep; its contacts cross breakpoints);
 - an elastic-plastic law (contacts that yield and turn: two or three branch events each);
@@ -27,7 +27,7 @@ TARGET_RATIO = 1.5
 
 
 def systems() -> dict[str, pd_.Oscillator]:
-    base = pd_.presets.paper_calibrated()
+    base = pd_.presets.paper_calibrated_v1()  # (its Kelvin-Voigt law is the reference)
     kv = base.bumpers.law
     laws = {
         "kelvin_voigt": kv,

@@ -10,7 +10,7 @@ free C_d, and bumpers with a free law (Kelvin-Voigt by default, Hunt-Crossley, e
 ``pounding.paper_targets()`` (Tables 2-4, sweeps up, fixed 30 cycles per step as the lab).
 The shipped preset came from (about 4 minutes on 2 cores; docs/calibration.md)::
 
-    python scripts/calibrate_paper.py --law multilinear --maxiter 40 --from-preset
+    python scripts/calibrate_paper.py --law multilinear --maxiter 40 --from-preset --free-gap
 
 and ``presets.paper_calibrated_v1()`` (Kelvin-Voigt bumpers) from ``--maxiter 40`` alone.
 

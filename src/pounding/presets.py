@@ -84,11 +84,12 @@ def _data_table(name: str) -> "pd.DataFrame":
 def paper_calibrated(bumpers: bool = True) -> Oscillator:
     """The paper's system calibrated against its own Tables 2-4 (``pounding.identify``).
 
-    Made by ``scripts/calibrate_paper.py --law multilinear --from-preset``: the paper's mass
-    and 15 mm gaps, a kinematic isolator with four backbone branches (hardening allowed), and
-    multi-linear bumpers of three slopes (the D-shaped bumper's start, softer middle and rise),
-    every other number fitted to :func:`pounding.paper_targets` (sweeps up, 30 cycles per
-    step), starting from :func:`paper_calibrated_v1`.  Its residuals are
+    Made by ``scripts/calibrate_paper.py --law multilinear --from-preset --free-gap``: the
+    paper's mass, a kinematic isolator with four backbone branches (hardening allowed),
+    multi-linear bumpers of three slopes (the D-shaped bumper's start, softer middle and rise)
+    and gaps within 3 mm of the printed 15 mm (13.2 mm), every other number fitted to
+    :func:`pounding.paper_targets` (sweeps up, 30 cycles per step), starting from
+    :func:`paper_calibrated_v1`.  It meets 22 of the 36 targets.  Its residuals are
     :func:`paper_calibrated_residuals`; the targets it cannot reach, and why, are in
     ``docs/calibration.md``.
     """
