@@ -89,6 +89,8 @@ def test_a_state_must_fit_the_system():
     vec = pd_.State.at_rest(ep, displacement_m=0.015).vector.copy()
     vec[IN_R], vec[DEF_R], vec[Z_R] = 1.0, 0.0, 0.01  # an offset whose elastic branch starts deeper
     _raises(lambda: pd_.simulate(ep, pd_.Harmonic(0.05, 2.2), 1.0, pd_.State(vec)), f"state.vector[{Z_R}]")
+    vec[Z_R] = -1.0  # on the yield line at no compression
+    _raises(lambda: pd_.simulate(ep, pd_.Harmonic(0.05, 2.2), 1.0, pd_.State(vec)), f"state.vector[{Z_R}]")
 
 
 def test_final_states_of_runs_always_fit():

@@ -128,9 +128,14 @@ def _check_law_state(z: float, law: Any, touching: bool, comp: float, tol: float
             raise bad(field, z, "is a bumper law's state, but that bumper has none (a stateless law, or "
                                 "out of contact)")
         return
-    if z in (EP_YIELD, EP_UNLOAD):
-        return
     k1, k2, dy = law.stiffness, law.post_yield_stiffness, law.yield_compression
+    if z == EP_UNLOAD:
+        return
+    if z == EP_YIELD:  # (the yield line starts at the yield compression)
+        if comp < dy - tol:
+            raise bad(field, z, f"puts the {('left', 'right')[j]} bumper on its yield line at compression {comp:g} m, "
+                                f"below its yield compression {dy:g} m")
+        return
     low = k1 * z / (k1 - k2)
     if z < 0.0 or not low - tol <= comp <= low + dy + tol:
         raise bad(field, z, f"is no plastic offset of the {('left', 'right')[j]} bumper at compression {comp:g} m "
