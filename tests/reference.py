@@ -119,7 +119,110 @@ class _HertzdampState:
         return []
 
 
+class _KinematicState:
+    """A kinematic multi-linear bumper as Iwan's springs: the strain of each softening's
+    elastic-perfectly-plastic spring is the state (elastic from a reference point, or held at
+    +-b while it slips), the hardenings are elastic ramps, all in parallel with the rest of the
+    first slope."""
+
+    def __init__(self, law):
+        k = law.slopes
+        self.b = law.breakpoints
+        self.soft = [(i, k[i] - k[i + 1]) for i in range(len(self.b)) if k[i] > k[i + 1]]
+        self.hard = [(k[i + 1] - k[i], self.b[i]) for i in range(len(self.b)) if k[i] < k[i + 1]]
+        self.k_lin = max(k[0] - sum(dk for _, dk in self.soft), 0.0)
+        self.modes = {i: ("el", 0.0, 0.0) for i, _ in self.soft}  # (mode, strain at x_ref, x_ref)
+
+    def snapshot(self):
+        return dict(self.modes)
+
+    def restore(self, snap):
+        self.modes = dict(snap)
+
+    def strain(self, i, x):
+        mode, e, x_ref = self.modes[i]
+        if mode == "el":
+            return e + (x - x_ref)
+        return self.b[i] if mode == "up" else -self.b[i]
+
+    def spring(self, x):
+        f = self.k_lin * x + sum(dk * max(x - b, 0.0) for dk, b in self.hard)
+        return f + sum(dk * self.strain(i, x) for i, dk in self.soft)
+
+    def reset(self, rate=0.0, x=0.0):  # a contact starts at x: springs slipping back hold there
+        for i, _ in self.soft:
+            self.modes[i] = ("el", self.strain(i, x), x)
+
+    def release(self, x):  # ... and ends at x: the springs slipping in compression hold there
+        self.reset(0.0, x)
+
+    def recovered(self, x0, x):
+        """The springs after a recovery (monotone) from x0 down to x: strains clipped at -b."""
+        for i, _ in self.soft:
+            self.modes[i] = ("el", max(self.strain(i, x0) + (x - x0), -self.b[i]), x)
+
+    def spring_down(self, x0, x):
+        """The springs' force at x on the recovery from x0 (the state as at x0)."""
+        f = self.k_lin * x + sum(dk * max(x - b, 0.0) for dk, b in self.hard)
+        return f + sum(dk * max(self.strain(i, x0) + (x - x0), -self.b[i]) for i, dk in self.soft)
+
+    def events(self):
+        out = []
+        for i, _ in self.soft:
+            mode, e, x_ref = self.modes[i]
+            b = self.b[i]
+            if mode == "el":
+                out.append((lambda d, dd, e=e, x_ref=x_ref, b=b: b - (e + d - x_ref), (i, "up")))
+                out.append((lambda d, dd, e=e, x_ref=x_ref, b=b: (e + d - x_ref) + b, (i, "down")))
+            elif mode == "up":
+                out.append((lambda d, dd: dd, (i, "el")))
+            else:
+                out.append((lambda d, dd: -dd, (i, "el")))
+        return out
+
+    def switch(self, mode, d):
+        i, new = mode
+        if new == "el":
+            self.modes[i] = ("el", self.strain(i, d), d)
+        else:
+            self.modes[i] = (new, 0.0, d)
+
+
 def _law(law):
+    if isinstance(law, pd_.MultilinearBumper) and law.hysteresis == "kinematic":
+        kin = _KinematicState(law)
+        c = law.damping
+        cache = {}
+
+        def force(d, dd):
+            return kin.spring(max(d, 0.0)) + c * dd
+
+        def relax(d0, tau):  # c x' = -F(x) on the way down, to the set (F = 0) or to 0; at once without c
+            if d0 <= 0.0 or kin.spring_down(d0, d0) <= 0.0:
+                return max(d0, 0.0)
+            if c == 0:
+                if kin.spring_down(d0, 0.0) > 0.0:
+                    return 0.0
+                return brentq(lambda x: kin.spring_down(d0, x), 0.0, d0, xtol=1e-18, rtol=8.9e-16)
+            if cache.get("d0") != d0 or cache["t"] < tau:
+                span = max(tau, 1.0) * 2.0
+
+                def rhs(t, y):
+                    return [-max(kin.spring_down(d0, max(y[0], 0.0)), 0.0) / c]
+
+                floor = lambda t, y: y[0]  # noqa: E731
+                floor.terminal = True
+                sol = solve_ivp(rhs, (0.0, span), [d0], method="DOP853", rtol=1e-13, atol=1e-20,
+                                dense_output=True, events=floor)
+                cache.update(d0=d0, t=span if sol.status == 0 else math.inf, sol=sol.sol, t_zero=sol.t[-1])
+            if tau >= cache["t_zero"] and cache["t"] == math.inf:
+                return 0.0
+            return max(float(cache["sol"](tau)[0]), 0.0)
+
+        def release(d, dd):
+            return kin.spring(max(d, 0.0)) + c * dd
+
+        return force, relax, release, kin
     if isinstance(law, pd_.Hertzdamp):
         hd = _HertzdampState(law)
         k, n = law.stiffness, law.exponent
@@ -342,13 +445,19 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
             sides[idx][5].switch(direction, sides[idx][0] * d - sides[idx][1])
         elif kind == "start":
             inc[idx] = True
-            if sides[idx][5] is not None:
+            if isinstance(sides[idx][5], _KinematicState):  # its springs, from where the bumper recovered to
+                x_s = sides[idx][3](comp[idx], t - t_rel[idx])
+                sides[idx][5].recovered(comp[idx], x_s)
+                sides[idx][5].reset(0.0, x_s)
+            elif sides[idx][5] is not None:
                 sides[idx][5].reset(sides[idx][0] * v)
             res.contact_starts.append((idx, t))
             open_start[idx] = (t, v, acc[idx], acc[2 + idx])
         elif kind == "end":
             inc[idx] = False
             comp[idx] = max(0.0, sides[idx][0] * d - sides[idx][1])
+            if isinstance(sides[idx][5], _KinematicState):
+                sides[idx][5].release(comp[idx])
             t_rel[idx] = t
             res.contact_ends.append((idx, t))
             t0, v_in, imp0, work0 = open_start[idx]

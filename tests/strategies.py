@@ -23,13 +23,14 @@ def isolators(draw, hysteresis=None):
 @st.composite
 def oscillators(draw, bumpers=True, hysteresis=None, gaps="open", law="kelvin_voigt"):
     """``gaps``: "open" (3 to 30 mm each side) or "zero" (0 on one side or both: the mass at
-    rest touches that bumper).  ``law``: "kelvin_voigt", "multilinear", "elastic_plastic",
+    rest touches that bumper).  ``law``: "kelvin_voigt", "multilinear", "multilinear_kinematic",
+    "elastic_plastic",
     "hertzdamp" or "jankowski" (its effective mass the system's)."""
     iso = draw(isolators(hysteresis))
     mass = draw(st.floats(100.0, 1500.0))
     b = None
     if bumpers:
-        if law == "multilinear":  # 2 to 4 branches, each softer or stiffer than the one before
+        if law in ("multilinear", "multilinear_kinematic"):  # 2 to 4 branches, softer or stiffer
             n = draw(st.integers(2, 4))
             slopes = [draw(st.floats(1e5, 3e6))]
             for j in range(n - 1):
@@ -41,7 +42,16 @@ def oscillators(draw, bumpers=True, hysteresis=None, gaps="open", law="kelvin_vo
             breaks = sorted(draw(st.lists(st.floats(3e-4, 0.01), min_size=n - 1, max_size=n - 1, unique=True)))
             if any(b - a < 1e-4 for a, b in zip(breaks, breaks[1:])):
                 breaks = [0.001 * (j + 1) for j in range(n - 1)]
-            law = pd_.MultilinearBumper(slopes, breaks, draw(st.floats(1.0, 5000.0)))
+            hysteresis = "elastic"
+            if law == "multilinear_kinematic":  # the softenings no more than the first slope
+                hysteresis = "kinematic"
+                softening = 0.0
+                for j in range(1, n):
+                    step = slopes[j - 1] - slopes[j]
+                    if step > 0.0 and softening + step > slopes[0]:
+                        slopes[j] = slopes[j - 1]  # (this one not softer)
+                    softening += max(slopes[j - 1] - slopes[j], 0.0)
+            law = pd_.MultilinearBumper(slopes, breaks, draw(st.floats(1.0, 5000.0)), hysteresis)
         elif law == "elastic_plastic":  # yield from 0.3 to 5 mm, K2 from nearly flat to nearly K1
             k1 = draw(st.floats(1e5, 3e6))
             law = pd_.ElasticPlastic(k1, k1 * draw(st.sampled_from([0.01, 0.1, 0.3, 0.8])), draw(st.floats(3e-4, 5e-3)))

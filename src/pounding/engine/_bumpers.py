@@ -9,7 +9,7 @@ from ..model.contact_laws import (AT_START, EDGE_DOWN_STATE, EDGE_UP_STATE, law_
                                   law_relax_horizon, law_switches_at_rest, law_turn_sign)
 from ._layout import (ACT_CONTACT, ACT_LAW_BRANCH, ACT_RELEASE, E_ACTION, E_ALPHA, E_BETA, E_DIR, E_GAMMA,
                       E_INDEX, E_KIND, E_SIDE, EV_COLS, DEF_L, DEF_R, IN_L, IN_R, KIND_LINEAR, KIND_RELEASE, P_JBL, P_JBR,
-                      P_LAWL, P_LAWR, P_NLL, P_NLR, SIDE_L, SIDE_NONE, SIDE_R, Z_L, Z_R)
+                      P_LAWL, P_LAWR, P_NLL, P_NLR, SIDE_L, SIDE_NONE, SIDE_R, ZL_AT, ZR_AT)
 
 
 @jit
@@ -29,10 +29,11 @@ def bumper_events(st, ph, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r, evs, n):
         in_contact = st[IN_L] if side == SIDE_L else st[IN_R]
         law = law_l if side == SIDE_L else law_r
         if in_contact != 0.0 and law_is_linear(law):  # its branch's ends (compression x = sign D - gap)
-            z = st[Z_L] if side == SIDE_L else st[Z_R]
-            lower, upper = law_branch_edges(law, p_l if side == SIDE_L else p_r, AT_START,
-                                            int(ph[P_JBL] if side == SIDE_L else ph[P_JBR]), z)
-            turn = law_turn_sign(law, z)
+            zo = ZL_AT if side == SIDE_L else ZR_AT
+            p = p_l if side == SIDE_L else p_r
+            lower, upper = law_branch_edges(law, p, AT_START, int(ph[P_JBL] if side == SIDE_L else ph[P_JBR]),
+                                            st, zo)
+            turn = law_turn_sign(law, p, AT_START, st, zo)
             if turn != 0.0:  # the compression rate sign V (of sign ``turn`` on the branch) crossing zero
                 row = evs[n]
                 row[E_KIND] = KIND_LINEAR
@@ -102,7 +103,7 @@ def relax_horizon(st, law_l, p_l, law_r, p_r):
     mass that had left it, inside one sub-interval, unseen)."""
     out = math.inf
     if st[IN_L] == 0.0 and st[DEF_L] > 0.0:
-        out = min(out, law_relax_horizon(law_l, p_l, AT_START, st[DEF_L]))
+        out = min(out, law_relax_horizon(law_l, p_l, AT_START, st[DEF_L], st, ZL_AT))
     if st[IN_R] == 0.0 and st[DEF_R] > 0.0:
-        out = min(out, law_relax_horizon(law_r, p_r, AT_START, st[DEF_R]))
+        out = min(out, law_relax_horizon(law_r, p_r, AT_START, st[DEF_R], st, ZR_AT))
     return out

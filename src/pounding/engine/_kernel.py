@@ -16,9 +16,9 @@ import math
 import numpy as np
 
 from .._jit import jit, jit_entry
-from ..model.contact_laws import (AT_START, MULTILINEAR, N_LAW_PARAMS, law_after_event, law_contact_state,
-                                  law_energy, law_force, law_is_linear, law_linear_branch, law_relax,
-                                  law_release_state)
+from ..model.contact_laws import (AT_START, MULTILINEAR, MULTILINEAR_KINEMATIC, N_LAW_PARAMS, N_LAW_STATE,
+                                  law_after_event, law_contact_state, law_energy, law_force, law_is_linear,
+                                  law_linear_branch, law_moved, law_relax, law_release_state)
 from ._buffers import grow as _grow
 from ._buffers import put as _put
 from ._bumpers import bumper_events, law_switches, relax_horizon
@@ -31,7 +31,7 @@ from ._layout import (ACC_L, ACC_R, ACT_CONTACT, ACT_LAW_BRANCH, ACT_RELEASE, A_
                       P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_INL, P_INR, P_JBL, P_JBR, P_K, P_KBL, P_KBR,
                       P_KISO, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR, P_RBL,
                       P_RBR, P_RISO, P_SPHI, P_V0, P_VROUND, P_VRUN, P_W, P_XROUND, P_XRUN, P_LZL, P_LZR, SAMPLE_COLS,
-                      SIDE_L, SIDE_R, T, V, Z_L, Z_R)
+                      SIDE_L, SIDE_R, T, V, Z_L, Z_R, ZL_AT, ZR_AT)
 from ._linear import fill_end, linear_eval_angle, linear_eval_end, linear_setup, linear_start, reset_ends
 from ._numeric import dp5_step
 from ._subinterval import accumulate, track_abs_acceleration, velocity_turn
@@ -56,9 +56,9 @@ def _outputs(st, d, v, mass, c_d, slopes, breaks, rule, gap_l, gap_r, law_l, p_l
     f_l = 0.0
     f_r = 0.0
     if st[IN_L] != 0.0:
-        f_l = law_force(law_l, p_l, AT_START, -d - gap_l, -v, st[Z_L])[0]
+        f_l = law_force(law_l, p_l, AT_START, -d - gap_l, -v, st, ZL_AT)[0]
     if st[IN_R] != 0.0:
-        f_r = law_force(law_r, p_r, AT_START, d - gap_r, v, st[Z_R])[0]
+        f_r = law_force(law_r, p_r, AT_START, d - gap_r, v, st, ZR_AT)[0]
     return -(f_iso + f_r - f_l) / mass, f_iso, f_l, f_r
 
 
@@ -74,7 +74,7 @@ def _outputs_in_phase(ph, tau, d, v, a):
 @jit
 def _energies(st, mass, slopes, breaks, rule, law_l, p_l, law_r, p_r):
     return (0.5 * mass * st[V] ** 2, iso_energy(slopes, breaks, rule, st, st[D]),
-            law_energy(law_l, p_l, st[DEF_L], st[Z_L]) + law_energy(law_r, p_r, st[DEF_R], st[Z_R]))
+            law_energy(law_l, p_l, st[DEF_L], st, ZL_AT) + law_energy(law_r, p_r, st[DEF_R], st, ZR_AT))
 
 
 @jit
@@ -95,7 +95,7 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law
             ph[P_INL] = 1.0
             if law_is_linear(law_l):
                 # F_L = kb x + rb + cb x' with x = -D - gap_l pushes the mass to the right
-                kb, cb, rb, jb = law_linear_branch(law_l, p_l, AT_START, st[DEF_L], -st[V], st[Z_L])
+                kb, cb, rb, jb = law_linear_branch(law_l, p_l, AT_START, st[DEF_L], -st[V], st, ZL_AT)
                 k += kb
                 c += cb
                 r0 += kb * gap_l - rb
@@ -105,7 +105,7 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law
         if st[IN_R] != 0.0:
             ph[P_INR] = 1.0
             if law_is_linear(law_r):
-                kb, cb, rb, jb = law_linear_branch(law_r, p_r, AT_START, st[DEF_R], st[V], st[Z_R])
+                kb, cb, rb, jb = law_linear_branch(law_r, p_r, AT_START, st[DEF_R], st[V], st, ZR_AT)
                 k += kb
                 c += cb
                 r0 += rb - kb * gap_r
@@ -130,8 +130,9 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law
     ph[P_VROUND] = ph[P_VRUN]
     ph[P_DL0] = st[DEF_L]
     ph[P_DR0] = st[DEF_R]
-    ph[P_LZL] = st[Z_L]
-    ph[P_LZR] = st[Z_R]
+    for q in range(N_LAW_STATE):
+        ph[P_LZL + q] = st[Z_L + q]
+        ph[P_LZR + q] = st[Z_R + q]
     ph[P_KISO] = k_iso
     ph[P_RISO] = r_iso
     return k, c
@@ -185,7 +186,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
     ev_end = np.empty((evs.shape[0], 3))
     continuing = False
     t_horizon = np.inf
-    has_ml = has_b and (law_l == MULTILINEAR or law_r == MULTILINEAR)  # (the only law with a horizon)
+    has_ml = has_b and (law_l == MULTILINEAR or law_r == MULTILINEAR or law_l == MULTILINEAR_KINEMATIC
+                        or law_r == MULTILINEAR_KINEMATIC)  # (the laws with a horizon)
     h_phase = 0.0
     s1 = c1 = 0.0  # the forcing angle's sine and cosine at the end of the last sub-interval
     t_last = h_last = 0.0  # its start and length
@@ -368,12 +370,16 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
             idx = DEF_L if side == SIDE_L else DEF_R
             law = law_l if side == SIDE_L else law_r
             p = p_l if side == SIDE_L else p_r
+            zo = ZL_AT if side == SIDE_L else ZR_AT
             if (st[IN_L] if side == SIDE_L else st[IN_R]) != 0.0:
                 gap = gap_l if side == SIDE_L else gap_r
                 st[idx] = max(0.0, (-d1 if side == SIDE_L else d1) - gap)
+                law_moved(law, p, AT_START, st, zo, st[idx], 1.0)
             elif st[idx] > 0.0:
-                relaxed = law_relax(law, p, AT_START, st[idx], tau, st[Z_L if side == SIDE_L else Z_R])[0]
-                ledger[3] += law_energy(law, p, st[idx], 0.0) - law_energy(law, p, relaxed, 0.0)
+                relaxed = law_relax(law, p, AT_START, st[idx], tau, st, zo)[0]
+                e0 = law_energy(law, p, st[idx], st, zo)
+                law_moved(law, p, AT_START, st, zo, relaxed, 0.0)
+                ledger[3] += e0 - law_energy(law, p, relaxed, st, zo)
                 st[idx] = relaxed
         if not (abs(d1) <= DBL_MAX and abs(v1) <= DBL_MAX):  # inf or NaN: nothing after it holds
             status = NONFINITE
@@ -397,10 +403,10 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
             st[acc + A_TSTART] = t_ev
             # below the resolution the mass met the surface at rest (its restitution is NaN)
             st[acc + A_VIN] = st[V] if abs(st[V]) > v_res else 0.0
-            if index == SIDE_L:  # (a law with a state starts unloaded; Hertzdamp's damping from v_in)
-                st[Z_L] = law_contact_state(law_l, p_l, AT_START, -st[acc + A_VIN])
+            if index == SIDE_L:  # (an elastic-plastic law starts unloaded; Hertzdamp's damping from v_in)
+                law_contact_state(law_l, p_l, AT_START, -st[acc + A_VIN], st, ZL_AT, comp)
             else:
-                st[Z_R] = law_contact_state(law_r, p_r, AT_START, st[acc + A_VIN])
+                law_contact_state(law_r, p_r, AT_START, st[acc + A_VIN], st, ZR_AT, comp)
             st[acc + A_DSTART] = comp
             st[acc + A_IMPULSE] = 0.0
             st[acc + A_PEAK] = 0.0
@@ -410,9 +416,9 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
             acc = ACC_L if index == SIDE_L else ACC_R
             st[IN_L if index == SIDE_L else IN_R] = 0.0
             if index == SIDE_L:
-                st[Z_L] = law_release_state(law_l, st[Z_L])
+                law_release_state(law_l, p_l, AT_START, st, ZL_AT, st[DEF_L])
             else:
-                st[Z_R] = law_release_state(law_r, st[Z_R])
+                law_release_state(law_r, p_r, AT_START, st, ZR_AT, st[DEF_R])
             # a touch below the resolution in both depth and impulse (a graze, or a mass resting
             # on a bumper that pushes with zero force) is no impact: the motion went through it
             # exactly, the contact table leaves it out
@@ -424,11 +430,10 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
                      st[acc + A_IMPULSE], st[acc + A_PEAK], st[acc + A_MAXCOMP], st[acc + A_WORK])
                 n_c += 1
         elif action == ACT_LAW_BRANCH:  # the next branch is the next phase's; a law's state may change
-            iz = Z_L if index == SIDE_L else Z_R
             if index == SIDE_L:
-                st[iz] = law_after_event(law_l, p_l, AT_START, st[iz], st[DEF_L], evs[i_ev, E_DIR])
+                law_after_event(law_l, p_l, AT_START, st, ZL_AT, st[DEF_L], evs[i_ev, E_DIR])
             else:
-                st[iz] = law_after_event(law_r, p_r, AT_START, st[iz], st[DEF_R], evs[i_ev, E_DIR])
+                law_after_event(law_r, p_r, AT_START, st, ZR_AT, st[DEF_R], evs[i_ev, E_DIR])
         else:
             iso_transition(slopes, breaks, rule, st, action, index, evs[i_ev, E_DIR])
         if n_e >= events.shape[0]:

@@ -6,7 +6,7 @@ inside ``@jit`` functions and cost nothing.
 
 import numpy as np
 
-from ..model.contact_laws import N_LAW_PARAMS
+from ..model.contact_laws import N_LAW_PARAMS, N_LAW_STATE
 
 # ---- state vector (float64), length STATE_BASE + 2 * (n_branches - 1)
 T = 0            # time, s
@@ -21,9 +21,10 @@ ACC_L = 8        # contact accumulators of the left bumper (N_ACC values)
 ACC_R = 15       # ... of the right bumper
 N_ACC = 7
 A_TSTART, A_VIN, A_DSTART, A_IMPULSE, A_PEAK, A_MAXCOMP, A_WORK = 0, 1, 2, 3, 4, 5, 6
-Z_L = 22         # the left bumper's law state (contact_laws.law_after_event; 0 for a stateless law)
-Z_R = 23         # ... the right one's
-STATE_BASE = 24  # then u_i (n-1 plastic slips, m), then s_i (n-1 slip directions, -1/0/+1)
+Z_L = 22         # the left bumper's law state, N_LAW_STATE values (contact_laws; 0 for a stateless law)
+Z_R = Z_L + N_LAW_STATE  # ... the right one's
+STATE_BASE = Z_R + N_LAW_STATE  # then u_i (n-1 plastic slips, m), then s_i (n-1 slip directions, -1/0/+1)
+ZL_AT, ZR_AT = np.int64(Z_L), np.int64(Z_R)  # as offsets for the law_* functions (typed)
 
 # ---- phase descriptor (float64), see _linear.py and _numeric.py
 P_M, P_C, P_K, P_P0, P_P1, P_H, P_W, P_PHI = 0, 1, 2, 3, 4, 5, 6, 7
@@ -57,9 +58,10 @@ P_XRUN = P_ENDS_NEXT + 1
 P_VRUN = P_ENDS_NEXT + 2
 P_XROUND = P_ENDS_NEXT + 3
 P_VROUND = P_ENDS_NEXT + 4
-P_LZL = P_ENDS_NEXT + 5  # the bumpers' law states (Z_L, Z_R) for this phase
-P_LZR = P_ENDS_NEXT + 6
-PH_LEN = P_ENDS_NEXT + 7
+P_LZL = P_ENDS_NEXT + 5  # the bumpers' law states (Z_L, Z_R: N_LAW_STATE values each) for this phase
+P_LZR = P_LZL + N_LAW_STATE
+PZL_AT, PZR_AT = np.int64(P_LZL), np.int64(P_LZR)
+PH_LEN = P_LZR + N_LAW_STATE
 MODE_LINEAR = 0.0
 MODE_NUMERIC = 1.0
 

@@ -13,7 +13,7 @@ import math
 from ..model.contact_laws import law_force
 from .._jit import jit
 from ._layout import (P_C, P_D0, P_GAPL, P_GAPR, P_H, P_K, P_LAWL, P_LAWR, P_M, P_NLL, P_NLR,
-                      P_P0, P_P1, P_PHI, P_V0, P_W, P_LZL, P_LZR, PL_AT, PR_AT)
+                      P_P0, P_P1, P_PHI, P_V0, P_W, PL_AT, PR_AT, PZL_AT, PZR_AT)
 
 # Dormand-Prince 5(4) tableau
 C2, C3, C4, C5 = 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0
@@ -33,9 +33,9 @@ def bumper_forces(ph, d, v):
     fl = 0.0
     fr = 0.0
     if ph[P_NLL] != 0.0:
-        fl = law_force(int(ph[P_LAWL]), ph, PL_AT, -d - ph[P_GAPL], -v, ph[P_LZL])[0]
+        fl = law_force(int(ph[P_LAWL]), ph, PL_AT, -d - ph[P_GAPL], -v, ph, PZL_AT)[0]
     if ph[P_NLR] != 0.0:
-        fr = law_force(int(ph[P_LAWR]), ph, PR_AT, d - ph[P_GAPR], v, ph[P_LZR])[0]
+        fr = law_force(int(ph[P_LAWR]), ph, PR_AT, d - ph[P_GAPR], v, ph, PZR_AT)[0]
     return fl, fr
 
 

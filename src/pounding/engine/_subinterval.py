@@ -20,7 +20,7 @@ from .._jit import jit
 from ..model.contact_laws import law_branch_loss
 from ._layout import (A_IMPULSE, A_MAXCOMP, A_PEAK, A_WORK, ACC_L, ACC_R, MODE_LINEAR, P_AX0, P_C,
                       P_CBL, P_CBR, P_CD, P_GAPL, P_GAPR, P_INL, P_INR, P_JBL, P_JBR, P_K, P_KBL, P_KBR, P_LAWL,
-                      P_LAWR, P_M, P_MODE, P_P0, P_RBL, P_RBR, PL_AT, PR_AT, SIDE_L, SIDE_R)
+                      P_LAWR, P_M, P_MODE, P_P0, P_RBL, P_RBR, PL_AT, PR_AT, PZL_AT, PZR_AT, SIDE_L, SIDE_R)
 from ._linear import linear_integrals
 from ._trajectory import (NO_INDEX, W_AABS_RATE, W_ACCELERATION, W_FORCE_RATE, abs_acceleration_rate,
                           brent, contact_force, newton, phase_eval, table_acceleration, value_at_root)
@@ -68,15 +68,15 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
                 # x = +-D - gap
                 if side == SIDE_L:
                     sign, gap, k_b, c_b, r_b, acc = -1.0, ph[P_GAPL], ph[P_KBL], ph[P_CBL], ph[P_RBL], ACC_L
-                    law, o, j_b = int(ph[P_LAWL]), PL_AT, int(ph[P_JBL])
+                    law, o, zo, j_b = int(ph[P_LAWL]), PL_AT, PZL_AT, int(ph[P_JBL])
                 else:
                     sign, gap, k_b, c_b, r_b, acc = 1.0, ph[P_GAPR], ph[P_KBR], ph[P_CBR], ph[P_RBR], ACC_R
-                    law, o, j_b = int(ph[P_LAWR]), PR_AT, int(ph[P_JBR])
+                    law, o, zo, j_b = int(ph[P_LAWR]), PR_AT, PZR_AT, int(ph[P_JBR])
                 x0 = sign * d0 - gap
                 x1 = sign * d1 - gap
                 st[acc + A_IMPULSE] += k_b * (sign * i_d - gap * tau) + r_b * tau + c_b * (x1 - x0)
                 st[acc + A_WORK] += 0.5 * k_b * (x1 * x1 - x0 * x0) + r_b * (x1 - x0) + c_b * i_vv
-                ledger[3] += c_b * i_vv + law_branch_loss(law, ph, o, j_b, x0, x1)
+                ledger[3] += c_b * i_vv + law_branch_loss(law, ph, o, j_b, x0, x1, ph, zo)
     elif tau > 0.0 and (with_energy or in_l or in_r):
         for q in range(N_LOBATTO):
             tq = tau * LOBATTO_X[q]

@@ -17,7 +17,7 @@ from ..model.contact_laws import law_force, law_is_linear, law_relax, law_releas
 from ._layout import (ACT_CONTACT, E_ACTION, E_ALPHA, E_BETA, E_GAMMA, E_KIND, E_SIDE, KIND_LINEAR,
                       MODE_LINEAR, P_AX0, P_AX1, P_AXH, P_C, P_CBL, P_CBR, P_D0, P_DL0, P_DR0, P_GAPL,
                       P_GAPR, P_H, P_K, P_KBL, P_KBR, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P1, P_PHI, P_RBL, P_RBR,
-                      P_V0, P_VROUND, P_W, P_XROUND, P_LZL, P_LZR, PL_AT, PR_AT, SIDE_L, SIDE_NONE, SIDE_R)
+                      P_V0, P_VROUND, P_W, P_XROUND, PL_AT, PR_AT, PZL_AT, PZR_AT, SIDE_L, SIDE_NONE, SIDE_R)
 from ._linear import forcing_angle, linear_eval
 from ._numeric import dp5_step, phase_rhs
 
@@ -57,14 +57,14 @@ def contact_force(ph, side, d, v, a):
         if law_is_linear(law):
             fel = ph[P_KBL] * dd + ph[P_RBL]
             return fel + ph[P_CBL] * dv, fel, ph[P_KBL] * dv + ph[P_CBL] * da, dv
-        f, fel, fd, fv = law_force(law, ph, PL_AT, dd, dv, ph[P_LZL])
+        f, fel, fd, fv = law_force(law, ph, PL_AT, dd, dv, ph, PZL_AT)
     else:
         dd, dv, da = d - ph[P_GAPR], v, a
         law = int(ph[P_LAWR])
         if law_is_linear(law):
             fel = ph[P_KBR] * dd + ph[P_RBR]
             return fel + ph[P_CBR] * dv, fel, ph[P_KBR] * dv + ph[P_CBR] * da, dv
-        f, fel, fd, fv = law_force(law, ph, PR_AT, dd, dv, ph[P_LZR])
+        f, fel, fd, fv = law_force(law, ph, PR_AT, dd, dv, ph, PZR_AT)
     return f, fel, fd * dv + fv * da, dv
 
 
@@ -108,16 +108,16 @@ def _bumper_event_value(evs, i, ph, tau, d, v, a):
         if evs[i, E_ACTION] != ACT_CONTACT:  # the compression back to zero: no surface relaxing
             return g, gp, scale
         if side == SIDE_L:
-            r, rr = law_relax(int(ph[P_LAWL]), ph, PL_AT, ph[P_DL0], tau, ph[P_LZL])
+            r, rr = law_relax(int(ph[P_LAWL]), ph, PL_AT, ph[P_DL0], tau, ph, PZL_AT)
         else:
-            r, rr = law_relax(int(ph[P_LAWR]), ph, PR_AT, ph[P_DR0], tau, ph[P_LZR])
+            r, rr = law_relax(int(ph[P_LAWR]), ph, PR_AT, ph[P_DR0], tau, ph, PZR_AT)
         return g + r, gp + rr, scale + r
     if side == SIDE_L:
-        law, o, z = int(ph[P_LAWL]), PL_AT, ph[P_LZL]
+        law, o, zo = int(ph[P_LAWL]), PL_AT, PZL_AT
         dd, dv, da = -d - ph[P_GAPL], -v, -a
         kb, cb, rb = ph[P_KBL], ph[P_CBL], ph[P_RBL]
     else:
-        law, o, z = int(ph[P_LAWR]), PR_AT, ph[P_LZR]
+        law, o, zo = int(ph[P_LAWR]), PR_AT, PZR_AT
         dd, dv, da = d - ph[P_GAPR], v, a
         kb, cb, rb = ph[P_KBR], ph[P_CBR], ph[P_RBR]
     if law_is_linear(law):
@@ -127,8 +127,8 @@ def _bumper_event_value(evs, i, ph, tau, d, v, a):
         # and the bumper pulled 14 N, unseen)
         g, gp = kb * dd + rb + cb * dv, kb * dv + cb * da
     else:
-        g, gp = law_release(law, ph, o, dd, dv, da, z)
-    scale = law_release(law, ph, o, abs(dd) + ph[P_XROUND], abs(dv) + ph[P_VROUND], 0.0, z)[0]
+        g, gp = law_release(law, ph, o, dd, dv, da, ph, zo)
+    scale = law_release(law, ph, o, abs(dd) + ph[P_XROUND], abs(dv) + ph[P_VROUND], 0.0, ph, zo)[0]
     return g, gp, scale
 
 

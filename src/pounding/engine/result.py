@@ -119,8 +119,20 @@ class State:
     def bumper_law_state(self) -> tuple[float, float]:
         """The (left, right) bumper law's own state: an elastic-plastic law's plastic offset (m,
         >= 0) or its line (-1 the yield line, -2 the unloading line); Hertzdamp's damping of the
-        last contact (N s/m^(n+1)); 0 for the other laws."""
+        last contact (N s/m^(n+1)); 0 for the other laws (a kinematic multi-linear law's springs:
+        :attr:`bumper_slips_m`)."""
         return float(self.vector[Z_L]), float(self.vector[Z_R])
+
+    @property
+    def bumper_slips_m(self) -> np.ndarray:
+        """Slips (m) of a kinematic multi-linear bumper's springs, shape (2, 3): (left, right) by
+        breakpoint (0 for a breakpoint that is no softening, and for the other laws)."""
+        return np.array([self.vector[Z_L + 1:Z_L + 4], self.vector[Z_R + 1:Z_R + 4]])
+
+    @property
+    def bumper_slip_directions(self) -> np.ndarray:
+        """Slip directions (-1, 0, +1) of those springs, shape (2, 3)."""
+        return np.array([self.vector[Z_L + 4:Z_L + 7], self.vector[Z_R + 4:Z_R + 7]])
 
     @property
     def isolator_branch(self) -> int:

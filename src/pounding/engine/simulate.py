@@ -11,7 +11,7 @@ from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
 from ..model._elastic_plastic import EP_UNLOAD, EP_YIELD
-from ..model.contact_laws import ElasticPlastic, Hertzdamp, KelvinVoigt
+from ..model.contact_laws import N_LAW_STATE, ElasticPlastic, Hertzdamp, KelvinVoigt, MultilinearBumper
 from ._control import (
     DEFAULT_MAX_STEPS,
     check_budget,
@@ -93,7 +93,16 @@ def _check_state_fits(state: State, oscillator: Oscillator) -> None:
             if not touching[j] and depth - comp[j] > tol:
                 raise bad("displacement_m", d, f"is inside the {side} bumper (its surface is at "
                                                f"{sign * (gap + comp[j]):g} m) while not in contact")
-            _check_law_state(vec[(Z_L, Z_R)[j]], (b.left, b.right)[j], touching[j], comp[j], tol, j, bad)
+            at = (Z_L, Z_R)[j]
+            law = (b.left, b.right)[j]
+            if isinstance(law, MultilinearBumper) and law.hysteresis == "kinematic":
+                _check_kinematic_state(vec[at:at + N_LAW_STATE], law, comp[j], tol, at, bad)
+            else:
+                for q in range(1, N_LAW_STATE):
+                    if vec[at + q] != 0.0:
+                        raise bad(f"vector[{at + q}]", float(vec[at + q]),
+                                  "is a kinematic multi-linear bumper's slip, but that bumper has another law")
+                _check_law_state(vec[at], law, touching[j], comp[j], tol, j, bad)
     n_sp = iso.n_branches - 1
     if iso.hysteresis == "elastic":
         region = int(vec[REGION])
@@ -140,6 +149,27 @@ def _check_law_state(z: float, law: Any, touching: bool, comp: float, tol: float
     if z < 0.0 or not low - tol <= comp <= low + dy + tol:
         raise bad(field, z, f"is no plastic offset of the {('left', 'right')[j]} bumper at compression {comp:g} m "
                             "(its elastic branch would not hold it)")
+
+
+def _check_kinematic_state(block: np.ndarray, law: Any, comp: float, tol: float, at: int, bad: Any) -> None:
+    """A kinematic multi-linear bumper's springs: each softening's slip direction -1, 0 or +1, its
+    strain within its breakpoint (at it while slipping); the other places 0."""
+    slopes, breaks = law.slopes, law.breakpoints
+    soft = {i for i in range(len(breaks)) if slopes[i] > slopes[i + 1]}
+    for q in range(N_LAW_STATE):
+        i = (q - 1) % 3
+        if q == 0 or i not in soft:
+            if block[q] != 0.0:
+                raise bad(f"vector[{at + q}]", float(block[q]), "is no state of this kinematic multi-linear bumper "
+                                                              "(a place for a softening it has not): 0")
+    for i in sorted(soft):
+        u, s = block[1 + i], block[4 + i]
+        if s not in (-1.0, 0.0, 1.0):
+            raise bad(f"vector[{at + 4 + i}]", float(s), "is a slip direction: -1, 0 or +1")
+        strain = comp - u
+        if (abs(strain) > breaks[i] + tol) if s == 0.0 else abs(strain - s * breaks[i]) > tol:
+            raise bad(f"vector[{at + 1 + i}]", float(u), f"leaves the bumper spring {i}'s strain {strain:g} m beyond "
+                                                         f"its breakpoint {breaks[i]:g} m")
 
 
 def kernel_system(oscillator: Oscillator) -> tuple:

@@ -16,11 +16,13 @@ import pandas as pd
 
 from .._checks import float_array, integer, one_of, positive, real, real_tuple
 from .._errors import InputError, Problem
-from ..model.contact_laws import (ELASTIC_PLASTIC, LAWS, MAX_BRANCHES, N_LAW_PARAMS, ContactLaw, ElasticPlastic,
+from ..model.contact_laws import (ELASTIC_PLASTIC, LAWS, MAX_BRANCHES, MULTILINEAR_KINEMATIC, N_LAW_PARAMS,
+                                  ContactLaw, ElasticPlastic,
                                   Hertzdamp, HuntCrossley, Jankowski, KelvinVoigt, MultilinearBumper,
                                   law_force_many)
 
 MIN_SAMPLES_IN_CONTACT = 3
+KINEMATIC_ROW = "multilinear_kinematic"  # rank_contact_laws' name of MultilinearBumper(hysteresis="kinematic")
 MIN_RATIO = 1e-6  # the elastic-plastic fit's least K2 / K1
 
 
@@ -115,7 +117,43 @@ def _multilinear_fit(d, v, force, breakpoints):
     return x[:-1], x[-1], resid
 
 
-def _multilinear_search(d, v, force, n_branches):
+def _slip_column(d, b):
+    """The strain (m) of a spring that slips at +-``b`` along the path ``d`` from the unloaded
+    bumper: a kinematic law's softening, per N/m of it."""
+    p = np.zeros(N_LAW_PARAMS)
+    p[1], p[2], p[6] = 2.0, 1.0, b  # slopes (1, 0): the slipping spring alone
+    out = np.empty(d.size)
+    law_force_many(MULTILINEAR_KINEMATIC, p, d, np.zeros_like(d), out)
+    return out
+
+
+def _kinematic_fit(d, v, force, breakpoints, slips=None):
+    """Slopes and damping of a kinematic multi-linear law with these breakpoints, and the
+    residual norm.  Its force is linear in ``k_lin``, each step's size and the damping, for each
+    choice of which steps soften (a slipping spring) and which harden (an elastic ramp): every
+    choice by non-negative least squares, the best kept.  ``slips``: the slip columns, if known."""
+    from itertools import product
+
+    from scipy.optimize import nnls
+
+    slips = [_slip_column(d, b) for b in breakpoints] if slips is None else slips
+    ramps = [np.maximum(d - b, 0.0) for b in breakpoints]
+    best = (np.inf, None, 0.0)
+    for soft in product((True, False), repeat=len(breakpoints)):
+        cols = np.column_stack([d, *[slips[i] if soft[i] else ramps[i] for i in range(len(soft))], v])
+        scale = np.linalg.norm(cols, axis=0)
+        scale[scale == 0.0] = 1.0
+        x, resid = nnls(cols / scale, force)
+        x = x / scale
+        if resid < best[0]:
+            slopes = [x[0] + sum(x[1 + i] for i in range(len(soft)) if soft[i])]
+            for i in range(len(soft)):
+                slopes.append(slopes[-1] - x[1 + i] if soft[i] else slopes[-1] + x[1 + i])
+            best = (resid, np.maximum(np.array(slopes), 0.0), x[-1])
+    return best[1], best[2], best[0]
+
+
+def _multilinear_search(d, v, force, n_branches, kinematic=False):
     """Breakpoints minimising the residual: Nelder-Mead on their fractions of the deepest
     compression, from a grid of starts (the residual is piecewise smooth in them)."""
     from itertools import combinations
@@ -131,7 +169,7 @@ def _multilinear_search(d, v, force, n_branches):
         b = breaks_of(u)
         if np.any(np.diff(b) <= 1e-6 * top):
             return np.inf
-        return _multilinear_fit(d, v, force, b)[2]
+        return (_kinematic_fit if kinematic else _multilinear_fit)(d, v, force, b)[2]
 
     grid = np.linspace(0.1, 0.9, 9)
     starts = sorted(combinations(grid, n_branches - 1), key=lambda u: cost(np.array(u)))[:3]
@@ -196,6 +234,7 @@ def fit_contact_law(
     effective_mass_kg: float | None = None,
     breakpoints: Any = None,
     n_branches: int = 3,
+    hysteresis: str = "elastic",
 ) -> ContactLawFit:
     """Fit a bumper law to a measured force-displacement history.
 
@@ -226,6 +265,10 @@ def fit_contact_law(
     n_branches : int
         Branches of a multi-linear law whose breakpoints are searched (1 to 4; default 3: the
         D-shaped bumper's stiff start, soft plateau and steep rise).
+    hysteresis : {"elastic", "kinematic"}
+        A multi-linear law's (:class:`MultilinearBumper`): ``"kinematic"`` follows the samples
+        in their order from an unloaded bumper, each breakpoint a softening (a spring that
+        slips) or a hardening, whichever fits.
 
     Returns
     -------
@@ -238,6 +281,10 @@ def fit_contact_law(
                          + " (Hertzdamp's damping is set by each impact's velocity, which a cyclic test has not: "
                            "fit 'hunt_crossley', whose damping c is Hertzdamp's xi_norm k / v_in)")
     n_branches = integer("n_branches", n_branches, 1, MAX_BRANCHES)
+    one_of("hysteresis", hysteresis, MultilinearBumper.HYSTERESIS)
+    if hysteresis != "elastic" and law != MultilinearBumper.TYPE:
+        raise InputError(Problem.NOT_ONE_OF, "law", law,
+                         choices="'multilinear' (hysteresis is a multi-linear law's; leave it out otherwise)")
     if breakpoints is not None and law != MultilinearBumper.TYPE:
         raise InputError(Problem.NOT_ONE_OF, "law", law,
                          choices="'multilinear' (breakpoints are a multi-linear law's; leave them out otherwise)")
@@ -275,14 +322,15 @@ def fit_contact_law(
         k, c, _ = _nnls_fit(d, v, force)
         fitted: ContactLaw = KelvinVoigt(max(k, np.finfo(float).tiny), c)
     elif law == MultilinearBumper.TYPE:
+        kinematic = hysteresis == "kinematic"
         if breakpoints is None:
-            b = np.empty(0) if n_branches == 1 else _multilinear_search(d, v, force, n_branches)
+            b = np.empty(0) if n_branches == 1 else _multilinear_search(d, v, force, n_branches, kinematic)
         else:
             b = np.array(MultilinearBumper((1.0,) * (len(real_tuple("breakpoints", breakpoints)) + 1),
                                            breakpoints).breakpoints)  # (checked as the law checks them)
-        slopes, c, _ = _multilinear_fit(d, v, force, b)
+        slopes, c, _ = (_kinematic_fit if kinematic else _multilinear_fit)(d, v, force, b)
         slopes[0] = max(slopes[0], np.finfo(float).tiny)
-        fitted = MultilinearBumper(tuple(slopes), tuple(b), c)
+        fitted = MultilinearBumper(tuple(slopes), tuple(b), c, hysteresis)
     elif law == ElasticPlastic.TYPE:
         fitted = ElasticPlastic(*_elastic_plastic_search(d, force))
     else:
@@ -327,18 +375,21 @@ def rank_contact_laws(displacement_m: Any, force_n: Any, *, time_s: Any = None, 
     Returns
     -------
     DataFrame
-        One row per law, best first: ``law`` (its type), ``rms_n``, ``r_squared``,
+        One row per law, best first: ``law`` (its type; ``"multilinear_kinematic"`` for the
+        multi-linear law with kinematic hysteresis), ``rms_n``, ``r_squared``,
         ``parameters`` (their count) and ``fit`` (the :class:`ContactLawFit`).
     """
     counts = {KelvinVoigt.TYPE: 2, HuntCrossley.TYPE: 3, Jankowski.TYPE: 3, ElasticPlastic.TYPE: 3,
               MultilinearBumper.TYPE: 2 * integer("n_branches", n_branches, 1, MAX_BRANCHES)}
+    counts[KINEMATIC_ROW] = counts[MultilinearBumper.TYPE]
     rows = []
-    for name in LAWS:
+    for name in [*LAWS, KINEMATIC_ROW]:
         if (name == Jankowski.TYPE and effective_mass_kg is None) or name == Hertzdamp.TYPE:
             continue
+        law, hysteresis = (MultilinearBumper.TYPE, "kinematic") if name == KINEMATIC_ROW else (name, "elastic")
         try:
-            fit = fit_contact_law(displacement_m, force_n, time_s=time_s, velocity_m_s=velocity_m_s, law=name,
-                                  effective_mass_kg=effective_mass_kg, n_branches=n_branches)
+            fit = fit_contact_law(displacement_m, force_n, time_s=time_s, velocity_m_s=velocity_m_s, law=law,
+                                  effective_mass_kg=effective_mass_kg, n_branches=n_branches, hysteresis=hysteresis)
         except InputError as exc:
             if exc.problem is not Problem.NO_FIT:
                 raise

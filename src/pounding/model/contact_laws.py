@@ -24,10 +24,10 @@ from .._checks import at_most, backbone, non_negative, positive, real
 from .._errors import InputError, Problem
 from ._law_kernels import (  # noqa: F401  (the compiled side, re-exported: one import for the engine)
     AT_START, BRANCH_TIE, ELASTIC_PLASTIC, HERTZDAMP, HUNT_CROSSLEY, JANKOWSKI,
-    KELVIN_VOIGT, MAX_BRANCHES, MULTILINEAR, N_LAW_PARAMS, EDGE_DOWN_STATE, EDGE_UP_STATE,
-    law_after_event, law_branch_coefficients, law_branch_edges, law_branch_loss, law_contact_state, law_energy,
-    law_force, law_force_many, law_is_linear, law_linear_branch, law_relax, law_relax_horizon,
-    law_release, law_release_state, law_switches_at_rest, law_turn_sign)
+    KELVIN_VOIGT, MAX_BRANCHES, MULTILINEAR, MULTILINEAR_KINEMATIC, N_LAW_PARAMS, N_LAW_STATE, EDGE_DOWN_STATE,
+    EDGE_UP_STATE, law_after_event, law_branch_coefficients, law_branch_edges, law_branch_loss, law_contact_state,
+    law_energy, law_force, law_force_many, law_has_memory, law_is_linear, law_linear_branch, law_relax,
+    law_moved, law_relax_horizon, law_release, law_release_state, law_switches_at_rest, law_turn_sign)
 
 MAX_LAW_COEFFICIENT = 1e18  # stiffness or damping beyond any bumper (N/m^n, N s/m^(n+1)): refused
 MAX_EXPONENT = 10.0
@@ -192,13 +192,29 @@ class Jankowski:
 class MultilinearBumper:
     """A bumper whose spring is multi-linear in compression, with a dashpot in parallel.
 
-    ``F = R(d) + damping * dd``: the backbone ``R`` has slope ``slopes[j]`` between
-    ``breakpoints[j - 1]`` and ``breakpoints[j]`` (from 0, on to any depth), elastic (loading and
-    unloading on it).  The paper's D-shaped hollow EPDM bumper (Fig. 3): an initial branch, a
-    soft one (even flat) while the hole collapses, a steep one once it has closed.  Piecewise
-    linear, so every phase of motion stays closed-form, as with :class:`KelvinVoigt` (one slope
-    is exactly Kelvin-Voigt).  Out of contact the massless bumper relaxes by
-    ``damping * dd = -R(d)``, branch by branch in closed form.
+    ``F = R(d) + damping * dd`` while loaded from the unloaded state: the backbone ``R`` has
+    slope ``slopes[j]`` between ``breakpoints[j - 1]`` and ``breakpoints[j]`` (from 0, on to any
+    depth).  The paper's D-shaped hollow EPDM bumper (Fig. 3): an initial branch, a soft one
+    (even flat) while the hole collapses, a steep one once it has closed.  Piecewise linear, so
+    every phase of motion stays closed-form, as with :class:`KelvinVoigt` (one slope is exactly
+    Kelvin-Voigt, with either hysteresis).
+
+    ``hysteresis="elastic"``: unloading follows the backbone back.  ``"kinematic"``: Masing's
+    rule, as the kinematic isolator has it: each softening of the backbone (a slope lower than the
+    one before) is a spring that slips once strained by its breakpoint (Iwan's parallel springs),
+    so the bumper unloads along the backbone turned over at twice the scale from the turning
+    point, and reloads likewise (a backbone that only softens: exactly); each hardening (a
+    steeper slope, the closed hole) is an elastic ramp added to that, without a loop.
+    A loop dissipates nothing while its springs stay elastic (an impact that compresses the
+    bumper less than about twice its first breakpoint is elastic but for the dashpot) and more
+    the deeper it goes: restitution falls and contacts lengthen with the impact velocity.  The
+    springs keep their slips between contacts, so a bumper unloaded from its soft branch keeps a
+    set (its springs' forces cancel above zero compression) and the next contact reloads it from
+    there.  It needs ``slopes[0]`` at least the sum of the softening steps (else the unloaded
+    bumper would pull).
+
+    Out of contact the massless bumper recovers by ``damping * dd = -F(d)``, piece by piece in
+    closed form (with no dashpot, at once).
 
     Parameters
     ----------
@@ -208,14 +224,18 @@ class MultilinearBumper:
         Compressions where the slope changes, m, > 0 and increasing.
     damping : float
         Dashpot constant in N s/m, >= 0 (0: the bumper recovers instantly).
+    hysteresis : {"elastic", "kinematic"}
+        How the bumper unloads (above).
     """
 
     slopes: tuple[float, ...]
     breakpoints: tuple[float, ...] = ()
     damping: float = 0.0
+    hysteresis: str = "elastic"
 
     TYPE: ClassVar[str] = "multilinear"
-    LAW_ID: ClassVar[int] = MULTILINEAR
+    HYSTERESIS: ClassVar[tuple[str, ...]] = ("elastic", "kinematic")
+    OPTIONAL_KEYS: ClassVar[tuple[str, ...]] = ("hysteresis",)  # (files from before it was: elastic)
 
     def __post_init__(self) -> None:
         slopes, breakpoints = backbone("law", self.slopes, self.breakpoints, MAX_LAW_COEFFICIENT, " N/m",
@@ -226,6 +246,22 @@ class MultilinearBumper:
         object.__setattr__(self, "slopes", slopes)
         object.__setattr__(self, "breakpoints", breakpoints)
         object.__setattr__(self, "damping", _coefficient("law.damping", self.damping, "N s/m", False))
+        if self.hysteresis not in self.HYSTERESIS:
+            raise InputError(Problem.NOT_ONE_OF, "law.hysteresis", self.hysteresis,
+                             choices=", ".join(map(repr, self.HYSTERESIS)))
+        if self.hysteresis == "kinematic":
+            softening = sum(max(a - b, 0.0) for a, b in zip(slopes[:-1], slopes[1:]))
+            if softening > slopes[0] * (1.0 + 1e-12):
+                raise InputError(Problem.OUT_OF_RANGE, "law.slopes", list(slopes),
+                                 range=f"a first slope of at least the softening steps' sum {softening:g} N/m",
+                                 hint=" (kinematic hysteresis: every softening is a spring that slips, in parallel "
+                                      "with what is left of the first slope; soften once, or use "
+                                      "hysteresis='elastic')")
+
+    @property
+    def LAW_ID(self) -> int:  # noqa: N802  (the name every law's id has)
+        """The compiled kernels' id: the elastic or the kinematic multi-linear law."""
+        return MULTILINEAR_KINEMATIC if self.hysteresis == "kinematic" else MULTILINEAR
 
     def params(self) -> np.ndarray:
         """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,): damping, the
@@ -399,7 +435,8 @@ def law_from_dict(table: dict[str, Any], field: str) -> ContactLaw:
     """Build a law from a TOML table with a ``type`` key; unknown and missing keys are errors.
 
     Every field of the law must be given, defaults included: a table whose ``type`` was
-    changed would otherwise be read with the new law's defaults filling what it lacks.
+    changed would otherwise be read with the new law's defaults filling what it lacks.  (But a
+    multi-linear law's ``hysteresis``, added later, which files written before it lack.)
     """
     if not isinstance(table, dict):
         raise InputError(Problem.WRONG_TYPE, field, table, got=type(table).__name__, expected="table")
@@ -408,7 +445,7 @@ def law_from_dict(table: dict[str, Any], field: str) -> ContactLaw:
         raise InputError(Problem.NOT_ONE_OF, f"{field}.type", kind, choices=", ".join(map(repr, LAWS)))
     cls = LAWS[kind]
     allowed = {f.name for f in fields(cls)}
-    required = [f.name for f in fields(cls)]
+    required = [f.name for f in fields(cls) if f.name not in getattr(cls, "OPTIONAL_KEYS", ())]
     for key in table:
         if key != "type" and key not in allowed:
             raise InputError(Problem.UNKNOWN_KEY, f"{field}.{key}", table[key],

@@ -18,7 +18,7 @@ from .._jit import jit, jit_entry
 from ..engine._forcing import EXC_HARMONIC
 from ..engine._kernel import SUCCESS, run_kernel
 from ..engine._layout import D, STATE_BASE, T, V, Z_L, Z_R
-from ..model.contact_laws import ELASTIC_PLASTIC
+from ..model.contact_laws import N_LAW_STATE, law_has_memory
 from ..metrics._impacts import SIDE_SUMS, add_impacts
 
 # per-cycle record: exact extrema, then the impact sums of both sides
@@ -146,7 +146,7 @@ def step_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l
     exc_p[2] = -(omega * t0)
     no_record = np.zeros(1)
     n_sp = (state0.size - STATE_BASE) // 2
-    strobe = np.empty((n_cycles, 4 + n_sp))  # D, V, the slips, the bumpers' plastic offsets
+    strobe = np.empty((n_cycles, 2 + n_sp + 2 * N_LAW_STATE))  # D, V, the slips, the bumpers' law states
     starts = np.empty((n_cycles, state0.size))
     cyc = np.zeros((n_cycles, CYCLE_COLS))
     st = state0.copy()
@@ -174,10 +174,11 @@ def step_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l
         strobe[n, 1] = st[V]
         for q in range(n_sp):
             strobe[n, 2 + q] = st[STATE_BASE + q]
-        # an elastic-plastic bumper's state is memory as the slips are (m, or a line's code); a
+        # a hysteretic bumper's state is memory as the slips are (m, or a line's code); a
         # stateless law's is 0, Hertzdamp's a damping that follows from the motion
-        strobe[n, 2 + n_sp] = st[Z_L] if law_l == ELASTIC_PLASTIC else 0.0
-        strobe[n, 3 + n_sp] = st[Z_R] if law_r == ELASTIC_PLASTIC else 0.0
+        for q in range(N_LAW_STATE):
+            strobe[n, 2 + n_sp + q] = st[Z_L + q] if law_has_memory(law_l) else 0.0
+            strobe[n, 2 + n_sp + N_LAW_STATE + q] = st[Z_R + q] if law_has_memory(law_r) else 0.0
         n += 1
         if status != SUCCESS:
             break

@@ -1,0 +1,179 @@
+"""The multi-linear bumper with kinematic (Masing) hysteresis (issue 16): one slope is Kelvin-Voigt
+exactly; random systems against the reference (which restates the springs with their strains as
+the state), the energy ledger, no pull, a chained run, restitution that falls and contacts that
+lengthen with the impact velocity, Masing's loops, the fit from loops it generated."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+from strategies import harmonics, oscillators
+from test_reference import _compare
+
+import pounding as pd_
+from pounding.model.contact_laws import law_force_many
+
+SETTINGS = settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+# stiff, a soft plateau, steep once the hole has closed (the paper's D-shaped bumper)
+D_SHAPED = pd_.MultilinearBumper((3e6, 0.5e6, 6e6), (0.002, 0.008), 500.0, hysteresis="kinematic")
+
+
+def _free_impact(law, v0, mass=500.0):
+    """``mass`` at v0 into the right bumper, an isolator of 1e-9 N/m, no table motion."""
+    osc = pd_.Oscillator(mass, pd_.Isolator((1e-9,), (), "elastic", 0.0), pd_.Bumpers(0.05, 0.01, law))
+    return pd_.simulate(osc, pd_.Harmonic(0.0, 1.0), 0.01 / v0 + 0.1, pd_.State.at_rest(osc, velocity_m_s=v0),
+                        sample_rate_hz=2000)
+
+
+def _path_forces(law, d, v):
+    out = np.empty(d.size)
+    law_force_many(law.LAW_ID, law.params(), np.ascontiguousarray(d), np.ascontiguousarray(v), out)
+    return out
+
+
+def test_one_slope_is_kelvin_voigt_exactly():
+    kv = pd_.presets.paper_damped()
+    b = kv.bumpers
+    law = pd_.MultilinearBumper((b.law.stiffness,), (), b.law.damping, hysteresis="kinematic")
+    kin = pd_.Oscillator(kv.mass, kv.isolator, pd_.Bumpers(b.gap_left, b.gap_right, law))
+    state = pd_.State.at_rest(kv, velocity_m_s=0.6)
+    runs = [pd_.simulate(osc, pd_.Harmonic(0.1, 2.5), 5.0, state, sample_rate_hz=200) for osc in (kv, kin)]
+    assert len(runs[0].contacts) > 4
+    np.testing.assert_array_equal(runs[0].contact_table, runs[1].contact_table)
+    np.testing.assert_array_equal(runs[0].final_state.vector, runs[1].final_state.vector)
+
+
+def _masing_path(law):
+    """Forces along 0 -> 12 mm -> 1 mm -> 12 mm, and the parts of that path."""
+    up = np.linspace(0.0, 0.012, 1201)[1:]
+    down = np.linspace(0.012, 0.001, 1101)[1:]
+    back = np.linspace(0.001, 0.012, 1101)[1:]
+    d = np.concatenate([up, down, back])
+    return _path_forces(law, d, np.zeros_like(d)), up, down, back
+
+
+def test_loaded_once_it_follows_the_backbone_then_masing():
+    # a backbone that only softens: the backbone first, then the backbone turned over at twice
+    # the scale from each turning point (Masing), the loop closing where it turned
+    soft = pd_.MultilinearBumper((3e6, 0.5e6, 0.1e6), (0.002, 0.008), hysteresis="kinematic")
+    backbone = pd_.MultilinearBumper(soft.slopes, soft.breakpoints).backbone
+    f, up, down, back = _masing_path(soft)
+    np.testing.assert_allclose(f[:up.size], backbone(up), rtol=1e-12)
+    r_top = float(backbone(0.012))
+    masing_down = r_top - 2.0 * backbone((0.012 - down) / 2.0)
+    np.testing.assert_allclose(f[up.size:up.size + down.size], masing_down, rtol=0, atol=1e-9 * r_top)
+    masing_up = masing_down[-1] + 2.0 * backbone((back - 0.001) / 2.0)
+    np.testing.assert_allclose(f[up.size + down.size:], masing_up, rtol=0, atol=1e-9 * r_top)
+    assert f[-1] == pytest.approx(r_top, rel=1e-9)
+    # with a hardening (the closed hole) that part is elastic: Masing's loop of the backbone
+    # without it, plus the hardening's ramp (6 MN/m - 0.5 MN/m beyond 8 mm)
+    f, up, down, back = _masing_path(D_SHAPED)
+    np.testing.assert_allclose(f[:up.size], pd_.MultilinearBumper(D_SHAPED.slopes, D_SHAPED.breakpoints).backbone(up),
+                               rtol=1e-12)
+    soft_part = pd_.MultilinearBumper((3e6, 0.5e6), (0.002,)).backbone
+    ramp = 5.5e6 * np.maximum(down - 0.008, 0.0)
+    expected = float(soft_part(0.012)) - 2.0 * soft_part((0.012 - down) / 2.0) + ramp
+    np.testing.assert_allclose(f[up.size:up.size + down.size], expected, rtol=0, atol=1e-9 * r_top)
+
+
+def test_restitution_falls_and_contacts_lengthen_with_the_impact_velocity():
+    # elastic (but for the dashpot) while the first spring holds: up to 2 mm of compression
+    rest, times, loss = [], [], []
+    for v0 in (0.1, 0.2, 0.3, 0.4):
+        run = _free_impact(D_SHAPED, v0)
+        c = run.contacts.iloc[0]
+        rest.append(-c["v_out"] / c["v_in"])
+        times.append(c["t_end"] - c["t_start"])
+        loss.append(c["bumper_dissipation"])
+        assert abs(run.energy.residual) < 1e-12 * 0.5 * 500.0 * v0**2
+        assert run.bumper_force_right.min() >= 0.0
+    elastic = _free_impact(pd_.MultilinearBumper(D_SHAPED.slopes, D_SHAPED.breakpoints, 500.0), 0.1)
+    assert rest[0] == pytest.approx(-elastic.contacts["v_out"].iloc[0] / 0.1, rel=1e-12)  # no slip below 2 mm
+    assert rest[0] > rest[1] > rest[2] > rest[3]
+    assert times[0] < times[1] < times[2] < times[3]
+
+
+def test_the_bumper_keeps_a_set_and_recovers_towards_it():
+    run = _free_impact(D_SHAPED, 0.4)
+    state = run.final_state
+    slip = state.bumper_slips_m[1, 0]
+    assert slip > 0.0 and state.bumper_slip_directions[1, 0] == 0.0
+    # at rest where the springs' forces cancel: k_lin x + delta (x - u) = 0 with the hardening off
+    k_lin, delta = 3e6 - 2.5e6, 2.5e6
+    assert state.bumper_compression_m[1] == pytest.approx(delta * slip / (k_lin + delta), rel=1e-6)
+
+
+@SETTINGS
+@given(osc=oscillators(law="multilinear_kinematic"), exc=harmonics(), v0=st.floats(-0.8, 0.8))
+def test_random_kinematic_systems_match_reference(osc, exc, v0):
+    _compare(osc, exc, v0=v0, drawn=True)
+
+
+@SETTINGS
+@given(osc=oscillators(law="multilinear_kinematic"), exc=harmonics(), v0=st.floats(-0.8, 0.8))
+def test_kinematic_ledger_closes_and_the_bumper_never_pulls(osc, exc, v0):
+    run = pd_.simulate(osc, exc, 3.0, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=2000)
+    e = run.energy
+    flows = max(abs(e.input_work), abs(e.kinetic), e.viscous + abs(e.hysteretic) + e.bumper_dissipation)
+    assert abs(e.residual) <= 1e-10 * flows  # closed form, as Kelvin-Voigt
+    assert e.bumper_dissipation >= -1e-12 * flows
+    assert run.bumper_force_left.min() >= -1e-9 and run.bumper_force_right.min() >= -1e-9
+    done = run.contacts.dropna()
+    assert (done["impulse"] > 0).all()
+
+
+@settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(osc=oscillators(law="multilinear_kinematic"), exc=harmonics(), v0=st.floats(-0.8, 0.8))
+def test_a_continued_kinematic_run_equals_one_long_run(osc, exc, v0):
+    start = pd_.State.at_rest(osc, velocity_m_s=v0)
+    whole = pd_.simulate(osc, exc, 2.0, start, sample_rate_hz=0)
+    first = pd_.simulate(osc, exc, 1.0, start, sample_rate_hz=0)
+    second = pd_.simulate(osc, exc, 1.0, first.final_state, sample_rate_hz=0)  # (1 s more)
+    scale = max(abs(whole.displacement_max), abs(whole.displacement_min), 1e-6)
+    assert abs(second.final_state.displacement_m - whole.final_state.displacement_m) <= 1e-8 * scale
+    np.testing.assert_allclose(second.final_state.bumper_slips_m, whole.final_state.bumper_slips_m,
+                               rtol=0, atol=1e-8 * scale)
+
+
+def test_fit_contact_law_recovers_a_kinematic_law_and_ranks_it_first():
+    # the paper's test (Fig. 3): loops of +-10 mm around 10 mm of precompression, 0.5 to 2 Hz
+    t = np.linspace(0.0, 8.0, 8001)
+    freq = np.where(t < 4.0, 0.5, 2.0)
+    phase = 2 * np.pi * np.cumsum(freq) * (t[1] - t[0])
+    d = 0.010 + 0.0099 * np.sin(phase)
+    v = np.gradient(d, t)
+    truth = pd_.MultilinearBumper((3e6, 0.5e6, 6e6), (0.002, 0.008), 2000.0, hysteresis="kinematic")
+    force = _path_forces(truth, d, v)
+    fit = pd_.fit_contact_law(d, force, velocity_m_s=v, law="multilinear", hysteresis="kinematic")
+    assert fit.law.hysteresis == "kinematic"
+    np.testing.assert_allclose(fit.law.slopes, truth.slopes, rtol=0.02)
+    np.testing.assert_allclose(fit.law.breakpoints, truth.breakpoints, rtol=0.02)
+    assert fit.law.damping == pytest.approx(truth.damping, rel=0.02)
+    ranked = pd_.rank_contact_laws(d, force, velocity_m_s=v)
+    assert ranked["law"].iloc[0] == "multilinear_kinematic"
+
+
+def test_bad_kinematic_laws_are_refused():
+    with pytest.raises(pd_.InputError, match="law.hysteresis"):
+        pd_.MultilinearBumper((1e6, 2e6), (0.001,), hysteresis="masing")
+    with pytest.raises(pd_.InputError, match="softening steps"):  # softens by 1.5 MN/m with 1 MN/m to give
+        pd_.MultilinearBumper((1e6, 3e6, 1.5e6), (0.001, 0.002), hysteresis="kinematic")
+
+
+def test_toml_round_trip_and_files_without_hysteresis(tmp_path):
+    osc = pd_.Oscillator(500.0, pd_.Isolator((1e5,)), pd_.Bumpers(0.015, 0.015, D_SHAPED))
+    path = tmp_path / "kin.toml"
+    path.write_text(osc.to_toml_text())
+    assert 'hysteresis = "kinematic"' in path.read_text()
+    assert pd_.Oscillator.from_toml(path).bumpers.law == D_SHAPED
+    # a file written before the field was (no hysteresis key) reads as elastic
+    text = path.read_text()
+    at = text.index("[bumpers.law]")
+    path.write_text(text[:at] + text[at:].replace('hysteresis = "kinematic"\n', ""))
+    assert pd_.Oscillator.from_toml(path).bumpers.law.hysteresis == "elastic"
+    path.write_text(text[:at] + text[at:].replace('"kinematic"', '"plastic"'))
+    with pytest.raises(pd_.InputError) as info:
+        pd_.Oscillator.from_toml(path)
+    assert info.value.field == "bumpers.law.hysteresis"
