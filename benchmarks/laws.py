@@ -7,7 +7,8 @@ mode) on one core, warm, best of N, on the first calibrated isolator (v1) with e
 
 - Kelvin-Voigt, that preset's;
 - a multi-linear law of one slope (the same system: what the multi-linear code path costs);
-- the D-shaped multi-linear bumper (stiff, a plateau, steep; its contacts cross breakpoints);
+- the D-shaped multi-linear bumper (stiff, a plateau, steep; its contacts cross breakpoints), elastic
+  and with kinematic hysteresis (its springs slip and hold: more events per contact);
 - an elastic-plastic law (contacts that yield and turn: two or three branch events each);
 - Hertzdamp and Hunt-Crossley (integrated numerically during contact).
 
@@ -34,6 +35,8 @@ def systems() -> dict[str, pd_.Oscillator]:
         "multilinear, 1 slope": pd_.MultilinearBumper((kv.stiffness,), (), kv.damping),
         "multilinear, D-shaped": pd_.MultilinearBumper((kv.stiffness, 0.1 * kv.stiffness, 4.0 * kv.stiffness),
                                                        (0.002, 0.006), kv.damping),
+        "multilinear, D-shaped, kinematic": pd_.MultilinearBumper(
+            (kv.stiffness, 0.1 * kv.stiffness, 4.0 * kv.stiffness), (0.002, 0.006), kv.damping, "kinematic"),
         "elastic_plastic": pd_.ElasticPlastic(4.0 * kv.stiffness, 0.1 * kv.stiffness, 0.002),
         "hertzdamp": pd_.Hertzdamp.from_restitution(3e8, 0.85),
         "hunt_crossley": pd_.HuntCrossley(3e8, 1.5, 1e8),

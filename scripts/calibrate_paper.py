@@ -14,7 +14,8 @@ The shipped preset came from (about 4 minutes on 2 cores; docs/calibration.md)::
 
 and ``presets.paper_calibrated_v1()`` (Kelvin-Voigt bumpers) from ``--maxiter 40`` alone.
 
-Options: ``--law hunt_crossley``, ``elastic_plastic`` or ``multilinear`` (three slopes), ``--free-gap`` (the gap free within
+Options: ``--law hunt_crossley``, ``elastic_plastic``, ``multilinear`` (three slopes) or
+``multilinear_kinematic`` (the same with Masing's loops), ``--free-gap`` (the gap free within
 +-3 mm of 15 mm: the D-shaped profile makes the effective gap uncertain), ``--popsize``,
 ``--seed``, ``--workers``, ``--rtol`` (of a nonlinear law's integration), ``--out DIR`` (write
 elsewhere than the package data).
@@ -46,6 +47,7 @@ BUMPER_BOUNDS = {
                     "bumper_breakpoint_1": (2e-4, 0.006), "bumper_breakpoint_2": (0.002, 0.02),
                     "bumper_damping": (10.0, 2e4)},
 }
+BUMPER_BOUNDS["multilinear_kinematic"] = BUMPER_BOUNDS["multilinear"]  # (Masing's loops on the same backbone)
 GAP_BOUNDS = (0.012, 0.018)
 # the printed backbone with C_d read as 1 kN s/m (paper_damped), a fourth branch far out
 START = {"slope_1": 38e3, "slope_2": 18e3, "slope_3": 2e3, "slope_4": 2e3, "breakpoint_1": 0.015,
@@ -56,10 +58,14 @@ BUMPER_START = {"kelvin_voigt": {"bumper_stiffness": 1.46e6, "bumper_damping": 1
                                     "bumper_yield_compression": 0.002},
                 "multilinear": {"bumper_slope_1": 3e6, "bumper_slope_2": 3e5, "bumper_slope_3": 1e7,
                                 "bumper_breakpoint_1": 0.002, "bumper_breakpoint_2": 0.006, "bumper_damping": 2500.0}}
+BUMPER_START["multilinear_kinematic"] = BUMPER_START["multilinear"]
 
 
 def preset_start(law: str) -> dict[str, float]:
-    """The shipped preset's numbers as a start: its isolator, and its bumper where the law can be it."""
+    """A shipped preset's numbers as a start: its isolator, and its bumper where the law can be it
+    (the kinematic multi-linear law: the elastic one's preset, paper_calibrated(), gap and all)."""
+    if law == "multilinear_kinematic":
+        return pd_.ModelFamily(500.0, branches=4, law="multilinear").values_of(pd_.presets.paper_calibrated())
     kv = pd_.presets.paper_calibrated_v1()
     out = pd_.ModelFamily(500.0, branches=4, law="kelvin_voigt").values_of(kv)
     out.pop("gap")
@@ -93,6 +99,8 @@ def main() -> None:
     x0 = {**START, **BUMPER_START[args.law], **({"gap": 0.015} if args.free_gap else {})}
     if args.from_preset:
         x0.update(preset_start(args.law))
+        if not args.free_gap:
+            x0.pop("gap", None)
     t0 = time.perf_counter()
     fit = pd_.identify(targets, family, bounds, seed=args.seed,
                        maxiter=args.maxiter, popsize=args.popsize, x0=x0,

@@ -5,6 +5,8 @@ lengthen with the impact velocity, Masing's loops, the fit from loops it generat
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
@@ -18,6 +20,7 @@ from pounding.model.contact_laws import law_force_many
 SETTINGS = settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 # stiff, a soft plateau, steep once the hole has closed (the paper's D-shaped bumper)
 D_SHAPED = pd_.MultilinearBumper((3e6, 0.5e6, 6e6), (0.002, 0.008), 500.0, hysteresis="kinematic")
+EXAMPLE = Path(__file__).parents[1] / "examples" / "masing_ybs.toml"  # (a YBs system with this bumper)
 
 
 def _free_impact(law, v0, mass=500.0):
@@ -177,3 +180,25 @@ def test_toml_round_trip_and_files_without_hysteresis(tmp_path):
     with pytest.raises(pd_.InputError) as info:
         pd_.Oscillator.from_toml(path)
     assert info.value.field == "bumpers.law.hysteresis"
+
+
+def test_the_example_file_reads_and_sweeps_and_its_loops_dissipate():
+    osc = pd_.Oscillator.from_toml(EXAMPLE)
+    assert osc.bumpers.law == D_SHAPED
+    res = pd_.sweep(osc, 0.1, freqs_hz=[1.5, 2.5], steady="fixed", cycles=8, measure_cycles=2)
+    assert res.to_dataframe()["contact"].all()
+    elastic = pd_.Oscillator(osc.mass, osc.isolator,
+                             pd_.Bumpers(0.015, 0.015, pd_.MultilinearBumper(D_SHAPED.slopes, D_SHAPED.breakpoints, 500.0)))
+    runs = [pd_.simulate(o, pd_.Harmonic(0.1, 1.5), 10.0, pd_.State.at_rest(o, velocity_m_s=0.6)) for o in (osc, elastic)]
+    assert len(runs[0].contacts) > 5 and len(runs[1].contacts) > 5
+    assert runs[0].energy.bumper_dissipation > 2.0 * runs[1].energy.bumper_dissipation  # Masing's loops
+
+
+def test_model_family_fits_kinematic_bumpers():
+    family = pd_.ModelFamily(500.0, branches=3, law="multilinear_kinematic", fixed={"gap": 0.015})
+    osc = pd_.Oscillator.from_toml(EXAMPLE)
+    values = family.values_of(osc)
+    assert family.oscillator(values) == osc
+    with pytest.raises(pd_.InputError):  # an elastic multi-linear system is not of this family
+        family.values_of(pd_.Oscillator(osc.mass, osc.isolator, pd_.Bumpers(0.015, 0.015, pd_.MultilinearBumper(
+            D_SHAPED.slopes, D_SHAPED.breakpoints, 500.0))))

@@ -44,7 +44,9 @@ FAMILY_KEYS = ("mass", "branches", "hysteresis", "law", "fixed", "bounds", "bump
 LAW_PARAMETERS = {"kelvin_voigt": ("bumper_stiffness", "bumper_damping"),
                   "hunt_crossley": ("bumper_stiffness", "bumper_exponent", "bumper_damping"),
                   "elastic_plastic": ("bumper_stiffness", "bumper_post_yield_ratio", "bumper_yield_compression"),
-                  "multilinear": ()}  # (named by its number of branches: ModelFamily.law_parameters)
+                  "multilinear": (),  # (named by its number of branches: ModelFamily.law_parameters)
+                  "multilinear_kinematic": ()}  # (the same, MultilinearBumper(hysteresis="kinematic"))
+MULTILINEAR_LAWS = {"multilinear": "elastic", "multilinear_kinematic": "kinematic"}  # -> the law's hysteresis
 
 
 @dataclass(frozen=True)
@@ -58,8 +60,8 @@ class ModelFamily:
     branches : int
         Number of backbone slopes ``n`` (>= 1).
     hysteresis : {"kinematic", "elastic"}
-    law : {"kelvin_voigt", "hunt_crossley", "elastic_plastic", "multilinear"}
-        The bumpers' contact law.
+    law : {"kelvin_voigt", "hunt_crossley", "elastic_plastic", "multilinear", "multilinear_kinematic"}
+        The bumpers' contact law (the last: :class:`MultilinearBumper` with kinematic hysteresis).
     fixed : dict
         ``name -> value`` for the numbers not fitted (names in the module docstring).
     bumper_branches : int
@@ -104,7 +106,7 @@ class ModelFamily:
     @property
     def law_parameters(self) -> tuple[str, ...]:
         """The contact law's numbers, in a fixed order."""
-        if self.law != "multilinear":
+        if self.law not in MULTILINEAR_LAWS:
             return LAW_PARAMETERS[self.law]
         k = self.bumper_branches
         return (tuple(f"bumper_slope_{i + 1}" for i in range(k)) + tuple(f"bumper_breakpoint_{i + 1}" for i in range(k - 1))
@@ -138,10 +140,11 @@ class ModelFamily:
                             p["isolator_damping"])
         if self.law == "kelvin_voigt":
             law: Any = KelvinVoigt(p["bumper_stiffness"], p["bumper_damping"])
-        elif self.law == "multilinear":
+        elif self.law in MULTILINEAR_LAWS:
             k = self.bumper_branches
             law = MultilinearBumper(tuple(p[f"bumper_slope_{i + 1}"] for i in range(k)),
-                                    tuple(p[f"bumper_breakpoint_{i + 1}"] for i in range(k - 1)), p["bumper_damping"])
+                                    tuple(p[f"bumper_breakpoint_{i + 1}"] for i in range(k - 1)), p["bumper_damping"],
+                                    MULTILINEAR_LAWS[self.law])
         elif self.law == "elastic_plastic":
             ratio = p["bumper_post_yield_ratio"]
             if not 0.0 < ratio < 1.0:
@@ -155,14 +158,17 @@ class ModelFamily:
     def values_of(self, oscillator: Oscillator) -> dict[str, float]:
         """Every number of the family read from a system of this family (YBs)."""
         iso, b = oscillator.isolator, oscillator.bumpers
-        if (b is None or iso.n_branches != self.branches or b.law.TYPE != self.law
-                or (self.law == "multilinear" and len(b.law.slopes) != self.bumper_branches)):
+        multilinear = self.law in MULTILINEAR_LAWS
+        if (b is None or iso.n_branches != self.branches
+                or b.law.TYPE != (MultilinearBumper.TYPE if multilinear else self.law)
+                or (multilinear and (len(b.law.slopes) != self.bumper_branches
+                                     or b.law.hysteresis != MULTILINEAR_LAWS[self.law]))):
             raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator, got="another structure",
                              expected=f"a YBs system with {self.branches} branches and {self.law} bumpers")
         out = {f"slope_{i + 1}": float(k) for i, k in enumerate(iso.slopes)}
         out.update({f"breakpoint_{i + 1}": float(x) for i, x in enumerate(iso.breakpoints)})
         out["isolator_damping"] = float(iso.damping)
-        if self.law == "multilinear":
+        if multilinear:
             out.update({f"bumper_slope_{i + 1}": float(k) for i, k in enumerate(b.law.slopes)})
             out.update({f"bumper_breakpoint_{i + 1}": float(x) for i, x in enumerate(b.law.breakpoints)})
             out["bumper_damping"] = float(b.law.damping)
