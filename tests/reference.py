@@ -354,6 +354,7 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
     s = np.zeros(n_sp)
     m, cd = osc.mass, iso.damping
     kinematic = iso.hysteresis == "kinematic"
+    bw = iso.bouc_wen  # its z is the last of the carried states (acc[6])
     b = osc.bumpers
     sides = []
     if b is not None:
@@ -366,7 +367,7 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
     t, d, v = 0.0, d0, v0
     open_start = [None, None]   # (t, v, impulse and work integrals then) of the contact going on
     # integrals carried as extra ODE states: impulse and work of each bumper, viscous, input
-    acc = np.zeros(6)
+    acc = np.zeros(7)
     if state is not None:
         t, d, v = state["t"], state["d"], state["v"]
         acc = state["acc"].copy()
@@ -389,9 +390,16 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
         sign, gap, force = sides[j][:3]
         return force(sign * dd - gap, sign * vv)
 
+    def z_rate(vv, z):
+        if bw is None:
+            return 0.0
+        return vv / bw.yield_displacement * (bw.a - abs(z) ** bw.n * (bw.beta * np.sign(vv * z) + bw.gamma))
+
     def rhs(tt, y):
         dd, vv = y[0], y[1]
         f = iso_force(dd) + cd * vv
+        if bw is not None:
+            f += bw.stiffness * bw.yield_displacement * y[8]
         rates = [0.0, 0.0, 0.0, 0.0]
         for j in range(len(sides)):
             if inc[j]:
@@ -400,10 +408,17 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
                 rates[j] = fb
                 rates[2 + j] = fb * sides[j][0] * vv
         ag = float(accel(tt))
-        return [vv, -f / m - ag, *rates, cd * vv * vv, -m * ag * vv]
+        return [vv, -f / m - ag, *rates, cd * vv * vv, -m * ag * vv, z_rate(vv, y[8])]
 
     def build_events():
         evs = []
+        if bw is not None:  # its law's kinks: where z and where the velocity cross zero
+            if acc[6] != 0.0:
+                sz = math.copysign(1.0, acc[6])
+                evs.append((lambda tt, y, sz=sz: sz * y[8], ("bwz", 0, 0.0)))
+            # (the sign the velocity has, or heads to where it is 0: after a kink, its acceleration's)
+            sv = math.copysign(1.0, v if abs(v) > 1e-12 else rhs(t, [d, v, *acc])[1])
+            evs.append((lambda tt, y, sv=sv: sv * y[1], ("kink", 0, 0.0)))
         if kinematic:
             for i in range(n_sp):
                 if s[i] == 0:
@@ -433,7 +448,9 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
         return evs
 
     def apply(kind, idx, direction):
-        if kind == "yield":
+        if kind == "bwz":
+            acc[6] = 0.0
+        elif kind == "yield":
             s[idx] = direction
             u[idx] = d - direction * Db[idx]
         elif kind == "rev":
@@ -475,12 +492,15 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
         dt = 1e-9
         motion = None
         for f, info in evs:
-            if info[0] == "region":  # a kink of the backbone carries no state
+            if info[0] in ("region", "kink"):  # a kink of the backbone carries no state
                 continue
-            g0 = f(t, [d, v])
+            y0 = np.array([d, v, *acc])
+            g0 = f(t, y0)
             if abs(g0) < 1e-12:
-                a = rhs(t, [d, v])[1]
-                g1 = f(t + dt, [d + v * dt + 0.5 * a * dt * dt, v + a * dt])
+                yp = np.array(rhs(t, y0))
+                y1 = y0 + dt * yp
+                y1[0] += 0.5 * yp[1] * dt * dt
+                g1 = f(t + dt, y1)
                 if g1 < -1e-16:
                     return info
                 if abs(g1) > 1e-16:
@@ -489,26 +509,26 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
                     ts = t + np.linspace(0.0, 1e-4, 21)[1:]
                     motion = solve_ivp(rhs, (t, ts[-1]), [d, v, *acc], method="DOP853", rtol=1e-13,
                                        atol=1e-20, t_eval=ts).y
-                gs = np.array([f(tt, motion[:2, k]) for k, tt in enumerate(ts)])
+                gs = np.array([f(tt, motion[:, k]) for k, tt in enumerate(ts)])
                 if np.all(gs <= 0.0) and gs[-1] < -1e-16:
                     return info
         return None
 
-    def a_abs(tt, dd, vv):
-        f = iso_force(dd) + cd * vv
+    def a_abs(tt, dd, vv, z=0.0):
+        f = iso_force(dd) + cd * vv + (0.0 if bw is None else bw.stiffness * bw.yield_displacement * z)
         for j in range(len(sides)):
             if inc[j]:
                 f = f + sides[j][0] * bump_force(j, dd, vv)
         return -f / m
 
-    def track(tt, dd, vv):
+    def track(tt, dd, vv, z):
         """Extrema at the samples (arrays) of one phase."""
         res.d_max = max(res.d_max, float(np.max(dd)))
         res.d_min = min(res.d_min, float(np.min(dd)))
-        res.a_abs_max = max(res.a_abs_max, float(np.max(np.abs(a_abs(tt, dd, vv)))))
+        res.a_abs_max = max(res.a_abs_max, float(np.max(np.abs(a_abs(tt, dd, vv, z)))))
 
     if measure:
-        track(np.array([t]), np.array([d]), np.array([v]))
+        track(np.array([t]), np.array([d]), np.array([v]), np.array([acc[6]]))
     spins = 0
     stalled = 0
     while t < t_end - 1e-15:
@@ -531,9 +551,8 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
         for f, _ in evs:  # minima of the event functions: grazes a solver step stepped over
             def ev_min(tt, y, f=f):
                 h = 1e-6
-                yp = rhs(tt, y)
-                return (f(tt + h, [y[0] + h * yp[0], y[1] + h * yp[1]])
-                        - f(tt - h, [y[0] - h * yp[0], y[1] - h * yp[1]])) / (2.0 * h)
+                yp = np.array(rhs(tt, y))
+                return (f(tt + h, y + h * yp) - f(tt - h, y - h * yp)) / (2.0 * h)
             ev_min.direction = 1
             funcs.append(ev_min)
         if measure:
@@ -563,7 +582,7 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
             t_hit = sol.t[-1] if hit is None else hit[0]
             ts = np.append(np.arange(t_start, t_hit, sample_dt), t_hit)
             ys = sol.sol(ts)
-            track(ts, ys[0], ys[1])
+            track(ts, ys[0], ys[1], ys[8])
         if hit is None:
             stalled = stalled + 1 if sol.t[-1] <= t_start else 0
             if stalled > 50:  # e.g. the mass rides the relaxing bumper surface at zero force
@@ -577,7 +596,7 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
         acc = np.array(hit[2][2:])
         apply(*evs[hit[1]][1])
         if measure:
-            track(np.array([t]), np.array([d]), np.array([v]))
+            track(np.array([t]), np.array([d]), np.array([v]), np.array([acc[6]]))
         if kinematic:
             for i in range(n_sp):
                 if s[i] != 0:

@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from hypothesis import strategies as st
 
 import pounding as pd_
@@ -21,12 +23,24 @@ def isolators(draw, hysteresis=None):
 
 
 @st.composite
-def oscillators(draw, bumpers=True, hysteresis=None, gaps="open", law="kelvin_voigt"):
+def bouc_wens(draw, slope):
+    """A Bouc-Wen spring of 0.2 to 2 times ``slope`` (N/m), yielding at 2 to 20 mm, smooth to sharp,
+    the usual parameters or others that dissipate."""
+    beta, gamma = draw(st.sampled_from([(0.5, 0.5), (0.75, 0.25), (0.25, 0.25), (0.6, -0.4)]))
+    return pd_.BoucWen(slope * draw(st.floats(0.2, 2.0)), draw(st.floats(0.002, 0.02)),
+                       draw(st.sampled_from([1.0, 0.8, 1.2])), beta, gamma, draw(st.sampled_from([1.0, 1.5, 2.0, 4.0])))
+
+
+@st.composite
+def oscillators(draw, bumpers=True, hysteresis=None, gaps="open", law="kelvin_voigt", bouc_wen=False):
     """``gaps``: "open" (3 to 30 mm each side) or "zero" (0 on one side or both: the mass at
     rest touches that bumper).  ``law``: "kelvin_voigt", "multilinear", "multilinear_kinematic",
     "elastic_plastic",
-    "hertzdamp" or "jankowski" (its effective mass the system's)."""
+    "hertzdamp" or "jankowski" (its effective mass the system's).  ``bouc_wen``: the isolator with a
+    Bouc-Wen spring in parallel."""
     iso = draw(isolators(hysteresis))
+    if bouc_wen:
+        iso = replace(iso, bouc_wen=draw(bouc_wens(iso.slopes[0])))
     mass = draw(st.floats(100.0, 1500.0))
     b = None
     if bumpers:

@@ -11,14 +11,14 @@ from .excitation import Harmonic, Record
 from .identification import (ContactLawFit, Identification, ModelFamily, Targets, fit_contact_law, identify,
                              paper_targets, rank_contact_laws)
 from .metrics import HysteresisLoop, impact_table
-from .model import Bumpers, ElasticPlastic, Hertzdamp, HuntCrossley, Isolator, Jankowski, KelvinVoigt, MultilinearBumper, Oscillator
+from .model import BoucWen, Bumpers, ElasticPlastic, Hertzdamp, HuntCrossley, Isolator, Jankowski, KelvinVoigt, MultilinearBumper, Oscillator
 from .protocols import CampaignResult, SweepResult, campaign, paper_frequencies_hz, sweep
 
 __version__ = "0.1.0"
 
 __all__ = [
     "Bumpers", "CampaignResult", "ContactLawFit", "Identification", "ModelFamily", "Targets", "EnergyLedger", "Harmonic", "HuntCrossley", "HysteresisLoop",
-    "ElasticPlastic", "Hertzdamp", "InputError", "Interrupted", "PoundingWarning", "Isolator", "Jankowski", "MultilinearBumper", "KelvinVoigt", "Oscillator", "Problem", "Record",
+    "BoucWen", "ElasticPlastic", "Hertzdamp", "InputError", "Interrupted", "PoundingWarning", "Isolator", "Jankowski", "MultilinearBumper", "KelvinVoigt", "Oscillator", "Problem", "Record",
     "Run", "State", "Status", "SweepResult", "campaign", "impact_table", "paper_frequencies_hz",
     "data", "fit_contact_law", "identify", "paper_targets", "rank_contact_laws", "presets", "simulate", "sweep",
     "WarmUp", "warm_up",

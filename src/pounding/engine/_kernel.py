@@ -24,7 +24,9 @@ from ._buffers import put as _put
 from ._bumpers import bumper_events, law_switches, relax_horizon
 from ._forcing import EXC_HARMONIC, RESOLUTION, excitation_piece, run_scales
 from ._isolator import iso_advance, iso_energy, iso_events, iso_linear, iso_transition
-from ._layout import (ACC_L, ACC_R, ACT_CONTACT, ACT_LAW_BRANCH, ACT_RELEASE, A_DSTART, A_IMPULSE, A_MAXCOMP,
+from ..model.isolator import BW_PARAMS
+from ._layout import (ACC_L, ACC_R, ACT_BOUC_WEN, ACT_CONTACT, ACT_LAW_BRANCH, ACT_RELEASE, A_DSTART, A_IMPULSE,
+                      A_MAXCOMP, E_ALPHA, E_KIND, E_SIDE, KIND_ZETA, P_BW, P_ZETA0, SIDE_NONE, ZETA,
                       A_PEAK, A_TSTART, A_VIN, A_WORK, CONTACT_COLS, CTL_BUDGET, CTL_STOP, CTL_WORK, D, DEF_L,
                       DEF_R, EVENT_COLS, EV_COLS, E_ACTION, E_DIR, E_INDEX, IN_L, IN_R, LEDGER_LEN,
                       MODE_LINEAR, MODE_NUMERIC, PH_LEN, P_AX0, P_AX1, P_AXH, P_C, P_CBL, P_CBR, P_CD, P_D0,
@@ -36,7 +38,7 @@ from ._linear import fill_end, linear_eval_angle, linear_eval_end, linear_setup,
 from ._numeric import dp5_step
 from ._subinterval import accumulate, track_abs_acceleration, velocity_turn
 from ._trajectory import (NO_INDEX, ROUNDING, W_VELOCITY, contact_force, event_value, locate_event, newton,
-                          phase_eval, table_acceleration, value_at_root)
+                          phase_eval, phase_zeta, table_acceleration, value_at_root)
 
 SUCCESS, ZENO, MAX_EVENTS, DEGENERATE_PHASE, STEP_FAILED, INTERRUPTED, BUDGET, NONFINITE = (
     0, -1, -2, -3, -4, -5, -6, -7)
@@ -49,10 +51,10 @@ POLL_EVERY = 64         # sub-intervals between two looks at the run control (ab
 
 
 @jit
-def _outputs(st, d, v, mass, c_d, slopes, breaks, rule, gap_l, gap_r, law_l, p_l, law_r, p_r):
+def _outputs(st, d, v, mass, c_d, slopes, breaks, rule, bw, gap_l, gap_r, law_l, p_l, law_r, p_r):
     """``(abs_acceleration, isolator_force, left bumper force, right bumper force)`` at (d, v)."""
     k, r0 = iso_linear(slopes, breaks, rule, st)
-    f_iso = k * d + r0 + c_d * v
+    f_iso = k * d + r0 + c_d * v + bw[0] * st[ZETA]
     f_l = 0.0
     f_r = 0.0
     if st[IN_L] != 0.0:
@@ -66,19 +68,22 @@ def _outputs(st, d, v, mass, c_d, slopes, breaks, rule, gap_l, gap_r, law_l, p_l
 def _outputs_in_phase(ph, tau, d, v, a):
     """``_outputs`` inside a sub-interval, from its phase descriptor (no isolator loop)."""
     f_iso = ph[P_KISO] * d + ph[P_RISO] + ph[P_CD] * v
+    if ph[P_BW] != 0.0:
+        f_iso += ph[P_BW] * phase_zeta(ph, tau)
     f_l = contact_force(ph, SIDE_L, d, v, a)[0] if ph[P_INL] != 0.0 else 0.0
     f_r = contact_force(ph, SIDE_R, d, v, a)[0] if ph[P_INR] != 0.0 else 0.0
     return a + table_acceleration(ph, tau), f_iso, f_l, f_r
 
 
 @jit
-def _energies(st, mass, slopes, breaks, rule, law_l, p_l, law_r, p_r):
-    return (0.5 * mass * st[V] ** 2, iso_energy(slopes, breaks, rule, st, st[D]),
+def _energies(st, mass, slopes, breaks, rule, bw, law_l, p_l, law_r, p_r):
+    e_bw = 0.5 * bw[0] * bw[1] * st[ZETA] ** 2 / bw[2] if bw[0] != 0.0 else 0.0  # (subinterval.bouc_wen_energy)
+    return (0.5 * mass * st[V] ** 2, iso_energy(slopes, breaks, rule, st, st[D]) + e_bw,
             law_energy(law_l, p_l, st[DEF_L], st, ZL_AT) + law_energy(law_r, p_r, st[DEF_R], st, ZR_AT))
 
 
 @jit
-def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
+def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l, p_l,
                law_r, p_r, a0, a1, amp, omega, phase):
     """Fill ``ph`` for the sub-interval starting at the current state; return (k, c)."""
     k_iso, r_iso = iso_linear(slopes, breaks, rule, st)
@@ -125,7 +130,8 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law
     ph[P_AXH] = amp
     ph[P_D0] = st[D]
     ph[P_V0] = st[V]
-    ph[P_MODE] = MODE_NUMERIC if (ph[P_NLL] != 0.0 or ph[P_NLR] != 0.0) else MODE_LINEAR
+    ph[P_MODE] = MODE_NUMERIC if (ph[P_NLL] != 0.0 or ph[P_NLR] != 0.0 or bw[0] != 0.0) else MODE_LINEAR
+    ph[P_ZETA0] = st[ZETA]
     ph[P_XROUND] = ph[P_XRUN]  # (a linear phase's linear_setup adds its closed form's terms)
     ph[P_VROUND] = ph[P_VRUN]
     ph[P_DL0] = st[DEF_L]
@@ -135,11 +141,13 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law
         ph[P_LZR + q] = st[Z_R + q]
     ph[P_KISO] = k_iso
     ph[P_RISO] = r_iso
+    if bw[0] != 0.0:  # (the rate of the phase, for its sub-intervals' length: the spring's initial stiffness too)
+        k += bw[0] * bw[2] / bw[1]
     return k, c
 
 
 @jit_entry
-def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
+def run_kernel(mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
                exc_kind, exc_p, rec_t, rec_a, state0, t_end, sample_dt, rtol, max_events, with_energy,
                ctl):
     """Simulate from ``state0`` to ``t_end``.
@@ -176,10 +184,12 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         ph[P_PL + j] = p_l[j]
         ph[P_PR + j] = p_r[j]
     ph[P_CD] = c_d
+    for j in range(BW_PARAMS):
+        ph[P_BW + j] = bw[j]
     v_res = RESOLUTION * ph[P_VRUN]
     impulse_res = mass * v_res
     depth_res = RESOLUTION * ph[P_XRUN]
-    evs = np.zeros((2 * (slopes.size - 1) + 10, EV_COLS))  # (+ 2 x 2 bumper branch edges)
+    evs = np.zeros((2 * (slopes.size - 1) + 11, EV_COLS))  # (+ the bumpers' 2 x 5, + Bouc-Wen's z)
     # After a full sub-interval without event in a linear phase under harmonic forcing, the
     # next one continues the same phase (``continuing``): same coefficients, length and
     # events, and the event values at the end of one are those at the start of the next.
@@ -192,13 +202,13 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
     s1 = c1 = 0.0  # the forcing angle's sine and cosine at the end of the last sub-interval
     t_last = h_last = 0.0  # its start and length
     n_ev = np.int64(0)
-    kin0, iso0, bmp0 = _energies(st, mass, slopes, breaks, rule, law_l, p_l, law_r, p_r)
+    kin0, iso0, bmp0 = _energies(st, mass, slopes, breaks, rule, bw, law_l, p_l, law_r, p_r)
     status = SUCCESS
     zero_run = 0
     h_num = 1e-4
     atol_d = rtol * 1e-3
     atol_v = rtol * 1e-2
-    a_abs, f_iso, f_l, f_r = _outputs(st, st[D], st[V], mass, c_d, slopes, breaks, rule,
+    a_abs, f_iso, f_l, f_r = _outputs(st, st[D], st[V], mass, c_d, slopes, breaks, rule, bw,
                                       gap_l, gap_r, law_l, p_l, law_r, p_r)
     _put(samples, n_s, t_run0, st[D], st[V], a_abs, f_iso, f_l, f_r, 0.0, 0.0)
     n_s += 1
@@ -229,7 +239,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
             ph[P_DR0] = st[DEF_R]
             h = h_phase
         else:
-            k, c = _set_phase(ph, st, mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l,
+            k, c = _set_phase(ph, st, mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l,
                               p_l, law_r, p_r, a0x, a1x, amp, omega, phase)
             # a relaxing bumper's surface changes its law at a branch's end: no sub-interval past
             # it (a phase that continues never reaches it: the sub-interval that does ends there)
@@ -264,9 +274,10 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
                 h = h_num
                 to_stop = False
             while True:
-                d1, v1, a1, ed, ev = dp5_step(ph, h)
+                d1, v1, a1, ed, ev, z1, ez = dp5_step(ph, h)
                 err = max(abs(ed) / (atol_d + rtol * max(abs(st[D]), abs(d1))),
-                          abs(ev) / (atol_v + rtol * max(abs(st[V]), abs(v1))))
+                          abs(ev) / (atol_v + rtol * max(abs(st[V]), abs(v1))),
+                          abs(ez) / (rtol * (1.0 + abs(z1))))  # (z is of order 1; 0 without a spring)
                 if err <= 1.0:
                     h_num = h * (5.0 if err == 0.0 else min(5.0, 0.9 * err ** -0.2))
                     break
@@ -285,6 +296,15 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         if not continuing:  # (a phase's events stay the same until one of them fires)
             n_ev = iso_events(slopes, breaks, rule, st, evs, np.int64(0))  # typed, not literal
             n_ev = bumper_events(st, ph, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r, evs, n_ev)
+            if bw[0] != 0.0 and st[ZETA] != 0.0:  # the Bouc-Wen z back through zero: its law changes form
+                row = evs[n_ev]
+                row[E_KIND] = KIND_ZETA
+                row[E_ALPHA] = -math.copysign(1.0, st[ZETA])  # (value -alpha z: positive until z changes sign)
+                row[E_SIDE] = SIDE_NONE
+                row[E_ACTION] = ACT_BOUC_WEN
+                row[E_INDEX] = 0.0
+                row[E_DIR] = 0.0
+                n_ev += 1
         # A start at rest (t = 0, or the mass at rest against a bumper) moves the way a0
         # points: the sign tests below and the events' rates at the start take the velocity as
         # the smallest of that sign.  With 0 itself, an event of the displacement alone would
@@ -293,7 +313,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
         v0s = v0
         if v0 == 0.0 and a0 != 0.0:
             v0s = math.copysign(TINY_SPEED, a0)
-        if v0s * v1 < 0.0 and ph[P_MODE] != MODE_LINEAR and law_switches(ph):
+        if v0s * v1 < 0.0 and ph[P_MODE] != MODE_LINEAR and (law_switches(ph) or bw[0] != 0.0):
             # a law whose force changes form with the sign of the compression rate (Jankowski's
             # dashpot acts on the approach only): end the numerical step where the velocity is
             # zero, so that no step straddles the kink
@@ -385,6 +405,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
             status = NONFINITE
             break
         ledger[2] += iso_advance(slopes, breaks, rule, st, d0, d1)
+        if bw[0] != 0.0:
+            st[ZETA] = phase_zeta(ph, tau)
         st[D] = d1
         st[V] = v1
         st[T] = t_stop if to_stop else t + tau
@@ -434,13 +456,15 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
                 law_after_event(law_l, p_l, AT_START, st, ZL_AT, st[DEF_L], evs[i_ev, E_DIR])
             else:
                 law_after_event(law_r, p_r, AT_START, st, ZR_AT, st[DEF_R], evs[i_ev, E_DIR])
+        elif action == ACT_BOUC_WEN:  # z crossed zero: exactly 0 from here (the next phase starts there)
+            st[ZETA] = 0.0
         else:
             iso_transition(slopes, breaks, rule, st, action, index, evs[i_ev, E_DIR])
         if n_e >= events.shape[0]:
             events = _grow(events, n_e)
         _put(events, n_e, t_ev, float(action), float(index), 0.0, 0.0, 0.0, 0.0, 0.0, 0.0)
         n_e += 1
-        a_abs, f_iso, f_l, f_r = _outputs(st, st[D], st[V], mass, c_d, slopes, breaks, rule,
+        a_abs, f_iso, f_l, f_r = _outputs(st, st[D], st[V], mass, c_d, slopes, breaks, rule, bw,
                                           gap_l, gap_r, law_l, p_l, law_r, p_r)
         track_abs_acceleration(extrema, t_ev, a_abs)
         if sample_dt >= 0.0:
@@ -459,7 +483,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
     if samples[n_s - 1, 0] < st[T]:
         if n_s >= samples.shape[0]:
             samples = _grow(samples, n_s)
-        out = _outputs(st, st[D], st[V], mass, c_d, slopes, breaks, rule, gap_l, gap_r,
+        out = _outputs(st, st[D], st[V], mass, c_d, slopes, breaks, rule, bw, gap_l, gap_r,
                        law_l, p_l, law_r, p_r)
         _put(samples, n_s, st[T], st[D], st[V], out[0], out[1], out[2], out[3], 0.0, 0.0)
         n_s += 1
@@ -472,7 +496,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l,
                  st[acc + A_IMPULSE], st[acc + A_PEAK], st[acc + A_MAXCOMP], st[acc + A_WORK])
             n_c += 1
     ctl[CTL_WORK] += work
-    kin1, iso1, bmp1 = _energies(st, mass, slopes, breaks, rule, law_l, p_l, law_r, p_r)
+    kin1, iso1, bmp1 = _energies(st, mass, slopes, breaks, rule, bw, law_l, p_l, law_r, p_r)
     ledger[4] = kin1 - kin0
     ledger[5] = iso1 - iso0
     ledger[6] = bmp1 - bmp0

@@ -7,6 +7,7 @@ inside ``@jit`` functions and cost nothing.
 import numpy as np
 
 from ..model.contact_laws import N_LAW_PARAMS, N_LAW_STATE
+from ..model.isolator import BW_PARAMS
 
 # ---- state vector (float64), length STATE_BASE + 2 * (n_branches - 1)
 T = 0            # time, s
@@ -23,7 +24,8 @@ N_ACC = 7
 A_TSTART, A_VIN, A_DSTART, A_IMPULSE, A_PEAK, A_MAXCOMP, A_WORK = 0, 1, 2, 3, 4, 5, 6
 Z_L = 22         # the left bumper's law state, N_LAW_STATE values (contact_laws; 0 for a stateless law)
 Z_R = Z_L + N_LAW_STATE  # ... the right one's
-STATE_BASE = Z_R + N_LAW_STATE  # then u_i (n-1 plastic slips, m), then s_i (n-1 slip directions, -1/0/+1)
+ZETA = Z_R + N_LAW_STATE  # the isolator's Bouc-Wen variable z (0 without one)
+STATE_BASE = ZETA + 1  # then u_i (n-1 plastic slips, m), then s_i (n-1 slip directions, -1/0/+1)
 ZL_AT, ZR_AT = np.int64(Z_L), np.int64(Z_R)  # as offsets for the law_* functions (typed)
 
 # ---- phase descriptor (float64), see _linear.py and _numeric.py
@@ -61,7 +63,9 @@ P_VROUND = P_ENDS_NEXT + 4
 P_LZL = P_ENDS_NEXT + 5  # the bumpers' law states (Z_L, Z_R: N_LAW_STATE values each) for this phase
 P_LZR = P_LZL + N_LAW_STATE
 PZL_AT, PZR_AT = np.int64(P_LZL), np.int64(P_LZR)
-PH_LEN = P_LZR + N_LAW_STATE
+P_BW = P_LZR + N_LAW_STATE  # the isolator's Bouc-Wen spring (BW_PARAMS values: force scale 0 for none)
+P_ZETA0 = P_BW + BW_PARAMS  # its z at the phase start
+PH_LEN = P_ZETA0 + 1
 MODE_LINEAR = 0.0
 MODE_NUMERIC = 1.0
 
@@ -70,12 +74,14 @@ E_KIND, E_ALPHA, E_BETA, E_GAMMA, E_SIDE, E_ACTION, E_INDEX, E_DIR = 0, 1, 2, 3,
 EV_COLS = 8
 KIND_LINEAR = 0   # g = alpha + beta D + gamma V (+ compression of the relaxing bumper E_SIDE)
 KIND_RELEASE = 1  # the contact law's release function on side E_SIDE
+KIND_ZETA = 2     # the isolator's Bouc-Wen z times alpha (its sign at the phase start): where z crosses 0
 # Codes that compiled functions pass to each other as arguments are typed integers
 # (np.int64), not Python ints: Numba gives a Python-int constant argument a literal type
 # and compiles the callee once more for each literal value (see _jit.py).
 SIDE_NONE, SIDE_L, SIDE_R = np.int64(-1), np.int64(0), np.int64(1)
-ACT_YIELD, ACT_REVERSAL, ACT_REGION, ACT_CONTACT, ACT_RELEASE, ACT_LAW_BRANCH = (np.int64(k) for k in range(6))
-EVENT_NAMES = ("yield", "reversal", "branch", "contact_start", "contact_end", "bumper_branch")
+ACT_YIELD, ACT_REVERSAL, ACT_REGION, ACT_CONTACT, ACT_RELEASE, ACT_LAW_BRANCH, ACT_BOUC_WEN = (
+    np.int64(k) for k in range(7))
+EVENT_NAMES = ("yield", "reversal", "branch", "contact_start", "contact_end", "bumper_branch", "bouc_wen_zero")
 
 # ---- outputs
 SAMPLE_COLS = 7   # t, D, V, abs_acceleration, isolator_force, bumper_force_left, bumper_force_right

@@ -1,7 +1,8 @@
 """Numerical propagation of a phase whose contact law is nonlinear (Dormand-Prince 5(4)).
 
 The phase descriptor holds the linear part (isolator, linear bumpers, forcing) exactly as
-for a closed-form phase; the nonlinear bumper forces are added in :func:`phase_rhs`.  A step
+for a closed-form phase; the nonlinear bumper forces and the isolator's Bouc-Wen spring (whose
+variable z is integrated with the motion) are added in :func:`phase_rhs`.  A step
 of any length ``tau`` from the phase start is one Dormand-Prince step, so the event
 locator can evaluate the trajectory anywhere inside an accepted step.
 """
@@ -12,8 +13,8 @@ import math
 
 from ..model.contact_laws import law_force
 from .._jit import jit
-from ._layout import (P_C, P_D0, P_GAPL, P_GAPR, P_H, P_K, P_LAWL, P_LAWR, P_M, P_NLL, P_NLR,
-                      P_P0, P_P1, P_PHI, P_V0, P_W, PL_AT, PR_AT, PZL_AT, PZR_AT)
+from ._layout import (P_BW, P_C, P_D0, P_GAPL, P_GAPR, P_H, P_K, P_LAWL, P_LAWR, P_M, P_NLL, P_NLR,
+                      P_P0, P_P1, P_PHI, P_V0, P_W, P_ZETA0, PL_AT, PR_AT, PZL_AT, PZR_AT)
 
 # Dormand-Prince 5(4) tableau
 C2, C3, C4, C5 = 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0
@@ -40,42 +41,65 @@ def bumper_forces(ph, d, v):
 
 
 @jit
-def phase_rhs(ph, tau, d, v):
-    """Relative acceleration (m/s^2) of a numerically integrated phase."""
+def zeta_rate(ph, v, z):
+    """``dz/dt`` of the Bouc-Wen spring at velocity ``v`` (m/s) and ``z`` (0 without one)."""
+    if ph[P_BW] == 0.0:
+        return 0.0
+    a, beta, gamma, n = ph[P_BW + 2], ph[P_BW + 3], ph[P_BW + 4], ph[P_BW + 5]
+    az = abs(z)
+    zn = az if n == 1.0 else az**n
+    s = beta if v * z > 0.0 else -beta
+    return v / ph[P_BW + 1] * (a - zn * (s + gamma))
+
+
+@jit
+def phase_rhs(ph, tau, d, v, z):
+    """Relative acceleration (m/s^2) of a numerically integrated phase, Bouc-Wen ``z``."""
     fl, fr = bumper_forces(ph, d, v)
     force = ph[P_P0] + ph[P_P1] * tau + ph[P_H] * math.sin(ph[P_W] * tau + ph[P_PHI])
-    return (force - ph[P_C] * v - ph[P_K] * d - fr + fl) / ph[P_M]
+    return (force - ph[P_C] * v - ph[P_K] * d - ph[P_BW] * z - fr + fl) / ph[P_M]
 
 
 @jit
 def dp5_step(ph, h):
     """One Dormand-Prince step of length ``h`` from the phase start.
 
-    Returns ``(D, V, A, error_D, error_V)``: the 5th-order solution, the acceleration there
-    and the embedded error estimate.
+    Returns ``(D, V, A, error_D, error_V, z, error_z)``: the 5th-order solution, the
+    acceleration there, the embedded error estimate, and the Bouc-Wen variable (the phase
+    start's without one).
     """
     d0 = ph[P_D0]
     v0 = ph[P_V0]
+    z0 = ph[P_ZETA0]
     k1d = v0
-    k1v = phase_rhs(ph, 0.0, d0, v0)
+    k1v = phase_rhs(ph, 0.0, d0, v0, z0)
+    k1z = zeta_rate(ph, v0, z0)
     d = d0 + h * A21 * k1d
     v = v0 + h * A21 * k1v
-    k2d, k2v = v, phase_rhs(ph, C2 * h, d, v)
+    z = z0 + h * A21 * k1z
+    k2d, k2v, k2z = v, phase_rhs(ph, C2 * h, d, v, z), zeta_rate(ph, v, z)
     d = d0 + h * (A31 * k1d + A32 * k2d)
     v = v0 + h * (A31 * k1v + A32 * k2v)
-    k3d, k3v = v, phase_rhs(ph, C3 * h, d, v)
+    z = z0 + h * (A31 * k1z + A32 * k2z)
+    k3d, k3v, k3z = v, phase_rhs(ph, C3 * h, d, v, z), zeta_rate(ph, v, z)
     d = d0 + h * (A41 * k1d + A42 * k2d + A43 * k3d)
     v = v0 + h * (A41 * k1v + A42 * k2v + A43 * k3v)
-    k4d, k4v = v, phase_rhs(ph, C4 * h, d, v)
+    z = z0 + h * (A41 * k1z + A42 * k2z + A43 * k3z)
+    k4d, k4v, k4z = v, phase_rhs(ph, C4 * h, d, v, z), zeta_rate(ph, v, z)
     d = d0 + h * (A51 * k1d + A52 * k2d + A53 * k3d + A54 * k4d)
     v = v0 + h * (A51 * k1v + A52 * k2v + A53 * k3v + A54 * k4v)
-    k5d, k5v = v, phase_rhs(ph, C5 * h, d, v)
+    z = z0 + h * (A51 * k1z + A52 * k2z + A53 * k3z + A54 * k4z)
+    k5d, k5v, k5z = v, phase_rhs(ph, C5 * h, d, v, z), zeta_rate(ph, v, z)
     d = d0 + h * (A61 * k1d + A62 * k2d + A63 * k3d + A64 * k4d + A65 * k5d)
     v = v0 + h * (A61 * k1v + A62 * k2v + A63 * k3v + A64 * k4v + A65 * k5v)
-    k6d, k6v = v, phase_rhs(ph, h, d, v)
+    z = z0 + h * (A61 * k1z + A62 * k2z + A63 * k3z + A64 * k4z + A65 * k5z)
+    k6d, k6v, k6z = v, phase_rhs(ph, h, d, v, z), zeta_rate(ph, v, z)
     d = d0 + h * (B1 * k1d + B3 * k3d + B4 * k4d + B5 * k5d + B6 * k6d)
     v = v0 + h * (B1 * k1v + B3 * k3v + B4 * k4v + B5 * k5v + B6 * k6v)
-    k7d, k7v = v, phase_rhs(ph, h, d, v)
+    z = z0 + h * (B1 * k1z + B3 * k3z + B4 * k4z + B5 * k5z + B6 * k6z)
+    k7v, k7z = phase_rhs(ph, h, d, v, z), zeta_rate(ph, v, z)
+    k7d = v
     ed = h * (E1 * k1d + E3 * k3d + E4 * k4d + E5 * k5d + E6 * k6d + E7 * k7d)
     ev = h * (E1 * k1v + E3 * k3v + E4 * k4v + E5 * k5v + E6 * k6v + E7 * k7v)
-    return d, v, k7v, ed, ev
+    ez = h * (E1 * k1z + E3 * k3z + E4 * k4z + E5 * k5z + E6 * k6z + E7 * k7z)
+    return d, v, k7v, ed, ev, z, ez

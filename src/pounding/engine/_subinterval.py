@@ -20,9 +20,10 @@ from .._jit import jit
 from ..model.contact_laws import law_branch_loss
 from ._layout import (A_IMPULSE, A_MAXCOMP, A_PEAK, A_WORK, ACC_L, ACC_R, MODE_LINEAR, P_AX0, P_C,
                       P_CBL, P_CBR, P_CD, P_GAPL, P_GAPR, P_INL, P_INR, P_JBL, P_JBR, P_K, P_KBL, P_KBR, P_LAWL,
-                      P_LAWR, P_M, P_MODE, P_P0, P_RBL, P_RBR, PL_AT, PR_AT, PZL_AT, PZR_AT, SIDE_L, SIDE_R)
+                      P_BW, P_LAWR, P_M, P_MODE, P_P0, P_RBL, P_RBR, P_ZETA0, PL_AT, PR_AT, PZL_AT, PZR_AT, SIDE_L,
+                      SIDE_R)
 from ._linear import linear_integrals
-from ._trajectory import (NO_INDEX, W_AABS_RATE, W_ACCELERATION, W_FORCE_RATE, abs_acceleration_rate,
+from ._trajectory import (NO_INDEX, W_AABS_RATE, W_ACCELERATION, W_FORCE_RATE, abs_acceleration_rate, phase_zeta,
                           brent, contact_force, newton, phase_eval, table_acceleration, value_at_root)
 
 
@@ -78,6 +79,7 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
                 st[acc + A_WORK] += 0.5 * k_b * (x1 * x1 - x0 * x0) + r_b * (x1 - x0) + c_b * i_vv
                 ledger[3] += c_b * i_vv + law_branch_loss(law, ph, o, j_b, x0, x1, ph, zo)
     elif tau > 0.0 and (with_energy or in_l or in_r):
+        bw = ph[P_BW]  # the Bouc-Wen spring's force per unit z (0 without one)
         for q in range(N_LOBATTO):
             tq = tau * LOBATTO_X[q]
             wq = tau * LOBATTO_W[q]
@@ -89,6 +91,8 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
                 d, v, a = phase_eval(ph, tq)
             ledger[0] -= wq * mass * (_abs_acceleration(ph, linear, m_a0, tq, d, v, a) - a) * v
             ledger[1] += wq * c_d * v * v
+            if bw != 0.0:  # its work, less what it stores (below): what it dissipates
+                ledger[2] += wq * bw * phase_zeta(ph, tq) * v
             for side in (SIDE_L, SIDE_R):
                 if (side == SIDE_L and in_l) or (side == SIDE_R and in_r):
                     f, fel, _, rate = contact_force(ph, side, d, v, a)
@@ -96,6 +100,8 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
                     st[acc + A_IMPULSE] += wq * f
                     st[acc + A_WORK] += wq * f * rate
                     ledger[3] += wq * (f - fel) * rate
+        if bw != 0.0:
+            ledger[2] -= bouc_wen_energy(ph, phase_zeta(ph, tau)) - bouc_wen_energy(ph, ph[P_ZETA0])
     # displacement extrema (and the bumpers' maximum compression)
     for j in range(3):
         if j == 0:
@@ -118,8 +124,8 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
         if in_r:
             st[ACC_R + A_MAXCOMP] = max(st[ACC_R + A_MAXCOMP], dj - ph[P_GAPR])
     # absolute acceleration extrema
-    r0 = abs_acceleration_rate(ph, d0, v0, a0)
-    r1 = abs_acceleration_rate(ph, d1, v1, a1)
+    r0 = abs_acceleration_rate(ph, 0.0, d0, v0, a0)
+    r1 = abs_acceleration_rate(ph, tau, d1, v1, a1)
     track_abs_acceleration(extrema, t0, _abs_acceleration(ph, linear, m_a0, 0.0, d0, v0, a0))
     track_abs_acceleration(extrema, t0 + tau, _abs_acceleration(ph, linear, m_a0, tau, d1, v1, a1))
     if r0 * r1 < 0.0:
@@ -208,6 +214,15 @@ def velocity_turn(ph, evs, h, v0, v1, a0, a1):
     else:
         v_a = phase_eval(ph, t_a)[1]
     return t_a if v_a * v0 < 0.0 and 0.0 < t_a < h else -1.0
+
+
+@jit
+def bouc_wen_energy(ph, z):
+    """Energy (J) the Bouc-Wen spring stores at ``z``: ``k u_y^2 z^2 / (2 A)`` (the work it would
+    give back unloading at its initial stiffness ``A k``)."""
+    if ph[P_BW] == 0.0:
+        return 0.0
+    return 0.5 * ph[P_BW] * ph[P_BW + 1] * z * z / ph[P_BW + 2]
 
 
 @jit

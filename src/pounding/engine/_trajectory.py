@@ -14,12 +14,12 @@ import numpy as np
 
 from .._jit import jit
 from ..model.contact_laws import law_force, law_is_linear, law_relax, law_release
-from ._layout import (ACT_CONTACT, E_ACTION, E_ALPHA, E_BETA, E_GAMMA, E_KIND, E_SIDE, KIND_LINEAR,
-                      MODE_LINEAR, P_AX0, P_AX1, P_AXH, P_C, P_CBL, P_CBR, P_D0, P_DL0, P_DR0, P_GAPL,
+from ._layout import (ACT_CONTACT, E_ACTION, E_ALPHA, E_BETA, E_GAMMA, E_KIND, E_SIDE, KIND_LINEAR, KIND_ZETA,
+                      MODE_LINEAR, P_BW, P_ZETA0, P_AX0, P_AX1, P_AXH, P_C, P_CBL, P_CBR, P_D0, P_DL0, P_DR0, P_GAPL,
                       P_GAPR, P_H, P_K, P_KBL, P_KBR, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P1, P_PHI, P_RBL, P_RBR,
                       P_V0, P_VROUND, P_W, P_XROUND, PL_AT, PR_AT, PZL_AT, PZR_AT, SIDE_L, SIDE_NONE, SIDE_R)
 from ._linear import forcing_angle, linear_eval
-from ._numeric import dp5_step, phase_rhs
+from ._numeric import dp5_step, phase_rhs, zeta_rate
 
 # typed integers, not literals: one compiled root finder for all of them (see _layout.py)
 W_EVENT, W_EVENT_RATE, W_VELOCITY, W_AABS_RATE, W_FORCE_RATE, W_ACCELERATION = (np.int64(k)
@@ -34,9 +34,19 @@ def phase_eval(ph, tau):
     if ph[P_MODE] == MODE_LINEAR:
         return linear_eval(ph, tau)
     if tau == 0.0:
-        return ph[P_D0], ph[P_V0], phase_rhs(ph, 0.0, ph[P_D0], ph[P_V0])
-    d, v, a, _, _ = dp5_step(ph, tau)
+        return ph[P_D0], ph[P_V0], phase_rhs(ph, 0.0, ph[P_D0], ph[P_V0], ph[P_ZETA0])
+    d, v, a, _, _, _, _ = dp5_step(ph, tau)
     return d, v, a
+
+
+@jit
+def phase_zeta(ph, tau):
+    """The isolator's Bouc-Wen ``z`` ``tau`` s into the sub-interval (0 without one)."""
+    if ph[P_BW] == 0.0:
+        return 0.0
+    if tau == 0.0:
+        return ph[P_ZETA0]
+    return dp5_step(ph, tau)[5]
 
 
 @jit
@@ -69,9 +79,12 @@ def contact_force(ph, side, d, v, a):
 
 
 @jit
-def abs_acceleration_rate(ph, d, v, a):
-    """Time derivative of the absolute acceleration (m/s^3): ``-(d/dt restoring force) / M``."""
+def abs_acceleration_rate(ph, tau, d, v, a):
+    """Time derivative of the absolute acceleration (m/s^3) ``tau`` s into the sub-interval:
+    ``-(d/dt restoring force) / M``."""
     rate = ph[P_C] * a + ph[P_K] * v
+    if ph[P_BW] != 0.0:
+        rate += ph[P_BW] * zeta_rate(ph, v, phase_zeta(ph, tau))
     if ph[P_NLR] != 0.0:
         rate += contact_force(ph, SIDE_R, d, v, a)[2]
     if ph[P_NLL] != 0.0:
@@ -85,6 +98,9 @@ def event_value(evs, i, ph, tau, d, v, a):
 
     ``scale`` is the size of the terms summed, so that ``ROUNDING * scale`` is the noise level.
     """
+    if evs[i, E_KIND] == KIND_ZETA:  # the Bouc-Wen z crossing zero (alpha: minus its sign at the start)
+        z = phase_zeta(ph, tau)
+        return -evs[i, E_ALPHA] * z, -evs[i, E_ALPHA] * zeta_rate(ph, v, z), 1.0
     if evs[i, E_KIND] == KIND_LINEAR and int(evs[i, E_SIDE]) == SIDE_NONE:
         # the isolator's events (most of them): linear in the motion, small enough to inline
         alpha, beta, gamma = evs[i, E_ALPHA], evs[i, E_BETA], evs[i, E_GAMMA]
@@ -143,7 +159,7 @@ def traj_value(what, idx, ph, evs, tau):
     if what == W_VELOCITY:
         return v
     if what == W_AABS_RATE:
-        return abs_acceleration_rate(ph, d, v, a)
+        return abs_acceleration_rate(ph, tau, d, v, a)
     if what == W_ACCELERATION:
         return a
     return contact_force(ph, idx, d, v, a)[2]

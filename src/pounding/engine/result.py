@@ -11,7 +11,7 @@ import pandas as pd
 
 from .._checks import at_most, real
 from .._errors import InputError, Problem, Status
-from ._layout import DEF_L, DEF_R, EVENT_NAMES, IN_L, IN_R, REGION, STATE_BASE, Z_L, Z_R
+from ._layout import DEF_L, DEF_R, EVENT_NAMES, IN_L, IN_R, REGION, STATE_BASE, Z_L, Z_R, ZETA
 from ._layout import D as I_D
 from ._layout import T as I_T
 from ._layout import V as I_V
@@ -122,6 +122,11 @@ class State:
         last contact (N s/m^(n+1)); 0 for the other laws (a kinematic multi-linear law's springs:
         :attr:`bumper_slips_m`)."""
         return float(self.vector[Z_L]), float(self.vector[Z_R])
+
+    @property
+    def bouc_wen_z(self) -> float:
+        """The isolator's Bouc-Wen variable ``z`` (0 without a Bouc-Wen spring)."""
+        return float(self.vector[ZETA])
 
     @property
     def bumper_slips_m(self) -> np.ndarray:

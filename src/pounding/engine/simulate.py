@@ -22,7 +22,7 @@ from ._control import (
     steps_per_second,
 )
 from ._kernel import run_kernel
-from ._layout import REGION, STATE_BASE, Z_L, Z_R
+from ._layout import REGION, STATE_BASE, Z_L, Z_R, ZETA
 from .result import EnergyLedger, Run, State
 
 _NO_LAW = KelvinVoigt(1.0, 0.0)  # stands in for absent bumpers (never touched)
@@ -103,6 +103,11 @@ def _check_state_fits(state: State, oscillator: Oscillator) -> None:
                         raise bad(f"vector[{at + q}]", float(vec[at + q]),
                                   "is a kinematic multi-linear bumper's slip, but that bumper has another law")
                 _check_law_state(vec[at], law, touching[j], comp[j], tol, j, bad)
+    z = float(vec[ZETA])
+    if iso.bouc_wen is None and z != 0.0:
+        raise bad(f"vector[{ZETA}]", z, "is an isolator's Bouc-Wen z, but this isolator has no Bouc-Wen spring")
+    if iso.bouc_wen is not None and abs(z) > iso.bouc_wen.z_max * (1.0 + 1e-9):
+        raise bad(f"vector[{ZETA}]", z, f"is beyond the Bouc-Wen spring's largest |z|, {iso.bouc_wen.z_max:g}")
     n_sp = iso.n_branches - 1
     if iso.hysteresis == "elastic":
         region = int(vec[REGION])
@@ -174,13 +179,13 @@ def _check_kinematic_state(block: np.ndarray, law: Any, comp: float, tol: float,
 
 def kernel_system(oscillator: Oscillator) -> tuple:
     """The oscillator as the kernel's leading arguments (arrays and scalars only)."""
-    slopes, breaks, rule = oscillator.isolator.kernel_arrays()
+    slopes, breaks, rule, bw = oscillator.isolator.kernel_arrays()
     b = oscillator.bumpers
     left = right = _NO_LAW
     gap_l = gap_r = 0.0
     if b is not None:
         left, right, gap_l, gap_r = b.left, b.right, b.gap_left, b.gap_right
-    return (oscillator.mass, oscillator.isolator.damping, slopes, breaks, rule, b is not None,
+    return (oscillator.mass, oscillator.isolator.damping, slopes, breaks, rule, bw, b is not None,
             gap_l, gap_r, left.LAW_ID, left.params(), right.LAW_ID, right.params())
 
 

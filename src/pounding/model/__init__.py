@@ -2,7 +2,7 @@
 
 from .bumpers import Bumpers
 from .contact_laws import ElasticPlastic, Hertzdamp, HuntCrossley, Jankowski, KelvinVoigt, MultilinearBumper
-from .isolator import Isolator
+from .isolator import BoucWen, Isolator
 from .oscillator import Oscillator
 
-__all__ = ["Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley", "Isolator", "Jankowski", "KelvinVoigt", "MultilinearBumper", "Oscillator"]
+__all__ = ["BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley", "Isolator", "Jankowski", "KelvinVoigt", "MultilinearBumper", "Oscillator"]

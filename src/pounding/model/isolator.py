@@ -3,17 +3,97 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from typing import Any, ClassVar, Literal
+from typing import Any, ClassVar, Literal, Optional
 
 import numpy as np
 
-from .._checks import at_most, backbone, non_negative, one_of, plausible
+from .._checks import at_most, backbone, non_negative, one_of, plausible, positive, real
+from .._errors import InputError, Problem
 
 HYSTERESIS_RULES = ("kinematic", "elastic")
 # magnitudes beyond any real isolator (refused: the engine's numbers would overflow)
 MAX_STIFFNESS_N_M = 1e15
 MAX_DAMPING_N_S_M = 1e15
 MAX_BREAKPOINT_M = 1e3
+MAX_BW_EXPONENT = 100.0  # (n = 100: the elastic-perfectly-plastic spring to 1 %)
+BW_PARAMS = 6  # the kernels' Bouc-Wen array: force scale k u_y (N), u_y (m), A, beta, gamma, n
+
+
+@dataclass(frozen=True)
+class BoucWen:
+    """A Bouc-Wen hysteretic spring, in parallel with the isolator's backbone and dashpot: the
+    rate-independent hysteresis of high-damping rubber, whose damping depends on the amplitude.
+
+    Its force is ``stiffness * yield_displacement * z`` with the dimensionless ``z`` following
+
+        dz/dt = (dD/dt / yield_displacement) (a - |z|^n (beta sgn(z dD/dt) + gamma))
+
+    (Wen 1976).  From ``z = 0`` it starts with stiffness ``a * stiffness`` and saturates at
+    ``|z| = (a / (beta + gamma))^(1/n)``: with the defaults at the yield force
+    ``stiffness * yield_displacement``; the larger ``n``, the sharper the yield (``n`` to
+    infinity: an elastic-perfectly-plastic spring).  Integrated numerically inside the engine,
+    every phase of motion (its kinks, where ``dD/dt`` or ``z`` cross zero, are located as events).
+
+    Parameters
+    ----------
+    stiffness : float
+        N/m, > 0.
+    yield_displacement : float
+        m, > 0.
+    a, beta, gamma : float
+        ``a > 0``; ``beta >= |gamma|`` and ``beta + gamma > 0`` (so that every loop dissipates).
+    n : float
+        Sharpness, 1 to 100.
+    """
+
+    stiffness: float
+    yield_displacement: float
+    a: float = 1.0
+    beta: float = 0.5
+    gamma: float = 0.5
+    n: float = 1.0
+
+    FIELDS: ClassVar[tuple[str, ...]] = ("stiffness", "yield_displacement", "a", "beta", "gamma", "n")
+
+    def __post_init__(self) -> None:
+        stiffness = positive("isolator.bouc_wen.stiffness", self.stiffness, "N/m")
+        at_most("isolator.bouc_wen.stiffness", stiffness, MAX_STIFFNESS_N_M, " N/m, stiffer than any isolator",
+                "give the stiffness in N/m")
+        uy = positive("isolator.bouc_wen.yield_displacement", self.yield_displacement, "m")
+        at_most("isolator.bouc_wen.yield_displacement", uy, MAX_BREAKPOINT_M, " m", "give it in m")
+        plausible("isolator.bouc_wen.yield_displacement", uy, 0.0, 1.0, "a displacement in m (5 mm is 0.005)")
+        a = positive("isolator.bouc_wen.a", self.a, "")
+        beta = real("isolator.bouc_wen.beta", self.beta)
+        gamma = real("isolator.bouc_wen.gamma", self.gamma)
+        if beta + gamma <= 0.0 or beta < abs(gamma):
+            raise InputError(Problem.OUT_OF_RANGE, "isolator.bouc_wen.beta", beta,
+                             range=f"beta >= |gamma| = {abs(gamma):g} with beta + gamma > 0",
+                             hint=" (else a loop can return energy, or z never saturates; 0.5 and 0.5 are usual)")
+        n = real("isolator.bouc_wen.n", self.n)
+        if not 1.0 <= n <= MAX_BW_EXPONENT:
+            raise InputError(Problem.OUT_OF_RANGE, "isolator.bouc_wen.n", n, range=f"[1, {MAX_BW_EXPONENT:g}]",
+                             hint=" (1: a smooth yield; larger, sharper)")
+        for name, value in (("stiffness", stiffness), ("yield_displacement", uy), ("a", a), ("beta", beta),
+                            ("gamma", gamma), ("n", n)):
+            object.__setattr__(self, name, value)
+
+    @property
+    def z_max(self) -> float:
+        """The largest ``|z|``: ``(a / (beta + gamma))^(1/n)``."""
+        return float((self.a / (self.beta + self.gamma)) ** (1.0 / self.n))
+
+    @property
+    def yield_force_n(self) -> float:
+        """The force it saturates at, N: ``stiffness * yield_displacement * z_max``."""
+        return self.stiffness * self.yield_displacement * self.z_max
+
+    def kernel_array(self) -> np.ndarray:
+        """``(stiffness * yield_displacement, yield_displacement, a, beta, gamma, n)``, shape (6,)."""
+        return np.array([self.stiffness * self.yield_displacement, self.yield_displacement, self.a, self.beta,
+                         self.gamma, self.n])
+
+    def to_dict(self) -> dict[str, Any]:
+        return {name: getattr(self, name) for name in self.FIELDS}
 
 
 @dataclass(frozen=True)
@@ -38,6 +118,9 @@ class Isolator:
         ``"elastic"``: the force follows the backbone both ways (no hysteresis).
     damping : float
         Linear dashpot ``C_d`` in N s/m, >= 0.
+    bouc_wen : BoucWen, optional
+        A Bouc-Wen spring in parallel (high-damping rubber: damping that depends on the
+        amplitude).  With it every phase is integrated numerically (about ten times the cost).
 
     Notes
     -----
@@ -50,8 +133,10 @@ class Isolator:
     breakpoints: tuple[float, ...] = ()
     hysteresis: Literal["kinematic", "elastic"] = "kinematic"
     damping: float = 0.0
+    bouc_wen: Optional[BoucWen] = None
 
-    FIELDS: ClassVar[tuple[str, ...]] = ("slopes", "breakpoints", "hysteresis", "damping")
+    FIELDS: ClassVar[tuple[str, ...]] = ("slopes", "breakpoints", "hysteresis", "damping", "bouc_wen")
+    OPTIONAL: ClassVar[tuple[str, ...]] = ("bouc_wen",)
 
     def __post_init__(self) -> None:
         slopes, breakpoints = backbone("isolator", self.slopes, self.breakpoints, MAX_STIFFNESS_N_M,
@@ -67,6 +152,19 @@ class Isolator:
         object.__setattr__(self, "slopes", slopes)
         object.__setattr__(self, "breakpoints", breakpoints)
         object.__setattr__(self, "damping", damping)
+        if isinstance(self.bouc_wen, dict):  # (from TOML: a table)
+            unknown = sorted(set(self.bouc_wen) - set(BoucWen.FIELDS))
+            if unknown:
+                raise InputError(Problem.UNKNOWN_KEY, f"isolator.bouc_wen.{unknown[0]}", self.bouc_wen[unknown[0]],
+                                 choices=", ".join(BoucWen.FIELDS))
+            for key in ("stiffness", "yield_displacement"):
+                if key not in self.bouc_wen:
+                    raise InputError(Problem.MISSING_KEY, f"isolator.bouc_wen.{key}", None,
+                                     choices=", ".join(BoucWen.FIELDS))
+            object.__setattr__(self, "bouc_wen", BoucWen(**self.bouc_wen))
+        if self.bouc_wen is not None and not isinstance(self.bouc_wen, BoucWen):
+            raise InputError(Problem.WRONG_TYPE, "isolator.bouc_wen", self.bouc_wen,
+                             got=type(self.bouc_wen).__name__, expected="BoucWen or None")
 
     @property
     def n_branches(self) -> int:
@@ -89,10 +187,15 @@ class Isolator:
         return np.sign(d) * force
 
     def to_dict(self) -> dict[str, Any]:
-        return {"slopes": list(self.slopes), "breakpoints": list(self.breakpoints),
-                "hysteresis": self.hysteresis, "damping": self.damping}
+        out: dict[str, Any] = {"slopes": list(self.slopes), "breakpoints": list(self.breakpoints),
+                               "hysteresis": self.hysteresis, "damping": self.damping}
+        if self.bouc_wen is not None:
+            out["bouc_wen"] = self.bouc_wen.to_dict()
+        return out
 
-    def kernel_arrays(self) -> tuple[np.ndarray, np.ndarray, int]:
-        """``(slopes, breakpoints, rule)`` as the compiled engine takes them."""
+    def kernel_arrays(self) -> tuple[np.ndarray, np.ndarray, int, np.ndarray]:
+        """``(slopes, breakpoints, rule, bouc_wen)`` as the compiled engine takes them (the last
+        :meth:`BoucWen.kernel_array`, zeros without one)."""
+        bw = self.bouc_wen.kernel_array() if self.bouc_wen is not None else np.zeros(BW_PARAMS)
         return (np.array(self.slopes, dtype=float), np.array(self.breakpoints, dtype=float),
-                HYSTERESIS_RULES.index(self.hysteresis))
+                HYSTERESIS_RULES.index(self.hysteresis), bw)

@@ -81,7 +81,8 @@ class Oscillator:
         _check_keys(table, "", cls.FIELDS, required=("mass", "isolator"))
         iso_table = table["isolator"]
         # every field, defaults included: a file says what the system is
-        _check_keys(iso_table, "isolator.", Isolator.FIELDS, required=Isolator.FIELDS)
+        _check_keys(iso_table, "isolator.", Isolator.FIELDS,
+                    required=tuple(f for f in Isolator.FIELDS if f not in Isolator.OPTIONAL))
         isolator = Isolator(**iso_table)
         bumpers = None
         if "bumpers" in table:

@@ -17,7 +17,7 @@ import numpy as np
 from .._jit import jit, jit_entry
 from ..engine._forcing import EXC_HARMONIC
 from ..engine._kernel import SUCCESS, run_kernel
-from ..engine._layout import D, STATE_BASE, T, V, Z_L, Z_R
+from ..engine._layout import D, STATE_BASE, T, V, Z_L, Z_R, ZETA
 from ..model.contact_laws import N_LAW_STATE, law_has_memory
 from ..metrics._impacts import SIDE_SUMS, add_impacts
 
@@ -124,7 +124,7 @@ def _smallest_period(strobe, n, k, window, round_window, tol_d, tol_v, steady_rt
 
 
 @jit_entry
-def step_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
+def step_kernel(mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
                 amp, omega, state0, adaptive, n_cycles, measure_cycles, steady_rtol, max_period,
                 rtol, max_events, ctl):
     """Hold the harmonic ``amp sin(omega (t - t0))`` from ``state0`` (time ``t0``).
@@ -146,7 +146,7 @@ def step_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l
     exc_p[2] = -(omega * t0)
     no_record = np.zeros(1)
     n_sp = (state0.size - STATE_BASE) // 2
-    strobe = np.empty((n_cycles, 2 + n_sp + 2 * N_LAW_STATE))  # D, V, the slips, the bumpers' law states
+    strobe = np.empty((n_cycles, 3 + n_sp + 2 * N_LAW_STATE))  # D, V, the slips, the bumpers' law states, z
     starts = np.empty((n_cycles, state0.size))
     cyc = np.zeros((n_cycles, CYCLE_COLS))
     st = state0.copy()
@@ -160,7 +160,7 @@ def step_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l
         for q in range(st.size):  # element loops, not slice assignment (less to compile)
             starts[n, q] = st[q]
         st, _, contacts, _, _, extrema, status = run_kernel(
-            mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
+            mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
             exc_kind, exc_p, no_record, no_record, st, t0 + (n + 1) * period, -1.0, rtol,
             max_events, NO_ENERGY, ctl)  # a step measures extrema and contacts, not the ledger
         cyc[n, CY_DMAX] = extrema[0]
@@ -179,6 +179,7 @@ def step_kernel(mass, c_d, slopes, breaks, rule, has_b, gap_l, gap_r, law_l, p_l
         for q in range(N_LAW_STATE):
             strobe[n, 2 + n_sp + q] = st[Z_L + q] if law_has_memory(law_l) else 0.0
             strobe[n, 2 + n_sp + N_LAW_STATE + q] = st[Z_R + q] if law_has_memory(law_r) else 0.0
+        strobe[n, 2 + n_sp + 2 * N_LAW_STATE] = st[ZETA] * bw[1]  # (the Bouc-Wen z as a length: its memory)
         n += 1
         if status != SUCCESS:
             break
