@@ -202,3 +202,25 @@ def test_model_family_fits_kinematic_bumpers():
     with pytest.raises(pd_.InputError):  # an elastic multi-linear system is not of this family
         family.values_of(pd_.Oscillator(osc.mass, osc.isolator, pd_.Bumpers(0.015, 0.015, pd_.MultilinearBumper(
             D_SHAPED.slopes, D_SHAPED.breakpoints, 500.0))))
+
+
+def test_states_the_engine_never_reaches_are_refused():
+    from pounding.engine._layout import DEF_R, Z_R
+
+    osc = pd_.Oscillator(500.0, pd_.Isolator((5e3,), (), "kinematic", 100.0), pd_.Bumpers(0.01, 0.01, pd_.MultilinearBumper(
+        (1.46e6, 1e5, 5e6), (0.001, 0.004), 500.0, hysteresis="kinematic")))
+    base = pd_.State.at_rest(osc).vector.copy()
+    cases = []
+    v = base.copy()  # out of contact, a spring slipping in compression (it holds at the release)
+    v[DEF_R], v[Z_R + 1], v[Z_R + 4] = 0.002, 0.001, 1.0
+    cases.append((v, f"state.vector[{Z_R + 4}]"))
+    v = base.copy()  # out of contact, springs that pull the recovering bumper
+    v[DEF_R], v[Z_R + 1] = 0.0005, 0.0014
+    cases.append((v, f"state.vector[{Z_R + 1}]"))
+    v = base.copy()  # a slip for the breakpoint that hardens
+    v[Z_R + 2] = 0.001
+    cases.append((v, f"state.vector[{Z_R + 2}]"))
+    for vec, field in cases:
+        with pytest.raises(pd_.InputError) as info:
+            pd_.simulate(osc, pd_.Harmonic(0.0, 1.0), 0.1, pd_.State(vec))
+        assert info.value.field == field

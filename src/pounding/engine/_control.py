@@ -93,6 +93,8 @@ def isolator_rate(oscillator: Oscillator) -> tuple[float, str]:
     """
     iso = oscillator.isolator
     k = max(abs(s) for s in iso.slopes)
+    if iso.bouc_wen is not None:  # (its initial stiffness, in parallel)
+        k += iso.bouc_wen.a * iso.bouc_wen.stiffness
     c = iso.damping
     m = oscillator.mass
     rate = max(math.sqrt(k / m + (0.5 * c / m) ** 2), c / m)
@@ -108,6 +110,8 @@ def contact_rate(oscillator: Oscillator) -> float:
     iso = oscillator.isolator
     k = max(abs(s) for s in iso.slopes) if iso.hysteresis == "elastic" else (
         abs(iso.slopes[-1]) + sum(abs(a - b) for a, b in zip(iso.slopes, iso.slopes[1:])))
+    if iso.bouc_wen is not None:
+        k += iso.bouc_wen.a * iso.bouc_wen.stiffness
     c = iso.damping
     b = oscillator.bumpers
     if b is not None:

@@ -186,6 +186,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l, 
     ph[P_CD] = c_d
     for j in range(BW_PARAMS):
         ph[P_BW + j] = bw[j]
+    z_max = (bw[2] / (bw[3] + bw[4])) ** (1.0 / bw[5]) if bw[0] != 0.0 else 0.0
     v_res = RESOLUTION * ph[P_VRUN]
     impulse_res = mass * v_res
     depth_res = RESOLUTION * ph[P_XRUN]
@@ -405,8 +406,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l, 
             status = NONFINITE
             break
         ledger[2] += iso_advance(slopes, breaks, rule, st, d0, d1)
-        if bw[0] != 0.0:
-            st[ZETA] = phase_zeta(ph, tau)
+        if bw[0] != 0.0:  # (held within |z| <= z_max: an explicit step overshoots it by up to its tolerance)
+            st[ZETA] = min(max(phase_zeta(ph, tau), -z_max), z_max)
         st[D] = d1
         st[V] = v1
         st[T] = t_stop if to_stop else t + tau

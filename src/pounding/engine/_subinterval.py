@@ -17,7 +17,7 @@ import math
 import numpy as np
 
 from .._jit import jit
-from ..model.contact_laws import law_branch_loss
+from ..model.contact_laws import law_branch_loss, law_is_linear
 from ._layout import (A_IMPULSE, A_MAXCOMP, A_PEAK, A_WORK, ACC_L, ACC_R, MODE_LINEAR, P_AX0, P_C,
                       P_CBL, P_CBR, P_CD, P_GAPL, P_GAPR, P_INL, P_INR, P_JBL, P_JBR, P_K, P_KBL, P_KBR, P_LAWL,
                       P_BW, P_LAWR, P_M, P_MODE, P_P0, P_RBL, P_RBR, P_ZETA0, PL_AT, PR_AT, PZL_AT, PZR_AT, SIDE_L,
@@ -102,6 +102,15 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
                     ledger[3] += wq * (f - fel) * rate
         if bw != 0.0:
             ledger[2] -= bouc_wen_energy(ph, phase_zeta(ph, tau)) - bouc_wen_energy(ph, ph[P_ZETA0])
+        for side in (SIDE_L, SIDE_R):  # a linear law's branch in a numerical phase (a Bouc-Wen isolator's):
+            # what its spring dissipates (the quadrature above has its dashpot's)
+            if (side == SIDE_L and in_l) or (side == SIDE_R and in_r):
+                if side == SIDE_L:
+                    sign, gap, law, o, zo, j_b = -1.0, ph[P_GAPL], int(ph[P_LAWL]), PL_AT, PZL_AT, int(ph[P_JBL])
+                else:
+                    sign, gap, law, o, zo, j_b = 1.0, ph[P_GAPR], int(ph[P_LAWR]), PR_AT, PZR_AT, int(ph[P_JBR])
+                if law_is_linear(law):
+                    ledger[3] += law_branch_loss(law, ph, o, j_b, sign * d0 - gap, sign * d1 - gap, ph, zo)
     # displacement extrema (and the bumpers' maximum compression)
     for j in range(3):
         if j == 0:

@@ -61,7 +61,7 @@ class State:
         displacement_m : float
             Displacement relative to the table, m, between the bumpers' surfaces
             (``-gap_left <= D <= gap_right``).  The isolator is where a slow push from 0
-            would leave it (on the backbone).
+            would leave it (on the backbone; a Bouc-Wen spring's z at 0).
         velocity_m_s : float
             Velocity relative to the table, m/s.
         """
@@ -262,8 +262,8 @@ class Run:
         One row per contact: ``side`` ("left"/"right"), ``t_start``, ``t_end`` (s),
         ``v_in``, ``v_out`` (relative velocity at start and end, m/s), ``impulse`` (N s),
         ``peak_force`` (N), ``max_compression`` (m), ``bumper_dissipation`` (J: energy the
-        bumper took from the mass, dissipated by its dashpot during contact or while it
-        recovers).  A contact still going on at the end has NaN ``t_end`` and ``v_out``.
+        bumper took from the mass, dissipated by its dashpot and slips during contact or while it
+        recovers; a kinematic multi-linear bumper keeps part of it stored in its set).  A contact still going on at the end has NaN ``t_end`` and ``v_out``.
         Resolution: a touch whose added compression and impulse are both below 1e-9 of the
         run's scales (its length scale, the largest of the total gap, the first breakpoint and
         the table's acceleration over ``w^2``; ``M`` times its velocity scale, that length
@@ -272,8 +272,8 @@ class Run:
         1e-9 of the velocity scale is recorded as 0 (the mass met the surface at rest, e.g.
         at zero gap: its restitution is NaN).
     events : DataFrame
-        Every event: ``t``, ``kind`` (yield, reversal, branch, contact_start, contact_end),
-        ``index`` (spring or side).
+        Every event: ``t``, ``kind`` (yield, reversal, branch, contact_start, contact_end,
+        bumper_branch, bouc_wen_zero), ``index`` (spring or side).
     energy : EnergyLedger
     final_state : State
     sample_rate_hz : float

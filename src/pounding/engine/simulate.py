@@ -96,7 +96,7 @@ def _check_state_fits(state: State, oscillator: Oscillator) -> None:
             at = (Z_L, Z_R)[j]
             law = (b.left, b.right)[j]
             if isinstance(law, MultilinearBumper) and law.hysteresis == "kinematic":
-                _check_kinematic_state(vec[at:at + N_LAW_STATE], law, comp[j], tol, at, bad)
+                _check_kinematic_state(vec[at:at + N_LAW_STATE], law, comp[j], touching[j], tol, at, bad)
             else:
                 for q in range(1, N_LAW_STATE):
                     if vec[at + q] != 0.0:
@@ -156,9 +156,11 @@ def _check_law_state(z: float, law: Any, touching: bool, comp: float, tol: float
                             "(its elastic branch would not hold it)")
 
 
-def _check_kinematic_state(block: np.ndarray, law: Any, comp: float, tol: float, at: int, bad: Any) -> None:
+def _check_kinematic_state(block: np.ndarray, law: Any, comp: float, touching: bool, tol: float, at: int,
+                           bad: Any) -> None:
     """A kinematic multi-linear bumper's springs: each softening's slip direction -1, 0 or +1, its
-    strain within its breakpoint (at it while slipping); the other places 0."""
+    strain within its breakpoint (at it while slipping); the other places 0.  Out of contact (the
+    bumper recovering) no spring slips in compression, and the springs do not pull."""
     slopes, breaks = law.slopes, law.breakpoints
     soft = {i for i in range(len(breaks)) if slopes[i] > slopes[i + 1]}
     for q in range(N_LAW_STATE):
@@ -175,6 +177,18 @@ def _check_kinematic_state(block: np.ndarray, law: Any, comp: float, tol: float,
         if (abs(strain) > breaks[i] + tol) if s == 0.0 else abs(strain - s * breaks[i]) > tol:
             raise bad(f"vector[{at + 1 + i}]", float(u), f"leaves the bumper spring {i}'s strain {strain:g} m beyond "
                                                          f"its breakpoint {breaks[i]:g} m")
+        if s > 0.0 and not touching:
+            raise bad(f"vector[{at + 4 + i}]", float(s), "slips the bumper spring in compression while out of "
+                                                         "contact (it holds once the contact ends)")
+    if not touching and comp > 0.0:
+        k_lin = slopes[0] - sum(slopes[i] - slopes[i + 1] for i in soft)
+        force = max(k_lin, 0.0) * comp + sum((slopes[i] - slopes[i + 1]) * (comp - block[1 + i]) if block[4 + i] == 0.0
+                                             else (slopes[i] - slopes[i + 1]) * block[4 + i] * breaks[i] for i in soft)
+        force += sum((slopes[i + 1] - slopes[i]) * max(comp - breaks[i], 0.0)
+                     for i in range(len(breaks)) if slopes[i + 1] > slopes[i])
+        if force < -tol * max(slopes) - 1e-9:
+            raise bad(f"vector[{at + 1}]", float(block[1]), f"makes the recovering bumper pull ({force:g} N at its "
+                                                            f"compression {comp:g} m)")
 
 
 def kernel_system(oscillator: Oscillator) -> tuple:

@@ -7,6 +7,8 @@ fitted within bounds (the ``bounds`` of :func:`pounding.identify`).  Names:
 - ``slope_1`` ... ``slope_n``: backbone slopes, N/m (any order of size: hardening allowed);
 - ``breakpoint_1`` ... ``breakpoint_{n-1}``: backbone breakpoints, m (increasing);
 - ``isolator_damping``: ``C_d``, N s/m;
+- with ``bouc_wen = true``: ``bw_stiffness`` (N/m), ``bw_yield_displacement`` (m) and ``bw_n`` of the
+  isolator's Bouc-Wen spring;
 - ``bumper_stiffness``, ``bumper_damping`` (and ``bumper_exponent`` for Hunt-Crossley):
   the contact law's parameters, both bumpers alike; for the elastic-plastic law
   ``bumper_stiffness`` (K1, N/m), ``bumper_post_yield_ratio`` (K2 / K1, in (0, 1)) and
@@ -38,9 +40,10 @@ import numpy as np
 
 from .._checks import integer, one_of, positive, read_toml, real
 from .._errors import InputError, Problem
-from ..model import Bumpers, ElasticPlastic, HuntCrossley, Isolator, KelvinVoigt, MultilinearBumper, Oscillator
+from ..model import BoucWen, Bumpers, ElasticPlastic, HuntCrossley, Isolator, KelvinVoigt, MultilinearBumper, Oscillator
 
-FAMILY_KEYS = ("mass", "branches", "hysteresis", "law", "fixed", "bounds", "bumper_branches")
+FAMILY_KEYS = ("mass", "branches", "hysteresis", "law", "fixed", "bounds", "bumper_branches", "bouc_wen")
+BOUC_WEN_PARAMETERS = ("bw_stiffness", "bw_yield_displacement", "bw_n")  # (a = 1, beta = gamma = 0.5)
 LAW_PARAMETERS = {"kelvin_voigt": ("bumper_stiffness", "bumper_damping"),
                   "hunt_crossley": ("bumper_stiffness", "bumper_exponent", "bumper_damping"),
                   "elastic_plastic": ("bumper_stiffness", "bumper_post_yield_ratio", "bumper_yield_compression"),
@@ -67,6 +70,11 @@ class ModelFamily:
     bumper_branches : int
         Slopes of a multi-linear bumper's backbone (1 to 4; default 3: the D-shaped bumper's
         stiff start, plateau and steep rise); ignored by the other laws.
+    bouc_wen : bool
+        A :class:`~pounding.BoucWen` spring in the isolator, in parallel with its backbone (numbers
+        ``bw_stiffness`` N/m, ``bw_yield_displacement`` m and ``bw_n``; ``a = 1``,
+        ``beta = gamma = 0.5``).  Every phase is then integrated numerically: some 30 times the
+        cost of a campaign.
     """
 
     mass: float
@@ -75,8 +83,12 @@ class ModelFamily:
     law: str = "kelvin_voigt"
     fixed: dict[str, float] = field(default_factory=dict)
     bumper_branches: int = 3
+    bouc_wen: bool = False
 
     def __post_init__(self) -> None:
+        if not isinstance(self.bouc_wen, bool):
+            raise InputError(Problem.WRONG_TYPE, "family.bouc_wen", self.bouc_wen, got=type(self.bouc_wen).__name__,
+                             expected="true or false")
         object.__setattr__(self, "bumper_branches", integer("family.bumper_branches", self.bumper_branches, 1,
                                                             MAX_BUMPER_BRANCHES,
                                                             fix=f"give 1 to {MAX_BUMPER_BRANCHES} bumper slopes"))
@@ -101,7 +113,8 @@ class ModelFamily:
         """Every number of the family, fixed or free, in a fixed order."""
         n = self.branches
         return (tuple(f"slope_{i + 1}" for i in range(n)) + tuple(f"breakpoint_{i + 1}" for i in range(n - 1))
-                + ("isolator_damping",) + self.law_parameters + ("gap",))
+                + ("isolator_damping",) + (BOUC_WEN_PARAMETERS if self.bouc_wen else ()) + self.law_parameters
+                + ("gap",))
 
     @property
     def law_parameters(self) -> tuple[str, ...]:
@@ -135,9 +148,10 @@ class ModelFamily:
         """
         p = {**self.fixed, **values}
         n = self.branches
+        bouc_wen = BoucWen(p["bw_stiffness"], p["bw_yield_displacement"], n=p["bw_n"]) if self.bouc_wen else None
         isolator = Isolator(tuple(p[f"slope_{i + 1}"] for i in range(n)),
                             tuple(p[f"breakpoint_{i + 1}"] for i in range(n - 1)), self.hysteresis,
-                            p["isolator_damping"])
+                            p["isolator_damping"], bouc_wen)
         if self.law == "kelvin_voigt":
             law: Any = KelvinVoigt(p["bumper_stiffness"], p["bumper_damping"])
         elif self.law in MULTILINEAR_LAWS:
@@ -159,7 +173,7 @@ class ModelFamily:
         """Every number of the family read from a system of this family (YBs)."""
         iso, b = oscillator.isolator, oscillator.bumpers
         multilinear = self.law in MULTILINEAR_LAWS
-        if (b is None or iso.n_branches != self.branches
+        if (b is None or iso.n_branches != self.branches or (iso.bouc_wen is not None) != self.bouc_wen
                 or b.law.TYPE != (MultilinearBumper.TYPE if multilinear else self.law)
                 or (multilinear and (len(b.law.slopes) != self.bumper_branches
                                      or b.law.hysteresis != MULTILINEAR_LAWS[self.law]))):
@@ -168,6 +182,14 @@ class ModelFamily:
         out = {f"slope_{i + 1}": float(k) for i, k in enumerate(iso.slopes)}
         out.update({f"breakpoint_{i + 1}": float(x) for i, x in enumerate(iso.breakpoints)})
         out["isolator_damping"] = float(iso.damping)
+        if self.bouc_wen:
+            bw = iso.bouc_wen
+            if (bw.a, bw.beta, bw.gamma) != (1.0, 0.5, 0.5):
+                raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator, got=f"a Bouc-Wen spring with a = {bw.a:g}, "
+                                 f"beta = {bw.beta:g}, gamma = {bw.gamma:g}",
+                                 expected="the family's: a = 1, beta = gamma = 0.5")
+            out.update(bw_stiffness=float(iso.bouc_wen.stiffness),
+                       bw_yield_displacement=float(iso.bouc_wen.yield_displacement), bw_n=float(iso.bouc_wen.n))
         if multilinear:
             out.update({f"bumper_slope_{i + 1}": float(k) for i, k in enumerate(b.law.slopes)})
             out.update({f"bumper_breakpoint_{i + 1}": float(x) for i, x in enumerate(b.law.breakpoints)})
@@ -194,7 +216,8 @@ class ModelFamily:
             raise InputError(Problem.MISSING_KEY, "mass", None, choices=", ".join(FAMILY_KEYS))
         bounds = table.get("bounds", {})
         family = cls(table["mass"], table.get("branches", 3), table.get("hysteresis", "kinematic"),
-                     table.get("law", "kelvin_voigt"), table.get("fixed", {}), table.get("bumper_branches", 3))
+                     table.get("law", "kelvin_voigt"), table.get("fixed", {}), table.get("bumper_branches", 3),
+                     table.get("bouc_wen", False))
         return family, check_bounds(family, bounds)
 
 

@@ -205,9 +205,10 @@ class MultilinearBumper:
     so the bumper unloads along the backbone turned over at twice the scale from the turning
     point, and reloads likewise (a backbone that only softens: exactly); each hardening (a
     steeper slope, the closed hole) is an elastic ramp added to that, without a loop.
-    A loop dissipates nothing while its springs stay elastic (an impact that compresses the
-    bumper less than about twice its first breakpoint is elastic but for the dashpot) and more
-    the deeper it goes: restitution falls and contacts lengthen with the impact velocity.  The
+    A loop dissipates nothing while its springs stay elastic (an impact that compresses an
+    unloaded bumper less than its first softening breakpoint is elastic but for the dashpot; a
+    loop from a turning point, less than twice that) and more the deeper it goes: restitution
+    falls and contacts lengthen with the impact velocity.  The
     springs keep their slips between contacts, so a bumper unloaded from its soft branch keeps a
     set (its springs' forces cancel above zero compression) and the next contact reloads it from
     there.  It needs ``slopes[0]`` at least the sum of the softening steps (else the unloaded

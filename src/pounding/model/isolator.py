@@ -15,7 +15,8 @@ HYSTERESIS_RULES = ("kinematic", "elastic")
 MAX_STIFFNESS_N_M = 1e15
 MAX_DAMPING_N_S_M = 1e15
 MAX_BREAKPOINT_M = 1e3
-MAX_BW_EXPONENT = 100.0  # (n = 100: the elastic-perfectly-plastic spring to 1 %)
+MAX_BW_EXPONENT = 100.0  # (n = 100: the elastic-perfectly-plastic spring to 1e-4)
+MAX_BW_Z = 1e3  # |z| saturates at (a / (beta + gamma))^(1/n): beyond this the parameters mean something else
 BW_PARAMS = 6  # the kernels' Bouc-Wen array: force scale k u_y (N), u_y (m), A, beta, gamma, n
 
 
@@ -73,6 +74,14 @@ class BoucWen:
         if not 1.0 <= n <= MAX_BW_EXPONENT:
             raise InputError(Problem.OUT_OF_RANGE, "isolator.bouc_wen.n", n, range=f"[1, {MAX_BW_EXPONENT:g}]",
                              hint=" (1: a smooth yield; larger, sharper)")
+        at_most("isolator.bouc_wen.a", a * stiffness, MAX_STIFFNESS_N_M, " N/m of initial stiffness a * stiffness, "
+                "stiffer than any isolator", "give a of order 1 (it scales the initial stiffness)")
+        z_max = (a / (beta + gamma)) ** (1.0 / n)
+        if z_max > MAX_BW_Z:
+            raise InputError(Problem.OUT_OF_RANGE, "isolator.bouc_wen.beta", beta,
+                             range=f"values that keep z_max = (a / (beta + gamma))^(1/n) = {z_max:g} within {MAX_BW_Z:g}",
+                             hint=" (beta + gamma of the order of a: the force saturates near stiffness * "
+                                  "yield_displacement)")
         for name, value in (("stiffness", stiffness), ("yield_displacement", uy), ("a", a), ("beta", beta),
                             ("gamma", gamma), ("n", n)):
             object.__setattr__(self, name, value)
@@ -120,7 +129,8 @@ class Isolator:
         Linear dashpot ``C_d`` in N s/m, >= 0.
     bouc_wen : BoucWen, optional
         A Bouc-Wen spring in parallel (high-damping rubber: damping that depends on the
-        amplitude).  With it every phase is integrated numerically (about ten times the cost).
+        amplitude).  With it every phase is integrated numerically (about 30 times the cost of
+        the paper's campaign).
 
     Notes
     -----
