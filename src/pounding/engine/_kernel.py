@@ -26,7 +26,7 @@ from ._forcing import EXC_HARMONIC, RESOLUTION, excitation_piece, run_scales
 from ._isolator import iso_advance, iso_energy, iso_events, iso_linear, iso_transition
 from ..model.isolator import BW_PARAMS
 from ._layout import (ACC_L, ACC_R, ACT_BOUC_WEN, ACT_CONTACT, ACT_LAW_BRANCH, ACT_RELEASE, A_DSTART, A_IMPULSE,
-                      A_MAXCOMP, E_ALPHA, E_KIND, E_SIDE, KIND_ZETA, P_BW, P_ZETA0, SIDE_NONE, ZETA,
+                      A_MAXCOMP, E_ALPHA, E_KIND, E_SIDE, KIND_ZETA, P_BW, P_DP5_H, P_ZETA0, SIDE_NONE, ZETA,
                       A_PEAK, A_TSTART, A_VIN, A_WORK, CONTACT_COLS, CTL_BUDGET, CTL_STOP, CTL_WORK, D, DEF_L,
                       DEF_R, EVENT_COLS, EV_COLS, E_ACTION, E_DIR, E_INDEX, IN_L, IN_R, LEDGER_LEN,
                       MODE_LINEAR, MODE_NUMERIC, PH_LEN, P_AX0, P_AX1, P_AXH, P_C, P_CBL, P_CBR, P_CD, P_D0,
@@ -132,6 +132,7 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r,
     ph[P_V0] = st[V]
     ph[P_MODE] = MODE_NUMERIC if (ph[P_NLL] != 0.0 or ph[P_NLR] != 0.0 or bw[0] != 0.0) else MODE_LINEAR
     ph[P_ZETA0] = st[ZETA]
+    ph[P_DP5_H] = -1.0  # (a new phase: no step of it taken yet)
     ph[P_XROUND] = ph[P_XRUN]  # (a linear phase's linear_setup adds its closed form's terms)
     ph[P_VROUND] = ph[P_VRUN]
     ph[P_DL0] = st[DEF_L]
@@ -236,6 +237,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l, 
             ph[P_PHI] = phase
             ph[P_D0] = st[D]
             ph[P_V0] = st[V]
+            ph[P_DP5_H] = -1.0
             ph[P_DL0] = st[DEF_L]
             ph[P_DR0] = st[DEF_R]
             h = h_phase

@@ -65,7 +65,11 @@ P_LZR = P_LZL + N_LAW_STATE
 PZL_AT, PZR_AT = np.int64(P_LZL), np.int64(P_LZR)
 P_BW = P_LZR + N_LAW_STATE  # the isolator's Bouc-Wen spring (BW_PARAMS values: force scale 0 for none)
 P_ZETA0 = P_BW + BW_PARAMS  # its z at the phase start
-PH_LEN = P_ZETA0 + 1
+# the last Dormand-Prince step of a numerical phase: its length (-1: none yet) and its 7 results
+# (the kernel, the event rows and the rates ask for the step at the sub-interval's end again and again)
+P_DP5_H = P_ZETA0 + 1
+P_DP5 = P_DP5_H + 1
+PH_LEN = P_DP5 + 7
 MODE_LINEAR = 0.0
 MODE_NUMERIC = 1.0
 

@@ -13,7 +13,7 @@ import math
 
 from ..model.contact_laws import law_force
 from .._jit import jit
-from ._layout import (P_BW, P_C, P_D0, P_GAPL, P_GAPR, P_H, P_K, P_LAWL, P_LAWR, P_M, P_NLL, P_NLR,
+from ._layout import (P_BW, P_C, P_D0, P_DP5, P_DP5_H, P_GAPL, P_GAPR, P_H, P_K, P_LAWL, P_LAWR, P_M, P_NLL, P_NLR,
                       P_P0, P_P1, P_PHI, P_V0, P_W, P_ZETA0, PL_AT, PR_AT, PZL_AT, PZR_AT)
 
 # Dormand-Prince 5(4) tableau
@@ -68,6 +68,9 @@ def dp5_step(ph, h):
     acceleration there, the embedded error estimate, and the Bouc-Wen variable (the phase
     start's without one).
     """
+    if ph[P_DP5_H] == h:  # the step just taken (its phase unchanged: _set_phase resets this)
+        return (ph[P_DP5], ph[P_DP5 + 1], ph[P_DP5 + 2], ph[P_DP5 + 3], ph[P_DP5 + 4], ph[P_DP5 + 5],
+                ph[P_DP5 + 6])
     d0 = ph[P_D0]
     v0 = ph[P_V0]
     z0 = ph[P_ZETA0]
@@ -102,4 +105,7 @@ def dp5_step(ph, h):
     ed = h * (E1 * k1d + E3 * k3d + E4 * k4d + E5 * k5d + E6 * k6d + E7 * k7d)
     ev = h * (E1 * k1v + E3 * k3v + E4 * k4v + E5 * k5v + E6 * k6v + E7 * k7v)
     ez = h * (E1 * k1z + E3 * k3z + E4 * k4z + E5 * k5z + E6 * k6z + E7 * k7z)
+    ph[P_DP5_H] = h
+    ph[P_DP5], ph[P_DP5 + 1], ph[P_DP5 + 2], ph[P_DP5 + 3] = d, v, k7v, ed
+    ph[P_DP5 + 4], ph[P_DP5 + 5], ph[P_DP5 + 6] = ev, z, ez
     return d, v, k7v, ed, ev, z, ez
