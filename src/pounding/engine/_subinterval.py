@@ -23,7 +23,8 @@ from ._layout import (A_IMPULSE, A_MAXCOMP, A_PEAK, A_WORK, ACC_L, ACC_R, MODE_L
                       P_BW, P_LAWR, P_M, P_MODE, P_P0, P_RBL, P_RBR, P_ZETA0, PL_AT, PR_AT, PZL_AT, PZR_AT, SIDE_L,
                       SIDE_R)
 from ._linear import linear_integrals
-from ._trajectory import (NO_INDEX, W_AABS_RATE, W_ACCELERATION, W_FORCE_RATE, abs_acceleration_rate, phase_zeta,
+from ._trajectory import (NO_INDEX, W_AABS_RATE, W_ACCELERATION, W_FORCE_RATE, abs_acceleration_rate,
+                          bouc_wen_aabs_rate, phase_zeta,
                           brent, contact_force, newton, phase_eval, table_acceleration, value_at_root)
 
 
@@ -133,8 +134,11 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
         if in_r:
             st[ACC_R + A_MAXCOMP] = max(st[ACC_R + A_MAXCOMP], dj - ph[P_GAPR])
     # absolute acceleration extrema
-    r0 = abs_acceleration_rate(ph, 0.0, d0, v0, a0)
-    r1 = abs_acceleration_rate(ph, tau, d1, v1, a1)
+    r0 = abs_acceleration_rate(ph, d0, v0, a0)
+    r1 = abs_acceleration_rate(ph, d1, v1, a1)
+    if ph[P_BW] != 0.0:
+        r0 += bouc_wen_aabs_rate(ph, 0.0, v0)
+        r1 += bouc_wen_aabs_rate(ph, tau, v1)
     track_abs_acceleration(extrema, t0, _abs_acceleration(ph, linear, m_a0, 0.0, d0, v0, a0))
     track_abs_acceleration(extrema, t0 + tau, _abs_acceleration(ph, linear, m_a0, tau, d1, v1, a1))
     if r0 * r1 < 0.0:

@@ -79,12 +79,10 @@ def contact_force(ph, side, d, v, a):
 
 
 @jit
-def abs_acceleration_rate(ph, tau, d, v, a):
-    """Time derivative of the absolute acceleration (m/s^3) ``tau`` s into the sub-interval:
-    ``-(d/dt restoring force) / M``."""
+def abs_acceleration_rate(ph, d, v, a):
+    """Time derivative of the absolute acceleration (m/s^3): ``-(d/dt restoring force) / M``
+    (less a Bouc-Wen spring's: :func:`bouc_wen_aabs_rate`)."""
     rate = ph[P_C] * a + ph[P_K] * v
-    if ph[P_BW] != 0.0:
-        rate += ph[P_BW] * zeta_rate(ph, v, phase_zeta(ph, tau))
     if ph[P_NLR] != 0.0:
         rate += contact_force(ph, SIDE_R, d, v, a)[2]
     if ph[P_NLL] != 0.0:
@@ -93,14 +91,18 @@ def abs_acceleration_rate(ph, tau, d, v, a):
 
 
 @jit
+def bouc_wen_aabs_rate(ph, tau, v):
+    """A Bouc-Wen spring's part of :func:`abs_acceleration_rate` ``tau`` s into the sub-interval
+    (apart: its integration kept out of the closed-form phases' path)."""
+    return -ph[P_BW] * zeta_rate(ph, v, phase_zeta(ph, tau)) / ph[P_M]
+
+
+@jit
 def event_value(evs, i, ph, tau, d, v, a):
     """Event ``i`` at ``tau``: ``(value, rate, scale)``; it fires when value crosses zero downwards.
 
     ``scale`` is the size of the terms summed, so that ``ROUNDING * scale`` is the noise level.
     """
-    if evs[i, E_KIND] == KIND_ZETA:  # the Bouc-Wen z crossing zero (alpha: minus its sign at the start)
-        z = phase_zeta(ph, tau)
-        return -evs[i, E_ALPHA] * z, -evs[i, E_ALPHA] * zeta_rate(ph, v, z), 1.0
     if evs[i, E_KIND] == KIND_LINEAR and int(evs[i, E_SIDE]) == SIDE_NONE:
         # the isolator's events (most of them): linear in the motion, small enough to inline
         alpha, beta, gamma = evs[i, E_ALPHA], evs[i, E_BETA], evs[i, E_GAMMA]
@@ -111,7 +113,11 @@ def event_value(evs, i, ph, tau, d, v, a):
 
 @jit
 def _bumper_event_value(evs, i, ph, tau, d, v, a):
-    """:func:`event_value` of a bumper's event: contact (the surface relaxing) or release."""
+    """:func:`event_value` of a bumper's event: contact (the surface relaxing) or release; and the
+    Bouc-Wen z crossing zero (kept out of :func:`event_value`'s fast path, with its integration)."""
+    if evs[i, E_KIND] == KIND_ZETA:  # (alpha: minus z's sign at the phase start)
+        z = phase_zeta(ph, tau)
+        return -evs[i, E_ALPHA] * z, -evs[i, E_ALPHA] * zeta_rate(ph, v, z), 1.0
     side = int(evs[i, E_SIDE])
     if evs[i, E_KIND] == KIND_LINEAR:
         alpha, beta, gamma = evs[i, E_ALPHA], evs[i, E_BETA], evs[i, E_GAMMA]
@@ -159,7 +165,9 @@ def traj_value(what, idx, ph, evs, tau):
     if what == W_VELOCITY:
         return v
     if what == W_AABS_RATE:
-        return abs_acceleration_rate(ph, tau, d, v, a)
+        if ph[P_BW] != 0.0:
+            return abs_acceleration_rate(ph, d, v, a) + bouc_wen_aabs_rate(ph, tau, v)
+        return abs_acceleration_rate(ph, d, v, a)
     if what == W_ACCELERATION:
         return a
     return contact_force(ph, idx, d, v, a)[2]
