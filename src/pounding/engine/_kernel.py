@@ -17,28 +17,31 @@ import numpy as np
 
 from .._jit import jit, jit_entry
 from ..model.contact_laws import (AT_START, MULTILINEAR, MULTILINEAR_KINEMATIC, N_LAW_PARAMS, N_LAW_STATE,
-                                  law_after_event, law_contact_state, law_energy, law_force, law_is_linear,
+                                  law_after_event, law_contact_state, law_energy, law_is_linear,
                                   law_linear_branch, law_moved, law_relax, law_release_state)
+from ..model.isolator import BW_PARAMS
 from ._buffers import grow as _grow
 from ._buffers import put as _put
 from ._bumpers import bumper_events, law_switches, relax_horizon
 from ._forcing import EXC_HARMONIC, RESOLUTION, excitation_piece, run_scales
-from ._isolator import iso_advance, iso_energy, iso_events, iso_linear, iso_transition
-from ..model.isolator import BW_PARAMS
-from ._layout import (ACC_L, ACC_R, ACT_BOUC_WEN, ACT_CONTACT, ACT_LAW_BRANCH, ACT_RELEASE, A_DSTART, A_IMPULSE,
-                      A_MAXCOMP, E_ALPHA, E_KIND, E_SIDE, KIND_ZETA, P_BW, P_DP5_H, P_ZETA0, SIDE_NONE, ZETA,
-                      A_PEAK, A_TSTART, A_VIN, A_WORK, CONTACT_COLS, CTL_BUDGET, CTL_STOP, CTL_WORK, D, DEF_L,
-                      DEF_R, EVENT_COLS, EV_COLS, E_ACTION, E_DIR, E_INDEX, IN_L, IN_R, LEDGER_LEN,
-                      MODE_LINEAR, MODE_NUMERIC, PH_LEN, P_AX0, P_AX1, P_AXH, P_C, P_CBL, P_CBR, P_CD, P_D0,
-                      P_DL0, P_DR0, P_GAPL, P_GAPR, P_H, P_INL, P_INR, P_JBL, P_JBR, P_K, P_KBL, P_KBR,
-                      P_KISO, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR, P_RBL,
-                      P_RBR, P_RISO, P_SPHI, P_V0, P_VROUND, P_VRUN, P_W, P_XROUND, P_XRUN, P_LZL, P_LZR, SAMPLE_COLS,
-                      SIDE_L, SIDE_R, T, V, Z_L, Z_R, ZL_AT, ZR_AT)
+from ._isolator import iso_advance, iso_events, iso_linear, iso_transition
+from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A_WORK, ACC_L, ACC_R,
+                      ACT_BOUC_WEN, ACT_CONTACT, ACT_LAW_BRANCH, ACT_RELEASE, CONTACT_COLS, CTL_BUDGET,
+                      CTL_STOP, CTL_WORK, DEF_L, DEF_R, E_ACTION, E_ALPHA, E_DIR, E_INDEX, E_KIND, E_SIDE,
+                      EV_COLS, EVENT_COLS, IN_L, IN_R, KIND_ZETA, LEDGER_LEN, MODE_LINEAR, MODE_NUMERIC,
+                      P_AX0, P_AX1, P_AXH, P_BW, P_C, P_CBL, P_CBR, P_CD, P_D0, P_DL0, P_DP5_H, P_DR0, P_GAPL,
+                      P_GAPR, P_H, P_INL, P_INR, P_JBL, P_JBR, P_K, P_KBL, P_KBR, P_KISO, P_LAWL, P_LAWR,
+                      P_LZL, P_LZR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR, P_RBL, P_RBR,
+                      P_RISO, P_SPHI, P_V0, P_VROUND, P_VRUN, P_W, P_XROUND, P_XRUN, P_ZETA0, PH_LEN,
+                      SAMPLE_COLS, SIDE_L, SIDE_NONE, SIDE_R, Z_L, Z_R, ZETA, ZL_AT, ZR_AT, D, T, V)
 from ._linear import fill_end, linear_eval_angle, linear_eval_end, linear_setup, linear_start, reset_ends
 from ._numeric import dp5_step
+from ._outputs import energies as _energies
+from ._outputs import outputs as _outputs
+from ._outputs import outputs_in_phase as _outputs_in_phase
 from ._subinterval import accumulate, track_abs_acceleration, velocity_turn
-from ._trajectory import (NO_INDEX, ROUNDING, W_VELOCITY, contact_force, event_value, locate_event, newton,
-                          phase_eval, phase_zeta, table_acceleration, value_at_root)
+from ._trajectory import (NO_INDEX, ROUNDING, W_VELOCITY, event_value, locate_event, newton, phase_eval,
+                          phase_zeta, value_at_root)
 
 SUCCESS, ZENO, MAX_EVENTS, DEGENERATE_PHASE, STEP_FAILED, INTERRUPTED, BUDGET, NONFINITE = (
     0, -1, -2, -3, -4, -5, -6, -7)
@@ -48,38 +51,6 @@ XTOL_S = 1e-15          # event instants and displacement extrema, s
 DBL_MAX = 1.7976931348623157e308
 TINY_SPEED = 1e-300     # m/s: the velocity of a start at rest, for the direction it moves
 POLL_EVERY = 64         # sub-intervals between two looks at the run control (about 30 us)
-
-
-@jit
-def _outputs(st, d, v, mass, c_d, slopes, breaks, rule, bw, gap_l, gap_r, law_l, p_l, law_r, p_r):
-    """``(abs_acceleration, isolator_force, left bumper force, right bumper force)`` at (d, v)."""
-    k, r0 = iso_linear(slopes, breaks, rule, st)
-    f_iso = k * d + r0 + c_d * v + bw[0] * st[ZETA]
-    f_l = 0.0
-    f_r = 0.0
-    if st[IN_L] != 0.0:
-        f_l = law_force(law_l, p_l, AT_START, -d - gap_l, -v, st, ZL_AT)[0]
-    if st[IN_R] != 0.0:
-        f_r = law_force(law_r, p_r, AT_START, d - gap_r, v, st, ZR_AT)[0]
-    return -(f_iso + f_r - f_l) / mass, f_iso, f_l, f_r
-
-
-@jit
-def _outputs_in_phase(ph, tau, d, v, a):
-    """``_outputs`` inside a sub-interval, from its phase descriptor (no isolator loop)."""
-    f_iso = ph[P_KISO] * d + ph[P_RISO] + ph[P_CD] * v
-    if ph[P_BW] != 0.0:
-        f_iso += ph[P_BW] * phase_zeta(ph, tau)
-    f_l = contact_force(ph, SIDE_L, d, v, a)[0] if ph[P_INL] != 0.0 else 0.0
-    f_r = contact_force(ph, SIDE_R, d, v, a)[0] if ph[P_INR] != 0.0 else 0.0
-    return a + table_acceleration(ph, tau), f_iso, f_l, f_r
-
-
-@jit
-def _energies(st, mass, slopes, breaks, rule, bw, law_l, p_l, law_r, p_r):
-    e_bw = 0.5 * bw[0] * bw[1] * st[ZETA] ** 2 / bw[2] if bw[0] != 0.0 else 0.0  # (subinterval.bouc_wen_energy)
-    return (0.5 * mass * st[V] ** 2, iso_energy(slopes, breaks, rule, st, st[D]) + e_bw,
-            law_energy(law_l, p_l, st[DEF_L], st, ZL_AT) + law_energy(law_r, p_r, st[DEF_R], st, ZR_AT))
 
 
 @jit

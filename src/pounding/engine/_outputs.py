@@ -1,0 +1,43 @@
+"""What the kernel records at an instant: the forces and the absolute acceleration, and the energies
+stored (the ledger's kinetic, isolator and bumper terms)."""
+
+from __future__ import annotations
+
+from .._jit import jit
+from ..model.contact_laws import AT_START, law_energy, law_force
+from ._isolator import iso_energy, iso_linear
+from ._layout import (DEF_L, DEF_R, IN_L, IN_R, P_BW, P_CD, P_INL, P_INR, P_KISO, P_RISO, SIDE_L, SIDE_R,
+                      ZETA, ZL_AT, ZR_AT, D, V)
+from ._trajectory import contact_force, phase_zeta, table_acceleration
+
+
+@jit
+def outputs(st, d, v, mass, c_d, slopes, breaks, rule, bw, gap_l, gap_r, law_l, p_l, law_r, p_r):
+    """``(abs_acceleration, isolator_force, left bumper force, right bumper force)`` at (d, v)."""
+    k, r0 = iso_linear(slopes, breaks, rule, st)
+    f_iso = k * d + r0 + c_d * v + bw[0] * st[ZETA]
+    f_l = 0.0
+    f_r = 0.0
+    if st[IN_L] != 0.0:
+        f_l = law_force(law_l, p_l, AT_START, -d - gap_l, -v, st, ZL_AT)[0]
+    if st[IN_R] != 0.0:
+        f_r = law_force(law_r, p_r, AT_START, d - gap_r, v, st, ZR_AT)[0]
+    return -(f_iso + f_r - f_l) / mass, f_iso, f_l, f_r
+
+
+@jit
+def outputs_in_phase(ph, tau, d, v, a):
+    """``outputs`` inside a sub-interval, from its phase descriptor (no isolator loop)."""
+    f_iso = ph[P_KISO] * d + ph[P_RISO] + ph[P_CD] * v
+    if ph[P_BW] != 0.0:
+        f_iso += ph[P_BW] * phase_zeta(ph, tau)
+    f_l = contact_force(ph, SIDE_L, d, v, a)[0] if ph[P_INL] != 0.0 else 0.0
+    f_r = contact_force(ph, SIDE_R, d, v, a)[0] if ph[P_INR] != 0.0 else 0.0
+    return a + table_acceleration(ph, tau), f_iso, f_l, f_r
+
+
+@jit
+def energies(st, mass, slopes, breaks, rule, bw, law_l, p_l, law_r, p_r):
+    e_bw = 0.5 * bw[0] * bw[1] * st[ZETA] ** 2 / bw[2] if bw[0] != 0.0 else 0.0  # (subinterval.bouc_wen_energy)
+    return (0.5 * mass * st[V] ** 2, iso_energy(slopes, breaks, rule, st, st[D]) + e_bw,
+            law_energy(law_l, p_l, st[DEF_L], st, ZL_AT) + law_energy(law_r, p_r, st[DEF_R], st, ZR_AT))
