@@ -127,16 +127,16 @@ def _slip_column(d, b):
     return out
 
 
-def _kinematic_fit(d, v, force, breakpoints, slips=None):
+def _kinematic_fit(d, v, force, breakpoints):
     """Slopes and damping of a kinematic multi-linear law with these breakpoints, and the
     residual norm.  Its force is linear in ``k_lin``, each step's size and the damping, for each
     choice of which steps soften (a slipping spring) and which harden (an elastic ramp): every
-    choice by non-negative least squares, the best kept.  ``slips``: the slip columns, if known."""
+    choice by non-negative least squares, the best kept."""
     from itertools import product
 
     from scipy.optimize import nnls
 
-    slips = [_slip_column(d, b) for b in breakpoints] if slips is None else slips
+    slips = [_slip_column(d, b) for b in breakpoints]
     ramps = [np.maximum(d - b, 0.0) for b in breakpoints]
     best = (np.inf, None, 0.0)
     for soft in product((True, False), repeat=len(breakpoints)):
