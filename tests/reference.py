@@ -393,7 +393,10 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
     def z_rate(vv, z):
         if bw is None:
             return 0.0
-        return vv / bw.yield_displacement * (bw.a - abs(z) ** bw.n * (bw.beta * np.sign(vv * z) + bw.gamma))
+        # (|z| held at 2 z_max in the power: the motion never leaves |z| <= z_max, but a trial stage of a
+        # step that is then rejected can, and |z|^n overflowed there)
+        zn = min(abs(z), 2.0 * bw.z_max) ** bw.n
+        return vv / bw.yield_displacement * (bw.a - zn * (bw.beta * np.sign(vv * z) + bw.gamma))
 
     def rhs(tt, y):
         dd, vv = y[0], y[1]
