@@ -12,6 +12,7 @@ plastic offset.
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -231,7 +232,7 @@ def _law(law):
             return max(d, 0.0) ** n * (k + hd.xi * dd)
 
         def relax(d0, tau):  # at the constant speed k / xi, with the last contact's xi
-            if d0 <= 0.0 or hd.xi == 0 or k / hd.xi == math.inf:  # (a dashpot of 1e-316: none)
+            if d0 <= 0.0 or hd.xi <= k / sys.float_info.max:  # (a dashpot of 1e-316: none; k / xi overflows)
                 return 0.0
             return max(0.0, d0 - k / hd.xi * tau)
 
