@@ -98,6 +98,10 @@ def main() -> None:
     ap.add_argument("--from-preset", action="store_true",
                     help="start from the shipped Kelvin-Voigt preset (its isolator; a multi-linear bumper of "
                          "equal slopes, which is that preset exactly)")
+    ap.add_argument("--loss", choices=("squared", "misses"), default="squared",
+                    help="what the search minimises: least squares, or (misses) the targets missed, smoothly")
+    ap.add_argument("--start", type=Path, default=None,
+                    help="start from this system's TOML (read into the family; overrides --from-preset)")
     args = ap.parse_args()
     targets = pd_.paper_targets()
     family = pd_.ModelFamily(500.0, branches=4, hysteresis="kinematic", law=args.law,
@@ -111,10 +115,14 @@ def main() -> None:
                                else args.law))
         if not args.free_gap:
             x0.pop("gap", None)
+    if args.start is not None:
+        x0 = family.values_of(pd_.Oscillator.from_toml(args.start))
+        if not args.free_gap:
+            x0.pop("gap", None)
     t0 = time.perf_counter()
     fit = pd_.identify(targets, family, bounds, seed=args.seed,
                        maxiter=args.maxiter, popsize=args.popsize, x0=x0,
-                       workers=args.workers, rtol=args.rtol, progress=True)
+                       workers=args.workers, rtol=args.rtol, progress=True, loss=args.loss)
     print(f"{fit.message} ({time.perf_counter() - t0:.0f} s)")
     print(fit.parameter_table().to_string(index=False))
     print(fit.to_dataframe().to_string(index=False))

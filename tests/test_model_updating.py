@@ -237,3 +237,38 @@ def test_a_family_that_makes_no_valid_system_is_an_error():
     targets = pd_.Targets.from_records([dict(configuration="NBs", a_g=0.05, quantity="alpha", value=2.5)])
     with pytest.raises(pd_.InputError, match="slopes"):
         pd_.identify(targets, family, {"isolator_damping": (200.0, 3000.0)}, maxiter=1, popsize=2, **FAST)
+
+
+def test_misses_loss_is_zero_within_tolerance_and_bounded_beyond():
+    from pounding.identification.identify import _loss_residuals
+
+    r = np.array([-0.89, 0.0, 0.9, -1.4, 2.9, 1e6])
+    rho = _loss_residuals(r, "misses") ** 2
+    assert np.all(rho[:3] == 0.0)
+    assert rho[3] == pytest.approx(0.25 / 1.25) and rho[4] == pytest.approx(0.8)
+    assert np.all(np.diff(rho[3:]) > 0.0) and np.all(rho < 1.0)
+    assert np.array_equal(_loss_residuals(r, "squared"), r)
+    family = pd_.ModelFamily(500.0, 3, fixed={**PRINTED_BACKBONE, "bumper_stiffness": 1.46e6,
+                                              "bumper_damping": 400.0})
+    with pytest.raises(pd_.InputError, match="loss"):
+        pd_.identify(pd_.Targets.from_records([BASE]), family, {"isolator_damping": (200.0, 3000.0)},
+                     loss="least", **FAST)
+
+
+def test_misses_loss_meets_what_least_squares_trades_away():
+    # one reachable target (NBs alpha at 0.1 of C_d = 800 N s/m, 2.15) and one out of reach (alpha
+    # 0.5 at 0.05; the least damped system gives 1.8): least squares raises the damping to its bound
+    # for the unreachable one (alpha 1.68 at 0.1, 2.2 tolerances off) and misses both; the misses
+    # loss leaves the unreachable one and meets the other
+    family = pd_.ModelFamily(500.0, 3, "kinematic", "kelvin_voigt",
+                             fixed={**PRINTED_BACKBONE, "bumper_stiffness": 1.46e6, "bumper_damping": 400.0})
+    reachable = _self_made_targets(family.oscillator({"isolator_damping": 800.0}), [("NBs", 0.1, ("alpha",))])
+    recs = reachable.table[["configuration", "a_g", "quantity", "value"]].to_dict("records")
+    targets = pd_.Targets.from_records(recs + [dict(configuration="NBs", a_g=0.05, quantity="alpha", value=0.5)])
+    bounds = {"isolator_damping": (200.0, 3000.0)}
+    fits = {loss: pd_.identify(targets, family, bounds, seed=4, maxiter=8, popsize=6, loss=loss, **FAST)
+            for loss in ("squared", "misses")}
+    assert fits["squared"].n_within == 0
+    assert fits["squared"].parameters["isolator_damping"] > 2500.0
+    assert fits["misses"].n_within == 1
+    assert fits["misses"].cost < 1.0  # the unreachable target costs at most 1

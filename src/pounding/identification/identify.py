@@ -36,6 +36,8 @@ DEFAULT_SWEEP = {"steady": "fixed", "cycles": 30, "measure_cycles": 5}
 MAX_EVALUATIONS = 1_000_000  # campaign evaluations at most (each runs every sweep the targets need)
 MAX_WORKERS = 1024
 WITHIN_SLACK = 1e-9  # a target is met when |normalized residual| <= 1 + this (rounding)
+LOSSES = ("squared", "misses")
+MISSES_WITHIN = 0.9  # the "misses" loss is zero within this many tolerances (a margin below 1)
 
 
 @dataclass(frozen=True, eq=False)
@@ -54,8 +56,8 @@ class Identification:
         the quantity's unit), ``normalized`` (difference / allowed, times the weight) and
         ``within`` (``|normalized| <= 1``, up to rounding).
     cost : float
-        Sum of squared normalized residuals (a NaN model value counts as
-        :data:`MISSING_RESIDUAL` tolerances).
+        The minimised loss (``identify``'s ``loss``): for ``"squared"`` the sum of squared
+        normalized residuals (a NaN model value counts as :data:`MISSING_RESIDUAL` tolerances).
     n_evaluations : int
         Campaign evaluations used.
     status, message
@@ -135,10 +137,10 @@ def evaluate(oscillator: Oscillator, targets: Targets, *, freqs_hz: Any = None,
 def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, seed: int = 0,
              workers: int | None = None, freqs_hz: Any = None, popsize: int = 10, maxiter: int = 30,
              refine: bool = True, x0: dict[str, float] | None = None, progress: Progress = False,
-             **sweep_options: Any) -> Identification:
+             loss: str = "squared", **sweep_options: Any) -> Identification:
     """Fit the free numbers of ``family`` to measured ``targets``.
 
-    Minimises the sum of squared normalized residuals (see :class:`~pounding.Targets`):
+    Minimises a loss of the normalized residuals (see :class:`~pounding.Targets`):
     differential evolution over the bounds (global, reproducible with ``seed``), then
     trust-region least squares from its best point (``refine``).
 
@@ -164,6 +166,14 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
         A starting guess for every free number (joins the first population).
     progress : bool or callable
         True: a progress bar over the generations.
+    loss : {"squared", "misses"}
+        ``"squared"``: the sum of squared normalized residuals ``r`` (least squares).
+        ``"misses"``: counts the targets missed, smoothly: each residual costs
+        ``h^2 / (1 + h^2)`` with ``h = max(|r| - 0.9, 0)`` its excess over 90 % of the
+        tolerance (the margin keeps a met target from being traded for a hair less of a far
+        miss), nothing when met with that margin and at most 1 when far off.  It spends no
+        effort on targets out of reach (e.g. inconsistent ones), so it meets more targets than
+        least squares, which trades a met target for a smaller large miss.
     **sweep_options
         :func:`pounding.sweep`'s options (default: fixed 30 cycles, last 5 measured).
 
@@ -191,6 +201,8 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     maxiter = integer("maxiter", maxiter, 0, MAX_EVALUATIONS)
     seed = integer("seed", seed, 0, 2**32 - 1)
     refine = boolean("refine", refine)
+    if loss not in LOSSES:
+        raise InputError(Problem.NOT_ONE_OF, "loss", loss, choices=", ".join(LOSSES))
     evaluations = (maxiter + 1) * popsize * len(names) + (40 * len(names) if refine else 0)
     if evaluations > MAX_EVALUATIONS:
         raise InputError(Problem.TOO_MUCH_WORK, "maxiter", maxiter, estimate=f"{evaluations:.3g}",
@@ -234,7 +246,7 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
         except InputError as exc:  # no valid system (e.g. breakpoints out of order): all missing
             model = None
             best["error"] = exc
-        r = _normalized(targets, model)
+        r = _loss_residuals(_normalized(targets, model), loss)
         cost = float(r @ r)
         with lock:
             best["n"] += 1
@@ -290,6 +302,14 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     if interrupted:
         raise Interrupted(result, best["n"], None, "evaluations")
     return result
+
+
+def _loss_residuals(r: np.ndarray, loss: str) -> np.ndarray:
+    """Residuals whose sum of squares is the loss (so ``least_squares`` refines the same loss)."""
+    if loss == "squared":
+        return r
+    h = np.maximum(np.abs(r) - MISSES_WITHIN, 0.0)  # the excess over 90 % of the tolerance
+    return np.sign(r) * h / np.sqrt(1.0 + h * h)
 
 
 class _Scale:
