@@ -170,6 +170,10 @@ def test_cli_identify_writes_a_system(tmp_path):
     assert len(pd.read_csv(res_csv)) == 5
     bad = runner.invoke(app, ["identify", "--family", "examples/family.toml"])
     assert bad.exit_code != 0
+    bad_loss = runner.invoke(app, ["identify", "examples/targets.toml", "--family", "examples/family.toml",
+                                   "--out", str(tmp_path / "x.toml"), "--loss", "cubic"])
+    assert bad_loss.exit_code == 2 and "loss" in bad_loss.output and "misses" in bad_loss.output
+    assert not (tmp_path / "x.toml").exists()
 
 
 def test_identification_plot_returns_artists():

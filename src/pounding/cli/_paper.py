@@ -136,6 +136,9 @@ def identify(
     fstep: float = OPT_FSTEP,
     cycles: int = typer.Option(30, "--cycles", help="Cycles per step (fixed schedule, as the lab)."),
     workers: Optional[int] = OPT_WORKERS,
+    loss: str = typer.Option(
+        "squared", "--loss", help="squared (least squares) or misses (a smooth count of the targets missed)."
+    ),
 ) -> None:
     """Model updating: fit a family's free numbers so that the simulated sweeps match measured targets."""
     from ..identification import ModelFamily, Targets, paper_targets
@@ -160,6 +163,7 @@ def identify(
             freqs_hz=frequencies(fmin, fmax, fstep),
             cycles=cycles,
             progress=True,
+            loss=loss,
         )
     except Interrupted as stop:
         if stop.partial is None:
