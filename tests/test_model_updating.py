@@ -276,3 +276,24 @@ def test_misses_loss_meets_what_least_squares_trades_away():
     assert fits["squared"].parameters["isolator_damping"] > 2500.0
     assert fits["misses"].n_within == 1
     assert fits["misses"].cost < 1.0  # the unreachable target costs at most 1
+
+
+def test_eta_is_compared_over_the_rigs_nominal_gap(tmp_path):
+    # a model with 13 mm gaps: its eta over its own 26 mm, but the lab's eta is E over the nominal
+    # 30 mm, so the residual compares the model's largest excursion over 30 mm
+    osc = pd_.Oscillator.from_toml_text(pd_.presets.paper_calibrated_v1().to_toml_text().replace(
+        "gap_left = 0.015", "gap_left = 0.013").replace("gap_right = 0.015", "gap_right = 0.013"))
+    recs = [dict(configuration="YBs", a_g=0.05, quantity=q, value=1.2) for q in ("eta", "excursion_max_m")]
+    own, nominal = (evaluate(osc, pd_.Targets.from_records(recs, eta_gap_total_m=d), **FAST)
+                    .set_index("quantity")["model"] for d in (None, 0.03))
+    assert own["eta"] == pytest.approx(own["excursion_max_m"] / 0.026, rel=1e-12)
+    assert nominal["eta"] == pytest.approx(nominal["excursion_max_m"] / 0.03, rel=1e-12)
+    assert pd_.paper_targets().eta_gap_total_m == 0.03
+    # TOML round trip, and a bad value named
+    path = tmp_path / "t.toml"
+    path.write_text(pd_.paper_targets().to_toml_text())
+    assert pd_.Targets.from_toml(path).eta_gap_total_m == 0.03
+    path.write_text("eta_gap_total_m = -0.03\n" + pd_.Targets.from_records(recs).to_toml_text())
+    with pytest.raises(pd_.InputError) as info:
+        pd_.Targets.from_toml(path)
+    assert info.value.field == "eta_gap_total_m"

@@ -31,6 +31,13 @@ def paper_measurements() -> pd.DataFrame:
     return df
 
 
+def paper_gap_total_m() -> float:
+    """The rig's nominal total gap ``Delta = g_L + g_R`` (m, the paper's 2 x 15 mm): what its
+    ``eta = E / Delta`` is measured over."""
+    df = paper_measurements()
+    return float(df.loc[df["quantity"] == "total_gap_m", "value"].iloc[0])
+
+
 def measured(table: str) -> pd.DataFrame:
     """One of the paper's tables ("2", "3" or "4") wide: a row per (configuration, a_g)."""
     df = paper_measurements()

@@ -31,6 +31,17 @@ The checks (one row each where the case has the quantities they need):
     ``contact_time_ms`` and ``dissipated_energy_per_mass``, and ``s < 1``.
 ``energy_vs_restitution``
     ``E_d / M = v_i^2 (1 - s^2) / 2``: with ``s < 1`` the dissipated energy is positive.
+``contact_time_vs_compression``
+    YBs: the bumpers' deepest compressions in a cycle add up to ``S = E - Delta``, so the
+    deepest reaches ``delta >= S / 2``.  From the bumper's surface to that depth the
+    velocity falls to zero with ``|D''| <= (alpha + 1) A_t``, which takes at least
+    ``sqrt(2 delta / ((alpha + 1) A_t))``: ``dt_c >= sqrt(S / ((alpha + 1) A_t))``.  It
+    assumes that each contact starts at the bumper's recovered surface at the nominal gap
+    (a larger effective gap, or a bumper that has not recovered, shortens ``S``), that the
+    measured contact time is that of the deepest contact, and that the largest excursion
+    ``E`` is reached at the resonance, where the contact times were measured: the column
+    ``kind`` says "contact".  The explanation gives the effective gap the measured contact
+    time would need.
 """
 
 from __future__ import annotations
@@ -42,6 +53,7 @@ import numpy as np
 import pandas as pd
 
 from .._checks import at_most, positive
+from .._errors import InputError, Problem
 from ..protocols.sweep import PAPER_F_REF_HZ, PAPER_OMEGA_MIN_RAD_S
 
 if TYPE_CHECKING:
@@ -51,9 +63,11 @@ COLUMNS = ("configuration", "a_g", "direction", "check", "kind", "quantity", "me
            "consistent", "margin", "explanation")
 LAW = "law"                # a bound no system can violate
 SINUSOIDAL = "sinusoidal"  # a bound for a near-sinusoidal response: plausibility
+CONTACT = "contact"        # a bound for contacts from the recovered surface at the nominal gap
 
 
-def check_consistency(targets: Targets, mass_kg: float, gap_total_m: float, *, g: float = 9.81,
+def check_consistency(targets: Targets, mass_kg: float, gap_total_m: float | None = None, *,
+                      g: float = 9.81,
                       f_ref_hz: float = PAPER_F_REF_HZ,
                       omega_min_rad_s: float = PAPER_OMEGA_MIN_RAD_S) -> pd.DataFrame:
     """Check measured targets against bounds any mass obeying Newton's law satisfies.
@@ -65,8 +79,9 @@ def check_consistency(targets: Targets, mass_kg: float, gap_total_m: float, *, g
         ``quantities=CONSISTENCY_QUANTITIES`` for the dissipated energies too).
     mass_kg : float
         The mass ``M``, kg (the bounds are per unit mass: it enters only through the energies).
-    gap_total_m : float
-        ``Delta = g_L + g_R``, m: YBs excursions are ``eta * Delta``.
+    gap_total_m : float, optional
+        ``Delta = g_L + g_R``, m: YBs excursions are ``eta * Delta``.  Default: the targets'
+        ``eta_gap_total_m`` (required when they have none).
     g, f_ref_hz, omega_min_rad_s : float
         Gravity (m/s^2), the reference frequency of ``nu`` (Hz) and ``Omega_min`` of NBs
         ``e = E / D_tmax`` (rad/s), as the sweeps use them.
@@ -82,6 +97,11 @@ def check_consistency(targets: Targets, mass_kg: float, gap_total_m: float, *, g
         (``(measured - bound) / allowed``: below -1 flags it) and ``explanation``.
     """
     mass_kg = at_most("mass_kg", positive("mass_kg", mass_kg, "kg"), 1e12, " kg", "give the mass in kg")
+    if gap_total_m is None:
+        if targets.eta_gap_total_m is None:
+            raise InputError(Problem.MISSING_INPUT, "gap_total_m", None,
+                             what="the total gap Delta in m (the targets have no eta_gap_total_m)")
+        gap_total_m = targets.eta_gap_total_m
     gap_total_m = at_most("gap_total_m", positive("gap_total_m", gap_total_m, "m"), 10.0, " m",
                           "give the gap in m (30 mm is 0.03)")
     g = at_most("g", positive("g", g, "m/s^2"), 1000.0, " m/s^2", "give g in m/s^2 (9.81)")
@@ -107,6 +127,19 @@ def check_consistency(targets: Targets, mass_kg: float, gap_total_m: float, *, g
                              2.0 * math.pi ** 2 * e_low * f * f / a_t - 1.0,
                              f"a sinusoidal response of excursion E = {excursion[0]:.4g} m at f = {f:.3g} Hz "
                              "has |D''| = 2 pi^2 f^2 E: alpha >= 2 pi^2 f^2 E / A_t - 1 (impacts only add)"))
+        if conf == "YBs" and "alpha" in q and "contact_time_ms" in q and excursion is not None:
+            s_low = excursion[0] - excursion[1] - gap_total_m  # the compressions' sum, at its low end
+            a_max = (q["alpha"][0] + q["alpha"][1] + 1.0) * a_t  # |D''| at the high end of alpha
+            if s_low > 0.0:
+                dt_high_s = (q["contact_time_ms"][0] + q["contact_time_ms"][1]) * 1e-3
+                gap_needed = 0.5 * (excursion[0] - excursion[1] - a_max * dt_high_s ** 2)
+                rows.append(_row(key, "contact_time_vs_compression", CONTACT, "contact_time_ms",
+                                 q["contact_time_ms"], 1e3 * math.sqrt(s_low / a_max),
+                                 f"the bumpers are compressed by S = E - Delta = {1e3 * s_low:.3g} mm in all, the "
+                                 f"deepest by S / 2, and back to rest at |D''| <= (alpha + 1) A_t = {a_max:.3g} "
+                                 f"m/s^2: dt_c >= sqrt(S / ((alpha + 1) A_t)) for contacts from the recovered "
+                                 f"surface at the nominal gap; the measured dt_c needs a gap of "
+                                 f"{1e3 * gap_needed:.3g} mm a side"))
         needed = ("alpha", "restitution", "contact_time_ms", "dissipated_energy_per_mass")
         if all(k in q for k in needed):
             s, s_allowed = q["restitution"]

@@ -351,7 +351,9 @@ def _model_column(targets: Targets, model: dict | None) -> np.ndarray:
     t = targets.table
     if model is None:
         return np.full(len(t), np.nan)
-    return np.array([model[(c, float(a), d)][q] for c, a, d, q in
+    delta = targets.eta_gap_total_m  # eta measured over the rig's nominal gap: the model's excursion over it
+    return np.array([model[(c, float(a), d)]["excursion_max_m"] / delta if q == "eta" and delta is not None
+                     else model[(c, float(a), d)][q] for c, a, d, q in
                      t[["configuration", "a_g", "direction", "quantity"]].itertuples(index=False)], dtype=float)
 
 

@@ -14,6 +14,8 @@ TOML (``pounding identify TARGETS.toml``)::
     [tolerances]          # optional: per quantity, overrides DEFAULT_TOLERANCES
     alpha = {tolerance = 0.15, relative = true}
 
+    eta_gap_total_m = 0.03   # optional: the Delta the measured eta was normalised by (below)
+
     [[target]]
     configuration = "YBs"
     a_g = 0.05
@@ -33,7 +35,7 @@ import pandas as pd
 
 from .._checks import at_most, boolean, one_of, positive, read_toml, real
 from .._errors import InputError, Problem
-from ..data import paper_measurements
+from ..data import paper_gap_total_m, paper_measurements
 from ..excitation import MAX_A_G
 
 # quantity -> (tolerance, relative): the issue's targets (nu_R within one 0.1 Hz step, alpha
@@ -75,9 +77,23 @@ class Targets:
         Columns ``configuration`` ("NBs"/"YBs"), ``a_g`` (g), ``direction`` ("up"/"down"),
         ``quantity`` (a name of :data:`DEFAULT_TOLERANCES`), ``value``, ``tolerance``,
         ``relative`` (bool) and ``weight`` (multiplies the residual, default 1).
+    eta_gap_total_m : float or None
+        The total gap ``Delta`` (m) the measured ``eta = E / Delta`` was normalised by: the
+        nominal one of the test rig (the paper's 2 x 15 mm).  When given, a model's eta is
+        compared as its largest excursion over this ``Delta``, not over the model's own gap, so
+        that a fit with the gap free compares excursions with excursions (the lab's E over
+        its nominal Delta).  None: the model's own gap (the same when the gap is the nominal
+        one).
     """
 
     table: pd.DataFrame
+    eta_gap_total_m: float | None = None
+
+    def __post_init__(self) -> None:
+        if self.eta_gap_total_m is not None:
+            value = at_most("eta_gap_total_m", positive("eta_gap_total_m", self.eta_gap_total_m, "m"), 10.0,
+                            " m", "give the gap in m (30 mm is 0.03)")
+            object.__setattr__(self, "eta_gap_total_m", value)
 
     def __len__(self) -> int:
         return len(self.table)
@@ -100,11 +116,12 @@ class Targets:
 
     @classmethod
     def from_records(cls, records: list[dict[str, Any]], *, defaults: dict[str, Any] | None = None,
-                     tolerances: dict[str, Any] | None = None) -> Targets:
+                     tolerances: dict[str, Any] | None = None, eta_gap_total_m: float | None = None) -> Targets:
         """Build and check targets from dicts with the keys of :data:`TARGET_KEYS`.
 
         ``defaults`` may set ``direction``; ``tolerances`` maps a quantity to
-        ``{"tolerance": x, "relative": bool}`` (else :data:`DEFAULT_TOLERANCES`).
+        ``{"tolerance": x, "relative": bool}`` (else :data:`DEFAULT_TOLERANCES`);
+        ``eta_gap_total_m`` as the attribute.
         """
         for name, table in (("defaults", defaults), ("tolerances", tolerances)):
             if table is not None and not isinstance(table, dict):
@@ -167,21 +184,23 @@ class Targets:
                 raise InputError(Problem.DUPLICATE, where, key, repeated="(configuration, a_g, direction, quantity)")
             seen.add(key)
             rows.append(dict(zip(COLUMNS, (conf, a_g, direction, quantity, value, tol, relative, weight))))
-        return cls(pd.DataFrame(rows, columns=list(COLUMNS)))
+        return cls(pd.DataFrame(rows, columns=list(COLUMNS)), eta_gap_total_m)
 
     @classmethod
     def from_toml(cls, path: str | Path) -> Targets:
         """Read targets from a TOML file (format in the module docstring)."""
-        table = read_toml("targets", path, ("defaults", "tolerances", "target"))
+        table = read_toml("targets", path, ("defaults", "tolerances", "target", "eta_gap_total_m"))
         if "target" not in table:
             raise InputError(Problem.MISSING_KEY, "target", None, choices="[[target]] tables")
-        return cls.from_records(table["target"], defaults=table.get("defaults"), tolerances=table.get("tolerances"))
+        return cls.from_records(table["target"], defaults=table.get("defaults"), tolerances=table.get("tolerances"),
+                                eta_gap_total_m=table.get("eta_gap_total_m"))
 
-    def check_consistency(self, mass_kg: float, gap_total_m: float, **kwargs: Any) -> pd.DataFrame:
+    def check_consistency(self, mass_kg: float, gap_total_m: float | None = None, **kwargs: Any) -> pd.DataFrame:
         """Flag measured combinations that no mass obeying Newton's law can produce.
 
-        See :func:`pounding.identification.consistency.check_consistency` (``g``,
-        ``f_ref_hz`` and ``omega_min_rad_s`` as keywords): one row per check and case, with
+        See :func:`pounding.identification.consistency.check_consistency` (``gap_total_m``
+        defaults to :attr:`eta_gap_total_m`; ``g``, ``f_ref_hz`` and ``omega_min_rad_s`` as
+        keywords): one row per check and case, with
         the bound that the case's other numbers imply and ``consistent`` False where the
         measured value misses it by more than its tolerance.
         """
@@ -198,13 +217,15 @@ class Targets:
             recs.append({"configuration": row.configuration, "a_g": float(row.a_g), "direction": row.direction,
                          "quantity": row.quantity, "value": float(row.value), "tolerance": float(row.tolerance),
                          "relative": bool(row.relative), "weight": float(row.weight)})
-        return tomli_w.dumps({"target": recs})
+        head = {} if self.eta_gap_total_m is None else {"eta_gap_total_m": self.eta_gap_total_m}
+        return tomli_w.dumps({**head, "target": recs})
 
 
 def paper_targets(direction: str = "up", quantities: tuple[str, ...] = PAPER_QUANTITIES) -> Targets:
     """The paper's shaking-table results as targets: Table 2 (``nu_r``, ``alpha``, ``eta``
     or ``e``, the contact range), Table 3 contact times and Table 4 restitution, with the
-    issue's tolerances (:data:`DEFAULT_TOLERANCES`): 36 numbers.
+    issue's tolerances (:data:`DEFAULT_TOLERANCES`): 36 numbers.  ``eta`` was measured
+    over the rig's nominal gap: ``eta_gap_total_m`` is 0.03 m (``pounding.data.paper_gap_total_m``).
 
     ``quantities`` chooses others (names of :data:`DEFAULT_TOLERANCES`), e.g. the NBs
     ``excursion_max_m`` of Sect. 3.2 and Table 4's ``dissipated_energy_per_mass`` for
@@ -225,7 +246,7 @@ def paper_targets(direction: str = "up", quantities: tuple[str, ...] = PAPER_QUA
             continue
         records.append({"configuration": row.configuration, "a_g": float(row.a_g), "quantity": row.quantity,
                         "value": float(row.value), "direction": direction})
-    return Targets.from_records(records)
+    return Targets.from_records(records, eta_gap_total_m=paper_gap_total_m())
 
 
 def _known_quantity(field: str, quantity: Any) -> str:

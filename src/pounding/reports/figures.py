@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pandas as pd
 
-from ..data import paper_measurements
+from ..data import paper_gap_total_m, paper_measurements
 from ..plots.sweep import DIRECTION_STYLE, plot_hysteresis
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -49,7 +49,7 @@ def total_gap_m(result: "CampaignResult") -> float:
     for (conf, _, _), sw in result.sweeps.items():
         if conf == "YBs" and sw.total_gap_m > 0:
             return sw.total_gap_m
-    return float(paper_measurements().query("quantity == 'total_gap_m'")["value"].iloc[0])
+    return paper_gap_total_m()
 
 
 def steps(result: "CampaignResult") -> pd.DataFrame:
@@ -124,8 +124,7 @@ def _measured_excursion(conf: str, y: str) -> pd.Series:
         return measured_value("e", conf)
     if conf == "YBs":
         return measured_value("eta", conf)
-    return measured_value("excursion_max_m", "NBs") / float(
-        paper_measurements().query("quantity == 'total_gap_m'")["value"].iloc[0])
+    return measured_value("excursion_max_m", "NBs") / paper_gap_total_m()
 
 
 def fig04(result, df, peaks):

@@ -8,7 +8,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from ..data import paper_measurements
+from ..data import paper_gap_total_m
 from ..identification import paper_targets
 from ..identification.consistency import CONSISTENCY_QUANTITIES
 
@@ -67,7 +67,7 @@ def verdict(residuals: pd.DataFrame) -> Verdict:
 
     The consistency checks are the paper's measurements' own, with its mass and total gap.
     """
-    gap = float(paper_measurements().query("quantity == 'total_gap_m'")["value"].iloc[0])
+    gap = paper_gap_total_m()
     consistency = paper_targets(quantities=CONSISTENCY_QUANTITIES).check_consistency(PAPER_MASS_KG, gap)
     bad = {(c, float(a), q) for c, a, q in
            consistency.loc[~consistency["consistent"], ["configuration", "a_g", "quantity"]].itertuples(index=False)}
