@@ -195,6 +195,7 @@ ENTRIES = {
             "records": [{"configuration": "YBs", "a_g": 0.05, "quantity": "alpha", "value": 16.8}],
             "defaults": None,
             "tolerances": None,
+            "eta_gap_total_m": 0.03,
         },
         set(),
     ),
