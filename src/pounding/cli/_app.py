@@ -64,7 +64,7 @@ OPT_WORKERS = typer.Option(None, "--workers", help="Parallel sweeps (default: al
 OPT_NBS = typer.Option(None, "--nbs", help="NBs system TOML (instead of --preset).")
 OPT_YBS = typer.Option(None, "--ybs", help="YBs system TOML (instead of --preset).")
 OPT_PRESET = typer.Option(
-    None, "--preset", help="Use a built-in system: paper-printed, paper-damped, paper-calibrated or paper-calibrated-v1."
+    None, "--preset", help="Use a built-in system: paper-printed, paper-damped, paper-calibrated, paper-calibrated-v2 or paper-calibrated-v1."
 )
 OPT_NO_BUMPERS = typer.Option(
     False, "--no-bumpers", metavar=NO_METAVAR, help="With --preset: the NBs configuration."

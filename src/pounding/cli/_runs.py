@@ -225,7 +225,7 @@ def campaign(
     preset: Optional[str] = typer.Option(
         None,
         "--preset",
-        help="Built-in system for both configurations: paper-printed, paper-damped, paper-calibrated or paper-calibrated-v1.",
+        help="Built-in system for both configurations: paper-printed, paper-damped, paper-calibrated, paper-calibrated-v2 or paper-calibrated-v1.",
     ),
     nbs: Optional[Path] = OPT_NBS,
     ybs: Optional[Path] = OPT_YBS,
