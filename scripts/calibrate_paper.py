@@ -8,17 +8,21 @@ Family: the paper's 500 kg mass and 15 mm gaps; a kinematic isolator with four b
 branches (hardening allowed: MODEL.md §5 says the measured NBs accelerations need it),
 free C_d, and bumpers with a free law (Kelvin-Voigt by default, Hunt-Crossley, elastic-plastic or multi-linear).  Targets:
 ``pounding.paper_targets()`` (Tables 2-4, sweeps up, fixed 30 cycles per step as the lab).
-The shipped preset came from (about 4 minutes on 2 cores; docs/calibration.md)::
+The shipped preset came from (8 minutes on 2 cores; docs/calibration.md)::
 
-    python scripts/calibrate_paper.py --law multilinear --maxiter 40 --from-preset --free-gap
+    python scripts/calibrate_paper.py --law multilinear_kinematic --free-gap --loss misses \
+        --start scripts/starts/paper_kinematic_start.toml --maxiter 60 --seed 41
 
-and ``presets.paper_calibrated_v1()`` (Kelvin-Voigt bumpers) from ``--maxiter 40`` alone.
+``presets.paper_calibrated_v2()`` from ``--law multilinear --maxiter 40 --from-preset --free-gap``
+(least squares) and ``presets.paper_calibrated_v1()`` (Kelvin-Voigt bumpers) from ``--maxiter 40``
+alone.
 
 Options: ``--law hunt_crossley``, ``elastic_plastic``, ``multilinear`` (three slopes) or
 ``multilinear_kinematic`` (the same with Masing's loops), ``--free-gap`` (the gap free within
 +-3 mm of 15 mm: the D-shaped profile makes the effective gap uncertain), ``--popsize``,
-``--seed``, ``--workers``, ``--rtol`` (of a nonlinear law's integration), ``--out DIR`` (write
-elsewhere than the package data).
+``--seed``, ``--workers``, ``--rtol`` (of a nonlinear law's integration), ``--loss misses`` (a
+smooth count of the targets missed instead of least squares), ``--start TOML`` (start from that
+system), ``--out DIR`` (write elsewhere than the package data).
 """
 
 from __future__ import annotations
@@ -66,10 +70,12 @@ BUMPER_START["multilinear_kinematic"] = BUMPER_START["multilinear"]
 
 def preset_start(law: str) -> dict[str, float]:
     """A shipped preset's numbers as a start: its isolator, and its bumper where the law can be it
-    (the kinematic multi-linear law, and with --bouc-wen the elastic one: the elastic one's
-    preset, paper_calibrated(), gap and all)."""
+    (the kinematic multi-linear law: paper_calibrated(), gap and all; "multilinear_elastic" (with
+    --bouc-wen and --law multilinear): paper_calibrated_v2(), gap and all)."""
     if law == "multilinear_kinematic":
-        return pd_.ModelFamily(500.0, branches=4, law="multilinear").values_of(pd_.presets.paper_calibrated())
+        return pd_.ModelFamily(500.0, branches=4, law=law).values_of(pd_.presets.paper_calibrated())
+    if law == "multilinear_elastic":
+        return pd_.ModelFamily(500.0, branches=4, law="multilinear").values_of(pd_.presets.paper_calibrated_v2())
     kv = pd_.presets.paper_calibrated_v1()
     out = pd_.ModelFamily(500.0, branches=4, law="kelvin_voigt").values_of(kv)
     out.pop("gap")
@@ -94,10 +100,10 @@ def main() -> None:
     ap.add_argument("--free-gap", action="store_true", help="fit the gap within 12 to 18 mm")
     ap.add_argument("--bouc-wen", action="store_true",
                     help="a Bouc-Wen spring in the isolator (about 30 times the cost of each evaluation); with "
-                         "--from-preset and --law multilinear, from the shipped multi-linear preset")
+                         "--from-preset and --law multilinear, from paper_calibrated_v2")
     ap.add_argument("--from-preset", action="store_true",
-                    help="start from the shipped Kelvin-Voigt preset (its isolator; a multi-linear bumper of "
-                         "equal slopes, which is that preset exactly)")
+                    help="start from a shipped preset: paper_calibrated_v1's isolator (and bumper; a multi-linear "
+                         "bumper of equal slopes is it exactly), or for multilinear_kinematic paper_calibrated()")
     ap.add_argument("--loss", choices=("squared", "misses"), default="squared",
                     help="what the search minimises: least squares, or (misses) the targets missed, smoothly")
     ap.add_argument("--start", type=Path, default=None,
@@ -111,7 +117,7 @@ def main() -> None:
     x0 = {**START, **BUMPER_START[args.law], **({"gap": 0.015} if args.free_gap else {}),
           **(BOUC_WEN_START if args.bouc_wen else {})}
     if args.from_preset:
-        x0.update(preset_start("multilinear_kinematic" if args.bouc_wen and args.law == "multilinear"
+        x0.update(preset_start("multilinear_elastic" if args.bouc_wen and args.law == "multilinear"
                                else args.law))
         if not args.free_gap:
             x0.pop("gap", None)

@@ -123,7 +123,7 @@ def test_cli_reproduce_on_a_reduced_grid(tmp_path):
     assert (out / "index.html").is_file() and "Table 2" in result.output
     assert "paper-calibrated" in result.output  # the default preset
     said = " ".join(result.output.split())  # (the console wraps lines)
-    assert "verdict: preset paper-calibrated" in said and "meets 22 of 36 targets" in said
+    assert "verdict: preset paper-calibrated" in said and "meets 27 of 36 targets" in said
     beside = pd.read_csv(out / "targets.csv")  # the calibration targets, printed preset beside
     assert {"measured", "allowed", "paper-printed", "paper-calibrated", "paper-calibrated met"} <= set(beside.columns)
     stored = pd_.presets.paper_calibrated_residuals()
