@@ -297,3 +297,31 @@ def test_eta_is_compared_over_the_rigs_nominal_gap(tmp_path):
     with pytest.raises(pd_.InputError) as info:
         pd_.Targets.from_toml(path)
     assert info.value.field == "eta_gap_total_m"
+
+
+def test_targets_toml_of_the_docstring_and_nbs_eta_refused(tmp_path):
+    from pounding.identification import targets as targets_module
+
+    import textwrap
+
+    doc = targets_module.__doc__
+    example = textwrap.dedent(doc[doc.index("TARGETS.toml``)::") + len("TARGETS.toml``)::"):])
+    path = tmp_path / "t.toml"
+    path.write_text(example)
+    read = pd_.Targets.from_toml(path)
+    assert read.eta_gap_total_m == 0.03 and len(read) == 1
+    with pytest.raises(pd_.InputError) as info:
+        pd_.Targets.from_records([dict(configuration="NBs", a_g=0.05, quantity="eta", value=1.2)])
+    assert info.value.field == "target[0].quantity" and "YBs only" in str(info.value)
+
+
+def test_the_fit_says_its_loss_in_the_toml(tmp_path):
+    family = pd_.ModelFamily(500.0, 3, fixed={**PRINTED_BACKBONE, "bumper_stiffness": 1.46e6, "bumper_damping": 5.0})
+    targets = pd_.Targets.from_records([dict(configuration="NBs", a_g=0.05, quantity="alpha", value=2.5)])
+    fit = pd_.identify(targets, family, {"isolator_damping": (200.0, 3000.0)}, maxiter=0, refine=False,
+                       loss="misses", **FAST)
+    assert fit.loss == "misses"
+    import tomllib
+
+    meta = tomllib.loads(fit.to_toml(tmp_path / "fit.toml").read_text())["meta"]
+    assert meta["loss"] == "misses" and meta["targets_met"] == f"{fit.n_within} of 1"

@@ -1,5 +1,6 @@
 """``identify``: fit a model family's free numbers so that the simulated campaign matches
-measured targets (weighted least squares; differential evolution, then local refinement).
+measured targets (weighted least squares, or a smooth count of the targets missed;
+differential evolution, then local refinement).
 
 One evaluation runs every sweep the targets need (``Targets.cases``) with the candidate
 system and compares the per-sweep quantities (:func:`pounding.protocols.campaign.sweep_quantities`)
@@ -21,7 +22,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .._checks import boolean, integer, real
+from .._checks import boolean, integer, one_of, real
 from .._errors import InputError, Interrupted, Problem, Status
 from ..model import Oscillator
 from ..protocols._progress import Progress, progress_reporter
@@ -67,6 +68,8 @@ class Identification:
         the best candidate so far.
     family, bounds
         What was fitted.
+    loss : str
+        What was minimised (``identify``'s ``loss``).
     """
 
     parameters: dict[str, float]
@@ -79,6 +82,7 @@ class Identification:
     family: ModelFamily = field(repr=False)
     bounds: dict[str, tuple[float, float]] = field(repr=False)
     complete: bool = True
+    loss: str = "squared"
 
     @property
     def success(self) -> bool:
@@ -108,9 +112,10 @@ class Identification:
         """Write the fitted system (YBs) to TOML (read back with ``Oscillator.from_toml``).
 
         A ``[meta]`` table says how it was made: ``partial = true`` for an interrupted fit
-        (the best candidate so far), the cost, the evaluations and the targets met.
+        (the best candidate so far), the loss and its cost, the evaluations and the targets met.
         """
-        meta = {"written_by": "pounding identify", "partial": not self.complete, "cost": float(self.cost),
+        meta = {"written_by": "pounding identify", "partial": not self.complete, "loss": self.loss,
+                "cost": float(self.cost),
                 "evaluations": int(self.n_evaluations),
                 "targets_met": f"{self.n_within} of {len(self.residuals)}"}
         return self.oscillator.to_toml(path, meta=meta)
@@ -170,10 +175,11 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
         ``"squared"``: the sum of squared normalized residuals ``r`` (least squares).
         ``"misses"``: counts the targets missed, smoothly: each residual costs
         ``h^2 / (1 + h^2)`` with ``h = max(|r| - 0.9, 0)`` its excess over 90 % of the
-        tolerance (the margin keeps a met target from being traded for a hair less of a far
-        miss), nothing when met with that margin and at most 1 when far off.  It spends no
-        effort on targets out of reach (e.g. inconsistent ones), so it meets more targets than
-        least squares, which trades a met target for a smaller large miss.
+        tolerance: nothing within 0.9 tolerances, 0.01 just outside the tolerance, 1/2 at 1.9
+        and at most 1 far off.  A far miss costs about as much as any other, so the fit spends
+        no effort on targets out of reach (e.g. inconsistent ones) and meets more targets than
+        least squares, which trades a met target for a smaller large miss.  It is smooth, not
+        a step: a target just outside its tolerance costs little, and may be left there.
     **sweep_options
         :func:`pounding.sweep`'s options (default: fixed 30 cycles, last 5 measured).
 
@@ -201,8 +207,7 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     maxiter = integer("maxiter", maxiter, 0, MAX_EVALUATIONS)
     seed = integer("seed", seed, 0, 2**32 - 1)
     refine = boolean("refine", refine)
-    if loss not in LOSSES:
-        raise InputError(Problem.NOT_ONE_OF, "loss", loss, choices=", ".join(LOSSES))
+    loss = one_of("loss", loss, LOSSES)
     evaluations = (maxiter + 1) * popsize * len(names) + (40 * len(names) if refine else 0)
     if evaluations > MAX_EVALUATIONS:
         raise InputError(Problem.TOO_MUCH_WORK, "maxiter", maxiter, estimate=f"{evaluations:.3g}",
@@ -298,7 +303,7 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     if interrupted:
         message = "Interrupted: the best candidate so far. " + message
     result = Identification(params, osc, table, best["cost"], best["n"], Status.SUCCESS, message, family, bounds,
-                            complete=not interrupted)
+                            complete=not interrupted, loss=loss)
     if interrupted:
         raise Interrupted(result, best["n"], None, "evaluations")
     return result
@@ -352,7 +357,8 @@ def _model_column(targets: Targets, model: dict | None) -> np.ndarray:
     if model is None:
         return np.full(len(t), np.nan)
     delta = targets.eta_gap_total_m  # eta measured over the rig's nominal gap: the model's excursion over it
-    return np.array([model[(c, float(a), d)]["excursion_max_m"] / delta if q == "eta" and delta is not None
+    return np.array([model[(c, float(a), d)]["excursion_max_m"] / delta
+                     if q == "eta" and c == "YBs" and delta is not None
                      else model[(c, float(a), d)][q] for c, a, d, q in
                      t[["configuration", "a_g", "direction", "quantity"]].itertuples(index=False)], dtype=float)
 

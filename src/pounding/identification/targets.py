@@ -2,19 +2,19 @@
 
 A target is one quantity of one sweep: ``(configuration, a_g, direction, quantity)`` with
 the measured ``value`` and a ``tolerance``, absolute or relative to the value.  The fit
-minimises the sum of squared normalised residuals ``(model - value) / allowed``, where
-``allowed`` is the tolerance (times ``|value|`` when relative): a target is met when its
-residual is within +-1.
+works on the normalised residuals ``(model - value) / allowed``, where ``allowed`` is the
+tolerance (times ``|value|`` when relative): a target is met when its residual is within
++-1 (``pounding.identify``'s ``loss`` says what it minimises).
 
 TOML (``pounding identify TARGETS.toml``)::
+
+    eta_gap_total_m = 0.03   # optional: the Delta the measured eta was normalised by (below)
 
     [defaults]            # optional
     direction = "up"
 
     [tolerances]          # optional: per quantity, overrides DEFAULT_TOLERANCES
     alpha = {tolerance = 0.15, relative = true}
-
-    eta_gap_total_m = 0.03   # optional: the Delta the measured eta was normalised by (below)
 
     [[target]]
     configuration = "YBs"
@@ -91,9 +91,7 @@ class Targets:
 
     def __post_init__(self) -> None:
         if self.eta_gap_total_m is not None:
-            value = at_most("eta_gap_total_m", positive("eta_gap_total_m", self.eta_gap_total_m, "m"), 10.0,
-                            " m", "give the gap in m (30 mm is 0.03)")
-            object.__setattr__(self, "eta_gap_total_m", value)
+            object.__setattr__(self, "eta_gap_total_m", gap_total("eta_gap_total_m", self.eta_gap_total_m))
 
     def __len__(self) -> int:
         return len(self.table)
@@ -167,6 +165,10 @@ class Targets:
             if direction not in DIRECTIONS:
                 raise InputError(Problem.NOT_ONE_OF, f"{where}.direction", direction, choices=", ".join(DIRECTIONS))
             quantity = _known_quantity(f"{where}.quantity", rec["quantity"])
+            if conf == "NBs" and quantity == "eta":
+                raise InputError(Problem.NOT_ONE_OF, f"{where}.quantity", quantity,
+                                 choices="the NBs quantities (eta = E / Delta is YBs only: for NBs use e or "
+                                         "excursion_max_m)")
             a_g = at_most(f"{where}.a_g", positive(f"{where}.a_g", rec["a_g"], "g"), MAX_A_G, " g",
                           "a_g is in g: 0.05 is 5 % of g")
             value = real(f"{where}.value", rec["value"])
@@ -247,6 +249,11 @@ def paper_targets(direction: str = "up", quantities: tuple[str, ...] = PAPER_QUA
         records.append({"configuration": row.configuration, "a_g": float(row.a_g), "quantity": row.quantity,
                         "value": float(row.value), "direction": direction})
     return Targets.from_records(records, eta_gap_total_m=paper_gap_total_m())
+
+
+def gap_total(field: str, value: Any) -> float:
+    """A total gap ``Delta`` in m, checked (> 0, at most 10 m)."""
+    return at_most(field, positive(field, value, "m"), 10.0, " m", "give the gap in m (30 mm is 0.03)")
 
 
 def _known_quantity(field: str, quantity: Any) -> str:

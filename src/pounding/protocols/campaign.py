@@ -39,7 +39,7 @@ _DATA_COLUMNS = tuple(c for c in STEP_COLUMNS if c not in ("freq_hz", "nu")) + t
     f"{c}{s}" for s in ("_left", "_right") for c in SIDE_COLUMNS)
 
 
-TABLE2_QUANTITIES = ("nu_r", "alpha", "eta", "e", "contact_nu_min", "contact_nu_max")
+TABLE2_QUANTITIES = ("nu_r", "alpha", "eta", "e", "contact_nu_min", "contact_nu_max", "excursion_max_m")
 TABLE3_QUANTITIES = ("mean_force_over_mg", "contact_time_ms", "peak_force_over_mg")
 TABLE4_QUANTITIES = ("dissipated_energy_per_mass", "restitution")
 
@@ -113,7 +113,8 @@ class CampaignResult:
 
         One row per sweep: ``configuration``, ``a_g``, ``direction``, ``nu_r``, ``alpha``
         (max), ``eta`` (max E / Delta, YBs), ``e`` (max E / D_tmax), ``contact_nu_min``,
-        ``contact_nu_max`` (the contact range ``Delta nu_C``, NaN without contact).
+        ``contact_nu_max`` (the contact range ``Delta nu_C``, NaN without contact) and
+        ``excursion_max_m`` (max E, m).
         """
         return self._rows(TABLE2_QUANTITIES, yb_only=False)
 

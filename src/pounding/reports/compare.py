@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ..data import measured, paper_measurements
+from ..data import measured, paper_gap_total_m, paper_measurements
 from ..protocols.campaign import CampaignResult
 
 # per table: the quantities compared, as named in CampaignResult.tableN() and in the data
@@ -28,9 +28,13 @@ def comparison(result: CampaignResult, table: str) -> pd.DataFrame:
         ``<q>_measured``, ``<q>_diff`` (model - measured) and ``<q>_diff_pct`` (the difference
         in percent of the measured value, NaN where that is 0); rows only for the
         (configuration, a_g) pairs the paper measured.  Quantities whose printed scale is
-        unclear have NaN differences.
+        unclear have NaN differences.  The model's YBs ``eta`` is its largest excursion over
+        the rig's nominal gap (``paper_gap_total_m``), as the paper measured it, whatever the
+        model's own gap.
     """
     model = {"2": result.table2, "3": result.table3, "4": result.table4}[table]()
+    if table == "2":
+        model["eta"] = (model["excursion_max_m"] / paper_gap_total_m()).where(model["configuration"] == "YBs")
     meas = measured(table)
     merged = model.merge(meas, on=["configuration", "a_g"], how="inner", suffixes=("_model", "_measured"))
     out = merged[["configuration", "a_g", "direction"]].copy()

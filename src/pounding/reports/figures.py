@@ -43,20 +43,14 @@ def measured_value(quantity: str, configuration: str) -> pd.Series:
     return df.set_index("a_g")["value"]
 
 
-def total_gap_m(result: "CampaignResult") -> float:
-    """``Delta`` of the YBs system, or the paper's 0.03 m without one or at zero gap (normalizes
-    NBs too)."""
-    for (conf, _, _), sw in result.sweeps.items():
-        if conf == "YBs" and sw.total_gap_m > 0:
-            return sw.total_gap_m
-    return paper_gap_total_m()
-
-
 def steps(result: "CampaignResult") -> pd.DataFrame:
-    """Every finished step, long form, with ``e_gap`` = E / Delta for both configurations."""
+    """Every finished step, long form, with ``e_gap`` = E / Delta for both configurations and
+    ``eta`` = E / Delta for YBs, over the rig's nominal Delta (``paper_gap_total_m``, what the
+    measured eta is over), whatever the model's own gap."""
     df = result.dataset.to_dataframe().reset_index()
     df = df[df["ran"]].copy()
-    df["e_gap"] = df["excursion_m"] / total_gap_m(result)
+    df["e_gap"] = df["excursion_m"] / paper_gap_total_m()
+    df["eta"] = df["e_gap"].where(df["configuration"] == "YBs")
     return df
 
 

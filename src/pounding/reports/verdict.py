@@ -8,7 +8,6 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from ..data import paper_gap_total_m
 from ..identification import paper_targets
 from ..identification.consistency import CONSISTENCY_QUANTITIES
 
@@ -65,10 +64,10 @@ class Verdict:
 def verdict(residuals: pd.DataFrame) -> Verdict:
     """The verdict from a residual table of the paper's targets (``evaluate(system, paper_targets())``).
 
-    The consistency checks are the paper's measurements' own, with its mass and total gap.
+    The consistency checks are the paper's measurements' own, with its mass and its nominal total
+    gap (``paper_targets``' ``eta_gap_total_m``).
     """
-    gap = paper_gap_total_m()
-    consistency = paper_targets(quantities=CONSISTENCY_QUANTITIES).check_consistency(PAPER_MASS_KG, gap)
+    consistency = paper_targets(quantities=CONSISTENCY_QUANTITIES).check_consistency(PAPER_MASS_KG)
     bad = {(c, float(a), q) for c, a, q in
            consistency.loc[~consistency["consistent"], ["configuration", "a_g", "quantity"]].itertuples(index=False)}
     res = residuals.copy()
