@@ -3,7 +3,7 @@
 The public surface is re-exported here; modules with a leading underscore are private.
 """
 
-from . import data, presets
+from . import data, lab, presets
 from ._errors import InputError, Interrupted, PoundingWarning, Problem, Status
 from ._warm_up import WarmUp, warm_up
 from .engine import EnergyLedger, Run, State, simulate

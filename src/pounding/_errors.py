@@ -52,6 +52,14 @@ class Problem(enum.Enum):
     MISSING_INPUT = ("is missing", "give {what}")
     NO_FIT = ("{why}", "{fix}")
     SIZE_MISMATCH = ("has {got} values but {expected} are needed", "give one value per sample of {other}")
+    BAD_CELL = ("line {line}, column {column}: {token!r} is not a number", "correct or remove that line{hint}")
+    SHORT_LINE = ("line {line} has {got} fields, but column {column} is asked for",
+                  "complete or remove that line (a truncated file?), or check the delimiter")
+    FIELD_COUNT = ("line {line} has {got} fields where the {first} has {expected}",
+                   "check that line (a decimal comma, a stray delimiter?); every line needs the same fields")
+    NO_COLUMN = ("names no column of the file", "use one of {choices}")
+    TIME_NOT_INCREASING = ("does not increase at {where} ({before!r} then {after!r})",
+                           "sort the samples by time and remove repeated ones")
     TOO_FEW_IN_CONTACT = ("has {got} samples in compression", "give at least {expected} samples with "
                           "compression > 0 (displacement is the bumper's compression, m)")
 
