@@ -53,6 +53,8 @@ class LabRecord:
         Gaps in time: ``start_s``, ``end_s``, ``missing_samples`` (at the median rate).
     nan_runs : DataFrame
         Runs of missing values: ``channel``, ``start_s``, ``end_s``, ``samples``.
+    meta : dict
+        What is known of the test besides the samples (a synthetic test's schedule and sensors).
     """
 
     time_s: np.ndarray
@@ -63,6 +65,7 @@ class LabRecord:
     source: str = "arrays"
     gaps: pd.DataFrame = field(default=None, repr=False)  # type: ignore[assignment]
     nan_runs: pd.DataFrame = field(default=None, repr=False)  # type: ignore[assignment]
+    meta: dict = field(default_factory=dict, repr=False)
 
     def __post_init__(self) -> None:
         t = np.asarray(self.time_s, dtype=float)

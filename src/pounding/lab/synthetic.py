@@ -1,0 +1,174 @@
+"""A virtual shaking-table test: the simulator's exact motion through realistic sensors (issue 17).
+
+:func:`synthetic_test` runs a stepped sine on a system (each frequency held for a number of
+cycles, the state carried from step to step, as :func:`pounding.sweep` does with a fixed
+schedule) and records it as a lab would: the engine's exact histories at ``oversample`` times
+the sampling rate, an analogue anti-alias filter (a causal Butterworth low-pass, as a data
+acquisition card applies it), sampling, accelerometer gain errors and offsets, noise and the
+laser's resolution.  It is how the lab pipeline is tested, and how a test is planned (which
+sampling rate resolves a 10 ms contact?).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+from .._checks import float_array, integer, non_negative, plausible, positive, real_tuple
+from .._errors import InputError, Problem
+from ..engine import State, simulate
+from ..excitation import MAX_A_G, Harmonic, STANDARD_GRAVITY
+from ..model import Oscillator
+from .record import LabRecord
+
+ANTI_ALIAS_ORDER = 4  # poles of the Butterworth anti-alias filter
+MAX_OUTPUT_SAMPLES = 50_000_000  # a recording longer than this is refused (memory grows with it)
+
+
+def synthetic_test(oscillator: Oscillator, a_g: float, freqs_hz: Any, *, cycles: int = 30,
+                   sample_rate_hz: float = 1000.0, noise: float = 0.01, anti_alias_hz: float | None = None,
+                   gains: Any = (1.0, 1.0), offsets_m_s2: Any = None, laser_resolution_m: float = 0.0,
+                   oversample: int = 10, seed: int = 0, state: State | None = None,
+                   g: float = STANDARD_GRAVITY) -> LabRecord:
+    """Record a stepped-sine test of ``oscillator`` through realistic sensors.
+
+    Parameters
+    ----------
+    oscillator : Oscillator
+        The system on the table.
+    a_g : float
+        Table acceleration amplitude, g.
+    freqs_hz : array_like, shape (n_steps,)
+        The steps in the order they are run, Hz.
+    cycles : int
+        Cycles per step (each step lasts ``cycles / f`` rounded to the internal sampling).
+    sample_rate_hz : float
+        The recording's sampling rate, Hz.
+    noise : float
+        Gaussian noise on every channel, its standard deviation a fraction of the channel's
+        largest absolute value over the record (0.01: 1 %).
+    anti_alias_hz : float, optional
+        Corner of the anti-alias low-pass (order 4 Butterworth, causal); default none (ideal
+        sampling).  Must be below half the internal rate.
+    gains : sequence of float
+        One per accelerometer on the mass (their number): the factor each one's reading is off
+        by (1.02: reads 2 % high).
+    offsets_m_s2 : sequence of float, optional
+        Each accelerometer's zero offset, m/s^2 (default 0).
+    laser_resolution_m : float
+        The displacement's quantum, m (0: none).
+    oversample : int
+        The engine's histories are taken at this many times ``sample_rate_hz`` before
+        filtering and sampling.
+    seed : int
+        Of the noise.
+    state : State, optional
+        Where the test starts (default at rest).
+    g : float
+        m/s^2 per g.
+
+    Returns
+    -------
+    LabRecord
+        ``source`` "synthetic"; ``meta`` holds the schedule (``freqs_hz``, ``step_start_s``), ``a_g``,
+        ``g`` and the sensor settings.
+    """
+    if not isinstance(oscillator, Oscillator):
+        raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator, got=type(oscillator).__name__,
+                         expected="pounding.Oscillator")
+    a_g = positive("a_g", a_g, "g")
+    if a_g > MAX_A_G:
+        raise InputError(Problem.TOO_LARGE, "a_g", a_g, maximum=MAX_A_G, what=" g",
+                         fix="a_g is in g: 0.05 is 5 % of g")
+    freqs = float_array("freqs_hz", freqs_hz)
+    if (freqs <= 0.0).any():
+        i = int(np.flatnonzero(freqs <= 0.0)[0])
+        raise InputError(Problem.NOT_POSITIVE, f"freqs_hz[{i}]", freqs[i], unit="Hz")
+    cycles = integer("cycles", cycles, 1, 100_000)
+    fs = positive("sample_rate_hz", sample_rate_hz, "Hz")
+    oversample = integer("oversample", oversample, 1, 1000)
+    fs_int = fs * oversample
+    noise = non_negative("noise", noise, "(a fraction of each channel's peak)")
+    plausible("noise", noise, 0.0, 0.2, "noise is a fraction: 0.01 is 1 %")
+    gains_t = real_tuple("gains", gains)
+    if not gains_t:
+        raise InputError(Problem.EMPTY, "gains", gains)
+    for i, k in enumerate(gains_t):
+        positive(f"gains[{i}]", k, "(a factor, 1 for an exact accelerometer)")
+    offsets_t = (0.0,) * len(gains_t) if offsets_m_s2 is None else real_tuple("offsets_m_s2", offsets_m_s2)
+    if len(offsets_t) != len(gains_t):
+        raise InputError(Problem.LENGTH_MISMATCH, "offsets_m_s2", offsets_m_s2, got=len(offsets_t),
+                         expected=len(gains_t), hint=" (one per accelerometer, as gains)")
+    resolution = non_negative("laser_resolution_m", laser_resolution_m, "m")
+    if anti_alias_hz is not None:
+        anti_alias_hz = positive("anti_alias_hz", anti_alias_hz, "Hz")
+        if anti_alias_hz >= 0.5 * fs_int:
+            raise InputError(Problem.OUT_OF_RANGE, "anti_alias_hz", anti_alias_hz,
+                             range=f"(0, {0.5 * fs_int:g}) Hz, below half the internal rate",
+                             hint=" (raise oversample, or lower the corner)")
+    seed = integer("seed", seed, 0, 2**32 - 1)
+    g = positive("g", g, "m/s^2")
+    steps_int = [int(round(cycles / f * fs_int)) for f in freqs]
+    if sum(steps_int) / oversample > MAX_OUTPUT_SAMPLES:
+        raise InputError(Problem.TOO_MUCH_WORK, "freqs_hz", f"{freqs.size} steps",
+                         estimate=f"{sum(steps_int) / oversample:.3g}", unit="samples",
+                         budget=f"{MAX_OUTPUT_SAMPLES:.3g}", fix="fewer steps or cycles, or a lower sample_rate_hz")
+    if state is None:
+        state = State.at_rest(oscillator)
+    elif not isinstance(state, State):
+        raise InputError(Problem.WRONG_TYPE, "state", state, got=type(state).__name__, expected="pounding.State")
+
+    sos = zi = None
+    if anti_alias_hz is not None:
+        from scipy import signal
+
+        sos = signal.butter(ANTI_ALIAS_ORDER, anti_alias_hz, fs=fs_int, output="sos")
+        zi = np.zeros((sos.shape[0], 3, 2))  # sections x (table, mass, displacement) x 2: filters at rest
+    rng = np.random.default_rng(seed)
+    t0 = float(state.vector[0])
+    parts: list[np.ndarray] = []
+    starts = []
+    m_next = 0  # internal samples so far (the record keeps every oversample-th)
+    for k, (f, n_int) in enumerate(zip(freqs, steps_int)):
+        t_start = t0 + m_next / fs_int
+        starts.append(t_start)
+        exc = Harmonic(a_g, float(f), phase=-(2.0 * math.pi * f * t_start), g=g)
+        run = simulate(oscillator, exc, n_int / fs_int, state, sample_rate_hz=fs_int)
+        if not run.success:
+            raise InputError(Problem.BAD_STATE, "oscillator", oscillator, why=f"the step at {f:g} Hz failed: "
+                             f"{run.message}", fix="check the system; a shorter or milder test may run")
+        uniform = run.to_dataframe()["event"].to_numpy() == ""
+        t = run.t[uniform]
+        last = k == freqs.size - 1
+        keep = slice(0, t.size if last else t.size - 1)  # (the next step starts at this one's last sample)
+        block = np.vstack([exc.peak_m_s2 * np.sin(2.0 * math.pi * f * t + exc.phase),
+                           run.abs_acceleration[uniform], run.displacement[uniform]])[:, keep]
+        t = t[keep]
+        if sos is not None:
+            from scipy import signal
+
+            block, zi = signal.sosfilt(sos, block, axis=1, zi=zi)
+        take = (np.arange(m_next, m_next + t.size) % oversample) == 0
+        parts.append(np.vstack([t[take], block[:, take]]))
+        m_next += t.size
+        state = run.final_state
+    data = np.hstack(parts)
+    time_s = t0 + np.arange(data.shape[1]) / fs  # the sampling clock (data[0]: the engine's, the same)
+    table, mass, disp = data[1], data[2], data[3]
+
+    def noisy(x: np.ndarray) -> np.ndarray:
+        scale = noise * float(np.max(np.abs(x))) if x.size else 0.0
+        return x + rng.normal(0.0, scale, x.size) if scale > 0.0 else x.copy()
+
+    table_rec = noisy(table)
+    mass_rec = np.column_stack([noisy(k * mass + o) for k, o in zip(gains_t, offsets_t)])
+    disp_rec = noisy(disp)
+    if resolution > 0.0:
+        disp_rec = np.round(disp_rec / resolution) * resolution
+    channels = tuple(f"accelerometer_{j + 1}" for j in range(len(gains_t)))
+    meta = {"freqs_hz": freqs.copy(), "step_start_s": np.array(starts), "cycles": cycles, "a_g": a_g, "g": g,
+            "sample_rate_hz": fs, "noise": noise, "anti_alias_hz": anti_alias_hz, "gains": gains_t,
+            "offsets_m_s2": offsets_t, "laser_resolution_m": resolution, "seed": seed}
+    return LabRecord(time_s, table_rec, mass_rec, disp_rec, channels, source="synthetic", meta=meta)
