@@ -49,7 +49,7 @@ def test_gains_offsets_noise_and_the_lasers_resolution():
     assert np.abs(rec.displacement_m - clean.displacement_m).max() <= 0.5e-5 + 1e-12
     noisy = synthetic_test(OSC, A_G, FREQS[:1], cycles=5, noise=0.01, gains=(1.0,), seed=3)
     err = noisy.mass_acc_m_s2[:, 0] - exact
-    assert err.std() == pytest.approx(0.01 * np.abs(exact).max(), rel=0.05)
+    assert err.std() == pytest.approx(0.01 * np.abs(exact[3 * exact.size // 4:]).max(), rel=0.05)  # (settled)
     again = synthetic_test(OSC, A_G, FREQS[:1], cycles=5, noise=0.01, gains=(1.0,), seed=3)
     assert np.array_equal(again.mass_acc_m_s2, noisy.mass_acc_m_s2)
     assert not np.array_equal(synthetic_test(OSC, A_G, FREQS[:1], cycles=5, noise=0.01, gains=(1.0,),

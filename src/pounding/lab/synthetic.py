@@ -48,7 +48,8 @@ def synthetic_test(oscillator: Oscillator, a_g: float, freqs_hz: Any, *, cycles:
         The recording's sampling rate, Hz.
     noise : float
         Gaussian noise on every channel, its standard deviation a fraction of the channel's
-        largest absolute value over the record (0.01: 1 %).
+        largest absolute value over the last quarter of each step (0.01: 1 % of what the sensor
+        reads once the step has settled).
     anti_alias_hz : float, optional
         Corner of the anti-alias low-pass (order 4 Butterworth, causal); default none (ideal
         sampling).  Must be below half the internal rate.
@@ -151,20 +152,15 @@ def synthetic_test(oscillator: Oscillator, a_g: float, freqs_hz: Any, *, cycles:
 
             block, zi = signal.sosfilt(sos, block, axis=1, zi=zi)
         take = (np.arange(m_next, m_next + t.size) % oversample) == 0
-        parts.append(np.vstack([t[take], block[:, take]]))
+        table, mass, disp = block[:, take]
+        parts.append(np.vstack([_noisy(table, noise, rng),
+                                *(_noisy(gain * mass + o, noise, rng) for gain, o in zip(gains_t, offsets_t)),
+                                _noisy(disp, noise, rng)]))
         m_next += t.size
         state = run.final_state
     data = np.hstack(parts)
-    time_s = t0 + np.arange(data.shape[1]) / fs  # the sampling clock (data[0]: the engine's, the same)
-    table, mass, disp = data[1], data[2], data[3]
-
-    def noisy(x: np.ndarray) -> np.ndarray:
-        scale = noise * float(np.max(np.abs(x))) if x.size else 0.0
-        return x + rng.normal(0.0, scale, x.size) if scale > 0.0 else x.copy()
-
-    table_rec = noisy(table)
-    mass_rec = np.column_stack([noisy(k * mass + o) for k, o in zip(gains_t, offsets_t)])
-    disp_rec = noisy(disp)
+    time_s = t0 + np.arange(data.shape[1]) / fs  # the sampling clock
+    table_rec, mass_rec, disp_rec = data[0], data[1:-1].T, data[-1]
     if resolution > 0.0:
         disp_rec = np.round(disp_rec / resolution) * resolution
     channels = tuple(f"accelerometer_{j + 1}" for j in range(len(gains_t)))
@@ -172,3 +168,9 @@ def synthetic_test(oscillator: Oscillator, a_g: float, freqs_hz: Any, *, cycles:
             "sample_rate_hz": fs, "noise": noise, "anti_alias_hz": anti_alias_hz, "gains": gains_t,
             "offsets_m_s2": offsets_t, "laser_resolution_m": resolution, "seed": seed}
     return LabRecord(time_s, table_rec, mass_rec, disp_rec, channels, source="synthetic", meta=meta)
+
+
+def _noisy(x: np.ndarray, noise: float, rng: np.random.Generator) -> np.ndarray:
+    """``x`` plus Gaussian noise of ``noise`` times its largest absolute value over its last quarter."""
+    scale = noise * float(np.max(np.abs(x[3 * x.size // 4:]))) if x.size else 0.0
+    return x + rng.normal(0.0, scale, x.size) if scale > 0.0 else x.copy()

@@ -1,0 +1,218 @@
+"""From a stepped-sine recording to the paper's measurements (issue 17): ``analyse_stepped_sine``.
+
+The method, step by step (each a SciPy tool, not a hand-written one):
+
+1. **Cycles.** The table's acceleration, low-passed without phase (``sosfiltfilt``, a Butterworth
+   at :data:`TABLE_LOWPASS_FACTOR` times the highest step frequency), crosses zero upwards once a
+   cycle; a crossing counts only after the signal went below minus a third of its amplitude (a
+   Schmitt trigger: noise near zero makes no extra cycles), its instant interpolated linearly.
+2. **Steps.** Consecutive cycles of the same frequency (within :data:`STEP_RTOL`, or nearest the
+   same frequency of a given schedule) form a step.  The step's table amplitude ``A_t`` and
+   frequency come from a least-squares sine fit to its table acceleration.
+3. **Window.** The last ``measure_cycles`` whole cycles of each step; ``steady`` when their
+   excursions agree within ``steady_rtol`` (the sweep's periodicity criterion on the measured
+   cycle peaks, with a noise floor).
+4. **Peaks.** The signals smoothed by a cubic Savitzky-Golay filter :data:`SMOOTH_S` wide
+   (``savgol_filter``: the noise down, a 10 ms contact pulse kept); each cycle's largest
+   ``|a|`` (per accelerometer and of their mean) and its displacement extremes, between the
+   samples by the parabola through the three around each; alpha is the largest over the
+   window over ``A_t``, ``E`` the largest ``D_max`` less the smallest ``D_min`` (what the sweep
+   measures on the simulator's exact histories).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from .._checks import float_array, integer, non_negative, positive
+from .._errors import InputError, Problem
+from ..protocols.sweep import PAPER_F_REF_HZ, PAPER_OMEGA_MIN_RAD_S
+from .lab_sweep import LabSweep
+from .record import LabRecord
+
+TABLE_LOWPASS_FACTOR = 5.0  # the table signal's low-pass corner, times the highest step frequency
+SCHMITT = 1.0 / 3.0  # a zero crossing counts after the signal went below -SCHMITT x its amplitude
+STEP_RTOL = 0.03  # cycles within 3 % in frequency belong to one step
+SMOOTH_S = 0.010  # the Savitzky-Golay window: 10 ms (a 1 kHz record: 11 samples)
+STEADY_NOISE_FLOOR = 3.0  # steadiness tolerates this many noise standard deviations
+
+
+def table_cycles(time_s: np.ndarray, table: np.ndarray, f_max_hz: float) -> np.ndarray:
+    """Instants (s) where the table's acceleration crosses zero upwards, one per cycle."""
+    from scipy import signal
+
+    fs = 1.0 / float(np.median(np.diff(time_s)))
+    corner = min(TABLE_LOWPASS_FACTOR * f_max_hz, 0.45 * fs)
+    x = signal.sosfiltfilt(signal.butter(4, corner, fs=fs, output="sos"), np.nan_to_num(table))
+    level = SCHMITT * float(np.percentile(np.abs(x), 99))
+    out = []
+    armed = False
+    for i in range(1, x.size):  # (a Schmitt trigger: a loop over samples, bounded by the record)
+        if x[i] < -level:
+            armed = True
+        elif armed and x[i - 1] < 0.0 <= x[i]:
+            out.append(time_s[i - 1] + (time_s[i] - time_s[i - 1]) * (-x[i - 1]) / (x[i] - x[i - 1]))
+            armed = False
+    return np.asarray(out)
+
+
+def _steps(crossings: np.ndarray, freqs_hz: np.ndarray | None) -> list[tuple[int, int]]:
+    """Runs of cycles ``[i0, i1)`` (indices into the cycles between crossings) of one frequency."""
+    f = 1.0 / np.diff(crossings)
+    if freqs_hz is not None:
+        label = np.abs(f[:, None] / freqs_hz[None, :] - 1.0).argmin(axis=1)
+        near = np.abs(f / freqs_hz[label] - 1.0) <= 0.1
+        label = np.where(near, label, -1)
+    else:
+        label = np.empty(f.size, dtype=int)
+        current, start = 0, 0
+        for i in range(f.size):
+            if i > start and abs(f[i] / np.median(f[start:i]) - 1.0) > STEP_RTOL:
+                current, start = current + 1, i
+            label[i] = current
+    runs = []
+    i = 0
+    while i < f.size:
+        j = i
+        while j < f.size and label[j] == label[i]:
+            j += 1
+        if label[i] >= 0:
+            runs.append((i, j))
+        i = j
+    return runs
+
+
+def _sine_fit(t: np.ndarray, x: np.ndarray, f: float) -> tuple[float, float]:
+    """Least-squares ``x ~ a sin + b cos + c`` at ``f``, refined in frequency: (amplitude, frequency)."""
+    from scipy.optimize import least_squares
+
+    ok = np.isfinite(x)
+    t, x = t[ok] - t[ok][0], x[ok]
+
+    def resid(p):
+        w = 2.0 * math.pi * p[3]
+        return p[0] * np.sin(w * t) + p[1] * np.cos(w * t) + p[2] - x
+
+    w = 2.0 * math.pi * f
+    design = np.column_stack([np.sin(w * t), np.cos(w * t), np.ones_like(t)])
+    a, b, c = np.linalg.lstsq(design, x, rcond=None)[0]
+    fit = least_squares(resid, [a, b, c, f], x_scale=[abs(a) + abs(b) + 1e-12] * 3 + [f])
+    return float(math.hypot(fit.x[0], fit.x[1])), float(fit.x[3])
+
+
+def _smooth(x: np.ndarray, fs: float) -> np.ndarray:
+    """A Savitzky-Golay smoothing (cubic, :data:`SMOOTH_S` wide): noise down, short peaks kept."""
+    from scipy import signal
+
+    n = max(5, 2 * int(round(0.5 * SMOOTH_S * fs)) + 1)
+    if n >= x.size:
+        return x.copy()
+    return signal.savgol_filter(np.nan_to_num(x), n, 3)
+
+
+def _peak(t: np.ndarray, x: np.ndarray, i: int) -> float:
+    """The extreme of the smoothed ``x`` at its sample ``i``, between the samples: the vertex of the
+    parabola through ``i - 1, i, i + 1``."""
+    if i == 0 or i == x.size - 1:
+        return float(x[i])
+    y0, y1, y2 = x[i - 1], x[i], x[i + 1]
+    den = y0 - 2.0 * y1 + y2
+    if den == 0.0:
+        return float(y1)
+    shift = 0.5 * (y0 - y2) / den
+    return float(y1 - 0.25 * (y0 - y2) * shift) if abs(shift) <= 1.0 else float(y1)
+
+
+def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: float | None = None,
+                         freqs_hz: Any = None, measure_cycles: int = 5, steady_rtol: float = 0.02,
+                         f_ref_hz: float = PAPER_F_REF_HZ, omega_min_rad_s: float = PAPER_OMEGA_MIN_RAD_S,
+                         g: float = 9.81) -> LabSweep:
+    """Per step of a stepped-sine recording, the paper's Table 2 quantities (see the module's method).
+
+    Parameters
+    ----------
+    record : LabRecord
+    mass_kg : float
+        The mass on the table, kg.
+    gap_total_m : float, optional
+        ``Delta = g_L + g_R``, m (YBs): gives ``eta``.
+    freqs_hz : array_like, optional
+        The schedule's frequencies (each cycle is given the nearest within 10 %); default: found
+        from the table signal.
+    measure_cycles : int
+        Whole cycles at the end of each step that are measured.
+    steady_rtol : float
+        How far the window's cycle excursions may differ (relative) for ``steady``.
+    f_ref_hz, omega_min_rad_s, g : float
+        ``nu = f / f_ref``; ``e = E / D_tmax`` with ``D_tmax = A_t / omega_min^2``; m/s^2 per g.
+
+    Returns
+    -------
+    LabSweep
+        Its ``steps``: one row per step in the order run: ``freq_hz``, ``nu``, ``a_g`` (the fitted table
+        amplitude, g), ``alpha`` (of the accelerometers' mean) and ``alpha_<channel>``,
+        ``excursion_m``, ``displacement_max_m``, ``displacement_min_m``, ``eta``, ``e``,
+        ``steady``, ``cycles_run``, ``window_start_s``, ``window_end_s``.
+    """
+    if not isinstance(record, LabRecord):
+        raise InputError(Problem.WRONG_TYPE, "record", record, got=type(record).__name__,
+                         expected="pounding.lab.LabRecord (read_test or synthetic_test)")
+    mass_kg = positive("mass_kg", mass_kg, "kg")
+    gap = None if gap_total_m is None else positive("gap_total_m", gap_total_m, "m")
+    sched = None if freqs_hz is None else float_array("freqs_hz", freqs_hz)
+    if sched is not None and (sched <= 0.0).any():
+        raise InputError(Problem.NOT_POSITIVE, "freqs_hz", freqs_hz, unit="Hz")
+    measure_cycles = integer("measure_cycles", measure_cycles, 1, 10_000)
+    steady_rtol = non_negative("steady_rtol", steady_rtol, "(relative)")
+    f_ref_hz = positive("f_ref_hz", f_ref_hz, "Hz")
+    omega_min_rad_s = positive("omega_min_rad_s", omega_min_rad_s, "rad/s")
+    g = positive("g", g, "m/s^2")
+    t, table = record.time_s, record.table_acc_m_s2
+    f_max = float(sched.max()) if sched is not None else 0.45 * record.sample_rate_hz / TABLE_LOWPASS_FACTOR
+    crossings = table_cycles(t, table, f_max)
+    if crossings.size < measure_cycles + 2:
+        raise InputError(Problem.TOO_SHORT, "record", f"{crossings.size} table cycles", got=crossings.size,
+                         expected=measure_cycles + 2)
+    fs = record.sample_rate_hz
+    acc = np.column_stack([_smooth(a, fs) for a in np.column_stack([record.mass_acc_mean_m_s2,
+                                                                    record.mass_acc_m_s2]).T])
+    disp = _smooth(record.displacement_m, fs)
+    names = ("alpha", *(f"alpha_{c}" for c in record.mass_channels))
+    rows = []
+    for i0, i1 in _steps(crossings, sched):
+        n_cyc = i1 - i0
+        if n_cyc < measure_cycles + 1:  # (the first cycle of a step is a transient)
+            continue
+        s0, s1 = crossings[i0], crossings[i1]
+        in_step = (t >= s0) & (t < s1)
+        amp, f = _sine_fit(t[in_step], table[in_step], 1.0 / float(np.median(np.diff(crossings[i0:i1 + 1]))))
+        if sched is not None:
+            f = float(sched[np.abs(sched / f - 1.0).argmin()])
+        peaks = np.empty((measure_cycles, acc.shape[1]))
+        dmax = np.empty(measure_cycles)
+        dmin = np.empty(measure_cycles)
+        for k, c in enumerate(range(i1 - measure_cycles, i1)):
+            w = np.flatnonzero((t >= crossings[c]) & (t < crossings[c + 1]))
+            for j in range(acc.shape[1]):
+                peaks[k, j] = abs(_peak(t, acc[:, j], int(w[int(np.argmax(np.abs(acc[w, j])))])))
+            dmax[k] = _peak(t, disp, int(w[int(np.argmax(disp[w]))]))
+            dmin[k] = _peak(t, disp, int(w[int(np.argmin(disp[w]))]))
+        exc = dmax - dmin
+        excursion = float(dmax.max() - dmin.min())  # (over the window, as the sweep measures it)
+        spread = float(exc.max() - exc.min()) / excursion if excursion > 0.0 else 0.0
+        noise = float(np.nanstd(np.diff(record.displacement_m[in_step]))) / math.sqrt(2.0)  # (white noise)
+        row = {"freq_hz": f, "nu": f / f_ref_hz, "a_g": amp / g}
+        row.update({name: float(peaks[:, j].max()) / amp for j, name in enumerate(names)})
+        row.update({"excursion_m": excursion, "displacement_max_m": float(dmax.max()),
+                    "displacement_min_m": float(dmin.min()),
+                    "eta": excursion / gap if gap is not None else math.nan,
+                    "e": excursion / (amp / omega_min_rad_s ** 2),
+                    "steady": bool(spread <= steady_rtol + STEADY_NOISE_FLOOR * noise / max(excursion, 1e-300)),
+                    "cycles_run": n_cyc, "window_start_s": float(crossings[i1 - measure_cycles]),
+                    "window_end_s": float(s1)})
+        rows.append(row)
+    return LabSweep(pd.DataFrame(rows), record, mass_kg, gap, f_ref_hz)

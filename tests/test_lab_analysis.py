@@ -1,0 +1,64 @@
+"""analyse_stepped_sine (issue 17): a synthetic shaking-table test of a preset, through realistic
+sensors, gives back the simulator's Table 2 quantities."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import pounding as pd_
+from pounding.lab import LabSweep, analyse_stepped_sine, synthetic_test
+
+FREQS = np.round(np.arange(1.0, 3.01, 0.1), 10)
+SENSORS = dict(sample_rate_hz=1000.0, noise=0.01, anti_alias_hz=200.0, gains=(1.02, 0.98),
+               laser_resolution_m=1e-5)
+
+
+@pytest.mark.parametrize("configuration, a_g, seed", [("NBs", 0.05, 1), ("NBs", 0.1, 2), ("YBs", 0.05, 3),
+                                                      ("YBs", 0.1, 4)])
+def test_synthetic_tests_give_back_the_simulators_quantities(configuration, a_g, seed):
+    osc = pd_.presets.paper_damped(bumpers=configuration == "YBs")
+    rec = synthetic_test(osc, a_g, FREQS, cycles=30, seed=seed, **SENSORS)
+    gap = 0.03 if configuration == "YBs" else None
+    lab = analyse_stepped_sine(rec, mass_kg=500.0, gap_total_m=gap, freqs_hz=FREQS)
+    sim = pd_.sweep(osc, a_g, FREQS, "up", steady="fixed", cycles=30, measure_cycles=5).to_dataframe()
+    df = lab.to_dataframe()
+    assert isinstance(lab, LabSweep) and list(df["freq_hz"]) == list(FREQS)
+    np.testing.assert_allclose(df["a_g"], a_g, rtol=0.005)  # (1 % noise on the table channel)
+    # the gains average out (1.02 and 0.98): the mean of the accelerometers is the mass's
+    np.testing.assert_allclose(df["alpha"], sim["alpha"], rtol=0.02)
+    np.testing.assert_allclose(df["e"], sim["e"], rtol=0.02)
+    if gap is not None:
+        np.testing.assert_allclose(df["eta"], sim["eta"], rtol=0.02)
+    else:
+        assert df["eta"].isna().all()
+    # each accelerometer reads its gain (within its own 1 % noise)
+    np.testing.assert_allclose(df["alpha_accelerometer_1"] / df["alpha"], 1.02, rtol=0.02)
+    sw = pd_.sweep(osc, a_g, FREQS, "up", steady="fixed", cycles=30, measure_cycles=5)
+    assert lab.resonance_hz == sw.resonance_hz and lab.nu_r == pytest.approx(sw.nu_r)
+    assert lab.a_g == pytest.approx(a_g, rel=0.005)
+
+
+def test_the_steps_are_found_without_the_schedule():
+    osc = pd_.presets.paper_damped(bumpers=False)
+    freqs = [0.8, 1.0, 1.3, 1.7, 2.2]
+    rec = synthetic_test(osc, 0.05, freqs, cycles=30, seed=5, **SENSORS)
+    found = analyse_stepped_sine(rec, mass_kg=500.0, measure_cycles=5).to_dataframe()
+    np.testing.assert_allclose(found["freq_hz"], freqs, rtol=2e-3)
+    given = analyse_stepped_sine(rec, mass_kg=500.0, freqs_hz=freqs, measure_cycles=5).to_dataframe()
+    # (the table low-pass corner follows the highest frequency known, so the crossings, and the window
+    # of the table amplitude fit, move by a fraction of a sample)
+    np.testing.assert_allclose(found["alpha"], given["alpha"], rtol=1e-5)
+    assert (given["cycles_run"] >= 28).all() and given["steady"].all()
+
+
+def test_bad_arguments_are_named():
+    osc = pd_.presets.paper_damped(bumpers=False)
+    rec = synthetic_test(osc, 0.05, [1.0, 1.2], cycles=8, noise=0.0, gains=(1.0,))
+    for kwargs, field in (({"record": rec.to_dataframe()}, "record"), ({"mass_kg": 0.0}, "mass_kg"),
+                          ({"gap_total_m": -0.03}, "gap_total_m"), ({"freqs_hz": [1.0, -1.2]}, "freqs_hz"),
+                          ({"measure_cycles": 0}, "measure_cycles"), ({"steady_rtol": -1.0}, "steady_rtol"),
+                          ({"measure_cycles": 50}, "record")):
+        with pytest.raises(pd_.InputError) as info:
+            analyse_stepped_sine(**{"record": rec, "mass_kg": 500.0, **kwargs})
+        assert info.value.field == field, (kwargs, info.value.field)
