@@ -31,6 +31,7 @@ import pandas as pd
 from .._checks import float_array, integer, non_negative, positive
 from .._errors import InputError, Problem
 from ..protocols.sweep import PAPER_F_REF_HZ, PAPER_OMEGA_MIN_RAD_S
+from .contacts import FLIGHT_FIT_S, IMPACT_COLUMNS, window_contacts
 from .lab_sweep import LabSweep
 from .record import LabRecord
 
@@ -183,6 +184,7 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
     disp = _smooth(record.displacement_m, fs)
     names = ("alpha", *(f"alpha_{c}" for c in record.mass_channels))
     rows = []
+    impacts = []
     for i0, i1 in _steps(crossings, sched):
         n_cyc = i1 - i0
         if n_cyc < measure_cycles + 1:  # (the first cycle of a step is a transient)
@@ -214,5 +216,16 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
                     "steady": bool(spread <= steady_rtol + STEADY_NOISE_FLOOR * noise / max(excursion, 1e-300)),
                     "cycles_run": n_cyc, "window_start_s": float(crossings[i1 - measure_cycles]),
                     "window_end_s": float(s1)})
+        if gap is not None:
+            w0 = row["window_start_s"]
+            win = (t >= w0 - FLIGHT_FIT_S) & (t < s1 + FLIGHT_FIT_S)  # (the flight beside the window's contacts)
+            found = window_contacts(t[win], record.displacement_m[win], disp[win], acc[win, 0], table[win],
+                                    mass_kg, 0.5 * gap, fs, (w0, s1))
+            row["contact"] = len(found) > 0
+            row["contacts_per_cycle"] = len(found) / measure_cycles
+            for q in IMPACT_COLUMNS[3:]:
+                row[q] = float(found[q].mean()) if len(found) else math.nan
+            impacts.append(found.assign(freq_hz=f))
         rows.append(row)
-    return LabSweep(pd.DataFrame(rows), record, mass_kg, gap, f_ref_hz)
+    table = pd.concat(impacts, ignore_index=True) if impacts else pd.DataFrame(columns=["freq_hz", *IMPACT_COLUMNS])
+    return LabSweep(pd.DataFrame(rows), record, mass_kg, gap, f_ref_hz, impacts=table)

@@ -26,6 +26,9 @@ class LabSweep:
         ``Delta`` (YBs), m.
     f_ref_hz : float
         ``nu = f / f_ref``.
+    impacts : DataFrame
+        One row per contact measured (with ``gap_total_m``): ``freq_hz`` of its step and
+        :data:`~pounding.lab.contacts.IMPACT_COLUMNS`.
     """
 
     steps: pd.DataFrame
@@ -33,6 +36,7 @@ class LabSweep:
     mass_kg: float
     gap_total_m: float | None
     f_ref_hz: float
+    impacts: pd.DataFrame = field(default_factory=pd.DataFrame, repr=False)
 
     def to_dataframe(self) -> pd.DataFrame:
         """A copy of :attr:`steps`."""

@@ -1,0 +1,139 @@
+"""Contacts in a recording's measured window (issue 17): Tables 3 and 4 from time histories.
+
+The method (the paper's Sect. 3.5 screened the records by hand for the same instants):
+
+- **Contact** while the (Savitzky-Golay smoothed) displacement is beyond the gap,
+  ``D > Delta / 2`` (right) or ``D < -Delta / 2`` (left), symmetric gaps about the laser's zero;
+  its start and end where ``|D|`` crosses ``Delta / 2``, between samples by linear interpolation.
+  Noise makes a grazing mass cross the gap several times: crossings less than
+  :data:`MERGE_S` apart are one contact, and a contact that never goes deeper than the
+  displacement's noise (the standard deviation of the raw less the smoothed displacement) is
+  not counted: it cannot be told from noise.
+- **Velocities** ``v_i`` and ``v_o``: from the free flight before the start and after the end
+  (up to :data:`FLIGHT_FIT_S`, not into another contact), the raw displacement fitted by least
+  squares as ``d_0 + v_0 tau + b tau^2 / 2 + P(tau)``, where ``P`` is the double integral of the
+  measured relative acceleration ``a_abs - A`` from the contact instant (so the fit follows the
+  isolator's varying force over a long window; ``b`` takes an accelerometer's offset):
+  ``v_0`` is the velocity there.
+- **Bumper force**: ``M a_abs = -F_iso - F_b``; the isolator's force is fitted as
+  ``k D + c V + r`` to the window's free-flight samples (``V`` the derivative of the smoothed
+  displacement), and ``F_b = -M a_abs - F_iso`` during the contact: the impulse is its integral
+  (trapezoids), the mean force the impulse over the contact time, the peak its largest value.
+- **Dissipated energy** ``E_d = M (v_i^2 - v_o^2) / 2`` and restitution ``s = -v_o / v_i``, as
+  the simulator reports them.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+FLIGHT_FIT_S = 0.15  # the free flight fitted before a contact and after it, s
+MERGE_S = 0.010  # gap crossings closer than this are one contact, s
+MIN_FLIGHT_S = 0.010  # a velocity needs at least this much free flight beside the contact, s
+IMPACT_COLUMNS = ("side", "t_start_s", "t_end_s", "contact_time_s", "v_in_m_s", "v_out_m_s", "restitution",
+                  "impulse_n_s", "mean_force_n", "peak_force_n", "dissipated_energy_j")
+
+
+def _flight(free: np.ndarray, i: int, step: int) -> np.ndarray:
+    """The run of free samples from ``i`` going by ``step`` (-1 back, +1 on), as a mask."""
+    out = np.zeros(free.size, dtype=bool)
+    while 0 <= i < free.size and free[i]:  # (bounded by the window)
+        out[i] = True
+        i += step
+    return out
+
+
+def _crossing(t: np.ndarray, y: np.ndarray, i: int) -> float:
+    """Where ``y`` crosses zero between samples ``i - 1`` and ``i``, by linear interpolation."""
+    return float(t[i - 1] + (t[i] - t[i - 1]) * (-y[i - 1]) / (y[i] - y[i - 1]))
+
+
+def _velocity_at(t: np.ndarray, d: np.ndarray, a_rel: np.ndarray, mask: np.ndarray, at: float) -> float:
+    """The velocity at ``at`` from ``d[mask]`` (one run of samples on one side of ``at``): the fit
+    ``d_0 + v_0 tau + b tau^2 / 2 + P(tau)`` of the module's method (NaN with less than
+    :data:`MIN_FLIGHT_S` of flight)."""
+    from scipy import integrate
+
+    idx = np.flatnonzero(mask & np.isfinite(d))
+    if idx.size < 4 or t[idx[-1]] - t[idx[0]] < MIN_FLIGHT_S:
+        return float("nan")
+    tt = t[idx[0]:idx[-1] + 1]
+    v_int = integrate.cumulative_trapezoid(a_rel[idx[0]:idx[-1] + 1], tt, initial=0.0)
+    p_int = integrate.cumulative_trapezoid(v_int, tt, initial=0.0)
+    # P relative to the contact instant: P(at) = 0, P'(at) = 0 (at is an end of the run, or just past it)
+    end = 0 if abs(tt[0] - at) < abs(tt[-1] - at) else -1
+    tau = tt - at
+    p_rel = p_int - p_int[end] - v_int[end] * (tt - tt[end])
+    sel = idx - idx[0]
+    design = np.column_stack([np.ones(idx.size), tau[sel], 0.5 * tau[sel] ** 2])
+    coef = np.linalg.lstsq(design, d[idx] - p_rel[sel], rcond=None)[0]
+    return float(coef[1])
+
+
+def window_contacts(t: np.ndarray, d_raw: np.ndarray, d: np.ndarray, a_abs: np.ndarray, a_table: np.ndarray,
+                    mass_kg: float, half_gap_m: float, fs: float, starts_in: tuple[float, float]) -> pd.DataFrame:
+    """The contacts that start in ``starts_in = (t_from, t_to)``: one row each, :data:`IMPACT_COLUMNS`.
+
+    The arrays are the samples of a stretch around the window (its free flight on either side
+    gives the first and last contacts their velocities): ``d_raw`` the recorded displacement,
+    ``d`` its smoothed version, ``a_abs`` the mass's (smoothed) absolute acceleration,
+    ``a_table`` the table's.
+    """
+    from scipy import integrate, signal
+
+    n = max(5, 2 * int(round(0.005 * fs)) + 1)
+    v = signal.savgol_filter(d, n, 3, deriv=1, delta=1.0 / fs) if d.size > n else np.gradient(d, t)
+    noise = float(np.nanstd(d_raw - d))
+    merge = max(1, int(round(MERGE_S * fs)))
+    in_contact = np.zeros(d.size, dtype=bool)
+    intervals = []
+    for side, sign in (("left", -1.0), ("right", 1.0)):
+        y = sign * d - half_gap_m  # > 0 in contact
+        in_contact |= y > 0.0  # (contacts cut by the stretch's ends too: no free flight)
+        edges = np.diff((y > 0.0).astype(np.int8))
+        starts, ends = np.flatnonzero(edges == 1) + 1, np.flatnonzero(edges == -1) + 1
+        merged: list[list[int]] = []
+        for a in starts:  # (a contact cut by the window's start or end is not measured)
+            later = ends[ends > a]
+            if later.size == 0:
+                break
+            if merged and a - merged[-1][1] < merge:
+                merged[-1][1] = int(later[0])
+            else:
+                merged.append([int(a), int(later[0])])
+        for a, b in merged:
+            in_contact[a:b] = True
+            if y[a:b].max() > noise:  # (deeper than the noise: a contact, not a flicker)
+                intervals.append((side, sign, y, a, b))
+    free = ~in_contact
+    rows = []
+    for side, sign, y, i0, i1 in intervals:
+        t0, t1 = _crossing(t, y, i0), _crossing(t, y, i1)
+        if not starts_in[0] <= t0 < starts_in[1]:
+            continue
+        before = _flight(free, i0 - 1, -1) & (t >= t0 - FLIGHT_FIT_S)
+        after = _flight(free, i1, 1) & (t <= t1 + FLIGHT_FIT_S)
+        v_in = _velocity_at(t, d_raw, a_abs - a_table, before, t0)
+        v_out = _velocity_at(t, d_raw, a_abs - a_table, after, t1)
+        rows.append({"side": side, "t_start_s": t0, "t_end_s": t1, "contact_time_s": t1 - t0,
+                     "v_in_m_s": v_in, "v_out_m_s": v_out, "i0": i0, "i1": i1, "sign": sign})
+    out = pd.DataFrame(rows)
+    if out.empty:
+        return pd.DataFrame(columns=list(IMPACT_COLUMNS))
+    # the isolator's force from free flight: M a_abs = -(k D + c V + r)
+    design = np.column_stack([d[free], v[free], np.ones(int(free.sum()))])
+    coef = np.linalg.lstsq(design, -mass_kg * a_abs[free], rcond=None)[0] if free.sum() >= 3 else np.zeros(3)
+    f_b = -mass_kg * a_abs - (coef[0] * d + coef[1] * v + coef[2])  # the bumpers' force on the mass, N
+    impulse, peak = [], []
+    for r in out.itertuples(index=False):
+        sl = slice(r.i0 - 1, r.i1 + 1)  # (the samples around the contact; F_b ~ 0 outside it)
+        force = r.sign * f_b[sl]  # compressive force, > 0
+        impulse.append(float(integrate.trapezoid(np.clip(force, 0.0, None), t[sl])))
+        peak.append(float(force.max()))
+    out["impulse_n_s"] = impulse
+    out["mean_force_n"] = out["impulse_n_s"] / out["contact_time_s"]
+    out["peak_force_n"] = peak
+    out["restitution"] = -out["v_out_m_s"] / out["v_in_m_s"]
+    out["dissipated_energy_j"] = 0.5 * mass_kg * (out["v_in_m_s"] ** 2 - out["v_out_m_s"] ** 2)
+    return out[list(IMPACT_COLUMNS)].sort_values("t_start_s").reset_index(drop=True)
