@@ -85,3 +85,36 @@ def test_contacts_give_back_the_simulators_impacts(a_g, seed):
     assert set(imp["side"]) == {"left", "right"} and len(imp) == pytest.approx(
         5 * df["contacts_per_cycle"].sum(), abs=0.5)
     assert (imp["t_end_s"] > imp["t_start_s"]).all() and (imp["impulse_n_s"] > 0).all()
+
+
+def test_targets_and_plot_of_a_measured_sweep(tmp_path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    osc = pd_.presets.paper_damped()
+    freqs = np.round(np.arange(1.4, 2.31, 0.1), 10)
+    rec = synthetic_test(osc, 0.05, freqs, cycles=30, seed=8, **SENSORS)
+    lab = analyse_stepped_sine(rec, mass_kg=500.0, gap_total_m=0.03, freqs_hz=freqs)
+    targets = lab.to_targets("YBs")
+    t = targets.table.set_index("quantity")["value"]
+    assert targets.eta_gap_total_m == 0.03 and set(targets.table["a_g"]) == {0.05}
+    assert t["nu_r"] == lab.nu_r and t["alpha"] == lab.alpha_max
+    assert (t["contact_nu_min"], t["contact_nu_max"]) == lab.contact_range_hz
+    res = lab.steps.iloc[int(np.argmax(lab.steps["alpha"]))]
+    assert t["contact_time_ms"] == pytest.approx(1e3 * res["contact_time_s"])
+    # the model that made the recording meets its own targets
+    assert pd_.identification.evaluate(osc, targets, freqs_hz=freqs)["within"].all()
+    nbs = analyse_stepped_sine(rec, mass_kg=500.0, freqs_hz=freqs).to_targets("NBs", a_g=0.05)
+    assert set(nbs.table["quantity"]) == {"nu_r", "alpha", "e"}
+    with pytest.raises(pd_.InputError) as info:
+        analyse_stepped_sine(rec, mass_kg=500.0, freqs_hz=freqs).to_targets("YBs")
+    assert info.value.field == "gap_total_m"
+    with pytest.raises(pd_.InputError):
+        lab.to_targets("XBs")
+    import matplotlib.pyplot as plt
+
+    _, ax = plt.subplots(2, 1)
+    pd_.sweep(osc, 0.05, freqs, "up", steady="fixed", cycles=30).plot(ax=ax)  # the model, and the lab over it
+    artists = lab.plot(ax=ax)
+    assert len(artists) >= 2 and artists[0].get_label().startswith("lab, a_G = 0.05")
+    plt.close("all")

@@ -4,11 +4,16 @@ and units of :meth:`pounding.SweepResult.to_dataframe` so that lab and model lin
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 import pandas as pd
 
+from .._checks import one_of, positive
+from .._errors import InputError, Problem
 from .record import LabRecord
+
+CONFIGURATIONS = ("NBs", "YBs")
 
 
 @dataclass(frozen=True, eq=False)
@@ -60,3 +65,58 @@ class LabSweep:
     @property
     def alpha_max(self) -> float:
         return float(self.steps["alpha"].max())
+
+    @property
+    def direction(self) -> str:
+        """"up" when the steps' frequencies rise, else "down"."""
+        f = self.steps["freq_hz"].to_numpy()
+        return "up" if f.size < 2 or f[-1] >= f[0] else "down"
+
+    @property
+    def contact_range_hz(self) -> tuple[float, float] | None:
+        """The lowest and highest step frequency with contact, Hz (None without)."""
+        if "contact" not in self.steps or not self.steps["contact"].astype(bool).any():
+            return None
+        f = self.steps.loc[self.steps["contact"].astype(bool), "freq_hz"]
+        return float(f.min()), float(f.max())
+
+    def to_targets(self, configuration: str, a_g: float | None = None) -> Any:
+        """The paper's quantities of this sweep as :class:`~pounding.Targets` for ``identify``.
+
+        Table 2's ``nu_r``, ``alpha`` and ``eta`` (YBs, over this sweep's ``gap_total_m``, which
+        the targets keep as ``eta_gap_total_m``) or ``e`` (NBs), the contact range (YBs), and at
+        the resonance step the contact time and restitution (YBs, where measured); the
+        default tolerances.  ``a_g`` (g) is what the model's sweeps will use: default the
+        measured amplitude rounded to 0.001 g.
+        """
+        from ..identification import Targets
+
+        configuration = one_of("configuration", configuration, CONFIGURATIONS)
+        a_g = round(self.a_g, 3) if a_g is None else positive("a_g", a_g, "g")
+        if configuration == "YBs" and self.gap_total_m is None:
+            raise InputError(Problem.MISSING_INPUT, "gap_total_m", None,
+                             what="the gap: analyse_stepped_sine(..., gap_total_m=...) for YBs targets")
+        df = self.steps
+        at = df.iloc[int(np.argmax(df["alpha"].to_numpy()))]
+        values = {"nu_r": self.nu_r, "alpha": self.alpha_max}
+        if configuration == "YBs":
+            values["eta"] = float(df["eta"].max())
+            rng = self.contact_range_hz
+            if rng is not None:
+                values.update(contact_nu_min=rng[0] / self.f_ref_hz, contact_nu_max=rng[1] / self.f_ref_hz)
+            for q, col, scale in (("contact_time_ms", "contact_time_s", 1e3), ("restitution", "restitution", 1.0)):
+                if col in df and np.isfinite(at[col]):
+                    values[q] = float(at[col]) * scale
+        else:
+            values["e"] = float(df["e"].max())
+        records = [{"configuration": configuration, "a_g": a_g, "quantity": q, "value": v,
+                    "direction": self.direction} for q, v in values.items() if np.isfinite(v)]
+        return Targets.from_records(records, eta_gap_total_m=self.gap_total_m)
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> list:
+        """alpha (top) and eta or e (bottom) against nu, as :meth:`pounding.SweepResult.plot`
+        draws a sweep (pass the same ``ax`` to overlay lab and model); see
+        :func:`pounding.plots.plot_lab_sweep`."""
+        from ..plots import plot_lab_sweep
+
+        return plot_lab_sweep(self, ax=ax, **kwargs)

@@ -69,6 +69,46 @@ def plot_sweep(sweeps: "SweepResult | Sequence[SweepResult]", ax: Any = None, *,
     return artists
 
 
+def plot_lab_sweep(lab: Any, ax: Any = None, *, label: str | None = None, color: Any = None) -> list:
+    """A measured sweep (:class:`pounding.lab.LabSweep`) as :func:`plot_sweep` draws a model's:
+    alpha (top) and eta, or e without a gap (bottom), against nu; markers only (measured
+    points), hollow where the step was not steady.
+
+    Parameters
+    ----------
+    lab : LabSweep
+    ax : pair of matplotlib Axes, optional
+        ``(ax_alpha, ax_excursion)``, e.g. those of :func:`plot_sweep` to overlay the model.
+    label : str, optional
+        Legend label (default ``lab, a_G = ...``).
+    color : optional
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        _, ax = plt.subplots(2, 1, figsize=(7, 6), sharex=True, constrained_layout=True)
+    ax_a, ax_e = ax
+    df = lab.steps.sort_values("freq_hz")
+    style = {"ls": "none", "marker": "o", "ms": 5, "color": color if color is not None else "k"}
+    text = label or f"lab, a_G = {lab.a_g:.3g} ({lab.direction})"
+    y = df["eta"] if lab.gap_total_m is not None else df["e"]
+    artists = list(ax_a.plot(df["nu"], df["alpha"], label=text, **style))
+    artists += ax_e.plot(df["nu"], y, label=text, **style)
+    unsteady = ~df["steady"].to_numpy(dtype=bool)
+    if np.any(unsteady):
+        artists.append(ax_a.scatter(df["nu"][unsteady], df["alpha"][unsteady], s=60, facecolors="white",
+                                    edgecolors=style["color"], zorder=3))
+    ax_a.set_ylabel("alpha = max|a_abs| / A_t")
+    ax_e.set_ylabel("eta = E / Delta" if lab.gap_total_m is not None else "e = E / D_tmax")
+    ax_e.set_xlabel("nu = f / f_R")
+    ax_a.legend(fontsize="small")
+    return artists
+
+
 def plot_hysteresis(loop: "HysteresisLoop", ax: Any = None, *, per: str = "total_gap",
                     **line_kwargs: Any) -> list:
     """``r = F_I / (M g)`` against ``d`` (paper Figs. 7 and 15).
