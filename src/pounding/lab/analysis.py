@@ -23,13 +23,14 @@ The method, step by step (each a SciPy tool, not a hand-written one):
 from __future__ import annotations
 
 import math
+import warnings
 from typing import Any
 
 import numpy as np
 import pandas as pd
 
 from .._checks import float_array, integer, non_negative, positive
-from .._errors import InputError, Problem
+from .._errors import InputError, PoundingWarning, Problem
 from ..protocols.sweep import PAPER_F_REF_HZ, PAPER_OMEGA_MIN_RAD_S
 from .contacts import FLIGHT_FIT_S, IMPACT_COLUMNS, window_contacts
 from .lab_sweep import LabSweep
@@ -39,6 +40,7 @@ TABLE_LOWPASS_FACTOR = 5.0  # the table signal's low-pass corner, times the high
 SCHMITT = 1.0 / 3.0  # a zero crossing counts after the signal went below -SCHMITT x its amplitude
 STEP_RTOL = 0.03  # cycles within 3 % in frequency belong to one step
 SMOOTH_S = 0.010  # the Savitzky-Golay window: 10 ms (a 1 kHz record: 11 samples)
+MIN_CONTACT_SAMPLES = 10  # fewer samples a contact than this: a warning to sample faster
 STEADY_NOISE_FLOOR = 3.0  # steadiness tolerates this many noise standard deviations
 
 
@@ -228,4 +230,11 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
             impacts.append(found.assign(freq_hz=f))
         rows.append(row)
     table = pd.concat(impacts, ignore_index=True) if impacts else pd.DataFrame(columns=["freq_hz", *IMPACT_COLUMNS])
+    if len(table):
+        samples = float(table["contact_time_s"].median()) * fs
+        if samples < MIN_CONTACT_SAMPLES:
+            warnings.warn(f"{record.source}: contacts last about {samples:.1f} samples at {fs:g} Hz: their times, "
+                          f"velocities and forces are uncertain by a sample or more; record at "
+                          f"{MIN_CONTACT_SAMPLES / float(table['contact_time_s'].median()):.0f} Hz or more",
+                          PoundingWarning, stacklevel=2)
     return LabSweep(pd.DataFrame(rows), record, mass_kg, gap, f_ref_hz, impacts=table)
