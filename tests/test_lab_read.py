@@ -125,3 +125,32 @@ def test_labrecord_from_arrays_is_checked():
         with pytest.raises(pd_.InputError) as info:
             LabRecord(**args)
         assert info.value.field == field
+
+
+def test_cli_lab_writes_tables_figure_and_targets(tmp_path):
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+
+    osc = pd_.presets.paper_damped()
+    freqs = [1.4, 1.6, 1.8]
+    rec = pd_.lab.synthetic_test(osc, 0.05, freqs, cycles=20, noise=0.005, gains=(1.0, 1.0), seed=2)
+    df = rec.to_dataframe()
+    df["time_ms"] = df["time_s"] * 1e3
+    df["laser_mm"] = df["displacement_m"] * 1e3
+    path = tmp_path / "test.csv"
+    df[["time_ms", "table_acc_m_s2", "accelerometer_1", "accelerometer_2", "laser_mm"]].to_csv(path, index=False)
+    out = tmp_path / "lab"
+    runner = CliRunner()
+    args = ["lab", str(path), "--time", "time_ms", "--table-acc", "table_acc_m_s2", "--mass-acc",
+            "accelerometer_1,accelerometer_2", "--displacement", "laser_mm", "--units", "time=ms,displacement=mm",
+            "--mass", "500", "--gap", "0.03", "--freqs", "1.4,1.6,1.8", "--out", str(out)]
+    result = runner.invoke(app, args)
+    assert result.exit_code == 0, result.output
+    for name in ("steps.csv", "impacts.csv", "lab_sweep.png", "targets.toml"):
+        assert (out / name).is_file(), name
+    targets = pd_.Targets.from_toml(out / "targets.toml")
+    assert targets.eta_gap_total_m == 0.03 and "alpha" in set(targets.table["quantity"])
+    bad = runner.invoke(app, args[:-2] + ["--out", str(tmp_path / "x"), "--units", "time=minutes"])
+    assert bad.exit_code == 2 and "units.time" in bad.output
+    assert not (tmp_path / "x").exists()
