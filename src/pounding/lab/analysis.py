@@ -159,7 +159,11 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
         Its ``steps``: one row per step in the order run: ``freq_hz``, ``nu``, ``a_g`` (the fitted table
         amplitude, g), ``alpha`` (of the accelerometers' mean) and ``alpha_<channel>``,
         ``excursion_m``, ``displacement_max_m``, ``displacement_min_m``, ``eta``, ``e``,
-        ``steady``, ``cycles_run``, ``window_start_s``, ``window_end_s``.
+        ``steady``, ``cycles_run``, ``window_start_s``, ``window_end_s``, ``missing_samples`` (in the
+        window: NaN values and gaps in time; where there are any, the step's quantities are NaN:
+        they cannot be measured there), and with ``gap_total_m`` the contacts' means: ``contact``,
+        ``contacts_per_cycle``, ``contact_time_s``, ``v_in_m_s``, ``v_out_m_s``, ``restitution``,
+        ``impulse_n_s``, ``mean_force_n``, ``peak_force_n``, ``dissipated_energy_j``.
     """
     if not isinstance(record, LabRecord):
         raise InputError(Problem.WRONG_TYPE, "record", record, got=type(record).__name__,
@@ -228,6 +232,18 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
             for q in IMPACT_COLUMNS[3:]:
                 row[q] = float(found[q].mean()) if len(found) else math.nan
             impacts.append(found.assign(freq_hz=f))
+        # a window with missing samples (NaN, or a gap in time) is not measured: say so
+        in_win = (t >= row["window_start_s"]) & (t < s1)
+        missing = int(np.isnan(record.displacement_m[in_win]).sum() + np.isnan(record.mass_acc_m_s2[in_win]).sum())
+        gaps = record.gaps
+        missing += int(gaps.loc[(gaps["end_s"] > row["window_start_s"]) & (gaps["start_s"] < s1),
+                                "missing_samples"].sum())
+        row["missing_samples"] = missing
+        if missing:
+            for q in row:
+                if q not in ("freq_hz", "nu", "a_g", "cycles_run", "window_start_s", "window_end_s",
+                             "missing_samples", "steady", "contact"):
+                    row[q] = math.nan
         rows.append(row)
     table = pd.concat(impacts, ignore_index=True) if impacts else pd.DataFrame(columns=["freq_hz", *IMPACT_COLUMNS])
     if len(table):
