@@ -111,7 +111,7 @@ def _smooth(x: np.ndarray, fs: float) -> np.ndarray:
     """A Savitzky-Golay smoothing (cubic, :data:`SMOOTH_S` wide): noise down, short peaks kept."""
     from scipy import signal
 
-    n = max(5, 2 * int(round(0.5 * SMOOTH_S * fs)) + 1)
+    n = max(5, 2 * round(0.5 * SMOOTH_S * fs) + 1)
     if n >= x.size:
         return x.copy()
     return signal.savgol_filter(np.nan_to_num(x), n, 3)

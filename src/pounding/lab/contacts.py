@@ -82,10 +82,10 @@ def window_contacts(t: np.ndarray, d_raw: np.ndarray, d: np.ndarray, a_abs: np.n
     """
     from scipy import integrate, signal
 
-    n = max(5, 2 * int(round(0.005 * fs)) + 1)
+    n = max(5, 2 * round(0.005 * fs) + 1)
     v = signal.savgol_filter(d, n, 3, deriv=1, delta=1.0 / fs) if d.size > n else np.gradient(d, t)
     noise = float(np.nanstd(d_raw - d))
-    merge = max(1, int(round(MERGE_S * fs)))
+    merge = max(1, round(MERGE_S * fs))
     in_contact = np.zeros(d.size, dtype=bool)
     intervals = []
     for side, sign in (("left", -1.0), ("right", 1.0)):

@@ -19,7 +19,7 @@ import numpy as np
 from .._checks import float_array, integer, non_negative, plausible, positive, real_tuple
 from .._errors import InputError, Problem
 from ..engine import State, simulate
-from ..excitation import MAX_A_G, Harmonic, STANDARD_GRAVITY
+from ..excitation import MAX_A_G, STANDARD_GRAVITY, Harmonic
 from ..model import Oscillator
 from .record import LabRecord
 
@@ -111,7 +111,7 @@ def synthetic_test(oscillator: Oscillator, a_g: float, freqs_hz: Any, *, cycles:
                              hint=" (raise oversample, or lower the corner)")
     seed = integer("seed", seed, 0, 2**32 - 1)
     g = positive("g", g, "m/s^2")
-    steps_int = [int(round(cycles / f * fs_int)) for f in freqs]
+    steps_int = [round(cycles / f * fs_int) for f in freqs]
     if sum(steps_int) / oversample > MAX_OUTPUT_SAMPLES:
         raise InputError(Problem.TOO_MUCH_WORK, "freqs_hz", f"{freqs.size} steps",
                          estimate=f"{sum(steps_int) / oversample:.3g}", unit="samples",
