@@ -167,3 +167,15 @@ def test_a_window_with_missing_samples_is_not_measured():
     assert list(df["missing_samples"]) == [0, 20, 0]
     assert np.isnan(df["alpha"][1]) and np.isfinite(df["alpha"][[0, 2]]).all()
     assert warned is None
+
+
+def test_uncertainties_grow_with_the_noise():
+    osc = pd_.presets.paper_damped()
+    freqs = [1.6, 1.8, 2.0]
+    se = {}
+    for noise in (0.002, 0.02):
+        rec = synthetic_test(osc, 0.1, [1.0, 1.2, 1.4, *freqs], cycles=20, noise=noise, gains=(1.0,), seed=6)
+        df = analyse_stepped_sine(rec, mass_kg=500.0, gap_total_m=0.03).to_dataframe().iloc[3:]
+        se[noise] = df[["alpha_se", "contact_time_s_se", "restitution_se", "mean_force_n_se"]].to_numpy()
+        assert np.isfinite(se[noise]).all()
+    assert (se[0.02] > se[0.002]).mean() >= 0.9

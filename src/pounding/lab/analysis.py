@@ -40,6 +40,7 @@ TABLE_LOWPASS_FACTOR = 5.0  # the table signal's low-pass corner, times the high
 SCHMITT = 1.0 / 3.0  # a zero crossing counts after the signal went below -SCHMITT x its amplitude
 STEP_RTOL = 0.03  # cycles within 3 % in frequency belong to one step
 SMOOTH_S = 0.010  # the Savitzky-Golay window: 10 ms (a 1 kHz record: 11 samples)
+UNCERTAIN = ("contact_time_s", "restitution", "mean_force_n")  # contact means given with a standard error
 MIN_CONTACT_SAMPLES = 10  # fewer samples a contact than this: a warning to sample faster
 STEADY_NOISE_FLOOR = 3.0  # steadiness tolerates this many noise standard deviations
 
@@ -130,6 +131,12 @@ def _peak(t: np.ndarray, x: np.ndarray, i: int) -> float:
     return float(y1 - 0.25 * (y0 - y2) * shift) if abs(shift) <= 1.0 else float(y1)
 
 
+def _standard_error(x: np.ndarray) -> float:
+    """The standard error of the mean of ``x``'s finite values (NaN with fewer than two)."""
+    x = x[np.isfinite(x)]
+    return float(np.std(x, ddof=1) / math.sqrt(x.size)) if x.size >= 2 else math.nan
+
+
 def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: float | None = None,
                          freqs_hz: Any = None, measure_cycles: int = 5, steady_rtol: float = 0.02,
                          f_ref_hz: float = PAPER_F_REF_HZ, omega_min_rad_s: float = PAPER_OMEGA_MIN_RAD_S,
@@ -163,7 +170,11 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
         window: NaN values and gaps in time; where there are any, the step's quantities are NaN:
         they cannot be measured there), and with ``gap_total_m`` the contacts' means: ``contact``,
         ``contacts_per_cycle``, ``contact_time_s``, ``v_in_m_s``, ``v_out_m_s``, ``restitution``,
-        ``impulse_n_s``, ``mean_force_n``, ``peak_force_n``, ``dissipated_energy_j``.
+        ``impulse_n_s``, ``mean_force_n``, ``peak_force_n``, ``dissipated_energy_j``.  Uncertainties:
+        ``alpha_se`` (the standard error of the window's cycle peaks, over ``A_t``) and
+        ``contact_time_s_se``, ``restitution_se``, ``mean_force_n_se`` (of the contacts' values):
+        the scatter noise and sampling leave from cycle to cycle; a bias they share (a gain
+        error) is not in them.
     """
     if not isinstance(record, LabRecord):
         raise InputError(Problem.WRONG_TYPE, "record", record, got=type(record).__name__,
@@ -215,6 +226,8 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
         noise = float(np.nanstd(np.diff(record.displacement_m[in_step]))) / math.sqrt(2.0)  # (white noise)
         row = {"freq_hz": f, "nu": f / f_ref_hz, "a_g": amp / g}
         row.update({name: float(peaks[:, j].max()) / amp for j, name in enumerate(names)})
+        # the scatter of the window's cycles: what noise (and an unsteady response) leaves uncertain
+        row["alpha_se"] = _standard_error(peaks[:, 0]) / amp
         row.update({"excursion_m": excursion, "displacement_max_m": float(dmax.max()),
                     "displacement_min_m": float(dmin.min()),
                     "eta": excursion / gap if gap is not None else math.nan,
@@ -231,6 +244,8 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
             row["contacts_per_cycle"] = len(found) / measure_cycles
             for q in IMPACT_COLUMNS[3:]:
                 row[q] = float(found[q].mean()) if len(found) else math.nan
+            for q in UNCERTAIN:
+                row[f"{q}_se"] = _standard_error(found[q].to_numpy(dtype=float)) if len(found) else math.nan
             impacts.append(found.assign(freq_hz=f))
         # a window with missing samples (NaN, or a gap in time) is not measured: say so
         in_win = (t >= row["window_start_s"]) & (t < s1)
