@@ -179,3 +179,11 @@ def test_uncertainties_grow_with_the_noise():
         se[noise] = df[["alpha_se", "contact_time_s_se", "restitution_se", "mean_force_n_se"]].to_numpy()
         assert np.isfinite(se[noise]).all()
     assert (se[0.02] > se[0.002]).mean() >= 0.9
+
+
+def test_a_step_too_short_to_settle_is_not_steady():
+    osc = pd_.presets.paper_damped(bumpers=False)
+    freqs = [0.8, 1.0, 1.3, 1.7]
+    for cycles, steady in ((7, [True, True, True, False]), (40, [True] * 4)):
+        rec = synthetic_test(osc, 0.05, freqs, cycles=cycles, noise=0.01, gains=(1.0,), seed=1)
+        assert analyse_stepped_sine(rec, mass_kg=500.0, freqs_hz=freqs).to_dataframe()["steady"].tolist() == steady
