@@ -68,7 +68,9 @@ def _velocity_at(t: np.ndarray, d: np.ndarray, a_rel: np.ndarray, mask: np.ndarr
     sel = idx - idx[0]
     design = np.column_stack([np.ones(idx.size), tau[sel], 0.5 * tau[sel] ** 2])
     coef = np.linalg.lstsq(design, d[idx] - p_rel[sel], rcond=None)[0]
-    return float(coef[1])
+    # the fit's slope at tau = 0: v_0 plus P' there (P' is 0 at the run's end sample, which lies
+    # a fraction of a sample from the contact instant; the flight's acceleration carries it on)
+    return float(coef[1] + a_rel[idx[0]:idx[-1] + 1][end] * (at - tt[end]))
 
 
 def window_contacts(t: np.ndarray, d_raw: np.ndarray, d: np.ndarray, a_abs: np.ndarray, a_table: np.ndarray,
