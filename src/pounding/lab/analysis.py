@@ -15,9 +15,16 @@ The method, step by step (each a SciPy tool, not a hand-written one):
 4. **Peaks.** The signals smoothed by a cubic Savitzky-Golay filter :data:`SMOOTH_S` wide
    (``savgol_filter``: the noise down, a 10 ms contact pulse kept); each cycle's largest
    ``|a|`` (per accelerometer and of their mean) and its displacement extremes, between the
-   samples by the parabola through the three around each; alpha is the largest over the
-   window over ``A_t``, ``E`` the largest ``D_max`` less the smallest ``D_min`` (what the sweep
-   measures on the simulator's exact histories).
+   samples by the parabola through the three around each.
+5. **Synchronous average.** The largest of noisy peaks is biased high (by about half the noise at
+   1 % noise: the round trip through ``identify`` felt it).  A steady window is periodic, so its
+   cycles are averaged sample by sample in phase (each signal a cubic spline, read at
+   ``t + k T`` for the window's ``k``-th cycle, ``T`` from the table's fitted frequency): the
+   noise falls by the square root of the window's cycles, the response does not.  alpha is the
+   largest ``|a|`` of the averaged cycle over ``A_t``, ``E`` its ``D_max - D_min``.  A window that
+   is not steady is not averaged: alpha is the largest of its cycles' peaks and ``E`` its
+   largest ``D_max`` less its smallest ``D_min`` (what the sweep measures on the simulator's
+   exact histories, and what the averaged cycle gives for a steady one).
 """
 
 from __future__ import annotations
@@ -43,6 +50,7 @@ SMOOTH_S = 0.010  # the Savitzky-Golay window: 10 ms (a 1 kHz record: 11 samples
 UNCERTAIN = ("contact_time_s", "restitution", "mean_force_n")  # contact means given with a standard error
 MIN_CONTACT_SAMPLES = 10  # fewer samples a contact than this: a warning to sample faster
 STEADY_NOISE_FLOOR = 3.0  # steadiness tolerates this many noise standard deviations
+PERIODIC_NOISE = 5.0  # aligned cycles repeat within this many noise standard deviations (see _in_phase)
 
 
 def table_cycles(time_s: np.ndarray, table: np.ndarray, f_max_hz: float) -> np.ndarray:
@@ -131,6 +139,49 @@ def _peak(t: np.ndarray, x: np.ndarray, i: int) -> float:
     return float(y1 - 0.25 * (y0 - y2) * shift) if abs(shift) <= 1.0 else float(y1)
 
 
+def _cycles_in_phase(t: np.ndarray, x: np.ndarray, start_s: float, period_s: float, cycles: int) -> np.ndarray:
+    """``x`` over ``cycles`` periods from ``start_s``, cut into periods and aligned in phase: its cubic
+    spline read at ``t_j + k period_s`` (``t_j`` the samples of the first period), shape (cycles, samples
+    of a period)."""
+    from scipy.interpolate import CubicSpline
+
+    lo = max(int(np.searchsorted(t, start_s)) - 3, 0)
+    hi = min(int(np.searchsorted(t, start_s + cycles * period_s)) + 3, t.size)
+    spline = CubicSpline(t[lo:hi], x[lo:hi])
+    phase = t[(t >= start_s) & (t < start_s + period_s)]
+    return np.stack([spline(phase + k * period_s) for k in range(cycles)])
+
+
+def _in_phase(cycles: np.ndarray, fs: float, rtol: float) -> bool:
+    """Whether aligned cycles (shape (k, n)) repeat: every smoothed cycle within the larger of
+    :data:`PERIODIC_NOISE` noise standard deviations and ``rtol`` of the peak of their average. The noise
+    is the robust spread (1.4826 MAD) of the smoothed differences from the average: a pulse that some
+    cycles have and others not (a graze) is an outlier of it, and fails the test."""
+    from scipy import signal
+
+    n = max(5, 2 * round(0.5 * SMOOTH_S * fs) + 1)
+    if n >= cycles.shape[1]:
+        return False
+    resid = signal.savgol_filter(cycles - cycles.mean(axis=0), n, 3, axis=1, mode="wrap")
+    noise = 1.4826 * float(np.median(np.abs(resid)))
+    peak = float(np.abs(cycles.mean(axis=0)).max())
+    return float(np.abs(resid).max()) <= max(PERIODIC_NOISE * noise, rtol * peak)
+
+
+def _periodic_peak(x: np.ndarray, fs: float, sign: float) -> float:
+    """The largest ``sign * x`` of one period of samples, smoothed as :func:`_smooth` (wrapping round the
+    period) and between the samples by the parabola through the three around it: signed as ``x``."""
+    from scipy import signal
+
+    n = max(5, 2 * round(0.5 * SMOOTH_S * fs) + 1)
+    y = sign * (signal.savgol_filter(x, n, 3, mode="wrap") if n < x.size else x)
+    i = int(np.argmax(y))
+    y0, y1, y2 = y[i - 1], y[i], y[(i + 1) % y.size]
+    den = y0 - 2.0 * y1 + y2
+    shift = 0.5 * (y0 - y2) / den if den != 0.0 else 0.0
+    return sign * float(y1 - 0.25 * (y0 - y2) * shift if abs(shift) <= 1.0 else y1)
+
+
 def _standard_error(x: np.ndarray) -> float:
     """The standard error of the mean of ``x``'s finite values (NaN with fewer than two)."""
     x = x[np.isfinite(x)]
@@ -166,7 +217,8 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
         Its ``steps``: one row per step in the order run: ``freq_hz``, ``nu``, ``a_g`` (the fitted table
         amplitude, g), ``alpha`` (of the accelerometers' mean) and ``alpha_<channel>``,
         ``excursion_m``, ``displacement_max_m``, ``displacement_min_m``, ``eta``, ``e``,
-        ``steady``, ``cycles_run``, ``window_start_s``, ``window_end_s``, ``missing_samples`` (in the
+        ``steady``, ``averaged`` (measured on the window's cycles averaged in phase: see the module's
+        method), ``cycles_run``, ``window_start_s``, ``window_end_s``, ``missing_samples`` (in the
         window: NaN values and gaps in time; where there are any, the step's quantities are NaN:
         they cannot be measured there), and with ``gap_total_m`` the contacts' means: ``contact``,
         ``contacts_per_cycle``, ``contact_time_s``, ``v_in_m_s``, ``v_out_m_s``, ``restitution``,
@@ -196,8 +248,8 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
         raise InputError(Problem.TOO_SHORT, "record", f"{crossings.size} table cycles", got=crossings.size,
                          expected=measure_cycles + 2)
     fs = record.sample_rate_hz
-    acc = np.column_stack([_smooth(a, fs) for a in np.column_stack([record.mass_acc_mean_m_s2,
-                                                                    record.mass_acc_m_s2]).T])
+    raw_acc = np.column_stack([record.mass_acc_mean_m_s2, record.mass_acc_m_s2])
+    acc = np.column_stack([_smooth(a, fs) for a in raw_acc.T])
     disp = _smooth(record.displacement_m, fs)
     names = ("alpha", *(f"alpha_{c}" for c in record.mass_channels))
     rows = []
@@ -209,6 +261,7 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
         s0, s1 = crossings[i0], crossings[i1]
         in_step = (t >= s0) & (t < s1)
         amp, f = _sine_fit(t[in_step], table[in_step], 1.0 / float(np.median(np.diff(crossings[i0:i1 + 1]))))
+        period = 1.0 / f  # (the table's own period, fitted: what a steady response repeats with)
         if sched is not None:
             f = float(sched[np.abs(sched / f - 1.0).argmin()])
         peaks = np.empty((measure_cycles, acc.shape[1]))
@@ -224,16 +277,33 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
         excursion = float(dmax.max() - dmin.min())  # (over the window, as the sweep measures it)
         spread = float(exc.max() - exc.min()) / excursion if excursion > 0.0 else 0.0
         noise = float(np.nanstd(np.diff(record.displacement_m[in_step]))) / math.sqrt(2.0)  # (white noise)
+        steady = bool(spread <= steady_rtol + STEADY_NOISE_FLOOR * noise / max(excursion, 1e-300))
+        alphas = peaks.max(axis=0)
+        w0 = float(crossings[i1 - measure_cycles])
+        in_win = (t >= w0) & (t < s1)
+        aligned = (_cycles_in_phase(t, raw_acc[:, 0], w0, period, measure_cycles)
+                   if steady and measure_cycles > 1 and np.isfinite(raw_acc[in_win]).all()
+                   and np.isfinite(record.displacement_m[in_win]).all() else None)
+        if aligned is not None and _in_phase(aligned, fs, steady_rtol):
+            # the window's cycles averaged in phase: the noise down by sqrt(measure_cycles)
+            for j in range(acc.shape[1]):
+                avg = _cycles_in_phase(t, raw_acc[:, j], w0, period, measure_cycles).mean(axis=0)
+                alphas[j] = max(_periodic_peak(avg, fs, 1.0), -_periodic_peak(avg, fs, -1.0))
+            avg = _cycles_in_phase(t, record.displacement_m, w0, period, measure_cycles).mean(axis=0)
+            dmax_avg, dmin_avg = _periodic_peak(avg, fs, 1.0), _periodic_peak(avg, fs, -1.0)
+            excursion = dmax_avg - dmin_avg
+        else:
+            aligned = None
+            dmax_avg, dmin_avg = float(dmax.max()), float(dmin.min())
         row = {"freq_hz": f, "nu": f / f_ref_hz, "a_g": amp / g}
-        row.update({name: float(peaks[:, j].max()) / amp for j, name in enumerate(names)})
+        row.update({name: float(alphas[j]) / amp for j, name in enumerate(names)})
         # the scatter of the window's cycles: what noise (and an unsteady response) leaves uncertain
         row["alpha_se"] = _standard_error(peaks[:, 0]) / amp
-        row.update({"excursion_m": excursion, "displacement_max_m": float(dmax.max()),
-                    "displacement_min_m": float(dmin.min()),
+        row.update({"excursion_m": excursion, "displacement_max_m": dmax_avg, "displacement_min_m": dmin_avg,
                     "eta": excursion / gap if gap is not None else math.nan,
-                    "e": excursion / (amp / omega_min_rad_s ** 2),
-                    "steady": bool(spread <= steady_rtol + STEADY_NOISE_FLOOR * noise / max(excursion, 1e-300)),
-                    "cycles_run": n_cyc, "window_start_s": float(crossings[i1 - measure_cycles]),
+                    "e": excursion / (amp / omega_min_rad_s ** 2), "steady": steady,
+                    "averaged": aligned is not None,
+                    "cycles_run": n_cyc, "window_start_s": w0,
                     "window_end_s": float(s1)})
         if gap is not None:
             w0 = row["window_start_s"]
@@ -257,7 +327,7 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
         if missing:
             for q in row:
                 if q not in ("freq_hz", "nu", "a_g", "cycles_run", "window_start_s", "window_end_s",
-                             "missing_samples", "steady", "contact"):
+                             "missing_samples", "steady", "averaged", "contact"):
                     row[q] = math.nan
         rows.append(row)
     table = pd.concat(impacts, ignore_index=True) if impacts else pd.DataFrame(columns=["freq_hz", *IMPACT_COLUMNS])
