@@ -3,6 +3,8 @@ sensors, gives back the simulator's Table 2 quantities."""
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -209,3 +211,19 @@ def test_steady_cycles_are_averaged_in_phase_and_a_graze_is_not():
     graze = df["freq_hz"] == 1.1
     assert not df["averaged"][graze].any() and df["averaged"][~graze].all()
     assert float(df["alpha"][graze].iloc[0]) == pytest.approx(float(sim["alpha"][graze].iloc[0]), rel=0.02)
+
+
+def test_gap_crossings_without_a_force_pulse_are_not_contacts():
+    # told a gap smaller than the rig's (26 mm for 30), the displacement crosses +-13 mm in cycles
+    # that never touch the bumpers at +-15 mm: no force pulse, not counted, and the user is told
+    osc = pd_.presets.paper_damped()
+    freqs = [1.0, 1.1, 1.2, 1.3]
+    rec = synthetic_test(osc, 0.05, freqs, cycles=30, seed=3, **SENSORS)
+    with pytest.warns(pd_.PoundingWarning, match=r"crossed the gap .* \d+ time\(s\) .*without a bumper force"):
+        wrong = analyse_stepped_sine(rec, mass_kg=500.0, gap_total_m=0.026, freqs_hz=freqs).to_dataframe()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        right = analyse_stepped_sine(rec, mass_kg=500.0, gap_total_m=0.03, freqs_hz=freqs).to_dataframe()
+    # (9 crossings: 1.1 Hz grazes the bumpers in some cycles and crosses 13 mm in all; the steps
+    # in contact stay those in contact)
+    assert list(wrong["contact"]) == list(right["contact"]) == [False, True, True, True]

@@ -254,6 +254,7 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
     names = ("alpha", *(f"alpha_{c}" for c in record.mass_channels))
     rows = []
     impacts = []
+    crossings_without_force = 0
     for i0, i1 in _steps(crossings, sched):
         n_cyc = i1 - i0
         if n_cyc < measure_cycles + 1:  # (the first cycle of a step is a transient)
@@ -308,7 +309,7 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
         if gap is not None:
             w0 = row["window_start_s"]
             win = (t >= w0 - FLIGHT_FIT_S) & (t < s1 + FLIGHT_FIT_S)  # (the flight beside the window's contacts)
-            found = window_contacts(t[win], record.displacement_m[win], disp[win], acc[win, 0], table[win],
+            found, unconfirmed = window_contacts(t[win], record.displacement_m[win], disp[win], acc[win, 0], table[win],
                                     mass_kg, 0.5 * gap, fs, (w0, s1))
             row["contact"] = len(found) > 0
             row["contacts_per_cycle"] = len(found) / measure_cycles
@@ -317,6 +318,7 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
             for q in UNCERTAIN:
                 row[f"{q}_se"] = _standard_error(found[q].to_numpy(dtype=float)) if len(found) else math.nan
             impacts.append(found.assign(freq_hz=f))
+            crossings_without_force += unconfirmed
         # a window with missing samples (NaN, or a gap in time) is not measured: say so
         in_win = (t >= row["window_start_s"]) & (t < s1)
         missing = int(np.isnan(record.displacement_m[in_win]).sum() + np.isnan(record.mass_acc_m_s2[in_win]).sum())
@@ -330,6 +332,12 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
                              "missing_samples", "steady", "averaged", "contact"):
                     row[q] = math.nan
         rows.append(row)
+    if crossings_without_force:
+        warnings.warn(f"{record.source}: the displacement crossed the gap (gap_total_m = {gap:g} m, half of it "
+                      f"each side of the laser's zero) {crossings_without_force} time(s) in the measured windows "
+                      f"without a bumper force pulse in the accelerations: not counted as contacts. Check that "
+                      f"gap_total_m is the rig's and that the laser reads 0 at the centre between the bumpers",
+                      PoundingWarning, stacklevel=2)
     table = pd.concat(impacts, ignore_index=True) if impacts else pd.DataFrame(columns=["freq_hz", *IMPACT_COLUMNS])
     if len(table):
         samples = float(table["contact_time_s"].median()) * fs
