@@ -15,7 +15,9 @@ The method, step by step (each a SciPy tool, not a hand-written one):
 4. **Peaks.** The signals smoothed by a cubic Savitzky-Golay filter :data:`SMOOTH_S` wide
    (``savgol_filter``: the noise down, a 10 ms contact pulse kept); each cycle's largest
    ``|a|`` (per accelerometer and of their mean) and its displacement extremes, between the
-   samples by the parabola through the three around each.
+   samples by the parabola through the three around each.  An accelerometer's offset is
+   removed first: its mean over the window's whole cycles (a periodic motion's acceleration
+   averages to zero over a cycle).
 5. **Synchronous average.** The largest of noisy peaks is biased high (by about half the noise at
    1 % noise: the round trip through ``identify`` felt it).  A steady window is periodic, so its
    cycles are averaged sample by sample in phase (each signal a cubic spline, read at
@@ -152,6 +154,19 @@ def _cycles_in_phase(t: np.ndarray, x: np.ndarray, start_s: float, period_s: flo
     return np.stack([spline(phase + k * period_s) for k in range(cycles)])
 
 
+def _cycle_mean(t: np.ndarray, x: np.ndarray, start_s: float, period_s: float, cycles: int) -> np.ndarray:
+    """The mean of ``x`` (shape (n, k)) over exactly ``cycles`` periods from ``start_s``: its cubic spline's
+    integral over them (zeros where the samples there are not all finite), shape (k,)."""
+    from scipy.interpolate import CubicSpline
+
+    lo = max(int(np.searchsorted(t, start_s)) - 3, 0)
+    hi = min(int(np.searchsorted(t, start_s + cycles * period_s)) + 3, t.size)
+    if not np.isfinite(x[lo:hi]).all():
+        return np.zeros(x.shape[1])
+    end = start_s + cycles * period_s
+    return CubicSpline(t[lo:hi], x[lo:hi]).integrate(start_s, end) / (end - start_s)
+
+
 def _in_phase(cycles: np.ndarray, fs: float, rtol: float) -> bool:
     """Whether aligned cycles (shape (k, n)) repeat: every smoothed cycle within the larger of
     :data:`PERIODIC_NOISE` noise standard deviations and ``rtol`` of the peak of their average. The noise
@@ -221,7 +236,8 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
         method), ``cycles_run``, ``window_start_s``, ``window_end_s``, ``missing_samples`` (in the
         window: NaN values and gaps in time; where there are any, the step's quantities are NaN:
         they cannot be measured there), and with ``gap_total_m`` the contacts' means: ``contact``,
-        ``contacts_per_cycle``, ``contact_time_s``, ``v_in_m_s``, ``v_out_m_s``, ``restitution``,
+        ``contacts_per_cycle``, ``contact_time_s``, ``v_in_m_s``, ``v_out_m_s`` (speeds: means of the
+        absolute values; ``impacts`` has them signed), ``restitution``,
         ``impulse_n_s``, ``mean_force_n``, ``peak_force_n``, ``dissipated_energy_j``.  Uncertainties:
         ``alpha_se`` (the standard error of the window's cycle peaks, over ``A_t``) and
         ``contact_time_s_se``, ``restitution_se``, ``mean_force_n_se`` (of the contacts' values):
@@ -265,13 +281,19 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
         period = 1.0 / f  # (the table's own period, fitted: what a steady response repeats with)
         if sched is not None:
             f = float(sched[np.abs(sched / f - 1.0).argmin()])
+        w0 = float(crossings[i1 - measure_cycles])
+        in_win = (t >= w0) & (t < s1)
+        # the accelerometers' offsets: over whole cycles of a periodic motion the acceleration
+        # averages to zero, so the window's mean is the offset
+        zero = _cycle_mean(t, raw_acc, w0, period, measure_cycles)
         peaks = np.empty((measure_cycles, acc.shape[1]))
         dmax = np.empty(measure_cycles)
         dmin = np.empty(measure_cycles)
         for k, c in enumerate(range(i1 - measure_cycles, i1)):
             w = np.flatnonzero((t >= crossings[c]) & (t < crossings[c + 1]))
             for j in range(acc.shape[1]):
-                peaks[k, j] = abs(_peak(t, acc[:, j], int(w[int(np.argmax(np.abs(acc[w, j])))])))
+                i = int(w[int(np.argmax(np.abs(acc[w, j] - zero[j])))])
+                peaks[k, j] = abs(_peak(t, acc[:, j], i) - zero[j])
             dmax[k] = _peak(t, disp, int(w[int(np.argmax(disp[w]))]))
             dmin[k] = _peak(t, disp, int(w[int(np.argmin(disp[w]))]))
         exc = dmax - dmin
@@ -280,15 +302,13 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
         noise = float(np.nanstd(np.diff(record.displacement_m[in_step]))) / math.sqrt(2.0)  # (white noise)
         steady = bool(spread <= steady_rtol + STEADY_NOISE_FLOOR * noise / max(excursion, 1e-300))
         alphas = peaks.max(axis=0)
-        w0 = float(crossings[i1 - measure_cycles])
-        in_win = (t >= w0) & (t < s1)
         aligned = (_cycles_in_phase(t, raw_acc[:, 0], w0, period, measure_cycles)
                    if steady and measure_cycles > 1 and np.isfinite(raw_acc[in_win]).all()
                    and np.isfinite(record.displacement_m[in_win]).all() else None)
         if aligned is not None and _in_phase(aligned, fs, steady_rtol):
             # the window's cycles averaged in phase: the noise down by sqrt(measure_cycles)
             for j in range(acc.shape[1]):
-                avg = _cycles_in_phase(t, raw_acc[:, j], w0, period, measure_cycles).mean(axis=0)
+                avg = _cycles_in_phase(t, raw_acc[:, j], w0, period, measure_cycles).mean(axis=0) - zero[j]
                 alphas[j] = max(_periodic_peak(avg, fs, 1.0), -_periodic_peak(avg, fs, -1.0))
             avg = _cycles_in_phase(t, record.displacement_m, w0, period, measure_cycles).mean(axis=0)
             dmax_avg, dmin_avg = _periodic_peak(avg, fs, 1.0), _periodic_peak(avg, fs, -1.0)
@@ -313,8 +333,9 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
                                     mass_kg, 0.5 * gap, fs, (w0, s1))
             row["contact"] = len(found) > 0
             row["contacts_per_cycle"] = len(found) / measure_cycles
-            for q in IMPACT_COLUMNS[3:]:
-                row[q] = float(found[q].mean()) if len(found) else math.nan
+            for q in IMPACT_COLUMNS[3:]:  # (the velocities as speeds: the sides' signs differ)
+                x = found[q].abs() if q in ("v_in_m_s", "v_out_m_s") else found[q]
+                row[q] = float(x.mean()) if len(found) else math.nan
             for q in UNCERTAIN:
                 row[f"{q}_se"] = _standard_error(found[q].to_numpy(dtype=float)) if len(found) else math.nan
             impacts.append(found.assign(freq_hz=f))
