@@ -329,8 +329,9 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
         if gap is not None:
             w0 = row["window_start_s"]
             win = (t >= w0 - FLIGHT_FIT_S) & (t < s1 + FLIGHT_FIT_S)  # (the flight beside the window's contacts)
-            found, unconfirmed = window_contacts(t[win], record.displacement_m[win], disp[win], acc[win, 0], table[win],
-                                    mass_kg, 0.5 * gap, fs, (w0, s1))
+            found, unconfirmed = window_contacts(t[win], record.displacement_m[win], disp[win], acc[win, 0] - zero[0],
+                                                 raw_acc[win, 0] - zero[0], table[win], mass_kg, 0.5 * gap, fs,
+                                                 (w0, s1))
             row["contact"] = len(found) > 0
             row["contacts_per_cycle"] = len(found) / measure_cycles
             for q in IMPACT_COLUMNS[3:]:  # (the velocities as speeds: the sides' signs differ)
