@@ -260,3 +260,17 @@ def test_a_bumper_with_a_set_is_timed_by_its_force_pulse():
     np.testing.assert_allclose(df["contact_time_s"][rows], sim["contact_time_s"][rows], atol=2e-3)
     np.testing.assert_allclose(df["restitution"][rows], sim["restitution"][rows], atol=0.03)
     np.testing.assert_allclose(df["mean_force_n"][rows], sim["mean_force_n"][rows], rtol=0.05)
+
+
+def test_the_planning_example_runs(tmp_path, capsys):
+    import importlib.util
+    from pathlib import Path
+
+    path = Path(__file__).resolve().parents[1] / "examples" / "plan_lab_test.py"
+    spec = importlib.util.spec_from_file_location("plan_lab_test", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    module.main(str(tmp_path / "lab.png"))
+    lines = {line.split()[0]: line for line in capsys.readouterr().out.splitlines() if line[:9].strip().isdigit()}
+    assert set(lines) == {"250", "500", "1000", "2000"} and (tmp_path / "lab.png").stat().st_size > 10_000
+    assert "warned: contacts last about" in lines["250"] and "warned" not in lines["1000"]  # (the rate too low)
