@@ -60,6 +60,8 @@ class Problem(enum.Enum):
     NO_COLUMN = ("names no column of the file", "use one of {choices}")
     TIME_NOT_INCREASING = ("does not increase at {where} ({before!r} then {after!r})",
                            "sort the samples by time and remove repeated ones")
+    BAD_HEADER = ("line {line}: {why}", "{fix}")
+    NPTS_MISMATCH = ("has {got} values where its header says NPTS = {expected}{where}", "{fix}")
     TOO_FEW_IN_CONTACT = ("has {got} samples in compression", "give at least {expected} samples with "
                           "compression > 0 (displacement is the bumper's compression, m)")
 

@@ -20,12 +20,10 @@ import pandas as pd
 from .._checks import one_of, positive
 from .._delimited import as_columns, read_columns
 from .._errors import InputError, PoundingWarning, Problem
+from .._units import ACC_UNITS, LENGTH_UNITS, TIME_UNITS
 
 ROLES = ("time", "table_acc", "mass_acc", "displacement")
 # unit -> factor to SI, per kind of channel
-TIME_UNITS = {"s": 1.0, "ms": 1e-3}
-LENGTH_UNITS = {"m": 1.0, "mm": 1e-3}
-ACC_UNITS = {"m/s2": 1.0, "cm/s2": 1e-2, "g": None}  # g: times the record's g
 DEFAULT_UNITS = {"time": "s", "table_acc": "m/s2", "mass_acc": "m/s2", "displacement": "m"}
 GAP_FACTOR = 1.5  # a time step longer than this many median steps is a gap in the recording
 MIN_SAMPLES = 16

