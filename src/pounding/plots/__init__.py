@@ -2,8 +2,9 @@
 
 from .contact_law import plot_contact_law_fit
 from .identification import plot_identification
+from .record import plot_record, plot_response_spectrum
 from .run import plot_run
 from .sweep import plot_campaign, plot_hysteresis, plot_lab_sweep, plot_sweep
 
-__all__ = ["plot_campaign", "plot_contact_law_fit", "plot_identification", "plot_hysteresis", "plot_lab_sweep", "plot_run",
-           "plot_sweep"]
+__all__ = ["plot_campaign", "plot_contact_law_fit", "plot_identification", "plot_hysteresis", "plot_lab_sweep",
+           "plot_record", "plot_response_spectrum", "plot_run", "plot_sweep"]

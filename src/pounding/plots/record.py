@@ -1,0 +1,71 @@
+"""Plots of records and their response spectra."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..excitation import Record
+
+
+def plot_record(record: "Record", ax: Any = None) -> list:
+    """The acceleration (g) against time (s), its peak marked.
+
+    Parameters
+    ----------
+    record : Record
+    ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(8, 2.8), constrained_layout=True)
+    a_g = record.accel / record.g
+    label = record.name or "record"
+    artists = list(ax.plot(record.t, a_g, lw=0.8, label=label))
+    i = int(np.argmax(np.abs(a_g)))
+    artists += ax.plot([record.t[i]], [a_g[i]], "o", color=artists[0].get_color(), ms=4)
+    artists.append(ax.annotate(f"PGA {abs(a_g[i]):.3g} g at {record.t[i]:.2f} s", (record.t[i], a_g[i]),
+                               textcoords="offset points", xytext=(6, 4), fontsize=8))
+    ax.set_xlabel("t [s]")
+    ax.set_ylabel("table acceleration [g]")
+    ax.set_title(label)
+    return artists
+
+
+def plot_response_spectrum(spectrum: Any, ax: Any = None, *, quantity: str = "psa_g") -> list:
+    """One curve per record of an elastic response spectrum (:func:`pounding.response_spectrum`).
+
+    Parameters
+    ----------
+    spectrum : xarray.Dataset
+    ax : matplotlib Axes, optional
+    quantity : str
+        The variable drawn: ``psa_g`` (default), ``sa_g``, ``sd_m``, ``sv_m_s``, ``psv_m_s``, ...
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6, 3.5), constrained_layout=True)
+    da = spectrum[quantity]
+    artists = []
+    for name in da["record"].values:
+        artists += ax.plot(da["period_s"], da.sel(record=name), lw=1.0, label=str(name))
+    ax.set_xlabel("period T [s]")
+    units = da.attrs.get("units", "")
+    ax.set_ylabel(f"{quantity} [{units}]" if units else quantity)
+    ax.set_title(f"{spectrum.attrs.get('damping_ratio', 0.05):.0%} damped")
+    if len(artists) <= 10:
+        ax.legend(fontsize=8)
+    return artists
