@@ -155,20 +155,27 @@ def test_identify_recovers_a_system_from_its_synthetic_recordings():
         assert fit.parameters[name] == pytest.approx(value, rel=0.05), (name, fit.parameters)
 
 
-def test_a_window_with_missing_samples_is_not_measured():
-    osc = pd_.presets.paper_damped(bumpers=False)
-    freqs = [1.0, 1.2, 1.4]
-    rec = synthetic_test(osc, 0.05, freqs, cycles=12, noise=0.0, gains=(1.0,))
-    disp = rec.displacement_m.copy()
-    late = np.flatnonzero(rec.time_s > rec.meta["step_start_s"][1] + 10 / 1.2 - 0.5)[:20]
-    disp[late] = np.nan  # 20 samples lost in the middle step's window
-    holed = LabRecord(rec.time_s, rec.table_acc_m_s2, rec.mass_acc_m_s2, disp, rec.mass_channels)
-    with pytest.warns(pd_.PoundingWarning):
-        warned = pd_.lab.record._warn_missing(holed)  # (what read_test says of such a file)
-    df = analyse_stepped_sine(holed, mass_kg=500.0, freqs_hz=freqs).to_dataframe()
-    assert list(df["missing_samples"]) == [0, 20, 0]
-    assert np.isnan(df["alpha"][1]) and np.isfinite(df["alpha"][[0, 2]]).all()
-    assert warned is None
+@pytest.mark.parametrize("channel", ["displacement", "table"])
+def test_a_window_with_missing_samples_is_not_measured(channel):
+    # the lost samples fall in the resonant step's window: it is not measured, and neither the
+    # resonance nor the contact range is taken from it
+    osc = pd_.presets.paper_damped()
+    freqs = [1.4, 1.8, 2.0, 2.2]
+    rec = synthetic_test(osc, 0.1, freqs, cycles=12, noise=0.0, gains=(1.0,))
+    full = analyse_stepped_sine(rec, mass_kg=500.0, gap_total_m=0.03, freqs_hz=freqs)
+    assert full.resonance_hz == 2.2 and full.contact_range_hz == (1.4, 2.2)
+    disp, table = rec.displacement_m.copy(), rec.table_acc_m_s2.copy()
+    late = np.flatnonzero(rec.time_s > rec.meta["step_start_s"][3] + 10 / 2.2 - 0.3)[:20]
+    (disp if channel == "displacement" else table)[late] = np.nan  # 20 samples lost in the last window
+    holed = LabRecord(rec.time_s, table, rec.mass_acc_m_s2, disp, rec.mass_channels)
+    with pytest.warns(pd_.PoundingWarning, match="missing"):
+        pd_.lab.record._warn_missing(holed)  # (what read_test says of such a file)
+    lab = analyse_stepped_sine(holed, mass_kg=500.0, gap_total_m=0.03, freqs_hz=freqs)
+    df = lab.to_dataframe()
+    assert list(df["freq_hz"]) == freqs and list(df["missing_samples"]) == [0, 0, 0, 20]
+    assert np.isnan(df["alpha"][3]) and np.isnan(df["contact"][3]) and np.isfinite(df["alpha"][:3]).all()
+    assert lab.resonance_hz == 2.0 and lab.contact_range_hz == (1.4, 2.0)
+    assert lab.to_targets("YBs").table.set_index("quantity")["value"]["nu_r"] == 2.0
 
 
 def test_uncertainties_grow_with_the_noise():
@@ -257,6 +264,11 @@ def test_a_bumper_with_a_set_is_timed_by_its_force_pulse():
     sim = pd_.sweep(osc, 0.05, freqs, "up", steady="fixed", cycles=30, measure_cycles=5).to_dataframe()
     rows = sim["contact"].to_numpy()
     assert rows.sum() >= 5 and list(df["contact"]) == list(sim["contact"])
+    lab = analyse_stepped_sine(rec, mass_kg=500.0, gap_total_m=gap, freqs_hz=freqs)
+    sw = pd_.sweep(osc, 0.05, freqs, "up", steady="fixed", cycles=30, measure_cycles=5)
+    assert lab.resonance_hz == sw.resonance_hz
+    np.testing.assert_allclose(df["alpha"], sim["alpha"], rtol=0.02)
+    np.testing.assert_allclose(df["eta"], sim["excursion_m"] / gap, rtol=0.02)
     np.testing.assert_allclose(df["contact_time_s"][rows], sim["contact_time_s"][rows], atol=2e-3)
     np.testing.assert_allclose(df["restitution"][rows], sim["restitution"][rows], atol=0.03)
     np.testing.assert_allclose(df["mean_force_n"][rows], sim["mean_force_n"][rows], rtol=0.05)
@@ -274,3 +286,46 @@ def test_the_planning_example_runs(tmp_path, capsys):
     lines = {line.split()[0]: line for line in capsys.readouterr().out.splitlines() if line[:9].strip().isdigit()}
     assert set(lines) == {"250", "500", "1000", "2000"} and (tmp_path / "lab.png").stat().st_size > 10_000
     assert "warned: contacts last about" in lines["250"] and "warned" not in lines["1000"]  # (the rate too low)
+
+
+def _swap(rec, **channels):
+    arrays = {"time_s": rec.time_s, "table_acc_m_s2": rec.table_acc_m_s2, "mass_acc_m_s2": rec.mass_acc_m_s2,
+              "displacement_m": rec.displacement_m, **channels}
+    return LabRecord(arrays["time_s"], arrays["table_acc_m_s2"], arrays["mass_acc_m_s2"], arrays["displacement_m"],
+                     rec.mass_channels)
+
+
+def test_channels_in_the_wrong_unit_or_sign_are_named():
+    # kinematics ties the channels: the fundamental of a_abs - A is -omega^2 times that of D
+    osc = pd_.presets.paper_damped()
+    freqs = [1.4, 1.8, 2.4]
+    rec = synthetic_test(osc, 0.1, freqs, cycles=12, seed=2, **SENSORS)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # (a consistent recording: no warning)
+        analyse_stepped_sine(rec, mass_kg=500.0, gap_total_m=0.03, freqs_hz=freqs)
+    g = 9.81
+    reversed_one = rec.mass_acc_m_s2 * np.array([1.0, -1.0])
+    for changed, words in (({"table_acc_m_s2": rec.table_acc_m_s2 / g, "mass_acc_m_s2": rec.mass_acc_m_s2 / g},
+                            "accelerations \\(table and mass\\) look like g read as m/s\\^2"),
+                           ({"mass_acc_m_s2": rec.mass_acc_m_s2 / g}, "'accelerometer_1'.*g read as m/s\\^2"),
+                           ({"mass_acc_m_s2": reversed_one}, "'accelerometer_2'.*negate that accelerometer"),
+                           ({"displacement_m": -rec.displacement_m}, "negate the displacement"),
+                           ({"displacement_m": rec.displacement_m * 1e3}, "mm read as m")):
+        with pytest.warns(pd_.PoundingWarning, match=words):
+            analyse_stepped_sine(_swap(rec, **changed), mass_kg=500.0, freqs_hz=freqs)
+    # time in ms read as s: steps at a thousandth of their frequency
+    slow = LabRecord(rec.time_s * 1e3, rec.table_acc_m_s2, rec.mass_acc_m_s2, rec.displacement_m, rec.mass_channels)
+    with pytest.warns(pd_.PoundingWarning, match="time in ms read as s"):
+        analyse_stepped_sine(slow, mass_kg=500.0)
+
+
+def test_steps_too_short_are_named():
+    osc = pd_.presets.paper_damped(bumpers=False)
+    rec = synthetic_test(osc, 0.05, [1.0, 1.2], cycles=5, noise=0.0, gains=(1.0,))
+    with pytest.raises(pd_.InputError) as info:
+        analyse_stepped_sine(rec, mass_kg=500.0, freqs_hz=[1.0, 1.2], measure_cycles=1)
+    assert info.value.field == "measure_cycles"  # (one cycle cannot show steadiness)
+    with pytest.warns(pd_.PoundingWarning, match="fewer than measure_cycles"), pytest.raises(pd_.InputError) as info:
+        analyse_stepped_sine(rec, mass_kg=500.0, freqs_hz=[1.0, 1.2], measure_cycles=5)
+    assert info.value.field == "measure_cycles" and "lower measure_cycles" in str(info.value)
+    assert len(analyse_stepped_sine(rec, mass_kg=500.0, freqs_hz=[1.0, 1.2], measure_cycles=3).steps) == 2

@@ -154,3 +154,11 @@ def test_cli_lab_writes_tables_figure_and_targets(tmp_path):
     bad = runner.invoke(app, args[:-2] + ["--out", str(tmp_path / "x"), "--units", "time=minutes"])
     assert bad.exit_code == 2 and "units.time" in bad.output
     assert not (tmp_path / "x").exists()
+    bad_freqs = [a if a != "1.4,1.6,1.8" else "1.4,x" for a in args[:-2]] + ["--out", str(tmp_path / "y")]
+    bad = runner.invoke(app, bad_freqs)
+    assert bad.exit_code == 2 and "'x' is not a number" in bad.output and "Traceback" not in bad.output
+    # a header written with quotes (spreadsheets, pandas quoting) reads as the names
+    quoted = tmp_path / "quoted.csv"
+    quoted.write_text('"time_s","table","a1","d"\n' + "".join(f"{k * 0.001},{k},{k},{k}\n" for k in range(40)))
+    read = pd_.lab.read_test(quoted, time="time_s", table_acc="table", mass_acc="a1", displacement="d")
+    assert read.time_s.size == 40

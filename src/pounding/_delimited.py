@@ -1,9 +1,10 @@
 """Columns of numbers from delimited text (CSV, TSV, semicolons or whitespace), with errors that
-name the line and the column: what recordings (``pounding.lab.read_test``) are read with.
+name the line and the column: what recordings (``pounding.lab.read_test``) and records
+(``Record.from_csv``) are read with.
 
-The delimiter is the first of comma, tab and semicolon found in the first data line, else runs of
-whitespace.  Lines starting with ``#`` and blank lines are skipped.  The first line is a header when
-any of its fields is not a number.  Every line has as many fields as the first (a decimal comma or
+The delimiter is the first of comma, tab and semicolon found in the first line (the header, where
+there is one), else runs of whitespace; fields may be quoted.  Lines starting with ``#`` and blank
+lines are skipped.  The first line is a header when any of its fields is not a number.  Every line has as many fields as the first (a decimal comma or
 a stray delimiter is an error, not a shifted column).  An empty field, ``nan`` or ``NaN`` is a
 missing value (NaN).
 """
@@ -33,7 +34,7 @@ def _delimiter(line: str) -> str | None:
 
 def _split(line: str, delimiter: str | None) -> list[str]:
     fields = line.split(delimiter) if delimiter is not None else line.split()
-    return [f.strip() for f in fields]
+    return [f.strip().strip('"').strip("'").strip() for f in fields]  # (quoted fields, as spreadsheets write)
 
 
 def _is_number(token: str) -> bool:

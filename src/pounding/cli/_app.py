@@ -246,3 +246,15 @@ def compile_notice() -> None:
             "compiling the engine, once per installation, about 20 s "
             "('pounding warm-up' does it ahead of time) ..."
         )
+
+
+def float_list(option: str, text: str) -> list[float]:
+    """A comma-separated list of numbers (``--freqs 1.4,1.6``); a bad one is named, with the fix."""
+    out = []
+    for part in text.split(","):
+        try:
+            out.append(float(part))
+        except ValueError:
+            raise typer.BadParameter(f"{part.strip()!r} is not a number; give numbers separated by commas, "
+                                     f"e.g. {option} 1.4,1.6,1.8") from None
+    return out

@@ -9,7 +9,7 @@ import typer
 from rich.table import Table
 
 from .._io import interrupts_deferred, write_text
-from ._app import command, console, folder, save_figure, write_csv
+from ._app import command, console, float_list, folder, save_figure, write_csv
 
 ROLE_NAMES = ("time", "table_acc", "mass_acc", "displacement")
 
@@ -58,7 +58,7 @@ def lab(
     from ..lab import analyse_stepped_sine, read_test
 
     out = folder("--out", out)
-    schedule = None if freqs is None else [float(f) for f in freqs.split(",")]
+    schedule = None if freqs is None else float_list("--freqs", freqs)
     record = read_test(test, time=_column(time), table_acc=_column(table_acc),
                        mass_acc=[_column(c) for c in mass_acc.split(",")], displacement=_column(displacement),
                        units=_units(units))

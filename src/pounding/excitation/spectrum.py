@@ -9,7 +9,7 @@ from typing import Any
 import numpy as np
 
 from .._checks import float_array, real
-from .._errors import Interrupted, InputError, Problem
+from .._errors import InputError, Interrupted, Problem
 from ._spectrum_kernel import DONE, INTERRUPTED, spectrum_kernel
 from .record import Record
 

@@ -198,7 +198,7 @@ def window_contacts(t: np.ndarray, d_raw: np.ndarray, d: np.ndarray, a_abs: np.n
             j1 += 1
         not_free[j0:j1 + 1] = True
         t0, t1 = _zero_edge(t, c, j0, 1, 0.5 * c[k]), _zero_edge(t, c, j1, -1, 0.5 * c[k])
-        if not starts_in[0] <= t0 < starts_in[1]:
+        if not starts_in[0] <= t0 < starts_in[1] or t1 - t0 < 1.0 / fs:  # (shorter than a sample: not measured)
             continue
         tt = np.concatenate([[t0], t[j0:j1 + 1], [t1]])
         impulse = float(integrate.trapezoid(np.concatenate([[0.0], c[j0:j1 + 1], [0.0]]), tt))

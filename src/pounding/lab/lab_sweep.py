@@ -55,7 +55,15 @@ class LabSweep:
     @property
     def resonance_hz(self) -> float:
         """The step frequency where alpha peaks (the pseudo-resonance), Hz."""
-        return float(self.steps["freq_hz"].iloc[int(np.argmax(self.steps["alpha"].to_numpy()))])
+        return float(self.steps["freq_hz"].iloc[self._resonance_row()])
+
+    def _resonance_row(self) -> int:
+        """The row of the largest measured alpha (steps not measured, NaN, are passed over)."""
+        alpha = self.steps["alpha"].to_numpy(dtype=float)
+        if not np.isfinite(alpha).any():
+            raise InputError(Problem.NO_FIT, "record", self.record.source, why="no step could be measured "
+                             "(every window misses samples)", fix="see the steps' missing_samples")
+        return int(np.nanargmax(alpha))
 
     @property
     def nu_r(self) -> float:
@@ -75,9 +83,12 @@ class LabSweep:
     @property
     def contact_range_hz(self) -> tuple[float, float] | None:
         """The lowest and highest step frequency with contact, Hz (None without)."""
-        if "contact" not in self.steps or not self.steps["contact"].astype(bool).any():
+        if "contact" not in self.steps:
             return None
-        f = self.steps.loc[self.steps["contact"].astype(bool), "freq_hz"]
+        seen = self.steps["contact"].to_numpy(dtype=float) > 0.5  # (NaN: a step not measured)
+        if not seen.any():
+            return None
+        f = self.steps.loc[seen, "freq_hz"]
         return float(f.min()), float(f.max())
 
     def to_targets(self, configuration: str, a_g: float | None = None) -> Any:
@@ -97,7 +108,7 @@ class LabSweep:
             raise InputError(Problem.MISSING_INPUT, "gap_total_m", None,
                              what="the gap: analyse_stepped_sine(..., gap_total_m=...) for YBs targets")
         df = self.steps
-        at = df.iloc[int(np.argmax(df["alpha"].to_numpy()))]
+        at = df.iloc[self._resonance_row()]
         values = {"nu_r": self.nu_r, "alpha": self.alpha_max}
         if configuration == "YBs":
             values["eta"] = float(df["eta"].max())
