@@ -159,6 +159,6 @@ def test_cli_lab_writes_tables_figure_and_targets(tmp_path):
     assert bad.exit_code == 2 and "'x' is not a number" in bad.output and "Traceback" not in bad.output
     # a header written with quotes (spreadsheets, pandas quoting) reads as the names
     quoted = tmp_path / "quoted.csv"
-    quoted.write_text('"time_s","table","a1","d"\n' + "".join(f"{k * 0.001},{k},{k},{k}\n" for k in range(40)))
+    quoted.write_text('"time_s","table","a1","d"\n' + "".join(f"{k * 0.001},{k},{k},{k * 1e-4}\n" for k in range(40)))
     read = pd_.lab.read_test(quoted, time="time_s", table_acc="table", mass_acc="a1", displacement="d")
     assert read.time_s.size == 40
