@@ -3,11 +3,12 @@
 The public surface is re-exported here; modules with a leading underscore are private.
 """
 
-from . import data, lab, presets
+from . import data, lab, plots, presets, records
 from ._errors import InputError, Interrupted, PoundingWarning, Problem, Status
 from ._warm_up import WarmUp, warm_up
 from .engine import EnergyLedger, Run, State, simulate
 from .excitation import Harmonic, Record
+from .excitation.spectrum import response_spectrum
 from .identification import (ContactLawFit, Identification, ModelFamily, Targets, fit_contact_law, identify,
                              paper_targets, rank_contact_laws)
 from .metrics import HysteresisLoop, impact_table
@@ -21,5 +22,5 @@ __all__ = [
     "BoucWen", "ElasticPlastic", "Hertzdamp", "InputError", "Interrupted", "PoundingWarning", "Isolator", "Jankowski", "MultilinearBumper", "KelvinVoigt", "Oscillator", "Problem", "Record",
     "Run", "State", "Status", "SweepResult", "campaign", "impact_table", "paper_frequencies_hz",
     "data", "fit_contact_law", "identify", "paper_targets", "rank_contact_laws", "presets", "simulate", "sweep",
-    "WarmUp", "warm_up",
+    "WarmUp", "warm_up", "plots", "records", "response_spectrum",
 ]

