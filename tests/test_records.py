@@ -225,3 +225,36 @@ def test_a_record_plots():
     lines = pd_.plots.plot_response_spectrum(spectrum)
     assert len(lines) == 2
     plt.close("all")
+
+
+def test_cli_simulate_with_a_record(tmp_path):
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+
+    at2 = tmp_path / "elc.AT2"
+    rec = el_centro()
+    rows = [rec.accel[i:i + 5] / rec.g for i in range(0, 300, 5)]
+    at2.write_text("PEER NGA STRONG MOTION DATABASE RECORD\nIMPERIAL VALLEY 05/19/40 0437, EL CENTRO, 180\n"
+                   "ACCELERATION TIME SERIES IN UNITS OF G\nNPTS=   300, DT=   .0200 SEC\n"
+                   + "".join("".join(f"{v:15.7E}" for v in row) + "\n" for row in rows))
+    runner = CliRunner()
+    contacts = tmp_path / "contacts.csv"
+    result = runner.invoke(app, ["simulate", "--preset", "paper-damped", "--record", str(at2), "--scale-pga", "0.4",
+                                 "--contacts", str(contacts)])
+    assert result.exit_code == 0, result.output
+    assert "record elc (PGA 0.4 g, 5.98 s)" in result.output and contacts.is_file()
+    # the same as the Python API
+    run = pd_.simulate(pd_.presets.paper_damped(), pd_.Record.from_at2(at2).scaled(pga_g=0.4), 5.98, sample_rate_hz=0)
+    import pandas as pd
+
+    assert len(run.contacts) == len(pd.read_csv(contacts)) > 0
+    one = tmp_path / "one.txt"
+    one.write_text("".join(f"{a}\n" for a in rec.accel[:300] / rec.g))
+    same = runner.invoke(app, ["simulate", "--preset", "paper-damped", "--record", str(one), "--record-dt", "0.02",
+                               "--scale-pga", "0.4"])
+    assert same.exit_code == 0 and "record one (PGA 0.4 g, 5.98 s)" in same.output, same.output
+    for args, words in ((["--record", str(at2), "--a-g", "0.1"], "not both"), ([], "--a-g and --freq"),
+                        (["--a-g", "0.1", "--freq", "1", "--scale-pga", "0.3"], "--scale-pga is for --record")):
+        bad = runner.invoke(app, ["simulate", "--preset", "paper-damped", *args])
+        assert bad.exit_code == 2 and words in bad.output, bad.output

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Optional
+from typing import Any, Optional
 
 import typer
 from rich.markup import escape
@@ -49,9 +49,16 @@ def simulate(
     system_file: Optional[Path] = typer.Argument(
         None, metavar="SYSTEM.toml", help="System TOML (see examples/). Omit to use --preset."
     ),
-    a_g: float = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
-    freq: float = typer.Option(..., "--freq", help="Excitation frequency, Hz."),
-    duration: float = typer.Option(20.0, "--duration", help="Simulated time, s."),
+    a_g: Optional[float] = typer.Option(None, "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
+    freq: Optional[float] = typer.Option(None, "--freq", help="Excitation frequency, Hz."),
+    record: Optional[Path] = typer.Option(
+        None, "--record", help="Shake with a record instead: a PEER .AT2 file, or text with a time and an "
+        "acceleration column (g; one column with --record-dt)."),
+    record_dt: Optional[float] = typer.Option(None, "--record-dt", help="The time step (s) of a one-column record."),
+    record_units: str = typer.Option("g", "--record-units", help="A text record's unit: g, m/s2 or cm/s2."),
+    scale_pga: Optional[float] = typer.Option(None, "--scale-pga", help="Scale the record to this PGA, g."),
+    duration: Optional[float] = typer.Option(
+        None, "--duration", help="Simulated time, s (default 20 s; with --record, the record's length)."),
     preset: Optional[str] = OPT_PRESET,
     no_bumpers: bool = OPT_NO_BUMPERS,
     sample_rate: Optional[float] = typer.Option(
@@ -66,33 +73,35 @@ def simulate(
         None, "--plot", help="Draw displacement and acceleration (PNG, PDF...)."
     ),
 ) -> None:
-    """Simulate one harmonic excitation and summarise the run (exact extrema, contacts, energy)."""
+    """Simulate a harmonic excitation or a record and summarise the run (exact extrema, contacts, energy)."""
     from ..engine import State
     from ..engine import simulate as run_simulation
     from ..engine.result import CONTACT_UNITS
-    from ..excitation import Harmonic
 
     out = files(contacts=(contacts, CSV), history=(history, CSV))
     plot = figure_path("--plot", plot)
     osc = system(system_file, preset, bumpers=not no_bumpers)
-    exc = Harmonic(a_g, freq)
+    exc, what = excitation(a_g, freq, record, record_dt, record_units, scale_pga)
+    if duration is None:
+        duration = exc.t[-1] if record is not None else 20.0
     start = State.at_rest(osc, velocity_m_s=velocity)
     wants_history = history is not None or plot is not None
     rate = sample_rate if wants_history else 0.0  # nothing to sample for: the events only
     compile_notice()
     complete = True
     try:
-        with console.status(f"simulating {duration:g} s at {freq:g} Hz, a_G = {a_g:g} ..."):
+        with console.status(f"simulating {duration:g} s of {what} ..."):
             run = run_simulation(osc, exc, duration, start, sample_rate_hz=rate)
     except Interrupted as stop:
         run, complete = stop.partial, False
     label = system_file or preset
-    table, add_row = kv_table(f"{label}: a_G = {a_g:g}, f = {freq:g} Hz, {run.final_state.time_s:g} s")
+    table, add_row = kv_table(f"{label}: {what}, {run.final_state.time_s:g} s")
     add_row("status", run.message)
     add_row("D max / min [mm]", f"{run.displacement_max * 1e3:.4f} / {run.displacement_min * 1e3:.4f}")
     add_row("max |abs. acceleration| [g]", f"{run.abs_acceleration_max / exc.g:.4f}")
-    alpha = run.abs_acceleration_max / abs(exc.peak_m_s2) if exc.a_g != 0 else float("nan")
-    add_row("alpha = max|a_abs| / A_t", f"{alpha:.4f}" if exc.a_g != 0 else "- (a_G = 0)")
+    peak = abs(exc.peak_m_s2) if record is None else exc.pga_g * exc.g
+    alpha = run.abs_acceleration_max / peak if peak != 0 else float("nan")
+    add_row("alpha = max|a_abs| / " + ("A_t" if record is None else "PGA"), f"{alpha:.4f}" if peak else "- (no shaking)")
     n = len(run.contacts)
     add_row("contacts", f"{n} ({(run.contacts['side'] == 'left').sum()} left)" if n else "0")
     done = run.impacts.dropna(subset=["contact_time_s"])
@@ -120,6 +129,31 @@ def simulate(
         )
     if not run.success:
         raise typer.Exit(code=1)
+
+
+def excitation(a_g: float | None, freq: float | None, record: Path | None, record_dt: float | None,
+               record_units: str, scale_pga: float | None) -> tuple[Any, str]:
+    """The command line's excitation, and how to say it: --a-g and --freq, or --record."""
+    from ..excitation import Harmonic, Record
+
+    if record is None:
+        if a_g is None or freq is None:
+            raise typer.BadParameter("give --a-g and --freq (a harmonic excitation), or --record FILE")
+        for name, value in (("--record-dt", record_dt), ("--scale-pga", scale_pga)):
+            if value is not None:
+                raise typer.BadParameter(f"{name} is for --record")
+        return Harmonic(a_g, freq), f"a_G = {a_g:g}, f = {freq:g} Hz"
+    if a_g is not None or freq is not None:
+        raise typer.BadParameter("give --record, or --a-g and --freq, not both")
+    if record.suffix.lower() == ".at2":
+        rec = Record.from_at2(record)
+    elif record_dt is not None:
+        rec = Record.from_csv(record, accel=0, dt=record_dt, units=record_units)
+    else:
+        rec = Record.from_csv(record, time=0, accel=1, units=record_units)
+    if scale_pga is not None:
+        rec = rec.scaled(pga_g=scale_pga)
+    return rec, f"record {rec.name} (PGA {rec.pga_g:.3g} g, {rec.duration_s:g} s)"
 
 
 # the columns of `pounding sweep --out`, as issue 3 names them
