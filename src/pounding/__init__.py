@@ -13,7 +13,8 @@ from .identification import (ContactLawFit, Identification, ModelFamily, Targets
                              paper_targets, rank_contact_laws)
 from .metrics import HysteresisLoop, impact_table
 from .model import BoucWen, Bumpers, ElasticPlastic, Hertzdamp, HuntCrossley, Isolator, Jankowski, KelvinVoigt, MultilinearBumper, Oscillator
-from .protocols import CampaignResult, SweepResult, campaign, paper_frequencies_hz, sweep
+from .protocols import (CampaignResult, PoundingSpectrum, SweepResult, campaign, paper_frequencies_hz,
+                        pounding_spectrum, sweep)
 
 __version__ = "0.1.0"
 
@@ -22,5 +23,5 @@ __all__ = [
     "BoucWen", "ElasticPlastic", "Hertzdamp", "InputError", "Interrupted", "PoundingWarning", "Isolator", "Jankowski", "MultilinearBumper", "KelvinVoigt", "Oscillator", "Problem", "Record",
     "Run", "State", "Status", "SweepResult", "campaign", "impact_table", "paper_frequencies_hz",
     "data", "fit_contact_law", "identify", "paper_targets", "rank_contact_laws", "presets", "simulate", "sweep",
-    "WarmUp", "warm_up", "plots", "records", "response_spectrum",
+    "WarmUp", "warm_up", "plots", "records", "response_spectrum", "PoundingSpectrum", "pounding_spectrum",
 ]

@@ -4,7 +4,8 @@ from .contact_law import plot_contact_law_fit
 from .identification import plot_identification
 from .record import plot_record, plot_response_spectrum
 from .run import plot_run
+from .spectrum import plot_pounding_spectrum
 from .sweep import plot_campaign, plot_hysteresis, plot_lab_sweep, plot_sweep
 
 __all__ = ["plot_campaign", "plot_contact_law_fit", "plot_identification", "plot_hysteresis", "plot_lab_sweep",
-           "plot_record", "plot_response_spectrum", "plot_run", "plot_sweep"]
+           "plot_pounding_spectrum", "plot_record", "plot_response_spectrum", "plot_run", "plot_sweep"]

@@ -1,7 +1,10 @@
-"""Protocols: the virtual shaking table (stepped-sine sweeps) and the paper's campaign."""
+"""Protocols: the virtual shaking table (stepped-sine sweeps), the paper's campaign, pounding spectra."""
 
 from .campaign import CampaignResult, campaign
+from .pounding_spectrum import pounding_spectrum
+from .pounding_spectrum_result import PoundingSpectrum
 from .sweep import SweepPlan, paper_frequencies_hz, sweep
 from .sweep_result import SweepResult
 
-__all__ = ["CampaignResult", "SweepPlan", "SweepResult", "campaign", "paper_frequencies_hz", "sweep"]
+__all__ = ["CampaignResult", "PoundingSpectrum", "SweepPlan", "SweepResult", "campaign", "paper_frequencies_hz",
+           "pounding_spectrum", "sweep"]

@@ -1,0 +1,70 @@
+"""Plots of pounding spectra."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+KINDS = ("curves", "map")
+
+
+def plot_pounding_spectrum(spectrum: Any, ax: Any = None, *, kind: str = "curves",
+                           quantity: str = "amplification") -> list:
+    """A pounding spectrum (:func:`pounding.pounding_spectrum`) over the isolation period.
+
+    Parameters
+    ----------
+    spectrum : PoundingSpectrum
+    ax : matplotlib Axes, optional
+    kind : {"curves", "map"}
+        "curves": the median over the records against the period, one line per gap, the 16-84 %
+        band shaded (one record: its curves); "map": the median over period (x) and gap (y).
+    quantity : str
+        A variable of ``spectrum.dataset`` with the gap dimension (``amplification``, ``acc_max_g``,
+        ``disp_max_m``, ``impacts``, ``impact_force_max_n``, ``impact_speed_max_m_s``, ``disp_ratio``).
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    import matplotlib.pyplot as plt
+
+    from .._checks import one_of
+    from .._errors import InputError, Problem
+
+    kind = one_of("kind", kind, KINDS)
+    ds = spectrum.dataset
+    if quantity not in ds or "gap_m" not in ds[quantity].dims:
+        choices = ", ".join(v for v in ds.data_vars if "gap_m" in ds[v].dims and v != "status")
+        raise InputError(Problem.NOT_IN_RESULT, "quantity", quantity, choices=choices)
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.5, 3.8), constrained_layout=True)
+    stats = spectrum.summary()[quantity]
+    median = stats.sel(percentile=50.0)
+    units = ds[quantity].attrs.get("units", "")
+    label = f"{quantity} [{units}]" if units and units != "1" else quantity
+    n = ds.sizes["record"]
+    artists: list = []
+    if kind == "curves":
+        for gap in ds["gap_m"].values:
+            line, = ax.plot(ds["period_s"], median.sel(gap_m=gap), lw=1.2, label=f"gap {gap * 1e3:g} mm")
+            artists.append(line)
+            if n > 1:
+                artists.append(ax.fill_between(ds["period_s"], stats.sel(percentile=16.0, gap_m=gap),
+                                               stats.sel(percentile=84.0, gap_m=gap), color=line.get_color(),
+                                               alpha=0.15, lw=0))
+        if quantity == "amplification":
+            artists.append(ax.axhline(1.0, color="0.5", lw=0.8, ls=":"))
+        ax.set_xlabel("isolation period T [s]")
+        ax.set_ylabel(label)
+        ax.legend(fontsize=8)
+    else:
+        mesh = ax.pcolormesh(ds["period_s"], ds["gap_m"] * 1e3, np.asarray(median).T, shading="nearest")
+        artists.append(mesh)
+        ax.figure.colorbar(mesh, ax=ax, label=label)
+        ax.set_xlabel("isolation period T [s]")
+        ax.set_ylabel("gap [mm]")
+    what = "median over " + (f"{n} records (16-84 % shaded)" if n > 1 and kind == "curves" else f"{n} record(s)")
+    ax.set_title(f"{quantity}: {what}", fontsize=9)
+    return artists

@@ -1,0 +1,207 @@
+"""Pounding spectra: the isolated mass under records, with bumpers behind a gap and without, over
+isolation periods and gaps.
+
+For each record, period ``T`` and gap ``g`` (each side), the oscillator is the mass on an isolator
+of period ``T`` (linear, or a given isolator's shape scaled to that initial period) with the damping
+ratio given, and the bumpers at ``g`` on both sides; the same oscillator without bumpers is the
+reference.  Each is one exact run of the engine over the record.  The records run on worker
+threads (the compiled kernels release the GIL).
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import math
+import os
+from collections.abc import Sequence
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+
+from .._checks import float_array, integer, positive
+from .._errors import InputError, Interrupted, Problem
+from ..engine._control import new_control, request_stop
+from ..excitation import Record
+from ..excitation.spectrum import _records, damping_ratio_value, periods_array
+from ..model import Bumpers, Isolator, Oscillator
+from ._progress import Progress, progress_reporter
+from .pounding_spectrum_result import QUANTITIES, PoundingSpectrum
+
+MAX_RUNS = 2_000_000  # records x periods x (gaps + 1): beyond, refused (hours of work)
+
+
+def _isolator(template: Isolator | None, mass_kg: float, period_s: float, zeta: float) -> Isolator:
+    """The isolator of initial period ``period_s``: linear, or ``template``'s shape scaled to it."""
+    k = mass_kg * (2.0 * math.pi / period_s) ** 2
+    c = 2.0 * zeta * math.sqrt(k * mass_kg)
+    if template is None:
+        return Isolator((k,), (), "elastic", c)
+    scale = k / template.slopes[0]
+    return replace(template, slopes=tuple(s * scale for s in template.slopes), damping=c)
+
+
+def _peaks(run: Any, g: float) -> tuple[float, ...]:
+    """(max |a_abs| in g, max |D| in m, impacts, peak impact force N, peak impact speed m/s, status)."""
+    contacts = run.contacts
+    n = len(contacts)
+    force = float(contacts["peak_force"].max()) if n else 0.0
+    speed = float(np.abs(contacts["v_in"]).max()) if n else 0.0
+    return (run.abs_acceleration_max / g, max(abs(run.displacement_max), abs(run.displacement_min)), float(n),
+            force, speed, float(run.status))
+
+
+def _one_record(rec: Record, periods: np.ndarray, bumpers: list[Bumpers], zeta: float, mass_kg: float,
+                template: Isolator | None, max_steps: int, advance: Any, ctl: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """One record's free (periods, 6) and pounding (periods, gaps, 6) peaks; NaN where not run."""
+    from ..engine.simulate import simulate
+
+    free = np.full((periods.size, 6), np.nan)
+    hit = np.full((periods.size, len(bumpers), 6), np.nan)
+    duration = float(rec.t[-1])
+    try:
+        for i, period in enumerate(periods):
+            iso = _isolator(template, mass_kg, float(period), zeta)
+            for j in range(-1, len(bumpers)):
+                if ctl[0]:  # (a stop was asked for: what is done is kept)
+                    raise Interrupted((free, hit), i, periods.size, "periods")
+                run = simulate(Oscillator(mass_kg, iso, None if j < 0 else bumpers[j]), rec, duration, sample_rate_hz=0,
+                               max_steps=max_steps)
+                if j < 0:
+                    free[i] = _peaks(run, rec.g)
+                else:
+                    hit[i, j] = _peaks(run, rec.g)
+                advance(1)
+    except KeyboardInterrupt as stop:  # (a progress callback's Ctrl-C, or a stop: keep what is done)
+        if isinstance(stop, Interrupted):
+            raise
+        raise Interrupted((free, hit), 0, periods.size, "periods") from None
+    return free, hit
+
+
+def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gaps_m: Any,
+                      damping_ratio: float = 0.05, mass_kg: float = 500.0, bumper: Any = None,
+                      isolator: Isolator | None = None, workers: int | None = None, progress: Progress = False,
+                      max_steps: int = 10_000_000) -> PoundingSpectrum:
+    """Peak responses of the isolated mass with bumpers and without, over records, periods and gaps.
+
+    Parameters
+    ----------
+    records : Record or sequence of Record
+        E.g. ``pounding.records.fema_p695("far_field")``.
+    periods_s : array_like, shape (p,)
+        Isolation periods (s), > 0 and increasing: the isolator's initial period.
+    gaps_m : array_like, shape (q,)
+        Gaps (m) between the mass at rest and each bumper (the same both sides), > 0, increasing.
+    damping_ratio : float
+        The isolator's viscous damping, a fraction of critical at its initial stiffness, in [0, 1).
+    mass_kg : float
+        The isolated mass, kg (the spectra scale with it only through the bumper's stiffness).
+    bumper : contact law, optional
+        The bumpers' law (e.g. ``pounding.KelvinVoigt(1.46e6, 400.0)``); default the paper's
+        (``presets.paper_damped()``).
+    isolator : Isolator, optional
+        A nonlinear isolator's shape: its slopes scaled so that its first is ``m (2 pi / T)^2`` at
+        each period, its breakpoints and hysteresis kept, its damping set by ``damping_ratio``.
+        Default: linear.  (A Bouc-Wen spring is not scaled: refused.)
+    workers : int, optional
+        Worker threads (default: every core).
+    progress : bool or callable
+        True: a progress bar over the runs; a callable gets the number of runs finished.
+    max_steps : int
+        Each run's work budget (see :func:`pounding.simulate`).
+
+    Returns
+    -------
+    PoundingSpectrum
+        ``.dataset`` (dims ``record``, ``period_s``, ``gap_m``), ``.summary()`` (median and 16/84 %
+        over the records), ``.to_dataframe()``, ``.plot()``, ``.to_netcdf()``.
+
+    Raises
+    ------
+    Interrupted
+        On Ctrl-C, with ``.partial`` the spectrum of what finished (NaN elsewhere).
+    """
+    from ..presets import paper_damped
+
+    recs = _records(records)
+    periods = periods_array(periods_s)
+    if (periods <= 0.0).any():
+        raise InputError(Problem.NOT_POSITIVE, "periods_s", periods.tolist()[:6], unit="s")
+    gaps = float_array("gaps_m", gaps_m)
+    if (gaps <= 0.0).any():
+        raise InputError(Problem.NOT_POSITIVE, "gaps_m", gaps.tolist()[:6], unit="m")
+    if gaps.size > 1 and (np.diff(gaps) <= 0.0).any():
+        raise InputError(Problem.NOT_INCREASING, "gaps_m", gaps.tolist()[:6])
+    zeta = damping_ratio_value(damping_ratio)
+    mass_kg = positive("mass_kg", mass_kg, "kg")
+    law = paper_damped().bumpers.law if bumper is None else bumper
+    bumpers = [Bumpers(float(g), float(g), law) for g in gaps]  # (checked here, warned once, not in a worker)
+    if isolator is not None:
+        if not isinstance(isolator, Isolator):
+            raise InputError(Problem.WRONG_TYPE, "isolator", isolator, got=type(isolator).__name__,
+                             expected="pounding.Isolator or None (linear)")
+        if isolator.bouc_wen is not None:
+            raise InputError(Problem.BAD_STATE, "isolator", "Isolator(..., bouc_wen=...)",
+                             why="a Bouc-Wen spring has no single stiffness to scale to each period",
+                             fix="give an isolator without bouc_wen, or run simulate over your own systems")
+    runs = len(recs) * periods.size * (gaps.size + 1)
+    if runs > MAX_RUNS:
+        raise InputError(Problem.TOO_MUCH_WORK, "periods_s", f"{len(recs)} records x {periods.size} periods x "
+                         f"{gaps.size + 1} systems", estimate=f"{runs:.3g}", unit="runs", budget=f"{MAX_RUNS:.3g}",
+                         fix="fewer records, periods or gaps")
+    n_workers = integer("workers", (os.cpu_count() or 1) if workers is None else workers, 1)
+    max_steps = integer("max_steps", max_steps, 1)
+    free = np.full((len(recs), periods.size, 6), np.nan)
+    hit = np.full((len(recs), periods.size, gaps.size, 6), np.nan)
+    controls = [new_control(max_steps) for _ in recs]
+    interrupted = False
+    failure: BaseException | None = None
+    with progress_reporter(progress, runs, "pounding spectrum") as advance:
+        with cf.ThreadPoolExecutor(max_workers=n_workers, thread_name_prefix="pounding") as pool:
+            futures = {pool.submit(_one_record, r, periods, bumpers, zeta, mass_kg, isolator, max_steps, advance,
+                                   ctl): i for i, (r, ctl) in enumerate(zip(recs, controls))}
+            try:
+                pending = set(futures)
+                while pending and failure is None and not interrupted:
+                    done, pending = cf.wait(pending, timeout=0.2, return_when=cf.FIRST_COMPLETED)
+                    for fut in done:
+                        exc = fut.exception()
+                        if isinstance(exc, Interrupted):
+                            interrupted = True
+                        elif exc is not None:
+                            failure = exc
+            except KeyboardInterrupt:
+                interrupted = True
+            if interrupted or failure is not None:
+                request_stop(controls)  # (the running records stop within a run)
+                for fut in futures:
+                    fut.cancel()
+            for fut, i in futures.items():
+                if fut.cancelled():
+                    continue
+                while True:  # (more Ctrl-C while the workers return: keep collecting)
+                    try:
+                        exc = fut.exception()
+                        break
+                    except KeyboardInterrupt:
+                        interrupted = True
+                        request_stop(controls)
+                if exc is None:
+                    free[i], hit[i] = fut.result()
+                elif isinstance(exc, Interrupted):
+                    free[i], hit[i] = exc.partial
+                elif failure is None:
+                    failure = exc
+    if failure is not None:
+        raise failure
+    result = PoundingSpectrum.build(recs, periods, gaps, free, hit, {
+        "damping_ratio": zeta, "mass_kg": mass_kg, "bumper": repr(law),
+        "isolator": "linear" if isolator is None else repr(isolator), "complete": int(not interrupted)})
+    if interrupted:
+        done = int(np.isfinite(hit[..., 0]).sum() + np.isfinite(free[..., 0]).sum())
+        raise Interrupted(result, done, runs, "runs")
+    return result
+
+
+__all__ = ["QUANTITIES", "pounding_spectrum"]

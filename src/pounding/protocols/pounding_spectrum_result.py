@@ -1,0 +1,94 @@
+"""The result of :func:`pounding.pounding_spectrum`: labelled peaks, their statistics over a record set."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import pandas as pd
+
+if TYPE_CHECKING:  # pragma: no cover
+    import xarray as xr
+
+    from ..excitation import Record
+
+# per run: what _peaks returns, in this order
+QUANTITIES = ("acc_max_g", "disp_max_m", "impacts", "impact_force_max_n", "impact_speed_max_m_s", "status")
+UNITS = {"acc_max_g": "g", "disp_max_m": "m", "impacts": "1", "impact_force_max_n": "N", "impact_speed_max_m_s": "m/s",
+         "status": "pounding.Status", "amplification": "1", "disp_ratio": "1", "acc_max_free_g": "g",
+         "disp_max_free_m": "m"}
+PERCENTILES = (16.0, 50.0, 84.0)
+
+
+@dataclass(frozen=True)
+class PoundingSpectrum:
+    """Peaks of the isolated mass under records, with bumpers (per gap) and without.
+
+    Attributes
+    ----------
+    dataset : xarray.Dataset
+        Dims ``(record, period_s, gap_m)``: ``acc_max_g`` (peak absolute acceleration, g),
+        ``disp_max_m`` (peak ``|D|``), ``impacts`` (number of contacts), ``impact_force_max_n``,
+        ``impact_speed_max_m_s`` (the fastest approach), ``status`` (the run's, 0 for success), and
+        the amplification by pounding ``amplification = acc_max_g / acc_max_free_g`` and
+        ``disp_ratio = disp_max_m / disp_max_free_m``; dims ``(record, period_s)``: the same without
+        bumpers, ``acc_max_free_g``, ``disp_max_free_m``.  NaN where a run did not finish
+        (interrupted).  Each record's metadata (``pga_g``, ``event``...) as coordinates on ``record``.
+    """
+
+    dataset: "xr.Dataset"
+
+    @classmethod
+    def build(cls, recs: list["Record"], periods: np.ndarray, gaps: np.ndarray, free: np.ndarray, hit: np.ndarray,
+              attrs: dict) -> "PoundingSpectrum":
+        import xarray as xr
+
+        from ..excitation.spectrum import record_names
+
+        dims = ("record", "period_s", "gap_m")
+        data = {q: (dims, hit[..., k], {"units": UNITS[q]}) for k, q in enumerate(QUANTITIES)}
+        data["acc_max_free_g"] = (dims[:2], free[..., 0], {"units": "g"})
+        data["disp_max_free_m"] = (dims[:2], free[..., 1], {"units": "m"})
+        data["status_free"] = (dims[:2], free[..., 5], {"units": "pounding.Status"})
+        with np.errstate(divide="ignore", invalid="ignore"):
+            data["amplification"] = (dims, hit[..., 0] / free[..., 0][..., None],
+                                     {"long_name": "peak acceleration with bumpers over without"})
+            data["disp_ratio"] = (dims, hit[..., 1] / free[..., 1][..., None],
+                                  {"long_name": "peak displacement with bumpers over without"})
+        coords = {"record": record_names(recs), "period_s": periods, "gap_m": gaps,
+                  "pga_g": ("record", np.array([r.pga_g for r in recs]))}
+        for key in ("event", "year", "station", "component", "magnitude"):
+            values = [r.meta.get(key) for r in recs]
+            if all(v is not None for v in values):
+                coords[key] = ("record", np.array(values))
+        return cls(xr.Dataset(data, coords=coords, attrs=attrs))
+
+    def summary(self) -> "xr.Dataset":
+        """The 16th, 50th (median) and 84th percentiles over the records (dim ``percentile``) of every
+        quantity; runs that did not finish are left out."""
+        ds = self.dataset.drop_vars(["status", "status_free"])
+        return ds.quantile(np.array(PERCENTILES) / 100.0, dim="record", skipna=True).assign_coords(
+            quantile=list(PERCENTILES)).rename(quantile="percentile")
+
+    def to_dataframe(self) -> pd.DataFrame:
+        """One row per record, period and gap, every quantity a column (the free-run ones repeated)."""
+        return self.dataset.to_dataframe().reset_index()
+
+    def to_xarray(self) -> "xr.Dataset":
+        return self.dataset
+
+    def to_netcdf(self, path: str | Path) -> Path:
+        """Save :attr:`dataset` (netCDF; ``xarray.open_dataset`` reads it back), written atomically."""
+        from .._io import atomic_write, output_file
+
+        return atomic_write(output_file("path", path), self.dataset.to_netcdf)
+
+    def plot(self, ax: Any = None, *, kind: str = "curves", quantity: str = "amplification") -> list:
+        """``kind="curves"``: the median over the records against the period, one curve per gap, the 16-84 %
+        band shaded; ``kind="map"``: the median over period and gap.  See
+        :func:`pounding.plots.plot_pounding_spectrum`."""
+        from ..plots.spectrum import plot_pounding_spectrum
+
+        return plot_pounding_spectrum(self, ax=ax, kind=kind, quantity=quantity)

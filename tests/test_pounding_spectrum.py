@@ -1,0 +1,120 @@
+"""Pounding spectra (issue 18): the isolated mass under records, with bumpers and without."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import pounding as pd_
+from pounding.records import el_centro
+
+PERIODS = np.array([0.5, 1.0, 2.0, 3.0])
+GAPS = np.array([0.01, 0.03, 0.45])
+
+
+@pytest.fixture(scope="module")
+def quakes():
+    ec = el_centro()
+    short = pd_.Record(ec.t[:600], ec.accel[:600], name="El Centro 12 s", meta=ec.meta)
+    return [short, short.scaled(pga_g=0.5).negated()]
+
+
+@pytest.fixture(scope="module")
+def spectrum(quakes):
+    return pd_.pounding_spectrum(quakes, PERIODS, gaps_m=GAPS, damping_ratio=0.05)
+
+
+def test_without_bumpers_it_is_the_elastic_response_spectrum(quakes, spectrum):
+    # two independent exact computations: the engine's event-driven runs and the spectrum kernel
+    elastic = pd_.response_spectrum(quakes, PERIODS, damping_ratio=0.05)
+    ds = spectrum.dataset
+    np.testing.assert_allclose(ds["acc_max_free_g"].values, elastic["sa_g"].values, rtol=1e-9)
+    np.testing.assert_allclose(ds["disp_max_free_m"].values, elastic["sd_m"].values, rtol=1e-9)
+    # bumpers 0.45 m away are never reached in these 12 s: the same run, amplification 1
+    far = ds.sel(gap_m=0.45)
+    assert (far["impacts"] == 0).all() and np.allclose(far["amplification"], 1.0, rtol=1e-12)
+    assert (ds["status"] == 0).all() and ds.attrs["complete"] == 1
+
+
+def test_each_entry_is_one_run_of_the_engine(quakes, spectrum):
+    rec, period, gap = quakes[1], 2.0, 0.03
+    k = 500.0 * (2.0 * np.pi / period) ** 2
+    iso = pd_.Isolator((k,), (), "elastic", 2.0 * 0.05 * np.sqrt(k * 500.0))
+    law = pd_.presets.paper_damped().bumpers.law
+    run = pd_.simulate(pd_.Oscillator(500.0, iso, pd_.Bumpers(gap, gap, law)), rec, rec.t[-1], sample_rate_hz=0)
+    got = spectrum.dataset.isel(record=1).sel(period_s=period, gap_m=gap)
+    assert int(got["impacts"]) == len(run.contacts) > 0
+    assert float(got["acc_max_g"]) == pytest.approx(run.abs_acceleration_max / rec.g, rel=1e-12)
+    assert float(got["disp_max_m"]) == pytest.approx(max(run.displacement_max, -run.displacement_min), rel=1e-12)
+    assert float(got["impact_force_max_n"]) == pytest.approx(run.contacts["peak_force"].max(), rel=1e-12)
+    assert float(got["impact_speed_max_m_s"]) == pytest.approx(run.contacts["v_in"].abs().max(), rel=1e-12)
+    # pounding: the displacement bounded near the gap, the acceleration amplified
+    assert float(got["disp_ratio"]) < 1.0 < float(got["amplification"])
+
+
+def test_summary_table_plots_and_file(spectrum, tmp_path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    import xarray as xr
+
+    stats = spectrum.summary()
+    median = stats["amplification"].sel(percentile=50.0)
+    both = spectrum.dataset["amplification"]
+    np.testing.assert_allclose(median, both.mean("record"), rtol=1e-12)  # (two records: the median is their mean)
+    assert (stats["amplification"].sel(percentile=16.0) <= median).all()
+    df = spectrum.to_dataframe()
+    assert len(df) == 2 * PERIODS.size * GAPS.size and {"record", "period_s", "gap_m", "impacts"} <= set(df.columns)
+    path = spectrum.to_netcdf(tmp_path / "spectrum.nc")
+    back = xr.open_dataset(path)
+    np.testing.assert_allclose(back["amplification"], spectrum.dataset["amplification"])
+    back.close()
+    curves = spectrum.plot()
+    assert len(curves) >= 2 * GAPS.size  # (a line and a band per gap, and the line at 1)
+    _, ax = plt.subplots()
+    mesh = spectrum.plot(ax=ax, kind="map", quantity="impacts")
+    assert len(mesh) == 1
+    with pytest.raises(pd_.InputError) as info:
+        spectrum.plot(quantity="acc_max_free_g")
+    assert info.value.field == "quantity"
+    plt.close("all")
+
+
+def test_arguments_are_checked(quakes):
+    for kwargs, field in (({"periods_s": [0.0, 1.0]}, "periods_s"), ({"gaps_m": [0.02, 0.01]}, "gaps_m"),
+                          ({"gaps_m": [-0.01]}, "gaps_m"), ({"damping_ratio": 1.2}, "damping_ratio"),
+                          ({"mass_kg": 0.0}, "mass_kg"), ({"records": []}, "record"),
+                          ({"isolator": "rubber"}, "isolator"),
+                          ({"isolator": pd_.Isolator((1e4,), (), bouc_wen=pd_.BoucWen(1e4, 0.01))}, "isolator"),
+                          ({"workers": 0}, "workers")):
+        with pytest.raises(pd_.InputError) as info:
+            pd_.pounding_spectrum(**{"records": quakes[0], "periods_s": [1.0], "gaps_m": [0.02], **kwargs})
+        assert info.value.field == field, (kwargs, info.value.field)
+
+
+def test_a_nonlinear_isolator_is_scaled_to_each_period(quakes):
+    shape = pd_.Isolator((38e3, 18e3, 2e3), (0.015, 0.04), "kinematic", 0.0)
+    ps = pd_.pounding_spectrum(quakes[0], [1.0, 2.0], gaps_m=[0.05], isolator=shape)
+    k1 = 500.0 * (2.0 * np.pi) ** 2
+    iso = pd_.Isolator((k1, k1 * 18 / 38, k1 * 2 / 38), (0.015, 0.04), "kinematic", 2.0 * 0.05 * np.sqrt(k1 * 500.0))
+    run = pd_.simulate(pd_.Oscillator(500.0, iso), quakes[0], quakes[0].t[-1], sample_rate_hz=0)
+    assert float(ps.dataset["acc_max_free_g"].sel(period_s=1.0)[0]) == pytest.approx(
+        run.abs_acceleration_max / 9.81, rel=1e-12)
+    assert "kinematic" in ps.dataset.attrs["isolator"]
+
+
+def test_an_interrupt_keeps_what_finished(quakes):
+    calls = []
+
+    def stop_after_five(n):
+        calls.append(n)
+        if len(calls) == 5:
+            raise KeyboardInterrupt
+
+    with pytest.raises(pd_.Interrupted) as info:
+        pd_.pounding_spectrum(quakes[0], PERIODS, gaps_m=GAPS, progress=stop_after_five, workers=1)
+    part = info.value.partial.dataset
+    assert part.attrs["complete"] == 0
+    assert np.isfinite(part["acc_max_free_g"].values).sum() == 2 and np.isfinite(part["acc_max_g"].values).sum() == 3
+    assert np.isnan(part["acc_max_g"].values[0, 2:]).all()
