@@ -118,3 +118,30 @@ def test_an_interrupt_keeps_what_finished(quakes):
     assert part.attrs["complete"] == 0
     assert np.isfinite(part["acc_max_free_g"].values).sum() == 2 and np.isfinite(part["acc_max_g"].values).sum() == 3
     assert np.isnan(part["acc_max_g"].values[0, 2:]).all()
+
+
+def test_cli_spectrum_writes_tables_figures_and_netcdf(tmp_path):
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+
+    rec = el_centro()
+    text = tmp_path / "ec.csv"
+    text.write_text("t,a\n" + "".join(f"{t:.2f},{a / rec.g}\n" for t, a in zip(rec.t[:400], rec.accel[:400])))
+    out = tmp_path / "spec"
+    runner = CliRunner()
+    result = runner.invoke(app, ["spectrum", "--record", str(text), "--periods", "0.5:2:0.5", "--gaps", "0.01,0.05",
+                                 "--out", str(out)])
+    assert result.exit_code == 0, result.output
+    for name in ("pounding_spectrum.nc", "pounding_spectrum.csv", "pounding_summary.csv", "elastic_spectrum.csv",
+                 "amplification.png", "amplification_map.png", "displacement.png", "elastic_spectrum.png"):
+        assert (out / name).is_file(), name
+    import pandas as pd
+
+    df = pd.read_csv(out / "pounding_spectrum.csv")
+    assert len(df) == 4 * 2 and sorted(df["period_s"].unique()) == [0.5, 1.0, 1.5, 2.0]
+    for args, words in ((["--periods", "0.5:2"], "start:stop:step"), (["--gaps", "0.01,x"], "'x' is not a number"),
+                        (["--set", "fema-p695-far-field"], "one of them"), (["--periods", "2:0.5:0.1"], "stop >= start")):
+        bad = runner.invoke(app, ["spectrum", "--record", str(text), "--out", str(tmp_path / "x"), *args])
+        assert bad.exit_code == 2 and words in bad.output, bad.output
+    assert not (tmp_path / "x").exists()
