@@ -1,6 +1,6 @@
 """pounding against OpenSeesPy and scipy on the same work, in the same run (issue 5).
 
-    pip install -e ".[bench]"      # the peers (openseespy); scipy comes with pounding
+    pip install -e ".[bench]"      # the peers (openseespy; eqsig and sdof for records.py); scipy comes with pounding
     python benchmarks/run.py       # about 3 minutes; --quick for a smoke run, --no-write
                                    # to leave benchmarks/RESULTS.md alone
 
