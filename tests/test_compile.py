@@ -35,6 +35,7 @@ SESSION = textwrap.dedent("""
     p.simulate(el, p.Record(t, np.sin(7.0 * t)), 2.0)
     p.sweep(osc, 0.05, [1.0, 1.1], steady="fixed", cycles=3, measure_cycles=1)
     p.sweep(osc, 0.05, [1.0, 1.1], max_cycles=40)
+    p.response_spectrum(p.Record(t, np.sin(7.0 * t)), [0.0, 0.2, 1.0])
     many = {}
     entries = []  # the kernels Python calls (with a Python wrapper)
     for obj in gc.get_objects():
@@ -46,7 +47,7 @@ SESSION = textwrap.dedent("""
     print(json.dumps({"many": many, "entries": sorted(entries), "compiled": warm.compiled,
                       "loaded": warm.loaded}))
 """)
-KERNELS = ["run_kernel", "step_kernel", "impact_row", "law_force_many"]
+KERNELS = ["run_kernel", "step_kernel", "impact_row", "law_force_many", "spectrum_kernel"]
 
 
 def test_each_compiled_function_has_one_specialisation(tmp_path):
@@ -66,7 +67,7 @@ def test_each_compiled_function_has_one_specialisation(tmp_path):
                            capture_output=True, text=True, check=True, env=env)
     compiled, loaded, message = json.loads(again.stdout.strip().splitlines()[-1])
     assert compiled == [] and loaded == KERNELS, message
-    assert message.startswith("4 kernels loaded from Numba's cache ("), message
+    assert message.startswith("5 kernels loaded from Numba's cache ("), message
 
 
 def test_import_leaves_the_optimizers_for_model_updating():

@@ -53,12 +53,13 @@ class WarmUp:
 def _kernels() -> dict:
     """The compiled entry points Python calls, by name."""
     from .engine._kernel import run_kernel
+    from .excitation._spectrum_kernel import spectrum_kernel
     from .metrics._impacts import impact_row
     from .model.contact_laws import law_force_many
     from .protocols._step_kernel import step_kernel
 
     return {"run_kernel": run_kernel, "step_kernel": step_kernel, "impact_row": impact_row,
-            "law_force_many": law_force_many}
+            "law_force_many": law_force_many, "spectrum_kernel": spectrum_kernel}
 
 
 def kernels_cached(names: tuple[str, ...] = ("run_kernel", "step_kernel")) -> bool:
@@ -83,8 +84,8 @@ def _counts(kernels: dict) -> dict:
 def warm_up() -> WarmUp:
     """Compile (or load from Numba's cache) every kernel pounding runs, now.
 
-    Runs a short simulation, one sweep step, the impact table and a contact-law force
-    evaluation of the printed system, with the argument types of real use, so that no
+    Runs a short simulation, one sweep step, the impact table, a contact-law force
+    evaluation of the printed system and a one-period elastic response spectrum, with the argument types of real use, so that no
     later call compiles anything.  The first time after installing this takes 10-20 s;
     afterwards about 1 s per new process (the cache is read).
 
@@ -97,11 +98,12 @@ def warm_up() -> WarmUp:
     --------
     >>> import pounding
     >>> pounding.warm_up().message  # doctest: +SKIP
-    '4 kernels compiled and cached (14.2 s)'
+    '5 kernels compiled and cached (14.2 s)'
     """
     from . import presets
     from .engine import State, simulate
-    from .excitation import Harmonic
+    from .excitation import Harmonic, Record
+    from .excitation.spectrum import response_spectrum
     from .identification.contact_law import _force
     from .protocols import sweep
 
@@ -114,6 +116,7 @@ def warm_up() -> WarmUp:
     _ = run.impacts  # the impact table's kernel
     sweep(osc, 0.05, [2.0], steady="fixed", cycles=2, measure_cycles=1, progress=False)
     _force(osc.bumpers.left, np.array([0.0, 1e-3]), np.array([0.1, -0.1]))
+    response_spectrum(Record([0.0, 0.01, 0.02], [0.0, 1.0, 0.0]), [0.5])  # the elastic spectrum's kernel
     seconds = time.perf_counter() - t0
     after = _counts(kernels)
     loaded = tuple(n for n in kernels if after[n][0] > before[n][0])
