@@ -145,3 +145,10 @@ def test_cli_spectrum_writes_tables_figures_and_netcdf(tmp_path):
         bad = runner.invoke(app, ["spectrum", "--record", str(text), "--out", str(tmp_path / "x"), *args])
         assert bad.exit_code == 2 and words in bad.output, bad.output
     assert not (tmp_path / "x").exists()
+
+
+def test_a_run_over_its_budget_is_marked_not_lost(quakes):
+    ps = pd_.pounding_spectrum(quakes[0], [1.0, 2.0], gaps_m=[0.02], max_steps=10)
+    ds = ps.dataset
+    assert (ds["status"] == int(pd_.Status.BUDGET)).all() and (ds["status_free"] == int(pd_.Status.BUDGET)).all()
+    assert np.isnan(ds["acc_max_g"]).all() and np.isnan(ps.summary()["amplification"]).all()

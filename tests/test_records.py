@@ -70,6 +70,23 @@ def test_bad_at2_files_name_the_line(tmp_path, change, field, words):
     assert info.value.field == field and words in str(info.value), str(info.value)
 
 
+def test_at2_fortran_exponents_latin1_and_dates(tmp_path):
+    text = NGA_WEST2.replace(" .1200000E-02", " .1200000-002").replace("El Centro Array", "Él Centro Array")
+    path = tmp_path / "latin.AT2"
+    path.write_bytes(text.encode("latin-1"))
+    rec = pd_.Record.from_at2(path)
+    assert rec.accel[0] == pytest.approx(0.0012 * 9.81, rel=1e-12)  # (three-digit exponent, E dropped)
+    assert (rec.meta["event"], rec.meta["date"], rec.meta["station"]) == ("Imperial Valley-02", "5/19/1940",
+                                                                         "Él Centro Array #9")
+    old = tmp_path / "old.AT2"
+    old.write_text(OLD)
+    assert pd_.Record.from_at2(old).meta["date"] == "05/19/40"
+    huge = tmp_path / "huge.AT2"
+    huge.write_text(NGA_WEST2.replace(" .5000000E-01", " .5000000E+401"))
+    with pytest.raises(pd_.InputError, match="line 5"):
+        pd_.Record.from_at2(huge)
+
+
 def test_csv_with_and_without_header(tmp_path):
     t = 0.02 * np.arange(12)
     two = tmp_path / "two.csv"
@@ -112,6 +129,7 @@ def test_scaling_to_a_pga_or_a_spectral_acceleration():
     assert to_sa.meta["scale_factor"] == pytest.approx(to_sa.pga_g / rec.pga_g, rel=1e-12)
     for kwargs, field in (({}, "pga_g"), ({"pga_g": 0.2, "sa_g": 0.3}, "pga_g"), ({"sa_g": 0.3}, "period_s"),
                           ({"pga_g": -0.1}, "pga_g"), ({"pga_g": 0.2, "period_s": 1.0}, "period_s"),
+                          ({"pga_g": 0.2, "damping_ratio": 0.02}, "damping_ratio"),
                           ({"sa_g": 0.3, "period_s": 1.0, "damping_ratio": 1.5}, "damping_ratio")):
         with pytest.raises(pd_.InputError) as info:
             rec.scaled(**kwargs)
@@ -123,8 +141,11 @@ def _lsim_peaks(rec: pd_.Record, period_s: float, zeta: float) -> np.ndarray:
     input at its points) on the record subdivided finely, each peak refined by the parabola through
     the three points around it."""
     w = 2.0 * math.pi / period_s
-    sub = max(50, math.ceil(w * rec.dt_s / 0.004))
-    tf = np.linspace(rec.t[0], rec.t[-1], (rec.t.size - 1) * sub + 1)
+    steps = np.diff(rec.t)
+    subs = np.maximum(400, np.ceil(w * steps / 0.004)).astype(int)  # (each interval its own subdivision;
+    # 400 at least: a peak a few thousandths of a step from a sample, where the slope has a kink, needs it)
+    tf = np.concatenate([np.linspace(a, a + h, n, endpoint=False) for a, h, n in zip(rec.t[:-1], steps, subs)]
+                        + [rec.t[-1:]])
     af = np.interp(tf, rec.t, rec.accel)
     system = signal.StateSpace([[0.0, 1.0], [-w * w, -2.0 * zeta * w]], [[0.0], [-1.0]],
                                [[1.0, 0.0], [0.0, 1.0], [-w * w, -2.0 * zeta * w]], [[0.0], [0.0], [0.0]])
@@ -170,8 +191,59 @@ def test_response_spectrum_finds_the_peaks_between_samples():
     np.testing.assert_allclose(got, ref, rtol=1e-6)
 
 
+def _expm_peaks(rec: pd_.Record, period_s: float, zeta: float) -> np.ndarray:
+    """A second independent reference, for uneven steps (which lsim refuses): each interval cut into
+    equal sub-steps, propagated exactly by the matrix exponential of the system augmented with the
+    record's value and slope; peaks refined by a parabola as in :func:`_lsim_peaks`."""
+    from scipy.linalg import expm
+
+    w = 2.0 * math.pi / period_s
+    a = np.array([[0.0, 1.0, 0.0, 0.0], [-w * w, -2.0 * zeta * w, -1.0, 0.0], [0.0, 0.0, 0.0, 1.0],
+                  [0.0, 0.0, 0.0, 0.0]])
+    rows = []
+    x = np.zeros(2)
+    for k in range(rec.t.size - 1):
+        h = rec.t[k + 1] - rec.t[k]
+        n = max(400, math.ceil(w * h / 0.004))
+        step = expm(a * (h / n))
+        slope = (rec.accel[k + 1] - rec.accel[k]) / h
+        z = np.array([x[0], x[1], rec.accel[k], slope])
+        for _ in range(n):
+            rows.append((z[0], z[1], -w * w * z[0] - 2.0 * zeta * w * z[1]))
+            z = step @ z
+        x = z[:2]
+    rows.append((x[0], x[1], -w * w * x[0] - 2.0 * zeta * w * x[1]))
+    out = []
+    for col in np.abs(np.array(rows)).T:
+        i = int(np.argmax(col))
+        y0, y1, y2 = col[max(i - 1, 0)], col[i], col[min(i + 1, col.size - 1)]
+        den = y0 - 2.0 * y1 + y2
+        out.append(y1 - 0.125 * (y0 - y2) ** 2 / den if 0 < i < col.size - 1 and den != 0.0 else y1)
+    return np.array(out)
+
+
+@pytest.mark.parametrize("case", ["uneven steps", "a spike", "periods below the step", "nearly critical"])
+def test_response_spectrum_on_awkward_records(case):
+    rng = np.random.default_rng(3)
+    t = np.cumsum(np.r_[0.0, rng.uniform(0.003, 0.08, 120)]) if case == "uneven steps" else np.arange(0.0, 2.4, 0.02)
+    a = rng.normal(0.0, 2.0, t.size)
+    if case == "a spike":
+        a = np.zeros(t.size)
+        a[40] = 40.0
+    periods = [0.007, 0.013, 0.05, 0.4] if case == "periods below the step" else [0.05, 0.3, 1.2]
+    zeta = 0.95 if case == "nearly critical" else 0.05
+    rec = pd_.Record(t, a)
+    ds = pd_.response_spectrum(rec, periods, damping_ratio=zeta)
+    reference_peaks = _expm_peaks if case == "uneven steps" else _lsim_peaks
+    ref = np.array([reference_peaks(rec, T, zeta) for T in periods])
+    got = np.stack([ds[q].values[0] for q in ("sd_m", "sv_m_s", "sa_m_s2")], axis=1)
+    np.testing.assert_allclose(got, ref, rtol=1e-6)
+
+
 def test_response_spectrum_arguments_are_checked():
     rec = el_centro()
+    with pytest.raises(pd_.InputError, match="half periods"):  # (far below the step: refused, not hours)
+        pd_.response_spectrum(rec, [1e-8, 1.0])
     for kwargs, field in (({"periods_s": [1.0, 0.5]}, "periods_s"), ({"periods_s": [-0.1]}, "periods_s[0]"),
                           ({"periods_s": [1.0], "damping_ratio": -0.01}, "damping_ratio"),
                           ({"periods_s": [1.0], "damping_ratio": 1.0}, "damping_ratio"),
@@ -254,7 +326,12 @@ def test_cli_simulate_with_a_record(tmp_path):
     same = runner.invoke(app, ["simulate", "--preset", "paper-damped", "--record", str(one), "--record-dt", "0.02",
                                "--scale-pga", "0.4"])
     assert same.exit_code == 0 and "record one (PGA 0.4 g, 5.98 s)" in same.output, same.output
+    two = tmp_path / "two.csv"
+    two.write_text("".join(f"{t},{a}\n" for t, a in zip(rec.t[:50], rec.accel[:50] / rec.g)))
     for args, words in ((["--record", str(at2), "--a-g", "0.1"], "not both"), ([], "--a-g and --freq"),
-                        (["--a-g", "0.1", "--freq", "1", "--scale-pga", "0.3"], "--scale-pga is for --record")):
+                        (["--a-g", "0.1", "--freq", "1", "--scale-pga", "0.3"], "--scale-pga is for --record"),
+                        (["--record", str(two), "--record-dt", "0.02"], "has 2 columns"),
+                        (["--record", str(one)], "has 1 column(s)"),
+                        (["--record", str(at2), "--record-dt", "0.02"], "an .AT2 file gives its DT")):
         bad = runner.invoke(app, ["simulate", "--preset", "paper-damped", *args])
         assert bad.exit_code == 2 and words in bad.output, bad.output

@@ -139,21 +139,46 @@ def excitation(a_g: float | None, freq: float | None, record: Path | None, recor
     if record is None:
         if a_g is None or freq is None:
             raise typer.BadParameter("give --a-g and --freq (a harmonic excitation), or --record FILE")
-        for name, value in (("--record-dt", record_dt), ("--scale-pga", scale_pga)):
+        for name, value in (("--record-dt", record_dt), ("--scale-pga", scale_pga),
+                            ("--record-units", None if record_units == "g" else record_units)):
             if value is not None:
                 raise typer.BadParameter(f"{name} is for --record")
         return Harmonic(a_g, freq), f"a_G = {a_g:g}, f = {freq:g} Hz"
     if a_g is not None or freq is not None:
         raise typer.BadParameter("give --record, or --a-g and --freq, not both")
     if record.suffix.lower() == ".at2":
+        for name, value in (("--record-dt", record_dt), ("--record-units", None if record_units == "g" else
+                                                         record_units)):
+            if value is not None:
+                raise typer.BadParameter(f"{name} is for text records: an .AT2 file gives its DT and unit (g)")
         rec = Record.from_at2(record)
-    elif record_dt is not None:
-        rec = Record.from_csv(record, accel=0, dt=record_dt, units=record_units)
     else:
-        rec = Record.from_csv(record, time=0, accel=1, units=record_units)
+        columns = _text_columns(record)
+        if record_dt is not None and columns != 1:
+            raise typer.BadParameter(f"{record.name} has {columns} columns: --record-dt is for a file of one "
+                                     "column (accelerations); leave it out to read time and acceleration")
+        if record_dt is None and columns != 2:
+            raise typer.BadParameter(f"{record.name} has {columns} column(s): give a time and an acceleration "
+                                     "column, or one acceleration column with --record-dt")
+        if record_dt is not None:
+            rec = Record.from_csv(record, accel=0, dt=record_dt, units=record_units)
+        else:
+            rec = Record.from_csv(record, time=0, accel=1, units=record_units)
     if scale_pga is not None:
         rec = rec.scaled(pga_g=scale_pga)
     return rec, f"record {rec.name} (PGA {rec.pga_g:.3g} g, {rec.duration_s:g} s)"
+
+
+def _text_columns(path: Path) -> int:
+    """The number of fields on a text record's first line (0 for an empty or unreadable file: the
+    reader then says what is wrong)."""
+    from .._checks import read_text
+    from .._delimited import COMMENT, _delimiter, _split
+
+    for line in read_text("--record", path).splitlines():
+        if line.strip() and not line.lstrip().startswith(COMMENT):
+            return len(_split(line, _delimiter(line)))
+    return 0
 
 
 # the columns of `pounding sweep --out`, as issue 3 names them

@@ -63,8 +63,8 @@ def spectrum(
     else:
         if record_set not in SETS:
             raise typer.BadParameter(f"--set {record_set!r}: use one of {', '.join(SETS)}")
-        if record_dt is not None:
-            raise typer.BadParameter("--record-dt is for --record")
+        if record_dt is not None or record_units != "g":
+            raise typer.BadParameter("--record-dt and --record-units are for --record (a set gives its own)")
         from ..records import fema_p695
 
         try:

@@ -9,22 +9,25 @@ The layouts met in the PEER databases (all read here)::
     2688    .0100    NPTS, DT                          (the older database)
 
 then values in E-format (``-.1234567E-02``), five or eight a line, the last line partial.  Values
-run together without a space (``.1E-01-.2E-01``) are split at their signs.
+run together without a space (``.1E-01-.2E-01``) are split at their signs; Fortran's three-digit
+exponent without its E (``.1234-100``) is an exponent.
 """
 
 from __future__ import annotations
 
+import math
 import re
 
 import numpy as np
 
 from .._errors import InputError, Problem
 
-NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[EeDd][-+]?\d+)?")
+NUMBER = re.compile(r"[-+]?(?:\d+\.?\d*|\.\d+)(?:[EeDd][-+]?\d+|[-+]\d{3}(?!\d))?")
 NPTS_DT = re.compile(r"NPTS\s*=\s*(\d+)\s*,?\s*DT\s*=\s*(" + NUMBER.pattern + ")", re.IGNORECASE)
 OLD_NPTS_DT = re.compile(r"^\s*(\d+)\s+(" + NUMBER.pattern + r")\s+NPTS\s*,\s*DT", re.IGNORECASE)
 HEADER_LINES = 10  # the NPTS line is looked for among the first lines
 UNITS_CM = re.compile(r"UNITS OF\s+CM", re.IGNORECASE)
+DATE = re.compile(r"[\s,]+(\d{1,2}/\d{1,2}/\d{2,4})\b.*$")
 
 
 def _numbers(line: str, number: int, field: str, source: str) -> list[float]:
@@ -35,7 +38,14 @@ def _numbers(line: str, number: int, field: str, source: str) -> list[float]:
         if gap.strip():
             raise InputError(Problem.BAD_CELL, field, source, line=number, column="value", token=gap.strip(),
                              hint="")
-        out.append(float(m.group().replace("D", "E").replace("d", "e")))
+        token = m.group().replace("D", "E").replace("d", "e")
+        if re.search(r"\d[-+]\d{3}$", token) and "E" not in token.upper():
+            token = token[:-4] + "E" + token[-4:]
+        value = float(token)
+        if not math.isfinite(value):
+            raise InputError(Problem.BAD_CELL, field, source, line=number, column="value", token=m.group(),
+                             hint=" (beyond the range of a float)")
+        out.append(value)
         at = m.end()
     if line[at:].strip():
         raise InputError(Problem.BAD_CELL, field, source, line=number, column="value", token=line[at:].strip(),
@@ -69,6 +79,10 @@ def parse_at2(text: str, field: str, source: str) -> tuple[np.ndarray, float, st
     if dt <= 0.0:
         raise InputError(Problem.BAD_HEADER, field, source, line=at + 1, why=f"DT = {dt:g} s is not > 0",
                          fix="correct the time step in the header")
+    if dt * npts > 1e7:
+        raise InputError(Problem.BAD_HEADER, field, source, line=at + 1,
+                         why=f"NPTS x DT = {npts * dt:.3g} s (longer than any record)",
+                         fix="correct DT, in s, in the header")
     if npts < 2:
         raise InputError(Problem.BAD_HEADER, field, source, line=at + 1, why=f"NPTS = {npts} (fewer than 2)",
                          fix="give a record of at least 2 samples")
@@ -88,5 +102,10 @@ def parse_at2(text: str, field: str, source: str) -> tuple[np.ndarray, float, st
     if len(header) >= 2:
         parts = [p.strip() for p in header[1].split(",")]
         if len(parts) >= 3:
-            meta.update(event=", ".join(parts[:-2]), station=parts[-2], component=parts[-1])
+            event = ", ".join(parts[:-2])
+            date = DATE.search(event)  # (NGA-West2: "Event, 5/19/1940"; older: "EVENT 05/19/40 0437")
+            if date:
+                meta["date"] = date.group(1)
+                event = event[:date.start()].strip(" ,")
+            meta.update(event=event, station=parts[-2], component=parts[-1])
     return np.asarray(values, dtype=float), dt, unit, meta

@@ -34,6 +34,11 @@ class Record:
         Anything known about it (event, year, station, magnitude, component, scale factor, source).
     g : float
         Gravity's acceleration in m/s^2, for the values given in g (``pga_g``, ``scaled(pga_g=)``).
+
+    Notes
+    -----
+    Records compare by identity (``==`` is ``is``: comparing arrays element by element is rarely
+    what is meant); ``meta`` is a copy made at construction, to be read, not changed.
     """
 
     t: np.ndarray = field(repr=False)
@@ -86,13 +91,18 @@ class Record:
         """A PEER NGA ``.AT2`` file (header variants: see :mod:`pounding.excitation._at2`).
 
         Its name is the file's stem; ``meta`` has the header lines and, where line 2 reads
-        ``EVENT, STATION, COMPONENT``, those.  Truncated files (fewer values than ``NPTS``), extra
-        values, non-numbers and headers without ``NPTS``/``DT`` are errors naming the line.
+        ``EVENT[, DATE], STATION, COMPONENT``, those (and ``date``).  UTF-8 or Latin-1 text.
+        Truncated files (fewer values than ``NPTS``), extra values, non-numbers and headers without
+        ``NPTS``/``DT`` are errors naming the line.
         """
-        from .._checks import read_text
+        from .._checks import input_path
         from ._at2 import parse_at2
 
-        text = read_text("path", path)
+        raw = input_path("path", path).read_bytes()
+        try:
+            text = raw.decode("utf-8")
+        except UnicodeDecodeError:  # (station names with accents, in older files' Latin-1)
+            text = raw.decode("latin-1")
         values, dt, unit, meta = parse_at2(text, "path", str(path))
         g = positive("g", g, "m/s^2")
         factor = g if unit == "g" else 1e-2
@@ -150,19 +160,21 @@ class Record:
         return cls(t, a * factor, Path(path).stem if name is None else name, meta, g)
 
     def scaled(self, *, pga_g: float | None = None, sa_g: float | None = None, period_s: float | None = None,
-               damping_ratio: float = 0.05) -> "Record":
+               damping_ratio: float | None = None) -> "Record":
         """The record times a factor: to a peak ground acceleration, or to a spectral acceleration.
 
         Give ``pga_g`` (g), or ``sa_g`` (g) with ``period_s``: the pseudo-spectral acceleration
-        ``PSa = omega^2 Sd`` at that period and ``damping_ratio`` (as codes and FEMA P695 scale).
+        ``PSa = omega^2 Sd`` at that period and ``damping_ratio`` (default 0.05; as codes and FEMA P695
+        scale).
         ``meta["scale_factor"]`` multiplies any earlier one.
         """
         if (pga_g is None) == (sa_g is None):
             raise InputError(Problem.MISSING_INPUT, "pga_g", pga_g, what="either pga_g= or sa_g= (with period_s=)")
         if pga_g is not None:
-            if period_s is not None:
-                raise InputError(Problem.WRONG_MODE, "period_s", period_s, mode="sa_g",
-                                 fix="leave period_s out when scaling to pga_g")
+            for name, value in (("period_s", period_s), ("damping_ratio", damping_ratio)):
+                if value is not None:
+                    raise InputError(Problem.WRONG_MODE, name, value, mode="sa_g",
+                                     fix=f"leave {name} out when scaling to pga_g")
             target = positive("pga_g", pga_g, "g")
             plausible("pga_g", target, 0.0, 5.0, "pga_g is in g (0.3 is 30 % of g)")
             now = self.pga_g
@@ -173,7 +185,8 @@ class Record:
                 raise InputError(Problem.MISSING_INPUT, "period_s", period_s, what="the period (s) of sa_g")
             from .spectrum import response_spectrum
 
-            spec = response_spectrum(self, [positive("period_s", period_s, "s")], damping_ratio=damping_ratio)
+            spec = response_spectrum(self, [positive("period_s", period_s, "s")],
+                                     damping_ratio=0.05 if damping_ratio is None else damping_ratio)
             now = float(spec["psa_g"].values[0, 0])
         if now == 0.0:
             raise InputError(Problem.BAD_STATE, "record", self.name or "record", why="the record is all zeros",

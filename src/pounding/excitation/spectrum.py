@@ -78,11 +78,14 @@ def response_spectrum(record: Record | Sequence[Record], periods_s: Any, damping
     recs = _records(record)
     periods = periods_array(periods_s)
     zeta = damping_ratio_value(damping_ratio)
-    work = periods.size * sum(r.t.size - 1 for r in recs)
+    # the kernel's work: every record interval, and every half period inside them (searched for peaks)
+    half_periods = float(np.sum(2.0 / periods[periods > 0.0])) * math.sqrt(1.0 - zeta * zeta)
+    work = sum(periods.size * (r.t.size - 1) + half_periods * (r.t[-1] - r.t[0]) for r in recs)
     if work > MAX_INTERVALS:
-        raise InputError(Problem.TOO_MUCH_WORK, "periods_s", f"{periods.size} periods", estimate=f"{work:.3g}",
-                         unit="record intervals", budget=f"{MAX_INTERVALS:.3g}",
-                         fix="fewer periods or records, or split the work")
+        raise InputError(Problem.TOO_MUCH_WORK, "periods_s", f"{periods.size} periods down to "
+                         f"{periods[periods > 0.0].min() if (periods > 0.0).any() else 0.0:g} s",
+                         estimate=f"{work:.3g}", unit="intervals and half periods", budget=f"{MAX_INTERVALS:.3g}",
+                         fix="fewer periods or records, or no periods far below the record's time step")
     rigid = periods == 0.0
     omegas = 2.0 * math.pi / periods[~rigid]
     peaks = np.full((len(recs), periods.size, 3), np.nan)

@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 
 from .._checks import float_array, integer, positive
-from .._errors import InputError, Interrupted, Problem
+from .._errors import InputError, Interrupted, Problem, Status
 from ..engine._control import new_control, request_stop
 from ..excitation import Record
 from ..excitation.spectrum import _records, damping_ratio_value, periods_array
@@ -65,12 +65,18 @@ def _one_record(rec: Record, periods: np.ndarray, bumpers: list[Bumpers], zeta: 
             for j in range(-1, len(bumpers)):
                 if ctl[0]:  # (a stop was asked for: what is done is kept)
                     raise Interrupted((free, hit), i, periods.size, "periods")
-                run = simulate(Oscillator(mass_kg, iso, None if j < 0 else bumpers[j]), rec, duration, sample_rate_hz=0,
-                               max_steps=max_steps)
+                try:
+                    run = simulate(Oscillator(mass_kg, iso, None if j < 0 else bumpers[j]), rec, duration,
+                                   sample_rate_hz=0, max_steps=max_steps)
+                    peaks = _peaks(run, rec.g)
+                except InputError as exc:  # (refused up front: over its budget; the others go on)
+                    if exc.problem not in (Problem.OVER_BUDGET, Problem.TOO_MUCH_WORK):
+                        raise
+                    peaks = (math.nan,) * 5 + (float(Status.BUDGET),)
                 if j < 0:
-                    free[i] = _peaks(run, rec.g)
+                    free[i] = peaks
                 else:
-                    hit[i, j] = _peaks(run, rec.g)
+                    hit[i, j] = peaks
                 advance(1)
     except KeyboardInterrupt as stop:  # (a progress callback's Ctrl-C, or a stop: keep what is done)
         if isinstance(stop, Interrupted):
@@ -174,7 +180,7 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
             except KeyboardInterrupt:
                 interrupted = True
             if interrupted or failure is not None:
-                request_stop(controls)  # (the running records stop within a run)
+                request_stop(controls)  # (the running records stop before their next run)
                 for fut in futures:
                     fut.cancel()
             for fut, i in futures.items():

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -67,10 +68,18 @@ class PoundingSpectrum:
 
     def summary(self) -> "xr.Dataset":
         """The 16th, 50th (median) and 84th percentiles over the records (dim ``percentile``) of every
-        quantity; runs that did not finish are left out."""
-        ds = self.dataset.drop_vars(["status", "status_free"])
-        return ds.quantile(np.array(PERCENTILES) / 100.0, dim="record", skipna=True).assign_coords(
-            quantile=list(PERCENTILES)).rename(quantile="percentile")
+        quantity; runs that did not finish, or ended early (``status`` not 0), are left out."""
+        full = self.dataset
+        hit_ok, free_ok = full["status"] == 0, full["status_free"] == 0
+        ds = full.drop_vars(["status", "status_free"])
+        for name in ds.data_vars:
+            ok = free_ok if "gap_m" not in ds[name].dims else hit_ok & free_ok if name in (
+                "amplification", "disp_ratio") else hit_ok
+            ds[name] = ds[name].where(ok)
+        with warnings.catch_warnings():  # (a period and gap where no run finished: NaN, said by the NaN)
+            warnings.filterwarnings("ignore", "All-NaN slice", RuntimeWarning)
+            stats = ds.quantile(np.array(PERCENTILES) / 100.0, dim="record", skipna=True)
+        return stats.assign_coords(quantile=list(PERCENTILES)).rename(quantile="percentile")
 
     def to_dataframe(self) -> pd.DataFrame:
         """One row per record, period and gap, every quantity a column (the free-run ones repeated)."""
