@@ -315,7 +315,7 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
                              *(fundamental(t[in_win], raw_acc[in_win, j], 1.0 / period)
                                for j in range(1, raw_acc.shape[1]))])
         aligned = (_cycles_in_phase(t, raw_acc[:, 0], w0, period, measure_cycles)
-                   if steady and measure_cycles > 1 and np.isfinite(raw_acc[in_win]).all()
+                   if steady and np.isfinite(raw_acc[in_win]).all()
                    and np.isfinite(record.displacement_m[in_win]).all() else None)
         if aligned is not None and _in_phase(aligned, fs, steady_rtol):
             # the window's cycles averaged in phase: the noise down by sqrt(measure_cycles)
@@ -339,7 +339,6 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
                     "cycles_run": n_cyc, "window_start_s": w0,
                     "window_end_s": float(s1)})
         if gap is not None:
-            w0 = row["window_start_s"]
             win = (t >= w0 - FLIGHT_FIT_S) & (t < s1 + FLIGHT_FIT_S)  # (the flight beside the window's contacts)
             found, unconfirmed = window_contacts(t[win], record.displacement_m[win], disp[win], acc[win, 0] - zero[0],
                                                  raw_acc[win, 0] - zero[0], table[win], mass_kg, 0.5 * gap, fs,
@@ -354,7 +353,6 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
             impacts.append(found.assign(freq_hz=f))
             crossings_without_force += unconfirmed
         # a window with missing samples (NaN, or a gap in time) is not measured: say so
-        in_win = (t >= row["window_start_s"]) & (t < s1)
         missing = int(np.isnan(record.displacement_m[in_win]).sum() + np.isnan(record.mass_acc_m_s2[in_win]).sum()
                       + np.isnan(table[in_win]).sum())
         gaps = record.gaps
