@@ -22,6 +22,7 @@ import pounding as pd_
 DURATION_S = 2.0
 REFERENCE_RTOL = 1e-13
 REFERENCE_ATOL = 1e-18
+REFERENCE_RTOL_TIGHTEST = 3e-14  # (scipy's floor is 100 eps = 2.2e-14)
 
 
 def _compare(osc, exc, v0=0.0, duration=DURATION_S, time_tol=1e-8, state_rtol=1e-7, drawn=False,
@@ -29,15 +30,32 @@ def _compare(osc, exc, v0=0.0, duration=DURATION_S, time_tol=1e-8, state_rtol=1e
     run = pd_.simulate(osc, exc, duration, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=0,
                        rtol=rtol)
     assert run.success, run.message
+    if drawn:  # hypothesis: shallow grazes are below what either solver resolves the same way
+        assume(len(run.contacts) == 0 or run.contacts["max_compression"].min() > 1e-7)
     try:
         ref = reference(osc, exc, duration, v0=v0, rtol=ref_rtol, atol=ref_atol)
+        _agree(osc, run, ref, time_tol, state_rtol)
     except ReferenceStalled:
         if not drawn:
             raise
         assume(False)  # a degenerate graze the reference cannot step past
+    except AssertionError:
+        # the reference is the slow, plainly correct solver, but not always converged at its
+        # tolerance: when it disagrees it is run once more at the tightest scipy takes, and the
+        # engine must agree with that.  (A drawn kinematic bumper, damping 1.1 kN s/m: the input
+        # work at reference rtol 1e-11, 1e-12, 1e-13, 3e-14 was -1.39753427, -1.39753279,
+        # -1.39753344, -1.3975329999674; the engine's -1.3975330001310, at rtol 1e-10 and 1e-12.)
+        if ref_rtol <= REFERENCE_RTOL_TIGHTEST:
+            raise
+        ref = reference(osc, exc, duration, v0=v0, rtol=REFERENCE_RTOL_TIGHTEST, atol=ref_atol)
+        _agree(osc, run, ref, time_tol, state_rtol)
+    return run, ref
+
+
+def _agree(osc, run, ref, time_tol, state_rtol):
+    """The run and the reference agree: the same contacts at the same times, the final state, each
+    contact's impulse and work, the viscous and input energies."""
     starts = run.contacts[["side", "t_start"]]
-    if drawn:  # hypothesis: shallow grazes are below what either solver resolves the same way
-        assume(len(run.contacts) == 0 or run.contacts["max_compression"].min() > 1e-7)
     assert len(starts) == len(ref.contact_starts)
     ref_sides = ["left" if s == 0 else "right" for s, _ in ref.contact_starts]
     assert list(starts["side"]) == ref_sides
@@ -68,7 +86,6 @@ def _compare(osc, exc, v0=0.0, duration=DURATION_S, time_tol=1e-8, state_rtol=1e
     flows = max(abs(ref.input_work), ref.viscous, 1e-12)
     assert abs(run.energy.viscous - ref.viscous) <= state_rtol * flows
     assert abs(run.energy.input_work - ref.input_work) <= state_rtol * flows
-    return run, ref
 
 
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
