@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from dataclasses import replace
 
+import numpy as np
 from hypothesis import strategies as st
 
 import pounding as pd_
@@ -87,3 +88,31 @@ def oscillators(draw, bumpers=True, hysteresis=None, gaps="open", law="kelvin_vo
 @st.composite
 def harmonics(draw):
     return pd_.Harmonic(draw(st.floats(0.03, 0.4)), draw(st.floats(0.5, 5.0)), draw(st.floats(0.0, 6.28)))
+
+
+LINEAR_LAWS = ("kelvin_voigt", "multilinear", "multilinear_kinematic")  # (the laws with closed-form phases)
+
+
+@st.composite
+def records(draw, duration_s=3.0):
+    """A piecewise-linear record over ``duration_s``: a step of 2 to 60 ms (sub-intervals both
+    shorter and longer than the phases' own), even or jittered, starting at 0 or later (the
+    table still before it, then from 0), peaks of 0.5 to 8 m/s^2, white or smoothed."""
+    dt = draw(st.floats(0.002, 0.06))
+    start = draw(st.sampled_from([0.0, 0.0, 0.13]))
+    n = int((duration_s - start) / dt) + 1
+    seed = draw(st.integers(0, 2**32 - 1))
+    rng = np.random.default_rng(seed)
+    t = start + dt * np.arange(n)
+    if draw(st.booleans()):  # uneven steps (the knots no longer a grid)
+        t = start + np.concatenate([[0.0], np.cumsum(dt * rng.uniform(0.5, 1.5, n - 1))])
+    accel = rng.normal(0.0, 1.0, n)
+    if draw(st.booleans()):
+        accel = np.convolve(accel, np.ones(5) / 5, mode="same")
+    accel *= draw(st.floats(0.5, 8.0)) / max(np.abs(accel).max(), 1e-12)
+    # from and back to rest: the table's acceleration is 0 before and after the record, and a
+    # jump there is one the reference steps into with solve_ivp's "step size less than spacing"
+    accel[-1] = 0.0
+    if start > 0.0:
+        accel[0] = 0.0
+    return pd_.Record(t, accel)

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
-from strategies import harmonics, oscillators
+from strategies import LINEAR_LAWS, harmonics, oscillators, records
 
 import pounding as pd_
 
@@ -115,20 +115,35 @@ def test_chained_runs_equal_one_long_run_at_zero_gap(osc, exc, v0, split):
     _check_chained(osc, exc, v0, split)
 
 
+@SETTINGS
+@given(osc=st.sampled_from(LINEAR_LAWS).flatmap(lambda law: oscillators(law=law)), exc=records(),
+       v0=st.floats(-0.5, 0.5), split=st.floats(0.1, 2.9))
+def test_chained_runs_equal_one_long_run_under_records(osc, exc, v0, split):
+    # a run under a record continues its phases from piece to piece: split anywhere (between
+    # knots or not), the second run starts its phase afresh
+    _check_chained(osc, exc, v0, split)
+
+
+def _nudged(exc):
+    """The excitation moved by rounding: the forcing's phase by 1e-15 rad, a record's values by 1e-15."""
+    if isinstance(exc, pd_.Record):
+        return pd_.Record(exc.t, exc.accel * (1.0 + 1e-15))
+    return pd_.Harmonic(exc.a_g, exc.freq_hz, exc.phase + 1e-15, exc.g)
+
+
 def _check_chained(osc, exc, v0, split):
     """A run continued from a final state equals one long run, to rounding as the system
     amplifies it.  The split changes the sub-intervals' ends, hence the rounding; a stiff
     bumper hit again and again by a nearly undamped mass amplifies it (hypothesis, zero gap:
     4e-14 s in a contact time at the split, 9e-11 s 15 impacts later).  How much, is measured
-    by the same run with the forcing's phase moved by 1e-15 rad (``nudged``): within 1e-9 of
+    by the same run with the forcing's phase moved by 1e-15 rad (``nudged``; a record's values by 1e-15): within 1e-9 of
     the scale plus 100 times that difference (measured: the chained runs' differences were
     0.5 to 0.8 times the nudged run's)."""
     state = pd_.State.at_rest(osc, velocity_m_s=v0)
     whole = pd_.simulate(osc, exc, 3.0, state, sample_rate_hz=0)
     first = pd_.simulate(osc, exc, split, state, sample_rate_hz=0)
     second = pd_.simulate(osc, exc, 3.0 - split, first.final_state, sample_rate_hz=0)
-    nudged = pd_.simulate(osc, pd_.Harmonic(exc.a_g, exc.freq_hz, exc.phase + 1e-15, exc.g), 3.0, state,
-                          sample_rate_hz=0)
+    nudged = pd_.simulate(osc, _nudged(exc), 3.0, state, sample_rate_hz=0)
     scale = max(whole.displacement_max, -whole.displacement_min)
     assert whole.success and second.success, (whole.message, second.message)
     assert second.final_state.time_s == pytest.approx(3.0, abs=1e-12)

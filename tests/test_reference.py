@@ -15,7 +15,7 @@ import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 from reference import ReferenceStalled, reference
-from strategies import harmonics, oscillators
+from strategies import LINEAR_LAWS, harmonics, oscillators, records
 
 import pounding as pd_
 
@@ -127,6 +127,15 @@ def test_record_excitation_matches_reference():
     ref = reference(osc, exc, 2.5, rtol=REFERENCE_RTOL, atol=REFERENCE_ATOL)
     assert len(run.contacts) == len(ref.contact_starts) > 0
     np.testing.assert_allclose(run.contacts["t_start"], [t for _, t in ref.contact_starts], atol=1e-8)
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(osc=st.sampled_from(LINEAR_LAWS).flatmap(lambda law: oscillators(law=law)), exc=records(),
+       v0=st.floats(-0.5, 0.5))
+def test_random_systems_under_records_match_reference(osc, exc, v0):
+    # a linear phase goes on from one piece of the record to the next with the forcing redone
+    # only; the steps drawn are shorter and longer than the sub-intervals, even or not
+    _compare(osc, exc, v0, duration=3.0, drawn=True)
 
 
 def test_contact_whose_approach_falls_inside_one_sub_interval():

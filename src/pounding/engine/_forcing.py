@@ -16,32 +16,40 @@ RESOLUTION = 1e-9
 
 
 @jit
-def excitation_piece(kind, exc_p, rec_t, rec_a, t):
-    """Base acceleration from ``t`` on: ``(a0, a1, amp, omega, phase, t_next)`` such that
-    ``A(t + tau) = a0 + a1 tau + amp sin(omega tau + phase)`` until ``t_next``."""
+def excitation_piece(kind, exc_p, rec_t, rec_a, t, j_hint):
+    """Base acceleration from ``t`` on: ``(a0, a1, amp, omega, phase, t_next, j)`` such that
+    ``A(t + tau) = a0 + a1 tau + amp sin(omega tau + phase)`` until ``t_next``; for a record,
+    ``j`` is the sample interval holding ``t``, looked for from ``j_hint`` on (the one the
+    last call returned: a run goes through the intervals in order), else ``j_hint``."""
     if kind == EXC_HARMONIC:
         omega = exc_p[1]
         # the angle reduced to [0, 2 pi): as exact as the angle itself (np.fmod is a call into
         # Numba's C helpers, 2 % of a run)
         angle = omega * t + exc_p[2]
         phase = angle - TWO_PI * math.floor(angle / TWO_PI)
-        return 0.0, 0.0, exc_p[0], omega, phase, np.inf
+        return 0.0, 0.0, exc_p[0], omega, phase, np.inf, j_hint
     n = rec_t.size
     if t < rec_t[0]:
-        return 0.0, 0.0, 0.0, 0.0, 0.0, rec_t[0]
+        return 0.0, 0.0, 0.0, 0.0, 0.0, rec_t[0], j_hint
     if t >= rec_t[n - 1]:
-        return 0.0, 0.0, 0.0, 0.0, 0.0, np.inf
-    # the sample interval holding t: rec_t[j] <= t < rec_t[j + 1] (bisection; rec_t increases)
-    j = 0
-    hi = n - 1
-    while hi - j > 1:
-        mid = (j + hi) // 2
-        if rec_t[mid] <= t:
-            j = mid
+        return 0.0, 0.0, 0.0, 0.0, 0.0, np.inf, j_hint
+    # the sample interval holding t: rec_t[j] <= t < rec_t[j + 1] (rec_t increases): the hint's
+    # or the next one's, else by bisection
+    j = min(max(j_hint, 0), n - 2)
+    if not (rec_t[j] <= t < rec_t[j + 1]):
+        if j + 2 < n and rec_t[j + 1] <= t < rec_t[j + 2]:
+            j += 1
         else:
-            hi = mid
+            j = 0
+            hi = n - 1
+            while hi - j > 1:
+                mid = (j + hi) // 2
+                if rec_t[mid] <= t:
+                    j = mid
+                else:
+                    hi = mid
     slope = (rec_a[j + 1] - rec_a[j]) / (rec_t[j + 1] - rec_t[j])
-    return rec_a[j] + slope * (t - rec_t[j]), slope, 0.0, 0.0, 0.0, rec_t[j + 1]
+    return rec_a[j] + slope * (t - rec_t[j]), slope, 0.0, 0.0, 0.0, rec_t[j + 1], j
 
 
 @jit

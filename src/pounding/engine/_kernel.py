@@ -32,9 +32,10 @@ from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A
                       P_AX0, P_AX1, P_AXH, P_BW, P_C, P_CBL, P_CBR, P_CD, P_D0, P_DL0, P_DP5_H, P_DR0, P_GAPL,
                       P_GAPR, P_H, P_INL, P_INR, P_JBL, P_JBR, P_K, P_KBL, P_KBR, P_KISO, P_LAWL, P_LAWR,
                       P_LZL, P_LZR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR, P_RBL, P_RBR,
-                      P_RISO, P_SPHI, P_V0, P_VROUND, P_VRUN, P_W, P_XROUND, P_XRUN, P_ZETA0, PH_LEN,
+                      P_R0, P_RISO, P_SPHI, P_V0, P_VROUND, P_VRUN, P_W, P_XROUND, P_XRUN, P_ZETA0, PH_LEN,
                       SAMPLE_COLS, SIDE_L, SIDE_NONE, SIDE_R, Z_L, Z_R, ZETA, ZL_AT, ZR_AT, D, T, V)
-from ._linear import fill_end, linear_eval_angle, linear_eval_end, linear_setup, linear_start, reset_ends
+from ._linear import (fill_end, linear_eval_angle, linear_eval_end, linear_forcing, linear_setup, linear_start,
+                      reset_ends)
 from ._numeric import dp5_step
 from ._outputs import energies as _energies
 from ._outputs import outputs as _outputs
@@ -91,6 +92,7 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r,
     ph[P_M] = mass
     ph[P_C] = c
     ph[P_K] = k
+    ph[P_R0] = r0
     ph[P_P0] = -r0 - mass * a0
     ph[P_P1] = -mass * a1
     ph[P_H] = -mass * amp
@@ -163,9 +165,11 @@ def run_kernel(mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l, 
     impulse_res = mass * v_res
     depth_res = RESOLUTION * ph[P_XRUN]
     evs = np.zeros((2 * (slopes.size - 1) + 11, EV_COLS))  # (+ the bumpers' 2 x 5, + Bouc-Wen's z)
-    # After a full sub-interval without event in a linear phase under harmonic forcing, the
-    # next one continues the same phase (``continuing``): same coefficients, length and
-    # events, and the event values at the end of one are those at the start of the next.
+    # After a sub-interval without event in a linear phase, the next one continues the same
+    # phase (``continuing``): same coefficients, length and events, and the event values at
+    # the end of one are those at the start of the next.  Under harmonic forcing the
+    # sub-interval must have been a full one; a record's next piece changes the forcing
+    # polynomial only (the particular solution is redone, not the rest).
     ev_end = np.empty((evs.shape[0], 3))
     continuing = False
     t_horizon = np.inf
@@ -187,6 +191,7 @@ def run_kernel(mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l, 
     n_s += 1
     track_abs_acceleration(extrema, t_run0, a_abs)
     j_next = 1
+    j_rec = np.int64(0)  # the record's sample interval last met (excitation_piece starts there)
     work = np.int64(0)
     work_left = ctl[CTL_BUDGET] - ctl[CTL_WORK]
     next_poll = np.int64(0)
@@ -202,7 +207,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l, 
             next_poll = min(work + POLL_EVERY, work_left)
         work += 1
         t = st[T]
-        a0x, a1x, amp, omega, phase, t_knot = excitation_piece(exc_kind, exc_p, rec_t, rec_a, t)
+        a0x, a1x, amp, omega, phase, t_knot, j_rec = excitation_piece(exc_kind, exc_p, rec_t, rec_a, t,
+                                                                      j_rec)
         if continuing:
             # the same linear phase under harmonic forcing: only the start values move
             ph[P_PHI] = phase
@@ -233,6 +239,12 @@ def run_kernel(mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l, 
             # this angle and the clock's, omega t + phase, would grow sub-interval after
             # sub-interval (first order suffices: the rounding is ~1e-16 t)
             wd = omega * ((t - t_last) - h_last)
+            if exc_kind != EXC_HARMONIC:  # (the record's piece: a0x + a1x tau, a new one at each knot)
+                ph[P_P0] = -ph[P_R0] - mass * a0x
+                ph[P_P1] = -mass * a1x
+                ph[P_AX0] = a0x
+                ph[P_AX1] = a1x
+                linear_forcing(ph)  # (no harmonic term: never resonant)
             linear_start(ph, s1 + wd * c1, c1 - wd * s1)
             fill_end(ph, h)
             d1, v1, a1, s1, c1 = linear_eval_end(ph, h)
@@ -333,8 +345,9 @@ def run_kernel(mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l, 
             if r >= 0.0 and (r < tau or (i_ev < 0 and r <= tau)):
                 tau = r
                 i_ev = i
-        continuing = (i_ev < 0 and not to_stop and ph[P_MODE] == MODE_LINEAR
-                      and exc_kind == EXC_HARMONIC)
+        # (stopped at a record's knot, not at a relaxing law's horizon or the end)
+        continuing = (i_ev < 0 and ph[P_MODE] == MODE_LINEAR
+                      and (not to_stop or (exc_kind != EXC_HARMONIC and t_knot < min(t_horizon, t_end))))
         if i_ev >= 0:
             to_stop = False
             if tau < h:

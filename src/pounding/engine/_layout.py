@@ -69,7 +69,10 @@ P_ZETA0 = P_BW + BW_PARAMS  # its z at the phase start
 # (the kernel, the event rows and the rates ask for the step at the sub-interval's end again and again)
 P_DP5_H = P_ZETA0 + 1
 P_DP5 = P_DP5_H + 1
-PH_LEN = P_DP5 + 7
+# the phase's restoring force at D = 0 (isolator branch and linear bumper branches, N): with
+# M, c, k it is all a record's next piece needs to continue the phase (_kernel.run_kernel)
+P_R0 = P_DP5 + 7
+PH_LEN = P_R0 + 1
 MODE_LINEAR = 0.0
 MODE_NUMERIC = 1.0
 

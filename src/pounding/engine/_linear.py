@@ -25,12 +25,27 @@ def linear_setup(ph):
     Returns False when the phase has no bounded closed form (undamped, exactly resonant).
     """
     m, c, k = ph[P_M], ph[P_C], ph[P_K]
-    p0, p1, h, w = ph[P_P0], ph[P_P1], ph[P_H], ph[P_W]
     s = -0.5 * c / m
     q2 = s * s - k / m
     ph[P_S] = s
     ph[P_Q2] = q2
     ph[P_ROOT] = math.sqrt(abs(q2))
+    if not linear_forcing(ph):
+        return False
+    linear_start(ph, math.sin(ph[P_PHI]), math.cos(ph[P_PHI]))
+    return True
+
+
+@jit
+def linear_forcing(ph):
+    """Fill the particular solution of ``ph`` (and its rounding scales) from M, c, k and the
+    forcing: all :func:`linear_setup` redoes when only the forcing's polynomial changed (a
+    phase continuing into the next piece of a record).
+
+    Returns False when the phase has no bounded closed form (undamped, exactly resonant).
+    """
+    m, c, k = ph[P_M], ph[P_C], ph[P_K]
+    p0, p1, h, w = ph[P_P0], ph[P_P1], ph[P_H], ph[P_W]
     # polynomial particular solution b0 + b1 t + b2 t^2 + b3 t^3
     if k != 0.0:
         b1 = p1 / k
@@ -59,7 +74,6 @@ def linear_setup(ph):
     amp = abs(zr) + abs(zi)
     ph[P_XROUND] = max(ph[P_XRUN], abs(ph[P_B0]) + amp)
     ph[P_VROUND] = max(ph[P_VRUN], abs(ph[P_B1]) + w * amp)
-    linear_start(ph, math.sin(ph[P_PHI]), math.cos(ph[P_PHI]))
     return True
 
 
