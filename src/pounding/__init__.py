@@ -13,8 +13,8 @@ from .identification import (ContactLawFit, Identification, ModelFamily, Targets
                              paper_targets, rank_contact_laws)
 from .metrics import HysteresisLoop, impact_table
 from .model import BoucWen, Bumpers, ElasticPlastic, Hertzdamp, HuntCrossley, Isolator, Jankowski, KelvinVoigt, MultilinearBumper, Oscillator
-from .protocols import (CampaignResult, PoundingSpectrum, SweepResult, campaign, paper_frequencies_hz,
-                        pounding_spectrum, sweep)
+from .protocols import (CampaignResult, PoundingSpectrum, StudyResult, StudySpec, SweepResult, campaign,
+                        open_study, paper_frequencies_hz, pounding_spectrum, study, sweep)
 
 __version__ = "0.1.0"
 
@@ -24,4 +24,5 @@ __all__ = [
     "Run", "State", "Status", "SweepResult", "campaign", "impact_table", "paper_frequencies_hz",
     "data", "fit_contact_law", "identify", "paper_targets", "rank_contact_laws", "presets", "simulate", "sweep",
     "WarmUp", "warm_up", "plots", "records", "response_spectrum", "PoundingSpectrum", "pounding_spectrum",
+    "StudyResult", "StudySpec", "open_study", "study",
 ]

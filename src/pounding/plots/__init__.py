@@ -5,7 +5,8 @@ from .identification import plot_identification
 from .record import plot_record, plot_response_spectrum
 from .run import plot_run
 from .spectrum import plot_pounding_spectrum
+from .study import plot_study
 from .sweep import plot_campaign, plot_hysteresis, plot_lab_sweep, plot_sweep
 
 __all__ = ["plot_campaign", "plot_contact_law_fit", "plot_identification", "plot_hysteresis", "plot_lab_sweep",
-           "plot_pounding_spectrum", "plot_record", "plot_response_spectrum", "plot_run", "plot_sweep"]
+           "plot_pounding_spectrum", "plot_record", "plot_response_spectrum", "plot_run", "plot_study", "plot_sweep"]

@@ -5,7 +5,7 @@ from __future__ import annotations
 import contextlib
 import threading
 from collections.abc import Callable, Iterator
-from typing import Union
+from typing import Any, Union
 
 from .._errors import InputError, Problem
 
@@ -13,9 +13,11 @@ Progress = Union[bool, Callable[[int], None]]
 
 
 @contextlib.contextmanager
-def progress_reporter(progress: Progress, total: int, description: str) -> Iterator[Callable[[int], None]]:
+def progress_reporter(progress: Progress, total: int, description: str,
+                      completed: int = 0) -> Iterator[Callable[[int], None]]:
     """Yield ``advance(n)``: it moves a Rich bar (``progress=True``), calls the user's
     callable with ``n`` (the number of steps just finished), or does nothing (False).
+    ``completed``: steps done before (a resumed study's), where the bar starts.
 
     ``advance`` is thread-safe.
     """
@@ -34,13 +36,21 @@ def progress_reporter(progress: Progress, total: int, description: str) -> Itera
     if progress is not True:
         raise InputError(Problem.WRONG_TYPE, "progress", progress, got=type(progress).__name__,
                          expected="bool or a callable taking the number of steps finished")
-    from rich.progress import (BarColumn, MofNCompleteColumn, Progress as RichProgress,
+    from rich.progress import (BarColumn, MofNCompleteColumn, Progress as RichProgress, ProgressColumn,
                                TextColumn, TimeElapsedColumn, TimeRemainingColumn)
+    from rich.text import Text
 
-    columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
+    class Rate(ProgressColumn):
+        """Steps per second over the last half minute (Rich's estimate)."""
+
+        def render(self, task: Any) -> Text:
+            speed = task.speed
+            return Text("" if speed is None else f"{speed:.3g}/s", style="progress.data.speed")
+
+    columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), Rate(),
                TimeElapsedColumn(), TimeRemainingColumn())
     with RichProgress(*columns, transient=False) as bar:
-        task = bar.add_task(description, total=total)
+        task = bar.add_task(description, total=total, completed=completed)
         lock = threading.Lock()
 
         def advance(n: int) -> None:

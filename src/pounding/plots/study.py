@@ -1,0 +1,80 @@
+"""Plots of parameter studies."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+
+def plot_study(result: Any, quantity: str, *, x: str | None = None, hue: str | None = None, ax: Any = None,
+               where: dict | None = None) -> list:
+    """A study's quantity against one grid axis, one line per value of another.
+
+    Parameters
+    ----------
+    result : StudyResult
+        From :func:`pounding.open_study`.
+    quantity : str
+        One of the study's quantities (``result.dataset`` variables but ``done`` and ``session``).
+    x : str, optional
+        The grid axis along the horizontal (default: the first one longer than 1).
+    hue : str, optional
+        The axis whose values make the lines (default: the next one longer than 1, if any).
+    ax : matplotlib Axes, optional
+    where : dict, optional
+        A value for each other axis longer than 1 (the nearest is taken): ``{"a_g": 0.05}``.
+
+    Returns
+    -------
+    list of matplotlib Line2D
+        Points not done are gaps in the lines.
+    """
+    import matplotlib.pyplot as plt
+
+    from .._errors import InputError, Problem
+
+    ds = result.dataset
+    quantities = [v for v in ds.data_vars if v not in ("done", "session")]
+    if quantity not in quantities:
+        raise InputError(Problem.NOT_IN_RESULT, "quantity", quantity, choices=", ".join(quantities))
+    long = [d for d in ds[quantity].dims if ds.sizes[d] > 1]
+    for name, value in (("x", x), ("hue", hue)):
+        if value is not None and value not in ds.dims:
+            raise InputError(Problem.NOT_IN_RESULT, name, value, choices=", ".join(ds.dims))
+    x = x or (long[0] if long else ds[quantity].dims[0])
+    if hue is None:
+        rest = [d for d in long if d != x]
+        hue = rest[0] if rest else None
+    where = dict(where or {})
+    for name in where:
+        if name not in ds.dims or name in (x, hue):
+            raise InputError(Problem.NOT_IN_RESULT, "where", name,
+                             choices=", ".join(d for d in ds.dims if d not in (x, hue)))
+    da = ds[quantity].where(ds["done"])
+    for d in ds[quantity].dims:
+        if d in (x, hue):
+            continue
+        if d in where:
+            da = da.sel({d: where[d]}, method=None if isinstance(where[d], str) else "nearest")
+        elif ds.sizes[d] == 1:
+            da = da.isel({d: 0})
+        else:
+            raise InputError(Problem.MISSING_INPUT, "where", where,
+                             what=f"a value for the axis {d!r} (where={{{d!r}: ...}}), or choose it as x or hue")
+    if ax is None:
+        _, ax = plt.subplots(figsize=(6.0, 3.8), constrained_layout=True)
+    units = ds[quantity].attrs.get("units", "1")
+    xs = ds[x].values
+    artists = []
+    for value in ([None] if hue is None else ds[hue].values):
+        line = da if value is None else da.sel({hue: value})
+        (art,) = ax.plot(xs, np.asarray(line.transpose(x).values, dtype=float), marker="o", ms=3, lw=1.2,
+                         label=None if value is None else f"{hue} = {value}")
+        artists.append(art)
+    ax.set_xlabel(x)
+    ax.set_ylabel(quantity if units in ("1", "") else f"{quantity} [{units}]")
+    if hue is not None:
+        ax.legend(fontsize=8)
+    ax.grid(alpha=0.3)
+    return artists

@@ -1,0 +1,223 @@
+"""Parameter studies that outgrow one machine: a resumable Zarr store, filled by threads,
+processes or Dask.
+
+:func:`study` writes the store's template, then hands out its chunks (one batch each) to the
+scheduler; each task computes the chunk's points that are not done and writes them itself
+(:func:`.study_store.run_chunk`), so the results never travel back through the caller.  A rerun
+computes only what is not done.
+"""
+
+from __future__ import annotations
+
+import concurrent.futures as cf
+import math
+import os
+import threading
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .._checks import integer
+from .._errors import InputError, Interrupted, Problem
+from ._progress import Progress, progress_reporter
+from .study_spec import StudySpec
+from .study_store import (check_store, chunk_grid, chunk_shape, create, open_checked, region, run_chunk,
+                          store_exists)
+
+SCHEDULERS = ("threads", "processes", "local")
+BATCHES_PER_WORKER = 8  # chunks a worker gets over a study, at least: balance against per-batch cost
+MAX_BATCH = 256         # points in a chunk, at most
+
+
+def batch_points(kind: str, size: int, workers: int) -> int:
+    """Points in a chunk: one sweep (each takes seconds); runs in batches of up to ``MAX_BATCH``,
+    at least ``BATCHES_PER_WORKER`` batches a worker."""
+    if kind == "sweep":
+        return 1
+    return int(min(MAX_BATCH, max(1, math.ceil(size / (workers * BATCHES_PER_WORKER)))))
+
+
+def study(
+    spec: StudySpec | str | Path,
+    store: str | Path,
+    *,
+    scheduler: Any = None,
+    workers: int | None = None,
+    resume: bool = True,
+    progress: Progress = True,
+    max_steps: int | None = None,
+) -> "Any":
+    """Run a parameter study into a Zarr store, resumably.
+
+    Parameters
+    ----------
+    spec : StudySpec or path
+        The study (a ``.toml`` path is read with :meth:`StudySpec.from_toml`).
+    store : str or Path
+        A Zarr folder (created; its parent must exist) or an fsspec URL (``s3://...``).
+    scheduler : None, "threads", "processes", "local", dask.distributed.Client or str
+        Where the points run: threads of this process (None, "threads"); worker processes
+        ("processes"); a new Dask ``LocalCluster`` of ``workers`` processes ("local"); an
+        existing Dask client, or a scheduler's address ("tcp://host:8786").  Dask workers must
+        reach the store (a shared file system or object storage).
+    workers : int, optional
+        Threads or processes (default: the machine's cores); with a Dask client, its workers.
+    resume : bool
+        True (default): an existing store of the same spec is completed, only the points not
+        done are computed; a store of another spec is refused.  False: the store is written anew.
+    progress : bool or callable
+        A progress bar over the points (those done before count as done), or a callable given
+        the number of points just finished.
+    max_steps : int, optional
+        Each run's work budget (``pounding.simulate``'s); a point over it is kept with status BUDGET.
+
+    Returns
+    -------
+    xarray.Dataset
+        The store opened with ``xarray.open_zarr``: dims the grid's axes, the quantities,
+        ``done`` and ``session``.
+
+    Raises
+    ------
+    InputError
+        A bad spec (before any work), store or scheduler.
+    Interrupted
+        On Ctrl-C: the points finished are in the store (``partial`` is the store's Dataset).
+    """
+    import xarray as xr
+
+    if isinstance(spec, (str, Path)):
+        spec = StudySpec.from_toml(spec)
+    if not isinstance(spec, StudySpec):
+        raise InputError(Problem.WRONG_TYPE, "spec", spec, got=type(spec).__name__,
+                         expected="pounding.StudySpec or the path of a study TOML file")
+    store = check_store(store)
+    if not isinstance(resume, bool):
+        raise InputError(Problem.WRONG_TYPE, "resume", resume, got=type(resume).__name__, expected="bool")
+    if max_steps is not None:
+        max_steps = integer("max_steps", max_steps, 1)
+    kind_of_scheduler = _scheduler_kind(scheduler)
+    n_workers = integer("workers", (os.cpu_count() or 1) if workers is None else workers, 1)
+
+    if resume and store_exists(store):
+        group = open_checked(store, spec)
+    else:
+        chunks = chunk_shape(spec.shape, batch_points(spec.kind, spec.size, n_workers))
+        create(store, spec, chunks)
+        group = open_checked(store, spec)
+    done = np.asarray(group["done"][...])
+    session = int(np.asarray(group["session"][...]).max(initial=0)) + 1
+    chunks = tuple(group["done"].chunks)
+    todo = [c for c in chunk_grid(spec.shape, chunks) if not done[region(c, spec.shape, chunks)].all()]
+    done_before = int(done.sum())
+    args = (spec.to_json(), store, session, max_steps)
+    interrupted = False
+    with progress_reporter(progress, spec.size, "study", completed=done_before) as advance:
+        try:
+            if kind_of_scheduler == "threads":
+                _on_threads(args, todo, n_workers, advance)
+            elif kind_of_scheduler == "processes":
+                _on_processes(args, todo, n_workers, advance)
+            else:
+                _on_dask(args, todo, scheduler, n_workers, advance)
+        except KeyboardInterrupt:
+            interrupted = True
+    ds = xr.open_zarr(store, consolidated=True)
+    if interrupted:
+        kept = int(ds["done"].sum())
+        raise Interrupted(ds, kept, spec.size, "points")
+    return ds
+
+
+def _scheduler_kind(scheduler: Any) -> str:
+    if scheduler is None or scheduler == "threads":
+        return "threads"
+    if scheduler == "processes":
+        return "processes"
+    if scheduler == "local" or (isinstance(scheduler, str) and "://" in scheduler):
+        return "dask"
+    if type(scheduler).__name__ == "Client" and type(scheduler).__module__.startswith("distributed"):
+        return "dask"
+    raise InputError(Problem.NOT_ONE_OF, "scheduler", scheduler,
+                     choices="None, 'threads', 'processes', 'local', a dask.distributed.Client, or a scheduler "
+                             "address such as 'tcp://host:8786'")
+
+
+def _on_threads(args: tuple, todo: list, n_workers: int, advance: Any) -> None:
+    """Chunks on threads of this process (the kernels release the GIL).  Ctrl-C: each thread
+    writes the points it finished and stops before its next point."""
+    spec_json, store, session, max_steps = args
+    stop = threading.Event()
+    with cf.ThreadPoolExecutor(max_workers=n_workers, thread_name_prefix="pounding-study") as pool:
+        futures = [pool.submit(run_chunk, spec_json, store, c, session, max_steps, stop.is_set, advance)
+                   for c in todo]
+        try:
+            _wait(futures)
+        except KeyboardInterrupt:
+            stop.set()
+            for fut in futures:
+                fut.cancel()
+            cf.wait(futures)  # (the running ones write what they finished)
+            raise
+
+
+def _wait(futures: list) -> None:
+    pending = set(futures)
+    while pending:
+        done, pending = cf.wait(pending, timeout=0.2, return_when=cf.FIRST_COMPLETED)
+        for fut in done:
+            fut.result()  # (a worker's error is the caller's)
+
+
+def _on_processes(args: tuple, todo: list, n_workers: int, advance: Any) -> None:
+    """Chunks on worker processes (spawned: a clean interpreter each).  Ctrl-C: the workers are
+    stopped; what they had finished and written stays, the chunks in flight are lost."""
+    import multiprocessing as mp
+
+    spec_json, store, session, max_steps = args
+    pool = cf.ProcessPoolExecutor(max_workers=n_workers, mp_context=mp.get_context("spawn"))
+    try:
+        futures = {pool.submit(run_chunk, spec_json, store, c, session, max_steps): c for c in todo}
+        pending = set(futures)
+        while pending:
+            done, pending = cf.wait(pending, timeout=0.2, return_when=cf.FIRST_COMPLETED)
+            for fut in done:
+                advance(fut.result())
+    except BaseException:
+        for proc in list(getattr(pool, "_processes", {}).values()):
+            proc.terminate()  # (mid-point: nothing of theirs is marked done that is not written)
+        pool.shutdown(wait=False, cancel_futures=True)
+        raise
+    pool.shutdown(wait=True)
+
+
+def _on_dask(args: tuple, todo: list, scheduler: Any, n_workers: int, advance: Any) -> None:
+    """Chunks as Dask tasks: each worker computes and writes its own chunks."""
+    try:
+        from distributed import Client, LocalCluster, as_completed
+    except ImportError:  # pragma: no cover
+        raise InputError(Problem.MISSING_INPUT, "scheduler", scheduler,
+                         what="Dask: pip install 'dask[distributed]'") from None
+    spec_json, store, session, max_steps = args
+    own = None
+    if scheduler == "local":
+        own = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, dashboard_address=None)
+        client = Client(own)
+    elif isinstance(scheduler, str):
+        client = Client(scheduler, timeout="30s")
+    else:
+        client = scheduler
+    futures = []
+    try:
+        futures = [client.submit(run_chunk, spec_json, store, c, session, max_steps, pure=False) for c in todo]
+        for fut in as_completed(futures):
+            advance(fut.result())
+    except BaseException:
+        client.cancel(futures)
+        raise
+    finally:
+        if client is not scheduler:
+            client.close()
+        if own is not None:
+            own.close()

