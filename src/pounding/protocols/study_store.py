@@ -179,7 +179,9 @@ def run_chunk(spec_json: str, store: str, index: tuple[int, ...], session: int, 
     if done.all():
         return 0
     quantities = QUANTITIES[kind]
-    block = {q: np.asarray(group[q][sel], dtype=float) for q in quantities}
+    partly = bool(done.any())  # (a chunk cut short before: its finished points are kept as they are)
+    block = {q: np.asarray(group[q][sel], dtype=float) if partly else np.full(done.shape, np.nan)
+             for q in quantities}
     new = np.zeros(done.shape, dtype=bool)
     computed = 0
     for local in np.ndindex(done.shape):
@@ -200,7 +202,7 @@ def run_chunk(spec_json: str, store: str, index: tuple[int, ...], session: int, 
         return 0
     for q in quantities:  # the data first ...
         group[q][sel] = block[q]
-    sessions = np.asarray(group["session"][sel])
+    sessions = np.asarray(group["session"][sel]) if partly else np.zeros(done.shape, dtype=np.int32)
     sessions[new] = session
     group["session"][sel] = sessions
     group["done"][sel] = done | new  # ... and last what says it is there
