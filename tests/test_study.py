@@ -255,3 +255,87 @@ def test_a_store_behind_an_fsspec_url(tmp_path):
     assert bool(ds["done"].all())
     xr.testing.assert_identical(_data(ds), _data(pd_.study(spec, tmp_path / "local.zarr", progress=False)))
     assert int(pd_.study(spec, url, progress=False)["session"].max()) == 1  # (resumed: nothing to do)
+
+
+def test_a_folder_that_is_not_a_study_is_never_overwritten(tmp_path):
+    import fsspec
+
+    precious = tmp_path / "precious"
+    precious.mkdir()
+    (precious / "thesis.txt").write_text("important")
+    for resume in (True, False):
+        with pytest.raises(pd_.InputError, match="not a study's store"):
+            pd_.study(_spec(), precious, resume=resume, progress=False)
+    assert (precious / "thesis.txt").read_text() == "important"
+    fs = fsspec.filesystem("memory")
+    fs.pipe(f"/bucket-{os.getpid()}/data/thesis.txt", b"x")
+    with pytest.raises(pd_.InputError, match="not a study's store"):
+        pd_.study(_spec(), f"memory://bucket-{os.getpid()}/data", progress=False)
+    assert fs.cat(f"/bucket-{os.getpid()}/data/thesis.txt") == b"x"
+    # an empty folder is fine, and --restart replaces a study's own store
+    (tmp_path / "empty").mkdir()
+    assert bool(pd_.study(_spec(), tmp_path / "empty", progress=False)["done"].all())
+    assert int(pd_.study(_spec(), tmp_path / "empty", resume=False, progress=False)["session"].max()) == 1
+    assert not (tmp_path / ".empty.old").exists() and not (tmp_path / ".empty.tmp").exists()
+
+
+@pytest.mark.parametrize("compute, grid, words", [
+    ({"kind": "sweep", "a_g": 0.05, "direction": "sideways"}, {"mass": [500.0]}, "compute.direction"),
+    ({"kind": "sweep", "a_g": 0.05, "steady": "fixed"}, {"cycles": [5, 0]}, "grid.cycles"),
+    ({"kind": "sweep", "a_g": 0.05, "freqs_hz": [-1.0, 2.0]}, {"mass": [500.0]}, "compute.freqs_hz"),
+    ({"kind": "simulate", "a_g": 0.1, "freq_hz": 2.0}, {"duration_s": [-1.0, 30.0]}, "grid.duration_s"),
+    ({"kind": "simulate", "a_g": 0.1, "freq_hz": 2.0, "duration_s": 5.0}, {"duration_s": [3.0]}, "not both"),
+    ({"kind": "simulate", "a_g": 0.1, "freq_hz": -2.0, "duration_s": 5.0}, {"mass": [500.0]}, "compute.freq_hz"),
+])
+def test_compute_options_are_checked_before_any_work(tmp_path, compute, grid, words):
+    with pytest.raises(pd_.InputError) as info:
+        pd_.StudySpec(pd_.presets.paper_printed(), compute, grid)
+    assert words in str(info.value)
+
+
+def test_the_same_study_written_two_ways_is_one_study(tmp_path):
+    a = pd_.StudySpec(pd_.presets.paper_printed(), {"kind": "simulate", "a_g": 0.1, "freq_hz": 2, "duration_s": 5},
+                      {"mass": [500, 600]})
+    b = pd_.StudySpec(pd_.presets.paper_printed(), {"duration_s": 5.0, "freq_hz": 2.0, "a_g": 0.1, "kind": "simulate"},
+                      {"mass": [500.0, 600.0]})
+    assert a.sha256 == b.sha256
+    # a sweep given cycles only runs with the documented default steady = "fixed"
+    sweep = pd_.StudySpec(pd_.presets.paper_printed(), {"kind": "sweep", "a_g": 0.05, "cycles": 5,
+                                                        "freqs_hz": [1.5, 2.0]}, {"mass": [500.0]})
+    assert sweep.compute["steady"] == "fixed"
+    ds = pd_.study(sweep, tmp_path / "sw.zarr", progress=False).load()
+    assert float(ds["steps_done"].sum()) == 2 and float(ds["status"].sum()) == 0
+
+
+def test_record_files_are_read_relative_to_the_study_file(tmp_path, monkeypatch):
+    folder = tmp_path / "recs"
+    folder.mkdir()
+    quake = pd_.records.el_centro()
+    np.savetxt(folder / "quake.csv", np.column_stack([quake.t[:200], quake.accel[:200]]), delimiter=",")
+    (folder / "study.toml").write_text('[system]\npreset = "paper-damped"\n[compute]\nkind = "record"\n'
+                                       'record = "quake.csv"\n[grid]\nscale_pga_g = [0.2, 0.4]\n')
+    monkeypatch.chdir(tmp_path)
+    spec = pd_.StudySpec.from_toml(folder / "study.toml")
+    assert spec.compute["record"] == str((folder / "quake.csv").resolve())
+    pd_.study(spec, tmp_path / "r.zarr", progress=False)
+    (folder / "quake.csv").unlink()  # the results open without the record
+    assert pd_.open_study(tmp_path / "r.zarr").complete
+
+
+def test_input_errors_cross_process_boundaries():
+    import pickle
+
+    err = pd_.InputError(pd_.Problem.NOT_POSITIVE, "duration_s", -1.0, unit="s")
+    back = pickle.loads(pickle.dumps(err))
+    assert (back.field, back.value, back.problem, str(back)) == (err.field, err.value, err.problem, str(err))
+
+
+def test_plot_picks_the_other_axes_by_where(tmp_path):
+    import matplotlib
+
+    matplotlib.use("Agg")
+    pd_.study(_spec(), tmp_path / "s.zarr", progress=False)
+    result = pd_.open_study(tmp_path / "s.zarr")
+    assert len(result.plot("impacts", x="a_g", where={"bumpers.gap_left": 0.014})) == 1
+    with pytest.raises(pd_.InputError, match="hue"):
+        result.plot("impacts", x="a_g", hue="a_g")

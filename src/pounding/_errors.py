@@ -96,12 +96,20 @@ class InputError(ValueError):
         fix = problem.fix.format(**details)
         super().__init__(f"{field} = {value!r} {why}. Fix: {fix}.")
 
+    def __reduce__(self) -> tuple:
+        """Pickled whole (a worker process's error reaches the caller as itself)."""
+        return (_input_error, (self.problem, self.field, self.value, self._details))
+
     def relabel(self, old_prefix: str, new_prefix: str) -> "InputError":
         """The same error with the field's leading ``old_prefix`` renamed (for nested tables)."""
         field = self.field
         if field.startswith(old_prefix):
             field = new_prefix + field[len(old_prefix):]
         return InputError(self.problem, field, self.value, **self._details)
+
+
+def _input_error(problem: Problem, field: str, value: Any, details: dict) -> InputError:
+    return InputError(problem, field, value, **details)
 
 
 class PoundingWarning(UserWarning):

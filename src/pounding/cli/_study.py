@@ -14,7 +14,8 @@ from ._app import command, compile_notice, console, interrupted
 @command("study")
 def study(
     spec: Path = typer.Argument(..., help="The study: a TOML file with [system], [compute] and [grid]."),
-    store: Path = typer.Option(..., "--store", help="The Zarr folder (created; rerun to resume it)."),
+    store: str = typer.Option(..., "--store", help="The Zarr folder (created; rerun to resume it), or an fsspec URL "
+                              "(s3://bucket/study.zarr)."),
     scheduler: str = typer.Option("threads", "--scheduler",
                                   help="threads, processes, local (a Dask LocalCluster) or a Dask scheduler's "
                                        "address (tcp://host:8786)."),

@@ -42,21 +42,31 @@ def plot_study(result: Any, quantity: str, *, x: str | None = None, hue: str | N
     for name, value in (("x", x), ("hue", hue)):
         if value is not None and value not in ds.dims:
             raise InputError(Problem.NOT_IN_RESULT, name, value, choices=", ".join(ds.dims))
-    x = x or (long[0] if long else ds[quantity].dims[0])
-    if hue is None:
-        rest = [d for d in long if d != x]
-        hue = rest[0] if rest else None
     where = dict(where or {})
     for name in where:
         if name not in ds.dims or name in (x, hue):
             raise InputError(Problem.NOT_IN_RESULT, "where", name,
-                             choices=", ".join(d for d in ds.dims if d not in (x, hue)))
+                             choices=", ".join(d for d in ds.dims if d not in (x, hue)) or "no other axis")
+    free = [d for d in long if d not in where]
+    x = x or (free[0] if free else ds[quantity].dims[0])
+    if hue is None:
+        rest = [d for d in free if d != x]
+        hue = rest[0] if rest else None
+    elif hue == x:
+        raise InputError(Problem.DUPLICATE, "hue", hue, repeated="x (give two different axes)")
     da = ds[quantity].where(ds["done"])
     for d in ds[quantity].dims:
         if d in (x, hue):
             continue
         if d in where:
-            da = da.sel({d: where[d]}, method=None if isinstance(where[d], str) else "nearest")
+            value = where[d]
+            if isinstance(value, str):
+                if value not in list(ds[d].values):
+                    raise InputError(Problem.NOT_ONE_OF, f"where[{d!r}]", value,
+                                     choices=", ".join(map(str, ds[d].values)))
+                da = da.sel({d: value})
+            else:
+                da = da.sel({d: value}, method="nearest")
         elif ds.sizes[d] == 1:
             da = da.isel({d: 0})
         else:

@@ -12,7 +12,9 @@ from __future__ import annotations
 import concurrent.futures as cf
 import math
 import os
+import re
 import threading
+import time
 from pathlib import Path
 from typing import Any
 
@@ -22,8 +24,8 @@ from .._checks import integer
 from .._errors import InputError, Interrupted, Problem
 from ._progress import Progress, progress_reporter
 from .study_spec import StudySpec
-from .study_store import (check_store, chunk_grid, chunk_shape, create, open_checked, region, run_chunk,
-                          store_exists)
+from .study_store import (OTHER, STUDY, check_store, chunk_grid, chunk_shape, create, open_checked, refuse_other,
+                          region, run_chunk, store_state)
 
 SCHEDULERS = ("threads", "processes", "local")
 BATCHES_PER_WORKER = 8  # chunks a worker gets over a study, at least: balance against per-batch cost
@@ -99,30 +101,47 @@ def study(
         max_steps = integer("max_steps", max_steps, 1)
     kind_of_scheduler = _scheduler_kind(scheduler)
     n_workers = integer("workers", (os.cpu_count() or 1) if workers is None else workers, 1)
+    if not (progress is True or progress is False or progress is None or callable(progress)):
+        raise InputError(Problem.WRONG_TYPE, "progress", progress, got=type(progress).__name__,
+                         expected="bool or a callable taking the number of points finished")
 
-    if resume and store_exists(store):
-        group = open_checked(store, spec)
-    else:
-        chunks = chunk_shape(spec.shape, batch_points(spec.kind, spec.size, n_workers))
-        create(store, spec, chunks)
-        group = open_checked(store, spec)
-    done = np.asarray(group["done"][...])
-    session = int(np.asarray(group["session"][...]).max(initial=0)) + 1
-    chunks = tuple(group["done"].chunks)
-    todo = [c for c in chunk_grid(spec.shape, chunks) if not done[region(c, spec.shape, chunks)].all()]
-    done_before = int(done.sum())
-    args = (spec.to_json(), store, session, max_steps)
-    interrupted = False
-    with progress_reporter(progress, spec.size, "study", completed=done_before) as advance:
-        try:
-            if kind_of_scheduler == "threads":
-                _on_threads(args, todo, n_workers, advance)
-            elif kind_of_scheduler == "processes":
-                _on_processes(args, todo, n_workers, advance)
-            else:
-                _on_dask(args, todo, scheduler, n_workers, advance)
-        except KeyboardInterrupt:
-            interrupted = True
+    state = store_state(store)
+    if state == OTHER:
+        refuse_other(store)
+    group = open_checked(store, spec) if resume and state == STUDY else None
+    client, own = (None, None)
+    if kind_of_scheduler == "dask":  # (connected before the template: a wrong address writes nothing)
+        client, own = _dask_client(scheduler, n_workers)
+    try:
+        if group is None:
+            chunks = chunk_shape(spec.shape, batch_points(spec.kind, spec.size, n_workers))
+            try:
+                create(store, spec, chunks)
+            except OSError as exc:  # (a folder the user may not write in after all: /proc, a full disk)
+                raise InputError(Problem.BAD_OUTPUT, "store", store, why=f"cannot be written ({exc})",
+                                 fix="give a folder you can write in") from None
+            group = open_checked(store, spec)
+        done = np.asarray(group["done"][...])
+        session = int(np.asarray(group["session"][...]).max(initial=0)) + 1
+        chunks = tuple(group["done"].chunks)
+        todo = [c for c in chunk_grid(spec.shape, chunks) if not done[region(c, spec.shape, chunks)].all()]
+        args = (spec.to_json(), store, session, max_steps)
+        interrupted = False
+        with progress_reporter(progress, spec.size, "study", completed=int(done.sum())) as advance:
+            try:
+                if kind_of_scheduler == "threads":
+                    _on_threads(args, todo, n_workers, advance)
+                elif kind_of_scheduler == "processes":
+                    _on_processes(args, todo, n_workers, advance)
+                else:
+                    _on_dask(args, todo, client, advance)
+            except KeyboardInterrupt:
+                interrupted = True
+    finally:
+        if client is not None and client is not scheduler:
+            client.close()
+        if own is not None:
+            own.close()
     ds = xr.open_zarr(store, consolidated=True)
     if interrupted:
         kept = int(ds["done"].sum())
@@ -135,13 +154,14 @@ def _scheduler_kind(scheduler: Any) -> str:
         return "threads"
     if scheduler == "processes":
         return "processes"
-    if scheduler == "local" or (isinstance(scheduler, str) and "://" in scheduler):
+    if scheduler == "local" or (isinstance(scheduler, str) and re.fullmatch(r"(tcp|tls|inproc|ucx|ws|wss)://[^/\s]+",
+                                                                           scheduler)):
         return "dask"
     if type(scheduler).__name__ == "Client" and type(scheduler).__module__.startswith("distributed"):
         return "dask"
     raise InputError(Problem.NOT_ONE_OF, "scheduler", scheduler,
-                     choices="None, 'threads', 'processes', 'local', a dask.distributed.Client, or a scheduler "
-                             "address such as 'tcp://host:8786'")
+                     choices="threads, processes, local, a Dask scheduler's address such as tcp://host:8786 "
+                             "(or, in Python, None or a dask.distributed.Client)")
 
 
 def _on_threads(args: tuple, todo: list, n_workers: int, advance: Any) -> None:
@@ -154,7 +174,7 @@ def _on_threads(args: tuple, todo: list, n_workers: int, advance: Any) -> None:
                    for c in todo]
         try:
             _wait(futures)
-        except KeyboardInterrupt:
+        except BaseException:  # Ctrl-C, or a point's error: the others stop at their next point
             stop.set()
             for fut in futures:
                 fut.cancel()
@@ -176,7 +196,8 @@ def _on_processes(args: tuple, todo: list, n_workers: int, advance: Any) -> None
     import multiprocessing as mp
 
     spec_json, store, session, max_steps = args
-    pool = cf.ProcessPoolExecutor(max_workers=n_workers, mp_context=mp.get_context("spawn"))
+    pool = cf.ProcessPoolExecutor(max_workers=n_workers, mp_context=mp.get_context("spawn"),
+                                  initializer=_exit_with_parent, initargs=(os.getpid(),))
     try:
         futures = {pool.submit(run_chunk, spec_json, store, c, session, max_steps): c for c in todo}
         pending = set(futures)
@@ -192,22 +213,42 @@ def _on_processes(args: tuple, todo: list, n_workers: int, advance: Any) -> None
     pool.shutdown(wait=True)
 
 
-def _on_dask(args: tuple, todo: list, scheduler: Any, n_workers: int, advance: Any) -> None:
-    """Chunks as Dask tasks: each worker computes and writes its own chunks."""
+def _exit_with_parent(parent_pid: int) -> None:
+    """In a worker process: exit when the study's process is gone (killed with SIGKILL, its pool
+    cannot say so), instead of computing on for nobody."""
+    def watch() -> None:
+        while True:
+            time.sleep(1.0)
+            if os.getppid() != parent_pid:
+                os._exit(1)
+
+    threading.Thread(target=watch, daemon=True, name="pounding-parent-watch").start()
+
+
+def _dask_client(scheduler: Any, n_workers: int) -> tuple[Any, Any]:
+    """(client, cluster it started or None)."""
     try:
-        from distributed import Client, LocalCluster, as_completed
+        from distributed import Client, LocalCluster
     except ImportError:  # pragma: no cover
         raise InputError(Problem.MISSING_INPUT, "scheduler", scheduler,
                          what="Dask: pip install 'dask[distributed]'") from None
-    spec_json, store, session, max_steps = args
-    own = None
     if scheduler == "local":
-        own = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, dashboard_address=None)
-        client = Client(own)
-    elif isinstance(scheduler, str):
-        client = Client(scheduler, timeout="30s")
-    else:
-        client = scheduler
+        cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, dashboard_address=None)
+        return Client(cluster), cluster
+    if isinstance(scheduler, str):
+        try:
+            return Client(scheduler, timeout="20s"), None
+        except (OSError, TimeoutError, ValueError) as exc:
+            raise InputError(Problem.BAD_STATE, "scheduler", scheduler, why=f"cannot be reached ({exc})",
+                             fix="start the scheduler (dask scheduler) and its workers, or check the address") from None
+    return scheduler, None
+
+
+def _on_dask(args: tuple, todo: list, client: Any, advance: Any) -> None:
+    """Chunks as Dask tasks: each worker computes and writes its own chunks."""
+    from distributed import as_completed
+
+    spec_json, store, session, max_steps = args
     futures = []
     try:
         futures = [client.submit(run_chunk, spec_json, store, c, session, max_steps, pure=False) for c in todo]
@@ -216,8 +257,3 @@ def _on_dask(args: tuple, todo: list, scheduler: Any, n_workers: int, advance: A
     except BaseException:
         client.cancel(futures)
         raise
-    finally:
-        if client is not scheduler:
-            client.close()
-        if own is not None:
-            own.close()

@@ -62,5 +62,5 @@ def open_study(store: str | Path) -> StudyResult:
 
     store = check_store(store)
     group = open_checked(store, None)
-    spec = StudySpec.from_dict(json.loads(dict(group.attrs)[SPEC_ATTR]))
+    spec = StudySpec._from_store(json.loads(dict(group.attrs)[SPEC_ATTR]))
     return StudyResult(xr.open_zarr(store, consolidated=True), spec)

@@ -67,6 +67,7 @@ class StudySpec:
                              expected="pounding.Oscillator")
         compute = _check_compute(self.compute)
         grid = _check_grid(self.grid, compute, self.system)
+        compute = _with_defaults(compute, grid)
         object.__setattr__(self, "compute", compute)
         object.__setattr__(self, "grid", grid)
         _check_points(self)
@@ -91,8 +92,24 @@ class StudySpec:
         for key in ("system", "compute", "grid"):
             if key not in table:
                 raise InputError(Problem.MISSING_KEY, key, None, choices="system, compute, grid")
-        return cls(_system(table["system"], Path(base_dir)), dict(table["compute"]),
-                   {k: v for k, v in _table("grid", table["grid"]).items()})
+        base = Path(base_dir)
+        compute = dict(_table("compute", table["compute"]))
+        grid = dict(_table("grid", table["grid"]))
+        if "record" in compute:
+            compute["record"] = _record_path(compute["record"], base)
+        if isinstance(grid.get("record"), list):
+            grid["record"] = [_record_path(v, base) for v in grid["record"]]
+        return cls(_system(table["system"], base), compute, grid)
+
+    @classmethod
+    def _from_store(cls, tables: Mapping[str, Any]) -> "StudySpec":
+        """The spec a store records, as it was checked when the study ran (its records are not
+        read again: they may have moved since)."""
+        spec = object.__new__(cls)
+        object.__setattr__(spec, "system", Oscillator.from_dict(tables["system"]))
+        object.__setattr__(spec, "compute", dict(tables["compute"]))
+        object.__setattr__(spec, "grid", {k: tuple(v) for k, v in tables["grid"].items()})
+        return spec
 
     def to_dict(self) -> dict[str, Any]:
         """The canonical tables: the system in full (never a preset's name), compute, grid."""
@@ -202,17 +219,40 @@ def _system(value: Any, base_dir: Path) -> Oscillator:
     if "preset" in table or "file" in table:
         extra = sorted(set(table) - {"preset", "file", "bumpers"})
         if extra or ("preset" in table and "file" in table):
-            raise InputError(Problem.UNKNOWN_KEY, "system." + (extra[0] if extra else "file"), table,
-                             choices="preset = NAME or file = PATH (one of them), or the system's own tables")
+            field = "system." + (extra[0] if extra else "file")
+            raise InputError(Problem.UNKNOWN_KEY, field, table.get(extra[0]) if extra else table["file"],
+                             choices="preset = NAME or file = PATH (one of them), and bumpers = true/false; "
+                                     "or the system's own tables, without preset or file")
+        bumpers = table.get("bumpers", True)
+        if not isinstance(bumpers, bool):
+            raise InputError(Problem.WRONG_TYPE, "system.bumpers", bumpers, got=type(bumpers).__name__,
+                             expected="true or false (with preset or file: keep the bumpers or not)")
         if "preset" in table:
             from ..presets import by_name
 
-            return by_name(table["preset"], bumpers=table.get("bumpers", True))
+            try:
+                return by_name(table["preset"], bumpers=bumpers)
+            except InputError as exc:
+                raise exc.relabel("preset", "system.preset") from None
         path = table["file"]
         if not isinstance(path, str):
             raise InputError(Problem.WRONG_TYPE, "system.file", path, got=type(path).__name__, expected="path")
-        return Oscillator.from_toml(base_dir / path)
-    return Oscillator.from_dict(table)
+        try:
+            osc = Oscillator.from_toml(base_dir / path)
+        except InputError as exc:
+            raise exc.relabel("path", "system.file") from None
+        return osc if bumpers else osc.without_bumpers()
+    try:
+        return Oscillator.from_dict(table)
+    except InputError as exc:
+        raise InputError(exc.problem, f"system.{exc.field}", exc.value, **exc._details) from None
+
+
+def _record_path(value: Any, base_dir: Path) -> Any:
+    """A record's file, made absolute (relative to ``base_dir``): workers elsewhere read the same."""
+    if not isinstance(value, str) or value == "el-centro" or value.startswith("fema-p695:"):
+        return value
+    return str((base_dir / Path(value).expanduser()).resolve())
 
 
 def _check_compute(value: Any) -> dict[str, Any]:
@@ -241,7 +281,32 @@ def _check_compute(value: Any) -> dict[str, Any]:
             compute[key] = [float(x) for x in v]
         elif isinstance(v, bool) or not isinstance(v, (int, float)) or not math.isfinite(v):
             raise InputError(Problem.NOT_A_NUMBER, f"compute.{key}", v)
+        else:
+            compute[key] = _number(key, v)
+    if "record" in compute:
+        compute["record"] = _record_path(compute["record"], Path.cwd())
     return compute
+
+
+def _with_defaults(compute: dict[str, Any], grid: dict[str, tuple]) -> dict[str, Any]:
+    """The defaults written out (the store says what ran), but for the grid's axes."""
+    out = dict(compute)
+    for key, default in COMPUTE_KEYS[compute["kind"]].items():
+        if default is not None and key not in out and key not in grid:
+            out[key] = default
+    return out
+
+
+INTEGER_KEYS = ("cycles", "measure_cycles", "max_cycles")
+
+
+def _number(key: str, value: Any) -> Any:
+    """A compute number in its canonical type (1 and 1.0 are the same study)."""
+    if key in INTEGER_KEYS:
+        if float(value) != int(value):
+            raise InputError(Problem.NOT_INTEGER, f"compute.{key}", value, minimum=1)
+        return int(value)
+    return float(value)
 
 
 def _check_grid(value: Any, compute: dict[str, Any], system: Oscillator) -> dict[str, tuple]:
@@ -264,14 +329,21 @@ def _check_grid(value: Any, compute: dict[str, Any], system: Oscillator) -> dict
         if name == "kind" or name == "freqs_hz":
             raise InputError(Problem.UNKNOWN_KEY, field, values,
                              choices="numbers of the system or " + ", ".join(k for k in keys if k != "freqs_hz"))
+        if name in compute:
+            raise InputError(Problem.DUPLICATE, field, values,
+                             repeated=f"compute.{name} (a key is set in [compute] or varied in [grid], not both)")
         if name in keys:
             if name in STRING_KEYS:
                 if not all(isinstance(v, str) for v in values):
                     raise InputError(Problem.WRONG_TYPE, field, values, got="values other than text",
                                      expected="list of text values")
+                if name == "record":
+                    values = [_record_path(v, Path.cwd()) for v in values]
             elif not all(isinstance(v, (int, float)) and not isinstance(v, bool) and math.isfinite(v)
                          for v in values):
                 raise InputError(Problem.NOT_A_NUMBER, field, values)
+            else:
+                values = [_number(name, v) for v in values]
         else:
             why = _resolves(table, name)
             if why is not None:
@@ -301,29 +373,57 @@ def _check_points(spec: StudySpec) -> None:
                          estimate=size, unit="points", budget=MAX_POINTS,
                          fix="split the study, or use fewer values")
     table = spec.system.to_dict()
-    first = {name: values[0] for name, values in spec.grid.items()}  # (the other axes at their first value)
+    keys = COMPUTE_KEYS[spec.kind]
+    # the compute axes at their first value (a point needs them); the system's axes one at a time
+    first = {name: values[0] for name, values in spec.grid.items() if name in keys}
+    try:  # the compute options themselves
+        system, options = point_of(table, spec.compute, first)
+        check_options(system, options)
+    except InputError as exc:
+        key = re.split(r"[\[.]", exc.field)[0]
+        if key in spec.grid:
+            raise _named(exc, key, first[key]) from None
+        raise InputError(exc.problem, f"compute.{exc.field}", exc.value, **exc._details) from None
     for name, values in spec.grid.items():
         for v in values:
             try:
-                _, options = point_of(table, spec.compute, {**first, name: v})
-                check_options(options)
+                system, options = point_of(table, spec.compute, {**first, name: v})
+                check_options(system, options)
             except InputError as exc:
-                raise InputError(Problem.BAD_STATE, f"grid.{name}", v,
-                                 why=f"makes a system or computation that is refused: {exc}",
-                                 fix="change or remove this value") from None
-    if size <= 200_000:  # (a combination the single values do not catch: e.g. breakpoints out of order)
+                raise _named(exc, name, v) from None
+    if spec.size <= 200_000:  # (a combination the single values do not catch: e.g. breakpoints out of order)
         for index in spec.indices():
             values = {n: spec.grid[n][i] for n, i in zip(spec.grid, index)}
             try:
                 point_of(table, spec.compute, values)
             except InputError as exc:
                 raise InputError(Problem.BAD_STATE, "grid", values,
-                                 why=f"this point makes a system that is refused: {exc}",
+                                 why=f"makes a system that is refused ({exc.field} {exc.problem.why.format(**exc._details)})",
                                  fix="change the grid's values so that every combination is valid") from None
 
 
-def check_options(options: dict[str, Any]) -> None:
-    """The compute options of one point are valid (the excitation builds, a record reads)."""
-    from .study_points import excitation_of
+def _named(exc: InputError, name: str, value: Any) -> InputError:
+    """``exc`` (raised building one point) named by the grid entry that caused it."""
+    why = exc.problem.why.format(**exc._details)
+    fix = exc.problem.fix.format(**exc._details)
+    return InputError(Problem.BAD_STATE, f"grid.{name}", value,
+                      why=f"is refused: it makes {exc.field} = {exc.value!r}, which {why}", fix=fix)
 
+
+def check_options(system: Oscillator, options: dict[str, Any]) -> None:
+    """The compute options of one point are valid: its excitation builds (a record reads) and
+    its duration is positive; a sweep's plan is made (every sweep option checked)."""
+    from .._checks import positive
+    from .study_points import SWEEP_ARGS, excitation_of
+
+    if options["kind"] == "sweep":
+        from .sweep import make_plan
+
+        kwargs = {k: options[k] for k in SWEEP_ARGS if options.get(k) is not None}
+        freqs = options.get("freqs_hz")
+        make_plan(system, options["a_g"], None if freqs is None else np.asarray(freqs, dtype=float),
+                  options.get("direction", "up"), **kwargs)
+        return
     excitation_of(options)
+    if options.get("duration_s") is not None:
+        positive("duration_s", options["duration_s"], "s")

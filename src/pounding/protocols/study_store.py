@@ -15,6 +15,7 @@ import json
 import math
 import os
 import shutil
+import time
 from pathlib import Path
 from typing import Any
 
@@ -27,6 +28,7 @@ from .study_spec import StudySpec
 SPEC_ATTR = "pounding_study"
 SHA_ATTR = "pounding_study_sha256"
 BOOKKEEPING = ("done", "session")
+FLUSH_S = 2.0  # a chunk being computed is written at least this often, s (and when it ends)
 
 
 def is_url(store: str) -> bool:
@@ -35,33 +37,80 @@ def is_url(store: str) -> bool:
 
 def check_store(store: Any) -> str:
     """The store as a string: a local path (its folder must exist; a file is refused) or an
-    fsspec URL (``s3://bucket/study.zarr``: written through fsspec, as xarray does)."""
+    fsspec URL (``s3://bucket/study.zarr``: written through fsspec, as xarray does);
+    ``file://`` URLs are local paths."""
     if isinstance(store, Path):
         store = str(store)
     if not isinstance(store, str) or not store:
         raise InputError(Problem.WRONG_TYPE, "store", store, got=type(store).__name__,
                          expected="path of a .zarr folder, or an fsspec URL")
+    if store.startswith("file://"):
+        store = store[len("file://"):]
     if is_url(store):
+        protocol = store.split("://", 1)[0]
+        try:
+            import fsspec
+
+            fsspec.get_filesystem_class(protocol)
+        except (ImportError, ValueError) as exc:
+            raise InputError(Problem.BAD_OUTPUT, "store", store, why=f"has a protocol fsspec cannot use ({exc})",
+                             fix="give a local path, or install the fsspec package for that protocol "
+                                 "(s3fs for s3://, gcsfs for gs://)") from None
         return store
-    path = Path(store)
+    path = Path(store).expanduser().resolve()
     if path.exists() and not path.is_dir():
         raise InputError(Problem.BAD_OUTPUT, "store", store, why="is a file, not a Zarr folder",
                          fix="give a new folder name such as study.zarr")
-    if not path.parent.exists():
-        raise InputError(Problem.BAD_OUTPUT, "store", store, why=f"is in {path.parent}, which does not exist",
+    parent = path.parent
+    if not parent.is_dir():
+        raise InputError(Problem.BAD_OUTPUT, "store", store, why=f"is in {parent}, which is not a folder",
                          fix="create that folder first, or give another path")
-    return str(path.resolve())
+    if not os.access(parent, os.W_OK) or (path.exists() and not os.access(path, os.W_OK)):
+        raise InputError(Problem.BAD_OUTPUT, "store", store, why="cannot be written (no permission)",
+                         fix="give a folder you can write in")
+    return str(path)
 
 
-def store_exists(store: str) -> bool:
-    """True when ``store`` holds a Zarr group (any: whether it is a study is checked on opening)."""
+ABSENT, EMPTY, STUDY, OTHER = "absent", "empty", "study", "other"
+
+
+def store_state(store: str) -> str:
+    """What ``store`` holds: nothing (``absent``, ``empty``), a study's store, or something else
+    (files, another Zarr store), which a study never overwrites."""
     if is_url(store):
         import fsspec
 
         mapper = fsspec.get_mapper(store)
-        return ".zgroup" in mapper or "zarr.json" in mapper
+        try:
+            keys = list(mapper.keys())
+        except (FileNotFoundError, OSError):
+            return ABSENT
+        if not keys:
+            return ABSENT
+        return STUDY if _is_study_attrs(mapper.get(".zattrs")) else OTHER
     path = Path(store)
-    return path.is_dir() and any(path.iterdir())
+    if not path.exists():
+        return ABSENT
+    if not any(path.iterdir()):
+        return EMPTY
+    attrs = path / ".zattrs"
+    return STUDY if attrs.is_file() and _is_study_attrs(attrs.read_bytes()) else OTHER
+
+
+def _is_study_attrs(raw: bytes | None) -> bool:
+    if raw is None:
+        return False
+    try:
+        return SPEC_ATTR in json.loads(raw)
+    except (ValueError, TypeError):
+        return False
+
+
+def refuse_other(store: str) -> None:
+    raise InputError(Problem.BAD_OUTPUT, "store", store,
+                     why="holds files that are not a study's store (a study writes only into a new folder, "
+                         "an empty one, or its own store)",
+                     fix="give a new folder name such as study.zarr")
 
 
 def chunk_shape(shape: tuple[int, ...], batch: int) -> tuple[int, ...]:
@@ -104,14 +153,18 @@ def create(store: str, spec: StudySpec, chunks: tuple[int, ...]) -> None:
         ds.to_zarr(store, mode="w", compute=False, encoding=encoding, zarr_format=2, consolidated=True)
         return
     # a local template is written beside the store and renamed into place: a study killed while
-    # writing it leaves no store (and a stray .tmp folder, replaced next time), never half a one
+    # writing it leaves no store (and a stray .tmp folder, replaced next time), never half a one;
+    # a store written anew is first renamed away, then deleted once the new one is in place
     path = Path(store)
     tmp = path.with_name(f".{path.name}.tmp")
+    old = path.with_name(f".{path.name}.old")
     shutil.rmtree(tmp, ignore_errors=True)
     ds.to_zarr(str(tmp), mode="w", compute=False, encoding=encoding, zarr_format=2, consolidated=True)
     if path.exists():
-        shutil.rmtree(path)
+        shutil.rmtree(old, ignore_errors=True)
+        os.replace(path, old)
     os.replace(tmp, path)
+    shutil.rmtree(old, ignore_errors=True)
 
 
 def open_checked(store: str, spec: StudySpec | None) -> Any:
@@ -121,12 +174,12 @@ def open_checked(store: str, spec: StudySpec | None) -> Any:
     try:
         group = zarr.open_group(store, mode="r+" if spec is not None else "r", zarr_format=2)
     except Exception as exc:  # (not a Zarr v2 group at all)
-        raise InputError(Problem.BAD_OUTPUT, "store", store, why=f"is not a study store ({exc})",
-                         fix="give a new folder, or the store a study made") from None
+        raise InputError(Problem.BAD_OUTPUT, "store", store, why=f"is not a study's store ({exc})",
+                         fix="give the folder (or URL) a study wrote") from None
     attrs = dict(group.attrs)
     if SPEC_ATTR not in attrs:
         raise InputError(Problem.BAD_OUTPUT, "store", store, why="is a Zarr store, but not a study's",
-                         fix="give a new folder, or resume=False to overwrite it")
+                         fix="give the folder (or URL) a study wrote")
     if spec is not None and attrs.get(SHA_ATTR) != spec.sha256:
         theirs = json.loads(attrs[SPEC_ATTR])
         mine = spec.to_dict()
@@ -183,7 +236,17 @@ def run_chunk(spec_json: str, store: str, index: tuple[int, ...], session: int, 
     block = {q: np.asarray(group[q][sel], dtype=float) if partly else np.full(done.shape, np.nan)
              for q in quantities}
     new = np.zeros(done.shape, dtype=bool)
+    sessions = np.asarray(group["session"][sel]) if partly else np.zeros(done.shape, dtype=np.int32)
+
+    def flush() -> None:  # the data first, and last what says it is there
+        for q in quantities:
+            group[q][sel] = block[q]
+        sessions[new] = session
+        group["session"][sel] = sessions
+        group["done"][sel] = done | new
+
     computed = 0
+    last_flush = time.monotonic()
     for local in np.ndindex(done.shape):
         if done[local]:
             continue
@@ -198,12 +261,9 @@ def run_chunk(spec_json: str, store: str, index: tuple[int, ...], session: int, 
         computed += 1
         if advance is not None:
             advance(1)
-    if computed == 0:
-        return 0
-    for q in quantities:  # the data first ...
-        group[q][sel] = block[q]
-    sessions = np.asarray(group["session"][sel]) if partly else np.zeros(done.shape, dtype=np.int32)
-    sessions[new] = session
-    group["session"][sel] = sessions
-    group["done"][sel] = done | new  # ... and last what says it is there
+        if time.monotonic() - last_flush > FLUSH_S:  # (a kill loses at most the last seconds' points)
+            flush()
+            last_flush = time.monotonic()
+    if computed:
+        flush()
     return computed
