@@ -28,7 +28,7 @@ import numpy as np
 
 import pounding as pd_
 import peers
-from run import RESULTS, machine
+from run import machine, write_section
 
 BEGIN, END = "<!-- records.py: begin -->", "<!-- records.py: end -->"
 PGA_G = 0.3
@@ -173,14 +173,7 @@ def main() -> None:
     text = "\n".join(lines)
     print(text)
     if not args.no_write:
-        body = RESULTS.read_text()
-        if BEGIN in body and END in body:
-            head, rest = body.split(BEGIN, 1)
-            body = head + text + rest.split(END, 1)[1]
-        else:
-            body = body.rstrip("\n") + "\n\n" + text + "\n"
-        RESULTS.write_text(body)
-        print(f"\nwritten to {RESULTS}")
+        write_section(text, BEGIN, END)
 
 
 if __name__ == "__main__":

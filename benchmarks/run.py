@@ -277,5 +277,18 @@ def write_results(lines):
     RESULTS.write_text(text)
 
 
+def write_section(text: str, begin: str, end: str) -> None:
+    """Put ``text`` (which starts with ``begin`` and ends with ``end``) in RESULTS.md in place of
+    the section between those markers, or at its end the first time."""
+    body = RESULTS.read_text()
+    if begin in body and end in body:
+        head, rest = body.split(begin, 1)
+        body = head + text + rest.split(end, 1)[1]
+    else:
+        body = body.rstrip("\n") + "\n\n" + text + "\n"
+    RESULTS.write_text(body)
+    print(f"\nwritten to {RESULTS}")
+
+
 if __name__ == "__main__":
     main()

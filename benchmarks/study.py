@@ -26,7 +26,7 @@ import numpy as np
 
 import pounding as pd_
 from pounding.protocols.study_points import compute_point
-from run import RESULTS, machine
+from run import machine, write_section
 
 BEGIN, END = "<!-- study.py: begin -->", "<!-- study.py: end -->"
 TARGET_OVERHEAD, TARGET_SCALING = 0.05, 1.8
@@ -114,14 +114,7 @@ def main() -> None:
     text = "\n".join(lines)
     print(text)
     if not args.no_write:
-        body = RESULTS.read_text()
-        if BEGIN in body and END in body:
-            head, rest = body.split(BEGIN, 1)
-            body = head + text + rest.split(END, 1)[1]
-        else:
-            body = body.rstrip("\n") + "\n\n" + text + "\n"
-        RESULTS.write_text(body)
-        print(f"\nwritten to {RESULTS}")
+        write_section(text, BEGIN, END)
 
 
 if __name__ == "__main__":
