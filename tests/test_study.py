@@ -180,6 +180,59 @@ def test_ctrl_c_keeps_what_finished_and_exits_130(tmp_path):
     assert 0 < int(ds["done"].sum()) < ds["done"].size
 
 
+def _marked(mark: str) -> list[int]:
+    """Processes whose environment holds ``POUNDING_TEST_MARK=mark`` (a study's process, its
+    forkserver and its workers inherit it)."""
+    pids = []
+    for env in Path("/proc").glob("[0-9]*/environ"):
+        try:
+            if f"POUNDING_TEST_MARK={mark}".encode() in env.read_bytes().split(b"\0"):
+                pids.append(int(env.parent.name))
+        except OSError:  # (gone, or not ours)
+            pass
+    return pids
+
+
+def test_worker_processes_die_with_a_killed_study(tmp_path):
+    spec_file = tmp_path / "study.toml"
+    spec_file.write_text(KILL_STUDY)
+    store = tmp_path / "s.zarr"
+    mark = f"{os.getpid()}-{time.monotonic_ns()}"
+    env = {**os.environ, "POUNDING_TEST_MARK": mark}
+    proc = subprocess.Popen([sys.executable, "-m", "pounding.cli", "study", str(spec_file), "--store", str(store),
+                             "--workers", "2", "--scheduler", "processes"],
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
+    _wait_for(store, 0.0)
+    deadline = time.monotonic() + 60  # until the workers compute (the forkserver and two workers)
+    while len(_marked(mark)) < 4 and time.monotonic() < deadline and proc.poll() is None:
+        time.sleep(0.05)
+    assert len(_marked(mark)) >= 4, proc.communicate()[1]
+    time.sleep(0.5)
+    proc.kill()
+    proc.communicate()
+    deadline = time.monotonic() + 20
+    while _marked(mark) and time.monotonic() < deadline:
+        time.sleep(0.1)
+    assert _marked(mark) == []  # (no worker computes on for nobody)
+    _check_after(store, None, _data(pd_.study(pd_.StudySpec.from_toml(spec_file), tmp_path / "whole.zarr",
+                                               progress=False)))
+
+
+def test_a_script_without_a_main_guard_is_told_why_its_workers_failed(tmp_path):
+    script = tmp_path / "unguarded.py"
+    script.write_text(
+        "import pounding as pd_\n"
+        "spec = pd_.StudySpec(pd_.presets.paper_printed(), {'kind': 'simulate', 'freq_hz': 2.0, "
+        "'duration_s': 5.0}, {'a_g': [0.1, 0.2]})\n"
+        f"pd_.study(spec, {str(tmp_path / 'u.zarr')!r}, scheduler='processes', workers=2, progress=False)\n")
+    out = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=300)
+    assert out.returncode != 0
+    # the study's own error says why; the workers' runs of the script stopped before touching the store
+    assert "scheduler = 'processes' a worker process ended abruptly" in out.stderr, out.stderr[-3000:]
+    assert out.stderr.count("if __name__ == '__main__':") >= 2, out.stderr[-3000:]
+    assert "cannot be written" not in out.stderr, out.stderr[-3000:]
+
+
 @pytest.mark.parametrize("grid, compute, words", [
     ({"bumpers.gapleft": [0.01]}, {}, "grid.bumpers.gapleft"),
     ({"isolator.slopes[7]": [1e4]}, {}, "index 0 to"),

@@ -30,6 +30,8 @@ from .study_store import (OTHER, STUDY, check_store, chunk_grid, chunk_shape, cr
 SCHEDULERS = ("threads", "processes", "local")
 BATCHES_PER_WORKER = 8  # chunks a worker gets over a study, at least: balance against per-batch cost
 MAX_BATCH = 256         # points in a chunk, at most
+GUARD = ("in a script, run the study under if __name__ == '__main__': (each worker process imports the "
+         "script first, as Python's multiprocessing does)")
 
 
 def batch_points(kind: str, size: int, workers: int) -> int:
@@ -87,8 +89,14 @@ def study(
     Interrupted
         On Ctrl-C: the points finished are in the store (``partial`` is the store's Dataset).
     """
+    import multiprocessing as mp
+
     import xarray as xr
 
+    if getattr(mp.current_process(), "_inheriting", False):  # (multiprocessing's own test of this)
+        raise InputError(Problem.BAD_STATE, "study", "started by a worker process importing the script",
+                         why="a study in a script that is not guarded runs again in every worker process",
+                         fix=GUARD)
     if isinstance(spec, (str, Path)):
         spec = StudySpec.from_toml(spec)
     if not isinstance(spec, StudySpec):
@@ -191,13 +199,13 @@ def _wait(futures: list) -> None:
 
 
 def _on_processes(args: tuple, todo: list, n_workers: int, advance: Any) -> None:
-    """Chunks on worker processes (spawned: a clean interpreter each).  Ctrl-C: the workers are
-    stopped; what they had finished and written stays, the chunks in flight are lost."""
-    import multiprocessing as mp
-
+    """Chunks on worker processes, forked from a server that has pounding imported (the
+    ``forkserver`` start method; ``spawn`` where there is none): a clean interpreter each, started
+    in a fraction of a spawn's time.  Ctrl-C: the workers are stopped; what they had finished and
+    written stays, the chunks in flight are lost."""
     spec_json, store, session, max_steps = args
-    pool = cf.ProcessPoolExecutor(max_workers=n_workers, mp_context=mp.get_context("spawn"),
-                                  initializer=_exit_with_parent, initargs=(os.getpid(),))
+    pool = cf.ProcessPoolExecutor(max_workers=n_workers, mp_context=_process_context(),
+                                  initializer=_exit_with_parent)
     try:
         futures = {pool.submit(run_chunk, spec_json, store, c, session, max_steps): c for c in todo}
         pending = set(futures)
@@ -205,22 +213,53 @@ def _on_processes(args: tuple, todo: list, n_workers: int, advance: Any) -> None
             done, pending = cf.wait(pending, timeout=0.2, return_when=cf.FIRST_COMPLETED)
             for fut in done:
                 advance(fut.result())
+    except cf.process.BrokenProcessPool:
+        _stop_pool(pool)
+        raise InputError(Problem.BAD_STATE, "scheduler", "processes",
+                         why="a worker process ended abruptly (killed, out of memory, or it failed to start)",
+                         fix=GUARD + "; if memory ran out, give fewer workers") from None
     except BaseException:
-        for proc in list(getattr(pool, "_processes", {}).values()):
-            proc.terminate()  # (mid-point: nothing of theirs is marked done that is not written)
-        pool.shutdown(wait=False, cancel_futures=True)
+        _stop_pool(pool)
         raise
     pool.shutdown(wait=True)
 
 
-def _exit_with_parent(parent_pid: int) -> None:
+def _stop_pool(pool: Any) -> None:
+    for proc in list(getattr(pool, "_processes", {}).values()):
+        proc.terminate()  # (mid-point: nothing of theirs is marked done that is not written)
+    pool.shutdown(wait=False, cancel_futures=True)
+
+
+_PRELOAD = ("pounding.protocols._study_worker",)
+
+
+def _process_context() -> Any:
+    """The forkserver context, its server importing what a chunk needs once (then each worker is
+    a fork of it), or spawn where there is no forkserver (Windows)."""
+    import multiprocessing as mp
+    import multiprocessing.forkserver as mpf
+
+    if "forkserver" not in mp.get_all_start_methods():  # pragma: no cover (Windows)
+        return mp.get_context("spawn")
+    ctx = mp.get_context("forkserver")
+    # (added to what is preloaded already, '__main__' by default, as every forkserver user expects)
+    preload = list(getattr(getattr(mpf, "_forkserver", None), "_preload_modules", ["__main__"]))
+    ctx.set_forkserver_preload(preload + [m for m in _PRELOAD if m not in preload])
+    return ctx
+
+
+def _exit_with_parent() -> None:
     """In a worker process: exit when the study's process is gone (killed with SIGKILL, its pool
     cannot say so), instead of computing on for nobody."""
+    import multiprocessing as mp
+
+    parent = mp.parent_process()
+    if parent is None:  # pragma: no cover (not a worker)
+        return
+
     def watch() -> None:
-        while True:
-            time.sleep(1.0)
-            if os.getppid() != parent_pid:
-                os._exit(1)
+        parent.join()  # (its sentinel: a pipe the study's process holds, closed when it dies)
+        os._exit(1)
 
     threading.Thread(target=watch, daemon=True, name="pounding-parent-watch").start()
 
