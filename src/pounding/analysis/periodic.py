@@ -1,0 +1,362 @@
+"""``periodic_orbit``: a periodic response found by Newton shooting on the engine's
+stroboscopic map, with its Floquet multipliers.
+
+The map takes the state at a time ``t0`` to the state one forcing period (or ``period_multiple``
+periods) later, by the engine (``pounding.simulate``, exact at every event).  Its Jacobian, the
+monodromy matrix, is composed exactly for systems whose phases are all linear (a multi-linear
+isolator without Bouc-Wen spring, Kelvin-Voigt bumpers): the closed-form state-transition
+matrices of the phases between the engine's events, and a saltation matrix at every event
+(``_hybrid``).  For the other systems it is a central finite difference of the map
+(``PeriodicOrbit.method`` says which).
+
+The shooting coordinates are the state's free numbers at ``t0``: the displacement and velocity,
+the compression of a Kelvin-Voigt bumper not touched (it relaxes), the slip of an isolator spring
+that does not slip; a bumper in contact and a slipping spring follow the mass.  The bumpers of
+other laws are no coordinates: their compressions and their own states follow the motion (a
+stiff bumper's relaxation is over long before the period ends).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Optional
+
+import numpy as np
+
+from .._checks import integer, positive
+from .._errors import InputError, Problem
+from ..engine import Run, State, simulate
+from ..engine._layout import DEF_L, DEF_R, STATE_BASE
+from ..engine._layout import D as I_D
+from ..engine._layout import T as I_T
+from ..engine._layout import V as I_V
+from ..engine.simulate import check_oscillator
+from ..excitation import Harmonic
+from ..model import Oscillator
+from . import _hybrid as hy
+
+METHODS = ("auto", "exact", "finite-difference")
+
+
+@dataclass(frozen=True, eq=False)
+class PeriodicOrbit:
+    """A periodic response and its stability (what :func:`periodic_orbit` returns).
+
+    Attributes
+    ----------
+    state : State
+        The orbit's state at the section time (``state.time_s``).
+    period_s : float
+        Its period, s: ``period_multiple`` periods of the forcing.
+    multipliers : ndarray of complex, shape (r,)
+        Floquet multipliers: the eigenvalues of ``monodromy``, largest modulus first.
+    monodromy : ndarray, shape (r, r)
+        Jacobian of the stroboscopic map in the shooting coordinates ``coordinates``.
+    coordinates : tuple of str
+        Names of the shooting coordinates (``D``, ``V``, ``delta_L``, ``delta_R``, ``u_i``).
+    residual : float
+        Largest difference between the state and its image one period later, each coordinate
+        over its scale (lengths over the orbit's largest |D|, velocities over that times Omega).
+    converged : bool
+        Whether ``residual <= tol``.
+    iterations : int
+        Newton iterations made.
+    method : str
+        How ``monodromy`` was computed: ``"exact"`` (state-transition and saltation matrices)
+        or ``"finite-difference"``.
+    run : Run
+        One period from ``state``, densely sampled.
+    message : str
+        What happened, for people.
+    """
+
+    state: State
+    period_s: float
+    multipliers: np.ndarray = field(repr=False)
+    monodromy: np.ndarray = field(repr=False)
+    coordinates: tuple[str, ...]
+    residual: float
+    converged: bool
+    iterations: int
+    method: str
+    run: Run = field(repr=False)
+    message: str
+
+    @property
+    def max_abs_multiplier(self) -> float:
+        return float(np.abs(self.multipliers).max(initial=0.0))
+
+    @property
+    def stable(self) -> bool:
+        """Every multiplier inside the unit circle."""
+        return self.max_abs_multiplier < 1.0
+
+    @property
+    def alpha(self) -> float:
+        """Peak absolute acceleration over the table's peak, ``max|a_abs| / A_t``."""
+        return float(self.run.abs_acceleration_max / abs(self.run.excitation.peak_m_s2))
+
+    @property
+    def excursion_m(self) -> float:
+        """``D_max - D_min`` over the period, m."""
+        return float(self.run.displacement_max - self.run.displacement_min)
+
+    @property
+    def eta(self) -> float:
+        """Excursion over the total gap (NaN without bumpers)."""
+        b = self.run.oscillator.bumpers
+        return self.excursion_m / b.total_gap if b is not None else math.nan
+
+    def _contacts(self) -> np.ndarray:
+        """The period's contacts, each once: those that end in it (one in progress at the section
+        is reported whole when it ends; one in progress at the end is the same contact again)."""
+        table = self.run.contact_table
+        return table[np.isfinite(table[:, 2])]
+
+    @property
+    def contacts_per_period(self) -> int:
+        return int(self._contacts().shape[0])
+
+    @property
+    def impact_velocities_m_s(self) -> np.ndarray:
+        """Incoming velocities of the period's contacts, m/s, shape (contacts_per_period,)."""
+        return np.asarray(self._contacts()[:, 3], dtype=float)
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> list:
+        """The orbit in the phase plane (D, V), its contacts marked; returns the artists."""
+        from ..plots.periodic import plot_orbit
+
+        return plot_orbit(self, ax=ax, **kwargs)
+
+
+def periodic_orbit(
+    oscillator: Oscillator,
+    excitation: Harmonic,
+    *,
+    guess: Optional[State] = None,
+    period_multiple: int = 1,
+    tol: float = 1e-10,
+    max_iter: int = 40,
+    settle_cycles: int = 100,
+    method: str = "auto",
+    samples_per_period: int = 400,
+) -> PeriodicOrbit:
+    """Find a periodic response by Newton shooting, with its exact Floquet multipliers.
+
+    Parameters
+    ----------
+    oscillator : Oscillator
+        The system.
+    excitation : Harmonic
+        The table's harmonic acceleration.
+    guess : State, optional
+        Where to start the search (its time is the section time).  Default: the state after
+        ``settle_cycles`` periods from rest, which finds the response a sweep would settle on.
+    period_multiple : int
+        The orbit's period in periods of the forcing (2 for a period-doubled response).
+    tol : float
+        Largest residual accepted, relative to the orbit's size (see ``PeriodicOrbit.residual``).
+    max_iter : int
+        Newton iterations at most.
+    settle_cycles : int
+        Forcing periods run from rest for the default guess.
+    method : {"auto", "exact", "finite-difference"}
+        The monodromy: composed exactly (systems with linear phases only: ``"auto"`` takes it
+        where it can) or by central finite differences of the map.
+    samples_per_period : int
+        Samples of the returned ``run``.
+
+    Returns
+    -------
+    PeriodicOrbit
+        ``converged`` False when Newton did not reach ``tol`` (``message`` says why); the
+        orbit is then the best iterate.
+
+    Examples
+    --------
+    >>> import pounding as pd_
+    >>> orbit = pd_.periodic_orbit(pd_.presets.paper_damped(), pd_.Harmonic(0.05, 1.5))
+    >>> orbit.converged, orbit.stable
+    (True, True)
+    """
+    check_oscillator(oscillator)
+    if not isinstance(excitation, Harmonic):
+        raise InputError(Problem.WRONG_TYPE, "excitation", excitation, got=type(excitation).__name__,
+                         expected="pounding.Harmonic (a periodic orbit needs a periodic forcing)")
+    period_multiple = integer("period_multiple", period_multiple, 1)
+    tol = positive("tol", tol, "(relative)")
+    max_iter = integer("max_iter", max_iter, 1)
+    settle_cycles = integer("settle_cycles", settle_cycles, 1)
+    samples_per_period = integer("samples_per_period", samples_per_period, 2)
+    if method not in METHODS:
+        raise InputError(Problem.NOT_ONE_OF, "method", method, choices=", ".join(METHODS))
+    why = hy.unsupported(oscillator)
+    if method == "exact" and why is not None:
+        raise InputError(Problem.BAD_STATE, "method", method, why=f"cannot be exact for this system: {why}",
+                         fix='use method="finite-difference" (or "auto")')
+    exact = why is None and method != "finite-difference"
+    period = period_multiple / excitation.freq_hz
+    if guess is None:
+        guess = simulate(oscillator, excitation, settle_cycles / excitation.freq_hz, sample_rate_hz=0).final_state
+    elif not isinstance(guess, State):
+        raise InputError(Problem.WRONG_TYPE, "guess", guess, got=type(guess).__name__,
+                         expected="pounding.State (e.g. run.final_state)")
+    shooter = _Shooter(oscillator, excitation, period, exact)
+    vec, res, jac, frozen, it, message = shooter.solve(np.array(guess.vector, dtype=float), tol, max_iter)
+    state = State(vec)
+    run = simulate(oscillator, excitation, period, state, sample_rate_hz=samples_per_period / period)
+    mult = np.linalg.eigvals(jac) if jac.size else np.zeros(0, complex)
+    mult = mult[np.argsort(-np.abs(mult), kind="stable")]
+    names = tuple(shooter.names(vec, frozen))
+    return PeriodicOrbit(state, period, mult, jac, names, res, res <= tol, it,
+                         "exact" if exact else "finite-difference", run, message)
+
+
+class _Shooter:
+    """The map, its residual and Jacobian in the shooting coordinates of a state vector."""
+
+    def __init__(self, oscillator: Oscillator, excitation: Harmonic, period: float, exact: bool) -> None:
+        self.osc = oscillator
+        self.exc = excitation
+        self.period = period
+        self.exact = exact
+        self.h = hy.Hybrid.of(oscillator)
+        self.scale_d = 1e-3
+
+    # the shooting coordinates: which entries of x are free, and how the others follow D
+    def _layout(self, vec: np.ndarray, frozen: tuple = ()) -> tuple[np.ndarray, np.ndarray]:
+        """(indices of x that are free, embedding E: shape (n, r), dx = E dz).  ``frozen``:
+        isolator springs that stay elastic over the period, whose slips are left out."""
+        h = self.h
+        in_l, in_r, iso = hy.mode_of(h, vec)
+        n = h.size
+        follows = np.zeros(n)  # dx_i = follows_i dD for the entries that are not free
+        free = [0, 1]
+        for touching, row, sign, side in ((in_l, hy.I_DL, -1.0, 0), (in_r, hy.I_DR, 1.0, 1)):
+            if touching:
+                follows[row] = sign
+            elif h.damping[side] > 0.0 and self.osc.bumpers is not None:
+                free.append(row)
+        if h.kinematic:
+            for i, s in enumerate(iso):
+                if s != 0.0:
+                    follows[hy.FIRST_SLIP + i] = 1.0
+                elif i not in frozen:
+                    free.append(hy.FIRST_SLIP + i)
+        free_idx = np.array(sorted(free))
+        emb = np.zeros((n, free_idx.size))
+        emb[free_idx, np.arange(free_idx.size)] = 1.0
+        emb[:, 0] += follows  # (D is the first free coordinate)
+        return free_idx, emb
+
+    def frozen(self, vec: np.ndarray, run: Run) -> tuple:
+        """The isolator springs elastic at the section that do not yield over the period: their
+        slips are constants of the motion (the set the isolator keeps), each a multiplier 1 that
+        says nothing of the orbit's stability; they are the orbit's parameters, not coordinates."""
+        if not self.h.kinematic:
+            return ()
+        iso = hy.mode_of(self.h, vec)[2]
+        ev = run.event_table
+        yielded = set(ev[ev[:, 1] == hy.ACT_YIELD, 2].astype(int).tolist())
+        return tuple(i for i, s in enumerate(iso) if s == 0.0 and i not in yielded)
+
+    def names(self, vec: np.ndarray, frozen: tuple = ()) -> list[str]:
+        labels = ["D", "V", "delta_L", "delta_R"] + [f"u_{i}" for i in range(self.h.n_slips)]
+        return [labels[i] for i in self._layout(vec, frozen)[0]]
+
+    def _scales(self, free_idx: np.ndarray) -> np.ndarray:
+        s = np.full(free_idx.size, self.scale_d)
+        s[free_idx == 1] = self.scale_d * self.exc.omega_rad_s
+        return s
+
+    def _image(self, vec: np.ndarray) -> tuple[np.ndarray, Run]:
+        run = simulate(self.osc, self.exc, self.period, State(vec), sample_rate_hz=0)
+        if not run.success:
+            raise _Failed(f"the engine stopped over a period: {run.message}")
+        return np.array(run.final_state.vector), run
+
+    def residual(self, vec: np.ndarray) -> tuple[float, np.ndarray, Run]:
+        """(largest scaled residual over every free coordinate, the residual in x, the run)."""
+        end, run = self._image(vec)
+        free_idx, _ = self._layout(vec)
+        r = hy.coordinates(self.h, end) - hy.coordinates(self.h, vec)
+        return float(np.max(np.abs(r[free_idx]) / self._scales(free_idx))), r, run
+
+    def jacobian(self, vec: np.ndarray, run: Run, frozen: tuple) -> np.ndarray:
+        free_idx, emb = self._layout(vec, frozen)
+        if self.exact:
+            amp, omega, phase = self.exc.peak_m_s2, self.exc.omega_rad_s, self.exc.phase
+            full, _ = hy.monodromy(self.h, vec, run.event_table, vec[I_T] + self.period, omega, amp, phase)
+            return full[free_idx] @ emb
+        cols = []
+        for j, step in enumerate(1e-6 * self._scales(free_idx)):
+            def image(d: float) -> np.ndarray:
+                return hy.coordinates(self.h, self._image(self._moved(vec, emb[:, j] * d))[0])[free_idx]
+
+            if free_idx[j] in (hy.I_DL, hy.I_DR):  # a compression, >= 0: forward, second order
+                cols.append((4.0 * image(step) - image(2.0 * step) - 3.0 * image(0.0)) / (2.0 * step))
+            else:
+                cols.append((image(step) - image(-step)) / (2.0 * step))
+        return np.array(cols).T
+
+    def _moved(self, vec: np.ndarray, dx: np.ndarray) -> np.ndarray:
+        """The state vector moved by ``dx`` (in x), its followers kept on their constraints."""
+        out = vec.copy()
+        out[I_D] += dx[0]
+        out[I_V] += dx[1]
+        out[DEF_L] = max(0.0, vec[DEF_L] + dx[hy.I_DL])
+        out[DEF_R] = max(0.0, vec[DEF_R] + dx[hy.I_DR])
+        n = self.h.n_slips
+        out[STATE_BASE:STATE_BASE + n] += dx[hy.FIRST_SLIP:]
+        in_l, in_r, iso = hy.mode_of(self.h, vec)
+        for touching, row, depth in ((in_l, DEF_L, -out[I_D] - self.h.gaps[0]), (in_r, DEF_R, out[I_D] - self.h.gaps[1])):
+            if touching:
+                out[row] = max(0.0, depth)
+        for i, s in enumerate(iso if self.h.kinematic else ()):
+            if s != 0.0:
+                out[STATE_BASE + i] = out[I_D] - s * self.h.breaks[i]
+        return out
+
+    def solve(self, vec: np.ndarray, tol: float, max_iter: int) -> tuple:
+        """Newton with step halving: (vector, residual, Jacobian, frozen springs, iterations, message)."""
+        try:
+            norm, r, run = self.residual(vec)
+        except _Failed as exc:
+            raise InputError(Problem.BAD_STATE, "guess", "the guess", why=str(exc),
+                             fix="start from another state, or a smaller a_g") from None
+        self.scale_d = max(abs(run.displacement_max), abs(run.displacement_min), 1e-6)
+        norm = self.residual(vec)[0]
+        frozen = self.frozen(vec, run)
+        jac = self.jacobian(vec, run, frozen)
+        it = 0
+        while norm > tol and it < max_iter:
+            it += 1
+            free_idx, emb = self._layout(vec, frozen)
+            try:
+                dz = np.linalg.solve(jac - np.eye(jac.shape[0]), -r[free_idx])
+            except np.linalg.LinAlgError:
+                return vec, norm, jac, frozen, it, "stopped: a multiplier is 1 (a fold or a grazing)"
+            lam = 1.0
+            while True:
+                trial = self._moved(vec, emb @ (lam * dz))
+                try:
+                    norm_t, r_t, run_t = self.residual(trial)
+                except (InputError, _Failed):  # (a state the system cannot be in, or a run that failed)
+                    norm_t = math.inf
+                if norm_t < norm or lam < 1e-3:
+                    break
+                lam *= 0.5
+            if not math.isfinite(norm_t):
+                return vec, norm, jac, frozen, it, "stopped: no Newton step stays in the system's states"
+            vec, r, run, norm = trial, r_t, run_t, norm_t
+            frozen = self.frozen(vec, run)
+            jac = self.jacobian(vec, run, frozen)
+        if norm <= tol:
+            return vec, norm, jac, frozen, it, f"converged in {it} Newton iterations (residual {norm:.1e})"
+        return (vec, norm, jac, frozen, it,
+                f"not converged in {it} Newton iterations (residual {norm:.1e} > tol {tol:g})")
+
+
+class _Failed(Exception):
+    """The engine could not run a period from a trial state."""

@@ -1,0 +1,44 @@
+"""Plots of periodic orbits: the phase plane."""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
+    """A periodic orbit in the phase plane, displacement (mm) against velocity (m/s).
+
+    Parameters
+    ----------
+    orbit : PeriodicOrbit
+        From :func:`pounding.periodic_orbit`.
+    ax : matplotlib Axes, optional
+    **kwargs
+        Passed to the orbit's line (solid when stable, dashed when not).
+
+    Returns
+    -------
+    list of matplotlib artists
+        The orbit's line, then the marks of its section state and of its contacts' starts.
+    """
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        ax = plt.figure().add_subplot()
+    run = orbit.run
+    style = {"color": "C0", "linestyle": "-" if orbit.stable else "--",
+             "label": f"{'stable' if orbit.stable else 'unstable'}, max |mu| = {orbit.max_abs_multiplier:.3g}"}
+    style.update(kwargs)
+    artists = list(ax.plot(run.displacement * 1e3, run.velocity, **style))
+    artists += ax.plot([orbit.state.displacement_m * 1e3], [orbit.state.velocity_m_s], "o", color=style["color"],
+                       markersize=4, label="section state")
+    b = run.oscillator.bumpers
+    if b is not None:
+        for x_mm in (-b.gap_left * 1e3, b.gap_right * 1e3):
+            artists.append(ax.axvline(x_mm, color="0.6", linewidth=0.8))
+    ax.set_xlabel("displacement D (mm)")
+    ax.set_ylabel("velocity V (m/s)")
+    ax.set_title(f"periodic orbit, f = {run.excitation.freq_hz:g} Hz, a_G = {run.excitation.a_g:g}, "
+                 f"{orbit.contacts_per_period} contacts per period")
+    ax.legend(loc="best", fontsize="small")
+    return artists

@@ -1,0 +1,197 @@
+"""Periodic orbits (issue 20): Newton shooting on the engine's map, the exact monodromy against
+closed forms and finite differences, the orbits against the sweeps that settle on them."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import strategies as st
+
+import pounding as pd_
+from pounding.analysis import _hybrid as hy
+from pounding.engine._layout import DEF_L, DEF_R, IN_L, IN_R, STATE_BASE
+from pounding.engine._layout import D as I_D
+from pounding.engine._layout import V as I_V
+from strategies import harmonics, oscillators
+
+
+def test_linear_isolator_without_bumpers_is_the_closed_form():
+    m, k, c = 500.0, 38_000.0, 900.0
+    osc = pd_.Oscillator(m, pd_.Isolator([k], [], "elastic", c), None)
+    for f in (0.5, 1.2, 1.4, 3.0):
+        exc = pd_.Harmonic(0.05, f, phase=0.3)
+        orbit = pd_.periodic_orbit(osc, exc, settle_cycles=3)
+        w = exc.omega_rad_s
+        z = -exc.peak_m_s2 * m / (k - m * w * w + 1j * c * w)  # D = Im(z exp(i theta))
+        theta = w * orbit.state.time_s + exc.phase
+        d, v = (z * np.exp(1j * theta)).imag, (1j * w * z * np.exp(1j * theta)).imag
+        assert orbit.converged and orbit.method == "exact"
+        assert orbit.state.displacement_m == pytest.approx(d, rel=1e-9, abs=1e-12 * abs(z))
+        assert orbit.state.velocity_m_s == pytest.approx(v, rel=1e-9, abs=1e-12 * abs(z) * w)
+        assert orbit.excursion_m == pytest.approx(2 * abs(z), rel=1e-9)
+        # multipliers exp(lambda T) of the free response, lambda = -zeta w_n +- i w_d
+        lam = np.roots([m, c, k])
+        expected = np.exp(lam / f)
+        np.testing.assert_allclose(np.sort_complex(orbit.multipliers), np.sort_complex(expected), rtol=1e-9)
+        assert orbit.stable and orbit.coordinates == ("D", "V")
+
+
+def _image(osc, exc, vec, period):
+    run = pd_.simulate(osc, exc, period, pd_.State(vec), sample_rate_hz=0)
+    assert run.success
+    return run
+
+
+def _fd_jacobian(osc, exc, vec, period, free, step):
+    """Central differences of the engine's map in the free coordinates (D, V, relaxing compressions,
+    elastic springs' slips), the others kept on their constraints (depth in contact, slip at the
+    breakpoint while slipping); written here from the state's meaning, not from the code under test."""
+    n_sp = osc.isolator.n_branches - 1 if osc.isolator.hysteresis == "kinematic" else 0
+    place = {"D": I_D, "V": I_V, "delta_L": DEF_L, "delta_R": DEF_R,
+             **{f"u_{i}": STATE_BASE + i for i in range(n_sp)}}
+    scale = {"V": exc.omega_rad_s}
+    cols = []
+    for name in free:
+        ends = []
+        # a compression is >= 0: forward differences of second order for it, central for the others
+        steps = (0.0, 1.0, 2.0) if name.startswith("delta") else (1.0, -1.0)
+        for sgn in steps:
+            w = np.array(vec, dtype=float)
+            w[place[name]] += sgn * step * scale.get(name, 1.0)
+            gl, gr = osc.bumpers.gap_left, osc.bumpers.gap_right
+            if w[IN_L]:
+                w[DEF_L] = -w[I_D] - gl
+            if w[IN_R]:
+                w[DEF_R] = w[I_D] - gr
+            for i in range(n_sp):
+                s = w[STATE_BASE + n_sp + i]
+                if s != 0.0:
+                    w[STATE_BASE + i] = w[I_D] - s * osc.isolator.breakpoints[i]
+            end = _image(osc, exc, w, period).final_state.vector
+            ends.append(np.array([end[place[q]] for q in free]))
+        h = step * scale.get(name, 1.0)
+        cols.append((4 * ends[1] - ends[2] - 3 * ends[0]) / (2 * h) if len(ends) == 3 else (ends[0] - ends[1]) / (2 * h))
+    return np.array(cols).T
+
+
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+@given(osc=oscillators(hysteresis="kinematic"), exc=harmonics(), settle=st.integers(2, 20))
+def test_exact_monodromy_equals_finite_differences_of_the_engine(osc, exc, settle):
+    """On random systems whose period holds contacts, yields and reversals: the monodromy composed
+    from state-transition and saltation matrices equals a finite-difference Jacobian of the engine's
+    map to 1e-5 (where the map is differentiable at the differences' scale: two steps agree)."""
+    assume(osc.isolator.n_branches > 1)
+    period = 1.0 / exc.freq_hz
+    state = pd_.simulate(osc, exc, settle * period, sample_rate_hz=0).final_state
+    vec = np.array(state.vector)
+    run = _image(osc, exc, vec, period)
+    actions = set(run.event_table[:, 1].astype(int).tolist())
+    assume({int(hy.ACT_CONTACT), int(hy.ACT_YIELD), int(hy.ACT_REVERSAL)} <= actions)
+    from pounding.analysis.periodic import _Shooter
+
+    shooter = _Shooter(osc, exc, period, exact=True)
+    free = shooter.names(vec)
+    exact = shooter.jacobian(vec, run, ())
+    size = max(abs(run.displacement_max), abs(run.displacement_min))
+    fd1 = _fd_jacobian(osc, exc, vec, period, free, 1e-6 * size)
+    fd2 = _fd_jacobian(osc, exc, vec, period, free, 5e-7 * size)
+    norm = np.abs(fd1).max()
+    assume(np.abs(fd1 - fd2).max() <= 1e-7 * norm)  # (no grazing within the differences' reach)
+    assert np.abs(exact - fd1).max() <= 1e-5 * norm, (free, exact, fd1)
+    # and the propagation by the modes' exponentials ends where the engine ends
+    _, x_end = hy.monodromy(hy.Hybrid.of(osc), vec, run.event_table, vec[0] + period, exc.omega_rad_s,
+                            exc.peak_m_s2, exc.phase)
+    end = hy.coordinates(hy.Hybrid.of(osc), run.final_state.vector)
+    assert np.abs(x_end - end).max() <= 1e-8 * size
+
+
+def _sweep_orbits(osc, a_g, freqs, direction):
+    s = pd_.sweep(osc, a_g, freqs, direction, steady="fixed", cycles=60, measure_cycles=5)
+    df = s.to_dataframe()
+    for i, f in enumerate(s.freqs_hz):
+        exc = pd_.Harmonic(a_g, f, phase=-(2 * math.pi * f * s.step_start_s[i]))
+        yield df.iloc[i], pd_.periodic_orbit(osc, exc, guess=pd_.State(s.window_states[i]))
+
+
+def test_stable_orbits_are_what_the_sweeps_settle_on():
+    """Both responses where up and down sweeps differ (1.7-2.0 Hz), and around: the orbit from the
+    sweep's window state is stable, and its metrics are the sweep's steady ones to 1e-6."""
+    osc = pd_.presets.paper_damped()
+    seen = set()
+    for direction, freqs in (("up", np.round(np.arange(1.0, 2.01, 0.1), 2)),
+                             ("down", np.round(np.arange(2.3, 1.69, -0.1), 2))):
+        for row, orbit in _sweep_orbits(osc, 0.05, freqs, direction):
+            if not (row["steady"] and row["period_multiple"] == 1):
+                continue  # (1.1 Hz up: no period-1 response settles; test_an_unstable_orbit_...)
+            assert orbit.converged and orbit.stable and orbit.method == "exact", orbit.message
+            assert orbit.alpha == pytest.approx(row["alpha"], rel=1e-6)
+            assert orbit.excursion_m == pytest.approx(row["excursion_m"], rel=1e-6)
+            assert orbit.contacts_per_period == pytest.approx(row["contacts_per_cycle"], abs=1e-12)
+            seen.add((row["freq_hz"], orbit.contacts_per_period > 0))
+    assert (1.8, True) in seen and (1.8, False) in seen  # (the two coexisting responses)
+
+
+def test_an_unstable_orbit_returns_over_one_period_and_departs_over_many():
+    """Sweeping up to 1.1 Hz no period-1 response settles: Newton from the sweep's state finds the
+    unstable period-1 orbit there; simulated, it returns after a period and leaves it after many."""
+    osc = pd_.presets.paper_damped()
+    (row, orbit), = list(_sweep_orbits(osc, 0.05, [1.1], "up"))[-1:]
+    assert not row["steady"]
+    assert orbit.converged and not orbit.stable and orbit.max_abs_multiplier > 2.0
+    exc = orbit.run.excitation
+    size = orbit.excursion_m
+    one = pd_.simulate(osc, exc, orbit.period_s, orbit.state, sample_rate_hz=0).final_state
+    assert abs(one.displacement_m - orbit.state.displacement_m) < 1e-8 * size
+    assert abs(one.velocity_m_s - orbit.state.velocity_m_s) < 1e-8 * size * exc.omega_rad_s
+    many = pd_.simulate(osc, exc, 40 * orbit.period_s, orbit.state, sample_rate_hz=0).final_state
+    assert abs(many.displacement_m - orbit.state.displacement_m) > 1e-3 * size  # (2.3^40: rounding grows)
+
+
+def test_an_orbit_returns_to_its_state():
+    osc = pd_.presets.paper_damped()
+    orbit = pd_.periodic_orbit(osc, pd_.Harmonic(0.05, 1.5), settle_cycles=4)
+    assert orbit.converged and orbit.iterations >= 1 and orbit.contacts_per_period == 2
+    end = orbit.run.final_state.vector
+    size = orbit.excursion_m
+    assert abs(end[I_D] - orbit.state.displacement_m) < 1e-8 * size
+    assert abs(end[I_V] - orbit.state.velocity_m_s) < 1e-8 * size * 2 * math.pi * 1.5
+    assert orbit.residual <= 1e-10
+    np.testing.assert_allclose(orbit.impact_velocities_m_s.size, 2)
+    assert orbit.eta == pytest.approx(orbit.excursion_m / 0.03)
+
+
+def test_systems_with_nonlinear_laws_use_finite_differences():
+    b = pd_.Bumpers(0.015, 0.015, pd_.Hertzdamp(5e8, 0.8, 1.5))
+    osc = pd_.Oscillator(500.0, pd_.Isolator([38e3, 18e3, 2e3], [0.015, 0.04], "kinematic", 1000.0), b)
+    orbit = pd_.periodic_orbit(osc, pd_.Harmonic(0.05, 1.5), settle_cycles=10, tol=1e-8)
+    assert orbit.method == "finite-difference" and orbit.converged, orbit.message
+    assert orbit.contacts_per_period > 0 and orbit.stable
+    with pytest.raises(pd_.InputError, match="Hertzdamp"):
+        pd_.periodic_orbit(osc, pd_.Harmonic(0.05, 1.5), method="exact")
+
+
+@pytest.mark.parametrize("kwargs, words", [
+    ({"excitation": "harmonic"}, "excitation"),
+    ({"period_multiple": 0}, "period_multiple"),
+    ({"tol": -1.0}, "tol"),
+    ({"method": "newton"}, "method"),
+    ({"guess": (0.0, 0.0)}, "guess"),
+    ({"max_iter": 2.5}, "max_iter"),
+])
+def test_bad_arguments_are_named(kwargs, words):
+    args = {"oscillator": pd_.presets.paper_damped(), "excitation": pd_.Harmonic(0.05, 1.5)}
+    args.update(kwargs)
+    with pytest.raises(pd_.InputError, match=words):
+        pd_.periodic_orbit(args.pop("oscillator"), args.pop("excitation"), **args)
+
+
+def test_an_orbit_plots():
+    import matplotlib
+
+    matplotlib.use("Agg")
+    orbit = pd_.periodic_orbit(pd_.presets.paper_damped(), pd_.Harmonic(0.05, 1.5))
+    artists = orbit.plot()
+    assert artists and artists[0].get_linestyle() == "-"
