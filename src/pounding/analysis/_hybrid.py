@@ -201,6 +201,20 @@ def after_event(h: Hybrid, action: int, index: int, x: np.ndarray) -> np.ndarray
     return y
 
 
+def exponential(a: np.ndarray, tau: float) -> np.ndarray:
+    """``expm(a tau)``, the states that evolve alone (a relaxing bumper: its row and column hold
+    only the diagonal) by their scalar exponential: their rates (``stiffness / damping``, up to
+    1e6 1/s) would make ``expm`` square its way down from a huge norm, slowly."""
+    off = a - np.diag(np.diag(a))
+    alone = ~(off.any(axis=0) | off.any(axis=1))
+    out = np.zeros_like(a)
+    rest = np.flatnonzero(~alone)
+    out[np.ix_(rest, rest)] = expm(a[np.ix_(rest, rest)] * tau)
+    idx = np.flatnonzero(alone)
+    out[idx, idx] = np.exp(np.diag(a)[idx] * tau)
+    return out
+
+
 def monodromy(h: Hybrid, vec0: np.ndarray, events: np.ndarray, t_end: float, omega: float, amp: float,
               phase: float) -> tuple[np.ndarray, np.ndarray]:
     """The Jacobian of the map from ``x`` at the state vector ``vec0``'s time to ``x`` at
@@ -219,7 +233,7 @@ def monodromy(h: Hybrid, vec0: np.ndarray, events: np.ndarray, t_end: float, ome
     jac = np.eye(n)
     for t_ev, action, index in np.vstack((events, [[t_end, -1.0, -1.0]])):
         a = augmented_matrix(h, mode, omega, amp)
-        step = expm(a * (t_ev - t))
+        step = exponential(a, t_ev - t)
         xa = step @ xa
         jac = step[:n, :n] @ jac
         t = t_ev
