@@ -77,19 +77,23 @@ def _fd_jacobian(osc, exc, vec, period, free, step):
     return np.array(cols).T
 
 
+@pytest.mark.parametrize("rule, events", [("kinematic", (hy.ACT_CONTACT, hy.ACT_YIELD, hy.ACT_REVERSAL)),
+                                          ("elastic", (hy.ACT_CONTACT, hy.ACT_RELEASE, hy.ACT_REGION))])
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
-@given(osc=oscillators(hysteresis="kinematic"), exc=harmonics(), settle=st.integers(2, 20))
-def test_exact_monodromy_equals_finite_differences_of_the_engine(osc, exc, settle):
-    """On random systems whose period holds contacts, yields and reversals: the monodromy composed
-    from state-transition and saltation matrices equals a finite-difference Jacobian of the engine's
-    map to 1e-5 (where the map is differentiable at the differences' scale: two steps agree)."""
+@given(data=st.data(), settle=st.integers(2, 20))
+def test_exact_monodromy_equals_finite_differences_of_the_engine(rule, events, data, settle):
+    """On random systems whose period holds contacts and the isolator's events (yields and
+    reversals; changes of branch): the monodromy composed from state-transition and saltation
+    matrices equals a finite-difference Jacobian of the engine's map to 1e-5 (where the map is
+    differentiable at the differences' scale: two steps agree)."""
+    osc, exc = data.draw(oscillators(hysteresis=rule)), data.draw(harmonics())
     assume(osc.isolator.n_branches > 1)
     period = 1.0 / exc.freq_hz
     state = pd_.simulate(osc, exc, settle * period, sample_rate_hz=0).final_state
     vec = np.array(state.vector)
     run = _image(osc, exc, vec, period)
     actions = set(run.event_table[:, 1].astype(int).tolist())
-    assume({int(hy.ACT_CONTACT), int(hy.ACT_YIELD), int(hy.ACT_REVERSAL)} <= actions)
+    assume({int(e) for e in events} <= actions)
     from pounding.analysis.periodic import _Shooter
 
     shooter = _Shooter(osc, exc, period, exact=True)
@@ -179,7 +183,45 @@ def test_systems_with_nonlinear_laws_use_finite_differences():
         pd_.periodic_orbit(osc, pd_.Harmonic(0.05, 1.5), method="exact")
 
 
+def test_a_bouc_wen_isolator_returns_its_z_too():
+    iso = pd_.Isolator([20e3], [], "elastic", 300.0, bouc_wen=pd_.BoucWen(2e4, 0.005))
+    osc = pd_.Oscillator(500.0, iso, pd_.Bumpers(0.03, 0.03, pd_.KelvinVoigt(1.4e6, 500.0)))
+    exc = pd_.Harmonic(0.1, 1.2)
+    orbit = pd_.periodic_orbit(osc, exc, settle_cycles=3, tol=1e-8)
+    assert orbit.converged and orbit.method == "finite-difference" and "z" in orbit.coordinates, orbit.message
+    end = orbit.run.final_state
+    assert abs(end.bouc_wen_z - orbit.state.bouc_wen_z) < 1e-7
+    settled = pd_.periodic_orbit(osc, exc, settle_cycles=300, tol=1e-8)
+    assert orbit.alpha == pytest.approx(settled.alpha, rel=1e-6)
+
+
+def test_a_branch_change_at_rest_and_steps_across_breakpoints():
+    """The elastic rule: a guess at rest on a breakpoint (the engine changes branch at V = 0, toward
+    the acceleration) and Newton steps that cross breakpoints (the branch follows D)."""
+    osc = pd_.presets.paper_damped(bumpers=False, hysteresis="elastic")
+    for d, phase in ((-0.015, math.pi / 2), (0.015, -math.pi / 2)):
+        orbit = pd_.periodic_orbit(osc, pd_.Harmonic(-0.3, 1.0, phase=phase), guess=pd_.State.at_rest(osc, 0.0, d, 0.0))
+        assert orbit.converged and orbit.method == "exact", orbit.message
+
+
+def test_a_section_inside_a_contact_reports_the_orbit_s_own_contacts():
+    osc = pd_.presets.paper_damped()
+    exc = pd_.Harmonic(0.05, 1.5)
+    run = pd_.simulate(osc, exc, 60.0 / 1.5, sample_rate_hz=0)
+    t_mid = 0.5 * (run.contact_table[-1, 1] + run.contact_table[-1, 2])  # (the middle of a contact)
+    guess = pd_.simulate(osc, exc, t_mid, sample_rate_hz=0).final_state
+    assert any(guess.in_contact)
+    orbit = pd_.periodic_orbit(osc, exc, guess=guess)
+    assert orbit.converged and orbit.contacts_per_period == 2
+    v = orbit.impact_velocities_m_s
+    assert v[0] == pytest.approx(-v[1], rel=1e-6)  # (mirror symmetry of the paper's system)
+
+
 @pytest.mark.parametrize("kwargs, words", [
+    ({"samples_per_period": 10**9}, "samples_per_period"),
+    ({"method": np.array(["exact"])}, "method"),
+    ({"tol": float("nan")}, "tol"),
+    ({"guess": pd_.State.at_rest(pd_.Oscillator(500.0, pd_.Isolator([1e4], [], "elastic", 1.0), None))}, "guess"),
     ({"excitation": "harmonic"}, "excitation"),
     ({"period_multiple": 0}, "period_multiple"),
     ({"tol": -1.0}, "tol"),
@@ -199,5 +241,7 @@ def test_an_orbit_plots():
 
     matplotlib.use("Agg")
     orbit = pd_.periodic_orbit(pd_.presets.paper_damped(), pd_.Harmonic(0.05, 1.5))
-    artists = orbit.plot()
-    assert artists and artists[0].get_linestyle() == "-"
+    artists = orbit.plot(c="k", ls=":")
+    assert artists[0].get_linestyle() == ":" and artists[0].get_color() == "k"
+    assert len(artists[2].get_xdata()) == 2  # (the two contacts' starts)
+    assert math.isnan(pd_.periodic_orbit(pd_.presets.paper_damped(), pd_.Harmonic(0.0, 1.5)).alpha)

@@ -171,8 +171,9 @@ def guard_gradient(h: Hybrid, action: int, index: int, mode: tuple, x: np.ndarra
     return g
 
 
-def next_mode(h: Hybrid, action: int, index: int, mode: tuple, x: np.ndarray) -> tuple:
-    """The mode after the event (as the engine's transitions: ``_kernel``, ``_isolator``)."""
+def next_mode(h: Hybrid, action: int, index: int, mode: tuple, x: np.ndarray, acc: float = 0.0) -> tuple:
+    """The mode after the event (as the engine's transitions: ``_kernel``, ``_isolator``); ``acc``
+    the acceleration before it, which says where a branch change at rest goes."""
     in_l, in_r, iso = mode
     if action in (ACT_CONTACT, ACT_RELEASE):
         now = action == ACT_CONTACT
@@ -184,7 +185,8 @@ def next_mode(h: Hybrid, action: int, index: int, mode: tuple, x: np.ndarray) ->
     if action == ACT_REVERSAL:
         return in_l, in_r, tuple(0.0 for _ in iso)
     if action == ACT_REGION:
-        return in_l, in_r, iso + (1 if x[1] > 0.0 else -1)
+        heading = x[1] if x[1] != 0.0 else acc
+        return in_l, in_r, iso + (1 if heading > 0.0 else -1)
     raise ValueError(f"no transition for event action {action}")  # pragma: no cover
 
 
@@ -241,11 +243,13 @@ def monodromy(h: Hybrid, vec0: np.ndarray, events: np.ndarray, t_end: float, ome
             break
         action, index = int(action), int(index)
         x = xa[:n]
-        new = next_mode(h, action, index, mode, x)
         f_before = (a @ xa)[:n]
+        new = next_mode(h, action, index, mode, x, f_before[1])
         f_after = (augmented_matrix(h, new, omega, amp) @ xa)[:n]
         grad = guard_gradient(h, action, index, mode, x)
         rate = float(grad @ f_before)
+        if rate == 0.0 and np.any(f_after != f_before):  # (tangent: no saltation; the caller falls back)
+            raise ValueError(f"event {action} at t = {t_ev} is tangent (a grazing)")
         if rate != 0.0:
             jac = (np.eye(n) + np.outer(f_after - f_before, grad) / rate) @ jac
         xa[:n] = after_event(h, action, index, x)

@@ -24,14 +24,14 @@ from typing import Any, Optional
 
 import numpy as np
 
-from .._checks import integer, positive
+from .._checks import integer, one_of, real
 from .._errors import InputError, Problem
 from ..engine import Run, State, simulate
-from ..engine._layout import DEF_L, DEF_R, STATE_BASE
+from ..engine._layout import DEF_L, DEF_R, REGION, STATE_BASE, ZETA
 from ..engine._layout import D as I_D
 from ..engine._layout import T as I_T
 from ..engine._layout import V as I_V
-from ..engine.simulate import check_oscillator
+from ..engine.simulate import check_oscillator, check_state
 from ..excitation import Harmonic
 from ..model import Oscillator
 from . import _hybrid as hy
@@ -57,7 +57,8 @@ class PeriodicOrbit:
         Names of the shooting coordinates (``D``, ``V``, ``delta_L``, ``delta_R``, ``u_i``).
     residual : float
         Largest difference between the state and its image one period later, each coordinate
-        over its scale (lengths over the orbit's largest |D|, velocities over that times Omega).
+        over its scale (lengths over the largest |D| over the guess's first period, velocities
+        over that times Omega, the Bouc-Wen z over 1).
     converged : bool
         Whether ``residual <= tol``.
     iterations : int
@@ -85,7 +86,8 @@ class PeriodicOrbit:
 
     @property
     def max_abs_multiplier(self) -> float:
-        return float(np.abs(self.multipliers).max(initial=0.0))
+        """The largest |multiplier| (NaN when there is no monodromy: a search that stopped early)."""
+        return float(np.abs(self.multipliers).max()) if self.multipliers.size else math.nan
 
     @property
     def stable(self) -> bool:
@@ -95,7 +97,8 @@ class PeriodicOrbit:
     @property
     def alpha(self) -> float:
         """Peak absolute acceleration over the table's peak, ``max|a_abs| / A_t``."""
-        return float(self.run.abs_acceleration_max / abs(self.run.excitation.peak_m_s2))
+        peak = abs(self.run.excitation.peak_m_s2)
+        return float(self.run.abs_acceleration_max / peak) if peak > 0.0 else math.nan
 
     @property
     def excursion_m(self) -> float:
@@ -184,13 +187,17 @@ def periodic_orbit(
     if not isinstance(excitation, Harmonic):
         raise InputError(Problem.WRONG_TYPE, "excitation", excitation, got=type(excitation).__name__,
                          expected="pounding.Harmonic (a periodic orbit needs a periodic forcing)")
-    period_multiple = integer("period_multiple", period_multiple, 1)
-    tol = positive("tol", tol, "(relative)")
-    max_iter = integer("max_iter", max_iter, 1)
-    settle_cycles = integer("settle_cycles", settle_cycles, 1)
-    samples_per_period = integer("samples_per_period", samples_per_period, 2)
-    if method not in METHODS:
-        raise InputError(Problem.NOT_ONE_OF, "method", method, choices=", ".join(METHODS))
+    period_multiple = integer("period_multiple", period_multiple, 1, 64, "give the orbit's period in forcing "
+                              "periods: 1, 2 for a period-doubled response, ...")
+    tol = real("tol", tol)
+    if not 1e-15 <= tol <= 1e-2:
+        raise InputError(Problem.OUT_OF_RANGE, "tol", tol, range="[1e-15, 1e-2]",
+                         hint=" (relative to the orbit's size; 1e-10 by default)")
+    max_iter = integer("max_iter", max_iter, 1, 1000, "100 Newton iterations are plenty")
+    settle_cycles = integer("settle_cycles", settle_cycles, 1, 100_000, "give a guess instead")
+    samples_per_period = integer("samples_per_period", samples_per_period, 2, 1_000_000,
+                                 "the run's extrema are exact whatever the sampling")
+    method = one_of("method", method, METHODS)
     why = hy.unsupported(oscillator)
     if method == "exact" and why is not None:
         raise InputError(Problem.BAD_STATE, "method", method, why=f"cannot be exact for this system: {why}",
@@ -202,15 +209,23 @@ def periodic_orbit(
     elif not isinstance(guess, State):
         raise InputError(Problem.WRONG_TYPE, "guess", guess, got=type(guess).__name__,
                          expected="pounding.State (e.g. run.final_state)")
+    else:
+        try:
+            check_state(guess, oscillator)
+        except InputError as exc:
+            raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is not a state of this system ({exc})",
+                             fix="give a state of this oscillator, e.g. a run's final_state") from None
     shooter = _Shooter(oscillator, excitation, period, exact)
     vec, res, jac, frozen, it, message = shooter.solve(np.array(guess.vector, dtype=float), tol, max_iter)
-    state = State(vec)
+    # the state one period on: the same point of the orbit, with the running totals of a contact in
+    # progress its own (the guess's otherwise)
+    state = simulate(oscillator, excitation, period, State(vec), sample_rate_hz=0).final_state
     run = simulate(oscillator, excitation, period, state, sample_rate_hz=samples_per_period / period)
-    mult = np.linalg.eigvals(jac) if jac.size else np.zeros(0, complex)
+    mult = np.linalg.eigvals(jac) if jac.size and np.isfinite(jac).all() else np.full(jac.shape[0], np.nan + 0j)
     mult = mult[np.argsort(-np.abs(mult), kind="stable")]
     names = tuple(shooter.names(vec, frozen))
     return PeriodicOrbit(state, period, mult, jac, names, res, res <= tol, it,
-                         "exact" if exact else "finite-difference", run, message)
+                         "exact" if shooter.exact else "finite-difference", run, message)
 
 
 class _Shooter:
@@ -221,16 +236,24 @@ class _Shooter:
         self.exc = excitation
         self.period = period
         self.exact = exact
+        self.fell_back = ""  # why the exact monodromy gave way to finite differences, if it did
         self.h = hy.Hybrid.of(oscillator)
+        bw = oscillator.isolator.bouc_wen
+        self.z_max = bw.z_max if bw is not None else 0.0
         self.scale_d = 1e-3
+
+    def coords(self, vec: np.ndarray) -> np.ndarray:
+        """``x`` (``_hybrid``), then the isolator's Bouc-Wen z for a system with one."""
+        x = hy.coordinates(self.h, vec)
+        return np.append(x, vec[ZETA]) if self.z_max > 0.0 else x
 
     # the shooting coordinates: which entries of x are free, and how the others follow D
     def _layout(self, vec: np.ndarray, frozen: tuple = ()) -> tuple[np.ndarray, np.ndarray]:
-        """(indices of x that are free, embedding E: shape (n, r), dx = E dz).  ``frozen``:
+        """(indices of ``coords`` that are free, embedding E: shape (n, r), dx = E dz).  ``frozen``:
         isolator springs that stay elastic over the period, whose slips are left out."""
         h = self.h
         in_l, in_r, iso = hy.mode_of(h, vec)
-        n = h.size
+        n = h.size + (self.z_max > 0.0)
         follows = np.zeros(n)  # dx_i = follows_i dD for the entries that are not free
         free = [0, 1]
         for touching, row, sign, side in ((in_l, hy.I_DL, -1.0, 0), (in_r, hy.I_DR, 1.0, 1)):
@@ -244,6 +267,8 @@ class _Shooter:
                     follows[hy.FIRST_SLIP + i] = 1.0
                 elif i not in frozen:
                     free.append(hy.FIRST_SLIP + i)
+        if self.z_max > 0.0:
+            free.append(n - 1)
         free_idx = np.array(sorted(free))
         emb = np.zeros((n, free_idx.size))
         emb[free_idx, np.arange(free_idx.size)] = 1.0
@@ -262,12 +287,14 @@ class _Shooter:
         return tuple(i for i, s in enumerate(iso) if s == 0.0 and i not in yielded)
 
     def names(self, vec: np.ndarray, frozen: tuple = ()) -> list[str]:
-        labels = ["D", "V", "delta_L", "delta_R"] + [f"u_{i}" for i in range(self.h.n_slips)]
-        return [labels[i] for i in self._layout(vec, frozen)[0]]
+        labels = ["D", "V", "delta_L", "delta_R"] + [f"u_{i}" for i in range(self.h.n_slips)] + ["z"]
+        return [labels[i] if i < self.h.size else "z" for i in self._layout(vec, frozen)[0]]
 
     def _scales(self, free_idx: np.ndarray) -> np.ndarray:
         s = np.full(free_idx.size, self.scale_d)
         s[free_idx == 1] = self.scale_d * self.exc.omega_rad_s
+        if self.z_max > 0.0:
+            s[free_idx == self.h.size] = 1.0  # (z is dimensionless, |z| <= z_max about 1)
         return s
 
     def _image(self, vec: np.ndarray) -> tuple[np.ndarray, Run]:
@@ -277,85 +304,116 @@ class _Shooter:
         return np.array(run.final_state.vector), run
 
     def residual(self, vec: np.ndarray) -> tuple[float, np.ndarray, Run]:
-        """(largest scaled residual over every free coordinate, the residual in x, the run)."""
+        """(largest scaled residual over every free coordinate, the residual in ``coords``, the run)."""
         end, run = self._image(vec)
         free_idx, _ = self._layout(vec)
-        r = hy.coordinates(self.h, end) - hy.coordinates(self.h, vec)
+        r = self.coords(end) - self.coords(vec)
         return float(np.max(np.abs(r[free_idx]) / self._scales(free_idx))), r, run
 
     def jacobian(self, vec: np.ndarray, run: Run, frozen: tuple) -> np.ndarray:
         free_idx, emb = self._layout(vec, frozen)
         if self.exact:
             amp, omega, phase = self.exc.peak_m_s2, self.exc.omega_rad_s, self.exc.phase
-            full, _ = hy.monodromy(self.h, vec, run.event_table, vec[I_T] + self.period, omega, amp, phase)
-            return full[free_idx] @ emb
+            try:
+                full, x_end = hy.monodromy(self.h, vec, run.event_table, vec[I_T] + self.period, omega, amp, phase)
+                gap = np.abs(x_end - self.coords(run.final_state.vector)).max() / self.scale_d
+                if not (np.isfinite(full).all() and gap < 1e-6):
+                    raise ValueError(f"the modes' propagation ends {gap:.1e} (relative) from the engine")
+                return full[free_idx] @ emb
+            except (ValueError, IndexError) as exc:  # (never seen in the tests: a safeguard)
+                self.exact = False
+                self.fell_back = f"; the exact monodromy gave way to finite differences: {exc}"
         cols = []
         for j, step in enumerate(1e-6 * self._scales(free_idx)):
             def image(d: float) -> np.ndarray:
-                return hy.coordinates(self.h, self._image(self._moved(vec, emb[:, j] * d))[0])[free_idx]
+                try:
+                    return self.coords(self._image(self._moved(vec, emb[:, j] * d))[0])[free_idx]
+                except InputError as exc:
+                    raise _Failed(f"a finite difference left the system's states ({exc})") from None
 
-            if free_idx[j] in (hy.I_DL, hy.I_DR):  # a compression, >= 0: forward, second order
-                cols.append((4.0 * image(step) - image(2.0 * step) - 3.0 * image(0.0)) / (2.0 * step))
+            one_sided = free_idx[j] in (hy.I_DL, hy.I_DR) or (
+                self.z_max > 0.0 and free_idx[j] == self.h.size and abs(vec[ZETA]) + step > self.z_max)
+            if one_sided:  # a compression (>= 0) or z at its bound: second order, inwards
+                d = step if free_idx[j] != self.h.size or vec[ZETA] < 0.0 else -step
+                cols.append((4.0 * image(d) - image(2.0 * d) - 3.0 * image(0.0)) / (2.0 * d))
             else:
                 cols.append((image(step) - image(-step)) / (2.0 * step))
         return np.array(cols).T
 
     def _moved(self, vec: np.ndarray, dx: np.ndarray) -> np.ndarray:
-        """The state vector moved by ``dx`` (in x), its followers kept on their constraints."""
+        """The state vector moved by ``dx`` (in ``coords``), its followers kept on their
+        constraints and the elastic rule's branch the one of the new D."""
         out = vec.copy()
+        h = self.h
         out[I_D] += dx[0]
         out[I_V] += dx[1]
         out[DEF_L] = max(0.0, vec[DEF_L] + dx[hy.I_DL])
         out[DEF_R] = max(0.0, vec[DEF_R] + dx[hy.I_DR])
-        n = self.h.n_slips
-        out[STATE_BASE:STATE_BASE + n] += dx[hy.FIRST_SLIP:]
-        in_l, in_r, iso = hy.mode_of(self.h, vec)
-        for touching, row, depth in ((in_l, DEF_L, -out[I_D] - self.h.gaps[0]), (in_r, DEF_R, out[I_D] - self.h.gaps[1])):
+        n = h.n_slips
+        out[STATE_BASE:STATE_BASE + n] += dx[hy.FIRST_SLIP:hy.FIRST_SLIP + n]
+        if self.z_max > 0.0:
+            out[ZETA] = min(max(vec[ZETA] + dx[h.size], -self.z_max), self.z_max)
+        in_l, in_r, iso = hy.mode_of(h, vec)
+        for touching, row, depth in ((in_l, DEF_L, -out[I_D] - h.gaps[0]), (in_r, DEF_R, out[I_D] - h.gaps[1])):
             if touching:
                 out[row] = max(0.0, depth)
-        for i, s in enumerate(iso if self.h.kinematic else ()):
-            if s != 0.0:
-                out[STATE_BASE + i] = out[I_D] - s * self.h.breaks[i]
+        if h.kinematic:
+            for i, s in enumerate(iso):
+                if s != 0.0:
+                    out[STATE_BASE + i] = out[I_D] - s * h.breaks[i]
+        elif h.breaks.size:
+            out[REGION] = np.sign(out[I_D]) * np.searchsorted(h.breaks, abs(out[I_D]), side="right")
         return out
 
     def solve(self, vec: np.ndarray, tol: float, max_iter: int) -> tuple:
-        """Newton with step halving: (vector, residual, Jacobian, frozen springs, iterations, message)."""
+        """Newton with step halving, each step accepted only where the residual falls (so the
+        result is the best iterate): (vector, residual, Jacobian, frozen springs, iterations, message)."""
         try:
-            norm, r, run = self.residual(vec)
+            _, _, run = self.residual(vec)
         except _Failed as exc:
             raise InputError(Problem.BAD_STATE, "guess", "the guess", why=str(exc),
                              fix="start from another state, or a smaller a_g") from None
         self.scale_d = max(abs(run.displacement_max), abs(run.displacement_min), 1e-6)
-        norm = self.residual(vec)[0]
+        norm, r, run = self.residual(vec)
         frozen = self.frozen(vec, run)
-        jac = self.jacobian(vec, run, frozen)
         it = 0
+        try:
+            jac = self.jacobian(vec, run, frozen)
+        except _Failed as exc:
+            return vec, norm, np.zeros((0, 0)), frozen, it, f"stopped: {exc}"
         while norm > tol and it < max_iter:
             it += 1
             free_idx, emb = self._layout(vec, frozen)
             try:
                 dz = np.linalg.solve(jac - np.eye(jac.shape[0]), -r[free_idx])
             except np.linalg.LinAlgError:
-                return vec, norm, jac, frozen, it, "stopped: a multiplier is 1 (a fold or a grazing)"
+                return vec, norm, jac, frozen, it, "stopped: a multiplier is 1 (a fold or a grazing)" + self.fell_back
             lam = 1.0
-            while True:
+            norm_t = math.inf
+            while lam >= 1e-3:
                 trial = self._moved(vec, emb @ (lam * dz))
                 try:
                     norm_t, r_t, run_t = self.residual(trial)
                 except (InputError, _Failed):  # (a state the system cannot be in, or a run that failed)
                     norm_t = math.inf
-                if norm_t < norm or lam < 1e-3:
+                if norm_t < norm:
                     break
                 lam *= 0.5
-            if not math.isfinite(norm_t):
-                return vec, norm, jac, frozen, it, "stopped: no Newton step stays in the system's states"
+            if not norm_t < norm:
+                return (vec, norm, jac, frozen, it,
+                        f"stopped: Newton stalled at residual {norm:.1e} (no step along its direction lowers it; "
+                        "a grazing or mode change near the section, or tol below what rounding allows)"
+                        + self.fell_back)
             vec, r, run, norm = trial, r_t, run_t, norm_t
             frozen = self.frozen(vec, run)
-            jac = self.jacobian(vec, run, frozen)
+            try:
+                jac = self.jacobian(vec, run, frozen)
+            except _Failed as exc:
+                return vec, norm, np.zeros((0, 0)), frozen, it, f"stopped: {exc}"
         if norm <= tol:
-            return vec, norm, jac, frozen, it, f"converged in {it} Newton iterations (residual {norm:.1e})"
+            return vec, norm, jac, frozen, it, f"converged in {it} Newton iterations (residual {norm:.1e})" + self.fell_back
         return (vec, norm, jac, frozen, it,
-                f"not converged in {it} Newton iterations (residual {norm:.1e} > tol {tol:g})")
+                f"not converged in {it} Newton iterations (residual {norm:.1e} > tol {tol:g})" + self.fell_back)
 
 
 class _Failed(Exception):

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from typing import Any
 
+import numpy as np
+
 
 def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
     """A periodic orbit in the phase plane, displacement (mm) against velocity (m/s).
@@ -19,10 +21,14 @@ def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
     Returns
     -------
     list of matplotlib artists
-        The orbit's line, then the marks of its section state and of its contacts' starts.
+        The orbit's line, the mark of its section state, those of its contacts' starts, the
+        bumpers' surfaces.
     """
     import matplotlib.pyplot as plt
+    from matplotlib import cbook
+    from matplotlib.lines import Line2D
 
+    kwargs = cbook.normalize_kwargs(kwargs, Line2D)  # (c, ls, lw: the long names)
     if ax is None:
         ax = plt.figure().add_subplot()
     run = orbit.run
@@ -32,6 +38,12 @@ def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
     artists = list(ax.plot(run.displacement * 1e3, run.velocity, **style))
     artists += ax.plot([orbit.state.displacement_m * 1e3], [orbit.state.velocity_m_s], "o", color=style["color"],
                        markersize=4, label="section state")
+    contacts = orbit._contacts()
+    if contacts.size:  # where each contact starts: the mass at the bumper's surface
+        t0 = run.t[0]
+        starts = (contacts[:, 1] - t0) % orbit.period_s + t0
+        artists += ax.plot(np.interp(starts, run.t, run.displacement) * 1e3, np.interp(starts, run.t, run.velocity),
+                           "v", color="C3", markersize=5, label="contact starts")
     b = run.oscillator.bumpers
     if b is not None:
         for x_mm in (-b.gap_left * 1e3, b.gap_right * 1e3):
