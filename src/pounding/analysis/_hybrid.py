@@ -233,8 +233,8 @@ def monodromy(h: Hybrid, vec0: np.ndarray, events: np.ndarray, t_end: float, ome
     mode = mode_of(h, vec0)
     xa = np.concatenate((coordinates(h, vec0), [np.sin(omega * t + phase), np.cos(omega * t + phase), 1.0]))
     jac = np.eye(n)
+    a = augmented_matrix(h, mode, omega, amp)
     for t_ev, action, index in np.vstack((events, [[t_end, -1.0, -1.0]])):
-        a = augmented_matrix(h, mode, omega, amp)
         step = exponential(a, t_ev - t)
         xa = step @ xa
         jac = step[:n, :n] @ jac
@@ -245,7 +245,8 @@ def monodromy(h: Hybrid, vec0: np.ndarray, events: np.ndarray, t_end: float, ome
         x = xa[:n]
         f_before = (a @ xa)[:n]
         new = next_mode(h, action, index, mode, x, f_before[1])
-        f_after = (augmented_matrix(h, new, omega, amp) @ xa)[:n]
+        a_after = augmented_matrix(h, new, omega, amp)
+        f_after = (a_after @ xa)[:n]
         grad = guard_gradient(h, action, index, mode, x)
         rate = float(grad @ f_before)
         if rate == 0.0 and np.any(f_after != f_before):  # (tangent: no saltation; the caller falls back)
@@ -253,5 +254,5 @@ def monodromy(h: Hybrid, vec0: np.ndarray, events: np.ndarray, t_end: float, ome
         if rate != 0.0:
             jac = (np.eye(n) + np.outer(f_after - f_before, grad) / rate) @ jac
         xa[:n] = after_event(h, action, index, x)
-        mode = new
+        mode, a = new, a_after
     return jac, xa[:n]

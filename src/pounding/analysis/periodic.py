@@ -369,12 +369,13 @@ class _Shooter:
         """Newton with step halving, each step accepted only where the residual falls (so the
         result is the best iterate): (vector, residual, Jacobian, frozen springs, iterations, message)."""
         try:
-            _, _, run = self.residual(vec)
+            _, r, run = self.residual(vec)
         except _Failed as exc:
             raise InputError(Problem.BAD_STATE, "guess", "the guess", why=str(exc),
                              fix="start from another state, or a smaller a_g") from None
         self.scale_d = max(abs(run.displacement_max), abs(run.displacement_min), 1e-6)
-        norm, r, run = self.residual(vec)
+        free_idx, _ = self._layout(vec)
+        norm = float(np.max(np.abs(r[free_idx]) / self._scales(free_idx)))  # (on the scale just set)
         frozen = self.frozen(vec, run)
         it = 0
         try:
