@@ -371,7 +371,7 @@ class _Shooter:
         try:
             _, r, run = self.residual(vec)
         except _Failed as exc:
-            raise InputError(Problem.BAD_STATE, "guess", "the guess", why=str(exc),
+            raise InputError(Problem.BAD_STATE, "guess", State(vec), why=f"cannot be shot from: {exc}",
                              fix="start from another state, or a smaller a_g") from None
         self.scale_d = max(abs(run.displacement_max), abs(run.displacement_min), 1e-6)
         free_idx, _ = self._layout(vec)
