@@ -22,6 +22,7 @@ import numpy as np
 from .._checks import parse_toml, read_text
 from .._errors import InputError, Problem
 from ..model import Oscillator
+from ..model.dotted import set_value, why_unresolved
 
 KINDS = ("sweep", "simulate", "record")
 # what each kind of point takes (defaults; None: required), by the name a grid can vary
@@ -33,7 +34,6 @@ COMPUTE_KEYS: dict[str, dict[str, Any]] = {
 }
 STRING_KEYS = ("direction", "steady", "record")  # compute keys whose values are text
 MAX_POINTS = 10_000_000
-_INDEX = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?$")
 
 
 @dataclass(frozen=True)
@@ -159,50 +159,8 @@ def point_of(system_table: dict, compute: Mapping[str, Any], values: Mapping[str
         if name in options or name in COMPUTE_KEYS[options["kind"]]:
             options[name] = value
         else:
-            _set(table, name, value)
+            set_value(table, name, value)
     return Oscillator.from_dict(table), options
-
-
-def _set(table: dict, name: str, value: Any) -> None:
-    """Set the dotted ``name`` (``bumpers.law.stiffness``, ``isolator.slopes[0]``) in nested tables."""
-    parts = name.split(".")
-    node: Any = table
-    for depth, part in enumerate(parts):
-        m = _INDEX.match(part)
-        key, idx = m.group(1), m.group(2)
-        last = depth == len(parts) - 1
-        if last and idx is None:
-            node[key] = value
-            return
-        node = node[key]
-        if idx is not None:
-            node[int(idx)] = value if last else node[int(idx)]
-            if last:
-                return
-            node = node[int(idx)]
-
-
-def _resolves(table: dict, name: str) -> str | None:
-    """None when the dotted ``name`` reaches a number of the system ``table``; else why not."""
-    node: Any = table
-    for part in name.split("."):
-        m = _INDEX.match(part)
-        if m is None:
-            return f"{part!r} is not a name (letters, digits, _ and an optional [index])"
-        key, idx = m.group(1), m.group(2)
-        if not isinstance(node, dict) or key not in node:
-            keys = ", ".join(sorted(node)) if isinstance(node, dict) else "none"
-            return f"{key!r} is not there (the keys there: {keys})"
-        node = node[key]
-        if idx is not None:
-            if not isinstance(node, list):
-                return f"{key!r} is not a list"
-            if int(idx) >= len(node):
-                return f"{key!r} has {len(node)} values (index 0 to {len(node) - 1})"
-            node = node[int(idx)]
-    if isinstance(node, bool) or not isinstance(node, (int, float)):
-        return f"it holds {type(node).__name__}, not a number"
-    return None
 
 
 # ---------------------------------------------------------------------- checks
@@ -345,7 +303,7 @@ def _check_grid(value: Any, compute: dict[str, Any], system: Oscillator) -> dict
             else:
                 values = [_number(name, v) for v in values]
         else:
-            why = _resolves(table, name)
+            why = why_unresolved(table, name)
             if why is not None:
                 raise InputError(Problem.UNKNOWN_KEY, field, values,
                                  choices=f"a number of the system or a compute key ({', '.join(keys)}): {why}")
