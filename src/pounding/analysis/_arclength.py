@@ -1,0 +1,271 @@
+"""Pseudo-arclength continuation of periodic orbits: the family of maps, its points, the
+corrector and the tangent.
+
+A *family* is the stroboscopic map ``P(x; p)`` of :mod:`periodic` at a fixed forcing angle
+(the state at time 0, the forcing ``Harmonic(a_g, f, phase)``) as one parameter ``p`` varies:
+the frequency, the table's peak acceleration, or a number of the system.  A point of the
+branch solves ``P(x; p) = x`` in the orbit's shooting coordinates ``w`` (which may change
+along the branch: a spring that starts to yield becomes a coordinate, a bumper touched at the
+section follows the mass); distances and tangents are therefore measured in the full
+coordinates ``x`` of ``_hybrid`` (each over a fixed scale) and in ``p`` over the range's length.
+
+The corrector is Newton on ``[P(x; p) - x = 0, tau . (y - y_pred) = 0]``, reusing the last
+point's Jacobian while it contracts (a chord method: one engine run per iteration), with a
+fresh one when it does not.  ``dP/dp`` is a central difference of the map.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Optional
+
+import numpy as np
+
+from .._errors import InputError
+from ..engine import Run
+from ..engine._layout import A_TSTART, ACC_L, ACC_R, IN_L, IN_R
+from ..engine._layout import T as I_T
+from ..excitation import Harmonic
+from ..model import Oscillator
+from ..model.dotted import set_value
+from .periodic import _Failed, _Shooter
+
+
+@dataclass
+class Point:
+    """One solved orbit of the family (all the corrector and the detectors need)."""
+
+    vec: np.ndarray        # the engine's state vector at the section (time 0)
+    p: float               # the parameter's value
+    run: Run               # one period from vec
+    jac: np.ndarray        # monodromy in the free coordinates, (r, r)
+    dp: np.ndarray         # dP/dp in the free coordinates, (r,)
+    free: np.ndarray       # indices of the free coordinates in x
+    emb: np.ndarray        # dx = emb dw, (n, r)
+    frozen: tuple          # isolator springs elastic over the period
+    tau_x: np.ndarray      # unit tangent: scaled x part, (n,)
+    tau_q: float           # ... and scaled parameter part
+    residual: float        # largest scaled residual
+    mult: np.ndarray       # Floquet multipliers, largest modulus first
+    iterations: int = 0    # the corrector's
+    phase: float = 0.0     # the forcing's angle at the section, rad
+
+
+
+class Family:
+    """The maps ``P(.; p)``, with fixed scales: ``length_m`` for D and the compressions and
+    slips, ``length_m * omega_ref`` for V, 1 for the Bouc-Wen z, ``p_scale`` for p."""
+
+    def __init__(self, oscillator: Oscillator, a_g: float, freq_hz: float, parameter: str, period_multiple: int,
+                 exact: bool, phase: float, length_m: float, p_scale: float, omega_ref: float) -> None:
+        self.osc = oscillator
+        self.table = oscillator.to_dict() if parameter not in ("freq_hz", "a_g") else None
+        self.a_g = a_g
+        self.freq_hz = freq_hz
+        self.parameter = parameter
+        self.k = period_multiple
+        self.exact = exact
+        self.phase = phase
+        self.p_scale = p_scale
+        self._cache: dict[float, _Shooter] = {}
+        self.fell_back = ""
+        self.length_m = length_m
+        sh = self.shooter(self.start_value)
+        self.n = sh.h.size + int(sh.z_max > 0.0)
+        self.scales = np.full(self.n, length_m)
+        self.scales[1] = length_m * omega_ref
+        if sh.z_max > 0.0:
+            self.scales[-1] = 1.0
+
+    @property
+    def start_value(self) -> float:
+        return {"freq_hz": self.freq_hz, "a_g": self.a_g}.get(self.parameter, np.nan) if self.table is None \
+            else float(_get(self.table, self.parameter))
+
+    def system(self, p: float) -> tuple[Oscillator, Harmonic]:
+        """The system and forcing at parameter value ``p`` (raises InputError where there is none)."""
+        if self.parameter == "freq_hz":
+            return self.osc, Harmonic(self.a_g, p, phase=self.phase)
+        if self.parameter == "a_g":
+            return self.osc, Harmonic(p, self.freq_hz, phase=self.phase)
+        table = _copy(self.table)
+        set_value(table, self.parameter, float(p))
+        return Oscillator.from_dict(table), Harmonic(self.a_g, self.freq_hz, phase=self.phase)
+
+    def set_phase(self, phase: float) -> None:
+        """Move the section to the forcing angle ``phase`` (rad, in [0, 2 pi))."""
+        self.phase = float(phase) % (2.0 * np.pi)
+        self._cache.clear()
+
+    def omega(self, p: float) -> float:
+        return self.shooter(p).exc.omega_rad_s
+
+    def shooter(self, p: float) -> _Shooter:
+        sh = self._cache.get(p)
+        if sh is None:
+            osc, exc = self.system(p)
+            sh = _Shooter(osc, exc, self.k / exc.freq_hz, self.exact)
+            if len(self._cache) > 8:
+                self._cache.clear()
+            self._cache[p] = sh
+        sh.scale_d = self.length_m
+        return sh
+
+    def coords(self, vec: np.ndarray) -> np.ndarray:
+        return self._any.coords(vec)
+
+    @property
+    def _any(self) -> _Shooter:
+        return next(iter(self._cache.values())) if self._cache else self.shooter(self.start_value)
+
+    # ------------------------------------------------------------------ pieces
+    def image(self, vec: np.ndarray, p: float) -> tuple[np.ndarray, Run]:
+        """``(x of P(vec; p), the run)``; raises _Failed where the engine cannot run it."""
+        try:
+            end, run = self.shooter(p)._image(vec)
+        except InputError as exc:  # (a parameter value the system cannot have, a state it cannot be in)
+            raise _Failed(str(exc)) from None
+        return self.coords(end), run
+
+    def residual(self, vec: np.ndarray, p: float) -> tuple[np.ndarray, Run, tuple, np.ndarray, np.ndarray]:
+        """``(scaled residual in the free coordinates, run, frozen springs, free, emb)``."""
+        x_end, run = self.image(vec, p)
+        sh = self.shooter(p)
+        frozen = sh.frozen(vec, run)
+        free, emb = sh._layout(vec, frozen)
+        r = (x_end - self.coords(vec))[free] / self.scales[free]
+        return r, run, frozen, free, emb
+
+    def linearize(self, vec: np.ndarray, p: float, run: Run, frozen: tuple) -> tuple[np.ndarray, np.ndarray]:
+        """``(monodromy, dP/dp)`` in the free coordinates (unscaled; dP/dp per unit of p)."""
+        sh = self.shooter(p)
+        jac = sh.jacobian(vec, run, frozen)
+        if sh.fell_back and not self.fell_back:
+            self.fell_back = sh.fell_back
+        free, _ = sh._layout(vec, frozen)
+        h = 1e-6 * self.p_scale
+        try:
+            diff = (self.image(vec, p + h)[0] - self.image(vec, p - h)[0]) / (2.0 * h)
+        except _Failed:  # (p next to a bound of its values, e.g. a gap of 0: one-sided)
+            x0 = self.coords(run.final_state.vector)
+            try:
+                diff = (self.image(vec, p + h)[0] - x0) / h
+            except _Failed:
+                diff = (x0 - self.image(vec, p - h)[0]) / h
+        return jac, diff[free]
+
+    def bordered(self, jac: np.ndarray, dp: np.ndarray, free: np.ndarray, emb: np.ndarray,
+                 row_x: np.ndarray, row_q: float) -> np.ndarray:
+        """The scaled extended Jacobian ``[[S^-1 (M - I) S_w, S^-1 dP/dp s_p], [row]]``, (r+1, r+1).
+
+        ``row_x`` (n,) and ``row_q``: the last row's tangent in the full scaled coordinates."""
+        s_w = self.scales[free]
+        r = free.size
+        a = np.empty((r + 1, r + 1))
+        a[:r, :r] = (jac - np.eye(r)) * (s_w[None, :] / s_w[:, None])
+        a[:r, r] = dp / s_w * self.p_scale
+        a[r, :r] = row_x @ (emb * s_w[None, :] / self.scales[:, None])
+        a[r, r] = row_q
+        return a
+
+    def tangent(self, pt: Point, prev_x: np.ndarray, prev_q: float) -> tuple[np.ndarray, float]:
+        """The unit tangent at ``pt`` oriented along ``(prev_x, prev_q)`` (full scaled coordinates)."""
+        a = self.bordered(pt.jac, pt.dp, pt.free, pt.emb, prev_x, prev_q)
+        rhs = np.zeros(a.shape[0])
+        rhs[-1] = 1.0
+        try:
+            t = np.linalg.solve(a, rhs)
+        except np.linalg.LinAlgError:
+            t = np.linalg.svd(a[:-1])[2][-1]
+        s_w = self.scales[pt.free]
+        tx = (pt.emb @ (t[:-1] * s_w)) / self.scales
+        tq = float(t[-1])
+        norm = float(np.sqrt(tx @ tx + tq * tq))
+        tx, tq = tx / norm, tq / norm
+        if tx @ prev_x + tq * prev_q < 0.0:
+            tx, tq = -tx, -tq
+        return tx, tq
+
+    def correct(self, vec: np.ndarray, p: float, target_x: np.ndarray, target_p: float, tau_x: np.ndarray,
+                tau_q: float, tol: float, chord: Optional[Point] = None, max_iter: int = 12) -> Optional[Point]:
+        """Newton from ``(vec, p)`` onto the branch in the hyperplane through ``(target_x, target_p)``
+        normal to ``(tau_x, tau_q)`` (``tau_x = 0, tau_q = 1``: p fixed).  None where it fails."""
+        jac = dp = None
+        key = None
+        last = np.inf
+        for it in range(max_iter):
+            try:
+                r, run, frozen, free, emb = self.residual(vec, p)
+            except _Failed:
+                return None
+            x = self.coords(vec)
+            arc = float(tau_x @ ((x - target_x) / self.scales) + tau_q * (p - target_p) / self.p_scale)
+            norm = max(float(np.max(np.abs(r), initial=0.0)), abs(arc))
+            if not np.isfinite(norm):
+                return None
+            if norm <= tol:
+                try:
+                    jac, dp = self.linearize(vec, p, run, frozen)
+                except _Failed:
+                    return None
+                mult = np.linalg.eigvals(jac) if jac.size else np.zeros(0, complex)
+                mult = mult[np.argsort(-np.abs(mult), kind="stable")]
+                return Point(vec, p, run, jac, dp, free, emb, frozen, tau_x, tau_q,
+                             float(np.max(np.abs(r), initial=0.0)), mult, it, self.phase)
+            here = (tuple(free), frozen)
+            if chord is not None and jac is None and (tuple(chord.free), chord.frozen) == here:
+                jac, dp, key = chord.jac, chord.dp, here
+            if jac is None or key != here or norm > 0.5 * last:
+                try:
+                    jac, dp = self.linearize(vec, p, run, frozen)
+                except _Failed:
+                    return None
+                key = here
+            last = norm
+            a = self.bordered(jac, dp, free, emb, tau_x, tau_q)
+            try:
+                step = np.linalg.solve(a, -np.append(r, arc))
+            except np.linalg.LinAlgError:
+                return None
+            p_new = p + step[-1] * self.p_scale
+            dx = emb @ (step[:-1] * self.scales[free])
+            try:
+                vec = self.shooter(p_new)._moved(vec, dx)
+            except InputError:
+                return None
+            p = p_new
+        return None
+
+
+def at_section(vec: np.ndarray) -> np.ndarray:
+    """The state vector moved to time 0 (a whole number of forcing periods back): a contact in
+    progress keeps its start relative to the section."""
+    out = np.array(vec, dtype=float)
+    t = out[I_T]
+    for flag, acc in ((IN_L, ACC_L), (IN_R, ACC_R)):
+        if out[flag]:
+            out[acc + A_TSTART] -= t
+    out[I_T] = 0.0
+    return out
+
+
+def _copy(table: dict) -> dict:
+    return {k: _copy(v) if isinstance(v, dict) else (list(v) if isinstance(v, list) else v) for k, v in table.items()}
+
+
+def _get(table: dict, name: str) -> float:
+    node = table
+    for part in name.split("."):
+        key, _, idx = part.partition("[")
+        node = node[key]
+        if idx:
+            node = node[int(idx.rstrip("]"))]
+    return node  # type: ignore[return-value]
+
+
+def system_at(osc: Oscillator, parameter: str, value: float) -> Oscillator:
+    if parameter in ("freq_hz", "a_g"):
+        return osc
+    table = osc.to_dict()
+    set_value(table, parameter, float(value))
+    return Oscillator.from_dict(table)

@@ -1,0 +1,338 @@
+"""The follower of :func:`pounding.continuation`: steps along a branch, moves its section away
+from events, and watches the detectors (folds, branch points, period-doublings, Neimark-Sacker
+points, grazings) between consecutive points, locating each."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import Callable, Optional
+
+import numpy as np
+import pandas as pd
+
+from .._errors import InputError, Problem, Status
+from ..engine import State
+from ..engine.simulate import simulate
+from ..model import Oscillator
+from ._arclength import Family, Point, at_section, system_at
+from .branch import COLUMNS, Bifurcation, Branch
+from .periodic import _Failed
+
+
+class Follower:
+    """Steps along the branch, watching the detectors between consecutive points."""
+
+    GROW, SHRINK, MIN_STEP, MIN_COS = 1.5, 0.5, 1e-7, 0.95
+
+    def __init__(self, fam: Family, p0: float, p1: float, tol: float, max_step: float, max_points: int,
+                 f_ref_hz: float, switch_branches: bool = True) -> None:
+        self.fam = fam
+        self.switch_branches = switch_branches
+        self.p0, self.p1 = p0, p1
+        self.tol, self.max_step, self.max_points = tol, max_step, max_points
+        self.f_ref_hz = f_ref_hz
+        self.points: list[Point] = []
+        self.arclength: list[float] = []
+        self.bifs: list[Bifurcation] = []
+        self.status, self.message = Status.SUCCESS, ""
+
+    # ---- the first point
+    def start(self, vec: np.ndarray, direction: Optional[np.ndarray]) -> None:
+        fam, n = self.fam, self.fam.n
+        pt = fam.correct(vec, self.p0, fam.coords(vec), self.p0, np.zeros(n), 1.0, self.tol, max_iter=40)
+        if pt is None:
+            raise InputError(Problem.BAD_STATE, "guess", State(vec), why="leads to no periodic orbit at the start "
+                             f"value {self.p0:g} (Newton did not converge from it)",
+                             fix="give a guess nearer the orbit (e.g. a sweep's window state), or start elsewhere")
+        toward = math.copysign(1.0, self.p1 - self.p0)
+        if direction is not None and direction.size == n:
+            d = direction / fam.scales
+            pt.tau_x, pt.tau_q = d / np.linalg.norm(d), 0.0
+        else:
+            pt.tau_x, pt.tau_q = fam.tangent(pt, np.zeros(n), toward)
+        self.points.append(pt)
+        self.arclength.append(0.0)
+        self.branch_switch = direction is not None
+        if not self.branch_switch:
+            self._resection()
+
+    # ---- one step
+    def step(self, a: Point, ds: float, chord: bool = True) -> Optional[Point]:
+        fam = self.fam
+        dx = ds * fam.scales * a.tau_x
+        target_x = fam.coords(a.vec) + dx
+        target_p = a.p + ds * fam.p_scale * a.tau_q
+        try:
+            vec = fam.shooter(target_p)._moved(a.vec, a.emb @ dx[a.free])
+        except (InputError, _Failed):
+            return None
+        b = fam.correct(vec, target_p, target_x, target_p, a.tau_x, a.tau_q, self.tol, chord=a if chord else None)
+        if b is not None:
+            b.tau_x, b.tau_q = fam.tangent(b, a.tau_x, a.tau_q)
+        return b
+
+    def follow(self) -> None:
+        ds = self.max_step / 4.0
+        lo, hi = min(self.p0, self.p1), max(self.p0, self.p1)
+        while True:
+            a = self.points[-1]
+            if len(self.points) >= self.max_points:
+                self.status, self.message = Status.BUDGET, f"stopped at max_points = {self.max_points}"
+                return
+            b = self.step(a, ds)
+            cos = float(a.tau_x @ b.tau_x + a.tau_q * b.tau_q) if b is not None else -1.0
+            if b is None or (cos < self.MIN_COS and ds > 4 * self.MIN_STEP):
+                ds *= self.SHRINK
+                if ds < self.MIN_STEP:
+                    self.status = Status.STEP_FAILED
+                    self.message = (f"the corrector failed at {self.fam.parameter} = {a.p:.8g} even with the smallest "
+                                    "step (the branch may end there: a grazing of a stiff bumper, or an orbit the "
+                                    "engine cannot run)")
+                    return
+                continue
+            if self.branch_switch and len(self.points) == 1:
+                self._check_switched(b)
+            if self._branch_point(a, b, ds):
+                continue
+            self._detect(a, b, ds)
+            if not lo <= b.p <= hi:
+                end = self.p1 if (b.p > hi) == (self.p1 > self.p0) else self.p0
+                last = self._locate(a, ds, lambda pt: (pt.p - end) / self.fam.p_scale, b)
+                if last is not None:
+                    last.p = end if abs(last.p - end) <= 1e-9 * self.fam.p_scale else last.p
+                    self._append(last, self._s(a, last))
+                self.message = f"reached {self.fam.parameter} = {end:g} after {len(self.points)} orbits"
+                return
+            self._append(b, ds)
+            self._resection()
+            ds = min(ds * self.GROW, self.max_step) if b.iterations <= 4 else ds
+
+    # ---- the section
+    MARGIN = 0.02  # the nearest event to the section, in periods, below which the section moves
+
+    def _resection(self) -> None:
+        """Move the section to the middle of the last orbit's longest stretch without events when an
+        event comes within ``MARGIN`` periods of it: a contact that starts or ends, or a spring that
+        yields, at the section changes the shooting coordinates there, and the corrector cannot
+        cross that (the orbit is the same; only where it is cut changes)."""
+        b = self.points[-1]
+        fam = self.fam
+        period = fam.shooter(b.p).period
+        times = np.sort(np.mod(b.run.event_table[:, 0], period))  # (the run starts at the section, time 0)
+        if times.size == 0 or min(times.min(), period - times.max()) > self.MARGIN * period:
+            return
+        cyc = np.concatenate((times, [times[0] + period]))
+        i = int(np.argmax(np.diff(cyc)))
+        dt = 0.5 * (cyc[i] + cyc[i + 1]) % period
+        new_phase = fam.phase + fam.omega(b.p) * dt
+        moved = [self._at_phase(pt, new_phase) for pt in self.points[-2:]]
+        if any(m is None for m in moved):
+            return
+        fam.set_phase(new_phase)
+        solved = [fam.correct(m, pt.p, fam.coords(m), pt.p, np.zeros(fam.n), 1.0, self.tol)
+                  for m, pt in zip(moved, self.points[-2:])]
+        if any(s is None for s in solved):
+            return
+        if len(solved) == 2:
+            own = np.append((fam.coords(solved[1].vec) - fam.coords(solved[0].vec)) / fam.scales,
+                            (solved[1].p - solved[0].p) / fam.p_scale)
+            own /= np.linalg.norm(own)
+        else:
+            own = np.append(np.zeros(fam.n), b.tau_q)
+        new = solved[-1]
+        new.tau_x, new.tau_q = fam.tangent(new, own[:-1], own[-1])
+        self.points[-1] = new
+
+    def _at_phase(self, pt: Point, phase: float) -> Optional[np.ndarray]:
+        """The state of ``pt``'s orbit where the forcing's angle is ``phase`` (time 0)."""
+        fam = self.fam
+        dt = ((phase - pt.phase) % (2.0 * math.pi)) / fam.omega(pt.p)
+        osc, exc = fam.system(pt.p)
+        exc = replace(exc, phase=pt.phase)
+        run = simulate(osc, exc, dt, State(pt.vec), sample_rate_hz=0) if dt > 0 else None
+        if run is not None and not run.success:
+            return None
+        return at_section(run.final_state.vector) if run is not None else pt.vec.copy()
+
+    def _check_switched(self, b: Point) -> None:
+        """After a period-doubling, the first point must not be the period-1 orbit again."""
+        fam = self.fam
+        half = fam.shooter(b.p)
+        sh1 = type(half)(half.osc, half.exc, half.period / 2.0, False)
+        end, _ = sh1._image(b.vec)
+        if np.max(np.abs(fam.coords(end) - fam.coords(b.vec)) / fam.scales) < 1e3 * self.tol:
+            raise InputError(Problem.BAD_STATE, "guess", "period-doubling", why="led back to the branch of the "
+                             "original period (the doubled branch was not found)",
+                             fix="continue the original branch with a smaller max_step and try its period-doubling again")
+
+    def _append(self, pt: Point, ds: float) -> None:
+        self.points.append(pt)
+        self.arclength.append(self.arclength[-1] + ds)
+
+    def _s(self, a: Point, b: Point) -> float:
+        fam = self.fam
+        return float(a.tau_x @ ((fam.coords(b.vec) - fam.coords(a.vec)) / fam.scales)
+                     + a.tau_q * (b.p - a.p) / fam.p_scale)
+
+    # ---- detection and location
+    def _tests(self, pt: Point) -> dict[str, float]:
+        """The detectors' test functions at a point (sign changes mark the bifurcations)."""
+        out = {"fold": pt.tau_q}
+        mult = pt.mult
+        real_ = np.abs(mult.imag) <= 1e-9 * np.maximum(np.abs(mult), 1e-300)
+        out["period-doubling"] = float(np.count_nonzero(real_ & (mult.real < -1.0)))
+        out["neimark-sacker"] = float(np.count_nonzero(~real_ & (np.abs(mult) > 1.0)))
+        h = self.fam.shooter(pt.p).h
+        if np.isfinite(h.gaps[0]):
+            out["grazing left"] = (pt.run.displacement_min + h.gaps[0]) / self.fam.length_m
+            out["grazing right"] = (h.gaps[1] - pt.run.displacement_max) / self.fam.length_m
+        return out
+
+    def _psi_bp(self, pt: Point) -> float:
+        """The branch-point test: the bordered Jacobian's determinant, which changes sign where
+        two branches cross (at a fold it does not: the tangent turns with it)."""
+        fam = self.fam
+        return float(np.linalg.det(fam.bordered(pt.jac, pt.dp, pt.free, pt.emb, pt.tau_x, pt.tau_q)))
+
+    def _branch_point(self, a: Point, b: Point, ds: float) -> bool:
+        """A branch point between ``a`` and ``b`` (a symmetric orbit's pitchfork): located, recorded,
+        and the other branch taken when ``switch``; True when the follower switched."""
+        same = (tuple(a.free), a.frozen) == (tuple(b.free), b.frozen)
+        if not same or self._psi_bp(a) * self._psi_bp(b) >= 0.0:
+            return False
+        scale = max(abs(self._psi_bp(a)), abs(self._psi_bp(b)))
+        pt = self._locate(a, ds, lambda q: self._psi_bp(q) / scale, b)
+        if pt is None:
+            return False
+        fam = self.fam
+        own = np.append((fam.coords(b.vec) - fam.coords(a.vec)) / fam.scales, (b.p - a.p) / fam.p_scale)
+        other = self._other_direction(pt, own / np.linalg.norm(own))
+        bif = self._bifurcation("branch-point", "", pt, abs(self._psi_bp(pt) / scale) <= 1e-8)
+        object.__setattr__(bif, "direction", np.append(fam.scales * other[:-1], other[-1] * fam.p_scale))
+        self.bifs.append(bif)
+        if not self.switch_branches:
+            return False
+        toward = math.copysign(1.0, self.p1 - self.p0)
+        start = Point(**{**pt.__dict__})
+        sign = 1.0 if other[-1] * toward >= 0.0 else -1.0
+        start.tau_x, start.tau_q = sign * other[:-1], sign * other[-1]
+        for grow in (1.0, 4.0, 16.0):
+            c = self.step(start, grow * ds, chord=False)  # (the Jacobian at a branch point is singular)
+            if c is not None and abs(float(c.tau_x @ a.tau_x + c.tau_q * a.tau_q)) < 0.9:
+                self._append(pt, self._s(a, pt))
+                self._append(c, grow * ds)
+                return True
+        return False
+
+    def _other_direction(self, pt: Point, own: np.ndarray) -> np.ndarray:
+        """At a branch point, the tangent of the other branch (full scaled coordinates, then p):
+        the null space of ``[M - I, dP/dp]`` is two-dimensional there (so the tangent computed
+        there is any of it); its direction orthogonal to ``own``, the secant the follower came along."""
+        fam = self.fam
+        a = fam.bordered(pt.jac, pt.dp, pt.free, pt.emb, pt.tau_x, pt.tau_q)[:-1]
+        vt = np.linalg.svd(a)[2]
+        s_w = fam.scales[pt.free]
+        lifted = [np.append((pt.emb @ (v[:-1] * s_w)) / fam.scales, v[-1]) for v in vt[-2:]]
+        best = max(lifted, key=lambda u: np.linalg.norm(u - (u @ own) * own))
+        u = best - (best @ own) * own
+        return u / np.linalg.norm(u)
+
+    def _detect(self, a: Point, b: Point, ds: float) -> None:
+        ta, tb = self._tests(a), self._tests(b)
+        found = []
+        for name, va in ta.items():
+            vb = tb[name]
+            counted = name in ("period-doubling", "neimark-sacker")
+            if (counted and va != vb) or (not counted and va * vb < 0.0):
+                if counted:
+                    def fn(pt: Point, name: str = name, va: float = va) -> float:
+                        return self._tests(pt)[name] - va - 0.5
+                else:
+                    def fn(pt: Point, name: str = name) -> float:
+                        return self._tests(pt)[name]
+                pt = self._locate(a, ds, fn, b)
+                if pt is not None:
+                    found.append((self._s(a, pt), name, pt, abs(fn(pt)) <= 1e-8 or counted))
+        for _, name, pt, ok in sorted(found, key=lambda item: item[0]):
+            kind, _, side = name.partition(" ")
+            self.bifs.append(self._bifurcation(kind, side, pt, ok))
+
+    def _locate(self, a: Point, ds: float, fn: Callable[[Point], float], b: Point) -> Optional[Point]:
+        """Illinois regula falsi on the step length for the zero of ``fn`` between ``a`` (0) and ``b`` (ds)."""
+        lo, hi, f_lo, f_hi = 0.0, ds, fn(a), fn(b)
+        if f_lo == 0.0:
+            return a
+        best, side = b, 0
+        for _ in range(60):
+            s = (lo * f_hi - hi * f_lo) / (f_hi - f_lo) if f_hi != f_lo else 0.5 * (lo + hi)
+            if not lo < s < hi:
+                s = 0.5 * (lo + hi)
+            pt = self.step(a, s)
+            if pt is None:
+                return best
+            v = fn(pt)
+            best = pt
+            if abs(v) <= 1e-8 or hi - lo <= 1e-9 * ds:
+                return pt
+            if (v < 0.0) == (f_lo < 0.0):
+                lo, f_lo = s, v
+                if side == -1:
+                    f_hi *= 0.5
+                side = -1
+            else:
+                hi, f_hi = s, v
+                if side == 1:
+                    f_lo *= 0.5
+                side = 1
+        return best
+
+    def _bifurcation(self, kind: str, side: str, pt: Point, located: bool) -> Bifurcation:
+        fam = self.fam
+        osc, exc = fam.system(pt.p)
+        direction = fam.scales * pt.tau_x
+        if kind == "period-doubling" and pt.jac.size:
+            w, v = np.linalg.eig(pt.jac)
+            i = int(np.argmin(np.abs(w + 1.0)))
+            direction = pt.emb @ np.real(v[:, i])
+        peak = abs(exc.peak_m_s2)
+        return Bifurcation(kind, pt.p, exc.freq_hz, exc.a_g, pt.mult.copy(), State(pt.vec), len(self.points), side,
+                           direction, fam.k, pt.run.abs_acceleration_max / peak if peak > 0 else math.nan, located,
+                           pt.phase)
+
+    # ---- the result
+    def branch(self, oscillator: Oscillator, values: tuple, status: Status, message: str) -> Branch:
+        fam = self.fam
+        rows = []
+        for pt, s in zip(self.points, self.arclength):
+            osc, exc = fam.system(pt.p)
+            run = pt.run
+            table = run.contact_table
+            done = table[np.isfinite(table[:, 2])]
+            peak = abs(exc.peak_m_s2)
+            gap = osc.bumpers.total_gap if osc.bumpers is not None else math.nan
+            exc_m = run.displacement_max - run.displacement_min
+            mu = float(np.abs(pt.mult).max()) if pt.mult.size else 0.0
+            rows.append({
+                "freq_hz": exc.freq_hz, "nu": exc.freq_hz / self.f_ref_hz, "a_g": exc.a_g,
+                "alpha": run.abs_acceleration_max / peak if peak > 0 else math.nan, "excursion_m": exc_m,
+                "displacement_max_m": run.displacement_max, "displacement_min_m": run.displacement_min,
+                "eta": exc_m / gap if gap > 0 else math.nan, "stable": mu < 1.0, "max_abs_multiplier": mu,
+                "contacts_per_period": int(done.shape[0]),
+                "impact_velocity_max_m_s": float(np.abs(done[:, 3]).max()) if done.shape[0] else 0.0,
+                "period_multiple": fam.k, "residual": pt.residual, "arclength": s, "phase_rad": pt.phase,
+            })
+        df = pd.DataFrame(rows, columns=list(COLUMNS))
+        if fam.parameter not in ("freq_hz", "a_g"):
+            df.insert(0, fam.parameter, [pt.p for pt in self.points])
+        width = max((pt.mult.size for pt in self.points), default=0)
+        mult = np.full((len(self.points), width), np.nan + 0j)
+        for i, pt in enumerate(self.points):
+            mult[i, :pt.mult.size] = pt.mult
+        states = np.array([pt.vec for pt in self.points]) if self.points else np.zeros((0, 0))
+        msg = message + (fam.fell_back if fam.fell_back else "")
+        return Branch(system_at(oscillator, fam.parameter, values[0]), fam.parameter, tuple(values), fam.k,
+                      self.f_ref_hz, df, states, mult, tuple(self.bifs), status, msg,
+                      a_g=fam.a_g if fam.parameter != "a_g" else math.nan,
+                      freq_hz=fam.freq_hz if fam.parameter != "freq_hz" else math.nan)
+

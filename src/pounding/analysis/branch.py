@@ -1,0 +1,194 @@
+"""``Branch`` and ``Bifurcation``: what :func:`pounding.continuation` returns."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Optional, Sequence
+
+import numpy as np
+import pandas as pd
+
+from .._errors import InputError, Problem, Status
+from ..engine import State
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..model import Oscillator
+    from ..protocols.sweep_result import SweepResult
+    from .periodic import PeriodicOrbit
+
+KINDS = ("fold", "period-doubling", "neimark-sacker", "grazing")
+
+# the table's columns, in order (the parameter's own column comes first when it is a system number)
+COLUMNS = ("freq_hz", "nu", "a_g", "alpha", "excursion_m", "displacement_max_m", "displacement_min_m", "eta",
+           "stable", "max_abs_multiplier", "contacts_per_period", "impact_velocity_max_m_s", "period_multiple",
+           "residual", "arclength", "phase_rad")
+
+
+@dataclass(frozen=True, eq=False)
+class Bifurcation:
+    """A special point of a branch, located between two of its points.
+
+    Attributes
+    ----------
+    kind : {"fold", "period-doubling", "neimark-sacker", "grazing"}
+        ``fold``: the branch turns back (a multiplier crosses +1; a saddle-node); the response
+        jumps there in a sweep.  ``period-doubling``: a multiplier crosses -1 (a branch of twice
+        the period starts: pass this object as ``guess`` to :func:`pounding.continuation`).
+        ``neimark-sacker``: a complex pair crosses the unit circle.  ``grazing``: the orbit
+        touches a bumper with zero velocity (a contact appears or vanishes; ``side`` says which).
+    value : float
+        The continued parameter's value there.
+    freq_hz, a_g : float
+        The forcing there (Hz, g).
+    multipliers : ndarray of complex
+        The orbit's Floquet multipliers there, largest modulus first.
+    state : State
+        The orbit's state at the section (time 0).
+    index : int
+        The branch's rows before it: it lies between rows ``index - 1`` and ``index``.
+    side : str
+        ``"left"`` or ``"right"`` for a grazing, else ``""``.
+    direction : ndarray
+        For a period-doubling, the critical eigenvector in the coordinates ``D, V, delta_L,
+        delta_R, u_i (, z)`` (unscaled); else the branch's tangent there.
+    period_multiple : int
+        The branch's period, in forcing periods.
+    alpha : float
+        Peak absolute acceleration over the table's peak there.
+    located : bool
+        Whether the location met its tolerance (the test function's zero to 1e-8, or the
+        step's interval to 1e-9 of the step).
+    phase_rad : float
+        The forcing's angle at the section where ``state`` is, rad.
+    """
+
+    kind: str
+    value: float
+    freq_hz: float
+    a_g: float
+    multipliers: np.ndarray = field(repr=False)
+    state: State = field(repr=False)
+    index: int
+    side: str = ""
+    direction: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    period_multiple: int = 1
+    alpha: float = math.nan
+    located: bool = True
+    phase_rad: float = 0.0
+
+    def to_series(self) -> pd.Series:
+        return pd.Series({"kind": self.kind, "side": self.side, "value": self.value, "freq_hz": self.freq_hz,
+                          "a_g": self.a_g, "alpha": self.alpha, "max_abs_multiplier":
+                          float(np.abs(self.multipliers).max()) if self.multipliers.size else math.nan,
+                          "index": self.index, "located": self.located})
+
+
+@dataclass(frozen=True, eq=False)
+class Branch:
+    """A branch of periodic orbits followed in one parameter.
+
+    Attributes
+    ----------
+    oscillator : Oscillator
+        The system at the start (the parameter's value set as ``values[0]`` when it is a
+        number of the system).
+    parameter : str
+        ``"freq_hz"``, ``"a_g"`` or a dotted name of the system (``"bumpers.gap_left"``).
+    values : tuple of float
+        The range asked for, ``(start, end)``.
+    period_multiple : int
+        The orbits' period in forcing periods.
+    f_ref_hz : float
+        The frequency ``nu`` is relative to (1 Hz: the paper's).
+    table : DataFrame
+        One row per point in the order followed (see :meth:`to_dataframe`).
+    states : ndarray, shape (points, state length)
+        The engine's state vector of each orbit at its section (time 0, the forcing's angle
+        the table's ``phase_rad``: the section moves along the branch, to the middle of an
+        orbit's longest stretch without events, when an event comes near it).
+    multipliers : ndarray of complex, shape (points, r)
+        Each orbit's Floquet multipliers, largest modulus first (NaN-padded: the number of
+        shooting coordinates can change along the branch).
+    bifurcations : tuple of Bifurcation
+        In the order met.
+    status : Status
+    message : str
+    """
+
+    oscillator: "Oscillator" = field(repr=False)
+    parameter: str
+    values: tuple[float, float]
+    period_multiple: int
+    f_ref_hz: float
+    table: pd.DataFrame = field(repr=False)
+    states: np.ndarray = field(repr=False)
+    multipliers: np.ndarray = field(repr=False)
+    bifurcations: tuple[Bifurcation, ...]
+    status: Status
+    message: str
+    a_g: float = math.nan          # the forcing held fixed (NaN for the one continued)
+    freq_hz: float = math.nan
+
+    @property
+    def success(self) -> bool:
+        return self.status == Status.SUCCESS
+
+    def __len__(self) -> int:
+        return int(self.table.shape[0])
+
+    def to_dataframe(self) -> pd.DataFrame:
+        """One row per orbit, in the order followed (SI units).
+
+        Columns: the parameter (when it is a system number), ``freq_hz``, ``nu``, ``a_g``,
+        ``alpha``, ``excursion_m``, ``displacement_max_m``, ``displacement_min_m``, ``eta``,
+        ``stable``, ``max_abs_multiplier``, ``contacts_per_period``, ``impact_velocity_max_m_s``,
+        ``period_multiple``, ``residual`` (scaled, see ``PeriodicOrbit.residual``), ``arclength``
+        (scaled: the parameter's range is 1), ``phase_rad`` (the forcing's angle at the section).
+        """
+        return self.table.copy()
+
+    def bifurcation_table(self) -> pd.DataFrame:
+        """The bifurcations, one row each (``kind``, ``side``, ``value``, ``freq_hz``, ``a_g``,
+        ``alpha``, ``max_abs_multiplier``, ``index``, ``located``)."""
+        cols = ["kind", "side", "value", "freq_hz", "a_g", "alpha", "max_abs_multiplier", "index", "located"]
+        return pd.DataFrame([b.to_series() for b in self.bifurcations], columns=cols)
+
+    def folds(self) -> tuple[Bifurcation, ...]:
+        return tuple(b for b in self.bifurcations if b.kind == "fold")
+
+    def orbit(self, index: int, **kwargs: Any) -> "PeriodicOrbit":
+        """The ``index``-th orbit as a :class:`PeriodicOrbit` (densely sampled run, ``plot``);
+        ``kwargs`` go to :func:`pounding.periodic_orbit`."""
+        from ..excitation import Harmonic
+        from .periodic import periodic_orbit
+
+        n = len(self)
+        if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not -n <= index < n:
+            raise InputError(Problem.OUT_OF_RANGE, "index", index, range=f"[{-n}, {n - 1}]",
+                             hint=" (a row of the branch's table)")
+        row = self.table.iloc[int(index)]
+        osc = self.oscillator
+        if self.parameter not in ("freq_hz", "a_g"):
+            from ..model import Oscillator
+            from ..model.dotted import set_value
+
+            d = osc.to_dict()
+            set_value(d, self.parameter, float(row[self.parameter]))
+            osc = Oscillator.from_dict(d)
+        exc = Harmonic(float(row["a_g"]), float(row["freq_hz"]), phase=float(row["phase_rad"]))
+        kwargs.setdefault("period_multiple", self.period_multiple)
+        return periodic_orbit(osc, exc, guess=State(self.states[int(index)]), **kwargs)
+
+    def plot(self, ax: Any = None, *, y: str = "alpha", x: Optional[str] = None,
+             sweeps: "SweepResult | Sequence[SweepResult] | None" = None, **kwargs: Any) -> list:
+        """The branch: ``y`` against the parameter (``nu`` for the frequency), stable orbits
+        solid, unstable dashed, bifurcations marked; ``sweeps`` drawn over it as markers."""
+        from ..plots.branch import plot_branch
+
+        return plot_branch(self, ax=ax, y=y, x=x, sweeps=sweeps, **kwargs)
+
+    def __repr__(self) -> str:
+        kinds = ", ".join(f"{b.kind} at {b.value:.6g}" for b in self.bifurcations) or "none"
+        return (f"Branch({self.parameter} from {self.values[0]:g} to {self.values[1]:g}, {len(self)} orbits, "
+                f"period {self.period_multiple}, bifurcations: {kinds}; {self.status.name}: {self.message})")

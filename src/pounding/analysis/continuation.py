@@ -1,0 +1,238 @@
+"""``continuation``: a branch of periodic orbits followed in one parameter by pseudo-arclength,
+through its folds, with its bifurcations detected and located.
+
+Each point solves the shooting problem of :func:`periodic_orbit` at a fixed forcing angle (the
+state at time 0 under ``Harmonic(a_g, f, phase=phase_rad)``), with the exact monodromy where
+the system allows it.  Between two points the detectors watch:
+
+- the tangent's parameter part changing sign: a **fold** (the branch turns back);
+- the real multipliers below -1 changing in number: a **period-doubling**;
+- the complex multipliers outside the unit circle changing in number: a **Neimark-Sacker** point;
+- the orbit's smallest clearance to a bumper (``gap - max D``, negative in contact) changing
+  sign: a **grazing**;
+
+and each is located by regula falsi (Illinois) on the arclength step, its test function's zero
+to 1e-8, or the step's interval to 1e-9 of the step where the function jumps (a
+non-smooth system's multipliers can jump at a grazing).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Optional
+
+import numpy as np
+
+from .._checks import integer, one_of, positive, real
+from .._errors import InputError, Interrupted, Problem, Status
+from ..engine import State
+from ..engine.simulate import check_oscillator, check_state, simulate
+from ..model import Oscillator
+from ..model.dotted import why_unresolved
+from . import _hybrid as hy
+from ._arclength import Family, at_section, system_at
+from ._follower import Follower
+from .branch import Bifurcation, Branch
+from .periodic import METHODS
+
+MAX_POINTS = 100_000
+
+
+def continuation(
+    oscillator: Oscillator,
+    a_g: Any,
+    freqs_hz: Any,
+    *,
+    parameter: str = "freq_hz",
+    values: Optional[tuple[float, float]] = None,
+    period_multiple: int = 1,
+    guess: "State | Bifurcation | None" = None,
+    tol: float = 1e-10,
+    max_step: float = 0.02,
+    max_points: int = 5000,
+    phase_rad: float = 0.0,
+    method: str = "auto",
+    settle_cycles: int = 100,
+    f_ref_hz: float = 1.0,
+) -> Branch:
+    """Follow a branch of periodic orbits through its folds, with its bifurcations.
+
+    Parameters
+    ----------
+    oscillator : Oscillator
+        The system.
+    a_g : float or (float, float)
+        The table's peak acceleration, g; ``(start, end)`` with ``parameter="a_g"``.
+    freqs_hz : (float, float) or float
+        The forcing frequency's range ``(start, end)``, Hz, with ``parameter="freq_hz"``
+        (either order: the branch starts at ``start``); one frequency otherwise.
+    parameter : str
+        What varies: ``"freq_hz"``, ``"a_g"`` or a dotted name of a number of the system
+        (``"bumpers.gap_left"``, ``"isolator.damping"``, ``"bumpers.law.stiffness"``), whose
+        range is then ``values``.
+    values : (float, float), optional
+        The range of a system number continued (``parameter`` a dotted name).
+    period_multiple : int
+        The orbits' period in forcing periods.
+    guess : State or Bifurcation, optional
+        Where to start: an orbit's state at the start value (its time is taken as the section),
+        or a ``"period-doubling"`` :class:`Bifurcation` of another branch, whose branch of twice
+        the period is followed from there (``period_multiple`` and the range's start are then
+        the bifurcation's).  Default: the state after ``settle_cycles`` periods from rest at the
+        start value (the response a sweep would settle on).
+    tol : float
+        Largest scaled residual accepted at each point (lengths over the scale of the
+        branch: half the total gap, or the first orbit's largest |D| if larger).
+    max_step : float
+        Largest arclength step, in units where the parameter's range is 1 (0.02: at least 50
+        points over the range).
+    max_points : int
+        Points at most (the branch stops there with status ``BUDGET``).
+    phase_rad : float
+        The forcing's angle at the section, rad.
+    method : {"auto", "exact", "finite-difference"}
+        The monodromy, as in :func:`periodic_orbit`.
+    settle_cycles : int
+        Forcing periods run from rest for the default guess.
+    f_ref_hz : float
+        The frequency ``nu`` is relative to in the table (the paper's 1 Hz).
+
+    Returns
+    -------
+    Branch
+        ``status`` ``SUCCESS`` when the branch reached an end of the range (the start's, after
+        a fold, or the end's), ``STEP_FAILED`` when the corrector failed at the smallest step
+        (``message`` says where), ``BUDGET`` at ``max_points``.
+
+    Raises
+    ------
+    Interrupted
+        On Ctrl-C; ``.partial`` is the branch followed so far.
+
+    Examples
+    --------
+    >>> import pounding as pd_
+    >>> branch = pd_.continuation(pd_.presets.paper_damped(), 0.05, (1.0, 3.0))
+    >>> [b.kind for b in branch.folds()]
+    ['fold', 'fold']
+    """
+    check_oscillator(oscillator)
+    parameter, values, a_g, freq_hz = _check_range(oscillator, parameter, a_g, freqs_hz, values)
+    period_multiple = integer("period_multiple", period_multiple, 1, 64, "give the orbits' period in forcing periods")
+    tol = real("tol", tol)
+    if not 1e-14 <= tol <= 1e-3:
+        raise InputError(Problem.OUT_OF_RANGE, "tol", tol, range="[1e-14, 1e-3]", hint=" (1e-10 by default)")
+    max_step = real("max_step", max_step)
+    if not 1e-5 <= max_step <= 0.5:
+        raise InputError(Problem.OUT_OF_RANGE, "max_step", max_step, range="[1e-5, 0.5]",
+                         hint=" (in units of the parameter's range)")
+    max_points = integer("max_points", max_points, 2, MAX_POINTS, "a branch of 5000 points is already dense")
+    phase_rad = real("phase_rad", phase_rad)
+    settle_cycles = integer("settle_cycles", settle_cycles, 1, 100_000, "give a guess instead")
+    f_ref_hz = positive("f_ref_hz", f_ref_hz, "Hz")
+    method = one_of("method", method, METHODS)
+    why = hy.unsupported(oscillator)
+    if method == "exact" and why is not None:
+        raise InputError(Problem.BAD_STATE, "method", method, why=f"cannot be exact for this system: {why}",
+                         fix='use method="finite-difference" (or "auto")')
+    direction = None
+    if isinstance(guess, Bifurcation):
+        if guess.kind != "period-doubling":
+            raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is a {guess.kind}; only a period-doubling "
+                             "starts a new branch", fix="pass a Bifurcation of kind 'period-doubling', or a State")
+        period_multiple = 2 * guess.period_multiple
+        values = (guess.value, values[1])
+        direction = guess.direction
+        phase_rad = guess.phase_rad
+    elif guess is not None and not isinstance(guess, State):
+        raise InputError(Problem.WRONG_TYPE, "guess", guess, got=type(guess).__name__,
+                         expected="pounding.State or a period-doubling Bifurcation")
+    start_osc = system_at(oscillator, parameter, values[0])
+    p0, p1 = values
+    fam_a_g = values[0] if parameter == "a_g" else a_g
+    fam_f = values[0] if parameter == "freq_hz" else freq_hz
+    f_mid = math.sqrt(p0 * p1) if parameter == "freq_hz" else freq_hz
+    vec = _start_vector(start_osc, parameter, fam_a_g, fam_f, phase_rad, guess, settle_cycles)
+    b = start_osc.bumpers
+    run0 = _first_run(start_osc, fam_a_g, fam_f, phase_rad, vec, period_multiple)
+    length = max(b.total_gap / 2.0 if b is not None else 0.0, abs(run0.displacement_max),
+                 abs(run0.displacement_min), 1e-6)
+    fam = Family(start_osc, fam_a_g, fam_f, parameter, period_multiple, why is None and method != "finite-difference",
+                 phase_rad, length, abs(p1 - p0), 2.0 * math.pi * f_mid)
+    follower = Follower(fam, p0, p1, tol, max_step, max_points, f_ref_hz)
+    try:
+        follower.start(vec, direction)
+        follower.follow()
+    except KeyboardInterrupt:
+        raise Interrupted(follower.branch(oscillator, values, Status.INTERRUPTED, "interrupted"),
+                          len(follower.points), None, "points") from None
+    return follower.branch(oscillator, values, follower.status, follower.message)
+
+
+# ---------------------------------------------------------------------- arguments
+def _pair(field: str, value: Any, unit: str) -> tuple[float, float]:
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != 2:
+        raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__,
+                         expected=f"pair (start, end) in {unit}")
+    pair = (real(f"{field}[0]", value[0]), real(f"{field}[1]", value[1]))
+    if pair[0] == pair[1]:
+        raise InputError(Problem.BAD_STATE, field, value, why="starts where it ends",
+                         fix="give two different values (start, end)")
+    return pair
+
+
+def _check_range(osc: Oscillator, parameter: Any, a_g: Any, freqs_hz: Any, values: Any) -> tuple:
+    if not isinstance(parameter, str):
+        raise InputError(Problem.WRONG_TYPE, "parameter", parameter, got=type(parameter).__name__,
+                         expected="str ('freq_hz', 'a_g' or a dotted name such as 'bumpers.gap_left')")
+    if parameter == "freq_hz":
+        pair = _pair("freqs_hz", freqs_hz, "Hz")
+        for i, f in enumerate(pair):
+            positive(f"freqs_hz[{i}]", f, "Hz")
+        return parameter, pair, positive("a_g", a_g, "g"), math.nan
+    if parameter == "a_g":
+        pair = _pair("a_g", a_g, "g")
+        for i, v in enumerate(pair):
+            positive(f"a_g[{i}]", v, "g")
+        return parameter, pair, math.nan, positive("freqs_hz", freqs_hz, "Hz")
+    why = why_unresolved(osc.to_dict(), parameter)
+    if why is not None:
+        raise InputError(Problem.BAD_STATE, "parameter", parameter, why=f"names no number of the system: {why}",
+                         fix="give 'freq_hz', 'a_g' or a dotted name such as 'bumpers.gap_left'")
+    if values is None:
+        raise InputError(Problem.MISSING_INPUT, "values", None, what=f"the range (start, end) of {parameter}")
+    pair = _pair("values", values, "the parameter's unit")
+    for i, v in enumerate(pair):
+        try:
+            system_at(osc, parameter, v)
+        except InputError as exc:
+            raise InputError(Problem.BAD_STATE, f"values[{i}]", v, why=f"makes no system ({exc})",
+                             fix=f"give values of {parameter} the system can have") from None
+    return parameter, pair, positive("a_g", a_g, "g"), positive("freqs_hz", freqs_hz, "Hz")
+
+
+def _start_vector(osc: Oscillator, parameter: str, a_g: float, freq_hz: float, phase: float,
+                  guess: Any, settle_cycles: int) -> np.ndarray:
+    from ..excitation import Harmonic
+
+    if isinstance(guess, Bifurcation):
+        return np.array(guess.state.vector, dtype=float)
+    if isinstance(guess, State):
+        try:
+            check_state(guess, osc)
+        except InputError as exc:
+            raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is not a state of this system ({exc})",
+                             fix="give a state of this oscillator, e.g. a run's final_state") from None
+        return at_section(guess.vector)
+    exc = Harmonic(a_g, freq_hz, phase=phase)
+    return at_section(simulate(osc, exc, settle_cycles / freq_hz, sample_rate_hz=0).final_state.vector)
+
+
+def _first_run(osc: Oscillator, a_g: float, freq_hz: float, phase: float, vec: np.ndarray, k: int) -> Any:
+    from ..excitation import Harmonic
+
+    run = simulate(osc, Harmonic(a_g, freq_hz, phase=phase), k / freq_hz, State(vec), sample_rate_hz=0)
+    if not run.success:
+        raise InputError(Problem.BAD_STATE, "guess", State(vec), why=f"cannot be shot from: {run.message}",
+                         fix="start from another state, or a smaller a_g")
+    return run

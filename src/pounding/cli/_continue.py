@@ -1,0 +1,82 @@
+"""``pounding continue``: a branch of periodic orbits over a frequency range, its folds and
+bifurcations, optionally with the sweeps that jump at them."""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Optional
+
+import typer
+
+from .._errors import Interrupted
+from .._io import interrupts_deferred
+from ._app import (OPT_NO_BUMPERS, OPT_PRESET, command, compile_notice, console, figure_path, files, interrupted,
+                   kv_table, save_figure, system, write_csv)
+
+CSV = (".csv",)
+
+
+@command("continue")
+def continue_branch(
+    system_file: Optional[Path] = typer.Argument(
+        None, metavar="SYSTEM.toml", help="System TOML (see examples/). Omit to use --preset."),
+    a_g: float = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
+    start: float = typer.Option(..., "--from", help="The branch's first frequency, Hz."),
+    end: float = typer.Option(..., "--to", help="Its last frequency, Hz."),
+    preset: Optional[str] = OPT_PRESET,
+    no_bumpers: bool = OPT_NO_BUMPERS,
+    out: Optional[Path] = typer.Option(None, "--out", help="Write the branch, one row per orbit (CSV)."),
+    bifurcations: Optional[Path] = typer.Option(None, "--bifurcations", help="Write the bifurcations (CSV)."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Draw alpha against nu (PNG, PDF...)."),
+    sweeps: bool = typer.Option(False, "--sweeps", help="Also run an up and a down sweep (0.1 Hz steps) "
+                                "and draw them over the branch."),
+    period_multiple: int = typer.Option(1, "--period-multiple", help="The orbits' period, in forcing periods."),
+    max_step: float = typer.Option(0.02, "--max-step", help="Largest step along the branch, as a fraction "
+                                   "of the range."),
+) -> None:
+    """Follow the periodic response over a frequency range through its folds; locate its folds,
+    branch points, period-doublings, Neimark-Sacker points and grazings."""
+    from ..analysis.continuation import continuation
+
+    paths = files(out=(out, CSV), bifurcations=(bifurcations, CSV))
+    plot = figure_path("--plot", plot)
+    osc = system(system_file, preset, bumpers=not no_bumpers)
+    compile_notice()
+    complete = True
+    with console.status(f"following the branch from {start:g} to {end:g} Hz ..."):
+        try:
+            branch = continuation(osc, a_g, (start, end), period_multiple=period_multiple, max_step=max_step)
+        except Interrupted as stop:
+            branch, complete = stop.partial, False
+    table, add = kv_table(f"{system_file or preset}: branch at a_G = {a_g:g}, {start:g} to {end:g} Hz")
+    add("status", branch.message)
+    add("orbits", f"{len(branch)} ({int((~branch.table['stable']).sum())} unstable)")
+    for bif in branch.bifurcations:
+        where = f" ({bif.side})" if bif.side else ""
+        add(f"{bif.kind}{where}", f"f = {bif.freq_hz:.6g} Hz, alpha = {bif.alpha:.4g}"
+            + ("" if bif.located else " (not located to tolerance)"))
+    console.print(table)
+    runs = []
+    if sweeps and complete and plot is not None:
+        import numpy as np
+
+        from ..protocols import sweep
+
+        lo, hi = sorted((start, end))
+        freqs = np.round(np.arange(lo, hi + 1e-9, 0.1), 10)
+        with console.status("running the sweeps ..."):
+            runs = [sweep(osc, a_g, freqs, direction) for direction in ("up", "down")]
+    with interrupts_deferred() as held:
+        if paths["out"] is not None:
+            write_csv(branch.to_dataframe(), paths["out"])
+            console.print(f"branch -> {paths['out']}")
+        if paths["bifurcations"] is not None:
+            write_csv(branch.bifurcation_table(), paths["bifurcations"])
+            console.print(f"bifurcations -> {paths['bifurcations']}")
+        if plot is not None and len(branch):
+            save_figure(lambda: branch.plot(sweeps=runs or None), plot)
+    if not complete or held:
+        interrupted(f"{len(branch)} orbits followed; they are in the summary"
+                    + (" and the files written" if any(paths.values()) or plot else ""))
+    if not branch.success:
+        raise typer.Exit(code=1)
