@@ -92,6 +92,12 @@ class Family:
         set_value(table, self.parameter, float(p))
         return Oscillator.from_dict(table), Harmonic(self.a_g, self.freq_hz, phase=self.phase)
 
+    def set_length(self, length_m: float) -> None:
+        """A new length scale (the orbits grew): lengths and velocities are measured against it."""
+        ratio = length_m / self.length_m
+        self.length_m = length_m
+        self.scales[: self.scales.size - int(self._any.z_max > 0.0)] *= ratio
+
     def set_phase(self, phase: float) -> None:
         """Move the section to the forcing angle ``phase`` (rad, in [0, 2 pi))."""
         self.phase = float(phase) % (2.0 * np.pi)

@@ -32,30 +32,62 @@ class Follower:
         self.p0, self.p1 = p0, p1
         self.tol, self.max_step, self.max_points = tol, max_step, max_points
         self.f_ref_hz = f_ref_hz
+        self.doubled = False  # a period-doubled branch started at its period-doubling
         self.points: list[Point] = []
         self.arclength: list[float] = []
         self.bifs: list[Bifurcation] = []
         self.status, self.message = Status.SUCCESS, ""
 
     # ---- the first point
-    def start(self, vec: np.ndarray, direction: Optional[np.ndarray]) -> None:
+    def start(self, vec: np.ndarray, p_start: float, bif: Optional[Bifurcation] = None) -> None:
+        """The first point, at ``p_start``; from a bifurcation of another branch, the branch that
+        starts there (a period-doubling's doubled branch, a branch point's other branch)."""
         fam, n = self.fam, self.fam.n
-        pt = fam.correct(vec, self.p0, fam.coords(vec), self.p0, np.zeros(n), 1.0, self.tol, max_iter=40)
+        pt = fam.correct(vec, p_start, fam.coords(vec), p_start, np.zeros(n), 1.0, self.tol, max_iter=40)
         if pt is None:
             raise InputError(Problem.BAD_STATE, "guess", State(vec), why="leads to no periodic orbit at the start "
-                             f"value {self.p0:g} (Newton did not converge from it)",
+                             f"value {p_start:g} (Newton did not converge from it)",
                              fix="give a guess nearer the orbit (e.g. a sweep's window state), or start elsewhere")
         toward = math.copysign(1.0, self.p1 - self.p0)
-        if direction is not None and direction.size == n:
-            d = direction / fam.scales
-            pt.tau_x, pt.tau_q = d / np.linalg.norm(d), 0.0
-        else:
-            pt.tau_x, pt.tau_q = fam.tangent(pt, np.zeros(n), toward)
-        self.points.append(pt)
         self.arclength.append(0.0)
-        self.branch_switch = direction is not None
-        if not self.branch_switch:
+        if bif is None:
+            pt.tau_x, pt.tau_q = fam.tangent(pt, np.zeros(n), toward)
+            self.points.append(pt)
             self._resection()
+            return
+        # the tangent of the branch the bifurcation is on, and the direction to leave it by
+        own = np.append(bif.tangent[:-1] / fam.scales, bif.tangent[-1] / fam.p_scale)
+        own /= np.linalg.norm(own)
+        other = (self._other_direction(pt, own) if bif.kind == "period-doubling" else
+                 np.append(bif.direction[:-1] / fam.scales, bif.direction[-1] / fam.p_scale))
+        other /= np.linalg.norm(other)
+        sign = 1.0 if other[-1] * toward >= 0.0 else -1.0
+        pt.tau_x, pt.tau_q = sign * other[:-1], sign * other[-1]
+        ds = self.max_step / 4.0
+        for grow in (1.0, 4.0, 0.25, 16.0):
+            c = self.step(pt, grow * ds, chord=False)  # (the Jacobian at a bifurcation is singular)
+            if c is not None and self._left(own, pt, c):
+                pt.tau_x, pt.tau_q = fam.tangent(pt, c.tau_x, c.tau_q)
+                self.points.append(pt)
+                self._append(c, grow * ds)
+                return
+        raise InputError(Problem.BAD_STATE, "guess", bif.kind, why="led back to the branch it is on (the other "
+                         "branch was not found)", fix="continue that branch with a smaller max_step and try "
+                         "this bifurcation again")
+
+    def _left(self, own: np.ndarray, pt: Point, c: Point) -> bool:
+        """Whether ``c`` left the branch through ``pt`` with tangent ``own``: for a period-doubling,
+        ``c`` is no orbit of the original period; else ``c``'s tangent is not ``own``'s."""
+        fam = self.fam
+        if fam.k % 2 == 0 and self.doubled:
+            sh = fam.shooter(c.p)
+            half = type(sh)(sh.osc, sh.exc, sh.period / 2.0, False)
+            try:
+                end, _ = half._image(c.vec)
+            except _Failed:
+                return True
+            return float(np.max(np.abs(fam.coords(end) - fam.coords(c.vec)) / fam.scales)) > 1e3 * self.tol
+        return abs(float(c.tau_x @ own[:-1] + c.tau_q * own[-1])) < 0.9
 
     # ---- one step
     def step(self, a: Point, ds: float, chord: bool = True) -> Optional[Point]:
@@ -91,22 +123,61 @@ class Follower:
                                     "engine cannot run)")
                     return
                 continue
-            if self.branch_switch and len(self.points) == 1:
-                self._check_switched(b)
             if self._branch_point(a, b, ds):
                 continue
             self._detect(a, b, ds)
             if not lo <= b.p <= hi:
                 end = self.p1 if (b.p > hi) == (self.p1 > self.p0) else self.p0
                 last = self._locate(a, ds, lambda pt: (pt.p - end) / self.fam.p_scale, b)
-                if last is not None:
-                    last.p = end if abs(last.p - end) <= 1e-9 * self.fam.p_scale else last.p
+                if last is not None:  # (solved again at the end value itself)
+                    fam = self.fam
+                    exact = fam.correct(last.vec, end, fam.coords(last.vec), end, np.zeros(fam.n), 1.0, self.tol,
+                                        chord=last)
+                    if exact is not None:
+                        exact.tau_x, exact.tau_q = fam.tangent(exact, last.tau_x, last.tau_q)
+                        last = exact
                     self._append(last, self._s(a, last))
                 self.message = f"reached {self.fam.parameter} = {end:g} after {len(self.points)} orbits"
                 return
             self._append(b, ds)
+            if self._closed(b, ds):
+                self.message = (f"the branch closed on itself (an isola) after {len(self.points)} orbits, between "
+                                f"{self.fam.parameter} = {min(q.p for q in self.points):.6g} and "
+                                f"{max(q.p for q in self.points):.6g}")
+                return
+            self._rescale()
             self._resection()
             ds = min(ds * self.GROW, self.max_step) if b.iterations <= 4 else ds
+
+    def _closed(self, b: Point, ds: float) -> bool:
+        """Whether the step to ``b`` passed by the branch's second point again (a closed branch):
+        the orbits compared by what does not depend on the section (parameter and extrema)."""
+        if len(self.points) < 5:
+            return False
+        a, fam = self.points[-2], self.fam
+
+        def sig(q: Point) -> np.ndarray:
+            return np.array([q.p / fam.p_scale, q.run.displacement_max / fam.length_m,
+                             q.run.displacement_min / fam.length_m])
+
+        anchor = sig(self.points[1])
+        u, v = sig(a), sig(b)
+        seg = v - u
+        t = float(np.clip((anchor - u) @ seg / max(seg @ seg, 1e-300), 0.0, 1.0))
+        return float(np.linalg.norm(u + t * seg - anchor)) < 1e-3 * max(ds, 1e-6) and 0.0 < t <= 1.0
+
+    def _rescale(self) -> None:
+        """Grow the length scale with the orbits (a resonance peak 30 times the first orbit
+        would otherwise take the steps' whole length), the last tangent renormalised."""
+        b, fam = self.points[-1], self.fam
+        size = max(abs(b.run.displacement_max), abs(b.run.displacement_min))
+        if size <= 2.0 * fam.length_m:
+            return
+        old = fam.scales.copy()
+        fam.set_length(size)
+        tx = b.tau_x * old / fam.scales
+        norm = math.sqrt(float(tx @ tx) + b.tau_q ** 2)
+        b.tau_x, b.tau_q = fam.tangent(b, tx / norm, b.tau_q / norm)
 
     # ---- the section
     MARGIN = 0.02  # the nearest event to the section, in periods, below which the section moves
@@ -154,17 +225,6 @@ class Follower:
         if run is not None and not run.success:
             return None
         return at_section(run.final_state.vector) if run is not None else pt.vec.copy()
-
-    def _check_switched(self, b: Point) -> None:
-        """After a period-doubling, the first point must not be the period-1 orbit again."""
-        fam = self.fam
-        half = fam.shooter(b.p)
-        sh1 = type(half)(half.osc, half.exc, half.period / 2.0, False)
-        end, _ = sh1._image(b.vec)
-        if np.max(np.abs(fam.coords(end) - fam.coords(b.vec)) / fam.scales) < 1e3 * self.tol:
-            raise InputError(Problem.BAD_STATE, "guess", "period-doubling", why="led back to the branch of the "
-                             "original period (the doubled branch was not found)",
-                             fix="continue the original branch with a smaller max_step and try its period-doubling again")
 
     def _append(self, pt: Point, ds: float) -> None:
         self.points.append(pt)
@@ -290,7 +350,8 @@ class Follower:
     def _bifurcation(self, kind: str, side: str, pt: Point, located: bool) -> Bifurcation:
         fam = self.fam
         osc, exc = fam.system(pt.p)
-        direction = fam.scales * pt.tau_x
+        tangent = np.append(fam.scales * pt.tau_x, fam.p_scale * pt.tau_q)
+        direction = tangent[:-1]
         if kind == "period-doubling" and pt.jac.size:
             w, v = np.linalg.eig(pt.jac)
             i = int(np.argmin(np.abs(w + 1.0)))
@@ -298,7 +359,7 @@ class Follower:
         peak = abs(exc.peak_m_s2)
         return Bifurcation(kind, pt.p, exc.freq_hz, exc.a_g, pt.mult.copy(), State(pt.vec), len(self.points), side,
                            direction, fam.k, pt.run.abs_acceleration_max / peak if peak > 0 else math.nan, located,
-                           pt.phase)
+                           pt.phase, tangent)
 
     # ---- the result
     def branch(self, oscillator: Oscillator, values: tuple, status: Status, message: str) -> Branch:

@@ -51,7 +51,8 @@ class Bifurcation:
         ``"left"`` or ``"right"`` for a grazing, else ``""``.
     direction : ndarray
         For a period-doubling, the critical eigenvector in the coordinates ``D, V, delta_L,
-        delta_R, u_i (, z)`` (unscaled); else the branch's tangent there.
+        delta_R, u_i (, z)`` (unscaled); for a branch point, the other branch's tangent (those
+        coordinates, then the parameter); else the branch's tangent's coordinate parts.
     period_multiple : int
         The branch's period, in forcing periods.
     alpha : float
@@ -61,6 +62,8 @@ class Bifurcation:
         step's interval to 1e-9 of the step).
     phase_rad : float
         The forcing's angle at the section where ``state`` is, rad.
+    tangent : ndarray
+        The branch's tangent there: the coordinates' parts (unscaled), then the parameter's.
     """
 
     kind: str
@@ -76,6 +79,7 @@ class Bifurcation:
     alpha: float = math.nan
     located: bool = True
     phase_rad: float = 0.0
+    tangent: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
 
     def to_series(self) -> pd.Series:
         return pd.Series({"kind": self.kind, "side": self.side, "value": self.value, "freq_hz": self.freq_hz,

@@ -135,22 +135,24 @@ def continuation(
     if method == "exact" and why is not None:
         raise InputError(Problem.BAD_STATE, "method", method, why=f"cannot be exact for this system: {why}",
                          fix='use method="finite-difference" (or "auto")')
-    direction = None
     if isinstance(guess, Bifurcation):
-        if guess.kind != "period-doubling":
-            raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is a {guess.kind}; only a period-doubling "
-                             "starts a new branch", fix="pass a Bifurcation of kind 'period-doubling', or a State")
-        period_multiple = 2 * guess.period_multiple
-        values = (guess.value, values[1])
-        direction = guess.direction
+        if guess.kind not in ("period-doubling", "branch-point"):
+            raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is a {guess.kind}; only a period-doubling or "
+                             "a branch point starts another branch", fix="pass a Bifurcation of kind "
+                             "'period-doubling' or 'branch-point', or a State")
+        if not min(values) <= guess.value <= max(values):
+            raise InputError(Problem.OUT_OF_RANGE, "guess", guess, range=f"[{min(values):g}, {max(values):g}]",
+                             hint=f" (the range of {parameter} given: the bifurcation is at {guess.value:g})")
+        period_multiple = 2 * guess.period_multiple if guess.kind == "period-doubling" else guess.period_multiple
         phase_rad = guess.phase_rad
     elif guess is not None and not isinstance(guess, State):
         raise InputError(Problem.WRONG_TYPE, "guess", guess, got=type(guess).__name__,
                          expected="pounding.State or a period-doubling Bifurcation")
-    start_osc = system_at(oscillator, parameter, values[0])
     p0, p1 = values
-    fam_a_g = values[0] if parameter == "a_g" else a_g
-    fam_f = values[0] if parameter == "freq_hz" else freq_hz
+    p_start = guess.value if isinstance(guess, Bifurcation) else p0
+    start_osc = system_at(oscillator, parameter, p_start)
+    fam_a_g = p_start if parameter == "a_g" else a_g
+    fam_f = p_start if parameter == "freq_hz" else freq_hz
     f_mid = math.sqrt(p0 * p1) if parameter == "freq_hz" else freq_hz
     vec = _start_vector(start_osc, parameter, fam_a_g, fam_f, phase_rad, guess, settle_cycles)
     b = start_osc.bumpers
@@ -160,8 +162,9 @@ def continuation(
     fam = Family(start_osc, fam_a_g, fam_f, parameter, period_multiple, why is None and method != "finite-difference",
                  phase_rad, length, abs(p1 - p0), 2.0 * math.pi * f_mid)
     follower = Follower(fam, p0, p1, tol, max_step, max_points, f_ref_hz)
+    follower.doubled = isinstance(guess, Bifurcation) and guess.kind == "period-doubling"
     try:
-        follower.start(vec, direction)
+        follower.start(vec, p_start, guess if isinstance(guess, Bifurcation) else None)
         follower.follow()
     except KeyboardInterrupt:
         raise Interrupted(follower.branch(oscillator, values, Status.INTERRUPTED, "interrupted"),
