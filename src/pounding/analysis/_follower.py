@@ -32,6 +32,7 @@ class Follower:
         self.p0, self.p1 = p0, p1
         self.tol, self.max_step, self.max_points = tol, max_step, max_points
         self.f_ref_hz = f_ref_hz
+        self.leaps: list[str] = []  # where the follower stepped in the parameter alone
         self.doubled = False  # a period-doubled branch started at its period-doubling
         self.points: list[Point] = []
         self.arclength: list[float] = []
@@ -117,6 +118,14 @@ class Follower:
             if b is None or (cos < self.MIN_COS and ds > 4 * self.MIN_STEP):
                 ds *= self.SHRINK
                 if ds < self.MIN_STEP:
+                    leap = self._leap(a)
+                    if leap is not None:
+                        b, ds = leap
+                        self._detect(a, b, ds)
+                        self._append(b, ds)
+                        self.leaps.append(f"{a.p:.6g} -> {b.p:.6g}")
+                        ds = self.max_step / 4.0
+                        continue
                     self.status = Status.STEP_FAILED
                     self.message = (f"the corrector failed at {self.fam.parameter} = {a.p:.8g} even with the smallest "
                                     "step (the branch may end there: a grazing of a stiff bumper, or an orbit the "
@@ -148,6 +157,23 @@ class Follower:
             self._rescale()
             self._resection()
             ds = min(ds * self.GROW, self.max_step) if b.iterations <= 4 else ds
+
+    def _leap(self, a: Point) -> Optional[tuple[Point, float]]:
+        """Past a point where the branch is not smooth (a soft impact's grazing: the map's
+        derivative is infinite there, and arclength steps shrink to nothing), a step in the
+        parameter alone, the orbit solved at the new value by Newton from ``a``'s state."""
+        fam = self.fam
+        direction = math.copysign(1.0, a.tau_q) if abs(a.tau_q) > 1e-12 else math.copysign(1.0, self.p1 - self.p0)
+        for size in (0.05, 0.2, 1.0):
+            dp = direction * size * self.max_step * fam.p_scale
+            p_new = a.p + dp
+            b = fam.correct(a.vec, p_new, fam.coords(a.vec), p_new, np.zeros(fam.n), 1.0, self.tol, max_iter=40)
+            if b is None:
+                continue
+            # (oriented onwards in the parameter: the leap's direction, whatever the tangent at a was)
+            b.tau_x, b.tau_q = fam.tangent(b, np.zeros(fam.n), direction)
+            return b, abs(self._s(a, b))
+        return None
 
     def _closed(self, b: Point, ds: float) -> bool:
         """Whether the step to ``b`` passed by the branch's second point again (a closed branch):

@@ -1,0 +1,54 @@
+"""Continuation benchmark: a whole branch, folds included, against the target (2 s warm for the
+calibrated YBs system at a_G 0.05 from 0.5 to 5 Hz) and against an up and a down sweep over the
+same range (0.1 Hz steps), measured in the same run.
+
+    python benchmarks/continuation.py [--repeat 3]
+"""
+
+from __future__ import annotations
+
+import argparse
+import platform
+import time
+
+import numpy as np
+
+import pounding as pd_
+
+TARGET_S = 2.0
+
+
+def best_of(fn, repeat: int) -> tuple[float, object]:
+    out, best = None, np.inf
+    for _ in range(repeat):
+        t = time.perf_counter()
+        out = fn()
+        best = min(best, time.perf_counter() - t)
+    return best, out
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--repeat", type=int, default=3)
+    args = parser.parse_args()
+    print(f"machine: {platform.processor() or platform.machine()}, Python {platform.python_version()}")
+    pd_.warm_up()
+    cases = [("paper_damped", pd_.presets.paper_damped(), (1.0, 3.0)),
+             ("paper_calibrated (YBs)", pd_.presets.paper_calibrated(), (0.5, 5.0))]
+    for name, osc, (f0, f1) in cases:
+        pd_.continuation(osc, 0.05, (f0, f1))  # (warm)
+        t_branch, br = best_of(lambda: pd_.continuation(osc, 0.05, (f0, f1)), args.repeat)
+        freqs = np.round(np.arange(f0, f1 + 1e-9, 0.1), 10)
+        t_sweeps, _ = best_of(lambda: [pd_.sweep(osc, 0.05, freqs, d) for d in ("up", "down")], args.repeat)
+        kinds = ", ".join(f"{b.kind} {b.freq_hz:.4g}" for b in br.bifurcations)
+        print(f"\n{name}, a_G 0.05, {f0:g}-{f1:g} Hz: {len(br)} orbits, {br.status.name}")
+        print(f"  bifurcations: {kinds}")
+        print(f"  branch        {t_branch:7.3f} s   ({t_branch / len(br) * 1e3:.2f} ms per orbit)")
+        print(f"  up+down sweep {t_sweeps:7.3f} s   ratio branch / sweeps = {t_branch / t_sweeps:.2f}")
+        if name.startswith("paper_calibrated"):
+            print(f"  target {TARGET_S:g} s: {'met' if t_branch <= TARGET_S else 'NOT met'} "
+                  f"(branch / target = {t_branch / TARGET_S:.2f})")
+
+
+if __name__ == "__main__":
+    main()
