@@ -202,3 +202,11 @@ def test_cli_continue_writes_the_branch(tmp_path) -> None:
     bad = CliRunner().invoke(app, ["continue", "--preset", "paper-damped", "--a-g", "0.05", "--from", "1.5",
                                    "--to", "1.5"])
     assert bad.exit_code == 2 and "freqs_hz" in bad.output
+
+
+def test_a_bifurcation_of_another_forcing_is_refused(damped: pd_.Branch) -> None:
+    pd1 = next(b for b in damped.bifurcations if b.kind == "period-doubling")
+    with pytest.raises(pd_.InputError, match="a_g = 0.05"):
+        pd_.continuation(pd_.presets.paper_damped(), 0.2, (1.0, 1.3), guess=pd1)
+    with pytest.raises(pd_.InputError, match="has type float"):
+        damped.orbit(1.0)

@@ -168,7 +168,9 @@ class Branch:
         from .periodic import periodic_orbit
 
         n = len(self)
-        if isinstance(index, bool) or not isinstance(index, (int, np.integer)) or not -n <= index < n:
+        if isinstance(index, bool) or not isinstance(index, (int, np.integer)):
+            raise InputError(Problem.WRONG_TYPE, "index", index, got=type(index).__name__, expected="int")
+        if not -n <= index < n:
             raise InputError(Problem.OUT_OF_RANGE, "index", index, range=f"[{-n}, {n - 1}]",
                              hint=" (a row of the branch's table)")
         row = self.table.iloc[int(index)]
@@ -194,5 +196,5 @@ class Branch:
 
     def __repr__(self) -> str:
         kinds = ", ".join(f"{b.kind} at {b.value:.6g}" for b in self.bifurcations) or "none"
-        return (f"Branch({self.parameter} from {self.values[0]:g} to {self.values[1]:g}, {len(self)} orbits, "
+        return (f"Branch({self.parameter} from {self.values[0]:.10g} to {self.values[1]:.10g}, {len(self)} orbits, "
                 f"period {self.period_multiple}, bifurcations: {kinds}; {self.status.name}: {self.message})")

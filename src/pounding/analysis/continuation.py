@@ -140,6 +140,10 @@ def continuation(
             raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is a {guess.kind}; only a period-doubling or "
                              "a branch point starts another branch", fix="pass a Bifurcation of kind "
                              "'period-doubling' or 'branch-point', or a State")
+        held = {"freq_hz": ("a_g", guess.a_g, a_g), "a_g": ("freqs_hz", guess.freq_hz, freq_hz)}.get(parameter)
+        if held is not None and not math.isclose(held[1], held[2], rel_tol=1e-12):
+            raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is a bifurcation at {held[0]} = {held[1]:g}, "
+                             f"not the {held[2]:g} given", fix=f"give {held[0]} = {held[1]:g} (the bifurcation's)")
         if not min(values) <= guess.value <= max(values):
             raise InputError(Problem.OUT_OF_RANGE, "guess", guess, range=f"[{min(values):g}, {max(values):g}]",
                              hint=f" (the range of {parameter} given: the bifurcation is at {guess.value:g})")
