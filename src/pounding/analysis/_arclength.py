@@ -16,6 +16,7 @@ fresh one when it does not.  ``dP/dp`` is a central difference of the map.
 
 from __future__ import annotations
 
+import copy
 from dataclasses import dataclass
 from typing import Optional
 
@@ -27,7 +28,7 @@ from ..engine._layout import A_TSTART, ACC_L, ACC_R, IN_L, IN_R
 from ..engine._layout import T as I_T
 from ..excitation import Harmonic
 from ..model import Oscillator
-from ..model.dotted import set_value
+from ..model.dotted import get_value, set_value
 from .periodic import _Failed, _Shooter
 
 
@@ -70,7 +71,7 @@ class Family:
         self._cache: dict[float, _Shooter] = {}
         self.fell_back = ""
         self.length_m = length_m
-        sh = self.shooter(self.start_value)
+        sh = self._ref = self.shooter(self.start_value)  # (for what does not depend on p: the coordinates)
         self.n = sh.h.size + int(sh.z_max > 0.0)
         self.scales = np.full(self.n, length_m)
         self.scales[1] = length_m * omega_ref
@@ -80,7 +81,7 @@ class Family:
     @property
     def start_value(self) -> float:
         return {"freq_hz": self.freq_hz, "a_g": self.a_g}.get(self.parameter, np.nan) if self.table is None \
-            else float(_get(self.table, self.parameter))
+            else float(get_value(self.table, self.parameter))
 
     def system(self, p: float) -> tuple[Oscillator, Harmonic]:
         """The system and forcing at parameter value ``p`` (raises InputError where there is none)."""
@@ -88,7 +89,7 @@ class Family:
             return self.osc, Harmonic(self.a_g, p, phase=self.phase)
         if self.parameter == "a_g":
             return self.osc, Harmonic(p, self.freq_hz, phase=self.phase)
-        table = _copy(self.table)
+        table = copy.deepcopy(self.table)
         set_value(table, self.parameter, float(p))
         return Oscillator.from_dict(table), Harmonic(self.a_g, self.freq_hz, phase=self.phase)
 
@@ -96,7 +97,7 @@ class Family:
         """A new length scale (the orbits grew): lengths and velocities are measured against it."""
         ratio = length_m / self.length_m
         self.length_m = length_m
-        self.scales[: self.scales.size - int(self._any.z_max > 0.0)] *= ratio
+        self.scales[: self.scales.size - int(self._ref.z_max > 0.0)] *= ratio
 
     def set_phase(self, phase: float) -> None:
         """Move the section to the forcing angle ``phase`` (rad, in [0, 2 pi))."""
@@ -118,11 +119,7 @@ class Family:
         return sh
 
     def coords(self, vec: np.ndarray) -> np.ndarray:
-        return self._any.coords(vec)
-
-    @property
-    def _any(self) -> _Shooter:
-        return next(iter(self._cache.values())) if self._cache else self.shooter(self.start_value)
+        return self._ref.coords(vec)
 
     # ------------------------------------------------------------------ pieces
     def image(self, vec: np.ndarray, p: float) -> tuple[np.ndarray, Run]:
@@ -253,20 +250,6 @@ def at_section(vec: np.ndarray) -> np.ndarray:
             out[acc + A_TSTART] -= t
     out[I_T] = 0.0
     return out
-
-
-def _copy(table: dict) -> dict:
-    return {k: _copy(v) if isinstance(v, dict) else (list(v) if isinstance(v, list) else v) for k, v in table.items()}
-
-
-def _get(table: dict, name: str) -> float:
-    node = table
-    for part in name.split("."):
-        key, _, idx = part.partition("[")
-        node = node[key]
-        if idx:
-            node = node[int(idx.rstrip("]"))]
-    return node  # type: ignore[return-value]
 
 
 def system_at(osc: Oscillator, parameter: str, value: float) -> Oscillator:

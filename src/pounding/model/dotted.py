@@ -49,3 +49,14 @@ def why_unresolved(table: dict, name: str) -> str | None:
     if isinstance(node, bool) or not isinstance(node, (int, float)):
         return f"it holds {type(node).__name__}, not a number"
     return None
+
+
+def get_value(table: dict, name: str) -> Any:
+    """The value at the dotted ``name`` (one :func:`why_unresolved` accepts)."""
+    node: Any = table
+    for part in name.split("."):
+        key, idx = _INDEX.match(part).groups()
+        node = node[key]
+        if idx is not None:
+            node = node[int(idx)]
+    return node
