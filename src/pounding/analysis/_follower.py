@@ -13,7 +13,7 @@ import pandas as pd
 
 from .._errors import InputError, Problem, Status
 from ..engine import State
-from ..engine.simulate import simulate
+from ..engine.simulate import short_run
 from ..model import Oscillator
 from ._arclength import Family, Point, at_section, system_at
 from .branch import COLUMNS, Bifurcation, Branch
@@ -247,7 +247,7 @@ class Follower:
         dt = ((phase - pt.phase) % (2.0 * math.pi)) / fam.omega(pt.p)
         osc, exc = fam.system(pt.p)
         exc = replace(exc, phase=pt.phase)
-        run = simulate(osc, exc, dt, State(pt.vec), sample_rate_hz=0) if dt > 0 else None
+        run = short_run(osc, exc, dt, State(pt.vec)) if dt > 0 else None
         if run is not None and not run.success:
             return None
         return at_section(run.final_state.vector) if run is not None else pt.vec.copy()

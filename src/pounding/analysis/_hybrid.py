@@ -23,6 +23,7 @@ from dataclasses import dataclass
 
 import numpy as np
 from scipy.linalg import expm
+from threadpoolctl import threadpool_limits
 
 from ..engine._layout import (ACT_CONTACT, ACT_REGION, ACT_RELEASE, ACT_REVERSAL, ACT_YIELD, DEF_L, DEF_R, IN_L,
                               IN_R, REGION, SIDE_L, STATE_BASE)
@@ -201,6 +202,13 @@ def after_event(h: Hybrid, action: int, index: int, x: np.ndarray) -> np.ndarray
         strain = x[0] - x[FIRST_SLIP + index]
         y[FIRST_SLIP + index] = x[0] - np.sign(strain) * h.breaks[index]
     return y
+
+
+def one_blas_thread() -> threadpool_limits:
+    """A context in which BLAS and LAPACK run on one thread: the monodromy's products and
+    exponentials are of matrices of a few rows, which a threaded BLAS slows down a hundredfold
+    when the machine is busy (measured: ``expm`` of a 6-by-6 in 8 ms instead of 20 us)."""
+    return threadpool_limits(limits=1, user_api="blas")
 
 
 def exponential(a: np.ndarray, tau: float) -> np.ndarray:

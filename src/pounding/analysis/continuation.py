@@ -168,8 +168,9 @@ def continuation(
     follower = Follower(fam, p0, p1, tol, max_step, max_points, f_ref_hz)
     follower.doubled = isinstance(guess, Bifurcation) and guess.kind == "period-doubling"
     try:
-        follower.start(vec, p_start, guess if isinstance(guess, Bifurcation) else None)
-        follower.follow()
+        with hy.one_blas_thread():
+            follower.start(vec, p_start, guess if isinstance(guess, Bifurcation) else None)
+            follower.follow()
     except KeyboardInterrupt:
         raise Interrupted(follower.branch(oscillator, values, Status.INTERRUPTED, "interrupted"),
                           len(follower.points), None, "points") from None

@@ -31,7 +31,7 @@ from ..engine._layout import DEF_L, DEF_R, REGION, STATE_BASE, ZETA
 from ..engine._layout import D as I_D
 from ..engine._layout import T as I_T
 from ..engine._layout import V as I_V
-from ..engine.simulate import check_oscillator, check_state
+from ..engine.simulate import check_oscillator, check_state, short_run
 from ..excitation import Harmonic
 from ..model import Oscillator
 from . import _hybrid as hy
@@ -216,7 +216,8 @@ def periodic_orbit(
             raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is not a state of this system ({exc})",
                              fix="give a state of this oscillator, e.g. a run's final_state") from None
     shooter = _Shooter(oscillator, excitation, period, exact)
-    vec, res, jac, frozen, it, message = shooter.solve(np.array(guess.vector, dtype=float), tol, max_iter)
+    with hy.one_blas_thread():
+        vec, res, jac, frozen, it, message = shooter.solve(np.array(guess.vector, dtype=float), tol, max_iter)
     # the state one period on: the same point of the orbit, with the running totals of a contact in
     # progress its own (the guess's otherwise)
     state = simulate(oscillator, excitation, period, State(vec), sample_rate_hz=0).final_state
@@ -298,7 +299,7 @@ class _Shooter:
         return s
 
     def _image(self, vec: np.ndarray) -> tuple[np.ndarray, Run]:
-        run = simulate(self.osc, self.exc, self.period, State(vec), sample_rate_hz=0)
+        run = short_run(self.osc, self.exc, self.period, State(vec))
         if not run.success:
             raise _Failed(f"the engine stopped over a period: {run.message}")
         return np.array(run.final_state.vector), run

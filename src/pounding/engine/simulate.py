@@ -306,12 +306,34 @@ def simulate(
 
     # at most this many sub-intervals (every phase as fast as the fastest), plus one per event
     most = float(steps_per_second(contact_rate(oscillator), omega)) * duration + knots
+    return _run(oscillator, excitation, duration, state, rtol, rate, max_events, max_steps,
+                direct=most < DIRECT_CALL_STEPS)
+
+
+# the work budget of a short run (``short_run``): a forcing period or two of any system fits in it
+# many times over, and the kernel returns within about a second when it is spent
+SHORT_RUN_STEPS = 1_000_000
+
+
+def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, state: State) -> Run:
+    """A run of a period or so, events only, for the periodic-orbit solvers' many runs: the state
+    checked, the arguments trusted (the caller checked them), the kernel called in this thread
+    (no helper thread: Ctrl-C lands when it returns) within ``SHORT_RUN_STEPS`` sub-intervals
+    (status ``BUDGET`` beyond)."""
+    state = check_state(state, oscillator)
+    return _run(oscillator, excitation, duration, state, 1e-10, 0.0, 10_000_000, SHORT_RUN_STEPS, direct=True)
+
+
+def _run(oscillator: Oscillator, excitation: Harmonic | Record, duration: float, state: State, rtol: float,
+         rate: float, max_events: int, max_steps: int, direct: bool) -> Run:
+    """The kernel on checked arguments, its outputs as a ``Run`` (``Interrupted`` on Ctrl-C)."""
+    t0 = state.time_s
     exc_kind, exc_p, rec_t, rec_a = excitation.kernel_arrays()
     ctl = new_control(max_steps)
     st, samples, contacts, events, ledger, extrema, status = run_interruptibly(lambda: run_kernel(
         *kernel_system(oscillator), exc_kind, exc_p, rec_t, rec_a, state.vector.copy(),
         t0 + duration, 1.0 / rate if rate > 0 else 0.0, rtol, int(max_events), True, ctl), [ctl],
-        direct=most < DIRECT_CALL_STEPS)
+        direct=direct)
     status = Status(int(status))
     if status == Status.SUCCESS and not (np.all(np.isfinite(ledger)) and np.all(np.isfinite(extrema))):
         status = Status.NONFINITE
