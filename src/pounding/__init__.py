@@ -4,7 +4,8 @@ The public surface is re-exported here; modules with a leading underscore are pr
 """
 
 from . import data, lab, plots, presets, records
-from .analysis import Bifurcation, Branch, PeriodicOrbit, continuation, periodic_orbit
+from .analysis import (Bifurcation, BifurcationCurve, Branch, CoexistenceMap, PeriodicOrbit, bifurcation_curve,
+                       coexistence_map, continuation, periodic_orbit)
 from ._errors import InputError, Interrupted, PoundingWarning, Problem, Status
 from ._warm_up import WarmUp, warm_up
 from .engine import EnergyLedger, Run, State, simulate
@@ -26,5 +27,6 @@ __all__ = [
     "data", "fit_contact_law", "identify", "paper_targets", "rank_contact_laws", "presets", "simulate", "sweep",
     "WarmUp", "warm_up", "plots", "records", "response_spectrum", "PoundingSpectrum", "pounding_spectrum",
     "StudyResult", "StudySpec", "open_study", "study", "PeriodicOrbit", "periodic_orbit",
-    "Bifurcation", "Branch", "continuation",
+    "Bifurcation", "Branch", "continuation", "BifurcationCurve", "CoexistenceMap", "bifurcation_curve",
+    "coexistence_map",
 ]

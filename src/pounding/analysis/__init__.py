@@ -1,8 +1,12 @@
 """Analysis: periodic orbits of the impacting oscillator, their exact Floquet stability, and
-their branches followed through folds with the bifurcations located."""
+their branches followed through folds with the bifurcations located, and folds and grazings
+followed in two parameters (a_G, f)."""
 
 from .branch import Bifurcation, Branch
 from .continuation import continuation
+from .curve_result import BifurcationCurve, CoexistenceMap
+from .curves import bifurcation_curve, coexistence_map
 from .periodic import PeriodicOrbit, periodic_orbit
 
-__all__ = ["Bifurcation", "Branch", "PeriodicOrbit", "continuation", "periodic_orbit"]
+__all__ = ["Bifurcation", "BifurcationCurve", "Branch", "CoexistenceMap", "PeriodicOrbit", "bifurcation_curve",
+           "coexistence_map", "continuation", "periodic_orbit"]

@@ -68,7 +68,7 @@ class Family:
         self.exact = exact
         self.phase = phase
         self.p_scale = p_scale
-        self._cache: dict[float, _Shooter] = {}
+        self._cache: dict[tuple[float, float], _Shooter] = {}
         self.fell_back = ""
         self.length_m = length_m
         sh = self._ref = self.shooter(self.start_value)  # (for what does not depend on p: the coordinates)
@@ -108,13 +108,14 @@ class Family:
         return self.shooter(p).exc.omega_rad_s
 
     def shooter(self, p: float) -> _Shooter:
-        sh = self._cache.get(p)
+        key = (p, self.a_g)  # (a two-parameter curve changes a_g too)
+        sh = self._cache.get(key)
         if sh is None:
             osc, exc = self.system(p)
             sh = _Shooter(osc, exc, self.k / exc.freq_hz, self.exact)
             if len(self._cache) > 8:
                 self._cache.clear()
-            self._cache[p] = sh
+            self._cache[key] = sh
         sh.scale_d = self.length_m
         return sh
 
@@ -238,6 +239,14 @@ class Family:
                 return None
             p = p_new
         return None
+
+
+def fold_test(mult: np.ndarray) -> float:
+    """The fold's test function: the real part of the multiplier nearest 1, minus 1 (0 at a
+    smooth fold; NaN without multipliers)."""
+    if mult.size == 0:
+        return float("nan")
+    return float(mult[int(np.argmin(np.abs(mult - 1.0)))].real - 1.0)
 
 
 def at_section(vec: np.ndarray) -> np.ndarray:

@@ -38,6 +38,7 @@ class Follower:
         self.arclength: list[float] = []
         self.bifs: list[Bifurcation] = []
         self.status, self.message = Status.SUCCESS, ""
+        self.bracket = math.inf  # the last location's final bracket, in arclength
 
     # ---- the first point
     def start(self, vec: np.ndarray, p_start: float, bif: Optional[Bifurcation] = None) -> None:
@@ -332,42 +333,56 @@ class Follower:
             counted = name in ("period-doubling", "neimark-sacker")
             if (counted and va != vb) or (not counted and va * vb < 0.0):
                 if counted:
-                    def fn(pt: Point, name: str = name, va: float = va) -> float:
-                        return self._tests(pt)[name] - va - 0.5
+                    def fn(pt: Point, name: str = name, mid: float = 0.5 * (va + vb)) -> float:
+                        return self._tests(pt)[name] - mid  # (+-0.5 on either side of the count's change)
+                elif name == "fold" and a.mult.size == b.mult.size and _crossing(a.mult) * _crossing(b.mult) < 0.0:
+                    # a smooth fold: a multiplier through 1 locates it better than the tangent,
+                    # which turns fast there (and, next to a grazing, not smoothly)
+                    def fn(pt: Point, size: int = a.mult.size) -> float:
+                        return _crossing(pt.mult) if pt.mult.size == size else math.nan
                 else:
                     def fn(pt: Point, name: str = name) -> float:
                         return self._tests(pt)[name]
+                self.bracket = math.inf
                 pt = self._locate(a, ds, fn, b)
                 if pt is not None:
-                    found.append((self._s(a, pt), name, pt, abs(fn(pt)) <= 1e-8 or counted))
+                    found.append((self._s(a, pt), name, pt,
+                                  abs(fn(pt)) <= 1e-8 or (counted and self.bracket <= 1e-9 * ds)))
         for _, name, pt, ok in sorted(found, key=lambda item: item[0]):
             kind, _, side = name.partition(" ")
             self.bifs.append(self._bifurcation(kind, side, pt, ok))
 
     def _locate(self, a: Point, ds: float, fn: Callable[[Point], float], b: Point) -> Optional[Point]:
-        """Illinois regula falsi on the step length for the zero of ``fn`` between ``a`` (0) and ``b`` (ds)."""
+        """Illinois regula falsi on the step length for the zero of ``fn`` between ``a`` (0) and ``b`` (ds);
+        ``self.bracket`` is left the final bracket's length (a step that fails stops it early)."""
         lo, hi, f_lo, f_hi = 0.0, ds, fn(a), fn(b)
+        self.bracket = hi - lo
         if f_lo == 0.0:
             return a
         best, side = b, 0
+        at_lo, at_hi = a, b  # (the bracket's ends, solved: steps go from the nearer)
         for _ in range(60):
             s = (lo * f_hi - hi * f_lo) / (f_hi - f_lo) if f_hi != f_lo else 0.5 * (lo + hi)
             if not lo < s < hi:
                 s = 0.5 * (lo + hi)
-            pt = self.step(a, s)
+            near, far = ((at_lo, s - lo), (at_hi, s - hi)) if s - lo <= hi - s else ((at_hi, s - hi), (at_lo, s - lo))
+            pt = self.step(*near) or self.step(*far)  # (e.g. across a grazing: from the other side)
             if pt is None:
                 return best
             v = fn(pt)
+            self.bracket = hi - lo
+            if not math.isfinite(v):  # (the coordinates changed within the step)
+                return best
             best = pt
             if abs(v) <= 1e-8 or hi - lo <= 1e-9 * ds:
                 return pt
             if (v < 0.0) == (f_lo < 0.0):
-                lo, f_lo = s, v
+                lo, f_lo, at_lo = s, v, pt
                 if side == -1:
                     f_hi *= 0.5
                 side = -1
             else:
-                hi, f_hi = s, v
+                hi, f_hi, at_hi = s, v, pt
                 if side == 1:
                     f_lo *= 0.5
                 side = 1
@@ -423,3 +438,7 @@ class Follower:
                       a_g=fam.a_g if fam.parameter != "a_g" else math.nan,
                       freq_hz=fam.freq_hz if fam.parameter != "freq_hz" else math.nan)
 
+
+def _crossing(mult: np.ndarray) -> float:
+    """``prod(mu - 1)``, real: it changes sign where one real multiplier crosses 1."""
+    return float(np.real(np.prod(mult - 1.0)))

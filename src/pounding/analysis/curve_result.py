@@ -1,0 +1,187 @@
+"""``BifurcationCurve`` and ``CoexistenceMap``: what :func:`pounding.bifurcation_curve` and
+:func:`pounding.coexistence_map` return."""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Sequence
+
+import numpy as np
+import pandas as pd
+
+from .._errors import Status
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..model import Oscillator
+    from ._curve import CurveFollower, CurvePoint
+    from .branch import Bifurcation, Branch
+
+CURVE_COLUMNS = ("freq_hz", "a_g", "alpha", "excursion_m", "displacement_max_m", "displacement_min_m",
+                 "max_abs_multiplier", "critical_multiplier", "contacts_per_period", "test", "residual", "phase_rad")
+
+
+@dataclass(frozen=True, eq=False)
+class BifurcationCurve:
+    """A fold or a grazing followed in (a_G, f).
+
+    Attributes
+    ----------
+    oscillator : Oscillator
+    kind : {"fold", "grazing"}
+    side : str
+        ``"left"`` or ``"right"`` for a grazing, else ``""``.
+    period_multiple : int
+    freqs_hz, a_g : (float, float)
+        The box it was followed in.
+    table : DataFrame
+        One row per point in the curve's order (see :meth:`to_dataframe`).
+    states : ndarray, shape (points, state length)
+        Each point's orbit at its section (time 0, the forcing's angle ``phase_rad``).
+    status : Status
+    message : str
+    start : Bifurcation
+        The bifurcation it was followed from.
+    """
+
+    oscillator: "Oscillator" = field(repr=False)
+    kind: str
+    side: str
+    period_multiple: int
+    freqs_hz: tuple[float, float]
+    a_g: tuple[float, float]
+    table: pd.DataFrame = field(repr=False)
+    states: np.ndarray = field(repr=False)
+    status: Status
+    message: str
+    start: "Bifurcation" = field(repr=False)
+
+    @property
+    def success(self) -> bool:
+        return self.status == Status.SUCCESS
+
+    def __len__(self) -> int:
+        return int(self.table.shape[0])
+
+    def to_dataframe(self) -> pd.DataFrame:
+        """One row per point: ``freq_hz``, ``a_g``, ``alpha``, ``excursion_m``,
+        ``displacement_max_m``, ``displacement_min_m``, ``max_abs_multiplier``,
+        ``critical_multiplier`` (the real multiplier nearest 1: 1 on a fold curve),
+        ``contacts_per_period``, ``test`` (the test function: multiplier - 1, or the clearance
+        to the bumper over the orbit's length), ``residual``, ``phase_rad``."""
+        return self.table.copy()
+
+    def passes(self, bif: "Bifurcation", within: float = 2e-3) -> bool:
+        """Whether ``bif`` (same kind and side) lies on this curve: its (f, a_G) within ``within`` of
+        the curve's polyline, each over the box's ranges."""
+        if bif.kind != self.kind or bif.side != self.side or len(self) == 0:
+            return False
+        fs, as_ = self.freqs_hz[1] - self.freqs_hz[0], self.a_g[1] - self.a_g[0]
+        pts = np.column_stack((self.table["freq_hz"] / fs, self.table["a_g"] / as_))
+        q = np.array([bif.freq_hz / fs, bif.a_g / as_])
+        if len(pts) == 1:
+            return bool(np.linalg.norm(pts[0] - q) <= within)
+        a, b = pts[:-1], pts[1:]
+        d = b - a
+        t = np.clip(np.einsum("ij,ij->i", q - a, d) / np.maximum(np.einsum("ij,ij->i", d, d), 1e-300), 0.0, 1.0)
+        return bool(np.min(np.linalg.norm(a + t[:, None] * d - q, axis=1)) <= within)
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> list:
+        """The curve in the (f, a_G) plane; returns the artists."""
+        from ..plots.curves import plot_curves
+
+        return plot_curves([self], ax=ax, **kwargs)
+
+    def __repr__(self) -> str:
+        return (f"BifurcationCurve({self.kind}{' ' + self.side if self.side else ''}, {len(self)} points, "
+                f"f {self.table['freq_hz'].min():.6g}-{self.table['freq_hz'].max():.6g} Hz, a_g "
+                f"{self.table['a_g'].min():.6g}-{self.table['a_g'].max():.6g}; {self.status.name}: {self.message})"
+                if len(self) else f"BifurcationCurve({self.kind}, no points; {self.status.name}: {self.message})")
+
+
+@dataclass(frozen=True, eq=False)
+class CoexistenceMap:
+    """Branches at a_G levels, their folds and grazings in (a_G, f), and the test matrix.
+
+    Attributes
+    ----------
+    oscillator : Oscillator
+    a_g, freqs_hz : (float, float)
+        The map's box.
+    levels : tuple of float
+        The branches' a_G.
+    branches : tuple of Branch
+        One per level, over ``freqs_hz``.
+    curves : tuple of BifurcationCurve
+        Each fold and grazing of the branches, followed once.
+    matrix : DataFrame
+        The test matrix: ``a_g``, ``freq_hz``, ``stable_orbits`` (stable period-1 orbits on the
+        level's branch at that frequency; 2 or more: the response depends on the history).
+    """
+
+    oscillator: "Oscillator" = field(repr=False)
+    a_g: tuple[float, float]
+    freqs_hz: tuple[float, float]
+    levels: tuple[float, ...]
+    branches: tuple["Branch", ...] = field(repr=False)
+    curves: tuple[BifurcationCurve, ...] = field(repr=False)
+    matrix: pd.DataFrame = field(repr=False)
+
+    def to_dataframe(self) -> pd.DataFrame:
+        """The curves' points, one row each, with ``curve`` (its index), ``kind`` and ``side``."""
+        frames = [c.to_dataframe().assign(curve=i, kind=c.kind, side=c.side) for i, c in enumerate(self.curves)]
+        cols = ["curve", "kind", "side", *CURVE_COLUMNS]
+        return pd.concat(frames, ignore_index=True)[cols] if frames else pd.DataFrame(columns=cols)
+
+    def coexisting(self) -> pd.DataFrame:
+        """The test matrix's points where two or more stable responses coexist."""
+        return self.matrix[self.matrix["stable_orbits"] >= 2].reset_index(drop=True)
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> list:
+        """The curves in the (f, a_G) plane over the test matrix (points where two stable
+        responses coexist filled); returns the artists."""
+        from ..plots.curves import plot_curves
+
+        return plot_curves(list(self.curves), ax=ax, matrix=self.matrix, **kwargs)
+
+    def __repr__(self) -> str:
+        kinds = ", ".join(f"{c.kind}{' ' + c.side if c.side else ''}" for c in self.curves) or "none"
+        return (f"CoexistenceMap(a_g {self.a_g[0]:g}-{self.a_g[1]:g}, f {self.freqs_hz[0]:g}-{self.freqs_hz[1]:g} Hz, "
+                f"{len(self.branches)} branches, curves: {kinds}; {len(self.coexisting())} of {len(self.matrix)} "
+                "test points with coexisting responses)")
+
+
+def curve_table(cf: "CurveFollower", pts: Sequence["CurvePoint"]) -> tuple[pd.DataFrame, np.ndarray]:
+    rows = []
+    for p in pts:
+        run = p.run
+        peak = abs(run.excitation.peak_m_s2)
+        done = run.contact_table[np.isfinite(run.contact_table[:, 2])]
+        mult = p.mult
+        crit = mult[int(np.argmin(np.abs(mult - 1.0)))].real if mult.size else math.nan
+        rows.append({"freq_hz": p.f, "a_g": p.a, "alpha": run.abs_acceleration_max / peak if peak > 0 else math.nan,
+                     "excursion_m": run.displacement_max - run.displacement_min,
+                     "displacement_max_m": run.displacement_max, "displacement_min_m": run.displacement_min,
+                     "max_abs_multiplier": float(np.abs(mult).max()) if mult.size else math.nan,
+                     "critical_multiplier": float(crit), "contacts_per_period": int(done.shape[0]),
+                     "test": p.g, "residual": float(np.max(np.abs(p.r), initial=0.0)), "phase_rad": p.phase})
+    states = np.array([p.vec for p in pts]) if pts else np.zeros((0, 0))
+    return pd.DataFrame(rows, columns=list(CURVE_COLUMNS)), states
+
+
+def stable_counts(branches: Sequence["Branch"], freqs: np.ndarray) -> pd.DataFrame:
+    """The number of stable orbits of each branch at each of ``freqs``: its stable segments that
+    span the frequency (a segment's two ends both stable)."""
+    rows = []
+    for br in branches:
+        df = br.to_dataframe()
+        f = df["freq_hz"].to_numpy(float)
+        st = df["stable"].to_numpy(bool)
+        both = st[:-1] & st[1:]
+        lo, hi = np.minimum(f[:-1], f[1:]), np.maximum(f[:-1], f[1:])
+        for fq in freqs:
+            # a segment spans fq when lo <= fq < hi (half-open: a point at a row is counted once);
+            # at the range's end, the segment ending there
+            inside = both & (lo <= fq) & ((fq < hi) | ((fq == hi) & (hi == f.max())))
+            rows.append({"a_g": br.a_g, "freq_hz": float(fq), "stable_orbits": int(np.count_nonzero(inside))})
+    return pd.DataFrame(rows, columns=["a_g", "freq_hz", "stable_orbits"])

@@ -1,0 +1,297 @@
+"""Two-parameter continuation: folds and grazings followed in (a_G, f), and the map of where two
+responses coexist (:func:`bifurcation_curve`, :func:`coexistence_map`)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Optional, Sequence
+
+import numpy as np
+
+from .._checks import integer, one_of, real
+from .._errors import InputError, Interrupted, Problem, Status
+from ..engine.simulate import check_oscillator, check_state, short_run
+from ..excitation import Harmonic
+from ..model import Oscillator
+from . import _hybrid as hy
+from ._arclength import Family
+from ._curve import CurveFollower, CurvePoint
+from .branch import Bifurcation, Branch
+from .continuation import continuation
+from .curve_result import BifurcationCurve, CoexistenceMap, curve_table, stable_counts
+from .periodic import METHODS
+
+CURVE_KINDS = ("fold", "grazing")
+PAPER_A_G = (0.03, 0.05, 0.075, 0.1)  # the paper's YBs levels (protocols.campaign.PAPER_YBS_A_G)
+
+
+def bifurcation_curve(
+    oscillator: Oscillator,
+    bifurcation: Bifurcation,
+    *,
+    a_g: Any = (0.02, 0.12),
+    freqs_hz: Any = (0.5, 5.0),
+    tol: float = 1e-9,
+    max_step: float = 0.02,
+    max_points: int = 2000,
+    method: str = "auto",
+) -> BifurcationCurve:
+    """Follow a fold or a grazing of a branch in two parameters, the frequency and a_G.
+
+    A fold curve bounds the forcings at which two responses coexist (where up and down sweeps
+    differ); a grazing curve, those at which a contact appears.  The curve is followed through
+    its cusps (where a fold curve turns back in a_G and its two folds meet) until it leaves the
+    box ``freqs_hz`` x ``a_g`` or closes.
+
+    Parameters
+    ----------
+    oscillator : Oscillator
+        The system of the branch the bifurcation is on.
+    bifurcation : Bifurcation
+        A ``"fold"`` or ``"grazing"`` of a :class:`Branch` in ``freq_hz`` or ``a_g``.
+    a_g : (float, float)
+        The box's range of the table's peak acceleration, g.
+    freqs_hz : (float, float)
+        The box's range of the frequency, Hz.
+    tol : float
+        Largest scaled residual of the orbit's equations at each point (the fold's test,
+        the multiplier minus 1, to ``max(100 tol, 1e-8)``).
+    max_step : float
+        Largest arclength step, in units where each range is 1.
+    max_points : int
+        Points at most (status ``BUDGET`` there).
+    method : {"auto", "exact", "finite-difference"}
+        The monodromy, as in :func:`periodic_orbit`.
+
+    Returns
+    -------
+    BifurcationCurve
+        ``status`` ``SUCCESS`` when both ends reached the box's edge or the curve closed.
+
+    Raises
+    ------
+    Interrupted
+        On Ctrl-C; ``.partial`` is the curve followed so far.
+
+    Examples
+    --------
+    >>> import pounding as pd_
+    >>> osc = pd_.presets.paper_damped()
+    >>> fold = pd_.continuation(osc, 0.05, (1.5, 2.5)).folds()[0]
+    >>> curve = pd_.bifurcation_curve(osc, fold, a_g=(0.04, 0.06), freqs_hz=(1.0, 3.0))
+    >>> curve.status.name
+    'SUCCESS'
+    """
+    check_oscillator(oscillator)
+    if not isinstance(bifurcation, Bifurcation):
+        raise InputError(Problem.WRONG_TYPE, "bifurcation", bifurcation, got=type(bifurcation).__name__,
+                         expected="pounding.Bifurcation (from Branch.bifurcations or Branch.folds())")
+    if bifurcation.kind not in CURVE_KINDS:
+        raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind, why="is followed in one parameter only",
+                         fix="pass a fold or a grazing (Branch.folds(), or kind 'grazing' in Branch.bifurcations)")
+    if not any(math.isclose(bifurcation.value, v, rel_tol=1e-12) for v in (bifurcation.freq_hz, bifurcation.a_g)):
+        raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind, why="is on a branch in a number of the "
+                         "system, not in the forcing", fix="continue the branch in 'freq_hz' or 'a_g' and pass its "
+                         "bifurcation")
+    try:
+        check_state(bifurcation.state, oscillator)
+    except InputError as exc:
+        raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind, why=f"is not of this system ({exc})",
+                         fix="pass the oscillator the branch was followed on") from None
+    a_box = _box("a_g", a_g, "g")
+    f_box = _box("freqs_hz", freqs_hz, "Hz")
+    for name, box, v in (("a_g", a_box, bifurcation.a_g), ("freqs_hz", f_box, bifurcation.freq_hz)):
+        if not box[0] <= v <= box[1]:
+            raise InputError(Problem.OUT_OF_RANGE, name, box, range=f"a range holding {v:g}",
+                             hint=" (the bifurcation's own value)")
+    tol, max_step, max_points, exact = _common(oscillator, tol, max_step, max_points, method)
+    follower = _follower(oscillator, bifurcation, f_box, a_box, tol, max_step, max_points, exact)
+    pts: list[CurvePoint] = []
+    try:
+        with hy.one_blas_thread():
+            start = _start(follower, bifurcation)
+            pts = [start]
+            status, message = _follow(follower, start, pts, max_points)
+    except KeyboardInterrupt:
+        raise Interrupted(_result(oscillator, bifurcation, follower, pts, f_box, a_box, Status.INTERRUPTED,
+                                  "interrupted"), len(pts), None, "points") from None
+    return _result(oscillator, bifurcation, follower, pts, f_box, a_box, status, message)
+
+
+def coexistence_map(
+    oscillator: Oscillator,
+    *,
+    a_g: Any = (0.02, 0.12),
+    freqs_hz: Any = (0.5, 5.0),
+    levels: Optional[Sequence[float]] = None,
+    freq_step_hz: float = 0.1,
+    kinds: Sequence[str] = CURVE_KINDS,
+    max_step: float = 0.02,
+    max_points: int = 2000,
+    tol: float = 1e-9,
+    method: str = "auto",
+) -> CoexistenceMap:
+    """Where two responses coexist: branches at a_G ``levels``, their folds and grazings followed
+    in (a_G, f), and the count of stable period-1 orbits at each point of the test matrix.
+
+    Parameters
+    ----------
+    oscillator : Oscillator
+    a_g : (float, float)
+        The map's range of a_G, g.
+    freqs_hz : (float, float)
+        The map's range of the frequency, Hz (the branches span it).
+    levels : sequence of float, optional
+        The a_G of the branches (the test matrix's rows).  Default: the paper's 0.03, 0.05,
+        0.075 and 0.1 that lie in ``a_g`` (or four levels spread over it).
+    freq_step_hz : float
+        The test matrix's frequency step, from ``freqs_hz[0]`` (the paper's 0.1 Hz).
+    kinds : sequence of {"fold", "grazing"}
+        The bifurcations followed.
+    max_step, max_points, tol, method
+        As in :func:`bifurcation_curve` (``max_points`` per curve).
+
+    Returns
+    -------
+    CoexistenceMap
+        ``branches``, ``curves``, ``matrix`` (one row per level and frequency: the number of
+        stable period-1 orbits there), ``.plot()``, ``.to_dataframe()``.
+
+    Examples
+    --------
+    >>> import pounding as pd_
+    >>> m = pd_.coexistence_map(pd_.presets.paper_damped(), a_g=(0.04, 0.06), freqs_hz=(1.5, 2.5),
+    ...                         levels=[0.05], kinds=["fold"])
+    >>> int(m.matrix["stable_orbits"].max())
+    2
+    """
+    check_oscillator(oscillator)
+    a_box = _box("a_g", a_g, "g")
+    f_box = _box("freqs_hz", freqs_hz, "Hz")
+    if levels is None:
+        levels = [v for v in PAPER_A_G if a_box[0] <= v <= a_box[1]] or list(np.linspace(*a_box, 4))
+    if isinstance(levels, (str, bytes)) or not hasattr(levels, "__len__") or len(levels) == 0:
+        raise InputError(Problem.WRONG_TYPE, "levels", levels, got=type(levels).__name__,
+                         expected="a non-empty sequence of a_G values, g")
+    levels = [real(f"levels[{i}]", v) for i, v in enumerate(levels)]
+    for i, v in enumerate(levels):
+        if not a_box[0] <= v <= a_box[1]:
+            raise InputError(Problem.OUT_OF_RANGE, f"levels[{i}]", v, range=f"[{a_box[0]:g}, {a_box[1]:g}]",
+                             hint=" (the map's a_g range)")
+    step = real("freq_step_hz", freq_step_hz)
+    if not 0.0 < step <= f_box[1] - f_box[0]:
+        raise InputError(Problem.OUT_OF_RANGE, "freq_step_hz", step, range=f"(0, {f_box[1] - f_box[0]:g}]",
+                         hint=" (the test matrix's frequency step)")
+    if isinstance(kinds, str) or not all(isinstance(k, str) for k in kinds):
+        raise InputError(Problem.WRONG_TYPE, "kinds", kinds, got=type(kinds).__name__,
+                         expected="a sequence of 'fold', 'grazing'")
+    kinds = tuple(one_of("kinds", k, CURVE_KINDS) for k in kinds)
+    tol, max_step, max_points, _ = _common(oscillator, tol, max_step, max_points, method)
+    freqs = np.round(np.arange(f_box[0], f_box[1] + 1e-9 * step, step), 10)
+    branches: list[Branch] = []
+    curves: list[BifurcationCurve] = []
+    try:
+        for level in levels:
+            br = continuation(oscillator, level, f_box, max_step=max_step, method=method)
+            branches.append(br)
+            for bif in br.bifurcations:
+                if bif.kind in kinds and not any(c.passes(bif) for c in curves):
+                    curves.append(bifurcation_curve(oscillator, bif, a_g=a_box, freqs_hz=f_box, tol=tol,
+                                                    max_step=max_step, max_points=max_points, method=method))
+    except Interrupted as exc:
+        if isinstance(exc.partial, BifurcationCurve):
+            curves.append(exc.partial)
+        raise Interrupted(CoexistenceMap(oscillator, a_box, f_box, tuple(levels), tuple(branches), tuple(curves),
+                                         stable_counts(branches, freqs)), len(curves), None, "curves") from None
+    return CoexistenceMap(oscillator, a_box, f_box, tuple(levels), tuple(branches), tuple(curves),
+                          stable_counts(branches, freqs))
+
+
+# ---------------------------------------------------------------------- pieces
+def _box(field: str, value: Any, unit: str) -> tuple[float, float]:
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != 2:
+        raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__, expected=f"pair (low, high) in {unit}")
+    lo, hi = sorted(real(f"{field}[{i}]", v) for i, v in enumerate(value))
+    if not 0.0 < lo < hi:
+        raise InputError(Problem.OUT_OF_RANGE, field, value, range="0 < low < high",
+                         hint=f" (a range of positive values, {unit})")
+    return lo, hi
+
+
+def _common(osc: Oscillator, tol: Any, max_step: Any, max_points: Any, method: Any) -> tuple:
+    tol = real("tol", tol)
+    if not 1e-13 <= tol <= 1e-3:
+        raise InputError(Problem.OUT_OF_RANGE, "tol", tol, range="[1e-13, 1e-3]", hint=" (1e-9 by default)")
+    max_step = real("max_step", max_step)
+    if not 1e-4 <= max_step <= 0.5:
+        raise InputError(Problem.OUT_OF_RANGE, "max_step", max_step, range="[1e-4, 0.5]",
+                         hint=" (in units of the ranges)")
+    max_points = integer("max_points", max_points, 2, 100_000, "a curve of 2000 points is already dense")
+    method = one_of("method", method, METHODS)
+    why = hy.unsupported(osc)
+    if method == "exact" and why is not None:
+        raise InputError(Problem.BAD_STATE, "method", method, why=f"cannot be exact for this system: {why}",
+                         fix='use method="finite-difference" (or "auto")')
+    return tol, max_step, max_points, why is None and method != "finite-difference"
+
+
+def _follower(osc: Oscillator, bif: Bifurcation, f_box: tuple, a_box: tuple, tol: float, max_step: float,
+              max_points: int, exact: bool) -> CurveFollower:
+    exc = Harmonic(bif.a_g, bif.freq_hz, phase=bif.phase_rad)
+    run = short_run(osc, exc, bif.period_multiple / bif.freq_hz, bif.state)
+    b = osc.bumpers
+    length = max(b.total_gap / 2.0 if b is not None else 0.0, abs(run.displacement_max), abs(run.displacement_min),
+                 1e-6)
+    fam = Family(osc, bif.a_g, bif.freq_hz, "freq_hz", bif.period_multiple, exact, bif.phase_rad, length,
+                 f_box[1] - f_box[0], 2.0 * math.pi * bif.freq_hz)
+    return CurveFollower(fam, bif.kind, bif.side, f_box, a_box, tol, max_step, max_points)
+
+
+def _start(cf: CurveFollower, bif: Bifurcation) -> CurvePoint:
+    """The bifurcation solved as a point of the curve (a_g held, else f), with its tangent."""
+    vec = np.array(bif.state.vector, dtype=float)
+    n = cf.fam.n
+    for held in (-1, -2):
+        normal = np.zeros(n + 2)
+        normal[held] = 1.0
+        target = np.concatenate((cf.fam.coords(vec) / cf.fam.scales, [bif.freq_hz / cf.fs, bif.a_g / cf.as_]))
+        pt = cf.correct(vec, bif.freq_hz, bif.a_g, target, normal, max_iter=30)
+        if pt is not None:
+            t = np.linalg.svd(pt.ext)[2][-1]
+            tau = cf._full(pt, t)
+            pt.tau = tau / np.linalg.norm(tau)
+            return pt
+    raise InputError(Problem.BAD_STATE, "bifurcation", bif.kind, why=f"at {bif.freq_hz:.6g} Hz, a_g {bif.a_g:.6g} "
+                     "could not be solved as a point of its curve (Newton did not converge)",
+                     fix="locate it again: continue the branch with a smaller max_step")
+
+
+def _follow(cf: CurveFollower, start: CurvePoint, pts: list[CurvePoint], max_points: int) -> tuple[Status, str]:
+    """Both directions from ``start``; ``pts`` filled in the curve's order as they come."""
+    ends = []
+    for sign in (1.0, -1.0):
+        got: list[CurvePoint] = []
+        try:
+            how, closed = cf.follow(start, sign, max_points - len(pts), got)
+        finally:  # (on Ctrl-C too: the points found are kept)
+            if sign > 0:
+                pts.extend(got)
+            else:
+                pts[:0] = got[::-1]
+        ends.append(how)
+        if closed:
+            return Status.SUCCESS, "the curve closed on itself"
+    if "budget" in ends:
+        return Status.BUDGET, f"stopped at max_points = {max_points}"
+    failed = [e for e in ends if e not in ("edge", "closed")]
+    if failed:
+        return Status.STEP_FAILED, "; ".join(failed)
+    return Status.SUCCESS, "both ends reached the edge of the box"
+
+
+def _result(osc: Oscillator, bif: Bifurcation, cf: CurveFollower, pts: list[CurvePoint], f_box: tuple,
+            a_box: tuple, status: Status, message: str) -> BifurcationCurve:
+    table, states = curve_table(cf, pts)
+    return BifurcationCurve(osc, bif.kind, bif.side, bif.period_multiple, f_box, a_box, table, states, status,
+                            message, bif)
+

@@ -1,0 +1,52 @@
+"""Plots of bifurcation curves in the (f, a_G) plane, over a test matrix."""
+
+from __future__ import annotations
+
+from typing import Any, Optional
+
+STYLE = {"fold": "-", "grazing": ":"}
+
+
+def plot_curves(curves: list, ax: Any = None, *, matrix: Optional[Any] = None, **kwargs: Any) -> list:
+    """Fold curves solid, grazing curves dotted, in the (frequency, a_G) plane.
+
+    Parameters
+    ----------
+    curves : list of BifurcationCurve
+    ax : matplotlib Axes, optional
+    matrix : DataFrame, optional
+        A test matrix (``a_g``, ``freq_hz``, ``stable_orbits``): its points drawn as dots, filled
+        where two or more stable responses coexist.
+    **kwargs
+        Passed to the curves' lines.
+
+    Returns
+    -------
+    list of matplotlib artists
+    """
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        ax = plt.figure(figsize=(7, 4), constrained_layout=True).add_subplot()
+    artists: list = []
+    if matrix is not None and len(matrix):
+        one = matrix[matrix["stable_orbits"] < 2]
+        two = matrix[matrix["stable_orbits"] >= 2]
+        artists += ax.plot(one["freq_hz"], one["a_g"], "o", ms=3, mfc="none", color="0.6",
+                           label="test point: one stable response")
+        artists += ax.plot(two["freq_hz"], two["a_g"], "o", ms=4, color="C3",
+                           label="test point: two stable responses coexist")
+    seen = set()
+    for i, c in enumerate(curves):
+        df = c.to_dataframe()
+        name = c.kind + (f" ({c.side})" if c.side else "")
+        label = f"{name} curve" if name not in seen else None
+        seen.add(name)
+        color = kwargs.get("color") or ("C0" if c.kind == "fold" else "C2" if c.side == "left" else "C1")
+        kw = {k: v for k, v in kwargs.items() if k != "color"}
+        artists += ax.plot(df["freq_hz"], df["a_g"], STYLE.get(c.kind, "-"), color=color, label=label, **kw)
+    ax.set_xlabel("frequency f (Hz)")
+    ax.set_ylabel("a_G (g)")
+    if artists:
+        ax.legend(fontsize="small")
+    return artists

@@ -1,0 +1,164 @@
+"""Two-parameter continuation: grazing curves against the closed form, fold curves against
+one-parameter branches at other levels, the coexistence map against up and down sweeps; bad
+input named; Ctrl-C keeps the curve."""
+
+from __future__ import annotations
+
+import matplotlib
+import numpy as np
+import pytest
+
+import pounding as pd_
+from pounding.analysis import _curve
+
+matplotlib.use("Agg")
+
+M, K, C = 500.0, 40000.0, 800.0
+GAP_L, GAP_R = 0.025, 0.02
+
+
+def linear_with_bumpers() -> pd_.Oscillator:
+    law = pd_.KelvinVoigt(1.0e6, 2000.0)
+    return pd_.Oscillator(M, pd_.Isolator(slopes=(K,), breakpoints=(), damping=C),
+                          pd_.Bumpers(GAP_L, GAP_R, law, law))
+
+
+def grazing_a_g(freq_hz: np.ndarray, gap: float) -> np.ndarray:
+    """The a_G at which the linear orbit's amplitude is ``gap``: the closed-form grazing curve."""
+    w = 2 * np.pi * np.asarray(freq_hz)
+    return gap * np.sqrt((K - M * w**2) ** 2 + (C * w) ** 2) / (M * pd_.Harmonic(1.0, 1.0).peak_m_s2)
+
+
+@pytest.fixture(scope="module")
+def damped() -> tuple:
+    osc = pd_.presets.paper_damped()
+    return osc, pd_.continuation(osc, 0.05, (1.0, 3.0))
+
+
+@pytest.fixture(scope="module")
+def upper_fold_curve(damped: tuple) -> pd_.BifurcationCurve:
+    osc, br = damped
+    fold = next(b for b in br.folds() if b.freq_hz > 1.9)
+    return pd_.bifurcation_curve(osc, fold, a_g=(0.02, 0.11), freqs_hz=(0.5, 5.0))
+
+
+def test_grazing_curve_is_the_closed_form() -> None:
+    osc = linear_with_bumpers()
+    br = pd_.continuation(osc, 0.05, (0.5, 3.0))
+    right = [b for b in br.bifurcations if b.kind == "grazing" and b.side == "right"]
+    assert len(right) == 2  # (below and above the resonance, 1.42 Hz)
+    curve = pd_.bifurcation_curve(osc, right[0], a_g=(0.02, 0.2), freqs_hz=(0.5, 3.0))
+    df = curve.to_dataframe()
+    assert curve.success and len(df) > 20, curve
+    assert np.allclose(df.a_g, grazing_a_g(df.freq_hz, GAP_R), rtol=1e-6, atol=0)
+    # it runs from edge to edge through the resonance: the other grazing is on it
+    assert curve.passes(right[1])
+    assert df.a_g.min() == pytest.approx(grazing_a_g(np.linspace(1.3, 1.5, 20001), GAP_R).min(), rel=1e-4)
+    assert (df.contacts_per_period == 0).all() and np.abs(df.test).max() < 1e-8
+
+
+def test_fold_curve_holds_the_folds_of_branches_at_other_levels(damped: tuple, upper_fold_curve) -> None:
+    osc, br = damped
+    curve = upper_fold_curve
+    assert curve.success, curve
+    df = curve.to_dataframe()
+    assert np.abs(df.critical_multiplier - 1.0).max() < 1e-6
+    # both folds of the 0.05 branch are on this one curve (through its cusp)
+    assert all(curve.passes(f) for f in br.folds() if f.freq_hz > 1.5)
+    # below the cusp the sweeps agree: the curve's lowest a_G lies between a level without and one with a jump
+    assert 0.02 < df.a_g.min() < 0.05
+    # an independent branch at another level: its folds where the curve, followed from the 0.05 folds
+    # in a box whose top edge is that level, ends (each end is solved on the edge)
+    other = pd_.continuation(osc, 0.075, (1.0, 3.5))
+    folds = sorted((f for f in other.folds() if f.freq_hz > 1.5), key=lambda f: f.freq_hz)
+    assert len(folds) == 2
+    ends = []
+    for start in (f for f in br.folds() if f.freq_hz > 1.5):
+        part = pd_.bifurcation_curve(osc, start, a_g=(0.05, 0.075), freqs_hz=(0.5, 5.0))
+        top = part.to_dataframe().query("a_g == 0.075")
+        assert part.success and len(top) == 1, part
+        ends.append(float(top.freq_hz.iloc[0]))
+    # (the lower fold sits 4e-5 Hz from a grazing: its multiplier runs from 3.2 to 0.65 between two
+    # of the branch's points; it was once reported at the nearer point, not located)
+    assert all(f.located for f in folds)
+    assert np.allclose(sorted(ends), [f.freq_hz for f in folds], rtol=1e-9, atol=0)
+
+
+def test_fold_curve_points_are_periodic_orbits_with_a_multiplier_one(upper_fold_curve) -> None:
+    curve = upper_fold_curve
+    df = curve.to_dataframe()
+    for i in np.linspace(0, len(df) - 1, 4).astype(int):
+        row = df.iloc[i]
+        orbit = pd_.periodic_orbit(curve.oscillator, pd_.Harmonic(row.a_g, row.freq_hz, phase=row.phase_rad),
+                                   guess=pd_.State(curve.states[i]), tol=1e-8)
+        # (a fold's Newton is singular: the curve's point is the orbit to the curve's tolerance)
+        assert orbit.converged and orbit.iterations == 0
+        assert np.min(np.abs(orbit.multipliers - 1.0)) < 1e-5
+
+
+def test_coexistence_map_matches_the_sweeps() -> None:
+    osc = pd_.presets.paper_damped()
+    m = pd_.coexistence_map(osc, a_g=(0.02, 0.11), freqs_hz=(1.0, 3.0), levels=[0.05, 0.075], kinds=["fold"])
+    assert len(m.branches) == 2 and len(m.matrix) == 2 * 21
+    # the 0.075 branch's upper folds are on the curve from the 0.05 branch's: followed once
+    uppers = [c for c in m.curves if c.table.freq_hz.max() > 2.0]
+    assert len(uppers) == 1
+    for level in (0.05, 0.075):
+        up, down = pd_.sweep(osc, level, np.round(np.arange(1.0, 3.0001, 0.1), 10), "up"), \
+            pd_.sweep(osc, level, np.round(np.arange(1.0, 3.0001, 0.1), 10), "down")
+        a_up, a_down = up.to_dataframe().alpha.to_numpy(), down.to_dataframe().alpha.to_numpy()[::-1]
+        rows = m.matrix[np.isclose(m.matrix.a_g, level)]
+        differ = np.abs(a_up - a_down) > 0.05 * np.maximum(a_up, a_down)
+        two = rows.stable_orbits.to_numpy() >= 2
+        assert differ.any() and np.all(two[differ]), (level, rows.freq_hz[differ & ~two].tolist())
+    ax = m.plot()
+    assert ax and len(m.to_dataframe()) == sum(len(c) for c in m.curves)
+    assert "coexisting" in repr(m)
+
+
+@pytest.mark.parametrize("kwargs, field", [
+    ({"a_g": (0.1, 0.2)}, "a_g"),
+    ({"freqs_hz": (0.5,)}, "freqs_hz"),
+    ({"freqs_hz": (-1.0, 3.0)}, "freqs_hz"),
+    ({"max_step": 2.0}, "max_step"),
+    ({"tol": 0.1}, "tol"),
+    ({"method": "guess"}, "method"),
+    ({"max_points": 1}, "max_points"),
+])
+def test_bad_arguments_are_named(damped: tuple, kwargs: dict, field: str) -> None:
+    osc, br = damped
+    with pytest.raises(pd_.InputError, match=field):
+        pd_.bifurcation_curve(osc, br.folds()[0], **kwargs)
+
+
+def test_only_folds_and_grazings_are_followed(damped: tuple) -> None:
+    osc, br = damped
+    pd = next(b for b in br.bifurcations if b.kind == "period-doubling")
+    with pytest.raises(pd_.InputError, match="one parameter only"):
+        pd_.bifurcation_curve(osc, pd)
+    with pytest.raises(pd_.InputError, match="bifurcation"):
+        pd_.bifurcation_curve(osc, "fold")
+    with pytest.raises(pd_.InputError, match="not of this system"):
+        pd_.bifurcation_curve(pd_.Oscillator(M, pd_.Isolator(slopes=(K,), breakpoints=(), damping=C)), br.folds()[0])
+    for kwargs, field in (({"levels": [0.5]}, "levels"), ({"kinds": ["period-doubling"]}, "kinds"),
+                          ({"levels": "0.05"}, "levels"), ({"freq_step_hz": 0.0}, "freq_step_hz")):
+        with pytest.raises(pd_.InputError, match=field):
+            pd_.coexistence_map(osc, **kwargs)
+
+
+def test_ctrl_c_keeps_the_curve_followed(damped: tuple, monkeypatch: pytest.MonkeyPatch) -> None:
+    osc, br = damped
+    real = _curve.CurveFollower.step
+    calls = []
+
+    def interrupted(self, *args, **kwargs):
+        calls.append(1)
+        if len(calls) > 5:
+            raise KeyboardInterrupt
+        return real(self, *args, **kwargs)
+
+    monkeypatch.setattr(_curve.CurveFollower, "step", interrupted)
+    with pytest.raises(pd_.Interrupted) as info:
+        pd_.bifurcation_curve(osc, br.folds()[-1])
+    part = info.value.partial
+    assert isinstance(part, pd_.BifurcationCurve) and part.status == pd_.Status.INTERRUPTED and len(part) >= 2
