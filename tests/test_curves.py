@@ -162,3 +162,22 @@ def test_ctrl_c_keeps_the_curve_followed(damped: tuple, monkeypatch: pytest.Monk
         pd_.bifurcation_curve(osc, br.folds()[-1])
     part = info.value.partial
     assert isinstance(part, pd_.BifurcationCurve) and part.status == pd_.Status.INTERRUPTED and len(part) >= 2
+
+
+def test_cli_coexistence_writes_the_curves_and_the_matrix(tmp_path) -> None:
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+
+    out, matrix, plot = tmp_path / "c.csv", tmp_path / "m.csv", tmp_path / "c.png"
+    res = CliRunner().invoke(app, ["coexistence", "--preset", "paper-damped", "--from", "1.5", "--to", "2.5",
+                                   "--a-g-min", "0.04", "--a-g-max", "0.06", "--levels", "0.05",
+                                   "--out", str(out), "--matrix", str(matrix), "--plot", str(plot)])
+    assert res.exit_code == 0, res.output
+    import pandas as pd
+
+    curves, counts = pd.read_csv(out), pd.read_csv(matrix)
+    assert set(curves.kind) == {"fold"} and len(counts) == 11 and counts.stable_orbits.max() == 2
+    assert plot.stat().st_size > 0 and "coexisting" in res.output
+    bad = CliRunner().invoke(app, ["coexistence", "--preset", "paper-damped", "--levels", "a,b"])
+    assert bad.exit_code != 0 and "--levels" in bad.output

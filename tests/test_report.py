@@ -16,7 +16,7 @@ from pounding.data import measured, paper_measurements
 from pounding.reports import reproduce
 
 FIGURES = ["fig04", "fig05", "fig06", "fig07", "fig08", "fig09", "fig10", "fig11", "fig14", "fig15", "fig16",
-           "fig17"]
+           "fig17", "coexistence"]
 
 
 @pytest.fixture(scope="module")
@@ -43,6 +43,9 @@ def test_reduced_report_writes_every_file(report):
     assert page.count("<img src='data:image/png;base64,") == len(FIGURES)
     assert "paper-damped (test)" in page and "[isolator]" in page and "0.02073" in page
     assert "1.96/1.80 = 1.09" in page  # the notes on the paper's inconsistencies
+    # the continued branches: one per YBs level, under the Fig. 5 sweeps; their statuses on the page
+    assert page.count("YBs branch") >= 4 and "YBs fold curve" in page
+    assert "pseudo-FRFs and branches (thin)" in page and "fold curves in (a_G, f)" in page
 
 
 def _browser():

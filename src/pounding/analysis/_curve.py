@@ -278,12 +278,20 @@ class CurveFollower:
                     pts.append(edge)
                 return "edge", False
             pts.append(q)
-            if len(pts) > 3 and np.linalg.norm(self.scaled(q)[-2:] - self.scaled(start)[-2:]) < 0.5 * ds:
+            if len(pts) > 3 and self._back_at(q, start, ds):
                 return "closed", True
             self._resection(q)
             p, p_tau = q, q.tau
             if q.iterations <= 3:
                 ds = min(ds * self.GROW, self.max_step)
+
+    def _back_at(self, q: CurvePoint, start: CurvePoint, ds: float) -> bool:
+        """Whether ``q`` is ``start`` again: the same forcing within half a step and the same orbit
+        (its extrema; the section may have moved, so not its state)."""
+        near = np.linalg.norm(self.scaled(q)[-2:] - self.scaled(start)[-2:]) < 0.5 * ds
+        size = self.fam.length_m
+        return bool(near and abs(q.run.displacement_max - start.run.displacement_max) < 1e-3 * size
+                    and abs(q.run.displacement_min - start.run.displacement_min) < 1e-3 * size)
 
     def _resection(self, q: CurvePoint) -> None:
         """Move the section away from an event within ``MARGIN`` periods of it (as the branch

@@ -117,6 +117,9 @@ class CoexistenceMap:
     matrix : DataFrame
         The test matrix: ``a_g``, ``freq_hz``, ``stable_orbits`` (stable period-1 orbits on the
         level's branch at that frequency; 2 or more: the response depends on the history).
+    notes : tuple of str
+        The bifurcations not followed, and why (e.g. a branch that turns at a grazing, where no
+        multiplier is 1).
     """
 
     oscillator: "Oscillator" = field(repr=False)
@@ -126,6 +129,7 @@ class CoexistenceMap:
     branches: tuple["Branch", ...] = field(repr=False)
     curves: tuple[BifurcationCurve, ...] = field(repr=False)
     matrix: pd.DataFrame = field(repr=False)
+    notes: tuple[str, ...] = ()
 
     def to_dataframe(self) -> pd.DataFrame:
         """The curves' points, one row each, with ``curve`` (its index), ``kind`` and ``side``."""

@@ -127,7 +127,7 @@ def coexistence_map(
     freq_step_hz: float = 0.1,
     kinds: Sequence[str] = CURVE_KINDS,
     max_step: float = 0.02,
-    max_points: int = 2000,
+    max_points: int = 500,
     tol: float = 1e-9,
     method: str = "auto",
 ) -> CoexistenceMap:
@@ -190,21 +190,27 @@ def coexistence_map(
     freqs = np.round(np.arange(f_box[0], f_box[1] + 1e-9 * step, step), 10)
     branches: list[Branch] = []
     curves: list[BifurcationCurve] = []
+    notes: list[str] = []
     try:
         for level in levels:
             br = continuation(oscillator, level, f_box, max_step=max_step, method=method)
             branches.append(br)
             for bif in br.bifurcations:
                 if bif.kind in kinds and not any(c.passes(bif) for c in curves):
-                    curves.append(bifurcation_curve(oscillator, bif, a_g=a_box, freqs_hz=f_box, tol=tol,
-                                                    max_step=max_step, max_points=max_points, method=method))
+                    try:
+                        curves.append(bifurcation_curve(oscillator, bif, a_g=a_box, freqs_hz=f_box, tol=tol,
+                                                        max_step=max_step, max_points=max_points, method=method))
+                    except InputError as exc:  # (a fold where the branch turns at a grazing: no multiplier 1)
+                        notes.append(f"the {bif.kind} at {bif.freq_hz:.6g} Hz, a_G {bif.a_g:g} was not followed: "
+                                     f"{exc}")
     except Interrupted as exc:
         if isinstance(exc.partial, BifurcationCurve):
             curves.append(exc.partial)
         raise Interrupted(CoexistenceMap(oscillator, a_box, f_box, tuple(levels), tuple(branches), tuple(curves),
-                                         stable_counts(branches, freqs)), len(curves), None, "curves") from None
+                                         stable_counts(branches, freqs), tuple(notes)), len(curves), None,
+                          "curves") from None
     return CoexistenceMap(oscillator, a_box, f_box, tuple(levels), tuple(branches), tuple(curves),
-                          stable_counts(branches, freqs))
+                          stable_counts(branches, freqs), tuple(notes))
 
 
 # ---------------------------------------------------------------------- pieces

@@ -80,3 +80,71 @@ def continue_branch(
                     + (" and the files written" if any(paths.values()) or plot else ""))
     if not branch.success:
         raise typer.Exit(code=1)
+
+
+@command("coexistence")
+def coexistence(
+    system_file: Optional[Path] = typer.Argument(
+        None, metavar="SYSTEM.toml", help="System TOML (see examples/). Omit to use --preset."),
+    a_g_min: float = typer.Option(0.02, "--a-g-min", help="The map's lowest a_G, g."),
+    a_g_max: float = typer.Option(0.12, "--a-g-max", help="Its highest a_G, g."),
+    start: float = typer.Option(0.5, "--from", help="Its lowest frequency, Hz."),
+    end: float = typer.Option(5.0, "--to", help="Its highest frequency, Hz."),
+    levels: Optional[str] = typer.Option(None, "--levels", help="The branches' a_G, comma-separated (default: "
+                                         "the paper's 0.03, 0.05, 0.075, 0.1 within the range)."),
+    grazings: bool = typer.Option(False, "--grazings", help="Also follow the grazings (contacts appearing)."),
+    preset: Optional[str] = OPT_PRESET,
+    no_bumpers: bool = OPT_NO_BUMPERS,
+    out: Optional[Path] = typer.Option(None, "--out", help="Write the curves' points (CSV)."),
+    matrix: Optional[Path] = typer.Option(None, "--matrix", help="Write the test matrix's counts of stable "
+                                          "responses (CSV)."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Draw the curves over the test matrix (PNG, PDF...)."),
+) -> None:
+    """Where two responses coexist (where up and down sweeps must differ): branches at a_G levels,
+    their folds followed in (a_G, f), and the test matrix's points with two stable responses."""
+    from ..analysis.curves import coexistence_map
+
+    paths = files(out=(out, CSV), matrix=(matrix, CSV))
+    plot = figure_path("--plot", plot)
+    chosen = None
+    if levels is not None:
+        try:
+            chosen = [float(v) for v in levels.split(",") if v.strip()]
+        except ValueError:
+            raise typer.BadParameter(f"--levels {levels!r}: give numbers separated by commas, e.g. 0.03,0.05")
+    osc = system(system_file, preset, bumpers=not no_bumpers)
+    compile_notice()
+    complete = True
+    kinds = ("fold", "grazing") if grazings else ("fold",)
+    with console.status(f"branches and {' and '.join(kinds)} curves, a_G {a_g_min:g} to {a_g_max:g} ..."):
+        try:
+            cmap = coexistence_map(osc, a_g=(a_g_min, a_g_max), freqs_hz=(start, end), levels=chosen, kinds=kinds)
+        except Interrupted as stop:
+            cmap, complete = stop.partial, False
+    table, add = kv_table(f"{system_file or preset}: a_G {a_g_min:g}-{a_g_max:g}, {start:g}-{end:g} Hz")
+    for br in cmap.branches:
+        add(f"branch a_G = {br.a_g:g}", f"{len(br)} orbits, folds at "
+            + (", ".join(f"{b.freq_hz:.4g}" for b in br.folds()) or "none") + f" Hz ({br.status.name})")
+    for i, c in enumerate(cmap.curves):
+        df = c.to_dataframe()
+        add(f"curve {i}: {c.kind}{' ' + c.side if c.side else ''}",
+            f"{len(c)} points, a_G {df.a_g.min():.4g}-{df.a_g.max():.4g}; {c.status.name}: {c.message}")
+    for note in cmap.notes:
+        add("not followed", note)
+    both = cmap.coexisting()
+    add("coexisting", f"{len(both)} of {len(cmap.matrix)} test points"
+        + (": " + "; ".join(f"a_G {a:g}: {g.freq_hz.min():g}-{g.freq_hz.max():g} Hz"
+                            for a, g in both.groupby("a_g")) if len(both) else ""))
+    console.print(table)
+    with interrupts_deferred() as held:
+        if paths["out"] is not None:
+            write_csv(cmap.to_dataframe(), paths["out"])
+            console.print(f"curves -> {paths['out']}")
+        if paths["matrix"] is not None:
+            write_csv(cmap.matrix, paths["matrix"])
+            console.print(f"test matrix -> {paths['matrix']}")
+        if plot is not None:
+            save_figure(lambda: cmap.plot(), plot)
+    if not complete or held:
+        interrupted(f"{len(cmap.curves)} curves followed; they are in the summary"
+                    + (" and the files written" if any(paths.values()) or plot else ""))

@@ -15,6 +15,7 @@ from ..model import Oscillator
 from ..protocols import CampaignResult, campaign
 from ..protocols._progress import Progress
 from .compare import comparison, inconsistency_notes
+from .branches import add_branches, coexistence_of, continuation_statuses, fig_coexistence
 from .figures import paper_figures
 from .._io import atomic_write, output_dir
 from .html import write_page
@@ -106,8 +107,13 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
     tables = {t: out / ("targets.csv" if t == "targets" else f"table{t}.csv") for t in comparisons}
     for t, df in comparisons.items():
         atomic_write(tables[t], lambda tmp, df=df: df.to_csv(tmp, index=False))
+    cmap, why_not = coexistence_of(result, ybs_system)
+    made = paper_figures(result)
+    if cmap is not None:
+        add_branches(made["fig05"], cmap, float(result.dataset.attrs["f_ref_hz"]))
+        made["coexistence"] = fig_coexistence(cmap)
     figures, captions = {}, {}
-    for name, fig in paper_figures(result).items():
+    for name, fig in made.items():
         figures[name] = out / f"{name}.png"
         captions[name] = fig.get_suptitle()
         atomic_write(figures[name], lambda tmp, fig=fig: fig.savefig(tmp, dpi=110))
@@ -121,6 +127,7 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
     statuses = pd.DataFrame([{"configuration": c, "a_g": a, "direction": d, "steps": sw.steps_done,
                               "not steady": int((~sw.to_dataframe()["steady"]).sum()), "message": sw.message}
                              for (c, a, d), sw in result.sweeps.items()])
+    statuses = pd.concat([statuses, continuation_statuses(cmap, why_not)], ignore_index=True)
     systems = {k.removeprefix("system_"): v for k, v in ds.attrs.items() if k.startswith("system_")}
     index = write_page(
         out / "index.html", title="pounding: the paper's tables and figures, model beside measurement",

@@ -1,0 +1,80 @@
+"""The report's continued branches: the YBs system's period-1 branches at the campaign's a_G
+levels under the Fig. 5 sweeps, and the fold curves in (a_G, f) over the test matrix."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Optional
+
+import numpy as np
+import pandas as pd
+
+from .._errors import InputError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from matplotlib.figure import Figure
+
+    from ..analysis import CoexistenceMap
+    from ..model import Oscillator
+    from ..protocols import CampaignResult
+
+
+def coexistence_of(result: "CampaignResult", ybs_system: "Oscillator") -> tuple[Optional["CoexistenceMap"], str]:
+    """The YBs system's coexistence map over the campaign's frequencies and YBs levels (folds only),
+    or None and why not."""
+    from ..analysis import coexistence_map
+
+    ds = result.dataset
+    levels = sorted({float(a) for (conf, a, _d) in result.sweeps if conf == "YBs"})
+    freqs = np.asarray(ds.freq_hz, dtype=float)
+    if not levels or freqs.size < 2:
+        return None, "no YBs sweeps"
+    step = float(np.min(np.diff(np.sort(freqs))))
+    try:
+        cmap = coexistence_map(ybs_system, a_g=(0.5 * min(levels), 1.1 * max(levels)),
+                               freqs_hz=(float(freqs.min()), float(freqs.max())), levels=levels,
+                               freq_step_hz=step, kinds=("fold",))
+    except InputError as exc:
+        return None, f"not continued: {exc}"
+    return cmap, ""
+
+
+def add_branches(fig: "Figure", cmap: "CoexistenceMap", f_ref_hz: float) -> None:
+    """Each level's branch on the Fig. 5 analogue's panels (alpha, eta against nu), thin, in the
+    level's colour: stable solid, unstable dashed."""
+    ax_alpha, ax_eta = fig.axes[0], fig.axes[1]
+    for i, br in enumerate(sorted(cmap.branches, key=lambda b: b.a_g)):
+        df = br.to_dataframe()
+        nu = df["freq_hz"].to_numpy(float) / f_ref_hz
+        stable = df["stable"].to_numpy(bool)
+        for ax, y in ((ax_alpha, "alpha"), (ax_eta, "eta")):
+            vals = df[y].to_numpy(float)
+            for want, style in ((True, "-"), (False, "--")):
+                shown = np.where(stable == want, vals, np.nan)
+                ax.plot(nu, shown, style, color=f"C{i}", lw=0.6, alpha=0.8,
+                        label=(f"branch a_G = {br.a_g:g} ({'stable' if want else 'unstable'})"
+                               if ax is ax_alpha and i == 0 else None))
+    ax_alpha.legend(fontsize="x-small", ncol=2)
+    fig.suptitle(fig.get_suptitle().replace("pseudo-FRFs", "pseudo-FRFs and branches (thin)"))
+
+
+def fig_coexistence(cmap: "CoexistenceMap") -> "Figure":
+    import matplotlib.pyplot as plt
+
+    fig, ax = plt.subplots(figsize=(6.5, 4.2), constrained_layout=True)
+    cmap.plot(ax=ax)
+    fig.suptitle("YBs: fold curves in (a_G, f), the test matrix")
+    return fig
+
+
+def continuation_statuses(cmap: Optional["CoexistenceMap"], why_not: str) -> pd.DataFrame:
+    """Rows for the report's status table: each branch and fold curve, how it ended."""
+    if cmap is None:
+        return pd.DataFrame([{"configuration": "YBs branches", "a_g": np.nan, "direction": "continued",
+                              "steps": 0, "not steady": 0, "message": why_not}])
+    rows = [{"configuration": "YBs branch", "a_g": br.a_g, "direction": "continued", "steps": len(br),
+             "not steady": 0, "message": f"{br.status.name}: {br.message}"} for br in cmap.branches]
+    rows += [{"configuration": "YBs fold curve", "a_g": np.nan, "direction": "(a_G, f)", "steps": len(c),
+              "not steady": 0, "message": f"{c.status.name}: {c.message}"} for c in cmap.curves]
+    rows += [{"configuration": "YBs fold", "a_g": np.nan, "direction": "", "steps": 0, "not steady": 0,
+              "message": note} for note in cmap.notes]
+    return pd.DataFrame(rows)
