@@ -181,3 +181,30 @@ def test_cli_coexistence_writes_the_curves_and_the_matrix(tmp_path) -> None:
     assert plot.stat().st_size > 0 and "coexisting" in res.output
     bad = CliRunner().invoke(app, ["coexistence", "--preset", "paper-damped", "--levels", "a,b"])
     assert bad.exit_code != 0 and "--levels" in bad.output
+
+
+def test_a_curve_from_either_fold_of_a_level_is_the_same_curve_through_its_cusp() -> None:
+    """(Once, a section moved while following one direction was kept for the other, whose first step
+    then failed; and a curve whose steps are mostly in the orbit's state was taken as closed after
+    four points.)  From each fold of the 0.0285 and 0.03 branches: one curve, edge to edge."""
+    osc = pd_.presets.paper_damped()
+    for level in (0.0285, 0.03):
+        br = pd_.continuation(osc, level, (1.0, 3.0))
+        lower = min((f for f in br.folds() if f.freq_hz > 1.3), key=lambda f: f.freq_hz)
+        curve = pd_.bifurcation_curve(osc, lower, a_g=(0.02, 0.11), freqs_hz=(0.5, 5.0))
+        df = curve.to_dataframe()
+        assert curve.success and "edge" in curve.message, curve
+        assert df.a_g.min() == pytest.approx(0.028193, abs=2e-6)  # the cusp
+        assert np.isclose(df.a_g.iloc[[0, -1]], 0.11, rtol=0, atol=1e-12).all()  # (both legs end on the top edge)
+
+
+@pytest.mark.parametrize("kwargs, field", [
+    ({"kinds": 5}, "kinds"), ({"kinds": None}, "kinds"), ({"kinds": []}, "kinds"),
+    ({"levels": np.array(0.05)}, "levels"), ({"levels": [0.05, 0.05]}, "levels"),
+    ({"a_g": {1: 2, 3: 4}}, "a_g"), ({"freqs_hz": (1.0, 2.0, 3.0)}, "freqs_hz"),
+    ({"freq_step_hz": 1e-12}, "freq_step_hz"), ({"a_g": (0.02, float("nan"))}, "a_g"),
+    ({"levels": [0.05, float("inf")]}, "levels"),
+])
+def test_coexistence_map_names_bad_input(kwargs: dict, field: str) -> None:
+    with pytest.raises(pd_.InputError, match=field):
+        pd_.coexistence_map(pd_.presets.paper_damped(), **kwargs)

@@ -113,7 +113,7 @@ class Family:
         if sh is None:
             osc, exc = self.system(p)
             sh = _Shooter(osc, exc, self.k / exc.freq_hz, self.exact)
-            if len(self._cache) > 8:
+            if len(self._cache) > 32:
                 self._cache.clear()
             self._cache[key] = sh
         sh.scale_d = self.length_m
@@ -242,10 +242,13 @@ class Family:
 
 
 def fold_test(mult: np.ndarray) -> float:
-    """The fold's test function: the real part of the multiplier nearest 1, minus 1 (0 at a
-    smooth fold; NaN without multipliers)."""
+    """The fold's test function: the real part of the multiplier nearest 1, minus 1, among the
+    real multipliers when there are any (a complex pair of real part 1 is no fold); 0 at a smooth
+    fold, NaN without multipliers."""
     if mult.size == 0:
         return float("nan")
+    real = mult[np.abs(mult.imag) <= 1e-9 * np.maximum(np.abs(mult), 1.0)]
+    mult = real if real.size else mult
     return float(mult[int(np.argmin(np.abs(mult - 1.0)))].real - 1.0)
 
 

@@ -65,6 +65,7 @@ class CurveFollower:
         self.tol, self.max_step, self.max_points = tol, max_step, max_points
         self.gtol = max(100.0 * tol, 1e-8) if kind == "fold" else tol
         self.count = 0  # points solved (for the budget)
+        self.far = False
         self.status, self.message = Status.SUCCESS, ""
 
     # ---- the equations
@@ -97,7 +98,10 @@ class CurveFollower:
         if self.kind != "fold":
             return self.test(run, np.zeros((0, 0)))
         sh = fam.shooter(f)
-        return self.test(run, sh.jacobian(vec, run, sh.frozen(vec, run)))
+        jac = sh.jacobian(vec, run, sh.frozen(vec, run))
+        if not np.isfinite(jac).all():
+            raise _Failed("the monodromy is not finite")
+        return self.test(run, jac)
 
     def extended(self, e: CurvePoint) -> np.ndarray:
         """The scaled Jacobian of ``(P - x, g)`` in ``(w, f, a)``, shape (r + 1, r + 2)."""
@@ -150,7 +154,7 @@ class CurveFollower:
         try:
             t = np.linalg.solve(a, rhs)
         except np.linalg.LinAlgError:
-            t = np.linalg.svd(e.ext)[2][-1]
+            t = np.linalg.svd(e.ext)[2][-1]  # (SVD of a finite matrix converges)
         tau = self._full(e, t)
         tau /= np.linalg.norm(tau)
         return tau if tau @ prev >= 0.0 else -tau
@@ -160,7 +164,7 @@ class CurveFollower:
                 chord: Optional[CurvePoint] = None, max_iter: int = 12) -> Optional[CurvePoint]:
         """Newton from ``(vec, f, a)`` onto the curve in the hyperplane through ``target`` normal to
         ``tau`` (both full scaled).  None where it fails."""
-        ext, key, last = None, None, math.inf
+        ext, key, last, fresh = None, None, math.inf, False
         for it in range(max_iter):
             self.count += 1
             try:
@@ -172,19 +176,20 @@ class CurveFollower:
             if not math.isfinite(err):
                 return None
             here = (tuple(e.free), e.frozen)
-            if err <= 1.0:
+            if err <= 1.0:  # (the tangent there needs a Jacobian of this point or the step before it)
                 try:
-                    e.ext = ext if ext is not None and key == here and it <= 1 else self.extended(e)
-                except (_Failed, InputError):
+                    e.ext = ext if fresh and key == here and it <= 1 else self.extended(e)
+                except (_Failed, InputError, np.linalg.LinAlgError):
                     return None
                 e.iterations = it
                 return e
+            fresh = False
             if chord is not None and ext is None and (tuple(chord.free), chord.frozen) == here:
                 ext, key = chord.ext, here
             if ext is None or key != here or err > 0.5 * last:
                 try:
-                    ext, key = self.extended(e), here
-                except (_Failed, InputError):
+                    ext, key, fresh = self.extended(e), here, True
+                except (_Failed, InputError, np.linalg.LinAlgError):
                     return None
             last = err
             try:
@@ -221,12 +226,14 @@ class CurveFollower:
 
     def on_edge(self, p: CurvePoint, q: CurvePoint) -> Optional[CurvePoint]:
         """The curve where it leaves the box between ``p`` (inside) and ``q`` (outside): solved with
-        the edge's value held."""
+        the edge's value held (``p`` itself when it is on the edge; None where it cannot be solved)."""
         sp, sq = self.scaled(p), self.scaled(q)
         best = None
         for i, box, scale in ((-2, self.f_box, self.fs), (-1, self.a_box, self.as_)):
             for edge in box:
                 e = edge / scale
+                if sp[i] == e and sq[i] != e:  # (p is on the edge: the curve leaves there)
+                    return p
                 if (sp[i] - e) * (sq[i] - e) < 0.0:
                     frac = (e - sp[i]) / (sq[i] - sp[i])
                     if best is None or frac < best[0]:
@@ -245,8 +252,9 @@ class CurveFollower:
         target = guess.copy()
         target[i] = e
         out = self.correct(vec, guess[-2] * self.fs, guess[-1] * self.as_, target, normal, max_iter=20)
-        if out is not None:
-            out.tau = self.tangent(out, p.tau)
+        if out is None or not self.inside(out):  # (at a corner the other coordinate may be out)
+            return None
+        out.tau = self.tangent(out, p.tau)
         return out
 
     def inside(self, q: CurvePoint) -> bool:
@@ -257,10 +265,14 @@ class CurveFollower:
     # ---- following
     def follow(self, start: CurvePoint, sign: float, budget: int, pts: list[CurvePoint]) -> tuple[str, bool]:
         """Points from ``start`` (excluded) along ``sign * start.tau``, appended to ``pts`` as they
-        come: (how it ended, whether the curve closed on ``start``)."""
+        come: (how it ended, whether the curve closed on ``start``).  The family is put back to the
+        start's section and a_G first (a resection in the other direction moved it)."""
+        self.fam.set_phase(start.phase)
+        self.fam.a_g = start.a
         p = start
         p_tau = sign * start.tau
         ds = self.max_step / 4.0
+        self.far = False  # whether the curve has been well away from start (a closed curve returns)
         while True:
             if len(pts) >= budget:
                 return "budget", False
@@ -270,32 +282,64 @@ class CurveFollower:
                 ds *= self.SHRINK
                 if ds < self.MIN_STEP:
                     return (f"the corrector failed at freq_hz = {p.f:.8g}, a_g = {p.a:.8g} even with the smallest "
-                                 "step (a non-smooth point: a contact appearing or vanishing on the curve)"), False
+                            "step (a non-smooth point: a contact appearing or vanishing on the curve)"), False
                 continue
             if not self.inside(q):
                 edge = self.on_edge(p, q)
-                if edge is not None:
+                if edge is None:
+                    return (f"the curve leaves the box after freq_hz = {p.f:.8g}, a_g = {p.a:.8g}, but was not "
+                            "solved on its edge"), False
+                if edge is not p:
                     pts.append(edge)
                 return "edge", False
             pts.append(q)
-            if len(pts) > 3 and self._back_at(q, start, ds):
+            if self._closed(start, p, q, ds):
                 return "closed", True
-            self._resection(q)
+            self._resection(q, p)
             p, p_tau = q, q.tau
             if q.iterations <= 3:
                 ds = min(ds * self.GROW, self.max_step)
 
-    def _back_at(self, q: CurvePoint, start: CurvePoint, ds: float) -> bool:
-        """Whether ``q`` is ``start`` again: the same forcing within half a step and the same orbit
-        (its extrema; the section may have moved, so not its state)."""
-        near = np.linalg.norm(self.scaled(q)[-2:] - self.scaled(start)[-2:]) < 0.5 * ds
+    def _signature(self, q: CurvePoint) -> np.ndarray:
+        """What does not depend on the section: the forcing and the orbit's extrema, scaled."""
         size = self.fam.length_m
-        return bool(near and abs(q.run.displacement_max - start.run.displacement_max) < 1e-3 * size
-                    and abs(q.run.displacement_min - start.run.displacement_min) < 1e-3 * size)
+        return np.array([q.f / self.fs, q.a / self.as_, q.run.displacement_max / size, q.run.displacement_min / size])
 
-    def _resection(self, q: CurvePoint) -> None:
+    def _closed(self, start: CurvePoint, p: CurvePoint, q: CurvePoint, ds: float) -> bool:
+        """Whether the step from ``p`` to ``q`` passed by ``start`` again, once the curve had been
+        well away from it (more than two largest steps, in the signature's units)."""
+        anchor = self._signature(start)
+        u, v = self._signature(p), self._signature(q)
+        if not self.far:
+            self.far = bool(np.linalg.norm(v - anchor) > 2.0 * self.max_step)
+            return False
+        seg = v - u
+        t = float(np.clip((anchor - u) @ seg / max(seg @ seg, 1e-300), 0.0, 1.0))
+        return float(np.linalg.norm(u + t * seg - anchor)) < 0.05 * max(ds, self.MIN_STEP)
+
+    def _at_phase(self, pt: CurvePoint, phase: float) -> Optional[CurvePoint]:
+        """``pt``'s orbit with its section at forcing angle ``phase`` (the family's section is set
+        there), solved with its frequency held."""
+        fam = self.fam
+        fam.a_g = pt.a
+        sh = fam.shooter(pt.f)
+        dt = ((phase - pt.phase) % (2.0 * math.pi)) / sh.exc.omega_rad_s
+        try:
+            end = type(sh)(sh.osc, sh.exc, dt, False)._image(pt.vec)[0] if dt > 0 else pt.vec
+        except _Failed:
+            return None
+        fam.set_phase(phase)
+        moved = at_section(end)
+        normal = np.zeros(fam.n + 2)
+        normal[-2] = 1.0  # (f held; a_G follows from g = 0 and the orbit's equations)
+        target = np.concatenate((fam.coords(moved) / fam.scales, [pt.f / self.fs, pt.a / self.as_]))
+        new = self.correct(moved, pt.f, pt.a, target, normal, max_iter=20)
+        return new if new is not None and abs(new.a - pt.a) <= 1e-6 * self.as_ else None
+
+    def _resection(self, q: CurvePoint, p: CurvePoint) -> None:
         """Move the section away from an event within ``MARGIN`` periods of it (as the branch
-        follower does); the point is solved again there, its tangent carried over."""
+        follower does): ``q`` solved again there, its tangent oriented by the secant from ``p``
+        moved there too (near a cusp the tangent's (f, a_G) part nearly vanishes: it cannot)."""
         fam = self.fam
         fam.a_g = q.a
         period = fam.shooter(q.f).period
@@ -305,20 +349,14 @@ class CurveFollower:
         cyc = np.concatenate((times, [times[0] + period]))
         i = int(np.argmax(np.diff(cyc)))
         dt = 0.5 * (cyc[i] + cyc[i + 1]) % period
-        sh = fam.shooter(q.f)
-        try:
-            end, _ = type(sh)(sh.osc, sh.exc, dt, False)._image(q.vec) if dt > 0 else (q.vec, None)
-        except _Failed:
-            return
-        old_phase, old_scaled, old_tau = fam.phase, self.scaled(q), q.tau
-        fam.set_phase(fam.phase + fam.omega(q.f) * dt)
-        moved = at_section(end)
-        normal = np.zeros(old_tau.size)
-        normal[-2] = 1.0  # (f held; a is held by g = 0 and the orbit's equations)
-        new = self.correct(moved, q.f, q.a, np.concatenate((self.fam.coords(moved) / fam.scales, old_scaled[-2:])),
-                           normal, max_iter=20)
-        if new is None or abs(new.a - q.a) > 1e-6 * self.as_:
+        old_phase = fam.phase
+        new_phase = (old_phase + fam.omega(q.f) * dt) % (2.0 * math.pi)
+        moved_p = self._at_phase(p, new_phase)
+        fam.set_phase(old_phase)
+        moved_q = self._at_phase(q, new_phase) if moved_p is not None else None
+        if moved_q is None:
             fam.set_phase(old_phase)
             return
-        new.tau = self.tangent(new, np.concatenate((np.zeros(old_tau.size - 2), old_tau[-2:])))
-        q.__dict__.update(new.__dict__)
+        secant = self.scaled(moved_q) - self.scaled(moved_p)
+        moved_q.tau = self.tangent(moved_q, secant / max(float(np.linalg.norm(secant)), 1e-300))
+        q.__dict__.update(moved_q.__dict__)

@@ -400,7 +400,7 @@ class Follower:
         peak = abs(exc.peak_m_s2)
         return Bifurcation(kind, pt.p, exc.freq_hz, exc.a_g, pt.mult.copy(), State(pt.vec), len(self.points), side,
                            direction, fam.k, pt.run.abs_acceleration_max / peak if peak > 0 else math.nan, located,
-                           pt.phase, tangent)
+                           pt.phase, tangent, fam.parameter)
 
     # ---- the result
     def branch(self, oscillator: Oscillator, values: tuple, status: Status, message: str) -> Branch:

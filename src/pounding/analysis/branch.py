@@ -64,6 +64,8 @@ class Bifurcation:
         The forcing's angle at the section where ``state`` is, rad.
     tangent : ndarray
         The branch's tangent there: the coordinates' parts (unscaled), then the parameter's.
+    parameter : str
+        The parameter of the branch it is on (``"freq_hz"``, ``"a_g"`` or a dotted name).
     """
 
     kind: str
@@ -80,6 +82,7 @@ class Bifurcation:
     located: bool = True
     phase_rad: float = 0.0
     tangent: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    parameter: str = ""
 
     def to_series(self) -> pd.Series:
         return pd.Series({"kind": self.kind, "side": self.side, "value": self.value, "freq_hz": self.freq_hz,

@@ -14,7 +14,7 @@ from .._errors import Status
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..model import Oscillator
-    from ._curve import CurveFollower, CurvePoint
+    from ._curve import CurvePoint
     from .branch import Bifurcation, Branch
 
 CURVE_COLUMNS = ("freq_hz", "a_g", "alpha", "excursion_m", "displacement_max_m", "displacement_min_m",
@@ -155,7 +155,7 @@ class CoexistenceMap:
                 "test points with coexisting responses)")
 
 
-def curve_table(cf: "CurveFollower", pts: Sequence["CurvePoint"]) -> tuple[pd.DataFrame, np.ndarray]:
+def curve_table(pts: Sequence["CurvePoint"]) -> tuple[pd.DataFrame, np.ndarray]:
     rows = []
     for p in pts:
         run = p.run

@@ -4,6 +4,7 @@ responses coexist (:func:`bifurcation_curve`, :func:`coexistence_map`)."""
 from __future__ import annotations
 
 import math
+from collections.abc import Mapping
 from typing import Any, Optional, Sequence
 
 import numpy as np
@@ -13,6 +14,7 @@ from .._errors import InputError, Interrupted, Problem, Status
 from ..engine.simulate import check_oscillator, check_state, short_run
 from ..excitation import Harmonic
 from ..model import Oscillator
+from ..protocols.campaign import PAPER_YBS_A_G
 from . import _hybrid as hy
 from ._arclength import Family
 from ._curve import CurveFollower, CurvePoint
@@ -22,7 +24,7 @@ from .curve_result import BifurcationCurve, CoexistenceMap, curve_table, stable_
 from .periodic import METHODS
 
 CURVE_KINDS = ("fold", "grazing")
-PAPER_A_G = (0.03, 0.05, 0.075, 0.1)  # the paper's YBs levels (protocols.campaign.PAPER_YBS_A_G)
+MAX_TEST_FREQS = 100_000  # the test matrix's frequencies at most
 
 
 def bifurcation_curve(
@@ -89,7 +91,9 @@ def bifurcation_curve(
     if bifurcation.kind not in CURVE_KINDS:
         raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind, why="is followed in one parameter only",
                          fix="pass a fold or a grazing (Branch.folds(), or kind 'grazing' in Branch.bifurcations)")
-    if not any(math.isclose(bifurcation.value, v, rel_tol=1e-12) for v in (bifurcation.freq_hz, bifurcation.a_g)):
+    on_forcing = (bifurcation.parameter in ("freq_hz", "a_g") if bifurcation.parameter else
+                  any(math.isclose(bifurcation.value, v, rel_tol=1e-12) for v in (bifurcation.freq_hz, bifurcation.a_g)))
+    if not on_forcing:
         raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind, why="is on a branch in a number of the "
                          "system, not in the forcing", fix="continue the branch in 'freq_hz' or 'a_g' and pass its "
                          "bifurcation")
@@ -105,14 +109,15 @@ def bifurcation_curve(
             raise InputError(Problem.OUT_OF_RANGE, name, box, range=f"a range holding {v:g}",
                              hint=" (the bifurcation's own value)")
     tol, max_step, max_points, exact = _common(oscillator, tol, max_step, max_points, method)
-    follower = _follower(oscillator, bifurcation, f_box, a_box, tol, max_step, max_points, exact)
     pts: list[CurvePoint] = []
+    follower = None
     try:
         with hy.one_blas_thread():
+            follower = _follower(oscillator, bifurcation, f_box, a_box, tol, max_step, max_points, exact)
             start = _start(follower, bifurcation)
             pts = [start]
             status, message = _follow(follower, start, pts, max_points)
-    except KeyboardInterrupt:
+    except (KeyboardInterrupt, Interrupted):
         raise Interrupted(_result(oscillator, bifurcation, follower, pts, f_box, a_box, Status.INTERRUPTED,
                                   "interrupted"), len(pts), None, "points") from None
     return _result(oscillator, bifurcation, follower, pts, f_box, a_box, status, message)
@@ -149,7 +154,14 @@ def coexistence_map(
     kinds : sequence of {"fold", "grazing"}
         The bifurcations followed.
     max_step, max_points, tol, method
-        As in :func:`bifurcation_curve` (``max_points`` per curve).
+        As in :func:`bifurcation_curve` (``max_points`` per curve); ``max_step`` and ``method``
+        are also the branches' (:func:`continuation`).
+
+    Raises
+    ------
+    Interrupted
+        On Ctrl-C; ``.partial`` is the map of the branches and curves finished (and the one under
+        way, cut short).
 
     Returns
     -------
@@ -169,23 +181,26 @@ def coexistence_map(
     a_box = _box("a_g", a_g, "g")
     f_box = _box("freqs_hz", freqs_hz, "Hz")
     if levels is None:
-        levels = [v for v in PAPER_A_G if a_box[0] <= v <= a_box[1]] or list(np.linspace(*a_box, 4))
-    if isinstance(levels, (str, bytes)) or not hasattr(levels, "__len__") or len(levels) == 0:
-        raise InputError(Problem.WRONG_TYPE, "levels", levels, got=type(levels).__name__,
-                         expected="a non-empty sequence of a_G values, g")
+        levels = [v for v in PAPER_YBS_A_G if a_box[0] <= v <= a_box[1]] or list(np.linspace(*a_box, 4))
+    levels = _sequence("levels", levels, "a_G values, g")
     levels = [real(f"levels[{i}]", v) for i, v in enumerate(levels)]
     for i, v in enumerate(levels):
         if not a_box[0] <= v <= a_box[1]:
             raise InputError(Problem.OUT_OF_RANGE, f"levels[{i}]", v, range=f"[{a_box[0]:g}, {a_box[1]:g}]",
                              hint=" (the map's a_g range)")
+        if v in levels[:i]:
+            raise InputError(Problem.BAD_STATE, f"levels[{i}]", v, why="repeats a level",
+                             fix="give each a_G once")
     step = real("freq_step_hz", freq_step_hz)
-    if not 0.0 < step <= f_box[1] - f_box[0]:
-        raise InputError(Problem.OUT_OF_RANGE, "freq_step_hz", step, range=f"(0, {f_box[1] - f_box[0]:g}]",
-                         hint=" (the test matrix's frequency step)")
-    if isinstance(kinds, str) or not all(isinstance(k, str) for k in kinds):
+    width = f_box[1] - f_box[0]
+    if not width / MAX_TEST_FREQS <= step <= width:
+        raise InputError(Problem.OUT_OF_RANGE, "freq_step_hz", step, range=f"[{width / MAX_TEST_FREQS:g}, {width:g}]",
+                         hint=f" (the test matrix's frequency step: at most {MAX_TEST_FREQS} frequencies)")
+    kinds = _sequence("kinds", kinds, "'fold' and/or 'grazing'")
+    if not all(isinstance(k, str) for k in kinds):
         raise InputError(Problem.WRONG_TYPE, "kinds", kinds, got=type(kinds).__name__,
                          expected="a sequence of 'fold', 'grazing'")
-    kinds = tuple(one_of("kinds", k, CURVE_KINDS) for k in kinds)
+    kinds = tuple(dict.fromkeys(one_of("kinds", k, CURVE_KINDS) for k in kinds))
     tol, max_step, max_points, _ = _common(oscillator, tol, max_step, max_points, method)
     freqs = np.round(np.arange(f_box[0], f_box[1] + 1e-9 * step, step), 10)
     branches: list[Branch] = []
@@ -203,9 +218,12 @@ def coexistence_map(
                     except InputError as exc:  # (a fold where the branch turns at a grazing: no multiplier 1)
                         notes.append(f"the {bif.kind} at {bif.freq_hz:.6g} Hz, a_G {bif.a_g:g} was not followed: "
                                      f"{exc}")
-    except Interrupted as exc:
-        if isinstance(exc.partial, BifurcationCurve):
-            curves.append(exc.partial)
+    except (Interrupted, KeyboardInterrupt) as exc:
+        partial = getattr(exc, "partial", None)
+        if isinstance(partial, BifurcationCurve):
+            curves.append(partial)
+        elif isinstance(partial, Branch):
+            branches.append(partial)
         raise Interrupted(CoexistenceMap(oscillator, a_box, f_box, tuple(levels), tuple(branches), tuple(curves),
                                          stable_counts(branches, freqs), tuple(notes)), len(curves), None,
                           "curves") from None
@@ -214,9 +232,24 @@ def coexistence_map(
 
 
 # ---------------------------------------------------------------------- pieces
+def _sequence(field: str, value: Any, what: str) -> list:
+    """A non-empty list, or an InputError naming ``field`` (a string, a mapping, a scalar or a 0-d
+    array is none)."""
+    if isinstance(value, (str, bytes, Mapping)) or np.ndim(value) != 1:
+        raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__,
+                         expected=f"a sequence of {what}")
+    out = list(value)
+    if not out:
+        raise InputError(Problem.BAD_STATE, field, value, why="is empty", fix=f"give at least one of {what}")
+    return out
+
+
 def _box(field: str, value: Any, unit: str) -> tuple[float, float]:
-    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or len(value) != 2:
+    if isinstance(value, (str, bytes, Mapping)) or np.ndim(value) != 1:
         raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__, expected=f"pair (low, high) in {unit}")
+    if len(value) != 2:
+        raise InputError(Problem.BAD_STATE, field, value, why=f"has {len(value)} values",
+                         fix=f"give two: (low, high) in {unit}")
     lo, hi = sorted(real(f"{field}[{i}]", v) for i, v in enumerate(value))
     if not 0.0 < lo < hi:
         raise InputError(Problem.OUT_OF_RANGE, field, value, range="0 < low < high",
@@ -295,9 +328,11 @@ def _follow(cf: CurveFollower, start: CurvePoint, pts: list[CurvePoint], max_poi
     return Status.SUCCESS, "both ends reached the edge of the box"
 
 
-def _result(osc: Oscillator, bif: Bifurcation, cf: CurveFollower, pts: list[CurvePoint], f_box: tuple,
+def _result(osc: Oscillator, bif: Bifurcation, cf: Optional[CurveFollower], pts: list[CurvePoint], f_box: tuple,
             a_box: tuple, status: Status, message: str) -> BifurcationCurve:
-    table, states = curve_table(cf, pts)
+    table, states = curve_table(pts)
+    if cf is not None and cf.fam.fell_back:
+        message += cf.fam.fell_back
     return BifurcationCurve(osc, bif.kind, bif.side, bif.period_multiple, f_box, a_box, table, states, status,
                             message, bif)
 

@@ -101,7 +101,8 @@ def coexistence(
     plot: Optional[Path] = typer.Option(None, "--plot", help="Draw the curves over the test matrix (PNG, PDF...)."),
 ) -> None:
     """Where two responses coexist (where up and down sweeps must differ): branches at a_G levels,
-    their folds followed in (a_G, f), and the test matrix's points with two stable responses."""
+    their folds followed in (a_G, f), and the test matrix's points with two stable responses.
+    Exits 1 when a branch stopped short of the range (the map is then incomplete)."""
     from ..analysis.curves import coexistence_map
 
     paths = files(out=(out, CSV), matrix=(matrix, CSV))
@@ -111,6 +112,8 @@ def coexistence(
         try:
             chosen = [float(v) for v in levels.split(",") if v.strip()]
         except ValueError:
+            chosen = []
+        if not chosen:
             raise typer.BadParameter(f"--levels {levels!r}: give numbers separated by commas, e.g. 0.03,0.05")
     osc = system(system_file, preset, bumpers=not no_bumpers)
     compile_notice()
@@ -148,3 +151,5 @@ def coexistence(
     if not complete or held:
         interrupted(f"{len(cmap.curves)} curves followed; they are in the summary"
                     + (" and the files written" if any(paths.values()) or plot else ""))
+    if not all(br.success for br in cmap.branches):
+        raise typer.Exit(code=1)  # (a branch stopped short: the map is incomplete; the summary says where)

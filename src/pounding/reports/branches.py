@@ -3,6 +3,7 @@ levels under the Fig. 5 sweeps, and the fold curves in (a_G, f) over the test ma
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import TYPE_CHECKING, Optional
 
 import numpy as np
@@ -22,6 +23,7 @@ def coexistence_of(result: "CampaignResult", ybs_system: "Oscillator") -> tuple[
     """The YBs system's coexistence map over the campaign's frequencies and YBs levels (folds only),
     or None and why not."""
     from ..analysis import coexistence_map
+    from ..analysis.curve_result import stable_counts
 
     ds = result.dataset
     levels = sorted({float(a) for (conf, a, _d) in result.sweeps if conf == "YBs"})
@@ -35,7 +37,8 @@ def coexistence_of(result: "CampaignResult", ybs_system: "Oscillator") -> tuple[
                                freq_step_hz=step, kinds=("fold",))
     except InputError as exc:
         return None, f"not continued: {exc}"
-    return cmap, ""
+    # the test matrix at the campaign's own frequencies (its grid need not be even)
+    return replace(cmap, matrix=stable_counts(cmap.branches, np.sort(freqs))), ""
 
 
 def add_branches(fig: "Figure", cmap: "CoexistenceMap", f_ref_hz: float) -> None:
@@ -51,7 +54,7 @@ def add_branches(fig: "Figure", cmap: "CoexistenceMap", f_ref_hz: float) -> None
             for want, style in ((True, "-"), (False, "--")):
                 shown = np.where(stable == want, vals, np.nan)
                 ax.plot(nu, shown, style, color=f"C{i}", lw=0.6, alpha=0.8,
-                        label=(f"branch a_G = {br.a_g:g} ({'stable' if want else 'unstable'})"
+                        label=(f"continued branch, {'stable' if want else 'unstable'} (each a_G's colour)"
                                if ax is ax_alpha and i == 0 else None))
     ax_alpha.legend(fontsize="x-small", ncol=2)
     fig.suptitle(fig.get_suptitle().replace("pseudo-FRFs", "pseudo-FRFs and branches (thin)"))
