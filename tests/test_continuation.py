@@ -210,3 +210,19 @@ def test_a_bifurcation_of_another_forcing_is_refused(damped: pd_.Branch) -> None
         pd_.continuation(pd_.presets.paper_damped(), 0.2, (1.0, 1.3), guess=pd1)
     with pytest.raises(pd_.InputError, match="has type float"):
         damped.orbit(1.0)
+
+
+def test_edge_arguments_are_named() -> None:
+    """A frequency too low to settle from names settle_cycles and the way out, not the run's duration;
+    an angle too large to reduce is refused; Branch.orbit names an unknown keyword."""
+    osc = pd_.presets.paper_damped()
+    with pytest.raises(pd_.InputError, match="settle_cycles = 100 periods at 1e-09 Hz"):
+        pd_.continuation(osc, 0.05, (1e-9, 1.0))
+    with pytest.raises(pd_.InputError, match="settle_cycles"):
+        pd_.periodic_orbit(osc, pd_.Harmonic(0.05, 1e-9))
+    with pytest.raises(pd_.InputError, match="phase_rad"):
+        pd_.continuation(osc, 0.05, (1.0, 2.0), phase_rad=1e300)
+    br = pd_.continuation(osc, 0.05, (1.5, 1.6), phase_rad=2 * np.pi + 0.5)
+    assert br.to_dataframe().phase_rad.iloc[0] == pytest.approx(0.5)
+    with pytest.raises(pd_.InputError, match="bogus.*max_iter"):
+        br.orbit(0, bogus=1)

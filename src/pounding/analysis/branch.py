@@ -170,6 +170,12 @@ class Branch:
         from ..excitation import Harmonic
         from .periodic import periodic_orbit
 
+        import inspect
+
+        allowed = set(inspect.signature(periodic_orbit).parameters) - {"oscillator", "excitation", "guess"}
+        for key in kwargs:
+            if key not in allowed:
+                raise InputError(Problem.UNKNOWN_KEY, key, kwargs[key], choices=", ".join(sorted(allowed)))
         n = len(self)
         if isinstance(index, bool) or not isinstance(index, (int, np.integer)):
             raise InputError(Problem.WRONG_TYPE, "index", index, got=type(index).__name__, expected="int")

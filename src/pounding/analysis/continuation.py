@@ -23,7 +23,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from .._checks import integer, one_of, positive, real
+from .._checks import integer, positive, real
 from .._errors import InputError, Interrupted, Problem, Status
 from ..engine import State
 from ..engine.simulate import check_oscillator, check_state, simulate
@@ -33,7 +33,7 @@ from . import _hybrid as hy
 from ._arclength import Family, at_section, system_at
 from ._follower import Follower
 from .branch import Bifurcation, Branch
-from .periodic import METHODS
+from ._args import exact_monodromy, section_angle, settled, step_size, tolerance
 
 MAX_POINTS = 100_000
 
@@ -119,22 +119,13 @@ def continuation(
     check_oscillator(oscillator)
     parameter, values, a_g, freq_hz = _check_range(oscillator, parameter, a_g, freqs_hz, values)
     period_multiple = integer("period_multiple", period_multiple, 1, 64, "give the orbits' period in forcing periods")
-    tol = real("tol", tol)
-    if not 1e-14 <= tol <= 1e-3:
-        raise InputError(Problem.OUT_OF_RANGE, "tol", tol, range="[1e-14, 1e-3]", hint=" (1e-10 by default)")
-    max_step = real("max_step", max_step)
-    if not 1e-5 <= max_step <= 0.5:
-        raise InputError(Problem.OUT_OF_RANGE, "max_step", max_step, range="[1e-5, 0.5]",
-                         hint=" (in units of the parameter's range)")
+    tol = tolerance(tol, 1e-14, 1e-3, 1e-10)
+    max_step = step_size(max_step, 1e-5, "the parameter's range")
     max_points = integer("max_points", max_points, 2, MAX_POINTS, "a branch of 5000 points is already dense")
-    phase_rad = real("phase_rad", phase_rad)
+    phase_rad = section_angle(phase_rad)
     settle_cycles = integer("settle_cycles", settle_cycles, 1, 100_000, "give a guess instead")
     f_ref_hz = positive("f_ref_hz", f_ref_hz, "Hz")
-    method = one_of("method", method, METHODS)
-    why = hy.unsupported(oscillator)
-    if method == "exact" and why is not None:
-        raise InputError(Problem.BAD_STATE, "method", method, why=f"cannot be exact for this system: {why}",
-                         fix='use method="finite-difference" (or "auto")')
+    exact = exact_monodromy(oscillator, method)
     if isinstance(guess, Bifurcation):
         if guess.kind not in ("period-doubling", "branch-point"):
             raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is a {guess.kind}; only a period-doubling or "
@@ -163,7 +154,7 @@ def continuation(
     run0 = _first_run(start_osc, fam_a_g, fam_f, phase_rad, vec, period_multiple)
     length = max(b.total_gap / 2.0 if b is not None else 0.0, abs(run0.displacement_max),
                  abs(run0.displacement_min), 1e-6)
-    fam = Family(start_osc, fam_a_g, fam_f, parameter, period_multiple, why is None and method != "finite-difference",
+    fam = Family(start_osc, fam_a_g, fam_f, parameter, period_multiple, exact,
                  phase_rad, length, abs(p1 - p0), 2.0 * math.pi * f_mid)
     follower = Follower(fam, p0, p1, tol, max_step, max_points, f_ref_hz)
     follower.doubled = isinstance(guess, Bifurcation) and guess.kind == "period-doubling"
@@ -232,8 +223,7 @@ def _start_vector(osc: Oscillator, parameter: str, a_g: float, freq_hz: float, p
             raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is not a state of this system ({exc})",
                              fix="give a state of this oscillator, e.g. a run's final_state") from None
         return at_section(guess.vector)
-    exc = Harmonic(a_g, freq_hz, phase=phase)
-    return at_section(simulate(osc, exc, settle_cycles / freq_hz, sample_rate_hz=0).final_state.vector)
+    return at_section(settled(osc, Harmonic(a_g, freq_hz, phase=phase), settle_cycles).final_state.vector)
 
 
 def _first_run(osc: Oscillator, a_g: float, freq_hz: float, phase: float, vec: np.ndarray, k: int) -> Any:

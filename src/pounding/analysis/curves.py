@@ -21,7 +21,7 @@ from ._curve import CurveFollower, CurvePoint
 from .branch import Bifurcation, Branch
 from .continuation import continuation
 from .curve_result import BifurcationCurve, CoexistenceMap, curve_table, stable_counts
-from .periodic import METHODS
+from ._args import exact_monodromy, step_size, tolerance
 
 CURVE_KINDS = ("fold", "grazing")
 MAX_TEST_FREQS = 100_000  # the test matrix's frequencies at most
@@ -189,8 +189,7 @@ def coexistence_map(
             raise InputError(Problem.OUT_OF_RANGE, f"levels[{i}]", v, range=f"[{a_box[0]:g}, {a_box[1]:g}]",
                              hint=" (the map's a_g range)")
         if v in levels[:i]:
-            raise InputError(Problem.BAD_STATE, f"levels[{i}]", v, why="repeats a level",
-                             fix="give each a_G once")
+            raise InputError(Problem.DUPLICATE, "levels", levels, repeated=f"{v:g}")
     step = real("freq_step_hz", freq_step_hz)
     width = f_box[1] - f_box[0]
     if not width / MAX_TEST_FREQS <= step <= width:
@@ -240,7 +239,7 @@ def _sequence(field: str, value: Any, what: str) -> list:
                          expected=f"a sequence of {what}")
     out = list(value)
     if not out:
-        raise InputError(Problem.BAD_STATE, field, value, why="is empty", fix=f"give at least one of {what}")
+        raise InputError(Problem.EMPTY, field, value)
     return out
 
 
@@ -248,8 +247,8 @@ def _box(field: str, value: Any, unit: str) -> tuple[float, float]:
     if isinstance(value, (str, bytes, Mapping)) or np.ndim(value) != 1:
         raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__, expected=f"pair (low, high) in {unit}")
     if len(value) != 2:
-        raise InputError(Problem.BAD_STATE, field, value, why=f"has {len(value)} values",
-                         fix=f"give two: (low, high) in {unit}")
+        raise InputError(Problem.LENGTH_MISMATCH, field, value, got=len(value), expected=2,
+                         hint=f": (low, high) in {unit}")
     lo, hi = sorted(real(f"{field}[{i}]", v) for i, v in enumerate(value))
     if not 0.0 < lo < hi:
         raise InputError(Problem.OUT_OF_RANGE, field, value, range="0 < low < high",
@@ -258,20 +257,10 @@ def _box(field: str, value: Any, unit: str) -> tuple[float, float]:
 
 
 def _common(osc: Oscillator, tol: Any, max_step: Any, max_points: Any, method: Any) -> tuple:
-    tol = real("tol", tol)
-    if not 1e-13 <= tol <= 1e-3:
-        raise InputError(Problem.OUT_OF_RANGE, "tol", tol, range="[1e-13, 1e-3]", hint=" (1e-9 by default)")
-    max_step = real("max_step", max_step)
-    if not 1e-4 <= max_step <= 0.5:
-        raise InputError(Problem.OUT_OF_RANGE, "max_step", max_step, range="[1e-4, 0.5]",
-                         hint=" (in units of the ranges)")
+    tol = tolerance(tol, 1e-13, 1e-3, 1e-9)
+    max_step = step_size(max_step, 1e-4, "the ranges")
     max_points = integer("max_points", max_points, 2, 100_000, "a curve of 2000 points is already dense")
-    method = one_of("method", method, METHODS)
-    why = hy.unsupported(osc)
-    if method == "exact" and why is not None:
-        raise InputError(Problem.BAD_STATE, "method", method, why=f"cannot be exact for this system: {why}",
-                         fix='use method="finite-difference" (or "auto")')
-    return tol, max_step, max_points, why is None and method != "finite-difference"
+    return tol, max_step, max_points, exact_monodromy(osc, method)
 
 
 def _follower(osc: Oscillator, bif: Bifurcation, f_box: tuple, a_box: tuple, tol: float, max_step: float,

@@ -24,7 +24,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from .._checks import integer, one_of, real
+from .._checks import integer
 from .._errors import InputError, Problem
 from ..engine import Run, State, simulate
 from ..engine._layout import DEF_L, DEF_R, REGION, STATE_BASE, ZETA
@@ -35,8 +35,8 @@ from ..engine.simulate import check_oscillator, check_state, short_run
 from ..excitation import Harmonic
 from ..model import Oscillator
 from . import _hybrid as hy
+from ._args import exact_monodromy, settled, tolerance
 
-METHODS = ("auto", "exact", "finite-difference")
 
 
 @dataclass(frozen=True, eq=False)
@@ -189,23 +189,15 @@ def periodic_orbit(
                          expected="pounding.Harmonic (a periodic orbit needs a periodic forcing)")
     period_multiple = integer("period_multiple", period_multiple, 1, 64, "give the orbit's period in forcing "
                               "periods: 1, 2 for a period-doubled response, ...")
-    tol = real("tol", tol)
-    if not 1e-15 <= tol <= 1e-2:
-        raise InputError(Problem.OUT_OF_RANGE, "tol", tol, range="[1e-15, 1e-2]",
-                         hint=" (relative to the orbit's size; 1e-10 by default)")
+    tol = tolerance(tol, 1e-15, 1e-2, 1e-10)
     max_iter = integer("max_iter", max_iter, 1, 1000, "100 Newton iterations are plenty")
     settle_cycles = integer("settle_cycles", settle_cycles, 1, 100_000, "give a guess instead")
     samples_per_period = integer("samples_per_period", samples_per_period, 2, 1_000_000,
                                  "the run's extrema are exact whatever the sampling")
-    method = one_of("method", method, METHODS)
-    why = hy.unsupported(oscillator)
-    if method == "exact" and why is not None:
-        raise InputError(Problem.BAD_STATE, "method", method, why=f"cannot be exact for this system: {why}",
-                         fix='use method="finite-difference" (or "auto")')
-    exact = why is None and method != "finite-difference"
+    exact = exact_monodromy(oscillator, method)
     period = period_multiple / excitation.freq_hz
     if guess is None:
-        guess = simulate(oscillator, excitation, settle_cycles / excitation.freq_hz, sample_rate_hz=0).final_state
+        guess = settled(oscillator, excitation, settle_cycles).final_state
     elif not isinstance(guess, State):
         raise InputError(Problem.WRONG_TYPE, "guess", guess, got=type(guess).__name__,
                          expected="pounding.State (e.g. run.final_state)")

@@ -1,0 +1,72 @@
+"""The arguments the periodic-orbit functions share (``periodic_orbit``, ``continuation``,
+``bifurcation_curve``, ``coexistence_map``): checked once, here."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+from .._checks import one_of, real
+from .._errors import InputError, Problem
+from ..engine import Run
+from ..engine.simulate import simulate
+from ..excitation import Harmonic
+from ..model import Oscillator
+from . import _hybrid as hy
+
+METHODS = ("auto", "exact", "finite-difference")
+
+
+def tolerance(tol: Any, low: float, high: float, default: float) -> float:
+    """``tol`` in ``[low, high]``."""
+    tol = real("tol", tol)
+    if not low <= tol <= high:
+        raise InputError(Problem.OUT_OF_RANGE, "tol", tol, range=f"[{low:g}, {high:g}]",
+                         hint=f" (relative to the orbit's size; {default:g} by default)")
+    return tol
+
+
+def step_size(max_step: Any, low: float, what: str) -> float:
+    """The largest arclength step ``max_step`` in ``[low, 0.5]``, in units where ``what`` is 1."""
+    max_step = real("max_step", max_step)
+    if not low <= max_step <= 0.5:
+        raise InputError(Problem.OUT_OF_RANGE, "max_step", max_step, range=f"[{low:g}, 0.5]",
+                         hint=f" (in units of {what})")
+    return max_step
+
+
+def exact_monodromy(oscillator: Oscillator, method: Any) -> bool:
+    """Whether the monodromy is composed exactly: ``method`` one of ``METHODS``, ``"exact"``
+    refused for a system whose phases are not all linear."""
+    method = one_of("method", method, METHODS)
+    why = hy.unsupported(oscillator)
+    if method == "exact" and why is not None:
+        raise InputError(Problem.BAD_STATE, "method", method, why=f"cannot be exact for this system: {why}",
+                         fix='use method="finite-difference" (or "auto")')
+    return why is None and method != "finite-difference"
+
+
+def section_angle(phase_rad: Any) -> float:
+    """The forcing's angle at the section, rad, reduced to ``[0, 2 pi)`` (beyond 1e3 rad in size,
+    refused: the reduction would lose the angle's digits)."""
+    phase_rad = real("phase_rad", phase_rad)
+    if abs(phase_rad) > 1e3:
+        raise InputError(Problem.OUT_OF_RANGE, "phase_rad", phase_rad, range="[-1000, 1000]",
+                         hint=" (an angle, rad: give it within [0, 2 pi))")
+    return phase_rad % (2.0 * math.pi)
+
+
+def settled(oscillator: Oscillator, excitation: Harmonic, settle_cycles: int) -> Run:
+    """``settle_cycles`` forcing periods from rest (the default guess: the response a sweep would
+    settle on); a run too long for the engine's budget is refused naming the frequency and
+    ``settle_cycles``, not the run's duration."""
+    duration = settle_cycles / excitation.freq_hz
+    try:
+        return simulate(oscillator, excitation, duration, sample_rate_hz=0)
+    except InputError as exc:
+        if exc.field != "duration":
+            raise
+        raise InputError(Problem.BAD_STATE, "settle_cycles", settle_cycles,
+                         why=f"periods at {excitation.freq_hz:g} Hz last {duration:.3g} s, a run beyond the engine's "
+                             "budget (the default guess settles from rest)",
+                         fix="start at a higher frequency, lower settle_cycles, or give a guess (a State)") from None
