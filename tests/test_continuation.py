@@ -226,3 +226,25 @@ def test_edge_arguments_are_named() -> None:
     assert br.to_dataframe().phase_rad.iloc[0] == pytest.approx(0.5)
     with pytest.raises(pd_.InputError, match="bogus.*max_iter"):
         br.orbit(0, bogus=1)
+
+
+def test_a_descending_range_stops_where_branch_switching_loops() -> None:
+    """From 3 down to 1 Hz the follower switches at the branch points near 1.237 and 1.083 Hz and comes
+    back to the first: it stops there (it once went round until max_points, 5000 orbits)."""
+    br = pd_.continuation(pd_.presets.paper_damped(), 0.05, (3.0, 1.0))
+    assert br.success and "loop" in br.message and len(br) < 1000, br
+    folds = sorted(b.freq_hz for b in br.folds())
+    assert any(abs(f - 2.01438) < 1e-4 for f in folds) and any(abs(f - 1.60526) < 1e-4 for f in folds)
+
+
+def test_a_follower_stuck_at_tiny_steps_steps_in_the_parameter_alone(monkeypatch: pytest.MonkeyPatch) -> None:
+    """Steps stuck far below the largest for CREEP_POINTS points in a row (here: every step counted as
+    stuck) are a non-smooth point: the follower steps in the parameter alone, and says so."""
+    from pounding.analysis import _follower
+
+    monkeypatch.setattr(_follower.Follower, "CREEP", 2.0)
+    monkeypatch.setattr(_follower.Follower, "CREEP_POINTS", 20)
+    br = pd_.continuation(linear(), 0.05, (0.5, 3.0))
+    assert br.success and "alone past" in br.message
+    assert np.allclose(br.to_dataframe().excursion_m, closed_form_excursion(0.05, br.to_dataframe().freq_hz),
+                       rtol=1e-8, atol=0)

@@ -24,6 +24,7 @@ class Follower:
     """Steps along the branch, watching the detectors between consecutive points."""
 
     GROW, SHRINK, MIN_STEP, MIN_COS = 1.5, 0.5, 1e-7, 0.95
+    CREEP, CREEP_POINTS = 1e-3, 100  # steps below CREEP * max_step this many times running: stalled
 
     def __init__(self, fam: Family, p0: float, p1: float, tol: float, max_step: float, max_points: int,
                  f_ref_hz: float, switch_branches: bool = True) -> None:
@@ -39,6 +40,9 @@ class Follower:
         self.bifs: list[Bifurcation] = []
         self.status, self.message = Status.SUCCESS, ""
         self.bracket = math.inf  # the last location's final bracket, in arclength
+        self.creep = 0  # accepted steps in a row below CREEP * max_step
+        self.switched: list[np.ndarray] = []  # where the follower switched branch (parameter, extrema)
+        self.looped = False  # it met a branch point it had switched at before
 
     # ---- the first point
     def start(self, vec: np.ndarray, p_start: float, bif: Optional[Bifurcation] = None) -> None:
@@ -134,6 +138,11 @@ class Follower:
                     return
                 continue
             if self._branch_point(a, b, ds):
+                if self.looped:
+                    self.message = (f"the branch came back to the branch point at {self.fam.parameter} = "
+                                    f"{self.bifs[-1].value:.6g}, where it had switched before (the branches taken "
+                                    f"form a loop), after {len(self.points)} orbits")
+                    return
                 continue
             self._detect(a, b, ds)
             if not lo <= b.p <= hi:
@@ -150,6 +159,22 @@ class Follower:
                 self.message = f"reached {self.fam.parameter} = {end:g} after {len(self.points)} orbits"
                 return
             self._append(b, ds)
+            self.creep = self.creep + 1 if ds < self.CREEP * self.max_step else 0
+            if self.creep >= self.CREEP_POINTS:  # (steps stuck at a fraction of the largest: a non-smooth point)
+                self.creep = 0
+                leap = self._leap(b)
+                if leap is None:
+                    self.status = Status.STEP_FAILED
+                    self.message = (f"the branch stalled at {self.fam.parameter} = {b.p:.8g}: {self.CREEP_POINTS} steps "
+                                    "below 1e-3 of the largest (a non-smooth point), and no step in the parameter "
+                                    "alone got past it")
+                    return
+                c, ds_c = leap
+                self._detect(b, c, ds_c)
+                self._append(c, ds_c)
+                self.leaps.append(f"{b.p:.6g} -> {c.p:.6g}")
+                ds = self.max_step / 4.0
+                continue
             if self._closed(b, ds):
                 self.message = (f"the branch closed on itself (an isola) after {len(self.points)} orbits, between "
                                 f"{self.fam.parameter} = {min(q.p for q in self.points):.6g} and "
@@ -300,6 +325,13 @@ class Follower:
         self.bifs.append(bif)
         if not self.switch_branches:
             return False
+        where = np.array([pt.p / fam.p_scale, pt.run.displacement_max / fam.length_m,
+                          pt.run.displacement_min / fam.length_m])
+        if any(np.abs(where - w).max() < 1e-5 for w in self.switched):
+            self._append(pt, self._s(a, pt))
+            self.looped = True
+            return True
+        self.switched.append(where)
         toward = math.copysign(1.0, self.p1 - self.p0)
         start = Point(**{**pt.__dict__})
         sign = 1.0 if other[-1] * toward >= 0.0 else -1.0
@@ -433,6 +465,9 @@ class Follower:
             mult[i, :pt.mult.size] = pt.mult
         states = np.array([pt.vec for pt in self.points]) if self.points else np.zeros((0, 0))
         msg = message + (fam.fell_back if fam.fell_back else "")
+        if self.leaps:
+            msg += (f"; stepped in {fam.parameter} alone past {len(self.leaps)} non-smooth point(s): "
+                    + ", ".join(self.leaps[:5]) + (", ..." if len(self.leaps) > 5 else ""))
         return Branch(system_at(oscillator, fam.parameter, values[0]), fam.parameter, tuple(values), fam.k,
                       self.f_ref_hz, df, states, mult, tuple(self.bifs), status, msg,
                       a_g=fam.a_g if fam.parameter != "a_g" else math.nan,
