@@ -248,3 +248,20 @@ def test_a_follower_stuck_at_tiny_steps_steps_in_the_parameter_alone(monkeypatch
     assert br.success and "alone past" in br.message
     assert np.allclose(br.to_dataframe().excursion_m, closed_form_excursion(0.05, br.to_dataframe().freq_hz),
                        rtol=1e-8, atol=0)
+
+
+def test_a_guess_at_any_time_starts_on_its_own_orbit() -> None:
+    """Two responses coexist at 2 Hz on the calibrated system; the up sweep's state there (1000 s into
+    the sweep, under its own forcing's phase) starts the branch on the impacting one, alpha 37 (the
+    guess's section was once taken as time 0 with phase_rad unchanged: a wrong forcing angle, from
+    which Newton found the other orbit, alpha 1.05)."""
+    osc = pd_.presets.paper_calibrated()
+    up = pd_.sweep(osc, 0.05, np.round(np.arange(0.5, 2.05, 0.1), 10), "up")
+    i = int(np.argmin(np.abs(up.freqs_hz - 2.0)))
+    f = float(up.freqs_hz[i])
+    guess = pd_.State(up.window_states[i])
+    phase = -(2 * np.pi * f * float(up.step_start_s[i]))
+    br = pd_.continuation(osc, 0.05, (f, f + 0.02), guess=guess, phase_rad=phase)
+    alpha_sweep = float(up.to_dataframe().alpha.iloc[i])
+    assert guess.time_s > 100.0 and alpha_sweep > 30.0  # (the impacting response)
+    assert br.to_dataframe().alpha.iloc[0] == pytest.approx(alpha_sweep, rel=1e-6)

@@ -47,11 +47,11 @@ def exact_monodromy(oscillator: Oscillator, method: Any) -> bool:
 
 
 def section_angle(phase_rad: Any) -> float:
-    """The forcing's angle at the section, rad, reduced to ``[0, 2 pi)`` (beyond 1e3 rad in size,
-    refused: the reduction would lose the angle's digits)."""
+    """The forcing's angle at the section, rad, reduced to ``[0, 2 pi)`` (beyond 1e8 rad in size,
+    refused: the reduction would keep less than 1e-8 rad of the angle)."""
     phase_rad = real("phase_rad", phase_rad)
-    if abs(phase_rad) > 1e3:
-        raise InputError(Problem.OUT_OF_RANGE, "phase_rad", phase_rad, range="[-1000, 1000]",
+    if abs(phase_rad) > 1e8:
+        raise InputError(Problem.OUT_OF_RANGE, "phase_rad", phase_rad, range="[-1e8, 1e8]",
                          hint=" (an angle, rad: give it within [0, 2 pi))")
     return phase_rad % (2.0 * math.pi)
 

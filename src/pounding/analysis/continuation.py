@@ -75,8 +75,9 @@ def continuation(
     period_multiple : int
         The orbits' period in forcing periods.
     guess : State or Bifurcation, optional
-        Where to start: an orbit's state at the start value (its time is taken as the section),
-        or a ``"period-doubling"`` :class:`Bifurcation` of another branch, whose branch of twice
+        Where to start: an orbit's state at the start value under ``Harmonic(a_g, f,
+        phase=phase_rad)`` at the state's time (e.g. a run's ``final_state``; the section is moved
+        to time 0 with the forcing's angle there), or a ``"period-doubling"`` :class:`Bifurcation` of another branch, whose branch of twice
         the period is followed from there (``period_multiple`` and the range's start are then
         the bifurcation's).  Default: the state after ``settle_cycles`` periods from rest at the
         start value (the response a sweep would settle on).
@@ -149,6 +150,8 @@ def continuation(
     fam_a_g = p_start if parameter == "a_g" else a_g
     fam_f = p_start if parameter == "freq_hz" else freq_hz
     f_mid = math.sqrt(p0 * p1) if parameter == "freq_hz" else freq_hz
+    if isinstance(guess, State):  # (its section: the forcing's angle at its time)
+        phase_rad = section_angle((phase_rad + 2.0 * math.pi * fam_f * guess.time_s) % (2.0 * math.pi))
     vec = _start_vector(start_osc, parameter, fam_a_g, fam_f, phase_rad, guess, settle_cycles)
     b = start_osc.bumpers
     run0 = _first_run(start_osc, fam_a_g, fam_f, phase_rad, vec, period_multiple)
