@@ -134,6 +134,11 @@ def test_period_doubling_starts_the_doubled_branch(damped: pd_.Branch) -> None:
     two = pd_.simulate(osc, exc, 2.0 / row.freq_hz, state, sample_rate_hz=0).final_state
     assert abs(two.displacement_m - state.displacement_m) < 1e-9      # a period-2 orbit
     assert abs(one.displacement_m - state.displacement_m) > 1e-6      # not a period-1 one
+    # the second one is where the multipliers jump across -1 (a mode change): refused, and said why
+    pd2 = [b for b in damped.bifurcations if b.kind == "period-doubling"][1]
+    assert np.min(np.abs(pd2.multipliers + 1.0)) > 1e-3
+    with pytest.raises(pd_.InputError, match="jump"):
+        pd_.continuation(pd_.presets.paper_damped(), 0.05, (1.0, 3.0), guess=pd2)
 
 
 def test_branch_plot_with_sweeps(damped: pd_.Branch, sweeps: tuple) -> None:

@@ -139,6 +139,13 @@ def continuation(
         if not min(values) <= guess.value <= max(values):
             raise InputError(Problem.OUT_OF_RANGE, "guess", guess, range=f"[{min(values):g}, {max(values):g}]",
                              hint=f" (the range of {parameter} given: the bifurcation is at {guess.value:g})")
+        gap = float(np.min(np.abs(guess.multipliers + 1.0))) if guess.multipliers.size else math.inf
+        if guess.kind == "period-doubling" and gap > 1e-3:
+            raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is a period-doubling where the multipliers jump "
+                             f"across -1 (the nearest is {gap:.2g} from it): a discontinuity of the map (a contact "
+                             "appearing or a mode changing there), from which no doubled branch starts smoothly",
+                             fix="look for the doubled response with a sweep (its period_multiple) or a "
+                             "periodic_orbit of period_multiple=2 from a sweep's state")
         period_multiple = 2 * guess.period_multiple if guess.kind == "period-doubling" else guess.period_multiple
         phase_rad = guess.phase_rad
     elif guess is not None and not isinstance(guess, State):
