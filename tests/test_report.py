@@ -45,7 +45,7 @@ def test_reduced_report_writes_every_file(report):
     assert "1.96/1.80 = 1.09" in page  # the notes on the paper's inconsistencies
     # the continued branches: one per YBs level, under the Fig. 5 sweeps; their statuses on the page
     assert page.count("YBs branch") >= 4 and "YBs fold curve" in page
-    assert "pseudo-FRFs and branches (thin)" in page and "fold curves in (a_G, f)" in page
+    assert "YBs FRFs + branches" in page and "fold curves in (a_G, f)" in page
 
 
 def _browser():

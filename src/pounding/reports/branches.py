@@ -57,7 +57,7 @@ def add_branches(fig: "Figure", cmap: "CoexistenceMap", f_ref_hz: float) -> None
                         label=(f"continued branch, {'stable' if want else 'unstable'} (each a_G's colour)"
                                if ax is ax_alpha and i == 0 else None))
     ax_alpha.legend(fontsize="x-small", ncol=2)
-    fig.suptitle(fig.get_suptitle().replace("pseudo-FRFs", "pseudo-FRFs and branches (thin)"))
+    fig.suptitle(fig.get_suptitle().replace("pseudo-FRFs", "FRFs + branches"))
 
 
 def fig_coexistence(cmap: "CoexistenceMap") -> "Figure":
