@@ -24,7 +24,7 @@ from typing import Optional
 
 import numpy as np
 
-from .._errors import InputError, Status
+from .._errors import InputError
 from ..engine import Run
 from ._arclength import Family, at_section, fold_test
 from .periodic import _Failed
@@ -57,16 +57,14 @@ class CurveFollower:
     GROW, SHRINK, MIN_STEP, MIN_COS, MARGIN = 1.5, 0.5, 1e-6, 0.9, 0.02
 
     def __init__(self, fam: Family, kind: str, side: str, f_box: tuple[float, float], a_box: tuple[float, float],
-                 tol: float, max_step: float, max_points: int) -> None:
+                 tol: float, max_step: float) -> None:
         self.fam = fam
         self.kind, self.side = kind, side
         self.f_box, self.a_box = f_box, a_box
         self.fs, self.as_ = f_box[1] - f_box[0], a_box[1] - a_box[0]
-        self.tol, self.max_step, self.max_points = tol, max_step, max_points
+        self.tol, self.max_step = tol, max_step
         self.gtol = max(100.0 * tol, 1e-8) if kind == "fold" else tol
-        self.count = 0  # points solved (for the budget)
-        self.far = False
-        self.status, self.message = Status.SUCCESS, ""
+        self.far = False  # (see follow)
 
     # ---- the equations
     def test(self, run: Run, jac: np.ndarray) -> float:
@@ -166,7 +164,6 @@ class CurveFollower:
         ``tau`` (both full scaled).  None where it fails."""
         ext, key, last, fresh = None, None, math.inf, False
         for it in range(max_iter):
-            self.count += 1
             try:
                 e = self.evaluate(vec, f, a)
             except (_Failed, InputError, np.linalg.LinAlgError):

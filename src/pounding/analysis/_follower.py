@@ -123,12 +123,7 @@ class Follower:
             if b is None or (cos < self.MIN_COS and ds > 4 * self.MIN_STEP):
                 ds *= self.SHRINK
                 if ds < self.MIN_STEP:
-                    leap = self._leap(a)
-                    if leap is not None:
-                        b, ds = leap
-                        self._detect(a, b, ds)
-                        self._append(b, ds)
-                        self.leaps.append(f"{a.p:.6g} -> {b.p:.6g}")
+                    if self._leap_past(a):
                         ds = self.max_step / 4.0
                         continue
                     self.status = Status.STEP_FAILED
@@ -162,17 +157,12 @@ class Follower:
             self.creep = self.creep + 1 if ds < self.CREEP * self.max_step else 0
             if self.creep >= self.CREEP_POINTS:  # (steps stuck at a fraction of the largest: a non-smooth point)
                 self.creep = 0
-                leap = self._leap(b)
-                if leap is None:
+                if not self._leap_past(b):
                     self.status = Status.STEP_FAILED
-                    self.message = (f"the branch stalled at {self.fam.parameter} = {b.p:.8g}: {self.CREEP_POINTS} steps "
-                                    "below 1e-3 of the largest (a non-smooth point), and no step in the parameter "
-                                    "alone got past it")
+                    self.message = (f"the branch stalled at {self.fam.parameter} = {b.p:.8g}: {self.CREEP_POINTS} "
+                                    "steps below 1e-3 of the largest (a non-smooth point), and no step in the "
+                                    "parameter alone got past it")
                     return
-                c, ds_c = leap
-                self._detect(b, c, ds_c)
-                self._append(c, ds_c)
-                self.leaps.append(f"{b.p:.6g} -> {c.p:.6g}")
                 ds = self.max_step / 4.0
                 continue
             if self._closed(b, ds):
@@ -183,6 +173,18 @@ class Follower:
             self._rescale()
             self._resection()
             ds = min(ds * self.GROW, self.max_step) if b.iterations <= 4 else ds
+
+    def _leap_past(self, a: Point) -> bool:
+        """A step in the parameter alone from ``a`` (``_leap``), its bifurcations detected and the
+        point taken; False where none got past."""
+        leap = self._leap(a)
+        if leap is None:
+            return False
+        b, ds = leap
+        self._detect(a, b, ds)
+        self._append(b, ds)
+        self.leaps.append(f"{a.p:.6g} -> {b.p:.6g}")
+        return True
 
     def _leap(self, a: Point) -> Optional[tuple[Point, float]]:
         """Past a point where the branch is not smooth (a soft impact's grazing: the map's
@@ -375,7 +377,6 @@ class Follower:
                 else:
                     def fn(pt: Point, name: str = name) -> float:
                         return self._tests(pt)[name]
-                self.bracket = math.inf
                 pt = self._locate(a, ds, fn, b)
                 if pt is not None:
                     found.append((self._s(a, pt), name, pt,

@@ -33,7 +33,7 @@ from . import _hybrid as hy
 from ._arclength import Family, at_section, system_at
 from ._follower import Follower
 from .branch import Bifurcation, Branch
-from ._args import exact_monodromy, section_angle, settled, step_size, tolerance
+from ._args import exact_monodromy, length_scale, section_angle, settled, step_size, tolerance
 
 MAX_POINTS = 100_000
 
@@ -77,9 +77,10 @@ def continuation(
     guess : State or Bifurcation, optional
         Where to start: an orbit's state at the start value under ``Harmonic(a_g, f,
         phase=phase_rad)`` at the state's time (e.g. a run's ``final_state``; the section is moved
-        to time 0 with the forcing's angle there), or a ``"period-doubling"`` :class:`Bifurcation` of another branch, whose branch of twice
-        the period is followed from there (``period_multiple`` and the range's start are then
-        the bifurcation's).  Default: the state after ``settle_cycles`` periods from rest at the
+        to time 0 with the forcing's angle there), or a ``"period-doubling"`` or
+        ``"branch-point"`` :class:`Bifurcation` of another branch, whose other branch (of twice
+        the period, for a period-doubling) is followed from there (``period_multiple`` and the
+        range's start are then the bifurcation's).  Default: the state after ``settle_cycles`` periods from rest at the
         start value (the response a sweep would settle on).
     tol : float
         Largest scaled residual accepted at each point (lengths over the scale of the
@@ -160,10 +161,7 @@ def continuation(
     if isinstance(guess, State):  # (its section: the forcing's angle at its time)
         phase_rad = section_angle((phase_rad + 2.0 * math.pi * fam_f * guess.time_s) % (2.0 * math.pi))
     vec = _start_vector(start_osc, parameter, fam_a_g, fam_f, phase_rad, guess, settle_cycles)
-    b = start_osc.bumpers
-    run0 = _first_run(start_osc, fam_a_g, fam_f, phase_rad, vec, period_multiple)
-    length = max(b.total_gap / 2.0 if b is not None else 0.0, abs(run0.displacement_max),
-                 abs(run0.displacement_min), 1e-6)
+    length = length_scale(start_osc, _first_run(start_osc, fam_a_g, fam_f, phase_rad, vec, period_multiple))
     fam = Family(start_osc, fam_a_g, fam_f, parameter, period_multiple, exact,
                  phase_rad, length, abs(p1 - p0), 2.0 * math.pi * f_mid)
     follower = Follower(fam, p0, p1, tol, max_step, max_points, f_ref_hz)

@@ -21,7 +21,7 @@ from ._curve import CurveFollower, CurvePoint
 from .branch import Bifurcation, Branch
 from .continuation import continuation
 from .curve_result import BifurcationCurve, CoexistenceMap, curve_table, stable_counts
-from ._args import exact_monodromy, step_size, tolerance
+from ._args import exact_monodromy, length_scale, step_size, tolerance
 
 CURVE_KINDS = ("fold", "grazing")
 MAX_TEST_FREQS = 100_000  # the test matrix's frequencies at most
@@ -92,7 +92,8 @@ def bifurcation_curve(
         raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind, why="is followed in one parameter only",
                          fix="pass a fold or a grazing (Branch.folds(), or kind 'grazing' in Branch.bifurcations)")
     on_forcing = (bifurcation.parameter in ("freq_hz", "a_g") if bifurcation.parameter else
-                  any(math.isclose(bifurcation.value, v, rel_tol=1e-12) for v in (bifurcation.freq_hz, bifurcation.a_g)))
+                  any(math.isclose(bifurcation.value, v, rel_tol=1e-12)
+                      for v in (bifurcation.freq_hz, bifurcation.a_g)))
     if not on_forcing:
         raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind, why="is on a branch in a number of the "
                          "system, not in the forcing", fix="continue the branch in 'freq_hz' or 'a_g' and pass its "
@@ -113,7 +114,7 @@ def bifurcation_curve(
     follower = None
     try:
         with hy.one_blas_thread():
-            follower = _follower(oscillator, bifurcation, f_box, a_box, tol, max_step, max_points, exact)
+            follower = _follower(oscillator, bifurcation, f_box, a_box, tol, max_step, exact)
             start = _start(follower, bifurcation)
             pts = [start]
             status, message = _follow(follower, start, pts, max_points)
@@ -245,7 +246,8 @@ def _sequence(field: str, value: Any, what: str) -> list:
 
 def _box(field: str, value: Any, unit: str) -> tuple[float, float]:
     if isinstance(value, (str, bytes, Mapping)) or np.ndim(value) != 1:
-        raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__, expected=f"pair (low, high) in {unit}")
+        raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__,
+                         expected=f"pair (low, high) in {unit}")
     if len(value) != 2:
         raise InputError(Problem.LENGTH_MISMATCH, field, value, got=len(value), expected=2,
                          hint=f": (low, high) in {unit}")
@@ -264,15 +266,12 @@ def _common(osc: Oscillator, tol: Any, max_step: Any, max_points: Any, method: A
 
 
 def _follower(osc: Oscillator, bif: Bifurcation, f_box: tuple, a_box: tuple, tol: float, max_step: float,
-              max_points: int, exact: bool) -> CurveFollower:
+              exact: bool) -> CurveFollower:
     exc = Harmonic(bif.a_g, bif.freq_hz, phase=bif.phase_rad)
     run = short_run(osc, exc, bif.period_multiple / bif.freq_hz, bif.state)
-    b = osc.bumpers
-    length = max(b.total_gap / 2.0 if b is not None else 0.0, abs(run.displacement_max), abs(run.displacement_min),
-                 1e-6)
-    fam = Family(osc, bif.a_g, bif.freq_hz, "freq_hz", bif.period_multiple, exact, bif.phase_rad, length,
-                 f_box[1] - f_box[0], 2.0 * math.pi * bif.freq_hz)
-    return CurveFollower(fam, bif.kind, bif.side, f_box, a_box, tol, max_step, max_points)
+    fam = Family(osc, bif.a_g, bif.freq_hz, "freq_hz", bif.period_multiple, exact, bif.phase_rad,
+                 length_scale(osc, run), f_box[1] - f_box[0], 2.0 * math.pi * bif.freq_hz)
+    return CurveFollower(fam, bif.kind, bif.side, f_box, a_box, tol, max_step)
 
 
 def _start(cf: CurveFollower, bif: Bifurcation) -> CurvePoint:
