@@ -21,6 +21,10 @@ from .model import Bumpers, Isolator, KelvinVoigt, Oscillator
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
 
+__all__ = ["by_name", "paper_calibrated", "paper_calibrated_residuals", "paper_calibrated_v1",
+           "paper_calibrated_v1_residuals", "paper_calibrated_v2", "paper_calibrated_v2_residuals", "paper_damped",
+           "paper_printed"]
+
 PAPER_MASS_KG = 500.0
 PAPER_SLOPES_N_M = (38_000.0, 18_000.0, 2_000.0)
 PAPER_BREAKPOINTS_M = (0.015, 0.040)

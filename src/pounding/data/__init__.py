@@ -7,6 +7,8 @@ from importlib import resources
 
 import pandas as pd
 
+__all__ = ["bumper_cyclic_test", "measured", "paper_gap_total_m", "paper_measurements"]
+
 MEASUREMENTS_FILE = "paper_measurements.csv"
 BUMPER_TEST_FILE = "bumper_cyclic_test.csv"
 

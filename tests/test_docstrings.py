@@ -1,0 +1,117 @@
+"""The public API's docstrings: each documents its parameters and returns, each has an example, every
+example runs and prints what it says, and the docs' API reference lists every public name."""
+
+from __future__ import annotations
+
+import dataclasses
+import doctest
+import inspect
+import re
+import types
+from pathlib import Path
+
+import matplotlib
+import pytest
+
+import pounding
+
+matplotlib.use("Agg")
+
+ROOT = Path(__file__).resolve().parents[1]
+SUBMODULES = ("plots", "records", "lab", "reports", "presets", "data")
+# numpydoc's checks that every public function and class must pass: parameters all documented and
+# no unknown ones (PR01, PR02), each with a type and a description (PR04, PR07), returns documented
+# (RT01), an example (EX01)
+CHECKS = ("PR01", "PR02", "PR04", "PR07", "RT01", "EX01")
+
+
+def public_names() -> dict[str, object]:
+    """Every public function and class, by its documented name (``pounding.X``, ``pounding.plots.X``)."""
+    names: dict[str, object] = {}
+    for name in pounding.__all__:
+        obj = getattr(pounding, name)
+        if not isinstance(obj, types.ModuleType):
+            names[f"pounding.{name}"] = obj
+    for mod_name in SUBMODULES:
+        mod = getattr(pounding, mod_name) if hasattr(pounding, mod_name) else __import__(
+            f"pounding.{mod_name}", fromlist=["_"])
+        for name in mod.__all__:
+            names[f"pounding.{mod_name}.{name}"] = getattr(mod, name)
+    return names
+
+
+PUBLIC = public_names()
+
+
+def test_the_public_surface_is_what_the_docs_say() -> None:
+    assert len(PUBLIC) > 90
+    listed = set(re.findall(r"^\s+(pounding\.[\w.]+)\s*$", (ROOT / "docs" / "api.rst").read_text(), re.M))
+    assert set(PUBLIC) - listed == set(), "public names missing from docs/api.rst"
+    assert listed - set(PUBLIC) == set(), "docs/api.rst lists names that are not public"
+
+
+def _documented_fields(obj: type) -> set[str]:
+    """The names a class's docstring documents under Parameters or Attributes (``a, b : float`` counts both)."""
+    from numpydoc.docscrape import NumpyDocString
+
+    doc = NumpyDocString(inspect.getdoc(obj) or "")
+    names: set[str] = set()
+    for section in ("Parameters", "Attributes"):
+        for param in doc[section]:
+            names.update(n.strip().strip("*`") for n in param.name.split(","))
+    return names
+
+
+@pytest.mark.parametrize("name", sorted(PUBLIC))
+def test_numpydoc_sections(name: str) -> None:
+    from numpydoc.validate import validate
+
+    obj = PUBLIC[name]
+    result = validate(name)
+    if isinstance(obj, type):
+        # a class: an example, and every field documented under Parameters (what users pass) or
+        # Attributes (what results carry); enumerations and exceptions are not built by users
+        checks: tuple[str, ...] = ("EX01",)
+        if dataclasses.is_dataclass(obj):
+            missing = {f.name for f in dataclasses.fields(obj)} - _documented_fields(obj)
+            assert missing == set(), f"{name}: fields not documented: {sorted(missing)}"
+    else:
+        checks = CHECKS
+    errors = [f"{code}: {msg}" for code, msg in result["errors"] if code in checks]
+    assert errors == [], f"{name}:\n" + "\n".join(errors)
+
+
+@pytest.mark.parametrize("name", sorted(PUBLIC))
+def test_examples_run(name: str, tmp_path, monkeypatch) -> None:
+    import matplotlib.pyplot as plt
+
+    monkeypatch.chdir(tmp_path)  # an example that writes files writes them here
+    obj = PUBLIC[name]
+    finder = doctest.DocTestFinder(recurse=False)
+    tests = finder.find(obj, name, globs={"pounding": pounding})
+    examples = [ex for t in tests for ex in t.examples]
+    assert examples, f"{name} has no example"
+    runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS | doctest.NORMALIZE_WHITESPACE)
+    for t in tests:
+        runner.run(t)
+    plt.close("all")
+    assert runner.failures == 0, f"{name}: {runner.failures} example(s) failed (the report is above)"
+
+
+def test_a_broken_example_fails() -> None:
+    """The runner above is not blind: a docstring whose output is wrong counts as a failure."""
+
+    def f() -> None:
+        """
+        Examples
+        --------
+        >>> 1 + 1
+        3
+        """
+
+    tests = doctest.DocTestFinder(recurse=False).find(f, "f")
+    runner = doctest.DocTestRunner(optionflags=doctest.ELLIPSIS)
+    for t in tests:
+        runner.run(t, out=lambda s: None)
+    assert runner.failures == 1
+    assert inspect.getdoc(f).count(">>>") == 1
