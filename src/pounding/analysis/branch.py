@@ -31,9 +31,11 @@ class Bifurcation:
 
     Attributes
     ----------
-    kind : {"fold", "period-doubling", "neimark-sacker", "grazing"}
+    kind : {"fold", "branch-point", "period-doubling", "neimark-sacker", "grazing"}
         ``fold``: the branch turns back (a multiplier crosses +1; a saddle-node); the response
-        jumps there in a sweep.  ``period-doubling``: a multiplier crosses -1 (a branch of twice
+        jumps there in a sweep.  ``branch-point``: another branch crosses this one (a symmetric
+        orbit's pitchfork; pass this object as ``guess`` to :func:`pounding.continuation` to
+        follow the branch left there).  ``period-doubling``: a multiplier crosses -1 (a branch of twice
         the period starts: pass this object as ``guess`` to :func:`pounding.continuation`).
         ``neimark-sacker``: a complex pair crosses the unit circle.  ``grazing``: the orbit
         touches a bumper with zero velocity (a contact appears or vanishes; ``side`` says which).
@@ -66,6 +68,19 @@ class Bifurcation:
         The branch's tangent there: the coordinates' parts (unscaled), then the parameter's.
     parameter : str
         The parameter of the branch it is on (``"freq_hz"``, ``"a_g"`` or a dotted name).
+
+    Examples
+    --------
+    The first fold of the damped paper system's branch at a_G = 0.05: there a stable and an
+    unstable orbit meet (a multiplier is 1) and an up sweep jumps off the impacting response.
+
+    >>> import pounding
+    >>> branch = pounding.continuation(pounding.presets.paper_damped(), 0.05, (1.5, 2.5))
+    >>> fold = branch.folds()[0]
+    >>> fold.kind, round(fold.freq_hz, 4), fold.a_g, fold.located
+    ('fold', 2.0144, 0.05, True)
+    >>> round(float(fold.multipliers[0].real), 6), round(fold.alpha, 1)
+    (1.0, 12.5)
     """
 
     kind: str
@@ -120,7 +135,29 @@ class Branch:
     bifurcations : tuple of Bifurcation
         In the order met.
     status : Status
+        ``SUCCESS`` when the branch reached an end of the range, ``STEP_FAILED`` when the
+        corrector failed at the smallest step, ``BUDGET`` at ``max_points``, ``INTERRUPTED``
+        on Ctrl-C.
     message : str
+        What happened, for people.
+    a_g, freq_hz : float
+        The forcing held fixed: the table's peak acceleration, g, and the frequency, Hz (NaN for
+        the one continued).
+
+    Examples
+    --------
+    The damped paper system's branch at a_G = 0.05 from 1.5 to 2.5 Hz: it folds twice, and just
+    past the second fold it grazes both bumpers.
+
+    >>> import pounding
+    >>> branch = pounding.continuation(pounding.presets.paper_damped(), 0.05, (1.5, 2.5))
+    >>> branch.status.name, branch.parameter, branch.a_g
+    ('SUCCESS', 'freq_hz', 0.05)
+    >>> [(b.kind, b.side, round(b.freq_hz, 3)) for b in branch.bifurcations]
+    [('fold', '', 2.014), ('fold', '', 1.605), ('grazing', 'left', 1.605), ('grazing', 'right', 1.605)]
+    >>> df = branch.to_dataframe()
+    >>> round(float(df["alpha"].max()), 1), bool(df["stable"].iloc[0])
+    (12.8, True)
     """
 
     oscillator: "Oscillator" = field(repr=False)

@@ -113,10 +113,16 @@ def continuation(
 
     Examples
     --------
-    >>> import pounding as pd_
-    >>> branch = pd_.continuation(pd_.presets.paper_damped(), 0.05, (1.0, 3.0))
-    >>> [b.kind for b in branch.folds()]
-    ['fold', 'fold']
+    The damped paper system at a_G = 0.05 from 1 to 3 Hz: the asymmetric orbits fold at 1.237 Hz
+    (next to the branch point where they meet the symmetric branch), and the impacting branch
+    folds at 2.014 Hz and back at 1.605 Hz, the folds that bracket the sweeps' jumps.
+
+    >>> import pounding
+    >>> branch = pounding.continuation(pounding.presets.paper_damped(), 0.05, (1.0, 3.0))
+    >>> branch.status.name
+    'SUCCESS'
+    >>> [round(b.freq_hz, 3) for b in branch.folds()]
+    [1.237, 2.014, 1.605]
     """
     check_oscillator(oscillator)
     parameter, values, a_g, freq_hz = _check_range(oscillator, parameter, a_g, freqs_hz, values)

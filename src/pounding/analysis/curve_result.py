@@ -28,20 +28,43 @@ class BifurcationCurve:
     Attributes
     ----------
     oscillator : Oscillator
+        The system.
     kind : {"fold", "grazing"}
+        What is followed: a fold (a multiplier is 1) or a grazing (the orbit just touches a bumper).
     side : str
         ``"left"`` or ``"right"`` for a grazing, else ``""``.
     period_multiple : int
+        The orbits' period, in forcing periods.
     freqs_hz, a_g : (float, float)
-        The box it was followed in.
+        The box it was followed in: frequencies, Hz, and table accelerations, g.
     table : DataFrame
         One row per point in the curve's order (see :meth:`to_dataframe`).
     states : ndarray, shape (points, state length)
         Each point's orbit at its section (time 0, the forcing's angle ``phase_rad``).
     status : Status
+        ``SUCCESS`` when both ends reached the box's edge or the curve closed, ``STEP_FAILED``
+        when the corrector failed at the smallest step, ``BUDGET`` at ``max_points``,
+        ``INTERRUPTED`` on Ctrl-C.
     message : str
+        What happened, for people.
     start : Bifurcation
         The bifurcation it was followed from.
+
+    Examples
+    --------
+    The fold at 2.014 Hz of the damped paper system's branch at a_G = 0.05, followed in (f, a_G):
+    a stronger shaking moves it to a higher frequency.
+
+    >>> import pounding
+    >>> osc = pounding.presets.paper_damped()
+    >>> fold = pounding.continuation(osc, 0.05, (1.5, 2.5)).folds()[0]
+    >>> curve = pounding.bifurcation_curve(osc, fold, a_g=(0.045, 0.055), freqs_hz=(1.5, 2.5), max_step=0.1)
+    >>> curve.kind, curve.status.name, curve.passes(fold)
+    ('fold', 'SUCCESS', True)
+    >>> df = curve.to_dataframe()
+    >>> print(f"{df['freq_hz'].iloc[0]:.3f} Hz at a_G {df['a_g'].iloc[0]:.3f}, "
+    ...       f"{df['freq_hz'].iloc[-1]:.3f} Hz at a_G {df['a_g'].iloc[-1]:.3f}")
+    1.881 Hz at a_G 0.045, 2.146 Hz at a_G 0.055
     """
 
     oscillator: "Oscillator" = field(repr=False)
@@ -106,8 +129,9 @@ class CoexistenceMap:
     Attributes
     ----------
     oscillator : Oscillator
+        The system.
     a_g, freqs_hz : (float, float)
-        The map's box.
+        The map's box: table accelerations, g, and frequencies, Hz.
     levels : tuple of float
         The branches' a_G.
     branches : tuple of Branch
@@ -120,6 +144,19 @@ class CoexistenceMap:
     notes : tuple of str
         The bifurcations not followed, and why (e.g. a branch that turns at a grazing, where no
         multiplier is 1).
+
+    Examples
+    --------
+    The damped paper system's branch at a_G = 0.05 and its two folds, followed in (f, a_G): from
+    1.7 to 2.0 Hz two stable responses coexist, where up and down sweeps differ.
+
+    >>> import pounding
+    >>> m = pounding.coexistence_map(pounding.presets.paper_damped(), a_g=(0.04, 0.06), freqs_hz=(1.5, 2.5),
+    ...                              levels=[0.05], kinds=["fold"], max_step=0.05)
+    >>> len(m.branches), [c.kind for c in m.curves]
+    (1, ['fold', 'fold'])
+    >>> m.coexisting()["freq_hz"].tolist()
+    [1.7, 1.8, 1.9, 2.0]
     """
 
     oscillator: "Oscillator" = field(repr=False)

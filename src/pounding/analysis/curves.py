@@ -77,12 +77,18 @@ def bifurcation_curve(
 
     Examples
     --------
-    >>> import pounding as pd_
-    >>> osc = pd_.presets.paper_damped()
-    >>> fold = pd_.continuation(osc, 0.05, (1.5, 2.5)).folds()[0]
-    >>> curve = pd_.bifurcation_curve(osc, fold, a_g=(0.04, 0.06), freqs_hz=(1.0, 3.0))
+    The fold at 2.014 Hz of the damped paper system's branch at a_G = 0.05, followed from
+    a_G = 0.04 to 0.06:
+
+    >>> import pounding
+    >>> osc = pounding.presets.paper_damped()
+    >>> fold = pounding.continuation(osc, 0.05, (1.5, 2.5)).folds()[0]
+    >>> curve = pounding.bifurcation_curve(osc, fold, a_g=(0.04, 0.06), freqs_hz=(1.0, 3.0))
     >>> curve.status.name
     'SUCCESS'
+    >>> df = curve.to_dataframe()
+    >>> round(float(df["freq_hz"].min()), 3), round(float(df["freq_hz"].max()), 3)
+    (1.746, 2.276)
     """
     check_oscillator(oscillator)
     if not isinstance(bifurcation, Bifurcation):
@@ -143,6 +149,7 @@ def coexistence_map(
     Parameters
     ----------
     oscillator : Oscillator
+        The system.
     a_g : (float, float)
         The map's range of a_G, g.
     freqs_hz : (float, float)
@@ -154,15 +161,15 @@ def coexistence_map(
         The test matrix's frequency step, from ``freqs_hz[0]`` (the paper's 0.1 Hz).
     kinds : sequence of {"fold", "grazing"}
         The bifurcations followed.
-    max_step, max_points, tol, method
-        As in :func:`bifurcation_curve` (``max_points`` per curve); ``max_step`` and ``method``
-        are also the branches' (:func:`continuation`).
-
-    Raises
-    ------
-    Interrupted
-        On Ctrl-C; ``.partial`` is the map of the branches and curves finished (and the one under
-        way, cut short).
+    max_step : float
+        Largest arclength step, as in :func:`bifurcation_curve`; also the branches'
+        (:func:`continuation`).
+    max_points : int
+        Points at most per curve, as in :func:`bifurcation_curve`.
+    tol : float
+        Largest scaled residual of each curve's points, as in :func:`bifurcation_curve`.
+    method : {"auto", "exact", "finite-difference"}
+        The monodromy, as in :func:`periodic_orbit`; also the branches'.
 
     Returns
     -------
@@ -170,13 +177,22 @@ def coexistence_map(
         ``branches``, ``curves``, ``matrix`` (one row per level and frequency: the number of
         stable period-1 orbits there), ``.plot()``, ``.to_dataframe()``.
 
+    Raises
+    ------
+    Interrupted
+        On Ctrl-C; ``.partial`` is the map of the branches and curves finished (and the one under
+        way, cut short).
+
     Examples
     --------
-    >>> import pounding as pd_
-    >>> m = pd_.coexistence_map(pd_.presets.paper_damped(), a_g=(0.04, 0.06), freqs_hz=(1.5, 2.5),
-    ...                         levels=[0.05], kinds=["fold"])
-    >>> int(m.matrix["stable_orbits"].max())
-    2
+    The damped paper system at a_G = 0.05, from 1.5 to 2.5 Hz by 0.1 Hz: two stable responses
+    coexist at four of the test frequencies.
+
+    >>> import pounding
+    >>> m = pounding.coexistence_map(pounding.presets.paper_damped(), a_g=(0.04, 0.06), freqs_hz=(1.5, 2.5),
+    ...                              levels=[0.05], kinds=["fold"], max_step=0.05)
+    >>> int(m.matrix["stable_orbits"].max()), len(m.coexisting())
+    (2, 4)
     """
     check_oscillator(oscillator)
     a_box = _box("a_g", a_g, "g")

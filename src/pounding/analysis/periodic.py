@@ -70,6 +70,17 @@ class PeriodicOrbit:
         One period from ``state``, densely sampled.
     message : str
         What happened, for people.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> orbit = pounding.periodic_orbit(pounding.presets.paper_damped(), pounding.Harmonic(0.05, 1.5))
+    >>> orbit.method, orbit.coordinates
+    ('exact', ('D', 'V', 'delta_L', 'delta_R', 'u_0'))
+    >>> round(orbit.period_s, 4), orbit.contacts_per_period, orbit.stable
+    (0.6667, 2, True)
+    >>> print(f"alpha {orbit.alpha:.2f}, eta {orbit.eta:.3f}, max |mu| {orbit.max_abs_multiplier:.3f}")
+    alpha 8.30, eta 1.066, max |mu| 0.368
     """
 
     state: State
@@ -178,10 +189,15 @@ def periodic_orbit(
 
     Examples
     --------
-    >>> import pounding as pd_
-    >>> orbit = pd_.periodic_orbit(pd_.presets.paper_damped(), pd_.Harmonic(0.05, 1.5))
-    >>> orbit.converged, orbit.stable
-    (True, True)
+    The damped paper system at a_G = 0.05 and 1.5 Hz: a stable response that hits both bumpers
+    once per cycle.
+
+    >>> import pounding
+    >>> orbit = pounding.periodic_orbit(pounding.presets.paper_damped(), pounding.Harmonic(0.05, 1.5))
+    >>> orbit.converged, orbit.stable, orbit.contacts_per_period
+    (True, True, 2)
+    >>> [round(float(v), 3) for v in orbit.impact_velocities_m_s]
+    [-0.068, 0.068]
     """
     check_oscillator(oscillator)
     if not isinstance(excitation, Harmonic):

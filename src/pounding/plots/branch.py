@@ -24,6 +24,7 @@ def plot_branch(branch: Any, ax: Any = None, *, y: str = "alpha", x: Optional[st
     branch : Branch or sequence of Branch
         From :func:`pounding.continuation` (several: e.g. a branch and its period-doubled one).
     ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
     y : str
         A column of ``Branch.to_dataframe()``: ``"alpha"`` (default), ``"eta"``,
         ``"excursion_m"``, ``"max_abs_multiplier"``, ...
@@ -38,6 +39,20 @@ def plot_branch(branch: Any, ax: Any = None, *, y: str = "alpha", x: Optional[st
     Returns
     -------
     list of matplotlib artists
+        The branch's lines, the bifurcations' markers and labels, the sweeps' markers.
+
+    Examples
+    --------
+    The damped paper system's branch at a_G = 0.05, its folds and grazings marked, with an up
+    sweep over it:
+
+    >>> import pounding
+    >>> osc = pounding.presets.paper_damped()
+    >>> branch = pounding.continuation(osc, 0.05, (1.5, 2.5))
+    >>> up = pounding.sweep(osc, 0.05, [1.5, 2.0, 2.5], steady="fixed", cycles=10, measure_cycles=2)
+    >>> artists = pounding.plots.plot_branch(branch, sweeps=up)
+    >>> len(artists) > 0
+    True
     """
     import matplotlib.pyplot as plt
     from matplotlib import cbook

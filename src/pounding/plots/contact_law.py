@@ -23,6 +23,19 @@ def plot_contact_law_fit(fit: "ContactLawFit", ax: Any = None) -> list:
     Returns
     -------
     list of matplotlib artists
+        The measured points and the fitted law's line.
+
+    Examples
+    --------
+    A Hunt-Crossley law fitted to the shipped cyclic test of a bumper:
+
+    >>> import pounding
+    >>> test = pounding.data.bumper_cyclic_test()
+    >>> fit = pounding.fit_contact_law(test["compression_m"], test["force_n"], time_s=test["time_s"],
+    ...                                law="hunt_crossley")
+    >>> artists = pounding.plots.plot_contact_law_fit(fit)
+    >>> len(artists)
+    2
     """
     import matplotlib.pyplot as plt
 

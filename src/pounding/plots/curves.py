@@ -13,7 +13,9 @@ def plot_curves(curves: list, ax: Any = None, *, matrix: Optional[Any] = None, *
     Parameters
     ----------
     curves : list of BifurcationCurve
+        From :func:`pounding.bifurcation_curve` (or ``CoexistenceMap.curves``).
     ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
     matrix : DataFrame, optional
         A test matrix (``a_g``, ``freq_hz``, ``stable_orbits``): its points drawn as dots, filled
         where two or more stable responses coexist.
@@ -23,6 +25,19 @@ def plot_curves(curves: list, ax: Any = None, *, matrix: Optional[Any] = None, *
     Returns
     -------
     list of matplotlib artists
+        The test matrix's points, then the curves' lines.
+
+    Examples
+    --------
+    The fold at 2.014 Hz of the damped paper system's branch at a_G = 0.05, followed in (f, a_G):
+
+    >>> import pounding
+    >>> osc = pounding.presets.paper_damped()
+    >>> fold = pounding.continuation(osc, 0.05, (1.5, 2.5)).folds()[0]
+    >>> curve = pounding.bifurcation_curve(osc, fold, a_g=(0.045, 0.055), freqs_hz=(1.5, 2.5), max_step=0.1)
+    >>> artists = pounding.plots.plot_curves([curve])
+    >>> len(artists)
+    1
     """
     import matplotlib.pyplot as plt
 

@@ -15,6 +15,7 @@ def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
     orbit : PeriodicOrbit
         From :func:`pounding.periodic_orbit`.
     ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
     **kwargs
         Passed to the orbit's line (solid when stable, dashed when not).
 
@@ -23,6 +24,16 @@ def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
     list of matplotlib artists
         The orbit's line, the mark of its section state, those of its contacts' starts, the
         bumpers' surfaces.
+
+    Examples
+    --------
+    The damped paper system's orbit at a_G = 0.05 and 1.5 Hz, which hits both bumpers:
+
+    >>> import pounding
+    >>> orbit = pounding.periodic_orbit(pounding.presets.paper_damped(), pounding.Harmonic(0.05, 1.5))
+    >>> artists = pounding.plots.plot_orbit(orbit)
+    >>> len(artists)  # the orbit, its section state, the contacts' starts, two bumpers
+    5
     """
     import matplotlib.pyplot as plt
     from matplotlib import cbook

@@ -16,12 +16,21 @@ def plot_record(record: "Record", ax: Any = None) -> list:
     Parameters
     ----------
     record : Record
+        A ground motion, e.g. from :mod:`pounding.records`.
     ax : matplotlib Axes, optional
         Where to draw (a new figure if omitted).
 
     Returns
     -------
     list of matplotlib artists
+        The record's line, the peak's marker and its label.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> artists = pounding.plots.plot_record(pounding.records.el_centro())
+    >>> len(artists)
+    3
     """
     import matplotlib.pyplot as plt
 
@@ -46,13 +55,26 @@ def plot_response_spectrum(spectrum: Any, ax: Any = None, *, quantity: str = "ps
     Parameters
     ----------
     spectrum : xarray.Dataset
+        From :func:`pounding.response_spectrum` (dims ``record`` and ``period_s``).
     ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
     quantity : str
         The variable drawn: ``psa_g`` (default), ``sa_g``, ``sd_m``, ``sv_m_s``, ``psv_m_s``, ...
 
     Returns
     -------
     list of matplotlib artists
+        One line per record.
+
+    Examples
+    --------
+    The 5 % damped spectrum of El Centro at three periods:
+
+    >>> import pounding
+    >>> spectrum = pounding.response_spectrum(pounding.records.el_centro(), [0.5, 1.0, 2.0])
+    >>> artists = pounding.plots.plot_response_spectrum(spectrum, quantity="sd_m")
+    >>> len(artists)
+    1
     """
     import matplotlib.pyplot as plt
 

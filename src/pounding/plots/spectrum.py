@@ -16,7 +16,9 @@ def plot_pounding_spectrum(spectrum: Any, ax: Any = None, *, kind: str = "curves
     Parameters
     ----------
     spectrum : PoundingSpectrum
+        From :func:`pounding.pounding_spectrum`.
     ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
     kind : {"curves", "map"}
         "curves": the median over the records against the period, one line per gap, the 16-84 %
         band shaded (one record: its curves); "map": the median over period (x) and gap (y).
@@ -27,6 +29,17 @@ def plot_pounding_spectrum(spectrum: Any, ax: Any = None, *, kind: str = "curves
     Returns
     -------
     list of matplotlib artists
+        "curves": one line per gap (and its band); "map": the colour mesh.
+
+    Examples
+    --------
+    El Centro on isolators of 2 and 3 s with gaps of 50 and 100 mm:
+
+    >>> import pounding
+    >>> spectrum = pounding.pounding_spectrum(pounding.records.el_centro(), [2.0, 3.0], gaps_m=[0.05, 0.1])
+    >>> artists = pounding.plots.plot_pounding_spectrum(spectrum)
+    >>> len(artists)  # two gaps, and the line amplification = 1
+    3
     """
     import matplotlib.pyplot as plt
 

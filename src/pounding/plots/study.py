@@ -22,6 +22,7 @@ def plot_study(result: Any, quantity: str, *, x: str | None = None, hue: str | N
     hue : str, optional
         The axis whose values make the lines (default: the next one longer than 1, if any).
     ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
     where : dict, optional
         A value for each other axis longer than 1 (the nearest is taken): ``{"a_g": 0.05}``.
 
@@ -29,6 +30,20 @@ def plot_study(result: Any, quantity: str, *, x: str | None = None, hue: str | N
     -------
     list of matplotlib Line2D
         Points not done are gaps in the lines.
+
+    Examples
+    --------
+    A study of three left gaps, one 5 s run at a_G = 0.05 and 1.5 Hz each, written to
+    ``gaps.zarr``:
+
+    >>> import pounding
+    >>> spec = pounding.StudySpec(pounding.presets.paper_damped(),
+    ...                           {"kind": "simulate", "a_g": 0.05, "freq_hz": 1.5, "duration_s": 5.0},
+    ...                           {"bumpers.gap_left": [0.010, 0.015, 0.020]})
+    >>> _ = pounding.study(spec, "gaps.zarr", progress=False)
+    >>> artists = pounding.plots.plot_study(pounding.open_study("gaps.zarr"), "acc_max_g")
+    >>> len(artists)
+    1
     """
     import matplotlib.pyplot as plt
 

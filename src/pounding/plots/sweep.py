@@ -35,6 +35,19 @@ def plot_sweep(sweeps: "SweepResult | Sequence[SweepResult]", ax: Any = None, *,
     Returns
     -------
     list of matplotlib artists
+        The sweeps' lines in both panels, the unsteady steps' circles, the line eta = 1.
+
+    Examples
+    --------
+    Up and down sweeps of the damped paper system at a_G = 0.05, three frequencies of ten cycles:
+
+    >>> import pounding
+    >>> osc = pounding.presets.paper_damped()
+    >>> sweeps = [pounding.sweep(osc, 0.05, [1.5, 2.0, 2.5], direction, steady="fixed", cycles=10,
+    ...                          measure_cycles=2) for direction in ("up", "down")]
+    >>> artists = pounding.plots.plot_sweep(sweeps)
+    >>> len(artists) > 0
+    True
     """
     import matplotlib.pyplot as plt
 
@@ -77,15 +90,31 @@ def plot_lab_sweep(lab: Any, ax: Any = None, *, label: str | None = None, color:
     Parameters
     ----------
     lab : LabSweep
+        From :func:`pounding.lab.analyse_stepped_sine`.
     ax : pair of matplotlib Axes, optional
         ``(ax_alpha, ax_excursion)``, e.g. those of :func:`plot_sweep` to overlay the model.
     label : str, optional
         Legend label (default ``lab, a_G = ...``).
-    color : optional
+    color : matplotlib color, optional
+        The markers' colour (default black).
 
     Returns
     -------
     list of matplotlib artists
+        The measured points in both panels, the unsteady steps' circles.
+
+    Examples
+    --------
+    A synthetic stepped-sine test of the damped paper system (three steps of ten cycles),
+    analysed as a measured one:
+
+    >>> import pounding
+    >>> osc = pounding.presets.paper_damped()
+    >>> record = pounding.lab.synthetic_test(osc, 0.05, [1.5, 2.0, 2.5], cycles=10)
+    >>> lab = pounding.lab.analyse_stepped_sine(record, mass_kg=500.0, gap_total_m=0.03)
+    >>> artists = pounding.plots.plot_lab_sweep(lab)
+    >>> len(lab.steps), len(artists) > 0
+    (3, True)
     """
     import matplotlib.pyplot as plt
 
@@ -118,6 +147,7 @@ def plot_hysteresis(loop: "HysteresisLoop", ax: Any = None, *, per: str = "total
     loop : HysteresisLoop
         From :meth:`SweepResult.hysteresis_loop`.
     ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
     per : {"total_gap", "half_gap"}
         ``d = D / Delta`` (the paper's definition, Sect. 3.3: symmetric bumpers at +-0.5), or
         ``d = D / (Delta / 2)`` (bumpers at +-1, where the paper's Figs. 7 and 15 draw them).
@@ -127,6 +157,18 @@ def plot_hysteresis(loop: "HysteresisLoop", ax: Any = None, *, per: str = "total
     Returns
     -------
     list of matplotlib artists
+        The loop's line, the bumpers' surfaces.
+
+    Examples
+    --------
+    The loop of the damped paper system at a_G = 0.05 and 1.5 Hz, where it hits both bumpers:
+
+    >>> import pounding
+    >>> up = pounding.sweep(pounding.presets.paper_damped(), 0.05, [1.5], steady="fixed", cycles=10,
+    ...                     measure_cycles=2)
+    >>> artists = pounding.plots.plot_hysteresis(up.hysteresis_loop(1.5), per="half_gap")
+    >>> len(artists)  # the loop and the two bumpers' surfaces
+    3
     """
     import matplotlib.pyplot as plt
 
@@ -153,12 +195,28 @@ def plot_campaign(result: "CampaignResult", ax: Any = None) -> list:
     Parameters
     ----------
     result : CampaignResult
+        From :func:`pounding.campaign`.
     ax : 2-by-n array of matplotlib Axes, optional
         One column per configuration in the campaign; a new figure if omitted.
 
     Returns
     -------
     list of matplotlib artists
+        Those of :func:`plot_sweep`, for every sweep.
+
+    Examples
+    --------
+    A tiny campaign of the damped paper system without and with bumpers: one a_G, up only, two
+    frequencies of ten cycles:
+
+    >>> import pounding
+    >>> osc = pounding.presets.paper_damped()
+    >>> result = pounding.campaign(osc.without_bumpers(), osc, nbs_a_g=[0.05], ybs_a_g=[0.05],
+    ...                            freqs_hz=[1.5, 2.0], directions=["up"], steady="fixed", cycles=10,
+    ...                            measure_cycles=2)
+    >>> artists = pounding.plots.plot_campaign(result)
+    >>> len(artists) > 0
+    True
     """
     import matplotlib.pyplot as plt
 
