@@ -84,7 +84,7 @@ def continuation(
         start value (the response a sweep would settle on).
     tol : float
         Largest scaled residual accepted at each point (lengths over the scale of the
-        branch: half the total gap, or the first orbit's largest |D| if larger).
+        branch: half the total gap, or the first orbit's largest ``|D|`` if larger).
     max_step : float
         Largest arclength step, in units where the parameter's range is 1 (0.02: at least 50
         points over the range).

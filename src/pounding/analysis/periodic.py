@@ -57,7 +57,7 @@ class PeriodicOrbit:
         Names of the shooting coordinates (``D``, ``V``, ``delta_L``, ``delta_R``, ``u_i``).
     residual : float
         Largest difference between the state and its image one period later, each coordinate
-        over its scale (lengths over the largest |D| over the guess's first period, velocities
+        over its scale (lengths over the largest ``|D|`` over the guess's first period, velocities
         over that times Omega, the Bouc-Wen z over 1).
     converged : bool
         Whether ``residual <= tol``.
@@ -97,7 +97,7 @@ class PeriodicOrbit:
 
     @property
     def max_abs_multiplier(self) -> float:
-        """The largest |multiplier| (NaN when there is no monodromy: a search that stopped early)."""
+        """The largest ``|multiplier|`` (NaN when there is no monodromy: a search that stopped early)."""
         return float(np.abs(self.multipliers).max()) if self.multipliers.size else math.nan
 
     @property
