@@ -63,6 +63,7 @@ class ModelFamily:
     branches : int
         Number of backbone slopes ``n`` (>= 1).
     hysteresis : {"kinematic", "elastic"}
+        The isolator's backbone hysteresis (as :class:`~pounding.Isolator`'s).
     law : {"kelvin_voigt", "hunt_crossley", "elastic_plastic", "multilinear", "multilinear_kinematic"}
         The bumpers' contact law (the last: :class:`MultilinearBumper` with kinematic hysteresis).
     fixed : dict
@@ -75,6 +76,20 @@ class ModelFamily:
         ``bw_stiffness`` N/m, ``bw_yield_displacement`` m and ``bw_n``; ``a = 1``,
         ``beta = gamma = 0.5``).  Every phase is then integrated numerically: some 30 times the
         cost of a campaign.
+
+    Examples
+    --------
+    A one-branch isolator on Kelvin-Voigt bumpers, with ``C_d`` and the bumpers' damping to be fitted:
+
+    >>> import pounding
+    >>> family = pounding.ModelFamily(500.0, branches=1, law="kelvin_voigt",
+    ...                               fixed={"slope_1": 38e3, "bumper_stiffness": 1.46e6, "gap": 0.015})
+    >>> family.parameter_names
+    ('slope_1', 'isolator_damping', 'bumper_stiffness', 'bumper_damping', 'gap')
+    >>> family.free_names({"isolator_damping": (100.0, 5000.0), "bumper_damping": (0.0, 5000.0)})
+    ('isolator_damping', 'bumper_damping')
+    >>> family.oscillator({"isolator_damping": 1000.0, "bumper_damping": 500.0}).bumpers.law
+    KelvinVoigt(stiffness=1460000.0, damping=500.0)
     """
 
     mass: float

@@ -61,15 +61,33 @@ class Identification:
         normalized residuals (a NaN model value counts as :data:`MISSING_RESIDUAL` tolerances).
     n_evaluations : int
         Campaign evaluations used.
-    status, message
+    status, message : Status, str
         ``Status.SUCCESS``, and what was reached.
     complete : bool
         False for the ``partial`` of the :class:`~pounding.Interrupted` that Ctrl-C raises:
         the best candidate so far.
-    family, bounds
+    family, bounds : ModelFamily, dict
         What was fitted.
     loss : str
         What was minimised (``identify``'s ``loss``).
+
+    Examples
+    --------
+    The printed system's isolator damping ``C_d`` fitted to the NBs resonant amplification at
+    a_G = 0.05 g (a tiny search over five sweep steps):
+
+    >>> import pounding
+    >>> fixed = pounding.ModelFamily(500.0).values_of(pounding.presets.paper_damped())
+    >>> del fixed["isolator_damping"]  # fitted; every other number as printed
+    >>> targets = pounding.Targets.from_records([{"configuration": "NBs", "a_g": 0.05, "quantity": "alpha",
+    ...                                           "value": 2.99}])
+    >>> fit = pounding.identify(targets, pounding.ModelFamily(500.0, fixed=fixed),
+    ...                         {"isolator_damping": (100.0, 5000.0)}, freqs_hz=[0.9, 1.0, 1.1, 1.2, 1.3],
+    ...                         popsize=4, maxiter=3)
+    >>> fit.status.name, fit.n_within, f"{fit.oscillator.isolator.damping:.0f} N s/m"
+    ('SUCCESS', 1, '548 N s/m')
+    >>> fit.to_toml("fitted.toml").name  # read back with pounding.Oscillator.from_toml
+    'fitted.toml'
     """
 
     parameters: dict[str, float]
@@ -186,6 +204,7 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     Returns
     -------
     Identification
+        The fitted free numbers, the fitted system and one residual row per target.
 
     Raises
     ------
@@ -193,6 +212,23 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
         Bad targets, family or bounds (names the field and the fix).
     Interrupted
         On Ctrl-C; ``partial`` is the Identification of the best candidate so far.
+
+    Examples
+    --------
+    Which isolator damping ``C_d`` (N s/m) gives the printed system the measured NBs resonant
+    amplification alpha = 2.99 at a_G = 0.05 g? One free number, one target, five sweep steps and
+    a tiny search (a real fit uses the defaults and many targets: docs/calibration.md):
+
+    >>> import pounding
+    >>> fixed = pounding.ModelFamily(500.0).values_of(pounding.presets.paper_damped())
+    >>> del fixed["isolator_damping"]  # fitted; every other number as printed
+    >>> targets = pounding.Targets.from_records([{"configuration": "NBs", "a_g": 0.05, "quantity": "alpha",
+    ...                                           "value": 2.99}])
+    >>> fit = pounding.identify(targets, pounding.ModelFamily(500.0, fixed=fixed),
+    ...                         {"isolator_damping": (100.0, 5000.0)}, freqs_hz=[0.9, 1.0, 1.1, 1.2, 1.3],
+    ...                         popsize=4, maxiter=3)
+    >>> round(fit.parameters["isolator_damping"]), fit.n_within
+    (548, 1)
     """
     if not isinstance(targets, Targets):
         raise InputError(Problem.WRONG_TYPE, "targets", targets, got=type(targets).__name__,

@@ -84,6 +84,20 @@ class Targets:
         that a fit with the gap free compares excursions with excursions (the lab's E over
         its nominal Delta).  None: the model's own gap (the same when the gap is the nominal
         one).
+
+    Examples
+    --------
+    Two measurements of a YBs sweep at a_G = 0.05 g, with the default tolerances:
+
+    >>> import pounding
+    >>> targets = pounding.Targets.from_records(
+    ...     [{"configuration": "YBs", "a_g": 0.05, "quantity": "alpha", "value": 16.8},
+    ...      {"configuration": "YBs", "a_g": 0.05, "quantity": "contact_time_ms", "value": 15.0}],
+    ...     eta_gap_total_m=0.03)
+    >>> len(targets), targets.cases
+    (2, [('YBs', 0.05, 'up')])
+    >>> targets.allowed.round(3).tolist()  # alpha within 10 %, the contact time within 30 %
+    [1.68, 4.5]
     """
 
     table: pd.DataFrame
@@ -233,6 +247,30 @@ def paper_targets(direction: str = "up", quantities: tuple[str, ...] = PAPER_QUA
     ``excursion_max_m`` of Sect. 3.2 and Table 4's ``dissipated_energy_per_mass`` for
     :meth:`Targets.check_consistency` (``consistency.CONSISTENCY_QUANTITIES``).
     Left out: :data:`PAPER_EXCLUDED` (values MODEL.md §5 shows to be misprinted).
+
+    Parameters
+    ----------
+    direction : {"up", "down"}
+        The direction of the model's sweeps each target is compared with (every target the same).
+    quantities : tuple of str
+        The quantities kept, names of :data:`DEFAULT_TOLERANCES` (default
+        :data:`PAPER_QUANTITIES`: those of Tables 2-4 above).
+
+    Returns
+    -------
+    Targets
+        One row per printed value of those quantities, NBs and YBs, with ``eta_gap_total_m``
+        0.03 m.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> targets = pounding.paper_targets()
+    >>> len(targets), targets.eta_gap_total_m
+    (36, 0.03)
+    >>> alphas = pounding.paper_targets(quantities=("alpha",)).table  # Table 2's alpha: NBs, then YBs
+    >>> alphas["value"].tolist()
+    [1.8, 2.99, 3.89, 1.96, 16.8, 16.18, 15.04]
     """
     one_of("direction", direction, DIRECTIONS)
     if isinstance(quantities, str) or not isinstance(quantities, (tuple, list)) or not quantities:

@@ -21,6 +21,16 @@ NOT_COMPARABLE = {"mean_force_over_mg"}
 def comparison(result: CampaignResult, table: str) -> pd.DataFrame:
     """One of Tables 2-4: model (each sweep direction) beside measured, with ``model - measured``.
 
+    Parameters
+    ----------
+    result : CampaignResult
+        A campaign (:func:`pounding.campaign`); only its (configuration, a_g) pairs that the
+        paper measured make rows.
+    table : {"2", "3", "4"}
+        The paper's table: 2 (``nu_r``, ``alpha``, ``eta``, ``e``, the contact range), 3 (mean
+        contact force over ``M g``, contact time in ms) or 4 (dissipated energy per mass,
+        restitution).
+
     Returns
     -------
     DataFrame
@@ -31,6 +41,18 @@ def comparison(result: CampaignResult, table: str) -> pd.DataFrame:
         unclear have NaN differences.  The model's YBs ``eta`` is its largest excursion over
         the rig's nominal gap (``paper_gap_total_m``), as the paper measured it, whatever the
         model's own gap.
+
+    Examples
+    --------
+    Table 2 at a_G = 0.05 g from a small campaign (sweeps up, four steps of 10 cycles):
+
+    >>> import pounding
+    >>> nbs, ybs = pounding.presets.paper_damped(bumpers=False), pounding.presets.paper_damped()
+    >>> result = pounding.campaign(nbs, ybs, nbs_a_g=(0.05,), ybs_a_g=(0.05,), freqs_hz=[1.0, 1.1, 1.5, 2.0],
+    ...                            directions=("up",), steady="fixed", cycles=10)
+    >>> table2 = pounding.reports.comparison(result, "2")
+    >>> table2[["configuration", "alpha_model", "alpha_measured", "alpha_diff_pct"]].round(2).values.tolist()
+    [['NBs', 2.63, 2.99, -11.99], ['YBs', 8.32, 16.8, -50.47]]
     """
     model = {"2": result.table2, "3": result.table3, "4": result.table4}[table]()
     if table == "2":

@@ -29,7 +29,43 @@ TABLE_TITLES = {"targets": "Calibration targets (Tables 2-4; sweeps up, fixed 30
 
 @dataclass(frozen=True)
 class Report:
-    """What :func:`reproduce` wrote, and the campaign behind it."""
+    """What :func:`reproduce` wrote, and the campaign behind it.
+
+    Attributes
+    ----------
+    out_dir : Path
+        The directory written (it also holds the campaign as ``campaign.nc``).
+    index_html : Path
+        The report's page, ``out_dir / "index.html"``.
+    tables : dict of str to Path
+        ``"2"``, ``"3"``, ``"4"`` (and ``"targets"`` with ``beside``) -> the table's CSV.
+    figures : dict of str to Path
+        Figure name (``"fig04"`` ... ``"fig17"``, the paper's numbering, and ``"coexistence"`` when the
+        YBs branches could be continued) -> its PNG.
+    campaign : CampaignResult
+        The campaign that was run.
+    comparisons : dict of str to DataFrame
+        The tables themselves, keyed as ``tables``: :func:`comparison` of each (``"targets"``: the
+        paper's targets with the ``beside`` systems' model values).
+    verdict : Verdict
+        How many of :func:`pounding.paper_targets` the YBs system meets (``met`` of ``total``), its
+        worst misses and the measurements no model can meet together.
+
+    Examples
+    --------
+    A tiny report: one a_G per configuration, two steps of 5 cycles (the verdict still judges the
+    YBs system against all the paper's targets):
+
+    >>> import pounding
+    >>> report = pounding.reports.reproduce(
+    ...     pounding.presets.paper_damped(bumpers=False), pounding.presets.paper_damped(), "report",
+    ...     freqs_hz=[1.5, 2.0], nbs_a_g=(0.05,), ybs_a_g=(0.05,), directions=("up",), steady="fixed",
+    ...     cycles=5)
+    >>> report.index_html.name, sorted(report.tables), "fig05" in report.figures
+    ('index.html', ['2', '3', '4'], True)
+    >>> report.verdict.total, 0 < report.verdict.met < report.verdict.total   # the paper's 36 targets
+    (36, True)
+    """
 
     out_dir: Path
     index_html: Path
@@ -83,11 +119,34 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
     system_label : str
         How the page names the systems (e.g. the preset).
     freqs_hz, workers, progress, **sweep_options
-        As :func:`pounding.campaign` (default: the paper's grid, adaptive steady state).
+        As :func:`pounding.campaign` (default: the paper's grid, adaptive steady state);
+        ``sweep_options`` may hold its ``nbs_a_g``, ``ybs_a_g`` and ``directions`` too.  The
+        verdict (and ``beside``) evaluate the paper's targets with the calibration's own sweeps
+        (up, fixed 30 cycles per step, the paper's grid), whatever these say.
     beside : dict, optional
         ``label -> YBs system``: the report adds a table of the paper's targets with these
         systems' model values side by side (:func:`targets_beside`), e.g. the calibrated
         preset beside the printed one.
+
+    Returns
+    -------
+    Report
+        The paths written, the campaign, the tables and the verdict.
+
+    Examples
+    --------
+    The cheapest report: one a_G per configuration, sweeps up only, two steps of 5 cycles (a
+    couple of seconds, most of it writing the figures):
+
+    >>> import pounding
+    >>> report = pounding.reports.reproduce(
+    ...     pounding.presets.paper_damped(bumpers=False), pounding.presets.paper_damped(), "report",
+    ...     freqs_hz=[1.5, 2.0], nbs_a_g=(0.05,), ybs_a_g=(0.05,), directions=("up",), steady="fixed",
+    ...     cycles=5)
+    >>> sorted(p.name for p in report.out_dir.iterdir())[:6]
+    ['campaign.nc', 'coexistence.png', 'fig04.png', 'fig05.png', 'fig06.png', 'fig07.png']
+    >>> report.tables["2"].name, len(report.figures)
+    ('table2.csv', 13)
     """
     import matplotlib
 
