@@ -231,3 +231,40 @@ def test_a_heavily_damped_kinematic_bumper_matches_the_tightest_reference():
                                              "elastic", 1.2), pd_.Bumpers(0.01075511906034929, 0.02397497034083735, law))
     run, ref = _compare(osc, pd_.Harmonic(0.3125, 1.1, 2.53125), v0=0.5637432325354819)
     assert len(run.contacts) == 12 and run.energy.input_work == pytest.approx(ref.input_work, rel=1e-9)
+
+
+def test_tied_laws_rank_by_parameters_then_in_a_fixed_order_not_by_rounding():
+    """A test that loads the bumper once per cycle fits the multi-linear law with and without hysteresis
+    equally; which comes first must not depend on the last digits of their residuals."""
+    test = pd_.data.bumper_cyclic_test()
+    for n_branches in (2, 3):
+        ranked = pd_.rank_contact_laws(test["compression_m"], test["force_n"], time_s=test["time_s"],
+                                       effective_mass_kg=500.0, n_branches=n_branches)
+        laws = list(ranked["law"])
+        both = ranked.set_index("law").loc[["multilinear", "multilinear_kinematic"], "rms_n"]
+        assert abs(both.iloc[0] - both.iloc[1]) <= 1e-6 * both.iloc[0]
+        assert laws.index("multilinear") + 1 == laws.index("multilinear_kinematic")
+        rms = list(ranked["rms_n"])
+        assert all(b >= a * (1.0 - 1e-6) for a, b in zip(rms, rms[1:]))  # best first, up to the ties
+
+
+def test_a_tie_broken_by_rounding_the_other_way_ranks_the_same(monkeypatch):
+    """The same tie with the last digits pushed against the fixed order: the ranking does not move."""
+    import dataclasses
+
+    from pounding.identification import contact_law as module
+
+    real = module.fit_contact_law
+
+    def noisy(*args, **kwargs):
+        fit = real(*args, **kwargs)
+        if kwargs.get("hysteresis") == "elastic" and fit.law.TYPE == pd_.MultilinearBumper.TYPE:
+            fit = dataclasses.replace(fit, rms_n=fit.rms_n * (1.0 + 1e-9))  # the elastic one a hair worse
+        return fit
+
+    monkeypatch.setattr(module, "fit_contact_law", noisy)
+    test = pd_.data.bumper_cyclic_test()
+    ranked = pd_.rank_contact_laws(test["compression_m"], test["force_n"], time_s=test["time_s"],
+                                   effective_mass_kg=500.0, n_branches=2)
+    laws = list(ranked["law"])
+    assert laws.index("multilinear") + 1 == laws.index("multilinear_kinematic")

@@ -17,7 +17,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..protocols.sweep_result import SweepResult
     from .periodic import PeriodicOrbit
 
-KINDS = ("fold", "period-doubling", "neimark-sacker", "grazing")
+KINDS = ("fold", "branch-point", "period-doubling", "neimark-sacker", "grazing")
 
 # the table's columns, in order (the parameter's own column comes first when it is a system number)
 COLUMNS = ("freq_hz", "nu", "a_g", "alpha", "excursion_m", "displacement_max_m", "displacement_min_m", "eta",

@@ -157,7 +157,7 @@ def continuation(
         phase_rad = guess.phase_rad
     elif guess is not None and not isinstance(guess, State):
         raise InputError(Problem.WRONG_TYPE, "guess", guess, got=type(guess).__name__,
-                         expected="pounding.State or a period-doubling Bifurcation")
+                         expected="pounding.State, or a period-doubling or branch-point Bifurcation")
     p0, p1 = values
     p_start = guess.value if isinstance(guess, Bifurcation) else p0
     start_osc = system_at(oscillator, parameter, p_start)

@@ -459,6 +459,13 @@ def rank_contact_laws(displacement_m: Any, force_n: Any, *, time_s: Any = None, 
         rows.append({"law": name, "rms_n": fit.rms_n, "r_squared": fit.r_squared, "parameters": counts[name],
                      "fit": fit})
     df = pd.DataFrame(rows)
-    best = float(df["rms_n"].min())
-    df["_rms"] = np.where(df["rms_n"] <= best * (1.0 + 1e-6) + 1e-300, best, df["rms_n"])  # ties
-    return df.sort_values(["_rms", "parameters"]).drop(columns="_rms").reset_index(drop=True)
+    # ties (residuals within 1e-6 of each other, e.g. a multi-linear law with and without hysteresis on a
+    # test it loads once) rank by fewer parameters, then in the order above: never by rounding noise
+    rms = df["rms_n"].to_numpy()
+    order = np.argsort(rms, kind="stable")
+    tied = rms.copy()
+    for prev, cur in zip(order[:-1], order[1:]):
+        if rms[cur] <= tied[prev] * (1.0 + 1e-6) + 1e-300:
+            tied[cur] = tied[prev]
+    df["_rms"] = tied
+    return df.sort_values(["_rms", "parameters"], kind="stable").drop(columns="_rms").reset_index(drop=True)
