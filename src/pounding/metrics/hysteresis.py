@@ -29,6 +29,22 @@ class HysteresisLoop:
         Forcing cycles covered (the period multiple of the response).
     bumper_surfaces_d : tuple of float or None
         Where the bumpers' free surfaces are in ``d``: ``(-g_L / Delta, g_R / Delta)``.
+
+    Examples
+    --------
+    The loop of a pounding step (Figs. 7 and 15), from a sweep:
+
+    >>> import pounding
+    >>> sw = pounding.sweep(pounding.presets.paper_damped(), 0.05, [1.5, 2.0])
+    >>> loop = sw.hysteresis_loop(1.5)
+    >>> loop.cycles, loop.total_gap_m, loop.bumper_surfaces_d
+    (1, 0.03, (-0.5, 0.5))
+    >>> round(float(loop.d.min()), 2), round(float(loop.d.max()), 2)  # past the surfaces: contact
+    (-0.53, 0.53)
+    >>> round(float(loop.r.max()), 2)  # peak F_I / (M g)
+    0.42
+    >>> list(loop.to_dataframe().columns)
+    ['t', 'd', 'r']
     """
 
     d: np.ndarray = field(repr=False)

@@ -83,6 +83,30 @@ class CampaignResult:
         ``(configuration, a_g, direction) -> SweepResult`` for the sweeps that ran.
     complete : bool
         False after an interruption.
+
+    Examples
+    --------
+    A tiny matrix (one a_G, three frequencies, up only, 10 cycles a step; the paper's has 14 sweeps
+    of 46 steps):
+
+    >>> import pounding
+    >>> ybs = pounding.presets.paper_damped()
+    >>> res = pounding.campaign(ybs.without_bumpers(), ybs, nbs_a_g=[0.05], ybs_a_g=[0.05],
+    ...                         freqs_hz=[1.5, 2.0, 2.5], directions=["up"], steady="fixed", cycles=10)
+    >>> res.complete, list(res.sweeps)
+    (True, [('NBs', 0.05, 'up'), ('YBs', 0.05, 'up')])
+    >>> print(res.dataset["alpha"].sel(a_g=0.05, direction="up").round(2).to_pandas())
+    freq_hz         1.5   2.0   2.5
+    configuration
+    NBs            2.63  0.99  0.51
+    YBs            8.39  1.23  0.51
+    >>> res.sweep("YBs", 0.05, "up").contact_range_hz
+    (1.5, 1.5)
+    >>> print(res.table3()[["configuration", "nu_r", "contact_time_ms"]].round(1).to_string(index=False))
+    configuration  nu_r  contact_time_ms
+              YBs   1.5             50.0
+    >>> res.to_netcdf("campaign.nc").name
+    'campaign.nc'
     """
 
     dataset: "xr.Dataset" = field(repr=False)
@@ -174,6 +198,7 @@ def campaign(
     freqs_hz : array_like, optional
         Step frequencies, Hz (default: 0.5 to 5.0 by 0.1).
     directions : sequence of {"up", "down"}
+        The directions swept at each a_G (default both, as the paper).
     workers : int, optional
         Worker threads (default: the machine's cores).
     progress : bool or callable
@@ -182,7 +207,7 @@ def campaign(
         The keyword arguments of :func:`pounding.sweep`, the same for every sweep:
         ``steady``, ``cycles``, ``measure_cycles``, ``max_cycles``, ``steady_rtol``,
         ``max_period``, ``omega_min_rad_s``, ``f_ref_hz``, ``rtol``,
-        ``max_events_per_cycle`` (default: adaptive).
+        ``max_events_per_cycle`` and ``max_steps`` (each sweep's own budget); default: adaptive.
 
     Returns
     -------
@@ -194,6 +219,23 @@ def campaign(
     ------
     Interrupted
         On Ctrl-C; ``partial`` is a CampaignResult with the finished steps.
+
+    Examples
+    --------
+    NBs and YBs at a_G = 0.05 g, up, over three frequencies, a fixed 10 cycles a step (a tiny
+    version of the paper's matrix, which the defaults run):
+
+    >>> import pounding
+    >>> ybs = pounding.presets.paper_damped()
+    >>> res = pounding.campaign(ybs.without_bumpers(), ybs, nbs_a_g=[0.05], ybs_a_g=[0.05],
+    ...                         freqs_hz=[1.5, 2.0, 2.5], directions=["up"], steady="fixed", cycles=10)
+    >>> dict(res.dataset.sizes)
+    {'configuration': 2, 'a_g': 1, 'direction': 1, 'freq_hz': 3}
+    >>> table2 = res.table2()[["configuration", "nu_r", "alpha", "excursion_max_m"]]
+    >>> print(table2.round(3).to_string(index=False))
+    configuration  nu_r  alpha  excursion_max_m
+              NBs   1.5  2.632            0.034
+              YBs   1.5  8.386            0.032
     """
     unknown = sorted(set(sweep_options) - set(SWEEP_OPTIONS))
     if unknown:

@@ -35,8 +35,25 @@ class PoundingSpectrum:
         ``impact_speed_max_m_s`` (the fastest approach), ``status`` (the run's, 0 for success), and
         the amplification by pounding ``amplification = acc_max_g / acc_max_free_g`` and
         ``disp_ratio = disp_max_m / disp_max_free_m``; dims ``(record, period_s)``: the same without
-        bumpers, ``acc_max_free_g``, ``disp_max_free_m``.  NaN where a run did not finish
-        (interrupted).  Each record's metadata (``pga_g``, ``event``...) as coordinates on ``record``.
+        bumpers, ``acc_max_free_g``, ``disp_max_free_m``, ``status_free``.  NaN where a run did not
+        finish (interrupted).  Each record's metadata (``pga_g``, ``event``...) as coordinates on
+        ``record``.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> quake = pounding.records.el_centro().scaled(pga_g=0.3)
+    >>> ps = pounding.pounding_spectrum([quake], [1.0, 2.0], gaps_m=[0.02, 0.05])
+    >>> dict(ps.dataset.sizes)
+    {'record': 1, 'period_s': 2, 'gap_m': 2}
+    >>> median = ps.summary()["amplification"].sel(percentile=50.0)  # with bumpers / without
+    >>> print(median.round(1).to_pandas())
+    gap_m     0.02  0.05
+    period_s
+    1.0        6.0   7.5
+    2.0       22.5  48.3
+    >>> ps.to_dataframe().shape  # one row per record, period and gap
+    (4, 20)
     """
 
     dataset: "xr.Dataset"

@@ -88,6 +88,28 @@ def study(
         A bad spec (before any work), store or scheduler.
     Interrupted
         On Ctrl-C: the points finished are in the store (``partial`` is the store's Dataset).
+
+    Examples
+    --------
+    Four harmonic runs (5 s at 1.5 Hz from rest): the left gap against a_G, on threads, into
+    ``gaps.zarr`` in the current folder:
+
+    >>> import pounding
+    >>> spec = pounding.StudySpec(pounding.presets.paper_damped(),
+    ...                           {"kind": "simulate", "freq_hz": 1.5, "duration_s": 5.0},
+    ...                           {"bumpers.gap_left": [0.01, 0.02], "a_g": [0.03, 0.05]})
+    >>> ds = pounding.study(spec, "gaps.zarr", progress=False)
+    >>> print(ds["impacts"].to_pandas())
+    a_g               0.03  0.05
+    bumpers.gap_left
+    0.01               7.0  10.0
+    0.02               0.0  12.0
+
+    Run again, it resumes: every point is done, nothing is computed (``session`` stays 1).
+
+    >>> ds = pounding.study(spec, "gaps.zarr", progress=False)
+    >>> int(ds["done"].sum()), int(ds["session"].max())
+    (4, 1)
     """
     import multiprocessing as mp
 

@@ -25,6 +25,24 @@ class StudyResult:
         Lazily read (Dask arrays): dims the grid's axes; the quantities, ``done``, ``session``.
     spec : StudySpec
         The study that made the store.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> spec = pounding.StudySpec(pounding.presets.paper_damped(),
+    ...                           {"kind": "simulate", "freq_hz": 1.5, "duration_s": 5.0},
+    ...                           {"bumpers.gap_left": [0.01, 0.02], "a_g": [0.03, 0.05]})
+    >>> _ = pounding.study(spec, "gaps.zarr", progress=False)
+    >>> res = pounding.open_study("gaps.zarr")
+    >>> res.done, res.complete, res.spec.dims
+    (4, True, ('bumpers.gap_left', 'a_g'))
+    >>> df = res.to_dataframe()  # one row per point done
+    >>> print(df[["bumpers.gap_left", "a_g", "acc_max_g"]].round(3).to_string(index=False))
+     bumpers.gap_left  a_g  acc_max_g
+                 0.01 0.03      0.522
+                 0.01 0.05      0.713
+                 0.02 0.03      0.107
+                 0.02 0.05      0.533
     """
 
     dataset: "xr.Dataset" = field(repr=False)
@@ -57,7 +75,37 @@ class StudyResult:
 
 
 def open_study(store: str | Path) -> StudyResult:
-    """Open the store of :func:`pounding.study` (``xarray.open_zarr(store)`` reads it too)."""
+    """Open the store of :func:`pounding.study` (``xarray.open_zarr(store)`` reads it too).
+
+    Parameters
+    ----------
+    store : str or Path
+        The study's Zarr folder, or its fsspec URL (``s3://...``); a folder that is not a
+        study's store is refused.
+
+    Returns
+    -------
+    StudyResult
+        ``.dataset`` (read lazily), ``.spec`` (the study that made it), ``.done`` and
+        ``.complete``, ``.to_dataframe()`` and ``.plot()``.  Works on a study still running or
+        interrupted: the points not done are NaN, with ``done`` False.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> spec = pounding.StudySpec(pounding.presets.paper_damped(),
+    ...                           {"kind": "sweep", "freqs_hz": [1.5, 2.0], "cycles": 10},
+    ...                           {"a_g": [0.03, 0.05]})
+    >>> _ = pounding.study(spec, "sweeps.zarr", progress=False)
+    >>> res = pounding.open_study("sweeps.zarr")
+    >>> res.spec.kind, res.done, res.complete
+    ('sweep', 2, True)
+    >>> print(res.dataset["alpha"].round(2).to_pandas())  # max alpha of each sweep
+    a_g
+    0.03    3.55
+    0.05    8.39
+    Name: alpha, dtype: float64
+    """
     import xarray as xr
 
     store = check_store(store)

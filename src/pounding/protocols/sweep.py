@@ -36,7 +36,23 @@ MAX_CYCLES_PER_STEP = 1_000_000
 
 
 def paper_frequencies_hz() -> np.ndarray:
-    """The paper's steps: 0.5 to 5.0 Hz by 0.1 Hz (46 values)."""
+    """The paper's steps: 0.5 to 5.0 Hz by 0.1 Hz (46 values).
+
+    Returns
+    -------
+    ndarray, shape (46,)
+        The step frequencies in Hz, increasing (what :func:`sweep` and :func:`campaign` step
+        through by default).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> freqs = pounding.paper_frequencies_hz()
+    >>> len(freqs), float(freqs[0]), float(freqs[-1])
+    (46, 0.5, 5.0)
+    >>> round(float(freqs[1] - freqs[0]), 3)  # the step, Hz
+    0.1
+    """
     return np.arange(5, 51) / 10.0
 
 
@@ -229,6 +245,31 @@ def sweep(
         For a bad argument (names it, the value and the fix).
     Interrupted
         On Ctrl-C; its ``partial`` holds the finished steps.
+
+    Examples
+    --------
+    Three coarse steps up (the paper steps by 0.1 Hz, :func:`paper_frequencies_hz`) on the damped
+    paper system at a_G = 0.05 g; only the 1.5 Hz step pounds:
+
+    >>> import pounding
+    >>> ybs = pounding.presets.paper_damped()
+    >>> up = pounding.sweep(ybs, 0.05, [1.5, 2.0, 2.5], direction="up")
+    >>> up.message
+    'All 3 steps reached a periodic steady state.'
+    >>> df = up.to_dataframe()
+    >>> print(df[["freq_hz", "alpha", "eta", "contacts_per_cycle"]].round(2).to_string(index=False))
+     freq_hz  alpha  eta  contacts_per_cycle
+         1.5   8.30 1.07                 2.0
+         2.0   0.93 0.38                 0.0
+         2.5   0.47 0.19                 0.0
+    >>> up.nu_r, up.contact_range_hz
+    (1.5, (1.5, 1.5))
+
+    A lab's schedule instead: every step exactly 10 cycles, the last 5 measured.
+
+    >>> fixed = pounding.sweep(ybs, 0.05, [1.5, 2.0], steady="fixed", cycles=10, measure_cycles=5)
+    >>> fixed.cycles_run.tolist(), fixed.status.name
+    ([10, 10], 'SUCCESS')
     """
     plan = make_plan(oscillator, a_g, freqs_hz, direction, steady=steady, cycles=cycles,
                      measure_cycles=measure_cycles, max_cycles=max_cycles, steady_rtol=steady_rtol,

@@ -43,6 +43,24 @@ class SweepResult:
 
     Attributes
     ----------
+    oscillator : Oscillator
+        The system swept.
+    a_g : float
+        Peak table acceleration in g (``A_t = a_g g``, :attr:`peak_m_s2`).
+    direction : {"up", "down"}
+        The stepping direction.
+    steady_mode : {"adaptive", "fixed"}
+        How each step ended (the ``steady`` argument of :func:`pounding.sweep`).
+    cycles : int
+        Cycles per step (fixed mode), or the most per step (adaptive mode: ``max_cycles``).
+    measure_cycles : int
+        Cycles measured at the end of each step (the window).
+    omega_min_rad_s : float
+        ``Omega_min`` of ``D_tmax = A_t / Omega_min^2``, rad/s (normalizes ``e``).
+    f_ref_hz : float
+        ``f_R`` of ``nu = f / f_R``, Hz.
+    g : float
+        The acceleration of gravity used, m/s^2 (9.81).
     freqs_hz : ndarray, shape (n,)
         Step frequencies in stepping order (increasing "up", decreasing "down").
     window : ndarray, shape (n, WINDOW_COLS)
@@ -57,8 +75,21 @@ class SweepResult:
         Steps finished (fewer than n after an early stop or an interruption).
     final_state : State
         State after the last step (continue with ``sweep(..., state=final_state)``).
-    status, message
+    status, message : Status, str
         ``Status.SUCCESS`` or why the sweep stopped early, and a summary in words.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> sw = pounding.sweep(pounding.presets.paper_damped(), 0.05, [1.5, 2.0, 2.5])
+    >>> sw.status.name, sw.steps_done, sw.period_multiple.tolist()  # each step periodic, period 1
+    ('SUCCESS', 3, [1, 1, 1])
+    >>> round(sw.alpha_max, 2), sw.resonance_hz, round(sw.d_tmax_m * 1e3, 1)  # D_tmax in mm
+    (8.3, 1.5, 34.5)
+    >>> sw.to_dataframe()["contact"].tolist()
+    [True, False, False]
+    >>> sw.jumps()[["freq_from_hz", "freq_to_hz", "kind"]].values.tolist()
+    [[1.5, 2.0, 'down'], [2.0, 2.5, 'down']]
     """
 
     oscillator: "Oscillator" = field(repr=False)
