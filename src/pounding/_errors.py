@@ -12,7 +12,24 @@ from typing import Any
 
 
 class Problem(enum.Enum):
-    """What can be wrong with an input, and how to fix it (``{...}`` are filled in)."""
+    """What can be wrong with an input, and how to fix it (``{...}`` are filled in).
+
+    Each member's value is ``(why, fix)``, templates of the two halves of an
+    :class:`InputError`'s message; :attr:`InputError.problem` says which was broken, for code
+    that handles some problems itself.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> try:
+    ...     pounding.Isolator(slopes=[38_000.0, 18_000.0], breakpoints=[0.015, 0.040])
+    ... except pounding.InputError as err:
+    ...     problem = err.problem
+    >>> problem is pounding.Problem.BREAKPOINT_COUNT, problem.name
+    (True, 'BREAKPOINT_COUNT')
+    >>> problem.fix
+    'give one breakpoint fewer than slopes (n slopes change at n-1 breakpoints)'
+    """
 
     NOT_FINITE = ("is not a finite number", "give a finite real number (no NaN or inf)")
     NOT_A_NUMBER = ("is not a real number", "give a real number such as 0.05")
@@ -67,10 +84,12 @@ class Problem(enum.Enum):
 
     @property
     def why(self) -> str:
+        """What is wrong, a template (``{...}`` filled in by the error)."""
         return self.value[0]
 
     @property
     def fix(self) -> str:
+        """What to do instead, a template (``{...}`` filled in by the error)."""
         return self.value[1]
 
 
@@ -85,6 +104,19 @@ class InputError(ValueError):
         The value received.
     problem : Problem
         Which rule the value breaks.
+
+    Examples
+    --------
+    A frequency given with the wrong sign:
+
+    >>> import pounding
+    >>> try:
+    ...     pounding.Harmonic(a_g=0.05, freq_hz=-2.0)
+    ... except pounding.InputError as err:
+    ...     print(err.field, err.value, err.problem.name)
+    ...     print(err)
+    freq_hz -2.0 NOT_POSITIVE
+    freq_hz = -2.0 must be > 0. Fix: give a positive value in Hz.
     """
 
     def __init__(self, problem: Problem, field: str, value: Any, **details: Any) -> None:
@@ -116,6 +148,20 @@ class PoundingWarning(UserWarning):
     """A valid but implausible input: the message says what was probably meant.
 
     Silence one with ``warnings.filterwarnings("ignore", category=pounding.PoundingWarning)``.
+
+    Examples
+    --------
+    A table acceleration given in m/s^2 where ``a_g`` is in g:
+
+    >>> import pounding
+    >>> import warnings
+    >>> with warnings.catch_warnings(record=True) as caught:
+    ...     warnings.simplefilter("always")
+    ...     table = pounding.Harmonic(a_g=9.81, freq_hz=2.0)
+    >>> caught[0].category is pounding.PoundingWarning
+    True
+    >>> print(caught[0].message)
+    a_g = 9.81 is outside the plausible range [0, 5]: a_g is the peak table acceleration in g ...
     """
 
 
@@ -128,6 +174,26 @@ class Interrupted(KeyboardInterrupt):
             result = pounding.campaign(nbs, ybs)
         except pounding.Interrupted as stop:
             result = stop.partial
+
+    Attributes
+    ----------
+    partial : object
+        What was finished, as the interrupted call's usual result (a :class:`Run` up to the
+        stop; a sweep, campaign or spectrum with NaN where the work was not done).
+    done, total : int or float
+        How much was done, of how much (``total`` None when not known), in the message's unit
+        (simulated seconds, steps, records, ...).
+
+    Examples
+    --------
+    What a stop after 3 of 10 records says (Ctrl-C raises it during a long call):
+
+    >>> import pounding
+    >>> stop = pounding.Interrupted(partial=None, done=3, total=10, unit="records")
+    >>> isinstance(stop, KeyboardInterrupt), stop.done, stop.total
+    (True, 3, 10)
+    >>> print(stop)
+    interrupted after 3 of 10 records; what was finished is in .partial
     """
 
     def __init__(self, partial: Any, done: Any, total: Any, unit: str = "steps") -> None:
@@ -139,7 +205,24 @@ class Interrupted(KeyboardInterrupt):
 
 
 class Status(enum.IntEnum):
-    """How a simulation ended (``Run.status``); negative values mean it stopped early."""
+    """How a simulation ended (``Run.status``); negative values mean it stopped early.
+
+    ``message`` says why in words, and what to do.
+
+    Examples
+    --------
+    A run of the paper's YBs system allowed only 10 events stops early, keeping what it computed:
+
+    >>> import pounding
+    >>> ybs = pounding.presets.paper_damped()
+    >>> run = pounding.simulate(ybs, pounding.Harmonic(a_g=0.1, freq_hz=2.0), duration=5.0, max_events=10)
+    >>> run.status, int(run.status), run.success
+    (<Status.MAX_EVENTS: -2>, -2, False)
+    >>> print(run.status.message)
+    Stopped early: the run reached max_events. Raise max_events or shorten the duration; ...
+    >>> round(run.final_state.time_s, 3)  # s: where it stopped, and a state to continue from
+    0.906
+    """
 
     SUCCESS = 0
     ZENO = -1
@@ -152,6 +235,7 @@ class Status(enum.IntEnum):
 
     @property
     def message(self) -> str:
+        """Why the run ended, and what to do if it stopped early."""
         return _STATUS_MESSAGES[self]
 
     def __str__(self) -> str:

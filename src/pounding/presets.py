@@ -43,6 +43,21 @@ def paper_printed(bumpers: bool = True, hysteresis: str = "kinematic") -> Oscill
         True: the YBs configuration, Kelvin-Voigt bumpers 0.015 m away on each side.
     hysteresis : {"kinematic", "elastic"}
         Rule of the tri-linear isolator (SAP2000's multi-linear plastic link is kinematic).
+
+    Returns
+    -------
+    Oscillator
+        A 500 kg mass on a tri-linear isolator (38, 18 and 2 kN/m, breakpoints 15 and 40 mm,
+        ``C_d = 1 N s/m``), with Kelvin-Voigt bumpers (1.46 MN/m, 5 N s/m) or without.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> ybs = pounding.presets.paper_printed()
+    >>> ybs.mass, ybs.isolator.slopes, ybs.isolator.breakpoints, ybs.bumpers.total_gap
+    (500.0, (38000.0, 18000.0, 2000.0), (0.015, 0.04), 0.03)
+    >>> pounding.presets.paper_printed(bumpers=False).bumpers is None  # NBs
+    True
     """
     isolator = Isolator(PAPER_SLOPES_N_M, PAPER_BREAKPOINTS_M, hysteresis, PAPER_ISOLATOR_DAMPING_N_S_M)
     b = None
@@ -59,6 +74,26 @@ def paper_damped(bumpers: bool = True, hysteresis: str = "kinematic") -> Oscilla
     steady state is reached; read as 1 kN s/m (about 11 %, typical of high-damping rubber)
     the YBs curves come close to the paper's.  Not a calibration: every other value is the
     printed one.
+
+    Parameters
+    ----------
+    bumpers : bool
+        True: the YBs configuration (with bumpers); False: the same system without them (NBs).
+    hysteresis : {"kinematic", "elastic"}
+        Rule of the tri-linear isolator, as in :func:`paper_printed`.
+
+    Returns
+    -------
+    Oscillator
+        :func:`paper_printed`'s system with the isolator's damping 1 kN s/m.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> ybs = pounding.presets.paper_damped()
+    >>> iso = ybs.isolator
+    >>> iso.damping, round(iso.damping / (2 * (iso.slopes[0] * ybs.mass) ** 0.5), 3)  # N s/m, of critical
+    (1000.0, 0.115)
     """
     osc = paper_printed(bumpers, hysteresis)
     iso = osc.isolator
@@ -102,13 +137,50 @@ def paper_calibrated(bumpers: bool = True) -> Oscillator:
     are 2 to 2.4 times the measured ones (:func:`paper_calibrated_v2` comes near those and
     misses the contacts).  Its residuals are :func:`paper_calibrated_residuals`; what it cannot reach,
     and why, is in ``docs/calibration.md``.
+
+    Parameters
+    ----------
+    bumpers : bool
+        True: the YBs configuration (with bumpers); False: the same system without them (NBs).
+
+    Returns
+    -------
+    Oscillator
+        The calibrated system (read from ``pounding/data/paper_calibrated.toml``).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> ybs = pounding.presets.paper_calibrated()
+    >>> ybs.isolator.n_branches, type(ybs.bumpers.law).__name__, ybs.bumpers.law.hysteresis
+    (4, 'MultilinearBumper', 'kinematic')
+    >>> round(ybs.bumpers.gap_left * 1e3, 1)  # mm
+    16.4
     """
     return _data_system(CALIBRATED_FILE, bumpers)
 
 
 def paper_calibrated_v1(bumpers: bool = True) -> Oscillator:
     """The first calibrated preset (issue 6): the same isolator family with Kelvin-Voigt bumpers
-    (``scripts/calibrate_paper.py --maxiter 40``); residuals :func:`paper_calibrated_v1_residuals`."""
+    (``scripts/calibrate_paper.py --maxiter 40``); residuals :func:`paper_calibrated_v1_residuals`.
+
+    Parameters
+    ----------
+    bumpers : bool
+        True: the YBs configuration (with bumpers); False: the same system without them (NBs).
+
+    Returns
+    -------
+    Oscillator
+        The system (read from ``pounding/data/paper_calibrated_v1.toml``).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> ybs = pounding.presets.paper_calibrated_v1()
+    >>> type(ybs.bumpers.law).__name__, ybs.bumpers.total_gap  # m
+    ('KelvinVoigt', 0.03)
+    """
     return _data_system(CALIBRATED_V1_FILE, bumpers)
 
 
@@ -119,23 +191,82 @@ def paper_calibrated_v2(bumpers: bool = True) -> Oscillator:
     Its YBs accelerations (alpha) are within 11 % of the measured ones, but its contacts are
     too long, its restitution flat and its excursions short: 21 of the 36 targets (22 as it was
     fitted, with eta over its own gap, which its ``[meta]`` records); residuals
-    :func:`paper_calibrated_v2_residuals`."""
+    :func:`paper_calibrated_v2_residuals`.
+
+    Parameters
+    ----------
+    bumpers : bool
+        True: the YBs configuration (with bumpers); False: the same system without them (NBs).
+
+    Returns
+    -------
+    Oscillator
+        The system (read from ``pounding/data/paper_calibrated_v2.toml``).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> ybs = pounding.presets.paper_calibrated_v2()
+    >>> ybs.bumpers.law.hysteresis, len(ybs.bumpers.law.slopes), round(ybs.bumpers.gap_right * 1e3, 1)  # mm
+    ('elastic', 3, 13.2)
+    """
     return _data_system(CALIBRATED_V2_FILE, bumpers)
 
 
 def paper_calibrated_residuals() -> "pd.DataFrame":
     """The residual table of :func:`paper_calibrated` against :func:`pounding.paper_targets`, as
-    stored with it (the columns of ``Identification.residuals``; a test re-evaluates it)."""
+    stored with it (the columns of ``Identification.residuals``; a test re-evaluates it).
+
+    Returns
+    -------
+    DataFrame
+        One row per target (36): ``configuration``, ``a_g``, ``direction``, ``quantity``,
+        ``target``, ``model``, ``difference``, ``allowed``, ``normalized`` and ``within``
+        (whether the model meets the target).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> res = pounding.presets.paper_calibrated_residuals()
+    >>> len(res), int(res["within"].sum())  # targets, and those met
+    (36, 27)
+    """
     return _data_table(CALIBRATED_RESIDUALS_FILE)
 
 
 def paper_calibrated_v1_residuals() -> "pd.DataFrame":
-    """The residual table of :func:`paper_calibrated_v1`, as stored with it."""
+    """The residual table of :func:`paper_calibrated_v1`, as stored with it.
+
+    Returns
+    -------
+    DataFrame
+        One row per target, the columns of :func:`paper_calibrated_residuals`.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> res = pounding.presets.paper_calibrated_v1_residuals()
+    >>> len(res), int(res["within"].sum())  # targets, and those met
+    (36, 12)
+    """
     return _data_table(CALIBRATED_V1_RESIDUALS_FILE)
 
 
 def paper_calibrated_v2_residuals() -> "pd.DataFrame":
-    """The residual table of :func:`paper_calibrated_v2`, as stored with it."""
+    """The residual table of :func:`paper_calibrated_v2`, as stored with it.
+
+    Returns
+    -------
+    DataFrame
+        One row per target, the columns of :func:`paper_calibrated_residuals`.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> res = pounding.presets.paper_calibrated_v2_residuals()
+    >>> len(res), int(res["within"].sum())  # targets, and those met
+    (36, 21)
+    """
     return _data_table(CALIBRATED_V2_RESIDUALS_FILE)
 
 
@@ -146,6 +277,28 @@ BEST_PRESET = "paper-calibrated"
 
 
 def by_name(name: str, bumpers: bool = True) -> Oscillator:
-    """A preset by its CLI name (see :data:`PRESETS`)."""
+    """A preset by its CLI name (see :data:`PRESETS`).
+
+    Parameters
+    ----------
+    name : str
+        The name the command line's ``--preset`` takes: "paper-printed", "paper-damped",
+        "paper-calibrated", "paper-calibrated-v1" or "paper-calibrated-v2".
+    bumpers : bool
+        True: the YBs configuration (with bumpers); False: the same system without them (NBs).
+
+    Returns
+    -------
+    Oscillator
+        The preset's system.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> pounding.presets.by_name("paper-damped") == pounding.presets.paper_damped()
+    True
+    >>> pounding.presets.by_name("paper-printed", bumpers=False).bumpers is None
+    True
+    """
     one_of("preset", name, PRESETS)
     return PRESETS[name](bumpers=bumpers)

@@ -26,6 +26,15 @@ def paper_measurements() -> pd.DataFrame:
         ``contact_time_ms``, ``dissipated_energy_per_mass``, ``restitution``, ...),
         ``value``, ``unit``, ``source`` (table or section) and ``note`` (where MODEL.md §5
         says the paper is inconsistent or unclear; empty otherwise).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> m = pounding.data.paper_measurements()
+    >>> m.shape, sorted(m["configuration"].unique())
+    ((58, 8), ['NBs', 'YBs', 'YBs/NBs'])
+    >>> m.loc[(m["quantity"] == "restitution") & (m["a_g"] == 0.1), "value"].tolist()  # Table 4
+    [0.75]
     """
     with resources.files(__package__).joinpath(MEASUREMENTS_FILE).open("r", encoding="utf-8") as fh:
         df = pd.read_csv(fh, dtype={"table": str})
@@ -35,13 +44,46 @@ def paper_measurements() -> pd.DataFrame:
 
 def paper_gap_total_m() -> float:
     """The rig's nominal total gap ``Delta = g_L + g_R`` (m, the paper's 2 x 15 mm): what its
-    ``eta = E / Delta`` is measured over."""
+    ``eta = E / Delta`` is measured over.
+
+    Returns
+    -------
+    float
+        The total gap, m.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> pounding.data.paper_gap_total_m()  # m
+    0.03
+    """
     df = paper_measurements()
     return float(df.loc[df["quantity"] == "total_gap_m", "value"].iloc[0])
 
 
 def measured(table: str) -> pd.DataFrame:
-    """One of the paper's tables ("2", "3" or "4") wide: a row per (configuration, a_g)."""
+    """One of the paper's tables ("2", "3" or "4") wide: a row per (configuration, a_g).
+
+    Parameters
+    ----------
+    table : {"2", "3", "4"}
+        Table 2 (pseudo-resonance ``nu_r``, ``alpha``, ``d_tmax_m``, ``e``, ``eta``, contact
+        range; NBs and YBs), 3 (contact time and mean impact force; YBs) or 4 (dissipated
+        energy and restitution; YBs).
+
+    Returns
+    -------
+    DataFrame
+        ``configuration``, ``a_g`` and a column per quantity of that table (as in
+        :func:`paper_measurements`; NaN where the paper gives none for that row).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> t4 = pounding.data.measured("4")
+    >>> t4[["a_g", "restitution"]].values.tolist()
+    [[0.03, 1.0], [0.05, 0.89], [0.075, 0.8], [0.1, 0.75]]
+    """
     df = paper_measurements()
     df = df[(df["table"] == table) & df["a_g"].notna()]
     return df.pivot_table(index=["configuration", "a_g"], columns="quantity", values="value").reset_index()
@@ -60,6 +102,15 @@ def bumper_cyclic_test() -> pd.DataFrame:
     -------
     DataFrame
         ``time_s``, ``freq_hz``, ``compression_m`` (>= 0), ``force_n``, one row per sample (800).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> test = pounding.data.bumper_cyclic_test()
+    >>> len(test), sorted(test["freq_hz"].unique().tolist())  # samples, Hz
+    (800, [0.5, 1.0, 1.5, 2.0])
+    >>> round(float(test["compression_m"].max()), 3)  # m: 10 mm +- 10 mm
+    0.02
     """
     with resources.files(__package__).joinpath(BUMPER_TEST_FILE).open("r", encoding="utf-8") as fh:
         return pd.read_csv(fh)

@@ -29,6 +29,31 @@ class State:
     The raw vector (``vector``) also holds the isolator's internal variables and the
     running totals of a contact in progress, so that a continued run reports that contact
     whole.
+
+    Attributes
+    ----------
+    vector : ndarray, shape (37 + 2 (n - 1),)
+        The raw state, read-only, for an isolator of ``n`` branches: time, displacement,
+        velocity, the bumpers' compressions and contact flags, the isolator's branch, the
+        running totals of a contact in progress, the bumper laws' states, the Bouc-Wen ``z``,
+        then the slips and slip directions of the isolator's ``n - 1`` springs.  Read it
+        through the properties (``time_s``, ``displacement_m``, ``in_contact``, ...).
+
+    Examples
+    --------
+    Start the paper's YBs system at rest with a push of 0.6 m/s, run it 0.5 s and continue:
+
+    >>> import pounding
+    >>> ybs = pounding.presets.paper_damped()
+    >>> start = pounding.State.at_rest(ybs, velocity_m_s=0.6)
+    >>> run = pounding.simulate(ybs, pounding.Harmonic(a_g=0.05, freq_hz=2.2), duration=0.5, state=start)
+    >>> end = run.final_state
+    >>> end.time_s, round(end.displacement_m * 1e3, 1), end.in_contact  # s, mm
+    (0.5, -12.0, (False, False))
+    >>> (end.plastic_slips_m * 1e3).round(2).tolist()  # mm, the isolator's two slipping springs
+    [-3.36, 0.0]
+    >>> pounding.simulate(ybs, pounding.Harmonic(a_g=0.05, freq_hz=2.2), 0.5, state=end).final_state.time_s
+    1.0
     """
 
     vector: np.ndarray = field(repr=False)
@@ -95,14 +120,17 @@ class State:
 
     @property
     def time_s(self) -> float:
+        """Time, s."""
         return float(self.vector[I_T])
 
     @property
     def displacement_m(self) -> float:
+        """Displacement ``D`` of the mass relative to the table, m."""
         return float(self.vector[I_D])
 
     @property
     def velocity_m_s(self) -> float:
+        """Velocity of the mass relative to the table, m/s."""
         return float(self.vector[I_V])
 
     @property
@@ -207,6 +235,31 @@ class EnergyLedger:
     ``input_work`` (work of the inertial forcing ``-M A(t)`` on the relative motion) equals
     the changes of the stored energies plus the dissipated ones; ``residual`` is what is
     left, a check on the integration (it is at rounding level for an exact run).
+
+    Attributes
+    ----------
+    input_work : float
+        Work of ``-M A(t)`` on the relative motion over the run, J.
+    kinetic, isolator_elastic, bumper_elastic : float
+        Changes over the run of the stored energies, J: the mass's kinetic energy, the
+        isolator's elastic energy and the bumpers' (what they would give back when unloaded).
+    viscous : float
+        Dissipated by the isolator's dashpot ``C_d``, J.
+    hysteretic : float
+        Dissipated by the isolator's hysteresis (its slipping springs and Bouc-Wen spring), J.
+    bumper_dissipation : float
+        Taken from the mass by the bumpers and not given back (their dashpots and slips), J.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> run = pounding.simulate(pounding.presets.paper_damped(), pounding.Harmonic(a_g=0.1, freq_hz=2.0),
+    ...                         duration=5.0)
+    >>> ledger = run.energy
+    >>> f"{ledger.input_work:.1f} J in: {ledger.viscous:.1f} J viscous, {ledger.hysteretic:.1f} J hysteretic"
+    '142.0 J in: 106.2 J viscous, 29.2 J hysteretic'
+    >>> bool(abs(ledger.residual) < 1e-9)  # J: every joule accounted for
+    True
     """
 
     input_work: float
@@ -224,6 +277,7 @@ class EnergyLedger:
                                    + self.viscous + self.hysteretic + self.bumper_dissipation)
 
     def to_series(self) -> pd.Series:
+        """Every term and the ``residual``, J, as a Series named ``energy_J``."""
         data = {f.name: getattr(self, f.name) for f in fields(self)}
         data["residual"] = self.residual
         return pd.Series(data, name="energy_J")
@@ -254,8 +308,9 @@ class Run:
     isolator_force, bumper_force_left, bumper_force_right : ndarray, shape (n,)
         ``R_d + C_d D'`` and the bumpers' push (>= 0), N.
     displacement_max, displacement_min, abs_acceleration_max : float
-        Exact extrema over the run (located events, independent of the sampling), m, m/s^2;
-        the ``*_time_s`` attributes give when.
+        Exact extrema over the run (located events, independent of the sampling), m, m/s^2.
+    displacement_max_time_s, displacement_min_time_s, abs_acceleration_max_time_s : float
+        When each extremum was reached, s.
     contact_table, event_table : ndarray
         The raw arrays behind ``contacts`` and ``events`` (side coded 0 left, 1 right).
     contacts : DataFrame
@@ -275,11 +330,33 @@ class Run:
         Every event: ``t``, ``kind`` (yield, reversal, branch, contact_start, contact_end,
         bumper_branch, bouc_wen_zero), ``index`` (spring or side).
     energy : EnergyLedger
+        Where the energy went over the run, J.
     final_state : State
+        The state at the end (or where the run stopped): pass it as ``state=`` to continue.
     sample_rate_hz : float
         Rate of the uniform history samples, Hz (0: events only).
     status : Status
         ``Status.SUCCESS`` (0) or why the run stopped early (negative); see ``message``.
+    message : str
+        The status in words: why the run stopped early and what to do.
+    oscillator : Oscillator
+        The system simulated.
+    excitation : Harmonic or Record
+        The base acceleration it was shaken with.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> run = pounding.simulate(pounding.presets.paper_damped(), pounding.Harmonic(a_g=0.1, freq_hz=2.0),
+    ...                         duration=5.0)
+    >>> run.success, run.t.shape  # 1 kHz samples plus one after every event
+    (True, (5077,))
+    >>> round(run.displacement_max * 1e3, 1), round(run.displacement_max_time_s, 3)  # mm, s
+    (18.8, 0.934)
+    >>> run.contacts["side"].value_counts().to_dict()
+    {'right': 10, 'left': 9}
+    >>> round(float(run.impacts["restitution"].median()), 2)
+    0.97
     """
 
     t: np.ndarray = field(repr=False)
@@ -333,6 +410,7 @@ class Run:
 
     @property
     def success(self) -> bool:
+        """Whether the run reached its end time (``status`` is ``Status.SUCCESS``)."""
         return self.status == Status.SUCCESS
 
     @property

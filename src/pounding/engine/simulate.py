@@ -280,6 +280,20 @@ def simulate(
         A bad argument, or a run estimated to need more than ``max_steps``.
     Interrupted
         On Ctrl-C: ``partial`` is the run up to the stop (status ``INTERRUPTED``).
+
+    Examples
+    --------
+    The paper's YBs system (with ``C_d = 1 kN s/m``) shaken at 0.1 g and 2 Hz for 5 s, then 5 s
+    more from where it stopped:
+
+    >>> import pounding
+    >>> ybs = pounding.presets.paper_damped()
+    >>> run = pounding.simulate(ybs, pounding.Harmonic(a_g=0.1, freq_hz=2.0), duration=5.0)
+    >>> run.status.name, len(run.contacts), round(run.displacement_max * 1e3, 1)  # impacts, mm
+    ('SUCCESS', 19, 18.8)
+    >>> later = pounding.simulate(ybs, pounding.Harmonic(a_g=0.1, freq_hz=2.0), 5.0, state=run.final_state)
+    >>> float(later.t[0]), float(later.t[-1]), len(later.contacts)  # s, s, impacts
+    (5.0, 10.0, 20)
     """
     check_oscillator(oscillator)
     if not isinstance(excitation, (Harmonic, Record)):

@@ -39,6 +39,22 @@ class Record:
     -----
     Records compare by identity (``==`` is ``is``: comparing arrays element by element is rarely
     what is meant); ``meta`` is a copy made at construction, to be read, not changed.
+
+    Examples
+    --------
+    A record from samples in g (files: :meth:`from_at2`, :meth:`from_csv`), and the shipped El
+    Centro record scaled to a PGA of 0.3 g, shaking the paper's YBs system for its first 10 s:
+
+    >>> import pounding
+    >>> pulse = pounding.Record.from_g([0.0, 0.1, 0.2, 0.3, 0.4], [0.0, 0.1, -0.2, 0.05, 0.0], name="pulse")
+    >>> pulse, pulse.acceleration([0.05, 1.0]).round(4).tolist()  # m/s^2 (0 after the end)
+    (Record('pulse', n=5, t=[0, 0.4] s, pga=0.2 g), [0.4905, 0.0])
+    >>> quake = pounding.records.el_centro().scaled(pga_g=0.3)
+    >>> round(quake.meta["scale_factor"], 3), round(quake.dt_s, 3), quake.duration_s  # -, s, s
+    (0.941, 0.02, 31.16)
+    >>> run = pounding.simulate(pounding.presets.paper_damped(), quake, duration=10.0)
+    >>> len(run.contacts), round(run.abs_acceleration_max / 9.81, 2)  # impacts, peak acceleration in g
+    (14, 1.75)
     """
 
     t: np.ndarray = field(repr=False)
@@ -117,6 +133,7 @@ class Record:
         Parameters
         ----------
         path : str or Path
+            The file.
         accel : str or int
             The acceleration column: its header name or 0-based index.
         time : str or int, optional

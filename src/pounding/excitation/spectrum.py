@@ -59,6 +59,7 @@ def response_spectrum(record: Record | Sequence[Record], periods_s: Any, damping
     Parameters
     ----------
     record : Record or sequence of Record
+        The ground motion(s), e.g. :func:`pounding.records.el_centro` or a FEMA P695 set.
     periods_s : array_like, shape (p,)
         Natural periods (s), >= 0 and increasing; at 0 the oscillator is rigid (``Sa = PSa = PGA``).
     damping_ratio : float
@@ -72,6 +73,24 @@ def response_spectrum(record: Record | Sequence[Record], periods_s: Any, damping
         ``psa_m_s2 = omega^2 Sd``, and ``sa_g``, ``psa_g`` (in each record's g); ``record`` is the
         records' names (or their index where a name is missing or repeated), ``pga_g`` per record;
         attribute ``damping_ratio``.
+
+    Raises
+    ------
+    InputError
+        A bad argument, or more work than about a minute of one core (periods times samples).
+    Interrupted
+        On Ctrl-C: ``partial`` holds the spectra of the records done (the others NaN).
+
+    Examples
+    --------
+    The 5 %-damped spectrum of El Centro 1940 N-S at three periods:
+
+    >>> import pounding
+    >>> spec = pounding.response_spectrum(pounding.records.el_centro(), [0.5, 1.0, 2.0], damping_ratio=0.05)
+    >>> spec["psa_g"].values.round(2)  # shape (records, periods)
+    array([[0.92, 0.46, 0.14]])
+    >>> spec["sd_m"].sel(period_s=1.0).values.round(3)  # m
+    array([0.113])
     """
     from ..engine._control import new_control, run_interruptibly
 

@@ -30,6 +30,19 @@ class Bumpers:
         Contact law of the left bumper, and of the right one unless ``law_right`` is given.
     law_right : KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper, ElasticPlastic or Hertzdamp, optional
         Contact law of the right bumper when it differs from the left one.
+
+    Examples
+    --------
+    The paper's YBs bumpers, 15 mm from the mass on each side; a stiffer one on the right:
+
+    >>> import pounding
+    >>> epdm = pounding.KelvinVoigt(stiffness=1.46e6, damping=5.0)
+    >>> bumpers = pounding.Bumpers(gap_left=0.015, gap_right=0.015, law=epdm)
+    >>> bumpers.total_gap  # m
+    0.03
+    >>> stiff = pounding.Bumpers(0.015, 0.010, epdm, law_right=pounding.KelvinVoigt(5.0e6, 5.0))
+    >>> stiff.right.stiffness, stiff.mirrored().gap_left
+    (5000000.0, 0.01)
     """
 
     gap_left: float

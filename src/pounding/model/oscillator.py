@@ -34,6 +34,22 @@ class Oscillator:
         Backbone, hysteresis rule and dashpot of the isolator.
     bumpers : Bumpers or None
         ``None`` is the paper's NBs configuration (no bumpers).
+
+    Examples
+    --------
+    The paper's YBs system with ``C_d = 1 kN s/m`` (:func:`pounding.presets.paper_damped`), built
+    by hand, saved to TOML and read back:
+
+    >>> import pounding
+    >>> isolator = pounding.Isolator(slopes=[38_000.0, 18_000.0, 2_000.0], breakpoints=[0.015, 0.040],
+    ...                              hysteresis="kinematic", damping=1_000.0)
+    >>> bumpers = pounding.Bumpers(0.015, 0.015, pounding.KelvinVoigt(stiffness=1.46e6, damping=5.0))
+    >>> ybs = pounding.Oscillator(mass=500.0, isolator=isolator, bumpers=bumpers)
+    >>> ybs == pounding.presets.paper_damped(), ybs.without_bumpers().bumpers is None
+    (True, True)
+    >>> path = ybs.to_toml("ybs.toml")
+    >>> pounding.Oscillator.from_toml("ybs.toml") == ybs
+    True
     """
 
     mass: float
