@@ -181,3 +181,20 @@ def test_tolerance_ranges_say_the_range():
     )
     assert "[1e-14, 1e-3]" in str(err)
     _raises(lambda: pd_.sweep(OSC, 0.05, steady_rtol=1.0), "steady_rtol", Problem.OUT_OF_RANGE)
+
+
+def test_measured_names_the_tables_it_has():
+    with pytest.raises(pd_.InputError, match="table") as info:
+        pd_.data.measured("5")
+    assert "'2', '3', '4'" in str(info.value)
+    assert pd_.data.measured(str(3)).shape[0] == 4
+
+
+def test_the_energy_ledger_holds_python_floats():
+    """Fields annotated float are floats (NumPy 2 prints its scalars as np.float64(...))."""
+    import dataclasses
+
+    osc = pd_.presets.paper_damped()
+    run = pd_.simulate(osc, pd_.Harmonic(0.05, 2.0), 2.0, state=pd_.State.at_rest(osc, velocity_m_s=0.6))
+    for field in dataclasses.fields(run.energy):
+        assert type(getattr(run.energy, field.name)) is float, field.name

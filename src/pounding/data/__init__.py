@@ -84,6 +84,9 @@ def measured(table: str) -> pd.DataFrame:
     >>> t4[["a_g", "restitution"]].values.tolist()
     [[0.03, 1.0], [0.05, 0.89], [0.075, 0.8], [0.1, 0.75]]
     """
+    from .._checks import one_of
+
+    table = one_of("table", table, ("2", "3", "4"))
     df = paper_measurements()
     df = df[(df["table"] == table) & df["a_g"].notna()]
     return df.pivot_table(index=["configuration", "a_g"], columns="quantity", values="value").reset_index()

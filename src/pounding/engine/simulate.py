@@ -353,9 +353,9 @@ def _run(oscillator: Oscillator, excitation: Harmonic | Record, duration: float,
         status = Status.NONFINITE
 
     energy = EnergyLedger(
-        input_work=ledger[0], kinetic=ledger[4], isolator_elastic=ledger[5],
-        bumper_elastic=ledger[6], viscous=ledger[1], hysteretic=ledger[2],
-        bumper_dissipation=ledger[3])
+        input_work=float(ledger[0]), kinetic=float(ledger[4]), isolator_elastic=float(ledger[5]),
+        bumper_elastic=float(ledger[6]), viscous=float(ledger[1]), hysteretic=float(ledger[2]),
+        bumper_dissipation=float(ledger[3]))
     cols = samples.T
     run = Run(
         t=cols[0], displacement=cols[1], velocity=cols[2], abs_acceleration=cols[3],
