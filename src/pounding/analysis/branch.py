@@ -100,6 +100,8 @@ class Bifurcation:
     parameter: str = ""
 
     def to_series(self) -> pd.Series:
+        """The bifurcation as one row: kind, side, parameter value, ``freq_hz``, ``a_g``, alpha,
+        max ``|mu|``, index, located."""
         return pd.Series({"kind": self.kind, "side": self.side, "value": self.value, "freq_hz": self.freq_hz,
                           "a_g": self.a_g, "alpha": self.alpha, "max_abs_multiplier":
                           float(np.abs(self.multipliers).max()) if self.multipliers.size else math.nan,
@@ -176,6 +178,7 @@ class Branch:
 
     @property
     def success(self) -> bool:
+        """True when the branch reached an end of its range (``status`` is ``SUCCESS``)."""
         return self.status == Status.SUCCESS
 
     def __len__(self) -> int:
@@ -199,6 +202,7 @@ class Branch:
         return pd.DataFrame([b.to_series() for b in self.bifurcations], columns=cols)
 
     def folds(self) -> tuple[Bifurcation, ...]:
+        """The branch's folds (where sweeps jump), in the order they were met."""
         return tuple(b for b in self.bifurcations if b.kind == "fold")
 
     def orbit(self, index: int, **kwargs: Any) -> "PeriodicOrbit":

@@ -81,6 +81,7 @@ class BifurcationCurve:
 
     @property
     def success(self) -> bool:
+        """True when the curve reached its box's edges or closed (``status`` is ``SUCCESS``)."""
         return self.status == Status.SUCCESS
 
     def __len__(self) -> int:

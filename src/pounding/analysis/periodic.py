@@ -130,6 +130,7 @@ class PeriodicOrbit:
 
     @property
     def contacts_per_period(self) -> int:
+        """Contacts with either bumper in one period of the orbit."""
         return int(self._contacts().shape[0])
 
     @property

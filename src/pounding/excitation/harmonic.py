@@ -92,4 +92,5 @@ class Harmonic:
         return self.peak_m_s2 * np.sin(self.omega_rad_s * np.asarray(t, dtype=float) + self.phase)
 
     def kernel_arrays(self) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
+        """The excitation as the compiled engine takes it: a kind code and three float arrays (internal)."""
         return HARMONIC, np.array([self.peak_m_s2, self.omega_rad_s, self.phase]), np.zeros(1), np.zeros(1)

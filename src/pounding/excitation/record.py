@@ -258,6 +258,7 @@ class Record:
                 f"pga={self.pga_g:.3g} g)")
 
     def kernel_arrays(self) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
+        """The excitation as the compiled engine takes it: a kind code and three float arrays (internal)."""
         # writable copies: a read-only array is another type to Numba, hence another compilation
         return RECORD, np.zeros(3), np.array(self.t, dtype=float), np.array(self.accel, dtype=float)
 

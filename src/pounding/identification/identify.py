@@ -104,6 +104,7 @@ class Identification:
 
     @property
     def success(self) -> bool:
+        """True when the fit finished normally (``status`` ``SUCCESS``), met targets or not."""
         return self.status == Status.SUCCESS
 
     @property

@@ -87,6 +87,7 @@ class LabSweep:
 
     @property
     def alpha_max(self) -> float:
+        """The largest alpha over the measured steps."""
         return float(self.steps["alpha"].max())
 
     @property

@@ -125,6 +125,7 @@ class LabRecord:
 
     @property
     def n_samples(self) -> int:
+        """Samples per channel."""
         return int(self.time_s.size)
 
     @property
@@ -134,6 +135,7 @@ class LabRecord:
 
     @property
     def duration_s(self) -> float:
+        """Recorded time, s."""
         return float(self.time_s[-1] - self.time_s[0])
 
     @property

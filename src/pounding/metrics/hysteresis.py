@@ -59,6 +59,8 @@ class HysteresisLoop:
     @classmethod
     def from_run(cls, run: "Run", total_gap_m: float, freq_hz: float, a_g: float,
                  cycles: int) -> "HysteresisLoop":
+        """The loop of the whole ``run`` (the caller runs just the ``cycles`` it wants drawn),
+        normalised by ``total_gap_m`` (m) and the run's ``g``."""
         g = run.excitation.g
         b = run.oscillator.bumpers
         surfaces = None if b is None else (-b.gap_left / total_gap_m, b.gap_right / total_gap_m)

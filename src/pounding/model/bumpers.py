@@ -89,6 +89,7 @@ class Bumpers:
         return Bumpers(self.gap_right, self.gap_left, self.law_right, self.law)
 
     def to_dict(self) -> dict[str, Any]:
+        """The constructor's fields as plain values (the TOML form: ``Oscillator.to_toml`` writes it)."""
         out: dict[str, Any] = {"gap_left": self.gap_left, "gap_right": self.gap_right,
                                "law": law_to_dict(self.law)}
         if self.law_right is not None:

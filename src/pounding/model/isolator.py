@@ -116,6 +116,7 @@ class BoucWen:
                          self.gamma, self.n])
 
     def to_dict(self) -> dict[str, Any]:
+        """The constructor's fields as plain values (the TOML form: ``Oscillator.to_toml`` writes it)."""
         return {name: getattr(self, name) for name in self.FIELDS}
 
 
@@ -224,6 +225,7 @@ class Isolator:
         return np.sign(d) * force
 
     def to_dict(self) -> dict[str, Any]:
+        """The constructor's fields as plain values (the TOML form: ``Oscillator.to_toml`` writes it)."""
         out: dict[str, Any] = {"slopes": list(self.slopes), "breakpoints": list(self.breakpoints),
                                "hysteresis": self.hysteresis, "damping": self.damping}
         if self.bouc_wen is not None:

@@ -61,6 +61,7 @@ class PoundingSpectrum:
     @classmethod
     def build(cls, recs: list["Record"], periods: np.ndarray, gaps: np.ndarray, free: np.ndarray, hit: np.ndarray,
               attrs: dict) -> "PoundingSpectrum":
+        """Assemble the result from the kernel's arrays (internal: ``pounding_spectrum`` calls it)."""
         import xarray as xr
 
         from ..excitation.spectrum import record_names
@@ -103,6 +104,7 @@ class PoundingSpectrum:
         return self.dataset.to_dataframe().reset_index()
 
     def to_xarray(self) -> "xr.Dataset":
+        """The spectrum as an ``xarray.Dataset`` (dims ``record``, ``period_s``, ``gap_m``)."""
         return self.dataset
 
     def to_netcdf(self, path: str | Path) -> Path:

@@ -55,6 +55,7 @@ class StudyResult:
 
     @property
     def complete(self) -> bool:
+        """True when every point of the grid is done."""
         return self.done == self.spec.size
 
     def to_dataframe(self, only_done: bool = True) -> "pd.DataFrame":

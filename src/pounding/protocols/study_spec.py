@@ -138,23 +138,28 @@ class StudySpec:
 
     @property
     def sha256(self) -> str:
+        """A hash of the spec's JSON form: a store remembers it, so a rerun with another spec is refused."""
         return hashlib.sha256(self.to_json().encode()).hexdigest()
 
     # ------------------------------------------------------------------ points
     @property
     def kind(self) -> str:
+        """What each point computes: ``"sweep"``, ``"simulate"`` or ``"record"``."""
         return str(self.compute["kind"])
 
     @property
     def dims(self) -> tuple[str, ...]:
+        """The grid's axes, by dotted name, in order."""
         return tuple(self.grid)
 
     @property
     def shape(self) -> tuple[int, ...]:
+        """The number of values on each axis."""
         return tuple(len(v) for v in self.grid.values())
 
     @property
     def size(self) -> int:
+        """The number of points in the grid."""
         return int(np.prod(self.shape, dtype=np.int64))
 
     def point(self, index: Sequence[int]) -> tuple[Oscillator, dict[str, Any]]:
@@ -163,6 +168,7 @@ class StudySpec:
         return point_of(self.system.to_dict(), self.compute, values)
 
     def indices(self) -> Iterator[tuple[int, ...]]:
+        """Every point's index tuple, in C order."""
         return itertools.product(*(range(n) for n in self.shape))
 
 

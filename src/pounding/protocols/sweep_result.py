@@ -131,6 +131,7 @@ class SweepResult:
 
     @property
     def success(self) -> bool:
+        """True when every step ran (``status`` ``SUCCESS``); steps may be unsettled (``steady``)."""
         return self.status == Status.SUCCESS and self.steps_done == self.freqs_hz.size
 
     # ---- the table
@@ -223,6 +224,7 @@ class SweepResult:
 
     @property
     def alpha_max(self) -> float:
+        """The largest alpha over the steps that ran."""
         return float(np.nanmax(self._done()["alpha"]))
 
     @property
