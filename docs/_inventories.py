@@ -31,6 +31,10 @@ INVENTORIES: dict[str, tuple[str, str, list[tuple[str, ...]]]] = {
         ("UserWarning", "py:exception", "library/exceptions.html#UserWarning"),
         ("tomllib", "py:module", "library/tomllib.html#module-tomllib"),
         ("None", "py:data", "library/constants.html#None"),
+        ("complex", "py:class", "library/functions.html#complex"),
+        ("enum.IntEnum", "py:class", "library/enum.html#enum.IntEnum"),
+        ("typing.Any", "py:data", "library/typing.html#typing.Any"),
+        ("ModuleNotFoundError", "py:exception", "library/exceptions.html#ModuleNotFoundError"),
         ("object", "py:class", "library/functions.html#object"),
         ("sequence", "std:term", "glossary.html#term-sequence"),
         ("iterable", "std:term", "glossary.html#term-iterable"),
@@ -66,10 +70,13 @@ INVENTORIES: dict[str, tuple[str, str, list[tuple[str, ...]]]] = {
         ("matplotlib.figure.Figure", "py:class",
          "api/_as_gen/matplotlib.figure.Figure.html#matplotlib.figure.Figure"),
         ("matplotlib.artist.Artist", "py:class", "api/artist_api.html#matplotlib.artist.Artist"),
+        ("matplotlib.lines.Line2D", "py:class",
+         "api/_as_gen/matplotlib.lines.Line2D.html#matplotlib.lines.Line2D"),
     ]),
     "distributed": ("https://distributed.dask.org/en/stable/", "stable", [
         ("distributed.Client", "py:class", "api.html#distributed.Client"),
         ("distributed.LocalCluster", "py:class", "api.html#distributed.LocalCluster"),
+        ("dask.distributed.Client", "py:class", "api.html#distributed.Client"),
     ]),
 }
 

@@ -5,9 +5,9 @@ The paper's Fig. 5, with the measurements
 The paper's Fig. 5 draws the peak absolute acceleration alpha against nu for each table acceleration, with
 bumpers. Here two fitted presets are swept up at three levels, and the paper's measured peaks (nu_R and
 alpha, its Table 2) are drawn over the curves. ``paper_calibrated`` (solid) meets the measured contact times
-and restitutions and the resonance frequencies, but its peaks are about 2.4 times the measured ones;
+and restitutions and the resonance frequencies, but its peaks are 1.9 to 2.4 times the measured ones;
 ``paper_calibrated_v2`` (dashed) comes close to the measured peaks and misses the contacts. Why no model
-here meets both, and how the lab's filtering may explain it, is in the user guide's calibration page.
+here meets both, and how the lab's filtering may explain it: :doc:`/calibration`.
 """
 
 import matplotlib.pyplot as plt

@@ -3,7 +3,8 @@ Fitting a bumper law to a cyclic test
 =====================================
 
 A bumper's force-displacement test (two cycles each at 0.5 to 2 Hz, +-10 mm around 10 mm of compression,
-as the paper's MTS tests) fitted by every contact law pounding has, ranked by their residual. The test
+as the paper's MTS tests) fitted by every contact law pounding can fit (all but Hertzdamp, whose damping
+is chosen at each impact), ranked by their residual. The test
 shipped with the package is synthetic (a Hunt-Crossley law with 1 % noise): the paper publishes its loops as
 figures only.
 """

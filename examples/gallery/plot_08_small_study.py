@@ -5,7 +5,8 @@ A small parameter study
 A study is a grid over numbers of the system and of the excitation, by dotted name; each point here is a
 harmonic run of 20 s at 2 Hz. The results go to a Zarr store chunk by chunk as they finish, so a study
 stopped at any moment resumes where it stopped when run again, on threads, processes or a Dask cluster.
-Here: how many impacts, and how hard, as the gap and the table's acceleration change.
+Here: how many impacts in 20 s as the left gap (the right one stays at the paper's 15 mm) and the
+table's acceleration change.
 """
 
 import tempfile
