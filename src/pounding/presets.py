@@ -70,8 +70,8 @@ def paper_printed(bumpers: bool = True, hysteresis: str = "kinematic") -> Oscill
 def paper_damped(bumpers: bool = True, hysteresis: str = "kinematic") -> Oscillator:
     """The printed parameters with the isolator damping read as ``C_d = 1 kN s/m``.
 
-    MODEL.md §5: the printed ``C_d = 1 N s/m`` is about 0.01 % of critical damping, so no
-    steady state is reached; read as 1 kN s/m (about 11 %, typical of high-damping rubber)
+    The printed ``C_d = 1 N s/m`` is about 0.01 % of critical damping (one of the things in
+    the paper that do not add up), so the response barely settles; read as 1 kN s/m (about 11 %, typical of high-damping rubber)
     the YBs curves come close to the paper's.  Not a calibration: every other value is the
     printed one.
 
@@ -161,7 +161,7 @@ def paper_calibrated(bumpers: bool = True) -> Oscillator:
 
 
 def paper_calibrated_v1(bumpers: bool = True) -> Oscillator:
-    """The first calibrated preset (issue 6): the same isolator family with Kelvin-Voigt bumpers
+    """The first calibrated preset: the same isolator family with Kelvin-Voigt bumpers
     (``scripts/calibrate_paper.py --maxiter 40``); residuals :func:`paper_calibrated_v1_residuals`.
 
     Parameters
@@ -185,7 +185,7 @@ def paper_calibrated_v1(bumpers: bool = True) -> Oscillator:
 
 
 def paper_calibrated_v2(bumpers: bool = True) -> Oscillator:
-    """The second calibrated preset (issue 16, by least squares): the same isolator family with
+    """The second calibrated preset (by least squares): the same isolator family with
     elastic multi-linear bumpers of three slopes and 13.2 mm gaps
     (``scripts/calibrate_paper.py --law multilinear --maxiter 40 --from-preset --free-gap``).
     Its YBs accelerations (alpha) are within 11 % of the measured ones, but its contacts are

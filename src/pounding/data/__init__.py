@@ -24,8 +24,8 @@ def paper_measurements() -> pd.DataFrame:
         (the names used by :class:`pounding.CampaignResult` tables: ``nu_r``, ``alpha``,
         ``eta``, ``e``, ``contact_nu_min``, ``contact_nu_max``, ``mean_force_over_mg``,
         ``contact_time_ms``, ``dissipated_energy_per_mass``, ``restitution``, ...),
-        ``value``, ``unit``, ``source`` (table or section) and ``note`` (where MODEL.md §5
-        says the paper is inconsistent or unclear; empty otherwise).
+        ``value``, ``unit``, ``source`` (table or section) and ``note`` (where the paper is
+        inconsistent or unclear, and how; empty otherwise).
 
     Examples
     --------

@@ -75,7 +75,7 @@ class Targets:
     ----------
     table : pandas.DataFrame
         Columns ``configuration`` ("NBs"/"YBs"), ``a_g`` (g), ``direction`` ("up"/"down"),
-        ``quantity`` (a name of :data:`DEFAULT_TOLERANCES`), ``value``, ``tolerance``,
+        ``quantity`` (a name of ``DEFAULT_TOLERANCES``), ``value``, ``tolerance``,
         ``relative`` (bool) and ``weight`` (multiplies the residual, default 1).
     eta_gap_total_m : float or None
         The total gap ``Delta`` (m) the measured ``eta = E / Delta`` was normalised by: the
@@ -129,10 +129,10 @@ class Targets:
     @classmethod
     def from_records(cls, records: list[dict[str, Any]], *, defaults: dict[str, Any] | None = None,
                      tolerances: dict[str, Any] | None = None, eta_gap_total_m: float | None = None) -> Targets:
-        """Build and check targets from dicts with the keys of :data:`TARGET_KEYS`.
+        """Build and check targets from dicts with the keys of ``TARGET_KEYS``.
 
         ``defaults`` may set ``direction``; ``tolerances`` maps a quantity to
-        ``{"tolerance": x, "relative": bool}`` (else :data:`DEFAULT_TOLERANCES`);
+        ``{"tolerance": x, "relative": bool}`` (else ``DEFAULT_TOLERANCES``);
         ``eta_gap_total_m`` as the attribute.
         """
         for name, table in (("defaults", defaults), ("tolerances", tolerances)):
@@ -240,13 +240,14 @@ class Targets:
 def paper_targets(direction: str = "up", quantities: tuple[str, ...] = PAPER_QUANTITIES) -> Targets:
     """The paper's shaking-table results as targets: Table 2 (``nu_r``, ``alpha``, ``eta``
     or ``e``, the contact range), Table 3 contact times and Table 4 restitution, with the
-    issue's tolerances (:data:`DEFAULT_TOLERANCES`): 36 numbers.  ``eta`` was measured
+    default tolerances (``DEFAULT_TOLERANCES``: nu_R 0.1, alpha 10 %, eta or e 5 %, contact
+    times 30 %, restitution 0.05): 36 numbers.  ``eta`` was measured
     over the rig's nominal gap: ``eta_gap_total_m`` is 0.03 m (``pounding.data.paper_gap_total_m``).
 
     ``quantities`` chooses others (names of :data:`DEFAULT_TOLERANCES`), e.g. the NBs
     ``excursion_max_m`` of Sect. 3.2 and Table 4's ``dissipated_energy_per_mass`` for
     :meth:`Targets.check_consistency` (``consistency.CONSISTENCY_QUANTITIES``).
-    Left out: :data:`PAPER_EXCLUDED` (values MODEL.md §5 shows to be misprinted).
+    Left out: ``PAPER_EXCLUDED`` (the values that are inconsistent with the paper's own numbers).
 
     Parameters
     ----------
