@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 import doctest
+import importlib
 import inspect
 import re
 import types
@@ -33,8 +34,7 @@ def public_names() -> dict[str, object]:
         if not isinstance(obj, types.ModuleType):
             names[f"pounding.{name}"] = obj
     for mod_name in SUBMODULES:
-        mod = getattr(pounding, mod_name) if hasattr(pounding, mod_name) else __import__(
-            f"pounding.{mod_name}", fromlist=["_"])
+        mod = importlib.import_module(f"pounding.{mod_name}")
         for name in mod.__all__:
             names[f"pounding.{mod_name}.{name}"] = getattr(mod, name)
     return names
