@@ -113,6 +113,8 @@ def test_campaign_interruption_keeps_finished_steps():
     ((None, pd_.presets.paper_printed()), {"workers": 0}, "workers"),
     ((None, pd_.presets.paper_printed()), {"cycle": 30}, "cycle"),
     ((None, pd_.presets.paper_printed()), {"steady": "fixed", "cycles": 0}, "cycles"),
+    ((None, pd_.presets.paper_printed()), {"ybs_a_g": []}, "ybs_a_g"),
+    ((pd_.presets.paper_printed(bumpers=False), None), {"nbs_a_g": ()}, "nbs_a_g"),
 ])
 def test_bad_campaign_arguments(args, kwargs, field):
     with pytest.raises(pd_.InputError) as info:
@@ -143,3 +145,34 @@ def test_tables_keep_their_columns_without_a_ybs_step():
                               (res.table4(), ["dissipated_energy_per_mass", "restitution"])):
         assert table.empty
         assert list(table.columns) == ["configuration", "a_g", "direction", "nu_r", *quantities]
+
+
+def test_a_ctrl_c_after_the_last_step_loses_nothing(monkeypatch):
+    """Ctrl-C while the pool winds up or while the dataset is built, after every step finished:
+    the result is whole and complete (it was "interrupted: nothing was written", or complete = 0)."""
+    import concurrent.futures as cf
+    import importlib
+
+    campaign_module = importlib.import_module("pounding.protocols.campaign")
+
+    osc = pd_.presets.paper_damped()
+    kwargs = dict(nbs_a_g=(), ybs_a_g=(0.05,), freqs_hz=[1.5, 1.6], directions=("up",), steady="fixed",
+                  cycles=5)
+    whole = pd_.campaign(None, osc, **kwargs)
+    for target, name in ((cf.ThreadPoolExecutor, "shutdown"), (campaign_module, "_dataset")):
+        original = getattr(target, name)
+        calls = []
+
+        def once(*args, original=original, calls=calls, **kw):
+            if not calls:
+                calls.append(1)
+                if name == "shutdown":
+                    original(*args, **kw)  # (the steps finish, then the Ctrl-C)
+                raise KeyboardInterrupt
+            return original(*args, **kw)
+
+        monkeypatch.setattr(target, name, once)
+        result = pd_.campaign(None, osc, **kwargs)
+        monkeypatch.setattr(target, name, original)
+        assert calls and result.complete and result.dataset.attrs["complete"] == 1
+        assert result.dataset.equals(whole.dataset)

@@ -215,3 +215,64 @@ def test_two_ctrl_c_in_identify_write_a_partial_toml(tmp_path):
     text = (tmp_path / "fit.toml").read_text()
     assert tomllib.loads(text)["meta"]["partial"] is True
     pd_.Oscillator.from_toml(tmp_path / "fit.toml")  # still a system file
+
+
+def _commands() -> list[str]:
+    from typer.main import get_command
+
+    return sorted(get_command(app).commands)
+
+
+def test_help_texts_lose_no_words():
+    """Help is plain text: "[system]" is no Rich markup to drop, no flag shows "<bool>", and the
+    command list gives each command's whole first sentence (Click cut it short with "...")."""
+    study_help = _run("study", "--help").output
+    assert "[system], [compute] and [grid]" in study_help, study_help
+    listing = _run("--help").output
+    commands = listing.split("Commands:")[1]
+    assert "..." not in commands, listing
+    assert "branch points, period-doublings" in " ".join(listing.split())
+    for cmd in _commands():
+        text = _run(cmd, "--help").output
+        assert "<bool>" not in text, (cmd, text)
+        assert "Show this message and exit." in text
+
+
+def test_piped_tables_keep_whole_headers_and_show_no_nan(tmp_path):
+    """CliRunner's output is no terminal, as a pipe's: the campaign's table has every header whole,
+    and its missing numbers (e for YBs, the contact range for NBs) show as "–", not "nan"."""
+    out = _run("campaign", "--preset", "paper-damped", "--out", str(tmp_path / "c"), "--fmin", "1.5",
+               "--fmax", "1.6", "--steady", "fixed", "--cycles", "5")
+    assert out.exit_code == 0, out.output
+    for header in ("configuration", "direction", "contact_nu_min", "contact_nu_max"):
+        assert header in out.output, out.output
+    assert "nan" not in out.output and "…" not in out.output, out.output
+    assert "–" in out.output
+
+
+def test_cell_formats_numbers_text_and_gaps():
+    from pounding.cli._app import MISSING, cell
+
+    assert cell(float("nan")) == MISSING and cell(None) == MISSING
+    assert cell(1.23456) == "1.235" and cell(2.0, "g") == "2" and cell("YBs") == "YBs"
+    assert cell(True) == "yes" and cell(float("inf")) == "inf"
+
+
+def test_a_ctrl_c_while_the_campaign_is_written_says_it_is_complete(tmp_path, monkeypatch):
+    """Ctrl-C after the last step, while the files are written: they are all written, and the line
+    says the campaign is complete (it said "complete = 0")."""
+    from pounding.cli import _runs
+
+    save = _runs._save_campaign
+
+    def save_and_interrupt(result, out):
+        os.kill(os.getpid(), signal.SIGINT)  # (held off while the files are written)
+        save(result, out)
+
+    monkeypatch.setattr(_runs, "_save_campaign", save_and_interrupt)
+    out = _run("campaign", "--preset", "paper-damped", "--out", str(tmp_path / "c"), "--fmin", "1.5",
+               "--fmax", "1.6", "--steady", "fixed", "--cycles", "5")
+    assert out.exit_code == 130, out.output
+    assert "after the campaign had finished" in out.output and "complete" in out.output, out.output
+    assert "complete = 0" not in out.output
+    assert xr.open_dataset(tmp_path / "c" / "campaign.nc").attrs["complete"] == 1

@@ -392,3 +392,19 @@ def test_plot_picks_the_other_axes_by_where(tmp_path):
     assert len(result.plot("impacts", x="a_g", where={"bumpers.gap_left": 0.014})) == 1
     with pytest.raises(pd_.InputError, match="hue"):
         result.plot("impacts", x="a_g", hue="a_g")
+
+
+def test_a_ctrl_c_after_the_last_point_returns_the_whole_study(tmp_path, monkeypatch):
+    """Ctrl-C while the finished store is read back: the study is complete, not "interrupted"."""
+    original = xr.open_zarr
+    calls = []
+
+    def interrupted_once(*args, **kwargs):
+        if not calls:
+            calls.append(1)
+            raise KeyboardInterrupt
+        return original(*args, **kwargs)
+
+    monkeypatch.setattr(xr, "open_zarr", interrupted_once)
+    ds = pd_.study(_spec(2, 2, 1.0), tmp_path / "s.zarr", workers=1, progress=False)
+    assert calls and bool(ds["done"].all())

@@ -35,7 +35,7 @@ class Problem(enum.Enum):
     NOT_A_NUMBER = ("is not a real number", "give a real number such as 0.05")
     NOT_POSITIVE = ("must be > 0", "give a positive value in {unit}")
     NEGATIVE = ("must be >= 0", "give a value >= 0 in {unit}")
-    EMPTY = ("is empty", "give at least one value")
+    EMPTY = ("is empty", "give at least one value{hint}")
     NOT_INCREASING = ("must be strictly increasing", "sort the values and remove repeats")
     LENGTH_MISMATCH = ("has {got} values but {expected} are needed", "give {expected} values{hint}")
     BREAKPOINT_COUNT = (
@@ -124,6 +124,7 @@ class InputError(ValueError):
         self.field = field
         self.value = value
         self._details = details
+        details = {"hint": "", **details}  # ({hint}: an optional last word of a fix)
         why = problem.why.format(**details)
         fix = problem.fix.format(**details)
         super().__init__(f"{field} = {value!r} {why}. Fix: {fix}.")

@@ -5,29 +5,78 @@ from __future__ import annotations
 import contextlib
 import functools
 import signal
+import sys
 import threading
 import warnings
 from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 from typing import Any, Optional
 
+import numpy as np
 import typer
 from rich.console import Console
 from rich.markup import escape
 from rich.table import Table
+from typer.core import TyperCommand, TyperGroup
 
 from .._errors import InputError, PoundingWarning, Problem
 from .._io import FIGURE_SUFFIXES, atomic_write, output_dir, output_file
 
+NO_METAVAR = ""  # flags show no "<bool>" in the help
+
+
+
+def _plain_help(option: Any) -> Any:
+    """The help option shows no type (Typer shows ``--help <bool>`` otherwise)."""
+    if option is not None:
+        option.metavar = NO_METAVAR
+    return option
+
+
+class _Command(TyperCommand):
+    """A command whose ``--help`` line shows no type, listed in ``pounding --help`` by its whole
+    first sentence (Click cuts it to the terminal's width with "...")."""
+
+    def get_help_option(self, ctx: Any) -> Any:
+        return _plain_help(super().get_help_option(ctx))
+
+    def get_short_help_str(self, limit: int = 45) -> str:
+        first = " ".join((self.help or "").split("\n\n")[0].split())
+        return first.split(". ")[0].rstrip(".") if first else super().get_short_help_str(limit)
+
+
+class _Group(TyperGroup):
+    """The ``pounding`` group, likewise."""
+
+    def get_help_option(self, ctx: Any) -> Any:
+        return _plain_help(super().get_help_option(ctx))
+
+
+# Help texts are plain text (rich_markup_mode=None): in Rich's markup "[system]" is a style and vanished
+# from the help, and a docstring's line breaks stayed as breaks in the middle of a sentence.
 app = typer.Typer(
     add_completion=False,
     no_args_is_help=True,
+    rich_markup_mode=None,
+    cls=_Group,
     help="pounding: base-isolated masses pounding against deformable bumpers.",
 )
-console = Console()
-err_console = Console(stderr=True)
+
+
+def _width(stream: Any) -> Optional[int]:
+    """The consoles' width: the terminal's, or 160 columns when the output goes to a pipe or a file
+    (Rich's 80 cut the tables' headers short: "configu…")."""
+    try:
+        return None if stream.isatty() else PIPED_WIDTH
+    except (AttributeError, ValueError):  # (a closed or replaced stream)
+        return PIPED_WIDTH
+
+
+PIPED_WIDTH = 160
+console = Console(width=_width(sys.stdout))
+err_console = Console(stderr=True, width=_width(sys.stderr))
+MISSING = "–"  # what a table shows for a number that is not there (NaN, None), rather than "nan"
 INTERRUPTED_EXIT = 130  # the shell's code for a command ended by Ctrl-C (128 + SIGINT)
-NO_METAVAR = ""  # flags show no "<bool>" in the help
 
 
 def _version(value: bool) -> None:
@@ -87,7 +136,7 @@ def command(name: Optional[str] = None) -> Callable:
                 except KeyboardInterrupt:
                     interrupted("nothing was written")
 
-        return app.command(name)(run)
+        return app.command(name, cls=_Command)(run)
 
     return register
 
@@ -146,13 +195,39 @@ def interrupted(kept: str) -> None:
     raise typer.Exit(code=INTERRUPTED_EXIT)
 
 
-def kv_table(title: str) -> tuple[Table, Callable[[str, str], None]]:
-    """A two-column summary table and its ``add(label, value)`` (labels may hold [units])."""
+def cell(value: Any, fmt: str = ".4g") -> str:
+    """A table cell: a number in ``fmt``, ``MISSING`` for NaN or None, text and booleans as they are."""
+    if value is None or isinstance(value, str):
+        return MISSING if value is None else value
+    if isinstance(value, (bool, np.bool_)):
+        return "yes" if value else "no"
+    try:
+        number = float(value)
+    except (TypeError, ValueError):
+        return str(value)
+    return MISSING if number != number else format(number, fmt)
+
+
+def data_table(title: str, columns: Iterable[str]) -> Table:
+    """A table with a header row; headers are never cut (``console`` is wide when piped)."""
+    table = Table(title=escape(title))
+    for col in columns:
+        table.add_column(escape(col), no_wrap=True)
+    return table
+
+
+def kv_table(title: str, system: Any = None) -> tuple[Table, Callable[[str, str], None]]:
+    """A two-column summary table and its ``add(label, value)`` (labels may hold [units]).
+
+    The system (a file's path, or a preset's name) is the first row, not part of the title: a
+    long path made the title wrap in the middle of a phrase ("a_G =" / "0, f = 2.2 Hz")."""
     table = Table(title=escape(title), show_header=False)
 
     def add(label: str, value: str) -> None:
         table.add_row(escape(label), escape(value))
 
+    if system is not None:
+        add("system", str(system))
     return table, add
 
 

@@ -48,7 +48,7 @@ def continue_branch(
             branch = continuation(osc, a_g, (start, end), period_multiple=period_multiple, max_step=max_step)
         except Interrupted as stop:
             branch, complete = stop.partial, False
-    table, add = kv_table(f"{system_file or preset}: branch at a_G = {a_g:g}, {start:g} to {end:g} Hz")
+    table, add = kv_table(f"branch at a_G = {a_g:g}, {start:g} to {end:g} Hz", system_file or preset)
     add("status", branch.message)
     add("orbits", f"{len(branch)} ({int((~branch.table['stable']).sum())} unstable)")
     for bif in branch.bifurcations:
@@ -124,7 +124,7 @@ def coexistence(
             cmap = coexistence_map(osc, a_g=(a_g_min, a_g_max), freqs_hz=(start, end), levels=chosen, kinds=kinds)
         except Interrupted as stop:
             cmap, complete = stop.partial, False
-    table, add = kv_table(f"{system_file or preset}: a_G {a_g_min:g}-{a_g_max:g}, {start:g}-{end:g} Hz")
+    table, add = kv_table(f"coexistence, a_G {a_g_min:g}-{a_g_max:g}, {start:g}-{end:g} Hz", system_file or preset)
     for br in cmap.branches:
         add(f"branch a_G = {br.a_g:g}", f"{len(br)} orbits, folds at "
             + (", ".join(f"{b.freq_hz:.4g}" for b in br.folds()) or "none") + f" Hz ({br.status.name})")

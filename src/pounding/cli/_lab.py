@@ -6,10 +6,9 @@ from pathlib import Path
 from typing import Any, Optional
 
 import typer
-from rich.table import Table
 
 from .._io import interrupts_deferred, write_text
-from ._app import command, console, float_list, folder, save_figure, write_csv
+from ._app import cell, command, console, data_table, float_list, folder, save_figure, write_csv
 
 ROLE_NAMES = ("time", "table_acc", "mass_acc", "displacement")
 
@@ -72,13 +71,12 @@ def lab(
             write_csv(result.impacts, out / "impacts.csv")
         write_text(out / "targets.toml", targets.to_toml_text())
         save_figure(result.plot, out / "lab_sweep.png")
-    summary = Table(title=f"{test.name}: {len(result.steps)} steps, a_G {result.a_g:.4g}, {record.sample_rate_hz:g} Hz")
     cols = ["freq_hz", "alpha", "eta" if gap is not None else "e", "steady"]
     cols += ["contacts_per_cycle", "contact_time_s", "restitution"] if gap is not None else []
-    for c in cols:
-        summary.add_column(c)
+    summary = data_table(f"{test.name}: {len(result.steps)} steps, a_G {result.a_g:.4g}, {record.sample_rate_hz:g} Hz",
+                         cols)
     for _, row in result.steps.iterrows():
-        summary.add_row(*(str(row[c]) if isinstance(row[c], (bool, str)) else f"{row[c]:.4g}" for c in cols))
+        summary.add_row(*(cell(row[c]) for c in cols))
     console.print(summary)
     console.print(f"nu_R {result.nu_r:g}, alpha max {result.alpha_max:.4g}; steps.csv, "
                   f"{'impacts.csv, ' if gap is not None else ''}lab_sweep.png, targets.toml -> {out}")

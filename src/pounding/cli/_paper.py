@@ -7,11 +7,12 @@ from typing import Optional
 
 import typer
 from rich.markup import escape
-from rich.table import Table
 
 from .._errors import Interrupted
 from .._io import interrupts_deferred
 from ._app import (
+    cell,
+    data_table,
     NO_METAVAR,
     OPT_FMAX,
     OPT_FMIN,
@@ -79,37 +80,14 @@ def reproduce(
     except Interrupted as stop:
         interrupted(f"{stop}; no report written (a report of part of the campaign would mislead)")
     t2 = report.comparisons["2"]
-    summary = Table(title=f"Table 2, model ({escape(label)}) beside measured (paper)")
-    for col in (
-        "cfg",
-        "a_G",
-        "dir",
-        "nu_R model",
-        "nu_R meas.",
-        "alpha model",
-        "alpha meas.",
-        "eta|e model",
-        "eta|e meas.",
-    ):
-        summary.add_column(col)
+    summary = data_table(f"Table 2, model ({label}) beside measured (paper)",
+                         ("cfg", "a_G", "dir", "nu_R model", "nu_R meas.", "alpha model", "alpha meas.",
+                          "eta|e model", "eta|e meas."))
     for _, row in t2.iterrows():
         q = "eta" if row["configuration"] == "YBs" else "e"
-        summary.add_row(
-            row["configuration"],
-            f"{row['a_g']:g}",
-            row["direction"],
-            *(
-                f"{row[c]:.3g}"
-                for c in (
-                    "nu_r_model",
-                    "nu_r_measured",
-                    "alpha_model",
-                    "alpha_measured",
-                    f"{q}_model",
-                    f"{q}_measured",
-                )
-            ),
-        )
+        summary.add_row(row["configuration"], cell(row["a_g"], "g"), row["direction"],
+                        *(cell(row[c], ".3g") for c in ("nu_r_model", "nu_r_measured", "alpha_model",
+                                                        "alpha_measured", f"{q}_model", f"{q}_measured")))
     console.print(summary)
     console.print(f"verdict: {escape(label)} {escape(report.verdict.summary())}")
     console.print(f"report -> {report.index_html} (tables CSV, {len(report.figures)} figures PNG)")
@@ -169,28 +147,16 @@ def identify(
         if stop.partial is None:
             interrupted("no candidate was evaluated; nothing was written")
         fit, complete = stop.partial, False
-    params = Table(title="fitted numbers")
-    for col in ("name", "value", "low", "high", "at bound"):
-        params.add_column(col)
+    params = data_table("fitted numbers", ("name", "value", "low", "high", "at bound"))
     for row in fit.parameter_table().itertuples(index=False):
-        params.add_row(
-            row.name, f"{row.value:.6g}", f"{row.low:g}", f"{row.high:g}", "yes" if row.at_bound else ""
-        )
+        params.add_row(row.name, cell(row.value, ".6g"), cell(row.low, "g"), cell(row.high, "g"),
+                       "yes" if row.at_bound else "")
     console.print(params)
-    table = Table(title="residuals (model - target) / tolerance")
-    for col in ("cfg", "a_G", "dir", "quantity", "target", "model", "normalized", "met"):
-        table.add_column(col)
+    table = data_table("residuals (model - target) / tolerance",
+                       ("cfg", "a_G", "dir", "quantity", "target", "model", "normalized", "met"))
     for row in fit.residuals.itertuples(index=False):
-        table.add_row(
-            row.configuration,
-            f"{row.a_g:g}",
-            row.direction,
-            row.quantity,
-            f"{row.target:.4g}",
-            f"{row.model:.4g}",
-            f"{row.normalized:+.2f}",
-            "yes" if row.within else "[red]no[/]",
-        )
+        table.add_row(row.configuration, cell(row.a_g, "g"), row.direction, row.quantity, cell(row.target),
+                      cell(row.model), cell(row.normalized, "+.2f"), "yes" if row.within else "[red]no[/]")
     console.print(table)
     with interrupts_deferred() as held:
         fit.to_toml(paths["out"])

@@ -7,11 +7,12 @@ from typing import Any, Optional
 
 import typer
 from rich.markup import escape
-from rich.table import Table
 
 from .._errors import Interrupted
 from .._io import atomic_write, interrupts_deferred
 from ._app import (
+    cell,
+    data_table,
     OPT_CYCLES,
     OPT_FMAX,
     OPT_FMIN,
@@ -94,8 +95,7 @@ def simulate(
             run = run_simulation(osc, exc, duration, start, sample_rate_hz=rate)
     except Interrupted as stop:
         run, complete = stop.partial, False
-    label = system_file or preset
-    table, add_row = kv_table(f"{label}: {what}, {run.final_state.time_s:g} s")
+    table, add_row = kv_table(f"{what}, {run.final_state.time_s:g} s", system_file or preset)
     add_row("status", run.message)
     add_row("D max / min [mm]", f"{run.displacement_max * 1e3:.4f} / {run.displacement_min * 1e3:.4f}")
     add_row("max |abs. acceleration| [g]", f"{run.abs_acceleration_max / exc.g:.4f}")
@@ -240,7 +240,7 @@ def sweep(
         )
     except Interrupted as stop:
         result = stop.partial
-    table, add = kv_table(f"{system_file or preset}: sweep {result.direction}, a_G = {a_g:g}")
+    table, add = kv_table(f"sweep {result.direction}, a_G = {a_g:g}", system_file or preset)
     add("status", result.message)
     if result.steps_done:
         add("nu_R (alpha peak)", f"{result.nu_r:g}")
@@ -329,44 +329,19 @@ def campaign(
         result, complete = stop.partial, False
     with interrupts_deferred() as held:  # every file whole, whatever Ctrl-C comes meanwhile
         _save_campaign(result, out)
-    summary = Table(title="Table 2 analogue (model)")
-    table2 = result.table2()
-    for col in (
-        "configuration",
-        "a_g",
-        "direction",
-        "nu_r",
-        "alpha",
-        "eta",
-        "e",
-        "contact_nu_min",
-        "contact_nu_max",
-    ):
-        summary.add_column(col)
-    for _, row in table2.iterrows():
-        summary.add_row(
-            *(
-                f"{row[c]:.4g}" if isinstance(row[c], float) else str(row[c])
-                for c in (
-                    "configuration",
-                    "a_g",
-                    "direction",
-                    "nu_r",
-                    "alpha",
-                    "eta",
-                    "e",
-                    "contact_nu_min",
-                    "contact_nu_max",
-                )
-            )
-        )
+    columns = ("configuration", "a_g", "direction", "nu_r", "alpha", "eta", "e", "contact_nu_min",
+               "contact_nu_max")
+    summary = data_table("Table 2 analogue (model)", columns)
+    for _, row in result.table2().iterrows():
+        summary.add_row(*(cell(row[c]) for c in columns))
     console.print(summary)
     console.print(f"campaign.nc, steps.csv, table2-4.csv, campaign.png -> {out}")
     if not complete or held:
         done = sum(sw.steps_done for sw in result.sweeps.values())
         interrupted(
             f"{done} steps finished; they are in {out} (campaign.nc has complete = 0, the tables a "
-            "'complete' column)"
+            "'complete' column)" if not complete else
+            f"after the campaign had finished: all {done} steps are in {out}, complete"
         )
 
 

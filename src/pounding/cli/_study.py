@@ -8,6 +8,7 @@ from typing import Optional
 import typer
 
 from .._errors import Interrupted
+from .._io import interrupts_deferred
 from ._app import command, compile_notice, console, interrupted
 
 
@@ -36,6 +37,9 @@ def study(
     except Interrupted as stop:
         interrupted(f"{stop.done} of {stop.total} points are in {store}; run the same command again to resume")
         return
-    result = StudyResult(ds, parsed)
-    console.print(f"{result.done} of {parsed.size} points done; read with pounding.open_study({str(store)!r}) "
-                  "or xarray.open_zarr")
+    with interrupts_deferred() as held:  # (the study is in its store: a Ctrl-C now changes nothing)
+        result = StudyResult(ds, parsed)
+        console.print(f"{result.done} of {parsed.size} points done; read with pounding.open_study({str(store)!r}) "
+                      "or xarray.open_zarr")
+    if held:
+        interrupted(f"after the study had finished: all {result.done} points are in {store}")

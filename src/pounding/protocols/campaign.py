@@ -266,7 +266,11 @@ def campaign(
                    "give a system with bumpers; were the NBs and YBs systems swapped?")
             raise InputError(Problem.WRONG_CONFIGURATION, field_name, f"Oscillator(mass={osc.mass:g}, ...)",
                              got="with bumpers" if osc.bumpers else "without bumpers", fix=fix)
-        for ag in real_tuple(f"{conf.lower()}_a_g", a_gs):
+        levels = real_tuple(f"{conf.lower()}_a_g", a_gs)
+        if not levels:
+            raise InputError(Problem.EMPTY, f"{conf.lower()}_a_g", list(levels),
+                             hint=f", or give {field_name}=None to leave the {conf} sweeps out")
+        for ag in levels:
             for d in directions:
                 plan = make_plan(osc, ag, freqs_hz, d, **sweep_options)
                 plans.append(((conf, ag, d), plan))
@@ -275,36 +279,48 @@ def campaign(
     controls = [new_control(plan.max_steps) for _, plan in plans]  # one budget per sweep
     sweeps: dict[tuple[str, float, str], SweepResult] = {}
     interrupted = False
-    with progress_reporter(progress, total, "campaign") as advance:
-        with cf.ThreadPoolExecutor(max_workers=n_workers, thread_name_prefix="pounding") as pool:
+    pool = cf.ThreadPoolExecutor(max_workers=n_workers, thread_name_prefix="pounding")
+    futures: dict = {}
+    try:
+        with progress_reporter(progress, total, "campaign") as advance:
             futures = {pool.submit(run_plan, plan, advance, ctl): key
                        for (key, plan), ctl in zip(plans, controls)}
+            pending = set(futures)
+            while pending:
+                done, pending = cf.wait(pending, timeout=0.2, return_when=cf.FIRST_COMPLETED)
+                if any(isinstance(fut.exception(), Interrupted) for fut in done):
+                    raise KeyboardInterrupt  # a worker was interrupted (e.g. by a callback)
+    except KeyboardInterrupt:  # (also one that came after the last step, while the bar closed)
+        interrupted = True
+    finally:
+        while True:  # every running sweep returns within a sub-interval of a stop; more Ctrl-C: wait on
             try:
-                pending = set(futures)
-                while pending:
-                    done, pending = cf.wait(pending, timeout=0.2, return_when=cf.FIRST_COMPLETED)
-                    if any(isinstance(fut.exception(), Interrupted) for fut in done):
-                        raise KeyboardInterrupt  # a worker was interrupted (e.g. by a callback)
+                if interrupted:
+                    request_stop(controls)
+                pool.shutdown(wait=True, cancel_futures=interrupted)
+                break
             except KeyboardInterrupt:
                 interrupted = True
-                request_stop(controls)  # running kernels return within a sub-interval
-                for fut in futures:
-                    fut.cancel()
-            for fut, key in futures.items():
-                if fut.cancelled():
-                    continue
-                while True:  # more Ctrl-C while the workers return: keep collecting
-                    try:
-                        sweeps[key] = fut.result()
-                    except Interrupted as partial:
-                        sweeps[key] = partial.partial
-                    except KeyboardInterrupt:
-                        request_stop(controls)
-                        continue
-                    break
+    for fut, key in futures.items():
+        if fut.cancelled():
+            continue
+        try:
+            sweeps[key] = fut.result()
+        except Interrupted as partial:
+            sweeps[key] = partial.partial
     ordered = {key: sweeps[key] for key, _ in plans if key in sweeps}
-    result = CampaignResult(_dataset(ordered, plans, not interrupted), ordered, not interrupted)
-    if interrupted:
+    # A Ctrl-C that came after the last step (while the pool was winding up) loses nothing: the
+    # campaign is complete when every sweep ended by itself, whatever the interrupt
+    complete = not interrupted or all(
+        key in ordered and (ordered[key].steps_done == plan.freqs_hz.size or ordered[key].status != 0)
+        for key, plan in plans)
+    while True:  # (assembling is short and pure: a Ctrl-C meanwhile is held until it is done)
+        try:
+            result = CampaignResult(_dataset(ordered, plans, complete), ordered, complete)
+            break
+        except KeyboardInterrupt:
+            interrupted = True
+    if not complete:
         raise Interrupted(result, sum(sw.steps_done for sw in ordered.values()), total)
     return result
 

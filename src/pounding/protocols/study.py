@@ -172,9 +172,14 @@ def study(
             client.close()
         if own is not None:
             own.close()
-    ds = xr.open_zarr(store, consolidated=True)
-    if interrupted:
-        kept = int(ds["done"].sum())
+    while True:  # (reading the store back is short: a Ctrl-C meanwhile is taken as one during the points)
+        try:
+            ds = xr.open_zarr(store, consolidated=True)
+            kept = int(ds["done"].sum())
+            break
+        except KeyboardInterrupt:
+            interrupted = True
+    if interrupted and kept < spec.size:  # (interrupted after the last point: the study is complete)
         raise Interrupted(ds, kept, spec.size, "points")
     return ds
 
