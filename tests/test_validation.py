@@ -198,3 +198,71 @@ def test_the_energy_ledger_holds_python_floats():
     run = pd_.simulate(osc, pd_.Harmonic(0.05, 2.0), 2.0, state=pd_.State.at_rest(osc, velocity_m_s=0.6))
     for field in dataclasses.fields(run.energy):
         assert type(getattr(run.energy, field.name)) is float, field.name
+
+
+_T = np.linspace(0.0, 2.0, 401)
+_D = 0.002 * (1.0 - np.cos(2.0 * np.pi * _T))  # m: two cycles of a 0-4 mm compression test
+_F = 3e7 * _D**1.5
+
+
+def _fit(**changes):
+    kwargs = {"displacement_m": _D, "force_n": _F, "time_s": _T, "law": "hunt_crossley", **changes}
+    return lambda: pd_.fit_contact_law(kwargs.pop("displacement_m"), kwargs.pop("force_n"), **kwargs)
+
+
+@pytest.mark.parametrize(
+    "call, field, problem",
+    [
+        (_fit(exponent_bounds=None), "exponent_bounds", Problem.WRONG_TYPE),
+        (_fit(exponent_bounds=2.0), "exponent_bounds", Problem.WRONG_TYPE),
+        (_fit(exponent_bounds=(1.5,)), "exponent_bounds", Problem.LENGTH_MISMATCH),
+        (_fit(exponent_bounds=(1.0, 2.0, 3.0)), "exponent_bounds", Problem.LENGTH_MISMATCH),
+        (_fit(exponent_bounds=(1.0, 11.0)), "exponent_bounds[1]", Problem.TOO_LARGE),
+        (_fit(exponent_bounds=(1.0, float("nan"))), "exponent_bounds[1]", None),
+        # time steps so small the compression rate overflows (it was a raw "array must not contain infs")
+        (_fit(time_s=_T * 1e-310, law="kelvin_voigt"), "time_s", Problem.TOO_LARGE),
+        (_fit(time_s=_T * 1e-300), "time_s", Problem.TOO_LARGE),
+        # compressions in the wrong units (1e300 overflowed; 1e-300 gave a law of 1e304 N/m)
+        (_fit(displacement_m=_D * 1e302, law="kelvin_voigt"), "displacement_m[100]", Problem.TOO_LARGE),
+        (_fit(displacement_m=_D * 1e302), "displacement_m[100]", Problem.TOO_LARGE),
+        (_fit(displacement_m=_D * 1e-298, law="elastic_plastic"), "displacement_m[100]", Problem.TOO_SMALL),
+        (_fit(displacement_m=_D * 1e-298, law="multilinear"), "displacement_m[100]", Problem.TOO_SMALL),
+        (_fit(force_n=_F * 1e300), "force_n[100]", Problem.TOO_LARGE),
+        # forces all negative (a stiffness of 2.2e-308 came back)
+        (_fit(force_n=-_F, law="kelvin_voigt"), "force_n", Problem.NO_FIT),
+        (_fit(force_n=-_F), "force_n", Problem.NO_FIT),
+        (_fit(force_n=-_F, law="multilinear"), "force_n", Problem.NO_FIT),
+        (_fit(force_n=-_F, law="jankowski", effective_mass_kg=500.0), "force_n", Problem.NO_FIT),
+    ],
+)
+def test_contact_law_fits_refuse_data_no_bumper_test_has(call, field, problem):
+    _raises(call, field, problem)
+
+
+@pytest.mark.parametrize(
+    "call, field",
+    [
+        # e = E / D_tmax and nu = f / f_R overflowed or divided by zero
+        (lambda: pd_.sweep(OSC, 0.05, [1.0], omega_min_rad_s=1e300), "omega_min_rad_s"),
+        (lambda: pd_.sweep(OSC, 0.05, [1.0], omega_min_rad_s=1e-300), "omega_min_rad_s"),
+        (lambda: pd_.sweep(OSC, 0.05, [1.0], f_ref_hz=1e-300), "f_ref_hz"),
+        (lambda: pd_.sweep(OSC, 0.05, [1.0], f_ref_hz=1e300), "f_ref_hz"),
+        # a mass whose phases' rates overflow
+        (lambda: pd_.Oscillator(1e-300, ISO), "mass"),
+        (lambda: pd_.campaign(None, OSC, ybs_a_g=[]), "ybs_a_g"),
+        # record steps below what a run can resolve
+        (lambda: pd_.Record(np.arange(5) * 1e-300, [0.0, 1.0, 0.0, -1.0, 0.0]), "record.t[4] - record.t[3]"),
+        # (steps of 10 ns at t = 1000 s are 1e5 times the times' rounding: not resolved either)
+        (lambda: pd_.Record(1e3 + np.array([0.0, 1e-8, 3e-8, 6e-8]), [0.0, 1.0, 0.0, -1.0]),
+         "record.t[1] - record.t[0]"),
+    ],
+)
+def test_scales_that_overflowed_are_named(call, field):
+    _raises(call, field)
+
+
+def test_a_tiny_mass_in_toml_is_named(tmp_path):
+    path = tmp_path / "tiny.toml"
+    path.write_text(OSC.to_toml_text().replace("mass = 500.0", "mass = 1e-300"))
+    assert "1e-300" in path.read_text()
+    _raises(lambda: pd_.Oscillator.from_toml(path), "mass", Problem.TOO_SMALL)

@@ -119,6 +119,14 @@ def at_most(field: str, value: float, maximum: float, what: str, fix: str) -> fl
     return value
 
 
+def at_least(field: str, value: float, minimum: float, unit: str, fix: str) -> float:
+    """``value`` if ``value >= minimum``, else an error (magnitudes below any real system's, which
+    overflow the arithmetic: a mass of 1e-300 kg, a record step of 1e-300 s)."""
+    if not value >= minimum:
+        raise InputError(Problem.TOO_SMALL, field, value, minimum=f"{minimum:g}{unit}", hint=f" ({fix})")
+    return value
+
+
 def plausible(field: str, value: float, low: float, high: float, meant: str) -> None:
     """Warn (:class:`PoundingWarning`) when ``value`` is outside ``[low, high]``.
 

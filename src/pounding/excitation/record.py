@@ -16,6 +16,7 @@ from .._units import ACC_UNITS
 from .harmonic import MAX_A_G, MAX_ACCEL_M_S2, MAX_TIME_S, RECORD, STANDARD_GRAVITY
 
 UNIFORM_RTOL = 1e-6  # time steps equal within this are a uniform sampling
+MIN_STEP_S = 1e-9  # the shortest time step accepted, s (records are sampled at 1 kHz and slower)
 
 
 @dataclass(frozen=True, eq=False)
@@ -75,6 +76,14 @@ class Record:
             raise InputError(Problem.NOT_INCREASING, f"record.t[{i}:{i + 2}]", t[i:i + 2].tolist())
         i = int(np.argmax(np.abs(t)))
         at_most(f"record.t[{i}]", float(t[i]), MAX_TIME_S, " s", "give the times in s")
+        # steps the engine can resolve: at least 1 ns, and a million times the rounding of the times
+        # (a record at 1e-300 s steps was taken, and its run met no sample of it)
+        least = max(MIN_STEP_S, 1e6 * np.spacing(abs(float(t[i]))))
+        j = int(np.argmin(steps))
+        if steps[j] < least:
+            raise InputError(Problem.TOO_SMALL, f"record.t[{j + 1}] - record.t[{j}]", float(steps[j]),
+                             minimum=f"{least:.3g} s", hint=" (steps this small cannot be resolved: give the "
+                                                            "times in s; 100 Hz sampling is 0.01)")
         i = int(np.argmax(np.abs(accel)))
         at_most(f"record.accel[{i}]", float(accel[i]), MAX_ACCEL_M_S2, " m/s^2 (1000 g)",
                 "give the acceleration in m/s^2 (Record.from_g takes units of g)")

@@ -14,9 +14,10 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .._checks import float_array, integer, one_of, positive, real, real_tuple
+from .._checks import at_least, at_most, float_array, integer, one_of, plausible, positive, real_tuple
 from .._errors import InputError, Problem
-from ..model.contact_laws import (ELASTIC_PLASTIC, LAWS, MAX_BRANCHES, MULTILINEAR_KINEMATIC, N_LAW_PARAMS,
+from ..model.contact_laws import (ELASTIC_PLASTIC, LAWS, MAX_BRANCHES, MAX_EXPONENT, MULTILINEAR_KINEMATIC,
+                                  N_LAW_PARAMS,
                                   ContactLaw, ElasticPlastic,
                                   Hertzdamp, HuntCrossley, Jankowski, KelvinVoigt, MultilinearBumper,
                                   law_force_many)
@@ -24,6 +25,12 @@ from ..model.contact_laws import (ELASTIC_PLASTIC, LAWS, MAX_BRANCHES, MULTILINE
 MIN_SAMPLES_IN_CONTACT = 3
 KINEMATIC_ROW = "multilinear_kinematic"  # rank_contact_laws' name of MultilinearBumper(hysteresis="kinematic")
 MIN_RATIO = 1e-6  # the elastic-plastic fit's least K2 / K1
+MIN_STIFFNESS = 1e-300  # the fitted stiffness's floor, N/m^n: at it, no stiffness fits (an error)
+# the scales of a bumper test: beyond them the data are in other units (and the least squares overflow)
+MAX_COMPRESSION_M = 1e3
+MIN_COMPRESSION_M = 1e-9
+MAX_FORCE_N = 1e12
+MAX_RATE_M_S = 1e6
 
 
 @dataclass(frozen=True, eq=False)
@@ -336,7 +343,8 @@ def fit_contact_law(
         if bad.size:  # name the first sample that does not come after the one before
             i = int(bad[0]) + 1
             raise InputError(Problem.NOT_INCREASING, f"time_s[{i - 1}:{i + 1}]", [float(t[i - 1]), float(t[i])])
-        v = np.gradient(d, t, edge_order=2)
+        with np.errstate(all="ignore"):  # (times too close overflow: named below)
+            v = np.gradient(d, t, edge_order=2)
     elif law == ElasticPlastic.TYPE:  # rate-independent: the rate is not needed
         v = np.zeros_like(d)
     else:
@@ -347,10 +355,11 @@ def fit_contact_law(
     if n_contact < MIN_SAMPLES_IN_CONTACT:
         raise InputError(Problem.TOO_FEW_IN_CONTACT, "displacement_m", f"array of {d.size}",
                          got=n_contact, expected=MIN_SAMPLES_IN_CONTACT)
+    _check_test_scales(np.flatnonzero(contact), d, v, force, "velocity_m_s" if velocity_m_s is not None else "time_s")
     d, v, force = d[contact], v[contact], force[contact]
     if law == KelvinVoigt.TYPE:
         k, c, _ = _nnls_fit(d, v, force)
-        fitted: ContactLaw = KelvinVoigt(max(k, np.finfo(float).tiny), c)
+        fitted: ContactLaw = KelvinVoigt(max(k, MIN_STIFFNESS), c)
     elif law == MultilinearBumper.TYPE:
         kinematic = hysteresis == "kinematic"
         if breakpoints is None:
@@ -359,32 +368,75 @@ def fit_contact_law(
             b = np.array(MultilinearBumper((1.0,) * (len(real_tuple("breakpoints", breakpoints)) + 1),
                                            breakpoints).breakpoints)  # (checked as the law checks them)
         slopes, c, _ = (_kinematic_fit if kinematic else _multilinear_fit)(d, v, force, b)
-        slopes[0] = max(slopes[0], np.finfo(float).tiny)
+        slopes[0] = max(slopes[0], MIN_STIFFNESS)
         fitted = MultilinearBumper(tuple(slopes), tuple(b), c, hysteresis)
     elif law == ElasticPlastic.TYPE:
         fitted = ElasticPlastic(*_elastic_plastic_search(d, force))
     else:
-        lo = real("exponent_bounds[0]", exponent_bounds[0])
-        hi = real("exponent_bounds[1]", exponent_bounds[1])
-        if lo < 1.0:
-            raise InputError(Problem.TOO_SMALL, "exponent_bounds[0]", lo, minimum=1, hint=" (1: linear contact)")
-        if hi <= lo:
-            raise InputError(Problem.NOT_INCREASING, "exponent_bounds", list(exponent_bounds))
+        lo, hi = _exponent_bounds(exponent_bounds)
         from scipy.optimize import minimize_scalar
 
         best = minimize_scalar(lambda n: _nnls_fit(d, v, force, n, law)[2], bounds=(lo, hi), method="bounded",
                                options={"xatol": 1e-10})
         k, c, _ = _nnls_fit(d, v, force, best.x, law)
-        k = max(k, np.finfo(float).tiny)
+        k = max(k, MIN_STIFFNESS)
         if law == Jankowski.TYPE:
             fitted = Jankowski(k, c / (2.0 * np.sqrt(effective_mass_kg * k)), effective_mass_kg, float(best.x))
         else:
             fitted = HuntCrossley(k, float(best.x), c)
+    if _stiffness(fitted) <= MIN_STIFFNESS:  # (the least squares' floor: no force grows with compression)
+        raise InputError(Problem.NO_FIT, "force_n", "the forces given",
+                         why=f"fit no {law} law (no stiffness makes their force grow with the compression)",
+                         fix="give the force the bumper pushes with, positive in compression, in N")
     resid = force - _force(fitted, d, v)
     rms = float(np.sqrt(np.mean(resid**2)))
     var = float(np.var(force))
     r2 = 1.0 - rms**2 / var if var > 0.0 else 1.0
     return ContactLawFit(fitted, rms, r2, d, v, force)
+
+
+def _exponent_bounds(bounds: Any) -> tuple[float, float]:
+    """``(low, high)``, 1 <= low < high <= the laws' largest exponent."""
+    if bounds is None or isinstance(bounds, (str, bytes, dict)) or np.ndim(bounds) != 1:
+        raise InputError(Problem.WRONG_TYPE, "exponent_bounds", bounds, got=type(bounds).__name__,
+                         expected="pair of numbers (low, high), e.g. (1.0, 3.0)")
+    values = real_tuple("exponent_bounds", bounds)
+    if len(values) != 2:
+        raise InputError(Problem.LENGTH_MISMATCH, "exponent_bounds", list(values), got=len(values), expected=2,
+                         hint=" (low, high), e.g. (1.0, 3.0)")
+    lo, hi = values
+    if lo < 1.0:
+        raise InputError(Problem.TOO_SMALL, "exponent_bounds[0]", lo, minimum=1, hint=" (1: linear contact)")
+    if hi > MAX_EXPONENT:
+        raise InputError(Problem.TOO_LARGE, "exponent_bounds[1]", hi, maximum=MAX_EXPONENT, what="",
+                         fix=f"give at most {MAX_EXPONENT:g}, the contact laws' largest exponent")
+    if hi <= lo:
+        raise InputError(Problem.NOT_INCREASING, "exponent_bounds", list(values))
+    return lo, hi
+
+
+def _check_test_scales(idx: np.ndarray, d: np.ndarray, v: np.ndarray, force: np.ndarray, rate_field: str) -> None:
+    """The samples ``idx`` (those in compression) in the units a bumper test has: the least squares
+    square them, so compressions of 1e300 m overflowed and of 1e-300 m gave stiffnesses of 1e304 N/m."""
+    d, v, force = d[idx], v[idx], force[idx]
+    i = int(np.argmax(d))
+    at_most(f"displacement_m[{idx[i]}]", float(d[i]), MAX_COMPRESSION_M, " m", "give the compression in m")
+    at_least(f"displacement_m[{idx[i]}]", float(d[i]), MIN_COMPRESSION_M, " m",
+             "the largest compression; give the compression in m: 2 mm is 0.002")
+    plausible(f"displacement_m[{idx[i]}]", float(d[i]), 0.0, 1.0, "the compression is in m: 10 mm is 0.01")
+    i = int(np.argmax(np.abs(force)))
+    at_most(f"force_n[{idx[i]}]", float(force[i]), MAX_FORCE_N, " N", "give the force in N")
+    if not np.all(np.isfinite(v)) or np.max(np.abs(v)) > MAX_RATE_M_S:
+        i = int(np.argmax(np.where(np.isfinite(v), np.abs(v), np.inf)))
+        rate = f"of {v[i]:.3g} m/s" if np.isfinite(v[i]) else "that overflows"
+        raise InputError(Problem.TOO_LARGE, rate_field, f"a compression rate {rate} at sample {idx[i]}",
+                         maximum=MAX_RATE_M_S, what=" m/s",
+                         fix="give the times in s (samples this close make the rate overflow)"
+                         if rate_field == "time_s" else "give the compression rate in m/s")
+
+
+def _stiffness(law: ContactLaw) -> float:
+    return float(law.slopes[0]) if isinstance(law, MultilinearBumper) else float(law.stiffness)
 
 
 def _same_length(field: str, arr: np.ndarray, ref: np.ndarray) -> None:

@@ -8,7 +8,7 @@ from typing import Any, ClassVar, Optional, Union
 
 import tomli_w
 
-from .._checks import at_most, parse_toml, plausible, positive, read_text
+from .._checks import at_least, at_most, parse_toml, plausible, positive, read_text
 from .._errors import InputError, Problem
 from .bumpers import Bumpers
 from .contact_laws import law_from_dict
@@ -16,6 +16,7 @@ from .isolator import Isolator
 
 PathLike = Union[str, Path]
 MAX_MASS_KG = 1e12  # refused beyond (a unit error)
+MIN_MASS_KG = 1e-6  # refused below (1 mg: the phases' rates k/m overflowed at 1e-300 kg)
 
 
 @dataclass(frozen=True)
@@ -61,6 +62,7 @@ class Oscillator:
     def __post_init__(self) -> None:
         mass = positive("mass", self.mass, "kg")
         at_most("mass", mass, MAX_MASS_KG, " kg", "give the mass in kg")
+        at_least("mass", mass, MIN_MASS_KG, " kg", "give the mass in kg: 500 kg is 500.0")
         plausible("mass", mass, 1e-3, 1e9, "the mass is in kg (500 kg is 500.0)")
         object.__setattr__(self, "mass", mass)
         if not isinstance(self.isolator, Isolator):

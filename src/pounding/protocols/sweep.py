@@ -13,7 +13,7 @@ from typing import Literal
 
 import numpy as np
 
-from .._checks import at_most, float_array, integer, one_of, plausible, positive
+from .._checks import at_least, at_most, float_array, integer, one_of, plausible, positive
 from .._errors import InputError, Interrupted, Problem, Status
 from ..engine import State
 from ..engine._layout import T
@@ -142,8 +142,13 @@ def make_plan(
         raise InputError(Problem.OUT_OF_RANGE, "steady_rtol", steady_rtol, range="[1e-13, 0.1]",
                          hint=" (below 1e-12 is rounding noise)")
     max_period = integer("max_period", max_period, 1, 1000)
+    # (each between 1 mHz and the largest frequency, in its unit: beyond, e and nu overflowed or divided by 0)
     omega_min_rad_s = positive("omega_min_rad_s", omega_min_rad_s, "rad/s")
+    at_least("omega_min_rad_s", omega_min_rad_s, 2e-3 * math.pi, " rad/s", "it is in rad/s: 0.6 Hz is 3.77")
+    at_most("omega_min_rad_s", omega_min_rad_s, 2.0 * math.pi * MAX_FREQ_HZ, " rad/s", "give it in rad/s")
     f_ref_hz = positive("f_ref_hz", f_ref_hz, "Hz")
+    at_least("f_ref_hz", f_ref_hz, 1e-3, " Hz", "it is in Hz")
+    at_most("f_ref_hz", f_ref_hz, MAX_FREQ_HZ, " Hz", "give it in Hz")
     rtol = check_rtol(rtol)
     max_events_per_cycle = integer("max_events_per_cycle", max_events_per_cycle, 1)
     max_steps = integer("max_steps", max_steps, 1)
