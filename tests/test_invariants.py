@@ -68,20 +68,20 @@ def test_bumpers_never_pull(osc, exc, v0):
     assert run.bumper_force_right.min() >= -tiny
     if len(run.contacts):
         done = run.contacts.dropna()
-        assert (done["impulse"] > 0).all()
-        assert (done["t_end"] > done["t_start"]).all()
-        assert (done["max_compression"] >= 0).all()
+        assert (done["impulse_n_s"] > 0).all()
+        assert (done["t_end_s"] > done["t_start_s"]).all()
+        assert (done["max_compression_m"] >= 0).all()
         # contact starts towards the bumper's surface and ends away from the bumper: the surface
         # of a bumper still recovering from the last contact moves out at (k/c) d_start, so it
         # can catch a mass that moves away from the bumper more slowly (zero gap: v_in = +6 mm/s
         # into the left bumper, its surface coming out at 9 mm/s)
         sign = np.where(done["side"] == "right", 1.0, -1.0)
         gap = np.where(done["side"] == "right", osc.bumpers.gap_right, osc.bumpers.gap_left)
-        at_start = run.displacement[np.searchsorted(run.t, done["t_start"].to_numpy(), side="right") - 1]
+        at_start = run.displacement[np.searchsorted(run.t, done["t_start_s"].to_numpy(), side="right") - 1]
         d_start = np.maximum(sign * at_start - gap, 0.0)
         recovering = osc.bumpers.law.stiffness / osc.bumpers.law.damping * d_start
-        assert (sign * done["v_in"] + recovering >= -1e-12).all()
-        assert (sign * done["v_out"] <= 0).all()
+        assert (sign * done["v_in_m_s"] + recovering >= -1e-12).all()
+        assert (sign * done["v_out_m_s"] <= 0).all()
 
 
 @SETTINGS
@@ -99,7 +99,7 @@ def test_mirror_symmetry(osc, exc, v0):
     if len(run.contacts):
         swapped = run.contacts["side"].map({"left": "right", "right": "left"})
         assert list(mirror.contacts["side"]) == list(swapped)
-        np.testing.assert_allclose(mirror.contacts["t_start"], run.contacts["t_start"], atol=1e-10)
+        np.testing.assert_allclose(mirror.contacts["t_start_s"], run.contacts["t_start_s"], atol=1e-10)
 
 
 @SETTINGS
@@ -153,14 +153,14 @@ def _check_chained(osc, exc, v0, split):
     np.testing.assert_array_less(np.abs(second.final_state.vector - whole.final_state.vector),
                                  1e-7 * np.abs(whole.final_state.vector) + 1e-9 + 100 * spread)
     # a contact cut by the split is reported unfinished by the first run and whole by the second
-    joined = list(first.contacts.dropna()["t_start"]) + list(second.contacts["t_start"])
+    joined = list(first.contacts.dropna()["t_start_s"]) + list(second.contacts["t_start_s"])
     t_spread = 0.0
     if len(nudged.contacts) == len(whole.contacts) and len(whole.contacts):
-        t_spread = np.abs(nudged.contacts["t_start"].to_numpy() - whole.contacts["t_start"].to_numpy()).max()
-    np.testing.assert_allclose(joined, whole.contacts["t_start"], rtol=0, atol=1e-9 + 100 * t_spread)
+        t_spread = np.abs(nudged.contacts["t_start_s"].to_numpy() - whole.contacts["t_start_s"].to_numpy()).max()
+    np.testing.assert_allclose(joined, whole.contacts["t_start_s"], rtol=0, atol=1e-9 + 100 * t_spread)
     if len(whole.contacts):
-        np.testing.assert_allclose(second.contacts.dropna()["impulse"].sum() + first.contacts.dropna()["impulse"].sum(),
-                                   whole.contacts.dropna()["impulse"].sum(), rtol=1e-7)
+        np.testing.assert_allclose(second.contacts.dropna()["impulse_n_s"].sum() + first.contacts.dropna()["impulse_n_s"].sum(),
+                                   whole.contacts.dropna()["impulse_n_s"].sum(), rtol=1e-7)
     assert abs(max(first.displacement_max, second.displacement_max) - whole.displacement_max) <= (
         1e-9 * scale + 100 * abs(nudged.displacement_max - whole.displacement_max))
 
@@ -188,10 +188,10 @@ def test_exact_peaks_bound_dense_samples_closely():
     assert a_abs.max() >= run.abs_acceleration_max * (1 - 1e-6)
     assert len(run.contacts) >= 4
     for _, c in run.contacts.dropna().iterrows():
-        inside = (run.t >= c["t_start"]) & (run.t <= c["t_end"])
+        inside = (run.t >= c["t_start_s"]) & (run.t <= c["t_end_s"])
         force = (run.bumper_force_left if c["side"] == "left" else run.bumper_force_right)[inside]
-        assert force.max() <= c["peak_force"] * (1 + 1e-12)
-        assert force.max() >= c["peak_force"] * (1 - 1e-6)
+        assert force.max() <= c["peak_force_n"] * (1 + 1e-12)
+        assert force.max() >= c["peak_force_n"] * (1 - 1e-6)
 
 
 def test_max_events_ends_with_a_status():
@@ -223,7 +223,7 @@ def test_history_samples_and_dataframe():
     # every uniform sample is there, plus one per event, which names it
     assert len(df) == 201 + len(run.events)
     assert list(df.loc[df["event"] != "", "event"]) == list(run.events["kind"])
-    np.testing.assert_array_equal(df.loc[df["event"] != "", "t"], run.events["t"])
+    np.testing.assert_array_equal(df.loc[df["event"] != "", "t"], run.events["t_s"])
     # absolute acceleration is the restoring force over the mass
     total = df["isolator_force"] + df["bumper_force_right"] - df["bumper_force_left"]
     np.testing.assert_allclose(df["abs_acceleration"], -total / osc.mass, rtol=1e-9, atol=1e-9)

@@ -80,12 +80,12 @@ def compare_numeric_law(osc, exc, v0, rtol=1e-12):
     run = pd_.simulate(osc, exc, DURATION_S, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=0,
                        rtol=rtol)
     assert run.success, run.message
-    assume(len(run.contacts) == 0 or run.contacts["max_compression"].min() > 1e-7)  # no shallow grazes
+    assume(len(run.contacts) == 0 or run.contacts["max_compression_m"].min() > 1e-7)  # no shallow grazes
     starts = [t for _, t in fine.contact_starts]
     assert len(run.contacts) == len(starts)
     assert list(run.contacts["side"]) == ["left" if s == 0 else "right" for s, _ in fine.contact_starts]
     spread_t = np.abs(np.subtract(starts, [t for _, t in coarse.contact_starts])).max() if starts else 0.0
-    np.testing.assert_allclose(run.contacts["t_start"], starts, rtol=0, atol=1e-8 + 10 * spread_t)
+    np.testing.assert_allclose(run.contacts["t_start_s"], starts, rtol=0, atol=1e-8 + 10 * spread_t)
     scale_d = max(abs(run.displacement_max), abs(run.displacement_min))
     assert abs(run.final_state.displacement_m - fine.d) <= 1e-7 * scale_d + 10 * abs(fine.d - coarse.d)
     assert abs(run.final_state.velocity_m_s - fine.v) <= 1e-7 * max(abs(fine.v), 1e-3) + 10 * abs(fine.v - coarse.v)
@@ -96,7 +96,7 @@ def compare_numeric_law(osc, exc, v0, rtol=1e-12):
 def test_jankowski_ledger_closes_and_the_bumper_never_pulls(osc, exc, v0):
     run = check_numeric_ledger(osc, exc, v0)
     done = run.contacts.dropna()
-    assert (done["impulse"] > 0).all()
+    assert (done["impulse_n_s"] > 0).all()
     # the dashpot works on the approach only: the force never pulls, and a contact ends with
     # the compression back at zero, the bumper recovered at once
     assert (run.final_state.bumper_compression_m[0] == 0.0 or run.final_state.in_contact[0])
@@ -112,7 +112,7 @@ def check_numeric_ledger(osc, exc, v0):
     # (an elastic bumper hit 30 times at 0.5 m/s: 1.3e-8 J against net flows of 0.95 J)
     run = pd_.simulate(osc, exc, 3.0, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=2000, rtol=1e-11)
     e = run.energy
-    through = 0.5 * osc.mass * float(np.sum(run.contacts["v_in"].to_numpy() ** 2))
+    through = 0.5 * osc.mass * float(np.sum(run.contacts["v_in_m_s"].to_numpy() ** 2))
     flows = max(abs(e.input_work), abs(e.kinetic), e.viscous + abs(e.hysteretic) + e.bumper_dissipation, through)
     assert abs(e.residual) <= 1e-8 * flows
     assert e.bumper_dissipation >= -1e-12 * flows
@@ -136,7 +136,7 @@ def test_without_damping_it_is_hertz():
     # xi = 0: the same force as Hunt-Crossley without its dashpot; both elastic, restitution 1
     jank = _free_impact(pd_.Jankowski(1e9, 0.0, 500.0, 1.5))
     hertz = _free_impact(pd_.HuntCrossley(1e9, 1.5, 0.0))
-    for col in ("t_start", "t_end", "v_out", "impulse", "peak_force", "max_compression"):
+    for col in ("t_start_s", "t_end_s", "v_out_m_s", "impulse_n_s", "peak_force_n", "max_compression_m"):
         assert jank.contacts[col].iloc[0] == pytest.approx(hertz.contacts[col].iloc[0], rel=1e-9)
     # contact time of a Hertz impact (energy conservation): 2 (d_max / v) int_0^1 dx / sqrt(1 - x^2.5)
     # with d_max = (5 m v^2 / (4 k))^(2/5); the 1 N/m isolator changes it by 1e-9
@@ -144,7 +144,7 @@ def test_without_damping_it_is_hertz():
 
     d_max = (5 * 500.0 * 0.25 / (4 * 1e9)) ** 0.4
     t_c = 2 * d_max / 0.5 * quad(lambda x: 1 / math.sqrt(1 - x**2.5), 0, 1, epsabs=1e-14)[0]
-    assert jank.contacts["t_end"].iloc[0] - jank.contacts["t_start"].iloc[0] == pytest.approx(t_c, rel=1e-7)
+    assert jank.contacts["t_end_s"].iloc[0] - jank.contacts["t_start_s"].iloc[0] == pytest.approx(t_c, rel=1e-7)
 
 
 def test_toml_round_trip_and_bad_values(tmp_path):

@@ -88,13 +88,13 @@ def test_restitution_falls_and_contacts_lengthen_with_the_impact_velocity():
     for v0 in (0.1, 0.2, 0.3, 0.4):
         run = _free_impact(D_SHAPED, v0)
         c = run.contacts.iloc[0]
-        rest.append(-c["v_out"] / c["v_in"])
-        times.append(c["t_end"] - c["t_start"])
-        loss.append(c["bumper_dissipation"])
+        rest.append(-c["v_out_m_s"] / c["v_in_m_s"])
+        times.append(c["t_end_s"] - c["t_start_s"])
+        loss.append(c["bumper_dissipation_j"])
         assert abs(run.energy.residual) < 1e-12 * 0.5 * 500.0 * v0**2
         assert run.bumper_force_right.min() >= 0.0
     elastic = _free_impact(pd_.MultilinearBumper(D_SHAPED.slopes, D_SHAPED.breakpoints, 500.0), 0.1)
-    assert rest[0] == pytest.approx(-elastic.contacts["v_out"].iloc[0] / 0.1, rel=1e-12)  # no slip below 2 mm
+    assert rest[0] == pytest.approx(-elastic.contacts["v_out_m_s"].iloc[0] / 0.1, rel=1e-12)  # no slip below 2 mm
     assert rest[0] > rest[1] > rest[2] > rest[3]
     assert times[0] < times[1] < times[2] < times[3]
 

@@ -50,7 +50,7 @@ def test_multilinear_ledger_closes_and_the_bumper_never_pulls(osc, exc, v0):
     run = check_closed_form_ledger(osc, exc, v0)
     done = run.contacts.dropna()
     sign = np.where(done["side"] == "right", 1.0, -1.0)
-    assert (sign * done["v_out"] <= 0).all()
+    assert (sign * done["v_out_m_s"] <= 0).all()
 
 
 def test_a_soft_branch_lengthens_the_contact_with_the_impact_velocity():
@@ -65,7 +65,7 @@ def test_a_soft_branch_lengthens_the_contact_with_the_impact_velocity():
     assert ml[1] > 1.2 * kv[1] and ml[2] < 0.8 * kv[2]
     deep = _free_impact(D_SHAPED, 0.8)
     first = deep.contacts.iloc[0]
-    inside = deep.events[(deep.events["t"] > first["t_start"]) & (deep.events["t"] < first["t_end"])]
+    inside = deep.events[(deep.events["t_s"] > first["t_start_s"]) & (deep.events["t_s"] < first["t_end_s"])]
     assert list(inside["kind"]) == ["bumper_branch"] * 4  # into the plateau, the steep branch, and back
     assert abs(deep.energy.residual) < 1e-12 * 160.0
 
@@ -162,5 +162,5 @@ def check_closed_form_ledger(osc, exc, v0):
     flows = max(abs(e.input_work), abs(e.kinetic), e.viscous + abs(e.hysteretic) + e.bumper_dissipation)
     assert abs(e.residual) <= 1e-10 * flows
     assert run.bumper_force_left.min() >= -1e-9 and run.bumper_force_right.min() >= -1e-9
-    assert (run.contacts.dropna()["impulse"] > 0).all()
+    assert (run.contacts.dropna()["impulse_n_s"] > 0).all()
     return run

@@ -280,7 +280,7 @@ def test_a_record_run_with_bumpers_matches_the_reference():
     run = pd_.simulate(osc, rec, 6.0, sample_rate_hz=0)
     ref = reference(osc, rec, 6.0, rtol=REFERENCE_RTOL, atol=REFERENCE_ATOL)
     assert len(run.contacts) == len(ref.contact_starts) >= 4
-    np.testing.assert_allclose(run.contacts["t_start"], [t for _, t in ref.contact_starts], atol=1e-8)
+    np.testing.assert_allclose(run.contacts["t_start_s"], [t for _, t in ref.contact_starts], atol=1e-8)
     assert list(run.contacts["side"]) == [("left", "right")[side] for side, _ in ref.contact_starts]
 
 

@@ -31,7 +31,7 @@ def _compare(osc, exc, v0=0.0, duration=DURATION_S, time_tol=1e-8, state_rtol=1e
                        rtol=rtol)
     assert run.success, run.message
     if drawn:  # hypothesis: shallow grazes are below what either solver resolves the same way
-        assume(len(run.contacts) == 0 or run.contacts["max_compression"].min() > 1e-7)
+        assume(len(run.contacts) == 0 or run.contacts["max_compression_m"].min() > 1e-7)
     try:
         ref = reference(osc, exc, duration, v0=v0, rtol=ref_rtol, atol=ref_atol)
         _agree(osc, run, ref, time_tol, state_rtol)
@@ -55,11 +55,11 @@ def _compare(osc, exc, v0=0.0, duration=DURATION_S, time_tol=1e-8, state_rtol=1e
 def _agree(osc, run, ref, time_tol, state_rtol):
     """The run and the reference agree: the same contacts at the same times, the final state, each
     contact's impulse and work, the viscous and input energies."""
-    starts = run.contacts[["side", "t_start"]]
+    starts = run.contacts[["side", "t_start_s"]]
     assert len(starts) == len(ref.contact_starts)
     ref_sides = ["left" if s == 0 else "right" for s, _ in ref.contact_starts]
     assert list(starts["side"]) == ref_sides
-    np.testing.assert_allclose(starts["t_start"], [t for _, t in ref.contact_starts], rtol=0, atol=time_tol)
+    np.testing.assert_allclose(starts["t_start_s"], [t for _, t in ref.contact_starts], rtol=0, atol=time_tol)
     scale_d = max(abs(run.displacement_max), abs(run.displacement_min))
     scale_v = max(np.abs(run.velocity).max(), 1e-6)
     assert abs(run.final_state.displacement_m - ref.d) <= state_rtol * scale_d
@@ -75,13 +75,13 @@ def _agree(osc, run, ref, time_tol, state_rtol):
         # as sensitive to its timing as its start force (c v_in) makes it, and the reference's
         # timing is good to ~1e-8 s (a 0.068 N s touch: 0.067906, 0.067927, 0.067931 N s at
         # rtol 1e-12, 1e-13, 1e-14)
-        np.testing.assert_allclose(done["impulse"], impulse, rtol=0,
+        np.testing.assert_allclose(done["impulse_n_s"], impulse, rtol=0,
                                    atol=state_rtol * np.abs(impulse).max())
         # the work relative to the largest of itself and the impacts' kinetic energy: an elastic
         # law's contacts do no work (Jankowski with xi = 0: 1e-12 J of integration error per
         # contact against the reference's 4e-14 J, where the largest work was 8e-14 J)
-        energy = 0.5 * osc.mass * float(np.max(done["v_in"].to_numpy() ** 2))
-        np.testing.assert_allclose(done["bumper_dissipation"], work, rtol=0,
+        energy = 0.5 * osc.mass * float(np.max(done["v_in_m_s"].to_numpy() ** 2))
+        np.testing.assert_allclose(done["bumper_dissipation_j"], work, rtol=0,
                                    atol=state_rtol * max(np.abs(work).max(), energy))
     flows = max(abs(ref.input_work), ref.viscous, 1e-12)
     assert abs(run.energy.viscous - ref.viscous) <= state_rtol * flows
@@ -126,7 +126,7 @@ def test_record_excitation_matches_reference():
     run = pd_.simulate(osc, exc, 2.5, sample_rate_hz=0)
     ref = reference(osc, exc, 2.5, rtol=REFERENCE_RTOL, atol=REFERENCE_ATOL)
     assert len(run.contacts) == len(ref.contact_starts) > 0
-    np.testing.assert_allclose(run.contacts["t_start"], [t for _, t in ref.contact_starts], atol=1e-8)
+    np.testing.assert_allclose(run.contacts["t_start_s"], [t for _, t in ref.contact_starts], atol=1e-8)
 
 
 @settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -169,7 +169,7 @@ def test_contact_whose_approach_falls_inside_one_sub_interval():
                      (0.002530710224170039, 0.01, 0.03980834724589737), "elastic", 3527.5470437792387),
         pd_.Bumpers(0.00728297379150962, 0.024003438936117012, pd_.KelvinVoigt(2785435.395559004, 3124.5322847623297)))
     run, _ = _compare(osc, pd_.Harmonic(1 / 3, 0.5, phase=3.6355805352757975), v0=0.7092215248149507)
-    assert len(run.contacts) == 10 and run.contacts["t_start"].iloc[-1] == pytest.approx(1.8616782439, abs=1e-8)
+    assert len(run.contacts) == 10 and run.contacts["t_start_s"].iloc[-1] == pytest.approx(1.8616782439, abs=1e-8)
 
 
 def _zero_gap(c_b: float, c_d: float, law=None) -> pd_.Oscillator:
@@ -187,14 +187,14 @@ def test_zero_gap_matches_reference(c_b, c_d):
     run, ref = _compare(_zero_gap(c_b, c_d), pd_.Harmonic(0.05, 2.2), duration=3.0)
     assert len(run.contacts) >= 12
     first = run.contacts.iloc[0]
-    assert first["side"] == "left" and first["t_start"] == 0.0 and first["v_in"] == 0.0
+    assert first["side"] == "left" and first["t_start_s"] == 0.0 and first["v_in_m_s"] == 0.0
     assert np.isnan(run.impacts["restitution"].iloc[0])  # no incoming velocity: no restitution
     # the velocities in and out (the table keeps pushing: restitutions from 0.3 to 2.5 here)
     done = run.contacts.dropna()
-    scale_v = np.abs(done[["v_in", "v_out"]].to_numpy()).max()
-    for col, k in (("v_in", 2), ("v_out", 4)):
+    scale_v = np.abs(done[["v_in_m_s", "v_out_m_s"]].to_numpy()).max()
+    for col, k in (("v_in_m_s", 2), ("v_out_m_s", 4)):
         np.testing.assert_allclose(done[col], [c[k] for c in ref.completed], rtol=0, atol=1e-7 * scale_v)
-    assert (run.contacts["max_compression"] > 1e-5).all()  # every listed contact a real one
+    assert (run.contacts["max_compression_m"] > 1e-5).all()  # every listed contact a real one
 
 
 # At zero gap the mass starts on a bumper's surface.  A start velocity of 1e-7 m/s moves it
@@ -235,7 +235,7 @@ def test_grazes_below_the_resolution_are_no_impacts(depth_rel, listed, impulse_r
         return
     run, _ = _compare(osc, exc, v0=v0, duration=1.0, state_rtol=impulse_rtol)
     assert len(run.contacts) == 3
-    depth = run.contacts["max_compression"]
+    depth = run.contacts["max_compression_m"]
     assert ((depth > 0.5 * depth_rel * amplitude) & (depth <= depth_rel * amplitude)).all()
     assert run.impacts["restitution"].between(0.0, 1.0).all()
 
@@ -258,7 +258,7 @@ def test_a_push_from_rest_into_a_bumper_and_back_within_one_sub_interval():
                          pd_.Bumpers(0.0, 0.0, pd_.KelvinVoigt(1e5, 1.0)))
     run, _ = _compare(osc, pd_.Harmonic(0.25, 0.5, 3.03125), duration=3.0)
     first = run.contacts.iloc[0]
-    assert first["side"] == "left" and first["t_start"] == 0.0 and first["t_end"] > 0.08
+    assert first["side"] == "left" and first["t_start_s"] == 0.0 and first["t_end_s"] > 0.08
 
 
 def test_a_start_at_rounding_level_velocity_against_a_bumper_at_zero_gap():
@@ -273,13 +273,13 @@ def test_a_start_at_rounding_level_velocity_against_a_bumper_at_zero_gap():
                        sample_rate_hz=0)
     assert run.success, run.message
     # (the contact starts where the mass turns back, 1.4e-16 s in: at rest against the bumper)
-    assert run.contacts.iloc[0]["t_start"] < 1e-15 and run.contacts.iloc[0]["v_in"] == 0.0
+    assert run.contacts.iloc[0]["t_start_s"] < 1e-15 and run.contacts.iloc[0]["v_in_m_s"] == 0.0
     # the reference cannot start there (its compression event dips to -1e-32 m within 1e-16 s,
     # and it stops at that root again and again): it runs from rest, which the rounding-level
     # start must not differ from
     at_rest, _ = _compare(osc, exc, duration=3.0)
     assert len(run.contacts) == len(at_rest.contacts) > 10
-    np.testing.assert_allclose(run.contacts["t_start"], at_rest.contacts["t_start"], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(run.contacts["t_start_s"], at_rest.contacts["t_start_s"], rtol=0, atol=1e-12)
     np.testing.assert_allclose(run.final_state.vector, at_rest.final_state.vector, rtol=1e-9, atol=1e-15)
 
 

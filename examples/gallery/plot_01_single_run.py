@@ -19,7 +19,7 @@ run = pounding.simulate(osc, excitation, duration=6.0, state=pounding.State.at_r
 print(run.status.name, run.message)
 print(f"peak displacement {run.displacement_max * 1e3:.2f} mm, "
       f"peak absolute acceleration {run.abs_acceleration_max / 9.81:.3f} g")
-print(run.contacts[["side", "t_start", "v_in", "v_out"]].head())
+print(run.contacts[["side", "t_start_s", "v_in_m_s", "v_out_m_s"]].head())
 print(run.impacts[["side", "restitution", "contact_time_s", "peak_force_n"]].head())
 
 # %%
@@ -30,7 +30,7 @@ run.plot()
 # The same run, zoomed on one impact: the bumper's force against time, from the sampled history.
 fig, ax = plt.subplots(figsize=(6, 3))
 first = run.impacts.iloc[0]
-window = (run.t > first.t_start - 0.02) & (run.t < first.t_start + first.contact_time_s + 0.02)
+window = (run.t > first.t_start_s - 0.02) & (run.t < first.t_start_s + first.contact_time_s + 0.02)
 side = run.bumper_force_right if first.side == "right" else run.bumper_force_left
 ax.plot(run.t[window] * 1e3, side[window] / 1e3)
 ax.set_xlabel("time (ms)")

@@ -77,7 +77,6 @@ def simulate(
     """Simulate a harmonic excitation or a record and summarise the run (exact extrema, contacts, energy)."""
     from ..engine import State
     from ..engine import simulate as run_simulation
-    from ..engine.result import CONTACT_UNITS
 
     out = files(contacts=(contacts, CSV), history=(history, CSV))
     plot = figure_path("--plot", plot)
@@ -114,7 +113,7 @@ def simulate(
     console.print(table)
     with interrupts_deferred() as held:  # the files are written whole, whatever Ctrl-C comes
         if out["contacts"] is not None:
-            write_csv(run.contacts.rename(columns=CONTACT_UNITS), out["contacts"])
+            write_csv(run.contacts, out["contacts"])
             console.print(f"contacts -> {out['contacts']}")
         if out["history"] is not None:
             write_csv(run.to_dataframe(units=True), out["history"])

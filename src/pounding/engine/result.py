@@ -288,12 +288,8 @@ HISTORY_COLUMNS = ("t", "displacement", "velocity", "abs_acceleration", "isolato
 HISTORY_UNITS = {"t": "t_s", "displacement": "displacement_m", "velocity": "velocity_m_s",
                  "abs_acceleration": "abs_acceleration_m_s2", "isolator_force": "isolator_force_n",
                  "bumper_force_left": "bumper_force_left_n", "bumper_force_right": "bumper_force_right_n"}
-CONTACT_UNITS = {"t_start": "t_start_s", "t_end": "t_end_s", "v_in": "v_in_m_s", "v_out": "v_out_m_s",
-                 "impulse": "impulse_n_s", "peak_force": "peak_force_n",
-                 "max_compression": "max_compression_m",
-                 "bumper_dissipation": "bumper_dissipation_j"}
-CONTACT_COLUMNS = ("side", "t_start", "t_end", "v_in", "v_out", "impulse", "peak_force",
-                   "max_compression", "bumper_dissipation")
+CONTACT_COLUMNS = ("side", "t_start_s", "t_end_s", "v_in_m_s", "v_out_m_s", "impulse_n_s", "peak_force_n",
+                   "max_compression_m", "bumper_dissipation_j")
 
 
 @dataclass(frozen=True, eq=False)
@@ -314,11 +310,12 @@ class Run:
     contact_table, event_table : ndarray
         The raw arrays behind ``contacts`` and ``events`` (side coded 0 left, 1 right).
     contacts : DataFrame
-        One row per contact: ``side`` ("left"/"right"), ``t_start``, ``t_end`` (s),
-        ``v_in``, ``v_out`` (relative velocity at start and end, m/s), ``impulse`` (N s),
-        ``peak_force`` (N), ``max_compression`` (m), ``bumper_dissipation`` (J: energy the
-        bumper took from the mass, dissipated by its dashpot and slips during contact or while it
-        recovers; a kinematic multi-linear bumper keeps part of it stored in its set).  A contact still going on at the end has NaN ``t_end`` and ``v_out``.
+        One row per contact, each column named with its unit: ``side`` ("left"/"right"),
+        ``t_start_s``, ``t_end_s``, ``v_in_m_s``, ``v_out_m_s`` (relative velocity at start and
+        end), ``impulse_n_s``, ``peak_force_n``, ``max_compression_m``, ``bumper_dissipation_j``
+        (energy the bumper took from the mass, dissipated by its dashpot and slips during contact
+        or while it recovers; a kinematic multi-linear bumper keeps part of it stored in its
+        set).  A contact still going on at the end has NaN ``t_end_s`` and ``v_out_m_s``.
         Resolution: a touch whose added compression and impulse are both below 1e-9 of the
         run's scales (its length scale, the largest of the total gap, the first breakpoint and
         the table's acceleration over ``w^2``; ``M`` times its velocity scale, that length
@@ -327,7 +324,7 @@ class Run:
         1e-9 of the velocity scale is recorded as 0 (the mass met the surface at rest, e.g.
         at zero gap: its restitution is NaN).
     events : DataFrame
-        Every event: ``t``, ``kind`` (yield, reversal, branch, contact_start, contact_end,
+        Every event: ``t_s``, ``kind`` (yield, reversal, branch, contact_start, contact_end,
         bumper_branch, bouc_wen_zero), ``index`` (spring or side).
     energy : EnergyLedger
         Where the energy went over the run, J.
@@ -391,10 +388,10 @@ class Run:
 
     @cached_property
     def events(self) -> pd.DataFrame:
-        """Every event: time ``t`` (s), ``kind`` and ``index`` (spring or side), built on first use."""
+        """Every event: time ``t_s``, ``kind`` and ``index`` (spring or side), built on first use."""
         codes = self.event_table[:, 1].astype(int)
         return pd.DataFrame({
-            "t": self.event_table[:, 0],
+            "t_s": self.event_table[:, 0],
             "kind": pd.Categorical.from_codes(codes, categories=list(EVENT_NAMES)),
             "index": self.event_table[:, 2].astype(int),
         })
@@ -402,7 +399,7 @@ class Run:
     @cached_property
     def impacts(self) -> pd.DataFrame:
         """The paper's per-impact quantities (Sect. 3.5), one row per contact: ``side``,
-        ``t_start`` and restitution, contact time, impulse, mean and peak force, ``E_d`` and
+        ``t_start_s`` and restitution, contact time, impulse, mean and peak force, ``E_d`` and
         the bumper's own dissipation; see :func:`pounding.impact_table`."""
         from ..metrics import impact_table
 

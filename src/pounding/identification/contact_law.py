@@ -510,6 +510,10 @@ def rank_contact_laws(displacement_m: Any, force_n: Any, *, time_s: Any = None, 
             continue  # (a law that cannot describe the test at all is left out of the ranking)
         rows.append({"law": name, "rms_n": fit.rms_n, "r_squared": fit.r_squared, "parameters": counts[name],
                      "fit": fit})
+    if not rows:
+        raise InputError(Problem.NO_FIT, "force_n", "the forces given",
+                         why="fit none of the contact laws (no stiffness makes their force grow with the compression)",
+                         fix="give the force the bumper pushes with, positive in compression, in N")
     df = pd.DataFrame(rows)
     # ties (residuals within 1e-6 of each other, e.g. a multi-linear law with and without hysteresis on a
     # test it loads once) rank by fewer parameters, then in the order above: never by rounding noise

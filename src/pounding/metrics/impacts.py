@@ -21,7 +21,7 @@ def impact_table(contact_table: np.ndarray, mass_kg: float) -> pd.DataFrame:
     Returns
     -------
     DataFrame
-        ``side``, ``t_start`` (s) and the columns of
+        ``side``, ``t_start_s`` and the columns of
         :data:`~pounding.metrics._impacts.IMPACT_COLUMNS`; see :func:`impact_row`.
 
     Examples
@@ -43,6 +43,6 @@ def impact_table(contact_table: np.ndarray, mass_kg: float) -> pd.DataFrame:
     for i in range(contact_table.shape[0]):
         impact_row(contact_table[i], float(mass_kg), values[i])
     df = pd.DataFrame(values, columns=list(IMPACT_COLUMNS))
-    df.insert(0, "t_start", contact_table[:, 1])
+    df.insert(0, "t_start_s", contact_table[:, 1])
     df.insert(0, "side", np.where(contact_table[:, 0] == 0.0, "left", "right"))
     return df

@@ -49,8 +49,8 @@ def plot_run(run: "Run", ax: Any = None, *, contacts: bool = True) -> list:
     artists += twin.plot(run.t, run.abs_acceleration / 9.81, color="C3", lw=0.8, label="a_abs")
     twin.set_ylabel("absolute acceleration [g]", color="C3")
     if contacts and len(run.contacts):
-        ends = run.contacts["t_end"].fillna(run.t[-1]).to_numpy()
-        for start, end in zip(run.contacts["t_start"].to_numpy(), ends):
+        ends = run.contacts["t_end_s"].fillna(run.t[-1]).to_numpy()
+        for start, end in zip(run.contacts["t_start_s"].to_numpy(), ends):
             artists.append(ax.axvspan(start, end, color="0.85", lw=0))
     b = run.oscillator.bumpers
     if b is not None:

@@ -45,8 +45,8 @@ def _peaks(run: Any, g: float) -> tuple[float, ...]:
     """(max |a_abs| in g, max |D| in m, impacts, peak impact force N, peak impact speed m/s, status)."""
     contacts = run.contacts
     n = len(contacts)
-    force = float(contacts["peak_force"].max()) if n else 0.0
-    speed = float(np.abs(contacts["v_in"]).max()) if n else 0.0
+    force = float(contacts["peak_force_n"].max()) if n else 0.0
+    speed = float(np.abs(contacts["v_in_m_s"]).max()) if n else 0.0
     return (run.abs_acceleration_max / g, max(abs(run.displacement_max), abs(run.displacement_min)), float(n),
             force, speed, float(run.status))
 
