@@ -75,6 +75,12 @@ def test_summary_table_plots_and_file(spectrum, tmp_path):
     _, ax = plt.subplots()
     mesh = spectrum.plot(ax=ax, kind="map", quantity="impacts")
     assert len(mesh) == 1
+    # one band per gap computed, labelled with it (not bands around uneven gaps' midpoints)
+    labels = [t.get_text() for t in ax.get_yticklabels()]
+    assert labels == [f"{g * 1e3:g}" for g in GAPS]
+    np.testing.assert_allclose(ax.get_yticks(), np.arange(GAPS.size))
+    edges = mesh[0].get_coordinates()[:, 0, 1]
+    np.testing.assert_allclose(np.diff(edges), 1.0)
     with pytest.raises(pd_.InputError) as info:
         spectrum.plot(quantity="acc_max_free_g")
     assert info.value.field == "quantity"

@@ -19,12 +19,32 @@ FIGURES = ["fig04", "fig05", "fig06", "fig07", "fig08", "fig09", "fig10", "fig11
            "fig17", "coexistence"]
 
 
+COVERED: dict[str, list] = {}  # per figure saved by the report: its legends that cover data
+
+
 @pytest.fixture(scope="module")
 def report(tmp_path_factory):
+    from matplotlib.figure import Figure
+
+    from pounding.plots._legend import legends_over_data
+
     ybs = pd_.presets.paper_damped()
     out = tmp_path_factory.mktemp("report")
-    return reproduce(ybs.without_bumpers(), ybs, out, system_label="paper-damped (test)",
-                     freqs_hz=[1.0, 1.5, 2.0, 2.5], steady="fixed", cycles=6, measure_cycles=2)
+    save = Figure.savefig
+
+    def checked(fig, path, *args, **kwargs):  # (each figure as the report saves it)
+        COVERED[fig.get_suptitle()] = [leg.get_texts()[0].get_text() for _, leg in legends_over_data(fig)]
+        return save(fig, path, *args, **kwargs)
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(Figure, "savefig", checked)
+        return reproduce(ybs.without_bumpers(), ybs, out, system_label="paper-damped (test)",
+                         freqs_hz=[1.0, 1.5, 2.0, 2.5], steady="fixed", cycles=6, measure_cycles=2)
+
+
+def test_no_legend_of_the_report_covers_data(report):
+    assert len(COVERED) == len(FIGURES)
+    assert {title: legends for title, legends in COVERED.items() if legends} == {}
 
 
 def test_reduced_report_writes_every_file(report):
@@ -40,6 +60,12 @@ def test_reduced_report_writes_every_file(report):
     t3 = pd.read_csv(out / "table3.csv")
     assert t3["mean_force_over_mg_diff"].isna().all()  # printed scale unclear: not differenced
     page = (out / "index.html").read_text(encoding="utf-8")
+    # ... and the page says so in the cell, where it was blank; no cell is blank or "nan"
+    assert page.count("not compared: the paper&#x27;s scale factor is unclear") + page.count(
+        "not compared: the paper's scale factor is unclear") == len(t3)
+    assert "<td></td>" not in page and ">nan<" not in page
+    # each continuation's status says what its end means for its figure
+    assert "drawn under Fig. 5 from" in page and "drawn in the coexistence map" in page
     assert page.count("<img src='data:image/png;base64,") == len(FIGURES)
     assert "paper-damped (test)" in page and "[isolator]" in page and "0.02073" in page
     assert "1.96/1.80 = 1.09" in page  # the notes on the paper's inconsistencies

@@ -4,8 +4,8 @@ from .branch import plot_branch
 from .contact_law import plot_contact_law_fit
 from .curves import plot_curves
 from .identification import plot_identification
-from .record import plot_record, plot_response_spectrum
 from .periodic import plot_orbit
+from .record import plot_record, plot_response_spectrum
 from .run import plot_run
 from .spectrum import plot_pounding_spectrum
 from .study import plot_study

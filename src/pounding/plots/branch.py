@@ -9,6 +9,7 @@ from typing import Any, Optional
 import numpy as np
 
 from .._errors import InputError, Problem
+from ._legend import place_legend
 
 # marker and short label of each bifurcation kind
 MARKS = {"fold": ("s", "F"), "branch-point": ("D", "BP"), "period-doubling": ("o", "PD"),
@@ -110,5 +111,5 @@ def plot_branch(branch: Any, ax: Any = None, *, y: str = "alpha", x: Optional[st
             artists += ax.plot(df[xcol] if xcol in df.columns else df["freq_hz"], df[y],
                                DIRECTION_STYLE[sw.direction]["marker"], color="0.3", ms=5, mfc="none",
                                label=f"sweep {sw.direction}, a_G = {sw.a_g:g}")
-    ax.legend(fontsize="small")
+    place_legend(ax, fontsize="small")
     return artists

@@ -6,6 +6,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ._legend import place_legend
+
 if TYPE_CHECKING:  # pragma: no cover
     from ..identification.contact_law import ContactLawFit
 
@@ -49,5 +51,5 @@ def plot_contact_law_fit(fit: "ContactLawFit", ax: Any = None) -> list:
     ax.set_xlabel("compression (mm)")
     ax.set_ylabel("force (kN)")
     ax.set_xlim(0.0, max(1e-9, float(np.max(d_mm))) * 1.05)
-    ax.legend(loc="upper left", fontsize="small")
+    place_legend(ax, fontsize="small")
     return artists

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 from typing import Any, Optional
 
+from ._legend import place_legend
+
 STYLE = {"fold": "-", "grazing": ":"}
 
 
@@ -63,5 +65,5 @@ def plot_curves(curves: list, ax: Any = None, *, matrix: Optional[Any] = None, *
     ax.set_xlabel("frequency f (Hz)")
     ax.set_ylabel("a_G (g)")
     if artists:
-        ax.legend(fontsize="small")
+        place_legend(ax, fontsize="small")
     return artists

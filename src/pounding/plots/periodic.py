@@ -6,6 +6,8 @@ from typing import Any
 
 import numpy as np
 
+from ._legend import place_legend
+
 
 def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
     """A periodic orbit in the phase plane, displacement (mm) against velocity (m/s).
@@ -63,5 +65,5 @@ def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
     ax.set_ylabel("velocity V (m/s)")
     ax.set_title(f"periodic orbit, f = {run.excitation.freq_hz:g} Hz, a_G = {run.excitation.a_g:g}, "
                  f"{orbit.contacts_per_period} contacts per period")
-    ax.legend(loc="best", fontsize="small")
+    place_legend(ax, fontsize="small")
     return artists

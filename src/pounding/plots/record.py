@@ -6,6 +6,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ._legend import place_legend
+
 if TYPE_CHECKING:  # pragma: no cover
     from ..excitation import Record
 
@@ -89,5 +91,5 @@ def plot_response_spectrum(spectrum: Any, ax: Any = None, *, quantity: str = "ps
     ax.set_ylabel(f"{quantity} [{units}]" if units else quantity)
     ax.set_title(f"{spectrum.attrs.get('damping_ratio', 0.05):.0%} damped")
     if len(artists) <= 10:
-        ax.legend(fontsize=8)
+        place_legend(ax, fontsize=8)
     return artists

@@ -6,6 +6,8 @@ from typing import Any
 
 import numpy as np
 
+from ._legend import place_legend
+
 KINDS = ("curves", "map")
 
 
@@ -71,13 +73,17 @@ def plot_pounding_spectrum(spectrum: Any, ax: Any = None, *, kind: str = "curves
             artists.append(ax.axhline(1.0, color="0.5", lw=0.8, ls=":"))
         ax.set_xlabel("isolation period T [s]")
         ax.set_ylabel(label)
-        ax.legend(fontsize=8)
+        place_legend(ax, fontsize=8)
     else:
-        mesh = ax.pcolormesh(ds["period_s"], ds["gap_m"] * 1e3, np.asarray(median).T, shading="nearest")
+        # one band per gap computed, of equal height, labelled with its gap (with shading="nearest" on the
+        # gaps themselves, 10, 20 and 50 mm were drawn as the bands 5-15, 15-35 and 35-65 mm)
+        gaps_mm = np.asarray(ds["gap_m"], dtype=float) * 1e3
+        mesh = ax.pcolormesh(ds["period_s"], np.arange(gaps_mm.size), np.asarray(median).T, shading="nearest")
         artists.append(mesh)
         ax.figure.colorbar(mesh, ax=ax, label=label)
+        ax.set_yticks(np.arange(gaps_mm.size), [f"{g:g}" for g in gaps_mm])
         ax.set_xlabel("isolation period T [s]")
-        ax.set_ylabel("gap [mm]")
+        ax.set_ylabel("gap [mm] (one band per gap computed)")
     what = "median over " + (f"{n} records (16-84 % shaded)" if n > 1 and kind == "curves" else f"{n} record(s)")
     ax.set_title(f"{quantity}: {what}", fontsize=9)
     return artists

@@ -6,6 +6,8 @@ from typing import Any
 
 import numpy as np
 
+from ._legend import place_legend
+
 
 def plot_study(result: Any, quantity: str, *, x: str | None = None, hue: str | None = None, ax: Any = None,
                where: dict | None = None) -> list:
@@ -100,6 +102,6 @@ def plot_study(result: Any, quantity: str, *, x: str | None = None, hue: str | N
     ax.set_xlabel(x)
     ax.set_ylabel(quantity if units in ("1", "") else f"{quantity} [{units}]")
     if hue is not None:
-        ax.legend(fontsize=8)
+        place_legend(ax, fontsize=8)
     ax.grid(alpha=0.3)
     return artists

@@ -7,6 +7,8 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ._legend import place_legend
+
 if TYPE_CHECKING:  # pragma: no cover
     from ..metrics import HysteresisLoop
     from ..protocols.campaign import CampaignResult
@@ -78,7 +80,7 @@ def plot_sweep(sweeps: "SweepResult | Sequence[SweepResult]", ax: Any = None, *,
     ax_e.set_xlabel("nu = f / f_R")
     if any(sw.oscillator.bumpers is not None for sw in sweeps):
         artists.append(ax_e.axhline(1.0, color="0.5", lw=0.8, ls=":"))
-    ax_a.legend(fontsize="small")
+    place_legend(ax_a, fontsize="small")
     return artists
 
 
@@ -134,7 +136,7 @@ def plot_lab_sweep(lab: Any, ax: Any = None, *, label: str | None = None, color:
     ax_a.set_ylabel("alpha = max|a_abs| / A_t")
     ax_e.set_ylabel("eta = E / Delta" if lab.gap_total_m is not None else "e = E / D_tmax")
     ax_e.set_xlabel("nu = f / f_R")
-    ax_a.legend(fontsize="small")
+    place_legend(ax_a, fontsize="small")
     return artists
 
 
@@ -185,7 +187,7 @@ def plot_hysteresis(loop: "HysteresisLoop", ax: Any = None, *, per: str = "total
     ax.set_xlabel("d = D / Delta" if per == "total_gap"
                   else "d = 2 D / Delta (bumpers at +-1, as the paper's figures)")
     ax.set_ylabel("r = F_I / (M g)")
-    ax.legend(fontsize="small")
+    place_legend(ax, fontsize="small")
     return artists
 
 

@@ -9,7 +9,8 @@ from typing import TYPE_CHECKING, Optional
 import numpy as np
 import pandas as pd
 
-from .._errors import InputError
+from .._errors import InputError, Status
+from ..plots._legend import place_legend
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure
@@ -56,7 +57,7 @@ def add_branches(fig: "Figure", cmap: "CoexistenceMap", f_ref_hz: float) -> None
                 ax.plot(nu, shown, style, color=f"C{i}", lw=0.6, alpha=0.8,
                         label=(f"continued branch, {'stable' if want else 'unstable'} (each a_G's colour)"
                                if ax is ax_alpha and i == 0 else None))
-    ax_alpha.legend(fontsize="x-small", ncol=2)
+    place_legend(ax_alpha, fontsize="x-small", ncol=2)
     fig.suptitle(fig.get_suptitle().replace("pseudo-FRFs", "FRFs + branches"))
 
 
@@ -70,14 +71,33 @@ def fig_coexistence(cmap: "CoexistenceMap") -> "Figure":
 
 
 def continuation_statuses(cmap: Optional["CoexistenceMap"], why_not: str) -> pd.DataFrame:
-    """Rows for the report's status table: each branch and fold curve, how it ended."""
+    """Rows for the report's status table: each branch and fold curve, how it ended, and what that
+    means for the figure it is drawn in (``in the figures``)."""
     if cmap is None:
         return pd.DataFrame([{"configuration": "YBs branches", "a_g": np.nan, "direction": "continued",
-                              "steps": 0, "not steady": 0, "message": why_not}])
-    rows = [{"configuration": "YBs branch", "a_g": br.a_g, "direction": "continued", "steps": len(br),
-             "not steady": 0, "message": f"{br.status.name}: {br.message}"} for br in cmap.branches]
-    rows += [{"configuration": "YBs fold curve", "a_g": np.nan, "direction": "(a_G, f)", "steps": len(c),
-              "not steady": 0, "message": f"{c.status.name}: {c.message}"} for c in cmap.curves]
+                              "steps": 0, "not steady": 0, "message": why_not,
+                              "in the figures": "no branches under Fig. 5 and no coexistence map"}])
+    rows = []
+    for br in cmap.branches:
+        f = br.to_dataframe()["freq_hz"] if len(br) else pd.Series([np.nan])
+        drawn = (f"drawn under Fig. 5 from {f.min():.4g} to {f.max():.4g} Hz" if len(br)
+                 else "not drawn under Fig. 5 (no orbit found)")
+        if br.status != Status.SUCCESS and len(br):
+            drawn += "; it stopped there: beyond, Fig. 5 shows the sweeps alone at this a_G"
+        rows.append({"configuration": "YBs branch", "a_g": br.a_g, "direction": "continued", "steps": len(br),
+                     "not steady": 0, "message": f"{br.status.name}: {br.message}", "in the figures": drawn})
+    for c in cmap.curves:
+        df = c.to_dataframe()
+        ends = (f"from {df['freq_hz'].iloc[0]:.4g} Hz, a_G {df['a_g'].iloc[0]:.3g} to {df['freq_hz'].iloc[-1]:.4g} Hz, "
+                f"a_G {df['a_g'].iloc[-1]:.3g}") if len(df) else ""
+        drawn = (f"drawn in the coexistence map {ends}" if len(df) > 1 else "a single point: not drawn as a curve")
+        if c.status != Status.SUCCESS:
+            drawn += ("; it stopped short of the map's edge, so the region where two responses coexist is "
+                      "not closed on that side (the test matrix's counts still are exact)")
+        rows.append({"configuration": "YBs fold curve", "a_g": np.nan, "direction": "(a_G, f)", "steps": len(c),
+                     "not steady": 0, "message": f"{c.status.name}: {c.message}", "in the figures": drawn})
     rows += [{"configuration": "YBs fold", "a_g": np.nan, "direction": "", "steps": 0, "not steady": 0,
-              "message": note} for note in cmap.notes]
+              "message": note, "in the figures": "this fold's curve is missing from the coexistence map; "
+                                                 "the fold itself is on its branch under Fig. 5"}
+             for note in cmap.notes]
     return pd.DataFrame(rows)

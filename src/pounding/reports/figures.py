@@ -14,6 +14,7 @@ import numpy as np
 import pandas as pd
 
 from ..data import paper_gap_total_m, paper_measurements
+from ..plots._legend import place_legend
 from ..plots.sweep import DIRECTION_STYLE, plot_hysteresis
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -127,7 +128,7 @@ def fig04(result, df, peaks):
     _frf(df, "NBs", a_gs, "e", ax)
     _measured_peaks(ax, "NBs", "e", a_gs)
     ax[0].set_ylabel(ALPHA), ax[1].set_ylabel(E_NBS), ax[1].set_xlabel(NU)
-    ax[0].legend(fontsize="x-small", ncol=2)
+    place_legend(ax[0], fontsize="x-small", ncol=2)
     return fig
 
 
@@ -138,7 +139,7 @@ def fig05(result, df, peaks):
     _measured_peaks(ax, "YBs", "eta", a_gs)
     ax[1].axhline(1.0, color="0.5", lw=0.8, ls=":")
     ax[0].set_ylabel(ALPHA), ax[1].set_ylabel(ETA), ax[1].set_xlabel(NU)
-    ax[0].legend(fontsize="x-small", ncol=2)
+    place_legend(ax[0], fontsize="x-small", ncol=2)
     return fig
 
 
@@ -155,7 +156,7 @@ def fig06(result, df, peaks):
     _versus_a_g(ax[0], peaks, "YBs", "alpha", measured_value("alpha", "YBs"), "YBs")
     _versus_a_g(ax[1], peaks, "YBs", "e_gap", measured_value("eta", "YBs"), "YBs")
     ax[0].set_ylabel(ALPHA), ax[1].set_ylabel(ETA), ax[1].set_xlabel(A_G)
-    ax[0].legend(fontsize="x-small")
+    place_legend(ax[0], fontsize="x-small")
     return fig
 
 
@@ -187,7 +188,7 @@ def fig08(result, df, peaks):
         _frf(df, conf, FRF_A_G, "e_gap", ax, colour_of=lambda c, i: f"C{i + (3 if c == 'YBs' else 0)}",
              conf_label=True)
     ax[0].set_ylabel(ALPHA), ax[1].set_ylabel(ETA), ax[1].set_xlabel(NU)
-    ax[0].legend(fontsize="x-small", ncol=2)
+    place_legend(ax[0], fontsize="x-small", ncol=2)
     return fig
 
 
@@ -208,7 +209,7 @@ def _nbs_vs_ybs(peaks, title, x: str, xlabel: str):
             ax[0].plot(nu, meas_alpha.reindex(nu.index), label=f"{conf} measured", **MEASURED_OF[conf])
             ax[1].plot(nu, meas_e.reindex(nu.index), **MEASURED_OF[conf])
     ax[0].set_ylabel(ALPHA), ax[1].set_ylabel(ETA), ax[1].set_xlabel(xlabel)
-    ax[0].legend(fontsize="x-small")
+    place_legend(ax[0], fontsize="x-small")
     return fig
 
 
@@ -226,8 +227,8 @@ def fig10(result, df, peaks):
                **MEASURED_OF["YBs"])
     _versus_a_g(ax[1], peaks, "YBs", "contact_time_ms", measured_value("contact_time_ms", "YBs"), "YBs")
     ax[0].set_ylabel(r"$F_m/(M g)$ [-]"), ax[1].set_ylabel(r"$\Delta t_c$ [ms]"), ax[1].set_xlabel(A_G)
-    ax[0].legend(fontsize="x-small", loc="upper left")
-    ax[1].legend(fontsize="x-small")
+    place_legend(ax[0], fontsize="x-small")
+    place_legend(ax[1], fontsize="x-small")
     return fig
 
 
@@ -237,7 +238,7 @@ def fig11(result, df, peaks):
                 measured_value("dissipated_energy_per_mass", "YBs"), "YBs")
     _versus_a_g(ax[1], peaks, "YBs", "restitution", measured_value("restitution", "YBs"), "YBs")
     ax[0].set_ylabel(r"$E_d/M$ [m$^2$/s$^2$]"), ax[1].set_ylabel(r"$s = -v_o/v_i$ [-]"), ax[1].set_xlabel(A_G)
-    ax[0].legend(fontsize="x-small")
+    place_legend(ax[0], fontsize="x-small")
     return fig
 
 
@@ -251,7 +252,7 @@ def fig14(result, df, peaks):
         ax[1].plot(part["nu"], part["eta"], **style)
     _measured_peaks(ax, "YBs", "eta", [0.05])
     ax[0].set_ylabel(ALPHA), ax[1].set_ylabel(ETA), ax[1].set_xlabel(NU)
-    ax[0].legend(fontsize="x-small")
+    place_legend(ax[0], fontsize="x-small")
     return fig
 
 

@@ -10,6 +10,7 @@ from typing import Any
 import pandas as pd
 
 from .._io import write_text
+from .compare import NOT_COMPARABLE
 
 CSS = """
 body { font-family: system-ui, sans-serif; margin: 2em auto; max-width: 1100px; padding: 0 1em; color: #222; }
@@ -72,6 +73,8 @@ PAPER_INCONSISTENCIES = (
 
 
 GROUPS_PER_TABLE = 3  # quantity groups of (model, measured, difference) per HTML table: fits 1366 px
+MISSING = "\u2013"  # a cell with no number: not measured, no contact, ...
+NOT_COMPARED = "not compared: the paper's scale factor is unclear"
 
 
 def _excursion_merged(df: pd.DataFrame) -> pd.DataFrame:
@@ -93,6 +96,9 @@ def _for_people(df: pd.DataFrame) -> pd.DataFrame:
     """Headers in words with units (grouped by quantity where a table compares model and
     measurement), differences in percent only, flags as yes / no."""
     df = _excursion_merged(df.copy())
+    for q in NOT_COMPARABLE:  # (a blank cell said nothing: it says why)
+        if f"{q}_diff_pct" in df.columns:
+            df[f"{q}_diff_pct"] = NOT_COMPARED
     for col in df.columns:
         if df[col].dtype == bool:
             df[col] = df[col].map({True: "yes", False: "no"})
@@ -121,7 +127,7 @@ def _table(df: pd.DataFrame) -> str:
         groups = list(dict.fromkeys(c[0] for c in df.columns if c[0] != ""))
         pieces = [df[keys + [c for c in df.columns if c[0] in groups[i:i + GROUPS_PER_TABLE]]]
                   for i in range(0, len(groups), GROUPS_PER_TABLE)]
-    html_of = [p.to_html(index=False, float_format=lambda x: f"{x:.4g}", na_rep="", border=0) for p in pieces]
+    html_of = [p.to_html(index=False, float_format=lambda x: f"{x:.4g}", na_rep=MISSING, border=0) for p in pieces]
     return "".join(f"<div class='wide'>{t}</div>" for t in html_of)
 
 

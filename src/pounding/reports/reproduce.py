@@ -10,14 +10,14 @@ from typing import Any
 import pandas as pd
 
 from .. import __version__
+from .._io import atomic_write, output_dir
 from ..identification import evaluate, paper_targets
 from ..model import Oscillator
 from ..protocols import CampaignResult, campaign
 from ..protocols._progress import Progress
-from .compare import comparison, inconsistency_notes
 from .branches import add_branches, coexistence_of, continuation_statuses, fig_coexistence
+from .compare import comparison, inconsistency_notes
 from .figures import paper_figures
-from .._io import atomic_write, output_dir
 from .html import write_page
 from .verdict import Verdict, verdict
 
@@ -183,9 +183,7 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
     settings.update({"frequencies [Hz]": f"{float(ds.freq_hz.min()):g} to {float(ds.freq_hz.max()):g} "
                                          f"({ds.freq_hz.size} steps)",
                      "pounding": __version__, "written": _dt.datetime.now().isoformat(timespec="seconds")})
-    statuses = pd.DataFrame([{"configuration": c, "a_g": a, "direction": d, "steps": sw.steps_done,
-                              "not steady": int((~sw.to_dataframe()["steady"]).sum()), "message": sw.message}
-                             for (c, a, d), sw in result.sweeps.items()])
+    statuses = pd.DataFrame([_sweep_status(key, sw) for key, sw in result.sweeps.items()])
     statuses = pd.concat([statuses, continuation_statuses(cmap, why_not)], ignore_index=True)
     systems = {k.removeprefix("system_"): v for k, v in ds.attrs.items() if k.startswith("system_")}
     index = write_page(
@@ -195,3 +193,16 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
         figures={name: (path, captions[name]) for name, path in figures.items()},
         notes=inconsistency_notes(), statuses=statuses, verdict=judged)
     return Report(out, index, tables, figures, result, comparisons, judged)
+
+
+def _sweep_status(key: tuple, sw: Any) -> dict:
+    """A sweep's row of the status table, with what its end means for the figures."""
+    conf, a_g, direction = key
+    unsettled = int((~sw.to_dataframe()["steady"].iloc[: sw.steps_done]).sum())
+    drawn = "every step drawn in the figures" if sw.steps_done == sw.freqs_hz.size else (
+        f"drawn up to {sw.freqs_hz[sw.steps_done - 1]:g} Hz, where it stopped" if sw.steps_done else "not drawn")
+    if unsettled:
+        drawn += (f"; {unsettled} step(s) are drawn from their last {sw.measure_cycles} cycles though the response "
+                  "had not settled: a point of a motion still changing, not of a periodic response")
+    return {"configuration": conf, "a_g": a_g, "direction": direction, "steps": sw.steps_done,
+            "not steady": unsettled, "message": sw.message, "in the figures": drawn}
