@@ -128,6 +128,7 @@ def command(name: Optional[str] = None) -> Callable:
     def register(fn: Callable) -> Callable:
         @functools.wraps(fn)
         def run(*args: Any, **kwargs: Any) -> Any:
+            console.width, err_console.width = _width(sys.stdout), _width(sys.stderr)  # (where output goes now)
             with _first_interrupt_only(), _warnings_as_lines():
                 try:
                     return fn(*args, **kwargs)
