@@ -170,7 +170,8 @@ def load_opensees():
     spec = importlib.util.find_spec("openseespylinux")
     if spec is not None and spec.origin:
         lib = Path(spec.origin).parent / "lib"
-        for name in ("libquadmath.so.0", "libgfortran.so.4", "libgomp.so.1", "libblas.so.3", "liblapack.so.3"):
+        for name in ("libquadmath.so.0", "libgfortran.so.4", "libgomp.so.1", "libblas.so.3",
+                     "liblapack.so.3"):
             if (lib / name).exists():
                 ctypes.CDLL(str(lib / name), mode=ctypes.RTLD_GLOBAL)
     try:
@@ -242,7 +243,8 @@ class OpenSeesModel:
             ops.remove("loadPattern", self.tag)
             ops.remove("timeSeries", self.tag)
         self.tag += 1
-        ops.timeSeries("Trig", self.tag, t_start, t_start + duration_s + dt, 1.0 / freq_hz, "-factor", peak_m_s2)
+        ops.timeSeries("Trig", self.tag, t_start, t_start + duration_s + dt, 1.0 / freq_hz, "-factor",
+                       peak_m_s2)
         ops.pattern("UniformExcitation", self.tag, 1, "-accel", self.tag)
         n_total = max(1, int(round(duration_s / dt)))
         n_window = max(1, int(round(measure_s / dt)))

@@ -1,4 +1,5 @@
-"""Earthquake records: pounding against OpenSeesPy, eqsig and sdof on the same work, in the same run (issue 18).
+"""Earthquake records: pounding against OpenSeesPy, eqsig and sdof on the same work, in the same run (issue
+18).
 
     pip install -e ".[bench,records]"     # the peers (openseespy, eqsig, sdof) and the FEMA P695 sets
     python benchmarks/records.py          # about 3 minutes; --quick for a smoke run, --no-write
@@ -55,11 +56,12 @@ def opensees_run(ops, osc, rec, dt_s):
     """The record as a Path series (linear between its samples, as pounding reads it)."""
 
     def run():
-        model = peers.OpenSeesModel(ops, osc, dt_s)
+        peers.OpenSeesModel(ops, osc, dt_s)
         ops.timeSeries("Path", 100, "-dt", rec.dt_s, "-values", *rec.accel.tolist())
         ops.pattern("UniformExcitation", 100, 1, "-accel", 100)
         n = int(round(rec.duration_s / dt_s))
-        ground = rec.acceleration(dt_s * np.arange(1, n + 1)).tolist()  # (ahead: the loop only steps and reads)
+        # (ahead: the loop only steps and reads)
+        ground = rec.acceleration(dt_s * np.arange(1, n + 1)).tolist()
         a_max = d_max = 0.0
         for k in range(n):
             if ops.analyze(1, dt_s) != 0:
@@ -99,7 +101,8 @@ def main() -> None:
         print(f"OpenSeesPy left out: {missing}")
     else:
         for dt in (rec.dt_s, rec.dt_s / 10.0):
-            rows.append((f"OpenSeesPy, Newmark + Newton, dt {dt * 1e3:g} ms", *best_of(opensees_run(ops, osc, rec, dt),
+            rows.append((f"OpenSeesPy, Newmark + Newton, dt {dt * 1e3:g} ms",
+                         *best_of(opensees_run(ops, osc, rec, dt),
                                                                                        rounds)))
     lines += [f"**One YBs run (`paper_printed`) under {rec.name} ({rec.meta['event']} {rec.meta['year']}), "
               f"{rec.duration_s:g} s at {rec.dt_s:g} s, scaled to PGA {PGA_G} g: {ref[2]} impacts**", "",
@@ -129,7 +132,8 @@ def main() -> None:
             out = eqsdof.true_response_spectra(rec.accel, rec.dt_s, periods, 0.05)
             return out[0], out[2]
 
-        spec_rows.append(("eqsig true_response_spectra (Nigam-Jennings at the samples)", *best_of(eq, rounds)))
+        spec_rows.append(("eqsig true_response_spectra (Nigam-Jennings at the samples)",
+                          *best_of(eq, rounds)))
     except ImportError:
         pass
     try:
@@ -155,7 +159,8 @@ def main() -> None:
     lines += ["", f"pounding's exact spectrum takes {w0 / fastest:.2f} times the fastest peer's time "
               f"(target: within {TARGET_SPECTRUM_RATIO:g}x). The peers' errors are their sampling: eqsig's "
               "Nigam-Jennings is exact at the samples but misses the peaks between them (and its Sa at short "
-              "periods is not the absolute acceleration's peak); sdof's Newmark step lengthens short periods.", ""]
+              "periods is not the absolute acceleration's peak); sdof's Newmark step lengthens short "
+              "periods.", ""]
 
     # 3. a pounding spectrum over the far-field set
     recs = far[:4] if args.quick else far
@@ -165,8 +170,8 @@ def main() -> None:
     wall = time.perf_counter() - t0
     runs = len(recs) * periods.size * (len(GAPS) + 1)
     amp = ps.summary()["amplification"].sel(percentile=50.0)
-    lines += [f"**Pounding spectrum of the FEMA P695 far-field set: {len(recs)} components x {periods.size} periods x "
-              f"{len(GAPS)} gaps, with and without bumpers ({runs:,} runs), warm, every core**", "",
+    lines += [f"**Pounding spectrum of the FEMA P695 far-field set: {len(recs)} components x {periods.size} "
+              f"periods x {len(GAPS)} gaps, with and without bumpers ({runs:,} runs), warm, every core**", "",
               f"{wall:.1f} s wall ({wall / runs * 1e3:.2f} ms a run; target {TARGET_SET_S:g} s); "
               f"{int(ps.dataset['impacts'].sum()):,} impacts; the largest median amplification by pounding "
               f"{float(amp.max()):.3g}.", "", END]

@@ -1,6 +1,7 @@
 """pounding against OpenSeesPy and scipy on the same work, in the same run (issue 5).
 
-    pip install -e ".[bench]"      # the peers (openseespy; eqsig and sdof for records.py); scipy comes with pounding
+    pip install -e ".[bench]"      # the peers (openseespy; eqsig and sdof for records.py); scipy comes with
+    pounding
     python benchmarks/run.py       # about 3 minutes; --quick for a smoke run, --no-write
                                    # to leave benchmarks/RESULTS.md alone
 
@@ -61,7 +62,8 @@ def machine() -> str:
     import scipy
     return (f"{cpu}, {os.cpu_count()} cores{mem}, {platform.system()} {platform.release()}; "
             f"Python {platform.python_version()}, NumPy {np.__version__}, SciPy {scipy.__version__}, "
-            f"Numba {numba.__version__}, pounding {pd_.__version__ if hasattr(pd_, '__version__') else 'dev'}")
+            f"Numba {numba.__version__}, "
+            f"pounding {pd_.__version__ if hasattr(pd_, '__version__') else 'dev'}")
 
 
 # pounding's linear phases are closed forms, so its default rtol (which only steers the
@@ -115,7 +117,8 @@ print(t1 - t0, t2 - t1)
 def first_call(what: str, cache_dir: str) -> tuple[float, float]:
     """(import s, first call s) in a fresh process using ``cache_dir`` as Numba's cache."""
     env = dict(os.environ, NUMBA_CACHE_DIR=cache_dir)
-    out = subprocess.run([sys.executable, "-c", COLD, what], env=env, capture_output=True, text=True, check=True)
+    out = subprocess.run([sys.executable, "-c", COLD, what], env=env, capture_output=True, text=True,
+                         check=True)
     imp, call = out.stdout.split()[-2:]
     return float(imp), float(call)
 
@@ -180,7 +183,8 @@ def main() -> None:
     print("\n".join(table("sweep, well-conditioned steps", sweep_rows, ref, sweep_rows[0], ~ill)))
     print(f"ill-conditioned steps (left out of the errors): {freqs[ill]} Hz")
 
-    print(f"\n[2] one long run ({long_s:g} s at {LONG_F_HZ} Hz from v0 = {LONG_V0} m/s, last 5 cycles measured)")
+    print(f"\n[2] one long run ({long_s:g} s at {LONG_F_HZ} Hz from v0 = {LONG_V0} m/s, last 5 cycles "
+          "measured)")
     lref = peers.pounding_long(osc, exc, long_s, LONG_V0, MEASURED, rtol=1e-12, rounds=1)
     long_rows = pounding_and_opensees(peers.pounding_long, peers.opensees_long, ops,
                                       osc, exc, long_s, LONG_V0, MEASURED)
@@ -224,8 +228,10 @@ def report(freqs, ill, sweep_rows, ref, cross, long_rows, lref, camp, cold, have
     lines += table(f"Stepped sweep: a_G = {A_G}, up, {freqs[0]:g}-{freqs[-1]:g} Hz, {CYCLES} cycles per step "
                    f"(last {MEASURED} measured), {sweep_rows[0].simulated_s:,.0f} simulated s",
                    sweep_rows, ref, sweep_rows[0], ~ill) + [""]
-    worst = ", ".join(f"{o.tool.split(',')[0].split(' (')[0]}{o.tool[o.tool.find(' dt'):] if ' dt' in o.tool else ''}"
-                      f"{' ' + o.tool[o.tool.find('(rtol'):] if '(rtol' in o.tool else ''} {errors(o, ref)[0]:.1e}"
+    worst = ", ".join(f"{o.tool.split(',')[0].split(' (')[0]}"
+                      f"{o.tool[o.tool.find(' dt'):] if ' dt' in o.tool else ''}"
+                      f"{' ' + o.tool[o.tool.find('(rtol'):] if '(rtol' in o.tool else ''} "
+                      f"{errors(o, ref)[0]:.1e}"
                       for o in sweep_rows[1:])
     lines += [f"Ill-conditioned steps, left out above: {', '.join(f'{f:g}' for f in freqs[ill])} Hz (a 1e-9 "
               f"change of the mass moves alpha or eta by more than 1e-6 there: the sweep grazes the bumpers "
@@ -241,8 +247,10 @@ def report(freqs, ill, sweep_rows, ref, cross, long_rows, lref, camp, cold, have
                   f"reference.", ""]
     lines += ["| campaign, warm (best of 5) | wall s | simulated s / wall s |", "| --- | ---: | ---: |"]
     lines += [f"| {w} worker(s) | {wall:.3f} | {rate:,.0f} |" for w, wall, rate in camp] + [""]
-    lines += ["| cold start (fresh process) | empty Numba cache, s | filled cache, s |", "| --- | ---: | ---: |"]
-    lines += [f"| first `{what}` (plus import) | {c[0][1]:.1f} (+{c[0][0]:.1f}) | {c[1][1]:.2f} (+{c[1][0]:.2f}) |"
+    lines += ["| cold start (fresh process) | empty Numba cache, s | filled cache, s |",
+              "| --- | ---: | ---: |"]
+    lines += [f"| first `{what}` (plus import) | {c[0][1]:.1f} (+{c[0][0]:.1f}) | {c[1][1]:.2f} "
+              f"(+{c[1][0]:.2f}) |"
               for what, c in cold.items()] + [""]
     lines += ["Targets:"]
     if have_ops:
@@ -252,14 +260,17 @@ def report(freqs, ill, sweep_rows, ref, cross, long_rows, lref, camp, cold, have
                             for e0, e1 in zip(errors(rows[0], r, keep), errors(rows[1], r, keep)))
             lines.append(f"- {name}: {speed:,.0f} x OpenSeesPy's speed at 1 ms (target {TARGET_SPEED:g}): "
                          f"{verdict(speed >= TARGET_SPEED)}; error {err_ratio:.1e} x smaller (target "
-                         f"{TARGET_ERROR:g}; pounding's error counted as {ERROR_FLOOR:g}): {verdict(err_ratio >= TARGET_ERROR)}.")
+                         f"{TARGET_ERROR:g}; pounding's error counted as {ERROR_FLOOR:g}): "
+                         f"{verdict(err_ratio >= TARGET_ERROR)}.")
     else:
         lines.append(f"- OpenSeesPy targets not measured: {missing}.")
     best_camp = min(w for _, w, _ in camp)
     cold_s = max(c[0][1] for c in cold.values())
     warm_s = max(c[1][1] + c[1][0] for c in cold.values())
-    lines += [f"- campaign {best_camp:.3f} s warm (target {TARGET_CAMPAIGN_S} s): {verdict(best_camp <= TARGET_CAMPAIGN_S)}.",
-              f"- cold start {cold_s:.1f} s, first call (target {TARGET_COLD_S:g} s): {verdict(cold_s <= TARGET_COLD_S)}.",
+    lines += [f"- campaign {best_camp:.3f} s warm (target {TARGET_CAMPAIGN_S} s): "
+              f"{verdict(best_camp <= TARGET_CAMPAIGN_S)}.",
+              f"- cold start {cold_s:.1f} s, first call (target {TARGET_COLD_S:g} s): "
+              f"{verdict(cold_s <= TARGET_COLD_S)}.",
               f"- warm-cache start {warm_s:.2f} s, import and first call (target {TARGET_WARM_S:g} s): "
               f"{verdict(warm_s <= TARGET_WARM_S)}.", END]
     return lines

@@ -36,7 +36,8 @@ TARGET_OVERHEAD, TARGET_SCALING = 0.05, 1.8
 
 
 def spec(n_gap: int, n_ag: int, duration_s: float) -> pd_.StudySpec:
-    return pd_.StudySpec(pd_.presets.paper_printed(), {"kind": "simulate", "freq_hz": 2.0, "duration_s": duration_s},
+    return pd_.StudySpec(pd_.presets.paper_printed(), {"kind": "simulate", "freq_hz": 2.0,
+                                                       "duration_s": duration_s},
                          {"bumpers.gap_right": list(np.round(np.linspace(0.008, 0.03, n_gap), 6)),
                           "a_g": list(np.round(np.linspace(0.03, 0.3, n_ag), 6))})
 
@@ -57,7 +58,8 @@ def run_study(sp: pd_.StudySpec, folder: Path, name: str, **kwargs) -> float:
 
 def _first_study(quick: bool, workers: int, folder: Path) -> float:
     """Wall time of the scaling study on processes in a fresh interpreter (its first study)."""
-    cmd = [sys.executable, __file__, "--first-study", str(workers), "--folder", str(folder)] + ["--quick"] * quick
+    cmd = [sys.executable, __file__, "--first-study", str(workers), "--folder",
+           str(folder)] + ["--quick"] * quick
     return float(subprocess.run(cmd, capture_output=True, text=True, check=True).stdout.split()[-1])
 
 
@@ -97,7 +99,8 @@ def main() -> None:
     lines += [f"**Overhead: {sp.size} simulate points of {per_point * 1e3:.0f} ms, one thread**", "",
               "| how | wall s | per point ms |", "| --- | ---: | ---: |",
               f"| plain loop (compute_point, no store) | {direct:.2f} | {per_point * 1e3:.1f} |",
-              f"| pounding.study, workers=1 (template, chunks, Zarr writes) | {one:.2f} | {one / sp.size * 1e3:.1f} |",
+              f"| pounding.study, workers=1 (template, chunks, Zarr writes) | {one:.2f} | "
+              f"{one / sp.size * 1e3:.1f} |",
               "", f"Overhead {overhead * 100:+.1f} % (target at most {TARGET_OVERHEAD * 100:g} %).", ""]
 
     # 2. scaling from 1 to 2 workers
@@ -113,9 +116,11 @@ def main() -> None:
               for n in (1, 2))
     rows.append(("processes, later studies (forkserver running)", t1, t2))
     for n in (1, 2):
-        with LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
+        with LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
+                          dashboard_address=None) as cluster, \
                 Client(cluster) as client:
-            client.run(pd_.warm_up)  # (each worker loads the compiled kernels once, as a long-lived cluster has)
+            # (each worker loads the compiled kernels once, as a long-lived cluster has)
+            client.run(pd_.warm_up)
             t = min(run_study(sp, folder, f"dask{n}", scheduler=client) for _ in range(2))
         if n == 1:
             t1 = t
@@ -124,10 +129,11 @@ def main() -> None:
     lines += [f"**Scaling: the same {sp.size}-point study on 1 and 2 workers**", "",
               "| scheduler | 1 worker s | 2 workers s | speed-up |", "| --- | ---: | ---: | ---: |"]
     lines += [f"| {label} | {a:.2f} | {b:.2f} | {a / b:.2f} |" for label, a, b in rows]
-    lines += ["", f"Target: at least {TARGET_SCALING:g}x with processes and with Dask. Worker processes are forked "
-              "from a forkserver that imported pounding and loaded the compiled kernels once; it is started by "
-              "the first study of a Python session (about 1.3 s, inside the first row's times) and serves the "
-              "later ones.", ""]
+    lines += ["",
+              f"Target: at least {TARGET_SCALING:g}x with processes and with Dask. Worker processes are "
+              "forked from a forkserver that imported pounding and loaded the compiled kernels once; it is "
+              "started by the first study of a Python session (about 1.3 s, inside the first row's times) "
+              "and serves the later ones.", ""]
 
     # 3. throughput of a 10,000-point simulate study
     big = spec(50, 20, 20.0) if args.quick else spec(100, 100, 20.0)

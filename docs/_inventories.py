@@ -55,7 +55,8 @@ INVENTORIES: dict[str, tuple[str, str, list[tuple[str, ...]]]] = {
          "reference/generated/scipy.optimize.least_squares.html#scipy.optimize.least_squares"),
         ("scipy.optimize.brentq", "py:function",
          "reference/generated/scipy.optimize.brentq.html#scipy.optimize.brentq"),
-        ("scipy.signal.butter", "py:function", "reference/generated/scipy.signal.butter.html#scipy.signal.butter"),
+        ("scipy.signal.butter", "py:function",
+         "reference/generated/scipy.signal.butter.html#scipy.signal.butter"),
     ]),
     "pandas": ("https://pandas.pydata.org/docs/", "stable", [
         ("pandas.DataFrame", "py:class", "reference/api/pandas.DataFrame.html#pandas.DataFrame"),

@@ -136,7 +136,8 @@ def _compile_first(app) -> None:
 
 
 def _gallery_under_the_limit(app, exception) -> None:
-    """Each gallery example must run in under GALLERY_LIMIT_S: a slower one is a warning (an error with -W)."""
+    """Each gallery example must run in under GALLERY_LIMIT_S: a slower one is a warning (an error
+    with -W)."""
     junit = Path(app.outdir, JUNIT).resolve()
     if exception is not None or not junit.exists():
         return

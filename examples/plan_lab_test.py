@@ -32,7 +32,8 @@ def main(out_png: str = "lab_vs_model.png") -> None:
           f"{1e3 * sim['contact_time_s'][contact].max():.0f} ms")
     print("rate (Hz)  worst |contact time error| (ms)  worst |restitution error|  worst mean force error")
     for rate in (250.0, 500.0, 1000.0, 2000.0):
-        rec = synthetic_test(osc, A_G, FREQS, cycles=30, sample_rate_hz=rate, anti_alias_hz=rate / 5, **SENSORS)
+        rec = synthetic_test(osc, A_G, FREQS, cycles=30, sample_rate_hz=rate, anti_alias_hz=rate / 5,
+                             **SENSORS)
         with warnings.catch_warnings(record=True) as said:
             warnings.simplefilter("always")
             lab = analyse_stepped_sine(rec, mass_kg=500.0, gap_total_m=gap, freqs_hz=FREQS)

@@ -6,7 +6,8 @@ residual table, which the tests check the preset still reproduces).
 
 Family: the paper's 500 kg mass and 15 mm gaps; a kinematic isolator with four backbone
 branches (hardening allowed: MODEL.md §5 says the measured NBs accelerations need it),
-free C_d, and bumpers with a free law (Kelvin-Voigt by default, Hunt-Crossley, elastic-plastic or multi-linear).  Targets:
+free C_d, and bumpers with a free law (Kelvin-Voigt by default, Hunt-Crossley, elastic-plastic or
+multi-linear).  Targets:
 ``pounding.paper_targets()`` (Tables 2-4, sweeps up, fixed 30 cycles per step as the lab).
 The shipped preset came from (8 minutes on 2 cores; docs/calibration.md)::
 
@@ -64,7 +65,8 @@ BUMPER_START = {"kelvin_voigt": {"bumper_stiffness": 1.46e6, "bumper_damping": 1
                 "elastic_plastic": {"bumper_stiffness": 1e7, "bumper_post_yield_ratio": 0.1,
                                     "bumper_yield_compression": 0.002},
                 "multilinear": {"bumper_slope_1": 3e6, "bumper_slope_2": 3e5, "bumper_slope_3": 1e7,
-                                "bumper_breakpoint_1": 0.002, "bumper_breakpoint_2": 0.006, "bumper_damping": 2500.0}}
+                                "bumper_breakpoint_1": 0.002, "bumper_breakpoint_2": 0.006,
+                                "bumper_damping": 2500.0}}
 BUMPER_START["multilinear_kinematic"] = BUMPER_START["multilinear"]
 
 
@@ -75,7 +77,8 @@ def preset_start(law: str) -> dict[str, float]:
     if law == "multilinear_kinematic":
         return pd_.ModelFamily(500.0, branches=4, law=law).values_of(pd_.presets.paper_calibrated())
     if law == "multilinear_elastic":
-        return pd_.ModelFamily(500.0, branches=4, law="multilinear").values_of(pd_.presets.paper_calibrated_v2())
+        return pd_.ModelFamily(500.0, branches=4,
+                               law="multilinear").values_of(pd_.presets.paper_calibrated_v2())
     kv = pd_.presets.paper_calibrated_v1()
     out = pd_.ModelFamily(500.0, branches=4, law="kelvin_voigt").values_of(kv)
     out.pop("gap")
@@ -99,11 +102,12 @@ def main() -> None:
     ap.add_argument("--out", type=Path, default=DATA, help="where to write the system and residuals")
     ap.add_argument("--free-gap", action="store_true", help="fit the gap within 12 to 18 mm")
     ap.add_argument("--bouc-wen", action="store_true",
-                    help="a Bouc-Wen spring in the isolator (about 30 times the cost of each evaluation); with "
-                         "--from-preset and --law multilinear, from paper_calibrated_v2")
+                    help="a Bouc-Wen spring in the isolator (about 30 times the cost of each evaluation); "
+                         "with --from-preset and --law multilinear, from paper_calibrated_v2")
     ap.add_argument("--from-preset", action="store_true",
-                    help="start from a shipped preset: paper_calibrated_v1's isolator (and bumper; a multi-linear "
-                         "bumper of equal slopes is it exactly), or for multilinear_kinematic paper_calibrated()")
+                    help="start from a shipped preset: paper_calibrated_v1's isolator (and bumper; a "
+                         "multi-linear bumper of equal slopes is it exactly), or for multilinear_kinematic "
+                         "paper_calibrated()")
     ap.add_argument("--loss", choices=("squared", "misses"), default="squared",
                     help="what the search minimises: least squares, or (misses) the targets missed, smoothly")
     ap.add_argument("--start", type=Path, default=None,

@@ -13,7 +13,6 @@ Run: ``python scripts/make_examples.py``.
 
 from pathlib import Path
 
-import numpy as np
 
 import pounding
 from pounding.lab import synthetic_test
@@ -38,7 +37,8 @@ def lab_test() -> Path:
 def el_centro_at2() -> Path:
     quake = pounding.records.el_centro()
     acc_g = quake.accel / quake.g
-    lines = ["PEER NGA STRONG MOTION DATABASE RECORD (layout only: written by pounding's scripts/make_examples.py)",
+    lines = ["PEER NGA STRONG MOTION DATABASE RECORD (layout only: written by pounding's "
+             "scripts/make_examples.py)",
              "Imperial Valley 1940-05-19, El Centro Terminal Substation, N-S (180)",
              "ACCELERATION TIME SERIES IN UNITS OF G",
              f"NPTS= {acc_g.size:6d}, DT= {quake.dt_s:.4f} SEC"]

@@ -453,7 +453,8 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
             if inc[j]:
                 if sides[j][5] is not None:  # a law's own events (in the compression and its rate)
                     for g, mode in sides[j][5].events():
-                        evs.append((lambda tt, y, j=j, g=g: g(sides[j][0] * y[0] - sides[j][1], sides[j][0] * y[1]),
+                        evs.append((lambda tt, y, j=j, g=g: g(sides[j][0] * y[0] - sides[j][1],
+                                                              sides[j][0] * y[1]),
                                     ("law", j, mode)))
                 evs.append((lambda tt, y, j=j: sides[j][0] * y[0] - sides[j][1], ("end", j, 0.0)))
                 evs.append((lambda tt, y, j=j: sides[j][4](sides[j][0] * y[0] - sides[j][1],

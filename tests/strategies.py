@@ -29,7 +29,8 @@ def bouc_wens(draw, slope):
     the usual parameters or others that dissipate."""
     beta, gamma = draw(st.sampled_from([(0.5, 0.5), (0.75, 0.25), (0.25, 0.25), (0.6, -0.4)]))
     return pd_.BoucWen(slope * draw(st.floats(0.2, 2.0)), draw(st.floats(0.002, 0.02)),
-                       draw(st.sampled_from([1.0, 0.8, 1.2])), beta, gamma, draw(st.sampled_from([1.0, 1.5, 2.0, 4.0])))
+                       draw(st.sampled_from([1.0, 0.8, 1.2])), beta, gamma,
+                       draw(st.sampled_from([1.0, 1.5, 2.0, 4.0])))
 
 
 @st.composite
@@ -54,7 +55,8 @@ def oscillators(draw, bumpers=True, hysteresis=None, gaps="open", law="kelvin_vo
                 else:  # the last one stiffer than the first (a real bumper stiffens once compressed:
                     # a flat last branch let 100 kg through 24 cm, where the reference stalls)
                     slopes.append(max(slopes[-1], slopes[0]) * draw(st.sampled_from([2.0, 5.0])))
-            breaks = sorted(draw(st.lists(st.floats(3e-4, 0.01), min_size=n - 1, max_size=n - 1, unique=True)))
+            breaks = sorted(draw(st.lists(st.floats(3e-4, 0.01), min_size=n - 1, max_size=n - 1,
+                                          unique=True)))
             if any(b - a < 1e-4 for a, b in zip(breaks, breaks[1:])):
                 breaks = [0.001 * (j + 1) for j in range(n - 1)]
             hysteresis = "elastic"
@@ -69,9 +71,11 @@ def oscillators(draw, bumpers=True, hysteresis=None, gaps="open", law="kelvin_vo
             law = pd_.MultilinearBumper(slopes, breaks, draw(st.floats(1.0, 5000.0)), hysteresis)
         elif law == "elastic_plastic":  # yield from 0.3 to 5 mm, K2 from nearly flat to nearly K1
             k1 = draw(st.floats(1e5, 3e6))
-            law = pd_.ElasticPlastic(k1, k1 * draw(st.sampled_from([0.01, 0.1, 0.3, 0.8])), draw(st.floats(3e-4, 5e-3)))
+            law = pd_.ElasticPlastic(k1, k1 * draw(st.sampled_from([0.01, 0.1, 0.3, 0.8])),
+                                     draw(st.floats(3e-4, 5e-3)))
         elif law == "hertzdamp":  # restitution about 0.5 to 1
-            law = pd_.Hertzdamp(draw(st.floats(1e7, 3e9)), draw(st.floats(0.0, 1.6)), draw(st.floats(1.0, 2.0)))
+            law = pd_.Hertzdamp(draw(st.floats(1e7, 3e9)), draw(st.floats(0.0, 1.6)),
+                                draw(st.floats(1.0, 2.0)))
         elif law == "jankowski":
             law = pd_.Jankowski(draw(st.floats(1e7, 3e9)), draw(st.floats(0.0, 1.0)), mass,
                                 draw(st.floats(1.0, 2.0)))

@@ -19,7 +19,8 @@ K_POST, K_BW, U_Y = 5e3, 30e3, 0.01
 
 
 def _nbs(n, damping=100.0):
-    return pd_.Oscillator(500.0, pd_.Isolator((K_POST,), (), "kinematic", damping, pd_.BoucWen(K_BW, U_Y, n=n)))
+    return pd_.Oscillator(500.0, pd_.Isolator((K_POST,), (), "kinematic", damping, pd_.BoucWen(K_BW, U_Y,
+                                                                                               n=n)))
 
 
 @SETTINGS
@@ -145,22 +146,25 @@ def test_a_state_whose_z_is_impossible_is_refused():
     assert info.value.field == f"state.vector[{ZETA}]"
     vec[ZETA] = 0.5  # a z for an isolator without the spring
     with pytest.raises(pd_.InputError):
-        pd_.simulate(pd_.Oscillator(500.0, pd_.Isolator((K_POST,))), pd_.Harmonic(0.05, 1.0), 0.1, pd_.State(vec))
+        pd_.simulate(pd_.Oscillator(500.0, pd_.Isolator((K_POST,))), pd_.Harmonic(0.05, 1.0), 0.1,
+                     pd_.State(vec))
 
 
 def test_model_family_with_a_bouc_wen_isolator(tmp_path):
     family = pd_.ModelFamily(500.0, branches=1, law="kelvin_voigt", bouc_wen=True)
     assert family.parameter_names == ("slope_1", "isolator_damping", "bw_stiffness", "bw_yield_displacement",
                                       "bw_n", "bumper_stiffness", "bumper_damping", "gap")
-    osc = pd_.Oscillator(500.0, pd_.Isolator((K_POST,), (), "kinematic", 100.0, pd_.BoucWen(K_BW, U_Y, n=2.0)),
+    osc = pd_.Oscillator(500.0, pd_.Isolator((K_POST,), (), "kinematic", 100.0, pd_.BoucWen(K_BW, U_Y,
+                                                                                            n=2.0)),
                          pd_.Bumpers(0.015, 0.015, pd_.KelvinVoigt(1.5e6, 500.0)))
     assert family.oscillator(family.values_of(osc)) == osc
     with pytest.raises(pd_.InputError):  # a system without the spring is not of this family
         family.values_of(pd_.Oscillator(500.0, pd_.Isolator((K_POST,)), osc.bumpers))
     path = tmp_path / "family.toml"
-    path.write_text('mass = 500.0\nbranches = 1\nbouc_wen = true\n[fixed]\ngap = 0.015\nbumper_stiffness = 1.5e6\n'
-                    'bumper_damping = 500.0\nslope_1 = 5e3\nisolator_damping = 100.0\n[bounds]\n'
-                    'bw_stiffness = [1e4, 5e4]\nbw_yield_displacement = [0.002, 0.02]\nbw_n = [1.0, 3.0]\n')
+    path.write_text('mass = 500.0\nbranches = 1\nbouc_wen = true\n[fixed]\ngap = 0.015\nbumper_stiffness = '
+                    '1.5e6\nbumper_damping = 500.0\nslope_1 = 5e3\nisolator_damping = '
+                    '100.0\n[bounds]\nbw_stiffness = [1e4, 5e4]\nbw_yield_displacement = [0.002, 0.02]\nbw_n '
+                    '= [1.0, 3.0]\n')
     read, bounds = pd_.ModelFamily.from_toml(path)
     assert read.bouc_wen and set(bounds) == {"bw_stiffness", "bw_yield_displacement", "bw_n"}
     with pytest.raises(pd_.InputError) as info:
@@ -177,11 +181,12 @@ def test_hysteretic_bumpers_on_a_bouc_wen_isolator_close_the_ledger(osc, exc, v0
 
 def test_an_elastic_plastic_bumper_on_a_bouc_wen_isolator_closes_the_ledger():
     iso = pd_.Isolator((K_POST,), (), "kinematic", 100.0, pd_.BoucWen(K_BW, U_Y))
-    for law in (pd_.ElasticPlastic(2e6, 2e5, 0.001), pd_.MultilinearBumper((3e6, 0.5e6, 6e6), (0.002, 0.008), 500.0,
-                                                                           hysteresis="kinematic")):
+    for law in (pd_.ElasticPlastic(2e6, 2e5, 0.001), pd_.MultilinearBumper((3e6, 0.5e6, 6e6), (0.002, 0.008),
+                                                                           500.0, hysteresis="kinematic")):
         osc = pd_.Oscillator(500.0, iso, pd_.Bumpers(0.01, 0.01, law))
         run = check_numeric_ledger(osc, pd_.Harmonic(0.05, 1.0), 0.6)
-        assert run.energy.bumper_dissipation > 1.0  # (measured 35 J and 69 J unbooked before: slips and yield)
+        # (measured 35 J and 69 J unbooked before: slips and yield)
+        assert run.energy.bumper_dissipation > 1.0
 
 
 def test_a_loose_tolerance_run_continues_from_its_own_final_state():
@@ -190,8 +195,8 @@ def test_a_loose_tolerance_run_continues_from_its_own_final_state():
     osc = pd_.Oscillator(500.0, pd_.Isolator((5e3,), (), "kinematic", 0.0, bw),
                          pd_.Bumpers(0.02, 0.02, pd_.KelvinVoigt(1e7, 0.0)))
     exc = pd_.Harmonic(0.4, 2.0)
-    run = pd_.simulate(osc, exc, 1.8926490764665664, pd_.State.at_rest(osc, velocity_m_s=0.8), sample_rate_hz=0,
-                       rtol=1e-4)
+    run = pd_.simulate(osc, exc, 1.8926490764665664, pd_.State.at_rest(osc, velocity_m_s=0.8),
+                       sample_rate_hz=0, rtol=1e-4)
     assert abs(run.final_state.bouc_wen_z) <= bw.z_max  # (was -1.0000093: refused as a start)
     assert pd_.simulate(osc, exc, 0.5, run.final_state, rtol=1e-4).success
 
@@ -204,7 +209,8 @@ def test_parameters_beyond_any_rubber_are_refused():
         pd_.BoucWen(1e3, 0.01, beta=1e-300, gamma=0.0)
     assert info.value.field == "isolator.bouc_wen.beta"
     family = pd_.ModelFamily(500.0, branches=1, bouc_wen=True)
-    osc = pd_.Oscillator(500.0, pd_.Isolator((K_POST,), (), "kinematic", 100.0, pd_.BoucWen(K_BW, U_Y, beta=0.75,
+    osc = pd_.Oscillator(500.0, pd_.Isolator((K_POST,), (), "kinematic", 100.0, pd_.BoucWen(K_BW, U_Y,
+                                                                                            beta=0.75,
                                                                                             gamma=0.25)),
                          pd_.Bumpers(0.015, 0.015, pd_.KelvinVoigt(1.5e6, 500.0)))
     with pytest.raises(pd_.InputError):  # the family's spring has a = 1, beta = gamma = 0.5

@@ -16,7 +16,8 @@ runner = CliRunner()
 
 def test_simulate_writes_contacts_and_history(tmp_path):
     contacts, history = tmp_path / "contacts.csv", tmp_path / "history.csv"
-    result = runner.invoke(app, ["simulate", str(EXAMPLE), "--a-g", "0.05", "--freq", "2.2", "--duration", "5",
+    result = runner.invoke(app, ["simulate", str(EXAMPLE), "--a-g", "0.05", "--freq", "2.2", "--duration",
+                                 "5",
                                  "--velocity", "0.6", "--contacts", str(contacts), "--history", str(history)])
     assert result.exit_code == 0, result.output
     assert "D max / min [mm]" in result.output
@@ -45,13 +46,15 @@ def test_simulate_preset_and_errors():
 
 def test_sweep_writes_the_issue_columns(tmp_path):
     out, nc, png = tmp_path / "sweep.csv", tmp_path / "sweep.nc", tmp_path / "sweep.png"
-    result = runner.invoke(app, ["sweep", str(EXAMPLE), "--a-g", "0.05", "--direction", "down", "--fmin", "1.0",
+    result = runner.invoke(app, ["sweep", str(EXAMPLE), "--a-g", "0.05", "--direction", "down", "--fmin",
+                                 "1.0",
                                  "--fmax", "2.0", "--fstep", "0.5", "--steady", "fixed", "--cycles", "6",
                                  "--out", str(out), "--netcdf", str(nc), "--plot", str(png)])
     assert result.exit_code == 0, result.output
     assert "nu_R" in result.output and "contact range [Hz]" in result.output
     df = pd.read_csv(out)
-    assert list(df.columns) == ["freq_hz", "alpha", "excursion_m", "eta", "e", "contact", "contacts_per_cycle",
+    assert list(df.columns) == ["freq_hz", "alpha", "excursion_m", "eta", "e", "contact",
+                                "contacts_per_cycle",
                                 "restitution", "contact_time_s", "mean_force_n", "peak_force_n",
                                 "dissipated_energy_j", "steady", "period_multiple"]
     assert list(df["freq_hz"]) == [2.0, 1.5, 1.0]
@@ -77,7 +80,8 @@ def test_campaign_writes_dataset_tables_and_figure(tmp_path):
         assert (out / name).stat().st_size > 0, name
     assert len(pd.read_csv(out / "table2.csv")) == 14
     steps = pd.read_csv(out / "steps.csv")
-    assert len(steps) == 14 * 2 and {"configuration", "a_g", "direction", "freq_hz", "alpha"} <= set(steps.columns)
+    assert len(steps) == 14 * 2 and {"configuration", "a_g", "direction", "freq_hz",
+                                     "alpha"} <= set(steps.columns)
     bad = runner.invoke(app, ["campaign", "--out", str(out)])
     assert bad.exit_code == 2 and "--preset" in bad.output
 
@@ -87,7 +91,8 @@ def test_warm_up_says_what_it_compiled_or_loaded_and_where():
     assert result.exit_code == 0, result.output
     first = result.output.splitlines()[0]
     # in this process some kernels may have run already, others not
-    counts = re.findall(r"(\d) kernels? (?:compiled and cached|loaded from Numba's cache|already in memory)", first)
+    counts = re.findall(r"(\d) kernels? (?:compiled and cached|loaded from Numba's cache|already in memory)",
+                        first)
     assert sum(int(n) for n in counts) == 5 and first.endswith(" s)"), first
     assert "cache:" in result.output
 

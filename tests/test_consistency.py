@@ -18,7 +18,8 @@ QUANTITIES = {"NBs": ("nu_r", "alpha", "e", "excursion_max_m"),
 
 
 def _targets(records):
-    return pd_.Targets.from_records([dict(configuration=c, a_g=a, quantity=q, value=v) for c, a, q, v in records])
+    return pd_.Targets.from_records([dict(configuration=c, a_g=a, quantity=q, value=v) for c, a, q,
+                                     v in records])
 
 
 def test_a_periodic_response_cannot_cover_its_excursion_with_less_acceleration():
@@ -41,7 +42,8 @@ def test_an_impact_bounds_alpha_from_below():
     records = [("YBs", 0.05, "alpha", 5.0), ("YBs", 0.05, "restitution", 0.89),
                ("YBs", 0.05, "contact_time_ms", 15.0), ("YBs", 0.05, "dissipated_energy_per_mass", 3.81e-4)]
     row = _targets(records).check_consistency(500.0, 0.03).set_index("check").loc["alpha_vs_impact"]
-    s_high, ed_low, dt = 0.94, 3.81e-4 * 0.7, 15e-3 * 1.3  # each at the end of its tolerance that lowers the bound
+    # each at the end of its tolerance that lowers the bound
+    s_high, ed_low, dt = 0.94, 3.81e-4 * 0.7, 15e-3 * 1.3
     v_in = math.sqrt(2 * ed_low / (1 - s_high ** 2))
     assert row["bound"] == pytest.approx(v_in * (1 + 0.84) / (dt * 0.05 * 9.81) - 1)
     assert row["bound"] > 5.5 and not row["consistent"]
@@ -51,8 +53,10 @@ def test_a_short_contact_cannot_compress_a_bumper_deeply_at_a_low_acceleration()
     # eta 1.23 over 30 mm: the bumpers compressed 6.9 mm in all (5.05 mm at eta's low end), the
     # deepest at least half; |D''| <= (16.8 + 1.68 + 1) 0.05 g = 9.55 m/s^2 brings it to rest from
     # the surface in at least sqrt(5.05 mm / 9.55 m/s^2) = 23 ms: 15 ms (19.5 ms within 30 %) cannot be
-    records = [("YBs", 0.05, "alpha", 16.8), ("YBs", 0.05, "eta", 1.23), ("YBs", 0.05, "contact_time_ms", 15.0)]
-    targets = pd_.Targets.from_records([dict(configuration=c, a_g=a, quantity=q, value=v) for c, a, q, v in records],
+    records = [("YBs", 0.05, "alpha", 16.8), ("YBs", 0.05, "eta", 1.23),
+               ("YBs", 0.05, "contact_time_ms", 15.0)]
+    targets = pd_.Targets.from_records([dict(configuration=c, a_g=a, quantity=q, value=v) for c, a, q,
+                                        v in records],
                                        eta_gap_total_m=0.03)
     row = targets.check_consistency(500.0).set_index("check").loc["contact_time_vs_compression"]
     s_low, a_max = 1.23 * 0.95 * 0.03 - 0.03, (16.8 * 1.1 + 1.0) * 0.05 * 9.81

@@ -91,7 +91,8 @@ def test_branch_orbits_are_periodic_and_match_the_sweep(damped: pd_.Branch, swee
     orbit = damped.orbit(i)
     assert orbit.residual < 1e-8 and not orbit.stable
     exc = orbit.run.excitation
-    far = pd_.simulate(orbit.run.oscillator, exc, 60 * orbit.period_s, orbit.state, sample_rate_hz=0).final_state
+    far = pd_.simulate(orbit.run.oscillator, exc, 60 * orbit.period_s, orbit.state,
+                       sample_rate_hz=0).final_state
     assert abs(far.displacement_m - orbit.state.displacement_m) > 1e-4
 
 
@@ -201,7 +202,8 @@ def test_ctrl_c_keeps_the_branch_followed(monkeypatch: pytest.MonkeyPatch) -> No
 def test_cli_continue_writes_the_branch(tmp_path) -> None:
     out, bif, png = tmp_path / "b.csv", tmp_path / "f.csv", tmp_path / "b.png"
     res = CliRunner().invoke(app, ["continue", "--preset", "paper-damped", "--a-g", "0.05", "--from", "1.5",
-                                   "--to", "2.5", "--out", str(out), "--bifurcations", str(bif), "--plot", str(png)])
+                                   "--to", "2.5", "--out", str(out), "--bifurcations", str(bif), "--plot",
+                                   str(png)])
     assert res.exit_code == 0, res.output
     assert "fold" in res.output and out.exists() and bif.exists() and png.exists()
     bad = CliRunner().invoke(app, ["continue", "--preset", "paper-damped", "--a-g", "0.05", "--from", "1.5",

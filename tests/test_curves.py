@@ -139,7 +139,8 @@ def test_only_folds_and_grazings_are_followed(damped: tuple) -> None:
     with pytest.raises(pd_.InputError, match="bifurcation"):
         pd_.bifurcation_curve(osc, "fold")
     with pytest.raises(pd_.InputError, match="not of this system"):
-        pd_.bifurcation_curve(pd_.Oscillator(M, pd_.Isolator(slopes=(K,), breakpoints=(), damping=C)), br.folds()[0])
+        pd_.bifurcation_curve(pd_.Oscillator(M, pd_.Isolator(slopes=(K,), breakpoints=(), damping=C)),
+                              br.folds()[0])
     for kwargs, field in (({"levels": [0.5]}, "levels"), ({"kinds": ["period-doubling"]}, "kinds"),
                           ({"levels": "0.05"}, "levels"), ({"freq_step_hz": 0.0}, "freq_step_hz")):
         with pytest.raises(pd_.InputError, match=field):
@@ -195,7 +196,8 @@ def test_a_curve_from_either_fold_of_a_level_is_the_same_curve_through_its_cusp(
         df = curve.to_dataframe()
         assert curve.success and "edge" in curve.message, curve
         assert df.a_g.min() == pytest.approx(0.028193, abs=2e-6)  # the cusp
-        assert np.isclose(df.a_g.iloc[[0, -1]], 0.11, rtol=0, atol=1e-12).all()  # (both legs end on the top edge)
+        # (both legs end on the top edge)
+        assert np.isclose(df.a_g.iloc[[0, -1]], 0.11, rtol=0, atol=1e-12).all()
 
 
 @pytest.mark.parametrize("kwargs, field", [

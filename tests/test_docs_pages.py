@@ -45,7 +45,8 @@ def test_python_blocks_run(page, tmp_path, monkeypatch):
 
 def test_every_page_and_example_is_in_a_toctree():
     """Sphinx warns (an error with -W) about a page in no toctree; this says which, without a build."""
-    toctrees = "\n".join(p.read_text(encoding="utf-8") for p in [DOCS / "index.rst", DOCS / "guide" / "index.md"])
+    toctrees = "\n".join(p.read_text(encoding="utf-8") for p in [DOCS / "index.rst",
+                                                                 DOCS / "guide" / "index.md"])
     for page in PAGES:
         name = page.removesuffix(".md")
         if name in ("index", "guide/index"):

@@ -51,7 +51,8 @@ def test_the_public_surface_is_what_the_docs_say() -> None:
 
 
 def _documented_fields(obj: type) -> set[str]:
-    """The names a class's docstring documents under Parameters or Attributes (``a, b : float`` counts both)."""
+    """The names a class's docstring documents under Parameters or Attributes (``a, b : float``
+    counts both)."""
     from numpydoc.docscrape import NumpyDocString
 
     doc = NumpyDocString(inspect.getdoc(obj) or "")

@@ -41,7 +41,8 @@ def test_free_impacts_meet_the_closed_form_restitution():
         e = -c["v_out_m_s"] / c["v_in_m_s"]
         assert e == pytest.approx(float(LAW.restitution(500.0, v0)), abs=1e-12)
         # the dissipated energy is the kinetic energy lost, and the ledger closes
-        assert c["bumper_dissipation_j"] == pytest.approx(0.5 * 500.0 * (v0**2 - c["v_out_m_s"] ** 2), rel=1e-10, abs=1e-12)
+        assert c["bumper_dissipation_j"] == pytest.approx(0.5 * 500.0 * (v0**2 - c["v_out_m_s"] ** 2),
+                                                          rel=1e-10, abs=1e-12)
         assert abs(run.energy.residual) < 1e-12 * 0.5 * 500.0 * v0**2
         times.append(c["t_end_s"] - c["t_start_s"])
     assert times[0] == pytest.approx(np.pi * np.sqrt(500.0 / 2e6), rel=1e-9)  # elastic: half a period
@@ -56,7 +57,8 @@ def test_a_deep_contact_goes_elastic_yield_elastic_unload():
     run = _free_impact(LAW, 4.0 * LAW.yield_velocity_m_s(500.0))
     c = run.contacts.iloc[0]
     inside = run.events[(run.events["t_s"] > c["t_start_s"]) & (run.events["t_s"] < c["t_end_s"])]
-    assert list(inside["kind"]) == ["bumper_branch"] * 3  # onto the yield line, turned, onto the unloading line
+    # onto the yield line, turned, onto the unloading line
+    assert list(inside["kind"]) == ["bumper_branch"] * 3
     assert c["max_compression_m"] > LAW.yield_compression
 
 
@@ -85,7 +87,8 @@ def test_elastic_plastic_ledger_closes_and_the_bumper_never_pulls(osc, exc, v0):
     assert e.bumper_dissipation >= -1e-10 * flows
     assert run.bumper_force_left.min() >= 0.0 and run.bumper_force_right.min() >= 0.0
     done = run.contacts.dropna()
-    assert (done["bumper_dissipation_j"] >= -1e-9 * max(1.0, float(done["bumper_dissipation_j"].abs().max() if len(done) else 1))).all()
+    assert (done["bumper_dissipation_j"] >= -1e-9 * max(1.0, float(done["bumper_dissipation_j"].abs().max()
+                                                                   if len(done) else 1))).all()
 
 
 @SETTINGS
@@ -101,7 +104,8 @@ def test_a_chained_run_equals_one_run(osc, exc, v0, cut):
 
 
 def test_mirror_symmetry():
-    osc = pd_.Oscillator(500.0, pd_.Isolator((2e4, 5e3), (0.01,), "kinematic", 300.0), pd_.Bumpers(0.012, 0.012, LAW))
+    osc = pd_.Oscillator(500.0, pd_.Isolator((2e4, 5e3), (0.01,), "kinematic", 300.0),
+                         pd_.Bumpers(0.012, 0.012, LAW))
     a = pd_.simulate(osc, pd_.Harmonic(0.2, 1.8), 4.0, sample_rate_hz=500)
     b = pd_.simulate(osc, pd_.Harmonic(-0.2, 1.8), 4.0, sample_rate_hz=500)
     assert len(a.contacts) > 4
@@ -109,7 +113,8 @@ def test_mirror_symmetry():
 
 
 def test_path_forces_stay_between_the_lines_and_unload_with_k1():
-    d = np.concatenate([np.linspace(0.0, 0.01, 200), np.linspace(0.01, 0.006, 100), np.linspace(0.006, 0.012, 150)])
+    d = np.concatenate([np.linspace(0.0, 0.01, 200), np.linspace(0.01, 0.006, 100),
+                        np.linspace(0.006, 0.012, 150)])
     f = _path_forces(LAW, d)
     k1, k2, dy = LAW.stiffness, LAW.post_yield_stiffness, LAW.yield_compression
     assert np.all(f >= k2 * d - 1e-9) and np.all(f <= k1 * dy + k2 * (d - dy) + 1e-9)
@@ -117,7 +122,8 @@ def test_path_forces_stay_between_the_lines_and_unload_with_k1():
     np.testing.assert_allclose(np.diff(f[200:230]) / np.diff(d[200:230]), k1)  # unloading with K1
 
 
-@pytest.mark.parametrize("truth", [pd_.ElasticPlastic(3e6, 4e5, 0.004), pd_.ElasticPlastic(1.5e6, 1e4, 0.0015)])
+@pytest.mark.parametrize("truth", [pd_.ElasticPlastic(3e6, 4e5, 0.004), pd_.ElasticPlastic(1.5e6, 1e4,
+                                                                                           0.0015)])
 def test_fit_contact_law_recovers_an_elastic_plastic_law_and_ranks_it_first(truth):
     # the paper's Fig. 3 test: +-10 mm around 10 mm of precompression, at 1 Hz, growing in
     t = np.linspace(0.0, 6.0, 3000)
@@ -193,19 +199,22 @@ def test_model_family_builds_and_reads_elastic_plastic_systems():
 
 def test_model_family_builds_and_reads_multilinear_systems(tmp_path):
     family = pd_.ModelFamily(500.0, branches=1, law="multilinear", fixed={"gap": 0.015}, bumper_branches=3)
-    assert family.law_parameters == ("bumper_slope_1", "bumper_slope_2", "bumper_slope_3", "bumper_breakpoint_1",
-                                     "bumper_breakpoint_2", "bumper_damping")
+    assert family.law_parameters == ("bumper_slope_1", "bumper_slope_2", "bumper_slope_3",
+                                     "bumper_breakpoint_1", "bumper_breakpoint_2", "bumper_damping")
     values = {"slope_1": 3e4, "isolator_damping": 500.0, "bumper_slope_1": 1.5e6, "bumper_slope_2": 1e5,
-              "bumper_slope_3": 5e6, "bumper_breakpoint_1": 0.001, "bumper_breakpoint_2": 0.004, "bumper_damping": 500.0}
+              "bumper_slope_3": 5e6, "bumper_breakpoint_1": 0.001, "bumper_breakpoint_2": 0.004,
+              "bumper_damping": 500.0}
     osc = family.oscillator(values)
     assert osc.bumpers.law == pd_.MultilinearBumper((1.5e6, 1e5, 5e6), (0.001, 0.004), 500.0)
     assert family.values_of(osc) == pytest.approx({**values, "gap": 0.015})
     with pytest.raises(pd_.InputError, match="family.bumper_branches"):
         pd_.ModelFamily(500.0, law="multilinear", bumper_branches=5)
     path = tmp_path / "family.toml"
-    path.write_text('mass = 500.0\nbranches = 1\nlaw = "multilinear"\nbumper_branches = 2\n[fixed]\ngap = 0.015\n'
-                    "[bounds]\nslope_1 = [1e4, 5e4]\nisolator_damping = [100.0, 1000.0]\nbumper_slope_1 = [1e5, 1e7]\n"
-                    "bumper_slope_2 = [1e5, 1e7]\nbumper_breakpoint_1 = [0.001, 0.01]\nbumper_damping = [0.0, 1e4]\n")
+    path.write_text('mass = 500.0\nbranches = 1\nlaw = "multilinear"\nbumper_branches = 2\n'
+                    "[fixed]\ngap = 0.015\n[bounds]\nslope_1 = [1e4, 5e4]\n"
+                    "isolator_damping = [100.0, 1000.0]\nbumper_slope_1 = [1e5, 1e7]\n"
+                    "bumper_slope_2 = [1e5, 1e7]\nbumper_breakpoint_1 = [0.001, 0.01]\n"
+                    "bumper_damping = [0.0, 1e4]\n")
     read, bounds = pd_.ModelFamily.from_toml(path)
     assert read.bumper_branches == 2 and set(bounds) >= {"bumper_slope_2", "bumper_breakpoint_1"}
 

@@ -54,9 +54,10 @@ def test_without_damping_it_is_hertz_and_stiffer_hits_are_shorter():
     runs = [_free_impact(law, v) for v in (0.1, 1.0)]
     assert runs[0].impacts["restitution"].iloc[0] == pytest.approx(1.0, abs=1e-8)
     assert runs[1].impacts["contact_time_s"].iloc[0] < runs[0].impacts["contact_time_s"].iloc[0]
-    hc = pd_.Oscillator(500.0, pd_.Isolator((1e-9,), (), "elastic", 0.0), pd_.Bumpers(0.05, 0.01, pd_.HuntCrossley(5e8, 1.5, 0.0)))
-    ref = pd_.simulate(hc, pd_.Harmonic(0.0, 1.0), 0.21, pd_.State.at_rest(hc, velocity_m_s=1.0), sample_rate_hz=0,
-                       rtol=1e-12)
+    hc = pd_.Oscillator(500.0, pd_.Isolator((1e-9,), (), "elastic", 0.0),
+                        pd_.Bumpers(0.05, 0.01, pd_.HuntCrossley(5e8, 1.5, 0.0)))
+    ref = pd_.simulate(hc, pd_.Harmonic(0.0, 1.0), 0.21, pd_.State.at_rest(hc, velocity_m_s=1.0),
+                       sample_rate_hz=0, rtol=1e-12)
     np.testing.assert_allclose(ref.contact_table, runs[1].contact_table, rtol=1e-12)
 
 
@@ -104,6 +105,7 @@ def test_every_slot_name_of_the_layout_is_bound_once():
              for target in node.targets for t in (target.elts if isinstance(target, ast.Tuple) else [target])
              if isinstance(t, ast.Name)]
     assert len(names) == len(set(names)), sorted({n for n in names if names.count(n) > 1})
-    slots = {n: getattr(layout, n) for n in set(names) if n.startswith("P_") and isinstance(getattr(layout, n), int)}
+    slots = {n: getattr(layout, n) for n in set(names) if n.startswith("P_")
+             and isinstance(getattr(layout, n), int)}
     assert len(set(slots.values())) == len(slots)
 

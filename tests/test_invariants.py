@@ -41,7 +41,8 @@ def test_energy_ledger_closes_on_a_stiff_lightly_damped_contact():
     # hypothesis found it: the 6-point Gauss-Lobatto rule then used left 1.0002e-8 of the largest
     # flow here (7 points: 1.1e-11; the Hermite rule of linear phases now: 7e-13)
     iso = pd_.Isolator((5000.0,), (), "kinematic", 1.0)
-    osc = pd_.Oscillator(479.0, iso, pd_.Bumpers(0.0032341707548241504, 0.03, pd_.KelvinVoigt(2326413.0, 4.0)))
+    osc = pd_.Oscillator(479.0, iso, pd_.Bumpers(0.0032341707548241504, 0.03, pd_.KelvinVoigt(2326413.0,
+                                                                                              4.0)))
     run = pd_.simulate(osc, pd_.Harmonic(0.34375, 1.0, phase=1.4765625), 3.0, sample_rate_hz=0)
     assert len(run.contacts) == 13
     assert abs(run.energy.residual) <= 1e-8 * _flows(run.energy)
@@ -136,7 +137,8 @@ def _check_chained(osc, exc, v0, split):
     amplifies it.  The split changes the sub-intervals' ends, hence the rounding; a stiff
     bumper hit again and again by a nearly undamped mass amplifies it (hypothesis, zero gap:
     4e-14 s in a contact time at the split, 9e-11 s 15 impacts later).  How much, is measured
-    by the same run with the forcing's phase moved by 1e-15 rad (``nudged``; a record's values by 1e-15): within 1e-9 of
+    by the same run with the forcing's phase moved by 1e-15 rad (``nudged``; a record's values by 1e-15):
+    within 1e-9 of
     the scale plus 100 times that difference (measured: the chained runs' differences were
     0.5 to 0.8 times the nudged run's)."""
     state = pd_.State.at_rest(osc, velocity_m_s=v0)
@@ -156,10 +158,12 @@ def _check_chained(osc, exc, v0, split):
     joined = list(first.contacts.dropna()["t_start_s"]) + list(second.contacts["t_start_s"])
     t_spread = 0.0
     if len(nudged.contacts) == len(whole.contacts) and len(whole.contacts):
-        t_spread = np.abs(nudged.contacts["t_start_s"].to_numpy() - whole.contacts["t_start_s"].to_numpy()).max()
+        t_spread = np.abs(nudged.contacts["t_start_s"].to_numpy()
+                          - whole.contacts["t_start_s"].to_numpy()).max()
     np.testing.assert_allclose(joined, whole.contacts["t_start_s"], rtol=0, atol=1e-9 + 100 * t_spread)
     if len(whole.contacts):
-        np.testing.assert_allclose(second.contacts.dropna()["impulse_n_s"].sum() + first.contacts.dropna()["impulse_n_s"].sum(),
+        np.testing.assert_allclose(second.contacts.dropna()["impulse_n_s"].sum()
+                                   + first.contacts.dropna()["impulse_n_s"].sum(),
                                    whole.contacts.dropna()["impulse_n_s"].sum(), rtol=1e-7)
     assert abs(max(first.displacement_max, second.displacement_max) - whole.displacement_max) <= (
         1e-9 * scale + 100 * abs(nudged.displacement_max - whole.displacement_max))

@@ -88,7 +88,8 @@ def compare_numeric_law(osc, exc, v0, rtol=1e-12):
     np.testing.assert_allclose(run.contacts["t_start_s"], starts, rtol=0, atol=1e-8 + 10 * spread_t)
     scale_d = max(abs(run.displacement_max), abs(run.displacement_min))
     assert abs(run.final_state.displacement_m - fine.d) <= 1e-7 * scale_d + 10 * abs(fine.d - coarse.d)
-    assert abs(run.final_state.velocity_m_s - fine.v) <= 1e-7 * max(abs(fine.v), 1e-3) + 10 * abs(fine.v - coarse.v)
+    assert abs(run.final_state.velocity_m_s - fine.v) <= 1e-7 * max(abs(fine.v),
+                                                                    1e-3) + 10 * abs(fine.v - coarse.v)
 
 
 @SETTINGS
@@ -110,10 +111,12 @@ def check_numeric_ledger(osc, exc, v0):
     # rtol 1e-10, 8e-10 at 1e-11, measured), hence rtol 1e-11 here, relative to the energy that
     # went through the bumpers too: each contact stores and returns its impact's kinetic energy
     # (an elastic bumper hit 30 times at 0.5 m/s: 1.3e-8 J against net flows of 0.95 J)
-    run = pd_.simulate(osc, exc, 3.0, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=2000, rtol=1e-11)
+    run = pd_.simulate(osc, exc, 3.0, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=2000,
+                       rtol=1e-11)
     e = run.energy
     through = 0.5 * osc.mass * float(np.sum(run.contacts["v_in_m_s"].to_numpy() ** 2))
-    flows = max(abs(e.input_work), abs(e.kinetic), e.viscous + abs(e.hysteretic) + e.bumper_dissipation, through)
+    flows = max(abs(e.input_work), abs(e.kinetic), e.viscous + abs(e.hysteretic) + e.bumper_dissipation,
+                through)
     assert abs(e.residual) <= 1e-8 * flows
     assert e.bumper_dissipation >= -1e-12 * flows
     assert run.bumper_force_left.min() >= 0.0 and run.bumper_force_right.min() >= 0.0
@@ -144,7 +147,8 @@ def test_without_damping_it_is_hertz():
 
     d_max = (5 * 500.0 * 0.25 / (4 * 1e9)) ** 0.4
     t_c = 2 * d_max / 0.5 * quad(lambda x: 1 / math.sqrt(1 - x**2.5), 0, 1, epsabs=1e-14)[0]
-    assert jank.contacts["t_end_s"].iloc[0] - jank.contacts["t_start_s"].iloc[0] == pytest.approx(t_c, rel=1e-7)
+    assert jank.contacts["t_end_s"].iloc[0] - jank.contacts["t_start_s"].iloc[0] == pytest.approx(t_c,
+                                                                                                  rel=1e-7)
 
 
 def test_toml_round_trip_and_bad_values(tmp_path):

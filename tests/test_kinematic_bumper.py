@@ -74,7 +74,8 @@ def test_loaded_once_it_follows_the_backbone_then_masing():
     # with a hardening (the closed hole) that part is elastic: Masing's loop of the backbone
     # without it, plus the hardening's ramp (6 MN/m - 0.5 MN/m beyond 8 mm)
     f, up, down, back = _masing_path(D_SHAPED)
-    np.testing.assert_allclose(f[:up.size], pd_.MultilinearBumper(D_SHAPED.slopes, D_SHAPED.breakpoints).backbone(up),
+    np.testing.assert_allclose(f[:up.size], pd_.MultilinearBumper(D_SHAPED.slopes,
+                                                                  D_SHAPED.breakpoints).backbone(up),
                                rtol=1e-12)
     soft_part = pd_.MultilinearBumper((3e6, 0.5e6), (0.002,)).backbone
     ramp = 5.5e6 * np.maximum(down - 0.008, 0.0)
@@ -94,7 +95,8 @@ def test_restitution_falls_and_contacts_lengthen_with_the_impact_velocity():
         assert abs(run.energy.residual) < 1e-12 * 0.5 * 500.0 * v0**2
         assert run.bumper_force_right.min() >= 0.0
     elastic = _free_impact(pd_.MultilinearBumper(D_SHAPED.slopes, D_SHAPED.breakpoints, 500.0), 0.1)
-    assert rest[0] == pytest.approx(-elastic.contacts["v_out_m_s"].iloc[0] / 0.1, rel=1e-12)  # no slip below 2 mm
+    # no slip below 2 mm
+    assert rest[0] == pytest.approx(-elastic.contacts["v_out_m_s"].iloc[0] / 0.1, rel=1e-12)
     assert rest[0] > rest[1] > rest[2] > rest[3]
     assert times[0] < times[1] < times[2] < times[3]
 
@@ -184,8 +186,10 @@ def test_the_example_file_reads_and_sweeps_and_its_loops_dissipate():
     res = pd_.sweep(osc, 0.1, freqs_hz=[1.5, 2.5], steady="fixed", cycles=8, measure_cycles=2)
     assert res.to_dataframe()["contact"].all()
     elastic = pd_.Oscillator(osc.mass, osc.isolator,
-                             pd_.Bumpers(0.015, 0.015, pd_.MultilinearBumper(D_SHAPED.slopes, D_SHAPED.breakpoints, 500.0)))
-    runs = [pd_.simulate(o, pd_.Harmonic(0.1, 1.5), 10.0, pd_.State.at_rest(o, velocity_m_s=0.6)) for o in (osc, elastic)]
+                             pd_.Bumpers(0.015, 0.015, pd_.MultilinearBumper(D_SHAPED.slopes,
+                                                                             D_SHAPED.breakpoints, 500.0)))
+    runs = [pd_.simulate(o, pd_.Harmonic(0.1, 1.5), 10.0, pd_.State.at_rest(o, velocity_m_s=0.6))
+            for o in (osc, elastic)]
     assert len(runs[0].contacts) > 5 and len(runs[1].contacts) > 5
     assert runs[0].energy.bumper_dissipation > 2.0 * runs[1].energy.bumper_dissipation  # Masing's loops
 
@@ -196,14 +200,16 @@ def test_model_family_fits_kinematic_bumpers():
     values = family.values_of(osc)
     assert family.oscillator(values) == osc
     with pytest.raises(pd_.InputError):  # an elastic multi-linear system is not of this family
-        family.values_of(pd_.Oscillator(osc.mass, osc.isolator, pd_.Bumpers(0.015, 0.015, pd_.MultilinearBumper(
+        family.values_of(pd_.Oscillator(osc.mass, osc.isolator, pd_.Bumpers(0.015, 0.015,
+                                                                            pd_.MultilinearBumper(
             D_SHAPED.slopes, D_SHAPED.breakpoints, 500.0))))
 
 
 def test_states_the_engine_never_reaches_are_refused():
     from pounding.engine._layout import DEF_R, Z_R
 
-    osc = pd_.Oscillator(500.0, pd_.Isolator((5e3,), (), "kinematic", 100.0), pd_.Bumpers(0.01, 0.01, pd_.MultilinearBumper(
+    osc = pd_.Oscillator(500.0, pd_.Isolator((5e3,), (), "kinematic", 100.0),
+                         pd_.Bumpers(0.01, 0.01, pd_.MultilinearBumper(
         (1.46e6, 1e5, 5e6), (0.001, 0.004), 500.0, hysteresis="kinematic")))
     base = pd_.State.at_rest(osc).vector.copy()
     cases = []
@@ -225,10 +231,12 @@ def test_states_the_engine_never_reaches_are_refused():
 def test_a_heavily_damped_kinematic_bumper_matches_the_tightest_reference():
     # drawn by hypothesis: 12 contacts with 1.1 kN s/m of bumper damping; the reference at rtol
     # 1e-13 was 3e-7 off in the input work (not converged), at 3e-14 it agrees with the engine
-    law = pd_.MultilinearBumper((990281.1818583977, 1980562.3637167953, 1980562.3637167953, 1980562.3637167953),
+    law = pd_.MultilinearBumper((990281.1818583977, 1980562.3637167953, 1980562.3637167953,
+                                 1980562.3637167953),
                                 (0.001, 0.002, 0.003), 1093.3800027394998, "kinematic")
     osc = pd_.Oscillator(939.0, pd_.Isolator((76419.91605347011, 3820.9958026735058), (0.011787504151390111,),
-                                             "elastic", 1.2), pd_.Bumpers(0.01075511906034929, 0.02397497034083735, law))
+                                             "elastic", 1.2), pd_.Bumpers(0.01075511906034929,
+                                                                          0.02397497034083735, law))
     run, ref = _compare(osc, pd_.Harmonic(0.3125, 1.1, 2.53125), v0=0.5637432325354819)
     assert len(run.contacts) == 12 and run.energy.input_work == pytest.approx(ref.input_work, rel=1e-9)
 

@@ -195,7 +195,8 @@ def test_a_step_too_short_to_settle_is_not_steady():
     freqs = [0.8, 1.0, 1.3, 1.7]
     for cycles, steady in ((7, [True, True, True, False]), (40, [True] * 4)):
         rec = synthetic_test(osc, 0.05, freqs, cycles=cycles, noise=0.01, gains=(1.0,), seed=1)
-        assert analyse_stepped_sine(rec, mass_kg=500.0, freqs_hz=freqs).to_dataframe()["steady"].tolist() == steady
+        assert analyse_stepped_sine(rec, mass_kg=500.0,
+                                    freqs_hz=freqs).to_dataframe()["steady"].tolist() == steady
 
 
 def test_steady_cycles_are_averaged_in_phase_and_a_graze_is_not():
@@ -226,7 +227,8 @@ def test_gap_crossings_without_a_force_pulse_are_not_contacts():
     osc = pd_.presets.paper_damped()
     freqs = [1.0, 1.1, 1.2, 1.3]
     rec = synthetic_test(osc, 0.05, freqs, cycles=30, seed=3, **SENSORS)
-    with pytest.warns(pd_.PoundingWarning, match=r"crossed the gap .* \d+ time\(s\) .*without a bumper force"):
+    with pytest.warns(pd_.PoundingWarning,
+                      match=r"crossed the gap .* \d+ time\(s\) .*without a bumper force"):
         wrong = analyse_stepped_sine(rec, mass_kg=500.0, gap_total_m=0.026, freqs_hz=freqs).to_dataframe()
     with warnings.catch_warnings():
         warnings.simplefilter("error")
@@ -283,16 +285,18 @@ def test_the_planning_example_runs(tmp_path, capsys):
     module = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(module)
     module.main(str(tmp_path / "lab.png"))
-    lines = {line.split()[0]: line for line in capsys.readouterr().out.splitlines() if line[:9].strip().isdigit()}
+    lines = {line.split()[0]: line for line in capsys.readouterr().out.splitlines()
+             if line[:9].strip().isdigit()}
     assert set(lines) == {"250", "500", "1000", "2000"} and (tmp_path / "lab.png").stat().st_size > 10_000
-    assert "warned: contacts last about" in lines["250"] and "warned" not in lines["1000"]  # (the rate too low)
+    # (the rate too low)
+    assert "warned: contacts last about" in lines["250"] and "warned" not in lines["1000"]
 
 
 def _swap(rec, **channels):
     arrays = {"time_s": rec.time_s, "table_acc_m_s2": rec.table_acc_m_s2, "mass_acc_m_s2": rec.mass_acc_m_s2,
               "displacement_m": rec.displacement_m, **channels}
-    return LabRecord(arrays["time_s"], arrays["table_acc_m_s2"], arrays["mass_acc_m_s2"], arrays["displacement_m"],
-                     rec.mass_channels)
+    return LabRecord(arrays["time_s"], arrays["table_acc_m_s2"], arrays["mass_acc_m_s2"],
+                     arrays["displacement_m"], rec.mass_channels)
 
 
 def test_channels_in_the_wrong_unit_or_sign_are_named():
@@ -305,7 +309,8 @@ def test_channels_in_the_wrong_unit_or_sign_are_named():
         analyse_stepped_sine(rec, mass_kg=500.0, gap_total_m=0.03, freqs_hz=freqs)
     g = 9.81
     reversed_one = rec.mass_acc_m_s2 * np.array([1.0, -1.0])
-    for changed, words in (({"table_acc_m_s2": rec.table_acc_m_s2 / g, "mass_acc_m_s2": rec.mass_acc_m_s2 / g},
+    for changed, words in (({"table_acc_m_s2": rec.table_acc_m_s2 / g,
+                             "mass_acc_m_s2": rec.mass_acc_m_s2 / g},
                             "accelerations \\(table and mass\\) look like g read as m/s\\^2"),
                            ({"mass_acc_m_s2": rec.mass_acc_m_s2 / g}, "'accelerometer_1'.*g read as m/s\\^2"),
                            ({"mass_acc_m_s2": reversed_one}, "'accelerometer_2'.*negate that accelerometer"),
@@ -314,7 +319,8 @@ def test_channels_in_the_wrong_unit_or_sign_are_named():
         with pytest.warns(pd_.PoundingWarning, match=words):
             analyse_stepped_sine(_swap(rec, **changed), mass_kg=500.0, freqs_hz=freqs)
     # time in ms read as s: steps at a thousandth of their frequency
-    slow = LabRecord(rec.time_s * 1e3, rec.table_acc_m_s2, rec.mass_acc_m_s2, rec.displacement_m, rec.mass_channels)
+    slow = LabRecord(rec.time_s * 1e3, rec.table_acc_m_s2, rec.mass_acc_m_s2, rec.displacement_m,
+                     rec.mass_channels)
     with pytest.warns(pd_.PoundingWarning, match="time in ms read as s"):
         analyse_stepped_sine(slow, mass_kg=500.0)
 
@@ -325,7 +331,8 @@ def test_steps_too_short_are_named():
     with pytest.raises(pd_.InputError) as info:
         analyse_stepped_sine(rec, mass_kg=500.0, freqs_hz=[1.0, 1.2], measure_cycles=1)
     assert info.value.field == "measure_cycles"  # (one cycle cannot show steadiness)
-    with pytest.warns(pd_.PoundingWarning, match="fewer than measure_cycles"), pytest.raises(pd_.InputError) as info:
+    with pytest.warns(pd_.PoundingWarning,
+                      match="fewer than measure_cycles"), pytest.raises(pd_.InputError) as info:
         analyse_stepped_sine(rec, mass_kg=500.0, freqs_hz=[1.0, 1.2], measure_cycles=5)
     assert info.value.field == "measure_cycles" and "lower measure_cycles" in str(info.value)
     assert len(analyse_stepped_sine(rec, mass_kg=500.0, freqs_hz=[1.0, 1.2], measure_cycles=3).steps) == 2

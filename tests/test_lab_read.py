@@ -60,8 +60,8 @@ def test_gaps_and_missing_values_are_reported(tmp_path):
     rows[101] = ",".join(rows[101].split(",")[:2] + ["nan"] + rows[101].split(",")[3:])
     path = _write(tmp_path / "test.csv", rows=rows)
     with pytest.warns(pd_.PoundingWarning, match="gap.*missing values"):
-        rec = read_test(path, time="t_ms", table_acc="a_table", mass_acc=["a1", "a2"], displacement="laser_mm",
-                        units=UNITS)
+        rec = read_test(path, time="t_ms", table_acc="a_table", mass_acc=["a1", "a2"],
+                        displacement="laser_mm", units=UNITS)
     gap = rec.gaps.iloc[0]
     assert len(rec.gaps) == 1 and gap.missing_samples == 10 and gap.start_s == pytest.approx(0.049)
     run = rec.nan_runs.iloc[0]
@@ -71,7 +71,8 @@ def test_gaps_and_missing_values_are_reported(tmp_path):
 @pytest.mark.parametrize("change, field, words", [
     (lambda rows: rows[:7] + ["0.007,0.01,0.02"] + rows[8:], "path", ["line 10", "3 fields", "laser_mm"]),
     (lambda rows: rows[:5] + ["0.005,0.01,abc,0.02,1.0"] + rows[6:], "path", ["line 8", "a1", "'abc'"]),
-    (lambda rows: rows[:5] + ["5,0,01,0.01,0.02,1.0"] + rows[6:], "path", ["line 8", "6 fields", "header has 5"]),
+    (lambda rows: rows[:5] + ["5,0,01,0.01,0.02,1.0"] + rows[6:], "path",
+     ["line 8", "6 fields", "header has 5"]),
     (lambda rows: rows[:5] + [rows[3]] + rows[6:], "t_ms", ["line 8", "does not increase", "sort"]),
 ])
 def test_bad_files_name_the_line_and_the_column(tmp_path, change, field, words):
@@ -90,7 +91,8 @@ def test_bad_arguments_are_named(tmp_path):
     good = dict(time="t_ms", table_acc="a_table", mass_acc=["a1", "a2"], displacement="laser_mm", units=UNITS)
     for change, field in (({"time": "time"}, "time"), ({"mass_acc": ["a1", 9]}, "mass_acc[1]"),
                           ({"mass_acc": []}, "mass_acc"), ({"displacement": 2.5}, "displacement"),
-                          ({"units": {"time": "min"}}, "units.time"), ({"units": {"speed": "m/s"}}, "units key"),
+                          ({"units": {"time": "min"}}, "units.time"),
+                          ({"units": {"speed": "m/s"}}, "units key"),
                           ({"units": "SI"}, "units"), ({"g": -9.81}, "g")):
         with pytest.raises(pd_.InputError) as info:
             read_test(path, **{**good, **change})
@@ -139,11 +141,13 @@ def test_cli_lab_writes_tables_figure_and_targets(tmp_path):
     df["time_ms"] = df["time_s"] * 1e3
     df["laser_mm"] = df["displacement_m"] * 1e3
     path = tmp_path / "test.csv"
-    df[["time_ms", "table_acc_m_s2", "accelerometer_1", "accelerometer_2", "laser_mm"]].to_csv(path, index=False)
+    df[["time_ms", "table_acc_m_s2", "accelerometer_1", "accelerometer_2", "laser_mm"]].to_csv(path,
+                                                                                               index=False)
     out = tmp_path / "lab"
     runner = CliRunner()
     args = ["lab", str(path), "--time", "time_ms", "--table-acc", "table_acc_m_s2", "--mass-acc",
-            "accelerometer_1,accelerometer_2", "--displacement", "laser_mm", "--units", "time=ms,displacement=mm",
+            "accelerometer_1,accelerometer_2", "--displacement", "laser_mm", "--units",
+            "time=ms,displacement=mm",
             "--mass", "500", "--gap", "0.03", "--freqs", "1.4,1.6,1.8", "--out", str(out)]
     result = runner.invoke(app, args)
     assert result.exit_code == 0, result.output
@@ -159,6 +163,7 @@ def test_cli_lab_writes_tables_figure_and_targets(tmp_path):
     assert bad.exit_code == 2 and "'x' is not a number" in bad.output and "Traceback" not in bad.output
     # a header written with quotes (spreadsheets, pandas quoting) reads as the names
     quoted = tmp_path / "quoted.csv"
-    quoted.write_text('"time_s","table","a1","d"\n' + "".join(f"{k * 0.001},{k},{k},{k * 1e-4}\n" for k in range(40)))
+    quoted.write_text('"time_s","table","a1","d"\n' + "".join(f"{k * 0.001},{k},{k},{k * 1e-4}\n"
+                                                              for k in range(40)))
     read = pd_.lab.read_test(quoted, time="time_s", table_acc="table", mass_acc="a1", displacement="d")
     assert read.time_s.size == 40

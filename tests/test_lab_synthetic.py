@@ -24,7 +24,8 @@ def test_ideal_sensors_record_the_simulators_motion_and_its_schedule():
     run = pd_.simulate(OSC, pd_.Harmonic(A_G, 1.0), 10.0, pd_.State.at_rest(OSC), sample_rate_hz=1000.0)
     uniform = run.to_dataframe()["event"].to_numpy() == ""  # (not the rows taken at events)
     n = 10_000
-    np.testing.assert_allclose(rec.mass_acc_m_s2[:n, 0], run.abs_acceleration[uniform][:n], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(rec.mass_acc_m_s2[:n, 0], run.abs_acceleration[uniform][:n], rtol=0,
+                               atol=1e-12)
     np.testing.assert_allclose(rec.displacement_m[:n], run.displacement[uniform][:n], rtol=0, atol=1e-15)
     np.testing.assert_allclose(rec.table_acc_m_s2[:n], A_G * 9.81 * np.sin(2 * math.pi * rec.time_s[:n]),
                                rtol=0, atol=1e-12)
@@ -39,8 +40,8 @@ def test_ideal_sensors_record_the_simulators_motion_and_its_schedule():
 
 def test_gains_offsets_noise_and_the_lasers_resolution():
     clean = synthetic_test(OSC, A_G, FREQS[:1], cycles=5, noise=0.0, gains=(1.0,))
-    rec = synthetic_test(OSC, A_G, FREQS[:1], cycles=5, noise=0.0, gains=(1.02, 0.97), offsets_m_s2=(0.05, -0.02),
-                         laser_resolution_m=1e-5)
+    rec = synthetic_test(OSC, A_G, FREQS[:1], cycles=5, noise=0.0, gains=(1.02, 0.97),
+                         offsets_m_s2=(0.05, -0.02), laser_resolution_m=1e-5)
     exact = clean.mass_acc_m_s2[:, 0]
     np.testing.assert_allclose(rec.mass_acc_m_s2, np.column_stack([1.02 * exact + 0.05, 0.97 * exact - 0.02]),
                                atol=1e-12)
@@ -59,7 +60,8 @@ def test_gains_offsets_noise_and_the_lasers_resolution():
 def test_the_anti_alias_filter_is_a_butterworth_low_pass():
     # the table's sine through the filter: the filter's gain at its frequency once settled
     f, fc = 2.0, 3.0
-    rec = synthetic_test(OSC.without_bumpers(), A_G, [f], cycles=20, noise=0.0, gains=(1.0,), anti_alias_hz=fc)
+    rec = synthetic_test(OSC.without_bumpers(), A_G, [f], cycles=20, noise=0.0, gains=(1.0,),
+                         anti_alias_hz=fc)
     late = rec.time_s > 5.0
     sos = signal.butter(4, fc, fs=10_000.0, output="sos")
     gain = abs(signal.sosfreqz(sos, worN=[f], fs=10_000.0)[1][0])
@@ -69,7 +71,8 @@ def test_the_anti_alias_filter_is_a_butterworth_low_pass():
 
 @pytest.mark.parametrize("kwargs, field", [
     ({"a_g": -0.05}, "a_g"), ({"a_g": 2000.0}, "a_g"), ({"freqs_hz": []}, "freqs_hz"),
-    ({"freqs_hz": [1.0, -2.0]}, "freqs_hz[1]"), ({"cycles": 0}, "cycles"), ({"sample_rate_hz": 0.0}, "sample_rate_hz"),
+    ({"freqs_hz": [1.0, -2.0]}, "freqs_hz[1]"), ({"cycles": 0}, "cycles"),
+    ({"sample_rate_hz": 0.0}, "sample_rate_hz"),
     ({"noise": -0.01}, "noise"), ({"gains": ()}, "gains"), ({"gains": (1.0, -1.0)}, "gains[1]"),
     ({"offsets_m_s2": (0.0, 0.0)}, "offsets_m_s2"), ({"anti_alias_hz": 6000.0}, "anti_alias_hz"),
     ({"laser_resolution_m": -1e-5}, "laser_resolution_m"), ({"oscillator": "paper"}, "oscillator"),

@@ -95,7 +95,8 @@ def test_every_plot_of_the_package_keeps_its_legend_off_the_data():
     spectrum = pd_.pounding_spectrum([quake, quake.scaled(pga_g=0.2)], [1.0, 2.0, 3.0], gaps_m=[0.02, 0.05])
     figures.append(spectrum.plot()[0].figure)
     test = pd_.data.bumper_cyclic_test()
-    fit = pd_.fit_contact_law(test["compression_m"], test["force_n"], time_s=test["time_s"], law="kelvin_voigt")
+    fit = pd_.fit_contact_law(test["compression_m"], test["force_n"], time_s=test["time_s"],
+                              law="kelvin_voigt")
     figures.append(fit.plot()[0].figure)
     for fig in figures:
         covered = legends_over_data(fig)

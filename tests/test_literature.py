@@ -72,7 +72,8 @@ def grazing_f(omega: float) -> float:
 
 
 @pytest.mark.parametrize("name, omega", [("m_half_integer", 0.8), ("m_integer", 0.5)])
-def test_grazing_amplitude_is_the_closed_form(name: str, omega: float, request: pytest.FixtureRequest) -> None:
+def test_grazing_amplitude_is_the_closed_form(name: str, omega: float,
+                                              request: pytest.FixtureRequest) -> None:
     br = request.getfixturevalue(name)
     graze = [b for b in br.bifurcations if b.kind == "grazing"]
     assert br.success and len(graze) == 1 and graze[0].side == "right"

@@ -38,7 +38,8 @@ def test_bumper_and_damping_numbers_are_recovered():
     targets = _self_made_targets(family.oscillator(truth), [
         ("NBs", 0.05, ("alpha", "e")), ("YBs", 0.05, ("alpha", "eta", "contact_time_ms", "restitution")),
         ("YBs", 0.1, ("alpha", "eta", "contact_time_ms", "restitution"))])
-    bounds = {"isolator_damping": (300.0, 3000.0), "bumper_stiffness": (3e5, 5e6), "bumper_damping": (50.0, 2000.0)}
+    bounds = {"isolator_damping": (300.0, 3000.0), "bumper_stiffness": (3e5, 5e6),
+              "bumper_damping": (50.0, 2000.0)}
     fit = pd_.identify(targets, family, bounds, seed=1, maxiter=15, popsize=8, **FAST)
     for name, value in truth.items():
         assert fit.parameters[name] == pytest.approx(value, rel=0.02), name
@@ -114,7 +115,8 @@ def test_bad_toml_targets(tmp_path):
 @pytest.mark.parametrize("bounds, field", [
     ({"isolator_damping": (3000.0, 100.0), "bumper_stiffness": (1e5, 1e6), "bumper_damping": (1.0, 10.0)},
      "bounds.isolator_damping"),
-    ({"isolator_damping": (100.0, float("nan")), "bumper_stiffness": (1e5, 1e6), "bumper_damping": (1.0, 10.0)},
+    ({"isolator_damping": (100.0, float("nan")), "bumper_stiffness": (1e5, 1e6),
+      "bumper_damping": (1.0, 10.0)},
      "bounds.isolator_damping[1]"),
     ({"isolator_damping": (100.0, 300.0), "bumper_stiffness": (1e5, 1e6)}, "bounds.bumper_damping"),
     ({"isolator_damping": (100.0, 300.0), "bumper_stiffness": (1e5, 1e6), "bumper_damping": (1.0, 10.0),
@@ -177,9 +179,11 @@ def test_cli_identify_writes_a_system(tmp_path):
 
 
 def test_identification_plot_returns_artists():
-    family = pd_.ModelFamily(500.0, 3, fixed={**PRINTED_BACKBONE, "bumper_stiffness": 1.46e6, "bumper_damping": 5.0})
+    family = pd_.ModelFamily(500.0, 3, fixed={**PRINTED_BACKBONE, "bumper_stiffness": 1.46e6,
+                                              "bumper_damping": 5.0})
     targets = pd_.Targets.from_records([dict(configuration="NBs", a_g=0.05, quantity="alpha", value=2.5)])
-    fit = pd_.identify(targets, family, {"isolator_damping": (200.0, 3000.0)}, maxiter=0, refine=False, **FAST)
+    fit = pd_.identify(targets, family, {"isolator_damping": (200.0, 3000.0)}, maxiter=0, refine=False,
+                       **FAST)
     assert len(fit.plot()) == 3  # the bar, the marker, the +-1 band
 
 
@@ -191,7 +195,8 @@ def test_calibrated_preset_reproduces_its_stored_residuals():
     np.testing.assert_allclose(now["model"], stored["model"], rtol=1e-9, atol=0, equal_nan=True)
     assert list(now["within"]) == list(stored["within"])
     osc = pd_.presets.paper_calibrated()
-    assert osc.isolator.n_branches == 4 and abs(osc.bumpers.gap_left - 0.015) <= 0.003  # (fitted within +-3 mm)
+    # (fitted within +-3 mm)
+    assert osc.isolator.n_branches == 4 and abs(osc.bumpers.gap_left - 0.015) <= 0.003
     assert isinstance(osc.bumpers.law, pd_.MultilinearBumper) and len(osc.bumpers.law.slopes) == 3
     assert osc.bumpers.law.hysteresis == "kinematic"
     assert pd_.presets.by_name("paper-calibrated", bumpers=False).bumpers is None
@@ -210,7 +215,8 @@ def test_the_earlier_calibrated_presets_are_kept_and_reproduce_their_residuals(n
 
 
 def test_ctrl_c_keeps_the_best_candidate():
-    family = pd_.ModelFamily(500.0, 3, fixed={**PRINTED_BACKBONE, "bumper_stiffness": 1.46e6, "bumper_damping": 5.0})
+    family = pd_.ModelFamily(500.0, 3, fixed={**PRINTED_BACKBONE, "bumper_stiffness": 1.46e6,
+                                              "bumper_damping": 5.0})
     targets = pd_.Targets.from_records([dict(configuration="NBs", a_g=0.05, quantity="alpha", value=2.5)])
     calls = []
 
@@ -227,7 +233,8 @@ def test_ctrl_c_keeps_the_best_candidate():
 
 
 def test_a_start_guess_must_name_the_free_numbers():
-    family = pd_.ModelFamily(500.0, 3, fixed={**PRINTED_BACKBONE, "bumper_stiffness": 1.46e6, "bumper_damping": 5.0})
+    family = pd_.ModelFamily(500.0, 3, fixed={**PRINTED_BACKBONE, "bumper_stiffness": 1.46e6,
+                                              "bumper_damping": 5.0})
     targets = pd_.Targets.from_records([dict(configuration="NBs", a_g=0.05, quantity="alpha", value=2.5)])
     with pytest.raises(pd_.InputError, match="x0.gap"):
         pd_.identify(targets, family, {"isolator_damping": (200.0, 3000.0)}, x0={"gap": 0.01}, **FAST)
@@ -268,7 +275,8 @@ def test_misses_loss_meets_what_least_squares_trades_away():
                              fixed={**PRINTED_BACKBONE, "bumper_stiffness": 1.46e6, "bumper_damping": 400.0})
     reachable = _self_made_targets(family.oscillator({"isolator_damping": 800.0}), [("NBs", 0.1, ("alpha",))])
     recs = reachable.table[["configuration", "a_g", "quantity", "value"]].to_dict("records")
-    targets = pd_.Targets.from_records(recs + [dict(configuration="NBs", a_g=0.05, quantity="alpha", value=0.5)])
+    targets = pd_.Targets.from_records(recs + [dict(configuration="NBs", a_g=0.05, quantity="alpha",
+                                                    value=0.5)])
     bounds = {"isolator_damping": (200.0, 3000.0)}
     fits = {loss: pd_.identify(targets, family, bounds, seed=4, maxiter=8, popsize=6, loss=loss, **FAST)
             for loss in ("squared", "misses")}
@@ -316,7 +324,8 @@ def test_targets_toml_of_the_docstring_and_nbs_eta_refused(tmp_path):
 
 
 def test_the_fit_says_its_loss_in_the_toml(tmp_path):
-    family = pd_.ModelFamily(500.0, 3, fixed={**PRINTED_BACKBONE, "bumper_stiffness": 1.46e6, "bumper_damping": 5.0})
+    family = pd_.ModelFamily(500.0, 3, fixed={**PRINTED_BACKBONE, "bumper_stiffness": 1.46e6,
+                                              "bumper_damping": 5.0})
     targets = pd_.Targets.from_records([dict(configuration="NBs", a_g=0.05, quantity="alpha", value=2.5)])
     fit = pd_.identify(targets, family, {"isolator_damping": (200.0, 3000.0)}, maxiter=0, refine=False,
                        loss="misses", **FAST)

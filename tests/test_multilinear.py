@@ -20,21 +20,24 @@ D_SHAPED = pd_.MultilinearBumper((1.46e6, 1e5, 5e6), (0.001, 0.004), 500.0)  # s
 def _free_impact(law, v0):
     """500 kg at v0 into the right bumper, no isolator to speak of, no table motion."""
     osc = pd_.Oscillator(500.0, pd_.Isolator((1.0,), (), "elastic", 0.0), pd_.Bumpers(0.05, 0.01, law))
-    return pd_.simulate(osc, pd_.Harmonic(0.0, 1.0), 0.3, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=0)
+    return pd_.simulate(osc, pd_.Harmonic(0.0, 1.0), 0.3, pd_.State.at_rest(osc, velocity_m_s=v0),
+                        sample_rate_hz=0)
 
 
 def test_one_slope_is_kelvin_voigt_exactly():
     kv = pd_.presets.paper_damped()
     b = kv.bumpers
     ml = pd_.Oscillator(kv.mass, kv.isolator,
-                        pd_.Bumpers(b.gap_left, b.gap_right, pd_.MultilinearBumper((b.law.stiffness,), (), b.law.damping)))
+                        pd_.Bumpers(b.gap_left, b.gap_right, pd_.MultilinearBumper((b.law.stiffness,), (),
+                                                                                   b.law.damping)))
     state = pd_.State.at_rest(kv, velocity_m_s=0.6)
     runs = [pd_.simulate(osc, pd_.Harmonic(0.1, 2.5), 5.0, state, sample_rate_hz=200) for osc in (kv, ml)]
     assert len(runs[0].contacts) > 4
     np.testing.assert_array_equal(runs[0].contact_table, runs[1].contact_table)
     np.testing.assert_array_equal(runs[0].final_state.vector, runs[1].final_state.vector)
     np.testing.assert_array_equal(runs[0].displacement, runs[1].displacement)
-    sweeps = [pd_.sweep(osc, 0.1, freqs_hz=[2.0, 2.5], steady="fixed", cycles=6, measure_cycles=2) for osc in (kv, ml)]
+    sweeps = [pd_.sweep(osc, 0.1, freqs_hz=[2.0, 2.5], steady="fixed", cycles=6, measure_cycles=2)
+              for osc in (kv, ml)]
     np.testing.assert_array_equal(sweeps[0].window, sweeps[1].window)
 
 
@@ -58,7 +61,8 @@ def test_a_soft_branch_lengthens_the_contact_with_the_impact_velocity():
     # lengthens it (74.8 ms at 0.1 m/s) until the steep branch shortens it again (40 ms at 0.8)
     times = {}
     for law in (pd_.KelvinVoigt(1.46e6, 500.0), D_SHAPED):
-        times[law.TYPE] = [float(_free_impact(law, v).impacts["contact_time_s"].iloc[0]) for v in (0.05, 0.1, 0.8)]
+        times[law.TYPE] = [float(_free_impact(law, v).impacts["contact_time_s"].iloc[0])
+                           for v in (0.05, 0.1, 0.8)]
     kv, ml = times["kelvin_voigt"], times["multilinear"]
     assert kv[0] == pytest.approx(kv[2], rel=1e-4)  # (the 1 N/m isolator: 5e-6)
     assert ml[0] == pytest.approx(kv[0], rel=1e-12)  # (0.9 mm deep: the first branch only)
@@ -86,7 +90,8 @@ def test_toml_round_trip_and_bad_values(tmp_path):
     path.write_text(osc.to_toml_text())
     assert pd_.Oscillator.from_toml(path).bumpers.law == D_SHAPED
     for kwargs, field in (({"slopes": ()}, "law.slopes"),
-                          ({"slopes": (1e6, 1e5, 1e6, 1e5, 1e6), "breakpoints": (1e-3, 2e-3, 3e-3, 4e-3)}, "law.slopes"),
+                          ({"slopes": (1e6, 1e5, 1e6, 1e5, 1e6), "breakpoints": (1e-3, 2e-3, 3e-3, 4e-3)},
+                           "law.slopes"),
                           ({"slopes": (0.0, 1e6)}, "law.slopes[0]"),
                           ({"slopes": (1e6, -1.0)}, "law.slopes[1]"),
                           ({"breakpoints": (0.001,)}, "law.breakpoints"),
@@ -144,10 +149,11 @@ def test_a_release_right_after_a_branch_end_is_not_missed():
     # breakpoint, and the release function took its rate there from the flat branch above (the
     # compression's own, by position) instead of the phase's branch below: it seemed to rise, the
     # dip below zero went unseen and the bumper pulled 66 N (14 N in a neighbouring case)
-    osc = pd_.Oscillator(1059.0, pd_.Isolator((66778.0, 16694.5, 16694.5), (0.01171875, 0.03125), "kinematic", 1.0),
+    osc = pd_.Oscillator(1059.0, pd_.Isolator((66778.0, 16694.5, 16694.5), (0.01171875, 0.03125), "kinematic",
+                                              1.0),
                          pd_.Bumpers(0.015625, 0.0234375,
-                                     pd_.MultilinearBumper((585709.0, 0.0, 2928545.0), (0.001, 0.008359693642010411),
-                                                           2769.0)))
+                                     pd_.MultilinearBumper((585709.0, 0.0, 2928545.0),
+                                                           (0.001, 0.008359693642010411), 2769.0)))
     exc = pd_.Harmonic(0.328125, 0.53125, 4.7890625)
     run = pd_.simulate(osc, exc, 3.0, pd_.State.at_rest(osc, velocity_m_s=-0.390625), sample_rate_hz=2000)
     assert run.success and run.bumper_force_left.min() >= 0.0 and run.bumper_force_right.min() >= 0.0

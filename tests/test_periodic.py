@@ -73,13 +73,15 @@ def _fd_jacobian(osc, exc, vec, period, free, step):
             end = _image(osc, exc, w, period).final_state.vector
             ends.append(np.array([end[place[q]] for q in free]))
         h = step * scale.get(name, 1.0)
-        cols.append((4 * ends[1] - ends[2] - 3 * ends[0]) / (2 * h) if len(ends) == 3 else (ends[0] - ends[1]) / (2 * h))
+        cols.append((4 * ends[1] - ends[2] - 3 * ends[0]) / (2 * h) if len(ends) == 3
+                    else (ends[0] - ends[1]) / (2 * h))
     return np.array(cols).T
 
 
 @pytest.mark.parametrize("rule, events", [("kinematic", (hy.ACT_CONTACT, hy.ACT_YIELD, hy.ACT_REVERSAL)),
                                           ("elastic", (hy.ACT_CONTACT, hy.ACT_RELEASE, hy.ACT_REGION))])
-@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow, HealthCheck.filter_too_much])
+@settings(max_examples=25, deadline=None, suppress_health_check=[HealthCheck.too_slow,
+                                                                 HealthCheck.filter_too_much])
 @given(data=st.data(), settle=st.integers(2, 20))
 def test_exact_monodromy_equals_finite_differences_of_the_engine(rule, events, data, settle):
     """On random systems whose period holds contacts and the isolator's events (yields and
@@ -156,7 +158,8 @@ def test_an_unstable_orbit_returns_over_one_period_and_departs_over_many():
         state = pd_.simulate(osc, exc, orbit.period_s, state, sample_rate_hz=0).final_state
         if k >= 30:
             gone.append(math.hypot((state.displacement_m - orbit.state.displacement_m) / size,
-                                   (state.velocity_m_s - orbit.state.velocity_m_s) / (size * exc.omega_rad_s)))
+                                   (state.velocity_m_s - orbit.state.velocity_m_s)
+                                   / (size * exc.omega_rad_s)))
     assert max(gone) > 1e-3  # (from 1e-11: it settles about 1e-2 away, on the motion that does settle)
 
 
@@ -200,7 +203,8 @@ def test_a_branch_change_at_rest_and_steps_across_breakpoints():
     the acceleration) and Newton steps that cross breakpoints (the branch follows D)."""
     osc = pd_.presets.paper_damped(bumpers=False, hysteresis="elastic")
     for d, phase in ((-0.015, math.pi / 2), (0.015, -math.pi / 2)):
-        orbit = pd_.periodic_orbit(osc, pd_.Harmonic(-0.3, 1.0, phase=phase), guess=pd_.State.at_rest(osc, 0.0, d, 0.0))
+        orbit = pd_.periodic_orbit(osc, pd_.Harmonic(-0.3, 1.0, phase=phase),
+                                   guess=pd_.State.at_rest(osc, 0.0, d, 0.0))
         assert orbit.converged and orbit.method == "exact", orbit.message
 
 
@@ -221,7 +225,8 @@ def test_a_section_inside_a_contact_reports_the_orbit_s_own_contacts():
     ({"samples_per_period": 10**9}, "samples_per_period"),
     ({"method": np.array(["exact"])}, "method"),
     ({"tol": float("nan")}, "tol"),
-    ({"guess": pd_.State.at_rest(pd_.Oscillator(500.0, pd_.Isolator([1e4], [], "elastic", 1.0), None))}, "guess"),
+    ({"guess": pd_.State.at_rest(pd_.Oscillator(500.0, pd_.Isolator([1e4], [], "elastic", 1.0), None))},
+     "guess"),
     ({"excitation": "harmonic"}, "excitation"),
     ({"period_multiple": 0}, "period_multiple"),
     ({"tol": -1.0}, "tol"),

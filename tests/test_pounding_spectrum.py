@@ -41,13 +41,16 @@ def test_each_entry_is_one_run_of_the_engine(quakes, spectrum):
     k = 500.0 * (2.0 * np.pi / period) ** 2
     iso = pd_.Isolator((k,), (), "elastic", 2.0 * 0.05 * np.sqrt(k * 500.0))
     law = pd_.presets.paper_damped().bumpers.law
-    run = pd_.simulate(pd_.Oscillator(500.0, iso, pd_.Bumpers(gap, gap, law)), rec, rec.t[-1], sample_rate_hz=0)
+    run = pd_.simulate(pd_.Oscillator(500.0, iso, pd_.Bumpers(gap, gap, law)), rec, rec.t[-1],
+                       sample_rate_hz=0)
     got = spectrum.dataset.isel(record=1).sel(period_s=period, gap_m=gap)
     assert int(got["impacts"]) == len(run.contacts) > 0
     assert float(got["acc_max_g"]) == pytest.approx(run.abs_acceleration_max / rec.g, rel=1e-12)
-    assert float(got["disp_max_m"]) == pytest.approx(max(run.displacement_max, -run.displacement_min), rel=1e-12)
+    assert float(got["disp_max_m"]) == pytest.approx(max(run.displacement_max, -run.displacement_min),
+                                                     rel=1e-12)
     assert float(got["impact_force_max_n"]) == pytest.approx(run.contacts["peak_force_n"].max(), rel=1e-12)
-    assert float(got["impact_speed_max_m_s"]) == pytest.approx(run.contacts["v_in_m_s"].abs().max(), rel=1e-12)
+    assert float(got["impact_speed_max_m_s"]) == pytest.approx(run.contacts["v_in_m_s"].abs().max(),
+                                                               rel=1e-12)
     # pounding: the displacement bounded near the gap, the acceleration amplified
     assert float(got["disp_ratio"]) < 1.0 < float(got["amplification"])
 
@@ -62,10 +65,12 @@ def test_summary_table_plots_and_file(spectrum, tmp_path):
     stats = spectrum.summary()
     median = stats["amplification"].sel(percentile=50.0)
     both = spectrum.dataset["amplification"]
-    np.testing.assert_allclose(median, both.mean("record"), rtol=1e-12)  # (two records: the median is their mean)
+    # (two records: the median is their mean)
+    np.testing.assert_allclose(median, both.mean("record"), rtol=1e-12)
     assert (stats["amplification"].sel(percentile=16.0) <= median).all()
     df = spectrum.to_dataframe()
-    assert len(df) == 2 * PERIODS.size * GAPS.size and {"record", "period_s", "gap_m", "impacts"} <= set(df.columns)
+    assert len(df) == 2 * PERIODS.size * GAPS.size and {"record", "period_s", "gap_m",
+                                                        "impacts"} <= set(df.columns)
     path = spectrum.to_netcdf(tmp_path / "spectrum.nc")
     back = xr.open_dataset(path)
     np.testing.assert_allclose(back["amplification"], spectrum.dataset["amplification"])
@@ -92,7 +97,8 @@ def test_arguments_are_checked(quakes):
                           ({"gaps_m": [-0.01]}, "gaps_m"), ({"damping_ratio": 1.2}, "damping_ratio"),
                           ({"mass_kg": 0.0}, "mass_kg"), ({"records": []}, "record"),
                           ({"isolator": "rubber"}, "isolator"),
-                          ({"isolator": pd_.Isolator((1e4,), (), bouc_wen=pd_.BoucWen(1e4, 0.01))}, "isolator"),
+                          ({"isolator": pd_.Isolator((1e4,), (), bouc_wen=pd_.BoucWen(1e4, 0.01))},
+                           "isolator"),
                           ({"workers": 0}, "workers")):
         with pytest.raises(pd_.InputError) as info:
             pd_.pounding_spectrum(**{"records": quakes[0], "periods_s": [1.0], "gaps_m": [0.02], **kwargs})
@@ -103,7 +109,8 @@ def test_a_nonlinear_isolator_is_scaled_to_each_period(quakes):
     shape = pd_.Isolator((38e3, 18e3, 2e3), (0.015, 0.04), "kinematic", 0.0)
     ps = pd_.pounding_spectrum(quakes[0], [1.0, 2.0], gaps_m=[0.05], isolator=shape)
     k1 = 500.0 * (2.0 * np.pi) ** 2
-    iso = pd_.Isolator((k1, k1 * 18 / 38, k1 * 2 / 38), (0.015, 0.04), "kinematic", 2.0 * 0.05 * np.sqrt(k1 * 500.0))
+    iso = pd_.Isolator((k1, k1 * 18 / 38, k1 * 2 / 38), (0.015, 0.04), "kinematic",
+                       2.0 * 0.05 * np.sqrt(k1 * 500.0))
     run = pd_.simulate(pd_.Oscillator(500.0, iso), quakes[0], quakes[0].t[-1], sample_rate_hz=0)
     assert float(ps.dataset["acc_max_free_g"].sel(period_s=1.0)[0]) == pytest.approx(
         run.abs_acceleration_max / 9.81, rel=1e-12)
@@ -122,7 +129,8 @@ def test_an_interrupt_keeps_what_finished(quakes):
         pd_.pounding_spectrum(quakes[0], PERIODS, gaps_m=GAPS, progress=stop_after_five, workers=1)
     part = info.value.partial.dataset
     assert part.attrs["complete"] == 0
-    assert np.isfinite(part["acc_max_free_g"].values).sum() == 2 and np.isfinite(part["acc_max_g"].values).sum() == 3
+    assert np.isfinite(part["acc_max_free_g"].values).sum() == 2
+    assert np.isfinite(part["acc_max_g"].values).sum() == 3
     assert np.isnan(part["acc_max_g"].values[0, 2:]).all()
 
 
@@ -136,18 +144,21 @@ def test_cli_spectrum_writes_tables_figures_and_netcdf(tmp_path):
     text.write_text("t,a\n" + "".join(f"{t:.2f},{a / rec.g}\n" for t, a in zip(rec.t[:400], rec.accel[:400])))
     out = tmp_path / "spec"
     runner = CliRunner()
-    result = runner.invoke(app, ["spectrum", "--record", str(text), "--periods", "0.5:2:0.5", "--gaps", "0.01,0.05",
-                                 "--out", str(out)])
+    result = runner.invoke(app, ["spectrum", "--record", str(text), "--periods", "0.5:2:0.5", "--gaps",
+                                 "0.01,0.05", "--out", str(out)])
     assert result.exit_code == 0, result.output
-    for name in ("pounding_spectrum.nc", "pounding_spectrum.csv", "pounding_summary.csv", "elastic_spectrum.csv",
+    for name in ("pounding_spectrum.nc", "pounding_spectrum.csv", "pounding_summary.csv",
+                 "elastic_spectrum.csv",
                  "amplification.png", "amplification_map.png", "displacement.png", "elastic_spectrum.png"):
         assert (out / name).is_file(), name
     import pandas as pd
 
     df = pd.read_csv(out / "pounding_spectrum.csv")
     assert len(df) == 4 * 2 and sorted(df["period_s"].unique()) == [0.5, 1.0, 1.5, 2.0]
-    for args, words in ((["--periods", "0.5:2"], "start:stop:step"), (["--gaps", "0.01,x"], "'x' is not a number"),
-                        (["--set", "fema-p695-far-field"], "one of them"), (["--periods", "2:0.5:0.1"], "stop >= start")):
+    for args, words in ((["--periods", "0.5:2"], "start:stop:step"),
+                        (["--gaps", "0.01,x"], "'x' is not a number"),
+                        (["--set", "fema-p695-far-field"], "one of them"),
+                        (["--periods", "2:0.5:0.1"], "stop >= start")):
         bad = runner.invoke(app, ["spectrum", "--record", str(text), "--out", str(tmp_path / "x"), *args])
         assert bad.exit_code == 2 and words in bad.output, bad.output
     assert not (tmp_path / "x").exists()
@@ -156,5 +167,6 @@ def test_cli_spectrum_writes_tables_figures_and_netcdf(tmp_path):
 def test_a_run_over_its_budget_is_marked_not_lost(quakes):
     ps = pd_.pounding_spectrum(quakes[0], [1.0, 2.0], gaps_m=[0.02], max_steps=10)
     ds = ps.dataset
-    assert (ds["status"] == int(pd_.Status.BUDGET)).all() and (ds["status_free"] == int(pd_.Status.BUDGET)).all()
+    assert (ds["status"] == int(pd_.Status.BUDGET)).all()
+    assert (ds["status_free"] == int(pd_.Status.BUDGET)).all()
     assert np.isnan(ds["acc_max_g"]).all() and np.isnan(ps.summary()["amplification"]).all()

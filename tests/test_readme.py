@@ -2,7 +2,8 @@
 
 As a newcomer pastes them: the bash blocks in bash (their ``pip install -e .`` goes into a virtual
 environment of the test's own, which sees this environment's packages after its own, so nothing is
-downloaded but the build's own tools), each Python block in a fresh interpreter (each starts with its imports), all
+downloaded but the build's own tools), each Python block in a fresh interpreter (each starts with its
+imports), all
 in a copy of the repository's files at a path of over 100 characters.  The one block not run here is
 the README's test command: it is the command that runs this test, and CI runs it verbatim.
 """
@@ -22,7 +23,8 @@ TEST_COMMAND = 'pip install -e ".[test]" && pytest -q'
 BLOCK_TIMEOUT_S = 1200
 # what the blocks write, each in a place of its own (two blocks writing one file would hide a failure)
 WRITTEN = ("report/index.html", "contacts.csv", "history.csv", "report_printed/index.html", "campaign.nc",
-           "sweep.csv", "sweep.png", "campaign/campaign.nc", "calibrated.toml", "fitted.toml", "fitted_paper.toml",
+           "sweep.csv", "sweep.png", "campaign/campaign.nc", "calibrated.toml", "fitted.toml",
+           "fitted_paper.toml",
            "residuals.csv", "lab/targets.toml", "quake.png", "spectra", "gaps.zarr", "gaps_cli.zarr")
 
 
@@ -61,7 +63,8 @@ def _fresh_copy(dest: Path) -> None:
                 (dest / name).parent.mkdir(parents=True, exist_ok=True)
                 shutil.copy2(src, dest / name)
         return
-    ignore = shutil.ignore_patterns(".git", "__pycache__", "*.egg-info", "_build", "generated", "auto_examples",
+    ignore = shutil.ignore_patterns(".git", "__pycache__", "*.egg-info", "_build", "generated",
+                                    "auto_examples",
                                     "*.zarr", "report*", ".hypothesis", ".pytest_cache", "build", "dist")
     shutil.copytree(ROOT, dest, ignore=ignore, dirs_exist_ok=True)
 
@@ -74,7 +77,8 @@ def test_every_readme_block_runs_in_order_from_a_fresh_copy(tmp_path):
     subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True, timeout=300)
     # this environment's packages, seen after the new one's own (a path line in a .pth file: the
     # editable install of this checkout that they hold is not activated there)
-    inner = subprocess.run([str(venv / "bin" / "python"), "-c", "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
+    inner = subprocess.run([str(venv / "bin" / "python"), "-c",
+                            "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
                            capture_output=True, text=True, check=True).stdout.strip()
     outer = [p for p in sys.path if p.endswith("site-packages") and Path(p).is_dir()]
     (Path(inner) / "_this_environment.pth").write_text("\n".join(outer) + "\n", encoding="utf-8")
@@ -90,8 +94,8 @@ def test_every_readme_block_runs_in_order_from_a_fresh_copy(tmp_path):
         cmd = ["bash", "-euo", "pipefail", "-c", code] if lang == "bash" else [python, "-c", code]
         out = subprocess.run(cmd, cwd=work, env=env, capture_output=True, text=True, timeout=BLOCK_TIMEOUT_S)
         ran.append((i, lang, round(time.monotonic() - started, 1)))
-        assert out.returncode == 0, f"README block {i} ({lang}) failed:\n{code}\n--- stdout\n{out.stdout[-3000:]}" \
-                                    f"\n--- stderr\n{out.stderr[-3000:]}"
+        assert out.returncode == 0, (f"README block {i} ({lang}) failed:\n{code}\n--- stdout\n"
+                                     f"{out.stdout[-3000:]}\n--- stderr\n{out.stderr[-3000:]}")
         if i == 0:  # the first command installed the copy: the blocks after it run the copy's code
             where = subprocess.run([python, "-c", "import pounding; print(pounding.__file__)"], env=env,
                                    capture_output=True, text=True, check=True).stdout.strip()

@@ -14,7 +14,8 @@ from pounding.records import el_centro, fema_p695
 from reference import reference
 
 REFERENCE_RTOL, REFERENCE_ATOL = 1e-13, 1e-18  # (as tests/test_reference.py)
-VALUES = np.array([0.0012, -0.0034, 0.0101, -0.0234, 0.05, -0.0712, 0.0333, 0.0123, -0.0045, 0.001, 0.0, -0.0021])
+VALUES = np.array([0.0012, -0.0034, 0.0101, -0.0234, 0.05, -0.0712, 0.0333, 0.0123, -0.0045, 0.001, 0.0,
+                   -0.0021])
 
 NGA_WEST2 = """PEER NGA STRONG MOTION DATABASE RECORD
 Imperial Valley-02, 5/19/1940, El Centro Array #9, 180
@@ -56,7 +57,8 @@ def test_at2_in_the_peer_layouts(tmp_path, text):
 
 @pytest.mark.parametrize("change, field, words", [
     (lambda s: s.rsplit("\n", 2)[0] + "\n", "path", "has 10 values where its header says NPTS = 12"),
-    (lambda s: s.replace("NPTS=   12", "NPTS=   13"), "path", "has 12 values where its header says NPTS = 13"),
+    (lambda s: s.replace("NPTS=   12", "NPTS=   13"), "path",
+     "has 12 values where its header says NPTS = 13"),
     (lambda s: s.replace(" -.7120000E-01", " -.71x0000E-01"), "path", "line 6"),
     (lambda s: s.replace("NPTS=   12, DT=   .0100 SEC,", "12 points at .01 s"), "path", "NPTS"),
     (lambda s: s.replace("DT=   .0100", "DT=   .0000"), "path", "DT = 0 s"),
@@ -100,7 +102,8 @@ def test_csv_with_and_without_header(tmp_path):
     np.testing.assert_allclose(rec1.accel, VALUES * 9.81, rtol=1e-12)
     np.testing.assert_allclose(rec1.t, rec.t, atol=1e-12)
     assert rec1.name == "mine"
-    for kwargs, field in (({"accel": "acc_g"}, "time"), ({"accel": "acc_g", "time": "time_s", "dt": 0.02}, "time"),
+    for kwargs, field in (({"accel": "acc_g"}, "time"), ({"accel": "acc_g", "time": "time_s", "dt": 0.02},
+                                                         "time"),
                           ({"accel": "nope", "time": "time_s"}, "accel"),
                           ({"accel": "acc_g", "time": "time_s", "units": "gal"}, "units")):
         with pytest.raises(pd_.InputError) as info:
@@ -225,7 +228,9 @@ def _expm_peaks(rec: pd_.Record, period_s: float, zeta: float) -> np.ndarray:
 @pytest.mark.parametrize("case", ["uneven steps", "a spike", "periods below the step", "nearly critical"])
 def test_response_spectrum_on_awkward_records(case):
     rng = np.random.default_rng(3)
-    t = np.cumsum(np.r_[0.0, rng.uniform(0.003, 0.08, 120)]) if case == "uneven steps" else np.arange(0.0, 2.4, 0.02)
+    t = np.cumsum(np.r_[0.0, rng.uniform(0.003, 0.08, 120)]) if case == "uneven steps" else np.arange(0.0,
+                                                                                                      2.4,
+                                                                                                      0.02)
     a = rng.normal(0.0, 2.0, t.size)
     if case == "a spike":
         a = np.zeros(t.size)
@@ -312,24 +317,26 @@ def test_cli_simulate_with_a_record(tmp_path):
                    + "".join("".join(f"{v:15.7E}" for v in row) + "\n" for row in rows))
     runner = CliRunner()
     contacts = tmp_path / "contacts.csv"
-    result = runner.invoke(app, ["simulate", "--preset", "paper-damped", "--record", str(at2), "--scale-pga", "0.4",
-                                 "--contacts", str(contacts)])
+    result = runner.invoke(app, ["simulate", "--preset", "paper-damped", "--record", str(at2), "--scale-pga",
+                                 "0.4", "--contacts", str(contacts)])
     assert result.exit_code == 0, result.output
     assert "record elc (PGA 0.4 g, 5.98 s)" in result.output and contacts.is_file()
     # the same as the Python API
-    run = pd_.simulate(pd_.presets.paper_damped(), pd_.Record.from_at2(at2).scaled(pga_g=0.4), 5.98, sample_rate_hz=0)
+    run = pd_.simulate(pd_.presets.paper_damped(), pd_.Record.from_at2(at2).scaled(pga_g=0.4), 5.98,
+                       sample_rate_hz=0)
     import pandas as pd
 
     assert len(run.contacts) == len(pd.read_csv(contacts)) > 0
     one = tmp_path / "one.txt"
     one.write_text("".join(f"{a}\n" for a in rec.accel[:300] / rec.g))
-    same = runner.invoke(app, ["simulate", "--preset", "paper-damped", "--record", str(one), "--record-dt", "0.02",
-                               "--scale-pga", "0.4"])
+    same = runner.invoke(app, ["simulate", "--preset", "paper-damped", "--record", str(one), "--record-dt",
+                               "0.02", "--scale-pga", "0.4"])
     assert same.exit_code == 0 and "record one (PGA 0.4 g, 5.98 s)" in same.output, same.output
     two = tmp_path / "two.csv"
     two.write_text("".join(f"{t},{a}\n" for t, a in zip(rec.t[:50], rec.accel[:50] / rec.g)))
     for args, words in ((["--record", str(at2), "--a-g", "0.1"], "not both"), ([], "--a-g and --freq"),
-                        (["--a-g", "0.1", "--freq", "1", "--scale-pga", "0.3"], "--scale-pga is for --record"),
+                        (["--a-g", "0.1", "--freq", "1", "--scale-pga", "0.3"],
+                         "--scale-pga is for --record"),
                         (["--record", str(two), "--record-dt", "0.02"], "has 2 columns"),
                         (["--record", str(one)], "has 1 column(s)"),
                         (["--record", str(at2), "--record-dt", "0.02"], "an .AT2 file gives its DT")):

@@ -167,9 +167,11 @@ def test_contact_whose_approach_falls_inside_one_sub_interval():
         787.1202416151971,
         pd_.Isolator((5000.0, 3946.6582280663747, 7642.1249964793815, 18378.06831428684),
                      (0.002530710224170039, 0.01, 0.03980834724589737), "elastic", 3527.5470437792387),
-        pd_.Bumpers(0.00728297379150962, 0.024003438936117012, pd_.KelvinVoigt(2785435.395559004, 3124.5322847623297)))
+        pd_.Bumpers(0.00728297379150962, 0.024003438936117012, pd_.KelvinVoigt(2785435.395559004,
+                                                                               3124.5322847623297)))
     run, _ = _compare(osc, pd_.Harmonic(1 / 3, 0.5, phase=3.6355805352757975), v0=0.7092215248149507)
-    assert len(run.contacts) == 10 and run.contacts["t_start_s"].iloc[-1] == pytest.approx(1.8616782439, abs=1e-8)
+    assert len(run.contacts) == 10 and run.contacts["t_start_s"].iloc[-1] == pytest.approx(1.8616782439,
+                                                                                           abs=1e-8)
 
 
 def _zero_gap(c_b: float, c_d: float, law=None) -> pd_.Oscillator:
@@ -290,7 +292,8 @@ def test_a_reversal_at_two_springs_yield_limits_goes_on():
     # through a multi-linear bumper's run; the isolator alone does it from that state)
     iso = pd_.Isolator((9086.836321883336, 7644.658349531726, 15289.316699063453, 45867.95009719036),
                        (0.007338493842865274, 0.01, 0.034363046343273494), "kinematic", 1475.7164032625662)
-    osc = pd_.Oscillator(431.65195135800826, iso, pd_.Bumpers(0.019606345909735097, 0.01, pd_.MultilinearBumper(
+    osc = pd_.Oscillator(431.65195135800826, iso, pd_.Bumpers(0.019606345909735097, 0.01,
+                                                              pd_.MultilinearBumper(
         (1645109.2874424418, 8225546.437212209), (0.001,), 3164.432917562191)))
     run, _ = _compare(osc, pd_.Harmonic(1 / 3, 0.578452952273553, 0.001), v0=0.5)
     assert (run.events["kind"] == "reversal").sum() >= 3

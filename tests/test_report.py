@@ -79,7 +79,8 @@ def _browser():
     if not (chromium and driver):
         pytest.skip("headless Chromium not installed (Debian packages chromium and chromium-driver; "
                     ".ci/run installs them)")
-    webdriver = pytest.importorskip("selenium.webdriver", reason="selenium not installed (pip install -e '.[test]')")
+    webdriver = pytest.importorskip("selenium.webdriver",
+                                    reason="selenium not installed (pip install -e '.[test]')")
     from selenium.webdriver.chrome.service import Service
 
     options = webdriver.ChromeOptions()
@@ -154,7 +155,8 @@ def test_cli_reproduce_on_a_reduced_grid(tmp_path):
     said = " ".join(result.output.split())  # (the console wraps lines)
     assert "verdict: preset paper-calibrated" in said and "meets 27 of 36 targets" in said
     beside = pd.read_csv(out / "targets.csv")  # the calibration targets, printed preset beside
-    assert {"measured", "allowed", "paper-printed", "paper-calibrated", "paper-calibrated met"} <= set(beside.columns)
+    assert {"measured", "allowed", "paper-printed", "paper-calibrated",
+            "paper-calibrated met"} <= set(beside.columns)
     stored = pd_.presets.paper_calibrated_residuals()
     np.testing.assert_allclose(beside["paper-calibrated"], stored["model"], rtol=1e-9)
     assert "Calibration targets" in (out / "index.html").read_text(encoding="utf-8")

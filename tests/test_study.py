@@ -44,7 +44,8 @@ def test_every_scheduler_gives_the_same_dataset(tmp_path):
     assert osc.bumpers.gap_left == spec.grid["bumpers.gap_left"][1] and options["a_g"] == spec.grid["a_g"][2]
     assert float(point["acc_max_g"]) == run.abs_acceleration_max / 9.81
     assert float(point["impacts"]) == len(run.contacts)
-    runs = {"threads": pd_.study(spec, tmp_path / "threads.zarr", scheduler="threads", workers=2, progress=False),
+    runs = {"threads": pd_.study(spec, tmp_path / "threads.zarr", scheduler="threads", workers=2,
+                                 progress=False),
             "processes": pd_.study(spec, tmp_path / "processes.zarr", scheduler="processes", workers=2,
                                    progress=False)}
     with LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=None) as cluster, \
@@ -83,8 +84,10 @@ def test_chunks_follow_the_trailing_axes():
 
 
 def _cli(spec_file: Path, store: Path, *extra: str) -> subprocess.Popen:
-    return subprocess.Popen([sys.executable, "-m", "pounding.cli", "study", str(spec_file), "--store", str(store),
-                             "--workers", "2", *extra], stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+    return subprocess.Popen([sys.executable, "-m", "pounding.cli", "study", str(spec_file), "--store",
+                             str(store),
+                             "--workers", "2", *extra], stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                            text=True)
 
 
 KILL_STUDY = """
@@ -199,8 +202,8 @@ def test_worker_processes_die_with_a_killed_study(tmp_path):
     store = tmp_path / "s.zarr"
     mark = f"{os.getpid()}-{time.monotonic_ns()}"
     env = {**os.environ, "POUNDING_TEST_MARK": mark}
-    proc = subprocess.Popen([sys.executable, "-m", "pounding.cli", "study", str(spec_file), "--store", str(store),
-                             "--workers", "2", "--scheduler", "processes"],
+    proc = subprocess.Popen([sys.executable, "-m", "pounding.cli", "study", str(spec_file), "--store",
+                             str(store), "--workers", "2", "--scheduler", "processes"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
     _wait_for(store, 0.0)
     deadline = time.monotonic() + 60  # until the workers compute (the forkserver and two workers)
@@ -338,7 +341,8 @@ def test_a_folder_that_is_not_a_study_is_never_overwritten(tmp_path):
     ({"kind": "sweep", "a_g": 0.05, "freqs_hz": [-1.0, 2.0]}, {"mass": [500.0]}, "compute.freqs_hz"),
     ({"kind": "simulate", "a_g": 0.1, "freq_hz": 2.0}, {"duration_s": [-1.0, 30.0]}, "grid.duration_s"),
     ({"kind": "simulate", "a_g": 0.1, "freq_hz": 2.0, "duration_s": 5.0}, {"duration_s": [3.0]}, "not both"),
-    ({"kind": "simulate", "a_g": 0.1, "freq_hz": -2.0, "duration_s": 5.0}, {"mass": [500.0]}, "compute.freq_hz"),
+    ({"kind": "simulate", "a_g": 0.1, "freq_hz": -2.0, "duration_s": 5.0}, {"mass": [500.0]},
+     "compute.freq_hz"),
 ])
 def test_compute_options_are_checked_before_any_work(tmp_path, compute, grid, words):
     with pytest.raises(pd_.InputError) as info:
@@ -347,9 +351,11 @@ def test_compute_options_are_checked_before_any_work(tmp_path, compute, grid, wo
 
 
 def test_the_same_study_written_two_ways_is_one_study(tmp_path):
-    a = pd_.StudySpec(pd_.presets.paper_printed(), {"kind": "simulate", "a_g": 0.1, "freq_hz": 2, "duration_s": 5},
+    a = pd_.StudySpec(pd_.presets.paper_printed(), {"kind": "simulate", "a_g": 0.1, "freq_hz": 2,
+                                                    "duration_s": 5},
                       {"mass": [500, 600]})
-    b = pd_.StudySpec(pd_.presets.paper_printed(), {"duration_s": 5.0, "freq_hz": 2.0, "a_g": 0.1, "kind": "simulate"},
+    b = pd_.StudySpec(pd_.presets.paper_printed(), {"duration_s": 5.0, "freq_hz": 2.0, "a_g": 0.1,
+                                                    "kind": "simulate"},
                       {"mass": [500.0, 600.0]})
     assert a.sha256 == b.sha256
     # a sweep given cycles only runs with the documented default steady = "fixed"

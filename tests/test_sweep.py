@@ -157,7 +157,8 @@ def test_hysteresis_loop_is_a_closed_steady_cycle():
     res = pd_.sweep(osc, 0.05, [1.4, 1.6])
     loop = res.hysteresis_loop(1.6)
     row = res.to_dataframe().set_index("freq_hz").loc[1.6]
-    assert loop.d[0] == pytest.approx(loop.d[-1], abs=1e-5) and loop.r[0] == pytest.approx(loop.r[-1], abs=1e-4)
+    assert loop.d[0] == pytest.approx(loop.d[-1], abs=1e-5) and loop.r[0] == pytest.approx(loop.r[-1],
+                                                                                           abs=1e-4)
     assert np.max(np.abs(loop.r)) == pytest.approx(row["alpha"] * 0.05, rel=1e-3)
     assert np.ptp(loop.d) * loop.total_gap_m == pytest.approx(row["excursion_m"], rel=1e-5)
     assert loop.bumper_surfaces_d == (-0.5, 0.5)

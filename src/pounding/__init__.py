@@ -3,9 +3,9 @@
 The public surface is re-exported here; modules with a leading underscore are private.
 """
 
-from . import data, lab, plots, presets, records
-from .analysis import (Bifurcation, BifurcationCurve, Branch, CoexistenceMap, PeriodicOrbit, bifurcation_curve,
-                       coexistence_map, continuation, periodic_orbit)
+from . import data, lab, plots, presets, records  # noqa: F401 (lab: public as pounding.lab)
+from .analysis import (Bifurcation, BifurcationCurve, Branch, CoexistenceMap, PeriodicOrbit,
+                       bifurcation_curve, coexistence_map, continuation, periodic_orbit)
 from ._errors import InputError, Interrupted, PoundingWarning, Problem, Status
 from ._warm_up import WarmUp, warm_up
 from .engine import EnergyLedger, Run, State, simulate
@@ -14,17 +14,21 @@ from .excitation.spectrum import response_spectrum
 from .identification import (ContactLawFit, Identification, ModelFamily, Targets, fit_contact_law, identify,
                              paper_targets, rank_contact_laws)
 from .metrics import HysteresisLoop, impact_table
-from .model import BoucWen, Bumpers, ElasticPlastic, Hertzdamp, HuntCrossley, Isolator, Jankowski, KelvinVoigt, MultilinearBumper, Oscillator
+from .model import (BoucWen, Bumpers, ElasticPlastic, Hertzdamp, HuntCrossley, Isolator, Jankowski,
+                    KelvinVoigt, MultilinearBumper, Oscillator)
 from .protocols import (CampaignResult, PoundingSpectrum, StudyResult, StudySpec, SweepResult, campaign,
                         open_study, paper_frequencies_hz, pounding_spectrum, study, sweep)
 
 __version__ = "0.1.0"
 
 __all__ = [
-    "Bumpers", "CampaignResult", "ContactLawFit", "Identification", "ModelFamily", "Targets", "EnergyLedger", "Harmonic", "HuntCrossley", "HysteresisLoop",
-    "BoucWen", "ElasticPlastic", "Hertzdamp", "InputError", "Interrupted", "PoundingWarning", "Isolator", "Jankowski", "MultilinearBumper", "KelvinVoigt", "Oscillator", "Problem", "Record",
+    "Bumpers", "CampaignResult", "ContactLawFit", "Identification", "ModelFamily", "Targets", "EnergyLedger",
+    "Harmonic", "HuntCrossley", "HysteresisLoop",
+    "BoucWen", "ElasticPlastic", "Hertzdamp", "InputError", "Interrupted", "PoundingWarning", "Isolator",
+    "Jankowski", "MultilinearBumper", "KelvinVoigt", "Oscillator", "Problem", "Record",
     "Run", "State", "Status", "SweepResult", "campaign", "impact_table", "paper_frequencies_hz",
-    "data", "fit_contact_law", "identify", "paper_targets", "rank_contact_laws", "presets", "simulate", "sweep",
+    "data", "fit_contact_law", "identify", "paper_targets", "rank_contact_laws", "presets", "simulate",
+    "sweep",
     "WarmUp", "warm_up", "plots", "records", "response_spectrum", "PoundingSpectrum", "pounding_spectrum",
     "StudyResult", "StudySpec", "open_study", "study", "PeriodicOrbit", "periodic_orbit",
     "Bifurcation", "Branch", "continuation", "BifurcationCurve", "CoexistenceMap", "bifurcation_curve",

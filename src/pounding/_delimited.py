@@ -4,7 +4,8 @@ name the line and the column: what recordings (``pounding.lab.read_test``) and r
 
 The delimiter is the first of comma, tab and semicolon found in the first line (the header, where
 there is one), else runs of whitespace; fields may be quoted.  Lines starting with ``#`` and blank
-lines are skipped.  The first line is a header when any of its fields is not a number.  Every line has as many fields as the first (a decimal comma or
+lines are skipped.  The first line is a header when any of its fields is not a number.  Every line has as many
+fields as the first (a decimal comma or
 a stray delimiter is an error, not a shifted column).  An empty field, ``nan`` or ``NaN`` is a
 missing value (NaN).
 """

@@ -69,7 +69,8 @@ class Problem(enum.Enum):
     MISSING_INPUT = ("is missing", "give {what}")
     NO_FIT = ("{why}", "{fix}")
     SIZE_MISMATCH = ("has {got} values but {expected} are needed", "give one value per sample of {other}")
-    BAD_CELL = ("line {line}, column {column}: {token!r} is not a number", "correct or remove that line{hint}")
+    BAD_CELL = ("line {line}, column {column}: {token!r} is not a number",
+                "correct or remove that line{hint}")
     SHORT_LINE = ("line {line} has {got} fields, but column {column} is asked for",
                   "complete or remove that line (a truncated file?), or check the delimiter")
     FIELD_COUNT = ("line {line} has {got} fields where the {first} has {expected}",

@@ -33,7 +33,8 @@ PACKAGE = Path(__file__).resolve().parent
 STAMP = "numba-sources.stamp"  # in the package's __pycache__: the sources the caches were built from
 
 
-COMPILED = ("engine", "excitation", "model", "metrics", "protocols", "_jit.py")  # where the compiled functions live
+# where the compiled functions live
+COMPILED = ("engine", "excitation", "model", "metrics", "protocols", "_jit.py")
 
 
 def _sources_stamp(root: Path) -> str:

@@ -52,7 +52,8 @@ class WarmUp:
     def message(self) -> str:
         """One line for people: what was compiled, loaded or already there, in how long."""
         parts = []
-        for names, done in ((self.compiled, "compiled and cached"), (self.loaded, "loaded from Numba's cache"),
+        for names, done in ((self.compiled, "compiled and cached"),
+                            (self.loaded, "loaded from Numba's cache"),
                             (self.in_memory, "already in memory")):
             if names:
                 parts.append(f"{len(names)} {'kernel' if len(names) == 1 else 'kernels'} {done}")
@@ -94,7 +95,8 @@ def warm_up() -> WarmUp:
     """Compile (or load from Numba's cache) every kernel pounding runs, now.
 
     Runs a short simulation, one sweep step, the impact table, a contact-law force
-    evaluation of the printed system and a one-period elastic response spectrum, with the argument types of real use, so that no
+    evaluation of the printed system and a one-period elastic response spectrum, with the argument types of
+    real use, so that no
     later call compiles anything.  The first time after installing this takes 10-20 s;
     afterwards about 1 s per new process (the cache is read).
 

@@ -22,8 +22,8 @@ if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
 
 __all__ = ["by_name", "paper_calibrated", "paper_calibrated_residuals", "paper_calibrated_v1",
-           "paper_calibrated_v1_residuals", "paper_calibrated_v2", "paper_calibrated_v2_residuals", "paper_damped",
-           "paper_printed"]
+           "paper_calibrated_v1_residuals", "paper_calibrated_v2", "paper_calibrated_v2_residuals",
+           "paper_damped", "paper_printed"]
 
 PAPER_MASS_KG = 500.0
 PAPER_SLOPES_N_M = (38_000.0, 18_000.0, 2_000.0)
@@ -71,7 +71,8 @@ def paper_damped(bumpers: bool = True, hysteresis: str = "kinematic") -> Oscilla
     """The printed parameters with the isolator damping read as ``C_d = 1 kN s/m``.
 
     The printed ``C_d = 1 N s/m`` is about 0.01 % of critical damping (one of the things in
-    the paper that do not add up), so the response barely settles; read as 1 kN s/m (about 11 %, typical of high-damping rubber)
+    the paper that do not add up), so the response barely settles; read as 1 kN s/m (about 11 %, typical of
+    high-damping rubber)
     the YBs curves come close to the paper's.  Not a calibration: every other value is the
     printed one.
 

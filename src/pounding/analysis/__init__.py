@@ -8,5 +8,5 @@ from .curve_result import BifurcationCurve, CoexistenceMap
 from .curves import bifurcation_curve, coexistence_map
 from .periodic import PeriodicOrbit, periodic_orbit
 
-__all__ = ["Bifurcation", "BifurcationCurve", "Branch", "CoexistenceMap", "PeriodicOrbit", "bifurcation_curve",
-           "coexistence_map", "continuation", "periodic_orbit"]
+__all__ = ["Bifurcation", "BifurcationCurve", "Branch", "CoexistenceMap", "PeriodicOrbit",
+           "bifurcation_curve", "coexistence_map", "continuation", "periodic_orbit"]

@@ -57,7 +57,8 @@ class Family:
     """The maps ``P(.; p)``, with fixed scales: ``length_m`` for D and the compressions and
     slips, ``length_m * omega_ref`` for V, 1 for the Bouc-Wen z, ``p_scale`` for p."""
 
-    def __init__(self, oscillator: Oscillator, a_g: float, freq_hz: float, parameter: str, period_multiple: int,
+    def __init__(self, oscillator: Oscillator, a_g: float, freq_hz: float, parameter: str,
+                 period_multiple: int,
                  exact: bool, phase: float, length_m: float, p_scale: float, omega_ref: float) -> None:
         self.osc = oscillator
         self.table = oscillator.to_dict() if parameter not in ("freq_hz", "a_g") else None
@@ -191,7 +192,8 @@ class Family:
         return tx, tq
 
     def correct(self, vec: np.ndarray, p: float, target_x: np.ndarray, target_p: float, tau_x: np.ndarray,
-                tau_q: float, tol: float, chord: Optional[Point] = None, max_iter: int = 12) -> Optional[Point]:
+                tau_q: float, tol: float, chord: Optional[Point] = None,
+                max_iter: int = 12) -> Optional[Point]:
         """Newton from ``(vec, p)`` onto the branch in the hyperplane through ``(target_x, target_p)``
         normal to ``(tau_x, tau_q)`` (``tau_x = 0, tau_q = 1``: p fixed).  None where it fails."""
         jac = dp = None

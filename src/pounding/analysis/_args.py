@@ -67,14 +67,15 @@ def settled(oscillator: Oscillator, excitation: Harmonic, settle_cycles: int) ->
         if exc.field != "duration":
             raise
         raise InputError(Problem.BAD_STATE, "settle_cycles", settle_cycles,
-                         why=f"periods at {excitation.freq_hz:g} Hz last {duration:.3g} s, a run beyond the engine's "
-                             "budget (the default guess settles from rest)",
-                         fix="start at a higher frequency, lower settle_cycles, or give a guess (a State)") from None
+                         why=f"periods at {excitation.freq_hz:g} Hz last {duration:.3g} s, a run beyond the "
+                             "engine's budget (the default guess settles from rest)",
+                         fix="start at a higher frequency, lower settle_cycles, or give a guess (a State)"
+                         ) from None
 
 
 def length_scale(oscillator: Oscillator, run: Run) -> float:
     """The lengths' scale of a family of orbits, m: half the total gap, or the orbit's largest |D|
     if larger (1e-6 m at least)."""
     b = oscillator.bumpers
-    return max(b.total_gap / 2.0 if b is not None else 0.0, abs(run.displacement_max), abs(run.displacement_min),
-               1e-6)
+    return max(b.total_gap / 2.0 if b is not None else 0.0, abs(run.displacement_max),
+               abs(run.displacement_min), 1e-6)

@@ -56,8 +56,8 @@ class CurveFollower:
 
     GROW, SHRINK, MIN_STEP, MIN_COS, MARGIN = 1.5, 0.5, 1e-6, 0.9, 0.02
 
-    def __init__(self, fam: Family, kind: str, side: str, f_box: tuple[float, float], a_box: tuple[float, float],
-                 tol: float, max_step: float) -> None:
+    def __init__(self, fam: Family, kind: str, side: str, f_box: tuple[float, float],
+                 a_box: tuple[float, float], tol: float, max_step: float) -> None:
         self.fam = fam
         self.kind, self.side = kind, side
         self.f_box, self.a_box = f_box, a_box
@@ -121,7 +121,8 @@ class CurveFollower:
             dx = e.emb[:, j] * (hg * s_w[j])
             out[r, j] = (self._g_at(sh._moved(e.vec, dx), e.f, e.a)
                          - self._g_at(sh._moved(e.vec, -dx), e.f, e.a)) / (2.0 * hg)
-        out[r, r] = (self._g_at(e.vec, e.f + hg * self.fs, e.a) - self._g_at(e.vec, e.f - hg * self.fs, e.a)) / (2 * hg)
+        out[r, r] = (self._g_at(e.vec, e.f + hg * self.fs, e.a) - self._g_at(e.vec, e.f - hg * self.fs,
+                                                                             e.a)) / (2 * hg)
         out[r, r + 1] = (self._g_at(e.vec, e.f, e.a + hg * self.as_)
                          - self._g_at(e.vec, e.f, e.a - hg * self.as_)) / (2.0 * hg)
         fam.a_g = e.a
@@ -169,7 +170,8 @@ class CurveFollower:
             except (_Failed, InputError, np.linalg.LinAlgError):
                 return None
             arc = float(tau @ (self.scaled(e) - target))
-            err = max(float(np.max(np.abs(e.r), initial=0.0)) / self.tol, abs(e.g) / self.gtol, abs(arc) / self.tol)
+            err = max(float(np.max(np.abs(e.r), initial=0.0)) / self.tol, abs(e.g) / self.gtol,
+                      abs(arc) / self.tol)
             if not math.isfinite(err):
                 return None
             here = (tuple(e.free), e.frozen)
@@ -190,7 +192,8 @@ class CurveFollower:
                     return None
             last = err
             try:
-                step = np.linalg.solve(np.vstack((ext, self._row(e, tau))), -np.concatenate((e.r, [e.g, arc])))
+                step = np.linalg.solve(np.vstack((ext, self._row(e, tau))),
+                                       -np.concatenate((e.r, [e.g, arc])))
             except np.linalg.LinAlgError:
                 return None
             r = e.free.size
@@ -278,14 +281,15 @@ class CurveFollower:
             if q is None or cos < self.MIN_COS:
                 ds *= self.SHRINK
                 if ds < self.MIN_STEP:
-                    return (f"the corrector failed at freq_hz = {p.f:.8g}, a_g = {p.a:.8g} even with the smallest "
-                            "step (a non-smooth point: a contact appearing or vanishing on the curve)"), False
+                    return (f"the corrector failed at freq_hz = {p.f:.8g}, a_g = {p.a:.8g} even with the "
+                            "smallest step (a non-smooth point: a contact appearing or vanishing on the "
+                            "curve)"), False
                 continue
             if not self.inside(q):
                 edge = self.on_edge(p, q)
                 if edge is None:
-                    return (f"the curve leaves the box after freq_hz = {p.f:.8g}, a_g = {p.a:.8g}, but was not "
-                            "solved on its edge"), False
+                    return (f"the curve leaves the box after freq_hz = {p.f:.8g}, a_g = {p.a:.8g}, but was "
+                            "not solved on its edge"), False
                 if edge is not p:
                     pts.append(edge)
                 return "edge", False
@@ -300,7 +304,8 @@ class CurveFollower:
     def _signature(self, q: CurvePoint) -> np.ndarray:
         """What does not depend on the section: the forcing and the orbit's extrema, scaled."""
         size = self.fam.length_m
-        return np.array([q.f / self.fs, q.a / self.as_, q.run.displacement_max / size, q.run.displacement_min / size])
+        return np.array([q.f / self.fs, q.a / self.as_, q.run.displacement_max / size,
+                         q.run.displacement_min / size])
 
     def _closed(self, start: CurvePoint, p: CurvePoint, q: CurvePoint, ds: float) -> bool:
         """Whether the step from ``p`` to ``q`` passed by ``start`` again, once the curve had been

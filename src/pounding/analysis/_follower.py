@@ -51,9 +51,11 @@ class Follower:
         fam, n = self.fam, self.fam.n
         pt = fam.correct(vec, p_start, fam.coords(vec), p_start, np.zeros(n), 1.0, self.tol, max_iter=40)
         if pt is None:
-            raise InputError(Problem.BAD_STATE, "guess", State(vec), why="leads to no periodic orbit at the start "
+            raise InputError(Problem.BAD_STATE, "guess", State(vec),
+                             why="leads to no periodic orbit at the start "
                              f"value {p_start:g} (Newton did not converge from it)",
-                             fix="give a guess nearer the orbit (e.g. a sweep's window state), or start elsewhere")
+                             fix="give a guess nearer the orbit (e.g. a sweep's window state), or start "
+                                 "elsewhere")
         toward = math.copysign(1.0, self.p1 - self.p0)
         self.arclength.append(0.0)
         if bif is None:
@@ -77,7 +79,8 @@ class Follower:
                 self.points.append(pt)
                 self._append(c, grow * ds)
                 return
-        raise InputError(Problem.BAD_STATE, "guess", bif.kind, why="led back to the branch it is on (the other "
+        raise InputError(Problem.BAD_STATE, "guess", bif.kind,
+                         why="led back to the branch it is on (the other "
                          "branch was not found)", fix="continue that branch with a smaller max_step and try "
                          "this bifurcation again")
 
@@ -105,7 +108,8 @@ class Follower:
             vec = fam.shooter(target_p)._moved(a.vec, a.emb @ dx[a.free])
         except (InputError, _Failed):
             return None
-        b = fam.correct(vec, target_p, target_x, target_p, a.tau_x, a.tau_q, self.tol, chord=a if chord else None)
+        b = fam.correct(vec, target_p, target_x, target_p, a.tau_x, a.tau_q, self.tol, chord=a if chord
+                        else None)
         if b is not None:
             b.tau_x, b.tau_q = fam.tangent(b, a.tau_x, a.tau_q)
         return b
@@ -127,16 +131,16 @@ class Follower:
                         ds = self.max_step / 4.0
                         continue
                     self.status = Status.STEP_FAILED
-                    self.message = (f"the corrector failed at {self.fam.parameter} = {a.p:.8g} even with the smallest "
-                                    "step (the branch may end there: a grazing of a stiff bumper, or an orbit the "
-                                    "engine cannot run)")
+                    self.message = (f"the corrector failed at {self.fam.parameter} = {a.p:.8g} even with the "
+                                    "smallest step (the branch may end there: a grazing of a stiff bumper, "
+                                    "or an orbit the engine cannot run)")
                     return
                 continue
             if self._branch_point(a, b, ds):
                 if self.looped:
                     self.message = (f"the branch came back to the branch point at {self.fam.parameter} = "
-                                    f"{self.bifs[-1].value:.6g}, where it had switched before (the branches taken "
-                                    f"form a loop), after {len(self.points)} orbits")
+                                    f"{self.bifs[-1].value:.6g}, where it had switched before (the branches "
+                                    f"taken form a loop), after {len(self.points)} orbits")
                     return
                 continue
             self._detect(a, b, ds)
@@ -145,8 +149,8 @@ class Follower:
                 last = self._locate(a, ds, lambda pt: (pt.p - end) / self.fam.p_scale, b)
                 if last is not None:  # (solved again at the end value itself)
                     fam = self.fam
-                    exact = fam.correct(last.vec, end, fam.coords(last.vec), end, np.zeros(fam.n), 1.0, self.tol,
-                                        chord=last)
+                    exact = fam.correct(last.vec, end, fam.coords(last.vec), end, np.zeros(fam.n), 1.0,
+                                        self.tol, chord=last)
                     if exact is not None:
                         exact.tau_x, exact.tau_q = fam.tangent(exact, last.tau_x, last.tau_q)
                         last = exact
@@ -155,19 +159,20 @@ class Follower:
                 return
             self._append(b, ds)
             self.creep = self.creep + 1 if ds < self.CREEP * self.max_step else 0
-            if self.creep >= self.CREEP_POINTS:  # (steps stuck at a fraction of the largest: a non-smooth point)
+            # (steps stuck at a fraction of the largest: a non-smooth point)
+            if self.creep >= self.CREEP_POINTS:
                 self.creep = 0
                 if not self._leap_past(b):
                     self.status = Status.STEP_FAILED
-                    self.message = (f"the branch stalled at {self.fam.parameter} = {b.p:.8g}: {self.CREEP_POINTS} "
-                                    "steps below 1e-3 of the largest (a non-smooth point), and no step in the "
-                                    "parameter alone got past it")
+                    self.message = (f"the branch stalled at {self.fam.parameter} = {b.p:.8g}: "
+                                    f"{self.CREEP_POINTS} steps below 1e-3 of the largest (a non-smooth "
+                                    "point), and no step in the parameter alone got past it")
                     return
                 ds = self.max_step / 4.0
                 continue
             if self._closed(b, ds):
-                self.message = (f"the branch closed on itself (an isola) after {len(self.points)} orbits, between "
-                                f"{self.fam.parameter} = {min(q.p for q in self.points):.6g} and "
+                self.message = (f"the branch closed on itself (an isola) after {len(self.points)} orbits, "
+                                f"between {self.fam.parameter} = {min(q.p for q in self.points):.6g} and "
                                 f"{max(q.p for q in self.points):.6g}")
                 return
             self._rescale()
@@ -191,11 +196,13 @@ class Follower:
         derivative is infinite there, and arclength steps shrink to nothing), a step in the
         parameter alone, the orbit solved at the new value by Newton from ``a``'s state."""
         fam = self.fam
-        direction = math.copysign(1.0, a.tau_q) if abs(a.tau_q) > 1e-12 else math.copysign(1.0, self.p1 - self.p0)
+        direction = math.copysign(1.0, a.tau_q) if abs(a.tau_q) > 1e-12 else math.copysign(1.0,
+                                                                                           self.p1 - self.p0)
         for size in (0.05, 0.2, 1.0):
             dp = direction * size * self.max_step * fam.p_scale
             p_new = a.p + dp
-            b = fam.correct(a.vec, p_new, fam.coords(a.vec), p_new, np.zeros(fam.n), 1.0, self.tol, max_iter=40)
+            b = fam.correct(a.vec, p_new, fam.coords(a.vec), p_new, np.zeros(fam.n), 1.0, self.tol,
+                            max_iter=40)
             if b is None:
                 continue
             # (oriented onwards in the parameter: the leap's direction, whatever the tangent at a was)
@@ -369,7 +376,8 @@ class Follower:
                 if counted:
                     def fn(pt: Point, name: str = name, mid: float = 0.5 * (va + vb)) -> float:
                         return self._tests(pt)[name] - mid  # (+-0.5 on either side of the count's change)
-                elif name == "fold" and a.mult.size == b.mult.size and _crossing(a.mult) * _crossing(b.mult) < 0.0:
+                elif (name == "fold" and a.mult.size == b.mult.size
+                      and _crossing(a.mult) * _crossing(b.mult) < 0.0):
                     # a smooth fold: a multiplier through 1 locates it better than the tangent,
                     # which turns fast there (and, next to a grazing, not smoothly)
                     def fn(pt: Point, size: int = a.mult.size) -> float:
@@ -398,7 +406,8 @@ class Follower:
             s = (lo * f_hi - hi * f_lo) / (f_hi - f_lo) if f_hi != f_lo else 0.5 * (lo + hi)
             if not lo < s < hi:
                 s = 0.5 * (lo + hi)
-            near, far = ((at_lo, s - lo), (at_hi, s - hi)) if s - lo <= hi - s else ((at_hi, s - hi), (at_lo, s - lo))
+            near, far = ((at_lo, s - lo), (at_hi, s - hi)) if s - lo <= hi - s else ((at_hi, s - hi),
+                                                                                     (at_lo, s - lo))
             pt = self.step(*near) or self.step(*far)  # (e.g. across a grazing: from the other side)
             if pt is None:
                 return best
@@ -431,9 +440,10 @@ class Follower:
             i = int(np.argmin(np.abs(w + 1.0)))
             direction = pt.emb @ np.real(v[:, i])
         peak = abs(exc.peak_m_s2)
-        return Bifurcation(kind, pt.p, exc.freq_hz, exc.a_g, pt.mult.copy(), State(pt.vec), len(self.points), side,
-                           direction, fam.k, pt.run.abs_acceleration_max / peak if peak > 0 else math.nan, located,
-                           pt.phase, tangent, fam.parameter)
+        return Bifurcation(kind, pt.p, exc.freq_hz, exc.a_g, pt.mult.copy(), State(pt.vec), len(self.points),
+                           side,
+                           direction, fam.k, pt.run.abs_acceleration_max / peak if peak > 0 else math.nan,
+                           located, pt.phase, tangent, fam.parameter)
 
     # ---- the result
     def branch(self, oscillator: Oscillator, values: tuple, status: Status, message: str) -> Branch:

@@ -25,8 +25,8 @@ import numpy as np
 from scipy.linalg import expm
 from threadpoolctl import threadpool_limits
 
-from ..engine._layout import (ACT_CONTACT, ACT_REGION, ACT_RELEASE, ACT_REVERSAL, ACT_YIELD, DEF_L, DEF_R, IN_L,
-                              IN_R, REGION, SIDE_L, STATE_BASE)
+from ..engine._layout import (ACT_CONTACT, ACT_REGION, ACT_RELEASE, ACT_REVERSAL, ACT_YIELD, DEF_L, DEF_R,
+                              IN_L, IN_R, REGION, SIDE_L, STATE_BASE)
 from ..engine._layout import D as I_D
 from ..engine._layout import V as I_V
 from ..model import Oscillator
@@ -75,8 +75,8 @@ class Hybrid:
             k = tuple(float(getattr(law, "stiffness", np.nan)) for law in (b.left, b.right))
             c = tuple(float(getattr(law, "damping", 0.0)) if isinstance(law, KelvinVoigt) else 0.0
                       for law in (b.left, b.right))
-        return cls(oscillator.mass, iso.damping, np.asarray(iso.slopes, float), np.asarray(iso.breakpoints, float),
-                   iso.hysteresis == "kinematic", gaps, k, c)
+        return cls(oscillator.mass, iso.damping, np.asarray(iso.slopes, float),
+                   np.asarray(iso.breakpoints, float), iso.hysteresis == "kinematic", gaps, k, c)
 
     @property
     def n_slips(self) -> int:
@@ -90,7 +90,8 @@ class Hybrid:
 
 def coordinates(h: Hybrid, vec: np.ndarray) -> np.ndarray:
     """``x`` from an engine state vector."""
-    return np.concatenate(([vec[I_D], vec[I_V], vec[DEF_L], vec[DEF_R]], vec[STATE_BASE:STATE_BASE + h.n_slips]))
+    return np.concatenate(([vec[I_D], vec[I_V], vec[DEF_L], vec[DEF_R]],
+                           vec[STATE_BASE:STATE_BASE + h.n_slips]))
 
 
 def mode_of(h: Hybrid, vec: np.ndarray) -> tuple:

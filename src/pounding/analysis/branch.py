@@ -21,8 +21,8 @@ KINDS = ("fold", "branch-point", "period-doubling", "neimark-sacker", "grazing")
 
 # the table's columns, in order (the parameter's own column comes first when it is a system number)
 COLUMNS = ("freq_hz", "nu", "a_g", "alpha", "excursion_m", "displacement_max_m", "displacement_min_m", "eta",
-           "stable", "max_abs_multiplier", "contacts_per_period", "impact_velocity_max_m_s", "period_multiple",
-           "residual", "arclength", "phase_rad")
+           "stable", "max_abs_multiplier", "contacts_per_period", "impact_velocity_max_m_s",
+           "period_multiple", "residual", "arclength", "phase_rad")
 
 
 @dataclass(frozen=True, eq=False)
@@ -246,5 +246,6 @@ class Branch:
 
     def __repr__(self) -> str:
         kinds = ", ".join(f"{b.kind} at {b.value:.6g}" for b in self.bifurcations) or "none"
-        return (f"Branch({self.parameter} from {self.values[0]:.10g} to {self.values[1]:.10g}, {len(self)} orbits, "
-                f"period {self.period_multiple}, bifurcations: {kinds}; {self.status.name}: {self.message})")
+        return (f"Branch({self.parameter} from {self.values[0]:.10g} to {self.values[1]:.10g}, {len(self)} "
+                f"orbits, period {self.period_multiple}, bifurcations: {kinds}; {self.status.name}: "
+                f"{self.message})")

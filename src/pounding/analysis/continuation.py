@@ -80,7 +80,8 @@ def continuation(
         to time 0 with the forcing's angle there), or a ``"period-doubling"`` or
         ``"branch-point"`` :class:`Bifurcation` of another branch, whose other branch (of twice
         the period, for a period-doubling) is followed from there (``period_multiple`` and the
-        range's start are then the bifurcation's).  Default: the state after ``settle_cycles`` periods from rest at the
+        range's start are then the bifurcation's).  Default: the state after ``settle_cycles`` periods from
+        rest at the
         start value (the response a sweep would settle on).
     tol : float
         Largest scaled residual accepted at each point (lengths over the scale of the
@@ -126,7 +127,8 @@ def continuation(
     """
     check_oscillator(oscillator)
     parameter, values, a_g, freq_hz = _check_range(oscillator, parameter, a_g, freqs_hz, values)
-    period_multiple = integer("period_multiple", period_multiple, 1, 64, "give the orbits' period in forcing periods")
+    period_multiple = integer("period_multiple", period_multiple, 1, 64,
+                              "give the orbits' period in forcing periods")
     tol = tolerance(tol, 1e-14, 1e-3, 1e-10)
     max_step = step_size(max_step, 1e-5, "the parameter's range")
     max_points = integer("max_points", max_points, 2, MAX_POINTS, "a branch of 5000 points is already dense")
@@ -136,24 +138,30 @@ def continuation(
     exact = exact_monodromy(oscillator, method)
     if isinstance(guess, Bifurcation):
         if guess.kind not in ("period-doubling", "branch-point"):
-            raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is a {guess.kind}; only a period-doubling or "
+            raise InputError(Problem.BAD_STATE, "guess", guess,
+                             why=f"is a {guess.kind}; only a period-doubling or "
                              "a branch point starts another branch", fix="pass a Bifurcation of kind "
                              "'period-doubling' or 'branch-point', or a State")
-        held = {"freq_hz": ("a_g", guess.a_g, a_g), "a_g": ("freqs_hz", guess.freq_hz, freq_hz)}.get(parameter)
+        held = {"freq_hz": ("a_g", guess.a_g, a_g), "a_g": ("freqs_hz", guess.freq_hz,
+                                                            freq_hz)}.get(parameter)
         if held is not None and not math.isclose(held[1], held[2], rel_tol=1e-12):
-            raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is a bifurcation at {held[0]} = {held[1]:g}, "
-                             f"not the {held[2]:g} given", fix=f"give {held[0]} = {held[1]:g} (the bifurcation's)")
+            raise InputError(Problem.BAD_STATE, "guess", guess,
+                             why=f"is a bifurcation at {held[0]} = {held[1]:g}, "
+                             f"not the {held[2]:g} given",
+                             fix=f"give {held[0]} = {held[1]:g} (the bifurcation's)")
         if not min(values) <= guess.value <= max(values):
-            raise InputError(Problem.OUT_OF_RANGE, "guess", guess, range=f"[{min(values):g}, {max(values):g}]",
+            raise InputError(Problem.OUT_OF_RANGE, "guess", guess,
+                             range=f"[{min(values):g}, {max(values):g}]",
                              hint=f" (the range of {parameter} given: the bifurcation is at {guess.value:g})")
         gap = float(np.min(np.abs(guess.multipliers + 1.0))) if guess.multipliers.size else math.inf
         if guess.kind == "period-doubling" and gap > 1e-3:
-            raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is a period-doubling where the multipliers jump "
-                             f"across -1 (the nearest is {gap:.2g} from it): a discontinuity of the map (a contact "
-                             "appearing or a mode changing there), from which no doubled branch starts smoothly",
+            raise InputError(Problem.BAD_STATE, "guess", guess,
+                             why="is a period-doubling where the multipliers jump across -1 (the nearest is "
+                                 f"{gap:.2g} from it): a discontinuity of the map (a contact appearing or a "
+                                 "mode changing there), from which no doubled branch starts smoothly",
                              fix="look for the doubled response with a sweep (its period_multiple) or a "
                              "periodic_orbit of period_multiple=2 from a sweep's state")
-        period_multiple = 2 * guess.period_multiple if guess.kind == "period-doubling" else guess.period_multiple
+        period_multiple = guess.period_multiple * (2 if guess.kind == "period-doubling" else 1)
         phase_rad = guess.phase_rad
     elif guess is not None and not isinstance(guess, State):
         raise InputError(Problem.WRONG_TYPE, "guess", guess, got=type(guess).__name__,
@@ -210,7 +218,8 @@ def _check_range(osc: Oscillator, parameter: Any, a_g: Any, freqs_hz: Any, value
         return parameter, pair, math.nan, positive("freqs_hz", freqs_hz, "Hz")
     why = why_unresolved(osc.to_dict(), parameter)
     if why is not None:
-        raise InputError(Problem.BAD_STATE, "parameter", parameter, why=f"names no number of the system: {why}",
+        raise InputError(Problem.BAD_STATE, "parameter", parameter,
+                         why=f"names no number of the system: {why}",
                          fix="give 'freq_hz', 'a_g' or a dotted name such as 'bumpers.gap_left'")
     if values is None:
         raise InputError(Problem.MISSING_INPUT, "values", None, what=f"the range (start, end) of {parameter}")

@@ -18,7 +18,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from .branch import Bifurcation, Branch
 
 CURVE_COLUMNS = ("freq_hz", "a_g", "alpha", "excursion_m", "displacement_max_m", "displacement_min_m",
-                 "max_abs_multiplier", "critical_multiplier", "contacts_per_period", "test", "residual", "phase_rad")
+                 "max_abs_multiplier", "critical_multiplier", "contacts_per_period", "test", "residual",
+                 "phase_rad")
 
 
 @dataclass(frozen=True, eq=False)
@@ -107,7 +108,8 @@ class BifurcationCurve:
             return bool(np.linalg.norm(pts[0] - q) <= within)
         a, b = pts[:-1], pts[1:]
         d = b - a
-        t = np.clip(np.einsum("ij,ij->i", q - a, d) / np.maximum(np.einsum("ij,ij->i", d, d), 1e-300), 0.0, 1.0)
+        t = np.clip(np.einsum("ij,ij->i", q - a, d) / np.maximum(np.einsum("ij,ij->i", d, d), 1e-300), 0.0,
+                    1.0)
         return bool(np.min(np.linalg.norm(a + t[:, None] * d - q, axis=1)) <= within)
 
     def plot(self, ax: Any = None, **kwargs: Any) -> list:
@@ -117,10 +119,12 @@ class BifurcationCurve:
         return plot_curves([self], ax=ax, **kwargs)
 
     def __repr__(self) -> str:
-        return (f"BifurcationCurve({self.kind}{' ' + self.side if self.side else ''}, {len(self)} points, "
-                f"f {self.table['freq_hz'].min():.6g}-{self.table['freq_hz'].max():.6g} Hz, a_g "
-                f"{self.table['a_g'].min():.6g}-{self.table['a_g'].max():.6g}; {self.status.name}: {self.message})"
-                if len(self) else f"BifurcationCurve({self.kind}, no points; {self.status.name}: {self.message})")
+        return (f"BifurcationCurve({self.kind}{' ' + self.side if self.side else ''}, {len(self)} points, f "
+                f"{self.table['freq_hz'].min():.6g}-{self.table['freq_hz'].max():.6g} Hz, a_g "
+                f"{self.table['a_g'].min():.6g}-{self.table['a_g'].max():.6g}; {self.status.name}: "
+                f"{self.message})"
+                if len(self)
+                else f"BifurcationCurve({self.kind}, no points; {self.status.name}: {self.message})")
 
 
 @dataclass(frozen=True, eq=False)
@@ -171,7 +175,8 @@ class CoexistenceMap:
 
     def to_dataframe(self) -> pd.DataFrame:
         """The curves' points, one row each, with ``curve`` (its index), ``kind`` and ``side``."""
-        frames = [c.to_dataframe().assign(curve=i, kind=c.kind, side=c.side) for i, c in enumerate(self.curves)]
+        frames = [c.to_dataframe().assign(curve=i, kind=c.kind, side=c.side) for i,
+                  c in enumerate(self.curves)]
         cols = ["curve", "kind", "side", *CURVE_COLUMNS]
         return pd.concat(frames, ignore_index=True)[cols] if frames else pd.DataFrame(columns=cols)
 
@@ -188,9 +193,10 @@ class CoexistenceMap:
 
     def __repr__(self) -> str:
         kinds = ", ".join(f"{c.kind}{' ' + c.side if c.side else ''}" for c in self.curves) or "none"
-        return (f"CoexistenceMap(a_g {self.a_g[0]:g}-{self.a_g[1]:g}, f {self.freqs_hz[0]:g}-{self.freqs_hz[1]:g} Hz, "
-                f"{len(self.branches)} branches, curves: {kinds}; {len(self.coexisting())} of {len(self.matrix)} "
-                "test points with coexisting responses)")
+        return (f"CoexistenceMap(a_g {self.a_g[0]:g}-{self.a_g[1]:g}, f "
+                f"{self.freqs_hz[0]:g}-{self.freqs_hz[1]:g} Hz, {len(self.branches)} branches, curves: "
+                f"{kinds}; {len(self.coexisting())} of {len(self.matrix)} test points with coexisting "
+                "responses)")
 
 
 def curve_table(pts: Sequence["CurvePoint"]) -> tuple[pd.DataFrame, np.ndarray]:
@@ -201,8 +207,8 @@ def curve_table(pts: Sequence["CurvePoint"]) -> tuple[pd.DataFrame, np.ndarray]:
         done = run.contact_table[np.isfinite(run.contact_table[:, 2])]
         mult = p.mult
         crit = mult[int(np.argmin(np.abs(mult - 1.0)))].real if mult.size else math.nan
-        rows.append({"freq_hz": p.f, "a_g": p.a, "alpha": run.abs_acceleration_max / peak if peak > 0 else math.nan,
-                     "excursion_m": run.displacement_max - run.displacement_min,
+        rows.append({"freq_hz": p.f, "a_g": p.a, "alpha": run.abs_acceleration_max / peak if peak > 0
+                     else math.nan, "excursion_m": run.displacement_max - run.displacement_min,
                      "displacement_max_m": run.displacement_max, "displacement_min_m": run.displacement_min,
                      "max_abs_multiplier": float(np.abs(mult).max()) if mult.size else math.nan,
                      "critical_multiplier": float(crit), "contacts_per_period": int(done.shape[0]),

@@ -95,19 +95,22 @@ def bifurcation_curve(
         raise InputError(Problem.WRONG_TYPE, "bifurcation", bifurcation, got=type(bifurcation).__name__,
                          expected="pounding.Bifurcation (from Branch.bifurcations or Branch.folds())")
     if bifurcation.kind not in CURVE_KINDS:
-        raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind, why="is followed in one parameter only",
-                         fix="pass a fold or a grazing (Branch.folds(), or kind 'grazing' in Branch.bifurcations)")
+        raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind,
+                         why="is followed in one parameter only",
+                         fix="pass a fold or a grazing (Branch.folds(), or kind 'grazing' in "
+                             "Branch.bifurcations)")
     on_forcing = (bifurcation.parameter in ("freq_hz", "a_g") if bifurcation.parameter else
                   any(math.isclose(bifurcation.value, v, rel_tol=1e-12)
                       for v in (bifurcation.freq_hz, bifurcation.a_g)))
     if not on_forcing:
-        raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind, why="is on a branch in a number of the "
-                         "system, not in the forcing", fix="continue the branch in 'freq_hz' or 'a_g' and pass its "
-                         "bifurcation")
+        raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind,
+                         why="is on a branch in a number of the " "system, not in the forcing",
+                         fix="continue the branch in 'freq_hz' or 'a_g' and pass its " "bifurcation")
     try:
         check_state(bifurcation.state, oscillator)
     except InputError as exc:
-        raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind, why=f"is not of this system ({exc})",
+        raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind,
+                         why=f"is not of this system ({exc})",
                          fix="pass the oscillator the branch was followed on") from None
     a_box = _box("a_g", a_g, "g")
     f_box = _box("freqs_hz", freqs_hz, "Hz")
@@ -210,7 +213,8 @@ def coexistence_map(
     step = real("freq_step_hz", freq_step_hz)
     width = f_box[1] - f_box[0]
     if not width / MAX_TEST_FREQS <= step <= width:
-        raise InputError(Problem.OUT_OF_RANGE, "freq_step_hz", step, range=f"[{width / MAX_TEST_FREQS:g}, {width:g}]",
+        raise InputError(Problem.OUT_OF_RANGE, "freq_step_hz", step,
+                         range=f"[{width / MAX_TEST_FREQS:g}, {width:g}]",
                          hint=f" (the test matrix's frequency step: at most {MAX_TEST_FREQS} frequencies)")
     kinds = _sequence("kinds", kinds, "'fold' and/or 'grazing'")
     if not all(isinstance(k, str) for k in kinds):
@@ -230,17 +234,19 @@ def coexistence_map(
                 if bif.kind in kinds and not any(c.passes(bif) for c in curves):
                     try:
                         curves.append(bifurcation_curve(oscillator, bif, a_g=a_box, freqs_hz=f_box, tol=tol,
-                                                        max_step=max_step, max_points=max_points, method=method))
+                                                        max_step=max_step, max_points=max_points,
+                                                        method=method))
                     except InputError as exc:  # (a fold where the branch turns at a grazing: no multiplier 1)
-                        notes.append(f"the {bif.kind} at {bif.freq_hz:.6g} Hz, a_G {bif.a_g:g} was not followed: "
-                                     f"{exc}")
+                        notes.append(f"the {bif.kind} at {bif.freq_hz:.6g} Hz, a_G {bif.a_g:g} was not "
+                                     f"followed: {exc}")
     except (Interrupted, KeyboardInterrupt) as exc:
         partial = getattr(exc, "partial", None)
         if isinstance(partial, BifurcationCurve):
             curves.append(partial)
         elif isinstance(partial, Branch):
             branches.append(partial)
-        raise Interrupted(CoexistenceMap(oscillator, a_box, f_box, tuple(levels), tuple(branches), tuple(curves),
+        raise Interrupted(CoexistenceMap(oscillator, a_box, f_box, tuple(levels), tuple(branches),
+                                         tuple(curves),
                                          stable_counts(branches, freqs), tuple(notes)), len(curves), None,
                           "curves") from None
     return CoexistenceMap(oscillator, a_box, f_box, tuple(levels), tuple(branches), tuple(curves),
@@ -304,12 +310,14 @@ def _start(cf: CurveFollower, bif: Bifurcation) -> CurvePoint:
             tau = cf._full(pt, t)
             pt.tau = tau / np.linalg.norm(tau)
             return pt
-    raise InputError(Problem.BAD_STATE, "bifurcation", bif.kind, why=f"at {bif.freq_hz:.6g} Hz, a_g {bif.a_g:.6g} "
+    raise InputError(Problem.BAD_STATE, "bifurcation", bif.kind,
+                     why=f"at {bif.freq_hz:.6g} Hz, a_g {bif.a_g:.6g} "
                      "could not be solved as a point of its curve (Newton did not converge)",
                      fix="locate it again: continue the branch with a smaller max_step")
 
 
-def _follow(cf: CurveFollower, start: CurvePoint, pts: list[CurvePoint], max_points: int) -> tuple[Status, str]:
+def _follow(cf: CurveFollower, start: CurvePoint, pts: list[CurvePoint], max_points: int) -> tuple[Status,
+                                                                                                   str]:
     """Both directions from ``start``; ``pts`` filled in the curve's order as they come."""
     ends = []
     for sign in (1.0, -1.0):
@@ -332,8 +340,8 @@ def _follow(cf: CurveFollower, start: CurvePoint, pts: list[CurvePoint], max_poi
     return Status.SUCCESS, "both ends reached the edge of the box"
 
 
-def _result(osc: Oscillator, bif: Bifurcation, cf: Optional[CurveFollower], pts: list[CurvePoint], f_box: tuple,
-            a_box: tuple, status: Status, message: str) -> BifurcationCurve:
+def _result(osc: Oscillator, bif: Bifurcation, cf: Optional[CurveFollower], pts: list[CurvePoint],
+            f_box: tuple, a_box: tuple, status: Status, message: str) -> BifurcationCurve:
     table, states = curve_table(pts)
     if cf is not None and cf.fam.fell_back:
         message += cf.fam.fell_back

@@ -231,7 +231,8 @@ def periodic_orbit(
     # progress its own (the guess's otherwise)
     state = simulate(oscillator, excitation, period, State(vec), sample_rate_hz=0).final_state
     run = simulate(oscillator, excitation, period, state, sample_rate_hz=samples_per_period / period)
-    mult = np.linalg.eigvals(jac) if jac.size and np.isfinite(jac).all() else np.full(jac.shape[0], np.nan + 0j)
+    mult = np.linalg.eigvals(jac) if jac.size and np.isfinite(jac).all() else np.full(jac.shape[0],
+                                                                                      np.nan + 0j)
     mult = mult[np.argsort(-np.abs(mult), kind="stable")]
     names = tuple(shooter.names(vec, frozen))
     return PeriodicOrbit(state, period, mult, jac, names, res, res <= tol, it,
@@ -325,7 +326,8 @@ class _Shooter:
         if self.exact:
             amp, omega, phase = self.exc.peak_m_s2, self.exc.omega_rad_s, self.exc.phase
             try:
-                full, x_end = hy.monodromy(self.h, vec, run.event_table, vec[I_T] + self.period, omega, amp, phase)
+                full, x_end = hy.monodromy(self.h, vec, run.event_table, vec[I_T] + self.period, omega, amp,
+                                           phase)
                 gap = np.abs(x_end - self.coords(run.final_state.vector)).max() / self.scale_d
                 if not (np.isfinite(full).all() and gap < 1e-6):
                     raise ValueError(f"the modes' propagation ends {gap:.1e} (relative) from the engine")
@@ -364,7 +366,8 @@ class _Shooter:
         if self.z_max > 0.0:
             out[ZETA] = min(max(vec[ZETA] + dx[h.size], -self.z_max), self.z_max)
         in_l, in_r, iso = hy.mode_of(h, vec)
-        for touching, row, depth in ((in_l, DEF_L, -out[I_D] - h.gaps[0]), (in_r, DEF_R, out[I_D] - h.gaps[1])):
+        for touching, row, depth in ((in_l, DEF_L, -out[I_D] - h.gaps[0]),
+                                     (in_r, DEF_R, out[I_D] - h.gaps[1])):
             if touching:
                 out[row] = max(0.0, depth)
         if h.kinematic:
@@ -398,7 +401,8 @@ class _Shooter:
             try:
                 dz = np.linalg.solve(jac - np.eye(jac.shape[0]), -r[free_idx])
             except np.linalg.LinAlgError:
-                return vec, norm, jac, frozen, it, "stopped: a multiplier is 1 (a fold or a grazing)" + self.fell_back
+                return (vec, norm, jac, frozen, it,
+                        "stopped: a multiplier is 1 (a fold or a grazing)" + self.fell_back)
             lam = 1.0
             norm_t = math.inf
             while lam >= 1e-3:
@@ -412,8 +416,8 @@ class _Shooter:
                 lam *= 0.5
             if not norm_t < norm:
                 return (vec, norm, jac, frozen, it,
-                        f"stopped: Newton stalled at residual {norm:.1e} (no step along its direction lowers it; "
-                        "a grazing or mode change near the section, or tol below what rounding allows)"
+                        f"stopped: Newton stalled at residual {norm:.1e} (no step along its direction lowers "
+                        "it; a grazing or mode change near the section, or tol below what rounding allows)"
                         + self.fell_back)
             vec, r, run, norm = trial, r_t, run_t, norm_t
             frozen = self.frozen(vec, run)
@@ -422,9 +426,11 @@ class _Shooter:
             except _Failed as exc:
                 return vec, norm, np.zeros((0, 0)), frozen, it, f"stopped: {exc}"
         if norm <= tol:
-            return vec, norm, jac, frozen, it, f"converged in {it} Newton iterations (residual {norm:.1e})" + self.fell_back
+            return (vec, norm, jac, frozen, it,
+                    f"converged in {it} Newton iterations (residual {norm:.1e})" + self.fell_back)
         return (vec, norm, jac, frozen, it,
-                f"not converged in {it} Newton iterations (residual {norm:.1e} > tol {tol:g})" + self.fell_back)
+                f"not converged in {it} Newton iterations (residual {norm:.1e} > tol {tol:g})"
+                + self.fell_back)
 
 
 class _Failed(Exception):

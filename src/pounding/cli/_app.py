@@ -113,7 +113,9 @@ OPT_WORKERS = typer.Option(None, "--workers", help="Parallel sweeps (default: al
 OPT_NBS = typer.Option(None, "--nbs", help="NBs system TOML (instead of --preset).")
 OPT_YBS = typer.Option(None, "--ybs", help="YBs system TOML (instead of --preset).")
 OPT_PRESET = typer.Option(
-    None, "--preset", help="Use a built-in system: paper-printed, paper-damped, paper-calibrated, paper-calibrated-v2 or paper-calibrated-v1."
+    None, "--preset",
+    help="Use a built-in system: paper-printed, paper-damped, paper-calibrated, paper-calibrated-v2 or "
+         "paper-calibrated-v1."
 )
 OPT_NO_BUMPERS = typer.Option(
     False, "--no-bumpers", metavar=NO_METAVAR, help="With --preset: the NBs configuration."
@@ -128,7 +130,8 @@ def command(name: Optional[str] = None) -> Callable:
     def register(fn: Callable) -> Callable:
         @functools.wraps(fn)
         def run(*args: Any, **kwargs: Any) -> Any:
-            console.width, err_console.width = _width(sys.stdout), _width(sys.stderr)  # (where output goes now)
+            # (where output goes now)
+            console.width, err_console.width = _width(sys.stdout), _width(sys.stderr)
             with _first_interrupt_only(), _warnings_as_lines():
                 try:
                     return fn(*args, **kwargs)

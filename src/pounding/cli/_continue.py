@@ -10,8 +10,8 @@ import typer
 
 from .._errors import Interrupted
 from .._io import interrupts_deferred
-from ._app import (OPT_NO_BUMPERS, OPT_PRESET, command, compile_notice, console, figure_path, files, interrupted,
-                   kv_table, save_figure, system, write_csv)
+from ._app import (OPT_NO_BUMPERS, OPT_PRESET, command, compile_notice, console, figure_path, files,
+                   interrupted, kv_table, save_figure, system, write_csv)
 
 CSV = (".csv",)
 
@@ -30,7 +30,8 @@ def continue_branch(
     plot: Optional[Path] = typer.Option(None, "--plot", help="Draw alpha against nu (PNG, PDF...)."),
     sweeps: bool = typer.Option(False, "--sweeps", help="Also run an up and a down sweep (0.1 Hz steps) "
                                 "and draw them over the branch."),
-    period_multiple: int = typer.Option(1, "--period-multiple", help="The orbits' period, in forcing periods."),
+    period_multiple: int = typer.Option(1, "--period-multiple",
+                                        help="The orbits' period, in forcing periods."),
     max_step: float = typer.Option(0.02, "--max-step", help="Largest step along the branch, as a fraction "
                                    "of the range."),
 ) -> None:
@@ -90,7 +91,8 @@ def coexistence(
     a_g_max: float = typer.Option(0.12, "--a-g-max", help="Its highest a_G, g."),
     start: float = typer.Option(0.5, "--from", help="Its lowest frequency, Hz."),
     end: float = typer.Option(5.0, "--to", help="Its highest frequency, Hz."),
-    levels: Optional[str] = typer.Option(None, "--levels", help="The branches' a_G, comma-separated (default: "
+    levels: Optional[str] = typer.Option(None, "--levels",
+                                         help="The branches' a_G, comma-separated (default: "
                                          "the paper's 0.03, 0.05, 0.075, 0.1 within the range)."),
     grazings: bool = typer.Option(False, "--grazings", help="Also follow the grazings (contacts appearing)."),
     preset: Optional[str] = OPT_PRESET,
@@ -98,7 +100,8 @@ def coexistence(
     out: Optional[Path] = typer.Option(None, "--out", help="Write the curves' points (CSV)."),
     matrix: Optional[Path] = typer.Option(None, "--matrix", help="Write the test matrix's counts of stable "
                                           "responses (CSV)."),
-    plot: Optional[Path] = typer.Option(None, "--plot", help="Draw the curves over the test matrix (PNG, PDF...)."),
+    plot: Optional[Path] = typer.Option(None, "--plot",
+                                        help="Draw the curves over the test matrix (PNG, PDF...)."),
 ) -> None:
     """Where two responses coexist (where up and down sweeps must differ): branches at a_G levels,
     their folds followed in (a_G, f), and the test matrix's points with two stable responses.
@@ -121,10 +124,12 @@ def coexistence(
     kinds = ("fold", "grazing") if grazings else ("fold",)
     with console.status(f"branches and {' and '.join(kinds)} curves, a_G {a_g_min:g} to {a_g_max:g} ..."):
         try:
-            cmap = coexistence_map(osc, a_g=(a_g_min, a_g_max), freqs_hz=(start, end), levels=chosen, kinds=kinds)
+            cmap = coexistence_map(osc, a_g=(a_g_min, a_g_max), freqs_hz=(start, end), levels=chosen,
+                                   kinds=kinds)
         except Interrupted as stop:
             cmap, complete = stop.partial, False
-    table, add = kv_table(f"coexistence, a_G {a_g_min:g}-{a_g_max:g}, {start:g}-{end:g} Hz", system_file or preset)
+    table, add = kv_table(f"coexistence, a_G {a_g_min:g}-{a_g_max:g}, {start:g}-{end:g} Hz", system_file
+                          or preset)
     for br in cmap.branches:
         add(f"branch a_G = {br.a_g:g}", f"{len(br)} orbits, folds at "
             + (", ".join(f"{b.freq_hz:.4g}" for b in br.folds()) or "none") + f" Hz ({br.status.name})")

@@ -26,7 +26,8 @@ def _units(text: Optional[str]) -> Optional[dict[str, str]]:
     out = {}
     for part in text.split(","):
         if "=" not in part:
-            raise typer.BadParameter(f"{part!r} is not role=unit; e.g. time=ms,table_acc=g,mass_acc=g,displacement=mm",
+            raise typer.BadParameter(f"{part!r} is not role=unit; e.g. "
+                                     "time=ms,table_acc=g,mass_acc=g,displacement=mm",
                                      param_hint="--units")
         role, unit = (p.strip() for p in part.split("=", 1))
         out[role] = unit
@@ -35,25 +36,33 @@ def _units(text: Optional[str]) -> Optional[dict[str, str]]:
 
 @command()
 def lab(
-    test: Path = typer.Argument(..., metavar="TEST.csv", help="The recording: delimited text (CSV, TSV, whitespace)."),
+    test: Path = typer.Argument(..., metavar="TEST.csv",
+                                help="The recording: delimited text (CSV, TSV, whitespace)."),
     time: str = typer.Option(..., "--time", help="The time column (name, or 0-based index)."),
     table_acc: str = typer.Option(..., "--table-acc", help="The table's acceleration column."),
-    mass_acc: str = typer.Option(..., "--mass-acc", help="The mass's accelerometer columns, comma-separated."),
+    mass_acc: str = typer.Option(..., "--mass-acc",
+                                 help="The mass's accelerometer columns, comma-separated."),
     displacement: str = typer.Option(..., "--displacement", help="The mass's displacement (laser) column."),
     units: Optional[str] = typer.Option(
-        None, "--units", help="Per role: time=s|ms, table_acc and mass_acc=g|m/s2|cm/s2, displacement=m|mm (SI if left out)."
+        None, "--units",
+        help="Per role: time=s|ms, table_acc and mass_acc=g|m/s2|cm/s2, displacement=m|mm (SI if left out)."
     ),
     mass: float = typer.Option(..., "--mass", help="The mass on the table, kg."),
     gap: Optional[float] = typer.Option(None, "--gap", help="The total gap Delta (m) of a YBs test."),
-    freqs: Optional[str] = typer.Option(None, "--freqs", help="The schedule's frequencies, Hz, comma-separated (else found)."),
-    measure_cycles: int = typer.Option(5, "--measure-cycles", help="Whole cycles measured at the end of each step."),
+    freqs: Optional[str] = typer.Option(None, "--freqs",
+                                        help="The schedule's frequencies, Hz, comma-separated (else found)."),
+    measure_cycles: int = typer.Option(5, "--measure-cycles",
+                                       help="Whole cycles measured at the end of each step."),
     configuration: Optional[str] = typer.Option(
         None, "--configuration", help="NBs or YBs for the targets (default: YBs with --gap, else NBs)."
     ),
-    a_g: Optional[float] = typer.Option(None, "--a-g", help="a_G (g) the targets are for (default: the measured one)."),
-    out: Path = typer.Option(..., "--out", help="Directory for steps.csv, impacts.csv, lab_sweep.png, targets.toml."),
+    a_g: Optional[float] = typer.Option(None, "--a-g",
+                                        help="a_G (g) the targets are for (default: the measured one)."),
+    out: Path = typer.Option(..., "--out",
+                             help="Directory for steps.csv, impacts.csv, lab_sweep.png, targets.toml."),
 ) -> None:
-    """Measure a stepped-sine shaking-table test: Table 2 per step, the contacts, a figure and targets for identify."""
+    """Measure a stepped-sine shaking-table test: Table 2 per step, the contacts, a figure and targets for
+    identify."""
     from ..lab import analyse_stepped_sine, read_test
 
     out = folder("--out", out)
@@ -73,7 +82,8 @@ def lab(
         save_figure(result.plot, out / "lab_sweep.png")
     cols = ["freq_hz", "alpha", "eta" if gap is not None else "e", "steady"]
     cols += ["contacts_per_cycle", "contact_time_s", "restitution"] if gap is not None else []
-    summary = data_table(f"{test.name}: {len(result.steps)} steps, a_G {result.a_g:.4g}, {record.sample_rate_hz:g} Hz",
+    summary = data_table(f"{test.name}: {len(result.steps)} steps, a_G {result.a_g:.4g}, "
+                         f"{record.sample_rate_hz:g} Hz",
                          cols)
     for _, row in result.steps.iterrows():
         summary.add_row(*(cell(row[c]) for c in cols))

@@ -50,12 +50,14 @@ def simulate(
     system_file: Optional[Path] = typer.Argument(
         None, metavar="SYSTEM.toml", help="System TOML (see examples/). Omit to use --preset."
     ),
-    a_g: Optional[float] = typer.Option(None, "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
+    a_g: Optional[float] = typer.Option(None, "--a-g",
+                                        help="Peak table acceleration in g (the paper's a_G)."),
     freq: Optional[float] = typer.Option(None, "--freq", help="Excitation frequency, Hz."),
     record: Optional[Path] = typer.Option(
         None, "--record", help="Shake with a record instead: a PEER .AT2 file, or text with a time and an "
         "acceleration column (g; one column with --record-dt)."),
-    record_dt: Optional[float] = typer.Option(None, "--record-dt", help="The time step (s) of a one-column record."),
+    record_dt: Optional[float] = typer.Option(None, "--record-dt",
+                                              help="The time step (s) of a one-column record."),
     record_units: str = typer.Option("g", "--record-units", help="A text record's unit: g, m/s2 or cm/s2."),
     scale_pga: Optional[float] = typer.Option(None, "--scale-pga", help="Scale the record to this PGA, g."),
     duration: Optional[float] = typer.Option(
@@ -100,7 +102,8 @@ def simulate(
     add_row("max |abs. acceleration| [g]", f"{run.abs_acceleration_max / exc.g:.4f}")
     peak = abs(exc.peak_m_s2) if record is None else exc.pga_g * exc.g
     alpha = run.abs_acceleration_max / peak if peak != 0 else float("nan")
-    add_row("alpha = max|a_abs| / " + ("A_t" if record is None else "PGA"), f"{alpha:.4f}" if peak else "- (no shaking)")
+    add_row("alpha = max|a_abs| / " + ("A_t" if record is None else "PGA"), f"{alpha:.4f}" if peak
+            else "- (no shaking)")
     n = len(run.contacts)
     add_row("contacts", f"{n} ({(run.contacts['side'] == 'left').sum()} left)" if n else "0")
     done = run.impacts.dropna(subset=["contact_time_s"])
@@ -149,7 +152,8 @@ def excitation(a_g: float | None, freq: float | None, record: Path | None, recor
         for name, value in (("--record-dt", record_dt), ("--record-units", None if record_units == "g" else
                                                          record_units)):
             if value is not None:
-                raise typer.BadParameter(f"{name} is for text records: an .AT2 file gives its DT and unit (g)")
+                raise typer.BadParameter(f"{name} is for text records: an .AT2 file gives its DT and "
+                                         "unit (g)")
         rec = Record.from_at2(record)
     else:
         columns = _text_columns(record)
@@ -157,8 +161,8 @@ def excitation(a_g: float | None, freq: float | None, record: Path | None, recor
             raise typer.BadParameter(f"{record.name} has {columns} columns: --record-dt is for a file of one "
                                      "column (accelerations); leave it out to read time and acceleration")
         if record_dt is None and columns != 2:
-            raise typer.BadParameter(f"{record.name} has {columns} column(s): give a time and an acceleration "
-                                     "column, or one acceleration column with --record-dt")
+            raise typer.BadParameter(f"{record.name} has {columns} column(s): give a time and an "
+                                     "acceleration column, or one acceleration column with --record-dt")
         if record_dt is not None:
             rec = Record.from_csv(record, accel=0, dt=record_dt, units=record_units)
         else:
@@ -283,7 +287,8 @@ def campaign(
     preset: Optional[str] = typer.Option(
         None,
         "--preset",
-        help="Built-in system for both configurations: paper-printed, paper-damped, paper-calibrated, paper-calibrated-v2 or paper-calibrated-v1.",
+        help="Built-in system for both configurations: paper-printed, paper-damped, paper-calibrated, "
+             "paper-calibrated-v2 or paper-calibrated-v1.",
     ),
     nbs: Optional[Path] = OPT_NBS,
     ybs: Optional[Path] = OPT_YBS,

@@ -14,7 +14,8 @@ from ._app import command, compile_notice, console, float_list, folder, interrup
 from ._runs import excitation
 
 SETS = {"fema-p695-far-field": "far_field", "fema-p695-near-field": "near_field",
-        "fema-p695-near-field-pulse": "near_field_pulse", "fema-p695-near-field-no-pulse": "near_field_no_pulse"}
+        "fema-p695-near-field-pulse": "near_field_pulse",
+        "fema-p695-near-field-no-pulse": "near_field_no_pulse"}
 MAX_GRID = 100_000  # periods from a range: refused beyond (a step in the wrong unit)
 
 
@@ -24,13 +25,15 @@ def grid(option: str, text: str) -> list[float]:
         return float_list(option, text)
     parts = text.split(":")
     if len(parts) != 3:
-        raise typer.BadParameter(f"{text!r}: give start:stop:step (e.g. 0.2:4:0.05) or a comma-separated list")
+        raise typer.BadParameter(f"{text!r}: give start:stop:step (e.g. 0.2:4:0.05) or a "
+                                 "comma-separated list")
     start, stop, step = float_list(option, ",".join(parts))
     if not step > 0.0 or not stop >= start:
         raise typer.BadParameter(f"{text!r}: the step must be > 0 and stop >= start")
     n = int(np.floor((stop - start) / step + 1e-9)) + 1
     if n > MAX_GRID:
-        raise typer.BadParameter(f"{text!r} makes {n} values (more than {MAX_GRID}): is the step in the right unit?")
+        raise typer.BadParameter(f"{text!r} makes {n} values (more than {MAX_GRID}): is the step in the "
+                                 "right unit?")
     return list(np.round(start + step * np.arange(n), 12))
 
 
@@ -40,10 +43,13 @@ def spectrum(
                                           "acceleration columns (g; one column with --record-dt)."),
     record_set: Optional[str] = typer.Option(None, "--set", help="A record set: " + ", ".join(SETS)
                                              + " (pip install pounding[records])."),
-    record_dt: Optional[float] = typer.Option(None, "--record-dt", help="The time step (s) of a one-column record."),
+    record_dt: Optional[float] = typer.Option(None, "--record-dt",
+                                              help="The time step (s) of a one-column record."),
     record_units: str = typer.Option("g", "--record-units", help="A text record's unit: g, m/s2 or cm/s2."),
-    scale_pga: Optional[float] = typer.Option(None, "--scale-pga", help="Scale the record(s) to this PGA, g."),
-    periods: str = typer.Option("0.2:4:0.05", "--periods", help="Isolation periods, s: start:stop:step or a list."),
+    scale_pga: Optional[float] = typer.Option(None, "--scale-pga",
+                                              help="Scale the record(s) to this PGA, g."),
+    periods: str = typer.Option("0.2:4:0.05", "--periods",
+                                help="Isolation periods, s: start:stop:step or a list."),
     gaps: str = typer.Option("0.01,0.02,0.05", "--gaps", help="Gaps each side, m, comma-separated."),
     damping: float = typer.Option(0.05, "--damping", help="The isolator's damping ratio."),
     mass: float = typer.Option(500.0, "--mass", help="The isolated mass, kg."),
@@ -94,8 +100,8 @@ def spectrum(
     stats = result.summary()["amplification"].sel(percentile=50.0)
     worst = stats.where(np.isfinite(stats), -np.inf).argmax(dim=("period_s", "gap_m"))
     at = {k: float(stats[k][int(v)]) for k, v in worst.items()}
-    console.print(f"{len(recs)} record(s) x {len(periods_s)} periods x {len(gaps_m)} gaps: the largest median "
-                  f"amplification by pounding {float(stats.max()):.3g} at T = {at['period_s']:g} s, "
+    console.print(f"{len(recs)} record(s) x {len(periods_s)} periods x {len(gaps_m)} gaps: the largest "
+                  f"median amplification by pounding {float(stats.max()):.3g} at T = {at['period_s']:g} s, "
                   f"gap {at['gap_m'] * 1e3:g} mm; files -> {out}")
     if not complete or held:
         interrupted(f"the finished runs are in {out} (NaN where a run did not finish)")

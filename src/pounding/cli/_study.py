@@ -15,12 +15,14 @@ from ._app import command, compile_notice, console, interrupted
 @command("study")
 def study(
     spec: Path = typer.Argument(..., help="The study: a TOML file with [system], [compute] and [grid]."),
-    store: str = typer.Option(..., "--store", help="The Zarr folder (created; rerun to resume it), or an fsspec URL "
+    store: str = typer.Option(..., "--store",
+                              help="The Zarr folder (created; rerun to resume it), or an fsspec URL "
                               "(s3://bucket/study.zarr)."),
     scheduler: str = typer.Option("threads", "--scheduler",
-                                  help="threads, processes, local (a Dask LocalCluster) or a Dask scheduler's "
-                                       "address (tcp://host:8786)."),
-    workers: Optional[int] = typer.Option(None, "--workers", help="Threads or processes (default: every core)."),
+                                  help="threads, processes, local (a Dask LocalCluster) or a Dask "
+                                       "scheduler's address (tcp://host:8786)."),
+    workers: Optional[int] = typer.Option(None, "--workers",
+                                          help="Threads or processes (default: every core)."),
     restart: bool = typer.Option(False, "--restart", help="Overwrite the store instead of resuming it."),
 ) -> None:
     """Run a parameter study; a rerun computes only the points not done yet."""
@@ -29,17 +31,19 @@ def study(
     from ..protocols.study_spec import StudySpec
 
     parsed = StudySpec.from_toml(spec)  # (bad specs fail here, before any work)
-    console.print(f"{parsed.size} points ({' x '.join(f'{d} {n}' for d, n in zip(parsed.dims, parsed.shape))}), "
-                  f"kind {parsed.kind} -> {store}")
+    console.print(f"{parsed.size} points "
+                  f"({' x '.join(f'{d} {n}' for d, n in zip(parsed.dims, parsed.shape))}), kind "
+                  f"{parsed.kind} -> {store}")
     compile_notice()
     try:
         ds = run_study(parsed, store, scheduler=scheduler, workers=workers, resume=not restart, progress=True)
     except Interrupted as stop:
-        interrupted(f"{stop.done} of {stop.total} points are in {store}; run the same command again to resume")
+        interrupted(f"{stop.done} of {stop.total} points are in {store}; run the same command again "
+                    "to resume")
         return
     with interrupts_deferred() as held:  # (the study is in its store: a Ctrl-C now changes nothing)
         result = StudyResult(ds, parsed)
-        console.print(f"{result.done} of {parsed.size} points done; read with pounding.open_study({str(store)!r}) "
-                      "or xarray.open_zarr")
+        console.print(f"{result.done} of {parsed.size} points done; read with "
+                      f"pounding.open_study({str(store)!r}) or xarray.open_zarr")
     if held:
         interrupted(f"after the study had finished: all {result.done} points are in {store}")

@@ -8,8 +8,8 @@ from .._jit import jit
 from ..model.contact_laws import (AT_START, EDGE_DOWN_STATE, EDGE_UP_STATE, law_branch_edges, law_is_linear,
                                   law_relax_horizon, law_switches_at_rest, law_turn_sign)
 from ._layout import (ACT_CONTACT, ACT_LAW_BRANCH, ACT_RELEASE, E_ACTION, E_ALPHA, E_BETA, E_DIR, E_GAMMA,
-                      E_INDEX, E_KIND, E_SIDE, EV_COLS, DEF_L, DEF_R, IN_L, IN_R, KIND_LINEAR, KIND_RELEASE, P_JBL, P_JBR,
-                      P_LAWL, P_LAWR, P_NLL, P_NLR, SIDE_L, SIDE_NONE, SIDE_R, ZL_AT, ZR_AT)
+                      E_INDEX, E_KIND, E_SIDE, EV_COLS, DEF_L, DEF_R, IN_L, IN_R, KIND_LINEAR, KIND_RELEASE,
+                      P_JBL, P_JBR, P_LAWL, P_LAWR, P_NLL, P_NLR, SIDE_L, SIDE_NONE, SIDE_R, ZL_AT, ZR_AT)
 
 
 @jit

@@ -34,8 +34,8 @@ from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A
                       P_LZL, P_LZR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR, P_RBL, P_RBR,
                       P_R0, P_RISO, P_SPHI, P_V0, P_VROUND, P_VRUN, P_W, P_XROUND, P_XRUN, P_ZETA0, PH_LEN,
                       SAMPLE_COLS, SIDE_L, SIDE_NONE, SIDE_R, Z_L, Z_R, ZETA, ZL_AT, ZR_AT, D, T, V)
-from ._linear import (fill_end, linear_eval_angle, linear_eval_end, linear_forcing, linear_setup, linear_start,
-                      reset_ends)
+from ._linear import (fill_end, linear_eval_angle, linear_eval_end, linear_forcing, linear_setup,
+                      linear_start, reset_ends)
 from ._numeric import dp5_step
 from ._outputs import energies as _energies
 from ._outputs import outputs as _outputs
@@ -115,7 +115,8 @@ def _set_phase(ph, st, mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r,
         ph[P_LZR + q] = st[Z_R + q]
     ph[P_KISO] = k_iso
     ph[P_RISO] = r_iso
-    if bw[0] != 0.0:  # (the rate of the phase, for its sub-intervals' length: the spring's initial stiffness too)
+    # (the rate of the phase, for its sub-intervals' length: the spring's initial stiffness too)
+    if bw[0] != 0.0:
         k += bw[0] * bw[2] / bw[1]
     return k, c
 
@@ -285,7 +286,8 @@ def run_kernel(mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l, 
             if bw[0] != 0.0 and st[ZETA] != 0.0:  # the Bouc-Wen z back through zero: its law changes form
                 row = evs[n_ev]
                 row[E_KIND] = KIND_ZETA
-                row[E_ALPHA] = -math.copysign(1.0, st[ZETA])  # (value -alpha z: positive until z changes sign)
+                # (value -alpha z: positive until z changes sign)
+                row[E_ALPHA] = -math.copysign(1.0, st[ZETA])
                 row[E_SIDE] = SIDE_NONE
                 row[E_ACTION] = ACT_BOUC_WEN
                 row[E_INDEX] = 0.0

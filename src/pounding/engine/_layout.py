@@ -88,7 +88,8 @@ KIND_ZETA = 2     # the isolator's Bouc-Wen z times alpha (its sign at the phase
 SIDE_NONE, SIDE_L, SIDE_R = np.int64(-1), np.int64(0), np.int64(1)
 ACT_YIELD, ACT_REVERSAL, ACT_REGION, ACT_CONTACT, ACT_RELEASE, ACT_LAW_BRANCH, ACT_BOUC_WEN = (
     np.int64(k) for k in range(7))
-EVENT_NAMES = ("yield", "reversal", "branch", "contact_start", "contact_end", "bumper_branch", "bouc_wen_zero")
+EVENT_NAMES = ("yield", "reversal", "branch", "contact_start", "contact_end", "bumper_branch",
+               "bouc_wen_zero")
 
 # ---- outputs
 SAMPLE_COLS = 7   # t, D, V, abs_acceleration, isolator_force, bumper_force_left, bumper_force_right

@@ -13,8 +13,8 @@ import math
 
 from ..model.contact_laws import law_force
 from .._jit import jit
-from ._layout import (P_BW, P_C, P_D0, P_DP5, P_DP5_H, P_GAPL, P_GAPR, P_H, P_K, P_LAWL, P_LAWR, P_M, P_NLL, P_NLR,
-                      P_P0, P_P1, P_PHI, P_V0, P_W, P_ZETA0, PL_AT, PR_AT, PZL_AT, PZR_AT)
+from ._layout import (P_BW, P_C, P_D0, P_DP5, P_DP5_H, P_GAPL, P_GAPR, P_H, P_K, P_LAWL, P_LAWR, P_M, P_NLL,
+                      P_NLR, P_P0, P_P1, P_PHI, P_V0, P_W, P_ZETA0, PL_AT, PR_AT, PZL_AT, PZR_AT)
 
 # Dormand-Prince 5(4) tableau
 C2, C3, C4, C5 = 1.0 / 5.0, 3.0 / 10.0, 4.0 / 5.0, 8.0 / 9.0

@@ -38,6 +38,7 @@ def outputs_in_phase(ph, tau, d, v, a):
 
 @jit
 def energies(st, mass, slopes, breaks, rule, bw, law_l, p_l, law_r, p_r):
-    e_bw = 0.5 * bw[0] * bw[1] * st[ZETA] ** 2 / bw[2] if bw[0] != 0.0 else 0.0  # (subinterval.bouc_wen_energy)
+    # (subinterval.bouc_wen_energy)
+    e_bw = 0.5 * bw[0] * bw[1] * st[ZETA] ** 2 / bw[2] if bw[0] != 0.0 else 0.0
     return (0.5 * mass * st[V] ** 2, iso_energy(slopes, breaks, rule, st, st[D]) + e_bw,
             law_energy(law_l, p_l, st[DEF_L], st, ZL_AT) + law_energy(law_r, p_r, st[DEF_R], st, ZR_AT))

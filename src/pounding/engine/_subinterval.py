@@ -19,9 +19,10 @@ import numpy as np
 from .._jit import jit
 from ..model.contact_laws import law_branch_loss, law_is_linear
 from ._layout import (A_IMPULSE, A_MAXCOMP, A_PEAK, A_WORK, ACC_L, ACC_R, MODE_LINEAR, P_AX0, P_C,
-                      P_CBL, P_CBR, P_CD, P_GAPL, P_GAPR, P_INL, P_INR, P_JBL, P_JBR, P_K, P_KBL, P_KBR, P_LAWL,
-                      P_BW, P_LAWR, P_M, P_MODE, P_P0, P_RBL, P_RBR, P_ZETA0, PL_AT, PR_AT, PZL_AT, PZR_AT, SIDE_L,
-                      SIDE_R)
+                      P_CBL, P_CBR, P_CD, P_GAPL, P_GAPR, P_INL, P_INR, P_JBL, P_JBR, P_K, P_KBL, P_KBR,
+                      P_LAWL,
+                      P_BW, P_LAWR, P_M, P_MODE, P_P0, P_RBL, P_RBR, P_ZETA0, PL_AT, PR_AT, PZL_AT, PZR_AT,
+                      SIDE_L, SIDE_R)
 from ._linear import linear_integrals
 from ._trajectory import (NO_INDEX, W_AABS_RATE, W_ACCELERATION, W_FORCE_RATE, abs_acceleration_rate,
                           bouc_wen_aabs_rate, phase_zeta,
@@ -107,9 +108,11 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
             # what its spring dissipates (the quadrature above has its dashpot's)
             if (side == SIDE_L and in_l) or (side == SIDE_R and in_r):
                 if side == SIDE_L:
-                    sign, gap, law, o, zo, j_b = -1.0, ph[P_GAPL], int(ph[P_LAWL]), PL_AT, PZL_AT, int(ph[P_JBL])
+                    sign, gap, law, o, zo = -1.0, ph[P_GAPL], int(ph[P_LAWL]), PL_AT, PZL_AT
+                    j_b = int(ph[P_JBL])
                 else:
-                    sign, gap, law, o, zo, j_b = 1.0, ph[P_GAPR], int(ph[P_LAWR]), PR_AT, PZR_AT, int(ph[P_JBR])
+                    sign, gap, law, o, zo = 1.0, ph[P_GAPR], int(ph[P_LAWR]), PR_AT, PZR_AT
+                    j_b = int(ph[P_JBR])
                 if law_is_linear(law):
                     ledger[3] += law_branch_loss(law, ph, o, j_b, sign * d0 - gap, sign * d1 - gap, ph, zo)
     # displacement extrema (and the bumpers' maximum compression)

@@ -15,8 +15,10 @@ import numpy as np
 from .._jit import jit
 from ..model.contact_laws import law_force, law_is_linear, law_relax, law_release
 from ._layout import (ACT_CONTACT, E_ACTION, E_ALPHA, E_BETA, E_GAMMA, E_KIND, E_SIDE, KIND_LINEAR, KIND_ZETA,
-                      MODE_LINEAR, P_BW, P_ZETA0, P_AX0, P_AX1, P_AXH, P_C, P_CBL, P_CBR, P_D0, P_DL0, P_DR0, P_GAPL,
-                      P_GAPR, P_H, P_K, P_KBL, P_KBR, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P1, P_PHI, P_RBL, P_RBR,
+                      MODE_LINEAR, P_BW, P_ZETA0, P_AX0, P_AX1, P_AXH, P_C, P_CBL, P_CBR, P_D0, P_DL0, P_DR0,
+                      P_GAPL,
+                      P_GAPR, P_H, P_K, P_KBL, P_KBR, P_LAWL, P_LAWR, P_M, P_MODE, P_NLL, P_NLR, P_P1, P_PHI,
+                      P_RBL, P_RBR,
                       P_V0, P_VROUND, P_W, P_XROUND, PL_AT, PR_AT, PZL_AT, PZR_AT, SIDE_L, SIDE_NONE, SIDE_R)
 from ._linear import forcing_angle, linear_eval
 from ._numeric import dp5_step, phase_rhs, zeta_rate

@@ -101,13 +101,16 @@ def _check_state_fits(state: State, oscillator: Oscillator) -> None:
                 for q in range(1, N_LAW_STATE):
                     if vec[at + q] != 0.0:
                         raise bad(f"vector[{at + q}]", float(vec[at + q]),
-                                  "is a kinematic multi-linear bumper's slip, but that bumper has another law")
+                                  "is a kinematic multi-linear bumper's slip, but that bumper has "
+                                  "another law")
                 _check_law_state(vec[at], law, touching[j], comp[j], tol, j, bad)
     z = float(vec[ZETA])
     if iso.bouc_wen is None and z != 0.0:
-        raise bad(f"vector[{ZETA}]", z, "is an isolator's Bouc-Wen z, but this isolator has no Bouc-Wen spring")
+        raise bad(f"vector[{ZETA}]", z,
+                  "is an isolator's Bouc-Wen z, but this isolator has no Bouc-Wen spring")
     if iso.bouc_wen is not None and abs(z) > iso.bouc_wen.z_max * (1.0 + 1e-9):
-        raise bad(f"vector[{ZETA}]", z, f"is beyond the Bouc-Wen spring's largest |z|, {iso.bouc_wen.z_max:g}")
+        raise bad(f"vector[{ZETA}]", z,
+                  f"is beyond the Bouc-Wen spring's largest |z|, {iso.bouc_wen.z_max:g}")
     n_sp = iso.n_branches - 1
     if iso.hysteresis == "elastic":
         region = int(vec[REGION])
@@ -147,12 +150,14 @@ def _check_law_state(z: float, law: Any, touching: bool, comp: float, tol: float
         return
     if z == EP_YIELD:  # (the yield line starts at the yield compression)
         if comp < dy - tol:
-            raise bad(field, z, f"puts the {('left', 'right')[j]} bumper on its yield line at compression {comp:g} m, "
+            raise bad(field, z,
+                      f"puts the {('left', 'right')[j]} bumper on its yield line at compression {comp:g} m, "
                                 f"below its yield compression {dy:g} m")
         return
     low = k1 * z / (k1 - k2)
     if z < 0.0 or not low - tol <= comp <= low + dy + tol:
-        raise bad(field, z, f"is no plastic offset of the {('left', 'right')[j]} bumper at compression {comp:g} m "
+        raise bad(field, z,
+                  f"is no plastic offset of the {('left', 'right')[j]} bumper at compression {comp:g} m "
                             "(its elastic branch would not hold it)")
 
 
@@ -167,7 +172,8 @@ def _check_kinematic_state(block: np.ndarray, law: Any, comp: float, touching: b
         i = (q - 1) % 3
         if q == 0 or i not in soft:
             if block[q] != 0.0:
-                raise bad(f"vector[{at + q}]", float(block[q]), "is no state of this kinematic multi-linear bumper "
+                raise bad(f"vector[{at + q}]", float(block[q]),
+                          "is no state of this kinematic multi-linear bumper "
                                                               "(a place for a softening it has not): 0")
     for i in sorted(soft):
         u, s = block[1 + i], block[4 + i]
@@ -175,19 +181,24 @@ def _check_kinematic_state(block: np.ndarray, law: Any, comp: float, touching: b
             raise bad(f"vector[{at + 4 + i}]", float(s), "is a slip direction: -1, 0 or +1")
         strain = comp - u
         if (abs(strain) > breaks[i] + tol) if s == 0.0 else abs(strain - s * breaks[i]) > tol:
-            raise bad(f"vector[{at + 1 + i}]", float(u), f"leaves the bumper spring {i}'s strain {strain:g} m beyond "
+            raise bad(f"vector[{at + 1 + i}]", float(u),
+                      f"leaves the bumper spring {i}'s strain {strain:g} m beyond "
                                                          f"its breakpoint {breaks[i]:g} m")
         if s > 0.0 and not touching:
-            raise bad(f"vector[{at + 4 + i}]", float(s), "slips the bumper spring in compression while out of "
+            raise bad(f"vector[{at + 4 + i}]", float(s),
+                      "slips the bumper spring in compression while out of "
                                                          "contact (it holds once the contact ends)")
     if not touching and comp > 0.0:
         k_lin = slopes[0] - sum(slopes[i] - slopes[i + 1] for i in soft)
-        force = max(k_lin, 0.0) * comp + sum((slopes[i] - slopes[i + 1]) * (comp - block[1 + i]) if block[4 + i] == 0.0
-                                             else (slopes[i] - slopes[i + 1]) * block[4 + i] * breaks[i] for i in soft)
+        force = max(k_lin, 0.0) * comp + sum((slopes[i] - slopes[i + 1]) * (comp - block[1 + i])
+                                             if block[4 + i] == 0.0
+                                             else (slopes[i] - slopes[i + 1]) * block[4 + i] * breaks[i]
+                                             for i in soft)
         force += sum((slopes[i + 1] - slopes[i]) * max(comp - breaks[i], 0.0)
                      for i in range(len(breaks)) if slopes[i + 1] > slopes[i])
         if force < -tol * max(slopes) - 1e-9:
-            raise bad(f"vector[{at + 1}]", float(block[1]), f"makes the recovering bumper pull ({force:g} N at its "
+            raise bad(f"vector[{at + 1}]", float(block[1]),
+                      f"makes the recovering bumper pull ({force:g} N at its "
                                                             f"compression {comp:g} m)")
 
 

@@ -48,8 +48,8 @@ def _numbers(line: str, number: int, field: str, source: str) -> list[float]:
         out.append(value)
         at = m.end()
     if line[at:].strip():
-        raise InputError(Problem.BAD_CELL, field, source, line=number, column="value", token=line[at:].strip(),
-                         hint="")
+        raise InputError(Problem.BAD_CELL, field, source, line=number, column="value",
+                         token=line[at:].strip(), hint="")
     return out
 
 
@@ -67,8 +67,8 @@ def parse_at2(text: str, field: str, source: str) -> tuple[np.ndarray, float, st
     if at is None:
         raise InputError(Problem.BAD_HEADER, field, source, line=min(4, max(len(lines), 1)),
                          why="no 'NPTS= ..., DT= ...' line in the header",
-                         fix="give a PEER .AT2 file (its 4th line reads like 'NPTS=  4000, DT=   .0050 SEC'); "
-                             "for other text use Record.from_csv")
+                         fix="give a PEER .AT2 file (its 4th line reads like 'NPTS=  4000, DT=   .0050 "
+                             "SEC'); for other text use Record.from_csv")
     header = [ln.strip() for ln in lines[:at]]
     units_line = " ".join(header).upper()
     if "VELOCITY" in units_line or "DISPLACEMENT" in units_line:

@@ -107,14 +107,16 @@ def spectrum_kernel(t: np.ndarray, acc: np.ndarray, omegas: np.ndarray, zeta: fl
     """Peaks ``out[j] = (max |u|, max |u'|, max |a_abs|)`` of the oscillator ``omegas[j]`` (rad/s, > 0),
     damping ratio ``zeta`` (0 <= zeta < 1), at rest at ``t[0]``, under the record ``acc`` (m/s^2, linear
     between the samples ``t``) up to ``t[-1]``.  Polls ``ctl[STOP]`` once per oscillator and counts the
-    intervals and the half periods inside them against ``ctl[BUDGET]``.  Returns DONE, INTERRUPTED or OVER_BUDGET."""
+    intervals and the half periods inside them against ``ctl[BUDGET]``.  Returns DONE, INTERRUPTED or
+    OVER_BUDGET."""
     n = t.size
     root = math.sqrt(1.0 - zeta * zeta)
     for j in range(omegas.size):
         if ctl[STOP] != 0:
             return INTERRUPTED
         w = omegas[j]
-        ctl[WORK] += n - 1 + int(w * root * (t[n - 1] - t[0]) / math.pi)  # (intervals, and half periods searched)
+        # (intervals, and half periods searched)
+        ctl[WORK] += n - 1 + int(w * root * (t[n - 1] - t[0]) / math.pi)
         if ctl[WORK] > ctl[BUDGET]:
             return OVER_BUDGET
         w2 = w * w

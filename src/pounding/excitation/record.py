@@ -168,7 +168,8 @@ class Record:
         a = values["accel"]
         bad = np.flatnonzero(~np.isfinite(a))
         if bad.size:
-            raise InputError(Problem.BAD_CELL, "path", str(path), line=int(lines[bad[0]]), column=names["accel"],
+            raise InputError(Problem.BAD_CELL, "path", str(path), line=int(lines[bad[0]]),
+                             column=names["accel"],
                              token="", hint=" (a record cannot miss a sample: fill or remove it)")
         if time is None:
             step = positive("dt", dt, "s")
@@ -195,7 +196,8 @@ class Record:
         ``meta["scale_factor"]`` multiplies any earlier one.
         """
         if (pga_g is None) == (sa_g is None):
-            raise InputError(Problem.MISSING_INPUT, "pga_g", pga_g, what="either pga_g= or sa_g= (with period_s=)")
+            raise InputError(Problem.MISSING_INPUT, "pga_g", pga_g,
+                             what="either pga_g= or sa_g= (with period_s=)")
         if pga_g is not None:
             for name, value in (("period_s", period_s), ("damping_ratio", damping_ratio)):
                 if value is not None:
@@ -215,8 +217,8 @@ class Record:
                                      damping_ratio=0.05 if damping_ratio is None else damping_ratio)
             now = float(spec["psa_g"].values[0, 0])
         if now == 0.0:
-            raise InputError(Problem.BAD_STATE, "record", self.name or "record", why="the record is all zeros",
-                             fix="give a record that moves")
+            raise InputError(Problem.BAD_STATE, "record", self.name or "record",
+                             why="the record is all zeros", fix="give a record that moves")
         factor = target / now
         meta = {**self.meta, "scale_factor": self.meta.get("scale_factor", 1.0) * factor}
         return Record(self.t, self.accel * factor, self.name, meta, self.g)

@@ -44,8 +44,8 @@ def el_centro() -> Record:
     """
     with resources.files("pounding.data").joinpath(EL_CENTRO_FILE).open("r", encoding="utf-8") as fh:
         data = np.loadtxt(fh, delimiter=",", comments="#")
-    meta = {"event": "Imperial Valley", "year": 1940, "magnitude": 6.9, "station": "El Centro", "component": "N-S",
-            "source": f"pounding/data/{EL_CENTRO_FILE}"}
+    meta = {"event": "Imperial Valley", "year": 1940, "magnitude": 6.9, "station": "El Centro",
+            "component": "N-S", "source": f"pounding/data/{EL_CENTRO_FILE}"}
     return Record.from_g(data[:, 0], data[:, 1], STANDARD_GRAVITY, name="El Centro 1940 NS", meta=meta)
 
 
@@ -111,7 +111,8 @@ def _fema_part(data: Any, record_set: str, key: str, normalized: bool) -> list[R
     out = []
     for (rec_id, comp), gm in data.ground_motions.iterrows():
         info = data.records.loc[rec_id]
-        values = np.asarray(gm["NormalizedAcceleration" if normalized else "RecordedAcceleration"], dtype=float)
+        values = np.asarray(gm["NormalizedAcceleration" if normalized else "RecordedAcceleration"],
+                            dtype=float)
         time = np.asarray(gm["Time"], dtype=float)
         meta = {"set": record_set, "id": int(rec_id), "rsn": int(gm["RecordSequenceNumber"]),
                 "event": str(info["EarthquakeName"]), "year": int(info["EarthquakeYear"]),

@@ -103,7 +103,8 @@ def response_spectrum(record: Record | Sequence[Record], periods_s: Any, damping
     if work > MAX_INTERVALS:
         raise InputError(Problem.TOO_MUCH_WORK, "periods_s", f"{periods.size} periods down to "
                          f"{periods[periods > 0.0].min() if (periods > 0.0).any() else 0.0:g} s",
-                         estimate=f"{work:.3g}", unit="intervals and half periods", budget=f"{MAX_INTERVALS:.3g}",
+                         estimate=f"{work:.3g}", unit="intervals and half periods",
+                         budget=f"{MAX_INTERVALS:.3g}",
                          fix="fewer periods or records, or no periods far below the record's time step")
     rigid = periods == 0.0
     omegas = 2.0 * math.pi / periods[~rigid]
@@ -112,7 +113,8 @@ def response_spectrum(record: Record | Sequence[Record], periods_s: Any, damping
     for i, r in enumerate(recs):
         out = np.zeros((omegas.size, 3))
         t, a = np.array(r.t, dtype=float), np.array(r.accel, dtype=float)
-        status = run_interruptibly(lambda t=t, a=a, out=out: spectrum_kernel(t, a, omegas, zeta, out, ctl), [ctl])
+        status = run_interruptibly(lambda t=t, a=a, out=out: spectrum_kernel(t, a, omegas, zeta, out, ctl),
+                                   [ctl])
         if status == INTERRUPTED:
             raise Interrupted(_dataset(recs, periods, zeta, peaks), i, len(recs), "records")
         if status != DONE:  # (the budget was checked above)
@@ -148,4 +150,5 @@ def _dataset(recs: list[Record], periods: np.ndarray, zeta: float, peaks: np.nda
          "psa_g": (dims, psa / g, {"units": "g"}),
          "pga_g": (("record",), np.array([r.pga_g for r in recs]), {"units": "g"})},
         coords={"record": record_names(recs), "period_s": periods},
-        attrs={"damping_ratio": zeta, "method": "exact: closed form between samples, peaks between samples found"})
+        attrs={"damping_ratio": zeta,
+               "method": "exact: closed form between samples, peaks between samples found"})

@@ -105,7 +105,8 @@ def check_consistency(targets: Targets, mass_kg: float, gap_total_m: float | Non
         gap_total_m = targets.eta_gap_total_m
     gap_total_m = gap_total("gap_total_m", gap_total_m)
     g = at_most("g", positive("g", g, "m/s^2"), 1000.0, " m/s^2", "give g in m/s^2 (9.81)")
-    f_ref_hz = at_most("f_ref_hz", positive("f_ref_hz", f_ref_hz, "Hz"), 1e4, " Hz", "give it in Hz (the paper's 1.0)")
+    f_ref_hz = at_most("f_ref_hz", positive("f_ref_hz", f_ref_hz, "Hz"), 1e4, " Hz",
+                       "give it in Hz (the paper's 1.0)")
     omega_min_rad_s = at_most("omega_min_rad_s", positive("omega_min_rad_s", omega_min_rad_s, "rad/s"), 1e5,
                               " rad/s", "give it in rad/s (the paper's 2 pi 0.6 = 3.77)")
     table = targets.table.assign(allowed=targets.allowed)
@@ -120,9 +121,11 @@ def check_consistency(targets: Targets, mass_kg: float, gap_total_m: float | Non
             e_low = excursion[0] - excursion[1]  # the excursion at the low end of its tolerance
             name = ("the measured E" if "excursion_max_m" in q else
                     "eta * Delta" if conf == "YBs" else "e * D_tmax")
-            rows.append(_row(key, "alpha_vs_excursion", LAW, "alpha", q["alpha"], 16.0 * e_low * f * f / a_t - 1.0,
+            rows.append(_row(key, "alpha_vs_excursion", LAW, "alpha", q["alpha"],
+                             16.0 * e_low * f * f / a_t - 1.0,
                              f"a periodic response of excursion E = {name} = {excursion[0]:.4g} m at "
-                             f"f = {f:.3g} Hz needs |D''| >= 16 E f^2 somewhere: alpha >= 16 E f^2 / A_t - 1"))
+                             f"f = {f:.3g} Hz needs |D''| >= 16 E f^2 somewhere: "
+                             "alpha >= 16 E f^2 / A_t - 1"))
             rows.append(_row(key, "alpha_vs_excursion_sinusoidal", SINUSOIDAL, "alpha", q["alpha"],
                              2.0 * math.pi ** 2 * e_low * f * f / a_t - 1.0,
                              f"a sinusoidal response of excursion E = {excursion[0]:.4g} m at f = {f:.3g} Hz "
@@ -135,11 +138,11 @@ def check_consistency(targets: Targets, mass_kg: float, gap_total_m: float | Non
                 gap_needed = max(0.5 * (excursion[0] - excursion[1] - a_max * dt_high_s ** 2), 0.0)
                 rows.append(_row(key, "contact_time_vs_compression", CONTACT, "contact_time_ms",
                                  q["contact_time_ms"], 1e3 * math.sqrt(s_low / a_max),
-                                 f"the bumpers are compressed by S = E - Delta = {1e3 * s_low:.3g} mm in all, the "
-                                 f"deepest by S / 2, brought to rest there at |D''| <= (alpha + 1) A_t = "
-                                 f"{a_max:.3g} m/s^2: dt_c >= sqrt(S / ((alpha + 1) A_t)) for contacts from the "
-                                 f"recovered surface at the nominal gap; the measured dt_c is possible with a gap "
-                                 f"of {1e3 * gap_needed:.3g} mm a side or more"))
+                                 f"the bumpers are compressed by S = E - Delta = {1e3 * s_low:.3g} mm in "
+                                 "all, the deepest by S / 2, brought to rest there at |D''| <= (alpha + 1) "
+                                 f"A_t = {a_max:.3g} m/s^2: dt_c >= sqrt(S / ((alpha + 1) A_t)) for contacts "
+                                 "from the recovered surface at the nominal gap; the measured dt_c is "
+                                 f"possible with a gap of {1e3 * gap_needed:.3g} mm a side or more"))
         needed = ("alpha", "restitution", "contact_time_ms", "dissipated_energy_per_mass")
         if all(k in q for k in needed):
             s, s_allowed = q["restitution"]
@@ -158,7 +161,8 @@ def check_consistency(targets: Targets, mass_kg: float, gap_total_m: float | Non
             if s + s_allowed < 1.0:  # E_d / M = v_i^2 (1 - s^2) / 2 > 0
                 rows.append(_row(key, "energy_vs_restitution", LAW, "dissipated_energy_per_mass",
                                  q["dissipated_energy_per_mass"], 0.0,
-                                 f"s = {s:g} < 1: the contact took energy, E_d / M = v_i^2 (1 - s^2) / 2 > 0"))
+                                 f"s = {s:g} < 1: the contact took energy, "
+                                 "E_d / M = v_i^2 (1 - s^2) / 2 > 0"))
     return pd.DataFrame(rows, columns=list(COLUMNS))
 
 

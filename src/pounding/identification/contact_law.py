@@ -23,7 +23,8 @@ from ..model.contact_laws import (ELASTIC_PLASTIC, LAWS, MAX_BRANCHES, MAX_EXPON
                                   law_force_many)
 
 MIN_SAMPLES_IN_CONTACT = 3
-KINEMATIC_ROW = "multilinear_kinematic"  # rank_contact_laws' name of MultilinearBumper(hysteresis="kinematic")
+# rank_contact_laws' name of MultilinearBumper(hysteresis="kinematic")
+KINEMATIC_ROW = "multilinear_kinematic"
 MIN_RATIO = 1e-6  # the elastic-plastic fit's least K2 / K1
 MIN_STIFFNESS = 1e-300  # the fitted stiffness's floor, N/m^n: at it, no stiffness fits (an error)
 # the scales of a bumper test: beyond them the data are in other units (and the least squares overflow)
@@ -196,7 +197,8 @@ def _multilinear_search(d, v, force, n_branches, kinematic=False):
     grid = np.linspace(0.1, 0.9, 9)
     starts = sorted(combinations(grid, n_branches - 1), key=lambda u: cost(np.array(u)))[:3]
     best = min((minimize(cost, np.array(u), method="Nelder-Mead",
-                         options={"xatol": 1e-10, "fatol": 0.0, "maxiter": 600 * n_branches}) for u in starts),
+                         options={"xatol": 1e-10, "fatol": 0.0, "maxiter": 600 * n_branches})
+                for u in starts),
                key=lambda r: r.fun)
     return breaks_of(best.x)
 
@@ -315,8 +317,8 @@ def fit_contact_law(
     if law == Hertzdamp.TYPE:
         raise InputError(Problem.NOT_ONE_OF, "law", law,
                          choices=", ".join(repr(k) for k in LAWS if k != Hertzdamp.TYPE)
-                         + " (Hertzdamp's damping is set by each impact's velocity, which a cyclic test has not: "
-                           "fit 'hunt_crossley', whose damping c is Hertzdamp's xi_norm k / v_in)")
+                         + " (Hertzdamp's damping is set by each impact's velocity, which a cyclic test has "
+                           "not: fit 'hunt_crossley', whose damping c is Hertzdamp's xi_norm k / v_in)")
     n_branches = integer("n_branches", n_branches, 1, MAX_BRANCHES)
     one_of("hysteresis", hysteresis, MultilinearBumper.HYSTERESIS)
     if hysteresis != "elastic" and law != MultilinearBumper.TYPE:
@@ -324,11 +326,13 @@ def fit_contact_law(
                          choices="'multilinear' (hysteresis is a multi-linear law's; leave it out otherwise)")
     if breakpoints is not None and law != MultilinearBumper.TYPE:
         raise InputError(Problem.NOT_ONE_OF, "law", law,
-                         choices="'multilinear' (breakpoints are a multi-linear law's; leave them out otherwise)")
+                         choices="'multilinear' (breakpoints are a multi-linear law's; leave them out "
+                                 "otherwise)")
     if law == Jankowski.TYPE:
         if effective_mass_kg is None:
             raise InputError(Problem.MISSING_INPUT, "effective_mass_kg", None,
-                             what="effective_mass_kg (kg, the impacting mass): Jankowski's damping ratio needs it")
+                             what="effective_mass_kg (kg, the impacting mass): Jankowski's damping ratio "
+                                  "needs it")
         effective_mass_kg = positive("effective_mass_kg", effective_mass_kg, "kg")
     d = float_array("displacement_m", displacement_m, min_len=MIN_SAMPLES_IN_CONTACT)
     force = float_array("force_n", force_n, min_len=MIN_SAMPLES_IN_CONTACT)
@@ -342,7 +346,8 @@ def fit_contact_law(
         bad = np.flatnonzero(np.diff(t) <= 0.0)
         if bad.size:  # name the first sample that does not come after the one before
             i = int(bad[0]) + 1
-            raise InputError(Problem.NOT_INCREASING, f"time_s[{i - 1}:{i + 1}]", [float(t[i - 1]), float(t[i])])
+            raise InputError(Problem.NOT_INCREASING, f"time_s[{i - 1}:{i + 1}]",
+                             [float(t[i - 1]), float(t[i])])
         with np.errstate(all="ignore"):  # (times too close overflow: named below)
             v = np.gradient(d, t, edge_order=2)
     elif law == ElasticPlastic.TYPE:  # rate-independent: the rate is not needed
@@ -355,7 +360,8 @@ def fit_contact_law(
     if n_contact < MIN_SAMPLES_IN_CONTACT:
         raise InputError(Problem.TOO_FEW_IN_CONTACT, "displacement_m", f"array of {d.size}",
                          got=n_contact, expected=MIN_SAMPLES_IN_CONTACT)
-    _check_test_scales(np.flatnonzero(contact), d, v, force, "velocity_m_s" if velocity_m_s is not None else "time_s")
+    _check_test_scales(np.flatnonzero(contact), d, v, force, "velocity_m_s" if velocity_m_s is not None
+                       else "time_s")
     d, v, force = d[contact], v[contact], force[contact]
     if law == KelvinVoigt.TYPE:
         k, c, _ = _nnls_fit(d, v, force)
@@ -381,7 +387,8 @@ def fit_contact_law(
         k, c, _ = _nnls_fit(d, v, force, best.x, law)
         k = max(k, MIN_STIFFNESS)
         if law == Jankowski.TYPE:
-            fitted = Jankowski(k, c / (2.0 * np.sqrt(effective_mass_kg * k)), effective_mass_kg, float(best.x))
+            fitted = Jankowski(k, c / (2.0 * np.sqrt(effective_mass_kg * k)), effective_mass_kg,
+                               float(best.x))
         else:
             fitted = HuntCrossley(k, float(best.x), c)
     if _stiffness(fitted) <= MIN_STIFFNESS:  # (the least squares' floor: no force grows with compression)
@@ -402,8 +409,8 @@ def _exponent_bounds(bounds: Any) -> tuple[float, float]:
                          expected="pair of numbers (low, high), e.g. (1.0, 3.0)")
     values = real_tuple("exponent_bounds", bounds)
     if len(values) != 2:
-        raise InputError(Problem.LENGTH_MISMATCH, "exponent_bounds", list(values), got=len(values), expected=2,
-                         hint=" (low, high), e.g. (1.0, 3.0)")
+        raise InputError(Problem.LENGTH_MISMATCH, "exponent_bounds", list(values), got=len(values),
+                         expected=2, hint=" (low, high), e.g. (1.0, 3.0)")
     lo, hi = values
     if lo < 1.0:
         raise InputError(Problem.TOO_SMALL, "exponent_bounds[0]", lo, minimum=1, hint=" (1: linear contact)")
@@ -415,7 +422,8 @@ def _exponent_bounds(bounds: Any) -> tuple[float, float]:
     return lo, hi
 
 
-def _check_test_scales(idx: np.ndarray, d: np.ndarray, v: np.ndarray, force: np.ndarray, rate_field: str) -> None:
+def _check_test_scales(idx: np.ndarray, d: np.ndarray, v: np.ndarray, force: np.ndarray,
+                       rate_field: str) -> None:
     """The samples ``idx`` (those in compression) in the units a bumper test has: the least squares
     square them, so compressions of 1e300 m overflowed and of 1e-300 m gave stiffnesses of 1e304 N/m."""
     d, v, force = d[idx], v[idx], force[idx]
@@ -451,7 +459,8 @@ def rank_contact_laws(displacement_m: Any, force_n: Any, *, time_s: Any = None, 
     which law describes the bumper).
 
     Arguments as :func:`fit_contact_law`; Jankowski's law is fitted only with
-    ``effective_mass_kg``, and Hertzdamp never (its damping is each impact's).  Laws whose residuals agree to 1e-6 are ranked by their number of
+    ``effective_mass_kg``, and Hertzdamp never (its damping is each impact's).  Laws whose residuals agree to
+    1e-6 are ranked by their number of
     parameters (fewer first: a multi-linear law with equal slopes is Kelvin-Voigt).
 
     Parameters
@@ -500,10 +509,12 @@ def rank_contact_laws(displacement_m: Any, force_n: Any, *, time_s: Any = None, 
     for name in [*LAWS, KINEMATIC_ROW]:
         if (name == Jankowski.TYPE and effective_mass_kg is None) or name == Hertzdamp.TYPE:
             continue
-        law, hysteresis = (MultilinearBumper.TYPE, "kinematic") if name == KINEMATIC_ROW else (name, "elastic")
+        law, hysteresis = (MultilinearBumper.TYPE, "kinematic") if name == KINEMATIC_ROW else (name,
+                                                                                               "elastic")
         try:
             fit = fit_contact_law(displacement_m, force_n, time_s=time_s, velocity_m_s=velocity_m_s, law=law,
-                                  effective_mass_kg=effective_mass_kg, n_branches=n_branches, hysteresis=hysteresis)
+                                  effective_mass_kg=effective_mass_kg, n_branches=n_branches,
+                                  hysteresis=hysteresis)
         except InputError as exc:
             if exc.problem is not Problem.NO_FIT:
                 raise
@@ -512,7 +523,8 @@ def rank_contact_laws(displacement_m: Any, force_n: Any, *, time_s: Any = None, 
                      "fit": fit})
     if not rows:
         raise InputError(Problem.NO_FIT, "force_n", "the forces given",
-                         why="fit none of the contact laws (no stiffness makes their force grow with the compression)",
+                         why="fit none of the contact laws (no stiffness makes their force grow with the "
+                             "compression)",
                          fix="give the force the bumper pushes with, positive in compression, in N")
     df = pd.DataFrame(rows)
     # ties (residuals within 1e-6 of each other, e.g. a multi-linear law with and without hysteresis on a

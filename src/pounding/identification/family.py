@@ -40,13 +40,15 @@ import numpy as np
 
 from .._checks import integer, one_of, positive, read_toml, real
 from .._errors import InputError, Problem
-from ..model import BoucWen, Bumpers, ElasticPlastic, HuntCrossley, Isolator, KelvinVoigt, MultilinearBumper, Oscillator
+from ..model import (BoucWen, Bumpers, ElasticPlastic, HuntCrossley, Isolator, KelvinVoigt, MultilinearBumper,
+                     Oscillator)
 
 FAMILY_KEYS = ("mass", "branches", "hysteresis", "law", "fixed", "bounds", "bumper_branches", "bouc_wen")
 BOUC_WEN_PARAMETERS = ("bw_stiffness", "bw_yield_displacement", "bw_n")  # (a = 1, beta = gamma = 0.5)
 LAW_PARAMETERS = {"kelvin_voigt": ("bumper_stiffness", "bumper_damping"),
                   "hunt_crossley": ("bumper_stiffness", "bumper_exponent", "bumper_damping"),
-                  "elastic_plastic": ("bumper_stiffness", "bumper_post_yield_ratio", "bumper_yield_compression"),
+                  "elastic_plastic": ("bumper_stiffness", "bumper_post_yield_ratio",
+                                      "bumper_yield_compression"),
                   "multilinear": (),  # (named by its number of branches: ModelFamily.law_parameters)
                   "multilinear_kinematic": ()}  # (the same, MultilinearBumper(hysteresis="kinematic"))
 MULTILINEAR_LAWS = {"multilinear": "elastic", "multilinear_kinematic": "kinematic"}  # -> the law's hysteresis
@@ -102,14 +104,16 @@ class ModelFamily:
 
     def __post_init__(self) -> None:
         if not isinstance(self.bouc_wen, bool):
-            raise InputError(Problem.WRONG_TYPE, "family.bouc_wen", self.bouc_wen, got=type(self.bouc_wen).__name__,
-                             expected="true or false")
+            raise InputError(Problem.WRONG_TYPE, "family.bouc_wen", self.bouc_wen,
+                             got=type(self.bouc_wen).__name__, expected="true or false")
         object.__setattr__(self, "bumper_branches", integer("family.bumper_branches", self.bumper_branches, 1,
                                                             MAX_BUMPER_BRANCHES,
-                                                            fix=f"give 1 to {MAX_BUMPER_BRANCHES} bumper slopes"))
+                                                            fix=f"give 1 to {MAX_BUMPER_BRANCHES} bumper "
+                                                                "slopes"))
         object.__setattr__(self, "mass", positive("family.mass", self.mass, "kg"))
         object.__setattr__(self, "branches", integer("family.branches", self.branches, 1, MAX_BRANCHES,
-                                                                fix=f"give at most {MAX_BRANCHES} backbone branches"))
+                                                                fix=f"give at most {MAX_BRANCHES} backbone "
+                                                                    "branches"))
         one_of("family.hysteresis", self.hysteresis, ("kinematic", "elastic"))
         one_of("family.law", self.law, tuple(LAW_PARAMETERS))
         if not isinstance(self.fixed, dict):
@@ -137,7 +141,8 @@ class ModelFamily:
         if self.law not in MULTILINEAR_LAWS:
             return LAW_PARAMETERS[self.law]
         k = self.bumper_branches
-        return (tuple(f"bumper_slope_{i + 1}" for i in range(k)) + tuple(f"bumper_breakpoint_{i + 1}" for i in range(k - 1))
+        return (tuple(f"bumper_slope_{i + 1}" for i in range(k)) + tuple(f"bumper_breakpoint_{i + 1}"
+                                                                         for i in range(k - 1))
                 + ("bumper_damping",))
 
     def free_names(self, bounds: dict[str, Any]) -> tuple[str, ...]:
@@ -145,7 +150,8 @@ class ModelFamily:
         names = self.parameter_names
         for name in bounds:
             if name not in names:
-                raise InputError(Problem.UNKNOWN_KEY, f"bounds.{name}", bounds[name], choices=", ".join(names))
+                raise InputError(Problem.UNKNOWN_KEY, f"bounds.{name}", bounds[name],
+                                 choices=", ".join(names))
             if name in self.fixed:
                 raise InputError(Problem.DUPLICATE, f"bounds.{name}", bounds[name],
                                  repeated="a number the family fixes; fix it or bound it, not both")
@@ -163,7 +169,8 @@ class ModelFamily:
         """
         p = {**self.fixed, **values}
         n = self.branches
-        bouc_wen = BoucWen(p["bw_stiffness"], p["bw_yield_displacement"], n=p["bw_n"]) if self.bouc_wen else None
+        bouc_wen = BoucWen(p["bw_stiffness"], p["bw_yield_displacement"],
+                           n=p["bw_n"]) if self.bouc_wen else None
         isolator = Isolator(tuple(p[f"slope_{i + 1}"] for i in range(n)),
                             tuple(p[f"breakpoint_{i + 1}"] for i in range(n - 1)), self.hysteresis,
                             p["isolator_damping"], bouc_wen)
@@ -172,14 +179,15 @@ class ModelFamily:
         elif self.law in MULTILINEAR_LAWS:
             k = self.bumper_branches
             law = MultilinearBumper(tuple(p[f"bumper_slope_{i + 1}"] for i in range(k)),
-                                    tuple(p[f"bumper_breakpoint_{i + 1}"] for i in range(k - 1)), p["bumper_damping"],
-                                    MULTILINEAR_LAWS[self.law])
+                                    tuple(p[f"bumper_breakpoint_{i + 1}"] for i in range(k - 1)),
+                                    p["bumper_damping"], MULTILINEAR_LAWS[self.law])
         elif self.law == "elastic_plastic":
             ratio = p["bumper_post_yield_ratio"]
             if not 0.0 < ratio < 1.0:
                 raise InputError(Problem.OUT_OF_RANGE, "bumper_post_yield_ratio", ratio, range="(0, 1)",
                                  hint=" (K2 / K1: the yield line is the softer one)")
-            law = ElasticPlastic(p["bumper_stiffness"], ratio * p["bumper_stiffness"], p["bumper_yield_compression"])
+            law = ElasticPlastic(p["bumper_stiffness"], ratio * p["bumper_stiffness"],
+                                 p["bumper_yield_compression"])
         else:
             law = HuntCrossley(p["bumper_stiffness"], p["bumper_exponent"], p["bumper_damping"])
         return Oscillator(self.mass, isolator, Bumpers(p["gap"], p["gap"], law))
@@ -200,11 +208,13 @@ class ModelFamily:
         if self.bouc_wen:
             bw = iso.bouc_wen
             if (bw.a, bw.beta, bw.gamma) != (1.0, 0.5, 0.5):
-                raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator, got=f"a Bouc-Wen spring with a = {bw.a:g}, "
+                raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator,
+                                 got=f"a Bouc-Wen spring with a = {bw.a:g}, "
                                  f"beta = {bw.beta:g}, gamma = {bw.gamma:g}",
                                  expected="the family's: a = 1, beta = gamma = 0.5")
             out.update(bw_stiffness=float(iso.bouc_wen.stiffness),
-                       bw_yield_displacement=float(iso.bouc_wen.yield_displacement), bw_n=float(iso.bouc_wen.n))
+                       bw_yield_displacement=float(iso.bouc_wen.yield_displacement),
+                       bw_n=float(iso.bouc_wen.n))
         if multilinear:
             out.update({f"bumper_slope_{i + 1}": float(k) for i, k in enumerate(b.law.slopes)})
             out.update({f"bumper_breakpoint_{i + 1}": float(x) for i, x in enumerate(b.law.breakpoints)})
@@ -231,8 +241,8 @@ class ModelFamily:
             raise InputError(Problem.MISSING_KEY, "mass", None, choices=", ".join(FAMILY_KEYS))
         bounds = table.get("bounds", {})
         family = cls(table["mass"], table.get("branches", 3), table.get("hysteresis", "kinematic"),
-                     table.get("law", "kelvin_voigt"), table.get("fixed", {}), table.get("bumper_branches", 3),
-                     table.get("bouc_wen", False))
+                     table.get("law", "kelvin_voigt"), table.get("fixed", {}),
+                     table.get("bumper_branches", 3), table.get("bouc_wen", False))
         return family, check_bounds(family, bounds)
 
 

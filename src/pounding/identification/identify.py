@@ -339,8 +339,8 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
                f"cost {best['cost']:.4g}.")
     if interrupted:
         message = "Interrupted: the best candidate so far. " + message
-    result = Identification(params, osc, table, best["cost"], best["n"], Status.SUCCESS, message, family, bounds,
-                            complete=not interrupted, loss=loss)
+    result = Identification(params, osc, table, best["cost"], best["n"], Status.SUCCESS, message, family,
+                            bounds, complete=not interrupted, loss=loss)
     if interrupted:
         raise Interrupted(result, best["n"], None, "evaluations")
     return result
@@ -397,7 +397,8 @@ def _model_column(targets: Targets, model: dict | None) -> np.ndarray:
     return np.array([model[(c, float(a), d)]["excursion_max_m"] / delta
                      if q == "eta" and c == "YBs" and delta is not None
                      else model[(c, float(a), d)][q] for c, a, d, q in
-                     t[["configuration", "a_g", "direction", "quantity"]].itertuples(index=False)], dtype=float)
+                     t[["configuration", "a_g", "direction", "quantity"]].itertuples(index=False)],
+                    dtype=float)
 
 
 def _normalized(targets: Targets, model: dict | None) -> np.ndarray:

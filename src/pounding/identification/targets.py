@@ -113,7 +113,8 @@ class Targets:
     @property
     def cases(self) -> list[tuple[str, float, str]]:
         """The sweeps the targets need: ``(configuration, a_g, direction)``, sorted."""
-        keys = {(c, float(a), d) for c, a, d in self.table[["configuration", "a_g", "direction"]].itertuples(index=False)}
+        keys = {(c, float(a), d) for c, a, d in self.table[["configuration", "a_g",
+                                                            "direction"]].itertuples(index=False)}
         return sorted(keys)
 
     @property
@@ -128,7 +129,8 @@ class Targets:
 
     @classmethod
     def from_records(cls, records: list[dict[str, Any]], *, defaults: dict[str, Any] | None = None,
-                     tolerances: dict[str, Any] | None = None, eta_gap_total_m: float | None = None) -> Targets:
+                     tolerances: dict[str, Any] | None = None,
+                     eta_gap_total_m: float | None = None) -> Targets:
         """Build and check targets from dicts with the keys of ``TARGET_KEYS``.
 
         ``defaults`` may set ``direction``; ``tolerances`` maps a quantity to
@@ -138,8 +140,8 @@ class Targets:
         for name, table in (("defaults", defaults), ("tolerances", tolerances)):
             if table is not None and not isinstance(table, dict):
                 raise InputError(Problem.WRONG_TYPE, name, table, got=type(table).__name__,
-                                 expected="table" + (" such as {direction = \"up\"}" if name == "defaults" else
-                                                     " of quantity = {tolerance = x, relative = true}"))
+                                 expected="table" + (" such as {direction = \"up\"}" if name == "defaults"
+                                                     else " of quantity = {tolerance = x, relative = true}"))
         defaults = dict(defaults or {})
         for key in defaults:
             if key != "direction":
@@ -168,16 +170,20 @@ class Targets:
                 raise InputError(Problem.WRONG_TYPE, where, rec, got=type(rec).__name__, expected="table")
             for key in rec:
                 if key not in TARGET_KEYS:
-                    raise InputError(Problem.UNKNOWN_KEY, f"{where}.{key}", rec[key], choices=", ".join(TARGET_KEYS))
+                    raise InputError(Problem.UNKNOWN_KEY, f"{where}.{key}", rec[key],
+                                     choices=", ".join(TARGET_KEYS))
             for key in ("configuration", "a_g", "quantity", "value"):
                 if key not in rec:
-                    raise InputError(Problem.MISSING_KEY, f"{where}.{key}", None, choices=", ".join(TARGET_KEYS))
+                    raise InputError(Problem.MISSING_KEY, f"{where}.{key}", None,
+                                     choices=", ".join(TARGET_KEYS))
             conf = rec["configuration"]
             if conf not in CONFIGURATIONS:
-                raise InputError(Problem.NOT_ONE_OF, f"{where}.configuration", conf, choices=", ".join(CONFIGURATIONS))
+                raise InputError(Problem.NOT_ONE_OF, f"{where}.configuration", conf,
+                                 choices=", ".join(CONFIGURATIONS))
             direction = rec.get("direction", defaults.get("direction", "up"))
             if direction not in DIRECTIONS:
-                raise InputError(Problem.NOT_ONE_OF, f"{where}.direction", direction, choices=", ".join(DIRECTIONS))
+                raise InputError(Problem.NOT_ONE_OF, f"{where}.direction", direction,
+                                 choices=", ".join(DIRECTIONS))
             quantity = _known_quantity(f"{where}.quantity", rec["quantity"])
             if conf == "NBs" and quantity == "eta":
                 raise InputError(Problem.NOT_ONE_OF, f"{where}.quantity", quantity,
@@ -191,13 +197,15 @@ class Targets:
                                  unit=f"the unit of {quantity} (a frequency ratio, time or ratio is > 0)")
             tol, relative = tol_table[quantity]
             if "tolerance" in rec:
-                tol = positive(f"{where}.tolerance", rec["tolerance"], "the quantity's unit (or a fraction when relative)")
+                tol = positive(f"{where}.tolerance", rec["tolerance"],
+                               "the quantity's unit (or a fraction when relative)")
             if "relative" in rec:
                 relative = boolean(f"{where}.relative", rec["relative"])
             weight = positive(f"{where}.weight", rec.get("weight", 1.0), "(a factor)")
             key = (conf, a_g, direction, quantity)
             if key in seen:
-                raise InputError(Problem.DUPLICATE, where, key, repeated="(configuration, a_g, direction, quantity)")
+                raise InputError(Problem.DUPLICATE, where, key,
+                                 repeated="(configuration, a_g, direction, quantity)")
             seen.add(key)
             rows.append(dict(zip(COLUMNS, (conf, a_g, direction, quantity, value, tol, relative, weight))))
         return cls(pd.DataFrame(rows, columns=list(COLUMNS)), eta_gap_total_m)
@@ -208,10 +216,12 @@ class Targets:
         table = read_toml("targets", path, ("defaults", "tolerances", "target", "eta_gap_total_m"))
         if "target" not in table:
             raise InputError(Problem.MISSING_KEY, "target", None, choices="[[target]] tables")
-        return cls.from_records(table["target"], defaults=table.get("defaults"), tolerances=table.get("tolerances"),
+        return cls.from_records(table["target"], defaults=table.get("defaults"),
+                                tolerances=table.get("tolerances"),
                                 eta_gap_total_m=table.get("eta_gap_total_m"))
 
-    def check_consistency(self, mass_kg: float, gap_total_m: float | None = None, **kwargs: Any) -> pd.DataFrame:
+    def check_consistency(self, mass_kg: float, gap_total_m: float | None = None,
+                          **kwargs: Any) -> pd.DataFrame:
         """Flag measured combinations that no mass obeying Newton's law can produce.
 
         See :func:`pounding.identification.consistency.check_consistency` (``gap_total_m``
@@ -230,8 +240,9 @@ class Targets:
 
         recs = []
         for row in self.table.itertuples(index=False):
-            recs.append({"configuration": row.configuration, "a_g": float(row.a_g), "direction": row.direction,
-                         "quantity": row.quantity, "value": float(row.value), "tolerance": float(row.tolerance),
+            recs.append({"configuration": row.configuration, "a_g": float(row.a_g),
+                         "direction": row.direction, "quantity": row.quantity, "value": float(row.value),
+                         "tolerance": float(row.tolerance),
                          "relative": bool(row.relative), "weight": float(row.weight)})
         head = {} if self.eta_gap_total_m is None else {"eta_gap_total_m": self.eta_gap_total_m}
         return tomli_w.dumps({**head, "target": recs})

@@ -36,7 +36,8 @@ def fundamental(t: np.ndarray, x: np.ndarray, f: float) -> complex:
 
 
 def channel_scales(table: np.ndarray, disp_w2: np.ndarray, acc: np.ndarray) -> tuple[float, float]:
-    """``(s_a, s_D)`` from the steps' fundamentals ``table = F(A)``, ``disp_w2 = omega^2 F(D)``, ``acc = F(a)``
+    """``(s_a, s_D)`` from the steps' fundamentals ``table = F(A)``, ``disp_w2 = omega^2 F(D)``, ``acc =
+    F(a)``
     (complex, shape (steps,)); NaN where the steps cannot tell them apart."""
     ok = np.isfinite(table) & np.isfinite(disp_w2) & np.isfinite(acc)
     if ok.sum() < 1:
@@ -62,8 +63,8 @@ def _diagnosis(s_a: float, s_d: float) -> str | None:
     if _near(s_a, -1.0) and _near(s_d, 1.0):
         return "it reads the opposite sign of the table's and the laser's: negate that accelerometer"
     if _near(s_a, 1.0) and _near(s_d, -1.0):
-        return ("the laser reads the opposite sign (pounding takes D positive in the direction of the table's "
-                "positive acceleration): negate the displacement")
+        return ("the laser reads the opposite sign (pounding takes D positive in the direction of the "
+                "table's positive acceleration): negate the displacement")
     for factor, why in ((1.0 / 9.81, "it looks like g read as m/s^2: give its unit as g"),
                         (9.81, "it looks like m/s^2 read as g: give its unit as m/s2"),
                         (1e-2, "it looks like cm/s^2 read as m/s^2: give its unit as cm/s2")):
@@ -71,7 +72,9 @@ def _diagnosis(s_a: float, s_d: float) -> str | None:
             return why
     for factor, why in ((1e3, "the displacement looks like mm read as m: give its unit as mm"),
                         (1e-3, "the displacement looks like m read as mm: give its unit as m"),
-                        (9.81, "the accelerations (table and mass) look like g read as m/s^2: give their unit as g"),
+                        (9.81,
+                         "the accelerations (table and mass) look like g read as m/s^2: give their "
+                         "unit as g"),
                         (1.0 / 9.81, "the accelerations (table and mass) look like m/s^2 read as g")):
         if _near(s_a, 1.0) and _near(s_d, factor):
             return why
@@ -86,8 +89,9 @@ def warn_inconsistent(source: str, channels: tuple[str, ...], table: np.ndarray,
         why = _diagnosis(s_a, s_d) if np.isfinite(s_a) and np.isfinite(s_d) else None
         if why is not None:
             warnings.warn(f"{source}: the channels disagree: against the table, accelerometer {name!r} reads "
-                          f"{s_a:.3g} times the mass's acceleration and the laser {s_d:.3g} times its displacement "
-                          f"(kinematics, whatever the forces; 1 and 1 for a consistent recording); {why}",
+                          f"{s_a:.3g} times the mass's acceleration and the laser {s_d:.3g} times its "
+                          "displacement (kinematics, whatever the forces; 1 and 1 for a consistent "
+                          f"recording); {why}",
                           PoundingWarning, stacklevel=3)
 
 
@@ -97,8 +101,9 @@ def warn_time_scale(source: str, sample_rate_hz: float, freqs_hz: np.ndarray) ->
         return
     f = float(np.median(freqs_hz))
     if f < F_LOW_HZ:
-        warnings.warn(f"{source}: the steps are at {f:.3g} Hz and the record samples at {sample_rate_hz:.3g} Hz: "
-                      f"is the time in ms read as s? give units time=ms", PoundingWarning, stacklevel=3)
+        warnings.warn(f"{source}: the steps are at {f:.3g} Hz and the record samples at {sample_rate_hz:.3g} "
+                      "Hz: is the time in ms read as s? give units time=ms", PoundingWarning, stacklevel=3)
     elif f > F_HIGH_HZ:
-        warnings.warn(f"{source}: the steps are at {f:.3g} Hz: is the time in s read as ms? give units time=s",
+        warnings.warn(f"{source}: the steps are at {f:.3g} Hz: is the time in s read as ms? give "
+                      "units time=s",
                       PoundingWarning, stacklevel=3)

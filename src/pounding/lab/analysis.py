@@ -145,7 +145,8 @@ def _peak(t: np.ndarray, x: np.ndarray, i: int) -> float:
     return float(y1 - 0.25 * (y0 - y2) * shift) if abs(shift) <= 1.0 else float(y1)
 
 
-def _cycles_in_phase(t: np.ndarray, x: np.ndarray, start_s: float, period_s: float, cycles: int) -> np.ndarray:
+def _cycles_in_phase(t: np.ndarray, x: np.ndarray, start_s: float, period_s: float,
+                     cycles: int) -> np.ndarray:
     """``x`` over ``cycles`` periods from ``start_s``, cut into periods and aligned in phase: its cubic
     spline read at ``t_j + k period_s`` (``t_j`` the samples of the first period), shape (cycles, samples
     of a period)."""
@@ -271,7 +272,8 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
     sched = None if freqs_hz is None else float_array("freqs_hz", freqs_hz)
     if sched is not None and (sched <= 0.0).any():
         raise InputError(Problem.NOT_POSITIVE, "freqs_hz", freqs_hz, unit="Hz")
-    measure_cycles = integer("measure_cycles", measure_cycles, 2, 10_000)  # (one cycle cannot show steadiness)
+    # (one cycle cannot show steadiness)
+    measure_cycles = integer("measure_cycles", measure_cycles, 2, 10_000)
     steady_rtol = non_negative("steady_rtol", steady_rtol, "(relative)")
     f_ref_hz = positive("f_ref_hz", f_ref_hz, "Hz")
     omega_min_rad_s = positive("omega_min_rad_s", omega_min_rad_s, "rad/s")
@@ -325,7 +327,8 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
         steady = bool(spread <= steady_rtol + STEADY_NOISE_FLOOR * noise / max(excursion, 1e-300))
         alphas = peaks.max(axis=0)
         fundamentals.append([fundamental(t[in_win], table[in_win], 1.0 / period),
-                             (2.0 * math.pi / period) ** 2 * fundamental(t[in_win], record.displacement_m[in_win],
+                             (2.0 * math.pi / period) ** 2 * fundamental(t[in_win],
+                                                                         record.displacement_m[in_win],
                                                                          1.0 / period),
                              *(fundamental(t[in_win], raw_acc[in_win, j], 1.0 / period)
                                for j in range(1, raw_acc.shape[1]))])
@@ -354,10 +357,12 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
                     "cycles_run": n_cyc, "window_start_s": w0,
                     "window_end_s": float(s1)})
         if gap is not None:
-            win = (t >= w0 - FLIGHT_FIT_S) & (t < s1 + FLIGHT_FIT_S)  # (the flight beside the window's contacts)
-            found, unconfirmed = window_contacts(t[win], record.displacement_m[win], disp[win], acc[win, 0] - zero[0],
-                                                 raw_acc[win, 0] - zero[0], table[win], mass_kg, 0.5 * gap, fs,
-                                                 (w0, s1))
+            # (the flight beside the window's contacts)
+            win = (t >= w0 - FLIGHT_FIT_S) & (t < s1 + FLIGHT_FIT_S)
+            found, unconfirmed = window_contacts(t[win], record.displacement_m[win], disp[win],
+                                                 acc[win, 0] - zero[0],
+                                                 raw_acc[win, 0] - zero[0], table[win], mass_kg, 0.5 * gap,
+                                                 fs, (w0, s1))
             row["contact"] = len(found) > 0
             row["contacts_per_cycle"] = len(found) / measure_cycles
             for q in IMPACT_COLUMNS[3:]:  # (the velocities as speeds: the sides' signs differ)
@@ -368,8 +373,8 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
             impacts.append(found.assign(freq_hz=f))
             crossings_without_force += unconfirmed
         # a window with missing samples (NaN, or a gap in time) is not measured: say so
-        missing = int(np.isnan(record.displacement_m[in_win]).sum() + np.isnan(record.mass_acc_m_s2[in_win]).sum()
-                      + np.isnan(table[in_win]).sum())
+        missing = int(np.isnan(record.displacement_m[in_win]).sum()
+                      + np.isnan(record.mass_acc_m_s2[in_win]).sum() + np.isnan(table[in_win]).sum())
         gaps = record.gaps
         missing += int(gaps.loc[(gaps["end_s"] > row["window_start_s"]) & (gaps["start_s"] < s1),
                                 "missing_samples"].sum())
@@ -381,9 +386,10 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
                     row[q] = math.nan
         rows.append(row)
     for start, n_cyc in short:
-        warnings.warn(f"{record.source}: the step at {start:.3g} s ran {n_cyc} cycle(s), fewer than measure_cycles + 1 "
-                      f"= {measure_cycles + 1}: not measured (lower measure_cycles to measure it)", PoundingWarning,
-                      stacklevel=2)
+        warnings.warn(f"{record.source}: the step at {start:.3g} s ran {n_cyc} cycle(s), fewer than "
+                      f"measure_cycles + 1 = {measure_cycles + 1}: not measured (lower measure_cycles to "
+                      "measure it)",
+                      PoundingWarning, stacklevel=2)
     if not rows:
         longest = max((n for _, n in short), default=0)
         raise InputError(Problem.BAD_STATE, "measure_cycles", measure_cycles,
@@ -393,17 +399,19 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
     fund = np.array(fundamentals, dtype=complex)
     warn_inconsistent(record.source, record.mass_channels, fund[:, 0], fund[:, 1], fund[:, 2:])
     if crossings_without_force:
-        warnings.warn(f"{record.source}: the displacement crossed the gap (gap_total_m = {gap:g} m, half of it "
-                      f"each side of the laser's zero) {crossings_without_force} time(s) in the measured windows "
-                      f"without a bumper force pulse in the accelerations: not counted as contacts. Check that "
-                      f"gap_total_m is the rig's and that the laser reads 0 at the centre between the bumpers",
+        warnings.warn(f"{record.source}: the displacement crossed the gap (gap_total_m = {gap:g} m, half of "
+                      f"it each side of the laser's zero) {crossings_without_force} time(s) in the measured "
+                      "windows without a bumper force pulse in the accelerations: not counted as contacts. "
+                      "Check that gap_total_m is the rig's and that the laser reads 0 at the centre between "
+                      "the bumpers",
                       PoundingWarning, stacklevel=2)
-    table = pd.concat(impacts, ignore_index=True) if impacts else pd.DataFrame(columns=["freq_hz", *IMPACT_COLUMNS])
+    table = pd.concat(impacts, ignore_index=True) if impacts else pd.DataFrame(columns=["freq_hz",
+                                                                                        *IMPACT_COLUMNS])
     if len(table):
         samples = float(table["contact_time_s"].median()) * fs
         if 0.0 < samples < MIN_CONTACT_SAMPLES:
-            warnings.warn(f"{record.source}: contacts last about {samples:.1f} samples at {fs:g} Hz: their times, "
-                          f"velocities and forces are uncertain by a sample or more; record at "
+            warnings.warn(f"{record.source}: contacts last about {samples:.1f} samples at {fs:g} Hz: their "
+                          "times, velocities and forces are uncertain by a sample or more; record at "
                           f"{GOOD_CONTACT_SAMPLES / float(table['contact_time_s'].median()):.0f} Hz or more",
                           PoundingWarning, stacklevel=2)
     return LabSweep(pd.DataFrame(rows), record, mass_kg, gap, f_ref_hz, impacts=table)

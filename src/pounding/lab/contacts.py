@@ -175,7 +175,8 @@ def window_contacts(t: np.ndarray, d_raw: np.ndarray, d: np.ndarray, a_abs: np.n
     coef = np.linalg.lstsq(design, -mass_kg * a_abs[free], rcond=None)[0] if free.sum() >= 3 else np.zeros(3)
     iso = coef[0] * d + coef[1] * v + coef[2]
     f_b, f_raw = -mass_kg * a_abs - iso, -mass_kg * a_raw - iso
-    force_noise = 1.4826 * float(np.median(np.abs(f_raw[free] - np.median(f_raw[free])))) if free.any() else 0.0
+    force_noise = (1.4826 * float(np.median(np.abs(f_raw[free] - np.median(f_raw[free])))) if free.any()
+                   else 0.0)
     level = CONFIRM_SIGMA * force_noise
     # the contacts: the force pulse at each gap crossing, from the zero before it to the zero after it
     not_free = in_contact.copy()  # (a flight ends at the gap or at the force, whichever comes first)
@@ -198,16 +199,19 @@ def window_contacts(t: np.ndarray, d_raw: np.ndarray, d: np.ndarray, a_abs: np.n
             j1 += 1
         not_free[j0:j1 + 1] = True
         t0, t1 = _zero_edge(t, c, j0, 1, 0.5 * c[k]), _zero_edge(t, c, j1, -1, 0.5 * c[k])
-        if not starts_in[0] <= t0 < starts_in[1] or t1 - t0 < 1.0 / fs:  # (shorter than a sample: not measured)
+        # (shorter than a sample: not measured)
+        if not starts_in[0] <= t0 < starts_in[1] or t1 - t0 < 1.0 / fs:
             continue
         tt = np.concatenate([[t0], t[j0:j1 + 1], [t1]])
         impulse = float(integrate.trapezoid(np.concatenate([[0.0], c[j0:j1 + 1], [0.0]]), tt))
-        rows.append({"side": side, "t_start_s": t0, "t_end_s": t1, "contact_time_s": t1 - t0, "j0": j0, "j1": j1,
-                     "impulse_n_s": impulse, "peak_force_n": float((sign * f_b[j0:j1 + 1]).max())})
+        rows.append({"side": side, "t_start_s": t0, "t_end_s": t1, "contact_time_s": t1 - t0, "j0": j0,
+                     "j1": j1, "impulse_n_s": impulse, "peak_force_n": float((sign * f_b[j0:j1 + 1]).max())})
     free = ~not_free
     for r in rows:  # (the flights end where the mass crossed the gap, if before the force)
-        r["before"] = _flight(free, _free_near(free, r["j0"] - 1, -1, merge), -1) & (t >= r["t_start_s"] - FLIGHT_FIT_S)
-        r["after"] = _flight(free, _free_near(free, r["j1"] + 1, 1, merge), 1) & (t <= r["t_end_s"] + FLIGHT_FIT_S)
+        r["before"] = _flight(free, _free_near(free, r["j0"] - 1, -1, merge),
+                              -1) & (t >= r["t_start_s"] - FLIGHT_FIT_S)
+        r["after"] = _flight(free, _free_near(free, r["j1"] + 1, 1, merge),
+                             1) & (t <= r["t_end_s"] + FLIGHT_FIT_S)
     # the velocities: each flight's b first, then every flight again with their median (b is an
     # accelerometer's offset: one for the stretch; fitting it per flight costs the slope 4x its noise)
     a_rel = a_abs - a_table

@@ -131,7 +131,8 @@ class LabSweep:
             rng = self.contact_range_hz
             if rng is not None:
                 values.update(contact_nu_min=rng[0] / self.f_ref_hz, contact_nu_max=rng[1] / self.f_ref_hz)
-            for q, col, scale in (("contact_time_ms", "contact_time_s", 1e3), ("restitution", "restitution", 1.0)):
+            for q, col, scale in (("contact_time_ms", "contact_time_s", 1e3),
+                                  ("restitution", "restitution", 1.0)):
                 if col in df and np.isfinite(at[col]):
                     values[q] = float(at[col]) * scale
         else:

@@ -121,7 +121,8 @@ class LabRecord:
         if self.nan_runs is None:
             object.__setattr__(self, "nan_runs", _nan_runs(t, {"table_acc": arrays["table_acc_m_s2"],
                                                                  "displacement": arrays["displacement_m"],
-                                                                 **{c: acc[:, j] for j, c in enumerate(channels)}}))
+                                                                 **{c: acc[:, j] for j,
+                                                                    c in enumerate(channels)}}))
 
     @property
     def n_samples(self) -> int:
@@ -222,7 +223,8 @@ def read_test(path: str | Path, *, time: Any, table_acc: Any, mass_acc: Any, dis
     disp = values["displacement"] * LENGTH_UNITS[units["displacement"]]
     _plausible_displacement(disp, units["displacement"])
     record = LabRecord(t, values["table_acc"] * acc_si["table_acc"],
-                       np.column_stack([values[f"mass_acc[{j}]"] for j in range(len(acc_cols))]) * acc_si["mass_acc"],
+                       np.column_stack([values[f"mass_acc[{j}]"]
+                                        for j in range(len(acc_cols))]) * acc_si["mass_acc"],
                        disp, tuple(names[f"mass_acc[{j}]"] for j in range(len(acc_cols))), source=str(path))
     _warn_missing(record)
     return record
@@ -236,7 +238,8 @@ def _units(units: Any) -> dict[str, str]:
                          expected='dict such as {"time": "ms", "table_acc": "g", "mass_acc": "g", '
                                   '"displacement": "mm"}')
     out = dict(DEFAULT_UNITS)
-    choices = {"time": TIME_UNITS, "table_acc": ACC_UNITS, "mass_acc": ACC_UNITS, "displacement": LENGTH_UNITS}
+    choices = {"time": TIME_UNITS, "table_acc": ACC_UNITS, "mass_acc": ACC_UNITS,
+               "displacement": LENGTH_UNITS}
     for role, unit in units.items():
         one_of("units key", role, ROLES)
         out[role] = one_of(f"units.{role}", unit, choices[role])

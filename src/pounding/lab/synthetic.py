@@ -128,11 +128,13 @@ def synthetic_test(oscillator: Oscillator, a_g: float, freqs_hz: Any, *, cycles:
     if sum(steps_int) / oversample > MAX_OUTPUT_SAMPLES:
         raise InputError(Problem.TOO_MUCH_WORK, "freqs_hz", f"{freqs.size} steps",
                          estimate=f"{sum(steps_int) / oversample:.3g}", unit="samples",
-                         budget=f"{MAX_OUTPUT_SAMPLES:.3g}", fix="fewer steps or cycles, or a lower sample_rate_hz")
+                         budget=f"{MAX_OUTPUT_SAMPLES:.3g}",
+                         fix="fewer steps or cycles, or a lower sample_rate_hz")
     if state is None:
         state = State.at_rest(oscillator)
     elif not isinstance(state, State):
-        raise InputError(Problem.WRONG_TYPE, "state", state, got=type(state).__name__, expected="pounding.State")
+        raise InputError(Problem.WRONG_TYPE, "state", state, got=type(state).__name__,
+                         expected="pounding.State")
 
     sos = zi = None
     if anti_alias_hz is not None:

@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 
-from .._jit import jit, jit_alloc, jit_entry
+from .._jit import jit_alloc, jit_entry
 
 # columns of the engine's contact table (see engine/_layout.py CONTACT_COLS)
 C_SIDE, C_TSTART, C_TEND, C_VIN, C_VOUT, C_IMPULSE, C_PEAK, C_MAXCOMP, C_WORK = range(9)

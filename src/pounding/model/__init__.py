@@ -5,4 +5,5 @@ from .contact_laws import ElasticPlastic, Hertzdamp, HuntCrossley, Jankowski, Ke
 from .isolator import BoucWen, Isolator
 from .oscillator import Oscillator
 
-__all__ = ["BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley", "Isolator", "Jankowski", "KelvinVoigt", "MultilinearBumper", "Oscillator"]
+__all__ = ["BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley", "Isolator", "Jankowski",
+           "KelvinVoigt", "MultilinearBumper", "Oscillator"]

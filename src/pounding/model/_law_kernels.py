@@ -12,11 +12,11 @@ import math
 import numpy as np
 
 from .._jit import jit, jit_entry
-from ._elastic_plastic import (EP_UNLOAD, EP_YIELD, EP_YIELD_BRANCH, ep_after_event, ep_edges, ep_energy, ep_force,
-                               ep_force_path, ep_line, ep_turn_sign)
+from ._elastic_plastic import (EP_UNLOAD, EP_YIELD, EP_YIELD_BRANCH, ep_after_event, ep_edges, ep_energy,
+                               ep_force, ep_force_path, ep_line, ep_turn_sign)
 from ._kinematic_bumper import (kb_after_event, kb_branch_loss, kb_contact_state, kb_edges, kb_energy,
-                                kb_force_path, kb_moved, kb_relax, kb_relax_horizon, kb_release_state, kb_spring,
-                                kb_turn_sign)
+                                kb_force_path, kb_moved, kb_relax, kb_relax_horizon, kb_release_state,
+                                kb_spring, kb_turn_sign)
 from ._multilinear import (EXP_NORMAL_LIMIT, MIN_NORMAL, ml_branch, ml_branch_line, ml_energy, ml_relax,
                            ml_relax_horizon)
 
@@ -81,7 +81,8 @@ def law_release_state(law, p, o, zs, zo, d):
 @jit
 def law_moved(law, p, o, zs, zo, d, in_contact):
     """Set the law's state once the compression has moved to ``d`` over a step: in contact
-    (``in_contact`` 1.0; between the law's events), or out of it (0.0), recovering (:func:`law_relax`, never past the end
+    (``in_contact`` 1.0; between the law's events), or out of it (0.0), recovering (:func:`law_relax`, never
+    past the end
     of a piece of its recovery: law_relax_horizon)."""
     if law == MULTILINEAR_KINEMATIC:
         kb_moved(p, o, zs, zo, d, in_contact)

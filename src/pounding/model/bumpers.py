@@ -65,7 +65,8 @@ class Bumpers:
             if not isinstance(value, tuple(LAWS.values())):
                 raise InputError(Problem.WRONG_TYPE, f"bumpers.{name}", value,
                                  got=type(value).__name__,
-                                 expected="contact law (KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper, ElasticPlastic or Hertzdamp)")
+                                 expected="contact law (KelvinVoigt, HuntCrossley, Jankowski, "
+                                          "MultilinearBumper, ElasticPlastic or Hertzdamp)")
 
     @property
     def left(self) -> ContactLaw:

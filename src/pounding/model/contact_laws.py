@@ -24,8 +24,10 @@ from .._checks import at_most, backbone, non_negative, positive, real
 from .._errors import InputError, Problem
 from ._law_kernels import (  # noqa: F401  (the compiled side, re-exported: one import for the engine)
     AT_START, BRANCH_TIE, ELASTIC_PLASTIC, HERTZDAMP, HUNT_CROSSLEY, JANKOWSKI,
-    KELVIN_VOIGT, MAX_BRANCHES, MULTILINEAR, MULTILINEAR_KINEMATIC, N_LAW_PARAMS, N_LAW_STATE, EDGE_DOWN_STATE,
-    EDGE_UP_STATE, law_after_event, law_branch_coefficients, law_branch_edges, law_branch_loss, law_contact_state,
+    KELVIN_VOIGT, MAX_BRANCHES, MULTILINEAR, MULTILINEAR_KINEMATIC, N_LAW_PARAMS, N_LAW_STATE,
+    EDGE_DOWN_STATE,
+    EDGE_UP_STATE, law_after_event, law_branch_coefficients, law_branch_edges, law_branch_loss,
+    law_contact_state,
     law_energy, law_force, law_force_many, law_has_memory, law_is_linear, law_linear_branch, law_relax,
     law_moved, law_relax_horizon, law_release, law_release_state, law_switches_at_rest, law_turn_sign)
 
@@ -304,7 +306,8 @@ class MultilinearBumper:
 
     def __post_init__(self) -> None:
         slopes, breakpoints = backbone("law", self.slopes, self.breakpoints, MAX_LAW_COEFFICIENT, " N/m",
-                                       "give the slopes in N/m", 10.0, "give the breakpoints in m (5 mm is 0.005)")
+                                       "give the slopes in N/m", 10.0,
+                                       "give the breakpoints in m (5 mm is 0.005)")
         if len(slopes) > MAX_BRANCHES:
             raise InputError(Problem.OUT_OF_RANGE, "law.slopes", list(slopes),
                              range=f"1 to {MAX_BRANCHES} slopes", hint=" (one per branch of the backbone)")
@@ -318,9 +321,10 @@ class MultilinearBumper:
             softening = sum(max(a - b, 0.0) for a, b in zip(slopes[:-1], slopes[1:]))
             if softening > slopes[0] * (1.0 + 1e-12):
                 raise InputError(Problem.OUT_OF_RANGE, "law.slopes", list(slopes),
-                                 range=f"a first slope of at least the softening steps' sum {softening:g} N/m",
-                                 hint=" (kinematic hysteresis: every softening is a spring that slips, in parallel "
-                                      "with what is left of the first slope; soften once, or use "
+                                 range=f"a first slope of at least the softening steps' sum "
+                                       f"{softening:g} N/m",
+                                 hint=" (kinematic hysteresis: every softening is a spring that slips, in "
+                                      "parallel with what is left of the first slope; soften once, or use "
                                       "hysteresis='elastic')")
 
     @property
@@ -358,7 +362,8 @@ class ElasticPlastic:
     above it lasts the longer the faster it comes, and its restitution falls to a least value
     and then rises slowly back towards 1 (the yield line dissipates ``(K1 - K2) dy`` per metre
     of compression, while the energy brought grows as the square of the velocity: for
-    ``K2 = K1 / 20``, 0.48 at 3 yield velocities, 0.67 at 10, 0.92 at 50; :meth:`restitution`).  No dashpot: the force is rate-independent, never pulls, and the
+    ``K2 = K1 / 20``, 0.48 at 3 yield velocities, 0.67 at 10, 0.92 at 50; :meth:`restitution`).  No dashpot:
+    the force is rate-independent, never pulls, and the
     contact ends when the compression is back to zero; out of contact the bumper is unloaded
     (the next contact starts from ``z = 0``).  Piecewise linear, so every phase of motion stays
     closed-form.
@@ -432,7 +437,8 @@ class ElasticPlastic:
         energy = 0.5 * m * v * v
         # deepest compression: 1/2 k1 dy^2 + k1 dy s + 1/2 k2 s^2 = energy, s = d_max - dy >= 0
         e_y = 0.5 * k1 * dy * dy
-        s = np.where(energy > e_y, (-k1 * dy + np.sqrt((k1 * dy) ** 2 + 2.0 * k2 * np.maximum(energy - e_y, 0.0)))
+        s = np.where(energy > e_y, (-k1 * dy + np.sqrt((k1 * dy) ** 2 + 2.0 * k2 * np.maximum(energy - e_y,
+                                                                                              0.0)))
                      / k2, 0.0)
         f = k1 * dy + k2 * s
         dp = (k1 - k2) * s / k1
@@ -488,13 +494,15 @@ class Hertzdamp:
     def __post_init__(self) -> None:
         object.__setattr__(self, "stiffness", _coefficient("law.stiffness", self.stiffness, "N/m^n", True))
         xi = non_negative("law.xi_norm", self.xi_norm, "(a ratio)")
-        xi = at_most("law.xi_norm", xi, MAX_DAMPING_RATIO, "", "xi_norm is a ratio: 0.3 gives a restitution of about 0.84")
+        xi = at_most("law.xi_norm", xi, MAX_DAMPING_RATIO, "",
+                     "xi_norm is a ratio: 0.3 gives a restitution of about 0.84")
         object.__setattr__(self, "xi_norm", xi)
         object.__setattr__(self, "exponent", _exponent(self.exponent))
 
     @classmethod
     def from_restitution(cls, stiffness: float, restitution: float, exponent: float = 1.5) -> Hertzdamp:
-        """The law of Ye et al.'s estimate for restitution ``e`` in (0, 1]: ``xi_norm = 8 (1 - e) / (5 e)``."""
+        """The law of Ye et al.'s estimate for restitution ``e`` in (0, 1]:
+        ``xi_norm = 8 (1 - e) / (5 e)``."""
         e = real("restitution", restitution)
         least = 1.6 / (1.6 + MAX_DAMPING_RATIO)  # (xi_norm at most MAX_DAMPING_RATIO)
         if not least <= e <= 1.0:

@@ -72,8 +72,8 @@ class BoucWen:
 
     def __post_init__(self) -> None:
         stiffness = positive("isolator.bouc_wen.stiffness", self.stiffness, "N/m")
-        at_most("isolator.bouc_wen.stiffness", stiffness, MAX_STIFFNESS_N_M, " N/m, stiffer than any isolator",
-                "give the stiffness in N/m")
+        at_most("isolator.bouc_wen.stiffness", stiffness, MAX_STIFFNESS_N_M,
+                " N/m, stiffer than any isolator", "give the stiffness in N/m")
         uy = positive("isolator.bouc_wen.yield_displacement", self.yield_displacement, "m")
         at_most("isolator.bouc_wen.yield_displacement", uy, MAX_BREAKPOINT_M, " m", "give it in m")
         plausible("isolator.bouc_wen.yield_displacement", uy, 0.0, 1.0, "a displacement in m (5 mm is 0.005)")
@@ -83,17 +83,20 @@ class BoucWen:
         if beta + gamma <= 0.0 or beta < abs(gamma):
             raise InputError(Problem.OUT_OF_RANGE, "isolator.bouc_wen.beta", beta,
                              range=f"beta >= |gamma| = {abs(gamma):g} with beta + gamma > 0",
-                             hint=" (else a loop can return energy, or z never saturates; 0.5 and 0.5 are usual)")
+                             hint=" (else a loop can return energy, or z never saturates; 0.5 and 0.5 are "
+                                  "usual)")
         n = real("isolator.bouc_wen.n", self.n)
         if not 1.0 <= n <= MAX_BW_EXPONENT:
-            raise InputError(Problem.OUT_OF_RANGE, "isolator.bouc_wen.n", n, range=f"[1, {MAX_BW_EXPONENT:g}]",
-                             hint=" (1: a smooth yield; larger, sharper)")
-        at_most("isolator.bouc_wen.a", a * stiffness, MAX_STIFFNESS_N_M, " N/m of initial stiffness a * stiffness, "
+            raise InputError(Problem.OUT_OF_RANGE, "isolator.bouc_wen.n", n,
+                             range=f"[1, {MAX_BW_EXPONENT:g}]", hint=" (1: a smooth yield; larger, sharper)")
+        at_most("isolator.bouc_wen.a", a * stiffness, MAX_STIFFNESS_N_M,
+                " N/m of initial stiffness a * stiffness, "
                 "stiffer than any isolator", "give a of order 1 (it scales the initial stiffness)")
         z_max = (a / (beta + gamma)) ** (1.0 / n)
         if z_max > MAX_BW_Z:
             raise InputError(Problem.OUT_OF_RANGE, "isolator.bouc_wen.beta", beta,
-                             range=f"values that keep z_max = (a / (beta + gamma))^(1/n) = {z_max:g} within {MAX_BW_Z:g}",
+                             range=f"values that keep z_max = (a / (beta + gamma))^(1/n) = {z_max:g} within "
+                                   f"{MAX_BW_Z:g}",
                              hint=" (beta + gamma of the order of a: the force saturates near stiffness * "
                                   "yield_displacement)")
         for name, value in (("stiffness", stiffness), ("yield_displacement", uy), ("a", a), ("beta", beta),
@@ -193,8 +196,8 @@ class Isolator:
         if isinstance(self.bouc_wen, dict):  # (from TOML: a table)
             unknown = sorted(set(self.bouc_wen) - set(BoucWen.FIELDS))
             if unknown:
-                raise InputError(Problem.UNKNOWN_KEY, f"isolator.bouc_wen.{unknown[0]}", self.bouc_wen[unknown[0]],
-                                 choices=", ".join(BoucWen.FIELDS))
+                raise InputError(Problem.UNKNOWN_KEY, f"isolator.bouc_wen.{unknown[0]}",
+                                 self.bouc_wen[unknown[0]], choices=", ".join(BoucWen.FIELDS))
             for key in ("stiffness", "yield_displacement"):
                 if key not in self.bouc_wen:
                     raise InputError(Problem.MISSING_KEY, f"isolator.bouc_wen.{key}", None,

@@ -12,4 +12,5 @@ from .study import plot_study
 from .sweep import plot_campaign, plot_hysteresis, plot_lab_sweep, plot_sweep
 
 __all__ = ["plot_branch", "plot_campaign", "plot_contact_law_fit", "plot_curves", "plot_identification",
-           "plot_hysteresis", "plot_lab_sweep", "plot_orbit", "plot_pounding_spectrum", "plot_record", "plot_response_spectrum", "plot_run", "plot_study", "plot_sweep"]
+           "plot_hysteresis", "plot_lab_sweep", "plot_orbit", "plot_pounding_spectrum", "plot_record",
+           "plot_response_spectrum", "plot_run", "plot_study", "plot_sweep"]

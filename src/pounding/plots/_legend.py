@@ -52,10 +52,13 @@ def place_legend(ax: Any, **kwargs: Any) -> Any:
         box = legend.get_window_extent(renderer)
         if _inside(box, ax.get_window_extent(renderer)) and not _covers(box, data):
             return legend
-    # outside, to the right, in one column; the figure grows by the legend's width so that the axes keep theirs
+    # outside, to the right, in one column; the figure grows by the legend's width so that the axes keep
+    # theirs
     kwargs["ncol"] = 1
-    legend = ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0, **kwargs)
-    width_in = (legend.get_window_extent(renderer).width + 0.03 * ax.get_window_extent(renderer).width) / fig.dpi
+    legend = ax.legend(handles, labels, loc="upper left", bbox_to_anchor=(1.02, 1.0), borderaxespad=0.0,
+                       **kwargs)
+    width_px = legend.get_window_extent(renderer).width + 0.03 * ax.get_window_extent(renderer).width
+    width_in = width_px / fig.dpi
     fig.set_size_inches(fig.get_figwidth() + width_in, fig.get_figheight(), forward=False)
     return legend
 
@@ -68,13 +71,15 @@ def legends_over_data(fig: Any) -> list[tuple[Any, Any]]:
     out = []
     for ax in fig.axes:
         legend = ax.get_legend()
-        if legend is not None and legend.get_visible() and _covers(legend.get_window_extent(renderer), _data_px(ax)):
+        if legend is not None and legend.get_visible() and _covers(legend.get_window_extent(renderer),
+                                                                   _data_px(ax)):
             out.append((ax, legend))
     return out
 
 
 def _inside(box: Any, frame: Any) -> bool:
-    return box.x0 >= frame.x0 - 0.5 and box.x1 <= frame.x1 + 0.5 and box.y0 >= frame.y0 - 0.5 and box.y1 <= frame.y1 + 0.5
+    return (box.x0 >= frame.x0 - 0.5 and box.x1 <= frame.x1 + 0.5
+            and box.y0 >= frame.y0 - 0.5 and box.y1 <= frame.y1 + 0.5)
 
 
 def _data_px(ax: Any) -> list[tuple[np.ndarray, bool, float]]:
@@ -90,7 +95,8 @@ def _data_px(ax: Any) -> list[tuple[np.ndarray, bool, float]]:
             continue  # (axhline, axvline: reference lines across the axes)
         pts = line.get_transform().transform(np.asarray(line.get_xydata(), dtype=float))
         marker = line.get_marker()
-        radius = 0.5 * line.get_markersize() * dpi_scale if marker not in (None, "None", "", " ", "none") else 0.0
+        radius = 0.5 * line.get_markersize() * dpi_scale if marker not in (None, "None", "", " ",
+                                                                           "none") else 0.0
         joined = line.get_linestyle() not in ("None", "", " ", "none")
         out.append((pts, joined, radius))
     for coll in ax.collections:

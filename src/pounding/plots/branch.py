@@ -69,7 +69,8 @@ def plot_branch(branch: Any, ax: Any = None, *, y: str = "alpha", x: Optional[st
         xcol = x or ("nu" if br.parameter == "freq_hz" else br.parameter)
         for col in (xcol, y):
             if col not in df.columns:
-                raise InputError(Problem.NOT_IN_RESULT, "y" if col == y else "x", col, choices=", ".join(df.columns))
+                raise InputError(Problem.NOT_IN_RESULT, "y" if col == y else "x", col,
+                                 choices=", ".join(df.columns))
         xs, ys = df[xcol].to_numpy(float), df[y].to_numpy(float)
         stable = df["stable"].to_numpy(bool)
         color = kwargs.pop("color", None) or f"C{k}"

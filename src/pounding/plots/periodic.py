@@ -46,16 +46,18 @@ def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
         ax = plt.figure().add_subplot()
     run = orbit.run
     style = {"color": "C0", "linestyle": "-" if orbit.stable else "--",
-             "label": f"{'stable' if orbit.stable else 'unstable'}, max |mu| = {orbit.max_abs_multiplier:.3g}"}
+             "label": f"{'stable' if orbit.stable else 'unstable'}, "
+                      f"max |mu| = {orbit.max_abs_multiplier:.3g}"}
     style.update(kwargs)
     artists = list(ax.plot(run.displacement * 1e3, run.velocity, **style))
-    artists += ax.plot([orbit.state.displacement_m * 1e3], [orbit.state.velocity_m_s], "o", color=style["color"],
-                       markersize=4, label="section state")
+    artists += ax.plot([orbit.state.displacement_m * 1e3], [orbit.state.velocity_m_s], "o",
+                       color=style["color"], markersize=4, label="section state")
     contacts = orbit._contacts()
     if contacts.size:  # where each contact starts: the mass at the bumper's surface
         t0 = run.t[0]
         starts = (contacts[:, 1] - t0) % orbit.period_s + t0
-        artists += ax.plot(np.interp(starts, run.t, run.displacement) * 1e3, np.interp(starts, run.t, run.velocity),
+        artists += ax.plot(np.interp(starts, run.t, run.displacement) * 1e3,
+                           np.interp(starts, run.t, run.velocity),
                            "v", color="C3", markersize=5, label="contact starts")
     b = run.oscillator.bumpers
     if b is not None:

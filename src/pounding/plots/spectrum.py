@@ -84,6 +84,7 @@ def plot_pounding_spectrum(spectrum: Any, ax: Any = None, *, kind: str = "curves
         ax.set_yticks(np.arange(gaps_mm.size), [f"{g:g}" for g in gaps_mm])
         ax.set_xlabel("isolation period T [s]")
         ax.set_ylabel("gap [mm] (one band per gap computed)")
-    what = "median over " + (f"{n} records (16-84 % shaded)" if n > 1 and kind == "curves" else f"{n} record(s)")
+    what = "median over " + (f"{n} records (16-84 % shaded)" if n > 1 and kind == "curves"
+                             else f"{n} record(s)")
     ax.set_title(f"{quantity}: {what}", fontsize=9)
     return artists

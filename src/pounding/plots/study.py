@@ -88,7 +88,8 @@ def plot_study(result: Any, quantity: str, *, x: str | None = None, hue: str | N
             da = da.isel({d: 0})
         else:
             raise InputError(Problem.MISSING_INPUT, "where", where,
-                             what=f"a value for the axis {d!r} (where={{{d!r}: ...}}), or choose it as x or hue")
+                             what=f"a value for the axis {d!r} (where={{{d!r}: ...}}), or choose it as x or "
+                                  "hue")
     if ax is None:
         _, ax = plt.subplots(figsize=(6.0, 3.8), constrained_layout=True)
     units = ds[quantity].attrs.get("units", "1")

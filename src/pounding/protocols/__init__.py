@@ -10,5 +10,6 @@ from .study_spec import StudySpec
 from .sweep import SweepPlan, paper_frequencies_hz, sweep
 from .sweep_result import SweepResult
 
-__all__ = ["CampaignResult", "PoundingSpectrum", "SweepPlan", "SweepResult", "campaign", "paper_frequencies_hz",
+__all__ = ["CampaignResult", "PoundingSpectrum", "SweepPlan", "SweepResult", "campaign",
+           "paper_frequencies_hz",
            "pounding_spectrum", "study", "StudyResult", "StudySpec", "open_study", "sweep"]

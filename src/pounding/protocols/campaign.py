@@ -48,7 +48,8 @@ def sweep_quantities(sw: SweepResult) -> dict[str, float]:
     """The paper's per-sweep quantities (Tables 2-4) of one sweep, by their table names.
 
     Table 2's are over the sweep (``nu_r``, max ``alpha``, ``eta``, ``e``, the contact
-    range in ``nu``; and the largest excursion ``excursion_max_m``, m); Tables 3 and 4's are the impact means at the resonance step
+    range in ``nu``; and the largest excursion ``excursion_max_m``, m); Tables 3 and 4's are the impact means
+    at the resonance step
     (``contact_time_ms``, ``restitution``, ``mean_force_over_mg``, ``peak_force_over_mg``,
     ``dissipated_energy_per_mass`` in m^2/s^2).  NaN where a quantity does not exist
     (no contact, no bumpers).

@@ -52,7 +52,8 @@ def _peaks(run: Any, g: float) -> tuple[float, ...]:
 
 
 def _one_record(rec: Record, periods: np.ndarray, bumpers: list[Bumpers], zeta: float, mass_kg: float,
-                template: Isolator | None, max_steps: int, advance: Any, ctl: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+                template: Isolator | None, max_steps: int, advance: Any, ctl: np.ndarray) -> tuple[np.ndarray,
+                                                                                                   np.ndarray]:
     """One record's free (periods, 6) and pounding (periods, gaps, 6) peaks; NaN where not run."""
     from ..engine.simulate import simulate
 
@@ -87,8 +88,8 @@ def _one_record(rec: Record, periods: np.ndarray, bumpers: list[Bumpers], zeta: 
 
 def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gaps_m: Any,
                       damping_ratio: float = 0.05, mass_kg: float = 500.0, bumper: Any = None,
-                      isolator: Isolator | None = None, workers: int | None = None, progress: Progress = False,
-                      max_steps: int = 10_000_000) -> PoundingSpectrum:
+                      isolator: Isolator | None = None, workers: int | None = None,
+                      progress: Progress = False, max_steps: int = 10_000_000) -> PoundingSpectrum:
     """Peak responses of the isolated mass with bumpers and without, over records, periods and gaps.
 
     Parameters
@@ -171,9 +172,10 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
                              fix="give an isolator without bouc_wen, or run simulate over your own systems")
     runs = len(recs) * periods.size * (gaps.size + 1)
     if runs > MAX_RUNS:
-        raise InputError(Problem.TOO_MUCH_WORK, "periods_s", f"{len(recs)} records x {periods.size} periods x "
-                         f"{gaps.size + 1} systems", estimate=f"{runs:.3g}", unit="runs", budget=f"{MAX_RUNS:.3g}",
-                         fix="fewer records, periods or gaps")
+        raise InputError(Problem.TOO_MUCH_WORK, "periods_s",
+                         f"{len(recs)} records x {periods.size} periods x "
+                         f"{gaps.size + 1} systems", estimate=f"{runs:.3g}", unit="runs",
+                         budget=f"{MAX_RUNS:.3g}", fix="fewer records, periods or gaps")
     n_workers = integer("workers", (os.cpu_count() or 1) if workers is None else workers, 1)
     max_steps = integer("max_steps", max_steps, 1)
     free = np.full((len(recs), periods.size, 6), np.nan)
@@ -183,8 +185,8 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
     failure: BaseException | None = None
     with progress_reporter(progress, runs, "pounding spectrum") as advance:
         with cf.ThreadPoolExecutor(max_workers=n_workers, thread_name_prefix="pounding") as pool:
-            futures = {pool.submit(_one_record, r, periods, bumpers, zeta, mass_kg, isolator, max_steps, advance,
-                                   ctl): i for i, (r, ctl) in enumerate(zip(recs, controls))}
+            futures = {pool.submit(_one_record, r, periods, bumpers, zeta, mass_kg, isolator, max_steps,
+                                   advance, ctl): i for i, (r, ctl) in enumerate(zip(recs, controls))}
             try:
                 pending = set(futures)
                 while pending and failure is None and not interrupted:

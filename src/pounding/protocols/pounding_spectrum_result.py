@@ -17,7 +17,8 @@ if TYPE_CHECKING:  # pragma: no cover
 
 # per run: what _peaks returns, in this order
 QUANTITIES = ("acc_max_g", "disp_max_m", "impacts", "impact_force_max_n", "impact_speed_max_m_s", "status")
-UNITS = {"acc_max_g": "g", "disp_max_m": "m", "impacts": "1", "impact_force_max_n": "N", "impact_speed_max_m_s": "m/s",
+UNITS = {"acc_max_g": "g", "disp_max_m": "m", "impacts": "1", "impact_force_max_n": "N",
+         "impact_speed_max_m_s": "m/s",
          "status": "pounding.Status", "amplification": "1", "disp_ratio": "1", "acc_max_free_g": "g",
          "disp_max_free_m": "m"}
 PERCENTILES = (16.0, 50.0, 84.0)
@@ -59,8 +60,8 @@ class PoundingSpectrum:
     dataset: "xr.Dataset"
 
     @classmethod
-    def build(cls, recs: list["Record"], periods: np.ndarray, gaps: np.ndarray, free: np.ndarray, hit: np.ndarray,
-              attrs: dict) -> "PoundingSpectrum":
+    def build(cls, recs: list["Record"], periods: np.ndarray, gaps: np.ndarray, free: np.ndarray,
+              hit: np.ndarray, attrs: dict) -> "PoundingSpectrum":
         """Assemble the result from the kernel's arrays (internal: ``pounding_spectrum`` calls it)."""
         import xarray as xr
 

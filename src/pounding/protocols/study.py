@@ -14,7 +14,6 @@ import math
 import os
 import re
 import threading
-import time
 from pathlib import Path
 from typing import Any
 
@@ -24,8 +23,8 @@ from .._checks import integer
 from .._errors import InputError, Interrupted, Problem
 from ._progress import Progress, progress_reporter
 from .study_spec import StudySpec
-from .study_store import (OTHER, STUDY, check_store, chunk_grid, chunk_shape, create, open_checked, refuse_other,
-                          region, run_chunk, store_state)
+from .study_store import (OTHER, STUDY, check_store, chunk_grid, chunk_shape, create, open_checked,
+                          refuse_other, region, run_chunk, store_state)
 
 SCHEDULERS = ("threads", "processes", "local")
 BATCHES_PER_WORKER = 8  # chunks a worker gets over a study, at least: balance against per-batch cost
@@ -299,14 +298,16 @@ def _dask_client(scheduler: Any, n_workers: int) -> tuple[Any, Any]:
         raise InputError(Problem.MISSING_INPUT, "scheduler", scheduler,
                          what="Dask: pip install 'dask[distributed]'") from None
     if scheduler == "local":
-        cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True, dashboard_address=None)
+        cluster = LocalCluster(n_workers=n_workers, threads_per_worker=1, processes=True,
+                               dashboard_address=None)
         return Client(cluster), cluster
     if isinstance(scheduler, str):
         try:
             return Client(scheduler, timeout="20s"), None
         except (OSError, TimeoutError, ValueError) as exc:
             raise InputError(Problem.BAD_STATE, "scheduler", scheduler, why=f"cannot be reached ({exc})",
-                             fix="start the scheduler (dask scheduler) and its workers, or check the address") from None
+                             fix="start the scheduler (dask scheduler) and its workers, or check the "
+                                 "address") from None
     return scheduler, None
 
 
@@ -317,7 +318,8 @@ def _on_dask(args: tuple, todo: list, client: Any, advance: Any) -> None:
     spec_json, store, session, max_steps = args
     futures = []
     try:
-        futures = [client.submit(run_chunk, spec_json, store, c, session, max_steps, pure=False) for c in todo]
+        futures = [client.submit(run_chunk, spec_json, store, c, session, max_steps, pure=False)
+                   for c in todo]
         for fut in as_completed(futures):
             advance(fut.result())
     except BaseException:

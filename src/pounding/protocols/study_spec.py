@@ -104,7 +104,8 @@ class StudySpec:
             raise InputError(Problem.WRONG_TYPE, "study", table, got=type(table).__name__, expected="table")
         unknown = sorted(set(table) - {"system", "compute", "grid", "meta"})
         if unknown:
-            raise InputError(Problem.UNKNOWN_KEY, unknown[0], table[unknown[0]], choices="system, compute, grid")
+            raise InputError(Problem.UNKNOWN_KEY, unknown[0], table[unknown[0]],
+                             choices="system, compute, grid")
         for key in ("system", "compute", "grid"):
             if key not in table:
                 raise InputError(Problem.MISSING_KEY, key, None, choices="system, compute, grid")
@@ -216,7 +217,8 @@ def _system(value: Any, base_dir: Path) -> Oscillator:
                 raise exc.relabel("preset", "system.preset") from None
         path = table["file"]
         if not isinstance(path, str):
-            raise InputError(Problem.WRONG_TYPE, "system.file", path, got=type(path).__name__, expected="path")
+            raise InputError(Problem.WRONG_TYPE, "system.file", path, got=type(path).__name__,
+                             expected="path")
         try:
             osc = Oscillator.from_toml(base_dir / path)
         except InputError as exc:
@@ -252,7 +254,8 @@ def _check_compute(value: Any) -> dict[str, Any]:
             continue
         if key in STRING_KEYS:
             if not isinstance(v, str):
-                raise InputError(Problem.WRONG_TYPE, f"compute.{key}", v, got=type(v).__name__, expected="str")
+                raise InputError(Problem.WRONG_TYPE, f"compute.{key}", v, got=type(v).__name__,
+                                 expected="str")
         elif key == "freqs_hz":
             if (not isinstance(v, (list, tuple)) or not v
                     or not all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v)):
@@ -308,10 +311,12 @@ def _check_grid(value: Any, compute: dict[str, Any], system: Oscillator) -> dict
             raise InputError(Problem.EMPTY, field, values)
         if name == "kind" or name == "freqs_hz":
             raise InputError(Problem.UNKNOWN_KEY, field, values,
-                             choices="numbers of the system or " + ", ".join(k for k in keys if k != "freqs_hz"))
+                             choices="numbers of the system or " + ", ".join(k for k in keys
+                                                                             if k != "freqs_hz"))
         if name in compute:
             raise InputError(Problem.DUPLICATE, field, values,
-                             repeated=f"compute.{name} (a key is set in [compute] or varied in [grid], not both)")
+                             repeated=f"compute.{name} (a key is set in [compute] or varied in [grid], not "
+                                      "both)")
         if name in keys:
             if name in STRING_KEYS:
                 if not all(isinstance(v, str) for v in values):
@@ -328,7 +333,8 @@ def _check_grid(value: Any, compute: dict[str, Any], system: Oscillator) -> dict
             why = why_unresolved(table, name)
             if why is not None:
                 raise InputError(Problem.UNKNOWN_KEY, field, values,
-                                 choices=f"a number of the system or a compute key ({', '.join(keys)}): {why}")
+                                 choices=f"a number of the system or a compute key ({', '.join(keys)}): "
+                                         f"{why}")
             if not all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in values):
                 raise InputError(Problem.NOT_A_NUMBER, field, values)
             values = [float(v) for v in values]
@@ -378,7 +384,8 @@ def _check_points(spec: StudySpec) -> None:
                 point_of(table, spec.compute, values)
             except InputError as exc:
                 raise InputError(Problem.BAD_STATE, "grid", values,
-                                 why=f"makes a system that is refused ({exc.field} {exc.problem.why.format(**exc._details)})",
+                                 why=f"makes a system that is refused ({exc.field} "
+                                     f"{exc.problem.why.format(**exc._details)})",
                                  fix="change the grid's values so that every combination is valid") from None
 
 

@@ -53,7 +53,8 @@ def check_store(store: Any) -> str:
 
             fsspec.get_filesystem_class(protocol)
         except (ImportError, ValueError) as exc:
-            raise InputError(Problem.BAD_OUTPUT, "store", store, why=f"has a protocol fsspec cannot use ({exc})",
+            raise InputError(Problem.BAD_OUTPUT, "store", store,
+                             why=f"has a protocol fsspec cannot use ({exc})",
                              fix="give a local path, or install the fsspec package for that protocol "
                                  "(s3fs for s3://, gcsfs for gs://)") from None
         return store

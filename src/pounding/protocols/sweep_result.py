@@ -268,7 +268,8 @@ class SweepResult:
                     "freq_from_hz": df["freq_hz"].iloc[i], "freq_to_hz": df["freq_hz"].iloc[i + 1],
                     "alpha_from": a[i], "alpha_to": a[i + 1],
                     "excursion_from_m": e[i], "excursion_to_m": e[i + 1],
-                    "contact_from": bool(df["contact"].iloc[i]), "contact_to": bool(df["contact"].iloc[i + 1]),
+                    "contact_from": bool(df["contact"].iloc[i]),
+                    "contact_to": bool(df["contact"].iloc[i + 1]),
                     "kind": "up" if max(ra, re) >= max(1 / ra, 1 / re) else "down"})
         columns = ["freq_from_hz", "freq_to_hz", "alpha_from", "alpha_to", "excursion_from_m",
                    "excursion_to_m", "contact_from", "contact_to", "kind"]

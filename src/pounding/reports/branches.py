@@ -20,7 +20,8 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..protocols import CampaignResult
 
 
-def coexistence_of(result: "CampaignResult", ybs_system: "Oscillator") -> tuple[Optional["CoexistenceMap"], str]:
+def coexistence_of(result: "CampaignResult", ybs_system: "Oscillator") -> tuple[Optional["CoexistenceMap"],
+                                                                                str]:
     """The YBs system's coexistence map over the campaign's frequencies and YBs levels (folds only),
     or None and why not."""
     from ..analysis import coexistence_map
@@ -88,13 +89,15 @@ def continuation_statuses(cmap: Optional["CoexistenceMap"], why_not: str) -> pd.
                      "not steady": 0, "message": f"{br.status.name}: {br.message}", "in the figures": drawn})
     for c in cmap.curves:
         df = c.to_dataframe()
-        ends = (f"from {df['freq_hz'].iloc[0]:.4g} Hz, a_G {df['a_g'].iloc[0]:.3g} to {df['freq_hz'].iloc[-1]:.4g} Hz, "
-                f"a_G {df['a_g'].iloc[-1]:.3g}") if len(df) else ""
-        drawn = (f"drawn in the coexistence map {ends}" if len(df) > 1 else "a single point: not drawn as a curve")
+        ends = (f"from {df['freq_hz'].iloc[0]:.4g} Hz, a_G {df['a_g'].iloc[0]:.3g} to "
+                f"{df['freq_hz'].iloc[-1]:.4g} Hz, a_G {df['a_g'].iloc[-1]:.3g}") if len(df) else ""
+        drawn = (f"drawn in the coexistence map {ends}" if len(df) > 1
+                 else "a single point: not drawn as a curve")
         if c.status != Status.SUCCESS:
             drawn += ("; it stopped short of the map's edge, so the region where two responses coexist is "
                       "not closed on that side (the test matrix's counts still are exact)")
-        rows.append({"configuration": "YBs fold curve", "a_g": np.nan, "direction": "(a_G, f)", "steps": len(c),
+        rows.append({"configuration": "YBs fold curve", "a_g": np.nan, "direction": "(a_G, f)",
+                     "steps": len(c),
                      "not steady": 0, "message": f"{c.status.name}: {c.message}", "in the figures": drawn})
     rows += [{"configuration": "YBs fold", "a_g": np.nan, "direction": "", "steps": 0, "not steady": 0,
               "message": note, "in the figures": "this fold's curve is missing from the coexistence map; "

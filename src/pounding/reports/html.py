@@ -127,7 +127,8 @@ def _table(df: pd.DataFrame) -> str:
         groups = list(dict.fromkeys(c[0] for c in df.columns if c[0] != ""))
         pieces = [df[keys + [c for c in df.columns if c[0] in groups[i:i + GROUPS_PER_TABLE]]]
                   for i in range(0, len(groups), GROUPS_PER_TABLE)]
-    html_of = [p.to_html(index=False, float_format=lambda x: f"{x:.4g}", na_rep=MISSING, border=0) for p in pieces]
+    html_of = [p.to_html(index=False, float_format=lambda x: f"{x:.4g}", na_rep=MISSING, border=0)
+               for p in pieces]
     return "".join(f"<div class='wide'>{t}</div>" for t in html_of)
 
 
@@ -136,8 +137,8 @@ def _verdict(v: Any, system_label: str) -> list[str]:
     e = html.escape
     parts = ["<h2>Verdict</h2>",
              f"<p><b>{e(system_label)}</b> {e(v.summary())}. Targets: the paper's Tables 2-4 "
-             "(<code>pounding.paper_targets()</code>), sweeps up with a fixed 30 cycles per step, the NBs system "
-             "being the YBs one without its bumpers; a target is met within its tolerance.</p>"]
+             "(<code>pounding.paper_targets()</code>), sweeps up with a fixed 30 cycles per step, the NBs "
+             "system being the YBs one without its bumpers; a target is met within its tolerance.</p>"]
     if len(v.worst_misses):
         misses = v.worst_misses.rename(columns={"target": "measured", "difference_pct": "difference [%]",
                                                 "normalized": "in tolerances", "flagged": "flagged below"})

@@ -21,7 +21,8 @@ from .figures import paper_figures
 from .html import write_page
 from .verdict import Verdict, verdict
 
-TABLE_TITLES = {"targets": "Calibration targets (Tables 2-4; sweeps up, fixed 30 cycles per step): systems side by side",
+TABLE_TITLES = {"targets": "Calibration targets (Tables 2-4; sweeps up, fixed 30 cycles per step): systems "
+                           "side by side",
                 "2": "Table 2: maximum non-dimensional accelerations and excursions",
                 "3": "Table 3: impact characterization at resonance, contact forces and times",
                 "4": "Table 4: impact characterization at resonance, dissipated energies and restitution"}
@@ -200,9 +201,10 @@ def _sweep_status(key: tuple, sw: Any) -> dict:
     conf, a_g, direction = key
     unsettled = int((~sw.to_dataframe()["steady"].iloc[: sw.steps_done]).sum())
     drawn = "every step drawn in the figures" if sw.steps_done == sw.freqs_hz.size else (
-        f"drawn up to {sw.freqs_hz[sw.steps_done - 1]:g} Hz, where it stopped" if sw.steps_done else "not drawn")
+        f"drawn up to {sw.freqs_hz[sw.steps_done - 1]:g} Hz, where it stopped" if sw.steps_done
+        else "not drawn")
     if unsettled:
-        drawn += (f"; {unsettled} step(s) are drawn from their last {sw.measure_cycles} cycles though the response "
-                  "had not settled: a point of a motion still changing, not of a periodic response")
+        drawn += (f"; {unsettled} step(s) are drawn from their last {sw.measure_cycles} cycles though the "
+                  "response had not settled: a point of a motion still changing, not of a periodic response")
     return {"configuration": conf, "a_g": a_g, "direction": direction, "steps": sw.steps_done,
             "not steady": unsettled, "message": sw.message, "in the figures": drawn}

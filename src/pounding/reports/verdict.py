@@ -41,7 +41,8 @@ class Verdict:
         """The misses furthest outside their tolerance, worst first."""
         misses = self.residuals[~self.residuals["within"]]
         order = misses["normalized"].abs().sort_values(ascending=False).index
-        cols = ["configuration", "a_g", "quantity", "target", "model", "difference_pct", "normalized", "flagged"]
+        cols = ["configuration", "a_g", "quantity", "target", "model", "difference_pct", "normalized",
+                "flagged"]
         return misses.loc[order, cols].head(WORST_MISSES).reset_index(drop=True)
 
     @property
@@ -69,7 +70,8 @@ def verdict(residuals: pd.DataFrame) -> Verdict:
     """
     consistency = paper_targets(quantities=CONSISTENCY_QUANTITIES).check_consistency(PAPER_MASS_KG)
     bad = {(c, float(a), q) for c, a, q in
-           consistency.loc[~consistency["consistent"], ["configuration", "a_g", "quantity"]].itertuples(index=False)}
+           consistency.loc[~consistency["consistent"], ["configuration", "a_g",
+                                                        "quantity"]].itertuples(index=False)}
     res = residuals.copy()
     with np.errstate(divide="ignore", invalid="ignore"):
         res["difference_pct"] = (100.0 * res["difference"] / res["target"].abs()).where(res["target"] != 0)
