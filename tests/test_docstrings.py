@@ -116,3 +116,32 @@ def test_a_broken_example_fails() -> None:
         runner.run(t, out=lambda s: None)
     assert runner.failures == 1
     assert inspect.getdoc(f).count(">>>") == 1
+
+
+EXAMPLE_WIDTH = 80  # characters of an example's line as rendered: wider ones scroll sideways on the site
+
+
+def _long_example_lines(doc: str) -> list[str]:
+    """The lines of ``doc``'s examples (prompts, code and printed output) wider than ``EXAMPLE_WIDTH``."""
+    lines, out, in_example = inspect.cleandoc(doc or "").splitlines(), [], False
+    for line in lines:
+        stripped = line.strip()
+        in_example = stripped.startswith((">>>", "...")) or (in_example and stripped != "")
+        if in_example and len(line.rstrip()) > EXAMPLE_WIDTH:
+            out.append(line)
+    return out
+
+
+@pytest.mark.parametrize("name", sorted(PUBLIC))
+def test_examples_fit_the_page(name: str) -> None:
+    obj = PUBLIC[name]
+    docs = [inspect.getdoc(obj)] + [inspect.getdoc(m) for _, m in inspect.getmembers(obj)
+                                    if inspect.isclass(obj) and (inspect.isfunction(m) or isinstance(m, property))
+                                    and getattr(m, "__qualname__", "").startswith(obj.__name__ + ".")]
+    wide = [line for doc in docs for line in _long_example_lines(doc or "")]
+    assert wide == [], f"{name}: example lines over {EXAMPLE_WIDTH} characters:\n" + "\n".join(wide)
+
+
+def test_a_wide_example_is_seen() -> None:
+    assert _long_example_lines(">>> x = 1\n>>> y = '" + "z" * 80 + "'\n") != []
+    assert _long_example_lines("Text " * 40 + "\n\n>>> 1 + 1\n2\n") == []

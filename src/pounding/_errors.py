@@ -22,7 +22,8 @@ class Problem(enum.Enum):
     --------
     >>> import pounding
     >>> try:
-    ...     pounding.Isolator(slopes=[38_000.0, 18_000.0], breakpoints=[0.015, 0.040])
+    ...     pounding.Isolator(slopes=[38_000.0, 18_000.0],
+    ...                       breakpoints=[0.015, 0.040])
     ... except pounding.InputError as err:
     ...     problem = err.problem
     >>> problem is pounding.Problem.BREAKPOINT_COUNT, problem.name
@@ -163,7 +164,8 @@ class PoundingWarning(UserWarning):
     >>> caught[0].category is pounding.PoundingWarning
     True
     >>> print(caught[0].message)
-    a_g = 9.81 is outside the plausible range [0, 5]: a_g is the peak table acceleration in g ...
+    a_g = 9.81 is outside the plausible range [0, 5]: a_g is the peak table
+    acceleration in g ...
     """
 
 
@@ -217,12 +219,15 @@ class Status(enum.IntEnum):
 
     >>> import pounding
     >>> ybs = pounding.presets.paper_damped()
-    >>> run = pounding.simulate(ybs, pounding.Harmonic(a_g=0.1, freq_hz=2.0), duration=5.0, max_events=10)
+    >>> run = pounding.simulate(ybs, pounding.Harmonic(a_g=0.1, freq_hz=2.0),
+    ...                         duration=5.0, max_events=10)
     >>> run.status, int(run.status), run.success
     (<Status.MAX_EVENTS: -2>, -2, False)
     >>> print(run.status.message)
-    Stopped early: the run reached max_events. Raise max_events or shorten the duration; ...
-    >>> round(run.final_state.time_s, 3)  # s: where it stopped, and a state to continue from
+    Stopped early: the run reached max_events. Raise max_events or shorten the
+    duration; ...
+    >>> # s: where it stopped, and a state to continue from
+    >>> round(run.final_state.time_s, 3)
     0.906
     """
 

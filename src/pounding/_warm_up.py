@@ -36,7 +36,8 @@ class WarmUp:
     --------
     >>> import pounding
     >>> done = pounding.warm_up()
-    >>> sorted(set(done.compiled + done.loaded + done.in_memory))  # every kernel, one way or another
+    >>> # every kernel, one way or another
+    >>> sorted(set(done.compiled + done.loaded + done.in_memory))
     ['impact_row', 'law_force_many', 'run_kernel', 'spectrum_kernel', 'step_kernel']
     >>> len(done.cache_dirs) > 0, done.seconds < 60.0  # where the cache is; s
     (True, True)
@@ -110,11 +111,13 @@ def warm_up() -> WarmUp:
     Once per environment (e.g. when building a Docker image), or at the start of a session:
 
     >>> import pounding
-    >>> done = pounding.warm_up()  # 10-20 s the first time after installing, then about 1 s
+    >>> # 10-20 s the first time after installing, then about 1 s
+    >>> done = pounding.warm_up()
     >>> again = pounding.warm_up()  # the same process: nothing left to do
     >>> again.compiled, again.loaded, len(again.in_memory)
     ((), (), 5)
-    >>> print(again.message)  # the first: e.g. "5 kernels compiled and cached (14.2 s)"
+    >>> # the first: e.g. "5 kernels compiled and cached (14.2 s)"
+    >>> print(again.message)
     5 kernels already in memory (... s)
     """
     from . import presets

@@ -75,7 +75,8 @@ class Bifurcation:
     unstable orbit meet (a multiplier is 1) and an up sweep jumps off the impacting response.
 
     >>> import pounding
-    >>> branch = pounding.continuation(pounding.presets.paper_damped(), 0.05, (1.5, 2.5))
+    >>> branch = pounding.continuation(pounding.presets.paper_damped(), 0.05,
+    ...                                (1.5, 2.5))
     >>> fold = branch.folds()[0]
     >>> fold.kind, round(fold.freq_hz, 4), fold.a_g, fold.located
     ('fold', 2.0144, 0.05, True)
@@ -152,11 +153,13 @@ class Branch:
     past the second fold it grazes both bumpers.
 
     >>> import pounding
-    >>> branch = pounding.continuation(pounding.presets.paper_damped(), 0.05, (1.5, 2.5))
+    >>> branch = pounding.continuation(pounding.presets.paper_damped(), 0.05,
+    ...                                (1.5, 2.5))
     >>> branch.status.name, branch.parameter, branch.a_g
     ('SUCCESS', 'freq_hz', 0.05)
     >>> [(b.kind, b.side, round(b.freq_hz, 3)) for b in branch.bifurcations]
-    [('fold', '', 2.014), ('fold', '', 1.605), ('grazing', 'left', 1.605), ('grazing', 'right', 1.605)]
+    [('fold', '', 2.014), ('fold', '', 1.605), ('grazing', 'left', 1.605),
+     ('grazing', 'right', 1.605)]
     >>> df = branch.to_dataframe()
     >>> round(float(df["alpha"].max()), 1), bool(df["stable"].iloc[0])
     (12.8, True)

@@ -119,7 +119,8 @@ def continuation(
     folds at 2.014 Hz and back at 1.605 Hz, the folds that bracket the sweeps' jumps.
 
     >>> import pounding
-    >>> branch = pounding.continuation(pounding.presets.paper_damped(), 0.05, (1.0, 3.0))
+    >>> branch = pounding.continuation(pounding.presets.paper_damped(), 0.05,
+    ...                                (1.0, 3.0))
     >>> branch.status.name
     'SUCCESS'
     >>> [round(b.freq_hz, 3) for b in branch.folds()]

@@ -59,7 +59,8 @@ class BifurcationCurve:
     >>> import pounding
     >>> osc = pounding.presets.paper_damped()
     >>> fold = pounding.continuation(osc, 0.05, (1.5, 2.5)).folds()[0]
-    >>> curve = pounding.bifurcation_curve(osc, fold, a_g=(0.045, 0.055), freqs_hz=(1.5, 2.5), max_step=0.1)
+    >>> curve = pounding.bifurcation_curve(osc, fold, a_g=(0.045, 0.055),
+    ...                                    freqs_hz=(1.5, 2.5), max_step=0.1)
     >>> curve.kind, curve.status.name, curve.passes(fold)
     ('fold', 'SUCCESS', True)
     >>> df = curve.to_dataframe()
@@ -156,7 +157,8 @@ class CoexistenceMap:
     1.7 to 2.0 Hz two stable responses coexist, where up and down sweeps differ.
 
     >>> import pounding
-    >>> m = pounding.coexistence_map(pounding.presets.paper_damped(), a_g=(0.04, 0.06), freqs_hz=(1.5, 2.5),
+    >>> m = pounding.coexistence_map(pounding.presets.paper_damped(),
+    ...                              a_g=(0.04, 0.06), freqs_hz=(1.5, 2.5),
     ...                              levels=[0.05], kinds=["fold"], max_step=0.05)
     >>> len(m.branches), [c.kind for c in m.curves]
     (1, ['fold', 'fold'])

@@ -83,7 +83,8 @@ def bifurcation_curve(
     >>> import pounding
     >>> osc = pounding.presets.paper_damped()
     >>> fold = pounding.continuation(osc, 0.05, (1.5, 2.5)).folds()[0]
-    >>> curve = pounding.bifurcation_curve(osc, fold, a_g=(0.04, 0.06), freqs_hz=(1.0, 3.0))
+    >>> curve = pounding.bifurcation_curve(osc, fold, a_g=(0.04, 0.06),
+    ...                                    freqs_hz=(1.0, 3.0))
     >>> curve.status.name
     'SUCCESS'
     >>> df = curve.to_dataframe()
@@ -192,7 +193,8 @@ def coexistence_map(
     coexist at four of the test frequencies.
 
     >>> import pounding
-    >>> m = pounding.coexistence_map(pounding.presets.paper_damped(), a_g=(0.04, 0.06), freqs_hz=(1.5, 2.5),
+    >>> m = pounding.coexistence_map(pounding.presets.paper_damped(),
+    ...                              a_g=(0.04, 0.06), freqs_hz=(1.5, 2.5),
     ...                              levels=[0.05], kinds=["fold"], max_step=0.05)
     >>> int(m.matrix["stable_orbits"].max()), len(m.coexisting())
     (2, 4)

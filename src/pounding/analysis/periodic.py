@@ -74,12 +74,14 @@ class PeriodicOrbit:
     Examples
     --------
     >>> import pounding
-    >>> orbit = pounding.periodic_orbit(pounding.presets.paper_damped(), pounding.Harmonic(0.05, 1.5))
+    >>> orbit = pounding.periodic_orbit(pounding.presets.paper_damped(),
+    ...                                 pounding.Harmonic(0.05, 1.5))
     >>> orbit.method, orbit.coordinates
     ('exact', ('D', 'V', 'delta_L', 'delta_R', 'u_0'))
     >>> round(orbit.period_s, 4), orbit.contacts_per_period, orbit.stable
     (0.6667, 2, True)
-    >>> print(f"alpha {orbit.alpha:.2f}, eta {orbit.eta:.3f}, max |mu| {orbit.max_abs_multiplier:.3f}")
+    >>> print(f"alpha {orbit.alpha:.2f}, eta {orbit.eta:.3f}, max |mu| "
+    ...       f"{orbit.max_abs_multiplier:.3f}")
     alpha 8.30, eta 1.066, max |mu| 0.368
     """
 
@@ -194,7 +196,8 @@ def periodic_orbit(
     once per cycle.
 
     >>> import pounding
-    >>> orbit = pounding.periodic_orbit(pounding.presets.paper_damped(), pounding.Harmonic(0.05, 1.5))
+    >>> orbit = pounding.periodic_orbit(pounding.presets.paper_damped(),
+    ...                                 pounding.Harmonic(0.05, 1.5))
     >>> orbit.converged, orbit.stable, orbit.contacts_per_period
     (True, True, 2)
     >>> [round(float(v), 3) for v in orbit.impact_velocities_m_s]

@@ -33,7 +33,8 @@ def paper_measurements() -> pd.DataFrame:
     >>> m = pounding.data.paper_measurements()
     >>> m.shape, sorted(m["configuration"].unique())
     ((58, 8), ['NBs', 'YBs', 'YBs/NBs'])
-    >>> m.loc[(m["quantity"] == "restitution") & (m["a_g"] == 0.1), "value"].tolist()  # Table 4
+    >>> m.loc[(m["quantity"] == "restitution") & (m["a_g"] == 0.1),
+    ...       "value"].tolist()  # Table 4
     [0.75]
     """
     with resources.files(__package__).joinpath(MEASUREMENTS_FILE).open("r", encoding="utf-8") as fh:

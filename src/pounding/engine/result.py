@@ -46,13 +46,16 @@ class State:
     >>> import pounding
     >>> ybs = pounding.presets.paper_damped()
     >>> start = pounding.State.at_rest(ybs, velocity_m_s=0.6)
-    >>> run = pounding.simulate(ybs, pounding.Harmonic(a_g=0.05, freq_hz=2.2), duration=0.5, state=start)
+    >>> run = pounding.simulate(ybs, pounding.Harmonic(a_g=0.05, freq_hz=2.2),
+    ...                         duration=0.5, state=start)
     >>> end = run.final_state
     >>> end.time_s, round(end.displacement_m * 1e3, 1), end.in_contact  # s, mm
     (0.5, -12.0, (False, False))
-    >>> (end.plastic_slips_m * 1e3).round(2).tolist()  # mm, the isolator's two slipping springs
+    >>> # mm, the isolator's two slipping springs
+    >>> (end.plastic_slips_m * 1e3).round(2).tolist()
     [-3.36, 0.0]
-    >>> pounding.simulate(ybs, pounding.Harmonic(a_g=0.05, freq_hz=2.2), 0.5, state=end).final_state.time_s
+    >>> pounding.simulate(ybs, pounding.Harmonic(a_g=0.05, freq_hz=2.2), 0.5,
+    ...                   state=end).final_state.time_s
     1.0
     """
 
@@ -253,10 +256,12 @@ class EnergyLedger:
     Examples
     --------
     >>> import pounding
-    >>> run = pounding.simulate(pounding.presets.paper_damped(), pounding.Harmonic(a_g=0.1, freq_hz=2.0),
+    >>> run = pounding.simulate(pounding.presets.paper_damped(),
+    ...                         pounding.Harmonic(a_g=0.1, freq_hz=2.0),
     ...                         duration=5.0)
     >>> ledger = run.energy
-    >>> f"{ledger.input_work:.1f} J in: {ledger.viscous:.1f} J viscous, {ledger.hysteretic:.1f} J hysteretic"
+    >>> (f"{ledger.input_work:.1f} J in: {ledger.viscous:.1f} J viscous, "
+    ...  f"{ledger.hysteretic:.1f} J hysteretic")
     '142.0 J in: 106.2 J viscous, 29.2 J hysteretic'
     >>> bool(abs(ledger.residual) < 1e-9)  # J: every joule accounted for
     True
@@ -344,11 +349,13 @@ class Run:
     Examples
     --------
     >>> import pounding
-    >>> run = pounding.simulate(pounding.presets.paper_damped(), pounding.Harmonic(a_g=0.1, freq_hz=2.0),
+    >>> run = pounding.simulate(pounding.presets.paper_damped(),
+    ...                         pounding.Harmonic(a_g=0.1, freq_hz=2.0),
     ...                         duration=5.0)
     >>> run.success, run.t.shape  # 1 kHz samples plus one after every event
     (True, (5077,))
-    >>> round(run.displacement_max * 1e3, 1), round(run.displacement_max_time_s, 3)  # mm, s
+    >>> # mm, s
+    >>> round(run.displacement_max * 1e3, 1), round(run.displacement_max_time_s, 3)
     (18.8, 0.934)
     >>> run.contacts["side"].value_counts().to_dict()
     {'right': 10, 'left': 9}

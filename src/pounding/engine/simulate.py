@@ -299,10 +299,13 @@ def simulate(
 
     >>> import pounding
     >>> ybs = pounding.presets.paper_damped()
-    >>> run = pounding.simulate(ybs, pounding.Harmonic(a_g=0.1, freq_hz=2.0), duration=5.0)
-    >>> run.status.name, len(run.contacts), round(run.displacement_max * 1e3, 1)  # impacts, mm
+    >>> run = pounding.simulate(ybs, pounding.Harmonic(a_g=0.1, freq_hz=2.0),
+    ...                         duration=5.0)
+    >>> # impacts, mm
+    >>> run.status.name, len(run.contacts), round(run.displacement_max * 1e3, 1)
     ('SUCCESS', 19, 18.8)
-    >>> later = pounding.simulate(ybs, pounding.Harmonic(a_g=0.1, freq_hz=2.0), 5.0, state=run.final_state)
+    >>> later = pounding.simulate(ybs, pounding.Harmonic(a_g=0.1, freq_hz=2.0), 5.0,
+    ...                           state=run.final_state)
     >>> float(later.t[0]), float(later.t[-1]), len(later.contacts)  # s, s, impacts
     (5.0, 10.0, 20)
     """

@@ -44,9 +44,11 @@ class Harmonic:
     >>> table = pounding.Harmonic(a_g=0.1, freq_hz=2.0)
     >>> round(table.peak_m_s2, 3), table.period_s  # m/s^2, s
     (0.981, 0.5)
-    >>> table.acceleration([0.0, 0.125, 0.375]).round(3).tolist()  # m/s^2 at 0, T/4, 3T/4
+    >>> # m/s^2 at 0, T/4, 3T/4
+    >>> table.acceleration([0.0, 0.125, 0.375]).round(3).tolist()
     [0.0, 0.981, -0.981]
-    >>> run = pounding.simulate(pounding.presets.paper_damped(), table, duration=5.0)
+    >>> run = pounding.simulate(pounding.presets.paper_damped(), table,
+    ...                         duration=5.0)
     >>> run.status.name, len(run.contacts)
     ('SUCCESS', 19)
     """

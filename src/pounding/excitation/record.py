@@ -47,14 +47,19 @@ class Record:
     Centro record scaled to a PGA of 0.3 g, shaking the paper's YBs system for its first 10 s:
 
     >>> import pounding
-    >>> pulse = pounding.Record.from_g([0.0, 0.1, 0.2, 0.3, 0.4], [0.0, 0.1, -0.2, 0.05, 0.0], name="pulse")
-    >>> pulse, pulse.acceleration([0.05, 1.0]).round(4).tolist()  # m/s^2 (0 after the end)
+    >>> pulse = pounding.Record.from_g([0.0, 0.1, 0.2, 0.3, 0.4],
+    ...                                [0.0, 0.1, -0.2, 0.05, 0.0], name="pulse")
+    >>> # m/s^2 (0 after the end)
+    >>> pulse, pulse.acceleration([0.05, 1.0]).round(4).tolist()
     (Record('pulse', n=5, t=[0, 0.4] s, pga=0.2 g), [0.4905, 0.0])
     >>> quake = pounding.records.el_centro().scaled(pga_g=0.3)
-    >>> round(quake.meta["scale_factor"], 3), round(quake.dt_s, 3), quake.duration_s  # -, s, s
+    >>> # -, s, s
+    >>> round(quake.meta["scale_factor"], 3), round(quake.dt_s, 3), quake.duration_s
     (0.941, 0.02, 31.16)
-    >>> run = pounding.simulate(pounding.presets.paper_damped(), quake, duration=10.0)
-    >>> len(run.contacts), round(run.abs_acceleration_max / 9.81, 2)  # impacts, peak acceleration in g
+    >>> run = pounding.simulate(pounding.presets.paper_damped(), quake,
+    ...                         duration=10.0)
+    >>> # impacts, peak acceleration in g
+    >>> len(run.contacts), round(run.abs_acceleration_max / 9.81, 2)
     (14, 1.75)
     """
 

@@ -83,7 +83,8 @@ def fema_p695(record_set: str = "far_field", *, normalized: bool = False) -> lis
     >>> len(far), far[0].name, far[0].meta["event"], round(far[0].pga_g, 2)
     (44, '953 NORTHR/MUL009', 'Northridge', 0.42)
     >>> pulse = pounding.records.fema_p695("near_field_pulse", normalized=True)
-    >>> len(pulse), pulse[0].meta["scale_factor"] == pulse[0].meta["normalization_factor"]
+    >>> meta = pulse[0].meta
+    >>> len(pulse), meta["scale_factor"] == meta["normalization_factor"]
     (28, True)
     """
     key = FEMA_SETS[one_of("record_set", record_set, tuple(FEMA_SETS))]

@@ -86,7 +86,8 @@ def response_spectrum(record: Record | Sequence[Record], periods_s: Any, damping
     The 5 %-damped spectrum of El Centro 1940 N-S at three periods:
 
     >>> import pounding
-    >>> spec = pounding.response_spectrum(pounding.records.el_centro(), [0.5, 1.0, 2.0], damping_ratio=0.05)
+    >>> spec = pounding.response_spectrum(pounding.records.el_centro(),
+    ...                                   [0.5, 1.0, 2.0], damping_ratio=0.05)
     >>> spec["psa_g"].values.round(2)  # shape (records, periods)
     array([[0.92, 0.46, 0.14]])
     >>> spec["sd_m"].sel(period_s=1.0).values.round(3)  # m

@@ -310,7 +310,8 @@ def fit_contact_law(
     >>> d = 0.002 * (1.0 - np.cos(2.0 * np.pi * t))       # m: compression
     >>> force = 3e7 * d**1.5 * (1.0 + 0.5 * np.gradient(d, t, edge_order=2))  # N
     >>> fit = pounding.fit_contact_law(d, force, time_s=t, law="hunt_crossley")
-    >>> round(fit.law.exponent, 3), f"{fit.law.stiffness:.3g} N/m^n", round(fit.r_squared, 6)
+    >>> round(fit.law.exponent,
+    ...       3), f"{fit.law.stiffness:.3g} N/m^n", round(fit.r_squared, 6)
     (1.5, '3e+07 N/m^n', 1.0)
     """
     one_of("law", law, LAWS)
@@ -496,10 +497,13 @@ def rank_contact_laws(displacement_m: Any, force_n: Any, *, time_s: Any = None, 
     >>> t = np.linspace(0.0, 2.0, 401)                   # s
     >>> d = 0.002 * (1.0 - np.cos(2.0 * np.pi * t))       # m: compression
     >>> v = 0.004 * np.pi * np.sin(2.0 * np.pi * t)       # m/s: its rate
-    >>> ranking = pounding.rank_contact_laws(d, 3e7 * d**1.5 * (1.0 + 0.5 * v), velocity_m_s=v, n_branches=2)
-    >>> ranking.loc[0, "law"], round(ranking.loc[0, "fit"].law.exponent, 3)  # the best
+    >>> ranking = pounding.rank_contact_laws(d, 3e7 * d**1.5 * (1.0 + 0.5 * v),
+    ...                                      velocity_m_s=v, n_branches=2)
+    >>> # the best
+    >>> ranking.loc[0, "law"], round(ranking.loc[0, "fit"].law.exponent, 3)
     ('hunt_crossley', 1.5)
-    >>> ranking["law"].iloc[-1], round(float(ranking["r_squared"].iloc[-1]), 2)  # the worst
+    >>> # the worst
+    >>> ranking["law"].iloc[-1], round(float(ranking["r_squared"].iloc[-1]), 2)
     ('kelvin_voigt', 0.96)
     """
     counts = {KelvinVoigt.TYPE: 2, HuntCrossley.TYPE: 3, Jankowski.TYPE: 3, ElasticPlastic.TYPE: 3,

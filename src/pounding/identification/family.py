@@ -85,12 +85,16 @@ class ModelFamily:
 
     >>> import pounding
     >>> family = pounding.ModelFamily(500.0, branches=1, law="kelvin_voigt",
-    ...                               fixed={"slope_1": 38e3, "bumper_stiffness": 1.46e6, "gap": 0.015})
+    ...                               fixed={"slope_1": 38e3,
+    ...                                      "bumper_stiffness": 1.46e6,
+    ...                                      "gap": 0.015})
     >>> family.parameter_names
     ('slope_1', 'isolator_damping', 'bumper_stiffness', 'bumper_damping', 'gap')
-    >>> family.free_names({"isolator_damping": (100.0, 5000.0), "bumper_damping": (0.0, 5000.0)})
+    >>> family.free_names({"isolator_damping": (100.0, 5000.0),
+    ...                    "bumper_damping": (0.0, 5000.0)})
     ('isolator_damping', 'bumper_damping')
-    >>> family.oscillator({"isolator_damping": 1000.0, "bumper_damping": 500.0}).bumpers.law
+    >>> family.oscillator({"isolator_damping": 1000.0,
+    ...                    "bumper_damping": 500.0}).bumpers.law
     KelvinVoigt(stiffness=1460000.0, damping=500.0)
     """
 

@@ -91,12 +91,15 @@ class Targets:
 
     >>> import pounding
     >>> targets = pounding.Targets.from_records(
-    ...     [{"configuration": "YBs", "a_g": 0.05, "quantity": "alpha", "value": 16.8},
-    ...      {"configuration": "YBs", "a_g": 0.05, "quantity": "contact_time_ms", "value": 15.0}],
+    ...     [{"configuration": "YBs", "a_g": 0.05, "quantity": "alpha",
+    ...       "value": 16.8},
+    ...      {"configuration": "YBs", "a_g": 0.05, "quantity": "contact_time_ms",
+    ...       "value": 15.0}],
     ...     eta_gap_total_m=0.03)
     >>> len(targets), targets.cases
     (2, [('YBs', 0.05, 'up')])
-    >>> targets.allowed.round(3).tolist()  # alpha within 10 %, the contact time within 30 %
+    >>> # alpha within 10 %, the contact time within 30 %
+    >>> targets.allowed.round(3).tolist()
     [1.68, 4.5]
     """
 
@@ -280,7 +283,8 @@ def paper_targets(direction: str = "up", quantities: tuple[str, ...] = PAPER_QUA
     >>> targets = pounding.paper_targets()
     >>> len(targets), targets.eta_gap_total_m
     (36, 0.03)
-    >>> alphas = pounding.paper_targets(quantities=("alpha",)).table  # Table 2's alpha: NBs, then YBs
+    >>> # Table 2's alpha: NBs, then YBs
+    >>> alphas = pounding.paper_targets(quantities=("alpha",)).table
     >>> alphas["value"].tolist()
     [1.8, 2.99, 3.89, 1.96, 16.8, 16.18, 15.04]
     """

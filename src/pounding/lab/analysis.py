@@ -255,10 +255,13 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
     A virtual YBs test (1 % noise, 1 kHz) of three steps at a_G = 0.05 g, measured as the lab would:
 
     >>> import pounding
-    >>> rec = pounding.lab.synthetic_test(pounding.presets.paper_damped(), 0.05, [1.0, 1.5, 2.0], cycles=10)
-    >>> sweep = pounding.lab.analyse_stepped_sine(rec, mass_kg=500.0, gap_total_m=0.03,
+    >>> rec = pounding.lab.synthetic_test(pounding.presets.paper_damped(), 0.05,
+    ...                                   [1.0, 1.5, 2.0], cycles=10)
+    >>> sweep = pounding.lab.analyse_stepped_sine(rec, mass_kg=500.0,
+    ...                                           gap_total_m=0.03,
     ...                                           freqs_hz=[1.0, 1.5, 2.0])
-    >>> sweep.resonance_hz, round(sweep.alpha_max, 1), sweep.contact_range_hz  # Hz, -, Hz
+    >>> # Hz, -, Hz
+    >>> sweep.resonance_hz, round(sweep.alpha_max, 1), sweep.contact_range_hz
     (1.5, 8.3, (1.5, 1.5))
     >>> at = sweep.steps.iloc[1]  # the resonance step
     >>> f"{1e3 * at['contact_time_s']:.0f} ms, restitution {at['restitution']:.2f}"

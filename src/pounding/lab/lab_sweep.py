@@ -41,13 +41,17 @@ class LabSweep:
     What :func:`analyse_stepped_sine` returns, here for a virtual YBs test at a_G = 0.05 g:
 
     >>> import pounding
-    >>> rec = pounding.lab.synthetic_test(pounding.presets.paper_damped(), 0.05, [1.0, 1.5, 2.0], cycles=10)
-    >>> sweep = pounding.lab.analyse_stepped_sine(rec, mass_kg=500.0, gap_total_m=0.03)
+    >>> rec = pounding.lab.synthetic_test(pounding.presets.paper_damped(), 0.05,
+    ...                                   [1.0, 1.5, 2.0], cycles=10)
+    >>> sweep = pounding.lab.analyse_stepped_sine(rec, mass_kg=500.0,
+    ...                                           gap_total_m=0.03)
     >>> len(sweep.steps), sweep.direction, round(sweep.a_g, 3), round(sweep.nu_r, 2)
     (3, 'up', 0.05, 1.5)
-    >>> sweep.steps["eta"].round(2).tolist()  # the excursion over the total gap, per step
+    >>> # the excursion over the total gap, per step
+    >>> sweep.steps["eta"].round(2).tolist()
     [0.85, 1.07, 0.49]
-    >>> len(sweep.to_targets("YBs"))  # nu_r, alpha, eta, the contact range, contact time, restitution
+    >>> # nu_r, alpha, eta, the contact range, contact time, restitution
+    >>> len(sweep.to_targets("YBs"))
     7
     """
 

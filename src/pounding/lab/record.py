@@ -62,11 +62,15 @@ class LabRecord:
 
     >>> import pounding
     >>> import numpy as np
-    >>> t, w = np.arange(0.0, 2.0, 0.001), 3.0 * np.pi                    # s (1 kHz), rad/s (1.5 Hz)
-    >>> table, laser = 0.05 * 9.81 * np.sin(w * t), -0.01 * np.sin(w * t)  # m/s^2, m
-    >>> mass = table - w**2 * laser                                        # m/s^2: absolute
+    >>> # s (1 kHz), rad/s (1.5 Hz)
+    >>> t, w = np.arange(0.0, 2.0, 0.001), 3.0 * np.pi
+    >>> # m/s^2, m
+    >>> table, laser = 0.05 * 9.81 * np.sin(w * t), -0.01 * np.sin(w * t)
+    >>> # m/s^2: absolute
+    >>> mass = table - w**2 * laser
     >>> laser[500:510] = np.nan
-    >>> rec = pounding.lab.LabRecord(t, table, np.column_stack([mass, mass]), laser, ("acc_1", "acc_2"))
+    >>> rec = pounding.lab.LabRecord(t, table, np.column_stack([mass, mass]), laser,
+    ...                              ("acc_1", "acc_2"))
     >>> rec.mass_acc_m_s2.shape, round(rec.sample_rate_hz)
     ((2000, 2), 1000)
     >>> rec.nan_runs[["channel", "samples"]].values.tolist()  # reported, not hidden
@@ -192,15 +196,21 @@ def read_test(path: str | Path, *, time: Any, table_acc: Any, mass_acc: Any, dis
 
     >>> import pounding
     >>> import numpy as np
-    >>> t = np.arange(0.0, 4.0, 0.002)                                           # s: 4 s at 500 Hz
-    >>> table, laser = 0.05 * np.sin(3.0 * np.pi * t), -10.0 * np.sin(3.0 * np.pi * t)  # g, mm (1.5 Hz)
-    >>> np.savetxt("run.csv", np.column_stack([1e3 * t, table, 2.81 * table, laser]), delimiter=",",
-    ...            header="time_ms,table_g,mass_g,laser_mm", comments="")
-    >>> rec = pounding.lab.read_test("run.csv", time="time_ms", table_acc="table_g", mass_acc="mass_g",
-    ...                              displacement="laser_mm", units={"time": "ms", "table_acc": "g",
-    ...                                                              "mass_acc": "g", "displacement": "mm"})
-    >>> round(rec.sample_rate_hz), rec.mass_channels, round(float(rec.displacement_m.max()), 4)  # Hz, m
-    (500, ('mass_g',), 0.01)
+    >>> t = np.arange(0.0, 4.0, 0.002)  # s: 4 s at 500 Hz
+    >>> table = 0.05 * np.sin(3.0 * np.pi * t)  # g (1.5 Hz)
+    >>> laser = -10.0 * np.sin(3.0 * np.pi * t)  # mm
+    >>> columns = np.column_stack([1e3 * t, table, 2.81 * table, laser])
+    >>> np.savetxt("run.csv", columns, delimiter=",", comments="",
+    ...            header="time_ms,table_g,mass_g,laser_mm")
+    >>> units = {"time": "ms", "table_acc": "g", "mass_acc": "g",
+    ...          "displacement": "mm"}
+    >>> rec = pounding.lab.read_test("run.csv", time="time_ms", table_acc="table_g",
+    ...                              mass_acc="mass_g", displacement="laser_mm",
+    ...                              units=units)
+    >>> round(rec.sample_rate_hz), rec.mass_channels  # Hz
+    (500, ('mass_g',))
+    >>> round(float(rec.displacement_m.max()), 4)  # m
+    0.01
     """
     g = positive("g", g, "m/s^2")
     units = _units(units)

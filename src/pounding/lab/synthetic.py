@@ -82,8 +82,10 @@ def synthetic_test(oscillator: Oscillator, a_g: float, freqs_hz: Any, *, cycles:
     200 Hz anti-alias filter, two accelerometers 2 % off and a laser of 0.01 mm resolution:
 
     >>> import pounding
-    >>> rec = pounding.lab.synthetic_test(pounding.presets.paper_damped(), 0.05, [1.0, 1.5, 2.0], cycles=10,
-    ...                                   anti_alias_hz=200.0, gains=(1.02, 0.98), laser_resolution_m=1e-5)
+    >>> rec = pounding.lab.synthetic_test(pounding.presets.paper_damped(), 0.05,
+    ...                                   [1.0, 1.5, 2.0], cycles=10,
+    ...                                   anti_alias_hz=200.0, gains=(1.02, 0.98),
+    ...                                   laser_resolution_m=1e-5)
     >>> rec.n_samples, rec.mass_channels
     (21667, ('accelerometer_1', 'accelerometer_2'))
     >>> rec.meta["step_start_s"].round(3).tolist()  # s: when each step starts

@@ -39,7 +39,8 @@ class HysteresisLoop:
     >>> loop = sw.hysteresis_loop(1.5)
     >>> loop.cycles, loop.total_gap_m, loop.bumper_surfaces_d
     (1, 0.03, (-0.5, 0.5))
-    >>> round(float(loop.d.min()), 2), round(float(loop.d.max()), 2)  # past the surfaces: contact
+    >>> # past the surfaces: contact
+    >>> round(float(loop.d.min()), 2), round(float(loop.d.max()), 2)
     (-0.53, 0.53)
     >>> round(float(loop.r.max()), 2)  # peak F_I / (M g)
     0.42

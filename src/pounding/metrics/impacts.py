@@ -31,12 +31,13 @@ def impact_table(contact_table: np.ndarray, mass_kg: float) -> pd.DataFrame:
     >>> import pounding
     >>> osc = pounding.presets.paper_damped()
     >>> run = pounding.simulate(osc, pounding.Harmonic(0.05, 1.5), 5.0)
-    >>> table = pounding.impact_table(run.contact_table, osc.mass)  # what run.impacts holds
+    >>> # what run.impacts holds
+    >>> table = pounding.impact_table(run.contact_table, osc.mass)
     >>> len(table), table["side"].value_counts().to_dict()
     (13, {'left': 7, 'right': 6})
     >>> last = table.iloc[-1]
-    >>> print(f"s = {last.restitution:.3f}, dt_c = {last.contact_time_s * 1e3:.1f} ms, "
-    ...       f"F_peak = {last.peak_force_n:.0f} N")
+    >>> print(f"s = {last.restitution:.3f}, dt_c = {last.contact_time_s * 1e3:.1f} "
+    ...       f"ms, F_peak = {last.peak_force_n:.0f} N")
     s = 0.974, dt_c = 50.0 ms, F_peak = 1446 N
     """
     values = np.empty((contact_table.shape[0], N_IMPACT))

@@ -40,7 +40,8 @@ class Bumpers:
     >>> bumpers = pounding.Bumpers(gap_left=0.015, gap_right=0.015, law=epdm)
     >>> bumpers.total_gap  # m
     0.03
-    >>> stiff = pounding.Bumpers(0.015, 0.010, epdm, law_right=pounding.KelvinVoigt(5.0e6, 5.0))
+    >>> stiff = pounding.Bumpers(0.015, 0.010, epdm,
+    ...                          law_right=pounding.KelvinVoigt(5.0e6, 5.0))
     >>> stiff.right.stiffness, stiff.mirrored().gap_left
     (5000000.0, 0.01)
     """

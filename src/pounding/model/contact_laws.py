@@ -81,7 +81,8 @@ class KelvinVoigt:
     >>> osc = pounding.Oscillator(500.0, pounding.presets.paper_damped().isolator,
     ...                           pounding.Bumpers(0.015, 0.015, epdm))
     >>> push = pounding.State.at_rest(osc, velocity_m_s=0.6)
-    >>> run = pounding.simulate(osc, pounding.Harmonic(a_g=0.05, freq_hz=2.2), duration=0.5, state=push)
+    >>> run = pounding.simulate(osc, pounding.Harmonic(a_g=0.05, freq_hz=2.2),
+    ...                         duration=0.5, state=push)
     >>> run.impacts["restitution"].round(2).tolist()
     [0.95, 0.95, 0.93, 0.93]
     """
@@ -133,7 +134,8 @@ class HuntCrossley:
     >>> osc = pounding.Oscillator(500.0, pounding.presets.paper_damped().isolator,
     ...                           pounding.Bumpers(0.015, 0.015, law))
     >>> push = pounding.State.at_rest(osc, velocity_m_s=0.6)
-    >>> run = pounding.simulate(osc, pounding.Harmonic(a_g=0.05, freq_hz=2.2), duration=0.5, state=push)
+    >>> run = pounding.simulate(osc, pounding.Harmonic(a_g=0.05, freq_hz=2.2),
+    ...                         duration=0.5, state=push)
     >>> run.impacts["restitution"].round(2).tolist()
     [0.66, 0.77, 0.84]
     """
@@ -186,13 +188,15 @@ class Jankowski:
     restitution stays near 0.7 as the impacts weaken (the isolator's forces make it differ a little):
 
     >>> import pounding
-    >>> law = pounding.Jankowski.from_restitution(stiffness=1.46e7, restitution=0.7, effective_mass=500.0)
+    >>> law = pounding.Jankowski.from_restitution(stiffness=1.46e7, restitution=0.7,
+    ...                                           effective_mass=500.0)
     >>> round(law.damping_ratio, 3)
     0.298
     >>> osc = pounding.Oscillator(500.0, pounding.presets.paper_damped().isolator,
     ...                           pounding.Bumpers(0.015, 0.015, law))
     >>> push = pounding.State.at_rest(osc, velocity_m_s=0.6)
-    >>> run = pounding.simulate(osc, pounding.Harmonic(a_g=0.05, freq_hz=2.2), duration=0.5, state=push)
+    >>> run = pounding.simulate(osc, pounding.Harmonic(a_g=0.05, freq_hz=2.2),
+    ...                         duration=0.5, state=push)
     >>> run.impacts["restitution"].round(2).tolist()
     [0.68, 0.69, 0.71]
     """
@@ -281,17 +285,20 @@ class MultilinearBumper:
     12 mm once it has closed; with Masing hysteresis it keeps a set after a deep impact:
 
     >>> import pounding
-    >>> law = pounding.MultilinearBumper(slopes=[4.0e5, 5.0e4, 2.0e6], breakpoints=[0.004, 0.012],
+    >>> law = pounding.MultilinearBumper(slopes=[4.0e5, 5.0e4, 2.0e6],
+    ...                                  breakpoints=[0.004, 0.012],
     ...                                  damping=200.0, hysteresis="kinematic")
     >>> law.backbone([0.002, 0.008, 0.015]).round(1).tolist()  # N
     [800.0, 1800.0, 8000.0]
     >>> osc = pounding.Oscillator(500.0, pounding.presets.paper_damped().isolator,
     ...                           pounding.Bumpers(0.015, 0.015, law))
     >>> push = pounding.State.at_rest(osc, velocity_m_s=0.6)
-    >>> run = pounding.simulate(osc, pounding.Harmonic(a_g=0.05, freq_hz=2.2), duration=0.5, state=push)
+    >>> run = pounding.simulate(osc, pounding.Harmonic(a_g=0.05, freq_hz=2.2),
+    ...                         duration=0.5, state=push)
     >>> round(float(run.impacts["restitution"][0]), 2)
     0.67
-    >>> [round(1e3 * d, 1) for d in run.final_state.bumper_compression_m]  # sets, mm (left, right)
+    >>> # sets, mm (left, right)
+    >>> [round(1e3 * d, 1) for d in run.final_state.bumper_compression_m]
     [5.9, 11.4]
     """
 
@@ -383,7 +390,8 @@ class ElasticPlastic:
     at 0.05 (below the yield velocity), 0.3 and 1.0 m/s:
 
     >>> import pounding
-    >>> law = pounding.ElasticPlastic(stiffness=2.0e6, post_yield_stiffness=1.0e5, yield_compression=0.002)
+    >>> law = pounding.ElasticPlastic(stiffness=2.0e6, post_yield_stiffness=1.0e5,
+    ...                               yield_compression=0.002)
     >>> round(law.yield_velocity_m_s(500.0), 3)  # m/s
     0.126
     >>> law.restitution(500.0, [0.05, 0.3, 1.0]).round(2).tolist()
@@ -479,7 +487,8 @@ class Hertzdamp:
     >>> osc = pounding.Oscillator(500.0, pounding.presets.paper_damped().isolator,
     ...                           pounding.Bumpers(0.015, 0.015, law))
     >>> push = pounding.State.at_rest(osc, velocity_m_s=0.6)
-    >>> run = pounding.simulate(osc, pounding.Harmonic(a_g=0.05, freq_hz=2.2), duration=0.5, state=push)
+    >>> run = pounding.simulate(osc, pounding.Harmonic(a_g=0.05, freq_hz=2.2),
+    ...                         duration=0.5, state=push)
     >>> run.impacts["restitution"].round(2).tolist()
     [0.68, 0.69, 0.73]
     """

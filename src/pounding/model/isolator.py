@@ -55,10 +55,13 @@ class BoucWen:
     >>> bw = pounding.BoucWen(stiffness=20_000.0, yield_displacement=0.005, n=2.0)
     >>> bw.yield_force_n  # N
     100.0
-    >>> hdr = pounding.Oscillator(500.0, pounding.Isolator([18_000.0], damping=500.0, bouc_wen=bw))
-    >>> run = pounding.simulate(hdr, pounding.Harmonic(a_g=0.1, freq_hz=1.0), duration=5.0)
-    >>> f"{run.displacement_max:.3f} m, {run.energy.hysteretic:.0f} J dissipated by hysteresis"
-    '0.104 m, 144 J dissipated by hysteresis'
+    >>> hdr = pounding.Oscillator(500.0, pounding.Isolator([18_000.0],
+    ...                                                    damping=500.0,
+    ...                                                    bouc_wen=bw))
+    >>> run = pounding.simulate(hdr, pounding.Harmonic(a_g=0.1, freq_hz=1.0),
+    ...                         duration=5.0)
+    >>> f"{run.displacement_max:.3f} m, {run.energy.hysteretic:.0f} J by hysteresis"
+    '0.104 m, 144 J by hysteresis'
     """
 
     stiffness: float
@@ -162,7 +165,8 @@ class Isolator:
     :func:`pounding.presets.paper_damped`:
 
     >>> import pounding
-    >>> iso = pounding.Isolator(slopes=[38_000.0, 18_000.0, 2_000.0], breakpoints=[0.015, 0.040],
+    >>> iso = pounding.Isolator(slopes=[38_000.0, 18_000.0, 2_000.0],
+    ...                         breakpoints=[0.015, 0.040],
     ...                         hysteresis="kinematic", damping=1_000.0)
     >>> iso.n_branches, iso.yield_forces  # N at 15 and 40 mm
     (3, array([ 570., 1020.]))

@@ -42,12 +42,17 @@ class Oscillator:
     by hand, saved to TOML and read back:
 
     >>> import pounding
-    >>> isolator = pounding.Isolator(slopes=[38_000.0, 18_000.0, 2_000.0], breakpoints=[0.015, 0.040],
+    >>> isolator = pounding.Isolator(slopes=[38_000.0, 18_000.0, 2_000.0],
+    ...                              breakpoints=[0.015, 0.040],
     ...                              hysteresis="kinematic", damping=1_000.0)
-    >>> bumpers = pounding.Bumpers(0.015, 0.015, pounding.KelvinVoigt(stiffness=1.46e6, damping=5.0))
+    >>> bumpers = pounding.Bumpers(0.015, 0.015,
+    ...                            pounding.KelvinVoigt(stiffness=1.46e6,
+    ...                                                 damping=5.0))
     >>> ybs = pounding.Oscillator(mass=500.0, isolator=isolator, bumpers=bumpers)
-    >>> ybs == pounding.presets.paper_damped(), ybs.without_bumpers().bumpers is None
-    (True, True)
+    >>> ybs == pounding.presets.paper_damped()
+    True
+    >>> ybs.without_bumpers().bumpers is None
+    True
     >>> path = ybs.to_toml("ybs.toml")
     >>> pounding.Oscillator.from_toml("ybs.toml") == ybs
     True

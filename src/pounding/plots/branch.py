@@ -50,7 +50,8 @@ def plot_branch(branch: Any, ax: Any = None, *, y: str = "alpha", x: Optional[st
     >>> import pounding
     >>> osc = pounding.presets.paper_damped()
     >>> branch = pounding.continuation(osc, 0.05, (1.5, 2.5))
-    >>> up = pounding.sweep(osc, 0.05, [1.5, 2.0, 2.5], steady="fixed", cycles=10, measure_cycles=2)
+    >>> up = pounding.sweep(osc, 0.05, [1.5, 2.0, 2.5], steady="fixed", cycles=10,
+    ...                     measure_cycles=2)
     >>> artists = pounding.plots.plot_branch(branch, sweeps=up)
     >>> len(artists) > 0
     True

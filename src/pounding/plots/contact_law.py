@@ -33,8 +33,8 @@ def plot_contact_law_fit(fit: "ContactLawFit", ax: Any = None) -> list:
 
     >>> import pounding
     >>> test = pounding.data.bumper_cyclic_test()
-    >>> fit = pounding.fit_contact_law(test["compression_m"], test["force_n"], time_s=test["time_s"],
-    ...                                law="hunt_crossley")
+    >>> fit = pounding.fit_contact_law(test["compression_m"], test["force_n"],
+    ...                                time_s=test["time_s"], law="hunt_crossley")
     >>> artists = pounding.plots.plot_contact_law_fit(fit)
     >>> len(artists)
     2

@@ -36,7 +36,8 @@ def plot_curves(curves: list, ax: Any = None, *, matrix: Optional[Any] = None, *
     >>> import pounding
     >>> osc = pounding.presets.paper_damped()
     >>> fold = pounding.continuation(osc, 0.05, (1.5, 2.5)).folds()[0]
-    >>> curve = pounding.bifurcation_curve(osc, fold, a_g=(0.045, 0.055), freqs_hz=(1.5, 2.5), max_step=0.1)
+    >>> curve = pounding.bifurcation_curve(osc, fold, a_g=(0.045, 0.055),
+    ...                                    freqs_hz=(1.5, 2.5), max_step=0.1)
     >>> artists = pounding.plots.plot_curves([curve])
     >>> len(artists)
     1

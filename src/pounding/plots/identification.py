@@ -31,12 +31,16 @@ def plot_identification(fit: Identification, ax: Any = None) -> list:
     tiny budget (one generation of two candidates, three frequencies of ten cycles):
 
     >>> import pounding
-    >>> fixed = pounding.ModelFamily(500.0).values_of(pounding.presets.paper_damped())
+    >>> damped = pounding.presets.paper_damped()
+    >>> fixed = pounding.ModelFamily(500.0).values_of(damped)
     >>> del fixed["isolator_damping"]  # the number fitted
     >>> family = pounding.ModelFamily(500.0, fixed=fixed)
-    >>> fit = pounding.identify(pounding.paper_targets(quantities=("alpha",)), family,
-    ...                         {"isolator_damping": (500.0, 2000.0)}, popsize=2, maxiter=1, refine=False,
-    ...                         freqs_hz=[1.0, 1.5, 2.0], cycles=10, measure_cycles=2)
+    >>> fit = pounding.identify(pounding.paper_targets(quantities=("alpha",)),
+    ...                         family,
+    ...                         {"isolator_damping": (500.0, 2000.0)}, popsize=2,
+    ...                         maxiter=1, refine=False,
+    ...                         freqs_hz=[1.0, 1.5, 2.0], cycles=10,
+    ...                         measure_cycles=2)
     >>> artists = pounding.plots.plot_identification(fit)
     >>> len(fit.residuals), len(artists) > 0
     (7, True)

@@ -32,9 +32,11 @@ def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
     The damped paper system's orbit at a_G = 0.05 and 1.5 Hz, which hits both bumpers:
 
     >>> import pounding
-    >>> orbit = pounding.periodic_orbit(pounding.presets.paper_damped(), pounding.Harmonic(0.05, 1.5))
+    >>> orbit = pounding.periodic_orbit(pounding.presets.paper_damped(),
+    ...                                 pounding.Harmonic(0.05, 1.5))
     >>> artists = pounding.plots.plot_orbit(orbit)
-    >>> len(artists)  # the orbit, its section state, the contacts' starts, two bumpers
+    >>> # the orbit, its section state, the contacts' starts, two bumpers
+    >>> len(artists)
     5
     """
     import matplotlib.pyplot as plt

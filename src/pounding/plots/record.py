@@ -73,7 +73,8 @@ def plot_response_spectrum(spectrum: Any, ax: Any = None, *, quantity: str = "ps
     The 5 % damped spectrum of El Centro at three periods:
 
     >>> import pounding
-    >>> spectrum = pounding.response_spectrum(pounding.records.el_centro(), [0.5, 1.0, 2.0])
+    >>> spectrum = pounding.response_spectrum(pounding.records.el_centro(),
+    ...                                       [0.5, 1.0, 2.0])
     >>> artists = pounding.plots.plot_response_spectrum(spectrum, quantity="sd_m")
     >>> len(artists)
     1

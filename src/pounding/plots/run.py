@@ -33,7 +33,8 @@ def plot_run(run: "Run", ax: Any = None, *, contacts: bool = True) -> list:
     Ten seconds of the damped paper system shaken at a_G = 0.05 and 1.5 Hz, from rest:
 
     >>> import pounding
-    >>> run = pounding.simulate(pounding.presets.paper_damped(), pounding.Harmonic(0.05, 1.5), 10.0)
+    >>> run = pounding.simulate(pounding.presets.paper_damped(),
+    ...                         pounding.Harmonic(0.05, 1.5), 10.0)
     >>> artists = pounding.plots.plot_run(run)
     >>> len(artists) > 0
     True

@@ -38,7 +38,8 @@ def plot_pounding_spectrum(spectrum: Any, ax: Any = None, *, kind: str = "curves
     El Centro on isolators of 2 and 3 s with gaps of 50 and 100 mm:
 
     >>> import pounding
-    >>> spectrum = pounding.pounding_spectrum(pounding.records.el_centro(), [2.0, 3.0], gaps_m=[0.05, 0.1])
+    >>> spectrum = pounding.pounding_spectrum(pounding.records.el_centro(),
+    ...                                       [2.0, 3.0], gaps_m=[0.05, 0.1])
     >>> artists = pounding.plots.plot_pounding_spectrum(spectrum)
     >>> len(artists)  # two gaps, and the line amplification = 1
     3

@@ -45,7 +45,8 @@ def plot_sweep(sweeps: "SweepResult | Sequence[SweepResult]", ax: Any = None, *,
 
     >>> import pounding
     >>> osc = pounding.presets.paper_damped()
-    >>> sweeps = [pounding.sweep(osc, 0.05, [1.5, 2.0, 2.5], direction, steady="fixed", cycles=10,
+    >>> sweeps = [pounding.sweep(osc, 0.05, [1.5, 2.0, 2.5], direction,
+    ...                          steady="fixed", cycles=10,
     ...                          measure_cycles=2) for direction in ("up", "down")]
     >>> artists = pounding.plots.plot_sweep(sweeps)
     >>> len(artists) > 0
@@ -113,7 +114,8 @@ def plot_lab_sweep(lab: Any, ax: Any = None, *, label: str | None = None, color:
     >>> import pounding
     >>> osc = pounding.presets.paper_damped()
     >>> record = pounding.lab.synthetic_test(osc, 0.05, [1.5, 2.0, 2.5], cycles=10)
-    >>> lab = pounding.lab.analyse_stepped_sine(record, mass_kg=500.0, gap_total_m=0.03)
+    >>> lab = pounding.lab.analyse_stepped_sine(record, mass_kg=500.0,
+    ...                                         gap_total_m=0.03)
     >>> artists = pounding.plots.plot_lab_sweep(lab)
     >>> len(lab.steps), len(artists) > 0
     (3, True)
@@ -166,9 +168,10 @@ def plot_hysteresis(loop: "HysteresisLoop", ax: Any = None, *, per: str = "total
     The loop of the damped paper system at a_G = 0.05 and 1.5 Hz, where it hits both bumpers:
 
     >>> import pounding
-    >>> up = pounding.sweep(pounding.presets.paper_damped(), 0.05, [1.5], steady="fixed", cycles=10,
-    ...                     measure_cycles=2)
-    >>> artists = pounding.plots.plot_hysteresis(up.hysteresis_loop(1.5), per="half_gap")
+    >>> up = pounding.sweep(pounding.presets.paper_damped(), 0.05, [1.5],
+    ...                     steady="fixed", cycles=10, measure_cycles=2)
+    >>> artists = pounding.plots.plot_hysteresis(up.hysteresis_loop(1.5),
+    ...                                          per="half_gap")
     >>> len(artists)  # the loop and the two bumpers' surfaces
     3
     """
@@ -213,9 +216,10 @@ def plot_campaign(result: "CampaignResult", ax: Any = None) -> list:
 
     >>> import pounding
     >>> osc = pounding.presets.paper_damped()
-    >>> result = pounding.campaign(osc.without_bumpers(), osc, nbs_a_g=[0.05], ybs_a_g=[0.05],
-    ...                            freqs_hz=[1.5, 2.0], directions=["up"], steady="fixed", cycles=10,
-    ...                            measure_cycles=2)
+    >>> result = pounding.campaign(osc.without_bumpers(), osc, nbs_a_g=[0.05],
+    ...                            ybs_a_g=[0.05],
+    ...                            freqs_hz=[1.5, 2.0], directions=["up"],
+    ...                            steady="fixed", cycles=10, measure_cycles=2)
     >>> artists = pounding.plots.plot_campaign(result)
     >>> len(artists) > 0
     True

@@ -92,18 +92,22 @@ class CampaignResult:
 
     >>> import pounding
     >>> ybs = pounding.presets.paper_damped()
-    >>> res = pounding.campaign(ybs.without_bumpers(), ybs, nbs_a_g=[0.05], ybs_a_g=[0.05],
-    ...                         freqs_hz=[1.5, 2.0, 2.5], directions=["up"], steady="fixed", cycles=10)
+    >>> res = pounding.campaign(ybs.without_bumpers(), ybs, nbs_a_g=[0.05],
+    ...                         ybs_a_g=[0.05],
+    ...                         freqs_hz=[1.5, 2.0, 2.5], directions=["up"],
+    ...                         steady="fixed", cycles=10)
     >>> res.complete, list(res.sweeps)
     (True, [('NBs', 0.05, 'up'), ('YBs', 0.05, 'up')])
-    >>> print(res.dataset["alpha"].sel(a_g=0.05, direction="up").round(2).to_pandas())
+    >>> print(res.dataset["alpha"].sel(a_g=0.05,
+    ...                                direction="up").round(2).to_pandas())
     freq_hz         1.5   2.0   2.5
     configuration
     NBs            2.63  0.99  0.51
     YBs            8.39  1.23  0.51
     >>> res.sweep("YBs", 0.05, "up").contact_range_hz
     (1.5, 1.5)
-    >>> print(res.table3()[["configuration", "nu_r", "contact_time_ms"]].round(1).to_string(index=False))
+    >>> print(res.table3()[["configuration", "nu_r",
+    ...                     "contact_time_ms"]].round(1).to_string(index=False))
     configuration  nu_r  contact_time_ms
               YBs   1.5             50.0
     >>> res.to_netcdf("campaign.nc").name
@@ -228,8 +232,10 @@ def campaign(
 
     >>> import pounding
     >>> ybs = pounding.presets.paper_damped()
-    >>> res = pounding.campaign(ybs.without_bumpers(), ybs, nbs_a_g=[0.05], ybs_a_g=[0.05],
-    ...                         freqs_hz=[1.5, 2.0, 2.5], directions=["up"], steady="fixed", cycles=10)
+    >>> res = pounding.campaign(ybs.without_bumpers(), ybs, nbs_a_g=[0.05],
+    ...                         ybs_a_g=[0.05],
+    ...                         freqs_hz=[1.5, 2.0, 2.5], directions=["up"],
+    ...                         steady="fixed", cycles=10)
     >>> dict(res.dataset.sizes)
     {'configuration': 2, 'a_g': 1, 'direction': 1, 'freq_hz': 3}
     >>> table2 = res.table2()[["configuration", "nu_r", "alpha", "excursion_max_m"]]

@@ -47,7 +47,8 @@ class PoundingSpectrum:
     >>> ps = pounding.pounding_spectrum([quake], [1.0, 2.0], gaps_m=[0.02, 0.05])
     >>> dict(ps.dataset.sizes)
     {'record': 1, 'period_s': 2, 'gap_m': 2}
-    >>> median = ps.summary()["amplification"].sel(percentile=50.0)  # with bumpers / without
+    >>> # with bumpers / without
+    >>> median = ps.summary()["amplification"].sel(percentile=50.0)
     >>> print(median.round(1).to_pandas())
     gap_m     0.02  0.05
     period_s

@@ -30,14 +30,17 @@ class StudyResult:
     --------
     >>> import pounding
     >>> spec = pounding.StudySpec(pounding.presets.paper_damped(),
-    ...                           {"kind": "simulate", "freq_hz": 1.5, "duration_s": 5.0},
-    ...                           {"bumpers.gap_left": [0.01, 0.02], "a_g": [0.03, 0.05]})
+    ...                           {"kind": "simulate", "freq_hz": 1.5,
+    ...                            "duration_s": 5.0},
+    ...                           {"bumpers.gap_left": [0.01, 0.02],
+    ...                            "a_g": [0.03, 0.05]})
     >>> _ = pounding.study(spec, "gaps.zarr", progress=False)
     >>> res = pounding.open_study("gaps.zarr")
     >>> res.done, res.complete, res.spec.dims
     (4, True, ('bumpers.gap_left', 'a_g'))
     >>> df = res.to_dataframe()  # one row per point done
-    >>> print(df[["bumpers.gap_left", "a_g", "acc_max_g"]].round(3).to_string(index=False))
+    >>> print(df[["bumpers.gap_left", "a_g",
+    ...           "acc_max_g"]].round(3).to_string(index=False))
      bumpers.gap_left  a_g  acc_max_g
                  0.01 0.03      0.522
                  0.01 0.05      0.713
@@ -95,7 +98,8 @@ def open_study(store: str | Path) -> StudyResult:
     --------
     >>> import pounding
     >>> spec = pounding.StudySpec(pounding.presets.paper_damped(),
-    ...                           {"kind": "sweep", "freqs_hz": [1.5, 2.0], "cycles": 10},
+    ...                           {"kind": "sweep", "freqs_hz": [1.5, 2.0],
+    ...                            "cycles": 10},
     ...                           {"a_g": [0.03, 0.05]})
     >>> _ = pounding.study(spec, "sweeps.zarr", progress=False)
     >>> res = pounding.open_study("sweeps.zarr")

@@ -62,12 +62,15 @@ class StudySpec:
 
     >>> import pounding
     >>> spec = pounding.StudySpec(pounding.presets.paper_damped(),
-    ...                           {"kind": "simulate", "freq_hz": 1.5, "duration_s": 5.0},
-    ...                           {"bumpers.gap_left": [0.01, 0.02], "a_g": [0.03, 0.05]})
+    ...                           {"kind": "simulate", "freq_hz": 1.5,
+    ...                            "duration_s": 5.0},
+    ...                           {"bumpers.gap_left": [0.01, 0.02],
+    ...                            "a_g": [0.03, 0.05]})
     >>> spec.kind, spec.dims, spec.shape, spec.size
     ('simulate', ('bumpers.gap_left', 'a_g'), (2, 2), 4)
     >>> spec.compute  # the defaults written out
-    {'kind': 'simulate', 'freq_hz': 1.5, 'duration_s': 5.0, 'phase_rad': 0.0, 'v0_m_s': 0.0}
+    {'kind': 'simulate', 'freq_hz': 1.5, 'duration_s': 5.0, 'phase_rad': 0.0,
+     'v0_m_s': 0.0}
     >>> system, options = spec.point((1, 0))  # the second gap, the first a_G
     >>> system.bumpers.gap_left, options["a_g"]
     (0.02, 0.03)

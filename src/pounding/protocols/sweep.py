@@ -262,7 +262,8 @@ def sweep(
     >>> up.message
     'All 3 steps reached a periodic steady state.'
     >>> df = up.to_dataframe()
-    >>> print(df[["freq_hz", "alpha", "eta", "contacts_per_cycle"]].round(2).to_string(index=False))
+    >>> print(df[["freq_hz", "alpha", "eta",
+    ...           "contacts_per_cycle"]].round(2).to_string(index=False))
      freq_hz  alpha  eta  contacts_per_cycle
          1.5   8.30 1.07                 2.0
          2.0   0.93 0.38                 0.0
@@ -272,7 +273,8 @@ def sweep(
 
     A lab's schedule instead: every step exactly 10 cycles, the last 5 measured.
 
-    >>> fixed = pounding.sweep(ybs, 0.05, [1.5, 2.0], steady="fixed", cycles=10, measure_cycles=5)
+    >>> fixed = pounding.sweep(ybs, 0.05, [1.5, 2.0], steady="fixed", cycles=10,
+    ...                        measure_cycles=5)
     >>> fixed.cycles_run.tolist(), fixed.status.name
     ([10, 10], 'SUCCESS')
     """

@@ -82,9 +82,11 @@ class SweepResult:
     --------
     >>> import pounding
     >>> sw = pounding.sweep(pounding.presets.paper_damped(), 0.05, [1.5, 2.0, 2.5])
-    >>> sw.status.name, sw.steps_done, sw.period_multiple.tolist()  # each step periodic, period 1
+    >>> # each step periodic, period 1
+    >>> sw.status.name, sw.steps_done, sw.period_multiple.tolist()
     ('SUCCESS', 3, [1, 1, 1])
-    >>> round(sw.alpha_max, 2), sw.resonance_hz, round(sw.d_tmax_m * 1e3, 1)  # D_tmax in mm
+    >>> # D_tmax in mm
+    >>> round(sw.alpha_max, 2), sw.resonance_hz, round(sw.d_tmax_m * 1e3, 1)
     (8.3, 1.5, 34.5)
     >>> sw.to_dataframe()["contact"].tolist()
     [True, False, False]

@@ -47,11 +47,14 @@ def comparison(result: CampaignResult, table: str) -> pd.DataFrame:
     Table 2 at a_G = 0.05 g from a small campaign (sweeps up, four steps of 10 cycles):
 
     >>> import pounding
-    >>> nbs, ybs = pounding.presets.paper_damped(bumpers=False), pounding.presets.paper_damped()
-    >>> result = pounding.campaign(nbs, ybs, nbs_a_g=(0.05,), ybs_a_g=(0.05,), freqs_hz=[1.0, 1.1, 1.5, 2.0],
+    >>> ybs = pounding.presets.paper_damped()
+    >>> nbs = ybs.without_bumpers()
+    >>> result = pounding.campaign(nbs, ybs, nbs_a_g=(0.05,), ybs_a_g=(0.05,),
+    ...                            freqs_hz=[1.0, 1.1, 1.5, 2.0],
     ...                            directions=("up",), steady="fixed", cycles=10)
     >>> table2 = pounding.reports.comparison(result, "2")
-    >>> table2[["configuration", "alpha_model", "alpha_measured", "alpha_diff_pct"]].round(2).values.tolist()
+    >>> table2[["configuration", "alpha_model", "alpha_measured",
+    ...         "alpha_diff_pct"]].round(2).values.tolist()
     [['NBs', 2.63, 2.99, -11.99], ['YBs', 8.32, 16.8, -50.47]]
     """
     model = {"2": result.table2, "3": result.table3, "4": result.table4}[table]()

@@ -59,12 +59,14 @@ class Report:
 
     >>> import pounding
     >>> report = pounding.reports.reproduce(
-    ...     pounding.presets.paper_damped(bumpers=False), pounding.presets.paper_damped(), "report",
-    ...     freqs_hz=[1.5, 2.0], nbs_a_g=(0.05,), ybs_a_g=(0.05,), directions=("up",), steady="fixed",
-    ...     cycles=5)
+    ...     pounding.presets.paper_damped(bumpers=False),
+    ...     pounding.presets.paper_damped(), "report",
+    ...     freqs_hz=[1.5, 2.0], nbs_a_g=(0.05,), ybs_a_g=(0.05,),
+    ...     directions=("up",), steady="fixed", cycles=5)
     >>> report.index_html.name, sorted(report.tables), "fig05" in report.figures
     ('index.html', ['2', '3', '4'], True)
-    >>> report.verdict.total, 0 < report.verdict.met < report.verdict.total   # the paper's 36 targets
+    >>> # the paper's 36 targets
+    >>> report.verdict.total, 0 < report.verdict.met < report.verdict.total
     (36, True)
     """
 
@@ -141,11 +143,13 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
 
     >>> import pounding
     >>> report = pounding.reports.reproduce(
-    ...     pounding.presets.paper_damped(bumpers=False), pounding.presets.paper_damped(), "report",
-    ...     freqs_hz=[1.5, 2.0], nbs_a_g=(0.05,), ybs_a_g=(0.05,), directions=("up",), steady="fixed",
-    ...     cycles=5)
+    ...     pounding.presets.paper_damped(bumpers=False),
+    ...     pounding.presets.paper_damped(), "report",
+    ...     freqs_hz=[1.5, 2.0], nbs_a_g=(0.05,), ybs_a_g=(0.05,),
+    ...     directions=("up",), steady="fixed", cycles=5)
     >>> sorted(p.name for p in report.out_dir.iterdir())[:6]
-    ['campaign.nc', 'coexistence.png', 'fig04.png', 'fig05.png', 'fig06.png', 'fig07.png']
+    ['campaign.nc', 'coexistence.png', 'fig04.png', 'fig05.png', 'fig06.png',
+     'fig07.png']
     >>> report.tables["2"].name, len(report.figures)
     ('table2.csv', 13)
     """
