@@ -126,7 +126,7 @@ html_theme_options = {
     "secondary_sidebar_items": ["page-toc"],
 }
 # pages without sub-pages have no section navigation to show: no empty left sidebar on them
-html_sidebars = {"getting_started": [], "benchmarks": [], "paper": [], "auto_examples/index": []}
+html_sidebars = {"getting_started": [], "benchmarks": [], "paper": []}
 html_static_path: list[str] = []
 html_show_sourcelink = False
 
