@@ -1,9 +1,10 @@
 """``warm_up``: compile the engine now, rather than in the first call of a session.
 
 The compiled kernels are built by Numba on their first call: after installing, that takes
-10-20 s on a 2-core machine (``benchmarks/RESULTS.md``: where the time goes), and Numba
+about a minute on an idle 2-core machine (55 s measured; ``benchmarks/RESULTS.md``: where the time
+goes), and Numba
 caches the result on disk (next to the sources, or in ``NUMBA_CACHE_DIR``), so that later
-sessions, worker processes included, load it in about 1 s.  ``warm_up`` (or ``pounding
+sessions, worker processes included, load it in about 3 s.  ``warm_up`` (or ``pounding
 warm-up``) pays that once, e.g. when a Docker image or a cluster's environment is built.
 """
 
@@ -75,7 +76,7 @@ def _kernels() -> dict:
 
 def kernels_cached(names: tuple[str, ...] = ("run_kernel", "step_kernel")) -> bool:
     """Whether Numba's cache holds these kernels for the current sources (so that the first
-    call loads them in about a second instead of compiling for 10-20 s).
+    call loads them in a few seconds instead of compiling for about a minute).
 
     Reads Numba's cache index (an internal of Numba's: any surprise there answers True, so
     that callers at worst skip a notice).
@@ -98,8 +99,8 @@ def warm_up() -> WarmUp:
     Runs a short simulation, one sweep step, the impact table, a contact-law force
     evaluation of the printed system and a one-period elastic response spectrum, with the argument types of
     real use, so that no
-    later call compiles anything.  The first time after installing this takes 10-20 s;
-    afterwards about 1 s per new process (the cache is read).
+    later call compiles anything.  The first time after installing this takes about a minute on an
+    idle 2-core machine; afterwards about 3 s per new process (the cache is read).
 
     Returns
     -------
@@ -111,12 +112,12 @@ def warm_up() -> WarmUp:
     Once per environment (e.g. when building a Docker image), or at the start of a session:
 
     >>> import pounding
-    >>> # 10-20 s the first time after installing, then about 1 s
+    >>> # about a minute the first time after installing, then a few seconds
     >>> done = pounding.warm_up()
     >>> again = pounding.warm_up()  # the same process: nothing left to do
     >>> again.compiled, again.loaded, len(again.in_memory)
     ((), (), 5)
-    >>> # the first: e.g. "5 kernels compiled and cached (14.2 s)"
+    >>> # the first: e.g. "5 kernels compiled and cached (55.4 s)"
     >>> print(again.message)
     5 kernels already in memory (... s)
     """

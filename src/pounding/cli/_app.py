@@ -322,7 +322,7 @@ def compile_notice() -> None:
 
     if not kernels_cached():
         err_console.print(
-            "compiling the engine, once per installation, about 20 s "
+            "compiling the engine, once per installation, about a minute "
             "('pounding warm-up' does it ahead of time) ..."
         )
 

@@ -172,10 +172,11 @@ def identify(
 
 @command("warm-up")
 def warm_up() -> None:
-    """Compile the engine now (10-20 s once after installing; later sessions load it in ~1 s)."""
+    """Compile the engine now (about a minute once after installing; later sessions load it in a few
+    seconds)."""
     from .._warm_up import warm_up as run_warm_up
 
-    with console.status("compiling pounding's kernels (once after installing: 10-20 s) ..."):
+    with console.status("compiling pounding's kernels (once after installing: about a minute) ..."):
         report = run_warm_up()
     console.print(escape(report.message))
     for cache in report.cache_dirs:
