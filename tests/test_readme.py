@@ -100,5 +100,6 @@ def test_every_readme_block_runs_in_order_from_a_fresh_copy(tmp_path):
             where = subprocess.run([python, "-c", "import pounding; print(pounding.__file__)"], env=env,
                                    capture_output=True, text=True, check=True).stdout.strip()
             assert Path(where).resolve().is_relative_to(work.resolve()), where
+    print("README blocks (index, language, seconds):", ran)  # (shown with pytest -s or -rP)
     missing = [name for name in WRITTEN if not (work / name).exists()]
     assert not missing, (missing, ran)
