@@ -15,6 +15,7 @@ import math
 
 import numpy as np
 
+from .._errors import Status
 from .._jit import jit, jit_entry
 from ..model.contact_laws import (AT_START, MULTILINEAR, MULTILINEAR_KINEMATIC, N_LAW_PARAMS, N_LAW_STATE,
                                   law_after_event, law_contact_state, law_energy, law_is_linear,
@@ -28,7 +29,8 @@ from ._isolator import iso_advance, iso_events, iso_linear, iso_transition
 from ._layout import (A_DSTART, A_IMPULSE, A_MAXCOMP, A_PEAK, A_TSTART, A_VIN, A_WORK, ACC_L, ACC_R,
                       ACT_BOUC_WEN, ACT_CONTACT, ACT_LAW_BRANCH, ACT_RELEASE, CONTACT_COLS, CTL_BUDGET,
                       CTL_STOP, CTL_WORK, DEF_L, DEF_R, E_ACTION, E_ALPHA, E_DIR, E_INDEX, E_KIND, E_SIDE,
-                      EV_COLS, EVENT_COLS, IN_L, IN_R, KIND_ZETA, LEDGER_LEN, MODE_LINEAR, MODE_NUMERIC,
+                      EV_COLS, EVENT_COLS, IN_L, IN_R, KIND_ZETA, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC,
+                      L_ISOLATOR, L_KINETIC, LEDGER_LEN, MODE_LINEAR, MODE_NUMERIC,
                       P_AX0, P_AX1, P_AXH, P_BW, P_C, P_CBL, P_CBR, P_CD, P_D0, P_DL0, P_DP5_H, P_DR0, P_GAPL,
                       P_GAPR, P_H, P_INL, P_INR, P_JBL, P_JBR, P_K, P_KBL, P_KBR, P_KISO, P_LAWL, P_LAWR,
                       P_LZL, P_LZR, P_M, P_MODE, P_NLL, P_NLR, P_P0, P_P1, P_PHI, P_PL, P_PR, P_RBL, P_RBR,
@@ -44,8 +46,10 @@ from ._subinterval import accumulate, track_abs_acceleration, velocity_turn
 from ._trajectory import (NO_INDEX, ROUNDING, W_VELOCITY, event_value, locate_event, newton, phase_eval,
                           phase_zeta, value_at_root)
 
+# how a run ended: the codes of pounding.Status, the one place they are defined
 SUCCESS, ZENO, MAX_EVENTS, DEGENERATE_PHASE, STEP_FAILED, INTERRUPTED, BUDGET, NONFINITE = (
-    0, -1, -2, -3, -4, -5, -6, -7)
+    int(Status.SUCCESS), int(Status.ZENO), int(Status.MAX_EVENTS), int(Status.DEGENERATE_PHASE),
+    int(Status.STEP_FAILED), int(Status.INTERRUPTED), int(Status.BUDGET), int(Status.NONFINITE))
 SUBINTERVALS_PER_PERIOD = 8.0
 ZENO_REPEATS = 200
 XTOL_S = 1e-15          # event instants and displacement extrema, s
@@ -388,12 +392,12 @@ def run_kernel(mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l, 
                 relaxed = law_relax(law, p, AT_START, st[idx], tau, st, zo)[0]
                 e0 = law_energy(law, p, st[idx], st, zo)
                 law_moved(law, p, AT_START, st, zo, relaxed, 0.0)
-                ledger[3] += e0 - law_energy(law, p, relaxed, st, zo)
+                ledger[L_BUMPER_LOSS] += e0 - law_energy(law, p, relaxed, st, zo)
                 st[idx] = relaxed
         if not (abs(d1) <= DBL_MAX and abs(v1) <= DBL_MAX):  # inf or NaN: nothing after it holds
             status = NONFINITE
             break
-        ledger[2] += iso_advance(slopes, breaks, rule, st, d0, d1)
+        ledger[L_HYSTERETIC] += iso_advance(slopes, breaks, rule, st, d0, d1)
         if bw[0] != 0.0:  # (held within |z| <= z_max: an explicit step overshoots it by up to its tolerance)
             st[ZETA] = min(max(phase_zeta(ph, tau), -z_max), z_max)
         st[D] = d1
@@ -486,9 +490,9 @@ def run_kernel(mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l, 
             n_c += 1
     ctl[CTL_WORK] += work
     kin1, iso1, bmp1 = _energies(st, mass, slopes, breaks, rule, bw, law_l, p_l, law_r, p_r)
-    ledger[4] = kin1 - kin0
-    ledger[5] = iso1 - iso0
-    ledger[6] = bmp1 - bmp0
+    ledger[L_KINETIC] = kin1 - kin0
+    ledger[L_ISOLATOR] = iso1 - iso0
+    ledger[L_BUMPER] = bmp1 - bmp0
     if not with_energy:
         for j in range(LEDGER_LEN):
             ledger[j] = np.nan

@@ -95,7 +95,10 @@ EVENT_NAMES = ("yield", "reversal", "branch", "contact_start", "contact_end", "b
 SAMPLE_COLS = 7   # t, D, V, abs_acceleration, isolator_force, bumper_force_left, bumper_force_right
 CONTACT_COLS = 9  # side, t_start, t_end, v_in, v_out, impulse, peak_force, max_compression, work
 EVENT_COLS = 3    # t, action, index
-LEDGER_LEN = 7    # input, viscous, hysteretic, bumper dissipation, d(kinetic), d(isolator), d(bumper)
+# the energy ledger's slots, J: work of the input, dissipated by the dashpot, the isolator's hysteresis
+# and the bumpers, and the changes of the kinetic, the isolator's and the bumpers' elastic energies
+L_INPUT, L_VISCOUS, L_HYSTERETIC, L_BUMPER_LOSS, L_KINETIC, L_ISOLATOR, L_BUMPER = range(7)
+LEDGER_LEN = 7
 
 # ---- run control (int64 array shared between Python and the kernels, see _control.py)
 CTL_STOP = 0     # set to 1 by Python (Ctrl-C): kernels return with INTERRUPTED at once

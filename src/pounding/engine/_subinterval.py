@@ -18,7 +18,8 @@ import numpy as np
 
 from .._jit import jit
 from ..model.contact_laws import law_branch_loss, law_is_linear
-from ._layout import (A_IMPULSE, A_MAXCOMP, A_PEAK, A_WORK, ACC_L, ACC_R, MODE_LINEAR, P_AX0, P_C,
+from ._layout import (A_IMPULSE, A_MAXCOMP, A_PEAK, A_WORK, ACC_L, ACC_R, L_BUMPER_LOSS, L_HYSTERETIC,
+                      L_INPUT, L_VISCOUS, MODE_LINEAR, P_AX0, P_C,
                       P_CBL, P_CBR, P_CD, P_GAPL, P_GAPR, P_INL, P_INR, P_JBL, P_JBR, P_K, P_KBL, P_KBR,
                       P_LAWL,
                       P_BW, P_LAWR, P_M, P_MODE, P_P0, P_RBL, P_RBR, P_ZETA0, PL_AT, PR_AT, PZL_AT, PZR_AT,
@@ -63,8 +64,8 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
     m_a0 = ph[P_P0] + mass * ph[P_AX0]
     if tau > 0.0 and linear and (with_energy or in_l or in_r):
         i_vv, i_d, i_gv = linear_integrals(ph, tau, d0, v0, a0, d1, v1, a1, s1, c1)
-        ledger[0] -= mass * i_gv
-        ledger[1] += c_d * i_vv
+        ledger[L_INPUT] -= mass * i_gv
+        ledger[L_VISCOUS] += c_d * i_vv
         for side in (SIDE_L, SIDE_R):
             if (side == SIDE_L and in_l) or (side == SIDE_R and in_r):
                 # a linear law's branch: F = k_b x + r_b + c_b x' (law_linear_branch), compression
@@ -79,7 +80,7 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
                 x1 = sign * d1 - gap
                 st[acc + A_IMPULSE] += k_b * (sign * i_d - gap * tau) + r_b * tau + c_b * (x1 - x0)
                 st[acc + A_WORK] += 0.5 * k_b * (x1 * x1 - x0 * x0) + r_b * (x1 - x0) + c_b * i_vv
-                ledger[3] += c_b * i_vv + law_branch_loss(law, ph, o, j_b, x0, x1, ph, zo)
+                ledger[L_BUMPER_LOSS] += c_b * i_vv + law_branch_loss(law, ph, o, j_b, x0, x1, ph, zo)
     elif tau > 0.0 and (with_energy or in_l or in_r):
         bw = ph[P_BW]  # the Bouc-Wen spring's force per unit z (0 without one)
         for q in range(N_LOBATTO):
@@ -91,19 +92,20 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
                 d, v, a = d1, v1, a1
             else:
                 d, v, a = phase_eval(ph, tq)
-            ledger[0] -= wq * mass * (_abs_acceleration(ph, linear, m_a0, tq, d, v, a) - a) * v
-            ledger[1] += wq * c_d * v * v
+            ledger[L_INPUT] -= wq * mass * (_abs_acceleration(ph, linear, m_a0, tq, d, v, a) - a) * v
+            ledger[L_VISCOUS] += wq * c_d * v * v
             if bw != 0.0:  # its work, less what it stores (below): what it dissipates
-                ledger[2] += wq * bw * phase_zeta(ph, tq) * v
+                ledger[L_HYSTERETIC] += wq * bw * phase_zeta(ph, tq) * v
             for side in (SIDE_L, SIDE_R):
                 if (side == SIDE_L and in_l) or (side == SIDE_R and in_r):
                     f, fel, _, rate = contact_force(ph, side, d, v, a)
                     acc = ACC_L if side == SIDE_L else ACC_R
                     st[acc + A_IMPULSE] += wq * f
                     st[acc + A_WORK] += wq * f * rate
-                    ledger[3] += wq * (f - fel) * rate
+                    ledger[L_BUMPER_LOSS] += wq * (f - fel) * rate
         if bw != 0.0:
-            ledger[2] -= bouc_wen_energy(ph, phase_zeta(ph, tau)) - bouc_wen_energy(ph, ph[P_ZETA0])
+            ledger[L_HYSTERETIC] -= (bouc_wen_energy(ph, phase_zeta(ph, tau))
+                                     - bouc_wen_energy(ph, ph[P_ZETA0]))
         for side in (SIDE_L, SIDE_R):  # a linear law's branch in a numerical phase (a Bouc-Wen isolator's):
             # what its spring dissipates (the quadrature above has its dashpot's)
             if (side == SIDE_L and in_l) or (side == SIDE_R and in_r):
@@ -114,7 +116,8 @@ def accumulate(ph, st, t0, tau, d0, v0, a0, d1, v1, a1, s1, c1, ledger, extrema,
                     sign, gap, law, o, zo = 1.0, ph[P_GAPR], int(ph[P_LAWR]), PR_AT, PZR_AT
                     j_b = int(ph[P_JBR])
                 if law_is_linear(law):
-                    ledger[3] += law_branch_loss(law, ph, o, j_b, sign * d0 - gap, sign * d1 - gap, ph, zo)
+                    ledger[L_BUMPER_LOSS] += law_branch_loss(law, ph, o, j_b, sign * d0 - gap,
+                                                             sign * d1 - gap, ph, zo)
     # displacement extrema (and the bumpers' maximum compression)
     for j in range(3):
         if j == 0:
