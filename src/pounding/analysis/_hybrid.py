@@ -30,7 +30,6 @@ from ..engine._layout import (ACT_CONTACT, ACT_REGION, ACT_RELEASE, ACT_REVERSAL
 from ..engine._layout import D as I_D
 from ..engine._layout import V as I_V
 from ..model import Oscillator
-from ..model.contact_laws import KelvinVoigt
 
 I_DL, I_DR = 2, 3  # the compressions' places in x
 FIRST_SLIP = 4
@@ -44,7 +43,7 @@ def unsupported(oscillator: Oscillator) -> str | None:
     b = oscillator.bumpers
     if b is not None:
         for side, law in (("left", b.left), ("right", b.right)):
-            if not isinstance(law, KelvinVoigt):
+            if law._linear_form() is None:
                 return f"its {side} bumper's law is {type(law).__name__} (exact: Kelvin-Voigt)"
     return None
 
@@ -72,9 +71,10 @@ class Hybrid:
             gaps = (b.gap_left, b.gap_right)
             # (a law other than Kelvin-Voigt: no linear modes; its numbers are not used but for the
             # coordinates, where its compressions are no shooting coordinates)
-            k = tuple(float(getattr(law, "stiffness", np.nan)) for law in (b.left, b.right))
-            c = tuple(float(getattr(law, "damping", 0.0)) if isinstance(law, KelvinVoigt) else 0.0
-                      for law in (b.left, b.right))
+            forms = [law._linear_form() for law in (b.left, b.right)]
+            k = tuple(float(f[0]) if f else float(getattr(law, "stiffness", np.nan))
+                      for f, law in zip(forms, (b.left, b.right)))
+            c = tuple(float(f[1]) if f else 0.0 for f in forms)
         return cls(oscillator.mass, iso.damping, np.asarray(iso.slopes, float),
                    np.asarray(iso.breakpoints, float), iso.hysteresis == "kinematic", gaps, k, c)
 

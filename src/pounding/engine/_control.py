@@ -116,10 +116,11 @@ def contact_rate(oscillator: Oscillator) -> float:
     b = oscillator.bumpers
     if b is not None:
         for law in (b.left, b.right):
-            if law.TYPE != "kelvin_voigt":
+            form = law._linear_form()
+            if form is None:  # (several linear branches, or a nonlinear law)
                 return math.inf
-            k += law.stiffness
-            c += law.damping
+            k += form[0]
+            c += form[1]
     m = oscillator.mass
     return max(math.sqrt(k / m + (0.5 * c / m) ** 2), c / m)
 

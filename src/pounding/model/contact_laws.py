@@ -16,12 +16,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
-from typing import Any, ClassVar, Union
+from typing import Any, ClassVar, Optional, Union
 
 import numpy as np
 
 from .._checks import at_most, backbone, non_negative, positive, real
 from .._errors import InputError, Problem
+from . import _law_states
 from ._law_kernels import (  # noqa: F401  (the compiled side, re-exported: one import for the engine)
     AT_START, BRANCH_TIE, ELASTIC_PLASTIC, HERTZDAMP, HUNT_CROSSLEY, JANKOWSKI,
     KELVIN_VOIGT, MAX_BRANCHES, MULTILINEAR, MULTILINEAR_KINEMATIC, N_LAW_PARAMS, N_LAW_STATE,
@@ -97,6 +98,17 @@ class KelvinVoigt:
         object.__setattr__(self, "stiffness", _coefficient("law.stiffness", self.stiffness, "N/m", True))
         object.__setattr__(self, "damping", _coefficient("law.damping", self.damping, "N s/m", False))
 
+    def _state_problem(self, block: np.ndarray, touching: bool, comp_m: float, tol_m: float,
+                       side: str) -> Optional[tuple[int, float, str]]:
+        """Why the law cannot be in state ``block`` (its N_LAW_STATE numbers of a state vector) at
+        compression ``comp_m``, or None (``_law_states``)."""
+        return _law_states.stateless(block)
+
+    def _linear_form(self) -> Optional[tuple[float, float]]:
+        """``(stiffness N/m, damping N s/m)`` when the force is ``stiffness d + damping dd`` at every
+        compression (the exact monodromy and the rate bound need it); None otherwise."""
+        return (self.stiffness, self.damping)
+
     def params(self) -> np.ndarray:
         """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,)."""
         return _padded([self.stiffness, self.damping])
@@ -151,6 +163,17 @@ class HuntCrossley:
         object.__setattr__(self, "stiffness", _coefficient("law.stiffness", self.stiffness, "N/m^n", True))
         object.__setattr__(self, "exponent", _exponent(self.exponent))
         object.__setattr__(self, "damping", _coefficient("law.damping", self.damping, "N s/m^(n+1)", False))
+
+    def _state_problem(self, block: np.ndarray, touching: bool, comp_m: float, tol_m: float,
+                       side: str) -> Optional[tuple[int, float, str]]:
+        """Why the law cannot be in state ``block`` (its N_LAW_STATE numbers of a state vector) at
+        compression ``comp_m``, or None (``_law_states``)."""
+        return _law_states.stateless(block)
+
+    def _linear_form(self) -> Optional[tuple[float, float]]:
+        """``(stiffness N/m, damping N s/m)`` when the force is ``stiffness d + damping dd`` at every
+        compression (the exact monodromy and the rate bound need it); None otherwise."""
+        return None
 
     def params(self) -> np.ndarray:
         """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,)."""
@@ -231,6 +254,17 @@ class Jankowski:
                              hint=" (1: no loss)")
         xi = 4.5 * math.sqrt(5.0) * (1.0 - e * e) / (e * (e * (9.0 * math.pi - 16.0) + 16.0))
         return cls(stiffness, xi, effective_mass, exponent)
+
+    def _state_problem(self, block: np.ndarray, touching: bool, comp_m: float, tol_m: float,
+                       side: str) -> Optional[tuple[int, float, str]]:
+        """Why the law cannot be in state ``block`` (its N_LAW_STATE numbers of a state vector) at
+        compression ``comp_m``, or None (``_law_states``)."""
+        return _law_states.stateless(block)
+
+    def _linear_form(self) -> Optional[tuple[float, float]]:
+        """``(stiffness N/m, damping N s/m)`` when the force is ``stiffness d + damping dd`` at every
+        compression (the exact monodromy and the rate bound need it); None otherwise."""
+        return None
 
     def params(self) -> np.ndarray:
         """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,): stiffness, the
@@ -339,6 +373,18 @@ class MultilinearBumper:
         """The compiled kernels' id: the elastic or the kinematic multi-linear law."""
         return MULTILINEAR_KINEMATIC if self.hysteresis == "kinematic" else MULTILINEAR
 
+    def _state_problem(self, block: np.ndarray, touching: bool, comp_m: float, tol_m: float,
+                       side: str) -> Optional[tuple[int, float, str]]:
+        """Why the law cannot be in state ``block`` (its N_LAW_STATE numbers of a state vector) at
+        compression ``comp_m``, or None (``_law_states``)."""
+        return _law_states.kinematic(block, self, touching, comp_m, tol_m) if self.hysteresis == "kinematic" \
+            else _law_states.stateless(block)
+
+    def _linear_form(self) -> Optional[tuple[float, float]]:
+        """``(stiffness N/m, damping N s/m)`` when the force is ``stiffness d + damping dd`` at every
+        compression (the exact monodromy and the rate bound need it); None otherwise."""
+        return None
+
     def params(self) -> np.ndarray:
         """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,): damping, the
         number of slopes, the slopes (4 places), the breakpoints (3 places)."""
@@ -417,6 +463,17 @@ class ElasticPlastic:
         object.__setattr__(self, "stiffness", k1)
         object.__setattr__(self, "post_yield_stiffness", k2)
         object.__setattr__(self, "yield_compression", dy)
+
+    def _state_problem(self, block: np.ndarray, touching: bool, comp_m: float, tol_m: float,
+                       side: str) -> Optional[tuple[int, float, str]]:
+        """Why the law cannot be in state ``block`` (its N_LAW_STATE numbers of a state vector) at
+        compression ``comp_m``, or None (``_law_states``)."""
+        return _law_states.elastic_plastic(block, self, touching, comp_m, tol_m, side)
+
+    def _linear_form(self) -> Optional[tuple[float, float]]:
+        """``(stiffness N/m, damping N s/m)`` when the force is ``stiffness d + damping dd`` at every
+        compression (the exact monodromy and the rate bound need it); None otherwise."""
+        return None
 
     def params(self) -> np.ndarray:
         """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,): K1, K2, delta_y."""
@@ -518,6 +575,17 @@ class Hertzdamp:
             raise InputError(Problem.OUT_OF_RANGE, "restitution", restitution, range=f"[{least:.3g}, 1]",
                              hint=" (1: no loss)")
         return cls(stiffness, 1.6 * (1.0 - e) / e, exponent)
+
+    def _state_problem(self, block: np.ndarray, touching: bool, comp_m: float, tol_m: float,
+                       side: str) -> Optional[tuple[int, float, str]]:
+        """Why the law cannot be in state ``block`` (its N_LAW_STATE numbers of a state vector) at
+        compression ``comp_m``, or None (``_law_states``)."""
+        return _law_states.hertzdamp(block)
+
+    def _linear_form(self) -> Optional[tuple[float, float]]:
+        """``(stiffness N/m, damping N s/m)`` when the force is ``stiffness d + damping dd`` at every
+        compression (the exact monodromy and the rate bound need it); None otherwise."""
+        return None
 
     def params(self) -> np.ndarray:
         """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,): stiffness, xi_norm,

@@ -1,0 +1,106 @@
+"""What a bumper law's own state may hold: each law's check of its block of the state vector.
+
+A law keeps ``N_LAW_STATE`` numbers in the engine's state (``engine/_layout.Z_L``, ``Z_R``):
+0 for a stateless law; Hertzdamp's damping; an elastic-plastic law's line or offset; a
+kinematic multi-linear law's slips and slip directions.  Each law class's ``state_problem``
+calls one of these; the engine names the field and raises (``engine/simulate.py``).
+
+Each function returns None for a block the law can be in, else ``(q, value, why)``: the place
+in the block, its value and why it cannot be.
+"""
+
+from __future__ import annotations
+
+from typing import Any, Optional
+
+import numpy as np
+
+from ._elastic_plastic import EP_UNLOAD, EP_YIELD
+
+Problem = Optional[tuple[int, float, str]]
+
+
+def _slips_unused(block: np.ndarray) -> Problem:
+    for q in range(1, block.size):
+        if block[q] != 0.0:
+            return q, float(block[q]), ("is a kinematic multi-linear bumper's slip, but that bumper has "
+                                        "another law")
+    return None
+
+
+def stateless(block: np.ndarray) -> Problem:
+    """A law without state (Kelvin-Voigt, Hunt-Crossley, Jankowski, elastic multi-linear): zeros."""
+    found = _slips_unused(block)
+    if found is None and block[0] != 0.0:
+        return 0, float(block[0]), ("is a bumper law's state, but that bumper has none (a stateless law, or "
+                                    "out of contact)")
+    return found
+
+
+def hertzdamp(block: np.ndarray) -> Problem:
+    """Hertzdamp's damping of the last contact, >= 0."""
+    found = _slips_unused(block)
+    if found is None and block[0] < 0.0:
+        return 0, float(block[0]), "is a Hertzdamp bumper's damping, which is >= 0"
+    return found
+
+
+def elastic_plastic(block: np.ndarray, law: Any, touching: bool, comp: float, tol: float,
+                    side: str) -> Problem:
+    """0 out of contact; in contact a line's code or a plastic offset whose elastic branch holds
+    the compression ``comp`` (m, to ``tol``)."""
+    if not touching:
+        return stateless(block)
+    found = _slips_unused(block)
+    if found:
+        return found
+    z = float(block[0])
+    k1, k2, dy = law.stiffness, law.post_yield_stiffness, law.yield_compression
+    if z == EP_UNLOAD:
+        return None
+    if z == EP_YIELD:  # (the yield line starts at the yield compression)
+        if comp < dy - tol:
+            return 0, z, (f"puts the {side} bumper on its yield line at compression {comp:g} m, below its "
+                          f"yield compression {dy:g} m")
+        return None
+    low = k1 * z / (k1 - k2)
+    if z < 0.0 or not low - tol <= comp <= low + dy + tol:
+        return 0, z, (f"is no plastic offset of the {side} bumper at compression {comp:g} m (its elastic "
+                      "branch would not hold it)")
+    return None
+
+
+def kinematic(block: np.ndarray, law: Any, touching: bool, comp: float, tol: float) -> Problem:
+    """A kinematic multi-linear bumper's springs: each softening's slip direction -1, 0 or +1, its
+    strain within its breakpoint (at it while slipping); the other places 0.  Out of contact (the
+    bumper recovering) no spring slips in compression, and the springs do not pull."""
+    slopes, breaks = law.slopes, law.breakpoints
+    soft = [i for i in range(len(breaks)) if slopes[i] > slopes[i + 1]]
+    for q in range(block.size):
+        i = (q - 1) % 3
+        if (q == 0 or i not in soft) and block[q] != 0.0:
+            return q, float(block[q]), ("is no state of this kinematic multi-linear bumper (a place for a "
+                                        "softening it has not): 0")
+    for i in soft:
+        u, s = block[1 + i], block[4 + i]
+        if s not in (-1.0, 0.0, 1.0):
+            return 4 + i, float(s), "is a slip direction: -1, 0 or +1"
+        strain = comp - u
+        if (abs(strain) > breaks[i] + tol) if s == 0.0 else abs(strain - s * breaks[i]) > tol:
+            return 1 + i, float(u), (f"leaves the bumper spring {i}'s strain {strain:g} m beyond its "
+                                     f"breakpoint {breaks[i]:g} m")
+        if s > 0.0 and not touching:
+            return 4 + i, float(s), ("slips the bumper spring in compression while out of contact (it holds "
+                                     "once the contact ends)")
+    if not touching and comp > 0.0:
+        k_lin = slopes[0] - sum(slopes[i] - slopes[i + 1] for i in soft)
+        force = max(k_lin, 0.0) * comp + sum((slopes[i] - slopes[i + 1]) * (comp - block[1 + i])
+                                             if block[4 + i] == 0.0
+                                             else (slopes[i] - slopes[i + 1]) * block[4 + i] * breaks[i]
+                                             for i in soft)
+        force += sum((slopes[i + 1] - slopes[i]) * max(comp - breaks[i], 0.0)
+                     for i in range(len(breaks)) if slopes[i + 1] > slopes[i])
+        if force < -tol * max(slopes) - 1e-9:
+            return 1, float(block[1]), (f"makes the recovering bumper pull ({force:g} N at its compression "
+                                        f"{comp:g} m)")
+    return None
