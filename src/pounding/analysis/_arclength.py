@@ -113,7 +113,7 @@ class Family:
         sh = self._cache.get(key)
         if sh is None:
             osc, exc = self.system(p)
-            sh = _Shooter(osc, exc, self.k / exc.freq_hz, self.exact)
+            sh = _Shooter(osc, exc, self.k / exc.freq_hz, self.exact, getattr(self, "_ref", None))
             if len(self._cache) > 32:
                 self._cache.clear()
             self._cache[key] = sh

@@ -327,7 +327,7 @@ class CurveFollower:
         sh = fam.shooter(pt.f)
         dt = ((phase - pt.phase) % (2.0 * math.pi)) / sh.exc.omega_rad_s
         try:
-            end = type(sh)(sh.osc, sh.exc, dt, False)._image(pt.vec)[0] if dt > 0 else pt.vec
+            end = type(sh)(sh.osc, sh.exc, dt, False, sh)._image(pt.vec)[0] if dt > 0 else pt.vec
         except _Failed:
             return None
         fam.set_phase(phase)

@@ -90,7 +90,7 @@ class Follower:
         fam = self.fam
         if fam.k % 2 == 0 and self.doubled:
             sh = fam.shooter(c.p)
-            half = type(sh)(sh.osc, sh.exc, sh.period / 2.0, False)
+            half = type(sh)(sh.osc, sh.exc, sh.period / 2.0, False, sh)
             try:
                 end, _ = half._image(c.vec)
             except _Failed:
@@ -282,10 +282,10 @@ class Follower:
         dt = ((phase - pt.phase) % (2.0 * math.pi)) / fam.omega(pt.p)
         osc, exc = fam.system(pt.p)
         exc = replace(exc, phase=pt.phase)
-        run = short_run(osc, exc, dt, State(pt.vec)) if dt > 0 else None
+        run = short_run(osc, exc, dt, pt.vec) if dt > 0 else None
         if run is not None and not run.success:
             return None
-        return at_section(run.final_state.vector) if run is not None else pt.vec.copy()
+        return at_section(run.vector) if run is not None else pt.vec.copy()
 
     def _append(self, pt: Point, ds: float) -> None:
         self.points.append(pt)

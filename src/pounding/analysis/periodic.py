@@ -31,7 +31,7 @@ from ..engine._layout import DEF_L, DEF_R, REGION, STATE_BASE, ZETA
 from ..engine._layout import D as I_D
 from ..engine._layout import T as I_T
 from ..engine._layout import V as I_V
-from ..engine.simulate import check_oscillator, check_state, short_run
+from ..engine.simulate import check_oscillator, check_state, kernel_system, short_run
 from ..excitation import Harmonic
 from ..model import Oscillator
 from . import _hybrid as hy
@@ -245,13 +245,17 @@ def periodic_orbit(
 class _Shooter:
     """The map, its residual and Jacobian in the shooting coordinates of a state vector."""
 
-    def __init__(self, oscillator: Oscillator, excitation: Harmonic, period: float, exact: bool) -> None:
+    def __init__(self, oscillator: Oscillator, excitation: Harmonic, period: float, exact: bool,
+                 like: Optional["_Shooter"] = None) -> None:
         self.osc = oscillator
         self.exc = excitation
         self.period = period
         self.exact = exact
         self.fell_back = ""  # why the exact monodromy gave way to finite differences, if it did
-        self.h = hy.Hybrid.of(oscillator)
+        # what depends on the oscillator alone: from ``like``, a shooter of the same oscillator
+        same = like is not None and like.osc is oscillator
+        self.h = like.h if same else hy.Hybrid.of(oscillator)
+        self.system = like.system if same else kernel_system(oscillator)  # (the kernel's arguments)
         bw = oscillator.isolator.bouc_wen
         self.z_max = bw.z_max if bw is not None else 0.0
         self.scale_d = 1e-3
@@ -312,10 +316,10 @@ class _Shooter:
         return s
 
     def _image(self, vec: np.ndarray) -> tuple[np.ndarray, Run]:
-        run = short_run(self.osc, self.exc, self.period, State(vec))
+        run = short_run(self.osc, self.exc, self.period, vec, self.system)
         if not run.success:
             raise _Failed(f"the engine stopped over a period: {run.message}")
-        return np.array(run.final_state.vector), run
+        return np.array(run.vector), run
 
     def residual(self, vec: np.ndarray) -> tuple[float, np.ndarray, Run]:
         """(largest scaled residual over every free coordinate, the residual in ``coords``, the run)."""

@@ -2,7 +2,8 @@
 
 from __future__ import annotations
 
-from typing import Any, Optional
+import math
+from typing import Optional
 
 import numpy as np
 
@@ -10,8 +11,7 @@ from .._checks import integer, non_negative, positive
 from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
-from ..model._elastic_plastic import EP_UNLOAD, EP_YIELD
-from ..model.contact_laws import N_LAW_STATE, ElasticPlastic, Hertzdamp, KelvinVoigt, MultilinearBumper
+from ..model.contact_laws import N_LAW_STATE, KelvinVoigt
 from ._control import (
     DEFAULT_MAX_STEPS,
     check_budget,
@@ -22,8 +22,9 @@ from ._control import (
     steps_per_second,
 )
 from ._kernel import run_kernel
-from ._layout import REGION, STATE_BASE, Z_L, Z_R, ZETA
-from .result import EnergyLedger, Run, State
+from ._layout import (DEF_L, DEF_R, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT, L_ISOLATOR, L_KINETIC,
+                      L_VISCOUS, REGION, STATE_BASE, Z_L, Z_R, ZETA, D, V)
+from .result import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, EnergyLedger, Run, State
 
 _NO_LAW = KelvinVoigt(1.0, 0.0)  # stands in for absent bumpers (never touched)
 
@@ -95,15 +96,10 @@ def _check_state_fits(state: State, oscillator: Oscillator) -> None:
                                                f"{sign * (gap + comp[j]):g} m) while not in contact")
             at = (Z_L, Z_R)[j]
             law = (b.left, b.right)[j]
-            if isinstance(law, MultilinearBumper) and law.hysteresis == "kinematic":
-                _check_kinematic_state(vec[at:at + N_LAW_STATE], law, comp[j], touching[j], tol, at, bad)
-            else:
-                for q in range(1, N_LAW_STATE):
-                    if vec[at + q] != 0.0:
-                        raise bad(f"vector[{at + q}]", float(vec[at + q]),
-                                  "is a kinematic multi-linear bumper's slip, but that bumper has "
-                                  "another law")
-                _check_law_state(vec[at], law, touching[j], comp[j], tol, j, bad)
+            found = law._state_problem(vec[at:at + N_LAW_STATE], touching[j], comp[j], tol, side)
+            if found is not None:
+                q, value, why = found
+                raise bad(f"vector[{at + q}]", value, why)
     z = float(vec[ZETA])
     if iso.bouc_wen is None and z != 0.0:
         raise bad(f"vector[{ZETA}]", z,
@@ -129,77 +125,6 @@ def _check_state_fits(state: State, oscillator: Oscillator) -> None:
         if beyond:
             raise bad(f"plastic_slips_m[{i}]", float(vec[STATE_BASE + i]),
                       f"leaves spring {i}'s strain {strain:g} m beyond its yield displacement {brk:g} m")
-
-
-def _check_law_state(z: float, law: Any, touching: bool, comp: float, tol: float, j: int, bad: Any) -> None:
-    """A bumper law's own state (``_layout.Z_L``): 0 for a stateless law; Hertzdamp's damping,
-    >= 0; for an elastic-plastic law 0 out of contact, in contact a line's code or a plastic
-    offset whose elastic branch holds the compression."""
-    field = f"vector[{(Z_L, Z_R)[j]}]"
-    if isinstance(law, Hertzdamp):
-        if z < 0.0:
-            raise bad(field, z, "is a Hertzdamp bumper's damping, which is >= 0")
-        return
-    if not touching or not isinstance(law, ElasticPlastic):
-        if z != 0.0:
-            raise bad(field, z, "is a bumper law's state, but that bumper has none (a stateless law, or "
-                                "out of contact)")
-        return
-    k1, k2, dy = law.stiffness, law.post_yield_stiffness, law.yield_compression
-    if z == EP_UNLOAD:
-        return
-    if z == EP_YIELD:  # (the yield line starts at the yield compression)
-        if comp < dy - tol:
-            raise bad(field, z,
-                      f"puts the {('left', 'right')[j]} bumper on its yield line at compression {comp:g} m, "
-                                f"below its yield compression {dy:g} m")
-        return
-    low = k1 * z / (k1 - k2)
-    if z < 0.0 or not low - tol <= comp <= low + dy + tol:
-        raise bad(field, z,
-                  f"is no plastic offset of the {('left', 'right')[j]} bumper at compression {comp:g} m "
-                            "(its elastic branch would not hold it)")
-
-
-def _check_kinematic_state(block: np.ndarray, law: Any, comp: float, touching: bool, tol: float, at: int,
-                           bad: Any) -> None:
-    """A kinematic multi-linear bumper's springs: each softening's slip direction -1, 0 or +1, its
-    strain within its breakpoint (at it while slipping); the other places 0.  Out of contact (the
-    bumper recovering) no spring slips in compression, and the springs do not pull."""
-    slopes, breaks = law.slopes, law.breakpoints
-    soft = {i for i in range(len(breaks)) if slopes[i] > slopes[i + 1]}
-    for q in range(N_LAW_STATE):
-        i = (q - 1) % 3
-        if q == 0 or i not in soft:
-            if block[q] != 0.0:
-                raise bad(f"vector[{at + q}]", float(block[q]),
-                          "is no state of this kinematic multi-linear bumper "
-                                                              "(a place for a softening it has not): 0")
-    for i in sorted(soft):
-        u, s = block[1 + i], block[4 + i]
-        if s not in (-1.0, 0.0, 1.0):
-            raise bad(f"vector[{at + 4 + i}]", float(s), "is a slip direction: -1, 0 or +1")
-        strain = comp - u
-        if (abs(strain) > breaks[i] + tol) if s == 0.0 else abs(strain - s * breaks[i]) > tol:
-            raise bad(f"vector[{at + 1 + i}]", float(u),
-                      f"leaves the bumper spring {i}'s strain {strain:g} m beyond "
-                                                         f"its breakpoint {breaks[i]:g} m")
-        if s > 0.0 and not touching:
-            raise bad(f"vector[{at + 4 + i}]", float(s),
-                      "slips the bumper spring in compression while out of "
-                                                         "contact (it holds once the contact ends)")
-    if not touching and comp > 0.0:
-        k_lin = slopes[0] - sum(slopes[i] - slopes[i + 1] for i in soft)
-        force = max(k_lin, 0.0) * comp + sum((slopes[i] - slopes[i + 1]) * (comp - block[1 + i])
-                                             if block[4 + i] == 0.0
-                                             else (slopes[i] - slopes[i + 1]) * block[4 + i] * breaks[i]
-                                             for i in soft)
-        force += sum((slopes[i + 1] - slopes[i]) * max(comp - breaks[i], 0.0)
-                     for i in range(len(breaks)) if slopes[i + 1] > slopes[i])
-        if force < -tol * max(slopes) - 1e-9:
-            raise bad(f"vector[{at + 1}]", float(block[1]),
-                      f"makes the recovering bumper pull ({force:g} N at its "
-                                                            f"compression {comp:g} m)")
 
 
 def kernel_system(oscillator: Oscillator) -> tuple:
@@ -343,23 +268,82 @@ def simulate(
 SHORT_RUN_STEPS = 1_000_000
 
 
-def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, state: State) -> Run:
+class ShortRun:
+    """What the periodic-orbit solvers read of a run (:func:`short_run`), without the public
+    ``Run``'s histories, energy ledger and checks: ``vector`` (the final state's), the event
+    and contact tables (``Run``'s columns), the exact extrema and the status."""
+
+    __slots__ = ("vector", "event_table", "contact_table", "displacement_max", "displacement_min",
+                 "abs_acceleration_max", "excitation", "status")
+
+    def __init__(self, vector: np.ndarray, event_table: np.ndarray, contact_table: np.ndarray,
+                 extrema: np.ndarray, excitation: Harmonic, status: int) -> None:
+        self.vector = vector
+        self.event_table = event_table
+        self.contact_table = contact_table
+        self.displacement_max = float(extrema[0])
+        self.displacement_min = float(extrema[2])
+        self.abs_acceleration_max = float(extrema[4])
+        self.excitation = excitation
+        self.status = status
+
+    @property
+    def success(self) -> bool:
+        return self.status == Status.SUCCESS
+
+    @property
+    def message(self) -> str:
+        return Status(self.status).message
+
+    @property
+    def final_state(self) -> State:
+        return State._from_kernel(self.vector)
+
+
+def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, state: State | np.ndarray,
+              system: Optional[tuple] = None) -> ShortRun:
     """A run of a period or so, events only, for the periodic-orbit solvers' many runs: the state
     checked, the arguments trusted (the caller checked them), the kernel called in this thread
     (no helper thread: Ctrl-C lands when it returns) within ``SHORT_RUN_STEPS`` sub-intervals
-    (status ``BUDGET`` beyond)."""
-    state = check_state(state, oscillator)
-    return _run(oscillator, excitation, duration, state, 1e-10, 0.0, 10_000_000, SHORT_RUN_STEPS, direct=True)
+    (status ``BUDGET`` beyond).
+
+    ``state`` may be a raw state vector (the solvers' own: only what ties it to this system is
+    checked); ``system`` the oscillator's :func:`kernel_system`, when the caller keeps it for
+    many runs.  A continuation makes some 15,000 runs of about 12 us in the kernel each: the
+    public ``simulate``'s checks and ``Run`` took 90 us a run around them.
+    """
+    if isinstance(state, np.ndarray):
+        # the moves of a solver change the continuous numbers only: those are checked here, and a
+        # vector that fails is checked in full (for the message)
+        size = STATE_BASE + 2 * (oscillator.isolator.n_branches - 1)
+        fits = (state.size == size and all(map(math.isfinite, state.tolist()))
+                and abs(state[D]) <= MAX_DISPLACEMENT_M and abs(state[V]) <= MAX_VELOCITY_M_S
+                and state[DEF_L] >= 0.0 and state[DEF_R] >= 0.0)
+        state = State._from_kernel(state) if fits else State(state)
+        _check_state_fits(state, oscillator)
+    else:
+        state = check_state(state, oscillator)
+    if system is None:
+        system = kernel_system(oscillator)
+    exc_kind, exc_p, rec_t, rec_a = excitation.kernel_arrays()
+    st, _, contacts, events, _, extrema, status = run_kernel(
+        *system, exc_kind, exc_p, rec_t, rec_a, np.array(state.vector), state.time_s + duration, 0.0, 1e-10,
+        10_000_000, False, new_control(SHORT_RUN_STEPS))
+    if status == Status.SUCCESS and not all(map(math.isfinite, extrema.tolist())):
+        status = int(Status.NONFINITE)
+    return ShortRun(st, events, contacts, extrema, excitation, int(status))
 
 
 def _run(oscillator: Oscillator, excitation: Harmonic | Record, duration: float, state: State, rtol: float,
-         rate: float, max_events: int, max_steps: int, direct: bool) -> Run:
+         rate: float, max_events: int, max_steps: int, direct: bool, system: Optional[tuple] = None) -> Run:
     """The kernel on checked arguments, its outputs as a ``Run`` (``Interrupted`` on Ctrl-C)."""
     t0 = state.time_s
+    if system is None:
+        system = kernel_system(oscillator)
     exc_kind, exc_p, rec_t, rec_a = excitation.kernel_arrays()
     ctl = new_control(max_steps)
     st, samples, contacts, events, ledger, extrema, status = run_interruptibly(lambda: run_kernel(
-        *kernel_system(oscillator), exc_kind, exc_p, rec_t, rec_a, state.vector.copy(),
+        *system, exc_kind, exc_p, rec_t, rec_a, state.vector.copy(),
         t0 + duration, 1.0 / rate if rate > 0 else 0.0, rtol, int(max_events), True, ctl), [ctl],
         direct=direct)
     status = Status(int(status))
@@ -367,9 +351,10 @@ def _run(oscillator: Oscillator, excitation: Harmonic | Record, duration: float,
         status = Status.NONFINITE
 
     energy = EnergyLedger(
-        input_work=float(ledger[0]), kinetic=float(ledger[4]), isolator_elastic=float(ledger[5]),
-        bumper_elastic=float(ledger[6]), viscous=float(ledger[1]), hysteretic=float(ledger[2]),
-        bumper_dissipation=float(ledger[3]))
+        input_work=float(ledger[L_INPUT]), kinetic=float(ledger[L_KINETIC]),
+        isolator_elastic=float(ledger[L_ISOLATOR]), bumper_elastic=float(ledger[L_BUMPER]),
+        viscous=float(ledger[L_VISCOUS]), hysteretic=float(ledger[L_HYSTERETIC]),
+        bumper_dissipation=float(ledger[L_BUMPER_LOSS]))
     cols = samples.T
     run = Run(
         t=cols[0], displacement=cols[1], velocity=cols[2], abs_acceleration=cols[3],
