@@ -414,3 +414,27 @@ def test_a_ctrl_c_after_the_last_point_returns_the_whole_study(tmp_path, monkeyp
     monkeypatch.setattr(xr, "open_zarr", interrupted_once)
     ds = pd_.study(_spec(2, 2, 1.0), tmp_path / "s.zarr", workers=1, progress=False)
     assert calls and bool(ds["done"].all())
+
+
+def test_a_resumed_study_notices_a_record_file_changed_since_it_started(tmp_path):
+    quake = pd_.records.el_centro()
+    path = tmp_path / "quake.csv"
+    np.savetxt(path, np.column_stack([quake.t[:200], quake.accel[:200]]), delimiter=",")
+    original = path.read_bytes()
+    spec = pd_.StudySpec(pd_.presets.paper_damped(), {"kind": "record", "record": str(path)},
+                         {"scale_pga_g": [0.2, 0.4]})
+    store = tmp_path / "r.zarr"
+    pd_.study(spec, store, progress=False)
+    np.savetxt(path, np.column_stack([quake.t[:200], 2.0 * quake.accel[:200]]), delimiter=",")
+    with pytest.raises(pd_.InputError, match="quake.csv, which has other contents now") as info:
+        pd_.study(spec, store, progress=False)
+    assert info.value.field == "store" and "--restart" in str(info.value)
+    path.unlink()
+    with pytest.raises(pd_.InputError, match="which is gone now"):
+        pd_.study(spec, store, progress=False)
+    path.write_bytes(original)  # as it was: the study resumes (nothing left to do)
+    assert pd_.study(spec, store, progress=False).attrs["pounding_study_records"] == {
+        str(path): __import__("hashlib").sha256(original).hexdigest()}
+    np.savetxt(path, np.column_stack([quake.t[:200], 2.0 * quake.accel[:200]]), delimiter=",")
+    redone = pd_.study(spec, store, resume=False, progress=False)  # every point from the new record
+    assert int(redone["session"].max()) == 1 and bool(redone["done"].all())

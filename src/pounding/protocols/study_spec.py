@@ -145,6 +145,21 @@ class StudySpec:
         """A hash of the spec's JSON form: a store remembers it, so a rerun with another spec is refused."""
         return hashlib.sha256(self.to_json().encode()).hexdigest()
 
+    def _record_files(self) -> dict[str, str]:
+        """The record files the study reads (compute's and the grid's, not the built-in records),
+        each with the SHA-256 of its contents ("missing" for a file that is not there): a store
+        remembers them, so that a resumed study notices a file changed since it started."""
+        values = [self.compute.get("record"), *self.grid.get("record", ())]
+        out = {}
+        for value in values:
+            if not _is_record_file(value):
+                continue
+            try:
+                out[value] = hashlib.sha256(Path(value).read_bytes()).hexdigest()
+            except OSError:
+                out[value] = "missing"
+        return out
+
     # ------------------------------------------------------------------ points
     @property
     def kind(self) -> str:
@@ -233,9 +248,14 @@ def _system(value: Any, base_dir: Path) -> Oscillator:
         raise InputError(exc.problem, f"system.{exc.field}", exc.value, **exc._details) from None
 
 
+def _is_record_file(value: Any) -> bool:
+    """Whether a compute or grid value names a record file (not a built-in record, not absent)."""
+    return isinstance(value, str) and value != "el-centro" and not value.startswith("fema-p695:")
+
+
 def _record_path(value: Any, base_dir: Path) -> Any:
     """A record's file, made absolute (relative to ``base_dir``): workers elsewhere read the same."""
-    if not isinstance(value, str) or value == "el-centro" or value.startswith("fema-p695:"):
+    if not _is_record_file(value):
         return value
     return str((base_dir / Path(value).expanduser()).resolve())
 

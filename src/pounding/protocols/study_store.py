@@ -27,6 +27,7 @@ from .study_spec import StudySpec
 
 SPEC_ATTR = "pounding_study"
 SHA_ATTR = "pounding_study_sha256"
+RECORDS_ATTR = "pounding_study_records"  # the record files read, with the SHA-256 of their contents
 BOOKKEEPING = ("done", "session")
 FLUSH_S = 2.0  # a chunk being computed is written at least this often, s (and when it ends)
 
@@ -145,7 +146,8 @@ def create(store: str, spec: StudySpec, chunks: tuple[int, ...]) -> None:
                        {"description": "the run of pounding.study that computed the point (0: not yet)"})
     coords = {name: (name, np.array(values)) for name, values in spec.grid.items()}
     ds = xr.Dataset(data, coords=coords)
-    ds.attrs.update({SPEC_ATTR: spec.to_json(), SHA_ATTR: spec.sha256, "kind": spec.kind,
+    ds.attrs.update({SPEC_ATTR: spec.to_json(), SHA_ATTR: spec.sha256, RECORDS_ATTR: spec._record_files(),
+                     "kind": spec.kind,
                      "quantities": list(QUANTITIES[spec.kind])})
     encoding = {name: {"chunks": chunks} for name in (*QUANTITIES[spec.kind], *BOOKKEEPING)}
     for name in BOOKKEEPING:
@@ -189,6 +191,16 @@ def open_checked(store: str, spec: StudySpec | None) -> Any:
                          why=f"was made by another study (its {' and '.join(differ) or 'spec'} differ)",
                          fix="give a new store for this study, resume=False (--restart) to overwrite it, "
                              "or run the study that made it")
+    if spec is not None:
+        then = attrs.get(RECORDS_ATTR, {})
+        for path, sha in spec._record_files().items():
+            if path in then and then[path] != sha:
+                now = "is gone" if sha == "missing" else "has other contents"
+                raise InputError(Problem.BAD_OUTPUT, "store", store,
+                                 why=f"was started with the record file {path}, which {now} now: its points "
+                                     "and the ones left would come from different records",
+                                 fix="put the record back as it was, or resume=False (--restart) to compute "
+                                     "every point from the record as it is")
     return group
 
 
