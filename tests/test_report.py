@@ -240,3 +240,21 @@ def test_table_2_compares_eta_over_the_rigs_nominal_gap():
     row = comparison(result, "2").iloc[0]
     assert row["eta_model"] == pytest.approx(own["excursion_max_m"] / 0.03)
     assert row["eta_diff"] == pytest.approx(row["eta_model"] - 1.23)
+
+
+def test_reproduce_leaves_the_callers_backend_and_its_results_compare(tmp_path):
+    import matplotlib
+
+    before = matplotlib.get_backend()
+    matplotlib.use("pdf")  # (a backend of the caller's: a notebook's would be inline)
+    try:
+        ybs = pd_.presets.paper_damped()
+        small = dict(freqs_hz=[1.5, 2.0], nbs_a_g=(0.05,), ybs_a_g=(0.05,), directions=("up",),
+                     steady="fixed", cycles=5)
+        one = reproduce(ybs.without_bumpers(), ybs, tmp_path / "a", **small)
+        assert matplotlib.get_backend() == "pdf"
+    finally:
+        matplotlib.use(before)
+    # results holding tables compare by identity (dataclass __eq__ over DataFrames raised)
+    assert one == one and one.verdict == one.verdict
+    assert not (one == object()) and one != one.verdict

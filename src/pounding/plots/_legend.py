@@ -44,8 +44,7 @@ def place_legend(ax: Any, **kwargs: Any) -> Any:
         return None
     kwargs = {k: v for k, v in kwargs.items() if k not in ("loc", "bbox_to_anchor")}
     fig = ax.figure
-    fig.canvas.draw()  # (the layout as it will be saved: constrained layout moves the axes)
-    renderer = fig.canvas.get_renderer()
+    renderer = _laid_out(fig)
     data = _data_px(ax)
     for loc in INSIDE:
         legend = ax.legend(handles, labels, loc=loc, **kwargs)
@@ -63,11 +62,18 @@ def place_legend(ax: Any, **kwargs: Any) -> Any:
     return legend
 
 
+def _laid_out(fig: Any) -> Any:
+    """Lay ``fig`` out as it will be saved (constrained layout moves the axes) and return a renderer
+    to measure boxes with, whatever its canvas: Agg, a notebook's, or another backend's (a PDF
+    canvas has no renderer of its own)."""
+    fig.draw_without_rendering()
+    return fig._get_renderer()
+
+
 def legends_over_data(fig: Any) -> list[tuple[Any, Any]]:
     """The ``(axes, legend)`` pairs of ``fig`` whose legend box covers a point or a line drawn in
     its axes (the figure is drawn first, as it would be saved)."""
-    fig.canvas.draw()
-    renderer = fig.canvas.get_renderer()
+    renderer = _laid_out(fig)
     out = []
     for ax in fig.axes:
         legend = ax.get_legend()

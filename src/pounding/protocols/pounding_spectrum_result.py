@@ -24,7 +24,7 @@ UNITS = {"acc_max_g": "g", "disp_max_m": "m", "impacts": "1", "impact_force_max_
 PERCENTILES = (16.0, 50.0, 84.0)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class PoundingSpectrum:
     """Peaks of the isolated mass under records, with bumpers (per gap) and without.
 

@@ -28,7 +28,7 @@ TABLE_TITLES = {"targets": "Calibration targets (Tables 2-4; sweeps up, fixed 30
                 "4": "Table 4: impact characterization at resonance, dissipated energies and restitution"}
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Report:
     """What :func:`reproduce` wrote, and the campaign behind it.
 
@@ -153,9 +153,6 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
     >>> report.tables["2"].name, len(report.figures)
     ('table2.csv', 13)
     """
-    import matplotlib
-
-    matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
     out = output_dir("out_dir", out_dir)  # before the campaign: no work lost to a bad path
@@ -172,16 +169,17 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
     for t, df in comparisons.items():
         atomic_write(tables[t], lambda tmp, df=df: df.to_csv(tmp, index=False))
     cmap, why_not = coexistence_of(result, ybs_system)
-    made = paper_figures(result)
-    if cmap is not None:
-        add_branches(made["fig05"], cmap, float(result.dataset.attrs["f_ref_hz"]))
-        made["coexistence"] = fig_coexistence(cmap)
     figures, captions = {}, {}
-    for name, fig in made.items():
-        figures[name] = out / f"{name}.png"
-        captions[name] = fig.get_suptitle()
-        atomic_write(figures[name], lambda tmp, fig=fig: fig.savefig(tmp, dpi=110))
-        plt.close(fig)
+    with plt.ioff():  # (written, never shown; the caller's backend, a notebook's too, left as it is)
+        made = paper_figures(result)
+        if cmap is not None:
+            add_branches(made["fig05"], cmap, float(result.dataset.attrs["f_ref_hz"]))
+            made["coexistence"] = fig_coexistence(cmap)
+        for name, fig in made.items():
+            figures[name] = out / f"{name}.png"
+            captions[name] = fig.get_suptitle()
+            atomic_write(figures[name], lambda tmp, fig=fig: fig.savefig(tmp, dpi=110))
+            plt.close(fig)
     ds = result.dataset
     settings = {k: ds.attrs[k] for k in ("steady_mode", "cycles", "measure_cycles", "f_ref_hz",
                                          "omega_min_rad_s")}

@@ -15,7 +15,7 @@ WORST_MISSES = 6  # rows of the worst misses the page shows
 PAPER_MASS_KG = 500.0  # the paper's mass (Sect. 1), for the consistency of its measurements
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, eq=False)
 class Verdict:
     """What a system reaches against :func:`pounding.paper_targets`.
 
