@@ -9,6 +9,7 @@ import numpy as np
 import typer
 
 from .._errors import Interrupted
+from .._runner import scheduler_kind
 from .._io import interrupts_deferred
 from ._app import command, compile_notice, console, float_list, folder, interrupted, save_figure, write_csv
 from ._runs import excitation
@@ -53,7 +54,11 @@ def spectrum(
     gaps: str = typer.Option("0.01,0.02,0.05", "--gaps", help="Gaps each side, m, comma-separated."),
     damping: float = typer.Option(0.05, "--damping", help="The isolator's damping ratio."),
     mass: float = typer.Option(500.0, "--mass", help="The isolated mass, kg."),
-    workers: Optional[int] = typer.Option(None, "--workers", help="Worker threads (default: every core)."),
+    scheduler: str = typer.Option("threads", "--scheduler",
+                                  help="threads, serial, processes, local (a Dask LocalCluster) or a Dask "
+                                       "scheduler's address (tcp://host:8786)."),
+    workers: Optional[int] = typer.Option(None, "--workers",
+                                          help="Threads or processes (default: every core)."),
     out: Path = typer.Option(..., "--out", help="Directory for the netCDF, CSV and PNG files."),
 ) -> None:
     """Elastic and pounding spectra (with bumpers at each gap, and without) of a record or a record set."""
@@ -61,6 +66,7 @@ def spectrum(
     from ..protocols.pounding_spectrum import pounding_spectrum
 
     out = folder("--out", out)
+    scheduler_kind(scheduler)  # (a wrong one is refused before the records are read)
     periods_s, gaps_m = grid("--periods", periods), float_list("--gaps", gaps)
     if (record is None) == (record_set is None):
         raise typer.BadParameter("give --record FILE or --set NAME (one of them)")
@@ -84,7 +90,7 @@ def spectrum(
     complete = True
     try:
         result = pounding_spectrum(recs, periods_s, gaps_m=gaps_m, damping_ratio=damping, mass_kg=mass,
-                                   workers=workers, progress=True)
+                                   workers=workers, scheduler=scheduler, progress=True)
     except Interrupted as stop:
         result, complete = stop.partial, False
     with interrupts_deferred() as held:  # every file whole

@@ -25,7 +25,7 @@ import pandas as pd
 from .._checks import boolean, integer, one_of, real
 from .._errors import InputError, Interrupted, Problem, Status
 from ..model import Oscillator
-from ..protocols._progress import Progress, progress_reporter
+from .._runner.progress import Progress, progress_reporter
 from ..protocols.campaign import SWEEP_OPTIONS, sweep_quantities
 from ..protocols.sweep import make_plan, paper_frequencies_hz, sweep
 from .family import ModelFamily, check_bounds

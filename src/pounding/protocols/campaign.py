@@ -21,7 +21,7 @@ from .._checks import integer, one_of, real_tuple
 from .._errors import InputError, Interrupted, Problem
 from ..model import Oscillator
 from ..engine._control import new_control, request_stop
-from ._progress import Progress, progress_reporter
+from .._runner.progress import Progress, progress_reporter
 from .sweep import SweepPlan, make_plan, run_plan
 from .sweep_result import SIDE_COLUMNS, STEP_COLUMNS, SweepResult
 

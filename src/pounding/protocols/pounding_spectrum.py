@@ -4,15 +4,13 @@ isolation periods and gaps.
 For each record, period ``T`` and gap ``g`` (each side), the oscillator is the mass on an isolator
 of period ``T`` (linear, or a given isolator's shape scaled to that initial period) with the damping
 ratio given, and the bumpers at ``g`` on both sides; the same oscillator without bumpers is the
-reference.  Each is one exact run of the engine over the record.  The records run on worker
-threads (the compiled kernels release the GIL).
+reference.  Each is one exact run of the engine over the record.  The records run on the
+shared task runner (threads by default: the compiled kernels release the GIL; processes or Dask).
 """
 
 from __future__ import annotations
 
-import concurrent.futures as cf
 import math
-import os
 from collections.abc import Sequence
 from dataclasses import replace
 from typing import Any
@@ -21,11 +19,11 @@ import numpy as np
 
 from .._checks import float_array, integer, positive
 from .._errors import InputError, Interrupted, Problem, Status
-from ..engine._control import new_control, request_stop
 from ..excitation import Record
 from ..excitation.spectrum import _records, damping_ratio_value, periods_array
 from ..model import Bumpers, Isolator, Oscillator
-from ._progress import Progress, progress_reporter
+from .._runner import Context, run_tasks
+from .._runner.progress import Progress
 from .pounding_spectrum_result import QUANTITIES, PoundingSpectrum
 
 MAX_RUNS = 2_000_000  # records x periods x (gaps + 1): beyond, refused (hours of work)
@@ -51,11 +49,12 @@ def _peaks(run: Any, g: float) -> tuple[float, ...]:
             force, speed, float(run.status))
 
 
-def _one_record(rec: Record, periods: np.ndarray, bumpers: list[Bumpers], zeta: float, mass_kg: float,
-                template: Isolator | None, max_steps: int, advance: Any, ctl: np.ndarray) -> tuple[np.ndarray,
-                                                                                                   np.ndarray]:
-    """One record's free (periods, 6) and pounding (periods, gaps, 6) peaks; NaN where not run."""
+def _one_record(task: tuple, ctx: Context) -> tuple[np.ndarray, np.ndarray]:
+    """One record's free (periods, 6) and pounding (periods, gaps, 6) peaks; NaN where not run.
+    ``task``: (record, periods, bumpers, damping ratio, mass kg, isolator template, max_steps)."""
     from ..engine.simulate import simulate
+
+    rec, periods, bumpers, zeta, mass_kg, template, max_steps = task
 
     free = np.full((periods.size, 6), np.nan)
     hit = np.full((periods.size, len(bumpers), 6), np.nan)
@@ -64,7 +63,7 @@ def _one_record(rec: Record, periods: np.ndarray, bumpers: list[Bumpers], zeta: 
         for i, period in enumerate(periods):
             iso = _isolator(template, mass_kg, float(period), zeta)
             for j in range(-1, len(bumpers)):
-                if ctl[0]:  # (a stop was asked for: what is done is kept)
+                if ctx.stopped():  # (a stop was asked for: what is done is kept)
                     raise Interrupted((free, hit), i, periods.size, "periods")
                 try:
                     run = simulate(Oscillator(mass_kg, iso, None if j < 0 else bumpers[j]), rec, duration,
@@ -78,7 +77,7 @@ def _one_record(rec: Record, periods: np.ndarray, bumpers: list[Bumpers], zeta: 
                     free[i] = peaks
                 else:
                     hit[i, j] = peaks
-                advance(1)
+                ctx.advance(1)
     except KeyboardInterrupt as stop:  # (a progress callback's Ctrl-C, or a stop: keep what is done)
         if isinstance(stop, Interrupted):
             raise
@@ -88,7 +87,7 @@ def _one_record(rec: Record, periods: np.ndarray, bumpers: list[Bumpers], zeta: 
 
 def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gaps_m: Any,
                       damping_ratio: float = 0.05, mass_kg: float = 500.0, bumper: Any = None,
-                      isolator: Isolator | None = None, workers: int | None = None,
+                      isolator: Isolator | None = None, workers: int | None = None, scheduler: Any = None,
                       progress: Progress = False, max_steps: int = 10_000_000) -> PoundingSpectrum:
     """Peak responses of the isolated mass with bumpers and without, over records, periods and gaps.
 
@@ -112,9 +111,14 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
         each period, its breakpoints and hysteresis kept, its damping set by ``damping_ratio``.
         Default: linear.  (A Bouc-Wen spring is not scaled: refused.)
     workers : int, optional
-        Worker threads (default: every core).
+        Worker threads or processes (default: every core).
+    scheduler : str or dask.distributed.Client, optional
+        Where the records run: ``"threads"`` (default), ``"serial"``, ``"processes"``, ``"local"``
+        (a Dask ``LocalCluster``), a Dask scheduler's address (``"tcp://host:8786"``) or a ``Client``.
+        Every scheduler gives the same spectrum.
     progress : bool or callable
-        True: a progress bar over the runs; a callable gets the number of runs finished.
+        True: a progress bar over the runs; a callable gets the number of runs finished (on
+        processes and Dask, as each record ends).
     max_steps : int
         Each run's work budget (see :func:`pounding.simulate`).
 
@@ -178,57 +182,23 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
                          f"{len(recs)} records x {periods.size} periods x "
                          f"{gaps.size + 1} systems", estimate=f"{runs:.3g}", unit="runs",
                          budget=f"{MAX_RUNS:.3g}", fix="fewer records, periods or gaps")
-    n_workers = integer("workers", (os.cpu_count() or 1) if workers is None else workers, 1)
     max_steps = integer("max_steps", max_steps, 1)
+    done = run_tasks(_one_record, [(r, periods, bumpers, zeta, mass_kg, isolator, max_steps) for r in recs],
+                     scheduler=scheduler, workers=workers, progress=progress, label="pounding spectrum",
+                     total=runs)
+    done.raise_first_error()
     free = np.full((len(recs), periods.size, 6), np.nan)
     hit = np.full((len(recs), periods.size, gaps.size, 6), np.nan)
-    controls = [new_control(max_steps) for _ in recs]
-    interrupted = False
-    failure: BaseException | None = None
-    with progress_reporter(progress, runs, "pounding spectrum") as advance:
-        with cf.ThreadPoolExecutor(max_workers=n_workers, thread_name_prefix="pounding") as pool:
-            futures = {pool.submit(_one_record, r, periods, bumpers, zeta, mass_kg, isolator, max_steps,
-                                   advance, ctl): i for i, (r, ctl) in enumerate(zip(recs, controls))}
-            try:
-                pending = set(futures)
-                while pending and failure is None and not interrupted:
-                    done, pending = cf.wait(pending, timeout=0.2, return_when=cf.FIRST_COMPLETED)
-                    for fut in done:
-                        exc = fut.exception()
-                        if isinstance(exc, Interrupted):
-                            interrupted = True
-                        elif exc is not None:
-                            failure = exc
-            except KeyboardInterrupt:
-                interrupted = True
-            if interrupted or failure is not None:
-                request_stop(controls)  # (the running records stop before their next run)
-                for fut in futures:
-                    fut.cancel()
-            for fut, i in futures.items():
-                if fut.cancelled():
-                    continue
-                while True:  # (more Ctrl-C while the workers return: keep collecting)
-                    try:
-                        exc = fut.exception()
-                        break
-                    except KeyboardInterrupt:
-                        interrupted = True
-                        request_stop(controls)
-                if exc is None:
-                    free[i], hit[i] = fut.result()
-                elif isinstance(exc, Interrupted):
-                    free[i], hit[i] = exc.partial
-                elif failure is None:
-                    failure = exc
-    if failure is not None:
-        raise failure
+    for i, value in enumerate(done.values):
+        if value is not None:
+            free[i], hit[i] = value
+    interrupted = not done.complete
     result = PoundingSpectrum.build(recs, periods, gaps, free, hit, {
         "damping_ratio": zeta, "mass_kg": mass_kg, "bumper": repr(law),
         "isolator": "linear" if isolator is None else repr(isolator), "complete": int(not interrupted)})
     if interrupted:
-        done = int(np.isfinite(hit[..., 0]).sum() + np.isfinite(free[..., 0]).sum())
-        raise Interrupted(result, done, runs, "runs")
+        finished = int(np.isfinite(hit[..., 0]).sum() + np.isfinite(free[..., 0]).sum())
+        raise Interrupted(result, finished, runs, "runs")
     return result
 
 

@@ -21,7 +21,7 @@ import numpy as np
 
 from .._checks import integer
 from .._errors import InputError, Interrupted, Problem
-from ._progress import Progress, progress_reporter
+from .._runner.progress import Progress, progress_reporter
 from .study_spec import StudySpec
 from .study_store import (OTHER, STUDY, check_store, chunk_grid, chunk_shape, create, open_checked,
                           refuse_other, region, run_chunk, store_state)

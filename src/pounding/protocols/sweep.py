@@ -22,7 +22,7 @@ from ..engine._control import (DEFAULT_MAX_STEPS, check_budget, isolator_rate, n
 from ..engine.simulate import check_oscillator, check_rtol, check_state, kernel_system
 from ..excitation import MAX_FREQ_HZ, STANDARD_GRAVITY, Harmonic
 from ..model import Oscillator
-from ._progress import Progress, progress_reporter
+from .._runner.progress import Progress, progress_reporter
 from ._step_kernel import WINDOW_COLS, step_kernel
 from .sweep_result import SweepResult
 

@@ -14,7 +14,7 @@ from .._io import atomic_write, output_dir
 from ..identification import evaluate, paper_targets
 from ..model import Oscillator
 from ..protocols import CampaignResult, campaign
-from ..protocols._progress import Progress
+from .._runner.progress import Progress
 from .branches import add_branches, coexistence_of, continuation_statuses, fig_coexistence
 from .compare import comparison, inconsistency_notes
 from .figures import paper_figures

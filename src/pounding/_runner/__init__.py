@@ -1,0 +1,181 @@
+"""One way to run many independent tasks: threads, processes or Dask, with progress, Ctrl-C,
+budgets and worker errors handled the same for every caller (campaign, pounding spectrum, study,
+identification).
+
+A task is ``fn(task, ctx)``: ``fn`` a module-level function (it travels to worker processes and Dask
+workers by reference), ``task`` plain data, ``ctx`` a :class:`Context`: ``ctx.advance(n)`` reports
+``n`` finished steps, ``ctx.stopped()`` is True once the run is being stopped (finish the step in
+hand, keep what is done: return it, or raise ``Interrupted(partial)``), ``ctx.control`` is the
+engine's run control for this task (its budget; on threads a Ctrl-C sets its stop flag, and the
+kernels return within a sub-interval).
+
+:func:`run_tasks` returns a :class:`TaskRun`: every task's value (a partial one where a task was
+stopped), the errors by task, and whether the run was interrupted.  The caller assembles its result
+from it and decides what to raise.  Each way of running lives in its own file.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+from .._checks import integer
+from .._errors import InputError, Problem
+from .progress import Progress, progress_reporter
+
+SCHEDULERS = ("serial", "threads", "processes", "local")
+SCHEDULER_CHOICES = ("serial, threads, processes, local, a Dask scheduler's address such as tcp://host:8786 "
+                     "(or, in Python, None or a dask.distributed.Client)")
+ON_ERROR = ("stop", "finish")
+GUARD = ("in a script, run it under if __name__ == '__main__': (each worker process imports the "
+         "script first, as Python's multiprocessing does)")
+
+
+@dataclass(frozen=True)
+class Context:
+    """What a task sees of the run: see the module's docstring."""
+
+    advance: Callable[[int], None]
+    stopped: Callable[[], bool]
+    control: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class TaskRun:
+    """How a run of tasks ended.
+
+    Attributes
+    ----------
+    values : list
+        Per task, in order: its value (a partial one for a task in ``partial``), or None for a task
+        that did not run or failed.
+    errors : dict of int to BaseException
+        The tasks that failed, by index, with their exceptions.
+    partial : set of int
+        The tasks stopped part way (their value holds what they finished).
+    interrupted : bool
+        Ctrl-C (or a task's own interruption) stopped the run.
+    """
+
+    values: list
+    errors: dict = field(default_factory=dict)
+    partial: set = field(default_factory=set)
+    interrupted: bool = False
+
+    @property
+    def complete(self) -> bool:
+        """Every task ran to its end (a Ctrl-C that came after the last one changes nothing)."""
+        return not self.errors and not self.partial and all(v is not None for v in self.values)
+
+    def raise_first_error(self) -> None:
+        """Raise the error of the first task that failed, if any."""
+        if self.errors:
+            raise self.errors[min(self.errors)]
+
+
+def scheduler_kind(scheduler: Any) -> str:
+    """``"serial"``, ``"threads"``, ``"processes"`` or ``"dask"`` for a ``scheduler`` argument
+    (None: threads); an unknown one is refused with the choices."""
+    if scheduler is None or scheduler == "threads":
+        return "threads"
+    if scheduler in ("serial", "processes"):
+        return str(scheduler)
+    if scheduler == "local" or (isinstance(scheduler, str) and re.fullmatch(r"(tcp|tls|inproc|ucx|ws|wss)://[^/\s]+",
+                                                                           scheduler)):
+        return "dask"
+    if type(scheduler).__name__ == "Client" and type(scheduler).__module__.startswith("distributed"):
+        return "dask"
+    raise InputError(Problem.NOT_ONE_OF, "scheduler", scheduler, choices=SCHEDULER_CHOICES)
+
+
+def worker_count(workers: Any) -> int:
+    """``workers`` checked, or the machine's cores when None."""
+    return integer("workers", (os.cpu_count() or 1) if workers is None else workers, 1)
+
+
+def run_tasks(fn: Callable[[Any, Context], Any], tasks: Sequence[Any], *, scheduler: Any = None,
+              workers: Any = None, progress: Progress = False, label: str = "tasks", total: int | None = None,
+              completed: int = 0, budget: int | Sequence[int] | None = None, on_error: str = "stop",
+              preload: tuple[str, ...] = ()) -> TaskRun:
+    """Run ``fn(task, ctx)`` for every task and return how it ended (never raises a task's error).
+
+    Parameters
+    ----------
+    fn : callable
+        A module-level function ``fn(task, ctx)``.
+    tasks : sequence
+        The tasks, plain data each.
+    scheduler : str or dask.distributed.Client, optional
+        ``"serial"`` (in this thread), ``"threads"`` (default; the compiled kernels release the GIL),
+        ``"processes"`` (worker processes forked from a server that has pounding loaded), ``"local"``
+        (a Dask ``LocalCluster``, closed at the end), an address ``"tcp://host:8786"`` or a ``Client``.
+    workers : int, optional
+        Threads or processes (default: the machine's cores).
+    progress : bool or callable
+        A Rich bar of ``total`` steps (``label``), a callable taking finished steps, or nothing.
+    label : str
+        The bar's description.
+    total : int, optional
+        Steps the tasks report in all (default: one per task, reported as each ends).
+    completed : int
+        Steps done before (a resumed study's): where the bar starts.
+    budget : int or sequence of int, optional
+        Each task's work budget in engine sub-intervals (its ``ctx.control``); default unlimited.
+    on_error : {"stop", "finish"}
+        On a task's error: stop the others (they keep what they finished), or let them finish.
+    preload : tuple of str
+        Modules the worker processes' server imports once (what the tasks need), besides pounding.
+
+    Returns
+    -------
+    TaskRun
+    """
+    from ..engine._control import DEFAULT_MAX_STEPS
+
+    kind = scheduler_kind(scheduler)
+    n_workers = worker_count(workers)
+    if on_error not in ON_ERROR:
+        raise InputError(Problem.NOT_ONE_OF, "on_error", on_error, choices=", ".join(ON_ERROR))
+    tasks = list(tasks)
+    budgets = ([DEFAULT_MAX_STEPS if budget is None else int(budget)] * len(tasks)
+               if budget is None or np.isscalar(budget) else [int(b) for b in budget])
+    counted = total is None  # (then each task is one step, reported as it ends)
+    steps = len(tasks) if counted else int(total)
+    with progress_reporter(progress, steps + completed, label, completed=completed) as advance:
+        if kind in ("serial", "threads"):
+            from ._threads import on_threads
+
+            return on_threads(fn, tasks, 1 if kind == "serial" else n_workers, advance, budgets, on_error,
+                              counted, serial=kind == "serial")
+        if kind == "processes":
+            from ._processes import on_processes
+
+            return on_processes(fn, tasks, n_workers, advance, budgets, on_error, counted, preload)
+        from ._dask import on_dask
+
+        return on_dask(fn, tasks, scheduler, n_workers, advance, budgets, on_error, counted)
+
+
+def remote(fn: Callable[[Any, Context], Any], task: Any, budget: int) -> tuple[Any, int, bool]:
+    """``fn(task, ctx)`` where the caller's thread cannot reach (a worker process, a Dask worker):
+    ``(value, steps it reported, whether it was partial)``; its progress travels back with it."""
+    from .._errors import Interrupted
+    from ..engine._control import new_control
+
+    steps = [0]
+
+    def advance(n: int) -> None:
+        steps[0] += n
+
+    try:
+        return fn(task, Context(advance, lambda: False, new_control(budget))), steps[0], False
+    except Interrupted as stop:
+        return stop.partial, steps[0], True
+
+
+__all__ = ["Context", "TaskRun", "run_tasks", "scheduler_kind", "worker_count", "SCHEDULERS", "GUARD"]

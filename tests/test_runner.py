@@ -1,0 +1,91 @@
+"""The shared task runner: every scheduler gives the same values; errors, Ctrl-C and progress
+behave the same whatever runs the tasks."""
+
+from __future__ import annotations
+
+import os
+import signal
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import pounding as pd_
+from pounding._errors import Interrupted
+from pounding._runner import run_tasks, scheduler_kind
+
+
+def square(task, ctx):
+    """A task: its number squared, one step reported."""
+    ctx.advance(1)
+    return task * task
+
+
+def fails_on_three(task, ctx):
+    if task == 3:
+        raise ValueError("three is not allowed")
+    ctx.advance(1)
+    return task
+
+
+def counts_until_stopped(task, ctx):
+    """Counts in small steps until the run is stopped, then keeps what it counted."""
+    n = 0
+    while n < 400:  # (4 s at most: a test that never stops fails, it does not hang)
+        if ctx.stopped():
+            raise Interrupted(n, n, 400, "steps")
+        time.sleep(0.01)
+        n += 1
+    return n
+
+
+@pytest.mark.parametrize("scheduler", ["serial", "threads", "processes", "local"])
+def test_every_scheduler_gives_the_same_values(scheduler):
+    seen = []
+    out = run_tasks(square, list(range(7)), scheduler=scheduler, workers=2, progress=seen.append)
+    assert out.values == [i * i for i in range(7)] and out.complete and not out.interrupted
+    assert sum(seen) == 7  # (one step a task: reported by the task in this process, or as it ends)
+
+
+def test_a_tasks_error_stops_the_others_or_lets_them_finish():
+    stopped = run_tasks(fails_on_three, list(range(8)), scheduler="serial", on_error="stop")
+    assert list(stopped.errors) == [3] and stopped.values[:3] == [0, 1, 2] and stopped.values[4:] == [None] * 4
+    finished = run_tasks(fails_on_three, list(range(8)), scheduler="threads", workers=2, on_error="finish")
+    assert list(finished.errors) == [3] and [v for v in finished.values if v is not None] == [0, 1, 2, 4, 5, 6, 7]
+    with pytest.raises(ValueError, match="three"):
+        finished.raise_first_error()
+    procs = run_tasks(fails_on_three, list(range(8)), scheduler="processes", workers=2, on_error="finish")
+    assert list(procs.errors) == [3] and isinstance(procs.errors[3], ValueError)
+
+
+def test_ctrl_c_on_threads_stops_every_task_and_keeps_what_they_did():
+    timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
+    timer.start()
+    t0 = time.monotonic()
+    out = run_tasks(counts_until_stopped, [0, 1], scheduler="threads", workers=2)
+    assert time.monotonic() - t0 < 2.0
+    assert out.interrupted and out.partial == {0, 1} and all(10 < v < 200 for v in out.values)
+    assert not out.complete
+
+
+def test_bad_arguments_are_named():
+    with pytest.raises(pd_.InputError, match="scheduler") as info:
+        scheduler_kind("cluster")
+    assert "tcp://host:8786" in str(info.value)
+    with pytest.raises(pd_.InputError, match="on_error"):
+        run_tasks(square, [1], on_error="ignore")
+    with pytest.raises(pd_.InputError, match="workers"):
+        run_tasks(square, [1], workers=0)
+
+
+@pytest.mark.parametrize("scheduler", ["serial", "processes", "local"])
+def test_a_pounding_spectrum_is_the_same_on_every_scheduler(scheduler):
+    quake = pd_.records.el_centro().scaled(pga_g=0.3)
+    short = pd_.Record(quake.t[:400], quake.accel[:400])
+    args = ([quake, short], [1.0, 2.0])
+    kw = dict(gaps_m=[0.02, 0.05], workers=2)
+    ref = pd_.pounding_spectrum(*args, **kw)
+    other = pd_.pounding_spectrum(*args, scheduler=scheduler, **kw)
+    for name in ref.dataset.data_vars:
+        np.testing.assert_array_equal(other.dataset[name].values, ref.dataset[name].values)
