@@ -89,3 +89,15 @@ def test_a_pounding_spectrum_is_the_same_on_every_scheduler(scheduler):
     other = pd_.pounding_spectrum(*args, scheduler=scheduler, **kw)
     for name in ref.dataset.data_vars:
         np.testing.assert_array_equal(other.dataset[name].values, ref.dataset[name].values)
+
+
+@pytest.mark.parametrize("scheduler", ["serial", "processes", "local"])
+def test_a_campaign_is_the_same_on_every_scheduler(scheduler):
+    ybs = pd_.presets.paper_damped()
+    kw = dict(nbs_a_g=[0.05], ybs_a_g=[0.05, 0.1], freqs_hz=[1.5, 2.0, 2.5], directions=["up", "down"],
+              steady="fixed", cycles=6, workers=2)
+    ref = pd_.campaign(ybs.without_bumpers(), ybs, **kw)
+    other = pd_.campaign(ybs.without_bumpers(), ybs, scheduler=scheduler, **kw)
+    assert other.complete and list(other.sweeps) == list(ref.sweeps)
+    for name in ref.dataset.data_vars:
+        np.testing.assert_array_equal(other.dataset[name].values, ref.dataset[name].values)

@@ -110,6 +110,9 @@ OPT_CYCLES = typer.Option(None, "--cycles", help="Cycles per step with --steady 
 OPT_MEASURE_CYCLES = typer.Option(5, "--measure-cycles", help="Cycles measured at the end of a step.")
 OPT_MAX_CYCLES = typer.Option(None, "--max-cycles", help="Most cycles per step, adaptive (500).")
 OPT_WORKERS = typer.Option(None, "--workers", help="Parallel sweeps (default: all cores).")
+OPT_SCHEDULER = typer.Option("threads", "--scheduler",
+                             help="threads, serial, processes, local (a Dask LocalCluster) or a Dask "
+                                  "scheduler's address (tcp://host:8786).")
 OPT_NBS = typer.Option(None, "--nbs", help="NBs system TOML (instead of --preset).")
 OPT_YBS = typer.Option(None, "--ybs", help="YBs system TOML (instead of --preset).")
 OPT_PRESET = typer.Option(

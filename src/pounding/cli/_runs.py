@@ -18,6 +18,7 @@ from ._app import (
     OPT_FMIN,
     OPT_FSTEP,
     OPT_MAX_CYCLES,
+    OPT_SCHEDULER,
     OPT_MEASURE_CYCLES,
     OPT_NBS,
     OPT_NO_BUMPERS,
@@ -300,6 +301,7 @@ def campaign(
     measure_cycles: int = OPT_MEASURE_CYCLES,
     max_cycles: Optional[int] = OPT_MAX_CYCLES,
     workers: Optional[int] = OPT_WORKERS,
+    scheduler: str = OPT_SCHEDULER,
 ) -> None:
     """The paper's matrix: NBs at a_G 0.03, 0.05, 0.1 and YBs at 0.03, 0.05, 0.075, 0.1, up and down."""
     from .. import presets
@@ -325,6 +327,7 @@ def campaign(
             freqs_hz=frequencies(fmin, fmax, fstep),
             measure_cycles=measure_cycles,
             workers=workers,
+            scheduler=scheduler,
             progress=True,
             **steady_options(steady, cycles, max_cycles),
         )

@@ -11,7 +11,8 @@ import typer
 from .._errors import Interrupted
 from .._runner import scheduler_kind
 from .._io import interrupts_deferred
-from ._app import command, compile_notice, console, float_list, folder, interrupted, save_figure, write_csv
+from ._app import (OPT_SCHEDULER, command, compile_notice, console, float_list, folder, interrupted,
+                   save_figure, write_csv)
 from ._runs import excitation
 
 SETS = {"fema-p695-far-field": "far_field", "fema-p695-near-field": "near_field",
@@ -54,9 +55,7 @@ def spectrum(
     gaps: str = typer.Option("0.01,0.02,0.05", "--gaps", help="Gaps each side, m, comma-separated."),
     damping: float = typer.Option(0.05, "--damping", help="The isolator's damping ratio."),
     mass: float = typer.Option(500.0, "--mass", help="The isolated mass, kg."),
-    scheduler: str = typer.Option("threads", "--scheduler",
-                                  help="threads, serial, processes, local (a Dask LocalCluster) or a Dask "
-                                       "scheduler's address (tcp://host:8786)."),
+    scheduler: str = OPT_SCHEDULER,
     workers: Optional[int] = typer.Option(None, "--workers",
                                           help="Threads or processes (default: every core)."),
     out: Path = typer.Option(..., "--out", help="Directory for the netCDF, CSV and PNG files."),

@@ -9,7 +9,7 @@ import typer
 
 from .._errors import Interrupted
 from .._io import interrupts_deferred
-from ._app import command, compile_notice, console, interrupted
+from ._app import OPT_SCHEDULER, command, compile_notice, console, interrupted
 
 
 @command("study")
@@ -18,9 +18,7 @@ def study(
     store: str = typer.Option(..., "--store",
                               help="The Zarr folder (created; rerun to resume it), or an fsspec URL "
                               "(s3://bucket/study.zarr)."),
-    scheduler: str = typer.Option("threads", "--scheduler",
-                                  help="threads, processes, local (a Dask LocalCluster) or a Dask "
-                                       "scheduler's address (tcp://host:8786)."),
+    scheduler: str = OPT_SCHEDULER,
     workers: Optional[int] = typer.Option(None, "--workers",
                                           help="Threads or processes (default: every core)."),
     restart: bool = typer.Option(False, "--restart", help="Overwrite the store instead of resuming it."),

@@ -7,8 +7,6 @@ data, so another executor (processes, Dask) can run the same plans.
 
 from __future__ import annotations
 
-import concurrent.futures as cf
-import os
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -17,11 +15,11 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import pandas as pd
 
-from .._checks import integer, one_of, real_tuple
+from .._checks import one_of, real_tuple
 from .._errors import InputError, Interrupted, Problem
 from ..model import Oscillator
-from ..engine._control import new_control, request_stop
-from .._runner.progress import Progress, progress_reporter
+from .._runner import Context, run_tasks
+from .._runner.progress import Progress
 from .sweep import SweepPlan, make_plan, run_plan
 from .sweep_result import SIDE_COLUMNS, STEP_COLUMNS, SweepResult
 
@@ -176,6 +174,11 @@ class CampaignResult:
         return plot_campaign(self, ax=ax, **kwargs)
 
 
+def _sweep_task(plan: SweepPlan, ctx: Context) -> SweepResult:
+    """One sweep of the campaign, as a task of the shared runner."""
+    return run_plan(plan, ctx.advance, ctx.control)
+
+
 def campaign(
     nbs_system: Oscillator | None,
     ybs_system: Oscillator | None,
@@ -185,6 +188,7 @@ def campaign(
     freqs_hz: np.ndarray | None = None,
     directions: Sequence[str] = DIRECTIONS,
     workers: int | None = None,
+    scheduler: Any = None,
     progress: Progress = False,
     **sweep_options: Any,
 ) -> CampaignResult:
@@ -205,9 +209,14 @@ def campaign(
     directions : sequence of {"up", "down"}
         The directions swept at each a_G (default both, as the paper).
     workers : int, optional
-        Worker threads (default: the machine's cores).
+        Worker threads or processes (default: the machine's cores).
+    scheduler : str or dask.distributed.Client, optional
+        Where the sweeps run: ``"threads"`` (default; the kernels release the GIL), ``"serial"``,
+        ``"processes"``, ``"local"`` (a Dask ``LocalCluster``), a Dask scheduler's address or a
+        ``Client``.  Every scheduler gives the same campaign.
     progress : bool or callable
-        True: a progress bar over all steps; a callable gets the number of steps finished.
+        True: a progress bar over all steps; a callable gets the number of steps finished (on
+        processes and Dask, a sweep's steps as it ends).
     **sweep_options
         The keyword arguments of :func:`pounding.sweep`, the same for every sweep:
         ``steady``, ``cycles``, ``measure_cycles``, ``max_cycles``, ``steady_rtol``,
@@ -281,40 +290,13 @@ def campaign(
             for d in directions:
                 plan = make_plan(osc, ag, freqs_hz, d, **sweep_options)
                 plans.append(((conf, ag, d), plan))
-    n_workers = integer("workers", (os.cpu_count() or 1) if workers is None else workers, 1)
     total = sum(p.freqs_hz.size for _, p in plans)
-    controls = [new_control(plan.max_steps) for _, plan in plans]  # one budget per sweep
-    sweeps: dict[tuple[str, float, str], SweepResult] = {}
-    interrupted = False
-    pool = cf.ThreadPoolExecutor(max_workers=n_workers, thread_name_prefix="pounding")
-    futures: dict = {}
-    try:
-        with progress_reporter(progress, total, "campaign") as advance:
-            futures = {pool.submit(run_plan, plan, advance, ctl): key
-                       for (key, plan), ctl in zip(plans, controls)}
-            pending = set(futures)
-            while pending:
-                done, pending = cf.wait(pending, timeout=0.2, return_when=cf.FIRST_COMPLETED)
-                if any(isinstance(fut.exception(), Interrupted) for fut in done):
-                    raise KeyboardInterrupt  # a worker was interrupted (e.g. by a callback)
-    except KeyboardInterrupt:  # (also one that came after the last step, while the bar closed)
-        interrupted = True
-    finally:
-        while True:  # every running sweep returns within a sub-interval of a stop; more Ctrl-C: wait on
-            try:
-                if interrupted:
-                    request_stop(controls)
-                pool.shutdown(wait=True, cancel_futures=interrupted)
-                break
-            except KeyboardInterrupt:
-                interrupted = True
-    for fut, key in futures.items():
-        if fut.cancelled():
-            continue
-        try:
-            sweeps[key] = fut.result()
-        except Interrupted as partial:
-            sweeps[key] = partial.partial
+    done = run_tasks(_sweep_task, [plan for _, plan in plans], scheduler=scheduler, workers=workers,
+                     progress=progress, label="campaign", total=total,
+                     budget=[plan.max_steps for _, plan in plans], on_error="finish")
+    done.raise_first_error()
+    sweeps = {key: sw for (key, _), sw in zip(plans, done.values) if sw is not None}
+    interrupted = done.interrupted or bool(done.partial)
     ordered = {key: sweeps[key] for key, _ in plans if key in sweeps}
     # A Ctrl-C that came after the last step (while the pool was winding up) loses nothing: the
     # campaign is complete when every sweep ended by itself, whatever the interrupt
