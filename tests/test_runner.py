@@ -50,9 +50,11 @@ def test_every_scheduler_gives_the_same_values(scheduler):
 
 def test_a_tasks_error_stops_the_others_or_lets_them_finish():
     stopped = run_tasks(fails_on_three, list(range(8)), scheduler="serial", on_error="stop")
-    assert list(stopped.errors) == [3] and stopped.values[:3] == [0, 1, 2] and stopped.values[4:] == [None] * 4
+    assert list(stopped.errors) == [3] and stopped.values[:3] == [0, 1, 2]
+    assert stopped.values[4:] == [None] * 4
     finished = run_tasks(fails_on_three, list(range(8)), scheduler="threads", workers=2, on_error="finish")
-    assert list(finished.errors) == [3] and [v for v in finished.values if v is not None] == [0, 1, 2, 4, 5, 6, 7]
+    assert list(finished.errors) == [3]
+    assert [v for v in finished.values if v is not None] == [0, 1, 2, 4, 5, 6, 7]
     with pytest.raises(ValueError, match="three"):
         finished.raise_first_error()
     procs = run_tasks(fails_on_three, list(range(8)), scheduler="processes", workers=2, on_error="finish")

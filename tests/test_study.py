@@ -438,3 +438,48 @@ def test_a_resumed_study_notices_a_record_file_changed_since_it_started(tmp_path
     np.savetxt(path, np.column_stack([quake.t[:200], 2.0 * quake.accel[:200]]), delimiter=",")
     redone = pd_.study(spec, store, resume=False, progress=False)  # every point from the new record
     assert int(redone["session"].max()) == 1 and bool(redone["done"].all())
+
+
+def test_a_disk_that_fills_ends_the_study_with_a_named_error_and_a_resume_finishes_it(tmp_path, monkeypatch):
+    import errno
+
+    import zarr
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+
+    spec = pd_.StudySpec(pd_.presets.paper_damped(), {"kind": "simulate", "freq_hz": 2.0, "duration_s": 1.0},
+                         {"a_g": [0.02, 0.04, 0.06, 0.08], "bumpers.gap_left": [0.01, 0.02, 0.03]})
+    whole = pd_.study(spec, tmp_path / "whole.zarr", workers=1, progress=False).load()
+    original = zarr.Array.__setitem__
+    writes = {"n": 0}
+
+    def fill_up(self, key, value):  # (the disk fills after a few chunks were written whole)
+        writes["n"] += 1
+        if writes["n"] > 24:
+            raise OSError(errno.ENOSPC, "No space left on device")
+        return original(self, key, value)
+
+    monkeypatch.setattr(zarr.Array, "__setitem__", fill_up)
+    store = tmp_path / "full.zarr"
+    with pytest.raises(pd_.StoreError) as info:
+        pd_.study(spec, store, workers=1, progress=False)
+    err = info.value
+    assert err.errno == errno.ENOSPC and err.store == str(store) and 0 < err.done < 12 and err.total == 12
+    assert "No space left on device" in str(err) and "run the same study again" in str(err)
+    # on the command line: the same line, exit 1 (not the 2 of bad input), no traceback
+    writes["n"] = 0
+    toml = tmp_path / "s.toml"
+    toml.write_text('[system]\npreset = "paper-damped"\n[compute]\nkind = "simulate"\nfreq_hz = 2.0\n'
+                    'duration_s = 1.0\n[grid]\na_g = [0.02, 0.04, 0.06, 0.08]\n'
+                    '"bumpers.gap_left" = [0.01, 0.02, 0.03]\n')
+    cli_store = str(tmp_path / "cli.zarr")
+    out = CliRunner().invoke(app, ["study", str(toml), "--store", cli_store, "--workers", "1"])
+    assert out.exit_code == 1 and "could not be written" in out.output and "Traceback" not in out.output
+    monkeypatch.setattr(zarr.Array, "__setitem__", original)
+    resumed = pd_.study(spec, store, workers=1, progress=False).load()  # the space is back: it finishes
+    assert bool(resumed["done"].all()) and int(resumed["session"].max()) == 2
+    from pounding.protocols.study_points import QUANTITIES
+
+    for q in QUANTITIES["simulate"]:  # identical to an uninterrupted study
+        np.testing.assert_array_equal(resumed[q].values, whole[q].values)

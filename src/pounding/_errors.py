@@ -208,6 +208,51 @@ class Interrupted(KeyboardInterrupt):
         self.total = total
 
 
+class StoreError(OSError):
+    """A study's store could not be written (a full disk, permissions lost, a store gone): what
+    happened, to which store, how many points are kept, and how to go on.
+
+    The points written before it stay in the store, whole; run the same study again once the
+    cause is gone and it computes only the rest.  It is an ``OSError`` (the cause's ``errno``):
+    not the caller's input, so the command line exits 1, not 2.
+
+    Attributes
+    ----------
+    store : str
+        The store, as given to :func:`pounding.study`.
+    done, total : int
+        Points in the store, and in the study.
+
+    Examples
+    --------
+    What a disk that fills after 53 of 216 points says:
+
+    >>> import errno, pounding
+    >>> cause = OSError(errno.ENOSPC, "No space left on device")
+    >>> err = pounding.StoreError("gaps.zarr", cause, 53, 216)
+    >>> err.errno == errno.ENOSPC, err.done, err.total
+    (True, 53, 216)
+    >>> print(err)
+    the study's store gaps.zarr could not be written ([Errno 28] No space left
+    on device) after 53 of 216 points; they are kept. Free the space (or make
+    the store writable) and run the same study again: it resumes with the 163
+    points left.
+    """
+
+    def __init__(self, store: str, cause: OSError, done: int, total: int) -> None:
+        super().__init__(cause.errno, cause.strerror or str(cause))
+        self.store, self.done, self.total, self.cause = str(store), int(done), int(total), cause
+        self.message = (f"the study's store {store} could not be written ({cause}) after {done} of {total} "
+                        f"points; they are kept. Free the space (or make the store writable) and run the "
+                        f"same study again: it resumes with the {total - done} points left.")
+
+    def __str__(self) -> str:
+        return self.message
+
+    def __reduce__(self) -> tuple:
+        return (type(self), (self.store, self.cause, self.done, self.total))
+
+
 class Status(enum.IntEnum):
     """How a simulation ended (``Run.status``); negative values mean it stopped early.
 

@@ -32,8 +32,10 @@ def on_threads(fn: Callable, tasks: list, n_workers: int, advance: Callable[[int
         request_stop(controls)
 
     def settle(i: int, fut: Any) -> None:
-        """Record task ``i``'s end; True when it asks the run to stop."""
+        """Record task ``i``'s end (a failure or an interruption may stop the others)."""
         nonlocal interrupted
+        if fut.cancelled():  # (never started: a stop came first)
+            return
         exc = fut.exception()
         if exc is None:
             values[i] = fut.result()

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from .._checks import integer
-from .._errors import InputError, Interrupted, Problem
+from .._errors import InputError, Interrupted, Problem, StoreError
 from .._runner import GUARD, Context, run_tasks, scheduler_kind
 from .._runner._dask import dask_client
 from .._runner.progress import Progress
@@ -161,6 +161,9 @@ def study(
                         workers=n_workers, progress=progress, label="study", total=spec.size - finished,
                         completed=finished, on_error="stop", preload=_PRELOAD)
         interrupted = ran.interrupted
+        failed = ran.errors.get(min(ran.errors)) if ran.errors else None
+        if isinstance(failed, OSError) and not isinstance(failed, StoreError):  # (a write: disk full, ...)
+            raise StoreError(str(store), failed, _points_kept(store), spec.size) from None
         ran.raise_first_error()
     finally:
         if client is not None and client is not scheduler:
@@ -177,6 +180,16 @@ def study(
     if interrupted and kept < spec.size:  # (interrupted after the last point: the study is complete)
         raise Interrupted(ds, kept, spec.size, "points")
     return ds
+
+
+def _points_kept(store: Any) -> int:
+    """The points a store says are done (0 when it cannot even be read)."""
+    import zarr
+
+    try:
+        return int(np.asarray(zarr.open_group(store, mode="r", zarr_format=2)["done"][...]).sum())
+    except Exception:  # noqa: BLE001 - a count for a message, never a second failure
+        return 0
 
 
 def _chunk_task(task: tuple, ctx: Context) -> int:
