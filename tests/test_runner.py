@@ -103,3 +103,18 @@ def test_a_campaign_is_the_same_on_every_scheduler(scheduler):
     assert other.complete and list(other.sweeps) == list(ref.sweeps)
     for name in ref.dataset.data_vars:
         np.testing.assert_array_equal(other.dataset[name].values, ref.dataset[name].values)
+
+
+@pytest.mark.parametrize("scheduler", ["serial", "processes", "local"])
+def test_an_identification_is_the_same_on_every_scheduler(scheduler):
+    fixed = {"slope_1": 38e3, "slope_2": 18e3, "slope_3": 2e3, "breakpoint_1": 0.015, "breakpoint_2": 0.04,
+             "gap": 0.015, "bumper_stiffness": 1.46e6, "bumper_damping": 400.0}
+    family = pd_.ModelFamily(500.0, 3, "kinematic", "kelvin_voigt", fixed=fixed)
+    targets = pd_.Targets.from_records([dict(configuration="NBs", a_g=0.05, quantity="alpha", value=2.5),
+                                        dict(configuration="YBs", a_g=0.05, quantity="alpha", value=8.0)])
+    kw = dict(seed=3, maxiter=2, popsize=4, refine=True, workers=2, freqs_hz=np.arange(1.0, 3.01, 0.5),
+              cycles=10)
+    ref = pd_.identify(targets, family, {"isolator_damping": (200.0, 3000.0)}, **kw)
+    other = pd_.identify(targets, family, {"isolator_damping": (200.0, 3000.0)}, scheduler=scheduler, **kw)
+    same = ("parameters", "cost", "n_evaluations")
+    assert [getattr(other, a) for a in same] == [getattr(ref, a) for a in same]

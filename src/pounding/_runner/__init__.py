@@ -16,9 +16,10 @@ from it and decides what to raise.  Each way of running lives in its own file.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import re
-from collections.abc import Callable, Sequence
+from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
 from typing import Any
 
@@ -101,7 +102,7 @@ def worker_count(workers: Any) -> int:
 def run_tasks(fn: Callable[[Any, Context], Any], tasks: Sequence[Any], *, scheduler: Any = None,
               workers: Any = None, progress: Progress = False, label: str = "tasks", total: int | None = None,
               completed: int = 0, budget: int | Sequence[int] | None = None, on_error: str = "stop",
-              preload: tuple[str, ...] = ()) -> TaskRun:
+              preload: tuple[str, ...] = (), pool: "TaskPool | None" = None) -> TaskRun:
     """Run ``fn(task, ctx)`` for every task and return how it ended (never raises a task's error).
 
     Parameters
@@ -130,6 +131,9 @@ def run_tasks(fn: Callable[[Any, Context], Any], tasks: Sequence[Any], *, schedu
         On a task's error: stop the others (they keep what they finished), or let them finish.
     preload : tuple of str
         Modules the worker processes' server imports once (what the tasks need), besides pounding.
+    pool : TaskPool, optional
+        Workers already started (:func:`task_pool`) for many runs: ``scheduler`` and ``workers``
+        are the pool's.
 
     Returns
     -------
@@ -137,6 +141,8 @@ def run_tasks(fn: Callable[[Any, Context], Any], tasks: Sequence[Any], *, schedu
     """
     from ..engine._control import DEFAULT_MAX_STEPS
 
+    if pool is not None:
+        scheduler, workers = pool.scheduler, pool.workers
     kind = scheduler_kind(scheduler)
     n_workers = worker_count(workers)
     if on_error not in ON_ERROR:
@@ -146,19 +152,69 @@ def run_tasks(fn: Callable[[Any, Context], Any], tasks: Sequence[Any], *, schedu
                if budget is None or np.isscalar(budget) else [int(b) for b in budget])
     counted = total is None  # (then each task is one step, reported as it ends)
     steps = len(tasks) if counted else int(total)
+    executor = pool.executor if pool is not None else None
     with progress_reporter(progress, steps + completed, label, completed=completed) as advance:
         if kind in ("serial", "threads"):
             from ._threads import on_threads
 
             return on_threads(fn, tasks, 1 if kind == "serial" else n_workers, advance, budgets, on_error,
-                              counted, serial=kind == "serial")
+                              counted, serial=kind == "serial", executor=executor)
         if kind == "processes":
             from ._processes import on_processes
 
-            return on_processes(fn, tasks, n_workers, advance, budgets, on_error, counted, preload)
+            return on_processes(fn, tasks, n_workers, advance, budgets, on_error, counted, preload,
+                                executor=executor)
         from ._dask import on_dask
 
-        return on_dask(fn, tasks, scheduler, n_workers, advance, budgets, on_error, counted)
+        return on_dask(fn, tasks, executor if executor is not None else scheduler, n_workers, advance,
+                       budgets, on_error, counted)
+
+
+@dataclass(frozen=True, eq=False)
+class TaskPool:
+    """Workers started once for many :func:`run_tasks` calls (see :func:`task_pool`)."""
+
+    scheduler: Any
+    workers: int
+    executor: Any  # a ThreadPoolExecutor, a ProcessPoolExecutor, a Dask Client, or None (serial)
+
+
+@contextlib.contextmanager
+def task_pool(scheduler: Any = None, workers: Any = None,
+              preload: tuple[str, ...] = ()) -> Iterator[TaskPool]:
+    """Start the workers once, for many runs of tasks (an identification's generations): threads,
+    processes (forked once from the server that has pounding loaded) or a Dask client (a
+    ``LocalCluster`` started and closed here)."""
+    kind = scheduler_kind(scheduler)
+    n_workers = worker_count(workers)
+    if kind == "serial":
+        yield TaskPool(scheduler, n_workers, None)
+        return
+    if kind == "threads":
+        import concurrent.futures as cf
+
+        with cf.ThreadPoolExecutor(max_workers=n_workers, thread_name_prefix="pounding") as ex:
+            yield TaskPool(scheduler, n_workers, ex)
+        return
+    if kind == "processes":
+        from ._processes import new_pool, stop_pool
+
+        ex = new_pool(n_workers, preload)
+        try:
+            yield TaskPool(scheduler, n_workers, ex)
+        finally:
+            stop_pool(ex)
+        return
+    from ._dask import dask_client
+
+    client, cluster = dask_client(scheduler, n_workers)
+    try:
+        yield TaskPool(scheduler, n_workers, client)
+    finally:
+        if client is not scheduler:
+            client.close()
+        if cluster is not None:
+            cluster.close()
 
 
 def remote(fn: Callable[[Any, Context], Any], task: Any, budget: int) -> tuple[Any, int, bool]:
@@ -178,4 +234,5 @@ def remote(fn: Callable[[Any, Context], Any], task: Any, budget: int) -> tuple[A
         return stop.partial, steps[0], True
 
 
-__all__ = ["Context", "TaskRun", "run_tasks", "scheduler_kind", "worker_count", "SCHEDULERS", "GUARD"]
+__all__ = ["Context", "TaskPool", "TaskRun", "run_tasks", "task_pool", "scheduler_kind", "worker_count",
+           "SCHEDULERS", "GUARD"]

@@ -22,13 +22,14 @@ _PRELOAD = ("pounding._runner._worker",)
 
 
 def on_processes(fn: Callable, tasks: list, n_workers: int, advance: Callable[[int], None], budgets: list,
-                 on_error: str, counted: bool, preload: tuple[str, ...]) -> TaskRun:
+                 on_error: str, counted: bool, preload: tuple[str, ...], executor: Any = None) -> TaskRun:
+    """``executor``: a pool kept by the caller for many runs (a ``task_pool``'s): its workers
+    start once."""
     values: list = [None] * len(tasks)
     errors: dict = {}
     partial: set = set()
     interrupted = False
-    pool = cf.ProcessPoolExecutor(max_workers=n_workers, mp_context=process_context(preload),
-                                  initializer=exit_with_parent)
+    pool = executor or new_pool(n_workers, preload)
     try:
         futures = {pool.submit(remote, fn, task, budgets[i]): i for i, task in enumerate(tasks)}
         pending = set(futures)
@@ -60,8 +61,14 @@ def on_processes(fn: Callable, tasks: list, n_workers: int, advance: Callable[[i
     except BaseException:
         stop_pool(pool)
         raise
-    pool.shutdown(wait=True)
+    if executor is None:
+        pool.shutdown(wait=True)
     return TaskRun(values, errors, partial, interrupted)
+
+
+def new_pool(n_workers: int, preload: tuple[str, ...] = ()) -> cf.ProcessPoolExecutor:
+    return cf.ProcessPoolExecutor(max_workers=n_workers, mp_context=process_context(preload),
+                                  initializer=exit_with_parent)
 
 
 def stop_pool(pool: Any) -> None:

@@ -18,7 +18,8 @@ from . import Context, TaskRun
 
 
 def on_threads(fn: Callable, tasks: list, n_workers: int, advance: Callable[[int], None], budgets: list,
-               on_error: str, counted: bool, serial: bool = False) -> TaskRun:
+               on_error: str, counted: bool, serial: bool = False, executor: Any = None) -> TaskRun:
+    """``executor``: a ThreadPoolExecutor kept by the caller for many runs (a ``task_pool``'s)."""
     controls = [new_control(b) for b in budgets]
     stop = threading.Event()
     steps = (lambda n: None) if counted else advance  # (counted: a step is a task, reported as it ends)
@@ -69,7 +70,7 @@ def on_threads(fn: Callable, tasks: list, n_workers: int, advance: Callable[[int
             settle(i, fut)
         return TaskRun(values, errors, partial, interrupted)
 
-    pool = cf.ThreadPoolExecutor(max_workers=n_workers, thread_name_prefix="pounding")
+    pool = executor or cf.ThreadPoolExecutor(max_workers=n_workers, thread_name_prefix="pounding")
     futures: dict = {}
     try:
         futures = {pool.submit(fn, task, Context(steps, stop.is_set, controls[i])): i
@@ -89,7 +90,13 @@ def on_threads(fn: Callable, tasks: list, n_workers: int, advance: Callable[[int
             try:
                 if interrupted:
                     halt()
-                pool.shutdown(wait=True, cancel_futures=interrupted or stop.is_set())
+                if executor is None:
+                    pool.shutdown(wait=True, cancel_futures=interrupted or stop.is_set())
+                else:  # (the caller's pool stays: this run's tasks are waited for, or cancelled)
+                    if interrupted or stop.is_set():
+                        for fut in futures:
+                            fut.cancel()
+                    cf.wait(futures)
                 break
             except KeyboardInterrupt:
                 interrupted = True

@@ -11,6 +11,7 @@ from rich.markup import escape
 from .._errors import Interrupted
 from .._io import interrupts_deferred
 from ._app import (
+    OPT_SCHEDULER,
     cell,
     data_table,
     NO_METAVAR,
@@ -114,6 +115,7 @@ def identify(
     fstep: float = OPT_FSTEP,
     cycles: int = typer.Option(30, "--cycles", help="Cycles per step (fixed schedule, as the lab)."),
     workers: Optional[int] = OPT_WORKERS,
+    scheduler: str = OPT_SCHEDULER,
     loss: str = typer.Option(
         "squared", "--loss", help="squared (least squares) or misses (a smooth count of the targets missed)."
     ),
@@ -138,6 +140,7 @@ def identify(
             maxiter=maxiter,
             popsize=popsize,
             workers=workers,
+            scheduler=scheduler,
             freqs_hz=frequencies(fmin, fmax, fstep),
             cycles=cycles,
             progress=True,

@@ -11,10 +11,8 @@ from their bounds, logarithmically when a bound spans a decade or more.
 
 from __future__ import annotations
 
-import concurrent.futures as cf
 import math
 import os
-import threading
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -25,6 +23,7 @@ import pandas as pd
 from .._checks import boolean, integer, one_of, real
 from .._errors import InputError, Interrupted, Problem, Status
 from ..model import Oscillator
+from .._runner import run_tasks, scheduler_kind, task_pool
 from .._runner.progress import Progress, progress_reporter
 from ..protocols.campaign import SWEEP_OPTIONS, sweep_quantities
 from ..protocols.sweep import make_plan, paper_frequencies_hz, sweep
@@ -165,9 +164,9 @@ def evaluate(oscillator: Oscillator, targets: Targets, *, freqs_hz: Any = None,
 
 
 def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, seed: int = 0,
-             workers: int | None = None, freqs_hz: Any = None, popsize: int = 10, maxiter: int = 30,
-             refine: bool = True, x0: dict[str, float] | None = None, progress: Progress = False,
-             loss: str = "squared", **sweep_options: Any) -> Identification:
+             workers: int | None = None, scheduler: Any = None, freqs_hz: Any = None, popsize: int = 10,
+             maxiter: int = 30, refine: bool = True, x0: dict[str, float] | None = None,
+             progress: Progress = False, loss: str = "squared", **sweep_options: Any) -> Identification:
     """Fit the free numbers of ``family`` to measured ``targets``.
 
     Minimises a loss of the normalized residuals (see :class:`~pounding.Targets`):
@@ -185,7 +184,11 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     seed : int
         Seed of the global stage; the same seed gives the same result.
     workers : int, optional
-        Threads evaluating candidates (default: the machine's cores).
+        Threads or processes evaluating candidates (default: the machine's cores).
+    scheduler : str or dask.distributed.Client, optional
+        Where a generation's candidates run: ``"threads"`` (default), ``"serial"``,
+        ``"processes"``, ``"local"`` (a Dask ``LocalCluster``), a Dask scheduler's address or a
+        ``Client``; the workers start once for the whole fit.  Every scheduler gives the same fit.
     freqs_hz : array_like, optional
         Sweep steps (default the paper's 0.5 to 5.0 Hz by 0.1).
     popsize, maxiter : int
@@ -249,6 +252,7 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     bounds = check_bounds(family, bounds)
     names = tuple(bounds)
     n_workers = integer("workers", (os.cpu_count() or 1) if workers is None else workers, 1, MAX_WORKERS)
+    scheduler_kind(scheduler)  # (a wrong one refused before any work)
     popsize = integer("popsize", popsize, 2, MAX_EVALUATIONS)
     maxiter = integer("maxiter", maxiter, 0, MAX_EVALUATIONS)
     seed = integer("seed", seed, 0, 2**32 - 1)
@@ -288,23 +292,23 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     if probe is not None:
         _model_values(probe, targets, cases_freqs, options, check_only=True)
     best: dict[str, Any] = {"cost": math.inf, "u": None, "n": 0, "valid": 0, "error": None}
-    lock = threading.Lock()  # candidates are evaluated on several threads
+    problem = (family, targets, cases_freqs, options, loss, scale)  # (what a candidate's task carries)
 
-    def residuals(u: np.ndarray) -> np.ndarray:
-        values = scale.values(u)
-        try:
-            model = _model_values(family.oscillator(values), targets, cases_freqs, options)
-        except InputError as exc:  # no valid system (e.g. breakpoints out of order): all missing
-            model = None
-            best["error"] = exc
-        r = _loss_residuals(_normalized(targets, model), loss)
+    def keep(u: np.ndarray, r: np.ndarray, valid: bool, error: Any) -> float:
+        """Count a candidate's evaluation and keep the best (ties to the smaller u: the result does
+        not depend on where or in which order the candidates ran)."""
         cost = float(r @ r)
-        with lock:
-            best["n"] += 1
-            best["valid"] += model is not None
-            # ties go to the smaller u, so the result does not depend on the threads' order
-            if cost < best["cost"] or (cost == best["cost"] and tuple(u) < tuple(best["u"])):
-                best["cost"], best["u"] = cost, np.array(u, dtype=float)
+        best["n"] += 1
+        best["valid"] += valid
+        if error is not None:
+            best["error"] = error
+        if cost < best["cost"] or (cost == best["cost"] and tuple(u) < tuple(best["u"])):
+            best["cost"], best["u"] = cost, np.array(u, dtype=float)
+        return cost
+
+    def residuals(u: np.ndarray) -> np.ndarray:  # (one candidate, here: least_squares' own steps)
+        r, valid, error = _candidate((problem, u), None)
+        keep(u, r, valid, error)
         return r
 
     def cost(u: np.ndarray) -> float:
@@ -321,15 +325,26 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
 
     interrupted = False
     with progress_reporter(progress, maxiter + int(refine), "identify") as advance, \
-            cf.ThreadPoolExecutor(max_workers=n_workers, thread_name_prefix="pounding-fit") as pool:
+            task_pool(scheduler, n_workers) as pool:
+
+        def generation(_func: Any, population: Any) -> list[float]:
+            """scipy's ``workers``: a generation's costs, its candidates run on the shared runner
+            (``_func``, scipy's wrapper of the cost, is not needed: the task computes it)."""
+            us = [np.array(u, dtype=float) for u in population]
+            ran = run_tasks(_candidate, [(problem, u) for u in us], pool=pool, on_error="stop")
+            ran.raise_first_error()
+            if not ran.complete:
+                raise KeyboardInterrupt
+            return [keep(u, *value) for u, value in zip(us, ran.values)]
+
         try:
             if maxiter > 0:
                 differential_evolution(
-                    cost, [(0.0, 1.0)] * len(names), seed=seed, popsize=popsize, maxiter=maxiter,
-                    init=init, polish=False, tol=0.0, updating="deferred", workers=pool.map,
-                    callback=lambda *a, **k: advance(1))
+                    cost, [(0.0, 1.0)] * len(names), seed=seed,
+                    popsize=popsize, maxiter=maxiter, init=init, polish=False, tol=0.0, updating="deferred",
+                    workers=generation, callback=lambda *a, **k: advance(1))
             else:
-                cost(scale.units({k: (x0 or {}).get(k, 0.5 * sum(bounds[k])) for k in names}))
+                residuals(scale.units({k: (x0 or {}).get(k, 0.5 * sum(bounds[k])) for k in names}))
             if refine:
                 least_squares(residuals, np.clip(best["u"], 0.0, 1.0), bounds=(0.0, 1.0), diff_step=1e-3,
                               x_scale=1.0, xtol=1e-10, ftol=1e-10, max_nfev=40 * len(names))
@@ -353,6 +368,20 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     if interrupted:
         raise Interrupted(result, best["n"], None, "evaluations")
     return result
+
+
+def _candidate(task: tuple, ctx: Any) -> tuple[np.ndarray, bool, Any]:
+    """One candidate's residuals, as a task of the shared runner (any process): ``task`` is
+    ``((family, targets, freqs, sweep options, loss, scale), u)``; returns ``(residuals, whether
+    it made a valid system, the InputError of one that did not)``."""
+    (family, targets, freqs, options, loss, scale), u = task
+    values = scale.values(u)
+    error = None
+    try:
+        model = _model_values(family.oscillator(values), targets, freqs, options)
+    except InputError as exc:  # no valid system (e.g. breakpoints out of order): all missing
+        model, error = None, exc
+    return _loss_residuals(_normalized(targets, model), loss), model is not None, error
 
 
 def _loss_residuals(r: np.ndarray, loss: str) -> np.ndarray:
