@@ -211,3 +211,8 @@ def backbone(prefix: str, slopes: Any, breakpoints: Any, max_slope: float, slope
         at_most(f"{prefix}.breakpoints[{j}]", d, max_break, " m", break_fix)
     increasing(f"{prefix}.breakpoints", out_breaks)
     return out_slopes, out_breaks
+
+
+def gap_total(field: str, value: Any) -> float:
+    """A total gap ``Delta`` in m, checked (> 0, at most 10 m)."""
+    return at_most(field, positive(field, value, "m"), 10.0, " m", "give the gap in m (30 mm is 0.03)")

@@ -34,7 +34,7 @@ STAMP = "numba-sources.stamp"  # in the package's __pycache__: the sources the c
 
 
 # where the compiled functions live
-COMPILED = ("engine", "excitation", "model", "metrics", "protocols", "_jit.py")
+COMPILED = ("engine", "excitation", "model", "metrics", "protocols", "_jit.py", "_control.py")
 
 
 def _sources_stamp(root: Path) -> str:

@@ -20,63 +20,20 @@ import contextlib
 import os
 import re
 from collections.abc import Callable, Iterator, Sequence
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
 from .._checks import integer
 from .._errors import InputError, Problem
+from ._tasks import GUARD, Context, TaskRun, remote  # noqa: F401  (the runner's public names)
 from .progress import Progress, progress_reporter
 
 SCHEDULERS = ("serial", "threads", "processes", "local")
 SCHEDULER_CHOICES = ("serial, threads, processes, local, a Dask scheduler's address such as tcp://host:8786 "
                      "(or, in Python, None or a dask.distributed.Client)")
 ON_ERROR = ("stop", "finish")
-GUARD = ("in a script, run it under if __name__ == '__main__': (each worker process imports the "
-         "script first, as Python's multiprocessing does)")
-
-
-@dataclass(frozen=True)
-class Context:
-    """What a task sees of the run: see the module's docstring."""
-
-    advance: Callable[[int], None]
-    stopped: Callable[[], bool]
-    control: np.ndarray
-
-
-@dataclass(frozen=True, eq=False)
-class TaskRun:
-    """How a run of tasks ended.
-
-    Attributes
-    ----------
-    values : list
-        Per task, in order: its value (a partial one for a task in ``partial``), or None for a task
-        that did not run or failed.
-    errors : dict of int to BaseException
-        The tasks that failed, by index, with their exceptions.
-    partial : set of int
-        The tasks stopped part way (their value holds what they finished).
-    interrupted : bool
-        Ctrl-C (or a task's own interruption) stopped the run.
-    """
-
-    values: list
-    errors: dict = field(default_factory=dict)
-    partial: set = field(default_factory=set)
-    interrupted: bool = False
-
-    @property
-    def complete(self) -> bool:
-        """Every task ran to its end (a Ctrl-C that came after the last one changes nothing)."""
-        return not self.errors and not self.partial and all(v is not None for v in self.values)
-
-    def raise_first_error(self) -> None:
-        """Raise the error of the first task that failed, if any."""
-        if self.errors:
-            raise self.errors[min(self.errors)]
 
 
 def scheduler_kind(scheduler: Any) -> str:
@@ -139,7 +96,7 @@ def run_tasks(fn: Callable[[Any, Context], Any], tasks: Sequence[Any], *, schedu
     -------
     TaskRun
     """
-    from ..engine._control import DEFAULT_MAX_STEPS
+    from .._control import DEFAULT_MAX_STEPS
 
     if pool is not None:
         scheduler, workers = pool.scheduler, pool.workers
@@ -215,23 +172,6 @@ def task_pool(scheduler: Any = None, workers: Any = None,
             client.close()
         if cluster is not None:
             cluster.close()
-
-
-def remote(fn: Callable[[Any, Context], Any], task: Any, budget: int) -> tuple[Any, int, bool]:
-    """``fn(task, ctx)`` where the caller's thread cannot reach (a worker process, a Dask worker):
-    ``(value, steps it reported, whether it was partial)``; its progress travels back with it."""
-    from .._errors import Interrupted
-    from ..engine._control import new_control
-
-    steps = [0]
-
-    def advance(n: int) -> None:
-        steps[0] += n
-
-    try:
-        return fn(task, Context(advance, lambda: False, new_control(budget))), steps[0], False
-    except Interrupted as stop:
-        return stop.partial, steps[0], True
 
 
 __all__ = ["Context", "TaskPool", "TaskRun", "run_tasks", "task_pool", "scheduler_kind", "worker_count",

@@ -11,7 +11,7 @@ from collections.abc import Callable
 from typing import Any
 
 from .._errors import InputError, Problem
-from . import TaskRun, remote
+from ._tasks import TaskRun, remote
 
 
 def dask_client(scheduler: Any, n_workers: int) -> tuple[Any, Any]:

@@ -16,9 +16,9 @@ from collections.abc import Callable
 from typing import Any
 
 from .._errors import InputError, Problem
-from . import GUARD, TaskRun, remote
+from ._tasks import GUARD, TaskRun, remote
 
-_PRELOAD = ("pounding._runner._worker",)
+_PRELOAD = ("pounding._worker_boot",)
 
 
 def on_processes(fn: Callable, tasks: list, n_workers: int, advance: Callable[[int], None], budgets: list,

@@ -13,8 +13,8 @@ from collections.abc import Callable
 from typing import Any
 
 from .._errors import Interrupted
-from ..engine._control import new_control, request_stop
-from . import Context, TaskRun
+from .._control import new_control, request_stop
+from ._tasks import Context, TaskRun
 
 
 def on_threads(fn: Callable, tasks: list, n_workers: int, advance: Callable[[int], None], budgets: list,

@@ -63,6 +63,7 @@ def lab(
 ) -> None:
     """Measure a stepped-sine shaking-table test: Table 2 per step, the contacts, a figure and targets for
     identify."""
+    from ..identification import Targets
     from ..lab import analyse_stepped_sine, read_test
 
     out = folder("--out", out)
@@ -72,7 +73,7 @@ def lab(
                        units=_units(units))
     result = analyse_stepped_sine(record, mass_kg=mass, gap_total_m=gap, freqs_hz=schedule,
                                   measure_cycles=measure_cycles)
-    targets = result.to_targets(configuration or ("YBs" if gap is not None else "NBs"), a_g=a_g)
+    targets = Targets.from_lab(result, configuration or ("YBs" if gap is not None else "NBs"), a_g=a_g)
     with interrupts_deferred():  # every file whole
         out.mkdir(parents=True, exist_ok=True)
         write_csv(result.to_dataframe(), out / "steps.csv")

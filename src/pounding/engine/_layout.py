@@ -101,7 +101,4 @@ L_INPUT, L_VISCOUS, L_HYSTERETIC, L_BUMPER_LOSS, L_KINETIC, L_ISOLATOR, L_BUMPER
 LEDGER_LEN = 7
 
 # ---- run control (int64 array shared between Python and the kernels, see _control.py)
-CTL_STOP = 0     # set to 1 by Python (Ctrl-C): kernels return with INTERRUPTED at once
-CTL_WORK = 1     # sub-intervals done so far, added to by every kernel call sharing the array
-CTL_BUDGET = 2   # kernels return with BUDGET once CTL_WORK would pass it
-CTL_LEN = 3
+from .._control import CTL_BUDGET, CTL_LEN, CTL_STOP, CTL_WORK  # noqa: E402,F401  (pounding._control's)

@@ -16,14 +16,14 @@ import math
 
 import numpy as np
 
+from .._control import CTL_BUDGET as BUDGET
+from .._control import CTL_STOP as STOP
+from .._control import CTL_WORK as WORK
+from .._errors import Status
 from .._jit import jit, jit_entry
 
-STOP = 0  # the control array's slots (as the engine's: _layout.CTL_*)
-WORK = 1
-BUDGET = 2
-DONE = 0
-INTERRUPTED = -5
-OVER_BUDGET = -6
+# how the spectrum ended: pounding.Status's codes
+DONE, INTERRUPTED, OVER_BUDGET = int(Status.SUCCESS), int(Status.INTERRUPTED), int(Status.BUDGET)
 NEWTON_ITERATIONS = 100
 
 

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -216,11 +217,14 @@ class Record:
             plausible("sa_g", target, 0.0, 10.0, "sa_g is in g")
             if period_s is None:
                 raise InputError(Problem.MISSING_INPUT, "period_s", period_s, what="the period (s) of sa_g")
-            from .spectrum import response_spectrum
+            from ._spectrum_run import damping_ratio_value, spectrum_peaks
 
-            spec = response_spectrum(self, [positive("period_s", period_s, "s")],
-                                     damping_ratio=0.05 if damping_ratio is None else damping_ratio)
-            now = float(spec["psa_g"].values[0, 0])
+            period = positive("period_s", period_s, "s")
+            zeta = damping_ratio_value(0.05 if damping_ratio is None else damping_ratio)
+            peaks, done = spectrum_peaks([(self.t, self.accel)], np.array([period]), zeta)
+            if done < 1:
+                raise KeyboardInterrupt
+            now = float((2.0 * math.pi / period) ** 2 * peaks[0, 0, 0] / self.g)  # (the pseudo-acceleration)
         if now == 0.0:
             raise InputError(Problem.BAD_STATE, "record", self.name or "record",
                              why="the record is all zeros", fix="give a record that moves")

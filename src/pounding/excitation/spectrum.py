@@ -8,12 +8,9 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import float_array, real
 from .._errors import InputError, Interrupted, Problem
-from ._spectrum_kernel import DONE, INTERRUPTED, spectrum_kernel
+from ._spectrum_run import MAX_INTERVALS, damping_ratio_value, periods_array, spectrum_peaks  # noqa: F401
 from .record import Record
-
-MAX_INTERVALS = 2_000_000_000  # periods x record intervals: about a minute of one core
 
 
 def _records(records: Any) -> list[Record]:
@@ -27,26 +24,6 @@ def _records(records: Any) -> list[Record]:
         return list(records)
     raise InputError(Problem.WRONG_TYPE, "record", records, got=type(records).__name__,
                      expected="pounding.Record or a non-empty list of them")
-
-
-def periods_array(periods_s: Any) -> np.ndarray:
-    """Validated periods (s): finite, >= 0, strictly increasing, shape (p,)."""
-    periods = float_array("periods_s", periods_s)
-    if (periods < 0.0).any():
-        i = int(np.flatnonzero(periods < 0.0)[0])
-        raise InputError(Problem.NEGATIVE, f"periods_s[{i}]", float(periods[i]), unit="s")
-    if periods.size > 1 and (np.diff(periods) <= 0.0).any():
-        raise InputError(Problem.NOT_INCREASING, "periods_s", periods.tolist()[:6])
-    return periods
-
-
-def damping_ratio_value(damping_ratio: Any) -> float:
-    """A validated damping ratio in [0, 1)."""
-    zeta = real("damping_ratio", damping_ratio)
-    if not 0.0 <= zeta < 1.0:
-        raise InputError(Problem.OUT_OF_RANGE, "damping_ratio", zeta, range="[0, 1)",
-                         hint=" (a fraction of critical: 0.05 is 5 %)")
-    return zeta
 
 
 def response_spectrum(record: Record | Sequence[Record], periods_s: Any, damping_ratio: float = 0.05) -> Any:
@@ -93,35 +70,12 @@ def response_spectrum(record: Record | Sequence[Record], periods_s: Any, damping
     >>> spec["sd_m"].sel(period_s=1.0).values.round(3)  # m
     array([0.113])
     """
-    from ..engine._control import new_control, run_interruptibly
-
     recs = _records(record)
     periods = periods_array(periods_s)
     zeta = damping_ratio_value(damping_ratio)
-    # the kernel's work: every record interval, and every half period inside them (searched for peaks)
-    half_periods = float(np.sum(2.0 / periods[periods > 0.0])) * math.sqrt(1.0 - zeta * zeta)
-    work = sum(periods.size * (r.t.size - 1) + half_periods * (r.t[-1] - r.t[0]) for r in recs)
-    if work > MAX_INTERVALS:
-        raise InputError(Problem.TOO_MUCH_WORK, "periods_s", f"{periods.size} periods down to "
-                         f"{periods[periods > 0.0].min() if (periods > 0.0).any() else 0.0:g} s",
-                         estimate=f"{work:.3g}", unit="intervals and half periods",
-                         budget=f"{MAX_INTERVALS:.3g}",
-                         fix="fewer periods or records, or no periods far below the record's time step")
-    rigid = periods == 0.0
-    omegas = 2.0 * math.pi / periods[~rigid]
-    peaks = np.full((len(recs), periods.size, 3), np.nan)
-    ctl = new_control(MAX_INTERVALS)
-    for i, r in enumerate(recs):
-        out = np.zeros((omegas.size, 3))
-        t, a = np.array(r.t, dtype=float), np.array(r.accel, dtype=float)
-        status = run_interruptibly(lambda t=t, a=a, out=out: spectrum_kernel(t, a, omegas, zeta, out, ctl),
-                                   [ctl])
-        if status == INTERRUPTED:
-            raise Interrupted(_dataset(recs, periods, zeta, peaks), i, len(recs), "records")
-        if status != DONE:  # (the budget was checked above)
-            raise RuntimeError(f"response_spectrum: the kernel stopped with status {status}")
-        peaks[i, ~rigid] = out
-        peaks[i, rigid] = (0.0, 0.0, float(np.abs(r.accel).max()))
+    peaks, done = spectrum_peaks([(r.t, r.accel) for r in recs], periods, zeta)
+    if done < len(recs):
+        raise Interrupted(_dataset(recs, periods, zeta, peaks), done, len(recs), "records")
     return _dataset(recs, periods, zeta, peaks)
 
 

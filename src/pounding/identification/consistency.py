@@ -52,10 +52,9 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pandas as pd
 
-from .._checks import at_most, positive
+from .._checks import at_most, gap_total, positive
 from .._errors import InputError, Problem
 from ..protocols.sweep import PAPER_F_REF_HZ, PAPER_OMEGA_MIN_RAD_S
-from .targets import gap_total
 
 if TYPE_CHECKING:
     from .targets import Targets

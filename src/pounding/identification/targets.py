@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .._checks import at_most, boolean, one_of, positive, read_toml, real
+from .._checks import at_most, boolean, gap_total, one_of, positive, read_toml, real
 from .._errors import InputError, Problem
 from ..data import paper_gap_total_m, paper_measurements
 from ..excitation import MAX_A_G
@@ -129,6 +129,38 @@ class Targets:
     def to_dataframe(self) -> pd.DataFrame:
         """A copy of :attr:`table`."""
         return self.table.copy()
+
+    @classmethod
+    def from_lab(cls, sweep: Any, configuration: str, a_g: float | None = None) -> Targets:
+        """The paper's quantities of a measured sweep (a :class:`pounding.lab.LabSweep`) as targets
+        for :func:`pounding.identify`, with the default tolerances.
+
+        Parameters
+        ----------
+        sweep : pounding.lab.LabSweep
+            What :func:`pounding.lab.analyse_stepped_sine` returned.
+        configuration : {"NBs", "YBs"}
+            Which configuration the sweep tested: Table 2's ``nu_r``, ``alpha`` and ``eta`` (over
+            the sweep's ``gap_total_m``, kept as ``eta_gap_total_m``), the contact range, contact
+            time and restitution for YBs; ``nu_r``, ``alpha`` and ``e`` for NBs.
+        a_g : float, optional
+            The table acceleration the model's sweeps will use, g (default: the measured
+            amplitude rounded to 0.001 g).
+
+        Returns
+        -------
+        Targets
+
+        Examples
+        --------
+        >>> import pounding
+        >>> rec = pounding.lab.synthetic_test(pounding.presets.paper_damped(), 0.05,
+        ...                                   [1.5, 2.0], cycles=10)
+        >>> sweep = pounding.lab.analyse_stepped_sine(rec, mass_kg=500.0)
+        >>> pounding.Targets.from_lab(sweep, "NBs").table["quantity"].tolist()
+        ['nu_r', 'alpha', 'e']
+        """
+        return cls.from_records(sweep.target_records(configuration, a_g), eta_gap_total_m=sweep.gap_total_m)
 
     @classmethod
     def from_records(cls, records: list[dict[str, Any]], *, defaults: dict[str, Any] | None = None,
@@ -303,11 +335,6 @@ def paper_targets(direction: str = "up", quantities: tuple[str, ...] = PAPER_QUA
         records.append({"configuration": row.configuration, "a_g": float(row.a_g), "quantity": row.quantity,
                         "value": float(row.value), "direction": direction})
     return Targets.from_records(records, eta_gap_total_m=paper_gap_total_m())
-
-
-def gap_total(field: str, value: Any) -> float:
-    """A total gap ``Delta`` in m, checked (> 0, at most 10 m)."""
-    return at_most(field, positive(field, value, "m"), 10.0, " m", "give the gap in m (30 mm is 0.03)")
 
 
 def _known_quantity(field: str, quantity: Any) -> str:

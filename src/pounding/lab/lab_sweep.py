@@ -51,7 +51,7 @@ class LabSweep:
     >>> sweep.steps["eta"].round(2).tolist()
     [0.85, 1.07, 0.49]
     >>> # nu_r, alpha, eta, the contact range, contact time, restitution
-    >>> len(sweep.to_targets("YBs"))
+    >>> len(pounding.Targets.from_lab(sweep, "YBs"))
     7
     """
 
@@ -111,17 +111,15 @@ class LabSweep:
         f = self.steps.loc[seen, "freq_hz"]
         return float(f.min()), float(f.max())
 
-    def to_targets(self, configuration: str, a_g: float | None = None) -> Any:
-        """The paper's quantities of this sweep as :class:`~pounding.Targets` for ``identify``.
+    def target_records(self, configuration: str, a_g: float | None = None) -> list[dict[str, Any]]:
+        """The paper's quantities of this sweep as target records (the rows of
+        :meth:`pounding.Targets.from_records`; :meth:`pounding.Targets.from_lab` makes the targets).
 
-        Table 2's ``nu_r``, ``alpha`` and ``eta`` (YBs, over this sweep's ``gap_total_m``, which
-        the targets keep as ``eta_gap_total_m``) or ``e`` (NBs), the contact range (YBs), and at
-        the resonance step the contact time and restitution (YBs, where measured); the
-        default tolerances.  ``a_g`` (g) is what the model's sweeps will use: default the
-        measured amplitude rounded to 0.001 g.
+        Table 2's ``nu_r``, ``alpha`` and ``eta`` (YBs, over this sweep's ``gap_total_m``) or
+        ``e`` (NBs), the contact range (YBs), and at the resonance step the contact time and
+        restitution (YBs, where measured).  ``a_g`` (g) is what the model's sweeps will use:
+        default the measured amplitude rounded to 0.001 g.
         """
-        from ..identification import Targets
-
         configuration = one_of("configuration", configuration, CONFIGURATIONS)
         a_g = round(self.a_g, 3) if a_g is None else positive("a_g", a_g, "g")
         if configuration == "YBs" and self.gap_total_m is None:
@@ -141,9 +139,8 @@ class LabSweep:
                     values[q] = float(at[col]) * scale
         else:
             values["e"] = float(df["e"].max())
-        records = [{"configuration": configuration, "a_g": a_g, "quantity": q, "value": v,
-                    "direction": self.direction} for q, v in values.items() if np.isfinite(v)]
-        return Targets.from_records(records, eta_gap_total_m=self.gap_total_m)
+        return [{"configuration": configuration, "a_g": a_g, "quantity": q, "value": v,
+                 "direction": self.direction} for q, v in values.items() if np.isfinite(v)]
 
     def plot(self, ax: Any = None, **kwargs: Any) -> list:
         """alpha (top) and eta or e (bottom) against nu, as :meth:`pounding.SweepResult.plot`

@@ -1,10 +1,7 @@
 """Preloaded by the forkserver that a study's worker processes are forked from (never imported
-otherwise): what a chunk needs, the store's code, Zarr and the compiled kernels, is loaded once
-in the server, so that each worker starts with it in memory instead of loading it again."""
+otherwise): what a chunk needs besides the engine (``pounding._worker_boot`` loads that), the
+store's code and Zarr, is loaded once in the server."""
 
 import zarr  # noqa: F401
 
-from .._warm_up import warm_up
 from . import study_points, study_store  # noqa: F401
-
-warm_up()

@@ -1,0 +1,71 @@
+"""What a task and its run are (the runner's ways of running share them)."""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+GUARD = ("in a script, run it under if __name__ == '__main__': (each worker process imports the "
+         "script first, as Python's multiprocessing does)")
+
+
+@dataclass(frozen=True)
+class Context:
+    """What a task sees of the run: see ``pounding._runner``'s docstring."""
+
+    advance: Callable[[int], None]
+    stopped: Callable[[], bool]
+    control: np.ndarray
+
+
+@dataclass(frozen=True, eq=False)
+class TaskRun:
+    """How a run of tasks ended.
+
+    Attributes
+    ----------
+    values : list
+        Per task, in order: its value (a partial one for a task in ``partial``), or None for a task
+        that did not run or failed.
+    errors : dict of int to BaseException
+        The tasks that failed, by index, with their exceptions.
+    partial : set of int
+        The tasks stopped part way (their value holds what they finished).
+    interrupted : bool
+        Ctrl-C (or a task's own interruption) stopped the run.
+    """
+
+    values: list
+    errors: dict = field(default_factory=dict)
+    partial: set = field(default_factory=set)
+    interrupted: bool = False
+
+    @property
+    def complete(self) -> bool:
+        """Every task ran to its end (a Ctrl-C that came after the last one changes nothing)."""
+        return not self.errors and not self.partial and all(v is not None for v in self.values)
+
+    def raise_first_error(self) -> None:
+        """Raise the error of the first task that failed, if any."""
+        if self.errors:
+            raise self.errors[min(self.errors)]
+
+
+def remote(fn: Callable[[Any, Context], Any], task: Any, budget: int) -> tuple[Any, int, bool]:
+    """``fn(task, ctx)`` where the caller's thread cannot reach (a worker process, a Dask worker):
+    ``(value, steps it reported, whether it was partial)``; its progress travels back with it."""
+    from .._errors import Interrupted
+    from .._control import new_control
+
+    steps = [0]
+
+    def advance(n: int) -> None:
+        steps[0] += n
+
+    try:
+        return fn(task, Context(advance, lambda: False, new_control(budget))), steps[0], False
+    except Interrupted as stop:
+        return stop.partial, steps[0], True

@@ -1,0 +1,70 @@
+"""The exact elastic spectrum's computation on arrays: what ``response_spectrum`` and
+``Record.scaled(sa_g=...)`` share (a module of its own, so that neither imports the other)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from .._checks import float_array, real
+from .._errors import InputError, Problem
+from ._spectrum_kernel import DONE, INTERRUPTED, spectrum_kernel
+
+MAX_INTERVALS = 2_000_000_000  # periods x record intervals: about a minute of one core
+
+
+def periods_array(periods_s: Any) -> np.ndarray:
+    """Validated periods (s): finite, >= 0, strictly increasing, shape (p,)."""
+    periods = float_array("periods_s", periods_s)
+    if (periods < 0.0).any():
+        i = int(np.flatnonzero(periods < 0.0)[0])
+        raise InputError(Problem.NEGATIVE, f"periods_s[{i}]", float(periods[i]), unit="s")
+    if periods.size > 1 and (np.diff(periods) <= 0.0).any():
+        raise InputError(Problem.NOT_INCREASING, "periods_s", periods.tolist()[:6])
+    return periods
+
+
+def damping_ratio_value(damping_ratio: Any) -> float:
+    """A validated damping ratio in [0, 1)."""
+    zeta = real("damping_ratio", damping_ratio)
+    if not 0.0 <= zeta < 1.0:
+        raise InputError(Problem.OUT_OF_RANGE, "damping_ratio", zeta, range="[0, 1)",
+                         hint=" (a fraction of critical: 0.05 is 5 %)")
+    return zeta
+
+
+def spectrum_peaks(series: Sequence[tuple[np.ndarray, np.ndarray]], periods: np.ndarray,
+                   zeta: float) -> tuple[np.ndarray, int]:
+    """Peak relative displacement, relative velocity and absolute acceleration (SI) of each
+    ``(t, accel)`` series at each period (checked ones): shape (records, periods, 3), and how many
+    series were done (fewer on Ctrl-C: the rest NaN).  A period 0 is the rigid oscillator."""
+    from .._control import new_control, run_interruptibly
+
+    # the kernel's work: every record interval, and every half period inside them (searched for peaks)
+    half_periods = float(np.sum(2.0 / periods[periods > 0.0])) * math.sqrt(1.0 - zeta * zeta)
+    work = sum(periods.size * (t.size - 1) + half_periods * (t[-1] - t[0]) for t, _ in series)
+    if work > MAX_INTERVALS:
+        raise InputError(Problem.TOO_MUCH_WORK, "periods_s", f"{periods.size} periods down to "
+                         f"{periods[periods > 0.0].min() if (periods > 0.0).any() else 0.0:g} s",
+                         estimate=f"{work:.3g}", unit="intervals and half periods",
+                         budget=f"{MAX_INTERVALS:.3g}",
+                         fix="fewer periods or records, or no periods far below the record's time step")
+    rigid = periods == 0.0
+    omegas = 2.0 * math.pi / periods[~rigid]
+    peaks = np.full((len(series), periods.size, 3), np.nan)
+    ctl = new_control(MAX_INTERVALS)
+    for i, (t_s, accel) in enumerate(series):
+        out = np.zeros((omegas.size, 3))
+        t, a = np.array(t_s, dtype=float), np.array(accel, dtype=float)
+        status = run_interruptibly(lambda t=t, a=a, out=out: spectrum_kernel(t, a, omegas, zeta, out, ctl),
+                                   [ctl])
+        if status == INTERRUPTED:
+            return peaks, i
+        if status != DONE:  # (the budget was checked above)
+            raise RuntimeError(f"response_spectrum: the kernel stopped with status {status}")
+        peaks[i, ~rigid] = out
+        peaks[i, rigid] = (0.0, 0.0, float(np.abs(a).max()))
+    return peaks, len(series)

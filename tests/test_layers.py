@@ -1,0 +1,164 @@
+"""The package's import graph follows its documented layers (CONTRIBUTING.md): a module imports
+only from its own layer or the ones below, at module level or inside a function alike, so that no
+cycle hides behind an import in a function.  Two kinds of import are exempt: ``plots`` (results draw
+themselves, importing it lazily) and imports under ``if TYPE_CHECKING:`` (annotations only)."""
+
+from __future__ import annotations
+
+import ast
+from pathlib import Path
+
+import pounding
+
+ROOT = Path(pounding.__file__).resolve().parent
+
+# lowest first: each line may import from itself and the lines above it
+LAYERS = [
+    ("_errors", "_checks", "_io", "_jit", "_control", "_delimited", "_units", "data"),
+    ("model",),
+    ("presets",),
+    ("excitation", "records"),
+    ("metrics",),
+    ("engine",),
+    ("_runner",),
+    ("protocols",),
+    ("analysis",),
+    ("lab",),
+    ("identification",),
+    ("reports",),
+    ("plots",),
+    ("_warm_up", "_worker_boot", "cli", "__init__"),
+]
+RANK = {unit: i for i, units in enumerate(LAYERS) for unit in units}
+EXEMPT = {"plots"}
+
+
+def _unit(path: Path) -> str:
+    return path.relative_to(ROOT).with_suffix("").parts[0]
+
+
+def _type_checking_nodes(tree: ast.AST) -> set[int]:
+    out: set[int] = set()
+    for node in ast.walk(tree):
+        if isinstance(node, ast.If) and "TYPE_CHECKING" in ast.unparse(node.test):
+            out.update(id(n) for stmt in node.body for n in ast.walk(stmt))
+    return out
+
+
+def imports_across_layers() -> list[str]:
+    """Every import of a unit of a higher layer, as ``file:line unit -> module``."""
+    bad = []
+    for path in sorted(ROOT.rglob("*.py")):
+        unit = _unit(path)
+        tree = ast.parse(path.read_text())
+        skip = _type_checking_nodes(tree)
+        package = path.relative_to(ROOT.parent).with_suffix("").parts
+        package = package if path.name == "__init__.py" else package[:-1]
+        if path.name == "__init__.py":
+            package = package[:-1]
+        for node in ast.walk(tree):
+            if not isinstance(node, ast.ImportFrom) or id(node) in skip:
+                continue
+            if node.level:
+                target = [*package[:len(package) - node.level + 1], *(node.module or "").split(".")]
+            elif (node.module or "").startswith("pounding."):
+                target = node.module.split(".")
+            else:
+                continue
+            target = [t for t in target if t]
+            if len(target) < 2:  # (from . import x, in the package's __init__)
+                continue
+            other = target[1]
+            if other in (unit, *EXEMPT):
+                continue
+            if RANK.get(other, -1) > RANK[unit]:
+                bad.append(f"{path.relative_to(ROOT)}:{node.lineno} {unit} -> {'.'.join(target[1:])}")
+    return bad
+
+
+def test_every_unit_has_a_layer():
+    units = {_unit(p) for p in ROOT.rglob("*.py")}
+    assert units <= set(RANK), f"units without a layer in LAYERS: {sorted(units - set(RANK))}"
+
+
+def test_imports_point_down_the_layers():
+    assert imports_across_layers() == []
+
+
+def test_the_check_sees_an_import_up_the_layers(tmp_path, monkeypatch):
+    # (a test that cannot fail is a defect: a planted upward import, inside a function, is found)
+    fake = tmp_path / "pounding"
+    for path in ROOT.rglob("*.py"):
+        dest = fake / path.relative_to(ROOT)
+        dest.parent.mkdir(parents=True, exist_ok=True)
+        dest.write_text(path.read_text())
+    (fake / "model" / "planted.py").write_text("def f():\n    from ..protocols import sweep\n")
+    monkeypatch.setattr(__import__(__name__), "ROOT", fake)
+    assert imports_across_layers() == ["model/planted.py:2 model -> protocols"]
+
+
+def module_graph() -> dict[str, set[str]]:
+    """Module -> the package's modules it imports (in functions too; not plots, not for annotations)."""
+    graph: dict[str, set[str]] = {}
+    modules = {".".join(p.relative_to(ROOT.parent).with_suffix("").parts).removesuffix(".__init__")
+               for p in ROOT.rglob("*.py")}
+    for path in sorted(ROOT.rglob("*.py")):
+        name = ".".join(path.relative_to(ROOT.parent).with_suffix("").parts).removesuffix(".__init__")
+        package = name if path.name == "__init__.py" else name.rsplit(".", 1)[0]
+        tree = ast.parse(path.read_text())
+        skip = _type_checking_nodes(tree)
+        out = graph.setdefault(name, set())
+        for node in ast.walk(tree):
+            if not isinstance(node, ast.ImportFrom) or id(node) in skip:
+                continue
+            if node.level:
+                base = package.split(".")[:len(package.split(".")) - node.level + 1]
+                target = ".".join([*base, *([node.module] if node.module else [])])
+            elif (node.module or "").startswith("pounding"):
+                target = node.module
+            else:
+                continue
+            candidates = [f"{target}.{a.name}" for a in node.names] + [target]
+            for cand in candidates:
+                if cand in modules and cand != name and ".plots" not in cand and cand != "pounding":
+                    out.add(cand)
+                    break
+    return graph
+
+
+def cycles(graph: dict[str, set[str]]) -> list[list[str]]:
+    """The graph's strongly connected components of more than one module (Tarjan)."""
+    index: dict[str, int] = {}
+    low: dict[str, int] = {}
+    stack: list[str] = []
+    found = []
+
+    def visit(v: str) -> None:
+        index[v] = low[v] = len(index)
+        stack.append(v)
+        for w in graph.get(v, ()):
+            if w not in index:
+                visit(w)
+                low[v] = min(low[v], low[w])
+            elif w in stack:
+                low[v] = min(low[v], index[w])
+        if low[v] == index[v]:
+            comp = []
+            while True:
+                w = stack.pop()
+                comp.append(w)
+                if w == v:
+                    break
+            if len(comp) > 1:
+                found.append(sorted(comp))
+
+    for v in sorted(graph):
+        if v not in index:
+            visit(v)
+    return found
+
+
+def test_no_module_imports_one_that_imports_it_back():
+    assert cycles(module_graph()) == []
+    # (and the check sees one: two modules importing each other, one of them in a function)
+    assert cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
