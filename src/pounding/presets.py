@@ -1,9 +1,9 @@
 """Ready-made systems.
 
-``paper_printed``: the values printed in Sect. 5 of the paper, exactly (MODEL.md §1).  Note
-MODEL.md §5: with ``C_d = 1 N s/m`` the isolator has about 0.01 % of critical damping, so
+``paper_printed``: the values printed in Sect. 5 of the paper, exactly (docs/paper.md).  Note
+docs/paper.md: with ``C_d = 1 N s/m`` the isolator has about 0.01 % of critical damping, so
 these values do not reproduce the paper's measured curves.  ``paper_damped``: the same with
-``C_d = 1 kN s/m``, MODEL.md §5's reading.  ``paper_calibrated``: fitted to the paper's
+``C_d = 1 kN s/m``, the reading docs/paper.md explains.  ``paper_calibrated``: fitted to the paper's
 Tables 2-4 by model updating (``scripts/calibrate_paper.py``), multi-linear bumpers with
 Masing hysteresis (the most targets met); ``paper_calibrated_v2``: multi-linear elastic
 bumpers fitted by least squares (the accelerations near, the contacts not);
@@ -16,6 +16,7 @@ from importlib import resources
 from typing import TYPE_CHECKING
 
 from ._checks import one_of
+from .data import PAPER_MASS_KG
 from .model import Bumpers, Isolator, KelvinVoigt, Oscillator
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -25,7 +26,6 @@ __all__ = ["by_name", "paper_calibrated", "paper_calibrated_residuals", "paper_c
            "paper_calibrated_v1_residuals", "paper_calibrated_v2", "paper_calibrated_v2_residuals",
            "paper_damped", "paper_printed"]
 
-PAPER_MASS_KG = 500.0
 PAPER_SLOPES_N_M = (38_000.0, 18_000.0, 2_000.0)
 PAPER_BREAKPOINTS_M = (0.015, 0.040)
 PAPER_ISOLATOR_DAMPING_N_S_M = 1.0

@@ -3,6 +3,7 @@ synthetic cyclic bumper test (``bumper_cyclic_test.csv``)."""
 
 from __future__ import annotations
 
+import math
 from importlib import resources
 
 import pandas as pd
@@ -41,6 +42,12 @@ def paper_measurements() -> pd.DataFrame:
         df = pd.read_csv(fh, dtype={"table": str})
     df["note"] = df["note"].fillna("")
     return df
+
+
+PAPER_F_REF_HZ = 1.0  # the frequency the paper's nu = f / f_ref is measured against, Hz
+# the table's slowest frequency its D_tmax values imply (docs/paper.md)
+PAPER_OMEGA_MIN_RAD_S = 2.0 * math.pi * 0.6
+PAPER_MASS_KG = 500.0  # the isolated mass of the paper's rig (Sect. 1), kg: its systems and its measurements
 
 
 def paper_gap_total_m() -> float:

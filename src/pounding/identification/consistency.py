@@ -54,7 +54,7 @@ import pandas as pd
 
 from .._checks import at_most, gap_total, positive
 from .._errors import InputError, Problem
-from ..protocols.sweep import PAPER_F_REF_HZ, PAPER_OMEGA_MIN_RAD_S
+from ..data import PAPER_F_REF_HZ, PAPER_OMEGA_MIN_RAD_S
 
 if TYPE_CHECKING:
     from .targets import Targets

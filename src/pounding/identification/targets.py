@@ -59,9 +59,9 @@ CONFIGURATIONS = ("NBs", "YBs")
 DIRECTIONS = ("up", "down")
 TARGET_KEYS = ("configuration", "a_g", "quantity", "value", "direction", "tolerance", "relative", "weight")
 COLUMNS = ("configuration", "a_g", "direction", "quantity", "value", "tolerance", "relative", "weight")
-# the paper's printed values left out of paper_targets(), and why (MODEL.md §5)
+# the paper's printed values left out of paper_targets(), and why (docs/paper.md)
 PAPER_EXCLUDED = {
-    ("NBs", 0.03, "e"): "printed 1.03 but E / D_tmax = 0.0356 / 0.02073 = 1.72 (MODEL.md §5)",
+    ("NBs", 0.03, "e"): "printed 1.03 but E / D_tmax = 0.0356 / 0.02073 = 1.72 (docs/paper.md)",
 }
 PAPER_QUANTITIES = ("nu_r", "alpha", "eta", "e", "contact_nu_min", "contact_nu_max", "contact_time_ms",
                     "restitution")

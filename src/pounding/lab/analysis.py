@@ -40,7 +40,7 @@ import pandas as pd
 
 from .._checks import float_array, integer, non_negative, positive
 from .._errors import InputError, PoundingWarning, Problem
-from ..protocols.sweep import PAPER_F_REF_HZ, PAPER_OMEGA_MIN_RAD_S
+from ..data import PAPER_F_REF_HZ, PAPER_OMEGA_MIN_RAD_S
 from ._sanity import fundamental, warn_inconsistent, warn_time_scale
 from .contacts import FLIGHT_FIT_S, IMPACT_COLUMNS, window_contacts
 from .lab_sweep import LabSweep

@@ -1,4 +1,4 @@
-"""The paper's test matrix (MODEL.md §2): NBs and YBs sweeps up and down, in parallel.
+"""The paper's test matrix (docs/paper.md): NBs and YBs sweeps up and down, in parallel.
 
 Independent sweeps run on worker threads: the compiled kernels release the GIL, so the
 threads use every core without copying anything.  A sweep is a :class:`SweepPlan`, plain

@@ -1,4 +1,4 @@
-"""Stepped-sine sweeps (MODEL.md §2): the virtual shaking table, one frequency after another.
+"""Stepped-sine sweeps (docs/paper.md): the virtual shaking table, one frequency after another.
 
 :func:`sweep` validates, builds a :class:`SweepPlan` and runs it; the plan is plain data
 and :func:`run_plan` needs nothing else, so campaigns hand plans to worker threads.
@@ -29,8 +29,7 @@ from .sweep_result import SweepResult
 Direction = Literal["up", "down"]
 SteadyMode = Literal["adaptive", "fixed"]
 
-PAPER_OMEGA_MIN_RAD_S = 2.0 * math.pi * 0.6  # what the paper's D_tmax values imply (MODEL.md §3)
-PAPER_F_REF_HZ = 1.0
+from ..data import PAPER_F_REF_HZ, PAPER_OMEGA_MIN_RAD_S  # noqa: E402  (the paper's conventions)
 MAX_STEPS_PER_SWEEP = 100_000
 MAX_CYCLES_PER_STEP = 1_000_000
 

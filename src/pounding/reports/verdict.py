@@ -8,11 +8,11 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from ..data import PAPER_MASS_KG
 from ..identification import paper_targets
 from ..identification.consistency import CONSISTENCY_QUANTITIES
 
 WORST_MISSES = 6  # rows of the worst misses the page shows
-PAPER_MASS_KG = 500.0  # the paper's mass (Sect. 1), for the consistency of its measurements
 
 
 @dataclass(frozen=True, eq=False)
