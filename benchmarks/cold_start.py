@@ -64,7 +64,8 @@ print(time.perf_counter() - t0)
 """
 
 
-def _fresh(code: str | None, cache: str, argv: list[str] | None = None, cwd: str | None = None) -> tuple[float, str]:
+def _fresh(code: str | None, cache: str, argv: list[str] | None = None,
+           cwd: str | None = None) -> tuple[float, str]:
     """Run ``code`` (or the command ``argv``) in a new process with ``cache`` as Numba's cache;
     (wall seconds, its stdout)."""
     env = dict(os.environ, NUMBA_CACHE_DIR=cache)
@@ -81,10 +82,12 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         _, out = _fresh(FIRST_CALLS, os.path.join(tmp, "a"))
         imp, sim, swp, camp = (float(x) for x in out.split()[-4:])
-        print(f"import {imp:.1f} s; first simulate {sim:.1f} s, then sweep +{swp:.1f} s, campaign +{camp:.1f} s")
+        print(f"import {imp:.1f} s; first simulate {sim:.1f} s, then sweep +{swp:.1f} s, "
+              f"campaign +{camp:.1f} s")
         _, out = _fresh(PAPER_SYSTEMS, os.path.join(tmp, "b"))
         paper = float(out.split()[-1])
-        print(f"first simulate + sweep of the printed and the calibrated presets, import included: {paper:.1f} s")
+        print("first simulate + sweep of the printed and the calibrated presets, import included: "
+              f"{paper:.1f} s")
         warm, _ = _fresh(None, os.path.join(tmp, "c"), [sys.executable, "-m", "pounding.cli", "warm-up"])
         print(f"pounding warm-up from an empty cache: {warm:.1f} s")
         cache = os.path.join(tmp, "d")
@@ -102,10 +105,11 @@ def main() -> None:
              f"| first `simulate` of the printed preset (1 s simulated) | {sim:.1f} | {TARGET_S:g} |",
              f"| then the first `sweep` (what it adds) | {swp:.1f} | |",
              f"| then the first `campaign` (what it adds) | {camp:.1f} | |",
-             f"| first `simulate` + `sweep` of the printed and calibrated presets, import included | {paper:.1f} "
-             f"| {TARGET_S:g} |",
+             "| first `simulate` + `sweep` of the printed and calibrated presets, import included "
+             f"| {paper:.1f} | {TARGET_S:g} |",
              f"| `pounding warm-up` | {warm:.1f} | {TARGET_S:g} |",
-             f"| first `pounding reproduce` (empty cache) | {first:.1f} | {TARGET_REPRODUCE_RATIO:g} x the second |",
+             f"| first `pounding reproduce` (empty cache) | {first:.1f} "
+             f"| {TARGET_REPRODUCE_RATIO:g} x the second |",
              f"| second `pounding reproduce` (cache filled) | {second:.1f} | |", "",
              f"Targets: first use of the paper's systems {paper:.1f} s (target {TARGET_S:g} s): "
              f"{verdict(paper <= TARGET_S)}; warm-up {warm:.1f} s: {verdict(warm <= TARGET_S)}; the first "

@@ -28,7 +28,7 @@ from pathlib import Path
 import numpy as np
 
 import pounding as pd_
-from pounding.protocols.study_points import compute_point
+from pounding.studies.points import compute_point
 from run import machine, write_section
 
 BEGIN, END = "<!-- study.py: begin -->", "<!-- study.py: end -->"

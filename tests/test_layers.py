@@ -22,6 +22,7 @@ LAYERS = [
     ("engine",),
     ("_runner",),
     ("protocols",),
+    ("studies",),
     ("analysis",),
     ("lab",),
     ("identification",),

@@ -15,7 +15,7 @@ import pytest
 import xarray as xr
 
 import pounding as pd_
-from pounding.protocols.study_store import chunk_shape
+from pounding.studies.store import chunk_shape
 
 QUANTITIES = ("acc_max_g", "disp_max_m", "impacts", "impact_force_max_n", "impact_speed_max_m_s", "status")
 
@@ -479,7 +479,7 @@ def test_a_disk_that_fills_ends_the_study_with_a_named_error_and_a_resume_finish
     monkeypatch.setattr(zarr.Array, "__setitem__", original)
     resumed = pd_.study(spec, store, workers=1, progress=False).load()  # the space is back: it finishes
     assert bool(resumed["done"].all()) and int(resumed["session"].max()) == 2
-    from pounding.protocols.study_points import QUANTITIES
+    from pounding.studies.points import QUANTITIES
 
     for q in QUANTITIES["simulate"]:  # identical to an uninterrupted study
         np.testing.assert_array_equal(resumed[q].values, whole[q].values)

@@ -16,8 +16,9 @@ from .identification import (ContactLawFit, Identification, ModelFamily, Targets
 from .metrics import HysteresisLoop, impact_table
 from .model import (BoucWen, Bumpers, ElasticPlastic, Hertzdamp, HuntCrossley, Isolator, Jankowski,
                     KelvinVoigt, MultilinearBumper, Oscillator)
-from .protocols import (CampaignResult, PoundingSpectrum, StudyResult, StudySpec, SweepResult, campaign,
-                        open_study, paper_frequencies_hz, pounding_spectrum, study, sweep)
+from .protocols import (CampaignResult, PoundingSpectrum, SweepResult, campaign, paper_frequencies_hz,
+                        pounding_spectrum, sweep)
+from .studies import StudyResult, StudySpec, open_study, study
 
 __version__ = "0.1.0"
 

@@ -24,9 +24,9 @@ def study(
     restart: bool = typer.Option(False, "--restart", help="Overwrite the store instead of resuming it."),
 ) -> None:
     """Run a parameter study; a rerun computes only the points not done yet."""
-    from ..protocols.study import study as run_study
-    from ..protocols.study_result import StudyResult
-    from ..protocols.study_spec import StudySpec
+    from ..studies import study as run_study
+    from ..studies import StudyResult
+    from ..studies import StudySpec
 
     parsed = StudySpec.from_toml(spec)  # (bad specs fail here, before any work)
     console.print(f"{parsed.size} points "

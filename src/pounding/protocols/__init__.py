@@ -1,15 +1,12 @@
-"""Protocols: the virtual shaking table (stepped-sine sweeps), the paper's campaign, pounding spectra,
-parameter studies."""
+"""Protocols: the virtual shaking table (stepped-sine sweeps), the paper's campaign, pounding spectra
+(parameter studies are ``pounding.studies``)."""
 
 from .campaign import CampaignResult, campaign
 from .pounding_spectrum import pounding_spectrum
 from .pounding_spectrum_result import PoundingSpectrum
-from .study import study
-from .study_result import StudyResult, open_study
-from .study_spec import StudySpec
 from .sweep import SweepPlan, paper_frequencies_hz, sweep
 from .sweep_result import SweepResult
 
 __all__ = ["CampaignResult", "PoundingSpectrum", "SweepPlan", "SweepResult", "campaign",
            "paper_frequencies_hz",
-           "pounding_spectrum", "study", "StudyResult", "StudySpec", "open_study", "sweep"]
+           "pounding_spectrum", "sweep"]

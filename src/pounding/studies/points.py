@@ -12,10 +12,10 @@ import numpy as np
 from .._errors import InputError, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
-from .campaign import TABLE2_QUANTITIES, TABLE3_QUANTITIES, TABLE4_QUANTITIES, sweep_quantities
-from .pounding_spectrum import _peaks
-from .pounding_spectrum_result import QUANTITIES as RUN_QUANTITIES
-from .pounding_spectrum_result import UNITS as RUN_UNITS
+from ..protocols.campaign import TABLE2_QUANTITIES, TABLE3_QUANTITIES, TABLE4_QUANTITIES, sweep_quantities
+from ..protocols.pounding_spectrum import _peaks
+from ..protocols.pounding_spectrum_result import QUANTITIES as RUN_QUANTITIES
+from ..protocols.pounding_spectrum_result import UNITS as RUN_UNITS
 
 SWEEP_QUANTITIES = TABLE2_QUANTITIES + TABLE3_QUANTITIES + TABLE4_QUANTITIES + ("steps_done", "status")
 QUANTITIES = {"sweep": SWEEP_QUANTITIES, "simulate": RUN_QUANTITIES, "record": RUN_QUANTITIES}
@@ -70,7 +70,7 @@ def compute_point(system: Oscillator, options: dict[str, Any], max_steps: int | 
     """The quantities (``QUANTITIES[kind]``, in order) of one point: float64, NaN where a quantity
     does not exist.  A run refused over its budget is kept as ``status`` BUDGET, not raised."""
     from ..engine.simulate import DEFAULT_MAX_STEPS, simulate
-    from .sweep import sweep
+    from ..protocols.sweep import sweep
 
     kind = options["kind"]
     steps = DEFAULT_MAX_STEPS if max_steps is None else max_steps

@@ -424,10 +424,10 @@ def check_options(system: Oscillator, options: dict[str, Any]) -> None:
     """The compute options of one point are valid: its excitation builds (a record reads) and
     its duration is positive; a sweep's plan is made (every sweep option checked)."""
     from .._checks import positive
-    from .study_points import SWEEP_ARGS, excitation_of
+    from .points import SWEEP_ARGS, excitation_of
 
     if options["kind"] == "sweep":
-        from .sweep import make_plan
+        from ..protocols.sweep import make_plan
 
         kwargs = {k: options[k] for k in SWEEP_ARGS if options.get(k) is not None}
         freqs = options.get("freqs_hz")

@@ -3,7 +3,7 @@ processes or Dask.
 
 :func:`study` writes the store's template, then hands out its chunks (one batch each) to the
 scheduler; each task computes the chunk's points that are not done and writes them itself
-(:func:`.study_store.run_chunk`), so the results never travel back through the caller.  A rerun
+(:func:`.store.run_chunk`), so the results never travel back through the caller.  A rerun
 computes only what is not done.
 """
 
@@ -21,11 +21,11 @@ from .._errors import InputError, Interrupted, Problem, StoreError
 from .._runner import GUARD, Context, run_tasks, scheduler_kind
 from .._runner._dask import dask_client
 from .._runner.progress import Progress
-from .study_spec import StudySpec
-from .study_store import (OTHER, STUDY, check_store, chunk_grid, chunk_shape, create, open_checked,
+from .spec import StudySpec
+from .store import (OTHER, STUDY, check_store, chunk_grid, chunk_shape, create, open_checked,
                           refuse_other, region, run_chunk, store_state)
 
-_PRELOAD = ("pounding.protocols._study_worker",)  # (what a chunk needs, loaded once per worker server)
+_PRELOAD = ("pounding.studies._worker",)  # (what a chunk needs, loaded once per worker server)
 BATCHES_PER_WORKER = 8  # chunks a worker gets over a study, at least: balance against per-batch cost
 MAX_BATCH = 256         # points in a chunk, at most
 

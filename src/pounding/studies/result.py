@@ -7,8 +7,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from .study_spec import StudySpec
-from .study_store import SPEC_ATTR, check_store, open_checked
+from .spec import StudySpec
+from .store import SPEC_ATTR, check_store, open_checked
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd

@@ -4,4 +4,4 @@ store's code and Zarr, is loaded once in the server."""
 
 import zarr  # noqa: F401
 
-from . import study_points, study_store  # noqa: F401
+from . import points, store  # noqa: F401

@@ -22,8 +22,8 @@ from typing import Any
 import numpy as np
 
 from .._errors import InputError, Problem
-from .study_points import QUANTITIES, UNITS
-from .study_spec import StudySpec
+from .points import QUANTITIES, UNITS
+from .spec import StudySpec
 
 SPEC_ATTR = "pounding_study"
 SHA_ATTR = "pounding_study_sha256"
@@ -230,8 +230,8 @@ def run_chunk(spec_json: str, store: str, index: tuple[int, ...], session: int, 
     finished and return.  Returns the number of points computed."""
     import zarr
 
-    from .study_points import compute_point
-    from .study_spec import point_of
+    from .points import compute_point
+    from .spec import point_of
 
     tables = _spec_tables(spec_json)
     kind = tables["compute"]["kind"]
