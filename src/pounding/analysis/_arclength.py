@@ -85,14 +85,18 @@ class Family:
             else float(get_value(self.table, self.parameter))
 
     def system(self, p: float) -> tuple[Oscillator, Harmonic]:
-        """The system and forcing at parameter value ``p`` (raises InputError where there is none)."""
-        if self.parameter == "freq_hz":
-            return self.osc, Harmonic(self.a_g, p, phase=self.phase)
-        if self.parameter == "a_g":
-            return self.osc, Harmonic(p, self.freq_hz, phase=self.phase)
-        table = copy.deepcopy(self.table)
-        set_value(table, self.parameter, float(p))
-        return Oscillator.from_dict(table), Harmonic(self.a_g, self.freq_hz, phase=self.phase)
+        """The system and forcing at parameter value ``p`` (``_Failed`` where there is none: a value
+        the continuation stepped to, not one the caller gave)."""
+        try:
+            if self.parameter == "freq_hz":
+                return self.osc, Harmonic(self.a_g, p, phase=self.phase)
+            if self.parameter == "a_g":
+                return self.osc, Harmonic(p, self.freq_hz, phase=self.phase)
+            table = copy.deepcopy(self.table)
+            set_value(table, self.parameter, float(p))
+            return Oscillator.from_dict(table), Harmonic(self.a_g, self.freq_hz, phase=self.phase)
+        except InputError as exc:  # (the model's checks' words, as the solver's failure)
+            raise _Failed(f"no system at {self.parameter} = {p:g} ({exc})") from None
 
     def set_length(self, length_m: float) -> None:
         """A new length scale (the orbits grew): lengths and velocities are measured against it."""
@@ -126,10 +130,7 @@ class Family:
     # ------------------------------------------------------------------ pieces
     def image(self, vec: np.ndarray, p: float) -> tuple[np.ndarray, Run]:
         """``(x of P(vec; p), the run)``; raises _Failed where the engine cannot run it."""
-        try:
-            end, run = self.shooter(p)._image(vec)
-        except InputError as exc:  # (a parameter value the system cannot have, a state it cannot be in)
-            raise _Failed(str(exc)) from None
+        end, run = self.shooter(p)._image(vec)
         return self.coords(end), run
 
     def residual(self, vec: np.ndarray, p: float) -> tuple[np.ndarray, Run, tuple, np.ndarray, np.ndarray]:
@@ -237,7 +238,7 @@ class Family:
             dx = emb @ (step[:-1] * self.scales[free])
             try:
                 vec = self.shooter(p_new)._moved(vec, dx)
-            except InputError:
+            except _Failed:
                 return None
             p = p_new
         return None

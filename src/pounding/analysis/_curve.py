@@ -24,7 +24,6 @@ from typing import Optional
 
 import numpy as np
 
-from .._errors import InputError
 from ..engine import Run
 from ._arclength import Family, at_section, fold_test
 from .periodic import _Failed
@@ -167,7 +166,7 @@ class CurveFollower:
         for it in range(max_iter):
             try:
                 e = self.evaluate(vec, f, a)
-            except (_Failed, InputError, np.linalg.LinAlgError):
+            except (_Failed, np.linalg.LinAlgError):
                 return None
             arc = float(tau @ (self.scaled(e) - target))
             err = max(float(np.max(np.abs(e.r), initial=0.0)) / self.tol, abs(e.g) / self.gtol,
@@ -178,7 +177,7 @@ class CurveFollower:
             if err <= 1.0:  # (the tangent there needs a Jacobian of this point or the step before it)
                 try:
                     e.ext = ext if fresh and key == here and it <= 1 else self.extended(e)
-                except (_Failed, InputError, np.linalg.LinAlgError):
+                except (_Failed, np.linalg.LinAlgError):
                     return None
                 e.iterations = it
                 return e
@@ -188,7 +187,7 @@ class CurveFollower:
             if ext is None or key != here or err > 0.5 * last:
                 try:
                     ext, key, fresh = self.extended(e), here, True
-                except (_Failed, InputError, np.linalg.LinAlgError):
+                except (_Failed, np.linalg.LinAlgError):
                     return None
             last = err
             try:
@@ -202,7 +201,7 @@ class CurveFollower:
                 return None
             try:
                 vec = self.fam.shooter(f)._moved(vec, e.emb @ (step[:r] * self.fam.scales[e.free]))
-            except InputError:
+            except _Failed:
                 return None
             f, a = f_new, a_new
         return None
@@ -217,7 +216,7 @@ class CurveFollower:
             return None
         try:
             vec = fam.shooter(p.f)._moved(p.vec, ds * tau[:-2] * fam.scales)
-        except InputError:
+        except _Failed:
             return None
         q = self.correct(vec, f, a, target, tau, chord=p)
         if q is not None:
@@ -247,7 +246,7 @@ class CurveFollower:
         fam = self.fam
         try:
             vec = fam.shooter(p.f)._moved(p.vec, (guess[:-2] - sp[:-2]) * fam.scales)
-        except InputError:
+        except _Failed:
             return None
         target = guess.copy()
         target[i] = e

@@ -106,7 +106,7 @@ class Follower:
         target_p = a.p + ds * fam.p_scale * a.tau_q
         try:
             vec = fam.shooter(target_p)._moved(a.vec, a.emb @ dx[a.free])
-        except (InputError, _Failed):
+        except _Failed:
             return None
         b = fam.correct(vec, target_p, target_x, target_p, a.tau_x, a.tau_q, self.tol, chord=a if chord
                         else None)

@@ -48,6 +48,12 @@ def unsupported(oscillator: Oscillator) -> str | None:
     return None
 
 
+class NoExactMonodromy(Exception):
+    """The orbit's monodromy cannot be composed exactly here (an event met tangentially, or a
+    propagation that does not end where the engine did): the solver falls back to finite
+    differences and says so in its message.  Anything else raised here is a bug, not caught."""
+
+
 @dataclass(frozen=True)
 class Hybrid:
     """The numbers of the modes' matrices (SI units)."""
@@ -259,7 +265,7 @@ def monodromy(h: Hybrid, vec0: np.ndarray, events: np.ndarray, t_end: float, ome
         grad = guard_gradient(h, action, index, mode, x)
         rate = float(grad @ f_before)
         if rate == 0.0 and np.any(f_after != f_before):  # (tangent: no saltation; the caller falls back)
-            raise ValueError(f"event {action} at t = {t_ev} is tangent (a grazing)")
+            raise NoExactMonodromy(f"event {action} at t = {t_ev} is tangent (a grazing)")
         if rate != 0.0:
             jac = (np.eye(n) + np.outer(f_after - f_before, grad) / rate) @ jac
         xa[:n] = after_event(h, action, index, x)

@@ -31,7 +31,7 @@ from ..engine._layout import DEF_L, DEF_R, REGION, STATE_BASE, ZETA
 from ..engine._layout import D as I_D
 from ..engine._layout import T as I_T
 from ..engine._layout import V as I_V
-from ..engine.simulate import check_oscillator, check_state, kernel_system, short_run
+from ..engine.simulate import NotAState, check_oscillator, check_state, kernel_system, short_run
 from ..excitation import Harmonic
 from ..model import Oscillator
 from . import _hybrid as hy
@@ -316,7 +316,10 @@ class _Shooter:
         return s
 
     def _image(self, vec: np.ndarray) -> tuple[np.ndarray, Run]:
-        run = short_run(self.osc, self.exc, self.period, vec, self.system)
+        try:
+            run = short_run(self.osc, self.exc, self.period, vec, self.system)
+        except NotAState as exc:
+            raise _Failed(f"a trial state left the system's states ({exc})") from None
         if not run.success:
             raise _Failed(f"the engine stopped over a period: {run.message}")
         return np.array(run.vector), run
@@ -337,18 +340,16 @@ class _Shooter:
                                            phase)
                 gap = np.abs(x_end - self.coords(run.final_state.vector)).max() / self.scale_d
                 if not (np.isfinite(full).all() and gap < 1e-6):
-                    raise ValueError(f"the modes' propagation ends {gap:.1e} (relative) from the engine")
+                    raise hy.NoExactMonodromy(f"the modes' propagation ends {gap:.1e} (relative) from the "
+                                              "engine")
                 return full[free_idx] @ emb
-            except (ValueError, IndexError) as exc:  # (never seen in the tests: a safeguard)
+            except hy.NoExactMonodromy as exc:  # (said in the result's message)
                 self.exact = False
                 self.fell_back = f"; the exact monodromy gave way to finite differences: {exc}"
         cols = []
         for j, step in enumerate(1e-6 * self._scales(free_idx)):
             def image(d: float) -> np.ndarray:
-                try:
-                    return self.coords(self._image(self._moved(vec, emb[:, j] * d))[0])[free_idx]
-                except InputError as exc:
-                    raise _Failed(f"a finite difference left the system's states ({exc})") from None
+                return self.coords(self._image(self._moved(vec, emb[:, j] * d))[0])[free_idx]
 
             one_sided = free_idx[j] in (hy.I_DL, hy.I_DR) or (
                 self.z_max > 0.0 and free_idx[j] == self.h.size and abs(vec[ZETA]) + step > self.z_max)
@@ -416,7 +417,7 @@ class _Shooter:
                 trial = self._moved(vec, emb @ (lam * dz))
                 try:
                     norm_t, r_t, run_t = self.residual(trial)
-                except (InputError, _Failed):  # (a state the system cannot be in, or a run that failed)
+                except _Failed:  # (a state the system cannot be in, or a run that failed)
                     norm_t = math.inf
                 if norm_t < norm:
                     break
@@ -441,4 +442,6 @@ class _Shooter:
 
 
 class _Failed(Exception):
-    """The engine could not run a period from a trial state."""
+    """A solver's own failure at one point (not the caller's input): the engine could not run a
+    period from a trial state, the state is none of the system's, or a parameter value the
+    continuation stepped to makes no system."""

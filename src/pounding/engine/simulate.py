@@ -300,6 +300,11 @@ class ShortRun:
         return State._from_kernel(self.vector)
 
 
+class NotAState(Exception):
+    """A state vector a solver made (a Newton step, a finite difference) is none of the system's
+    states: the solver's own failure, not the caller's input (``InputError`` is for that)."""
+
+
 def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, state: State | np.ndarray,
               system: Optional[tuple] = None) -> ShortRun:
     """A run of a period or so, events only, for the periodic-orbit solvers' many runs: the state
@@ -308,9 +313,10 @@ def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, sta
     (status ``BUDGET`` beyond).
 
     ``state`` may be a raw state vector (the solvers' own: only what ties it to this system is
-    checked); ``system`` the oscillator's :func:`kernel_system`, when the caller keeps it for
-    many runs.  A continuation makes some 15,000 runs of about 12 us in the kernel each: the
-    public ``simulate``'s checks and ``Run`` took 90 us a run around them.
+    checked, and one that is none of its states raises :class:`NotAState`); ``system`` the
+    oscillator's :func:`kernel_system`, when the caller keeps it for many runs.  A continuation
+    makes some 15,000 runs of about 12 us in the kernel each: the public ``simulate``'s checks and
+    ``Run`` took 90 us a run around them.
     """
     if isinstance(state, np.ndarray):
         # the moves of a solver change the continuous numbers only: those are checked here, and a
@@ -319,8 +325,11 @@ def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, sta
         fits = (state.size == size and all(map(math.isfinite, state.tolist()))
                 and abs(state[D]) <= MAX_DISPLACEMENT_M and abs(state[V]) <= MAX_VELOCITY_M_S
                 and state[DEF_L] >= 0.0 and state[DEF_R] >= 0.0)
-        state = State._from_kernel(state) if fits else State(state)
-        _check_state_fits(state, oscillator)
+        try:
+            state = State._from_kernel(state) if fits else State(state)
+            _check_state_fits(state, oscillator)
+        except InputError as exc:  # (the public checks' words, as the solver's failure)
+            raise NotAState(str(exc)) from None
     else:
         state = check_state(state, oscillator)
     if system is None:
