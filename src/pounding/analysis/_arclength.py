@@ -84,17 +84,19 @@ class Family:
         return {"freq_hz": self.freq_hz, "a_g": self.a_g}.get(self.parameter, np.nan) if self.table is None \
             else float(get_value(self.table, self.parameter))
 
-    def system(self, p: float) -> tuple[Oscillator, Harmonic]:
-        """The system and forcing at parameter value ``p`` (``_Failed`` where there is none: a value
+    def system(self, p: float, a_g: Optional[float] = None) -> tuple[Oscillator, Harmonic]:
+        """The system and forcing at parameter value ``p`` and table acceleration ``a_g`` (g; default
+        the family's: a two-parameter curve passes its own), ``_Failed`` where there is none (a value
         the continuation stepped to, not one the caller gave)."""
+        a_g = self.a_g if a_g is None else a_g
         try:
             if self.parameter == "freq_hz":
-                return self.osc, Harmonic(self.a_g, p, phase=self.phase)
+                return self.osc, Harmonic(a_g, p, phase=self.phase)
             if self.parameter == "a_g":
                 return self.osc, Harmonic(p, self.freq_hz, phase=self.phase)
             table = copy.deepcopy(self.table)
             set_value(table, self.parameter, float(p))
-            return Oscillator.from_dict(table), Harmonic(self.a_g, self.freq_hz, phase=self.phase)
+            return Oscillator.from_dict(table), Harmonic(a_g, self.freq_hz, phase=self.phase)
         except InputError as exc:  # (the model's checks' words, as the solver's failure)
             raise _Failed(f"no system at {self.parameter} = {p:g} ({exc})") from None
 
@@ -112,11 +114,11 @@ class Family:
     def omega(self, p: float) -> float:
         return self.shooter(p).exc.omega_rad_s
 
-    def shooter(self, p: float) -> _Shooter:
-        key = (p, self.a_g)  # (a two-parameter curve changes a_g too)
+    def shooter(self, p: float, a_g: Optional[float] = None) -> _Shooter:
+        key = (p, self.a_g if a_g is None else a_g)  # (a two-parameter curve passes its a_g)
         sh = self._cache.get(key)
         if sh is None:
-            osc, exc = self.system(p)
+            osc, exc = self.system(p, a_g)
             sh = _Shooter(osc, exc, self.k / exc.freq_hz, self.exact, getattr(self, "_ref", None))
             if len(self._cache) > 32:
                 self._cache.clear()
@@ -128,15 +130,16 @@ class Family:
         return self._ref.coords(vec)
 
     # ------------------------------------------------------------------ pieces
-    def image(self, vec: np.ndarray, p: float) -> tuple[np.ndarray, Run]:
+    def image(self, vec: np.ndarray, p: float, a_g: Optional[float] = None) -> tuple[np.ndarray, Run]:
         """``(x of P(vec; p), the run)``; raises _Failed where the engine cannot run it."""
-        end, run = self.shooter(p)._image(vec)
+        end, run = self.shooter(p, a_g)._image(vec)
         return self.coords(end), run
 
-    def residual(self, vec: np.ndarray, p: float) -> tuple[np.ndarray, Run, tuple, np.ndarray, np.ndarray]:
+    def residual(self, vec: np.ndarray, p: float,
+                 a_g: Optional[float] = None) -> tuple[np.ndarray, Run, tuple, np.ndarray, np.ndarray]:
         """``(scaled residual in the free coordinates, run, frozen springs, free, emb)``."""
-        x_end, run = self.image(vec, p)
-        sh = self.shooter(p)
+        x_end, run = self.image(vec, p, a_g)
+        sh = self.shooter(p, a_g)
         frozen = sh.frozen(vec, run)
         free, emb = sh._layout(vec, frozen)
         r = (x_end - self.coords(vec))[free] / self.scales[free]
@@ -265,6 +268,17 @@ def at_section(vec: np.ndarray) -> np.ndarray:
             out[acc + A_TSTART] -= t
     out[I_T] = 0.0
     return out
+
+
+def passes_by(anchor: np.ndarray, u: np.ndarray, v: np.ndarray) -> tuple[float, float]:
+    """How near the step from ``u`` to ``v`` passes by ``anchor`` (points of an orbit's signature,
+    what does not depend on the section): ``(distance, where along the step, 0 to 1)``.  A follower
+    has closed on itself when the distance is below its tolerance, a fraction of the step: the
+    branch follower's ``CLOSE_TOL`` (its signature is the parameter and the extrema, its steps
+    fine), the curve follower's (its signature adds the second parameter, its steps coarser)."""
+    seg = v - u
+    t = float(np.clip((anchor - u) @ seg / max(seg @ seg, 1e-300), 0.0, 1.0))
+    return float(np.linalg.norm(u + t * seg - anchor)), t
 
 
 def system_at(osc: Oscillator, parameter: str, value: float) -> Oscillator:

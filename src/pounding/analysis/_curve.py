@@ -25,7 +25,7 @@ from typing import Optional
 import numpy as np
 
 from ..engine import Run
-from ._arclength import Family, at_section, fold_test
+from ._arclength import Family, at_section, fold_test, passes_by
 from .periodic import _Failed
 
 
@@ -54,6 +54,7 @@ class CurveFollower:
     """Follows a fold or grazing curve from one of its points, in both directions."""
 
     GROW, SHRINK, MIN_STEP, MIN_COS, MARGIN = 1.5, 0.5, 1e-6, 0.9, 0.02
+    CLOSE_TOL = 0.05  # a step passing by the start this near (of the step) closes the curve (passes_by)
 
     def __init__(self, fam: Family, kind: str, side: str, f_box: tuple[float, float],
                  a_box: tuple[float, float], tol: float, max_step: float) -> None:
@@ -79,9 +80,8 @@ class CurveFollower:
     def evaluate(self, vec: np.ndarray, f: float, a: float) -> CurvePoint:
         """The equations at ``(vec, f, a)``; raises _Failed where the engine cannot run them."""
         fam = self.fam
-        fam.a_g = a
-        r, run, frozen, free, emb = fam.residual(vec, f)
-        jac = fam.shooter(f).jacobian(vec, run, frozen)
+        r, run, frozen, free, emb = fam.residual(vec, f, a)
+        jac = fam.shooter(f, a).jacobian(vec, run, frozen)
         if not np.isfinite(jac).all():
             raise _Failed("the monodromy is not finite")
         mult = np.linalg.eigvals(jac) if jac.size else np.zeros(0, complex)
@@ -90,11 +90,10 @@ class CurveFollower:
 
     def _g_at(self, vec: np.ndarray, f: float, a: float) -> float:
         fam = self.fam
-        fam.a_g = a
-        x_end, run = fam.image(vec, f)
+        x_end, run = fam.image(vec, f, a)
         if self.kind != "fold":
             return self.test(run, np.zeros((0, 0)))
-        sh = fam.shooter(f)
+        sh = fam.shooter(f, a)
         jac = sh.jacobian(vec, run, sh.frozen(vec, run))
         if not np.isfinite(jac).all():
             raise _Failed("the monodromy is not finite")
@@ -109,13 +108,11 @@ class CurveFollower:
         out[:r, :r] = (e.jac - np.eye(r)) * (s_w[None, :] / s_w[:, None])
         h = 1e-6
         for col, (df, da) in ((r, (h * self.fs, 0.0)), (r + 1, (0.0, h * self.as_))):
-            fam.a_g = e.a + da
-            plus = fam.image(e.vec, e.f + df)[0]
-            fam.a_g = e.a - da
-            minus = fam.image(e.vec, e.f - df)[0]
+            plus = fam.image(e.vec, e.f + df, e.a + da)[0]
+            minus = fam.image(e.vec, e.f - df, e.a - da)[0]
             out[:r, col] = (plus - minus)[e.free] / (2.0 * h) / s_w
         hg = 1e-5  # (g holds a monodromy: a wider difference than the map's)
-        sh = fam.shooter(e.f)
+        sh = fam.shooter(e.f, e.a)
         for j in range(r):
             dx = e.emb[:, j] * (hg * s_w[j])
             out[r, j] = (self._g_at(sh._moved(e.vec, dx), e.f, e.a)
@@ -124,7 +121,6 @@ class CurveFollower:
                                                                              e.a)) / (2 * hg)
         out[r, r + 1] = (self._g_at(e.vec, e.f, e.a + hg * self.as_)
                          - self._g_at(e.vec, e.f, e.a - hg * self.as_)) / (2.0 * hg)
-        fam.a_g = e.a
         return out
 
     def _row(self, e: CurvePoint, tau: np.ndarray) -> np.ndarray:
@@ -267,7 +263,6 @@ class CurveFollower:
         come: (how it ended, whether the curve closed on ``start``).  The family is put back to the
         start's section and a_G first (a resection in the other direction moved it)."""
         self.fam.set_phase(start.phase)
-        self.fam.a_g = start.a
         p = start
         p_tau = sign * start.tau
         ds = self.max_step / 4.0
@@ -295,7 +290,7 @@ class CurveFollower:
             pts.append(q)
             if self._closed(start, p, q, ds):
                 return "closed", True
-            self._resection(q, p)
+            q = pts[-1] = self._resection(q, p)
             p, p_tau = q, q.tau
             if q.iterations <= 3:
                 ds = min(ds * self.GROW, self.max_step)
@@ -314,16 +309,13 @@ class CurveFollower:
         if not self.far:
             self.far = bool(np.linalg.norm(v - anchor) > 2.0 * self.max_step)
             return False
-        seg = v - u
-        t = float(np.clip((anchor - u) @ seg / max(seg @ seg, 1e-300), 0.0, 1.0))
-        return float(np.linalg.norm(u + t * seg - anchor)) < 0.05 * max(ds, self.MIN_STEP)
+        return passes_by(anchor, u, v)[0] < self.CLOSE_TOL * max(ds, self.MIN_STEP)
 
     def _at_phase(self, pt: CurvePoint, phase: float) -> Optional[CurvePoint]:
         """``pt``'s orbit with its section at forcing angle ``phase`` (the family's section is set
         there), solved with its frequency held."""
         fam = self.fam
-        fam.a_g = pt.a
-        sh = fam.shooter(pt.f)
+        sh = fam.shooter(pt.f, pt.a)
         dt = ((phase - pt.phase) % (2.0 * math.pi)) / sh.exc.omega_rad_s
         try:
             end = type(sh)(sh.osc, sh.exc, dt, False, sh)._image(pt.vec)[0] if dt > 0 else pt.vec
@@ -337,16 +329,16 @@ class CurveFollower:
         new = self.correct(moved, pt.f, pt.a, target, normal, max_iter=20)
         return new if new is not None and abs(new.a - pt.a) <= 1e-6 * self.as_ else None
 
-    def _resection(self, q: CurvePoint, p: CurvePoint) -> None:
+    def _resection(self, q: CurvePoint, p: CurvePoint) -> CurvePoint:
         """Move the section away from an event within ``MARGIN`` periods of it (as the branch
         follower does): ``q`` solved again there, its tangent oriented by the secant from ``p``
-        moved there too (near a cusp the tangent's (f, a_G) part nearly vanishes: it cannot)."""
+        moved there too (near a cusp the tangent's (f, a_G) part nearly vanishes: it cannot).
+        Returns the point to go on from: ``q`` solved at the new section, or ``q`` itself."""
         fam = self.fam
-        fam.a_g = q.a
-        period = fam.shooter(q.f).period
+        period = fam.shooter(q.f, q.a).period
         times = np.sort(np.mod(q.run.event_table[:, 0], period))
         if times.size == 0 or min(times.min(), period - times.max()) > self.MARGIN * period:
-            return
+            return q
         cyc = np.concatenate((times, [times[0] + period]))
         i = int(np.argmax(np.diff(cyc)))
         dt = 0.5 * (cyc[i] + cyc[i + 1]) % period
@@ -357,7 +349,7 @@ class CurveFollower:
         moved_q = self._at_phase(q, new_phase) if moved_p is not None else None
         if moved_q is None:
             fam.set_phase(old_phase)
-            return
+            return q
         secant = self.scaled(moved_q) - self.scaled(moved_p)
         moved_q.tau = self.tangent(moved_q, secant / max(float(np.linalg.norm(secant)), 1e-300))
-        q.__dict__.update(moved_q.__dict__)
+        return moved_q

@@ -15,7 +15,7 @@ from .._errors import InputError, Problem, Status
 from ..engine import State
 from ..engine.simulate import short_run
 from ..model import Oscillator
-from ._arclength import Family, Point, at_section, system_at
+from ._arclength import Family, Point, at_section, passes_by, system_at
 from .branch import COLUMNS, Bifurcation, Branch
 from .periodic import _Failed
 
@@ -24,6 +24,7 @@ class Follower:
     """Steps along the branch, watching the detectors between consecutive points."""
 
     GROW, SHRINK, MIN_STEP, MIN_COS = 1.5, 0.5, 1e-7, 0.95
+    CLOSE_TOL = 1e-3  # a step passing by the branch's second point this near (of the step) closes it
     CREEP, CREEP_POINTS = 1e-3, 100  # steps below CREEP * max_step this many times running: stalled
 
     def __init__(self, fam: Family, p0: float, p1: float, tol: float, max_step: float, max_points: int,
@@ -221,11 +222,8 @@ class Follower:
             return np.array([q.p / fam.p_scale, q.run.displacement_max / fam.length_m,
                              q.run.displacement_min / fam.length_m])
 
-        anchor = sig(self.points[1])
-        u, v = sig(a), sig(b)
-        seg = v - u
-        t = float(np.clip((anchor - u) @ seg / max(seg @ seg, 1e-300), 0.0, 1.0))
-        return float(np.linalg.norm(u + t * seg - anchor)) < 1e-3 * max(ds, 1e-6) and 0.0 < t <= 1.0
+        distance, t = passes_by(sig(self.points[1]), sig(a), sig(b))
+        return distance < self.CLOSE_TOL * max(ds, 1e-6) and 0.0 < t <= 1.0
 
     def _rescale(self) -> None:
         """Grow the length scale with the orbits (a resonance peak 30 times the first orbit
@@ -342,7 +340,7 @@ class Follower:
             return True
         self.switched.append(where)
         toward = math.copysign(1.0, self.p1 - self.p0)
-        start = Point(**{**pt.__dict__})
+        start = replace(pt)
         sign = 1.0 if other[-1] * toward >= 0.0 else -1.0
         start.tau_x, start.tau_q = sign * other[:-1], sign * other[-1]
         for grow in (1.0, 4.0, 16.0):
