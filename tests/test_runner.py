@@ -118,3 +118,28 @@ def test_an_identification_is_the_same_on_every_scheduler(scheduler):
     other = pd_.identify(targets, family, {"isolator_damping": (200.0, 3000.0)}, scheduler=scheduler, **kw)
     same = ("parameters", "cost", "n_evaluations")
     assert [getattr(other, a) for a in same] == [getattr(ref, a) for a in same]
+
+
+def test_a_tasks_error_is_raised_as_it_was_naming_the_task():
+    out = run_tasks(fails_on_three, list(range(8)), scheduler="threads", workers=2, on_error="finish")
+    with pytest.raises(ValueError, match="three") as info:
+        out.raise_first_error(lambda i: f"task number {i}")
+    assert info.value.__notes__ == ["(in task number 3)"]
+    # through a caller: a record the engine refuses mid-spectrum names the record
+    quake = pd_.records.el_centro().scaled(pga_g=0.3)
+    bad = pd_.Record(quake.t[:50], quake.accel[:50], name="short one")
+    with pytest.MonkeyPatch.context() as mp:
+        import importlib
+
+        ps = importlib.import_module("pounding.protocols.pounding_spectrum")
+
+        def refuse(task, ctx):
+            if task[0].name == "short one":
+                raise RuntimeError("refused")
+            return original(task, ctx)
+
+        original = ps._one_record
+        mp.setattr(ps, "_one_record", refuse)
+        with pytest.raises(RuntimeError, match="refused") as info:
+            pd_.pounding_spectrum([quake, bad], [1.0], gaps_m=[0.05], scheduler="serial")
+    assert info.value.__notes__ == ["(in record 1 (short one))"]

@@ -48,10 +48,19 @@ class TaskRun:
         """Every task ran to its end (a Ctrl-C that came after the last one changes nothing)."""
         return not self.errors and not self.partial and all(v is not None for v in self.values)
 
-    def raise_first_error(self) -> None:
-        """Raise the error of the first task that failed, if any."""
-        if self.errors:
-            raise self.errors[min(self.errors)]
+    def raise_first_error(self, name: Callable[[int], str] | None = None) -> None:
+        """Raise the error of the first task that failed, if any, as it was (its type, so that an
+        ``InputError`` stays one), with a note naming the task (``name(i)``, e.g. "the YBs sweep at
+        a_G 0.05 g, up") and how many others failed; a traceback shows the note."""
+        if not self.errors:
+            return
+        first = min(self.errors)
+        exc = self.errors[first]
+        if name is not None:
+            more = len(self.errors) - 1
+            exc.add_note(f"(in {name(first)}" + (f"; {more} other task{'s' if more > 1 else ''} failed too)"
+                                               if more else ")"))
+        raise exc
 
 
 def remote(fn: Callable[[Any, Context], Any], task: Any, budget: int) -> tuple[Any, int, bool]:

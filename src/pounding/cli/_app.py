@@ -195,7 +195,8 @@ def _first_interrupt_only() -> Iterator[None]:
 
 
 def fail(exc: Exception) -> None:
-    err_console.print(f"[bold red]error:[/] {escape(str(exc))}")
+    notes = "".join(f" {n}" for n in getattr(exc, "__notes__", ()))  # (which task of many, e.g.)
+    err_console.print(f"[bold red]error:[/] {escape(str(exc) + notes)}")
     raise typer.Exit(code=2)
 
 

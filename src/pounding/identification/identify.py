@@ -332,7 +332,7 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
             (``_func``, scipy's wrapper of the cost, is not needed: the task computes it)."""
             us = [np.array(u, dtype=float) for u in population]
             ran = run_tasks(_candidate, [(problem, u) for u in us], pool=pool, on_error="stop")
-            ran.raise_first_error()
+            ran.raise_first_error(lambda i: f"the candidate {scale.values(us[i])}")
             if not ran.complete:
                 raise KeyboardInterrupt
             return [keep(u, *value) for u, value in zip(us, ran.values)]

@@ -294,7 +294,7 @@ def campaign(
     done = run_tasks(_sweep_task, [plan for _, plan in plans], scheduler=scheduler, workers=workers,
                      progress=progress, label="campaign", total=total,
                      budget=[plan.max_steps for _, plan in plans], on_error="finish")
-    done.raise_first_error()
+    done.raise_first_error(lambda i: "the {} sweep at a_G {:g} g, {}".format(*plans[i][0]))
     sweeps = {key: sw for (key, _), sw in zip(plans, done.values) if sw is not None}
     interrupted = done.interrupted or bool(done.partial)
     ordered = {key: sweeps[key] for key, _ in plans if key in sweeps}

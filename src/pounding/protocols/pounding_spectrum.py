@@ -186,7 +186,7 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
     done = run_tasks(_one_record, [(r, periods, bumpers, zeta, mass_kg, isolator, max_steps) for r in recs],
                      scheduler=scheduler, workers=workers, progress=progress, label="pounding spectrum",
                      total=runs)
-    done.raise_first_error()
+    done.raise_first_error(lambda i: f"record {i} ({recs[i].name or 'unnamed'})")
     free = np.full((len(recs), periods.size, 6), np.nan)
     hit = np.full((len(recs), periods.size, gaps.size, 6), np.nan)
     for i, value in enumerate(done.values):

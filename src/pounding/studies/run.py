@@ -164,7 +164,7 @@ def study(
         failed = ran.errors.get(min(ran.errors)) if ran.errors else None
         if isinstance(failed, OSError) and not isinstance(failed, StoreError):  # (a write: disk full, ...)
             raise StoreError(str(store), failed, _points_kept(store), spec.size) from None
-        ran.raise_first_error()
+        ran.raise_first_error(lambda i: f"the study's chunk {tuple(int(c) for c in todo[i])}")
     finally:
         if client is not None and client is not scheduler:
             client.close()
