@@ -246,3 +246,16 @@ def test_periodicity_of_strobes_at_and_above_rounding_noise(size, ratio, steady)
     strobe[:, 1] = 0.02 + deviation
     k, _ = period(strobe, cyc, np.int64(n))
     assert k == (1 if steady else 0)
+
+
+def test_sweep_and_make_plan_take_the_same_options_with_the_same_defaults():
+    import inspect
+
+    from pounding.protocols.sweep import SWEEP_OPTIONS, make_plan
+
+    def keywords(fn, drop=()):
+        return {n: p.default for n, p in inspect.signature(fn).parameters.items()
+                if p.kind is inspect.Parameter.KEYWORD_ONLY and n not in drop}
+
+    assert keywords(pd_.sweep, ("progress",)) == keywords(make_plan)
+    assert set(SWEEP_OPTIONS) == set(keywords(make_plan)) - {"state"}

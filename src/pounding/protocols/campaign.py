@@ -20,7 +20,7 @@ from .._errors import InputError, Interrupted, Problem
 from ..model import Oscillator
 from .._runner import Context, run_tasks
 from .._runner.progress import Progress
-from .sweep import SweepPlan, make_plan, run_plan
+from .sweep import SWEEP_OPTIONS, SweepPlan, make_plan, run_plan
 from .sweep_result import SIDE_COLUMNS, STEP_COLUMNS, SweepResult
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -29,8 +29,6 @@ if TYPE_CHECKING:  # pragma: no cover
 PAPER_NBS_A_G = (0.03, 0.05, 0.1)
 PAPER_YBS_A_G = (0.03, 0.05, 0.075, 0.1)
 CONFIGURATIONS = ("NBs", "YBs")
-SWEEP_OPTIONS = ("steady", "cycles", "measure_cycles", "max_cycles", "steady_rtol", "max_period",
-                 "omega_min_rad_s", "f_ref_hz", "rtol", "max_events_per_cycle", "max_steps")
 DIRECTIONS = ("up", "down")
 _BOOL_COLUMNS = ("contact", "steady")
 _DATA_COLUMNS = tuple(c for c in STEP_COLUMNS if c not in ("freq_hz", "nu")) + tuple(

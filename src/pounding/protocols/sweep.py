@@ -6,6 +6,7 @@ and :func:`run_plan` needs nothing else, so campaigns hand plans to worker threa
 
 from __future__ import annotations
 
+import inspect
 import math
 from collections.abc import Callable
 from dataclasses import dataclass
@@ -164,6 +165,12 @@ def make_plan(
                      max_period, omega_min_rad_s, f_ref_hz, rtol, max_events_per_cycle, state, max_steps)
 
 
+# the options a sweep takes besides its system, level, frequencies, direction and starting state: one
+# list, read from make_plan's signature (campaign, identify and studies pass them on)
+SWEEP_OPTIONS = tuple(name for name, par in inspect.signature(make_plan).parameters.items()
+                      if par.kind is inspect.Parameter.KEYWORD_ONLY and name != "state")
+
+
 def sweep(
     oscillator: Oscillator,
     a_g: float,
@@ -277,10 +284,9 @@ def sweep(
     >>> fixed.cycles_run.tolist(), fixed.status.name
     ([10, 10], 'SUCCESS')
     """
-    plan = make_plan(oscillator, a_g, freqs_hz, direction, steady=steady, cycles=cycles,
-                     measure_cycles=measure_cycles, max_cycles=max_cycles, steady_rtol=steady_rtol,
-                     max_period=max_period, omega_min_rad_s=omega_min_rad_s, f_ref_hz=f_ref_hz,
-                     state=state, rtol=rtol, max_events_per_cycle=max_events_per_cycle, max_steps=max_steps)
+    given = locals()  # (make_plan takes the same options, with the same defaults: tests/test_sweep.py)
+    plan = make_plan(oscillator, a_g, freqs_hz, direction, state=state,
+                     **{k: given[k] for k in SWEEP_OPTIONS})
     ctl = new_control(plan.max_steps)
     with progress_reporter(progress, plan.freqs_hz.size,
                            f"sweep {direction}, a_G = {plan.a_g:g}") as advance:
