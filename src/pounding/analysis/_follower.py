@@ -6,7 +6,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
-from typing import Callable, Optional
+from typing import Optional
 
 import numpy as np
 import pandas as pd
@@ -18,6 +18,7 @@ from ..model import Oscillator
 from ._arclength import Family, Point, at_section, passes_by, system_at
 from .branch import COLUMNS, Bifurcation, Branch
 from .periodic import _Failed
+from ._detect import branch_point, detect, locate, other_direction
 
 
 class Follower:
@@ -67,7 +68,7 @@ class Follower:
         # the tangent of the branch the bifurcation is on, and the direction to leave it by
         own = np.append(bif.tangent[:-1] / fam.scales, bif.tangent[-1] / fam.p_scale)
         own /= np.linalg.norm(own)
-        other = (self._other_direction(pt, own) if bif.kind == "period-doubling" else
+        other = (other_direction(self, pt, own) if bif.kind == "period-doubling" else
                  np.append(bif.direction[:-1] / fam.scales, bif.direction[-1] / fam.p_scale))
         other /= np.linalg.norm(other)
         sign = 1.0 if other[-1] * toward >= 0.0 else -1.0
@@ -137,17 +138,17 @@ class Follower:
                                     "or an orbit the engine cannot run)")
                     return
                 continue
-            if self._branch_point(a, b, ds):
+            if branch_point(self, a, b, ds):
                 if self.looped:
                     self.message = (f"the branch came back to the branch point at {self.fam.parameter} = "
                                     f"{self.bifs[-1].value:.6g}, where it had switched before (the branches "
                                     f"taken form a loop), after {len(self.points)} orbits")
                     return
                 continue
-            self._detect(a, b, ds)
+            detect(self, a, b, ds)
             if not lo <= b.p <= hi:
                 end = self.p1 if (b.p > hi) == (self.p1 > self.p0) else self.p0
-                last = self._locate(a, ds, lambda pt: (pt.p - end) / self.fam.p_scale, b)
+                last = locate(self, a, ds, lambda pt: (pt.p - end) / self.fam.p_scale, b)
                 if last is not None:  # (solved again at the end value itself)
                     fam = self.fam
                     exact = fam.correct(last.vec, end, fam.coords(last.vec), end, np.zeros(fam.n), 1.0,
@@ -187,7 +188,7 @@ class Follower:
         if leap is None:
             return False
         b, ds = leap
-        self._detect(a, b, ds)
+        detect(self, a, b, ds)
         self._append(b, ds)
         self.leaps.append(f"{a.p:.6g} -> {b.p:.6g}")
         return True
@@ -295,155 +296,6 @@ class Follower:
                      + a.tau_q * (b.p - a.p) / fam.p_scale)
 
     # ---- detection and location
-    def _tests(self, pt: Point) -> dict[str, float]:
-        """The detectors' test functions at a point (sign changes mark the bifurcations)."""
-        out = {"fold": pt.tau_q}
-        mult = pt.mult
-        real_ = np.abs(mult.imag) <= 1e-9 * np.maximum(np.abs(mult), 1e-300)
-        out["period-doubling"] = float(np.count_nonzero(real_ & (mult.real < -1.0)))
-        out["neimark-sacker"] = float(np.count_nonzero(~real_ & (np.abs(mult) > 1.0)))
-        h = self.fam.shooter(pt.p).h
-        if np.isfinite(h.gaps[0]):
-            out["grazing left"] = (pt.run.displacement_min + h.gaps[0]) / self.fam.length_m
-            out["grazing right"] = (h.gaps[1] - pt.run.displacement_max) / self.fam.length_m
-        return out
-
-    def _psi_bp(self, pt: Point) -> float:
-        """The branch-point test: the bordered Jacobian's determinant, which changes sign where
-        two branches cross (at a fold it does not: the tangent turns with it)."""
-        fam = self.fam
-        return float(np.linalg.det(fam.bordered(pt.jac, pt.dp, pt.free, pt.emb, pt.tau_x, pt.tau_q)))
-
-    def _branch_point(self, a: Point, b: Point, ds: float) -> bool:
-        """A branch point between ``a`` and ``b`` (a symmetric orbit's pitchfork): located, recorded,
-        and the other branch taken when ``switch``; True when the follower switched."""
-        same = (tuple(a.free), a.frozen) == (tuple(b.free), b.frozen)
-        if not same or self._psi_bp(a) * self._psi_bp(b) >= 0.0:
-            return False
-        scale = max(abs(self._psi_bp(a)), abs(self._psi_bp(b)))
-        pt = self._locate(a, ds, lambda q: self._psi_bp(q) / scale, b)
-        if pt is None:
-            return False
-        fam = self.fam
-        own = np.append((fam.coords(b.vec) - fam.coords(a.vec)) / fam.scales, (b.p - a.p) / fam.p_scale)
-        other = self._other_direction(pt, own / np.linalg.norm(own))
-        bif = self._bifurcation("branch-point", "", pt, abs(self._psi_bp(pt) / scale) <= 1e-8)
-        object.__setattr__(bif, "direction", np.append(fam.scales * other[:-1], other[-1] * fam.p_scale))
-        self.bifs.append(bif)
-        if not self.switch_branches:
-            return False
-        where = np.array([pt.p / fam.p_scale, pt.run.displacement_max / fam.length_m,
-                          pt.run.displacement_min / fam.length_m])
-        if any(np.abs(where - w).max() < 1e-5 for w in self.switched):
-            self._append(pt, self._s(a, pt))
-            self.looped = True
-            return True
-        self.switched.append(where)
-        toward = math.copysign(1.0, self.p1 - self.p0)
-        start = replace(pt)
-        sign = 1.0 if other[-1] * toward >= 0.0 else -1.0
-        start.tau_x, start.tau_q = sign * other[:-1], sign * other[-1]
-        for grow in (1.0, 4.0, 16.0):
-            c = self.step(start, grow * ds, chord=False)  # (the Jacobian at a branch point is singular)
-            if c is not None and abs(float(c.tau_x @ a.tau_x + c.tau_q * a.tau_q)) < 0.9:
-                self._append(pt, self._s(a, pt))
-                self._append(c, grow * ds)
-                return True
-        return False
-
-    def _other_direction(self, pt: Point, own: np.ndarray) -> np.ndarray:
-        """At a branch point, the tangent of the other branch (full scaled coordinates, then p):
-        the null space of ``[M - I, dP/dp]`` is two-dimensional there (so the tangent computed
-        there is any of it); its direction orthogonal to ``own``, the secant the follower came along."""
-        fam = self.fam
-        a = fam.bordered(pt.jac, pt.dp, pt.free, pt.emb, pt.tau_x, pt.tau_q)[:-1]
-        vt = np.linalg.svd(a)[2]
-        s_w = fam.scales[pt.free]
-        lifted = [np.append((pt.emb @ (v[:-1] * s_w)) / fam.scales, v[-1]) for v in vt[-2:]]
-        best = max(lifted, key=lambda u: np.linalg.norm(u - (u @ own) * own))
-        u = best - (best @ own) * own
-        return u / np.linalg.norm(u)
-
-    def _detect(self, a: Point, b: Point, ds: float) -> None:
-        ta, tb = self._tests(a), self._tests(b)
-        found = []
-        for name, va in ta.items():
-            vb = tb[name]
-            counted = name in ("period-doubling", "neimark-sacker")
-            if (counted and va != vb) or (not counted and va * vb < 0.0):
-                if counted:
-                    def fn(pt: Point, name: str = name, mid: float = 0.5 * (va + vb)) -> float:
-                        return self._tests(pt)[name] - mid  # (+-0.5 on either side of the count's change)
-                elif (name == "fold" and a.mult.size == b.mult.size
-                      and _crossing(a.mult) * _crossing(b.mult) < 0.0):
-                    # a smooth fold: a multiplier through 1 locates it better than the tangent,
-                    # which turns fast there (and, next to a grazing, not smoothly)
-                    def fn(pt: Point, size: int = a.mult.size) -> float:
-                        return _crossing(pt.mult) if pt.mult.size == size else math.nan
-                else:
-                    def fn(pt: Point, name: str = name) -> float:
-                        return self._tests(pt)[name]
-                pt = self._locate(a, ds, fn, b)
-                if pt is not None:
-                    found.append((self._s(a, pt), name, pt,
-                                  abs(fn(pt)) <= 1e-8 or (counted and self.bracket <= 1e-9 * ds)))
-        for _, name, pt, ok in sorted(found, key=lambda item: item[0]):
-            kind, _, side = name.partition(" ")
-            self.bifs.append(self._bifurcation(kind, side, pt, ok))
-
-    def _locate(self, a: Point, ds: float, fn: Callable[[Point], float], b: Point) -> Optional[Point]:
-        """Illinois regula falsi on the step length for the zero of ``fn`` between ``a`` (0) and ``b`` (ds);
-        ``self.bracket`` is left the final bracket's length (a step that fails stops it early)."""
-        lo, hi, f_lo, f_hi = 0.0, ds, fn(a), fn(b)
-        self.bracket = hi - lo
-        if f_lo == 0.0:
-            return a
-        best, side = b, 0
-        at_lo, at_hi = a, b  # (the bracket's ends, solved: steps go from the nearer)
-        for _ in range(60):
-            s = (lo * f_hi - hi * f_lo) / (f_hi - f_lo) if f_hi != f_lo else 0.5 * (lo + hi)
-            if not lo < s < hi:
-                s = 0.5 * (lo + hi)
-            near, far = ((at_lo, s - lo), (at_hi, s - hi)) if s - lo <= hi - s else ((at_hi, s - hi),
-                                                                                     (at_lo, s - lo))
-            pt = self.step(*near) or self.step(*far)  # (e.g. across a grazing: from the other side)
-            if pt is None:
-                return best
-            v = fn(pt)
-            self.bracket = hi - lo
-            if not math.isfinite(v):  # (the coordinates changed within the step)
-                return best
-            best = pt
-            if abs(v) <= 1e-8 or hi - lo <= 1e-9 * ds:
-                return pt
-            if (v < 0.0) == (f_lo < 0.0):
-                lo, f_lo, at_lo = s, v, pt
-                if side == -1:
-                    f_hi *= 0.5
-                side = -1
-            else:
-                hi, f_hi, at_hi = s, v, pt
-                if side == 1:
-                    f_lo *= 0.5
-                side = 1
-        return best
-
-    def _bifurcation(self, kind: str, side: str, pt: Point, located: bool) -> Bifurcation:
-        fam = self.fam
-        osc, exc = fam.system(pt.p)
-        tangent = np.append(fam.scales * pt.tau_x, fam.p_scale * pt.tau_q)
-        direction = tangent[:-1]
-        if kind == "period-doubling" and pt.jac.size:
-            w, v = np.linalg.eig(pt.jac)
-            i = int(np.argmin(np.abs(w + 1.0)))
-            direction = pt.emb @ np.real(v[:, i])
-        peak = abs(exc.peak_m_s2)
-        return Bifurcation(kind, pt.p, exc.freq_hz, exc.a_g, pt.mult.copy(), State(pt.vec), len(self.points),
-                           side,
-                           direction, fam.k, pt.run.abs_acceleration_max / peak if peak > 0 else math.nan,
-                           located, pt.phase, tangent, fam.parameter)
-
-    # ---- the result
     def branch(self, oscillator: Oscillator, values: tuple, status: Status, message: str) -> Branch:
         fam = self.fam
         rows = []
@@ -481,8 +333,3 @@ class Follower:
                       self.f_ref_hz, df, states, mult, tuple(self.bifs), status, msg,
                       a_g=fam.a_g if fam.parameter != "a_g" else math.nan,
                       freq_hz=fam.freq_hz if fam.parameter != "freq_hz" else math.nan)
-
-
-def _crossing(mult: np.ndarray) -> float:
-    """``prod(mu - 1)``, real: it changes sign where one real multiplier crosses 1."""
-    return float(np.real(np.prod(mult - 1.0)))
