@@ -143,3 +143,13 @@ def test_a_tasks_error_is_raised_as_it_was_naming_the_task():
         with pytest.raises(RuntimeError, match="refused") as info:
             pd_.pounding_spectrum([quake, bad], [1.0], gaps_m=[0.05], scheduler="serial")
     assert info.value.__notes__ == ["(in record 1 (short one))"]
+
+
+def returns_none(task, ctx):
+    return None
+
+
+def test_a_task_that_returns_none_is_counted_once():
+    seen = []
+    out = run_tasks(returns_none, list(range(5)), scheduler="threads", workers=2, progress=seen.append)
+    assert sum(seen) == 5 and out.values == [None] * 5 and out.complete

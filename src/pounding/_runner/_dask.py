@@ -42,6 +42,7 @@ def on_dask(fn: Callable, tasks: list, scheduler: Any, n_workers: int, advance: 
     values: list = [None] * len(tasks)
     errors: dict = {}
     partial: set = set()
+    ended: set = set()
     interrupted = False
     client, cluster = dask_client(scheduler, n_workers)
     futures: list = []
@@ -61,6 +62,8 @@ def on_dask(fn: Callable, tasks: list, scheduler: Any, n_workers: int, advance: 
             values[i], steps, was_partial = fut.result()
             if was_partial:
                 partial.add(i)
+            else:
+                ended.add(i)
             advance(1 if counted else steps)
     except KeyboardInterrupt:
         interrupted = True
@@ -70,4 +73,4 @@ def on_dask(fn: Callable, tasks: list, scheduler: Any, n_workers: int, advance: 
             client.close()
         if cluster is not None:
             cluster.close()
-    return TaskRun(values, errors, partial, interrupted)
+    return TaskRun(values, errors, partial, interrupted, ended)

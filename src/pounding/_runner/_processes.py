@@ -28,6 +28,7 @@ def on_processes(fn: Callable, tasks: list, n_workers: int, advance: Callable[[i
     values: list = [None] * len(tasks)
     errors: dict = {}
     partial: set = set()
+    ended: set = set()
     interrupted = False
     pool = executor or new_pool(n_workers, preload)
     try:
@@ -44,11 +45,13 @@ def on_processes(fn: Callable, tasks: list, n_workers: int, advance: Callable[[i
                     errors[i] = exc
                     if on_error == "stop":
                         stop_pool(pool)
-                        return TaskRun(values, errors, partial, interrupted)
+                        return TaskRun(values, errors, partial, interrupted, ended)
                     continue
                 values[i], steps, was_partial = fut.result()
                 if was_partial:
                     partial.add(i)
+                else:
+                    ended.add(i)
                 advance(1 if counted else steps)
     except cf.process.BrokenProcessPool:
         stop_pool(pool)
@@ -57,13 +60,13 @@ def on_processes(fn: Callable, tasks: list, n_workers: int, advance: Callable[[i
                          fix=GUARD + "; if memory ran out, give fewer workers") from None
     except KeyboardInterrupt:
         stop_pool(pool)
-        return TaskRun(values, errors, partial, True)
+        return TaskRun(values, errors, partial, True, ended)
     except BaseException:
         stop_pool(pool)
         raise
     if executor is None:
         pool.shutdown(wait=True)
-    return TaskRun(values, errors, partial, interrupted)
+    return TaskRun(values, errors, partial, interrupted, ended)
 
 
 def new_pool(n_workers: int, preload: tuple[str, ...] = ()) -> cf.ProcessPoolExecutor:

@@ -36,17 +36,20 @@ class TaskRun:
         The tasks stopped part way (their value holds what they finished).
     interrupted : bool
         Ctrl-C (or a task's own interruption) stopped the run.
+    ended : set of int
+        The tasks that ran to their end (whatever they returned, None included).
     """
 
     values: list
     errors: dict = field(default_factory=dict)
     partial: set = field(default_factory=set)
     interrupted: bool = False
+    ended: set = field(default_factory=set)
 
     @property
     def complete(self) -> bool:
         """Every task ran to its end (a Ctrl-C that came after the last one changes nothing)."""
-        return not self.errors and not self.partial and all(v is not None for v in self.values)
+        return len(self.ended) == len(self.values) and not self.errors and not self.partial
 
     def raise_first_error(self, name: Callable[[int], str] | None = None) -> None:
         """Raise the error of the first task that failed, if any, as it was (its type, so that an

@@ -26,6 +26,8 @@ def on_threads(fn: Callable, tasks: list, n_workers: int, advance: Callable[[int
     values: list = [None] * len(tasks)
     errors: dict = {}
     partial: set = set()
+    settled: set = set()  # (the tasks whose end is recorded: a task may return None)
+    ended: set = set()
     interrupted = False
 
     def halt() -> None:
@@ -35,11 +37,13 @@ def on_threads(fn: Callable, tasks: list, n_workers: int, advance: Callable[[int
     def settle(i: int, fut: Any) -> None:
         """Record task ``i``'s end (a failure or an interruption may stop the others)."""
         nonlocal interrupted
-        if fut.cancelled():  # (never started: a stop came first)
+        if fut.cancelled() or i in settled:  # (never started: a stop came first; or recorded)
             return
+        settled.add(i)
         exc = fut.exception()
         if exc is None:
             values[i] = fut.result()
+            ended.add(i)
             if counted:
                 advance(1)
         elif isinstance(exc, Interrupted):  # (stopped: by us, or by its own Ctrl-C, e.g. a callback's)
@@ -68,7 +72,7 @@ def on_threads(fn: Callable, tasks: list, n_workers: int, advance: Callable[[int
             except Exception as exc:  # noqa: BLE001 - a task's error is recorded, named by the caller
                 fut.set_exception(exc)
             settle(i, fut)
-        return TaskRun(values, errors, partial, interrupted)
+        return TaskRun(values, errors, partial, interrupted, ended)
 
     pool = executor or cf.ThreadPoolExecutor(max_workers=n_workers, thread_name_prefix="pounding")
     futures: dict = {}
@@ -101,6 +105,6 @@ def on_threads(fn: Callable, tasks: list, n_workers: int, advance: Callable[[int
             except KeyboardInterrupt:
                 interrupted = True
     for fut, i in futures.items():  # (those that ended while the pool wound up)
-        if values[i] is None and i not in errors and fut.done() and not fut.cancelled():
+        if fut.done():
             settle(i, fut)
-    return TaskRun(values, errors, partial, interrupted)
+    return TaskRun(values, errors, partial, interrupted, ended)
