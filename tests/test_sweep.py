@@ -248,14 +248,22 @@ def test_periodicity_of_strobes_at_and_above_rounding_noise(size, ratio, steady)
     assert k == (1 if steady else 0)
 
 
-def test_sweep_and_make_plan_take_the_same_options_with_the_same_defaults():
+def test_sweep_shows_one_options_object_and_names_an_unknown_option():
+    """One list of options with one set of defaults (SweepOptions): sweep's signature shows them,
+    make_plan, campaign and identify take them, and a misspelt one is named with the known ones."""
+    import dataclasses
     import inspect
 
-    from pounding.protocols.sweep import SWEEP_OPTIONS, make_plan
+    from pounding.protocols.sweep import SWEEP_OPTIONS, SweepOptions, make_plan
 
-    def keywords(fn, drop=()):
-        return {n: p.default for n, p in inspect.signature(fn).parameters.items()
-                if p.kind is inspect.Parameter.KEYWORD_ONLY and n not in drop}
-
-    assert keywords(pd_.sweep, ("progress",)) == keywords(make_plan)
-    assert set(SWEEP_OPTIONS) == set(keywords(make_plan)) - {"state"}
+    shown = {n: p.default for n, p in inspect.signature(pd_.sweep).parameters.items()
+             if p.kind is inspect.Parameter.KEYWORD_ONLY and n not in ("state", "progress")}
+    assert shown == {f.name: f.default for f in dataclasses.fields(SweepOptions)}
+    assert tuple(shown) == SWEEP_OPTIONS
+    osc = pd_.presets.paper_damped()
+    plan = make_plan(osc, 0.05, [1.0], steady="fixed", cycles=7)
+    assert (plan.steady, plan.cycles, plan.measure_cycles) == ("fixed", 7, SweepOptions.measure_cycles)
+    for call in (lambda: pd_.sweep(osc, 0.05, [1.0], max_cycle=9),
+                 lambda: pd_.campaign(None, osc, freqs_hz=[1.0], max_cycle=9)):
+        with pytest.raises(pd_.InputError, match="max_cycle.*max_cycles"):
+            call()

@@ -25,7 +25,8 @@ from .._errors import InputError, Interrupted, Problem, Status
 from ..model import Oscillator
 from .._runner import run_tasks, scheduler_kind, task_pool
 from .._runner.progress import Progress, progress_reporter
-from ..protocols.campaign import SWEEP_OPTIONS, sweep_quantities
+from ..protocols.campaign import sweep_quantities
+from ..protocols.sweep import check_sweep_options
 from ..protocols.sweep import make_plan, paper_frequencies_hz, sweep
 from .family import ModelFamily, check_bounds
 from .targets import Targets
@@ -265,10 +266,7 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
                               "running "
                               "the targets' sweeps)", budget=f"{MAX_EVALUATIONS:.3g}",
                          fix="lower maxiter or popsize (30 and 10 are the defaults)")
-    unknown = sorted(set(sweep_options) - set(SWEEP_OPTIONS))
-    if unknown:
-        raise InputError(Problem.UNKNOWN_KEY, unknown[0], sweep_options[unknown[0]],
-                         choices=", ".join(SWEEP_OPTIONS) + " (sweep options), or identify's own")
+    check_sweep_options(sweep_options, also="identify's own")
     options = {**DEFAULT_SWEEP, **sweep_options}
     scale = _Scale(bounds)
     cases_freqs = paper_frequencies_hz() if freqs_hz is None else freqs_hz

@@ -20,7 +20,7 @@ from .._errors import InputError, Interrupted, Problem
 from ..model import Oscillator
 from .._runner import Context, run_tasks
 from .._runner.progress import Progress
-from .sweep import SWEEP_OPTIONS, SweepPlan, make_plan, run_plan
+from .sweep import SweepPlan, check_sweep_options, make_plan, run_plan
 from .sweep_result import SIDE_COLUMNS, STEP_COLUMNS, SweepResult
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -251,10 +251,7 @@ def campaign(
               NBs   1.5  2.632            0.034
               YBs   1.5  8.386            0.032
     """
-    unknown = sorted(set(sweep_options) - set(SWEEP_OPTIONS))
-    if unknown:
-        raise InputError(Problem.UNKNOWN_KEY, unknown[0], sweep_options[unknown[0]],
-                         choices=", ".join(SWEEP_OPTIONS))
+    check_sweep_options(sweep_options)
     systems = {"NBs": (nbs_system, nbs_a_g), "YBs": (ybs_system, ybs_a_g)}
     if nbs_system is None and ybs_system is None:
         raise InputError(Problem.MISSING_KEY, "nbs_system, ybs_system", (None, None),

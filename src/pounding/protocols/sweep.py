@@ -9,8 +9,8 @@ from __future__ import annotations
 import inspect
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
-from typing import Literal
+from dataclasses import dataclass, fields
+from typing import Any, Literal
 
 import numpy as np
 
@@ -81,26 +81,46 @@ class SweepPlan:
     max_steps: int
 
 
-def make_plan(
-    oscillator: Oscillator,
-    a_g: float,
-    freqs_hz: np.ndarray | None = None,
-    direction: str = "up",
-    *,
-    steady: str = "adaptive",
-    cycles: int | None = None,
-    measure_cycles: int = 5,
-    max_cycles: int | None = None,
-    steady_rtol: float = 1e-6,
-    max_period: int = 8,
-    omega_min_rad_s: float = PAPER_OMEGA_MIN_RAD_S,
-    f_ref_hz: float = PAPER_F_REF_HZ,
-    state: State | None = None,
-    rtol: float = 1e-10,
-    max_events_per_cycle: int = 1_000_000,
-    max_steps: int = DEFAULT_MAX_STEPS,
-) -> SweepPlan:
-    """Validate the arguments of :func:`sweep` into a plan (same parameters)."""
+@dataclass(frozen=True)
+class SweepOptions:
+    """The options of a sweep besides its system, level, frequencies, direction and start: one
+    list with one set of defaults, which :func:`sweep`, :func:`make_plan`, :func:`campaign` and
+    :func:`identify` take by name (their meaning: :func:`sweep`'s parameters)."""
+
+    steady: SteadyMode = "adaptive"
+    cycles: int | None = None
+    measure_cycles: int = 5
+    max_cycles: int | None = None
+    steady_rtol: float = 1e-6
+    max_period: int = 8
+    omega_min_rad_s: float = PAPER_OMEGA_MIN_RAD_S
+    f_ref_hz: float = PAPER_F_REF_HZ
+    rtol: float = 1e-10
+    max_events_per_cycle: int = 1_000_000
+    max_steps: int = DEFAULT_MAX_STEPS
+
+
+# their names, in order (campaign, identify and studies pass them on)
+SWEEP_OPTIONS = tuple(f.name for f in fields(SweepOptions))
+
+
+def check_sweep_options(options: dict[str, Any], also: str = "") -> SweepOptions:
+    """``options`` (keyword arguments) as :class:`SweepOptions`; an unknown name is an
+    :class:`InputError` listing the known ones (and ``also``: the caller's own, if any)."""
+    unknown = sorted(set(options) - set(SWEEP_OPTIONS))
+    if unknown:
+        raise InputError(Problem.UNKNOWN_KEY, unknown[0], options[unknown[0]],
+                         choices=", ".join(SWEEP_OPTIONS) + (f" (sweep options), or {also}" if also else ""))
+    return SweepOptions(**options)
+
+
+def make_plan(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = None,
+              direction: str = "up", state: State | None = None, **options: Any) -> SweepPlan:
+    """Validate the arguments of :func:`sweep` into a plan (same parameters; ``options``:
+    :class:`SweepOptions`' names)."""
+    opts = check_sweep_options(options)
+    (steady, cycles, measure_cycles, max_cycles, steady_rtol, max_period, omega_min_rad_s, f_ref_hz,
+     rtol, max_events_per_cycle, max_steps) = (getattr(opts, name) for name in SWEEP_OPTIONS)
     check_oscillator(oscillator)
     a_g = Harmonic(positive("a_g", a_g, "g (e.g. 0.05)"), 1.0).a_g  # its magnitude checks
     freqs = paper_frequencies_hz() if freqs_hz is None else float_array("freqs_hz", freqs_hz)
@@ -165,32 +185,23 @@ def make_plan(
                      max_period, omega_min_rad_s, f_ref_hz, rtol, max_events_per_cycle, state, max_steps)
 
 
-# the options a sweep takes besides its system, level, frequencies, direction and starting state: one
-# list, read from make_plan's signature (campaign, identify and studies pass them on)
-SWEEP_OPTIONS = tuple(name for name, par in inspect.signature(make_plan).parameters.items()
-                      if par.kind is inspect.Parameter.KEYWORD_ONLY and name != "state")
+def with_sweep_options(fn: Callable) -> Callable:
+    """``fn`` (which takes ``**options``) shown with :class:`SweepOptions`' names and defaults as
+    keyword parameters (``help``, notebooks and the docs read ``__signature__``)."""
+    sig = inspect.signature(fn)
+    params = list(sig.parameters.values())
+    first_keyword = next(i for i, p in enumerate(params) if p.kind is p.KEYWORD_ONLY)
+    options = [inspect.Parameter(f.name, inspect.Parameter.KEYWORD_ONLY, default=f.default, annotation=f.type)
+               for f in fields(SweepOptions)]
+    fn.__signature__ = sig.replace(parameters=params[:first_keyword] + options + [
+        p for p in params[first_keyword:] if p.kind is not p.VAR_KEYWORD])
+    return fn
 
 
-def sweep(
-    oscillator: Oscillator,
-    a_g: float,
-    freqs_hz: np.ndarray | None = None,
-    direction: Direction = "up",
-    *,
-    steady: SteadyMode = "adaptive",
-    cycles: int | None = None,
-    measure_cycles: int = 5,
-    max_cycles: int | None = None,
-    steady_rtol: float = 1e-6,
-    max_period: int = 8,
-    omega_min_rad_s: float = PAPER_OMEGA_MIN_RAD_S,
-    f_ref_hz: float = PAPER_F_REF_HZ,
-    state: State | None = None,
-    rtol: float = 1e-10,
-    max_events_per_cycle: int = 1_000_000,
-    max_steps: int = DEFAULT_MAX_STEPS,
-    progress: Progress = False,
-) -> SweepResult:
+@with_sweep_options
+def sweep(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = None,
+          direction: Direction = "up", *, state: State | None = None, progress: Progress = False,
+          **options: Any) -> SweepResult:
     """Stepped-sine sweep: hold each frequency in turn, the state carried over, and measure.
 
     Every step starts at table phase 0 (``A = 0`` at the step boundary, so the table
@@ -284,9 +295,7 @@ def sweep(
     >>> fixed.cycles_run.tolist(), fixed.status.name
     ([10, 10], 'SUCCESS')
     """
-    given = locals()  # (make_plan takes the same options, with the same defaults: tests/test_sweep.py)
-    plan = make_plan(oscillator, a_g, freqs_hz, direction, state=state,
-                     **{k: given[k] for k in SWEEP_OPTIONS})
+    plan = make_plan(oscillator, a_g, freqs_hz, direction, state, **options)
     ctl = new_control(plan.max_steps)
     with progress_reporter(progress, plan.freqs_hz.size,
                            f"sweep {direction}, a_G = {plan.a_g:g}") as advance:
