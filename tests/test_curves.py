@@ -210,3 +210,48 @@ def test_a_curve_from_either_fold_of_a_level_is_the_same_curve_through_its_cusp(
 def test_coexistence_map_names_bad_input(kwargs: dict, field: str) -> None:
     with pytest.raises(pd_.InputError, match=field):
         pd_.coexistence_map(pd_.presets.paper_damped(), **kwargs)
+
+
+def _walk(curve, ts: np.ndarray) -> list[np.ndarray]:
+    return [np.asarray(curve(t), dtype=float) for t in ts]
+
+
+def _closes_at(points: list[np.ndarray], steps: np.ndarray) -> int | None:
+    """The index of the step (into ``points``) at which one Closure, as the followers use it, says the
+    walk came back to its first point; None if never."""
+    from pounding.analysis._arclength import Closure
+
+    closure = Closure(points[0])
+    for i in range(1, len(points)):
+        if closure.passed(points[i - 1], points[i], steps[i - 1]):
+            return i
+    return None
+
+
+@pytest.mark.parametrize("turn_rad", [0.05, 0.2, 0.45])
+def test_a_closed_curve_closes_after_one_turn_whatever_its_steps(turn_rad: float) -> None:
+    """The followers' one closure test (analysis/_arclength.Closure): a circle walked in steps that
+    turn by up to the followers' largest angle (arccos 0.9), starting off the grid of the first
+    turn, closes on the step that passes its start again, not before; the points carry the
+    corrector's noise."""
+    rng = np.random.default_rng(7)
+    ts = np.cumsum(np.r_[0.0, turn_rad * rng.uniform(0.6, 1.0, 200)])
+    points = _walk(lambda t: (np.cos(t), np.sin(t), 0.3 * np.sin(t)), ts)
+    points = [p + 1e-9 * rng.standard_normal(3) for p in points]
+    steps = np.array([np.linalg.norm(b - a) for a, b in zip(points, points[1:])])
+    i = _closes_at(points, steps)
+    assert i is not None and ts[i - 1] < 2 * np.pi <= ts[i]
+
+
+def test_a_curve_crossing_itself_closes_only_where_it_returns() -> None:
+    """A figure eight passes its own crossing heading another way: no closure there; it closes when
+    it comes back to its start.  A spiral that comes near its start but a little inside never
+    closes."""
+    ts = np.linspace(0.0, 2 * np.pi + 0.5, 300)
+    eight = _walk(lambda t: (np.sin(t), np.sin(t) * np.cos(t), 0.0), ts)  # (crossing at t = 0 and pi)
+    steps = np.array([np.linalg.norm(b - a) for a, b in zip(eight, eight[1:])])
+    i = _closes_at(eight, steps)
+    assert i is not None and ts[i - 1] < 2 * np.pi <= ts[i]
+    spiral = _walk(lambda t: ((1 - 0.05 * t) * np.cos(t), (1 - 0.05 * t) * np.sin(t), 0.0), ts)
+    steps = np.array([np.linalg.norm(b - a) for a, b in zip(spiral, spiral[1:])])
+    assert _closes_at(spiral, steps) is None

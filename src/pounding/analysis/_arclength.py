@@ -270,15 +270,40 @@ def at_section(vec: np.ndarray) -> np.ndarray:
     return out
 
 
-def passes_by(anchor: np.ndarray, u: np.ndarray, v: np.ndarray) -> tuple[float, float]:
-    """How near the step from ``u`` to ``v`` passes by ``anchor`` (points of an orbit's signature,
-    what does not depend on the section): ``(distance, where along the step, 0 to 1)``.  A follower
-    has closed on itself when the distance is below its tolerance, a fraction of the step: the
-    branch follower's ``CLOSE_TOL`` (its signature is the parameter and the extrema, its steps
-    fine), the curve follower's (its signature adds the second parameter, its steps coarser)."""
-    seg = v - u
-    t = float(np.clip((anchor - u) @ seg / max(seg @ seg, 1e-300), 0.0, 1.0))
-    return float(np.linalg.norm(u + t * seg - anchor)), t
+# A follower has closed on itself when a step passes by the point it must come back to nearer than
+# this fraction of the step, heading the way the curve left that point.  Why 0.06: a step's chord
+# lies within theta / 8 of its length from the arc it cuts, theta the angle the tangent turns over
+# the step, and both followers refuse a step whose tangent turns by more than arccos(0.9) = 0.45 rad
+# (their MIN_COS); the heading test keeps a curve that only crosses its own signature from closing.
+CLOSE_TOL = 0.06
+
+
+@dataclass
+class Closure:
+    """Watches a follower's steps for its return to ``anchor`` (points of an orbit's signature:
+    what does not depend on the section, scaled).  Feed it each accepted step, ``u`` to ``v``, the
+    first from ``anchor`` itself (it sets the heading the curve left by); the curve closes once it
+    has been more than two steps away and a step then passes by ``anchor`` within ``CLOSE_TOL``
+    of the step, heading the same way (a cosine above 0.5)."""
+
+    anchor: np.ndarray
+    heading: Optional[np.ndarray] = None
+    far: bool = False
+
+    def passed(self, u: np.ndarray, v: np.ndarray, ds: float) -> bool:
+        seg = v - u
+        if self.heading is None:
+            self.heading = seg / max(float(np.linalg.norm(seg)), 1e-300)
+            return False
+        ds = max(ds, 1e-12)
+        if not self.far:
+            self.far = bool(np.linalg.norm(v - self.anchor) > 2.0 * ds)
+            return False
+        length = float(np.linalg.norm(seg))
+        t = float((self.anchor - u) @ seg / max(length * length, 1e-300))
+        if not 0.0 < t <= 1.0 or seg @ self.heading <= 0.5 * length:
+            return False
+        return float(np.linalg.norm(u + t * seg - self.anchor)) < CLOSE_TOL * ds
 
 
 def system_at(osc: Oscillator, parameter: str, value: float) -> Oscillator:

@@ -25,7 +25,7 @@ from typing import Optional
 import numpy as np
 
 from ..engine import Run
-from ._arclength import Family, at_section, fold_test, passes_by
+from ._arclength import Closure, Family, at_section, fold_test
 from .periodic import _Failed
 
 
@@ -54,7 +54,6 @@ class CurveFollower:
     """Follows a fold or grazing curve from one of its points, in both directions."""
 
     GROW, SHRINK, MIN_STEP, MIN_COS, MARGIN = 1.5, 0.5, 1e-6, 0.9, 0.02
-    CLOSE_TOL = 0.05  # a step passing by the start this near (of the step) closes the curve (passes_by)
 
     def __init__(self, fam: Family, kind: str, side: str, f_box: tuple[float, float],
                  a_box: tuple[float, float], tol: float, max_step: float) -> None:
@@ -64,7 +63,6 @@ class CurveFollower:
         self.fs, self.as_ = f_box[1] - f_box[0], a_box[1] - a_box[0]
         self.tol, self.max_step = tol, max_step
         self.gtol = max(100.0 * tol, 1e-8) if kind == "fold" else tol
-        self.far = False  # (see follow)
 
     # ---- the equations
     def test(self, run: Run, jac: np.ndarray) -> float:
@@ -266,7 +264,7 @@ class CurveFollower:
         p = start
         p_tau = sign * start.tau
         ds = self.max_step / 4.0
-        self.far = False  # whether the curve has been well away from start (a closed curve returns)
+        closure = Closure(self._signature(start))  # (a closed curve returns to start)
         while True:
             if len(pts) >= budget:
                 return "budget", False
@@ -288,7 +286,7 @@ class CurveFollower:
                     pts.append(edge)
                 return "edge", False
             pts.append(q)
-            if self._closed(start, p, q, ds):
+            if closure.passed(self._signature(p), self._signature(q), ds):
                 return "closed", True
             q = pts[-1] = self._resection(q, p)
             p, p_tau = q, q.tau
@@ -300,16 +298,6 @@ class CurveFollower:
         size = self.fam.length_m
         return np.array([q.f / self.fs, q.a / self.as_, q.run.displacement_max / size,
                          q.run.displacement_min / size])
-
-    def _closed(self, start: CurvePoint, p: CurvePoint, q: CurvePoint, ds: float) -> bool:
-        """Whether the step from ``p`` to ``q`` passed by ``start`` again, once the curve had been
-        well away from it (more than two largest steps, in the signature's units)."""
-        anchor = self._signature(start)
-        u, v = self._signature(p), self._signature(q)
-        if not self.far:
-            self.far = bool(np.linalg.norm(v - anchor) > 2.0 * self.max_step)
-            return False
-        return passes_by(anchor, u, v)[0] < self.CLOSE_TOL * max(ds, self.MIN_STEP)
 
     def _at_phase(self, pt: CurvePoint, phase: float) -> Optional[CurvePoint]:
         """``pt``'s orbit with its section at forcing angle ``phase`` (the family's section is set

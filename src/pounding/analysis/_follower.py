@@ -15,7 +15,7 @@ from .._errors import InputError, Problem, Status
 from ..engine import State
 from ..engine.simulate import short_run
 from ..model import Oscillator
-from ._arclength import Family, Point, at_section, passes_by, system_at
+from ._arclength import Closure, Family, Point, at_section, system_at
 from .branch import COLUMNS, Bifurcation, Branch
 from .periodic import _Failed
 from ._detect import branch_point, detect, locate, other_direction
@@ -25,7 +25,6 @@ class Follower:
     """Steps along the branch, watching the detectors between consecutive points."""
 
     GROW, SHRINK, MIN_STEP, MIN_COS = 1.5, 0.5, 1e-7, 0.95
-    CLOSE_TOL = 1e-3  # a step passing by the branch's second point this near (of the step) closes it
     CREEP, CREEP_POINTS = 1e-3, 100  # steps below CREEP * max_step this many times running: stalled
 
     def __init__(self, fam: Family, p0: float, p1: float, tol: float, max_step: float, max_points: int,
@@ -45,6 +44,7 @@ class Follower:
         self.creep = 0  # accepted steps in a row below CREEP * max_step
         self.switched: list[np.ndarray] = []  # where the follower switched branch (parameter, extrema)
         self.looped = False  # it met a branch point it had switched at before
+        self.closure: Optional[Closure] = None  # watches for the branch's return to its second point
 
     # ---- the first point
     def start(self, vec: np.ndarray, p_start: float, bif: Optional[Bifurcation] = None) -> None:
@@ -215,16 +215,17 @@ class Follower:
     def _closed(self, b: Point, ds: float) -> bool:
         """Whether the step to ``b`` passed by the branch's second point again (a closed branch):
         the orbits compared by what does not depend on the section (parameter and extrema)."""
-        if len(self.points) < 5:
-            return False
-        a, fam = self.points[-2], self.fam
+        fam = self.fam
 
         def sig(q: Point) -> np.ndarray:
             return np.array([q.p / fam.p_scale, q.run.displacement_max / fam.length_m,
                              q.run.displacement_min / fam.length_m])
 
-        distance, t = passes_by(sig(self.points[1]), sig(a), sig(b))
-        return distance < self.CLOSE_TOL * max(ds, 1e-6) and 0.0 < t <= 1.0
+        if self.closure is None:
+            if len(self.points) >= 2:
+                self.closure = Closure(sig(self.points[1]))
+            return False
+        return self.closure.passed(sig(self.points[-2]), sig(b), ds)
 
     def _rescale(self) -> None:
         """Grow the length scale with the orbits (a resonance peak 30 times the first orbit
