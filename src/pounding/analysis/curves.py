@@ -21,6 +21,7 @@ from ._curve import CurveFollower, CurvePoint
 from .branch import Bifurcation, Branch
 from .continuation import continuation
 from .curve_result import BifurcationCurve, CoexistenceMap, curve_table, stable_counts
+from .periodic import _Failed
 from ._args import exact_monodromy, length_scale, step_size, tolerance
 
 CURVE_KINDS = ("fold", "grazing")
@@ -120,6 +121,22 @@ def bifurcation_curve(
             raise InputError(Problem.OUT_OF_RANGE, name, box, range=f"a range holding {v:g}",
                              hint=" (the bifurcation's own value)")
     tol, max_step, max_points, exact = _common(oscillator, tol, max_step, max_points, method)
+    try:
+        return _curve(oscillator, bifurcation, f_box, a_box, tol, max_step, max_points, exact)
+    except _NoStart as exc:
+        raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind, why=str(exc),
+                         fix="locate it again: continue the branch with a smaller max_step") from None
+
+
+class _NoStart(_Failed):
+    """The bifurcation could not be solved as a point of its curve (a fold where the branch turns at
+    a grazing has no multiplier 1 to hold): ``bifurcation_curve`` says so as an ``InputError``
+    (the caller gave it), ``coexistence_map`` as a note (it found it)."""
+
+
+def _curve(oscillator: Oscillator, bifurcation: Bifurcation, f_box: tuple, a_box: tuple, tol: float,
+           max_step: float, max_points: int, exact: bool) -> BifurcationCurve:
+    """The curve through ``bifurcation``, its arguments checked; raises ``_NoStart``."""
     pts: list[CurvePoint] = []
     follower = None
     try:
@@ -223,7 +240,7 @@ def coexistence_map(
         raise InputError(Problem.WRONG_TYPE, "kinds", kinds, got=type(kinds).__name__,
                          expected="a sequence of 'fold', 'grazing'")
     kinds = tuple(dict.fromkeys(one_of("kinds", k, CURVE_KINDS) for k in kinds))
-    tol, max_step, max_points, _ = _common(oscillator, tol, max_step, max_points, method)
+    tol, max_step, max_points, exact = _common(oscillator, tol, max_step, max_points, method)
     freqs = np.round(np.arange(f_box[0], f_box[1] + 1e-9 * step, step), 10)
     branches: list[Branch] = []
     curves: list[BifurcationCurve] = []
@@ -235,10 +252,8 @@ def coexistence_map(
             for bif in br.bifurcations:
                 if bif.kind in kinds and not any(c.passes(bif) for c in curves):
                     try:
-                        curves.append(bifurcation_curve(oscillator, bif, a_g=a_box, freqs_hz=f_box, tol=tol,
-                                                        max_step=max_step, max_points=max_points,
-                                                        method=method))
-                    except InputError as exc:  # (a fold where the branch turns at a grazing: no multiplier 1)
+                        curves.append(_curve(oscillator, bif, f_box, a_box, tol, max_step, max_points, exact))
+                    except _NoStart as exc:
                         notes.append(f"the {bif.kind} at {bif.freq_hz:.6g} Hz, a_G {bif.a_g:g} was not "
                                      f"followed: {exc}")
     except (Interrupted, KeyboardInterrupt) as exc:
@@ -312,10 +327,8 @@ def _start(cf: CurveFollower, bif: Bifurcation) -> CurvePoint:
             tau = cf._full(pt, t)
             pt.tau = tau / np.linalg.norm(tau)
             return pt
-    raise InputError(Problem.BAD_STATE, "bifurcation", bif.kind,
-                     why=f"at {bif.freq_hz:.6g} Hz, a_g {bif.a_g:.6g} "
-                     "could not be solved as a point of its curve (Newton did not converge)",
-                     fix="locate it again: continue the branch with a smaller max_step")
+    raise _NoStart(f"at {bif.freq_hz:.6g} Hz, a_g {bif.a_g:.6g} could not be solved as a point of its "
+                   "curve (Newton did not converge)")
 
 
 def _follow(cf: CurveFollower, start: CurvePoint, pts: list[CurvePoint], max_points: int) -> tuple[Status,
