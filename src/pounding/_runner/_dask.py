@@ -11,7 +11,7 @@ from collections.abc import Callable
 from typing import Any
 
 from .._errors import InputError, Problem
-from ._tasks import TaskRun, remote
+from ._tasks import Tally, TaskRun, remote
 
 
 def dask_client(scheduler: Any, n_workers: int) -> tuple[Any, Any]:
@@ -39,10 +39,7 @@ def on_dask(fn: Callable, tasks: list, scheduler: Any, n_workers: int, advance: 
             budgets: list, on_error: str, counted: bool) -> TaskRun:
     from distributed import as_completed
 
-    values: list = [None] * len(tasks)
-    errors: dict = {}
-    partial: set = set()
-    ended: set = set()
+    tally = Tally([None] * len(tasks))
     interrupted = False
     client, cluster = dask_client(scheduler, n_workers)
     futures: list = []
@@ -52,19 +49,14 @@ def on_dask(fn: Callable, tasks: list, scheduler: Any, n_workers: int, advance: 
         for fut in as_completed(futures):
             i = index[fut.key]
             if fut.status == "error":
-                errors[i] = fut.exception()
+                tally.errors[i] = fut.exception()
                 if on_error == "stop":
                     client.cancel(futures)
                     break
                 continue
             if fut.status == "cancelled":
                 continue
-            values[i], steps, was_partial = fut.result()
-            if was_partial:
-                partial.add(i)
-            else:
-                ended.add(i)
-            advance(1 if counted else steps)
+            tally.take(i, fut.result(), advance, counted)
     except KeyboardInterrupt:
         interrupted = True
         client.cancel(futures)
@@ -73,4 +65,4 @@ def on_dask(fn: Callable, tasks: list, scheduler: Any, n_workers: int, advance: 
             client.close()
         if cluster is not None:
             cluster.close()
-    return TaskRun(values, errors, partial, interrupted, ended)
+    return tally.run(interrupted)

@@ -16,7 +16,7 @@ from collections.abc import Callable
 from typing import Any
 
 from .._errors import InputError, Problem
-from ._tasks import GUARD, TaskRun, remote
+from ._tasks import GUARD, Tally, TaskRun, remote
 
 _PRELOAD = ("pounding._worker_boot",)
 
@@ -25,11 +25,7 @@ def on_processes(fn: Callable, tasks: list, n_workers: int, advance: Callable[[i
                  on_error: str, counted: bool, preload: tuple[str, ...], executor: Any = None) -> TaskRun:
     """``executor``: a pool kept by the caller for many runs (a ``task_pool``'s): its workers
     start once."""
-    values: list = [None] * len(tasks)
-    errors: dict = {}
-    partial: set = set()
-    ended: set = set()
-    interrupted = False
+    tally = Tally([None] * len(tasks))
     pool = executor or new_pool(n_workers, preload)
     try:
         futures = {pool.submit(remote, fn, task, budgets[i]): i for i, task in enumerate(tasks)}
@@ -42,17 +38,12 @@ def on_processes(fn: Callable, tasks: list, n_workers: int, advance: Callable[[i
                 if isinstance(exc, cf.process.BrokenProcessPool):
                     raise exc
                 if exc is not None:
-                    errors[i] = exc
+                    tally.errors[i] = exc
                     if on_error == "stop":
                         stop_pool(pool)
-                        return TaskRun(values, errors, partial, interrupted, ended)
+                        return tally.run(False)
                     continue
-                values[i], steps, was_partial = fut.result()
-                if was_partial:
-                    partial.add(i)
-                else:
-                    ended.add(i)
-                advance(1 if counted else steps)
+                tally.take(i, fut.result(), advance, counted)
     except cf.process.BrokenProcessPool:
         stop_pool(pool)
         raise InputError(Problem.BAD_STATE, "scheduler", "processes",
@@ -60,13 +51,13 @@ def on_processes(fn: Callable, tasks: list, n_workers: int, advance: Callable[[i
                          fix=GUARD + "; if memory ran out, give fewer workers") from None
     except KeyboardInterrupt:
         stop_pool(pool)
-        return TaskRun(values, errors, partial, True, ended)
+        return tally.run(True)
     except BaseException:
         stop_pool(pool)
         raise
     if executor is None:
         pool.shutdown(wait=True)
-    return TaskRun(values, errors, partial, interrupted, ended)
+    return tally.run(False)
 
 
 def new_pool(n_workers: int, preload: tuple[str, ...] = ()) -> cf.ProcessPoolExecutor:

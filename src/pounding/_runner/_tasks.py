@@ -66,6 +66,27 @@ class TaskRun:
         raise exc
 
 
+@dataclass
+class Tally:
+    """What a run on remote workers (processes, Dask) has so far; ``run`` makes its ``TaskRun``."""
+
+    values: list
+    errors: dict = field(default_factory=dict)
+    partial: set = field(default_factory=set)
+    ended: set = field(default_factory=set)
+
+    def take(self, i: int, result: tuple[Any, int, bool], advance: Callable[[int], None],
+             counted: bool) -> None:
+        """Record task ``i``'s ``remote`` result and report its progress (a step per task when
+        ``counted``, else the steps it reported)."""
+        self.values[i], steps, was_partial = result
+        (self.partial if was_partial else self.ended).add(i)
+        advance(1 if counted else steps)
+
+    def run(self, interrupted: bool) -> TaskRun:
+        return TaskRun(self.values, self.errors, self.partial, interrupted, self.ended)
+
+
 def remote(fn: Callable[[Any, Context], Any], task: Any, budget: int) -> tuple[Any, int, bool]:
     """``fn(task, ctx)`` where the caller's thread cannot reach (a worker process, a Dask worker):
     ``(value, steps it reported, whether it was partial)``; its progress travels back with it."""
