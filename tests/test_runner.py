@@ -71,6 +71,31 @@ def test_ctrl_c_on_threads_stops_every_task_and_keeps_what_they_did():
     assert not out.complete
 
 
+def sleeps(task, ctx):
+    """A task that takes ``task`` seconds (in a worker process, where nothing can stop it but its end)."""
+    time.sleep(task)
+    ctx.advance(1)
+    return task
+
+
+@pytest.mark.parametrize("scheduler", ["processes", "local"])
+def test_ctrl_c_on_worker_processes_keeps_what_finished_and_stops_the_rest(scheduler):
+    """On processes and Dask a task in flight cannot be asked to stop: Ctrl-C stops the workers at
+    once, what had finished is kept, the tasks in flight and not started are None."""
+    done, timer = [], threading.Timer(0.3, os.kill, (os.getpid(), signal.SIGINT))
+
+    def progress(n):
+        done.append(n)
+        if len(done) == 3:
+            timer.start()  # (the quick tasks have ended; the slow ones run)
+
+    t0 = time.monotonic()
+    out = run_tasks(sleeps, [0.0, 0.01, 0.02, 60.0, 60.0], scheduler=scheduler, workers=2, progress=progress)
+    assert time.monotonic() - t0 < 40.0  # (not the slow tasks' 60 s)
+    assert out.interrupted and not out.complete and not out.errors
+    assert out.values == [0.0, 0.01, 0.02, None, None] and out.ended == {0, 1, 2}
+
+
 def test_bad_arguments_are_named():
     with pytest.raises(pd_.InputError, match="scheduler") as info:
         scheduler_kind("cluster")
