@@ -276,3 +276,34 @@ def test_a_ctrl_c_while_the_campaign_is_written_says_it_is_complete(tmp_path, mo
     assert "after the campaign had finished" in out.output and "complete" in out.output, out.output
     assert "complete = 0" not in out.output
     assert xr.open_dataset(tmp_path / "c" / "campaign.nc").attrs["complete"] == 1
+
+
+@pytest.mark.parametrize("args", [
+    ["campaign", "--preset", "paper-printed", "--fmin", "1.0", "--fmax", "1.0", "--steady", "fixed",
+     "--cycles", "3", "--measure-cycles", "1"],
+    ["spectrum", "--record", "examples/el_centro_ns.AT2", "--periods", "1:1.5:0.5", "--gaps", "0.05"],
+    ["identify", "examples/targets.toml", "--family", "examples/family.toml", "--maxiter", "0", "--popsize",
+     "2", "--fmin", "1", "--fmax", "2", "--fstep", "1", "--cycles", "10"],
+])
+def test_a_full_disk_at_the_end_is_named_and_exits_1(args, tmp_path, monkeypatch):
+    """Campaign, spectrum and identify write their outputs when they end: a write that fails (a full
+    disk, mocked) is an error naming the file, exit 1 (not the user's input), no traceback, and no
+    temporary file left.  (A study writes as it goes: tests/test_study.py.)"""
+    import errno
+
+    import pounding._io
+
+    out = tmp_path / ("fit.toml" if args[0] == "identify" else "out")
+
+    class FullDisk:  # (pounding._io's os only: Numba's cache goes on writing)
+        def __getattr__(self, name):
+            return getattr(os, name)
+
+        def replace(self, src, dst):
+            raise OSError(errno.ENOSPC, "No space left on device")
+
+    monkeypatch.setattr(pounding._io, "os", FullDisk())
+    res = CliRunner().invoke(app, [*args, "--out", str(out)])
+    assert res.exit_code == 1, res.output
+    assert "could not be written" in res.output and "No space left on device" in res.output
+    assert "Traceback" not in res.output and not any(p.name.startswith(".") for p in tmp_path.rglob("*"))

@@ -6,7 +6,7 @@ The public surface is re-exported here; modules with a leading underscore are pr
 from . import data, lab, plots, presets, records  # noqa: F401 (lab: public as pounding.lab)
 from .analysis import (Bifurcation, BifurcationCurve, Branch, CoexistenceMap, PeriodicOrbit,
                        bifurcation_curve, coexistence_map, continuation, periodic_orbit)
-from ._errors import InputError, Interrupted, PoundingWarning, Problem, Status, StoreError
+from ._errors import InputError, Interrupted, OutputError, PoundingWarning, Problem, Status, StoreError
 from ._warm_up import WarmUp, warm_up
 from .engine import EnergyLedger, Run, State, simulate
 from .excitation import Harmonic, Record
@@ -25,7 +25,8 @@ __version__ = "0.1.0"
 __all__ = [
     "Bumpers", "CampaignResult", "ContactLawFit", "Identification", "ModelFamily", "Targets", "EnergyLedger",
     "Harmonic", "HuntCrossley", "HysteresisLoop",
-    "BoucWen", "ElasticPlastic", "Hertzdamp", "InputError", "Interrupted", "StoreError", "PoundingWarning",
+    "BoucWen", "ElasticPlastic", "Hertzdamp", "InputError", "Interrupted", "OutputError",
+    "StoreError", "PoundingWarning",
     "Isolator",
     "Jankowski", "MultilinearBumper", "KelvinVoigt", "Oscillator", "Problem", "Record",
     "Run", "State", "Status", "SweepResult", "campaign", "impact_table", "paper_frequencies_hz",

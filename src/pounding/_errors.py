@@ -253,6 +253,37 @@ class StoreError(OSError):
         return (type(self), (self.store, self.cause, self.done, self.total))
 
 
+class OutputError(OSError):
+    """An output file could not be written (a full disk, a folder made read-only while the
+    computation ran): which file, and why.  The file is as it was before (outputs are written to
+    a temporary file beside it, then renamed), and the temporary file is removed.  An ``OSError``
+    (the cause's ``errno``): not the caller's input, so the command line exits 1, not 2.
+
+    Examples
+    --------
+    >>> import errno, pounding
+    >>> cause = OSError(errno.ENOSPC, "No space left on device")
+    >>> err = pounding.OutputError("run/campaign.nc", cause)
+    >>> err.errno == errno.ENOSPC, err.path
+    (True, 'run/campaign.nc')
+    >>> print(err)
+    run/campaign.nc could not be written ([Errno 28] No space left on device);
+    it is as it was. Free space (or make its folder writable) and run again.
+    """
+
+    def __init__(self, path: str, cause: OSError) -> None:
+        super().__init__(cause.errno, cause.strerror or str(cause))
+        self.path, self.cause = str(path), cause
+        self.message = (f"{path} could not be written ({cause});\nit is as it was. Free space (or make its "
+                        "folder writable) and run again.")
+
+    def __str__(self) -> str:
+        return self.message
+
+    def __reduce__(self) -> tuple:
+        return (type(self), (self.path, self.cause))
+
+
 class Status(enum.IntEnum):
     """How a simulation ended (``Run.status``); negative values mean it stopped early.
 

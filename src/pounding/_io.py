@@ -20,7 +20,7 @@ from collections.abc import Callable, Iterable, Iterator
 from pathlib import Path
 from typing import Any
 
-from ._errors import InputError, Problem
+from ._errors import InputError, OutputError, Problem
 
 FIGURE_SUFFIXES = (".png", ".pdf", ".svg", ".jpg", ".jpeg", ".eps", ".ps", ".tif", ".tiff", ".webp")
 
@@ -130,13 +130,19 @@ def atomic_write(path: str | os.PathLike, write: Callable[[Path], Any]) -> Path:
     """Call ``write(tmp)`` to write a temporary file beside ``path``, then rename it over ``path``.
 
     The temporary file keeps ``path``'s extension (writers that pick the format from it
-    still do).  On any exception, Ctrl-C included, it is removed and ``path`` is untouched.
+    still do).  On any exception, Ctrl-C included, it is removed and ``path`` is untouched; an
+    ``OSError`` (a full disk, a folder made read-only) becomes an :class:`OutputError` naming
+    ``path``.
     """
     path = Path(path)
     tmp = path.with_name(f".{path.stem}.{os.getpid()}.{threading.get_ident()}.tmp{path.suffix}")
     try:
         write(tmp)
         os.replace(tmp, path)
+    except OutputError:
+        raise
+    except OSError as exc:
+        raise OutputError(str(path), exc) from exc
     finally:
         with contextlib.suppress(FileNotFoundError):
             tmp.unlink()

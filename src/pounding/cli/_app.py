@@ -19,7 +19,7 @@ from rich.markup import escape
 from rich.table import Table
 from typer.core import TyperCommand, TyperGroup
 
-from .._errors import InputError, PoundingWarning, Problem, StoreError
+from .._errors import InputError, OutputError, PoundingWarning, Problem, StoreError
 from .._io import FIGURE_SUFFIXES, atomic_write, output_dir, output_file
 
 NO_METAVAR = ""  # flags show no "<bool>" in the help
@@ -140,7 +140,7 @@ def command(name: Optional[str] = None) -> Callable:
                     return fn(*args, **kwargs)
                 except InputError as exc:
                     fail(exc)
-                except StoreError as exc:  # (not the caller's input: exit 1)
+                except (StoreError, OutputError) as exc:  # (not the caller's input: exit 1)
                     err_console.print(f"[red]error:[/] {escape(str(exc))}")
                     raise typer.Exit(1) from None
                 except KeyboardInterrupt:
