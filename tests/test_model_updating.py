@@ -188,7 +188,7 @@ def test_identification_plot_returns_artists():
 
 
 def test_calibrated_preset_reproduces_its_stored_residuals():
-    stored = pd_.presets.paper_calibrated_residuals()
+    stored = pd_.presets.residuals()
     now = evaluate(pd_.presets.paper_calibrated(), pd_.paper_targets())
     assert list(now["quantity"]) == list(stored["quantity"])
     assert list(now["a_g"]) == list(stored["a_g"])
@@ -211,7 +211,7 @@ def test_the_earlier_calibrated_presets_are_kept_and_reproduce_their_residuals(n
     np.testing.assert_allclose(now["model"], stored["model"], rtol=1e-9, atol=0, equal_nan=True)
     assert list(now["within"]) == list(stored["within"])
     # the shipped preset meets more of the targets
-    assert pd_.presets.paper_calibrated_residuals()["within"].sum() > stored["within"].sum()
+    assert pd_.presets.residuals()["within"].sum() > stored["within"].sum()
 
 
 def test_ctrl_c_keeps_the_best_candidate():

@@ -157,7 +157,7 @@ def test_cli_reproduce_on_a_reduced_grid(tmp_path):
     beside = pd.read_csv(out / "targets.csv")  # the calibration targets, printed preset beside
     assert {"measured", "allowed", "paper-printed", "paper-calibrated",
             "paper-calibrated met"} <= set(beside.columns)
-    stored = pd_.presets.paper_calibrated_residuals()
+    stored = pd_.presets.residuals()
     np.testing.assert_allclose(beside["paper-calibrated"], stored["model"], rtol=1e-9)
     assert "Calibration targets" in (out / "index.html").read_text(encoding="utf-8")
     bad = CliRunner().invoke(app, ["reproduce", "--nbs", "x.toml"])

@@ -22,9 +22,8 @@ from .model import Bumpers, Isolator, KelvinVoigt, Oscillator
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
 
-__all__ = ["by_name", "paper_calibrated", "paper_calibrated_residuals", "paper_calibrated_v1",
-           "paper_calibrated_v1_residuals", "paper_calibrated_v2", "paper_calibrated_v2_residuals",
-           "paper_damped", "paper_printed"]
+__all__ = ["by_name", "paper_calibrated", "paper_calibrated_v1", "paper_calibrated_v2", "paper_damped",
+           "paper_printed", "residuals"]
 
 PAPER_SLOPES_N_M = (38_000.0, 18_000.0, 2_000.0)
 PAPER_BREAKPOINTS_M = (0.015, 0.040)
@@ -139,7 +138,7 @@ def paper_calibrated(bumpers: bool = True) -> Oscillator:
     cycles per step) for the most targets met.  It meets 27 of the 36 targets, with contact
     times that rise and restitution that falls with a_G as measured, but its YBs accelerations
     are 2 to 2.4 times the measured ones (:func:`paper_calibrated_v2` comes near those and
-    misses the contacts).  Its residuals are :func:`paper_calibrated_residuals`; what it cannot reach,
+    misses the contacts).  Its residuals are :func:`residuals`; what it cannot reach,
     and why, is in ``docs/calibration.md``.
 
     Parameters
@@ -167,7 +166,7 @@ def paper_calibrated(bumpers: bool = True) -> Oscillator:
 
 def paper_calibrated_v1(bumpers: bool = True) -> Oscillator:
     """The first calibrated preset: the same isolator family with Kelvin-Voigt bumpers
-    (``scripts/calibrate_paper.py --maxiter 40``); residuals :func:`paper_calibrated_v1_residuals`.
+    (``scripts/calibrate_paper.py --maxiter 40``); residuals ``residuals("paper-calibrated-v1")``.
 
     Parameters
     ----------
@@ -196,7 +195,7 @@ def paper_calibrated_v2(bumpers: bool = True) -> Oscillator:
     Its YBs accelerations (alpha) are within 11 % of the measured ones, but its contacts are
     too long, its restitution flat and its excursions short: 21 of the 36 targets (22 as it was
     fitted, with eta over its own gap, which its ``[meta]`` records); residuals
-    :func:`paper_calibrated_v2_residuals`.
+    ``residuals("paper-calibrated-v2")``.
 
     Parameters
     ----------
@@ -219,9 +218,25 @@ def paper_calibrated_v2(bumpers: bool = True) -> Oscillator:
     return _data_system(CALIBRATED_V2_FILE, bumpers)
 
 
-def paper_calibrated_residuals() -> "pd.DataFrame":
-    """The residual table of :func:`paper_calibrated` against :func:`pounding.paper_targets`, as
-    stored with it (the columns of ``Identification.residuals``; a test re-evaluates it).
+PRESETS = {"paper-printed": paper_printed, "paper-damped": paper_damped, "paper-calibrated": paper_calibrated,
+           "paper-calibrated-v1": paper_calibrated_v1, "paper-calibrated-v2": paper_calibrated_v2}
+# what `pounding reproduce` uses unless told otherwise: the preset closest to the measurements
+BEST_PRESET = "paper-calibrated"
+# the calibrated presets' residual tables, by preset name
+RESIDUALS = {"paper-calibrated": CALIBRATED_RESIDUALS_FILE,
+             "paper-calibrated-v1": CALIBRATED_V1_RESIDUALS_FILE,
+             "paper-calibrated-v2": CALIBRATED_V2_RESIDUALS_FILE}
+
+
+def residuals(name: str = BEST_PRESET) -> "pd.DataFrame":
+    """The residual table of a calibrated preset against :func:`pounding.paper_targets`, as stored
+    with it (the columns of ``Identification.residuals``; a test re-evaluates it).
+
+    Parameters
+    ----------
+    name : str
+        The preset's name: "paper-calibrated" (default), "paper-calibrated-v1" or
+        "paper-calibrated-v2".
 
     Returns
     -------
@@ -233,53 +248,15 @@ def paper_calibrated_residuals() -> "pd.DataFrame":
     Examples
     --------
     >>> import pounding
-    >>> res = pounding.presets.paper_calibrated_residuals()
+    >>> res = pounding.presets.residuals("paper-calibrated")
     >>> len(res), int(res["within"].sum())  # targets, and those met
     (36, 27)
+    >>> [int(pounding.presets.residuals(n)["within"].sum())
+    ...  for n in ("paper-calibrated-v1", "paper-calibrated-v2")]
+    [12, 21]
     """
-    return _data_table(CALIBRATED_RESIDUALS_FILE)
-
-
-def paper_calibrated_v1_residuals() -> "pd.DataFrame":
-    """The residual table of :func:`paper_calibrated_v1`, as stored with it.
-
-    Returns
-    -------
-    DataFrame
-        One row per target, the columns of :func:`paper_calibrated_residuals`.
-
-    Examples
-    --------
-    >>> import pounding
-    >>> res = pounding.presets.paper_calibrated_v1_residuals()
-    >>> len(res), int(res["within"].sum())  # targets, and those met
-    (36, 12)
-    """
-    return _data_table(CALIBRATED_V1_RESIDUALS_FILE)
-
-
-def paper_calibrated_v2_residuals() -> "pd.DataFrame":
-    """The residual table of :func:`paper_calibrated_v2`, as stored with it.
-
-    Returns
-    -------
-    DataFrame
-        One row per target, the columns of :func:`paper_calibrated_residuals`.
-
-    Examples
-    --------
-    >>> import pounding
-    >>> res = pounding.presets.paper_calibrated_v2_residuals()
-    >>> len(res), int(res["within"].sum())  # targets, and those met
-    (36, 21)
-    """
-    return _data_table(CALIBRATED_V2_RESIDUALS_FILE)
-
-
-PRESETS = {"paper-printed": paper_printed, "paper-damped": paper_damped, "paper-calibrated": paper_calibrated,
-           "paper-calibrated-v1": paper_calibrated_v1, "paper-calibrated-v2": paper_calibrated_v2}
-# what `pounding reproduce` uses unless told otherwise: the preset closest to the measurements
-BEST_PRESET = "paper-calibrated"
+    one_of("name", name, tuple(RESIDUALS))
+    return _data_table(RESIDUALS[name])
 
 
 def by_name(name: str, bumpers: bool = True) -> Oscillator:
