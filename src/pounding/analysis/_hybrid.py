@@ -30,6 +30,7 @@ from ..engine._layout import (ACT_CONTACT, ACT_REGION, ACT_RELEASE, ACT_REVERSAL
 from ..engine._layout import D as I_D
 from ..engine._layout import V as I_V
 from ..model import Oscillator
+from ..model.contact_laws import linear_form
 
 I_DL, I_DR = 2, 3  # the compressions' places in x
 FIRST_SLIP = 4
@@ -43,7 +44,7 @@ def unsupported(oscillator: Oscillator) -> str | None:
     b = oscillator.bumpers
     if b is not None:
         for side, law in (("left", b.left), ("right", b.right)):
-            if law._linear_form() is None:
+            if linear_form(law) is None:
                 return f"its {side} bumper's law is {type(law).__name__} (exact: Kelvin-Voigt)"
     return None
 
@@ -77,7 +78,7 @@ class Hybrid:
             gaps = (b.gap_left, b.gap_right)
             # (a law other than Kelvin-Voigt: no linear modes; its numbers are not used but for the
             # coordinates, where its compressions are no shooting coordinates)
-            forms = [law._linear_form() for law in (b.left, b.right)]
+            forms = [linear_form(law) for law in (b.left, b.right)]
             k = tuple(float(f[0]) if f else float(getattr(law, "stiffness", np.nan))
                       for f, law in zip(forms, (b.left, b.right)))
             c = tuple(float(f[1]) if f else 0.0 for f in forms)

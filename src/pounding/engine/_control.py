@@ -16,6 +16,7 @@ from .._control import (DEFAULT_MAX_STEPS, new_control, request_stop, run_interr
                         stop_requested)
 from .._errors import InputError, Problem
 from ..model import Oscillator
+from ..model.contact_laws import linear_form
 from ._kernel import SUBINTERVALS_PER_PERIOD
 
 
@@ -52,7 +53,7 @@ def contact_rate(oscillator: Oscillator) -> float:
     b = oscillator.bumpers
     if b is not None:
         for law in (b.left, b.right):
-            form = law._linear_form()
+            form = linear_form(law)
             if form is None:  # (several linear branches, or a nonlinear law)
                 return math.inf
             k += form[0]

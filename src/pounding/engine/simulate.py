@@ -11,6 +11,7 @@ from .._checks import integer, non_negative, positive
 from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
+from ..model._law_states import state_problem
 from ..model.contact_laws import N_LAW_STATE, KelvinVoigt
 from ._control import (
     DEFAULT_MAX_STEPS,
@@ -96,7 +97,7 @@ def _check_state_fits(state: State, oscillator: Oscillator) -> None:
                                                f"{sign * (gap + comp[j]):g} m) while not in contact")
             at = (Z_L, Z_R)[j]
             law = (b.left, b.right)[j]
-            found = law._state_problem(vec[at:at + N_LAW_STATE], touching[j], comp[j], tol, side)
+            found = state_problem(law, vec[at:at + N_LAW_STATE], touching[j], comp[j], tol, side)
             if found is not None:
                 q, value, why = found
                 raise bad(f"vector[{at + q}]", value, why)

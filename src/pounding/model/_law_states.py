@@ -2,11 +2,12 @@
 
 A law keeps ``N_LAW_STATE`` numbers in the engine's state (``engine/_layout.Z_L``, ``Z_R``):
 0 for a stateless law; Hertzdamp's damping; an elastic-plastic law's line or offset; a
-kinematic multi-linear law's slips and slip directions.  Each law class's ``state_problem``
-calls one of these; the engine names the field and raises (``engine/simulate.py``).
+kinematic multi-linear law's slips and slip directions.  Each law class names its check as
+``STATE_CHECK``; :func:`state_problem` calls it, and the engine names the field and raises
+(``engine/simulate.py``).
 
-Each function returns None for a block the law can be in, else ``(q, value, why)``: the place
-in the block, its value and why it cannot be.
+Each check takes ``(block, law, touching, comp, tol, side)`` and returns None for a block the law
+can be in, else ``(q, value, why)``: the place in the block, its value and why it cannot be.
 """
 
 from __future__ import annotations
@@ -28,7 +29,13 @@ def _slips_unused(block: np.ndarray) -> Problem:
     return None
 
 
-def stateless(block: np.ndarray) -> Problem:
+def state_problem(law: Any, block: np.ndarray, touching: bool, comp: float, tol: float, side: str) -> Problem:
+    """Why ``law`` cannot be in state ``block`` (its ``N_LAW_STATE`` numbers of a state vector) at
+    compression ``comp`` (m, to ``tol``), in contact or not, on the bumper of ``side``; or None."""
+    return law.STATE_CHECK(block, law, touching, comp, tol, side)
+
+
+def stateless(block: np.ndarray, *_: Any) -> Problem:
     """A law without state (Kelvin-Voigt, Hunt-Crossley, Jankowski, elastic multi-linear): zeros."""
     found = _slips_unused(block)
     if found is None and block[0] != 0.0:
@@ -37,7 +44,7 @@ def stateless(block: np.ndarray) -> Problem:
     return found
 
 
-def hertzdamp(block: np.ndarray) -> Problem:
+def hertzdamp(block: np.ndarray, *_: Any) -> Problem:
     """Hertzdamp's damping of the last contact, >= 0."""
     found = _slips_unused(block)
     if found is None and block[0] < 0.0:
@@ -68,6 +75,13 @@ def elastic_plastic(block: np.ndarray, law: Any, touching: bool, comp: float, to
         return 0, z, (f"is no plastic offset of the {side} bumper at compression {comp:g} m (its elastic "
                       "branch would not hold it)")
     return None
+
+
+def multilinear(block: np.ndarray, law: Any, touching: bool, comp: float, tol: float, side: str) -> Problem:
+    """An elastic multi-linear bumper has no state; a kinematic one, its springs' (``kinematic``)."""
+    if law.hysteresis == "kinematic":
+        return kinematic(block, law, touching, comp, tol)
+    return stateless(block)
 
 
 def kinematic(block: np.ndarray, law: Any, touching: bool, comp: float, tol: float) -> Problem:

@@ -3,9 +3,11 @@
 A law relates the bumper's compression ``d`` (m, >= 0) and compression rate ``dd`` (m/s)
 to the force it pushes with (N).  Bumpers are massless, so out of contact a bumper relaxes
 by ``force(d, dd) = 0``; in contact ``d`` follows the mass, and contact ends when the force
-would become a pull.  Adding a law means: a frozen dataclass here with a ``LAW_ID`` and
-``params()``, a line in :data:`LAWS`, and a branch in each compiled ``law_*`` function of
-:mod:`._law_kernels` (re-exported here).  Nothing else in the package needs to change.
+would become a pull.  Adding a law means: a frozen dataclass here with a ``LAW_ID``,
+``params()``, its ``STATE_CHECK`` (what its block of the state may hold, ``_law_states``) and
+``LINEAR`` (whether its force is ``stiffness d + damping dd`` everywhere), a line in :data:`LAWS`,
+and a branch in each compiled ``law_*`` function of :mod:`._law_kernels` (re-exported here).
+Nothing else in the package needs to change.
 
 Laws whose force is linear in ``(d, dd)`` on each branch (:class:`KelvinVoigt`,
 :class:`MultilinearBumper`, :class:`ElasticPlastic`) keep every phase of motion a linear ODE,
@@ -16,6 +18,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields
+from collections.abc import Callable
 from typing import Any, ClassVar, Optional, Union
 
 import numpy as np
@@ -92,22 +95,15 @@ class KelvinVoigt:
     damping: float = 0.0
 
     TYPE: ClassVar[str] = "kelvin_voigt"
+    # what the engine asks of the law (model/_law_states.py): its state check, and whether its force
+    # is stiffness d + damping dd at every compression (the exact monodromy and the rate bound need it)
+    STATE_CHECK: ClassVar[Callable] = staticmethod(_law_states.stateless)
+    LINEAR: ClassVar[bool] = True
     LAW_ID: ClassVar[int] = KELVIN_VOIGT
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "stiffness", _coefficient("law.stiffness", self.stiffness, "N/m", True))
         object.__setattr__(self, "damping", _coefficient("law.damping", self.damping, "N s/m", False))
-
-    def _state_problem(self, block: np.ndarray, touching: bool, comp_m: float, tol_m: float,
-                       side: str) -> Optional[tuple[int, float, str]]:
-        """Why the law cannot be in state ``block`` (its N_LAW_STATE numbers of a state vector) at
-        compression ``comp_m``, or None (``_law_states``)."""
-        return _law_states.stateless(block)
-
-    def _linear_form(self) -> Optional[tuple[float, float]]:
-        """``(stiffness N/m, damping N s/m)`` when the force is ``stiffness d + damping dd`` at every
-        compression (the exact monodromy and the rate bound need it); None otherwise."""
-        return (self.stiffness, self.damping)
 
     def params(self) -> np.ndarray:
         """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,)."""
@@ -157,23 +153,14 @@ class HuntCrossley:
     damping: float = 0.0
 
     TYPE: ClassVar[str] = "hunt_crossley"
+    STATE_CHECK: ClassVar[Callable] = staticmethod(_law_states.stateless)
+    LINEAR: ClassVar[bool] = False
     LAW_ID: ClassVar[int] = HUNT_CROSSLEY
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "stiffness", _coefficient("law.stiffness", self.stiffness, "N/m^n", True))
         object.__setattr__(self, "exponent", _exponent(self.exponent))
         object.__setattr__(self, "damping", _coefficient("law.damping", self.damping, "N s/m^(n+1)", False))
-
-    def _state_problem(self, block: np.ndarray, touching: bool, comp_m: float, tol_m: float,
-                       side: str) -> Optional[tuple[int, float, str]]:
-        """Why the law cannot be in state ``block`` (its N_LAW_STATE numbers of a state vector) at
-        compression ``comp_m``, or None (``_law_states``)."""
-        return _law_states.stateless(block)
-
-    def _linear_form(self) -> Optional[tuple[float, float]]:
-        """``(stiffness N/m, damping N s/m)`` when the force is ``stiffness d + damping dd`` at every
-        compression (the exact monodromy and the rate bound need it); None otherwise."""
-        return None
 
     def params(self) -> np.ndarray:
         """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,)."""
@@ -230,6 +217,8 @@ class Jankowski:
     exponent: float = 1.5
 
     TYPE: ClassVar[str] = "jankowski"
+    STATE_CHECK: ClassVar[Callable] = staticmethod(_law_states.stateless)
+    LINEAR: ClassVar[bool] = False
     LAW_ID: ClassVar[int] = JANKOWSKI
 
     def __post_init__(self) -> None:
@@ -254,17 +243,6 @@ class Jankowski:
                              hint=" (1: no loss)")
         xi = 4.5 * math.sqrt(5.0) * (1.0 - e * e) / (e * (e * (9.0 * math.pi - 16.0) + 16.0))
         return cls(stiffness, xi, effective_mass, exponent)
-
-    def _state_problem(self, block: np.ndarray, touching: bool, comp_m: float, tol_m: float,
-                       side: str) -> Optional[tuple[int, float, str]]:
-        """Why the law cannot be in state ``block`` (its N_LAW_STATE numbers of a state vector) at
-        compression ``comp_m``, or None (``_law_states``)."""
-        return _law_states.stateless(block)
-
-    def _linear_form(self) -> Optional[tuple[float, float]]:
-        """``(stiffness N/m, damping N s/m)`` when the force is ``stiffness d + damping dd`` at every
-        compression (the exact monodromy and the rate bound need it); None otherwise."""
-        return None
 
     def params(self) -> np.ndarray:
         """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,): stiffness, the
@@ -342,6 +320,8 @@ class MultilinearBumper:
     hysteresis: str = "elastic"
 
     TYPE: ClassVar[str] = "multilinear"
+    STATE_CHECK: ClassVar[Callable] = staticmethod(_law_states.multilinear)
+    LINEAR: ClassVar[bool] = False
     HYSTERESIS: ClassVar[tuple[str, ...]] = ("elastic", "kinematic")
     OPTIONAL_KEYS: ClassVar[tuple[str, ...]] = ("hysteresis",)  # (files from before it was: elastic)
 
@@ -372,18 +352,6 @@ class MultilinearBumper:
     def LAW_ID(self) -> int:  # noqa: N802  (the name every law's id has)
         """The compiled kernels' id: the elastic or the kinematic multi-linear law."""
         return MULTILINEAR_KINEMATIC if self.hysteresis == "kinematic" else MULTILINEAR
-
-    def _state_problem(self, block: np.ndarray, touching: bool, comp_m: float, tol_m: float,
-                       side: str) -> Optional[tuple[int, float, str]]:
-        """Why the law cannot be in state ``block`` (its N_LAW_STATE numbers of a state vector) at
-        compression ``comp_m``, or None (``_law_states``)."""
-        return _law_states.kinematic(block, self, touching, comp_m, tol_m) if self.hysteresis == "kinematic" \
-            else _law_states.stateless(block)
-
-    def _linear_form(self) -> Optional[tuple[float, float]]:
-        """``(stiffness N/m, damping N s/m)`` when the force is ``stiffness d + damping dd`` at every
-        compression (the exact monodromy and the rate bound need it); None otherwise."""
-        return None
 
     def params(self) -> np.ndarray:
         """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,): damping, the
@@ -449,6 +417,8 @@ class ElasticPlastic:
     yield_compression: float
 
     TYPE: ClassVar[str] = "elastic_plastic"
+    STATE_CHECK: ClassVar[Callable] = staticmethod(_law_states.elastic_plastic)
+    LINEAR: ClassVar[bool] = False
     LAW_ID: ClassVar[int] = ELASTIC_PLASTIC
 
     def __post_init__(self) -> None:
@@ -463,17 +433,6 @@ class ElasticPlastic:
         object.__setattr__(self, "stiffness", k1)
         object.__setattr__(self, "post_yield_stiffness", k2)
         object.__setattr__(self, "yield_compression", dy)
-
-    def _state_problem(self, block: np.ndarray, touching: bool, comp_m: float, tol_m: float,
-                       side: str) -> Optional[tuple[int, float, str]]:
-        """Why the law cannot be in state ``block`` (its N_LAW_STATE numbers of a state vector) at
-        compression ``comp_m``, or None (``_law_states``)."""
-        return _law_states.elastic_plastic(block, self, touching, comp_m, tol_m, side)
-
-    def _linear_form(self) -> Optional[tuple[float, float]]:
-        """``(stiffness N/m, damping N s/m)`` when the force is ``stiffness d + damping dd`` at every
-        compression (the exact monodromy and the rate bound need it); None otherwise."""
-        return None
 
     def params(self) -> np.ndarray:
         """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,): K1, K2, delta_y."""
@@ -555,6 +514,8 @@ class Hertzdamp:
     exponent: float = 1.5
 
     TYPE: ClassVar[str] = "hertzdamp"
+    STATE_CHECK: ClassVar[Callable] = staticmethod(_law_states.hertzdamp)
+    LINEAR: ClassVar[bool] = False
     LAW_ID: ClassVar[int] = HERTZDAMP
 
     def __post_init__(self) -> None:
@@ -576,21 +537,16 @@ class Hertzdamp:
                              hint=" (1: no loss)")
         return cls(stiffness, 1.6 * (1.0 - e) / e, exponent)
 
-    def _state_problem(self, block: np.ndarray, touching: bool, comp_m: float, tol_m: float,
-                       side: str) -> Optional[tuple[int, float, str]]:
-        """Why the law cannot be in state ``block`` (its N_LAW_STATE numbers of a state vector) at
-        compression ``comp_m``, or None (``_law_states``)."""
-        return _law_states.hertzdamp(block)
-
-    def _linear_form(self) -> Optional[tuple[float, float]]:
-        """``(stiffness N/m, damping N s/m)`` when the force is ``stiffness d + damping dd`` at every
-        compression (the exact monodromy and the rate bound need it); None otherwise."""
-        return None
-
     def params(self) -> np.ndarray:
         """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,): stiffness, xi_norm,
         the exponent (the damping itself is the bumper's state, set at each contact's start)."""
         return _padded([self.stiffness, self.xi_norm, self.exponent])
+
+
+def linear_form(law: Any) -> Optional[tuple[float, float]]:
+    """``(stiffness N/m, damping N s/m)`` of a law whose force is ``stiffness d + damping dd`` at
+    every compression (its ``LINEAR``), else None."""
+    return (law.stiffness, law.damping) if law.LINEAR else None
 
 
 ContactLaw = Union[KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper, ElasticPlastic, Hertzdamp]
