@@ -150,14 +150,14 @@ def test_kernel_stops_on_a_preset_stop_flag_and_counts_its_work():
     from pounding.engine._control import new_control, request_stop
     from pounding.engine._kernel import run_kernel
     from pounding.engine._layout import CTL_WORK
-    from pounding.engine.simulate import kernel_system
+    from pounding.engine.simulate import kernel_forcing, kernel_system
 
     osc = pd_.presets.paper_damped()
-    kind, p, rt, ra = pd_.Harmonic(0.05, 2.2).kernel_arrays()
+    forcing = kernel_forcing(pd_.Harmonic(0.05, 2.2))
     state = pd_.State.at_rest(osc).vector.copy()
     ctl = new_control(10**9)
-    out = run_kernel(*kernel_system(osc), kind, p, rt, ra, state, 10.0, 0.0, 1e-10, 10**6, True, ctl)
+    out = run_kernel(kernel_system(osc), forcing, state, 10.0, 0.0, 1e-10, 10**6, True, ctl)
     assert out[-1] == 0 and ctl[CTL_WORK] > 100
     request_stop([ctl])
-    out = run_kernel(*kernel_system(osc), kind, p, rt, ra, state, 10.0, 0.0, 1e-10, 10**6, True, ctl)
+    out = run_kernel(kernel_system(osc), forcing, state, 10.0, 0.0, 1e-10, 10**6, True, ctl)
     assert out[-1] == pd_.Status.INTERRUPTED and out[0][0] == 0.0

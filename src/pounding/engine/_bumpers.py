@@ -13,7 +13,7 @@ from ._layout import (ACT_CONTACT, ACT_LAW_BRANCH, ACT_RELEASE, E_ACTION, E_ALPH
 
 
 @jit
-def bumper_events(st, ph, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r, evs, n):
+def bumper_events(st, ph, sy, evs, n):
     """Append the bumpers' event rows to ``evs`` from row ``n`` on; return the new count.
 
     Out of contact, the contact start against the relaxing surface; in contact, the compression
@@ -21,8 +21,9 @@ def bumper_events(st, ph, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r, evs, n):
     compression leaves the branch (a multi-linear law's breakpoints, an elastic-plastic law's
     lines), or where the compression rate turns (an elastic-plastic law leaving a line).
     """
-    if not has_b:
+    if not sy.has_b:
         return n
+    gap_l, gap_r, law_l, p_l, law_r, p_r = sy.gap_l, sy.gap_r, sy.law_l, sy.p_l, sy.law_r, sy.p_r
     for side in (SIDE_L, SIDE_R):
         sign = -1.0 if side == SIDE_L else 1.0
         gap = gap_l if side == SIDE_L else gap_r
@@ -95,7 +96,7 @@ def law_switches(ph):
 
 
 @jit
-def relax_horizon(st, law_l, p_l, law_r, p_r):
+def relax_horizon(st, sy):
     """Time (s) until a bumper relaxing out of contact reaches the end of its law's branch
     (inf when none does): the contact function ``gap + d(t) - sign D`` is smooth only up to
     there, and a sub-interval ending there keeps one law of recovery in each (a multi-linear
@@ -103,7 +104,7 @@ def relax_horizon(st, law_l, p_l, law_r, p_r):
     mass that had left it, inside one sub-interval, unseen)."""
     out = math.inf
     if st[IN_L] == 0.0 and st[DEF_L] > 0.0:
-        out = min(out, law_relax_horizon(law_l, p_l, AT_START, st[DEF_L], st, ZL_AT))
+        out = min(out, law_relax_horizon(sy.law_l, sy.p_l, AT_START, st[DEF_L], st, ZL_AT))
     if st[IN_R] == 0.0 and st[DEF_R] > 0.0:
-        out = min(out, law_relax_horizon(law_r, p_r, AT_START, st[DEF_R], st, ZR_AT))
+        out = min(out, law_relax_horizon(sy.law_r, sy.p_r, AT_START, st[DEF_R], st, ZR_AT))
     return out

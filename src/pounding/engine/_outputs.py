@@ -12,17 +12,18 @@ from ._trajectory import contact_force, phase_zeta, table_acceleration
 
 
 @jit
-def outputs(st, d, v, mass, c_d, slopes, breaks, rule, bw, gap_l, gap_r, law_l, p_l, law_r, p_r):
-    """``(abs_acceleration, isolator_force, left bumper force, right bumper force)`` at (d, v)."""
-    k, r0 = iso_linear(slopes, breaks, rule, st)
-    f_iso = k * d + r0 + c_d * v + bw[0] * st[ZETA]
+def outputs(st, d, v, sy):
+    """``(abs_acceleration, isolator_force, left bumper force, right bumper force)`` at (d, v) of
+    the system ``sy`` (``_system.System``)."""
+    k, r0 = iso_linear(sy.slopes, sy.breaks, sy.rule, st)
+    f_iso = k * d + r0 + sy.c_d * v + sy.bw[0] * st[ZETA]
     f_l = 0.0
     f_r = 0.0
     if st[IN_L] != 0.0:
-        f_l = law_force(law_l, p_l, AT_START, -d - gap_l, -v, st, ZL_AT)[0]
+        f_l = law_force(sy.law_l, sy.p_l, AT_START, -d - sy.gap_l, -v, st, ZL_AT)[0]
     if st[IN_R] != 0.0:
-        f_r = law_force(law_r, p_r, AT_START, d - gap_r, v, st, ZR_AT)[0]
-    return -(f_iso + f_r - f_l) / mass, f_iso, f_l, f_r
+        f_r = law_force(sy.law_r, sy.p_r, AT_START, d - sy.gap_r, v, st, ZR_AT)[0]
+    return -(f_iso + f_r - f_l) / sy.mass, f_iso, f_l, f_r
 
 
 @jit
@@ -37,8 +38,11 @@ def outputs_in_phase(ph, tau, d, v, a):
 
 
 @jit
-def energies(st, mass, slopes, breaks, rule, bw, law_l, p_l, law_r, p_r):
+def energies(st, sy):
+    """The energies stored in the state: ``(kinetic, isolator, bumpers)``, J."""
+    bw = sy.bw
     # (subinterval.bouc_wen_energy)
     e_bw = 0.5 * bw[0] * bw[1] * st[ZETA] ** 2 / bw[2] if bw[0] != 0.0 else 0.0
-    return (0.5 * mass * st[V] ** 2, iso_energy(slopes, breaks, rule, st, st[D]) + e_bw,
-            law_energy(law_l, p_l, st[DEF_L], st, ZL_AT) + law_energy(law_r, p_r, st[DEF_R], st, ZR_AT))
+    return (0.5 * sy.mass * st[V] ** 2, iso_energy(sy.slopes, sy.breaks, sy.rule, st, st[D]) + e_bw,
+            law_energy(sy.law_l, sy.p_l, st[DEF_L], st, ZL_AT) + law_energy(sy.law_r, sy.p_r, st[DEF_R], st,
+                                                                            ZR_AT))

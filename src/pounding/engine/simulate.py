@@ -23,6 +23,7 @@ from ._control import (
     steps_per_second,
 )
 from ._kernel import run_kernel
+from ._system import Forcing, System
 from ._layout import (DEF_L, DEF_R, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT, L_ISOLATOR, L_KINETIC,
                       L_VISCOUS, REGION, STATE_BASE, Z_L, Z_R, ZETA, D, V)
 from .result import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, EnergyLedger, Run, State
@@ -128,16 +129,23 @@ def _check_state_fits(state: State, oscillator: Oscillator) -> None:
                       f"leaves spring {i}'s strain {strain:g} m beyond its yield displacement {brk:g} m")
 
 
-def kernel_system(oscillator: Oscillator) -> tuple:
-    """The oscillator as the kernel's leading arguments (arrays and scalars only)."""
+def kernel_system(oscillator: Oscillator) -> System:
+    """The oscillator as the kernels' system record (arrays and scalars only, one type each)."""
     slopes, breaks, rule, bw = oscillator.isolator.kernel_arrays()
     b = oscillator.bumpers
     left = right = _NO_LAW
     gap_l = gap_r = 0.0
     if b is not None:
         left, right, gap_l, gap_r = b.left, b.right, b.gap_left, b.gap_right
-    return (oscillator.mass, oscillator.isolator.damping, slopes, breaks, rule, bw, b is not None,
-            gap_l, gap_r, left.LAW_ID, left.params(), right.LAW_ID, right.params())
+    return System(float(oscillator.mass), float(oscillator.isolator.damping), slopes, breaks, rule, bw,
+                  b is not None, float(gap_l), float(gap_r), int(left.LAW_ID), left.params(),
+                  int(right.LAW_ID), right.params())
+
+
+def kernel_forcing(excitation: Harmonic | Record) -> Forcing:
+    """The excitation as the kernels' forcing record."""
+    kind, p, rec_t, rec_a = excitation.kernel_arrays()
+    return Forcing(int(kind), p, rec_t, rec_a)
 
 
 # a run whose every sub-interval (and event) fits in this many returns within about 0.1 s: it
@@ -307,7 +315,7 @@ class NotAState(Exception):
 
 
 def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, state: State | np.ndarray,
-              system: Optional[tuple] = None) -> ShortRun:
+              system: Optional[System] = None) -> ShortRun:
     """A run of a period or so, events only, for the periodic-orbit solvers' many runs: the state
     checked, the arguments trusted (the caller checked them), the kernel called in this thread
     (no helper thread: Ctrl-C lands when it returns) within ``SHORT_RUN_STEPS`` sub-intervals
@@ -335,9 +343,8 @@ def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, sta
         state = check_state(state, oscillator)
     if system is None:
         system = kernel_system(oscillator)
-    exc_kind, exc_p, rec_t, rec_a = excitation.kernel_arrays()
     st, _, contacts, events, _, extrema, status = run_kernel(
-        *system, exc_kind, exc_p, rec_t, rec_a, np.array(state.vector), state.time_s + duration, 0.0, 1e-10,
+        system, kernel_forcing(excitation), np.array(state.vector), state.time_s + duration, 0.0, 1e-10,
         10_000_000, False, new_control(SHORT_RUN_STEPS))
     if status == Status.SUCCESS and not all(map(math.isfinite, extrema.tolist())):
         status = int(Status.NONFINITE)
@@ -345,15 +352,15 @@ def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, sta
 
 
 def _run(oscillator: Oscillator, excitation: Harmonic | Record, duration: float, state: State, rtol: float,
-         rate: float, max_events: int, max_steps: int, direct: bool, system: Optional[tuple] = None) -> Run:
+         rate: float, max_events: int, max_steps: int, direct: bool, system: Optional[System] = None) -> Run:
     """The kernel on checked arguments, its outputs as a ``Run`` (``Interrupted`` on Ctrl-C)."""
     t0 = state.time_s
     if system is None:
         system = kernel_system(oscillator)
-    exc_kind, exc_p, rec_t, rec_a = excitation.kernel_arrays()
+    forcing = kernel_forcing(excitation)
     ctl = new_control(max_steps)
     st, samples, contacts, events, ledger, extrema, status = run_interruptibly(lambda: run_kernel(
-        *system, exc_kind, exc_p, rec_t, rec_a, state.vector.copy(),
+        system, forcing, state.vector.copy(),
         t0 + duration, 1.0 / rate if rate > 0 else 0.0, rtol, int(max_events), True, ctl), [ctl],
         direct=direct)
     status = Status(int(status))

@@ -18,6 +18,7 @@ from .._jit import jit, jit_entry
 from ..engine._forcing import EXC_HARMONIC
 from ..engine._kernel import SUCCESS, run_kernel
 from ..engine._layout import D, STATE_BASE, T, V, Z_L, Z_R, ZETA
+from ..engine._system import Forcing
 from ..model.contact_laws import N_LAW_STATE, law_has_memory
 from ..metrics._impacts import SIDE_SUMS, add_impacts
 
@@ -124,10 +125,11 @@ def _smallest_period(strobe, n, k, window, round_window, tol_d, tol_v, steady_rt
 
 
 @jit_entry
-def step_kernel(mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
-                amp, omega, state0, adaptive, n_cycles, measure_cycles, steady_rtol, max_period,
-                rtol, max_events, ctl):
-    """Hold the harmonic ``amp sin(omega (t - t0))`` from ``state0`` (time ``t0``).
+def step_kernel(sy, amp, omega, state0, steady, rtol, max_events, ctl):
+    """Hold the harmonic ``amp sin(omega (t - t0))`` (m/s^2, rad/s) on the system ``sy``
+    (``engine/_system.System``) from ``state0`` (time ``t0``).
+
+    ``steady`` is ``(adaptive, n_cycles, measure_cycles, steady_rtol, max_period)``.
 
     ``adaptive``: stop as soon as the response is periodic (at most ``n_cycles``
     cycles); otherwise run exactly ``n_cycles``.  The last ``measure_cycles`` (rounded up
@@ -138,6 +140,7 @@ def step_kernel(mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l,
     ``ctl`` is the run control of ``run_kernel`` (Ctrl-C and the work budget), shared by
     every cycle.
     """
+    adaptive, n_cycles, measure_cycles, steady_rtol, max_period = steady
     period = 2.0 * math.pi / omega
     t0 = state0[T]
     exc_p = np.empty(3)  # amplitude, omega, phase: A(t0) = 0 exactly, phase 0 at the step start
@@ -155,19 +158,19 @@ def step_kernel(mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l,
     k = 0
     m = measure_cycles
     sums = np.zeros((1, 2 * SIDE_SUMS))
-    exc_kind = np.int64(EXC_HARMONIC)  # a typed int, not a literal: one run_kernel for all callers
+    # (a typed int, not a literal: one run_kernel for all callers)
+    forcing = Forcing(np.int64(EXC_HARMONIC), exc_p, no_record, no_record)
     while n < n_cycles:
         for q in range(st.size):  # element loops, not slice assignment (less to compile)
             starts[n, q] = st[q]
         st, _, contacts, _, _, extrema, status = run_kernel(
-            mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l, p_l, law_r, p_r,
-            exc_kind, exc_p, no_record, no_record, st, t0 + (n + 1) * period, -1.0, rtol,
-            max_events, NO_ENERGY, ctl)  # a step measures extrema and contacts, not the ledger
+            sy, forcing, st, t0 + (n + 1) * period, -1.0, rtol, max_events, NO_ENERGY,
+            ctl)  # a step measures extrema and contacts, not the ledger
         cyc[n, CY_DMAX] = extrema[0]
         cyc[n, CY_DMIN] = extrema[2]
         cyc[n, CY_AMAX] = extrema[4]
         sums[0] = 0.0
-        add_impacts(contacts, mass, sums, TYPED_ZERO)
+        add_impacts(contacts, sy.mass, sums, TYPED_ZERO)
         for q in range(2 * SIDE_SUMS):
             cyc[n, CY_SUMS + q] = sums[0, q]
         strobe[n, 0] = st[D]
@@ -177,9 +180,9 @@ def step_kernel(mass, c_d, slopes, breaks, rule, bw, has_b, gap_l, gap_r, law_l,
         # a hysteretic bumper's state is memory as the slips are (m, or a line's code); a
         # stateless law's is 0, Hertzdamp's a damping that follows from the motion
         for q in range(N_LAW_STATE):
-            strobe[n, 2 + n_sp + q] = st[Z_L + q] if law_has_memory(law_l) else 0.0
-            strobe[n, 2 + n_sp + N_LAW_STATE + q] = st[Z_R + q] if law_has_memory(law_r) else 0.0
-        strobe[n, 2 + n_sp + 2 * N_LAW_STATE] = st[ZETA] * bw[1]  # (the Bouc-Wen z as a length: its memory)
+            strobe[n, 2 + n_sp + q] = st[Z_L + q] if law_has_memory(sy.law_l) else 0.0
+            strobe[n, 2 + n_sp + N_LAW_STATE + q] = st[Z_R + q] if law_has_memory(sy.law_r) else 0.0
+        strobe[n, 2 + n_sp + 2 * N_LAW_STATE] = st[ZETA] * sy.bw[1]  # (the Bouc-Wen z as a length)
         n += 1
         if status != SUCCESS:
             break

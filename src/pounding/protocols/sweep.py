@@ -328,6 +328,8 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
     done = 0
     interrupted = False
     adaptive = plan.steady == "adaptive"
+    steady = (adaptive, int(plan.cycles), int(plan.measure_cycles), float(plan.steady_rtol),
+              int(plan.max_period))
     try:
         for i, f in enumerate(plan.freqs_hz):
             if stop_requested(ctl):
@@ -336,9 +338,8 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
             exc = Harmonic(plan.a_g, f)
             start = state
             state, n, k, win, win_state, code = step_kernel(
-                *system, exc.peak_m_s2, exc.omega_rad_s, start, adaptive, plan.cycles,
-                plan.measure_cycles, plan.steady_rtol, plan.max_period, plan.rtol,
-                plan.max_events_per_cycle, ctl)
+                system, exc.peak_m_s2, exc.omega_rad_s, start, steady, plan.rtol, plan.max_events_per_cycle,
+                ctl)
             if code == Status.INTERRUPTED:  # the step did not finish: drop it
                 state = start
                 interrupted = True
