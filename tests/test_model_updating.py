@@ -204,7 +204,7 @@ def test_calibrated_preset_reproduces_its_stored_residuals():
 
 @pytest.mark.parametrize("name, law", [("v1", pd_.KelvinVoigt), ("v2", pd_.MultilinearBumper)])
 def test_the_earlier_calibrated_presets_are_kept_and_reproduce_their_residuals(name, law):
-    stored = getattr(pd_.presets, f"paper_calibrated_{name}_residuals")()
+    stored = pd_.presets.residuals(f"paper-calibrated-{name}")
     old = pd_.presets.by_name(f"paper-calibrated-{name}")
     assert isinstance(old.bumpers.law, law)
     now = evaluate(old, pd_.paper_targets())
