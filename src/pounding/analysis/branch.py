@@ -208,6 +208,36 @@ class Branch:
         """The branch's folds (where sweeps jump), in the order they were met."""
         return tuple(b for b in self.bifurcations if b.kind == "fold")
 
+    def section(self, phase_rad: float = 0.0) -> pd.DataFrame:
+        """Each orbit where the forcing's angle is ``phase_rad`` (0: table phase 0, the section a
+        sweep's strobes and :func:`pounding.bifurcation_diagram` use): ``freq_hz``, ``a_g``,
+        ``displacement_m``, ``velocity_m_s``, ``stable``, and ``point`` (the row of the branch's
+        table); a period-k orbit crosses it k times, one row each.  For branches in ``freq_hz``
+        or ``a_g``."""
+        from .._checks import real
+        from ..engine.simulate import simulate
+        from ..excitation import Harmonic
+
+        if self.parameter not in ("freq_hz", "a_g"):
+            raise InputError(Problem.BAD_STATE, "branch", self.parameter, why="is a number of the system",
+                             fix="take the section of a branch in 'freq_hz' or 'a_g'")
+        target = real("phase_rad", phase_rad)
+        rows = []
+        for i, row in enumerate(self.table.itertuples(index=False)):
+            exc = Harmonic(float(row.a_g), float(row.freq_hz), phase=float(row.phase_rad))
+            period = 2.0 * math.pi / exc.omega_rad_s
+            state = State(self.states[i])
+            wait = ((target - float(row.phase_rad)) % (2.0 * math.pi)) / exc.omega_rad_s
+            for _ in range(self.period_multiple):
+                if wait > 1e-12 * period:
+                    state = simulate(self.oscillator, exc, duration=wait, state=state,
+                                     sample_rate_hz=0.0).final_state
+                rows.append((float(row.freq_hz), float(row.a_g), state.displacement_m, state.velocity_m_s,
+                             bool(row.stable), i))
+                wait = period
+        return pd.DataFrame(rows, columns=["freq_hz", "a_g", "displacement_m", "velocity_m_s", "stable",
+                                           "point"])
+
     def orbit(self, index: int, **kwargs: Any) -> "PeriodicOrbit":
         """The ``index``-th orbit as a :class:`PeriodicOrbit` (densely sampled run, ``plot``);
         ``kwargs`` go to :func:`pounding.periodic_orbit`."""

@@ -135,8 +135,10 @@ def step_kernel(sy, amp, omega, state0, steady, rtol, max_events, ctl):
     cycles); otherwise run exactly ``n_cycles``.  The last ``measure_cycles`` (rounded up
     to whole periods when adaptive and steady) are measured.
 
-    Returns ``(state, cycles_run, period_multiple, window, window_state, status)`` with
-    ``period_multiple`` 0 when not periodic and ``window`` of length ``WINDOW_COLS``.
+    Returns ``(state, cycles_run, period_multiple, window, window_state, window_strobes,
+    status)`` with ``period_multiple`` 0 when not periodic, ``window`` of length
+    ``WINDOW_COLS`` and ``window_strobes`` the window's stroboscopic samples (the state at each
+    of its cycles' ends, table phase 0), shape (cycles, 2): displacement and velocity.
     ``ctl`` is the run control of ``run_kernel`` (Ctrl-C and the work budget), shared by
     every cycle.
     """
@@ -205,4 +207,8 @@ def step_kernel(sy, amp, omega, state0, steady, rtol, max_events, ctl):
         window[W_AMAX] = max(window[W_AMAX], cyc[j, CY_AMAX])
         for q in range(2 * SIDE_SUMS):
             window[W_SUMS + q] += cyc[j, CY_SUMS + q]
-    return st, n, k, window, starts[n - m].copy(), status
+    strobes = np.empty((m, 2))
+    for j in range(m):
+        strobes[j, 0] = strobe[n - m + j, 0]
+        strobes[j, 1] = strobe[n - m + j, 1]
+    return st, n, k, window, starts[n - m].copy(), strobes, status

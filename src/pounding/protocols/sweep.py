@@ -323,6 +323,9 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
     cycles_run = np.zeros(n_steps, dtype=np.int64)
     period_multiple = np.zeros(n_steps, dtype=np.int64)
     window_states = np.full((n_steps, n_state), np.nan)
+    # (a window is rounded up to whole periods when adaptive: up to max_period - 1 more cycles)
+    strobe_cap = plan.measure_cycles + (plan.max_period - 1 if plan.steady == "adaptive" else 0)
+    window_strobes = np.full((n_steps, strobe_cap, 2), np.nan)
     step_start_s = np.full(n_steps, np.nan)
     status = Status.SUCCESS
     done = 0
@@ -337,7 +340,7 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
                 break
             exc = Harmonic(plan.a_g, f)
             start = state
-            state, n, k, win, win_state, code = step_kernel(
+            state, n, k, win, win_state, strobes, code = step_kernel(
                 system, exc.peak_m_s2, exc.omega_rad_s, start, steady, plan.rtol, plan.max_events_per_cycle,
                 ctl)
             if code == Status.INTERRUPTED:  # the step did not finish: drop it
@@ -349,6 +352,7 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
             cycles_run[i] = n
             period_multiple[i] = k
             window_states[i] = win_state
+            window_strobes[i, :len(strobes)] = strobes
             done = i + 1
             if advance is not None:
                 advance(1)
@@ -362,7 +366,7 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
         steady_mode=plan.steady, cycles=plan.cycles, measure_cycles=plan.measure_cycles,
         omega_min_rad_s=plan.omega_min_rad_s, f_ref_hz=plan.f_ref_hz, g=STANDARD_GRAVITY,
         window=window, cycles_run=cycles_run, period_multiple=period_multiple,
-        window_states=window_states, step_start_s=step_start_s,
+        window_states=window_states, window_strobes=window_strobes, step_start_s=step_start_s,
         steps_done=done, final_state=State._from_kernel(state), status=status,
         message=_message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted))
     if interrupted:

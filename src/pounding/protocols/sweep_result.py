@@ -69,6 +69,9 @@ class SweepResult:
         Cycles each step ran; period multiple of its steady response (0: not periodic).
     window_states : ndarray, shape (n, n_state)
         The exact state at the start of each step's window (what loops restart from).
+    window_strobes : ndarray, shape (n, cycles, 2)
+        Each step's stroboscopic samples over its window: displacement (m) and velocity (m/s)
+        at the end of each of its cycles (table phase 0); NaN past the window's length.
     step_start_s : ndarray, shape (n,)
         When each step began (table phase 0 there), s.
     steps_done : int
@@ -108,6 +111,7 @@ class SweepResult:
     cycles_run: np.ndarray = field(repr=False)
     period_multiple: np.ndarray = field(repr=False)
     window_states: np.ndarray = field(repr=False)
+    window_strobes: np.ndarray = field(repr=False)
     step_start_s: np.ndarray = field(repr=False)
     steps_done: int
     final_state: State = field(repr=False)

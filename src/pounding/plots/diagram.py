@@ -1,0 +1,85 @@
+"""The bifurcation diagram: the section's samples against the frequency, up and down, over the
+branches of periodic orbits at the same section."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from .._checks import one_of
+from ._legend import place_legend
+
+DIRECTION_COLOR = {"up": "C0", "down": "C3"}
+DIRECTION_MARKER = {"up": "^", "down": "v"}
+
+
+def plot_bifurcation_diagram(diagram: Any, ax: Any = None, *, branches: Any = None, y: str = "displacement",
+                             **kwargs: Any) -> list:
+    """A bifurcation diagram: each recorded stroboscopic sample (table phase 0) against the
+    frequency, up and down in two colours; branches of periodic orbits under it at the same
+    section, stable solid, unstable dashed.
+
+    Parameters
+    ----------
+    diagram : BifurcationDiagram
+        From :func:`pounding.bifurcation_diagram`.
+    ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
+    branches : Branch or sequence of Branch, optional
+        From :func:`pounding.continuation` in ``freq_hz`` (their orbits' crossings of the section,
+        ``Branch.section()``).
+    y : {"displacement", "velocity"}
+        What to draw of the section's state: displacement in mm (default) or velocity in m/s.
+    **kwargs
+        Passed to the samples' markers (``ms``, ``alpha``, ...).
+
+    Returns
+    -------
+    list of matplotlib artists
+        The samples' markers (one per direction), then the branches' lines.
+
+    Examples
+    --------
+    >>> import numpy as np, pounding
+    >>> osc = pounding.presets.paper_damped()
+    >>> freqs = np.arange(1.4, 2.05, 0.1)
+    >>> diagram = pounding.bifurcation_diagram(osc, 0.05, freqs,
+    ...     transient_cycles=30, record_cycles=10)
+    >>> branch = pounding.continuation(osc, 0.05, (1.4, 2.0))
+    >>> artists = diagram.plot(branches=branch)
+    >>> len(artists) > 2
+    True
+    """
+    import matplotlib.pyplot as plt
+
+    one_of("y", y, ("displacement", "velocity"))
+    column, scale, label = {"displacement": ("strobe_displacement_m", 1e3, "D at table phase 0, mm"),
+                            "velocity": ("strobe_velocity_m_s", 1.0, "V at table phase 0, m/s")}[y]
+    if ax is None:
+        ax = plt.figure(figsize=(7, 4), constrained_layout=True).add_subplot()
+    ds = diagram.dataset
+    style = dict(ms=3, alpha=0.8, linestyle="none") | kwargs
+    artists: list = []
+    for d in ds["direction"].values.tolist():
+        values = ds[column].sel(direction=d).values * scale  # (freq_hz, cycle)
+        freqs = np.broadcast_to(ds["freq_hz"].values[:, None], values.shape)
+        keep = np.isfinite(values)
+        artists += ax.plot(freqs[keep], values[keep], DIRECTION_MARKER[d], color=DIRECTION_COLOR[d],
+                           mfc="none", label=f"sweep {d}", **style)
+    if branches is not None:
+        for k, br in enumerate(list(branches) if isinstance(branches, Sequence) else [branches]):
+            sec = br.section(0.0)
+            values = sec[f"{y}_m" if y == "displacement" else "velocity_m_s"].to_numpy() * scale
+            for stable, ls in ((True, "-"), (False, "--")):
+                # (a period-k orbit crosses the section k times: its crossings as dots, not a line)
+                fmt = ls if br.period_multiple == 1 else ("." if stable else "x")
+                shown = np.where(sec["stable"].to_numpy() == stable, values, np.nan)
+                artists += ax.plot(sec["freq_hz"], shown, fmt, color="0.35", lw=1.0, ms=2,
+                                   label=f"branch, {'stable' if stable else 'unstable'}" if k == 0 else None)
+    ax.set_xlabel("f, Hz")
+    ax.set_ylabel(label)
+    ax.set_title(f"Bifurcation diagram, a_G = {diagram.a_g:g} g", fontsize="medium")
+    place_legend(ax, fontsize="small")
+    return artists
