@@ -16,8 +16,8 @@ from .identification import (ContactLawFit, Identification, ModelFamily, Targets
 from .metrics import HysteresisLoop, impact_table
 from .model import (BoucWen, Bumpers, ElasticPlastic, Hertzdamp, HuntCrossley, Isolator, Jankowski,
                     KelvinVoigt, MultilinearBumper, Oscillator)
-from .protocols import (BifurcationDiagram, CampaignResult, PoundingSpectrum, SweepResult,
-                        bifurcation_diagram, campaign, paper_frequencies_hz, pounding_spectrum, sweep)
+from .protocols import (Basins, BifurcationDiagram, CampaignResult, PoundingSpectrum, SweepResult,
+                        basins, bifurcation_diagram, campaign, paper_frequencies_hz, pounding_spectrum, sweep)
 from .studies import StudyResult, StudySpec, open_study, study
 
 __version__ = "0.1.0"
@@ -35,5 +35,5 @@ __all__ = [
     "WarmUp", "warm_up", "plots", "records", "response_spectrum", "PoundingSpectrum", "pounding_spectrum",
     "StudyResult", "StudySpec", "open_study", "study", "PeriodicOrbit", "periodic_orbit",
     "Bifurcation", "Branch", "continuation", "BifurcationCurve", "CoexistenceMap", "bifurcation_curve",
-    "coexistence_map", "BifurcationDiagram", "bifurcation_diagram",
+    "coexistence_map", "BifurcationDiagram", "bifurcation_diagram", "Basins", "basins",
 ]

@@ -1,5 +1,5 @@
 """The ``pounding`` command: ``simulate``, ``sweep``, ``campaign``, ``reproduce``, ``identify``,
-``lab``, ``spectrum``, ``study``, ``continue``, ``coexistence``, ``bifurcation`` and ``warm-up``.
+``lab``, ``spectrum``, ``study``, ``continue``, ``coexistence``, ``bifurcation``, ``basins`` and ``warm-up``.
 
 Every command checks its inputs and its output paths before any work, writes its files
 atomically, answers bad input with exit code 2 and a line naming the field and the fix, a

@@ -1,5 +1,6 @@
-"""``pounding bifurcation``: a brute-force bifurcation diagram, up and down, optionally over the
-branch of periodic orbits."""
+"""``pounding bifurcation`` and ``pounding basins``: which response a system ends on, by sweeping
+(a brute-force bifurcation diagram, up and down, over the branch of periodic orbits) and from every
+initial state of a box (basins of attraction)."""
 
 from __future__ import annotations
 
@@ -10,8 +11,9 @@ import typer
 
 from .._errors import Interrupted, Status
 from .._io import atomic_write, interrupts_deferred
-from ._app import (OPT_FMAX, OPT_FMIN, OPT_NO_BUMPERS, OPT_PRESET, command, compile_notice, console,
-                   figure_path, files, frequencies, interrupted, kv_table, save_figure, system, write_csv)
+from ._app import (OPT_FMAX, OPT_FMIN, OPT_NO_BUMPERS, OPT_PRESET, OPT_SCHEDULER, command, compile_notice,
+                   console, figure_path, files, frequencies, interrupted, kv_table, save_figure, system,
+                   write_csv)
 
 CSV = (".csv",)
 NETCDF = (".nc", ".nc4", ".netcdf")
@@ -86,3 +88,71 @@ def bifurcation(
                     + (" and the files written" if any(paths.values()) or plot else ""))
     if not result.success:
         raise typer.Exit(code=1)
+
+
+@command("basins")
+def basins_command(
+    system_file: Optional[Path] = typer.Argument(
+        None, metavar="SYSTEM.toml", help="System TOML (see examples/). Omit to use --preset."),
+    a_g: float = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
+    freq: float = typer.Option(..., "--freq", help="Forcing frequency, Hz."),
+    preset: Optional[str] = OPT_PRESET,
+    no_bumpers: bool = OPT_NO_BUMPERS,
+    dmin: Optional[float] = typer.Option(None, "--dmin", help="Lowest initial displacement, m (default: "
+                                         "the left bumper's surface)."),
+    dmax: Optional[float] = typer.Option(None, "--dmax", help="Highest initial displacement, m (default: "
+                                         "the right bumper's surface)."),
+    vmin: float = typer.Option(-1.0, "--vmin", help="Lowest initial velocity, m/s."),
+    vmax: float = typer.Option(1.0, "--vmax", help="Highest initial velocity, m/s."),
+    n: int = typer.Option(50, "--n", help="Grid points along each axis (n x n states)."),
+    random: Optional[int] = typer.Option(None, "--random", help="Instead of a grid, this many states drawn "
+                                         "uniformly in the box (basin stability)."),
+    seed: int = typer.Option(0, "--seed", help="The random states' seed."),
+    max_cycles: int = typer.Option(500, "--max-cycles", help="Most cycles a state runs before it is called "
+                                   "not settled."),
+    scheduler: str = OPT_SCHEDULER,
+    workers: Optional[int] = typer.Option(None, "--workers", help="Parallel workers (default: all cores)."),
+    out: Optional[Path] = typer.Option(None, "--out", help="Write the attractors, one row each (CSV)."),
+    netcdf: Optional[Path] = typer.Option(None, "--netcdf", help="Write every state's label (.nc)."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Draw the basins (PNG, PDF...)."),
+) -> None:
+    """Basins of attraction: every initial state of a box (at table phase 0) run until it settles;
+    the responses it settles on (attractors) found, and the share of states that end on each."""
+    from ..excitation import Harmonic
+    from ..protocols.basins import basins
+
+    paths = files(out=(out, CSV), netcdf=(netcdf, NETCDF))
+    plot = figure_path("--plot", plot)
+    osc = system(system_file, preset, bumpers=not no_bumpers)
+    b = osc.bumpers
+    d_box = None if dmin is None and dmax is None else (
+        dmin if dmin is not None else (-b.gap_left if b is not None else -0.05),
+        dmax if dmax is not None else (b.gap_right if b is not None else 0.05))
+    kwargs = dict(displacement_m=d_box, velocity_m_s=(vmin, vmax), max_cycles=max_cycles,
+                  scheduler=scheduler, workers=workers, seed=seed)
+    kwargs.update(dict(n=random, sampling="random") if random is not None else dict(n=(n, n)))
+    compile_notice()
+    try:
+        result = basins(osc, Harmonic(a_g, freq), progress=True, **kwargs)
+    except Interrupted as stop:
+        result = stop.partial
+    table, add = kv_table(f"basins at a_G = {a_g:g}, {freq:g} Hz", system_file or preset)
+    for j, row in enumerate(result.attractors.itertuples()):
+        what = "impacting" if row.impacts else "free"
+        add(f"attractor {j}", f"{what}, period {row.period}, alpha {row.alpha:.4g}, excursion "
+                              f"{row.excursion_m * 1e3:.3g} mm: {row.fraction:.1%} "
+                              f"+- {row.standard_error:.1%}")
+    add("not settled", f"{result.not_settled:.1%} (in {max_cycles} cycles)")
+    console.print(table)
+    with interrupts_deferred() as held:
+        if paths["out"] is not None:
+            write_csv(result.attractors, paths["out"])
+            console.print(f"attractors -> {paths['out']}")
+        if paths["netcdf"] is not None:
+            atomic_write(paths["netcdf"], lambda tmp: result.to_xarray().to_netcdf(tmp))
+            console.print(f"dataset -> {paths['netcdf']}")
+        if plot is not None:
+            save_figure(result.plot, plot)
+    if not result.complete or held:
+        interrupted("the states finished are in the summary"
+                    + (" and the files written" if any(paths.values()) or plot else ""))

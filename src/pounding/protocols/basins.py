@@ -1,0 +1,344 @@
+"""Basins of attraction: which response each initial state ends on.
+
+Every initial state of a grid (or of a random sample of a box) at table phase 0 is run cycle after
+cycle by the step kernel until its stroboscopic samples repeat (a periodic response of period
+``k <= max_period``) or ``max_cycles`` pass.  The settled responses are then matched into
+attractors by what they are (period, alpha, excursion, contacts per cycle), not given: two
+responses within ``match_rtol`` of each other in those are one attractor.  A kinematic isolator
+that does not yield keeps the set its transient left, a family of orbits shifted from each other:
+they are one attractor, as their period, alpha and excursion say.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Sequence
+
+import numpy as np
+import pandas as pd
+
+from .._checks import integer, one_of, positive, real
+from .._errors import InputError, Interrupted, Problem, Status
+from .._runner import Context, run_tasks
+from .._runner.progress import Progress
+from ..engine import State
+from ..engine._layout import T
+from ..engine.simulate import check_oscillator, kernel_system
+from ..excitation import Harmonic
+from ..metrics._impacts import S_COUNT, SIDE_SUMS
+from ..model import Oscillator
+from ._step_kernel import W_AMAX, W_CYCLES, W_DMAX, W_DMIN, W_SUMS, step_kernel
+
+if TYPE_CHECKING:  # pragma: no cover
+    import xarray as xr
+
+MAX_STATES = 4_000_000
+ROWS_PER_TASK = 64
+NOT_SETTLED = -1  # the label of a state that did not settle within max_cycles
+OUT_OF_BOX = -2   # (a state inside a bumper: not a state of the system)
+
+
+def _run_states(task: tuple, ctx: Context) -> np.ndarray:
+    """Run each initial state of the task until it settles: per state, (period, alpha, excursion,
+    contacts per cycle, D and V at the section, cycles run).  ``task``: (system, amplitude,
+    omega, states (n, state length), steady options, rtol)."""
+    system, amp, omega, states, steady, rtol = task
+    out = np.full((len(states), 7), np.nan)
+    try:
+        for i, start in enumerate(states):
+            if ctx.stopped():
+                raise Interrupted(out, i, len(states), "states")
+            st, n, k, win, _, strobes, code = step_kernel(system, amp, omega, start.copy(), steady, rtol,
+                                                          1_000_000, ctx.control)
+            if code == Status.INTERRUPTED:  # (stopped: Ctrl-C; the state is left NaN)
+                raise Interrupted(out, i, len(states), "states")
+            if code != Status.SUCCESS:  # (the engine stopped early: the state did not settle)
+                out[i, 0], out[i, 6] = 0.0, n
+                ctx.advance(1)
+                continue
+            contacts = (win[W_SUMS + S_COUNT] + win[W_SUMS + SIDE_SUMS + S_COUNT]) / max(win[W_CYCLES], 1.0)
+            out[i] = (k, win[W_AMAX] / amp, 0.5 * (win[W_DMAX] - win[W_DMIN]), contacts, strobes[-1, 0],
+                      strobes[-1, 1], n)
+            ctx.advance(1)
+    except KeyboardInterrupt as stop:  # (a progress callback's Ctrl-C: keep the states finished)
+        if isinstance(stop, Interrupted):
+            raise
+        raise Interrupted(out, 0, len(states), "states") from None
+    return out
+
+
+def basins(oscillator: Oscillator, excitation: Harmonic, *, displacement_m: Any = None,
+           velocity_m_s: Any = None, n: Any = (50, 50), sampling: str = "grid", seed: int = 0,
+           max_cycles: int = 500, measure_cycles: int = 5, max_period: int = 8, steady_rtol: float = 1e-8,
+           match_rtol: float = 1e-4, rtol: float = 1e-10, scheduler: Any = None, workers: Any = None,
+           progress: Progress = False) -> "Basins":
+    """Which response each initial state ends on, and how likely each response is.
+
+    Parameters
+    ----------
+    oscillator : Oscillator
+        The system.
+    excitation : Harmonic
+        The shaking (its phase is ignored: every state starts at table phase 0).
+    displacement_m, velocity_m_s : (float, float), optional
+        The box of initial displacements (m, between the bumpers' surfaces) and velocities (m/s);
+        default: the gaps (or +-50 mm without bumpers) and +-1 m/s.
+    n : (int, int) or int
+        Grid points in displacement and velocity (``sampling="grid"``, default 50 x 50), or the
+        number of random states (``sampling="random"``).
+    sampling : {"grid", "random"}
+        A regular grid, or states drawn uniformly in the box (with ``seed``): basin stability.
+    seed : int
+        The random states' seed.
+    max_cycles : int
+        Most cycles a state runs before it is called not settled (label -1).
+    measure_cycles, max_period, steady_rtol : int, int, float
+        When a response is settled: its stroboscopic samples repeat with a period ``k <=
+        max_period`` over ``measure_cycles`` cycles, to within ``steady_rtol`` of its amplitude.
+    match_rtol : float
+        Two settled responses are one attractor when they have the same period and their alpha,
+        excursion and contacts per cycle agree to ``match_rtol`` (relative).
+    rtol : float
+        Tolerance of the numerical integration of nonlinear contact laws.
+    scheduler : str or dask.distributed.Client, optional
+        How the states run: ``"threads"`` (default), ``"serial"``, ``"processes"``, ``"local"``
+        (a Dask ``LocalCluster``), a Dask scheduler's address or a ``Client``.
+    workers : int, optional
+        Threads or processes (default: the machine's cores).
+    progress : bool or callable
+        True: a progress bar over the states.
+
+    Returns
+    -------
+    Basins
+        The label of every state, the attractors and their basins' fractions with their standard
+        errors; ``.plot()``, ``.to_xarray()``.
+
+    Raises
+    ------
+    InputError
+        For a bad argument (names it, the value and the fix).
+    Interrupted
+        On Ctrl-C; its ``partial`` holds the states finished (the others -1).
+
+    Examples
+    --------
+    The damped paper system at a_G = 0.05 g, 1.8 Hz, where a response in contact with the bumpers
+    and a free one coexist:
+
+    >>> import pounding
+    >>> osc = pounding.presets.paper_damped()
+    >>> b = pounding.basins(osc, pounding.Harmonic(0.05, 1.8), n=(12, 12))
+    >>> table = b.attractors[["period", "alpha", "impacts"]].round(2)
+    >>> print(table.to_string(index=False))
+     period  alpha  impacts
+          1   1.40    False
+          1  11.39     True
+    >>> b.fractions.round(2).tolist()
+    [0.51, 0.49]
+    """
+    check_oscillator(oscillator)
+    if not isinstance(excitation, Harmonic):
+        raise InputError(Problem.WRONG_TYPE, "excitation", excitation, got=type(excitation).__name__,
+                         expected="pounding.Harmonic (basins are of a periodic forcing)")
+    one_of("sampling", sampling, ("grid", "random"))
+    b = oscillator.bumpers
+    d_box = _box("displacement_m", displacement_m,
+                 (-b.gap_left, b.gap_right) if b is not None else (-0.05, 0.05), "m")
+    if b is not None and (d_box[0] < -b.gap_left or d_box[1] > b.gap_right):
+        raise InputError(Problem.OUT_OF_RANGE, "displacement_m", d_box,
+                         range=f"[{-b.gap_left:g}, {b.gap_right:g}]",
+                         hint=" (between the bumpers' surfaces, m)")
+    v_box = _box("velocity_m_s", velocity_m_s, (-1.0, 1.0), "m/s")
+    if sampling == "grid":
+        shape = _grid_shape(n)
+        d = np.linspace(*d_box, shape[0])
+        v = np.linspace(*v_box, shape[1])
+        dd, vv = (a.ravel() for a in np.meshgrid(d, v, indexing="ij"))
+    else:
+        count = integer("n", n, 1, MAX_STATES)
+        rng = np.random.default_rng(integer("seed", seed, 0))
+        dd, vv = rng.uniform(*d_box, count), rng.uniform(*v_box, count)
+        shape = (count,)
+    max_cycles = integer("max_cycles", max_cycles, 1, 1_000_000)
+    measure_cycles = integer("measure_cycles", measure_cycles, 1, 10_000)
+    max_period = integer("max_period", max_period, 1, 1000)
+    if max_cycles < 2 * measure_cycles + 1:
+        raise InputError(Problem.TOO_SMALL, "max_cycles", max_cycles, minimum=2 * measure_cycles + 1,
+                         hint=" (steadiness compares the window with the cycles before it)")
+    steady_rtol = positive("steady_rtol", steady_rtol, "(relative to the response amplitude)")
+    match_rtol = positive("match_rtol", match_rtol, "(relative)")
+    starts = np.array([State.at_rest(oscillator, 0.0, float(x), float(y)).vector for x, y in zip(dd, vv)])
+    starts[:, T] = 0.0
+    system = kernel_system(oscillator)
+    amp, omega = excitation.peak_m_s2, excitation.omega_rad_s
+    steady = (True, max_cycles, measure_cycles, float(steady_rtol), max_period)
+    chunks = [starts[i:i + ROWS_PER_TASK] for i in range(0, len(starts), ROWS_PER_TASK)]
+    tasks = [(system, amp, omega, c, steady, float(rtol)) for c in chunks]
+    ran = run_tasks(_run_states, tasks, scheduler=scheduler, workers=workers, progress=progress,
+                    label=f"basins at {excitation.freq_hz:g} Hz", total=len(starts), on_error="stop")
+    ran.raise_first_error(lambda i: f"the states {i * ROWS_PER_TASK} to {(i + 1) * ROWS_PER_TASK - 1}")
+    rows = np.vstack([v if v is not None else np.full((len(c), 7), np.nan)
+                      for v, c in zip(ran.values, chunks)])
+    result = _basins(oscillator, excitation, sampling, shape, dd, vv, rows, match_rtol, not ran.complete)
+    if ran.interrupted:
+        raise Interrupted(result, int(np.isfinite(rows[:, 0]).sum()), len(rows), "states")
+    return result
+
+
+@dataclass(frozen=True, eq=False)
+class Basins:
+    """What :func:`basins` found.
+
+    Attributes
+    ----------
+    oscillator : Oscillator
+    excitation : Harmonic
+    sampling : str
+        "grid" or "random".
+    displacement_m, velocity_m_s : ndarray, shape (states,)
+        The initial states (table phase 0, the isolator on its backbone).
+    labels : ndarray of int
+        The attractor each state ends on (its row of ``attractors``), -1 where it did not settle;
+        shape (nx, ny) for a grid, (states,) for random states.
+    attractors : DataFrame
+        One row per attractor: ``period``, ``alpha``, ``excursion_m``, ``contacts_per_cycle``,
+        ``impacts`` (whether it touches the bumpers), ``displacement_m`` and ``velocity_m_s`` (a
+        sample of it at the section), ``states`` (how many ended on it), ``fraction`` and
+        ``standard_error`` (of the fraction, as a sampling estimate: sqrt(p (1 - p) / N)).
+    cycles_run : ndarray of int
+        Cycles each state ran, the shape of ``labels``.
+    complete : bool
+        Every state ran (False after Ctrl-C).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> osc = pounding.presets.paper_damped()
+    >>> b = pounding.basins(osc, pounding.Harmonic(0.05, 2.5), n=(6, 6))
+    >>> # one response, reached from everywhere
+    >>> len(b.attractors), b.fractions.tolist()
+    (1, [1.0])
+    """
+
+    oscillator: Oscillator
+    excitation: Harmonic
+    sampling: str
+    displacement_m: np.ndarray
+    velocity_m_s: np.ndarray
+    labels: np.ndarray
+    attractors: pd.DataFrame
+    cycles_run: np.ndarray
+    complete: bool
+
+    @property
+    def fractions(self) -> pd.Series:
+        """Each attractor's share of the states (those not settled count in the total)."""
+        return self.attractors["fraction"]
+
+    @property
+    def not_settled(self) -> float:
+        """The share of states that did not settle within ``max_cycles``."""
+        return float(np.mean(self.labels == NOT_SETTLED))
+
+    def to_xarray(self) -> "xr.Dataset":
+        """Labels and cycles per initial state (a grid: dimensions ``displacement_m`` and
+        ``velocity_m_s``; random states: ``state``), the attractors as variables over ``attractor``."""
+        import xarray as xr
+
+        if self.sampling == "grid":
+            nx, ny = self.labels.shape
+            coords = {"displacement_m": self.displacement_m.reshape(nx, ny)[:, 0],
+                      "velocity_m_s": self.velocity_m_s.reshape(nx, ny)[0]}
+            dims: tuple = ("displacement_m", "velocity_m_s")
+        else:
+            coords = {"state": np.arange(self.labels.size)}
+            dims = ("state",)
+        ds = xr.Dataset({"label": (dims, self.labels), "cycles_run": (dims, self.cycles_run)}, coords=coords)
+        if self.sampling != "grid":
+            ds["initial_displacement_m"] = (dims, self.displacement_m)
+            ds["initial_velocity_m_s"] = (dims, self.velocity_m_s)
+        for col in self.attractors.columns:
+            ds[f"attractor_{col}"] = ("attractor", self.attractors[col].to_numpy())
+        ds.attrs.update({"a_g": self.excitation.a_g, "freq_hz": self.excitation.freq_hz,
+                         "complete": int(self.complete), "system": self.oscillator.to_toml_text()})
+        return ds
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> list:
+        """The basins in the plane of initial displacement (mm) and velocity, coloured by attractor,
+        the attractors' samples at the section marked."""
+        from ..plots.basins import plot_basins
+
+        return plot_basins(self, ax=ax, **kwargs)
+
+    def __repr__(self) -> str:
+        shares = ", ".join(f"{r.fraction:.3f}" for r in self.attractors.itertuples())
+        exc = self.excitation
+        return (f"Basins({self.labels.size} states at a_G {exc.a_g:g}, {exc.freq_hz:g} Hz: "
+                f"{len(self.attractors)} attractors, fractions {shares}; not settled {self.not_settled:.3f})")
+
+
+def _box(field: str, value: Any, default: tuple, unit: str) -> tuple[float, float]:
+    if value is None:
+        return (float(default[0]), float(default[1]))
+    if isinstance(value, (str, bytes)) or not isinstance(value, Sequence) or len(value) != 2:
+        raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__,
+                         expected=f"(low, high) in {unit}")
+    lo, hi = real(f"{field}[0]", value[0]), real(f"{field}[1]", value[1])
+    if not lo < hi:
+        raise InputError(Problem.OUT_OF_RANGE, field, value, range="low < high", hint=f" ({unit})")
+    return lo, hi
+
+
+def _grid_shape(n: Any) -> tuple[int, int]:
+    if isinstance(n, (int, np.integer)) and not isinstance(n, bool):
+        n = (n, n)
+    if isinstance(n, (str, bytes)) or not isinstance(n, Sequence) or len(n) != 2:
+        raise InputError(Problem.WRONG_TYPE, "n", n, got=type(n).__name__, expected="(nx, ny) or an int")
+    nx, ny = integer("n[0]", n[0], 1), integer("n[1]", n[1], 1)
+    if nx * ny > MAX_STATES:
+        raise InputError(Problem.TOO_LARGE, "n", n, maximum=MAX_STATES, what=" states",
+                         fix="give a coarser grid")
+    return nx, ny
+
+
+def _basins(osc: Oscillator, exc: Harmonic, sampling: str, shape: tuple, dd: np.ndarray, vv: np.ndarray,
+            rows: np.ndarray, match_rtol: float, interrupted: bool) -> Basins:
+    """The attractors matched from the settled states' rows, and each state's label."""
+    labels = np.full(len(rows), NOT_SETTLED, dtype=np.int64)
+    found: list[np.ndarray] = []  # one row per attractor: the first state's
+    members: list[list[int]] = []
+    for i, row in enumerate(rows):
+        if not (np.isfinite(row[0]) and row[0] > 0):
+            continue
+        for j, att in enumerate(found):
+            if att[0] == row[0] and all(math.isclose(a, b, rel_tol=match_rtol, abs_tol=1e-12)
+                                        for a, b in zip(att[1:4], row[1:4])):
+                labels[i] = j
+                members[j].append(i)
+                break
+        else:
+            labels[i] = len(found)
+            found.append(row)
+            members.append([i])
+    order = np.argsort([att[1] for att in found], kind="stable")  # (attractors by alpha, lowest first)
+    relabel = np.empty(len(found), dtype=np.int64)
+    relabel[order] = np.arange(len(found))
+    labels[labels >= 0] = relabel[labels[labels >= 0]]
+    total = len(rows)
+    table = []
+    for j in order:
+        att = found[j]
+        p = len(members[j]) / total
+        table.append({"period": int(att[0]), "alpha": att[1], "excursion_m": att[2],
+                      "contacts_per_cycle": att[3],
+                      "impacts": bool(att[3] > 0.0), "displacement_m": att[4], "velocity_m_s": att[5],
+                      "states": len(members[j]), "fraction": p,
+                      "standard_error": math.sqrt(p * (1.0 - p) / total)})
+    columns = ["period", "alpha", "excursion_m", "contacts_per_cycle", "impacts", "displacement_m",
+               "velocity_m_s", "states", "fraction", "standard_error"]
+    cycles = np.nan_to_num(rows[:, 6], nan=0.0).astype(np.int64)
+    return Basins(osc, exc, sampling, dd, vv, labels.reshape(shape), pd.DataFrame(table, columns=columns),
+                  cycles.reshape(shape), not interrupted)
+

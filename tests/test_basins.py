@@ -1,0 +1,95 @@
+"""pounding.basins: the attractors found against continuation's stable orbits, the matching of
+settled responses, the fractions and their errors, and what users meet (bad input, Ctrl-C, random
+sampling, the plot, the command line)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+import pounding as pd_
+from pounding.cli import app
+
+DAMPED = pd_.presets.paper_damped()
+
+
+@pytest.fixture(scope="module")
+def coexisting():
+    return pd_.basins(DAMPED, pd_.Harmonic(0.05, 1.8), n=(14, 14), steady_rtol=1e-10)
+
+
+def test_two_attractors_where_continuation_has_two_stable_orbits(coexisting):
+    """At 1.8 Hz the branch has two stable orbits (between its folds): the basins find those two,
+    a free one and one in contact, each with the orbit's alpha to 1e-6."""
+    branch = pd_.continuation(DAMPED, 0.05, (1.4, 2.6))
+    folds = sorted(b.freq_hz for b in branch.folds())
+    assert folds[0] < 1.8 < folds[1]
+    att = coexisting.attractors
+    assert len(att) == 2 and att["impacts"].tolist() == [False, True] and (att["period"] == 1).all()
+    for row in att.itertuples():
+        guess = pd_.State.at_rest(DAMPED, 0.0, row.displacement_m, row.velocity_m_s)
+        orbit = pd_.periodic_orbit(DAMPED, pd_.Harmonic(0.05, 1.8), guess=guess)
+        assert orbit.converged and orbit.stable
+        assert row.alpha == pytest.approx(orbit.alpha, rel=1e-6)
+    assert coexisting.not_settled == 0.0 and att["fraction"].sum() == pytest.approx(1.0)
+    p, se = att["fraction"].to_numpy(), att["standard_error"].to_numpy()
+    np.testing.assert_allclose(se, np.sqrt(p * (1 - p) / 14**2))
+    # every state labelled with its attractor; both basins non-empty
+    assert set(np.unique(coexisting.labels)) == {0, 1} and coexisting.labels.shape == (14, 14)
+
+
+def test_one_attractor_where_there_is_one_stable_orbit():
+    b = pd_.basins(DAMPED, pd_.Harmonic(0.05, 2.6), n=(5, 5))
+    assert len(b.attractors) == 1 and b.fractions.tolist() == [1.0] and not b.attractors["impacts"][0]
+
+
+def test_random_sampling_estimates_the_grid_fractions_within_their_errors(coexisting):
+    sample = pd_.basins(DAMPED, pd_.Harmonic(0.05, 1.8), n=300, sampling="random", seed=3, steady_rtol=1e-10)
+    assert sample.labels.shape == (300,) and len(sample.attractors) == 2
+    grid, est = coexisting.fractions.to_numpy(), sample.fractions.to_numpy()
+    se = np.hypot(coexisting.attractors["standard_error"], sample.attractors["standard_error"]).to_numpy()
+    assert np.all(np.abs(grid - est) < 4 * se)
+    ds = sample.to_xarray()
+    assert ds["label"].dims == ("state",) and ds["attractor_alpha"].size == 2
+
+
+@pytest.mark.parametrize("kwargs, field", [
+    ({"displacement_m": (0.0, 0.5)}, "displacement_m"), ({"displacement_m": (0.01, -0.01)}, "displacement_m"),
+    ({"velocity_m_s": 3.0}, "velocity_m_s"), ({"n": (0, 5)}, "n"), ({"n": "many"}, "n"),
+    ({"sampling": "sobol"}, "sampling"), ({"max_cycles": 5}, "max_cycles"),
+    ({"match_rtol": -1.0}, "match_rtol"),
+    ({"scheduler": "cluster"}, "scheduler"),
+])
+def test_bad_arguments_are_named(kwargs, field):
+    with pytest.raises(pd_.InputError, match=field):
+        pd_.basins(DAMPED, pd_.Harmonic(0.05, 1.8), **kwargs)
+    with pytest.raises(pd_.InputError, match="excitation"):
+        pd_.basins(DAMPED, pd_.records.el_centro())
+
+
+def test_ctrl_c_keeps_the_states_finished():
+    seen = []
+
+    def stop_after(n):
+        seen.append(n)
+        if len(seen) == 20:
+            raise KeyboardInterrupt
+
+    with pytest.raises(pd_.Interrupted) as info:
+        pd_.basins(DAMPED, pd_.Harmonic(0.05, 1.8), n=(10, 10), scheduler="serial", progress=stop_after)
+    part = info.value.partial
+    assert not part.complete and 0 < int((part.labels >= 0).sum()) < 100
+
+
+def test_the_plot_and_the_command_line(coexisting, tmp_path):
+    artists = coexisting.plot()
+    assert len(artists) == 3
+    out, png = tmp_path / "b.nc", tmp_path / "b.png"
+    res = CliRunner().invoke(app, ["basins", "--preset", "paper-damped", "--a-g", "0.05", "--freq", "1.8",
+                                   "--n", "6", "--netcdf", str(out), "--plot", str(png)])
+    assert res.exit_code == 0, res.output
+    assert "impacting" in res.output and out.stat().st_size > 0 and png.stat().st_size > 0
+    bad = CliRunner().invoke(app, ["basins", "--preset", "paper-damped", "--a-g", "0.05", "--freq", "1.8",
+                                   "--n", "0"])
+    assert bad.exit_code == 2 and "n" in bad.output
