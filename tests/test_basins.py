@@ -93,3 +93,25 @@ def test_the_plot_and_the_command_line(coexisting, tmp_path):
     bad = CliRunner().invoke(app, ["basins", "--preset", "paper-damped", "--a-g", "0.05", "--freq", "1.8",
                                    "--n", "0"])
     assert bad.exit_code == 2 and "n" in bad.output
+
+
+def test_basin_stability_map_is_the_basins_fraction_at_each_point():
+    """The map's probability at a point is basins' impacting fraction for the same random states
+    (same seed): 1 where the only response pounds (1.5 Hz), 0 where it is free (2.6 Hz), between
+    at 1.8 Hz, with the sampling error of that share; one impacting and one free response there."""
+    m = pd_.basin_stability_map(DAMPED, [0.05], [1.5, 1.8, 2.6], samples=50, seed=4)
+    ds = m.dataset
+    p = ds["pounding_probability"].sel(a_g=0.05).values
+    b = pd_.basins(DAMPED, pd_.Harmonic(0.05, 1.8), n=50, sampling="random", seed=4)
+    share = float(b.attractors.loc[b.attractors["impacts"], "fraction"].sum())
+    assert p[0] == 1.0 and p[2] == 0.0 and p[1] == pytest.approx(share)
+    assert ds["standard_error"].sel(a_g=0.05).values[1] == pytest.approx(np.sqrt(share * (1 - share) / 50))
+    assert ds["impacting_attractors"].values.tolist() == [[1, 1, 0]]
+    assert ds["free_attractors"].values.tolist() == [[0, 1, 1]]
+    assert m.complete and len(m.plot()) >= 2
+    with pytest.raises(pd_.InputError, match="bumpers"):
+        pd_.basin_stability_map(DAMPED.without_bumpers(), [0.05], [1.8])
+    with pytest.raises(pd_.InputError, match="a_g_levels"):
+        pd_.basin_stability_map(DAMPED, [-0.05], [1.8])
+    with pytest.raises(pd_.InputError, match="samples"):
+        pd_.basin_stability_map(DAMPED, [0.05], [1.8], samples=0)

@@ -93,6 +93,8 @@ def test_every_plot_of_the_package_keeps_its_legend_off_the_data():
     diagram = pd_.bifurcation_diagram(osc, 0.05, freqs, transient_cycles=10, record_cycles=9)
     figures.append(diagram.plot(branches=branch)[0].figure)
     figures.append(pd_.basins(osc, pd_.Harmonic(0.05, 1.8), n=(8, 8)).plot()[0].figure)
+    stability = pd_.basin_stability_map(osc, [0.04, 0.05], [1.5, 1.8], samples=6)
+    figures.append(stability.plot()[0].figure)
     quake = pd_.records.el_centro()
     figures.append(quake.plot()[0].figure)
     spectrum = pd_.pounding_spectrum([quake, quake.scaled(pga_g=0.2)], [1.0, 2.0, 3.0], gaps_m=[0.02, 0.05])

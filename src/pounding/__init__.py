@@ -16,8 +16,9 @@ from .identification import (ContactLawFit, Identification, ModelFamily, Targets
 from .metrics import HysteresisLoop, impact_table
 from .model import (BoucWen, Bumpers, ElasticPlastic, Hertzdamp, HuntCrossley, Isolator, Jankowski,
                     KelvinVoigt, MultilinearBumper, Oscillator)
-from .protocols import (Basins, BifurcationDiagram, CampaignResult, PoundingSpectrum, SweepResult,
-                        basins, bifurcation_diagram, campaign, paper_frequencies_hz, pounding_spectrum, sweep)
+from .protocols import (BasinStabilityMap, Basins, BifurcationDiagram, CampaignResult, PoundingSpectrum,
+                        SweepResult, basin_stability_map, basins, bifurcation_diagram, campaign,
+                        paper_frequencies_hz, pounding_spectrum, sweep)
 from .studies import StudyResult, StudySpec, open_study, study
 
 __version__ = "0.1.0"
@@ -36,4 +37,5 @@ __all__ = [
     "StudyResult", "StudySpec", "open_study", "study", "PeriodicOrbit", "periodic_orbit",
     "Bifurcation", "Branch", "continuation", "BifurcationCurve", "CoexistenceMap", "bifurcation_curve",
     "coexistence_map", "BifurcationDiagram", "bifurcation_diagram", "Basins", "basins",
+    "BasinStabilityMap", "basin_stability_map",
 ]

@@ -1,6 +1,6 @@
 """Figures, apart from computing: every function takes ``ax=`` and returns its artists."""
 
-from .basins import plot_basins
+from .basins import plot_basin_stability, plot_basins
 from .branch import plot_branch
 from .contact_law import plot_contact_law_fit
 from .curves import plot_curves
@@ -13,7 +13,7 @@ from .spectrum import plot_pounding_spectrum
 from .study import plot_study
 from .sweep import plot_campaign, plot_hysteresis, plot_lab_sweep, plot_sweep
 
-__all__ = ["plot_basins", "plot_bifurcation_diagram", "plot_branch", "plot_campaign", "plot_contact_law_fit",
-           "plot_curves", "plot_identification",
+__all__ = ["plot_basin_stability", "plot_basins", "plot_bifurcation_diagram", "plot_branch", "plot_campaign",
+           "plot_contact_law_fit", "plot_curves", "plot_identification",
            "plot_hysteresis", "plot_lab_sweep", "plot_orbit", "plot_pounding_spectrum", "plot_record",
            "plot_response_spectrum", "plot_run", "plot_study", "plot_sweep"]

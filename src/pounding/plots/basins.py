@@ -68,3 +68,57 @@ def plot_basins(result: Any, ax: Any = None, **kwargs: Any) -> list:
     ax.set_title(f"Basins at a_G = {exc.a_g:g} g, {exc.freq_hz:g} Hz (table phase 0)", fontsize="medium")
     place_legend(ax, fontsize="small")
     return artists
+
+
+def plot_basin_stability(result: Any, ax: Any = None, *, curves: Any = None, **kwargs: Any) -> list:
+    """The probability of pounding over frequency and a_G (colour), with ``curves`` (a
+    :class:`~pounding.CoexistenceMap`: its fold and grazing curves) over it.
+
+    Parameters
+    ----------
+    result : BasinStabilityMap
+        From :func:`pounding.basin_stability_map`.
+    ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
+    curves : CoexistenceMap, optional
+        From :func:`pounding.coexistence_map`.
+    **kwargs
+        Passed to the colour mesh.
+
+    Returns
+    -------
+    list of matplotlib artists
+        The mesh, the colour bar, the curves' lines.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> osc = pounding.presets.paper_damped()
+    >>> m = pounding.basin_stability_map(osc, [0.04, 0.05], [1.5, 1.8, 2.1],
+    ...                                  samples=10)
+    >>> len(m.plot()) >= 2
+    True
+    """
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        ax = plt.figure(figsize=(6.5, 4.5), constrained_layout=True).add_subplot()
+    ds = result.dataset
+    mesh = ax.pcolormesh(ds["freq_hz"].values, ds["a_g"].values, ds["pounding_probability"].values,
+                         shading="nearest", cmap="viridis", vmin=0.0, vmax=1.0, **kwargs)
+    bar = ax.figure.colorbar(mesh, ax=ax, label="probability of pounding")
+    artists: list = [mesh, bar]
+    if curves is not None:
+        labelled = set()
+        for curve in curves.curves:
+            df = curve.to_dataframe()
+            fold = curve.kind == "fold"
+            artists += ax.plot(df["freq_hz"], df["a_g"], color="w" if fold else "C1", lw=1.2,
+                               ls="-" if fold else "--", label=None if curve.kind in labelled else curve.kind)
+            labelled.add(curve.kind)
+    ax.set_xlabel("f, Hz")
+    ax.set_ylabel("a_G, g")
+    ax.set_title(f"Probability of pounding ({int(ds.attrs['samples'])} initial states a point)",
+                 fontsize="medium")
+    place_legend(ax, fontsize="small")
+    return artists

@@ -39,7 +39,7 @@ NOT_SETTLED = -1  # the label of a state that did not settle within max_cycles
 OUT_OF_BOX = -2   # (a state inside a bumper: not a state of the system)
 
 
-def _run_states(task: tuple, ctx: Context) -> np.ndarray:
+def run_states(task: tuple, ctx: Context) -> np.ndarray:
     """Run each initial state of the task until it settles: per state, (period, alpha, excursion,
     contacts per cycle, D and V at the section, cycles run).  ``task``: (system, amplitude,
     omega, states (n, state length), steady options, rtol)."""
@@ -143,14 +143,7 @@ def basins(oscillator: Oscillator, excitation: Harmonic, *, displacement_m: Any 
         raise InputError(Problem.WRONG_TYPE, "excitation", excitation, got=type(excitation).__name__,
                          expected="pounding.Harmonic (basins are of a periodic forcing)")
     one_of("sampling", sampling, ("grid", "random"))
-    b = oscillator.bumpers
-    d_box = _box("displacement_m", displacement_m,
-                 (-b.gap_left, b.gap_right) if b is not None else (-0.05, 0.05), "m")
-    if b is not None and (d_box[0] < -b.gap_left or d_box[1] > b.gap_right):
-        raise InputError(Problem.OUT_OF_RANGE, "displacement_m", d_box,
-                         range=f"[{-b.gap_left:g}, {b.gap_right:g}]",
-                         hint=" (between the bumpers' surfaces, m)")
-    v_box = _box("velocity_m_s", velocity_m_s, (-1.0, 1.0), "m/s")
+    d_box, v_box = state_box(oscillator, displacement_m, velocity_m_s)
     if sampling == "grid":
         shape = _grid_shape(n)
         d = np.linspace(*d_box, shape[0])
@@ -161,22 +154,14 @@ def basins(oscillator: Oscillator, excitation: Harmonic, *, displacement_m: Any 
         rng = np.random.default_rng(integer("seed", seed, 0))
         dd, vv = rng.uniform(*d_box, count), rng.uniform(*v_box, count)
         shape = (count,)
-    max_cycles = integer("max_cycles", max_cycles, 1, 1_000_000)
-    measure_cycles = integer("measure_cycles", measure_cycles, 1, 10_000)
-    max_period = integer("max_period", max_period, 1, 1000)
-    if max_cycles < 2 * measure_cycles + 1:
-        raise InputError(Problem.TOO_SMALL, "max_cycles", max_cycles, minimum=2 * measure_cycles + 1,
-                         hint=" (steadiness compares the window with the cycles before it)")
-    steady_rtol = positive("steady_rtol", steady_rtol, "(relative to the response amplitude)")
+    steady = steady_options(max_cycles, measure_cycles, max_period, steady_rtol)
     match_rtol = positive("match_rtol", match_rtol, "(relative)")
-    starts = np.array([State.at_rest(oscillator, 0.0, float(x), float(y)).vector for x, y in zip(dd, vv)])
-    starts[:, T] = 0.0
+    starts = initial_states(oscillator, dd, vv)
     system = kernel_system(oscillator)
     amp, omega = excitation.peak_m_s2, excitation.omega_rad_s
-    steady = (True, max_cycles, measure_cycles, float(steady_rtol), max_period)
     chunks = [starts[i:i + ROWS_PER_TASK] for i in range(0, len(starts), ROWS_PER_TASK)]
     tasks = [(system, amp, omega, c, steady, float(rtol)) for c in chunks]
-    ran = run_tasks(_run_states, tasks, scheduler=scheduler, workers=workers, progress=progress,
+    ran = run_tasks(run_states, tasks, scheduler=scheduler, workers=workers, progress=progress,
                     label=f"basins at {excitation.freq_hz:g} Hz", total=len(starts), on_error="stop")
     ran.raise_first_error(lambda i: f"the states {i * ROWS_PER_TASK} to {(i + 1) * ROWS_PER_TASK - 1}")
     rows = np.vstack([v if v is not None else np.full((len(c), 7), np.nan)
@@ -277,6 +262,40 @@ class Basins:
         exc = self.excitation
         return (f"Basins({self.labels.size} states at a_G {exc.a_g:g}, {exc.freq_hz:g} Hz: "
                 f"{len(self.attractors)} attractors, fractions {shares}; not settled {self.not_settled:.3f})")
+
+
+def state_box(osc: Oscillator, displacement_m: Any, velocity_m_s: Any) -> tuple[tuple, tuple]:
+    """The box of initial displacements (between the bumpers' surfaces; default the gaps, or +-50 mm
+    without bumpers) and velocities (default +-1 m/s), checked."""
+    b = osc.bumpers
+    d_box = _box("displacement_m", displacement_m,
+                 (-b.gap_left, b.gap_right) if b is not None else (-0.05, 0.05), "m")
+    if b is not None and (d_box[0] < -b.gap_left or d_box[1] > b.gap_right):
+        raise InputError(Problem.OUT_OF_RANGE, "displacement_m", d_box,
+                         range=f"[{-b.gap_left:g}, {b.gap_right:g}]",
+                         hint=" (between the bumpers' surfaces, m)")
+    return d_box, _box("velocity_m_s", velocity_m_s, (-1.0, 1.0), "m/s")
+
+
+def steady_options(max_cycles: Any, measure_cycles: Any, max_period: Any, steady_rtol: Any) -> tuple:
+    """The step kernel's adaptive options ``(True, max_cycles, measure_cycles, steady_rtol,
+    max_period)``, checked."""
+    max_cycles = integer("max_cycles", max_cycles, 1, 1_000_000)
+    measure_cycles = integer("measure_cycles", measure_cycles, 1, 10_000)
+    max_period = integer("max_period", max_period, 1, 1000)
+    if max_cycles < 2 * measure_cycles + 1:
+        raise InputError(Problem.TOO_SMALL, "max_cycles", max_cycles, minimum=2 * measure_cycles + 1,
+                         hint=" (steadiness compares the window with the cycles before it)")
+    steady_rtol = positive("steady_rtol", steady_rtol, "(relative to the response amplitude)")
+    return (True, max_cycles, measure_cycles, float(steady_rtol), max_period)
+
+
+def initial_states(osc: Oscillator, dd: np.ndarray, vv: np.ndarray) -> np.ndarray:
+    """State vectors at time 0 (table phase 0), the bumpers relaxed and the isolator on its
+    backbone, at displacements ``dd`` (m) and velocities ``vv`` (m/s); shape (states, length)."""
+    starts = np.array([State.at_rest(osc, 0.0, float(x), float(y)).vector for x, y in zip(dd, vv)])
+    starts[:, T] = 0.0
+    return starts
 
 
 def _box(field: str, value: Any, default: tuple, unit: str) -> tuple[float, float]:
