@@ -59,7 +59,8 @@ def test_random_sampling_estimates_the_grid_fractions_within_their_errors(coexis
     ({"velocity_m_s": 3.0}, "velocity_m_s"), ({"n": (0, 5)}, "n"), ({"n": "many"}, "n"),
     ({"sampling": "sobol"}, "sampling"), ({"max_cycles": 5}, "max_cycles"),
     ({"match_rtol": -1.0}, "match_rtol"),
-    ({"scheduler": "cluster"}, "scheduler"),
+    ({"scheduler": "cluster"}, "scheduler"), ({"rtol": "x"}, "rtol"), ({"rtol": 0.5}, "rtol"),
+    ({"steady_rtol": 10.0}, "steady_rtol"),
 ])
 def test_bad_arguments_are_named(kwargs, field):
     with pytest.raises(pd_.InputError, match=field):
@@ -79,7 +80,10 @@ def test_ctrl_c_keeps_the_states_finished():
     with pytest.raises(pd_.Interrupted) as info:
         pd_.basins(DAMPED, pd_.Harmonic(0.05, 1.8), n=(10, 10), scheduler="serial", progress=stop_after)
     part = info.value.partial
-    assert not part.complete and 0 < int((part.labels >= 0).sum()) < 100
+    ran = int((part.labels != -2).sum())
+    assert not part.complete and 0 < int((part.labels >= 0).sum()) <= ran < 100
+    # (the fractions are of the states that ran)
+    assert part.fractions.sum() + part.not_settled == pytest.approx(1.0)
 
 
 def test_the_plot_and_the_command_line(coexisting, tmp_path):
@@ -109,8 +113,13 @@ def test_basin_stability_map_is_the_basins_fraction_at_each_point():
     assert ds["impacting_attractors"].values.tolist() == [[1, 1, 0]]
     assert ds["free_attractors"].values.tolist() == [[0, 1, 1]]
     assert m.complete and len(m.plot()) >= 2
+    # a state still settling when max_cycles ends pounds all the same if it touches the bumpers
+    short = pd_.basin_stability_map(DAMPED, [0.05], [1.5], samples=10, max_cycles=11, measure_cycles=5)
+    assert short.dataset["pounding_probability"].item() == 1.0 and short.dataset["not_settled"].item() > 0.5
     with pytest.raises(pd_.InputError, match="bumpers"):
         pd_.basin_stability_map(DAMPED.without_bumpers(), [0.05], [1.8])
+    with pytest.raises(pd_.InputError, match="freqs_hz"):
+        pd_.basin_stability_map(DAMPED, [0.05], [1.8, 1.8])
     with pytest.raises(pd_.InputError, match="a_g_levels"):
         pd_.basin_stability_map(DAMPED, [-0.05], [1.8])
     with pytest.raises(pd_.InputError, match="samples"):

@@ -319,3 +319,16 @@ def test_a_full_disk_at_the_end_is_named_and_exits_1(args, tmp_path, monkeypatch
     said = " ".join(res.output.split())  # (the console wraps long paths)
     assert "could not be written" in said and "No space left on device" in said
     assert "Traceback" not in res.output and not any(p.name.startswith(".") for p in tmp_path.rglob("*"))
+
+
+def test_an_error_of_another_file_in_a_writer_is_not_called_the_outputs(tmp_path):
+    """atomic_write names the output when its own write fails; an error of something else the
+    writer touches (an input it reads) stays as it was."""
+    from pounding._io import atomic_write
+
+    def reads_a_missing_input(tmp):
+        open(tmp_path / "missing.nc", "rb")
+
+    with pytest.raises(FileNotFoundError) as info:
+        atomic_write(tmp_path / "out.nc", reads_a_missing_input)
+    assert not isinstance(info.value, pd_.OutputError) and not (tmp_path / "out.nc").exists()

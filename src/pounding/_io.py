@@ -139,9 +139,11 @@ def atomic_write(path: str | os.PathLike, write: Callable[[Path], Any]) -> Path:
     try:
         write(tmp)
         os.replace(tmp, path)
-    except OutputError:
-        raise
     except OSError as exc:
+        # (the output's own write or rename: a full disk, a folder made read-only; an error of
+        # something else the writer touched, e.g. an input it reads, stays as it was)
+        if isinstance(exc, OutputError) or exc.filename not in (None, str(tmp), str(path)):
+            raise
         raise OutputError(str(path), exc) from exc
     finally:
         with contextlib.suppress(FileNotFoundError):

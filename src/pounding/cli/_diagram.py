@@ -12,8 +12,8 @@ import typer
 from .._errors import Interrupted, Status
 from .._io import atomic_write, interrupts_deferred
 from ._app import (OPT_FMAX, OPT_FMIN, OPT_NO_BUMPERS, OPT_PRESET, OPT_SCHEDULER, command, compile_notice,
-                   console, figure_path, files, frequencies, interrupted, kv_table, save_figure, system,
-                   write_csv)
+                   console, err_console, figure_path, files, frequencies, interrupted, kv_table, save_figure,
+                   system, write_csv)
 
 CSV = (".csv",)
 NETCDF = (".nc", ".nc4", ".netcdf")
@@ -57,12 +57,6 @@ def bifurcation(
         result = bifurcation_diagram(osc, a_g, freqs, progress=True, **kwargs)
     except Interrupted as stop:
         result = stop.partial
-    branches = None
-    if branch and result.success:
-        from ..analysis.continuation import continuation
-
-        with console.status(f"following the branch from {fmin:g} to {fmax:g} Hz ..."):
-            branches = continuation(osc, a_g, (fmin, fmax))
     table, add = kv_table(f"bifurcation diagram, a_G = {a_g:g}", system_file or preset)
     add("status", result.message)
     steps = result.to_dataframe(cycles=False)
@@ -81,13 +75,31 @@ def bifurcation(
         if paths["netcdf"] is not None:
             atomic_write(paths["netcdf"], lambda tmp: result.to_xarray().to_netcdf(tmp))
             console.print(f"dataset -> {paths['netcdf']}")
-        if plot is not None and len(steps):
+    if plot is not None and len(steps) and not held:
+        # (followed after the files are written: its failure or a Ctrl-C loses nothing)
+        branches = _branch(osc, a_g, fmin, fmax) if branch else None
+        with interrupts_deferred() as more:
             save_figure(lambda: result.plot(branches=branches), plot)
+        held += more
     if result.status == Status.INTERRUPTED or held:
         interrupted(f"{len(steps)} steps finished; they are in the summary"
                     + (" and the files written" if any(paths.values()) or plot else ""))
     if not result.success:
         raise typer.Exit(code=1)
+
+
+def _branch(osc, a_g: float, fmin: float, fmax: float):
+    """The branch over the range, or None (with a warning saying why) where it cannot be followed:
+    the diagram's files are written already."""
+    from .._errors import InputError
+    from ..analysis.continuation import continuation
+
+    try:
+        with console.status(f"following the branch from {fmin:g} to {fmax:g} Hz ..."):
+            return continuation(osc, a_g, (fmin, fmax))
+    except (InputError, Interrupted) as exc:
+        err_console.print(f"[yellow]warning:[/] the branch was not drawn: {exc}")
+        return None
 
 
 @command("basins")

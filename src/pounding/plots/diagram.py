@@ -3,7 +3,6 @@ branches of periodic orbits at the same section."""
 
 from __future__ import annotations
 
-from collections.abc import Sequence
 from typing import Any
 
 import numpy as np
@@ -69,7 +68,7 @@ def plot_bifurcation_diagram(diagram: Any, ax: Any = None, *, branches: Any = No
         artists += ax.plot(freqs[keep], values[keep], DIRECTION_MARKER[d], color=DIRECTION_COLOR[d],
                            mfc="none", label=f"sweep {d}", **style)
     if branches is not None:
-        for k, br in enumerate(list(branches) if isinstance(branches, Sequence) else [branches]):
+        for k, br in enumerate([branches] if hasattr(branches, "section") else list(branches)):
             sec = br.section(0.0)
             values = sec[f"{y}_m" if y == "displacement" else "velocity_m_s"].to_numpy() * scale
             for stable, ls in ((True, "-"), (False, "--")):

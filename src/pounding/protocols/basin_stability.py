@@ -14,10 +14,11 @@ from .._checks import float_array, integer, positive
 from .._errors import InputError, Interrupted, Problem
 from .._runner import run_tasks
 from .._runner.progress import Progress
-from ..engine.simulate import check_oscillator, kernel_system
+from ..engine.simulate import check_oscillator, check_rtol, kernel_system
 from ..excitation import Harmonic
 from ..model import Oscillator
-from .basins import MAX_STATES, ROWS_PER_TASK, initial_states, run_states, state_box, steady_options
+from .basins import (MAX_STATES, N_ROW, R_LEFT, R_PERIOD, R_RIGHT, ROWS_PER_TASK, SIGNATURE, initial_states,
+                     run_states, state_box, steady_options)
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
@@ -30,7 +31,7 @@ def basin_stability_map(oscillator: Oscillator, a_g_levels: Any, freqs_hz: Any, 
                         workers: Any = None, progress: Progress = False) -> "BasinStabilityMap":
     """The probability that the equipment pounds, over a test matrix: at each a_G and frequency,
     the share of ``samples`` random initial states (the same ones at every point) whose response
-    settles in contact with the bumpers.
+    ends touching the bumpers (over its last cycles, whether it settled or not).
 
     Parameters
     ----------
@@ -86,6 +87,11 @@ def basin_stability_map(oscillator: Oscillator, a_g_levels: Any, freqs_hz: Any, 
                          what="bumpers (without them nothing pounds)")
     levels = np.atleast_1d(float_array("a_g_levels", a_g_levels))
     freqs = np.atleast_1d(float_array("freqs_hz", freqs_hz))
+    for name, values in (("a_g_levels", levels), ("freqs_hz", freqs)):
+        unique, counts = np.unique(values, return_counts=True)
+        if np.any(counts > 1):
+            raise InputError(Problem.DUPLICATE, name, values.tolist(), repeated=unique[counts > 1].tolist())
+    levels, freqs = np.sort(levels), np.sort(freqs)
     for i, v in enumerate(levels):  # (each checked as a Harmonic checks it: sign, size, unit)
         Harmonic(positive(f"a_g_levels[{i}]", v, "g"), 1.0)
     for i, v in enumerate(freqs):
@@ -98,6 +104,7 @@ def basin_stability_map(oscillator: Oscillator, a_g_levels: Any, freqs_hz: Any, 
                          fix="give fewer samples or a coarser matrix")
     d_box, v_box = state_box(oscillator, displacement_m, velocity_m_s)
     steady = steady_options(max_cycles, measure_cycles, max_period, steady_rtol)
+    rtol = check_rtol(rtol)
     rng = np.random.default_rng(integer("seed", seed, 0))
     starts = initial_states(oscillator, rng.uniform(*d_box, samples), rng.uniform(*v_box, samples))
     system = kernel_system(oscillator)
@@ -113,13 +120,13 @@ def basin_stability_map(oscillator: Oscillator, a_g_levels: Any, freqs_hz: Any, 
                     label="basin stability", total=len(points) * samples, on_error="stop")
     ran.raise_first_error(lambda t: f"the states {where[t][2]}+ at a_G {levels[where[t][0]]:g}, "
                                     f"{freqs[where[t][1]]:g} Hz")
-    rows = np.full((levels.size, freqs.size, samples, 7), np.nan)
+    rows = np.full((levels.size, freqs.size, samples, N_ROW), np.nan)
     for (i, j, k), value in zip(where, ran.values):
         if value is not None:
             rows[i, j, k:k + len(value)] = value
     result = _map(oscillator, levels, freqs, samples, rows, not ran.complete)
     if ran.interrupted:
-        raise Interrupted(result, int(np.isfinite(rows[..., 0]).sum()), rows[..., 0].size, "states")
+        raise Interrupted(result, int(np.isfinite(rows[..., R_PERIOD]).sum()), rows[..., 0].size, "states")
     return result
 
 
@@ -131,8 +138,9 @@ class BasinStabilityMap:
     ----------
     oscillator : Oscillator
     dataset : xarray.Dataset
-        Over ``a_g`` and ``freq_hz``: ``pounding_probability`` (the share of the states that
-        settle in contact with the bumpers), ``standard_error`` (its sampling error),
+        Over ``a_g`` and ``freq_hz``: ``pounding_probability`` (the share of the states whose
+        response touches the bumpers over its last cycles, settled or not: a chaotic impacting
+        response pounds too), ``standard_error`` (its sampling error),
         ``not_settled``, ``impacting_attractors`` and ``free_attractors``; NaN where no state ran.
     complete : bool
         Every state ran (False after Ctrl-C).
@@ -167,9 +175,10 @@ def _map(osc: Oscillator, levels: np.ndarray, freqs: np.ndarray, samples: int, r
          interrupted: bool) -> BasinStabilityMap:
     import xarray as xr
 
-    ran = np.isfinite(rows[..., 0])
-    settled = ran & (rows[..., 0] > 0)
-    hits = settled & (rows[..., 3] > 0)
+    ran = np.isfinite(rows[..., R_PERIOD])
+    settled = ran & (rows[..., R_PERIOD] > 0)
+    # (pounding: contacts over its last cycles, settled or not: a chaotic impacting response pounds)
+    hits = ran & (rows[..., R_LEFT] + rows[..., R_RIGHT] > 0)
     n_ran = ran.sum(axis=-1)
     with np.errstate(invalid="ignore", divide="ignore"):
         p = np.where(n_ran > 0, hits.sum(axis=-1) / n_ran, np.nan)
@@ -179,7 +188,7 @@ def _map(osc: Oscillator, levels: np.ndarray, freqs: np.ndarray, samples: int, r
     for i in range(levels.size):
         for j in range(freqs.size):
             for impacting, col in ((True, 0), (False, 1)):
-                keep = settled[i, j] & ((rows[i, j, :, 3] > 0) == impacting)
+                keep = settled[i, j] & ((rows[i, j, :, R_LEFT] + rows[i, j, :, R_RIGHT] > 0) == impacting)
                 counts[i, j, col] = _distinct(rows[i, j][keep])
     dims = ("a_g", "freq_hz")
     ds = xr.Dataset({"pounding_probability": (dims, p), "standard_error": (dims, se),
@@ -196,7 +205,8 @@ def _distinct(rows: np.ndarray, rtol: float = 1e-4) -> int:
     """How many distinct responses (period, alpha, excursion, contacts per cycle) among ``rows``."""
     found: list[np.ndarray] = []
     for row in rows:
-        if not any(a[0] == row[0] and all(math.isclose(x, y, rel_tol=rtol, abs_tol=1e-12)
-                                          for x, y in zip(a[1:4], row[1:4])) for a in found):
+        if not any(a[R_PERIOD] == row[R_PERIOD] and all(math.isclose(x, y, rel_tol=rtol, abs_tol=1e-12)
+                                                        for x, y in zip(a[SIGNATURE], row[SIGNATURE]))
+                   for a in found):
             found.append(row)
     return len(found)

@@ -24,7 +24,7 @@ from .._runner import Context, run_tasks
 from .._runner.progress import Progress
 from ..engine import State
 from ..engine._layout import T
-from ..engine.simulate import check_oscillator, kernel_system
+from ..engine.simulate import check_oscillator, check_rtol, kernel_system
 from ..excitation import Harmonic
 from ..metrics._impacts import S_COUNT, SIDE_SUMS
 from ..model import Oscillator
@@ -35,8 +35,13 @@ if TYPE_CHECKING:  # pragma: no cover
 
 MAX_STATES = 4_000_000
 ROWS_PER_TASK = 64
-NOT_SETTLED = -1  # the label of a state that did not settle within max_cycles
-OUT_OF_BOX = -2   # (a state inside a bumper: not a state of the system)
+NOT_SETTLED = -1  # the label of a state that did not settle within max_cycles (or the engine stopped)
+NOT_RUN = -2      # the label of a state a Ctrl-C left unrun
+# a state's row: its period (0: not settled), alpha, excursion (m), contacts per cycle on the left and
+# on the right (over its last cycles), D (m) and V (m/s) at the section, cycles run
+R_PERIOD, R_ALPHA, R_EXCURSION, R_LEFT, R_RIGHT, R_D, R_V, R_CYCLES = range(8)
+N_ROW = 8
+SIGNATURE = slice(R_ALPHA, R_RIGHT + 1)  # (what two settled responses must share to be one attractor)
 
 
 def run_states(task: tuple, ctx: Context) -> np.ndarray:
@@ -44,7 +49,7 @@ def run_states(task: tuple, ctx: Context) -> np.ndarray:
     contacts per cycle, D and V at the section, cycles run).  ``task``: (system, amplitude,
     omega, states (n, state length), steady options, rtol)."""
     system, amp, omega, states, steady, rtol = task
-    out = np.full((len(states), 7), np.nan)
+    out = np.full((len(states), N_ROW), np.nan)
     try:
         for i, start in enumerate(states):
             if ctx.stopped():
@@ -53,13 +58,11 @@ def run_states(task: tuple, ctx: Context) -> np.ndarray:
                                                           1_000_000, ctx.control)
             if code == Status.INTERRUPTED:  # (stopped: Ctrl-C; the state is left NaN)
                 raise Interrupted(out, i, len(states), "states")
-            if code != Status.SUCCESS:  # (the engine stopped early: the state did not settle)
-                out[i, 0], out[i, 6] = 0.0, n
-                ctx.advance(1)
-                continue
-            contacts = (win[W_SUMS + S_COUNT] + win[W_SUMS + SIDE_SUMS + S_COUNT]) / max(win[W_CYCLES], 1.0)
-            out[i] = (k, win[W_AMAX] / amp, 0.5 * (win[W_DMAX] - win[W_DMIN]), contacts, strobes[-1, 0],
-                      strobes[-1, 1], n)
+            per_cycle = 1.0 / max(win[W_CYCLES], 1.0)
+            out[i] = (k if code == Status.SUCCESS else 0,  # (the engine stopped early: not settled)
+                      win[W_AMAX] / amp, 0.5 * (win[W_DMAX] - win[W_DMIN]),
+                      win[W_SUMS + S_COUNT] * per_cycle, win[W_SUMS + SIDE_SUMS + S_COUNT] * per_cycle,
+                      strobes[-1, 0], strobes[-1, 1], n)
             ctx.advance(1)
     except KeyboardInterrupt as stop:  # (a progress callback's Ctrl-C: keep the states finished)
         if isinstance(stop, Interrupted):
@@ -69,7 +72,7 @@ def run_states(task: tuple, ctx: Context) -> np.ndarray:
 
 
 def basins(oscillator: Oscillator, excitation: Harmonic, *, displacement_m: Any = None,
-           velocity_m_s: Any = None, n: Any = (50, 50), sampling: str = "grid", seed: int = 0,
+           velocity_m_s: Any = None, n: Any = None, sampling: str = "grid", seed: int = 0,
            max_cycles: int = 500, measure_cycles: int = 5, max_period: int = 8, steady_rtol: float = 1e-8,
            match_rtol: float = 1e-4, rtol: float = 1e-10, scheduler: Any = None, workers: Any = None,
            progress: Progress = False) -> "Basins":
@@ -84,9 +87,9 @@ def basins(oscillator: Oscillator, excitation: Harmonic, *, displacement_m: Any 
     displacement_m, velocity_m_s : (float, float), optional
         The box of initial displacements (m, between the bumpers' surfaces) and velocities (m/s);
         default: the gaps (or +-50 mm without bumpers) and +-1 m/s.
-    n : (int, int) or int
+    n : (int, int) or int, optional
         Grid points in displacement and velocity (``sampling="grid"``, default 50 x 50), or the
-        number of random states (``sampling="random"``).
+        number of random states (``sampling="random"``, default 2500).
     sampling : {"grid", "random"}
         A regular grid, or states drawn uniformly in the box (with ``seed``): basin stability.
     seed : int
@@ -145,17 +148,18 @@ def basins(oscillator: Oscillator, excitation: Harmonic, *, displacement_m: Any 
     one_of("sampling", sampling, ("grid", "random"))
     d_box, v_box = state_box(oscillator, displacement_m, velocity_m_s)
     if sampling == "grid":
-        shape = _grid_shape(n)
+        shape = _grid_shape((50, 50) if n is None else n)
         d = np.linspace(*d_box, shape[0])
         v = np.linspace(*v_box, shape[1])
         dd, vv = (a.ravel() for a in np.meshgrid(d, v, indexing="ij"))
     else:
-        count = integer("n", n, 1, MAX_STATES)
+        count = integer("n", 2500 if n is None else n, 1, MAX_STATES)
         rng = np.random.default_rng(integer("seed", seed, 0))
         dd, vv = rng.uniform(*d_box, count), rng.uniform(*v_box, count)
         shape = (count,)
     steady = steady_options(max_cycles, measure_cycles, max_period, steady_rtol)
     match_rtol = positive("match_rtol", match_rtol, "(relative)")
+    rtol = check_rtol(rtol)
     starts = initial_states(oscillator, dd, vv)
     system = kernel_system(oscillator)
     amp, omega = excitation.peak_m_s2, excitation.omega_rad_s
@@ -164,11 +168,11 @@ def basins(oscillator: Oscillator, excitation: Harmonic, *, displacement_m: Any 
     ran = run_tasks(run_states, tasks, scheduler=scheduler, workers=workers, progress=progress,
                     label=f"basins at {excitation.freq_hz:g} Hz", total=len(starts), on_error="stop")
     ran.raise_first_error(lambda i: f"the states {i * ROWS_PER_TASK} to {(i + 1) * ROWS_PER_TASK - 1}")
-    rows = np.vstack([v if v is not None else np.full((len(c), 7), np.nan)
+    rows = np.vstack([v if v is not None else np.full((len(c), N_ROW), np.nan)
                       for v, c in zip(ran.values, chunks)])
     result = _basins(oscillator, excitation, sampling, shape, dd, vv, rows, match_rtol, not ran.complete)
     if ran.interrupted:
-        raise Interrupted(result, int(np.isfinite(rows[:, 0]).sum()), len(rows), "states")
+        raise Interrupted(result, int(np.isfinite(rows[:, R_PERIOD]).sum()), len(rows), "states")
     return result
 
 
@@ -185,8 +189,8 @@ class Basins:
     displacement_m, velocity_m_s : ndarray, shape (states,)
         The initial states (table phase 0, the isolator on its backbone).
     labels : ndarray of int
-        The attractor each state ends on (its row of ``attractors``), -1 where it did not settle;
-        shape (nx, ny) for a grid, (states,) for random states.
+        The attractor each state ends on (its row of ``attractors``), -1 where it did not settle,
+        -2 where a Ctrl-C left it unrun; shape (nx, ny) for a grid, (states,) for random states.
     attractors : DataFrame
         One row per attractor: ``period``, ``alpha``, ``excursion_m``, ``contacts_per_cycle``,
         ``impacts`` (whether it touches the bumpers), ``displacement_m`` and ``velocity_m_s`` (a
@@ -224,8 +228,10 @@ class Basins:
 
     @property
     def not_settled(self) -> float:
-        """The share of states that did not settle within ``max_cycles``."""
-        return float(np.mean(self.labels == NOT_SETTLED))
+        """The share of the states that ran which did not settle within ``max_cycles`` (or whose
+        run the engine stopped)."""
+        ran = self.labels != NOT_RUN
+        return float(np.sum(self.labels == NOT_SETTLED) / max(int(ran.sum()), 1))
 
     def to_xarray(self) -> "xr.Dataset":
         """Labels and cycles per initial state (a grid: dimensions ``displacement_m`` and
@@ -287,6 +293,9 @@ def steady_options(max_cycles: Any, measure_cycles: Any, max_period: Any, steady
         raise InputError(Problem.TOO_SMALL, "max_cycles", max_cycles, minimum=2 * measure_cycles + 1,
                          hint=" (steadiness compares the window with the cycles before it)")
     steady_rtol = positive("steady_rtol", steady_rtol, "(relative to the response amplitude)")
+    if not 1e-13 <= steady_rtol <= 0.1:
+        raise InputError(Problem.OUT_OF_RANGE, "steady_rtol", steady_rtol, range="[1e-13, 0.1]",
+                         hint=" (below 1e-12 is rounding noise)")
     return (True, max_cycles, measure_cycles, float(steady_rtol), max_period)
 
 
@@ -325,15 +334,17 @@ def _grid_shape(n: Any) -> tuple[int, int]:
 def _basins(osc: Oscillator, exc: Harmonic, sampling: str, shape: tuple, dd: np.ndarray, vv: np.ndarray,
             rows: np.ndarray, match_rtol: float, interrupted: bool) -> Basins:
     """The attractors matched from the settled states' rows, and each state's label."""
-    labels = np.full(len(rows), NOT_SETTLED, dtype=np.int64)
+    ran = np.isfinite(rows[:, R_PERIOD])
+    labels = np.where(ran, NOT_SETTLED, NOT_RUN).astype(np.int64)
     found: list[np.ndarray] = []  # one row per attractor: the first state's
     members: list[list[int]] = []
     for i, row in enumerate(rows):
-        if not (np.isfinite(row[0]) and row[0] > 0):
+        if not (ran[i] and row[R_PERIOD] > 0):
             continue
         for j, att in enumerate(found):
-            if att[0] == row[0] and all(math.isclose(a, b, rel_tol=match_rtol, abs_tol=1e-12)
-                                        for a, b in zip(att[1:4], row[1:4])):
+            if att[R_PERIOD] == row[R_PERIOD] and all(
+                    math.isclose(a, b, rel_tol=match_rtol, abs_tol=1e-12) for a, b in zip(att[SIGNATURE],
+                                                                                       row[SIGNATURE])):
                 labels[i] = j
                 members[j].append(i)
                 break
@@ -341,23 +352,24 @@ def _basins(osc: Oscillator, exc: Harmonic, sampling: str, shape: tuple, dd: np.
             labels[i] = len(found)
             found.append(row)
             members.append([i])
-    order = np.argsort([att[1] for att in found], kind="stable")  # (attractors by alpha, lowest first)
+    order = np.argsort([att[R_ALPHA] for att in found], kind="stable")  # (by alpha, lowest first)
     relabel = np.empty(len(found), dtype=np.int64)
     relabel[order] = np.arange(len(found))
     labels[labels >= 0] = relabel[labels[labels >= 0]]
-    total = len(rows)
+    total = max(int(ran.sum()), 1)  # (the states that ran: a Ctrl-C's partial result)
     table = []
     for j in order:
         att = found[j]
         p = len(members[j]) / total
-        table.append({"period": int(att[0]), "alpha": att[1], "excursion_m": att[2],
-                      "contacts_per_cycle": att[3],
-                      "impacts": bool(att[3] > 0.0), "displacement_m": att[4], "velocity_m_s": att[5],
+        contacts = att[R_LEFT] + att[R_RIGHT]
+        table.append({"period": int(att[R_PERIOD]), "alpha": att[R_ALPHA], "excursion_m": att[R_EXCURSION],
+                      "contacts_per_cycle": contacts, "impacts": bool(contacts > 0.0),
+                      "displacement_m": att[R_D], "velocity_m_s": att[R_V],
                       "states": len(members[j]), "fraction": p,
                       "standard_error": math.sqrt(p * (1.0 - p) / total)})
     columns = ["period", "alpha", "excursion_m", "contacts_per_cycle", "impacts", "displacement_m",
                "velocity_m_s", "states", "fraction", "standard_error"]
-    cycles = np.nan_to_num(rows[:, 6], nan=0.0).astype(np.int64)
+    cycles = np.nan_to_num(rows[:, R_CYCLES], nan=0.0).astype(np.int64)
     return Basins(osc, exc, sampling, dd, vv, labels.reshape(shape), pd.DataFrame(table, columns=columns),
                   cycles.reshape(shape), not interrupted)
 

@@ -124,7 +124,7 @@ def bifurcation_diagram(oscillator: Oscillator, a_g: float, freqs_hz: Any, *,
     if record <= max_period:
         raise InputError(Problem.TOO_SMALL, "record_cycles", record, minimum=max_period + 1,
                          hint=" (more than max_period: a period is seen repeating in the recorded cycles)")
-    transient = integer("transient_cycles", transient_cycles, 0, MAX_CYCLES_PER_STEP)
+    transient = integer("transient_cycles", transient_cycles, 0, MAX_CYCLES_PER_STEP - record)
     dirs = ("up", "down") if direction == "both" else (direction,)
     options = dict(steady="fixed", cycles=transient + record, measure_cycles=record, max_period=max_period,
                    steady_rtol=steady_rtol, rtol=rtol, max_steps=max_steps)
