@@ -1,12 +1,13 @@
 """Analysis: periodic orbits of the impacting oscillator, their exact Floquet stability, and
 their branches followed through folds with the bifurcations located, and folds and grazings
-followed in two parameters (a_G, f)."""
+followed in two parameters (a_G, f); the Lyapunov spectrum of a response."""
 
 from .branch import Bifurcation, Branch
 from .continuation import continuation
 from .curve_result import BifurcationCurve, CoexistenceMap
 from .curves import bifurcation_curve, coexistence_map
+from .lyapunov import LyapunovSpectrum, lyapunov
 from .periodic import PeriodicOrbit, periodic_orbit
 
-__all__ = ["Bifurcation", "BifurcationCurve", "Branch", "CoexistenceMap", "PeriodicOrbit",
-           "bifurcation_curve", "coexistence_map", "continuation", "periodic_orbit"]
+__all__ = ["Bifurcation", "BifurcationCurve", "Branch", "CoexistenceMap", "LyapunovSpectrum", "PeriodicOrbit",
+           "bifurcation_curve", "coexistence_map", "continuation", "lyapunov", "periodic_orbit"]

@@ -6,6 +6,7 @@ from .contact_law import plot_contact_law_fit
 from .curves import plot_curves
 from .diagram import plot_bifurcation_diagram
 from .identification import plot_identification
+from .lyapunov import plot_lyapunov
 from .periodic import plot_orbit
 from .record import plot_record, plot_response_spectrum
 from .run import plot_run
@@ -14,6 +15,6 @@ from .study import plot_study
 from .sweep import plot_campaign, plot_hysteresis, plot_lab_sweep, plot_sweep
 
 __all__ = ["plot_basin_stability", "plot_basins", "plot_bifurcation_diagram", "plot_branch", "plot_campaign",
-           "plot_contact_law_fit", "plot_curves", "plot_identification",
+           "plot_contact_law_fit", "plot_curves", "plot_identification", "plot_lyapunov",
            "plot_hysteresis", "plot_lab_sweep", "plot_orbit", "plot_pounding_spectrum", "plot_record",
            "plot_response_spectrum", "plot_run", "plot_study", "plot_sweep"]

@@ -1,0 +1,442 @@
+"""``lyapunov``: the Lyapunov spectrum of a harmonically driven response, from the exact tangent
+dynamics (state-transition matrices between the engine's events, a saltation matrix at each).
+
+The stroboscopic map is followed one forcing period at a time: the engine runs the period, and its
+Jacobian (the period's monodromy, as :func:`pounding.periodic_orbit` composes it: exactly for
+systems whose phases are all linear, else by central differences of the map) carries an
+orthonormal frame of tangent vectors, re-orthonormalised after every period (Benettin's method
+with QR).  The exponents are the averages of the logarithms of the diagonal of R per second.
+
+The tangent coordinates are the state's: ``D`` and ``V``, the compression of a Kelvin-Voigt
+bumper with a dashpot (out of contact it relaxes: a state of its own), the slip of each isolator
+spring that slips during the run (a spring that never does is a constant, a parameter of the
+response, as in :func:`pounding.periodic_orbit`), the Bouc-Wen z.  At each section a coordinate
+that follows the mass there (a touched bumper's compression, a slipping spring's slip) is put back
+on its constraint.
+
+Two choices make the estimates exact where a closed form exists:
+
+- Lengths and velocities are measured in the isolator's own units: ``(omega_d D, V + zeta
+  omega_n D)`` with ``omega_n``, ``zeta`` and ``omega_d`` of its first slope, so the free linear
+  oscillator's flow is a rotation times ``exp(-zeta omega_n t)`` and every frame vector shrinks at
+  exactly that rate.  (Exponents do not depend on a fixed change of coordinates; finite-time
+  estimates do, by O(1/t).)
+- The frame is carried for ``align_cycles`` periods before the count starts, so on a periodic
+  orbit whose largest multiplier is real and alone it is aligned and each period's R gives the
+  multipliers' moduli.
+
+A contact that slaves a compression, a spring that starts slipping, a relaxation that ends within
+a period: the map erases a direction.  Its exponent is ``-inf`` (also one whose contraction in a
+period is beyond what double precision resolves next to the others, 1e-13).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+from collections.abc import Iterator
+from typing import TYPE_CHECKING, Any, Optional
+
+import numpy as np
+
+from .._checks import integer
+from .._errors import InputError, Interrupted, Problem, Status
+from .._runner.progress import Progress, progress_reporter
+from ..engine import State, simulate
+from ..engine._layout import D as I_D
+from ..engine._layout import T as I_T
+from ..engine._layout import V as I_V
+from ..engine.simulate import check_oscillator, check_state
+from ..excitation import Harmonic
+from ..model import Oscillator
+from ..protocols.bifurcation_diagram import periods
+from . import _hybrid as hy
+from ._args import exact_monodromy
+from .periodic import _Failed, _Shooter
+
+if TYPE_CHECKING:  # pragma: no cover
+    import xarray as xr
+
+MAX_CYCLES = 10_000_000
+MAX_PERIOD = 8  # the longest period (in forcing periods) a response is checked for
+PERIODIC_RTOL = 1e-9  # sections that repeat to this (of the motion's size) make a periodic response
+RESOLVED = 1e-13  # a diagonal of R below this times the largest: the direction is erased (-inf)
+
+
+@dataclass(frozen=True, eq=False)
+class LyapunovSpectrum:
+    """The Lyapunov exponents of a response (what :func:`lyapunov` returns).
+
+    Attributes
+    ----------
+    exponents : ndarray, shape (n,)
+        The exponents, 1/s, largest first (``-inf`` for a direction the map erases).
+    coordinates : tuple of str
+        The tangent coordinates (``D``, ``V``, ``delta_L``, ``delta_R``, ``u_i``, ``z``): the
+        exponents are of the state they make up.
+    history : ndarray, shape (cycles, n)
+        The running estimates after each counted period, 1/s (the last row is ``exponents``).
+    excitation : Harmonic
+        The forcing.
+    cycles : int
+        Periods counted (fewer than asked when interrupted or stopped).
+    method : str
+        ``"exact"`` (state-transition and saltation matrices) or ``"finite-difference"``.
+    period : int
+        The response's period in forcing periods when its counted sections repeat (to 1e-9 of its
+        size), 0 when they do not. A periodic response's exponents are exact: the logarithms of
+        its Floquet multipliers over its period (``history`` keeps the running estimates).
+    final_state : State
+        Where the last counted period ended (continue from it).
+    status : Status
+        ``SUCCESS``, ``INTERRUPTED`` (Ctrl-C), or why the engine stopped.
+    message : str
+        What happened, for people.
+
+    Examples
+    --------
+    The damped paper system settles on a stable orbit at a_G 0.05 and 1.5 Hz: every exponent
+    negative.
+
+    >>> import pounding
+    >>> osc = pounding.presets.paper_damped()
+    >>> spec = pounding.lyapunov(osc, pounding.Harmonic(0.05, 1.5), cycles=200)
+    >>> spec.coordinates
+    ('D', 'V', 'delta_L', 'delta_R', 'u_0')
+    >>> spec.largest < 0.0, spec.chaotic
+    (True, False)
+    """
+
+    exponents: np.ndarray = field(repr=False)
+    coordinates: tuple[str, ...]
+    history: np.ndarray = field(repr=False)
+    excitation: Harmonic
+    cycles: int
+    method: str
+    period: int
+    final_state: State = field(repr=False)
+    status: Status
+    message: str
+
+    @property
+    def success(self) -> bool:
+        """Every period asked for was counted."""
+        return self.status == Status.SUCCESS
+
+    @property
+    def largest(self) -> float:
+        """The largest exponent, 1/s (NaN when no period was counted)."""
+        return float(self.exponents[0]) if self.exponents.size else math.nan
+
+    @property
+    def chaotic(self) -> bool:
+        """Whether the largest exponent is positive beyond its estimate's own wander over the last
+        tenth of the count (a chaotic response; a periodic one has all exponents negative)."""
+        return bool(self.largest > self.uncertainty)
+
+    @property
+    def uncertainty(self) -> float:
+        """How far the largest exponent's running estimate moved over the last tenth of the count,
+        1/s: a measure of its convergence (NaN with fewer than 10 periods)."""
+        h = self.history[:, 0] if self.history.size else np.zeros(0)
+        if h.size < 10 or not np.isfinite(h[-(h.size // 10):]).all():
+            return math.nan
+        tail = h[-(h.size // 10):]
+        return float(tail.max() - tail.min())
+
+    @property
+    def kaplan_yorke_dimension(self) -> float:
+        """The Kaplan-Yorke (Lyapunov) dimension ``j + sum(lambda_1..j) / |lambda_j+1|``, ``j``
+        the most exponents whose sum is not negative (0 when even the largest is negative)."""
+        lam = self.exponents
+        if lam.size == 0 or not lam[0] >= 0.0:
+            return 0.0
+        sums = np.cumsum(lam)
+        j = int(np.flatnonzero(sums >= 0.0)[-1]) + 1
+        if j == lam.size:
+            return float(j)
+        return float(j + sums[j - 1] / abs(lam[j])) if np.isfinite(lam[j]) else float(j)
+
+    def to_xarray(self) -> "xr.Dataset":
+        """``exponent`` (coordinate) and ``history`` (cycle, coordinate), 1/s, with the forcing and
+        the method as attributes."""
+        import xarray as xr
+
+        names = list(self.coordinates)
+        ds = xr.Dataset(
+            {"exponent": ("direction", self.exponents, {"units": "1/s"}),
+             "history": (("cycle", "direction"), self.history, {"units": "1/s",
+                                                                "long_name": "running estimate"})},
+            coords={"direction": np.arange(len(names)), "cycle": np.arange(1, self.history.shape[0] + 1),
+                    "coordinate": ("direction", names)},
+            attrs={"a_g": self.excitation.a_g, "freq_hz": self.excitation.freq_hz,
+                   "phase_rad": self.excitation.phase, "method": self.method, "cycles": self.cycles,
+                   "kaplan_yorke_dimension": self.kaplan_yorke_dimension, "status": self.status.name,
+                   "message": self.message})
+        return ds
+
+    def to_netcdf(self, path: str | Path) -> Path:
+        """Write :meth:`to_xarray` to a netCDF file (atomically); returns its path."""
+        from .._io import atomic_write, output_file
+
+        return atomic_write(output_file("path", path), self.to_xarray().to_netcdf)
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> list:
+        """The running estimates against the periods counted, one line per exponent; returns the
+        artists."""
+        from ..plots.lyapunov import plot_lyapunov
+
+        return plot_lyapunov(self, ax=ax, **kwargs)
+
+    def __repr__(self) -> str:
+        lam = ", ".join(f"{x:.4g}" for x in self.exponents)
+        return (f"LyapunovSpectrum([{lam}] 1/s over {self.cycles} cycles at {self.excitation.freq_hz:g} Hz, "
+                f"{self.method}; {self.status.name}: {self.message})")
+
+
+def lyapunov(oscillator: Oscillator, excitation: Harmonic, *, cycles: int = 1000,
+             transient_cycles: int = 200, align_cycles: int = 20, state: Optional[State] = None,
+             method: str = "auto", progress: Progress = False) -> LyapunovSpectrum:
+    """The Lyapunov spectrum of the response to a harmonic table motion, from the exact tangent
+    dynamics through every phase and every event.
+
+    Parameters
+    ----------
+    oscillator : Oscillator
+        The system.
+    excitation : Harmonic
+        The table's harmonic acceleration.
+    cycles : int
+        Forcing periods counted (1000 by default; the estimates converge as 1/cycles, see
+        ``history``).
+    transient_cycles : int
+        Periods run first, by the engine alone, for the response to settle.
+    align_cycles : int
+        Periods the tangent frame is carried before the count starts (it turns towards the
+        directions that grow most).
+    state : State, optional
+        Where to start (its time sets the section's phase); default: at rest at time 0.
+    method : {"auto", "exact", "finite-difference"}
+        The Jacobian of each period: composed exactly (systems whose phases are all linear:
+        ``"auto"`` takes it where it can) or by central differences of the map.
+    progress : bool or callable
+        True: a progress bar; a callable is called with the number of periods just finished.
+
+    Returns
+    -------
+    LyapunovSpectrum
+        The exponents, their running estimates, the Kaplan-Yorke dimension. On Ctrl-C,
+        :class:`pounding.Interrupted` carries the spectrum over the periods counted.
+
+    Examples
+    --------
+    A linear isolator without bumpers: both exponents are ``-zeta omega_n``.
+
+    >>> import pounding
+    >>> iso = pounding.Isolator(slopes=[4000.0], damping=40.0)
+    >>> osc = pounding.Oscillator(mass=100.0, isolator=iso)
+    >>> spec = pounding.lyapunov(osc, pounding.Harmonic(0.05, 1.0), cycles=50)
+    >>> [round(float(x), 12) for x in spec.exponents]  # -c / (2 m)
+    [-0.2, -0.2]
+    """
+    check_oscillator(oscillator)
+    if not isinstance(excitation, Harmonic):
+        raise InputError(Problem.WRONG_TYPE, "excitation", excitation, got=type(excitation).__name__,
+                         expected="pounding.Harmonic (the exponents are of the stroboscopic map of a "
+                                  "periodic forcing)")
+    cycles = integer("cycles", cycles, 1, MAX_CYCLES, "count fewer periods; the estimates' history shows "
+                     "when they have settled")
+    transient_cycles = integer("transient_cycles", transient_cycles, 0, MAX_CYCLES)
+    align_cycles = integer("align_cycles", align_cycles, 0, MAX_CYCLES)
+    exact = exact_monodromy(oscillator, method)
+    if state is not None and not isinstance(state, State):
+        raise InputError(Problem.WRONG_TYPE, "state", state, got=type(state).__name__,
+                         expected="pounding.State (e.g. run.final_state)")
+    state = check_state(state, oscillator)
+    if transient_cycles:
+        run = simulate(oscillator, excitation, transient_cycles / excitation.freq_hz, state, sample_rate_hz=0)
+        if not run.success:
+            raise InputError(Problem.BAD_STATE, "transient_cycles", transient_cycles,
+                             why=f"the transient did not run through: {run.message}",
+                             fix="start from another state, or count fewer transient cycles")
+        state = run.final_state
+    return _Tangent(oscillator, excitation, exact, state).run(align_cycles, cycles, progress)
+
+
+class _Tangent:
+    """The map's Jacobian, period by period, in the spectrum's coordinates."""
+
+    def __init__(self, oscillator: Oscillator, excitation: Harmonic, exact: bool, state: State) -> None:
+        self.exc = excitation
+        self.period = 1.0 / excitation.freq_hz
+        self.sh = _Shooter(oscillator, excitation, self.period, exact)
+        self.start = np.array(state.vector, dtype=float)
+        self.modes: dict = {}  # the modes' matrices met (hy.mode_matrices)
+        self.fell_back = 0  # periods whose exact Jacobian gave way to finite differences
+        iso = oscillator.isolator
+        omega_n = math.sqrt(max(float(iso.slopes[0]), 1e-300) / oscillator.mass)
+        zeta = iso.damping / (2.0 * oscillator.mass * omega_n)
+        self.omega_n, self.zeta = omega_n, zeta
+
+    def _keep(self, slips: set) -> np.ndarray:
+        """Indices (in ``_Shooter.coords``) of the spectrum's coordinates: ``slips`` the springs that
+        changed state during the run."""
+        h, sh = self.sh.h, self.sh
+        keep = [0, 1]
+        keep += [row for side, row in ((0, hy.I_DL), (1, hy.I_DR))
+                 if sh.osc.bumpers is not None and h.damping[side] > 0.0]
+        keep += [hy.FIRST_SLIP + i for i in sorted(slips)]
+        if sh.z_max > 0.0:
+            keep.append(h.size)
+        return np.array(keep)
+
+    def _metric(self, keep: np.ndarray) -> np.ndarray:
+        """``W``: the tangent vectors measured as ``W dx`` (the isolator's own units)."""
+        w = np.eye(keep.size) * self.omega_n
+        w[1, 1] = 1.0
+        if self.zeta < 1.0:
+            w[0, 0] = self.omega_n * math.sqrt(1.0 - self.zeta**2)
+            w[1, 0] = self.zeta * self.omega_n
+        if self.sh.z_max > 0.0:
+            w[-1, -1] = self.omega_n * 1e-3  # (z of order 1 against lengths of a millimetre)
+        return w
+
+    def _jacobian(self, vec: np.ndarray, run: Any) -> np.ndarray:
+        """The period's Jacobian in every coordinate of ``_Shooter.coords``, perturbations put on
+        their constraints at the start."""
+        sh = self.sh
+        free_idx, emb = sh._layout(vec)
+        n = emb.shape[0]
+        select = np.zeros((free_idx.size, n))
+        select[np.arange(free_idx.size), free_idx] = 1.0
+        if sh.exact:
+            amp, omega, phase = self.exc.peak_m_s2, self.exc.omega_rad_s, self.exc.phase
+            try:
+                full, x_end = hy.monodromy(sh.h, vec, run.event_table, vec[I_T] + self.period, omega, amp,
+                                           phase,
+                                           self.modes)
+                gap = np.abs(x_end - sh.coords(run.final_state.vector)).max() / sh.scale_d
+                if np.isfinite(full).all() and gap < 1e-6:
+                    return full @ emb @ select
+            except hy.NoExactMonodromy:
+                pass
+            self.fell_back += 1
+        cols = []
+        for j, step in enumerate(1e-6 * sh._scales(free_idx)):
+            def image(d: float) -> np.ndarray:
+                return sh.coords(sh._image(sh._moved(vec, emb[:, j] * d))[0])
+
+            cols.append((image(step) - image(-step)) / (2.0 * step))
+        return np.array(cols).T @ select
+
+    def _periods(self, count: int) -> Iterator[tuple[np.ndarray, Any]]:
+        """``(state vector at the section, the period's run)`` for ``count`` periods from the start
+        (the same each time: the engine is deterministic)."""
+        vec = self.start
+        for _ in range(count):
+            end, run = self.sh._image(vec)
+            yield vec, run
+            vec = end
+
+    def run(self, align: int, cycles: int, progress: Progress) -> LyapunovSpectrum:
+        total = align + cycles
+        status, why, ran = Status.SUCCESS, "", 0
+        slips: set = set()
+        size = 1e-6
+        # the trajectory first, by the engine alone: the springs that slip in it (the spectrum's
+        # coordinates) and its size (the finite differences' steps, the periodicity's tolerance)
+        try:
+            for _, run in self._periods(total):
+                ran += 1
+                size = max(size, abs(run.displacement_max), abs(run.displacement_min))
+                if self.sh.h.kinematic:
+                    ev = run.event_table
+                    slips.update(ev[ev[:, 1] == hy.ACT_YIELD, 2].astype(int).tolist())
+        except _Failed as exc:
+            status, why = Status.STEP_FAILED, str(exc)
+        except KeyboardInterrupt:
+            status = Status.INTERRUPTED
+        self.sh.scale_d = size
+        keep = self._keep(slips)
+        w = self._metric(keep)
+        w_inv = np.linalg.inv(w)
+        q = np.eye(keep.size)
+        logs = np.zeros(keep.size)
+        history = []
+        recent: list[np.ndarray] = []  # the last MAX_PERIOD periods' Jacobians (for a periodic response)
+        sections: list[np.ndarray] = []  # the last sections (D, V), the end of the last period included
+        counted = 0
+        final = State(self.start)
+        with progress_reporter(progress, ran, f"Lyapunov spectrum, {self.exc.freq_hz:g} Hz") as advance, \
+                hy.one_blas_thread():
+            try:
+                for k, (vec, run) in enumerate(self._periods(ran)):
+                    jac = w @ self._jacobian(vec, run)[np.ix_(keep, keep)] @ w_inv
+                    q, r = np.linalg.qr(jac @ q)
+                    diag = np.diag(r)
+                    q = q * np.where(diag < 0.0, -1.0, 1.0)  # (the frame keeps its orientation)
+                    if k >= align:
+                        d = np.abs(diag)
+                        with np.errstate(divide="ignore"):
+                            logs = logs + np.where(d > RESOLVED * d.max(), np.log(d), -np.inf)
+                        counted += 1
+                        history.append(logs / (counted * self.period))
+                        recent = (recent + [jac])[-MAX_PERIOD:]
+                        sections = (sections + [vec[[I_D, I_V]]])[-4 * MAX_PERIOD:]
+                        final = run.final_state
+                    advance(1)
+            except KeyboardInterrupt:
+                status = Status.INTERRUPTED
+        hist = np.array(history) if history else np.zeros((0, keep.size))
+        exps = hist[-1].copy() if counted else np.full(keep.size, np.nan)
+        period = self._periodic(sections + [final.vector[[I_D, I_V]]]) if counted else 0
+        if period:
+            exps = self._floquet(recent[-period:], period)
+        labels = ["D", "V", "delta_L", "delta_R"] + [f"u_{i}" for i in range(self.sh.h.n_slips)] + ["z"]
+        names = tuple(labels[i] if i < self.sh.h.size else "z" for i in keep)
+        message = self._message(status, why, align, cycles, counted, exps, period)
+        out = LyapunovSpectrum(exps, names, hist, self.exc, counted, "exact" if self.sh.exact else
+                               "finite-difference", period, final, status, message)
+        if status == Status.INTERRUPTED:
+            raise Interrupted(out, counted, cycles, "cycles")
+        return out
+
+    def _periodic(self, sections: list) -> int:
+        """The response's period in forcing periods (the counted sections repeat with it to
+        ``PERIODIC_RTOL`` of the motion's size), 0 when they do not (or too few were counted)."""
+        if len(sections) <= 2 * MAX_PERIOD:
+            return 0
+        dv = np.array(sections)
+        return int(periods(dv[None], np.array([self.sh.scale_d]), np.array([self.exc.omega_rad_s]),
+                           MAX_PERIOD, PERIODIC_RTOL)[0])
+
+    def _floquet(self, jacs: list, period: int) -> np.ndarray:
+        """The exponents of a periodic response: ``ln|mu| / (period T)`` of the multipliers of the
+        product of its last ``period`` Jacobians, largest first (-inf below ``RESOLVED``)."""
+        prod = np.eye(jacs[0].shape[0])
+        for jac in jacs:
+            prod = jac @ prod
+        mu = np.sort(np.abs(np.linalg.eigvals(prod)))[::-1]
+        with np.errstate(divide="ignore"):
+            return np.where(mu > RESOLVED**period * mu[0], np.log(mu), -np.inf) / (period * self.period)
+
+    def _message(self, status: Status, why: str, align: int, cycles: int, counted: int,
+                 exps: np.ndarray, period: int) -> str:
+        if status == Status.INTERRUPTED:
+            head = f"interrupted: {counted} of {cycles} periods counted"
+        elif status != Status.SUCCESS:
+            head = f"stopped after {counted} of {cycles} periods counted: {why}"
+        else:
+            head = f"{counted} periods counted after {align} to align the frame"
+        if period:
+            head += (f"; a periodic response (period {period}): the exponents are its Floquet multipliers' "
+                     f"ln|mu| / ({period} T), the running estimates in history")
+        erased = int(np.sum(np.isneginf(exps)))
+        if erased:
+            head += (f"; {erased} direction{'s' if erased > 1 else ''} erased by the map (-inf: a contact or "
+                     "a slip slaves a coordinate, or a contraction beyond double precision in a period)")
+        if self.fell_back:
+            head += (f"; {self.fell_back} period{'s' if self.fell_back > 1 else ''} by finite differences "
+                     "(an event met tangentially)")
+        return head

@@ -1,0 +1,167 @@
+"""pounding.lyapunov: the exponents against closed forms (a linear isolator), against the exact
+Floquet multipliers of periodic_orbit, against a two-trajectory estimate on a chaotic response,
+finite differences against the exact tangent, and what users meet (bad input, Ctrl-C, files)."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import pounding as pd_
+from pounding.engine._layout import DEF_L, DEF_R, IN_L, IN_R, D, V
+
+# a soft impact oscillator (the literature's: a linear oscillator, zeta 0.02, striking a stop 30 times
+# stiffer, here 5 mm away on one side): chaotic at a_G 0.1, 2.6 Hz
+M, K, ZETA, BETA = 100.0, 4000.0, 0.02, 30.0
+SOFT = pd_.Oscillator(
+    mass=M, isolator=pd_.Isolator(slopes=[K], damping=2.0 * ZETA * math.sqrt(K * M)),
+    bumpers=pd_.Bumpers(gap_left=0.3, gap_right=0.005, law=pd_.KelvinVoigt(
+        stiffness=BETA * K, damping=2.0 * ZETA * math.sqrt(BETA * K * M))))
+CHAOS = pd_.Harmonic(0.1, 2.6)
+
+
+@pytest.fixture(scope="module")
+def chaotic():
+    return pd_.lyapunov(SOFT, CHAOS, cycles=1000, transient_cycles=300)
+
+
+@pytest.mark.parametrize("damping", [40.0, 400.0])
+def test_linear_isolator_without_bumpers_has_both_exponents_minus_zeta_omega(damping):
+    """x'' + 2 zeta omega x' + omega^2 x = -a(t): the flow contracts every direction at -zeta omega
+    = -c / 2m; both exponents equal it to 1e-9, and so do the running estimates (the frame is
+    measured in the isolator's own units, where the flow is a rotation)."""
+    osc = pd_.Oscillator(mass=100.0, isolator=pd_.Isolator(slopes=[4000.0], damping=damping))
+    spec = pd_.lyapunov(osc, pd_.Harmonic(0.05, 1.3), cycles=40, transient_cycles=300)
+    expected = -damping / 200.0
+    assert spec.coordinates == ("D", "V") and spec.method == "exact" and spec.period == 1
+    np.testing.assert_allclose(spec.exponents, [expected, expected], rtol=1e-9)
+    np.testing.assert_allclose(spec.history[-1], [expected, expected], rtol=1e-9)
+    assert spec.kaplan_yorke_dimension == 0.0 and not spec.chaotic
+
+
+def test_impacting_periodic_orbit_largest_exponent_is_its_largest_multiplier():
+    """The damped paper system at a_G 0.05, 1.5 Hz hits both bumpers every cycle: the largest
+    exponent equals ln|mu_max| / T of periodic_orbit's exact multipliers to 1e-6, and the running
+    estimate approaches it."""
+    osc, exc = pd_.presets.paper_damped(), pd_.Harmonic(0.05, 1.5)
+    orbit = pd_.periodic_orbit(osc, exc)
+    assert orbit.stable and orbit.contacts_per_period == 2
+    spec = pd_.lyapunov(osc, exc, cycles=300)
+    expected = math.log(orbit.max_abs_multiplier) / orbit.period_s
+    assert spec.period == 1 and spec.largest == pytest.approx(expected, rel=1e-6)
+    assert spec.history[-1, 0] == pytest.approx(expected, rel=2e-2)
+    # the touched compressions and the slip follow the mass: directions the map erases
+    assert np.isneginf(spec.exponents[2:]).all() and "erased" in spec.message
+
+
+def test_finite_differences_agree_with_the_exact_tangent():
+    osc, exc = pd_.presets.paper_damped(), pd_.Harmonic(0.05, 1.5)
+    exact = pd_.lyapunov(osc, exc, cycles=60)
+    fd = pd_.lyapunov(osc, exc, cycles=60, method="finite-difference")
+    assert fd.method == "finite-difference" and fd.period == 1
+    assert fd.largest == pytest.approx(exact.largest, rel=1e-4)
+
+
+def _two_trajectories(cycles: int, align: int, start: pd_.State) -> float:
+    """Benettin's two-trajectory estimate of the largest exponent from the engine's own runs: a
+    neighbour 1e-9 m/s away, its separation (in the isolator's units) measured and scaled back
+    every period."""
+    period = 1.0 / CHAOS.freq_hz
+    wn = math.sqrt(K / M)
+    wd = wn * math.sqrt(1.0 - ZETA**2)
+
+    def advance(vec: np.ndarray) -> np.ndarray:
+        run = pd_.simulate(SOFT, CHAOS, period, pd_.State(vec), sample_rate_hz=0)
+        return np.array(run.final_state.vector)
+
+    a = np.array(start.vector)
+    b = a.copy()
+    d0 = 1e-9
+    b[V] += d0
+    total = 0.0
+    cont = [D, V, DEF_L, DEF_R]
+    for c in range(align + cycles):
+        a2, b2 = advance(a), advance(b)
+        dx = b2 - a2
+        dist = math.hypot(wd * dx[D], dx[V] + ZETA * wn * dx[D])
+        if c >= align:
+            total += math.log(dist / d0)
+        assert a2[IN_L] == b2[IN_L] and a2[IN_R] == b2[IN_R]  # (the neighbour in the same mode)
+        b = a2.copy()
+        b[cont] = a2[cont] + d0 / dist * dx[cont]
+        a = a2
+    return total / (cycles * period)
+
+
+def test_chaotic_response_largest_exponent_matches_two_trajectories(chaotic):
+    """On the soft impact oscillator's chaotic response the largest exponent is positive and equals
+    Benettin's two-trajectory estimate over the same periods within 3 % (measured: 0.03 %)."""
+    assert chaotic.chaotic and chaotic.period == 0 and chaotic.largest > 0.3
+    start = pd_.simulate(SOFT, CHAOS, 300 / CHAOS.freq_hz, sample_rate_hz=0).final_state
+    assert chaotic.largest == pytest.approx(_two_trajectories(1000, 20, start), rel=0.03)
+    # a dissipative flow: the exponents' sum is negative, the attractor between a curve and the plane
+    assert chaotic.exponents[:2].sum() < 0.0 and 1.0 < chaotic.kaplan_yorke_dimension < 2.0
+
+
+def test_kaplan_yorke_dimension_formula(chaotic):
+    lam = chaotic.exponents
+    assert chaotic.kaplan_yorke_dimension == pytest.approx(1.0 + lam[0] / abs(lam[1]), rel=1e-12)
+
+
+def test_a_shorter_count_is_the_start_of_a_longer_one_and_continues_it():
+    """The first 30 periods of a 60-period count are a 30-period count; the final state is where the
+    count ended, and a count from it runs the long count's last 30 periods."""
+    osc, exc = SOFT, CHAOS
+    long = pd_.lyapunov(osc, exc, cycles=60, transient_cycles=50, align_cycles=0)
+    first = pd_.lyapunov(osc, exc, cycles=30, transient_cycles=50, align_cycles=0)
+    assert first.final_state.time_s == pytest.approx(80 / exc.freq_hz, rel=1e-12)
+    np.testing.assert_allclose(long.history[29], first.history[-1], rtol=1e-12)
+    second = pd_.lyapunov(osc, exc, cycles=30, transient_cycles=0, align_cycles=0, state=first.final_state)
+    np.testing.assert_array_equal(second.final_state.vector, long.final_state.vector)
+
+
+def test_bad_input_is_named():
+    osc = pd_.presets.paper_damped()
+    with pytest.raises(pd_.InputError, match="excitation"):
+        pd_.lyapunov(osc, "1.5 Hz")
+    with pytest.raises(pd_.InputError, match="cycles"):
+        pd_.lyapunov(osc, pd_.Harmonic(0.05, 1.5), cycles=0)
+    with pytest.raises(pd_.InputError, match="transient_cycles"):
+        pd_.lyapunov(osc, pd_.Harmonic(0.05, 1.5), transient_cycles=-1)
+    with pytest.raises(pd_.InputError, match="method"):
+        pd_.lyapunov(pd_.presets.paper_calibrated(), pd_.Harmonic(0.05, 1.5), method="exact")
+    with pytest.raises(pd_.InputError, match="state"):
+        pd_.lyapunov(osc, pd_.Harmonic(0.05, 1.5), state=[0.0, 0.0])
+
+
+def test_ctrl_c_keeps_the_periods_counted():
+    calls = []
+
+    def stop_after_25(n: int) -> None:
+        calls.append(n)
+        if len(calls) == 25:
+            raise KeyboardInterrupt
+
+    with pytest.raises(pd_.Interrupted) as stop:
+        pd_.lyapunov(SOFT, CHAOS, cycles=100, transient_cycles=20, align_cycles=5, progress=stop_after_25)
+    spec = stop.value.partial
+    assert spec.status == pd_.Status.INTERRUPTED and spec.cycles == 20 and spec.history.shape == (20, 4)
+    assert np.isfinite(spec.largest) and "interrupted: 20 of 100" in spec.message
+
+
+def test_results_save_and_plot(tmp_path, chaotic):
+    ds = chaotic.to_xarray()
+    assert ds["exponent"].attrs["units"] == "1/s" and ds.sizes["cycle"] == 1000
+    path = chaotic.to_netcdf(tmp_path / "lyap.nc")
+    import xarray as xr
+
+    with xr.open_dataset(path) as back:
+        np.testing.assert_array_equal(back["exponent"].values, chaotic.exponents)
+        assert back.attrs["kaplan_yorke_dimension"] == pytest.approx(chaotic.kaplan_yorke_dimension)
+    artists = chaotic.plot()
+    assert len(artists) >= 2
+    import matplotlib.pyplot as plt
+
+    plt.close("all")
