@@ -165,3 +165,21 @@ def test_results_save_and_plot(tmp_path, chaotic):
     import matplotlib.pyplot as plt
 
     plt.close("all")
+
+
+def test_diagram_largest_exponents_tell_chaos_from_periodic_steps():
+    """On the soft impact oscillator's diagram the exponent is positive where no period is found
+    (chaos at 2.6 Hz) and negative on the periodic steps; at a periodic step it is the orbit's
+    ln|mu_max| / T (periodic_orbit)."""
+    freqs = [2.0, 2.6]
+    diagram = pd_.bifurcation_diagram(SOFT, 0.1, freqs, direction="up", transient_cycles=300,
+                                      record_cycles=20)
+    d = pd_.largest_exponents(diagram, cycles=300)
+    lam = d.dataset["largest_exponent"].sel(direction="up").values
+    period = d.dataset["period"].sel(direction="up").values
+    assert period.tolist() == [1, 0] and lam[0] < 0.0 < lam[1]
+    orbit = pd_.periodic_orbit(SOFT, pd_.Harmonic(0.1, 2.0), settle_cycles=300)
+    assert lam[0] == pytest.approx(math.log(orbit.max_abs_multiplier) / orbit.period_s, rel=1e-6)
+    assert "largest_exponent" in d.to_dataframe(cycles=False).columns
+    with pytest.raises(pd_.InputError, match="diagram"):
+        pd_.largest_exponents(pd_.Harmonic(0.1, 2.0))

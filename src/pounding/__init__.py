@@ -5,7 +5,8 @@ The public surface is re-exported here; modules with a leading underscore are pr
 
 from . import data, lab, plots, presets, records  # noqa: F401 (lab: public as pounding.lab)
 from .analysis import (Bifurcation, BifurcationCurve, Branch, CoexistenceMap, LyapunovSpectrum, PeriodicOrbit,
-                       bifurcation_curve, coexistence_map, continuation, lyapunov, periodic_orbit)
+                       bifurcation_curve, coexistence_map, continuation, largest_exponents, lyapunov,
+                       periodic_orbit)
 from ._errors import InputError, Interrupted, OutputError, PoundingWarning, Problem, Status, StoreError
 from ._warm_up import WarmUp, warm_up
 from .engine import EnergyLedger, Run, State, simulate
@@ -37,5 +38,5 @@ __all__ = [
     "StudyResult", "StudySpec", "open_study", "study", "PeriodicOrbit", "periodic_orbit",
     "Bifurcation", "Branch", "continuation", "BifurcationCurve", "CoexistenceMap", "bifurcation_curve",
     "coexistence_map", "BifurcationDiagram", "bifurcation_diagram", "Basins", "basins",
-    "BasinStabilityMap", "basin_stability_map", "LyapunovSpectrum", "lyapunov",
+    "BasinStabilityMap", "basin_stability_map", "LyapunovSpectrum", "lyapunov", "largest_exponents",
 ]

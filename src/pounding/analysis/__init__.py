@@ -6,8 +6,9 @@ from .branch import Bifurcation, Branch
 from .continuation import continuation
 from .curve_result import BifurcationCurve, CoexistenceMap
 from .curves import bifurcation_curve, coexistence_map
-from .lyapunov import LyapunovSpectrum, lyapunov
+from .lyapunov import LyapunovSpectrum, largest_exponents, lyapunov
 from .periodic import PeriodicOrbit, periodic_orbit
 
 __all__ = ["Bifurcation", "BifurcationCurve", "Branch", "CoexistenceMap", "LyapunovSpectrum", "PeriodicOrbit",
-           "bifurcation_curve", "coexistence_map", "continuation", "lyapunov", "periodic_orbit"]
+           "bifurcation_curve", "coexistence_map", "continuation", "largest_exponents", "lyapunov",
+           "periodic_orbit"]

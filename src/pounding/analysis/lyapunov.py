@@ -33,7 +33,7 @@ period is beyond what double precision resolves next to the others, 1e-13).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any, Optional
@@ -50,7 +50,7 @@ from ..engine._layout import V as I_V
 from ..engine.simulate import check_oscillator, check_state
 from ..excitation import Harmonic
 from ..model import Oscillator
-from ..protocols.bifurcation_diagram import periods
+from ..protocols.bifurcation_diagram import BifurcationDiagram, periods
 from . import _hybrid as hy
 from ._args import exact_monodromy
 from .periodic import _Failed, _Shooter
@@ -440,3 +440,69 @@ class _Tangent:
             head += (f"; {self.fell_back} period{'s' if self.fell_back > 1 else ''} by finite differences "
                      "(an event met tangentially)")
         return head
+
+
+def largest_exponents(diagram: BifurcationDiagram, *, cycles: int = 200, align_cycles: int = 20,
+                      method: str = "auto", progress: Progress = False) -> BifurcationDiagram:
+    """A bifurcation diagram with the largest Lyapunov exponent of the response at every direction
+    and frequency: :func:`lyapunov` from the state the diagram's sweep recorded from (its settled
+    state at table phase 0), no transient.
+
+    Parameters
+    ----------
+    diagram : BifurcationDiagram
+        From :func:`pounding.bifurcation_diagram`.
+    cycles, align_cycles, method
+        As :func:`lyapunov`'s, for every step.
+    progress : bool or callable
+        True: a progress bar; a callable is called with the number of steps just finished.
+
+    Returns
+    -------
+    BifurcationDiagram
+        The same diagram, its dataset with ``largest_exponent`` (direction, freq_hz), 1/s: negative
+        on a periodic response, positive on a chaotic one; NaN where the step did not run. On
+        Ctrl-C, :class:`pounding.Interrupted` carries it with the steps finished.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> osc = pounding.presets.paper_damped()
+    >>> d = pounding.bifurcation_diagram(osc, 0.05, [1.5, 2.5], direction="up",
+    ...                                  transient_cycles=60, record_cycles=10)
+    >>> d = pounding.largest_exponents(d, cycles=50)
+    >>> (d.dataset["largest_exponent"] < 0).values.tolist()  # periodic: both stable
+    [[True, True]]
+    """
+    if not isinstance(diagram, BifurcationDiagram):
+        raise InputError(Problem.WRONG_TYPE, "diagram", diagram, got=type(diagram).__name__,
+                         expected="pounding.BifurcationDiagram (from pounding.bifurcation_diagram)")
+    cycles = integer("cycles", cycles, 1, MAX_CYCLES)
+    align_cycles = integer("align_cycles", align_cycles, 0, MAX_CYCLES)
+    exact_monodromy(diagram.oscillator, method)  # (checked once, before any step)
+    ds = diagram.dataset
+    dirs = ds["direction"].values.tolist()
+    freqs = ds["freq_hz"].values
+    out = np.full((len(dirs), freqs.size), np.nan)
+    total = sum(sw.steps_done for sw in diagram.sweeps)
+
+    def result() -> BifurcationDiagram:
+        new = ds.assign(largest_exponent=(("direction", "freq_hz"), out.copy(),
+                                          {"units": "1/s", "cycles": cycles, "method": method}))
+        return replace(diagram, dataset=new)
+
+    with progress_reporter(progress, total, "largest Lyapunov exponents") as advance:
+        try:
+            for sw in diagram.sweeps:
+                i = dirs.index(sw.direction)
+                for f, vec in zip(sw.freqs_hz[:sw.steps_done], sw.window_states[:sw.steps_done]):
+                    start = np.array(vec, dtype=float)
+                    start[I_T] = 0.0  # (the window starts at table phase 0: the forcing's time 0)
+                    spec = lyapunov(diagram.oscillator, Harmonic(sw.a_g, float(f), g=sw.g), cycles=cycles,
+                                    transient_cycles=0, align_cycles=align_cycles, state=State(start),
+                                    method=method)
+                    out[i, np.searchsorted(freqs, f)] = spec.largest
+                    advance(1)
+        except KeyboardInterrupt:
+            raise Interrupted(result(), int(np.isfinite(out).sum()), total, "steps") from None
+    return result()

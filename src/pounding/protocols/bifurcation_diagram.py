@@ -228,10 +228,12 @@ class BifurcationDiagram:
     def to_dataframe(self, cycles: bool = True) -> pd.DataFrame:
         """A long table: one row per direction, frequency and recorded cycle (``cycles`` True:
         ``displacement_m`` and ``velocity_m_s`` at the section), or per direction and frequency
-        (``cycles`` False), with ``period``, ``alpha``, ``excursion_m``, ``contacts_per_cycle``;
-        steps not run left out."""
+        (``cycles`` False), with ``period``, ``alpha``, ``excursion_m``, ``contacts_per_cycle`` (and
+        ``largest_exponent``, 1/s, once :func:`pounding.largest_exponents` added it); steps not run
+        left out."""
         ds = self.dataset
-        steps = ds[["period", *STEP_QUANTITIES]].to_dataframe().reset_index()
+        extra = ["largest_exponent"] if "largest_exponent" in ds else []  # (pounding.largest_exponents)
+        steps = ds[["period", *STEP_QUANTITIES, *extra]].to_dataframe().reset_index()
         steps = steps[steps["period"] >= 0].reset_index(drop=True)
         if not cycles:
             return steps
