@@ -3,6 +3,10 @@ and down, 100 + 20 cycles a step (the target: 3 s on the 2-core machine), agains
 sweep over the same frequencies and cycles in the same run (the ratio is what compares across
 machines: the diagram adds only its bookkeeping to the sweeps it is made of).
 
+Then the Lyapunov spectrum: 1,000 periods counted on the same system at a_G 0.05, 1.5 Hz (two
+impacts a period, nine phases) and 2.2 Hz (free), no transient (the target: 0.5 s), against the
+engine's own 1,000 periods from the same state (a simulate of that length, events only).
+
     python benchmarks/diagram.py [--repeat 3]
 """
 
@@ -17,6 +21,7 @@ import numpy as np
 import pounding as pd_
 
 TARGET_S = 3.0
+TARGET_LYAPUNOV_S = 0.5
 
 
 def best_of(fn, repeat: int) -> tuple[float, object]:
@@ -52,6 +57,15 @@ def main() -> None:
     print(f"  the sweeps    {t_sweeps:7.3f} s   ratio diagram / sweeps = {t_diagram / t_sweeps:.2f}")
     print(f"  target {TARGET_S:g} s: {'met' if t_diagram <= TARGET_S else 'NOT met'} "
           f"(diagram / target = {t_diagram / TARGET_S:.2f})")
+    for f in (1.5, 2.2):
+        exc = pd_.Harmonic(0.05, f)
+        pd_.lyapunov(osc, exc, cycles=5, transient_cycles=0)  # (compiled, not timed)
+        t_lyap, spec = best_of(lambda: pd_.lyapunov(osc, exc, cycles=1000, transient_cycles=0,
+                                                    align_cycles=0), args.repeat)
+        t_run, _ = best_of(lambda: pd_.simulate(osc, exc, 1000 / f, sample_rate_hz=0), args.repeat)
+        print(f"Lyapunov spectrum, {f:g} Hz, 1,000 periods: {t_lyap:6.3f} s ({t_lyap / t_run:.0f} x the "
+              f"engine's {t_run:.3f} s for the periods alone); largest {spec.largest:.4f} 1/s; target "
+              f"{TARGET_LYAPUNOV_S:g} s: {'met' if t_lyap <= TARGET_LYAPUNOV_S else 'NOT met'}")
 
 
 if __name__ == "__main__":

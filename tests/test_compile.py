@@ -36,6 +36,9 @@ SESSION = textwrap.dedent("""
     p.sweep(osc, 0.05, [1.0, 1.1], steady="fixed", cycles=3, measure_cycles=1)
     p.sweep(osc, 0.05, [1.0, 1.1], max_cycles=40)
     p.response_spectrum(p.Record(t, np.sin(7.0 * t)), [0.0, 0.2, 1.0])
+    p.periodic_orbit(p.presets.paper_damped(), p.Harmonic(0.05, 1.5))  # (the exact monodromy)
+    p.periodic_orbit(p.presets.paper_damped(hysteresis="elastic"), p.Harmonic(0.05, 1.5))
+    p.continuation(osc.without_bumpers(), 0.05, (1.0, 1.2))
     many = {}
     entries = []  # the kernels Python calls (with a Python wrapper)
     for obj in gc.get_objects():
@@ -47,7 +50,7 @@ SESSION = textwrap.dedent("""
     print(json.dumps({"many": many, "entries": sorted(entries), "compiled": warm.compiled,
                       "loaded": warm.loaded}))
 """)
-KERNELS = ["run_kernel", "step_kernel", "impact_row", "law_force_many", "spectrum_kernel"]
+KERNELS = ["run_kernel", "step_kernel", "impact_row", "law_force_many", "spectrum_kernel", "monodromy_kernel"]
 
 
 def test_each_compiled_function_has_one_specialisation(tmp_path):
@@ -67,7 +70,7 @@ def test_each_compiled_function_has_one_specialisation(tmp_path):
                            capture_output=True, text=True, check=True, env=env)
     compiled, loaded, message = json.loads(again.stdout.strip().splitlines()[-1])
     assert compiled == [] and loaded == KERNELS, message
-    assert message.startswith("5 kernels loaded from Numba's cache ("), message
+    assert message.startswith("6 kernels loaded from Numba's cache ("), message
 
 
 def test_import_leaves_the_optimizers_for_model_updating():

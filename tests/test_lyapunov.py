@@ -183,3 +183,27 @@ def test_diagram_largest_exponents_tell_chaos_from_periodic_steps():
     assert "largest_exponent" in d.to_dataframe(cycles=False).columns
     with pytest.raises(pd_.InputError, match="diagram"):
         pd_.largest_exponents(pd_.Harmonic(0.1, 2.0))
+
+
+def test_compiled_matrix_exponential_is_scipys():
+    """The monodromy's compiled exponential (Padé, scaling and squaring) against scipy.linalg.expm:
+    matrices of 2 to 9 rows whose 1-norm spans every degree's range (1e-3 to 40, so that 0 to 3
+    squarings)."""
+    import numba
+    from scipy.linalg import expm
+
+    from pounding.analysis._expm import expm_small
+
+    @numba.njit
+    def call(a):
+        return expm_small(a)
+
+    rng = np.random.default_rng(7)
+    for n in (2, 5, 9):
+        for norm in (1e-3, 0.1, 0.5, 1.5, 4.0, 12.0, 40.0):
+            a = rng.standard_normal((n, n))
+            a *= norm / np.abs(a).sum(axis=0).max()
+            want = expm(a)
+            # (at norm 40 the exponential's own condition reaches 1e15: both algorithms' rounding shows)
+            tol = 1e-15 if norm <= 1.5 else 2e-14 if norm <= 12.0 else 1e-12
+            np.testing.assert_allclose(call(a), want, rtol=0, atol=tol * np.abs(want).max())

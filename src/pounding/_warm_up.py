@@ -38,8 +38,13 @@ class WarmUp:
     >>> import pounding
     >>> done = pounding.warm_up()
     >>> # every kernel, one way or another
-    >>> sorted(set(done.compiled + done.loaded + done.in_memory))
-    ['impact_row', 'law_force_many', 'run_kernel', 'spectrum_kernel', 'step_kernel']
+    >>> print(*sorted(set(done.compiled + done.loaded + done.in_memory)), sep="\n")
+    impact_row
+    law_force_many
+    monodromy_kernel
+    run_kernel
+    spectrum_kernel
+    step_kernel
     >>> len(done.cache_dirs) > 0, done.seconds < 60.0  # where the cache is; s
     (True, True)
     """
@@ -64,6 +69,7 @@ class WarmUp:
 
 def _kernels() -> dict:
     """The compiled entry points Python calls, by name."""
+    from .analysis._hybrid import monodromy_kernel
     from .engine._kernel import run_kernel
     from .excitation._spectrum_kernel import spectrum_kernel
     from .metrics._impacts import impact_row
@@ -71,7 +77,8 @@ def _kernels() -> dict:
     from .protocols._step_kernel import step_kernel
 
     return {"run_kernel": run_kernel, "step_kernel": step_kernel, "impact_row": impact_row,
-            "law_force_many": law_force_many, "spectrum_kernel": spectrum_kernel}
+            "law_force_many": law_force_many, "spectrum_kernel": spectrum_kernel,
+            "monodromy_kernel": monodromy_kernel}
 
 
 def kernels_cached(names: tuple[str, ...] = ("run_kernel", "step_kernel")) -> bool:
@@ -116,12 +123,13 @@ def warm_up() -> WarmUp:
     >>> done = pounding.warm_up()
     >>> again = pounding.warm_up()  # the same process: nothing left to do
     >>> again.compiled, again.loaded, len(again.in_memory)
-    ((), (), 5)
-    >>> # the first: e.g. "5 kernels compiled and cached (55.4 s)"
+    ((), (), 6)
+    >>> # the first: e.g. "6 kernels compiled and cached (55.4 s)"
     >>> print(again.message)
-    5 kernels already in memory (... s)
+    6 kernels already in memory (... s)
     """
     from . import presets
+    from .analysis._hybrid import Hybrid, monodromy
     from .engine import State, simulate
     from .excitation import Harmonic, Record
     from .excitation.spectrum import response_spectrum
@@ -138,6 +146,9 @@ def warm_up() -> WarmUp:
     sweep(osc, 0.05, [2.0], steady="fixed", cycles=2, measure_cycles=1, progress=False)
     _force(osc.bumpers.left, np.array([0.0, 1e-3]), np.array([0.1, -0.1]))
     response_spectrum(Record([0.0, 0.01, 0.02], [0.0, 1.0, 0.0]), [0.5])  # the elastic spectrum's kernel
+    # the exact monodromy's propagation (periodic orbits, continuation, Lyapunov exponents)
+    monodromy(Hybrid.of(osc), np.array(run.final_state.vector), run.event_table[:0],
+              run.final_state.time_s + 0.1, 13.8, 0.49, 0.0)
     seconds = time.perf_counter() - t0
     after = _counts(kernels)
     loaded = tuple(n for n in kernels if after[n][0] > before[n][0])

@@ -19,19 +19,19 @@ read it.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import Optional
+from typing import NamedTuple
 
 import numpy as np
-from scipy.linalg import expm
 from threadpoolctl import threadpool_limits
 
+from .._jit import jit_alloc, jit_entry
 from ..engine._layout import (ACT_CONTACT, ACT_REGION, ACT_RELEASE, ACT_REVERSAL, ACT_YIELD, DEF_L, DEF_R,
                               IN_L, IN_R, REGION, SIDE_L, STATE_BASE)
 from ..engine._layout import D as I_D
 from ..engine._layout import V as I_V
 from ..model import Oscillator
 from ..model.contact_laws import linear_form
+from ._expm import expm_small
 
 I_DL, I_DR = 2, 3  # the compressions' places in x
 FIRST_SLIP = 4
@@ -56,9 +56,8 @@ class NoExactMonodromy(Exception):
     differences and says so in its message.  Anything else raised here is a bug, not caught."""
 
 
-@dataclass(frozen=True)
-class Hybrid:
-    """The numbers of the modes' matrices (SI units)."""
+class Hybrid(NamedTuple):
+    """The numbers of the modes' matrices (SI units), as the compiled propagation takes them."""
 
     mass: float
     c_d: float
@@ -76,15 +75,15 @@ class Hybrid:
         if b is None:
             gaps, k, c = (np.inf, np.inf), (0.0, 0.0), (0.0, 0.0)
         else:
-            gaps = (b.gap_left, b.gap_right)
+            gaps = (float(b.gap_left), float(b.gap_right))
             # (a law other than Kelvin-Voigt: no linear modes; its numbers are not used but for the
             # coordinates, where its compressions are no shooting coordinates)
             forms = [linear_form(law) for law in (b.left, b.right)]
             k = tuple(float(f[0]) if f else float(getattr(law, "stiffness", np.nan))
                       for f, law in zip(forms, (b.left, b.right)))
             c = tuple(float(f[1]) if f else 0.0 for f in forms)
-        return cls(oscillator.mass, iso.damping, np.asarray(iso.slopes, float),
-                   np.asarray(iso.breakpoints, float), iso.hysteresis == "kinematic", gaps, k, c)
+        return cls(float(oscillator.mass), float(iso.damping), np.array(iso.slopes, dtype=float),
+                   np.array(iso.breakpoints, dtype=float), iso.hysteresis == "kinematic", gaps, k, c)
 
     @property
     def n_slips(self) -> int:
@@ -109,24 +108,63 @@ def mode_of(h: Hybrid, vec: np.ndarray) -> tuple:
     return bool(vec[IN_L]), bool(vec[IN_R]), iso
 
 
-def augmented_matrix(h: Hybrid, mode: tuple, omega: float, amp: float) -> np.ndarray:
+def one_blas_thread() -> threadpool_limits:
+    """A context in which BLAS and LAPACK run on one thread: the monodromy's products and
+    exponentials are of matrices of a few rows, which a threaded BLAS slows down a hundredfold
+    when the machine is busy (measured: ``expm`` of a 6-by-6 in 8 ms instead of 20 us)."""
+    return threadpool_limits(limits=1, user_api="blas")
+
+
+def monodromy(h: Hybrid, vec0: np.ndarray, events: np.ndarray, t_end: float, omega: float, amp: float,
+              phase: float) -> tuple[np.ndarray, np.ndarray]:
+    """The Jacobian of the map from ``x`` at the state vector ``vec0``'s time to ``x`` at
+    ``t_end``, along the engine's ``events`` (rows of t, action, index), and ``x`` at ``t_end``
+    as this propagation has it (to compare with the engine's).
+
+    Raises :class:`NoExactMonodromy` at an event met tangentially (no saltation matrix).
+
+    Returns
+    -------
+    jac : ndarray, shape (n, n)
+    x_end : ndarray, shape (n,)
+    """
+    in_l, in_r, iso = mode_of(h, vec0)
+    iso_arr = np.array(iso if h.kinematic else (iso,), dtype=float).reshape(-1)
+    if iso_arr.size == 0:
+        iso_arr = np.zeros(1)
+    rows = np.ascontiguousarray(events, dtype=float).reshape(-1, 3)
+    jac, x_end, bad = monodromy_kernel(h, coordinates(h, vec0), in_l, in_r, iso_arr, rows, float(vec0[0]),
+                                       float(t_end), (float(omega), float(amp), float(phase)))
+    if bad >= 0:
+        row = events[bad]
+        raise NoExactMonodromy(f"event {int(row[1])} at t = {row[0]} is tangent (a grazing)")
+    return jac, x_end
+
+
+# The compiled propagation (``monodromy_kernel`` and its parts).  A mode is ``(in_l, in_r, iso)``:
+# ``iso`` the slip directions of a kinematic isolator's springs, or ``iso[0]`` the elastic rule's
+# backbone branch.
+
+
+@jit_alloc
+def _augmented(h, in_l, in_r, iso, omega, amp):
     """``Ã_m``, shape (n + 3, n + 3): ``x`` then ``sin(theta)``, ``cos(theta)``, 1.
 
     ``amp`` is the table's peak acceleration (m/s^2), ``omega`` its circular frequency (rad/s).
     """
-    n = h.size
+    n_sp = h.slopes.size - 1 if h.kinematic else 0
+    n = FIRST_SLIP + n_sp
     a = np.zeros((n + 3, n + 3))
     s_, c_, one = n, n + 1, n + 2
     m = h.mass
     a[0, 1] = 1.0
     # the mass: -(c_d V + isolator + right bumper - left bumper) / M - A(t)
     a[1, 1] -= h.c_d / m
-    in_l, in_r, iso = mode
     if h.kinematic:
-        k_n = h.slopes[-1]
-        a[1, 0] -= k_n / m
-        for i, s in enumerate(iso):
+        a[1, 0] -= h.slopes[n_sp] / m
+        for i in range(n_sp):
             dk = h.slopes[i] - h.slopes[i + 1]
+            s = iso[i]
             if s == 0.0:
                 a[1, 0] -= dk / m
                 a[1, FIRST_SLIP + i] += dk / m
@@ -134,13 +172,21 @@ def augmented_matrix(h: Hybrid, mode: tuple, omega: float, amp: float) -> np.nda
                 a[1, one] -= s * dk * h.breaks[i] / m
                 a[FIRST_SLIP + i, 1] = 1.0  # a slipping spring moves with the mass
     else:
-        j = abs(iso)
+        r = int(iso[0])
+        j = abs(r)
         k = h.slopes[j]
         a[1, 0] -= k / m
         if j > 0:
-            f_break = h.slopes[0] * h.breaks[0] + float(np.dot(h.slopes[1:j], np.diff(h.breaks[:j])))
-            a[1, one] -= np.sign(iso) * (f_break - k * h.breaks[j - 1]) / m
-    for side, touching, row, sign in ((0, in_l, I_DL, -1.0), (1, in_r, I_DR, 1.0)):
+            f_break = h.slopes[0] * h.breaks[0]
+            dot = 0.0
+            for i in range(1, j):
+                dot += h.slopes[i] * (h.breaks[i] - h.breaks[i - 1])
+            f_break += dot
+            a[1, one] -= (1.0 if r > 0 else -1.0) * (f_break - k * h.breaks[j - 1]) / m
+    for side in range(2):
+        touching = in_l if side == 0 else in_r
+        row = I_DL if side == 0 else I_DR
+        sign = -1.0 if side == 0 else 1.0
         kb, cb, gap = h.stiffness[side], h.damping[side], h.gaps[side]
         if touching:
             # depth sign D - gap, force kb depth + cb depth', pushing the mass by -sign
@@ -156,17 +202,16 @@ def augmented_matrix(h: Hybrid, mode: tuple, omega: float, amp: float) -> np.nda
     return a
 
 
-def guard_gradient(h: Hybrid, action: int, index: int, mode: tuple, x: np.ndarray) -> np.ndarray:
+@jit_alloc
+def _guard_gradient(h, action, index, n):
     """``grad g`` in ``x`` of the event (the guard as the engine's event function)."""
-    g = np.zeros(h.size)
+    g = np.zeros(n)
+    sign = -1.0 if index == SIDE_L else 1.0
     if action == ACT_CONTACT:
-        sign = -1.0 if index == SIDE_L else 1.0
         g[0] = sign
-        row = I_DL if index == SIDE_L else I_DR
         if h.damping[index] > 0.0:
-            g[row] = -1.0  # the surface is where the relaxing bumper is
+            g[I_DL if index == SIDE_L else I_DR] = -1.0  # the surface is where the relaxing bumper is
     elif action == ACT_RELEASE:  # the force reaches zero
-        sign = -1.0 if index == SIDE_L else 1.0
         g[0] = sign * h.stiffness[index]
         g[1] = sign * h.damping[index]
     elif action == ACT_YIELD:
@@ -176,139 +221,112 @@ def guard_gradient(h: Hybrid, action: int, index: int, mode: tuple, x: np.ndarra
         g[1] = 1.0
     elif action == ACT_REGION:
         g[0] = 1.0
-    else:  # pragma: no cover (unsupported systems never get here)
-        raise ValueError(f"no guard for event action {action}")
     return g
 
 
-def next_mode(h: Hybrid, action: int, index: int, mode: tuple, x: np.ndarray, acc: float = 0.0) -> tuple:
+@jit_alloc
+def _next_mode(action, index, in_l, in_r, iso, x, acc):
     """The mode after the event (as the engine's transitions: ``_kernel``, ``_isolator``); ``acc``
     the acceleration before it, which says where a branch change at rest goes."""
-    in_l, in_r, iso = mode
-    if action in (ACT_CONTACT, ACT_RELEASE):
+    new = iso.copy()
+    if action == ACT_CONTACT or action == ACT_RELEASE:
         now = action == ACT_CONTACT
-        return (now, in_r, iso) if index == SIDE_L else (in_l, now, iso)
-    if action == ACT_YIELD:
-        s = list(iso)
-        s[index] = 1.0 if x[0] - x[FIRST_SLIP + index] > 0.0 else -1.0
-        return in_l, in_r, tuple(s)
-    if action == ACT_REVERSAL:
-        return in_l, in_r, tuple(0.0 for _ in iso)
-    if action == ACT_REGION:
+        if index == SIDE_L:
+            in_l = now
+        else:
+            in_r = now
+    elif action == ACT_YIELD:
+        new[index] = 1.0 if x[0] - x[FIRST_SLIP + index] > 0.0 else -1.0
+    elif action == ACT_REVERSAL:
+        new[:] = 0.0
+    elif action == ACT_REGION:
         heading = x[1] if x[1] != 0.0 else acc
-        return in_l, in_r, iso + (1 if heading > 0.0 else -1)
-    raise ValueError(f"no transition for event action {action}")  # pragma: no cover
+        new[0] += 1.0 if heading > 0.0 else -1.0
+    return in_l, in_r, new
 
 
-def after_event(h: Hybrid, action: int, index: int, x: np.ndarray) -> np.ndarray:
+@jit_alloc
+def _after_event(h, action, index, x):
     """The state's jump at the event: at a contact's start the compression is the depth (equal
     but for rounding); a yielding spring's slip is where its strain is the breakpoint."""
-    y = x.copy()
     if action == ACT_CONTACT:
-        row = I_DL if index == SIDE_L else I_DR
-        y[row] = max(0.0, (-x[0] if index == SIDE_L else x[0]) - h.gaps[index])
+        depth = (-x[0] if index == SIDE_L else x[0]) - h.gaps[index]
+        x[I_DL if index == SIDE_L else I_DR] = max(0.0, depth)
     elif action == ACT_YIELD:
         strain = x[0] - x[FIRST_SLIP + index]
-        y[FIRST_SLIP + index] = x[0] - np.sign(strain) * h.breaks[index]
-    return y
+        x[FIRST_SLIP + index] = x[0] - np.sign(strain) * h.breaks[index]
 
 
-def one_blas_thread() -> threadpool_limits:
-    """A context in which BLAS and LAPACK run on one thread: the monodromy's products and
-    exponentials are of matrices of a few rows, which a threaded BLAS slows down a hundredfold
-    when the machine is busy (measured: ``expm`` of a 6-by-6 in 8 ms instead of 20 us)."""
-    return threadpool_limits(limits=1, user_api="blas")
-
-
-def exponential(a: np.ndarray, tau: float) -> np.ndarray:
+@jit_alloc
+def _exponential(a, tau):
     """``expm(a tau)``, the states that evolve alone (a relaxing bumper: its row and column hold
     only the diagonal) by their scalar exponential: their rates (``stiffness / damping``, up to
-    1e6 1/s) would make ``expm`` square its way down from a huge norm, slowly."""
-    off = a - np.diag(np.diag(a))
-    alone = ~(off.any(axis=0) | off.any(axis=1))
-    out = np.zeros_like(a)
+    1e6 1/s) would make the Padé approximant square its way down from a huge norm."""
+    size = a.shape[0]
+    alone = np.ones(size, dtype=np.bool_)
+    for i in range(size):
+        for j in range(size):
+            if i != j and a[i, j] != 0.0:
+                alone[i] = False
+                alone[j] = False
     rest = np.flatnonzero(~alone)
-    out[np.ix_(rest, rest)] = expm(a[np.ix_(rest, rest)] * tau)
-    idx = np.flatnonzero(alone)
-    out[idx, idx] = np.exp(np.diag(a)[idx] * tau)
-    return out
-
-
-EIGEN_COND = 1e6  # a mode whose eigenvectors are worse conditioned takes expm
-
-
-def mode_matrices(h: Hybrid, mode: tuple, omega: float, amp: float, modes: Optional[dict]) -> tuple:
-    """``(Ã_m, its eigen-decomposition or None)``; with ``modes`` (a dict kept over many periods of
-    one forcing) each mode's are computed once.  The decomposition is of the states that do not
-    evolve alone (``exponential``'s split), given only when its eigenvectors are well conditioned
-    (below ``EIGEN_COND``): LAPACK's eigenvectors of a repeated eigenvalue (a touched bumper's
-    compression, a stuck slip and the constant state all have 0) are often not independent, and
-    such a mode's exponentials come from ``expm``."""
-    if modes is not None and mode in modes:
-        return modes[mode]
-    a = augmented_matrix(h, mode, omega, amp)
-    eig = None
-    if modes is not None:
-        off = a - np.diag(np.diag(a))
-        alone = ~(off.any(axis=0) | off.any(axis=1))
-        rest, idx = np.flatnonzero(~alone), np.flatnonzero(alone)
-        lam, vecs = np.linalg.eig(a[np.ix_(rest, rest)])
-        if np.isfinite(vecs).all() and np.linalg.cond(vecs) < EIGEN_COND:
-            eig = (lam, vecs, np.linalg.inv(vecs), np.ix_(rest, rest), idx, np.diag(a)[idx])
-        modes[mode] = (a, eig)
-    return a, eig
-
-
-def _eigen_exponential(eig: tuple, size: int, tau: float) -> np.ndarray:
-    """``expm(Ã tau)`` from :func:`mode_matrices`' decomposition."""
-    lam, vecs, inv, block, idx, rates = eig
+    sub = np.empty((rest.size, rest.size))
+    for i in range(rest.size):
+        for j in range(rest.size):
+            sub[i, j] = a[rest[i], rest[j]] * tau
+    block = expm_small(sub)
     out = np.zeros((size, size))
-    out[block] = ((vecs * np.exp(lam * tau)) @ inv).real
-    out[idx, idx] = np.exp(rates * tau)
+    for i in range(rest.size):
+        for j in range(rest.size):
+            out[rest[i], rest[j]] = block[i, j]
+    for i in range(size):
+        if alone[i]:
+            out[i, i] = np.exp(a[i, i] * tau)
     return out
 
 
-def monodromy(h: Hybrid, vec0: np.ndarray, events: np.ndarray, t_end: float, omega: float, amp: float,
-              phase: float, modes: Optional[dict] = None) -> tuple[np.ndarray, np.ndarray]:
-    """The Jacobian of the map from ``x`` at the state vector ``vec0``'s time to ``x`` at
-    ``t_end``, along the engine's ``events`` (rows of t, action, index), and ``x`` at ``t_end``
-    as this propagation has it (to compare with the engine's).
-
-    ``modes``: a dict kept over many calls with the same forcing (:func:`mode_matrices`): each
-    phase's exponential then comes from its mode's eigen-decomposition, computed once (about ten
-    times faster than ``expm``, to some 1e-12 instead of the last digit).  Without it (the
-    periodic-orbit solvers), ``expm`` each phase.
-
-    Returns
-    -------
-    jac : ndarray, shape (n, n)
-    x_end : ndarray, shape (n,)
-    """
-    n = h.size
-    t = float(vec0[0])
-    mode = mode_of(h, vec0)
-    xa = np.concatenate((coordinates(h, vec0), [np.sin(omega * t + phase), np.cos(omega * t + phase), 1.0]))
+@jit_entry
+def monodromy_kernel(h, x0, in_l, in_r, iso, events, t0, t_end, forcing):
+    """:func:`monodromy`'s propagation: ``(jac (n, n), x at t_end (n,), the row of a tangent event
+    or -1)``.  ``forcing`` is ``(omega rad/s, peak m/s^2, phase rad)``."""
+    omega, amp, phase = forcing
+    n = x0.size
+    t = t0
+    xa = np.empty(n + 3)
+    xa[:n] = x0
+    xa[n] = np.sin(omega * t + phase)
+    xa[n + 1] = np.cos(omega * t + phase)
+    xa[n + 2] = 1.0
     jac = np.eye(n)
-    a, eig = mode_matrices(h, mode, omega, amp, modes)
-    for t_ev, action, index in np.vstack((events, [[t_end, -1.0, -1.0]])):
-        step = exponential(a, t_ev - t) if eig is None else _eigen_exponential(eig, n + 3, t_ev - t)
+    a = _augmented(h, in_l, in_r, iso, omega, amp)
+    m_ev = events.shape[0]
+    for e in range(m_ev + 1):
+        t_ev = events[e, 0] if e < m_ev else t_end
+        step = _exponential(a, t_ev - t)
         xa = step @ xa
-        jac = step[:n, :n] @ jac
+        jac = np.ascontiguousarray(step[:n, :n]) @ jac
         t = t_ev
-        if action < 0:
+        if e == m_ev:
             break
-        action, index = int(action), int(index)
-        x = xa[:n]
+        action, index = int(events[e, 1]), int(events[e, 2])
+        x = xa[:n].copy()
         f_before = (a @ xa)[:n]
-        new = next_mode(h, action, index, mode, x, f_before[1])
-        a_after, eig_after = mode_matrices(h, new, omega, amp, modes)
+        new_l, new_r, new_iso = _next_mode(action, index, in_l, in_r, iso, x, f_before[1])
+        a_after = _augmented(h, new_l, new_r, new_iso, omega, amp)
         f_after = (a_after @ xa)[:n]
-        grad = guard_gradient(h, action, index, mode, x)
-        rate = float(grad @ f_before)
-        if rate == 0.0 and np.any(f_after != f_before):  # (tangent: no saltation; the caller falls back)
-            raise NoExactMonodromy(f"event {action} at t = {t_ev} is tangent (a grazing)")
+        grad = _guard_gradient(h, action, index, n)
+        rate = 0.0
+        for i in range(n):
+            rate += grad[i] * f_before[i]
+        if rate == 0.0 and np.any(f_after != f_before):  # (tangent: no saltation)
+            return jac, xa[:n].copy(), e
         if rate != 0.0:
-            jac = (np.eye(n) + np.outer(f_after - f_before, grad) / rate) @ jac
-        xa[:n] = after_event(h, action, index, x)
-        mode, a, eig = new, a_after, eig_after
-    return jac, xa[:n]
+            jump = np.eye(n)
+            for i in range(n):
+                for j in range(n):
+                    jump[i, j] += (f_after[i] - f_before[i]) * grad[j] / rate
+            jac = jump @ jac
+        _after_event(h, action, index, x)
+        xa[:n] = x
+        in_l, in_r, iso, a = new_l, new_r, new_iso, a_after
+    return jac, xa[:n].copy(), -1

@@ -39,6 +39,7 @@ from collections.abc import Iterator
 from typing import TYPE_CHECKING, Any, Optional
 
 import numpy as np
+from scipy.linalg import lapack
 
 from .._checks import integer
 from .._errors import InputError, Interrupted, Problem, Status
@@ -60,6 +61,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 MAX_CYCLES = 10_000_000
 MAX_PERIOD = 8  # the longest period (in forcing periods) a response is checked for
+KEEP_RUNS = 20_000  # periods whose runs are kept between the two passes (about 1 kB each); more run twice
 PERIODIC_RTOL = 1e-9  # sections that repeat to this (of the motion's size) make a periodic response
 RESOLVED = 1e-13  # a diagonal of R below this times the largest: the direction is erased (-inf)
 
@@ -272,7 +274,6 @@ class _Tangent:
         self.period = 1.0 / excitation.freq_hz
         self.sh = _Shooter(oscillator, excitation, self.period, exact)
         self.start = np.array(state.vector, dtype=float)
-        self.modes: dict = {}  # the modes' matrices met (hy.mode_matrices)
         self.fell_back = 0  # periods whose exact Jacobian gave way to finite differences
         iso = oscillator.isolator
         omega_n = math.sqrt(max(float(iso.slopes[0]), 1e-300) / oscillator.mass)
@@ -314,8 +315,7 @@ class _Tangent:
             amp, omega, phase = self.exc.peak_m_s2, self.exc.omega_rad_s, self.exc.phase
             try:
                 full, x_end = hy.monodromy(sh.h, vec, run.event_table, vec[I_T] + self.period, omega, amp,
-                                           phase,
-                                           self.modes)
+                                           phase)
                 gap = np.abs(x_end - sh.coords(run.final_state.vector)).max() / sh.scale_d
                 if np.isfinite(full).all() and gap < 1e-6:
                     return full @ emb @ select
@@ -346,9 +346,12 @@ class _Tangent:
         size = 1e-6
         # the trajectory first, by the engine alone: the springs that slip in it (the spectrum's
         # coordinates) and its size (the finite differences' steps, the periodicity's tolerance)
+        kept: list = []  # the periods' runs, for the second pass when they are few (else run again)
         try:
-            for _, run in self._periods(total):
+            for vec, run in self._periods(total):
                 ran += 1
+                if total <= KEEP_RUNS:
+                    kept.append((vec, run))
                 size = max(size, abs(run.displacement_max), abs(run.displacement_min))
                 if self.sh.h.kinematic:
                     ev = run.event_table
@@ -362,6 +365,7 @@ class _Tangent:
         w = self._metric(keep)
         w_inv = np.linalg.inv(w)
         q = np.eye(keep.size)
+        block = np.ix_(keep, keep)
         logs = np.zeros(keep.size)
         history = []
         recent: list[np.ndarray] = []  # the last MAX_PERIOD periods' Jacobians (for a periodic response)
@@ -371,10 +375,12 @@ class _Tangent:
         with progress_reporter(progress, ran, f"Lyapunov spectrum, {self.exc.freq_hz:g} Hz") as advance, \
                 hy.one_blas_thread():
             try:
-                for k, (vec, run) in enumerate(self._periods(ran)):
-                    jac = w @ self._jacobian(vec, run)[np.ix_(keep, keep)] @ w_inv
-                    q, r = np.linalg.qr(jac @ q)
-                    diag = np.diag(r)
+                for k, (vec, run) in enumerate(kept if len(kept) == ran else self._periods(ran)):
+                    jac = w @ self._jacobian(vec, run)[block] @ w_inv
+                    # Q R of the carried frame (LAPACK's, without numpy.linalg.qr's 35 us of Python)
+                    qr, tau, _, _ = lapack.dgeqrf(jac @ q)
+                    q = lapack.dorgqr(qr, tau)[0]
+                    diag = np.diag(qr).copy()
                     q = q * np.where(diag < 0.0, -1.0, 1.0)  # (the frame keeps its orientation)
                     if k >= align:
                         d = np.abs(diag)
@@ -452,8 +458,12 @@ def largest_exponents(diagram: BifurcationDiagram, *, cycles: int = 200, align_c
     ----------
     diagram : BifurcationDiagram
         From :func:`pounding.bifurcation_diagram`.
-    cycles, align_cycles, method
-        As :func:`lyapunov`'s, for every step.
+    cycles : int
+        Periods counted at every step (as :func:`lyapunov`'s).
+    align_cycles : int
+        Periods the tangent frame is carried first at every step.
+    method : {"auto", "exact", "finite-difference"}
+        The Jacobian of each period (as :func:`lyapunov`'s).
     progress : bool or callable
         True: a progress bar; a callable is called with the number of steps just finished.
 
