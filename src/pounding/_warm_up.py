@@ -43,8 +43,8 @@ class WarmUp:
     impact_row, law_force_many, monodromy_kernel
     >>> print(", ".join(names[3:]))
     run_kernel, spectrum_kernel, step_kernel
-    >>> len(done.cache_dirs) > 0, done.seconds < 60.0  # where the cache is; s
-    (True, True)
+    >>> len(done.cache_dirs) > 0  # where the cache is (its time: benchmarks/)
+    True
     """
 
     seconds: float

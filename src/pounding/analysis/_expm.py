@@ -32,51 +32,131 @@ B13 = (64764752532480000.0, 32382376266240000.0, 7771770303897600.0, 11873537964
 
 
 @jit_alloc
+def matmul(a, b):
+    """``a @ b`` of small matrices (n, k) and (k, m) by loops: Numba's ``@`` compiles BLAS's
+    bindings, tens of seconds of a cold start for products of a few rows."""
+    n, k, m = a.shape[0], a.shape[1], b.shape[1]
+    out = np.zeros((n, m))
+    for i in range(n):
+        for p in range(k):
+            aip = a[i, p]
+            if aip != 0.0:
+                for j in range(m):
+                    out[i, j] += aip * b[p, j]
+    return out
+
+
+@jit_alloc
+def matvec(a, x):
+    """``a @ x`` of a small matrix (n, k) and a vector (k,)."""
+    out = np.zeros(a.shape[0])
+    for i in range(a.shape[0]):
+        acc = 0.0
+        for p in range(a.shape[1]):
+            acc += a[i, p] * x[p]
+        out[i] = acc
+    return out
+
+
+@jit_alloc
+def _solve(a, b):
+    """``a^-1 b`` for a small square ``a`` (n, n) and ``b`` (n, m): Gaussian elimination with partial
+    pivoting (LAPACK's ``getrf``/``getrs`` unblocked), by loops."""
+    n, m = a.shape[0], b.shape[1]
+    lu = a.copy()
+    x = b.copy()
+    for c in range(n):
+        piv = c
+        for r in range(c + 1, n):
+            if abs(lu[r, c]) > abs(lu[piv, c]):
+                piv = r
+        if piv != c:
+            for j in range(n):
+                lu[c, j], lu[piv, j] = lu[piv, j], lu[c, j]
+            for j in range(m):
+                x[c, j], x[piv, j] = x[piv, j], x[c, j]
+        for r in range(c + 1, n):
+            f = lu[r, c] / lu[c, c]
+            if f != 0.0:
+                for j in range(c + 1, n):
+                    lu[r, j] -= f * lu[c, j]
+                for j in range(m):
+                    x[r, j] -= f * x[c, j]
+    for c in range(n - 1, -1, -1):
+        for j in range(m):
+            acc = x[c, j]
+            for k in range(c + 1, n):
+                acc -= lu[c, k] * x[k, j]
+            x[c, j] = acc / lu[c, c]
+    return x
+
+
+@jit_alloc
+def _diag(n, c):
+    """``c I``, (n, n)."""
+    out = np.zeros((n, n))
+    for i in range(n):
+        out[i, i] = c
+    return out
+
+
+@jit_alloc
+def _add(out, c, m):
+    """``out += c m`` in place, by loops (array expressions compile a shape-error path that
+    formats strings: seconds of a cold start)."""
+    for i in range(out.shape[0]):
+        for j in range(out.shape[1]):
+            out[i, j] += c * m[i, j]
+    return out
+
+
+@jit_alloc
 def expm_small(a):
-    """``exp(a)`` of a square float64 matrix ``a`` (n, n), C-contiguous."""
+    """``exp(a)`` of a small square float64 matrix ``a`` (n, n)."""
     n = a.shape[0]
-    eye = np.eye(n)
     norm = 0.0
     for j in range(n):
         col = 0.0
         for i in range(n):
             col += abs(a[i, j])
         norm = max(norm, col)
-    a2 = a @ a
-    if norm <= THETA[3]:  # degree 3, 5, 7 or 9: no scaling
-        if norm <= THETA[0]:
-            b = B3
-            u = a @ (b[3] * a2 + b[1] * eye)
-            v = b[2] * a2 + b[0] * eye
-        elif norm <= THETA[1]:
-            b = B5
-            a4 = a2 @ a2
-            u = a @ (b[5] * a4 + b[3] * a2 + b[1] * eye)
-            v = b[4] * a4 + b[2] * a2 + b[0] * eye
-        elif norm <= THETA[2]:
-            b = B7
-            a4 = a2 @ a2
-            a6 = a4 @ a2
-            u = a @ (b[7] * a6 + b[5] * a4 + b[3] * a2 + b[1] * eye)
-            v = b[6] * a6 + b[4] * a4 + b[2] * a2 + b[0] * eye
-        else:
-            b = B9
-            a4 = a2 @ a2
-            a6 = a4 @ a2
-            a8 = a6 @ a2
-            u = a @ (b[9] * a8 + b[7] * a6 + b[5] * a4 + b[3] * a2 + b[1] * eye)
-            v = b[8] * a8 + b[6] * a6 + b[4] * a4 + b[2] * a2 + b[0] * eye
-        return np.ascontiguousarray(np.linalg.solve(v - u, v + u))
-    s = max(0, int(math.ceil(math.log2(norm / THETA[4]))))
-    scale = 0.5**s
-    a = a * scale
-    a2 = a2 * (scale * scale)
-    a4 = a2 @ a2
-    a6 = a4 @ a2
-    b = B13
-    u = a @ (a6 @ (b[13] * a6 + b[11] * a4 + b[9] * a2) + b[7] * a6 + b[5] * a4 + b[3] * a2 + b[1] * eye)
-    v = a6 @ (b[12] * a6 + b[10] * a4 + b[8] * a2) + b[6] * a6 + b[4] * a4 + b[2] * a2 + b[0] * eye
-    x = np.ascontiguousarray(np.linalg.solve(v - u, v + u))
+    s = 0
+    if norm > THETA[3]:  # degree 13, after halving s times
+        s = max(0, int(math.ceil(math.log2(norm / THETA[4]))))
+        a = _add(np.zeros((n, n)), 0.5**s, a)
+    a2 = matmul(a, a)
+    if norm <= THETA[0]:
+        b = B3
+        w = _add(_diag(n, b[1]), b[3], a2)
+        v = _add(_diag(n, b[0]), b[2], a2)
+    elif norm <= THETA[1]:
+        b = B5
+        a4 = matmul(a2, a2)
+        w = _add(_add(_diag(n, b[1]), b[3], a2), b[5], a4)
+        v = _add(_add(_diag(n, b[0]), b[2], a2), b[4], a4)
+    elif norm <= THETA[2]:
+        b = B7
+        a4 = matmul(a2, a2)
+        a6 = matmul(a4, a2)
+        w = _add(_add(_add(_diag(n, b[1]), b[3], a2), b[5], a4), b[7], a6)
+        v = _add(_add(_add(_diag(n, b[0]), b[2], a2), b[4], a4), b[6], a6)
+    elif norm <= THETA[3]:
+        b = B9
+        a4 = matmul(a2, a2)
+        a6 = matmul(a4, a2)
+        a8 = matmul(a6, a2)
+        w = _add(_add(_add(_add(_diag(n, b[1]), b[3], a2), b[5], a4), b[7], a6), b[9], a8)
+        v = _add(_add(_add(_add(_diag(n, b[0]), b[2], a2), b[4], a4), b[6], a6), b[8], a8)
+    else:
+        b = B13
+        a4 = matmul(a2, a2)
+        a6 = matmul(a4, a2)
+        w = matmul(a6, _add(_add(_add(np.zeros((n, n)), b[13], a6), b[11], a4), b[9], a2))
+        w = _add(_add(_add(_add(w, b[7], a6), b[5], a4), b[3], a2), 1.0, _diag(n, b[1]))
+        v = matmul(a6, _add(_add(_add(np.zeros((n, n)), b[12], a6), b[10], a4), b[8], a2))
+        v = _add(_add(_add(_add(v, b[6], a6), b[4], a4), b[2], a2), 1.0, _diag(n, b[0]))
+    u = matmul(a, w)
+    x = _solve(_add(v.copy(), -1.0, u), _add(v, 1.0, u))
     for _ in range(s):
-        x = x @ x
+        x = matmul(x, x)
     return x

@@ -19,6 +19,7 @@ read it.
 
 from __future__ import annotations
 
+import math
 from typing import NamedTuple
 
 import numpy as np
@@ -31,7 +32,7 @@ from ..engine._layout import D as I_D
 from ..engine._layout import V as I_V
 from ..model import Oscillator
 from ..model.contact_laws import linear_form
-from ._expm import expm_small
+from ._expm import expm_small, matmul, matvec
 
 I_DL, I_DR = 2, 3  # the compressions' places in x
 FIRST_SLIP = 4
@@ -238,7 +239,8 @@ def _next_mode(action, index, in_l, in_r, iso, x, acc):
     elif action == ACT_YIELD:
         new[index] = 1.0 if x[0] - x[FIRST_SLIP + index] > 0.0 else -1.0
     elif action == ACT_REVERSAL:
-        new[:] = 0.0
+        for i in range(new.size):
+            new[i] = 0.0
     elif action == ACT_REGION:
         heading = x[1] if x[1] != 0.0 else acc
         new[0] += 1.0 if heading > 0.0 else -1.0
@@ -254,34 +256,65 @@ def _after_event(h, action, index, x):
         x[I_DL if index == SIDE_L else I_DR] = max(0.0, depth)
     elif action == ACT_YIELD:
         strain = x[0] - x[FIRST_SLIP + index]
-        x[FIRST_SLIP + index] = x[0] - np.sign(strain) * h.breaks[index]
+        sign = 1.0 if strain > 0.0 else -1.0 if strain < 0.0 else 0.0
+        x[FIRST_SLIP + index] = x[0] - sign * h.breaks[index]
 
 
 @jit_alloc
 def _exponential(a, tau):
     """``expm(a tau)``, the states that evolve alone (a relaxing bumper: its row and column hold
     only the diagonal) by their scalar exponential: their rates (``stiffness / damping``, up to
-    1e6 1/s) would make the Padé approximant square its way down from a huge norm."""
+    1e6 1/s) would make the Padé approximant square its way down from a huge norm.  (Loops
+    throughout: Numba's array expressions and index helpers cost seconds of a cold start.)"""
     size = a.shape[0]
-    alone = np.ones(size, dtype=np.bool_)
+    rest = np.zeros(size, dtype=np.int64)
+    n_rest = 0
     for i in range(size):
+        joined = False
         for j in range(size):
-            if i != j and a[i, j] != 0.0:
-                alone[i] = False
-                alone[j] = False
-    rest = np.flatnonzero(~alone)
-    sub = np.empty((rest.size, rest.size))
-    for i in range(rest.size):
-        for j in range(rest.size):
+            if i != j and (a[i, j] != 0.0 or a[j, i] != 0.0):
+                joined = True
+        if joined:
+            rest[n_rest] = i
+            n_rest += 1
+    sub = np.zeros((n_rest, n_rest))
+    for i in range(n_rest):
+        for j in range(n_rest):
             sub[i, j] = a[rest[i], rest[j]] * tau
     block = expm_small(sub)
     out = np.zeros((size, size))
-    for i in range(rest.size):
-        for j in range(rest.size):
-            out[rest[i], rest[j]] = block[i, j]
     for i in range(size):
-        if alone[i]:
-            out[i, i] = np.exp(a[i, i] * tau)
+        out[i, i] = math.exp(a[i, i] * tau)  # (the states alone; the others' overwritten below)
+    for i in range(n_rest):
+        for j in range(n_rest):
+            out[rest[i], rest[j]] = block[i, j]
+    return out
+
+
+@jit_alloc
+def _identity(n):
+    out = np.zeros((n, n))
+    for i in range(n):
+        out[i, i] = 1.0
+    return out
+
+
+@jit_alloc
+def _head(x, n):
+    """A copy of ``x[:n]``."""
+    out = np.zeros(n)
+    for i in range(n):
+        out[i] = x[i]
+    return out
+
+
+@jit_alloc
+def _top_left(m, n):
+    """A copy of ``m[:n, :n]``."""
+    out = np.zeros((n, n))
+    for i in range(n):
+        for j in range(n):
+            out[i, j] = m[i, j]
     return out
 
 
@@ -292,41 +325,45 @@ def monodromy_kernel(h, x0, in_l, in_r, iso, events, t0, t_end, forcing):
     omega, amp, phase = forcing
     n = x0.size
     t = t0
-    xa = np.empty(n + 3)
-    xa[:n] = x0
-    xa[n] = np.sin(omega * t + phase)
-    xa[n + 1] = np.cos(omega * t + phase)
+    xa = np.zeros(n + 3)
+    for i in range(n):
+        xa[i] = x0[i]
+    xa[n] = math.sin(omega * t + phase)
+    xa[n + 1] = math.cos(omega * t + phase)
     xa[n + 2] = 1.0
-    jac = np.eye(n)
+    jac = _identity(n)
     a = _augmented(h, in_l, in_r, iso, omega, amp)
     m_ev = events.shape[0]
     for e in range(m_ev + 1):
         t_ev = events[e, 0] if e < m_ev else t_end
         step = _exponential(a, t_ev - t)
-        xa = step @ xa
-        jac = np.ascontiguousarray(step[:n, :n]) @ jac
+        xa = matvec(step, xa)
+        jac = matmul(_top_left(step, n), jac)
         t = t_ev
         if e == m_ev:
             break
         action, index = int(events[e, 1]), int(events[e, 2])
-        x = xa[:n].copy()
-        f_before = (a @ xa)[:n]
+        x = _head(xa, n)
+        f_before = matvec(a, xa)
         new_l, new_r, new_iso = _next_mode(action, index, in_l, in_r, iso, x, f_before[1])
         a_after = _augmented(h, new_l, new_r, new_iso, omega, amp)
-        f_after = (a_after @ xa)[:n]
+        f_after = matvec(a_after, xa)
         grad = _guard_gradient(h, action, index, n)
         rate = 0.0
         for i in range(n):
             rate += grad[i] * f_before[i]
-        if rate == 0.0 and np.any(f_after != f_before):  # (tangent: no saltation)
-            return jac, xa[:n].copy(), e
-        if rate != 0.0:
-            jump = np.eye(n)
+        if rate == 0.0:  # (tangent: no saltation, unless the field does not jump)
+            for i in range(n):
+                if f_after[i] != f_before[i]:
+                    return jac, _head(xa, n), e
+        else:
+            jump = _identity(n)
             for i in range(n):
                 for j in range(n):
                     jump[i, j] += (f_after[i] - f_before[i]) * grad[j] / rate
-            jac = jump @ jac
+            jac = matmul(jump, jac)
         _after_event(h, action, index, x)
-        xa[:n] = x
+        for i in range(n):
+            xa[i] = x[i]
         in_l, in_r, iso, a = new_l, new_r, new_iso, a_after
-    return jac, xa[:n].copy(), -1
+    return jac, _head(xa, n), -1
