@@ -93,7 +93,7 @@ def test_warm_up_says_what_it_compiled_or_loaded_and_where():
     # in this process some kernels may have run already, others not
     counts = re.findall(r"(\d) kernels? (?:compiled and cached|loaded from Numba's cache|already in memory)",
                         first)
-    assert sum(int(n) for n in counts) == 5 and first.endswith(" s)"), first
+    assert sum(int(n) for n in counts) == 6 and first.endswith(" s)"), first
     assert "cache:" in result.output
 
 

@@ -207,3 +207,23 @@ def test_compiled_matrix_exponential_is_scipys():
             # (at norm 40 the exponential's own condition reaches 1e15: both algorithms' rounding shows)
             tol = 1e-15 if norm <= 1.5 else 2e-14 if norm <= 12.0 else 1e-12
             np.testing.assert_allclose(call(a), want, rtol=0, atol=tol * np.abs(want).max())
+
+
+def test_command_line_writes_the_estimates_and_refuses_bad_input(tmp_path):
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+
+    out, nc = tmp_path / "lyap.csv", tmp_path / "lyap.nc"
+    res = CliRunner().invoke(app, ["lyapunov", "--preset", "paper-damped", "--a-g", "0.05", "--freq", "1.5",
+                                   "--cycles", "50", "--out", str(out), "--netcdf", str(nc)])
+    assert res.exit_code == 0, res.output
+    assert "periodic (period 1)" in res.output and "lambda_1" in res.output
+    import pandas as pd
+
+    table = pd.read_csv(out)
+    assert list(table.columns[:3]) == ["cycle", "lambda_1_1_s", "lambda_2_1_s"] and len(table) == 50
+    assert nc.is_file()
+    bad = CliRunner().invoke(app, ["lyapunov", "--preset", "paper-damped", "--a-g", "0.05", "--freq", "1.5",
+                                   "--cycles", "0"])
+    assert bad.exit_code == 2 and "cycles" in bad.output

@@ -161,19 +161,19 @@ class LyapunovSpectrum:
         return float(j + sums[j - 1] / abs(lam[j])) if np.isfinite(lam[j]) else float(j)
 
     def to_xarray(self) -> "xr.Dataset":
-        """``exponent`` (coordinate) and ``history`` (cycle, coordinate), 1/s, with the forcing and
-        the method as attributes."""
+        """``exponent`` (direction: 1 the largest) and ``history`` (cycle, direction), 1/s, with the
+        tangent coordinates, the forcing and the method as attributes."""
         import xarray as xr
 
-        names = list(self.coordinates)
         ds = xr.Dataset(
             {"exponent": ("direction", self.exponents, {"units": "1/s"}),
              "history": (("cycle", "direction"), self.history, {"units": "1/s",
                                                                 "long_name": "running estimate"})},
-            coords={"direction": np.arange(len(names)), "cycle": np.arange(1, self.history.shape[0] + 1),
-                    "coordinate": ("direction", names)},
-            attrs={"a_g": self.excitation.a_g, "freq_hz": self.excitation.freq_hz,
-                   "phase_rad": self.excitation.phase, "method": self.method, "cycles": self.cycles,
+            coords={"direction": np.arange(1, self.exponents.size + 1),
+                    "cycle": np.arange(1, self.history.shape[0] + 1)},
+            attrs={"coordinates": " ".join(self.coordinates), "a_g": self.excitation.a_g,
+                   "freq_hz": self.excitation.freq_hz, "phase_rad": self.excitation.phase,
+                   "method": self.method, "cycles": self.cycles,
                    "kaplan_yorke_dimension": self.kaplan_yorke_dimension, "status": self.status.name,
                    "message": self.message})
         return ds

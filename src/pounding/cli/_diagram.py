@@ -1,6 +1,7 @@
-"""``pounding bifurcation`` and ``pounding basins``: which response a system ends on, by sweeping
-(a brute-force bifurcation diagram, up and down, over the branch of periodic orbits) and from every
-initial state of a box (basins of attraction)."""
+"""``pounding bifurcation``, ``pounding basins`` and ``pounding lyapunov``: which response a system
+ends on, by sweeping (a brute-force bifurcation diagram, up and down, over the branch of periodic
+orbits), from every initial state of a box (basins of attraction), and whether it is chaotic (its
+Lyapunov exponents)."""
 
 from __future__ import annotations
 
@@ -167,4 +168,63 @@ def basins_command(
             save_figure(result.plot, plot)
     if not result.complete or held:
         interrupted("the states finished are in the summary"
+                    + (" and the files written" if any(paths.values()) or plot else ""))
+
+
+@command("lyapunov")
+def lyapunov_command(
+    system_file: Optional[Path] = typer.Argument(
+        None, metavar="SYSTEM.toml", help="System TOML (see examples/). Omit to use --preset."),
+    a_g: float = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
+    freq: float = typer.Option(..., "--freq", help="Forcing frequency, Hz."),
+    preset: Optional[str] = OPT_PRESET,
+    no_bumpers: bool = OPT_NO_BUMPERS,
+    cycles: int = typer.Option(1000, "--cycles", help="Forcing periods counted."),
+    transient_cycles: int = typer.Option(200, "--transient", help="Periods run first, for the response to "
+                                         "settle (from rest)."),
+    method: str = typer.Option("auto", "--method", help="The Jacobian: auto, exact or finite-difference."),
+    out: Optional[Path] = typer.Option(None, "--out", help="Write the running estimates, one row per period "
+                                       "(CSV)."),
+    netcdf: Optional[Path] = typer.Option(None, "--netcdf", help="Write the exponents and their history "
+                                          "(.nc)."),
+    plot: Optional[Path] = typer.Option(None, "--plot", help="Draw the running estimates (PNG, PDF...)."),
+) -> None:
+    """Lyapunov exponents of the response to a harmonic table motion, from the exact tangent dynamics
+    through every impact: a positive largest exponent is chaos."""
+    from ..analysis.lyapunov import lyapunov
+    from ..excitation import Harmonic
+
+    paths = files(out=(out, CSV), netcdf=(netcdf, NETCDF))
+    plot = figure_path("--plot", plot)
+    osc = system(system_file, preset, bumpers=not no_bumpers)
+    compile_notice()
+    try:
+        spec = lyapunov(osc, Harmonic(a_g, freq), cycles=cycles, transient_cycles=transient_cycles,
+                        method=method, progress=True)
+    except Interrupted as stop:
+        spec = stop.partial
+    table, add = kv_table(f"Lyapunov exponents at a_G = {a_g:g}, {freq:g} Hz", system_file or preset)
+    for i, value in enumerate(spec.exponents):
+        add(f"lambda_{i + 1}", f"{value:.6g} 1/s")
+    add("of the state", ", ".join(spec.coordinates))
+    verdict = (f"periodic (period {spec.period})" if spec.period else
+               f"chaotic (Kaplan-Yorke dimension {spec.kaplan_yorke_dimension:.3g})" if spec.chaotic else
+               "not chaotic" if spec.largest < 0.0 else "not settled: count more periods")
+    add("response", verdict)
+    add("method", f"{spec.method}, {spec.cycles} periods counted")
+    console.print(table)
+    console.print(spec.message)
+    with interrupts_deferred() as held:
+        if paths["out"] is not None:
+            hist = spec.to_xarray()["history"].to_pandas()
+            hist.columns = [f"lambda_{i + 1}_1_s" for i in range(len(spec.coordinates))]
+            write_csv(hist.reset_index(), paths["out"])
+            console.print(f"running estimates -> {paths['out']}")
+        if paths["netcdf"] is not None:
+            atomic_write(paths["netcdf"], lambda tmp: spec.to_xarray().to_netcdf(tmp))
+            console.print(f"dataset -> {paths['netcdf']}")
+        if plot is not None:
+            save_figure(spec.plot, plot)
+    if spec.status == Status.INTERRUPTED or held:
+        interrupted("the periods counted are in the summary"
                     + (" and the files written" if any(paths.values()) or plot else ""))
