@@ -45,8 +45,9 @@ SIGNATURE = slice(R_ALPHA, R_RIGHT + 1)  # (what two settled responses must shar
 
 
 def run_states(task: tuple, ctx: Context) -> np.ndarray:
-    """Run each initial state of the task until it settles: per state, (period, alpha, excursion,
-    contacts per cycle, D and V at the section, cycles run).  ``task``: (system, amplitude,
+    """Run each initial state of the task until it settles: per state, a row of the ``R_*`` columns
+    (period, alpha, excursion, contacts per cycle with the left and with the right bumper, D and V
+    at the section, cycles run).  ``task``: (system, amplitude,
     omega, states (n, state length), steady options, rtol)."""
     system, amp, omega, states, steady, rtol = task
     out = np.full((len(states), N_ROW), np.nan)
