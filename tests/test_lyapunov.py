@@ -136,19 +136,29 @@ def test_bad_input_is_named():
         pd_.lyapunov(osc, pd_.Harmonic(0.05, 1.5), state=[0.0, 0.0])
 
 
-def test_ctrl_c_keeps_the_periods_counted():
+def _stop_at(call: int):
     calls = []
 
-    def stop_after_25(n: int) -> None:
+    def progress(n: int) -> None:
         calls.append(n)
-        if len(calls) == 25:
+        if len(calls) == call:
             raise KeyboardInterrupt
 
+    return progress
+
+
+def test_ctrl_c_keeps_the_periods_counted():
+    """The progress counts the trajectory's 105 periods, then the tangent's: a Ctrl-C at the 130th
+    keeps the 20 periods counted after the 5 that align the frame; one in the trajectory's pass
+    stops at once, nothing counted."""
     with pytest.raises(pd_.Interrupted) as stop:
-        pd_.lyapunov(SOFT, CHAOS, cycles=100, transient_cycles=20, align_cycles=5, progress=stop_after_25)
+        pd_.lyapunov(SOFT, CHAOS, cycles=100, transient_cycles=20, align_cycles=5, progress=_stop_at(130))
     spec = stop.value.partial
     assert spec.status == pd_.Status.INTERRUPTED and spec.cycles == 20 and spec.history.shape == (20, 4)
     assert np.isfinite(spec.largest) and "interrupted: 20 of 100" in spec.message
+    with pytest.raises(pd_.Interrupted) as stop:
+        pd_.lyapunov(SOFT, CHAOS, cycles=100, transient_cycles=20, align_cycles=5, progress=_stop_at(30))
+    assert stop.value.partial.cycles == 0 and np.isnan(stop.value.partial.largest)
 
 
 def test_results_save_and_plot(tmp_path, chaotic):
@@ -227,3 +237,32 @@ def test_command_line_writes_the_estimates_and_refuses_bad_input(tmp_path):
     bad = CliRunner().invoke(app, ["lyapunov", "--preset", "paper-damped", "--a-g", "0.05", "--freq", "1.5",
                                    "--cycles", "0"])
     assert bad.exit_code == 2 and "cycles" in bad.output
+
+
+def test_compiled_exponential_keeps_its_digits_on_a_stiff_contact():
+    """A contact phase of a stiff bumper (k / m = 1e7 1/s^2, zeta 0.02) over 1 ms: the compiled
+    exponential (balanced first) against the damped oscillator's closed form, to 1e-13."""
+    import numba
+
+    from pounding.analysis._expm import expm_small
+
+    @numba.njit
+    def call(a):
+        return expm_small(a)
+
+    for k_m in (1e3, 1.2e5, 1e7):
+        w = math.sqrt(k_m)
+        zeta, tau = 0.02, 1e-3
+        wd = w * math.sqrt(1.0 - zeta**2)
+        a = np.array([[0.0, 1.0], [-k_m, -2.0 * zeta * w]]) * tau
+        e, s, c = math.exp(-zeta * w * tau), math.sin(wd * tau), math.cos(wd * tau)
+        want = e * np.array([[c + zeta * w / wd * s, s / wd], [-w * w / wd * s, c - zeta * w / wd * s]])
+        np.testing.assert_allclose(call(a), want, rtol=0, atol=1e-13 * np.abs(want).max())
+
+
+def test_not_chaotic_where_the_largest_exponent_is_zero():
+    """An undamped linear isolator: both exponents are 0 (a rotation), estimated at the rounding's
+    level; neither chaos nor a dimension."""
+    osc = pd_.Oscillator(mass=100.0, isolator=pd_.Isolator(slopes=[4000.0], damping=0.0))
+    spec = pd_.lyapunov(osc, pd_.Harmonic(0.05, 1.3), cycles=200, transient_cycles=0)
+    assert abs(spec.largest) < 1e-12 and not spec.chaotic

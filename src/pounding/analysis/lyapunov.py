@@ -78,7 +78,8 @@ class LyapunovSpectrum:
         The tangent coordinates (``D``, ``V``, ``delta_L``, ``delta_R``, ``u_i``, ``z``): the
         exponents are of the state they make up.
     history : ndarray, shape (cycles, n)
-        The running estimates after each counted period, 1/s (the last row is ``exponents``).
+        The running estimates after each counted period, 1/s, in the order of ``exponents`` (the last
+        row is ``exponents`` but for a periodic response, whose exponents are its Floquet values).
     excitation : Harmonic
         The forcing.
     cycles : int
@@ -133,9 +134,15 @@ class LyapunovSpectrum:
 
     @property
     def chaotic(self) -> bool:
-        """Whether the largest exponent is positive beyond its estimate's own wander over the last
-        tenth of the count (a chaotic response; a periodic one has all exponents negative)."""
-        return bool(self.largest > self.uncertainty)
+        """Whether the largest exponent is positive beyond what a finite count can tell from zero:
+        above its estimate's own wander over the last tenth of the count and above ``5 / (cycles
+        T)`` (an estimate's bias from its start decays as 1 / t: a quasi-periodic or neutral
+        response, whose largest exponent is 0, comes out slightly positive).  A periodic response
+        is never chaotic."""
+        if self.period or not self.cycles:
+            return False
+        floor = 5.0 * self.excitation.freq_hz / self.cycles
+        return bool(self.largest > max(self.uncertainty, floor))
 
     @property
     def uncertainty(self) -> float:
@@ -322,13 +329,7 @@ class _Tangent:
             except hy.NoExactMonodromy:
                 pass
             self.fell_back += 1
-        cols = []
-        for j, step in enumerate(1e-6 * sh._scales(free_idx)):
-            def image(d: float) -> np.ndarray:
-                return sh.coords(sh._image(sh._moved(vec, emb[:, j] * d))[0])
-
-            cols.append((image(step) - image(-step)) / (2.0 * step))
-        return np.array(cols).T @ select
+        return sh.differences(vec, free_idx, emb) @ select
 
     def _periods(self, count: int) -> Iterator[tuple[np.ndarray, Any]]:
         """``(state vector at the section, the period's run)`` for ``count`` periods from the start
@@ -344,38 +345,62 @@ class _Tangent:
         status, why, ran = Status.SUCCESS, "", 0
         slips: set = set()
         size = 1e-6
-        # the trajectory first, by the engine alone: the springs that slip in it (the spectrum's
-        # coordinates) and its size (the finite differences' steps, the periodicity's tolerance)
         kept: list = []  # the periods' runs, for the second pass when they are few (else run again)
-        try:
-            for vec, run in self._periods(total):
-                ran += 1
-                if total <= KEEP_RUNS:
-                    kept.append((vec, run))
-                size = max(size, abs(run.displacement_max), abs(run.displacement_min))
-                if self.sh.h.kinematic:
-                    ev = run.event_table
-                    slips.update(ev[ev[:, 1] == hy.ACT_YIELD, 2].astype(int).tolist())
-        except _Failed as exc:
-            status, why = Status.STEP_FAILED, str(exc)
-        except KeyboardInterrupt:
-            status = Status.INTERRUPTED
-        self.sh.scale_d = size
-        keep = self._keep(slips)
+        with progress_reporter(progress, 2 * total, f"Lyapunov spectrum, {self.exc.freq_hz:g} Hz") as advance:
+            # the trajectory first, by the engine alone: the springs that slip in it (the spectrum's
+            # coordinates) and its size (the finite differences' steps, the periodicity's tolerance)
+            try:
+                for vec, run in self._periods(total):
+                    ran += 1
+                    if total <= KEEP_RUNS:
+                        kept.append((vec, run))
+                    size = max(size, abs(run.displacement_max), abs(run.displacement_min))
+                    if self.sh.h.kinematic:
+                        ev = run.event_table
+                        slips.update(ev[ev[:, 1] == hy.ACT_YIELD, 2].astype(int).tolist())
+                    advance(1)
+            except _Failed as exc:
+                status, why = Status.STEP_FAILED, str(exc)
+            except KeyboardInterrupt:
+                status, ran = Status.INTERRUPTED, 0  # (stop now: no period counted)
+            self.sh.scale_d = size
+            keep = self._keep(slips)
+            counted, hist, exps, recent, sections, final = self._count(
+                keep, align, ran, kept if len(kept) == ran else self._periods(ran), advance)
+        if counted < ran - align and status == Status.SUCCESS:
+            status, why = self.stopped
+        period = self._periodic(sections) if counted else 0
+        if period:
+            exps = self._floquet(recent[-period:], period)
+        order = np.argsort(-exps, kind="stable")  # (largest first; the history's columns alike)
+        exps, hist = exps[order], hist[:, order]
+        labels = ["D", "V", "delta_L", "delta_R"] + [f"u_{i}" for i in range(self.sh.h.n_slips)] + ["z"]
+        names = tuple(labels[i] if i < self.sh.h.size else "z" for i in keep)
+        message = self._message(status, why, align, cycles, counted, exps, period)
+        out = LyapunovSpectrum(exps, names, hist, self.exc, counted, "exact" if self.sh.exact else
+                               "finite-difference", period, final, status, message)
+        if status == Status.INTERRUPTED:
+            raise Interrupted(out, counted, cycles, "cycles")
+        return out
+
+    def _count(self, keep: np.ndarray, align: int, ran: int, periods: Any, advance: Any) -> tuple:
+        """The tangent pass: ``(periods counted, history (counted, n), exponents, the last
+        Jacobians, the last sections (D, V), the final state)``; a Ctrl-C or a failed run ends it
+        (``self.stopped`` says which)."""
         w = self._metric(keep)
         w_inv = np.linalg.inv(w)
         q = np.eye(keep.size)
         block = np.ix_(keep, keep)
         logs = np.zeros(keep.size)
-        history = []
+        history = np.full((max(ran - align, 0), keep.size), np.nan)
         recent: list[np.ndarray] = []  # the last MAX_PERIOD periods' Jacobians (for a periodic response)
         sections: list[np.ndarray] = []  # the last sections (D, V), the end of the last period included
         counted = 0
         final = State(self.start)
-        with progress_reporter(progress, ran, f"Lyapunov spectrum, {self.exc.freq_hz:g} Hz") as advance, \
-                hy.one_blas_thread():
+        self.stopped = (Status.SUCCESS, "")
+        with hy.one_blas_thread():
             try:
-                for k, (vec, run) in enumerate(kept if len(kept) == ran else self._periods(ran)):
+                for k, (vec, run) in enumerate(periods):
                     jac = w @ self._jacobian(vec, run)[block] @ w_inv
                     # Q R of the carried frame (LAPACK's, without numpy.linalg.qr's 35 us of Python)
                     qr, tau, _, _ = lapack.dgeqrf(jac @ q)
@@ -386,27 +411,21 @@ class _Tangent:
                         d = np.abs(diag)
                         with np.errstate(divide="ignore"):
                             logs = logs + np.where(d > RESOLVED * d.max(), np.log(d), -np.inf)
+                        history[counted] = logs / ((counted + 1) * self.period)
                         counted += 1
-                        history.append(logs / (counted * self.period))
                         recent = (recent + [jac])[-MAX_PERIOD:]
                         sections = (sections + [vec[[I_D, I_V]]])[-4 * MAX_PERIOD:]
                         final = run.final_state
                     advance(1)
+            except _Failed as exc:  # (a perturbed run of the finite differences)
+                self.stopped = (Status.STEP_FAILED, str(exc))
             except KeyboardInterrupt:
-                status = Status.INTERRUPTED
-        hist = np.array(history) if history else np.zeros((0, keep.size))
+                self.stopped = (Status.INTERRUPTED, "")
+        hist = history[:counted]
         exps = hist[-1].copy() if counted else np.full(keep.size, np.nan)
-        period = self._periodic(sections + [final.vector[[I_D, I_V]]]) if counted else 0
-        if period:
-            exps = self._floquet(recent[-period:], period)
-        labels = ["D", "V", "delta_L", "delta_R"] + [f"u_{i}" for i in range(self.sh.h.n_slips)] + ["z"]
-        names = tuple(labels[i] if i < self.sh.h.size else "z" for i in keep)
-        message = self._message(status, why, align, cycles, counted, exps, period)
-        out = LyapunovSpectrum(exps, names, hist, self.exc, counted, "exact" if self.sh.exact else
-                               "finite-difference", period, final, status, message)
-        if status == Status.INTERRUPTED:
-            raise Interrupted(out, counted, cycles, "cycles")
-        return out
+        if counted:
+            sections.append(final.vector[[I_D, I_V]])
+        return counted, hist, exps, recent, sections, final
 
     def _periodic(self, sections: list) -> int:
         """The response's period in forcing periods (the counted sections repeat with it to
@@ -444,7 +463,7 @@ class _Tangent:
                      "a slip slaves a coordinate, or a contraction beyond double precision in a period)")
         if self.fell_back:
             head += (f"; {self.fell_back} period{'s' if self.fell_back > 1 else ''} by finite differences "
-                     "(an event met tangentially)")
+                     "(an event met tangentially, or the exact propagation did not end where the engine did)")
         return head
 
 
@@ -471,7 +490,8 @@ def largest_exponents(diagram: BifurcationDiagram, *, cycles: int = 200, align_c
     -------
     BifurcationDiagram
         The same diagram, its dataset with ``largest_exponent`` (direction, freq_hz), 1/s: negative
-        on a periodic response, positive on a chaotic one; NaN where the step did not run. On
+        on a periodic response, positive on a chaotic one; NaN where the step did not run or the
+        engine stopped the count. On
         Ctrl-C, :class:`pounding.Interrupted` carries it with the steps finished.
 
     Examples
@@ -501,6 +521,7 @@ def largest_exponents(diagram: BifurcationDiagram, *, cycles: int = 200, align_c
                                           {"units": "1/s", "cycles": cycles, "method": method}))
         return replace(diagram, dataset=new)
 
+    done = 0
     with progress_reporter(progress, total, "largest Lyapunov exponents") as advance:
         try:
             for sw in diagram.sweeps:
@@ -511,8 +532,10 @@ def largest_exponents(diagram: BifurcationDiagram, *, cycles: int = 200, align_c
                     spec = lyapunov(diagram.oscillator, Harmonic(sw.a_g, float(f), g=sw.g), cycles=cycles,
                                     transient_cycles=0, align_cycles=align_cycles, state=State(start),
                                     method=method)
-                    out[i, np.searchsorted(freqs, f)] = spec.largest
+                    # (a count the engine cut short is no estimate: NaN, as a step not run)
+                    out[i, np.searchsorted(freqs, f)] = spec.largest if spec.success else np.nan
+                    done += 1
                     advance(1)
         except KeyboardInterrupt:
-            raise Interrupted(result(), int(np.isfinite(out).sum()), total, "steps") from None
+            raise Interrupted(result(), done, total, "steps") from None
     return result()

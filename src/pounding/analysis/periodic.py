@@ -346,10 +346,17 @@ class _Shooter:
             except hy.NoExactMonodromy as exc:  # (said in the result's message)
                 self.exact = False
                 self.fell_back = f"; the exact monodromy gave way to finite differences: {exc}"
+        return self.differences(vec, free_idx, emb)[free_idx]
+
+    def differences(self, vec: np.ndarray, free_idx: np.ndarray, emb: np.ndarray) -> np.ndarray:
+        """The map's derivatives along each free coordinate (the columns of ``emb``), by finite
+        differences: every entry of ``coords`` of the image, shape (n, r).  Central, but one-sided
+        (second order, inwards) where the coordinate sits at a bound (a compression near 0, z near
+        ``z_max``)."""
         cols = []
         for j, step in enumerate(1e-6 * self._scales(free_idx)):
             def image(d: float) -> np.ndarray:
-                return self.coords(self._image(self._moved(vec, emb[:, j] * d))[0])[free_idx]
+                return self.coords(self._image(self._moved(vec, emb[:, j] * d))[0])
 
             one_sided = free_idx[j] in (hy.I_DL, hy.I_DR) or (
                 self.z_max > 0.0 and free_idx[j] == self.h.size and abs(vec[ZETA]) + step > self.z_max)

@@ -180,8 +180,10 @@ def lyapunov_command(
     preset: Optional[str] = OPT_PRESET,
     no_bumpers: bool = OPT_NO_BUMPERS,
     cycles: int = typer.Option(1000, "--cycles", help="Forcing periods counted."),
-    transient_cycles: int = typer.Option(200, "--transient", help="Periods run first, for the response to "
-                                         "settle (from rest)."),
+    transient_cycles: int = typer.Option(200, "--transient-cycles", help="Periods run first, for the "
+                                         "response to settle (from rest)."),
+    align_cycles: int = typer.Option(20, "--align-cycles", help="Periods the tangent frame is carried "
+                                     "before the count starts."),
     method: str = typer.Option("auto", "--method", help="The Jacobian: auto, exact or finite-difference."),
     out: Optional[Path] = typer.Option(None, "--out", help="Write the running estimates, one row per period "
                                        "(CSV)."),
@@ -200,7 +202,7 @@ def lyapunov_command(
     compile_notice()
     try:
         spec = lyapunov(osc, Harmonic(a_g, freq), cycles=cycles, transient_cycles=transient_cycles,
-                        method=method, progress=True)
+                        align_cycles=align_cycles, method=method, progress=True)
     except Interrupted as stop:
         spec = stop.partial
     table, add = kv_table(f"Lyapunov exponents at a_G = {a_g:g}, {freq:g} Hz", system_file or preset)
@@ -228,3 +230,6 @@ def lyapunov_command(
     if spec.status == Status.INTERRUPTED or held:
         interrupted("the periods counted are in the summary"
                     + (" and the files written" if any(paths.values()) or plot else ""))
+    if not spec.success:
+        err_console.print(f"[red]stopped early:[/] {spec.message}")
+        raise typer.Exit(code=1)
