@@ -6,7 +6,8 @@ from .branch import Bifurcation, Branch
 from .continuation import continuation
 from .curve_result import BifurcationCurve, CoexistenceMap
 from .curves import bifurcation_curve, coexistence_map
-from .lyapunov import LyapunovSpectrum, largest_exponents, lyapunov
+from .lyapunov import largest_exponents, lyapunov
+from .lyapunov_result import LyapunovSpectrum
 from .periodic import PeriodicOrbit, periodic_orbit
 
 __all__ = ["Bifurcation", "BifurcationCurve", "Branch", "CoexistenceMap", "LyapunovSpectrum", "PeriodicOrbit",
