@@ -115,6 +115,10 @@ OPT_SCHEDULER = typer.Option("threads", "--scheduler",
                                   "scheduler's address (tcp://host:8786).")
 OPT_NBS = typer.Option(None, "--nbs", help="NBs system TOML (instead of --preset).")
 OPT_YBS = typer.Option(None, "--ybs", help="YBs system TOML (instead of --preset).")
+ARG_SYSTEM = typer.Argument(None, metavar="SYSTEM.toml",
+                            help="System TOML (see examples/). Omit to use --preset.")
+OPT_A_G = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G).")
+OPT_FREQ = typer.Option(..., "--freq", help="Forcing frequency, Hz.")
 OPT_PRESET = typer.Option(
     None, "--preset",
     help="Use a built-in system: paper-printed, paper-damped, paper-calibrated, paper-calibrated-v2 or "

@@ -10,17 +10,16 @@ import typer
 
 from .._errors import Interrupted
 from .._io import interrupts_deferred
-from ._app import (OPT_NO_BUMPERS, OPT_PRESET, command, compile_notice, console, figure_path, files,
-                   interrupted, kv_table, save_figure, system, write_csv)
+from ._app import (ARG_SYSTEM, OPT_A_G, OPT_NO_BUMPERS, OPT_PRESET, command, compile_notice, console,
+                   figure_path, files, interrupted, kv_table, save_figure, system, write_csv)
 
 CSV = (".csv",)
 
 
 @command("continue")
 def continue_branch(
-    system_file: Optional[Path] = typer.Argument(
-        None, metavar="SYSTEM.toml", help="System TOML (see examples/). Omit to use --preset."),
-    a_g: float = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
+    system_file: Optional[Path] = ARG_SYSTEM,
+    a_g: float = OPT_A_G,
     start: float = typer.Option(..., "--from", help="The branch's first frequency, Hz."),
     end: float = typer.Option(..., "--to", help="Its last frequency, Hz."),
     preset: Optional[str] = OPT_PRESET,
@@ -85,8 +84,7 @@ def continue_branch(
 
 @command("coexistence")
 def coexistence(
-    system_file: Optional[Path] = typer.Argument(
-        None, metavar="SYSTEM.toml", help="System TOML (see examples/). Omit to use --preset."),
+    system_file: Optional[Path] = ARG_SYSTEM,
     a_g_min: float = typer.Option(0.02, "--a-g-min", help="The map's lowest a_G, g."),
     a_g_max: float = typer.Option(0.12, "--a-g-max", help="Its highest a_G, g."),
     start: float = typer.Option(0.5, "--from", help="Its lowest frequency, Hz."),

@@ -12,9 +12,9 @@ import typer
 
 from .._errors import Interrupted, Status
 from .._io import atomic_write, interrupts_deferred
-from ._app import (OPT_FMAX, OPT_FMIN, OPT_NO_BUMPERS, OPT_PRESET, OPT_SCHEDULER, command, compile_notice,
-                   console, err_console, figure_path, files, frequencies, interrupted, kv_table, save_figure,
-                   system, write_csv)
+from ._app import (ARG_SYSTEM, OPT_A_G, OPT_FMAX, OPT_FMIN, OPT_FREQ, OPT_NO_BUMPERS, OPT_PRESET,
+                   OPT_SCHEDULER, command, compile_notice, console, err_console, figure_path, files,
+                   frequencies, interrupted, kv_table, save_figure, system, write_csv)
 
 CSV = (".csv",)
 NETCDF = (".nc", ".nc4", ".netcdf")
@@ -22,9 +22,8 @@ NETCDF = (".nc", ".nc4", ".netcdf")
 
 @command("bifurcation")
 def bifurcation(
-    system_file: Optional[Path] = typer.Argument(
-        None, metavar="SYSTEM.toml", help="System TOML (see examples/). Omit to use --preset."),
-    a_g: float = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
+    system_file: Optional[Path] = ARG_SYSTEM,
+    a_g: float = OPT_A_G,
     preset: Optional[str] = OPT_PRESET,
     no_bumpers: bool = OPT_NO_BUMPERS,
     fmin: float = OPT_FMIN,
@@ -105,10 +104,9 @@ def _branch(osc, a_g: float, fmin: float, fmax: float):
 
 @command("basins")
 def basins_command(
-    system_file: Optional[Path] = typer.Argument(
-        None, metavar="SYSTEM.toml", help="System TOML (see examples/). Omit to use --preset."),
-    a_g: float = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
-    freq: float = typer.Option(..., "--freq", help="Forcing frequency, Hz."),
+    system_file: Optional[Path] = ARG_SYSTEM,
+    a_g: float = OPT_A_G,
+    freq: float = OPT_FREQ,
     preset: Optional[str] = OPT_PRESET,
     no_bumpers: bool = OPT_NO_BUMPERS,
     dmin: Optional[float] = typer.Option(None, "--dmin", help="Lowest initial displacement, m (default: "
@@ -173,10 +171,9 @@ def basins_command(
 
 @command("lyapunov")
 def lyapunov_command(
-    system_file: Optional[Path] = typer.Argument(
-        None, metavar="SYSTEM.toml", help="System TOML (see examples/). Omit to use --preset."),
-    a_g: float = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
-    freq: float = typer.Option(..., "--freq", help="Forcing frequency, Hz."),
+    system_file: Optional[Path] = ARG_SYSTEM,
+    a_g: float = OPT_A_G,
+    freq: float = OPT_FREQ,
     preset: Optional[str] = OPT_PRESET,
     no_bumpers: bool = OPT_NO_BUMPERS,
     cycles: int = typer.Option(1000, "--cycles", help="Forcing periods counted."),

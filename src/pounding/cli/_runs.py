@@ -11,6 +11,8 @@ from rich.markup import escape
 from .._errors import Interrupted
 from .._io import atomic_write, interrupts_deferred
 from ._app import (
+    ARG_SYSTEM,
+    OPT_A_G,
     cell,
     data_table,
     OPT_CYCLES,
@@ -48,9 +50,7 @@ NETCDF = (".nc", ".nc4", ".netcdf")
 
 @command()
 def simulate(
-    system_file: Optional[Path] = typer.Argument(
-        None, metavar="SYSTEM.toml", help="System TOML (see examples/). Omit to use --preset."
-    ),
+    system_file: Optional[Path] = ARG_SYSTEM,
     a_g: Optional[float] = typer.Option(None, "--a-g",
                                         help="Peak table acceleration in g (the paper's a_G)."),
     freq: Optional[float] = typer.Option(None, "--freq", help="Excitation frequency, Hz."),
@@ -206,10 +206,8 @@ SWEEP_CSV_COLUMNS = [
 
 @command()
 def sweep(
-    system_file: Optional[Path] = typer.Argument(
-        None, metavar="SYSTEM.toml", help="System TOML (see examples/). Omit to use --preset."
-    ),
-    a_g: float = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G)."),
+    system_file: Optional[Path] = ARG_SYSTEM,
+    a_g: float = OPT_A_G,
     direction: str = typer.Option("up", "--direction", help="up or down."),
     out: Optional[Path] = typer.Option(None, "--out", help="Write the per-step table (CSV)."),
     preset: Optional[str] = OPT_PRESET,
