@@ -26,6 +26,7 @@ from .._jit import jit_entry
 from ..model.contact_laws import MULTILINEAR, MULTILINEAR_KINEMATIC
 from ._buffers import put as _put
 from ._forcing import EXC_HARMONIC, RESOLUTION, excitation_piece
+from ._hold import hold_run, new_table
 from ._kernel_parts import (  # noqa: F401  (the status codes: other modules read them here)
     BUDGET,
     DBL_MAX,
@@ -62,6 +63,8 @@ from ._layout import (
     CTL_BUDGET,
     CTL_STOP,
     CTL_WORK,
+    DEF_L,
+    DEF_R,
     EV_COLS,
     EVENT_COLS,
     L_BUMPER,
@@ -81,6 +84,8 @@ from ._layout import (
     P_SPHI,
     P_VRUN,
     P_XRUN,
+    IN_L,
+    IN_R,
     PH_LEN,
     SAMPLE_COLS,
     D,
@@ -133,6 +138,10 @@ def run_kernel(sy, fo, state0, t_end, sample_dt, rtol, max_events, with_energy, 
     # sub-interval must have been a full one; a record's next piece changes the forcing
     # polynomial only (the particular solution is redone, not the rest).
     ev_end = np.empty((evs.shape[0], 3))
+    # a record's quiet sample intervals go by the first-order-hold recurrence (_hold)
+    record = fo.kind != EXC_HARMONIC
+    hold = new_table(record)
+    ev_new = np.empty((evs.shape[0] if record else 1, 3))
     continuing = TYPED_FALSE
     t_horizon = np.inf
     has_ml = sy.has_b and (law_l == MULTILINEAR or law_r == MULTILINEAR or law_l == MULTILINEAR_KINEMATIC
@@ -164,6 +173,16 @@ def run_kernel(sy, fo, state0, t_end, sample_dt, rtol, max_events, with_energy, 
                 status = BUDGET
                 break
             next_poll = min(work + POLL_EVERY, work_left)
+        if (record and continuing and st[IN_L] == 0.0 and st[IN_R] == 0.0 and st[DEF_L] == 0.0
+                and st[DEF_R] == 0.0):
+            t_limit = min(t_end, t_horizon)
+            if sample_dt > 0.0:
+                t_limit = min(t_limit, t_run0 + j_next * sample_dt)
+            n_hold, j_rec = hold_run(ph, st, sy, fo, j_rec, (evs, n_ev, ev_end, ev_new), hold,
+                                     (ledger, extrema), (t_limit, h_phase, next_poll - work, with_energy))
+            if n_hold > 0:
+                work += n_hold
+                continue
         work += 1
         t = st[T]
         a0x, a1x, amp, omega, phase, t_knot, j_rec = excitation_piece(fo.kind, fo.p, fo.rec_t, fo.rec_a, t,
