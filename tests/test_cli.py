@@ -103,3 +103,6 @@ def test_warm_up_message_counts_each_kind():
     w = WarmUp(seconds=14.23, compiled=("run_kernel", "step_kernel"), loaded=("impact_row",),
                in_memory=(), cache_dirs=("/c",))
     assert w.message == "2 kernels compiled and cached, 1 kernel loaded from Numba's cache (14.2 s)"
+    both = WarmUp(seconds=49.6, compiled=("run_kernel",), loaded=(), in_memory=(), cache_dirs=("/c",),
+                  workers=2)
+    assert both.message == "1 kernel compiled and cached (in 2 processes at once, 49.6 s)"

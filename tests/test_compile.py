@@ -80,10 +80,10 @@ def test_warm_up_compiles_in_two_processes_at_once(tmp_path):
     # loads what they cached (49.6 s against 67.9 s one after the other, on an idle 2-core machine)
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
     code = ("import json, pounding as p; w = p.warm_up(workers=2); "
-            "print(json.dumps([w.compiled, w.loaded, w.in_memory]))")
+            "print(json.dumps([w.compiled, w.loaded, w.in_memory, w.workers]))")
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env)
-    compiled, loaded, in_memory = json.loads(out.stdout.strip().splitlines()[-1])
-    assert compiled == KERNELS and loaded == [] and in_memory == []
+    compiled, loaded, in_memory, workers = json.loads(out.stdout.strip().splitlines()[-1])
+    assert compiled == KERNELS and loaded == [] and in_memory == [] and workers == 2
     # a cache file per kernel, written by the workers
     assert all(any(tmp_path.rglob(f"*{name}*.nbc")) for name in KERNELS)
 

@@ -3,9 +3,10 @@
 The compiled kernels are built by Numba on their first call: after installing, that takes
 about a minute on an idle 2-core machine (68 s for all of them one after the other; 50 s for
 ``warm_up``, which compiles two groups in two processes at once; ``benchmarks/RESULTS.md``: where
-the time goes), and Numba caches the result on disk (next to the sources, or in ``NUMBA_CACHE_DIR``), so that later
-sessions, worker processes included, load it in about 3 s.  ``warm_up`` (or ``pounding
-warm-up``) pays that once, e.g. when a Docker image or a cluster's environment is built.
+the time goes), and Numba caches the result on disk (next to the sources, or in
+``NUMBA_CACHE_DIR``), so that later sessions, worker processes included, load it in about 3 s.
+``warm_up`` (or ``pounding warm-up``) pays that once, e.g. when a Docker image or a cluster's
+environment is built.
 """
 
 from __future__ import annotations
@@ -35,6 +36,8 @@ class WarmUp:
         Kernels this process had already compiled or loaded.
     cache_dirs : tuple of str
         Where Numba keeps the compiled kernels.
+    workers : int
+        Worker processes that compiled kernels (0: this process compiled whatever was missing).
 
     Examples
     --------
@@ -55,6 +58,7 @@ class WarmUp:
     loaded: tuple[str, ...]
     in_memory: tuple[str, ...]
     cache_dirs: tuple[str, ...]
+    workers: int = 0
 
     @property
     def message(self) -> str:
@@ -65,7 +69,8 @@ class WarmUp:
                             (self.in_memory, "already in memory")):
             if names:
                 parts.append(f"{len(names)} {'kernel' if len(names) == 1 else 'kernels'} {done}")
-        return f"{', '.join(parts)} ({self.seconds:.1f} s)"
+        at_once = f"in {self.workers} processes at once, " if self.workers > 1 else ""
+        return f"{', '.join(parts)} ({at_once}{self.seconds:.1f} s)"
 
 
 def _kernels() -> dict:
@@ -151,18 +156,27 @@ def _usable_cpus() -> int:
 
 
 def _in_parallel(groups: list[tuple[str, ...]]) -> tuple[str, ...]:
-    """Compile the groups in worker processes, one each; the kernels they compiled (none when
-    processes cannot be started here: then the caller compiles them itself)."""
+    """Compile the groups in worker processes, one each; the kernels they compiled.  A group
+    whose worker failed, or all of them where processes cannot be started, is left to the caller,
+    which compiles what it finds missing; Ctrl-C stops the workers at once."""
     import multiprocessing
-    from concurrent.futures import ProcessPoolExecutor
-    from concurrent.futures.process import BrokenProcessPool
 
     try:
-        with ProcessPoolExecutor(max_workers=len(groups),
-                                 mp_context=multiprocessing.get_context("spawn")) as pool:
-            return tuple(name for done in pool.map(_compile_group, groups) for name in done)
-    except (OSError, BrokenProcessPool):
+        pool = multiprocessing.get_context("spawn").Pool(len(groups))
+    except OSError:
         return ()
+    try:
+        pending = [pool.apply_async(_compile_group, (group,)) for group in groups]
+        done: list[str] = []
+        for job in pending:
+            try:
+                done.extend(job.get())
+            except Exception:  # noqa: BLE001 - that group compiles here instead
+                pass
+        return tuple(done)
+    finally:
+        pool.terminate()  # (the workers are done, or interrupted: nothing of theirs to wait for)
+        pool.join()
 
 
 def warm_up(workers: int | None = None) -> WarmUp:
@@ -179,7 +193,8 @@ def warm_up(workers: int | None = None) -> WarmUp:
     ----------
     workers : int, optional
         Processes compiling at once: 1 compiles everything in this process; the default is the
-        number of kernel groups (2) or of usable CPUs, whichever is smaller.
+        number of kernel groups (2) or of CPUs this process may use, whichever is smaller (more
+        than 2 changes nothing: there are two groups).
 
     Returns
     -------
@@ -219,4 +234,5 @@ def warm_up(workers: int | None = None) -> WarmUp:
     loaded = tuple(n for n in kernels if after[n][0] > before[n][0] and n not in compiled)
     in_memory = tuple(n for n in kernels if n not in loaded and n not in compiled)
     dirs = tuple(sorted({k.stats.cache_path for k in kernels.values()}))
-    return WarmUp(seconds=seconds, compiled=compiled, loaded=loaded, in_memory=in_memory, cache_dirs=dirs)
+    return WarmUp(seconds=seconds, compiled=compiled, loaded=loaded, in_memory=in_memory, cache_dirs=dirs,
+                  workers=len(to_compile[:workers]) if elsewhere else 0)

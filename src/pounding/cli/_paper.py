@@ -176,7 +176,8 @@ def identify(
 @command("warm-up")
 def warm_up(
     workers: Optional[int] = typer.Option(
-        None, "--workers", help="Processes compiling at once (default: 2 where two CPUs are free; 1: this one)."),
+        None, "--workers",
+        help="Processes compiling at once (default: 2 where this process may use two CPUs; 1: this one)."),
 ) -> None:
     """Compile the engine now (about a minute once after installing; later sessions load it in a few
     seconds)."""

@@ -61,10 +61,9 @@ from ._kernel_parts import (  # noqa: F401  (the status codes: other modules rea
 from ._layout import (
     CONTACT_COLS,
     CTL_BUDGET,
+    CTL_HELD,
     CTL_STOP,
     CTL_WORK,
-    DEF_L,
-    DEF_R,
     EV_COLS,
     EVENT_COLS,
     L_BUMPER,
@@ -173,8 +172,7 @@ def run_kernel(sy, fo, state0, t_end, sample_dt, rtol, max_events, with_energy, 
                 status = BUDGET
                 break
             next_poll = min(work + POLL_EVERY, work_left)
-        if (record and continuing and st[IN_L] == 0.0 and st[IN_R] == 0.0 and st[DEF_L] == 0.0
-                and st[DEF_R] == 0.0):
+        if record and continuing and st[IN_L] == 0.0 and st[IN_R] == 0.0:
             t_limit = min(t_end, t_horizon)
             if sample_dt > 0.0:
                 t_limit = min(t_limit, t_run0 + j_next * sample_dt)
@@ -182,6 +180,7 @@ def run_kernel(sy, fo, state0, t_end, sample_dt, rtol, max_events, with_energy, 
                                      (ledger, extrema), (t_limit, h_phase, next_poll - work, with_energy))
             if n_hold > 0:
                 work += n_hold
+                ctl[CTL_HELD] += n_hold
                 continue
         work += 1
         t = st[T]

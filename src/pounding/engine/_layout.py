@@ -101,4 +101,4 @@ L_INPUT, L_VISCOUS, L_HYSTERETIC, L_BUMPER_LOSS, L_KINETIC, L_ISOLATOR, L_BUMPER
 LEDGER_LEN = 7
 
 # ---- run control (int64 array shared between Python and the kernels, see _control.py)
-from .._control import CTL_BUDGET, CTL_LEN, CTL_STOP, CTL_WORK  # noqa: E402,F401  (pounding._control's)
+from .._control import CTL_BUDGET, CTL_HELD, CTL_LEN, CTL_STOP, CTL_WORK  # noqa: E402,F401  (pounding._control's)
