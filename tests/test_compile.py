@@ -77,11 +77,13 @@ def test_each_compiled_function_has_one_specialisation(tmp_path):
 
 def test_warm_up_compiles_in_two_processes_at_once(tmp_path):
     # from an empty cache the two groups of kernels compile in worker processes, and this one
-    # loads what they cached (49.6 s against 67.9 s one after the other, on an idle 2-core machine)
+    # loads what they cached; from a script read from standard input too (a worker of
+    # multiprocessing's would import that script again, and fail)
     env = dict(os.environ, NUMBA_CACHE_DIR=str(tmp_path))
     code = ("import json, pounding as p; w = p.warm_up(workers=2); "
             "print(json.dumps([w.compiled, w.loaded, w.in_memory, w.workers]))")
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True, env=env)
+    out = subprocess.run([sys.executable, "-"], input=code, capture_output=True, text=True, check=True,
+                         env=env, cwd=tmp_path)
     compiled, loaded, in_memory, workers = json.loads(out.stdout.strip().splitlines()[-1])
     assert compiled == KERNELS and loaded == [] and in_memory == [] and workers == 2
     # a cache file per kernel, written by the workers

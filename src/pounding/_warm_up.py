@@ -1,7 +1,7 @@
 """``warm_up``: compile the engine now, rather than in the first call of a session.
 
 The compiled kernels are built by Numba on their first call: after installing, that takes
-about a minute on an idle 2-core machine (68 s for all of them one after the other; 50 s for
+about a minute on an idle 2-core machine (68 s for all of them one after the other; 50-70 s for
 ``warm_up``, which compiles two groups in two processes at once; ``benchmarks/RESULTS.md``: where
 the time goes), and Numba caches the result on disk (next to the sources, or in
 ``NUMBA_CACHE_DIR``), so that later sessions, worker processes included, load it in about 3 s.
@@ -158,25 +158,41 @@ def _usable_cpus() -> int:
 def _in_parallel(groups: list[tuple[str, ...]]) -> tuple[str, ...]:
     """Compile the groups in worker processes, one each; the kernels they compiled.  A group
     whose worker failed, or all of them where processes cannot be started, is left to the caller,
-    which compiles what it finds missing; Ctrl-C stops the workers at once."""
-    import multiprocessing
+    which compiles what it finds missing; Ctrl-C stops the workers at once.
 
+    The workers are fresh interpreters (``python -c``), not ``multiprocessing``'s: those import the
+    caller's main script again, which a script read from standard input does not allow.
+    """
+    import json
+    import subprocess
+    import sys
+
+    env = dict(os.environ)
+    root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))  # (this pounding, first)
+    env["PYTHONPATH"] = os.pathsep.join([root, *filter(None, [env.get("PYTHONPATH")])])
+    workers: list[subprocess.Popen] = []
+    done: list[str] = []
     try:
-        pool = multiprocessing.get_context("spawn").Pool(len(groups))
-    except OSError:
-        return ()
-    try:
-        pending = [pool.apply_async(_compile_group, (group,)) for group in groups]
-        done: list[str] = []
-        for job in pending:
-            try:
-                done.extend(job.get())
-            except Exception:  # noqa: BLE001 - that group compiles here instead
-                pass
-        return tuple(done)
+        for group in groups:
+            code = ("import json\nfrom pounding._warm_up import _compile_group\n"
+                    f"print(json.dumps(_compile_group({tuple(group)!r})))")
+            workers.append(subprocess.Popen([sys.executable, "-c", code], stdout=subprocess.PIPE,
+                                            stderr=subprocess.DEVNULL, text=True, env=env))
+        for worker in workers:
+            out, _ = worker.communicate()
+            if worker.returncode == 0:
+                try:
+                    done.extend(json.loads(out.strip().splitlines()[-1]))
+                except (ValueError, IndexError):  # (that group compiles here instead)
+                    pass
+    except OSError:  # (no process could be started: this one compiles)
+        pass
     finally:
-        pool.terminate()  # (the workers are done, or interrupted: nothing of theirs to wait for)
-        pool.join()
+        for worker in workers:  # (interrupted: nothing of theirs to wait for)
+            if worker.poll() is None:
+                worker.kill()
+                worker.wait()
+    return tuple(done)
 
 
 def warm_up(workers: int | None = None) -> WarmUp:
@@ -186,8 +202,8 @@ def warm_up(workers: int | None = None) -> WarmUp:
     evaluation of the printed system, a one-period elastic response spectrum and a monodromy
     matrix, with the argument types of real use, so that no later call compiles anything.  The
     kernels missing from the cache compile in two worker processes at once where two CPUs are
-    free: the first time after installing this takes about 50 s on an idle 2-core machine (about
-    70 s one after the other); afterwards about 3 s per new process (the cache is read).
+    free: the first time after installing this takes 50-70 s on an idle 2-core machine (about 70 s
+    one after the other); afterwards about 3 s per new process (the cache is read).
 
     Parameters
     ----------
@@ -211,7 +227,7 @@ def warm_up(workers: int | None = None) -> WarmUp:
     >>> again = pounding.warm_up()  # the same process: nothing left to do
     >>> again.compiled, again.loaded, len(again.in_memory)
     ((), (), 6)
-    >>> # the first: e.g. "6 kernels compiled and cached (48.2 s)"
+    >>> # the first: e.g. "6 kernels compiled and cached (in 2 processes at once, 55.1 s)"
     >>> print(again.message)
     6 kernels already in memory (... s)
     """
