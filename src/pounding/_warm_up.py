@@ -227,7 +227,8 @@ def warm_up(workers: int | None = None) -> WarmUp:
     >>> again = pounding.warm_up()  # the same process: nothing left to do
     >>> again.compiled, again.loaded, len(again.in_memory)
     ((), (), 6)
-    >>> # the first: e.g. "6 kernels compiled and cached (in 2 processes at once, 55.1 s)"
+    >>> # the first: e.g. "6 kernels compiled and cached
+    >>> # (in 2 processes at once, 55.1 s)"
     >>> print(again.message)
     6 kernels already in memory (... s)
     """
