@@ -342,3 +342,19 @@ def test_cli_simulate_with_a_record(tmp_path):
                         (["--record", str(at2), "--record-dt", "0.02"], "an .AT2 file gives its DT")):
         bad = runner.invoke(app, ["simulate", "--preset", "paper-damped", *args])
         assert bad.exit_code == 2 and words in bad.output, bad.output
+
+
+def test_a_pickled_record_leaves_its_kernel_arrays_behind():
+    import pickle
+
+    rec = el_centro()
+    before = len(pickle.dumps(rec))
+    rec.kernel_arrays()  # cached on the record
+    assert "_kernel_arrays" in rec.__dict__
+    data = pickle.dumps(rec)
+    assert len(data) == before  # the samples once, not three times
+    back = pickle.loads(data)
+    assert "_kernel_arrays" not in back.__dict__
+    assert np.array_equal(back.accel, rec.accel) and back.name == rec.name
+    for a, b in zip(back.kernel_arrays()[1:], rec.kernel_arrays()[1:]):
+        assert np.array_equal(a, b)

@@ -37,6 +37,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._jit import jit, jit_alloc
+from ..excitation.record import HOLD_RTOL  # a sample interval within it of the step is one
 from ._layout import (
     PH_LEN,
     L_HYSTERETIC,
@@ -84,7 +85,6 @@ H_L1 = 25
 HOLD_COLS = 29
 N_HOLD = 4          # phases kept (a hysteretic isolator goes through a few again and again)
 HOLD_ROWS = N_HOLD + 1  # the last row's first value: the row the next new phase takes
-H_WOBBLE = 1e-9     # a sample interval within this fraction of the record's step is one (HOLD_RTOL)
 
 
 SCRATCH_LEN = PH_LEN + 4 * N_GAUSS  # a phase record, then the unit inputs' velocities at the nodes
@@ -225,7 +225,7 @@ def hold_run(ph, st, sy, fo, j, ev, hold, out, lim):
         t = rec_t[j]
         t1 = rec_t[j + 1]
         h = t1 - t
-        if t1 >= t_limit or h > h_phase or abs(h - h_key) > H_WOBBLE * h:
+        if t1 >= t_limit or h > h_phase or abs(h - h_key) > HOLD_RTOL * h:
             break
         # the piece, as excitation_piece and the event loop write it
         slope = (rec_a[j + 1] - rec_a[j]) / h

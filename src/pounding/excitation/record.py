@@ -279,6 +279,12 @@ class Record:
         return (f"Record({name}n={self.t.size}, t=[{self.t[0]:g}, {self.t[-1]:g}] s, "
                 f"pga={self.pga_g:.3g} g)")
 
+    def __getstate__(self) -> dict:
+        # the cached kernel arrays are copies of t and accel: not shipped to workers
+        state = dict(self.__dict__)
+        state.pop("_kernel_arrays", None)
+        return state
+
     def kernel_arrays(self) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
         """The excitation as the compiled engine takes it: a kind code and three float arrays
         (internal; made once per record, never written to)."""
