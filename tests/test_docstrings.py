@@ -19,7 +19,7 @@ import pounding
 matplotlib.use("Agg")
 
 ROOT = Path(__file__).resolve().parents[1]
-SUBMODULES = ("plots", "records", "lab", "reports", "presets", "data")
+SUBMODULES = ("plots", "records", "lab", "reports", "presets", "data", "design")
 # numpydoc's checks that every public function and class must pass: parameters all documented and
 # no unknown ones (PR01, PR02), each with a type and a description (PR04, PR07), returns documented
 # (RT01), an example (EX01)

@@ -26,6 +26,7 @@ LAYERS = [
     ("analysis",),
     ("lab",),
     ("identification",),
+    ("design",),
     ("reports",),
     ("plots",),
     ("_warm_up", "_worker_boot", "cli", "__init__"),

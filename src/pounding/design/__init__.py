@@ -1,0 +1,41 @@
+"""From a site's hazard to a gap and a bumper: design spectra, scaled suites, fragility, risk.
+
+- :func:`asce7_spectrum`, :func:`ec8_spectrum`, :func:`user_spectrum`: the target spectra
+  (:class:`DesignSpectrum`); :class:`HazardCurve`: how often an intensity is exceeded.
+- :func:`scale_suite`: a record suite scaled to a target at a period or over a period range
+  (:class:`ScaledSuite`); :func:`stripe_factors`: the factors of a multiple-stripe analysis.
+- :func:`fit_fragility` (stripes) and :func:`fit_fragility_capacities` (incremental dynamic
+  analysis): lognormal fragility curves by maximum likelihood, with bootstrap bands
+  (:class:`Fragility`).
+- :func:`annual_frequency`, :func:`risk`, :func:`probability_in_years`: the event's rate at the
+  site.
+"""
+
+from .fragility import Fragility, fit_fragility, fit_fragility_capacities
+from .hazard import (
+    DesignSpectrum,
+    HazardCurve,
+    asce7_spectrum,
+    ec8_spectrum,
+    probability_in_years,
+    user_spectrum,
+)
+from .risk import annual_frequency, risk
+from .suite import ScaledSuite, scale_suite, stripe_factors
+
+__all__ = [
+    "DesignSpectrum",
+    "Fragility",
+    "HazardCurve",
+    "ScaledSuite",
+    "annual_frequency",
+    "asce7_spectrum",
+    "ec8_spectrum",
+    "fit_fragility",
+    "fit_fragility_capacities",
+    "probability_in_years",
+    "risk",
+    "scale_suite",
+    "stripe_factors",
+    "user_spectrum",
+]

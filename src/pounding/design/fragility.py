@@ -1,0 +1,515 @@
+"""Lognormal fragility curves: the probability of an event given the intensity.
+
+``P(E | IM = x) = Phi(ln(x / theta) / beta)``, with the median ``theta`` (g) and the
+dispersion ``beta``, fitted by maximum likelihood:
+
+- **stripes** (multiple-stripe analysis): at each intensity ``x_j``, ``k_j`` of ``n_j`` runs
+  had the event; the likelihood is binomial, ``prod C(n_j, k_j) p_j^k_j (1 - p_j)^(n_j - k_j)``.
+  That is a probit regression on ``ln x``, ``p = Phi(a + b ln x)`` (``beta = 1 / b``,
+  ``theta = exp(-a / b)``), solved by Fisher scoring (Newton on the expected information) to
+  machine precision.  The estimate exists only when the stripes overlap: some run survives at
+  an intensity above one where another run had the event;
+- **capacities** (incremental dynamic analysis): each record's intensity at the event's first
+  occurrence; ``ln theta`` and ``beta`` are the mean and the (maximum-likelihood, ``1/n``)
+  standard deviation of their logarithms, and a record that never had the event up to the
+  largest intensity run is a censored observation (its likelihood ``1 - Phi``).
+
+Confidence bands come from the bootstrap: runs resampled within each stripe (records resampled
+for capacities), refitted, and the curves' pointwise percentiles.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from scipy import optimize, special
+
+from .._checks import float_array, integer, positive
+from .._errors import InputError, Problem
+
+MAX_SCORING_STEPS = 100
+SCORING_TOL = 1e-13  # on the Newton step of (a, b)
+LOG_SQRT_2PI = 0.5 * math.log(2.0 * math.pi)
+
+
+@dataclass(frozen=True, eq=False)
+class Fragility:
+    """A lognormal fragility curve with its bootstrap (:func:`fit_fragility`,
+    :func:`fit_fragility_capacities`).
+
+    Attributes
+    ----------
+    median_g : float
+        ``theta``: the intensity (g) at which the event has probability 0.5.
+    beta : float
+        The dispersion (the standard deviation of ``ln`` capacity).
+    event : str
+        What the curve is the probability of (a label).
+    method : {"stripes", "capacities"}
+    data : dict of numpy.ndarray
+        What it was fitted to: ``im_g``, ``n_runs``, ``n_events`` (stripes) or ``capacity_g``,
+        ``censored`` (capacities).
+    bootstrap : numpy.ndarray, shape (b, 2)
+        The refitted ``(median_g, beta)`` of each bootstrap sample (resamples without an
+        estimate, all-or-nothing stripes, are left out and counted in ``n_failed_resamples``).
+    confidence : float
+        The band's level (0.9: the 5-95 % percentiles).
+    n_failed_resamples : int
+        Bootstrap resamples left out.
+
+    Examples
+    --------
+    >>> from pounding import design
+    >>> curve = design.fit_fragility([0.2, 0.4, 0.6, 0.8], [20, 20, 20, 20],
+    ...                              [1, 7, 13, 17], event="pounding")
+    >>> round(curve.probability(0.5), 3)
+    0.528
+    >>> [round(v, 2) for v in curve.interval()["median_g"]]  # 90 % band, g
+    [0.42, 0.56]
+    """
+
+    median_g: float
+    beta: float
+    event: str
+    method: str
+    data: dict
+    bootstrap: np.ndarray
+    confidence: float
+    n_failed_resamples: int = 0
+
+    def probability(self, im_g: Any) -> Any:
+        """``P(E | IM = im_g)`` at intensities (g, >= 0; scalar or array)."""
+        x = np.asarray(im_g, dtype=float)
+        with np.errstate(divide="ignore"):
+            p = special.ndtr(np.log(x / self.median_g) / self.beta)
+        return float(p) if p.ndim == 0 else p
+
+    def band(self, im_g: Any) -> tuple[np.ndarray, np.ndarray]:
+        """The bootstrap band's lower and upper curves at intensities ``im_g`` (g), each of
+        ``im_g``'s shape."""
+        x = np.atleast_1d(np.asarray(im_g, dtype=float))
+        if self.bootstrap.shape[0] == 0:
+            p = self.probability(x)
+            return p, p
+        with np.errstate(divide="ignore"):
+            curves = special.ndtr(np.log(x[None, :] / self.bootstrap[:, :1]) / self.bootstrap[:, 1:])
+        tail = 50.0 * (1.0 - self.confidence)
+        return np.percentile(curves, tail, axis=0), np.percentile(curves, 100.0 - tail, axis=0)
+
+    def interval(self) -> dict[str, tuple[float, float]]:
+        """The bootstrap percentile intervals of ``median_g`` and ``beta`` at ``confidence``."""
+        tail = 50.0 * (1.0 - self.confidence)
+        if self.bootstrap.shape[0] == 0:
+            return {"median_g": (self.median_g, self.median_g), "beta": (self.beta, self.beta)}
+        lo = np.percentile(self.bootstrap, tail, axis=0)
+        hi = np.percentile(self.bootstrap, 100.0 - tail, axis=0)
+        return {"median_g": (float(lo[0]), float(hi[0])), "beta": (float(lo[1]), float(hi[1]))}
+
+    def to_dataframe(self, im_g: Any = None) -> Any:
+        """``im_g``, ``probability``, ``lower``, ``upper`` (the band) at ``im_g`` (default: 200
+        intensities to 3 medians)."""
+        import pandas as pd
+
+        x = np.linspace(0.0, 3.0 * self.median_g, 201) if im_g is None else float_array("im_g", im_g)
+        lo, hi = self.band(x)
+        return pd.DataFrame({"im_g": x, "probability": self.probability(x), "lower": lo, "upper": hi})
+
+    def plot(self, ax: Any = None, *, data: bool = True, **line: Any) -> list:
+        """The curve, its band and (``data``) the stripes' fractions or the capacities' empirical
+        distribution; returns the artists."""
+        from ..plots.design import plot_fragility
+
+        return plot_fragility(self, ax=ax, data=data, **line)
+
+    def __repr__(self) -> str:
+        ci = self.interval()
+        return (
+            f"Fragility({self.event or 'event'}: median {self.median_g:.4g} g "
+            f"[{ci['median_g'][0]:.3g}, {ci['median_g'][1]:.3g}], beta {self.beta:.3g} "
+            f"[{ci['beta'][0]:.3g}, {ci['beta'][1]:.3g}], {self.method})"
+        )
+
+
+def fit_fragility(
+    im_g: Any,
+    n_runs: Any,
+    n_events: Any,
+    *,
+    event: str = "",
+    n_bootstrap: int = 1000,
+    confidence: float = 0.9,
+    seed: int = 0,
+) -> Fragility:
+    """Fit a lognormal fragility curve to stripes by maximum likelihood (binomial likelihood).
+
+    Parameters
+    ----------
+    im_g : array_like, shape (s,)
+        The stripes' intensities (g), > 0, at least two distinct.
+    n_runs : array_like of int, shape (s,)
+        Runs at each stripe, >= 1.
+    n_events : array_like of int, shape (s,)
+        Runs with the event at each stripe, in ``[0, n_runs]``.
+    event : str
+        A label (e.g. ``"pounding"``).
+    n_bootstrap : int
+        Bootstrap resamples for the band (0: none).
+    confidence : float
+        The band's level, in (0, 1).
+    seed : int
+        The bootstrap's random seed (the same seed, the same band).
+
+    Returns
+    -------
+    Fragility
+
+    Raises
+    ------
+    InputError
+        A bad argument, or stripes with no estimate: every run at the intensities up to some
+        level without the event and every run above it with the event (the dispersion would be
+        0), or no event at all, or the event in every run.
+
+    Examples
+    --------
+    >>> from pounding import design
+    >>> curve = design.fit_fragility([0.2, 0.4, 0.6, 0.8], [20, 20, 20, 20],
+    ...                              [1, 7, 13, 17], event="pounding")
+    >>> round(curve.median_g, 3), round(curve.beta, 3)
+    (0.482, 0.518)
+    """
+    x = float_array("im_g", im_g)
+    for i, v in enumerate(x):
+        positive(f"im_g[{i}]", v, "g")
+    n = _counts("n_runs", n_runs, x.size, 1)
+    k = _counts("n_events", n_events, x.size, 0)
+    over = np.flatnonzero(k > n)
+    if over.size:
+        i = int(over[0])
+        raise InputError(
+            Problem.OUT_OF_RANGE, f"n_events[{i}]", int(k[i]), range=f"[0, n_runs[{i}] = {n[i]}]"
+        )
+    if np.unique(x).size < 2:
+        raise InputError(
+            Problem.NO_FIT,
+            "im_g",
+            x.tolist(),
+            why="has one intensity only, so the dispersion cannot be fitted",
+            fix="run at least two intensity levels",
+        )
+    level = _confidence(confidence)
+    n_reps = integer("n_bootstrap", n_bootstrap, 0, 100_000)
+    rng = _seed(seed)
+    a, b = _probit_fit(x, n, k)  # raises when there is no estimate
+    median = math.exp(-a / b) if -a / b < 700.0 else math.inf
+    if not math.isfinite(median):
+        raise InputError(
+            Problem.NO_FIT,
+            "n_events",
+            k.tolist(),
+            why="puts the median beyond any intensity",
+            fix="run stripes where the event happens",
+        )
+    reps, failed = _bootstrap_stripes(x, n, k, n_reps, rng, (a, b))
+    return Fragility(
+        median,
+        float(1.0 / b),
+        str(event),
+        "stripes",
+        {"im_g": x, "n_runs": n, "n_events": k},
+        reps,
+        level,
+        failed,
+    )
+
+
+def fit_fragility_capacities(
+    capacity_g: Any,
+    *,
+    max_im_g: float | None = None,
+    event: str = "",
+    n_bootstrap: int = 1000,
+    confidence: float = 0.9,
+    seed: int = 0,
+) -> Fragility:
+    """Fit a lognormal fragility curve to capacities (incremental dynamic analysis).
+
+    Parameters
+    ----------
+    capacity_g : array_like, shape (r,)
+        Each record's intensity (g) at the event's first occurrence; ``inf`` for a record that
+        did not have the event up to ``max_im_g`` (censored).
+    max_im_g : float, optional
+        The largest intensity run (needed when a capacity is ``inf``).
+    event : str
+        A label.
+    n_bootstrap : int
+        Bootstrap resamples (records drawn with replacement) for the band (0: none).
+    confidence : float
+        The band's level, in (0, 1).
+    seed : int
+        The bootstrap's random seed.
+
+    Returns
+    -------
+    Fragility
+
+    Examples
+    --------
+    >>> from pounding import design
+    >>> curve = design.fit_fragility_capacities([0.3, 0.45, 0.5, 0.7, 0.9])
+    >>> round(curve.median_g, 4), round(curve.beta, 4)
+    (0.5318, 0.3773)
+    """
+    c = np.asarray(capacity_g, dtype=float)
+    if c.ndim != 1 or c.size < 2:
+        raise InputError(Problem.TOO_SHORT, "capacity_g", f"array of shape {c.shape}", got=c.size, expected=2)
+    censored = np.isposinf(c)
+    for i, v in enumerate(c):
+        if not censored[i]:
+            positive(f"capacity_g[{i}]", v, "g")
+    top = None
+    if censored.any():
+        if max_im_g is None:
+            raise InputError(
+                Problem.MISSING_INPUT,
+                "max_im_g",
+                None,
+                what="the largest intensity run (g), which the records with capacity inf survived",
+            )
+        top = positive("max_im_g", max_im_g, "g")
+        if np.any(c[~censored] > top):
+            raise InputError(
+                Problem.OUT_OF_RANGE,
+                "capacity_g",
+                float(c[~censored].max()),
+                range=f"(0, {top:g}]",
+                hint=" (max_im_g, the largest intensity run)",
+            )
+    if (~censored).sum() < 2:
+        raise InputError(
+            Problem.NO_FIT,
+            "capacity_g",
+            c.tolist(),
+            why="has fewer than two records with the event",
+            fix="run higher intensities, or more records",
+        )
+    level = _confidence(confidence)
+    n_reps = integer("n_bootstrap", n_bootstrap, 0, 100_000)
+    rng = _seed(seed)
+    mu, beta = _lognormal_fit(c, censored, top)
+    reps, failed = _bootstrap_capacities(c, censored, top, n_reps, rng)
+    return Fragility(
+        float(math.exp(mu)),
+        float(beta),
+        str(event),
+        "capacities",
+        {"capacity_g": c, "censored": censored},
+        reps,
+        level,
+        failed,
+    )
+
+
+def _counts(field: str, values: Any, size: int, minimum: int) -> np.ndarray:
+    arr = np.asarray(values)
+    if arr.ndim != 1 or arr.size != size:
+        raise InputError(
+            Problem.SIZE_MISMATCH,
+            field,
+            f"array of shape {arr.shape}",
+            got=arr.size,
+            expected=size,
+            other="im_g",
+        )
+    return np.array(
+        [integer(f"{field}[{i}]", v, minimum) for i, v in enumerate(arr.tolist())], dtype=np.int64
+    )
+
+
+def _confidence(value: Any) -> float:
+    c = positive("confidence", value, "(a fraction)")
+    if c >= 1.0:
+        raise InputError(Problem.OUT_OF_RANGE, "confidence", value, range="(0, 1)", hint=" (0.9 is 90 %)")
+    return c
+
+
+def _seed(seed: Any) -> np.random.Generator:
+    return np.random.default_rng(integer("seed", seed, 0))
+
+
+def _overlap(x: np.ndarray, n: np.ndarray, k: np.ndarray) -> tuple[float, float]:
+    """The highest intensity with a survivor and the lowest with an event: the maximum-likelihood
+    estimate exists when the first is above the second (no separation)."""
+    survivors = x[k < n]
+    events = x[k > 0]
+    return (
+        float(survivors.max()) if survivors.size else -math.inf,
+        float(events.min()) if events.size else math.inf,
+    )
+
+
+def _probit_fit(x: np.ndarray, n: np.ndarray, k: np.ndarray) -> tuple[float, float]:
+    """``(a, b)`` of ``p = Phi(a + b ln x)`` maximising the binomial likelihood (Fisher scoring)."""
+    high_survivor, low_event = _overlap(x, n, k)
+    if not high_survivor > low_event:
+        if math.isinf(low_event):
+            why = "has no run with the event, so the curve lies beyond the intensities run"
+        elif math.isinf(high_survivor):
+            why = "has the event in every run, so the curve lies below the intensities run"
+        else:
+            why = (
+                f"has the event in no run at {high_survivor:g} g and below and in every run above "
+                f"{low_event:g} g: the dispersion has no estimate (it would be 0)"
+            )
+        raise InputError(
+            Problem.NO_FIT,
+            "n_events",
+            k.tolist(),
+            why=why,
+            fix="add stripes where some runs have the event and others not",
+        )
+    u = np.log(x)
+    f = k / n
+    # start from least squares on the probits of the fractions, pulled into (0, 1)
+    z = special.ndtri(np.clip((k + 0.5) / (n + 1.0), 1e-6, 1.0 - 1e-6))
+    b, a = np.polyfit(u, z, 1, w=np.sqrt(n)) if np.ptp(z) > 0 else (1.0, -float(np.mean(u)))
+    if not b > 0:
+        a, b = -float(np.average(u, weights=n)) / 0.5, 1.0 / 0.5
+    for _ in range(MAX_SCORING_STEPS):
+        eta = a + b * u
+        p = np.clip(special.ndtr(eta), 1e-300, 1.0 - 1e-16)
+        phi = np.exp(-0.5 * eta * eta - LOG_SQRT_2PI)
+        w = n * phi * phi / (p * (1.0 - p))  # the expected information's weights
+        score_eta = n * phi * (f - p) / (p * (1.0 - p))
+        grad = np.array([score_eta.sum(), (score_eta * u).sum()])
+        info = np.array([[w.sum(), (w * u).sum()], [(w * u).sum(), (w * u * u).sum()]])
+        step = np.linalg.solve(info, grad)
+        # keep the likelihood rising (halve a step that overshoots)
+        ll0 = _loglik(a, b, u, n, k)
+        for _ in range(60):
+            if _loglik(a + step[0], b + step[1], u, n, k) >= ll0 - 1e-12 * abs(ll0):
+                break
+            step = step / 2.0
+        a, b = a + step[0], b + step[1]
+        if abs(step[0]) + abs(step[1]) * (1.0 + abs(u).max()) < SCORING_TOL * (1.0 + abs(a) + abs(b)):
+            break
+    if not b > 0:  # the event less likely at higher intensity: not a fragility
+        raise InputError(
+            Problem.NO_FIT,
+            "n_events",
+            k.tolist(),
+            why="falls as the intensity rises, so no lognormal fragility fits it",
+            fix="check the stripes' order and counts",
+        )
+    return float(a), float(b)
+
+
+def _loglik(a: float, b: float, u: np.ndarray, n: np.ndarray, k: np.ndarray) -> float:
+    eta = a + b * u
+    return float(np.sum(k * special.log_ndtr(eta) + (n - k) * special.log_ndtr(-eta)))
+
+
+def _bootstrap_stripes(
+    x: np.ndarray,
+    n: np.ndarray,
+    k: np.ndarray,
+    reps: int,
+    rng: np.random.Generator,
+    start: tuple[float, float],
+) -> tuple[np.ndarray, int]:
+    """Runs resampled within each stripe (the counts binomial with the stripe's fraction), each
+    resample refitted: Fisher scoring on all at once from the data's estimate ``start``, and
+    the scalar fit for any that did not converge."""
+    draws = rng.binomial(n[None, :], (k / n)[None, :], size=(reps, x.size))
+    xs = np.broadcast_to(x, draws.shape)
+    survivor = np.where(draws < n, xs, -np.inf).max(axis=1)
+    first = np.where(draws > 0, xs, np.inf).min(axis=1)
+    fits = draws[survivor > first]  # the others have no estimate (separated)
+    u = np.log(x)
+    f = fits / n
+    a = np.full(fits.shape[0], start[0])
+    b = np.full(fits.shape[0], start[1])
+    done = np.zeros(fits.shape[0], dtype=bool)
+    with np.errstate(all="ignore"):
+        for _ in range(MAX_SCORING_STEPS):
+            eta = a[:, None] + b[:, None] * u
+            p = np.clip(special.ndtr(eta), 1e-300, 1.0 - 1e-16)
+            phi = np.exp(-0.5 * eta * eta - LOG_SQRT_2PI)
+            w = n * phi * phi / (p * (1.0 - p))
+            score = n * phi * (f - p) / (p * (1.0 - p))
+            g0, g1 = score.sum(axis=1), (score * u).sum(axis=1)
+            i00, i01, i11 = w.sum(axis=1), (w * u).sum(axis=1), (w * u * u).sum(axis=1)
+            det = i00 * i11 - i01 * i01
+            da = (i11 * g0 - i01 * g1) / det
+            db = (i00 * g1 - i01 * g0) / det
+            a, b = np.where(done, a, a + da), np.where(done, b, b + db)
+            done |= np.abs(da) + np.abs(db) * (1.0 + np.abs(u).max()) < SCORING_TOL * (
+                1.0 + np.abs(a) + np.abs(b)
+            )
+            if done.all():
+                break
+    with np.errstate(all="ignore"):  # (a median beyond floating point: that resample is dropped)
+        out = np.column_stack([np.exp(-a / b), 1.0 / b])
+        for i in np.flatnonzero(~done | ~(b > 0) | ~np.isfinite(out).all(axis=1)):
+            try:
+                ai, bi = _probit_fit(x, n, fits[i])
+                out[i] = (np.exp(-ai / bi), 1.0 / bi)
+            except InputError:
+                out[i] = np.nan
+    out = out[np.isfinite(out).all(axis=1) & (out[:, 1] > 0.0)]
+    return out, reps - out.shape[0]
+
+
+def _lognormal_fit(c: np.ndarray, censored: np.ndarray, top: float | None) -> tuple[float, float]:
+    """``(mu, beta)`` of ``ln C ~ N(mu, beta^2)``: closed form without censoring, else the
+    censored likelihood maximised from it."""
+    logs = np.log(c[~censored])
+    mu, beta = float(np.mean(logs)), float(np.std(logs))
+    if beta <= 0.0:
+        raise InputError(
+            Problem.NO_FIT,
+            "capacity_g",
+            c.tolist(),
+            why="has one value only among the records "
+            "with the event, so the dispersion has no estimate (it would be 0)",
+            fix="run intensities more finely, or more records",
+        )
+    if not censored.any():
+        return mu, beta
+    n_cens = int(censored.sum())
+    log_top = math.log(top)
+
+    def neg(theta: np.ndarray) -> tuple[float, np.ndarray]:
+        # minus the log-likelihood of (mu, ln beta) and its gradient: the records with the event
+        # by their density, the censored ones by 1 - Phi((ln top - mu) / beta)
+        m, s = theta[0], math.exp(theta[1])
+        r = (logs - m) / s
+        w = (m - log_top) / s
+        mills = math.exp(-0.5 * w * w - LOG_SQRT_2PI - float(special.log_ndtr(w)))  # phi(w) / Phi(w)
+        ll = float(np.sum(-0.5 * r * r) - logs.size * math.log(s)) + n_cens * float(special.log_ndtr(w))
+        d_m = float(np.sum(r)) / s + n_cens * mills / s
+        d_ls = float(np.sum(r * r)) - logs.size - n_cens * mills * w
+        return -ll, -np.array([d_m, d_ls])
+
+    res = optimize.minimize(neg, [mu, math.log(beta)], jac=True, method="BFGS", options={"gtol": 1e-10})
+    return float(res.x[0]), float(math.exp(res.x[1]))
+
+
+def _bootstrap_capacities(
+    c: np.ndarray, censored: np.ndarray, top: float | None, reps: int, rng: np.random.Generator
+) -> tuple[np.ndarray, int]:
+    out = np.empty((reps, 2))
+    kept = 0
+    for _ in range(reps):
+        idx = rng.integers(0, c.size, c.size)
+        cb, sb = c[idx], censored[idx]
+        if (~sb).sum() < 2 or np.ptp(cb[~sb]) == 0.0:
+            continue
+        mu, beta = _lognormal_fit(cb, sb, top)
+        out[kept] = (math.exp(mu), beta)
+        kept += 1
+    return out[:kept], reps - kept

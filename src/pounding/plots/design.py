@@ -1,0 +1,253 @@
+"""Plots of the design chain: target spectra, hazard curves, scaled suites, fragility curves."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from ._legend import place_legend
+
+
+def _axes(ax: Any, size: tuple[float, float] = (6.0, 3.8)) -> Any:
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=size, constrained_layout=True)
+    return ax
+
+
+def plot_design_spectrum(spectrum: Any, ax: Any = None, **line: Any) -> list:
+    """A design spectrum (:class:`pounding.design.DesignSpectrum`): Sa (g) against the period (s),
+    its corner periods marked.
+
+    Parameters
+    ----------
+    spectrum : DesignSpectrum
+        From :func:`pounding.design.asce7_spectrum`, ``ec8_spectrum`` or ``user_spectrum``.
+    ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
+    **line
+        Passed to ``ax.plot`` (``label``, ``color``, ...).
+
+    Returns
+    -------
+    list of matplotlib artists
+        The line, then one marker per corner period drawn.
+
+    Examples
+    --------
+    >>> from pounding import design
+    >>> artists = design.asce7_spectrum(1.0, 0.6).plot()
+    >>> len(artists)  # the line, T_0 and T_S
+    3
+    """
+    ax = _axes(ax)
+    t = spectrum.default_periods()
+    (ln,) = ax.plot(t, spectrum.sa_g(t), label=line.pop("label", spectrum.name), **line)
+    artists = [ln]
+    for key, mark in (
+        ("t_0_s", "T_0"),
+        ("t_s_s", "T_S"),
+        ("t_l_s", "T_L"),
+        ("t_b_s", "T_B"),
+        ("t_c_s", "T_C"),
+        ("t_d_s", "T_D"),
+    ):
+        tk = spectrum.params.get(key)
+        if tk is not None and tk <= t[-1]:
+            artists.append(ax.plot([tk], [spectrum.sa_g(tk)], "o", color=ln.get_color(), ms=4)[0])
+            ax.annotate(mark, (tk, spectrum.sa_g(tk)), xytext=(3, 3), textcoords="offset points", fontsize=8)
+    ax.set_xlabel("period T (s)")
+    ax.set_ylabel("spectral acceleration Sa (g)")
+    ax.set_xlim(0.0, t[-1])
+    ax.set_ylim(bottom=0.0)
+    place_legend(ax)
+    return artists
+
+
+def plot_hazard_curve(curve: Any, ax: Any = None) -> list:
+    """A hazard curve: the annual frequency of exceedance against Sa, log-log.
+
+    Parameters
+    ----------
+    curve : HazardCurve
+        The site's hazard curve.
+    ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
+
+    Returns
+    -------
+    list of matplotlib artists
+        The curve's line.
+
+    Examples
+    --------
+    >>> from pounding import design
+    >>> curve = design.HazardCurve([0.1, 0.5, 1.0], [1e-2, 1e-3, 2e-4], period_s=2.0)
+    >>> len(curve.plot())
+    1
+    """
+    ax = _axes(ax)
+    (ln,) = ax.loglog(
+        curve.sa_g,
+        curve.annual_frequency_per_year,
+        "o-",
+        ms=3,
+        label=curve.name or f"Sa({curve.period_s:g} s)",
+    )
+    ax.set_xlabel(f"Sa({curve.period_s:g} s) (g)")
+    ax.set_ylabel("annual frequency of exceedance (1/year)")
+    ax.grid(True, which="both", alpha=0.3)
+    place_legend(ax)
+    return [ln]
+
+
+def plot_scaled_suite(suite: Any, ax: Any = None) -> list:
+    """A scaled suite (:class:`pounding.design.ScaledSuite`): each record's pseudo-spectral
+    acceleration (thin), the suite's mean (thick), the target (dashed) and the rule's periods
+    (shaded, or a line for one period).
+
+    Parameters
+    ----------
+    suite : ScaledSuite
+        From :func:`pounding.design.scale_suite`.
+    ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
+
+    Returns
+    -------
+    list of matplotlib artists
+        One line per record, the mean, the target, the rule's span or line.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> from pounding import design
+    >>> suite = design.scale_suite(pounding.records.el_centro(),
+    ...                            design.asce7_spectrum(1.0, 0.6), period_s=2.0)
+    >>> len(suite.plot())  # the record, the mean, the target, the period
+    4
+    """
+    ax = _axes(ax, (6.5, 4.0))
+    psa = suite.spectra["psa_g"]
+    t = psa["period_s"].values
+    artists = []
+    for row in psa.values:
+        artists.append(ax.plot(t, row, color="0.65", lw=0.6)[0])
+    artists.append(
+        ax.plot(
+            t,
+            suite.mean_psa_g().values,
+            color="C0",
+            lw=2.2,
+            label=f"mean of {len(suite.records)} scaled records",
+        )[0]
+    )
+    tt = t[(t >= t.min()) & (t <= t.max())]
+    if suite.target.kind == "user":
+        tt = tt[(tt >= suite.target.periods_s[0]) & (tt <= suite.target.periods_s[-1])]
+    artists.append(ax.plot(tt, suite.target.sa_g(tt), "k--", lw=1.6, label=suite.target.name)[0])
+    lo, hi = suite.period_range_s
+    if hi > lo:
+        artists.append(
+            ax.axvspan(
+                lo,
+                hi,
+                color="C1",
+                alpha=0.15,
+                label=f"scaled over {lo:g}-{hi:g} s (x {suite.factors[0]:.3g})",
+            )
+        )
+    else:
+        artists.append(ax.axvline(lo, color="C1", lw=1.0, label=f"scaled at {lo:g} s"))
+    ax.set_xscale("log")
+    ax.set_xlabel("period T (s)")
+    ax.set_ylabel(f"PSa (g), {100 * suite.damping_ratio:g} % damping")
+    ax.set_ylim(bottom=0.0)
+    place_legend(ax)
+    return artists
+
+
+def plot_fragility(fragility: Any, ax: Any = None, *, data: bool = True, **line: Any) -> list:
+    """A fragility curve with its bootstrap band and (``data``) what it was fitted to.
+
+    Parameters
+    ----------
+    fragility : Fragility
+        From :func:`pounding.design.fit_fragility` or ``fit_fragility_capacities``.
+    ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
+    data : bool
+        Draw the stripes' fractions (or the capacities' empirical distribution).
+    **line
+        Passed to ``ax.plot`` for the curve.
+
+    Returns
+    -------
+    list of matplotlib artists
+        The curve, the band, then the data's markers or steps.
+
+    Examples
+    --------
+    >>> from pounding import design
+    >>> curve = design.fit_fragility([0.2, 0.4, 0.6, 0.8], [20, 20, 20, 20],
+    ...                              [1, 7, 13, 17], n_bootstrap=200)
+    >>> len(curve.plot())
+    3
+    """
+    ax = _axes(ax)
+    if fragility.method == "stripes":
+        top = 1.15 * float(np.max(fragility.data["im_g"]))
+    else:
+        finite = fragility.data["capacity_g"][~fragility.data["censored"]]
+        top = 1.15 * float(np.max(finite))
+    top = max(top, 2.0 * fragility.median_g)
+    x = np.linspace(0.0, top, 301)
+    label = line.pop(
+        "label", f"{fragility.event or 'event'}: median {fragility.median_g:.3g} g, beta {fragility.beta:.2f}"
+    )
+    (ln,) = ax.plot(x, fragility.probability(x), label=label, **line)
+    lo, hi = fragility.band(x)
+    band = ax.fill_between(
+        x,
+        lo,
+        hi,
+        color=ln.get_color(),
+        alpha=0.2,
+        lw=0,
+        label=f"{100 * fragility.confidence:g} % bootstrap band",
+    )
+    artists = [ln, band]
+    if data and fragility.method == "stripes":
+        d = fragility.data
+        artists.append(
+            ax.plot(
+                d["im_g"],
+                d["n_events"] / d["n_runs"],
+                "o",
+                color=ln.get_color(),
+                ms=4,
+                label="fraction of runs",
+            )[0]
+        )
+    elif data:
+        c = np.sort(fragility.data["capacity_g"])
+        n = c.size
+        finite = np.isfinite(c)
+        artists.append(
+            ax.step(
+                c[finite],
+                (np.arange(n)[finite] + 1) / n,
+                where="post",
+                color=ln.get_color(),
+                lw=0.8,
+                label="records' capacities",
+            )[0]
+        )
+    ax.set_xlabel("intensity (g)")
+    ax.set_ylabel("probability of the event")
+    ax.set_xlim(0.0, top)
+    ax.set_ylim(0.0, 1.0)
+    place_legend(ax)
+    return artists
