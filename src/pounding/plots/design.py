@@ -84,7 +84,8 @@ def plot_hazard_curve(curve: Any, ax: Any = None) -> list:
     Examples
     --------
     >>> from pounding import design
-    >>> curve = design.HazardCurve([0.1, 0.5, 1.0], [1e-2, 1e-3, 2e-4], period_s=2.0)
+    >>> curve = design.HazardCurve([0.1, 0.5, 1.0], [1e-2, 1e-3, 2e-4],
+    ...                            period_s=2.0)
     >>> len(curve.plot())
     1
     """
