@@ -361,3 +361,16 @@ def test_the_design_plots_return_their_artists(far_field):
         warnings.simplefilter("error")
         fit.to_dataframe()
     plt.close("all")
+
+
+def test_a_record_scaled_by_a_factor():
+    rec = pounding.records.el_centro()
+    twice = rec.scaled(factor=2.0)
+    assert np.array_equal(twice.accel, 2.0 * rec.accel) and twice.meta["scale_factor"] == 2.0
+    assert twice.scaled(factor=1.5).meta["scale_factor"] == 3.0
+    with pytest.raises(pounding.InputError, match="one of"):
+        rec.scaled(factor=2.0, pga_g=0.3)
+    with pytest.raises(pounding.InputError, match="factor"):
+        rec.scaled(factor=-1.0)
+    with pytest.raises(pounding.InputError, match="period_s"):
+        rec.scaled(factor=2.0, period_s=1.0)

@@ -277,8 +277,7 @@ def _range(period_range_s: Any) -> tuple[float, float]:
 
 
 def _scaled(record: Record, factor: float) -> Record:
-    meta = {**record.meta, "scale_factor": record.meta.get("scale_factor", 1.0) * factor}
-    return Record(record.t, record.accel * factor, record.name, meta, record.g)
+    return record.scaled(factor=float(factor))
 
 
 def stripe_factors(

@@ -195,18 +195,27 @@ class Record:
         return cls(t, a * factor, Path(path).stem if name is None else name, meta, g)
 
     def scaled(self, *, pga_g: float | None = None, sa_g: float | None = None, period_s: float | None = None,
-               damping_ratio: float | None = None) -> "Record":
-        """The record times a factor: to a peak ground acceleration, or to a spectral acceleration.
+               damping_ratio: float | None = None, factor: float | None = None) -> "Record":
+        """The record times a factor: to a peak ground acceleration, or to a spectral acceleration,
+        or a factor given.
 
         Give ``pga_g`` (g), or ``sa_g`` (g) with ``period_s``: the pseudo-spectral acceleration
         ``PSa = omega^2 Sd`` at that period and ``damping_ratio`` (default 0.05; as codes and FEMA P695
-        scale).
+        scale), or ``factor`` (> 0; e.g. from :func:`pounding.design.stripe_factors`).
         ``meta["scale_factor"]`` multiplies any earlier one.
         """
-        if (pga_g is None) == (sa_g is None):
+        if sum(v is not None for v in (pga_g, sa_g, factor)) != 1:
             raise InputError(Problem.MISSING_INPUT, "pga_g", pga_g,
-                             what="either pga_g= or sa_g= (with period_s=)")
-        if pga_g is not None:
+                             what="one of pga_g=, sa_g= (with period_s=) or factor=")
+        if factor is not None:
+            for name, value in (("period_s", period_s), ("damping_ratio", damping_ratio)):
+                if value is not None:
+                    raise InputError(Problem.WRONG_MODE, name, value, mode="sa_g",
+                                     fix=f"leave {name} out when scaling by a factor")
+            target = positive("factor", factor, "(a factor)")
+            plausible("factor", target, 0.01, 100.0, "a record scaled that far no longer resembles shaking")
+            now = 1.0
+        elif pga_g is not None:
             for name, value in (("period_s", period_s), ("damping_ratio", damping_ratio)):
                 if value is not None:
                     raise InputError(Problem.WRONG_MODE, name, value, mode="sa_g",
