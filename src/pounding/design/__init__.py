@@ -7,6 +7,8 @@
 - :func:`fit_fragility` (stripes) and :func:`fit_fragility_capacities` (incremental dynamic
   analysis): lognormal fragility curves by maximum likelihood, with bootstrap bands
   (:class:`Fragility`).
+- :func:`stripe_analysis`: a multiple-stripe analysis over a design grid, in a resumable store
+  (:class:`StripeAnalysis`: events, fractions, fragility curves, probabilities).
 - :func:`annual_frequency`, :func:`risk`, :func:`probability_in_years`: the event's rate at the
   site.
 """
@@ -21,6 +23,7 @@ from .hazard import (
     user_spectrum,
 )
 from .risk import annual_frequency, risk
+from .stripes import StripeAnalysis, open_stripe_analysis, stripe_analysis
 from .suite import ScaledSuite, scale_suite, stripe_factors
 
 __all__ = [
@@ -28,6 +31,7 @@ __all__ = [
     "Fragility",
     "HazardCurve",
     "ScaledSuite",
+    "StripeAnalysis",
     "annual_frequency",
     "asce7_spectrum",
     "ec8_spectrum",
@@ -35,7 +39,9 @@ __all__ = [
     "fit_fragility_capacities",
     "probability_in_years",
     "risk",
+    "open_stripe_analysis",
     "scale_suite",
+    "stripe_analysis",
     "stripe_factors",
     "user_spectrum",
 ]

@@ -8,9 +8,17 @@ from typing import Any
 
 _INDEX = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?$")
 
+# names that stand for several numbers set together: ``bumpers.gap``, the same gap both sides
+ALIASES = {"bumpers.gap": ("bumpers.gap_left", "bumpers.gap_right")}
+
 
 def set_value(table: dict, name: str, value: Any) -> None:
-    """Set the dotted ``name`` (``bumpers.law.stiffness``, ``isolator.slopes[0]``) in nested tables."""
+    """Set the dotted ``name`` (``bumpers.law.stiffness``, ``isolator.slopes[0]``, or an alias:
+    ``bumpers.gap`` sets both gaps) in nested tables."""
+    if name in ALIASES:
+        for each in ALIASES[name]:
+            set_value(table, each, value)
+        return
     parts = name.split(".")
     node: Any = table
     for depth, part in enumerate(parts):
@@ -30,6 +38,12 @@ def set_value(table: dict, name: str, value: Any) -> None:
 
 def why_unresolved(table: dict, name: str) -> str | None:
     """None when the dotted ``name`` reaches a number of the system ``table``; else why not."""
+    if name in ALIASES:
+        for each in ALIASES[name]:
+            why = why_unresolved(table, each)
+            if why is not None:
+                return why
+        return None
     node: Any = table
     for part in name.split("."):
         m = _INDEX.match(part)
@@ -52,7 +66,9 @@ def why_unresolved(table: dict, name: str) -> str | None:
 
 
 def get_value(table: dict, name: str) -> Any:
-    """The value at the dotted ``name`` (one :func:`why_unresolved` accepts)."""
+    """The value at the dotted ``name`` (one :func:`why_unresolved` accepts; an alias's first)."""
+    if name in ALIASES:
+        return get_value(table, ALIASES[name][0])
     node: Any = table
     for part in name.split("."):
         key, idx = _INDEX.match(part).groups()

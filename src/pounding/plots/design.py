@@ -252,3 +252,65 @@ def plot_fragility(fragility: Any, ax: Any = None, *, data: bool = True, **line:
     ax.set_ylim(0.0, 1.0)
     place_legend(ax)
     return artists
+
+
+def plot_stripes(analysis: Any, event: str = "contact", limit: float | None = None, ax: Any = None) -> list:
+    """A stripe analysis: the fraction of runs with the event at each stripe (markers) and its
+    fitted fragility (lines), one per value of the design grid's first dimension (the others at
+    their first value).
+
+    Parameters
+    ----------
+    analysis : StripeAnalysis
+        From :func:`pounding.design.stripe_analysis`.
+    event : str
+        The event (``StripeAnalysis.outcomes``).
+    limit : float, optional
+        Its threshold.
+    ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
+
+    Returns
+    -------
+    list of matplotlib artists
+        Per design value, its markers and (where it has an estimate) its curve.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> from pounding import design
+    >>> ybs = pounding.presets.paper_damped()
+    >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
+    ...                              store="plot.zarr", progress=False,
+    ...                              grid={"bumpers.gap": [0.02, 0.2]})
+    >>> len(msa.plot())  # each gap's markers; no curve: each has all or no contacts
+    2
+    """
+    from .._errors import InputError
+
+    ax = _axes(ax, (6.5, 4.0))
+    frac = analysis.fraction(event, limit)
+    dims = analysis.design_dims
+    first = dims[0] if dims else None
+    fixed = {d: 0 for d in dims[1:]}
+    x = analysis.levels_g
+    xs = np.linspace(0.0, 1.1 * x.max(), 200)
+    artists = []
+    for i in range(frac.sizes[first] if first else 1):
+        sel = {**fixed, **({first: i} if first else {})}
+        value = float(analysis.dataset[first].values[i]) if first else None
+        label = f"{first} = {value:g}" if first else event
+        (pts,) = ax.plot(x, frac.isel(sel).values, "o", ms=4, label=label)
+        artists.append(pts)
+        at = {d: float(analysis.dataset[d].values[j]) for d, j in sel.items()}
+        try:
+            curve = analysis.fragility(event, limit, at=at, n_bootstrap=0)
+        except InputError:  # (all or nothing at every stripe, or separated: no curve to draw)
+            continue
+        artists.append(ax.plot(xs, curve.probability(xs), color=pts.get_color(), lw=1.2)[0])
+    ax.set_xlabel(f"Sa({analysis.period_s:g} s) (g)")
+    ax.set_ylabel(f"probability of {event}" + ("" if limit is None else f" > {limit:g}"))
+    ax.set_xlim(0.0, xs[-1])
+    ax.set_ylim(-0.02, 1.02)
+    place_legend(ax)
+    return artists

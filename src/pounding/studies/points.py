@@ -18,11 +18,13 @@ from ..protocols.pounding_spectrum_result import QUANTITIES as RUN_QUANTITIES
 from ..protocols.pounding_spectrum_result import UNITS as RUN_UNITS
 
 SWEEP_QUANTITIES = TABLE2_QUANTITIES + TABLE3_QUANTITIES + TABLE4_QUANTITIES + ("steps_done", "status")
-QUANTITIES = {"sweep": SWEEP_QUANTITIES, "simulate": RUN_QUANTITIES, "record": RUN_QUANTITIES}
+# a record run adds the bumpers' deepest compression (against their capacity, in design studies)
+RECORD_QUANTITIES = RUN_QUANTITIES[:-1] + ("compression_max_m", "status")
+QUANTITIES = {"sweep": SWEEP_QUANTITIES, "simulate": RUN_QUANTITIES, "record": RECORD_QUANTITIES}
 UNITS = {**RUN_UNITS, "nu_r": "1", "alpha": "1", "eta": "1", "e": "1", "contact_nu_min": "1",
          "contact_nu_max": "1", "excursion_max_m": "m", "mean_force_over_mg": "1", "contact_time_ms": "ms",
          "peak_force_over_mg": "1", "dissipated_energy_per_mass": "m^2/s^2", "restitution": "1",
-         "steps_done": "1"}
+         "steps_done": "1", "compression_max_m": "m"}
 SWEEP_ARGS = ("steady", "cycles", "measure_cycles", "max_cycles", "steady_rtol", "f_ref_hz", "rtol")
 SET_PREFIX = "fema-p695:"
 
@@ -53,6 +55,14 @@ def load_record(source: str) -> Record:
     return Record.from_csv(path, time=0, accel=1)
 
 
+@functools.lru_cache(maxsize=1024)
+def record_psa_g(source: str, period_s: float, damping_ratio: float) -> float:
+    """A record's pseudo-spectral acceleration (g) at a period: computed once per process."""
+    from ..excitation.spectrum import response_spectrum
+
+    return float(response_spectrum(load_record(source), [period_s], damping_ratio)["psa_g"].values[0, 0])
+
+
 def excitation_of(options: dict[str, Any]) -> Harmonic | Record | None:
     """The excitation of a point (None for a sweep, whose steps make their own)."""
     kind = options["kind"]
@@ -62,6 +72,14 @@ def excitation_of(options: dict[str, Any]) -> Harmonic | Record | None:
         rec = load_record(options["record"])
         if options.get("scale_pga_g") is not None:
             rec = rec.scaled(pga_g=options["scale_pga_g"])
+        elif options.get("sa_g") is not None:
+            zeta = options.get("sa_damping_ratio")
+            psa = record_psa_g(options["record"], options["sa_period_s"], 0.05 if zeta is None else zeta)
+            if psa <= 0.0:
+                raise InputError(Problem.NO_FIT, "record", options["record"],
+                                 why=f"has no spectral acceleration at {options['sa_period_s']:g} s, so no "
+                                     "factor scales it to sa_g", fix="leave it out of the study")
+            rec = rec.scaled(factor=options["sa_g"] / psa)
         return rec
     return None
 
@@ -97,7 +115,12 @@ def compute_point(system: Oscillator, options: dict[str, Any], max_steps: int | 
 
             state = State.at_rest(system, velocity_m_s=options["v0_m_s"])
         run = simulate(system, exc, duration, state, sample_rate_hz=0, max_steps=steps)
-        return np.array(_peaks(run, exc.g), dtype=float)
+        peaks = _peaks(run, exc.g)
+        if kind == "record":
+            contacts = run.contacts
+            deepest = float(contacts["max_compression_m"].max()) if len(contacts) else 0.0
+            peaks = (*peaks[:-1], deepest, peaks[-1])
+        return np.array(peaks, dtype=float)
     except InputError as exc:
         if exc.problem not in (Problem.OVER_BUDGET, Problem.TOO_MUCH_WORK):
             raise

