@@ -520,3 +520,49 @@ def test_study_specs_scale_records_to_a_spectral_acceleration_and_set_both_gaps(
         pounding.StudySpec(
             system, {"kind": "record", "record": "el-centro", "sa_period_s": 1.0}, {"bumpers.gap": [0.01]}
         )
+
+
+def test_asce7_isolator_displacement_and_its_damping_table():
+    g = 9.80665
+    for beta, b_m in [
+        (0.0, 0.8),
+        (0.02, 0.8),
+        (0.05, 1.0),
+        (0.10, 1.2),
+        (0.20, 1.5),
+        (0.30, 1.7),
+        (0.40, 1.9),
+        (0.50, 2.0),
+        (0.15, 1.35),
+        (0.35, 1.8),
+    ]:
+        out = design.asce7_displacement(0.9, 2.5, beta)
+        assert out["b_m"] == pytest.approx(b_m, rel=1e-12)
+        assert out["d_m_m"] == pytest.approx(g * 0.9 * 2.5 / (4 * math.pi**2 * b_m), rel=1e-12)
+        assert out["d_tm_m"] == pytest.approx(1.15 * out["d_m_m"], rel=1e-12)
+    with pytest.raises(pounding.InputError, match="s_m1_g"):
+        design.asce7_displacement(0.0, 2.5)
+
+
+def test_capacities_read_the_stripes_as_an_incremental_dynamic_analysis(tmp_path):
+    names = [f"fema-p695:far_field:{i}" for i in range(6)]
+    levels = [0.1, 0.3, 0.5, 0.6, 0.7, 0.8]
+    msa = design.stripe_analysis(
+        linear_isolated(1.2, 0.05), names, levels, period_s=1.0, store=tmp_path / "ida.zarr", progress=False
+    )
+    disp = msa.dataset["disp_max_m"].values  # (levels, records)
+    for gap in (0.07, 0.17):
+        cap = msa.capacities("contact", limit=gap)
+        for r in range(len(names)):
+            reached = np.flatnonzero(disp[:, r] >= gap)
+            assert cap[r] == (levels[reached[0]] if reached.size else np.inf)
+    spread = msa.capacities("contact", limit=0.07)
+    assert np.unique(spread).size >= 2 and np.isfinite(spread).all()  # (this suite: 0.3 and 0.5 g)
+    fit = msa.capacity_fragility("contact", limit=0.07, n_bootstrap=50)
+    logs = np.log(spread)
+    assert fit.median_g == pytest.approx(math.exp(logs.mean()), rel=1e-12)
+    censored = msa.capacities("contact", limit=0.17)
+    assert np.isinf(censored).any() and np.unique(censored[np.isfinite(censored)]).size >= 2
+    uncensored = design.fit_fragility_capacities(censored[np.isfinite(censored)], n_bootstrap=0)
+    # a record that never reached the gap pulls the median up
+    assert msa.capacity_fragility("contact", limit=0.17, n_bootstrap=0).median_g > uncensored.median_g

@@ -17,6 +17,7 @@ from .fragility import Fragility, fit_fragility, fit_fragility_capacities
 from .hazard import (
     DesignSpectrum,
     HazardCurve,
+    asce7_displacement,
     asce7_spectrum,
     ec8_spectrum,
     probability_in_years,
@@ -33,6 +34,7 @@ __all__ = [
     "ScaledSuite",
     "StripeAnalysis",
     "annual_frequency",
+    "asce7_displacement",
     "asce7_spectrum",
     "ec8_spectrum",
     "fit_fragility",

@@ -608,3 +608,47 @@ def probability_in_years(annual_frequency_per_year: Any, years: float = 50.0) ->
     lam = np.asarray(annual_frequency_per_year, dtype=float)
     out = -np.expm1(-lam * yrs)
     return float(out) if out.ndim == 0 else out
+
+
+# ASCE 7-16 Table 17.5-1: the damping coefficient B_M against the effective damping (fraction)
+ASCE_B_M = ((0.02, 0.8), (0.05, 1.0), (0.10, 1.2), (0.20, 1.5), (0.30, 1.7), (0.40, 1.9), (0.50, 2.0))
+G = 9.80665
+
+
+def asce7_displacement(s_m1_g: float, period_s: float, damping_ratio: float = 0.05) -> dict[str, float]:
+    """The isolation system's maximum and total maximum displacements of ASCE 7-16 17.5.3.
+
+    ``D_M = g S_M1 T_M / (4 pi^2 B_M)`` (17.5-1), ``B_M`` from Table 17.5-1 (linear between its
+    rows, 0.8 below 2 % and 2.0 above 50 %), and ``D_TM = 1.15 D_M``, the least the code lets the
+    total maximum displacement be (17.5.3.3; torsion can ask more).  The moat or bumper gap of an
+    isolated structure is at least ``D_TM`` (17.2.5.2).
+
+    Parameters
+    ----------
+    s_m1_g : float
+        The MCE_R spectral acceleration at 1 s (g), ``1.5 S_D1``.
+    period_s : float
+        The effective period at the maximum displacement, ``T_M`` (s).
+    damping_ratio : float
+        The effective damping at the maximum displacement, ``beta_M`` (a fraction).
+
+    Returns
+    -------
+    dict
+        ``d_m_m``, ``d_tm_m`` (m) and ``b_m``.
+
+    Examples
+    --------
+    >>> from pounding import design
+    >>> out = design.asce7_displacement(0.9, 2.0, 0.15)
+    >>> round(out["b_m"], 3), round(out["d_m_m"], 4), round(out["d_tm_m"], 4)
+    (1.35, 0.3312, 0.3809)
+    """
+    s_m1 = positive("s_m1_g", s_m1_g, "g")
+    t_m = positive("period_s", period_s, "s")
+    beta = non_negative("damping_ratio", damping_ratio, "(a fraction of critical)")
+    plausible("damping_ratio", beta, 0.0, 0.5, "the effective damping is a fraction (15 % is 0.15)")
+    xs, ys = zip(*ASCE_B_M)
+    b_m = float(np.interp(beta, xs, ys))
+    d_m = G * s_m1 * t_m / (4.0 * math.pi**2 * b_m)
+    return {"d_m_m": d_m, "d_tm_m": 1.15 * d_m, "b_m": b_m}

@@ -201,6 +201,43 @@ class StripeAnalysis:
             seed=seed,
         )
 
+    def capacities(self, event: str = "contact", limit: float | None = None, *,
+                   at: Mapping[str, float] | None = None) -> np.ndarray:
+        """Each record's capacity at one design point, as an incremental dynamic analysis on the
+        stripes' levels reads it: the first level (g) at which its run has the event, ``inf`` when
+        none has (censored at the last level), NaN when a run before it did not finish.
+
+        Returns
+        -------
+        numpy.ndarray, shape (records,)
+        """
+        out = self.outcomes(event, limit).sel(self._point(at)).transpose("sa_g", "record").values
+        levels = self.levels_g
+        cap = np.full(out.shape[1], np.inf)
+        for r in range(out.shape[1]):
+            for j in range(out.shape[0]):
+                if np.isnan(out[j, r]):
+                    cap[r] = np.nan
+                    break
+                if out[j, r] == 1.0:
+                    cap[r] = levels[j]
+                    break
+        return cap
+
+    def capacity_fragility(self, event: str = "contact", limit: float | None = None, *,
+                           at: Mapping[str, float] | None = None, n_bootstrap: int = 1000,
+                           confidence: float = 0.9, seed: int = 0) -> Fragility:
+        """The fragility from :meth:`capacities` (incremental dynamic analysis on the stripes' levels;
+        records that never had the event are censored at the last level), by maximum likelihood
+        (:func:`fit_fragility_capacities`).  Records with an unfinished run are left out."""
+        from .fragility import fit_fragility_capacities
+
+        cap = self.capacities(event, limit, at=at)
+        cap = cap[~np.isnan(cap)]
+        label = event if limit is None else f"{event} > {limit:g}"
+        return fit_fragility_capacities(cap, max_im_g=float(self.levels_g[-1]), event=label,
+                                        n_bootstrap=n_bootstrap, confidence=confidence, seed=seed)
+
     def probability(self, sa_g: float, event: str = "contact", limit: float | None = None) -> Any:
         """The event's probability at the intensity ``sa_g`` (g) at every design point: the fitted
         fragility's, or where it has no estimate, the limit it tends to: 0 when no run had the

@@ -21,6 +21,7 @@ from .._checks import float_array, integer, positive
 from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Record
 from ..excitation.spectrum import _records, damping_ratio_value, periods_array
+from ..engine.result import CONTACT_COLUMNS
 from ..model import Bumpers, Isolator, Oscillator
 from .._runner import Context, run_tasks
 from .._runner.progress import Progress
@@ -39,12 +40,17 @@ def _isolator(template: Isolator | None, mass_kg: float, period_s: float, zeta: 
     return replace(template, slopes=tuple(s * scale for s in template.slopes), damping=c)
 
 
+PEAK_FORCE = CONTACT_COLUMNS.index("peak_force_n")
+V_IN = CONTACT_COLUMNS.index("v_in_m_s")
+MAX_COMPRESSION = CONTACT_COLUMNS.index("max_compression_m")
+
+
 def _peaks(run: Any, g: float) -> tuple[float, ...]:
     """(max |a_abs| in g, max |D| in m, impacts, peak impact force N, peak impact speed m/s, status)."""
-    contacts = run.contacts
-    n = len(contacts)
-    force = float(contacts["peak_force_n"].max()) if n else 0.0
-    speed = float(np.abs(contacts["v_in_m_s"]).max()) if n else 0.0
+    table = run.contact_table  # (the raw array: building the DataFrame cost more than a run)
+    n = table.shape[0]
+    force = float(table[:, PEAK_FORCE].max()) if n else 0.0
+    speed = float(np.abs(table[:, V_IN]).max()) if n else 0.0
     return (run.abs_acceleration_max / g, max(abs(run.displacement_max), abs(run.displacement_min)), float(n),
             force, speed, float(run.status))
 

@@ -13,7 +13,7 @@ from .._errors import InputError, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
 from ..protocols.campaign import TABLE2_QUANTITIES, TABLE3_QUANTITIES, TABLE4_QUANTITIES, sweep_quantities
-from ..protocols.pounding_spectrum import _peaks
+from ..protocols.pounding_spectrum import MAX_COMPRESSION, _peaks
 from ..protocols.pounding_spectrum_result import QUANTITIES as RUN_QUANTITIES
 from ..protocols.pounding_spectrum_result import UNITS as RUN_UNITS
 
@@ -63,6 +63,19 @@ def record_psa_g(source: str, period_s: float, damping_ratio: float) -> float:
     return float(response_spectrum(load_record(source), [period_s], damping_ratio)["psa_g"].values[0, 0])
 
 
+@functools.lru_cache(maxsize=16)
+def record_at_sa(source: str, sa_g: float, period_s: float, damping_ratio: float) -> Record:
+    """A record scaled to a pseudo-spectral acceleration (the points of one stripe and record share it:
+    its samples and kernel arrays are made once)."""
+    psa = record_psa_g(source, period_s, damping_ratio)
+    if psa <= 0.0:
+        raise InputError(Problem.NO_FIT, "record", source,
+                         why=f"has no spectral acceleration at {period_s:g} s, so no factor scales it "
+                             "to sa_g",
+                         fix="leave it out of the study")
+    return load_record(source).scaled(factor=sa_g / psa)
+
+
 def excitation_of(options: dict[str, Any]) -> Harmonic | Record | None:
     """The excitation of a point (None for a sweep, whose steps make their own)."""
     kind = options["kind"]
@@ -74,12 +87,8 @@ def excitation_of(options: dict[str, Any]) -> Harmonic | Record | None:
             rec = rec.scaled(pga_g=options["scale_pga_g"])
         elif options.get("sa_g") is not None:
             zeta = options.get("sa_damping_ratio")
-            psa = record_psa_g(options["record"], options["sa_period_s"], 0.05 if zeta is None else zeta)
-            if psa <= 0.0:
-                raise InputError(Problem.NO_FIT, "record", options["record"],
-                                 why=f"has no spectral acceleration at {options['sa_period_s']:g} s, so no "
-                                     "factor scales it to sa_g", fix="leave it out of the study")
-            rec = rec.scaled(factor=options["sa_g"] / psa)
+            rec = record_at_sa(options["record"], options["sa_g"], options["sa_period_s"],
+                               0.05 if zeta is None else zeta)
         return rec
     return None
 
@@ -117,8 +126,8 @@ def compute_point(system: Oscillator, options: dict[str, Any], max_steps: int | 
         run = simulate(system, exc, duration, state, sample_rate_hz=0, max_steps=steps)
         peaks = _peaks(run, exc.g)
         if kind == "record":
-            contacts = run.contacts
-            deepest = float(contacts["max_compression_m"].max()) if len(contacts) else 0.0
+            table = run.contact_table
+            deepest = float(table[:, MAX_COMPRESSION].max()) if table.shape[0] else 0.0
             peaks = (*peaks[:-1], deepest, peaks[-1])
         return np.array(peaks, dtype=float)
     except InputError as exc:

@@ -199,13 +199,24 @@ def point_of(system_table: dict, compute: Mapping[str, Any], values: Mapping[str
              ) -> tuple[Oscillator, dict[str, Any]]:
     """The system (``system_table`` with the grid's values set) and the compute options of one point."""
     table = copy.deepcopy(system_table)
+    system_values, options = split_values(compute, values)
+    for name, value in system_values.items():
+        set_value(table, name, value)
+    return Oscillator.from_dict(table), options
+
+
+def split_values(compute: Mapping[str, Any], values: Mapping[str, Any]
+                 ) -> tuple[dict[str, Any], dict[str, Any]]:
+    """A point's grid values split into the system's numbers and its compute options (``compute``
+    with the grid's compute keys set)."""
     options = dict(compute)
+    system_values = {}
     for name, value in values.items():
         if name in options or name in COMPUTE_KEYS[options["kind"]]:
             options[name] = value
         else:
-            set_value(table, name, value)
-    return Oscillator.from_dict(table), options
+            system_values[name] = value
+    return system_values, options
 
 
 # ---------------------------------------------------------------------- checks
@@ -405,9 +416,12 @@ def _check_points(spec: StudySpec) -> None:
                 check_options(system, options)
             except InputError as exc:
                 raise _named(exc, name, v) from None
-    if spec.size <= 200_000:  # (a combination the single values do not catch: e.g. breakpoints out of order)
-        for index in spec.indices():
-            values = {n: spec.grid[n][i] for n, i in zip(spec.grid, index)}
+    # a combination the single values do not catch (e.g. breakpoints out of order): the system's axes
+    # only (the compute axes, checked one at a time above, do not change the system)
+    axes = {n: v for n, v in spec.grid.items() if n not in keys}
+    if int(np.prod([len(v) for v in axes.values()], dtype=np.int64)) <= 200_000:
+        for combination in itertools.product(*axes.values()):
+            values = {**first, **dict(zip(axes, combination))}
             try:
                 point_of(table, spec.compute, values)
             except InputError as exc:

@@ -231,7 +231,7 @@ def run_chunk(spec_json: str, store: str, index: tuple[int, ...], session: int, 
     import zarr
 
     from .points import compute_point
-    from .spec import point_of
+    from .spec import point_of, split_values
 
     tables = _spec_tables(spec_json)
     kind = tables["compute"]["kind"]
@@ -261,6 +261,7 @@ def run_chunk(spec_json: str, store: str, index: tuple[int, ...], session: int, 
         group["done"][sel] = done | new
 
     computed = 0
+    systems: dict[tuple, Any] = {}
     last_flush = time.monotonic()
     for local in np.ndindex(done.shape):
         if done[local]:
@@ -268,7 +269,11 @@ def run_chunk(spec_json: str, store: str, index: tuple[int, ...], session: int, 
         if should_stop is not None and should_stop():
             break
         values = {name: tables["grid"][name][s.start + i] for name, s, i in zip(names, sel, local)}
-        system, options = point_of(tables["system"], tables["compute"], values)
+        system_values, options = split_values(tables["compute"], values)
+        key = tuple(system_values.items())
+        if key not in systems:  # (a system is built once a chunk: the points of a record study share few)
+            systems[key] = point_of(tables["system"], tables["compute"], system_values)[0]
+        system = systems[key]
         out = dict(zip(computed_names, compute_point(system, options, max_steps)))
         for q in quantities:
             block[q][local] = out[q]
