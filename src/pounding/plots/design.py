@@ -314,3 +314,128 @@ def plot_stripes(analysis: Any, event: str = "contact", limit: float | None = No
     ax.set_ylim(-0.02, 1.02)
     place_legend(ax)
     return artists
+
+
+def plot_decision(decision: Any, ax: Any = None) -> list:
+    """The design chart of a :class:`pounding.design.Decision`: the probability of pounding at the
+    design (dashed) and MCE_R (solid) intensities against the gap, one colour per value of the
+    other design dimensions, the target (horizontal), the gap recommended and the code's minimum
+    clearance (vertical).
+
+    Parameters
+    ----------
+    decision : Decision
+        From :func:`pounding.design.decide`.
+    ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
+
+    Returns
+    -------
+    list of matplotlib artists
+        Two lines per group of the other dimensions, then the target's, the recommendation's and
+        the code minimum's lines (those that apply).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> from pounding import design
+    >>> ybs = pounding.presets.paper_damped()
+    >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
+    ...                              store="chart.zarr", progress=False,
+    ...                              grid={"bumpers.gap": [0.02, 0.2]})
+    >>> len(design.decide(msa, 0.3, 0.45).plot())  # 2 lines, target, choice
+    4
+    """
+    ax = _axes(ax, (6.5, 4.0))
+    table = decision.table
+    gap = decision.gap_dim
+    others = [d for d in decision._dims() if d != gap]
+    groups = table.groupby(others) if others else [((), table)]
+    artists = []
+    for key, part in groups:
+        part = part.sort_values(gap)
+        key = key if isinstance(key, tuple) else (key,)
+        label = ", ".join(f"{d} {v:g}" for d, v in zip(others, key))
+        (solid,) = ax.plot(1e3 * part[gap], part["p_contact_mce"], "o-", ms=3,
+                           label=f"MCE_R ({decision.mce_sa_g:.3g} g){', ' + label if label else ''}")
+        (dashed,) = ax.plot(1e3 * part[gap], part["p_contact_design"], "s--", ms=3, color=solid.get_color(),
+                            label=f"design ({decision.design_sa_g:.3g} g){', ' + label if label else ''}")
+        artists += [solid, dashed]
+    artists.append(ax.axhline(decision.target_probability, color="k", lw=0.8, ls=":",
+                              label=f"target {decision.target_probability:g}"))
+    if decision.recommended is not None:
+        artists.append(ax.axvline(1e3 * decision.recommended[gap], color="C2", lw=1.2,
+                                  label=f"recommended {1e3 * decision.recommended[gap]:.0f} mm"))
+    if decision.code_minimum_gap_m is not None:
+        artists.append(ax.axvline(1e3 * decision.code_minimum_gap_m, color="C3", lw=1.0, ls="-.",
+                                  label=f"code minimum {1e3 * decision.code_minimum_gap_m:.0f} mm"))
+    ax.set_xlabel("gap (mm)")
+    ax.set_ylabel("probability of pounding")
+    ax.set_ylim(-0.02, 1.02)
+    place_legend(ax)
+    return artists
+
+
+def plot_responses(analysis: Any, quantity: str = "acc_max_g", ax: Any = None) -> list:
+    """A stripe analysis's response against the intensity: the median over the records (line) and
+    the 16-84 % band (shaded) per stripe, one colour per value of the design grid's first dimension
+    (the others at their first value); runs that did not finish are left out.
+
+    Parameters
+    ----------
+    analysis : StripeAnalysis
+        From :func:`pounding.design.stripe_analysis`.
+    quantity : str
+        A run quantity: ``acc_max_g``, ``disp_max_m``, ``impacts``, ``impact_force_max_n``,
+        ``impact_speed_max_m_s`` or ``compression_max_m``.
+    ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
+
+    Returns
+    -------
+    list of matplotlib artists
+        A line and a band per design value.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> from pounding import design
+    >>> ybs = pounding.presets.paper_damped()
+    >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
+    ...                              store="resp.zarr", progress=False,
+    ...                              grid={"bumpers.gap": [0.02, 0.2]})
+    >>> len(pounding.plots.plot_responses(msa, "acc_max_g"))  # 2 gaps: line, band
+    4
+    """
+    import warnings
+
+    from .._errors import InputError, Problem
+
+    ds = analysis.dataset
+    names = ("acc_max_g", "disp_max_m", "impacts", "impact_force_max_n", "impact_speed_max_m_s",
+             "compression_max_m")
+    if quantity not in names or quantity not in ds:
+        raise InputError(Problem.NOT_IN_RESULT, "quantity", quantity,
+                         choices=", ".join(n for n in names if n in ds))
+    ax = _axes(ax)
+    ok = (ds["done"] == 1) & (ds["status"] == 0.0)
+    values = ds[quantity].where(ok)
+    dims = analysis.design_dims
+    first = dims[0] if dims else None
+    fixed = {d: 0 for d in dims[1:]}
+    x = analysis.levels_g
+    artists = []
+    for i in range(ds.sizes[first] if first else 1):
+        sel = {**fixed, **({first: i} if first else {})}
+        v = values.isel(sel).transpose("sa_g", "record").values
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)  # (a stripe with no finished run: NaN)
+            mid = np.nanmedian(v, axis=1)
+            lo, hi = np.nanpercentile(v, 16, axis=1), np.nanpercentile(v, 84, axis=1)
+        label = f"{first} = {float(ds[first].values[i]):g}" if first else quantity
+        (ln,) = ax.plot(x, mid, "o-", ms=3, label=label)
+        artists += [ln, ax.fill_between(x, lo, hi, color=ln.get_color(), alpha=0.15, lw=0)]
+    ax.set_xlabel(f"Sa({analysis.period_s:g} s) (g)")
+    ax.set_ylabel(quantity)
+    place_legend(ax)
+    return artists

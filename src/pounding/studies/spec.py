@@ -123,7 +123,7 @@ class StudySpec:
             compute["record"] = _record_path(compute["record"], base)
         if isinstance(grid.get("record"), list):
             grid["record"] = [_record_path(v, base) for v in grid["record"]]
-        return cls(_system(table["system"], base), compute, grid)
+        return cls(system_from_table(table["system"], base), compute, grid)
 
     @classmethod
     def _from_store(cls, tables: Mapping[str, Any]) -> "StudySpec":
@@ -226,7 +226,9 @@ def _table(field: str, value: Any) -> dict:
     return dict(value)
 
 
-def _system(value: Any, base_dir: Path) -> Oscillator:
+def system_from_table(value: Any, base_dir: Path) -> Oscillator:
+    """The system of a TOML ``[system]`` table: a preset, a file (relative to ``base_dir``) or its own
+    tables; ``bumpers = false`` drops a preset's or file's bumpers."""
     if isinstance(value, Oscillator):
         return value
     table = _table("system", value)

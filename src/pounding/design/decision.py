@@ -1,0 +1,256 @@
+"""The decision: which gap (and bumper) meets the target probability, and what it costs.
+
+From a :class:`StripeAnalysis`: per design point, the probability of pounding at the design and
+MCE_R intensities (the fitted fragility's), the median peak acceleration and impact force at the
+stripe nearest the MCE_R intensity, and with a hazard curve the probability in N years; the
+smallest gap of the grid that meets the target, and the code's minimum clearance beside it.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .._checks import one_of, positive
+from .._errors import InputError, Problem
+from .hazard import HazardCurve, probability_in_years
+from .stripes import StripeAnalysis
+
+LEVELS = ("design", "mce")
+
+
+@dataclass(frozen=True, eq=False)
+class Decision:
+    """What a stripe analysis says of each design point, and the one recommended (:func:`decide`).
+
+    Attributes
+    ----------
+    table : pandas.DataFrame
+        One row per design point (its grid values), with ``p_contact_design``, ``p_contact_mce``,
+        ``p_contact_years`` (with a hazard curve; NaN otherwise), ``acc_median_g`` and
+        ``force_median_n`` (medians over the records at the stripe nearest the MCE_R intensity,
+        ``stripe_g``), ``meets_target``.
+    recommended : dict or None
+        The design point chosen (its grid values and row): the smallest gap meeting the target,
+        then the lowest median peak acceleration; None when no point meets it.
+    target_probability : float
+        The largest probability of pounding accepted, at ``level``.
+    level : {"design", "mce"}
+    design_sa_g, mce_sa_g : float
+        The intensities (g) of the two levels.
+    gap_dim : str
+        The design grid's gap dimension.
+    code_minimum_gap_m : float or None
+        The code's least clearance (e.g. ASCE 7-16's D_TM), shown beside the recommendation.
+    years : float
+        The exposure time of ``p_contact_years``.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> from pounding import design
+    >>> ybs = pounding.presets.paper_damped()
+    >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
+    ...                              store="decide.zarr", progress=False,
+    ...                              grid={"bumpers.gap": [0.02, 0.2]})
+    >>> choice = design.decide(msa, 0.3, 0.45, target_probability=0.1)
+    >>> choice.recommended["bumpers.gap"]
+    0.2
+    """
+
+    table: Any
+    recommended: dict | None
+    target_probability: float
+    level: str
+    design_sa_g: float
+    mce_sa_g: float
+    gap_dim: str
+    code_minimum_gap_m: float | None
+    years: float
+
+    def to_dataframe(self) -> Any:
+        """The table (a copy)."""
+        return self.table.copy()
+
+    def verdict(self) -> str:
+        """One sentence: the gap recommended and the probability behind it, or that none meets."""
+        level = "MCE_R" if self.level == "mce" else "design"
+        code = (
+            ""
+            if self.code_minimum_gap_m is None
+            else f" The code's minimum clearance is {1e3 * self.code_minimum_gap_m:.0f} mm."
+        )
+        if self.recommended is None:
+            return (
+                f"No gap of the grid keeps the probability of pounding at the {level} level at or below "
+                f"{self.target_probability:g}: widen the grid.{code}"
+            )
+        row = self.recommended
+        others = ", ".join(
+            f"{d} {row[d]:g}" for d in self.table.columns if d not in (self.gap_dim,) and d in self._dims()
+        )
+        p = row[f"p_contact_{self.level}"]
+        return (
+            f"A gap of {1e3 * row[self.gap_dim]:.0f} mm{' (' + others + ')' if others else ''}: "
+            f"probability of pounding {p:.3f} at the {level} level (target {self.target_probability:g}), "
+            f"{row['p_contact_design' if self.level == 'mce' else 'p_contact_mce']:.3f} at the "
+            f"{'design' if self.level == 'mce' else 'MCE_R'} level.{code}"
+        )
+
+    def plot(self, ax: Any = None) -> list:
+        """The design chart: the probability of pounding at both levels against the gap (one line
+        per value of the other design dimensions), the target and the code's minimum."""
+        from ..plots.design import plot_decision
+
+        return plot_decision(self, ax=ax)
+
+    def _dims(self) -> list[str]:
+        return [c for c in self.table.columns if c not in _COLUMNS]
+
+
+_COLUMNS = (
+    "p_contact_design",
+    "p_contact_mce",
+    "p_contact_years",
+    "acc_median_g",
+    "force_median_n",
+    "stripe_g",
+    "meets_target",
+)
+
+
+def decide(
+    analysis: StripeAnalysis,
+    design_sa_g: float,
+    mce_sa_g: float,
+    *,
+    target_probability: float = 0.1,
+    level: str = "mce",
+    gap_dim: str = "bumpers.gap",
+    hazard: HazardCurve | None = None,
+    years: float = 50.0,
+    code_minimum_gap_m: float | None = None,
+) -> Decision:
+    """Choose the gap: the smallest of the grid whose probability of pounding at ``level`` is at most
+    ``target_probability``.
+
+    Parameters
+    ----------
+    analysis : StripeAnalysis
+        A stripe analysis with bumpers over a grid with a gap dimension.
+    design_sa_g, mce_sa_g : float
+        The design and MCE_R intensities (g) at the analysis's period (e.g.
+        ``asce7_spectrum(...).sa_g(period_s)``).
+    target_probability : float
+        The largest probability of pounding accepted, in (0, 1).
+    level : {"design", "mce"}
+        Where the target applies.
+    gap_dim : str
+        The grid's gap dimension (``"bumpers.gap"``).
+    hazard : HazardCurve, optional
+        The site's curve for the same intensity: adds the probability of pounding in ``years``.
+    years : float
+        The exposure time (50).
+    code_minimum_gap_m : float, optional
+        The code's least clearance, reported beside the choice (e.g. ``asce7_displacement``'s
+        ``d_tm_m``).
+
+    Returns
+    -------
+    Decision
+
+    Examples
+    --------
+    >>> import pounding
+    >>> from pounding import design
+    >>> ybs = pounding.presets.paper_damped()
+    >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
+    ...                              store="choose.zarr", progress=False,
+    ...                              grid={"bumpers.gap": [0.02, 0.2]})
+    >>> choice = design.decide(msa, 0.3, 0.45, target_probability=0.1)
+    >>> choice.table[["bumpers.gap", "p_contact_design", "p_contact_mce"]].values
+    array([[0.02, 0.  , 1.  ],
+           [0.2 , 0.  , 0.  ]])
+    """
+    import pandas as pd
+
+    if not isinstance(analysis, StripeAnalysis):
+        raise InputError(
+            Problem.WRONG_TYPE,
+            "analysis",
+            analysis,
+            got=type(analysis).__name__,
+            expected="pounding.design.StripeAnalysis (stripe_analysis)",
+        )
+    if gap_dim not in analysis.design_dims:
+        raise InputError(
+            Problem.NOT_IN_RESULT, "gap_dim", gap_dim, choices=", ".join(analysis.design_dims) or "none"
+        )
+    if not analysis.has_bumpers:
+        raise InputError(
+            Problem.BAD_STATE,
+            "analysis",
+            repr(analysis),
+            why="ran without bumpers",
+            fix="run the stripe analysis with bumpers and a grid of gaps",
+        )
+    design_sa = positive("design_sa_g", design_sa_g, "g")
+    mce_sa = positive("mce_sa_g", mce_sa_g, "g")
+    target = positive("target_probability", target_probability, "(a probability)")
+    if target >= 1.0:
+        raise InputError(Problem.OUT_OF_RANGE, "target_probability", target_probability, range="(0, 1)")
+    level = one_of("level", level, LEVELS)
+    yrs = positive("years", years, "years")
+    if hazard is not None and not isinstance(hazard, HazardCurve):
+        raise InputError(
+            Problem.WRONG_TYPE,
+            "hazard",
+            hazard,
+            got=type(hazard).__name__,
+            expected="pounding.design.HazardCurve or None",
+        )
+    code_min = None if code_minimum_gap_m is None else positive("code_minimum_gap_m", code_minimum_gap_m, "m")
+    p_design = analysis.probability(design_sa)
+    p_mce = analysis.probability(mce_sa)
+    stripe = int(np.argmin(np.abs(np.log(analysis.levels_g / mce_sa))))
+    at_stripe = analysis.dataset.isel(sa_g=stripe)
+    ok = (at_stripe["done"] == 1) & (at_stripe["status"] == 0.0)
+    acc = at_stripe["acc_max_g"].where(ok).median("record")
+    force = at_stripe["impact_force_max_n"].where(ok).median("record")
+    rows = []
+    dims = analysis.design_dims
+    for index in np.ndindex(p_design.shape):
+        sel = dict(zip(dims, index))
+        row = {d: float(analysis.dataset[d].values[i]) for d, i in sel.items()}
+        row["p_contact_design"] = float(p_design.values[index])
+        row["p_contact_mce"] = float(p_mce.values[index])
+        row["p_contact_years"] = math.nan
+        if hazard is not None:
+            try:
+                frag = analysis.fragility("contact", at=row_values(row, dims), n_bootstrap=0)
+            except InputError:
+                frag = None
+            if frag is not None:
+                from .risk import annual_frequency
+
+                row["p_contact_years"] = float(probability_in_years(annual_frequency(frag, hazard), yrs))
+        row["acc_median_g"] = float(acc.isel(sel).values)
+        row["force_median_n"] = float(force.isel(sel).values)
+        row["stripe_g"] = float(analysis.levels_g[stripe])
+        row["meets_target"] = bool(row[f"p_contact_{level}"] <= target)
+        rows.append(row)
+    table = pd.DataFrame(rows)
+    candidates = table[table["meets_target"]]
+    recommended = None
+    if len(candidates):
+        best = candidates.sort_values([gap_dim, "acc_median_g"]).iloc[0]
+        recommended = {k: (bool(v) if k == "meets_target" else float(v)) for k, v in best.items()}
+    return Decision(table, recommended, target, level, design_sa, mce_sa, gap_dim, code_min, yrs)
+
+
+def row_values(row: dict, dims: tuple[str, ...]) -> dict[str, float]:
+    """A table row's design point: its value for each design dimension."""
+    return {d: row[d] for d in dims}

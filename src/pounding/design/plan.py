@@ -1,0 +1,354 @@
+"""A design from a TOML file: the site, the suite, the design grid, the target; run end to end.
+
+``pounding design DESIGN.toml`` reads a :class:`DesignPlan` (every field checked before any work),
+runs its stripe analysis into a resumable store and decides (:func:`run_plan`); the report is
+written by :mod:`pounding.reports.design`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+from .._checks import float_array, one_of, parse_toml, positive, read_text
+from .._errors import InputError, Problem
+from ..model import Oscillator
+from ..studies.spec import system_from_table
+from .hazard import (
+    DesignSpectrum,
+    HazardCurve,
+    asce7_displacement,
+    asce7_spectrum,
+    ec8_spectrum,
+    user_spectrum,
+)
+from .stripes import suite_sources
+
+TOP_KEYS = ("title", "system", "bumpers", "site", "records", "design", "run")
+SITE_CODES = ("asce7-16", "en1998-1", "user")
+SITE_KEYS = {
+    "asce7-16": ("code", "s_ds_g", "s_d1_g", "t_l_s", "hazard_curve"),
+    "en1998-1": (
+        "code",
+        "a_gr_g",
+        "ground_type",
+        "spectrum_type",
+        "importance",
+        "hazard_curve",
+        "mce_factor",
+    ),
+    "user": ("code", "spectrum", "mce_spectrum", "hazard_curve"),
+}
+RECORD_KEYS = ("suite", "period_s", "levels_g", "scale_range_s")
+DESIGN_KEYS = ("gaps_m", "grid", "target_probability", "level", "years", "t_m_s", "beta_m")
+RUN_KEYS = ("scheduler", "workers", "store")
+EC8_MCE_FACTOR = 1.5  # EN 1998-1 has no MCE: the "MCE" level is this factor times its spectrum (stated)
+
+
+@dataclass(frozen=True, eq=False)
+class DesignPlan:
+    """A design as its TOML file states it, checked (:meth:`from_toml`).
+
+    Attributes
+    ----------
+    title : str
+    system : Oscillator
+        The base system, with its bumpers (the grid varies their gap and numbers).
+    design_spectrum, mce_spectrum : DesignSpectrum
+        The two levels (ASCE 7-16: design and MCE_R; EN 1998-1: the spectrum and ``mce_factor``
+        times it; a user's: two tables).
+    hazard : HazardCurve or None
+        The site's hazard curve for Sa(``period_s``), if given.
+    records : list of str
+        The suite's record names.
+    period_s : float
+        The intensity measure's period.
+    levels_g : numpy.ndarray
+        The stripes (g).
+    scale_range_s : tuple of float
+        The range over which the suite is shown scaled to the MCE_R spectrum.
+    grid : dict
+        The design grid (``bumpers.gap`` from ``gaps_m``, and any other dotted names).
+    target_probability : float
+    level : str
+    years : float
+    code_minimum_gap_m : float or None
+        ASCE 7-16's D_TM from ``t_m_s`` and ``beta_m`` (when given).
+    scheduler : str or None
+    workers : int or None
+    store : Path or None
+        The store (default: beside the report).
+    source : Path
+        The TOML file.
+    """
+
+    title: str
+    system: Oscillator
+    design_spectrum: DesignSpectrum
+    mce_spectrum: DesignSpectrum
+    hazard: HazardCurve | None
+    records: list
+    period_s: float
+    levels_g: np.ndarray
+    scale_range_s: tuple
+    grid: dict
+    target_probability: float
+    level: str
+    years: float
+    code_minimum_gap_m: float | None
+    scheduler: str | None = None
+    workers: int | None = None
+    store: Path | None = None
+    source: Path = field(default_factory=lambda: Path("."))
+
+    @classmethod
+    def from_toml(cls, path: str | Path) -> "DesignPlan":
+        """Read and check a design file (see ``examples/design_ups.toml``); relative paths in it are
+        relative to the file."""
+        text = read_text("path", path)
+        return cls.from_dict(parse_toml(str(path), text), Path(path))
+
+    @classmethod
+    def from_dict(cls, table: Mapping[str, Any], source: Path = Path("design.toml")) -> "DesignPlan":
+        """From the file's tables (see :meth:`from_toml`)."""
+        base = source.parent
+        _keys("", table, TOP_KEYS, required=("system", "site", "records", "design"))
+        system = system_from_table(table["system"], base)
+        if "bumpers" in table:
+            tables = system.to_dict()
+            tables["bumpers"] = dict(_table("bumpers", table["bumpers"]))
+            system = Oscillator.from_dict(tables)
+        if system.bumpers is None:
+            raise InputError(
+                Problem.MISSING_KEY,
+                "bumpers",
+                None,
+                choices="a [bumpers] table (gap_left, gap_right, [bumpers.law]) or a system with "
+                "bumpers: a design chooses their gap",
+            )
+        design_spec, mce_spec, hazard_file = _site(_table("site", table["site"]), base)
+        rec = _table("records", table["records"])
+        _keys("records.", rec, RECORD_KEYS, required=("suite", "period_s"))
+        records = suite_sources(rec["suite"])
+        records = [_path(r, base) for r in records]
+        period = positive("records.period_s", rec["period_s"], "s")
+        mce_sa = float(mce_spec.sa_g(period))
+        hazard = None if hazard_file is None else _hazard(hazard_file, base, period)
+        levels = (
+            np.round(np.linspace(0.1, 1.5, 10) * mce_sa, 4)
+            if "levels_g" not in rec
+            else float_array("records.levels_g", rec["levels_g"], 2)
+        )
+        if np.any(levels <= 0) or np.any(np.diff(levels) <= 0):
+            raise InputError(
+                Problem.NOT_INCREASING,
+                "records.levels_g",
+                levels.tolist(),
+                hint=" (positive Sa in g, increasing)",
+            )
+        scale_range = tuple(
+            float_array("records.scale_range_s", rec.get("scale_range_s", [0.75 * period, 1.25 * period]), 2)
+        )
+        if len(scale_range) != 2 or not 0 < scale_range[0] < scale_range[1]:
+            raise InputError(
+                Problem.NOT_INCREASING,
+                "records.scale_range_s",
+                list(scale_range),
+                hint=" (two periods, s: lo < hi)",
+            )
+        des = _table("design", table["design"])
+        _keys("design.", des, DESIGN_KEYS, required=("gaps_m",))
+        gaps = float_array("design.gaps_m", des["gaps_m"])
+        if np.any(gaps <= 0):
+            i = int(np.flatnonzero(gaps <= 0)[0])
+            raise InputError(Problem.NOT_POSITIVE, f"design.gaps_m[{i}]", float(gaps[i]), unit="m")
+        if np.any(np.diff(gaps) <= 0):
+            raise InputError(Problem.NOT_INCREASING, "design.gaps_m", gaps.tolist())
+        grid = {"bumpers.gap": gaps.tolist()}
+        for name, values in dict(_table("design.grid", des.get("grid", {}))).items():
+            if name in ("bumpers.gap", "bumpers.gap_left", "bumpers.gap_right"):
+                raise InputError(Problem.DUPLICATE, f"design.grid.{name}", values, repeated="design.gaps_m")
+            grid[name] = values
+        target = positive("design.target_probability", des.get("target_probability", 0.1), "(a probability)")
+        if target >= 1.0:
+            raise InputError(Problem.OUT_OF_RANGE, "design.target_probability", target, range="(0, 1)")
+        level = one_of("design.level", des.get("level", "mce"), ("design", "mce"))
+        years = positive("design.years", des.get("years", 50.0), "years")
+        code_min = None
+        if "t_m_s" in des or "beta_m" in des:
+            if design_spec.kind != "asce7-16":
+                raise InputError(
+                    Problem.WRONG_MODE,
+                    "design.t_m_s",
+                    des.get("t_m_s"),
+                    mode="an ASCE 7-16 site",
+                    fix="leave t_m_s and beta_m out (the code minimum is ASCE 7-16's D_TM)",
+                )
+            if "t_m_s" not in des:
+                raise InputError(Problem.MISSING_KEY, "design.t_m_s", None, choices="t_m_s with beta_m")
+            s_m1 = 1.5 * design_spec.params["s_d1_g"]
+            code_min = asce7_displacement(s_m1, des["t_m_s"], des.get("beta_m", 0.05))["d_tm_m"]
+        run = _table("run", table.get("run", {}))
+        _keys("run.", run, RUN_KEYS)
+        store = None if "store" not in run else _path(run["store"], base)
+        return cls(
+            str(table.get("title", source.stem)),
+            system,
+            design_spec,
+            mce_spec,
+            hazard,
+            records,
+            period,
+            levels,
+            scale_range,
+            grid,
+            target,
+            level,
+            years,
+            code_min,
+            run.get("scheduler"),
+            run.get("workers"),
+            None if store is None else Path(store),
+            source,
+        )
+
+
+def _table(field: str, value: Any) -> Mapping[str, Any]:
+    if not isinstance(value, Mapping):
+        raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__, expected="table")
+    return value
+
+
+def _keys(prefix: str, table: Mapping[str, Any], allowed: tuple, required: tuple = ()) -> None:
+    for key in table:
+        if key not in allowed:
+            raise InputError(Problem.UNKNOWN_KEY, f"{prefix}{key}", table[key], choices=", ".join(allowed))
+    for key in required:
+        if key not in table:
+            raise InputError(Problem.MISSING_KEY, f"{prefix}{key}", None, choices=", ".join(allowed))
+
+
+def _path(value: Any, base: Path) -> Any:
+    """A record file or a store, relative to the design file (names of built-in records kept)."""
+    if not isinstance(value, str) or value == "el-centro" or value.startswith("fema-p695:"):
+        return value
+    return str((base / Path(value).expanduser()).resolve())
+
+
+def _site(site: Mapping[str, Any], base: Path) -> tuple[DesignSpectrum, DesignSpectrum, HazardCurve | None]:
+    code = one_of("site.code", site.get("code", "asce7-16"), SITE_CODES)
+    _keys("site.", site, SITE_KEYS[code])
+    if code == "asce7-16":
+        for key in ("s_ds_g", "s_d1_g"):
+            if key not in site:
+                raise InputError(Problem.MISSING_KEY, f"site.{key}", None, choices=", ".join(SITE_KEYS[code]))
+        args = (site["s_ds_g"], site["s_d1_g"], site.get("t_l_s", 8.0))
+        design_spec, mce_spec = asce7_spectrum(*args), asce7_spectrum(*args, level="mce")
+    elif code == "en1998-1":
+        if "a_gr_g" not in site:
+            raise InputError(Problem.MISSING_KEY, "site.a_gr_g", None, choices=", ".join(SITE_KEYS[code]))
+        design_spec = ec8_spectrum(
+            site["a_gr_g"],
+            site.get("ground_type", "B"),
+            site.get("spectrum_type", 1),
+            importance=site.get("importance", 1.0),
+        )
+        factor = positive("site.mce_factor", site.get("mce_factor", EC8_MCE_FACTOR), "(a factor)")
+        mce_spec = ec8_spectrum(
+            site["a_gr_g"] * factor,
+            site.get("ground_type", "B"),
+            site.get("spectrum_type", 1),
+            importance=site.get("importance", 1.0),
+            name=f"{factor:g} x {design_spec.name}",
+        )
+    else:
+        for key in ("spectrum", "mce_spectrum"):
+            if key not in site:
+                raise InputError(
+                    Problem.MISSING_KEY,
+                    f"site.{key}",
+                    None,
+                    choices="spectrum and mce_spectrum (CSV files: period s, Sa g)",
+                )
+        design_spec = user_spectrum(path=base / site["spectrum"], name="design")
+        mce_spec = user_spectrum(path=base / site["mce_spectrum"], name="MCE")
+    return design_spec, mce_spec, site.get("hazard_curve")
+
+
+def _hazard(value: Any, base: Path, period_s: float) -> HazardCurve:
+    """The hazard curve a site table names (a CSV of Sa g and annual frequency), for Sa(period_s)."""
+    if not isinstance(value, str):
+        raise InputError(
+            Problem.WRONG_TYPE,
+            "site.hazard_curve",
+            value,
+            got=type(value).__name__,
+            expected="the path of a CSV file (Sa in g, annual frequency of exceedance)",
+        )
+    try:
+        return HazardCurve.from_csv(base / value, period_s)
+    except InputError as exc:
+        raise exc.relabel("path", "site.hazard_curve") from None
+
+
+@dataclass(frozen=True, eq=False)
+class DesignOutcome:
+    """What :func:`run_plan` computed: the plan, the suite scaled to the MCE_R spectrum, the stripe
+    analysis, the fragility of pounding per gap (those with an estimate) and the decision."""
+
+    plan: DesignPlan
+    suite: Any
+    analysis: Any
+    fragilities: dict
+    decision: Any
+
+
+def run_plan(
+    plan: DesignPlan, store: str | Path, *, progress: Any = True, resume: bool = True
+) -> DesignOutcome:
+    """Run a design: the suite scaled to the MCE_R spectrum over ``scale_range_s`` (shown), the
+    stripe analysis over the design grid into ``store`` (resumed when it holds this design), the
+    fragility of pounding at every design point and the decision."""
+    from ..excitation.spectrum import _records
+    from ..studies.points import load_record
+    from .decision import decide
+    from .stripes import stripe_analysis
+    from .suite import scale_suite
+
+    recs = _records([load_record(r) for r in plan.records])
+    suite = scale_suite(recs, plan.mce_spectrum, period_range_s=plan.scale_range_s, n_periods=21)
+    analysis = stripe_analysis(
+        plan.system,
+        plan.records,
+        plan.levels_g,
+        period_s=plan.period_s,
+        store=store,
+        grid=plan.grid,
+        scheduler=plan.scheduler,
+        workers=plan.workers,
+        resume=resume,
+        progress=progress,
+    )
+    fragilities = {}
+    dims = analysis.design_dims
+    for index in np.ndindex(*(analysis.dataset.sizes[d] for d in dims)):
+        at = {d: float(analysis.dataset[d].values[i]) for d, i in zip(dims, index)}
+        try:
+            fragilities[tuple(at.items())] = analysis.fragility("contact", at=at, n_bootstrap=500)
+        except InputError:  # (no estimate: all or nothing, or separated stripes; the table says which)
+            continue
+    decision = decide(
+        analysis,
+        float(plan.design_spectrum.sa_g(plan.period_s)),
+        float(plan.mce_spectrum.sa_g(plan.period_s)),
+        target_probability=plan.target_probability,
+        level=plan.level,
+        hazard=plan.hazard,
+        years=plan.years,
+        code_minimum_gap_m=plan.code_minimum_gap_m,
+    )
+    return DesignOutcome(plan, suite, analysis, fragilities, decision)

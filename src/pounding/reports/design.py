@@ -1,0 +1,195 @@
+"""The design report: the verdict first, then the hazard, the scaled suite, the responses, the
+fragility curves and the design chart, as one self-contained HTML page with its CSV tables."""
+
+from __future__ import annotations
+
+import html
+from pathlib import Path
+from typing import Any
+
+import pandas as pd
+
+from .._io import atomic_write, write_text
+from .html import CSS, _image
+
+NOTES = (
+    "The intensity measure is the pseudo-spectral acceleration at the stated period, with the stated "
+    "damping, of each record as the engine sees it (linear between samples); each record is scaled to each "
+    "stripe by its own factor.",
+    "A run pounds when it has at least one impact. The fragility of pounding is lognormal, fitted by maximum "
+    "likelihood to the stripes (binomial likelihood); the band is a 90 % bootstrap band (runs resampled "
+    "within each stripe). Where the stripes have no estimate (no run pounds, every run does, or the outcomes "
+    "separate between two stripes) the probability is the limit the curve tends to: 0, 1, or a step at the "
+    "geometric mean of the separating stripes.",
+    "The probability in the exposure time needs the site's hazard curve for the same intensity; it is "
+    "blank for a design point without a fitted curve.",
+    "The records are single horizontal components and the mass moves in one direction: the codes' "
+    "maximum-direction or SRSS spectra of two components are not formed.",
+    "Runs that did not finish (over their budget, a Zeno sequence) are not counted; the table of statuses "
+    "says how many.",
+)
+
+
+def _table(df: pd.DataFrame) -> str:
+    return (
+        "<div class='wide'>"
+        + df.to_html(index=False, float_format=lambda x: f"{x:.4g}", na_rep="\u2013", border=0)
+        + "</div>"
+    )
+
+
+def _save(fig: Any, path: Path) -> Path:
+    import matplotlib.pyplot as plt
+
+    try:
+        atomic_write(path, lambda tmp: fig.savefig(tmp, dpi=130))
+    finally:
+        plt.close(fig)
+    return path
+
+
+def figures(outcome: Any, folder: Path) -> dict[str, tuple[Path, str]]:
+    """The report's figures as PNG files in ``folder``: name -> (path, caption)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    from ..plots.design import plot_responses
+
+    plan, analysis, decision = outcome.plan, outcome.analysis, outcome.decision
+    out = {}
+    fig, ax = plt.subplots(figsize=(6.5, 4.0), constrained_layout=True)
+    plan.design_spectrum.plot(ax=ax)
+    plan.mce_spectrum.plot(ax=ax)
+    ax.axvline(plan.period_s, color="k", lw=0.8, ls=":")
+    out["Hazard: the target spectra"] = (
+        _save(fig, folder / "spectra.png"),
+        f"design and MCE level spectra; dotted: the intensity measure's period {plan.period_s:g} s",
+    )
+    if plan.hazard is not None:
+        fig, ax = plt.subplots(figsize=(6.0, 4.0), constrained_layout=True)
+        plan.hazard.plot(ax=ax)
+        out["Hazard curve"] = (
+            _save(fig, folder / "hazard_curve.png"),
+            "the site's annual frequency of exceedance",
+        )
+    fig, ax = plt.subplots(figsize=(6.5, 4.0), constrained_layout=True)
+    outcome.suite.plot(ax=ax)
+    out["The suite scaled to the MCE level"] = (
+        _save(fig, folder / "suite.png"),
+        "each record (grey), their mean and the target over the scaling "
+        "range; the stripes scale each record on its own",
+    )
+    fig, axes = plt.subplots(1, 2, figsize=(11.0, 4.0), constrained_layout=True)
+    plot_responses(analysis, "acc_max_g", ax=axes[0])
+    plot_responses(analysis, "impact_force_max_n", ax=axes[1])
+    out["Responses"] = (
+        _save(fig, folder / "responses.png"),
+        "median over the records (16-84 % shaded) per stripe, one colour per gap (the other "
+        "design numbers at their first value)",
+    )
+    fig, ax = plt.subplots(figsize=(6.5, 4.0), constrained_layout=True)
+    analysis.plot("contact", ax=ax)
+    out["Fragility of pounding"] = (
+        _save(fig, folder / "fragility.png"),
+        "fraction of runs with an impact per stripe, and the fitted lognormal curves",
+    )
+    fig, ax = plt.subplots(figsize=(6.5, 4.0), constrained_layout=True)
+    decision.plot(ax=ax)
+    out["Design chart"] = (
+        _save(fig, folder / "design_chart.png"),
+        "the probability of pounding at the design and MCE levels against the gap",
+    )
+    return out
+
+
+def write_report(outcome: Any, folder: Path) -> Path:
+    """Write ``folder/index.html`` and its CSV tables (``decision.csv``, ``runs.csv``,
+    ``fragility.csv``, ``suite.csv``); returns the page's path."""
+    e = html.escape
+    plan, analysis, decision = outcome.plan, outcome.analysis, outcome.decision
+    folder.mkdir(parents=True, exist_ok=True)
+    table = decision.to_dataframe()
+    frag_rows = [
+        {
+            **dict(at),
+            "median_g": f.median_g,
+            "beta": f.beta,
+            "median_lo_g": f.interval()["median_g"][0],
+            "median_hi_g": f.interval()["median_g"][1],
+        }
+        for at, f in outcome.fragilities.items()
+    ]
+    fragility = pd.DataFrame(frag_rows)
+    suite = outcome.suite.to_dataframe()
+    status = analysis.dataset["status"].where(analysis.dataset["done"] == 1)
+    statuses = pd.DataFrame(
+        {
+            "runs": [int(analysis.dataset["done"].size)],
+            "done": [int(analysis.dataset["done"].sum())],
+            "finished (SUCCESS)": [int((status == 0.0).sum())],
+            "stopped early": [int(((status != 0.0) & status.notnull()).sum())],
+        }
+    )
+    for name, df in (
+        ("decision", table),
+        ("fragility", fragility),
+        ("suite", suite),
+        ("runs", analysis.to_dataframe()),
+    ):
+        atomic_write(folder / f"{name}.csv", lambda tmp, df=df: df.to_csv(tmp, index=False))
+    figs = figures(outcome, folder)
+    settings = pd.DataFrame(
+        [
+            {"item": "site", "value": f"{plan.design_spectrum.name}; MCE level: {plan.mce_spectrum.name}"},
+            {"item": "intensity measure", "value": f"PSa({plan.period_s:g} s), 5 % damping"},
+            {
+                "item": "design / MCE intensity",
+                "value": f"{decision.design_sa_g:.4g} g / {decision.mce_sa_g:.4g} g",
+            },
+            {"item": "records", "value": f"{len(plan.records)} ({plan.records[0]} ...)"},
+            {"item": "stripes (g)", "value": ", ".join(f"{x:g}" for x in plan.levels_g)},
+            {
+                "item": "design grid",
+                "value": "; ".join(
+                    f"{k}: {', '.join(f'{v:g}' for v in vals)}" for k, vals in plan.grid.items()
+                ),
+            },
+            {
+                "item": "target",
+                "value": f"P(pounding | {'MCE' if plan.level == 'mce' else 'design'}) <= "
+                f"{plan.target_probability:g}",
+            },
+            {"item": "runs", "value": f"{int(analysis.dataset['done'].size)}"},
+        ]
+    )
+    parts = [
+        f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{e(plan.title)}</title>",
+        f"<style>{CSS}</style></head><body>",
+        f"<h1>{e(plan.title)}</h1>",
+        "<h2>Verdict</h2>",
+        f"<p><b>{e(decision.verdict())}</b></p>",
+        _table(table),
+        "<h2>The design</h2>",
+        _table(settings),
+        _table(statuses),
+        "<h2>Fragility of pounding per design point</h2>",
+        _table(fragility) if len(fragility) else "<p>No design point has a fitted curve.</p>",
+        "<h2>The suite scaled to the MCE level</h2>",
+        f"<p>One factor for the suite so that its mean is not below the MCE spectrum from "
+        f"{plan.scale_range_s[0]:g} to {plan.scale_range_s[1]:g} s: "
+        f"x {outcome.suite.factors[0]:.4g}.</p>",
+        "<h2>Figures</h2>",
+    ]
+    for name, (png, caption) in figs.items():
+        parts.append(
+            f"<figure><img src='{_image(png)}' alt='{e(name)}'>"
+            f"<figcaption><b>{e(name)}</b>: {e(caption)}</figcaption></figure>"
+        )
+    parts += ["<h2>System</h2>", f"<pre>{e(repr(plan.system))}</pre>", "<h2>Reading the results</h2><ul>"]
+    parts += [f"<li>{e(n)}</li>" for n in NOTES]
+    parts += ["</ul></body></html>"]
+    page = folder / "index.html"
+    write_text(page, "\n".join(parts))
+    return page
