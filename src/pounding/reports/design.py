@@ -95,6 +95,12 @@ def figures(outcome: Any, folder: Path) -> dict[str, tuple[Path, str]]:
         _save(fig, folder / "fragility.png"),
         "fraction of runs with an impact per stripe, and the fitted lognormal curves",
     )
+    fig, axes = plt.subplots(1, 2, figsize=(11.0, 4.0), constrained_layout=True)
+    _cost(decision, axes)
+    out["What pounding costs"] = (_save(fig, folder / "cost.png"),
+                                  f"median over the records at the stripe nearest the MCE level "
+                                  f"({decision.table['stripe_g'].iloc[0]:g} g) against the gap, one line per "
+                                  "value of the other design numbers")
     fig, ax = plt.subplots(figsize=(6.5, 4.0), constrained_layout=True)
     decision.plot(ax=ax)
     out["Design chart"] = (
@@ -102,6 +108,25 @@ def figures(outcome: Any, folder: Path) -> dict[str, tuple[Path, str]]:
         "the probability of pounding at the design and MCE levels against the gap",
     )
     return out
+
+
+def _cost(decision: Any, axes: Any) -> None:
+    """Median peak acceleration and impact force against the gap, per value of the other dimensions."""
+    table = decision.table
+    gap = decision.gap_dim
+    others = [d for d in decision._dims() if d != gap]
+    groups = table.groupby(others) if others else [((), table)]
+    for key, part in groups:
+        part = part.sort_values(gap)
+        key = key if isinstance(key, tuple) else (key,)
+        label = ", ".join(f"{d} {v:g}" for d, v in zip(others, key)) or "median"
+        axes[0].plot(1e3 * part[gap], part["acc_median_g"], "o-", ms=3, label=label)
+        axes[1].plot(1e3 * part[gap], part["force_median_n"], "o-", ms=3, label=label)
+    axes[0].set_ylabel("peak absolute acceleration (g)")
+    axes[1].set_ylabel("peak impact force (N)")
+    for ax in axes:
+        ax.set_xlabel("gap (mm)")
+        ax.legend(fontsize=8)
 
 
 def write_report(outcome: Any, folder: Path) -> Path:
