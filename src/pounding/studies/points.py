@@ -34,7 +34,7 @@ def load_record(source: str) -> Record:
     """A record by its study name: ``"el-centro"``, ``"fema-p695:<set>:<index>"`` (a component of a
     FEMA P695 set, from 0), or the path of a file (``.AT2``, or two columns: time s, acceleration g).
     Read once per process."""
-    from ..excitation.records import el_centro, fema_p695
+    from ..excitation.records import el_centro
 
     if source == "el-centro":
         return el_centro()
@@ -44,7 +44,7 @@ def load_record(source: str) -> Record:
             raise InputError(Problem.NOT_ONE_OF, "record", source,
                              choices="'el-centro', 'fema-p695:<set>:<index>' (e.g. 'fema-p695:far_field:0'), "
                                      "or a file")
-        records = fema_p695(parts[0])
+        records = _fema_set(parts[0])
         if int(parts[1]) >= len(records):
             raise InputError(Problem.OUT_OF_RANGE, "record", source, range=f"0 to {len(records) - 1}",
                              hint=f" (the {parts[0]} set has {len(records)} components)")
@@ -74,6 +74,14 @@ def record_at_sa(source: str, sa_g: float, period_s: float, damping_ratio: float
                              "to sa_g",
                          fix="leave it out of the study")
     return load_record(source).scaled(factor=sa_g / psa)
+
+
+@functools.lru_cache(maxsize=4)
+def _fema_set(name: str) -> tuple[Record, ...]:
+    """A FEMA P695 set, read once per process (its components are points of many studies)."""
+    from ..excitation.records import fema_p695
+
+    return tuple(fema_p695(name))
 
 
 def excitation_of(options: dict[str, Any]) -> Harmonic | Record | None:
