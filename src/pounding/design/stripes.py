@@ -29,7 +29,7 @@ EVENTS = {
     "contact": "the mass reaches a bumper (with a limit: the peak displacement of a run without bumpers "
     "reaches that gap, m)",
     "acceleration": "the peak absolute acceleration exceeds the limit (g)",
-    "compression": "a bumper is compressed beyond the limit (its capacity, m)",
+    "compression": "a bumper is compressed beyond the limit (m; default: the bumpers' capacity_m)",
     "displacement": "the peak displacement exceeds the limit (m; the gap plus the bumper's stroke)",
 }
 RESERVED = ("sa_g", "record")
@@ -83,6 +83,8 @@ class StripeAnalysis:
         The damping of the intensity measure's spectrum.
     has_bumpers : bool
         Whether the runs had bumpers (without, a contact is the peak displacement reaching a gap).
+    capacity_m : float or None
+        The bumpers' capacity (``Bumpers.capacity_m``): the "compression" event's default limit.
 
     Examples
     --------
@@ -105,6 +107,7 @@ class StripeAnalysis:
     period_s: float
     damping_ratio: float
     has_bumpers: bool
+    capacity_m: float | None = None
 
     @property
     def design_dims(self) -> tuple[str, ...]:
@@ -144,6 +147,8 @@ class StripeAnalysis:
                 )
             hit = ds["impacts"] > 0.0
         else:
+            if limit is None and event == "compression" and self.capacity_m is not None:
+                limit = self.capacity_m
             if limit is None:
                 raise InputError(Problem.MISSING_INPUT, "limit", None, what=f"the threshold: {EVENTS[event]}")
             lim = positive("limit", limit, "g" if event == "acceleration" else "m")
@@ -201,8 +206,9 @@ class StripeAnalysis:
             seed=seed,
         )
 
-    def capacities(self, event: str = "contact", limit: float | None = None, *,
-                   at: Mapping[str, float] | None = None) -> np.ndarray:
+    def capacities(
+        self, event: str = "contact", limit: float | None = None, *, at: Mapping[str, float] | None = None
+    ) -> np.ndarray:
         """Each record's capacity at one design point, as an incremental dynamic analysis on the
         stripes' levels reads it: the first level (g) at which its run has the event, ``inf`` when
         none has (censored at the last level), NaN when a run before it did not finish.
@@ -224,9 +230,16 @@ class StripeAnalysis:
                     break
         return cap
 
-    def capacity_fragility(self, event: str = "contact", limit: float | None = None, *,
-                           at: Mapping[str, float] | None = None, n_bootstrap: int = 1000,
-                           confidence: float = 0.9, seed: int = 0) -> Fragility:
+    def capacity_fragility(
+        self,
+        event: str = "contact",
+        limit: float | None = None,
+        *,
+        at: Mapping[str, float] | None = None,
+        n_bootstrap: int = 1000,
+        confidence: float = 0.9,
+        seed: int = 0,
+    ) -> Fragility:
         """The fragility from :meth:`capacities` (incremental dynamic analysis on the stripes' levels;
         records that never had the event are censored at the last level), by maximum likelihood
         (:func:`fit_fragility_capacities`).  Records with an unfinished run are left out."""
@@ -235,8 +248,14 @@ class StripeAnalysis:
         cap = self.capacities(event, limit, at=at)
         cap = cap[~np.isnan(cap)]
         label = event if limit is None else f"{event} > {limit:g}"
-        return fit_fragility_capacities(cap, max_im_g=float(self.levels_g[-1]), event=label,
-                                        n_bootstrap=n_bootstrap, confidence=confidence, seed=seed)
+        return fit_fragility_capacities(
+            cap,
+            max_im_g=float(self.levels_g[-1]),
+            event=label,
+            n_bootstrap=n_bootstrap,
+            confidence=confidence,
+            seed=seed,
+        )
 
     def probability(self, sa_g: float, event: str = "contact", limit: float | None = None) -> Any:
         """The event's probability at the intensity ``sa_g`` (g) at every design point: the fitted
@@ -285,8 +304,10 @@ class StripeAnalysis:
         ds = self.dataset
         grid = ", ".join(f"{d} {ds.sizes[d]}" for d in self.design_dims)
         done = f"{int(ds['done'].sum())} of {ds['done'].size} runs done"
-        return (f"StripeAnalysis({ds.sizes['sa_g']} stripes of Sa({self.period_s:g} s) x "
-                f"{ds.sizes['record']} records{' x ' + grid if grid else ''}, {done})")
+        return (
+            f"StripeAnalysis({ds.sizes['sa_g']} stripes of Sa({self.period_s:g} s) x "
+            f"{ds.sizes['record']} records{' x ' + grid if grid else ''}, {done})"
+        )
 
     def _point(self, at: Mapping[str, float] | None) -> dict[str, float]:
         dims = self.design_dims
@@ -441,6 +462,7 @@ def stripe_analysis(
         {"sa_g": levels.tolist(), "record": sources, **design_grid},
     )
     has_bumpers = system.bumpers is not None
+    capacity = system.bumpers.capacity_m if has_bumpers else None
     try:
         ds = study(
             spec,
@@ -453,9 +475,9 @@ def stripe_analysis(
         )
     except Interrupted as stop:
         raise Interrupted(
-            StripeAnalysis(stop.partial, period, zeta, has_bumpers), stop.done, stop.total, "runs"
+            StripeAnalysis(stop.partial, period, zeta, has_bumpers, capacity), stop.done, stop.total, "runs"
         ) from None
-    return StripeAnalysis(ds, period, zeta, has_bumpers)
+    return StripeAnalysis(ds, period, zeta, has_bumpers, capacity)
 
 
 def open_stripe_analysis(store: str | Path) -> StripeAnalysis:
@@ -501,4 +523,5 @@ def open_stripe_analysis(store: str | Path) -> StripeAnalysis:
         float(compute["sa_period_s"]),
         0.05 if zeta is None else float(zeta),
         tables["system"].get("bumpers") is not None,
+        (tables["system"].get("bumpers") or {}).get("capacity_m"),
     )

@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, ClassVar, Optional
 
-from .._checks import at_most, non_negative, plausible
+from .._checks import at_most, non_negative, plausible, positive
 from .._errors import InputError, Problem
 from .contact_laws import LAWS, ContactLaw, law_to_dict
 
@@ -30,6 +30,10 @@ class Bumpers:
         Contact law of the left bumper, and of the right one unless ``law_right`` is given.
     law_right : KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper, ElasticPlastic or Hertzdamp, optional
         Contact law of the right bumper when it differs from the left one.
+    capacity_m : float, optional
+        The deepest compression the bumpers take (m), > 0: what a design checks their runs'
+        ``compression_max_m`` against (``StripeAnalysis.outcomes("compression")``).  It does not
+        change the motion.
 
     Examples
     --------
@@ -50,8 +54,9 @@ class Bumpers:
     gap_right: float
     law: ContactLaw
     law_right: Optional[ContactLaw] = None
+    capacity_m: Optional[float] = None
 
-    FIELDS: ClassVar[tuple[str, ...]] = ("gap_left", "gap_right", "law", "law_right")
+    FIELDS: ClassVar[tuple[str, ...]] = ("gap_left", "gap_right", "law", "law_right", "capacity_m")
 
     def __post_init__(self) -> None:
         for name in ("gap_left", "gap_right"):
@@ -59,6 +64,10 @@ class Bumpers:
             at_most(f"bumpers.{name}", gap, MAX_GAP_M, " m", "give the gap in m (15 mm is 0.015)")
             plausible(f"bumpers.{name}", gap, 0.0, 0.5, "gaps are in m (15 mm is 0.015)")
             object.__setattr__(self, name, gap)
+        if self.capacity_m is not None:
+            capacity = positive("bumpers.capacity_m", self.capacity_m, "m")
+            plausible("bumpers.capacity_m", capacity, 0.0, 0.5, "a bumper's capacity is in m (20 mm is 0.02)")
+            object.__setattr__(self, "capacity_m", capacity)
         for name in ("law", "law_right"):
             value = getattr(self, name)
             if value is None and name == "law_right":
@@ -87,8 +96,8 @@ class Bumpers:
     def mirrored(self) -> "Bumpers":
         """The same bumpers seen in a mirror (left and right swapped)."""
         if self.law_right is None:
-            return Bumpers(self.gap_right, self.gap_left, self.law)
-        return Bumpers(self.gap_right, self.gap_left, self.law_right, self.law)
+            return Bumpers(self.gap_right, self.gap_left, self.law, capacity_m=self.capacity_m)
+        return Bumpers(self.gap_right, self.gap_left, self.law_right, self.law, self.capacity_m)
 
     def to_dict(self) -> dict[str, Any]:
         """The constructor's fields as plain values (the TOML form: ``Oscillator.to_toml`` writes it)."""
@@ -96,4 +105,6 @@ class Bumpers:
                                "law": law_to_dict(self.law)}
         if self.law_right is not None:
             out["law_right"] = law_to_dict(self.law_right)
+        if self.capacity_m is not None:
+            out["capacity_m"] = self.capacity_m
         return out

@@ -116,6 +116,7 @@ class Oscillator:
                 gap_left=b["gap_left"], gap_right=b["gap_right"],
                 law=law_from_dict(b["law"], "bumpers.law"),
                 law_right=None if law_right is None else law_from_dict(law_right, "bumpers.law_right"),
+                capacity_m=b.get("capacity_m"),
             )
         return cls(mass=table["mass"], isolator=isolator, bumpers=bumpers)
 
