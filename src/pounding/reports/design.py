@@ -95,12 +95,14 @@ def figures(outcome: Any, folder: Path) -> dict[str, tuple[Path, str]]:
         _save(fig, folder / "fragility.png"),
         "fraction of runs with an impact per stripe, and the fitted lognormal curves",
     )
-    fig, axes = plt.subplots(1, 2, figsize=(11.0, 4.0), constrained_layout=True)
+    fig, axes = plt.subplots(1, 3, figsize=(15.0, 4.0), constrained_layout=True)
     _cost(decision, axes)
-    out["What pounding costs"] = (_save(fig, folder / "cost.png"),
-                                  f"median over the records at the stripe nearest the MCE level "
-                                  f"({decision.table['stripe_g'].iloc[0]:g} g) against the gap, one line per "
-                                  "value of the other design numbers")
+    out["What pounding costs"] = (
+        _save(fig, folder / "cost.png"),
+        f"median over the records at the stripe nearest the MCE level "
+        f"({decision.table['stripe_g'].iloc[0]:g} g) against the gap, one line per "
+        "value of the other design numbers",
+    )
     fig, ax = plt.subplots(figsize=(6.5, 4.0), constrained_layout=True)
     decision.plot(ax=ax)
     out["Design chart"] = (
@@ -111,21 +113,26 @@ def figures(outcome: Any, folder: Path) -> dict[str, tuple[Path, str]]:
 
 
 def _cost(decision: Any, axes: Any) -> None:
-    """Median peak acceleration and impact force against the gap, per value of the other dimensions."""
+    """Median peak acceleration, its penalty (with bumpers over without) and impact force against the
+    gap, per value of the other dimensions."""
     table = decision.table
     gap = decision.gap_dim
     others = [d for d in decision._dims() if d != gap]
     groups = table.groupby(others) if others else [((), table)]
+    columns = (
+        ("acc_median_g", "peak absolute acceleration (g)"),
+        ("acc_penalty_median", "peak acceleration with bumpers / without"),
+        ("force_median_n", "peak impact force (N)"),
+    )
     for key, part in groups:
         part = part.sort_values(gap)
         key = key if isinstance(key, tuple) else (key,)
         label = ", ".join(f"{d} {v:g}" for d, v in zip(others, key)) or "median"
-        axes[0].plot(1e3 * part[gap], part["acc_median_g"], "o-", ms=3, label=label)
-        axes[1].plot(1e3 * part[gap], part["force_median_n"], "o-", ms=3, label=label)
-    axes[0].set_ylabel("peak absolute acceleration (g)")
-    axes[1].set_ylabel("peak impact force (N)")
-    for ax in axes:
+        for ax, (column, _) in zip(axes, columns):
+            ax.plot(1e3 * part[gap], part[column], "o-", ms=3, label=label)
+    for ax, (_, words) in zip(axes, columns):
         ax.set_xlabel("gap (mm)")
+        ax.set_ylabel(words)
         ax.legend(fontsize=8)
 
 
