@@ -17,15 +17,8 @@
 
 from .decision import Decision, decide
 from .fragility import Fragility, fit_fragility, fit_fragility_capacities
-from .hazard import (
-    DesignSpectrum,
-    HazardCurve,
-    asce7_displacement,
-    asce7_spectrum,
-    ec8_spectrum,
-    probability_in_years,
-    user_spectrum,
-)
+from .hazard import HazardCurve, probability_in_years
+from .spectra import DesignSpectrum, asce7_displacement, asce7_spectrum, ec8_spectrum, user_spectrum
 from .risk import annual_frequency, risk
 from .stripes import StripeAnalysis, open_stripe_analysis, stripe_analysis
 from .suite import ScaledSuite, scale_suite, stripe_factors

