@@ -396,3 +396,23 @@ def test_asce7_isolator_displacement_and_its_damping_table():
         assert out["d_tm_m"] == pytest.approx(1.15 * out["d_m_m"], rel=1e-12)
     with pytest.raises(pounding.InputError, match="s_m1_g"):
         design.asce7_displacement(0.0, 2.5)
+
+
+def test_interval_censored_capacities_are_unbiased_where_first_levels_are_not():
+    """Capacities read as the first level with the event overstate the median; the interval fit does not."""
+    rng = np.random.default_rng(7)
+    median, beta = 0.5, 0.4
+    capacity = median * np.exp(beta * rng.standard_normal(2000))
+    levels = np.round(np.linspace(0.1, 1.5, 10) * 0.9, 4)
+    index = np.searchsorted(levels, capacity)  # the first level at or above each capacity
+    upper = np.where(index < levels.size, levels[np.minimum(index, levels.size - 1)], np.inf)
+    lower = np.where(index == 0, 0.0, levels[np.maximum(index - 1, 0)])
+    lower = np.where(index >= levels.size, levels[-1], lower)
+    fit = design.fit_fragility_intervals(lower, upper, n_bootstrap=0)
+    naive = design.fit_fragility_capacities(upper, max_im_g=float(levels[-1]), n_bootstrap=0)
+    assert fit.median_g == pytest.approx(median, rel=0.04) and fit.beta == pytest.approx(beta, rel=0.1)
+    assert naive.median_g > 1.08 * median  # (the bias the interval fit removes)
+    with pytest.raises(pounding.InputError, match="same interval"):
+        design.fit_fragility_intervals([0.2, 0.2], [0.4, 0.4])
+    with pytest.raises(pounding.InputError, match=r"upper_g\[0\]"):
+        design.fit_fragility_intervals([0.4, 0.2], [0.3, 0.4])

@@ -6,6 +6,7 @@ import math
 
 import numpy as np
 import pytest
+from scipy import optimize, stats
 
 import pounding
 from pounding import design
@@ -176,14 +177,42 @@ def test_capacities_read_the_stripes_as_an_incremental_dynamic_analysis(tmp_path
             assert cap[r] == (levels[reached[0]] if reached.size else np.inf)
     spread = msa.capacities("contact", limit=0.07)
     assert np.unique(spread).size >= 2 and np.isfinite(spread).all()  # (this suite: 0.3 and 0.5 g)
-    fit = msa.capacity_fragility("contact", limit=0.07, n_bootstrap=50)
-    logs = np.log(spread)
-    assert fit.median_g == pytest.approx(math.exp(logs.mean()), rel=1e-12)
-    censored = msa.capacities("contact", limit=0.17)
-    assert np.isinf(censored).any() and np.unique(censored[np.isfinite(censored)]).size >= 2
-    uncensored = design.fit_fragility_capacities(censored[np.isfinite(censored)], n_bootstrap=0)
-    # a record that never reached the gap pulls the median up
-    assert msa.capacity_fragility("contact", limit=0.17, n_bootstrap=0).median_g > uncensored.median_g
+    for gap in (0.07, 0.17):
+        cap = msa.capacities("contact", limit=gap)
+        lower = np.array(
+            [
+                0.0 if c == levels[0] else levels[-1] if np.isinf(c) else levels[levels.index(c) - 1]
+                for c in cap
+            ]
+        )
+        median, beta, best = interval_mle_by_scipy(lower, cap)
+        fit = msa.capacity_fragility("contact", limit=gap, n_bootstrap=0)
+        assert fit.method == "intervals"
+        # the same maximum of the likelihood (flat near it with 6 records: the parameters agree less)
+        assert interval_nll(lower, cap, math.log(fit.median_g), fit.beta) == pytest.approx(best, rel=1e-9)
+        assert fit.median_g == pytest.approx(median, rel=1e-3) and fit.beta == pytest.approx(beta, rel=1e-2)
+    assert np.isinf(msa.capacities("contact", limit=0.17)).any()  # (the censored case is exercised)
+
+
+def interval_nll(lower, upper, mu, beta):
+    from scipy import stats
+
+    with np.errstate(divide="ignore"):
+        p = stats.norm.cdf((np.log(upper) - mu) / beta) - stats.norm.cdf((np.log(lower) - mu) / beta)
+    return -float(np.sum(np.log(p)))
+
+
+def interval_mle_by_scipy(lower, upper):
+    """An independent interval-censored fit: scipy.stats' normal CDF, Nelder-Mead on (ln theta, ln beta)."""
+    from scipy import optimize
+
+    res = optimize.minimize(
+        lambda par: interval_nll(lower, upper, par[0], math.exp(par[1])),
+        [math.log(0.5), math.log(0.3)],
+        method="Nelder-Mead",
+        options={"xatol": 1e-12, "fatol": 1e-14, "maxiter": 50_000},
+    )
+    return math.exp(res.x[0]), math.exp(res.x[1]), float(res.fun)
 
 
 def test_decide_picks_the_smallest_gap_meeting_the_target(tmp_path):
@@ -199,24 +228,99 @@ def test_decide_picks_the_smallest_gap_meeting_the_target(tmp_path):
         progress=False,
     )
     choice = design.decide(msa, 0.4, 0.6, target_probability=0.25, code_minimum_gap_m=0.1)
-    table = choice.table
-    for _, row in table.iterrows():
-        frac_p = msa.probability(0.6).sel({"bumpers.gap": row["bumpers.gap"]})
-        assert row["p_contact_mce"] == pytest.approx(float(frac_p))
-    meeting = table[table["p_contact_mce"] <= 0.25]["bumpers.gap"]
-    if len(meeting):
-        assert choice.recommended["bumpers.gap"] == meeting.min()
-        assert "A gap of" in choice.verdict()
-    else:
-        assert choice.recommended is None and "widen the grid" in choice.verdict()
-    strict = design.decide(msa, 0.4, 0.6, target_probability=1e-9)
-    assert (strict.recommended is None) == (not (strict.table["p_contact_mce"] <= 1e-9).any())
+    table = choice.table.set_index("bumpers.gap")
+    # expected, from the runs by hand: an independent binomial fit where the stripes overlap, else the
+    # fraction of runs at the 0.6 g stripe itself
+    levels = np.array([0.2, 0.4, 0.6, 0.8])
+    hits = (msa.dataset["impacts"].values > 0).sum(axis=1)  # (stripes, gaps)
+    expected = {}
+    for j, gap in enumerate([0.02, 0.06, 0.12, 0.25]):
+        k = hits[:, j]
+        n = np.full(4, 4)
+        if levels[k < n].max(initial=-1) > levels[k > 0].min(initial=9):
+            median, beta = binomial_mle_by_scipy(levels, n, k)
+            expected[gap] = float(stats.norm.cdf(math.log(0.6 / median) / beta))
+        else:
+            assert np.all(np.diff(k) >= 0)  # (monotone here: the fraction at the stripe is the estimate)
+            expected[gap] = k[2] / 4
+        assert table.loc[gap, "p_contact_mce"] == pytest.approx(expected[gap], abs=1e-6)
+    meeting = [g for g, p in expected.items() if p <= 0.25]
+    assert meeting, "the grid's widest gap should meet the target here"
+    assert choice.recommended["bumpers.gap"] == min(meeting)
+    assert "A gap of" in choice.verdict() and "minimum clearance is 100 mm" in choice.verdict()
+    assert (
+        design.decide(msa, 0.4, 0.6, target_probability=1e-9).recommended is None
+        or min(expected.values()) <= 1e-9
+    )
     with pytest.raises(pounding.InputError, match="target_probability"):
         design.decide(msa, 0.4, 0.6, target_probability=1.0)
     with pytest.raises(pounding.InputError, match="gap_dim"):
         design.decide(msa, 0.4, 0.6, gap_dim="isolator.damping")
     with pytest.raises(pounding.InputError, match="level"):
         design.decide(msa, 0.4, 0.6, level="MCE")
+    with pytest.raises(pounding.InputError, match="design_sa_g"):
+        design.decide(msa, 0.7, 0.6)
+    with pytest.raises(pounding.InputError, match="hazard"):
+        design.decide(msa, 0.4, 0.6, hazard=design.HazardCurve([0.1, 1.0], [1e-2, 1e-4], period_s=2.0))
+
+
+def binomial_mle_by_scipy(x, n, k):
+    def neg(par):
+        p = stats.norm.cdf((np.log(x) - par[0]) / math.exp(par[1]))
+        return -np.sum(stats.binom.logpmf(k, n, p))
+
+    res = optimize.minimize(
+        neg,
+        [math.log(np.median(x)), math.log(0.5)],
+        method="Nelder-Mead",
+        options={"xatol": 1e-13, "fatol": 1e-15, "maxiter": 50_000, "maxfev": 50_000},
+    )
+    return math.exp(res.x[0]), math.exp(res.x[1])
+
+
+def synthetic(impacts, status, levels=(0.2, 0.4), **design_dims):
+    """A StripeAnalysis of made-up runs: ``impacts`` and ``status`` of shape (stripes, records)."""
+    import xarray as xr
+
+    impacts = np.asarray(impacts, dtype=float)
+    dims = ("sa_g", "record")
+    ds = xr.Dataset(
+        {
+            "impacts": (dims, impacts),
+            "status": (dims, np.asarray(status, dtype=float)),
+            "done": (dims, np.ones(impacts.shape, dtype=bool)),
+            "disp_max_m": (dims, 0.01 * impacts),
+            "acc_max_g": (dims, 0.1 * impacts),
+            "compression_max_m": (dims, 0.001 * impacts),
+        },
+        coords={"sa_g": list(levels), "record": [f"r{i}" for i in range(impacts.shape[1])]},
+    )
+    return design.StripeAnalysis(ds, 1.0, 0.05, True)
+
+
+def test_where_no_curve_fits_the_probability_is_the_runs_own():
+    # 7 of 10 pound at the first stripe, all at the second: 0.7 there (not a step that says 0)
+    a = synthetic([[1] * 7 + [0] * 3, [1] * 10], [[0] * 10] * 2)
+    assert float(a.probability(0.2)) == pytest.approx(0.7)
+    assert math.isnan(float(a.probability(0.15)))  # below the stripes: not known
+    assert float(a.probability(0.5)) == 1.0  # above a stripe where every run pounded
+    # none, then 3 of 10: 0.3 at the second stripe, 0 below the first
+    b = synthetic([[0] * 10, [1] * 3 + [0] * 7], [[0] * 10] * 2)
+    assert float(b.probability(0.4)) == pytest.approx(0.3) and float(b.probability(0.1)) == 0.0
+    assert math.isnan(float(b.probability(0.5)))
+    # fractions that fall (2/3, 1/3, 1/3): pooled to 4/9 each, not an error
+    c = synthetic([[1, 1, 0], [1, 0, 0], [0, 1, 0]], [[0] * 3] * 3, levels=(0.2, 0.4, 0.6))
+    assert float(c.probability(0.4)) == pytest.approx(4 / 9)
+
+
+def test_a_run_that_stopped_early_counts_when_it_had_the_event():
+    zeno, budget = float(pounding.Status.ZENO), float(pounding.Status.BUDGET)
+    a = synthetic([[2, 0, 0, 1], [3, 1, 0, 0]], [[zeno, budget, 0, 0], [0, 0, budget, 0]])
+    out = a.outcomes("contact").values
+    assert out[0, 0] == 1.0  # stopped (Zeno) after impacts: it pounded
+    assert np.isnan(out[0, 1]) and np.isnan(out[1, 2])  # stopped without an impact: not known
+    n, k = a.counts("contact")
+    assert n.values.tolist() == [3, 3] and k.values.tolist() == [2, 2]
 
 
 def test_a_bumper_capacity_is_the_compression_events_limit(tmp_path):
@@ -244,8 +348,18 @@ def test_a_bumper_capacity_is_the_compression_events_limit(tmp_path):
     assert np.array_equal(beyond.values, expected.values)
     assert float(expected.sum()) > 0  # (some runs do compress beyond it: the check can fail)
     choice = design.decide(msa, 0.6, 0.9, target_probability=0.5)
-    assert choice.table["p_capacity_mce"].notna().all()
-    assert np.allclose(choice.table["p_capacity_mce"], msa.probability(0.9, "compression").values.ravel())
+    levels = np.array([0.3, 0.6, 0.9])
+    comp = msa.dataset["compression_max_m"].values  # (stripes, records, gaps)
+    for j, gap in enumerate([0.04, 0.08]):
+        k = (comp[:, :, j] > 0.004).sum(axis=1)
+        n = np.full(3, 3)
+        if levels[k < n].max(initial=-1) > levels[k > 0].min(initial=9):
+            median, beta = binomial_mle_by_scipy(levels, n, k)
+            want = float(stats.norm.cdf(math.log(0.9 / median) / beta))
+        else:
+            want = float(np.maximum.accumulate(k / n)[2]) if np.all(np.diff(k) >= 0) else math.nan
+        got = float(choice.table.set_index("bumpers.gap").loc[gap, "p_capacity_mce"])
+        assert got == pytest.approx(want, abs=1e-6)
 
 
 def test_the_acceleration_penalty_against_the_runs_without_bumpers(tmp_path):

@@ -16,7 +16,7 @@
 """
 
 from .decision import Decision, decide
-from .fragility import Fragility, fit_fragility, fit_fragility_capacities
+from .fragility import Fragility, fit_fragility, fit_fragility_capacities, fit_fragility_intervals
 from .hazard import HazardCurve, probability_in_years
 from .spectra import DesignSpectrum, asce7_displacement, asce7_spectrum, ec8_spectrum, user_spectrum
 from .risk import annual_frequency, risk
@@ -37,6 +37,7 @@ __all__ = [
     "ec8_spectrum",
     "fit_fragility",
     "fit_fragility_capacities",
+    "fit_fragility_intervals",
     "probability_in_years",
     "risk",
     "open_stripe_analysis",

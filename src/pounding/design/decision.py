@@ -227,6 +227,22 @@ def decide(
             got=type(hazard).__name__,
             expected="pounding.design.HazardCurve or None",
         )
+    if hazard is not None and not math.isclose(hazard.period_s, analysis.period_s, rel_tol=1e-9):
+        raise InputError(
+            Problem.BAD_STATE,
+            "hazard",
+            repr(hazard.name or hazard.period_s),
+            why=f"is for Sa({hazard.period_s:g} s), but the stripes are of Sa({analysis.period_s:g} s)",
+            fix="give the site's hazard curve at the stripes' period",
+        )
+    if design_sa > mce_sa:
+        raise InputError(
+            Problem.BAD_STATE,
+            "design_sa_g",
+            design_sa,
+            why=f"is above mce_sa_g = {mce_sa:g}",
+            fix="give the design level's intensity first, then the MCE level's",
+        )
     code_min = None if code_minimum_gap_m is None else positive("code_minimum_gap_m", code_minimum_gap_m, "m")
     p_design = analysis.probability(design_sa)
     p_mce = analysis.probability(mce_sa)

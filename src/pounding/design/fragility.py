@@ -54,11 +54,13 @@ class Fragility:
         ``censored`` (capacities).
     bootstrap : numpy.ndarray, shape (b, 2)
         The refitted ``(median_g, beta)`` of each bootstrap sample (resamples without an
-        estimate, all-or-nothing stripes, are left out and counted in ``n_failed_resamples``).
+        estimate, whose stripes separate or are all-or-nothing, are kept as steps: ``beta`` 0 and
+        the median at the separation, 0 when every run had the event and ``inf`` when none did).
     confidence : float
         The band's level (0.9: the 5-95 % percentiles).
     n_failed_resamples : int
-        Bootstrap resamples left out.
+        Bootstrap resamples without a finite estimate (kept as steps; a large share says the
+        stripes hardly constrain the dispersion).
 
     Examples
     --------
@@ -83,6 +85,8 @@ class Fragility:
     def probability(self, im_g: Any) -> Any:
         """``P(E | IM = im_g)`` at intensities (g, >= 0; scalar or array)."""
         x = np.asarray(im_g, dtype=float)
+        if np.any(~(x >= 0.0)):
+            raise InputError(Problem.NEGATIVE, "im_g", x.tolist() if x.ndim else float(x), unit="g")
         with np.errstate(divide="ignore"):
             p = special.ndtr(np.log(x / self.median_g) / self.beta)
         return float(p) if p.ndim == 0 else p
@@ -94,8 +98,13 @@ class Fragility:
         if self.bootstrap.shape[0] == 0:
             p = self.probability(x)
             return p, p
-        with np.errstate(divide="ignore"):
-            curves = special.ndtr(np.log(x[None, :] / self.bootstrap[:, :1]) / self.bootstrap[:, 1:])
+        median, beta = self.bootstrap[:, :1], self.bootstrap[:, 1:]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            curves = np.where(
+                beta > 0.0,
+                special.ndtr(np.log(x[None, :] / median) / np.where(beta > 0.0, beta, 1.0)),
+                (x[None, :] >= median).astype(float),
+            )
         tail = 50.0 * (1.0 - self.confidence)
         return np.percentile(curves, tail, axis=0), np.percentile(curves, 100.0 - tail, axis=0)
 
@@ -129,7 +138,13 @@ class Fragility:
         return (
             f"Fragility({self.event or 'event'}: median {self.median_g:.4g} g "
             f"[{ci['median_g'][0]:.3g}, {ci['median_g'][1]:.3g}], beta {self.beta:.3g} "
-            f"[{ci['beta'][0]:.3g}, {ci['beta'][1]:.3g}], {self.method})"
+            f"[{ci['beta'][0]:.3g}, {ci['beta'][1]:.3g}], {self.method}"
+            + (
+                f"; {self.n_failed_resamples} resamples without an estimate"
+                if self.n_failed_resamples
+                else ""
+            )
+            + ")"
         )
 
 
@@ -428,7 +443,13 @@ def _bootstrap_stripes(
     xs = np.broadcast_to(x, draws.shape)
     survivor = np.where(draws < n, xs, -np.inf).max(axis=1)
     first = np.where(draws > 0, xs, np.inf).min(axis=1)
-    fits = draws[survivor > first]  # the others have no estimate (separated)
+    separated = ~(survivor > first)
+    steps = (
+        np.column_stack([_step_median(x, n, kb) for kb in draws[separated]]).T
+        if separated.any()
+        else np.empty((0, 2))
+    )
+    fits = draws[~separated]  # the others have no estimate: kept as steps
     u = np.log(x)
     f = fits / n
     a = np.full(fits.shape[0], start[0])
@@ -461,7 +482,28 @@ def _bootstrap_stripes(
             except InputError:
                 out[i] = np.nan
     out = out[np.isfinite(out).all(axis=1) & (out[:, 1] > 0.0)]
-    return out, reps - out.shape[0]
+    failed = reps - out.shape[0]  # (the steps, and any resample whose fractions fall: left out)
+    return np.vstack([out, steps]), failed
+
+
+def _step_median(x: np.ndarray, n: np.ndarray, k: np.ndarray) -> tuple[float, float]:
+    """The limit of the likelihood for stripes that separate: a step (``beta`` 0) at the geometric
+    mean of the last stripe without the event in any run and the first with it in every run (at a
+    mixed stripe between them, there); 0 when every run had the event, ``inf`` when none did."""
+    if k.sum() == 0:
+        return (math.inf, 0.0)
+    if (k == n).all():
+        return (0.0, 0.0)
+    below = x[k == 0].max(initial=0.0)
+    above = x[k == n].min(initial=math.inf)
+    mixed = x[(k > 0) & (k < n)]
+    if mixed.size:
+        return (float(mixed.min()), 0.0)
+    if below <= 0.0:
+        return (float(above), 0.0)
+    if not math.isfinite(above):
+        return (float(below), 0.0)
+    return (math.sqrt(below * above), 0.0)
 
 
 def _lognormal_fit(c: np.ndarray, censored: np.ndarray, top: float | None) -> tuple[float, float]:
@@ -513,3 +555,134 @@ def _bootstrap_capacities(
         out[kept] = (math.exp(mu), beta)
         kept += 1
     return out[:kept], reps - kept
+
+
+def fit_fragility_intervals(
+    lower_g: Any,
+    upper_g: Any,
+    *,
+    event: str = "",
+    n_bootstrap: int = 200,
+    confidence: float = 0.9,
+    seed: int = 0,
+) -> Fragility:
+    """Fit a lognormal fragility curve to capacities known only between two intensities, by maximum
+    likelihood (interval censoring): an incremental dynamic analysis on a grid of levels, where a
+    record's capacity lies between the last level without the event and the first with it.
+
+    Parameters
+    ----------
+    lower_g : array_like, shape (r,)
+        Each record's highest intensity without the event (g), 0 when it had it at the first level.
+    upper_g : array_like, shape (r,)
+        Its lowest intensity with the event (g), ``inf`` when it never had it (right-censored).
+    event : str
+        A label.
+    n_bootstrap : int
+        Bootstrap resamples of the records (each a numerical fit: 200 by default).
+    confidence : float
+        The band's level, in (0, 1).
+    seed : int
+        The bootstrap's random seed.
+
+    Returns
+    -------
+    Fragility
+        ``method`` ``"intervals"``; ``data`` holds ``lower_g`` and ``upper_g``.
+
+    Examples
+    --------
+    Five records on levels 0.2, 0.4, 0.6 and 0.8 g:
+
+    >>> from pounding import design
+    >>> curve = design.fit_fragility_intervals([0.2, 0.4, 0.4, 0.6, 0.8],
+    ...                                        [0.4, 0.6, 0.6, 0.8, float("inf")],
+    ...                                        n_bootstrap=0)
+    >>> round(curve.median_g, 3), round(curve.beta, 3)
+    (0.559, 0.397)
+    """
+    lo = np.asarray(lower_g, dtype=float)
+    hi = np.asarray(upper_g, dtype=float)
+    if lo.ndim != 1 or lo.size < 2:
+        raise InputError(Problem.TOO_SHORT, "lower_g", f"array of shape {lo.shape}", got=lo.size, expected=2)
+    if hi.shape != lo.shape:
+        raise InputError(
+            Problem.SIZE_MISMATCH,
+            "upper_g",
+            f"array of shape {hi.shape}",
+            got=hi.size,
+            expected=lo.size,
+            other="lower_g",
+        )
+    for i in range(lo.size):
+        if not (np.isfinite(lo[i]) and lo[i] >= 0.0):
+            raise InputError(Problem.NEGATIVE, f"lower_g[{i}]", float(lo[i]), unit="g")
+        if not hi[i] > lo[i]:
+            raise InputError(Problem.OUT_OF_RANGE, f"upper_g[{i}]", float(hi[i]), range=f"({lo[i]:g}, inf]")
+    level = _confidence(confidence)
+    n_reps = integer("n_bootstrap", n_bootstrap, 0, 100_000)
+    rng = _seed(seed)
+    mu, beta = _interval_fit(lo, hi)
+    out = np.empty((n_reps, 2))
+    kept = 0
+    for _ in range(n_reps):
+        idx = rng.integers(0, lo.size, lo.size)
+        try:
+            m, b = _interval_fit(lo[idx], hi[idx])
+        except InputError:
+            continue
+        out[kept] = (math.exp(m), b)
+        kept += 1
+    return Fragility(
+        float(math.exp(mu)),
+        float(beta),
+        str(event),
+        "intervals",
+        {"lower_g": lo, "upper_g": hi},
+        out[:kept],
+        level,
+        n_reps - kept,
+    )
+
+
+def _interval_fit(lo: np.ndarray, hi: np.ndarray) -> tuple[float, float]:
+    """``(mu, beta)`` maximising ``sum ln(Phi((ln hi - mu)/beta) - Phi((ln lo - mu)/beta))``."""
+    with np.errstate(divide="ignore"):
+        a, b = np.log(lo), np.log(hi)
+    pairs = {(float(x), float(y)) for x, y in zip(lo, hi)}
+    if len(pairs) < 2 or np.all(np.isinf(b)) or np.all(np.isinf(a)):
+        raise InputError(
+            Problem.NO_FIT,
+            "upper_g",
+            hi.tolist(),
+            why="puts every record in the same interval, or "
+            "all beyond or below the levels run, so the dispersion has no estimate",
+            fix="run more levels, or more records",
+        )
+    finite = np.concatenate([a[np.isfinite(a)], b[np.isfinite(b)]])
+    start = [float(np.mean(finite)), math.log(max(float(np.std(finite)), 0.1))]
+
+    def neg(theta: np.ndarray) -> float:
+        m, s = theta[0], math.exp(theta[1])
+        zb, za = (b - m) / s, (a - m) / s
+        lb, la = special.log_ndtr(zb), special.log_ndtr(za)
+        # ln(Phi(zb) - Phi(za)), stable: the upper tail's form where both are high
+        upper = special.log_ndtr(-za) + np.log1p(
+            -np.exp(np.minimum(special.log_ndtr(-zb) - special.log_ndtr(-za), 0.0))
+        )
+        lower = lb + np.log1p(-np.exp(np.minimum(la - lb, 0.0)))
+        return -float(np.sum(np.where(za > 0.0, upper, lower)))
+
+    res = optimize.minimize(
+        neg, start, method="Nelder-Mead", options={"xatol": 1e-10, "fatol": 1e-12, "maxiter": 4000}
+    )
+    beta = math.exp(res.x[1])
+    if not res.success or not math.isfinite(res.fun) or beta < 1e-4:
+        raise InputError(
+            Problem.NO_FIT,
+            "upper_g",
+            hi.tolist(),
+            why="gives no finite dispersion (the records' intervals separate)",
+            fix="run more levels between the intervals, or more records",
+        )
+    return float(res.x[0]), beta

@@ -163,7 +163,10 @@ class StripeAnalysis:
                     Problem.NOT_IN_RESULT, "event", event, choices=", ".join(v for v in ds.data_vars)
                 )
             hit = ds[quantity] >= lim if event == "contact" else ds[quantity] > lim
-        valid = (ds["done"] == 1) & (ds["status"] == float(Status.SUCCESS))
+        # a run that stopped early (over its budget, a Zeno sequence) counts when it had the event
+        # before it stopped (its peaks only grow); otherwise it is not known, and left out
+        done = ds["done"] == 1
+        valid = done & ((ds["status"] == float(Status.SUCCESS)) | hit)
         return hit.astype(float).where(valid)
 
     def counts(self, event: str = "contact", limit: float | None = None) -> tuple[Any, Any]:
@@ -236,32 +239,35 @@ class StripeAnalysis:
         limit: float | None = None,
         *,
         at: Mapping[str, float] | None = None,
-        n_bootstrap: int = 1000,
+        n_bootstrap: int = 200,
         confidence: float = 0.9,
         seed: int = 0,
     ) -> Fragility:
-        """The fragility from :meth:`capacities` (incremental dynamic analysis on the stripes' levels;
-        records that never had the event are censored at the last level), by maximum likelihood
-        (:func:`fit_fragility_capacities`).  Records with an unfinished run are left out."""
-        from .fragility import fit_fragility_capacities
+        """The fragility from :meth:`capacities` (incremental dynamic analysis on the stripes' levels),
+        by maximum likelihood with interval censoring (:func:`fit_fragility_intervals`): a record's
+        capacity lies between the level before its first event and that level (below the first
+        level when it had the event there; above the last when it never had it).  Records with an
+        unfinished run before their first event are left out."""
+        from .fragility import fit_fragility_intervals
 
         cap = self.capacities(event, limit, at=at)
         cap = cap[~np.isnan(cap)]
+        levels = self.levels_g
+        upper = cap
+        index = np.searchsorted(levels, np.where(np.isinf(cap), levels[-1], cap))
+        lower = np.where(
+            np.isinf(cap), levels[-1], np.where(index > 0, levels[np.maximum(index - 1, 0)], 0.0)
+        )
         label = event if limit is None else f"{event} > {limit:g}"
-        return fit_fragility_capacities(
-            cap,
-            max_im_g=float(self.levels_g[-1]),
-            event=label,
-            n_bootstrap=n_bootstrap,
-            confidence=confidence,
-            seed=seed,
+        return fit_fragility_intervals(
+            lower, upper, event=label, n_bootstrap=n_bootstrap, confidence=confidence, seed=seed
         )
 
     def probability(self, sa_g: float, event: str = "contact", limit: float | None = None) -> Any:
         """The event's probability at the intensity ``sa_g`` (g) at every design point: the fitted
-        fragility's, or where it has no estimate, the limit it tends to: 0 when no run had the
-        event, 1 when every run had it, and a step at the geometric mean of the stripes that
-        separate the outcomes when they separate.
+        fragility's, or where it has no estimate, the stripes' own fractions
+        (:func:`empirical_probability`: NaN outside the stripes unless an end stripe had the event
+        in no run, or in every run).
 
         Returns
         -------
@@ -341,29 +347,44 @@ class StripeAnalysis:
 
 
 def _probability(x: np.ndarray, n: np.ndarray, k: np.ndarray, at: float) -> float:
-    """``P(E | at)`` from stripes: the maximum-likelihood curve, or its limit where it has no estimate."""
+    """``P(E | at)`` from stripes: the maximum-likelihood curve where it has an estimate; else the
+    stripes' own fractions (made non-decreasing, pooling adjacent stripes that fall, weighted by
+    their runs), linear in ``ln x`` between stripes, 0 below the lowest stripe if its fraction is
+    0 and 1 above the highest if its fraction is 1, and NaN elsewhere (not known from these runs)."""
     from .fragility import _overlap, _probit_fit
 
-    if k.sum() == 0:
-        return 0.0
-    if (k == n).all():
-        return 1.0
     survivor, first = _overlap(x, n, k)
     if np.unique(x).size >= 2 and survivor > first:
-        a, b = _probit_fit(x, n, k)
-        from scipy import special
+        try:
+            a, b = _probit_fit(x, n, k)
+        except InputError:  # (the fractions fall with the intensity: no lognormal curve)
+            pass
+        else:
+            from scipy import special
 
-        return float(special.ndtr(a + b * math.log(at)))
-    # separated: the curve tends to a step between the last stripe without the event in any run
-    # and the first with it in every run
-    below = x[k == 0].max(initial=0.0)
-    above = x[k == n].min(initial=math.inf)
-    if not math.isfinite(above):
-        above = x[k > 0].min()
-    if below <= 0.0:
-        below = above
-    step = math.sqrt(below * above)
-    return 1.0 if at >= step else 0.0
+            return float(special.ndtr(a + b * math.log(at)))
+    return empirical_probability(x, n, k, at)
+
+
+def empirical_probability(x: np.ndarray, n: np.ndarray, k: np.ndarray, at: float) -> float:
+    """The stripes' fractions at ``at``: isotonic (pool adjacent violators, weighted by ``n``),
+    linear in ``ln x`` between stripes; outside them 0 or 1 only where the end stripe says so."""
+    order = np.argsort(x)
+    xs, ns, ks = x[order], n[order].astype(float), k[order].astype(float)
+    blocks = [[ks[i] / ns[i], ns[i], 1] for i in range(xs.size)]  # (value, weight, stripes pooled)
+    merged: list[list[float]] = []
+    for b in blocks:
+        merged.append(b)
+        while len(merged) > 1 and merged[-2][0] > merged[-1][0]:
+            v2, w2, c2 = merged.pop()
+            v1, w1, c1 = merged.pop()
+            merged.append([(v1 * w1 + v2 * w2) / (w1 + w2), w1 + w2, c1 + c2])
+    fractions = np.concatenate([[v] * int(c) for v, _, c in merged])
+    if at < xs[0]:
+        return 0.0 if fractions[0] == 0.0 else math.nan
+    if at > xs[-1]:
+        return 1.0 if fractions[-1] == 1.0 else math.nan
+    return float(np.interp(math.log(at), np.log(xs), fractions))
 
 
 def stripe_analysis(

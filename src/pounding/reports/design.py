@@ -150,6 +150,9 @@ def write_report(outcome: Any, folder: Path) -> Path:
             "beta": f.beta,
             "median_lo_g": f.interval()["median_g"][0],
             "median_hi_g": f.interval()["median_g"][1],
+            "beta_lo": f.interval()["beta"][0],
+            "beta_hi": f.interval()["beta"][1],
+            "resamples_without_estimate": f.n_failed_resamples,
         }
         for at, f in outcome.fragilities.items()
     ]
