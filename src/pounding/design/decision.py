@@ -1,8 +1,8 @@
 """The decision: which gap (and bumper) meets the target probability, and what it costs.
 
 From a :class:`StripeAnalysis`: per design point, the probability of pounding at the design and
-MCE_R intensities (the fitted fragility's), the median peak acceleration and impact force at the
-stripe nearest the MCE_R intensity, and with a hazard curve the probability in N years; the
+MCE intensities (the fitted fragility's), the median peak acceleration and impact force at the
+stripe nearest the MCE intensity, and with a hazard curve the probability in N years; the
 smallest gap of the grid that meets the target, and the code's minimum clearance beside it.
 """
 
@@ -13,6 +13,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from scipy import stats
 
 from .._checks import one_of, positive
 from .._errors import InputError, Problem
@@ -31,10 +32,10 @@ class Decision:
     table : pandas.DataFrame
         One row per design point (its grid values), with ``p_contact_design``, ``p_contact_mce``,
         ``p_contact_years`` (with a hazard curve; NaN otherwise), ``acc_median_g`` and
-        ``force_median_n`` (medians over the records at the stripe nearest the MCE_R intensity,
+        ``force_median_n`` (medians over the records at the stripe nearest the MCE intensity,
         ``stripe_g``), ``acc_penalty_median`` (with bumpers over without, given the runs
         without; NaN otherwise), ``meets_target``, and ``p_capacity_mce``: the probability of compressing
-        a bumper beyond its ``capacity_m`` at the MCE_R intensity (NaN without a capacity).
+        a bumper beyond its ``capacity_m`` at the MCE intensity (NaN without a capacity).
     recommended : dict or None
         The design point chosen (its grid values and row): the smallest gap meeting the target,
         then the lowest median peak acceleration; None when no point meets it.
@@ -78,8 +79,10 @@ class Decision:
         return self.table.copy()
 
     def verdict(self) -> str:
-        """One sentence: the gap recommended and the probability behind it, or that none meets."""
-        level = "MCE_R" if self.level == "mce" else "design"
+        """The gap recommended, the probabilities behind it and the runs they rest on, or that no gap
+        of the grid meets the target; a caution when the runs cannot show the target is met."""
+        level = "MCE" if self.level == "mce" else "design"
+        other = "design" if self.level == "mce" else "MCE"
         code = (
             ""
             if self.code_minimum_gap_m is None
@@ -91,22 +94,32 @@ class Decision:
                 f"{self.target_probability:g}: widen the grid.{code}"
             )
         row = self.recommended
-        others = ", ".join(
-            f"{d} {row[d]:g}" for d in self.table.columns if d not in (self.gap_dim,) and d in self._dims()
-        )
-        p = row[f"p_contact_{self.level}"]
-        capacity = (
-            ""
-            if math.isnan(row.get("p_capacity_mce", math.nan))
-            else f" Probability of compressing a bumper beyond its capacity at the MCE_R level: "
-            f"{row['p_capacity_mce']:.3f}."
-        )
-        return (
+        others = ", ".join(f"{d} {row[d]:g}" for d in self._dims() if d != self.gap_dim)
+        parts = [
             f"A gap of {1e3 * row[self.gap_dim]:.0f} mm{' (' + others + ')' if others else ''}: "
-            f"probability of pounding {p:.3f} at the {level} level (target {self.target_probability:g}), "
-            f"{row['p_contact_design' if self.level == 'mce' else 'p_contact_mce']:.3f} at the "
-            f"{'design' if self.level == 'mce' else 'MCE_R'} level.{capacity}{code}"
-        )
+            f"probability of pounding {row[f'p_contact_{self.level}']:.3f} at the {level} level (target "
+            f"{self.target_probability:g}), {row[f'p_contact_{other.lower()}']:.3f} at the {other} "
+            "level.",
+            f"At the stripe nearest the {level} level, {int(row['pounded_at_level'])} of "
+            f"{int(row['runs_at_level'])} runs pounded.",
+        ]
+        if not math.isnan(row.get("p_contact_years", math.nan)):
+            parts.append(f"In {self.years:g} years at the site: {row['p_contact_years']:.3f}.")
+        if not math.isnan(row.get("p_capacity_mce", math.nan)):
+            parts.append(
+                f"Probability of compressing a bumper beyond its capacity at the MCE level: "
+                f"{row['p_capacity_mce']:.3f}."
+            )
+        if code:
+            parts.append(code.strip())
+        if not row["fitted"] or row["p_upper_95"] > self.target_probability:
+            why = "no lognormal curve could be fitted, and " if not row["fitted"] else ""
+            parts.append(
+                f"Caution: the runs do not settle it ({why}{int(row['pounded_at_level'])} of "
+                f"{int(row['runs_at_level'])} runs at that stripe allow a probability up to "
+                f"{row['p_upper_95']:.2f} at 95 % confidence): run more records."
+            )
+        return " ".join(parts)
 
     def plot(self, ax: Any = None) -> list:
         """The design chart: the probability of pounding at both levels against the gap (one line
@@ -129,6 +142,10 @@ _COLUMNS = (
     "meets_target",
     "p_capacity_mce",
     "acc_penalty_median",
+    "fitted",
+    "runs_at_level",
+    "pounded_at_level",
+    "p_upper_95",
 )
 
 
@@ -153,7 +170,7 @@ def decide(
     analysis : StripeAnalysis
         A stripe analysis with bumpers over a grid with a gap dimension.
     design_sa_g, mce_sa_g : float
-        The design and MCE_R intensities (g) at the analysis's period (e.g.
+        The design and MCE intensities (g) at the analysis's period (e.g.
         ``asce7_spectrum(...).sa_g(period_s)``).
     target_probability : float
         The largest probability of pounding accepted, in (0, 1).
@@ -171,7 +188,7 @@ def decide(
     free : StripeAnalysis, optional
         The same stripes and records on the system without bumpers: adds ``acc_penalty_median``,
         the median over the records of the peak acceleration with bumpers over without, at the
-        stripe nearest the MCE_R intensity (1 for a record that does not pound).
+        stripe nearest the MCE intensity (1 for a record that does not pound).
 
     Returns
     -------
@@ -186,9 +203,10 @@ def decide(
     ...                              store="choose.zarr", progress=False,
     ...                              grid={"bumpers.gap": [0.02, 0.2]})
     >>> choice = design.decide(msa, 0.3, 0.45, target_probability=0.1)
-    >>> choice.table[["bumpers.gap", "p_contact_design", "p_contact_mce"]].values
-    array([[0.02, 0.  , 1.  ],
-           [0.2 , 0.  , 0.  ]])
+    >>> columns = ["bumpers.gap", "p_contact_design", "p_contact_mce"]
+    >>> choice.table[columns].values.round(3)
+    array([[0.02 , 0.443, 0.885],
+           [0.2  , 0.   , 0.   ]])
     """
     import pandas as pd
 
@@ -248,6 +266,10 @@ def decide(
     p_mce = analysis.probability(mce_sa)
     p_cap = None if analysis.capacity_m is None else analysis.probability(mce_sa, "compression")
     stripe = int(np.argmin(np.abs(np.log(analysis.levels_g / mce_sa))))
+    target_stripe = int(
+        np.argmin(np.abs(np.log(analysis.levels_g / (mce_sa if level == "mce" else design_sa))))
+    )
+    n_runs, n_hits = (c.load() for c in analysis.counts("contact"))
     at_stripe = analysis.dataset.isel(sa_g=stripe).load()
     ok = (at_stripe["done"] == 1) & (at_stripe["status"] == 0.0)
     acc = at_stripe["acc_max_g"].where(ok).median("record")
@@ -262,11 +284,20 @@ def decide(
         row["p_contact_mce"] = float(p_mce.values[index])
         row["p_capacity_mce"] = math.nan if p_cap is None else float(p_cap.values[index])
         row["p_contact_years"] = math.nan
+        try:
+            frag = analysis.fragility("contact", at=row_values(row, dims), n_bootstrap=0)
+        except InputError:
+            frag = None
+        row["fitted"] = frag is not None
+        # the evidence at the stripe nearest the target's level: runs, runs that pounded, and the
+        # exact (Clopper-Pearson) 95 % upper bound of the probability they allow
+        nn, kk = int(n_runs.isel(sel).values[target_stripe]), int(n_hits.isel(sel).values[target_stripe])
+        row["runs_at_level"] = nn
+        row["pounded_at_level"] = kk
+        row["p_upper_95"] = (
+            1.0 if nn == 0 else (1.0 if kk >= nn else float(stats.beta.ppf(0.95, kk + 1, nn - kk)))
+        )
         if hazard is not None:
-            try:
-                frag = analysis.fragility("contact", at=row_values(row, dims), n_bootstrap=0)
-            except InputError:
-                frag = None
             if frag is not None:
                 from .risk import annual_frequency
 
@@ -282,7 +313,7 @@ def decide(
     recommended = None
     if len(candidates):
         best = candidates.sort_values([gap_dim, "acc_median_g"]).iloc[0]
-        recommended = {k: (bool(v) if k == "meets_target" else float(v)) for k, v in best.items()}
+        recommended = {k: (bool(v) if k in ("meets_target", "fitted") else float(v)) for k, v in best.items()}
     return Decision(table, recommended, target, level, design_sa, mce_sa, gap_dim, code_min, yrs)
 
 

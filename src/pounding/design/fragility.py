@@ -377,8 +377,8 @@ def _probit_fit(x: np.ndarray, n: np.ndarray, k: np.ndarray) -> tuple[float, flo
             why = "has the event in every run, so the curve lies below the intensities run"
         else:
             why = (
-                f"has the event in no run at {high_survivor:g} g and below and in every run above "
-                f"{low_event:g} g: the dispersion has no estimate (it would be 0)"
+                f"separates: no run below {low_event:g} g has the event and no run above {high_survivor:g} g "
+                "is without it, so the dispersion has no estimate (it would be 0)"
             )
         raise InputError(
             Problem.NO_FIT,

@@ -12,6 +12,7 @@ from .._checks import float_array, non_negative, positive, real
 from .._errors import InputError, Problem
 from .spectra import _read_spectrum_csv
 
+
 @dataclass(frozen=True, eq=False)
 class HazardCurve:
     """How often a spectral acceleration is exceeded at a site: ``lambda(Sa)`` per year.

