@@ -157,6 +157,10 @@ def test_a_hazard_curve_interpolates_in_log_log_and_inverts():
         design.HazardCurve([0.0, 0.1], [1e-2, 1e-3], period_s=1.0)
     with pytest.raises(pounding.InputError, match="annual_frequency_per_year"):
         curve.sa_at(0.5)
+    with pytest.raises(pounding.InputError, match="sa_g"):
+        curve.annual_frequency(0.0)
+    with pytest.raises(pounding.InputError, match="annual_frequency_per_year"):
+        design.probability_in_years(-1.0)
 
 
 @pytest.mark.parametrize(

@@ -389,3 +389,12 @@ def test_the_acceleration_penalty_against_the_runs_without_bumpers(tmp_path):
     assert table.loc[0.5, "acc_penalty_median"] == pytest.approx(1.0, rel=1e-9)  # no contact at 500 mm
     with pytest.raises(pounding.InputError, match="free"):
         design.decide(msa, 0.2, 0.5, free=msa)
+
+
+def test_an_alias_and_what_it_sets_are_not_both_axes():
+    with pytest.raises(pounding.InputError, match="bumpers.gap"):
+        pounding.StudySpec(
+            pounding.presets.paper_damped(),
+            {"kind": "simulate", "freq_hz": 1.5, "duration_s": 1.0, "a_g": 0.05},
+            {"bumpers.gap": [0.01, 0.02], "bumpers.gap_left": [0.01]},
+        )

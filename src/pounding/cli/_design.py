@@ -33,13 +33,20 @@ def design(
     curves, the decision, and a report."""
     from dataclasses import replace
 
+    from .._checks import integer
+    from .._runner import scheduler_kind
     from ..design.plan import DesignPlan, free_store, run_plan
     from ..reports.design import write_report
 
     parsed = DesignPlan.from_toml(plan)  # (a bad file fails here, before any work)
     out = folder("--out", out)
+    if workers is not None:
+        integer("--workers", workers, 1, 4096)
+    if scheduler is not None:
+        scheduler_kind(scheduler)
     if scheduler is not None or workers is not None:
-        parsed = replace(parsed, scheduler=scheduler or parsed.scheduler, workers=workers or parsed.workers)
+        parsed = replace(parsed, scheduler=parsed.scheduler if scheduler is None else scheduler,
+                         workers=parsed.workers if workers is None else workers)
     where = store or (str(parsed.store) if parsed.store is not None else str(out / "runs.zarr"))
     n_design = 1
     for values in parsed.grid.values():
@@ -53,7 +60,8 @@ def design(
     try:
         outcome = run_plan(parsed, where, progress=True, resume=not restart)
     except Interrupted as stop:
-        interrupted(f"{stop.done} of {stop.total} runs are in {where}; run the same command again to resume")
+        interrupted(f"{stop.done} of {stop.total} runs of the part under way are kept in {where} and "
+                    f"{free_store(where)}; run the same command again to resume")
         return
     with interrupts_deferred() as held:  # (the runs are in their store: the report is written whole or not)
         page = write_report(outcome, out)

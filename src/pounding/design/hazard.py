@@ -102,7 +102,12 @@ class HazardCurve:
 
     def annual_frequency(self, sa_g: Any) -> np.ndarray:
         """``lambda`` (1/year) at ``sa_g`` (g, > 0): log-log interpolation, power laws beyond."""
-        x = np.log(np.asarray(sa_g, dtype=float))
+        values = np.asarray(sa_g, dtype=float)
+        if np.any(~(values > 0.0)):
+            raise InputError(
+                Problem.NOT_POSITIVE, "sa_g", values.tolist() if values.ndim else float(values), unit="g"
+            )
+        x = np.log(values)
         lx, ly = np.log(self.sa_g), np.log(self.annual_frequency_per_year)
         y = np.interp(x, lx, ly)
         lo_slope = (ly[1] - ly[0]) / (lx[1] - lx[0])
@@ -173,5 +178,12 @@ def probability_in_years(annual_frequency_per_year: Any, years: float = 50.0) ->
     """
     yrs = positive("years", years, "years")
     lam = np.asarray(annual_frequency_per_year, dtype=float)
+    if np.any(~(lam >= 0.0)):
+        raise InputError(
+            Problem.NEGATIVE,
+            "annual_frequency_per_year",
+            lam.tolist() if lam.ndim else float(lam),
+            unit="1/year",
+        )
     out = -np.expm1(-lam * yrs)
     return float(out) if out.ndim == 0 else out

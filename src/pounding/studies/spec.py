@@ -22,7 +22,7 @@ import numpy as np
 from .._checks import parse_toml, read_text
 from .._errors import InputError, Problem
 from ..model import Oscillator
-from ..model.dotted import set_value, why_unresolved
+from ..model.dotted import ALIASES, set_value, why_unresolved
 
 KINDS = ("sweep", "simulate", "record")
 # what each kind of point takes (defaults; None: required), by the name a grid can vary
@@ -381,6 +381,11 @@ def _check_grid(value: Any, compute: dict[str, Any], system: Oscillator) -> dict
         if len(set(values)) != len(values):
             raise InputError(Problem.DUPLICATE, field, values, repeated="a value")
         out[name] = tuple(values)
+    for alias, names in ALIASES.items():  # (an alias and what it sets on two axes: which one wins?)
+        both = [n for n in names if n in out]
+        if alias in out and both:
+            raise InputError(Problem.DUPLICATE, f"grid.{both[0]}", list(out[both[0]]),
+                             repeated=f"grid.{alias} (which sets {' and '.join(names)})")
     missing = [k for k, d in keys.items() if d is None and k not in compute and k not in out
                and k not in ("freqs_hz", "max_cycles", "steady_rtol", "f_ref_hz", "rtol", "scale_pga_g",
                              "sa_g", "sa_period_s", "sa_damping_ratio",
