@@ -16,11 +16,13 @@
 """
 
 from .decision import Decision, decide
-from .fragility import Fragility, fit_fragility, fit_fragility_capacities, fit_fragility_intervals
+from .capacities import fit_fragility_capacities, fit_fragility_intervals
+from .fragility import Fragility, fit_fragility
 from .hazard import HazardCurve, probability_in_years
 from .spectra import DesignSpectrum, asce7_displacement, asce7_spectrum, ec8_spectrum, user_spectrum
 from .risk import annual_frequency, risk
-from .stripes import StripeAnalysis, open_stripe_analysis, stripe_analysis
+from .stripe_result import StripeAnalysis
+from .stripes import open_stripe_analysis, stripe_analysis
 from .suite import ScaledSuite, scale_suite, stripe_factors
 
 __all__ = [

@@ -18,7 +18,7 @@ from scipy import stats
 from .._checks import one_of, positive
 from .._errors import InputError, Problem
 from .hazard import HazardCurve, probability_in_years
-from .stripes import StripeAnalysis
+from .stripe_result import StripeAnalysis
 
 LEVELS = ("design", "mce")
 

@@ -291,8 +291,11 @@ def ec8_spectrum(
     """
     agr = positive("a_gr_g", a_gr_g, "g")
     plausible("a_gr_g", agr, 0.01, 1.0, "a_gR is in g (0.25 is a quarter of g)")
-    ground = one_of("ground_type", ground_type.upper() if isinstance(ground_type, str) else ground_type,
-                    tuple(EC8_GROUND[1]))
+    ground = one_of(
+        "ground_type",
+        ground_type.upper() if isinstance(ground_type, str) else ground_type,
+        tuple(EC8_GROUND[1]),
+    )
     if isinstance(spectrum_type, bool) or spectrum_type not in (1, 2):
         raise InputError(Problem.NOT_ONE_OF, "spectrum_type", spectrum_type, choices="1, 2")
     gamma = positive("importance", importance, "(a factor)")
