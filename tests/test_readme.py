@@ -24,7 +24,8 @@ BLOCK_TIMEOUT_S = 1200
 # what the blocks write, each in a place of its own (two blocks writing one file would hide a failure)
 WRITTEN = ("report/index.html", "contacts.csv", "history.csv", "campaign.nc", "sweep.csv", "sweep.png",
            "campaign/campaign.nc", "calibrated.toml", "fitted.toml", "fitted_paper.toml", "residuals.csv",
-           "lab/targets.toml", "quake.png", "spectra", "gaps.zarr", "gaps_cli.zarr")
+           "lab/targets.toml", "quake.png", "spectra", "gaps.zarr", "gaps_cli.zarr",
+           "ups_design/index.html", "ups_design/decision.csv")
 
 
 def _blocks() -> list[tuple[str, str]]:

@@ -346,21 +346,32 @@ def _bootstrap_stripes(
     start: tuple[float, float],
 ) -> tuple[np.ndarray, int]:
     """Runs resampled within each stripe (the counts binomial with the stripe's fraction), each
-    resample refitted: Fisher scoring on all at once from the data's estimate ``start``, and
-    the scalar fit for any that did not converge."""
+    resample refitted (:func:`refit_stripes`)."""
     draws = rng.binomial(n[None, :], (k / n)[None, :], size=(reps, x.size))
-    xs = np.broadcast_to(x, draws.shape)
-    survivor = np.where(draws < n, xs, -np.inf).max(axis=1)
-    first = np.where(draws > 0, xs, np.inf).min(axis=1)
+    return refit_stripes(x, np.broadcast_to(n, draws.shape), draws, start)
+
+
+def refit_stripes(
+    x: np.ndarray, runs: np.ndarray, events: np.ndarray, start: tuple[float, float]
+) -> tuple[np.ndarray, int]:
+    """The ``(median_g, beta)`` of each resample (rows of ``runs`` and ``events``, shape
+    (resamples, stripes)): Fisher scoring on all at once from ``start``, the scalar fit for any
+    that did not converge; resamples without an estimate kept as steps (``beta`` 0).  Returns the
+    fits and the number of resamples without one."""
+    reps = runs.shape[0]
+    xs = np.broadcast_to(x, runs.shape)
+    survivor = np.where(events < runs, xs, -np.inf).max(axis=1)
+    first = np.where(events > 0, xs, np.inf).min(axis=1)
     separated = ~(survivor > first)
     steps = (
-        np.column_stack([_step_median(x, n, kb) for kb in draws[separated]]).T
+        np.array([_step_median(x, nb, kb) for nb, kb in zip(runs[separated], events[separated])])
         if separated.any()
         else np.empty((0, 2))
     )
-    fits = draws[~separated]  # the others have no estimate: kept as steps
+    n, fits = runs[~separated], events[~separated]  # the others have no estimate: kept as steps
     u = np.log(x)
-    f = fits / n
+    with np.errstate(all="ignore"):
+        f = np.where(n > 0, fits / np.where(n > 0, n, 1), 0.0)
     a = np.full(fits.shape[0], start[0])
     b = np.full(fits.shape[0], start[1])
     done = np.zeros(fits.shape[0], dtype=bool)
@@ -385,8 +396,9 @@ def _bootstrap_stripes(
     with np.errstate(all="ignore"):  # (a median beyond floating point: that resample is dropped)
         out = np.column_stack([np.exp(-a / b), 1.0 / b])
         for i in np.flatnonzero(~done | ~(b > 0) | ~np.isfinite(out).all(axis=1)):
+            keep = n[i] > 0
             try:
-                ai, bi = _probit_fit(x, n, fits[i])
+                ai, bi = _probit_fit(x[keep], n[i][keep], fits[i][keep])
                 out[i] = (np.exp(-ai / bi), 1.0 / bi)
             except InputError:
                 out[i] = np.nan
@@ -398,7 +410,9 @@ def _bootstrap_stripes(
 def _step_median(x: np.ndarray, n: np.ndarray, k: np.ndarray) -> tuple[float, float]:
     """The limit of the likelihood for stripes that separate: a step (``beta`` 0) at the geometric
     mean of the last stripe without the event in any run and the first with it in every run (at a
-    mixed stripe between them, there); 0 when every run had the event, ``inf`` when none did."""
+    mixed stripe between them, there); 0 when every run had the event, ``inf`` when none did.
+    Stripes without runs are left out."""
+    x, n, k = x[n > 0], n[n > 0], k[n > 0]
     if k.sum() == 0:
         return (math.inf, 0.0)
     if (k == n).all():

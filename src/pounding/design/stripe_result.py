@@ -150,22 +150,41 @@ class StripeAnalysis:
     ) -> Fragility:
         """The event's lognormal fragility over the stripes at one design point (``at``: a value for
         each design dimension, e.g. ``{"bumpers.gap": 0.1}``), by maximum likelihood
-        (:func:`fit_fragility`)."""
-        n, k = self.counts(event, limit)
+        (:func:`fit_fragility`).  Its band resamples *records* (each with its runs at every stripe):
+        the same records are in every stripe, so resampling runs within stripes would understate
+        the record-to-record spread."""
+        from dataclasses import replace
+
+        from .._checks import integer
+        from .fragility import _seed, refit_stripes
+
         sel = self._point(at)
-        n, k = n.sel(sel), k.sel(sel)
-        keep = n.values > 0
+        outcomes = self.outcomes(event, limit).sel(sel).transpose("sa_g", "record").values  # (s, r)
+        n = np.isfinite(outcomes).sum(axis=1)
+        k = np.nansum(outcomes, axis=1).astype(int)
+        keep = n > 0
         label = event if limit is None else f"{event} > {limit:g}"
         where = ", ".join(f"{d} {v:g}" for d, v in sel.items())
-        return fit_fragility(
+        fit = fit_fragility(
             self.levels_g[keep],
-            n.values[keep].astype(int),
-            k.values[keep].astype(int),
+            n[keep],
+            k[keep],
             event=f"{label} ({where})" if where else label,
-            n_bootstrap=n_bootstrap,
+            n_bootstrap=0,
             confidence=confidence,
             seed=seed,
         )
+        reps = integer("n_bootstrap", n_bootstrap, 0, 100_000)
+        if reps == 0:
+            return fit
+        rng = _seed(seed)
+        picks = rng.integers(0, outcomes.shape[1], size=(reps, outcomes.shape[1]))
+        chosen = outcomes[keep][:, picks]  # (s, reps, r)
+        runs = np.isfinite(chosen).sum(axis=2).T  # (reps, s)
+        events = np.nansum(chosen, axis=2).T.astype(int)
+        start = (-np.log(fit.median_g) / fit.beta, 1.0 / fit.beta)
+        boot, failed = refit_stripes(self.levels_g[keep], runs, events, start)
+        return replace(fit, bootstrap=boot, n_failed_resamples=failed)
 
     def capacities(
         self, event: str = "contact", limit: float | None = None, *, at: Mapping[str, float] | None = None

@@ -17,10 +17,10 @@ NOTES = (
     "damping, of each record as the engine sees it (linear between samples); each record is scaled to each "
     "stripe by its own factor.",
     "A run pounds when it has at least one impact. The fragility of pounding is lognormal, fitted by maximum "
-    "likelihood to the stripes (binomial likelihood); its band is a 90 % bootstrap band (runs resampled "
-    "within each stripe; the same records are in every stripe, so the band understates the record-to-record "
-    "spread). Where no curve can be fitted (no run pounds, every run does, or the outcomes separate between "
-    "stripes) the probability is the runs' own fraction, linear between stripes, and blank outside them "
+    "likelihood to the stripes (binomial likelihood); its band is a 90 % bootstrap band (records "
+    "resampled, each with its runs at every stripe). Where no curve can be fitted (no run pounds, every "
+    "run does, or the outcomes separate between stripes) the probability is the runs' own fraction, "
+    "linear between stripes, and blank outside them "
     "unless an end stripe settles it (0 below a stripe where no run pounded, 1 above one where all did).",
     "'Runs at level' and 'pounded at level' are the runs at the stripe nearest the target's level; 'P 95 % "
     "upper' is the largest probability those runs allow at 95 % confidence (Clopper-Pearson): when it is "
