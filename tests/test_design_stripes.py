@@ -7,6 +7,7 @@ import math
 import numpy as np
 import pytest
 from scipy import optimize, stats
+from test_design import binomial_mle_by_scipy
 
 import pounding
 from pounding import design
@@ -205,7 +206,6 @@ def interval_nll(lower, upper, mu, beta):
 
 def interval_mle_by_scipy(lower, upper):
     """An independent interval-censored fit: scipy.stats' normal CDF, Nelder-Mead on (ln theta, ln beta)."""
-    from scipy import optimize
 
     res = optimize.minimize(
         lambda par: interval_nll(lower, upper, par[0], math.exp(par[1])),
@@ -263,20 +263,6 @@ def test_decide_picks_the_smallest_gap_meeting_the_target(tmp_path):
         design.decide(msa, 0.7, 0.6)
     with pytest.raises(pounding.InputError, match="hazard"):
         design.decide(msa, 0.4, 0.6, hazard=design.HazardCurve([0.1, 1.0], [1e-2, 1e-4], period_s=2.0))
-
-
-def binomial_mle_by_scipy(x, n, k):
-    def neg(par):
-        p = stats.norm.cdf((np.log(x) - par[0]) / math.exp(par[1]))
-        return -np.sum(stats.binom.logpmf(k, n, p))
-
-    res = optimize.minimize(
-        neg,
-        [math.log(np.median(x)), math.log(0.5)],
-        method="Nelder-Mead",
-        options={"xatol": 1e-13, "fatol": 1e-15, "maxiter": 50_000, "maxfev": 50_000},
-    )
-    return math.exp(res.x[0]), math.exp(res.x[1])
 
 
 def synthetic(impacts, status, levels=(0.2, 0.4), **design_dims):

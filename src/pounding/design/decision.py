@@ -128,6 +128,18 @@ class Decision:
 
         return plot_decision(self, ax=ax)
 
+    def by_gap(self) -> list[tuple[str, Any]]:
+        """The table's rows grouped by the other design dimensions: ``(label, rows sorted by gap)``
+        per group (label empty without other dimensions)."""
+        gap = self.gap_dim
+        others = [d for d in self._dims() if d != gap]
+        groups = self.table.groupby(others) if others else [((), self.table)]
+        out = []
+        for key, part in groups:
+            key = key if isinstance(key, tuple) else (key,)
+            out.append((", ".join(f"{d} {v:g}" for d, v in zip(others, key)), part.sort_values(gap)))
+        return out
+
     def _dims(self) -> list[str]:
         return [c for c in self.table.columns if c not in _COLUMNS]
 
@@ -271,7 +283,7 @@ def decide(
     )
     n_runs, n_hits = (c.load() for c in analysis.counts("contact"))
     at_stripe = analysis.dataset.isel(sa_g=stripe).load()
-    ok = (at_stripe["done"] == 1) & (at_stripe["status"] == 0.0)
+    ok = analysis.finished().isel(sa_g=stripe)
     acc = at_stripe["acc_max_g"].where(ok).median("record")
     penalty = None if free is None else _penalty(analysis, free, stripe, ok)
     force = at_stripe["impact_force_max_n"].where(ok).median("record")
@@ -340,7 +352,7 @@ def _penalty(analysis: StripeAnalysis, free: StripeAnalysis, stripe: int, ok: An
             fix="run stripe_analysis(system.without_bumpers(), the same records and levels_g)",
         )
     base = free.dataset.isel(sa_g=stripe).load()
-    base_ok = (base["done"] == 1) & (base["status"] == 0.0)
+    base_ok = free.finished().isel(sa_g=stripe)
     ratio = analysis.dataset.isel(sa_g=stripe)["acc_max_g"].load() / base["acc_max_g"].where(base_ok)
     return ratio.where(ok).median("record")
 

@@ -17,7 +17,8 @@ import numpy as np
 from .._checks import float_array, integer, one_of, parse_toml, positive, read_text
 from .._errors import InputError, Problem
 from ..model import Oscillator
-from ..studies.spec import system_from_table
+from ..model.oscillator import _check_keys
+from ..studies.spec import _table, system_from_table
 from .hazard import HazardCurve
 from .spectra import DesignSpectrum, asce7_displacement, asce7_spectrum, ec8_spectrum, user_spectrum
 from .stripes import suite_sources
@@ -111,7 +112,7 @@ class DesignPlan:
     def from_dict(cls, table: Mapping[str, Any], source: Path = Path("design.toml")) -> "DesignPlan":
         """From the file's tables (see :meth:`from_toml`)."""
         base = source.parent
-        _keys("", table, TOP_KEYS, required=("system", "site", "records", "design"))
+        _check_keys(table, "", TOP_KEYS, ("system", "site", "records", "design"))
         system = system_from_table(table["system"], base)
         if "bumpers" in table:
             tables = system.to_dict()
@@ -127,7 +128,7 @@ class DesignPlan:
             )
         design_spec, mce_spec, hazard_file = _site(_table("site", table["site"]), base)
         rec = _table("records", table["records"])
-        _keys("records.", rec, RECORD_KEYS, required=("suite", "period_s"))
+        _check_keys(rec, "records.", RECORD_KEYS, ("suite", "period_s"))
         records = suite_sources(rec["suite"])
         records = [_path(r, base) for r in records]
         period = positive("records.period_s", rec["period_s"], "s")
@@ -163,7 +164,7 @@ class DesignPlan:
                 hint=" (two periods, s: lo < hi)",
             )
         des = _table("design", table["design"])
-        _keys("design.", des, DESIGN_KEYS, required=("gaps_m",))
+        _check_keys(des, "design.", DESIGN_KEYS, ("gaps_m",))
         gaps = float_array("design.gaps_m", des["gaps_m"])
         if np.any(gaps <= 0):
             i = int(np.flatnonzero(gaps <= 0)[0])
@@ -210,7 +211,7 @@ class DesignPlan:
                     "period_s", "design.t_m_s"
                 ) from None
         run = _table("run", table.get("run", {}))
-        _keys("run.", run, RUN_KEYS)
+        _check_keys(run, "run.", RUN_KEYS, ())
         store = None if "store" not in run else _path(_text("run.store", run["store"]), base)
         scheduler = run.get("scheduler")
         if scheduler is not None:
@@ -242,21 +243,6 @@ class DesignPlan:
             None if store is None else Path(store),
             source,
         )
-
-
-def _table(field: str, value: Any) -> Mapping[str, Any]:
-    if not isinstance(value, Mapping):
-        raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__, expected="table")
-    return value
-
-
-def _keys(prefix: str, table: Mapping[str, Any], allowed: tuple, required: tuple = ()) -> None:
-    for key in table:
-        if key not in allowed:
-            raise InputError(Problem.UNKNOWN_KEY, f"{prefix}{key}", table[key], choices=", ".join(allowed))
-    for key in required:
-        if key not in table:
-            raise InputError(Problem.MISSING_KEY, f"{prefix}{key}", None, choices=", ".join(allowed))
 
 
 def _text(field: str, value: Any) -> str:
@@ -309,7 +295,7 @@ def _site(site: Mapping[str, Any], base: Path) -> tuple[DesignSpectrum, DesignSp
 
 def _site_spectra(site: Mapping[str, Any], base: Path) -> tuple[DesignSpectrum, DesignSpectrum, Any]:
     code = one_of("site.code", site.get("code", "asce7-16"), SITE_CODES)
-    _keys("site.", site, SITE_KEYS[code])
+    _check_keys(site, "site.", SITE_KEYS[code], ())
     if code == "asce7-16":
         for key in ("s_ds_g", "s_d1_g"):
             if key not in site:

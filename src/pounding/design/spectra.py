@@ -412,43 +412,13 @@ def user_spectrum(
 
 
 def _read_spectrum_csv(path: Any) -> tuple[np.ndarray, np.ndarray, str]:
-    from .._checks import read_text
+    """The first two columns of a delimited file (a header line allowed; errors name the line)."""
+    from .._delimited import read_columns
 
-    text = read_text("path", path)
-    rows = []
-    first = True  # (a header is allowed on the first line that is not a comment, and only there)
-    for n, line in enumerate(text.splitlines(), 1):
-        line = line.split("#", 1)[0].strip()
-        if not line:
-            continue
-        header_allowed, first = first, False
-        cells = (
-            [c.strip() for c in line.replace(";", ",").split(",")]
-            if "," in line or ";" in line
-            else line.split()
-        )
-        if len(cells) < 2:
-            raise InputError(Problem.SHORT_LINE, "path", str(path), line=n, got=len(cells), column=2)
-        try:
-            rows.append((float(cells[0]), float(cells[1])))
-        except ValueError:
-            if not header_allowed:
-                bad = cells[0] if not _is_number(cells[0]) else cells[1]
-                raise InputError(
-                    Problem.BAD_CELL, "path", str(path), line=n, column=1 if bad == cells[0] else 2, token=bad
-                ) from None
-    if len(rows) < 2:
-        raise InputError(Problem.TOO_SHORT, "path", str(path), got=len(rows), expected=2)
-    arr = np.array(rows)
-    return arr[:, 0], arr[:, 1], str(path)
-
-
-def _is_number(text: str) -> bool:
-    try:
-        float(text)
-    except ValueError:
-        return False
-    return True
+    values, _, _ = read_columns("path", path, {"x": 0, "y": 1})
+    if values["x"].size < 2:
+        raise InputError(Problem.TOO_SHORT, "path", str(path), got=values["x"].size, expected=2)
+    return values["x"], values["y"], str(path)
 
 
 # ASCE 7-16 Table 17.5-1: the damping coefficient B_M against the effective damping (fraction)

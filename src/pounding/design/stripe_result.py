@@ -127,6 +127,11 @@ class StripeAnalysis:
         valid = done & ((ds["status"] == float(Status.SUCCESS)) | hit)
         return hit.astype(float).where(valid)
 
+    def finished(self) -> Any:
+        """True where a run is done and ended with SUCCESS (dims those of :attr:`dataset`)."""
+        ds = self.dataset
+        return (ds["done"] == 1) & (ds["status"] == float(Status.SUCCESS))
+
     def counts(self, event: str = "contact", limit: float | None = None) -> tuple[Any, Any]:
         """Per stripe and design point, the runs counted and the runs with the event (the
         records' dimension summed): two ``xarray.DataArray`` of dims ``sa_g`` and the design's."""

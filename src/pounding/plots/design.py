@@ -322,7 +322,7 @@ def plot_stripes(analysis: Any, event: str = "contact", limit: float | None = No
 
 def plot_decision(decision: Any, ax: Any = None) -> list:
     """The design chart of a :class:`pounding.design.Decision`: the probability of pounding at the
-    design (dashed) and MCE_R (solid) intensities against the gap, one colour per value of the
+    design (dashed) and MCE (solid) intensities against the gap, one colour per value of the
     other design dimensions, the target (horizontal), the gap recommended and the code's minimum
     clearance (vertical).
 
@@ -351,17 +351,11 @@ def plot_decision(decision: Any, ax: Any = None) -> list:
     4
     """
     ax = _axes(ax, (6.5, 4.0))
-    table = decision.table
     gap = decision.gap_dim
-    others = [d for d in decision._dims() if d != gap]
-    groups = table.groupby(others) if others else [((), table)]
     artists = []
-    for key, part in groups:
-        part = part.sort_values(gap)
-        key = key if isinstance(key, tuple) else (key,)
-        label = ", ".join(f"{d} {v:g}" for d, v in zip(others, key))
+    for label, part in decision.by_gap():
         (solid,) = ax.plot(1e3 * part[gap], part["p_contact_mce"], "o-", ms=3,
-                           label=f"MCE_R ({decision.mce_sa_g:.3g} g){', ' + label if label else ''}")
+                           label=f"MCE ({decision.mce_sa_g:.3g} g){', ' + label if label else ''}")
         (dashed,) = ax.plot(1e3 * part[gap], part["p_contact_design"], "s--", ms=3, color=solid.get_color(),
                             label=f"design ({decision.design_sa_g:.3g} g){', ' + label if label else ''}")
         artists += [solid, dashed]
@@ -422,7 +416,7 @@ def plot_responses(analysis: Any, quantity: str = "acc_max_g", ax: Any = None) -
         raise InputError(Problem.NOT_IN_RESULT, "quantity", quantity,
                          choices=", ".join(n for n in names if n in ds))
     ax = _axes(ax)
-    ok = (ds["done"] == 1) & (ds["status"] == 0.0)
+    ok = analysis.finished()
     values = ds[quantity].where(ok)
     dims = analysis.design_dims
     first = dims[0] if dims else None

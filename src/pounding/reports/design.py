@@ -138,19 +138,14 @@ def figures(outcome: Any, folder: Path) -> dict[str, tuple[Path, str]]:
 def _cost(decision: Any, axes: Any) -> None:
     """Median peak acceleration, its penalty (with bumpers over without) and impact force against the
     gap, per value of the other dimensions."""
-    table = decision.table
     gap = decision.gap_dim
-    others = [d for d in decision._dims() if d != gap]
-    groups = table.groupby(others) if others else [((), table)]
     columns = (
         ("acc_median_g", "peak absolute acceleration (g)"),
         ("acc_penalty_median", "peak acceleration with bumpers / without"),
         ("force_median_n", "peak impact force (N)"),
     )
-    for key, part in groups:
-        part = part.sort_values(gap)
-        key = key if isinstance(key, tuple) else (key,)
-        label = ", ".join(f"{d} {v:g}" for d, v in zip(others, key)) or "median"
+    for label, part in decision.by_gap():
+        label = label or "median"
         for ax, (column, _) in zip(axes, columns):
             ax.plot(1e3 * part[gap], part[column], "o-", ms=3, label=label)
     for ax, (_, words) in zip(axes, columns):
