@@ -56,10 +56,11 @@ def write(tmp_path: Path, text: str = SMALL) -> Path:
 def test_the_example_design_file_reads():
     plan = DesignPlan.from_toml(ROOT / "examples" / "design_ups.toml")
     assert len(plan.records) == 44 and plan.levels_g.size == 10
-    assert plan.grid == {
-        "bumpers.gap": [0.05, 0.1, 0.15, 0.2, 0.25],
-        "bumpers.law.stiffness": [0.5e6, 1.5e6, 4.5e6],
-    }
+    assert plan.grid == {"bumpers.gap": [0.05, 0.1, 0.15, 0.2, 0.25]}
+    rubber, hertz = plan.bumper_types
+    assert rubber.grid == {**plan.grid, "bumpers.law.stiffness": [0.5e6, 1.5e6, 4.5e6]}
+    assert hertz.grid == plan.grid and isinstance(hertz.system.bumpers.law, pounding.HuntCrossley)
+    assert hertz.system.bumpers.capacity_m == 0.03 and rubber.system.bumpers.capacity_m == 0.04
     assert plan.mce_spectrum.sa_g(1.0) == pytest.approx(0.9)
     assert plan.code_minimum_gap_m == pytest.approx(1.15 * 9.80665 * 0.9 * 1.0 / (4 * math.pi**2 * 1.35))
     assert plan.hazard is not None and plan.hazard.period_s == 1.0
@@ -123,3 +124,109 @@ def test_pounding_design_runs_reports_and_resumes(tmp_path):
     again = runner.invoke(app, ["design", str(path), "--out", str(out)])
     assert again.exit_code == 0
     assert int(pounding.design.open_stripe_analysis(out / "runs.zarr").dataset["session"].max()) == 1
+
+
+TYPES = """
+[design.bumper_types.rubber]
+law = { type = "kelvin_voigt", stiffness = 1.5e6, damping = 400.0 }
+grid = { "bumpers.law.stiffness" = [0.5e6, 1.5e6] }
+[design.bumper_types.steel]
+law = { type = "hunt_crossley", stiffness = 2e7, exponent = 1.5, damping = 0.3 }
+capacity_m = 0.01
+"""
+
+
+def with_types(extra: str = TYPES) -> str:
+    return SMALL.replace("[run]", extra + "[run]")
+
+
+def test_bumper_types_each_run_their_own_analysis_and_are_decided_together(tmp_path):
+    path = write(tmp_path, with_types())
+    plan = DesignPlan.from_toml(path)
+    assert [k.name for k in plan.bumper_types] == ["rubber", "steel"]
+    rubber, steel = plan.bumper_types
+    assert rubber.grid == {"bumpers.gap": [0.05, 0.15, 0.3], "bumpers.law.stiffness": [0.5e6, 1.5e6]}
+    assert steel.grid == {"bumpers.gap": [0.05, 0.15, 0.3]}
+    assert (
+        isinstance(steel.system.bumpers.law, pounding.HuntCrossley)
+        and steel.system.bumpers.capacity_m == 0.01
+    )
+    assert rubber.system.bumpers.capacity_m is None and rubber.system.isolator == plan.system.isolator
+    out = tmp_path / "report"
+    result = runner.invoke(app, ["design", str(path), "--out", str(out)])
+    assert result.exit_code == 0, result.output
+    assert "9 designs of 2 bumper types = 81 runs" in result.output.replace("\n", " ")
+    import pandas as pd
+
+    table = pd.read_csv(out / "decision.csv")
+    assert list(table["bumper"]) == ["rubber"] * 6 + ["steel"] * 3
+    assert table["p_capacity_mce"].isna().sum() == 6  # (only the steel bumpers have a capacity)
+    for name in ("rubber", "steel"):
+        analysis = pounding.design.open_stripe_analysis(out / f"runs_{name}.zarr")
+        assert bool(analysis.dataset["done"].all())
+        design_sa, mce_sa = plan.design_spectrum.sa_g(1.0), plan.mce_spectrum.sa_g(1.0)
+        alone = pounding.design.decide(analysis, design_sa, mce_sa, target_probability=0.5).table
+        part = table[table["bumper"] == name]
+        assert np.allclose(part["p_contact_mce"].values, alone["p_contact_mce"].values, atol=1e-12)
+        assert np.allclose(part["acc_median_g"].values, alone["acc_median_g"].values, rtol=1e-12)
+    page = (out / "index.html").read_text()
+    assert "rubber bumpers" in page and "steel bumpers" in page and "bumper type" in page
+    assert set(pd.read_csv(out / "runs.csv")["bumper"]) == {"rubber", "steel"}
+    again = runner.invoke(app, ["design", str(path), "--out", str(out)])
+    assert again.exit_code == 0
+    for name in ("rubber", "steel"):
+        assert (
+            int(pounding.design.open_stripe_analysis(out / f"runs_{name}.zarr").dataset["session"].max()) == 1
+        )
+
+
+KV = "[design.bumper_types.x]\nlaw = { type = 'kelvin_voigt', stiffness = 1e6, damping = 0.0 }\n"
+
+
+@pytest.mark.parametrize(
+    "extra, field",
+    [
+        (
+            "[design.bumper_types.free]\nlaw = { type = 'kelvin_voigt', stiffness = 1e6, damping = 0.0 }\n",
+            "design.bumper_types.free",
+        ),
+        ("[design.bumper_types.x]\ncapacity_m = 0.01\n", "design.bumper_types.x.law"),
+        (
+            "[design.bumper_types.x]\nlaw = { type = 'kelvin_voigt', stifness = 1e6, damping = 0.0 }\n",
+            "design.bumper_types.x.law.stifness",
+        ),
+        (
+            KV + "capacity_m = -1.0\n",
+            "design.bumper_types.x.capacity_m",
+        ),
+        (
+            KV + "gap = 0.1\n",
+            "design.bumper_types.x.gap",
+        ),
+        (
+            KV + "grid = { 'bumpers.law.nope' = [1.0] }\n",
+            "design.bumper_types.x.grid.bumpers.law.nope",
+        ),
+        (
+            KV + "grid = { 'bumpers.gap' = [0.1] }\n",
+            "design.bumper_types.x.grid.bumpers.gap",
+        ),
+    ],
+)
+def test_a_bad_bumper_type_is_named(tmp_path, extra, field):
+    path = write(tmp_path, with_types(extra))
+    with pytest.raises(pounding.InputError) as err:
+        DesignPlan.from_toml(path)
+    assert err.value.field == field
+
+
+def test_the_design_page_file_reads(tmp_path):
+    import re
+
+    text = (ROOT / "docs" / "design.md").read_text()
+    (block,) = re.findall(r"```toml\n(.*?)```", text, re.S)
+    path = write(tmp_path, block)
+    (tmp_path / "ups_hazard_sa1.csv").write_text((ROOT / "examples" / "ups_hazard_sa1.csv").read_text())
+    plan = DesignPlan.from_toml(path)
+    rubber, pad = plan.bumper_types
+    assert "isolator.damping" in pad.grid and "isolator.damping" not in rubber.grid

