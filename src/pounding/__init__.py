@@ -16,7 +16,7 @@ from .identification import (ContactLawFit, Identification, ModelFamily, Targets
                              paper_targets, rank_contact_laws)
 from .metrics import HysteresisLoop, impact_table
 from .model import (BoucWen, Bumpers, ElasticPlastic, Hertzdamp, HuntCrossley, Isolator, Jankowski,
-                    KelvinVoigt, MultilinearBumper, Oscillator)
+                    KelvinVoigt, MeasurementChain, MultilinearBumper, Oscillator, Sensor)
 from .protocols import (BasinStabilityMap, Basins, BifurcationDiagram, CampaignResult, PoundingSpectrum,
                         SweepResult, basin_stability_map, basins, bifurcation_diagram, campaign,
                         paper_frequencies_hz, pounding_spectrum, sweep)
@@ -39,4 +39,5 @@ __all__ = [
     "Bifurcation", "Branch", "continuation", "BifurcationCurve", "CoexistenceMap", "bifurcation_curve",
     "coexistence_map", "BifurcationDiagram", "bifurcation_diagram", "Basins", "basins",
     "BasinStabilityMap", "basin_stability_map", "LyapunovSpectrum", "lyapunov", "largest_exponents",
+    "MeasurementChain", "Sensor",
 ]

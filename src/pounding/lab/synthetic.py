@@ -21,6 +21,7 @@ from .._errors import InputError, Problem
 from ..engine import State, simulate
 from ..excitation import MAX_A_G, STANDARD_GRAVITY, Harmonic
 from ..model import Oscillator
+from ..model.measurement import MeasurementChain, Sensor
 from .record import LabRecord
 
 ANTI_ALIAS_ORDER = 4  # poles of the Butterworth anti-alias filter
@@ -28,10 +29,11 @@ MAX_OUTPUT_SAMPLES = 50_000_000  # a recording longer than this is refused (memo
 
 
 def synthetic_test(oscillator: Oscillator, a_g: float, freqs_hz: Any, *, cycles: int = 30,
-                   sample_rate_hz: float = 1000.0, noise: float = 0.01, anti_alias_hz: float | None = None,
-                   gains: Any = (1.0, 1.0), offsets_m_s2: Any = None, laser_resolution_m: float = 0.0,
-                   oversample: int = 10, seed: int = 0, state: State | None = None,
-                   g: float = STANDARD_GRAVITY) -> LabRecord:
+                   sample_rate_hz: float | None = None, noise: float = 0.01,
+                   anti_alias_hz: float | None = None, gains: Any = (1.0, 1.0), offsets_m_s2: Any = None,
+                   laser_resolution_m: float | None = None,
+                   oversample: int | None = None, seed: int = 0, state: State | None = None,
+                   g: float = STANDARD_GRAVITY, measurement: MeasurementChain | None = None) -> LabRecord:
     """Record a stepped-sine test of ``oscillator`` through realistic sensors.
 
     Parameters
@@ -44,31 +46,36 @@ def synthetic_test(oscillator: Oscillator, a_g: float, freqs_hz: Any, *, cycles:
         The steps in the order they are run, Hz.
     cycles : int
         Cycles per step (each step lasts ``cycles / f`` rounded to the internal sampling).
-    sample_rate_hz : float
-        The recording's sampling rate, Hz.
+    sample_rate_hz : float, optional
+        The recording's sampling rate, Hz (1000; or the chain's).
     noise : float
         Gaussian noise on every channel, its standard deviation a fraction of the channel's
         largest absolute value over the last quarter of each step (0.01: 1 % of what the sensor
         reads once the step has settled).
     anti_alias_hz : float, optional
-        Corner of the anti-alias low-pass (order 4 Butterworth, causal); default none (ideal
-        sampling).  Must be below half the internal rate.
+        Corner of an anti-alias low-pass (order 4 Butterworth, causal) on every channel; default
+        none (ideal sampling).  Must be below half the internal rate.  (Shorthand for a chain.)
     gains : sequence of float
         One per accelerometer on the mass (their number): the factor each one's reading is off
         by (1.02: reads 2 % high).
     offsets_m_s2 : sequence of float, optional
         Each accelerometer's zero offset, m/s^2 (default 0).
-    laser_resolution_m : float
+    laser_resolution_m : float, optional
         The displacement's quantum, m (0: none).
-    oversample : int
+    oversample : int, optional
         The engine's histories are taken at this many times ``sample_rate_hz`` before
-        filtering and sampling.
+        filtering and sampling (10; or the chain's).
     seed : int
         Of the noise.
     state : State, optional
         Where the test starts (default at rest).
     g : float
         m/s^2 per g.
+    measurement : MeasurementChain, optional
+        The instruments: filters, sampling and quanta per channel (instead of
+        ``sample_rate_hz``, ``anti_alias_hz``, ``laser_resolution_m`` and ``oversample``).  The
+        accelerometers' gains, offsets and the noise come after sampling, before a zero-phase
+        filter (software filters the record as read).
 
     Returns
     -------
@@ -103,9 +110,8 @@ def synthetic_test(oscillator: Oscillator, a_g: float, freqs_hz: Any, *, cycles:
         i = int(np.flatnonzero(freqs <= 0.0)[0])
         raise InputError(Problem.NOT_POSITIVE, f"freqs_hz[{i}]", freqs[i], unit="Hz")
     cycles = integer("cycles", cycles, 1, 100_000)
-    fs = positive("sample_rate_hz", sample_rate_hz, "Hz")
-    oversample = integer("oversample", oversample, 1, 1000)
-    fs_int = fs * oversample
+    chain = _chain(measurement, sample_rate_hz, anti_alias_hz, laser_resolution_m, oversample)
+    fs, oversample, fs_int = chain.sample_rate_hz, chain.oversample, chain.internal_rate_hz
     noise = non_negative("noise", noise, "(a fraction of each channel's peak)")
     plausible("noise", noise, 0.0, 0.2, "noise is a fraction: 0.01 is 1 %")
     gains_t = real_tuple("gains", gains)
@@ -117,13 +123,6 @@ def synthetic_test(oscillator: Oscillator, a_g: float, freqs_hz: Any, *, cycles:
     if len(offsets_t) != len(gains_t):
         raise InputError(Problem.LENGTH_MISMATCH, "offsets_m_s2", offsets_m_s2, got=len(offsets_t),
                          expected=len(gains_t), hint=" (one per accelerometer, as gains)")
-    resolution = non_negative("laser_resolution_m", laser_resolution_m, "m")
-    if anti_alias_hz is not None:
-        anti_alias_hz = positive("anti_alias_hz", anti_alias_hz, "Hz")
-        if anti_alias_hz >= 0.5 * fs_int:
-            raise InputError(Problem.OUT_OF_RANGE, "anti_alias_hz", anti_alias_hz,
-                             range=f"(0, {0.5 * fs_int:g}) Hz, below half the internal rate",
-                             hint=" (raise oversample, or lower the corner)")
     seed = integer("seed", seed, 0, 2**32 - 1)
     g = positive("g", g, "m/s^2")
     steps_int = [round(cycles / f * fs_int) for f in freqs]
@@ -138,12 +137,7 @@ def synthetic_test(oscillator: Oscillator, a_g: float, freqs_hz: Any, *, cycles:
         raise InputError(Problem.WRONG_TYPE, "state", state, got=type(state).__name__,
                          expected="pounding.State")
 
-    sos = zi = None
-    if anti_alias_hz is not None:
-        from scipy import signal
-
-        sos = signal.butter(ANTI_ALIAS_ORDER, anti_alias_hz, fs=fs_int, output="sos")
-        zi = np.zeros((sos.shape[0], 3, 2))  # sections x (table, mass, displacement) x 2: filters at rest
+    zi = None  # (the causal filters' states, carried from step to step: the test does not stop)
     rng = np.random.default_rng(seed)
     t0 = float(state.vector[0])
     parts: list[np.ndarray] = []
@@ -164,27 +158,53 @@ def synthetic_test(oscillator: Oscillator, a_g: float, freqs_hz: Any, *, cycles:
         block = np.vstack([exc.peak_m_s2 * np.sin(2.0 * math.pi * f * t + exc.phase),
                            run.abs_acceleration[uniform], run.displacement[uniform]])[:, keep]
         t = t[keep]
-        if sos is not None:
-            from scipy import signal
-
-            block, zi = signal.sosfilt(sos, block, axis=1, zi=zi)
+        block, zi = chain.analogue(block, zi)
         take = (np.arange(m_next, m_next + t.size) % oversample) == 0
         table, mass, disp = block[:, take]
-        parts.append(np.vstack([_noisy(table, noise, rng),
-                                *(_noisy(gain * mass + o, noise, rng) for gain, o in zip(gains_t, offsets_t)),
-                                _noisy(disp, noise, rng)]))
+        parts.append(chain.quantize(np.vstack([
+            _noisy(table, noise, rng),
+            *(_noisy(gain * mass + o, noise, rng) for gain, o in zip(gains_t, offsets_t)),
+            _noisy(disp, noise, rng)])))
         m_next += t.size
         state = run.final_state
-    data = np.hstack(parts)
+    data = chain.digital(np.hstack(parts))
     time_s = t0 + np.arange(data.shape[1]) / fs  # the sampling clock
     table_rec, mass_rec, disp_rec = data[0], data[1:-1].T, data[-1]
-    if resolution > 0.0:
-        disp_rec = np.round(disp_rec / resolution) * resolution
     channels = tuple(f"accelerometer_{j + 1}" for j in range(len(gains_t)))
     meta = {"freqs_hz": freqs.copy(), "step_start_s": np.array(starts), "cycles": cycles, "a_g": a_g, "g": g,
             "sample_rate_hz": fs, "noise": noise, "anti_alias_hz": anti_alias_hz, "gains": gains_t,
-            "offsets_m_s2": offsets_t, "laser_resolution_m": resolution, "seed": seed}
+            "offsets_m_s2": offsets_t, "laser_resolution_m": chain.laser.resolution, "seed": seed,
+            "measurement": chain}
     return LabRecord(time_s, table_rec, mass_rec, disp_rec, channels, source="synthetic", meta=meta)
+
+
+def _chain(measurement: Any, sample_rate_hz: Any, anti_alias_hz: Any, laser_resolution_m: Any,
+           oversample: Any) -> MeasurementChain:
+    """The test's chain: ``measurement``, or the one its shorthands state (not both)."""
+    shorthands = {"sample_rate_hz": sample_rate_hz, "anti_alias_hz": anti_alias_hz,
+                  "laser_resolution_m": laser_resolution_m, "oversample": oversample}
+    if measurement is not None:
+        if not isinstance(measurement, MeasurementChain):
+            raise InputError(Problem.WRONG_TYPE, "measurement", measurement, got=type(measurement).__name__,
+                             expected="pounding.MeasurementChain or None")
+        given = [k for k, v in shorthands.items() if v is not None]
+        if given:
+            raise InputError(Problem.DUPLICATE, given[0], shorthands[given[0]],
+                             repeated="measurement (give the sampling, filters and quanta in the chain)")
+        return measurement
+    fs = positive("sample_rate_hz", 1000.0 if sample_rate_hz is None else sample_rate_hz, "Hz")
+    over = integer("oversample", 10 if oversample is None else oversample, 1, 1000)
+    resolution = non_negative("laser_resolution_m", laser_resolution_m or 0.0, "m")
+    sensor = Sensor()
+    if anti_alias_hz is not None:
+        anti_alias_hz = positive("anti_alias_hz", anti_alias_hz, "Hz")
+        if anti_alias_hz >= 0.5 * fs * over:
+            raise InputError(Problem.OUT_OF_RANGE, "anti_alias_hz", anti_alias_hz,
+                             range=f"(0, {0.5 * fs * over:g}) Hz, below half the internal rate",
+                             hint=" (raise oversample, or lower the corner)")
+        sensor = Sensor(anti_alias_hz, ANTI_ALIAS_ORDER, zero_phase=False)
+    return MeasurementChain(fs, sensor, sensor, Sensor(sensor.lowpass_hz, sensor.order, False, resolution),
+                            over)
 
 
 def _noisy(x: np.ndarray, noise: float, rng: np.random.Generator) -> np.ndarray:

@@ -3,7 +3,8 @@
 from .bumpers import Bumpers
 from .contact_laws import ElasticPlastic, Hertzdamp, HuntCrossley, Jankowski, KelvinVoigt, MultilinearBumper
 from .isolator import BoucWen, Isolator
+from .measurement import MeasurementChain, Sensor
 from .oscillator import Oscillator
 
 __all__ = ["BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley", "Isolator", "Jankowski",
-           "KelvinVoigt", "MultilinearBumper", "Oscillator"]
+           "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "Sensor"]
