@@ -1,5 +1,8 @@
 """From a stepped-sine recording to the paper's measurements (issue 17): ``analyse_stepped_sine``.
 
+(Steps 3-5 and the contacts, per window, are :func:`pounding.metrics.measured.measure_window`, shared
+with the metrics "as measured" of :func:`pounding.sweep`.)
+
 The method, step by step (each a SciPy tool, not a hand-written one):
 
 1. **Cycles.** The table's acceleration, low-passed without phase (``sosfiltfilt``, a Butterworth
@@ -12,7 +15,7 @@ The method, step by step (each a SciPy tool, not a hand-written one):
 3. **Window.** The last ``measure_cycles`` whole cycles of each step; ``steady`` when their
    excursions agree within ``steady_rtol`` (the sweep's periodicity criterion on the measured
    cycle peaks, with a noise floor).
-4. **Peaks.** The signals smoothed by a cubic Savitzky-Golay filter :data:`SMOOTH_S` wide
+4. **Peaks.** The signals smoothed by a cubic Savitzky-Golay filter 10 ms wide
    (``savgol_filter``: the noise down, a 10 ms contact pulse kept); each cycle's largest
    ``|a|`` (per accelerometer and of their mean) and its displacement extremes, between the
    samples by the parabola through the three around each.  An accelerometer's offset is
@@ -42,19 +45,16 @@ from .._checks import float_array, integer, non_negative, positive
 from .._errors import InputError, PoundingWarning, Problem
 from ..data import PAPER_F_REF_HZ, PAPER_OMEGA_MIN_RAD_S
 from ._sanity import fundamental, warn_inconsistent, warn_time_scale
-from .contacts import FLIGHT_FIT_S, IMPACT_COLUMNS, window_contacts
+from ..metrics.measured import measure_window, smooth
+from ..metrics.measured_contacts import IMPACT_COLUMNS
 from .lab_sweep import LabSweep
 from .record import LabRecord
 
 TABLE_LOWPASS_FACTOR = 5.0  # the table signal's low-pass corner, times the highest step frequency
 SCHMITT = 1.0 / 3.0  # a zero crossing counts after the signal went below -SCHMITT x its amplitude
 STEP_RTOL = 0.03  # cycles within 3 % in frequency belong to one step
-SMOOTH_S = 0.010  # the Savitzky-Golay window: 10 ms (a 1 kHz record: 11 samples)
-UNCERTAIN = ("contact_time_s", "restitution", "mean_force_n")  # contact means given with a standard error
 MIN_CONTACT_SAMPLES = 15  # fewer samples a contact than this: a warning to sample faster (at 10, 500 Hz
 GOOD_CONTACT_SAMPLES = 20  # for 20 ms contacts, the mean force was 7 % off; at 20, 2 %): the rate advised
-STEADY_NOISE_FLOOR = 3.0  # steadiness tolerates this many noise standard deviations
-PERIODIC_NOISE = 5.0  # aligned cycles repeat within this many noise standard deviations (see _in_phase)
 
 
 def table_cycles(time_s: np.ndarray, table: np.ndarray, f_max_hz: float) -> np.ndarray:
@@ -120,92 +120,6 @@ def _sine_fit(t: np.ndarray, x: np.ndarray, f: float) -> tuple[float, float]:
     a, b, c = np.linalg.lstsq(design, x, rcond=None)[0]
     fit = least_squares(resid, [a, b, c, f], x_scale=[abs(a) + abs(b) + 1e-12] * 3 + [f])
     return float(math.hypot(fit.x[0], fit.x[1])), float(fit.x[3])
-
-
-def _smooth(x: np.ndarray, fs: float) -> np.ndarray:
-    """A Savitzky-Golay smoothing (cubic, :data:`SMOOTH_S` wide): noise down, short peaks kept."""
-    from scipy import signal
-
-    n = max(5, 2 * round(0.5 * SMOOTH_S * fs) + 1)
-    if n >= x.size:
-        return x.copy()
-    return signal.savgol_filter(np.nan_to_num(x), n, 3)
-
-
-def _peak(t: np.ndarray, x: np.ndarray, i: int) -> float:
-    """The extreme of the smoothed ``x`` at its sample ``i``, between the samples: the vertex of the
-    parabola through ``i - 1, i, i + 1``."""
-    if i == 0 or i == x.size - 1:
-        return float(x[i])
-    y0, y1, y2 = x[i - 1], x[i], x[i + 1]
-    den = y0 - 2.0 * y1 + y2
-    if den == 0.0:
-        return float(y1)
-    shift = 0.5 * (y0 - y2) / den
-    return float(y1 - 0.25 * (y0 - y2) * shift) if abs(shift) <= 1.0 else float(y1)
-
-
-def _cycles_in_phase(t: np.ndarray, x: np.ndarray, start_s: float, period_s: float,
-                     cycles: int) -> np.ndarray:
-    """``x`` over ``cycles`` periods from ``start_s``, cut into periods and aligned in phase: its cubic
-    spline read at ``t_j + k period_s`` (``t_j`` the samples of the first period), shape (cycles, samples
-    of a period)."""
-    from scipy.interpolate import CubicSpline
-
-    lo = max(int(np.searchsorted(t, start_s)) - 3, 0)
-    hi = min(int(np.searchsorted(t, start_s + cycles * period_s)) + 3, t.size)
-    spline = CubicSpline(t[lo:hi], x[lo:hi])
-    phase = t[(t >= start_s) & (t < start_s + period_s)]
-    return np.stack([spline(phase + k * period_s) for k in range(cycles)])
-
-
-def _cycle_mean(t: np.ndarray, x: np.ndarray, start_s: float, period_s: float, cycles: int) -> np.ndarray:
-    """The mean of ``x`` (shape (n, k)) over exactly ``cycles`` periods from ``start_s``: its cubic spline's
-    integral over them (zeros where the samples there are not all finite), shape (k,)."""
-    from scipy.interpolate import CubicSpline
-
-    lo = max(int(np.searchsorted(t, start_s)) - 3, 0)
-    hi = min(int(np.searchsorted(t, start_s + cycles * period_s)) + 3, t.size)
-    if not np.isfinite(x[lo:hi]).all():
-        return np.zeros(x.shape[1])
-    end = start_s + cycles * period_s
-    return CubicSpline(t[lo:hi], x[lo:hi]).integrate(start_s, end) / (end - start_s)
-
-
-def _in_phase(cycles: np.ndarray, fs: float, rtol: float) -> bool:
-    """Whether aligned cycles (shape (k, n)) repeat: every smoothed cycle within the larger of
-    :data:`PERIODIC_NOISE` noise standard deviations and ``rtol`` of the peak of their average. The noise
-    is the robust spread (1.4826 MAD) of the smoothed differences from the average: a pulse that some
-    cycles have and others not (a graze) is an outlier of it, and fails the test."""
-    from scipy import signal
-
-    n = max(5, 2 * round(0.5 * SMOOTH_S * fs) + 1)
-    if n >= cycles.shape[1]:
-        return False
-    resid = signal.savgol_filter(cycles - cycles.mean(axis=0), n, 3, axis=1, mode="wrap")
-    noise = 1.4826 * float(np.median(np.abs(resid)))
-    peak = float(np.abs(cycles.mean(axis=0)).max())
-    return float(np.abs(resid).max()) <= max(PERIODIC_NOISE * noise, rtol * peak)
-
-
-def _periodic_peak(x: np.ndarray, fs: float, sign: float) -> float:
-    """The largest ``sign * x`` of one period of samples, smoothed as :func:`_smooth` (wrapping round the
-    period) and between the samples by the parabola through the three around it: signed as ``x``."""
-    from scipy import signal
-
-    n = max(5, 2 * round(0.5 * SMOOTH_S * fs) + 1)
-    y = sign * (signal.savgol_filter(x, n, 3, mode="wrap") if n < x.size else x)
-    i = int(np.argmax(y))
-    y0, y1, y2 = y[i - 1], y[i], y[(i + 1) % y.size]
-    den = y0 - 2.0 * y1 + y2
-    shift = 0.5 * (y0 - y2) / den if den != 0.0 else 0.0
-    return sign * float(y1 - 0.25 * (y0 - y2) * shift if abs(shift) <= 1.0 else y1)
-
-
-def _standard_error(x: np.ndarray) -> float:
-    """The standard error of the mean of ``x``'s finite values (NaN with fewer than two)."""
-    x = x[np.isfinite(x)]
-    return float(np.std(x, ddof=1) / math.sqrt(x.size)) if x.size >= 2 else math.nan
 
 
 def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: float | None = None,
@@ -289,8 +203,8 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
                          expected=measure_cycles + 2)
     fs = record.sample_rate_hz
     raw_acc = np.column_stack([record.mass_acc_mean_m_s2, record.mass_acc_m_s2])
-    acc = np.column_stack([_smooth(a, fs) for a in raw_acc.T])
-    disp = _smooth(record.displacement_m, fs)
+    acc = np.column_stack([smooth(a, fs) for a in raw_acc.T])
+    disp = smooth(record.displacement_m, fs)
     names = ("alpha", *(f"alpha_{c}" for c in record.mass_channels))
     rows = []
     impacts = []
@@ -310,69 +224,20 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
             f = float(sched[np.abs(sched / f - 1.0).argmin()])
         w0 = float(crossings[i1 - measure_cycles])
         in_win = (t >= w0) & (t < s1)
-        # the accelerometers' offsets: over whole cycles of a periodic motion the acceleration
-        # averages to zero, so the window's mean is the offset
-        zero = _cycle_mean(t, raw_acc, w0, period, measure_cycles)
-        peaks = np.empty((measure_cycles, acc.shape[1]))
-        dmax = np.empty(measure_cycles)
-        dmin = np.empty(measure_cycles)
-        for k, c in enumerate(range(i1 - measure_cycles, i1)):
-            w = np.flatnonzero((t >= crossings[c]) & (t < crossings[c + 1]))
-            for j in range(acc.shape[1]):
-                i = int(w[int(np.argmax(np.abs(acc[w, j] - zero[j])))])
-                peaks[k, j] = abs(_peak(t, acc[:, j], i) - zero[j])
-            dmax[k] = _peak(t, disp, int(w[int(np.argmax(disp[w]))]))
-            dmin[k] = _peak(t, disp, int(w[int(np.argmin(disp[w]))]))
-        exc = dmax - dmin
-        excursion = float(dmax.max() - dmin.min())  # (over the window, as the sweep measures it)
-        spread = float(exc.max() - exc.min()) / excursion if excursion > 0.0 else 0.0
         noise = float(np.nanstd(record.displacement_m[in_step] - disp[in_step]))  # (what smoothing removes)
-        steady = bool(spread <= steady_rtol + STEADY_NOISE_FLOOR * noise / max(excursion, 1e-300))
-        alphas = peaks.max(axis=0)
+        shape, contacts, found, unconfirmed = measure_window(
+            t, table, raw_acc, acc, record.displacement_m, disp, crossings[i1 - measure_cycles:i1 + 1],
+            period, amp, fs, names=names, mass_kg=mass_kg, gap=gap, steady_rtol=steady_rtol,
+            omega_min_rad_s=omega_min_rad_s, noise=noise)
         fundamentals.append([fundamental(t[in_win], table[in_win], 1.0 / period),
                              (2.0 * math.pi / period) ** 2 * fundamental(t[in_win],
                                                                          record.displacement_m[in_win],
                                                                          1.0 / period),
                              *(fundamental(t[in_win], raw_acc[in_win, j], 1.0 / period)
                                for j in range(1, raw_acc.shape[1]))])
-        aligned = (_cycles_in_phase(t, raw_acc[:, 0], w0, period, measure_cycles)
-                   if steady and np.isfinite(raw_acc[in_win]).all()
-                   and np.isfinite(record.displacement_m[in_win]).all() else None)
-        if aligned is not None and _in_phase(aligned, fs, steady_rtol):
-            # the window's cycles averaged in phase: the noise down by sqrt(measure_cycles)
-            for j in range(acc.shape[1]):
-                avg = _cycles_in_phase(t, raw_acc[:, j], w0, period, measure_cycles).mean(axis=0) - zero[j]
-                alphas[j] = max(_periodic_peak(avg, fs, 1.0), -_periodic_peak(avg, fs, -1.0))
-            avg = _cycles_in_phase(t, record.displacement_m, w0, period, measure_cycles).mean(axis=0)
-            dmax_avg, dmin_avg = _periodic_peak(avg, fs, 1.0), _periodic_peak(avg, fs, -1.0)
-            excursion = dmax_avg - dmin_avg
-        else:
-            aligned = None
-            dmax_avg, dmin_avg = float(dmax.max()), float(dmin.min())
-        row = {"freq_hz": f, "nu": f / f_ref_hz, "a_g": amp / g}
-        row.update({name: float(alphas[j]) / amp for j, name in enumerate(names)})
-        # the scatter of the window's cycles: what noise (and an unsteady response) leaves uncertain
-        row["alpha_se"] = _standard_error(peaks[:, 0]) / amp
-        row.update({"excursion_m": excursion, "displacement_max_m": dmax_avg, "displacement_min_m": dmin_avg,
-                    "eta": excursion / gap if gap is not None else math.nan,
-                    "e": excursion / (amp / omega_min_rad_s ** 2), "steady": steady,
-                    "averaged": aligned is not None,
-                    "cycles_run": n_cyc, "window_start_s": w0,
-                    "window_end_s": float(s1)})
-        if gap is not None:
-            # (the flight beside the window's contacts)
-            win = (t >= w0 - FLIGHT_FIT_S) & (t < s1 + FLIGHT_FIT_S)
-            found, unconfirmed = window_contacts(t[win], record.displacement_m[win], disp[win],
-                                                 acc[win, 0] - zero[0],
-                                                 raw_acc[win, 0] - zero[0], table[win], mass_kg, 0.5 * gap,
-                                                 fs, (w0, s1))
-            row["contact"] = len(found) > 0
-            row["contacts_per_cycle"] = len(found) / measure_cycles
-            for q in IMPACT_COLUMNS[3:]:  # (the velocities as speeds: the sides' signs differ)
-                x = found[q].abs() if q in ("v_in_m_s", "v_out_m_s") else found[q]
-                row[q] = float(x.mean()) if len(found) else math.nan
-            for q in UNCERTAIN:
-                row[f"{q}_se"] = _standard_error(found[q].to_numpy(dtype=float)) if len(found) else math.nan
+        row = {"freq_hz": f, "nu": f / f_ref_hz, "a_g": amp / g, **shape, "cycles_run": n_cyc,
+               "window_start_s": w0, "window_end_s": float(s1), **contacts}
+        if found is not None:
             impacts.append(found.assign(freq_hz=f))
             crossings_without_force += unconfirmed
         # a window with missing samples (NaN, or a gap in time) is not measured: say so

@@ -34,7 +34,7 @@ class LabSweep:
         ``nu = f / f_ref``.
     impacts : DataFrame
         One row per contact measured (with ``gap_total_m``): ``freq_hz`` of its step and
-        :data:`~pounding.lab.contacts.IMPACT_COLUMNS`.
+        :data:`~pounding.metrics.measured_contacts.IMPACT_COLUMNS`.
 
     Examples
     --------
