@@ -22,9 +22,9 @@ from ..engine._control import (DEFAULT_MAX_STEPS, check_budget, isolator_rate, n
                                run_interruptibly, steps_per_second, stop_requested)
 from ..engine.simulate import check_oscillator, check_rtol, check_state, kernel_system
 from ..excitation import MAX_FREQ_HZ, STANDARD_GRAVITY, Harmonic
-from ..model import Oscillator
+from ..model import MeasurementChain, Oscillator
 from .._runner.progress import Progress, progress_reporter
-from ._step_kernel import WINDOW_COLS, step_kernel
+from ._step_kernel import W_CYCLES, WINDOW_COLS, step_kernel
 from .sweep_result import SweepResult
 
 Direction = Literal["up", "down"]
@@ -79,6 +79,7 @@ class SweepPlan:
     max_events_per_cycle: int
     state: State | None
     max_steps: int
+    measurement: MeasurementChain | None = None
 
 
 @dataclass(frozen=True)
@@ -98,6 +99,7 @@ class SweepOptions:
     rtol: float = 1e-10
     max_events_per_cycle: int = 1_000_000
     max_steps: int = DEFAULT_MAX_STEPS
+    measurement: MeasurementChain | None = None
 
 
 # their names, in order (campaign, identify and studies pass them on)
@@ -120,7 +122,10 @@ def make_plan(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = 
     :class:`SweepOptions`' names)."""
     opts = check_sweep_options(options)
     (steady, cycles, measure_cycles, max_cycles, steady_rtol, max_period, omega_min_rad_s, f_ref_hz,
-     rtol, max_events_per_cycle, max_steps) = (getattr(opts, name) for name in SWEEP_OPTIONS)
+     rtol, max_events_per_cycle, max_steps, measurement) = (getattr(opts, name) for name in SWEEP_OPTIONS)
+    if measurement is not None and not isinstance(measurement, MeasurementChain):
+        raise InputError(Problem.WRONG_TYPE, "measurement", measurement, got=type(measurement).__name__,
+                         expected="pounding.MeasurementChain or None (the exact metrics)")
     check_oscillator(oscillator)
     a_g = Harmonic(positive("a_g", a_g, "g (e.g. 0.05)"), 1.0).a_g  # its magnitude checks
     freqs = paper_frequencies_hz() if freqs_hz is None else float_array("freqs_hz", freqs_hz)
@@ -182,7 +187,8 @@ def make_plan(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = 
                  f"at least {least_cycles} cycles at each of {freqs.size} frequencies; {why}",
                  "sweep fewer frequencies or cycles, or check the system's numbers (SI units)")
     return SweepPlan(oscillator, a_g, freqs, direction, steady, n_cycles, measure_cycles, steady_rtol,
-                     max_period, omega_min_rad_s, f_ref_hz, rtol, max_events_per_cycle, state, max_steps)
+                     max_period, omega_min_rad_s, f_ref_hz, rtol, max_events_per_cycle, state, max_steps,
+                     measurement)
 
 
 def with_sweep_options(fn: Callable) -> Callable:
@@ -252,6 +258,12 @@ def sweep(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = None
         Work budget of the whole sweep in integration steps (see :func:`simulate`): the
         sweep stops with ``Status.BUDGET`` once it is used; a sweep whose fewest cycles are
         estimated to need more is refused before it starts.
+    measurement : MeasurementChain, optional
+        The lab's instruments: the metrics of each window (alpha, excursion, eta, e, the contacts
+        and their means) are then measured as the lab pipeline measures a recording, from the
+        window's histories through the chain (:attr:`SweepResult.measured`, and the table, the
+        resonance and the contact range follow them; :meth:`SweepResult.exact_dataframe` keeps
+        the exact ones). Default: the exact metrics.
     progress : bool or callable
         True: a progress bar; a callable is called with the number of steps just finished.
 
@@ -361,6 +373,13 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
                 break
     except KeyboardInterrupt:
         interrupted = True
+    measured = measured_impacts = None
+    if plan.measurement is not None and not interrupted and done:
+        from .measured_sweep import measure_steps
+
+        measured, measured_impacts = measure_steps(
+            osc, plan.a_g, plan.freqs_hz, window_states, window[:, W_CYCLES], done, plan.measurement,
+            omega_min_rad_s=plan.omega_min_rad_s, steady_rtol=plan.steady_rtol, rtol=plan.rtol)
     result = SweepResult(
         oscillator=osc, a_g=plan.a_g, freqs_hz=plan.freqs_hz, direction=plan.direction,
         steady_mode=plan.steady, cycles=plan.cycles, measure_cycles=plan.measure_cycles,
@@ -368,7 +387,9 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
         window=window, cycles_run=cycles_run, period_multiple=period_multiple,
         window_states=window_states, window_strobes=window_strobes, step_start_s=step_start_s,
         steps_done=done, final_state=State._from_kernel(state), status=status,
-        message=_message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted))
+        message=_message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted),
+        measurement=plan.measurement if measured is not None else None, measured=measured,
+        measured_impacts=measured_impacts)
     if interrupted:
         raise Interrupted(result, done, n_steps)
     return result

@@ -15,6 +15,7 @@ from .._errors import InputError, Problem, Status
 from ..engine import State
 from ..metrics._impacts import IMPACT_COLUMNS, S_COUNT, S_N_RESTITUTION, S_SUMS, SIDE_SUMS
 from ._step_kernel import W_AMAX, W_CYCLES, W_DMAX, W_DMIN, W_SUMS
+from .measured_sweep import MEASURED_COLUMNS
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
@@ -80,6 +81,15 @@ class SweepResult:
         State after the last step (continue with ``sweep(..., state=final_state)``).
     status, message : Status, str
         ``Status.SUCCESS`` or why the sweep stopped early, and a summary in words.
+    measurement : MeasurementChain or None
+        The chain the metrics were measured through (``sweep(..., measurement=)``), or None:
+        the exact metrics.
+    measured : DataFrame or None
+        With a chain: per step, the metrics of its window as measured (alpha, excursion, eta,
+        e, the contacts and their means) and ``window_start_s``; they replace the exact ones in
+        :meth:`to_dataframe` and the sweep's features.
+    measured_impacts : DataFrame or None
+        With a chain: every contact read in the windows (the lab's columns, with ``freq_hz``).
 
     Examples
     --------
@@ -117,6 +127,9 @@ class SweepResult:
     final_state: State = field(repr=False)
     status: Status
     message: str
+    measurement: Any = None
+    measured: pd.DataFrame | None = field(default=None, repr=False)
+    measured_impacts: pd.DataFrame | None = field(default=None, repr=False)
 
     # ---- derived scalars
     @property
@@ -143,6 +156,23 @@ class SweepResult:
     # ---- the table
     @cached_property
     def _table(self) -> pd.DataFrame:
+        exact = self._exact_table
+        if self.measured is None:
+            return exact
+        table = exact.copy()
+        ran = np.arange(len(table)) < self.steps_done
+        for q in MEASURED_COLUMNS:
+            table[q] = self.measured[q].to_numpy()
+        table["contact"] = np.where(ran, table["contact"].fillna(False).astype(bool), False)
+        table["bumper_dissipation_j"] = np.nan  # (not measurable from the accelerations)
+        per_side = _measured_sides(self.measured_impacts, self.freqs_hz, self.window[:, W_CYCLES])
+        for side in ("_left", "_right"):
+            for k in SIDE_COLUMNS:
+                table[k + side] = per_side.get(k + side, np.full(len(table), np.nan))
+        return table
+
+    @cached_property
+    def _exact_table(self) -> pd.DataFrame:
         w = self.window
         excursion = w[:, W_DMAX] - w[:, W_DMIN]
         cols: dict[str, Any] = {
@@ -187,6 +217,11 @@ class SweepResult:
         """
         return self._table.copy()
 
+    def exact_dataframe(self) -> pd.DataFrame:
+        """The table of :meth:`to_dataframe` with the exact metrics (event-located), whatever the
+        measurement chain; the same as :meth:`to_dataframe` without one."""
+        return self._exact_table.copy()
+
     def to_xarray(self) -> "xr.Dataset":
         """The table as a Dataset on ``freq_hz`` (increasing), with ``nu`` and the step order."""
         import xarray as xr
@@ -208,6 +243,7 @@ class SweepResult:
                 "omega_min_rad_s": self.omega_min_rad_s, "f_ref_hz": self.f_ref_hz,
                 "total_gap_m": self.total_gap_m, "d_tmax_m": self.d_tmax_m,
                 "status": str(self.status), "message": self.message,
+                "measurement": "exact" if self.measurement is None else self.measurement.describe(),
                 "system": self.oscillator.to_toml_text()}
 
     # ---- the sweep's features
@@ -334,6 +370,29 @@ class SweepResult:
         from ..plots import plot_sweep
 
         return plot_sweep(self, ax=ax, **kwargs)
+
+
+def _measured_sides(impacts: pd.DataFrame | None, freqs_hz: np.ndarray,
+                    window_cycles: np.ndarray) -> dict[str, np.ndarray]:
+    """Per side, the measured contacts' means per step (``contacts_per_cycle`` and the impact
+    columns the lab measures; NaN where it cannot)."""
+    out: dict[str, np.ndarray] = {}
+    for side in SIDES:
+        for k in SIDE_COLUMNS:
+            out[f"{k}_{side}"] = np.full(freqs_hz.size, np.nan)
+        out[f"contacts_per_cycle_{side}"] = np.where(window_cycles > 0, 0.0, np.nan)
+        if impacts is None or not len(impacts):
+            continue
+        mine = impacts[impacts["side"] == side]
+        for i, f in enumerate(freqs_hz):
+            at = mine[mine["freq_hz"] == f]
+            if not len(at) or not window_cycles[i] > 0:
+                continue
+            out[f"contacts_per_cycle_{side}"][i] = len(at) / window_cycles[i]
+            for k in SIDE_COLUMNS:
+                if k in at.columns:
+                    out[f"{k}_{side}"][i] = float(at[k].mean())
+    return out
 
 
 def _impact_means(sums: np.ndarray, window_cycles: np.ndarray) -> dict[str, np.ndarray]:

@@ -1,0 +1,116 @@
+"""A sweep's metrics as the lab would measure them: each window through a :class:`MeasurementChain`.
+
+For each step, the motion from the exact state at the start of its measured window is simulated
+again (``lead`` cycles, the window's cycles, ``lead`` more), sampled at the chain's internal rate,
+passed through the chain and measured by :func:`pounding.metrics.measured.measure_window`: the lab
+pipeline's own per-window method (``lab.analyse_stepped_sine``). The window measured is the one
+``lead`` cycles after the exact window, so that the filters have settled on both sides; a steady
+step repeats itself (the window is whole periods of it), so that is the exact window's motion
+again, and a step that did not settle is measured ``lead`` cycles on.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+
+from .._errors import InputError, Problem, Status
+from ..engine import State, simulate
+from ..excitation import STANDARD_GRAVITY, Harmonic
+from ..metrics.measured import measure_window, smooth
+from ..metrics.measured_contacts import FLIGHT_FIT_S
+from ..model import MeasurementChain, Oscillator
+
+# what a measured window gives (the rest of a sweep's table stays exact)
+MEASURED_COLUMNS = ("alpha", "excursion_m", "displacement_max_m", "displacement_min_m", "eta", "e", "contact",
+                    "contacts_per_cycle", "restitution", "contact_time_s", "impulse_n_s", "mean_force_n",
+                    "peak_force_n", "dissipated_energy_j")
+MAX_SAMPLES_PER_STEP = 20_000_000  # internal samples of one re-simulated window: beyond, refused
+
+
+def lead_cycles(chain: MeasurementChain, freq_hz: float) -> int:
+    """Cycles simulated before (and after) a measured window: the filters' settling and the flight a
+    contact's velocities are fitted on, at least one."""
+    return 1 + math.ceil((chain.settle_s + FLIGHT_FIT_S) * freq_hz)
+
+
+def measure_steps(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray, window_states: np.ndarray,
+                  window_cycles: np.ndarray, steps_done: int, chain: MeasurementChain, *,
+                  omega_min_rad_s: float, steady_rtol: float, rtol: float,
+                  g: float = STANDARD_GRAVITY) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Per step (those done), the metrics of its window as measured through ``chain``.
+
+    Returns
+    -------
+    steps : DataFrame
+        One row per step of ``freqs_hz`` (NaN past ``steps_done``): :data:`MEASURED_COLUMNS` and
+        ``window_start_s`` (of the window measured).
+    impacts : DataFrame
+        Every contact read in the windows (the lab's columns, with ``freq_hz``).
+    """
+    bumpers = oscillator.bumpers
+    gap = None if bumpers is None else bumpers.total_gap
+    # the lab reads symmetric gaps about the laser's zero: an off-centre mass is centred
+    centre = 0.0 if bumpers is None else 0.5 * (bumpers.gap_right - bumpers.gap_left)
+    rows, impacts = [], []
+    fs = chain.sample_rate_hz
+    for i, f in enumerate(np.asarray(freqs_hz, dtype=float)):
+        if i >= steps_done:
+            rows.append({q: math.nan for q in MEASURED_COLUMNS} | {"window_start_s": math.nan})
+            continue
+        cycles = int(window_cycles[i])
+        lead = lead_cycles(chain, f)
+        total = 2 * lead + cycles
+        period = 1.0 / f
+        if total * period * chain.internal_rate_hz > MAX_SAMPLES_PER_STEP:
+            raise InputError(Problem.TOO_MUCH_WORK, "measurement", chain.describe(),
+                             estimate=f"{total * period * chain.internal_rate_hz:.3g}", unit="samples a step",
+                             budget=f"{MAX_SAMPLES_PER_STEP:.3g}",
+                             fix="a lower sample_rate_hz or oversample, or fewer measure_cycles")
+        start = State._from_kernel(window_states[i])
+        t0 = float(start.time_s)
+        exc = Harmonic(a_g, float(f), phase=-(2.0 * math.pi * f * t0), g=g)
+        run = simulate(oscillator, exc, total * period, start, sample_rate_hz=chain.internal_rate_hz,
+                       rtol=rtol)
+        if run.status != Status.SUCCESS:
+            raise InputError(Problem.BAD_STATE, "measurement", chain.describe(),
+                             why=f"the window at {f:g} Hz could not be simulated again: {run.message}",
+                             fix="measure the exact metrics (no measurement), or check the system")
+        uniform = run.to_dataframe()["event"].to_numpy() == ""
+        t = run.t[uniform]
+        t_s, table, mass, disp = chain.measure(t, exc.acceleration(t), run.abs_acceleration[uniform],
+                                               run.displacement[uniform] - centre)
+        raw_acc = np.column_stack([mass, mass])  # (the mean of the accelerometers, and the one)
+        acc = np.column_stack([smooth(a, fs) for a in raw_acc.T])
+        d = smooth(disp, fs)
+        bounds = t0 + (lead + np.arange(cycles + 1)) * period
+        in_win = (t_s >= bounds[0]) & (t_s < bounds[-1])
+        noise = float(np.nanstd(disp[in_win] - d[in_win]))
+        amp = table_amplitude(t_s[in_win], table[in_win], f)  # (A_t as the table's accelerometer reads it)
+        shape, contacts, found, _ = measure_window(
+            t_s, table, raw_acc, acc, disp, d, bounds, period, amp, fs, names=("alpha", "alpha_1"),
+            mass_kg=oscillator.mass, gap=gap, steady_rtol=steady_rtol, omega_min_rad_s=omega_min_rad_s,
+            noise=noise)
+        row = {q: shape.get(q, contacts.get(q, math.nan)) for q in MEASURED_COLUMNS}
+        row["displacement_max_m"] += centre
+        row["displacement_min_m"] += centre
+        if gap is None:
+            row["contact"] = False
+            row["contacts_per_cycle"] = 0.0
+        row["window_start_s"] = float(bounds[0])
+        rows.append(row)
+        if found is not None and len(found):
+            impacts.append(found.assign(freq_hz=float(f)))
+    table = pd.concat(impacts, ignore_index=True) if impacts else pd.DataFrame()
+    return pd.DataFrame(rows), table
+
+
+def table_amplitude(t: np.ndarray, table: np.ndarray, freq_hz: float) -> float:
+    """The amplitude of the table's acceleration at ``freq_hz`` (least squares: sine, cosine and an
+    offset over whole cycles), as the lab fits it."""
+    w = 2.0 * math.pi * freq_hz
+    design = np.column_stack([np.sin(w * t), np.cos(w * t), np.ones_like(t)])
+    a, b, _ = np.linalg.lstsq(design, table, rcond=None)[0]
+    return float(math.hypot(a, b))
