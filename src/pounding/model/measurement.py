@@ -195,6 +195,19 @@ class MeasurementChain:
         return self.sample_rate_hz * self.oversample
 
     @property
+    def stride(self) -> int:
+        """Every how many samples of :attr:`simulation_rate_hz` the recording keeps: ``oversample``
+        with a causal filter (it runs between the samples), else 1."""
+        causal = any(s.lowpass_hz is not None and not s.zero_phase for s in self.sensors)
+        return self.oversample if causal else 1
+
+    @property
+    def simulation_rate_hz(self) -> float:
+        """The rate exact histories need for this chain, Hz: :attr:`internal_rate_hz` with a causal
+        filter, else ``sample_rate_hz`` (the same samples, ten times fewer to compute)."""
+        return self.sample_rate_hz * self.stride
+
+    @property
     def settle_s(self) -> float:
         """How long the slowest filter takes to forget where it started, s (0 without one): ten
         time constants of its corner, ``10 / (2 pi f_c)`` per pole pair, at least."""
@@ -277,28 +290,35 @@ class MeasurementChain:
                 out[j] = signal.sosfiltfilt(sos, out[j])
         return out
 
-    def measure(self, time_s: Any, table: Any, mass: Any, displacement: Any) -> tuple[np.ndarray, ...]:
+    def measure(self, time_s: Any, table: Any, mass: Any, displacement: Any, *,
+                stride: int | None = None) -> tuple[np.ndarray, ...]:
         """The chain over exact histories on the internal grid: causal filters, sampling (every
-        ``oversample``-th sample from the first), quanta, zero-phase filters.
+        ``stride``-th sample from the first), quanta, zero-phase filters.
 
         Parameters
         ----------
         time_s : array_like, shape (n,)
-            Uniform at :attr:`internal_rate_hz`, s.
+            Uniform at ``sample_rate_hz`` times ``stride``, s.
         table, mass : array_like, shape (n,)
             The table's and the mass's absolute accelerations, m/s^2.
         displacement : array_like, shape (n,)
             The mass's displacement relative to the table, m.
+        stride : int, optional
+            ``oversample`` (default) or :attr:`stride` (histories at :attr:`simulation_rate_hz`).
 
         Returns
         -------
         tuple of ndarray, each shape (m,)
-            ``(time_s, table, mass, displacement)`` as recorded, ``m = ceil(n / oversample)``.
+            ``(time_s, table, mass, displacement)`` as recorded, ``m = ceil(n / stride)``.
         """
+        stride = self.oversample if stride is None else stride
+        if stride not in (self.oversample, self.stride):
+            raise InputError(Problem.NOT_ONE_OF, "stride", stride,
+                             choices=f"{self.oversample}, {self.stride}")
         block = np.vstack([np.asarray(x, dtype=float) for x in (table, mass, displacement)])
-        filtered, _ = self.analogue(block)
-        sampled = self.digital(self.quantize(filtered[:, :: self.oversample]))
-        return (np.asarray(time_s, dtype=float)[:: self.oversample], *sampled)
+        filtered, _ = self.analogue(block)  # (none at a stride of 1 unless oversample is 1: refused above)
+        sampled = self.digital(self.quantize(filtered[:, ::stride]))
+        return (np.asarray(time_s, dtype=float)[::stride], *sampled)
 
     def apply(self, run: Any) -> Any:
         """A :class:`pounding.Run` as the lab would record it.

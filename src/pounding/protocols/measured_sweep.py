@@ -64,15 +64,16 @@ def measure_steps(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray, wind
         lead = lead_cycles(chain, f)
         total = 2 * lead + cycles
         period = 1.0 / f
-        if total * period * chain.internal_rate_hz > MAX_SAMPLES_PER_STEP:
+        samples = total * period * chain.simulation_rate_hz
+        if samples > MAX_SAMPLES_PER_STEP:
             raise InputError(Problem.TOO_MUCH_WORK, "measurement", chain.describe(),
-                             estimate=f"{total * period * chain.internal_rate_hz:.3g}", unit="samples a step",
+                             estimate=f"{samples:.3g}", unit="samples a step",
                              budget=f"{MAX_SAMPLES_PER_STEP:.3g}",
                              fix="a lower sample_rate_hz or oversample, or fewer measure_cycles")
         start = State._from_kernel(window_states[i])
         t0 = float(start.time_s)
         exc = Harmonic(a_g, float(f), phase=-(2.0 * math.pi * f * t0), g=g)
-        run = simulate(oscillator, exc, total * period, start, sample_rate_hz=chain.internal_rate_hz,
+        run = simulate(oscillator, exc, total * period, start, sample_rate_hz=chain.simulation_rate_hz,
                        rtol=rtol)
         if run.status != Status.SUCCESS:
             raise InputError(Problem.BAD_STATE, "measurement", chain.describe(),
@@ -81,7 +82,7 @@ def measure_steps(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray, wind
         uniform = run.to_dataframe()["event"].to_numpy() == ""
         t = run.t[uniform]
         t_s, table, mass, disp = chain.measure(t, exc.acceleration(t), run.abs_acceleration[uniform],
-                                               run.displacement[uniform] - centre)
+                                               run.displacement[uniform] - centre, stride=chain.stride)
         raw_acc = np.column_stack([mass, mass])  # (the mean of the accelerometers, and the one)
         acc = np.column_stack([smooth(a, fs) for a in raw_acc.T])
         d = smooth(disp, fs)
