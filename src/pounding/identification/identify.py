@@ -22,13 +22,14 @@ import pandas as pd
 
 from .._checks import boolean, integer, one_of, real
 from .._errors import InputError, Interrupted, Problem, Status
-from ..model import Oscillator
+from ..model import MeasurementChain, Oscillator
 from .._runner import run_tasks, scheduler_kind, task_pool
 from .._runner.progress import Progress, progress_reporter
 from ..protocols.campaign import sweep_quantities
 from ..protocols.sweep import check_sweep_options
 from ..protocols.sweep import make_plan, paper_frequencies_hz, sweep
 from .family import ModelFamily, check_bounds
+from .measured import CUTOFF, apply_cutoff, split_cutoff
 from .targets import Targets
 
 # residual of a target the candidate cannot produce (NaN: no contact, failed run), in tolerances
@@ -70,6 +71,9 @@ class Identification:
         What was fitted.
     loss : str
         What was minimised (``identify``'s ``loss``).
+    measurement : MeasurementChain or None
+        The chain the metrics were measured through (with a fitted cutoff when
+        ``measurement_cutoff_hz`` was free), or None: the exact metrics.
 
     Examples
     --------
@@ -107,6 +111,7 @@ class Identification:
     bounds: dict[str, tuple[float, float]] = field(repr=False)
     complete: bool = True
     loss: str = "squared"
+    measurement: MeasurementChain | None = None
 
     @property
     def success(self) -> bool:
@@ -142,7 +147,8 @@ class Identification:
         meta = {"written_by": "pounding identify", "partial": not self.complete, "loss": self.loss,
                 "cost": float(self.cost),
                 "evaluations": int(self.n_evaluations),
-                "targets_met": f"{self.n_within} of {len(self.residuals)}"}
+                "targets_met": f"{self.n_within} of {len(self.residuals)}",
+                "measurement": "exact" if self.measurement is None else self.measurement.describe()}
         return self.oscillator.to_toml(path, meta=meta)
 
     def plot(self, ax: Any = None, **kwargs: Any) -> list:
@@ -181,7 +187,10 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     family : ModelFamily
         Structure and fixed numbers.
     bounds : dict
-        ``name -> (low, high)`` for every free number (low < high, finite).
+        ``name -> (low, high)`` for every free number (low < high, finite); with
+        ``"measurement_cutoff_hz"``, the low-pass corner (Hz) of the accelerometers of the
+        ``measurement`` chain (default: a 4th-order zero-phase low-pass at 1 kHz) is fitted too
+        (:mod:`pounding.identification.measured`).
     seed : int
         Seed of the global stage; the same seed gives the same result.
     workers : int, optional
@@ -250,7 +259,14 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     if not isinstance(family, ModelFamily):
         raise InputError(Problem.WRONG_TYPE, "family", family, got=type(family).__name__,
                          expected="pounding.ModelFamily")
-    bounds = check_bounds(family, bounds)
+    check_sweep_options(sweep_options, also="identify's own")
+    bounds, cutoff, sweep_options = split_cutoff(bounds, sweep_options)
+    if cutoff is not None and not bounds:
+        family.free_names({})  # (every number fixed: only the cutoff is fitted)
+    else:
+        bounds = check_bounds(family, bounds)
+    if cutoff is not None:
+        bounds = {**bounds, CUTOFF: cutoff}
     names = tuple(bounds)
     n_workers = integer("workers", (os.cpu_count() or 1) if workers is None else workers, 1, MAX_WORKERS)
     scheduler_kind(scheduler)  # (a wrong one refused before any work)
@@ -266,7 +282,6 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
                               "running "
                               "the targets' sweeps)", budget=f"{MAX_EVALUATIONS:.3g}",
                          fix="lower maxiter or popsize (30 and 10 are the defaults)")
-    check_sweep_options(sweep_options, also="identify's own")
     options = {**DEFAULT_SWEEP, **sweep_options}
     scale = _Scale(bounds)
     cases_freqs = paper_frequencies_hz() if freqs_hz is None else freqs_hz
@@ -284,11 +299,12 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
                 raise InputError(Problem.OUT_OF_RANGE, f"x0.{k}", x0[k],
                                  range=f"the bounds [{low:g}, {high:g}]", hint="")
     try:  # bad sweep options fail here, not in a worker
-        probe = family.oscillator(scale.values(np.full(len(names), 0.5)))
+        middle, probe_options = apply_cutoff(scale.values(np.full(len(names), 0.5)), options)
+        probe = family.oscillator(middle)
     except InputError:
         probe = None  # the middle of the bounds is no valid system (breakpoints out of order)
     if probe is not None:
-        _model_values(probe, targets, cases_freqs, options, check_only=True)
+        _model_values(probe, targets, cases_freqs, probe_options, check_only=True)
     best: dict[str, Any] = {"cost": math.inf, "u": None, "n": 0, "valid": 0, "error": None}
     problem = (family, targets, cases_freqs, options, loss, scale)  # (what a candidate's task carries)
 
@@ -354,15 +370,17 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     if best["valid"] == 0 and best["error"] is not None:
         raise best["error"]  # no candidate made a valid system: the family's fixed numbers or bounds
     params = scale.values(best["u"])
-    osc = family.oscillator(params)
-    table = evaluate(osc, targets, freqs_hz=cases_freqs, **options)
+    family_params, final_options = apply_cutoff(params, options)
+    osc = family.oscillator(family_params)
+    table = evaluate(osc, targets, freqs_hz=cases_freqs, **final_options)
     n_ok = int(table["within"].sum())
     message = (f"{n_ok} of {len(table)} targets within tolerance after {best['n']} evaluations; "
                f"cost {best['cost']:.4g}.")
     if interrupted:
         message = "Interrupted: the best candidate so far. " + message
     result = Identification(params, osc, table, best["cost"], best["n"], Status.SUCCESS, message, family,
-                            bounds, complete=not interrupted, loss=loss)
+                            bounds, complete=not interrupted, loss=loss,
+                            measurement=final_options.get("measurement"))
     if interrupted:
         raise Interrupted(result, best["n"], None, "evaluations")
     return result
@@ -373,7 +391,7 @@ def _candidate(task: tuple, ctx: Any) -> tuple[np.ndarray, bool, Any]:
     ``((family, targets, freqs, sweep options, loss, scale), u)``; returns ``(residuals, whether
     it made a valid system, the InputError of one that did not)``."""
     (family, targets, freqs, options, loss, scale), u = task
-    values = scale.values(u)
+    values, options = apply_cutoff(scale.values(u), options)
     error = None
     try:
         model = _model_values(family.oscillator(values), targets, freqs, options)
