@@ -143,6 +143,14 @@ def fig05(result, df, peaks):
     return fig
 
 
+def fig05_measured(result, chain: str):
+    """Fig. 5's analogue with every window measured through a chain (``chain``: its description)."""
+    df = steps(result)
+    fig = fig05(result, df, None)
+    fig.suptitle(f"Fig. 5 analogue as measured ({chain})", fontsize="small")
+    return fig
+
+
 def _versus_a_g(ax, peaks: pd.DataFrame, conf: str, y: str, measured: pd.Series | None, label: str) -> None:
     for d, sub in peaks[peaks["configuration"] == conf].groupby("direction"):
         ax.plot(sub["a_g"], sub[y], label=f"{label} model ({d} sweep)", **CONF_STYLE[conf],

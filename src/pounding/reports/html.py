@@ -118,7 +118,7 @@ def _for_people(df: pd.DataFrame) -> pd.DataFrame:
     return out
 
 
-def _table(df: pd.DataFrame) -> str:
+def table_html(df: pd.DataFrame) -> str:
     """The table as HTML; a wide comparison split into tables of ``GROUPS_PER_TABLE`` quantities."""
     df = _for_people(df)
     pieces = [df]
@@ -142,14 +142,14 @@ def _verdict(v: Any, system_label: str) -> list[str]:
     if len(v.worst_misses):
         misses = v.worst_misses.rename(columns={"target": "measured", "difference_pct": "difference [%]",
                                                 "normalized": "in tolerances", "flagged": "flagged below"})
-        parts += ["<h3>Worst misses</h3>", _table(misses)]
+        parts += ["<h3>Worst misses</h3>", table_html(misses)]
     parts.append("<h3>Are the measurements consistent?</h3>")
     if len(v.flags):
         parts += [f"<p>{len(v.flags)} combination(s) of the paper's numbers miss a bound by more than their "
                   "tolerances (<code>Targets.check_consistency</code>): kind <i>law</i>, no system obeying "
                   "Newton's law produces them; kind <i>sinusoidal</i>, no near-sinusoidal response does, "
                   "which a model of a smooth isolator near resonance gives.</p>",
-                  _table(v.flags.rename(columns={"measured": "measured", "bound": "least possible"}))]
+                  table_html(v.flags.rename(columns={"measured": "measured", "bound": "least possible"}))]
     else:
         parts.append("<p>Every measured combination passes the consistency checks.</p>")
     return parts
@@ -162,23 +162,26 @@ def _image(path: Path) -> str:
 
 def write_page(path: Path, *, title: str, system_label: str, systems: dict[str, str], settings: dict,
                tables: dict[str, pd.DataFrame], figures: dict[str, tuple[Path, str]],
-               notes: pd.DataFrame, statuses: pd.DataFrame, verdict: Any = None) -> Path:
+               notes: pd.DataFrame, statuses: pd.DataFrame, verdict: Any = None,
+               story: list[str] | None = None) -> Path:
     """Write ``index.html``: every image embedded, so the page opens from disk, offline.
 
-    ``verdict`` (a :class:`~pounding.reports.verdict.Verdict`) opens the page."""
+    ``verdict`` (a :class:`~pounding.reports.verdict.Verdict`) opens the page; ``story`` (HTML
+    parts: the exact metrics against the measured ones) follows it."""
     e = html.escape
     parts = [f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{e(title)}</title>",
              f"<style>{CSS}</style></head><body>", f"<h1>{e(title)}</h1>",
              f"<p class='cite'>The paper: {e(PAPER)}</p>"]
     if verdict is not None:
         parts += _verdict(verdict, system_label)
+    parts += story or []
     parts += [f"<p>System: <b>{e(system_label)}</b>. Model values come from the campaign below (each sweep "
               "direction a row); measured values are the paper's, as printed (package data, "
               "<code>pounding.data.paper_measurements()</code>); differences are (model - measured) / "
               "measured in percent.</p>",
-              "<h2>Campaign</h2>", _table(pd.DataFrame([settings])), _table(statuses)]
+              "<h2>Campaign</h2>", table_html(pd.DataFrame([settings])), table_html(statuses)]
     for name, df in tables.items():
-        parts += [f"<h2>{e(name)}</h2>", _table(df)]
+        parts += [f"<h2>{e(name)}</h2>", table_html(df)]
     parts.append("<h2>Figures</h2>")
     for name, (png, caption) in figures.items():
         parts.append(f"<figure><img src='{_image(png)}' alt='{e(name)}'>"
@@ -191,6 +194,6 @@ def write_page(path: Path, *, title: str, system_label: str, systems: dict[str, 
     parts.append("</ul><h2>What in the paper does not add up</h2><ul>")
     parts += [f"<li class='note'>{e(n)}</li>" for n in PAPER_INCONSISTENCIES]
     parts.append("</ul><h3>Measured values with a note</h3>")
-    parts += [_table(notes), "</body></html>"]
+    parts += [table_html(notes), "</body></html>"]
     write_text(path, "\n".join(parts))
     return path

@@ -12,13 +12,15 @@ import pandas as pd
 from .. import __version__
 from .._io import atomic_write, output_dir
 from ..identification import evaluate, paper_targets
-from ..model import Oscillator
+from .._errors import InputError, Problem
+from ..model import MeasurementChain, Oscillator
 from ..protocols import CampaignResult, campaign
 from .._runner.progress import Progress
 from .branches import add_branches, coexistence_of, continuation_statuses, fig_coexistence
 from .compare import comparison, inconsistency_notes
-from .figures import paper_figures
-from .html import write_page
+from .figures import fig05_measured, paper_figures
+from .html import table_html, write_page
+from .measured_story import measured_story, story_html
 from .verdict import Verdict, verdict
 
 TABLE_TITLES = {"targets": "Calibration targets (Tables 2-4; sweeps up, fixed 30 cycles per step): systems "
@@ -109,7 +111,8 @@ def targets_beside(systems: dict[str, Oscillator], evaluated: dict[int, pd.DataF
 def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Path = "report", *,
               system_label: str = "custom systems", freqs_hz: Any = None, workers: int | None = None,
               progress: Progress = False, beside: dict[str, Oscillator] | None = None,
-              **sweep_options: Any) -> Report:
+              measured: tuple[Oscillator, MeasurementChain] | None = None,
+              profile: pd.DataFrame | None = None, **sweep_options: Any) -> Report:
     """Run the paper's campaign and write Tables 2-4 (CSV), the figure analogues (PNG) and
     ``index.html`` into ``out_dir``.
 
@@ -130,6 +133,13 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
         ``label -> YBs system``: the report adds a table of the paper's targets with these
         systems' model values side by side (:func:`targets_beside`), e.g. the calibrated
         preset beside the printed one.
+    measured : (Oscillator, MeasurementChain), optional
+        A YBs system and the chain its metrics are measured through (e.g.
+        ``presets.paper_calibrated_measured()``): the report then tells both stories, the exact
+        metrics and the measured ones (a second campaign through the chain), with their verdicts,
+        Tables 2-4 and Fig. 5 as measured, and says the paper states no filter.
+    profile : DataFrame, optional
+        With ``measured``: targets met against the chain's cutoff, shown beside it.
 
     Returns
     -------
@@ -156,6 +166,11 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
     import matplotlib.pyplot as plt
 
     out = output_dir("out_dir", out_dir)  # before the campaign: no work lost to a bad path
+    if measured is not None and (not isinstance(measured, tuple) or len(measured) != 2
+                                 or not isinstance(measured[0], Oscillator)
+                                 or not isinstance(measured[1], MeasurementChain)):
+        raise InputError(Problem.WRONG_TYPE, "measured", measured, got=type(measured).__name__,
+                         expected="(Oscillator, MeasurementChain), e.g. presets.paper_calibrated_measured()")
     result = campaign(nbs_system, ybs_system, freqs_hz=freqs_hz, workers=workers, progress=progress,
                       **sweep_options)
     out.mkdir(parents=True, exist_ok=True)
@@ -163,15 +178,27 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
     comparisons = {t: comparison(result, t) for t in ("2", "3", "4")}
     own = evaluate(ybs_system, paper_targets())  # the verdict: the paper's targets, sweeps up, fixed
     judged = verdict(own)
+    story = None
+    if measured is not None:
+        def campaign_of(nbs: Oscillator, ybs: Oscillator, **chain: Any) -> CampaignResult:
+            return campaign(nbs, ybs, freqs_hz=freqs_hz, workers=workers, progress=progress,
+                            **sweep_options, **chain)
+
+        story = measured_story(*measured, campaign_of, profile)
+        for t in ("2", "3", "4"):
+            comparisons[f"{t} measured"] = story.comparisons[t]
     if beside:
         comparisons["targets"] = targets_beside(beside, {id(ybs_system): own})
-    tables = {t: out / ("targets.csv" if t == "targets" else f"table{t}.csv") for t in comparisons}
+    tables = {t: out / ("targets.csv" if t == "targets" else f"table{t.replace(' ', '_')}.csv")
+              for t in comparisons}
     for t, df in comparisons.items():
         atomic_write(tables[t], lambda tmp, df=df: df.to_csv(tmp, index=False))
     cmap, why_not = coexistence_of(result, ybs_system)
     figures, captions = {}, {}
     with plt.ioff():  # (written, never shown; the caller's backend, a notebook's too, left as it is)
         made = paper_figures(result)
+        if story is not None:
+            made["fig05_measured"] = fig05_measured(story.campaign, story.chain.describe())
         if cmap is not None:
             add_branches(made["fig05"], cmap, float(result.dataset.attrs["f_ref_hz"]))
             made["coexistence"] = fig_coexistence(cmap)
@@ -192,10 +219,17 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
     index = write_page(
         out / "index.html", title="pounding: the paper's tables and figures, model beside measurement",
         system_label=system_label, systems=systems, settings=settings,
-        tables={TABLE_TITLES[t]: df for t, df in comparisons.items()},
+        tables={_title(t): df for t, df in comparisons.items()},
         figures={name: (path, captions[name]) for name, path in figures.items()},
-        notes=inconsistency_notes(), statuses=statuses, verdict=judged)
+        notes=inconsistency_notes(), statuses=statuses, verdict=judged,
+        story=None if story is None else story_html(judged, story, system_label, table_html))
     return Report(out, index, tables, figures, result, comparisons, judged)
+
+
+def _title(key: str) -> str:
+    """A table's heading (a measured one: the exact one's, said so)."""
+    base, _, measured = key.partition(" ")
+    return TABLE_TITLES[base] + (" (as measured through the chain)" if measured else "")
 
 
 def _sweep_status(key: tuple, sw: Any) -> dict:

@@ -1,0 +1,93 @@
+"""The report's second story: the paper's targets with the metrics measured through a chain.
+
+The paper does not state how its accelerations were filtered. :func:`measured_story` runs the campaign
+and the verdict again with every window measured through a :class:`~pounding.MeasurementChain` (the
+lab pipeline's method), and the page says which story each number tells: the exact metrics, or the
+metrics as the lab's instruments would have read them.
+"""
+
+from __future__ import annotations
+
+import html
+from dataclasses import dataclass
+from typing import Any
+
+import pandas as pd
+
+from ..identification import evaluate, paper_targets
+from ..model import MeasurementChain, Oscillator
+from .compare import comparison
+from .verdict import Verdict, verdict
+
+NO_FILTER_STATED = ("The paper does not state how its accelerations were filtered or sampled: the chain is a "
+                    "hypothesis tested against its numbers, not a fact of its test.")
+
+
+@dataclass(frozen=True, eq=False)
+class MeasuredStory:
+    """The campaign, tables and verdict of a system measured through a chain (:func:`measured_story`).
+
+    Attributes
+    ----------
+    system : Oscillator
+        The YBs system (its NBs: without bumpers).
+    chain : MeasurementChain
+    campaign : CampaignResult
+        The campaign with every window measured through ``chain``.
+    comparisons : dict of str to DataFrame
+        Tables 2-4 (:func:`comparison`) of that campaign.
+    verdict : Verdict
+        The paper's targets met with the measured metrics.
+    profile : DataFrame or None
+        Targets met against the cutoff (a profile of fits at fixed cutoffs), when known.
+    """
+
+    system: Oscillator
+    chain: MeasurementChain
+    campaign: Any
+    comparisons: dict
+    verdict: Verdict
+    profile: pd.DataFrame | None = None
+
+
+def measured_story(system: Oscillator, chain: MeasurementChain, campaign_of: Any,
+                   profile: pd.DataFrame | None = None) -> MeasuredStory:
+    """Run ``campaign_of(nbs, ybs, measurement=chain)`` (the report's own campaign call) and the
+    verdict of ``system`` with the metrics measured through ``chain``."""
+    result = campaign_of(system.without_bumpers(), system, measurement=chain)
+    tables = {t: comparison(result, t) for t in ("2", "3", "4")}
+    judged = verdict(evaluate(system, paper_targets(), measurement=chain))
+    return MeasuredStory(system, chain, result, tables, judged, profile)
+
+
+def story_html(exact: Verdict, story: MeasuredStory, exact_label: str, table: Any) -> list[str]:
+    """The section that says which story the report tells (``table``: the page's table writer)."""
+    e = html.escape
+    cutoff = story.chain.mass.lowpass_hz
+    parts = [
+        "<h2>Which story: exact metrics, or as measured?</h2>",
+        f"<p><b>{e(NO_FILTER_STATED)}</b></p>",
+        f"<p>Exact metrics (the model's own peaks and located contacts), {e(exact_label)}: "
+        f"<b>{exact.met} of {exact.total}</b> targets met. As measured through the chain "
+        f"({e(story.chain.describe())}), the system fitted with it: <b>{story.verdict.met} of "
+        f"{story.verdict.total}</b> targets met"
+        + (f", with the accelerometers' cutoff at {cutoff:.3g} Hz" if cutoff is not None else "")
+        + ". Measured metrics are taken as the lab pipeline takes them from a recording (alpha from the "
+        "filtered accelerometers; contacts found on the displacement, confirmed and timed by the filtered "
+        "force pulses).</p>",
+    ]
+    both = exact.residuals[["configuration", "a_g", "quantity", "target", "model", "within"]].merge(
+        story.verdict.residuals[["configuration", "a_g", "quantity", "model", "within"]],
+        on=["configuration", "a_g", "quantity"], suffixes=(" exact", " measured"))
+    differ = both[(both["within exact"] != both["within measured"])
+                  | ((both["model exact"] - both["model measured"]).abs()
+                     > 1e-3 * both["target"].abs().clip(lower=1e-12))]
+    parts += ["<h3>The targets where the two stories differ</h3>",
+              table(differ.rename(columns={"target": "measured (paper)"}))]
+    if story.profile is not None and len(story.profile):
+        parts += ["<h3>Targets met against the cutoff</h3>",
+                  "<p>The bumper's pulse-shaping numbers refitted at each fixed cutoff (a local fit from the "
+                  "exact calibration: <code>scripts/calibrate_measured.py</code>); the row with the cutoff "
+                  "free is the fit shipped as <code>presets.paper_calibrated_measured()</code>.</p>",
+                  table(story.profile)]
+    return parts
