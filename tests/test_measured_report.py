@@ -27,6 +27,7 @@ def test_the_report_tells_the_exact_and_the_measured_story(tmp_path):
     for t in ("2", "3", "4"):
         assert (tmp_path / "r" / f"table{t}_measured.csv").is_file()
     assert "fig05_measured" in report.figures and "as measured" in page
+    assert "lost to the measurement" in page and "and why" in page
     measured_alpha = report.comparisons["2 measured"].set_index("configuration").loc["YBs", "alpha_model"]
     exact_alpha = report.comparisons["2"].set_index("configuration").loc["YBs", "alpha_model"]
     assert measured_alpha < 0.7 * exact_alpha
@@ -38,3 +39,26 @@ def test_a_bad_measured_pair_is_refused_before_any_work(tmp_path):
     ybs = pounding.presets.paper_calibrated()
     with pytest.raises(pounding.InputError, match="measured"):
         pounding.reports.reproduce(ybs.without_bumpers(), ybs, tmp_path / "r", measured=(ybs, 15.0), **SMALL)
+
+
+def test_every_measured_miss_is_explained_or_listed_as_unexplained():
+    from pounding.reports.measured_story import misses_explained
+    from pounding.reports.verdict import verdict
+
+    exact_res = pounding.presets.residuals()
+    measured_res = exact_res.copy()
+    lost = measured_res.index[measured_res["within"]][:2]  # two targets the measurement loses
+    measured_res.loc[lost, "within"] = False
+    exact, measured = verdict(exact_res), verdict(measured_res)
+    table = misses_explained(exact, measured)
+    assert len(table) == 36 - measured.met
+    why = dict(zip(zip(table["configuration"], table["a_g"], table["quantity"]), table["why"]))
+    for i in lost:
+        row = measured_res.loc[i]
+        assert why[(row["configuration"], row["a_g"], row["quantity"])].startswith("lost to the measurement")
+    flagged = measured.residuals[measured.residuals["flagged"] & ~measured.residuals["within"]]
+    assert len(flagged) and all(
+        why[(r.configuration, r.a_g, r.quantity)].startswith("the paper's numbers")
+        for r in flagged.itertuples()
+    )
+    assert any(w.startswith("unexplained") for w in table["why"])

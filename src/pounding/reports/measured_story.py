@@ -84,6 +84,8 @@ def story_html(exact: Verdict, story: MeasuredStory, exact_label: str, table: An
                      > 1e-3 * both["target"].abs().clip(lower=1e-12))]
     parts += ["<h3>The targets where the two stories differ</h3>",
               table(differ.rename(columns={"target": "measured (paper)"}))]
+    parts += ["<h3>Every target the measured story misses, and why</h3>",
+              table(misses_explained(exact, story.verdict))]
     if story.profile is not None and len(story.profile):
         parts += ["<h3>Targets met against the cutoff</h3>",
                   "<p>The bumper's pulse-shaping numbers refitted at each fixed cutoff (a local fit from the "
@@ -91,3 +93,20 @@ def story_html(exact: Verdict, story: MeasuredStory, exact_label: str, table: An
                   "free is the fit shipped as <code>presets.paper_calibrated_measured()</code>.</p>",
                   table(story.profile)]
     return parts
+
+
+def misses_explained(exact: Verdict, measured: Verdict) -> pd.DataFrame:
+    """The targets the measured metrics miss, each with what accounts for it: a consistency check of
+    the paper's own numbers that fails (no model meets it), the measurement (the exact metrics meet
+    it), or nothing known (listed as unexplained)."""
+    res = measured.residuals.merge(exact.residuals[["configuration", "a_g", "quantity", "within"]],
+                                   on=["configuration", "a_g", "quantity"], suffixes=("", "_exact"))
+    miss = res[~res["within"]].copy()
+    miss["why"] = [
+        "the paper's numbers fail a consistency check (no model meets them together)" if flagged
+        else "lost to the measurement: the exact metrics meet it" if exact_met
+        else "unexplained: the exact metrics miss it too"
+        for flagged, exact_met in zip(miss["flagged"], miss["within_exact"])]
+    cols = ["configuration", "a_g", "quantity", "target", "model", "normalized", "why"]
+    return miss[cols].rename(columns={"target": "measured (paper)", "normalized": "in tolerances"}
+                             ).reset_index(drop=True)
