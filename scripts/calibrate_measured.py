@@ -9,7 +9,8 @@ evaluation measures 322 sweep steps through the chain (about 7 s on one core): a
 preset's 15 numbers at that cost would take days, so this is a local profile, and says so.
 
     python scripts/calibrate_measured.py --cutoffs 10 15 20 30 50 100 --out profile.csv
-    python scripts/calibrate_measured.py --free-cutoff --out free.csv --toml fitted.toml
+    python scripts/calibrate_measured.py --free-cutoff --start-cutoff 15 --out free.csv --toml fitted.toml
+    python scripts/calibrate_measured.py --from-measured --cutoffs 10 15 20 30 50 100 --out profile2.csv
 """
 
 from __future__ import annotations
@@ -27,13 +28,15 @@ from pounding.identification.measured import CUTOFF
 FREE = {"bumper_slope_3": (5e5, 2e8), "bumper_damping": (10.0, 2e4)}  # (calibrate_paper.py's bounds)
 
 
-def fit(cutoff_hz: float | None, free_cutoff: bool, workers: int) -> pd_.Identification:
+def fit(cutoff_hz: float | None, free_cutoff: bool, workers: int,
+        start_hz: float = 15.0, from_measured: bool = False) -> pd_.Identification:
     family = pd_.ModelFamily(500.0, branches=4, law="multilinear_kinematic")
-    start = family.values_of(pd_.presets.paper_calibrated())
+    base = pd_.presets.paper_calibrated_measured()[0] if from_measured else pd_.presets.paper_calibrated()
+    start = family.values_of(base)
     fixed = {k: v for k, v in start.items() if k not in FREE}
     bounds = dict(FREE)
     x0 = {k: start[k] for k in FREE}
-    chain = pd_.MeasurementChain.lowpass(15.0 if cutoff_hz is None else cutoff_hz)
+    chain = pd_.MeasurementChain.lowpass(start_hz if cutoff_hz is None else cutoff_hz)
     if free_cutoff:
         bounds[CUTOFF] = (5.0, 100.0)
         x0[CUTOFF] = chain.mass.lowpass_hz
@@ -49,6 +52,9 @@ def main() -> None:
     ap.add_argument("--cutoffs", type=float, nargs="*", default=[])
     ap.add_argument("--free-cutoff", action="store_true")
     ap.add_argument("--workers", type=int, default=1)
+    ap.add_argument("--start-cutoff", type=float, default=15.0, help="where the free cutoff starts (Hz)")
+    ap.add_argument("--from-measured", action="store_true",
+                    help="start from presets.paper_calibrated_measured() (else paper_calibrated())")
     ap.add_argument("--out", type=Path, required=True)
     ap.add_argument("--toml", type=Path, default=None, help="write the (last) fitted system here")
     args = ap.parse_args()
@@ -56,7 +62,7 @@ def main() -> None:
     runs = [(c, False) for c in args.cutoffs] + ([(None, True)] if args.free_cutoff else [])
     for cutoff, free in runs:
         t0 = time.perf_counter()
-        result = fit(cutoff, free, args.workers)
+        result = fit(cutoff, free, args.workers, args.start_cutoff, args.from_measured)
         res = result.residuals
         row = {"cutoff_hz": result.measurement.mass.lowpass_hz, "cutoff_free": free, "met": result.n_within,
                "cost": result.cost, "evaluations": result.n_evaluations,

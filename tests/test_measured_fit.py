@@ -72,3 +72,25 @@ def test_a_cutoff_beyond_the_plausible_warns():
             refine=False,
             workers=1,
         )
+
+
+def test_the_measured_preset_reproduces_its_stored_residuals_through_its_chain():
+    import numpy as np
+
+    ybs, chain = pounding.presets.paper_calibrated_measured()
+    stored = pounding.presets.residuals("paper-calibrated-measured")
+    now = evaluate(ybs, pounding.paper_targets(), measurement=chain)
+    assert list(now["quantity"]) == list(stored["quantity"])
+    # (the measured metrics pass through splines, filters and least squares: 1e-6, not rounding)
+    np.testing.assert_allclose(now["model"], stored["model"], rtol=1e-6, atol=1e-9, equal_nan=True)
+    assert list(now["within"]) == list(stored["within"])
+    profile = pounding.presets.measurement_profile()
+    free = profile[profile["shipped"]].iloc[0]
+    assert bool(free["cutoff_free"]) and int(profile["shipped"].sum()) == 1
+    assert free["cutoff_hz"] == pytest.approx(chain.mass.lowpass_hz) and int(free["met"]) == int(
+        now["within"].sum()
+    )
+    assert 5.0 <= chain.mass.lowpass_hz <= 100.0
+    assert pounding.presets.by_name("paper-calibrated-measured").bumpers.law == ybs.bumpers.law
+    # the exact preset is kept, and is not this one
+    assert pounding.presets.paper_calibrated().bumpers.law != ybs.bumpers.law

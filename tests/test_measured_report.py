@@ -62,3 +62,12 @@ def test_every_measured_miss_is_explained_or_listed_as_unexplained():
         for r in flagged.itertuples()
     )
     assert any(w.startswith("unexplained") for w in table["why"])
+
+
+def test_the_command_line_refuses_both_stories_flags():
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+
+    result = CliRunner().invoke(app, ["reproduce", "--exact-only", "--lowpass-hz", "15"])
+    assert result.exit_code == 2 and "not both" in result.output

@@ -25,7 +25,7 @@ BLOCK_TIMEOUT_S = 1200
 WRITTEN = ("report/index.html", "contacts.csv", "history.csv", "campaign.nc", "sweep.csv", "sweep.png",
            "campaign/campaign.nc", "calibrated.toml", "fitted.toml", "fitted_paper.toml", "residuals.csv",
            "lab/targets.toml", "quake.png", "spectra", "gaps.zarr", "gaps_cli.zarr",
-           "ups_design/index.html", "ups_design/decision.csv")
+           "ups_design/index.html", "ups_design/decision.csv", "report/table2_measured.csv")
 
 
 def _blocks() -> list[tuple[str, str]]:

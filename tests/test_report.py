@@ -154,6 +154,9 @@ def test_cli_reproduce_on_a_reduced_grid(tmp_path):
     assert "paper-calibrated" in result.output  # the default preset
     said = " ".join(result.output.split())  # (the console wraps lines)
     assert "verdict: preset paper-calibrated" in said and "meets 27 of 36 targets" in said
+    met = int(pd_.presets.residuals("paper-calibrated-measured")["within"].sum())
+    assert "as measured (sampled at 1000 Hz; table: zero-phase" in said and f"meets {met} of 36" in said
+    assert (out / "table2_measured.csv").is_file() and "Which story" in (out / "index.html").read_text()
     beside = pd.read_csv(out / "targets.csv")  # the calibration targets, printed preset beside
     assert {"measured", "allowed", "paper-printed", "paper-calibrated",
             "paper-calibrated met"} <= set(beside.columns)

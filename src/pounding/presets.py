@@ -22,8 +22,10 @@ from .model import Bumpers, Isolator, KelvinVoigt, Oscillator
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
 
-__all__ = ["by_name", "paper_calibrated", "paper_calibrated_v1", "paper_calibrated_v2", "paper_damped",
-           "paper_printed", "residuals"]
+    from .model import MeasurementChain
+
+__all__ = ["by_name", "measurement_profile", "paper_calibrated", "paper_calibrated_measured",
+           "paper_calibrated_v1", "paper_calibrated_v2", "paper_damped", "paper_printed", "residuals"]
 
 PAPER_SLOPES_N_M = (38_000.0, 18_000.0, 2_000.0)
 PAPER_BREAKPOINTS_M = (0.015, 0.040)
@@ -112,6 +114,9 @@ CALIBRATED_V1_FILE = "paper_calibrated_v1.toml"
 CALIBRATED_V1_RESIDUALS_FILE = "paper_calibrated_v1_residuals.csv"
 CALIBRATED_V2_FILE = "paper_calibrated_v2.toml"
 CALIBRATED_V2_RESIDUALS_FILE = "paper_calibrated_v2_residuals.csv"
+MEASURED_FILE = "paper_calibrated_measured.toml"
+MEASURED_RESIDUALS_FILE = "paper_calibrated_measured_residuals.csv"
+MEASURED_PROFILE_FILE = "measurement_profile.csv"
 
 
 def _data_system(name: str, bumpers: bool) -> Oscillator:
@@ -218,14 +223,82 @@ def paper_calibrated_v2(bumpers: bool = True) -> Oscillator:
     return _data_system(CALIBRATED_V2_FILE, bumpers)
 
 
+def paper_calibrated_measured(bumpers: bool = True) -> tuple[Oscillator, "MeasurementChain"]:
+    """The paper's calibration with its accelerations measured through a low-pass: the system and
+    the chain (the hypothesis that the lab's filtering explains its alphas; ``docs/measurement.md``).
+
+    Made by ``scripts/calibrate_measured.py --free-cutoff``: from :func:`paper_calibrated`, the
+    bumper's steep third slope and its dashpot refitted by least squares ("misses" loss) together
+    with the cutoff of a 4th-order zero-phase Butterworth low-pass on the accelerometers (table
+    and mass; the laser as read), within 5-100 Hz, every metric measured through it as the lab
+    pipeline measures a recording.  Its residuals (measured metrics) are
+    ``residuals("paper-calibrated-measured")``; :func:`paper_calibrated` stays the preset fitted
+    to the exact metrics.
+
+    Parameters
+    ----------
+    bumpers : bool
+        True: the YBs configuration (with bumpers); False: the same system without them (NBs).
+
+    Returns
+    -------
+    (Oscillator, MeasurementChain)
+        The system (``pounding/data/paper_calibrated_measured.toml``) and the chain its metrics
+        are measured through (give it as ``measurement=``).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> ybs, chain = pounding.presets.paper_calibrated_measured()
+    >>> chain.mass.zero_phase, chain.laser.lowpass_hz
+    (True, None)
+    >>> 5.0 <= chain.mass.lowpass_hz <= 100.0  # Hz, fitted
+    True
+    """
+    import tomllib
+
+    from .model import MeasurementChain
+
+    with resources.files("pounding.data").joinpath(MEASURED_FILE).open("r", encoding="utf-8") as fh:
+        text = fh.read()
+    cutoff = float(tomllib.loads(text)["meta"]["measurement_cutoff_hz"])
+    osc = Oscillator.from_toml_text(text)
+    return (osc if bumpers else osc.without_bumpers()), MeasurementChain.lowpass(cutoff)
+
+
+def measurement_profile() -> "pd.DataFrame":
+    """Targets met against the cutoff of :func:`paper_calibrated_measured`'s chain: the bumper's
+    pulse-shaping numbers refitted at fixed cutoffs from 10 to 100 Hz, and with the cutoff free
+    (``scripts/calibrate_measured.py``).
+
+    Returns
+    -------
+    DataFrame
+        One row per fit: ``cutoff_hz``, ``cutoff_free``, ``start_cutoff_hz`` (where a free
+        cutoff started), ``shipped`` (the fit :func:`paper_calibrated_measured` is), ``met`` (of
+        36), ``cost``, ``evaluations``, ``seconds``, the fitted numbers (``bumper_slope_3`` N/m,
+        ``bumper_damping`` N s/m) and ``missed`` (the targets missed).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> profile = pounding.presets.measurement_profile()
+    >>> int(profile["met"].max()) <= 36
+    True
+    """
+    return _data_table(MEASURED_PROFILE_FILE)
+
+
 PRESETS = {"paper-printed": paper_printed, "paper-damped": paper_damped, "paper-calibrated": paper_calibrated,
-           "paper-calibrated-v1": paper_calibrated_v1, "paper-calibrated-v2": paper_calibrated_v2}
+           "paper-calibrated-v1": paper_calibrated_v1, "paper-calibrated-v2": paper_calibrated_v2,
+           "paper-calibrated-measured": lambda bumpers=True: paper_calibrated_measured(bumpers)[0]}
 # what `pounding reproduce` uses unless told otherwise: the preset closest to the measurements
 BEST_PRESET = "paper-calibrated"
 # the calibrated presets' residual tables, by preset name
 RESIDUALS = {"paper-calibrated": CALIBRATED_RESIDUALS_FILE,
              "paper-calibrated-v1": CALIBRATED_V1_RESIDUALS_FILE,
-             "paper-calibrated-v2": CALIBRATED_V2_RESIDUALS_FILE}
+             "paper-calibrated-v2": CALIBRATED_V2_RESIDUALS_FILE,
+             "paper-calibrated-measured": MEASURED_RESIDUALS_FILE}
 
 
 def residuals(name: str = BEST_PRESET) -> "pd.DataFrame":
@@ -235,8 +308,9 @@ def residuals(name: str = BEST_PRESET) -> "pd.DataFrame":
     Parameters
     ----------
     name : str
-        The preset's name: "paper-calibrated" (default), "paper-calibrated-v1" or
-        "paper-calibrated-v2".
+        The preset's name: "paper-calibrated" (default), "paper-calibrated-v1",
+        "paper-calibrated-v2" or "paper-calibrated-measured" (its metrics measured through its
+        chain).
 
     Returns
     -------
@@ -266,7 +340,8 @@ def by_name(name: str, bumpers: bool = True) -> Oscillator:
     ----------
     name : str
         The name the command line's ``--preset`` takes: "paper-printed", "paper-damped",
-        "paper-calibrated", "paper-calibrated-v1" or "paper-calibrated-v2".
+        "paper-calibrated", "paper-calibrated-v1", "paper-calibrated-v2" or
+        "paper-calibrated-measured" (its system; its chain: :func:`paper_calibrated_measured`).
     bumpers : bool
         True: the YBs configuration (with bumpers); False: the same system without them (NBs).
 

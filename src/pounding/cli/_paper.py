@@ -45,10 +45,16 @@ def reproduce(
     fmax: float = OPT_FMAX,
     fstep: float = OPT_FSTEP,
     workers: Optional[int] = OPT_WORKERS,
+    lowpass_hz: Optional[float] = typer.Option(
+        None, "--lowpass-hz", help="Also tell the story as measured: the report's system with its "
+        "accelerations through a 4-pole zero-phase low-pass at this cutoff (Hz)."),
+    exact_only: bool = typer.Option(
+        False, "--exact-only", metavar=NO_METAVAR, help="Only the exact metrics (the default preset "
+        "otherwise adds paper-calibrated-measured, its metrics measured through its fitted low-pass)."),
 ) -> None:
     """The paper's tables and figures from the model, beside the measurements, in one HTML report."""
     from .. import presets
-    from ..model import Oscillator
+    from ..model import MeasurementChain, Oscillator
     from ..reports import reproduce as write_report
 
     out = folder("--out", out)
@@ -63,6 +69,14 @@ def reproduce(
         name = preset or presets.BEST_PRESET
         nbs_osc, ybs_osc = presets.by_name(name, bumpers=False), presets.by_name(name)
         label = f"preset {name}" + ("" if preset else " (the default: the package's best)")
+    if lowpass_hz is not None and exact_only:
+        raise typer.BadParameter("give --lowpass-hz or --exact-only, not both")
+    measured, profile = None, None
+    if lowpass_hz is not None:
+        measured = (ybs_osc, MeasurementChain.lowpass(lowpass_hz))
+    elif not exact_only and not (nbs or ybs) and (preset or presets.BEST_PRESET) in (
+            presets.BEST_PRESET, "paper-calibrated-measured"):
+        measured, profile = presets.paper_calibrated_measured(), presets.measurement_profile()
     beside = {"paper-printed": presets.paper_printed()}
     beside[label if (nbs or ybs) else (preset or presets.BEST_PRESET)] = ybs_osc
     freqs = frequencies(fmin, fmax, fstep)
@@ -77,6 +91,8 @@ def reproduce(
             freqs_hz=freqs,
             workers=workers,
             progress=True,
+            measured=measured,
+            profile=profile,
         )
     except Interrupted as stop:
         interrupted(f"{stop}; no report written (a report of part of the campaign would mislead)")
@@ -91,6 +107,9 @@ def reproduce(
                                                         "alpha_measured", f"{q}_model", f"{q}_measured")))
     console.print(summary)
     console.print(f"verdict: {escape(label)} {escape(report.verdict.summary())}")
+    if report.measured is not None:
+        console.print(f"as measured ({escape(report.measured.chain.describe())}): "
+                      f"{escape(report.measured.verdict.summary())}")
     console.print(f"report -> {report.index_html} (tables CSV, {len(report.figures)} figures PNG)")
 
 

@@ -20,7 +20,7 @@ from .branches import add_branches, coexistence_of, continuation_statuses, fig_c
 from .compare import comparison, inconsistency_notes
 from .figures import fig05_measured, paper_figures
 from .html import table_html, write_page
-from .measured_story import measured_story, story_html
+from .measured_story import MeasuredStory, measured_story, story_html
 from .verdict import Verdict, verdict
 
 TABLE_TITLES = {"targets": "Calibration targets (Tables 2-4; sweeps up, fixed 30 cycles per step): systems "
@@ -53,6 +53,8 @@ class Report:
     verdict : Verdict
         How many of :func:`pounding.paper_targets` the YBs system meets (``met`` of ``total``), its
         worst misses and the measurements no model can meet together.
+    measured : MeasuredStory or None
+        With ``measured=``: the campaign, Tables 2-4 and verdict as measured through the chain.
 
     Examples
     --------
@@ -79,6 +81,7 @@ class Report:
     campaign: CampaignResult
     comparisons: dict[str, pd.DataFrame]
     verdict: Verdict
+    measured: MeasuredStory | None = None
 
 
 def targets_beside(systems: dict[str, Oscillator], evaluated: dict[int, pd.DataFrame] | None = None
@@ -223,7 +226,7 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
         figures={name: (path, captions[name]) for name, path in figures.items()},
         notes=inconsistency_notes(), statuses=statuses, verdict=judged,
         story=None if story is None else story_html(judged, story, system_label, table_html))
-    return Report(out, index, tables, figures, result, comparisons, judged)
+    return Report(out, index, tables, figures, result, comparisons, judged, story)
 
 
 def _title(key: str) -> str:
