@@ -335,7 +335,8 @@ def _dataset(sweeps: dict, plans: list, complete: bool) -> "xr.Dataset":
     ds["freq_hz"].attrs["units"] = "Hz"
     ds.attrs.update({"steady_mode": first.steady, "cycles": first.cycles,
                      "measure_cycles": first.measure_cycles, "f_ref_hz": first.f_ref_hz,
-                     "omega_min_rad_s": first.omega_min_rad_s, "complete": int(complete)})
+                     "omega_min_rad_s": first.omega_min_rad_s, "complete": int(complete),
+                     "measurement": "exact" if first.measurement is None else first.measurement.describe()})
     for conf in confs:
         osc = next(p.oscillator for k, p in plans if k[0] == conf)
         ds.attrs[f"system_{conf}"] = osc.to_toml_text()
