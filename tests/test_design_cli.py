@@ -230,3 +230,22 @@ def test_the_design_page_file_reads(tmp_path):
     plan = DesignPlan.from_toml(path)
     rubber, pad = plan.bumper_types
     assert "isolator.damping" in pad.grid and "isolator.damping" not in rubber.grid
+
+
+def test_a_bumper_type_sets_both_sides_and_a_plan_follows_its_system(tmp_path):
+    from dataclasses import replace
+
+    text = with_types().replace(
+        "damping = 400.0\n[site]",
+        'damping = 400.0\n[bumpers.law_right]\ntype = "kelvin_voigt"\n'
+        "stiffness = 3.0e6\ndamping = 100.0\n[site]",
+    )
+    plan = DesignPlan.from_toml(write(tmp_path, text))
+    steel = plan.kinds[1].system.bumpers
+    assert isinstance(steel.law, pounding.HuntCrossley) and steel.law_right is None
+    # a plan without types runs the system it holds now, over the grid it holds now
+    base = DesignPlan.from_toml(write(tmp_path))
+    moved = replace(base, grid={"bumpers.gap": [0.2]})
+    assert moved.kinds[0].grid == {"bumpers.gap": [0.2]} and moved.kinds[0].system is base.system
+    with pytest.raises(pounding.InputError, match="system"):
+        replace(base, system=base.system.without_bumpers()).kinds

@@ -12,7 +12,7 @@ from pounding.identification.measured import CUTOFF
 FREQS = [1.3, 1.5, 1.7]
 
 
-def test_identify_recovers_the_cutoff_the_targets_were_measured_through():
+def test_identify_recovers_the_cutoff_the_targets_were_measured_through(tmp_path):
     system = pounding.presets.paper_damped()
     truth = pounding.MeasurementChain.lowpass(20.0)
     seen = pounding.sweep(system, 0.05, FREQS, steady="fixed", cycles=30, measure_cycles=5, measurement=truth)
@@ -37,7 +37,7 @@ def test_identify_recovers_the_cutoff_the_targets_were_measured_through():
     # the exact alpha is far from it: the fit needed the filter
     exact = evaluate(system, targets, freqs_hz=FREQS)
     assert not bool(exact["within"].iloc[0])
-    assert "zero-phase Butterworth" in fit.to_toml("fit.toml").read_text()
+    assert "zero-phase Butterworth" in fit.to_toml(tmp_path / "fit.toml").read_text()
 
 
 @pytest.mark.parametrize(

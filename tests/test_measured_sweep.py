@@ -62,6 +62,8 @@ def test_a_sweep_measured_through_a_chain_is_what_the_lab_reads_of_the_same_test
     # sweep's window is a later one of the same steady motion, sampled on another clock)
     assert np.allclose(a["alpha"], b["alpha"], rtol=1e-4)
     assert np.allclose(a["excursion_m"], b["excursion_m"], rtol=1e-4)
+    for q in ("displacement_max_m", "displacement_min_m"):  # (named as the lab's, and measured)
+        assert np.allclose(a[q], b[q], rtol=1e-3) and np.allclose(a[q], swept.exact_dataframe()[q], rtol=1e-3)
     hit = a["contact"].to_numpy()
     assert np.allclose(a.loc[hit, "contact_time_s"], b.loc[hit, "contact_time_s"], rtol=1e-3)
     assert np.allclose(a.loc[hit, "restitution"], b.loc[hit, "restitution"], atol=1e-4)
@@ -83,3 +85,21 @@ def test_a_measured_sweep_records_its_chain_and_refuses_a_bad_one():
     assert plain.measurement is None and plain.to_xarray().attrs["measurement"] == "exact"
     with pytest.raises(pounding.InputError, match="measurement"):
         pounding.sweep(pounding.presets.paper_damped(), 0.05, [1.5], measurement=15.0)
+
+
+def test_a_measured_sweep_keeps_to_the_sweeps_limits_and_its_edges():
+    system = pounding.presets.paper_damped()
+    chain = MeasurementChain.lowpass(20.0)
+    # a step the sweep stopped early (too many events a cycle) is not measured on motion it never ran
+    stopped = pounding.sweep(system, 0.05, [1.5, 2.0], measurement=chain, max_events_per_cycle=2)
+    assert stopped.status.name == "MAX_EVENTS"
+    assert stopped.to_dataframe()["alpha"].isna().all()
+    # zero gaps: eta undefined (NaN), as the exact table says, not a crash
+    touching = pounding.Oscillator(
+        system.mass, system.isolator, pounding.Bumpers(0.0, 0.0, pounding.KelvinVoigt(1.46e6, 100.0))
+    )
+    flat = pounding.sweep(touching, 0.05, [1.5], measurement=chain, steady="fixed", cycles=10)
+    assert np.isnan(flat.to_dataframe()["eta"]).all()
+    # a chain whose windows would be too long is refused before the sweep runs
+    with pytest.raises(pounding.InputError, match="samples"):
+        pounding.sweep(system, 0.05, [0.01], measurement=MeasurementChain(sample_rate_hz=1e6, oversample=1))

@@ -102,6 +102,9 @@ def test_a_synthetic_tests_shorthands_are_the_chain_they_state():
         (lambda: MeasurementChain.lowpass(600.0), "table.lowpass_hz"),
         (lambda: MeasurementChain(mass="15 Hz"), "mass"),
         (lambda: MeasurementChain(oversample=0), "oversample"),
+        (lambda: MeasurementChain.lowpass(15.0, laser="no"), "laser"),
+        (lambda: MeasurementChain().measure([0.0, 0.001], [0.0], [0.0, 0.0], [0.0, 0.0]), "table"),
+        (lambda: MeasurementChain.lowpass(15.0).measure(*[np.zeros(20)] * 4), "samples"),
     ],
 )
 def test_a_bad_chain_is_named(make, field):

@@ -227,7 +227,8 @@ def paper_calibrated_measured(bumpers: bool = True) -> tuple[Oscillator, "Measur
     """The paper's calibration with its accelerations measured through a low-pass: the system and
     the chain (the hypothesis that the lab's filtering explains its alphas; ``docs/measurement.md``).
 
-    Made by ``scripts/calibrate_measured.py --free-cutoff``: from :func:`paper_calibrated`, the
+    Made by ``scripts/calibrate_measured.py --free-cutoff --start-cutoff 15 60`` (the free fit with
+    the most targets met, then the lowest cost: the start at 15 Hz): from :func:`paper_calibrated`, the
     bumper's steep third slope and its dashpot refitted by least squares ("misses" loss) together
     with the cutoff of a 4th-order zero-phase Butterworth low-pass on the accelerometers (table
     and mass; the laser as read), within 5-100 Hz, every metric measured through it as the lab

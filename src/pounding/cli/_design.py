@@ -49,15 +49,15 @@ def design(
                          workers=parsed.workers if workers is None else workers)
     where = store or (str(parsed.store) if parsed.store is not None else str(out / "runs.zarr"))
     n_design = 0
-    for kind in parsed.bumper_types:
+    for kind in parsed.kinds:
         n_kind = 1
         for values in kind.grid.values():
             n_kind *= len(values)
         n_design += n_kind
     per_design = len(parsed.records) * len(parsed.levels_g)
-    stores = (where if len(parsed.bumper_types) == 1 else
-              ", ".join(typed_store(where, kind.name) for kind in parsed.bumper_types))
-    types = "" if len(parsed.bumper_types) == 1 else f" of {len(parsed.bumper_types)} bumper types"
+    stores = (where if len(parsed.kinds) == 1 else
+              ", ".join(typed_store(where, kind.name) for kind in parsed.kinds))
+    types = "" if len(parsed.kinds) == 1 else f" of {len(parsed.kinds)} bumper types"
     console.print(f"{parsed.title}: {len(parsed.records)} records x {len(parsed.levels_g)} stripes x "
                   f"{n_design} designs{types} = {per_design * n_design} runs -> {stores}, and {per_design} "
                   f"without bumpers -> {free_store(where)}")

@@ -42,10 +42,11 @@ class Decision:
         a bumper beyond its ``capacity_m`` at the MCE intensity (NaN without a capacity).
     recommended : dict or None
         The design point chosen (its grid values and row): the smallest gap meeting the target,
-        then (of every bumper type and stiffness at that gap) the lowest median peak acceleration
-        of the runs that pounded at the stripe nearest the MCE intensity (``acc_pounding_median_g``;
-        the bumper matters only when the mass reaches it), then the lowest median peak acceleration
-        of all runs; None when no point meets it.
+        then (of every bumper type and other design number at that gap) the lowest probability of
+        pounding at ``level``, then the lowest median peak acceleration of the runs that pounded at
+        the stripe nearest the MCE intensity (``acc_pounding_median_g``, a point where none pounded
+        first: the bumper matters only when the mass reaches it), then the lowest median peak
+        acceleration of all runs; None when no point meets it.
     target_probability : float
         The largest probability of pounding accepted, at ``level``.
     level : {"design", "mce"}
@@ -115,14 +116,16 @@ class Decision:
         if len(rivals) > 1:
             if math.isnan(row["acc_pounding_median_g"]):
                 parts.append(
-                    f"At this gap no run pounded at the stripe nearest the MCE level, so these runs do not "
-                    f"tell its {len(rivals)} bumper options apart; 'what pounding costs' compares them at "
-                    "smaller gaps."
+                    f"At this gap none of its runs pounded at the stripe nearest the MCE level; of the "
+                    f"{len(rivals)} options there meeting the target, those whose runs did not pound rank "
+                    "first, and these runs do not tell them apart further ('what pounding costs' compares "
+                    "them at smaller gaps)."
                 )
             else:
                 parts.append(
-                    f"Of the {len(rivals)} bumper options at this gap, its runs that pounded at the stripe "
-                    f"nearest the MCE level peaked lowest: {row['acc_pounding_median_g']:.3g} g (median)."
+                    f"Of the {len(rivals)} options at this gap meeting the target, it pounds least, and its "
+                    f"runs that pounded at the stripe nearest the MCE level peaked at "
+                    f"{row['acc_pounding_median_g']:.3g} g (median)."
                 )
         if not math.isnan(row.get("p_contact_years", math.nan)):
             parts.append(f"In {self.years:g} years at the site: {row['p_contact_years']:.3f}.")
@@ -286,16 +289,19 @@ def decide(
         _check_analysis(one, "analysis" if name is None else f"analysis[{name!r}]", gap_dim, hazard)
     first_name, first = next(iter(analyses.items()))
     for name, one in analyses.items():
-        same = np.array_equal(one.levels_g, first.levels_g) and list(one.dataset["record"].values) == list(
-            first.dataset["record"].values
+        same = (
+            np.array_equal(one.levels_g, first.levels_g)
+            and list(one.dataset["record"].values) == list(first.dataset["record"].values)
+            and one.period_s == first.period_s
+            and one.damping_ratio == first.damping_ratio
         )
         if not same:
             raise InputError(
                 Problem.BAD_STATE,
                 f"analysis[{name!r}]",
                 repr(one),
-                why=f"has other stripes or records than analysis[{first_name!r}]",
-                fix="run every bumper type over the same records and levels_g",
+                why=f"has other stripes, records or intensity measure than analysis[{first_name!r}]",
+                fix="run every bumper type over the same records, levels_g, period_s and damping",
             )
     code_min = None if code_minimum_gap_m is None else positive("code_minimum_gap_m", code_minimum_gap_m, "m")
     rows = []
@@ -308,8 +314,11 @@ def decide(
     candidates = table[table["meets_target"]]
     recommended = None
     if len(candidates):
-        by = [gap_dim, "acc_pounding_median_g", "acc_median_g"]
-        best = candidates.sort_values(by, kind="stable", na_position="last").iloc[0]
+        # at the smallest gap: the least pounding, then the softest pounding (a point where nothing
+        # pounded has no such acceleration: it ranks first), then the lowest acceleration
+        ranked = candidates.assign(_soft=candidates["acc_pounding_median_g"].fillna(-math.inf))
+        by = [gap_dim, f"p_contact_{level}", "_soft", "acc_median_g"]
+        best = ranked.sort_values(by, kind="stable").drop(columns="_soft").iloc[0]
         recommended = {k: _plain(k, v) for k, v in best.items()}
     return Decision(table, recommended, target, level, design_sa, mce_sa, gap_dim, code_min, yrs)
 

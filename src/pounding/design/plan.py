@@ -83,8 +83,8 @@ class DesignPlan:
     grid : dict
         The design grid (``bumpers.gap`` from ``gaps_m``, and any other dotted names).
     bumper_types : tuple of BumperType
-        One stripe analysis each: the ``[design.bumper_types.NAME]`` tables (each a law, optionally
-        a capacity and its own grid), or the base system's bumpers alone (named by their law).
+        The ``[design.bumper_types.NAME]`` tables (each a law, optionally a capacity and its own
+        grid), one stripe analysis each; empty: the base system's bumpers alone (:attr:`kinds`).
     target_probability : float
     level : str
     years : float
@@ -118,10 +118,20 @@ class DesignPlan:
     source: Path = field(default_factory=lambda: Path("."))
     bumper_types: tuple = ()
 
-    def __post_init__(self) -> None:
-        if not self.bumper_types:  # (a plan made by hand: the base system's bumpers alone)
-            kind = BumperType(self.system.bumpers.law.TYPE, self.system, self.grid)
-            object.__setattr__(self, "bumper_types", (kind,))
+    @property
+    def kinds(self) -> tuple:
+        """The bumper types the plan runs: ``bumper_types``, or without them the system's own bumpers
+        over ``grid`` (named by their law), read from the plan as it is now."""
+        if self.bumper_types:
+            return tuple(self.bumper_types)
+        if self.system.bumpers is None:
+            raise InputError(
+                Problem.MISSING_KEY,
+                "system",
+                None,
+                choices="a system with bumpers (the design chooses their gap), or bumper_types",
+            )
+        return (BumperType(self.system.bumpers.law.TYPE, self.system, self.grid),)
 
     @classmethod
     def from_toml(cls, path: str | Path) -> "DesignPlan":
@@ -241,7 +251,7 @@ class DesignPlan:
                 raise exc.relabel("scheduler", "run.scheduler") from None
         workers = None if "workers" not in run else integer("run.workers", run["workers"], 1, 4096)
         types = _bumper_types(system, des, grid, gaps)
-        for kind in types:
+        for kind in types or (BumperType(system.bumpers.law.TYPE, system, grid),):
             try:
                 _check_runs(kind.system, records, levels, period, kind.grid)
             except InputError as exc:
@@ -276,7 +286,7 @@ def _bumper_types(system: Oscillator, des: Mapping[str, Any], grid: dict, gaps: 
     the base system's bumpers, with its own grid or the design's; or the base bumpers alone."""
     tables = dict(_table("design.bumper_types", des.get("bumper_types", {})))
     if not tables:
-        return ()  # (the base system's bumpers alone: DesignPlan.__post_init__)
+        return ()  # (the base system's bumpers alone: DesignPlan.kinds)
     out = []
     for name, value in tables.items():
         where = f"design.bumper_types.{name}"
@@ -292,6 +302,7 @@ def _bumper_types(system: Oscillator, des: Mapping[str, Any], grid: dict, gaps: 
         _check_keys(kind, where + ".", TYPE_KEYS, ("law",))
         tables_ = system.to_dict()
         bumpers = dict(tables_["bumpers"])
+        bumpers.pop("law_right", None)  # (a type's law is both sides')
         bumpers["law"] = kind["law"]
         if "capacity_m" in kind:
             bumpers["capacity_m"] = kind["capacity_m"]
@@ -470,8 +481,8 @@ def run_plan(
         progress=progress,
     )
     analyses, fragilities = {}, {}
-    for kind in plan.bumper_types:
-        where = store if len(plan.bumper_types) == 1 else typed_store(store, kind.name)
+    for kind in plan.kinds:
+        where = store if len(plan.kinds) == 1 else typed_store(store, kind.name)
         analysis = stripe_analysis(
             kind.system, plan.records, plan.levels_g, store=where, grid=kind.grid, **common
         )
@@ -479,7 +490,7 @@ def run_plan(
         dims = analysis.design_dims
         for index in np.ndindex(*(analysis.dataset.sizes[d] for d in dims)):
             at = {d: float(analysis.dataset[d].values[i]) for d, i in zip(dims, index)}
-            key = tuple(at.items()) if len(plan.bumper_types) == 1 else (("bumper", kind.name), *at.items())
+            key = tuple(at.items()) if len(plan.kinds) == 1 else (("bumper", kind.name), *at.items())
             try:
                 fragilities[key] = analysis.fragility("contact", at=at, n_bootstrap=500)
             except InputError:  # (no estimate: all or nothing, or separated stripes; the table says which)

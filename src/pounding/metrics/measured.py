@@ -189,8 +189,8 @@ def measure_window(t: np.ndarray, table: np.ndarray, raw_acc: np.ndarray, acc: n
     row = {name: float(alphas[j]) / amp for j, name in enumerate(names)}
     # the scatter of the window's cycles: what noise (and an unsteady response) leaves uncertain
     row["alpha_se"] = _standard_error(peaks[:, 0]) / amp
-    row.update({"excursion_m": excursion, "dlacement_max_m": dmax_avg, "dlacement_min_m": dmin_avg,
-                "eta": excursion / gap if gap is not None else math.nan,
+    row.update({"excursion_m": excursion, "displacement_max_m": dmax_avg, "displacement_min_m": dmin_avg,
+                "eta": excursion / gap if gap else math.nan,
                 "e": excursion / (amp / omega_min_rad_s ** 2), "steady": steady,
                 "averaged": aligned is not None})
     contacts: dict[str, Any] = {}

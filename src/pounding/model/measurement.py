@@ -180,7 +180,7 @@ class MeasurementChain:
         0.7071
         """
         sensor = Sensor(cutoff_hz, order, zero_phase)
-        return cls(sample_rate_hz, sensor, sensor, sensor if laser else Sensor())
+        return cls(sample_rate_hz, sensor, sensor, sensor if boolean("laser", laser) else Sensor())
 
     def gain(self, freq_hz: Any, channel: str = "mass") -> Any:
         """A channel's magnitude at ``freq_hz`` as the chain runs its filter (causal at the internal
@@ -209,8 +209,9 @@ class MeasurementChain:
 
     @property
     def settle_s(self) -> float:
-        """How long the slowest filter takes to forget where it started, s (0 without one): ten
-        time constants of its corner, ``10 / (2 pi f_c)`` per pole pair, at least."""
+        """How long the slowest filter takes to forget where it started, s (0 without one):
+        ``5 n / (2 pi f_c)`` for ``n`` poles at ``f_c`` (ten time constants of the corner per pole
+        pair)."""
         corners = [(s.lowpass_hz, s.order) for s in self.sensors if s.lowpass_hz is not None]
         return max((5.0 * order / (2.0 * math.pi * fc) for fc, order in corners), default=0.0)
 
@@ -286,8 +287,11 @@ class MeasurementChain:
             if sensor.lowpass_hz is None or not sensor.zero_phase:
                 continue
             sos = signal.butter(sensor.order, sensor.lowpass_hz, fs=self.sample_rate_hz, output="sos")
-            if out.shape[1] > 3 * (2 * sos.shape[0] + 1):
-                out[j] = signal.sosfiltfilt(sos, out[j])
+            least = 3 * (2 * sos.shape[0] + 1) + 1  # (sosfiltfilt's padding needs more samples than this)
+            if out.shape[1] < least:
+                raise InputError(Problem.TOO_SHORT, "samples", f"{out.shape[1]} samples", got=out.shape[1],
+                                 expected=least)
+            out[j] = signal.sosfiltfilt(sos, out[j])
         return out
 
     def measure(self, time_s: Any, table: Any, mass: Any, displacement: Any, *,
@@ -315,7 +319,12 @@ class MeasurementChain:
         if stride not in (self.oversample, self.stride):
             raise InputError(Problem.NOT_ONE_OF, "stride", stride,
                              choices=f"{self.oversample}, {self.stride}")
-        block = np.vstack([np.asarray(x, dtype=float) for x in (table, mass, displacement)])
+        arrays = [np.asarray(x, dtype=float) for x in (time_s, table, mass, displacement)]
+        for name, x in zip(("table", "mass", "displacement"), arrays[1:]):
+            if x.shape != arrays[0].shape or x.ndim != 1:
+                raise InputError(Problem.LENGTH_MISMATCH, name, f"shape {x.shape}", got=x.shape,
+                                 expected=arrays[0].shape, hint=" (one value per sample of time_s)")
+        block = np.vstack(arrays[1:])
         filtered, _ = self.analogue(block)  # (none at a stride of 1 unless oversample is 1: refused above)
         sampled = self.digital(self.quantize(filtered[:, ::stride]))
         return (np.asarray(time_s, dtype=float)[::stride], *sampled)

@@ -336,8 +336,20 @@ def _dataset(sweeps: dict, plans: list, complete: bool) -> "xr.Dataset":
     ds.attrs.update({"steady_mode": first.steady, "cycles": first.cycles,
                      "measure_cycles": first.measure_cycles, "f_ref_hz": first.f_ref_hz,
                      "omega_min_rad_s": first.omega_min_rad_s, "complete": int(complete),
-                     "measurement": "exact" if first.measurement is None else first.measurement.describe()})
+                     "measurement": _measurement_attr(first.measurement, sweeps)})
     for conf in confs:
         osc = next(p.oscillator for k, p in plans if k[0] == conf)
         ds.attrs[f"system_{conf}"] = osc.to_toml_text()
     return ds
+
+
+def _measurement_attr(chain: Any, sweeps: dict) -> str:
+    """What the campaign's metrics are: "exact", the chain's description, or (a sweep interrupted
+    while measuring kept its exact metrics) both said."""
+    if chain is None:
+        return "exact"
+    exact = [key for key, sw in sweeps.items() if sw.measurement is None]
+    if not exact:
+        return chain.describe()
+    return f"{chain.describe()}; exact for {len(exact)} interrupted sweep(s): " + ", ".join(
+        f"{c} {a:g} {d}" for c, a, d in exact)

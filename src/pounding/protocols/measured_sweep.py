@@ -12,6 +12,7 @@ again, and a step that did not settle is measured ``lead`` cycles on.
 from __future__ import annotations
 
 import math
+from typing import Any
 
 import numpy as np
 import pandas as pd
@@ -36,11 +37,28 @@ def lead_cycles(chain: MeasurementChain, freq_hz: float) -> int:
     return 1 + math.ceil((chain.settle_s + FLIGHT_FIT_S) * freq_hz)
 
 
+def check_window_samples(chain: MeasurementChain, freqs_hz: np.ndarray, window_cycles: int) -> None:
+    """Refuse a chain whose re-simulated windows (at the lowest frequency, the longest window) would
+    hold more than :data:`MAX_SAMPLES_PER_STEP` samples: before the sweep runs, not after."""
+    f = float(np.min(freqs_hz))
+    samples = (2 * lead_cycles(chain, f) + window_cycles) / f * chain.simulation_rate_hz
+    if samples > MAX_SAMPLES_PER_STEP:
+        raise InputError(Problem.TOO_MUCH_WORK, "measurement", chain.describe(),
+                         estimate=f"{samples:.3g}", unit=f"samples in the window at {f:g} Hz",
+                         budget=f"{MAX_SAMPLES_PER_STEP:.3g}",
+                         fix="a lower sample_rate_hz or oversample, or fewer measure_cycles")
+
+
 def measure_steps(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray, window_states: np.ndarray,
                   window_cycles: np.ndarray, steps_done: int, chain: MeasurementChain, *,
-                  omega_min_rad_s: float, steady_rtol: float, rtol: float,
+                  omega_min_rad_s: float, steady_rtol: float, rtol: float, max_events_per_cycle: int,
+                  max_steps: int, stop: Any = None,
                   g: float = STANDARD_GRAVITY) -> tuple[pd.DataFrame, pd.DataFrame]:
-    """Per step (those done), the metrics of its window as measured through ``chain``.
+    """Per step (those done and finished), the metrics of its window as measured through ``chain``.
+
+    ``stop()`` is polled between windows: when it is true, ``KeyboardInterrupt`` is raised (the
+    sweep's Ctrl-C). A window whose simulation fails, or the step that stopped the sweep (give
+    ``steps_done`` without it), has NaN metrics.
 
     Returns
     -------
@@ -56,29 +74,26 @@ def measure_steps(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray, wind
     centre = 0.0 if bumpers is None else 0.5 * (bumpers.gap_right - bumpers.gap_left)
     rows, impacts = [], []
     fs = chain.sample_rate_hz
+    missing = {q: math.nan for q in MEASURED_COLUMNS} | {"window_start_s": math.nan}
     for i, f in enumerate(np.asarray(freqs_hz, dtype=float)):
+        if stop is not None and stop():
+            raise KeyboardInterrupt
         if i >= steps_done:
-            rows.append({q: math.nan for q in MEASURED_COLUMNS} | {"window_start_s": math.nan})
+            rows.append(dict(missing))
             continue
         cycles = int(window_cycles[i])
         lead = lead_cycles(chain, f)
         total = 2 * lead + cycles
         period = 1.0 / f
-        samples = total * period * chain.simulation_rate_hz
-        if samples > MAX_SAMPLES_PER_STEP:
-            raise InputError(Problem.TOO_MUCH_WORK, "measurement", chain.describe(),
-                             estimate=f"{samples:.3g}", unit="samples a step",
-                             budget=f"{MAX_SAMPLES_PER_STEP:.3g}",
-                             fix="a lower sample_rate_hz or oversample, or fewer measure_cycles")
         start = State._from_kernel(window_states[i])
         t0 = float(start.time_s)
         exc = Harmonic(a_g, float(f), phase=-(2.0 * math.pi * f * t0), g=g)
+        # (within the sweep's own limits: a window it could not run is not measured)
         run = simulate(oscillator, exc, total * period, start, sample_rate_hz=chain.simulation_rate_hz,
-                       rtol=rtol)
+                       rtol=rtol, max_events=max_events_per_cycle * total, max_steps=max_steps)
         if run.status != Status.SUCCESS:
-            raise InputError(Problem.BAD_STATE, "measurement", chain.describe(),
-                             why=f"the window at {f:g} Hz could not be simulated again: {run.message}",
-                             fix="measure the exact metrics (no measurement), or check the system")
+            rows.append(dict(missing))
+            continue
         uniform = run.to_dataframe()["event"].to_numpy() == ""
         t = run.t[uniform]
         t_s, table, mass, disp = chain.measure(t, exc.acceleration(t), run.abs_acceleration[uniform],

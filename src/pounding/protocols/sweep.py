@@ -126,6 +126,7 @@ def make_plan(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = 
     if measurement is not None and not isinstance(measurement, MeasurementChain):
         raise InputError(Problem.WRONG_TYPE, "measurement", measurement, got=type(measurement).__name__,
                          expected="pounding.MeasurementChain or None (the exact metrics)")
+
     check_oscillator(oscillator)
     a_g = Harmonic(positive("a_g", a_g, "g (e.g. 0.05)"), 1.0).a_g  # its magnitude checks
     freqs = paper_frequencies_hz() if freqs_hz is None else float_array("freqs_hz", freqs_hz)
@@ -186,6 +187,11 @@ def make_plan(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = 
     check_budget("freqs_hz", f"{freqs.size} steps of {least_cycles}+ cycles", estimate, max_steps,
                  f"at least {least_cycles} cycles at each of {freqs.size} frequencies; {why}",
                  "sweep fewer frequencies or cycles, or check the system's numbers (SI units)")
+    if measurement is not None:  # (a chain whose windows are too long is refused before the sweep)
+        from .measured_sweep import check_window_samples
+
+        longest = measure_cycles + (max_period - 1 if steady == "adaptive" else 0)
+        check_window_samples(measurement, freqs, longest)
     return SweepPlan(oscillator, a_g, freqs, direction, steady, n_cycles, measure_cycles, steady_rtol,
                      max_period, omega_min_rad_s, f_ref_hz, rtol, max_events_per_cycle, state, max_steps,
                      measurement)
@@ -377,9 +383,15 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
     if plan.measurement is not None and not interrupted and done:
         from .measured_sweep import measure_steps
 
-        measured, measured_impacts = measure_steps(
-            osc, plan.a_g, plan.freqs_hz, window_states, window[:, W_CYCLES], done, plan.measurement,
-            omega_min_rad_s=plan.omega_min_rad_s, steady_rtol=plan.steady_rtol, rtol=plan.rtol)
+        try:  # (the step that stopped the sweep early is not measured: its window did not finish)
+            measured, measured_impacts = measure_steps(
+                osc, plan.a_g, plan.freqs_hz, window_states, window[:, W_CYCLES],
+                done if status == Status.SUCCESS else done - 1, plan.measurement,
+                omega_min_rad_s=plan.omega_min_rad_s, steady_rtol=plan.steady_rtol, rtol=plan.rtol,
+                max_events_per_cycle=plan.max_events_per_cycle, max_steps=plan.max_steps,
+                stop=lambda: stop_requested(ctl))
+        except KeyboardInterrupt:
+            interrupted = True
     result = SweepResult(
         oscillator=osc, a_g=plan.a_g, freqs_hz=plan.freqs_hz, direction=plan.direction,
         steady_mode=plan.steady, cycles=plan.cycles, measure_cycles=plan.measure_cycles,
@@ -396,6 +408,9 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
 
 
 def _message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted) -> str:
+    if interrupted and done == n_steps and plan.measurement is not None:
+        return (f"Interrupted while measuring the windows through the chain: the {done} steps ran, "
+                "and their metrics are the exact ones (no chain).")
     if interrupted:
         return f"Interrupted after {done} of {n_steps} steps; the others are NaN."
     if status != Status.SUCCESS:

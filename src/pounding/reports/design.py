@@ -239,7 +239,7 @@ def write_report(outcome: Any, folder: Path) -> Path:
                         f"{k}: {', '.join(f'{v:g}' for v in vals)}" for k, vals in kind.grid.items()
                     ),
                 }
-                for kind in plan.bumper_types
+                for kind in plan.kinds
             ),
             {
                 "item": "target",
@@ -272,7 +272,7 @@ def write_report(outcome: Any, folder: Path) -> Path:
             f"<figcaption><b>{e(name)}</b>: {e(caption)}</figcaption></figure>"
         )
     parts.append("<h2>System</h2>")
-    for kind in plan.bumper_types:
+    for kind in plan.kinds:
         parts += [f"<h3>{e(kind.name)} bumpers</h3>" if several else "", f"<pre>{e(repr(kind.system))}</pre>"]
     parts.append("<h2>Reading the results</h2><ul>")
     parts += [f"<li>{e(n)}</li>" for n in NOTES]

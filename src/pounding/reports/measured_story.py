@@ -40,6 +40,8 @@ class MeasuredStory:
         The paper's targets met with the measured metrics.
     profile : DataFrame or None
         Targets met against the cutoff (a profile of fits at fixed cutoffs), when known.
+    exact : Verdict or None
+        The same system's verdict with exact metrics (what its measured misses are judged against).
     """
 
     system: Oscillator
@@ -48,16 +50,20 @@ class MeasuredStory:
     comparisons: dict
     verdict: Verdict
     profile: pd.DataFrame | None = None
+    exact: Verdict | None = None
 
 
 def measured_story(system: Oscillator, chain: MeasurementChain, campaign_of: Any,
                    profile: pd.DataFrame | None = None) -> MeasuredStory:
-    """Run ``campaign_of(nbs, ybs, measurement=chain)`` (the report's own campaign call) and the
-    verdict of ``system`` with the metrics measured through ``chain``."""
+    """Run ``campaign_of(nbs, ybs, measurement=chain)`` (the report's own campaign call; NBs is
+    ``system`` without its bumpers, as the verdict's) and the verdict of ``system`` with the
+    metrics measured through ``chain``, and with its own exact metrics (what a miss is judged
+    against)."""
     result = campaign_of(system.without_bumpers(), system, measurement=chain)
     tables = {t: comparison(result, t) for t in ("2", "3", "4")}
     judged = verdict(evaluate(system, paper_targets(), measurement=chain))
-    return MeasuredStory(system, chain, result, tables, judged, profile)
+    own_exact = verdict(evaluate(system, paper_targets()))
+    return MeasuredStory(system, chain, result, tables, judged, profile, own_exact)
 
 
 def story_html(exact: Verdict, story: MeasuredStory, exact_label: str, table: Any) -> list[str]:
@@ -69,7 +75,7 @@ def story_html(exact: Verdict, story: MeasuredStory, exact_label: str, table: An
         f"<p><b>{e(NO_FILTER_STATED)}</b></p>",
         f"<p>Exact metrics (the model's own peaks and located contacts), {e(exact_label)}: "
         f"<b>{exact.met} of {exact.total}</b> targets met. As measured through the chain "
-        f"({e(story.chain.describe())}), the system fitted with it: <b>{story.verdict.met} of "
+        f"({e(story.chain.describe())}), the system measured through it: <b>{story.verdict.met} of "
         f"{story.verdict.total}</b> targets met"
         + (f", with the accelerometers' cutoff at {cutoff:.3g} Hz" if cutoff is not None else "")
         + ". Measured metrics are taken as the lab pipeline takes them from a recording (alpha from the "
@@ -85,7 +91,7 @@ def story_html(exact: Verdict, story: MeasuredStory, exact_label: str, table: An
     parts += ["<h3>The targets where the two stories differ</h3>",
               table(differ.rename(columns={"target": "measured (paper)"}))]
     parts += ["<h3>Every target the measured story misses, and why</h3>",
-              table(misses_explained(exact, story.verdict))]
+              table(misses_explained(story.exact or exact, story.verdict))]
     if story.profile is not None and len(story.profile):
         parts += ["<h3>Targets met against the cutoff</h3>",
                   "<p>The bumper's pulse-shaping numbers refitted at each fixed cutoff (a local fit from the "
@@ -97,8 +103,8 @@ def story_html(exact: Verdict, story: MeasuredStory, exact_label: str, table: An
 
 def misses_explained(exact: Verdict, measured: Verdict) -> pd.DataFrame:
     """The targets the measured metrics miss, each with what accounts for it: a consistency check of
-    the paper's own numbers that fails (no model meets it), the measurement (the exact metrics meet
-    it), or nothing known (listed as unexplained)."""
+    the paper's own numbers that fails (no model meets it), the measurement (the same system's exact
+    metrics, ``exact``, meet it), or nothing known (listed as unexplained)."""
     res = measured.residuals.merge(exact.residuals[["configuration", "a_g", "quantity", "within"]],
                                    on=["configuration", "a_g", "quantity"], suffixes=("", "_exact"))
     miss = res[~res["within"]].copy()

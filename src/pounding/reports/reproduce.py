@@ -169,6 +169,10 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
     import matplotlib.pyplot as plt
 
     out = output_dir("out_dir", out_dir)  # before the campaign: no work lost to a bad path
+    if "measurement" in sweep_options:
+        raise InputError(Problem.UNKNOWN_KEY, "measurement", sweep_options["measurement"],
+                         choices="measured=(system, chain): the report's own campaign keeps the exact "
+                                 "metrics, and the chain tells the second story")
     if measured is not None and (not isinstance(measured, tuple) or len(measured) != 2
                                  or not isinstance(measured[0], Oscillator)
                                  or not isinstance(measured[1], MeasurementChain)):
