@@ -147,7 +147,9 @@ def fig05_measured(result, chain: str):
     """Fig. 5's analogue with every window measured through a chain (``chain``: its description)."""
     df = steps(result)
     fig = fig05(result, df, None)
-    fig.suptitle(f"Fig. 5 analogue as measured ({chain})", fontsize="small")
+    import textwrap
+
+    fig.suptitle(textwrap.fill(f"Fig. 5 analogue as measured ({chain})", 90), fontsize="small")
     return fig
 
 
