@@ -12,7 +12,6 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
-import re
 
 import numpy as np
 
@@ -23,6 +22,7 @@ from ..model.oscillator import _check_keys
 from ..studies.spec import _table, system_from_table
 from .hazard import HazardCurve
 from .spectra import DesignSpectrum, asce7_displacement, asce7_spectrum, ec8_spectrum, user_spectrum
+from .bumper_types import BumperType, bumper_types, grid_of, typed_store
 from .stripes import suite_sources
 
 TOP_KEYS = ("title", "system", "bumpers", "site", "records", "design", "run")
@@ -42,20 +42,9 @@ SITE_KEYS = {
 }
 RECORD_KEYS = ("suite", "period_s", "levels_g", "scale_range_s")
 DESIGN_KEYS = ("gaps_m", "grid", "bumper_types", "target_probability", "level", "years", "t_m_s", "beta_m")
-TYPE_KEYS = ("law", "capacity_m", "grid")
 RUN_KEYS = ("scheduler", "workers", "store")
 MAX_GAP_M = 2.0  # a design gap beyond this is a unit error (mm given for m)
 EC8_MCE_FACTOR = 1.5  # EN 1998-1 has no MCE: the "MCE" level is this factor times its spectrum (stated)
-
-
-@dataclass(frozen=True, eq=False)
-class BumperType:
-    """One bumper type of a design: its name, the system with its bumpers, and its design grid
-    (``bumpers.gap`` and the type's own dotted names)."""
-
-    name: str
-    system: Oscillator
-    grid: dict
 
 
 @dataclass(frozen=True, eq=False)
@@ -213,7 +202,7 @@ class DesignPlan:
                 what=" m",
                 fix=f"give the gaps in m ({gaps[i]:g} mm is {gaps[i] / 1e3:g})",
             )
-        grid = _grid("design.grid", des.get("grid", {}), gaps)
+        grid = grid_of("design.grid", des.get("grid", {}), gaps)
         target = positive("design.target_probability", des.get("target_probability", 0.1), "(a probability)")
         if target >= 1.0:
             raise InputError(Problem.OUT_OF_RANGE, "design.target_probability", target, range="(0, 1)")
@@ -250,7 +239,7 @@ class DesignPlan:
             except InputError as exc:
                 raise exc.relabel("scheduler", "run.scheduler") from None
         workers = None if "workers" not in run else integer("run.workers", run["workers"], 1, 4096)
-        types = _bumper_types(system, des, grid, gaps)
+        types = bumper_types(system, des, grid, gaps)
         for kind in types or (BumperType(system.bumpers.law.TYPE, system, grid),):
             try:
                 _check_runs(kind.system, records, levels, period, kind.grid)
@@ -279,58 +268,6 @@ class DesignPlan:
             source,
             types,
         )
-
-
-def _bumper_types(system: Oscillator, des: Mapping[str, Any], grid: dict, gaps: np.ndarray) -> tuple:
-    """The design's bumper types: each ``[design.bumper_types.NAME]`` table's law (and capacity) on
-    the base system's bumpers, with its own grid or the design's; or the base bumpers alone."""
-    tables = dict(_table("design.bumper_types", des.get("bumper_types", {})))
-    if not tables:
-        return ()  # (the base system's bumpers alone: DesignPlan.kinds)
-    out = []
-    for name, value in tables.items():
-        where = f"design.bumper_types.{name}"
-        if not re.fullmatch(r"[A-Za-z][A-Za-z0-9_-]{0,39}", name) or name == "free":
-            raise InputError(
-                Problem.NOT_ONE_OF,
-                where,
-                name,
-                choices="a name of letters, digits, - and _ that starts with a letter (up to 40; not "
-                "'free', the store of the runs without bumpers)",
-            )
-        kind = _table(where, value)
-        _check_keys(kind, where + ".", TYPE_KEYS, ("law",))
-        tables_ = system.to_dict()
-        bumpers = dict(tables_["bumpers"])
-        bumpers.pop("law_right", None)  # (a type's law is both sides')
-        bumpers["law"] = kind["law"]
-        if "capacity_m" in kind:
-            bumpers["capacity_m"] = kind["capacity_m"]
-        tables_["bumpers"] = bumpers
-        try:
-            typed = Oscillator.from_dict(tables_)
-        except InputError as exc:
-            raise exc.relabel("bumpers.", where + ".") from None
-        out.append(
-            BumperType(name, typed, _grid(where + ".grid", kind["grid"], gaps) if "grid" in kind else grid)
-        )
-    return tuple(out)
-
-
-def _grid(field: str, value: Any, gaps: np.ndarray) -> dict:
-    """A design grid: ``bumpers.gap`` from ``design.gaps_m``, then the table's dotted names."""
-    grid = {"bumpers.gap": gaps.tolist()}
-    for name, values in _table(field, value).items():
-        if name in ("bumpers.gap", "bumpers.gap_left", "bumpers.gap_right"):
-            raise InputError(Problem.DUPLICATE, f"{field}.{name}", values, repeated="design.gaps_m")
-        grid[name] = values
-    return grid
-
-
-def typed_store(store: str | Path, name: str) -> str:
-    """The store of one bumper type's runs beside the design's (``x.zarr`` -> ``x_NAME.zarr``)."""
-    text = str(store).rstrip("/")
-    return text[: -len(".zarr")] + f"_{name}.zarr" if text.endswith(".zarr") else f"{text}_{name}"
 
 
 def _text(field: str, value: Any) -> str:

@@ -163,7 +163,7 @@ class SweepResult:
         ran = np.arange(len(table)) < self.steps_done
         for q in MEASURED_COLUMNS:
             table[q] = self.measured[q].to_numpy()
-        table["contact"] = np.where(ran, table["contact"].fillna(False).astype(bool), False)
+        table["contact"] = np.where(ran, self.measured["contact"].eq(True).to_numpy(), False)  # (NaN: unread)
         table["bumper_dissipation_j"] = np.nan  # (not measurable from the accelerations)
         per_side = _measured_sides(self.measured_impacts, self.freqs_hz, self.window[:, W_CYCLES])
         for side in ("_left", "_right"):
