@@ -265,7 +265,7 @@ class OpenSeesModel:
 
 def opensees_sweep(ops, osc, a_g, freqs_hz, cycles, measure, dt_s, rounds=ROUNDS,
                    min_wall_s=None) -> Outcome:
-    peak = a_g * pd_.excitation.STANDARD_GRAVITY
+    peak = a_g * pd_.excitation.GRAVITY_M_S2
     gap = osc.bumpers.gap_left + osc.bumpers.gap_right
 
     def run():

@@ -7,6 +7,8 @@ import signal
 import subprocess
 import sys
 import time
+import re
+import threading
 import tomllib
 from pathlib import Path
 
@@ -135,10 +137,12 @@ def _cpu_s(pid: int) -> float:
     return ticks / os.sysconf("SC_CLK_TCK")
 
 
-def _interrupt(args: list[str], tmp_path: Path, wait_s: float) -> subprocess.CompletedProcess:
-    """Run the command, send SIGINT twice 30 ms apart once it has used ``wait_s`` s of CPU (at
-    least that long on the wall clock: on a loaded machine its start-up, importing and loading the
-    engine, takes longer, and a Ctrl-C during it is another test), and return what it did."""
+def _interrupt(args: list[str], tmp_path: Path, ready: str, after: int = 1,
+               cpu_after_s: float = 0.0) -> subprocess.CompletedProcess:
+    """Run the command, and once its stderr has shown ``after`` lines matching the regular expression
+    ``ready`` (a progress line: work under way, whatever the machine's load), and then used
+    ``cpu_after_s`` more seconds of CPU (work done, however slowly the machine gives it), send SIGINT
+    twice 30 ms apart; return what it did.  Waits for what the command says and does, not for a time."""
     env = dict(os.environ, COLUMNS="200")
     proc = subprocess.Popen(
         [sys.executable, "-m", "pounding.cli", *args],
@@ -148,19 +152,36 @@ def _interrupt(args: list[str], tmp_path: Path, wait_s: float) -> subprocess.Com
         stderr=subprocess.PIPE,
         text=True,
     )
-    time.sleep(wait_s)
-    deadline = time.monotonic() + 120.0
-    while proc.poll() is None and _cpu_s(proc.pid) < wait_s and time.monotonic() < deadline:
-        time.sleep(0.05)
+    err: list[str] = []
+    seen = threading.Event()
+
+    def read() -> None:
+        count = 0
+        for line in proc.stderr:
+            err.append(line)
+            if re.search(ready, line):
+                count += 1
+                if count >= after:
+                    seen.set()
+        seen.set()  # (it ended without: the assertions below say how)
+
+    reader = threading.Thread(target=read, daemon=True)
+    reader.start()
+    assert seen.wait(timeout=600), "".join(err)
+    target = _cpu_s(proc.pid) + cpu_after_s
+    deadline = time.monotonic() + 600
+    while cpu_after_s and proc.poll() is None and _cpu_s(proc.pid) < target and time.monotonic() < deadline:
+        time.sleep(0.02)  # (polling an observable state: the CPU time the process has used)
     proc.send_signal(signal.SIGINT)
-    time.sleep(0.03)
+    time.sleep(0.03)  # (the second Ctrl-C of a burst: its spacing is the test's subject, not a wait)
     proc.send_signal(signal.SIGINT)
     try:
-        out, err = proc.communicate(timeout=120)
+        out = proc.communicate(timeout=300)[0]
     except subprocess.TimeoutExpired:
         proc.kill()
         raise
-    return subprocess.CompletedProcess(args, proc.returncode, out, err)
+    reader.join(timeout=60)
+    return subprocess.CompletedProcess(args, proc.returncode, out, "".join(err))
 
 
 @pytest.fixture(scope="module", autouse=True)
@@ -175,7 +196,7 @@ def test_two_ctrl_c_in_a_campaign_keep_the_finished_steps_readable(tmp_path):
     done = _interrupt(
         ["campaign", "--preset", "paper-damped", "--out", "out", "--steady", "fixed", "--cycles", "20000"],
         tmp_path,
-        5.0,
+        r"^campaign: [1-9]",
     )
     assert done.returncode == 130, done.stderr
     assert "interrupted" in done.stderr and "Traceback" not in done.stderr
@@ -206,7 +227,8 @@ def test_two_ctrl_c_in_a_simulate_keep_the_run_so_far(tmp_path):
             "c.csv",
         ],
         tmp_path,
-        3.0,
+        r"^simulating ",
+        cpu_after_s=2.0,
     )
     assert done.returncode == 130, done.stderr
     assert "interrupted: the run up to t = " in done.stderr
@@ -231,7 +253,7 @@ def test_two_ctrl_c_in_identify_write_a_partial_toml(tmp_path):
             "10",
         ],
         tmp_path,
-        8.0,
+        r"^identify: [1-9]",
     )
     assert done.returncode == 130, done.stderr
     text = (tmp_path / "fit.toml").read_text()

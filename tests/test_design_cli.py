@@ -62,7 +62,7 @@ def test_the_example_design_file_reads():
     assert hertz.grid == plan.grid and isinstance(hertz.system.bumpers.law, pounding.HuntCrossley)
     assert hertz.system.bumpers.capacity_m == 0.03 and rubber.system.bumpers.capacity_m == 0.04
     assert plan.mce_spectrum.sa_g(1.0) == pytest.approx(0.9)
-    assert plan.code_minimum_gap_m == pytest.approx(1.15 * 9.80665 * 0.9 * 1.0 / (4 * math.pi**2 * 1.35))
+    assert plan.code_minimum_gap_m == pytest.approx(1.15 * 9.81 * 0.9 * 1.0 / (4 * math.pi**2 * 1.35))
     assert plan.hazard is not None and plan.hazard.period_s == 1.0
     assert isinstance(plan.system.bumpers.law, pounding.KelvinVoigt)
 

@@ -54,7 +54,7 @@ def test_a_sweep_measured_through_a_chain_is_what_the_lab_reads_of_the_same_test
         gap_total_m=system.bumpers.total_gap,
         freqs_hz=freqs,
         measure_cycles=5,
-        g=pounding.excitation.STANDARD_GRAVITY,
+        g=pounding.excitation.GRAVITY_M_S2,
     )
     a, b = swept.to_dataframe(), lab.steps
     assert list(a["contact"]) == list(b["contact"]) == [False, True, False]

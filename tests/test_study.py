@@ -13,6 +13,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 import xarray as xr
+import zarr
 
 import pounding as pd_
 from pounding.studies.store import chunk_shape
@@ -104,6 +105,9 @@ duration_s = 4000.0
 
 
 def test_sigkill_at_random_moments_then_resume(tmp_path):
+    """Killed as soon as the template is in place, then each time a few more points were written (a
+    count drawn at random): the states a kill can leave, reached whatever the machine's load, since
+    each kill waits for the store to show them (never for a time)."""
     spec_file = tmp_path / "study.toml"
     spec_file.write_text(KILL_STUDY)
     spec = pd_.StudySpec.from_toml(spec_file)
@@ -111,12 +115,14 @@ def test_sigkill_at_random_moments_then_resume(tmp_path):
     store = tmp_path / "killed.zarr"
     rng = np.random.default_rng(19)
     kills = partial = 0
-    for _ in range(5):
+    total = int(whole["done"].size)
+    for round_ in range(5):
         before = _snapshot(store)
+        done_before = 0 if before is None else int(before[0].sum())
         proc = _cli(spec_file, store)
-        # any moment: while the template is written (the first run), or the points
-        _wait_for(store if before is None else None, rng.uniform(0.0, 0.4) if before is None else 0.0)
-        time.sleep(rng.uniform(0.0, 2.5))
+        target = None if round_ == 0 else done_before + int(rng.integers(1, 8))  # (at most 32 of 96 in all)
+        assert target is None or target < total
+        _wait_for(proc, store, target)
         if proc.poll() is None:
             proc.kill()
             kills += 1
@@ -124,7 +130,7 @@ def test_sigkill_at_random_moments_then_resume(tmp_path):
         _check_after(store, before, whole)
         snap = _snapshot(store)
         partial += snap is not None and 0 < snap[0].sum() < snap[0].size
-    assert kills >= 3 and partial >= 2  # (killed in the middle of the points, not only before or after)
+    assert kills == 5 and partial >= 3  # (killed in the middle of the points, not only before or after)
     before = _snapshot(store)
     proc = _cli(spec_file, store)
     out, err = proc.communicate(timeout=300)
@@ -135,12 +141,23 @@ def test_sigkill_at_random_moments_then_resume(tmp_path):
     xr.testing.assert_identical(final[list(QUANTITIES) + ["done"]], whole)
 
 
-def _wait_for(store: Path | None, extra_s: float) -> None:
-    """Until ``store``'s template is in place (None: not at all), plus ``extra_s``."""
-    deadline = time.monotonic() + 60
-    while store is not None and not (store / ".zmetadata").exists() and time.monotonic() < deadline:
-        time.sleep(0.01)
-    time.sleep(extra_s)
+def _done_count(store: Path) -> int:
+    """Points the store says are done (-1 while its template or a chunk is being written)."""
+    try:
+        return int(np.count_nonzero(zarr.open_array(store / "done", mode="r")[...]))
+    except Exception:  # (not there yet, or a chunk file being replaced as it is read)
+        return -1
+
+
+def _wait_for(proc: subprocess.Popen, store: Path, target: int | None) -> None:
+    """Until the study's template is in place (``target`` None) or ``target`` points are done (or the
+    process ended): the store polled, with a generous deadline, never a fixed wait."""
+    deadline = time.monotonic() + 300
+    while proc.poll() is None and time.monotonic() < deadline:
+        if (store / ".zmetadata").exists() if target is None else _done_count(store) >= target:
+            return
+        time.sleep(0.005)
+    assert proc.poll() is None, f"the study ended before the store showed {target} points done"
 
 
 def _snapshot(store: Path):
@@ -174,7 +191,7 @@ def test_ctrl_c_keeps_what_finished_and_exits_130(tmp_path):
     spec_file.write_text(KILL_STUDY)
     store = tmp_path / "s.zarr"
     proc = _cli(spec_file, store, "--scheduler", "threads")
-    _wait_for(store, 1.0)
+    _wait_for(proc, store, 1)  # (a point written: work under way)
     proc.send_signal(signal.SIGINT)
     out, err = proc.communicate(timeout=120)
     assert proc.returncode == 130, err
@@ -205,12 +222,11 @@ def test_worker_processes_die_with_a_killed_study(tmp_path):
     proc = subprocess.Popen([sys.executable, "-m", "pounding.cli", "study", str(spec_file), "--store",
                              str(store), "--workers", "2", "--scheduler", "processes"],
                             stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, env=env)
-    _wait_for(store, 0.0)
-    deadline = time.monotonic() + 60  # until the workers compute (the forkserver and two workers)
+    _wait_for(proc, store, 1)  # (a point written: the workers compute)
+    deadline = time.monotonic() + 60  # until the workers are all there (the forkserver and two workers)
     while len(_marked(mark)) < 4 and time.monotonic() < deadline and proc.poll() is None:
         time.sleep(0.05)
     assert len(_marked(mark)) >= 4, proc.communicate()[1]
-    time.sleep(0.5)
     proc.kill()
     proc.communicate()
     deadline = time.monotonic() + 20

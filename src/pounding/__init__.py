@@ -1,43 +1,78 @@
 """pounding: base-isolated masses pounding against deformable bumpers, simulated exactly.
 
-The public surface is re-exported here; modules with a leading underscore are private.
+The public surface is re-exported here; modules with a leading underscore are private.  Names are
+imported on first use (PEP 562), so ``import pounding`` and the command line's ``--help`` start at once:
+``pounding.simulate`` loads the engine when it is first touched.
 """
 
-from . import data, lab, plots, presets, records  # noqa: F401 (lab: public as pounding.lab)
-from .analysis import (Bifurcation, BifurcationCurve, Branch, CoexistenceMap, LyapunovSpectrum, PeriodicOrbit,
-                       bifurcation_curve, coexistence_map, continuation, largest_exponents, lyapunov,
-                       periodic_orbit)
-from ._errors import InputError, Interrupted, OutputError, PoundingWarning, Problem, Status, StoreError
-from ._warm_up import WarmUp, warm_up
-from .engine import EnergyLedger, Run, State, simulate
-from .excitation import Harmonic, Record
-from .excitation.spectrum import response_spectrum
-from .identification import (ContactLawFit, Identification, ModelFamily, Targets, fit_contact_law, identify,
-                             paper_targets, rank_contact_laws)
-from .metrics import HysteresisLoop, impact_table
-from .model import (BoucWen, Bumpers, ElasticPlastic, Hertzdamp, HuntCrossley, Isolator, Jankowski,
-                    KelvinVoigt, MeasurementChain, MultilinearBumper, Oscillator, Sensor)
-from .protocols import (BasinStabilityMap, Basins, BifurcationDiagram, CampaignResult, PoundingSpectrum,
-                        SweepResult, basin_stability_map, basins, bifurcation_diagram, campaign,
-                        paper_frequencies_hz, pounding_spectrum, sweep)
-from .studies import StudyResult, StudySpec, open_study, study
+from __future__ import annotations
+
+import importlib
+from typing import TYPE_CHECKING, Any
 
 __version__ = "0.1.0"
 
-__all__ = [
-    "Bumpers", "CampaignResult", "ContactLawFit", "Identification", "ModelFamily", "Targets", "EnergyLedger",
-    "Harmonic", "HuntCrossley", "HysteresisLoop",
-    "BoucWen", "ElasticPlastic", "Hertzdamp", "InputError", "Interrupted", "OutputError",
-    "StoreError", "PoundingWarning",
-    "Isolator",
-    "Jankowski", "MultilinearBumper", "KelvinVoigt", "Oscillator", "Problem", "Record",
-    "Run", "State", "Status", "SweepResult", "campaign", "impact_table", "paper_frequencies_hz",
-    "data", "fit_contact_law", "identify", "paper_targets", "rank_contact_laws", "presets", "simulate",
-    "sweep",
-    "WarmUp", "warm_up", "plots", "records", "response_spectrum", "PoundingSpectrum", "pounding_spectrum",
-    "StudyResult", "StudySpec", "open_study", "study", "PeriodicOrbit", "periodic_orbit",
-    "Bifurcation", "Branch", "continuation", "BifurcationCurve", "CoexistenceMap", "bifurcation_curve",
-    "coexistence_map", "BifurcationDiagram", "bifurcation_diagram", "Basins", "basins",
-    "BasinStabilityMap", "basin_stability_map", "LyapunovSpectrum", "lyapunov", "largest_exponents",
-    "MeasurementChain", "Sensor",
-]
+# public name -> the module that defines it (relative to this package)
+_NAMES = {
+    ".analysis": ("Bifurcation", "BifurcationCurve", "Branch", "CoexistenceMap", "LyapunovSpectrum",
+                  "PeriodicOrbit", "bifurcation_curve", "coexistence_map", "continuation",
+                  "largest_exponents", "lyapunov", "periodic_orbit"),
+    "._errors": ("InputError", "Interrupted", "MissingExtra", "OutputError", "PoundingWarning", "Problem",
+                 "Status", "StoreError"),
+    "._warm_up": ("WarmUp", "warm_up"),
+    ".engine": ("EnergyLedger", "Run", "State", "simulate"),
+    ".excitation": ("Harmonic", "Record"),
+    ".excitation.spectrum": ("response_spectrum",),
+    ".identification": ("ContactLawFit", "Identification", "ModelFamily", "Targets", "fit_contact_law",
+                        "identify", "paper_targets", "rank_contact_laws"),
+    ".metrics": ("HysteresisLoop", "impact_table"),
+    ".model": ("BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley", "Isolator", "Jankowski",
+               "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "Sensor"),
+    ".protocols": ("BasinStabilityMap", "Basins", "BifurcationDiagram", "CampaignResult", "PoundingSpectrum",
+                   "SweepResult", "basin_stability_map", "basins", "bifurcation_diagram", "campaign",
+                   "paper_frequencies_hz", "pounding_spectrum", "sweep"),
+    ".studies": ("StudyResult", "StudySpec", "open_study", "study"),
+}
+_WHERE = {name: module for module, names in _NAMES.items() for name in names}
+# subpackages and modules reached as attributes (pounding.presets.paper_printed(), pounding.design, ...)
+_MODULES = ("data", "lab", "plots", "presets", "records", "design", "reports", "analysis", "engine",
+            "excitation", "identification", "metrics", "model", "protocols", "studies", "cli")
+
+__all__ = sorted(_WHERE) + ["data", "lab", "plots", "presets", "records"]
+
+
+def __getattr__(name: str) -> Any:
+    if name in _WHERE:
+        value = getattr(importlib.import_module(_WHERE[name], __name__), name)
+    elif name in _MODULES:
+        value = importlib.import_module(f".{name}", __name__)
+    else:
+        raise AttributeError(f"module 'pounding' has no attribute {name!r}")
+    globals()[name] = value  # (looked up once)
+    return value
+
+
+def __dir__() -> list[str]:
+    return sorted(set(globals()) | set(_WHERE) | set(_MODULES))
+
+
+if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
+    from . import data, lab, plots, presets, records  # noqa: F401
+    from ._errors import (InputError, Interrupted, MissingExtra, OutputError, PoundingWarning,  # noqa: F401
+                          Problem, Status, StoreError)
+    from ._warm_up import WarmUp, warm_up  # noqa: F401
+    from .analysis import (Bifurcation, BifurcationCurve, Branch, CoexistenceMap, LyapunovSpectrum,  # noqa: F401
+                           PeriodicOrbit, bifurcation_curve, coexistence_map, continuation, largest_exponents,
+                           lyapunov, periodic_orbit)
+    from .engine import EnergyLedger, Run, State, simulate  # noqa: F401
+    from .excitation import Harmonic, Record  # noqa: F401
+    from .excitation.spectrum import response_spectrum  # noqa: F401
+    from .identification import (ContactLawFit, Identification, ModelFamily, Targets,  # noqa: F401
+                                 fit_contact_law, identify, paper_targets, rank_contact_laws)
+    from .metrics import HysteresisLoop, impact_table  # noqa: F401
+    from .model import (BoucWen, Bumpers, ElasticPlastic, Hertzdamp, HuntCrossley, Isolator,  # noqa: F401
+                        Jankowski, KelvinVoigt, MeasurementChain, MultilinearBumper, Oscillator, Sensor)
+    from .protocols import (BasinStabilityMap, Basins, BifurcationDiagram, CampaignResult,  # noqa: F401
+                            PoundingSpectrum, SweepResult, basin_stability_map, basins, bifurcation_diagram,
+                            campaign, paper_frequencies_hz, pounding_spectrum, sweep)
+    from .studies import StudyResult, StudySpec, open_study, study  # noqa: F401

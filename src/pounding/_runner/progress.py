@@ -3,7 +3,9 @@
 from __future__ import annotations
 
 import contextlib
+import sys
 import threading
+import time
 from collections.abc import Callable, Iterator
 from typing import Any, Union
 
@@ -36,6 +38,13 @@ def progress_reporter(progress: Progress, total: int, description: str,
     if progress is not True:
         raise InputError(Problem.WRONG_TYPE, "progress", progress, got=type(progress).__name__,
                          expected="bool or a callable taking the number of steps finished")
+    from rich.console import Console
+
+    console = Console(stderr=True)
+    if not (console.is_terminal or console.is_jupyter):  # a log or a pipe: lines, which a bar would not leave
+        with _lines(total, description, completed) as advance:
+            yield advance
+        return
     from rich.progress import (BarColumn, MofNCompleteColumn, Progress as RichProgress, ProgressColumn,
                                TextColumn, TimeElapsedColumn, TimeRemainingColumn)
     from rich.text import Text
@@ -49,7 +58,7 @@ def progress_reporter(progress: Progress, total: int, description: str,
 
     columns = (TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(), Rate(),
                TimeElapsedColumn(), TimeRemainingColumn())
-    with RichProgress(*columns, transient=False) as bar:
+    with RichProgress(*columns, transient=False, console=console) as bar:
         task = bar.add_task(description, total=total, completed=completed)
         lock = threading.Lock()
 
@@ -58,3 +67,33 @@ def progress_reporter(progress: Progress, total: int, description: str,
                 bar.advance(task, n)
 
         yield advance
+
+
+LINE_EVERY = 10  # percent: a line each time the work done crosses another tenth (and at the first step)
+
+
+@contextlib.contextmanager
+def _lines(total: int, description: str, completed: int = 0) -> Iterator[Callable[[int], None]]:
+    """Progress as plain lines on stderr: ``description: 12/120 (10 %), 3.1 s``, at the first step, at every
+    tenth of the work and at the end; a log shows how far a long run got, and the tests wait for them."""
+    lock = threading.Lock()
+    started = time.monotonic()
+    state = {"done": completed, "shown": -1}
+
+    def show() -> None:
+        pct = 100.0 * state["done"] / total if total else 100.0
+        print(f"{description}: {state['done']}/{total} ({pct:.0f} %), {time.monotonic() - started:.1f} s",
+              file=sys.stderr, flush=True)
+
+    def advance(n: int) -> None:
+        with lock:
+            state["done"] += n
+            tenth = int(LINE_EVERY * state["done"] / max(total, 1) // 1) if total else 0
+            if state["shown"] < 0 or tenth > state["shown"]:
+                state["shown"] = tenth
+                show()
+
+    yield advance
+    with lock:
+        if state["shown"] < LINE_EVERY:
+            show()

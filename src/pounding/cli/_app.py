@@ -19,7 +19,7 @@ from rich.markup import escape
 from rich.table import Table
 from typer.core import TyperCommand, TyperGroup
 
-from .._errors import InputError, OutputError, PoundingWarning, Problem, StoreError
+from .._errors import InputError, MissingExtra, OutputError, PoundingWarning, Problem, StoreError
 from .._io import FIGURE_SUFFIXES, atomic_write, output_dir, output_file
 
 NO_METAVAR = ""  # flags show no "<bool>" in the help
@@ -119,11 +119,12 @@ ARG_SYSTEM = typer.Argument(None, metavar="SYSTEM.toml",
                             help="System TOML (see examples/). Omit to use --preset.")
 OPT_A_G = typer.Option(..., "--a-g", help="Peak table acceleration in g (the paper's a_G).")
 OPT_FREQ = typer.Option(..., "--freq", help="Forcing frequency, Hz.")
-OPT_PRESET = typer.Option(
-    None, "--preset",
-    help="Use a built-in system: paper-printed, paper-damped, paper-calibrated, paper-calibrated-v2 or "
-         "paper-calibrated-v1."
-)
+# the built-in systems' names, as presets.PRESETS has them (written here so that the help needs no import of
+# the model; tests/test_cli_hardening.py holds the two equal)
+PRESET_NAMES = ("paper-printed", "paper-damped", "paper-calibrated", "paper-calibrated-v1",
+                "paper-calibrated-v2", "paper-calibrated-measured")
+PRESET_LIST = ", ".join(PRESET_NAMES[:-1]) + " or " + PRESET_NAMES[-1]
+OPT_PRESET = typer.Option(None, "--preset", help=f"Use a built-in system: {PRESET_LIST}.")
 OPT_NO_BUMPERS = typer.Option(
     False, "--no-bumpers", metavar=NO_METAVAR, help="With --preset: the NBs configuration."
 )
@@ -142,7 +143,7 @@ def command(name: Optional[str] = None) -> Callable:
             with _first_interrupt_only(), _warnings_as_lines():
                 try:
                     return fn(*args, **kwargs)
-                except InputError as exc:
+                except (InputError, MissingExtra) as exc:  # (bad input, or an optional extra not installed)
                     fail(exc)
                 except (StoreError, OutputError) as exc:  # (not the caller's input: exit 1)
                     err_console.print(f"[red]error:[/] {escape(str(exc))}")
@@ -200,7 +201,7 @@ def _first_interrupt_only() -> Iterator[None]:
 
 def fail(exc: Exception) -> None:
     notes = "".join(f" {n}" for n in getattr(exc, "__notes__", ()))  # (which task of many, e.g.)
-    err_console.print(f"[bold red]error:[/] {escape(str(exc) + notes)}")
+    err_console.print(f"[bold red]error:[/] {escape(str(exc) + notes)}", soft_wrap=True)  # (one line)
     raise typer.Exit(code=2)
 
 
@@ -324,6 +325,18 @@ def save_figure(draw: Callable, path: Path) -> None:
 
 def write_csv(df: Any, path: Path) -> None:
     atomic_write(path, lambda tmp: df.to_csv(tmp, index=False))
+
+
+@contextlib.contextmanager
+def working(text: str) -> Iterator[None]:
+    """A spinner with ``text`` while the work goes on (on a terminal), or ``text`` as one line on stderr
+    (a log or a pipe, where a spinner leaves nothing): what the command is doing, never silence."""
+    if err_console.is_terminal:
+        with err_console.status(escape(text)):
+            yield
+    else:
+        err_console.print(escape(text), soft_wrap=True)
+        yield
 
 
 def compile_notice() -> None:

@@ -11,7 +11,7 @@ import typer
 from .._errors import Interrupted
 from .._io import interrupts_deferred
 from ._app import (ARG_SYSTEM, OPT_A_G, OPT_NO_BUMPERS, OPT_PRESET, command, compile_notice, console,
-                   figure_path, files, interrupted, kv_table, save_figure, system, write_csv)
+                   figure_path, files, interrupted, kv_table, save_figure, system, working, write_csv)
 
 CSV = (".csv",)
 
@@ -43,7 +43,7 @@ def continue_branch(
     osc = system(system_file, preset, bumpers=not no_bumpers)
     compile_notice()
     complete = True
-    with console.status(f"following the branch from {start:g} to {end:g} Hz ..."):
+    with working(f"following the branch from {start:g} to {end:g} Hz ..."):
         try:
             branch = continuation(osc, a_g, (start, end), period_multiple=period_multiple, max_step=max_step)
         except Interrupted as stop:
@@ -51,9 +51,8 @@ def continue_branch(
     table, add = kv_table(f"branch at a_G = {a_g:g}, {start:g} to {end:g} Hz", system_file or preset)
     add("status", branch.message)
     add("orbits", f"{len(branch)} ({int((~branch.table['stable']).sum())} unstable)")
-    for bif in branch.bifurcations:
-        where = f" ({bif.side})" if bif.side else ""
-        add(f"{bif.kind}{where}", f"f = {bif.freq_hz:.6g} Hz, alpha = {bif.alpha:.4g}"
+    for label, bif in _one_line_each(branch.bifurcations):
+        add(label, f"f = {bif.freq_hz:.6g} Hz, alpha = {bif.alpha:.4g}"
             + ("" if bif.located else " (not located to tolerance)"))
     console.print(table)
     runs = []
@@ -64,7 +63,7 @@ def continue_branch(
 
         lo, hi = sorted((start, end))
         freqs = np.round(np.arange(lo, hi + 1e-9, 0.1), 10)
-        with console.status("running the sweeps ..."):
+        with working("running the sweeps ..."):
             runs = [sweep(osc, a_g, freqs, direction) for direction in ("up", "down")]
     with interrupts_deferred() as held:
         if paths["out"] is not None:
@@ -80,6 +79,22 @@ def continue_branch(
                     + (" and the files written" if any(paths.values()) or plot else ""))
     if not branch.success:
         raise typer.Exit(code=1)
+
+
+def _one_line_each(bifurcations: list) -> list:
+    """``(label, bifurcation)`` per line of the summary: a grazing of both bumpers at one orbit (a
+    symmetric system's) is one line, "grazing (left and right)", not two."""
+    out: list = []
+    for bif in bifurcations:
+        prev = out[-1][1] if out else None
+        if (prev is not None and bif.kind == prev.kind == "grazing"
+                and {bif.side, prev.side} == {"left", "right"}
+                and abs(bif.freq_hz - prev.freq_hz) <= 1e-7 * max(1.0, abs(bif.freq_hz))
+                and abs(bif.a_g - prev.a_g) <= 1e-12 * max(1.0, abs(bif.a_g))):
+            out[-1] = ("grazing (left and right)", prev)
+            continue
+        out.append((f"{bif.kind}{f' ({bif.side})' if bif.side else ''}", bif))
+    return out
 
 
 @command("coexistence")
@@ -120,7 +135,7 @@ def coexistence(
     compile_notice()
     complete = True
     kinds = ("fold", "grazing") if grazings else ("fold",)
-    with console.status(f"branches and {' and '.join(kinds)} curves, a_G {a_g_min:g} to {a_g_max:g} ..."):
+    with working(f"branches and {' and '.join(kinds)} curves, a_G {a_g_min:g} to {a_g_max:g} ..."):
         try:
             cmap = coexistence_map(osc, a_g=(a_g_min, a_g_max), freqs_hz=(start, end), levels=chosen,
                                    kinds=kinds)

@@ -14,7 +14,7 @@ from .._errors import Interrupted, Status
 from .._io import atomic_write, interrupts_deferred
 from ._app import (ARG_SYSTEM, OPT_A_G, OPT_FMAX, OPT_FMIN, OPT_FREQ, OPT_NO_BUMPERS, OPT_PRESET,
                    OPT_SCHEDULER, command, compile_notice, console, err_console, figure_path, files,
-                   frequencies, interrupted, kv_table, save_figure, system, write_csv)
+                   frequencies, interrupted, kv_table, save_figure, system, working, write_csv)
 
 CSV = (".csv",)
 NETCDF = (".nc", ".nc4", ".netcdf")
@@ -95,7 +95,7 @@ def _branch(osc, a_g: float, fmin: float, fmax: float):
     from ..analysis.continuation import continuation
 
     try:
-        with console.status(f"following the branch from {fmin:g} to {fmax:g} Hz ..."):
+        with working(f"following the branch from {fmin:g} to {fmax:g} Hz ..."):
             return continuation(osc, a_g, (fmin, fmax))
     except (InputError, Interrupted) as exc:
         err_console.print(f"[yellow]warning:[/] the branch was not drawn: {exc}")
@@ -204,7 +204,8 @@ def lyapunov_command(
         spec = stop.partial
     table, add = kv_table(f"Lyapunov exponents at a_G = {a_g:g}, {freq:g} Hz", system_file or preset)
     for i, value in enumerate(spec.exponents):
-        add(f"lambda_{i + 1}", f"{value:.6g} 1/s")
+        add(f"lambda_{i + 1}", "-inf: a direction the map erases (a contact or a slip holds the state "
+            "there), not a number to average" if value == float("-inf") else f"{value:.6g} 1/s")
     add("of the state", ", ".join(spec.coordinates))
     verdict = (f"periodic (period {spec.period})" if spec.period else
                f"chaotic (Kaplan-Yorke dimension {spec.kaplan_yorke_dimension:.3g})" if spec.chaotic else

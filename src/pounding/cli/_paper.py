@@ -11,7 +11,9 @@ from rich.markup import escape
 from .._errors import Interrupted
 from .._io import interrupts_deferred
 from ._app import (
+    working,
     OPT_SCHEDULER,
+    PRESET_LIST,
     cell,
     data_table,
     NO_METAVAR,
@@ -36,7 +38,8 @@ from ._app import (
 @command()
 def reproduce(
     preset: Optional[str] = typer.Option(
-        None, "--preset", help="Built-in system (default: the package's best, paper-calibrated)."
+        None, "--preset", help=f"Built-in system: {PRESET_LIST} (default: the package's best, "
+        "paper-calibrated)."
     ),
     nbs: Optional[Path] = OPT_NBS,
     ybs: Optional[Path] = OPT_YBS,
@@ -202,7 +205,7 @@ def warm_up(
     seconds)."""
     from .._warm_up import warm_up as run_warm_up
 
-    with console.status("compiling pounding's kernels (once after installing: about a minute) ..."):
+    with working("compiling pounding's kernels (once after installing: about a minute) ..."):
         report = run_warm_up(workers)
     console.print(escape(report.message))
     for cache in report.cache_dirs:

@@ -11,6 +11,7 @@ from rich.markup import escape
 from .._errors import Interrupted
 from .._io import atomic_write, interrupts_deferred
 from ._app import (
+    working,
     ARG_SYSTEM,
     OPT_A_G,
     cell,
@@ -25,6 +26,7 @@ from ._app import (
     OPT_NBS,
     OPT_NO_BUMPERS,
     OPT_PRESET,
+    PRESET_LIST,
     OPT_STEADY,
     OPT_WORKERS,
     OPT_YBS,
@@ -93,7 +95,7 @@ def simulate(
     compile_notice()
     complete = True
     try:
-        with console.status(f"simulating {duration:g} s of {what} ..."):
+        with working(f"simulating {duration:g} s of {what} ..."):
             run = run_simulation(osc, exc, duration, start, sample_rate_hz=rate)
     except Interrupted as stop:
         run, complete = stop.partial, False
@@ -286,8 +288,7 @@ def campaign(
     preset: Optional[str] = typer.Option(
         None,
         "--preset",
-        help="Built-in system for both configurations: paper-printed, paper-damped, paper-calibrated, "
-             "paper-calibrated-v2 or paper-calibrated-v1.",
+        help=f"Built-in system for both configurations: {PRESET_LIST}.",
     ),
     nbs: Optional[Path] = OPT_NBS,
     ybs: Optional[Path] = OPT_YBS,

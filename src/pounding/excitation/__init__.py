@@ -16,12 +16,12 @@ from .harmonic import (
                        MAX_FREQ_HZ,
                        MAX_TIME_S,
                        RECORD,
-                       STANDARD_GRAVITY,
+                       GRAVITY_M_S2,
                        Harmonic,
 )
 from .record import Record
 
 Excitation = Union[Harmonic, Record]
 
-__all__ = ["HARMONIC", "MAX_ACCEL_M_S2", "MAX_A_G", "MAX_FREQ_HZ", "MAX_TIME_S", "RECORD", "STANDARD_GRAVITY",
+__all__ = ["HARMONIC", "MAX_ACCEL_M_S2", "MAX_A_G", "MAX_FREQ_HZ", "MAX_TIME_S", "RECORD", "GRAVITY_M_S2",
            "Excitation", "Harmonic", "Record"]

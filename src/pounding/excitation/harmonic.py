@@ -8,14 +8,13 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._checks import at_most, plausible, positive, real
-
-STANDARD_GRAVITY = 9.81  # m/s^2, the value the paper uses
+from .._units import GRAVITY_M_S2  # (re-exported: pounding.excitation.GRAVITY_M_S2)
 
 HARMONIC = 0
 RECORD = 1
 # refused beyond: no shaking table or earthquake comes near (a unit error, or overflow ahead)
 MAX_A_G = 1e3
-MAX_ACCEL_M_S2 = MAX_A_G * STANDARD_GRAVITY
+MAX_ACCEL_M_S2 = MAX_A_G * GRAVITY_M_S2
 MAX_FREQ_HZ = 1e6
 MAX_TIME_S = 1e9
 
@@ -56,7 +55,7 @@ class Harmonic:
     a_g: float
     freq_hz: float
     phase: float = 0.0
-    g: float = STANDARD_GRAVITY
+    g: float = GRAVITY_M_S2
 
     def __post_init__(self) -> None:
         a_g = at_most("a_g", real("a_g", self.a_g), MAX_A_G, " g", "a_g is in g: 0.05 is 5 % of g")

@@ -15,7 +15,7 @@ import pandas as pd
 from .._checks import at_most, float_array, one_of, plausible, positive
 from .._errors import InputError, Problem
 from .._units import ACC_UNITS
-from .harmonic import MAX_A_G, MAX_ACCEL_M_S2, MAX_TIME_S, RECORD, STANDARD_GRAVITY
+from .harmonic import MAX_A_G, MAX_ACCEL_M_S2, MAX_TIME_S, RECORD, GRAVITY_M_S2
 
 UNIFORM_RTOL = 1e-6  # time steps equal within this are a uniform sampling
 HOLD_RTOL = 1e-9  # ... and within this the engine's recurrence takes them as one (engine/_hold.py)
@@ -70,7 +70,7 @@ class Record:
     accel: np.ndarray = field(repr=False)
     name: str = ""
     meta: Mapping[str, Any] = field(default_factory=dict, repr=False)
-    g: float = STANDARD_GRAVITY
+    g: float = GRAVITY_M_S2
 
     def __post_init__(self) -> None:
         t = float_array("record.t", self.t, min_len=2)
@@ -95,7 +95,7 @@ class Record:
         i = int(np.argmax(np.abs(accel)))
         at_most(f"record.accel[{i}]", float(accel[i]), MAX_ACCEL_M_S2, " m/s^2 (1000 g)",
                 "give the acceleration in m/s^2 (Record.from_g takes units of g)")
-        plausible(f"record.accel[{i}]", abs(float(accel[i])), 0.0, 5.0 * STANDARD_GRAVITY,
+        plausible(f"record.accel[{i}]", abs(float(accel[i])), 0.0, 5.0 * GRAVITY_M_S2,
                   "the acceleration is in m/s^2 (use Record.from_g for units of g)")
         if not isinstance(self.name, str):
             raise InputError(Problem.WRONG_TYPE, "record.name", self.name, got=type(self.name).__name__,
@@ -113,14 +113,14 @@ class Record:
 
     # ---- making one -------------------------------------------------------------------------
     @classmethod
-    def from_g(cls, t: np.ndarray, accel_g: np.ndarray, g: float = STANDARD_GRAVITY, *, name: str = "",
+    def from_g(cls, t: np.ndarray, accel_g: np.ndarray, g: float = GRAVITY_M_S2, *, name: str = "",
                meta: Mapping[str, Any] | None = None) -> "Record":
         """A record given in units of ``g``."""
         g = positive("g", g, "m/s^2")
         return cls(t, float_array("accel_g", accel_g, min_len=2) * g, name, meta or {}, g)
 
     @classmethod
-    def from_at2(cls, path: str | Path, *, g: float = STANDARD_GRAVITY) -> "Record":
+    def from_at2(cls, path: str | Path, *, g: float = GRAVITY_M_S2) -> "Record":
         """A PEER NGA ``.AT2`` file (header variants: see :mod:`pounding.excitation._at2`).
 
         Its name is the file's stem; ``meta`` has the header lines and, where line 2 reads
@@ -144,7 +144,7 @@ class Record:
 
     @classmethod
     def from_csv(cls, path: str | Path, *, accel: Any, time: Any = None, dt: float | None = None,
-                 units: str = "g", g: float = STANDARD_GRAVITY, name: str | None = None) -> "Record":
+                 units: str = "g", g: float = GRAVITY_M_S2, name: str | None = None) -> "Record":
         """Delimited text (CSV, TSV, semicolons or whitespace; a header line or none).
 
         Parameters

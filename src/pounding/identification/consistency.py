@@ -55,6 +55,7 @@ import pandas as pd
 from .._checks import at_most, gap_total, positive
 from .._errors import InputError, Problem
 from ..data import PAPER_F_REF_HZ, PAPER_OMEGA_MIN_RAD_S
+from .._units import GRAVITY_M_S2
 
 if TYPE_CHECKING:
     from .targets import Targets
@@ -67,7 +68,7 @@ CONTACT = "contact"        # a bound for contacts from the recovered surface at 
 
 
 def check_consistency(targets: Targets, mass_kg: float, gap_total_m: float | None = None, *,
-                      g: float = 9.81,
+                      g: float = GRAVITY_M_S2,
                       f_ref_hz: float = PAPER_F_REF_HZ,
                       omega_min_rad_s: float = PAPER_OMEGA_MIN_RAD_S) -> pd.DataFrame:
     """Check measured targets against bounds any mass obeying Newton's law satisfies.

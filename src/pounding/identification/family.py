@@ -32,6 +32,8 @@ TOML (``pounding identify ... --family FAMILY.toml``)::
 
 from __future__ import annotations
 
+import math
+import warnings
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -39,10 +41,11 @@ from typing import Any
 import numpy as np
 
 from .._checks import integer, one_of, positive, read_toml, real
-from .._errors import InputError, Problem
+from .._errors import InputError, PoundingWarning, Problem
 from ..model import (BoucWen, Bumpers, ElasticPlastic, HuntCrossley, Isolator, KelvinVoigt, MultilinearBumper,
                      Oscillator)
 
+WIDE_DECADES = 6  # bounds spanning more decades than this are warned about
 FAMILY_KEYS = ("mass", "branches", "hysteresis", "law", "fixed", "bounds", "bumper_branches", "bouc_wen")
 BOUC_WEN_PARAMETERS = ("bw_stiffness", "bw_yield_displacement", "bw_n")  # (a = 1, beta = gamma = 0.5)
 LAW_PARAMETERS = {"kelvin_voigt": ("bumper_stiffness", "bumper_damping"),
@@ -270,5 +273,12 @@ def check_bounds(family: ModelFamily, bounds: Any) -> dict[str, tuple[float, flo
         low, high = real(f"bounds.{name}[0]", pair[0]), real(f"bounds.{name}[1]", pair[1])
         if not low < high:
             raise InputError(Problem.NOT_INCREASING, f"bounds.{name}", list(pair))
+        decades = math.log10(high) - math.log10(low) if low > 0.0 else 0.0
+        if decades > WIDE_DECADES:
+            warnings.warn(PoundingWarning(
+                f"bounds.{name} = [{low:g}, {high:g}] spans {decades:.0f} decades: the search "
+                "samples it logarithmically, so nearly every candidate is far from a physical value, and "
+                "candidates with extreme numbers can take long to simulate; give bounds a decade or two "
+                "either side of the value you expect"), stacklevel=3)
         out[name] = (low, high)
     return out

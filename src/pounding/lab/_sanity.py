@@ -19,6 +19,7 @@ import warnings
 import numpy as np
 
 from .._errors import PoundingWarning
+from .._units import GRAVITY_M_S2
 
 RATIO_RTOL = 0.25  # a ratio further than this from 1 is warned about
 F_LOW_HZ, F_HIGH_HZ = 0.05, 200.0  # stepped-sine frequencies outside this look like a time-unit error
@@ -65,17 +66,17 @@ def _diagnosis(s_a: float, s_d: float) -> str | None:
     if _near(s_a, 1.0) and _near(s_d, -1.0):
         return ("the laser reads the opposite sign (pounding takes D positive in the direction of the "
                 "table's positive acceleration): negate the displacement")
-    for factor, why in ((1.0 / 9.81, "it looks like g read as m/s^2: give its unit as g"),
-                        (9.81, "it looks like m/s^2 read as g: give its unit as m/s2"),
+    for factor, why in ((1.0 / GRAVITY_M_S2, "it looks like g read as m/s^2: give its unit as g"),
+                        (GRAVITY_M_S2, "it looks like m/s^2 read as g: give its unit as m/s2"),
                         (1e-2, "it looks like cm/s^2 read as m/s^2: give its unit as cm/s2")):
         if _near(s_a, factor) and _near(s_d, 1.0):
             return why
     for factor, why in ((1e3, "the displacement looks like mm read as m: give its unit as mm"),
                         (1e-3, "the displacement looks like m read as mm: give its unit as m"),
-                        (9.81,
+                        (GRAVITY_M_S2,
                          "the accelerations (table and mass) look like g read as m/s^2: give their "
                          "unit as g"),
-                        (1.0 / 9.81, "the accelerations (table and mass) look like m/s^2 read as g")):
+                        (1.0 / GRAVITY_M_S2, "the accelerations (table and mass) look like m/s^2 read as g")):
         if _near(s_a, 1.0) and _near(s_d, factor):
             return why
     return "check the channels' units, signs and columns (and that the table channel is the table's)"

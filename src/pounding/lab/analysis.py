@@ -49,6 +49,7 @@ from ..metrics.measured import measure_window, smooth
 from ..metrics.measured_contacts import IMPACT_COLUMNS
 from .lab_sweep import LabSweep
 from .record import LabRecord
+from .._units import GRAVITY_M_S2
 
 TABLE_LOWPASS_FACTOR = 5.0  # the table signal's low-pass corner, times the highest step frequency
 SCHMITT = 1.0 / 3.0  # a zero crossing counts after the signal went below -SCHMITT x its amplitude
@@ -125,7 +126,7 @@ def _sine_fit(t: np.ndarray, x: np.ndarray, f: float) -> tuple[float, float]:
 def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: float | None = None,
                          freqs_hz: Any = None, measure_cycles: int = 5, steady_rtol: float = 0.02,
                          f_ref_hz: float = PAPER_F_REF_HZ, omega_min_rad_s: float = PAPER_OMEGA_MIN_RAD_S,
-                         g: float = 9.81) -> LabSweep:
+                         g: float = GRAVITY_M_S2) -> LabSweep:
     """Per step of a stepped-sine recording, the paper's Table 2 quantities (see the module's method).
 
     Parameters

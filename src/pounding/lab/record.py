@@ -21,6 +21,7 @@ from .._checks import one_of, positive
 from .._delimited import as_columns, read_columns
 from .._errors import InputError, PoundingWarning, Problem
 from .._units import ACC_UNITS, LENGTH_UNITS, TIME_UNITS
+from .._units import GRAVITY_M_S2
 
 ROLES = ("time", "table_acc", "mass_acc", "displacement")
 # unit -> factor to SI, per kind of channel
@@ -159,7 +160,7 @@ class LabRecord:
 
 
 def read_test(path: str | Path, *, time: Any, table_acc: Any, mass_acc: Any, displacement: Any,
-              units: dict[str, str] | None = None, g: float = 9.81) -> LabRecord:
+              units: dict[str, str] | None = None, g: float = GRAVITY_M_S2) -> LabRecord:
     """Read a shaking-table recording from delimited text (CSV, TSV, semicolons, whitespace).
 
     Parameters

@@ -19,7 +19,7 @@ import numpy as np
 from .._checks import float_array, integer, non_negative, plausible, positive, real_tuple
 from .._errors import InputError, Problem
 from ..engine import State, simulate
-from ..excitation import MAX_A_G, STANDARD_GRAVITY, Harmonic
+from ..excitation import MAX_A_G, GRAVITY_M_S2, Harmonic
 from ..model import Oscillator
 from ..model.measurement import MeasurementChain, Sensor
 from .record import LabRecord
@@ -33,7 +33,7 @@ def synthetic_test(oscillator: Oscillator, a_g: float, freqs_hz: Any, *, cycles:
                    anti_alias_hz: float | None = None, gains: Any = (1.0, 1.0), offsets_m_s2: Any = None,
                    laser_resolution_m: float | None = None,
                    oversample: int | None = None, seed: int = 0, state: State | None = None,
-                   g: float = STANDARD_GRAVITY, measurement: MeasurementChain | None = None) -> LabRecord:
+                   g: float = GRAVITY_M_S2, measurement: MeasurementChain | None = None) -> LabRecord:
     """Record a stepped-sine test of ``oscillator`` through realistic sensors.
 
     Parameters

@@ -76,3 +76,41 @@ def get_value(table: dict, name: str) -> Any:
         if idx is not None:
             node = node[int(idx)]
     return node
+
+
+# the units of a system's numbers by their last key (SI); a Hertz-type law's by its exponent
+_UNITS = {"mass": "kg", "slopes": "N/m", "breakpoints": "m", "gap_left": "m", "gap_right": "m", "gap": "m",
+          "capacity_m": "m", "yield_displacement": "m", "yield_compression": "m",
+          "post_yield_stiffness": "N/m", "effective_mass": "kg", "exponent": "-", "damping_ratio": "-",
+          "xi_norm": "-", "a": "-", "beta": "-",
+          "gamma": "-", "n": "-", "a_g": "g", "freq_hz": "Hz", "duration_s": "s", "period_s": "s",
+          "pga_g": "g", "sa_g": "g"}
+_HERTZ_TYPES = ("hunt_crossley", "jankowski", "hertzdamp")
+
+
+def unit_of(name: str, table: dict | None = None) -> str:
+    """The unit of the dotted ``name`` (``bumpers.gap`` -> ``"m"``, ``isolator.damping`` -> ``"N s/m"``,
+    ``a_g`` -> ``"g"``); ``table`` (``Oscillator.to_dict``) tells a Hertz-type law's stiffness
+    (``N/m^1.5``) from a linear one's.  ``""`` for a name it does not know."""
+    key = _INDEX.match(name.split(".")[-1] or "")
+    leaf = key.group(1) if key else name
+    if leaf in _UNITS:
+        return _UNITS[leaf]
+    if leaf in ("stiffness", "damping"):
+        law = None
+        if table is not None and name.startswith("bumpers.law"):
+            law = (table.get("bumpers") or {}).get("law") or {}
+        if law and law.get("type") in _HERTZ_TYPES:
+            n = f"{float(law.get('exponent', 1.5)):g}"
+            return f"N/m^{n}" if leaf == "stiffness" else f"N s/m^{float(n) + 1:g}"
+        if name.startswith("isolator.bouc_wen") and leaf == "stiffness":
+            return "N/m"
+        return "N/m" if leaf == "stiffness" else "N s/m"
+    return ""
+
+
+def with_unit(name: str, value: Any, table: dict | None = None, sep: str = " = ") -> str:
+    """``name`` and ``value`` with its unit: ``"bumpers.gap = 0.05 m"``, ``"a_g = 0.3 g"``."""
+    unit = unit_of(name, table)
+    shown = f"{value:g}" if isinstance(value, (int, float)) and not isinstance(value, bool) else str(value)
+    return f"{name}{sep}{shown}" + (f" {unit}" if unit and unit != "-" else "")

@@ -6,6 +6,7 @@ from typing import Any
 
 import numpy as np
 
+from ._labels import A_G_LABEL
 from ._legend import place_legend
 
 
@@ -62,8 +63,8 @@ def plot_basins(result: Any, ax: Any = None, **kwargs: Any) -> list:
                                        f"{row.fraction:.1%} +- {row.standard_error:.1%}")
     if np.any(result.labels < 0):
         artists += ax.plot([], [], "s", color=colors[0], label=f"not settled: {result.not_settled:.1%}")
-    ax.set_xlabel("initial D, mm")
-    ax.set_ylabel("initial V, m/s")
+    ax.set_xlabel("initial D [mm]")
+    ax.set_ylabel("initial V [m/s]")
     exc = result.excitation
     ax.set_title(f"Basins at a_G = {exc.a_g:g} g, {exc.freq_hz:g} Hz (table phase 0)", fontsize="medium")
     place_legend(ax, fontsize="small")
@@ -116,8 +117,8 @@ def plot_basin_stability(result: Any, ax: Any = None, *, curves: Any = None, **k
             artists += ax.plot(df["freq_hz"], df["a_g"], color="w" if fold else "C1", lw=1.2,
                                ls="-" if fold else "--", label=None if curve.kind in labelled else curve.kind)
             labelled.add(curve.kind)
-    ax.set_xlabel("f, Hz")
-    ax.set_ylabel("a_G, g")
+    ax.set_xlabel("f [Hz]")
+    ax.set_ylabel(A_G_LABEL)
     ax.set_title(f"Probability of pounding ({int(ds.attrs['samples'])} initial states a point)",
                  fontsize="medium")
     place_legend(ax, fontsize="small")

@@ -9,6 +9,7 @@ from typing import Any, Optional
 import numpy as np
 
 from .._errors import InputError, Problem
+from ._labels import A_G_LABEL
 from ._legend import place_legend
 
 # marker and short label of each bifurcation kind
@@ -100,8 +101,8 @@ def plot_branch(branch: Any, ax: Any = None, *, y: str = "alpha", x: Optional[st
             labelled.add(bif.kind)
             artists.append(ax.annotate(short, (bx, by), textcoords="offset points", xytext=(4, 4),
                                        fontsize="x-small"))
-        ax.set_xlabel({"nu": "nu = f / f_R", "freq_hz": "f, Hz", "a_g": "a_G, g"}.get(xcol, xcol))
-    ax.set_ylabel({"alpha": "alpha = max|a_abs| / A_t", "eta": "eta = E / Delta"}.get(y, y))
+        ax.set_xlabel({"nu": "nu = f / f_R [-]", "freq_hz": "f [Hz]", "a_g": A_G_LABEL}.get(xcol, xcol))
+    ax.set_ylabel({"alpha": "alpha = max|a_abs| / A_t [-]", "eta": "eta = E / Delta [-]"}.get(y, y))
     if sweeps is not None:
         from .sweep import DIRECTION_STYLE
 

@@ -48,8 +48,8 @@ def plot_contact_law_fit(fit: "ContactLawFit", ax: Any = None) -> list:
     artists = [ax.plot(d_mm, 1e-3 * df["force_n"].to_numpy(), ".", ms=3, color="0.5", label="measured")[0]]
     artists.append(ax.plot(d_mm, 1e-3 * df["model_force_n"].to_numpy(), "-", lw=1.2, color="C3",
                            label=f"{fit.law.TYPE}, rms {fit.rms_n:.3g} N")[0])
-    ax.set_xlabel("compression (mm)")
-    ax.set_ylabel("force (kN)")
+    ax.set_xlabel("compression [mm]")
+    ax.set_ylabel("force [kN]")
     ax.set_xlim(0.0, max(1e-9, float(np.max(d_mm))) * 1.05)
     place_legend(ax, fontsize="small")
     return artists

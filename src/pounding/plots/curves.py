@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import Any, Optional
 
+from ._labels import A_G_LABEL
 from ._legend import place_legend
 
 STYLE = {"fold": "-", "grazing": ":"}
@@ -63,8 +64,8 @@ def plot_curves(curves: list, ax: Any = None, *, matrix: Optional[Any] = None, *
         color = kwargs.get("color") or ("C0" if c.kind == "fold" else "C2" if c.side == "left" else "C1")
         kw = {k: v for k, v in kwargs.items() if k != "color"}
         artists += ax.plot(df["freq_hz"], df["a_g"], STYLE.get(c.kind, "-"), color=color, label=label, **kw)
-    ax.set_xlabel("frequency f (Hz)")
-    ax.set_ylabel("a_G (g)")
+    ax.set_xlabel("frequency f [Hz]")
+    ax.set_ylabel(A_G_LABEL)
     if artists:
         place_legend(ax, fontsize="small")
     return artists

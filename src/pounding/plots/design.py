@@ -58,8 +58,8 @@ def plot_design_spectrum(spectrum: Any, ax: Any = None, **line: Any) -> list:
         if tk is not None and tk <= t[-1]:
             artists.append(ax.plot([tk], [spectrum.sa_g(tk)], "o", color=ln.get_color(), ms=4)[0])
             ax.annotate(mark, (tk, spectrum.sa_g(tk)), xytext=(3, 3), textcoords="offset points", fontsize=8)
-    ax.set_xlabel("period T (s)")
-    ax.set_ylabel("spectral acceleration Sa (g)")
+    ax.set_xlabel("period T [s]")
+    ax.set_ylabel("spectral acceleration Sa [g]")
     ax.set_xlim(0.0, max(t[-1], ax.get_xlim()[1]))
     ax.relim()  # (the axes may hold another spectrum already: room for both)
     ax.autoscale_view(scalex=False)
@@ -99,7 +99,7 @@ def plot_hazard_curve(curve: Any, ax: Any = None) -> list:
         ms=3,
         label=curve.name or f"Sa({curve.period_s:g} s)",
     )
-    ax.set_xlabel(f"Sa({curve.period_s:g} s) (g)")
+    ax.set_xlabel(f"Sa({curve.period_s:g} s) [g]")
     ax.set_ylabel("annual frequency of exceedance (1/year)")
     ax.grid(True, which="both", alpha=0.3)
     place_legend(ax)
@@ -167,8 +167,8 @@ def plot_scaled_suite(suite: Any, ax: Any = None) -> list:
     else:
         artists.append(ax.axvline(lo, color="C1", lw=1.0, label=f"scaled at {lo:g} s"))
     ax.set_xscale("log")
-    ax.set_xlabel("period T (s)")
-    ax.set_ylabel(f"PSa (g), {100 * suite.damping_ratio:g} % damping")
+    ax.set_xlabel("period T [s]")
+    ax.set_ylabel(f"PSa [g], {100 * suite.damping_ratio:g} % damping")
     ax.set_ylim(bottom=0.0)
     place_legend(ax)
     return artists
@@ -250,7 +250,7 @@ def plot_fragility(fragility: Any, ax: Any = None, *, data: bool = True, **line:
                 label="records' capacities",
             )[0]
         )
-    ax.set_xlabel("intensity (g)")
+    ax.set_xlabel("intensity [g]")
     ax.set_ylabel("probability of the event")
     ax.set_xlim(0.0, top)
     ax.set_ylim(0.0, 1.0)
@@ -303,7 +303,7 @@ def plot_stripes(analysis: Any, event: str = "contact", limit: float | None = No
     for i in range(frac.sizes[first] if first else 1):
         sel = {**fixed, **({first: i} if first else {})}
         value = float(analysis.dataset[first].values[i]) if first else None
-        label = f"{first} = {value:g}" if first else event
+        label = f"{first} = {value:g} {analysis.unit(first)}".rstrip(" -") if first else event
         (pts,) = ax.plot(x, frac.isel(sel).values, "o", ms=4, label=label)
         artists.append(pts)
         at = {d: float(analysis.dataset[d].values[j]) for d, j in sel.items()}
@@ -312,12 +312,15 @@ def plot_stripes(analysis: Any, event: str = "contact", limit: float | None = No
         except InputError:  # (all or nothing at every stripe, or separated: no curve to draw)
             continue
         artists.append(ax.plot(xs, curve.probability(xs), color=pts.get_color(), lw=1.2)[0])
-    ax.set_xlabel(f"Sa({analysis.period_s:g} s) (g)")
+    ax.set_xlabel(f"Sa({analysis.period_s:g} s) [g]")
     ax.set_ylabel(f"probability of {event}" + ("" if limit is None else f" > {limit:g}"))
     ax.set_xlim(0.0, xs[-1])
     ax.set_ylim(-0.02, 1.02)
     place_legend(ax)
     return artists
+
+
+OPTION_MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*", "<", ">")  # (one shape per design option)
 
 
 def plot_decision(decision: Any, ax: Any = None) -> list:
@@ -353,21 +356,30 @@ def plot_decision(decision: Any, ax: Any = None) -> list:
     ax = _axes(ax, (6.5, 4.0))
     gap = decision.gap_dim
     artists = []
-    for label, part in decision.by_gap():
-        (solid,) = ax.plot(1e3 * part[gap], part["p_contact_mce"], "o-", ms=3,
+    groups = decision.by_gap()
+    # options often give the same probabilities (contact does not depend on the bumper): each is drawn
+    # thinner and with smaller markers of its own shape than the one before it, so none hides another
+    n = len(groups)
+    for i, (label, part) in enumerate(groups):
+        lw, ms = 1.0 + 2.2 * (n - 1 - i) / max(n - 1, 1), 3.0 + 5.0 * (n - 1 - i) / max(n - 1, 1)
+        marker = OPTION_MARKERS[i % len(OPTION_MARKERS)]
+        (solid,) = ax.plot(1e3 * part[gap], part["p_contact_mce"], marker=marker, ls="-", lw=lw, ms=ms,
+                           mfc="none", color=f"C{i % 10}", zorder=2 + i,
                            label=f"MCE ({decision.mce_sa_g:.3g} g){', ' + label if label else ''}")
-        (dashed,) = ax.plot(1e3 * part[gap], part["p_contact_design"], "s--", ms=3, color=solid.get_color(),
+        (dashed,) = ax.plot(1e3 * part[gap], part["p_contact_design"], marker=marker, ls="--", lw=lw, ms=ms,
+                            color=solid.get_color(), zorder=2 + i,
                             label=f"design ({decision.design_sa_g:.3g} g){', ' + label if label else ''}")
         artists += [solid, dashed]
-    artists.append(ax.axhline(decision.target_probability, color="k", lw=0.8, ls=":",
+    # reference lines in black and grey: no option's colour
+    artists.append(ax.axhline(decision.target_probability, color="0.45", lw=0.9, ls=":",
                               label=f"target {decision.target_probability:g}"))
     if decision.recommended is not None:
-        artists.append(ax.axvline(1e3 * decision.recommended[gap], color="C2", lw=1.2,
+        artists.append(ax.axvline(1e3 * decision.recommended[gap], color="k", lw=1.6,
                                   label=f"recommended {1e3 * decision.recommended[gap]:.0f} mm"))
     if decision.code_minimum_gap_m is not None:
-        artists.append(ax.axvline(1e3 * decision.code_minimum_gap_m, color="C3", lw=1.0, ls="-.",
+        artists.append(ax.axvline(1e3 * decision.code_minimum_gap_m, color="0.45", lw=1.0, ls="-.",
                                   label=f"code minimum {1e3 * decision.code_minimum_gap_m:.0f} mm"))
-    ax.set_xlabel("gap (mm)")
+    ax.set_xlabel("gap [mm]")
     ax.set_ylabel("probability of pounding")
     ax.set_ylim(-0.02, 1.02)
     place_legend(ax)
@@ -430,10 +442,11 @@ def plot_responses(analysis: Any, quantity: str = "acc_max_g", ax: Any = None) -
             warnings.simplefilter("ignore", RuntimeWarning)  # (a stripe with no finished run: NaN)
             mid = np.nanmedian(v, axis=1)
             lo, hi = np.nanpercentile(v, 16, axis=1), np.nanpercentile(v, 84, axis=1)
-        label = f"{first} = {float(ds[first].values[i]):g}" if first else quantity
+        label = (f"{first} = {float(ds[first].values[i]):g} {analysis.unit(first)}".rstrip(" -") if first
+                 else quantity)
         (ln,) = ax.plot(x, mid, "o-", ms=3, label=label)
         artists += [ln, ax.fill_between(x, lo, hi, color=ln.get_color(), alpha=0.15, lw=0)]
-    ax.set_xlabel(f"Sa({analysis.period_s:g} s) (g)")
+    ax.set_xlabel(f"Sa({analysis.period_s:g} s) [g]")
     ax.set_ylabel(quantity)
     place_legend(ax)
     return artists

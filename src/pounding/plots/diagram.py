@@ -77,7 +77,7 @@ def plot_bifurcation_diagram(diagram: Any, ax: Any = None, *, branches: Any = No
                 shown = np.where(sec["stable"].to_numpy() == stable, values, np.nan)
                 artists += ax.plot(sec["freq_hz"], shown, fmt, color="0.35", lw=1.0, ms=2,
                                    label=f"branch, {'stable' if stable else 'unstable'}" if k == 0 else None)
-    ax.set_xlabel("f, Hz")
+    ax.set_xlabel("f [Hz]")
     ax.set_ylabel(label)
     ax.set_title(f"Bifurcation diagram, a_G = {diagram.a_g:g} g", fontsize="medium")
     place_legend(ax, fontsize="small")

@@ -62,6 +62,6 @@ def plot_identification(fit: Identification, ax: Any = None) -> list:
     ax.set_yticks(y, labels, fontsize="x-small")
     ax.invert_yaxis()
     ax.set_xlim(-5.2, 5.2)
-    ax.set_xlabel("(model - target) / tolerance (clipped at +-5)")
+    ax.set_xlabel("(model - target) / tolerance [-] (clipped at +-5)")
     ax.set_title(f"{fit.n_within} of {len(df)} targets met", fontsize="small")
     return artists

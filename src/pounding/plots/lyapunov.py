@@ -51,7 +51,7 @@ def plot_lyapunov(spectrum: Any, ax: Any = None, **kwargs: Any) -> list:
     artists.append(ax.axhline(0.0, color="0.5", lw=0.8, ls=":"))
     erased = int(np.sum(np.isneginf(spectrum.exponents)))
     ax.set_xlabel("periods counted")
-    ax.set_ylabel("running estimate, 1/s")
+    ax.set_ylabel("running estimate [1/s]")
     ax.set_xscale("log")
     exc = spectrum.excitation
     title = f"Lyapunov spectrum, a_G {exc.a_g:g}, {exc.freq_hz:g} Hz"

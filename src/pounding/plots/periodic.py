@@ -65,8 +65,8 @@ def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
     if b is not None:
         for x_mm in (-b.gap_left * 1e3, b.gap_right * 1e3):
             artists.append(ax.axvline(x_mm, color="0.6", linewidth=0.8))
-    ax.set_xlabel("displacement D (mm)")
-    ax.set_ylabel("velocity V (m/s)")
+    ax.set_xlabel("displacement D [mm]")
+    ax.set_ylabel("velocity V [m/s]")
     ax.set_title(f"periodic orbit, f = {run.excitation.freq_hz:g} Hz, a_G = {run.excitation.a_g:g}, "
                  f"{orbit.contacts_per_period} contacts per period")
     place_legend(ax, fontsize="small")

@@ -5,6 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from .._units import GRAVITY_M_S2
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..engine.result import Run
@@ -47,7 +48,7 @@ def plot_run(run: "Run", ax: Any = None, *, contacts: bool = True) -> list:
     ax.set_xlabel("t [s]")
     ax.set_ylabel("D [mm]", color="C0")
     twin = ax.twinx()
-    artists += twin.plot(run.t, run.abs_acceleration / 9.81, color="C3", lw=0.8, label="a_abs")
+    artists += twin.plot(run.t, run.abs_acceleration / GRAVITY_M_S2, color="C3", lw=0.8, label="a_abs")
     twin.set_ylabel("absolute acceleration [g]", color="C3")
     if contacts and len(run.contacts):
         ends = run.contacts["t_end_s"].fillna(run.t[-1]).to_numpy()

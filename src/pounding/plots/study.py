@@ -100,11 +100,21 @@ def plot_study(result: Any, quantity: str, *, x: str | None = None, hue: str | N
     for value in ([None] if hue is None else ds[hue].values):
         line = da if value is None else da.sel({hue: value})
         (art,) = ax.plot(xs, np.asarray(line.transpose(x).values, dtype=float), marker="o", ms=3, lw=1.2,
-                         label=None if value is None else f"{hue} = {value}")
+                         label=None if value is None else f"{hue} = {value}{_unit(ds, hue, ' ')}")
         artists.append(art)
-    ax.set_xlabel(x)
+    ax.set_xlabel(f"{x}{_unit(ds, x)}")
     ax.set_ylabel(quantity if units in ("1", "") else f"{quantity} [{units}]")
     if hue is not None:
         place_legend(ax, fontsize=8)
     ax.grid(alpha=0.3)
     return artists
+
+
+def _unit(ds: Any, dim: str, sep: str = " [") -> str:
+    """`` [m]`` (or `` m`` with ``sep=" "``) for a grid axis the store gives a unit; ``""`` otherwise."""
+    from ..model.dotted import unit_of
+
+    unit = ds[dim].attrs.get("units") or unit_of(dim)
+    if not unit or unit in ("1", "-"):
+        return ""
+    return f" [{unit}]" if sep == " [" else f" {unit}"

@@ -74,11 +74,11 @@ def plot_sweep(sweeps: "SweepResult | Sequence[SweepResult]", ax: Any = None, *,
         if np.any(unsteady):
             artists.append(ax_a.scatter(df["nu"][unsteady], df["alpha"][unsteady], s=40,
                                         facecolors="none", edgecolors="k", lw=0.8, zorder=3))
-    ax_a.set_ylabel("alpha = max|a_abs| / A_t")
+    ax_a.set_ylabel("alpha = max|a_abs| / A_t [-]")
     kinds = {sw.oscillator.bumpers is not None for sw in sweeps}
-    ax_e.set_ylabel("eta = E / Delta" if kinds == {True} else
-                    "e = E / D_tmax" if kinds == {False} else "eta (YBs) / e (NBs)")
-    ax_e.set_xlabel("nu = f / f_R")
+    ax_e.set_ylabel("eta = E / Delta [-]" if kinds == {True} else
+                    "e = E / D_tmax [-]" if kinds == {False} else "eta (YBs) / e (NBs) [-]")
+    ax_e.set_xlabel("nu = f / f_R [-]")
     if any(sw.oscillator.bumpers is not None for sw in sweeps):
         artists.append(ax_e.axhline(1.0, color="0.5", lw=0.8, ls=":"))
     place_legend(ax_a, fontsize="small")
@@ -135,9 +135,9 @@ def plot_lab_sweep(lab: Any, ax: Any = None, *, label: str | None = None, color:
     if np.any(unsteady):
         artists.append(ax_a.scatter(df["nu"][unsteady], df["alpha"][unsteady], s=60, facecolors="white",
                                     edgecolors=style["color"], zorder=3))
-    ax_a.set_ylabel("alpha = max|a_abs| / A_t")
-    ax_e.set_ylabel("eta = E / Delta" if lab.gap_total_m is not None else "e = E / D_tmax")
-    ax_e.set_xlabel("nu = f / f_R")
+    ax_a.set_ylabel("alpha = max|a_abs| / A_t [-]")
+    ax_e.set_ylabel("eta = E / Delta [-]" if lab.gap_total_m is not None else "e = E / D_tmax [-]")
+    ax_e.set_xlabel("nu = f / f_R [-]")
     place_legend(ax_a, fontsize="small")
     return artists
 
@@ -187,9 +187,9 @@ def plot_hysteresis(loop: "HysteresisLoop", ax: Any = None, *, per: str = "total
     artists = list(ax.plot(scale * loop.d, loop.r, **line_kwargs))
     for x in loop.bumper_surfaces_d or ():  # where contact begins with relaxed bumpers
         artists.append(ax.axvline(scale * x, color="0.6", lw=0.6, ls=":"))
-    ax.set_xlabel("d = D / Delta" if per == "total_gap"
-                  else "d = 2 D / Delta (bumpers at +-1, as the paper's figures)")
-    ax.set_ylabel("r = F_I / (M g)")
+    ax.set_xlabel("d = D / Delta [-]" if per == "total_gap"
+                  else "d = 2 D / Delta [-] (bumpers at +-1, as the paper's figures)")
+    ax.set_ylabel("r = F_I / (M g) [-]")
     place_legend(ax, fontsize="small")
     return artists
 

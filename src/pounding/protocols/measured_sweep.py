@@ -19,7 +19,7 @@ import pandas as pd
 
 from .._errors import InputError, Problem, Status
 from ..engine import State, simulate
-from ..excitation import STANDARD_GRAVITY, Harmonic
+from ..excitation import GRAVITY_M_S2, Harmonic
 from ..metrics.measured import measure_window, smooth
 from ..metrics.measured_contacts import FLIGHT_FIT_S
 from ..model import MeasurementChain, Oscillator
@@ -53,7 +53,7 @@ def measure_steps(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray, wind
                   window_cycles: np.ndarray, steps_done: int, chain: MeasurementChain, *,
                   omega_min_rad_s: float, steady_rtol: float, rtol: float, max_events_per_cycle: int,
                   max_steps: int, stop: Any = None,
-                  g: float = STANDARD_GRAVITY) -> tuple[pd.DataFrame, pd.DataFrame]:
+                  g: float = GRAVITY_M_S2) -> tuple[pd.DataFrame, pd.DataFrame]:
     """Per step (those done and finished), the metrics of its window as measured through ``chain``.
 
     ``stop()`` is polled between windows: when it is true, ``KeyboardInterrupt`` is raised (the

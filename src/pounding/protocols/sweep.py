@@ -21,7 +21,7 @@ from ..engine._layout import T
 from ..engine._control import (DEFAULT_MAX_STEPS, check_budget, isolator_rate, new_control,
                                run_interruptibly, steps_per_second, stop_requested)
 from ..engine.simulate import check_oscillator, check_rtol, check_state, kernel_system
-from ..excitation import MAX_FREQ_HZ, STANDARD_GRAVITY, Harmonic
+from ..excitation import MAX_FREQ_HZ, GRAVITY_M_S2, Harmonic
 from ..model import MeasurementChain, Oscillator
 from .._runner.progress import Progress, progress_reporter
 from ._step_kernel import W_CYCLES, WINDOW_COLS, step_kernel
@@ -395,7 +395,7 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
     result = SweepResult(
         oscillator=osc, a_g=plan.a_g, freqs_hz=plan.freqs_hz, direction=plan.direction,
         steady_mode=plan.steady, cycles=plan.cycles, measure_cycles=plan.measure_cycles,
-        omega_min_rad_s=plan.omega_min_rad_s, f_ref_hz=plan.f_ref_hz, g=STANDARD_GRAVITY,
+        omega_min_rad_s=plan.omega_min_rad_s, f_ref_hz=plan.f_ref_hz, g=GRAVITY_M_S2,
         window=window, cycles_run=cycles_run, period_multiple=period_multiple,
         window_states=window_states, window_strobes=window_strobes, step_start_s=step_start_s,
         steps_done=done, final_state=State._from_kernel(state), status=status,

@@ -10,7 +10,7 @@ from typing import Any
 import pandas as pd
 
 from .._io import atomic_write, write_text
-from .html import CSS, _image
+from .html import CSS, figure_html
 
 NOTES = (
     "The intensity measure is the pseudo-spectral acceleration at the stated period, with the stated "
@@ -166,7 +166,7 @@ def _cost(decision: Any, axes: Any) -> None:
         for ax, (column, _) in zip(axes, columns):
             ax.plot(1e3 * part[gap], part[column], "o-", ms=3, label=label)
     for ax, (_, words) in zip(axes, columns):
-        ax.set_xlabel("gap (mm)")
+        ax.set_xlabel("gap [mm]")
         ax.set_ylabel(words)
         ax.legend(fontsize=8)
 
@@ -267,10 +267,7 @@ def write_report(outcome: Any, folder: Path) -> Path:
         "<h2>Figures</h2>",
     ]
     for name, (png, caption) in figs.items():
-        parts.append(
-            f"<figure><img src='{_image(png)}' alt='{e(name)}'>"
-            f"<figcaption><b>{e(name)}</b>: {e(caption)}</figcaption></figure>"
-        )
+        parts.append(figure_html(name, png, caption))
     parts.append("<h2>System</h2>")
     for kind in plan.kinds:
         parts += [f"<h3>{e(kind.name)} bumpers</h3>" if several else "", f"<pre>{e(repr(kind.system))}</pre>"]

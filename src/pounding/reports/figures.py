@@ -171,20 +171,26 @@ def fig06(result, df, peaks):
 
 
 def _loops(result, a_gs, title, linestyle="-"):
+    """The loops at resonance, one panel per a_G side by side on shared axes (drawn on one, the smaller
+    loops hid inside the larger ones)."""
     import matplotlib.pyplot as plt
 
-    fig, ax = plt.subplots(figsize=(6.5, 5), constrained_layout=True)
+    shown = [(i, ag, result.sweeps.get(("YBs", ag, "up"))) for i, ag in enumerate(a_gs)]
+    shown = [(i, ag, sw) for i, ag, sw in shown if sw is not None and sw.steps_done > 0]
+    n = max(len(shown), 1)
+    fig, axes = plt.subplots(1, n, figsize=(3.3 * n + 0.6, 4.4), sharex=True, sharey=True, squeeze=False,
+                             constrained_layout=True)
     fig.suptitle(title)
-    for i, ag in enumerate(a_gs):
-        sw = result.sweeps.get(("YBs", ag, "up"))
-        if sw is None or sw.steps_done == 0:
-            continue
+    for ax, (i, ag, sw) in zip(axes[0], shown):
         loop = sw.hysteresis_loop(sw.resonance_hz)
         plot_hysteresis(loop, ax=ax, per="half_gap", color=f"C{i}", ls=linestyle,
                         label=f"model a_G = {ag:g}, nu_R = {sw.nu_r:g}")
+        ax.set_title(f"a_G = {ag:g}", fontsize="medium")
+        ax.set_xlabel("")
+        ax.set_ylabel("")
     # as the paper's figures: bumpers at d = +-1 (its text defines d = D/Delta, which puts them at +-0.5)
-    ax.set_xlabel(r"$d = D/(\Delta/2)$ [-]: bumpers at $\pm 1$, as in the paper's figures")
-    ax.set_ylabel(r"$r = F_I/(M g)$ [-]")
+    fig.supxlabel(r"$d = D/(\Delta/2)$ [-]: bumpers at $\pm 1$, as in the paper's figures", fontsize="medium")
+    axes[0, 0].set_ylabel(r"$r = F_I/(M g)$ [-]")
     return fig
 
 

@@ -7,6 +7,7 @@ import html
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 import pandas as pd
 
 from .._io import write_text
@@ -16,12 +17,14 @@ CSS = """
 body { font-family: system-ui, sans-serif; margin: 2em auto; max-width: 1100px; padding: 0 1em; color: #222; }
 h1 { font-size: 1.6em; } h2 { border-bottom: 1px solid #ccc; padding-bottom: .2em; margin-top: 2em; }
 table { border-collapse: collapse; font-size: .8em; margin: .5em 0 1.5em; max-width: 100%; }
-th, td { border: 1px solid #ccc; padding: .2em .4em; text-align: right; }
+th, td { border: 1px solid #ccc; padding: .2em .4em; }
+td.num { text-align: right; font-variant-numeric: tabular-nums; } td.text { text-align: left; }
 th { background: #f3f3f3; white-space: normal; text-align: center; }
-td:first-child, th:first-child { text-align: left; }
-figure { display: inline-block; margin: .5em; vertical-align: top; max-width: 100%; }
-figure img { max-width: min(520px, 100%); border: 1px solid #ddd; }
-figcaption { font-size: .85em; max-width: 520px; }
+figure { display: block; margin: 1em 0 1.5em; max-width: 100%; }
+figure img { display: block; max-width: 100%; height: auto; border: 1px solid #ddd; }
+figure a { display: inline-block; max-width: 100%; }
+figcaption { font-size: .9em; margin-top: .3em; }
+.tnote { font-size: .9em; color: #555; }
 pre { background: #f7f7f7; padding: .8em; overflow-x: auto; }
 .note { color: #8a4b00; } .wide { overflow-x: auto; } .cite { font-size: .95em; }
 """
@@ -127,9 +130,39 @@ def table_html(df: pd.DataFrame) -> str:
         groups = list(dict.fromkeys(c[0] for c in df.columns if c[0] != ""))
         pieces = [df[keys + [c for c in df.columns if c[0] in groups[i:i + GROUPS_PER_TABLE]]]
                   for i in range(0, len(groups), GROUPS_PER_TABLE)]
-    html_of = [p.to_html(index=False, float_format=lambda x: f"{x:.4g}", na_rep=MISSING, border=0)
-               for p in pieces]
-    return "".join(f"<div class='wide'>{t}</div>" for t in html_of)
+    return "".join(f"<div class='wide'>{_html_table(p)}</div>" for p in pieces)
+
+
+def _html_table(df: pd.DataFrame) -> str:
+    """A table: numbers right-aligned (``class='num'``, 4 significant digits), text left-aligned, a missing
+    number as an en dash; a two-level header where the columns are grouped."""
+    e = html.escape
+    cols = list(df.columns)
+    head = []
+    if isinstance(df.columns, pd.MultiIndex):
+        groups: list[list] = []
+        for top, _ in cols:
+            if groups and groups[-1][0] == top:
+                groups[-1][1] += 1
+            else:
+                groups.append([top, 1])
+        head.append("<tr>" + "".join(f"<th colspan='{n}'>{e(str(top))}</th>" for top, n in groups) + "</tr>")
+        head.append("<tr>" + "".join(f"<th>{e(str(sub))}</th>" for _, sub in cols) + "</tr>")
+    else:
+        head.append("<tr>" + "".join(f"<th>{e(str(c))}</th>" for c in cols) + "</tr>")
+    rows = []
+    for values in df.itertuples(index=False, name=None):
+        cells = []
+        for v in values:
+            if isinstance(v, (bool, np.bool_)) or v is None or isinstance(v, str):
+                text = MISSING if v is None else str(v)
+                cells.append(f"<td class='text'>{e(text)}</td>")
+            elif isinstance(v, (int, float, np.integer, np.floating)):
+                cells.append(f"<td class='num'>{MISSING if v != v else f'{v:.4g}'}</td>")
+            else:
+                cells.append(f"<td class='text'>{e(str(v))}</td>")
+        rows.append("<tr>" + "".join(cells) + "</tr>")
+    return f"<table><thead>{''.join(head)}</thead><tbody>{''.join(rows)}</tbody></table>"
 
 
 def _verdict(v: Any, system_label: str) -> list[str]:
@@ -160,6 +193,16 @@ def _image(path: Path) -> str:
     return f"data:image/png;base64,{data}"
 
 
+def figure_html(name: str, png: Path, caption: str) -> str:
+    """A figure at its own size (the page's width at most), embedded so that the page opens offline, and
+    a link to its PNG beside the page, to open it alone at full size."""
+    e = html.escape
+    return (f"<figure><a href='{e(png.name)}' title='open {e(png.name)} at full size'>"
+            f"<img src='{_image(png)}' alt='{e(name)}'></a>"
+            f"<figcaption><b>{e(name)}</b>: {e(caption)} <a href='{e(png.name)}'>(full size)</a>"
+            "</figcaption></figure>")
+
+
 def write_page(path: Path, *, title: str, system_label: str, systems: dict[str, str], settings: dict,
                tables: dict[str, pd.DataFrame], figures: dict[str, tuple[Path, str]],
                notes: pd.DataFrame, statuses: pd.DataFrame, verdict: Any = None,
@@ -184,8 +227,7 @@ def write_page(path: Path, *, title: str, system_label: str, systems: dict[str, 
         parts += [f"<h2>{e(name)}</h2>", table_html(df)]
     parts.append("<h2>Figures</h2>")
     for name, (png, caption) in figures.items():
-        parts.append(f"<figure><img src='{_image(png)}' alt='{e(name)}'>"
-                     f"<figcaption><b>{e(name)}</b>: {e(caption)}</figcaption></figure>")
+        parts.append(figure_html(name, png, caption))
     parts.append("<h2>System parameters</h2>")
     for conf, text in systems.items():
         parts += [f"<h3>{e(conf)}</h3>", f"<pre>{e(text)}</pre>"]

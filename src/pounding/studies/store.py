@@ -24,6 +24,7 @@ import numpy as np
 from .._errors import InputError, Problem
 from .points import QUANTITIES, UNITS
 from .spec import StudySpec
+from ..model.dotted import unit_of
 
 SPEC_ATTR = "pounding_study"
 SHA_ATTR = "pounding_study_sha256"
@@ -144,7 +145,9 @@ def create(store: str, spec: StudySpec, chunks: tuple[int, ...]) -> None:
     data["done"] = (dims, np.zeros(shape, dtype=bool), {"description": "the point is computed and written"})
     data["session"] = (dims, np.zeros(shape, dtype=np.int32),
                        {"description": "the run of pounding.study that computed the point (0: not yet)"})
-    coords = {name: (name, np.array(values)) for name, values in spec.grid.items()}
+    system = spec.system.to_dict()
+    coords = {name: (name, np.array(values), {"units": unit_of(name, system) or "1"})
+              for name, values in spec.grid.items()}
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update({SPEC_ATTR: spec.to_json(), SHA_ATTR: spec.sha256, RECORDS_ATTR: spec._record_files(),
                      "kind": spec.kind,
