@@ -97,3 +97,13 @@ def _lines(total: int, description: str, completed: int = 0) -> Iterator[Callabl
     with lock:
         if state["shown"] < LINE_EVERY:
             show()
+
+
+def announce(progress: Progress, text: str) -> None:
+    """Say what a long call does next (one line on stderr) when ``progress`` is True: between its bars,
+    no silence."""
+    if progress is True:
+        from rich.console import Console
+        from rich.markup import escape
+
+        Console(stderr=True).print(escape(text), soft_wrap=True)

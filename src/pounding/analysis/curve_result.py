@@ -145,8 +145,12 @@ class CoexistenceMap:
     curves : tuple of BifurcationCurve
         Each fold and grazing of the branches, followed once.
     matrix : DataFrame
-        The test matrix: ``a_g``, ``freq_hz``, ``stable_orbits`` (stable period-1 orbits on the
-        level's branch at that frequency; 2 or more: the response depends on the history).
+        The test matrix, each point judged by its witnesses (:func:`coexistence_map`): ``a_g``,
+        ``freq_hz``, ``stable_orbits`` (stable period-1 orbits on the level's branch there; NaN where
+        it did not reach), ``branch_reached``, ``sweep_responses`` and ``basin_responses`` (the
+        distinct responses the sweeps and the basin sample show; NaN: none), ``basin_not_settled``,
+        ``responses`` (the most any witness shows), ``verdict`` ("coexist", "one", "one on the
+        branch", "not assessed") and ``evidence`` (in words).
     notes : tuple of str
         The bifurcations not followed, and why (e.g. a branch that turns at a grazing, where no
         multiplier is 1).
@@ -183,8 +187,12 @@ class CoexistenceMap:
         return pd.concat(frames, ignore_index=True)[cols] if frames else pd.DataFrame(columns=cols)
 
     def coexisting(self) -> pd.DataFrame:
-        """The test matrix's points where two or more stable responses coexist."""
-        return self.matrix[self.matrix["stable_orbits"] >= 2].reset_index(drop=True)
+        """The test matrix's points where two or more responses coexist (some witness shows it)."""
+        return self.matrix[self.matrix["verdict"] == "coexist"].reset_index(drop=True)
+
+    def not_assessed(self) -> pd.DataFrame:
+        """The test matrix's points whose number of responses no witness settles (with why)."""
+        return self.matrix[self.matrix["verdict"] == "not assessed"].reset_index(drop=True)
 
     def plot(self, ax: Any = None, **kwargs: Any) -> list:
         """The curves in the (f, a_G) plane over the test matrix (points where two stable
@@ -198,7 +206,7 @@ class CoexistenceMap:
         return (f"CoexistenceMap(a_g {self.a_g[0]:g}-{self.a_g[1]:g}, f "
                 f"{self.freqs_hz[0]:g}-{self.freqs_hz[1]:g} Hz, {len(self.branches)} branches, curves: "
                 f"{kinds}; {len(self.coexisting())} of {len(self.matrix)} test points with coexisting "
-                "responses)")
+                f"responses, {len(self.not_assessed())} not assessed)")
 
 
 def curve_table(pts: Sequence["CurvePoint"]) -> tuple[pd.DataFrame, np.ndarray]:
@@ -217,21 +225,3 @@ def curve_table(pts: Sequence["CurvePoint"]) -> tuple[pd.DataFrame, np.ndarray]:
                      "test": p.g, "residual": float(np.max(np.abs(p.r), initial=0.0)), "phase_rad": p.phase})
     states = np.array([p.vec for p in pts]) if pts else np.zeros((0, 0))
     return pd.DataFrame(rows, columns=list(CURVE_COLUMNS)), states
-
-
-def stable_counts(branches: Sequence["Branch"], freqs: np.ndarray) -> pd.DataFrame:
-    """The number of stable orbits of each branch at each of ``freqs``: its stable segments that
-    span the frequency (a segment's two ends both stable)."""
-    rows = []
-    for br in branches:
-        df = br.to_dataframe()
-        f = df["freq_hz"].to_numpy(float)
-        st = df["stable"].to_numpy(bool)
-        both = st[:-1] & st[1:]
-        lo, hi = np.minimum(f[:-1], f[1:]), np.maximum(f[:-1], f[1:])
-        for fq in freqs:
-            # a segment spans fq when lo <= fq < hi (half-open: a point at a row is counted once);
-            # at the range's end, the segment ending there
-            inside = both & (lo <= fq) & ((fq < hi) | ((fq == hi) & (hi == f.max())))
-            rows.append({"a_g": br.a_g, "freq_hz": float(fq), "stable_orbits": int(np.count_nonzero(inside))})
-    return pd.DataFrame(rows, columns=["a_g", "freq_hz", "stable_orbits"])

@@ -20,7 +20,8 @@ from ._arclength import Family
 from ._curve import CurveFollower, CurvePoint
 from .branch import Bifurcation, Branch
 from .continuation import continuation
-from .curve_result import BifurcationCurve, CoexistenceMap, curve_table, stable_counts
+from .curve_result import BifurcationCurve, CoexistenceMap, curve_table
+from .witnesses import check_basin_sample, check_sweeps, judge_matrix
 from .periodic import _Failed
 from ._args import exact_monodromy, length_scale, step_size, tolerance
 
@@ -163,9 +164,21 @@ def coexistence_map(
     max_points: int = 500,
     tol: float = 1e-9,
     method: str = "auto",
+    sweeps: Any = None,
+    basin_sample: int = 4,
+    test_freqs_hz: Any = None,
+    progress: Any = False,
 ) -> CoexistenceMap:
     """Where two responses coexist: branches at a_G ``levels``, their folds and grazings followed
-    in (a_G, f), and the count of stable period-1 orbits at each point of the test matrix.
+    in (a_G, f), and each point of the test matrix judged by its witnesses.
+
+    A branch counts the stable orbits on itself only: it cannot show that a point has one response
+    (another branch or an isola is not followed), and says nothing where it did not reach.  Each test
+    point is therefore judged by the branch, the ``sweeps`` (two settled steps on different responses
+    show two) and a basin sample (:func:`pounding.basins` on a ``basin_sample`` x ``basin_sample``
+    grid of initial states); ``verdict`` is "coexist" (some witness shows two or more), "one" (the basin
+    sample, every state of it settled, found one response and the branch or the sweeps agree), "one on
+    the branch" (no sample taken) or "not assessed", and ``evidence`` says what each witness showed.
 
     Parameters
     ----------
@@ -191,12 +204,22 @@ def coexistence_map(
         Largest scaled residual of each curve's points, as in :func:`bifurcation_curve`.
     method : {"auto", "exact", "finite-difference"}
         The monodromy, as in :func:`periodic_orbit`; also the branches'.
+    sweeps : sequence of SweepResult, or CampaignResult, optional
+        Sweeps of this system at the levels (up and down): witnesses at their frequencies.
+    basin_sample : int
+        Points per axis of the basin sample run at each test point (0: none; then a branch's single
+        stable orbit is only "one on the branch").
+    test_freqs_hz : sequence of float, optional
+        The test matrix's frequencies (default: from ``freqs_hz[0]`` by ``freq_step_hz``).
+    progress : bool or callable
+        True: a progress bar over the basin samples.
 
     Returns
     -------
     CoexistenceMap
-        ``branches``, ``curves``, ``matrix`` (one row per level and frequency: the number of
-        stable period-1 orbits there), ``.plot()``, ``.to_dataframe()``.
+        ``branches``, ``curves``, ``matrix`` (one row per level and frequency: ``stable_orbits`` on
+        the branch, NaN where it did not reach, ``sweep_responses``, ``basin_responses``,
+        ``responses``, ``verdict``, ``evidence``), ``.plot()``, ``.to_dataframe()``.
 
     Raises
     ------
@@ -215,6 +238,8 @@ def coexistence_map(
     ...                              levels=[0.05], kinds=["fold"], max_step=0.05)
     >>> int(m.matrix["stable_orbits"].max()), len(m.coexisting())
     (2, 4)
+    >>> m.matrix["verdict"].value_counts().to_dict()
+    {'one': 7, 'coexist': 4}
     """
     check_oscillator(oscillator)
     a_box = _box("a_g", a_g, "g")
@@ -241,7 +266,13 @@ def coexistence_map(
                          expected="a sequence of 'fold', 'grazing'")
     kinds = tuple(dict.fromkeys(one_of("kinds", k, CURVE_KINDS) for k in kinds))
     tol, max_step, max_points, exact = _common(oscillator, tol, max_step, max_points, method)
-    freqs = np.round(np.arange(f_box[0], f_box[1] + 1e-9 * step, step), 10)
+    witnesses = check_sweeps(sweeps)
+    basin_sample = check_basin_sample(basin_sample)
+    if test_freqs_hz is None:
+        freqs = np.round(np.arange(f_box[0], f_box[1] + 1e-9 * step, step), 10)
+    else:
+        freqs = np.sort(np.asarray([real(f"test_freqs_hz[{i}]", v) for i, v in
+                                    enumerate(_sequence("test_freqs_hz", test_freqs_hz, "frequencies, Hz"))]))
     branches: list[Branch] = []
     curves: list[BifurcationCurve] = []
     notes: list[str] = []
@@ -264,10 +295,18 @@ def coexistence_map(
             branches.append(partial)
         raise Interrupted(CoexistenceMap(oscillator, a_box, f_box, tuple(levels), tuple(branches),
                                          tuple(curves),
-                                         stable_counts(branches, freqs), tuple(notes)), len(curves), None,
+                                         judge_matrix(oscillator, branches, freqs, sweeps=witnesses,
+                                                      basin_sample=0),
+                                         tuple(notes)), len(curves), None, "curves") from None
+    try:
+        matrix = judge_matrix(oscillator, branches, freqs, sweeps=witnesses, basin_sample=basin_sample,
+                              progress=progress)
+    except Interrupted as exc:
+        raise Interrupted(CoexistenceMap(oscillator, a_box, f_box, tuple(levels), tuple(branches),
+                                         tuple(curves), exc.partial, tuple(notes)), len(curves), None,
                           "curves") from None
-    return CoexistenceMap(oscillator, a_box, f_box, tuple(levels), tuple(branches), tuple(curves),
-                          stable_counts(branches, freqs), tuple(notes))
+    return CoexistenceMap(oscillator, a_box, f_box, tuple(levels), tuple(branches), tuple(curves), matrix,
+                          tuple(notes))
 
 
 # ---------------------------------------------------------------------- pieces

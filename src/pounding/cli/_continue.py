@@ -81,6 +81,19 @@ def continue_branch(
         raise typer.Exit(code=1)
 
 
+def _freq_list(freqs) -> str:
+    """``1.7-2.0, 2.4 Hz``: a test matrix's frequencies as runs (of its step) and single values."""
+    f = sorted(float(x) for x in freqs)
+    step = min((b - a for a, b in zip(f, f[1:])), default=0.0)
+    runs: list[list[float]] = []
+    for x in f:
+        if runs and x - runs[-1][-1] <= step * (1 + 1e-6):
+            runs[-1].append(x)
+        else:
+            runs.append([x])
+    return ", ".join(f"{r[0]:g}-{r[-1]:g}" if len(r) > 1 else f"{r[0]:g}" for r in runs) + " Hz"
+
+
 def _one_line_each(bifurcations: list) -> list:
     """``(label, bifurcation)`` per line of the summary: a grazing of both bumpers at one orbit (a
     symmetric system's) is one line, "grazing (left and right)", not two."""
@@ -108,17 +121,21 @@ def coexistence(
                                          help="The branches' a_G, comma-separated (default: "
                                          "the paper's 0.03, 0.05, 0.075, 0.1 within the range)."),
     grazings: bool = typer.Option(False, "--grazings", help="Also follow the grazings (contacts appearing)."),
+    basin_sample: int = typer.Option(4, "--basin-sample", help="Points per axis of the basin sample run at "
+                                     "each test point (0: none, and a branch's one stable orbit is only "
+                                     "that)."),
     preset: Optional[str] = OPT_PRESET,
     no_bumpers: bool = OPT_NO_BUMPERS,
     out: Optional[Path] = typer.Option(None, "--out", help="Write the curves' points (CSV)."),
-    matrix: Optional[Path] = typer.Option(None, "--matrix", help="Write the test matrix's counts of stable "
-                                          "responses (CSV)."),
+    matrix: Optional[Path] = typer.Option(None, "--matrix", help="Write the test matrix: each point's "
+                                          "witnesses, responses and verdict (CSV)."),
     plot: Optional[Path] = typer.Option(None, "--plot",
                                         help="Draw the curves over the test matrix (PNG, PDF...)."),
 ) -> None:
     """Where two responses coexist (where up and down sweeps must differ): branches at a_G levels,
-    their folds followed in (a_G, f), and the test matrix's points with two stable responses.
-    Exits 1 when a branch stopped short of the range (the map is then incomplete)."""
+    their folds followed in (a_G, f), and each test point judged by the branch and a basin sample
+    (coexisting, one response, or not assessed). Exits 1 when a branch stopped short of the range
+    (the map is then incomplete)."""
     from ..analysis.curves import coexistence_map
 
     paths = files(out=(out, CSV), matrix=(matrix, CSV))
@@ -138,7 +155,7 @@ def coexistence(
     with working(f"branches and {' and '.join(kinds)} curves, a_G {a_g_min:g} to {a_g_max:g} ..."):
         try:
             cmap = coexistence_map(osc, a_g=(a_g_min, a_g_max), freqs_hz=(start, end), levels=chosen,
-                                   kinds=kinds)
+                                   kinds=kinds, basin_sample=basin_sample)
         except Interrupted as stop:
             cmap, complete = stop.partial, False
     table, add = kv_table(f"coexistence, a_G {a_g_min:g}-{a_g_max:g}, {start:g}-{end:g} Hz", system_file
@@ -152,10 +169,13 @@ def coexistence(
             f"{len(c)} points, a_G {df.a_g.min():.4g}-{df.a_g.max():.4g}; {c.status.name}: {c.message}")
     for note in cmap.notes:
         add("not followed", note)
-    both = cmap.coexisting()
-    add("coexisting", f"{len(both)} of {len(cmap.matrix)} test points"
-        + (": " + "; ".join(f"a_G {a:g}: {g.freq_hz.min():g}-{g.freq_hz.max():g} Hz"
-                            for a, g in both.groupby("a_g")) if len(both) else ""))
+    for verdict, words in (("coexist", "coexisting"), ("one", "one response"),
+                           ("one on the branch", "one on the branch"), ("not assessed", "not assessed")):
+        rows = cmap.matrix[cmap.matrix["verdict"] == verdict]
+        if verdict == "coexist" or len(rows):
+            add(words, f"{len(rows)} of {len(cmap.matrix)} test points"
+                + (": " + "; ".join(f"a_G {a:g}: {_freq_list(g.freq_hz)}" for a, g in rows.groupby("a_g"))
+                   if len(rows) else ""))
     console.print(table)
     with interrupts_deferred() as held:
         if paths["out"] is not None:

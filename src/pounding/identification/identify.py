@@ -160,13 +160,28 @@ class Identification:
 
 
 def evaluate(oscillator: Oscillator, targets: Targets, *, freqs_hz: Any = None,
+             workers: int | None = None, progress: Progress = False, label: str = "targets",
              **sweep_options: Any) -> pd.DataFrame:
     """Run the sweeps the targets need with ``oscillator`` (YBs; NBs is it without bumpers)
     and return the residual table of :class:`Identification`.
 
-    ``sweep_options`` are :func:`pounding.sweep`'s (default: fixed 30 cycles, last 5 measured).
+    The sweeps run in parallel on ``workers`` threads (default: every core), with a progress bar
+    (``progress``, described by ``label``).  ``sweep_options`` are :func:`pounding.sweep`'s (default:
+    fixed 30 cycles, last 5 measured).  Ctrl-C raises :class:`~pounding.Interrupted` (no table).
     """
-    model = _model_values(oscillator, targets, freqs_hz, {**DEFAULT_SWEEP, **sweep_options})
+    from ..protocols.campaign import _sweep_task
+
+    options = {**DEFAULT_SWEEP, **sweep_options}
+    cases = list(targets.cases)
+    plans = [make_plan(oscillator if conf == "YBs" else oscillator.without_bumpers(), a_g, freqs_hz,
+                       direction, **options) for conf, a_g, direction in cases]
+    ran = run_tasks(_sweep_task, plans, workers=workers, progress=progress, label=label,
+                    total=sum(p.freqs_hz.size for p in plans), budget=[p.max_steps for p in plans],
+                    on_error="stop")
+    ran.raise_first_error(lambda i: "the {} sweep at a_G {:g} g, {}".format(*cases[i]))
+    if ran.interrupted or any(v is None for v in ran.values):
+        raise Interrupted(None, sum(v is not None for v in ran.values), len(plans), "sweeps")
+    model = {(c, float(a), d): sweep_quantities(sw) for (c, a, d), sw in zip(cases, ran.values)}
     return _residual_table(targets, model)
 
 

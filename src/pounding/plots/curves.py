@@ -8,6 +8,17 @@ from ._labels import A_G_LABEL
 from ._legend import place_legend
 
 STYLE = {"fold": "-", "grazing": ":"}
+# a test point as its verdict says (witnesses: the branch, the sweeps, a basin sample)
+MATRIX_LOOK = (
+    ("coexist", dict(marker="o", ms=4.5, color="C3"),
+     "two or more responses coexist (a witness shows them)"),
+    ("one", dict(marker="o", ms=4, mfc="none", color="0.45"), "one response: a basin sample agrees with the "
+                                                                 "branch or sweeps"),
+    ("one on the branch", dict(marker="o", ms=4, mfc="none", color="0.75"),
+     "one stable orbit on the branch (others not sought)"),
+    ("not assessed", dict(marker="x", ms=4, color="0.55"),
+     "not assessed (no branch there, no agreeing sample)"),
+)
 
 
 def plot_curves(curves: list, ax: Any = None, *, matrix: Optional[Any] = None, **kwargs: Any) -> list:
@@ -20,8 +31,9 @@ def plot_curves(curves: list, ax: Any = None, *, matrix: Optional[Any] = None, *
     ax : matplotlib Axes, optional
         Where to draw (a new figure if omitted).
     matrix : DataFrame, optional
-        A test matrix (``a_g``, ``freq_hz``, ``stable_orbits``): its points drawn as dots, filled
-        where two or more stable responses coexist.
+        A test matrix (``CoexistenceMap.matrix``: ``a_g``, ``freq_hz``, ``verdict``): each point drawn
+        as its verdict says: filled where two or more responses coexist, hollow where one response is
+        shown, a cross where the number is not assessed.
     **kwargs
         Passed to the curves' lines.
 
@@ -49,12 +61,10 @@ def plot_curves(curves: list, ax: Any = None, *, matrix: Optional[Any] = None, *
         ax = plt.figure(figsize=(7, 4), constrained_layout=True).add_subplot()
     artists: list = []
     if matrix is not None and len(matrix):
-        one = matrix[matrix["stable_orbits"] < 2]
-        two = matrix[matrix["stable_orbits"] >= 2]
-        artists += ax.plot(one["freq_hz"], one["a_g"], "o", ms=3, mfc="none", color="0.6",
-                           label="test point: one stable response")
-        artists += ax.plot(two["freq_hz"], two["a_g"], "o", ms=4, color="C3",
-                           label="test point: two stable responses coexist")
+        for verdict, style, label in MATRIX_LOOK:
+            pts = matrix[matrix["verdict"] == verdict]
+            if len(pts):
+                artists += ax.plot(pts["freq_hz"], pts["a_g"], ls="none", label=label, **style)
     seen = set()
     for i, c in enumerate(curves):
         df = c.to_dataframe()

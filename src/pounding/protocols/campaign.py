@@ -188,6 +188,7 @@ def campaign(
     workers: int | None = None,
     scheduler: Any = None,
     progress: Progress = False,
+    label: str = "campaign",
     **sweep_options: Any,
 ) -> CampaignResult:
     """The shaking-table campaign: every (configuration, a_G, direction) sweep, in parallel.
@@ -215,6 +216,8 @@ def campaign(
     progress : bool or callable
         True: a progress bar over all steps; a callable gets the number of steps finished (on
         processes and Dask, a sweep's steps as it ends).
+    label : str
+        The progress bar's description (two campaigns at once, told apart).
     **sweep_options
         The keyword arguments of :func:`pounding.sweep`, the same for every sweep:
         ``steady``, ``cycles``, ``measure_cycles``, ``max_cycles``, ``steady_rtol``,
@@ -287,7 +290,7 @@ def campaign(
                 plans.append(((conf, ag, d), plan))
     total = sum(p.freqs_hz.size for _, p in plans)
     done = run_tasks(_sweep_task, [plan for _, plan in plans], scheduler=scheduler, workers=workers,
-                     progress=progress, label="campaign", total=total,
+                     progress=progress, label=label, total=total,
                      budget=[plan.max_steps for _, plan in plans], on_error="finish")
     done.raise_first_error(lambda i: "the {} sweep at a_G {:g} g, {}".format(*plans[i][0]))
     sweeps = {key: sw for (key, _), sw in zip(plans, done.values) if sw is not None}

@@ -3,8 +3,7 @@ levels under the Fig. 5 sweeps, and the fold curves in (a_G, f) over the test ma
 
 from __future__ import annotations
 
-from dataclasses import replace
-from typing import TYPE_CHECKING, Optional
+from typing import TYPE_CHECKING, Any, Optional
 
 import numpy as np
 import pandas as pd
@@ -20,12 +19,12 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..protocols import CampaignResult
 
 
-def coexistence_of(result: "CampaignResult", ybs_system: "Oscillator") -> tuple[Optional["CoexistenceMap"],
-                                                                                str]:
+def coexistence_of(result: "CampaignResult", ybs_system: "Oscillator", basin_sample: int = 4,
+                   progress: Any = False) -> tuple[Optional["CoexistenceMap"], str]:
     """The YBs system's coexistence map over the campaign's frequencies and YBs levels (folds only),
-    or None and why not."""
+    each test point judged by the branch, the campaign's own YBs sweeps and a basin sample; or None and
+    why not."""
     from ..analysis import coexistence_map
-    from ..analysis.curve_result import stable_counts
 
     ds = result.dataset
     levels = sorted({float(a) for (conf, a, _d) in result.sweeps if conf == "YBs"})
@@ -34,13 +33,14 @@ def coexistence_of(result: "CampaignResult", ybs_system: "Oscillator") -> tuple[
         return None, "no YBs sweeps"
     step = float(np.min(np.diff(np.sort(freqs))))
     try:
+        # the test matrix at the campaign's own frequencies (its grid need not be even)
         cmap = coexistence_map(ybs_system, a_g=(0.5 * min(levels), 1.1 * max(levels)),
                                freqs_hz=(float(freqs.min()), float(freqs.max())), levels=levels,
-                               freq_step_hz=step, kinds=("fold",))
+                               freq_step_hz=step, kinds=("fold",), sweeps=result, basin_sample=basin_sample,
+                               test_freqs_hz=np.sort(freqs), progress=progress)
     except InputError as exc:
         return None, f"not continued: {exc}"
-    # the test matrix at the campaign's own frequencies (its grid need not be even)
-    return replace(cmap, matrix=stable_counts(cmap.branches, np.sort(freqs))), ""
+    return cmap, ""
 
 
 def add_branches(fig: "Figure", cmap: "CoexistenceMap", f_ref_hz: float) -> None:
@@ -67,7 +67,8 @@ def fig_coexistence(cmap: "CoexistenceMap") -> "Figure":
 
     fig, ax = plt.subplots(figsize=(6.5, 4.2), constrained_layout=True)
     cmap.plot(ax=ax)
-    fig.suptitle("YBs: fold curves in (a_G, f), the test matrix")
+    fig.suptitle("YBs: fold curves in (a_G, f); each test point judged by the branch, the sweeps and a "
+                 "basin sample", wrap=True)
     return fig
 
 
@@ -95,7 +96,7 @@ def continuation_statuses(cmap: Optional["CoexistenceMap"], why_not: str) -> pd.
                  else "a single point: not drawn as a curve")
         if c.status != Status.SUCCESS:
             drawn += ("; it stopped short of the map's edge, so the region where two responses coexist is "
-                      "not closed on that side (the test matrix's counts still are exact)")
+                      "not closed on that side (the test points are judged by their witnesses all the same)")
         rows.append({"configuration": "YBs fold curve", "a_g": np.nan, "direction": "(a_G, f)",
                      "steps": len(c),
                      "not steady": 0, "message": f"{c.status.name}: {c.message}", "in the figures": drawn})
@@ -103,4 +104,22 @@ def continuation_statuses(cmap: Optional["CoexistenceMap"], why_not: str) -> pd.
               "message": note, "in the figures": "this fold's curve is missing from the coexistence map; "
                                                  "the fold itself is on its branch under Fig. 5"}
              for note in cmap.notes]
+    m = cmap.matrix
+    for a_g, part in m.groupby("a_g"):
+        counts = part["verdict"].value_counts()
+        words = ", ".join(f"{VERDICT_WORDS[v]} at {counts[v]}" for v in VERDICT_WORDS if v in counts)
+        unknown = part[part["verdict"] == "not assessed"]
+        rows.append({"configuration": "YBs test points", "a_g": a_g, "direction": "judged",
+                     "steps": len(part), "not steady": 0, "message": words,
+                     "in the figures": "the coexistence map; each point's witnesses in coexistence.csv"
+                                       + (f"; not assessed: {_freqs(unknown)}" if len(unknown) else "")})
     return pd.DataFrame(rows)
+
+
+VERDICT_WORDS = {"coexist": "two or more responses", "one": "one response (a basin sample agrees)",
+                 "one on the branch": "one stable orbit on the branch (not checked)",
+                 "not assessed": "not assessed"}
+
+
+def _freqs(rows: pd.DataFrame) -> str:
+    return ", ".join(f"{f:g}" for f in rows["freq_hz"]) + " Hz"

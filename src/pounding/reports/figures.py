@@ -186,10 +186,9 @@ def _loops(result, a_gs, title, linestyle="-"):
         plot_hysteresis(loop, ax=ax, per="half_gap", color=f"C{i}", ls=linestyle,
                         label=f"model a_G = {ag:g}, nu_R = {sw.nu_r:g}")
         ax.set_title(f"a_G = {ag:g}", fontsize="medium")
-        ax.set_xlabel("")
+        # as the paper's figures: bumpers at d = +-1 (its text defines d = D/Delta, which puts them at +-0.5)
+        ax.set_xlabel(r"$d = D/(\Delta/2)$ [-], bumpers at $\pm 1$", fontsize="small")
         ax.set_ylabel("")
-    # as the paper's figures: bumpers at d = +-1 (its text defines d = D/Delta, which puts them at +-0.5)
-    fig.supxlabel(r"$d = D/(\Delta/2)$ [-]: bumpers at $\pm 1$, as in the paper's figures", fontsize="medium")
     axes[0, 0].set_ylabel(r"$r = F_I/(M g)$ [-]")
     return fig
 

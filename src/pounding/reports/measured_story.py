@@ -54,15 +54,15 @@ class MeasuredStory:
 
 
 def measured_story(system: Oscillator, chain: MeasurementChain, campaign_of: Any,
-                   profile: pd.DataFrame | None = None) -> MeasuredStory:
+                   profile: pd.DataFrame | None = None, evaluate_of: Any = evaluate) -> MeasuredStory:
     """Run ``campaign_of(nbs, ybs, measurement=chain)`` (the report's own campaign call; NBs is
     ``system`` without its bumpers, as the verdict's) and the verdict of ``system`` with the
     metrics measured through ``chain``, and with its own exact metrics (what a miss is judged
-    against)."""
+    against); ``evaluate_of(system, targets, label=..., **options)`` runs the targets' sweeps."""
     result = campaign_of(system.without_bumpers(), system, measurement=chain)
     tables = {t: comparison(result, t) for t in ("2", "3", "4")}
-    judged = verdict(evaluate(system, paper_targets(), measurement=chain))
-    own_exact = verdict(evaluate(system, paper_targets()))
+    judged = verdict(evaluate_of(system, paper_targets(), label="targets as measured", measurement=chain))
+    own_exact = verdict(evaluate_of(system, paper_targets(), label="targets of the measured system, exact"))
     return MeasuredStory(system, chain, result, tables, judged, profile, own_exact)
 
 

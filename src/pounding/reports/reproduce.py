@@ -15,7 +15,7 @@ from ..identification import evaluate, paper_targets
 from .._errors import InputError, Problem
 from ..model import MeasurementChain, Oscillator
 from ..protocols import CampaignResult, campaign
-from .._runner.progress import Progress
+from .._runner.progress import Progress, announce, progress_reporter
 from .branches import add_branches, coexistence_of, continuation_statuses, fig_coexistence
 from .compare import comparison, inconsistency_notes
 from .figures import fig05_measured, paper_figures
@@ -41,7 +41,8 @@ class Report:
     index_html : Path
         The report's page, ``out_dir / "index.html"``.
     tables : dict of str to Path
-        ``"2"``, ``"3"``, ``"4"`` (and ``"targets"`` with ``beside``) -> the table's CSV.
+        ``"2"``, ``"3"``, ``"4"`` (and ``"targets"`` with ``beside``; ``"coexistence"``: the test
+        points, each with its witnesses and verdict, when the branches were continued) -> the CSV.
     figures : dict of str to Path
         Figure name (``"fig04"`` ... ``"fig17"``, the paper's numbering, and ``"coexistence"`` when the
         YBs branches could be continued) -> its PNG.
@@ -68,7 +69,7 @@ class Report:
     ...     freqs_hz=[1.5, 2.0], nbs_a_g=(0.05,), ybs_a_g=(0.05,),
     ...     directions=("up",), steady="fixed", cycles=5)
     >>> report.index_html.name, sorted(report.tables), "fig05" in report.figures
-    ('index.html', ['2', '3', '4'], True)
+    ('index.html', ['2', '3', '4', 'coexistence'], True)
     >>> # the paper's 36 targets
     >>> report.verdict.total, 0 < report.verdict.met < report.verdict.total
     (36, True)
@@ -84,8 +85,8 @@ class Report:
     measured: MeasuredStory | None = None
 
 
-def targets_beside(systems: dict[str, Oscillator], evaluated: dict[int, pd.DataFrame] | None = None
-                   ) -> pd.DataFrame:
+def targets_beside(systems: dict[str, Oscillator], evaluated: dict[int, pd.DataFrame] | None = None,
+                   workers: int | None = None, progress: Progress = False) -> pd.DataFrame:
     """The paper's targets (:func:`pounding.paper_targets`) with each YBs system's model value
     beside them: sweeps up, fixed 30 cycles per step, as the calibration ran.
 
@@ -101,7 +102,8 @@ def targets_beside(systems: dict[str, Oscillator], evaluated: dict[int, pd.DataF
     evaluated = evaluated or {}
     out = None
     for label, osc in systems.items():
-        res = evaluated[id(osc)] if id(osc) in evaluated else evaluate(osc, targets)
+        res = (evaluated[id(osc)] if id(osc) in evaluated
+               else evaluate(osc, targets, workers=workers, progress=progress, label=f"targets of {label}"))
         if out is None:
             out = res[["configuration", "a_g", "quantity"]].copy()
             out["measured"] = res["target"]
@@ -161,8 +163,8 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
     ...     freqs_hz=[1.5, 2.0], nbs_a_g=(0.05,), ybs_a_g=(0.05,),
     ...     directions=("up",), steady="fixed", cycles=5)
     >>> sorted(p.name for p in report.out_dir.iterdir())[:6]
-    ['campaign.nc', 'coexistence.png', 'fig04.png', 'fig05.png', 'fig06.png',
-     'fig07.png']
+    ['campaign.nc', 'coexistence.csv', 'coexistence.png', 'fig04.png', 'fig05.png',
+     'fig06.png']
     >>> report.tables["2"].name, len(report.figures)
     ('table2.csv', 13)
     """
@@ -179,41 +181,53 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
         raise InputError(Problem.WRONG_TYPE, "measured", measured, got=type(measured).__name__,
                          expected="(Oscillator, MeasurementChain), e.g. presets.paper_calibrated_measured()")
     result = campaign(nbs_system, ybs_system, freqs_hz=freqs_hz, workers=workers, progress=progress,
-                      **sweep_options)
+                      label="campaign, exact metrics", **sweep_options)
     out.mkdir(parents=True, exist_ok=True)
     result.to_netcdf(out / "campaign.nc")
     comparisons = {t: comparison(result, t) for t in ("2", "3", "4")}
-    own = evaluate(ybs_system, paper_targets())  # the verdict: the paper's targets, sweeps up, fixed
+
+    def evaluate_of(system: Oscillator, targets: Any, label: str, **options: Any) -> pd.DataFrame:
+        return evaluate(system, targets, workers=workers, progress=progress, label=label, **options)
+
+    # the verdict: the paper's targets, sweeps up, fixed 30 cycles
+    own = evaluate_of(ybs_system, paper_targets(), "targets (the verdict's sweeps)")
     judged = verdict(own)
     story = None
     if measured is not None:
         def campaign_of(nbs: Oscillator, ybs: Oscillator, **chain: Any) -> CampaignResult:
             return campaign(nbs, ybs, freqs_hz=freqs_hz, workers=workers, progress=progress,
-                            **sweep_options, **chain)
+                            label="campaign, as measured", **sweep_options, **chain)
 
-        story = measured_story(*measured, campaign_of, profile)
+        story = measured_story(*measured, campaign_of, profile, evaluate_of)
         for t in ("2", "3", "4"):
             comparisons[f"{t} measured"] = story.comparisons[t]
     if beside:
-        comparisons["targets"] = targets_beside(beside, {id(ybs_system): own})
+        comparisons["targets"] = targets_beside(beside, {id(ybs_system): own}, workers, progress)
     tables = {t: out / ("targets.csv" if t == "targets" else f"table{t.replace(' ', '_')}.csv")
               for t in comparisons}
     for t, df in comparisons.items():
         atomic_write(tables[t], lambda tmp, df=df: df.to_csv(tmp, index=False))
-    cmap, why_not = coexistence_of(result, ybs_system)
+    announce(progress, "coexistence: following the YBs branches and their folds ...")
+    cmap, why_not = coexistence_of(result, ybs_system, progress=progress)
+    if cmap is not None:  # (each test point with its witnesses)
+        tables["coexistence"] = out / "coexistence.csv"
+        atomic_write(tables["coexistence"], lambda tmp: cmap.matrix.to_csv(tmp, index=False))
     figures, captions = {}, {}
     with plt.ioff():  # (written, never shown; the caller's backend, a notebook's too, left as it is)
+        announce(progress, "drawing the figures ...")
         made = paper_figures(result)
         if story is not None:
             made["fig05_measured"] = fig05_measured(story.campaign, story.chain.describe())
         if cmap is not None:
             add_branches(made["fig05"], cmap, float(result.dataset.attrs["f_ref_hz"]))
             made["coexistence"] = fig_coexistence(cmap)
-        for name, fig in made.items():
-            figures[name] = out / f"{name}.png"
-            captions[name] = fig.get_suptitle()
-            atomic_write(figures[name], lambda tmp, fig=fig: fig.savefig(tmp, dpi=110))
-            plt.close(fig)
+        with progress_reporter(progress, len(made), "figures") as advance:
+            for name, fig in made.items():
+                figures[name] = out / f"{name}.png"
+                captions[name] = fig.get_suptitle()
+                atomic_write(figures[name], lambda tmp, fig=fig: fig.savefig(tmp, dpi=110))
+                plt.close(fig)
+                advance(1)
     ds = result.dataset
     settings = {k: ds.attrs[k] for k in ("steady_mode", "cycles", "measure_cycles", "f_ref_hz",
                                          "omega_min_rad_s")}

@@ -1,0 +1,201 @@
+"""How many responses exist at each point of a test matrix, and what shows it.
+
+A branch followed by continuation counts the stable period-1 orbits *on that branch*: it cannot show
+that a point has one response only (another branch, an isola, a response of another period is not
+followed), and where the branch did not reach it says nothing.  So each test point is judged by its
+witnesses:
+
+- the branch: its stable orbits there (where it reached the frequency);
+- the sweeps (an up and a down sweep at the point's a_G, when given): two steps that both settled on
+  responses that differ (in alpha, excursion or period) show two responses; one settled step shows one;
+- a basin sample: a small grid of initial states at table phase 0, each run until it settles
+  (:func:`pounding.basins`); two attractors show two responses.
+
+The point's ``responses`` is the most any witness shows.  Two or more is coexistence, whoever shows
+it.  One response is said (``verdict`` "one") only where the basin sample ran, every state of it settled
+on the same response, and the branch or the sweeps agree; without a sample, a branch's single stable
+orbit is "one on the branch" (others not sought); anything else is "not assessed", and ``evidence``
+says why.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping, Sequence
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+import pandas as pd
+
+from .._errors import InputError, Interrupted, Problem
+from .._runner.progress import Progress, progress_reporter
+from ..excitation import Harmonic
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..model import Oscillator
+    from ..protocols import SweepResult
+    from .branch import Branch
+
+DIFFER_RTOL = 0.05  # two settled responses differ when alpha or the excursion differ by more (relative)
+MATRIX_COLUMNS = ("a_g", "freq_hz", "stable_orbits", "branch_reached", "sweep_responses", "basin_responses",
+                  "basin_not_settled", "responses", "verdict", "evidence")
+VERDICTS = ("coexist", "one", "one on the branch", "not assessed")
+
+
+def branch_counts(branches: Sequence["Branch"], freqs: np.ndarray) -> pd.DataFrame:
+    """Per branch and frequency: the stable orbits of the branch there (``stable_orbits``: its stable
+    segments spanning the frequency; NaN where the branch does not reach it) and ``branch_reached``."""
+    rows = []
+    for br in branches:
+        df = br.to_dataframe()
+        f = df["freq_hz"].to_numpy(float)
+        st = df["stable"].to_numpy(bool)
+        lo, hi = np.minimum(f[:-1], f[1:]), np.maximum(f[:-1], f[1:])
+        both = st[:-1] & st[1:]
+        top = f.max() if f.size else np.nan
+        for fq in freqs:
+            # a segment spans fq when lo <= fq < hi (half-open: a point at a row is counted once);
+            # at the branch's end, the segment ending there
+            spans = (lo <= fq) & ((fq < hi) | ((fq == hi) & (hi == top)))
+            reached = bool(np.any(spans)) or bool(np.any(np.isclose(f, fq, rtol=0.0, atol=1e-12)))
+            count = float(np.count_nonzero(spans & both)) if reached else math.nan
+            rows.append({"a_g": float(br.a_g), "freq_hz": float(fq), "stable_orbits": count,
+                         "branch_reached": reached})
+    return pd.DataFrame(rows, columns=["a_g", "freq_hz", "stable_orbits", "branch_reached"])
+
+
+def sweep_witness(sweeps: Sequence["SweepResult"], a_g: float, freq_hz: float) -> tuple[float, str]:
+    """``(responses, words)``: the distinct settled responses the sweeps at ``a_g`` show at ``freq_hz``
+    (NaN when no step there settled), and what they were."""
+    settled, words = [], []
+    for sw in sweeps:
+        if not math.isclose(sw.a_g, a_g, rel_tol=1e-9):
+            continue
+        df = sw.exact_dataframe()
+        at = df[np.isclose(df["freq_hz"].to_numpy(float), freq_hz, rtol=0.0, atol=1e-9) & df["steady"]]
+        for _, row in at.iterrows():
+            settled.append((int(row["period_multiple"]), bool(row["contact"]), float(row["alpha"]),
+                            float(row["excursion_m"])))
+            words.append(f"{sw.direction} alpha {float(row['alpha']):.3g}")
+    if not settled:
+        return math.nan, ""
+    return float(distinct(settled)), f"sweeps settled: {', '.join(words)}"
+
+
+def distinct(responses: Sequence[tuple]) -> int:
+    """How many different responses ``(period, impacts, alpha, excursion)`` are: the same period and
+    contact, and alpha and excursion within ``DIFFER_RTOL`` of a response of the group, make one
+    (single linkage: a family of orbits shifted by a kinematic element's slips, whose alphas spread by
+    a few percent in small steps, is one response; mirror images, with the same numbers, are one)."""
+    groups: list[list[tuple]] = []
+    for r in responses:
+        joined = [g for g in groups if any(_near(r, m) for m in g)]
+        merged = [r] + [m for g in joined for m in g]
+        groups = [g for g in groups if g not in joined] + [merged]
+    return len(groups)
+
+
+def _near(a: tuple, b: tuple) -> bool:
+    return (a[0] == b[0] and a[1] == b[1] and math.isclose(a[2], b[2], rel_tol=DIFFER_RTOL)
+            and math.isclose(a[3], b[3], rel_tol=DIFFER_RTOL, abs_tol=1e-12))
+
+
+def judge_matrix(oscillator: "Oscillator", branches: Sequence["Branch"], freqs: np.ndarray, *,
+                sweeps: Sequence["SweepResult"] = (), basin_sample: int = 4, max_cycles: int = 500,
+                progress: Progress = False) -> pd.DataFrame:
+    """The test matrix (one row per branch's a_G and frequency) with every point judged by its witnesses
+    (see the module's docstring for the rule): columns ``MATRIX_COLUMNS``.
+
+    ``basin_sample`` is the basin grid's points per axis (``n x n`` states over the gaps and +-1 m/s;
+    0: no sample), run at every point.  A Ctrl-C keeps the points judged so far: :class:`Interrupted`
+    with the matrix as ``partial``, the points not reached "not assessed".
+    """
+    from ..protocols import basins
+
+    matrix = branch_counts(branches, np.asarray(freqs, dtype=float))
+    sweeps = tuple(sweeps)
+    out = []
+    todo = []
+    for row in matrix.to_dict("records"):
+        sw_n, sw_words = sweep_witness(sweeps, row["a_g"], row["freq_hz"]) if sweeps else (math.nan, "")
+        row.update(sweep_responses=sw_n, basin_responses=math.nan, basin_not_settled=math.nan,
+                   evidence_sweeps=sw_words)
+        out.append(row)
+        if basin_sample:  # (at every point: where another witness shows two, a third one more)
+            todo.append(row)
+    interrupted = None
+    try:
+        with progress_reporter(progress, len(todo), "coexistence: basin samples") as advance:
+            for row in todo:
+                b = basins(oscillator, Harmonic(row["a_g"], row["freq_hz"]), n=(basin_sample, basin_sample),
+                           max_cycles=max_cycles, scheduler="serial")
+                att = b.attractors
+                row["basin_responses"] = float(distinct(list(zip(att["period"], att["impacts"], att["alpha"],
+                                                                 att["excursion_m"]))))
+                row["basin_not_settled"] = b.not_settled
+                advance(1)
+    except (Interrupted, KeyboardInterrupt) as exc:
+        interrupted = exc
+    table = pd.DataFrame([_judged(row, basin_sample) for row in out], columns=list(MATRIX_COLUMNS))
+    if interrupted is not None:
+        raise Interrupted(table, int(table["basin_responses"].notna().sum()), len(todo), "basin samples") \
+            from None
+    return table
+
+
+def _max(*values: float) -> float:
+    finite = [v for v in values if not math.isnan(v)]
+    return max(finite) if finite else math.nan
+
+
+def _judged(row: dict, basin_sample: int) -> dict:
+    """The point's responses, verdict and evidence from its witnesses."""
+    stable, sweeps, basin = row["stable_orbits"], row["sweep_responses"], row["basin_responses"]
+    responses = _max(stable, sweeps, basin)
+    words = []
+    if row["branch_reached"]:
+        words.append(f"branch: {int(stable)} stable orbit{'s' if stable != 1 else ''}")
+    else:
+        words.append("branch: did not reach this frequency")
+    if row["evidence_sweeps"]:
+        words.append(row["evidence_sweeps"])
+    if not math.isnan(basin):
+        unsettled = row["basin_not_settled"]
+        words.append(f"basin sample of {basin_sample}x{basin_sample} states: {int(basin)} response"
+                     f"{'s' if basin != 1 else ''}" + (f", {100 * unsettled:.0f} % not settled" if unsettled
+                                                         else ""))
+    if responses >= 2:
+        verdict = "coexist"
+    elif (basin == 1 and not row["basin_not_settled"]
+          and (stable == 1 or sweeps == 1)):
+        verdict = "one"
+    elif math.isnan(basin) and not basin_sample and stable == 1:
+        verdict = "one on the branch"
+    else:
+        verdict = "not assessed"
+    return {**{k: row[k] for k in MATRIX_COLUMNS[:7]}, "responses": responses, "verdict": verdict,
+            "evidence": "; ".join(words)}
+
+
+def check_basin_sample(value: Any) -> int:
+    """``basin_sample``: 0 (none) or the grid's points per axis, 2 to 50."""
+    if (isinstance(value, bool) or not isinstance(value, (int, np.integer))
+            or not (value == 0 or 2 <= value <= 50)):
+        raise InputError(Problem.OUT_OF_RANGE, "basin_sample", value, range="0 (no sample) or 2 to 50",
+                         hint=" (points per axis of the basin grid at each test point; 4: 16 states)")
+    return int(value)
+
+
+def check_sweeps(value: Any) -> tuple:
+    """``sweeps``: SweepResults (or a CampaignResult: its sweeps with bumpers)."""
+    from ..protocols import CampaignResult, SweepResult
+
+    if value is None:
+        return ()
+    if isinstance(value, CampaignResult):
+        return tuple(sw for (conf, _a, _d), sw in value.sweeps.items() if conf == "YBs")
+    if isinstance(value, (str, bytes, Mapping)) or not isinstance(value, Sequence) or not all(
+            isinstance(s, SweepResult) for s in value):
+        raise InputError(Problem.WRONG_TYPE, "sweeps", value, got=type(value).__name__,
+                         expected="a sequence of SweepResult (or a CampaignResult)")
+    return tuple(value)
