@@ -96,7 +96,7 @@ def main() -> None:
                 workers=2,
             )
             wall = time.perf_counter() - t0
-            assert bool(msa.dataset["done"].all())
+            assert bool(msa.data["done"].all())
             shutil.rmtree(store, ignore_errors=True)
         rows.append((scheduler, wall))
     loop_s, loop_runs = loop_seconds(records, len(records))  # (every record: their lengths differ 5-fold)

@@ -173,7 +173,7 @@ def main() -> None:
     lines += [f"**Pounding spectrum of the FEMA P695 far-field set: {len(recs)} components x {periods.size} "
               f"periods x {len(GAPS)} gaps, with and without bumpers ({runs:,} runs), warm, every core**", "",
               f"{wall:.1f} s wall ({wall / runs * 1e3:.2f} ms a run; target {TARGET_SET_S:g} s); "
-              f"{int(ps.dataset['impacts'].sum()):,} impacts; the largest median amplification by pounding "
+              f"{int(ps.data['impacts'].sum()):,} impacts; the largest median amplification by pounding "
               f"{float(amp.max()):.3g}.", "", END]
     text = "\n".join(lines)
     print(text)

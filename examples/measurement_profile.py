@@ -40,9 +40,9 @@ def main(out_csv: str = "measurement_profile.csv") -> None:
         rows.append(row)
         print(f"{row['cutoff_hz']!s:>6}: {row['met']} of {len(res)} targets met", flush=True)
     table = pd.DataFrame(rows)
-    target = {f"{q} {a_g:g}": float(targets.table[(targets.table["configuration"] == c)
-                                                  & (targets.table["a_g"] == a_g)
-                                                  & (targets.table["quantity"] == q)]["value"].iloc[0])
+    target = {f"{q} {a_g:g}": float(targets.data[(targets.data["configuration"] == c)
+                                                  & (targets.data["a_g"] == a_g)
+                                                  & (targets.data["quantity"] == q)]["value"].iloc[0])
               for c, a_g, q in SHOWN}
     table = pd.concat([table, pd.DataFrame([{"cutoff_hz": "paper", "met": len(targets), **target}])])
     print(table.round(3).to_string(index=False))

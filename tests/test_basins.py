@@ -104,7 +104,7 @@ def test_basin_stability_map_is_the_basins_fraction_at_each_point():
     (same seed): 1 where the only response pounds (1.5 Hz), 0 where it is free (2.6 Hz), between
     at 1.8 Hz, with the sampling error of that share; one impacting and one free response there."""
     m = pd_.basin_stability_map(DAMPED, [0.05], [1.5, 1.8, 2.6], samples=50, seed=4)
-    ds = m.dataset
+    ds = m.data
     p = ds["pounding_probability"].sel(a_g=0.05).values
     b = pd_.basins(DAMPED, pd_.Harmonic(0.05, 1.8), n=50, sampling="random", seed=4)
     share = float(b.attractors.loc[b.attractors["impacts"], "fraction"].sum())
@@ -115,7 +115,7 @@ def test_basin_stability_map_is_the_basins_fraction_at_each_point():
     assert m.complete and len(m.plot()) >= 2
     # a state still settling when max_cycles ends pounds all the same if it touches the bumpers
     short = pd_.basin_stability_map(DAMPED, [0.05], [1.5], samples=10, max_cycles=11, measure_cycles=5)
-    assert short.dataset["pounding_probability"].item() == 1.0 and short.dataset["not_settled"].item() > 0.5
+    assert short.data["pounding_probability"].item() == 1.0 and short.data["not_settled"].item() > 0.5
     with pytest.raises(pd_.InputError, match="bumpers"):
         pd_.basin_stability_map(DAMPED.without_bumpers(), [0.05], [1.8])
     with pytest.raises(pd_.InputError, match="freqs_hz"):

@@ -23,7 +23,7 @@ def printed_campaign():
 
 
 def test_printed_campaign_agrees_with_the_reference(printed_campaign):
-    ds = printed_campaign.dataset
+    ds = printed_campaign.data
     assert len(printed_campaign.sweeps) == 14 and printed_campaign.complete
     for (conf, a_g, direction), sw in printed_campaign.sweeps.items():
         ref = reference_sweep(sw.oscillator, a_g, sw.freqs_hz, CYCLES, MEASURED)
@@ -42,7 +42,7 @@ def test_printed_campaign_agrees_with_the_reference(printed_campaign):
 
 
 def test_dataset_layout_and_netcdf_round_trip(printed_campaign, tmp_path):
-    ds = printed_campaign.dataset
+    ds = printed_campaign.data
     assert ds["alpha"].dims == ("configuration", "a_g", "direction", "freq_hz")
     assert list(ds["configuration"].values) == ["NBs", "YBs"]
     assert list(ds["a_g"].values) == [0.03, 0.05, 0.075, 0.1]
@@ -82,8 +82,8 @@ def test_threads_change_nothing():
     ybs = pd_.presets.paper_printed()
     kw = dict(nbs_a_g=(0.05,), ybs_a_g=(0.05, 0.1), freqs_hz=[1.2, 2.0], steady="fixed", cycles=5,
               measure_cycles=2)
-    one = pd_.campaign(ybs.without_bumpers(), ybs, workers=1, **kw).dataset
-    two = pd_.campaign(ybs.without_bumpers(), ybs, workers=2, **kw).dataset
+    one = pd_.campaign(ybs.without_bumpers(), ybs, workers=1, **kw).data
+    two = pd_.campaign(ybs.without_bumpers(), ybs, workers=2, **kw).data
     xr.testing.assert_identical(one, two)
 
 
@@ -100,8 +100,8 @@ def test_campaign_interruption_keeps_finished_steps():
         pd_.campaign(None, ybs, ybs_a_g=(0.05,), directions=("up",), freqs_hz=[1.0, 1.5, 2.0, 2.5],
                      steady="fixed", cycles=4, measure_cycles=2, workers=1, progress=progress)
     part = info.value.partial
-    assert not part.complete and part.dataset.attrs["complete"] == 0
-    assert int(part.dataset["ran"].sum()) == 2 and info.value.total == 4
+    assert not part.complete and part.data.attrs["complete"] == 0
+    assert int(part.data["ran"].sum()) == 2 and info.value.total == 4
 
 
 @pytest.mark.parametrize("args, kwargs, field", [
@@ -131,7 +131,7 @@ def test_campaign_plot_returns_artists():
                        steady="fixed", cycles=3, measure_cycles=2)
     artists = res.plot()
     assert len(artists) >= 8
-    assert np.isfinite(res.dataset["alpha"].sel(configuration="YBs").values).all()
+    assert np.isfinite(res.data["alpha"].sel(configuration="YBs").values).all()
 
 
 def test_tables_keep_their_columns_without_a_ybs_step():
@@ -174,5 +174,5 @@ def test_a_ctrl_c_after_the_last_step_loses_nothing(monkeypatch):
         monkeypatch.setattr(target, name, once)
         result = pd_.campaign(None, osc, **kwargs)
         monkeypatch.setattr(target, name, original)
-        assert calls and result.complete and result.dataset.attrs["complete"] == 1
-        assert result.dataset.equals(whole.dataset)
+        assert calls and result.complete and result.data.attrs["complete"] == 1
+        assert result.data.equals(whole.data)

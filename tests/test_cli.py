@@ -89,7 +89,8 @@ def test_campaign_writes_dataset_tables_and_figure(tmp_path):
 def test_warm_up_says_what_it_compiled_or_loaded_and_where():
     result = runner.invoke(app, ["warm-up"])
     assert result.exit_code == 0, result.output
-    first = result.output.splitlines()[0]
+    # (the line before it, on stderr, says what it is doing)
+    first = next(line for line in result.output.splitlines() if line.endswith(" s)"))
     # in this process some kernels may have run already, others not
     counts = re.findall(r"(\d) kernels? (?:compiled and cached|loaded from Numba's cache|already in memory)",
                         first)

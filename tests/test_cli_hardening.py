@@ -153,6 +153,7 @@ def _interrupt(args: list[str], tmp_path: Path, ready: str, after: int = 1,
         text=True,
     )
     err: list[str] = []
+    out: list[str] = []
     seen = threading.Event()
 
     def read() -> None:
@@ -165,8 +166,10 @@ def _interrupt(args: list[str], tmp_path: Path, ready: str, after: int = 1,
                     seen.set()
         seen.set()  # (it ended without: the assertions below say how)
 
-    reader = threading.Thread(target=read, daemon=True)
-    reader.start()
+    readers = [threading.Thread(target=read, daemon=True),
+               threading.Thread(target=lambda: out.extend(proc.stdout), daemon=True)]
+    for reader in readers:  # (each pipe read by one thread only, as the process writes it)
+        reader.start()
     assert seen.wait(timeout=600), "".join(err)
     target = _cpu_s(proc.pid) + cpu_after_s
     deadline = time.monotonic() + 600
@@ -176,12 +179,13 @@ def _interrupt(args: list[str], tmp_path: Path, ready: str, after: int = 1,
     time.sleep(0.03)  # (the second Ctrl-C of a burst: its spacing is the test's subject, not a wait)
     proc.send_signal(signal.SIGINT)
     try:
-        out = proc.communicate(timeout=300)[0]
+        proc.wait(timeout=300)
     except subprocess.TimeoutExpired:
         proc.kill()
         raise
-    reader.join(timeout=60)
-    return subprocess.CompletedProcess(args, proc.returncode, out, "".join(err))
+    for reader in readers:
+        reader.join(timeout=60)
+    return subprocess.CompletedProcess(args, proc.returncode, "".join(out), "".join(err))
 
 
 @pytest.fixture(scope="module", autouse=True)
@@ -365,3 +369,71 @@ def test_an_error_of_another_file_in_a_writer_is_not_called_the_outputs(tmp_path
     with pytest.raises(FileNotFoundError) as info:
         atomic_write(tmp_path / "out.nc", reads_a_missing_input)
     assert not isinstance(info.value, pd_.OutputError) and not (tmp_path / "out.nc").exists()
+
+
+def test_the_help_imports_no_engine_and_no_numerics():
+    """``pounding --help`` starts at once: the command line imports Typer and Rich, not the engine,
+    SciPy, pandas or xarray (what took 4-6 s); measured by what is imported, not by a clock."""
+    code = ("import sys; from pounding.cli import app; from typer.main import get_command; "
+            "get_command(app).get_help; print(sorted(m for m in ('numba', 'scipy', 'pandas', 'xarray', "
+            "'matplotlib', 'pounding.engine', 'pounding.model') if m in sys.modules))")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0 and out.stdout.strip() == "[]", out.stdout + out.stderr
+    help_run = subprocess.run([sys.executable, "-m", "pounding.cli", "--help"], capture_output=True,
+                              text=True, timeout=120)
+    assert help_run.returncode == 0 and "reproduce" in help_run.stdout
+
+
+def test_every_preset_list_names_every_preset():
+    from pounding import presets
+    from pounding.cli._app import PRESET_NAMES
+
+    assert tuple(PRESET_NAMES) == tuple(presets.PRESETS)
+    for cmd in ("simulate", "sweep", "campaign", "reproduce", "basins", "lyapunov", "bifurcation",
+                "continue", "coexistence"):
+        text = runner.invoke(app, [cmd, "--help"], terminal_width=300).output
+        for name in PRESET_NAMES:
+            assert name in text, (cmd, name)
+
+
+def test_tables_keep_every_label_at_80_columns():
+    from rich.console import Console
+
+    from pounding.cli._app import data_table
+
+    table = data_table("Table 2, model (preset paper-calibrated) beside measured (paper)",
+                       ("cfg", "a_G", "dir", "nu_R model", "nu_R meas.", "alpha model", "alpha meas.",
+                        "eta|e model", "eta|e meas."))
+    for row in (("NBs", "0.03", "down", "1.1", "1.2", "2.17", "1.8", "0.743", "1.03"),
+                ("YBs", "0.075", "up", "2.5", "2.5", "16.2", "16.18", "1.25", "1.25")):
+        table.add_row(*row)
+    console = Console(width=80, record=True)
+    console.print(table)
+    text = console.export_text()
+    assert "…" not in text and "0.075" in text and "down" in text and "16.18" in text, text
+    assert max(len(line) for line in text.splitlines()) <= 80
+
+
+def test_a_grazing_of_both_bumpers_is_one_line():
+    from types import SimpleNamespace as B
+
+    from pounding.cli._continue import _one_line_each
+
+    left = B(kind="grazing", side="left", freq_hz=1.6053052485, a_g=0.05)
+    right = B(kind="grazing", side="right", freq_hz=1.6053052498, a_g=0.05)
+    fold = B(kind="fold", side="", freq_hz=1.6052636858, a_g=0.05)
+    labels = [label for label, _ in _one_line_each([fold, left, right])]
+    assert labels == ["fold", "grazing (left and right)"]
+    far = B(kind="grazing", side="right", freq_hz=1.2350879755, a_g=0.05)
+    assert [label for label, _ in _one_line_each([left, far])] == ["grazing (left)", "grazing (right)"]
+
+
+def test_wide_bounds_are_warned_about():
+    fam = pd_.ModelFamily(500.0, branches=3, law="kelvin_voigt",
+                          fixed={"slope_1": 38e3, "slope_2": 18e3, "slope_3": 2e3, "breakpoint_1": 0.015,
+                                 "breakpoint_2": 0.04, "gap": 0.015})
+    from pounding.identification.family import check_bounds
+
+    with pytest.warns(pd_.PoundingWarning, match="bounds.bumper_stiffness .* spans 600 decades"):
+        check_bounds(fam, {"isolator_damping": (100, 5000), "bumper_stiffness": (1e-300, 1e300),
+                           "bumper_damping": (10, 5000)})

@@ -116,8 +116,8 @@ def test_the_papers_measurements():
 def test_paper_targets_quantities_and_bad_arguments():
     assert len(pd_.paper_targets()) == 36
     extended = pd_.paper_targets(quantities=CONSISTENCY_QUANTITIES)
-    assert set(extended.table["quantity"]) == set(CONSISTENCY_QUANTITIES)
-    nbs_e = extended.table.query("configuration == 'NBs' and quantity == 'excursion_max_m'")
+    assert set(extended.data["quantity"]) == set(CONSISTENCY_QUANTITIES)
+    nbs_e = extended.data.query("configuration == 'NBs' and quantity == 'excursion_max_m'")
     assert list(nbs_e["value"]) == [0.0356, 0.0593, 0.171]
     with pytest.raises(pd_.InputError) as info:
         pd_.paper_targets(quantities=("alpha", "speed"))

@@ -76,7 +76,7 @@ def test_each_sweep_jump_lies_within_a_step_of_a_fold(damped: pd_.Branch, sweeps
     assert len(main) == 2
     for lo, hi in main:
         assert np.any((folds > lo) & (folds < hi)), (lo, hi, folds)
-    assert damped.success and damped.table.freq_hz.iloc[-1] == pytest.approx(3.0)
+    assert damped.success and damped.data.freq_hz.iloc[-1] == pytest.approx(3.0)
 
 
 def test_branch_orbits_are_periodic_and_match_the_sweep(damped: pd_.Branch, sweeps: tuple) -> None:
@@ -128,7 +128,7 @@ def test_period_doubling_starts_the_doubled_branch(damped: pd_.Branch) -> None:
     doubled = pd_.continuation(pd_.presets.paper_damped(), 0.05, (1.0, 3.0), guess=pd1)
     assert doubled.period_multiple == 2 and len(doubled) > 5
     osc = damped.oscillator
-    row = doubled.table.iloc[len(doubled) // 2]
+    row = doubled.data.iloc[len(doubled) // 2]
     state = pd_.State(doubled.states[len(doubled) // 2])
     exc = pd_.Harmonic(row.a_g, row.freq_hz, phase=row.phase_rad)
     one = pd_.simulate(osc, exc, 1.0 / row.freq_hz, state, sample_rate_hz=0).final_state

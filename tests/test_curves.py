@@ -101,7 +101,7 @@ def test_coexistence_map_matches_the_sweeps() -> None:
     m = pd_.coexistence_map(osc, a_g=(0.02, 0.11), freqs_hz=(1.0, 3.0), levels=[0.05, 0.075], kinds=["fold"])
     assert len(m.branches) == 2 and len(m.matrix) == 2 * 21
     # the 0.075 branch's upper folds are on the curve from the 0.05 branch's: followed once
-    uppers = [c for c in m.curves if c.table.freq_hz.max() > 2.0]
+    uppers = [c for c in m.curves if c.data.freq_hz.max() > 2.0]
     assert len(uppers) == 1
     for level in (0.05, 0.075):
         up, down = pd_.sweep(osc, level, np.round(np.arange(1.0, 3.0001, 0.1), 10), "up"), \

@@ -120,10 +120,10 @@ def test_pounding_design_runs_reports_and_resumes(tmp_path):
     assert list(table["bumpers.gap"]) == [0.05, 0.15, 0.3]
     assert np.all(np.diff(table["p_contact_mce"]) <= 0.0)  # wider gaps pound no more often
     analysis = pounding.design.open_stripe_analysis(out / "runs.zarr")
-    assert bool(analysis.dataset["done"].all())
+    assert bool(analysis.data["done"].all())
     again = runner.invoke(app, ["design", str(path), "--out", str(out)])
     assert again.exit_code == 0
-    assert int(pounding.design.open_stripe_analysis(out / "runs.zarr").dataset["session"].max()) == 1
+    assert int(pounding.design.open_stripe_analysis(out / "runs.zarr").data["session"].max()) == 1
 
 
 TYPES = """
@@ -163,9 +163,9 @@ def test_bumper_types_each_run_their_own_analysis_and_are_decided_together(tmp_p
     assert table["p_capacity_mce"].isna().sum() == 6  # (only the steel bumpers have a capacity)
     for name in ("rubber", "steel"):
         analysis = pounding.design.open_stripe_analysis(out / f"runs_{name}.zarr")
-        assert bool(analysis.dataset["done"].all())
+        assert bool(analysis.data["done"].all())
         design_sa, mce_sa = plan.design_spectrum.sa_g(1.0), plan.mce_spectrum.sa_g(1.0)
-        alone = pounding.design.decide(analysis, design_sa, mce_sa, target_probability=0.5).table
+        alone = pounding.design.decide(analysis, design_sa, mce_sa, target_probability=0.5).data
         part = table[table["bumper"] == name]
         assert np.allclose(part["p_contact_mce"].values, alone["p_contact_mce"].values, atol=1e-12)
         assert np.allclose(part["acc_median_g"].values, alone["acc_median_g"].values, rtol=1e-12)
@@ -176,7 +176,7 @@ def test_bumper_types_each_run_their_own_analysis_and_are_decided_together(tmp_p
     assert again.exit_code == 0
     for name in ("rubber", "steel"):
         assert (
-            int(pounding.design.open_stripe_analysis(out / f"runs_{name}.zarr").dataset["session"].max()) == 1
+            int(pounding.design.open_stripe_analysis(out / f"runs_{name}.zarr").data["session"].max()) == 1
         )
 
 

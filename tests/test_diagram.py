@@ -32,7 +32,7 @@ def test_period_one_samples_are_the_periodic_orbit_at_the_section(diagram, branc
     """Where the branch is stable and single, every recorded sample is the orbit's state at table
     phase 0 (periodic_orbit, exact), to 1e-6; the branch's own section agrees as well."""
     assert diagram.success and diagram.message.endswith("every response is periodic (period 1).")
-    ds = diagram.dataset
+    ds = diagram.data
     for f in (1.3, 1.5, 2.4, 2.58):
         orbit = pd_.periodic_orbit(ELASTIC, pd_.Harmonic(0.05, f))
         exact = np.array([orbit.state.displacement_m, orbit.state.velocity_m_s])
@@ -97,14 +97,14 @@ def test_ctrl_c_keeps_the_finished_steps_and_files_round_trip(tmp_path):
                                 progress=stop_after_five)
     part = info.value.partial
     assert part.status == pd_.Status.INTERRUPTED and "Interrupted after 5 of 20" in part.message
-    assert (part.dataset.period.sel(direction="up").values >= 0).sum() == 5
-    assert (part.dataset.period.sel(direction="down").values == -1).all()
+    assert (part.data.period.sel(direction="up").values >= 0).sum() == 5
+    assert (part.data.period.sel(direction="down").values == -1).all()
     path = part.to_netcdf(tmp_path / "part.nc")
     import xarray as xr
 
     with xr.open_dataset(path) as back:
         np.testing.assert_array_equal(back.strobe_displacement_m.values,
-                                      part.dataset.strobe_displacement_m.values)
+                                      part.data.strobe_displacement_m.values)
 
 
 def test_cli_bifurcation_writes_samples_dataset_and_figure(tmp_path):

@@ -98,8 +98,8 @@ def test_targets_and_plot_of_a_measured_sweep(tmp_path):
     rec = synthetic_test(osc, 0.05, freqs, cycles=30, seed=8, **SENSORS)
     lab = analyse_stepped_sine(rec, mass_kg=500.0, gap_total_m=0.03, freqs_hz=freqs)
     targets = pd_.Targets.from_lab(lab, "YBs")
-    t = targets.table.set_index("quantity")["value"]
-    assert targets.eta_gap_total_m == 0.03 and set(targets.table["a_g"]) == {0.05}
+    t = targets.data.set_index("quantity")["value"]
+    assert targets.eta_gap_total_m == 0.03 and set(targets.data["a_g"]) == {0.05}
     assert t["nu_r"] == lab.nu_r and t["alpha"] == lab.alpha_max
     assert (t["contact_nu_min"], t["contact_nu_max"]) == lab.contact_range_hz
     res = lab.steps.iloc[int(np.argmax(lab.steps["alpha"]))]
@@ -107,7 +107,7 @@ def test_targets_and_plot_of_a_measured_sweep(tmp_path):
     # the model that made the recording meets its own targets
     assert pd_.identification.evaluate(osc, targets, freqs_hz=freqs)["within"].all()
     nbs = pd_.Targets.from_lab(analyse_stepped_sine(rec, mass_kg=500.0, freqs_hz=freqs), "NBs", a_g=0.05)
-    assert set(nbs.table["quantity"]) == {"nu_r", "alpha", "e"}
+    assert set(nbs.data["quantity"]) == {"nu_r", "alpha", "e"}
     with pytest.raises(pd_.InputError) as info:
         pd_.Targets.from_lab(analyse_stepped_sine(rec, mass_kg=500.0, freqs_hz=freqs), "YBs")
     assert info.value.field == "gap_total_m"
@@ -146,7 +146,7 @@ def test_identify_recovers_a_system_from_its_synthetic_recordings():
         rec = synthetic_test(system, 0.05, freqs, cycles=20, seed=9, **{**SENSORS, "noise": 0.01})
         lab = analyse_stepped_sine(rec, mass_kg=500.0, gap_total_m=0.03 if conf == "YBs" else None,
                                    freqs_hz=freqs)
-        table = pd_.Targets.from_lab(lab, conf, a_g=0.05).table
+        table = pd_.Targets.from_lab(lab, conf, a_g=0.05).data
         records += table.drop(columns=["tolerance", "relative", "weight"]).to_dict("records")
     targets = pd_.Targets.from_records(records, eta_gap_total_m=0.03)
     bounds = {"isolator_damping": (300.0, 3000.0), "bumper_stiffness": (3e5, 5e6)}
@@ -175,7 +175,7 @@ def test_a_window_with_missing_samples_is_not_measured(channel):
     assert list(df["freq_hz"]) == freqs and list(df["missing_samples"]) == [0, 0, 0, 20]
     assert np.isnan(df["alpha"][3]) and np.isnan(df["contact"][3]) and np.isfinite(df["alpha"][:3]).all()
     assert lab.resonance_hz == 2.0 and lab.contact_range_hz == (1.4, 2.0)
-    assert pd_.Targets.from_lab(lab, "YBs").table.set_index("quantity")["value"]["nu_r"] == 2.0
+    assert pd_.Targets.from_lab(lab, "YBs").data.set_index("quantity")["value"]["nu_r"] == 2.0
 
 
 def test_uncertainties_grow_with_the_noise():

@@ -154,7 +154,7 @@ def test_cli_lab_writes_tables_figure_and_targets(tmp_path):
     for name in ("steps.csv", "impacts.csv", "lab_sweep.png", "targets.toml"):
         assert (out / name).is_file(), name
     targets = pd_.Targets.from_toml(out / "targets.toml")
-    assert targets.eta_gap_total_m == 0.03 and "alpha" in set(targets.table["quantity"])
+    assert targets.eta_gap_total_m == 0.03 and "alpha" in set(targets.data["quantity"])
     bad = runner.invoke(app, args[:-2] + ["--out", str(tmp_path / "x"), "--units", "time=minutes"])
     assert bad.exit_code == 2 and "units.time" in bad.output
     assert not (tmp_path / "x").exists()

@@ -14,7 +14,7 @@ ROOT = Path(pounding.__file__).resolve().parent
 
 # lowest first: each line may import from itself and the lines above it
 LAYERS = [
-    ("_errors", "_checks", "_io", "_jit", "_control", "_delimited", "_units", "data"),
+    ("_errors", "_checks", "_io", "_jit", "_control", "_delimited", "_units", "_tables", "data"),
     ("model",),
     ("presets",),
     ("excitation", "records"),

@@ -185,8 +185,8 @@ def test_diagram_largest_exponents_tell_chaos_from_periodic_steps():
     diagram = pd_.bifurcation_diagram(SOFT, 0.1, freqs, direction="up", transient_cycles=300,
                                       record_cycles=20)
     d = pd_.largest_exponents(diagram, cycles=300)
-    lam = d.dataset["largest_exponent"].sel(direction="up").values
-    period = d.dataset["period"].sel(direction="up").values
+    lam = d.data["largest_exponent"].sel(direction="up").values
+    period = d.data["period"].sel(direction="up").values
     assert period.tolist() == [1, 0] and lam[0] < 0.0 < lam[1]
     orbit = pd_.periodic_orbit(SOFT, pd_.Harmonic(0.1, 2.0), settle_cycles=300)
     assert lam[0] == pytest.approx(math.log(orbit.max_abs_multiplier) / orbit.period_s, rel=1e-6)

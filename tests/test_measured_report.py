@@ -28,8 +28,8 @@ def test_the_report_tells_the_exact_and_the_measured_story(tmp_path):
         assert (tmp_path / "r" / f"table{t}_measured.csv").is_file()
     assert "fig05_measured" in report.figures and "as measured" in page
     assert "lost to the measurement" in page and "and why" in page
-    assert report.measured.campaign.dataset.attrs["measurement"] == chain.describe()
-    assert report.campaign.dataset.attrs["measurement"] == "exact"
+    assert report.measured.campaign.data.attrs["measurement"] == chain.describe()
+    assert report.campaign.data.attrs["measurement"] == "exact"
     measured_alpha = report.comparisons["2 measured"].set_index("configuration").loc["YBs", "alpha_model"]
     exact_alpha = report.comparisons["2"].set_index("configuration").loc["YBs", "alpha_model"]
     assert measured_alpha < 0.7 * exact_alpha

@@ -149,7 +149,7 @@ def test_one_frequency_step_off_is_within_the_target():
 
 
 def test_paper_targets_cover_the_tables():
-    t = pd_.paper_targets().table
+    t = pd_.paper_targets().data
     assert set(t["quantity"]) == {"nu_r", "alpha", "eta", "e", "contact_nu_min", "contact_nu_max",
                                   "contact_time_ms", "restitution"}
     assert len(t[(t.configuration == "YBs") & (t.quantity == "contact_time_ms")]) == 4
@@ -274,7 +274,7 @@ def test_misses_loss_meets_what_least_squares_trades_away():
     family = pd_.ModelFamily(500.0, 3, "kinematic", "kelvin_voigt",
                              fixed={**PRINTED_BACKBONE, "bumper_stiffness": 1.46e6, "bumper_damping": 400.0})
     reachable = _self_made_targets(family.oscillator({"isolator_damping": 800.0}), [("NBs", 0.1, ("alpha",))])
-    recs = reachable.table[["configuration", "a_g", "quantity", "value"]].to_dict("records")
+    recs = reachable.data[["configuration", "a_g", "quantity", "value"]].to_dict("records")
     targets = pd_.Targets.from_records(recs + [dict(configuration="NBs", a_g=0.05, quantity="alpha",
                                                     value=0.5)])
     bounds = {"isolator_damping": (200.0, 3000.0)}

@@ -27,7 +27,7 @@ def spectrum(quakes):
 def test_without_bumpers_it_is_the_elastic_response_spectrum(quakes, spectrum):
     # two independent exact computations: the engine's event-driven runs and the spectrum kernel
     elastic = pd_.response_spectrum(quakes, PERIODS, damping_ratio=0.05)
-    ds = spectrum.dataset
+    ds = spectrum.data
     np.testing.assert_allclose(ds["acc_max_free_g"].values, elastic["sa_g"].values, rtol=1e-9)
     np.testing.assert_allclose(ds["disp_max_free_m"].values, elastic["sd_m"].values, rtol=1e-9)
     # bumpers 0.45 m away are never reached in these 12 s: the same run, amplification 1
@@ -43,7 +43,7 @@ def test_each_entry_is_one_run_of_the_engine(quakes, spectrum):
     law = pd_.presets.paper_damped().bumpers.law
     run = pd_.simulate(pd_.Oscillator(500.0, iso, pd_.Bumpers(gap, gap, law)), rec, rec.t[-1],
                        sample_rate_hz=0)
-    got = spectrum.dataset.isel(record=1).sel(period_s=period, gap_m=gap)
+    got = spectrum.data.isel(record=1).sel(period_s=period, gap_m=gap)
     assert int(got["impacts"]) == len(run.contacts) > 0
     assert float(got["acc_max_g"]) == pytest.approx(run.abs_acceleration_max / rec.g, rel=1e-12)
     assert float(got["disp_max_m"]) == pytest.approx(max(run.displacement_max, -run.displacement_min),
@@ -64,7 +64,7 @@ def test_summary_table_plots_and_file(spectrum, tmp_path):
 
     stats = spectrum.summary()
     median = stats["amplification"].sel(percentile=50.0)
-    both = spectrum.dataset["amplification"]
+    both = spectrum.data["amplification"]
     # (two records: the median is their mean)
     np.testing.assert_allclose(median, both.mean("record"), rtol=1e-12)
     assert (stats["amplification"].sel(percentile=16.0) <= median).all()
@@ -73,7 +73,7 @@ def test_summary_table_plots_and_file(spectrum, tmp_path):
                                                         "impacts"} <= set(df.columns)
     path = spectrum.to_netcdf(tmp_path / "spectrum.nc")
     back = xr.open_dataset(path)
-    np.testing.assert_allclose(back["amplification"], spectrum.dataset["amplification"])
+    np.testing.assert_allclose(back["amplification"], spectrum.data["amplification"])
     back.close()
     curves = spectrum.plot()
     assert len(curves) >= 2 * GAPS.size  # (a line and a band per gap, and the line at 1)
@@ -112,9 +112,9 @@ def test_a_nonlinear_isolator_is_scaled_to_each_period(quakes):
     iso = pd_.Isolator((k1, k1 * 18 / 38, k1 * 2 / 38), (0.015, 0.04), "kinematic",
                        2.0 * 0.05 * np.sqrt(k1 * 500.0))
     run = pd_.simulate(pd_.Oscillator(500.0, iso), quakes[0], quakes[0].t[-1], sample_rate_hz=0)
-    assert float(ps.dataset["acc_max_free_g"].sel(period_s=1.0)[0]) == pytest.approx(
+    assert float(ps.data["acc_max_free_g"].sel(period_s=1.0)[0]) == pytest.approx(
         run.abs_acceleration_max / 9.81, rel=1e-12)
-    assert "kinematic" in ps.dataset.attrs["isolator"]
+    assert "kinematic" in ps.data.attrs["isolator"]
 
 
 def test_an_interrupt_keeps_what_finished(quakes):
@@ -127,7 +127,7 @@ def test_an_interrupt_keeps_what_finished(quakes):
 
     with pytest.raises(pd_.Interrupted) as info:
         pd_.pounding_spectrum(quakes[0], PERIODS, gaps_m=GAPS, progress=stop_after_five, workers=1)
-    part = info.value.partial.dataset
+    part = info.value.partial.data
     assert part.attrs["complete"] == 0
     assert np.isfinite(part["acc_max_free_g"].values).sum() == 2
     assert np.isfinite(part["acc_max_g"].values).sum() == 3
@@ -166,7 +166,7 @@ def test_cli_spectrum_writes_tables_figures_and_netcdf(tmp_path):
 
 def test_a_run_over_its_budget_is_marked_not_lost(quakes):
     ps = pd_.pounding_spectrum(quakes[0], [1.0, 2.0], gaps_m=[0.02], max_steps=10)
-    ds = ps.dataset
+    ds = ps.data
     assert (ds["status"] == int(pd_.Status.BUDGET)).all()
     assert (ds["status_free"] == int(pd_.Status.BUDGET)).all()
     assert np.isnan(ds["acc_max_g"]).all() and np.isnan(ps.summary()["amplification"]).all()

@@ -114,8 +114,8 @@ def test_a_pounding_spectrum_is_the_same_on_every_scheduler(scheduler):
     kw = dict(gaps_m=[0.02, 0.05], workers=2)
     ref = pd_.pounding_spectrum(*args, **kw)
     other = pd_.pounding_spectrum(*args, scheduler=scheduler, **kw)
-    for name in ref.dataset.data_vars:
-        np.testing.assert_array_equal(other.dataset[name].values, ref.dataset[name].values)
+    for name in ref.data.data_vars:
+        np.testing.assert_array_equal(other.data[name].values, ref.data[name].values)
 
 
 @pytest.mark.parametrize("scheduler", ["serial", "processes", "local"])
@@ -126,8 +126,8 @@ def test_a_campaign_is_the_same_on_every_scheduler(scheduler):
     ref = pd_.campaign(ybs.without_bumpers(), ybs, **kw)
     other = pd_.campaign(ybs.without_bumpers(), ybs, scheduler=scheduler, **kw)
     assert other.complete and list(other.sweeps) == list(ref.sweeps)
-    for name in ref.dataset.data_vars:
-        np.testing.assert_array_equal(other.dataset[name].values, ref.dataset[name].values)
+    for name in ref.data.data_vars:
+        np.testing.assert_array_equal(other.data[name].values, ref.data[name].values)
 
 
 @pytest.mark.parametrize("scheduler", ["serial", "processes", "local"])

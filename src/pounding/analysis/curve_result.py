@@ -38,7 +38,7 @@ class BifurcationCurve:
         The orbits' period, in forcing periods.
     freqs_hz, a_g : (float, float)
         The box it was followed in: frequencies, Hz, and table accelerations, g.
-    table : DataFrame
+    data : DataFrame
         One row per point in the curve's order (see :meth:`to_dataframe`).
     states : ndarray, shape (points, state length)
         Each point's orbit at its section (time 0, the forcing's angle ``phase_rad``).
@@ -75,7 +75,7 @@ class BifurcationCurve:
     period_multiple: int
     freqs_hz: tuple[float, float]
     a_g: tuple[float, float]
-    table: pd.DataFrame = field(repr=False)
+    data: pd.DataFrame = field(repr=False)
     states: np.ndarray = field(repr=False)
     status: Status
     message: str
@@ -87,7 +87,14 @@ class BifurcationCurve:
         return self.status == Status.SUCCESS
 
     def __len__(self) -> int:
-        return int(self.table.shape[0])
+        return int(self.data.shape[0])
+
+    def to_xarray(self) -> Any:
+        """The table of :meth:`to_dataframe` as a Dataset along ``point``."""
+        from .._tables import frame_to_xarray
+
+        return frame_to_xarray(self.to_dataframe(), "point", {"kind": self.kind, "side": self.side,
+                                                              "status": self.status.name})
 
     def to_dataframe(self) -> pd.DataFrame:
         """One row per point: ``freq_hz``, ``a_g``, ``alpha``, ``excursion_m``,
@@ -95,7 +102,7 @@ class BifurcationCurve:
         ``critical_multiplier`` (the real multiplier nearest 1: 1 on a fold curve),
         ``contacts_per_period``, ``test`` (the test function: multiplier - 1, or the clearance
         to the bumper over the orbit's length), ``residual``, ``phase_rad``."""
-        return self.table.copy()
+        return self.data.copy()
 
     def passes(self, bif: "Bifurcation", within: float = 2e-3) -> bool:
         """Whether ``bif`` (same kind and side) lies on this curve: its (f, a_G) within ``within`` of
@@ -103,7 +110,7 @@ class BifurcationCurve:
         if bif.kind != self.kind or bif.side != self.side or len(self) == 0:
             return False
         fs, as_ = self.freqs_hz[1] - self.freqs_hz[0], self.a_g[1] - self.a_g[0]
-        pts = np.column_stack((self.table["freq_hz"] / fs, self.table["a_g"] / as_))
+        pts = np.column_stack((self.data["freq_hz"] / fs, self.data["a_g"] / as_))
         q = np.array([bif.freq_hz / fs, bif.a_g / as_])
         if len(pts) == 1:
             return bool(np.linalg.norm(pts[0] - q) <= within)
@@ -121,8 +128,8 @@ class BifurcationCurve:
 
     def __repr__(self) -> str:
         return (f"BifurcationCurve({self.kind}{' ' + self.side if self.side else ''}, {len(self)} points, f "
-                f"{self.table['freq_hz'].min():.6g}-{self.table['freq_hz'].max():.6g} Hz, a_g "
-                f"{self.table['a_g'].min():.6g}-{self.table['a_g'].max():.6g}; {self.status.name}: "
+                f"{self.data['freq_hz'].min():.6g}-{self.data['freq_hz'].max():.6g} Hz, a_g "
+                f"{self.data['a_g'].min():.6g}-{self.data['a_g'].max():.6g}; {self.status.name}: "
                 f"{self.message})"
                 if len(self)
                 else f"BifurcationCurve({self.kind}, no points; {self.status.name}: {self.message})")
@@ -178,6 +185,10 @@ class CoexistenceMap:
     curves: tuple[BifurcationCurve, ...] = field(repr=False)
     matrix: pd.DataFrame = field(repr=False)
     notes: tuple[str, ...] = ()
+
+    def to_xarray(self) -> Any:
+        """The test matrix on (``a_g``, ``freq_hz``): each point's witnesses, responses and verdict."""
+        return self.matrix.set_index(["a_g", "freq_hz"]).to_xarray()
 
     def to_dataframe(self) -> pd.DataFrame:
         """The curves' points, one row each, with ``curve`` (its index), ``kind`` and ``side``."""

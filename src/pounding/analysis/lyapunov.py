@@ -360,7 +360,7 @@ def largest_exponents(diagram: BifurcationDiagram, *, cycles: int = 200, align_c
     >>> d = pounding.bifurcation_diagram(osc, 0.05, [1.5, 2.5], direction="up",
     ...                                  transient_cycles=60, record_cycles=10)
     >>> d = pounding.largest_exponents(d, cycles=50)
-    >>> (d.dataset["largest_exponent"] < 0).values.tolist()  # periodic: both stable
+    >>> (d.data["largest_exponent"] < 0).values.tolist()  # periodic: both stable
     [[True, True]]
     """
     if not isinstance(diagram, BifurcationDiagram):
@@ -369,7 +369,7 @@ def largest_exponents(diagram: BifurcationDiagram, *, cycles: int = 200, align_c
     cycles = integer("cycles", cycles, 1, MAX_CYCLES)
     align_cycles = integer("align_cycles", align_cycles, 0, MAX_CYCLES)
     exact_monodromy(diagram.oscillator, method)  # (checked once, before any step)
-    ds = diagram.dataset
+    ds = diagram.data
     dirs = ds["direction"].values.tolist()
     freqs = ds["freq_hz"].values
     out = np.full((len(dirs), freqs.size), np.nan)
@@ -378,7 +378,7 @@ def largest_exponents(diagram: BifurcationDiagram, *, cycles: int = 200, align_c
     def result() -> BifurcationDiagram:
         new = ds.assign(largest_exponent=(("direction", "freq_hz"), out.copy(),
                                           {"units": "1/s", "cycles": cycles, "method": method}))
-        return replace(diagram, dataset=new)
+        return replace(diagram, data=new)
 
     done = 0
     with progress_reporter(progress, total, "largest Lyapunov exponents") as advance:

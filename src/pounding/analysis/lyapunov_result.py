@@ -8,6 +8,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import pandas as pd
 
 from .._errors import Status
 from ..engine import State
@@ -117,6 +118,14 @@ class LyapunovSpectrum:
         if j == lam.size:
             return float(j)
         return float(j + sums[j - 1] / abs(lam[j])) if np.isfinite(lam[j]) else float(j)
+
+    def to_dataframe(self) -> pd.DataFrame:
+        """The running estimates, one row per period counted: ``cycle`` and ``lambda_1_1_s`` ...
+        (1/s, the largest first)."""
+        names = [f"lambda_{i + 1}_1_s" for i in range(self.history.shape[1])]
+        hist = pd.DataFrame(self.history, columns=names)
+        hist.insert(0, "cycle", np.arange(1, len(hist) + 1))
+        return hist
 
     def to_xarray(self) -> "xr.Dataset":
         """``exponent`` (direction: 1 the largest) and ``history`` (cycle, direction), 1/s, with the

@@ -224,11 +224,28 @@ def cell(value: Any, fmt: str = ".4g") -> str:
     return MISSING if number != number else format(number, fmt)
 
 
+class _FittedTable(Table):
+    """A table whose cells are never cut: each column at least as wide as its widest cell, the headers
+    wrapping at their spaces where the terminal is narrow (80 columns cut "a_G" to "a…")."""
+
+    def __rich_console__(self, console: Any, options: Any) -> Any:
+        from rich.text import Text
+
+        for col in self.columns:
+            widths = [Text.from_markup(c).cell_len if isinstance(c, str) else Text(str(c)).cell_len
+                      for c in col.cells]
+            header = str(col.header)
+            col.min_width = max(widths + [max((len(w) for w in header.split()), default=0)])
+            col.no_wrap = False
+        yield from super().__rich_console__(console, options)
+
+
 def data_table(title: str, columns: Iterable[str]) -> Table:
-    """A table with a header row; headers are never cut (``console`` is wide when piped)."""
-    table = Table(title=escape(title))
+    """A table with a header row; no cell is ever cut (headers wrap at 80 columns; ``console`` is wide
+    when piped)."""
+    table = _FittedTable(title=escape(title))
     for col in columns:
-        table.add_column(escape(col), no_wrap=True)
+        table.add_column(escape(col))
     return table
 
 

@@ -50,7 +50,7 @@ def continue_branch(
             branch, complete = stop.partial, False
     table, add = kv_table(f"branch at a_G = {a_g:g}, {start:g} to {end:g} Hz", system_file or preset)
     add("status", branch.message)
-    add("orbits", f"{len(branch)} ({int((~branch.table['stable']).sum())} unstable)")
+    add("orbits", f"{len(branch)} ({int((~branch.data['stable']).sum())} unstable)")
     for label, bif in _one_line_each(branch.bifurcations):
         add(label, f"f = {bif.freq_hz:.6g} Hz, alpha = {bif.alpha:.4g}"
             + ("" if bif.located else " (not located to tolerance)"))

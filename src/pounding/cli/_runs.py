@@ -355,7 +355,7 @@ def _save_campaign(result, out: Path) -> None:
     """The campaign's files; each table says per sweep whether it finished (``complete``)."""
     out.mkdir(parents=True, exist_ok=True)
     result.to_netcdf(out / "campaign.nc")
-    steps = result.dataset.to_dataframe().reset_index()
+    steps = result.data.to_dataframe().reset_index()
     write_csv(steps[steps["ran"]].drop(columns=["ran"]), out / "steps.csv")
     finished = {key: sw.steps_done == sw.freqs_hz.size for key, sw in result.sweeps.items()}
     for name, df in (("table2", result.table2()), ("table3", result.table3()), ("table4", result.table4())):

@@ -32,7 +32,7 @@ class Decision:
 
     Attributes
     ----------
-    table : pandas.DataFrame
+    data : pandas.DataFrame
         One row per design point (its grid values, and ``bumper``, the bumper type's name, when
         :func:`decide` was given one analysis per type), with ``p_contact_design``, ``p_contact_mce``,
         ``p_contact_years`` (with a hazard curve; NaN otherwise), ``acc_median_g`` and
@@ -76,7 +76,7 @@ class Decision:
     0.2
     """
 
-    table: Any
+    data: Any
     recommended: dict | None
     target_probability: float
     level: str
@@ -87,9 +87,16 @@ class Decision:
     years: float
     units: dict = field(default_factory=dict)
 
+    def to_xarray(self) -> Any:
+        """The table of :meth:`to_dataframe` as a Dataset along ``option`` (one per design point)."""
+        from .._tables import frame_to_xarray
+
+        return frame_to_xarray(self.to_dataframe(), "option", {"target_probability": self.target_probability,
+                                                               "level": self.level})
+
     def to_dataframe(self) -> Any:
         """The table (a copy)."""
-        return self.table.copy()
+        return self.data.copy()
 
     def verdict(self) -> str:
         """The gap recommended, the probabilities behind it and the runs they rest on, or that no gap
@@ -118,7 +125,7 @@ class Decision:
             f"At the stripe nearest the {level} level, {int(row['pounded_at_level'])} of "
             f"{int(row['runs_at_level'])} runs pounded.",
         ]
-        rivals = self.table[(self.table[self.gap_dim] == row[self.gap_dim]) & self.table["meets_target"]]
+        rivals = self.data[(self.data[self.gap_dim] == row[self.gap_dim]) & self.data["meets_target"]]
         if len(rivals) > 1:
             if math.isnan(row["acc_pounding_median_g"]):
                 parts.append(
@@ -163,7 +170,7 @@ class Decision:
         per group (label empty without other dimensions)."""
         gap = self.gap_dim
         others = [d for d in self._dims() if d != gap]
-        groups = self.table.groupby(others, dropna=False, sort=False) if others else [((), self.table)]
+        groups = self.data.groupby(others, dropna=False, sort=False) if others else [((), self.data)]
         out = []
         for key, part in groups:
             key = key if isinstance(key, tuple) else (key,)
@@ -176,7 +183,7 @@ class Decision:
         return self.units.get(row.get("bumper") if hasattr(row, "get") else None) or self.units.get(None, {})
 
     def _dims(self) -> list[str]:
-        return [c for c in self.table.columns if c not in _COLUMNS]
+        return [c for c in self.data.columns if c not in _COLUMNS]
 
 
 def _label(values: list[tuple[str, Any]], units: dict | None = None) -> str:
@@ -267,7 +274,7 @@ def decide(
     ...                              grid={"bumpers.gap": [0.02, 0.2]})
     >>> choice = design.decide(msa, 0.3, 0.45, target_probability=0.1)
     >>> columns = ["bumpers.gap", "p_contact_design", "p_contact_mce"]
-    >>> choice.table[columns].values.round(3)
+    >>> choice.data[columns].values.round(3)
     array([[0.02 , 0.443, 0.885],
            [0.2  , 0.   , 0.   ]])
     """
@@ -303,7 +310,7 @@ def decide(
     for name, one in analyses.items():
         same = (
             np.array_equal(one.levels_g, first.levels_g)
-            and list(one.dataset["record"].values) == list(first.dataset["record"].values)
+            and list(one.data["record"].values) == list(first.data["record"].values)
             and one.period_s == first.period_s
             and one.damping_ratio == first.damping_ratio
         )
@@ -413,7 +420,7 @@ def _rows(
         np.argmin(np.abs(np.log(analysis.levels_g / (mce_sa if level == "mce" else design_sa))))
     )
     n_runs, n_hits = (c.load() for c in analysis.counts("contact"))
-    at_stripe = analysis.dataset.isel(sa_g=stripe).load()
+    at_stripe = analysis.data.isel(sa_g=stripe).load()
     ok = analysis.finished().isel(sa_g=stripe)
     acc = at_stripe["acc_max_g"].where(ok).median("record")
     with warnings.catch_warnings():  # (a design point where no run pounded: NaN, not a warning)
@@ -425,7 +432,7 @@ def _rows(
     dims = analysis.design_dims
     for index in np.ndindex(p_design.shape):
         sel = dict(zip(dims, index))
-        row = {d: float(analysis.dataset[d].values[i]) for d, i in sel.items()}
+        row = {d: float(analysis.data[d].values[i]) for d, i in sel.items()}
         row["p_contact_design"] = float(p_design.values[index])
         row["p_contact_mce"] = float(p_mce.values[index])
         row["p_capacity_mce"] = math.nan if p_cap is None else float(p_cap.values[index])
@@ -469,8 +476,8 @@ def _penalty(analysis: StripeAnalysis, free: StripeAnalysis, stripe: int, ok: An
             got=type(free).__name__,
             expected="pounding.design.StripeAnalysis (without bumpers) or None",
         )
-    same = np.array_equal(free.levels_g, analysis.levels_g) and list(free.dataset["record"].values) == list(
-        analysis.dataset["record"].values
+    same = np.array_equal(free.levels_g, analysis.levels_g) and list(free.data["record"].values) == list(
+        analysis.data["record"].values
     )
     if not same or free.has_bumpers or free.design_dims:
         raise InputError(
@@ -480,9 +487,9 @@ def _penalty(analysis: StripeAnalysis, free: StripeAnalysis, stripe: int, ok: An
             why="is not the same stripes and records without bumpers and without a grid",
             fix="run stripe_analysis(system.without_bumpers(), the same records and levels_g)",
         )
-    base = free.dataset.isel(sa_g=stripe).load()
+    base = free.data.isel(sa_g=stripe).load()
     base_ok = free.finished().isel(sa_g=stripe)
-    ratio = analysis.dataset.isel(sa_g=stripe)["acc_max_g"].load() / base["acc_max_g"].where(base_ok)
+    ratio = analysis.data.isel(sa_g=stripe)["acc_max_g"].load() / base["acc_max_g"].where(base_ok)
     return ratio.where(ok).median("record")
 
 

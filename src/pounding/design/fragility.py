@@ -114,6 +114,12 @@ class Fragility:
         hi = np.percentile(self.bootstrap, 100.0 - tail, axis=0)
         return {"median_g": (float(lo[0]), float(hi[0])), "beta": (float(lo[1]), float(hi[1]))}
 
+    def to_xarray(self) -> Any:
+        """The curve of :meth:`to_dataframe` as a Dataset on ``im_g``."""
+        from .._tables import frame_to_xarray
+
+        return frame_to_xarray(self.to_dataframe(), "row", index="im_g")
+
     def to_dataframe(self, im_g: Any = None) -> Any:
         """``im_g``, ``probability``, ``lower``, ``upper`` (the band) at ``im_g`` (default: 200
         intensities to 3 medians)."""

@@ -134,6 +134,12 @@ class HazardCurve:
         out = np.exp(np.interp(-np.log(lam), -np.log(self.annual_frequency_per_year), np.log(self.sa_g)))
         return out if np.ndim(annual_frequency_per_year) else float(out[0])
 
+    def to_xarray(self) -> Any:
+        """The table of :meth:`to_dataframe` as a Dataset (one row per point)."""
+        from .._tables import frame_to_xarray
+
+        return frame_to_xarray(self.to_dataframe(), "point", {"period_s": self.period_s})
+
     def to_dataframe(self) -> Any:
         import pandas as pd
 

@@ -425,8 +425,8 @@ def run_plan(
         )
         analyses[kind.name] = analysis
         dims = analysis.design_dims
-        for index in np.ndindex(*(analysis.dataset.sizes[d] for d in dims)):
-            at = {d: float(analysis.dataset[d].values[i]) for d, i in zip(dims, index)}
+        for index in np.ndindex(*(analysis.data.sizes[d] for d in dims)):
+            at = {d: float(analysis.data[d].values[i]) for d, i in zip(dims, index)}
             key = tuple(at.items()) if len(plan.kinds) == 1 else (("bumper", kind.name), *at.items())
             try:
                 fragilities[key] = analysis.fragility("contact", at=at, n_bootstrap=500)

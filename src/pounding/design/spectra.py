@@ -137,6 +137,12 @@ class DesignSpectrum:
         ]
         return np.unique(np.concatenate([np.linspace(0.0, top, 401), corners]))
 
+    def to_xarray(self) -> Any:
+        """The spectrum of :meth:`to_dataframe` as a Dataset on ``period_s``."""
+        from .._tables import frame_to_xarray
+
+        return frame_to_xarray(self.to_dataframe(), "row", index="period_s")
+
     def to_dataframe(self, periods_s: Any = None) -> Any:
         """``period_s`` and ``sa_g``, at ``periods_s`` or :meth:`default_periods`."""
         import pandas as pd

@@ -30,7 +30,7 @@ class StripeAnalysis:
 
     Attributes
     ----------
-    dataset : xarray.Dataset
+    data : xarray.Dataset
         The study's store: dims ``sa_g`` (the stripes, g), ``record`` and the design grid's
         (e.g. ``bumpers.gap``); per run ``acc_max_g``, ``disp_max_m``, ``impacts``,
         ``impact_force_max_n``, ``impact_speed_max_m_s``, ``compression_max_m``, ``status``;
@@ -61,7 +61,7 @@ class StripeAnalysis:
     0.5           1.0   0.0
     """
 
-    dataset: Any
+    data: Any
     period_s: float
     damping_ratio: float
     has_bumpers: bool
@@ -70,23 +70,23 @@ class StripeAnalysis:
     @property
     def design_dims(self) -> tuple[str, ...]:
         """The design grid's dimensions (all but ``sa_g`` and ``record``)."""
-        return tuple(d for d in self.dataset["done"].dims if d not in RESERVED)
+        return tuple(d for d in self.data["done"].dims if d not in RESERVED)
 
     def unit(self, dim: str) -> str:
         """The unit of a design dimension (``"m"`` for ``bumpers.gap``), as the store records it."""
         from ..model.dotted import unit_of
 
-        recorded = self.dataset[dim].attrs.get("units") if dim in self.dataset.coords else None
+        recorded = self.data[dim].attrs.get("units") if dim in self.data.coords else None
         return recorded if recorded and recorded != "1" else unit_of(dim)
 
     @property
     def levels_g(self) -> np.ndarray:
         """The stripes' intensities (g)."""
-        return np.asarray(self.dataset["sa_g"].values, dtype=float)
+        return np.asarray(self.data["sa_g"].values, dtype=float)
 
     def outcomes(self, event: str = "contact", limit: float | None = None) -> Any:
         """1.0 where a run had the event, 0.0 where not, NaN where the run is not done or ended
-        early (its status not SUCCESS): dims those of :attr:`dataset`.
+        early (its status not SUCCESS): dims those of :attr:`data`.
 
         Parameters
         ----------
@@ -99,7 +99,7 @@ class StripeAnalysis:
         -------
         xarray.DataArray
         """
-        ds = self.dataset
+        ds = self.data
         event = one_of("event", event, tuple(EVENTS))
         if event == "contact" and limit is None:
             if not self.has_bumpers:
@@ -135,8 +135,8 @@ class StripeAnalysis:
         return hit.astype(float).where(valid)
 
     def finished(self) -> Any:
-        """True where a run is done and ended with SUCCESS (dims those of :attr:`dataset`)."""
-        ds = self.dataset
+        """True where a run is done and ended with SUCCESS (dims those of :attr:`data`)."""
+        ds = self.data
         return (ds["done"] == 1) & (ds["status"] == float(Status.SUCCESS))
 
     def counts(self, event: str = "contact", limit: float | None = None) -> tuple[Any, Any]:
@@ -279,14 +279,18 @@ class StripeAnalysis:
         return xr.DataArray(
             out,
             dims=dims,
-            coords={d: self.dataset[d].values for d in dims},
+            coords={d: self.data[d].values for d in dims},
             name=f"{event}_probability",
             attrs={"sa_g": x},
         )
 
+    def to_xarray(self) -> Any:
+        """The runs (:attr:`data`, loaded)."""
+        return self.data.load()
+
     def to_dataframe(self) -> Any:
         """One row per run: the stripe, the record, the design point and the run's quantities."""
-        return self.dataset.drop_vars(["session"], errors="ignore").to_dataframe().reset_index()
+        return self.data.drop_vars(["session"], errors="ignore").to_dataframe().reset_index()
 
     def plot(self, event: str = "contact", limit: float | None = None, *, ax: Any = None) -> list:
         """The fraction of runs with the event per stripe (markers) and the fitted curves, one per
@@ -296,7 +300,7 @@ class StripeAnalysis:
         return plot_stripes(self, event, limit, ax=ax)
 
     def __repr__(self) -> str:
-        ds = self.dataset
+        ds = self.data
         grid = ", ".join(f"{d} {ds.sizes[d]}" for d in self.design_dims)
         done = f"{int(ds['done'].sum())} of {ds['done'].size} runs done"
         return (
@@ -321,11 +325,11 @@ class StripeAnalysis:
                 Problem.MISSING_INPUT,
                 "at",
                 at,
-                what=f"a value for {missing[0]} (one of {self.dataset[missing[0]].values.tolist()})",
+                what=f"a value for {missing[0]} (one of {self.data[missing[0]].values.tolist()})",
             )
         out = {}
         for d, v in at.items():
-            values = np.asarray(self.dataset[d].values, dtype=float)
+            values = np.asarray(self.data[d].values, dtype=float)
             hit = np.flatnonzero(np.isclose(values, float(v), rtol=1e-12, atol=0.0))
             if hit.size == 0:
                 raise InputError(

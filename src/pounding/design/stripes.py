@@ -123,7 +123,7 @@ def stripe_analysis(
     >>> msa = design.stripe_analysis(pounding.presets.paper_damped(), "el-centro",
     ...                              [0.2, 0.5], period_s=1.0, store="one.zarr",
     ...                              progress=False)
-    >>> msa.dataset["impacts"].values.ravel().tolist()
+    >>> msa.data["impacts"].values.ravel().tolist()
     [7.0, 27.0]
     """
     if not isinstance(system, Oscillator):

@@ -87,6 +87,12 @@ class ScaledSuite:
         mean = self.mean_psa_g().sel(period_s=slice(lo, hi))
         return float((mean / self.target.sa_g(mean["period_s"].values)).min())
 
+    def to_xarray(self) -> Any:
+        """The table of :meth:`to_dataframe` as a Dataset along ``record``."""
+        from .._tables import frame_to_xarray
+
+        return frame_to_xarray(self.to_dataframe(), "record")
+
     def to_dataframe(self) -> Any:
         """One row per record: ``record``, ``scale_factor``, ``pga_g`` (scaled), ``psa_g`` at the
         rule's periods' ends."""

@@ -290,6 +290,8 @@ class EnergyLedger:
 
 HISTORY_COLUMNS = ("t", "displacement", "velocity", "abs_acceleration", "isolator_force",
                    "bumper_force_left", "bumper_force_right")
+HISTORY_UNIT_OF = {"t_s": "s", "displacement_m": "m", "velocity_m_s": "m/s", "abs_acceleration_m_s2": "m/s^2",
+                   "isolator_force_n": "N", "bumper_force_left_n": "N", "bumper_force_right_n": "N"}
 HISTORY_UNITS = {"t": "t_s", "displacement": "displacement_m", "velocity": "velocity_m_s",
                  "abs_acceleration": "abs_acceleration_m_s2", "isolator_force": "isolator_force_n",
                  "bumper_force_left": "bumper_force_left_n", "bumper_force_right": "bumper_force_right_n"}
@@ -421,6 +423,18 @@ class Run:
     def excursion_m(self) -> float:
         """``E = D_max - D_min`` over the run, m."""
         return self.displacement_max - self.displacement_min
+
+    def to_xarray(self) -> Any:
+        """The sampled histories as a Dataset along ``sample`` (``t_s`` a variable: an event's sample may
+        share its time with the one before it), each variable's unit in its ``units``; ``status`` and
+        ``message`` as attributes."""
+        from .._tables import frame_to_xarray
+
+        ds = frame_to_xarray(self.to_dataframe(units=True), "sample",
+                             {"status": self.status.name, "message": self.message})
+        for name in ds.data_vars:
+            ds[name].attrs["units"] = HISTORY_UNIT_OF.get(name, "")
+        return ds
 
     def to_dataframe(self, units: bool = False) -> pd.DataFrame:
         """The sampled histories, one row per sample, columns as the attributes (SI units).

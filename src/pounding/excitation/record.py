@@ -273,6 +273,12 @@ class Record:
         """Table acceleration (m/s^2) at times ``t`` (s)."""
         return np.interp(np.asarray(t, dtype=float), self.t, self.accel, left=0.0, right=0.0)
 
+    def to_xarray(self) -> Any:
+        """The samples of :meth:`to_dataframe` as a Dataset along ``sample``."""
+        from .._tables import frame_to_xarray
+
+        return frame_to_xarray(self.to_dataframe(), "sample", {"name": self.name})
+
     def to_dataframe(self) -> pd.DataFrame:
         """``time_s``, ``accel_m_s2``, ``accel_g``: one row per sample."""
         return pd.DataFrame({"time_s": self.t, "accel_m_s2": self.accel, "accel_g": self.accel / self.g})

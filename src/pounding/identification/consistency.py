@@ -109,7 +109,7 @@ def check_consistency(targets: Targets, mass_kg: float, gap_total_m: float | Non
                        "give it in Hz (the paper's 1.0)")
     omega_min_rad_s = at_most("omega_min_rad_s", positive("omega_min_rad_s", omega_min_rad_s, "rad/s"), 1e5,
                               " rad/s", "give it in rad/s (the paper's 2 pi 0.6 = 3.77)")
-    table = targets.table.assign(allowed=targets.allowed)
+    table = targets.data.assign(allowed=targets.allowed)
     rows: list[dict] = []
     for (conf, a_g, direction), case in table.groupby(["configuration", "a_g", "direction"], sort=True):
         q = {r.quantity: (float(r.value), float(r.allowed)) for r in case.itertuples(index=False)}

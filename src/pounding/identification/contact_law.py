@@ -82,6 +82,12 @@ class ContactLawFit:
                              got=v.size, expected=d.size, other="compression_m")
         return _force(self.law, d, v)
 
+    def to_xarray(self) -> Any:
+        """The table of :meth:`to_dataframe` as a Dataset along ``sample``."""
+        from .._tables import frame_to_xarray
+
+        return frame_to_xarray(self.to_dataframe(), "sample")
+
     def to_dataframe(self) -> pd.DataFrame:
         """One row per fitted sample: compression, rate, measured and fitted force, residual."""
         model = _force(self.law, self.compression_m, self.velocity_m_s)

@@ -123,6 +123,12 @@ class Identification:
         """How many targets are met."""
         return int(self.residuals["within"].sum())
 
+    def to_xarray(self) -> Any:
+        """The residual table of :meth:`to_dataframe` as a Dataset along ``target``."""
+        from .._tables import frame_to_xarray
+
+        return frame_to_xarray(self.to_dataframe(), "target", {"message": self.message})
+
     def to_dataframe(self) -> pd.DataFrame:
         """The residual table (a copy of :attr:`residuals`)."""
         return self.residuals.copy()
@@ -459,7 +465,7 @@ def _model_values(oscillator: Oscillator, targets: Targets, freqs_hz: Any, optio
 
 
 def _model_column(targets: Targets, model: dict | None) -> np.ndarray:
-    t = targets.table
+    t = targets.data
     if model is None:
         return np.full(len(t), np.nan)
     delta = targets.eta_gap_total_m  # eta measured over the rig's nominal gap: the model's excursion over it
@@ -471,13 +477,13 @@ def _model_column(targets: Targets, model: dict | None) -> np.ndarray:
 
 
 def _normalized(targets: Targets, model: dict | None) -> np.ndarray:
-    r = (_model_column(targets, model) - targets.table["value"].to_numpy()) / targets.allowed
-    r = r * targets.table["weight"].to_numpy()
+    r = (_model_column(targets, model) - targets.data["value"].to_numpy()) / targets.allowed
+    r = r * targets.data["weight"].to_numpy()
     return np.where(np.isfinite(r), r, MISSING_RESIDUAL)
 
 
 def _residual_table(targets: Targets, model: dict) -> pd.DataFrame:
-    t = targets.table
+    t = targets.data
     values = _model_column(targets, model)
     out = t[["configuration", "a_g", "direction", "quantity"]].copy()
     out["target"] = t["value"]

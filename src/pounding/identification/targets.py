@@ -73,7 +73,7 @@ class Targets:
 
     Attributes
     ----------
-    table : pandas.DataFrame
+    data : pandas.DataFrame
         Columns ``configuration`` ("NBs"/"YBs"), ``a_g`` (g), ``direction`` ("up"/"down"),
         ``quantity`` (a name of ``DEFAULT_TOLERANCES``), ``value``, ``tolerance``,
         ``relative`` (bool) and ``weight`` (multiplies the residual, default 1).
@@ -103,7 +103,7 @@ class Targets:
     [1.68, 4.5]
     """
 
-    table: pd.DataFrame
+    data: pd.DataFrame
     eta_gap_total_m: float | None = None
 
     def __post_init__(self) -> None:
@@ -111,24 +111,30 @@ class Targets:
             object.__setattr__(self, "eta_gap_total_m", gap_total("eta_gap_total_m", self.eta_gap_total_m))
 
     def __len__(self) -> int:
-        return len(self.table)
+        return len(self.data)
 
     @property
     def cases(self) -> list[tuple[str, float, str]]:
         """The sweeps the targets need: ``(configuration, a_g, direction)``, sorted."""
-        keys = {(c, float(a), d) for c, a, d in self.table[["configuration", "a_g",
+        keys = {(c, float(a), d) for c, a, d in self.data[["configuration", "a_g",
                                                             "direction"]].itertuples(index=False)}
         return sorted(keys)
 
     @property
     def allowed(self) -> np.ndarray:
         """The allowed difference of each target, in the quantity's unit, shape (n,)."""
-        t = self.table
+        t = self.data
         return np.where(t["relative"], t["tolerance"] * t["value"].abs(), t["tolerance"]).astype(float)
+
+    def to_xarray(self) -> Any:
+        """The targets as a Dataset along ``target``."""
+        from .._tables import frame_to_xarray
+
+        return frame_to_xarray(self.to_dataframe(), "target")
 
     def to_dataframe(self) -> pd.DataFrame:
         """A copy of :attr:`table`."""
-        return self.table.copy()
+        return self.data.copy()
 
     @classmethod
     def from_lab(cls, sweep: Any, configuration: str, a_g: float | None = None) -> Targets:
@@ -157,7 +163,7 @@ class Targets:
         >>> rec = pounding.lab.synthetic_test(pounding.presets.paper_damped(), 0.05,
         ...                                   [1.5, 2.0], cycles=10)
         >>> sweep = pounding.lab.analyse_stepped_sine(rec, mass_kg=500.0)
-        >>> pounding.Targets.from_lab(sweep, "NBs").table["quantity"].tolist()
+        >>> pounding.Targets.from_lab(sweep, "NBs").data["quantity"].tolist()
         ['nu_r', 'alpha', 'e']
         """
         return cls.from_records(sweep.target_records(configuration, a_g), eta_gap_total_m=sweep.gap_total_m)
@@ -274,7 +280,7 @@ class Targets:
         import tomli_w
 
         recs = []
-        for row in self.table.itertuples(index=False):
+        for row in self.data.itertuples(index=False):
             recs.append({"configuration": row.configuration, "a_g": float(row.a_g),
                          "direction": row.direction, "quantity": row.quantity, "value": float(row.value),
                          "tolerance": float(row.tolerance),
@@ -316,7 +322,7 @@ def paper_targets(direction: str = "up", quantities: tuple[str, ...] = PAPER_QUA
     >>> len(targets), targets.eta_gap_total_m
     (36, 0.03)
     >>> # Table 2's alpha: NBs, then YBs
-    >>> alphas = pounding.paper_targets(quantities=("alpha",)).table
+    >>> alphas = pounding.paper_targets(quantities=("alpha",)).data
     >>> alphas["value"].tolist()
     [1.8, 2.99, 3.89, 1.96, 16.8, 16.18, 15.04]
     """

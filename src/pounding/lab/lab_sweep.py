@@ -62,6 +62,12 @@ class LabSweep:
     f_ref_hz: float
     impacts: pd.DataFrame = field(default_factory=pd.DataFrame, repr=False)
 
+    def to_xarray(self) -> Any:
+        """The table of :meth:`to_dataframe` as a Dataset along ``step``."""
+        from .._tables import frame_to_xarray
+
+        return frame_to_xarray(self.to_dataframe(), "step")
+
     def to_dataframe(self) -> pd.DataFrame:
         """A copy of :attr:`steps`."""
         return self.steps.copy()

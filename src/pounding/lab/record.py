@@ -149,6 +149,12 @@ class LabRecord:
         """The mean of the accelerometers (as the paper averages its two), shape (n,)."""
         return self.mass_acc_m_s2.mean(axis=1)
 
+    def to_xarray(self) -> Any:
+        """The channels of :meth:`to_dataframe` as a Dataset along ``sample``."""
+        from .._tables import frame_to_xarray
+
+        return frame_to_xarray(self.to_dataframe(), "sample")
+
     def to_dataframe(self) -> pd.DataFrame:
         """One row per sample: ``time_s``, ``table_acc_m_s2``, the accelerometers (by name, m/s^2)
         and ``displacement_m``."""

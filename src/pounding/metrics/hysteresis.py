@@ -69,6 +69,12 @@ class HysteresisLoop:
                    freq_hz=freq_hz, a_g=a_g, total_gap_m=total_gap_m, cycles=cycles,
                    bumper_surfaces_d=surfaces)
 
+    def to_xarray(self) -> Any:
+        """The loop of :meth:`to_dataframe` as a Dataset along ``sample``."""
+        from .._tables import frame_to_xarray
+
+        return frame_to_xarray(self.to_dataframe(), "sample")
+
     def to_dataframe(self) -> pd.DataFrame:
         """Columns ``t`` (s), ``d`` and ``r`` (dimensionless)."""
         return pd.DataFrame({"t": self.t, "d": self.d, "r": self.r})

@@ -104,7 +104,7 @@ def plot_basin_stability(result: Any, ax: Any = None, *, curves: Any = None, **k
 
     if ax is None:
         ax = plt.figure(figsize=(6.5, 4.5), constrained_layout=True).add_subplot()
-    ds = result.dataset
+    ds = result.data
     mesh = ax.pcolormesh(ds["freq_hz"].values, ds["a_g"].values, ds["pounding_probability"].values,
                          shading="nearest", cmap="viridis", vmin=0.0, vmax=1.0, **kwargs)
     bar = ax.figure.colorbar(mesh, ax=ax, label="probability of pounding")

@@ -302,11 +302,11 @@ def plot_stripes(analysis: Any, event: str = "contact", limit: float | None = No
     artists = []
     for i in range(frac.sizes[first] if first else 1):
         sel = {**fixed, **({first: i} if first else {})}
-        value = float(analysis.dataset[first].values[i]) if first else None
+        value = float(analysis.data[first].values[i]) if first else None
         label = f"{first} = {value:g} {analysis.unit(first)}".rstrip(" -") if first else event
         (pts,) = ax.plot(x, frac.isel(sel).values, "o", ms=4, label=label)
         artists.append(pts)
-        at = {d: float(analysis.dataset[d].values[j]) for d, j in sel.items()}
+        at = {d: float(analysis.data[d].values[j]) for d, j in sel.items()}
         try:
             curve = analysis.fragility(event, limit, at=at, n_bootstrap=0)
         except InputError:  # (all or nothing at every stripe, or separated: no curve to draw)
@@ -421,7 +421,7 @@ def plot_responses(analysis: Any, quantity: str = "acc_max_g", ax: Any = None) -
 
     from .._errors import InputError, Problem
 
-    ds = analysis.dataset
+    ds = analysis.data
     names = ("acc_max_g", "disp_max_m", "impacts", "impact_force_max_n", "impact_speed_max_m_s",
              "compression_max_m")
     if quantity not in names or quantity not in ds:

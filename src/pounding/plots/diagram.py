@@ -58,7 +58,7 @@ def plot_bifurcation_diagram(diagram: Any, ax: Any = None, *, branches: Any = No
                             "velocity": ("strobe_velocity_m_s", 1.0, "V at table phase 0, m/s")}[y]
     if ax is None:
         ax = plt.figure(figsize=(7, 4), constrained_layout=True).add_subplot()
-    ds = diagram.dataset
+    ds = diagram.data
     style = dict(ms=3, alpha=0.8, linestyle="none") | kwargs
     artists: list = []
     for d in ds["direction"].values.tolist():

@@ -25,7 +25,7 @@ def plot_pounding_spectrum(spectrum: Any, ax: Any = None, *, kind: str = "curves
         "curves": the median over the records against the period, one line per gap, the 16-84 %
         band shaded (one record: its curves); "map": the median over period (x) and gap (y).
     quantity : str
-        A variable of ``spectrum.dataset`` with the gap dimension (``amplification``, ``acc_max_g``,
+        A variable of ``spectrum.data`` with the gap dimension (``amplification``, ``acc_max_g``,
         ``disp_max_m``, ``impacts``, ``impact_force_max_n``, ``impact_speed_max_m_s``, ``disp_ratio``).
 
     Returns
@@ -50,7 +50,7 @@ def plot_pounding_spectrum(spectrum: Any, ax: Any = None, *, kind: str = "curves
     from .._errors import InputError, Problem
 
     kind = one_of("kind", kind, KINDS)
-    ds = spectrum.dataset
+    ds = spectrum.data
     if quantity not in ds or "gap_m" not in ds[quantity].dims:
         choices = ", ".join(v for v in ds.data_vars if "gap_m" in ds[v].dims and v != "status")
         raise InputError(Problem.NOT_IN_RESULT, "quantity", quantity, choices=choices)

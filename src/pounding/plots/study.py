@@ -18,7 +18,7 @@ def plot_study(result: Any, quantity: str, *, x: str | None = None, hue: str | N
     result : StudyResult
         From :func:`pounding.open_study`.
     quantity : str
-        One of the study's quantities (``result.dataset`` variables but ``done`` and ``session``).
+        One of the study's quantities (``result.data`` variables but ``done`` and ``session``).
     x : str, optional
         The grid axis along the horizontal (default: the first one longer than 1).
     hue : str, optional
@@ -53,7 +53,7 @@ def plot_study(result: Any, quantity: str, *, x: str | None = None, hue: str | N
 
     from .._errors import InputError, Problem
 
-    ds = result.dataset
+    ds = result.data
     quantities = [v for v in ds.data_vars if v not in ("done", "session")]
     if quantity not in quantities:
         raise InputError(Problem.NOT_IN_RESULT, "quantity", quantity, choices=", ".join(quantities))

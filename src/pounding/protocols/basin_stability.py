@@ -9,6 +9,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+import pandas as pd
 
 from .._checks import float_array, integer, positive
 from .._errors import InputError, Interrupted, Problem
@@ -62,7 +63,7 @@ def basin_stability_map(oscillator: Oscillator, a_g_levels: Any, freqs_hz: Any, 
     Returns
     -------
     BasinStabilityMap
-        ``dataset`` over (a_g, freq_hz): ``pounding_probability``, ``standard_error``,
+        ``data`` over (a_g, freq_hz): ``pounding_probability``, ``standard_error``,
         ``not_settled`` (the share of states that did not settle) and ``impacting_attractors`` /
         ``free_attractors`` (how many responses of each kind were found); ``.plot(curves=...)``.
 
@@ -78,7 +79,7 @@ def basin_stability_map(oscillator: Oscillator, a_g_levels: Any, freqs_hz: Any, 
     >>> import pounding
     >>> osc = pounding.presets.paper_damped()
     >>> m = pounding.basin_stability_map(osc, [0.05], [1.5, 1.8, 2.6], samples=40)
-    >>> m.dataset["pounding_probability"].values.round(2).tolist()
+    >>> m.data["pounding_probability"].values.round(2).tolist()
     [[1.0, 0.5, 0.0]]
     """
     check_oscillator(oscillator)
@@ -137,7 +138,7 @@ class BasinStabilityMap:
     Attributes
     ----------
     oscillator : Oscillator
-    dataset : xarray.Dataset
+    data : xarray.Dataset
         Over ``a_g`` and ``freq_hz``: ``pounding_probability`` (the share of the states whose
         response touches the bumpers over its last cycles, settled or not: a chaotic impacting
         response pounds too), ``standard_error`` (its sampling error),
@@ -150,17 +151,23 @@ class BasinStabilityMap:
     >>> import pounding
     >>> osc = pounding.presets.paper_damped()
     >>> m = pounding.basin_stability_map(osc, [0.05], [1.8, 2.6], samples=20)
-    >>> m.dataset["impacting_attractors"].values.tolist()  # at 1.8 and 2.6 Hz
+    >>> m.data["impacting_attractors"].values.tolist()  # at 1.8 and 2.6 Hz
     [[1, 0]]
     """
 
     oscillator: Oscillator
-    dataset: "xr.Dataset"
+    data: "xr.Dataset"
     complete: bool
 
+    def to_dataframe(self) -> pd.DataFrame:
+        """One row per test point (a_g, freq_hz) with its variables."""
+        from .._tables import xarray_to_frame
+
+        return xarray_to_frame(self.data)
+
     def to_xarray(self) -> "xr.Dataset":
-        """The labelled data (``dataset``)."""
-        return self.dataset
+        """The labelled data (``data``)."""
+        return self.data
 
     def plot(self, ax: Any = None, *, curves: Any = None, **kwargs: Any) -> list:
         """The probability of pounding over frequency and a_G; ``curves`` (a

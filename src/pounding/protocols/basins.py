@@ -234,6 +234,13 @@ class Basins:
         ran = self.labels != NOT_RUN
         return float(np.sum(self.labels == NOT_SETTLED) / max(int(ran.sum()), 1))
 
+    def to_dataframe(self) -> pd.DataFrame:
+        """One row per initial state: ``displacement_m``, ``velocity_m_s``, ``label`` (its row of
+        :attr:`attractors`; -1 not settled, -2 not run) and ``cycles_run``."""
+        return pd.DataFrame({"displacement_m": np.ravel(self.displacement_m),
+                             "velocity_m_s": np.ravel(self.velocity_m_s), "label": np.ravel(self.labels),
+                             "cycles_run": np.ravel(self.cycles_run)})
+
     def to_xarray(self) -> "xr.Dataset":
         """Labels and cycles per initial state (a grid: dimensions ``displacement_m`` and
         ``velocity_m_s``; random states: ``state``), the attractors as variables over ``attractor``."""

@@ -180,7 +180,7 @@ class BifurcationDiagram:
         The system.
     a_g : float
         Peak table acceleration, g.
-    dataset : xarray.Dataset
+    data : xarray.Dataset
         Dimensions ``direction`` ("up", "down"), ``freq_hz`` (increasing) and ``cycle``
         (the recorded cycles): ``strobe_displacement_m`` and ``strobe_velocity_m_s``
         (direction, freq_hz, cycle); ``period`` (0: not periodic, -1: not run), ``alpha``,
@@ -211,7 +211,7 @@ class BifurcationDiagram:
 
     oscillator: Oscillator
     a_g: float
-    dataset: "xr.Dataset"
+    data: "xr.Dataset"
     sweeps: tuple
     status: Status
     message: str
@@ -222,8 +222,8 @@ class BifurcationDiagram:
         return self.status == Status.SUCCESS
 
     def to_xarray(self) -> "xr.Dataset":
-        """The labelled data (``dataset``)."""
-        return self.dataset
+        """The labelled data (``data``)."""
+        return self.data
 
     def to_dataframe(self, cycles: bool = True) -> pd.DataFrame:
         """A long table: one row per direction, frequency and recorded cycle (``cycles`` True:
@@ -231,7 +231,7 @@ class BifurcationDiagram:
         (``cycles`` False), with ``period``, ``alpha``, ``excursion_m``, ``contacts_per_cycle`` (and
         ``largest_exponent``, 1/s, once :func:`pounding.largest_exponents` added it); steps not run
         left out."""
-        ds = self.dataset
+        ds = self.data
         extra = ["largest_exponent"] if "largest_exponent" in ds else []  # (pounding.largest_exponents)
         steps = ds[["period", *STEP_QUANTITIES, *extra]].to_dataframe().reset_index()
         steps = steps[steps["period"] >= 0].reset_index(drop=True)
@@ -246,7 +246,7 @@ class BifurcationDiagram:
         """Write the dataset to a netCDF file (atomically); returns its path."""
         from .._io import atomic_write, output_file
 
-        return atomic_write(output_file("path", path), self.dataset.to_netcdf)
+        return atomic_write(output_file("path", path), self.data.to_netcdf)
 
     def plot(self, ax: Any = None, *, branches: Any = None, y: str = "displacement", **kwargs: Any) -> list:
         """The diagram: the section's ``y`` ("displacement", mm, or "velocity", m/s) against the
@@ -257,9 +257,9 @@ class BifurcationDiagram:
         return plot_bifurcation_diagram(self, ax=ax, branches=branches, y=y, **kwargs)
 
     def __repr__(self) -> str:
-        n = self.dataset.sizes
+        n = self.data.sizes
         return (f"BifurcationDiagram(a_G {self.a_g:g}, {n['freq_hz']} frequencies x "
-                f"{', '.join(self.dataset['direction'].values.tolist())}, {n['cycle']} cycles recorded; "
+                f"{', '.join(self.data['direction'].values.tolist())}, {n['cycle']} cycles recorded; "
                 f"{self.status.name}: {self.message})")
 
 

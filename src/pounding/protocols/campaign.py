@@ -73,7 +73,7 @@ class CampaignResult:
 
     Attributes
     ----------
-    dataset : xarray.Dataset
+    data : xarray.Dataset
         Every step's metrics on dims ``(configuration, a_g, direction, freq_hz)``; NaN
         (and ``ran`` False) where a sweep is not part of the matrix or did not finish.
     sweeps : dict
@@ -94,7 +94,7 @@ class CampaignResult:
     ...                         steady="fixed", cycles=10)
     >>> res.complete, list(res.sweeps)
     (True, [('NBs', 0.05, 'up'), ('YBs', 0.05, 'up')])
-    >>> print(res.dataset["alpha"].sel(a_g=0.05,
+    >>> print(res.data["alpha"].sel(a_g=0.05,
     ...                                direction="up").round(2).to_pandas())
     freq_hz         1.5   2.0   2.5
     configuration
@@ -110,7 +110,7 @@ class CampaignResult:
     'campaign.nc'
     """
 
-    dataset: "xr.Dataset" = field(repr=False)
+    data: "xr.Dataset" = field(repr=False)
     sweeps: dict = field(repr=False)
     complete: bool
 
@@ -127,11 +127,22 @@ class CampaignResult:
         """The sweeps with at least one finished step (all of them unless interrupted)."""
         return [(key, sw) for key, sw in self.sweeps.items() if sw.steps_done > 0]
 
+    def to_xarray(self) -> "xr.Dataset":
+        """The campaign's steps (:attr:`data`): dims configuration, a_g, direction, freq_hz."""
+        return self.data
+
+    def to_dataframe(self) -> pd.DataFrame:
+        """One row per step that ran: configuration, a_g, direction, freq_hz, nu and the metrics."""
+        from .._tables import xarray_to_frame
+
+        df = xarray_to_frame(self.data)
+        return df[df["ran"]].drop(columns="ran").reset_index(drop=True)
+
     def to_netcdf(self, path: str | Path) -> Path:
-        """Save :attr:`dataset` to netCDF (read back with ``xarray.open_dataset``)."""
+        """Save :attr:`data` to netCDF (read back with ``xarray.open_dataset``)."""
         from .._io import atomic_write, output_file
 
-        return atomic_write(output_file("path", path), self.dataset.to_netcdf)
+        return atomic_write(output_file("path", path), self.data.to_netcdf)
 
     def table2(self) -> pd.DataFrame:
         """Analogue of the paper's Table 2: maximum alpha and excursion, resonance, contact range.
@@ -227,7 +238,7 @@ def campaign(
     Returns
     -------
     CampaignResult
-        ``.dataset`` (dims configuration, a_g, direction, freq_hz; saves to netCDF),
+        ``.data`` (dims configuration, a_g, direction, freq_hz; saves to netCDF),
         ``.sweeps``, ``.table2()``, ``.table3()``, ``.table4()``.
 
     Raises
@@ -246,7 +257,7 @@ def campaign(
     ...                         ybs_a_g=[0.05],
     ...                         freqs_hz=[1.5, 2.0, 2.5], directions=["up"],
     ...                         steady="fixed", cycles=10)
-    >>> dict(res.dataset.sizes)
+    >>> dict(res.data.sizes)
     {'configuration': 2, 'a_g': 1, 'direction': 1, 'freq_hz': 3}
     >>> table2 = res.table2()[["configuration", "nu_r", "alpha", "excursion_max_m"]]
     >>> print(table2.round(3).to_string(index=False))

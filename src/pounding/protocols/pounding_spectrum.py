@@ -131,7 +131,7 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
     Returns
     -------
     PoundingSpectrum
-        ``.dataset`` (dims ``record``, ``period_s``, ``gap_m``), ``.summary()`` (median and 16/84 %
+        ``.data`` (dims ``record``, ``period_s``, ``gap_m``), ``.summary()`` (median and 16/84 %
         over the records), ``.to_dataframe()``, ``.plot()``, ``.to_netcdf()``.
 
     Raises
@@ -147,13 +147,13 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
     >>> quake = pounding.records.el_centro().scaled(pga_g=0.3)
     >>> ps = pounding.pounding_spectrum([quake], [1.0, 2.0], gaps_m=[0.02, 0.05],
     ...                                 damping_ratio=0.05)
-    >>> print(ps.dataset["impacts"].isel(record=0).to_pandas())
+    >>> print(ps.data["impacts"].isel(record=0).to_pandas())
     gap_m     0.02  0.05
     period_s
     1.0       36.0   9.0
     2.0       60.0  22.0
     >>> # no bumpers, m
-    >>> print(ps.dataset["disp_max_free_m"].isel(record=0).round(3).to_pandas())
+    >>> print(ps.data["disp_max_free_m"].isel(record=0).round(3).to_pandas())
     period_s
     1.0    0.106
     2.0    0.129

@@ -30,7 +30,7 @@ class PoundingSpectrum:
 
     Attributes
     ----------
-    dataset : xarray.Dataset
+    data : xarray.Dataset
         Dims ``(record, period_s, gap_m)``: ``acc_max_g`` (peak absolute acceleration, g),
         ``disp_max_m`` (peak ``|D|``), ``impacts`` (number of contacts), ``impact_force_max_n``,
         ``impact_speed_max_m_s`` (the fastest approach), ``status`` (the run's, 0 for success), and
@@ -45,7 +45,7 @@ class PoundingSpectrum:
     >>> import pounding
     >>> quake = pounding.records.el_centro().scaled(pga_g=0.3)
     >>> ps = pounding.pounding_spectrum([quake], [1.0, 2.0], gaps_m=[0.02, 0.05])
-    >>> dict(ps.dataset.sizes)
+    >>> dict(ps.data.sizes)
     {'record': 1, 'period_s': 2, 'gap_m': 2}
     >>> # with bumpers / without
     >>> median = ps.summary()["amplification"].sel(percentile=50.0)
@@ -58,7 +58,7 @@ class PoundingSpectrum:
     (4, 20)
     """
 
-    dataset: "xr.Dataset"
+    data: "xr.Dataset"
 
     @classmethod
     def build(cls, recs: list["Record"], periods: np.ndarray, gaps: np.ndarray, free: np.ndarray,
@@ -89,7 +89,7 @@ class PoundingSpectrum:
     def summary(self) -> "xr.Dataset":
         """The 16th, 50th (median) and 84th percentiles over the records (dim ``percentile``) of every
         quantity; runs that did not finish, or ended early (``status`` not 0), are left out."""
-        full = self.dataset
+        full = self.data
         hit_ok, free_ok = full["status"] == 0, full["status_free"] == 0
         ds = full.drop_vars(["status", "status_free"])
         for name in ds.data_vars:
@@ -103,17 +103,17 @@ class PoundingSpectrum:
 
     def to_dataframe(self) -> pd.DataFrame:
         """One row per record, period and gap, every quantity a column (the free-run ones repeated)."""
-        return self.dataset.to_dataframe().reset_index()
+        return self.data.to_dataframe().reset_index()
 
     def to_xarray(self) -> "xr.Dataset":
         """The spectrum as an ``xarray.Dataset`` (dims ``record``, ``period_s``, ``gap_m``)."""
-        return self.dataset
+        return self.data
 
     def to_netcdf(self, path: str | Path) -> Path:
-        """Save :attr:`dataset` (netCDF; ``xarray.open_dataset`` reads it back), written atomically."""
+        """Save :attr:`data` (netCDF; ``xarray.open_dataset`` reads it back), written atomically."""
         from .._io import atomic_write, output_file
 
-        return atomic_write(output_file("path", path), self.dataset.to_netcdf)
+        return atomic_write(output_file("path", path), self.data.to_netcdf)
 
     def plot(self, ax: Any = None, *, kind: str = "curves", quantity: str = "amplification") -> list:
         """``kind="curves"``: the median over the records against the period, one curve per gap, the 16-84 %

@@ -26,7 +26,7 @@ def coexistence_of(result: "CampaignResult", ybs_system: "Oscillator", basin_sam
     why not."""
     from ..analysis import coexistence_map
 
-    ds = result.dataset
+    ds = result.data
     levels = sorted({float(a) for (conf, a, _d) in result.sweeps if conf == "YBs"})
     freqs = np.asarray(ds.freq_hz, dtype=float)
     if not levels or freqs.size < 2:

@@ -79,3 +79,4 @@ def inconsistency_notes() -> pd.DataFrame:
     """The measured values that carry a note (inconsistent or unclear in the paper), for the report."""
     df = paper_measurements()
     return df[df["note"] != ""][["source", "configuration", "a_g", "quantity", "value", "note"]]
+

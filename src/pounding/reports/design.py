@@ -138,7 +138,7 @@ def figures(outcome: Any, folder: Path) -> dict[str, tuple[Path, str]]:
     out["What pounding costs"] = (
         _save(fig, folder / "cost.png"),
         f"median over the records at the stripe nearest the MCE level "
-        f"({decision.table['stripe_g'].iloc[0]:g} g) against the gap, one line per "
+        f"({decision.data['stripe_g'].iloc[0]:g} g) against the gap, one line per "
         "value of the other design numbers; the last panel: the median over the runs that pounded (the "
         "bumper options told apart where few runs pound)",
     )
@@ -173,11 +173,11 @@ def _cost(decision: Any, axes: Any) -> None:
 
 def _statuses(name: str, analysis: Any) -> dict:
     """How many runs of one analysis are done, finished, or stopped early."""
-    status = analysis.dataset["status"].where(analysis.dataset["done"] == 1)
+    status = analysis.data["status"].where(analysis.data["done"] == 1)
     return {
         "bumper type": name,
-        "runs": int(analysis.dataset["done"].size),
-        "done": int(analysis.dataset["done"].sum()),
+        "runs": int(analysis.data["done"].size),
+        "done": int(analysis.data["done"].sum()),
         "finished (SUCCESS)": int((status == 0.0).sum()),
         "stopped early": int(((status != 0.0) & status.notnull()).sum()),
     }

@@ -48,7 +48,7 @@ def steps(result: "CampaignResult") -> pd.DataFrame:
     """Every finished step, long form, with ``e_gap`` = E / Delta for both configurations and
     ``eta`` = E / Delta for YBs, over the rig's nominal Delta (``paper_gap_total_m``, what the
     measured eta is over), whatever the model's own gap."""
-    df = result.dataset.to_dataframe().reset_index()
+    df = result.data.to_dataframe().reset_index()
     df = df[df["ran"]].copy()
     df["e_gap"] = df["excursion_m"] / paper_gap_total_m()
     df["eta"] = df["e_gap"].where(df["configuration"] == "YBs")

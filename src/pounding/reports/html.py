@@ -206,11 +206,12 @@ def figure_html(name: str, png: Path, caption: str) -> str:
 def write_page(path: Path, *, title: str, system_label: str, systems: dict[str, str], settings: dict,
                tables: dict[str, pd.DataFrame], figures: dict[str, tuple[Path, str]],
                notes: pd.DataFrame, statuses: pd.DataFrame, verdict: Any = None,
-               story: list[str] | None = None) -> Path:
+               story: list[str] | None = None, table_notes: dict[str, list[str]] | None = None) -> Path:
     """Write ``index.html``: every image embedded, so the page opens from disk, offline.
 
     ``verdict`` (a :class:`~pounding.reports.verdict.Verdict`) opens the page; ``story`` (HTML
-    parts: the exact metrics against the measured ones) follows it."""
+    parts: the exact metrics against the measured ones) follows it; ``table_notes`` are shown under
+    the table of their name."""
     e = html.escape
     parts = [f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{e(title)}</title>",
              f"<style>{CSS}</style></head><body>", f"<h1>{e(title)}</h1>",
@@ -225,6 +226,7 @@ def write_page(path: Path, *, title: str, system_label: str, systems: dict[str, 
               "<h2>Campaign</h2>", table_html(pd.DataFrame([settings])), table_html(statuses)]
     for name, df in tables.items():
         parts += [f"<h2>{e(name)}</h2>", table_html(df)]
+        parts += [f"<p class='tnote'>{e(n)}</p>" for n in (table_notes or {}).get(name, ())]
     parts.append("<h2>Figures</h2>")
     for name, (png, caption) in figures.items():
         parts.append(figure_html(name, png, caption))
@@ -239,3 +241,28 @@ def write_page(path: Path, *, title: str, system_label: str, systems: dict[str, 
     parts += [table_html(notes), "</body></html>"]
     write_text(path, "\n".join(parts))
     return path
+
+
+NOT_A_TARGET_PCT = 25.0  # a quantity that is no calibration target gets a note when it differs by more (%)
+
+
+def untargeted_notes(table: pd.DataFrame, targets: pd.DataFrame) -> list[str]:
+    """Notes for a comparison table (:func:`comparison`): each quantity that differs from the
+    measurement by more than ``NOT_A_TARGET_PCT`` % somewhere although it is no calibration target of
+    ``targets`` (``Targets.to_dataframe()``: its configurations and quantities), so that a reader
+    does not take its difference for a miss of the fit (the verdict judges the targets only)."""
+    targeted = set(zip(targets["configuration"], targets["quantity"]))
+    notes = []
+    for col in [c for c in table.columns if c.endswith("_diff_pct")]:
+        q = col[: -len("_diff_pct")]
+        rows = table[table[col].notna()]
+        rows = rows[[(c, q) not in targeted for c in rows["configuration"]]]
+        if not len(rows) or rows[col].abs().max() <= NOT_A_TARGET_PCT:
+            continue
+        worst = rows.loc[rows[col].abs().idxmax()]
+        confs = " and ".join(sorted(set(rows["configuration"])))
+        notes.append(f"{QUANTITY_WORDS.get(q, q)} is not a calibration target ({confs}): the fit does not "
+                     "try to meet it, and the verdict does not count it; its differences reach "
+                     f"{worst[col]:+.0f} % ({worst['configuration']}, a_G {worst['a_g']:g}, "
+                     f"{worst['direction']}).")
+    return notes

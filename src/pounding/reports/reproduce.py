@@ -19,7 +19,7 @@ from .._runner.progress import Progress, announce, progress_reporter
 from .branches import add_branches, coexistence_of, continuation_statuses, fig_coexistence
 from .compare import comparison, inconsistency_notes
 from .figures import fig05_measured, paper_figures
-from .html import table_html, write_page
+from .html import table_html, untargeted_notes, write_page
 from .measured_story import MeasuredStory, measured_story, story_html
 from .verdict import Verdict, verdict
 
@@ -219,7 +219,7 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
         if story is not None:
             made["fig05_measured"] = fig05_measured(story.campaign, story.chain.describe())
         if cmap is not None:
-            add_branches(made["fig05"], cmap, float(result.dataset.attrs["f_ref_hz"]))
+            add_branches(made["fig05"], cmap, float(result.data.attrs["f_ref_hz"]))
             made["coexistence"] = fig_coexistence(cmap)
         with progress_reporter(progress, len(made), "figures") as advance:
             for name, fig in made.items():
@@ -228,12 +228,13 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
                 atomic_write(figures[name], lambda tmp, fig=fig: fig.savefig(tmp, dpi=110))
                 plt.close(fig)
                 advance(1)
-    ds = result.dataset
+    ds = result.data
     settings = {k: ds.attrs[k] for k in ("steady_mode", "cycles", "measure_cycles", "f_ref_hz",
                                          "omega_min_rad_s")}
     settings.update({"frequencies [Hz]": f"{float(ds.freq_hz.min()):g} to {float(ds.freq_hz.max()):g} "
                                          f"({ds.freq_hz.size} steps)",
                      "pounding": __version__, "written": _dt.datetime.now().isoformat(timespec="seconds")})
+    targets = paper_targets().to_dataframe()
     statuses = pd.DataFrame([_sweep_status(key, sw) for key, sw in result.sweeps.items()])
     statuses = pd.concat([statuses, continuation_statuses(cmap, why_not)], ignore_index=True)
     systems = {k.removeprefix("system_"): v for k, v in ds.attrs.items() if k.startswith("system_")}
@@ -241,6 +242,8 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
         out / "index.html", title="pounding: the paper's tables and figures, model beside measurement",
         system_label=system_label, systems=systems, settings=settings,
         tables={_title(t): df for t, df in comparisons.items()},
+        table_notes={_title(t): untargeted_notes(df, targets) for t, df in comparisons.items()
+                     if t != "targets"},
         figures={name: (path, captions[name]) for name, path in figures.items()},
         notes=inconsistency_notes(), statuses=statuses, verdict=judged,
         story=None if story is None else story_html(judged, story, system_label, table_html))

@@ -21,7 +21,7 @@ class StudyResult:
 
     Attributes
     ----------
-    dataset : xarray.Dataset
+    data : xarray.Dataset
         Lazily read (Dask arrays): dims the grid's axes; the quantities, ``done``, ``session``.
     spec : StudySpec
         The study that made the store.
@@ -48,23 +48,27 @@ class StudyResult:
                  0.02 0.05      0.533
     """
 
-    dataset: "xr.Dataset" = field(repr=False)
+    data: "xr.Dataset" = field(repr=False)
     spec: StudySpec = field(repr=False)
 
     @property
     def done(self) -> int:
         """Points computed."""
-        return int(self.dataset["done"].sum())
+        return int(self.data["done"].sum())
 
     @property
     def complete(self) -> bool:
         """True when every point of the grid is done."""
         return self.done == self.spec.size
 
+    def to_xarray(self) -> "xr.Dataset":
+        """The study's store (:attr:`data`, read lazily)."""
+        return self.data
+
     def to_dataframe(self, only_done: bool = True) -> "pd.DataFrame":
         """One row per point: the grid's values, then the quantities (the points done only, unless
         ``only_done`` is False)."""
-        df = self.dataset.drop_vars("session").to_dataframe().reset_index()
+        df = self.data.drop_vars("session").to_dataframe().reset_index()
         if only_done:
             df = df[df["done"]].reset_index(drop=True)
         return df.drop(columns="done")
@@ -90,7 +94,7 @@ def open_study(store: str | Path) -> StudyResult:
     Returns
     -------
     StudyResult
-        ``.dataset`` (read lazily), ``.spec`` (the study that made it), ``.done`` and
+        ``.data`` (read lazily), ``.spec`` (the study that made it), ``.done`` and
         ``.complete``, ``.to_dataframe()`` and ``.plot()``.  Works on a study still running or
         interrupted: the points not done are NaN, with ``done`` False.
 
@@ -105,7 +109,7 @@ def open_study(store: str | Path) -> StudyResult:
     >>> res = pounding.open_study("sweeps.zarr")
     >>> res.spec.kind, res.done, res.complete
     ('sweep', 2, True)
-    >>> print(res.dataset["alpha"].round(2).to_pandas())  # max alpha of each sweep
+    >>> print(res.data["alpha"].round(2).to_pandas())  # max alpha of each sweep
     a_g
     0.03    3.55
     0.05    8.39
