@@ -33,7 +33,6 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=3)
     args = parser.parse_args()
     print(f"machine: {platform.processor() or platform.machine()}, Python {platform.python_version()}")
-    pd_.warm_up()
     cases = [("paper_damped", pd_.presets.paper_damped(), (1.0, 3.0)),
              ("paper_calibrated (YBs)", pd_.presets.paper_calibrated(), (0.5, 5.0))]
     for name, osc, (f0, f1) in cases:

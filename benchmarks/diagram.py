@@ -38,7 +38,6 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=3)
     args = parser.parse_args()
     print(f"machine: {platform.processor() or platform.machine()}, Python {platform.python_version()}")
-    pd_.warm_up()
     osc = pd_.presets.paper_damped()
     freqs = np.round(np.arange(0.5, 5.0 + 1e-9, 0.01), 2)
     pd_.bifurcation_diagram(osc, 0.05, freqs[:10], transient_cycles=10, record_cycles=10)  # (warm)

@@ -73,13 +73,11 @@ def main() -> None:
     n_gap, n_ag = (4, 5) if args.quick else (12, 20)
     sp = spec(n_gap, n_ag, 2600.0)
     if args.first_study:  # (a fresh interpreter, for _first_study)
-        pd_.warm_up()
         print(run_study(sp, args.folder, f"first{args.first_study}", workers=args.first_study,
                         scheduler="processes"))
         return
     from distributed import Client, LocalCluster
 
-    pd_.warm_up()
     folder = Path(tempfile.mkdtemp(prefix="pounding-study-bench-"))
     lines = [BEGIN, f"## `python benchmarks/study.py` ({date.today()})", "", f"Machine: {machine()}.", ""]
 
@@ -119,8 +117,8 @@ def main() -> None:
         with LocalCluster(n_workers=n, threads_per_worker=1, processes=True,
                           dashboard_address=None) as cluster, \
                 Client(cluster) as client:
-            # (each worker loads the compiled kernels once, as a long-lived cluster has)
-            client.run(pd_.warm_up)
+            # (each worker imports pounding once, as a long-lived cluster has)
+            client.run(lambda: __import__("pounding").simulate)
             t = min(run_study(sp, folder, f"dask{n}", scheduler=client) for _ in range(2))
         if n == 1:
             t1 = t

@@ -131,12 +131,6 @@ html_static_path: list[str] = []
 html_show_sourcelink = False
 
 
-def _compile_first(app) -> None:
-    """Compile (or load from Numba's cache) every kernel before the gallery runs, so that the gallery's
-    timings are the examples' and not the compiler's."""
-    pounding.warm_up()
-
-
 def _gallery_under_the_limit(app, exception) -> None:
     """Each gallery example must run in under GALLERY_LIMIT_S: a slower one is a warning (an error
     with -W)."""
@@ -155,5 +149,4 @@ def _gallery_under_the_limit(app, exception) -> None:
 
 
 def setup(app) -> None:
-    app.connect("builder-inited", _compile_first, priority=100)
     app.connect("build-finished", _gallery_under_the_limit)

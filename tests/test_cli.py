@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
 import pandas as pd
@@ -86,24 +85,7 @@ def test_campaign_writes_dataset_tables_and_figure(tmp_path):
     assert bad.exit_code == 2 and "--preset" in bad.output
 
 
-def test_warm_up_says_what_it_compiled_or_loaded_and_where():
+def test_warm_up_is_a_no_op_that_says_so():
     result = runner.invoke(app, ["warm-up"])
-    assert result.exit_code == 0, result.output
-    # (the line before it, on stderr, says what it is doing)
-    first = next(line for line in result.output.splitlines() if line.endswith(" s)"))
-    # in this process some kernels may have run already, others not
-    counts = re.findall(r"(\d) kernels? (?:compiled and cached|loaded from Numba's cache|already in memory)",
-                        first)
-    assert sum(int(n) for n in counts) == 6 and first.endswith(" s)"), first
-    assert "cache:" in result.output
-
-
-def test_warm_up_message_counts_each_kind():
-    from pounding import WarmUp
-
-    w = WarmUp(seconds=14.23, compiled=("run_kernel", "step_kernel"), loaded=("impact_row",),
-               in_memory=(), cache_dirs=("/c",))
-    assert w.message == "2 kernels compiled and cached, 1 kernel loaded from Numba's cache (14.2 s)"
-    both = WarmUp(seconds=49.6, compiled=("run_kernel",), loaded=(), in_memory=(), cache_dirs=("/c",),
-                  workers=2)
-    assert both.message == "1 kernel compiled and cached (in 2 processes at once, 49.6 s)"
+    assert result.exit_code == 0 and "nothing to compile" in result.output, result.output
+    assert "warm-up" not in runner.invoke(app, ["--help"]).output  # (kept for scripts, not offered)

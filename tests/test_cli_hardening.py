@@ -188,11 +188,6 @@ def _interrupt(args: list[str], tmp_path: Path, ready: str, after: int = 1,
     return subprocess.CompletedProcess(args, proc.returncode, "".join(out), "".join(err))
 
 
-@pytest.fixture(scope="module", autouse=True)
-def _compiled():
-    pd_.warm_up()  # so that the subprocesses below load the engine instead of compiling it
-
-
 def test_two_ctrl_c_in_a_campaign_keep_the_finished_steps_readable(tmp_path):
     # 20000 cycles a step: the first steps (0.5 Hz, 40000 s) take about half a second, the
     # whole campaign (6.4e6 simulated s) about a minute on two cores; at 3000 cycles a faster

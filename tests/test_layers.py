@@ -14,7 +14,7 @@ ROOT = Path(pounding.__file__).resolve().parent
 
 # lowest first: each line may import from itself and the lines above it
 LAYERS = [
-    ("_errors", "_checks", "_io", "_jit", "_control", "_delimited", "_units", "_tables", "data"),
+    ("_errors", "_checks", "_io", "_core", "_control", "_delimited", "_units", "_tables", "data"),
     ("model",),
     ("presets",),
     ("excitation", "records"),
@@ -29,7 +29,7 @@ LAYERS = [
     ("design",),
     ("reports",),
     ("plots",),
-    ("_warm_up", "_worker_boot", "cli", "__init__"),
+    ("_worker_boot", "cli", "__init__"),
 ]
 RANK = {unit: i for i, units in enumerate(LAYERS) for unit in units}
 EXEMPT = {"plots"}
@@ -164,3 +164,27 @@ def test_no_module_imports_one_that_imports_it_back():
     assert cycles(module_graph()) == []
     # (and the check sees one: two modules importing each other, one of them in a function)
     assert cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
+
+
+def importers_of_the_compiled_core(root: Path) -> list[str]:
+    """Every module that imports the compiled module (``_pounding_core``) other than its door,
+    ``pounding/_core.py``, as ``file:line``."""
+    bad = []
+    for path in sorted(root.rglob("*.py")):
+        rel = str(path.relative_to(root))
+        for node in ast.walk(ast.parse(path.read_text())):
+            names = []
+            if isinstance(node, ast.ImportFrom):
+                names = [node.module or "", *(a.name for a in node.names)]
+            elif isinstance(node, ast.Import):
+                names = [a.name for a in node.names]
+            if rel != "_core.py" and any("_pounding_core" in n for n in names):
+                bad.append(f"{rel}:{node.lineno}")
+    return bad
+
+
+def test_only_the_door_imports_the_compiled_core(tmp_path):
+    assert importers_of_the_compiled_core(ROOT) == []
+    (tmp_path / "analysis").mkdir()
+    (tmp_path / "analysis" / "planted.py").write_text("def f():\n    from .. import _pounding_core\n")
+    assert importers_of_the_compiled_core(tmp_path) == ["analysis/planted.py:2"]

@@ -111,7 +111,7 @@ def test_every_readme_block_runs_in_order_from_a_fresh_copy(tmp_path):
                            capture_output=True, text=True, check=True).stdout.strip()
     core = _core_site(tmp_path / "core-site")
     (Path(inner) / "_this_environment.pth").write_text(f"{core}\n", encoding="utf-8")
-    env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CACHE_DIR", "PYTHONPATH", "VIRTUAL_ENV")}
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
     env.update(PATH=f"{venv / 'bin'}{os.pathsep}{env.get('PATH', '')}", VIRTUAL_ENV=str(venv),
                MPLBACKEND="Agg", COLUMNS="100")  # (no screen here: figures are drawn, not shown)
     python = str(venv / "bin" / "python")

@@ -2,16 +2,10 @@
 
 import math
 
-import numba
 import pytest
 from scipy.optimize import brentq
 
-from pounding.engine._trajectory import _root_guess
-
-
-@numba.njit
-def root_guess(fa, fb, sa, sb):
-    return _root_guess(fa, fb, sa, sb)  # (compiled-only functions have no Python wrapper)
+from pounding._core import root_guess
 
 
 FUNCTIONS = {  # f, f': smooth, monotone and curved (f'' != 0) about their root in (0, 4)
@@ -48,11 +42,7 @@ def test_without_usable_slopes_the_guess_is_the_secants_root():
 
 
 def test_a_stationary_value_at_the_root_follows_from_the_last_evaluation():
-    from pounding.engine._trajectory import value_at_root
-
-    @numba.njit
-    def at_root(root, x, value, f, fp):
-        return value_at_root(root, x, value, f, fp)
+    from pounding._core import value_at_root as at_root
 
     # sin(t + 0.3) is stationary at t = pi/2 - 0.3; Newton last evaluated its rate 1e-4 s away
     root = 0.5 * math.pi - 0.3

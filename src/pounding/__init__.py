@@ -19,7 +19,6 @@ _NAMES = {
                   "largest_exponents", "lyapunov", "periodic_orbit"),
     "._errors": ("InputError", "Interrupted", "MissingExtra", "OutputError", "PoundingWarning", "Problem",
                  "Status", "StoreError"),
-    "._warm_up": ("WarmUp", "warm_up"),
     ".engine": ("EnergyLedger", "Run", "State", "simulate"),
     ".excitation": ("Harmonic", "Record"),
     ".excitation.spectrum": ("response_spectrum",),
@@ -60,7 +59,6 @@ if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
     from . import data, lab, plots, presets, records  # noqa: F401
     from ._errors import (InputError, Interrupted, MissingExtra, OutputError, PoundingWarning,  # noqa: F401
                           Problem, Status, StoreError)
-    from ._warm_up import WarmUp, warm_up  # noqa: F401
     from .analysis import (Bifurcation, BifurcationCurve, Branch, CoexistenceMap, LyapunovSpectrum,  # noqa: F401
                            PeriodicOrbit, bifurcation_curve, coexistence_map, continuation, largest_exponents,
                            lyapunov, periodic_orbit)

@@ -357,7 +357,6 @@ class Status(enum.IntEnum):
     SUCCESS = 0
     ZENO = -1
     MAX_EVENTS = -2
-    DEGENERATE_PHASE = -3
     STEP_FAILED = -4
     INTERRUPTED = -5
     BUDGET = -6
@@ -382,10 +381,6 @@ _STATUS_MESSAGES = {
     Status.MAX_EVENTS: (
         "Stopped early: the run reached max_events. Raise max_events or shorten the duration; "
         "what was computed up to the stop is kept."
-    ),
-    Status.DEGENERATE_PHASE: (
-        "Stopped early: a phase of motion is an undamped linear oscillator forced exactly at its "
-        "natural frequency (no bounded closed form). Add a little damping or detune the forcing."
     ),
     Status.STEP_FAILED: (
         "Stopped early: the integrator for a nonlinear contact law could not meet the tolerance "

@@ -19,20 +19,18 @@ read it.
 
 from __future__ import annotations
 
-import math
 from typing import NamedTuple
 
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from .._jit import jit_alloc, jit_entry
-from ..engine._layout import (ACT_CONTACT, ACT_REGION, ACT_RELEASE, ACT_REVERSAL, ACT_YIELD, DEF_L, DEF_R,
-                              IN_L, IN_R, REGION, SIDE_L, STATE_BASE)
+from .. import _core
+from ..engine._layout import (ACT_CONTACT, ACT_REGION, ACT_RELEASE, ACT_REVERSAL,  # noqa: F401  (the
+                              ACT_YIELD, DEF_L, DEF_R, IN_L, IN_R, REGION, STATE_BASE)  # events' codes, here)
 from ..engine._layout import D as I_D
 from ..engine._layout import V as I_V
 from ..model import Oscillator
 from ..model.contact_laws import linear_form
-from ._expm import expm_small, matmul, matvec
 
 I_DL, I_DR = 2, 3  # the compressions' places in x
 FIRST_SLIP = 4
@@ -134,236 +132,9 @@ def monodromy(h: Hybrid, vec0: np.ndarray, events: np.ndarray, t_end: float, ome
     if iso_arr.size == 0:
         iso_arr = np.zeros(1)
     rows = np.ascontiguousarray(events, dtype=float).reshape(-1, 3)
-    jac, x_end, bad = monodromy_kernel(h, coordinates(h, vec0), in_l, in_r, iso_arr, rows, float(vec0[0]),
-                                       float(t_end), (float(omega), float(amp), float(phase)))
+    jac, x_end, bad = _core.monodromy(h, coordinates(h, vec0), in_l, in_r, iso_arr, rows, float(vec0[0]),
+                                      float(t_end), float(omega), float(amp), float(phase))
     if bad >= 0:
         row = events[bad]
         raise NoExactMonodromy(f"event {int(row[1])} at t = {row[0]} is tangent (a grazing)")
     return jac, x_end
-
-
-# The compiled propagation (``monodromy_kernel`` and its parts).  A mode is ``(in_l, in_r, iso)``:
-# ``iso`` the slip directions of a kinematic isolator's springs, or ``iso[0]`` the elastic rule's
-# backbone branch.
-
-
-@jit_alloc
-def _augmented(h, in_l, in_r, iso, omega, amp):
-    """``Ã_m``, shape (n + 3, n + 3): ``x`` then ``sin(theta)``, ``cos(theta)``, 1.
-
-    ``amp`` is the table's peak acceleration (m/s^2), ``omega`` its circular frequency (rad/s).
-    """
-    n_sp = h.slopes.size - 1 if h.kinematic else 0
-    n = FIRST_SLIP + n_sp
-    a = np.zeros((n + 3, n + 3))
-    s_, c_, one = n, n + 1, n + 2
-    m = h.mass
-    a[0, 1] = 1.0
-    # the mass: -(c_d V + isolator + right bumper - left bumper) / M - A(t)
-    a[1, 1] -= h.c_d / m
-    if h.kinematic:
-        a[1, 0] -= h.slopes[n_sp] / m
-        for i in range(n_sp):
-            dk = h.slopes[i] - h.slopes[i + 1]
-            s = iso[i]
-            if s == 0.0:
-                a[1, 0] -= dk / m
-                a[1, FIRST_SLIP + i] += dk / m
-            else:
-                a[1, one] -= s * dk * h.breaks[i] / m
-                a[FIRST_SLIP + i, 1] = 1.0  # a slipping spring moves with the mass
-    else:
-        r = int(iso[0])
-        j = abs(r)
-        k = h.slopes[j]
-        a[1, 0] -= k / m
-        if j > 0:
-            f_break = h.slopes[0] * h.breaks[0]
-            dot = 0.0
-            for i in range(1, j):
-                dot += h.slopes[i] * (h.breaks[i] - h.breaks[i - 1])
-            f_break += dot
-            a[1, one] -= (1.0 if r > 0 else -1.0) * (f_break - k * h.breaks[j - 1]) / m
-    for side in range(2):
-        touching = in_l if side == 0 else in_r
-        row = I_DL if side == 0 else I_DR
-        sign = -1.0 if side == 0 else 1.0
-        kb, cb, gap = h.stiffness[side], h.damping[side], h.gaps[side]
-        if touching:
-            # depth sign D - gap, force kb depth + cb depth', pushing the mass by -sign
-            a[1, 0] -= kb / m
-            a[1, 1] -= cb / m
-            a[1, one] += sign * kb * gap / m
-            a[row, 1] = sign  # the compression follows the mass
-        elif cb > 0.0:
-            a[row, row] = -kb / cb  # relaxing
-    a[1, s_] = -amp
-    a[s_, c_] = omega
-    a[c_, s_] = -omega
-    return a
-
-
-@jit_alloc
-def _guard_gradient(h, action, index, n):
-    """``grad g`` in ``x`` of the event (the guard as the engine's event function)."""
-    g = np.zeros(n)
-    sign = -1.0 if index == SIDE_L else 1.0
-    if action == ACT_CONTACT:
-        g[0] = sign
-        if h.damping[index] > 0.0:
-            g[I_DL if index == SIDE_L else I_DR] = -1.0  # the surface is where the relaxing bumper is
-    elif action == ACT_RELEASE:  # the force reaches zero
-        g[0] = sign * h.stiffness[index]
-        g[1] = sign * h.damping[index]
-    elif action == ACT_YIELD:
-        g[0] = 1.0
-        g[FIRST_SLIP + index] = -1.0
-    elif action == ACT_REVERSAL:
-        g[1] = 1.0
-    elif action == ACT_REGION:
-        g[0] = 1.0
-    return g
-
-
-@jit_alloc
-def _next_mode(action, index, in_l, in_r, iso, x, acc):
-    """The mode after the event (as the engine's transitions: ``_kernel``, ``_isolator``); ``acc``
-    the acceleration before it, which says where a branch change at rest goes."""
-    new = iso.copy()
-    if action == ACT_CONTACT or action == ACT_RELEASE:
-        now = action == ACT_CONTACT
-        if index == SIDE_L:
-            in_l = now
-        else:
-            in_r = now
-    elif action == ACT_YIELD:
-        new[index] = 1.0 if x[0] - x[FIRST_SLIP + index] > 0.0 else -1.0
-    elif action == ACT_REVERSAL:
-        for i in range(new.size):
-            new[i] = 0.0
-    elif action == ACT_REGION:
-        heading = x[1] if x[1] != 0.0 else acc
-        new[0] += 1.0 if heading > 0.0 else -1.0
-    return in_l, in_r, new
-
-
-@jit_alloc
-def _after_event(h, action, index, x):
-    """The state's jump at the event: at a contact's start the compression is the depth (equal
-    but for rounding); a yielding spring's slip is where its strain is the breakpoint."""
-    if action == ACT_CONTACT:
-        depth = (-x[0] if index == SIDE_L else x[0]) - h.gaps[index]
-        x[I_DL if index == SIDE_L else I_DR] = max(0.0, depth)
-    elif action == ACT_YIELD:
-        strain = x[0] - x[FIRST_SLIP + index]
-        sign = 1.0 if strain > 0.0 else -1.0 if strain < 0.0 else 0.0
-        x[FIRST_SLIP + index] = x[0] - sign * h.breaks[index]
-
-
-@jit_alloc
-def _exponential(a, tau):
-    """``expm(a tau)``, the states that evolve alone (a relaxing bumper: its row and column hold
-    only the diagonal) by their scalar exponential: their rates (``stiffness / damping``, up to
-    1e6 1/s) would make the Padé approximant square its way down from a huge norm.  (Loops
-    throughout: Numba's array expressions and index helpers cost seconds of a cold start.)"""
-    size = a.shape[0]
-    rest = np.zeros(size, dtype=np.int64)
-    n_rest = 0
-    for i in range(size):
-        joined = False
-        for j in range(size):
-            if i != j and (a[i, j] != 0.0 or a[j, i] != 0.0):
-                joined = True
-        if joined:
-            rest[n_rest] = i
-            n_rest += 1
-    sub = np.zeros((n_rest, n_rest))
-    for i in range(n_rest):
-        for j in range(n_rest):
-            sub[i, j] = a[rest[i], rest[j]] * tau
-    block = expm_small(sub)
-    out = np.zeros((size, size))
-    for i in range(size):
-        out[i, i] = math.exp(a[i, i] * tau)  # (the states alone; the others' overwritten below)
-    for i in range(n_rest):
-        for j in range(n_rest):
-            out[rest[i], rest[j]] = block[i, j]
-    return out
-
-
-@jit_alloc
-def _identity(n):
-    out = np.zeros((n, n))
-    for i in range(n):
-        out[i, i] = 1.0
-    return out
-
-
-@jit_alloc
-def _head(x, n):
-    """A copy of ``x[:n]``."""
-    out = np.zeros(n)
-    for i in range(n):
-        out[i] = x[i]
-    return out
-
-
-@jit_alloc
-def _top_left(m, n):
-    """A copy of ``m[:n, :n]``."""
-    out = np.zeros((n, n))
-    for i in range(n):
-        for j in range(n):
-            out[i, j] = m[i, j]
-    return out
-
-
-@jit_entry
-def monodromy_kernel(h, x0, in_l, in_r, iso, events, t0, t_end, forcing):
-    """:func:`monodromy`'s propagation: ``(jac (n, n), x at t_end (n,), the row of a tangent event
-    or -1)``.  ``forcing`` is ``(omega rad/s, peak m/s^2, phase rad)``."""
-    omega, amp, phase = forcing
-    n = x0.size
-    t = t0
-    xa = np.zeros(n + 3)
-    for i in range(n):
-        xa[i] = x0[i]
-    xa[n] = math.sin(omega * t + phase)
-    xa[n + 1] = math.cos(omega * t + phase)
-    xa[n + 2] = 1.0
-    jac = _identity(n)
-    a = _augmented(h, in_l, in_r, iso, omega, amp)
-    m_ev = events.shape[0]
-    for e in range(m_ev + 1):
-        t_ev = events[e, 0] if e < m_ev else t_end
-        step = _exponential(a, t_ev - t)
-        xa = matvec(step, xa)
-        jac = matmul(_top_left(step, n), jac)
-        t = t_ev
-        if e == m_ev:
-            break
-        action, index = int(events[e, 1]), int(events[e, 2])
-        x = _head(xa, n)
-        f_before = matvec(a, xa)
-        new_l, new_r, new_iso = _next_mode(action, index, in_l, in_r, iso, x, f_before[1])
-        a_after = _augmented(h, new_l, new_r, new_iso, omega, amp)
-        f_after = matvec(a_after, xa)
-        grad = _guard_gradient(h, action, index, n)
-        rate = 0.0
-        for i in range(n):
-            rate += grad[i] * f_before[i]
-        if rate == 0.0:  # (tangent: no saltation, unless the field does not jump)
-            for i in range(n):
-                if f_after[i] != f_before[i]:
-                    return jac, _head(xa, n), e
-        else:
-            jump = _identity(n)
-            for i in range(n):
-                for j in range(n):
-                    jump[i, j] += (f_after[i] - f_before[i]) * grad[j] / rate
-            jac = matmul(jump, jac)
-        _after_event(h, action, index, x)
-        for i in range(n):
-            xa[i] = x[i]
-        in_l, in_r, iso, a = new_l, new_r, new_iso, a_after
-    return jac, _head(xa, n), -1

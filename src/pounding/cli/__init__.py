@@ -1,6 +1,6 @@
 """The ``pounding`` command: ``simulate``, ``sweep``, ``campaign``, ``reproduce``, ``identify``,
-``lab``, ``spectrum``, ``study``, ``design``, ``continue``, ``coexistence``, ``bifurcation``, ``basins``
-and ``warm-up``.
+``lab``, ``spectrum``, ``study``, ``design``, ``continue``, ``coexistence``, ``bifurcation``, ``basins``,
+``lyapunov`` (and ``warm-up``, hidden: a no-op since the core is compiled at install, kept for scripts).
 
 Every command checks its inputs and its output paths before any work, writes its files
 atomically, answers bad input with exit code 2 and a line naming the field and the fix, a

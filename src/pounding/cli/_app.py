@@ -131,9 +131,10 @@ OPT_NO_BUMPERS = typer.Option(
 MAX_FREQUENCIES = 100_000
 
 
-def command(name: Optional[str] = None) -> Callable:
+def command(name: Optional[str] = None, hidden: bool = False) -> Callable:
     """Register a command whose bad input exits 2 with the InputError's line, and whose Ctrl-C
-    (outside the places that save partial results) exits 130 saying nothing was written."""
+    (outside the places that save partial results) exits 130 saying nothing was written (``hidden``:
+    left out of ``--help``, kept for scripts)."""
 
     def register(fn: Callable) -> Callable:
         @functools.wraps(fn)
@@ -151,7 +152,7 @@ def command(name: Optional[str] = None) -> Callable:
                 except KeyboardInterrupt:
                     interrupted("nothing was written")
 
-        return app.command(name, cls=_Command)(run)
+        return app.command(name, cls=_Command, hidden=hidden)(run)
 
     return register
 
@@ -354,18 +355,6 @@ def working(text: str) -> Iterator[None]:
     else:
         err_console.print(escape(text), soft_wrap=True)
         yield
-
-
-def compile_notice() -> None:
-    """Say so when the engine is about to be compiled (first use after installing), instead of
-    a progress bar standing at 0 for 20 s."""
-    from .._warm_up import kernels_cached
-
-    if not kernels_cached():
-        err_console.print(
-            "compiling the engine, once per installation, about a minute "
-            "('pounding warm-up' does it ahead of time) ..."
-        )
 
 
 def float_list(option: str, text: str) -> list[float]:

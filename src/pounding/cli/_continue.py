@@ -10,7 +10,7 @@ import typer
 
 from .._errors import Interrupted
 from .._io import interrupts_deferred
-from ._app import (ARG_SYSTEM, OPT_A_G, OPT_NO_BUMPERS, OPT_PRESET, command, compile_notice, console,
+from ._app import (ARG_SYSTEM, OPT_A_G, OPT_NO_BUMPERS, OPT_PRESET, command, console,
                    figure_path, files, interrupted, kv_table, save_figure, system, working, write_csv)
 
 CSV = (".csv",)
@@ -41,7 +41,6 @@ def continue_branch(
     paths = files(out=(out, CSV), bifurcations=(bifurcations, CSV))
     plot = figure_path("--plot", plot)
     osc = system(system_file, preset, bumpers=not no_bumpers)
-    compile_notice()
     complete = True
     with working(f"following the branch from {start:g} to {end:g} Hz ..."):
         try:
@@ -149,7 +148,6 @@ def coexistence(
         if not chosen:
             raise typer.BadParameter(f"--levels {levels!r}: give numbers separated by commas, e.g. 0.03,0.05")
     osc = system(system_file, preset, bumpers=not no_bumpers)
-    compile_notice()
     complete = True
     kinds = ("fold", "grazing") if grazings else ("fold",)
     with working(f"branches and {' and '.join(kinds)} curves, a_G {a_g_min:g} to {a_g_max:g} ..."):

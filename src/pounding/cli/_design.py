@@ -9,7 +9,7 @@ import typer
 
 from .._errors import Interrupted
 from .._io import interrupts_deferred
-from ._app import command, compile_notice, console, folder, interrupted
+from ._app import command, console, folder, interrupted
 
 
 @command("design")
@@ -62,7 +62,6 @@ def design(
                   f"{n_design} designs{types} = {per_design * n_design} runs -> {stores}, and {per_design} "
                   f"without bumpers -> {free_store(where)}")
     out.mkdir(parents=True, exist_ok=True)
-    compile_notice()
     try:
         outcome = run_plan(parsed, where, progress=True, resume=not restart)
     except Interrupted as stop:

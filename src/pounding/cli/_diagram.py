@@ -13,7 +13,7 @@ import typer
 from .._errors import Interrupted, Status
 from .._io import atomic_write, interrupts_deferred
 from ._app import (ARG_SYSTEM, OPT_A_G, OPT_FMAX, OPT_FMIN, OPT_FREQ, OPT_NO_BUMPERS, OPT_PRESET,
-                   OPT_SCHEDULER, command, compile_notice, console, err_console, figure_path, files,
+                   OPT_SCHEDULER, command, console, err_console, figure_path, files,
                    frequencies, interrupted, kv_table, save_figure, system, working, write_csv)
 
 CSV = (".csv",)
@@ -52,7 +52,6 @@ def bifurcation(
     freqs = frequencies(fmin, fmax, fstep)
     kwargs = dict(direction=direction, transient_cycles=transient_cycles, record_cycles=record_cycles,
                   max_period=max_period)
-    compile_notice()
     try:
         result = bifurcation_diagram(osc, a_g, freqs, progress=True, **kwargs)
     except Interrupted as stop:
@@ -142,7 +141,6 @@ def basins_command(
     kwargs = dict(displacement_m=d_box, velocity_m_s=(vmin, vmax), max_cycles=max_cycles,
                   scheduler=scheduler, workers=workers, seed=seed)
     kwargs.update(dict(n=random, sampling="random") if random is not None else dict(n=(n, n)))
-    compile_notice()
     try:
         result = basins(osc, Harmonic(a_g, freq), progress=True, **kwargs)
     except Interrupted as stop:
@@ -196,7 +194,6 @@ def lyapunov_command(
     paths = files(out=(out, CSV), netcdf=(netcdf, NETCDF))
     plot = figure_path("--plot", plot)
     osc = system(system_file, preset, bumpers=not no_bumpers)
-    compile_notice()
     try:
         spec = lyapunov(osc, Harmonic(a_g, freq), cycles=cycles, transient_cycles=transient_cycles,
                         align_cycles=align_cycles, method=method, progress=True)

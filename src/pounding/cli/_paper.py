@@ -1,4 +1,4 @@
-"""``pounding reproduce``, ``identify`` and ``warm-up``."""
+"""``pounding reproduce``, ``identify`` and ``warm-up`` (a no-op, kept for scripts)."""
 
 from __future__ import annotations
 
@@ -11,7 +11,6 @@ from rich.markup import escape
 from .._errors import Interrupted
 from .._io import interrupts_deferred
 from ._app import (
-    working,
     OPT_SCHEDULER,
     PRESET_LIST,
     cell,
@@ -24,7 +23,6 @@ from ._app import (
     OPT_WORKERS,
     OPT_YBS,
     command,
-    compile_notice,
     console,
     err_console,
     files,
@@ -83,7 +81,6 @@ def reproduce(
     beside = {"paper-printed": presets.paper_printed()}
     beside[label if (nbs or ybs) else (preset or presets.BEST_PRESET)] = ybs_osc
     freqs = frequencies(fmin, fmax, fstep)
-    compile_notice()
     try:
         report = write_report(
             nbs_osc,
@@ -151,7 +148,6 @@ def identify(
         raise typer.BadParameter("give either TARGETS.toml or --paper (one of them)")
     goal = paper_targets() if paper else Targets.from_toml(targets)
     fam, bounds = ModelFamily.from_toml(family)
-    compile_notice()
     complete = True
     try:
         fit = run_identify(
@@ -195,18 +191,11 @@ def identify(
         interrupted(f"the best of {fit.n_evaluations} evaluations is in {paths['out']}")
 
 
-@command("warm-up")
-def warm_up(
-    workers: Optional[int] = typer.Option(
-        None, "--workers",
-        help="Processes compiling at once (default: 2 where this process may use two CPUs; 1: this one)."),
-) -> None:
-    """Compile the engine now (about a minute once after installing; later sessions load it in a few
-    seconds)."""
-    from .._warm_up import warm_up as run_warm_up
+@command("warm-up", hidden=True)
+def warm_up() -> None:
+    """Nothing to do any more: the engine is compiled when the package is installed (kept so that scripts
+    that call it still run)."""
+    from .._core import __file__ as core_file
 
-    with working("compiling pounding's kernels (once after installing: about a minute) ..."):
-        report = run_warm_up(workers)
-    console.print(escape(report.message))
-    for cache in report.cache_dirs:
-        console.print(f"  cache: {escape(cache)}")
+    console.print("nothing to compile: pounding's core was built when the package was installed "
+                  f"({core_file})")

@@ -31,7 +31,6 @@ from ._app import (
     OPT_WORKERS,
     OPT_YBS,
     command,
-    compile_notice,
     console,
     err_console,
     figure_path,
@@ -92,7 +91,6 @@ def simulate(
     start = State.at_rest(osc, velocity_m_s=velocity)
     wants_history = history is not None or plot is not None
     rate = sample_rate if wants_history else 0.0  # nothing to sample for: the events only
-    compile_notice()
     complete = True
     try:
         with working(f"simulating {duration:g} s of {what} ..."):
@@ -237,7 +235,6 @@ def sweep(
     from ..protocols.sweep import make_plan
 
     make_plan(osc, a_g, freqs, direction, measure_cycles=measure_cycles, **options)  # all checks, no work
-    compile_notice()
     try:
         result = run_sweep(
             osc, a_g, freqs, direction, measure_cycles=measure_cycles, progress=True, **options
@@ -317,7 +314,6 @@ def campaign(
         ybs_osc = Oscillator.from_toml(ybs) if ybs else None
     else:
         raise typer.BadParameter("give --preset NAME, or --nbs and/or --ybs TOML files")
-    compile_notice()
     complete = True
     try:
         result = run_campaign(

@@ -11,7 +11,7 @@ import typer
 from .._errors import Interrupted
 from .._runner import scheduler_kind
 from .._io import interrupts_deferred
-from ._app import (OPT_SCHEDULER, command, compile_notice, console, float_list, folder, interrupted,
+from ._app import (OPT_SCHEDULER, command, console, float_list, folder, interrupted,
                    save_figure, write_csv)
 from ._runs import excitation
 
@@ -82,7 +82,6 @@ def spectrum(
         if scale_pga is not None:
             recs = [r.scaled(pga_g=scale_pga) for r in recs]
     elastic = response_spectrum(recs, periods_s, damping_ratio=damping)
-    compile_notice()
     complete = True
     try:
         result = pounding_spectrum(recs, periods_s, gaps_m=gaps_m, damping_ratio=damping, mass_kg=mass,

@@ -9,7 +9,7 @@ import typer
 
 from .._errors import Interrupted
 from .._io import interrupts_deferred
-from ._app import OPT_SCHEDULER, command, compile_notice, console, interrupted
+from ._app import OPT_SCHEDULER, command, console, interrupted
 
 
 @command("study")
@@ -32,7 +32,6 @@ def study(
     console.print(f"{parsed.size} points "
                   f"({' x '.join(f'{d} {n}' for d, n in zip(parsed.dims, parsed.shape))}), kind "
                   f"{parsed.kind} -> {store}")
-    compile_notice()
     try:
         ds = run_study(parsed, store, scheduler=scheduler, workers=workers, resume=not restart, progress=True)
     except Interrupted as stop:

@@ -17,7 +17,7 @@ from .._control import (DEFAULT_MAX_STEPS, new_control, request_stop, run_interr
 from .._errors import InputError, Problem
 from ..model import Oscillator
 from ..model.contact_laws import linear_form
-from ._kernel import SUBINTERVALS_PER_PERIOD
+SUBINTERVALS_PER_PERIOD = 8.0  # the core's (src/core/run.cpp): sub-intervals per period of the fastest motion
 
 
 def isolator_rate(oscillator: Oscillator) -> tuple[float, str]:

@@ -22,7 +22,7 @@ from ._control import (
     run_interruptibly,
     steps_per_second,
 )
-from ._kernel import run_kernel
+from .. import _core
 from ._system import Forcing, System
 from ._layout import (DEF_L, DEF_R, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT, L_ISOLATOR, L_KINETIC,
                       L_VISCOUS, REGION, STATE_BASE, Z_L, Z_R, ZETA, D, V)
@@ -130,16 +130,19 @@ def _check_state_fits(state: State, oscillator: Oscillator) -> None:
 
 
 def kernel_system(oscillator: Oscillator) -> System:
-    """The oscillator as the kernels' system record (arrays and scalars only, one type each)."""
+    """The oscillator as the core's system: one dof on its isolator, two contact slots (the left bumper,
+    sign -1, and the right one, +1, against the ground)."""
     slopes, breaks, rule, bw = oscillator.isolator.kernel_arrays()
     b = oscillator.bumpers
     left = right = _NO_LAW
     gap_l = gap_r = 0.0
     if b is not None:
         left, right, gap_l, gap_r = b.left, b.right, b.gap_left, b.gap_right
-    return System(float(oscillator.mass), float(oscillator.isolator.damping), slopes, breaks, rule, bw,
-                  b is not None, float(gap_l), float(gap_r), int(left.LAW_ID), left.params(),
-                  int(right.LAW_ID), right.params())
+    contacts = [(0, -1, -1.0, float(gap_l), int(left.LAW_ID), left.params()),
+                (0, -1, 1.0, float(gap_r), int(right.LAW_ID), right.params())]
+    return _core.system([float(oscillator.mass)], np.zeros((1, 1)), np.zeros((1, 1)), (0, -1),
+                        float(oscillator.isolator.damping), slopes, breaks, int(rule), bw, b is not None,
+                        contacts)
 
 
 def kernel_forcing(excitation: Harmonic | Record) -> Forcing:
@@ -343,7 +346,7 @@ def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, sta
         state = check_state(state, oscillator)
     if system is None:
         system = kernel_system(oscillator)
-    st, _, contacts, events, _, extrema, status = run_kernel(
+    st, _, contacts, events, _, extrema, status = _core.run(
         system, kernel_forcing(excitation), np.array(state.vector), state.time_s + duration, 0.0, 1e-10,
         10_000_000, False, new_control(SHORT_RUN_STEPS))
     if status == Status.SUCCESS and not all(map(math.isfinite, extrema.tolist())):
@@ -359,7 +362,7 @@ def _run(oscillator: Oscillator, excitation: Harmonic | Record, duration: float,
         system = kernel_system(oscillator)
     forcing = kernel_forcing(excitation)
     ctl = new_control(max_steps)
-    st, samples, contacts, events, ledger, extrema, status = run_interruptibly(lambda: run_kernel(
+    st, samples, contacts, events, ledger, extrema, status = run_interruptibly(lambda: _core.run(
         system, forcing, state.vector.copy(),
         t0 + duration, 1.0 / rate if rate > 0 else 0.0, rtol, int(max_events), True, ctl), [ctl],
         direct=direct)

@@ -11,7 +11,10 @@ import numpy as np
 
 from .._checks import float_array, real
 from .._errors import InputError, Problem
-from ._spectrum_kernel import DONE, INTERRUPTED, spectrum_kernel
+from .._core import spectrum as spectrum_kernel
+from .._errors import Status
+
+DONE, INTERRUPTED = int(Status.SUCCESS), int(Status.INTERRUPTED)
 
 MAX_INTERVALS = 2_000_000_000  # periods x record intervals: about a minute of one core
 

@@ -18,7 +18,6 @@ from .._units import ACC_UNITS
 from .harmonic import MAX_A_G, MAX_ACCEL_M_S2, MAX_TIME_S, RECORD, GRAVITY_M_S2
 
 UNIFORM_RTOL = 1e-6  # time steps equal within this are a uniform sampling
-HOLD_RTOL = 1e-9  # ... and within this the engine's recurrence takes them as one (engine/_hold.py)
 MIN_STEP_S = 1e-9  # the shortest time step accepted, s (records are sampled at 1 kHz and slower)
 
 
@@ -307,12 +306,6 @@ class Record:
 
     @cached_property
     def _kernel_arrays(self) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
-        # writable copies: a read-only array is another type to Numba, hence another compilation;
-        # the first parameter the step of a uniform record (within HOLD_RTOL; else 0): its quiet
-        # intervals then go by the first-order-hold recurrence (engine/_hold.py)
-        steps = np.diff(self.t)
-        step = float(np.median(steps))
-        held = step if float(np.max(np.abs(steps - step))) <= HOLD_RTOL * step else 0.0
-        return (RECORD, np.array([held, 0.0, 0.0]), np.array(self.t, dtype=float),
+        return (RECORD, np.zeros(3), np.array(self.t, dtype=float),
                 np.array(self.accel, dtype=float))
 

@@ -30,7 +30,7 @@ def response_spectrum(record: Record | Sequence[Record], periods_s: Any, damping
     """Elastic response spectra: the peaks of a linear oscillator's response to each record.
 
     Exact for the record as the engine sees it (linear between samples), peaks between samples
-    included (see :mod:`pounding.excitation._spectrum_kernel`); the oscillator starts at rest at
+    included (the core's spectrum.cpp); the oscillator starts at rest at
     the record's first sample and is followed to its last.
 
     Parameters

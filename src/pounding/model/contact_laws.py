@@ -5,9 +5,9 @@ to the force it pushes with (N).  Bumpers are massless, so out of contact a bump
 by ``force(d, dd) = 0``; in contact ``d`` follows the mass, and contact ends when the force
 would become a pull.  Adding a law means: a frozen dataclass here with a ``LAW_ID``,
 ``params()``, its ``STATE_CHECK`` (what its block of the state may hold, ``_law_states``) and
-``LINEAR`` (whether its force is ``stiffness d + damping dd`` everywhere), a line in :data:`LAWS`,
-and a branch in each compiled ``law_*`` function of :mod:`._law_kernels` (re-exported here).
-Nothing else in the package needs to change.
+``LINEAR`` (whether its force is ``stiffness d + damping dd`` everywhere), a line in :data:`LAWS`;
+and its C++ side in ``src/core/laws.cpp`` (its id in ``laws.hpp``'s ``LawId`` and a branch in each
+``law_*`` function there, the one place the core tests a law's kind).  Nothing else needs to change.
 
 Laws whose force is linear in ``(d, dd)`` on each branch (:class:`KelvinVoigt`,
 :class:`MultilinearBumper`, :class:`ElasticPlastic`) keep every phase of motion a linear ODE,
@@ -26,14 +26,16 @@ import numpy as np
 from .._checks import at_most, backbone, non_negative, positive, real
 from .._errors import InputError, Problem
 from . import _law_states
-from ._law_kernels import (  # noqa: F401  (the compiled side, re-exported: one import for the engine)
-    AT_START, BRANCH_TIE, ELASTIC_PLASTIC, HERTZDAMP, HUNT_CROSSLEY, JANKOWSKI,
-    KELVIN_VOIGT, MAX_BRANCHES, MULTILINEAR, MULTILINEAR_KINEMATIC, N_LAW_PARAMS, N_LAW_STATE,
-    EDGE_DOWN_STATE,
-    EDGE_UP_STATE, law_after_event, law_branch_coefficients, law_branch_edges, law_branch_loss,
-    law_contact_state,
-    law_energy, law_force, law_force_many, law_has_memory, law_is_linear, law_linear_branch, law_relax,
-    law_moved, law_relax_horizon, law_release, law_release_state, law_switches_at_rest, law_turn_sign)
+from .._core import LAW_IDS, LAYOUT
+from .._core import law_force_many  # noqa: F401  (the core's: a law's forces along a path)
+
+# each law's id, as the core's laws (src/core/laws.cpp, the law's C++ side) know it
+KELVIN_VOIGT, HUNT_CROSSLEY, JANKOWSKI, MULTILINEAR, ELASTIC_PLASTIC, HERTZDAMP, MULTILINEAR_KINEMATIC = (
+    LAW_IDS[k] for k in ("kelvin_voigt", "hunt_crossley", "jankowski", "multilinear", "elastic_plastic",
+                         "hertzdamp", "multilinear_kinematic"))
+N_LAW_PARAMS = LAYOUT["N_LAW_PARAMS"]  # a law's parameters as the core reads them
+N_LAW_STATE = LAYOUT["N_LAW_STATE"]    # the numbers of its state in the engine's state vector
+MAX_BRANCHES = 4  # slopes of a multi-linear law (its parameters hold 4 slopes and 3 breakpoints)
 
 MAX_LAW_COEFFICIENT = 1e18  # stiffness or damping beyond any bumper (N/m^n, N s/m^(n+1)): refused
 MAX_EXPONENT = 10.0

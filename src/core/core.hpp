@@ -1,0 +1,194 @@
+// The compiled core of pounding: plain structures in (a system, a forcing, options), arrays out.
+//
+// Everything here is C++17 with no library beyond the standard one; the only door into it from Python is
+// the module pounding._pounding_core (bindings.cpp), which pounding/_core.py wraps.  Validation stays in
+// Python: the core trusts its inputs.
+//
+// A system has n degrees of freedom (masses, displacements relative to the ground, which the table moves),
+// a linear part (springs and dashpots between them), one isolator (a hysteretic spring between a dof and the
+// ground or another dof) and contact slots, each a pair (a dof against the ground or another dof) with a
+// gap and a law.  Elements and contacts are indexed blocks of the state vector; a one-mass system is n = 1.
+//
+// The state vector (doubles), by Layout:
+//   T time s | x + i displacements m | v + i velocities m/s | def + c compressions | in + c in contact (1.0)
+//   region backbone branch (elastic rule) | acc + N_ACC c a contact's running totals
+//   z + N_LAW_STATE c a contact law's state | zeta Bouc-Wen z | base.. slips, then slip directions
+// For n = 1 and two contact slots that is Python's long-standing layout (T 0, D 1, V 2, ..., STATE_BASE 37).
+#pragma once
+
+#include <atomic>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace pounding {
+
+constexpr int N_LAW_PARAMS = 10;
+constexpr int N_LAW_STATE = 7;
+constexpr int N_ACC = 7;
+constexpr int BW_PARAMS = 6;    // Bouc-Wen: force per unit z (k u_y), u_y, a, beta, gamma, n
+constexpr int MAX_BRANCHES = 4; // of a multi-linear contact law
+constexpr int GROUND = -1;      // a pair's second end when it is the ground (the table)
+
+constexpr int T = 0;
+constexpr int A_TSTART = 0, A_VIN = 1, A_DSTART = 2, A_IMPULSE = 3, A_PEAK = 4, A_MAXCOMP = 5, A_WORK = 6;
+
+// where each block of the state vector starts, for n dofs, nc contact slots and n_sp isolator springs
+struct Layout {
+    int n = 1, nc = 2, n_sp = 0;
+    int x = 1, v = 2, def = 3, in = 5, region = 7, acc = 8, z = 22, zeta = 36, base = 37, size = 37;
+    Layout() = default;
+    Layout(int n_dof, int n_contacts, int n_springs) : n(n_dof), nc(n_contacts), n_sp(n_springs) {
+        x = 1;
+        v = x + n;
+        def = v + n;
+        in = def + nc;
+        region = in + nc;
+        acc = region + 1;
+        z = acc + N_ACC * nc;
+        zeta = z + N_LAW_STATE * nc;
+        base = zeta + 1;
+        size = base + 2 * n_sp;
+    }
+    int def_at(int c) const { return def + c; }
+    int in_at(int c) const { return in + c; }
+    int acc_at(int c) const { return acc + N_ACC * c; }
+    int z_at(int c) const { return z + N_LAW_STATE * c; }
+    // the outputs' columns: samples t, x (n), v (n), absolute accelerations (n), isolator force, contact forces
+    int sample_cols() const { return 1 + 3 * n + 1 + nc; }
+    int extrema_len() const { return 7 * n; }
+};
+
+// how a run ended: the codes of pounding.Status
+enum Status : int {
+    SUCCESS = 0, ZENO = -1, MAX_EVENTS = -2, STEP_FAILED = -4, INTERRUPTED = -5, BUDGET = -6, NONFINITE = -7
+    // (-3, DEGENERATE_PHASE, is gone: an undamped resonance is solved as any phase)
+};
+
+// events' actions (their codes in a run's event table)
+enum Action : int {
+    ACT_YIELD = 0, ACT_REVERSAL = 1, ACT_REGION = 2, ACT_CONTACT = 3, ACT_RELEASE = 4, ACT_LAW_BRANCH = 5,
+    ACT_BOUC_WEN = 6
+};
+
+// the run control Python shares with a running kernel (int64): a stop flag, the work done (sub-intervals),
+// its budget, and the trajectory evaluations at an instant (what locating events costs)
+constexpr int CTL_STOP = 0, CTL_WORK = 1, CTL_BUDGET = 2, CTL_EVALS = 3, CTL_LEN = 4;
+
+// outputs' columns
+constexpr int CONTACT_COLS = 9;  // contact, t_start, t_end, v_in, v_out, impulse, peak_force, max_compression, work
+constexpr int EVENT_COLS = 3;    // t, action, index
+enum Ledger : int { L_INPUT = 0, L_VISCOUS, L_HYSTERETIC, L_BUMPER_LOSS, L_KINETIC, L_ISOLATOR, L_BUMPER,
+                    LEDGER_LEN };
+
+constexpr double DBL_MAXV = std::numeric_limits<double>::max();
+constexpr double NaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double INF = std::numeric_limits<double>::infinity();
+constexpr double EPS = 2.220446049250313e-16;
+constexpr double TWO_PI = 6.283185307179586;
+constexpr double MIN_NORMAL = 2.2250738585072014e-308;
+constexpr double EXP_NORMAL_LIMIT = 708.39;  // exp(-x) is below the smallest normal double for larger x
+
+// One contact: a bumper (or a stop) between dof i and dof j (or the ground) behind a gap.  Its compression
+// is sign (x_i - x_j) - gap in contact; it pushes dof i by -sign F and dof j by +sign F.  (A one-mass
+// system's left bumper is sign -1, its right one +1.)
+struct Contact {
+    int i = 0, j = GROUND;
+    double sign = 1.0;
+    double gap = 0.0;
+    int law = 0;
+    double p[N_LAW_PARAMS] = {0};
+};
+
+// The system as the kernels take it (pounding.engine.simulate.kernel_system packs a one-mass system).
+struct System {
+    int n = 1;                    // degrees of freedom
+    std::vector<double> mass;     // kg, n
+    std::vector<double> k0, c0;   // the linear springs and dashpots besides the isolator (N/m, N s/m), n x n
+    // the isolator, between dof iso_i and iso_j (or the ground): a multi-linear backbone (slopes N/m, n_sp + 1;
+    // breaks m, n_sp) with its rule (0 kinematic, 1 elastic), a dashpot c_d and a Bouc-Wen spring (bw[0] 0: none)
+    int iso_i = 0, iso_j = GROUND;
+    double c_d = 0.0;
+    std::vector<double> slopes, breaks;
+    int rule = 0;
+    double bw[BW_PARAMS] = {0};
+    bool has_b = false;           // the contacts are active
+    std::vector<Contact> contact; // the contact slots
+    // derived by finish(): the damping of every phase (c0 and the isolator's dashpot), the layout
+    std::vector<double> c_lin;
+    double total_mass = 0.0;
+    Layout lay;
+
+    int n_springs() const { return static_cast<int>(slopes.size()) - 1; }
+    int state_size() const { return lay.size; }
+    int nc() const { return static_cast<int>(contact.size()); }
+    void finish() {
+        lay = Layout(n, nc(), n_springs());
+        c_lin = c0;
+        if (static_cast<int>(c_lin.size()) != n * n) c_lin.assign(static_cast<size_t>(n * n), 0.0);
+        if (static_cast<int>(k0.size()) != n * n) k0.assign(static_cast<size_t>(n * n), 0.0);
+        add_pair(c_lin, iso_i, iso_j, c_d);
+        total_mass = 0.0;
+        for (double m : mass) total_mass += m;
+    }
+    // a spring (or dashpot) of constant s between dofs i and j (or the ground) into an n x n matrix
+    void add_pair(std::vector<double>& a, int i, int j, double s) const {
+        a[static_cast<size_t>(i * n + i)] += s;
+        if (j >= 0) {
+            a[static_cast<size_t>(j * n + j)] += s;
+            a[static_cast<size_t>(i * n + j)] -= s;
+            a[static_cast<size_t>(j * n + i)] -= s;
+        }
+    }
+};
+
+// a pair's relative value: y[i] - y[j] (y[i] against the ground)
+inline double rel(const double* y, int i, int j) { return j >= 0 ? y[i] - y[j] : y[i]; }
+
+// The excitation: harmonic (p = amplitude m/s^2, omega rad/s, phase rad) or a record (times s and
+// accelerations m/s^2, linear between samples; p unused).  It moves the ground,
+// so every mass feels -m a_g.
+constexpr int EXC_HARMONIC = 0;
+struct Forcing {
+    int kind = EXC_HARMONIC;
+    double p[3] = {0, 0, 0};
+    const double* rec_t = nullptr;
+    const double* rec_a = nullptr;
+    int64_t n_rec = 0;
+};
+
+// the run control Python shares (an int64 array of CTL_LEN): its stop flag polled, the work done added to
+// as it is done (kernels on other threads may share the array), the budget read
+struct Control {
+    int64_t* ctl;
+    std::atomic<int64_t>& at(int i) const { return *reinterpret_cast<std::atomic<int64_t>*>(ctl + i); }
+    bool stop() const { return at(CTL_STOP).load(std::memory_order_relaxed) != 0; }
+    // add n to the work done; the work left of the budget after it
+    int64_t add_work(int64_t n) const {
+        const int64_t done = at(CTL_WORK).fetch_add(n, std::memory_order_relaxed) + n;
+        return ctl[CTL_BUDGET] - done;
+    }
+};
+
+// A growable table of rows (the run's outputs), in row-major order.
+struct Rows {
+    int cols;
+    std::vector<double> data;
+    int64_t n = 0;
+    explicit Rows(int c = 1, int64_t reserve = 64) : cols(c) { data.reserve(static_cast<size_t>(reserve * c)); }
+    double* push() {
+        data.resize(static_cast<size_t>((n + 1) * cols), 0.0);
+        return &data[static_cast<size_t>(n++ * cols)];
+    }
+    void clear() {
+        data.clear();
+        n = 0;
+    }
+    double* row(int64_t i) { return &data[static_cast<size_t>(i * cols)]; }
+    const double* row(int64_t i) const { return &data[static_cast<size_t>(i * cols)]; }
+};
+
+inline double sgn(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }
+
+}  // namespace pounding

@@ -1,0 +1,430 @@
+#include "events.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pounding {
+
+namespace {
+
+// the phase's contact slot of an event row
+inline const ContactPhase& slot(const Phase& ph, int c) { return ph.ct[static_cast<size_t>(c)]; }
+
+// the internal force's rate on dof i in a numerical phase: (K v + C a)_i and the nonlinear forces' rates
+double abs_acceleration_rate(Phase& ph, int i, double tau, const double* y, const double* a) {
+    const int n = ph.n;
+    const double* v = y + n;
+    const double* rk = &ph.K[static_cast<size_t>(i * n)];
+    const double* rc = &ph.C[static_cast<size_t>(i * n)];
+    double q = 0.0;
+    for (int j = 0; j < n; ++j) q += rk[j] * v[j] + rc[j] * a[j];
+    for (int c = 0; c < ph.nc; ++c) {
+        const ContactPhase& k = slot(ph, c);
+        if (!k.nl) continue;
+        const double rate = k.sign * contact_force(ph, c, y, a).rate;
+        if (k.i == i) q += rate;
+        if (k.j == i) q -= rate;
+    }
+    if (ph.bw[0] != 0.0 && (ph.iso_i == i || ph.iso_j == i)) {
+        const double rate = ph.bw[0] * zeta_rate(ph, rel(v, ph.iso_i, ph.iso_j), phase_zeta(ph, tau));
+        q += ph.iso_i == i ? rate : -rate;
+    }
+    return -ph.minv[static_cast<size_t>(i)] * q;
+}
+
+}  // namespace
+
+EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y, const double* a) {
+    const int n = ph.n;
+    if (e.kind == KIND_ZETA) {  // (alpha: minus z's sign at the phase start)
+        const double z = phase_zeta(ph, tau);
+        return {-e.alpha * z, -e.alpha * zeta_rate(ph, rel(y + n, ph.iso_i, ph.iso_j), z), 1.0};
+    }
+    const double dx = rel(y, e.i, e.j), dv = rel(y + n, e.i, e.j), da = rel(a, e.i, e.j);
+    if (e.kind == KIND_LINEAR) {
+        const double g = e.alpha + e.beta * dx + e.gamma * dv;
+        const double gp = e.beta * dv + e.gamma * da;
+        double scale = std::abs(e.alpha) + std::abs(e.beta * dx) + std::abs(e.gamma * dv);
+        if (e.side == SIDE_NONE) return {g, gp, scale};  // the isolator's events (most of them)
+        // a contact's displacement is rounded relative to the run's and the phase's lengths, not its own size
+        scale += ph.xround;
+        if (e.action != ACT_CONTACT) return {g, gp, scale};
+        const ContactPhase& k = slot(ph, e.side);
+        const Relaxed r = law_relax(k.law, k.p, k.def0, tau, k.lz);
+        return {g + r.d, gp + r.rate, scale + r.d};
+    }
+    const ContactPhase& k = slot(ph, e.side);
+    const double sg = k.sign;
+    const double dd = sg * dx - k.gap, ddv = sg * dv, dda = sg * da;
+    double g, gp;
+    if (law_is_linear(k.law)) {
+        // the phase's own branch, not the one the compression is in: at a breakpoint, the slope the motion
+        // heads into
+        g = k.kb * dd + k.rb + k.cb * ddv;
+        gp = k.kb * ddv + k.cb * dda;
+    } else {
+        const Relaxed r = law_release(k.law, k.p, dd, ddv, dda, k.lz);
+        g = r.d;
+        gp = r.rate;
+    }
+    const double scale =
+        law_release(k.law, k.p, std::abs(dd) + ph.xround, std::abs(ddv) + ph.vround, 0.0, k.lz).d;
+    return {g, gp, scale};
+}
+
+void fn_eval(const Fn& fn, Phase& ph, double tau, double& f, double& fp) {
+    if (fn.kind == FN_POLY || fn.kind == FN_POLY_RELAX) {
+        ph.poly_evaluations += 1;
+        const Poly& q = fn.q;
+        f = q.c[q.deg];
+        fp = 0.0;
+        for (int k = q.deg - 1; k >= 0; --k) {
+            fp = fp * tau + f;
+            f = f * tau + q.c[k];
+        }
+        if (fn.kind == FN_POLY_RELAX) {
+            const ContactPhase& k = slot(ph, fn.idx);
+            const Relaxed r = law_relax(k.law, k.p, k.def0, tau, k.lz);
+            f += r.d;
+            fp += r.rate;
+        }
+        return;
+    }
+    double* y = ph.ye.data();
+    double* a = ph.ae.data();
+    phase_eval(ph, tau, y, a);
+    const int n = ph.n;
+    switch (fn.kind) {
+        case FN_EVENT: {
+            const EventValue ev = event_value(fn.evs[fn.idx], ph, tau, y, a);
+            f = ev.g;
+            fp = ev.gp;
+            return;
+        }
+        case FN_EVENT_RATE:
+            f = event_value(fn.evs[fn.idx], ph, tau, y, a).gp;
+            fp = NaN;
+            return;
+        case FN_PAIR_V:
+            f = rel(y + n, fn.i, fn.j);
+            fp = rel(a, fn.i, fn.j);
+            return;
+        case FN_PAIR_A:
+            f = rel(a, fn.i, fn.j);
+            fp = NaN;
+            return;
+        case FN_AABS_RATE:
+            f = abs_acceleration_rate(ph, fn.idx, tau, y, a);
+            fp = NaN;
+            return;
+        default:  // FN_FORCE_RATE
+            f = contact_force(ph, fn.idx, y, a).rate;
+            fp = NaN;
+            return;
+    }
+}
+
+double root_guess(double fa, double fb, double sa, double sb) {
+    const double df = fb - fa;
+    const double x = -fa / df;  // the secant's root
+    const double ra = df / sa, rb = df / sb;
+    if (!(ra > 0.0 && rb > 0.0)) return x;  // (False for NaN)
+    const double x2 = x * x;
+    const double t = x2 * (3.0 - 2.0 * x) + ra * x * (1.0 - x) * (1.0 - x) + rb * x2 * (x - 1.0);
+    if (0.0 < t && t < 1.0) return t;
+    return x;
+}
+
+namespace {
+
+// Halley's method on a polynomial, kept in the bracket (bisection where a step would leave it)
+double halley(const Fn& fn, Phase& ph, double xa, double xb, double fa, double fb, double ra, double rb,
+              double xtol) {
+    double lo = fa < 0.0 ? xa : xb, hi = fa < 0.0 ? xb : xa;  // f(lo) < 0 < f(hi)
+    double x = xa + (xb - xa) * root_guess(fa, fb, ra * (xb - xa), rb * (xb - xa));
+    if (!(std::min(xa, xb) < x && x < std::max(xa, xb))) x = 0.5 * (xa + xb);
+    for (int it = 0; it < 100; ++it) {
+        double f, f1, f2;
+        ph.poly_evaluations += 1;
+        poly_val3(fn.q, x, f, f1, f2);
+        if (f == 0.0) return x;
+        if (f < 0.0) lo = x;
+        else hi = x;
+        double step = NaN;
+        if (f1 != 0.0) {
+            const double newton = f / f1;
+            const double den = 1.0 - 0.5 * newton * f2 / f1;
+            step = (den > 0.5 && den < 2.0) ? newton / den : newton;
+        }
+        double x_new = x - step;
+        const bool inside = (x_new - lo) * (x_new - hi) < 0.0;  // (False for NaN)
+        if (!inside) {
+            x_new = 0.5 * (lo + hi);
+            step = x - x_new;
+        }
+        const double tol = xtol + 4.0 * EPS * std::abs(x_new);
+        x = x_new;
+        if (std::abs(step) < tol) break;
+    }
+    return x;
+}
+
+// Newton's method kept in the bracket (rtsafe), for a function with a rate
+double rtsafe(const Fn& fn, Phase& ph, double xa, double xb, double fa, double fb, double ra, double rb,
+              double xtol) {
+    double lo = fa < 0.0 ? xa : xb, hi = fa < 0.0 ? xb : xa;  // f(lo) < 0 < f(hi)
+    double x = xa + (xb - xa) * root_guess(fa, fb, ra * (xb - xa), rb * (xb - xa));
+    double dx_old = std::abs(xb - xa), dx = dx_old;
+    double prev_newton = 0.0;
+    for (int it = 0; it < 100; ++it) {
+        double f, fp;
+        fn_eval(fn, ph, x, f, fp);
+        if (f == 0.0) break;
+        if (f < 0.0) lo = x;
+        else hi = x;
+        bool newton_ok = fp != 0.0 && !std::isnan(fp);
+        double step = 0.0, x_new = 0.0;
+        if (newton_ok) {
+            step = f / fp;
+            x_new = x - step;
+            newton_ok = ((x_new - lo) * (x_new - hi) < 0.0) && std::abs(2.0 * step) <= dx_old;
+        }
+        dx_old = dx;
+        double tol;
+        if (newton_ok) {
+            dx = std::abs(step);
+            x = x_new;
+            tol = xtol + 4.0 * EPS * std::abs(x);
+            // converging quadratically, the next step would be dx^3 / prev^2: below the tolerance, done
+            if (dx < prev_newton && dx * dx * dx < tol * prev_newton * prev_newton) break;
+            prev_newton = dx;
+        } else {
+            x_new = 0.5 * (lo + hi);
+            dx = std::abs(x_new - x);
+            x = x_new;
+            tol = xtol + 4.0 * EPS * std::abs(x);
+            prev_newton = 0.0;
+        }
+        if (dx < tol) break;
+    }
+    return x;
+}
+
+double brent(const Fn& fn, Phase& ph, double xa, double xb, double fa, double fb, double xtol) {
+    double xpre = xa, xcur = xb, fpre = fa, fcur = fb;
+    double xblk = xpre, fblk = fpre, spre = 0.0, scur = 0.0;
+    for (int it = 0; it < 200; ++it) {
+        if (fpre != 0.0 && fcur != 0.0 && ((fpre < 0.0) != (fcur < 0.0))) {
+            xblk = xpre;
+            fblk = fpre;
+            spre = scur = xcur - xpre;
+        }
+        if (std::abs(fblk) < std::abs(fcur)) {
+            xpre = xcur;
+            xcur = xblk;
+            xblk = xpre;
+            fpre = fcur;
+            fcur = fblk;
+            fblk = fpre;
+        }
+        const double delta = 0.5 * (xtol + 4.0 * EPS * std::abs(xcur));
+        const double sbis = 0.5 * (xblk - xcur);
+        if (fcur == 0.0 || std::abs(sbis) < delta) break;
+        if (std::abs(spre) > delta && std::abs(fcur) < std::abs(fpre)) {
+            double stry;
+            if (xpre == xblk) {
+                stry = -fcur * (xcur - xpre) / (fcur - fpre);
+            } else {
+                const double dpre = (fpre - fcur) / (xpre - xcur);
+                const double dblk = (fblk - fcur) / (xblk - xcur);
+                stry = -fcur * (fblk * dblk - fpre * dpre) / (dblk * dpre * (fblk - fpre));
+            }
+            if (2.0 * std::abs(stry) < std::min(std::abs(spre), 3.0 * std::abs(sbis) - delta)) {
+                spre = scur;
+                scur = stry;
+            } else {
+                spre = sbis;
+                scur = sbis;
+            }
+        } else {
+            spre = sbis;
+            scur = sbis;
+        }
+        xpre = xcur;
+        fpre = fcur;
+        if (std::abs(scur) > delta) xcur += scur;
+        else xcur += sbis > 0.0 ? delta : -delta;
+        double fp;
+        fn_eval(fn, ph, xcur, fcur, fp);
+    }
+    return xcur;
+}
+
+}  // namespace
+
+double find_root(const Fn& fn, Phase& ph, double xa, double xb, double fa, double fb, double ra, double rb,
+                 double xtol) {
+    if (fa == 0.0) return xa;
+    if (fb == 0.0) return xb;
+    if (fn.kind == FN_POLY) return halley(fn, ph, xa, xb, fa, fb, ra, rb, xtol);
+    if (fn.kind == FN_POLY_RELAX || fn.kind == FN_EVENT || fn.kind == FN_PAIR_V)
+        return rtsafe(fn, ph, xa, xb, fa, fb, ra, rb, xtol);
+    return brent(fn, ph, xa, xb, fa, fb, xtol);
+}
+
+void event_fn(const EventRow* evs, int i, Phase& ph, Fn& fn) {
+    const EventRow& e = evs[i];
+    fn.evs = evs;
+    fn.idx = i;
+    fn.i = e.i;
+    fn.j = e.j;
+    if (ph.numeric || e.kind == KIND_ZETA) {
+        fn.kind = FN_EVENT;
+        return;
+    }
+    if (e.kind == KIND_LINEAR) {
+        pair_poly(ph, e.i, e.j, e.alpha, e.beta, e.gamma, 0.0, fn.q);
+        fn.kind = FN_POLY;
+        if (e.action == ACT_CONTACT && slot(ph, e.side).def0 > 0.0) {  // against a relaxing surface
+            fn.kind = FN_POLY_RELAX;
+            fn.idx = e.side;
+        }
+        return;
+    }
+    // a linear law's release: its branch's force kb x + rb + cb x' with x = sign (x_i - x_j) - gap
+    const ContactPhase& k = slot(ph, e.side);
+    pair_poly(ph, e.i, e.j, k.rb - k.kb * k.gap, k.kb * k.sign, k.cb * k.sign, 0.0, fn.q);
+    fn.kind = FN_POLY;
+}
+
+namespace {
+// the rate of event i's function: the polynomial's derivative, or the event's rate on the trajectory
+void rate_fn(const Fn& fn, Fn& out) {
+    out.evs = fn.evs;
+    out.idx = fn.idx;
+    out.i = fn.i;
+    out.j = fn.j;
+    if (fn.kind == FN_POLY) {
+        poly_deriv(fn.q, out.q);
+        out.kind = FN_POLY;
+        return;
+    }
+    out.kind = FN_EVENT_RATE;
+}
+}  // namespace
+
+double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, double gp0, double tol0, double g1,
+                    double gp1, double tol1, double xtol) {
+    Fn fn;
+    event_fn(evs, i, ph, fn);
+    if (g0 > tol0 && g1 <= 0.0) return find_root(fn, ph, 0.0, h, g0, g1, gp0, gp1, xtol);
+    Fn rate;
+    rate_fn(fn, rate);
+    if (fn.kind == FN_POLY_RELAX) rate.idx = i;  // (the event's rate on the trajectory)
+    double* y = ph.ye.data();
+    double* a = ph.ae.data();
+    if (g0 <= tol0 && g1 < -tol1) {
+        double tp = h;
+        for (int it = 0; it < 60; ++it) {
+            tp *= 0.5;
+            phase_eval(ph, tp, y, a);
+            const EventValue ev = event_value(evs[i], ph, tp, y, a);
+            if (ev.g > ROUNDING * ev.scale) return find_root(fn, ph, tp, h, ev.g, g1, ev.gp, gp1, xtol);
+        }
+        // it first rose, by less than the rounding, and came back: where it turned
+        if (gp0 > 0.0 && gp1 < 0.0) return find_root(rate, ph, 0.0, h, gp0, gp1, NaN, NaN, xtol);
+        return 0.0;
+    }
+    if (!(gp0 < 0.0 && gp1 > 0.0)) return -1.0;
+    // a local minimum inside: does it dip below zero?
+    const double tm = find_root(rate, ph, 0.0, h, gp0, gp1, NaN, NaN, xtol);
+    phase_eval(ph, tm, y, a);
+    const EventValue ev = event_value(evs[i], ph, tm, y, a);
+    if (ev.g >= -ROUNDING * ev.scale) return -1.0;
+    if (g0 <= tol0) return 0.0;  // it leaves the boundary on the wrong side at once
+    return find_root(fn, ph, 0.0, tm, g0, ev.g, gp0, 0.0, xtol);
+}
+
+int bumper_events(const double* st, const Phase& ph, const System& sy, EventRow* evs, int n) {
+    if (!sy.has_b) return n;
+    const Layout& L = sy.lay;
+    for (int c = 0; c < sy.nc(); ++c) {
+        const Contact& ct = sy.contact[static_cast<size_t>(c)];
+        const double sg = ct.sign;
+        const double gap = ct.gap;
+        const bool in_contact = st[L.in_at(c)] != 0.0;
+        if (in_contact && law_is_linear(ct.law)) {  // its branch's ends (compression x = sign u - gap)
+            const double* z = st + L.z_at(c);
+            const Edges edges = law_branch_edges(ct.law, ct.p, slot(ph, c).jb, z);
+            const double turn = law_turn_sign(ct.law, ct.p, z);
+            if (turn != 0.0) {  // the compression rate sign u' (of sign ``turn`` on the branch) crossing zero
+                EventRow& r = evs[n++];
+                r = EventRow();
+                r.i = ct.i;
+                r.j = ct.j;
+                r.gamma = turn * sg;
+                r.side = SIDE_NONE;  // (a velocity: rounded as the isolator's reversals are)
+                r.action = ACT_LAW_BRANCH;
+                r.index = c;
+            }
+            for (int k = 0; k < 2; ++k) {
+                const bool up = k == 1;
+                const double edge = up ? edges.upper : edges.lower;
+                if (edge < 0.0) continue;
+                EventRow& r = evs[n++];
+                r = EventRow();
+                r.i = ct.i;
+                r.j = ct.j;
+                r.alpha = up ? (gap + edge) : -(gap + edge);  // upper - x, or x - lower
+                r.beta = up ? -sg : sg;
+                r.side = c;
+                r.action = ACT_LAW_BRANCH;
+                r.index = c;
+                r.dir = up ? EDGE_UP_STATE : EDGE_DOWN_STATE;
+            }
+        }
+        EventRow& r = evs[n];
+        r = EventRow();
+        r.i = ct.i;
+        r.j = ct.j;
+        r.index = c;
+        r.side = c;
+        if (!in_contact) {
+            // surface at sign (gap + relaxing compression): g = gap + d(t) - sign u
+            r.alpha = gap;
+            r.beta = -sg;
+            r.action = ACT_CONTACT;
+            n += 1;
+        } else {
+            // the compression back to zero, or the law's force-based release
+            r.alpha = -gap;
+            r.beta = sg;
+            r.action = ACT_RELEASE;
+            n += 1;
+            evs[n] = evs[n - 1];
+            evs[n].kind = KIND_RELEASE;
+            n += 1;
+        }
+    }
+    return n;
+}
+
+bool law_switches(const Phase& ph) {
+    for (int c = 0; c < ph.nc; ++c)
+        if (slot(ph, c).nl && law_switches_at_rest(slot(ph, c).law)) return true;
+    return false;
+}
+
+double relax_horizon(const double* st, const System& sy) {
+    const Layout& L = sy.lay;
+    double out = INF;
+    for (int c = 0; c < sy.nc(); ++c) {
+        if (st[L.in_at(c)] == 0.0 && st[L.def_at(c)] > 0.0) {
+            const Contact& ct = sy.contact[static_cast<size_t>(c)];
+            out = std::min(out, law_relax_horizon(ct.law, ct.p, st[L.def_at(c)], st + L.z_at(c)));
+        }
+    }
+    return out;
+}
+
+}  // namespace pounding

@@ -1,0 +1,80 @@
+// A phase's events and their location on the exact trajectory.
+//
+// An event is a function of the trajectory that fires when it crosses zero downwards: the isolator's yields,
+// reversals and branch edges, a contact's start (against the bumper's relaxing surface) and release (the
+// force would pull), a law's branch edges and turns, the Bouc-Wen z back through zero.  Most are linear in
+// the relative motion of a pair of dofs (i, j), alpha + beta (x_i - x_j) + gamma (v_i - v_j); a contact start
+// adds the relaxing compression, a release is the law's own function.  In a linear phase each is a polynomial
+// of the sub-interval's series (plus the relaxation), and its root is found on it.
+#pragma once
+
+#include "core.hpp"
+#include "phase.hpp"
+
+namespace pounding {
+
+constexpr int KIND_LINEAR = 0, KIND_RELEASE = 1, KIND_ZETA = 2;
+constexpr int SIDE_NONE = -1;
+constexpr double ROUNDING = 256.0 * EPS;  // relative size of rounding noise in event values
+constexpr double XTOL_S = 1e-15;          // event instants and displacement extrema, s
+constexpr double XTOL_EXTREMUM_S = 1e-10; // instants of the other extrema
+
+struct EventRow {
+    int kind = KIND_LINEAR;
+    int i = 0, j = GROUND;  // the pair
+    double alpha = 0.0, beta = 0.0, gamma = 0.0;
+    int side = SIDE_NONE;   // the contact whose relaxing surface or release it is (rounding against lengths)
+    int action = 0;
+    int index = 0;
+    double dir = 0.0;
+};
+
+struct EventValue { double g, gp, scale; };  // value, rate, size of the terms summed
+
+EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y, const double* a);
+
+// A scalar function of tau on the current sub-interval, whose roots the loop looks for: a polynomial of
+// the series (a linear phase; with a contact's relaxation added for a contact start), or a function of the
+// numerical trajectory
+enum FnKind : int {
+    FN_POLY = 0,       // q(tau)
+    FN_POLY_RELAX,     // q(tau) + the relaxing compression of contact `idx`
+    FN_EVENT,          // numerical: event `idx`'s value (rate: its rate)
+    FN_EVENT_RATE,     // numerical: event `idx`'s rate (no derivative)
+    FN_PAIR_V,         // numerical: v_i - v_j (rate: a_i - a_j)
+    FN_PAIR_A,         // numerical: a_i - a_j (no derivative)
+    FN_AABS_RATE,      // numerical: dof idx's absolute acceleration's rate (no derivative)
+    FN_FORCE_RATE      // numerical: contact idx's force rate (no derivative)
+};
+struct Fn {
+    int kind = FN_POLY;
+    int idx = 0, i = 0, j = GROUND;
+    const EventRow* evs = nullptr;
+    Poly q;
+};
+// f and its rate at tau (fp NaN where the kind has none)
+void fn_eval(const Fn& fn, Phase& ph, double tau, double& f, double& fp);
+
+// the root of fn in [xa, xb] where it changes sign (fa, fb; ra, rb its rates there or NaN): Halley's method
+// on a polynomial, Newton's on a function with a rate, both kept in the bracket; Brent's method otherwise.
+// Stops when the next step would be below xtol.
+double find_root(const Fn& fn, Phase& ph, double xa, double xb, double fa, double fb, double ra, double rb,
+                 double xtol);
+double root_guess(double fa, double fb, double sa, double sb);
+inline double value_at_root(double root, double x, double value, double f, double fp) {
+    const double dt = root - x;
+    return value + dt * (f + 0.5 * dt * fp);
+}
+
+// the scalar function of event i in this phase
+void event_fn(const EventRow* evs, int i, Phase& ph, Fn& fn);
+// its earliest instant in (0, h] (or 0, or -1 for none) from its values at the ends
+double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, double gp0, double tol0, double g1,
+                    double gp1, double tol1, double xtol);
+
+// the contacts' event rows: appended from row n on, the new count returned
+int bumper_events(const double* st, const Phase& ph, const System& sy, EventRow* evs, int n);
+bool law_switches(const Phase& ph);
+double relax_horizon(const double* st, const System& sy);
+
+}  // namespace pounding

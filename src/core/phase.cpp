@@ -1,0 +1,378 @@
+#include "phase.hpp"
+
+#include <algorithm>
+
+namespace pounding {
+
+namespace {
+constexpr double SERIES_TAIL = 1e-19;  // a series' next terms, against the motion's scale
+constexpr int HERMITE_ORDER = 8;
+// c_k of int_0^T f = sum_k c_k T^(k+1) (f^(k)(0) + (-1)^k f^(k)(T)), exact to degree 2p + 1
+constexpr double HERMITE_C[HERMITE_ORDER + 1] = {
+    0.5, 0.11764705882352941, 0.01715686274509804, 0.001715686274509804, 0.00012254901960784314,
+    6.2845651080945196e-06, 2.2444875386051856e-07, 5.101108042284513e-09, 5.66789782476057e-11};
+constexpr double BINOM[HERMITE_ORDER + 1][HERMITE_ORDER + 1] = {
+    {1, 0, 0, 0, 0, 0, 0, 0, 0},       {1, 1, 0, 0, 0, 0, 0, 0, 0},        {1, 2, 1, 0, 0, 0, 0, 0, 0},
+    {1, 3, 3, 1, 0, 0, 0, 0, 0},       {1, 4, 6, 4, 1, 0, 0, 0, 0},        {1, 5, 10, 10, 5, 1, 0, 0, 0},
+    {1, 6, 15, 20, 15, 6, 1, 0, 0},    {1, 7, 21, 35, 35, 21, 7, 1, 0},    {1, 8, 28, 56, 70, 56, 28, 8, 1}};
+
+// out = M^-1 (A x + B v), n x n row-major A and B
+inline void minv_ab(const Phase& ph, const std::vector<double>& A, const double* x, const std::vector<double>& B,
+                    const double* v, double* out) {
+    const int n = ph.n;
+    for (int i = 0; i < n; ++i) {
+        const double* ra = &A[static_cast<size_t>(i * n)];
+        const double* rb = &B[static_cast<size_t>(i * n)];
+        double s = 0.0;
+        for (int j = 0; j < n; ++j) s += ra[j] * x[j] + rb[j] * v[j];
+        out[i] = ph.minv[static_cast<size_t>(i)] * s;
+    }
+}
+
+inline double quad(const std::vector<double>& A, const double* x, const double* y, int n) {
+    double s = 0.0;
+    for (int i = 0; i < n; ++i) {
+        const double* r = &A[static_cast<size_t>(i * n)];
+        double t = 0.0;
+        for (int j = 0; j < n; ++j) t += r[j] * y[j];
+        s += x[i] * t;
+    }
+    return s;
+}
+
+// the displacements' derivatives D_0..D_9 (each n) at one end, from x, v, a there and the table acceleration's
+// derivatives G_1..G_7: D_(k+2) = -M^-1 (K D_k + C D_(k+1)) - G_k 1
+void end_derivatives(const Phase& ph, const double* y, const double* a, const double* g, double* D) {
+    const int n = ph.n;
+    for (int i = 0; i < n; ++i) {
+        D[i] = y[i];
+        D[n + i] = y[n + i];
+        D[2 * n + i] = a[i];
+    }
+    for (int k = 1; k + 2 <= HERMITE_ORDER + 1; ++k) {
+        double* out = D + (k + 2) * n;
+        minv_ab(ph, ph.K, D + k * n, ph.C, D + (k + 1) * n, out);
+        for (int i = 0; i < n; ++i) out[i] = -out[i] - g[k];
+    }
+}
+
+// one end's share of the integrals: sum_k c_k T^(k+1) sgn^k f^(k)
+void hermite_end(Phase& ph, const std::vector<double>& c_lin, const std::vector<double>& mass, const double* D,
+                 const double* g, double big_t, double sgn, double& vcv, double& gv, double* du, double* dvv) {
+    const int n = ph.n;
+    double* P = ph.work.data() + ph.w_P;  // P_k = m . D_(k+1)
+    for (int k = 0; k <= HERMITE_ORDER; ++k) {
+        double s = 0.0;
+        for (int i = 0; i < n; ++i) s += mass[static_cast<size_t>(i)] * D[(k + 1) * n + i];
+        P[k] = s;
+    }
+    double t = big_t;
+    for (int k = 0; k <= HERMITE_ORDER; ++k) {
+        const double q = HERMITE_C[k] * t * ((k % 2) ? sgn : 1.0);
+        double s_vcv = 0.0;
+        for (int j = 0; j <= k / 2; ++j)
+            s_vcv += BINOM[k][j] * (2 * j == k ? 1.0 : 2.0) * quad(c_lin, D + (j + 1) * n, D + (k - j + 1) * n, n);
+        double s_gv = 0.0;
+        for (int j = 0; j <= k; ++j) s_gv += BINOM[k][j] * g[j] * P[k - j];
+        vcv += q * s_vcv;
+        gv += q * s_gv;
+        for (int c = 0; c < ph.nc; ++c) {
+            const ContactPhase& ct = ph.ct[static_cast<size_t>(c)];
+            if (!ct.in || ct.nl) continue;
+            const int i = ct.i, jj = ct.j;
+            auto W = [&](int m) { return jj >= 0 ? D[m * n + i] - D[m * n + jj] : D[m * n + i]; };
+            double s_vv = 0.0;
+            for (int j = 0; j <= k / 2; ++j) s_vv += BINOM[k][j] * (2 * j == k ? 1.0 : 2.0) * W(j + 1) * W(k - j + 1);
+            dvv[c] += q * s_vv;
+            du[c] += q * W(k);
+        }
+        t *= big_t;
+    }
+}
+
+// Dormand-Prince 5(4) tableau
+constexpr double C2 = 1.0 / 5.0, C3 = 3.0 / 10.0, C4 = 4.0 / 5.0, C5 = 8.0 / 9.0;
+constexpr double A21 = 1.0 / 5.0;
+constexpr double A31 = 3.0 / 40.0, A32 = 9.0 / 40.0;
+constexpr double A41 = 44.0 / 45.0, A42 = -56.0 / 15.0, A43 = 32.0 / 9.0;
+constexpr double A51 = 19372.0 / 6561.0, A52 = -25360.0 / 2187.0, A53 = 64448.0 / 6561.0, A54 = -212.0 / 729.0;
+constexpr double A61 = 9017.0 / 3168.0, A62 = -355.0 / 33.0, A63 = 46732.0 / 5247.0, A64 = 49.0 / 176.0,
+                 A65 = -5103.0 / 18656.0;
+constexpr double B1 = 35.0 / 384.0, B3 = 500.0 / 1113.0, B4 = 125.0 / 192.0, B5 = -2187.0 / 6784.0,
+                 B6 = 11.0 / 84.0;
+constexpr double E1 = 71.0 / 57600.0, E3 = -71.0 / 16695.0, E4 = 71.0 / 1920.0, E5 = -17253.0 / 339200.0,
+                 E6 = 22.0 / 525.0, E7 = -1.0 / 40.0;
+}  // namespace
+
+// ---------------------------------------------------------------- the series
+
+void taylor(Phase& ph, double h) {
+    const int n = ph.n, ny = ph.ny;
+    double* t = ph.tc.data();
+    for (int q = 0; q < ny; ++q) t[q] = ph.y0[static_cast<size_t>(q)];
+    // the terms the eigenvalue bound asks for: (r^k / k!) below the tail's bound (two more for a nearly
+    // defective phase, whose terms carry a factor k)
+    const double r = std::max(ph.rate, std::abs(ph.w)) * h;
+    int need = 4;
+    {
+        double term = 1.0;
+        for (int k = 1; k < MAX_TERMS; ++k) {
+            term *= r / k;
+            if (k >= 3 && term <= SERIES_TAIL) {
+                need = k + 3;
+                break;
+            }
+            need = k + 3;
+        }
+    }
+    need = std::min(need, MAX_TERMS);
+    // the table acceleration's series: g_0 = ax0 + axh sin(phi), g_1 = ax1 + axh w cos(phi), then the sine's
+    double scale = ph.xrun;
+    for (int i = 0; i < n; ++i) scale = std::max({scale, std::abs(t[i]), h * std::abs(t[n + i])});
+    const double sp = ph.sphi, cp = ph.cphi, w = ph.w, amp = ph.axh;
+    double wk = 1.0;  // w^k / k!
+    int k = 0;
+    for (;; ++k) {
+        const int m4 = k % 4;
+        double g = amp * wk * (m4 == 0 ? sp : m4 == 1 ? cp : m4 == 2 ? -sp : -cp);
+        if (k == 0) g += ph.ax0;
+        if (k == 1) g += ph.ax1;
+        wk *= w / (k + 1);
+        const double* Xk = t + k * ny;
+        const double* Vk = Xk + n;
+        double* Xn = t + (k + 1) * ny;
+        double* Vn = Xn + n;
+        const double inv = 1.0 / (k + 1);
+        minv_ab(ph, ph.K, Xk, ph.C, Vk, Vn);
+        for (int i = 0; i < n; ++i) {
+            double f = Vn[i];
+            if (k == 0) f += ph.minv[static_cast<size_t>(i)] * ph.R0[static_cast<size_t>(i)];
+            Vn[i] = (-f - g) * inv;
+            Xn[i] = Vk[i] * inv;
+        }
+        const int m = k + 1;  // the term just computed
+        if (m + 1 >= need) {
+            // its size and the last one's, as lengths over [0, h]: both below the tail bound, done
+            double hk = std::pow(h, m), e_m = 0.0, e_p = 0.0;
+            for (int i = 0; i < n; ++i) e_m = std::max(e_m, hk * (std::abs(Xn[i]) + h * std::abs(Vn[i])));
+            const double* Xp = t + k * ny;
+            const double hp = hk / (h > 0.0 ? h : 1.0);
+            for (int i = 0; i < n; ++i) e_p = std::max(e_p, hp * (std::abs(Xp[i]) + h * std::abs(Xp[n + i])));
+            if ((e_m <= SERIES_TAIL * scale && e_p <= 1e3 * SERIES_TAIL * scale) || m + 1 >= MAX_TERMS || h == 0.0) {
+                ph.nt = m + 1;
+                break;
+            }
+        }
+    }
+    ph.tc_ok = true;
+}
+
+void lin_eval(const Phase& ph, double tau, double* y, double* a) {
+    ph.evaluations += 1;
+    const int n = ph.n, ny = ph.ny, nt = ph.nt;
+    const double* t = ph.tc.data();
+    for (int q = 0; q < ny; ++q) y[q] = t[(nt - 1) * ny + q];
+    for (int i = 0; i < n; ++i) a[i] = (nt - 1) * t[(nt - 1) * ny + n + i];
+    for (int k = nt - 2; k >= 0; --k) {
+        const double* Yk = t + k * ny;
+        for (int q = 0; q < ny; ++q) y[q] = y[q] * tau + Yk[q];
+        if (k >= 1)
+            for (int i = 0; i < n; ++i) a[i] = a[i] * tau + k * Yk[n + i];
+    }
+}
+
+void table_derivatives(const Phase& ph, double tau, double s, double c, int m, double* g) {
+    const double w = ph.w, amp = ph.axh;
+    g[0] = ph.ax0 + ph.ax1 * tau + amp * s;
+    if (m >= 1) g[1] = ph.ax1 + amp * w * c;
+    double wk = w;
+    for (int k = 2; k <= m; ++k) {
+        wk *= w;
+        const int m4 = k % 4;
+        g[k] = amp * wk * (m4 == 0 ? s : m4 == 1 ? c : m4 == 2 ? -s : -c);
+    }
+}
+
+void pair_poly(const Phase& ph, int i, int j, double alpha, double beta, double gamma, double delta, Poly& q) {
+    const int n = ph.n, ny = ph.ny, nt = ph.nt;
+    const double* t = ph.tc.data();
+    auto d = [&](int k, int off) {
+        const double* Yk = t + k * ny + off;
+        return j >= 0 ? Yk[i] - Yk[j] : Yk[i];
+    };
+    q.deg = nt - 1;
+    for (int k = 0; k < nt; ++k) {
+        double c = beta * d(k, 0) + gamma * d(k, n);
+        if (delta != 0.0 && k + 1 < nt) c += delta * (k + 1) * d(k + 1, n);
+        q.c[k] = c;
+    }
+    q.c[0] += alpha;
+}
+
+void abs_acc_poly(const Phase& ph, int i, Poly& q) {
+    const int n = ph.n, ny = ph.ny, nt = ph.nt;
+    const double* t = ph.tc.data();
+    const double* rk = &ph.K[static_cast<size_t>(i * n)];
+    const double* rc = &ph.C[static_cast<size_t>(i * n)];
+    const double mi = ph.minv[static_cast<size_t>(i)];
+    q.deg = nt - 1;
+    for (int k = 0; k < nt; ++k) {
+        const double* Yk = t + k * ny;
+        double s = 0.0;
+        for (int j = 0; j < n; ++j) s += rk[j] * Yk[j] + rc[j] * Yk[n + j];
+        q.c[k] = -mi * s;
+    }
+    q.c[0] -= mi * ph.R0[static_cast<size_t>(i)];
+}
+
+void poly_deriv(const Poly& q, Poly& out) {
+    out.deg = std::max(q.deg - 1, 0);
+    if (q.deg <= 0) {
+        out.c[0] = 0.0;
+        return;
+    }
+    for (int k = 1; k <= q.deg; ++k) out.c[k - 1] = k * q.c[k];
+}
+
+void linear_integrals(Phase& ph, const std::vector<double>& c_lin, const std::vector<double>& mass, double tau,
+                      const double* y0, const double* a0, double s0, double c0, const double* y1, const double* a1,
+                      double s1, double c1, double& vcv, double& gv, double* du, double* dvv) {
+    const int n = ph.n;
+    double* D = ph.work.data() + ph.w_D;  // (HERMITE_ORDER + 2) n
+    double* g = ph.work.data() + ph.w_g;  // HERMITE_ORDER + 1
+    vcv = 0.0;
+    gv = 0.0;
+    for (int c = 0; c < ph.nc; ++c) {
+        du[c] = 0.0;
+        dvv[c] = 0.0;
+    }
+    table_derivatives(ph, 0.0, s0, c0, HERMITE_ORDER, g);
+    end_derivatives(ph, y0, a0, g, D);
+    hermite_end(ph, c_lin, mass, D, g, tau, 1.0, vcv, gv, du, dvv);
+    table_derivatives(ph, tau, s1, c1, HERMITE_ORDER, g);
+    end_derivatives(ph, y1, a1, g, D);
+    hermite_end(ph, c_lin, mass, D, g, tau, -1.0, vcv, gv, du, dvv);
+    (void)n;
+}
+
+// ---------------------------------------------------------------- the numerical phase
+
+double zeta_rate(const Phase& ph, double du, double z) {
+    if (ph.bw[0] == 0.0) return 0.0;
+    const double a = ph.bw[2], beta = ph.bw[3], gamma = ph.bw[4], nexp = ph.bw[5];
+    const double az = std::abs(z);
+    const double zn = nexp == 1.0 ? az : std::pow(az, nexp);
+    const double s = du * z > 0.0 ? beta : -beta;
+    return du / ph.bw[1] * (a - zn * (s + gamma));
+}
+
+void phase_rhs(Phase& ph, double tau, const double* y, double z, double* a) {
+    // dof i: (-R0_i - m_i a_g(tau) - (C v)_i - (K x)_i - the Bouc-Wen spring's - the nonlinear contacts') / m_i,
+    // summed in that order (a one-mass system's numbers as the engine has always summed them)
+    const int n = ph.n;
+    const double* x = y;
+    const double* v = y + n;
+    const double sn = std::sin(ph.w * tau + ph.phi);
+    for (int i = 0; i < n; ++i) {
+        const double m = ph.mass[static_cast<size_t>(i)];
+        const double* rk = &ph.K[static_cast<size_t>(i * n)];
+        const double* rc = &ph.C[static_cast<size_t>(i * n)];
+        double f = (-ph.R0[static_cast<size_t>(i)] - m * ph.ax0) + (-m * ph.ax1) * tau + (-m * ph.axh) * sn;
+        for (int j = 0; j < n; ++j) f -= rc[j] * v[j];
+        for (int j = 0; j < n; ++j) f -= rk[j] * x[j];
+        a[i] = f;
+    }
+    if (ph.bw[0] != 0.0) {
+        const double f = ph.bw[0] * z;
+        a[ph.iso_i] -= f;
+        if (ph.iso_j >= 0) a[ph.iso_j] += f;
+    }
+    for (int c = ph.nc - 1; c >= 0; --c) {
+        const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
+        if (!k.nl) continue;
+        const double f = law_force(k.law, k.p, k.sign * rel(x, k.i, k.j) - k.gap, k.sign * rel(v, k.i, k.j), k.lz).f;
+        a[k.i] -= k.sign * f;
+        if (k.j >= 0) a[k.j] += k.sign * f;
+    }
+    for (int i = 0; i < n; ++i) a[i] /= ph.mass[static_cast<size_t>(i)];
+}
+
+Dp5 dp5_step(Phase& ph, double h) {
+    const int n = ph.n, ny = ph.ny;
+    double* out = ph.dp5.data();  // y (ny), a (n), ey (ny), z, ez
+    if (ph.dp5_h == h) return {out, out + ny, out + ny + n, out[2 * ny + n], out[2 * ny + n + 1]};
+    ph.evaluations += 1;
+    const int w = ny + 1;  // a stage's slope: (v, a, z')
+    double* ks = ph.work.data() + ph.w_stage;  // 7 stages
+    double* yt = ks + 7 * w;                        // a stage's state (ny + 1)
+    const double* y0 = ph.y0.data();
+    const double z0 = ph.zeta0;
+    auto slope = [&](double tau, const double* y, double z, double* k) {
+        for (int i = 0; i < n; ++i) k[i] = y[n + i];
+        phase_rhs(ph, tau, y, z, k + n);
+        k[ny] = zeta_rate(ph, rel(y + n, ph.iso_i, ph.iso_j), z);
+    };
+    auto stage = [&](const double* coef, int m) {  // yt = y0 + h sum_j coef_j k_j
+        for (int q = 0; q <= ny; ++q) {
+            const double start = q < ny ? y0[q] : z0;
+            if (m == 1) {  // (h a21 k1, associated as the engine always has)
+                yt[q] = start + h * coef[0] * ks[q];
+                continue;
+            }
+            double s = coef[0] * ks[q];
+            for (int j = 1; j < m; ++j)
+                if (coef[j] != 0.0) s += coef[j] * ks[j * w + q];
+            yt[q] = start + h * s;
+        }
+    };
+    slope(0.0, y0, z0, ks);
+    const double a2[1] = {A21}, a3[2] = {A31, A32}, a4[3] = {A41, A42, A43}, a5[4] = {A51, A52, A53, A54};
+    const double a6[5] = {A61, A62, A63, A64, A65}, b[6] = {B1, 0.0, B3, B4, B5, B6};
+    stage(a2, 1);
+    slope(C2 * h, yt, yt[ny], ks + w);
+    stage(a3, 2);
+    slope(C3 * h, yt, yt[ny], ks + 2 * w);
+    stage(a4, 3);
+    slope(C4 * h, yt, yt[ny], ks + 3 * w);
+    stage(a5, 4);
+    slope(C5 * h, yt, yt[ny], ks + 4 * w);
+    stage(a6, 5);
+    slope(h, yt, yt[ny], ks + 5 * w);
+    stage(b, 6);
+    slope(h, yt, yt[ny], ks + 6 * w);
+    const double e[7] = {E1, 0.0, E3, E4, E5, E6, E7};
+    for (int q = 0; q < ny; ++q) out[q] = yt[q];
+    for (int i = 0; i < n; ++i) out[ny + i] = ks[6 * w + n + i];
+    for (int q = 0; q <= ny; ++q) {
+        double s = e[0] * ks[q];
+        for (int j = 2; j < 7; ++j) s += e[j] * ks[j * w + q];
+        if (q < ny) out[ny + n + q] = h * s;
+        else out[2 * ny + n + 1] = h * s;
+    }
+    out[2 * ny + n] = yt[ny];
+    ph.dp5_h = h;
+    return {out, out + ny, out + ny + n, out[2 * ny + n], out[2 * ny + n + 1]};
+}
+
+void phase_eval(Phase& ph, double tau, double* y, double* a) {
+    if (!ph.numeric) {
+        lin_eval(ph, tau, y, a);
+        return;
+    }
+    if (tau == 0.0) {
+        for (int q = 0; q < ph.ny; ++q) y[q] = ph.y0[static_cast<size_t>(q)];
+        phase_rhs(ph, 0.0, y, ph.zeta0, a);
+        return;
+    }
+    const Dp5 r = dp5_step(ph, tau);
+    for (int q = 0; q < ph.ny; ++q) y[q] = r.y[q];
+    for (int i = 0; i < ph.n; ++i) a[i] = r.a[i];
+}
+
+double phase_zeta(Phase& ph, double tau) {
+    if (ph.bw[0] == 0.0) return 0.0;
+    if (tau == 0.0) return ph.zeta0;
+    return dp5_step(ph, tau).z;
+}
+
+}  // namespace pounding

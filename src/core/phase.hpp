@@ -1,0 +1,189 @@
+// One phase of motion: fixed isolator branch, fixed contacts, one piece of the excitation.
+//
+// Within a phase, with y = (x, v) the n displacements and velocities relative to the ground,
+//     M x'' + C x' + K x + R0 = -M 1 a_g(tau),   a_g(tau) = ax0 + ax1 tau + axh sin(w tau + phi)
+// (tau since the sub-interval's start) with constant coefficients, plus the forces of nonlinear contact laws
+// and of a Bouc-Wen spring when there are any.
+//
+// A linear phase is solved exactly on each sub-interval by the power series of its solution about the
+// sub-interval's start: y(tau) = sum_k Y_k tau^k, the coefficients by the recurrence the equation of motion
+// gives (X_(k+1) = V_k / (k + 1), V_(k+1) = (-M^-1 (K X_k + C V_k) - g_k) / (k + 1), g_k the table
+// acceleration's own series).  A sub-interval is short against every period and decay time of the phase
+// (|lambda| h <= pi / 4 for each eigenvalue lambda, and w h <= pi / 4), so the series converges like
+// (pi / 4)^k / k!: its terms are summed until they fall below the rounding of the motion's scale (about 20;
+// checked on the terms themselves), which is the exact solution to rounding, undamped resonance, k = 0 and
+// critical damping included.  Every quantity the loop asks inside a sub-interval (an event function, a
+// velocity, an absolute acceleration, a contact force) is a linear function of y, hence a polynomial in tau
+// whose coefficients follow from the Y_k: roots and extrema are found on it.
+//
+// A phase with a nonlinear law in contact or a Bouc-Wen spring is integrated by Dormand-Prince 5(4), a step
+// of any length tau from the sub-interval's start being one step.
+#pragma once
+
+#include <cmath>
+#include <vector>
+
+#include "core.hpp"
+#include "laws.hpp"
+
+namespace pounding {
+
+constexpr int MAX_TERMS = 48;  // of a sub-interval's series (about 20 are used: the bound is a safeguard)
+
+// a contact slot in this phase
+struct ContactPhase {
+    bool in = false, nl = false;  // in contact; with a nonlinear law (integrated numerically)
+    int law = 0;
+    const double* p = nullptr;
+    int i = 0, j = GROUND;
+    double sign = 1.0, gap = 0.0;
+    double def0 = 0.0;             // the compression at the start (a relaxing bumper's)
+    double kb = 0.0, cb = 0.0, rb = 0.0;  // a linear law's branch: F = kb x + rb + cb x'
+    int jb = 0;
+    double lz[N_LAW_STATE] = {0};  // the law's state in this phase
+};
+
+// a polynomial in tau: c[0] + c[1] tau + ... + c[deg] tau^deg
+struct Poly {
+    int deg = -1;
+    double c[MAX_TERMS + 1];
+};
+
+struct Phase {
+    int n = 1, ny = 2, nc = 0;
+    // the equation of motion: stiffness and damping (the isolator's branch, linear contacts' branches), the
+    // restoring force at x = 0, the inverse masses; the table acceleration's piece
+    std::vector<double> K, C, R0, minv, mass;
+    double ax0 = 0.0, ax1 = 0.0, axh = 0.0, w = 0.0, phi = 0.0, sphi = 0.0, cphi = 1.0;
+    std::vector<double> y0;  // the sub-interval's start: x (n) then v (n)
+    double zeta0 = 0.0;
+    bool numeric = false;
+    std::vector<ContactPhase> ct;
+    // the isolator: its pair, dashpot and linear branch (force kiso u + riso + cd u'), its Bouc-Wen spring
+    int iso_i = 0, iso_j = GROUND;
+    double cd = 0.0, kiso = 0.0, riso = 0.0;
+    double bw[BW_PARAMS] = {0};
+    // the run's and the phase's length (m) and velocity (m/s) scales, what event values are rounded against
+    double xrun = 0.0, vrun = 0.0, xround = 0.0, vround = 0.0;
+    double rate = 0.0;  // a bound on the phase's |eigenvalues|, 1/s
+    // the series of the current sub-interval: Y_k at tc[k * ny], k < nt
+    int nt = 0;
+    bool tc_ok = false;
+    std::vector<double> tc;
+    // the last Dormand-Prince step: its length (-1: none); y (ny), a (n), the error (ny), z, its error
+    double dp5_h = -1.0;
+    std::vector<double> dp5;
+    std::vector<double> work;  // scratch: the derivatives at an end, the table's, m . D, forces, DP5 stages
+    int w_D = 0, w_g = 0, w_P = 0, w_q = 0, w_stage = 0;
+    std::vector<double> ye, ae;  // an evaluation's y and a (the root finders')
+    // evaluations of the trajectory at an instant inside a sub-interval (a series summed, a numerical step),
+    // and of scalar polynomials (a root finder's iterations on a linear phase)
+    mutable int64_t evaluations = 0;
+    mutable int64_t poly_evaluations = 0;
+
+    void size(int n_dof, int n_contacts) {
+        n = n_dof;
+        ny = 2 * n;
+        nc = n_contacts;
+        K.assign(static_cast<size_t>(n * n), 0.0);
+        C.assign(static_cast<size_t>(n * n), 0.0);
+        R0.assign(static_cast<size_t>(n), 0.0);
+        minv.assign(static_cast<size_t>(n), 0.0);
+        mass.assign(static_cast<size_t>(n), 1.0);
+        y0.assign(static_cast<size_t>(ny), 0.0);
+        ct.assign(static_cast<size_t>(nc), ContactPhase());
+        tc.assign(static_cast<size_t>((MAX_TERMS + 1) * ny), 0.0);
+        ye.assign(static_cast<size_t>(ny), 0.0);
+        ae.assign(static_cast<size_t>(n), 0.0);
+        dp5.assign(static_cast<size_t>(2 * ny + n + 2), 0.0);
+        w_D = 0;                 // 10 n
+        w_g = 10 * n;            // 10
+        w_P = w_g + 10;          // 10
+        w_q = w_P + 10;          // n
+        w_stage = w_q + n;       // 8 (ny + 1)
+        work.assign(static_cast<size_t>(w_stage + 8 * (ny + 1)), 0.0);
+    }
+    const double* X(int k) const { return &tc[static_cast<size_t>(k * ny)]; }
+    const double* Vk(int k) const { return &tc[static_cast<size_t>(k * ny + n)]; }
+};
+
+// ---------------------------------------------------------------- the linear phase's series
+
+// the series of the sub-interval from y0 (forcing angle sphi, cphi at its start), accurate over [0, h]
+void taylor(Phase& ph, double h);
+// y (ny) and the acceleration a (n) at tau of the current series
+void lin_eval(const Phase& ph, double tau, double* y, double* a);
+// the table acceleration's derivatives G_0..G_m at tau (sin and cos of the forcing angle there given)
+void table_derivatives(const Phase& ph, double tau, double s, double c, int m, double* g);
+
+// scalar polynomials of the current series: alpha + beta (x_i - x_j) + gamma (v_i - v_j) + delta (a_i - a_j)
+void pair_poly(const Phase& ph, int i, int j, double alpha, double beta, double gamma, double delta, Poly& q);
+// dof i's absolute acceleration -(K x + C v + R0)_i / m_i (a linear phase's: no sine)
+void abs_acc_poly(const Phase& ph, int i, Poly& q);
+// the derivative of q
+void poly_deriv(const Poly& q, Poly& out);
+inline double poly_val(const Poly& q, double t) {
+    double f = q.c[q.deg];
+    for (int k = q.deg - 1; k >= 0; --k) f = f * t + q.c[k];
+    return f;
+}
+// value, first and second derivatives
+inline void poly_val3(const Poly& q, double t, double& f, double& f1, double& f2) {
+    f = q.deg >= 0 ? q.c[q.deg] : 0.0;
+    f1 = 0.0;
+    f2 = 0.0;
+    for (int k = q.deg - 1; k >= 0; --k) {
+        f2 = f2 * t + f1;
+        f1 = f1 * t + f;
+        f = f * t + q.c[k];
+    }
+    f2 *= 2.0;
+}
+
+// over [0, tau] of a linear phase: int v^T C_lin v (vcv), int a_g (m . v) (gv), and for each contact c in
+// contact with a linear law int (x_i - x_j) (du[c]) and int (v_i - v_j)^2 (dvv[c]): the two-point Hermite rule
+// of order 8 on the derivatives at both ends (the equation of motion differentiated), exact to degree 17
+void linear_integrals(Phase& ph, const std::vector<double>& c_lin, const std::vector<double>& mass, double tau,
+                      const double* y0, const double* a0, double s0, double c0, const double* y1, const double* a1,
+                      double s1, double c1, double& vcv, double& gv, double* du, double* dvv);
+
+// ---------------------------------------------------------------- the numerical phase
+
+double zeta_rate(const Phase& ph, double du, double z);
+// the accelerations (n) at (tau, y, z) with the nonlinear forces
+void phase_rhs(Phase& ph, double tau, const double* y, double z, double* a);
+// the step of length h from the start: y (ny), a (n), z; the error estimates
+struct Dp5 { const double* y; const double* a; const double* ey; double z, ez; };
+Dp5 dp5_step(Phase& ph, double h);
+
+// ---------------------------------------------------------------- the trajectory inside a sub-interval
+
+// y (ny), a (n) at tau: the series of a linear phase, a numerical step of a nonlinear one
+void phase_eval(Phase& ph, double tau, double* y, double* a);
+double phase_zeta(Phase& ph, double tau);
+
+inline double table_acceleration(const Phase& ph, double tau) {
+    return ph.ax0 + ph.ax1 * tau + ph.axh * std::sin(ph.w * tau + ph.phi);
+}
+
+// contact c in contact: force N, its spring part N, d(force)/dt N/s, the compression's rate m/s.  A linear
+// law's force is its phase's branch's (kb x + rb + cb x'): a law with a state has it from there
+struct ContactForce { double f, elastic, rate, dx; };
+inline ContactForce contact_force(const Phase& ph, int c, const double* y, const double* a) {
+    const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
+    const double sg = k.sign;
+    const double dd = sg * rel(y, k.i, k.j) - k.gap, dv = sg * rel(y + ph.n, k.i, k.j), da = sg * rel(a, k.i, k.j);
+    if (law_is_linear(k.law)) {
+        const double fel = k.kb * dd + k.rb;
+        return {fel + k.cb * dv, fel, k.kb * dv + k.cb * da, dv};
+    }
+    const Force f = law_force(k.law, k.p, dd, dv, k.lz);
+    return {f.f, f.elastic, f.df_dd * dv + f.df_ddd * da, dv};
+}
+
+inline double bouc_wen_energy(const Phase& ph, double z) {
+    if (ph.bw[0] == 0.0) return 0.0;
+    return 0.5 * ph.bw[0] * ph.bw[1] * z * z / ph.bw[2];
+}
+
+}  // namespace pounding

@@ -1,0 +1,43 @@
+// The event-driven run: a system under a forcing from a state to an end time, every non-smooth instant
+// located on the exact trajectory.  What a run returns: the final state, the history samples, the contacts,
+// the events, the energy ledger, the exact extrema and how it ended.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core.hpp"
+
+namespace pounding {
+
+struct RunOptions {
+    double t_end = 0.0;
+    double sample_dt = 0.0;   // the history's step (0: events only; < 0: not even those)
+    double rtol = 1e-10;      // of the numerical integration of nonlinear phases
+    int64_t max_events = 10000000;
+    bool with_energy = true;  // the energy ledger outside contacts (a sweep's steps need only the contacts')
+};
+
+struct RunResult {
+    std::vector<double> state;
+    Rows samples{1, 256};     // (t, x (n), v (n), absolute accelerations (n), isolator force, contact forces)
+    Rows contacts{CONTACT_COLS, 16};
+    Rows events{EVENT_COLS, 64};
+    double ledger[LEDGER_LEN] = {0};
+    // per dof: x max, its time, x min, its time, |a_abs| max, its time, a_abs there
+    std::vector<double> extrema;
+    int status = SUCCESS;
+    void reset(const System& sy) {  // (a result reused run after run keeps its buffers)
+        samples.cols = sy.lay.sample_cols();
+        samples.clear();
+        contacts.clear();
+        events.clear();
+        extrema.assign(static_cast<size_t>(sy.lay.extrema_len()), 0.0);
+        status = SUCCESS;
+    }
+};
+
+void run_kernel(const System& sy, const Forcing& fo, const double* state0, const RunOptions& opt, int64_t* ctl,
+                RunResult& out);
+
+}  // namespace pounding

@@ -1,0 +1,128 @@
+// The elastic response of a record, exact: the peaks of u, u' and a_abs over time, for each oscillator.
+//
+// Between two samples the record is A = g0 + g1 tau and the motion has the closed form
+// u = exp(-sigma tau) (C cos wd tau + S sin wd tau) + p0 + p1 tau.  Its peaks between samples are found, not
+// sampled: every quantity f here (u, u', a_abs) is a damped sinusoid plus a straight line, so f'' is a pure
+// damped sinusoid whose zeros are known in closed form; between them f' is monotone with one root at most.
+#include "spectrum.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace pounding {
+
+namespace {
+constexpr int NEWTON_ITERATIONS = 100;
+constexpr double PI = 3.141592653589793;
+
+double value(double a, double b, double d0, double d1, double sig, double wd, double tau) {
+    return std::exp(-sig * tau) * (a * std::cos(wd * tau) + b * std::sin(wd * tau)) + d0 + d1 * tau;
+}
+double deriv_a(double a, double b, double sig, double wd) { return -sig * a + wd * b; }
+double deriv_b(double a, double b, double sig, double wd) { return -wd * a - sig * b; }
+
+double root(double a1, double b1, double d1, double a2, double b2, double sig, double wd, double lo, double hi,
+            double f_lo) {
+    double x = 0.5 * (lo + hi);
+    for (int it = 0; it < NEWTON_ITERATIONS; ++it) {
+        const double fx = value(a1, b1, d1, 0.0, sig, wd, x);
+        if (fx == 0.0) return x;
+        if ((fx < 0.0) == (f_lo < 0.0)) {
+            lo = x;
+            f_lo = fx;
+        } else {
+            hi = x;
+        }
+        const double dfx = value(a2, b2, 0.0, 0.0, sig, wd, x);
+        const double step = dfx != 0.0 ? fx / dfx : 0.0;
+        double nx = x - step;
+        if (!(lo < nx && nx < hi) || dfx == 0.0) nx = 0.5 * (lo + hi);
+        if (std::abs(nx - x) <= 1e-15 * (1.0 + std::abs(x)) || hi - lo <= 1e-15 * (1.0 + std::abs(x))) return nx;
+        x = nx;
+    }
+    return x;
+}
+
+double interior_peak(double a, double b, double d0, double d1, double sig, double wd, double h) {
+    const double a1 = deriv_a(a, b, sig, wd), b1 = deriv_b(a, b, sig, wd);
+    const double a2 = deriv_a(a1, b1, sig, wd), b2 = deriv_b(a1, b1, sig, wd);
+    double peak = 0.0;
+    const double phi = std::atan2(a2, b2);
+    double k = std::floor(phi / PI) + 1.0;
+    double lo = 0.0;
+    double f_lo = value(a1, b1, d1, 0.0, sig, wd, 0.0);
+    while (true) {
+        double cut = (k * PI - phi) / wd;
+        const bool last = cut >= h;
+        if (last) cut = h;
+        const double f_hi = value(a1, b1, d1, 0.0, sig, wd, cut);
+        if (f_hi == 0.0 && !last) {
+            peak = std::max(peak, std::abs(value(a, b, d0, d1, sig, wd, cut)));
+        } else if ((f_lo < 0.0) != (f_hi < 0.0) && f_lo != 0.0 && f_hi != 0.0) {
+            const double x = root(a1, b1, d1, a2, b2, sig, wd, lo, cut, f_lo);
+            peak = std::max(peak, std::abs(value(a, b, d0, d1, sig, wd, x)));
+        }
+        if (last) break;
+        lo = cut;
+        f_lo = f_hi;
+        k += 1.0;
+    }
+    return peak;
+}
+}  // namespace
+
+int spectrum_kernel(const double* t, const double* acc, int64_t n, const double* omegas, int64_t n_omega, double zeta,
+                    double* out, int64_t* ctl) {
+    const double rt = std::sqrt(1.0 - zeta * zeta);
+    for (int64_t j = 0; j < n_omega; ++j) {
+        const Control control{ctl};
+        if (control.stop()) return INTERRUPTED;
+        const double w = omegas[j];
+        if (control.add_work(n - 1 + static_cast<int64_t>(w * rt * (t[n - 1] - t[0]) / PI)) < 0) return BUDGET;
+        const double w2 = w * w, sig = zeta * w, wd = w * rt;
+        double u = 0.0, v = 0.0, u_max = 0.0, v_max = 0.0, a_max = 0.0, h_prev = -1.0, e = 0.0, c = 0.0, s = 0.0;
+        for (int64_t k = 0; k < n - 1; ++k) {
+            const double h = t[k + 1] - t[k];
+            const double g0 = acc[k];
+            const double g1 = (acc[k + 1] - g0) / h;
+            const double p1 = -g1 / w2;
+            const double p0 = (-g0 - 2.0 * sig * p1) / w2;
+            const double cu = u - p0;
+            const double su = (v - p1 + sig * cu) / wd;
+            if (h != h_prev) {
+                e = std::exp(-sig * h);
+                c = std::cos(wd * h);
+                s = std::sin(wd * h);
+                h_prev = h;
+            }
+            const double cv = deriv_a(cu, su, sig, wd), sv = deriv_b(cu, su, sig, wd);
+            const double ca = deriv_a(cv, sv, sig, wd), sa = deriv_b(cv, sv, sig, wd);
+            const double cj = deriv_a(ca, sa, sig, wd), sj = deriv_b(ca, sa, sig, wd);
+            const double cs = deriv_a(cj, sj, sig, wd), ss = deriv_b(cj, sj, sig, wd);
+            const double u1 = e * (cu * c + su * s) + p0 + p1 * h;
+            const double v1 = e * (cv * c + sv * s) + p1;
+            const double acc0 = -2.0 * sig * v - w2 * u;
+            const double acc1 = -2.0 * sig * v1 - w2 * u1;
+            const bool lng = wd * h >= PI;
+            const double ddu0 = acc0 - g0, ddu1 = acc1 - acc[k + 1];
+            const bool bend = (ddu0 < 0.0) != (ddu1 < 0.0);
+            if (lng || bend || ((v < 0.0) != (v1 < 0.0))) u_max = std::max(u_max, interior_peak(cu, su, p0, p1, sig, wd, h));
+            if (lng || bend) v_max = std::max(v_max, interior_peak(cv, sv, p1, 0.0, sig, wd, h));
+            const double j0 = cj + g1, j1 = e * (cj * c + sj * s) + g1;
+            const double q0 = cs, q1 = e * (cs * c + ss * s);
+            if (lng || ((j0 < 0.0) != (j1 < 0.0)) || ((q0 < 0.0) != (q1 < 0.0)))
+                a_max = std::max(a_max, interior_peak(ca, sa, g0, g1, sig, wd, h));
+            u_max = std::max(u_max, std::abs(u1));
+            v_max = std::max(v_max, std::abs(v1));
+            a_max = std::max(a_max, std::abs(acc1));
+            u = u1;
+            v = v1;
+        }
+        out[3 * j] = u_max;
+        out[3 * j + 1] = v_max;
+        out[3 * j + 2] = a_max;
+    }
+    return SUCCESS;
+}
+
+}  // namespace pounding

@@ -1,0 +1,13 @@
+#pragma once
+
+#include "core.hpp"
+
+namespace pounding {
+
+// peaks out[3 j..3 j + 3) = (max |u|, max |u'|, max |a_abs|) of oscillator omegas[j] (rad/s), damping ratio zeta
+// (0 <= zeta < 1), at rest at t[0] under the record acc (m/s^2, linear between the samples t) up to t[n - 1];
+// polls the stop flag once per oscillator and counts the intervals against the budget
+int spectrum_kernel(const double* t, const double* acc, int64_t n, const double* omegas, int64_t n_omega, double zeta,
+                    double* out, int64_t* ctl);
+
+}  // namespace pounding

@@ -1,0 +1,132 @@
+"""A slow, obviously-correct reference for structures of several masses: scipy's solve_ivp (DOP853) with
+events, restarted at each of them.
+
+The structure restated directly, sharing no code with the engine: n masses with displacements x relative
+to the ground, M x'' + C x' + K x + f_iso + f_contacts = -M 1 a_g(t); a linear isolator (spring k_iso,
+dashpot c_iso) between the first mass and the ground; Kelvin-Voigt bumpers against the first mass on both
+sides behind a gap: in contact the force K d + C d' (d = sign x_0 - gap, the compression) until it would
+pull; out of contact the bumper's compression relaxes as d_r exp(-K (t - t_r) / C) from where it was
+released, and contact starts when the mass meets that surface.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+
+@dataclass
+class Structure:
+    mass: np.ndarray          # kg, (n,)
+    k0: np.ndarray            # N/m, (n, n): the storeys' springs
+    c0: np.ndarray            # N s/m, (n, n): their dashpots
+    k_iso: float              # N/m, the first mass to the ground
+    c_iso: float
+    gaps: tuple[float, float]  # m, left and right
+    k_b: float                # the bumpers' Kelvin-Voigt law
+    c_b: float
+    a_g: float                # m/s^2, amplitude of a_g(t) = a_g sin(w t)
+    omega: float              # rad/s
+
+
+@dataclass
+class NdofResult:
+    contact_starts: list = field(default_factory=list)  # (contact, t): 0 left (sign -1), 1 right
+    contact_ends: list = field(default_factory=list)
+    depths: list = field(default_factory=list)          # each finished contact's deepest compression, m
+    speeds: list = field(default_factory=list)          # each start's approach speed, m/s
+    y: np.ndarray | None = None                         # the final (x, v)
+
+
+SIGNS = (-1.0, 1.0)
+
+
+def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, atol: float = 1e-15,
+              max_step: float | None = None) -> NdofResult:
+    n = s.mass.size
+    inv_m = 1.0 / s.mass
+    if max_step is None:  # a hundredth of the fastest period in contact: no dip of an event shorter than
+        # a step is missed between two steps' signs
+        k = s.k0.copy()
+        k[0, 0] += s.k_iso + 2.0 * s.k_b
+        w_max = math.sqrt(float(np.max(np.linalg.eigvals(k * inv_m[:, None]).real)))
+        max_step = 2.0 * math.pi / w_max / 100.0
+    inside = [False, False]
+    relax = [(0.0, 0.0), (0.0, 0.0)]  # (compression at release, release time)
+    out = NdofResult()
+    deepest = [0.0, 0.0]
+
+    def surface(c, t):  # the relaxing compression of bumper c at t
+        d_r, t_r = relax[c]
+        if d_r == 0.0 or s.c_b == 0.0:
+            return 0.0
+        return d_r * math.exp(-s.k_b * (t - t_r) / s.c_b)
+
+    def forces(t, y):
+        x, v = y[:n], y[n:]
+        f = s.k0 @ x + s.c0 @ v
+        f[0] += s.k_iso * x[0] + s.c_iso * v[0]
+        for c in range(2):
+            if inside[c]:
+                sg = SIGNS[c]
+                f_c = s.k_b * (sg * x[0] - s.gaps[c]) + s.c_b * sg * v[0]
+                f[0] += sg * f_c
+        return f
+
+    def rhs(t, y):
+        a = -inv_m * forces(t, y) - s.a_g * math.sin(s.omega * t)
+        return np.concatenate([y[n:], a])
+
+    def make_events():
+        evs = []
+        for c in range(2):
+            sg = SIGNS[c]
+            if inside[c]:
+                def release(t, y, c=c, sg=sg):
+                    return s.k_b * (sg * y[0] - s.gaps[c]) + s.c_b * sg * y[n]
+            else:
+                def release(t, y, c=c, sg=sg):
+                    return s.gaps[c] + surface(c, t) - sg * y[0]
+            release.terminal = True
+            release.direction = -1.0
+            evs.append(release)
+        return evs
+
+    t, y = 0.0, np.array(y0, dtype=float)
+    while t < t_end:
+        evs = make_events()
+        sol = solve_ivp(rhs, (t, t_end), y, method="DOP853", rtol=rtol, atol=atol, events=evs,
+                        dense_output=True, max_step=max_step)
+        if sol.status == -1:
+            raise RuntimeError(sol.message)
+        # the deepest compression of the contacts this stretch was in
+        for c in range(2):
+            if inside[c]:
+                ts = np.linspace(t, sol.t[-1], 200)
+                deepest[c] = max(deepest[c], float(np.max(SIGNS[c] * sol.sol(ts)[0] - s.gaps[c])))
+        hits = [(float(te[0]), c) for c, te in enumerate(sol.t_events) if te.size and te[0] > t + 1e-13]
+        if not hits:
+            if sol.status != 0:
+                raise RuntimeError(f"an event fires again at its own instant, t = {t}")
+            t, y = float(sol.t[-1]), sol.y[:, -1]
+            break
+        t_hit, c = min(hits)
+        y = sol.sol(t_hit)
+        t = t_hit
+        sg = SIGNS[c]
+        if inside[c]:
+            inside[c] = False
+            relax[c] = (max(sg * y[0] - s.gaps[c], 0.0), t)
+            out.contact_ends.append((c, t))
+            out.depths.append(deepest[c])
+            deepest[c] = 0.0
+        else:
+            inside[c] = True
+            out.contact_starts.append((c, t))
+            out.speeds.append(abs(y[n]))
+            deepest[c] = max(sg * y[0] - s.gaps[c], 0.0)
+    out.y = y
+    return out

@@ -1,0 +1,98 @@
+"""The compiled core's door (pounding._core): what Python and C++ declare side by side agrees, a system
+travels to other processes, and a run releases the GIL and stops when asked."""
+
+from __future__ import annotations
+
+import pickle
+import threading
+
+import numpy as np
+import pytest
+
+import pounding as pd_
+from pounding import _control, _core
+from pounding._errors import Status
+from pounding.engine import _layout
+from pounding.engine.simulate import kernel_forcing, kernel_system
+from pounding.model import contact_laws
+
+
+def test_every_law_has_the_id_the_core_gives_it():
+    laws = {
+        "kelvin_voigt": pd_.KelvinVoigt(1e5, 10.0),
+        "hunt_crossley": pd_.HuntCrossley(1e6, 1.5, 0.3),
+        "jankowski": pd_.Jankowski(1e6, 0.1, 100.0),
+        "multilinear": pd_.MultilinearBumper((1e5, 1e4), (0.01,)),
+        "elastic_plastic": pd_.ElasticPlastic(1e5, 1e4, 0.01),
+        "hertzdamp": pd_.Hertzdamp(1e6, 0.5),
+        "multilinear_kinematic": pd_.MultilinearBumper((1e5, 1e4), (0.01,), hysteresis="kinematic"),
+    }
+    assert set(laws) == set(_core.LAW_IDS)  # (every law the core knows is checked here)
+    for name, law in laws.items():
+        assert law.LAW_ID == _core.LAW_IDS[name], name
+    assert len(set(_core.LAW_IDS.values())) == len(_core.LAW_IDS)
+    assert contact_laws.N_LAW_PARAMS == _core.LAYOUT["N_LAW_PARAMS"]
+    for law in laws.values():
+        assert law.params().shape == (contact_laws.N_LAW_PARAMS,)
+
+
+def test_statuses_actions_and_the_control_array_agree_with_the_core():
+    assert {s.name: int(s) for s in Status} == _core.STATUS
+    assert [_layout.EVENT_NAMES.index(k) for k in _core.ACTIONS] == list(_core.ACTIONS.values())
+    assert sorted(_core.ACTIONS.values()) == list(range(len(_core.ACTIONS)))
+    assert _control.CTL_LEN == _core.LAYOUT["CTL_LEN"]
+    assert _layout.LEDGER_LEN == _layout.L_BUMPER + 1
+
+
+def test_a_system_pickles_and_runs_the_same_after():
+    osc = pd_.presets.paper_damped()
+    sy = kernel_system(osc)
+    back = pickle.loads(pickle.dumps(sy))
+    fo = kernel_forcing(pd_.Harmonic(0.1, 2.0))
+    state = pd_.State.at_rest(osc).vector
+    runs = [_core.run(s, fo, state.copy(), 3.0, 0.01, 1e-10, 10**6, True, _control.new_control(10**9))
+            for s in (sy, back)]
+    for a, b in zip(runs[0][:6], runs[1][:6], strict=True):
+        np.testing.assert_array_equal(a, b)
+    assert runs[0][6] == Status.SUCCESS
+
+
+def test_a_run_releases_the_gil_and_stops_when_asked():
+    # a run of a million simulated seconds on a helper thread: this thread sees its work counter grow
+    # while it runs (impossible with the GIL held), then asks it to stop; it returns INTERRUPTED
+    osc = pd_.presets.paper_damped()
+    sy, fo = kernel_system(osc), kernel_forcing(pd_.Harmonic(0.1, 2.0))
+    ctl = _control.new_control(10**12)
+    box = {}
+
+    def target():
+        box["out"] = _core.run(sy, fo, pd_.State.at_rest(osc).vector, 1e6, -1.0, 1e-10, 10**12, False, ctl)
+
+    worker = threading.Thread(target=target, daemon=True)
+    worker.start()
+    seen = 0
+    while seen < 10_000 and worker.is_alive():  # (the run would take minutes: it is still going)
+        seen = int(ctl[_control.CTL_WORK])
+    assert seen >= 10_000, "the run held the GIL: its progress could not be watched"
+    _control.request_stop([ctl])
+    worker.join()
+    assert box["out"][6] == Status.INTERRUPTED
+    assert 0 < box["out"][0][_layout.T] < 1e6
+
+
+def test_a_budget_stops_a_run_with_its_status():
+    osc = pd_.presets.paper_damped()
+    ctl = _control.new_control(500)
+    out = _core.run(kernel_system(osc), kernel_forcing(pd_.Harmonic(0.1, 2.0)), pd_.State.at_rest(osc).vector,
+                    1e3, -1.0, 1e-10, 10**9, False, ctl)
+    assert out[6] == Status.BUDGET and ctl[_control.CTL_WORK] <= 500
+
+
+@pytest.mark.parametrize("n", [1, 2, 4, 9])
+def test_the_core_matrix_exponential_matches_scipy(n):
+    from scipy.linalg import expm
+
+    rng = np.random.default_rng(n)
+    for scale in (1e-3, 1.0, 30.0):
+        a = scale * rng.standard_normal((n, n))
+        np.testing.assert_allclose(_core.expm(a), expm(a), rtol=1e-12, atol=1e-14 * np.abs(expm(a)).max())
