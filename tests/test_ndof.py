@@ -37,7 +37,8 @@ def shear(values: np.ndarray) -> np.ndarray:
 def core_system(s: Structure, bumpers: bool = True):
     params = np.zeros(_core.LAYOUT["N_LAW_PARAMS"])
     params[:2] = s.k_b, s.c_b
-    contacts = [(0, -1, -1.0, s.gaps[0], KELVIN_VOIGT, params), (0, -1, 1.0, s.gaps[1], KELVIN_VOIGT, params)]
+    contacts = [(0, -1, -1.0, s.gaps[0], KELVIN_VOIGT, params),
+                (0, -1, 1.0, s.gaps[1], KELVIN_VOIGT, params)]
     return _core.system(s.mass, s.k0, s.c0, (0, -1), s.c_iso, [s.k_iso], [], 1, np.zeros(6), bumpers, contacts)
 
 
@@ -94,7 +95,8 @@ def test_the_ledger_closes_over_every_mass_and_contact(s, v0):
     y0[s.mass.size:] = v0
     _, out = core_run(s, 3.0, y0)
     ledger = out[4]
-    flows = [ledger[k] for k in (L_INPUT, L_VISCOUS, L_HYSTERETIC, L_BUMPER_LOSS, L_KINETIC, L_ISOLATOR, L_BUMPER)]
+    flows = [ledger[k]
+             for k in (L_INPUT, L_VISCOUS, L_HYSTERETIC, L_BUMPER_LOSS, L_KINETIC, L_ISOLATOR, L_BUMPER)]
     residual = ledger[L_INPUT] - ledger[L_VISCOUS] - ledger[L_HYSTERETIC] - ledger[L_BUMPER_LOSS] - (
         ledger[L_KINETIC] + ledger[L_ISOLATOR] + ledger[L_BUMPER])
     assert abs(residual) <= 1e-9 * max(abs(f) for f in flows)
@@ -107,8 +109,8 @@ def test_a_linear_structure_reaches_its_frequency_response(n):
     rng = np.random.default_rng(n)
     mass = rng.uniform(200.0, 1000.0, n)
     k0, c0 = shear(rng.uniform(5e5, 2e6, n - 1)), shear(rng.uniform(500.0, 2e3, n - 1))
-    s = Structure(mass=mass, k0=k0, c0=c0, k_iso=2e4 * n, c_iso=300.0 * n, gaps=(0.01, 0.01), k_b=1e6, c_b=1e3,
-                  a_g=1.5, omega=2 * math.pi * 1.3)
+    s = Structure(mass=mass, k0=k0, c0=c0, k_iso=2e4 * n, c_iso=300.0 * n, gaps=(0.01, 0.01), k_b=1e6,
+                  c_b=1e3, a_g=1.5, omega=2 * math.pi * 1.3)
     k = k0.copy()
     k[0, 0] += s.k_iso
     c = c0.copy()
@@ -122,7 +124,8 @@ def test_a_linear_structure_reaches_its_frequency_response(n):
     expect = (x[None, :] * np.exp(1j * s.omega * t)[:, None]).imag
     np.testing.assert_allclose(samples[:, 1:1 + n], expect, rtol=0, atol=1e-10 * np.abs(x).max())
     # the absolute accelerations, exact: -w^2 X less the table's
-    acc = (-(s.omega**2) * x[None, :] * np.exp(1j * s.omega * t)[:, None]).imag + s.a_g * np.sin(s.omega * t)[:, None]
+    wave = np.exp(1j * s.omega * t)[:, None]
+    acc = (-(s.omega**2) * x[None, :] * wave).imag + s.a_g * np.sin(s.omega * t)[:, None]
     np.testing.assert_allclose(samples[:, 1 + 2 * n:1 + 3 * n], acc, rtol=0, atol=1e-9 * np.abs(acc).max())
 
 
