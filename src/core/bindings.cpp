@@ -164,7 +164,9 @@ NB_MODULE(_pounding_core, m) {
               RunResult out;
               {
                   nb::gil_scoped_release release;
-                  run_kernel(sy, fo, state0.data(), opt, ctl.data(), out);
+                  // each thread keeps its last system's buffers and transitions for its next run
+                  thread_local RunWorkspace workspace;
+                  run_kernel(sy, fo, state0.data(), opt, ctl.data(), out, &workspace);
               }
               return nb::make_tuple(array1(out.state.data(), out.state.size()), rows_array(out.samples),
                                     rows_array(out.contacts), rows_array(out.events),

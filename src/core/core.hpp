@@ -147,7 +147,7 @@ struct System {
 inline double rel(const double* y, int i, int j) { return j >= 0 ? y[i] - y[j] : y[i]; }
 
 // The excitation: harmonic (p = amplitude m/s^2, omega rad/s, phase rad) or a record (times s and
-// accelerations m/s^2, linear between samples; p unused).  It moves the ground,
+// accelerations m/s^2, linear between samples; p[0] its uniform step, 0 if none).  It moves the ground,
 // so every mass feels -m a_g.
 constexpr int EXC_HARMONIC = 0;
 struct Forcing {

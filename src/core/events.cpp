@@ -313,17 +313,87 @@ void rate_fn(const Fn& fn, Fn& out) {
 }
 }  // namespace
 
+bool may_turn_back(double h, double v0, double v1, double a0, double a1) {
+    const double s0 = h * a0, s1 = h * a1;
+    const double c2 = 3.0 * (v1 - v0) - 2.0 * s0 - s1;
+    const double c3 = 2.0 * (v0 - v1) + s0 + s1;
+    const double disc = std::max(c2 * c2 - 3.0 * c3 * s0, 0.0);
+    const double q = -(c2 + std::copysign(std::sqrt(disc), c2));
+    double x = q != 0.0 ? s0 / q : 0.5;
+    if (!(0.0 <= x && x <= 1.0) && c3 != 0.0) x = q / (3.0 * c3);
+    x = std::min(std::max(x, 0.0), 1.0);
+    const double v_c = v0 + x * (s0 + x * (c2 + x * c3));
+    const double margin = 0.25 * std::max(std::abs(s0), std::abs(s1));
+    return !(v_c * v0 > 0.0 && std::abs(v_c) > margin);
+}
+
+const Phase::Zeros& velocity_zeros(Phase& ph, int i, int j) {
+    const double h = ph.e_h;
+    for (const Phase::Zeros& z : ph.zeros)
+        if (z.i == i && z.j == j && z.h >= h) return z;  // (found on this sub-interval, up to h or beyond)
+    Phase::Zeros z{i, j, h, 0, {0.0, 0.0}, {0.0, 0.0}};
+    const int n = ph.n;
+    const double v0 = rel(ph.e_y0 + n, i, j), v1 = rel(ph.e_y1 + n, i, j);
+    const double a0 = rel(ph.e_a0, i, j), a1 = rel(ph.e_a1, i, j);
+    Fn fv, fa, fx;
+    const bool poly = !ph.numeric;
+    if (poly) {
+        pair_poly(ph, i, j, 0.0, 0.0, 1.0, 0.0, fv.q);
+        fv.kind = FN_POLY;
+    } else {
+        fv.kind = FN_PAIR_V;
+        fv.i = i;
+        fv.j = j;
+    }
+    if (h > 0.0 && v0 * v1 < 0.0) {
+        z.t[0] = find_root(fv, ph, 0.0, h, v0, v1, a0, a1, XTOL_S);
+        z.count = 1;
+    } else if (h > 0.0 && v0 * v1 > 0.0 && a0 * a1 < 0.0 && may_turn_back(h, v0, v1, a0, a1)) {
+        if (poly) {
+            poly_deriv(fv.q, fa.q);
+            fa.kind = FN_POLY;
+        } else {
+            fa.kind = FN_PAIR_A;
+            fa.i = i;
+            fa.j = j;
+        }
+        const double t_a = find_root(fa, ph, 0.0, h, a0, a1, NaN, NaN, XTOL_EXTREMUM_S);
+        double vm, am;
+        fn_eval(fv, ph, t_a, vm, am);
+        if (0.0 < t_a && t_a < h && vm * v0 < 0.0) {
+            z.t[0] = find_root(fv, ph, 0.0, t_a, v0, vm, a0, am, XTOL_S);
+            z.t[1] = find_root(fv, ph, t_a, h, vm, v1, am, a1, XTOL_S);
+            z.count = 2;
+        }
+    }
+    for (int k = 0; k < z.count; ++k) {  // the relative displacement there
+        if (poly) {
+            pair_poly(ph, i, j, 0.0, 1.0, 0.0, 0.0, fx.q);
+            ph.poly_evaluations += 1;
+            z.x[k] = poly_val(fx.q, z.t[k]);
+        } else {
+            phase_eval(ph, z.t[k], ph.ye.data(), ph.ae.data());
+            z.x[k] = rel(ph.ye.data(), i, j);
+        }
+    }
+    ph.zeros.push_back(z);
+    return ph.zeros.back();
+}
+
 double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, double gp0, double tol0, double g1,
                     double gp1, double tol1, double xtol) {
+    const bool crosses = g0 > tol0 && g1 <= 0.0;
+    const bool leaves = g0 <= tol0 && g1 < -tol1;
+    if (!crosses && !leaves && !(gp0 < 0.0 && gp1 > 0.0)) return -1.0;  // (at zero, moving away: nothing)
     Fn fn;
     event_fn(evs, i, ph, fn);
-    if (g0 > tol0 && g1 <= 0.0) return find_root(fn, ph, 0.0, h, g0, g1, gp0, gp1, xtol);
+    if (crosses) return find_root(fn, ph, 0.0, h, g0, g1, gp0, gp1, xtol);
     Fn rate;
     rate_fn(fn, rate);
     if (fn.kind == FN_POLY_RELAX) rate.idx = i;  // (the event's rate on the trajectory)
     double* y = ph.ye.data();
     double* a = ph.ae.data();
-    if (g0 <= tol0 && g1 < -tol1) {
+    if (leaves) {
         double tp = h;
         for (int it = 0; it < 60; ++it) {
             tp *= 0.5;
@@ -336,13 +406,26 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
         return 0.0;
     }
     if (!(gp0 < 0.0 && gp1 > 0.0)) return -1.0;
-    // a local minimum inside: does it dip below zero?
-    const double tm = find_root(rate, ph, 0.0, h, gp0, gp1, NaN, NaN, xtol);
-    phase_eval(ph, tm, y, a);
-    const EventValue ev = event_value(evs[i], ph, tm, y, a);
-    if (ev.g >= -ROUNDING * ev.scale) return -1.0;
+    // a local minimum inside: does it dip below zero?  A function of the pair's displacement alone has it
+    // where the pair's velocity is zero (found once for every such event of the sub-interval)
+    const EventRow& e = evs[i];
+    double tm, gm, sc;
+    const Phase::Zeros& z = velocity_zeros(ph, e.i, e.j);
+    if (fn.kind == FN_POLY && e.kind == KIND_LINEAR && e.gamma == 0.0 && e.beta != 0.0 && z.count == 1 &&
+        z.t[0] < h) {
+        tm = z.t[0];
+        gm = e.alpha + e.beta * z.x[0];
+        sc = std::abs(e.alpha) + std::abs(e.beta * z.x[0]) + (e.side == SIDE_NONE ? 0.0 : ph.xround);
+    } else {
+        tm = find_root(rate, ph, 0.0, h, gp0, gp1, NaN, NaN, xtol);
+        phase_eval(ph, tm, y, a);
+        const EventValue ev = event_value(e, ph, tm, y, a);
+        gm = ev.g;
+        sc = ev.scale;
+    }
+    if (gm >= -ROUNDING * sc) return -1.0;
     if (g0 <= tol0) return 0.0;  // it leaves the boundary on the wrong side at once
-    return find_root(fn, ph, 0.0, tm, g0, ev.g, gp0, 0.0, xtol);
+    return find_root(fn, ph, 0.0, tm, g0, gm, gp0, 0.0, xtol);
 }
 
 int bumper_events(const double* st, const Phase& ph, const System& sy, EventRow* evs, int n) {

@@ -72,6 +72,13 @@ void event_fn(const EventRow* evs, int i, Phase& ph, Fn& fn);
 double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, double gp0, double tol0, double g1,
                     double gp1, double tol1, double xtol);
 
+// may a velocity, of one sign at both ends with accelerations of opposite signs, turn back inside?
+bool may_turn_back(double h, double v0, double v1, double a0, double a1);
+// the instants in (0, e_h) where the relative velocity of the pair (i, j) crosses zero (0, 1, or 2 where it
+// turns back inside) and the relative displacement there, from the sub-interval's ends; kept for the
+// sub-interval (a shorter end asked later reads the same zeros below it)
+const Phase::Zeros& velocity_zeros(Phase& ph, int i, int j);
+
 // the contacts' event rows: appended from row n on, the new count returned
 int bumper_events(const double* st, const Phase& ph, const System& sy, EventRow* evs, int n);
 bool law_switches(const Phase& ph);

@@ -5,12 +5,16 @@
 namespace pounding {
 
 namespace {
-constexpr double SERIES_TAIL = 1e-19;  // a series' next terms, against the motion's scale
+constexpr double SERIES_TAIL = 1e-18;  // a series' next terms, against the motion's scale
 constexpr int HERMITE_ORDER = 8;
 // c_k of int_0^T f = sum_k c_k T^(k+1) (f^(k)(0) + (-1)^k f^(k)(T)), exact to degree 2p + 1
 constexpr double HERMITE_C[HERMITE_ORDER + 1] = {
     0.5, 0.11764705882352941, 0.01715686274509804, 0.001715686274509804, 0.00012254901960784314,
     6.2845651080945196e-06, 2.2444875386051856e-07, 5.101108042284513e-09, 5.66789782476057e-11};
+// binom(k, j), and binom(k, j) (1 if 2 j = k, else 2): sum_j binom(k, j) a_j b_(k-j) for a = b in half the terms
+constexpr double SYM[HERMITE_ORDER + 1][HERMITE_ORDER / 2 + 1] = {
+    {1, 0, 0, 0, 0}, {2, 0, 0, 0, 0}, {2, 2, 0, 0, 0}, {2, 6, 0, 0, 0}, {2, 8, 6, 0, 0}, {2, 10, 20, 0, 0},
+    {2, 12, 30, 20, 0}, {2, 14, 42, 70, 0}, {2, 16, 56, 112, 70}};
 constexpr double BINOM[HERMITE_ORDER + 1][HERMITE_ORDER + 1] = {
     {1, 0, 0, 0, 0, 0, 0, 0, 0},       {1, 1, 0, 0, 0, 0, 0, 0, 0},        {1, 2, 1, 0, 0, 0, 0, 0, 0},
     {1, 3, 3, 1, 0, 0, 0, 0, 0},       {1, 4, 6, 4, 1, 0, 0, 0, 0},        {1, 5, 10, 10, 5, 1, 0, 0, 0},
@@ -56,37 +60,80 @@ void end_derivatives(const Phase& ph, const double* y, const double* a, const do
     }
 }
 
-// one end's share of the integrals: sum_k c_k T^(k+1) sgn^k f^(k)
+// one end's share of the integrals: sum_k c_k T^(k+1) sgn^k f^(k), f the integrands (D: the displacements'
+// derivatives D_0..D_9 there, g: the table acceleration's G_0..G_8)
 void hermite_end(Phase& ph, const std::vector<double>& c_lin, const std::vector<double>& mass, const double* D,
-                 const double* g, double big_t, double sgn, double& vcv, double& gv, double* du, double* dvv) {
+                 const double* g, double big_t, double sgn, bool energy, double& vcv, double& gv, double* du,
+                 double* dvv) {
     const int n = ph.n;
-    double* P = ph.work.data() + ph.w_P;  // P_k = m . D_(k+1)
-    for (int k = 0; k <= HERMITE_ORDER; ++k) {
-        double s = 0.0;
-        for (int i = 0; i < n; ++i) s += mass[static_cast<size_t>(i)] * D[(k + 1) * n + i];
-        P[k] = s;
-    }
+    double q[HERMITE_ORDER + 1];
     double t = big_t;
     for (int k = 0; k <= HERMITE_ORDER; ++k) {
-        const double q = HERMITE_C[k] * t * ((k % 2) ? sgn : 1.0);
-        double s_vcv = 0.0;
-        for (int j = 0; j <= k / 2; ++j)
-            s_vcv += BINOM[k][j] * (2 * j == k ? 1.0 : 2.0) * quad(c_lin, D + (j + 1) * n, D + (k - j + 1) * n, n);
-        double s_gv = 0.0;
-        for (int j = 0; j <= k; ++j) s_gv += BINOM[k][j] * g[j] * P[k - j];
-        vcv += q * s_vcv;
-        gv += q * s_gv;
-        for (int c = 0; c < ph.nc; ++c) {
-            const ContactPhase& ct = ph.ct[static_cast<size_t>(c)];
-            if (!ct.in || ct.nl) continue;
-            const int i = ct.i, jj = ct.j;
-            auto W = [&](int m) { return jj >= 0 ? D[m * n + i] - D[m * n + jj] : D[m * n + i]; };
-            double s_vv = 0.0;
-            for (int j = 0; j <= k / 2; ++j) s_vv += BINOM[k][j] * (2 * j == k ? 1.0 : 2.0) * W(j + 1) * W(k - j + 1);
-            dvv[c] += q * s_vv;
-            du[c] += q * W(k);
-        }
+        q[k] = HERMITE_C[k] * t * ((k % 2) ? sgn : 1.0);
         t *= big_t;
+    }
+    if (energy && n == 1) {  // (one mass: scalars)
+        const double c = c_lin[0], m = mass[0];
+        double CD[HERMITE_ORDER + 2], P[HERMITE_ORDER + 1];
+        for (int k = 1; k <= HERMITE_ORDER + 1; ++k) CD[k] = c * D[k];
+        for (int k = 0; k <= HERMITE_ORDER; ++k) P[k] = m * D[k + 1];
+        for (int k = 0; k <= HERMITE_ORDER; ++k) {
+            double s_vcv = 0.0, s_gv = 0.0;
+            for (int j = 0; j <= k / 2; ++j) s_vcv += SYM[k][j] * (D[j + 1] * CD[k - j + 1]);
+            for (int j = 0; j <= k; ++j) s_gv += BINOM[k][j] * g[j] * P[k - j];
+            vcv += q[k] * s_vcv;
+            gv += q[k] * s_gv;
+        }
+    } else if (energy) {
+        // int v^T C v: f^(k) = sum_j binom(k, j) D_(j+1) . (C D_(k-j+1)); int a_g (m . v): sum_j binom G_j P_(k-j)
+        double* CD = ph.work.data() + ph.w_q;  // C D_m, m = 1..9 (9 n)
+        double P[HERMITE_ORDER + 1];
+        for (int m = 1; m <= HERMITE_ORDER + 1; ++m) {
+            const double* d = D + m * n;
+            double* out = CD + (m - 1) * n;
+            for (int i = 0; i < n; ++i) {
+                const double* r = &c_lin[static_cast<size_t>(i * n)];
+                double s = 0.0;
+                for (int j = 0; j < n; ++j) s += r[j] * d[j];
+                out[i] = s;
+            }
+        }
+        for (int k = 0; k <= HERMITE_ORDER; ++k) {
+            const double* d = D + (k + 1) * n;
+            double s = 0.0;
+            for (int i = 0; i < n; ++i) s += mass[static_cast<size_t>(i)] * d[i];
+            P[k] = s;
+        }
+        for (int k = 0; k <= HERMITE_ORDER; ++k) {
+            double s_vcv = 0.0;
+            for (int j = 0; j <= k / 2; ++j) {
+                const double* a = D + (j + 1) * n;
+                const double* b = CD + (k - j) * n;
+                double dot = 0.0;
+                for (int i = 0; i < n; ++i) dot += a[i] * b[i];
+                s_vcv += SYM[k][j] * dot;
+            }
+            double s_gv = 0.0;
+            for (int j = 0; j <= k; ++j) s_gv += BINOM[k][j] * g[j] * P[k - j];
+            vcv += q[k] * s_vcv;
+            gv += q[k] * s_gv;
+        }
+    }
+    for (int c = 0; c < ph.nc; ++c) {  // the contacts in contact with a linear law: their pair's motion
+        const ContactPhase& ct = ph.ct[static_cast<size_t>(c)];
+        if (!ct.in || ct.nl) continue;
+        double W[HERMITE_ORDER + 2];
+        for (int m = 0; m <= HERMITE_ORDER + 1; ++m)
+            W[m] = ct.j >= 0 ? D[m * n + ct.i] - D[m * n + ct.j] : D[m * n + ct.i];
+        double s_u = 0.0, s_vv = 0.0;
+        for (int k = 0; k <= HERMITE_ORDER; ++k) {
+            double f = 0.0;
+            for (int j = 0; j <= k / 2; ++j) f += SYM[k][j] * W[j + 1] * W[k - j + 1];
+            s_vv += q[k] * f;
+            s_u += q[k] * W[k];
+        }
+        du[c] += s_u;
+        dvv[c] += s_vv;
     }
 }
 
@@ -106,69 +153,95 @@ constexpr double E1 = 71.0 / 57600.0, E3 = -71.0 / 16695.0, E4 = 71.0 / 1920.0, 
 
 // ---------------------------------------------------------------- the series
 
-void taylor(Phase& ph, double h) {
-    const int n = ph.n, ny = ph.ny;
-    double* t = ph.tc.data();
-    for (int q = 0; q < ny; ++q) t[q] = ph.y0[static_cast<size_t>(q)];
-    // the terms the eigenvalue bound asks for: (r^k / k!) below the tail's bound (two more for a nearly
-    // defective phase, whose terms carry a factor k)
-    const double r = std::max(ph.rate, std::abs(ph.w)) * h;
-    int need = 4;
-    {
-        double term = 1.0;
-        for (int k = 1; k < MAX_TERMS; ++k) {
-            term *= r / k;
-            if (k >= 3 && term <= SERIES_TAIL) {
-                need = k + 3;
-                break;
-            }
-            need = k + 3;
-        }
+// 1 / k, k = 1..MAX_TERMS + 1
+struct Inverses {
+    double v[MAX_TERMS + 2];
+    constexpr Inverses() : v() {
+        for (int k = 1; k < MAX_TERMS + 2; ++k) v[k] = 1.0 / k;
     }
-    need = std::min(need, MAX_TERMS);
-    // the table acceleration's series: g_0 = ax0 + axh sin(phi), g_1 = ax1 + axh w cos(phi), then the sine's
+};
+constexpr Inverses INV;
+
+int series_terms(double r) {
+    // the terms the eigenvalue bound asks for: (r^k / k!) below the tail's bound, and three more (a nearly
+    // defective phase's terms carry a factor k)
+    double term = 1.0;
+    for (int k = 1; k < MAX_TERMS - 3; ++k) {
+        term *= r / k;
+        if (k >= 3 && term <= SERIES_TAIL) return k + 3;
+    }
+    return MAX_TERMS;
+}
+
+int series(const Phase& ph, const double* y0, const double* r, double a0, double a1, double amp, double sp,
+           double cp, double h, double* t) {
+    const int n = ph.n, ny = ph.ny;
+    for (int q = 0; q < ny; ++q) t[q] = y0[q];
+    const int need = series_terms(std::max(ph.rate, std::abs(ph.w)) * h);
     double scale = ph.xrun;
     for (int i = 0; i < n; ++i) scale = std::max({scale, std::abs(t[i]), h * std::abs(t[n + i])});
-    const double sp = ph.sphi, cp = ph.cphi, w = ph.w, amp = ph.axh;
+    const double w = ph.w;
+    const double* K = ph.K.data();
+    const double* C = ph.C.data();
+    const double* minv = ph.minv.data();
     double wk = 1.0;  // w^k / k!
-    int k = 0;
-    for (;; ++k) {
+    double hk = 1.0;  // h^k
+    for (int k = 0;; ++k) {
         const int m4 = k % 4;
+        // the table acceleration's series: a0 + a1 tau + amp sin(w tau + phi)
         double g = amp * wk * (m4 == 0 ? sp : m4 == 1 ? cp : m4 == 2 ? -sp : -cp);
-        if (k == 0) g += ph.ax0;
-        if (k == 1) g += ph.ax1;
-        wk *= w / (k + 1);
+        if (k == 0) g += a0;
+        if (k == 1) g += a1;
+        const double inv = INV.v[k + 1];
+        wk *= w * inv;
         const double* Xk = t + k * ny;
         const double* Vk = Xk + n;
         double* Xn = t + (k + 1) * ny;
         double* Vn = Xn + n;
-        const double inv = 1.0 / (k + 1);
-        minv_ab(ph, ph.K, Xk, ph.C, Vk, Vn);
-        for (int i = 0; i < n; ++i) {
-            double f = Vn[i];
-            if (k == 0) f += ph.minv[static_cast<size_t>(i)] * ph.R0[static_cast<size_t>(i)];
-            Vn[i] = (-f - g) * inv;
-            Xn[i] = Vk[i] * inv;
-        }
-        const int m = k + 1;  // the term just computed
-        if (m + 1 >= need) {
-            // its size and the last one's, as lengths over [0, h]: both below the tail bound, done
-            double hk = std::pow(h, m), e_m = 0.0, e_p = 0.0;
-            for (int i = 0; i < n; ++i) e_m = std::max(e_m, hk * (std::abs(Xn[i]) + h * std::abs(Vn[i])));
-            const double* Xp = t + k * ny;
-            const double hp = hk / (h > 0.0 ? h : 1.0);
-            for (int i = 0; i < n; ++i) e_p = std::max(e_p, hp * (std::abs(Xp[i]) + h * std::abs(Xp[n + i])));
-            if ((e_m <= SERIES_TAIL * scale && e_p <= 1e3 * SERIES_TAIL * scale) || m + 1 >= MAX_TERMS || h == 0.0) {
-                ph.nt = m + 1;
-                break;
+        if (n == 1) {  // (one mass: the loops unrolled)
+            double f = minv[0] * (K[0] * Xk[0] + C[0] * Vk[0]);
+            if (k == 0 && r != nullptr) f += r[0];
+            Vn[0] = (-f - g) * inv;
+            Xn[0] = Vk[0] * inv;
+        } else {
+            for (int i = 0; i < n; ++i) {
+                const double* rk = K + i * n;
+                const double* rc = C + i * n;
+                double s = 0.0;
+                for (int j = 0; j < n; ++j) s += rk[j] * Xk[j] + rc[j] * Vk[j];
+                double f = minv[i] * s;
+                if (k == 0 && r != nullptr) f += r[i];
+                Vn[i] = (-f - g) * inv;
+                Xn[i] = Vk[i] * inv;
             }
         }
+        const int m = k + 1;  // the term just computed
+        hk *= h;
+        if (m + 1 >= need) {
+            // its size and the last one's, as lengths over [0, h]: both below the tail bound, done
+            double e_m = 0.0, e_p = 0.0;
+            const double hp = hk / (h > 0.0 ? h : 1.0);
+            for (int i = 0; i < n; ++i) {
+                e_m = std::max(e_m, hk * (std::abs(Xn[i]) + h * std::abs(Vn[i])));
+                e_p = std::max(e_p, hp * (std::abs(Xk[i]) + h * std::abs(Vk[i])));
+            }
+            if ((e_m <= SERIES_TAIL * scale && e_p <= 1e3 * SERIES_TAIL * scale) || m + 1 >= MAX_TERMS || h == 0.0)
+                return m + 1;
+        }
     }
+}
+
+void taylor(const Phase& ph, double h) {
+    // the restoring force's constant part, as accelerations: M^-1 R0
+    double* r = ph.rbuf.data();
+    for (int i = 0; i < ph.n; ++i) r[i] = ph.minv[static_cast<size_t>(i)] * ph.R0[static_cast<size_t>(i)];
+    ph.nt = series(ph, ph.y0.data(), r, ph.ax0, ph.ax1, ph.axh, ph.sphi, ph.cphi, h, ph.tc.data());
     ph.tc_ok = true;
 }
 
 void lin_eval(const Phase& ph, double tau, double* y, double* a) {
     ph.evaluations += 1;
+    ensure_series(ph);
     const int n = ph.n, ny = ph.ny, nt = ph.nt;
     const double* t = ph.tc.data();
     for (int q = 0; q < ny; ++q) y[q] = t[(nt - 1) * ny + q];
@@ -194,22 +267,32 @@ void table_derivatives(const Phase& ph, double tau, double s, double c, int m, d
 }
 
 void pair_poly(const Phase& ph, int i, int j, double alpha, double beta, double gamma, double delta, Poly& q) {
+    ensure_series(ph);
     const int n = ph.n, ny = ph.ny, nt = ph.nt;
     const double* t = ph.tc.data();
-    auto d = [&](int k, int off) {
-        const double* Yk = t + k * ny + off;
-        return j >= 0 ? Yk[i] - Yk[j] : Yk[i];
-    };
     q.deg = nt - 1;
-    for (int k = 0; k < nt; ++k) {
-        double c = beta * d(k, 0) + gamma * d(k, n);
-        if (delta != 0.0 && k + 1 < nt) c += delta * (k + 1) * d(k + 1, n);
-        q.c[k] = c;
+    if (j < 0) {
+        const double* xi = t + i;
+        const double* vi = t + n + i;
+        for (int k = 0; k < nt; ++k) q.c[k] = beta * xi[k * ny] + gamma * vi[k * ny];
+        if (delta != 0.0)
+            for (int k = 0; k + 1 < nt; ++k) q.c[k] += delta * (k + 1) * vi[(k + 1) * ny];
+    } else {
+        for (int k = 0; k < nt; ++k) {
+            const double* Yk = t + k * ny;
+            q.c[k] = beta * (Yk[i] - Yk[j]) + gamma * (Yk[n + i] - Yk[n + j]);
+        }
+        if (delta != 0.0)
+            for (int k = 0; k + 1 < nt; ++k) {
+                const double* Yk = t + (k + 1) * ny + n;
+                q.c[k] += delta * (k + 1) * (Yk[i] - Yk[j]);
+            }
     }
     q.c[0] += alpha;
 }
 
 void abs_acc_poly(const Phase& ph, int i, Poly& q) {
+    ensure_series(ph);
     const int n = ph.n, ny = ph.ny, nt = ph.nt;
     const double* t = ph.tc.data();
     const double* rk = &ph.K[static_cast<size_t>(i * n)];
@@ -236,7 +319,7 @@ void poly_deriv(const Poly& q, Poly& out) {
 
 void linear_integrals(Phase& ph, const std::vector<double>& c_lin, const std::vector<double>& mass, double tau,
                       const double* y0, const double* a0, double s0, double c0, const double* y1, const double* a1,
-                      double s1, double c1, double& vcv, double& gv, double* du, double* dvv) {
+                      double s1, double c1, bool energy, double& vcv, double& gv, double* du, double* dvv) {
     const int n = ph.n;
     double* D = ph.work.data() + ph.w_D;  // (HERMITE_ORDER + 2) n
     double* g = ph.work.data() + ph.w_g;  // HERMITE_ORDER + 1
@@ -248,10 +331,10 @@ void linear_integrals(Phase& ph, const std::vector<double>& c_lin, const std::ve
     }
     table_derivatives(ph, 0.0, s0, c0, HERMITE_ORDER, g);
     end_derivatives(ph, y0, a0, g, D);
-    hermite_end(ph, c_lin, mass, D, g, tau, 1.0, vcv, gv, du, dvv);
+    hermite_end(ph, c_lin, mass, D, g, tau, 1.0, energy, vcv, gv, du, dvv);
     table_derivatives(ph, tau, s1, c1, HERMITE_ORDER, g);
     end_derivatives(ph, y1, a1, g, D);
-    hermite_end(ph, c_lin, mass, D, g, tau, -1.0, vcv, gv, du, dvv);
+    hermite_end(ph, c_lin, mass, D, g, tau, -1.0, energy, vcv, gv, du, dvv);
     (void)n;
 }
 

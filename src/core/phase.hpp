@@ -66,16 +66,25 @@ struct Phase {
     // the run's and the phase's length (m) and velocity (m/s) scales, what event values are rounded against
     double xrun = 0.0, vrun = 0.0, xround = 0.0, vround = 0.0;
     double rate = 0.0;  // a bound on the phase's |eigenvalues|, 1/s
-    // the series of the current sub-interval: Y_k at tc[k * ny], k < nt
-    int nt = 0;
-    bool tc_ok = false;
-    std::vector<double> tc;
+    // the series of the current sub-interval of length series_h: Y_k at tc[k * ny], k < nt; made when first
+    // asked for (ensure_series)
+    mutable int nt = 0;
+    mutable bool tc_ok = false;
+    double series_h = 0.0;
+    mutable std::vector<double> tc;
+    mutable std::vector<double> rbuf;  // M^-1 R0
     // the last Dormand-Prince step: its length (-1: none); y (ny), a (n), the error (ny), z, its error
     double dp5_h = -1.0;
     std::vector<double> dp5;
     std::vector<double> work;  // scratch: the derivatives at an end, the table's, m . D, forces, DP5 stages
     int w_D = 0, w_g = 0, w_P = 0, w_q = 0, w_stage = 0;
     std::vector<double> ye, ae;  // an evaluation's y and a (the root finders')
+    // the current sub-interval's ends, as the loop has them (the start's velocities at rest signed by their
+    // accelerations), its length, and the relative velocities' zeros found on it so far (per pair)
+    const double *e_y0 = nullptr, *e_a0 = nullptr, *e_y1 = nullptr, *e_a1 = nullptr;
+    double e_h = 0.0;
+    struct Zeros { int i, j; double h; int count; double t[2], x[2]; };
+    std::vector<Zeros> zeros;
     // evaluations of the trajectory at an instant inside a sub-interval (a series summed, a numerical step),
     // and of scalar polynomials (a root finder's iterations on a linear phase)
     mutable int64_t evaluations = 0;
@@ -94,13 +103,14 @@ struct Phase {
         ct.assign(static_cast<size_t>(nc), ContactPhase());
         tc.assign(static_cast<size_t>((MAX_TERMS + 1) * ny), 0.0);
         ye.assign(static_cast<size_t>(ny), 0.0);
+        rbuf.assign(static_cast<size_t>(n), 0.0);
         ae.assign(static_cast<size_t>(n), 0.0);
         dp5.assign(static_cast<size_t>(2 * ny + n + 2), 0.0);
         w_D = 0;                 // 10 n
         w_g = 10 * n;            // 10
         w_P = w_g + 10;          // 10
-        w_q = w_P + 10;          // n
-        w_stage = w_q + n;       // 8 (ny + 1)
+        w_q = w_P + 10;          // 9 n (C D_m; the forces in phase_rhs)
+        w_stage = w_q + 9 * n;   // 8 (ny + 1)
         work.assign(static_cast<size_t>(w_stage + 8 * (ny + 1)), 0.0);
     }
     const double* X(int k) const { return &tc[static_cast<size_t>(k * ny)]; }
@@ -109,8 +119,17 @@ struct Phase {
 
 // ---------------------------------------------------------------- the linear phase's series
 
+// the series of y from y0 under the accelerations -r - (a0 + a1 tau + amp sin(w tau + phi)) 1 besides the
+// phase's springs and dashpots (r: n values or null; sin phi = sp, cos phi = cp), accurate over [0, h], into t
+// (coefficient k of y at t[k ny]); the number of terms
+int series(const Phase& ph, const double* y0, const double* r, double a0, double a1, double amp, double sp,
+           double cp, double h, double* t);
 // the series of the sub-interval from y0 (forcing angle sphi, cphi at its start), accurate over [0, h]
-void taylor(Phase& ph, double h);
+void taylor(const Phase& ph, double h);
+// the current sub-interval's series, made over [0, series_h] if it is not yet
+inline void ensure_series(const Phase& ph) {
+    if (!ph.tc_ok) taylor(ph, ph.series_h);
+}
 // y (ny) and the acceleration a (n) at tau of the current series
 void lin_eval(const Phase& ph, double tau, double* y, double* a);
 // the table acceleration's derivatives G_0..G_m at tau (sin and cos of the forcing angle there given)
@@ -140,12 +159,12 @@ inline void poly_val3(const Poly& q, double t, double& f, double& f1, double& f2
     f2 *= 2.0;
 }
 
-// over [0, tau] of a linear phase: int v^T C_lin v (vcv), int a_g (m . v) (gv), and for each contact c in
+// over [0, tau] of a linear phase: int v^T C_lin v (vcv), int a_g (m . v) (gv) (when energy), and for each contact c in
 // contact with a linear law int (x_i - x_j) (du[c]) and int (v_i - v_j)^2 (dvv[c]): the two-point Hermite rule
 // of order 8 on the derivatives at both ends (the equation of motion differentiated), exact to degree 17
 void linear_integrals(Phase& ph, const std::vector<double>& c_lin, const std::vector<double>& mass, double tau,
                       const double* y0, const double* a0, double s0, double c0, const double* y1, const double* a1,
-                      double s1, double c1, double& vcv, double& gv, double* du, double* dvv);
+                      double s1, double c1, bool energy, double& vcv, double& gv, double* du, double* dvv);
 
 // ---------------------------------------------------------------- the numerical phase
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "core.hpp"
@@ -37,7 +38,17 @@ struct RunResult {
     }
 };
 
+// a run's buffers and the transitions it computed, kept for the next run of the same system (a sweep's
+// cycles): one per thread
+class RunWorkspace {
+  public:
+    RunWorkspace();
+    ~RunWorkspace();
+    struct Impl;
+    std::unique_ptr<Impl> impl;
+};
+
 void run_kernel(const System& sy, const Forcing& fo, const double* state0, const RunOptions& opt, int64_t* ctl,
-                RunResult& out);
+                RunResult& out, RunWorkspace* workspace = nullptr);
 
 }  // namespace pounding

@@ -141,11 +141,12 @@ void step_kernel(const System& sy, double amp, double omega, const double* state
     opt.with_energy = false;  // a step measures extrema and contacts, not the ledger
     std::vector<char> memory(static_cast<size_t>(nc));
     for (int c = 0; c < nc; ++c) memory[static_cast<size_t>(c)] = law_has_memory(sy.contact[static_cast<size_t>(c)].law);
-    RunResult run;  // (its buffers kept from cycle to cycle)
+    RunResult run;  // (its buffers, and the phases' transitions, kept from cycle to cycle)
+    RunWorkspace workspace;
     while (n < n_cycles) {
         std::copy(st.begin(), st.end(), starts.begin() + static_cast<std::ptrdiff_t>(n) * n_state);
         opt.t_end = t0 + (n + 1) * period;
-        run_kernel(sy, fo, st.data(), opt, ctl, run);
+        run_kernel(sy, fo, st.data(), opt, ctl, run, &workspace);
         st = run.state;
         status = run.status;
         double* cy = &cyc[static_cast<size_t>(n) * CYCLE_COLS];

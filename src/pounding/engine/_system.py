@@ -13,7 +13,7 @@ from .._core import System  # noqa: F401  (the core's; re-exported for the engin
 
 class Forcing(NamedTuple):
     """The excitation as the core takes it: its kind (``EXC_HARMONIC`` or a record), its parameters
-    (harmonic: amplitude m/s^2, omega rad/s, phase rad; a record: zeros) and, for a record,
+    (harmonic: amplitude m/s^2, omega rad/s, phase rad; a record: its uniform step or 0) and, for a record,
     its times (s) and accelerations (m/s^2) (one-element zeros otherwise)."""
 
     kind: int

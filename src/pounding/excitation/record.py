@@ -306,6 +306,11 @@ class Record:
 
     @cached_property
     def _kernel_arrays(self) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
-        return (RECORD, np.zeros(3), np.array(self.t, dtype=float),
+        # the first parameter: the record's uniform step (steps equal within 1e-9 of it; else 0), each of
+        # whose intervals goes by its phase's transition (the core's transition.cpp)
+        steps = np.diff(self.t)
+        step = float(np.median(steps))
+        uniform = float(np.max(np.abs(steps - step))) <= 1e-9 * step
+        return (RECORD, np.array([step if uniform else 0.0, 0.0, 0.0]), np.array(self.t, dtype=float),
                 np.array(self.accel, dtype=float))
 

@@ -1,0 +1,307 @@
+// The outputs at an instant and what a sub-interval adds to a run: energy integrals, contact statistics,
+// extrema (run_parts.hpp).
+#include "run_parts.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "events.hpp"
+#include "isolator.hpp"
+#include "laws.hpp"
+#include "phase.hpp"
+
+namespace pounding::run_parts {
+
+// ---------------------------------------------------------------- outputs at an instant
+
+// the isolator's force on its pair (k u + r0 + c_d u' + the Bouc-Wen spring's)
+double iso_force(const System& sy, const double* st) {
+    const IsoLinear iso = iso_linear(sy, st);
+    const Layout& L = sy.lay;
+    const double u = rel(st + L.x, sy.iso_i, sy.iso_j), du = rel(st + L.v, sy.iso_i, sy.iso_j);
+    return iso.k * u + iso.r0 + sy.c_d * du + sy.bw[0] * st[L.zeta];
+}
+
+// a sample row (or the absolute accelerations and forces) from the state, outside a phase
+void outputs(const double* st, const System& sy, double* q, double* row) {
+    const Layout& L = sy.lay;
+    const int n = sy.n;
+    const double* x = st + L.x;
+    const double* v = st + L.v;
+    for (int i = 0; i < n; ++i) {  // the structure's own springs and dashpots (not the isolator's)
+        double s = 0.0;
+        for (int j = 0; j < n; ++j)
+            s += sy.k0[static_cast<size_t>(i * n + j)] * x[j] + sy.c0[static_cast<size_t>(i * n + j)] * v[j];
+        q[i] = s;
+    }
+    const double f_iso = iso_force(sy, st);
+    q[sy.iso_i] += f_iso;
+    if (sy.iso_j >= 0) q[sy.iso_j] -= f_iso;
+    double* fc = row + 2 + 3 * n;
+    for (int c = 0; c < sy.nc(); ++c) {
+        fc[c] = 0.0;
+        if (st[L.in_at(c)] == 0.0) continue;
+        const Contact& ct = sy.contact[static_cast<size_t>(c)];
+        const double f = law_force(ct.law, ct.p, ct.sign * rel(x, ct.i, ct.j) - ct.gap, ct.sign * rel(v, ct.i, ct.j),
+                                   st + L.z_at(c)).f;
+        fc[c] = f;
+        q[ct.i] += ct.sign * f;
+        if (ct.j >= 0) q[ct.j] -= ct.sign * f;
+    }
+    row[0] = st[T];
+    for (int i = 0; i < n; ++i) {
+        row[1 + i] = x[i];
+        row[1 + n + i] = v[i];
+        row[1 + 2 * n + i] = -q[i] / sy.mass[static_cast<size_t>(i)];
+    }
+    row[1 + 3 * n] = f_iso;
+}
+
+void outputs_in_phase(Phase& ph, const System& sy, double t, double tau, const double* y, const double* a,
+                      double* row) {
+    const int n = ph.n;
+    const double ag = table_acceleration(ph, tau);
+    row[0] = t;
+    for (int i = 0; i < n; ++i) {
+        row[1 + i] = y[i];
+        row[1 + n + i] = y[n + i];
+        row[1 + 2 * n + i] = a[i] + ag;
+    }
+    double f_iso = ph.kiso * rel(y, ph.iso_i, ph.iso_j) + ph.riso + ph.cd * rel(y + n, ph.iso_i, ph.iso_j);
+    if (ph.bw[0] != 0.0) f_iso += ph.bw[0] * phase_zeta(ph, tau);
+    row[1 + 3 * n] = f_iso;
+    for (int c = 0; c < ph.nc; ++c)
+        row[2 + 3 * n + c] = ph.ct[static_cast<size_t>(c)].in ? contact_force(ph, c, y, a).f : 0.0;
+    (void)sy;
+}
+
+void energies(const double* st, const System& sy, double& kin, double& iso, double& bmp) {
+    const Layout& L = sy.lay;
+    const int n = sy.n;
+    const double* x = st + L.x;
+    const double* v = st + L.v;
+    kin = 0.0;
+    for (int i = 0; i < n; ++i) kin += 0.5 * sy.mass[static_cast<size_t>(i)] * v[i] * v[i];
+    const double e_bw = sy.bw[0] != 0.0 ? 0.5 * sy.bw[0] * sy.bw[1] * st[L.zeta] * st[L.zeta] / sy.bw[2] : 0.0;
+    double e_k0 = 0.0;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) e_k0 += 0.5 * x[i] * sy.k0[static_cast<size_t>(i * n + j)] * x[j];
+    iso = iso_energy(sy, st, rel(x, sy.iso_i, sy.iso_j)) + e_bw + e_k0;
+    bmp = 0.0;
+    for (int c = 0; c < sy.nc(); ++c) {
+        const Contact& ct = sy.contact[static_cast<size_t>(c)];
+        bmp += law_energy(ct.law, ct.p, st[L.def_at(c)], st + L.z_at(c));
+    }
+}
+
+void track_abs_acceleration(double* ex, double t, double a) {
+    if (std::abs(a) > ex[4]) {
+        ex[4] = std::abs(a);
+        ex[5] = t;
+        ex[6] = a;
+    }
+}
+
+void track_displacement(double* ex, double t, double d) {
+    if (d > ex[0]) {
+        ex[0] = d;
+        ex[1] = t;
+    }
+    if (d < ex[2]) {
+        ex[2] = d;
+        ex[3] = t;
+    }
+}
+
+// ---------------------------------------------------------------- absolute accelerations of a linear phase
+
+namespace {
+
+// dof i's absolute acceleration in a linear phase, -(K x + C v + R0)_i / m_i, and its rate -(K v + C a)_i / m_i
+double abs_acc_linear(const Phase& ph, int i, const double* y) {
+    const int n = ph.n;
+    const double* rk = &ph.K[static_cast<size_t>(i * n)];
+    const double* rc = &ph.C[static_cast<size_t>(i * n)];
+    double q = ph.R0[static_cast<size_t>(i)];
+    for (int j = 0; j < n; ++j) q += rk[j] * y[j] + rc[j] * y[n + j];
+    return -ph.minv[static_cast<size_t>(i)] * q;
+}
+
+double abs_acc_rate_linear(const Phase& ph, int i, const double* y, const double* a) {
+    const int n = ph.n;
+    const double* rk = &ph.K[static_cast<size_t>(i * n)];
+    const double* rc = &ph.C[static_cast<size_t>(i * n)];
+    double q = 0.0;
+    for (int j = 0; j < n; ++j) q += rk[j] * y[n + j] + rc[j] * a[j];
+    return -ph.minv[static_cast<size_t>(i)] * q;
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- what a sub-interval adds
+
+// 7-point Gauss-Lobatto on [0, 1] (nonlinear phases' integrals)
+constexpr int N_LOBATTO = 7;
+constexpr double LOBATTO_X[N_LOBATTO] = {0.0, 0.08488805186071696, 0.2655756032646429, 0.4999999999999999,
+                                         0.7344243967353572, 0.9151119481392831, 1.0};
+constexpr double LOBATTO_W[N_LOBATTO] = {0.02380952380952377, 0.1384130236807831, 0.21587269060493133,
+                                         0.2438095238095238, 0.2158726906049313, 0.13841302368078298,
+                                         0.02380952380952377};
+
+void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, const Ends& e, double* ledger,
+                double* extrema, Buffers& b, bool with_energy, const Given& given) {
+    const int n = ph.n;
+    const Layout& L = sy.lay;
+    bool any_in = false;
+    for (const ContactPhase& k : ph.ct) any_in = any_in || k.in;
+    const bool linear = !ph.numeric;
+    if (tau > 0.0 && linear && (with_energy || any_in)) {
+        double vcv = given.vcv, gv = given.gv;
+        if (!given.have)
+            linear_integrals(ph, sy.c_lin, sy.mass, tau, e.y0, e.a0, e.s0, e.c0, e.y1, e.a1, e.s1, e.c1,
+                             with_energy, vcv, gv, b.du.data(), b.dvv.data());
+        ledger[L_INPUT] -= gv;
+        ledger[L_VISCOUS] += vcv;
+        for (int c = 0; c < ph.nc; ++c) {
+            const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
+            if (!k.in) continue;
+            const double sg = k.sign, gap = k.gap;
+            const int acc = L.acc_at(c);
+            const double x0 = sg * rel(e.y0, k.i, k.j) - gap, x1 = sg * rel(e.y1, k.i, k.j) - gap;
+            st[acc + A_IMPULSE] += k.kb * (sg * b.du[c] - gap * tau) + k.rb * tau + k.cb * (x1 - x0);
+            st[acc + A_WORK] += 0.5 * k.kb * (x1 * x1 - x0 * x0) + k.rb * (x1 - x0) + k.cb * b.dvv[c];
+            ledger[L_BUMPER_LOSS] += k.cb * b.dvv[c] + law_branch_loss(k.law, k.p, k.jb, x0, x1, k.lz);
+        }
+    } else if (tau > 0.0 && (with_energy || any_in)) {
+        const double bw = ph.bw[0];
+        double* y = b.ym.data();
+        double* a = b.am.data();
+        for (int qn = 0; qn < N_LOBATTO; ++qn) {
+            const double tq = tau * LOBATTO_X[qn];
+            const double wq = tau * LOBATTO_W[qn];
+            if (qn == 0) {
+                std::copy(e.y0, e.y0 + 2 * n, y);
+                std::copy(e.a0, e.a0 + n, a);
+            } else if (qn == N_LOBATTO - 1) {
+                std::copy(e.y1, e.y1 + 2 * n, y);
+                std::copy(e.a1, e.a1 + n, a);
+            } else {
+                phase_eval(ph, tq, y, a);
+            }
+            const double* v = y + n;
+            const double ag = table_acceleration(ph, tq);
+            double mv = 0.0, vcv = 0.0;
+            for (int i = 0; i < n; ++i) {
+                mv += sy.mass[static_cast<size_t>(i)] * v[i];
+                double s = 0.0;
+                for (int j = 0; j < n; ++j) s += sy.c_lin[static_cast<size_t>(i * n + j)] * v[j];
+                vcv += v[i] * s;
+            }
+            ledger[L_INPUT] -= wq * ag * mv;
+            ledger[L_VISCOUS] += wq * vcv;
+            if (bw != 0.0) ledger[L_HYSTERETIC] += wq * bw * phase_zeta(ph, tq) * rel(v, ph.iso_i, ph.iso_j);
+            for (int c = 0; c < ph.nc; ++c) {
+                if (!ph.ct[static_cast<size_t>(c)].in) continue;
+                const ContactForce f = contact_force(ph, c, y, a);
+                const int acc = L.acc_at(c);
+                st[acc + A_IMPULSE] += wq * f.f;
+                st[acc + A_WORK] += wq * f.f * f.dx;
+                ledger[L_BUMPER_LOSS] += wq * (f.f - f.elastic) * f.dx;
+            }
+        }
+        if (bw != 0.0)
+            ledger[L_HYSTERETIC] -= bouc_wen_energy(ph, phase_zeta(ph, tau)) - bouc_wen_energy(ph, ph.zeta0);
+        for (int c = 0; c < ph.nc; ++c) {  // a linear law's branch in a numerical phase: its spring's loss
+            const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
+            if (k.in && law_is_linear(k.law)) {
+                ledger[L_BUMPER_LOSS] += law_branch_loss(k.law, k.p, k.jb, k.sign * rel(e.y0, k.i, k.j) - k.gap,
+                                                         k.sign * rel(e.y1, k.i, k.j) - k.gap, k.lz);
+            }
+        }
+    }
+    // displacement extrema of each dof, at its velocity's zeros and the ends
+    for (int i = 0; i < n; ++i) {
+        double* ex = extrema + 7 * i;
+        track_displacement(ex, t0, e.y0[i]);
+        track_displacement(ex, t0 + tau, e.y1[i]);
+        const Phase::Zeros& z = velocity_zeros(ph, i, GROUND);
+        for (int k = 0; k < z.count; ++k)
+            if (z.t[k] < tau) track_displacement(ex, t0 + z.t[k], z.x[k]);
+    }
+    // the contacts' deepest compression: the ends and the pair's velocity zeros
+    for (int c = 0; c < ph.nc; ++c) {
+        const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
+        if (!k.in) continue;
+        double& mc = st[L.acc_at(c) + A_MAXCOMP];
+        mc = std::max(mc, k.sign * rel(e.y0, k.i, k.j) - k.gap);
+        mc = std::max(mc, k.sign * rel(e.y1, k.i, k.j) - k.gap);
+        const Phase::Zeros& z = velocity_zeros(ph, k.i, k.j);
+        for (int q = 0; q < z.count; ++q)
+            if (z.t[q] < tau) mc = std::max(mc, k.sign * z.x[q] - k.gap);
+    }
+    // absolute acceleration extrema of each dof
+    for (int i = 0; i < n; ++i) {
+        double* ex = extrema + 7 * i;
+        if (linear) {
+            // a linear phase's absolute acceleration -(K x + C v + R0)_i / m_i and its rate at the ends; the
+            // polynomial only where the rate changes sign
+            const double aa0 = abs_acc_linear(ph, i, e.y0), aa1 = abs_acc_linear(ph, i, e.y1);
+            const double r0 = abs_acc_rate_linear(ph, i, e.y0, e.a0), r1 = abs_acc_rate_linear(ph, i, e.y1, e.a1);
+            track_abs_acceleration(ex, t0, aa0);
+            track_abs_acceleration(ex, t0 + tau, aa1);
+            if (r0 * r1 < 0.0) {
+                Fn fa, fr;
+                abs_acc_poly(ph, i, fa.q);
+                poly_deriv(fa.q, fr.q);
+                fr.kind = FN_POLY;
+                const double tm = find_root(fr, ph, 0.0, tau, r0, r1, NaN, NaN, XTOL_EXTREMUM_S);
+                ph.poly_evaluations += 1;
+                track_abs_acceleration(ex, t0 + tm, poly_val(fa.q, tm));
+            }
+        } else {
+            Fn fr;
+            fr.kind = FN_AABS_RATE;
+            fr.idx = i;
+            double r0, r1, unused;
+            track_abs_acceleration(ex, t0, e.a0[i] + table_acceleration(ph, 0.0));
+            track_abs_acceleration(ex, t0 + tau, e.a1[i] + table_acceleration(ph, tau));
+            fn_eval(fr, ph, 0.0, r0, unused);
+            fn_eval(fr, ph, tau, r1, unused);
+            if (r0 * r1 < 0.0) {
+                const double tm = find_root(fr, ph, 0.0, tau, r0, r1, NaN, NaN, XTOL_EXTREMUM_S);
+                phase_eval(ph, tm, b.ym.data(), b.am.data());
+                track_abs_acceleration(ex, t0 + tm, b.am[static_cast<size_t>(i)] + table_acceleration(ph, tm));
+            }
+        }
+    }
+    // peak contact forces
+    for (int c = 0; c < ph.nc; ++c) {
+        const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
+        if (!k.in) continue;
+        const int acc = L.acc_at(c);
+        const ContactForce fa = contact_force(ph, c, e.y0, e.a0);
+        const ContactForce fb = contact_force(ph, c, e.y1, e.a1);
+        double peak = std::max(fa.f, fb.f);
+        if (fa.rate * fb.rate < 0.0) {
+            if (linear) {
+                Fn ff, fr;
+                pair_poly(ph, k.i, k.j, k.rb - k.kb * k.gap, k.kb * k.sign, k.cb * k.sign, 0.0, ff.q);
+                poly_deriv(ff.q, fr.q);
+                fr.kind = FN_POLY;
+                const double tm = find_root(fr, ph, 0.0, tau, fa.rate, fb.rate, NaN, NaN, XTOL_EXTREMUM_S);
+                ph.poly_evaluations += 1;
+                peak = std::max(peak, poly_val(ff.q, tm));
+            } else {
+                Fn fr;
+                fr.kind = FN_FORCE_RATE;
+                fr.idx = c;
+                const double tm = find_root(fr, ph, 0.0, tau, fa.rate, fb.rate, NaN, NaN, XTOL_EXTREMUM_S);
+                phase_eval(ph, tm, b.ym.data(), b.am.data());
+                peak = std::max(peak, contact_force(ph, c, b.ym.data(), b.am.data()).f);
+            }
+        }
+        st[acc + A_PEAK] = std::max(st[acc + A_PEAK], peak);
+    }
+}
+
+}  // namespace pounding::run_parts

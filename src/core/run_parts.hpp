@@ -1,0 +1,95 @@
+// The event loop's parts (run.cpp): the excitation at an instant, a phase set up from the state, the
+// outputs at an instant and what a sub-interval adds to the run.  Internal to the core.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core.hpp"
+#include "events.hpp"
+#include "phase.hpp"
+
+namespace pounding::run_parts {
+
+// ---------------------------------------------------------------- the excitation (run_setup.cpp)
+
+// the table's acceleration from the instant t it was taken at, up to t_next: a0 + a1 s + amp sin(omega s +
+// phase), s the time since t (j: the record's sample there)
+struct Piece { double a0, a1, amp, omega, phase, t_next; int64_t j; };
+
+Piece excitation_piece(const Forcing& fo, double t, int64_t j_hint);
+
+// the run's length (m) and velocity (m/s) scales: the system's and the excitation's, not the start's
+void run_scales(const System& sy, const Forcing& fo, double& x, double& xw);
+
+// ---------------------------------------------------------------- a phase (run_setup.cpp)
+
+// the phase of motion the state is in: its matrices, contacts in force, forcing and rate bound
+void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc);
+
+// what every phase of a run shares: the scales, masses, contacts' constants
+void run_constants(Phase& ph, const System& sy, const Forcing& fo);
+
+struct NumStep { int status; double h, h_num; bool shortened; };
+
+// one accepted step of the embedded method of a numerical phase (at most h; h_num: its own step)
+NumStep numeric_step(Phase& ph, double h, double h_num, double rtol, double t);
+
+// the event functions of the phase the state is in; their number
+int phase_events(const Phase& ph, const double* st, const System& sy, EventRow* evs);
+
+// the pairs whose relative displacement events are functions of: the isolator's and the contacts'
+int event_pairs(const System& sy, int* pi, int* pj);
+
+// ---------------------------------------------------------------- the run's buffers
+
+struct Buffers {
+    std::vector<double> y0s, y1, a0, a1, ym, am, du, dvv, u;
+    std::vector<double> q;  // internal forces
+    void size(int n, int nc) {
+        y0s.assign(static_cast<size_t>(2 * n), 0.0);
+        y1.assign(static_cast<size_t>(2 * n), 0.0);
+        ym.assign(static_cast<size_t>(2 * n), 0.0);
+        a0.assign(static_cast<size_t>(n), 0.0);
+        a1.assign(static_cast<size_t>(n), 0.0);
+        am.assign(static_cast<size_t>(n), 0.0);
+        q.assign(static_cast<size_t>(n), 0.0);
+        u.assign(static_cast<size_t>(3 * n + 4), 0.0);
+        du.assign(static_cast<size_t>(std::max(nc, 1)), 0.0);
+        dvv.assign(static_cast<size_t>(std::max(nc, 1)), 0.0);
+    }
+};
+
+
+// ---------------------------------------------------------------- outputs (accumulate.cpp)
+
+// the isolator's force on its pair (k u + r0 + c_d u' + the Bouc-Wen spring's)
+double iso_force(const System& sy, const double* st);
+
+// a sample row (or the absolute accelerations and forces q) from the state, outside a phase
+void outputs(const double* st, const System& sy, double* q, double* row);
+
+// a sample row inside a phase, at tau after its start (t: the run's time), from y and its accelerations a
+void outputs_in_phase(Phase& ph, const System& sy, double t, double tau, const double* y, const double* a,
+                      double* row);
+
+// the kinetic, isolator (with the structure's springs) and bumper energies of the state
+void energies(const double* st, const System& sy, double& kin, double& iso, double& bmp);
+
+// an extremum record (ex: x max, its time, x min, its time, |a_abs| max, its time, a_abs there)
+void track_abs_acceleration(double* ex, double t, double a);
+void track_displacement(double* ex, double t, double d);
+
+// ---------------------------------------------------------------- what a sub-interval adds (accumulate.cpp)
+
+// a sub-interval's ends: states, accelerations, the forcing angle's sine and cosine
+struct Ends { const double *y0, *a0, *y1, *a1; double s0, c0, s1, c1; };
+
+// a linear sub-interval's integrals when the transition gave them (else the Hermite rule does)
+struct Given { bool have = false; double vcv = 0.0, gv = 0.0; };
+
+// the energy integrals, contact statistics and extrema of the sub-interval [t0, t0 + tau] of the phase
+void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, const Ends& e, double* ledger,
+                double* extrema, Buffers& b, bool with_energy, const Given& given);
+
+}  // namespace pounding::run_parts

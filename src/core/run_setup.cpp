@@ -1,0 +1,231 @@
+// A phase of motion set up from the state, and the excitation at an instant (run_parts.hpp).
+#include "run_parts.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "events.hpp"
+#include "isolator.hpp"
+#include "laws.hpp"
+#include "phase.hpp"
+
+namespace pounding::run_parts {
+
+// ---------------------------------------------------------------- the excitation
+
+Piece excitation_piece(const Forcing& fo, double t, int64_t j_hint) {
+    if (fo.kind == EXC_HARMONIC) {
+        const double omega = fo.p[1];
+        const double angle = omega * t + fo.p[2];
+        const double phase = angle - TWO_PI * std::floor(angle / TWO_PI);  // reduced to [0, 2 pi)
+        return {0.0, 0.0, fo.p[0], omega, phase, INF, j_hint};
+    }
+    const int64_t n = fo.n_rec;
+    const double* rt = fo.rec_t;
+    const double* ra = fo.rec_a;
+    if (t < rt[0]) return {0.0, 0.0, 0.0, 0.0, 0.0, rt[0], j_hint};
+    if (t >= rt[n - 1]) return {0.0, 0.0, 0.0, 0.0, 0.0, INF, j_hint};
+    int64_t j = std::min(std::max(j_hint, int64_t(0)), n - 2);
+    if (!(rt[j] <= t && t < rt[j + 1])) {
+        if (j + 2 < n && rt[j + 1] <= t && t < rt[j + 2]) {
+            j += 1;
+        } else {
+            j = 0;
+            int64_t hi = n - 1;
+            while (hi - j > 1) {
+                const int64_t mid = (j + hi) / 2;
+                if (rt[mid] <= t) j = mid;
+                else hi = mid;
+            }
+        }
+    }
+    const double slope = (ra[j + 1] - ra[j]) / (rt[j + 1] - rt[j]);
+    return {ra[j] + slope * (t - rt[j]), slope, 0.0, 0.0, 0.0, rt[j + 1], j};
+}
+
+// the run's length (m) and velocity (m/s) scales: the system's and the excitation's, not the start's
+void run_scales(const System& sy, const Forcing& fo, double& x, double& xw) {
+    double w = std::sqrt(sy.slopes[0] / sy.total_mass);
+    double amp = 0.0;
+    if (fo.kind == EXC_HARMONIC) {
+        amp = std::abs(fo.p[0]);
+        w = std::max(w, fo.p[1]);
+    } else {
+        for (int64_t i = 0; i < fo.n_rec; ++i) amp = std::max(amp, std::abs(fo.rec_a[i]));
+    }
+    double gaps = 0.0;
+    if (sy.has_b)
+        for (const Contact& c : sy.contact) gaps += c.gap;
+    x = std::max(gaps, amp / (w * w));
+    if (!sy.breaks.empty()) x = std::max(x, sy.breaks[0]);
+    xw = x * w;
+}
+
+// a bound on |lambda| of the pencil lambda^2 M + lambda C + K: sqrt(kappa + (gamma / 2)^2) and gamma, with
+// kappa, gamma the largest row sums of |M^-1/2 K M^-1/2| and |M^-1/2 C M^-1/2| (bounds on the Rayleigh
+// quotients; k / m and c / m for one mass)
+static double rate_bound(const Phase& ph, double k_extra) {
+    const int n = ph.n;
+    double kap = 0.0, gam = 0.0;
+    for (int i = 0; i < n; ++i) {
+        double sk = 0.0, sc = 0.0;
+        for (int j = 0; j < n; ++j) {
+            const double s = std::sqrt(ph.minv[static_cast<size_t>(i)] * ph.minv[static_cast<size_t>(j)]);
+            sk += std::abs(ph.K[static_cast<size_t>(i * n + j)]) * s;
+            sc += std::abs(ph.C[static_cast<size_t>(i * n + j)]) * s;
+        }
+        kap = std::max(kap, sk);
+        gam = std::max(gam, sc);
+    }
+    kap += k_extra;
+    return std::max(std::sqrt(kap + (0.5 * gam) * (0.5 * gam)), gam);
+}
+
+
+// ---------------------------------------------------------------- the loop's parts
+
+void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
+    const Layout& L = sy.lay;
+    const int n = sy.n;
+    const IsoLinear iso = iso_linear(sy, st);
+    ph.K = sy.k0;
+    ph.C = sy.c_lin;
+    std::fill(ph.R0.begin(), ph.R0.end(), 0.0);
+    sy.add_pair(ph.K, sy.iso_i, sy.iso_j, iso.k);
+    ph.R0[static_cast<size_t>(sy.iso_i)] += iso.r0;
+    if (sy.iso_j >= 0) ph.R0[static_cast<size_t>(sy.iso_j)] -= iso.r0;
+    bool any_nl = false;
+    for (int q = 0; q < sy.nc(); ++q) {
+        ContactPhase& k = ph.ct[static_cast<size_t>(q)];
+        k.in = false;
+        k.nl = false;
+        k.def0 = st[L.def_at(q)];
+        for (int i = 0; i < N_LAW_STATE; ++i) k.lz[i] = st[L.z_at(q) + i];
+        if (!sy.has_b || st[L.in_at(q)] == 0.0) continue;
+        k.in = true;
+        const Contact& ct = sy.contact[static_cast<size_t>(q)];
+        if (law_is_linear(ct.law)) {
+            // F = kb x + rb + cb x' with x = sign (x_i - x_j) - gap, pushing dof i by -sign F
+            const Branch br = law_linear_branch(ct.law, ct.p, st[L.def_at(q)],
+                                                ct.sign * rel(st + L.v, ct.i, ct.j), st + L.z_at(q));
+            sy.add_pair(ph.K, ct.i, ct.j, br.k);
+            sy.add_pair(ph.C, ct.i, ct.j, br.c);
+            const double r = ct.sign * (br.r - br.k * ct.gap);
+            ph.R0[static_cast<size_t>(ct.i)] += r;
+            if (ct.j >= 0) ph.R0[static_cast<size_t>(ct.j)] -= r;
+            k.kb = br.k;
+            k.cb = br.c;
+            k.rb = br.r;
+            k.jb = br.j;
+        } else {
+            k.nl = true;
+            any_nl = true;
+        }
+    }
+    ph.ax0 = pc.a0;
+    ph.ax1 = pc.a1;
+    ph.axh = pc.amp;
+    ph.w = pc.omega;
+    ph.phi = pc.phase;
+    ph.sphi = std::sin(pc.phase);
+    ph.cphi = std::cos(pc.phase);
+    for (int q = 0; q < 2 * n; ++q) ph.y0[static_cast<size_t>(q)] = st[L.x + q];
+    ph.numeric = any_nl || sy.bw[0] != 0.0;
+    ph.zeta0 = st[L.zeta];
+    ph.dp5_h = -1.0;
+    ph.tc_ok = false;
+    ph.kiso = iso.k;
+    ph.riso = iso.r0;
+    // (a Bouc-Wen spring's initial stiffness bounds the rate too)
+    const double k_bw = sy.bw[0] != 0.0 ? sy.bw[0] * sy.bw[2] / sy.bw[1] : 0.0;
+    double k_extra = 0.0;
+    if (k_bw != 0.0) {
+        const double mi = ph.minv[static_cast<size_t>(sy.iso_i)];
+        const double mj = sy.iso_j >= 0 ? ph.minv[static_cast<size_t>(sy.iso_j)] : 0.0;
+        k_extra = k_bw * (mi + mj + (sy.iso_j >= 0 ? 2.0 * std::sqrt(mi * mj) : 0.0));
+    }
+    ph.rate = rate_bound(ph, k_extra);
+}
+
+void run_constants(Phase& ph, const System& sy, const Forcing& fo) {
+    run_scales(sy, fo, ph.xrun, ph.vrun);
+    ph.xround = ph.xrun;
+    ph.vround = ph.vrun;
+    for (int i = 0; i < sy.n; ++i) {
+        ph.mass[static_cast<size_t>(i)] = sy.mass[static_cast<size_t>(i)];
+        ph.minv[static_cast<size_t>(i)] = 1.0 / sy.mass[static_cast<size_t>(i)];
+    }
+    for (int c = 0; c < sy.nc(); ++c) {
+        const Contact& ct = sy.contact[static_cast<size_t>(c)];
+        ContactPhase& k = ph.ct[static_cast<size_t>(c)];
+        k.gap = ct.gap;
+        k.law = ct.law;
+        k.p = ct.p;
+        k.sign = ct.sign;
+        k.i = ct.i;
+        k.j = ct.j;
+    }
+    ph.cd = sy.c_d;
+    ph.iso_i = sy.iso_i;
+    ph.iso_j = sy.iso_j;
+    for (int j = 0; j < BW_PARAMS; ++j) ph.bw[j] = sy.bw[j];
+}
+
+NumStep numeric_step(Phase& ph, double h, double h_num, double rtol, double t) {
+    bool shortened = false;
+    if (h_num < h) {
+        h = h_num;
+        shortened = true;
+    }
+    const int n = ph.n;
+    const double atol_d = rtol * 1e-3, atol_v = rtol * 1e-2;
+    while (true) {
+        const Dp5 r = dp5_step(ph, h);
+        double err = std::abs(r.ez) / (rtol * (1.0 + std::abs(r.z)));
+        for (int i = 0; i < n; ++i) {
+            const double y0x = ph.y0[static_cast<size_t>(i)], y0v = ph.y0[static_cast<size_t>(n + i)];
+            err = std::max(err, std::abs(r.ey[i]) / (atol_d + rtol * std::max(std::abs(y0x), std::abs(r.y[i]))));
+            err = std::max(err,
+                           std::abs(r.ey[n + i]) / (atol_v + rtol * std::max(std::abs(y0v), std::abs(r.y[n + i]))));
+        }
+        if (err <= 1.0) {
+            h_num = h * (err == 0.0 ? 5.0 : std::min(5.0, 0.9 * std::pow(err, -0.2)));
+            return {SUCCESS, h, h_num, shortened};
+        }
+        h *= std::max(0.2, 0.9 * std::pow(err, -0.2));
+        shortened = true;
+        if (h <= 1e-15 * std::max(1.0, std::abs(t))) return {STEP_FAILED, h, h_num, shortened};
+    }
+}
+
+int phase_events(const Phase& ph, const double* st, const System& sy, EventRow* evs) {
+    int n = iso_events(sy, st, evs, 0);
+    n = bumper_events(st, ph, sy, evs, n);
+    if (sy.bw[0] != 0.0 && st[sy.lay.zeta] != 0.0) {  // the Bouc-Wen z back through zero: its law changes form
+        EventRow& r = evs[n++];
+        r = EventRow();
+        r.kind = KIND_ZETA;
+        r.i = sy.iso_i;
+        r.j = sy.iso_j;
+        r.alpha = -std::copysign(1.0, st[sy.lay.zeta]);
+        r.action = ACT_BOUC_WEN;
+    }
+    return n;
+}
+
+// the pairs whose relative displacement events are functions of: the isolator's and the contacts'
+int event_pairs(const System& sy, int* pi, int* pj) {
+    int np = 0;
+    auto add = [&](int i, int j) {
+        for (int q = 0; q < np; ++q)
+            if (pi[q] == i && pj[q] == j) return;
+        pi[np] = i;
+        pj[np] = j;
+        ++np;
+    };
+    add(sy.iso_i, sy.iso_j);
+    if (sy.has_b)
+        for (const Contact& c : sy.contact) add(c.i, c.j);
+    return np;
+}
+}  // namespace pounding::run_parts

@@ -1,0 +1,46 @@
+// A linear phase's transition over a full sub-interval, computed once per phase and sub-interval length.
+//
+// Over a sub-interval of length h of a linear phase the motion is linear in its inputs
+//     u = (y0, M^-1 R0, ax0, ax1, axh cos(phi), axh sin(phi))     (2n + n + 4 numbers)
+// (the start, the restoring force's constant part, the table acceleration's piece and its sine's phase),
+// y(h) = T u, with T fixed by the phase's stiffness, damping, h and w.  The same holds for the integrals the
+// run accumulates: int v^T C_lin v = u^T Q u, int a_g (m . v) = (ax0, ax1, axh cos, axh sin) R u, and per
+// contact pair int (x_i - x_j) = L u, int (v_i - v_j)^2 = u^T Qp u.  T, Q, R, L and Qp are computed from the
+// series of each input's unit response (Gauss-Legendre with 12 nodes for the integrals: exact to rounding
+// for a sub-interval of at most pi / 4 of every rate) and kept for the last phases met: a sub-interval that
+// goes the whole length h then costs a few products, its sines and exponentials none.
+#pragma once
+
+#include <vector>
+
+#include "core.hpp"
+#include "phase.hpp"
+
+namespace pounding {
+
+struct Transition {
+    std::vector<double> K, C;  // the key: the phase's stiffness and damping, h and w
+    double h = -1.0, w = 0.0;
+    int dim = 0;               // of u: 3 n + 4
+    std::vector<double> T;     // (2n, dim)
+    std::vector<double> Q;     // (dim, dim)
+    std::vector<double> R;     // (4, dim)
+    std::vector<double> L, Qp; // per pair: (dim) and (dim, dim)
+    int uses = 0;
+};
+
+struct TransitionCache {
+    std::vector<Transition> entries;
+    int next = 0;
+    std::vector<int> pi, pj;  // the contacts' distinct pairs (their integrals' rows)
+    std::vector<int> pair_of; // each contact slot's pair
+    std::vector<double> scratch;
+    void setup(const System& sy);
+    // the phase's transition over h, computed now if it is not kept
+    const Transition* get(const Phase& ph, const System& sy, double h);
+};
+
+// u of the current sub-interval (3 n + 4 values) into out
+void transition_inputs(const Phase& ph, double* out);
+
+}  // namespace pounding
