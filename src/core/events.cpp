@@ -337,18 +337,22 @@ const Phase::Zeros& velocity_zeros(Phase& ph, int i, int j) {
     const double a0 = rel(ph.e_a0, i, j), a1 = rel(ph.e_a1, i, j);
     Fn fv, fa, fx;
     const bool poly = !ph.numeric;
-    if (poly) {
-        pair_poly(ph, i, j, 0.0, 0.0, 1.0, 0.0, fv.q);
-        fv.kind = FN_POLY;
-    } else {
-        fv.kind = FN_PAIR_V;
-        fv.i = i;
-        fv.j = j;
-    }
+    auto velocity_fn = [&]() {  // (made only where a zero may be: the polynomial needs the phase's series)
+        if (poly) {
+            pair_poly(ph, i, j, 0.0, 0.0, 1.0, 0.0, fv.q);
+            fv.kind = FN_POLY;
+        } else {
+            fv.kind = FN_PAIR_V;
+            fv.i = i;
+            fv.j = j;
+        }
+    };
     if (h > 0.0 && v0 * v1 < 0.0) {
+        velocity_fn();
         z.t[0] = find_root(fv, ph, 0.0, h, v0, v1, a0, a1, XTOL_S);
         z.count = 1;
     } else if (h > 0.0 && v0 * v1 > 0.0 && a0 * a1 < 0.0 && may_turn_back(h, v0, v1, a0, a1)) {
+        velocity_fn();
         if (poly) {
             poly_deriv(fv.q, fa.q);
             fa.kind = FN_POLY;
