@@ -44,6 +44,11 @@ class NdofResult:
 SIGNS = (-1.0, 1.0)
 
 
+class TouchAtRest(RuntimeError):
+    """An event fired again at its own instant: a contact met or left at (nearly) zero speed, which this
+    reference cannot step past."""
+
+
 def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, atol: float = 1e-15,
               max_step: float | None = None) -> NdofResult:
     n = s.mass.size
@@ -110,7 +115,7 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         hits = [(float(te[0]), c) for c, te in enumerate(sol.t_events) if te.size and te[0] > t + 1e-13]
         if not hits:
             if sol.status != 0:
-                raise RuntimeError(f"an event fires again at its own instant, t = {t}")
+                raise TouchAtRest(f"an event fires again at its own instant, t = {t}")
             t, y = float(sol.t[-1]), sol.y[:, -1]
             break
         t_hit, c = min(hits)

@@ -5,6 +5,7 @@ code (every other test file)."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -17,7 +18,7 @@ from pounding._control import new_control
 from pounding.engine._layout import ACT_CONTACT, ACT_RELEASE, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT
 from pounding.engine._layout import L_ISOLATOR, L_KINETIC, L_VISCOUS
 from pounding.engine._system import EXC_HARMONIC, Forcing
-from reference_ndof import Structure, reference
+from reference_ndof import Structure, TouchAtRest, reference
 
 KELVIN_VOIGT = _core.LAW_IDS["kelvin_voigt"]
 
@@ -66,22 +67,44 @@ def structures(draw, n=None):
                      a_g=draw(st.floats(1.0, 4.0)), omega=2 * math.pi * draw(st.floats(0.5, 3.0)))
 
 
+def contact_starts(out) -> np.ndarray:
+    events = out[3]
+    return events[events[:, 1] == ACT_CONTACT]
+
+
+def last_digit_spread(s: Structure, y0: np.ndarray, starts: np.ndarray) -> float:
+    """How far the contact starts move, s, when every mass changes in its last digits (relative +-4e-16):
+    what the problem itself makes of rounding, whatever solves it (inf: a contact more or less)."""
+    spread = 0.0
+    for change in (4e-16, -4e-16):
+        moved = contact_starts(core_run(dataclasses.replace(s, mass=s.mass * (1.0 + change)), 3.0, y0)[1])
+        if moved.shape != starts.shape:
+            return math.inf
+        spread = max(spread, float(np.abs(moved[:, 0] - starts[:, 0]).max(initial=0.0)))
+    return spread
+
+
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(s=structures(), v0=st.floats(-0.4, 0.4))
 def test_random_structures_match_the_reference(s, v0):
     y0 = np.zeros(2 * s.mass.size)
     y0[s.mass.size:] = v0  # (the whole structure moving)
-    ref = reference(s, 3.0, y0)
+    try:
+        ref = reference(s, 3.0, y0)
+    except TouchAtRest:  # (a contact met at rest: dropped just below in any case)
+        assume(False)
     # a touch whose existence depends on the last digits (a graze, a contact met at rest) says nothing
     assume(all(depth > 1e-7 for depth in ref.depths) and all(speed > 1e-4 for speed in ref.speeds))
     assume(len(ref.contact_starts) <= 40)
     sy, out = core_run(s, 3.0, y0)
     assert out[6] == 0, out[6]
-    events = out[3]
-    starts = events[events[:, 1] == ACT_CONTACT]
+    starts = contact_starts(out)
+    # nor does a run whose contact times a change in the last digits of a mass moves by more than a tenth of
+    # the tolerance (seen: 4e-9 s after 25 stiff contacts of two masses): no solver can be checked there
+    assume(last_digit_spread(s, y0, starts) <= 1e-10)
     assert [int(c) for c in starts[:, 2]] == [c for c, _ in ref.contact_starts]
     np.testing.assert_allclose(starts[:, 0], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
-    ends = events[events[:, 1] == ACT_RELEASE]
+    ends = out[3][out[3][:, 1] == ACT_RELEASE]
     np.testing.assert_allclose(ends[:, 0], [t for _, t in ref.contact_ends], rtol=0, atol=1e-9)
     lay = sy.layout
     n = s.mass.size
