@@ -106,6 +106,16 @@ def test_nbs_paper_preset_matches_reference():
     _compare(osc, pd_.Harmonic(0.1, 1.0), duration=4.0)
 
 
+def test_an_isolator_of_150_branches_matches_reference():
+    # a phase has two event rows per elastic spring: 300 here, beyond the core's first 256 rows (they overran
+    # them until the rows were sized by the system)
+    slopes = tuple(np.linspace(38e3, 2e3, 151))
+    iso = pd_.Isolator(slopes, tuple(np.linspace(0.001, 0.2, 150)), "kinematic", 100.0)
+    osc = pd_.Oscillator(500.0, iso, pd_.Bumpers(0.05, 0.05, pd_.KelvinVoigt(1.46e6, 5.0)))
+    run, _ = _compare(osc, pd_.Harmonic(0.1, 1.5), v0=0.6, duration=2.0)
+    assert (run.events["kind"] == "yield").sum() > 100  # (its springs yield one after another)
+
+
 @pytest.mark.parametrize("hysteresis", ["kinematic", "elastic"])
 def test_hunt_crossley_bumpers_match_reference(hysteresis):
     iso = pd_.Isolator((38e3, 18e3, 2e3), (0.015, 0.04), hysteresis, 800.0)

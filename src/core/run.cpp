@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 #include "events.hpp"
 #include "isolator.hpp"
@@ -285,6 +286,7 @@ struct RunWorkspace::Impl {
     std::vector<double> row;
     std::vector<EventRow> evs;
     std::vector<double> ev_end;
+    std::vector<int> pair_i, pair_j;
     TransitionCache transitions;
 };
 
@@ -314,8 +316,12 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
         ex[5] = t_run0;
         ex[6] = 0.0;
     }
-    RunWorkspace local;
-    RunWorkspace::Impl& w = workspace != nullptr ? *workspace->impl : *local.impl;
+    std::unique_ptr<RunWorkspace> local;  // (a workspace of this run's own only when none is given)
+    if (workspace == nullptr) {
+        local = std::make_unique<RunWorkspace>();
+        workspace = local.get();
+    }
+    RunWorkspace::Impl& w = *workspace->impl;
     if (!w.fits(sy)) {  // (another system: new buffers, no transitions kept)
         w.n = sy.n;
         w.nc = sy.nc();
@@ -330,9 +336,15 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
         w.ph.size(sy.n, sy.nc());
         w.b.size(n, sy.nc());
         w.row.assign(static_cast<size_t>(L.sample_cols()), 0.0);
-        w.evs.assign(static_cast<size_t>(MAX_EVENTS_PER_PHASE), EventRow());
-        w.ev_end.assign(static_cast<size_t>(3 * MAX_EVENTS_PER_PHASE), 0.0);
         w.transitions.setup(sy);
+    }
+    // the event rows a phase can have: the isolator's (two a spring and a reversal), each contact's (its
+    // start or release, a relaxing law's twin, a branch's two edges and its rate's turn), the Bouc-Wen z's
+    const size_t rows = static_cast<size_t>(
+        std::max(MAX_EVENTS_PER_PHASE, 2 * sy.n_springs() + 1 + 6 * sy.nc() + 1));
+    if (w.evs.size() < rows) {
+        w.evs.assign(rows, EventRow());
+        w.ev_end.assign(3 * rows, 0.0);
     }
     Phase& ph = w.ph;
     run_constants(ph, sy, fo);
@@ -345,8 +357,11 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
     const double resolution[3] = {v_res, RESOLUTION * ph.xrun, sy.total_mass * v_res};
     std::vector<EventRow>& evs = w.evs;
     std::vector<double>& ev_end = w.ev_end;
-    int pair_i[64], pair_j[64];
-    const int n_pairs = event_pairs(sy, pair_i, pair_j);
+    std::vector<int>& pair_i = w.pair_i;  // (the isolator's pair and each contact's: nc + 1 at most)
+    std::vector<int>& pair_j = w.pair_j;
+    pair_i.resize(static_cast<size_t>(sy.nc() + 1));
+    pair_j.resize(static_cast<size_t>(sy.nc() + 1));
+    const int n_pairs = event_pairs(sy, pair_i.data(), pair_j.data());
     const bool record = fo.kind != EXC_HARMONIC;
     bool continuing = false;
     double t_horizon = INF;
@@ -469,7 +484,7 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
         ph.e_y1 = b.y1.data();
         ph.e_a1 = b.a1.data();
         ph.e_h = h;
-        const double cut = velocity_cuts(ph, sy, h, b, pair_i, pair_j, n_pairs);
+        const double cut = velocity_cuts(ph, sy, h, b, pair_i.data(), pair_j.data(), n_pairs);
         if (cut < h) {
             h = cut;
             to_stop = false;

@@ -62,7 +62,8 @@ void transition_inputs(const Phase& ph, double* out) {
 
 const Transition* TransitionCache::get(const Phase& ph, const System& sy, double h) {
     for (Transition& e : entries)
-        if (e.h == h && e.w == ph.w && same(e.K, ph.K) && same(e.C, ph.C)) {
+        if (e.h == h && e.w == ph.w && e.xrun == ph.xrun && e.vrun == ph.vrun && same(e.K, ph.K) &&
+            same(e.C, ph.C)) {
             e.uses += 1;
             return &e;
         }
@@ -73,6 +74,8 @@ const Transition* TransitionCache::get(const Phase& ph, const System& sy, double
     e.C = ph.C;
     e.h = h;
     e.w = ph.w;
+    e.xrun = ph.xrun;
+    e.vrun = ph.vrun;
     e.dim = dim;
     e.uses = 1;
     e.T.assign(static_cast<size_t>(ny * dim), 0.0);

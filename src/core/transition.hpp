@@ -19,8 +19,9 @@
 namespace pounding {
 
 struct Transition {
-    std::vector<double> K, C;  // the key: the phase's stiffness and damping, h and w
-    double h = -1.0, w = 0.0;
+    std::vector<double> K, C;  // the key: the phase's stiffness and damping, h, w and the run's scales (the
+    double h = -1.0, w = 0.0;  // series' truncation is relative to them: a transition is a function of its key)
+    double xrun = 0.0, vrun = 0.0;
     int dim = 0;               // of u: 3 n + 4
     std::vector<double> T;     // (2n, dim)
     std::vector<double> Q;     // (dim, dim)
