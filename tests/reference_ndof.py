@@ -50,15 +50,15 @@ class TouchAtRest(RuntimeError):
 
 
 def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, atol: float = 1e-15,
-              max_step: float | None = None) -> NdofResult:
+              max_step: float | None = None, steps_per_period: float = 100.0) -> NdofResult:
     n = s.mass.size
     inv_m = 1.0 / s.mass
-    if max_step is None:  # a hundredth of the fastest period in contact: no dip of an event shorter than
-        # a step is missed between two steps' signs
+    if max_step is None:  # a fraction of the fastest period in contact: a dip of an event function shorter
+        # than a step falls between two steps' signs and is missed
         k = s.k0.copy()
         k[0, 0] += s.k_iso + 2.0 * s.k_b
         w_max = math.sqrt(float(np.max(np.linalg.eigvals(k * inv_m[:, None]).real)))
-        max_step = 2.0 * math.pi / w_max / 100.0
+        max_step = 2.0 * math.pi / w_max / steps_per_period
     inside = [False, False]
     relax = [(0.0, 0.0), (0.0, 0.0)]  # (compression at release, release time)
     out = NdofResult()

@@ -89,16 +89,20 @@ def last_digit_spread(s: Structure, y0: np.ndarray, starts: np.ndarray) -> float
 def test_random_structures_match_the_reference(s, v0):
     y0 = np.zeros(2 * s.mass.size)
     y0[s.mass.size:] = v0  # (the whole structure moving)
+    sy, out = core_run(s, 3.0, y0)
+    assert out[6] == 0, out[6]
+    starts = contact_starts(out)
     try:
         ref = reference(s, 3.0, y0)
+        if [int(c) for c in starts[:, 2]] != [c for c, _ in ref.contact_starts]:
+            # a dip beyond a gap shorter than one of the reference's steps falls between their signs (seen
+            # once in 500 draws: a 0.14 mm contact of a 5-mass structure): again with steps 5 times shorter
+            ref = reference(s, 3.0, y0, steps_per_period=500.0)
     except TouchAtRest:  # (a contact met at rest: dropped just below in any case)
         assume(False)
     # a touch whose existence depends on the last digits (a graze, a contact met at rest) says nothing
     assume(all(depth > 1e-7 for depth in ref.depths) and all(speed > 1e-4 for speed in ref.speeds))
     assume(len(ref.contact_starts) <= 40)
-    sy, out = core_run(s, 3.0, y0)
-    assert out[6] == 0, out[6]
-    starts = contact_starts(out)
     # nor does a run whose contact times a change in the last digits of a mass moves by more than a tenth of
     # the tolerance (seen: 4e-9 s after 25 stiff contacts of two masses): no solver can be checked there
     assume(last_digit_spread(s, y0, starts) <= 1e-10)
