@@ -3,10 +3,11 @@ events, restarted at each of them.
 
 The structure restated directly, sharing no code with the engine: n masses with displacements x relative
 to the ground, M x'' + C x' + K x + f_iso + f_contacts = -M 1 a_g(t); a linear isolator (spring k_iso,
-dashpot c_iso) between the first mass and the ground; Kelvin-Voigt bumpers against the first mass on both
-sides behind a gap: in contact the force K d + C d' (d = sign x_0 - gap, the compression) until it would
-pull; out of contact the bumper's compression relaxes as d_r exp(-K (t - t_r) / C) from where it was
-released, and contact starts when the mass meets that surface.
+dashpot c_iso) between the first mass and the ground; Kelvin-Voigt bumpers on both sides of one mass
+(``level``: the first by default) behind a gap, fixed to the ground: in contact the force K d + C d'
+(d = sign x_level - gap, the compression) until it would pull; out of contact the bumper's compression
+relaxes as d_r exp(-K (t - t_r) / C) from where it was released, and contact starts when the mass meets
+that surface.
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ class Structure:
     c_b: float
     a_g: float                # m/s^2, amplitude of a_g(t) = a_g sin(w t)
     omega: float              # rad/s
+    level: int = 0            # the mass the bumpers stop
 
 
 @dataclass
@@ -56,7 +58,8 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
     if max_step is None:  # a fraction of the fastest period in contact: a dip of an event function shorter
         # than a step falls between two steps' signs and is missed
         k = s.k0.copy()
-        k[0, 0] += s.k_iso + 2.0 * s.k_b
+        k[0, 0] += s.k_iso
+        k[s.level, s.level] += 2.0 * s.k_b
         w_max = math.sqrt(float(np.max(np.linalg.eigvals(k * inv_m[:, None]).real)))
         max_step = 2.0 * math.pi / w_max / steps_per_period
     inside = [False, False]
@@ -77,8 +80,8 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         for c in range(2):
             if inside[c]:
                 sg = SIGNS[c]
-                f_c = s.k_b * (sg * x[0] - s.gaps[c]) + s.c_b * sg * v[0]
-                f[0] += sg * f_c
+                f_c = s.k_b * (sg * x[s.level] - s.gaps[c]) + s.c_b * sg * v[s.level]
+                f[s.level] += sg * f_c
         return f
 
     def rhs(t, y):
@@ -91,10 +94,10 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
             sg = SIGNS[c]
             if inside[c]:
                 def release(t, y, c=c, sg=sg):
-                    return s.k_b * (sg * y[0] - s.gaps[c]) + s.c_b * sg * y[n]
+                    return s.k_b * (sg * y[s.level] - s.gaps[c]) + s.c_b * sg * y[n + s.level]
             else:
                 def release(t, y, c=c, sg=sg):
-                    return s.gaps[c] + surface(c, t) - sg * y[0]
+                    return s.gaps[c] + surface(c, t) - sg * y[s.level]
             release.terminal = True
             release.direction = -1.0
             evs.append(release)
@@ -111,7 +114,7 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         for c in range(2):
             if inside[c]:
                 ts = np.linspace(t, sol.t[-1], 200)
-                deepest[c] = max(deepest[c], float(np.max(SIGNS[c] * sol.sol(ts)[0] - s.gaps[c])))
+                deepest[c] = max(deepest[c], float(np.max(SIGNS[c] * sol.sol(ts)[s.level] - s.gaps[c])))
         hits = [(float(te[0]), c) for c, te in enumerate(sol.t_events) if te.size and te[0] > t + 1e-13]
         if not hits:
             if sol.status != 0:
@@ -124,14 +127,14 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         sg = SIGNS[c]
         if inside[c]:
             inside[c] = False
-            relax[c] = (max(sg * y[0] - s.gaps[c], 0.0), t)
+            relax[c] = (max(sg * y[s.level] - s.gaps[c], 0.0), t)
             out.contact_ends.append((c, t))
             out.depths.append(deepest[c])
             deepest[c] = 0.0
         else:
             inside[c] = True
             out.contact_starts.append((c, t))
-            out.speeds.append(abs(y[n]))
-            deepest[c] = max(sg * y[0] - s.gaps[c], 0.0)
+            out.speeds.append(abs(y[n + s.level]))
+            deepest[c] = max(sg * y[s.level] - s.gaps[c], 0.0)
     out.y = y
     return out

@@ -2,5 +2,7 @@
 
 from .result import EnergyLedger, Run, State
 from .simulate import simulate
+from .structure import StructureState
+from .structure_result import StructureEnergy, StructureRun
 
-__all__ = ["EnergyLedger", "Run", "State", "simulate"]
+__all__ = ["EnergyLedger", "Run", "State", "StructureEnergy", "StructureRun", "StructureState", "simulate"]

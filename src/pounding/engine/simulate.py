@@ -3,11 +3,11 @@
 from __future__ import annotations
 
 import math
-from typing import Optional
+from typing import TYPE_CHECKING, Optional
 
 import numpy as np
 
-from .._checks import integer, non_negative, positive
+from .._checks import integer, positive
 from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
@@ -23,10 +23,15 @@ from ._control import (
     steps_per_second,
 )
 from .. import _core
-from ._system import Forcing, System
+from ._system import System
 from ._layout import (DEF_L, DEF_R, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT, L_ISOLATOR, L_KINETIC,
                       L_VISCOUS, REGION, STATE_BASE, Z_L, Z_R, ZETA, D, V)
+from ._run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPLES,  # noqa: F401
+                        MAX_SAMPLES, check_rtol, history_rate, kernel_forcing)
 from .result import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, EnergyLedger, Run, State
+
+if TYPE_CHECKING:
+    from ..model.structure import Structure
 
 _NO_LAW = KelvinVoigt(1.0, 0.0)  # stands in for absent bumpers (never touched)
 
@@ -35,15 +40,6 @@ def check_oscillator(oscillator: Oscillator) -> None:
     if not isinstance(oscillator, Oscillator):
         raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator,
                          got=type(oscillator).__name__, expected="pounding.Oscillator")
-
-
-def check_rtol(rtol: float) -> float:
-    """The integration tolerance of nonlinear contact laws, in (0, 1e-3]."""
-    rtol = positive("rtol", rtol, "(relative)")
-    if not 1e-14 <= rtol <= 1e-3:
-        raise InputError(Problem.OUT_OF_RANGE, "rtol", rtol, range="[1e-14, 1e-3]",
-                         hint=" (below 1e-14 the steps cannot meet it in double precision)")
-    return rtol
 
 
 def check_state(state: Optional[State], oscillator: Oscillator) -> State:
@@ -145,40 +141,8 @@ def kernel_system(oscillator: Oscillator) -> System:
                         contacts)
 
 
-def kernel_forcing(excitation: Harmonic | Record) -> Forcing:
-    """The excitation as the kernels' forcing record."""
-    kind, p, rec_t, rec_a = excitation.kernel_arrays()
-    return Forcing(int(kind), p, rec_t, rec_a)
-
-
-# a run whose every sub-interval (and event) fits in this many returns within about 0.1 s: it
-# runs in the caller's thread (Ctrl-C then lands when it returns)
-DIRECT_CALL_STEPS = 50_000
-MAX_AUTO_SAMPLES = 1_000_000     # the default history's length at most (56 MB)
-MAX_SAMPLES = 50_000_000         # refused beyond (2.8 GB of history)
-DEFAULT_SAMPLE_RATE_HZ = 1000.0
-
-
-def history_rate(sample_rate_hz: Optional[float], duration: float) -> float:
-    """The history's sample rate: as asked (checked against memory), or the default.
-
-    The default (``None``) is 1 kHz, lowered for long runs so that the history holds at
-    most ``MAX_AUTO_SAMPLES`` uniform samples: memory grows with what was asked for.
-    """
-    if sample_rate_hz is None:
-        return min(DEFAULT_SAMPLE_RATE_HZ, MAX_AUTO_SAMPLES / duration)
-    rate = non_negative("sample_rate_hz", sample_rate_hz, "Hz")
-    if duration * rate > MAX_SAMPLES:
-        raise InputError(Problem.TOO_LARGE, "sample_rate_hz", sample_rate_hz, maximum=MAX_SAMPLES / duration,
-                         what=f" Hz for {duration:g} s: {duration * rate:.3g} samples, "
-                              f"{56 * duration * rate / 1e9:.3g} GB of history",
-                         fix="lower it or shorten the duration (extrema, contacts and energies are exact "
-                             "without samples: sample_rate_hz=0 keeps the events only)")
-    return rate
-
-
 def simulate(
-    oscillator: Oscillator,
+    oscillator: "Oscillator | Structure",
     excitation: Harmonic | Record,
     duration: float,
     state: Optional[State] = None,
@@ -192,8 +156,10 @@ def simulate(
 
     Parameters
     ----------
-    oscillator : Oscillator
-        The system.
+    oscillator : Oscillator or Structure
+        The system: one mass, or a structure of several (then ``state`` is a
+        :class:`StructureState` and a :class:`StructureRun` is returned: each level's histories
+        and exact extrema, contacts per wall side).
     excitation : Harmonic or Record
         Base (table) acceleration.
     duration : float
@@ -246,6 +212,13 @@ def simulate(
     >>> float(later.t[0]), float(later.t[-1]), len(later.contacts)  # s, s, impacts
     (5.0, 10.0, 20)
     """
+    from ..model.structure import Structure
+
+    if isinstance(oscillator, Structure):  # (several masses: the same run, a result per level)
+        from .structure import simulate_structure
+
+        return simulate_structure(oscillator, excitation, duration, state, rtol=rtol,  # type: ignore[return-value]
+                                  sample_rate_hz=sample_rate_hz, max_events=max_events, max_steps=max_steps)
     check_oscillator(oscillator)
     if not isinstance(excitation, (Harmonic, Record)):
         raise InputError(Problem.WRONG_TYPE, "excitation", excitation,

@@ -5,6 +5,8 @@ from .contact_laws import ElasticPlastic, Hertzdamp, HuntCrossley, Jankowski, Ke
 from .isolator import BoucWen, Isolator
 from .measurement import MeasurementChain, Sensor
 from .oscillator import Oscillator
+from .structure import Storey, Structure, Wall
 
 __all__ = ["BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley", "Isolator", "Jankowski",
-           "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "Sensor"]
+           "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "Sensor", "Storey",
+           "Structure", "Wall"]

@@ -13,6 +13,7 @@ from .periodic import plot_orbit
 from .record import plot_record, plot_response_spectrum
 from .run import plot_run
 from .spectrum import plot_pounding_spectrum
+from .structure import plot_structure_run
 from .study import plot_study
 from .sweep import plot_campaign, plot_hysteresis, plot_lab_sweep, plot_sweep
 
@@ -21,4 +22,4 @@ __all__ = ["plot_basin_stability", "plot_basins", "plot_bifurcation_diagram", "p
            "plot_hazard_curve", "plot_responses", "plot_scaled_suite", "plot_stripes", "plot_identification",
            "plot_lyapunov",
            "plot_hysteresis", "plot_lab_sweep", "plot_orbit", "plot_pounding_spectrum", "plot_record",
-           "plot_response_spectrum", "plot_run", "plot_study", "plot_sweep"]
+           "plot_response_spectrum", "plot_run", "plot_structure_run", "plot_study", "plot_sweep"]
