@@ -10,6 +10,7 @@ from pathlib import Path
 
 import matplotlib
 import numpy as np
+import pandas as pd
 import pytest
 from hypothesis import HealthCheck, assume, event, given, settings
 from hypothesis import strategies as st
@@ -284,3 +285,29 @@ def test_a_state_of_another_structure_is_refused():
         pd_.simulate(three, pd_.Harmonic(0.1, 1.0), 1e6, max_steps=1000)
     with pytest.raises(pd_.InputError, match="excitation"):
         pd_.simulate(three, 0.1, 1.0)
+
+
+def test_the_command_line_simulates_a_structure_file_and_other_commands_say_they_take_one_mass(tmp_path):
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+
+    runner = CliRunner()
+    building = ROOT / "examples" / "building_moat.toml"
+    assert pd_.Structure.from_toml(building).n_levels == 4
+    out = {name: tmp_path / f"{name}.{ext}" for name, ext in (("contacts", "csv"), ("history", "csv"),
+                                                             ("plot", "png"))}
+    quake = ROOT / "examples" / "el_centro_ns.AT2"
+    result = runner.invoke(app, ["simulate", str(building), "--record", str(quake),
+                                 "--scale-pga", "0.6", "--duration", "12", "--contacts", str(out["contacts"]),
+                                 "--history", str(out["history"]), "--plot", str(out["plot"])])
+    assert result.exit_code == 0, result.output
+    assert "at level 0" in result.output and "drift ratio [%]" in result.output
+    assert len(pd.read_csv(out["contacts"])) > 0
+    assert "displacement_m[3]" in pd.read_csv(out["history"], nrows=2).columns
+    assert out["plot"].stat().st_size > 10_000
+    one_mass = runner.invoke(app, ["sweep", str(building), "--a-g", "0.1", "--fmin", "1", "--fmax", "2"])
+    assert one_mass.exit_code == 2 and "takes one mass" in one_mass.output
+    velocity = runner.invoke(app, ["simulate", str(building), "--a-g", "0.1", "--freq", "1",
+                                   "--velocity", "0.1"])
+    assert velocity.exit_code == 2 and "--velocity" in velocity.output

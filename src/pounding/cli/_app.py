@@ -265,13 +265,24 @@ def kv_table(title: str, system: Any = None) -> tuple[Table, Callable[[str, str]
     return table, add
 
 
-def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True):
+def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True, structures: bool = False):
+    """The system of a command: SYSTEM.toml (an oscillator's, or with ``structures`` a structure's too) or
+    a preset."""
     from .. import presets
-    from ..model import Oscillator
+    from .._checks import parse_toml, read_text
+    from ..model import Oscillator, Structure
 
     if (path is None) == (preset is None):
         raise typer.BadParameter("give either SYSTEM.toml or --preset NAME (one of them)")
-    return Oscillator.from_toml(path) if path is not None else presets.by_name(preset, bumpers=bumpers)
+    if path is None:
+        return presets.by_name(preset, bumpers=bumpers)
+    text = read_text("SYSTEM", path)
+    if "base_mass_kg" in parse_toml(str(path), text):  # (a structure's file: Structure.to_toml writes it)
+        if not structures:
+            raise typer.BadParameter(f"{path} is a structure of several masses: this command takes one mass "
+                                     "so far (pounding simulate takes structures)")
+        return Structure.from_toml(path)
+    return Oscillator.from_toml(path)
 
 
 def frequencies(fmin: float, fmax: float, fstep: float):

@@ -78,16 +78,23 @@ def simulate(
         None, "--plot", help="Draw displacement and acceleration (PNG, PDF...)."
     ),
 ) -> None:
-    """Simulate a harmonic excitation or a record and summarise the run (exact extrema, contacts, energy)."""
+    """Simulate a harmonic excitation or a record and summarise the run (exact extrema, contacts, energy).
+
+    SYSTEM.toml may be a structure of several masses (examples/building_moat.toml): a row per level."""
     from ..engine import State
     from ..engine import simulate as run_simulation
+    from ..model import Oscillator
 
     out = files(contacts=(contacts, CSV), history=(history, CSV))
     plot = figure_path("--plot", plot)
-    osc = system(system_file, preset, bumpers=not no_bumpers)
+    osc = system(system_file, preset, bumpers=not no_bumpers, structures=True)
     exc, what = excitation(a_g, freq, record, record_dt, record_units, scale_pga)
     if duration is None:
         duration = exc.t[-1] if record is not None else 20.0
+    if not isinstance(osc, Oscillator):  # a structure of several masses
+        if velocity != 0.0:
+            raise typer.BadParameter("--velocity is for one mass (a structure starts at rest)")
+        return _simulate_structure(osc, exc, what, duration, sample_rate, system_file, out, plot)
     start = State.at_rest(osc, velocity_m_s=velocity)
     wants_history = history is not None or plot is not None
     rate = sample_rate if wants_history else 0.0  # nothing to sample for: the events only
@@ -130,6 +137,55 @@ def simulate(
             f"the run up to t = {run.final_state.time_s:g} s of {duration:g} s is in the summary"
             + (" and the files written" if any(out.values()) or plot else "")
         )
+    if not run.success:
+        raise typer.Exit(code=1)
+
+
+def _simulate_structure(building: Any, exc: Any, what: str, duration: float, sample_rate: Optional[float],
+                        system_file: Optional[Path], out: dict, plot: Optional[Path]) -> None:
+    """``simulate`` for a structure: a row per level (exact extrema, the storey's drift at the samples)."""
+    from rich.table import Table
+
+    from ..engine import simulate as run_simulation
+
+    complete = True
+    try:
+        with working(f"simulating {duration:g} s of {what} on {building.n_levels} levels ..."):
+            run = run_simulation(building, exc, duration, sample_rate_hz=sample_rate)
+    except Interrupted as stop:
+        run, complete = stop.partial, False
+    table, add_row = kv_table(f"{what}, {run.final_state.time_s:g} s", system_file)
+    add_row("status", run.message)
+    n = len(run.contacts)
+    add_row("contacts", ", ".join(f"{k} at level {lv}" for lv, k in run.contacts["level"].value_counts()
+                                  .sort_index().items()) if n else "0")
+    e = run.energy
+    add_row("energy in / residual [J]", f"{e.input_work:.6g} / {e.residual:.2e}")
+    console.print(table)
+    peaks = run.peaks()
+    sampled = f"; drift at the samples, {run.sample_rate_hz:g} Hz" if run.sample_rate_hz else ""
+    levels = Table(title=f"each level (extrema exact{sampled})")
+    for head in ("level", "max / min [mm]", "max |a_abs| [g]", "drift ratio [%]"):
+        levels.add_column(escape(head), justify="right")
+    for level, row in peaks.iterrows():
+        ratio = row["drift_ratio_peak_sampled"]
+        levels.add_row("base" if level == 0 else str(level),
+                       f"{row['displacement_max_m'] * 1e3:.2f} / {row['displacement_min_m'] * 1e3:.2f}",
+                       f"{row['abs_acceleration_max_m_s2'] / exc.g:.3f}",
+                       "-" if ratio != ratio else f"{ratio * 100:.3f}")
+    console.print(levels)
+    with interrupts_deferred() as held:
+        if out["contacts"] is not None:
+            write_csv(run.contacts, out["contacts"])
+            console.print(f"contacts -> {out['contacts']}")
+        if out["history"] is not None:
+            write_csv(run.to_dataframe(), out["history"])
+            console.print(f"history -> {out['history']}")
+        if plot is not None:
+            save_figure(run.plot, plot)
+    if not complete or held:
+        interrupted(f"the run up to t = {run.final_state.time_s:g} s of {duration:g} s is in the summary"
+                    + (" and the files written" if any(out.values()) or plot else ""))
     if not run.success:
         raise typer.Exit(code=1)
 
