@@ -40,7 +40,7 @@ def core_system(s: Structure, bumpers: bool = True):
     params[:2] = s.k_b, s.c_b
     contacts = [(0, -1, -1.0, s.gaps[0], KELVIN_VOIGT, params),
                 (0, -1, 1.0, s.gaps[1], KELVIN_VOIGT, params)]
-    return _core.system(s.mass, s.k0, s.c0, (0, -1), s.c_iso, [s.k_iso], [], 1, np.zeros(6), bumpers,
+    return _core.system(s.mass, s.k0, s.c0, [(0, -1, s.c_iso, [s.k_iso], [], 1)], np.zeros(6), bumpers,
                         contacts)
 
 

@@ -14,12 +14,13 @@ namespace pounding::run_parts {
 
 // ---------------------------------------------------------------- outputs at an instant
 
-// the isolator's force on its pair (k u + r0 + c_d u' + the Bouc-Wen spring's)
-double iso_force(const System& sy, const double* st) {
-    const IsoLinear iso = iso_linear(sy, st);
+// element e's force on its pair (k u + r0 + c_d u', and the isolator's Bouc-Wen spring's)
+double iso_force(const System& sy, int e, const double* st) {
+    const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+    const IsoLinear iso = iso_linear(sy, e, st);
     const Layout& L = sy.lay;
-    const double u = rel(st + L.x, sy.iso_i, sy.iso_j), du = rel(st + L.v, sy.iso_i, sy.iso_j);
-    return iso.k * u + iso.r0 + sy.c_d * du + sy.bw[0] * st[L.zeta];
+    const double u = rel(st + L.x, h.i, h.j), du = rel(st + L.v, h.i, h.j);
+    return iso.k * u + iso.r0 + h.c_d * du + (e == 0 ? sy.bw[0] * st[L.zeta] : 0.0);
 }
 
 // a sample row (or the absolute accelerations and forces) from the state, outside a phase
@@ -34,9 +35,14 @@ void outputs(const double* st, const System& sy, double* q, double* row) {
             s += sy.k0[static_cast<size_t>(i * n + j)] * x[j] + sy.c0[static_cast<size_t>(i * n + j)] * v[j];
         q[i] = s;
     }
-    const double f_iso = iso_force(sy, st);
-    q[sy.iso_i] += f_iso;
-    if (sy.iso_j >= 0) q[sy.iso_j] -= f_iso;
+    double f_iso = 0.0;
+    for (int e = 0; e < sy.n_h(); ++e) {
+        const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+        const double f = iso_force(sy, e, st);
+        q[h.i] += f;
+        if (h.j >= 0) q[h.j] -= f;
+        if (e == 0) f_iso = f;
+    }
     double* fc = row + 2 + 3 * n;
     for (int c = 0; c < sy.nc(); ++c) {
         fc[c] = 0.0;
@@ -86,7 +92,8 @@ void energies(const double* st, const System& sy, double& kin, double& iso, doub
     double e_k0 = 0.0;
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) e_k0 += 0.5 * x[i] * sy.k0[static_cast<size_t>(i * n + j)] * x[j];
-    iso = iso_energy(sy, st, rel(x, sy.iso_i, sy.iso_j)) + e_bw + e_k0;
+    iso = iso_energy(sy, 0, st, iso_u(sy, 0, st)) + e_bw + e_k0;
+    for (int e = 1; e < sy.n_h(); ++e) iso += iso_energy(sy, e, st, iso_u(sy, e, st));
     bmp = 0.0;
     for (int c = 0; c < sy.nc(); ++c) {
         const Contact& ct = sy.contact[static_cast<size_t>(c)];

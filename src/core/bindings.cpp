@@ -57,36 +57,43 @@ Array2 rows_array(Rows& r) {
     return Array2(owned->data(), {rows, cols}, owner);
 }
 
-// a contact from (i, j, sign, gap, law, params)
+// a contact from (i, j, sign, gap, law, params); a hysteretic element from (i, j, c_d, slopes, breaks, rule)
 using ContactTuple = std::tuple<int, int, double, double, int, std::vector<double>>;
-using SystemState = std::tuple<int, std::vector<double>, std::vector<double>, std::vector<double>, int, int, double,
-                               std::vector<double>, std::vector<double>, int, std::vector<double>, bool,
-                               std::vector<ContactTuple>>;
+using ElementTuple = std::tuple<int, int, double, std::vector<double>, std::vector<double>, int>;
+using SystemState = std::tuple<int, std::vector<double>, std::vector<double>, std::vector<double>,
+                               std::vector<ElementTuple>, std::vector<double>, bool, std::vector<ContactTuple>>;
 
 SystemState system_state(const System& s) {
     std::vector<ContactTuple> cs;
     for (const Contact& c : s.contact)
         cs.emplace_back(c.i, c.j, c.sign, c.gap, c.law, std::vector<double>(c.p, c.p + N_LAW_PARAMS));
-    return {s.n, s.mass, s.k0, s.c0, s.iso_i, s.iso_j, s.c_d, s.slopes, s.breaks, s.rule,
-            std::vector<double>(s.bw, s.bw + BW_PARAMS), s.has_b, cs};
+    std::vector<ElementTuple> es;
+    for (const Hysteretic& h : s.hyst) es.emplace_back(h.i, h.j, h.c_d, h.slopes, h.breaks, h.rule);
+    return {s.n, s.mass, s.k0, s.c0, es, std::vector<double>(s.bw, s.bw + BW_PARAMS), s.has_b, cs};
 }
 
+// (the sizes and indices are checked in Python, pounding._core.system: the core trusts its inputs)
 void fill_system(System& s, const SystemState& st) {
     s.n = std::get<0>(st);
     s.mass = std::get<1>(st);
     s.k0 = std::get<2>(st);
     s.c0 = std::get<3>(st);
-    s.iso_i = std::get<4>(st);
-    s.iso_j = std::get<5>(st);
-    s.c_d = std::get<6>(st);
-    s.slopes = std::get<7>(st);
-    s.breaks = std::get<8>(st);
-    s.rule = std::get<9>(st);
-    const std::vector<double>& bw = std::get<10>(st);
+    s.hyst.clear();
+    for (const ElementTuple& t : std::get<4>(st)) {
+        Hysteretic h;
+        h.i = std::get<0>(t);
+        h.j = std::get<1>(t);
+        h.c_d = std::get<2>(t);
+        h.slopes = std::get<3>(t);
+        h.breaks = std::get<4>(t);
+        h.rule = std::get<5>(t);
+        s.hyst.push_back(h);
+    }
+    const std::vector<double>& bw = std::get<5>(st);
     for (int j = 0; j < BW_PARAMS; ++j) s.bw[j] = j < static_cast<int>(bw.size()) ? bw[j] : 0.0;
-    s.has_b = std::get<11>(st);
+    s.has_b = std::get<6>(st);
     s.contact.clear();
-    for (const ContactTuple& t : std::get<12>(st)) {
+    for (const ContactTuple& t : std::get<7>(st)) {
         Contact c;
         c.i = std::get<0>(t);
         c.j = std::get<1>(t);
@@ -118,16 +125,14 @@ NB_MODULE(_pounding_core, m) {
     nb::class_<System>(m, "System")
         .def("__init__",
              [](System* s, int n, const std::vector<double>& mass, const std::vector<double>& k0,
-                const std::vector<double>& c0, int iso_i, int iso_j, double c_d, const std::vector<double>& slopes,
-                const std::vector<double>& breaks, int rule, const std::vector<double>& bw, bool has_b,
-                const std::vector<ContactTuple>& contacts) {
+                const std::vector<double>& c0, const std::vector<ElementTuple>& elements,
+                const std::vector<double>& bw, bool has_b, const std::vector<ContactTuple>& contacts) {
                  new (s) System();
-                 fill_system(*s, SystemState{n, mass, k0, c0, iso_i, iso_j, c_d, slopes, breaks, rule, bw, has_b,
-                                             contacts});
+                 fill_system(*s, SystemState{n, mass, k0, c0, elements, bw, has_b, contacts});
              })
         .def_ro("n", &System::n)
         .def_ro("mass", &System::mass)
-        .def_ro("c_d", &System::c_d)
+        .def_prop_ro("n_elements", &System::n_h)
         .def_ro("has_b", &System::has_b)
         .def_prop_ro("state_size", &System::state_size)
         .def_prop_ro("layout", [](const System& s) {
@@ -141,6 +146,7 @@ NB_MODULE(_pounding_core, m) {
             d["z"] = s.lay.z;
             d["zeta"] = s.lay.zeta;
             d["base"] = s.lay.base;
+            d["n_springs"] = s.lay.n_sp;
             d["size"] = s.lay.size;
             d["sample_cols"] = s.lay.sample_cols();
             return d;
@@ -256,7 +262,7 @@ NB_MODULE(_pounding_core, m) {
     nb::dict layout;
     // the state's offsets and the outputs' columns of a one-mass system with its two contact slots (the left
     // and the right bumper); a system's own: System.layout
-    const Layout one(1, 2, 0);
+    const Layout one(1, 2, 1, 0);
     layout["T"] = T;
     layout["D"] = one.x;
     layout["V"] = one.v;

@@ -5,14 +5,15 @@
 // Python: the core trusts its inputs.
 //
 // A system has n degrees of freedom (masses, displacements relative to the ground, which the table moves),
-// a linear part (springs and dashpots between them), one isolator (a hysteretic spring between a dof and the
-// ground or another dof) and contact slots, each a pair (a dof against the ground or another dof) with a
+// a linear part (springs and dashpots between them), hysteretic elements (each a multi-linear spring with its
+// dashpot between a dof and the ground or another dof: the isolator is element 0) and contact slots, each a pair (a dof against the ground or another dof) with a
 // gap and a law.  Elements and contacts are indexed blocks of the state vector; a one-mass system is n = 1.
 //
 // The state vector (doubles), by Layout:
 //   T time s | x + i displacements m | v + i velocities m/s | def + c compressions | in + c in contact (1.0)
-//   region backbone branch (elastic rule) | acc + N_ACC c a contact's running totals
-//   z + N_LAW_STATE c a contact law's state | zeta Bouc-Wen z | base.. slips, then slip directions
+//   region + e element e's backbone branch (elastic rule) | acc + N_ACC c a contact's running totals
+//   z + N_LAW_STATE c a contact law's state | zeta Bouc-Wen z | base + g slips of every element's springs
+//   (element e's from its first), then base + n_sp + g their slip directions
 // For n = 1 and two contact slots that is Python's long-standing layout (T 0, D 1, V 2, ..., STATE_BASE 37).
 #pragma once
 
@@ -34,18 +35,20 @@ constexpr int GROUND = -1;      // a pair's second end when it is the ground (th
 constexpr int T = 0;
 constexpr int A_TSTART = 0, A_VIN = 1, A_DSTART = 2, A_IMPULSE = 3, A_PEAK = 4, A_MAXCOMP = 5, A_WORK = 6;
 
-// where each block of the state vector starts, for n dofs, nc contact slots and n_sp isolator springs
+// where each block of the state vector starts, for n dofs, nc contact slots, n_h hysteretic elements and n_sp
+// springs of theirs in all
 struct Layout {
-    int n = 1, nc = 2, n_sp = 0;
+    int n = 1, nc = 2, n_h = 1, n_sp = 0;
     int x = 1, v = 2, def = 3, in = 5, region = 7, acc = 8, z = 22, zeta = 36, base = 37, size = 37;
     Layout() = default;
-    Layout(int n_dof, int n_contacts, int n_springs) : n(n_dof), nc(n_contacts), n_sp(n_springs) {
+    Layout(int n_dof, int n_contacts, int n_elements, int n_springs)
+        : n(n_dof), nc(n_contacts), n_h(n_elements), n_sp(n_springs) {
         x = 1;
         v = x + n;
         def = v + n;
         in = def + nc;
         region = in + nc;
-        acc = region + 1;
+        acc = region + n_h;
         z = acc + N_ACC * nc;
         zeta = z + N_LAW_STATE * nc;
         base = zeta + 1;
@@ -101,34 +104,53 @@ struct Contact {
     double p[N_LAW_PARAMS] = {0};
 };
 
+// A hysteretic element: a rate-independent multi-linear spring (slopes N/m, n_springs + 1; breaks m, n_springs)
+// with its rule (0 kinematic, 1 elastic: isolator.hpp) and a dashpot c_d (N s/m), between dof i and dof j (or
+// the ground), deformed by u = x_i - x_j.  The isolator is element 0 of a system, and carries its Bouc-Wen
+// spring if it has one; a storey with a hysteretic backbone is another.
+struct Hysteretic {
+    int i = 0, j = GROUND;
+    double c_d = 0.0;
+    std::vector<double> slopes, breaks;
+    int rule = 0;
+    int first = 0;  // its first spring's index among the system's (set by System::finish)
+    int n_springs() const { return static_cast<int>(slopes.size()) - 1; }
+};
+
 // The system as the kernels take it (pounding.engine.simulate.kernel_system packs a one-mass system).
 struct System {
     int n = 1;                    // degrees of freedom
     std::vector<double> mass;     // kg, n
-    std::vector<double> k0, c0;   // the linear springs and dashpots besides the isolator (N/m, N s/m), n x n
-    // the isolator, between dof iso_i and iso_j (or the ground): a multi-linear backbone (slopes N/m, n_sp + 1;
-    // breaks m, n_sp) with its rule (0 kinematic, 1 elastic), a dashpot c_d and a Bouc-Wen spring (bw[0] 0: none)
-    int iso_i = 0, iso_j = GROUND;
-    double c_d = 0.0;
-    std::vector<double> slopes, breaks;
-    int rule = 0;
-    double bw[BW_PARAMS] = {0};
+    std::vector<double> k0, c0;   // the linear springs and dashpots besides the elements (N/m, N s/m), n x n
+    std::vector<Hysteretic> hyst; // the hysteretic elements, the isolator first (at least one)
+    double bw[BW_PARAMS] = {0};   // element 0's Bouc-Wen spring (bw[0] 0: none)
     bool has_b = false;           // the contacts are active
     std::vector<Contact> contact; // the contact slots
-    // derived by finish(): the damping of every phase (c0 and the isolator's dashpot), the layout
+    // derived by finish(): the damping of every phase (c0 and the elements' dashpots), the layout
     std::vector<double> c_lin;
     double total_mass = 0.0;
     Layout lay;
 
-    int n_springs() const { return static_cast<int>(slopes.size()) - 1; }
+    int n_springs() const {  // the elements' springs, all together
+        int s = 0;
+        for (const Hysteretic& h : hyst) s += h.n_springs();
+        return s;
+    }
+    int n_h() const { return static_cast<int>(hyst.size()); }
+    const Hysteretic& iso() const { return hyst[0]; }
     int state_size() const { return lay.size; }
     int nc() const { return static_cast<int>(contact.size()); }
     void finish() {
-        lay = Layout(n, nc(), n_springs());
+        int first = 0;
+        for (Hysteretic& h : hyst) {
+            h.first = first;
+            first += h.n_springs();
+        }
+        lay = Layout(n, nc(), n_h(), n_springs());
         c_lin = c0;
         if (static_cast<int>(c_lin.size()) != n * n) c_lin.assign(static_cast<size_t>(n * n), 0.0);
         if (static_cast<int>(k0.size()) != n * n) k0.assign(static_cast<size_t>(n * n), 0.0);
-        add_pair(c_lin, iso_i, iso_j, c_d);
+        for (const Hysteretic& h : hyst) add_pair(c_lin, h.i, h.j, h.c_d);
         total_mass = 0.0;
         for (double m : mass) total_mass += m;
     }

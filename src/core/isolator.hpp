@@ -1,9 +1,10 @@
-// The isolator's rate-independent spring, between dofs iso_i and iso_j (or the ground) of deformation
-// u = x_i - x_j: a multi-linear backbone with one of two rules.
+// A hysteretic element's rate-independent spring (core.hpp's Hysteretic: the isolator is element 0), between
+// dofs i and j (or the ground) of deformation u = x_i - x_j: a multi-linear backbone with one of two rules.
 //   kinematic (rule 0): a spring of the last slope in parallel with n - 1 elastic-perfectly-plastic springs
 //     (spring i of stiffness K_i - K_(i+1), slipping when its strain u - u_i reaches +-D_i); state: the slips
-//     u_i and slip directions s_i at the layout's base.
-//   elastic (rule 1): the force follows the backbone; state: its branch at the layout's region.
+//     u_i and slip directions s_i at the layout's base, from the element's first spring on.
+//   elastic (rule 1): the force follows the backbone; state: its branch at the layout's region + e.
+// Events: a yield's index is the spring's among the system's; a branch change's and a reversal's the element's.
 #pragma once
 
 #include "core.hpp"
@@ -14,15 +15,19 @@ constexpr int RULE_KINEMATIC = 0, RULE_ELASTIC = 1;
 
 struct EventRow;  // events.hpp
 
-struct IsoLinear { double k, r0; };  // the force is k u + r0 until the isolator's next event
+struct IsoLinear { double k, r0; };  // the force is k u + r0 until the element's next event
 
-inline double iso_u(const System& sy, const double* st) { return rel(st + sy.lay.x, sy.iso_i, sy.iso_j); }
+inline double iso_u(const System& sy, int e, const double* st) {
+    return rel(st + sy.lay.x, sy.hyst[static_cast<size_t>(e)].i, sy.hyst[static_cast<size_t>(e)].j);
+}
 
-IsoLinear iso_linear(const System& sy, const double* st);
-double iso_energy(const System& sy, const double* st, double d);
+IsoLinear iso_linear(const System& sy, int e, const double* st);
+double iso_energy(const System& sy, int e, const double* st, double d);
+// every element's event rows after the n already in evs; the new count
 int iso_events(const System& sy, const double* st, EventRow* evs, int n);
-double iso_advance(const System& sy, double* st, double d_start, double d_end);
+// the slipping springs moved with their elements from x_start to x_end (displacements, n): the work they did
+double iso_advance(const System& sy, double* st, const double* x_start, const double* x_end);
 void iso_transition(const System& sy, double* st, int action, int index, double direction);
-double backbone_force_at_break(const System& sy, int j);
+double backbone_force_at_break(const Hysteretic& h, int j);
 
 }  // namespace pounding

@@ -341,7 +341,7 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
     // the event rows a phase can have: the isolator's (two a spring and a reversal), each contact's (its
     // start or release, a relaxing law's twin, a branch's two edges and its rate's turn), the Bouc-Wen z's
     const size_t rows = static_cast<size_t>(
-        std::max(MAX_EVENTS_PER_PHASE, 2 * sy.n_springs() + 1 + 6 * sy.nc() + 1));
+        std::max(MAX_EVENTS_PER_PHASE, 2 * sy.n_springs() + sy.n_h() + 6 * sy.nc() + 1));
     if (w.evs.size() < rows) {
         w.evs.assign(rows, EventRow());
         w.ev_end.assign(3 * rows, 0.0);
@@ -542,8 +542,7 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
             break;
         }
         // the isolator at the sub-interval's end
-        ledger[L_HYSTERETIC] += iso_advance(sy, st, rel(ph.y0.data(), sy.iso_i, sy.iso_j),
-                                            rel(b.y1.data(), sy.iso_i, sy.iso_j));
+        ledger[L_HYSTERETIC] += iso_advance(sy, st, ph.y0.data(), b.y1.data());
         if (sy.bw[0] != 0.0) st[L.zeta] = std::min(std::max(phase_zeta(ph, tau), -z_max), z_max);
         for (int q = 0; q < 2 * n; ++q) st[L.x + q] = b.y1[static_cast<size_t>(q)];
         st[T] = to_stop ? t_stop : t + tau;

@@ -64,7 +64,7 @@ struct Buffers {
 // ---------------------------------------------------------------- outputs (accumulate.cpp)
 
 // the isolator's force on its pair (k u + r0 + c_d u' + the Bouc-Wen spring's)
-double iso_force(const System& sy, const double* st);
+double iso_force(const System& sy, int e, const double* st);
 
 // a sample row (or the absolute accelerations and forces q) from the state, outside a phase
 void outputs(const double* st, const System& sy, double* q, double* row);

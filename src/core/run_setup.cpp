@@ -45,7 +45,8 @@ Piece excitation_piece(const Forcing& fo, double t, int64_t j_hint) {
 
 // the run's length (m) and velocity (m/s) scales: the system's and the excitation's, not the start's
 void run_scales(const System& sy, const Forcing& fo, double& x, double& xw) {
-    double w = std::sqrt(sy.slopes[0] / sy.total_mass);
+    const Hysteretic& iso = sy.iso();
+    double w = std::sqrt(iso.slopes[0] / sy.total_mass);
     double amp = 0.0;
     if (fo.kind == EXC_HARMONIC) {
         amp = std::abs(fo.p[0]);
@@ -57,7 +58,7 @@ void run_scales(const System& sy, const Forcing& fo, double& x, double& xw) {
     if (sy.has_b)
         for (const Contact& c : sy.contact) gaps += c.gap;
     x = std::max(gaps, amp / (w * w));
-    if (!sy.breaks.empty()) x = std::max(x, sy.breaks[0]);
+    if (!iso.breaks.empty()) x = std::max(x, iso.breaks[0]);
     xw = x * w;
 }
 
@@ -87,13 +88,18 @@ static double rate_bound(const Phase& ph, double k_extra) {
 void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
     const Layout& L = sy.lay;
     const int n = sy.n;
-    const IsoLinear iso = iso_linear(sy, st);
     ph.K = sy.k0;
     ph.C = sy.c_lin;
     std::fill(ph.R0.begin(), ph.R0.end(), 0.0);
-    sy.add_pair(ph.K, sy.iso_i, sy.iso_j, iso.k);
-    ph.R0[static_cast<size_t>(sy.iso_i)] += iso.r0;
-    if (sy.iso_j >= 0) ph.R0[static_cast<size_t>(sy.iso_j)] -= iso.r0;
+    IsoLinear iso{0.0, 0.0};
+    for (int e = 0; e < sy.n_h(); ++e) {  // each element's present branch
+        const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+        const IsoLinear el = iso_linear(sy, e, st);
+        sy.add_pair(ph.K, h.i, h.j, el.k);
+        ph.R0[static_cast<size_t>(h.i)] += el.r0;
+        if (h.j >= 0) ph.R0[static_cast<size_t>(h.j)] -= el.r0;
+        if (e == 0) iso = el;
+    }
     bool any_nl = false;
     for (int q = 0; q < sy.nc(); ++q) {
         ContactPhase& k = ph.ct[static_cast<size_t>(q)];
@@ -140,9 +146,10 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
     const double k_bw = sy.bw[0] != 0.0 ? sy.bw[0] * sy.bw[2] / sy.bw[1] : 0.0;
     double k_extra = 0.0;
     if (k_bw != 0.0) {
-        const double mi = ph.minv[static_cast<size_t>(sy.iso_i)];
-        const double mj = sy.iso_j >= 0 ? ph.minv[static_cast<size_t>(sy.iso_j)] : 0.0;
-        k_extra = k_bw * (mi + mj + (sy.iso_j >= 0 ? 2.0 * std::sqrt(mi * mj) : 0.0));
+        const Hysteretic& h = sy.iso();
+        const double mi = ph.minv[static_cast<size_t>(h.i)];
+        const double mj = h.j >= 0 ? ph.minv[static_cast<size_t>(h.j)] : 0.0;
+        k_extra = k_bw * (mi + mj + (h.j >= 0 ? 2.0 * std::sqrt(mi * mj) : 0.0));
     }
     ph.rate = rate_bound(ph, k_extra);
 }
@@ -165,9 +172,9 @@ void run_constants(Phase& ph, const System& sy, const Forcing& fo) {
         k.i = ct.i;
         k.j = ct.j;
     }
-    ph.cd = sy.c_d;
-    ph.iso_i = sy.iso_i;
-    ph.iso_j = sy.iso_j;
+    ph.cd = sy.iso().c_d;
+    ph.iso_i = sy.iso().i;
+    ph.iso_j = sy.iso().j;
     for (int j = 0; j < BW_PARAMS; ++j) ph.bw[j] = sy.bw[j];
 }
 
@@ -205,15 +212,15 @@ int phase_events(const Phase& ph, const double* st, const System& sy, EventRow* 
         EventRow& r = evs[n++];
         r = EventRow();
         r.kind = KIND_ZETA;
-        r.i = sy.iso_i;
-        r.j = sy.iso_j;
+        r.i = sy.iso().i;
+        r.j = sy.iso().j;
         r.alpha = -std::copysign(1.0, st[sy.lay.zeta]);
         r.action = ACT_BOUC_WEN;
     }
     return n;
 }
 
-// the pairs whose relative displacement events are functions of: the isolator's and the contacts'
+// the pairs whose relative displacement events are functions of: the elements' and the contacts'
 int event_pairs(const System& sy, int* pi, int* pj) {
     int np = 0;
     auto add = [&](int i, int j) {
@@ -223,7 +230,7 @@ int event_pairs(const System& sy, int* pi, int* pj) {
         pj[np] = j;
         ++np;
     };
-    add(sy.iso_i, sy.iso_j);
+    for (const Hysteretic& h : sy.hyst) add(h.i, h.j);
     if (sy.has_b)
         for (const Contact& c : sy.contact) add(c.i, c.j);
     return np;

@@ -37,23 +37,46 @@ STATUS: dict[str, int] = dict(_c.STATUS)
 ACTIONS: dict[str, int] = dict(_c.ACTIONS)
 
 
-def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, iso_pair: tuple[int, int], c_d: float,
-           slopes: np.ndarray, breaks: np.ndarray, rule: int, bw: np.ndarray, has_b: bool,
+def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray,
+           elements: list[tuple[int, int, float, Any, Any, int]], bw: np.ndarray, has_b: bool,
            contacts: list[tuple[int, int, float, float, int, np.ndarray]]) -> System:
     """A system as the core takes it: ``mass`` (kg, shape (n,)), the linear springs and dashpots ``k0``,
-    ``c0`` (N/m, N s/m, shape (n, n)), the isolator between the dofs ``iso_pair`` (-1: the ground) with its
-    dashpot ``c_d``, backbone (``slopes`` N/m, ``breaks`` m, ``rule`` 0 kinematic or 1 elastic) and Bouc-Wen
-    numbers ``bw`` (zeros for none), and the contact slots, each ``(i, j, sign, gap, law id, parameters)``:
-    dof i against dof j (-1: the ground), compressed by ``sign (x_i - x_j) - gap``; ``has_b`` makes them
-    active."""
+    ``c0`` (N/m, N s/m, shape (n, n)), the hysteretic elements, each ``(i, j, c_d, slopes, breaks, rule)``
+    (dof i against dof j, -1 the ground; its dashpot N s/m, backbone slopes N/m and breaks m, rule 0
+    kinematic or 1 elastic; the isolator first, which carries the Bouc-Wen numbers ``bw``, zeros for none),
+    and the contact slots, each ``(i, j, sign, gap, law id, parameters)``: dof i against dof j (-1: the
+    ground), compressed by ``sign (x_i - x_j) - gap``; ``has_b`` makes them active.
+
+    The core trusts what it is given: the sizes and indices are checked here (a ``ValueError`` is a
+    caller's bug; the public functions check what users give before)."""
     m = np.atleast_1d(np.asarray(mass, dtype=float))
     n = m.size
-    return _c.System(n, m.tolist(), np.asarray(k0, dtype=float).reshape(n * n).tolist(),
-                     np.asarray(c0, dtype=float).reshape(n * n).tolist(), int(iso_pair[0]), int(iso_pair[1]),
-                     float(c_d), [float(s) for s in slopes], [float(b) for b in breaks], int(rule),
-                     [float(x) for x in bw], bool(has_b),
-                     [(int(i), int(j), float(sign), float(gap), int(law), [float(x) for x in p])
-                      for i, j, sign, gap, law, p in contacts])
+    k0, c0 = np.asarray(k0, dtype=float), np.asarray(c0, dtype=float)
+    if m.ndim != 1 or n < 1 or k0.shape != (n, n) or c0.shape != (n, n):
+        raise ValueError(f"mass (n,) and k0, c0 (n, n): got {m.shape}, {k0.shape}, {c0.shape}")
+    if not elements:
+        raise ValueError("a system has at least one hysteretic element (the isolator)")
+
+    def pair(i: int, j: int, what: str) -> tuple[int, int]:
+        if not (0 <= i < n and (j == -1 or (0 <= j < n and j != i))):
+            raise ValueError(f"{what}: the pair ({i}, {j}) is not two of the {n} dofs (or one and the ground, -1)")
+        return int(i), int(j)
+
+    packed = []
+    for e, (i, j, c_d, slopes, breaks, rule) in enumerate(elements):
+        slopes, breaks = [float(x) for x in slopes], [float(x) for x in breaks]
+        if len(slopes) < 1 or len(breaks) != len(slopes) - 1 or int(rule) not in (0, 1):
+            raise ValueError(f"element {e}: {len(slopes)} slopes need {len(slopes) - 1} breaks, rule 0 or 1")
+        packed.append((*pair(i, j, f"element {e}"), float(c_d), slopes, breaks, int(rule)))
+    if len(bw) != LAYOUT["BW_PARAMS"]:
+        raise ValueError(f"bw: {LAYOUT['BW_PARAMS']} numbers, got {len(bw)}")
+    slots = []
+    for c, (i, j, sign, gap, law, p) in enumerate(contacts):
+        if sign not in (-1.0, 1.0) or int(law) not in LAW_IDS.values() or len(p) > LAYOUT["N_LAW_PARAMS"]:
+            raise ValueError(f"contact {c}: sign +-1, a law id of LAW_IDS, at most N_LAW_PARAMS parameters")
+        slots.append((*pair(i, j, f"contact {c}"), float(sign), float(gap), int(law), [float(x) for x in p]))
+    return _c.System(n, m.tolist(), k0.reshape(n * n).tolist(), c0.reshape(n * n).tolist(), packed,
+                     [float(x) for x in bw], bool(has_b), slots)
 
 
 def _f64(a: Any) -> np.ndarray:

@@ -136,9 +136,9 @@ def kernel_system(oscillator: Oscillator) -> System:
         left, right, gap_l, gap_r = b.left, b.right, b.gap_left, b.gap_right
     contacts = [(0, -1, -1.0, float(gap_l), int(left.LAW_ID), left.params()),
                 (0, -1, 1.0, float(gap_r), int(right.LAW_ID), right.params())]
-    return _core.system([float(oscillator.mass)], np.zeros((1, 1)), np.zeros((1, 1)), (0, -1),
-                        float(oscillator.isolator.damping), slopes, breaks, int(rule), bw, b is not None,
-                        contacts)
+    isolator = (0, -1, float(oscillator.isolator.damping), slopes, breaks, int(rule))
+    return _core.system([float(oscillator.mass)], np.zeros((1, 1)), np.zeros((1, 1)), [isolator], bw,
+                        b is not None, contacts)
 
 
 def simulate(

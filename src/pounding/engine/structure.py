@@ -37,9 +37,9 @@ def kernel_structure(structure: Structure) -> _core.System:
     for w in structure.walls:
         contacts.append((w.level, -1, -1.0, float(w.gap_left_m), int(w.left.LAW_ID), w.left.params()))
         contacts.append((w.level, -1, 1.0, float(w.gap_right_m), int(w.right.LAW_ID), w.right.params()))
-    return _core.system(structure.masses_kg, structure.stiffness_matrix, structure.damping_matrix, (0, -1),
-                        float(structure.isolator.damping), slopes, breaks, int(rule), bw, bool(contacts),
-                        contacts or _NO_WALLS)
+    isolator = (0, -1, float(structure.isolator.damping), slopes, breaks, int(rule))
+    return _core.system(structure.masses_kg, structure.stiffness_matrix, structure.damping_matrix, [isolator],
+                        bw, bool(contacts), contacts or _NO_WALLS)
 
 
 @dataclass(frozen=True)
