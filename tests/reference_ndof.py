@@ -7,7 +7,9 @@ dashpot c_iso) between the first mass and the ground; Kelvin-Voigt bumpers on bo
 (``level``: the first by default) behind a gap, fixed to the ground: in contact the force K d + C d'
 (d = sign x_level - gap, the compression) until it would pull; out of contact the bumper's compression
 relaxes as d_r exp(-K (t - t_r) / C) from where it was released, and contact starts when the mass meets
-that surface.
+that surface.  A storey may add an elastic-perfectly-plastic spring (``plastic``): stuck, it pulls the drift
+back by k_p (drift - slip); it slips when its strain reaches +-D and sticks again when the drift's rate turns
+back (a bilinear storey with Masing's rule, k0 holding its second slope).
 """
 
 from __future__ import annotations
@@ -32,10 +34,14 @@ class Structure:
     a_g: float                # m/s^2, amplitude of a_g(t) = a_g sin(w t)
     omega: float              # rad/s
     level: int = 0            # the mass the bumpers stop
+    # storeys with an elastic-perfectly-plastic spring besides k0 (a bilinear storey with Masing's rule):
+    # (storey i, between masses i and i + 1; its stiffness N/m; its yield drift D, m)
+    plastic: list = field(default_factory=list)
 
 
 @dataclass
 class NdofResult:
+    yields: list = field(default_factory=list)           # (storey, t): a plastic spring began to slip
     contact_starts: list = field(default_factory=list)  # (contact, t): 0 left (sign -1), 1 right
     contact_ends: list = field(default_factory=list)
     depths: list = field(default_factory=list)          # each finished contact's deepest compression, m
@@ -60,6 +66,8 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         k = s.k0.copy()
         k[0, 0] += s.k_iso
         k[s.level, s.level] += 2.0 * s.k_b
+        for i, k_p, _ in s.plastic:
+            k[i:i + 2, i:i + 2] += k_p * np.array([[1.0, -1.0], [-1.0, 1.0]])
         w_max = math.sqrt(float(np.max(np.linalg.eigvals(k * inv_m[:, None]).real)))
         max_step = 2.0 * math.pi / w_max / steps_per_period
     inside = [False, False]
@@ -73,9 +81,24 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
             return 0.0
         return d_r * math.exp(-s.k_b * (t - t_r) / s.c_b)
 
+    # each plastic spring: its slip u_p and its mode (0 stuck, +-1 slipping that way)
+    slip = [0.0] * len(s.plastic)
+    mode = [0] * len(s.plastic)
+
+    def drift(y, i):
+        return y[i + 1] - y[i]
+
+    def plastic_force(q, y):  # on mass i + 1 (and the opposite on mass i), pulling the drift back
+        i, k_p, d_y = s.plastic[q]
+        return k_p * (drift(y, i) - slip[q]) if mode[q] == 0 else mode[q] * k_p * d_y
+
     def forces(t, y):
         x, v = y[:n], y[n:]
         f = s.k0 @ x + s.c0 @ v
+        for q, (i, _, _) in enumerate(s.plastic):
+            fp = plastic_force(q, y)
+            f[i + 1] += fp
+            f[i] -= fp
         f[0] += s.k_iso * x[0] + s.c_iso * v[0]
         for c in range(2):
             if inside[c]:
@@ -101,6 +124,20 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
             release.terminal = True
             release.direction = -1.0
             evs.append(release)
+        for q, (i, _, d_y) in enumerate(s.plastic):
+            for sg in (1.0, -1.0):
+                if mode[q] == 0:  # stuck: the spring's strain reaches +-D
+                    def change(t, y, q=q, i=i, sg=sg, d_y=d_y):
+                        return d_y - sg * (drift(y, i) - slip[q])
+                elif mode[q] == sg:  # slipping: the drift's rate turns back
+                    def change(t, y, i=i, sg=sg):
+                        return sg * (y[n + i + 1] - y[n + i])
+                else:
+                    continue
+                change.terminal = True
+                change.direction = -1.0
+                change.plastic = (q, sg)
+                evs.append(change)
         return evs
 
     t, y = 0.0, np.array(y0, dtype=float)
@@ -116,6 +153,11 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
                 ts = np.linspace(t, sol.t[-1], 200)
                 deepest[c] = max(deepest[c], float(np.max(SIGNS[c] * sol.sol(ts)[s.level] - s.gaps[c])))
         hits = [(float(te[0]), c) for c, te in enumerate(sol.t_events) if te.size and te[0] > t + 1e-13]
+        # (a stretch that slipped: the slip followed the drift)
+        for q, (i, _, d_y) in enumerate(s.plastic):
+            if mode[q] != 0:
+                end = sol.sol(min(hits)[0]) if hits else sol.y[:, -1]
+                slip[q] = drift(end, i) - mode[q] * d_y
         if not hits:
             if sol.status != 0:
                 raise TouchAtRest(f"an event fires again at its own instant, t = {t}")
@@ -124,6 +166,14 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         t_hit, c = min(hits)
         y = sol.sol(t_hit)
         t = t_hit
+        if hasattr(evs[c], "plastic"):
+            q, sg = evs[c].plastic
+            if mode[q] == 0:
+                mode[q] = int(sg)
+                out.yields.append((s.plastic[q][0], t))
+            else:
+                mode[q] = 0
+            continue
         sg = SIGNS[c]
         if inside[c]:
             inside[c] = False

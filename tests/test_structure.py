@@ -261,6 +261,13 @@ def test_toml_round_trip_and_its_errors(tmp_path):
     (lambda iso: pd_.Storey(1e3, -1e6), "storey.stiffness_n_m"),
     (lambda iso: pd_.Storey(1e3, 1e6, math.nan), "storey.damping_n_s_m"),
     (lambda iso: pd_.Storey(1e3, 1e6, 0.0, 0.0), "storey.height_m"),
+    (lambda iso: pd_.Storey(1e3, 1e6, slopes_after_n_m=[1e5]), r"storey\.breakpoints_m"),
+    (lambda iso: pd_.Storey(1e3, 1e6, slopes_after_n_m=[-1e5], breakpoints_m=[0.01]),
+     r"storey\.slopes_after_n_m\[0\]"),
+    (lambda iso: pd_.Storey(1e3, 1e6, slopes_after_n_m=[1e5, 0], breakpoints_m=[0.02, 0.01]),
+     r"storey\.breakpoints_m"),
+    (lambda iso: pd_.Storey(1e3, 1e6, slopes_after_n_m=[1e5], breakpoints_m=[0.01], hysteresis="masing"),
+     r"storey\.hysteresis"),
     (lambda iso: pd_.Wall(-1, 0.1, 0.1, pd_.KelvinVoigt(1e8, 0)), "wall.level"),
     (lambda iso: pd_.Wall(0, -0.1, 0.1, pd_.KelvinVoigt(1e8, 0)), "wall.gap_left_m"),
     (lambda iso: pd_.Wall(0, 0.1, 0.1, "kv"), "wall.law"),
@@ -311,3 +318,61 @@ def test_the_command_line_simulates_a_structure_file_and_other_commands_say_they
     velocity = runner.invoke(app, ["simulate", str(building), "--a-g", "0.1", "--freq", "1",
                                    "--velocity", "0.1"])
     assert velocity.exit_code == 2 and "--velocity" in velocity.output
+
+
+@st.composite
+def yielding_buildings(draw):
+    """A random building on a linear isolator with bilinear (kinematic) storeys that yield, a Kelvin-Voigt
+    wall at the base, and its restatement for the reference (each storey: k0 its second slope, a plastic
+    spring the difference)."""
+    n = draw(st.integers(2, 4))
+    rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
+    mass = rng.uniform(200.0, 2000.0, n)
+    k1 = rng.uniform(5e5, 5e6, n - 1)
+    k2 = k1 * rng.uniform(0.05, 0.6, n - 1)
+    d_y = rng.uniform(0.0003, 0.002, n - 1)
+    yielding = [bool(b) for b in rng.integers(0, 2, n - 1)]
+    yielding[int(rng.integers(0, n - 1))] = True
+    c_storey = rng.uniform(0.0, 1e3, n - 1)
+    k_iso, c_iso = rng.uniform(5e3, 3e4) * n, rng.uniform(0.0, 1e3)
+    gaps = (draw(st.floats(0.005, 0.03)), draw(st.floats(0.005, 0.03)))
+    k_b, c_b = draw(st.floats(1e6, 1e7)), draw(st.floats(1e2, 3e3))
+    a_g, omega = draw(st.floats(3.0, 8.0)), 2 * math.pi * draw(st.floats(0.7, 3.0))
+    storeys = [pd_.Storey(m, a, c, slopes_after_n_m=[b] if y else [], breakpoints_m=[d] if y else [])
+               for m, a, b, d, c, y in zip(mass[1:], k1, k2, d_y, c_storey, yielding)]
+    building = pd_.Structure(mass[0], linear_isolator(k_iso, c_iso), storeys,
+                             [pd_.Wall(0, gaps[0], gaps[1], pd_.KelvinVoigt(k_b, c_b))])
+    elastic = np.where(yielding, k2, k1)
+    ref = RefStructure(mass=mass, k0=building.shear_matrix(elastic), c0=building.damping_matrix, k_iso=k_iso,
+                       c_iso=c_iso, gaps=gaps, k_b=k_b, c_b=c_b, a_g=a_g, omega=omega,
+                       plastic=[(i, k1[i] - k2[i], d_y[i]) for i in range(n - 1) if yielding[i]])
+    return building, ref
+
+
+@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(pair=yielding_buildings(), v0=st.floats(-0.3, 0.3))
+def test_yielding_storeys_match_the_reference(pair, v0):
+    building, ref_s = pair
+    n = building.n_levels
+    exc = pd_.Harmonic(ref_s.a_g / 9.80665, ref_s.omega / (2 * math.pi), g=9.80665)
+    run = pd_.simulate(building, exc, 2.0, moving(building, v0), sample_rate_hz=0)
+    assert run.success, run.message
+    y0 = np.concatenate([np.zeros(n), np.full(n, v0)])
+    try:
+        ref = reference(ref_s, 2.0, y0)
+    except TouchAtRest:
+        assume(False)
+    assume(all(depth > 1e-7 for depth in ref.depths) and all(speed > 1e-4 for speed in ref.speeds))
+    assume(len(ref.contact_starts) + len(ref.yields) <= 60)
+    events = run.events
+    yields = events[events["event"] == "yield"]
+    event(f"{'yields' if ref.yields else 'no yield'}, {'contacts' if ref.contact_starts else 'no contact'}")
+    # the storeys' springs are the core's elements after the isolator: a yield's index is its spring's
+    storey_of = [i for i, s in enumerate(building.storeys) if not s.is_linear]
+    assert [storey_of[k] for k in yields["index"]] == [i for i, _ in ref.yields]
+    np.testing.assert_allclose(yields["t"], [t for _, t in ref.yields], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(run.contacts["t_start"], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
+    scale = np.abs(ref.y).max()
+    np.testing.assert_allclose(run.final_state.displacements_m, ref.y[:n], rtol=0, atol=1e-7 * scale)
+    e = run.energy
+    assert (e.hysteretic > 0.0) == bool(ref.yields) and abs(e.residual) <= 1e-9 * e.input_work

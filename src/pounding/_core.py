@@ -59,7 +59,8 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray,
 
     def pair(i: int, j: int, what: str) -> tuple[int, int]:
         if not (0 <= i < n and (j == -1 or (0 <= j < n and j != i))):
-            raise ValueError(f"{what}: the pair ({i}, {j}) is not two of the {n} dofs (or one and the ground, -1)")
+            raise ValueError(f"{what}: the pair ({i}, {j}) is not two of the {n} dofs (or one and the "
+                             "ground, -1)")
         return int(i), int(j)
 
     packed = []

@@ -37,9 +37,11 @@ def kernel_structure(structure: Structure) -> _core.System:
     for w in structure.walls:
         contacts.append((w.level, -1, -1.0, float(w.gap_left_m), int(w.left.LAW_ID), w.left.params()))
         contacts.append((w.level, -1, 1.0, float(w.gap_right_m), int(w.right.LAW_ID), w.right.params()))
-    isolator = (0, -1, float(structure.isolator.damping), slopes, breaks, int(rule))
-    return _core.system(structure.masses_kg, structure.stiffness_matrix, structure.damping_matrix, [isolator],
-                        bw, bool(contacts), contacts or _NO_WALLS)
+    elements = [(0, -1, float(structure.isolator.damping), slopes, breaks, int(rule))]
+    linear = [s.stiffness_n_m if s.is_linear else 0.0 for s in structure.storeys]  # (the others: elements)
+    elements += [s.kernel_element(i) for i, s in enumerate(structure.storeys) if not s.is_linear]
+    return _core.system(structure.masses_kg, structure.shear_matrix(linear), structure.damping_matrix,
+                        elements, bw, bool(contacts), contacts or _NO_WALLS)
 
 
 @dataclass(frozen=True)
@@ -138,7 +140,7 @@ def structure_rates(structure: Structure) -> tuple[float, float]:
     if iso.bouc_wen is not None:
         k_iso += iso.bouc_wen.a * iso.bouc_wen.stiffness
     m = structure.masses_kg
-    k = structure.stiffness_matrix.copy()
+    k = structure.shear_matrix([max((s.stiffness_n_m, *s.slopes_after_n_m)) for s in structure.storeys])
     c = structure.damping_matrix.copy()
     k[0, 0] += k_iso
     c[0, 0] += iso.damping

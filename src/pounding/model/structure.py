@@ -14,11 +14,12 @@ from typing import Any, ClassVar, NamedTuple, Union
 import numpy as np
 import tomli_w
 
-from .._checks import at_least, at_most, integer, non_negative, parse_toml, plausible, positive, read_text
+from .._checks import (at_least, at_most, backbone, integer, non_negative, parse_toml, plausible, positive,
+                       read_text, real_tuple)
 from .._errors import InputError, Problem
 from .bumpers import MAX_GAP_M
 from .contact_laws import LAWS, law_from_dict, law_to_dict
-from .isolator import Isolator
+from .isolator import HYSTERESIS_RULES, Isolator
 from .oscillator import MAX_MASS_KG, MIN_MASS_KG, Oscillator, _check_keys
 
 PathLike = Union[str, Path]
@@ -49,6 +50,14 @@ class Storey:
         The storey's dashpot, N s/m, >= 0.
     height_m : float
         The storey's height, m, > 0 (for drift ratios; default 3 m).
+    slopes_after_n_m : sequence of float
+        A multi-linear storey: its backbone's slopes after the first (``stiffness_n_m``), N/m, >= 0;
+        empty (the default) for a linear storey.
+    breakpoints_m : sequence of float
+        The drifts where the slope changes, m, > 0 and increasing, one per slope after the first.
+    hysteresis : {"kinematic", "elastic"}
+        How a multi-linear storey unloads, as an :class:`Isolator` does: Masing's rule (springs that slip:
+        a loop that dissipates) or along the backbone.
 
     Examples
     --------
@@ -64,8 +73,12 @@ class Storey:
     stiffness_n_m: float
     damping_n_s_m: float = 0.0
     height_m: float = 3.0
+    slopes_after_n_m: tuple = ()
+    breakpoints_m: tuple = ()
+    hysteresis: str = "kinematic"
 
-    FIELDS: ClassVar[tuple[str, ...]] = ("mass_kg", "stiffness_n_m", "damping_n_s_m", "height_m")
+    FIELDS: ClassVar[tuple[str, ...]] = ("mass_kg", "stiffness_n_m", "damping_n_s_m", "height_m",
+                                         "slopes_after_n_m", "breakpoints_m", "hysteresis")
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "mass_kg", _mass("storey.mass_kg", self.mass_kg))
@@ -79,6 +92,31 @@ class Storey:
         at_most("storey.height_m", h, 1e3, " m", "give the height in m")
         plausible("storey.height_m", h, 0.1, 20.0, "heights are in m (a storey of 3 m is 3.0)")
         object.__setattr__(self, "height_m", h)
+        after = real_tuple("storey.slopes_after_n_m", self.slopes_after_n_m)
+        try:
+            slopes, breaks = backbone("storey", (k, *after), self.breakpoints_m, MAX_STOREY_STIFFNESS, " N/m",
+                                      "give the slopes in N/m", 10.0, "give the drifts in m (2 cm is 0.02)")
+        except InputError as exc:  # (the helper's names: storey.slopes[j], j >= 1, and storey.breakpoints)
+            if exc.field.startswith("storey.slopes["):
+                j = int(exc.field[len("storey.slopes["):-1])
+                raise exc.relabel(exc.field, f"storey.slopes_after_n_m[{j - 1}]") from None
+            raise exc.relabel("storey.breakpoints", "storey.breakpoints_m") from None
+        object.__setattr__(self, "slopes_after_n_m", slopes[1:])
+        object.__setattr__(self, "breakpoints_m", breaks)
+        if self.hysteresis not in HYSTERESIS_RULES:
+            raise InputError(Problem.NOT_ONE_OF, "storey.hysteresis", self.hysteresis,
+                             choices=", ".join(map(repr, HYSTERESIS_RULES)))
+
+    @property
+    def is_linear(self) -> bool:
+        """A linear storey (no breakpoints)."""
+        return not self.breakpoints_m
+
+    def kernel_element(self, below: int) -> tuple:
+        """The storey's spring as the core's hysteretic element between levels ``below + 1`` and ``below``
+        (its dashpot is in the structure's damping matrix)."""
+        return (below + 1, below, 0.0, [self.stiffness_n_m, *self.slopes_after_n_m], list(self.breakpoints_m),
+                HYSTERESIS_RULES.index(self.hysteresis))
 
 
 @dataclass(frozen=True)
@@ -248,7 +286,9 @@ class Structure:
         """Each level's mass, kg, shape (n_levels,)."""
         return np.array([self.base_mass_kg] + [s.mass_kg for s in self.storeys])
 
-    def _shear(self, values: list[float]) -> np.ndarray:
+    def shear_matrix(self, values: Any) -> np.ndarray:
+        """Springs (or dashpots) ``values[i]`` (one per storey) between levels i and i + 1, as an
+        (n_levels, n_levels) matrix."""
         n = self.n_levels
         out = np.zeros((n, n))
         for i, s in enumerate(values):  # storey i joins levels i and i + 1
@@ -260,13 +300,14 @@ class Structure:
 
     @property
     def stiffness_matrix(self) -> np.ndarray:
-        """The storeys' springs, N/m, shape (n_levels, n_levels) (the isolator not included)."""
-        return self._shear([s.stiffness_n_m for s in self.storeys])
+        """The storeys' springs at their initial stiffness, N/m, shape (n_levels, n_levels) (the isolator
+        not included)."""
+        return self.shear_matrix([s.stiffness_n_m for s in self.storeys])
 
     @property
     def damping_matrix(self) -> np.ndarray:
         """The storeys' dashpots, N s/m, shape (n_levels, n_levels) (the isolator's not included)."""
-        return self._shear([s.damping_n_s_m for s in self.storeys])
+        return self.shear_matrix([s.damping_n_s_m for s in self.storeys])
 
     def modes(self, fixed_base: bool = False) -> Modes:
         """Undamped modes about rest: isolated (the isolator at its initial stiffness) or with the base
@@ -304,7 +345,9 @@ class Structure:
         """The structure as nested tables with the constructor's field names."""
         out: dict[str, Any] = {"base_mass_kg": self.base_mass_kg, "isolator": self.isolator.to_dict()}
         if self.storeys:
-            out["storeys"] = [{f: getattr(s, f) for f in Storey.FIELDS} for s in self.storeys]
+            out["storeys"] = [{f: (list(v) if isinstance(v, tuple) else v) for f in Storey.FIELDS
+                               if (v := getattr(s, f)) != () and not (f == "hysteresis" and s.is_linear)}
+                              for s in self.storeys]
         if self.walls:
             out["walls"] = [w.to_dict() for w in self.walls]
         return out
