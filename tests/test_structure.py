@@ -376,3 +376,28 @@ def test_yielding_storeys_match_the_reference(pair, v0):
     np.testing.assert_allclose(run.final_state.displacements_m, ref.y[:n], rtol=0, atol=1e-7 * scale)
     e = run.energy
     assert (e.hysteretic > 0.0) == bool(ref.yields) and abs(e.residual) <= 1e-9 * e.input_work
+
+
+def test_rayleigh_damping_gives_the_two_modes_their_ratios_and_leaves_the_isolation_undamped():
+    iso = pd_.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02])
+    storeys = [pd_.Storey(m, k) for m, k in ((2.5e4, 6.0e7), (2.0e4, 5.0e7), (1.5e4, 3.0e7))]
+    b = pd_.Structure(3.0e4, iso, storeys, rayleigh=(0.02, 0.05))
+    c = b.damping_matrix
+    np.testing.assert_allclose(c, c.T, rtol=0, atol=1e-9 * np.abs(c).max())
+    np.testing.assert_allclose(c @ np.ones(4), 0.0, atol=1e-9 * np.abs(c).max())  # a rigid motion: no force
+    modes = b.modes(fixed_base=True)
+    m = np.diag(b.masses_kg[1:])
+    for j, zeta in enumerate((0.02, 0.05)):
+        phi = np.concatenate([[0.0], modes.shapes[:, j]])  # (the base held)
+        w = 2 * math.pi / modes.periods_s[j]
+        assert phi @ c @ phi / (2 * w * (modes.shapes[:, j] @ m @ modes.shapes[:, j])) == pytest.approx(zeta,
+                                                                                                       rel=1e-12)
+    run = pd_.simulate(b, pd_.Harmonic(0.3, 1.5), 5.0)
+    assert run.energy.viscous > 0 and abs(run.energy.residual) <= 1e-9 * run.energy.input_work
+    assert pd_.Structure.from_toml_text(b.to_toml_text()) == b
+    with pytest.raises(pd_.InputError, match="rayleigh"):
+        pd_.Structure(3.0e4, iso, storeys[:1], rayleigh=(0.02, 0.05))
+    with pytest.raises(pd_.InputError, match=r"rayleigh\[1\]"):
+        pd_.Structure(3.0e4, iso, storeys, rayleigh=(0.02, 5.0))
+    with pytest.raises(pd_.InputError, match="rayleigh"):
+        pd_.Structure(3.0e4, iso, storeys, rayleigh=(0.02,))

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Any, ClassVar, NamedTuple, Union
+from typing import Any, ClassVar, NamedTuple, Optional, Union
 
 import numpy as np
 import tomli_w
@@ -217,6 +217,11 @@ class Structure:
         From the first above the base up; at most 50.
     walls : sequence of Wall
         At most one per level.
+    rayleigh : (float, float), optional
+        Rayleigh damping of the superstructure as the damping ratios of its first two fixed-base modes
+        (each in [0, 1); needs two storeys or more): ``C = a0 M + a1 K`` of the storeys above the base,
+        acting on their motion relative to the base (so it damps no motion of the whole building on its
+        isolator), in addition to the storeys' own dashpots.
 
     Examples
     --------
@@ -244,8 +249,9 @@ class Structure:
     isolator: Isolator
     storeys: tuple = ()
     walls: tuple = field(default=())
+    rayleigh: Optional[tuple] = None
 
-    FIELDS: ClassVar[tuple[str, ...]] = ("base_mass_kg", "isolator", "storeys", "walls")
+    FIELDS: ClassVar[tuple[str, ...]] = ("base_mass_kg", "isolator", "storeys", "walls", "rayleigh")
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "base_mass_kg", _mass("base_mass_kg", self.base_mass_kg))
@@ -266,6 +272,22 @@ class Structure:
         if len(self.storeys) > MAX_STOREYS:
             raise InputError(Problem.TOO_LARGE, "storeys", len(self.storeys), maximum=MAX_STOREYS,
                              what=" storeys", fix=f"give at most {MAX_STOREYS} storeys")
+        if self.rayleigh is not None:
+            ratios = real_tuple("rayleigh", self.rayleigh)
+            if len(ratios) != 2:
+                raise InputError(Problem.LENGTH_MISMATCH, "rayleigh", list(ratios), got=len(ratios),
+                                 expected=2, hint=" (the damping ratios of the first two fixed-base modes)")
+            for j, z in enumerate(ratios):
+                if not 0.0 <= z < 1.0:
+                    raise InputError(Problem.OUT_OF_RANGE, f"rayleigh[{j}]", z, range="[0, 1)",
+                                     hint=" (a damping ratio: 5 % is 0.05)")
+                plausible(f"rayleigh[{j}]", z, 0.0, 0.3, "damping ratios are fractions (5 % is 0.05)")
+            if len(self.storeys) < 2:
+                raise InputError(Problem.WRONG_CONFIGURATION, "rayleigh", list(ratios),
+                                 got=f"of {len(self.storeys)} storey(s): one fixed-base mode at most",
+                                 fix="give the storeys' dashpots (damping_n_s_m) instead, or two storeys or "
+                                     "more")
+            object.__setattr__(self, "rayleigh", ratios)
         levels = [w.level for w in self.walls]
         for i, level in enumerate(levels):
             if level > len(self.storeys):
@@ -304,10 +326,30 @@ class Structure:
         not included)."""
         return self.shear_matrix([s.stiffness_n_m for s in self.storeys])
 
+    def rayleigh_coefficients(self) -> tuple[float, float]:
+        """``(a0, a1)`` of the Rayleigh damping ``a0 M + a1 K`` (1/s, s): the two fixed-base modes' ratios
+        met; (0, 0) without ``rayleigh``."""
+        if self.rayleigh is None:
+            return 0.0, 0.0
+        periods = self.modes(fixed_base=True).periods_s
+        w1, w2 = 2.0 * np.pi / periods[0], 2.0 * np.pi / periods[1]
+        z1, z2 = self.rayleigh
+        # z_i = a0 / (2 w_i) + a1 w_i / 2
+        a1 = 2.0 * (z2 * w2 - z1 * w1) / (w2 * w2 - w1 * w1)
+        a0 = 2.0 * z1 * w1 - a1 * w1 * w1
+        return float(a0), float(a1)
+
     @property
     def damping_matrix(self) -> np.ndarray:
-        """The storeys' dashpots, N s/m, shape (n_levels, n_levels) (the isolator's not included)."""
-        return self.shear_matrix([s.damping_n_s_m for s in self.storeys])
+        """The storeys' dashpots and the Rayleigh damping, N s/m, shape (n_levels, n_levels) (the isolator's
+        dashpot not included)."""
+        c = self.shear_matrix([s.damping_n_s_m for s in self.storeys])
+        if self.rayleigh is not None:  # a0 M + a1 K above the base, on the motion relative to the base
+            a0, a1 = self.rayleigh_coefficients()
+            c_s = a0 * np.diag(self.masses_kg[1:]) + a1 * self.stiffness_matrix[1:, 1:]
+            t = np.hstack([-np.ones((self.n_levels - 1, 1)), np.eye(self.n_levels - 1)])  # x_s - x_base
+            c = c + t.T @ c_s @ t
+        return c
 
     def modes(self, fixed_base: bool = False) -> Modes:
         """Undamped modes about rest: isolated (the isolator at its initial stiffness) or with the base
@@ -350,6 +392,8 @@ class Structure:
                               for s in self.storeys]
         if self.walls:
             out["walls"] = [w.to_dict() for w in self.walls]
+        if self.rayleigh is not None:
+            out["rayleigh"] = list(self.rayleigh)
         return out
 
     @classmethod
@@ -378,7 +422,8 @@ class Structure:
                     out.append(Wall(row["level"], row["gap_left_m"], row["gap_right_m"],
                                     law_from_dict(row["law"], prefix + "law"),
                                     None if right is None else law_from_dict(right, prefix + "law_right")))
-        return cls(table["base_mass_kg"], Isolator(**iso_table), tuple(storeys), tuple(walls))
+        return cls(table["base_mass_kg"], Isolator(**iso_table), tuple(storeys), tuple(walls),
+                   table.get("rayleigh"))
 
     @classmethod
     def from_toml(cls, path: PathLike) -> "Structure":
