@@ -4,12 +4,13 @@ events, restarted at each of them.
 The structure restated directly, sharing no code with the engine: n masses with displacements x relative
 to the ground, M x'' + C x' + K x + f_iso + f_contacts = -M 1 a_g(t); a linear isolator (spring k_iso,
 dashpot c_iso) between the first mass and the ground; Kelvin-Voigt bumpers on both sides of one mass
-(``level``: the first by default) behind a gap, fixed to the ground: in contact the force K d + C d'
-(d = sign x_level - gap, the compression) until it would pull; out of contact the bumper's compression
-relaxes as d_r exp(-K (t - t_r) / C) from where it was released, and contact starts when the mass meets
-that surface.  A storey may add an elastic-perfectly-plastic spring (``plastic``): stuck, it pulls the drift
-back by k_p (drift - slip); it slips when its strain reaches +-D and sticks again when the drift's rate turns
-back (a bilinear storey with Masing's rule, k0 holding its second slope).
+(``level``: the first by default) behind a gap, each fixed to the ground or to another mass (``partners``):
+in contact the force K d + C d' (d = sign (x_level - x_partner) - gap, the compression) until it would
+pull; out of contact the bumper's compression relaxes as d_r exp(-K (t - t_r) / C) from where it was
+released, and contact starts when the mass meets that surface.  A storey may add an elastic-perfectly-
+plastic spring (``plastic``): stuck, it pulls the drift back by k_p (drift - slip); it slips when its strain
+reaches +-D and sticks again when the drift's rate turns back (a bilinear storey with Masing's rule, k0
+holding its second slope).
 """
 
 from __future__ import annotations
@@ -34,6 +35,8 @@ class Structure:
     a_g: float                # m/s^2, amplitude of a_g(t) = a_g sin(w t)
     omega: float              # rad/s
     level: int = 0            # the mass the bumpers stop
+    # what each bumper (left, right) stands on: -1 the ground, or a mass (a bumper between two masses)
+    partners: tuple = (-1, -1)
     # storeys with an elastic-perfectly-plastic spring besides k0 (a bilinear storey with Masing's rule):
     # (storey i, between masses i and i + 1; its stiffness N/m; its yield drift D, m)
     plastic: list = field(default_factory=list)
@@ -65,7 +68,13 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         # than a step falls between two steps' signs and is missed
         k = s.k0.copy()
         k[0, 0] += s.k_iso
-        k[s.level, s.level] += 2.0 * s.k_b
+        for c in range(2):
+            j = s.partners[c]
+            k[s.level, s.level] += s.k_b
+            if j >= 0:
+                k[j, j] += s.k_b
+                k[s.level, j] -= s.k_b
+                k[j, s.level] -= s.k_b
         for i, k_p, _ in s.plastic:
             k[i:i + 2, i:i + 2] += k_p * np.array([[1.0, -1.0], [-1.0, 1.0]])
         w_max = math.sqrt(float(np.max(np.linalg.eigvals(k * inv_m[:, None]).real)))
@@ -74,6 +83,10 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
     relax = [(0.0, 0.0), (0.0, 0.0)]  # (compression at release, release time)
     out = NdofResult()
     deepest = [0.0, 0.0]
+
+    def rel(y, c):  # the bumper's mass against what it stands on: displacement, velocity
+        j = s.partners[c]
+        return (y[s.level] - (y[j] if j >= 0 else 0.0), y[n + s.level] - (y[n + j] if j >= 0 else 0.0))
 
     def surface(c, t):  # the relaxing compression of bumper c at t
         d_r, t_r = relax[c]
@@ -103,8 +116,11 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         for c in range(2):
             if inside[c]:
                 sg = SIGNS[c]
-                f_c = s.k_b * (sg * x[s.level] - s.gaps[c]) + s.c_b * sg * v[s.level]
+                dx, dv = rel(y, c)
+                f_c = s.k_b * (sg * dx - s.gaps[c]) + s.c_b * sg * dv
                 f[s.level] += sg * f_c
+                if s.partners[c] >= 0:
+                    f[s.partners[c]] -= sg * f_c
         return f
 
     def rhs(t, y):
@@ -117,10 +133,11 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
             sg = SIGNS[c]
             if inside[c]:
                 def release(t, y, c=c, sg=sg):
-                    return s.k_b * (sg * y[s.level] - s.gaps[c]) + s.c_b * sg * y[n + s.level]
+                    dx, dv = rel(y, c)
+                    return s.k_b * (sg * dx - s.gaps[c]) + s.c_b * sg * dv
             else:
                 def release(t, y, c=c, sg=sg):
-                    return s.gaps[c] + surface(c, t) - sg * y[s.level]
+                    return s.gaps[c] + surface(c, t) - sg * rel(y, c)[0]
             release.terminal = True
             release.direction = -1.0
             evs.append(release)
@@ -151,7 +168,9 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         for c in range(2):
             if inside[c]:
                 ts = np.linspace(t, sol.t[-1], 200)
-                deepest[c] = max(deepest[c], float(np.max(SIGNS[c] * sol.sol(ts)[s.level] - s.gaps[c])))
+                ys = sol.sol(ts)
+                depth = ys[s.level] - (ys[s.partners[c]] if s.partners[c] >= 0 else 0.0)
+                deepest[c] = max(deepest[c], float(np.max(SIGNS[c] * depth - s.gaps[c])))
         hits = [(float(te[0]), c) for c, te in enumerate(sol.t_events) if te.size and te[0] > t + 1e-13]
         # (a stretch that slipped: the slip followed the drift)
         for q, (i, _, d_y) in enumerate(s.plastic):
@@ -177,14 +196,14 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         sg = SIGNS[c]
         if inside[c]:
             inside[c] = False
-            relax[c] = (max(sg * y[s.level] - s.gaps[c], 0.0), t)
+            relax[c] = (max(sg * rel(y, c)[0] - s.gaps[c], 0.0), t)
             out.contact_ends.append((c, t))
             out.depths.append(deepest[c])
             deepest[c] = 0.0
         else:
             inside[c] = True
             out.contact_starts.append((c, t))
-            out.speeds.append(abs(y[n + s.level]))
-            deepest[c] = max(sg * y[s.level] - s.gaps[c], 0.0)
+            out.speeds.append(abs(rel(y, c)[1]))
+            deepest[c] = max(sg * rel(y, c)[0] - s.gaps[c], 0.0)
     out.y = y
     return out

@@ -10,7 +10,7 @@ import math
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, assume, given, settings
+from hypothesis import HealthCheck, assume, event, given, settings
 from hypothesis import strategies as st
 
 from pounding import _core
@@ -38,8 +38,8 @@ def shear(values: np.ndarray) -> np.ndarray:
 def core_system(s: Structure, bumpers: bool = True):
     params = np.zeros(_core.LAYOUT["N_LAW_PARAMS"])
     params[:2] = s.k_b, s.c_b
-    contacts = [(0, -1, -1.0, s.gaps[0], KELVIN_VOIGT, params),
-                (0, -1, 1.0, s.gaps[1], KELVIN_VOIGT, params)]
+    contacts = [(s.level, s.partners[0], -1.0, s.gaps[0], KELVIN_VOIGT, params),
+                (s.level, s.partners[1], 1.0, s.gaps[1], KELVIN_VOIGT, params)]
     return _core.system(s.mass, s.k0, s.c0, [(0, -1, s.c_iso, [s.k_iso], [], 1)], np.zeros(6), bumpers,
                         contacts)
 
@@ -72,12 +72,12 @@ def contact_starts(out) -> np.ndarray:
     return events[events[:, 1] == ACT_CONTACT]
 
 
-def last_digit_spread(s: Structure, y0: np.ndarray, starts: np.ndarray) -> float:
+def last_digit_spread(s: Structure, y0: np.ndarray, starts: np.ndarray, t_end: float = 3.0) -> float:
     """How far the contact starts move, s, when every mass changes in its last digits (relative +-4e-16):
     what the problem itself makes of rounding, whatever solves it (inf: a contact more or less)."""
     spread = 0.0
     for change in (4e-16, -4e-16):
-        moved = contact_starts(core_run(dataclasses.replace(s, mass=s.mass * (1.0 + change)), 3.0, y0)[1])
+        moved = contact_starts(core_run(dataclasses.replace(s, mass=s.mass * (1.0 + change)), t_end, y0)[1])
         if moved.shape != starts.shape:
             return math.inf
         spread = max(spread, float(np.abs(moved[:, 0] - starts[:, 0]).max(initial=0.0)))
@@ -114,6 +114,39 @@ def test_random_structures_match_the_reference(s, v0):
     n = s.mass.size
     scale = np.abs(ref.y).max()
     np.testing.assert_allclose(out[0][lay["x"]:lay["x"] + 2 * n], ref.y, rtol=0, atol=1e-7 * scale)
+
+
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(s=structures(), v0=st.floats(-0.4, 0.4), data=st.data())
+def test_bumpers_between_two_masses_match_the_reference(s, v0, data):
+    # the bumpers on one mass, each against another mass or the ground (a contact pair i, j): the force on
+    # both, the compression of their relative motion
+    n = s.mass.size
+    level = data.draw(st.integers(0, n - 1))
+    others = [-1] + [j for j in range(n) if j != level]
+    s = dataclasses.replace(s, level=level, partners=(data.draw(st.sampled_from(others)),
+                                                      data.draw(st.sampled_from(others))))
+    assume(s.partners != (-1, -1))
+    y0 = np.zeros(2 * n)
+    y0[n + level] = v0  # (the bumpers' mass pushed: the pairs move apart and back)
+    _, out = core_run(s, 2.0, y0)
+    assert out[6] == 0, out[6]
+    starts = contact_starts(out)
+    try:
+        ref = reference(s, 2.0, y0)
+    except TouchAtRest:
+        assume(False)
+    assume(all(depth > 1e-7 for depth in ref.depths) and all(speed > 1e-4 for speed in ref.speeds))
+    assume(len(ref.contact_starts) <= 40)
+    assume(last_digit_spread(s, y0, starts, 2.0) <= 1e-10)
+    event(f"{'contacts' if ref.contact_starts else 'no contact'}, "
+          f"{'both' if -1 not in s.partners else 'one'} against a mass")
+    assert [int(c) for c in starts[:, 2]] == [c for c, _ in ref.contact_starts]
+    np.testing.assert_allclose(starts[:, 0], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
+    ledger = out[4]
+    residual = ledger[L_INPUT] - ledger[L_VISCOUS] - ledger[L_HYSTERETIC] - ledger[L_BUMPER_LOSS] - (
+        ledger[L_KINETIC] + ledger[L_ISOLATOR] + ledger[L_BUMPER])
+    assert abs(residual) <= 1e-9 * max(abs(ledger[L_INPUT]), abs(ledger[L_VISCOUS]), abs(ledger[L_KINETIC]))
 
 
 @settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])

@@ -92,7 +92,7 @@ void energies(const double* st, const System& sy, double& kin, double& iso, doub
     double e_k0 = 0.0;
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) e_k0 += 0.5 * x[i] * sy.k0[static_cast<size_t>(i * n + j)] * x[j];
-    iso = iso_energy(sy, 0, st, iso_u(sy, 0, st)) + e_bw + e_k0;
+    iso = (sy.n_h() > 0 ? iso_energy(sy, 0, st, iso_u(sy, 0, st)) : 0.0) + e_bw + e_k0;
     for (int e = 1; e < sy.n_h(); ++e) iso += iso_energy(sy, e, st, iso_u(sy, e, st));
     bmp = 0.0;
     for (int c = 0; c < sy.nc(); ++c) {

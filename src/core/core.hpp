@@ -122,7 +122,7 @@ struct System {
     int n = 1;                    // degrees of freedom
     std::vector<double> mass;     // kg, n
     std::vector<double> k0, c0;   // the linear springs and dashpots besides the elements (N/m, N s/m), n x n
-    std::vector<Hysteretic> hyst; // the hysteretic elements, the isolator first (at least one)
+    std::vector<Hysteretic> hyst; // the hysteretic elements, the isolator first (none: a fixed base)
     double bw[BW_PARAMS] = {0};   // element 0's Bouc-Wen spring (bw[0] 0: none)
     bool has_b = false;           // the contacts are active
     std::vector<Contact> contact; // the contact slots

@@ -45,8 +45,11 @@ Piece excitation_piece(const Forcing& fo, double t, int64_t j_hint) {
 
 // the run's length (m) and velocity (m/s) scales: the system's and the excitation's, not the start's
 void run_scales(const System& sy, const Forcing& fo, double& x, double& xw) {
-    const Hysteretic& iso = sy.iso();
-    double w = std::sqrt(iso.slopes[0] / sy.total_mass);
+    // (the isolator's first slope; a structure without one, fixed at its base: its stiffest own spring)
+    double k = sy.n_h() > 0 ? sy.iso().slopes[0] : 0.0;
+    if (sy.n_h() == 0)
+        for (int i = 0; i < sy.n; ++i) k = std::max(k, sy.k0[static_cast<size_t>(i * sy.n + i)]);
+    double w = std::sqrt(k / sy.total_mass);
     double amp = 0.0;
     if (fo.kind == EXC_HARMONIC) {
         amp = std::abs(fo.p[0]);
@@ -58,7 +61,7 @@ void run_scales(const System& sy, const Forcing& fo, double& x, double& xw) {
     if (sy.has_b)
         for (const Contact& c : sy.contact) gaps += c.gap;
     x = std::max(gaps, amp / (w * w));
-    if (!iso.breaks.empty()) x = std::max(x, iso.breaks[0]);
+    if (sy.n_h() > 0 && !sy.iso().breaks.empty()) x = std::max(x, sy.iso().breaks[0]);
     xw = x * w;
 }
 
@@ -172,9 +175,10 @@ void run_constants(Phase& ph, const System& sy, const Forcing& fo) {
         k.i = ct.i;
         k.j = ct.j;
     }
-    ph.cd = sy.iso().c_d;
-    ph.iso_i = sy.iso().i;
-    ph.iso_j = sy.iso().j;
+    // the isolator's numbers for its output column and its Bouc-Wen spring (none: a fixed base, force 0)
+    ph.cd = sy.n_h() > 0 ? sy.iso().c_d : 0.0;
+    ph.iso_i = sy.n_h() > 0 ? sy.iso().i : 0;
+    ph.iso_j = sy.n_h() > 0 ? sy.iso().j : GROUND;
     for (int j = 0; j < BW_PARAMS; ++j) ph.bw[j] = sy.bw[j];
 }
 

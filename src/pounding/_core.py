@@ -43,7 +43,8 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray,
     """A system as the core takes it: ``mass`` (kg, shape (n,)), the linear springs and dashpots ``k0``,
     ``c0`` (N/m, N s/m, shape (n, n)), the hysteretic elements, each ``(i, j, c_d, slopes, breaks, rule)``
     (dof i against dof j, -1 the ground; its dashpot N s/m, backbone slopes N/m and breaks m, rule 0
-    kinematic or 1 elastic; the isolator first, which carries the Bouc-Wen numbers ``bw``, zeros for none),
+    kinematic or 1 elastic; the isolator first, which carries the Bouc-Wen numbers ``bw``, zeros for none;
+    no element at all: a structure fixed at its base),
     and the contact slots, each ``(i, j, sign, gap, law id, parameters)``: dof i against dof j (-1: the
     ground), compressed by ``sign (x_i - x_j) - gap``; ``has_b`` makes them active.
 
@@ -54,8 +55,8 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray,
     k0, c0 = np.asarray(k0, dtype=float), np.asarray(c0, dtype=float)
     if m.ndim != 1 or n < 1 or k0.shape != (n, n) or c0.shape != (n, n):
         raise ValueError(f"mass (n,) and k0, c0 (n, n): got {m.shape}, {k0.shape}, {c0.shape}")
-    if not elements:
-        raise ValueError("a system has at least one hysteretic element (the isolator)")
+    if not elements and any(bw):
+        raise ValueError("a Bouc-Wen spring is the isolator's: a system without elements has none")
 
     def pair(i: int, j: int, what: str) -> tuple[int, int]:
         if not (0 <= i < n and (j == -1 or (0 <= j < n and j != i))):
