@@ -50,10 +50,11 @@ def buildings(draw):
 
 def moving(building: pd_.Structure, v0: float) -> pd_.StructureState:
     """The whole structure moving at ``v0`` (m/s) from rest position."""
-    vec = pd_.StructureState.at_rest(building).vector.copy()
+    rest = pd_.StructureState.at_rest(building)
+    vec = rest.vector.copy()
     n = building.n_levels
     vec[1 + n:1 + 2 * n] = v0
-    return pd_.StructureState._of(vec, n)
+    return pd_.StructureState._of(vec, rest.dofs)
 
 
 @settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -122,10 +123,11 @@ def test_a_linear_building_follows_its_frequency_response_on_every_floor(n_store
     c[0, 0] += 300.0
     m = b.masses_kg
     x = np.linalg.solve(k - w**2 * np.diag(m) + 1j * w * c, -m * a_g)
-    vec = pd_.StructureState.at_rest(b).vector.copy()
+    rest = pd_.StructureState.at_rest(b)
+    vec = rest.vector.copy()
     n = b.n_levels
     vec[1:1 + n], vec[1 + n:1 + 2 * n] = x.imag, w * x.real  # the steady state's own start
-    run = pd_.simulate(b, exc, 5.0, pd_.StructureState._of(vec, n), sample_rate_hz=100)
+    run = pd_.simulate(b, exc, 5.0, pd_.StructureState._of(vec, rest.dofs), sample_rate_hz=100)
     wave = np.exp(1j * w * run.t)[:, None]
     np.testing.assert_allclose(run.displacement, (x[None, :] * wave).imag, rtol=0,
                                atol=1e-10 * np.abs(x).max())
@@ -401,3 +403,146 @@ def test_rayleigh_damping_gives_the_two_modes_their_ratios_and_leaves_the_isolat
         pd_.Structure(3.0e4, iso, storeys, rayleigh=(0.02, 5.0))
     with pytest.raises(pd_.InputError, match="rayleigh"):
         pd_.Structure(3.0e4, iso, storeys, rayleigh=(0.02,))
+
+
+@st.composite
+def fixed_and_isolated(draw):
+    """A random isolated building (linear isolator) beside a fixed-base one, one link between two of their
+    levels, and the pair restated for the reference: the first's levels, then the second's storeys (its
+    first storey a spring to the ground), the link a bumper of the first's level against the second's."""
+    n1, n2 = draw(st.integers(1, 3)), draw(st.integers(1, 3))
+    rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
+    m1, m2 = rng.uniform(200.0, 2000.0, n1), rng.uniform(200.0, 2000.0, n2)
+    k1, c1 = rng.uniform(5e5, 5e6, n1 - 1), rng.uniform(0.0, 1e3, n1 - 1)
+    k2, c2 = rng.uniform(5e5, 5e6, n2), rng.uniform(0.0, 1e3, n2)
+    k_iso, c_iso = rng.uniform(5e3, 3e4) * n1, rng.uniform(0.0, 1e3)
+    k_b, c_b = draw(st.floats(1e6, 1e7)), draw(st.floats(1e2, 3e3))
+    gap = draw(st.floats(0.002, 0.02))
+    level_first, level_second = draw(st.integers(0, n1 - 1)), draw(st.integers(1, n2))
+    first = pd_.Structure(m1[0], linear_isolator(k_iso, c_iso), [pd_.Storey(*v) for v in zip(m1[1:], k1, c1)])
+    second = pd_.Structure.fixed_base([pd_.Storey(*v) for v in zip(m2, k2, c2)])
+    pair = pd_.Adjacent(first, second, [pd_.Link(level_first, level_second, gap, pd_.KelvinVoigt(k_b, c_b))])
+    n = n1 + n2
+    k0, c0 = np.zeros((n, n)), np.zeros((n, n))
+    k0[:n1, :n1], c0[:n1, :n1] = first.stiffness_matrix, first.damping_matrix
+    k0[n1:, n1:], c0[n1:, n1:] = second.stiffness_matrix[1:, 1:], second.damping_matrix[1:, 1:]
+    ref = RefStructure(mass=np.concatenate([m1, m2]), k0=k0, c0=c0, k_iso=k_iso, c_iso=c_iso,
+                       gaps=(10.0, gap), k_b=k_b, c_b=c_b, a_g=draw(st.floats(2.0, 6.0)),
+                       omega=2 * math.pi * draw(st.floats(0.7, 3.0)), level=level_first,
+                       partners=(-1, n1 + level_second - 1))
+    return pair, ref
+
+
+@settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(case=fixed_and_isolated(), v0=st.floats(-0.3, 0.3))
+def test_an_isolated_building_pounding_a_fixed_base_neighbour_matches_the_reference(case, v0):
+    pair, ref_s = case
+    n1 = pair.first.n_levels
+    n = ref_s.mass.size
+    rest = pd_.StructureState.at_rest(pair)
+    vec = rest.vector.copy()
+    vec[1 + n:1 + n + n1] = v0  # (the isolated building moving)
+    exc = pd_.Harmonic(ref_s.a_g / 9.80665, ref_s.omega / (2 * math.pi), g=9.80665)
+    run = pd_.simulate(pair, exc, 2.0, pd_.StructureState._of(vec, rest.dofs), sample_rate_hz=0)
+    assert run.success, run.message
+    y0 = np.zeros(2 * n)
+    y0[n:n + n1] = v0
+    try:
+        ref = reference(ref_s, 2.0, y0)
+    except TouchAtRest:
+        assume(False)
+    assume(all(depth > 1e-7 for depth in ref.depths) and all(speed > 1e-4 for speed in ref.speeds))
+    assume(len(ref.contact_starts) <= 40)
+    event("contacts" if ref.contact_starts else "no contact")
+    assert all(c == 1 for c, _ in ref.contact_starts)  # (the far bumper never)
+    np.testing.assert_allclose(run.links["t_start"], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
+    scale = np.abs(ref.y).max()
+    levels = np.concatenate([run.final_state.displacements_m[:n1], run.final_state.displacements_m[n1 + 1:]])
+    np.testing.assert_allclose(levels, ref.y[:n], rtol=0, atol=1e-7 * scale)
+    assert run.second.displacement_max[0] == 0.0 and (run.second.displacement[:, 0] == 0.0).all()
+    e = run.energy
+    assert abs(e.residual) <= 1e-9 * max(e.input_work, e.viscous, e.kinetic)
+
+
+def test_a_fixed_base_building_against_a_stop_matches_the_reference():
+    storeys = [pd_.Storey(m, k, c) for m, k, c in ((1000.0, 2e6, 500.0), (800.0, 1.5e6, 400.0),
+                                                     (600.0, 1e6, 300.0))]
+    b = pd_.Structure.fixed_base(storeys, [pd_.Wall(3, 0.01, 0.012, pd_.KelvinVoigt(5e6, 2e3))])
+    assert b.modes().periods_s.size == 3 and b.masses_kg[0] != b.masses_kg[0]  # (NaN: the ground)
+    exc = pd_.Harmonic(4.0 / 9.80665, 2.0, g=9.80665)
+    run = pd_.simulate(b, exc, 3.0, sample_rate_hz=200)
+    k0 = b.stiffness_matrix[1:, 1:].copy()
+    c0 = b.damping_matrix[1:, 1:].copy()
+    k0[0, 0] -= 2e6  # (the reference's isolator is the first storey)
+    c0[0, 0] -= 500.0
+    ref = reference(RefStructure(np.array([1000.0, 800.0, 600.0]), k0, c0, 2e6, 500.0, (0.01, 0.012), 5e6,
+                                 2e3, 4.0, 2 * math.pi * 2.0, level=2), 3.0, np.zeros(6))
+    assert len(ref.contact_starts) > 5
+    np.testing.assert_allclose(run.contacts["t_start"], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
+    # the ground level: still, shaken by the table, its exact peak the table's
+    assert (run.displacement[:, 0] == 0.0).all() and np.isnan(run.isolator_force).all()
+    np.testing.assert_array_equal(run.abs_acceleration[:, 0], exc.acceleration(run.t))
+    assert run.abs_acceleration_max[0] == pytest.approx(4.0, rel=1e-12)
+    assert pd_.Structure.from_toml_text(b.to_toml_text()) == b
+    with pytest.raises(pd_.InputError, match=r"walls\[0\]\.level"):
+        pd_.Structure.fixed_base(storeys, [pd_.Wall(0, 0.01, 0.01, pd_.KelvinVoigt(5e6, 2e3))])
+    with pytest.raises(pd_.InputError, match="storeys"):
+        pd_.Structure.fixed_base([])
+    with pytest.raises(pd_.InputError, match="isolator"):
+        pd_.Structure(1e3, None, storeys)
+
+
+def test_two_identical_buildings_move_as_one_and_as_each_alone():
+    iso = pd_.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02], damping=2.0e4)
+    b = pd_.Structure(3.0e4, iso, [pd_.Storey(2.0e4, 4.0e7, 4.0e4)] * 2,
+                      [pd_.Wall(0, 0.08, 0.08, pd_.KelvinVoigt(2.0e8, 1.0e5))])
+    pair = pd_.Adjacent(b, b, [pd_.Link(2, 2, 0.01, pd_.KelvinVoigt(5e8, 1e5))])
+    quake = pd_.records.el_centro().scaled(pga_g=0.5)
+    run = pd_.simulate(pair, quake, 15.0, sample_rate_hz=0)
+    alone = pd_.simulate(b, quake, 15.0, sample_rate_hz=0)
+    assert len(run.links) == 0 and len(alone.contacts) > 0
+    scale = np.abs(alone.displacement_max).max()
+    n = b.n_levels
+    for part, levels in ((run.first, slice(0, n)), (run.second, slice(n, 2 * n))):
+        np.testing.assert_allclose(run.final_state.displacements_m[levels], alone.final_state.displacements_m,
+                                   rtol=0, atol=1e-9 * scale)
+        for name in ("displacement_max", "displacement_min", "abs_acceleration_max"):
+            np.testing.assert_allclose(getattr(part, name), getattr(alone, name), rtol=1e-9)
+        np.testing.assert_allclose(part.contacts["t_start"], alone.contacts["t_start"], rtol=0, atol=1e-9)
+        assert list(part.contacts["level"]) == list(alone.contacts["level"])
+    assert pd_.Adjacent.from_dict(pair.to_dict()) == pair
+
+
+def test_adjacent_structures_check_their_fields(tmp_path):
+    iso = linear_isolator(1e5, 0.0)
+    a = pd_.Structure(1e3, iso, [pd_.Storey(1e3, 1e6)])
+    fixed = pd_.Structure.fixed_base([pd_.Storey(1e3, 1e6)])
+    law = pd_.KelvinVoigt(1e8, 0.0)
+    with pytest.raises(pd_.InputError, match="links"):
+        pd_.Adjacent(a, fixed, [])
+    with pytest.raises(pd_.InputError, match=r"links\[0\]\.level_second"):
+        pd_.Adjacent(a, fixed, [pd_.Link(1, 0, 0.05, law)])  # (a fixed base's level 0 is the ground)
+    with pytest.raises(pd_.InputError, match=r"links\[0\]\.level_first"):
+        pd_.Adjacent(a, fixed, [pd_.Link(2, 1, 0.05, law)])
+    with pytest.raises(pd_.InputError, match="links"):
+        pd_.Adjacent(a, fixed, [pd_.Link(1, 1, 0.05, law)] * 2)
+    with pytest.raises(pd_.InputError, match="second"):
+        pd_.Adjacent(a, "b", [pd_.Link(1, 1, 0.05, law)])
+    with pytest.raises(pd_.InputError, match="link.gap_m"):
+        pd_.Link(1, 1, -0.05, law)
+    with pytest.raises(pd_.InputError, match="link.law"):
+        pd_.Link(1, 1, 0.05, "kv")
+    bw = pd_.Isolator(slopes=[1e5], breakpoints=[], bouc_wen=pd_.BoucWen(1e4, 0.01))
+    with_bw = pd_.Structure(1e3, bw, [pd_.Storey(1e3, 1e6)])
+    with pytest.raises(pd_.InputError, match="Bouc-Wen"):
+        pd_.Adjacent(with_bw, with_bw, [pd_.Link(1, 1, 0.05, law)])
+    pair = pd_.Adjacent(fixed, with_bw, [pd_.Link(1, 1, 0.05, law)])  # (one Bouc-Wen: element 0)
+    run = pd_.simulate(pair, pd_.Harmonic(0.2, 1.0), 2.0)
+    assert run.success and np.isnan(run.first.isolator_force).all()
+    assert np.isfinite(run.second.isolator_force).all()
+    path = pair.to_toml(tmp_path / "pair.toml")
+    assert pd_.Adjacent.from_toml(path) == pair
+    with pytest.raises(pd_.InputError, match="first.storeys"):
+        pd_.Adjacent.from_dict({**pair.to_dict(), "first": {"storeys": [{"mass_kg": 1.0}]}})
+    with pytest.raises(pd_.InputError, match="state"):
+        pd_.simulate(pair, pd_.Harmonic(0.2, 1.0), 2.0, pd_.StructureState.at_rest(a))

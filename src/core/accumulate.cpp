@@ -35,15 +35,14 @@ void outputs(const double* st, const System& sy, double* q, double* row) {
             s += sy.k0[static_cast<size_t>(i * n + j)] * x[j] + sy.c0[static_cast<size_t>(i * n + j)] * v[j];
         q[i] = s;
     }
-    double f_iso = 0.0;
     for (int e = 0; e < sy.n_h(); ++e) {
         const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
         const double f = iso_force(sy, e, st);
         q[h.i] += f;
         if (h.j >= 0) q[h.j] -= f;
-        if (e == 0) f_iso = f;
+        row[1 + 3 * n + e] = f;
     }
-    double* fc = row + 2 + 3 * n;
+    double* fc = row + 1 + 3 * n + sy.n_h();
     for (int c = 0; c < sy.nc(); ++c) {
         fc[c] = 0.0;
         if (st[L.in_at(c)] == 0.0) continue;
@@ -60,7 +59,6 @@ void outputs(const double* st, const System& sy, double* q, double* row) {
         row[1 + n + i] = v[i];
         row[1 + 2 * n + i] = -q[i] / sy.mass[static_cast<size_t>(i)];
     }
-    row[1 + 3 * n] = f_iso;
 }
 
 void outputs_in_phase(Phase& ph, const System& sy, double t, double tau, const double* y, const double* a,
@@ -73,12 +71,15 @@ void outputs_in_phase(Phase& ph, const System& sy, double t, double tau, const d
         row[1 + n + i] = y[n + i];
         row[1 + 2 * n + i] = a[i] + ag;
     }
-    double f_iso = ph.kiso * rel(y, ph.iso_i, ph.iso_j) + ph.riso + ph.cd * rel(y + n, ph.iso_i, ph.iso_j);
-    if (ph.bw[0] != 0.0) f_iso += ph.bw[0] * phase_zeta(ph, tau);
-    row[1 + 3 * n] = f_iso;
-    for (int c = 0; c < ph.nc; ++c)
-        row[2 + 3 * n + c] = ph.ct[static_cast<size_t>(c)].in ? contact_force(ph, c, y, a).f : 0.0;
-    (void)sy;
+    for (int e = 0; e < sy.n_h(); ++e) {  // each element's force, the isolator's Bouc-Wen spring with its own
+        const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+        double f = ph.el_k[static_cast<size_t>(e)] * rel(y, h.i, h.j) + ph.el_r[static_cast<size_t>(e)] +
+                   h.c_d * rel(y + n, h.i, h.j);
+        if (e == 0 && ph.bw[0] != 0.0) f += ph.bw[0] * phase_zeta(ph, tau);
+        row[1 + 3 * n + e] = f;
+    }
+    double* fc = row + 1 + 3 * n + sy.n_h();
+    for (int c = 0; c < ph.nc; ++c) fc[c] = ph.ct[static_cast<size_t>(c)].in ? contact_force(ph, c, y, a).f : 0.0;
 }
 
 void energies(const double* st, const System& sy, double& kin, double& iso, double& bmp) {

@@ -58,8 +58,9 @@ struct Layout {
     int in_at(int c) const { return in + c; }
     int acc_at(int c) const { return acc + N_ACC * c; }
     int z_at(int c) const { return z + N_LAW_STATE * c; }
-    // the outputs' columns: samples t, x (n), v (n), absolute accelerations (n), isolator force, contact forces
-    int sample_cols() const { return 1 + 3 * n + 1 + nc; }
+    // the outputs' columns: samples t, x (n), v (n), absolute accelerations (n), each hysteretic element's force
+    // (the isolator's first), contact forces
+    int sample_cols() const { return 1 + 3 * n + n_h + nc; }
     int extrema_len() const { return 7 * n; }
 };
 

@@ -62,6 +62,7 @@ struct Phase {
     // the isolator: its pair, dashpot and linear branch (force kiso u + riso + cd u'), its Bouc-Wen spring
     int iso_i = 0, iso_j = GROUND;
     double cd = 0.0, kiso = 0.0, riso = 0.0;
+    std::vector<double> el_k, el_r;  // every hysteretic element's branch (force el_k u + el_r), for the outputs
     double bw[BW_PARAMS] = {0};
     // the run's and the phase's length (m) and velocity (m/s) scales, what event values are rounded against
     double xrun = 0.0, vrun = 0.0, xround = 0.0, vround = 0.0;

@@ -95,12 +95,16 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
     ph.C = sy.c_lin;
     std::fill(ph.R0.begin(), ph.R0.end(), 0.0);
     IsoLinear iso{0.0, 0.0};
+    ph.el_k.resize(static_cast<size_t>(sy.n_h()));
+    ph.el_r.resize(static_cast<size_t>(sy.n_h()));
     for (int e = 0; e < sy.n_h(); ++e) {  // each element's present branch
         const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
         const IsoLinear el = iso_linear(sy, e, st);
         sy.add_pair(ph.K, h.i, h.j, el.k);
         ph.R0[static_cast<size_t>(h.i)] += el.r0;
         if (h.j >= 0) ph.R0[static_cast<size_t>(h.j)] -= el.r0;
+        ph.el_k[static_cast<size_t>(e)] = el.k;
+        ph.el_r[static_cast<size_t>(e)] = el.r0;
         if (e == 0) iso = el;
     }
     bool any_nl = false;

@@ -19,14 +19,16 @@ _NAMES = {
                   "largest_exponents", "lyapunov", "periodic_orbit"),
     "._errors": ("InputError", "Interrupted", "MissingExtra", "OutputError", "PoundingWarning", "Problem",
                  "Status", "StoreError"),
-    ".engine": ("EnergyLedger", "Run", "State", "StructureEnergy", "StructureRun", "StructureState",
+    ".engine": ("AdjacentRun", "EnergyLedger", "Run", "State", "StructureEnergy", "StructureRun",
+                "StructureState",
                 "simulate"),
     ".excitation": ("Harmonic", "Record"),
     ".excitation.spectrum": ("response_spectrum",),
     ".identification": ("ContactLawFit", "Identification", "ModelFamily", "Targets", "fit_contact_law",
                         "identify", "paper_targets", "rank_contact_laws"),
     ".metrics": ("HysteresisLoop", "impact_table"),
-    ".model": ("BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley", "Isolator", "Jankowski",
+    ".model": ("Adjacent", "Link", "BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley",
+               "Isolator", "Jankowski",
                "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "Sensor", "Storey",
                "Structure", "Wall"),
     ".protocols": ("BasinStabilityMap", "Basins", "BifurcationDiagram", "CampaignResult", "PoundingSpectrum",
@@ -64,16 +66,16 @@ if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
     from .analysis import (Bifurcation, BifurcationCurve, Branch, CoexistenceMap, LyapunovSpectrum,  # noqa: F401
                            PeriodicOrbit, bifurcation_curve, coexistence_map, continuation, largest_exponents,
                            lyapunov, periodic_orbit)
-    from .engine import (EnergyLedger, Run, State, StructureEnergy, StructureRun,  # noqa: F401
+    from .engine import (AdjacentRun, EnergyLedger, Run, State, StructureEnergy, StructureRun,  # noqa: F401
                          StructureState, simulate)
     from .excitation import Harmonic, Record  # noqa: F401
     from .excitation.spectrum import response_spectrum  # noqa: F401
     from .identification import (ContactLawFit, Identification, ModelFamily, Targets,  # noqa: F401
                                  fit_contact_law, identify, paper_targets, rank_contact_laws)
     from .metrics import HysteresisLoop, impact_table  # noqa: F401
-    from .model import (BoucWen, Bumpers, ElasticPlastic, Hertzdamp, HuntCrossley, Isolator,  # noqa: F401
-                        Jankowski, KelvinVoigt, MeasurementChain, MultilinearBumper, Oscillator, Sensor,
-                        Storey, Structure, Wall)
+    from .model import (Adjacent, BoucWen, Bumpers, ElasticPlastic, Hertzdamp, HuntCrossley,  # noqa: F401
+                        Isolator, Jankowski, KelvinVoigt, Link, MeasurementChain, MultilinearBumper,
+                        Oscillator, Sensor, Storey, Structure, Wall)
     from .protocols import (BasinStabilityMap, Basins, BifurcationDiagram, CampaignResult,  # noqa: F401
                             PoundingSpectrum, SweepResult, basin_stability_map, basins, bifurcation_diagram,
                             campaign, paper_frequencies_hz, pounding_spectrum, sweep)

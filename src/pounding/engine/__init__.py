@@ -3,6 +3,7 @@
 from .result import EnergyLedger, Run, State
 from .simulate import simulate
 from .structure import StructureState
-from .structure_result import StructureEnergy, StructureRun
+from .structure_result import AdjacentRun, StructureEnergy, StructureRun
 
-__all__ = ["EnergyLedger", "Run", "State", "StructureEnergy", "StructureRun", "StructureState", "simulate"]
+__all__ = ["AdjacentRun", "EnergyLedger", "Run", "State", "StructureEnergy", "StructureRun", "StructureState",
+           "simulate"]

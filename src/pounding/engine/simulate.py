@@ -156,10 +156,11 @@ def simulate(
 
     Parameters
     ----------
-    oscillator : Oscillator or Structure
+    oscillator : Oscillator, Structure or Adjacent
         The system: one mass, or a structure of several (then ``state`` is a
         :class:`StructureState` and a :class:`StructureRun` is returned: each level's histories
-        and exact extrema, contacts per wall side).
+        and exact extrema, contacts per wall side), or two adjacent structures (an
+        :class:`AdjacentRun`: each one's, and the contacts at their links).
     excitation : Harmonic or Record
         Base (table) acceleration.
     duration : float
@@ -212,9 +213,10 @@ def simulate(
     >>> float(later.t[0]), float(later.t[-1]), len(later.contacts)  # s, s, impacts
     (5.0, 10.0, 20)
     """
+    from ..model.adjacent import Adjacent
     from ..model.structure import Structure
 
-    if isinstance(oscillator, Structure):  # (several masses: the same run, a result per level)
+    if isinstance(oscillator, (Structure, Adjacent)):  # (several masses: the same run, a result per level)
         from .structure import simulate_structure
 
         return simulate_structure(oscillator, excitation, duration, state, rtol=rtol,  # type: ignore[return-value]

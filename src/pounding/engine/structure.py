@@ -8,54 +8,143 @@ The core's contact slots are the walls' sides in order: wall ``w``'s left side i
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass, field
-from typing import Optional
+from typing import Any, NamedTuple, Optional
 
 import numpy as np
 
 from .. import _core
 from .._checks import at_most, integer, positive, real
-from .._errors import InputError, Problem
+from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model.contact_laws import linear_form
+from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from ._control import DEFAULT_MAX_STEPS, check_budget, new_control, run_interruptibly, steps_per_second
 from .result import MAX_TIME_S
 from ._run_args import DIRECT_CALL_STEPS, check_rtol, history_rate, kernel_forcing
-from .structure_result import StructureEnergy, StructureRun
+from .structure_result import AdjacentRun, StructureEnergy, StructureRun
 
 _NO_WALLS: list = []
 
 
-def kernel_structure(structure: Structure) -> _core.System:
-    """The structure as the core's system: its levels, the storeys' matrices, the isolator between the
-    base and the ground, and two contact slots per wall (left, sign -1; right, +1) against the ground.
-    A structure of one level with one wall is, number for number, the oscillator's system."""
-    slopes, breaks, rule, bw = structure.isolator.kernel_arrays()
-    contacts = []
-    for w in structure.walls:
-        contacts.append((w.level, -1, -1.0, float(w.gap_left_m), int(w.left.LAW_ID), w.left.params()))
-        contacts.append((w.level, -1, 1.0, float(w.gap_right_m), int(w.right.LAW_ID), w.right.params()))
-    elements = [(0, -1, float(structure.isolator.damping), slopes, breaks, int(rule))]
-    linear = [s.stiffness_n_m if s.is_linear else 0.0 for s in structure.storeys]  # (the others: elements)
-    elements += [s.kernel_element(i) for i, s in enumerate(structure.storeys) if not s.is_linear]
-    return _core.system(structure.masses_kg, structure.shear_matrix(linear), structure.damping_matrix,
-                        elements, bw, bool(contacts), contacts or _NO_WALLS)
+class Assembly(NamedTuple):
+    """One structure, or two side by side, as the core's system, and where each part went.
+
+    ``dofs[b][level]``: the core's dof of structure ``b``'s level (-1: the ground, a fixed base's level
+    0); ``isolator[b]``: the element of its isolator (-1: a fixed base); ``slots[c]``: what contact slot
+    ``c`` is, ``(b, wall, side)`` for a structure's wall (side 0 left, 1 right) or ``(-1, link, 0)``."""
+
+    system: _core.System
+    dofs: tuple
+    isolator: tuple
+    slots: tuple
+    masses: np.ndarray     # (n,) kg
+    k_fast: np.ndarray     # (n, n) N/m: the linear springs and every element at its stiffest slope
+    c_all: np.ndarray      # (n, n) N s/m: the dashpots
+    pairs: tuple           # each contact slot's (i, j, law)
+
+
+def structures_of(model: Structure | Adjacent) -> tuple[tuple[Structure, ...], tuple]:
+    """(the structures, the links) of a model."""
+    if isinstance(model, Adjacent):
+        return model.structures, model.links
+    return (model,), ()
+
+
+def assemble(model: Structure | Adjacent) -> Assembly:
+    """The core's system of one structure or two adjacent ones: their levels' dofs in order (a fixed
+    base's level 0 is the ground), the storeys' linear springs and dashpots, the hysteretic elements (the
+    isolator with a Bouc-Wen spring first, the other isolator, then the multi-linear storeys), and the
+    contact slots (each structure's walls, left then right side, then the links).  One structure of one
+    level with one wall is, number for number, the oscillator's system."""
+    structures, links = structures_of(model)
+    dofs, masses = [], []
+    for s in structures:
+        levels = []
+        for level in range(s.n_levels):
+            if s.fixed and level == 0:
+                levels.append(-1)
+            else:
+                levels.append(len(masses))
+                masses.append(float(s.masses_kg[level]))
+        dofs.append(tuple(levels))
+    n = len(masses)
+    k0, c0 = np.zeros((n, n)), np.zeros((n, n))
+    for s, levels in zip(structures, dofs):
+        ks = s.shear_matrix([st.stiffness_n_m if st.is_linear else 0.0 for st in s.storeys])
+        cs = s.damping_matrix
+        inside = [lv for lv in range(s.n_levels) if levels[lv] >= 0]  # (a fixed base's ground row dropped)
+        at = [levels[lv] for lv in inside]
+        k0[np.ix_(at, at)] += ks[np.ix_(inside, inside)]
+        c0[np.ix_(at, at)] += cs[np.ix_(inside, inside)]
+    order = sorted(range(len(structures)), key=lambda b: not (structures[b].isolator is not None
+                                                             and structures[b].isolator.bouc_wen is not None))
+    elements, isolator, bw = [], [-1] * len(structures), np.zeros(_core.LAYOUT["BW_PARAMS"])
+    for b in order:
+        s = structures[b]
+        if s.fixed:
+            continue
+        slopes, breaks, rule, b_w = s.isolator.kernel_arrays()
+        if not elements:
+            bw = b_w
+        isolator[b] = len(elements)
+        elements.append((dofs[b][0], -1, float(s.isolator.damping), slopes, breaks, int(rule)))
+    for s, levels in zip(structures, dofs):
+        for i, st in enumerate(s.storeys):
+            if not st.is_linear:
+                top, bottom = levels[i + 1], levels[i]
+                elements.append((top, bottom, *st.kernel_element(i)[2:]))
+    k_fast, c_all = k0.copy(), c0.copy()
+    for e, (i, j, c_d, slopes, _, _) in enumerate(elements):
+        k = max(abs(x) for x in slopes) + (bw[0] * bw[2] / bw[1] if e == 0 and bw[0] != 0.0 else 0.0)
+        _add_pair(k_fast, i, j, k)
+        _add_pair(c_all, i, j, c_d)
+    contacts, slots, pairs = [], [], []
+    for b, (s, levels) in enumerate(zip(structures, dofs)):
+        for w, wall in enumerate(s.walls):
+            for side, (sign, gap, law) in enumerate(((-1.0, wall.gap_left_m, wall.left),
+                                                     (1.0, wall.gap_right_m, wall.right))):
+                contacts.append((levels[wall.level], -1, sign, float(gap), int(law.LAW_ID), law.params()))
+                slots.append((b, w, side))
+                pairs.append((levels[wall.level], -1, law))
+    for k, link in enumerate(links):
+        contacts.append((dofs[0][link.level_first], dofs[1][link.level_second], 1.0, float(link.gap_m),
+                         int(link.law.LAW_ID), link.law.params()))
+        slots.append((-1, k, 0))
+        pairs.append((dofs[0][link.level_first], dofs[1][link.level_second], link.law))
+    system = _core.system(masses, k0, c0, elements, bw, bool(contacts), contacts or _NO_WALLS)
+    return Assembly(system, tuple(dofs), tuple(isolator), tuple(slots), np.array(masses), k_fast, c_all,
+                    tuple(pairs))
+
+
+def _add_pair(a: np.ndarray, i: int, j: int, value: float) -> None:
+    a[i, i] += value
+    if j >= 0:
+        a[j, j] += value
+        a[i, j] -= value
+        a[j, i] -= value
+
+
+def kernel_structure(structure: Structure | Adjacent) -> _core.System:
+    """The structure as the core's system (:func:`assemble`)."""
+    return assemble(structure).system
 
 
 @dataclass(frozen=True)
 class StructureState:
-    """Where a structure is: the core's state vector (its layout is the structure's).  Start from
-    :meth:`at_rest` or a run's ``final_state``; pass it as ``state`` to continue the run.
+    """Where a structure (or two adjacent ones) is: the core's state vector.  Start from :meth:`at_rest`
+    or a run's ``final_state``; pass it as ``state`` to continue the run.
 
     Attributes
     ----------
     vector : ndarray
-        The core's state vector (read-only): time, each level's displacement and velocity, the walls'
-        contact states, the isolator's.
-    n_levels : int
-        The structure's levels.
+        The core's state vector (read-only): time, each moving level's displacement and velocity, the
+        contacts' states, the hysteretic elements'.
+    dofs : tuple
+        Each structure's levels' places in it (-1: the ground of a fixed base).
 
     Examples
     --------
@@ -72,25 +161,34 @@ class StructureState:
     """
 
     vector: np.ndarray = field(repr=False)
-    n_levels: int
+    dofs: tuple
 
     @classmethod
-    def at_rest(cls, structure: Structure, time_s: float = 0.0) -> "StructureState":
-        """At rest at ``time_s``: every level at 0, the walls' laws relaxed, the isolator on its
-        backbone at 0."""
-        if not isinstance(structure, Structure):
+    def at_rest(cls, structure: Structure | Adjacent, time_s: float = 0.0) -> "StructureState":
+        """At rest at ``time_s``: every level at 0, the contacts' laws relaxed, the isolators on their
+        backbones at 0."""
+        if not isinstance(structure, (Structure, Adjacent)):
             raise InputError(Problem.WRONG_TYPE, "structure", structure, got=type(structure).__name__,
-                             expected="pounding.Structure")
+                             expected="pounding.Structure or pounding.Adjacent")
         time_s = at_most("time_s", real("time_s", time_s), MAX_TIME_S, " s", "give the time in s")
-        vec = np.zeros(kernel_structure(structure).layout["size"])
+        asm = assemble(structure)
+        vec = np.zeros(asm.system.layout["size"])
         vec[0] = time_s
-        return cls._of(vec, structure.n_levels)
+        return cls._of(vec, asm.dofs)
 
     @classmethod
-    def _of(cls, vector: np.ndarray, n_levels: int) -> "StructureState":
+    def _of(cls, vector: np.ndarray, dofs: tuple) -> "StructureState":
         vec = np.array(vector, dtype=float)
         vec.setflags(write=False)
-        return cls(vec, n_levels)
+        return cls(vec, tuple(tuple(d) for d in dofs))
+
+    @property
+    def n_dof(self) -> int:
+        return sum(1 for levels in self.dofs for d in levels if d >= 0)
+
+    def _per_level(self, start: int) -> np.ndarray:
+        values = self.vector[start:start + self.n_dof]
+        return np.array([values[d] if d >= 0 else 0.0 for levels in self.dofs for d in levels])
 
     @property
     def time_s(self) -> float:
@@ -99,29 +197,32 @@ class StructureState:
 
     @property
     def displacements_m(self) -> np.ndarray:
-        """Each level's displacement relative to the ground, m, shape (n_levels,)."""
-        return self.vector[1:1 + self.n_levels].copy()
+        """Each level's displacement relative to the ground, m, shape (levels,) (the first structure's
+        levels, then the second's; 0 for a fixed base)."""
+        return self._per_level(1)
 
     @property
     def velocities_m_s(self) -> np.ndarray:
-        """Each level's velocity relative to the ground, m/s, shape (n_levels,)."""
-        return self.vector[1 + self.n_levels:1 + 2 * self.n_levels].copy()
+        """Each level's velocity relative to the ground, m/s, shape (levels,)."""
+        return self._per_level(1 + self.n_dof)
 
 
 _FIX = "start from StructureState.at_rest(structure) or a final_state of this structure"
 
 
-def _check_state(state: Optional[StructureState], structure: Structure, size: int) -> StructureState:
+def _check_state(state: Optional[StructureState], model: Structure | Adjacent,
+                 asm: Assembly) -> StructureState:
     if state is None:
-        return StructureState.at_rest(structure)
+        return StructureState.at_rest(model)
     if not isinstance(state, StructureState):
         raise InputError(Problem.WRONG_TYPE, "state", state, got=type(state).__name__,
                          expected="pounding.StructureState (StructureState.at_rest(structure) or a run's "
                                   "final_state)")
-    if state.vector.size != size or state.n_levels != structure.n_levels:
+    size = asm.system.layout["size"]
+    if state.vector.size != size or state.dofs != asm.dofs:
         raise InputError(Problem.BAD_STATE, "state", state,
-                         why=f"is a state of {state.n_levels} levels and {state.vector.size} numbers, where "
-                             f"this structure's have {structure.n_levels} and {size}",
+                         why=f"is a state of {state.vector.size} numbers and levels {state.dofs}, where this "
+                             f"structure's have {size} and {asm.dofs}",
                          fix=_FIX)
     if not np.all(np.isfinite(state.vector)):
         raise InputError(Problem.BAD_STATE, "state", state, why="holds a number that is not finite",
@@ -129,46 +230,40 @@ def _check_state(state: Optional[StructureState], structure: Structure, size: in
     return state
 
 
-def structure_rates(structure: Structure) -> tuple[float, float]:
-    """(out of contact, in every contact at once) the structure's fastest rate, rad/s: the largest
-    undamped frequency with the isolator at its stiffest slope (and the walls' linear springs), or a
-    level's damping rate if larger (inf in contact for a nonlinear or multi-branch law)."""
+def structure_rates(asm: Assembly) -> tuple[float, float]:
+    """(out of contact, in every contact at once) the fastest rate of the assembled structures, rad/s: the
+    largest undamped frequency with every hysteretic element at its stiffest slope (and the contacts'
+    linear springs), or a dof's damping rate if larger (inf in contact for a nonlinear or multi-branch
+    law)."""
     from scipy.linalg import eigvalsh
 
-    iso = structure.isolator
-    k_iso = max(abs(s) for s in iso.slopes)
-    if iso.bouc_wen is not None:
-        k_iso += iso.bouc_wen.a * iso.bouc_wen.stiffness
-    m = structure.masses_kg
-    k = structure.shear_matrix([max((s.stiffness_n_m, *s.slopes_after_n_m)) for s in structure.storeys])
-    c = structure.damping_matrix.copy()
-    k[0, 0] += k_iso
-    c[0, 0] += iso.damping
+    m = asm.masses
+    k, c = asm.k_fast.copy(), asm.c_all.copy()
 
     def rate(k: np.ndarray, c: np.ndarray) -> float:
         lam = float(eigvalsh(k, np.diag(m))[-1])
         return max(math.sqrt(max(lam, 0.0)), float(np.max(np.diag(c) / m)))
 
     free = rate(k, c)
-    for w in structure.walls:
-        for law in (w.left, w.right):
-            form = linear_form(law)
-            if form is None:
-                return free, math.inf
-            k[w.level, w.level] += form[0]
-            c[w.level, w.level] += form[1]
+    for i, j, law in asm.pairs:
+        form = linear_form(law)
+        if form is None:
+            return free, math.inf
+        _add_pair(k, i, j, form[0])
+        _add_pair(c, i, j, form[1])
     return free, rate(k, c)
 
 
-def simulate_structure(structure: Structure, excitation: Harmonic | Record, duration: float,
+def simulate_structure(structure: Structure | Adjacent, excitation: Harmonic | Record, duration: float,
                        state: Optional[StructureState] = None, *, rtol: float = 1e-10,
                        sample_rate_hz: Optional[float] = None, max_events: int = 10_000_000,
-                       max_steps: int = DEFAULT_MAX_STEPS) -> StructureRun:
-    """Simulate a structure under a base excitation, exactly at every contact (``pounding.simulate``
-    with a :class:`~pounding.Structure`; the same arguments, a :class:`StructureRun` back)."""
-    if not isinstance(structure, Structure):
+                       max_steps: int = DEFAULT_MAX_STEPS) -> StructureRun | AdjacentRun:
+    """Simulate a structure (or two adjacent ones) under a base excitation, exactly at every contact
+    (``pounding.simulate`` with a :class:`~pounding.Structure` or :class:`~pounding.Adjacent`; the same
+    arguments, a :class:`StructureRun` or :class:`AdjacentRun` back)."""
+    if not isinstance(structure, (Structure, Adjacent)):
         raise InputError(Problem.WRONG_TYPE, "structure", structure, got=type(structure).__name__,
-                         expected="pounding.Structure")
+                         expected="pounding.Structure or pounding.Adjacent")
     if not isinstance(excitation, (Harmonic, Record)):
         raise InputError(Problem.WRONG_TYPE, "excitation", excitation,
                          got=type(excitation).__name__, expected="pounding.Harmonic or pounding.Record")
@@ -176,12 +271,12 @@ def simulate_structure(structure: Structure, excitation: Harmonic | Record, dura
     rtol = check_rtol(rtol)
     max_events = integer("max_events", max_events, 1)
     max_steps = integer("max_steps", max_steps, 1)
-    system = kernel_structure(structure)
-    state = _check_state(state, structure, system.layout["size"])
+    asm = assemble(structure)
+    state = _check_state(state, structure, asm)
     rate = history_rate(sample_rate_hz, duration)
     t0 = state.time_s
     omega = excitation.omega_rad_s if isinstance(excitation, Harmonic) else 0.0
-    free, touching = structure_rates(structure)
+    free, touching = structure_rates(asm)
     knots = 0
     why = f"the structure's fastest motion {max(free, omega):.3g} rad/s"
     if isinstance(excitation, Record):
@@ -193,8 +288,32 @@ def simulate_structure(structure: Structure, excitation: Harmonic | Record, dura
     most = float(steps_per_second(touching, omega)) * duration + knots
     ctl = new_control(max_steps)
     out = run_interruptibly(lambda: _core.run(
-        system, kernel_forcing(excitation), state.vector.copy(), t0 + duration,
+        asm.system, kernel_forcing(excitation), state.vector.copy(), t0 + duration,
         1.0 / rate if rate > 0 else 0.0, rtol, max_events, True, ctl), [ctl], direct=most < DIRECT_CALL_STEPS)
+    return run_of(structure, asm, excitation, rate, out, t0, duration)
+
+
+def run_of(model: Any, asm: Any, excitation: Any, rate: float, out: tuple, t0: float,
+           duration: float) -> "StructureRun | AdjacentRun":
+    """The result of the core's run of one structure, or two adjacent ones (``Interrupted`` on Ctrl-C)."""
     st, samples, contacts, events, ledger, extrema, status = out
-    return StructureRun._of(structure, excitation, rate, StructureState._of(st, structure.n_levels), samples,
-                            contacts, events, StructureEnergy.of(ledger), extrema, int(status), t0, duration)
+    energy = StructureEnergy.of(ledger)
+    status = Status(int(status))
+    if status == Status.SUCCESS and not (np.all(np.isfinite(extrema)) and np.isfinite(energy.residual)):
+        status = Status.NONFINITE
+    final = StructureState._of(st, asm.dofs)
+    parts = [StructureRun._part(s, b, asm, excitation, rate, samples, contacts, extrema, status, t0)
+             for b, s in enumerate(structures_of(model)[0])]
+    if len(parts) == 1:
+        run: Any = dataclasses.replace(parts[0], event_table=events, energy=energy, final_state=final)
+    else:
+        links = [c for c, (owner, _, _) in enumerate(asm.slots) if owner == -1]
+        link_rows = contacts[np.isin(contacts[:, 0], links)].copy() if len(contacts) else np.zeros((0, 9))
+        link_rows[:, 0] -= links[0]
+        n, nh = asm.system.n, asm.system.n_elements
+        run = AdjacentRun(model, excitation, rate, parts[0], parts[1], samples[:, 0],
+                          samples[:, [1 + 3 * n + nh + c for c in links]], link_rows, events, energy, final,
+                          status)
+    if status == Status.INTERRUPTED:
+        raise Interrupted(run, round(final.time_s - t0, 6), duration, "simulated seconds")
+    return run

@@ -3,13 +3,14 @@ contacts per wall side, the energy ledger over every element) and :class:`Struct
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Optional
 
 import numpy as np
 import pandas as pd
 
-from .._errors import Interrupted, Status
+from .._errors import Status
 from ._layout import (EVENT_NAMES, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT, L_ISOLATOR, L_KINETIC,
                       L_VISCOUS)
 
@@ -86,7 +87,7 @@ class StructureRun:
     displacement, velocity, abs_acceleration : ndarray, shape (k, n_levels)
         Each level relative to the ground (m, m/s) and its absolute acceleration (m/s^2).
     isolator_force : ndarray, shape (k,)
-        The isolator's force on the base, N.
+        The isolator's force on the base, N (NaN: a fixed base).
     contact_force : ndarray, shape (k, 2 n_walls)
         Each wall side's force, N (>= 0): wall ``w``'s left side in column ``2 w``, its right in ``2 w + 1``.
     displacement_max, displacement_min, abs_acceleration_max : ndarray, shape (n_levels,)
@@ -95,10 +96,10 @@ class StructureRun:
     contacts : pandas.DataFrame
         One row per contact: wall, level, side, times (s), the pair's velocities in and out (m/s), impulse
         (N s), peak force (N), largest compression (m), the work of the contact force (J).
-    energy : StructureEnergy
-        The energy ledger.
-    final_state : StructureState
-        Pass as ``state`` to continue.
+    energy : StructureEnergy or None
+        The energy ledger (None for one of two adjacent structures: the pair's is ``AdjacentRun.energy``).
+    final_state : StructureState or None
+        Pass as ``state`` to continue (None for one of two adjacent structures: ``AdjacentRun``'s).
     status : Status
         How the run ended (``message`` says it in words).
     structure : Structure
@@ -108,7 +109,9 @@ class StructureRun:
     sample_rate_hz : float
         The uniform samples' rate, Hz (0: events only).
     contact_table, event_table : ndarray
-        The core's rows behind ``contacts`` and ``events``.
+        The core's rows behind ``contacts`` and ``events`` (no events for one of two adjacent structures:
+        the pair's are ``AdjacentRun.events``).  A fixed base's level 0 is the ground: displacement 0, its
+        absolute acceleration the ground's (its peak exact too).
     displacement_max_time_s, displacement_min_time_s, abs_acceleration_max_time_s : ndarray
         When each level's extrema were reached, s, shape (n_levels,).
 
@@ -146,27 +149,47 @@ class StructureRun:
     abs_acceleration_max_time_s: np.ndarray
     contact_table: np.ndarray = field(repr=False)
     event_table: np.ndarray = field(repr=False)
-    energy: StructureEnergy = field(repr=False)
-    final_state: "StructureState" = field(repr=False)
+    energy: Optional[StructureEnergy] = field(repr=False)
+    final_state: Optional["StructureState"] = field(repr=False)
     status: Status = Status.SUCCESS
 
     @classmethod
-    def _of(cls, structure: "Structure", excitation: Any, rate: float, final_state: "StructureState",
-            samples: np.ndarray, contacts: np.ndarray, events: np.ndarray, energy: StructureEnergy,
-            extrema: np.ndarray, status: int, t0: float, duration: float) -> "StructureRun":
-        n = structure.n_levels
-        status = Status(status)
-        if status == Status.SUCCESS and not (np.all(np.isfinite(extrema)) and np.isfinite(energy.residual)):
-            status = Status.NONFINITE
+    def _part(cls, structure: "Structure", b: int, asm: Any, excitation: Any, rate: float,
+              samples: np.ndarray, contacts: np.ndarray, extrema: np.ndarray, status: Status,
+              t0: float) -> "StructureRun":
+        """Structure ``b``'s columns of a joint run (``asm``: the assembly, engine.structure)."""
+        n, nh = asm.system.n, asm.system.n_elements
+        dofs = asm.dofs[b]
+        t = samples[:, 0]
+        k = t.size
+
+        def columns(first: int, ground: np.ndarray) -> np.ndarray:
+            return np.column_stack([samples[:, first + d] if d >= 0 else ground for d in dofs]) if dofs else \
+                np.zeros((k, 0))
+
+        zeros = np.zeros(k)
+        displacement = columns(1, zeros)
+        velocity = columns(1 + n, zeros)
+        abs_acceleration = columns(1 + 2 * n, excitation.acceleration(t) if k else zeros)
+        e = asm.isolator[b]
+        isolator_force = samples[:, 1 + 3 * n + e].copy() if e >= 0 else np.full(k, np.nan)
+        mine = [c for c, (owner, _, _) in enumerate(asm.slots) if owner == b]
+        contact_force = samples[:, [1 + 3 * n + nh + c for c in mine]]
         ex = extrema.reshape(n, 7)
-        run = cls(structure, excitation, rate, samples[:, 0], samples[:, 1:1 + n],
-                  samples[:, 1 + n:1 + 2 * n], samples[:, 1 + 2 * n:1 + 3 * n], samples[:, 1 + 3 * n],
-                  samples[:, 2 + 3 * n:],
-                  ex[:, 0].copy(), ex[:, 1].copy(), ex[:, 2].copy(), ex[:, 3].copy(), ex[:, 4].copy(),
-                  ex[:, 5].copy(), contacts, events, energy, final_state, status)
-        if status == Status.INTERRUPTED:
-            raise Interrupted(run, round(final_state.time_s - t0, 6), duration, "simulated seconds")
-        return run
+        t1 = t[-1] if k else t0
+        rows = []
+        for d in dofs:
+            if d >= 0:
+                rows.append(ex[d])
+            else:  # the ground: still, and shaken by the table
+                peak, when = ground_peak(excitation, t0, t1)
+                rows.append(np.array([0.0, t0, 0.0, t0, peak, when, np.nan]))
+        ex = np.array(rows).reshape(len(dofs), 7)
+        table = contacts[np.isin(contacts[:, 0], mine)].copy()
+        table[:, 0] = np.searchsorted(mine, table[:, 0])  # (slot numbers of this structure's own)
+        return cls(structure, excitation, rate, t, displacement, velocity, abs_acceleration, isolator_force,
+                   contact_force, ex[:, 0].copy(), ex[:, 1].copy(), ex[:, 2].copy(), ex[:, 3].copy(),
+                   ex[:, 4].copy(), ex[:, 5].copy(), table, np.zeros((0, 3)), None, None, status)
 
     # ------------------------------------------------------------------ derived
     @property
@@ -272,3 +295,143 @@ class StructureRun:
         from ..plots import plot_structure_run
 
         return plot_structure_run(self, **kwargs)
+
+
+def ground_peak(excitation: Any, t0: float, t1: float) -> tuple[float, float]:
+    """The largest |ground acceleration| over [t0, t1], m/s^2, and when: exact (a sine's crest, or a
+    record's sample, linear between them)."""
+    from ..excitation import Harmonic
+
+    ends = np.array([t0, t1])
+    candidates = [ends]
+    if isinstance(excitation, Harmonic):  # crests where omega t + phase = pi/2 + k pi
+        w, phi = excitation.omega_rad_s, excitation.phase
+        first = math.ceil(((w * t0 + phi) - 0.5 * math.pi) / math.pi)
+        last = math.floor(((w * t1 + phi) - 0.5 * math.pi) / math.pi)
+        if last >= first:
+            candidates.append(np.array([(0.5 * math.pi + first * math.pi - phi) / w]))
+    else:
+        inside = excitation.t[(excitation.t >= t0) & (excitation.t <= t1)]
+        candidates.append(inside)
+    times = np.concatenate(candidates)
+    values = np.abs(excitation.acceleration(times))
+    j = int(np.argmax(values))
+    return float(values[j]), float(times[j])
+
+
+@dataclass(frozen=True)
+class AdjacentRun:
+    """A run of two adjacent structures.
+
+    Attributes
+    ----------
+    adjacent : Adjacent
+        The pair run.
+    excitation : Harmonic or Record
+        The ground's motion.
+    sample_rate_hz : float
+        The uniform samples' rate, Hz (0: events only).
+    first, second : StructureRun
+        Each structure's histories, exact extrema per level and walls' contacts.
+    t : ndarray, shape (k,)
+        Sample times, s.
+    link_force : ndarray, shape (k, n_links)
+        Each link's force, N (>= 0).
+    link_table : ndarray
+        The core's rows behind ``links``.
+    event_table : ndarray
+        Every event of the pair: time, action code, the element's index (``events`` names them).
+    energy : StructureEnergy
+        The energy ledger of the pair (the links' in ``contact_dissipation`` and ``contact_elastic``).
+    final_state : StructureState
+        Pass as ``state`` to continue.
+    status : Status
+        How the run ended (``message`` says it in words).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> iso = pounding.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02],
+    ...                         damping=2.0e4)
+    >>> isolated = pounding.Structure(3.0e4, iso,
+    ...                               [pounding.Storey(2.0e4, 4.0e7)] * 3)
+    >>> old = pounding.Structure.fixed_base(
+    ...     [pounding.Storey(2.5e4, 3.0e7, 5.0e4)] * 3)
+    >>> roof = pounding.Link(3, 3, 0.15, pounding.KelvinVoigt(5.0e8, 2.0e5))
+    >>> run = pounding.simulate(pounding.Adjacent(isolated, old, [roof]),
+    ...                         pounding.Harmonic(a_g=0.4, freq_hz=1.0), 10.0)
+    >>> list(run.links.columns)[:4]
+    ['link', 'level_first', 'level_second', 't_start']
+    """
+
+    adjacent: Any
+    excitation: Any
+    sample_rate_hz: float
+    first: StructureRun
+    second: StructureRun
+    t: np.ndarray
+    link_force: np.ndarray
+    link_table: np.ndarray = field(repr=False)
+    event_table: np.ndarray = field(repr=False)
+    energy: StructureEnergy = field(repr=False)
+    final_state: Any = field(repr=False)
+    status: Status = Status.SUCCESS
+
+    @property
+    def success(self) -> bool:
+        return self.status == Status.SUCCESS
+
+    @property
+    def message(self) -> str:
+        return self.status.message
+
+    @property
+    def links(self) -> pd.DataFrame:
+        """One row per contact at a link: the link, its levels, times (s), the velocities in and out (m/s, of
+        the first's level less the second's), impulse (N s), peak force (N), deepest compression (m), work
+        (J)."""
+        c = self.link_table
+        k = c[:, 0].astype(int)
+        links = self.adjacent.links
+        return pd.DataFrame({
+            "link": k,
+            "level_first": [links[j].level_first for j in k],
+            "level_second": [links[j].level_second for j in k],
+            **{name: c[:, q] for q, name in enumerate(CONTACT_COLUMNS[3:], start=1)},
+        })
+
+    @property
+    def events(self) -> pd.DataFrame:
+        """Every event of the pair: time (s), what happened and the element's index."""
+        e = self.event_table
+        return pd.DataFrame({"t": e[:, 0], "event": [EVENT_NAMES[int(a)] for a in e[:, 1]],
+                             "index": e[:, 2].astype(int)})
+
+    def to_dataframe(self) -> pd.DataFrame:
+        """Both structures' histories side by side (columns ``first.``/``second.``), and the links' forces."""
+        frames = [self.first.to_dataframe().add_prefix("first."),
+                  self.second.to_dataframe().drop(columns="t_s").add_prefix("second.")]
+        out = pd.concat(frames, axis=1).rename(columns={"first.t_s": "t_s"})
+        for j in range(self.link_force.shape[1]):
+            out[f"link_force_n[{j}]"] = self.link_force[:, j]
+        return out
+
+    def to_xarray(self) -> Any:
+        """Each structure's Dataset (``first``/``second`` prefixes on the variables) and the links' forces."""
+        import xarray as xr
+
+        first = self.first.to_xarray().rename({"level": "level_first", "contact": "wall_first"})
+        second = self.second.to_xarray().drop_vars("t").rename({"level": "level_second",
+                                                               "contact": "wall_second"})
+        ds = xr.merge([first.rename({v: f"first_{v}" for v in first.data_vars if v != "t"}),
+                       second.rename({v: f"second_{v}" for v in second.data_vars})], combine_attrs="override")
+        ds["link_force"] = (("sample", "link"), self.link_force, {"units": "N"})
+        ds.attrs = {"status": self.status.name, "message": self.message}
+        return ds
+
+    def plot(self, **kwargs: Any) -> Any:
+        """The linked levels' displacements and their separation against each gap; see
+        :func:`pounding.plots.plot_adjacent_run`."""
+        from ..plots import plot_adjacent_run
+
+        return plot_adjacent_run(self, **kwargs)

@@ -5,8 +5,11 @@ from .contact_laws import ElasticPlastic, Hertzdamp, HuntCrossley, Jankowski, Ke
 from .isolator import BoucWen, Isolator
 from .measurement import MeasurementChain, Sensor
 from .oscillator import Oscillator
+from .adjacent import Adjacent, Link
 from .structure import Storey, Structure, Wall
 
-__all__ = ["BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley", "Isolator", "Jankowski",
+__all__ = ["Adjacent", "Link", "BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley",
+           "Isolator",
+           "Jankowski",
            "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "Sensor", "Storey",
            "Structure", "Wall"]

@@ -209,10 +209,11 @@ class Structure:
 
     Parameters
     ----------
-    base_mass_kg : float
-        The isolated base's mass, kg, > 0.
-    isolator : Isolator
-        The isolator under the base (any the package has).
+    base_mass_kg : float or None
+        The isolated base's mass, kg, > 0; None with ``isolator`` None: a building fixed at its base
+        (:meth:`fixed_base`), whose level 0 is the ground.
+    isolator : Isolator or None
+        The isolator under the base (any the package has); None: a fixed base.
     storeys : sequence of Storey
         From the first above the base up; at most 50.
     walls : sequence of Wall
@@ -245,8 +246,8 @@ class Structure:
     [114.6, 157.1, 192.3, 209.4]
     """
 
-    base_mass_kg: float
-    isolator: Isolator
+    base_mass_kg: Optional[float]
+    isolator: Optional[Isolator]
     storeys: tuple = ()
     walls: tuple = field(default=())
     rayleigh: Optional[tuple] = None
@@ -254,10 +255,17 @@ class Structure:
     FIELDS: ClassVar[tuple[str, ...]] = ("base_mass_kg", "isolator", "storeys", "walls", "rayleigh")
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "base_mass_kg", _mass("base_mass_kg", self.base_mass_kg))
-        if not isinstance(self.isolator, Isolator):
-            raise InputError(Problem.WRONG_TYPE, "isolator", self.isolator, got=type(self.isolator).__name__,
-                             expected="Isolator")
+        if (self.base_mass_kg is None) != (self.isolator is None):
+            field_name = "isolator" if self.isolator is None else "base_mass_kg"
+            raise InputError(Problem.WRONG_CONFIGURATION, field_name, None,
+                             got="with one of base_mass_kg and isolator None",
+                             fix="give both (an isolated base) or neither (a fixed base: "
+                                 "Structure.fixed_base)")
+        if self.isolator is not None:
+            object.__setattr__(self, "base_mass_kg", _mass("base_mass_kg", self.base_mass_kg))
+            if not isinstance(self.isolator, Isolator):
+                raise InputError(Problem.WRONG_TYPE, "isolator", self.isolator,
+                                 got=type(self.isolator).__name__, expected="Isolator or None")
         for name, kind in (("storeys", Storey), ("walls", Wall)):
             items = getattr(self, name)
             if isinstance(items, (str, bytes, dict)) or not hasattr(items, "__iter__"):
@@ -289,7 +297,15 @@ class Structure:
                                      "more")
             object.__setattr__(self, "rayleigh", ratios)
         levels = [w.level for w in self.walls]
+        if self.fixed and not self.storeys:
+            raise InputError(Problem.WRONG_CONFIGURATION, "storeys", [],
+                             got="fixed at its base without storeys",
+                             fix="give at least one storey (or an isolator and a base mass)")
         for i, level in enumerate(levels):
+            if self.fixed and level == 0:
+                raise InputError(Problem.OUT_OF_RANGE, f"walls[{i}].level", level,
+                                 range=f"1 to {len(self.storeys)} (the base is fixed: level 0 is the ground)",
+                                 hint="")
             if level > len(self.storeys):
                 raise InputError(Problem.OUT_OF_RANGE, f"walls[{i}].level", level,
                                  range=f"0 to {len(self.storeys)} (the levels of this structure)",
@@ -298,6 +314,17 @@ class Structure:
                 raise InputError(Problem.DUPLICATE, "walls", levels, repeated=f"level {level}")
 
     # ------------------------------------------------------------------ matrices
+    @classmethod
+    def fixed_base(cls, storeys: Any, walls: Any = (), rayleigh: Any = None) -> "Structure":
+        """A building fixed at its base: storey 1 stands on the ground (level 0, which does not move
+        relative to it).  A neighbour without isolation (:class:`Adjacent`), or a building against a stop."""
+        return cls(None, None, storeys, walls, rayleigh)
+
+    @property
+    def fixed(self) -> bool:
+        """The base is fixed to the ground (no isolator)."""
+        return self.isolator is None
+
     @property
     def n_levels(self) -> int:
         """The degrees of freedom: the base and one per storey."""
@@ -305,8 +332,9 @@ class Structure:
 
     @property
     def masses_kg(self) -> np.ndarray:
-        """Each level's mass, kg, shape (n_levels,)."""
-        return np.array([self.base_mass_kg] + [s.mass_kg for s in self.storeys])
+        """Each level's mass, kg, shape (n_levels,) (NaN for the ground of a fixed base)."""
+        base = np.nan if self.base_mass_kg is None else self.base_mass_kg
+        return np.array([base] + [s.mass_kg for s in self.storeys])
 
     def shear_matrix(self, values: Any) -> np.ndarray:
         """Springs (or dashpots) ``values[i]`` (one per storey) between levels i and i + 1, as an
@@ -353,12 +381,13 @@ class Structure:
 
     def modes(self, fixed_base: bool = False) -> Modes:
         """Undamped modes about rest: isolated (the isolator at its initial stiffness) or with the base
-        held fixed (the superstructure alone; no modes for a structure without storeys)."""
+        held fixed (the superstructure alone; no modes for a structure without storeys).  A fixed-base
+        building has only the latter."""
         from scipy.linalg import eigh
 
         k = self.stiffness_matrix
         m = self.masses_kg
-        if fixed_base:
+        if fixed_base or self.fixed:
             k, m = k[1:, 1:], m[1:]
         else:
             k = k.copy()
@@ -385,7 +414,8 @@ class Structure:
     # ------------------------------------------------------------------ TOML
     def to_dict(self) -> dict[str, Any]:
         """The structure as nested tables with the constructor's field names."""
-        out: dict[str, Any] = {"base_mass_kg": self.base_mass_kg, "isolator": self.isolator.to_dict()}
+        out: dict[str, Any] = {} if self.fixed else {"base_mass_kg": self.base_mass_kg,
+                                                     "isolator": self.isolator.to_dict()}
         if self.storeys:
             out["storeys"] = [{f: (list(v) if isinstance(v, tuple) else v) for f in Storey.FIELDS
                                if (v := getattr(s, f)) != () and not (f == "hysteresis" and s.is_linear)}
@@ -400,10 +430,13 @@ class Structure:
     def from_dict(cls, table: dict[str, Any]) -> "Structure":
         """Build from nested tables; every key is checked and unknown keys are errors."""
         table = {k: v for k, v in table.items() if k != "meta"} if isinstance(table, dict) else table
-        _check_keys(table, "", cls.FIELDS, required=("base_mass_kg", "isolator"))
-        iso_table = table["isolator"]
-        _check_keys(iso_table, "isolator.", Isolator.FIELDS,
-                    required=tuple(f for f in Isolator.FIELDS if f not in Isolator.OPTIONAL))
+        _check_keys(table, "", cls.FIELDS, required=())
+        isolator = None
+        if "isolator" in table:  # (neither it nor base_mass_kg: a fixed base)
+            iso_table = table["isolator"]
+            _check_keys(iso_table, "isolator.", Isolator.FIELDS,
+                        required=tuple(f for f in Isolator.FIELDS if f not in Isolator.OPTIONAL))
+            isolator = Isolator(**iso_table)
         storeys, walls = [], []
         for name, out in (("storeys", storeys), ("walls", walls)):
             rows = table.get(name, [])
@@ -422,8 +455,7 @@ class Structure:
                     out.append(Wall(row["level"], row["gap_left_m"], row["gap_right_m"],
                                     law_from_dict(row["law"], prefix + "law"),
                                     None if right is None else law_from_dict(right, prefix + "law_right")))
-        return cls(table["base_mass_kg"], Isolator(**iso_table), tuple(storeys), tuple(walls),
-                   table.get("rayleigh"))
+        return cls(table.get("base_mass_kg"), isolator, tuple(storeys), tuple(walls), table.get("rayleigh"))
 
     @classmethod
     def from_toml(cls, path: PathLike) -> "Structure":

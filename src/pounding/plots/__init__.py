@@ -1,5 +1,6 @@
 """Figures, apart from computing: every function takes ``ax=`` and returns its artists."""
 
+from .adjacent import plot_adjacent_run
 from .basins import plot_basin_stability, plot_basins
 from .branch import plot_branch
 from .contact_law import plot_contact_law_fit
@@ -17,7 +18,9 @@ from .structure import plot_structure_run
 from .study import plot_study
 from .sweep import plot_campaign, plot_hysteresis, plot_lab_sweep, plot_sweep
 
-__all__ = ["plot_basin_stability", "plot_basins", "plot_bifurcation_diagram", "plot_branch", "plot_campaign",
+__all__ = ["plot_adjacent_run", "plot_basin_stability", "plot_basins", "plot_bifurcation_diagram",
+           "plot_branch",
+           "plot_campaign",
            "plot_contact_law_fit", "plot_curves", "plot_decision", "plot_design_spectrum", "plot_fragility",
            "plot_hazard_curve", "plot_responses", "plot_scaled_suite", "plot_stripes", "plot_identification",
            "plot_lyapunov",

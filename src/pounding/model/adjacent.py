@@ -1,0 +1,196 @@
+"""Two structures side by side that may pound each other: each on its own isolation or fixed at its base,
+shaken by the same ground, joined by links (a gap and a contact law between two of their levels)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any, ClassVar, Union
+
+import tomli_w
+
+from .._checks import at_most, integer, non_negative, parse_toml, plausible, read_text
+from .._errors import InputError, Problem
+from .bumpers import MAX_GAP_M
+from .contact_laws import LAWS, law_from_dict, law_to_dict
+from .oscillator import _check_keys
+from .structure import MAX_STOREYS, Structure
+
+PathLike = Union[str, Path]
+
+
+@dataclass(frozen=True)
+class Link:
+    """Where two adjacent structures may hit: a level of the first against a level of the second, which
+    stands to its right, behind a gap, with a contact law (a bumper between them, or their slabs).
+
+    The link is compressed by ``x_first - x_second - gap_m`` (displacements relative to the ground) and
+    pushes the two apart.
+
+    Parameters
+    ----------
+    level_first, level_second : int
+        The levels that meet (0: a base).
+    gap_m : float
+        The separation at rest, m, >= 0.
+    law : contact law
+        Any of the package's contact laws.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> slab_law = pounding.KelvinVoigt(stiffness=5.0e8, damping=2.0e5)
+    >>> slab = pounding.Link(level_first=3, level_second=3, gap_m=0.05,
+    ...                      law=slab_law)
+    >>> slab.gap_m
+    0.05
+    """
+
+    level_first: int
+    level_second: int
+    gap_m: float
+    law: Any
+
+    FIELDS: ClassVar[tuple[str, ...]] = ("level_first", "level_second", "gap_m", "law")
+
+    def __post_init__(self) -> None:
+        for name in ("level_first", "level_second"):
+            object.__setattr__(self, name, integer(f"link.{name}", getattr(self, name), 0, MAX_STOREYS))
+        gap = non_negative("link.gap_m", self.gap_m, "m")
+        at_most("link.gap_m", gap, MAX_GAP_M, " m", "give the gap in m (5 cm is 0.05)")
+        plausible("link.gap_m", gap, 0.0, 2.0, "gaps are in m (5 cm is 0.05)")
+        object.__setattr__(self, "gap_m", gap)
+        if not isinstance(self.law, tuple(LAWS.values())):
+            raise InputError(Problem.WRONG_TYPE, "link.law", self.law, got=type(self.law).__name__,
+                             expected="contact law (KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper, "
+                                      "ElasticPlastic or Hertzdamp)")
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"level_first": self.level_first, "level_second": self.level_second, "gap_m": self.gap_m,
+                "law": law_to_dict(self.law)}
+
+
+@dataclass(frozen=True)
+class Adjacent:
+    """Two structures side by side, the second to the right of the first, shaken by the same ground, that
+    may pound each other at their links (and their own walls, if they have any).
+
+    Parameters
+    ----------
+    first, second : Structure
+        Each isolated or fixed at its base (:meth:`Structure.fixed_base`).  At most one of their isolators
+        may have a Bouc-Wen spring.
+    links : sequence of Link
+        Where they may hit (at least one; at most one per pair of levels).
+
+    Examples
+    --------
+    A three-storey isolated building 15 cm from a fixed-base neighbour, their roofs level:
+
+    >>> import pounding
+    >>> iso = pounding.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02],
+    ...                         damping=2.0e4)
+    >>> isolated = pounding.Structure(3.0e4, iso,
+    ...                               [pounding.Storey(2.0e4, 4.0e7)] * 3)
+    >>> old = pounding.Structure.fixed_base(
+    ...     [pounding.Storey(2.5e4, 3.0e7, 5.0e4)] * 3)
+    >>> roof = pounding.Link(3, 3, 0.15, pounding.KelvinVoigt(5.0e8, 2.0e5))
+    >>> pair = pounding.Adjacent(isolated, old, [roof])
+    >>> quake = pounding.Harmonic(a_g=0.4, freq_hz=1.0)
+    >>> run = pounding.simulate(pair, quake, 10.0)
+    >>> len(run.links) > 0, run.first.structure is isolated
+    (True, True)
+    """
+
+    first: Structure
+    second: Structure
+    links: tuple = ()
+
+    FIELDS: ClassVar[tuple[str, ...]] = ("first", "second", "links")
+
+    def __post_init__(self) -> None:
+        for name in ("first", "second"):
+            if not isinstance(getattr(self, name), Structure):
+                raise InputError(Problem.WRONG_TYPE, name, getattr(self, name),
+                                 got=type(getattr(self, name)).__name__, expected="pounding.Structure")
+        links = self.links
+        if isinstance(links, (str, bytes, dict)) or not hasattr(links, "__iter__"):
+            raise InputError(Problem.WRONG_TYPE, "links", links, got=type(links).__name__,
+                             expected="sequence of Link")
+        links = tuple(links)
+        if not links:
+            raise InputError(Problem.EMPTY, "links", [], hint=" (a Link: where the two structures may hit)")
+        pairs = []
+        for i, link in enumerate(links):
+            if not isinstance(link, Link):
+                raise InputError(Problem.WRONG_TYPE, f"links[{i}]", link, got=type(link).__name__,
+                                 expected="Link")
+            for name, s in (("level_first", self.first), ("level_second", self.second)):
+                level = getattr(link, name)
+                lowest = 1 if s.fixed else 0
+                if not lowest <= level <= len(s.storeys):
+                    raise InputError(Problem.OUT_OF_RANGE, f"links[{i}].{name}", level,
+                                     range=f"{lowest} to {len(s.storeys)} (the levels of that structure"
+                                           + (": its base is fixed" if s.fixed else "") + ")", hint="")
+            pair = (link.level_first, link.level_second)
+            if pair in pairs:
+                levels = [(lk.level_first, lk.level_second) for lk in links]
+                raise InputError(Problem.DUPLICATE, "links", levels, repeated=f"the levels {pair}")
+            pairs.append(pair)
+        object.__setattr__(self, "links", links)
+        with_bw = [s for s in (self.first, self.second) if s.isolator is not None and s.isolator.bouc_wen]
+        if len(with_bw) > 1:
+            raise InputError(Problem.WRONG_CONFIGURATION, "second.isolator", self.second.isolator,
+                             got="whose isolator has a Bouc-Wen spring, as the first's has",
+                             fix="give a Bouc-Wen spring to one of the two isolators at most")
+
+    @property
+    def structures(self) -> tuple[Structure, Structure]:
+        return self.first, self.second
+
+    # ------------------------------------------------------------------ TOML
+    def to_dict(self) -> dict[str, Any]:
+        """The pair as nested tables: ``[first]``, ``[second]``, ``[[links]]``."""
+        return {"first": self.first.to_dict(), "second": self.second.to_dict(),
+                "links": [lk.to_dict() for lk in self.links]}
+
+    @classmethod
+    def from_dict(cls, table: dict[str, Any]) -> "Adjacent":
+        """Build from nested tables; every key is checked and unknown keys are errors."""
+        _check_keys(table, "", cls.FIELDS, required=cls.FIELDS)
+        structures = []
+        for name in ("first", "second"):
+            try:
+                structures.append(Structure.from_dict(table[name]))
+            except InputError as exc:
+                raise exc.relabel("", f"{name}.") from None
+        rows = table["links"]
+        if not isinstance(rows, list):
+            raise InputError(Problem.WRONG_TYPE, "links", rows, got=type(rows).__name__,
+                             expected="array of tables ([[links]])")
+        links = []
+        for i, row in enumerate(rows):
+            _check_keys(row, f"links[{i}].", Link.FIELDS, required=Link.FIELDS)
+            links.append(Link(row["level_first"], row["level_second"], row["gap_m"],
+                              law_from_dict(row["law"], f"links[{i}].law")))
+        return cls(structures[0], structures[1], tuple(links))
+
+    @classmethod
+    def from_toml(cls, path: PathLike) -> "Adjacent":
+        """Read a pair from a TOML file (see ``examples/adjacent_buildings.toml``)."""
+        text = read_text("path", path)
+        try:
+            return cls.from_dict(parse_toml("text", text))
+        except InputError as exc:
+            if exc.problem is Problem.BAD_TOML:
+                raise exc.relabel("text", str(path)) from None
+            raise
+
+    def to_toml(self, path: PathLike) -> Path:
+        """Write the pair to a TOML file that :meth:`from_toml` reads back identically (atomically)."""
+        from .._io import output_file, write_text
+
+        return write_text(output_file("path", path, (".toml",)), tomli_w.dumps(self.to_dict()))
+
+
+__all__ = ["Adjacent", "Link"]
