@@ -320,6 +320,14 @@ def test_the_command_line_simulates_a_structure_file_and_other_commands_say_they
     velocity = runner.invoke(app, ["simulate", str(building), "--a-g", "0.1", "--freq", "1",
                                    "--velocity", "0.1"])
     assert velocity.exit_code == 2 and "--velocity" in velocity.output
+    pair = ROOT / "examples" / "adjacent_buildings.toml"
+    assert pd_.Adjacent.from_toml(pair).second.fixed
+    links = tmp_path / "links.csv"
+    result = runner.invoke(app, ["simulate", str(pair), "--record", str(quake), "--scale-pga", "0.5",
+                                 "--duration", "8", "--contacts", str(links)])
+    assert result.exit_code == 0, result.output
+    assert "contacts at the links" in result.output and "ground" in result.output
+    assert list(pd.read_csv(links).columns[:3]) == ["link", "level_first", "level_second"]
 
 
 @st.composite

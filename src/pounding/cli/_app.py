@@ -270,18 +270,21 @@ def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True, st
     a preset."""
     from .. import presets
     from .._checks import parse_toml, read_text
-    from ..model import Oscillator, Structure
+    from ..model import Adjacent, Oscillator, Structure
 
     if (path is None) == (preset is None):
         raise typer.BadParameter("give either SYSTEM.toml or --preset NAME (one of them)")
     if path is None:
         return presets.by_name(preset, bumpers=bumpers)
     text = read_text("SYSTEM", path)
-    if "base_mass_kg" in parse_toml(str(path), text):  # (a structure's file: Structure.to_toml writes it)
+    table = parse_toml(str(path), text)
+    kind = (Adjacent if "links" in table else
+            Structure if "storeys" in table or "base_mass_kg" in table else None)
+    if kind is not None:  # (a structure's file, or two adjacent ones': to_toml writes them)
         if not structures:
             raise typer.BadParameter(f"{path} is a structure of several masses: this command takes one mass "
                                      "so far (pounding simulate takes structures)")
-        return Structure.from_toml(path)
+        return kind.from_toml(path)
     return Oscillator.from_toml(path)
 
 

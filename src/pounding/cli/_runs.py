@@ -80,7 +80,8 @@ def simulate(
 ) -> None:
     """Simulate a harmonic excitation or a record and summarise the run (exact extrema, contacts, energy).
 
-    SYSTEM.toml may be a structure of several masses (examples/building_moat.toml): a row per level."""
+    SYSTEM.toml may be a structure of several masses (examples/building_moat.toml), or two adjacent ones
+    (examples/adjacent_buildings.toml): a row per level; --contacts then writes the links' contacts."""
     from ..engine import State
     from ..engine import simulate as run_simulation
     from ..model import Oscillator
@@ -143,40 +144,49 @@ def simulate(
 
 def _simulate_structure(building: Any, exc: Any, what: str, duration: float, sample_rate: Optional[float],
                         system_file: Optional[Path], out: dict, plot: Optional[Path]) -> None:
-    """``simulate`` for a structure: a row per level (exact extrema, the storey's drift at the samples)."""
+    """``simulate`` for a structure or two adjacent ones: a row per level (exact extrema, the storey's drift
+    at the samples)."""
     from rich.table import Table
 
     from ..engine import simulate as run_simulation
 
     complete = True
     try:
-        with working(f"simulating {duration:g} s of {what} on {building.n_levels} levels ..."):
+        levels = sum(s.n_levels for s in getattr(building, "structures", (building,)))
+        with working(f"simulating {duration:g} s of {what} on {levels} levels ..."):
             run = run_simulation(building, exc, duration, sample_rate_hz=sample_rate)
     except Interrupted as stop:
         run, complete = stop.partial, False
     table, add_row = kv_table(f"{what}, {run.final_state.time_s:g} s", system_file)
     add_row("status", run.message)
-    n = len(run.contacts)
-    add_row("contacts", ", ".join(f"{k} at level {lv}" for lv, k in run.contacts["level"].value_counts()
-                                  .sort_index().items()) if n else "0")
+    pair = hasattr(run, "links")
+    parts = (("first", run.first), ("second", run.second)) if pair else (("", run),)
+    for name, part in parts:
+        n = len(part.contacts)
+        add_row(f"{name}: walls' contacts" if pair else "contacts",
+                ", ".join(f"{k} at level {lv}" for lv, k in part.contacts["level"].value_counts()
+                          .sort_index().items()) if n else "0")
+    if pair:
+        add_row("contacts at the links", str(len(run.links)))
     e = run.energy
     add_row("energy in / residual [J]", f"{e.input_work:.6g} / {e.residual:.2e}")
     console.print(table)
-    peaks = run.peaks()
     sampled = f"; drift at the samples, {run.sample_rate_hz:g} Hz" if run.sample_rate_hz else ""
-    levels = Table(title=f"each level (extrema exact{sampled})")
-    for head in ("level", "max / min [mm]", "max |a_abs| [g]", "drift ratio [%]"):
-        levels.add_column(escape(head), justify="right")
-    for level, row in peaks.iterrows():
-        ratio = row["drift_ratio_peak_sampled"]
-        levels.add_row("base" if level == 0 else str(level),
-                       f"{row['displacement_max_m'] * 1e3:.2f} / {row['displacement_min_m'] * 1e3:.2f}",
-                       f"{row['abs_acceleration_max_m_s2'] / exc.g:.3f}",
-                       "-" if ratio != ratio else f"{ratio * 100:.3f}")
-    console.print(levels)
+    for name, part in parts:
+        levels = Table(title=f"{name + ': ' if name else ''}each level (extrema exact{sampled})")
+        for head in ("level", "max / min [mm]", "max |a_abs| [g]", "drift ratio [%]"):
+            levels.add_column(escape(head), justify="right")
+        for level, row in part.peaks().iterrows():
+            ratio = row["drift_ratio_peak_sampled"]
+            base = "ground" if part.structure.fixed else "base"
+            levels.add_row(base if level == 0 else str(level),
+                           f"{row['displacement_max_m'] * 1e3:.2f} / {row['displacement_min_m'] * 1e3:.2f}",
+                           f"{row['abs_acceleration_max_m_s2'] / exc.g:.3f}",
+                           "-" if ratio != ratio else f"{ratio * 100:.3f}")
+        console.print(levels)
     with interrupts_deferred() as held:
         if out["contacts"] is not None:
-            write_csv(run.contacts, out["contacts"])
+            write_csv(run.links if pair else run.contacts, out["contacts"])
             console.print(f"contacts -> {out['contacts']}")
         if out["history"] is not None:
             write_csv(run.to_dataframe(), out["history"])
