@@ -54,7 +54,7 @@ def moving(building: pd_.Structure, v0: float) -> pd_.StructureState:
     vec = rest.vector.copy()
     n = building.n_levels
     vec[1 + n:1 + 2 * n] = v0
-    return pd_.StructureState._of(vec, rest.dofs)
+    return pd_.StructureState._of(vec, rest.dofs, rest.n_dof)
 
 
 @settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -127,7 +127,7 @@ def test_a_linear_building_follows_its_frequency_response_on_every_floor(n_store
     vec = rest.vector.copy()
     n = b.n_levels
     vec[1:1 + n], vec[1 + n:1 + 2 * n] = x.imag, w * x.real  # the steady state's own start
-    run = pd_.simulate(b, exc, 5.0, pd_.StructureState._of(vec, rest.dofs), sample_rate_hz=100)
+    run = pd_.simulate(b, exc, 5.0, pd_.StructureState._of(vec, rest.dofs, rest.n_dof), sample_rate_hz=100)
     wave = np.exp(1j * w * run.t)[:, None]
     np.testing.assert_allclose(run.displacement, (x[None, :] * wave).imag, rtol=0,
                                atol=1e-10 * np.abs(x).max())
@@ -451,7 +451,7 @@ def test_an_isolated_building_pounding_a_fixed_base_neighbour_matches_the_refere
     vec = rest.vector.copy()
     vec[1 + n:1 + n + n1] = v0  # (the isolated building moving)
     exc = pd_.Harmonic(ref_s.a_g / 9.80665, ref_s.omega / (2 * math.pi), g=9.80665)
-    run = pd_.simulate(pair, exc, 2.0, pd_.StructureState._of(vec, rest.dofs), sample_rate_hz=0)
+    run = pd_.simulate(pair, exc, 2.0, pd_.StructureState._of(vec, rest.dofs, rest.n_dof), sample_rate_hz=0)
     assert run.success, run.message
     y0 = np.zeros(2 * n)
     y0[n:n + n1] = v0
@@ -554,3 +554,65 @@ def test_adjacent_structures_check_their_fields(tmp_path):
         pd_.Adjacent.from_dict({**pair.to_dict(), "first": {"storeys": [{"mass_kg": 1.0}]}})
     with pytest.raises(pd_.InputError, match="state"):
         pd_.simulate(pair, pd_.Harmonic(0.2, 1.0), 2.0, pd_.StructureState.at_rest(a))
+
+
+@st.composite
+def on_stands(draw):
+    """A random building on a linear isolator whose wall's bumpers stand on stands (a mass on a spring and
+    a dashpot each), and its restatement for the reference: the levels, then the two stands, the bumpers
+    between the level and its stands."""
+    n = draw(st.integers(1, 3))
+    rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
+    mass = rng.uniform(200.0, 2000.0, n)
+    k_storey, c_storey = rng.uniform(5e5, 5e6, n - 1), rng.uniform(0.0, 1e3, n - 1)
+    k_iso, c_iso = rng.uniform(5e3, 3e4) * n, rng.uniform(0.0, 1e3)
+    stand = pd_.Stand(rng.uniform(20.0, 100.0), rng.uniform(1e5, 2e6), rng.uniform(0.0, 200.0))
+    k_b, c_b = draw(st.floats(1e6, 1e7)), draw(st.floats(1e2, 3e3))
+    gaps = (draw(st.floats(0.002, 0.02)), draw(st.floats(0.002, 0.02)))
+    level = draw(st.integers(0, n - 1))
+    building = pd_.Structure(mass[0], linear_isolator(k_iso, c_iso),
+                             [pd_.Storey(*v) for v in zip(mass[1:], k_storey, c_storey)],
+                             [pd_.Wall(level, gaps[0], gaps[1], pd_.KelvinVoigt(k_b, c_b), stand=stand)])
+    k0, c0 = np.zeros((n + 2, n + 2)), np.zeros((n + 2, n + 2))
+    k0[:n, :n], c0[:n, :n] = building.stiffness_matrix, building.damping_matrix
+    for q in (n, n + 1):
+        k0[q, q], c0[q, q] = stand.stiffness_n_m, stand.damping_n_s_m
+    ref = RefStructure(mass=np.concatenate([mass, [stand.mass_kg] * 2]), k0=k0, c0=c0, k_iso=k_iso,
+                       c_iso=c_iso, gaps=gaps, k_b=k_b, c_b=c_b, a_g=draw(st.floats(1.0, 4.0)),
+                       omega=2 * math.pi * draw(st.floats(0.5, 3.0)), level=level, partners=(n, n + 1))
+    return building, ref
+
+
+@settings(max_examples=5, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(case=on_stands(), v0=st.floats(-0.4, 0.4))
+def test_bumpers_on_flexible_stands_match_the_reference(case, v0):
+    building, ref_s = case
+    n = building.n_levels
+    rest = pd_.StructureState.at_rest(building)
+    assert rest.n_dof == n + 2
+    vec = rest.vector.copy()
+    vec[1 + (n + 2):1 + (n + 2) + n] = v0  # (the building moving, its stands still)
+    exc = pd_.Harmonic(ref_s.a_g / 9.80665, ref_s.omega / (2 * math.pi), g=9.80665)
+    start = pd_.StructureState._of(vec, rest.dofs, rest.n_dof)
+    run = pd_.simulate(building, exc, 1.5, start, sample_rate_hz=0)
+    assert run.success, run.message
+    y0 = np.zeros(2 * (n + 2))
+    y0[n + 2:n + 2 + n] = v0
+    try:
+        ref = reference(ref_s, 1.5, y0)
+    except TouchAtRest:
+        assume(False)
+    assume(all(depth > 1e-7 for depth in ref.depths) and all(speed > 1e-4 for speed in ref.speeds))
+    assume(len(ref.contact_starts) <= 40)
+    event("contacts" if ref.contact_starts else "no contact")
+    sides = list(run.contacts["side"].map({"left": 0, "right": 1}))
+    assert sides == [c for c, _ in ref.contact_starts]
+    np.testing.assert_allclose(run.contacts["t_start"], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
+    scale = np.abs(ref.y).max()
+    np.testing.assert_allclose(run.final_state.displacements_m, ref.y[:n], rtol=0, atol=1e-7 * scale)
+    stands = run.stands
+    assert list(stands["side"]) == ["left", "right"] and (stands["level"] == ref_s.level).all()
+    assert (stands["displacement_max_m"] >= stands["displacement_min_m"]).all()
+    e = run.energy
+    assert abs(e.residual) <= 1e-9 * max(e.input_work, e.viscous, e.kinetic)
+    assert pd_.Structure.from_toml_text(building.to_toml_text()) == building

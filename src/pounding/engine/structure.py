@@ -41,6 +41,7 @@ class Assembly(NamedTuple):
     dofs: tuple
     isolator: tuple
     slots: tuple
+    stands: tuple          # per structure: its stands' dofs, (wall, side, dof) each
     masses: np.ndarray     # (n,) kg
     k_fast: np.ndarray     # (n, n) N/m: the linear springs and every element at its stiffest slope
     c_all: np.ndarray      # (n, n) N s/m: the dashpots
@@ -71,8 +72,22 @@ def assemble(model: Structure | Adjacent) -> Assembly:
                 levels.append(len(masses))
                 masses.append(float(s.masses_kg[level]))
         dofs.append(tuple(levels))
+    stands, stand_numbers = [], []  # (a bumper on a stand: a mass of its own, after every level)
+    for s in structures:
+        mine = []
+        for w, wall in enumerate(s.walls):
+            if wall.stand is not None:
+                for side in (0, 1):
+                    mine.append((w, side, len(masses)))
+                    masses.append(float(wall.stand.mass_kg))
+                    stand_numbers.append(wall.stand)
+        stands.append(tuple(mine))
     n = len(masses)
     k0, c0 = np.zeros((n, n)), np.zeros((n, n))
+    first_stand = n - len(stand_numbers)
+    for q, stand in enumerate(stand_numbers):
+        k0[first_stand + q, first_stand + q] = stand.stiffness_n_m
+        c0[first_stand + q, first_stand + q] = stand.damping_n_s_m
     for s, levels in zip(structures, dofs):
         ks = s.shear_matrix([st.stiffness_n_m if st.is_linear else 0.0 for st in s.storeys])
         cs = s.damping_matrix
@@ -104,20 +119,22 @@ def assemble(model: Structure | Adjacent) -> Assembly:
         _add_pair(c_all, i, j, c_d)
     contacts, slots, pairs = [], [], []
     for b, (s, levels) in enumerate(zip(structures, dofs)):
+        on = {(w, side): dof for w, side, dof in stands[b]}
         for w, wall in enumerate(s.walls):
             for side, (sign, gap, law) in enumerate(((-1.0, wall.gap_left_m, wall.left),
                                                      (1.0, wall.gap_right_m, wall.right))):
-                contacts.append((levels[wall.level], -1, sign, float(gap), int(law.LAW_ID), law.params()))
+                other = on.get((w, side), -1)  # (the ground, or the bumper's stand)
+                contacts.append((levels[wall.level], other, sign, float(gap), int(law.LAW_ID), law.params()))
                 slots.append((b, w, side))
-                pairs.append((levels[wall.level], -1, law))
+                pairs.append((levels[wall.level], other, law))
     for k, link in enumerate(links):
         contacts.append((dofs[0][link.level_first], dofs[1][link.level_second], 1.0, float(link.gap_m),
                          int(link.law.LAW_ID), link.law.params()))
         slots.append((-1, k, 0))
         pairs.append((dofs[0][link.level_first], dofs[1][link.level_second], link.law))
     system = _core.system(masses, k0, c0, elements, bw, bool(contacts), contacts or _NO_WALLS)
-    return Assembly(system, tuple(dofs), tuple(isolator), tuple(slots), np.array(masses), k_fast, c_all,
-                    tuple(pairs))
+    return Assembly(system, tuple(dofs), tuple(isolator), tuple(slots), tuple(stands), np.array(masses),
+                    k_fast, c_all, tuple(pairs))
 
 
 def _add_pair(a: np.ndarray, i: int, j: int, value: float) -> None:
@@ -145,6 +162,8 @@ class StructureState:
         contacts' states, the hysteretic elements'.
     dofs : tuple
         Each structure's levels' places in it (-1: the ground of a fixed base).
+    n_dof : int
+        The moving masses: the levels, then the walls' stands.
 
     Examples
     --------
@@ -162,6 +181,7 @@ class StructureState:
 
     vector: np.ndarray = field(repr=False)
     dofs: tuple
+    n_dof: int
 
     @classmethod
     def at_rest(cls, structure: Structure | Adjacent, time_s: float = 0.0) -> "StructureState":
@@ -174,17 +194,13 @@ class StructureState:
         asm = assemble(structure)
         vec = np.zeros(asm.system.layout["size"])
         vec[0] = time_s
-        return cls._of(vec, asm.dofs)
+        return cls._of(vec, asm.dofs, asm.system.n)
 
     @classmethod
-    def _of(cls, vector: np.ndarray, dofs: tuple) -> "StructureState":
+    def _of(cls, vector: np.ndarray, dofs: tuple, n_dof: int) -> "StructureState":
         vec = np.array(vector, dtype=float)
         vec.setflags(write=False)
-        return cls(vec, tuple(tuple(d) for d in dofs))
-
-    @property
-    def n_dof(self) -> int:
-        return sum(1 for levels in self.dofs for d in levels if d >= 0)
+        return cls(vec, tuple(tuple(d) for d in dofs), int(n_dof))
 
     def _per_level(self, start: int) -> np.ndarray:
         values = self.vector[start:start + self.n_dof]
@@ -219,7 +235,7 @@ def _check_state(state: Optional[StructureState], model: Structure | Adjacent,
                          expected="pounding.StructureState (StructureState.at_rest(structure) or a run's "
                                   "final_state)")
     size = asm.system.layout["size"]
-    if state.vector.size != size or state.dofs != asm.dofs:
+    if state.vector.size != size or state.dofs != asm.dofs or state.n_dof != asm.system.n:
         raise InputError(Problem.BAD_STATE, "state", state,
                          why=f"is a state of {state.vector.size} numbers and levels {state.dofs}, where this "
                              f"structure's have {size} and {asm.dofs}",
@@ -301,7 +317,7 @@ def run_of(model: Any, asm: Any, excitation: Any, rate: float, out: tuple, t0: f
     status = Status(int(status))
     if status == Status.SUCCESS and not (np.all(np.isfinite(extrema)) and np.isfinite(energy.residual)):
         status = Status.NONFINITE
-    final = StructureState._of(st, asm.dofs)
+    final = StructureState._of(st, asm.dofs, asm.system.n)
     parts = [StructureRun._part(s, b, asm, excitation, rate, samples, contacts, extrema, status, t0)
              for b, s in enumerate(structures_of(model)[0])]
     if len(parts) == 1:

@@ -114,6 +114,11 @@ class StructureRun:
         absolute acceleration the ground's (its peak exact too).
     displacement_max_time_s, displacement_min_time_s, abs_acceleration_max_time_s : ndarray
         When each level's extrema were reached, s, shape (n_levels,).
+    stand_displacement : ndarray, shape (k, n_stands)
+        The walls' stands' displacements relative to the ground, m (each wall with a stand: its left side's,
+        then its right's; ``stands`` names them).
+    stand_displacement_max, stand_displacement_min : ndarray, shape (n_stands,)
+        Their exact extrema, m.
 
     Examples
     --------
@@ -152,6 +157,9 @@ class StructureRun:
     energy: Optional[StructureEnergy] = field(repr=False)
     final_state: Optional["StructureState"] = field(repr=False)
     status: Status = Status.SUCCESS
+    stand_displacement: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)
+    stand_displacement_max: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    stand_displacement_min: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
 
     @classmethod
     def _part(cls, structure: "Structure", b: int, asm: Any, excitation: Any, rate: float,
@@ -187,9 +195,12 @@ class StructureRun:
         ex = np.array(rows).reshape(len(dofs), 7)
         table = contacts[np.isin(contacts[:, 0], mine)].copy()
         table[:, 0] = np.searchsorted(mine, table[:, 0])  # (slot numbers of this structure's own)
+        on = [dof for _, _, dof in asm.stands[b]]
+        stand_ex = extrema.reshape(n, 7)[on]
         return cls(structure, excitation, rate, t, displacement, velocity, abs_acceleration, isolator_force,
                    contact_force, ex[:, 0].copy(), ex[:, 1].copy(), ex[:, 2].copy(), ex[:, 3].copy(),
-                   ex[:, 4].copy(), ex[:, 5].copy(), table, np.zeros((0, 3)), None, None, status)
+                   ex[:, 4].copy(), ex[:, 5].copy(), table, np.zeros((0, 3)), None, None, status,
+                   samples[:, [1 + d for d in on]], stand_ex[:, 0].copy(), stand_ex[:, 2].copy())
 
     # ------------------------------------------------------------------ derived
     @property
@@ -230,6 +241,16 @@ class StructureRun:
             "side": np.where(slot % 2 == 0, "left", "right"),
             **{name: c[:, k] for k, name in enumerate(CONTACT_COLUMNS[3:], start=1)},
         })
+
+    @property
+    def stands(self) -> pd.DataFrame:
+        """One row per stand (walls with a :class:`~pounding.Stand`, each side's): wall, level, side, exact
+        extrema of its displacement (m)."""
+        rows = [(w, wall.level, side) for w, wall in enumerate(self.structure.walls) if wall.stand is not None
+                for side in ("left", "right")]
+        return pd.DataFrame({"wall": [r[0] for r in rows], "level": [r[1] for r in rows],
+                             "side": [r[2] for r in rows], "displacement_max_m": self.stand_displacement_max,
+                             "displacement_min_m": self.stand_displacement_min})
 
     @property
     def events(self) -> pd.DataFrame:

@@ -6,10 +6,10 @@ from .isolator import BoucWen, Isolator
 from .measurement import MeasurementChain, Sensor
 from .oscillator import Oscillator
 from .adjacent import Adjacent, Link
-from .structure import Storey, Structure, Wall
+from .structure import Stand, Storey, Structure, Wall
 
 __all__ = ["Adjacent", "Link", "BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley",
            "Isolator",
            "Jankowski",
-           "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "Sensor", "Storey",
+           "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "Sensor", "Stand", "Storey",
            "Structure", "Wall"]

@@ -120,6 +120,51 @@ class Storey:
 
 
 @dataclass(frozen=True)
+class Stand:
+    """What a bumper stands on when it is not the ground: a mass on a spring and a dashpot to the ground (a
+    steel stand bolted to the shaking table, a flexible wall).
+
+    Parameters
+    ----------
+    mass_kg : float
+        The stand's moving mass with its bumper, kg, > 0.
+    stiffness_n_m : float
+        Its lateral stiffness to the ground, N/m, > 0.
+    damping_n_s_m : float
+        Its dashpot, N s/m, >= 0.
+
+    Examples
+    --------
+    A steel stand of 20 kg, 2 MN/m (a natural frequency near 50 Hz):
+
+    >>> import math, pounding
+    >>> stand = pounding.Stand(mass_kg=20.0, stiffness_n_m=2.0e6,
+    ...                        damping_n_s_m=50.0)
+    >>> w = math.sqrt(stand.stiffness_n_m / stand.mass_kg)  # rad/s
+    >>> round(w / (2 * math.pi), 1)  # Hz
+    50.3
+    """
+
+    mass_kg: float
+    stiffness_n_m: float
+    damping_n_s_m: float = 0.0
+
+    FIELDS: ClassVar[tuple[str, ...]] = ("mass_kg", "stiffness_n_m", "damping_n_s_m")
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "mass_kg", _mass("stand.mass_kg", self.mass_kg))
+        k = positive("stand.stiffness_n_m", self.stiffness_n_m, "N/m")
+        at_most("stand.stiffness_n_m", k, MAX_STOREY_STIFFNESS, " N/m", "give the stiffness in N/m")
+        object.__setattr__(self, "stiffness_n_m", k)
+        c = non_negative("stand.damping_n_s_m", self.damping_n_s_m, "N s/m")
+        at_most("stand.damping_n_s_m", c, MAX_STOREY_STIFFNESS, " N s/m", "give the damping in N s/m")
+        object.__setattr__(self, "damping_n_s_m", c)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {f: getattr(self, f) for f in self.FIELDS}
+
+
+@dataclass(frozen=True)
 class Wall:
     """A wall on both sides of one level (a moat wall around the base, or a stop at a floor), each side
     behind its gap, with a contact law (a bumper on the wall, or the wall itself).
@@ -135,6 +180,9 @@ class Wall:
         too unless ``law_right`` is given.
     law_right : contact law, optional
         The right side's law.
+    stand : Stand, optional
+        Each side's bumper on a stand of its own (these numbers, both sides), not on the ground: the
+        stands move, and the structure's level hits them.
 
     Examples
     --------
@@ -152,8 +200,9 @@ class Wall:
     gap_right_m: float
     law: Any
     law_right: Any = None
+    stand: Optional[Stand] = None
 
-    FIELDS: ClassVar[tuple[str, ...]] = ("level", "gap_left_m", "gap_right_m", "law", "law_right")
+    FIELDS: ClassVar[tuple[str, ...]] = ("level", "gap_left_m", "gap_right_m", "law", "law_right", "stand")
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "level", integer("wall.level", self.level, 0, MAX_STOREYS))
@@ -170,6 +219,9 @@ class Wall:
                 raise InputError(Problem.WRONG_TYPE, f"wall.{name}", value, got=type(value).__name__,
                                  expected="contact law (KelvinVoigt, HuntCrossley, Jankowski, "
                                           "MultilinearBumper, ElasticPlastic or Hertzdamp)")
+        if self.stand is not None and not isinstance(self.stand, Stand):
+            raise InputError(Problem.WRONG_TYPE, "wall.stand", self.stand, got=type(self.stand).__name__,
+                             expected="Stand or None")
 
     @property
     def left(self) -> Any:
@@ -184,6 +236,8 @@ class Wall:
                                "gap_right_m": self.gap_right_m, "law": law_to_dict(self.law)}
         if self.law_right is not None:
             out["law_right"] = law_to_dict(self.law_right)
+        if self.stand is not None:
+            out["stand"] = self.stand.to_dict()
         return out
 
 
@@ -451,10 +505,14 @@ class Structure:
                 else:
                     _check_keys(row, prefix, Wall.FIELDS,
                                 required=("level", "gap_left_m", "gap_right_m", "law"))
-                    right = row.get("law_right")
+                    right, stand = row.get("law_right"), row.get("stand")
+                    if stand is not None:
+                        _check_keys(stand, prefix + "stand.", Stand.FIELDS,
+                                    required=("mass_kg", "stiffness_n_m"))
                     out.append(Wall(row["level"], row["gap_left_m"], row["gap_right_m"],
                                     law_from_dict(row["law"], prefix + "law"),
-                                    None if right is None else law_from_dict(right, prefix + "law_right")))
+                                    None if right is None else law_from_dict(right, prefix + "law_right"),
+                                    None if stand is None else Stand(**stand)))
         return cls(table.get("base_mass_kg"), isolator, tuple(storeys), tuple(walls), table.get("rayleigh"))
 
     @classmethod
@@ -486,4 +544,4 @@ class Structure:
         return write_text(output_file("path", path, (".toml",)), self.to_toml_text())
 
 
-__all__ = ["Modes", "Storey", "Structure", "Wall"]
+__all__ = ["Modes", "Stand", "Storey", "Structure", "Wall"]
