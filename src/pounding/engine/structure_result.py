@@ -225,7 +225,7 @@ class StructureRun:
 
     @property
     def peak_drift_sampled(self) -> np.ndarray:
-        """Each storey's largest |drift| among the samples, m, shape (n_levels - 1,): as fine as the samples
+        """Each storey's largest absolute drift among the samples, m, shape (n_levels - 1,): as fine as the samples
         (not an exact extremum; raise ``sample_rate_hz`` to refine it)."""
         d = self.drift
         return np.abs(d).max(axis=0) if d.shape[0] else np.full(d.shape[1], np.nan)
@@ -319,7 +319,7 @@ class StructureRun:
 
 
 def ground_peak(excitation: Any, t0: float, t1: float) -> tuple[float, float]:
-    """The largest |ground acceleration| over [t0, t1], m/s^2, and when: exact (a sine's crest, or a
+    """The largest absolute ground acceleration over [t0, t1], m/s^2, and when: exact (a sine's crest, or a
     record's sample, linear between them)."""
     from ..excitation import Harmonic
 
