@@ -16,6 +16,7 @@ from hypothesis import HealthCheck, assume, event, given, settings
 from hypothesis import strategies as st
 
 import pounding as pd_
+from pounding.engine.structure import kernel_structure
 from reference_ndof import Structure as RefStructure
 from reference_ndof import TouchAtRest, reference
 
@@ -616,3 +617,51 @@ def test_bumpers_on_flexible_stands_match_the_reference(case, v0):
     e = run.energy
     assert abs(e.residual) <= 1e-9 * max(e.input_work, e.viscous, e.kinetic)
     assert pd_.Structure.from_toml_text(building.to_toml_text()) == building
+
+
+def test_a_state_that_does_not_fit_the_structure_is_refused_and_named():
+    iso = pd_.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02], damping=2.0e4)
+    face = pd_.KelvinVoigt(2e8, 1e5)
+    near = pd_.Structure(3.0e4, iso, [pd_.Storey(2.0e4, 4.0e7)], [pd_.Wall(0, 0.01, 0.01, face)])
+    far = pd_.Structure(3.0e4, iso, [pd_.Storey(2.0e4, 4.0e7)], [pd_.Wall(0, 0.08, 0.08, face)])
+    exc = pd_.Harmonic(0.3, 1.2)
+    run = pd_.simulate(near, exc, 10.0, sample_rate_hz=0)
+    stop = run.contacts["t_start"].iloc[-1] + 1e-3  # (a moment inside the last contact)
+    inside = pd_.simulate(near, exc, stop, sample_rate_hz=0).final_state
+    assert pd_.simulate(near, exc, 1.0, inside).success  # (its own structure takes it)
+    with pytest.raises(pd_.InputError, match=r"state\.vector\[\d+\].*contact \d's compression in contact"):
+        pd_.simulate(far, exc, 1.0, inside)  # (the same layout, another gap: its contact does not fit)
+    vec = pd_.StructureState.at_rest(near).vector.copy()
+    vec[kernel_structure(near).layout["in"]] = 0.5  # (a contact flag that is neither 0 nor 1)
+    with pytest.raises(pd_.InputError, match="flag"):
+        pd_.simulate(near, exc, 1.0, pd_.StructureState._of(vec, inside.dofs, inside.n_dof))
+
+
+def test_rayleigh_that_would_give_a_mode_negative_damping_is_refused():
+    iso = pd_.Isolator(slopes=[4e6, 1e6], breakpoints=[0.02], damping=2e4)
+    with pytest.raises(pd_.InputError, match="rayleigh.*mode 5"):
+        pd_.Structure(3e4, iso, [pd_.Storey(2e4, 4e7)] * 5, rayleigh=(0.25, 0.01))
+    b = pd_.Structure(3e4, iso, [pd_.Storey(2e4, 4e7)] * 5, rayleigh=(0.0, 0.05))  # (mode 1 undamped: fine)
+    assert np.linalg.eigvalsh(b.damping_matrix).min() > -1e-9 * np.abs(b.damping_matrix).max()
+
+
+def test_files_name_the_storey_wall_or_link_at_fault_and_round_trip_exactly():
+    iso = pd_.Isolator(slopes=[4e6, 1e6], breakpoints=[0.02], damping=2e4)
+    b = pd_.Structure(3e4, iso, [pd_.Storey(2e4, 4e7), pd_.Storey(2e4, 4e7, hysteresis="elastic")],
+                      [pd_.Wall(2, 0.05, 0.05, pd_.KelvinVoigt(2e8, 1e5), stand=pd_.Stand(50.0, 1e6))])
+    assert pd_.Structure.from_toml_text(b.to_toml_text()) == b
+    text = b.to_toml_text()
+    with pytest.raises(pd_.InputError, match=r"storeys\[1\]\.mass_kg"):
+        pd_.Structure.from_toml_text(text.replace("mass_kg = 20000.0", "mass_kg = -1.0").replace(
+            "mass_kg = -1.0", "mass_kg = 20000.0", 1))
+    with pytest.raises(pd_.InputError, match=r"walls\[0\]\.stand\.stiffness_n_m"):
+        pd_.Structure.from_toml_text(text.replace("stiffness_n_m = 1000000.0", "stiffness_n_m = -1.0"))
+    with pytest.raises(pd_.InputError, match=r"walls\[0\]\.gap_left_m"):
+        pd_.Structure.from_toml_text(text.replace("gap_left_m = 0.05", "gap_left_m = -0.05"))
+    pair = pd_.Adjacent(b, pd_.Structure.fixed_base([pd_.Storey(2e4, 4e7)] * 2),
+                        [pd_.Link(1, 1, 0.1, pd_.KelvinVoigt(2e8, 1e5))])
+    assert pd_.Adjacent.from_toml_text(pair.to_toml_text()) == pair
+    with pytest.raises(pd_.InputError, match=r"links\[0\]\.gap_m"):
+        pd_.Adjacent.from_toml_text(pair.to_toml_text().replace("gap_m = 0.1", "gap_m = -0.1"))
+    with pytest.raises(pd_.InputError, match="first"):
+        pd_.Adjacent.from_dict({**pair.to_dict(), "first": 3})

@@ -272,9 +272,14 @@ struct RunWorkspace::Impl {
     // the system it was made for: what its buffers' sizes and its transitions depend on
     int n = -1, nc = -1;
     std::vector<double> mass, c_lin, k0;
-    std::vector<int> pairs;
+    std::vector<int> pairs, elements;  // the contacts' pairs; the hysteretic elements' (the outputs' columns)
     bool fits(const System& s) const {
         if (s.n != n || s.nc() != nc || s.mass != mass || s.c_lin != c_lin || s.k0 != k0) return false;
+        if (static_cast<int>(elements.size()) != 2 * s.n_h()) return false;
+        for (int e = 0; e < s.n_h(); ++e)
+            if (elements[static_cast<size_t>(2 * e)] != s.hyst[static_cast<size_t>(e)].i ||
+                elements[static_cast<size_t>(2 * e + 1)] != s.hyst[static_cast<size_t>(e)].j)
+                return false;
         for (int c = 0; c < nc; ++c)
             if (pairs[static_cast<size_t>(2 * c)] != s.contact[static_cast<size_t>(c)].i ||
                 pairs[static_cast<size_t>(2 * c + 1)] != s.contact[static_cast<size_t>(c)].j)
@@ -333,6 +338,11 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
             w.pairs.push_back(c.i);
             w.pairs.push_back(c.j);
         }
+        w.elements.clear();
+        for (const Hysteretic& h : sy.hyst) {
+            w.elements.push_back(h.i);
+            w.elements.push_back(h.j);
+        }
         w.ph.size(sy.n, sy.nc());
         w.b.size(n, sy.nc());
         w.row.assign(static_cast<size_t>(L.sample_cols()), 0.0);
@@ -357,10 +367,10 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
     const double resolution[3] = {v_res, RESOLUTION * ph.xrun, sy.total_mass * v_res};
     std::vector<EventRow>& evs = w.evs;
     std::vector<double>& ev_end = w.ev_end;
-    std::vector<int>& pair_i = w.pair_i;  // (the isolator's pair and each contact's: nc + 1 at most)
+    std::vector<int>& pair_i = w.pair_i;  // (each element's pair and each contact's: n_h + nc at most)
     std::vector<int>& pair_j = w.pair_j;
-    pair_i.resize(static_cast<size_t>(sy.nc() + 1));
-    pair_j.resize(static_cast<size_t>(sy.nc() + 1));
+    pair_i.resize(static_cast<size_t>(sy.n_h() + sy.nc() + 1));
+    pair_j.resize(static_cast<size_t>(sy.n_h() + sy.nc() + 1));
     const int n_pairs = event_pairs(sy, pair_i.data(), pair_j.data());
     const bool record = fo.kind != EXC_HARMONIC;
     bool continuing = false;

@@ -95,6 +95,9 @@ def simulate(
     if not isinstance(osc, Oscillator):  # a structure of several masses
         if velocity != 0.0:
             raise typer.BadParameter("--velocity is for one mass (a structure starts at rest)")
+        if no_bumpers:
+            raise typer.BadParameter("--no-bumpers is for one mass (a structure's walls and links are in its "
+                                     "file: remove them there)")
         return _simulate_structure(osc, exc, what, duration, sample_rate, system_file, out, plot)
     start = State.at_rest(osc, velocity_m_s=velocity)
     wants_history = history is not None or plot is not None

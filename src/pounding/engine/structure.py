@@ -19,7 +19,8 @@ from .. import _core
 from .._checks import at_most, integer, positive, real
 from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Harmonic, Record
-from ..model.contact_laws import linear_form
+from ..model._law_states import state_problem
+from ..model.contact_laws import N_LAW_STATE, linear_form
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from ._control import DEFAULT_MAX_STEPS, check_budget, new_control, run_interruptibly, steps_per_second
@@ -45,7 +46,9 @@ class Assembly(NamedTuple):
     masses: np.ndarray     # (n,) kg
     k_fast: np.ndarray     # (n, n) N/m: the linear springs and every element at its stiffest slope
     c_all: np.ndarray      # (n, n) N s/m: the dashpots
-    pairs: tuple           # each contact slot's (i, j, law)
+    pairs: tuple           # each contact slot's (i, j, sign, gap, law)
+    elements: tuple        # each hysteretic element's (i, j, slopes, breaks, rule), the core's order
+    system_bw: np.ndarray  # the Bouc-Wen numbers (the core's, zeros for none)
 
 
 def structures_of(model: Structure | Adjacent) -> tuple[tuple[Structure, ...], tuple]:
@@ -126,15 +129,19 @@ def assemble(model: Structure | Adjacent) -> Assembly:
                 other = on.get((w, side), -1)  # (the ground, or the bumper's stand)
                 contacts.append((levels[wall.level], other, sign, float(gap), int(law.LAW_ID), law.params()))
                 slots.append((b, w, side))
-                pairs.append((levels[wall.level], other, law))
+                pairs.append((levels[wall.level], other, sign, float(gap), law))
     for k, link in enumerate(links):
         contacts.append((dofs[0][link.level_first], dofs[1][link.level_second], 1.0, float(link.gap_m),
                          int(link.law.LAW_ID), link.law.params()))
         slots.append((-1, k, 0))
-        pairs.append((dofs[0][link.level_first], dofs[1][link.level_second], link.law))
+        pairs.append((dofs[0][link.level_first], dofs[1][link.level_second], 1.0, float(link.gap_m),
+                      link.law))
     system = _core.system(masses, k0, c0, elements, bw, bool(contacts), contacts or _NO_WALLS)
     return Assembly(system, tuple(dofs), tuple(isolator), tuple(slots), tuple(stands), np.array(masses),
-                    k_fast, c_all, tuple(pairs))
+                    k_fast, c_all, tuple(pairs),
+                    tuple((i, j, list(slopes), list(breaks), rule)
+                          for i, j, _, slopes, breaks, rule in elements),
+                    np.asarray(bw, dtype=float))
 
 
 def _add_pair(a: np.ndarray, i: int, j: int, value: float) -> None:
@@ -243,7 +250,67 @@ def _check_state(state: Optional[StructureState], model: Structure | Adjacent,
     if not np.all(np.isfinite(state.vector)):
         raise InputError(Problem.BAD_STATE, "state", state, why="holds a number that is not finite",
                          fix=_FIX)
+    _check_state_fits(state, asm)
     return state
+
+
+def _check_state_fits(state: StructureState, asm: Assembly) -> None:
+    """A state the structure can be in: each contact's flag, compression and law state agree with the
+    levels' displacements (to 1e-9 of its lengths: a run's final state holds the rounding of its last
+    event), each element's branch and springs are ones its backbone has, a Bouc-Wen z within its bound."""
+    vec = state.vector
+    lay = asm.system.layout
+    n = asm.system.n
+    x = vec[lay["x"]:lay["x"] + n]
+    lengths = [float(np.abs(x).max(initial=0.0)), 1e-3] + [gap for *_, gap, _ in asm.pairs]
+    lengths += [b for *_, breaks, _ in asm.elements for b in breaks]
+    tol = 1e-9 * max(lengths)
+
+    def bad(at: int, why: str) -> InputError:
+        return InputError(Problem.BAD_STATE, f"state.vector[{at}]", float(vec[at]), why=why, fix=_FIX)
+
+    for c, (i, j, sign, gap, law) in enumerate(asm.pairs):
+        comp, flag = float(vec[lay["def"] + c]), float(vec[lay["in"] + c])
+        depth = sign * (x[i] - (x[j] if j >= 0 else 0.0)) - gap  # (how far the pair is past the gap)
+        if flag not in (0.0, 1.0):
+            raise bad(lay["in"] + c, f"is contact {c}'s flag: 0 or 1")
+        if comp < 0.0:
+            raise bad(lay["def"] + c, f"is contact {c}'s compression: it is >= 0")
+        if flag == 1.0 and abs(depth - comp) > tol:
+            raise bad(lay["def"] + c, f"is contact {c}'s compression in contact, but its pair is {depth:g} m "
+                                      "past the gap")
+        if flag == 0.0 and depth - comp > tol:
+            raise bad(lay["in"] + c, f"says contact {c} is open, but its pair is {depth:g} m past the gap, "
+                                     f"inside the bumper's surface ({comp:g} m)")
+        at = lay["z"] + c * N_LAW_STATE
+        found = state_problem(law, vec[at:at + N_LAW_STATE], flag == 1.0, comp, tol, f"contact {c}")
+        if found is not None:
+            q, _, why = found
+            raise bad(at + q, why)
+    first = 0
+    for e, (i, j, slopes, breaks, rule) in enumerate(asm.elements):
+        n_sp = len(breaks)
+        u = x[i] - (x[j] if j >= 0 else 0.0)
+        if rule == 1:
+            region = float(vec[lay["region"] + e])
+            if region != round(region) or abs(region) > n_sp:
+                raise bad(lay["region"] + e, f"is element {e}'s branch: a whole number from {-n_sp} to "
+                                             f"{n_sp}")
+        for k in range(n_sp):
+            slip = lay["base"] + first + k
+            direction = lay["base"] + lay["n_springs"] + first + k
+            if vec[direction] not in (-1.0, 0.0, 1.0):
+                raise bad(direction, f"is element {e}'s spring {k} slip direction: -1, 0 or 1")
+            if abs(u - vec[slip]) > breaks[k] * (1.0 + 1e-9) + tol:
+                raise bad(slip, f"is element {e}'s spring {k} slip, strained beyond its yield {breaks[k]:g} "
+                                f"m by the deformation {u:g} m")
+        first += n_sp
+    bw = asm.system_bw
+    z = float(vec[lay["zeta"]])
+    if bw[0] == 0.0 and z != 0.0:
+        raise bad(lay["zeta"], "is a Bouc-Wen z, but no isolator here has a Bouc-Wen spring")
+    if bw[0] != 0.0 and abs(z) > (bw[2] / (bw[3] + bw[4])) ** (1.0 / bw[5]) * (1.0 + 1e-9):
+        raise bad(lay["zeta"], "is beyond the Bouc-Wen spring's bound on z")
 
 
 def structure_rates(asm: Assembly) -> tuple[float, float]:
@@ -261,7 +328,7 @@ def structure_rates(asm: Assembly) -> tuple[float, float]:
         return max(math.sqrt(max(lam, 0.0)), float(np.max(np.diag(c) / m)))
 
     free = rate(k, c)
-    for i, j, law in asm.pairs:
+    for i, j, _, _, law in asm.pairs:
         form = linear_form(law)
         if form is None:
             return free, math.inf

@@ -36,7 +36,7 @@ class StructureEnergy:
     viscous : float
         Dissipated by the storeys' and the isolator's dashpots.
     hysteretic : float
-        Dissipated by the isolator's hysteresis.
+        Dissipated by the hysteresis of the isolators and of the multi-linear storeys.
     contact_dissipation : float
         Dissipated by the walls' laws.
     kinetic : float
@@ -225,8 +225,8 @@ class StructureRun:
 
     @property
     def peak_drift_sampled(self) -> np.ndarray:
-        """Each storey's largest absolute drift among the samples, m, shape (n_levels - 1,): as fine as the samples
-        (not an exact extremum; raise ``sample_rate_hz`` to refine it)."""
+        """Each storey's largest absolute drift among the samples, m, shape (n_levels - 1,): as fine as the
+        samples (not an exact extremum; raise ``sample_rate_hz`` to refine it)."""
         d = self.drift
         return np.abs(d).max(axis=0) if d.shape[0] else np.full(d.shape[1], np.nan)
 
@@ -254,8 +254,10 @@ class StructureRun:
 
     @property
     def events(self) -> pd.DataFrame:
-        """Every event: time (s), what happened and the element's index (a contact slot, an isolator
-        spring)."""
+        """Every event: time (s), what happened and the element's index: a contact slot for a contact's
+        start or end (wall ``w``'s left side ``2 w``, right ``2 w + 1``), a spring for a yield (numbered
+        through the isolator's springs, then each multi-linear storey's), an element for a reversal or a
+        branch change (0 the isolator, then the multi-linear storeys)."""
         e = self.event_table
         return pd.DataFrame({"t": e[:, 0], "event": [EVENT_NAMES[int(a)] for a in e[:, 1]],
                              "index": e[:, 2].astype(int)})
@@ -295,6 +297,8 @@ class StructureRun:
              "abs_acceleration_max": ("level", self.abs_acceleration_max, {"units": "m/s^2"})},
             coords={"level": np.arange(n), "contact": np.arange(nc)},
             attrs={"status": self.status.name, "message": self.message})
+        if self.stand_displacement.shape[1]:
+            ds["stand_displacement"] = (("sample", "stand"), self.stand_displacement, {"units": "m"})
         return ds
 
     def to_dataframe(self) -> pd.DataFrame:
@@ -308,6 +312,8 @@ class StructureRun:
         cols["isolator_force_n"] = self.isolator_force
         for c in range(self.contact_force.shape[1]):
             cols[f"contact_force_n[{c}]"] = self.contact_force[:, c]
+        for q in range(self.stand_displacement.shape[1]):
+            cols[f"stand_displacement_m[{q}]"] = self.stand_displacement[:, q]
         return pd.DataFrame(cols)
 
     def plot(self, **kwargs: Any) -> Any:

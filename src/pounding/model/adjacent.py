@@ -160,6 +160,9 @@ class Adjacent:
         _check_keys(table, "", cls.FIELDS, required=cls.FIELDS)
         structures = []
         for name in ("first", "second"):
+            if not isinstance(table[name], dict):
+                raise InputError(Problem.WRONG_TYPE, name, table[name], got=type(table[name]).__name__,
+                                 expected=f"table ([{name}]: a structure)")
             try:
                 structures.append(Structure.from_dict(table[name]))
             except InputError as exc:
@@ -171,8 +174,11 @@ class Adjacent:
         links = []
         for i, row in enumerate(rows):
             _check_keys(row, f"links[{i}].", Link.FIELDS, required=Link.FIELDS)
-            links.append(Link(row["level_first"], row["level_second"], row["gap_m"],
-                              law_from_dict(row["law"], f"links[{i}].law")))
+            try:
+                links.append(Link(row["level_first"], row["level_second"], row["gap_m"],
+                                  law_from_dict(row["law"], f"links[{i}].law")))
+            except InputError as exc:
+                raise exc.relabel("link.", f"links[{i}].") from None
         return cls(structures[0], structures[1], tuple(links))
 
     @classmethod
@@ -180,17 +186,28 @@ class Adjacent:
         """Read a pair from a TOML file (see ``examples/adjacent_buildings.toml``)."""
         text = read_text("path", path)
         try:
-            return cls.from_dict(parse_toml("text", text))
+            return cls.from_toml_text(text)
         except InputError as exc:
             if exc.problem is Problem.BAD_TOML:
                 raise exc.relabel("text", str(path)) from None
             raise
 
+    @classmethod
+    def from_toml_text(cls, text: str) -> "Adjacent":
+        """Read a pair from TOML text."""
+        if not isinstance(text, str):
+            raise InputError(Problem.WRONG_TYPE, "text", text, got=type(text).__name__, expected="str")
+        return cls.from_dict(parse_toml("text", text))
+
+    def to_toml_text(self) -> str:
+        """The TOML text of :meth:`to_toml`."""
+        return tomli_w.dumps(self.to_dict())
+
     def to_toml(self, path: PathLike) -> Path:
         """Write the pair to a TOML file that :meth:`from_toml` reads back identically (atomically)."""
         from .._io import output_file, write_text
 
-        return write_text(output_file("path", path, (".toml",)), tomli_w.dumps(self.to_dict()))
+        return write_text(output_file("path", path, (".toml",)), self.to_toml_text())
 
 
 __all__ = ["Adjacent", "Link"]

@@ -350,6 +350,16 @@ class Structure:
                                  fix="give the storeys' dashpots (damping_n_s_m) instead, or two storeys or "
                                      "more")
             object.__setattr__(self, "rayleigh", ratios)
+            a0, a1 = self.rayleigh_coefficients()
+            w = 2.0 * np.pi / self.modes(fixed_base=True).periods_s
+            zeta = a0 / (2.0 * w) + 0.5 * a1 * w  # (every fixed-base mode's ratio: none may be negative)
+            if zeta.min() < -1e-12:
+                k = int(np.argmin(zeta))
+                raise InputError(Problem.OUT_OF_RANGE, "rayleigh", list(ratios),
+                                 range="ratios that damp every mode (a0 M + a1 K gives the fixed-base "
+                                       f"mode {k + 1}, of period {2 * np.pi / w[k]:.3g} s, the ratio "
+                                       f"{zeta[k]:.3g})",
+                                 hint=": bring the two ratios closer together")
         levels = [w.level for w in self.walls]
         if self.fixed and not self.storeys:
             raise InputError(Problem.WRONG_CONFIGURATION, "storeys", [],
@@ -472,8 +482,7 @@ class Structure:
                                                      "isolator": self.isolator.to_dict()}
         if self.storeys:
             out["storeys"] = [{f: (list(v) if isinstance(v, tuple) else v) for f in Storey.FIELDS
-                               if (v := getattr(s, f)) != () and not (f == "hysteresis" and s.is_linear)}
-                              for s in self.storeys]
+                               if (v := getattr(s, f)) != ()} for s in self.storeys]
         if self.walls:
             out["walls"] = [w.to_dict() for w in self.walls]
         if self.rayleigh is not None:
@@ -501,7 +510,10 @@ class Structure:
                 prefix = f"{name}[{i}]."
                 if name == "storeys":
                     _check_keys(row, prefix, Storey.FIELDS, required=("mass_kg", "stiffness_n_m"))
-                    out.append(Storey(**row))
+                    try:
+                        out.append(Storey(**row))
+                    except InputError as exc:
+                        raise exc.relabel("storey.", prefix) from None
                 else:
                     _check_keys(row, prefix, Wall.FIELDS,
                                 required=("level", "gap_left_m", "gap_right_m", "law"))
@@ -509,10 +521,13 @@ class Structure:
                     if stand is not None:
                         _check_keys(stand, prefix + "stand.", Stand.FIELDS,
                                     required=("mass_kg", "stiffness_n_m"))
-                    out.append(Wall(row["level"], row["gap_left_m"], row["gap_right_m"],
-                                    law_from_dict(row["law"], prefix + "law"),
-                                    None if right is None else law_from_dict(right, prefix + "law_right"),
-                                    None if stand is None else Stand(**stand)))
+                    try:
+                        out.append(Wall(row["level"], row["gap_left_m"], row["gap_right_m"],
+                                        law_from_dict(row["law"], prefix + "law"),
+                                        None if right is None else law_from_dict(right, prefix + "law_right"),
+                                        None if stand is None else Stand(**stand)))
+                    except InputError as exc:
+                        raise exc.relabel("stand.", prefix + "stand.").relabel("wall.", prefix) from None
         return cls(table.get("base_mass_kg"), isolator, tuple(storeys), tuple(walls), table.get("rayleigh"))
 
     @classmethod

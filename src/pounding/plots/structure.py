@@ -54,9 +54,15 @@ def plot_structure_run(run: "StructureRun", axes: Any = None, *, levels: Any = N
     ax_d, ax_a, ax_e = axes
     if levels is None:
         levels = sorted({int(round(x)) for x in np.linspace(0, n - 1, min(n, 6))})
+    else:
+        from .._checks import integer
+
+        levels = [integer(f"levels[{k}]", lv, 0, n - 1, fix=f"give levels from 0 to {n - 1}")
+                  for k, lv in enumerate(levels)]
+    ground = "ground" if run.structure.fixed else "base"
     artists: list = []
     for i in levels:
-        name = "base" if i == 0 else f"floor {i}"
+        name = ground if i == 0 else f"floor {i}"
         artists += ax_d.plot(run.t, run.displacement[:, i] * 1e3, lw=0.9, label=name)
         artists += ax_a.plot(run.t, run.abs_acceleration[:, i] / GRAVITY_M_S2, lw=0.8, label=name)
     starts = run.contacts["t_start"].to_numpy()
@@ -80,7 +86,7 @@ def plot_structure_run(run: "StructureRun", axes: Any = None, *, levels: Any = N
     ax_e.set_xlabel("peak |displacement| [mm]", color="C0")
     twin.set_xlabel("peak |absolute acceleration| [g]", color="C3")
     ax_e.set_ylabel("level (at its height)")
-    ax_e.set_yticks(height, ["base"] + [f"{i}" for i in range(1, n)] if n <= 12 else None)
+    ax_e.set_yticks(height, [ground] + [f"{i}" for i in range(1, n)] if n <= 12 else None)
     ax_e.set_xlim(left=0.0)
     twin.set_xlim(left=0.0)
     return artists
