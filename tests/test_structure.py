@@ -134,9 +134,11 @@ def test_a_linear_building_follows_its_frequency_response_on_every_floor(n_store
                                atol=1e-10 * np.abs(x).max())
     acc = (-(w**2) * x[None, :] * wave).imag + a_g * np.sin(w * run.t)[:, None]
     np.testing.assert_allclose(run.abs_acceleration, acc, rtol=0, atol=1e-9 * np.abs(acc).max())
-    # the exact extrema: the amplitudes
+    # the exact extrema: the amplitudes, of each level and of each storey's drift
     np.testing.assert_allclose(run.displacement_max, np.abs(x), rtol=1e-9)
     np.testing.assert_allclose(run.displacement_min, -np.abs(x), rtol=1e-9)
+    np.testing.assert_allclose(run.drift_max, np.abs(np.diff(x)), rtol=1e-9)
+    np.testing.assert_allclose(run.drift_min, -np.abs(np.diff(x)), rtol=1e-9)
 
 
 def test_modes_equal_the_closed_form_of_two_masses():
@@ -187,6 +189,9 @@ def test_the_ledger_closes_and_no_wall_pulls(seed, law):
     assert (run.displacement_max >= run.displacement.max(axis=0) - 1e-12).all()
     assert (run.displacement_min <= run.displacement.min(axis=0) + 1e-12).all()
     assert (run.abs_acceleration_max >= np.abs(run.abs_acceleration).max(axis=0) * (1 - 1e-12)).all()
+    assert (run.drift_max >= run.drift.max(axis=0) - 1e-12).all()
+    assert (run.drift_min <= run.drift.min(axis=0) + 1e-12).all()
+    assert (run.peaks()["drift_peak_m"].to_numpy()[1:] == run.peak_drift).all()
 
 
 def test_a_continued_run_equals_one_long_run():
@@ -220,7 +225,7 @@ def test_results_give_their_tables_and_figure(tmp_path):
     np.testing.assert_array_equal(run.drift_ratio, run.drift / 3.5)
     assert set(run.contacts["level"]) <= {0, 2} and len(run.contacts)
     peaks = run.peaks()
-    assert list(peaks.index) == [0, 1, 2] and np.isnan(peaks["drift_peak_sampled_m"][0])
+    assert list(peaks.index) == [0, 1, 2] and np.isnan(peaks["drift_peak_m"][0])
     frame = run.to_dataframe()
     assert frame.shape == (k, 1 + 3 * 3 + 1 + 4) and "displacement_m[2]" in frame
     ds = run.to_xarray()
@@ -491,6 +496,7 @@ def test_a_fixed_base_building_against_a_stop_matches_the_reference():
     np.testing.assert_allclose(run.contacts["t_start"], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
     # the ground level: still, shaken by the table, its exact peak the table's
     assert (run.displacement[:, 0] == 0.0).all() and np.isnan(run.isolator_force).all()
+    assert run.drift_max[0] == run.displacement_max[1] and run.drift_min[0] == run.displacement_min[1]
     np.testing.assert_array_equal(run.abs_acceleration[:, 0], exc.acceleration(run.t))
     assert run.abs_acceleration_max[0] == pytest.approx(4.0, rel=1e-12)
     assert pd_.Structure.from_toml_text(b.to_toml_text()) == b
@@ -516,7 +522,8 @@ def test_two_identical_buildings_move_as_one_and_as_each_alone():
     for part, levels in ((run.first, slice(0, n)), (run.second, slice(n, 2 * n))):
         np.testing.assert_allclose(run.final_state.displacements_m[levels], alone.final_state.displacements_m,
                                    rtol=0, atol=1e-9 * scale)
-        for name in ("displacement_max", "displacement_min", "abs_acceleration_max"):
+        for name in ("displacement_max", "displacement_min", "abs_acceleration_max", "drift_max",
+                     "drift_min"):
             np.testing.assert_allclose(getattr(part, name), getattr(alone, name), rtol=1e-9)
         np.testing.assert_allclose(part.contacts["t_start"], alone.contacts["t_start"], rtol=0, atol=1e-9)
         assert list(part.contacts["level"]) == list(alone.contacts["level"])

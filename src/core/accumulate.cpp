@@ -236,6 +236,16 @@ void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, 
         for (int k = 0; k < z.count; ++k)
             if (z.t[k] < tau) track_displacement(ex, t0 + z.t[k], z.x[k]);
     }
+    // the tracked pairs' relative displacement (a storey's drift): the same, on the pair
+    for (int p = 0; p < sy.n_track(); ++p) {
+        double* ex = extrema + 7 * n + 4 * p;
+        const int i = sy.track_i[static_cast<size_t>(p)], j = sy.track_j[static_cast<size_t>(p)];
+        track_displacement(ex, t0, rel(e.y0, i, j));
+        track_displacement(ex, t0 + tau, rel(e.y1, i, j));
+        const Phase::Zeros& z = velocity_zeros(ph, i, j);
+        for (int k = 0; k < z.count; ++k)
+            if (z.t[k] < tau) track_displacement(ex, t0 + z.t[k], z.x[k]);
+    }
     // the contacts' deepest compression: the ends and the pair's velocity zeros
     for (int c = 0; c < ph.nc; ++c) {
         const ContactPhase& k = ph.ct[static_cast<size_t>(c)];

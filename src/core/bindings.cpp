@@ -61,7 +61,8 @@ Array2 rows_array(Rows& r) {
 using ContactTuple = std::tuple<int, int, double, double, int, std::vector<double>>;
 using ElementTuple = std::tuple<int, int, double, std::vector<double>, std::vector<double>, int>;
 using SystemState = std::tuple<int, std::vector<double>, std::vector<double>, std::vector<double>,
-                               std::vector<ElementTuple>, std::vector<double>, bool, std::vector<ContactTuple>>;
+                               std::vector<ElementTuple>, std::vector<double>, bool, std::vector<ContactTuple>,
+                               std::vector<int>, std::vector<int>>;
 
 SystemState system_state(const System& s) {
     std::vector<ContactTuple> cs;
@@ -69,7 +70,8 @@ SystemState system_state(const System& s) {
         cs.emplace_back(c.i, c.j, c.sign, c.gap, c.law, std::vector<double>(c.p, c.p + N_LAW_PARAMS));
     std::vector<ElementTuple> es;
     for (const Hysteretic& h : s.hyst) es.emplace_back(h.i, h.j, h.c_d, h.slopes, h.breaks, h.rule);
-    return {s.n, s.mass, s.k0, s.c0, es, std::vector<double>(s.bw, s.bw + BW_PARAMS), s.has_b, cs};
+    return {s.n, s.mass, s.k0, s.c0, es, std::vector<double>(s.bw, s.bw + BW_PARAMS), s.has_b, cs, s.track_i,
+            s.track_j};
 }
 
 // (the sizes and indices are checked in Python, pounding._core.system: the core trusts its inputs)
@@ -104,6 +106,8 @@ void fill_system(System& s, const SystemState& st) {
         for (int j = 0; j < N_LAW_PARAMS; ++j) c.p[j] = j < static_cast<int>(p.size()) ? p[j] : 0.0;
         s.contact.push_back(c);
     }
+    s.track_i = std::get<8>(st);
+    s.track_j = std::get<9>(st);
     s.finish();
 }
 
@@ -126,9 +130,10 @@ NB_MODULE(_pounding_core, m) {
         .def("__init__",
              [](System* s, int n, const std::vector<double>& mass, const std::vector<double>& k0,
                 const std::vector<double>& c0, const std::vector<ElementTuple>& elements,
-                const std::vector<double>& bw, bool has_b, const std::vector<ContactTuple>& contacts) {
+                const std::vector<double>& bw, bool has_b, const std::vector<ContactTuple>& contacts,
+                const std::vector<int>& track_i, const std::vector<int>& track_j) {
                  new (s) System();
-                 fill_system(*s, SystemState{n, mass, k0, c0, elements, bw, has_b, contacts});
+                 fill_system(*s, SystemState{n, mass, k0, c0, elements, bw, has_b, contacts, track_i, track_j});
              })
         .def_ro("n", &System::n)
         .def_ro("mass", &System::mass)

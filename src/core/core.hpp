@@ -127,6 +127,7 @@ struct System {
     double bw[BW_PARAMS] = {0};   // element 0's Bouc-Wen spring (bw[0] 0: none)
     bool has_b = false;           // the contacts are active
     std::vector<Contact> contact; // the contact slots
+    std::vector<int> track_i, track_j;  // pairs whose relative displacement's extrema a run finds (drifts)
     // derived by finish(): the damping of every phase (c0 and the elements' dashpots), the layout
     std::vector<double> c_lin;
     double total_mass = 0.0;
@@ -138,6 +139,7 @@ struct System {
         return s;
     }
     int n_h() const { return static_cast<int>(hyst.size()); }
+    int n_track() const { return static_cast<int>(track_i.size()); }
     const Hysteretic& iso() const { return hyst[0]; }
     int state_size() const { return lay.size; }
     int nc() const { return static_cast<int>(contact.size()); }

@@ -321,6 +321,12 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
         ex[5] = t_run0;
         ex[6] = 0.0;
     }
+    for (int p = 0; p < sy.n_track(); ++p) {  // (the tracked pairs: a storey's drift)
+        double* ex = extrema + 7 * n + 4 * p;
+        const double d = rel(st + L.x, sy.track_i[static_cast<size_t>(p)], sy.track_j[static_cast<size_t>(p)]);
+        ex[0] = ex[2] = d;
+        ex[1] = ex[3] = t_run0;
+    }
     std::unique_ptr<RunWorkspace> local;  // (a workspace of this run's own only when none is given)
     if (workspace == nullptr) {
         local = std::make_unique<RunWorkspace>();

@@ -25,7 +25,8 @@ struct RunResult {
     Rows contacts{CONTACT_COLS, 16};
     Rows events{EVENT_COLS, 64};
     double ledger[LEDGER_LEN] = {0};
-    // per dof: x max, its time, x min, its time, |a_abs| max, its time, a_abs there
+    // per dof: x max, its time, x min, its time, |a_abs| max, its time, a_abs there; then per tracked pair:
+    // its relative displacement's max, its time, min, its time
     std::vector<double> extrema;
     int status = SUCCESS;
     void reset(const System& sy) {  // (a result reused run after run keeps its buffers)
@@ -33,7 +34,7 @@ struct RunResult {
         samples.clear();
         contacts.clear();
         events.clear();
-        extrema.assign(static_cast<size_t>(sy.lay.extrema_len()), 0.0);
+        extrema.assign(static_cast<size_t>(sy.lay.extrema_len() + 4 * sy.n_track()), 0.0);
         status = SUCCESS;
     }
 };

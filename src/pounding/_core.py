@@ -39,14 +39,17 @@ ACTIONS: dict[str, int] = dict(_c.ACTIONS)
 
 def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray,
            elements: list[tuple[int, int, float, Any, Any, int]], bw: np.ndarray, has_b: bool,
-           contacts: list[tuple[int, int, float, float, int, np.ndarray]]) -> System:
+           contacts: list[tuple[int, int, float, float, int, np.ndarray]],
+           tracked: tuple[tuple[int, int], ...] = ()) -> System:
     """A system as the core takes it: ``mass`` (kg, shape (n,)), the linear springs and dashpots ``k0``,
     ``c0`` (N/m, N s/m, shape (n, n)), the hysteretic elements, each ``(i, j, c_d, slopes, breaks, rule)``
     (dof i against dof j, -1 the ground; its dashpot N s/m, backbone slopes N/m and breaks m, rule 0
     kinematic or 1 elastic; the isolator first, which carries the Bouc-Wen numbers ``bw``, zeros for none;
     no element at all: a structure fixed at its base),
     and the contact slots, each ``(i, j, sign, gap, law id, parameters)``: dof i against dof j (-1: the
-    ground), compressed by ``sign (x_i - x_j) - gap``; ``has_b`` makes them active.
+    ground), compressed by ``sign (x_i - x_j) - gap``; ``has_b`` makes them active.  ``tracked``: pairs
+    ``(i, j)`` whose relative displacement's exact extrema a run adds after the dofs' (4 numbers each: max,
+    its time, min, its time; a storey's drift).
 
     The core trusts what it is given: the sizes and indices are checked here (a ``ValueError`` is a
     caller's bug; the public functions check what users give before)."""
@@ -77,8 +80,9 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray,
         if sign not in (-1.0, 1.0) or int(law) not in LAW_IDS.values() or len(p) > LAYOUT["N_LAW_PARAMS"]:
             raise ValueError(f"contact {c}: sign +-1, a law id of LAW_IDS, at most N_LAW_PARAMS parameters")
         slots.append((*pair(i, j, f"contact {c}"), float(sign), float(gap), int(law), [float(x) for x in p]))
+    pairs = [pair(i, j, f"tracked pair {q}") for q, (i, j) in enumerate(tracked)]
     return _c.System(n, m.tolist(), k0.reshape(n * n).tolist(), c0.reshape(n * n).tolist(), packed,
-                     [float(x) for x in bw], bool(has_b), slots)
+                     [float(x) for x in bw], bool(has_b), slots, [i for i, _ in pairs], [j for _, j in pairs])
 
 
 def _f64(a: Any) -> np.ndarray:

@@ -174,13 +174,12 @@ def _simulate_structure(building: Any, exc: Any, what: str, duration: float, sam
     e = run.energy
     add_row("energy in / residual [J]", f"{e.input_work:.6g} / {e.residual:.2e}")
     console.print(table)
-    sampled = f"; drift at the samples, {run.sample_rate_hz:g} Hz" if run.sample_rate_hz else ""
     for name, part in parts:
-        levels = Table(title=f"{name + ': ' if name else ''}each level (extrema exact{sampled})")
+        levels = Table(title=f"{name + ': ' if name else ''}each level (extrema exact)")
         for head in ("level", "max / min [mm]", "max |a_abs| [g]", "drift ratio [%]"):
             levels.add_column(escape(head), justify="right")
         for level, row in part.peaks().iterrows():
-            ratio = row["drift_ratio_peak_sampled"]
+            ratio = row["drift_ratio_peak"]
             base = "ground" if part.structure.fixed else "base"
             levels.add_row(base if level == 0 else str(level),
                            f"{row['displacement_max_m'] * 1e3:.2f} / {row['displacement_min_m'] * 1e3:.2f}",

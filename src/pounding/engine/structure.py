@@ -136,7 +136,10 @@ def assemble(model: Structure | Adjacent) -> Assembly:
         slots.append((-1, k, 0))
         pairs.append((dofs[0][link.level_first], dofs[1][link.level_second], 1.0, float(link.gap_m),
                       link.law))
-    system = _core.system(masses, k0, c0, elements, bw, bool(contacts), contacts or _NO_WALLS)
+    # each storey's drift: its top level against the one below (the ground below a fixed base's first)
+    tracked = tuple((levels[i + 1], levels[i]) for s, levels in zip(structures, dofs)
+                    for i in range(len(s.storeys)))
+    system = _core.system(masses, k0, c0, elements, bw, bool(contacts), contacts or _NO_WALLS, tracked)
     return Assembly(system, tuple(dofs), tuple(isolator), tuple(slots), tuple(stands), np.array(masses),
                     k_fast, c_all, tuple(pairs),
                     tuple((i, j, list(slopes), list(breaks), rule)
@@ -385,8 +388,9 @@ def run_of(model: Any, asm: Any, excitation: Any, rate: float, out: tuple, t0: f
     if status == Status.SUCCESS and not (np.all(np.isfinite(extrema)) and np.isfinite(energy.residual)):
         status = Status.NONFINITE
     final = StructureState._of(st, asm.dofs, asm.system.n)
-    parts = [StructureRun._part(s, b, asm, excitation, rate, samples, contacts, extrema, status, t0)
-             for b, s in enumerate(structures_of(model)[0])]
+    structures = structures_of(model)[0]
+    parts = [StructureRun._part(s, b, asm, structures, excitation, rate, samples, contacts, extrema, status,
+                                t0) for b, s in enumerate(structures)]
     if len(parts) == 1:
         run: Any = dataclasses.replace(parts[0], event_table=events, energy=energy, final_state=final)
     else:

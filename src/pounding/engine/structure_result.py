@@ -114,6 +114,11 @@ class StructureRun:
         absolute acceleration the ground's (its peak exact too).
     displacement_max_time_s, displacement_min_time_s, abs_acceleration_max_time_s : ndarray
         When each level's extrema were reached, s, shape (n_levels,).
+    drift_max, drift_min : ndarray, shape (n_levels - 1,)
+        Each storey's exact extrema of drift (its floor's displacement less the level below's), m; their
+        times in ``drift_max_time_s``, ``drift_min_time_s``.
+    drift_max_time_s, drift_min_time_s : ndarray, shape (n_levels - 1,)
+        When they were reached, s.
     stand_displacement : ndarray, shape (k, n_stands)
         The walls' stands' displacements relative to the ground, m (each wall with a stand: its left side's,
         then its right's; ``stands`` names them).
@@ -157,12 +162,17 @@ class StructureRun:
     energy: Optional[StructureEnergy] = field(repr=False)
     final_state: Optional["StructureState"] = field(repr=False)
     status: Status = Status.SUCCESS
+    drift_max: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    drift_max_time_s: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    drift_min: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    drift_min_time_s: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     stand_displacement: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)
     stand_displacement_max: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     stand_displacement_min: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
 
     @classmethod
-    def _part(cls, structure: "Structure", b: int, asm: Any, excitation: Any, rate: float,
+    def _part(cls, structure: "Structure", b: int, asm: Any, asm_structures: tuple, excitation: Any,
+              rate: float,
               samples: np.ndarray, contacts: np.ndarray, extrema: np.ndarray, status: Status,
               t0: float) -> "StructureRun":
         """Structure ``b``'s columns of a joint run (``asm``: the assembly, engine.structure)."""
@@ -183,7 +193,10 @@ class StructureRun:
         isolator_force = samples[:, 1 + 3 * n + e].copy() if e >= 0 else np.full(k, np.nan)
         mine = [c for c, (owner, _, _) in enumerate(asm.slots) if owner == b]
         contact_force = samples[:, [1 + 3 * n + nh + c for c in mine]]
-        ex = extrema.reshape(n, 7)
+        per_dof, tracked = extrema[:7 * n].reshape(n, 7), extrema[7 * n:].reshape(-1, 4)
+        first = sum(len(s.storeys) for s in asm_structures[:b])  # (this structure's storeys' drifts)
+        drifts = tracked[first:first + len(structure.storeys)]
+        ex = per_dof
         t1 = t[-1] if k else t0
         rows = []
         for d in dofs:
@@ -196,10 +209,11 @@ class StructureRun:
         table = contacts[np.isin(contacts[:, 0], mine)].copy()
         table[:, 0] = np.searchsorted(mine, table[:, 0])  # (slot numbers of this structure's own)
         on = [dof for _, _, dof in asm.stands[b]]
-        stand_ex = extrema.reshape(n, 7)[on]
+        stand_ex = per_dof[on]
         return cls(structure, excitation, rate, t, displacement, velocity, abs_acceleration, isolator_force,
                    contact_force, ex[:, 0].copy(), ex[:, 1].copy(), ex[:, 2].copy(), ex[:, 3].copy(),
                    ex[:, 4].copy(), ex[:, 5].copy(), table, np.zeros((0, 3)), None, None, status,
+                   drifts[:, 0].copy(), drifts[:, 1].copy(), drifts[:, 2].copy(), drifts[:, 3].copy(),
                    samples[:, [1 + d for d in on]], stand_ex[:, 0].copy(), stand_ex[:, 2].copy())
 
     # ------------------------------------------------------------------ derived
@@ -224,11 +238,9 @@ class StructureRun:
         return self.drift / heights
 
     @property
-    def peak_drift_sampled(self) -> np.ndarray:
-        """Each storey's largest absolute drift among the samples, m, shape (n_levels - 1,): as fine as the
-        samples (not an exact extremum; raise ``sample_rate_hz`` to refine it)."""
-        d = self.drift
-        return np.abs(d).max(axis=0) if d.shape[0] else np.full(d.shape[1], np.nan)
+    def peak_drift(self) -> np.ndarray:
+        """Each storey's largest absolute drift over the run, m, shape (n_levels - 1,): exact."""
+        return np.maximum(np.abs(self.drift_max), np.abs(self.drift_min))
 
     @property
     def contacts(self) -> pd.DataFrame:
@@ -264,17 +276,17 @@ class StructureRun:
 
     def peaks(self) -> pd.DataFrame:
         """One row per level: exact peak displacements (m) and absolute acceleration (m/s^2), with the
-        storey below's sampled peak drift and drift ratio."""
+        storey below's exact peak drift (m) and drift ratio."""
         n = self.structure.n_levels
-        drift = np.concatenate([[np.nan], self.peak_drift_sampled])
+        drift = np.concatenate([[np.nan], self.peak_drift])
         heights = np.array([np.nan] + [s.height_m for s in self.structure.storeys])
         return pd.DataFrame({
             "level": np.arange(n),
             "displacement_max_m": self.displacement_max,
             "displacement_min_m": self.displacement_min,
             "abs_acceleration_max_m_s2": self.abs_acceleration_max,
-            "drift_peak_sampled_m": drift,
-            "drift_ratio_peak_sampled": drift / heights,
+            "drift_peak_m": drift,
+            "drift_ratio_peak": drift / heights,
         }).set_index("level")
 
     # ------------------------------------------------------------------ tables
