@@ -7,10 +7,11 @@ dashpot c_iso) between the first mass and the ground; Kelvin-Voigt bumpers on bo
 (``level``: the first by default) behind a gap, each fixed to the ground or to another mass (``partners``):
 in contact the force K d + C d' (d = sign (x_level - x_partner) - gap, the compression) until it would
 pull; out of contact the bumper's compression relaxes as d_r exp(-K (t - t_r) / C) from where it was
-released, and contact starts when the mass meets that surface.  A storey may add an elastic-perfectly-
-plastic spring (``plastic``): stuck, it pulls the drift back by k_p (drift - slip); it slips when its strain
-reaches +-D and sticks again when the drift's rate turns back (a bilinear storey with Masing's rule, k0
-holding its second slope).
+released, and contact starts when the mass meets that surface.  The table's acceleration is a sine, or a
+record (linear between its samples; the integration restarted at each).  A storey may add an elastic-
+perfectly-plastic spring (``plastic``): stuck, it pulls the drift back by k_p (drift - slip); it slips when
+its strain reaches +-D and sticks again when the drift's rate turns back (a bilinear storey with Masing's
+rule, k0 holding its second slope).
 """
 
 from __future__ import annotations
@@ -40,6 +41,8 @@ class Structure:
     # storeys with an elastic-perfectly-plastic spring besides k0 (a bilinear storey with Masing's rule):
     # (storey i, between masses i and i + 1; its stiffness N/m; its yield drift D, m)
     plastic: list = field(default_factory=list)
+    # a record instead of the sine: (times s, accelerations m/s^2), linear between its samples, zero outside
+    record: tuple | None = None
 
 
 @dataclass
@@ -124,7 +127,9 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         return f
 
     def rhs(t, y):
-        a = -inv_m * forces(t, y) - s.a_g * math.sin(s.omega * t)
+        a_g = (float(np.interp(t, s.record[0], s.record[1], left=0.0, right=0.0)) if s.record is not None
+               else s.a_g * math.sin(s.omega * t))
+        a = -inv_m * forces(t, y) - a_g
         return np.concatenate([y[n:], a])
 
     def make_events():
@@ -158,9 +163,12 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         return evs
 
     t, y = 0.0, np.array(y0, dtype=float)
+    knots = np.asarray(s.record[0]) if s.record is not None else np.zeros(0)
     while t < t_end:
         evs = make_events()
-        sol = solve_ivp(rhs, (t, t_end), y, method="DOP853", rtol=rtol, atol=atol, events=evs,
+        after = knots[knots > t * (1.0 + 1e-15) + 1e-15]  # (a record's kink: a stretch ends at the next)
+        t_next = min(t_end, float(after[0])) if after.size else t_end
+        sol = solve_ivp(rhs, (t, t_next), y, method="DOP853", rtol=rtol, atol=atol, events=evs,
                         dense_output=True, max_step=max_step)
         if sol.status == -1:
             raise RuntimeError(sol.message)
@@ -181,6 +189,8 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
             if sol.status != 0:
                 raise TouchAtRest(f"an event fires again at its own instant, t = {t}")
             t, y = float(sol.t[-1]), sol.y[:, -1]
+            if t_next < t_end:
+                continue
             break
         t_hit, c = min(hits)
         y = sol.sol(t_hit)

@@ -5,6 +5,7 @@ ledger, a continued run, the results' tables and figure, and every field's check
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from pathlib import Path
 
@@ -673,3 +674,30 @@ def test_files_name_the_storey_wall_or_link_at_fault_and_round_trip_exactly():
         pd_.Adjacent.from_toml_text(pair.to_toml_text().replace("gap_m = 0.1", "gap_m = -0.1"))
     with pytest.raises(pd_.InputError, match="first"):
         pd_.Adjacent.from_dict({**pair.to_dict(), "first": 3})
+
+
+@settings(max_examples=6, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(pair=buildings(), v0=st.floats(-0.3, 0.3), seed=st.integers(0, 2**32 - 1))
+def test_a_wall_at_any_level_under_a_record_matches_the_reference(pair, v0, seed):
+    # a random record, linear between its samples (0.02 s), zero before and after: each sample a kink
+    building, ref_s = pair
+    rng = np.random.default_rng(seed)
+    t = np.arange(0.0, 2.0 + 1e-9, 0.02)
+    accel = rng.normal(0.0, 1.0, t.size) * ref_s.a_g
+    accel[0] = 0.0
+    ref_s = dataclasses.replace(ref_s, record=(t, accel))
+    n = building.n_levels
+    run = pd_.simulate(building, pd_.Record(t, accel), 2.0, moving(building, v0), sample_rate_hz=0)
+    assert run.success, run.message
+    y0 = np.concatenate([np.zeros(n), np.full(n, v0)])
+    try:
+        ref = reference(ref_s, 2.0, y0)
+    except TouchAtRest:
+        assume(False)
+    assume(all(depth > 1e-7 for depth in ref.depths) and all(speed > 1e-4 for speed in ref.speeds))
+    assume(len(ref.contact_starts) <= 40)
+    event("contacts" if ref.contact_starts else "no contact")
+    assert list(run.contacts["side"].map({"left": 0, "right": 1})) == [c for c, _ in ref.contact_starts]
+    np.testing.assert_allclose(run.contacts["t_start"], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
+    scale = np.abs(ref.y).max()
+    np.testing.assert_allclose(run.final_state.displacements_m, ref.y[:n], rtol=0, atol=1e-7 * scale)
