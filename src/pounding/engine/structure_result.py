@@ -23,6 +23,12 @@ CONTACT_COLUMNS = ("wall", "level", "side", "t_start", "t_end", "v_in", "v_out",
                    "max_compression", "work")
 
 
+def events_frame(e: np.ndarray) -> pd.DataFrame:
+    """An event table (the core's rows: time, action code, index) with the actions named."""
+    return pd.DataFrame({"t": e[:, 0], "event": [EVENT_NAMES[int(a)] for a in e[:, 1]],
+                         "index": e[:, 2].astype(int)})
+
+
 @dataclass(frozen=True)
 class StructureEnergy:
     """The energy ledger of a structure's run, J: the input's work equals what the dashpots (storeys' and
@@ -270,9 +276,7 @@ class StructureRun:
         start or end (wall ``w``'s left side ``2 w``, right ``2 w + 1``), a spring for a yield (numbered
         through the isolator's springs, then each multi-linear storey's), an element for a reversal or a
         branch change (0 the isolator, then the multi-linear storeys)."""
-        e = self.event_table
-        return pd.DataFrame({"t": e[:, 0], "event": [EVENT_NAMES[int(a)] for a in e[:, 1]],
-                             "index": e[:, 2].astype(int)})
+        return events_frame(self.event_table)
 
     def peaks(self) -> pd.DataFrame:
         """One row per level: exact peak displacements (m) and absolute acceleration (m/s^2), with the
@@ -442,9 +446,7 @@ class AdjacentRun:
     @property
     def events(self) -> pd.DataFrame:
         """Every event of the pair: time (s), what happened and the element's index."""
-        e = self.event_table
-        return pd.DataFrame({"t": e[:, 0], "event": [EVENT_NAMES[int(a)] for a in e[:, 1]],
-                             "index": e[:, 2].astype(int)})
+        return events_frame(self.event_table)
 
     def to_dataframe(self) -> pd.DataFrame:
         """Both structures' histories side by side (columns ``first.``/``second.``), and the links' forces."""

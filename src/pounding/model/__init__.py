@@ -6,7 +6,8 @@ from .isolator import BoucWen, Isolator
 from .measurement import MeasurementChain, Sensor
 from .oscillator import Oscillator
 from .adjacent import Adjacent, Link
-from .structure import Stand, Storey, Structure, Wall
+from .structure import Structure
+from .structure_parts import Stand, Storey, Wall
 
 __all__ = ["Adjacent", "Link", "BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley",
            "Isolator",

@@ -7,14 +7,15 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any, ClassVar, Union
 
-import tomli_w
 
-from .._checks import at_most, integer, non_negative, parse_toml, plausible, read_text
+from .._checks import at_most, integer, non_negative, plausible
 from .._errors import InputError, Problem
+from ._toml import TomlFile
 from .bumpers import MAX_GAP_M
 from .contact_laws import LAWS, law_from_dict, law_to_dict
 from .oscillator import _check_keys
-from .structure import MAX_STOREYS, Structure
+from .structure import Structure
+from .structure_parts import MAX_STOREYS
 
 PathLike = Union[str, Path]
 
@@ -71,7 +72,7 @@ class Link:
 
 
 @dataclass(frozen=True)
-class Adjacent:
+class Adjacent(TomlFile):
     """Two structures side by side, the second to the right of the first, shaken by the same ground, that
     may pound each other at their links (and their own walls, if they have any).
 
@@ -157,6 +158,7 @@ class Adjacent:
     @classmethod
     def from_dict(cls, table: dict[str, Any]) -> "Adjacent":
         """Build from nested tables; every key is checked and unknown keys are errors."""
+        table = {k: v for k, v in table.items() if k != "meta"} if isinstance(table, dict) else table
         _check_keys(table, "", cls.FIELDS, required=cls.FIELDS)
         structures = []
         for name in ("first", "second"):
@@ -180,34 +182,6 @@ class Adjacent:
             except InputError as exc:
                 raise exc.relabel("link.", f"links[{i}].") from None
         return cls(structures[0], structures[1], tuple(links))
-
-    @classmethod
-    def from_toml(cls, path: PathLike) -> "Adjacent":
-        """Read a pair from a TOML file (see ``examples/adjacent_buildings.toml``)."""
-        text = read_text("path", path)
-        try:
-            return cls.from_toml_text(text)
-        except InputError as exc:
-            if exc.problem is Problem.BAD_TOML:
-                raise exc.relabel("text", str(path)) from None
-            raise
-
-    @classmethod
-    def from_toml_text(cls, text: str) -> "Adjacent":
-        """Read a pair from TOML text."""
-        if not isinstance(text, str):
-            raise InputError(Problem.WRONG_TYPE, "text", text, got=type(text).__name__, expected="str")
-        return cls.from_dict(parse_toml("text", text))
-
-    def to_toml_text(self) -> str:
-        """The TOML text of :meth:`to_toml`."""
-        return tomli_w.dumps(self.to_dict())
-
-    def to_toml(self, path: PathLike) -> Path:
-        """Write the pair to a TOML file that :meth:`from_toml` reads back identically (atomically)."""
-        from .._io import output_file, write_text
-
-        return write_text(output_file("path", path, (".toml",)), self.to_toml_text())
 
 
 __all__ = ["Adjacent", "Link"]

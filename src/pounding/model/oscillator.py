@@ -6,10 +6,10 @@ from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, ClassVar, Optional, Union
 
-import tomli_w
 
-from .._checks import at_least, at_most, parse_toml, plausible, positive, read_text
+from .._checks import at_least, at_most, plausible, positive
 from .._errors import InputError, Problem
+from ._toml import TomlFile
 from .bumpers import Bumpers
 from .contact_laws import law_from_dict
 from .isolator import Isolator
@@ -20,7 +20,7 @@ MIN_MASS_KG = 1e-6  # refused below (1 mg: the phases' rates k/m overflowed at 1
 
 
 @dataclass(frozen=True)
-class Oscillator:
+class Oscillator(TomlFile):
     """Single-degree-of-freedom base-isolated mass, optionally bounded by bumpers.
 
     Equation of motion (``D``: displacement of the mass relative to the table, m)::
@@ -119,41 +119,6 @@ class Oscillator:
                 capacity_m=b.get("capacity_m"),
             )
         return cls(mass=table["mass"], isolator=isolator, bumpers=bumpers)
-
-    @classmethod
-    def from_toml(cls, path: PathLike) -> "Oscillator":
-        """Read a system from a TOML file (see ``examples/paper_printed_ybs.toml``)."""
-        text = read_text("path", path)
-        try:
-            return cls.from_toml_text(text)
-        except InputError as exc:
-            if exc.problem is Problem.BAD_TOML:
-                raise exc.relabel("text", str(path)) from None
-            raise
-
-    def to_toml(self, path: PathLike, meta: Optional[dict[str, Any]] = None) -> Path:
-        """Write the system to a TOML file that :meth:`from_toml` reads back identically.
-
-        ``meta``: notes written as a ``[meta]`` table (e.g. ``{"partial": True}``); readers
-        skip it.  The file is written atomically (complete or not at all).
-        """
-        from .._io import output_file, write_text
-
-        return write_text(output_file("path", path, (".toml",)), self.to_toml_text(meta))
-
-    def to_toml_text(self, meta: Optional[dict[str, Any]] = None) -> str:
-        """The TOML text of :meth:`to_toml` (stored in results' metadata)."""
-        table = self.to_dict()
-        if meta:
-            table["meta"] = dict(meta)
-        return tomli_w.dumps(table)
-
-    @classmethod
-    def from_toml_text(cls, text: str) -> "Oscillator":
-        """Read a system from TOML text (e.g. a saved result's ``system`` attribute)."""
-        if not isinstance(text, str):
-            raise InputError(Problem.WRONG_TYPE, "text", text, got=type(text).__name__, expected="str")
-        return cls.from_dict(parse_toml("text", text))
 
 
 def _check_keys(table: Any, prefix: str, allowed: tuple[str, ...], required: tuple[str, ...]) -> None:
