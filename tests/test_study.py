@@ -179,7 +179,9 @@ def _check_after(store: Path, before, whole: xr.Dataset) -> None:
     ds = xr.open_zarr(store).load()
     for q in QUANTITIES:
         np.testing.assert_array_equal(ds[q].values[done], whole[q].values[done])
-    assert np.all((session > 0) == done)
+    # a point done names the run that computed it; a point not done may hold a session already (a kill
+    # between the session's chunk and done's, which is written last): it is computed again on resume
+    assert np.all(session[done] > 0)
     if before is not None:
         done0, session0, s = before
         assert np.all(done[done0]) and np.array_equal(session[done0], session0[done0])
