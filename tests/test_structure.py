@@ -303,7 +303,7 @@ def test_a_state_of_another_structure_is_refused():
         pd_.simulate(three, 0.1, 1.0)
 
 
-def test_the_command_line_simulates_a_structure_file_and_other_commands_say_they_take_one_mass(tmp_path):
+def test_the_command_line_simulates_and_sweeps_a_structure_other_commands_say_they_take_one_mass(tmp_path):
     from typer.testing import CliRunner
 
     from pounding.cli import app
@@ -322,8 +322,16 @@ def test_the_command_line_simulates_a_structure_file_and_other_commands_say_they
     assert len(pd.read_csv(out["contacts"])) > 0
     assert "displacement_m[3]" in pd.read_csv(out["history"], nrows=2).columns
     assert out["plot"].stat().st_size > 10_000
-    one_mass = runner.invoke(app, ["sweep", str(building), "--a-g", "0.1", "--fmin", "1", "--fmax", "2"])
-    assert one_mass.exit_code == 2 and "takes one mass" in one_mass.output
+    one_mass = runner.invoke(app, ["bifurcation", str(building), "--a-g", "0.1"])
+    assert one_mass.exit_code == 2 and "takes one mass" in one_mass.output, one_mass.output
+    steps = tmp_path / "steps.csv"
+    swept = runner.invoke(app, ["sweep", str(building), "--a-g", "0.3", "--fmin", "0.5", "--fmax", "1.1",
+                                "--fstep", "0.3", "--out", str(steps)])
+    assert swept.exit_code == 0, swept.output
+    assert "wall 0 left" in swept.output and "drift max [mm]" in swept.output
+    assert len(pd.read_csv(steps)) == 3 * 4  # (a row per step and level)
+    refused = runner.invoke(app, ["sweep", str(building), "--a-g", "0.3", "--no-bumpers"])
+    assert refused.exit_code == 2 and "--no-bumpers" in refused.output
     velocity = runner.invoke(app, ["simulate", str(building), "--a-g", "0.1", "--freq", "1",
                                    "--velocity", "0.1"])
     assert velocity.exit_code == 2 and "--velocity" in velocity.output

@@ -32,7 +32,9 @@ _NAMES = {
                "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "Sensor", "Stand",
                "Storey", "Structure", "Wall"),
     ".protocols": ("BasinStabilityMap", "Basins", "BifurcationDiagram", "CampaignResult", "PoundingSpectrum",
-                   "SweepResult", "basin_stability_map", "basins", "bifurcation_diagram", "campaign",
+                   "StructureSweepResult", "SweepResult", "basin_stability_map", "basins",
+                   "bifurcation_diagram",
+                   "campaign",
                    "paper_frequencies_hz", "pounding_spectrum", "sweep"),
     ".studies": ("StudyResult", "StudySpec", "open_study", "study"),
 }
@@ -77,6 +79,7 @@ if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
                         Isolator, Jankowski, KelvinVoigt, Link, MeasurementChain, MultilinearBumper,
                         Oscillator, Sensor, Stand, Storey, Structure, Wall)
     from .protocols import (BasinStabilityMap, Basins, BifurcationDiagram, CampaignResult,  # noqa: F401
-                            PoundingSpectrum, SweepResult, basin_stability_map, basins, bifurcation_diagram,
+                            PoundingSpectrum, StructureSweepResult, SweepResult, basin_stability_map, basins,
+                            bifurcation_diagram,
                             campaign, paper_frequencies_hz, pounding_spectrum, sweep)
     from .studies import StudyResult, StudySpec, open_study, study  # noqa: F401

@@ -283,7 +283,7 @@ def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True, st
     if kind is not None:  # (a structure's file, or two adjacent ones': to_toml writes them)
         if not structures:
             raise typer.BadParameter(f"{path} is a structure of several masses: this command takes one mass "
-                                     "so far (pounding simulate takes structures)")
+                                     "so far (pounding simulate and pounding sweep take structures)")
         return kind.from_toml(path)
     return Oscillator.from_toml(path)
 

@@ -297,7 +297,13 @@ def sweep(
 
     paths = files(out=(out, CSV), netcdf=(netcdf, NETCDF))
     plot = figure_path("--plot", plot)
-    osc = system(system_file, preset, bumpers=not no_bumpers)
+    from ..model import Oscillator
+
+    osc = system(system_file, preset, bumpers=not no_bumpers, structures=True)
+    several = not isinstance(osc, Oscillator)
+    if several and no_bumpers:
+        raise typer.BadParameter("--no-bumpers is for one mass (a structure's walls and links are in its "
+                                 "file: remove them there)")
     freqs = frequencies(fmin, fmax, fstep)
     options = steady_options(steady, cycles, max_cycles)
     from ..protocols.sweep import make_plan
@@ -311,7 +317,12 @@ def sweep(
         result = stop.partial
     table, add = kv_table(f"sweep {result.direction}, a_G = {a_g:g}", system_file or preset)
     add("status", result.message)
-    if result.steps_done:
+    if several:
+        console.print(table)
+        if result.steps_done:
+            console.print(_structure_sweep_table(result))
+        table = None
+    elif result.steps_done:
         add("nu_R (alpha peak)", f"{result.nu_r:g}")
         add("alpha max", f"{result.alpha_max:.4f}")
         rng = result.contact_range_hz
@@ -325,11 +336,15 @@ def sweep(
             )
             or "none",
         )
-    console.print(table)
+    if table is not None:
+        console.print(table)
     complete = result.steps_done == result.freqs_hz.size
     with interrupts_deferred() as held:
         if paths["out"] is not None:
-            write_csv(result.to_dataframe()[SWEEP_CSV_COLUMNS].iloc[: result.steps_done], paths["out"])
+            frame = result.to_dataframe()
+            done = frame["freq_hz"].isin(result.freqs_hz[: result.steps_done])
+            write_csv(frame[done] if several else frame[SWEEP_CSV_COLUMNS].iloc[: result.steps_done],
+                      paths["out"])
             console.print(f"per-step table -> {paths['out']}")
         if paths["netcdf"] is not None:
             atomic_write(paths["netcdf"], lambda tmp: result.to_xarray().to_netcdf(tmp))
@@ -343,6 +358,36 @@ def sweep(
         )
     if not result.success:
         raise typer.Exit(code=1)
+
+
+def _structure_sweep_table(result):
+    """A structure's sweep, one row per level: its alpha's peak and where, its largest excursion and the
+    storey below's largest drift; and the contacts."""
+    import numpy as np
+    from rich.table import Table
+
+    from ..protocols.structure_sweep_result import level_name, slot_name
+
+    done = slice(0, result.steps_done)
+    table = Table(title="per level, over the steps")
+    for name in ("level", "alpha max", "at f [Hz]", "excursion max [mm]", "drift max [mm]"):
+        table.add_column(escape(name), justify="right", no_wrap=True)
+    below = {lv: s for s, lv in enumerate(result.storeys)}
+    for q, lv in enumerate(result.levels):
+        alpha = result.alpha[done, q]
+        excursion = result.level_metrics[done, q, 0] - result.level_metrics[done, q, 1]
+        drift = f"{np.nanmax(result.peak_drift[done, below[lv]]) * 1e3:.3f}" if lv in below else "-"
+        table.add_row(level_name(result.levels, q), f"{np.nanmax(alpha):.4f}",
+                      f"{result.freqs_hz[int(np.nanargmax(alpha))]:g}", f"{np.nanmax(excursion) * 1e3:.3f}",
+                      drift)
+    for c in range(len(result.contact_slots)):
+        per_cycle = result.contact_metrics[done, c, 0]
+        hit = result.freqs_hz[done][per_cycle > 0]
+        table.add_section()
+        table.add_row(slot_name(result.contact_slots, c), "contacts:",
+                      "none" if hit.size == 0 else f"{hit.min():g} - {hit.max():g} Hz",
+                      f"{np.nanmax(per_cycle):g}/cycle at most" if hit.size else "", "")
+    return table
 
 
 @command()

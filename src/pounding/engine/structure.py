@@ -340,6 +340,18 @@ def structure_rates(asm: Assembly) -> tuple[float, float]:
     return free, rate(k, c)
 
 
+def check_structure_state(state: Optional[StructureState], model: Structure | Adjacent) -> StructureState:
+    """``state`` checked against the structure (None: at rest at 0), for the protocols."""
+    return _check_state(state, model, assemble(model))
+
+
+def structure_rate(model: Structure | Adjacent) -> tuple[float, str]:
+    """The fastest rate of the structure's motion out of contact, rad/s, and what sets it (what a
+    protocol's work estimate counts from, as ``isolator_rate`` for one mass)."""
+    free, _ = structure_rates(assemble(model))
+    return free, f"the structure's fastest motion {free:.3g} rad/s"
+
+
 def simulate_structure(structure: Structure | Adjacent, excitation: Harmonic | Record, duration: float,
                        state: Optional[StructureState] = None, *, rtol: float = 1e-10,
                        sample_rate_hz: Optional[float] = None, max_events: int = 10_000_000,

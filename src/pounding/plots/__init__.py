@@ -15,6 +15,7 @@ from .record import plot_record, plot_response_spectrum
 from .run import plot_run
 from .spectrum import plot_pounding_spectrum
 from .structure import plot_structure_run
+from .structure_sweep import plot_structure_sweep
 from .study import plot_study
 from .sweep import plot_campaign, plot_hysteresis, plot_lab_sweep, plot_sweep
 
@@ -25,4 +26,5 @@ __all__ = ["plot_adjacent_run", "plot_basin_stability", "plot_basins", "plot_bif
            "plot_hazard_curve", "plot_responses", "plot_scaled_suite", "plot_stripes", "plot_identification",
            "plot_lyapunov",
            "plot_hysteresis", "plot_lab_sweep", "plot_orbit", "plot_pounding_spectrum", "plot_record",
-           "plot_response_spectrum", "plot_run", "plot_structure_run", "plot_study", "plot_sweep"]
+           "plot_response_spectrum", "plot_run", "plot_structure_run", "plot_structure_sweep", "plot_study",
+           "plot_sweep"]

@@ -25,7 +25,7 @@ from ..excitation import MAX_FREQ_HZ, GRAVITY_M_S2, Harmonic
 from ..model import MeasurementChain, Oscillator
 from .._runner.progress import Progress, progress_reporter
 from ._step_kernel import W_CYCLES, WINDOW_COLS, step_kernel
-from .sweep_result import SweepResult
+from .sweep_result import SweepResult, sweep_message
 
 Direction = Literal["up", "down"]
 SteadyMode = Literal["adaptive", "fixed"]
@@ -33,6 +33,13 @@ SteadyMode = Literal["adaptive", "fixed"]
 from ..data import PAPER_F_REF_HZ, PAPER_OMEGA_MIN_RAD_S  # noqa: E402  (the paper's conventions)
 MAX_STEPS_PER_SWEEP = 100_000
 MAX_CYCLES_PER_STEP = 1_000_000
+
+
+def _is_structure(system: Any) -> bool:
+    """A :class:`~pounding.Structure` or :class:`~pounding.Adjacent` (several masses), not one mass."""
+    from ..model import Adjacent, Structure
+
+    return isinstance(system, (Structure, Adjacent))
 
 
 def paper_frequencies_hz() -> np.ndarray:
@@ -127,7 +134,14 @@ def make_plan(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = 
         raise InputError(Problem.WRONG_TYPE, "measurement", measurement, got=type(measurement).__name__,
                          expected="pounding.MeasurementChain or None (the exact metrics)")
 
-    check_oscillator(oscillator)
+    several = _is_structure(oscillator)
+    if several:
+        if measurement is not None:
+            raise InputError(Problem.WRONG_MODE, "measurement", measurement,
+                             mode="a single mass (Oscillator)",
+                             fix="leave it None for a Structure: its metrics are the exact ones")
+    else:
+        check_oscillator(oscillator)
     a_g = Harmonic(positive("a_g", a_g, "g (e.g. 0.05)"), 1.0).a_g  # its magnitude checks
     freqs = paper_frequencies_hz() if freqs_hz is None else float_array("freqs_hz", freqs_hz)
     if freqs.size > MAX_STEPS_PER_SWEEP:
@@ -178,11 +192,17 @@ def make_plan(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = 
     rtol = check_rtol(rtol)
     max_events_per_cycle = integer("max_events_per_cycle", max_events_per_cycle, 1)
     max_steps = integer("max_steps", max_steps, 1)
-    if state is not None:
-        check_state(state, oscillator)
+    if several:
+        from ..engine.structure import check_structure_state, structure_rate
+
+        state = check_structure_state(state, oscillator)
+        rate, why = structure_rate(oscillator)
+    else:
+        if state is not None:
+            check_state(state, oscillator)
+        rate, why = isolator_rate(oscillator)
     # the least work the sweep can take: every step's fewest cycles
     least_cycles = n_cycles if steady == "fixed" else min(n_cycles, 2 * measure_cycles + 1)
-    rate, why = isolator_rate(oscillator)
     estimate = float(np.sum(steps_per_second(rate, 2.0 * math.pi * freqs) * least_cycles / freqs))
     check_budget("freqs_hz", f"{freqs.size} steps of {least_cycles}+ cycles", estimate, max_steps,
                  f"at least {least_cycles} cycles at each of {freqs.size} frequencies; {why}",
@@ -315,10 +335,13 @@ def sweep(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = None
     """
     plan = make_plan(oscillator, a_g, freqs_hz, direction, state, **options)
     ctl = new_control(plan.max_steps)
+    run = run_plan
+    if _is_structure(plan.oscillator):
+        from .structure_sweep import run_structure_plan as run
     with progress_reporter(progress, plan.freqs_hz.size,
                            f"sweep {direction}, a_G = {plan.a_g:g}") as advance:
         # on a helper thread, so that Ctrl-C stops the step kernel at once (engine/_control.py)
-        return run_interruptibly(lambda: run_plan(plan, advance, ctl), [ctl])
+        return run_interruptibly(lambda: run(plan, advance, ctl), [ctl])
 
 
 def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
@@ -399,30 +422,9 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
         window=window, cycles_run=cycles_run, period_multiple=period_multiple,
         window_states=window_states, window_strobes=window_strobes, step_start_s=step_start_s,
         steps_done=done, final_state=State._from_kernel(state), status=status,
-        message=_message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted),
+        message=sweep_message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted),
         measurement=plan.measurement if measured is not None else None, measured=measured,
         measured_impacts=measured_impacts)
     if interrupted:
         raise Interrupted(result, done, n_steps)
     return result
-
-
-def _message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted) -> str:
-    if interrupted and done == n_steps and plan.measurement is not None:
-        return (f"Interrupted while measuring the windows through the chain: the {done} steps ran, "
-                "and their metrics are the exact ones (no chain).")
-    if interrupted:
-        return f"Interrupted after {done} of {n_steps} steps; the others are NaN."
-    if status != Status.SUCCESS:
-        return (f"Stopped at step {done} of {n_steps} ({plan.freqs_hz[done - 1]:g} Hz): "
-                f"{status.message}")
-    not_steady = int(np.sum(period_multiple[:done] == 0))
-    if plan.steady == "adaptive":
-        if not_steady:
-            return (f"{not_steady} of {n_steps} steps reached max_cycles = {plan.cycles} without "
-                    f"a periodic response (steady False); raise max_cycles or add damping.")
-        return f"All {n_steps} steps reached a periodic steady state."
-    if not_steady:
-        return (f"Fixed schedule of {plan.cycles} cycles: {not_steady} of {n_steps} steps were not "
-                f"periodic over their last {plan.measure_cycles} cycles (steady False).")
-    return f"Fixed schedule of {plan.cycles} cycles: every step was periodic when measured."

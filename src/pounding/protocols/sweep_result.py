@@ -404,3 +404,25 @@ def _impact_means(sums: np.ndarray, window_cycles: np.ndarray) -> dict[str, np.n
             n = sums[:, S_N_RESTITUTION] if j == 0 else count
             out[name] = np.where(n > 0, sums[:, S_SUMS + j] / np.where(n > 0, n, 1.0), np.nan)
     return out
+
+
+def sweep_message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted) -> str:
+    """A sweep's ``message``: how it ended, in words (a single mass's or a structure's)."""
+    if interrupted and done == n_steps and plan.measurement is not None:
+        return (f"Interrupted while measuring the windows through the chain: the {done} steps ran, "
+                "and their metrics are the exact ones (no chain).")
+    if interrupted:
+        return f"Interrupted after {done} of {n_steps} steps; the others are NaN."
+    if status != Status.SUCCESS:
+        return (f"Stopped at step {done} of {n_steps} ({plan.freqs_hz[done - 1]:g} Hz): "
+                f"{status.message}")
+    not_steady = int(np.sum(period_multiple[:done] == 0))
+    if plan.steady == "adaptive":
+        if not_steady:
+            return (f"{not_steady} of {n_steps} steps reached max_cycles = {plan.cycles} without "
+                    f"a periodic response (steady False); raise max_cycles or add damping.")
+        return f"All {n_steps} steps reached a periodic steady state."
+    if not_steady:
+        return (f"Fixed schedule of {plan.cycles} cycles: {not_steady} of {n_steps} steps were not "
+                f"periodic over their last {plan.measure_cycles} cycles (steady False).")
+    return f"Fixed schedule of {plan.cycles} cycles: every step was periodic when measured."

@@ -1,0 +1,131 @@
+"""A stepped-sine sweep of a structure of several masses (:func:`pounding.sweep` with a
+:class:`~pounding.Structure` or :class:`~pounding.Adjacent`).
+
+Each step runs as a single mass's does (the core's ``step``: cycles until the whole state, every level's,
+repeats at the cycle ends, or a fixed number), and its measured window is then run once more from the
+exact state at its start, for every level's exact extrema, every storey's drift and every contact.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+
+import numpy as np
+
+from .. import _core
+from .._errors import Interrupted, Status
+from ..engine._control import new_control, stop_requested
+from ..engine._layout import T
+from ..engine._run_args import kernel_forcing
+from ..engine.structure import StructureState, assemble
+from ..excitation import GRAVITY_M_S2, Harmonic
+from ._step_kernel import W_CYCLES, step_kernel
+from .sweep_result import sweep_message
+from .structure_sweep_result import (C_COUNT, C_IMPULSE, C_PEAK, C_TIME, CONTACT_STATS, StructureSweepResult,
+                                     labels_of)
+
+# the core's rows: per dof (dmax, t, dmin, t, amax, t, -), per tracked pair (max, t, min, t); contacts
+_DOF_COLS, _PAIR_COLS = 7, 4
+_SLOT, _T_START, _T_END, _IMPULSE, _PEAK = 0, 1, 2, 5, 6
+
+
+def run_structure_plan(plan, advance: Callable[[int], None] | None = None,
+                       control: np.ndarray | None = None) -> StructureSweepResult:
+    """Run a validated plan (``sweep.make_plan`` of a structure) step by step; ``advance(1)`` after each
+    step; on a stop from ``control`` (or a KeyboardInterrupt) :class:`~pounding.Interrupted` carries the
+    finished steps."""
+    ctl = new_control(plan.max_steps) if control is None else control
+    model = plan.oscillator
+    asm = assemble(model)
+    system = asm.system
+    n_steps = plan.freqs_hz.size
+    levels, storeys, slots = labels_of(model, asm)
+    level_dof = [d for dofs in asm.dofs for d in dofs]
+    level = np.full((n_steps, len(levels), 3), np.nan)       # dmax, dmin, amax
+    drift = np.full((n_steps, len(storeys), 2), np.nan)      # max, min
+    contact = np.full((n_steps, len(slots), CONTACT_STATS), np.nan)
+    cycles_run = np.zeros(n_steps, dtype=np.int64)
+    period_multiple = np.zeros(n_steps, dtype=np.int64)
+    window_cycles = np.zeros(n_steps, dtype=np.int64)
+    window_states = np.full((n_steps, system.layout["size"]), np.nan)
+    step_start_s = np.full(n_steps, np.nan)
+    state = plan.state.vector.copy()
+    steady = (plan.steady == "adaptive", int(plan.cycles), int(plan.measure_cycles), float(plan.steady_rtol),
+              int(plan.max_period))
+    status = Status.SUCCESS
+    done = 0
+    interrupted = False
+    try:
+        for i, f in enumerate(plan.freqs_hz):
+            if stop_requested(ctl):
+                interrupted = True
+                break
+            exc = Harmonic(plan.a_g, f)
+            start = state
+            state, n, k, win, win_state, _, code = step_kernel(
+                system, exc.peak_m_s2, exc.omega_rad_s, start, steady, plan.rtol, plan.max_events_per_cycle,
+                ctl)
+            if code == Status.INTERRUPTED:
+                state = start
+                interrupted = True
+                break
+            m = int(win[W_CYCLES])
+            if code == Status.SUCCESS:  # the window once more, from its exact start, every level measured
+                t0 = float(win_state[T])
+                at = Harmonic(plan.a_g, f, phase=-(exc.omega_rad_s * t0))
+                period = 1.0 / float(f)
+                out = _core.run(system, kernel_forcing(at), win_state.copy(), t0 + m * period, period,
+                                plan.rtol, plan.max_events_per_cycle * m, False, ctl)
+                code = int(out[-1])
+                if code == Status.INTERRUPTED:
+                    state = start
+                    interrupted = True
+                    break
+                if code == Status.SUCCESS:
+                    _measure(out, level_dof, at.peak_m_s2, m, t0, level[i], drift[i], contact[i], system.n)
+            step_start_s[i] = start[T]
+            cycles_run[i] = n
+            period_multiple[i] = k
+            window_cycles[i] = m
+            window_states[i] = win_state
+            done = i + 1
+            if advance is not None:
+                advance(1)
+            if code != Status.SUCCESS:
+                status = Status(int(code))
+                break
+    except KeyboardInterrupt:
+        interrupted = True
+    result = StructureSweepResult(
+        structure=model, a_g=plan.a_g, freqs_hz=plan.freqs_hz, direction=plan.direction,
+        steady_mode=plan.steady, cycles=plan.cycles, measure_cycles=plan.measure_cycles,
+        f_ref_hz=plan.f_ref_hz,
+        g=GRAVITY_M_S2, levels=levels, storeys=storeys, contact_slots=slots, level_metrics=level,
+        drift_metrics=drift, contact_metrics=contact, cycles_run=cycles_run, period_multiple=period_multiple,
+        window_cycles=window_cycles, window_states=window_states, step_start_s=step_start_s, steps_done=done,
+        final_state=StructureState._of(state, asm.dofs, system.n), status=status,
+        message=sweep_message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted))
+    if interrupted:
+        raise Interrupted(result, done, n_steps)
+    return result
+
+
+def _measure(out: tuple, level_dof: list, peak_m_s2: float, m: int, t0: float,
+             level: np.ndarray, drift: np.ndarray, contact: np.ndarray, n_dof: int) -> None:
+    """One window's run (the core's output) into a step's rows: each level's extrema, each storey's drift,
+    each contact slot's statistics (the contacts that ended in the window, per cycle)."""
+    contacts, extrema = out[2], out[5]
+    per_dof = extrema[:_DOF_COLS * n_dof].reshape(n_dof, _DOF_COLS)
+    pairs = extrema[_DOF_COLS * n_dof:].reshape(-1, _PAIR_COLS)
+    for q, d in enumerate(level_dof):
+        level[q] = per_dof[d, [0, 2, 4]] if d >= 0 else (0.0, 0.0, peak_m_s2)  # (a fixed base: the ground)
+    drift[:] = pairs[:len(drift), [0, 2]]
+    ended = contacts[np.isfinite(contacts[:, _T_END])] if len(contacts) else np.zeros((0, 9))
+    for c in range(contact.shape[0]):
+        rows = ended[ended[:, _SLOT] == c]
+        contact[c, C_COUNT] = len(rows) / m
+        whole = rows[rows[:, _T_START] > t0]  # (a contact already on at the window's start: not timed)
+        contact[c, C_TIME] = float(np.mean(whole[:, _T_END] - whole[:, _T_START])) if len(whole) else math.nan
+        contact[c, C_IMPULSE] = float(np.mean(rows[:, _IMPULSE])) if len(rows) else math.nan
+        contact[c, C_PEAK] = float(np.max(rows[:, _PEAK])) if len(rows) else math.nan

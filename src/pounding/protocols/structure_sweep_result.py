@@ -1,0 +1,284 @@
+"""What a sweep of a structure returns: per step, every level's alpha and extrema, every storey's drift and
+every wall side's (and link's) contacts, measured exactly over the step's window."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from .._checks import integer
+from .._errors import Status
+
+# the contact statistics of a step, per contact slot
+C_COUNT, C_TIME, C_IMPULSE, C_PEAK = 0, 1, 2, 3
+CONTACT_STATS = 4
+CONTACT_NAMES = ("contacts_per_cycle", "contact_time_mean_s", "impulse_mean_n_s", "peak_force_max_n")
+_NAMES = ("first", "second")
+
+
+def labels_of(model: Any, asm: Any) -> tuple[list, list, list]:
+    """(levels, storeys, contact slots) of a structure or a pair, as rows of labels: a level
+    ``(structure, level)``, a storey ``(structure, storey)`` (storey ``s`` under level ``s``), a slot
+    ``(structure, "wall", wall, level, side)`` or ``(-1, "link", link, level_first, "")``."""
+    from ..engine.structure import structures_of
+
+    structures, links = structures_of(model)
+    levels = [(b, q) for b, s in enumerate(structures) for q in range(s.n_levels)]
+    storeys = [(b, q + 1) for b, s in enumerate(structures) for q in range(len(s.storeys))]
+    slots = []
+    for b, wall, side in asm.slots:
+        if b >= 0:
+            slots.append((b, "wall", wall, structures[b].walls[wall].level, ("left", "right")[side]))
+        else:
+            slots.append((-1, "link", wall, links[wall].level_first, ""))
+    return levels, storeys, slots
+
+
+@dataclass(frozen=True, eq=False)
+class StructureSweepResult:
+    """Result of :func:`pounding.sweep` of a :class:`~pounding.Structure` (or :class:`~pounding.Adjacent`):
+    per frequency step, each level's alpha and exact extrema, each storey's drift, each contact's
+    statistics, over the step's window (its last cycles, run again from the window's exact start).
+
+    Attributes
+    ----------
+    structure : Structure or Adjacent
+        The system swept.
+    a_g : float
+        Peak table acceleration in g.
+    freqs_hz : ndarray, shape (n,)
+        Step frequencies in stepping order.
+    levels, storeys, contact_slots : list of tuple
+        What the columns of the metrics are: a level ``(structure, level)``; a storey ``(structure,
+        storey)`` (storey ``s`` carries level ``s``); a contact slot ``(structure, "wall", wall, level,
+        side)`` or ``(-1, "link", link, level_first, "")`` (``structure`` 0, or 0 and 1 for a pair).
+    level_metrics : ndarray, shape (n, n_levels, 3)
+        Each level's exact displacement max and min (m, relative to the ground) and absolute acceleration
+        peak (m/s^2) over the window (NaN: a step not measured).
+    drift_metrics : ndarray, shape (n, n_storeys, 2)
+        Each storey's exact drift max and min, m.
+    contact_metrics : ndarray, shape (n, n_slots, 4)
+        Per contact slot: contacts per cycle (those that ended in the window), mean contact time (s),
+        mean impulse (N s), largest peak force (N).
+    cycles_run, period_multiple, window_cycles : ndarray of int, shape (n,)
+        Cycles each step ran; the period multiple of its steady response (0: not periodic); its window's
+        cycles.
+    window_states : ndarray, shape (n, n_state)
+        The exact state at each window's start.
+    step_start_s : ndarray, shape (n,)
+        When each step began, s.
+    steps_done : int
+        Steps finished.
+    final_state : StructureState
+        Where the sweep ended (``state`` of the next sweep).
+    status : Status
+        How the sweep ended; ``message`` says it in words.
+
+    Examples
+    --------
+    A two-storey building on a linear isolator, a stop at its base 2 cm away, swept at 0.1 g:
+
+    >>> import pounding
+    >>> iso = pounding.Isolator(slopes=[2.0e5], breakpoints=[], damping=4.0e3)
+    >>> b = pounding.Structure(2.0e3, iso, [pounding.Storey(1.0e3, 2.0e6, 2.0e3)] * 2,
+    ...                        [pounding.Wall(0, 0.02, 0.02, pounding.KelvinVoigt(1.0e8, 1.0e4))])
+    >>> res = pounding.sweep(b, 0.1, [1.0, 1.5, 2.0])
+    >>> res.message
+    'All 3 steps reached a periodic steady state.'
+    >>> res.alpha.shape  # (steps, levels)
+    (3, 3)
+    >>> df = res.to_dataframe()  # one row per step and level
+    >>> list(df.columns[:5])
+    ['freq_hz', 'nu', 'level', 'alpha', 'displacement_max_m']
+    """
+
+    structure: Any
+    a_g: float
+    freqs_hz: np.ndarray
+    direction: str
+    steady_mode: str
+    cycles: int
+    measure_cycles: int
+    f_ref_hz: float
+    g: float
+    levels: list
+    storeys: list
+    contact_slots: list
+    level_metrics: np.ndarray
+    drift_metrics: np.ndarray
+    contact_metrics: np.ndarray
+    cycles_run: np.ndarray
+    period_multiple: np.ndarray
+    window_cycles: np.ndarray
+    window_states: np.ndarray
+    step_start_s: np.ndarray
+    steps_done: int
+    final_state: Any
+    status: Status
+    message: str
+
+    # ------------------------------------------------------------------ derived
+    @property
+    def success(self) -> bool:
+        return self.status == Status.SUCCESS
+
+    @property
+    def peak_m_s2(self) -> float:
+        """The table's peak acceleration ``A_t = a_g g``, m/s^2."""
+        return self.a_g * self.g
+
+    @property
+    def nu(self) -> np.ndarray:
+        """``f / f_R`` of each step, shape (n,)."""
+        return self.freqs_hz / self.f_ref_hz
+
+    @property
+    def alpha(self) -> np.ndarray:
+        """Each level's ``max |a_abs| / A_t`` over each step's window, shape (n, n_levels)."""
+        return self.level_metrics[:, :, 2] / self.peak_m_s2
+
+    @property
+    def alpha_base(self) -> np.ndarray:
+        """The (first) structure's base's alpha per step, shape (n,) (a fixed base: 1, the ground's)."""
+        return self.alpha[:, 0]
+
+    @property
+    def alpha_top(self) -> np.ndarray:
+        """The (first) structure's top floor's alpha per step, shape (n,)."""
+        top = max(q for q, (b, _) in enumerate(self.levels) if b == 0)
+        return self.alpha[:, top]
+
+    @property
+    def peak_drift(self) -> np.ndarray:
+        """Each storey's largest absolute drift per step, m, shape (n, n_storeys)."""
+        return np.maximum(np.abs(self.drift_metrics[:, :, 0]), np.abs(self.drift_metrics[:, :, 1]))
+
+    def _level(self, level: int) -> int:
+        n = len(self.levels)
+        q = integer("level", level, -n, n - 1)
+        return q % n
+
+    def resonance_hz(self, level: int = -1) -> float:
+        """The step frequency where ``level``'s alpha peaks, Hz (``level`` counts through :attr:`levels`;
+        -1 the last: the top floor of a single structure)."""
+        alpha = self.alpha[:, self._level(level)]
+        if not np.any(np.isfinite(alpha)):
+            return float("nan")
+        return float(self.freqs_hz[int(np.nanargmax(alpha))])
+
+    def nu_r(self, level: int = -1) -> float:
+        """The pseudo-resonance ``nu_R`` of ``level``: where its alpha peaks, over ``f_R``."""
+        return self.resonance_hz(level) / self.f_ref_hz
+
+    # ------------------------------------------------------------------ tables
+    def _level_columns(self) -> dict[str, Any]:
+        pair = len({b for b, _ in self.levels}) > 1
+        cols: dict[str, Any] = {}
+        if pair:
+            cols["structure"] = [_NAMES[b] for b, _ in self.levels]
+        cols["level"] = [q for _, q in self.levels]
+        return cols
+
+    def to_dataframe(self) -> pd.DataFrame:
+        """One row per step and level (steps in stepping order): ``freq_hz``, ``nu``, (``structure``),
+        ``level``, ``alpha``, exact displacement extrema and excursion (m), absolute acceleration peak
+        (m/s^2), the storey below's peak drift (m) and drift ratio (NaN at a base), ``steady``,
+        ``period_multiple``, ``cycles_run``."""
+        n, n_lev = len(self.freqs_hz), len(self.levels)
+        below = {lv: s for s, lv in enumerate(self.storeys)}
+        heights = self._storey_heights()
+        drift = np.full((n, n_lev), np.nan)
+        ratio = np.full((n, n_lev), np.nan)
+        for q, lv in enumerate(self.levels):
+            if lv in below:
+                drift[:, q] = self.peak_drift[:, below[lv]]
+                ratio[:, q] = drift[:, q] / heights[below[lv]]
+        m = self.level_metrics
+        cols = self._level_columns()
+        frame = {"freq_hz": np.repeat(self.freqs_hz, n_lev), "nu": np.repeat(self.nu, n_lev),
+                 **{k: np.tile(v, n) for k, v in cols.items()},
+                 "alpha": self.alpha.ravel(), "displacement_max_m": m[:, :, 0].ravel(),
+                 "displacement_min_m": m[:, :, 1].ravel(), "excursion_m": (m[:, :, 0] - m[:, :, 1]).ravel(),
+                 "abs_acceleration_max_m_s2": m[:, :, 2].ravel(), "drift_peak_m": drift.ravel(),
+                 "drift_ratio_peak": ratio.ravel(),
+                 "steady": np.repeat(self.period_multiple > 0, n_lev),
+                 "period_multiple": np.repeat(self.period_multiple, n_lev),
+                 "cycles_run": np.repeat(self.cycles_run, n_lev)}
+        return pd.DataFrame(frame)
+
+    def _storey_heights(self) -> np.ndarray:
+        from ..engine.structure import structures_of
+
+        structures = structures_of(self.structure)[0]
+        return np.array([structures[b].storeys[s - 1].height_m for b, s in self.storeys])
+
+    def contacts_dataframe(self) -> pd.DataFrame:
+        """One row per step and contact slot: ``freq_hz``, ``nu``, ``structure`` (-1 a link), ``kind``
+        (``wall`` or ``link``), its index, ``level``, ``side``, then contacts per cycle, mean contact time
+        (s), mean impulse (N s) and largest peak force (N) over the window."""
+        n, n_c = len(self.freqs_hz), len(self.contact_slots)
+        labels = list(zip(*self.contact_slots)) if n_c else [()] * 5
+        frame = {"freq_hz": np.repeat(self.freqs_hz, n_c), "nu": np.repeat(self.nu, n_c)}
+        for name, values in zip(("structure", "kind", "index", "level", "side"), labels):
+            frame[name] = np.tile(np.array(values, dtype=object), n)
+        for k, name in enumerate(CONTACT_NAMES):
+            frame[name] = self.contact_metrics[:, :, k].ravel()
+        return pd.DataFrame(frame)
+
+    def to_xarray(self) -> Any:
+        """The metrics as a Dataset along ``step``, ``level``, ``storey`` and ``contact`` (units in each
+        variable's ``units``; ``status``, ``message``, ``a_g`` as attributes)."""
+        import xarray as xr
+
+        m = self.level_metrics
+        level = self._level_columns()
+        ds = xr.Dataset(
+            {"alpha": (("step", "level"), self.alpha, {"units": "1"}),
+             "displacement_max": (("step", "level"), m[:, :, 0], {"units": "m"}),
+             "displacement_min": (("step", "level"), m[:, :, 1], {"units": "m"}),
+             "abs_acceleration_max": (("step", "level"), m[:, :, 2], {"units": "m/s^2"}),
+             "drift_max": (("step", "storey"), self.drift_metrics[:, :, 0], {"units": "m"}),
+             "drift_min": (("step", "storey"), self.drift_metrics[:, :, 1], {"units": "m"}),
+             **{name: (("step", "contact"), self.contact_metrics[:, :, k], {"units": unit})
+                for k, (name, unit) in enumerate(zip(CONTACT_NAMES, ("1/cycle", "s", "N s", "N")))},
+             "period_multiple": ("step", self.period_multiple),
+             "cycles_run": ("step", self.cycles_run)},
+            coords={"freq_hz": ("step", self.freqs_hz, {"units": "Hz"}), "nu": ("step", self.nu),
+                    "level_number": ("level", np.array(level["level"])),
+                    "storey_number": ("storey", np.array([s for _, s in self.storeys], dtype=int)),
+                    "contact_name": ("contact", np.array([_slot_name(s) for s in self.contact_slots],
+                                                         dtype=str))})
+        ds.attrs.update({"a_g": self.a_g, "direction": self.direction, "status": self.status.name,
+                         "message": self.message})
+        return ds
+
+    # ------------------------------------------------------------------ plot
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """Each level's alpha against ``nu`` (and, with contacts, each slot's contacts per cycle);
+        see :func:`pounding.plots.plot_structure_sweep`."""
+        from ..plots import plot_structure_sweep
+
+        return plot_structure_sweep(self, ax=ax, **kwargs)
+
+
+def _slot_name(slot: tuple) -> str:
+    b, kind, index, level, side = slot
+    if kind == "link":
+        return f"link {index}"
+    who = f"{_NAMES[b]} " if b > 0 else ""
+    return f"{who}wall {index} {side}".strip()
+
+
+def level_name(levels: list, q: int) -> str:
+    """A level's name in a legend: ``"level 2"``, ``"second level 2"`` for a pair's second structure."""
+    b, level = levels[q]
+    pair = len({s for s, _ in levels}) > 1
+    return f"{_NAMES[b]} level {level}" if pair else f"level {level}"
+
+
+def slot_name(slots: list, c: int) -> str:
+    """A contact slot's name in a legend."""
+    return _slot_name(slots[c])
