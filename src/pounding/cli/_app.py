@@ -270,7 +270,8 @@ def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True, st
     a preset."""
     from .. import presets
     from .._checks import parse_toml, read_text
-    from ..model import Adjacent, Oscillator, Structure
+    from ..model import Oscillator
+    from ..model._toml import system_type
 
     if (path is None) == (preset is None):
         raise typer.BadParameter("give either SYSTEM.toml or --preset NAME (one of them)")
@@ -278,9 +279,8 @@ def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True, st
         return presets.by_name(preset, bumpers=bumpers)
     text = read_text("SYSTEM", path)
     table = parse_toml(str(path), text)
-    kind = (Adjacent if "links" in table else
-            Structure if "storeys" in table or "base_mass_kg" in table else None)
-    if kind is not None:  # (a structure's file, or two adjacent ones': to_toml writes them)
+    kind = system_type(table)
+    if kind is not Oscillator:  # (a structure's file, or two adjacent ones': to_toml writes them)
         if not structures:
             raise typer.BadParameter(f"{path} is a structure of several masses: this command takes one mass "
                                      "so far (pounding simulate and pounding sweep take structures)")

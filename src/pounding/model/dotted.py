@@ -8,15 +8,26 @@ from typing import Any
 
 _INDEX = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?$")
 
-# names that stand for several numbers set together: ``bumpers.gap``, the same gap both sides
+# names that stand for several numbers set together: ``bumpers.gap``, the same gap both sides (and a
+# structure's wall's ``walls[i].gap_m``: :func:`alias_of`)
 ALIASES = {"bumpers.gap": ("bumpers.gap_left", "bumpers.gap_right")}
+_WALL_GAP = re.compile(r"^(walls\[\d+\])\.gap_m$")
+
+
+def alias_of(name: str) -> tuple[str, ...] | None:
+    """The names an alias sets together (``bumpers.gap``: both gaps; ``walls[2].gap_m``: that wall's two
+    gaps), or None for a name that is not one."""
+    if name in ALIASES:
+        return ALIASES[name]
+    m = _WALL_GAP.match(name)
+    return (f"{m.group(1)}.gap_left_m", f"{m.group(1)}.gap_right_m") if m else None
 
 
 def set_value(table: dict, name: str, value: Any) -> None:
     """Set the dotted ``name`` (``bumpers.law.stiffness``, ``isolator.slopes[0]``, or an alias:
     ``bumpers.gap`` sets both gaps) in nested tables."""
-    if name in ALIASES:
-        for each in ALIASES[name]:
+    if alias_of(name):
+        for each in alias_of(name):
             set_value(table, each, value)
         return
     parts = name.split(".")
@@ -38,8 +49,8 @@ def set_value(table: dict, name: str, value: Any) -> None:
 
 def why_unresolved(table: dict, name: str) -> str | None:
     """None when the dotted ``name`` reaches a number of the system ``table``; else why not."""
-    if name in ALIASES:
-        for each in ALIASES[name]:
+    if alias_of(name):
+        for each in alias_of(name):
             why = why_unresolved(table, each)
             if why is not None:
                 return why
@@ -67,8 +78,8 @@ def why_unresolved(table: dict, name: str) -> str | None:
 
 def get_value(table: dict, name: str) -> Any:
     """The value at the dotted ``name`` (one :func:`why_unresolved` accepts; an alias's first)."""
-    if name in ALIASES:
-        return get_value(table, ALIASES[name][0])
+    if alias_of(name):
+        return get_value(table, alias_of(name)[0])
     node: Any = table
     for part in name.split("."):
         key, idx = _INDEX.match(part).groups()
@@ -79,7 +90,10 @@ def get_value(table: dict, name: str) -> Any:
 
 
 # the units of a system's numbers by their last key (SI); a Hertz-type law's by its exponent
-_UNITS = {"mass": "kg", "slopes": "N/m", "breakpoints": "m", "gap_left": "m", "gap_right": "m", "gap": "m",
+_UNITS = {"mass": "kg", "mass_kg": "kg", "base_mass_kg": "kg", "stiffness_n_m": "N/m",
+          "damping_n_s_m": "N s/m", "height_m": "m", "gap_left_m": "m", "gap_right_m": "m", "gap_m": "m",
+          "slopes_after_n_m": "N/m", "breakpoints_m": "m", "slopes": "N/m", "breakpoints": "m",
+          "gap_left": "m", "gap_right": "m", "gap": "m",
           "capacity_m": "m", "yield_displacement": "m", "yield_compression": "m",
           "post_yield_stiffness": "N/m", "effective_mass": "kg", "exponent": "-", "damping_ratio": "-",
           "xi_norm": "-", "a": "-", "beta": "-",
@@ -98,8 +112,10 @@ def unit_of(name: str, table: dict | None = None) -> str:
         return _UNITS[leaf]
     if leaf in ("stiffness", "damping"):
         law = None
-        if table is not None and name.startswith("bumpers.law"):
-            law = (table.get("bumpers") or {}).get("law") or {}
+        parent = name.rsplit(".", 1)[0]
+        if table is not None and parent.split(".")[-1] in ("law", "law_right") \
+                and why_unresolved(table, parent + ".stiffness") is None:
+            law = get_value(table, parent)  # (a bumper's, a wall's or a link's law)
         if law and law.get("type") in _HERTZ_TYPES:
             n = f"{float(law.get('exponent', 1.5)):g}"
             return f"N/m^{n}" if leaf == "stiffness" else f"N s/m^{float(n) + 1:g}"

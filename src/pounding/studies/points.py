@@ -21,12 +21,33 @@ SWEEP_QUANTITIES = TABLE2_QUANTITIES + TABLE3_QUANTITIES + TABLE4_QUANTITIES + (
 # a record run adds the bumpers' deepest compression (against their capacity, in design studies)
 RECORD_QUANTITIES = RUN_QUANTITIES[:-1] + ("compression_max_m", "status")
 QUANTITIES = {"sweep": SWEEP_QUANTITIES, "simulate": RUN_QUANTITIES, "record": RECORD_QUANTITIES}
+# a structure's point (or two adjacent ones'): "base" and "top" are the (first) structure's base and top
+# floor; the largest acceleration and drift ratio are over every level and storey, the impacts over every
+# wall and link
+STRUCTURE_RUN_QUANTITIES = ("base_disp_max_m", "top_disp_max_m", "acc_max_g", "top_acc_max_g",
+                            "drift_ratio_max", "impacts", "impact_force_max_n", "status")
+STRUCTURE_SWEEP_QUANTITIES = ("nu_r_top", "alpha_top_max", "alpha_base_max", "drift_ratio_max",
+                              "contact_nu_min", "contact_nu_max", "steps_done", "status")
+STRUCTURE_QUANTITIES = {"sweep": STRUCTURE_SWEEP_QUANTITIES, "simulate": STRUCTURE_RUN_QUANTITIES,
+                        "record": STRUCTURE_RUN_QUANTITIES}
 UNITS = {**RUN_UNITS, "nu_r": "1", "alpha": "1", "eta": "1", "e": "1", "contact_nu_min": "1",
          "contact_nu_max": "1", "excursion_max_m": "m", "mean_force_over_mg": "1", "contact_time_ms": "ms",
          "peak_force_over_mg": "1", "dissipated_energy_per_mass": "m^2/s^2", "restitution": "1",
-         "steps_done": "1", "compression_max_m": "m"}
+         "steps_done": "1", "compression_max_m": "m", "base_disp_max_m": "m", "top_disp_max_m": "m",
+         "top_acc_max_g": "g", "drift_ratio_max": "1", "nu_r_top": "1", "alpha_top_max": "1",
+         "alpha_base_max": "1"}
 SWEEP_ARGS = ("steady", "cycles", "measure_cycles", "max_cycles", "steady_rtol", "f_ref_hz", "rtol")
 SET_PREFIX = "fema-p695:"
+
+
+def quantities_of(kind: str, system: Any) -> tuple[str, ...]:
+    """The quantities a point of ``kind`` keeps, in order, for ``system`` (a system, or its tables): a
+    single mass's, or a structure's (``STRUCTURE_QUANTITIES``)."""
+    from ..model import Oscillator
+    from ..model._toml import system_type
+
+    one = system_type(system) is Oscillator if isinstance(system, dict) else isinstance(system, Oscillator)
+    return QUANTITIES[kind] if one else STRUCTURE_QUANTITIES[kind]
 
 
 @functools.lru_cache(maxsize=64)
@@ -101,15 +122,20 @@ def excitation_of(options: dict[str, Any]) -> Harmonic | Record | None:
     return None
 
 
-def compute_point(system: Oscillator, options: dict[str, Any], max_steps: int | None = None) -> np.ndarray:
-    """The quantities (``QUANTITIES[kind]``, in order) of one point: float64, NaN where a quantity
+def compute_point(system: Any, options: dict[str, Any], max_steps: int | None = None) -> np.ndarray:
+    """The quantities (:func:`quantities_of`, in order) of one point: float64, NaN where a quantity
     does not exist.  A run refused over its budget is kept as ``status`` BUDGET, not raised."""
     from ..engine.simulate import DEFAULT_MAX_STEPS, simulate
     from ..protocols.sweep import sweep
 
     kind = options["kind"]
     steps = DEFAULT_MAX_STEPS if max_steps is None else max_steps
+    names = quantities_of(kind, system)
     try:
+        if not isinstance(system, Oscillator):
+            from .structure_points import structure_point
+
+            return structure_point(system, options, steps, names)
         if kind == "sweep":
             kwargs = {k: options[k] for k in SWEEP_ARGS if options.get(k) is not None}
             freqs = options.get("freqs_hz")
@@ -141,6 +167,6 @@ def compute_point(system: Oscillator, options: dict[str, Any], max_steps: int | 
     except InputError as exc:
         if exc.problem not in (Problem.OVER_BUDGET, Problem.TOO_MUCH_WORK):
             raise
-        out = np.full(len(QUANTITIES[kind]), math.nan)
+        out = np.full(len(names), math.nan)
         out[-1] = float(Status.BUDGET)
         return out

@@ -21,8 +21,12 @@ import numpy as np
 
 from .._checks import parse_toml, read_text
 from .._errors import InputError, Problem
-from ..model import Oscillator
-from ..model.dotted import ALIASES, set_value, why_unresolved
+from ..model import Adjacent, Oscillator, Structure
+from ..model._toml import system_from_dict, system_type
+from ..model.dotted import alias_of, set_value, why_unresolved
+
+System = Oscillator | Structure | Adjacent
+SYSTEM_TYPES = (Oscillator, Structure, Adjacent)
 
 KINDS = ("sweep", "simulate", "record")
 # what each kind of point takes (defaults; None: required), by the name a grid can vary
@@ -43,7 +47,7 @@ class StudySpec:
 
     Parameters
     ----------
-    system : Oscillator
+    system : Oscillator, Structure or Adjacent
         The base system; each grid point changes some of its numbers.
     compute : dict
         ``{"kind": "sweep" | "simulate" | "record", ...options}``: ``sweep`` runs one sweep
@@ -57,8 +61,10 @@ class StudySpec:
     grid : dict
         Dotted name -> values (one axis each, in order): a number of the system
         (``"mass"``, ``"isolator.damping"``, ``"isolator.slopes[0]"``, ``"bumpers.gap_left"``,
-        ``"bumpers.law.stiffness"``; ``"bumpers.gap"`` sets both gaps) or a compute key (``"a_g"``,
-        ``"record"``, ...).
+        ``"bumpers.law.stiffness"``; ``"bumpers.gap"`` sets both gaps; a structure's
+        ``"storeys[2].stiffness_n_m"``, ``"walls[0].law.stiffness"``, ``"walls[0].gap_m"`` for both of a
+        wall's gaps) or a compute key (``"a_g"``, ``"record"``, ...). A structure's points keep its own
+        quantities (``studies.points.quantities_of``).
 
     Examples
     --------
@@ -80,14 +86,14 @@ class StudySpec:
     (0.02, 0.03)
     """
 
-    system: Oscillator
+    system: System
     compute: Mapping[str, Any]
     grid: Mapping[str, tuple]
 
     def __post_init__(self) -> None:
-        if not isinstance(self.system, Oscillator):
+        if not isinstance(self.system, SYSTEM_TYPES):
             raise InputError(Problem.WRONG_TYPE, "system", self.system, got=type(self.system).__name__,
-                             expected="pounding.Oscillator")
+                             expected="pounding.Oscillator, pounding.Structure or pounding.Adjacent")
         compute = _check_compute(self.compute)
         grid = _check_grid(self.grid, compute, self.system)
         compute = _with_defaults(compute, grid)
@@ -130,7 +136,7 @@ class StudySpec:
         """The spec a store records, as it was checked when the study ran (its records are not
         read again: they may have moved since)."""
         spec = object.__new__(cls)
-        object.__setattr__(spec, "system", Oscillator.from_dict(tables["system"]))
+        object.__setattr__(spec, "system", system_from_dict(tables["system"]))
         object.__setattr__(spec, "compute", dict(tables["compute"]))
         object.__setattr__(spec, "grid", {k: tuple(v) for k, v in tables["grid"].items()})
         return spec
@@ -185,7 +191,7 @@ class StudySpec:
         """The number of points in the grid."""
         return int(np.prod(self.shape, dtype=np.int64))
 
-    def point(self, index: Sequence[int]) -> tuple[Oscillator, dict[str, Any]]:
+    def point(self, index: Sequence[int]) -> tuple[System, dict[str, Any]]:
         """The system and compute options of the grid point at ``index`` (one per axis)."""
         values = {name: self.grid[name][i] for name, i in zip(self.grid, index)}
         return point_of(self.system.to_dict(), self.compute, values)
@@ -196,13 +202,13 @@ class StudySpec:
 
 
 def point_of(system_table: dict, compute: Mapping[str, Any], values: Mapping[str, Any]
-             ) -> tuple[Oscillator, dict[str, Any]]:
+             ) -> tuple[System, dict[str, Any]]:
     """The system (``system_table`` with the grid's values set) and the compute options of one point."""
     table = copy.deepcopy(system_table)
     system_values, options = split_values(compute, values)
     for name, value in system_values.items():
         set_value(table, name, value)
-    return Oscillator.from_dict(table), options
+    return system_from_dict(table), options
 
 
 def split_values(compute: Mapping[str, Any], values: Mapping[str, Any]
@@ -226,10 +232,11 @@ def _table(field: str, value: Any) -> dict:
     return dict(value)
 
 
-def system_from_table(value: Any, base_dir: Path) -> Oscillator:
-    """The system of a TOML ``[system]`` table: a preset, a file (relative to ``base_dir``) or its own
-    tables; ``bumpers = false`` drops a preset's or file's bumpers."""
-    if isinstance(value, Oscillator):
+def system_from_table(value: Any, base_dir: Path) -> System:
+    """The system of a TOML ``[system]`` table: a preset, a file (relative to ``base_dir``; an oscillator's,
+    a structure's or two adjacent ones') or its own tables; ``bumpers = false`` drops a preset's or an
+    oscillator's file's bumpers."""
+    if isinstance(value, SYSTEM_TYPES):
         return value
     table = _table("system", value)
     if "preset" in table or "file" in table:
@@ -255,12 +262,16 @@ def system_from_table(value: Any, base_dir: Path) -> Oscillator:
             raise InputError(Problem.WRONG_TYPE, "system.file", path, got=type(path).__name__,
                              expected="path")
         try:
-            osc = Oscillator.from_toml(base_dir / path)
+            file_table = parse_toml(str(base_dir / path), read_text("path", base_dir / path))
+            osc = system_type(file_table).from_toml(base_dir / path)
         except InputError as exc:
             raise exc.relabel("path", "system.file") from None
+        if not bumpers and not isinstance(osc, Oscillator):
+            raise InputError(Problem.WRONG_MODE, "system.bumpers", bumpers, mode="one mass (an Oscillator)",
+                             fix="leave it out: a structure's walls and links are in its file")
         return osc if bumpers else osc.without_bumpers()
     try:
-        return Oscillator.from_dict(table)
+        return system_from_dict(table)
     except InputError as exc:
         raise InputError(exc.problem, f"system.{exc.field}", exc.value, **exc._details) from None
 
@@ -332,7 +343,7 @@ def _number(key: str, value: Any) -> Any:
     return float(value)
 
 
-def _check_grid(value: Any, compute: dict[str, Any], system: Oscillator) -> dict[str, tuple]:
+def _check_grid(value: Any, compute: dict[str, Any], system: System) -> dict[str, tuple]:
     grid = _table("grid", value)
     if not grid:
         raise InputError(Problem.EMPTY, "grid", grid)
@@ -381,9 +392,10 @@ def _check_grid(value: Any, compute: dict[str, Any], system: Oscillator) -> dict
         if len(set(values)) != len(values):
             raise InputError(Problem.DUPLICATE, field, values, repeated="a value")
         out[name] = tuple(values)
-    for alias, names in ALIASES.items():  # (an alias and what it sets on two axes: which one wins?)
+    for alias in out:  # (an alias and what it sets on two axes: which one wins?)
+        names = alias_of(alias) or ()
         both = [n for n in names if n in out]
-        if alias in out and both:
+        if both:
             raise InputError(Problem.DUPLICATE, f"grid.{both[0]}", list(out[both[0]]),
                              repeated=f"grid.{alias} (which sets {' and '.join(names)})")
     missing = [k for k, d in keys.items() if d is None and k not in compute and k not in out
@@ -446,12 +458,15 @@ def _named(exc: InputError, name: str, value: Any) -> InputError:
                       why=f"is refused: it makes {exc.field} = {exc.value!r}, which {why}", fix=fix)
 
 
-def check_options(system: Oscillator, options: dict[str, Any]) -> None:
+def check_options(system: System, options: dict[str, Any]) -> None:
     """The compute options of one point are valid: its excitation builds (a record reads) and
     its duration is positive; a sweep's plan is made (every sweep option checked)."""
     from .._checks import positive
     from .points import SWEEP_ARGS, excitation_of
 
+    if not isinstance(system, Oscillator) and options.get("v0_m_s"):
+        raise InputError(Problem.WRONG_MODE, "v0_m_s", options["v0_m_s"], mode="one mass (an Oscillator)",
+                         fix="leave it 0: a structure's points start at rest")
     if options["kind"] == "sweep":
         from ..protocols.sweep import make_plan
 

@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from .._errors import InputError, Problem
-from .points import QUANTITIES, UNITS
+from .points import UNITS, quantities_of
 from .spec import StudySpec
 from ..model.dotted import unit_of
 
@@ -140,7 +140,8 @@ def create(store: str, spec: StudySpec, chunks: tuple[int, ...]) -> None:
     dims = spec.dims
     shape = spec.shape
     data: dict[str, Any] = {}
-    for q in QUANTITIES[spec.kind]:
+    names = quantities_of(spec.kind, spec.system)
+    for q in names:
         data[q] = (dims, da.full(shape, np.nan, chunks=chunks), {"units": UNITS.get(q, "1")})
     data["done"] = (dims, np.zeros(shape, dtype=bool), {"description": "the point is computed and written"})
     data["session"] = (dims, np.zeros(shape, dtype=np.int32),
@@ -151,8 +152,8 @@ def create(store: str, spec: StudySpec, chunks: tuple[int, ...]) -> None:
     ds = xr.Dataset(data, coords=coords)
     ds.attrs.update({SPEC_ATTR: spec.to_json(), SHA_ATTR: spec.sha256, RECORDS_ATTR: spec._record_files(),
                      "kind": spec.kind,
-                     "quantities": list(QUANTITIES[spec.kind])})
-    encoding = {name: {"chunks": chunks} for name in (*QUANTITIES[spec.kind], *BOOKKEEPING)}
+                     "quantities": list(names)})
+    encoding = {name: {"chunks": chunks} for name in (*names, *BOOKKEEPING)}
     for name in BOOKKEEPING:
         encoding[name]["_FillValue"] = None
     if is_url(store):  # (object storage: no rename; a template cut short is written anew next time)
@@ -248,8 +249,8 @@ def run_chunk(spec_json: str, store: str, index: tuple[int, ...], session: int, 
     if done.all():
         return 0
     # (a store written before a quantity was added has no array for it: it resumes without it)
-    quantities = [q for q in QUANTITIES[kind] if q in group]
-    computed_names = QUANTITIES[kind]
+    computed_names = quantities_of(kind, tables["system"])
+    quantities = [q for q in computed_names if q in group]
     partly = bool(done.any())  # (a chunk cut short before: its finished points are kept as they are)
     block = {q: np.asarray(group[q][sel], dtype=float) if partly else np.full(done.shape, np.nan)
              for q in quantities}

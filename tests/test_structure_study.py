@@ -1,0 +1,99 @@
+"""Parameter studies of structures (``pounding.study`` with a Structure or Adjacent): grid names reach any
+storey's, wall's or link's number, each point keeps what a direct run of its structure gives, and the spec
+refuses what a structure cannot take, naming it."""
+
+from __future__ import annotations
+
+import dataclasses
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pounding as pd_
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def building() -> pd_.Structure:
+    iso = pd_.Isolator(slopes=[4.0e5, 1.0e5], breakpoints=[0.02], damping=2.0e3)
+    wall = pd_.Wall(0, 0.03, 0.03, pd_.KelvinVoigt(2.0e7, 1.0e4))
+    return pd_.Structure(3.0e3, iso, [pd_.Storey(2.0e3, 4.0e6, 4.0e3)] * 3, [wall])
+
+
+def test_each_point_keeps_what_a_direct_run_of_its_structure_gives(tmp_path):
+    b = building()
+    spec = pd_.StudySpec(b, {"kind": "simulate", "a_g": 0.3, "freq_hz": 0.9, "duration_s": 6.0},
+                         {"walls[0].gap_m": [0.02, 0.5], "storeys[2].stiffness_n_m": [2.0e6, 6.0e6]})
+    ds = pd_.study(spec, str(tmp_path / "s.zarr"), scheduler="serial").compute()
+    assert ds.attrs["quantities"][:2] == ["base_disp_max_m", "top_disp_max_m"]
+    assert ds["walls[0].gap_m"].attrs["units"] == "m"
+    assert ds["storeys[2].stiffness_n_m"].attrs["units"] == "N/m"
+    for gap in (0.02, 0.5):
+        for k in (2.0e6, 6.0e6):
+            storeys = list(b.storeys)
+            storeys[2] = dataclasses.replace(storeys[2], stiffness_n_m=k)
+            wall = dataclasses.replace(b.walls[0], gap_left_m=gap, gap_right_m=gap)
+            run = pd_.simulate(dataclasses.replace(b, storeys=tuple(storeys), walls=(wall,)),
+                               pd_.Harmonic(0.3, 0.9), 6.0)
+            point = ds.sel({"walls[0].gap_m": gap, "storeys[2].stiffness_n_m": k})
+            heights = np.array([s.height_m for s in b.storeys])
+            base = max(abs(run.displacement_max[0]), abs(run.displacement_min[0]))
+            assert float(point["base_disp_max_m"]) == base
+            assert float(point["top_acc_max_g"]) == run.abs_acceleration_max[-1] / 9.81
+            assert float(point["acc_max_g"]) == run.abs_acceleration_max.max() / 9.81
+            assert float(point["drift_ratio_max"]) == np.max(run.peak_drift / heights)
+            assert float(point["impacts"]) == len(run.contacts)
+            force = run.contacts["peak_force"].max() if len(run.contacts) else 0.0
+            assert float(point["impact_force_max_n"]) == force
+    # the wide moat is never reached
+    assert float(ds["impacts"].sel({"walls[0].gap_m": 0.5}).max()) == 0.0
+    assert float(ds["impacts"].sel({"walls[0].gap_m": 0.02}).min()) > 0.0
+
+
+def test_a_sweep_study_of_a_pair_and_a_study_file_of_a_building(tmp_path):
+    isolated = dataclasses.replace(building(), walls=())
+    old = pd_.Structure.fixed_base([pd_.Storey(2.5e3, 3.0e6, 5.0e3)] * 3)
+    pair = pd_.Adjacent(isolated, old, [pd_.Link(3, 3, 0.05, pd_.KelvinVoigt(5.0e7, 2.0e4))])
+    spec = pd_.StudySpec(pair, {"kind": "sweep", "a_g": 0.3, "freqs_hz": [0.7, 1.0], "cycles": 6,
+                                "measure_cycles": 2}, {"links[0].gap_m": [0.01, 1.0]})
+    ds = pd_.study(spec, str(tmp_path / "p.zarr"), scheduler="serial").compute()
+    direct = pd_.sweep(dataclasses.replace(pair, links=(dataclasses.replace(pair.links[0], gap_m=0.01),)),
+                       0.3, [0.7, 1.0], steady="fixed", cycles=6, measure_cycles=2)
+    near = ds.sel({"links[0].gap_m": 0.01})
+    assert float(near["alpha_top_max"]) == np.max(direct.alpha_top)
+    assert float(near["contact_nu_min"]) == 0.7 and np.isnan(float(ds["contact_nu_min"].sel(
+        {"links[0].gap_m": 1.0})))
+    # a study file whose [system] is a building's file, run from the command line
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+
+    result = CliRunner().invoke(app, ["study", str(ROOT / "examples" / "study_moat.toml"), "--store",
+                                      str(tmp_path / "moat.zarr"), "--scheduler", "serial"])
+    assert result.exit_code == 0, result.output
+    moat = pd_.open_study(str(tmp_path / "moat.zarr")).to_xarray().compute()
+    assert moat["impacts"].shape == (4, 2) and bool(moat["done"].all())
+    assert float(moat["impacts"].sel({"walls[0].gap_m": 0.05}).min()) > 0
+
+
+def test_what_a_structure_cannot_take_is_refused_and_named(tmp_path):
+    b = building()
+    with pytest.raises(pd_.InputError, match=r"storeys.*has 3 values"):
+        pd_.StudySpec(b, {"kind": "simulate", "a_g": 0.3, "freq_hz": 0.9, "duration_s": 1.0},
+                      {"storeys[3].mass_kg": [1e3, 2e3]})
+    with pytest.raises(pd_.InputError, match="v0_m_s"):
+        pd_.StudySpec(b, {"kind": "simulate", "a_g": 0.3, "freq_hz": 0.9, "duration_s": 1.0, "v0_m_s": 0.1},
+                      {"walls[0].gap_m": [0.02]})
+    with pytest.raises(pd_.InputError, match=r"grid.walls\[0\].gap_left_m"):
+        pd_.StudySpec(b, {"kind": "simulate", "a_g": 0.3, "freq_hz": 0.9, "duration_s": 1.0},
+                      {"walls[0].gap_m": [0.02], "walls[0].gap_left_m": [0.03]})
+    with pytest.raises(pd_.InputError, match="storeys"):  # (a value the structure refuses, named)
+        pd_.StudySpec(b, {"kind": "simulate", "a_g": 0.3, "freq_hz": 0.9, "duration_s": 1.0},
+                      {"storeys[1].stiffness_n_m": [-1.0]})
+    b.to_toml(tmp_path / "b.toml")
+    with pytest.raises(pd_.InputError, match="system.bumpers"):
+        pd_.StudySpec.from_dict({"system": {"file": "b.toml", "bumpers": False},
+                                 "compute": {"kind": "simulate", "a_g": 0.3, "freq_hz": 0.9,
+                                             "duration_s": 1.0},
+                                 "grid": {"walls[0].gap_m": [0.02]}}, base_dir=tmp_path)
