@@ -1,14 +1,17 @@
 """A slow, obviously-correct reference for structures of several masses: scipy's solve_ivp (DOP853) with
 events, restarted at each of them.
 
-The structure restated directly, sharing no code with the engine: n masses with displacements x relative
-to the ground, M x'' + C x' + K x + f_iso + f_contacts = -M 1 a_g(t); a linear isolator (spring k_iso,
-dashpot c_iso) between the first mass and the ground; Kelvin-Voigt bumpers on both sides of one mass
-(``level``: the first by default) behind a gap, each fixed to the ground or to another mass (``partners``):
-in contact the force K d + C d' (d = sign (x_level - x_partner) - gap, the compression) until it would
-pull; out of contact the bumper's compression relaxes as d_r exp(-K (t - t_r) / C) from where it was
-released, and contact starts when the mass meets that surface.  The table's acceleration is a sine, or a
-record (linear between its samples; the integration restarted at each).  A storey may add an elastic-
+The structure restated directly, sharing no code with the engine: n masses with displacements x relative to
+the ground, M x'' + C x' + K x + f_iso + f_contacts = -M 1 a_g(t); a linear isolator (spring k_iso, dashpot
+c_iso) between the first mass and the ground; Kelvin-Voigt bumpers on both sides of one mass (``level``: the
+first by default) behind a gap, each fixed to the ground or to another mass (``partners``): in contact the
+force K d + C d' (d = sign (x_level - x_partner) - gap, the compression) until it would pull; out of contact
+the bumper's compression relaxes as d_r exp(-K (t - t_r) / C) from where it was released, and contact starts
+when the mass meets that surface. Another law (``law``: a multi-linear bumper with elastic hysteresis, Hunt-
+Crossley, ...) is restated by tests/reference.py's laws: its force, the way its surface relaxes and when it
+would pull; a contact also ends where the compression returns to 0. Each level's displacement extrema are
+located as events of its velocity (not ending the integration). The table's acceleration is a sine, or a
+record (linear between its samples; the integration restarted at each). A storey may add an elastic-
 perfectly-plastic spring (``plastic``): stuck, it pulls the drift back by k_p (drift - slip); it slips when
 its strain reaches +-D and sticks again when the drift's rate turns back (a bilinear storey with Masing's
 rule, k0 holding its second slope).
@@ -43,6 +46,9 @@ class Structure:
     plastic: list = field(default_factory=list)
     # a record instead of the sine: (times s, accelerations m/s^2), linear between its samples, zero outside
     record: tuple | None = None
+    # the bumpers' law, a pounding contact law (stateless: Kelvin-Voigt, an elastic multi-linear bumper,
+    # Hunt-Crossley); None: Kelvin-Voigt with k_b, c_b
+    law: object | None = None
 
 
 @dataclass
@@ -53,6 +59,8 @@ class NdofResult:
     depths: list = field(default_factory=list)          # each finished contact's deepest compression, m
     speeds: list = field(default_factory=list)          # each start's approach speed, m/s
     y: np.ndarray | None = None                         # the final (x, v)
+    x_max: np.ndarray | None = None                     # each mass's largest and smallest displacement, m
+    x_min: np.ndarray | None = None
 
 
 SIGNS = (-1.0, 1.0)
@@ -84,6 +92,7 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         max_step = 2.0 * math.pi / w_max / steps_per_period
     inside = [False, False]
     relax = [(0.0, 0.0), (0.0, 0.0)]  # (compression at release, release time)
+    laws = [_restated(s) for _ in range(2)]  # (force(d, d'), relax(d_r, tau), release(d, d')) each
     out = NdofResult()
     deepest = [0.0, 0.0]
 
@@ -93,9 +102,9 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
 
     def surface(c, t):  # the relaxing compression of bumper c at t
         d_r, t_r = relax[c]
-        if d_r == 0.0 or s.c_b == 0.0:
+        if d_r == 0.0:
             return 0.0
-        return d_r * math.exp(-s.k_b * (t - t_r) / s.c_b)
+        return laws[c][1](d_r, t - t_r)
 
     # each plastic spring: its slip u_p and its mode (0 stuck, +-1 slipping that way)
     slip = [0.0] * len(s.plastic)
@@ -120,7 +129,7 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
             if inside[c]:
                 sg = SIGNS[c]
                 dx, dv = rel(y, c)
-                f_c = s.k_b * (sg * dx - s.gaps[c]) + s.c_b * sg * dv
+                f_c = laws[c][0](sg * dx - s.gaps[c], sg * dv)
                 f[s.level] += sg * f_c
                 if s.partners[c] >= 0:
                     f[s.partners[c]] -= sg * f_c
@@ -139,12 +148,20 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
             if inside[c]:
                 def release(t, y, c=c, sg=sg):
                     dx, dv = rel(y, c)
-                    return s.k_b * (sg * dx - s.gaps[c]) + s.c_b * sg * dv
+                    return laws[c][2](sg * dx - s.gaps[c], sg * dv)
+
+                def emptied(t, y, c=c, sg=sg):  # (the compression back to 0: the contact ends too)
+                    return sg * rel(y, c)[0] - s.gaps[c]
+                emptied.terminal = True
+                emptied.direction = -1.0
+                emptied.contact = c
+                evs.append(emptied)
             else:
                 def release(t, y, c=c, sg=sg):
                     return s.gaps[c] + surface(c, t) - sg * rel(y, c)[0]
             release.terminal = True
             release.direction = -1.0
+            release.contact = c
             evs.append(release)
         for q, (i, _, d_y) in enumerate(s.plastic):
             for sg in (1.0, -1.0):
@@ -163,12 +180,14 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         return evs
 
     t, y = 0.0, np.array(y0, dtype=float)
+    x_max, x_min = y[:n].copy(), y[:n].copy()
     knots = np.asarray(s.record[0]) if s.record is not None else np.zeros(0)
     while t < t_end:
         evs = make_events()
         after = knots[knots > t * (1.0 + 1e-15) + 1e-15]  # (a record's kink: a stretch ends at the next)
         t_next = min(t_end, float(after[0])) if after.size else t_end
-        sol = solve_ivp(rhs, (t, t_next), y, method="DOP853", rtol=rtol, atol=atol, events=evs,
+        turns = [_turn(i, n) for i in range(n)]  # (each mass's velocity's zeros: its extrema)
+        sol = solve_ivp(rhs, (t, t_next), y, method="DOP853", rtol=rtol, atol=atol, events=evs + turns,
                         dense_output=True, max_step=max_step)
         if sol.status == -1:
             raise RuntimeError(sol.message)
@@ -179,7 +198,13 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
                 ys = sol.sol(ts)
                 depth = ys[s.level] - (ys[s.partners[c]] if s.partners[c] >= 0 else 0.0)
                 deepest[c] = max(deepest[c], float(np.max(SIGNS[c] * depth - s.gaps[c])))
-        hits = [(float(te[0]), c) for c, te in enumerate(sol.t_events) if te.size and te[0] > t + 1e-13]
+        hits = [(float(te[0]), c) for c, te in enumerate(sol.t_events[:len(evs)])
+                if te.size and te[0] > t + 1e-13]
+        t_stop = min(hits)[0] if hits else float(sol.t[-1])
+        for i in range(n):  # the extrema up to where this stretch stops
+            turned = zip(sol.t_events[len(evs) + i], sol.y_events[len(evs) + i])
+            xs = [y[i], float(sol.sol(t_stop)[i])] + [float(ye[i]) for te, ye in turned if te <= t_stop]
+            x_max[i], x_min[i] = max(x_max[i], *xs), min(x_min[i], *xs)
         # (a stretch that slipped: the slip followed the drift)
         for q, (i, _, d_y) in enumerate(s.plastic):
             if mode[q] != 0:
@@ -203,6 +228,7 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
             else:
                 mode[q] = 0
             continue
+        c = evs[c].contact
         sg = SIGNS[c]
         if inside[c]:
             inside[c] = False
@@ -216,4 +242,26 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
             out.speeds.append(abs(rel(y, c)[1]))
             deepest[c] = max(sg * rel(y, c)[0] - s.gaps[c], 0.0)
     out.y = y
+    out.x_max, out.x_min = x_max, x_min
     return out
+
+
+def _turn(i: int, n: int):
+    def turn(t, y):
+        return y[n + i]
+    turn.terminal = False
+    return turn
+
+
+def _restated(s: Structure) -> tuple:
+    """The bumpers' law as (force(d, d'), relax(d_r, tau), release(d, d'))."""
+    if s.law is not None:
+        from reference import _law
+
+        force, relax, release, state = _law(s.law)
+        assert state is None, "a law with a state of its own: not restated here"
+        return force, relax, release
+    k, c = s.k_b, s.c_b
+    return (lambda d, dd: k * d + c * dd,
+            lambda d_r, tau: 0.0 if c == 0.0 else d_r * math.exp(-k * tau / c),
+            lambda d, dd: k * d + c * dd)
