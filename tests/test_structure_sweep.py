@@ -4,6 +4,7 @@ schedule equals simulating it step by step, a pair names its structures and link
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import matplotlib
@@ -162,3 +163,43 @@ def test_bad_arguments_are_named():
         res.resonance_hz(2)
     again = pd_.sweep(b, 0.1, [2.0], steady="fixed", cycles=3, measure_cycles=1, state=res.final_state)
     assert again.step_start_s[0] == pytest.approx(3.0 + 2.0)
+
+
+def test_a_campaign_of_a_building_without_and_with_its_moat_wall(tmp_path):
+    iso = pd_.Isolator(slopes=[4.0e5, 1.0e5], breakpoints=[0.02], damping=2.0e3)
+    bare = pd_.Structure(3.0e3, iso, [pd_.Storey(2.0e3, 4.0e6, 4.0e3)] * 2)
+    walled = dataclasses.replace(bare, walls=(pd_.Wall(0, 0.03, 0.03, pd_.KelvinVoigt(2.0e7, 1.0e4)),))
+    options = {"freqs_hz": [0.6, 0.9, 1.2], "steady": "fixed", "cycles": 6, "measure_cycles": 2}
+    res = pd_.campaign(bare, walled, nbs_a_g=[0.2], ybs_a_g=[0.2, 0.3], **options)
+    assert dict(res.data.sizes) == {"configuration": 2, "a_g": 2, "direction": 2, "freq_hz": 3, "level": 3}
+    table = res.table2()
+    assert len(table) == 6 and list(table.columns[3:5]) == ["nu_r_top", "alpha_top_max"]
+    direct = pd_.sweep(walled, 0.3, direction="down", **options)
+    row = table[(table["configuration"] == "YBs") & (table["a_g"] == 0.3) & (table["direction"] == "down")]
+    for name, value in direct.quantities().items():
+        np.testing.assert_equal(row[name].item(), value)
+    alpha = res.data["alpha"].sel(configuration="YBs", a_g=0.3, direction="down")
+    np.testing.assert_array_equal(alpha.values, direct.alpha[::-1])  # (down: the steps high to low)
+    assert np.isnan(table.loc[table["configuration"] == "NBs", "contact_nu_min"]).all()
+    assert len(res.plot()) == 12
+    with pytest.raises(pd_.InputError, match="table3"):
+        res.table3()
+    with pytest.raises(pd_.InputError, match="nbs_system"):  # (the walled building as NBs)
+        pd_.campaign(walled, walled, **options)
+    with pytest.raises(pd_.InputError, match="ybs_system"):  # (another building)
+        pd_.campaign(bare, pd_.Structure(3.0e3, iso, [pd_.Storey(2.0e3, 4.0e6)], walled.walls), **options)
+    # on the command line: a structure's file as the YBs system
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+
+    walled.to_toml(tmp_path / "walled.toml")
+    bare.to_toml(tmp_path / "bare.toml")
+    result = CliRunner().invoke(app, [
+        "campaign", "--nbs", str(tmp_path / "bare.toml"), "--ybs", str(tmp_path / "walled.toml"), "--out",
+        str(tmp_path / "c"), "--fmin", "0.6", "--fmax", "1.2", "--fstep", "0.3", "--steady", "fixed",
+        "--cycles", "6", "--measure-cycles", "2", "--scheduler", "serial"])
+    assert result.exit_code == 0, result.output
+    assert "alpha_top_max" in result.output
+    assert sorted(p.name for p in (tmp_path / "c").iterdir()) == ["campaign.nc", "campaign.png", "steps.csv",
+                                                                  "table2.csv"]

@@ -271,7 +271,7 @@ def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True, st
     from .. import presets
     from .._checks import parse_toml, read_text
     from ..model import Oscillator
-    from ..model._toml import system_type
+    from ..model.systems import system_type
 
     if (path is None) == (preset is None):
         raise typer.BadParameter("give either SYSTEM.toml or --preset NAME (one of them)")

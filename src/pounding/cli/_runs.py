@@ -422,9 +422,9 @@ def campaign(
         raise typer.BadParameter("give --preset or --nbs/--ybs, not both")
     if preset is not None:
         nbs_osc, ybs_osc = presets.by_name(preset, bumpers=False), presets.by_name(preset)
-    elif nbs or ybs:
-        nbs_osc = Oscillator.from_toml(nbs) if nbs else None
-        ybs_osc = Oscillator.from_toml(ybs) if ybs else None
+    elif nbs or ybs:  # (an oscillator's file, or a structure's: without its walls, and with them)
+        nbs_osc = system(nbs, None, structures=True) if nbs else None
+        ybs_osc = system(ybs, None, structures=True) if ybs else None
     else:
         raise typer.BadParameter("give --preset NAME, or --nbs and/or --ybs TOML files")
     complete = True
@@ -446,11 +446,15 @@ def campaign(
         _save_campaign(result, out)
     columns = ("configuration", "a_g", "direction", "nu_r", "alpha", "eta", "e", "contact_nu_min",
                "contact_nu_max")
+    if not isinstance(nbs_osc or ybs_osc, Oscillator):  # (a structure's campaign)
+        columns = ("configuration", "a_g", "direction", "nu_r_top", "alpha_top_max", "alpha_base_max",
+                   "drift_ratio_max", "contact_nu_min", "contact_nu_max")
     summary = data_table("Table 2 analogue (model)", columns)
     for _, row in result.table2().iterrows():
         summary.add_row(*(cell(row[c]) for c in columns))
     console.print(summary)
-    console.print(f"campaign.nc, steps.csv, table2-4.csv, campaign.png -> {out}")
+    tables = "table2-4.csv" if isinstance(nbs_osc or ybs_osc, Oscillator) else "table2.csv"
+    console.print(f"campaign.nc, steps.csv, {tables}, campaign.png -> {out}")
     if not complete or held:
         done = sum(sw.steps_done for sw in result.sweeps.values())
         interrupted(
@@ -462,12 +466,18 @@ def campaign(
 
 def _save_campaign(result, out: Path) -> None:
     """The campaign's files; each table says per sweep whether it finished (``complete``)."""
+    from ..protocols.sweep_result import SweepResult
+
     out.mkdir(parents=True, exist_ok=True)
     result.to_netcdf(out / "campaign.nc")
     steps = result.data.to_dataframe().reset_index()
     write_csv(steps[steps["ran"]].drop(columns=["ran"]), out / "steps.csv")
     finished = {key: sw.steps_done == sw.freqs_hz.size for key, sw in result.sweeps.items()}
-    for name, df in (("table2", result.table2()), ("table3", result.table3()), ("table4", result.table4())):
+    one_mass = all(isinstance(sw, SweepResult) for sw in result.sweeps.values())
+    tables = [("table2", result.table2)] + ([("table3", result.table3), ("table4", result.table4)] if one_mass
+                                            else [])
+    for name, make in tables:
+        df = make()
         df = df.copy()
         df["complete"] = [
             finished[(c, a, d)] for c, a, d in zip(df["configuration"], df["a_g"], df["direction"])

@@ -62,21 +62,3 @@ class TomlFile:
 
         return write_text(output_file("path", path, (".toml",)), self.to_toml_text(meta))
 
-
-def system_type(table: dict[str, Any]) -> type:
-    """The class a system's tables are of: two adjacent structures (``links``), a structure (``storeys`` or
-    ``base_mass_kg``) or one mass (an ``Oscillator``'s)."""
-    from .adjacent import Adjacent
-    from .oscillator import Oscillator
-    from .structure import Structure
-
-    if "links" in table:
-        return Adjacent
-    if "storeys" in table or "base_mass_kg" in table:
-        return Structure
-    return Oscillator
-
-
-def system_from_dict(table: dict[str, Any]) -> Any:
-    """A system from its tables (``to_dict``'s): an ``Oscillator``, a ``Structure`` or an ``Adjacent``."""
-    return system_type(table).from_dict(table)

@@ -234,8 +234,20 @@ def plot_campaign(result: "CampaignResult", ax: Any = None) -> list:
     a_gs = sorted({key[1] for key in result.sweeps})
     artists: list = []
     for j, conf in enumerate(confs):
-        for (c, ag, _), sw in result.sweeps.items():
-            if c == conf:
+        for (c, ag, d), sw in result.sweeps.items():
+            if c != conf:
+                continue
+            if hasattr(sw, "alpha_top"):  # (a structure's sweep: its top floor above, its base below)
+                order = np.argsort(sw.freqs_hz)
+                style = {"color": f"C{a_gs.index(ag)}", "marker": ".", "ls": "-" if d == "up" else "--",
+                         "label": f"{ag:g} g {d}"}
+                artists += ax[0, j].plot(sw.nu[order], sw.alpha_top[order], **style)
+                artists += ax[1, j].plot(sw.nu[order], sw.alpha_base[order], **style)
+                ax[0, j].set_ylabel("alpha of the top floor")
+                ax[1, j].set_ylabel("alpha of the base")
+                ax[1, j].set_xlabel("nu = f / f_R")
+                ax[0, j].legend(fontsize="small")
+            else:
                 artists += plot_sweep(sw, ax=(ax[0, j], ax[1, j]), color=f"C{a_gs.index(ag)}")
         ax[0, j].set_title(conf)
     return artists

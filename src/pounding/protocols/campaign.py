@@ -17,7 +17,7 @@ import pandas as pd
 
 from .._checks import one_of, real_tuple
 from .._errors import InputError, Interrupted, Problem
-from ..model import Oscillator
+from ..model import Adjacent, Oscillator, Structure
 from .._runner import Context, run_tasks
 from .._runner.progress import Progress
 from .sweep import SweepPlan, check_sweep_options, make_plan, run_plan
@@ -38,6 +38,8 @@ _DATA_COLUMNS = tuple(c for c in STEP_COLUMNS if c not in ("freq_hz", "nu")) + t
 TABLE2_QUANTITIES = ("nu_r", "alpha", "eta", "e", "contact_nu_min", "contact_nu_max", "excursion_max_m")
 TABLE3_QUANTITIES = ("mean_force_over_mg", "contact_time_ms", "peak_force_over_mg")
 TABLE4_QUANTITIES = ("dissipated_energy_per_mass", "restitution")
+STRUCTURE_TABLE2_QUANTITIES = ("nu_r_top", "alpha_top_max", "alpha_base_max", "drift_ratio_max",
+                               "contact_nu_min", "contact_nu_max")
 
 
 def sweep_quantities(sw: SweepResult) -> dict[str, float]:
@@ -144,23 +146,35 @@ class CampaignResult:
 
         return atomic_write(output_file("path", path), self.data.to_netcdf)
 
+    @property
+    def _of_structures(self) -> bool:
+        return any(not isinstance(sw, SweepResult) for sw in self.sweeps.values())
+
     def table2(self) -> pd.DataFrame:
         """Analogue of the paper's Table 2: maximum alpha and excursion, resonance, contact range.
 
         One row per sweep: ``configuration``, ``a_g``, ``direction``, ``nu_r``, ``alpha``
         (max), ``eta`` (max E / Delta, YBs), ``e`` (max E / D_tmax), ``contact_nu_min``,
         ``contact_nu_max`` (the contact range ``Delta nu_C``, NaN without contact) and
-        ``excursion_max_m`` (max E, m).
+        ``excursion_max_m`` (max E, m).  A structure's campaign: ``nu_r_top``, ``alpha_top_max``,
+        ``alpha_base_max``, ``drift_ratio_max``, ``contact_nu_min``, ``contact_nu_max``
+        (:meth:`StructureSweepResult.quantities`).
         """
         return self._rows(TABLE2_QUANTITIES, yb_only=False)
 
     def _rows(self, quantities: tuple[str, ...], yb_only: bool) -> pd.DataFrame:
+        if self._of_structures:
+            if yb_only:
+                raise InputError(Problem.WRONG_MODE, "table", "table3/table4", mode="one mass's campaign",
+                                 fix="a structure's campaign has table2() (its alpha per level) and its "
+                                     "sweeps' contacts_dataframe()")
+            quantities = STRUCTURE_TABLE2_QUANTITIES
         columns = ["configuration", "a_g", "direction", *quantities]
         rows = []
         for (conf, ag, d), sw in self._started():
             if yb_only and conf != "YBs":
                 continue
-            q = sweep_quantities(sw)
+            q = sw.quantities() if self._of_structures else sweep_quantities(sw)
             rows.append([conf, ag, d, *(q[k] for k in quantities)])
         # the columns even without rows: an NBs-only campaign, or one interrupted before any
         # YBs step finished, has empty Tables 3 and 4
@@ -183,9 +197,22 @@ class CampaignResult:
         return plot_campaign(self, ax=ax, **kwargs)
 
 
-def _sweep_task(plan: SweepPlan, ctx: Context) -> SweepResult:
+def _sweep_task(plan: SweepPlan, ctx: Context) -> Any:
     """One sweep of the campaign, as a task of the shared runner."""
+    if isinstance(plan.oscillator, (Structure, Adjacent)):
+        from .structure_sweep import run_structure_plan
+
+        return run_structure_plan(plan, ctx.advance, ctx.control)
     return run_plan(plan, ctx.advance, ctx.control)
+
+
+def _touches(system: Any) -> bool:
+    """Whether a system can pound: an oscillator's bumpers, a structure's walls, a pair's links or walls."""
+    if isinstance(system, Oscillator):
+        return system.bumpers is not None
+    if isinstance(system, Adjacent):
+        return bool(system.links) or any(s.walls for s in system.structures)
+    return bool(system.walls)
 
 
 def campaign(
@@ -208,9 +235,11 @@ def campaign(
 
     Parameters
     ----------
-    nbs_system, ybs_system : Oscillator or None
+    nbs_system, ybs_system : Oscillator, Structure, Adjacent or None
         The system without bumpers (NBs) and with them (YBs); None leaves that
-        configuration out.
+        configuration out.  Two structures (without walls or links, and with them; the same levels) make
+        a structure's campaign: its data has a ``level`` dim, its Table 2 the top floor's and the base's
+        alpha (:meth:`StructureSweepResult.quantities`); Tables 3 and 4 are one mass's.
     nbs_a_g, ybs_a_g : sequence of float
         Table accelerations in g (default the paper's: 0.03, 0.05, 0.1 and 0.03, 0.05,
         0.075, 0.1).
@@ -278,19 +307,29 @@ def campaign(
     if len(set(directions)) != len(directions):
         raise InputError(Problem.DUPLICATE, "directions", list(directions), repeated="a direction")
     plans: list[tuple[tuple[str, float, str], SweepPlan]] = []
+    kinds = {type(osc) for osc, _ in systems.values() if osc is not None}
     for conf, (osc, a_gs) in systems.items():
         if osc is None:
             continue
         field_name = f"{conf.lower()}_system"
-        if not isinstance(osc, Oscillator):
+        if not isinstance(osc, (Oscillator, Structure, Adjacent)):
             raise InputError(Problem.WRONG_TYPE, field_name, osc, got=type(osc).__name__,
-                             expected="pounding.Oscillator")
-        if (osc.bumpers is None) != (conf == "NBs"):
-            fix = ("give the system without bumpers (oscillator.without_bumpers()); were the NBs and "
-                   "YBs systems swapped?" if conf == "NBs" else
-                   "give a system with bumpers; were the NBs and YBs systems swapped?")
-            raise InputError(Problem.WRONG_CONFIGURATION, field_name, f"Oscillator(mass={osc.mass:g}, ...)",
-                             got="with bumpers" if osc.bumpers else "without bumpers", fix=fix)
+                             expected="pounding.Oscillator (or a Structure, or an Adjacent pair)")
+        if _touches(osc) != (conf == "YBs"):
+            what = "bumpers" if isinstance(osc, Oscillator) else "walls or links"
+            fix = (f"give the system without {what} (oscillator.without_bumpers(), or a structure with "
+                   "walls=[]); were the NBs and YBs systems swapped?" if conf == "NBs" else
+                   f"give a system with {what}; were the NBs and YBs systems swapped?")
+            shown = (f"Oscillator(mass={osc.mass:g}, ...)" if isinstance(osc, Oscillator)
+                     else type(osc).__name__)
+            raise InputError(Problem.WRONG_CONFIGURATION, field_name, shown,
+                             got=f"with {what}" if _touches(osc) else f"without {what}", fix=fix)
+        if conf == "YBs" and nbs_system is not None and (len(kinds) > 1 or (
+                not isinstance(osc, Oscillator) and _levels(osc) != _levels(nbs_system))):
+            raise InputError(Problem.WRONG_CONFIGURATION, field_name, type(osc).__name__,
+                             got=f"of other levels than nbs_system's, or of another kind "
+                                 f"({type(osc).__name__} against {type(nbs_system).__name__})",
+                             fix="give the same system without and with its walls (or bumpers)")
         levels = real_tuple(f"{conf.lower()}_a_g", a_gs)
         if not levels:
             raise InputError(Problem.EMPTY, f"{conf.lower()}_a_g", list(levels),
@@ -323,9 +362,16 @@ def campaign(
     return result
 
 
+def _levels(system: Any) -> tuple:
+    """A structure's (or pair's) levels: how many each structure has."""
+    return tuple(s.n_levels for s in (system.structures if isinstance(system, Adjacent) else (system,)))
+
+
 def _dataset(sweeps: dict, plans: list, complete: bool) -> "xr.Dataset":
     import xarray as xr
 
+    if not isinstance(plans[0][1].oscillator, Oscillator):
+        return _structure_dataset(sweeps, plans, complete)
     confs = [c for c in CONFIGURATIONS if any(k[0] == c for k, _ in plans)]
     a_gs = sorted({k[1] for k, _ in plans})
     dirs = [d for d in DIRECTIONS if any(k[2] == d for k, _ in plans)]
@@ -354,6 +400,47 @@ def _dataset(sweeps: dict, plans: list, complete: bool) -> "xr.Dataset":
     for conf in confs:
         osc = next(p.oscillator for k, p in plans if k[0] == conf)
         ds.attrs[f"system_{conf}"] = osc.to_toml_text()
+    return ds
+
+
+def _structure_dataset(sweeps: dict, plans: list, complete: bool) -> "xr.Dataset":
+    """A structure's campaign as a Dataset: dims configuration, a_g, direction, freq_hz and level."""
+    import xarray as xr
+
+    confs = [c for c in CONFIGURATIONS if any(k[0] == c for k, _ in plans)]
+    a_gs = sorted({k[1] for k, _ in plans})
+    dirs = [d for d in DIRECTIONS if any(k[2] == d for k, _ in plans)]
+    freqs = np.unique(np.concatenate([p.freqs_hz for _, p in plans]))
+    columns = ("alpha", "displacement_max_m", "displacement_min_m", "drift_peak_m", "drift_ratio_peak")
+    n_levels = sum(_levels(plans[0][1].oscillator))
+    shape = (len(confs), len(a_gs), len(dirs), freqs.size, n_levels)
+    data = {c: np.full(shape, np.nan) for c in columns}
+    contacts = np.full(shape[:4], np.nan)
+    ran = np.zeros(shape[:4], dtype=bool)
+    level_names = None
+    for (conf, ag, d), sw in sweeps.items():
+        idx = (confs.index(conf), a_gs.index(ag), dirs.index(d))
+        done = slice(0, sw.steps_done)
+        cols = np.searchsorted(freqs, sw.freqs_hz[done])
+        frame = sw.to_dataframe()
+        for c in columns:
+            data[c][idx + (cols,)] = frame[c].to_numpy().reshape(-1, n_levels)[done]
+        contacts[idx + (cols,)] = np.nansum(sw.contact_metrics[done, :, 0], axis=1)
+        ran[idx + (cols,)] = True
+        level_names = [f"{b}:{q}" if len(_levels(sw.structure)) > 1 else str(q) for b, q in sw.levels]
+    dims = ("configuration", "a_g", "direction", "freq_hz", "level")
+    ds = xr.Dataset({**{c: (dims, v) for c, v in data.items()}, "contacts_per_cycle": (dims[:4], contacts),
+                     "ran": (dims[:4], ran)},
+                    coords={"configuration": confs, "a_g": a_gs, "direction": dirs, "freq_hz": freqs,
+                            "level": level_names or [str(q) for q in range(n_levels)]})
+    first = plans[0][1]
+    ds = ds.assign_coords(nu=("freq_hz", freqs / first.f_ref_hz))
+    ds["freq_hz"].attrs["units"] = "Hz"
+    ds.attrs.update({"steady_mode": first.steady, "cycles": first.cycles,
+                     "measure_cycles": first.measure_cycles, "f_ref_hz": first.f_ref_hz,
+                     "complete": int(complete), "measurement": "exact"})
+    for conf in confs:
+        ds.attrs[f"system_{conf}"] = next(p.oscillator for k, p in plans if k[0] == conf).to_toml_text()
     return ds
 
 

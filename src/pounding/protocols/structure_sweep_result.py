@@ -51,6 +51,18 @@ class StructureSweepResult:
         Peak table acceleration in g.
     freqs_hz : ndarray, shape (n,)
         Step frequencies in stepping order.
+    direction : {"up", "down"}
+        The stepping direction.
+    steady_mode : {"adaptive", "fixed"}
+        How each step ended (``steady`` of :func:`pounding.sweep`).
+    cycles : int
+        Cycles per step (fixed), or the most per step (adaptive).
+    measure_cycles : int
+        Cycles measured at the end of each step (the window; adaptive: rounded up to whole periods).
+    f_ref_hz : float
+        ``f_R`` of ``nu = f / f_R``, Hz.
+    g : float
+        The acceleration of gravity used, m/s^2.
     levels, storeys, contact_slots : list of tuple
         What the columns of the metrics are: a level ``(structure, level)``; a storey ``(structure,
         storey)`` (storey ``s`` carries level ``s``); a contact slot ``(structure, "wall", wall, level,
@@ -75,7 +87,9 @@ class StructureSweepResult:
     final_state : StructureState
         Where the sweep ended (``state`` of the next sweep).
     status : Status
-        How the sweep ended; ``message`` says it in words.
+        How the sweep ended.
+    message : str
+        How it ended, in words.
 
     Examples
     --------
@@ -83,8 +97,9 @@ class StructureSweepResult:
 
     >>> import pounding
     >>> iso = pounding.Isolator(slopes=[2.0e5], breakpoints=[], damping=4.0e3)
-    >>> b = pounding.Structure(2.0e3, iso, [pounding.Storey(1.0e3, 2.0e6, 2.0e3)] * 2,
-    ...                        [pounding.Wall(0, 0.02, 0.02, pounding.KelvinVoigt(1.0e8, 1.0e4))])
+    >>> stop = pounding.Wall(0, 0.02, 0.02, pounding.KelvinVoigt(1.0e8, 1.0e4))
+    >>> storeys = [pounding.Storey(1.0e3, 2.0e6, 2.0e3)] * 2
+    >>> b = pounding.Structure(2.0e3, iso, storeys, [stop])
     >>> res = pounding.sweep(b, 0.1, [1.0, 1.5, 2.0])
     >>> res.message
     'All 3 steps reached a periodic steady state.'
@@ -172,6 +187,28 @@ class StructureSweepResult:
     def nu_r(self, level: int = -1) -> float:
         """The pseudo-resonance ``nu_R`` of ``level``: where its alpha peaks, over ``f_R``."""
         return self.resonance_hz(level) / self.f_ref_hz
+
+    def quantities(self) -> dict[str, float]:
+        """The sweep in a few numbers (a campaign's Table 2 row, a study point's): ``nu_r_top`` (where the
+        top floor's alpha peaks), ``alpha_top_max``, ``alpha_base_max``, ``drift_ratio_max`` (over every
+        storey and step), ``contact_nu_min`` and ``contact_nu_max`` (the range of ``nu`` with a contact at
+        any wall or link; NaN without).  NaN for a sweep with no step done."""
+        names = ("nu_r_top", "alpha_top_max", "alpha_base_max", "drift_ratio_max", "contact_nu_min",
+                 "contact_nu_max")
+        done = slice(0, self.steps_done)
+        if self.steps_done == 0:
+            return {k: float("nan") for k in names}
+        frame = self.to_dataframe()
+        frame = frame[frame["freq_hz"].isin(self.freqs_hz[done])]
+        hit = np.nansum(self.contact_metrics[done, :, 0], axis=1) > 0 if self.contact_slots else []
+        hits = self.nu[done][hit] if len(hit) else np.zeros(0)
+        top = max(q for q, (b, _) in enumerate(self.levels) if b == 0)
+        nan = float("nan")
+        return dict(zip(names, (
+            self.nu_r(level=top), float(np.nanmax(self.alpha_top[done])),
+            float(np.nanmax(self.alpha_base[done])),
+            float(frame["drift_ratio_peak"].max()) if self.storeys else nan,
+            float(np.min(hits)) if hits.size else nan, float(np.max(hits)) if hits.size else nan)))
 
     # ------------------------------------------------------------------ tables
     def _level_columns(self) -> dict[str, Any]:

@@ -44,7 +44,7 @@ def quantities_of(kind: str, system: Any) -> tuple[str, ...]:
     """The quantities a point of ``kind`` keeps, in order, for ``system`` (a system, or its tables): a
     single mass's, or a structure's (``STRUCTURE_QUANTITIES``)."""
     from ..model import Oscillator
-    from ..model._toml import system_type
+    from ..model.systems import system_type
 
     one = system_type(system) is Oscillator if isinstance(system, dict) else isinstance(system, Oscillator)
     return QUANTITIES[kind] if one else STRUCTURE_QUANTITIES[kind]
@@ -135,7 +135,9 @@ def compute_point(system: Any, options: dict[str, Any], max_steps: int | None = 
         if not isinstance(system, Oscillator):
             from .structure_points import structure_point
 
-            return structure_point(system, options, steps, names)
+            return structure_point(system, options, steps, names,
+                                   None if kind == "sweep" else excitation_of(options),
+                                   {k: options[k] for k in SWEEP_ARGS if options.get(k) is not None})
         if kind == "sweep":
             kwargs = {k: options[k] for k in SWEEP_ARGS if options.get(k) is not None}
             freqs = options.get("freqs_hz")

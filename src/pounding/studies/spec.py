@@ -22,7 +22,7 @@ import numpy as np
 from .._checks import parse_toml, read_text
 from .._errors import InputError, Problem
 from ..model import Adjacent, Oscillator, Structure
-from ..model._toml import system_from_dict, system_type
+from ..model.systems import system_from_dict, system_type
 from ..model.dotted import alias_of, set_value, why_unresolved
 
 System = Oscillator | Structure | Adjacent

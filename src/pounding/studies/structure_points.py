@@ -39,44 +39,24 @@ def structure_run_quantities(run: Any, g: float) -> dict[str, float]:
             "status": float(run.status)}
 
 
-def structure_sweep_quantities(res: Any) -> dict[str, float]:
-    """A structure's sweep's quantities (``STRUCTURE_SWEEP_QUANTITIES``): where the top floor's alpha peaks
-    (``nu_r_top``), the largest alpha of the top floor and of the base, the largest storey drift ratio, the
-    range of ``nu`` with contacts (NaN without)."""
-    done = slice(0, res.steps_done)
-    frame = res.to_dataframe()
-    frame = frame[frame["freq_hz"].isin(res.freqs_hz[done])]
-    hits = res.nu[done][np.nansum(res.contact_metrics[done, :, 0], axis=1) > 0] if res.contact_slots else []
-    return {"nu_r_top": res.nu_r(level=_top(res)), "alpha_top_max": float(np.nanmax(res.alpha_top[done])),
-            "alpha_base_max": float(np.nanmax(res.alpha_base[done])),
-            "drift_ratio_max": float(frame["drift_ratio_peak"].max()) if res.storeys else math.nan,
-            "contact_nu_min": float(np.min(hits)) if len(hits) else math.nan,
-            "contact_nu_max": float(np.max(hits)) if len(hits) else math.nan}
-
-
-def _top(res: Any) -> int:
-    return max(q for q, (b, _) in enumerate(res.levels) if b == 0)
-
-
-def structure_point(system: Any, options: dict[str, Any], max_steps: int, names: tuple) -> np.ndarray:
-    """One study point of a structure: its quantities ``names`` in order."""
+def structure_point(system: Any, options: dict[str, Any], max_steps: int, names: tuple, excitation: Any,
+                    sweep_args: dict[str, Any]) -> np.ndarray:
+    """One study point of a structure: its quantities ``names`` in order (``excitation``: the run's, None
+    for a sweep; ``sweep_args``: a sweep's options)."""
     from ..engine.simulate import simulate
     from ..protocols.sweep import sweep
-    from .points import SWEEP_ARGS, excitation_of
 
     if options["kind"] == "sweep":
-        kwargs = {k: options[k] for k in SWEEP_ARGS if options.get(k) is not None}
         freqs = options.get("freqs_hz")
         res = sweep(system, options["a_g"], None if freqs is None else np.asarray(freqs, dtype=float),
-                    options.get("direction", "up"), max_steps=max_steps, **kwargs)
-        q = {k: math.nan for k in names} if res.steps_done == 0 else structure_sweep_quantities(res)
+                    options.get("direction", "up"), max_steps=max_steps, **sweep_args)
+        q = res.quantities()
         q["steps_done"] = float(res.steps_done)
         q["status"] = float(res.status)
     else:
-        exc = excitation_of(options)
         duration = options.get("duration_s")
         if duration is None:  # (a record's own length)
-            duration = float(exc.t[-1])
-        run = simulate(system, exc, duration, sample_rate_hz=0, max_steps=max_steps)
-        q = structure_run_quantities(run, exc.g)
+            duration = float(excitation.t[-1])
+        run = simulate(system, excitation, duration, sample_rate_hz=0, max_steps=max_steps)
+        q = structure_run_quantities(run, excitation.g)
     return np.array([q[k] for k in names], dtype=float)
