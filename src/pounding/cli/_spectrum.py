@@ -55,6 +55,9 @@ def spectrum(
     gaps: str = typer.Option("0.01,0.02,0.05", "--gaps", help="Gaps each side, m, comma-separated."),
     damping: float = typer.Option(0.05, "--damping", help="The isolator's damping ratio."),
     mass: float = typer.Option(500.0, "--mass", help="The isolated mass, kg."),
+    structure: Optional[Path] = typer.Option(
+        None, "--structure", help="A building's TOML file (its walls at each gap): the periods are then its "
+        "superstructure's first fixed-base period, s."),
     scheduler: str = OPT_SCHEDULER,
     workers: Optional[int] = typer.Option(None, "--workers",
                                           help="Threads or processes (default: every core)."),
@@ -67,6 +70,14 @@ def spectrum(
     out = folder("--out", out)
     scheduler_kind(scheduler)  # (a wrong one is refused before the records are read)
     periods_s, gaps_m = grid("--periods", periods), float_list("--gaps", gaps)
+    building = None
+    if structure is not None:
+        from ..model import Structure
+
+        if damping != 0.05 or mass != 500.0:
+            raise typer.BadParameter("--damping and --mass are the single mass's: a building's are in its "
+                                     "file")
+        building = Structure.from_toml(structure)
     if (record is None) == (record_set is None):
         raise typer.BadParameter("give --record FILE or --set NAME (one of them)")
     if record is not None:
@@ -85,7 +96,7 @@ def spectrum(
     complete = True
     try:
         result = pounding_spectrum(recs, periods_s, gaps_m=gaps_m, damping_ratio=damping, mass_kg=mass,
-                                   workers=workers, scheduler=scheduler, progress=True)
+                                   structure=building, workers=workers, scheduler=scheduler, progress=True)
     except Interrupted as stop:
         result, complete = stop.partial, False
     with interrupts_deferred() as held:  # every file whole
@@ -97,6 +108,8 @@ def spectrum(
         save_figure(lambda: result.plot(), out / "amplification.png")
         save_figure(lambda: result.plot(kind="map"), out / "amplification_map.png")
         save_figure(lambda: result.plot(quantity="disp_max_m"), out / "displacement.png")
+        if building is not None:
+            save_figure(lambda: result.plot(quantity="drift_ratio_max"), out / "drift_ratio.png")
         save_figure(lambda: _elastic_plot(elastic), out / "elastic_spectrum.png")
     stats = result.summary()["amplification"].sel(percentile=50.0)
     worst = stats.where(np.isfinite(stats), -np.inf).argmax(dim=("period_s", "gap_m"))

@@ -61,6 +61,8 @@ def plot_pounding_spectrum(spectrum: Any, ax: Any = None, *, kind: str = "curves
     units = ds[quantity].attrs.get("units", "")
     label = f"{quantity} [{units}]" if units and units != "1" else quantity
     n = ds.sizes["record"]
+    x_label = ("superstructure's fixed-base period T [s]" if "structure" in ds.attrs
+               else "isolation period T [s]")
     artists: list = []
     if kind == "curves":
         for gap in ds["gap_m"].values:
@@ -72,7 +74,7 @@ def plot_pounding_spectrum(spectrum: Any, ax: Any = None, *, kind: str = "curves
                                                alpha=0.15, lw=0))
         if quantity == "amplification":
             artists.append(ax.axhline(1.0, color="0.5", lw=0.8, ls=":"))
-        ax.set_xlabel("isolation period T [s]")
+        ax.set_xlabel(x_label)
         ax.set_ylabel(label)
         place_legend(ax, fontsize=8)
     else:
@@ -83,7 +85,7 @@ def plot_pounding_spectrum(spectrum: Any, ax: Any = None, *, kind: str = "curves
         artists.append(mesh)
         ax.figure.colorbar(mesh, ax=ax, label=label)
         ax.set_yticks(np.arange(gaps_mm.size), [f"{g:g}" for g in gaps_mm])
-        ax.set_xlabel("isolation period T [s]")
+        ax.set_xlabel(x_label)
         ax.set_ylabel("gap [mm] (one band per gap computed)")
     what = "median over " + (f"{n} records (16-84 % shaded)" if n > 1 and kind == "curves"
                              else f"{n} record(s)")

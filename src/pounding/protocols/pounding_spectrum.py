@@ -22,10 +22,10 @@ from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Record
 from ..excitation.spectrum import _records, damping_ratio_value, periods_array
 from ..engine.result import CONTACT_COLUMNS
-from ..model import Bumpers, Isolator, Oscillator
+from ..model import Bumpers, Isolator, Oscillator, Structure
 from .._runner import Context, run_tasks
 from .._runner.progress import Progress
-from .pounding_spectrum_result import QUANTITIES, PoundingSpectrum
+from .pounding_spectrum_result import QUANTITIES, STRUCTURE_QUANTITIES, PoundingSpectrum
 
 MAX_RUNS = 2_000_000  # records x periods x (gaps + 1): beyond, refused (hours of work)
 
@@ -55,30 +55,59 @@ def _peaks(run: Any, g: float) -> tuple[float, ...]:
             force, speed, float(run.status))
 
 
+def superstructure_at(structure: Structure, period_s: float) -> Structure:
+    """``structure`` with its storeys' stiffnesses (every slope) scaled so that its first fixed-base period
+    is ``period_s``, their dashpots by the square root (each storey's damping ratio kept)."""
+    factor = (structure.modes(fixed_base=True).periods_s[0] / period_s) ** 2
+    root = math.sqrt(factor)
+    storeys = tuple(replace(s, stiffness_n_m=s.stiffness_n_m * factor, damping_n_s_m=s.damping_n_s_m * root,
+                            slopes_after_n_m=tuple(k * factor for k in s.slopes_after_n_m))
+                    for s in structure.storeys)
+    return replace(structure, storeys=storeys)
+
+
+def _systems(task: tuple, period: float) -> list:
+    """A task's systems at one period: without bumpers (walls), then with them at each gap."""
+    _, _, bumpers, zeta, mass_kg, template, _, structure = task
+    if structure is not None:
+        building = superstructure_at(structure, period)
+        return [replace(building, walls=())] + [
+            replace(building, walls=tuple(replace(w, gap_left_m=b.gap_left, gap_right_m=b.gap_right,
+                                                  law=b.left, law_right=None) for w in building.walls))
+            for b in bumpers]
+    iso = _isolator(template, mass_kg, period, zeta)
+    return [Oscillator(mass_kg, iso, b) for b in (None, *bumpers)]
+
+
 def _one_record(task: tuple, ctx: Context) -> tuple[np.ndarray, np.ndarray]:
-    """One record's free (periods, 6) and pounding (periods, gaps, 6) peaks; NaN where not run.
-    ``task``: (record, periods, bumpers, damping ratio, mass kg, isolator template, max_steps)."""
+    """One record's free (periods, q) and pounding (periods, gaps, q) peaks; NaN where not run.
+    ``task``: (record, periods, bumpers, damping ratio, mass kg, isolator template, max_steps, structure or
+    None); a structure's peaks are ``STRUCTURE_QUANTITIES``, the oscillator's ``QUANTITIES``."""
     from ..engine.simulate import simulate
+    from ..engine.structure_result import peaks_of
 
-    rec, periods, bumpers, zeta, mass_kg, template, max_steps = task
-
-    free = np.full((periods.size, 6), np.nan)
-    hit = np.full((periods.size, len(bumpers), 6), np.nan)
+    rec, periods, bumpers, _, _, _, max_steps, structure = task
+    names = QUANTITIES if structure is None else STRUCTURE_QUANTITIES
+    free = np.full((periods.size, len(names)), np.nan)
+    hit = np.full((periods.size, len(bumpers), len(names)), np.nan)
     duration = float(rec.t[-1])
     try:
         for i, period in enumerate(periods):
-            iso = _isolator(template, mass_kg, float(period), zeta)
-            for j in range(-1, len(bumpers)):
+            for j, system in enumerate(_systems(task, float(period)), start=-1):
                 if ctx.stopped():  # (a stop was asked for: what is done is kept)
                     raise Interrupted((free, hit), i, periods.size, "periods")
                 try:
-                    run = simulate(Oscillator(mass_kg, iso, None if j < 0 else bumpers[j]), rec, duration,
-                                   sample_rate_hz=0, max_steps=max_steps)
-                    peaks = _peaks(run, rec.g)
+                    run = simulate(system, rec, duration, sample_rate_hz=0, max_steps=max_steps)
+                    if structure is None:
+                        peaks = _peaks(run, rec.g)
+                    else:
+                        q = peaks_of(run, rec.g)
+                        q["disp_max_m"] = q["base_disp_max_m"]  # (the moat's demand: the base's)
+                        peaks = tuple(q[k] for k in names)
                 except InputError as exc:  # (refused up front: over its budget; the others go on)
                     if exc.problem not in (Problem.OVER_BUDGET, Problem.TOO_MUCH_WORK):
                         raise
-                    peaks = (math.nan,) * 5 + (float(Status.BUDGET),)
+                    peaks = (math.nan,) * (len(names) - 1) + (float(Status.BUDGET),)
                 if j < 0:
                     free[i] = peaks
                 else:
@@ -93,9 +122,11 @@ def _one_record(task: tuple, ctx: Context) -> tuple[np.ndarray, np.ndarray]:
 
 def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gaps_m: Any,
                       damping_ratio: float = 0.05, mass_kg: float = 500.0, bumper: Any = None,
-                      isolator: Isolator | None = None, workers: int | None = None, scheduler: Any = None,
-                      progress: Progress = False, max_steps: int = 10_000_000) -> PoundingSpectrum:
-    """Peak responses of the isolated mass with bumpers and without, over records, periods and gaps.
+                      isolator: Isolator | None = None, structure: Structure | None = None,
+                      workers: int | None = None, scheduler: Any = None, progress: Progress = False,
+                      max_steps: int = 10_000_000) -> PoundingSpectrum:
+    """Peak responses of the isolated mass with bumpers and without, over records, periods and gaps; or of
+    a building in its moat over its superstructure's period and the moat's gap.
 
     Parameters
     ----------
@@ -116,6 +147,14 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
         A nonlinear isolator's shape: its slopes scaled so that its first is ``m (2 pi / T)^2`` at
         each period, its breakpoints and hysteresis kept, its damping set by ``damping_ratio``.
         Default: linear.  (A Bouc-Wen spring is not scaled: refused.)
+    structure : Structure, optional
+        A building with its walls (a moat wall at its base, stops at floors): ``periods_s`` are then its
+        superstructure's first fixed-base period (its storeys' stiffnesses scaled to it, their dashpots by
+        the square root, the isolator kept), and every wall stands at each gap on both sides, with its own
+        law (or ``bumper``); without walls is the reference.  Its peaks are ``STRUCTURE_QUANTITIES``:
+        ``disp_max_m`` the base's (the moat's demand), ``acc_max_g`` the largest over the floors,
+        ``top_acc_max_g``, ``drift_ratio_max``, the impacts.  ``damping_ratio``, ``mass_kg`` and
+        ``isolator`` are the single mass's: left at their defaults.
     workers : int, optional
         Worker threads or processes (default: every core).
     scheduler : str or dask.distributed.Client, optional
@@ -172,7 +211,10 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
         raise InputError(Problem.NOT_INCREASING, "gaps_m", gaps.tolist()[:6])
     zeta = damping_ratio_value(damping_ratio)
     mass_kg = positive("mass_kg", mass_kg, "kg")
-    law = paper_damped().bumpers.law if bumper is None else bumper
+    if structure is not None:
+        _check_structure(structure, isolator, mass_kg, zeta)
+    law = (paper_damped().bumpers.law if structure is None else structure.walls[0].law) if bumper is None \
+        else bumper
     bumpers = [Bumpers(float(g), float(g), law) for g in gaps]  # (checked here, warned once, not in a worker)
     if isolator is not None:
         if not isinstance(isolator, Isolator):
@@ -189,23 +231,52 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
                          f"{gaps.size + 1} systems", estimate=f"{runs:.3g}", unit="runs",
                          budget=f"{MAX_RUNS:.3g}", fix="fewer records, periods or gaps")
     max_steps = integer("max_steps", max_steps, 1)
-    done = run_tasks(_one_record, [(r, periods, bumpers, zeta, mass_kg, isolator, max_steps) for r in recs],
+    tasks = [(r, periods, bumpers, zeta, mass_kg, isolator, max_steps, structure) for r in recs]
+    if structure is not None:  # (every system refused here, named, before any work)
+        for period in periods:
+            _systems(tasks[0], float(period))
+    done = run_tasks(_one_record, tasks,
                      scheduler=scheduler, workers=workers, progress=progress, label="pounding spectrum",
                      total=runs)
     done.raise_first_error(lambda i: f"record {i} ({recs[i].name or 'unnamed'})")
-    free = np.full((len(recs), periods.size, 6), np.nan)
-    hit = np.full((len(recs), periods.size, gaps.size, 6), np.nan)
+    names = QUANTITIES if structure is None else STRUCTURE_QUANTITIES
+    free = np.full((len(recs), periods.size, len(names)), np.nan)
+    hit = np.full((len(recs), periods.size, gaps.size, len(names)), np.nan)
     for i, value in enumerate(done.values):
         if value is not None:
             free[i], hit[i] = value
     interrupted = not done.complete
-    result = PoundingSpectrum.build(recs, periods, gaps, free, hit, {
-        "damping_ratio": zeta, "mass_kg": mass_kg, "bumper": repr(law),
-        "isolator": "linear" if isolator is None else repr(isolator), "complete": int(not interrupted)})
+    attrs = {"damping_ratio": zeta, "mass_kg": mass_kg, "bumper": repr(law),
+             "isolator": "linear" if isolator is None else repr(isolator), "complete": int(not interrupted)}
+    if structure is not None:
+        attrs = {"structure": structure.to_toml_text(), "bumper": repr(law), "complete": int(not interrupted),
+                 "period": "the superstructure's first fixed-base period, s"}
+    result = PoundingSpectrum.build(recs, periods, gaps, free, hit, attrs, names)
     if interrupted:
         finished = int(np.isfinite(hit[..., 0]).sum() + np.isfinite(free[..., 0]).sum())
         raise Interrupted(result, finished, runs, "runs")
     return result
 
 
-__all__ = ["QUANTITIES", "pounding_spectrum"]
+def _check_structure(structure: Any, isolator: Any, mass_kg: float, zeta: float) -> None:
+    """A building for the spectrum: a Structure with storeys and at least one wall; the single mass's
+    arguments left alone."""
+    if not isinstance(structure, Structure):
+        raise InputError(Problem.WRONG_TYPE, "structure", structure, got=type(structure).__name__,
+                         expected="pounding.Structure (a building with its walls) or None")
+    if not structure.storeys:
+        raise InputError(Problem.BAD_STATE, "structure", "Structure(storeys=[])",
+                         why="has no superstructure whose period could be varied",
+                         fix="give a building with storeys, or use the single mass (structure=None)")
+    if not structure.walls:
+        raise InputError(Problem.BAD_STATE, "structure", "Structure(walls=[])",
+                         why="has no wall to put at each gap",
+                         fix="give the building with its moat wall (a Wall at level 0) or its stops")
+    if isolator is not None or mass_kg != 500.0 or zeta != 0.05:
+        raise InputError(Problem.WRONG_MODE, "isolator, mass_kg, damping_ratio", (isolator, mass_kg, zeta),
+                         mode="the single mass (structure=None)",
+                         fix="leave them at their defaults: the building's isolator, masses and dashpots are "
+                             "its own")
+
+
+__all__ = ["QUANTITIES", "STRUCTURE_QUANTITIES", "pounding_spectrum", "superstructure_at"]

@@ -17,10 +17,14 @@ if TYPE_CHECKING:  # pragma: no cover
 
 # per run: what _peaks returns, in this order
 QUANTITIES = ("acc_max_g", "disp_max_m", "impacts", "impact_force_max_n", "impact_speed_max_m_s", "status")
+# a building's (``structure=``): the same, ``disp_max_m`` its base's and ``acc_max_g`` the largest over its
+# floors, and its top floor's acceleration and largest storey drift ratio
+STRUCTURE_QUANTITIES = QUANTITIES + ("top_acc_max_g", "drift_ratio_max")
 UNITS = {"acc_max_g": "g", "disp_max_m": "m", "impacts": "1", "impact_force_max_n": "N",
          "impact_speed_max_m_s": "m/s",
          "status": "pounding.Status", "amplification": "1", "disp_ratio": "1", "acc_max_free_g": "g",
-         "disp_max_free_m": "m"}
+         "disp_max_free_m": "m", "top_acc_max_g": "g", "drift_ratio_max": "1", "top_acc_max_free_g": "g",
+         "drift_ratio_max_free": "1"}
 PERCENTILES = (16.0, 50.0, 84.0)
 
 
@@ -62,17 +66,20 @@ class PoundingSpectrum:
 
     @classmethod
     def build(cls, recs: list["Record"], periods: np.ndarray, gaps: np.ndarray, free: np.ndarray,
-              hit: np.ndarray, attrs: dict) -> "PoundingSpectrum":
+              hit: np.ndarray, attrs: dict, names: tuple = QUANTITIES) -> "PoundingSpectrum":
         """Assemble the result from the kernel's arrays (internal: ``pounding_spectrum`` calls it)."""
         import xarray as xr
 
         from ..excitation.spectrum import record_names
 
         dims = ("record", "period_s", "gap_m")
-        data = {q: (dims, hit[..., k], {"units": UNITS[q]}) for k, q in enumerate(QUANTITIES)}
+        data = {q: (dims, hit[..., k], {"units": UNITS[q]}) for k, q in enumerate(names)}
         data["acc_max_free_g"] = (dims[:2], free[..., 0], {"units": "g"})
         data["disp_max_free_m"] = (dims[:2], free[..., 1], {"units": "m"})
         data["status_free"] = (dims[:2], free[..., 5], {"units": "pounding.Status"})
+        for k, q in enumerate(names[len(QUANTITIES):], start=len(QUANTITIES)):  # (a building's own)
+            free_name = q.replace("_g", "_free_g") if q.endswith("_g") else f"{q}_free"
+            data[free_name] = (dims[:2], free[..., k], {"units": UNITS[free_name]})
         with np.errstate(divide="ignore", invalid="ignore"):
             data["amplification"] = (dims, hit[..., 0] / free[..., 0][..., None],
                                      {"long_name": "peak acceleration with bumpers over without"})
