@@ -21,7 +21,7 @@ from .._checks import one_of, positive
 from .._errors import InputError, Problem
 from ..model.dotted import unit_of
 from .hazard import HazardCurve, probability_in_years
-from .stripe_result import StripeAnalysis
+from .stripe_result import EVENTS, StripeAnalysis
 
 LEVELS = ("design", "mce")
 
@@ -59,6 +59,12 @@ class Decision:
         The code's least clearance (e.g. ASCE 7-16's D_TM), shown beside the recommendation.
     years : float
         The exposure time of ``p_contact_years``.
+    event : str
+        The demand the target applies to: ``"contact"`` (pounding), or ``"drift"``, ``"acceleration"``,
+        ``"top_acceleration"``, ``"displacement"`` beyond ``limit`` (its probabilities in the columns
+        ``p_<event>_design``, ``p_<event>_mce``, ``p_<event>_years``).
+    limit : float or None
+        The demand's threshold (None for pounding).
     units : dict
         The design dimensions' units (``"bumpers.gap"`` -> ``"m"``), per bumper type (keyed by its name,
         None for a single analysis), as the stores record them: what the labels show.
@@ -86,6 +92,24 @@ class Decision:
     code_minimum_gap_m: float | None
     years: float
     units: dict = field(default_factory=dict)
+    event: str = "contact"
+    limit: float | None = None
+
+    @property
+    def probability_column(self) -> str:
+        """The table's column of the probability the target applies to, without its level:
+        ``"p_contact"``, or the demand's (``"p_drift"``, ``"p_acceleration"``...)."""
+        return f"p_{self.event}"
+
+    def event_words(self) -> str:
+        """What the target's event is, in words."""
+        if self.event == "contact" or self.limit is None:
+            return "pounding" if self.event == "contact" else self.event
+        words = {"drift": "a storey drift ratio above {:g}",
+                 "acceleration": "a floor acceleration above {:g} g",
+                 "top_acceleration": "a top-floor acceleration above {:g} g",
+                 "displacement": "a displacement above {:g} m"}
+        return words.get(self.event, self.event + " above {:g}").format(self.limit)
 
     def to_xarray(self) -> Any:
         """The table of :meth:`to_dataframe` as a Dataset along ``option`` (one per design point)."""
@@ -110,21 +134,25 @@ class Decision:
         )
         if self.recommended is None:
             return (
-                f"No gap of the grid keeps the probability of pounding at the {level} level at or below "
-                f"{self.target_probability:g}: widen the grid.{code}"
+                f"No gap of the grid keeps the probability of {self.event_words()} at the {level} level at "
+                f"or below {self.target_probability:g}: widen the grid.{code}"
             )
         row = self.recommended
         others = _label([(d, row[d]) for d in self._dims() if d not in (self.gap_dim, "bumper")],
                         self._units_of(row))
         bumper = f" with the {row['bumper']} bumpers" if "bumper" in row else ""
+        p = self.probability_column
         parts = [
             f"A gap of {1e3 * row[self.gap_dim]:.0f} mm{bumper}{' (' + others + ')' if others else ''}: "
-            f"probability of pounding {row[f'p_contact_{self.level}']:.3f} at the {level} level (target "
-            f"{self.target_probability:g}), {row[f'p_contact_{other.lower()}']:.3f} at the {other} "
-            "level.",
+            f"probability of {self.event_words()} {row[f'{p}_{self.level}']:.3f} at the {level} level "
+            f"(target {self.target_probability:g}), {row[f'{p}_{other.lower()}']:.3f} at the {other} level.",
             f"At the stripe nearest the {level} level, {int(row['pounded_at_level'])} of "
-            f"{int(row['runs_at_level'])} runs pounded.",
+            f"{int(row['runs_at_level'])} runs " + ("pounded." if self.event == "contact" else
+                                                    f"had {self.event_words()}."),
         ]
+        if self.event != "contact":
+            parts.append(f"Probability of pounding: {row[f'p_contact_{self.level}']:.3f} at the {level} "
+                         "level.")
         rivals = self.data[(self.data[self.gap_dim] == row[self.gap_dim]) & self.data["meets_target"]]
         if len(rivals) > 1:
             if math.isnan(row["acc_pounding_median_g"]):
@@ -140,8 +168,8 @@ class Decision:
                     f"runs that pounded at the stripe nearest the MCE level peaked at "
                     f"{row['acc_pounding_median_g']:.3g} g (median)."
                 )
-        if not math.isnan(row.get("p_contact_years", math.nan)):
-            parts.append(f"In {self.years:g} years at the site: {row['p_contact_years']:.3f}.")
+        if not math.isnan(row.get(f"{p}_years", math.nan)):
+            parts.append(f"In {self.years:g} years at the site: {row[f'{p}_years']:.3f}.")
         if not math.isnan(row.get("p_capacity_mce", math.nan)):
             parts.append(
                 f"Probability of compressing a bumper beyond its capacity at the MCE level: "
@@ -183,7 +211,7 @@ class Decision:
         return self.units.get(row.get("bumper") if hasattr(row, "get") else None) or self.units.get(None, {})
 
     def _dims(self) -> list[str]:
-        return [c for c in self.data.columns if c not in _COLUMNS]
+        return [c for c in self.data.columns if not _is_metric(c)]
 
 
 def _label(values: list[tuple[str, Any]], units: dict | None = None) -> str:
@@ -215,6 +243,12 @@ _COLUMNS = (
     "pounded_at_level",
     "p_upper_95",
 )
+_DEMANDS = ("contact", "drift", "acceleration", "top_acceleration", "displacement")
+
+
+def _is_metric(column: str) -> bool:
+    """A column of what a design point gives (not of the design point itself): a probability among them."""
+    return column in _COLUMNS or column.startswith("p_")
 
 
 def decide(
@@ -229,9 +263,11 @@ def decide(
     years: float = 50.0,
     code_minimum_gap_m: float | None = None,
     free: StripeAnalysis | None = None,
+    event: str = "contact",
+    limit: float | None = None,
 ) -> Decision:
-    """Choose the gap: the smallest of the grid whose probability of pounding at ``level`` is at most
-    ``target_probability``.
+    """Choose the gap: the smallest of the grid whose probability of pounding (or of another demand:
+    ``event``) at ``level`` is at most ``target_probability``.
 
     Parameters
     ----------
@@ -259,6 +295,13 @@ def decide(
         The same stripes and records on the system without bumpers: adds ``acc_penalty_median``,
         the median over the records of the peak acceleration with bumpers over without, at the
         stripe nearest the MCE intensity (1 for a record that does not pound).
+    event : {"contact", "drift", "acceleration", "top_acceleration", "displacement"}
+        The demand the target applies to: pounding (default), or exceeding ``limit`` (a building's
+        storey drift ratio, its floors' or top floor's peak acceleration in g, its base's displacement in
+        m: :data:`EVENTS`).  The table then has its probabilities ``p_<event>_design`` and
+        ``p_<event>_mce`` beside pounding's.
+    limit : float, optional
+        The demand's threshold (needed for every event but contact).
 
     Returns
     -------
@@ -287,6 +330,16 @@ def decide(
     if target >= 1.0:
         raise InputError(Problem.OUT_OF_RANGE, "target_probability", target_probability, range="(0, 1)")
     level = one_of("level", level, LEVELS)
+    event = one_of("event", event, _DEMANDS)
+    if event != "contact":
+        if limit is None:
+            raise InputError(Problem.MISSING_INPUT, "limit", None,
+                             what=f"the threshold of {event}: {EVENTS[event]}")
+        unit = "g" if "acceleration" in event else "(a ratio)" if event == "drift" else "m"
+        limit = positive("limit", limit, unit)
+    elif limit is not None:
+        raise InputError(Problem.WRONG_MODE, "limit", limit, mode="an event other than contact",
+                         fix="leave it None for pounding, or name the demand (event='drift', ...)")
     yrs = positive("years", years, "years")
     if hazard is not None and not isinstance(hazard, HazardCurve):
         raise InputError(
@@ -325,22 +378,23 @@ def decide(
     code_min = None if code_minimum_gap_m is None else positive("code_minimum_gap_m", code_minimum_gap_m, "m")
     rows = []
     for name, one in analyses.items():
-        for row in _rows(one, design_sa, mce_sa, level, target, hazard, yrs, free):
+        for row in _rows(one, design_sa, mce_sa, level, target, hazard, yrs, free, event, limit):
             rows.append(row if name is None else {"bumper": name, **row})
     table = pd.DataFrame(rows)
-    dims = [c for c in table.columns if c not in _COLUMNS]  # (the design point first, then what it gives)
-    table = table[dims + [c for c in table.columns if c in _COLUMNS]]
+    dims = [c for c in table.columns if not _is_metric(c)]  # (the design point first, then what it gives)
+    table = table[dims + [c for c in table.columns if _is_metric(c)]]
     candidates = table[table["meets_target"]]
     recommended = None
     if len(candidates):
         # at the smallest gap: the least pounding, then the softest pounding (a point where nothing
         # pounded has no such acceleration: it ranks first), then the lowest acceleration
         ranked = candidates.assign(_soft=candidates["acc_pounding_median_g"].fillna(-math.inf))
-        by = [gap_dim, f"p_contact_{level}", "_soft", "acc_median_g"]
+        by = [gap_dim, f"p_{event}_{level}", "_soft", "acc_median_g"]
         best = ranked.sort_values(by, kind="stable").drop(columns="_soft").iloc[0]
         recommended = {k: _plain(k, v) for k, v in best.items()}
     units = {name: {d: one.unit(d) for d in one.design_dims} for name, one in analyses.items()}
-    return Decision(table, recommended, target, level, design_sa, mce_sa, gap_dim, code_min, yrs, units)
+    return Decision(table, recommended, target, level, design_sa, mce_sa, gap_dim, code_min, yrs, units,
+                    event, limit)
 
 
 def _plain(key: str, value: Any) -> Any:
@@ -410,16 +464,20 @@ def _rows(
     hazard: HazardCurve | None,
     yrs: float,
     free: StripeAnalysis | None,
+    event: str = "contact",
+    limit: float | None = None,
 ) -> list[dict]:
     """The decision table's rows of one stripe analysis: one per design point."""
     p_design = analysis.probability(design_sa)
     p_mce = analysis.probability(mce_sa)
+    demand = None if event == "contact" else (analysis.probability(design_sa, event, limit),
+                                             analysis.probability(mce_sa, event, limit))
     p_cap = None if analysis.capacity_m is None else analysis.probability(mce_sa, "compression")
     stripe = int(np.argmin(np.abs(np.log(analysis.levels_g / mce_sa))))
     target_stripe = int(
         np.argmin(np.abs(np.log(analysis.levels_g / (mce_sa if level == "mce" else design_sa))))
     )
-    n_runs, n_hits = (c.load() for c in analysis.counts("contact"))
+    n_runs, n_hits = (c.load() for c in analysis.counts(event, limit))
     at_stripe = analysis.data.isel(sa_g=stripe).load()
     ok = analysis.finished().isel(sa_g=stripe)
     acc = at_stripe["acc_max_g"].where(ok).median("record")
@@ -437,8 +495,12 @@ def _rows(
         row["p_contact_mce"] = float(p_mce.values[index])
         row["p_capacity_mce"] = math.nan if p_cap is None else float(p_cap.values[index])
         row["p_contact_years"] = math.nan
+        row[f"p_{event}_years"] = math.nan
+        if demand is not None:
+            row[f"p_{event}_design"] = float(demand[0].values[index])
+            row[f"p_{event}_mce"] = float(demand[1].values[index])
         try:
-            frag = analysis.fragility("contact", at=row_values(row, dims), n_bootstrap=0)
+            frag = analysis.fragility(event, limit, at=row_values(row, dims), n_bootstrap=0)
         except InputError:
             frag = None
         row["fitted"] = frag is not None
@@ -454,13 +516,13 @@ def _rows(
             if frag is not None:
                 from .risk import annual_frequency
 
-                row["p_contact_years"] = float(probability_in_years(annual_frequency(frag, hazard), yrs))
+                row[f"p_{event}_years"] = float(probability_in_years(annual_frequency(frag, hazard), yrs))
         row["acc_median_g"] = float(acc.isel(sel).values)
         row["acc_pounding_median_g"] = float(acc_pounding.isel(sel).values)
         row["force_median_n"] = float(force.isel(sel).values)
         row["acc_penalty_median"] = math.nan if penalty is None else float(penalty.isel(sel).values)
         row["stripe_g"] = float(analysis.levels_g[stripe])
-        row["meets_target"] = bool(row[f"p_contact_{level}"] <= target)
+        row["meets_target"] = bool(row[f"p_{event}_{level}"] <= target)
         rows.append(row)
     return rows
 

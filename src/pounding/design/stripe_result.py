@@ -19,8 +19,15 @@ EVENTS = {
     "reaches that gap, m)",
     "acceleration": "the peak absolute acceleration exceeds the limit (g)",
     "compression": "a bumper is compressed beyond the limit (m; default: the bumpers' capacity_m)",
-    "displacement": "the peak displacement exceeds the limit (m; the gap plus the bumper's stroke)",
+    "displacement": "the peak displacement exceeds the limit (m; the gap plus the bumper's stroke; a "
+    "building's: its base's)",
+    "drift": "a building's largest storey drift ratio exceeds the limit (e.g. 0.005)",
+    "top_acceleration": "a building's top floor's peak absolute acceleration exceeds the limit (g)",
 }
+# each event's quantity in the store: a single mass's, or a building's where it differs
+_QUANTITY = {"contact": "disp_max_m", "acceleration": "acc_max_g", "compression": "compression_max_m",
+             "displacement": "disp_max_m", "drift": "drift_ratio_max", "top_acceleration": "top_acc_max_g"}
+_BUILDING = {"disp_max_m": "base_disp_max_m"}
 RESERVED = ("sa_g", "record")
 
 
@@ -34,7 +41,10 @@ class StripeAnalysis:
         The study's store: dims ``sa_g`` (the stripes, g), ``record`` and the design grid's
         (e.g. ``bumpers.gap``); per run ``acc_max_g``, ``disp_max_m``, ``impacts``,
         ``impact_force_max_n``, ``impact_speed_max_m_s``, ``compression_max_m``, ``status``;
-        ``done``.
+        ``done``.  A building's runs (a :class:`~pounding.Structure`): ``base_disp_max_m``,
+        ``top_disp_max_m``, ``acc_max_g`` (over its floors), ``top_acc_max_g``, ``drift_ratio_max``,
+        ``impacts``, ``impact_force_max_n``, ``status`` (its events: contact, drift, acceleration,
+        top_acceleration, displacement of the base).
     period_s : float
         The period (s) of the intensity measure, ``Sa(period_s)``.
     damping_ratio : float
@@ -90,8 +100,8 @@ class StripeAnalysis:
 
         Parameters
         ----------
-        event : {"contact", "acceleration", "compression", "displacement"}
-            See ``EVENTS``.
+        event : {"contact", "acceleration", "compression", "displacement", "drift", "top_acceleration"}
+            See ``EVENTS`` (the last two a building's).
         limit : float, optional
             The event's threshold (g or m); "contact" takes none with bumpers, a gap (m) without.
 
@@ -116,13 +126,11 @@ class StripeAnalysis:
                 limit = self.capacity_m
             if limit is None:
                 raise InputError(Problem.MISSING_INPUT, "limit", None, what=f"the threshold: {EVENTS[event]}")
-            lim = positive("limit", limit, "g" if event == "acceleration" else "m")
-            quantity = {
-                "contact": "disp_max_m",
-                "acceleration": "acc_max_g",
-                "compression": "compression_max_m",
-                "displacement": "disp_max_m",
-            }[event]
+            lim = positive("limit", limit, {"acceleration": "g", "top_acceleration": "g",
+                                            "drift": "(a ratio)"}.get(event, "m"))
+            quantity = _QUANTITY[event]
+            if quantity not in ds:
+                quantity = _BUILDING.get(quantity, quantity)
             if quantity not in ds:
                 raise InputError(
                     Problem.NOT_IN_RESULT, "event", event, choices=", ".join(v for v in ds.data_vars)

@@ -19,7 +19,7 @@ import numpy as np
 
 from .._checks import float_array, positive
 from .._errors import InputError, Interrupted, Problem
-from ..model import Oscillator
+from ..model import Oscillator, Structure
 from ..studies import StudySpec, study
 from .stripe_result import RESERVED, StripeAnalysis
 
@@ -76,9 +76,10 @@ def stripe_analysis(
 
     Parameters
     ----------
-    system : Oscillator
+    system : Oscillator or Structure
         The base system (its bumpers, or none: then a contact is the peak displacement reaching a
-        gap, for every gap at once).
+        gap, for every gap at once); or a building with its walls (a moat wall: a grid over
+        ``walls[0].gap_m``), its runs' events its drift ratio and floor accelerations besides contact.
     records : str or sequence of str
         The suite: ``"fema-p695:far_field"``, ``"fema-p695:near_field"``, ``"el-centro"``, or record
         names and paths (:func:`suite_sources`).
@@ -126,9 +127,10 @@ def stripe_analysis(
     >>> msa.data["impacts"].values.ravel().tolist()
     [7.0, 27.0]
     """
-    if not isinstance(system, Oscillator):
+    if not isinstance(system, (Oscillator, Structure)):
         raise InputError(
-            Problem.WRONG_TYPE, "system", system, got=type(system).__name__, expected="pounding.Oscillator"
+            Problem.WRONG_TYPE, "system", system, got=type(system).__name__,
+            expected="pounding.Oscillator or pounding.Structure (a building with its walls)"
         )
     sources = suite_sources(records)
     levels = float_array("levels_g", levels_g)
@@ -154,8 +156,8 @@ def stripe_analysis(
         {"kind": "record", "sa_period_s": period, "sa_damping_ratio": zeta},
         {"sa_g": levels.tolist(), "record": sources, **design_grid},
     )
-    has_bumpers = system.bumpers is not None
-    capacity = system.bumpers.capacity_m if has_bumpers else None
+    has_bumpers = bool(system.walls) if isinstance(system, Structure) else system.bumpers is not None
+    capacity = system.bumpers.capacity_m if has_bumpers and isinstance(system, Oscillator) else None
     try:
         ds = study(
             spec,
@@ -228,10 +230,11 @@ def open_stripe_analysis(store: str | Path) -> StripeAnalysis:
             fix="open it with pounding.open_study",
         )
     zeta = compute.get("sa_damping_ratio")
+    system = tables["system"]
     return StripeAnalysis(
         ds,
         float(compute["sa_period_s"]),
         0.05 if zeta is None else float(zeta),
-        tables["system"].get("bumpers") is not None,
-        (tables["system"].get("bumpers") or {}).get("capacity_m"),
+        bool(system.get("walls")) if "storeys" in system else system.get("bumpers") is not None,
+        (system.get("bumpers") or {}).get("capacity_m"),
     )

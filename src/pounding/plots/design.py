@@ -363,10 +363,11 @@ def plot_decision(decision: Any, ax: Any = None) -> list:
     for i, (label, part) in enumerate(groups):
         lw, ms = 1.0 + 2.2 * (n - 1 - i) / max(n - 1, 1), 3.0 + 5.0 * (n - 1 - i) / max(n - 1, 1)
         marker = OPTION_MARKERS[i % len(OPTION_MARKERS)]
-        (solid,) = ax.plot(1e3 * part[gap], part["p_contact_mce"], marker=marker, ls="-", lw=lw, ms=ms,
+        p = decision.probability_column
+        (solid,) = ax.plot(1e3 * part[gap], part[f"{p}_mce"], marker=marker, ls="-", lw=lw, ms=ms,
                            mfc="none", color=f"C{i % 10}", zorder=2 + i,
                            label=f"MCE ({decision.mce_sa_g:.3g} g){', ' + label if label else ''}")
-        (dashed,) = ax.plot(1e3 * part[gap], part["p_contact_design"], marker=marker, ls="--", lw=lw, ms=ms,
+        (dashed,) = ax.plot(1e3 * part[gap], part[f"{p}_design"], marker=marker, ls="--", lw=lw, ms=ms,
                             color=solid.get_color(), zorder=2 + i,
                             label=f"design ({decision.design_sa_g:.3g} g){', ' + label if label else ''}")
         artists += [solid, dashed]
@@ -380,7 +381,7 @@ def plot_decision(decision: Any, ax: Any = None) -> list:
         artists.append(ax.axvline(1e3 * decision.code_minimum_gap_m, color="0.45", lw=1.0, ls="-.",
                                   label=f"code minimum {1e3 * decision.code_minimum_gap_m:.0f} mm"))
     ax.set_xlabel("gap [mm]")
-    ax.set_ylabel("probability of pounding")
+    ax.set_ylabel(f"probability of {decision.event_words()}")
     ax.set_ylim(-0.02, 1.02)
     place_legend(ax)
     return artists
