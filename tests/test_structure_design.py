@@ -3,6 +3,9 @@ storey drift and floor acceleration besides pounding, and the decision of the ga
 
 from __future__ import annotations
 
+import tomllib
+from pathlib import Path
+
 import numpy as np
 import pytest
 
@@ -45,6 +48,27 @@ def test_a_building_stripe_analysis_keeps_its_demands(msa):
     assert float(msa.fraction("contact").sel({"walls[0].gap_m": 0.6}).max()) == 0.0
     assert float(msa.fraction("contact").sel({"walls[0].gap_m": 0.02}).min()) == 1.0
     assert msa.design_dims == ("walls[0].gap_m",)
+
+
+def test_a_building_without_storeys_reads_back_with_its_wall(tmp_path):
+    iso = pd_.Isolator(slopes=[4.0e5], breakpoints=[], damping=2.0e3)
+    base = pd_.Structure(3.0e3, iso, [], [pd_.Wall(0, 0.02, 0.02, pd_.KelvinVoigt(2.0e7, 1.0e4))])
+    design.stripe_analysis(base, "el-centro", [0.5], period_s=1.5, store=str(tmp_path / "s.zarr"),
+                           progress=False, scheduler="serial")
+    again = design.open_stripe_analysis(str(tmp_path / "s.zarr"))
+    assert again.has_bumpers and float(again.fraction("contact").max()) == 1.0
+
+
+def test_a_design_file_of_a_building_says_it_takes_one_mass(tmp_path):
+    from pounding.design.plan import DesignPlan
+
+    building().to_toml(tmp_path / "b.toml")
+    text = (Path(__file__).parents[1] / "examples" / "design_ups.toml").read_text()
+    table = tomllib.loads(text)
+    table["system"] = {"file": "b.toml"}
+    table.pop("bumpers", None)
+    with pytest.raises(pd_.InputError, match="one mass"):
+        DesignPlan.from_dict(table, tmp_path / "plan.toml")
 
 
 def test_the_gap_decided_for_pounding_and_for_drift(msa):

@@ -67,6 +67,32 @@ def test_each_point_is_a_run_of_the_building_at_that_period_and_gap():
     assert len(ps.plot(quantity="drift_ratio_max")) > 0
 
 
+def test_each_wall_keeps_its_own_laws_unless_one_is_given_and_a_budget_stop_is_kept():
+    b = building()
+    top = pd_.Wall(2, 0.03, 0.03, pd_.KelvinVoigt(2.0e5, 1.0e3), law_right=pd_.KelvinVoigt(5.0e7, 1.0e4))
+    b = dataclasses.replace(b, walls=(b.walls[0], top))
+    quake = pd_.records.el_centro().scaled(pga_g=0.5)
+    quake = pd_.Record(quake.t[quake.t <= 6.0], quake.accel[quake.t <= 6.0])
+    soft = pd_.KelvinVoigt(1.0e6, 0.0)
+    for law in (None, soft):
+        ps = pd_.pounding_spectrum([quake], [0.4], gaps_m=[0.02], structure=b, bumper=law, scheduler="serial")
+        walls = tuple(dataclasses.replace(w, gap_left_m=0.02, gap_right_m=0.02,
+                                          **({} if law is None else {"law": law, "law_right": None}))
+                      for w in superstructure_at(b, 0.4).walls)
+        run = pd_.simulate(dataclasses.replace(superstructure_at(b, 0.4), walls=walls), quake, 6.0,
+                           sample_rate_hz=0)
+        hit = peaks_of(run, quake.g)
+        point = ps.data.isel(record=0, period_s=0, gap_m=0)
+        assert float(point["impacts"]) == hit["impacts"] > 0
+        assert float(point["impact_force_max_n"]) == hit["impact_force_max_n"]
+        assert float(point["top_acc_max_g"]) == hit["top_acc_max_g"]
+    over = pd_.pounding_spectrum([quake], [0.4], gaps_m=[0.02], structure=b, max_steps=100,
+                                 scheduler="serial").data.isel(record=0)
+    budget = float(pd_.Status.BUDGET)
+    assert (over["status"] == budget).all() and (over["status_free"] == budget).all()
+    assert np.isnan(over["drift_ratio_max"]).all() and np.isnan(over["drift_ratio_max_free"]).all()
+
+
 def test_what_the_building_spectrum_refuses_is_named():
     b = building()
     quake = pd_.records.el_centro()
@@ -74,5 +100,8 @@ def test_what_the_building_spectrum_refuses_is_named():
         pd_.pounding_spectrum([quake], [0.5], gaps_m=[0.1], structure=dataclasses.replace(b, walls=()))
     with pytest.raises(pd_.InputError, match="structure"):
         pd_.pounding_spectrum([quake], [0.5], gaps_m=[0.1], structure=pd_.presets.paper_damped())
+    with pytest.raises(pd_.InputError, match="isolated base"):
+        pd_.pounding_spectrum([quake], [0.5], gaps_m=[0.1], structure=pd_.Structure.fixed_base(
+            [pd_.Storey(2.0e3, 4.0e6)] * 2, [pd_.Wall(2, 0.05, 0.05, pd_.KelvinVoigt(1e7, 1e3))]))
     with pytest.raises(pd_.InputError, match="mass_kg"):
         pd_.pounding_spectrum([quake], [0.5], gaps_m=[0.1], structure=b, mass_kg=100.0)

@@ -57,6 +57,11 @@ def test_a_sweep_study_of_a_pair_and_a_study_file_of_a_building(tmp_path):
     pair = pd_.Adjacent(isolated, old, [pd_.Link(3, 3, 0.05, pd_.KelvinVoigt(5.0e7, 2.0e4))])
     spec = pd_.StudySpec(pair, {"kind": "sweep", "a_g": 0.3, "freqs_hz": [0.7, 1.0], "cycles": 6,
                                 "measure_cycles": 2}, {"links[0].gap_m": [0.01, 1.0]})
+    walled = dataclasses.replace(pair, second=dataclasses.replace(
+        old, walls=(pd_.Wall(3, 0.05, 0.05, pd_.KelvinVoigt(1e7, 1e3)),)))
+    at, _ = pd_.StudySpec(walled, {"kind": "simulate", "a_g": 0.3, "freq_hz": 1.0, "duration_s": 1.0},
+                          {"second.walls[0].gap_m": [0.07]}).point((0,))
+    assert (at.second.walls[0].gap_left_m, at.second.walls[0].gap_right_m) == (0.07, 0.07)
     ds = pd_.study(spec, str(tmp_path / "p.zarr"), scheduler="serial").compute()
     direct = pd_.sweep(dataclasses.replace(pair, links=(dataclasses.replace(pair.links[0], gap_m=0.01),)),
                        0.3, [0.7, 1.0], steady="fixed", cycles=6, measure_cycles=2)

@@ -23,12 +23,15 @@ def linear_isolator(k: float, c: float) -> pd_.Isolator:
     return pd_.Isolator(slopes=[k], breakpoints=[], damping=c)
 
 
-@pytest.mark.parametrize("preset", ["paper_damped", "nbs"])
-def test_one_level_sweeps_as_the_oscillator(preset):
+@pytest.mark.parametrize("preset, schedule", [("paper_damped", {}), ("nbs", {}), (
+    "paper_damped", {"steady": "fixed", "cycles": 20, "measure_cycles": 1})])
+def test_one_level_sweeps_as_the_oscillator(preset, schedule):
+    # (a one-cycle window: its contacts may begin before it, timed from their true start as the
+    # oscillator's are)
     osc = pd_.presets.paper_printed(bumpers=False) if preset == "nbs" else pd_.presets.paper_damped()
-    freqs = [1.2, 1.5, 2.0, 2.6]
-    ro = pd_.sweep(osc, 0.05, freqs)
-    rs = pd_.sweep(pd_.Structure.from_oscillator(osc), 0.05, freqs)
+    freqs = [1.2, 1.5, 2.0, 2.6] if not schedule else np.round(np.arange(1.0, 3.01, 0.1), 1)
+    ro = pd_.sweep(osc, 0.05, freqs, **schedule)
+    rs = pd_.sweep(pd_.Structure.from_oscillator(osc), 0.05, freqs, **schedule)
     assert rs.message == ro.message and rs.success
     np.testing.assert_array_equal(rs.cycles_run, ro.cycles_run)
     np.testing.assert_array_equal(rs.period_multiple, ro.period_multiple)
@@ -46,6 +49,8 @@ def test_one_level_sweeps_as_the_oscillator(preset):
         mine = contacts[contacts["side"] == side]
         np.testing.assert_array_equal(mine["contacts_per_cycle"], table[f"contacts_per_cycle_{side}"])
         np.testing.assert_allclose(mine["contact_time_mean_s"], table[f"contact_time_s_{side}"], rtol=1e-9)
+        timed = np.isfinite(mine["contact_time_mean_s"]).sum()
+        assert timed == (table[f"contacts_per_cycle_{side}"] > 0).sum()
         np.testing.assert_allclose(mine["peak_force_max_n"].fillna(0.0) > 0,
                                    table[f"contacts_per_cycle_{side}"] > 0)
 
@@ -73,8 +78,10 @@ def test_a_linear_building_sweeps_to_its_frequency_response(n_storeys):
         np.testing.assert_allclose(res.level_metrics[i, :, 1], -np.abs(x), rtol=1e-7)
         np.testing.assert_allclose(res.alpha[i], np.abs(a_g - w**2 * x) / a_g, rtol=1e-7)
         np.testing.assert_allclose(res.peak_drift[i], np.abs(np.diff(x)), rtol=1e-7)
-    assert res.alpha_top.tolist() == res.alpha[:, -1].tolist()
-    assert res.resonance_hz(0) == freqs[int(np.argmax(res.alpha[:, 0]))]
+    # the base's resonance among the steps: where its closed-form amplification is largest
+    amplification = [abs(a_g - (2 * math.pi * f) ** 2 * np.linalg.solve(
+        k - (2 * math.pi * f) ** 2 * np.diag(m) + 2j * math.pi * f * c, -m * a_g)[0]) for f in freqs]
+    assert res.resonance_hz(0) == freqs[int(np.argmax(amplification))]
 
 
 @st.composite
@@ -149,6 +156,8 @@ def test_a_pair_names_its_structures_and_links():
     assert list(links["kind"]) == ["link", "link"] and links["contacts_per_cycle"].max() > 0
     ds = res.to_xarray()
     assert ds["alpha"].shape == (2, 6) and ds["contacts_per_cycle"].shape == (2, 1)
+    assert list(ds["level_structure"].values) == ["first"] * 3 + ["second"] * 3
+    assert list(ds["storey_structure"].values) == ["first"] * 2 + ["second"] * 2
     assert len(res.plot()) == 7
 
 
@@ -163,6 +172,19 @@ def test_bad_arguments_are_named():
         res.resonance_hz(2)
     again = pd_.sweep(b, 0.1, [2.0], steady="fixed", cycles=3, measure_cycles=1, state=res.final_state)
     assert again.step_start_s[0] == pytest.approx(3.0 + 2.0)
+    # a sweep stopped at its first step: NaN metrics, and the summary's table says "-" where nothing was
+    # measured
+    walled = dataclasses.replace(b, walls=(pd_.Wall(0, 0.002, 0.002, pd_.KelvinVoigt(1e7, 1e3)),))
+    stopped = pd_.sweep(walled, 0.3, [1.0, 1.5], max_events_per_cycle=3)
+    assert stopped.status != pd_.Status.SUCCESS and stopped.steps_done == 1
+    assert np.isnan(stopped.quantities()["alpha_top_max"])
+    from rich.console import Console
+
+    from pounding.cli._runs import _structure_sweep_table
+
+    console = Console(record=True, width=150)
+    console.print(_structure_sweep_table(stopped))
+    assert "level 1" in console.export_text()
 
 
 def test_a_campaign_of_a_building_without_and_with_its_moat_wall(tmp_path):

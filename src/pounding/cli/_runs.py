@@ -373,12 +373,15 @@ def _structure_sweep_table(result):
     for name in ("level", "alpha max", "at f [Hz]", "excursion max [mm]", "drift max [mm]"):
         table.add_column(escape(name), justify="right", no_wrap=True)
     below = {lv: s for s, lv in enumerate(result.storeys)}
+    def largest(values, fmt: str, scale: float = 1.0) -> str:  # ("-": no step measured it)
+        return "-" if not np.any(np.isfinite(values)) else format(np.nanmax(values) * scale, fmt)
+
     for q, lv in enumerate(result.levels):
         alpha = result.alpha[done, q]
         excursion = result.level_metrics[done, q, 0] - result.level_metrics[done, q, 1]
-        drift = f"{np.nanmax(result.peak_drift[done, below[lv]]) * 1e3:.3f}" if lv in below else "-"
-        table.add_row(level_name(result.levels, q), f"{np.nanmax(alpha):.4f}",
-                      f"{result.freqs_hz[int(np.nanargmax(alpha))]:g}", f"{np.nanmax(excursion) * 1e3:.3f}",
+        drift = largest(result.peak_drift[done, below[lv]], ".3f", 1e3) if lv in below else "-"
+        at = f"{result.freqs_hz[int(np.nanargmax(alpha))]:g}" if np.any(np.isfinite(alpha)) else "-"
+        table.add_row(level_name(result.levels, q), largest(alpha, ".4f"), at, largest(excursion, ".3f", 1e3),
                       drift)
     for c in range(len(result.contact_slots)):
         per_cycle = result.contact_metrics[done, c, 0]
@@ -386,7 +389,7 @@ def _structure_sweep_table(result):
         table.add_section()
         table.add_row(slot_name(result.contact_slots, c), "contacts:",
                       "none" if hit.size == 0 else f"{hit.min():g} - {hit.max():g} Hz",
-                      f"{np.nanmax(per_cycle):g}/cycle at most" if hit.size else "", "")
+                      largest(per_cycle, "g") + "/cycle at most" if hit.size else "", "")
     return table
 
 

@@ -77,7 +77,14 @@ def spectrum(
         if damping != 0.05 or mass != 500.0:
             raise typer.BadParameter("--damping and --mass are the single mass's: a building's are in its "
                                      "file")
-        building = Structure.from_toml(structure)
+        from ._app import system
+
+        building = system(structure, None, structures=True)
+        if not isinstance(building, Structure):
+            other = ("two adjacent ones" if hasattr(building, "links")
+                     else "a single mass's (its spectrum: without --structure)")
+            raise typer.BadParameter(f"--structure {structure}: give one building's file (a Structure with "
+                                     f"its walls), not {other}")
     if (record is None) == (record_set is None):
         raise typer.BadParameter("give --record FILE or --set NAME (one of them)")
     if record is not None:

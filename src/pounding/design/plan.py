@@ -135,6 +135,11 @@ class DesignPlan:
         base = source.parent
         _check_keys(table, "", TOP_KEYS, ("system", "site", "records", "design"))
         system = system_from_table(table["system"], base)
+        if not isinstance(system, Oscillator):
+            raise InputError(Problem.WRONG_MODE, "system", type(system).__name__,
+                             mode="one mass (an Oscillator)",
+                             fix="a design file takes one mass so far; for a building use "
+                                 "pounding.design.stripe_analysis and design.decide in Python")
         if "bumpers" in table:
             tables = system.to_dict()
             tables["bumpers"] = dict(_table("bumpers", table["bumpers"]))

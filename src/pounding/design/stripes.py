@@ -20,6 +20,7 @@ import numpy as np
 from .._checks import float_array, positive
 from .._errors import InputError, Interrupted, Problem
 from ..model import Oscillator, Structure
+from ..model.systems import system_type
 from ..studies import StudySpec, study
 from .stripe_result import RESERVED, StripeAnalysis
 
@@ -235,6 +236,7 @@ def open_stripe_analysis(store: str | Path) -> StripeAnalysis:
         ds,
         float(compute["sa_period_s"]),
         0.05 if zeta is None else float(zeta),
-        bool(system.get("walls")) if "storeys" in system else system.get("bumpers") is not None,
+        (bool(system.get("walls")) if system_type(system) is not Oscillator
+         else system.get("bumpers") is not None),
         (system.get("bumpers") or {}).get("capacity_m"),
     )

@@ -11,12 +11,12 @@ _INDEX = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?$")
 # names that stand for several numbers set together: ``bumpers.gap``, the same gap both sides (and a
 # structure's wall's ``walls[i].gap_m``: :func:`alias_of`)
 ALIASES = {"bumpers.gap": ("bumpers.gap_left", "bumpers.gap_right")}
-_WALL_GAP = re.compile(r"^(walls\[\d+\])\.gap_m$")
+_WALL_GAP = re.compile(r"^((?:first\.|second\.)?walls\[\d+\])\.gap_m$")
 
 
 def alias_of(name: str) -> tuple[str, ...] | None:
     """The names an alias sets together (``bumpers.gap``: both gaps; ``walls[2].gap_m``: that wall's two
-    gaps), or None for a name that is not one."""
+    gaps, ``second.walls[0].gap_m`` a pair's), or None for a name that is not one."""
     if name in ALIASES:
         return ALIASES[name]
     m = _WALL_GAP.match(name)

@@ -67,14 +67,18 @@ def superstructure_at(structure: Structure, period_s: float) -> Structure:
 
 
 def _systems(task: tuple, period: float) -> list:
-    """A task's systems at one period: without bumpers (walls), then with them at each gap."""
-    _, _, bumpers, zeta, mass_kg, template, _, structure = task
+    """A task's systems at one period: without bumpers (walls), then with them at each gap (a building's
+    walls each with its own laws, or all with ``bumper``'s when one was given)."""
+    _, _, bumpers, zeta, mass_kg, template, _, structure, override = task
     if structure is not None:
         building = superstructure_at(structure, period)
+
+        def at(w: Any, b: Bumpers) -> Any:
+            laws = {"law": override, "law_right": None} if override is not None else {}
+            return replace(w, gap_left_m=b.gap_left, gap_right_m=b.gap_right, **laws)
+
         return [replace(building, walls=())] + [
-            replace(building, walls=tuple(replace(w, gap_left_m=b.gap_left, gap_right_m=b.gap_right,
-                                                  law=b.left, law_right=None) for w in building.walls))
-            for b in bumpers]
+            replace(building, walls=tuple(at(w, b) for w in building.walls)) for b in bumpers]
     iso = _isolator(template, mass_kg, period, zeta)
     return [Oscillator(mass_kg, iso, b) for b in (None, *bumpers)]
 
@@ -82,11 +86,12 @@ def _systems(task: tuple, period: float) -> list:
 def _one_record(task: tuple, ctx: Context) -> tuple[np.ndarray, np.ndarray]:
     """One record's free (periods, q) and pounding (periods, gaps, q) peaks; NaN where not run.
     ``task``: (record, periods, bumpers, damping ratio, mass kg, isolator template, max_steps, structure or
-    None); a structure's peaks are ``STRUCTURE_QUANTITIES``, the oscillator's ``QUANTITIES``."""
+    None, the law every wall takes or None: their own); a structure's peaks are ``STRUCTURE_QUANTITIES``,
+    the oscillator's ``QUANTITIES``."""
     from ..engine.simulate import simulate
     from ..engine.structure_result import peaks_of
 
-    rec, periods, bumpers, _, _, _, max_steps, structure = task
+    rec, periods, bumpers, _, _, _, max_steps, structure, _ = task
     names = QUANTITIES if structure is None else STRUCTURE_QUANTITIES
     free = np.full((periods.size, len(names)), np.nan)
     hit = np.full((periods.size, len(bumpers), len(names)), np.nan)
@@ -107,7 +112,7 @@ def _one_record(task: tuple, ctx: Context) -> tuple[np.ndarray, np.ndarray]:
                 except InputError as exc:  # (refused up front: over its budget; the others go on)
                     if exc.problem not in (Problem.OVER_BUDGET, Problem.TOO_MUCH_WORK):
                         raise
-                    peaks = (math.nan,) * (len(names) - 1) + (float(Status.BUDGET),)
+                    peaks = tuple(float(Status.BUDGET) if k == "status" else math.nan for k in names)
                 if j < 0:
                     free[i] = peaks
                 else:
@@ -231,7 +236,7 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
                          f"{gaps.size + 1} systems", estimate=f"{runs:.3g}", unit="runs",
                          budget=f"{MAX_RUNS:.3g}", fix="fewer records, periods or gaps")
     max_steps = integer("max_steps", max_steps, 1)
-    tasks = [(r, periods, bumpers, zeta, mass_kg, isolator, max_steps, structure) for r in recs]
+    tasks = [(r, periods, bumpers, zeta, mass_kg, isolator, max_steps, structure, bumper) for r in recs]
     if structure is not None:  # (every system refused here, named, before any work)
         for period in periods:
             _systems(tasks[0], float(period))
@@ -249,7 +254,8 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
     attrs = {"damping_ratio": zeta, "mass_kg": mass_kg, "bumper": repr(law),
              "isolator": "linear" if isolator is None else repr(isolator), "complete": int(not interrupted)}
     if structure is not None:
-        attrs = {"structure": structure.to_toml_text(), "bumper": repr(law), "complete": int(not interrupted),
+        attrs = {"structure": structure.to_toml_text(), "complete": int(not interrupted),
+                 "bumper": "each wall's own laws" if bumper is None else repr(law),
                  "period": "the superstructure's first fixed-base period, s"}
     result = PoundingSpectrum.build(recs, periods, gaps, free, hit, attrs, names)
     if interrupted:
@@ -268,6 +274,11 @@ def _check_structure(structure: Any, isolator: Any, mass_kg: float, zeta: float)
         raise InputError(Problem.BAD_STATE, "structure", "Structure(storeys=[])",
                          why="has no superstructure whose period could be varied",
                          fix="give a building with storeys, or use the single mass (structure=None)")
+    if structure.fixed:
+        raise InputError(Problem.BAD_STATE, "structure", "Structure.fixed_base(...)",
+                         why="has no isolated base: the spectrum's displacement is the base's in its moat",
+                         fix="give a building on an isolator with its moat wall (or simulate the fixed-base "
+                             "one under each record)")
     if not structure.walls:
         raise InputError(Problem.BAD_STATE, "structure", "Structure(walls=[])",
                          why="has no wall to put at each gap",

@@ -125,7 +125,7 @@ def _measure(out: tuple, level_dof: list, peak_m_s2: float, m: int, t0: float,
     for c in range(contact.shape[0]):
         rows = ended[ended[:, _SLOT] == c]
         contact[c, C_COUNT] = len(rows) / m
-        whole = rows[rows[:, _T_START] > t0]  # (a contact already on at the window's start: not timed)
-        contact[c, C_TIME] = float(np.mean(whole[:, _T_END] - whole[:, _T_START])) if len(whole) else math.nan
+        # (a contact already on at the window's start has its true start: the state carries it)
+        contact[c, C_TIME] = float(np.mean(rows[:, _T_END] - rows[:, _T_START])) if len(rows) else math.nan
         contact[c, C_IMPULSE] = float(np.mean(rows[:, _IMPULSE])) if len(rows) else math.nan
         contact[c, C_PEAK] = float(np.max(rows[:, _PEAK])) if len(rows) else math.nan

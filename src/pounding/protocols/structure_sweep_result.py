@@ -204,10 +204,13 @@ class StructureSweepResult:
         hits = self.nu[done][hit] if len(hit) else np.zeros(0)
         top = max(q for q, (b, _) in enumerate(self.levels) if b == 0)
         nan = float("nan")
+
+        def largest(values: np.ndarray) -> float:  # (NaN where no step measured it: no warning)
+            return float(np.nanmax(values)) if np.any(np.isfinite(values)) else nan
+
         return dict(zip(names, (
-            self.nu_r(level=top), float(np.nanmax(self.alpha_top[done])),
-            float(np.nanmax(self.alpha_base[done])),
-            float(frame["drift_ratio_peak"].max()) if self.storeys else nan,
+            self.nu_r(level=top), largest(self.alpha_top[done]), largest(self.alpha_base[done]),
+            largest(frame["drift_ratio_peak"].to_numpy()) if self.storeys else nan,
             float(np.min(hits)) if hits.size else nan, float(np.max(hits)) if hits.size else nan)))
 
     # ------------------------------------------------------------------ tables
@@ -267,7 +270,8 @@ class StructureSweepResult:
 
     def to_xarray(self) -> Any:
         """The metrics as a Dataset along ``step``, ``level``, ``storey`` and ``contact`` (units in each
-        variable's ``units``; ``status``, ``message``, ``a_g`` as attributes)."""
+        variable's ``units``; each level's and storey's number and structure, ``first`` or ``second``, as
+        coordinates; ``status``, ``message``, ``a_g`` as attributes)."""
         import xarray as xr
 
         m = self.level_metrics
@@ -286,6 +290,8 @@ class StructureSweepResult:
             coords={"freq_hz": ("step", self.freqs_hz, {"units": "Hz"}), "nu": ("step", self.nu),
                     "level_number": ("level", np.array(level["level"])),
                     "storey_number": ("storey", np.array([s for _, s in self.storeys], dtype=int)),
+                    "level_structure": ("level", np.array([_NAMES[b] for b, _ in self.levels], dtype=str)),
+                    "storey_structure": ("storey", np.array([_NAMES[b] for b, _ in self.storeys], dtype=str)),
                     "contact_name": ("contact", np.array([_slot_name(s) for s in self.contact_slots],
                                                          dtype=str))})
         ds.attrs.update({"a_g": self.a_g, "direction": self.direction, "status": self.status.name,
