@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 import pounding as pd_
-from pounding.engine.structure_result import peaks_of
+from pounding.engine.structure_peaks import peaks_of
 from pounding.protocols.pounding_spectrum import superstructure_at
 
 

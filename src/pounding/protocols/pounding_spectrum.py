@@ -89,7 +89,7 @@ def _one_record(task: tuple, ctx: Context) -> tuple[np.ndarray, np.ndarray]:
     None, the law every wall takes or None: their own); a structure's peaks are ``STRUCTURE_QUANTITIES``,
     the oscillator's ``QUANTITIES``."""
     from ..engine.simulate import simulate
-    from ..engine.structure_result import peaks_of
+    from ..engine.structure_peaks import peaks_of
 
     rec, periods, bumpers, _, _, _, max_steps, structure, _ = task
     names = QUANTITIES if structure is None else STRUCTURE_QUANTITIES

@@ -1,5 +1,5 @@
 """What one point of a study keeps for a structure (or two adjacent ones): its peaks over the levels,
-storeys, walls and links (``points.STRUCTURE_QUANTITIES``; ``engine.structure_result.peaks_of``)."""
+storeys, walls and links (``points.STRUCTURE_QUANTITIES``; ``engine.structure_peaks.peaks_of``)."""
 
 from __future__ import annotations
 
@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from ..engine.structure_result import peaks_of
+from ..engine.structure_peaks import peaks_of
 
 
 def structure_point(system: Any, options: dict[str, Any], max_steps: int, names: tuple, excitation: Any,
