@@ -20,7 +20,7 @@ from ..engine._layout import T
 from ..engine._run_args import kernel_forcing
 from ..engine.structure import StructureState, assemble
 from ..excitation import GRAVITY_M_S2, Harmonic
-from ._step_kernel import W_CYCLES, step_kernel
+from ._step_kernel import W_CYCLES
 from .sweep_result import sweep_message
 from .structure_sweep_result import (C_COUNT, C_IMPULSE, C_PEAK, C_TIME, CONTACT_STATS, StructureSweepResult,
                                      labels_of)
@@ -51,8 +51,6 @@ def run_structure_plan(plan, advance: Callable[[int], None] | None = None,
     window_states = np.full((n_steps, system.layout["size"]), np.nan)
     step_start_s = np.full(n_steps, np.nan)
     state = plan.state.vector.copy()
-    steady = (plan.steady == "adaptive", int(plan.cycles), int(plan.measure_cycles), float(plan.steady_rtol),
-              int(plan.max_period))
     status = Status.SUCCESS
     done = 0
     interrupted = False
@@ -61,11 +59,8 @@ def run_structure_plan(plan, advance: Callable[[int], None] | None = None,
             if stop_requested(ctl):
                 interrupted = True
                 break
-            exc = Harmonic(plan.a_g, f)
             start = state
-            state, n, k, win, win_state, _, code = step_kernel(
-                system, exc.peak_m_s2, exc.omega_rad_s, start, steady, plan.rtol, plan.max_events_per_cycle,
-                ctl)
+            exc, (state, n, k, win, win_state, _, code) = plan.step(system, f, start, ctl)
             if code == Status.INTERRUPTED:
                 state = start
                 interrupted = True

@@ -88,6 +88,16 @@ class SweepPlan:
     max_steps: int
     measurement: MeasurementChain | None = None
 
+    def step(self, system: Any, freq_hz: float, start: np.ndarray, control: np.ndarray) -> tuple:
+        """One step at ``freq_hz`` from the state ``start``, in the core (``system``: the plan's, as the core
+        takes it): ``(excitation, (state, cycles, period multiple, window, window state, strobes,
+        code))``; a single mass's sweep and a structure's run their steps alike."""
+        exc = Harmonic(self.a_g, freq_hz)
+        steady = (self.steady == "adaptive", int(self.cycles), int(self.measure_cycles),
+                  float(self.steady_rtol), int(self.max_period))
+        return exc, step_kernel(system, exc.peak_m_s2, exc.omega_rad_s, start, steady, self.rtol,
+                                self.max_events_per_cycle, control)
+
 
 @dataclass(frozen=True)
 class SweepOptions:
@@ -371,19 +381,13 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
     status = Status.SUCCESS
     done = 0
     interrupted = False
-    adaptive = plan.steady == "adaptive"
-    steady = (adaptive, int(plan.cycles), int(plan.measure_cycles), float(plan.steady_rtol),
-              int(plan.max_period))
     try:
         for i, f in enumerate(plan.freqs_hz):
             if stop_requested(ctl):
                 interrupted = True
                 break
-            exc = Harmonic(plan.a_g, f)
             start = state
-            state, n, k, win, win_state, strobes, code = step_kernel(
-                system, exc.peak_m_s2, exc.omega_rad_s, start, steady, plan.rtol, plan.max_events_per_cycle,
-                ctl)
+            _, (state, n, k, win, win_state, strobes, code) = plan.step(system, f, start, ctl)
             if code == Status.INTERRUPTED:  # the step did not finish: drop it
                 state = start
                 interrupted = True
