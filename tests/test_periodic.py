@@ -115,8 +115,8 @@ def test_exact_monodromy_equals_finite_differences_of_the_engine(rule, events, d
     assume(np.abs(fd1 - fd2).max() <= 1e-7 * norm)  # (no grazing within the differences' reach)
     assert np.abs(exact - fd1).max() <= 1e-5 * norm, (free, exact, fd1)
     # and the propagation by the modes' exponentials ends where the engine ends
-    _, x_end = hy.monodromy(hy.Hybrid.of(osc), vec, run.event_table, vec[0] + period, exc.omega_rad_s,
-                            exc.peak_m_s2, exc.phase)
+    _, x_end = hy.oscillator_monodromy(shooter.h, shooter.system, vec, run.event_table, vec[0] + period,
+                                       exc.omega_rad_s, exc.peak_m_s2, exc.phase)
     end = hy.coordinates(hy.Hybrid.of(osc), run.final_state.vector)
     # each coordinate to 1e-8 of its own scale: lengths (D, compressions, slips) of the orbit's size,
     # the velocity (the second) of that size times the forcing's rate or of itself

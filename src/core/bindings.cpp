@@ -229,26 +229,12 @@ NB_MODULE(_pounding_core, m) {
         return status;
     });
 
-    m.def("monodromy", [](double mass, double c_d, Vec slopes, Vec breaks, bool kinematic, Vec gaps, Vec stiffness,
-                          Vec damping, Vec x0, bool in_l, bool in_r, Vec iso, Mat2 events, double t0, double t_end,
-                          double omega, double amp, double phase) {
-        Hybrid h;
-        h.mass = mass;
-        h.c_d = c_d;
-        h.slopes.assign(slopes.data(), slopes.data() + slopes.shape(0));
-        h.breaks.assign(breaks.data(), breaks.data() + breaks.shape(0));
-        h.kinematic = kinematic;
-        for (int j = 0; j < 2; ++j) {
-            h.gaps[j] = gaps(j);
-            h.stiffness[j] = stiffness(j);
-            h.damping[j] = damping(j);
-        }
-        std::vector<double> x(x0.data(), x0.data() + x0.shape(0));
-        std::vector<double> iso_v(iso.data(), iso.data() + iso.shape(0));
+    m.def("monodromy", [](const System& sy, Vec st0, Mat2 events, double t_end, double omega, double amp,
+                          double phase) {
         Mat jac;
         std::vector<double> x_end;
-        const int bad = monodromy(h, x, in_l, in_r, iso_v, events.data(), static_cast<int>(events.shape(0)), t0,
-                                  t_end, omega, amp, phase, jac, x_end);
+        const int bad = monodromy(sy, st0.data(), events.data(), static_cast<int>(events.shape(0)), t_end, omega,
+                                  amp, phase, jac, x_end);
         return nb::make_tuple(array2(jac.a.data(), jac.rows, jac.cols), array1(x_end.data(), x_end.size()), bad);
     });
 

@@ -154,4 +154,34 @@ void iso_transition(const System& sy, double* st, int action, int index, double 
     }
 }
 
+IsoLinear iso_linear_in_slips(const System& sy, int e, const double* st, double* d_slip, double* follows) {
+    const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+    IsoLinear il = iso_linear(sy, e, st);
+    std::fill(d_slip, d_slip + h.n_springs(), 0.0);
+    std::fill(follows, follows + h.n_springs(), 0.0);
+    if (h.rule == RULE_ELASTIC) return il;  // (its slips are not used: constants of the monodromy)
+    const double* slip = st + sy.lay.base + h.first;
+    const double* dir = st + sy.lay.base + sy.lay.n_sp + h.first;
+    for (int i = 0; i < h.n_springs(); ++i) {
+        const bool sticks = dir[i] == 0.0;
+        d_slip[i] = sticks ? -(h.slopes[i] - h.slopes[i + 1]) : 0.0;
+        follows[i] = sticks ? 0.0 : 1.0;
+        il.r0 -= d_slip[i] * slip[i];
+    }
+    return il;
+}
+
+IsoGuard iso_guard(const System& sy, int action, int index, const double* st, const double* v, const double* acc) {
+    if (action == ACT_YIELD) {  // the spring's strain u - slip at +-its break
+        int e = 0;
+        while (index >= sy.hyst[static_cast<size_t>(e)].first + sy.hyst[static_cast<size_t>(e)].n_springs()) ++e;
+        return {e, 1.0, 0.0, index, sgn(iso_u(sy, e, st) - st[sy.lay.base + index])};
+    }
+    if (action == ACT_REVERSAL) return {index, 0.0, 1.0, -1, 0.0};  // the slipping springs stop: u' = 0
+    const Hysteretic& h = sy.hyst[static_cast<size_t>(index)];  // ACT_REGION: u at a break
+    const double u_rate = rel(v, h.i, h.j);
+    const double heading = u_rate != 0.0 ? u_rate : rel(acc, h.i, h.j);
+    return {index, 1.0, 0.0, -1, heading > 0.0 ? 1.0 : -1.0};
+}
+
 }  // namespace pounding

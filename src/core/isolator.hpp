@@ -28,6 +28,16 @@ int iso_events(const System& sy, const double* st, EventRow* evs, int n);
 // the slipping springs moved with their elements from x_start to x_end (displacements, n): the work they did
 double iso_advance(const System& sy, double* st, const double* x_start, const double* x_end);
 void iso_transition(const System& sy, double* st, int action, int index, double direction);
+
+// The exact monodromy's view of an element (monodromy.cpp).  Its force as linear in u and its slips:
+// F = k u + r + sum_s d_slip[s] slip_s, with follows[s] 1 where spring s slips (its slip moves with u), 0 where it
+// sticks (both of length n_springs).
+IsoLinear iso_linear_in_slips(const System& sy, int e, const double* st, double* d_slip, double* follows);
+// An element event's guard, linear in the state: g = du u + dv u' - (slip >= 0 ? slip_slip : 0), slip the
+// system's index of the spring whose slip enters it; e the element; dir the direction iso_transition takes (v and
+// acc: the dofs' velocities and accelerations at the event, n each)
+struct IsoGuard { int e; double du, dv; int slip; double dir; };
+IsoGuard iso_guard(const System& sy, int action, int index, const double* st, const double* v, const double* acc);
 double backbone_force_at_break(const Hysteretic& h, int j);
 
 }  // namespace pounding

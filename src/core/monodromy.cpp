@@ -1,117 +1,123 @@
 #include "monodromy.hpp"
 
+#include <algorithm>
 #include <cmath>
 
-#include "core.hpp"
+#include "isolator.hpp"
+#include "laws.hpp"
 
 namespace pounding {
 
 namespace {
-constexpr int I_DL = 2, I_DR = 3, FIRST_SLIP = 4;
 
-// A~_m, (n + 3, n + 3): x, then sin(theta), cos(theta), 1
-Mat augmented(const Hybrid& h, bool in_l, bool in_r, const std::vector<double>& iso, double omega, double amp) {
-    const int n_sp = h.kinematic ? static_cast<int>(h.slopes.size()) - 1 : 0;
-    const int n = FIRST_SLIP + n_sp;
-    Mat a(n + 3, n + 3);
-    const int s_ = n, c_ = n + 1, one = n + 2;
-    const double m = h.mass;
-    a(0, 1) = 1.0;
-    a(1, 1) -= h.c_d / m;
-    if (h.kinematic) {
-        a(1, 0) -= h.slopes[n_sp] / m;
-        for (int i = 0; i < n_sp; ++i) {
-            const double dk = h.slopes[i] - h.slopes[i + 1];
-            const double s = iso[i];
-            if (s == 0.0) {
-                a(1, 0) -= dk / m;
-                a(1, FIRST_SLIP + i) += dk / m;
-            } else {
-                a(1, one) -= s * dk * h.breaks[i] / m;
-                a(FIRST_SLIP + i, 1) = 1.0;  // a slipping spring moves with the mass
+// where each block of x starts
+struct Coords {
+    int n, nc, nsp, v, def, slip, size;
+    explicit Coords(const System& sy)
+        : n(sy.n), nc(sy.nc()), nsp(sy.n_springs()), v(sy.n), def(2 * sy.n), slip(2 * sy.n + sy.nc()),
+          size(monodromy_size(sy)) {}
+};
+
+// x into the state vector st and back (the mode's numbers stay in st)
+void to_state(const System& sy, const Coords& cx, const std::vector<double>& xa, double* st) {
+    for (int i = 0; i < cx.n; ++i) {
+        st[sy.lay.x + i] = xa[i];
+        st[sy.lay.v + i] = xa[cx.v + i];
+    }
+    for (int c = 0; c < cx.nc; ++c) st[sy.lay.def_at(c)] = xa[cx.def + c];
+    for (int s = 0; s < cx.nsp; ++s) st[sy.lay.base + s] = xa[cx.slip + s];
+}
+
+void from_state(const System& sy, const Coords& cx, const double* st, std::vector<double>& xa) {
+    for (int i = 0; i < cx.n; ++i) {
+        xa[i] = st[sy.lay.x + i];
+        xa[cx.v + i] = st[sy.lay.v + i];
+    }
+    for (int c = 0; c < cx.nc; ++c) xa[cx.def + c] = st[sy.lay.def_at(c)];
+    for (int s = 0; s < cx.nsp; ++s) xa[cx.slip + s] = st[sy.lay.base + s];
+}
+
+Branch branch_of(const System& sy, int c, const double* st) {
+    const Contact& ct = sy.contact[static_cast<size_t>(c)];
+    return law_linear_branch(ct.law, ct.p, st[sy.lay.def_at(c)], 0.0, st + sy.lay.z_at(c));
+}
+
+// (i, j) += s as a pair's spring into an n x n matrix
+void add_pair(Mat& a, int i, int j, double s) {
+    a(i, i) += s;
+    if (j >= 0) {
+        a(j, j) += s;
+        a(i, j) -= s;
+        a(j, i) -= s;
+    }
+}
+
+// A~ of the mode in st, (size + 3, size + 3): x, then sin(theta), cos(theta), 1
+Mat augmented(const System& sy, const Coords& cx, const double* st, double omega, double amp) {
+    const int n = cx.n, size = cx.size;
+    const int s_ = size, c_ = size + 1, one = size + 2;
+    Mat a(size + 3, size + 3), K(n, n), C(n, n), G(n, std::max(cx.nsp, 1));
+    std::vector<double> R(static_cast<size_t>(n), 0.0);
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+            K(i, j) = sy.k0[static_cast<size_t>(i * n + j)];
+            C(i, j) = sy.c_lin[static_cast<size_t>(i * n + j)];
+        }
+    std::vector<double> d_slip(static_cast<size_t>(std::max(cx.nsp, 1))), follows(d_slip.size());
+    for (int e = 0; e < sy.n_h(); ++e) {  // each element: -F on dof i, +F on dof j
+        const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+        const IsoLinear il = iso_linear_in_slips(sy, e, st, d_slip.data(), follows.data());
+        add_pair(K, h.i, h.j, il.k);
+        R[static_cast<size_t>(h.i)] += il.r0;
+        if (h.j >= 0) R[static_cast<size_t>(h.j)] -= il.r0;
+        for (int s = 0; s < h.n_springs(); ++s) {
+            const int col = h.first + s;
+            G(h.i, col) += d_slip[static_cast<size_t>(s)];
+            a(cx.slip + col, cx.v + h.i) = follows[static_cast<size_t>(s)];  // a slipping spring moves with u
+            if (h.j >= 0) {
+                G(h.j, col) -= d_slip[static_cast<size_t>(s)];
+                a(cx.slip + col, cx.v + h.j) = -follows[static_cast<size_t>(s)];
             }
         }
-    } else {
-        const int r = static_cast<int>(iso[0]);
-        const int j = std::abs(r);
-        const double k = h.slopes[j];
-        a(1, 0) -= k / m;
-        if (j > 0) {
-            double f_break = h.slopes[0] * h.breaks[0];
-            double dot = 0.0;
-            for (int i = 1; i < j; ++i) dot += h.slopes[i] * (h.breaks[i] - h.breaks[i - 1]);
-            f_break += dot;
-            a(1, one) -= (r > 0 ? 1.0 : -1.0) * (f_break - k * h.breaks[j - 1]) / m;
+    }
+    for (int c = 0; sy.has_b && c < cx.nc; ++c) {  // each contact: -sign F on dof i, +sign F on dof j
+        const Contact& ct = sy.contact[static_cast<size_t>(c)];
+        const Branch b = branch_of(sy, c, st);
+        const int row = cx.def + c;
+        if (st[sy.lay.in_at(c)] != 0.0) {
+            add_pair(K, ct.i, ct.j, b.k);
+            add_pair(C, ct.i, ct.j, b.c);
+            const double r = ct.sign * (b.r - b.k * ct.gap);
+            R[static_cast<size_t>(ct.i)] += r;
+            if (ct.j >= 0) R[static_cast<size_t>(ct.j)] -= r;
+            a(row, cx.v + ct.i) = ct.sign;  // the compression follows the pair
+            if (ct.j >= 0) a(row, cx.v + ct.j) = -ct.sign;
+        } else if (b.c > 0.0) {
+            a(row, row) = law_relax(ct.law, ct.p, 1.0, 0.0, st + sy.lay.z_at(c)).rate;  // relaxing
         }
     }
-    for (int side = 0; side < 2; ++side) {
-        const bool touching = side == 0 ? in_l : in_r;
-        const int row = side == 0 ? I_DL : I_DR;
-        const double sign = side == 0 ? -1.0 : 1.0;
-        const double kb = h.stiffness[side], cb = h.damping[side], gap = h.gaps[side];
-        if (touching) {
-            a(1, 0) -= kb / m;
-            a(1, 1) -= cb / m;
-            a(1, one) += sign * kb * gap / m;
-            a(row, 1) = sign;  // the compression follows the mass
-        } else if (cb > 0.0) {
-            a(row, row) = -kb / cb;  // relaxing
+    for (int i = 0; i < n; ++i) {
+        const double m = sy.mass[static_cast<size_t>(i)];
+        a(i, cx.v + i) = 1.0;
+        for (int j = 0; j < n; ++j) {
+            a(cx.v + i, j) = -K(i, j) / m;
+            a(cx.v + i, cx.v + j) = -C(i, j) / m;
         }
+        for (int s = 0; s < cx.nsp; ++s) a(cx.v + i, cx.slip + s) = -G(i, s) / m;
+        a(cx.v + i, one) = -R[static_cast<size_t>(i)] / m;
+        a(cx.v + i, s_) = -amp;  // the table moves every mass
     }
-    a(1, s_) = -amp;
     a(s_, c_) = omega;
     a(c_, s_) = -omega;
     return a;
 }
 
-std::vector<double> guard_gradient(const Hybrid& h, int action, int index, int n) {
-    std::vector<double> g(n, 0.0);
-    const double sign = index == 0 ? -1.0 : 1.0;
-    if (action == ACT_CONTACT) {
-        g[0] = sign;
-        if (h.damping[index] > 0.0) g[index == 0 ? I_DL : I_DR] = -1.0;
-    } else if (action == ACT_RELEASE) {
-        g[0] = sign * h.stiffness[index];
-        g[1] = sign * h.damping[index];
-    } else if (action == ACT_YIELD) {
-        g[0] = 1.0;
-        g[FIRST_SLIP + index] = -1.0;
-    } else if (action == ACT_REVERSAL) {
-        g[1] = 1.0;
-    } else if (action == ACT_REGION) {
-        g[0] = 1.0;
-    }
-    return g;
+void add_rel(std::vector<double>& g, int at, int i, int j, double s) {
+    g[static_cast<size_t>(at + i)] += s;
+    if (j >= 0) g[static_cast<size_t>(at + j)] -= s;
 }
 
-void next_mode(int action, int index, bool& in_l, bool& in_r, std::vector<double>& iso, const std::vector<double>& x,
-               double acc) {
-    if (action == ACT_CONTACT || action == ACT_RELEASE) {
-        const bool now = action == ACT_CONTACT;
-        if (index == 0) in_l = now;
-        else in_r = now;
-    } else if (action == ACT_YIELD) {
-        iso[index] = x[0] - x[FIRST_SLIP + index] > 0.0 ? 1.0 : -1.0;
-    } else if (action == ACT_REVERSAL) {
-        for (double& s : iso) s = 0.0;
-    } else if (action == ACT_REGION) {
-        const double heading = x[1] != 0.0 ? x[1] : acc;
-        iso[0] += heading > 0.0 ? 1.0 : -1.0;
-    }
-}
-
-void after_event(const Hybrid& h, int action, int index, std::vector<double>& x) {
-    if (action == ACT_CONTACT) {
-        const double depth = (index == 0 ? -x[0] : x[0]) - h.gaps[index];
-        x[index == 0 ? I_DL : I_DR] = std::max(0.0, depth);
-    } else if (action == ACT_YIELD) {
-        const double strain = x[0] - x[FIRST_SLIP + index];
-        const double sign = strain > 0.0 ? 1.0 : (strain < 0.0 ? -1.0 : 0.0);
-        x[FIRST_SLIP + index] = x[0] - sign * h.breaks[index];
-    }
-}
-
-// expm(a tau), the states that evolve alone (a relaxing bumper) by their scalar exponential
+// expm(a tau), the states that evolve alone (a relaxing contact) by their scalar exponential
 Mat exponential(const Mat& a, double tau) {
     const int size = a.rows;
     std::vector<int> rest;
@@ -141,18 +147,19 @@ Mat top_left(const Mat& m, int n) {
 }
 }  // namespace
 
-int monodromy(const Hybrid& h, const std::vector<double>& x0, bool in_l, bool in_r, std::vector<double> iso,
-              const double* events, int n_events, double t0, double t_end, double omega, double amp, double phase,
-              Mat& jac, std::vector<double>& x_end) {
-    const int n = static_cast<int>(x0.size());
-    double t = t0;
-    std::vector<double> xa(n + 3, 0.0);
-    for (int i = 0; i < n; ++i) xa[i] = x0[i];
-    xa[n] = std::sin(omega * t + phase);
-    xa[n + 1] = std::cos(omega * t + phase);
-    xa[n + 2] = 1.0;
+int monodromy(const System& sy, const double* st0, const double* events, int n_events, double t_end, double omega,
+              double amp, double phase, Mat& jac, std::vector<double>& x_end) {
+    const Coords cx(sy);
+    const int n = cx.size;
+    std::vector<double> st(st0, st0 + sy.state_size()), next(st.size());
+    double t = st0[T];
+    std::vector<double> xa(static_cast<size_t>(n + 3), 0.0);
+    from_state(sy, cx, st.data(), xa);
+    xa[static_cast<size_t>(n)] = std::sin(omega * t + phase);
+    xa[static_cast<size_t>(n + 1)] = std::cos(omega * t + phase);
+    xa[static_cast<size_t>(n + 2)] = 1.0;
     jac = Mat::identity(n);
-    Mat a = augmented(h, in_l, in_r, iso, omega, amp);
+    Mat a = augmented(sy, cx, st.data(), omega, amp);
     for (int e = 0; e <= n_events; ++e) {
         const double t_ev = e < n_events ? events[3 * e] : t_end;
         const Mat step = exponential(a, t_ev - t);
@@ -161,19 +168,39 @@ int monodromy(const Hybrid& h, const std::vector<double>& x0, bool in_l, bool in
         t = t_ev;
         if (e == n_events) break;
         const int action = static_cast<int>(events[3 * e + 1]), index = static_cast<int>(events[3 * e + 2]);
-        std::vector<double> x(xa.begin(), xa.begin() + n);
         const std::vector<double> f_before = matvec(a, xa);
-        bool nl = in_l, nr = in_r;
-        std::vector<double> new_iso = iso;
-        next_mode(action, index, nl, nr, new_iso, x, f_before[1]);
-        const Mat a_after = augmented(h, nl, nr, new_iso, omega, amp);
+        to_state(sy, cx, xa, st.data());
+        next = st;
+        std::vector<double> grad(static_cast<size_t>(n), 0.0);
+        if (action == ACT_CONTACT || action == ACT_RELEASE) {
+            const Contact& ct = sy.contact[static_cast<size_t>(index)];
+            const Branch b = branch_of(sy, index, st.data());
+            if (action == ACT_CONTACT) {  // sign (x_i - x_j) - gap reaches the (relaxing) compression
+                add_rel(grad, 0, ct.i, ct.j, ct.sign);
+                if (b.c > 0.0) grad[static_cast<size_t>(cx.def + index)] = -1.0;
+                next[sy.lay.in_at(index)] = 1.0;
+            } else {  // the force falls to 0
+                add_rel(grad, 0, ct.i, ct.j, ct.sign * b.k);
+                add_rel(grad, cx.v, ct.i, ct.j, ct.sign * b.c);
+                next[sy.lay.in_at(index)] = 0.0;
+            }
+        } else if (action == ACT_YIELD || action == ACT_REVERSAL || action == ACT_REGION) {
+            const IsoGuard g = iso_guard(sy, action, index, st.data(), xa.data() + cx.v, f_before.data() + cx.v);
+            const Hysteretic& h = sy.hyst[static_cast<size_t>(g.e)];
+            add_rel(grad, 0, h.i, h.j, g.du);
+            add_rel(grad, cx.v, h.i, h.j, g.dv);
+            if (g.slip >= 0) grad[static_cast<size_t>(cx.slip + g.slip)] = -1.0;
+            iso_transition(sy, next.data(), action, index, g.dir);
+        } else {
+            return -2 - e;  // (a contact law's branch, a Bouc-Wen spring: no linear modes)
+        }
+        const Mat a_after = augmented(sy, cx, next.data(), omega, amp);
         const std::vector<double> f_after = matvec(a_after, xa);
-        const std::vector<double> grad = guard_gradient(h, action, index, n);
         double rate = 0.0;
-        for (int i = 0; i < n; ++i) rate += grad[i] * f_before[i];
+        for (int i = 0; i < n; ++i) rate += grad[static_cast<size_t>(i)] * f_before[static_cast<size_t>(i)];
         if (rate == 0.0) {  // (tangent: no saltation, unless the field does not jump)
             for (int i = 0; i < n; ++i) {
-                if (f_after[i] != f_before[i]) {
+                if (f_after[static_cast<size_t>(i)] != f_before[static_cast<size_t>(i)]) {
                     x_end.assign(xa.begin(), xa.begin() + n);
                     return e;
                 }
@@ -181,14 +208,17 @@ int monodromy(const Hybrid& h, const std::vector<double>& x0, bool in_l, bool in
         } else {
             Mat jump = Mat::identity(n);
             for (int i = 0; i < n; ++i)
-                for (int j = 0; j < n; ++j) jump(i, j) += (f_after[i] - f_before[i]) * grad[j] / rate;
+                for (int j = 0; j < n; ++j)
+                    jump(i, j) += (f_after[static_cast<size_t>(i)] - f_before[static_cast<size_t>(i)]) *
+                                  grad[static_cast<size_t>(j)] / rate;
             jac = matmul(jump, jac);
         }
-        after_event(h, action, index, x);
-        for (int i = 0; i < n; ++i) xa[i] = x[i];
-        in_l = nl;
-        in_r = nr;
-        iso = new_iso;
+        if (action == ACT_CONTACT) {  // the compression is the depth (the relaxing surface's, met)
+            const Contact& ct = sy.contact[static_cast<size_t>(index)];
+            next[sy.lay.def_at(index)] = std::max(0.0, ct.sign * rel(next.data() + sy.lay.x, ct.i, ct.j) - ct.gap);
+        }
+        st = next;
+        from_state(sy, cx, st.data(), xa);  // (a yield's slip put on its break)
         a = a_after;
     }
     x_end.assign(xa.begin(), xa.begin() + n);

@@ -136,13 +136,14 @@ def spectrum(t: np.ndarray, acc: np.ndarray, omegas: np.ndarray, zeta: float, ou
     return _c.spectrum(_f64(t), _f64(acc), _f64(omegas), float(zeta), out, ctl)
 
 
-def monodromy(h: Any, x0: np.ndarray, in_l: bool, in_r: bool, iso: np.ndarray, events: np.ndarray,
-              t0: float, t_end: float, omega: float, amp: float, phase: float) -> tuple:
-    """``(jac, x_end, tangent event row or -1)`` of the hybrid system ``h`` (``analysis._hybrid.Hybrid``)."""
-    return _c.monodromy(float(h.mass), float(h.c_d), _f64(h.slopes), _f64(h.breaks), bool(h.kinematic),
-                        _f64(h.gaps), _f64(h.stiffness), _f64(h.damping), _f64(x0), bool(in_l), bool(in_r),
-                        _f64(iso), _f64(events).reshape(-1, 3), float(t0), float(t_end), float(omega),
-                        float(amp), float(phase))
+def monodromy(sy: System, state0: np.ndarray, events: np.ndarray, t_end: float, omega: float, amp: float,
+              phase: float) -> tuple:
+    """``(jac, x_end, code)`` of ``sy`` from the state vector ``state0`` to ``t_end`` along ``events`` (rows
+    of t, action, index) under ``amp sin(omega t + phase)``: the exact Jacobian of the map of the coordinates
+    (displacements, velocities, compressions, slips), those coordinates at ``t_end``, and -1, or the row of
+    an event met tangentially, or ``-2 - row`` for an event of a phase that is not linear."""
+    return _c.monodromy(sy, _f64(state0), _f64(events).reshape(-1, 3), float(t_end), float(omega), float(amp),
+                        float(phase))
 
 
 def root_guess(fa: float, fb: float, sa: float, sb: float) -> float:

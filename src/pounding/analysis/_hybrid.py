@@ -56,7 +56,8 @@ class NoExactMonodromy(Exception):
 
 
 class Hybrid(NamedTuple):
-    """The numbers of the modes' matrices (SI units), as the compiled propagation takes them."""
+    """One mass's numbers (SI units) its shooting coordinates and their constraints are read by (the
+    propagation itself takes the core's system: :func:`monodromy`)."""
 
     mass: float
     c_d: float
@@ -114,27 +115,37 @@ def one_blas_thread() -> threadpool_limits:
     return threadpool_limits(limits=1, user_api="blas")
 
 
-def monodromy(h: Hybrid, vec0: np.ndarray, events: np.ndarray, t_end: float, omega: float, amp: float,
-              phase: float) -> tuple[np.ndarray, np.ndarray]:
+def monodromy(system: _core.System, vec0: np.ndarray, events: np.ndarray, t_end: float, omega: float,
+              amp: float, phase: float) -> tuple[np.ndarray, np.ndarray]:
     """The Jacobian of the map from ``x`` at the state vector ``vec0``'s time to ``x`` at
     ``t_end``, along the engine's ``events`` (rows of t, action, index), and ``x`` at ``t_end``
-    as this propagation has it (to compare with the engine's).
+    as this propagation has it (to compare with the engine's).  ``system``: the core's system
+    (one mass or several); ``x`` its displacements, velocities, compressions and slips (for one
+    mass, :func:`coordinates`).
 
-    Raises :class:`NoExactMonodromy` at an event met tangentially (no saltation matrix).
+    Raises :class:`NoExactMonodromy` at an event met tangentially (no saltation matrix), or of a
+    phase that is not linear.
 
     Returns
     -------
     jac : ndarray, shape (n, n)
     x_end : ndarray, shape (n,)
     """
-    in_l, in_r, iso = mode_of(h, vec0)
-    iso_arr = np.array(iso if h.kinematic else (iso,), dtype=float).reshape(-1)
-    if iso_arr.size == 0:
-        iso_arr = np.zeros(1)
     rows = np.ascontiguousarray(events, dtype=float).reshape(-1, 3)
-    jac, x_end, bad = _core.monodromy(h, coordinates(h, vec0), in_l, in_r, iso_arr, rows, float(vec0[0]),
-                                      float(t_end), float(omega), float(amp), float(phase))
+    jac, x_end, bad = _core.monodromy(system, np.asarray(vec0, dtype=float), rows, float(t_end), float(omega),
+                                      float(amp), float(phase))
     if bad >= 0:
-        row = events[bad]
+        row = rows[bad]
         raise NoExactMonodromy(f"event {int(row[1])} at t = {row[0]} is tangent (a grazing)")
+    if bad <= -2:
+        row = rows[-2 - bad]
+        raise NoExactMonodromy(f"event {int(row[1])} at t = {row[0]} ends a phase that is not linear")
     return jac, x_end
+
+
+def oscillator_monodromy(h: Hybrid, system: _core.System, vec0: np.ndarray, events: np.ndarray, t_end: float,
+                         omega: float, amp: float, phase: float) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`monodromy` of one mass in its coordinates ``x`` (:func:`coordinates`: the system's,
+    without the unused slips of an isolator of the elastic rule, which come last)."""
+    jac, x_end = monodromy(system, vec0, events, t_end, omega, amp, phase)
+    return jac[:h.size, :h.size], x_end[:h.size]

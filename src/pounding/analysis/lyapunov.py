@@ -180,8 +180,8 @@ class _Tangent:
         if sh.exact:
             amp, omega, phase = self.exc.peak_m_s2, self.exc.omega_rad_s, self.exc.phase
             try:
-                full, x_end = hy.monodromy(sh.h, vec, run.event_table, vec[I_T] + self.period, omega, amp,
-                                           phase)
+                full, x_end = hy.oscillator_monodromy(sh.h, sh.system, vec, run.event_table,
+                                                      vec[I_T] + self.period, omega, amp, phase)
                 gap = np.abs(x_end - sh.coords(run.final_state.vector)).max() / sh.scale_d
                 if np.isfinite(full).all() and gap < 1e-6:
                     return full @ emb @ select

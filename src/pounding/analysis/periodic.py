@@ -336,8 +336,8 @@ class _Shooter:
         if self.exact:
             amp, omega, phase = self.exc.peak_m_s2, self.exc.omega_rad_s, self.exc.phase
             try:
-                full, x_end = hy.monodromy(self.h, vec, run.event_table, vec[I_T] + self.period, omega, amp,
-                                           phase)
+                full, x_end = hy.oscillator_monodromy(self.h, self.system, vec, run.event_table,
+                                                      vec[I_T] + self.period, omega, amp, phase)
                 gap = np.abs(x_end - self.coords(run.final_state.vector)).max() / self.scale_d
                 if not (np.isfinite(full).all() and gap < 1e-6):
                     raise hy.NoExactMonodromy(f"the modes' propagation ends {gap:.1e} (relative) from the "
