@@ -195,13 +195,17 @@ def test_the_ledger_closes_and_no_wall_pulls(seed, law):
     assert (run.peaks()["drift_peak_m"].to_numpy()[1:] == run.peak_drift).all()
 
 
-def test_a_continued_run_equals_one_long_run():
-    iso = pd_.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02], damping=2.0e4)
+@pytest.mark.parametrize("rule", ["kinematic", "elastic"])
+def test_a_continued_run_equals_one_long_run(rule):
+    # (the elastic rule's continued run: its state past the first break was refused once, its unused
+    # slips checked as a kinematic spring's)
+    iso = pd_.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02], damping=2.0e4, hysteresis=rule)
     b = pd_.Structure(3.0e4, iso, [pd_.Storey(2.0e4, 4.0e7, 4.0e4)] * 3,
                       [pd_.Wall(0, 0.10, 0.10, pd_.KelvinVoigt(2.0e8, 1.0e5))])
     exc = pd_.Harmonic(0.3, 1.2)
     whole = pd_.simulate(b, exc, 10.0, sample_rate_hz=0)
     first = pd_.simulate(b, exc, 4.0, sample_rate_hz=0)
+    assert abs(first.final_state.displacements_m[0]) > 0.02  # (past the isolator's break)
     second = pd_.simulate(b, exc, 6.0, first.final_state, sample_rate_hz=0)
     assert len(whole.contacts) > 10
     assert second.final_state.time_s == pytest.approx(10.0, abs=1e-12)

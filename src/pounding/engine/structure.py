@@ -299,6 +299,8 @@ def _check_state_fits(state: StructureState, asm: Assembly) -> None:
             if region != round(region) or abs(region) > n_sp:
                 raise bad(lay["region"] + e, f"is element {e}'s branch: a whole number from {-n_sp} to "
                                              f"{n_sp}")
+            first += n_sp  # (the elastic rule has no slips: its springs' places are unused)
+            continue
         for k in range(n_sp):
             slip = lay["base"] + first + k
             direction = lay["base"] + lay["n_springs"] + first + k
