@@ -15,8 +15,8 @@ __version__ = "0.1.0"
 # public name -> the module that defines it (relative to this package)
 _NAMES = {
     ".analysis": ("Bifurcation", "BifurcationCurve", "Branch", "CoexistenceMap", "LyapunovSpectrum",
-                  "PeriodicOrbit", "bifurcation_curve", "coexistence_map", "continuation",
-                  "largest_exponents", "lyapunov", "periodic_orbit"),
+                  "PeriodicOrbit", "StructurePeriodicOrbit", "bifurcation_curve", "coexistence_map",
+                  "continuation", "largest_exponents", "lyapunov", "periodic_orbit"),
     "._errors": ("InputError", "Interrupted", "MissingExtra", "OutputError", "PoundingWarning", "Problem",
                  "Status", "StoreError"),
     ".engine": ("AdjacentRun", "EnergyLedger", "Run", "State", "StructureEnergy", "StructureRun",
@@ -66,8 +66,8 @@ if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
     from ._errors import (InputError, Interrupted, MissingExtra, OutputError, PoundingWarning,  # noqa: F401
                           Problem, Status, StoreError)
     from .analysis import (Bifurcation, BifurcationCurve, Branch, CoexistenceMap, LyapunovSpectrum,  # noqa: F401
-                           PeriodicOrbit, bifurcation_curve, coexistence_map, continuation, largest_exponents,
-                           lyapunov, periodic_orbit)
+                           PeriodicOrbit, StructurePeriodicOrbit, bifurcation_curve, coexistence_map,
+                           continuation, largest_exponents, lyapunov, periodic_orbit)
     from .engine import (AdjacentRun, EnergyLedger, Run, State, StructureEnergy, StructureRun,  # noqa: F401
                          StructureState, simulate)
     from .excitation import Harmonic, Record  # noqa: F401

@@ -9,7 +9,8 @@ from .curves import bifurcation_curve, coexistence_map
 from .lyapunov import largest_exponents, lyapunov
 from .lyapunov_result import LyapunovSpectrum
 from .periodic import PeriodicOrbit, periodic_orbit
+from .structure_periodic import StructurePeriodicOrbit
 
 __all__ = ["Bifurcation", "BifurcationCurve", "Branch", "CoexistenceMap", "LyapunovSpectrum", "PeriodicOrbit",
-           "bifurcation_curve", "coexistence_map", "continuation", "largest_exponents", "lyapunov",
-           "periodic_orbit"]
+           "StructurePeriodicOrbit", "bifurcation_curve", "coexistence_map", "continuation",
+           "largest_exponents", "lyapunov", "periodic_orbit"]

@@ -35,9 +35,9 @@ def step_size(max_step: Any, low: float, what: str) -> float:
     return max_step
 
 
-def exact_monodromy(oscillator: Oscillator, method: Any) -> bool:
+def exact_monodromy(oscillator: Any, method: Any) -> bool:
     """Whether the monodromy is composed exactly: ``method`` one of ``METHODS``, ``"exact"``
-    refused for a system whose phases are not all linear."""
+    refused for a system (one mass, a structure or a pair) whose phases are not all linear."""
     method = one_of("method", method, METHODS)
     why = hy.unsupported(oscillator)
     if method == "exact" and why is not None:
@@ -56,7 +56,7 @@ def section_angle(phase_rad: Any) -> float:
     return phase_rad % (2.0 * math.pi)
 
 
-def settled(oscillator: Oscillator, excitation: Harmonic, settle_cycles: int) -> Run:
+def settled(oscillator: Any, excitation: Harmonic, settle_cycles: int) -> Any:
     """``settle_cycles`` forcing periods from rest (the default guess: the response a sweep would
     settle on); a run too long for the engine's budget is refused naming the frequency and
     ``settle_cycles``, not the run's duration."""
@@ -69,7 +69,7 @@ def settled(oscillator: Oscillator, excitation: Harmonic, settle_cycles: int) ->
         raise InputError(Problem.BAD_STATE, "settle_cycles", settle_cycles,
                          why=f"periods at {excitation.freq_hz:g} Hz last {duration:.3g} s, a run beyond the "
                              "engine's budget (the default guess settles from rest)",
-                         fix="start at a higher frequency, lower settle_cycles, or give a guess (a State)"
+                         fix="start at a higher frequency, lower settle_cycles, or give a guess (a state)"
                          ) from None
 
 

@@ -30,18 +30,37 @@ from ..engine._layout import (ACT_CONTACT, ACT_REGION, ACT_RELEASE, ACT_REVERSAL
 from ..engine._layout import D as I_D
 from ..engine._layout import V as I_V
 from ..model import Oscillator
+from ..model.adjacent import Adjacent
+from ..model.structure import Structure
 from ..model.contact_laws import linear_form
 
 I_DL, I_DR = 2, 3  # the compressions' places in x
 FIRST_SLIP = 4
 
 
-def unsupported(oscillator: Oscillator) -> str | None:
-    """Why the monodromy of this system cannot be composed exactly here (None: it can)."""
-    iso = oscillator.isolator
+def unsupported(system: "Oscillator | Structure | Adjacent") -> str | None:
+    """Why the monodromy of this system (one mass, a structure or a pair) cannot be composed exactly here
+    (None: it can)."""
+    if isinstance(system, (Structure, Adjacent)):
+        adjacent = isinstance(system, Adjacent)
+        structures, links = (system.structures, system.links) if adjacent else ((system,), ())
+        named = len(structures) > 1
+        for b, s in enumerate(structures):
+            who = ("the first's " if b == 0 else "the second's ") if named else "its "
+            if s.isolator is not None and s.isolator.bouc_wen is not None:
+                return f"{who}isolator has a Bouc-Wen spring (a nonlinear phase)"
+            for w, wall in enumerate(s.walls):
+                for side, law in (("left", wall.left), ("right", wall.right)):
+                    if linear_form(law) is None:
+                        return f"{who}wall {w}'s {side} law is {type(law).__name__} (exact: Kelvin-Voigt)"
+        for k, link in enumerate(links):
+            if linear_form(link.law) is None:
+                return f"link {k}'s law is {type(link.law).__name__} (exact: Kelvin-Voigt)"
+        return None
+    iso = system.isolator
     if iso.bouc_wen is not None:
         return "its isolator has a Bouc-Wen spring (a nonlinear phase)"
-    b = oscillator.bumpers
+    b = system.bumpers
     if b is not None:
         for side, law in (("left", b.left), ("right", b.right)):
             if linear_form(law) is None:

@@ -34,8 +34,11 @@ from ..engine._layout import V as I_V
 from ..engine.simulate import NotAState, check_oscillator, check_state, kernel_system, short_run
 from ..excitation import Harmonic
 from ..model import Oscillator
+from ..model.adjacent import Adjacent
+from ..model.structure import Structure
 from . import _hybrid as hy
 from ._args import exact_monodromy, settled, tolerance
+from ._shooting import _Failed, _Newton
 
 
 
@@ -163,8 +166,12 @@ def periodic_orbit(
 
     Parameters
     ----------
-    oscillator : Oscillator
-        The system.
+    oscillator : Oscillator, Structure or Adjacent
+        The system: one mass, or a structure of several (or two adjacent ones), whose orbit is
+        then a :class:`StructurePeriodicOrbit` (``guess`` a :class:`StructureState`; its
+        shooting coordinates every mass's displacement and velocity, the relaxing contacts'
+        compressions and the sticking springs' slips; the monodromy exact, saltation at each
+        contact, for Kelvin-Voigt contacts and multi-linear isolators and storeys).
     excitation : Harmonic
         The table's harmonic acceleration.
     guess : State, optional
@@ -186,7 +193,7 @@ def periodic_orbit(
 
     Returns
     -------
-    PeriodicOrbit
+    PeriodicOrbit or StructurePeriodicOrbit
         ``converged`` False when Newton did not reach ``tol`` (``message`` says why); the
         orbit is then the best iterate.
 
@@ -203,6 +210,12 @@ def periodic_orbit(
     >>> [round(float(v), 3) for v in orbit.impact_velocities_m_s]
     [-0.068, 0.068]
     """
+    if isinstance(oscillator, (Structure, Adjacent)):
+        from .structure_periodic import structure_periodic_orbit
+
+        return structure_periodic_orbit(oscillator, excitation, guess=guess, period_multiple=period_multiple,
+                                        tol=tol, max_iter=max_iter, settle_cycles=settle_cycles,
+                                        method=method, samples_per_period=samples_per_period)
     check_oscillator(oscillator)
     if not isinstance(excitation, Harmonic):
         raise InputError(Problem.WRONG_TYPE, "excitation", excitation, got=type(excitation).__name__,
@@ -240,109 +253,6 @@ def periodic_orbit(
     names = tuple(shooter.names(vec, frozen))
     return PeriodicOrbit(state, period, mult, jac, names, res, res <= tol, it,
                          "exact" if shooter.exact else "finite-difference", run, message)
-
-
-class _Newton:
-    """Newton shooting on a stroboscopic map, whatever the system: what a shooter shares.  A shooter
-    gives ``residual``, ``jacobian``, ``frozen``, ``_layout``, ``_moved``, ``_image``, ``coords``,
-    ``_scales``, ``_state`` (a vector as the user's state) and ``_inwards`` (a coordinate at a bound)."""
-
-    scale_d = 1e-3
-
-    def solve(self, vec: np.ndarray, tol: float, max_iter: int) -> tuple:
-        """Newton with step halving, each step accepted only where the residual falls (so the
-        result is the best iterate): (vector, residual, Jacobian, frozen springs, iterations, message)."""
-        try:
-            _, r, run = self.residual(vec)
-        except _Failed as exc:
-            raise InputError(Problem.BAD_STATE, "guess", self._state(vec), why=f"cannot be shot from: {exc}",
-                             fix="start from another state, or a smaller a_g") from None
-        self.scale_d = max(float(np.max(np.abs(run.displacement_max))),
-                           float(np.max(np.abs(run.displacement_min))), 1e-6)
-        free_idx, _ = self._layout(vec)
-        norm = float(np.max(np.abs(r[free_idx]) / self._scales(free_idx)))  # (on the scale just set)
-        frozen = self.frozen(vec, run)
-        it = 0
-        try:
-            jac = self.jacobian(vec, run, frozen)
-        except _Failed as exc:
-            return vec, norm, np.zeros((0, 0)), frozen, it, f"stopped: {exc}"
-        while norm > tol and it < max_iter:
-            it += 1
-            free_idx, emb = self._layout(vec, frozen)
-            try:
-                dz = np.linalg.solve(jac - np.eye(jac.shape[0]), -r[free_idx])
-            except np.linalg.LinAlgError:
-                return (vec, norm, jac, frozen, it,
-                        "stopped: a multiplier is 1 (a fold or a grazing)" + self.fell_back)
-            lam = 1.0
-            norm_t = math.inf
-            while lam >= 1e-3:
-                trial = self._moved(vec, emb @ (lam * dz))
-                try:
-                    norm_t, r_t, run_t = self.residual(trial)
-                except _Failed:  # (a state the system cannot be in, or a run that failed)
-                    norm_t = math.inf
-                if norm_t < norm:
-                    break
-                lam *= 0.5
-            if not norm_t < norm:
-                return (vec, norm, jac, frozen, it,
-                        f"stopped: Newton stalled at residual {norm:.1e} (no step along its direction lowers "
-                        "it; a grazing or mode change near the section, or tol below what rounding allows)"
-                        + self.fell_back)
-            vec, r, run, norm = trial, r_t, run_t, norm_t
-            frozen = self.frozen(vec, run)
-            try:
-                jac = self.jacobian(vec, run, frozen)
-            except _Failed as exc:
-                return vec, norm, np.zeros((0, 0)), frozen, it, f"stopped: {exc}"
-        if norm <= tol:
-            return (vec, norm, jac, frozen, it,
-                    f"converged in {it} Newton iterations (residual {norm:.1e})" + self.fell_back)
-        return (vec, norm, jac, frozen, it,
-                f"not converged in {it} Newton iterations (residual {norm:.1e} > tol {tol:g})"
-                + self.fell_back)
-
-    def residual(self, vec: np.ndarray) -> tuple[float, np.ndarray, Any]:
-        """(largest scaled residual over every free coordinate, the residual in ``coords``, the run)."""
-        end, run = self._image(vec)
-        free_idx, _ = self._layout(vec)
-        r = self.coords(end) - self.coords(vec)
-        return float(np.max(np.abs(r[free_idx]) / self._scales(free_idx))), r, run
-
-    def jacobian(self, vec: np.ndarray, run: Any, frozen: tuple) -> np.ndarray:
-        free_idx, emb = self._layout(vec, frozen)
-        if self.exact:
-            try:
-                full, x_end = self._propagate(vec, run)
-                gap = np.abs(x_end - self.coords(run.final_state.vector)).max() / self.scale_d
-                if not (np.isfinite(full).all() and gap < 1e-6):
-                    raise hy.NoExactMonodromy(f"the modes' propagation ends {gap:.1e} (relative) from the "
-                                              "engine")
-                return full[free_idx] @ emb
-            except hy.NoExactMonodromy as exc:  # (said in the result's message)
-                self.exact = False
-                self.fell_back = f"; the exact monodromy gave way to finite differences: {exc}"
-        return self.differences(vec, free_idx, emb)[free_idx]
-
-    def differences(self, vec: np.ndarray, free_idx: np.ndarray, emb: np.ndarray) -> np.ndarray:
-        """The map's derivatives along each free coordinate (the columns of ``emb``), by finite
-        differences: every entry of ``coords`` of the image, shape (n, r).  Central, but one-sided
-        (second order, inwards) where the coordinate sits at a bound (a compression near 0, z near
-        ``z_max``)."""
-        cols = []
-        for j, step in enumerate(1e-6 * self._scales(free_idx)):
-            def image(d: float) -> np.ndarray:
-                return self.coords(self._image(self._moved(vec, emb[:, j] * d))[0])
-
-            inwards = self._inwards(vec, int(free_idx[j]), step)
-            if inwards:  # a compression (>= 0) or z at its bound: second order, inwards
-                d = inwards * step
-                cols.append((4.0 * image(d) - image(2.0 * d) - 3.0 * image(0.0)) / (2.0 * d))
-            else:
-                cols.append((image(step) - image(-step)) / (2.0 * step))
-        return np.array(cols).T
 
 
 class _Shooter(_Newton):
@@ -434,6 +344,10 @@ class _Shooter(_Newton):
     def _state(self, vec: np.ndarray) -> State:
         return State(vec)
 
+    def _size_of(self, run: Run) -> float:
+        """The orbit's size, m: its largest |D| (1e-6 m at least)."""
+        return max(abs(run.displacement_max), abs(run.displacement_min), 1e-6)
+
     def _inwards(self, vec: np.ndarray, idx: int, step: float) -> float:
         """0 for a central difference along coordinate ``idx``, else the direction of a one-sided
         one: a compression (>= 0) inwards, z near ``z_max`` towards 0."""
@@ -468,8 +382,3 @@ class _Shooter(_Newton):
         elif h.breaks.size:
             out[REGION] = np.sign(out[I_D]) * np.searchsorted(h.breaks, abs(out[I_D]), side="right")
         return out
-
-class _Failed(Exception):
-    """A solver's own failure at one point (not the caller's input): the engine could not run a
-    period from a trial state, the state is none of the system's, or a parameter value the
-    continuation stepped to makes no system."""

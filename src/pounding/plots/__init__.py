@@ -10,7 +10,7 @@ from .design import (plot_decision, plot_design_spectrum, plot_fragility, plot_h
 from .diagram import plot_bifurcation_diagram
 from .identification import plot_identification
 from .lyapunov import plot_lyapunov
-from .periodic import plot_orbit
+from .periodic import plot_orbit, plot_structure_orbit
 from .record import plot_record, plot_response_spectrum
 from .run import plot_run
 from .spectrum import plot_pounding_spectrum
@@ -26,5 +26,5 @@ __all__ = ["plot_adjacent_run", "plot_basin_stability", "plot_basins", "plot_bif
            "plot_hazard_curve", "plot_responses", "plot_scaled_suite", "plot_stripes", "plot_identification",
            "plot_lyapunov",
            "plot_hysteresis", "plot_lab_sweep", "plot_orbit", "plot_pounding_spectrum", "plot_record",
-           "plot_response_spectrum", "plot_run", "plot_structure_run", "plot_structure_sweep", "plot_study",
-           "plot_sweep"]
+           "plot_response_spectrum", "plot_run", "plot_structure_orbit", "plot_structure_run",
+           "plot_structure_sweep", "plot_study", "plot_sweep"]

@@ -71,3 +71,59 @@ def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
                  f"{orbit.contacts_per_period} contacts per period")
     place_legend(ax, fontsize="small")
     return artists
+
+
+def plot_structure_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> Any:
+    """A structure's periodic orbit: each level in its phase plane, displacement (mm) against velocity
+    (m/s), the section state marked.
+
+    Parameters
+    ----------
+    orbit : StructurePeriodicOrbit
+        From :func:`pounding.periodic_orbit` of a structure or an adjacent pair.
+    ax : matplotlib Axes, optional
+        Where to draw (a new figure if omitted).
+    **kwargs
+        Passed to every level's line (solid when stable, dashed when not).
+
+    Returns
+    -------
+    matplotlib Axes
+
+    Examples
+    --------
+    >>> import pounding
+    >>> iso = pounding.Isolator(slopes=[2.0e5], breakpoints=[], damping=4.0e3)
+    >>> stop = pounding.Wall(0, 0.02, 0.02, pounding.KelvinVoigt(1.0e8, 2.0e4))
+    >>> b = pounding.Structure(2.0e3, iso,
+    ...                        [pounding.Storey(1.0e3, 2.0e6, 2.0e3)], [stop])
+    >>> ax = pounding.periodic_orbit(b, pounding.Harmonic(0.1, 1.5)).plot()
+    >>> len(ax.get_lines())  # two levels, each its orbit and its section state
+    4
+    """
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        ax = plt.figure().add_subplot()
+    run = orbit.run
+    parts = [("first.", run.first), ("second.", run.second)] if hasattr(run, "first") else [("", run)]
+    k = 0
+    for prefix, part in parts:
+        x0, v0 = part.displacement[0], part.velocity[0]
+        for level in range(part.displacement.shape[1]):
+            if not np.any(part.displacement[:, level]) and not np.any(part.velocity[:, level]):
+                continue  # (a fixed base's ground)
+            style = {"color": f"C{k % 10}", "linestyle": "-" if orbit.stable else "--",
+                     "label": f"{prefix}level {level}"}
+            style.update(kwargs)
+            ax.plot(part.displacement[:, level] * 1e3, part.velocity[:, level], **style)
+            ax.plot([x0[level] * 1e3], [v0[level]], "o", color=style["color"], markersize=4)
+            k += 1
+    ax.set_xlabel("displacement x [mm]")
+    ax.set_ylabel("velocity v [m/s]")
+    exc = run.excitation
+    ax.set_title(f"periodic orbit, f = {exc.freq_hz:g} Hz, a_G = {exc.a_g:g}, max |mu| = "
+                 f"{orbit.max_abs_multiplier:.3g} ({'stable' if orbit.stable else 'unstable'}), "
+                 f"{orbit.contacts_per_period} contacts per period", fontsize="small")
+    place_legend(ax, fontsize="small")
+    return ax

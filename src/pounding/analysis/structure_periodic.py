@@ -1,0 +1,323 @@
+"""``periodic_orbit`` of a structure of several masses (or two adjacent ones): Newton shooting on the
+core's stroboscopic map, with the exact monodromy of the n-dof hybrid system.
+
+The map takes the core's state vector at the section time to the one a period (or ``period_multiple``
+periods) later.  Its Jacobian is composed exactly where every phase is linear (multi-linear isolators and
+storeys without a Bouc-Wen spring, Kelvin-Voigt contacts): the state-transition matrix of each phase between
+the run's events, a saltation matrix at each event (``_hybrid.monodromy``, the same propagation one mass goes
+through).  For the other systems it is a central finite difference of the map.
+
+The shooting coordinates are the state's free numbers: every mass's displacement and velocity, the
+compression of a Kelvin-Voigt contact not touched (it relaxes), the slip of a storey's or isolator's spring
+that sticks and yields over the period.  A contact in progress and a slipping spring follow the masses.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Optional
+
+import numpy as np
+
+from .._checks import integer
+from .._errors import InputError, Problem
+from ..engine.structure import (Assembly, StructureState, assemble, check_structure_state,
+                                simulate_structure, structures_of)
+from ..excitation import Harmonic
+from ..model.adjacent import Adjacent
+from ..model.contact_laws import linear_form
+from ..model.structure import Structure
+from . import _hybrid as hy
+from ._args import exact_monodromy, settled, tolerance
+from ._shooting import _Failed, _Newton
+
+ACT_YIELD = hy.ACT_YIELD
+
+
+@dataclass(frozen=True, eq=False)
+class StructurePeriodicOrbit:
+    """A periodic response of a structure (or two adjacent ones) and its stability.
+
+    Attributes
+    ----------
+    state : StructureState
+        The orbit's state at the section time (``state.time_s``).
+    period_s : float
+        Its period, s: ``period_multiple`` periods of the forcing.
+    multipliers : ndarray of complex, shape (r,)
+        Floquet multipliers: the eigenvalues of ``monodromy``, largest modulus first.
+    monodromy : ndarray, shape (r, r)
+        Jacobian of the stroboscopic map in the shooting coordinates ``coordinates``.
+    coordinates : tuple of str
+        Names of the shooting coordinates: ``x_<level>`` and ``v_<level>`` for each moving level
+        (``first.``/``second.`` for a pair; ``stand_<wall>_<side>`` for a wall's stand),
+        ``delta_wall<w>_<side>`` and ``delta_link<k>`` for a relaxing contact's compression,
+        ``u_<spring>`` for a spring's slip.
+    residual : float
+        Largest difference between the state and its image a period later, each coordinate over its scale
+        (lengths over the largest ``|x|`` of any level over the guess's period, velocities over that times
+        Omega).
+    converged : bool
+        Whether ``residual <= tol``.
+    iterations : int
+        Newton iterations made.
+    method : str
+        ``"exact"`` (state-transition and saltation matrices) or ``"finite-difference"``.
+    run : StructureRun or AdjacentRun
+        One period from ``state``, densely sampled.
+    message : str
+        What happened, for people.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> iso = pounding.Isolator(slopes=[2.0e5], breakpoints=[], damping=4.0e3)
+    >>> stop = pounding.Wall(0, 0.02, 0.02, pounding.KelvinVoigt(1.0e8, 2.0e4))
+    >>> b = pounding.Structure(2.0e3, iso,
+    ...                        [pounding.Storey(1.0e3, 2.0e6, 2.0e3)], [stop])
+    >>> orbit = pounding.periodic_orbit(b, pounding.Harmonic(0.1, 1.5))
+    >>> orbit.converged, orbit.method, orbit.coordinates[:4]
+    (True, 'exact', ('x_0', 'x_1', 'v_0', 'v_1'))
+    >>> orbit.contacts_per_period, orbit.stable
+    (2, True)
+    """
+
+    state: StructureState
+    period_s: float
+    multipliers: np.ndarray = field(repr=False)
+    monodromy: np.ndarray = field(repr=False)
+    coordinates: tuple[str, ...]
+    residual: float
+    converged: bool
+    iterations: int
+    method: str
+    run: Any = field(repr=False)
+    message: str
+
+    @property
+    def max_abs_multiplier(self) -> float:
+        """The largest ``|multiplier|`` (NaN when there is no monodromy: a search that stopped early)."""
+        return float(np.abs(self.multipliers).max()) if self.multipliers.size else math.nan
+
+    @property
+    def stable(self) -> bool:
+        """Every multiplier inside the unit circle."""
+        return self.max_abs_multiplier < 1.0
+
+    @property
+    def contacts_per_period(self) -> int:
+        """Contacts at every wall side and link in one period (each once: those that end in it)."""
+        run = self.run
+        tables = [run.contact_table] if hasattr(run, "contact_table") else [
+            run.first.contact_table, run.second.contact_table, run.link_table]
+        return int(sum(np.isfinite(t[:, 2]).sum() for t in tables if len(t)))
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """Each level's orbit in its phase plane (x, v), its contacts marked; returns the axes."""
+        from ..plots.periodic import plot_structure_orbit
+
+        return plot_structure_orbit(self, ax=ax, **kwargs)
+
+
+def structure_periodic_orbit(model: Structure | Adjacent, excitation: Harmonic, *,
+                             guess: Optional[StructureState] = None, period_multiple: int = 1,
+                             tol: float = 1e-10, max_iter: int = 40, settle_cycles: int = 100,
+                             method: str = "auto", samples_per_period: int = 400) -> StructurePeriodicOrbit:
+    """:func:`pounding.periodic_orbit` of a structure or an adjacent pair (the same arguments; ``guess`` a
+    :class:`~pounding.StructureState`)."""
+    if not isinstance(excitation, Harmonic):
+        raise InputError(Problem.WRONG_TYPE, "excitation", excitation, got=type(excitation).__name__,
+                         expected="pounding.Harmonic (a periodic orbit needs a periodic forcing)")
+    period_multiple = integer("period_multiple", period_multiple, 1, 64, "give the orbit's period in forcing "
+                              "periods: 1, 2 for a period-doubled response, ...")
+    tol = tolerance(tol, 1e-15, 1e-2, 1e-10)
+    max_iter = integer("max_iter", max_iter, 1, 1000, "100 Newton iterations are plenty")
+    settle_cycles = integer("settle_cycles", settle_cycles, 1, 100_000, "give a guess instead")
+    samples_per_period = integer("samples_per_period", samples_per_period, 2, 1_000_000,
+                                 "the run's extrema are exact whatever the sampling")
+    exact = exact_monodromy(model, method)
+    period = period_multiple / excitation.freq_hz
+    if guess is None:
+        guess = settled(model, excitation, settle_cycles).final_state
+    elif not isinstance(guess, StructureState):
+        raise InputError(Problem.WRONG_TYPE, "guess", guess, got=type(guess).__name__,
+                         expected="pounding.StructureState (e.g. run.final_state)")
+    else:
+        guess = check_structure_state(guess, model)
+    shooter = _StructureShooter(model, excitation, period, exact)
+    with hy.one_blas_thread():
+        vec, res, jac, frozen, it, message = shooter.solve(np.array(guess.vector, dtype=float), tol, max_iter)
+    state = simulate_structure(model, excitation, period, shooter._state(vec), sample_rate_hz=0).final_state
+    run = simulate_structure(model, excitation, period, state, sample_rate_hz=samples_per_period / period)
+    mult = (np.linalg.eigvals(jac) if jac.size and np.isfinite(jac).all()
+            else np.full(jac.shape[0], np.nan + 0j))
+    mult = mult[np.argsort(-np.abs(mult), kind="stable")]
+    method = "exact" if shooter.exact else "finite-difference"
+    return StructurePeriodicOrbit(state, period, mult, jac, tuple(shooter.names(vec, frozen)), res,
+                                  res <= tol, it, method, run, message)
+
+
+class _StructureShooter(_Newton):
+    """The map of a structure's core state vector, its residual and Jacobian in the shooting coordinates.
+
+    ``coords`` are the core's monodromy coordinates: the n displacements, the n velocities, the nc
+    contacts' compressions, the n_sp springs' slips (then a Bouc-Wen z, where there is one)."""
+
+    def __init__(self, model: Structure | Adjacent, excitation: Harmonic, period: float, exact: bool) -> None:
+        self.model, self.exc, self.period, self.exact = model, excitation, period, exact
+        self.fell_back = ""
+        self.asm: Assembly = assemble(model)
+        self.system = self.asm.system
+        lay = self.system.layout
+        self.lay = lay
+        self.n = int(self.system.n)
+        self.nc = len(self.asm.pairs)
+        self.n_sp = int(lay["n_springs"])
+        self.size = 2 * self.n + self.nc + self.n_sp
+        bw_iso = [s.isolator.bouc_wen for s in structures_of(model)[0]
+                  if s.isolator is not None and s.isolator.bouc_wen is not None]
+        self.z_max = bw_iso[0].z_max if bw_iso else 0.0
+        # each contact slot: (i, j, sign, gap, relaxes: a Kelvin-Voigt law with damping, free when apart)
+        self.slots = [(i, j, sign, gap, bool((linear_form(law) or (0.0, 0.0))[1] > 0.0))
+                      for i, j, sign, gap, law in self.asm.pairs]
+        self.springs = []  # each kinematic spring: (global index, i, j, break)
+        self.elastic = []  # each element of the elastic rule: (element, i, j, breaks)
+        first = 0
+        for e, (i, j, slopes, breaks, rule) in enumerate(self.asm.elements):
+            if rule == 0:
+                self.springs += [(first + s, i, j, float(breaks[s])) for s in range(len(breaks))]
+            elif breaks:
+                self.elastic.append((e, i, j, np.array(breaks, dtype=float)))
+            first += len(slopes) - 1
+
+    # the core's numbers of a state vector
+    def _rel(self, vec: np.ndarray, i: int, j: int) -> float:
+        x = self.lay["x"]
+        return float(vec[x + i] - (vec[x + j] if j >= 0 else 0.0))
+
+    def coords(self, vec: np.ndarray) -> np.ndarray:
+        lay, n = self.lay, self.n
+        parts = [vec[lay["x"]:lay["x"] + n], vec[lay["v"]:lay["v"] + n], vec[lay["def"]:lay["def"] + self.nc],
+                 vec[lay["base"]:lay["base"] + self.n_sp]]
+        if self.z_max > 0.0:
+            parts.append([vec[lay["zeta"]]])
+        return np.concatenate(parts)
+
+    def _slip_dir(self, vec: np.ndarray, g: int) -> float:
+        return float(vec[self.lay["base"] + self.n_sp + g])
+
+    def _layout(self, vec: np.ndarray, frozen: tuple = ()) -> tuple[np.ndarray, np.ndarray]:
+        n, lay = self.n, self.lay
+        total = self.size + (self.z_max > 0.0)
+        follows = np.zeros((total, n))  # d coords = follows dx for the entries that are not free
+        free = list(range(2 * n))
+        for c, (i, j, sign, _, relaxes) in enumerate(self.slots):
+            row = 2 * n + c
+            if self.system.has_b and vec[lay["in"] + c]:
+                follows[row, i] += sign
+                if j >= 0:
+                    follows[row, j] -= sign
+            elif self.system.has_b and relaxes:
+                free.append(row)
+        for g, i, j, _ in self.springs:
+            row = 2 * n + self.nc + g
+            if self._slip_dir(vec, g) != 0.0:
+                follows[row, i] += 1.0
+                if j >= 0:
+                    follows[row, j] -= 1.0
+            elif g not in frozen:
+                free.append(row)
+        if self.z_max > 0.0:
+            free.append(self.size)
+        free_idx = np.array(sorted(free))
+        emb = np.zeros((total, free_idx.size))
+        emb[free_idx, np.arange(free_idx.size)] = 1.0
+        emb[:, :n] += follows  # (the displacements are the first n free coordinates)
+        return free_idx, emb
+
+    def frozen(self, vec: np.ndarray, run: Any) -> tuple:
+        """The springs that stick at the section and do not yield over the period: their slips are
+        constants of the motion (multipliers 1 that say nothing of stability), not coordinates."""
+        ev = run.event_table
+        yielded = set(ev[ev[:, 1] == ACT_YIELD, 2].astype(int).tolist())
+        return tuple(g for g, *_ in self.springs if self._slip_dir(vec, g) == 0.0 and g not in yielded)
+
+    def names(self, vec: np.ndarray, frozen: tuple = ()) -> list[str]:
+        structures, _ = structures_of(self.model)
+        dof = [""] * self.n
+        for b, levels in enumerate(self.asm.dofs):
+            prefix = "" if len(structures) == 1 else ("first." if b == 0 else "second.")
+            for level, d in enumerate(levels):
+                if d >= 0:
+                    dof[d] = f"{prefix}{level}"
+            for w, side, d in self.asm.stands[b]:
+                dof[d] = f"{prefix}stand_{w}_{('left', 'right')[side]}"
+        contact = []
+        for b, w, side in self.asm.slots:
+            if b < 0:
+                contact.append(f"delta_link{w}")
+            else:
+                prefix = "" if len(structures) == 1 else ("first." if b == 0 else "second.")
+                contact.append(f"{prefix}delta_wall{w}_{('left', 'right')[side]}")
+        labels = ([f"x_{d}" for d in dof] + [f"v_{d}" for d in dof] + contact
+                  + [f"u_{g}" for g in range(self.n_sp)] + ["z"])
+        return [labels[i] for i in self._layout(vec, frozen)[0]]
+
+    def _scales(self, free_idx: np.ndarray) -> np.ndarray:
+        s = np.full(free_idx.size, self.scale_d)
+        s[(free_idx >= self.n) & (free_idx < 2 * self.n)] = self.scale_d * self.exc.omega_rad_s
+        if self.z_max > 0.0:
+            s[free_idx == self.size] = 1.0
+        return s
+
+    def _image(self, vec: np.ndarray) -> tuple[np.ndarray, Any]:
+        try:
+            run = simulate_structure(self.model, self.exc, self.period, self._state(vec), sample_rate_hz=0)
+        except InputError as exc:
+            raise _Failed(f"a trial state left the system's states ({exc})") from None
+        if not run.success:
+            raise _Failed(f"the engine stopped over a period: {run.message}")
+        return np.array(run.final_state.vector), run
+
+    def _size_of(self, run: Any) -> float:
+        parts = (run.first, run.second) if hasattr(run, "first") else (run,)
+        return max([1e-6] + [float(np.max(np.abs(np.concatenate((p.displacement_max, p.displacement_min)))))
+                             for p in parts])
+
+    def _propagate(self, vec: np.ndarray, run: Any) -> tuple[np.ndarray, np.ndarray]:
+        return hy.monodromy(self.system, vec, run.event_table, vec[0] + self.period, self.exc.omega_rad_s,
+                            self.exc.peak_m_s2, self.exc.phase)
+
+    def _state(self, vec: np.ndarray) -> StructureState:
+        return StructureState._of(vec, self.asm.dofs, self.n)
+
+    def _inwards(self, vec: np.ndarray, idx: int, step: float) -> float:
+        if 2 * self.n <= idx < 2 * self.n + self.nc:
+            return 1.0
+        if self.z_max > 0.0 and idx == self.size and abs(vec[self.lay["zeta"]]) + step > self.z_max:
+            return 1.0 if vec[self.lay["zeta"]] < 0.0 else -1.0
+        return 0.0
+
+    def _moved(self, vec: np.ndarray, dx: np.ndarray) -> np.ndarray:
+        """The state vector moved by ``dx`` (in ``coords``), its followers kept on their constraints and the
+        elastic rule's branches the ones of the new deformations."""
+        lay, n, nc, out = self.lay, self.n, self.nc, vec.copy()
+        out[lay["x"]:lay["x"] + n] += dx[:n]
+        out[lay["v"]:lay["v"] + n] += dx[n:2 * n]
+        d0 = lay["def"]
+        out[d0:d0 + nc] = np.maximum(0.0, vec[d0:d0 + nc] + dx[2 * n:2 * n + nc])
+        out[lay["base"]:lay["base"] + self.n_sp] += dx[2 * n + nc:self.size]
+        if self.z_max > 0.0:
+            out[lay["zeta"]] = min(max(vec[lay["zeta"]] + dx[self.size], -self.z_max), self.z_max)
+        for c, (i, j, sign, gap, _) in enumerate(self.slots):
+            if self.system.has_b and vec[lay["in"] + c]:
+                out[lay["def"] + c] = max(0.0, sign * self._rel(out, i, j) - gap)
+        for g, i, j, brk in self.springs:
+            s = self._slip_dir(vec, g)
+            if s != 0.0:
+                out[lay["base"] + g] = self._rel(out, i, j) - s * brk
+        for e, i, j, breaks in self.elastic:
+            u = self._rel(out, i, j)
+            out[lay["region"] + e] = np.sign(u) * np.searchsorted(breaks, abs(u), side="right")
+        return out
