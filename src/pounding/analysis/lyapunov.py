@@ -44,17 +44,18 @@ from .._checks import integer
 from .._errors import InputError, Interrupted, Problem, Status
 from .._runner.progress import Progress, progress_reporter
 from ..engine import State, simulate
-from ..engine._layout import D as I_D
 from ..engine._layout import T as I_T
-from ..engine._layout import V as I_V
 from ..engine.simulate import check_oscillator, check_state
 from ..excitation import Harmonic
-from ..model import Oscillator
 from ..protocols.bifurcation_diagram import BifurcationDiagram, periods
 from . import _hybrid as hy
 from ._args import exact_monodromy
 from .lyapunov_result import LyapunovSpectrum
+from ..engine.structure import StructureState, check_structure_state
+from ..model.adjacent import Adjacent
+from ..model.structure import Structure
 from .periodic import _Failed, _Shooter
+from .structure_periodic import _StructureShooter
 
 MAX_CYCLES = 10_000_000
 MAX_PERIOD = 8  # the longest period (in forcing periods) a response is checked for
@@ -63,16 +64,18 @@ PERIODIC_RTOL = 1e-9  # sections that repeat to this (of the motion's size) make
 RESOLVED = 1e-13  # a diagonal of R below this times the largest: the direction is erased (-inf)
 
 
-def lyapunov(oscillator: Oscillator, excitation: Harmonic, *, cycles: int = 1000,
-             transient_cycles: int = 200, align_cycles: int = 20, state: Optional[State] = None,
+def lyapunov(oscillator: Any, excitation: Harmonic, *, cycles: int = 1000,
+             transient_cycles: int = 200, align_cycles: int = 20, state: Optional[Any] = None,
              method: str = "auto", progress: Progress = False) -> LyapunovSpectrum:
     """The Lyapunov spectrum of the response to a harmonic table motion, from the exact tangent
     dynamics through every phase and every event.
 
     Parameters
     ----------
-    oscillator : Oscillator
-        The system.
+    oscillator : Oscillator, Structure or Adjacent
+        The system: one mass, or a structure of several (or two adjacent ones), whose tangent
+        coordinates are then every mass's displacement and velocity (measured in the real modal
+        coordinates of its free motion), the relaxing contacts' compressions and the slips.
     excitation : Harmonic
         The table's harmonic acceleration.
     cycles : int
@@ -83,7 +86,7 @@ def lyapunov(oscillator: Oscillator, excitation: Harmonic, *, cycles: int = 1000
     align_cycles : int
         Periods the tangent frame is carried before the count starts (it turns towards the
         directions that grow most).
-    state : State, optional
+    state : State or StructureState, optional
         Where to start (its time sets the section's phase); default: at rest at time 0.
     method : {"auto", "exact", "finite-difference"}
         The Jacobian of each period: composed exactly (systems whose phases are all linear:
@@ -108,7 +111,9 @@ def lyapunov(oscillator: Oscillator, excitation: Harmonic, *, cycles: int = 1000
     >>> [round(float(x), 12) for x in spec.exponents]  # -c / (2 m)
     [-0.2, -0.2]
     """
-    check_oscillator(oscillator)
+    structure = isinstance(oscillator, (Structure, Adjacent))
+    if not structure:
+        check_oscillator(oscillator)
     if not isinstance(excitation, Harmonic):
         raise InputError(Problem.WRONG_TYPE, "excitation", excitation, got=type(excitation).__name__,
                          expected="pounding.Harmonic (the exponents are of the stroboscopic map of a "
@@ -118,10 +123,11 @@ def lyapunov(oscillator: Oscillator, excitation: Harmonic, *, cycles: int = 1000
     transient_cycles = integer("transient_cycles", transient_cycles, 0, MAX_CYCLES)
     align_cycles = integer("align_cycles", align_cycles, 0, MAX_CYCLES)
     exact = exact_monodromy(oscillator, method)
-    if state is not None and not isinstance(state, State):
+    kind = StructureState if structure else State
+    if state is not None and not isinstance(state, kind):
         raise InputError(Problem.WRONG_TYPE, "state", state, got=type(state).__name__,
-                         expected="pounding.State (e.g. run.final_state)")
-    state = check_state(state, oscillator)
+                         expected=f"pounding.{kind.__name__} (e.g. run.final_state)")
+    state = check_structure_state(state, oscillator) if structure else check_state(state, oscillator)
     if transient_cycles:
         run = simulate(oscillator, excitation, transient_cycles / excitation.freq_hz, state, sample_rate_hz=0)
         if not run.success:
@@ -135,31 +141,25 @@ def lyapunov(oscillator: Oscillator, excitation: Harmonic, *, cycles: int = 1000
 class _Tangent:
     """The map's Jacobian, period by period, in the spectrum's coordinates."""
 
-    def __init__(self, oscillator: Oscillator, excitation: Harmonic, exact: bool, state: State) -> None:
+    def __init__(self, oscillator: Any, excitation: Harmonic, exact: bool, state: Any) -> None:
         self.exc = excitation
         self.period = 1.0 / excitation.freq_hz
-        self.sh = _Shooter(oscillator, excitation, self.period, exact)
+        self.structure = isinstance(oscillator, (Structure, Adjacent))
+        shooter = _StructureShooter if self.structure else _Shooter
+        self.sh: Any = shooter(oscillator, excitation, self.period, exact)
         self.start = np.array(state.vector, dtype=float)
         self.fell_back = 0  # periods whose exact Jacobian gave way to finite differences
-        iso = oscillator.isolator
-        omega_n = math.sqrt(max(float(iso.slopes[0]), 1e-300) / oscillator.mass)
-        zeta = iso.damping / (2.0 * oscillator.mass * omega_n)
-        self.omega_n, self.zeta = omega_n, zeta
-
-    def _keep(self, slips: set) -> np.ndarray:
-        """Indices (in ``_Shooter.coords``) of the spectrum's coordinates: ``slips`` the springs that
-        changed state during the run."""
-        h, sh = self.sh.h, self.sh
-        keep = [0, 1]
-        keep += [row for side, row in ((0, hy.I_DL), (1, hy.I_DR))
-                 if sh.osc.bumpers is not None and h.damping[side] > 0.0]
-        keep += [hy.FIRST_SLIP + i for i in sorted(slips)]
-        if sh.z_max > 0.0:
-            keep.append(h.size)
-        return np.array(keep)
+        if not self.structure:
+            iso = oscillator.isolator
+            omega_n = math.sqrt(max(float(iso.slopes[0]), 1e-300) / oscillator.mass)
+            zeta = iso.damping / (2.0 * oscillator.mass * omega_n)
+            self.omega_n, self.zeta = omega_n, zeta
 
     def _metric(self, keep: np.ndarray) -> np.ndarray:
-        """``W``: the tangent vectors measured as ``W dx`` (the isolator's own units)."""
+        """``W``: the tangent vectors measured as ``W dx`` (the isolator's own units; a structure's: its
+        free motion's real modal coordinates)."""
+        if self.structure:
+            return _modal_metric(self.sh.free_state_matrix(), keep.size)
         w = np.eye(keep.size) * self.omega_n
         w[1, 1] = 1.0
         if self.zeta < 1.0:
@@ -178,10 +178,8 @@ class _Tangent:
         select = np.zeros((free_idx.size, n))
         select[np.arange(free_idx.size), free_idx] = 1.0
         if sh.exact:
-            amp, omega, phase = self.exc.peak_m_s2, self.exc.omega_rad_s, self.exc.phase
             try:
-                full, x_end = hy.oscillator_monodromy(sh.h, sh.system, vec, run.event_table,
-                                                      vec[I_T] + self.period, omega, amp, phase)
+                full, x_end = sh._propagate(vec, run)
                 gap = np.abs(x_end - sh.coords(run.final_state.vector)).max() / sh.scale_d
                 if np.isfinite(full).all() and gap < 1e-6:
                     return full @ emb @ select
@@ -213,17 +211,16 @@ class _Tangent:
                     ran += 1
                     if total <= KEEP_RUNS:
                         kept.append((vec, run))
-                    size = max(size, abs(run.displacement_max), abs(run.displacement_min))
-                    if self.sh.h.kinematic:
-                        ev = run.event_table
-                        slips.update(ev[ev[:, 1] == hy.ACT_YIELD, 2].astype(int).tolist())
+                    size = max(size, self.sh._size_of(run))
+                    ev = run.event_table  # (the elastic rule has no yields)
+                    slips.update(ev[ev[:, 1] == hy.ACT_YIELD, 2].astype(int).tolist())
                     advance(1)
             except _Failed as exc:
                 status, why = Status.STEP_FAILED, str(exc)
             except KeyboardInterrupt:
                 status, ran = Status.INTERRUPTED, 0  # (stop now: no period counted)
             self.sh.scale_d = size
-            keep = self._keep(slips)
+            keep = self.sh.spectrum_coordinates(slips)
             counted, hist, exps, recent, sections, final = self._count(
                 keep, align, ran, kept if len(kept) == ran else self._periods(ran), advance)
         if counted < ran - align and status == Status.SUCCESS:
@@ -233,8 +230,8 @@ class _Tangent:
             exps = self._floquet(recent[-period:], period)
         order = np.argsort(-exps, kind="stable")  # (largest first; the history's columns alike)
         exps, hist = exps[order], hist[:, order]
-        labels = ["D", "V", "delta_L", "delta_R"] + [f"u_{i}" for i in range(self.sh.h.n_slips)] + ["z"]
-        names = tuple(labels[i] if i < self.sh.h.size else "z" for i in keep)
+        labels = self.sh.labels()
+        names = tuple(labels[i] for i in keep)
         message = self._message(status, why, align, cycles, counted, exps, period)
         out = LyapunovSpectrum(exps, names, hist, self.exc, counted, "exact" if self.sh.exact else
                                "finite-difference", period, final, status, message)
@@ -255,7 +252,7 @@ class _Tangent:
         recent: list[np.ndarray] = []  # the last MAX_PERIOD periods' Jacobians (for a periodic response)
         sections: list[np.ndarray] = []  # the last sections (D, V), the end of the last period included
         counted = 0
-        final = State(self.start)
+        final = self.sh._state(self.start)
         self.stopped = (Status.SUCCESS, "")
         with hy.one_blas_thread():
             try:
@@ -273,7 +270,7 @@ class _Tangent:
                         history[counted] = logs / ((counted + 1) * self.period)
                         counted += 1
                         recent = (recent + [jac])[-MAX_PERIOD:]
-                        sections = (sections + [vec[[I_D, I_V]]])[-4 * MAX_PERIOD:]
+                        sections = (sections + [self.sh.section(vec)])[-4 * MAX_PERIOD:]
                         final = run.final_state
                     advance(1)
             except _Failed as exc:  # (a perturbed run of the finite differences)
@@ -283,7 +280,7 @@ class _Tangent:
         hist = history[:counted]
         exps = hist[-1].copy() if counted else np.full(keep.size, np.nan)
         if counted:
-            sections.append(final.vector[[I_D, I_V]])
+            sections.append(self.sh.section(np.asarray(final.vector)))
         return counted, hist, exps, recent, sections, final
 
     def _periodic(self, sections: list) -> int:
@@ -324,6 +321,31 @@ class _Tangent:
             head += (f"; {self.fell_back} period{'s' if self.fell_back > 1 else ''} by finite differences "
                      "(an event met tangentially, or the exact propagation did not end where the engine did)")
         return head
+
+
+def _modal_metric(a: np.ndarray, size: int) -> np.ndarray:
+    """``W`` (size, size) whose first block takes the masses' (x, v) to the real modal coordinates of the
+    state matrix ``a`` (2n, 2n): each complex pair's ``(Re, Im)`` of one eigenvector, in which the free motion
+    is a rotation times its decay, so a linear structure's frame vectors shrink at exactly their rates; the
+    other coordinates (compressions, slips, z) in units of the slowest mode's frequency."""
+    lam, vecs = np.linalg.eig(a)
+    cols, done = [], np.zeros(lam.size, dtype=bool)
+    for i in np.argsort(np.abs(lam), kind="stable"):
+        if done[i]:
+            continue
+        done[i] = True
+        if lam[i].imag != 0.0:
+            j = int(np.argmin(np.where(done, np.inf, np.abs(lam - lam[i].conj()))))
+            done[j] = True
+            v = vecs[:, i] if lam[i].imag > 0.0 else vecs[:, j]
+            cols += [v.real, v.imag]
+        else:
+            cols.append(vecs[:, i].real)
+    t = np.array(cols).T
+    n2 = a.shape[0]
+    w = np.eye(size) * max(float(np.abs(lam).min()), 1e-6)
+    w[:n2, :n2] = np.linalg.inv(t)
+    return w
 
 
 def largest_exponents(diagram: BifurcationDiagram, *, cycles: int = 200, align_cycles: int = 20,

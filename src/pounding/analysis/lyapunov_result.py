@@ -27,8 +27,9 @@ class LyapunovSpectrum:
     exponents : ndarray, shape (n,)
         The exponents, 1/s, largest first (``-inf`` for a direction the map erases).
     coordinates : tuple of str
-        The tangent coordinates (``D``, ``V``, ``delta_L``, ``delta_R``, ``u_i``, ``z``): the
-        exponents are of the state they make up.
+        The tangent coordinates (``D``, ``V``, ``delta_L``, ``delta_R``, ``u_i``, ``z``; a
+        structure's as :attr:`StructurePeriodicOrbit.coordinates`): the exponents are of the
+        state they make up.
     history : ndarray, shape (cycles, n)
         The running estimates after each counted period, 1/s, in the order of ``exponents`` (the last
         row is ``exponents`` but for a periodic response, whose exponents are its Floquet values).
@@ -42,7 +43,7 @@ class LyapunovSpectrum:
         The response's period in forcing periods when its counted sections repeat (to 1e-9 of its
         size), 0 when they do not. A periodic response's exponents are exact: the logarithms of
         its Floquet multipliers over its period (``history`` keeps the running estimates).
-    final_state : State
+    final_state : State or StructureState
         Where the last counted period ended (continue from it).
     status : Status
         ``SUCCESS``, ``INTERRUPTED`` (Ctrl-C), or why the engine stopped.

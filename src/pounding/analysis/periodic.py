@@ -317,9 +317,29 @@ class _Shooter(_Newton):
         yielded = set(ev[ev[:, 1] == hy.ACT_YIELD, 2].astype(int).tolist())
         return tuple(i for i, s in enumerate(iso) if s == 0.0 and i not in yielded)
 
+    def labels(self) -> list[str]:
+        """The names of ``coords``' entries."""
+        return (["D", "V", "delta_L", "delta_R"] + [f"u_{i}" for i in range(self.h.n_slips)]
+                + (["z"] if self.z_max > 0.0 else []))
+
     def names(self, vec: np.ndarray, frozen: tuple = ()) -> list[str]:
-        labels = ["D", "V", "delta_L", "delta_R"] + [f"u_{i}" for i in range(self.h.n_slips)] + ["z"]
-        return [labels[i] if i < self.h.size else "z" for i in self._layout(vec, frozen)[0]]
+        labels = self.labels()
+        return [labels[i] for i in self._layout(vec, frozen)[0]]
+
+    def spectrum_coordinates(self, slips: set) -> np.ndarray:
+        """Indices (in ``coords``) of a Lyapunov spectrum's coordinates: D, V, a relaxing bumper's
+        compression, the slips of ``slips`` (the springs that slip during the run), z."""
+        keep = [0, 1]
+        keep += [row for side, row in ((0, hy.I_DL), (1, hy.I_DR))
+                 if self.osc.bumpers is not None and self.h.damping[side] > 0.0]
+        keep += [hy.FIRST_SLIP + i for i in sorted(slips)]
+        if self.z_max > 0.0:
+            keep.append(self.h.size)
+        return np.array(keep)
+
+    def section(self, vec: np.ndarray) -> np.ndarray:
+        """(D, V) of a state vector, shape (2,)."""
+        return vec[[I_D, I_V]]
 
     def _scales(self, free_idx: np.ndarray) -> np.ndarray:
         s = np.full(free_idx.size, self.scale_d)

@@ -243,7 +243,8 @@ class _StructureShooter(_Newton):
         yielded = set(ev[ev[:, 1] == ACT_YIELD, 2].astype(int).tolist())
         return tuple(g for g, *_ in self.springs if self._slip_dir(vec, g) == 0.0 and g not in yielded)
 
-    def names(self, vec: np.ndarray, frozen: tuple = ()) -> list[str]:
+    def labels(self) -> list[str]:
+        """The names of ``coords``' entries."""
         structures, _ = structures_of(self.model)
         dof = [""] * self.n
         for b, levels in enumerate(self.asm.dofs):
@@ -260,9 +261,35 @@ class _StructureShooter(_Newton):
             else:
                 prefix = "" if len(structures) == 1 else ("first." if b == 0 else "second.")
                 contact.append(f"{prefix}delta_wall{w}_{('left', 'right')[side]}")
-        labels = ([f"x_{d}" for d in dof] + [f"v_{d}" for d in dof] + contact
-                  + [f"u_{g}" for g in range(self.n_sp)] + ["z"])
+        return ([f"x_{d}" for d in dof] + [f"v_{d}" for d in dof] + contact
+                + [f"u_{g}" for g in range(self.n_sp)] + (["z"] if self.z_max > 0.0 else []))
+
+    def names(self, vec: np.ndarray, frozen: tuple = ()) -> list[str]:
+        labels = self.labels()
         return [labels[i] for i in self._layout(vec, frozen)[0]]
+
+    def spectrum_coordinates(self, slips: set) -> np.ndarray:
+        """Indices (in ``coords``) of a Lyapunov spectrum's coordinates: every displacement and velocity,
+        a relaxing contact's compression, the slips of ``slips`` (the springs that slip during the run), z."""
+        keep = list(range(2 * self.n))
+        if self.system.has_b:
+            keep += [2 * self.n + c for c, slot in enumerate(self.slots) if slot[4]]
+        keep += [2 * self.n + self.nc + g for g in sorted(slips)]
+        if self.z_max > 0.0:
+            keep.append(self.size)
+        return np.array(keep)
+
+    def section(self, vec: np.ndarray) -> np.ndarray:
+        """Every mass's (x, v) of a state vector, shape (2, n)."""
+        lay = self.lay
+        return np.stack([vec[lay["x"]:lay["x"] + self.n], vec[lay["v"]:lay["v"] + self.n]])
+
+    def free_state_matrix(self) -> np.ndarray:
+        """The state matrix (2n, 2n) of the masses' free motion, no contact, every element on its stiffest
+        slope (a linear structure's own)."""
+        n, m = self.n, self.asm.masses
+        return np.block([[np.zeros((n, n)), np.eye(n)],
+                         [-self.asm.k_fast / m[:, None], -self.asm.c_all / m[:, None]]])
 
     def _scales(self, free_idx: np.ndarray) -> np.ndarray:
         s = np.full(free_idx.size, self.scale_d)

@@ -157,15 +157,18 @@ def periods(strobes: np.ndarray, amplitude_m: np.ndarray, omega_rad_s: np.ndarra
     """The smallest ``k <= max_period`` with which every stroboscopic sample repeats ``k`` cycles
     later, to within ``rtol`` of the amplitude (velocities over ``omega``); 0 where none does.
 
-    ``strobes`` shape (steps, cycles, 2): displacement (m), velocity (m/s); ``amplitude_m`` and
-    ``omega_rad_s`` shape (steps,).  Returns int, shape (steps,).
+    ``strobes`` shape (steps, cycles, 2): displacement (m), velocity (m/s), or (steps, cycles, 2, m)
+    for m masses at once; ``amplitude_m`` and ``omega_rad_s`` shape (steps,).  Returns int, shape
+    (steps,).
     """
-    tol = rtol * np.maximum(amplitude_m, 1e-12)[:, None]
-    scaled = np.stack([strobes[..., 0], strobes[..., 1] / omega_rad_s[:, None]], axis=-1)
-    out = np.zeros(strobes.shape[0], dtype=np.int64)
+    steps = strobes.shape[0]
+    tol = rtol * np.maximum(amplitude_m, 1e-12)
+    om = np.reshape(omega_rad_s, (-1, 1) + (1,) * (strobes.ndim - 3))
+    scaled = np.stack([strobes[:, :, 0], strobes[:, :, 1] / om], axis=2)
+    out = np.zeros(steps, dtype=np.int64)
     for k in range(max_period, 0, -1):  # (the smallest that holds wins)
-        diff = np.abs(scaled[:, k:] - scaled[:, :-k]).max(axis=(1, 2))
-        out[diff <= tol[:, 0]] = k
+        diff = np.abs(scaled[:, k:] - scaled[:, :-k]).reshape(steps, -1).max(axis=1)
+        out[diff <= tol] = k
     return out
 
 
