@@ -51,7 +51,7 @@ from ..protocols.bifurcation_diagram import BifurcationDiagram, periods
 from . import _hybrid as hy
 from ._args import exact_monodromy
 from .lyapunov_result import LyapunovSpectrum
-from ..engine.structure import StructureState, check_structure_state
+from ..engine.structure import StructureState, assemble, check_structure_state
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from .periodic import _Failed, _Shooter
@@ -403,6 +403,12 @@ def largest_exponents(diagram: BifurcationDiagram, *, cycles: int = 200, align_c
         return replace(diagram, data=new)
 
     done = 0
+    several = isinstance(diagram.oscillator, (Structure, Adjacent))
+    asm = assemble(diagram.oscillator) if several else None
+
+    def state_of(vec: np.ndarray) -> Any:
+        return StructureState._of(vec, asm.dofs, asm.system.n) if asm is not None else State(vec)
+
     with progress_reporter(progress, total, "largest Lyapunov exponents") as advance:
         try:
             for sw in diagram.sweeps:
@@ -411,7 +417,7 @@ def largest_exponents(diagram: BifurcationDiagram, *, cycles: int = 200, align_c
                     start = np.array(vec, dtype=float)
                     start[I_T] = 0.0  # (the window starts at table phase 0: the forcing's time 0)
                     spec = lyapunov(diagram.oscillator, Harmonic(sw.a_g, float(f), g=sw.g), cycles=cycles,
-                                    transient_cycles=0, align_cycles=align_cycles, state=State(start),
+                                    transient_cycles=0, align_cycles=align_cycles, state=state_of(start),
                                     method=method)
                     # (a count the engine cut short is no estimate: NaN, as a step not run)
                     out[i, np.searchsorted(freqs, f)] = spec.largest if spec.success else np.nan

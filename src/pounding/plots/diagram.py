@@ -7,7 +7,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import one_of
+from .._checks import integer, one_of
 from ._legend import place_legend
 
 DIRECTION_COLOR = {"up": "C0", "down": "C3"}
@@ -15,7 +15,7 @@ DIRECTION_MARKER = {"up": "^", "down": "v"}
 
 
 def plot_bifurcation_diagram(diagram: Any, ax: Any = None, *, branches: Any = None, y: str = "displacement",
-                             **kwargs: Any) -> list:
+                             level: int = -1, **kwargs: Any) -> list:
     """A bifurcation diagram: each recorded stroboscopic sample (table phase 0) against the
     frequency, up and down in two colours; branches of periodic orbits under it at the same
     section, stable solid, unstable dashed.
@@ -31,6 +31,9 @@ def plot_bifurcation_diagram(diagram: Any, ax: Any = None, *, branches: Any = No
         ``Branch.section()``).
     y : {"displacement", "velocity"}
         What to draw of the section's state: displacement in mm (default) or velocity in m/s.
+    level : int
+        A structure's level drawn: its place along the diagram's ``level`` (default -1, the top;
+        for a pair, the second's top).
     **kwargs
         Passed to the samples' markers (``ms``, ``alpha``, ...).
 
@@ -59,6 +62,15 @@ def plot_bifurcation_diagram(diagram: Any, ax: Any = None, *, branches: Any = No
     if ax is None:
         ax = plt.figure(figsize=(7, 4), constrained_layout=True).add_subplot()
     ds = diagram.data
+    where = ""
+    if "level" in ds.dims:
+        level = integer("level", level, -ds.sizes["level"], ds.sizes["level"] - 1,
+                        "give a level's place along the diagram's level")
+        ds = ds.isel(level=level)
+        prefix = "" if len(set(diagram.data["level_structure"].values.tolist())) == 1 else \
+            f"{ds['level_structure'].item()}'s "
+        where = f", {prefix}level {int(ds['level_number'])}"
+        label = label.replace("D at", "x at").replace("V at", "v at")
     style = dict(ms=3, alpha=0.8, linestyle="none") | kwargs
     artists: list = []
     for d in ds["direction"].values.tolist():
@@ -79,6 +91,6 @@ def plot_bifurcation_diagram(diagram: Any, ax: Any = None, *, branches: Any = No
                                    label=f"branch, {'stable' if stable else 'unstable'}" if k == 0 else None)
     ax.set_xlabel("f [Hz]")
     ax.set_ylabel(label)
-    ax.set_title(f"Bifurcation diagram, a_G = {diagram.a_g:g} g", fontsize="medium")
+    ax.set_title(f"Bifurcation diagram, a_G = {diagram.a_g:g} g{where}", fontsize="medium")
     place_legend(ax, fontsize="small")
     return artists

@@ -21,9 +21,8 @@ from .._checks import integer, one_of
 from .._control import DEFAULT_MAX_STEPS, new_control, run_interruptibly
 from .._errors import InputError, Interrupted, Problem, Status
 from .._runner.progress import Progress, progress_reporter
-from ..engine import State
-from ..model import Oscillator
-from .sweep import MAX_CYCLES_PER_STEP, make_plan, run_plan
+from .structure_sweep_result import C_COUNT
+from .sweep import MAX_CYCLES_PER_STEP, _is_structure, make_plan, run_plan
 from .sweep_result import SweepResult
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -35,7 +34,7 @@ MAX_RECORD_CYCLES = 10_000
 STEP_QUANTITIES = ("alpha", "excursion_m", "contacts_per_cycle")
 
 
-def bifurcation_diagram(oscillator: Oscillator, a_g: float, freqs_hz: Any, *,
+def bifurcation_diagram(oscillator: Any, a_g: float, freqs_hz: Any, *,
                         direction: DiagramDirection = "both", transient_cycles: int = 100,
                         record_cycles: int = 20, max_period: int = 8, steady_rtol: float = 1e-6,
                         rtol: float = 1e-10, max_steps: int = DEFAULT_MAX_STEPS,
@@ -49,8 +48,10 @@ def bifurcation_diagram(oscillator: Oscillator, a_g: float, freqs_hz: Any, *,
 
     Parameters
     ----------
-    oscillator : Oscillator
-        The system.
+    oscillator : Oscillator, Structure or Adjacent
+        The system: one mass, or a structure of several (or two adjacent ones), whose diagram
+        then holds every level's samples (a ``level`` dimension) and each level's alpha and
+        excursion; its period is the whole state's.
     a_g : float
         Peak table acceleration, g.
     freqs_hz : array_like, shape (n,)
@@ -132,13 +133,16 @@ def bifurcation_diagram(oscillator: Oscillator, a_g: float, freqs_hz: Any, *,
     n_total = sum(p.freqs_hz.size for p in plans)
     ctl = new_control(plans[0].max_steps)
     sweeps: list[SweepResult] = []
-    state: Optional[State] = None
+    state: Optional[Any] = None
+    run = run_plan
+    if _is_structure(oscillator):
+        from .structure_sweep import run_structure_plan as run
     with progress_reporter(progress, n_total, f"bifurcation diagram, a_G = {plans[0].a_g:g}") as advance:
         for plan in plans:
             if state is not None:  # (down from where up ended)
                 plan = make_plan(oscillator, a_g, freqs_hz, plan.direction, state, **options)
             try:
-                sw = run_interruptibly(lambda: run_plan(plan, advance, ctl), [ctl])
+                sw = run_interruptibly(lambda: run(plan, advance, ctl), [ctl])
             except Interrupted as stop:
                 sweeps.append(stop.partial)
                 done = sum(s.steps_done for s in sweeps)
@@ -179,7 +183,7 @@ class BifurcationDiagram:
 
     Attributes
     ----------
-    oscillator : Oscillator
+    oscillator : Oscillator, Structure or Adjacent
         The system.
     a_g : float
         Peak table acceleration, g.
@@ -188,7 +192,9 @@ class BifurcationDiagram:
         (the recorded cycles): ``strobe_displacement_m`` and ``strobe_velocity_m_s``
         (direction, freq_hz, cycle); ``period`` (0: not periodic, -1: not run), ``alpha``,
         ``excursion_m`` and ``contacts_per_cycle`` (direction, freq_hz).  NaN where a step did
-        not run.
+        not run.  A structure's adds the dimension ``level`` to the strobes, ``alpha`` and
+        ``excursion_m`` (its coordinates ``level_number`` and ``level_structure``), and its
+        ``contacts_per_cycle`` counts every wall side and link.
     sweeps : tuple of SweepResult
         The sweeps it was drawn from, in the order run.
     status : Status
@@ -212,7 +218,7 @@ class BifurcationDiagram:
     0.511
     """
 
-    oscillator: Oscillator
+    oscillator: Any
     a_g: float
     data: "xr.Dataset"
     sweeps: tuple
@@ -243,7 +249,9 @@ class BifurcationDiagram:
         strobes = ds[["strobe_displacement_m", "strobe_velocity_m_s"]].to_dataframe().reset_index()
         strobes = strobes.rename(columns={"strobe_displacement_m": "displacement_m",
                                           "strobe_velocity_m_s": "velocity_m_s"})
-        return strobes.dropna(subset=["displacement_m"]).merge(steps, on=["direction", "freq_hz"])
+        keys = ["direction", "freq_hz"] + (["level"] if "level" in ds.dims else [])
+        steps = steps.drop(columns=["level_number", "level_structure"], errors="ignore")  # (in strobes too)
+        return strobes.dropna(subset=["displacement_m"]).merge(steps, on=keys)
 
     def to_netcdf(self, path: str | Path) -> Path:
         """Write the dataset to a netCDF file (atomically); returns its path."""
@@ -251,13 +259,15 @@ class BifurcationDiagram:
 
         return atomic_write(output_file("path", path), self.data.to_netcdf)
 
-    def plot(self, ax: Any = None, *, branches: Any = None, y: str = "displacement", **kwargs: Any) -> list:
+    def plot(self, ax: Any = None, *, branches: Any = None, y: str = "displacement", level: int = -1,
+             **kwargs: Any) -> list:
         """The diagram: the section's ``y`` ("displacement", mm, or "velocity", m/s) against the
         frequency, up and down in two colours; ``branches`` (from :func:`pounding.continuation`)
-        drawn under it at the same section, stable solid, unstable dashed."""
+        drawn under it at the same section, stable solid, unstable dashed; a structure's ``level``
+        (its place along ``level``, the top by default)."""
         from ..plots.diagram import plot_bifurcation_diagram
 
-        return plot_bifurcation_diagram(self, ax=ax, branches=branches, y=y, **kwargs)
+        return plot_bifurcation_diagram(self, ax=ax, branches=branches, y=y, level=level, **kwargs)
 
     def __repr__(self) -> str:
         n = self.data.sizes
@@ -266,32 +276,53 @@ class BifurcationDiagram:
                 f"{self.status.name}: {self.message})")
 
 
-def _diagram(osc: Oscillator, sweeps: list, dirs: Sequence[str], transient: int, record: int,
+def _diagram(osc: Any, sweeps: list, dirs: Sequence[str], transient: int, record: int,
              max_period: int, rtol: float, interrupted: bool) -> BifurcationDiagram:
     import xarray as xr
 
     freqs = np.sort(sweeps[0].freqs_hz)
     shape = (len(dirs), freqs.size)
-    strobes = np.full(shape + (record, 2), np.nan)
+    several = _is_structure(osc)
+    n_levels = len(sweeps[0].levels) if several else 0
+    per_level = (n_levels,) if several else ()
+    strobes = np.full(shape + (record, 2) + per_level, np.nan)
     period = np.full(shape, -1, dtype=np.int64)
-    steps = {q: np.full(shape, np.nan) for q in STEP_QUANTITIES}
+    steps = {q: np.full(shape + (per_level if q != "contacts_per_cycle" else ()), np.nan)
+             for q in STEP_QUANTITIES}
     for sw in sweeps:
         i = dirs.index(sw.direction)
         done = sw.steps_done
         cols = np.searchsorted(freqs, sw.freqs_hz[:done])
         strobes[i, cols] = sw.window_strobes[:done, :record]
-        df = sw.to_dataframe().iloc[:done]
-        amplitude = 0.5 * (df["displacement_max_m"] - df["displacement_min_m"]).to_numpy()
-        omega = 2.0 * np.pi * df["freq_hz"].to_numpy()
+        if several:
+            m = sw.level_metrics[:done]
+            excursion = m[:, :, 0] - m[:, :, 1]
+            amplitude = 0.5 * np.nanmax(excursion, axis=1, initial=0.0)
+            values = {"alpha": sw.alpha[:done], "excursion_m": excursion,
+                      "contacts_per_cycle": np.nansum(sw.contact_metrics[:done, :, C_COUNT], axis=1)}
+            omega = 2.0 * np.pi * sw.freqs_hz[:done]
+        else:
+            df = sw.to_dataframe().iloc[:done]
+            amplitude = 0.5 * (df["displacement_max_m"] - df["displacement_min_m"]).to_numpy()
+            values = {q: df[q].to_numpy() for q in STEP_QUANTITIES}
+            omega = 2.0 * np.pi * df["freq_hz"].to_numpy()
         period[i, cols] = periods(strobes[i, cols], amplitude, omega, max_period, rtol)
         for q in STEP_QUANTITIES:
-            steps[q][i, cols] = df[q].to_numpy()
+            steps[q][i, cols] = values[q]
     dims = ("direction", "freq_hz")
+    lv = ("level",) if several else ()
+    coords: dict[str, Any] = {"direction": list(dirs), "freq_hz": freqs, "cycle": np.arange(record)}
+    if several:
+        coords["level"] = np.arange(n_levels)
+        coords["level_number"] = ("level", np.array([q for _, q in sweeps[0].levels], dtype=int))
+        coords["level_structure"] = ("level", np.array([("first", "second")[b] for b, _ in sweeps[0].levels],
+                                                       dtype=str))
     ds = xr.Dataset(
-        {"strobe_displacement_m": (dims + ("cycle",), strobes[..., 0]),
-         "strobe_velocity_m_s": (dims + ("cycle",), strobes[..., 1]),
-         "period": (dims, period), **{q: (dims, v) for q, v in steps.items()}},
-        coords={"direction": list(dirs), "freq_hz": freqs, "cycle": np.arange(record)})
+        {"strobe_displacement_m": (dims + ("cycle",) + lv, strobes[:, :, :, 0]),
+         "strobe_velocity_m_s": (dims + ("cycle",) + lv, strobes[:, :, :, 1]),
+         "period": (dims, period),
+         **{q: (dims + (lv if q != "contacts_per_cycle" else ()), v) for q, v in steps.items()}},
+        coords=coords)
     ds["freq_hz"].attrs["units"] = "Hz"
     a_g = sweeps[0].a_g
     ds.attrs.update({"a_g": a_g, "transient_cycles": transient, "record_cycles": record,

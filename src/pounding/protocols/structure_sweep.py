@@ -49,6 +49,8 @@ def run_structure_plan(plan, advance: Callable[[int], None] | None = None,
     period_multiple = np.zeros(n_steps, dtype=np.int64)
     window_cycles = np.zeros(n_steps, dtype=np.int64)
     window_states = np.full((n_steps, system.layout["size"]), np.nan)
+    strobe_cap = plan.measure_cycles + (plan.max_period - 1 if plan.steady == "adaptive" else 0)
+    strobes = np.full((n_steps, strobe_cap, 2, len(levels)), np.nan)
     step_start_s = np.full(n_steps, np.nan)
     state = plan.state.vector.copy()
     status = Status.SUCCESS
@@ -79,6 +81,8 @@ def run_structure_plan(plan, advance: Callable[[int], None] | None = None,
                     break
                 if code == Status.SUCCESS:
                     _measure(out, level_dof, at.peak_m_s2, m, t0, level[i], drift[i], contact[i], system.n)
+                    strobes[i, :min(m, strobe_cap)] = _strobes(out[1], level_dof, t0, period, m,
+                                                               system.n)[:strobe_cap]
             step_start_s[i] = start[T]
             cycles_run[i] = n
             period_multiple[i] = k
@@ -99,11 +103,25 @@ def run_structure_plan(plan, advance: Callable[[int], None] | None = None,
         g=GRAVITY_M_S2, levels=levels, storeys=storeys, contact_slots=slots, level_metrics=level,
         drift_metrics=drift, contact_metrics=contact, cycles_run=cycles_run, period_multiple=period_multiple,
         window_cycles=window_cycles, window_states=window_states, step_start_s=step_start_s, steps_done=done,
-        final_state=StructureState._of(state, asm.dofs, system.n), status=status,
+        final_state=StructureState._of(state, asm.dofs, system.n), status=status, window_strobes=strobes,
         message=sweep_message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted))
     if interrupted:
         raise Interrupted(result, done, n_steps)
     return result
+
+
+def _strobes(samples: np.ndarray, level_dof: list, t0: float, period: float, m: int,
+             n_dof: int) -> np.ndarray:
+    """Each level's (displacement, velocity) at the end of each of a window's ``m`` cycles, from its run's
+    samples (uniform at the period, and one at each event), shape (m, 2, levels)."""
+    out = np.full((m, 2, len(level_dof)), np.nan)
+    j = np.rint((samples[:, 0] - t0) / period)
+    on = (np.abs(samples[:, 0] - (t0 + j * period)) <= 1e-9 * period) & (j >= 1) & (j <= m)
+    for row in samples[on]:
+        k = int(round((row[0] - t0) / period)) - 1
+        for q, d in enumerate(level_dof):
+            out[k, :, q] = (row[1 + d], row[1 + n_dof + d]) if d >= 0 else (0.0, 0.0)
+    return out
 
 
 def _measure(out: tuple, level_dof: list, peak_m_s2: float, m: int, t0: float,

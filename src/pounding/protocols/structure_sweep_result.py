@@ -3,7 +3,7 @@ every wall side's (and link's) contacts, measured exactly over the step's window
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
@@ -80,6 +80,9 @@ class StructureSweepResult:
         cycles.
     window_states : ndarray, shape (n, n_state)
         The exact state at each window's start.
+    window_strobes : ndarray, shape (n, measure_cycles, 2, n_levels)
+        Each level's displacement (m) and velocity (m/s) at the end of each of the window's cycles (table
+        phase 0: the stroboscopic section); NaN beyond a step's window and where it was not measured.
     step_start_s : ndarray, shape (n,)
         When each step began, s.
     steps_done : int
@@ -134,6 +137,7 @@ class StructureSweepResult:
     final_state: Any
     status: Status
     message: str
+    window_strobes: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 2, 0)), repr=False)
 
     # ------------------------------------------------------------------ derived
     @property
