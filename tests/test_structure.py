@@ -307,7 +307,7 @@ def test_a_state_of_another_structure_is_refused():
         pd_.simulate(three, 0.1, 1.0)
 
 
-def test_the_command_line_simulates_and_sweeps_a_structure_other_commands_say_they_take_one_mass(tmp_path):
+def test_the_command_line_runs_a_structure_and_other_commands_say_they_take_one_mass(tmp_path):
     from typer.testing import CliRunner
 
     from pounding.cli import app
@@ -326,8 +326,21 @@ def test_the_command_line_simulates_and_sweeps_a_structure_other_commands_say_th
     assert len(pd.read_csv(out["contacts"])) > 0
     assert "displacement_m[3]" in pd.read_csv(out["history"], nrows=2).columns
     assert out["plot"].stat().st_size > 10_000
-    one_mass = runner.invoke(app, ["bifurcation", str(building), "--a-g", "0.1"])
+    one_mass = runner.invoke(app, ["basins", str(building), "--a-g", "0.1", "--freq", "1.0"])
     assert one_mass.exit_code == 2 and "takes one mass" in one_mass.output, one_mass.output
+    diagram = runner.invoke(app, ["bifurcation", str(building), "--a-g", "0.3", "--fmin", "0.6",
+                                  "--fmax", "0.8", "--fstep", "0.2", "--transient-cycles", "20",
+                                  "--record-cycles", "10",
+                                  "--out", str(tmp_path / "diagram.csv"), "--plot", str(tmp_path / "d.png")])
+    assert diagram.exit_code == 0, diagram.output
+    assert "largest alpha (any level)" in diagram.output
+    assert set(pd.read_csv(tmp_path / "diagram.csv")["level"]) == {0, 1, 2, 3}
+    refused = runner.invoke(app, ["bifurcation", str(building), "--a-g", "0.1", "--no-bumpers"])
+    assert refused.exit_code == 2 and "--no-bumpers is for one mass" in refused.output
+    exps = runner.invoke(app, ["lyapunov", str(building), "--a-g", "0.1", "--freq", "1.0", "--cycles", "20",
+                               "--transient-cycles", "10"])
+    assert exps.exit_code == 0, exps.output
+    assert "x_0, x_1, x_2, x_3" in exps.output
     steps = tmp_path / "steps.csv"
     swept = runner.invoke(app, ["sweep", str(building), "--a-g", "0.3", "--fmin", "0.5", "--fmax", "1.1",
                                 "--fstep", "0.3", "--out", str(steps)])

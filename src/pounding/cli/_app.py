@@ -283,9 +283,22 @@ def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True, st
     if kind is not Oscillator:  # (a structure's file, or two adjacent ones': to_toml writes them)
         if not structures:
             raise typer.BadParameter(f"{path} is a structure of several masses: this command takes one mass "
-                                     "so far (pounding simulate and pounding sweep take structures)")
+                                     "so far (simulate, sweep, campaign, study, bifurcation and lyapunov "
+                                     "take structures)")
         return kind.from_toml(path)
     return Oscillator.from_toml(path)
+
+
+def one_mass_options(osc, no_bumpers: bool) -> bool:
+    """Whether ``osc`` is a structure of several masses (or a pair), refusing ``--no-bumpers`` for one:
+    its walls and links are in its file."""
+    from ..model import Oscillator
+
+    several = not isinstance(osc, Oscillator)
+    if several and no_bumpers:
+        raise typer.BadParameter("--no-bumpers is for one mass (a structure's walls and links are in its "
+                                 "file: remove them there)")
+    return several
 
 
 def frequencies(fmin: float, fmax: float, fstep: float):

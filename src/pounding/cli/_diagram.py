@@ -14,7 +14,8 @@ from .._errors import Interrupted, Status
 from .._io import atomic_write, interrupts_deferred
 from ._app import (ARG_SYSTEM, OPT_A_G, OPT_FMAX, OPT_FMIN, OPT_FREQ, OPT_NO_BUMPERS, OPT_PRESET,
                    OPT_SCHEDULER, command, console, err_console, figure_path, files,
-                   frequencies, interrupted, kv_table, save_figure, system, working, write_csv)
+                   frequencies, interrupted, kv_table, one_mass_options, save_figure, system, working,
+                   write_csv)
 
 CSV = (".csv",)
 NETCDF = (".nc", ".nc4", ".netcdf")
@@ -48,7 +49,8 @@ def bifurcation(
 
     paths = files(out=(out, CSV), netcdf=(netcdf, NETCDF))
     plot = figure_path("--plot", plot)
-    osc = system(system_file, preset, bumpers=not no_bumpers)
+    osc = system(system_file, preset, bumpers=not no_bumpers, structures=True)
+    several = one_mass_options(osc, no_bumpers)
     freqs = frequencies(fmin, fmax, fstep)
     kwargs = dict(direction=direction, transient_cycles=transient_cycles, record_cycles=record_cycles,
                   max_period=max_period)
@@ -59,13 +61,16 @@ def bifurcation(
     table, add = kv_table(f"bifurcation diagram, a_G = {a_g:g}", system_file or preset)
     add("status", result.message)
     steps = result.to_dataframe(cycles=False)
-    for sw in result.sweeps:
+    for sw in result.sweeps if not several else ():  # (a structure's sweeps: no jumps table yet)
         jumps = sw.jumps()
         pairs = zip(jumps["freq_from_hz"], jumps["freq_to_hz"], jumps["kind"])
         add(f"jumps {sw.direction} [Hz]", ", ".join(f"{a:g}->{b:g} ({k})" for a, b, k in pairs) or "none")
     not_periodic = steps.loc[steps["period"] == 0, "freq_hz"]
     add("not periodic [Hz]", ", ".join(f"{f:g}" for f in not_periodic.unique()[:12])
         + (" ..." if not_periodic.nunique() > 12 else "") or "none")
+    if several:
+        top = steps.groupby("freq_hz")["alpha"].max()
+        add("largest alpha (any level)", f"{top.max():.3g} at {top.idxmax():g} Hz" if len(top) else "none")
     console.print(table)
     with interrupts_deferred() as held:
         if paths["out"] is not None:
@@ -76,7 +81,10 @@ def bifurcation(
             console.print(f"dataset -> {paths['netcdf']}")
     if plot is not None and len(steps) and not held:
         # (followed after the files are written: its failure or a Ctrl-C loses nothing)
-        branches = _branch(osc, a_g, fmin, fmax) if branch else None
+        branches = _branch(osc, a_g, fmin, fmax) if branch and not several else None
+        if branch and several:
+            err_console.print("[yellow]warning:[/] --branch follows one mass's branch; a structure's "
+                              "continuation is not there yet: the diagram is drawn alone")
         with interrupts_deferred() as more:
             save_figure(lambda: result.plot(branches=branches), plot)
         held += more
@@ -193,7 +201,8 @@ def lyapunov_command(
 
     paths = files(out=(out, CSV), netcdf=(netcdf, NETCDF))
     plot = figure_path("--plot", plot)
-    osc = system(system_file, preset, bumpers=not no_bumpers)
+    osc = system(system_file, preset, bumpers=not no_bumpers, structures=True)
+    one_mass_options(osc, no_bumpers)
     try:
         spec = lyapunov(osc, Harmonic(a_g, freq), cycles=cycles, transient_cycles=transient_cycles,
                         align_cycles=align_cycles, method=method, progress=True)

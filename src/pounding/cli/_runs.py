@@ -12,6 +12,7 @@ from .._errors import Interrupted
 from .._io import atomic_write, interrupts_deferred
 from ._app import (
     working,
+    one_mass_options,
     ARG_SYSTEM,
     OPT_A_G,
     cell,
@@ -84,7 +85,6 @@ def simulate(
     (examples/adjacent_buildings.toml): a row per level; --contacts then writes the links' contacts."""
     from ..engine import State
     from ..engine import simulate as run_simulation
-    from ..model import Oscillator
 
     out = files(contacts=(contacts, CSV), history=(history, CSV))
     plot = figure_path("--plot", plot)
@@ -92,12 +92,9 @@ def simulate(
     exc, what = excitation(a_g, freq, record, record_dt, record_units, scale_pga)
     if duration is None:
         duration = exc.t[-1] if record is not None else 20.0
-    if not isinstance(osc, Oscillator):  # a structure of several masses
+    if one_mass_options(osc, no_bumpers):  # a structure of several masses
         if velocity != 0.0:
             raise typer.BadParameter("--velocity is for one mass (a structure starts at rest)")
-        if no_bumpers:
-            raise typer.BadParameter("--no-bumpers is for one mass (a structure's walls and links are in its "
-                                     "file: remove them there)")
         return _simulate_structure(osc, exc, what, duration, sample_rate, system_file, out, plot)
     start = State.at_rest(osc, velocity_m_s=velocity)
     wants_history = history is not None or plot is not None
@@ -297,13 +294,9 @@ def sweep(
 
     paths = files(out=(out, CSV), netcdf=(netcdf, NETCDF))
     plot = figure_path("--plot", plot)
-    from ..model import Oscillator
 
     osc = system(system_file, preset, bumpers=not no_bumpers, structures=True)
-    several = not isinstance(osc, Oscillator)
-    if several and no_bumpers:
-        raise typer.BadParameter("--no-bumpers is for one mass (a structure's walls and links are in its "
-                                 "file: remove them there)")
+    several = one_mass_options(osc, no_bumpers)
     freqs = frequencies(fmin, fmax, fstep)
     options = steady_options(steady, cycles, max_cycles)
     from ..protocols.sweep import make_plan
