@@ -59,16 +59,78 @@ def test_a_building_without_storeys_reads_back_with_its_wall(tmp_path):
     assert again.has_bumpers and float(again.fraction("contact").max()) == 1.0
 
 
-def test_a_design_file_of_a_building_says_it_takes_one_mass(tmp_path):
+def _building_plan(tmp_path, **choices) -> dict:
+    """A building's design file's tables (the example's, on El Centro at two stripes, three gaps)."""
+    building().to_toml(tmp_path / "b.toml")
+    table = tomllib.loads((Path(__file__).parents[1] / "examples" / "design_building.toml").read_text())
+    table["system"] = {"file": "b.toml"}
+    table["records"] = {"suite": "el-centro", "period_s": 1.5, "levels_g": [0.5, 1.0]}
+    table["design"] = {"gaps_m": [0.02, 0.1, 0.6], "target_probability": 0.1, **choices}
+    table["run"] = {"scheduler": "serial"}
+    return table
+
+
+def test_a_building_design_file_decides_the_moat_gap_for_drift(tmp_path):
+    import pandas as pd
+    import tomli_w
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+    from pounding.design.plan import DesignPlan, run_plan
+
+    table = _building_plan(tmp_path, event="drift", limit=0.001)
+    plan = DesignPlan.from_dict(table, tmp_path / "plan.toml")
+    assert plan.building and plan.gap_dim == "walls[0].gap_m" and plan.kinds[0].name == "kelvin_voigt"
+    outcome = run_plan(plan, str(tmp_path / "runs.zarr"), progress=False)
+    d = outcome.decision
+    # the decision is the Python chain's on the same runs
+    again = design.decide(outcome.analyses["kelvin_voigt"], d.design_sa_g, d.mce_sa_g, target_probability=0.1,
+                          gap_dim="walls[0].gap_m", event="drift", limit=0.001)
+    cols = ["walls[0].gap_m", "p_drift_design", "p_drift_mce"]
+    pd.testing.assert_frame_equal(d.to_dataframe()[cols], again.to_dataframe()[cols])
+    assert "storey drift ratio above 0.001" in d.verdict()
+    # the command line writes the report, in the demand's words
+    (tmp_path / "plan.toml").write_text(tomli_w.dumps(table))
+    result = CliRunner().invoke(app, ["design", str(tmp_path / "plan.toml"), "--out",
+                                      str(tmp_path / "report")])
+    assert result.exit_code == 0, result.output
+    page = (tmp_path / "report" / "index.html").read_text()
+    assert "Fragility of a storey drift ratio above 0.001" in page and "moat gap [m]" in page
+    assert "P(a storey drift ratio above 0.001 | MCE)" in page
+    written = pd.read_csv(tmp_path / "report" / "decision.csv")
+    np.testing.assert_allclose(written["p_drift_mce"], d.to_dataframe()["p_drift_mce"])
+
+
+@pytest.mark.parametrize("change, field", [
+    (lambda t: t.update(bumpers={"gap_left": 0.1, "gap_right": 0.1}), "bumpers"),
+    (lambda t: t["design"].update(wall=1), "design.wall"),
+    (lambda t: t["design"].update(event="drift"), "design.limit"),
+    (lambda t: t["design"].update(limit=0.01), "design.limit"),
+    (lambda t: t["design"].update(event="compression", limit=0.01), "design.event"),
+    (lambda t: t["design"].update(grid={"walls[0].gap_left_m": [0.1]}), "design.grid.walls[0].gap_left_m"),
+    (lambda t: t["design"].update(bumper_types={"rubber": {"law": {"type": "kelvin_voigt",
+                                                                    "stiffness": 1e6}}}),
+     "design.bumper_types"),
+])
+def test_a_building_design_file_names_what_it_refuses(tmp_path, change, field):
     from pounding.design.plan import DesignPlan
 
-    building().to_toml(tmp_path / "b.toml")
-    text = (Path(__file__).parents[1] / "examples" / "design_ups.toml").read_text()
-    table = tomllib.loads(text)
-    table["system"] = {"file": "b.toml"}
-    table.pop("bumpers", None)
-    with pytest.raises(pd_.InputError, match="one mass"):
+    table = _building_plan(tmp_path)
+    change(table)
+    with pytest.raises(pd_.InputError) as err:
         DesignPlan.from_dict(table, tmp_path / "plan.toml")
+    assert err.value.field == field, err.value
+
+
+def test_one_mass_design_file_refuses_a_building_s_demands(tmp_path):
+    from pounding.design.plan import DesignPlan
+
+    table = tomllib.loads((Path(__file__).parents[1] / "examples" / "design_ups.toml").read_text())
+    for key, value, field in (("event", "drift", "design.event"), ("wall", 0, "design.wall")):
+        bad = {**table, "design": {**table["design"], key: value, "limit": 0.01}}
+        with pytest.raises(pd_.InputError) as err:
+            DesignPlan.from_dict(bad, Path(__file__).parents[1] / "examples" / "plan.toml")
+        assert err.value.field == field
 
 
 def test_the_gap_decided_for_pounding_and_for_drift(msa):

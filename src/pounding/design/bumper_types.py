@@ -25,7 +25,7 @@ class BumperType:
     (``bumpers.gap`` and the type's own dotted names)."""
 
     name: str
-    system: Oscillator
+    system: Any  # Oscillator, or a Structure (a building: its moat's wall)
     grid: dict
 
 
@@ -65,11 +65,14 @@ def bumper_types(system: Oscillator, des: Mapping[str, Any], grid: dict, gaps: n
     return tuple(out)
 
 
-def grid_of(field: str, value: Any, gaps: np.ndarray) -> dict:
-    """A design grid: ``bumpers.gap`` from ``design.gaps_m``, then the table's dotted names."""
-    grid = {"bumpers.gap": gaps.tolist()}
+def grid_of(field: str, value: Any, gaps: np.ndarray, gap_dim: str = "bumpers.gap") -> dict:
+    """A design grid: ``gap_dim`` (``bumpers.gap``, or a building's ``walls[w].gap_m``) from
+    ``design.gaps_m``, then the table's dotted names."""
+    grid = {gap_dim: gaps.tolist()}
+    stem = gap_dim[: -len("_m")] if gap_dim.endswith("_m") else gap_dim
+    same = (gap_dim, f"{stem}_left", f"{stem}_right", f"{stem}_left_m", f"{stem}_right_m")
     for name, values in _table(field, value).items():
-        if name in ("bumpers.gap", "bumpers.gap_left", "bumpers.gap_right"):
+        if name in same:
             raise InputError(Problem.DUPLICATE, f"{field}.{name}", values, repeated="design.gaps_m")
         grid[name] = values
     return grid

@@ -8,7 +8,7 @@ written by :mod:`pounding.reports.design`.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -18,6 +18,7 @@ import numpy as np
 from .._checks import float_array, integer, one_of, parse_toml, positive, read_text
 from .._errors import InputError, Problem
 from ..model import Oscillator
+from ..model.structure import Structure
 from ..model.oscillator import _check_keys
 from ..studies.spec import _table, system_from_table
 from .hazard import HazardCurve
@@ -41,7 +42,11 @@ SITE_KEYS = {
     "user": ("code", "spectrum", "mce_spectrum", "hazard_curve"),
 }
 RECORD_KEYS = ("suite", "period_s", "levels_g", "scale_range_s")
-DESIGN_KEYS = ("gaps_m", "grid", "bumper_types", "target_probability", "level", "years", "t_m_s", "beta_m")
+DESIGN_KEYS = ("gaps_m", "grid", "bumper_types", "target_probability", "level", "years", "t_m_s", "beta_m",
+               "wall", "event", "limit")
+# the demands a design file may target: one mass's, and a building's (pounding.design's EVENTS)
+MASS_EVENTS = ("contact", "acceleration", "displacement")
+BUILDING_EVENTS = ("contact", "displacement", "drift", "top_acceleration")
 RUN_KEYS = ("scheduler", "workers", "store")
 MAX_GAP_M = 2.0  # a design gap beyond this is a unit error (mm given for m)
 EC8_MCE_FACTOR = 1.5  # EN 1998-1 has no MCE: the "MCE" level is this factor times its spectrum (stated)
@@ -54,8 +59,9 @@ class DesignPlan:
     Attributes
     ----------
     title : str
-    system : Oscillator
-        The base system, with its bumpers (the grid varies their gap and numbers).
+    system : Oscillator or Structure
+        The base system, with its bumpers (the grid varies their gap and numbers); or a building
+        with its moat's wall (the grid varies that wall's gaps, ``walls[w].gap_m``).
     design_spectrum, mce_spectrum : DesignSpectrum
         The two levels (ASCE 7-16: design and MCE_R; EN 1998-1: the spectrum and ``mce_factor``
         times it; a user's: two tables).
@@ -85,6 +91,15 @@ class DesignPlan:
         The store (default: beside the report).
     source : Path
         The TOML file.
+    bumper_types : tuple of BumperType
+        (above)
+    gap_dim : str
+        The grid's gap: ``bumpers.gap``, or a building's ``walls[w].gap_m`` (``[design] wall``).
+    event : str
+        The demand the target is on: ``contact`` (pounding, default), or ``displacement``,
+        ``acceleration`` (one mass), ``drift``, ``top_acceleration`` (a building) beyond ``limit``.
+    limit : float or None
+        The event's limit (m, g, or a drift ratio), for an event other than ``contact``.
     """
 
     title: str
@@ -106,6 +121,14 @@ class DesignPlan:
     store: Path | None = None
     source: Path = field(default_factory=lambda: Path("."))
     bumper_types: tuple = ()
+    gap_dim: str = "bumpers.gap"
+    event: str = "contact"
+    limit: float | None = None
+
+    @property
+    def building(self) -> bool:
+        """Whether the system is a building (a Structure) rather than one mass."""
+        return not isinstance(self.system, Oscillator)
 
     @property
     def kinds(self) -> tuple:
@@ -113,14 +136,14 @@ class DesignPlan:
         over ``grid`` (named by their law), read from the plan as it is now."""
         if self.bumper_types:
             return tuple(self.bumper_types)
-        if self.system.bumpers is None:
+        if not self.building and self.system.bumpers is None:
             raise InputError(
                 Problem.MISSING_KEY,
                 "system",
                 None,
                 choices="a system with bumpers (the design chooses their gap), or bumper_types",
             )
-        return (BumperType(self.system.bumpers.law.TYPE, self.system, self.grid),)
+        return (own_kind(self.system, self.grid, self.gap_dim),)
 
     @classmethod
     def from_toml(cls, path: str | Path) -> "DesignPlan":
@@ -135,16 +158,23 @@ class DesignPlan:
         base = source.parent
         _check_keys(table, "", TOP_KEYS, ("system", "site", "records", "design"))
         system = system_from_table(table["system"], base)
-        if not isinstance(system, Oscillator):
+        building = isinstance(system, Structure)
+        if not (building or isinstance(system, Oscillator)):
             raise InputError(Problem.WRONG_MODE, "system", type(system).__name__,
-                             mode="one mass (an Oscillator)",
-                             fix="a design file takes one mass so far; for a building use "
-                                 "pounding.design.stripe_analysis and design.decide in Python")
+                             mode="one mass (an Oscillator) or one building (a Structure)",
+                             fix="design the gap of one building at a time: give its file")
+        if building and "bumpers" in table:
+            raise InputError(Problem.WRONG_MODE, "bumpers", "[bumpers]", mode="one mass's design",
+                             fix="a building's walls are in its file: its design varies a wall's gaps "
+                                 "(design.gaps_m, and design.wall for a wall other than walls[0])")
+        if building and not system.walls:
+            raise InputError(Problem.MISSING_KEY, "system", None,
+                             choices="a building with a wall (walls[0], its moat): a design chooses its gap")
         if "bumpers" in table:
             tables = system.to_dict()
             tables["bumpers"] = dict(_table("bumpers", table["bumpers"]))
             system = Oscillator.from_dict(tables)
-        if system.bumpers is None:
+        if not building and system.bumpers is None:
             raise InputError(
                 Problem.MISSING_KEY,
                 "bumpers",
@@ -207,7 +237,26 @@ class DesignPlan:
                 what=" m",
                 fix=f"give the gaps in m ({gaps[i]:g} mm is {gaps[i] / 1e3:g})",
             )
-        grid = grid_of("design.grid", des.get("grid", {}), gaps)
+        gap_dim = "bumpers.gap"
+        if building:
+            wall = integer("design.wall", des.get("wall", 0), 0, len(system.walls) - 1,
+                           f"the building has {len(system.walls)} wall(s): walls[0] ...")
+            gap_dim = f"walls[{wall}].gap_m"
+        elif "wall" in des:
+            raise InputError(Problem.WRONG_MODE, "design.wall", des["wall"], mode="a building's design",
+                             fix="leave design.wall out: one mass's gap is its bumpers' (design.gaps_m)")
+        event = one_of("design.event", des.get("event", "contact"),
+                       BUILDING_EVENTS if building else MASS_EVENTS)
+        limit = None
+        if event != "contact" or "limit" in des:
+            if event == "contact":
+                raise InputError(Problem.WRONG_MODE, "design.limit", des["limit"], mode="an event other than "
+                                 "contact", fix="leave design.limit out, or name design.event (drift, ...)")
+            if "limit" not in des:
+                raise InputError(Problem.MISSING_KEY, "design.limit", None,
+                                 choices=f"the limit of {event} (m, g, or a drift ratio such as 0.005)")
+            limit = positive("design.limit", des["limit"], "(m, g, or a drift ratio)")
+        grid = grid_of("design.grid", des.get("grid", {}), gaps, gap_dim)
         target = positive("design.target_probability", des.get("target_probability", 0.1), "(a probability)")
         if target >= 1.0:
             raise InputError(Problem.OUT_OF_RANGE, "design.target_probability", target, range="(0, 1)")
@@ -244,10 +293,14 @@ class DesignPlan:
             except InputError as exc:
                 raise exc.relabel("scheduler", "run.scheduler") from None
         workers = None if "workers" not in run else integer("run.workers", run["workers"], 1, 4096)
-        types = bumper_types(system, des, grid, gaps)
-        for kind in types or (BumperType(system.bumpers.law.TYPE, system, grid),):
+        if building and "bumper_types" in des:
+            raise InputError(Problem.WRONG_MODE, "design.bumper_types", list(des["bumper_types"]),
+                             mode="one mass's design",
+                             fix="give the wall's law in the building's file (one design per law so far)")
+        types = () if building else bumper_types(system, des, grid, gaps)
+        for kind in types or (own_kind(system, grid, gap_dim),):
             try:
-                _check_runs(kind.system, records, levels, period, kind.grid)
+                _check_runs(kind.system, records, levels, period, kind.grid, gap_dim)
             except InputError as exc:
                 if kind.grid is grid or not exc.field.startswith("design.grid."):
                     raise  # (the design's own grid, as the file names it)
@@ -272,7 +325,18 @@ class DesignPlan:
             None if store is None else Path(store),
             source,
             types,
+            gap_dim,
+            event,
+            limit,
         )
+
+
+def own_kind(system: Any, grid: dict, gap_dim: str) -> BumperType:
+    """The base system's own bumpers over the design grid, named by their law; a building's: the wall of
+    ``gap_dim`` (``walls[w].gap_m``), named by its left side's law."""
+    if isinstance(system, Structure):
+        return BumperType(system.walls[int(gap_dim.split("[")[1].split("]")[0])].left.TYPE, system, grid)
+    return BumperType(system.bumpers.law.TYPE, system, grid)
 
 
 def _text(field: str, value: Any) -> str:
@@ -283,7 +347,8 @@ def _text(field: str, value: Any) -> str:
     return value
 
 
-def _check_runs(system: Oscillator, records: list, levels: np.ndarray, period: float, grid: dict) -> None:
+def _check_runs(system: Any, records: list, levels: np.ndarray, period: float, grid: dict,
+                gap_dim: str = "bumpers.gap") -> None:
     """The runs the plan asks for are valid, before any: the study's own checks (the grid's names and
     values, every record read and scaled), named by the design file's fields."""
     from ..studies import StudySpec
@@ -298,7 +363,7 @@ def _check_runs(system: Oscillator, records: list, levels: np.ndarray, period: f
         for old, new in (
             ("grid.record", "records.suite"),
             ("grid.sa_g", "records.levels_g"),
-            ("grid.bumpers.gap", "design.gaps_m"),
+            (f"grid.{gap_dim}", "design.gaps_m"),
             ("grid.", "design.grid."),
             ("compute.", "records."),
         ):
@@ -434,12 +499,11 @@ def run_plan(
             at = {d: float(analysis.data[d].values[i]) for d, i in zip(dims, index)}
             key = tuple(at.items()) if len(plan.kinds) == 1 else (("bumper", kind.name), *at.items())
             try:
-                fragilities[key] = analysis.fragility("contact", at=at, n_bootstrap=500)
+                fragilities[key] = analysis.fragility(plan.event, plan.limit, at=at, n_bootstrap=500)
             except InputError:  # (no estimate: all or nothing, or separated stripes; the table says which)
                 continue
-    free = stripe_analysis(
-        plan.system.without_bumpers(), plan.records, plan.levels_g, store=free_store(store), **common
-    )
+    alone = replace(plan.system, walls=()) if plan.building else plan.system.without_bumpers()
+    free = stripe_analysis(alone, plan.records, plan.levels_g, store=free_store(store), **common)
     decision = decide(
         analyses if len(analyses) > 1 else next(iter(analyses.values())),
         float(plan.design_spectrum.sa_g(plan.period_s)),
@@ -450,6 +514,9 @@ def run_plan(
         years=plan.years,
         code_minimum_gap_m=plan.code_minimum_gap_m,
         free=free,
+        gap_dim=plan.gap_dim,
+        event=plan.event,
+        limit=plan.limit,
     )
     return DesignOutcome(plan, suite, analyses, fragilities, decision)
 

@@ -398,7 +398,8 @@ def plot_responses(analysis: Any, quantity: str = "acc_max_g", ax: Any = None) -
         From :func:`pounding.design.stripe_analysis`.
     quantity : str
         A run quantity: ``acc_max_g``, ``disp_max_m``, ``impacts``, ``impact_force_max_n``,
-        ``impact_speed_max_m_s`` or ``compression_max_m``.
+        ``impact_speed_max_m_s`` or ``compression_max_m``; a building's ``base_disp_max_m``,
+        ``top_disp_max_m``, ``top_acc_max_g`` or ``drift_ratio_max``.
     ax : matplotlib Axes, optional
         Where to draw (a new figure if omitted).
 
@@ -424,7 +425,7 @@ def plot_responses(analysis: Any, quantity: str = "acc_max_g", ax: Any = None) -
 
     ds = analysis.data
     names = ("acc_max_g", "disp_max_m", "impacts", "impact_force_max_n", "impact_speed_max_m_s",
-             "compression_max_m")
+             "compression_max_m", "base_disp_max_m", "top_disp_max_m", "top_acc_max_g", "drift_ratio_max")
     if quantity not in names or quantity not in ds:
         raise InputError(Problem.NOT_IN_RESULT, "quantity", quantity,
                          choices=", ".join(n for n in names if n in ds))

@@ -55,6 +55,16 @@ COLUMN_WORDS = {
 }
 
 
+def _words(plan: Any, decision: Any) -> dict:
+    """The decision table's column names in words: the gap's, and the chosen event's probabilities."""
+    words = dict(COLUMN_WORDS)
+    words[plan.gap_dim] = "moat gap [m]" if plan.building else "gap [m]"
+    if decision.event != "contact":
+        for lvl, at in (("design", " | design"), ("mce", " | MCE"), ("years", " in the exposure time")):
+            words[f"p_{decision.event}_{lvl}"] = f"P({decision.event_words()}{at})"
+    return words
+
+
 def _table(df: pd.DataFrame) -> str:
     return (
         "<div class='wide'>"
@@ -111,26 +121,30 @@ def figures(outcome: Any, folder: Path) -> dict[str, tuple[Path, str]]:
     fig, axes = plt.subplots(
         len(analyses), 2, figsize=(11.0, 4.0 * len(analyses)), constrained_layout=True, squeeze=False
     )
+    shown = ("top_acc_max_g", "drift_ratio_max") if plan.building else ("acc_max_g", "impact_force_max_n")
     for row, (name, analysis) in zip(axes, analyses.items()):
-        plot_responses(analysis, "acc_max_g", ax=row[0])
-        plot_responses(analysis, "impact_force_max_n", ax=row[1])
+        plot_responses(analysis, shown[0], ax=row[0])
+        plot_responses(analysis, shown[1], ax=row[1])
         if several:
             row[0].set_title(f"{name} bumpers", fontsize=10)
     out["Responses"] = (
         _save(fig, folder / "responses.png"),
-        "median over the records (16-84 % shaded) per stripe, one colour per gap (the other "
+        ("the top floor's peak absolute acceleration and the largest storey drift ratio: " if plan.building
+         else "")
+        + "median over the records (16-84 % shaded) per stripe, one colour per gap (the other "
         f"design numbers at their first value){'; one row per bumper type' if several else ''}",
     )
     fig, axes = plt.subplots(
         1, len(analyses), figsize=(6.5 * len(analyses), 4.0), constrained_layout=True, squeeze=False
     )
     for ax, (name, analysis) in zip(axes[0], analyses.items()):
-        analysis.plot("contact", ax=ax)
+        analysis.plot(plan.event, plan.limit, ax=ax)
         if several:
             ax.set_title(f"{name} bumpers", fontsize=10)
-    out["Fragility of pounding"] = (
+    out[f"Fragility of {decision.event_words()}"] = (
         _save(fig, folder / "fragility.png"),
-        "fraction of runs with an impact per stripe, and the fitted lognormal curves"
+        f"fraction of runs with {'an impact' if plan.event == 'contact' else decision.event_words()} per "
+        "stripe, and the fitted lognormal curves"
         f"{'; one panel per bumper type' if several else ''}",
     )
     fig, axes = plt.subplots(2, 2, figsize=(11.0, 8.0), constrained_layout=True)
@@ -146,7 +160,7 @@ def figures(outcome: Any, folder: Path) -> dict[str, tuple[Path, str]]:
     decision.plot(ax=ax)
     out["Design chart"] = (
         _save(fig, folder / "design_chart.png"),
-        "the probability of pounding at the design and MCE levels against the gap",
+        f"the probability of {decision.event_words()} at the design and MCE levels against the gap",
     )
     return out
 
@@ -243,7 +257,7 @@ def write_report(outcome: Any, folder: Path) -> Path:
             ),
             {
                 "item": "target",
-                "value": f"P(pounding | {'MCE' if plan.level == 'mce' else 'design'}) <= "
+                "value": f"P({decision.event_words()} | {'MCE' if plan.level == 'mce' else 'design'}) <= "
                 f"{plan.target_probability:g}",
             },
         ]
@@ -254,11 +268,11 @@ def write_report(outcome: Any, folder: Path) -> Path:
         f"<h1>{e(plan.title)}</h1>",
         "<h2>Verdict</h2>",
         f"<p><b>{e(decision.verdict())}</b></p>",
-        _table(table.rename(columns=COLUMN_WORDS)),
+        _table(table.rename(columns=_words(plan, decision))),
         "<h2>The design</h2>",
         _table(settings),
         _table(statuses),
-        "<h2>Fragility of pounding per design point</h2>",
+        f"<h2>Fragility of {e(decision.event_words())} per design point</h2>",
         _table(fragility) if len(fragility) else "<p>No design point has a fitted curve.</p>",
         "<h2>The suite scaled to the MCE level</h2>",
         f"<p>One factor for the suite so that its mean is not below the MCE spectrum from "
