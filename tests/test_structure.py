@@ -326,7 +326,7 @@ def test_the_command_line_runs_a_structure_and_other_commands_say_they_take_one_
     assert len(pd.read_csv(out["contacts"])) > 0
     assert "displacement_m[3]" in pd.read_csv(out["history"], nrows=2).columns
     assert out["plot"].stat().st_size > 10_000
-    one_mass = runner.invoke(app, ["basins", str(building), "--a-g", "0.1", "--freq", "1.0"])
+    one_mass = runner.invoke(app, ["coexistence", str(building)])
     assert one_mass.exit_code == 2 and "takes one mass" in one_mass.output, one_mass.output
     diagram = runner.invoke(app, ["bifurcation", str(building), "--a-g", "0.3", "--fmin", "0.6",
                                   "--fmax", "0.8", "--fstep", "0.2", "--transient-cycles", "20",
@@ -341,6 +341,10 @@ def test_the_command_line_runs_a_structure_and_other_commands_say_they_take_one_
                                "--transient-cycles", "10"])
     assert exps.exit_code == 0, exps.output
     assert "x_0, x_1, x_2, x_3" in exps.output
+    held = runner.invoke(app, ["basins", str(building), "--a-g", "0.1", "--freq", "1.0", "--n", "2",
+                               "--max-cycles", "40", "--scheduler", "serial"])
+    assert held.exit_code == 0, held.output
+    assert "attractor 0" in held.output
     steps = tmp_path / "steps.csv"
     swept = runner.invoke(app, ["sweep", str(building), "--a-g", "0.3", "--fmin", "0.5", "--fmax", "1.1",
                                 "--fstep", "0.3", "--out", str(steps)])

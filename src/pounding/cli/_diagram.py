@@ -137,15 +137,16 @@ def basins_command(
     """Basins of attraction: every initial state of a box (at table phase 0) run until it settles;
     the responses it settles on (attractors) found, and the share of states that end on each."""
     from ..excitation import Harmonic
-    from ..protocols.basins import basins
+    from ..protocols.basins import basins, open_range
 
     paths = files(out=(out, CSV), netcdf=(netcdf, NETCDF))
     plot = figure_path("--plot", plot)
-    osc = system(system_file, preset, bumpers=not no_bumpers)
-    b = osc.bumpers
+    osc = system(system_file, preset, bumpers=not no_bumpers, structures=True)
+    one_mass_options(osc, no_bumpers)
+    lo, hi = open_range(osc)  # (a structure's: the shifts of it as one body that leave it open)
     d_box = None if dmin is None and dmax is None else (
-        dmin if dmin is not None else (-b.gap_left if b is not None else -0.05),
-        dmax if dmax is not None else (b.gap_right if b is not None else 0.05))
+        dmin if dmin is not None else (lo if lo > -float("inf") else -0.05),
+        dmax if dmax is not None else (hi if hi < float("inf") else 0.05))
     kwargs = dict(displacement_m=d_box, velocity_m_s=(vmin, vmax), max_cycles=max_cycles,
                   scheduler=scheduler, workers=workers, seed=seed)
     kwargs.update(dict(n=random, sampling="random") if random is not None else dict(n=(n, n)))

@@ -194,16 +194,48 @@ class StructureState:
     n_dof: int
 
     @classmethod
-    def at_rest(cls, structure: Structure | Adjacent, time_s: float = 0.0) -> "StructureState":
-        """At rest at ``time_s``: every level at 0, the contacts' laws relaxed, the isolators on their
-        backbones at 0."""
+    def at_rest(cls, structure: Structure | Adjacent, time_s: float = 0.0, displacement_m: float = 0.0,
+                velocity_m_s: float = 0.0) -> "StructureState":
+        """At ``time_s``, the contacts' laws relaxed: every level at rest at 0, or the (first) structure
+        shifted as one body, each of its moving levels at ``displacement_m`` (m, relative to the ground)
+        moving at ``velocity_m_s`` (m/s), its isolator where a slow push from 0 would leave it (on its
+        backbone), a fixed base's first storey deformed by the shift; the stands and a second structure
+        at rest.  The shift must leave every wall and link open."""
         if not isinstance(structure, (Structure, Adjacent)):
             raise InputError(Problem.WRONG_TYPE, "structure", structure, got=type(structure).__name__,
                              expected="pounding.Structure or pounding.Adjacent")
         time_s = at_most("time_s", real("time_s", time_s), MAX_TIME_S, " s", "give the time in s")
+        d = at_most("displacement_m", real("displacement_m", displacement_m), 100.0, " m",
+                    "give the displacement in m")
+        v = at_most("velocity_m_s", real("velocity_m_s", velocity_m_s), 1000.0, " m/s",
+                    "give the velocity in m/s")
         asm = assemble(structure)
-        vec = np.zeros(asm.system.layout["size"])
+        lay = asm.system.layout
+        vec = np.zeros(lay["size"])
         vec[0] = time_s
+        moved = [dof for dof in asm.dofs[0] if dof >= 0]
+        vec[[lay["x"] + q for q in moved]] = d
+        vec[[lay["v"] + q for q in moved]] = v
+        x = vec[lay["x"]:lay["x"] + asm.system.n]
+        for c, (i, j, sign, gap, _) in enumerate(asm.pairs):
+            depth = sign * (x[i] - (x[j] if j >= 0 else 0.0)) - gap
+            if depth > 0.0:
+                slot = asm.slots[c]
+                what = (f"link {slot[1]}" if slot[0] < 0 else
+                        f"wall {slot[1]}'s {('left', 'right')[slot[2]]} side")
+                raise InputError(Problem.BAD_STATE, "displacement_m", d,
+                                 why=f"puts {what} {depth:g} m past its gap",
+                                 fix="give a shift that leaves every wall and link open (a state in contact "
+                                     "comes from a run's final_state)")
+        first = 0
+        for e, (i, j, _, breaks, rule) in enumerate(asm.elements):  # (each on its backbone)
+            u = x[i] - (x[j] if j >= 0 else 0.0)
+            b = np.asarray(breaks, dtype=float)
+            if rule == 1:
+                vec[lay["region"] + e] = np.sign(u) * np.searchsorted(b, abs(u), side="right")
+            else:
+                vec[lay["base"] + first:lay["base"] + first + b.size] = u - np.clip(u, -b, b)
+            first += b.size
         return cls._of(vec, asm.dofs, asm.system.n)
 
     @classmethod

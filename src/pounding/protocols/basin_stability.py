@@ -115,7 +115,7 @@ def basin_stability_map(oscillator: Oscillator, a_g_levels: Any, freqs_hz: Any, 
         exc = Harmonic(float(levels[i]), float(freqs[j]))
         for k in range(0, samples, ROWS_PER_TASK):
             chunk = starts[k:k + ROWS_PER_TASK]
-            tasks.append((system, exc.peak_m_s2, exc.omega_rad_s, chunk, steady, float(rtol)))
+            tasks.append((system, exc.peak_m_s2, exc.omega_rad_s, chunk, steady, float(rtol), None))
             where.append((i, j, k))
     ran = run_tasks(run_states, tasks, scheduler=scheduler, workers=workers, progress=progress,
                     label="basin stability", total=len(points) * samples, on_error="stop")

@@ -24,7 +24,12 @@ from .._runner import Context, run_tasks
 from .._runner.progress import Progress
 from ..engine import State
 from ..engine._layout import T
+from .. import _core
+from ..engine._system import EXC_HARMONIC, Forcing
 from ..engine.simulate import check_oscillator, check_rtol, kernel_system
+from ..engine.structure import StructureState, assemble
+from ..model.adjacent import Adjacent
+from ..model.structure import Structure
 from ..excitation import Harmonic
 from ..metrics._impacts import S_COUNT, SIDE_SUMS
 from ..model import Oscillator
@@ -48,15 +53,17 @@ def run_states(task: tuple, ctx: Context) -> np.ndarray:
     """Run each initial state of the task until it settles: per state, a row of the ``R_*`` columns
     (period, alpha, excursion, contacts per cycle with the left and with the right bumper, D and V
     at the section, cycles run).  ``task``: (system, amplitude,
-    omega, states (n, state length), steady options, rtol)."""
-    system, amp, omega, states, steady, rtol = task
+    omega, states (n, state length), steady options, rtol, signs), ``signs`` for a structure (its contact
+    slots' signs; None for one mass): its settled window is run once more, for its largest alpha over every
+    mass and its contacts at every wall side and link (``_window_row``)."""
+    system, amp, omega, states, steady, rtol, signs = task
     out = np.full((len(states), N_ROW), np.nan)
     try:
         for i, start in enumerate(states):
             if ctx.stopped():
                 raise Interrupted(out, i, len(states), "states")
-            st, n, k, win, _, strobes, code = step_kernel(system, amp, omega, start.copy(), steady, rtol,
-                                                          1_000_000, ctx.control)
+            _, n, k, win, win_state, strobes, code = step_kernel(system, amp, omega, start.copy(), steady,
+                                                                 rtol, 1_000_000, ctx.control)
             if code == Status.INTERRUPTED:  # (stopped: Ctrl-C; the state is left NaN)
                 raise Interrupted(out, i, len(states), "states")
             per_cycle = 1.0 / max(win[W_CYCLES], 1.0)
@@ -64,6 +71,9 @@ def run_states(task: tuple, ctx: Context) -> np.ndarray:
                       win[W_AMAX] / amp, 0.5 * (win[W_DMAX] - win[W_DMIN]),
                       win[W_SUMS + S_COUNT] * per_cycle, win[W_SUMS + SIDE_SUMS + S_COUNT] * per_cycle,
                       strobes[-1, 0], strobes[-1, 1], n)
+            if signs is not None and code == Status.SUCCESS:
+                out[i, [R_ALPHA, R_LEFT, R_RIGHT]] = _window_row(system, signs, amp, omega, win_state,
+                                                                 int(win[W_CYCLES]), rtol, ctx)
             ctx.advance(1)
     except KeyboardInterrupt as stop:  # (a progress callback's Ctrl-C: keep the states finished)
         if isinstance(stop, Interrupted):
@@ -72,7 +82,24 @@ def run_states(task: tuple, ctx: Context) -> np.ndarray:
     return out
 
 
-def basins(oscillator: Oscillator, excitation: Harmonic, *, displacement_m: Any = None,
+def _window_row(system: Any, signs: np.ndarray, amp: float, omega: float, win_state: np.ndarray, m: int,
+                rtol: float, ctx: Context) -> tuple[float, float, float]:
+    """A structure's settled window run once more from its exact start: (its largest alpha over every mass,
+    contacts per cycle at the wall sides and links that stop negative motion, at those that stop positive
+    motion)."""
+    t0 = float(win_state[T])
+    period = 2.0 * math.pi / omega
+    forcing = Forcing(EXC_HARMONIC, np.array([amp, omega, -(omega * t0)]), np.zeros(1), np.zeros(1))
+    out = _core.run(system, forcing, win_state.copy(), t0 + m * period, -1.0, rtol, 1_000_000, False,
+                    ctx.control)
+    contacts, extrema = out[2], out[5]
+    amax = float(np.max(extrema[:7 * system.n].reshape(system.n, 7)[:, 4]))
+    ended = contacts[np.isfinite(contacts[:, 2])] if len(contacts) else np.zeros((0, 9))
+    slot_sign = signs[ended[:, 0].astype(int)] if len(ended) else np.zeros(0)
+    return amax / amp, float(np.sum(slot_sign < 0)) / m, float(np.sum(slot_sign > 0)) / m
+
+
+def basins(oscillator: Any, excitation: Harmonic, *, displacement_m: Any = None,
            velocity_m_s: Any = None, n: Any = None, sampling: str = "grid", seed: int = 0,
            max_cycles: int = 500, measure_cycles: int = 5, max_period: int = 8, steady_rtol: float = 1e-8,
            match_rtol: float = 1e-4, rtol: float = 1e-10, scheduler: Any = None, workers: Any = None,
@@ -81,13 +108,18 @@ def basins(oscillator: Oscillator, excitation: Harmonic, *, displacement_m: Any 
 
     Parameters
     ----------
-    oscillator : Oscillator
-        The system.
+    oscillator : Oscillator, Structure or Adjacent
+        The system.  A structure's initial states shift it (the first of a pair) as one body:
+        each of its moving levels at the state's displacement and velocity, its isolator on its
+        backbone (``StructureState.at_rest``); its attractors are matched by their largest alpha
+        over every mass and their contacts per cycle at every wall side and link, and their
+        ``excursion_m``, ``displacement_m`` and ``velocity_m_s`` are its first moving mass's.
     excitation : Harmonic
         The shaking (its phase is ignored: every state starts at table phase 0).
     displacement_m, velocity_m_s : (float, float), optional
-        The box of initial displacements (m, between the bumpers' surfaces) and velocities (m/s);
-        default: the gaps (or +-50 mm without bumpers) and +-1 m/s.
+        The box of initial displacements (m, between the bumpers' surfaces; a structure's: the
+        shifts that leave its walls and links open) and velocities (m/s); default: the gaps (or
+        +-50 mm without bumpers) and +-1 m/s.
     n : (int, int) or int, optional
         Grid points in displacement and velocity (``sampling="grid"``, default 50 x 50), or the
         number of random states (``sampling="random"``, default 2500).
@@ -142,7 +174,9 @@ def basins(oscillator: Oscillator, excitation: Harmonic, *, displacement_m: Any 
     >>> b.fractions.round(2).tolist()
     [0.51, 0.49]
     """
-    check_oscillator(oscillator)
+    several = isinstance(oscillator, (Structure, Adjacent))
+    if not several:
+        check_oscillator(oscillator)
     if not isinstance(excitation, Harmonic):
         raise InputError(Problem.WRONG_TYPE, "excitation", excitation, got=type(excitation).__name__,
                          expected="pounding.Harmonic (basins are of a periodic forcing)")
@@ -162,10 +196,15 @@ def basins(oscillator: Oscillator, excitation: Harmonic, *, displacement_m: Any 
     match_rtol = positive("match_rtol", match_rtol, "(relative)")
     rtol = check_rtol(rtol)
     starts = initial_states(oscillator, dd, vv)
-    system = kernel_system(oscillator)
+    signs = None
+    if several:
+        asm = assemble(oscillator)
+        system, signs = asm.system, np.array([pair[2] for pair in asm.pairs], dtype=float)
+    else:
+        system = kernel_system(oscillator)
     amp, omega = excitation.peak_m_s2, excitation.omega_rad_s
     chunks = [starts[i:i + ROWS_PER_TASK] for i in range(0, len(starts), ROWS_PER_TASK)]
-    tasks = [(system, amp, omega, c, steady, float(rtol)) for c in chunks]
+    tasks = [(system, amp, omega, c, steady, float(rtol), signs) for c in chunks]
     ran = run_tasks(run_states, tasks, scheduler=scheduler, workers=workers, progress=progress,
                     label=f"basins at {excitation.freq_hz:g} Hz", total=len(starts), on_error="stop")
     ran.raise_first_error(lambda i: f"the states {i * ROWS_PER_TASK} to {(i + 1) * ROWS_PER_TASK - 1}")
@@ -278,17 +317,37 @@ class Basins:
                 f"{len(self.attractors)} attractors, fractions {shares}; not settled {self.not_settled:.3f})")
 
 
-def state_box(osc: Oscillator, displacement_m: Any, velocity_m_s: Any) -> tuple[tuple, tuple]:
+def state_box(osc: Any, displacement_m: Any, velocity_m_s: Any) -> tuple[tuple, tuple]:
     """The box of initial displacements (between the bumpers' surfaces; default the gaps, or +-50 mm
-    without bumpers) and velocities (default +-1 m/s), checked."""
-    b = osc.bumpers
+    without bumpers; a structure's: the shifts that leave its walls and links open) and velocities
+    (default +-1 m/s), checked."""
+    lo, hi = open_range(osc)
+    bounded = np.isfinite(lo) or np.isfinite(hi)
     d_box = _box("displacement_m", displacement_m,
-                 (-b.gap_left, b.gap_right) if b is not None else (-0.05, 0.05), "m")
-    if b is not None and (d_box[0] < -b.gap_left or d_box[1] > b.gap_right):
-        raise InputError(Problem.OUT_OF_RANGE, "displacement_m", d_box,
-                         range=f"[{-b.gap_left:g}, {b.gap_right:g}]",
-                         hint=" (between the bumpers' surfaces, m)")
+                 (lo if np.isfinite(lo) else -0.05, hi if np.isfinite(hi) else 0.05), "m")
+    if bounded and (d_box[0] < lo or d_box[1] > hi):
+        raise InputError(Problem.OUT_OF_RANGE, "displacement_m", d_box, range=f"[{lo:g}, {hi:g}]",
+                         hint=" (between the bumpers' surfaces, m)" if isinstance(osc, Oscillator) else
+                         " (the shifts of the structure that leave its walls and links open, m)")
     return d_box, _box("velocity_m_s", velocity_m_s, (-1.0, 1.0), "m/s")
+
+
+def open_range(osc: Any) -> tuple[float, float]:
+    """The displacements (m) the mass, or a structure shifted as one body (its first's moving levels),
+    can start at with every contact open: (-inf, inf) without any."""
+    if isinstance(osc, Oscillator):
+        b = osc.bumpers
+        return (-b.gap_left, b.gap_right) if b is not None else (-math.inf, math.inf)
+    asm = assemble(osc)
+    moved = {dof for dof in asm.dofs[0] if dof >= 0}
+    lo, hi = -math.inf, math.inf
+    for i, j, sign, gap, _ in asm.pairs:  # (open while sign (x_i - x_j) <= gap)
+        side = (i in moved) - (j in moved)  # (+1: x_i - x_j is the shift; -1: minus it; 0: it does not move)
+        if side * sign > 0:
+            hi = min(hi, gap)
+        elif side * sign < 0:
+            lo = max(lo, -gap)
+    return lo, hi
 
 
 def steady_options(max_cycles: Any, measure_cycles: Any, max_period: Any, steady_rtol: Any) -> tuple:
@@ -307,10 +366,12 @@ def steady_options(max_cycles: Any, measure_cycles: Any, max_period: Any, steady
     return (True, max_cycles, measure_cycles, float(steady_rtol), max_period)
 
 
-def initial_states(osc: Oscillator, dd: np.ndarray, vv: np.ndarray) -> np.ndarray:
+def initial_states(osc: Any, dd: np.ndarray, vv: np.ndarray) -> np.ndarray:
     """State vectors at time 0 (table phase 0), the bumpers relaxed and the isolator on its
-    backbone, at displacements ``dd`` (m) and velocities ``vv`` (m/s); shape (states, length)."""
-    starts = np.array([State.at_rest(osc, 0.0, float(x), float(y)).vector for x, y in zip(dd, vv)])
+    backbone, at displacements ``dd`` (m) and velocities ``vv`` (m/s) (a structure's: its first's
+    moving levels shifted as one body, ``StructureState.at_rest``); shape (states, length)."""
+    kind = StructureState if isinstance(osc, (Structure, Adjacent)) else State
+    starts = np.array([kind.at_rest(osc, 0.0, float(x), float(y)).vector for x, y in zip(dd, vv)])
     starts[:, T] = 0.0
     return starts
 
