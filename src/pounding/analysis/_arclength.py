@@ -18,18 +18,18 @@ from __future__ import annotations
 
 import copy
 from dataclasses import dataclass
-from typing import Optional
+from typing import Any, Optional
 
 import numpy as np
 
 from .._errors import InputError
+
 from ..engine import Run
-from ..engine._layout import A_TSTART, ACC_L, ACC_R, IN_L, IN_R
-from ..engine._layout import T as I_T
 from ..excitation import Harmonic
 from ..model import Oscillator
 from ..model.dotted import get_value, set_value
 from .periodic import _Failed, _Shooter
+from .structure_periodic import _StructureShooter
 
 
 @dataclass
@@ -54,10 +54,11 @@ class Point:
 
 
 class Family:
-    """The maps ``P(.; p)``, with fixed scales: ``length_m`` for D and the compressions and
-    slips, ``length_m * omega_ref`` for V, 1 for the Bouc-Wen z, ``p_scale`` for p."""
+    """The maps ``P(.; p)``, with fixed scales: ``length_m`` for the displacements, compressions and
+    slips, ``length_m * omega_ref`` for the velocities, 1 for the Bouc-Wen z, ``p_scale`` for p.  The
+    system is one mass, or a structure or a pair (its shooter's coordinates, the same way)."""
 
-    def __init__(self, oscillator: Oscillator, a_g: float, freq_hz: float, parameter: str,
+    def __init__(self, oscillator: Any, a_g: float, freq_hz: float, parameter: str,
                  period_multiple: int,
                  exact: bool, phase: float, length_m: float, p_scale: float, omega_ref: float) -> None:
         self.osc = oscillator
@@ -73,9 +74,10 @@ class Family:
         self.fell_back = ""
         self.length_m = length_m
         sh = self._ref = self.shooter(self.start_value)  # (for what does not depend on p: the coordinates)
-        self.n = sh.h.size + int(sh.z_max > 0.0)
+        labels = sh.labels()
+        self.n = len(labels)
         self.scales = np.full(self.n, length_m)
-        self.scales[1] = length_m * omega_ref
+        self.scales[[i for i, name in enumerate(labels) if name == "V" or name.startswith("v_")]] *= omega_ref
         if sh.z_max > 0.0:
             self.scales[-1] = 1.0
 
@@ -84,7 +86,7 @@ class Family:
         return {"freq_hz": self.freq_hz, "a_g": self.a_g}.get(self.parameter, np.nan) if self.table is None \
             else float(get_value(self.table, self.parameter))
 
-    def system(self, p: float, a_g: Optional[float] = None) -> tuple[Oscillator, Harmonic]:
+    def system(self, p: float, a_g: Optional[float] = None) -> tuple[Any, Harmonic]:
         """The system and forcing at parameter value ``p`` and table acceleration ``a_g`` (g; default
         the family's: a two-parameter curve passes its own), ``_Failed`` where there is none (a value
         the continuation stepped to, not one the caller gave)."""
@@ -96,7 +98,7 @@ class Family:
                 return self.osc, Harmonic(p, self.freq_hz, phase=self.phase)
             table = copy.deepcopy(self.table)
             set_value(table, self.parameter, float(p))
-            return Oscillator.from_dict(table), Harmonic(a_g, self.freq_hz, phase=self.phase)
+            return type(self.osc).from_dict(table), Harmonic(a_g, self.freq_hz, phase=self.phase)
         except InputError as exc:  # (the model's checks' words, as the solver's failure)
             raise _Failed(f"no system at {self.parameter} = {p:g} ({exc})") from None
 
@@ -114,12 +116,13 @@ class Family:
     def omega(self, p: float) -> float:
         return self.shooter(p).exc.omega_rad_s
 
-    def shooter(self, p: float, a_g: Optional[float] = None) -> _Shooter:
+    def shooter(self, p: float, a_g: Optional[float] = None) -> Any:
         key = (p, self.a_g if a_g is None else a_g)  # (a two-parameter curve passes its a_g)
         sh = self._cache.get(key)
         if sh is None:
             osc, exc = self.system(p, a_g)
-            sh = _Shooter(osc, exc, self.k / exc.freq_hz, self.exact, getattr(self, "_ref", None))
+            kind = _Shooter if isinstance(osc, Oscillator) else _StructureShooter
+            sh = kind(osc, exc, self.k / exc.freq_hz, self.exact, getattr(self, "_ref", None))
             if len(self._cache) > 32:
                 self._cache.clear()
             self._cache[key] = sh
@@ -258,18 +261,6 @@ def fold_test(mult: np.ndarray) -> float:
     return float(mult[int(np.argmin(np.abs(mult - 1.0)))].real - 1.0)
 
 
-def at_section(vec: np.ndarray) -> np.ndarray:
-    """The state vector moved to time 0 (a whole number of forcing periods back): a contact in
-    progress keeps its start relative to the section."""
-    out = np.array(vec, dtype=float)
-    t = out[I_T]
-    for flag, acc in ((IN_L, ACC_L), (IN_R, ACC_R)):
-        if out[flag]:
-            out[acc + A_TSTART] -= t
-    out[I_T] = 0.0
-    return out
-
-
 # A follower has closed on itself when a step passes by the point it must come back to nearer than
 # this fraction of the step, heading the way the curve left that point.  Why 0.06: a step's chord
 # lies within theta / 8 of its length from the arc it cuts, theta the angle the tangent turns over
@@ -306,9 +297,10 @@ class Closure:
         return float(np.linalg.norm(u + t * seg - self.anchor)) < CLOSE_TOL * ds
 
 
-def system_at(osc: Oscillator, parameter: str, value: float) -> Oscillator:
+def system_at(osc: Any, parameter: str, value: float) -> Any:
+    """The system (one mass, a structure or a pair) with its number ``parameter`` set to ``value``."""
     if parameter in ("freq_hz", "a_g"):
         return osc
     table = osc.to_dict()
     set_value(table, parameter, float(value))
-    return Oscillator.from_dict(table)
+    return type(osc).from_dict(table)

@@ -6,9 +6,10 @@ from __future__ import annotations
 import math
 from typing import Any
 
+import numpy as np
+
 from .._checks import one_of, real
 from .._errors import InputError, Problem
-from ..engine import Run
 from ..engine.simulate import simulate
 from ..excitation import Harmonic
 from ..model import Oscillator
@@ -73,9 +74,16 @@ def settled(oscillator: Any, excitation: Harmonic, settle_cycles: int) -> Any:
                          ) from None
 
 
-def length_scale(oscillator: Oscillator, run: Run) -> float:
+def length_scale(oscillator: Any, run: Any) -> float:
     """The lengths' scale of a family of orbits, m: half the total gap, or the orbit's largest |D|
-    if larger (1e-6 m at least)."""
-    b = oscillator.bumpers
-    return max(b.total_gap / 2.0 if b is not None else 0.0, abs(run.displacement_max),
-               abs(run.displacement_min), 1e-6)
+    if larger (1e-6 m at least); a structure's: half its narrowest wall's or link's total gap, or
+    its levels' largest displacement."""
+    if isinstance(oscillator, Oscillator):
+        b = oscillator.bumpers
+        return max(b.total_gap / 2.0 if b is not None else 0.0, abs(run.displacement_max),
+                   abs(run.displacement_min), 1e-6)
+    parts = (run.first, run.second) if hasattr(run, "first") else (run,)
+    size = max(float(np.max(np.abs(np.concatenate((p.displacement_max, p.displacement_min))))) for p in parts)
+    structures, links = hy.structures_and_links(oscillator)
+    gaps = [w.gap_left_m + w.gap_right_m for s in structures for w in s.walls] + [k.gap_m for k in links]
+    return max(min(gaps) / 2.0 if gaps else 0.0, size, 1e-6)

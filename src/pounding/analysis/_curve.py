@@ -25,7 +25,7 @@ from typing import Optional
 import numpy as np
 
 from ..engine import Run
-from ._arclength import Closure, Family, at_section, fold_test
+from ._arclength import Closure, Family, fold_test
 from .periodic import _Failed
 
 
@@ -310,7 +310,7 @@ class CurveFollower:
         except _Failed:
             return None
         fam.set_phase(phase)
-        moved = at_section(end)
+        moved = sh.at_section(end)
         normal = np.zeros(fam.n + 2)
         normal[-2] = 1.0  # (f held; a_G follows from g = 0 and the orbit's equations)
         target = np.concatenate((fam.coords(moved) / fam.scales, [pt.f / self.fs, pt.a / self.as_]))

@@ -10,7 +10,6 @@ from typing import TYPE_CHECKING, Callable, Optional
 
 import numpy as np
 
-from ..engine import State
 from ._arclength import Point
 from .branch import Bifurcation
 
@@ -25,10 +24,8 @@ def tests_at(fl: "Follower", pt: Point) -> dict[str, float]:
     real_ = np.abs(mult.imag) <= 1e-9 * np.maximum(np.abs(mult), 1e-300)
     out["period-doubling"] = float(np.count_nonzero(real_ & (mult.real < -1.0)))
     out["neimark-sacker"] = float(np.count_nonzero(~real_ & (np.abs(mult) > 1.0)))
-    h = fl.fam.shooter(pt.p).h
-    if np.isfinite(h.gaps[0]):
-        out["grazing left"] = (pt.run.displacement_min + h.gaps[0]) / fl.fam.length_m
-        out["grazing right"] = (h.gaps[1] - pt.run.displacement_max) / fl.fam.length_m
+    for side, clearance in fl.fam.shooter(pt.p).clearances(pt.run).items():  # (bumpers, walls, links)
+        out[f"grazing {side}"] = clearance / fl.fam.length_m
     return out
 
 def psi_bp(fl: "Follower", pt: Point) -> float:
@@ -55,8 +52,7 @@ def branch_point(fl: "Follower", a: Point, b: Point, ds: float) -> bool:
     fl.bifs.append(bif)
     if not fl.switch_branches:
         return False
-    where = np.array([pt.p / fam.p_scale, pt.run.displacement_max / fam.length_m,
-                      pt.run.displacement_min / fam.length_m])
+    where = np.append(pt.p / fam.p_scale, np.array(fam._ref.extent(pt.run)) / fam.length_m)
     if any(np.abs(where - w).max() < 1e-5 for w in fl.switched):
         fl._append(pt, fl._s(a, pt))
         fl.looped = True
@@ -160,11 +156,10 @@ def bifurcation_at(fl: "Follower", kind: str, side: str, pt: Point, located: boo
         w, v = np.linalg.eig(pt.jac)
         i = int(np.argmin(np.abs(w + 1.0)))
         direction = pt.emb @ np.real(v[:, i])
-    peak = abs(exc.peak_m_s2)
-    return Bifurcation(kind, pt.p, exc.freq_hz, exc.a_g, pt.mult.copy(), State(pt.vec), len(fl.points),
-                       side,
-                       direction, fam.k, pt.run.abs_acceleration_max / peak if peak > 0 else math.nan,
-                       located, pt.phase, tangent, fam.parameter)
+    sh = fam.shooter(pt.p)
+    return Bifurcation(kind, pt.p, exc.freq_hz, exc.a_g, pt.mult.copy(), sh._state(pt.vec), len(fl.points),
+                       side, direction, fam.k, sh.summary(pt.run, exc)["alpha"], located, pt.phase, tangent,
+                       fam.parameter)
 
 # ---- the result
 

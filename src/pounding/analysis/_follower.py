@@ -6,16 +6,13 @@ from __future__ import annotations
 
 import math
 from dataclasses import replace
-from typing import Optional
+from typing import Any, Optional
 
 import numpy as np
 import pandas as pd
 
 from .._errors import InputError, Problem, Status
-from ..engine import State
-from ..engine.simulate import short_run
-from ..model import Oscillator
-from ._arclength import Closure, Family, Point, at_section, system_at
+from ._arclength import Closure, Family, Point, system_at
 from .branch import COLUMNS, Bifurcation, Branch
 from .periodic import _Failed
 from ._detect import branch_point, detect, locate, other_direction
@@ -53,7 +50,7 @@ class Follower:
         fam, n = self.fam, self.fam.n
         pt = fam.correct(vec, p_start, fam.coords(vec), p_start, np.zeros(n), 1.0, self.tol, max_iter=40)
         if pt is None:
-            raise InputError(Problem.BAD_STATE, "guess", State(vec),
+            raise InputError(Problem.BAD_STATE, "guess", fam._ref._state(vec),
                              why="leads to no periodic orbit at the start "
                              f"value {p_start:g} (Newton did not converge from it)",
                              fix="give a guess nearer the orbit (e.g. a sweep's window state), or start "
@@ -218,8 +215,7 @@ class Follower:
         fam = self.fam
 
         def sig(q: Point) -> np.ndarray:
-            return np.array([q.p / fam.p_scale, q.run.displacement_max / fam.length_m,
-                             q.run.displacement_min / fam.length_m])
+            return np.append(q.p / fam.p_scale, np.array(fam._ref.extent(q.run)) / fam.length_m)
 
         if self.closure is None:
             if len(self.points) >= 2:
@@ -231,7 +227,7 @@ class Follower:
         """Grow the length scale with the orbits (a resonance peak 30 times the first orbit
         would otherwise take the steps' whole length), the last tangent renormalised."""
         b, fam = self.points[-1], self.fam
-        size = max(abs(b.run.displacement_max), abs(b.run.displacement_min))
+        size = max(abs(x) for x in fam._ref.extent(b.run))
         if size <= 2.0 * fam.length_m:
             return
         old = fam.scales.copy()
@@ -280,12 +276,11 @@ class Follower:
         """The state of ``pt``'s orbit where the forcing's angle is ``phase`` (time 0)."""
         fam = self.fam
         dt = ((phase - pt.phase) % (2.0 * math.pi)) / fam.omega(pt.p)
-        osc, exc = fam.system(pt.p)
-        exc = replace(exc, phase=pt.phase)
-        run = short_run(osc, exc, dt, pt.vec) if dt > 0 else None
-        if run is not None and not run.success:
-            return None
-        return at_section(run.vector) if run is not None else pt.vec.copy()
+        sh = fam.shooter(pt.p)
+        if dt <= 0:
+            return pt.vec.copy()
+        end = sh.advance(replace(sh.exc, phase=pt.phase), dt, pt.vec)
+        return None if end is None else sh.at_section(end)
 
     def _append(self, pt: Point, ds: float) -> None:
         self.points.append(pt)
@@ -297,25 +292,16 @@ class Follower:
                      + a.tau_q * (b.p - a.p) / fam.p_scale)
 
     # ---- detection and location
-    def branch(self, oscillator: Oscillator, values: tuple, status: Status, message: str) -> Branch:
+    def branch(self, oscillator: Any, values: tuple, status: Status, message: str) -> Branch:
         fam = self.fam
         rows = []
         for pt, s in zip(self.points, self.arclength):
-            osc, exc = fam.system(pt.p)
-            run = pt.run
-            table = run.contact_table
-            done = table[np.isfinite(table[:, 2])]
-            peak = abs(exc.peak_m_s2)
-            gap = osc.bumpers.total_gap if osc.bumpers is not None else math.nan
-            exc_m = run.displacement_max - run.displacement_min
+            sh = fam.shooter(pt.p)
+            exc = replace(sh.exc, phase=pt.phase)
             mu = float(np.abs(pt.mult).max()) if pt.mult.size else 0.0
             rows.append({
                 "freq_hz": exc.freq_hz, "nu": exc.freq_hz / self.f_ref_hz, "a_g": exc.a_g,
-                "alpha": run.abs_acceleration_max / peak if peak > 0 else math.nan, "excursion_m": exc_m,
-                "displacement_max_m": run.displacement_max, "displacement_min_m": run.displacement_min,
-                "eta": exc_m / gap if gap > 0 else math.nan, "stable": mu < 1.0, "max_abs_multiplier": mu,
-                "contacts_per_period": int(done.shape[0]),
-                "impact_velocity_max_m_s": float(np.abs(done[:, 3]).max()) if done.shape[0] else 0.0,
+                **sh.summary(pt.run, exc), "stable": mu < 1.0, "max_abs_multiplier": mu,
                 "period_multiple": fam.k, "residual": pt.residual, "arclength": s, "phase_rad": pt.phase,
             })
         df = pd.DataFrame(rows, columns=list(COLUMNS))

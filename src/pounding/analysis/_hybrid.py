@@ -42,8 +42,7 @@ def unsupported(system: "Oscillator | Structure | Adjacent") -> str | None:
     """Why the monodromy of this system (one mass, a structure or a pair) cannot be composed exactly here
     (None: it can)."""
     if isinstance(system, (Structure, Adjacent)):
-        adjacent = isinstance(system, Adjacent)
-        structures, links = (system.structures, system.links) if adjacent else ((system,), ())
+        structures, links = structures_and_links(system)
         named = len(structures) > 1
         for b, s in enumerate(structures):
             who = ("the first's " if b == 0 else "the second's ") if named else "its "
@@ -66,6 +65,13 @@ def unsupported(system: "Oscillator | Structure | Adjacent") -> str | None:
             if linear_form(law) is None:
                 return f"its {side} bumper's law is {type(law).__name__} (exact: Kelvin-Voigt)"
     return None
+
+
+def structures_and_links(model: "Structure | Adjacent") -> tuple[tuple, tuple]:
+    """(the structures, the links) of a structure or a pair."""
+    if isinstance(model, Adjacent):
+        return model.structures, model.links
+    return (model,), ()
 
 
 class NoExactMonodromy(Exception):

@@ -13,6 +13,18 @@ from .._errors import InputError, Problem
 from . import _hybrid as hy
 
 
+def at_section(vec: np.ndarray, layout: dict, n_contacts: int) -> np.ndarray:
+    """The state vector moved to time 0 (a whole number of forcing periods back): a contact in
+    progress keeps its start relative to the section (``layout``: the core system's)."""
+    out = np.array(vec, dtype=float)
+    t = out[0]
+    for c in range(n_contacts):
+        if out[layout["in"] + c]:
+            out[layout["acc"] + 7 * c] -= t  # (its running totals' first: the contact's start, A_TSTART)
+    out[0] = 0.0
+    return out
+
+
 class _Failed(Exception):
     """A solver's own failure at one point (not the caller's input): the engine could not run a
     period from a trial state, the state is none of the system's, or a parameter value the

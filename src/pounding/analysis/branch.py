@@ -25,6 +25,14 @@ COLUMNS = ("freq_hz", "nu", "a_g", "alpha", "excursion_m", "displacement_max_m",
            "period_multiple", "residual", "arclength", "phase_rad")
 
 
+def _first_mass(state: Any) -> tuple[float, float]:
+    """(displacement m, velocity m/s) of the mass, or of a structure's first moving mass (its base)."""
+    if isinstance(state, State):
+        return state.displacement_m, state.velocity_m_s
+    q = next(q for q, d in enumerate(state.dofs[0]) if d >= 0)
+    return float(state.displacements_m[q]), float(state.velocities_m_s[q])
+
+
 @dataclass(frozen=True, eq=False)
 class Bifurcation:
     """A special point of a branch, located between two of its points.
@@ -45,7 +53,7 @@ class Bifurcation:
         The forcing there (Hz, g).
     multipliers : ndarray of complex
         The orbit's Floquet multipliers there, largest modulus first.
-    state : State
+    state : State or StructureState
         The orbit's state at the section (time 0).
     index : int
         The branch's rows before it: it lies between rows ``index - 1`` and ``index``.
@@ -115,9 +123,12 @@ class Branch:
 
     Attributes
     ----------
-    oscillator : Oscillator
+    oscillator : Oscillator, Structure or Adjacent
         The system at the start (the parameter's value set as ``values[0]`` when it is a
-        number of the system).
+        number of the system).  A structure's rows give its largest alpha over every level,
+        its first moving mass's (its base's) extrema and excursion (``eta`` over its wall there),
+        and its contacts at every wall side and link; its grazings name the wall side or link
+        (``side``: ``wall0_left``, ``link0``).
     parameter : str
         ``"freq_hz"``, ``"a_g"`` or a dotted name of the system (``"bumpers.gap_left"``).
     values : tuple of float
@@ -220,8 +231,8 @@ class Branch:
         """Each orbit where the forcing's angle is ``phase_rad`` (0: table phase 0, the section a
         sweep's strobes and :func:`pounding.bifurcation_diagram` use): ``freq_hz``, ``a_g``,
         ``displacement_m``, ``velocity_m_s``, ``stable``, and ``point`` (the row of the branch's
-        table); a period-k orbit crosses it k times, one row each.  For branches in ``freq_hz``
-        or ``a_g``."""
+        table); a period-k orbit crosses it k times, one row each (a structure's: its first moving
+        mass's, its base's).  For branches in ``freq_hz`` or ``a_g``."""
         from .._checks import real
         from ..engine.simulate import simulate
         from ..excitation import Harmonic
@@ -234,14 +245,13 @@ class Branch:
         for i, row in enumerate(self.data.itertuples(index=False)):
             exc = Harmonic(float(row.a_g), float(row.freq_hz), phase=float(row.phase_rad))
             period = 2.0 * math.pi / exc.omega_rad_s
-            state = State(self.states[i])
+            state = self._state(i)
             wait = ((target - float(row.phase_rad)) % (2.0 * math.pi)) / exc.omega_rad_s
             for _ in range(self.period_multiple):
                 if wait > 1e-12 * period:
                     state = simulate(self.oscillator, exc, duration=wait, state=state,
                                      sample_rate_hz=0.0).final_state
-                rows.append((float(row.freq_hz), float(row.a_g), state.displacement_m, state.velocity_m_s,
-                             bool(row.stable), i))
+                rows.append((float(row.freq_hz), float(row.a_g), *_first_mass(state), bool(row.stable), i))
                 wait = period
         return pd.DataFrame(rows, columns=["freq_hz", "a_g", "displacement_m", "velocity_m_s", "stable",
                                            "point"])
@@ -267,15 +277,25 @@ class Branch:
         row = self.data.iloc[int(index)]
         osc = self.oscillator
         if self.parameter not in ("freq_hz", "a_g"):
-            from ..model import Oscillator
             from ..model.dotted import set_value
 
             d = osc.to_dict()
             set_value(d, self.parameter, float(row[self.parameter]))
-            osc = Oscillator.from_dict(d)
+            osc = type(osc).from_dict(d)
         exc = Harmonic(float(row["a_g"]), float(row["freq_hz"]), phase=float(row["phase_rad"]))
         kwargs.setdefault("period_multiple", self.period_multiple)
-        return periodic_orbit(osc, exc, guess=State(self.states[int(index)]), **kwargs)
+        return periodic_orbit(osc, exc, guess=self._state(int(index)), **kwargs)
+
+    def _state(self, index: int) -> Any:
+        """Orbit ``index``'s state at its section: a State, or a structure's StructureState."""
+        from ..model import Oscillator
+
+        if isinstance(self.oscillator, Oscillator):
+            return State(self.states[index])
+        from ..engine.structure import StructureState, assemble
+
+        asm = assemble(self.oscillator)
+        return StructureState._of(self.states[index], asm.dofs, asm.system.n)
 
     def plot(self, ax: Any = None, *, y: str = "alpha", x: Optional[str] = None,
              sweeps: "SweepResult | Sequence[SweepResult] | None" = None, **kwargs: Any) -> list:

@@ -27,10 +27,12 @@ from .._checks import integer, positive, real
 from .._errors import InputError, Interrupted, Problem, Status
 from ..engine import State
 from ..engine.simulate import check_oscillator, check_state, simulate
-from ..model import Oscillator
+from ..engine.structure import StructureState, check_structure_state
+from ..model.adjacent import Adjacent
 from ..model.dotted import why_unresolved
+from ..model.structure import Structure
 from . import _hybrid as hy
-from ._arclength import Family, at_section, system_at
+from ._arclength import Family, system_at
 from ._follower import Follower
 from .branch import Bifurcation, Branch
 from ._args import exact_monodromy, length_scale, section_angle, settled, step_size, tolerance
@@ -39,14 +41,14 @@ MAX_POINTS = 100_000
 
 
 def continuation(
-    oscillator: Oscillator,
+    oscillator: Any,
     a_g: Any,
     freqs_hz: Any,
     *,
     parameter: str = "freq_hz",
     values: Optional[tuple[float, float]] = None,
     period_multiple: int = 1,
-    guess: "State | Bifurcation | None" = None,
+    guess: "State | StructureState | Bifurcation | None" = None,
     tol: float = 1e-10,
     max_step: float = 0.02,
     max_points: int = 5000,
@@ -126,7 +128,10 @@ def continuation(
     >>> [round(b.freq_hz, 3) for b in branch.folds()]
     [1.237, 2.014, 1.605]
     """
-    check_oscillator(oscillator)
+    several = isinstance(oscillator, (Structure, Adjacent))
+    if not several:
+        check_oscillator(oscillator)
+    kind = StructureState if several else State
     parameter, values, a_g, freq_hz = _check_range(oscillator, parameter, a_g, freqs_hz, values)
     period_multiple = integer("period_multiple", period_multiple, 1, 64,
                               "give the orbits' period in forcing periods")
@@ -164,21 +169,23 @@ def continuation(
                              "periodic_orbit of period_multiple=2 from a sweep's state")
         period_multiple = guess.period_multiple * (2 if guess.kind == "period-doubling" else 1)
         phase_rad = guess.phase_rad
-    elif guess is not None and not isinstance(guess, State):
+    elif guess is not None and not isinstance(guess, kind):
         raise InputError(Problem.WRONG_TYPE, "guess", guess, got=type(guess).__name__,
-                         expected="pounding.State, or a period-doubling or branch-point Bifurcation")
+                         expected=f"pounding.{kind.__name__}, or a period-doubling or branch-point "
+                                  "Bifurcation")
     p0, p1 = values
     p_start = guess.value if isinstance(guess, Bifurcation) else p0
     start_osc = system_at(oscillator, parameter, p_start)
     fam_a_g = p_start if parameter == "a_g" else a_g
     fam_f = p_start if parameter == "freq_hz" else freq_hz
     f_mid = math.sqrt(p0 * p1) if parameter == "freq_hz" else freq_hz
-    if isinstance(guess, State):  # (its section: the forcing's angle at its time)
+    if isinstance(guess, kind):  # (its section: the forcing's angle at its time)
         phase_rad = section_angle((phase_rad + 2.0 * math.pi * fam_f * guess.time_s) % (2.0 * math.pi))
-    vec = _start_vector(start_osc, parameter, fam_a_g, fam_f, phase_rad, guess, settle_cycles)
-    length = length_scale(start_osc, _first_run(start_osc, fam_a_g, fam_f, phase_rad, vec, period_multiple))
     fam = Family(start_osc, fam_a_g, fam_f, parameter, period_multiple, exact,
-                 phase_rad, length, abs(p1 - p0), 2.0 * math.pi * f_mid)
+                 phase_rad, 1.0, abs(p1 - p0), 2.0 * math.pi * f_mid)
+    vec = _start_vector(start_osc, fam._ref, fam_a_g, fam_f, phase_rad, guess, settle_cycles)
+    fam.set_length(length_scale(start_osc, _first_run(fam._ref, fam_a_g, fam_f, phase_rad, vec,
+                                                      period_multiple)))
     follower = Follower(fam, p0, p1, tol, max_step, max_points, f_ref_hz)
     follower.doubled = isinstance(guess, Bifurcation) and guess.kind == "period-doubling"
     try:
@@ -203,7 +210,7 @@ def _pair(field: str, value: Any, unit: str) -> tuple[float, float]:
     return pair
 
 
-def _check_range(osc: Oscillator, parameter: Any, a_g: Any, freqs_hz: Any, values: Any) -> tuple:
+def _check_range(osc: Any, parameter: Any, a_g: Any, freqs_hz: Any, values: Any) -> tuple:
     if not isinstance(parameter, str):
         raise InputError(Problem.WRONG_TYPE, "parameter", parameter, got=type(parameter).__name__,
                          expected="str ('freq_hz', 'a_g' or a dotted name such as 'bumpers.gap_left')")
@@ -234,27 +241,32 @@ def _check_range(osc: Oscillator, parameter: Any, a_g: Any, freqs_hz: Any, value
     return parameter, pair, positive("a_g", a_g, "g"), positive("freqs_hz", freqs_hz, "Hz")
 
 
-def _start_vector(osc: Oscillator, parameter: str, a_g: float, freq_hz: float, phase: float,
-                  guess: Any, settle_cycles: int) -> np.ndarray:
+def _start_vector(osc: Any, sh: Any, a_g: float, freq_hz: float, phase: float, guess: Any,
+                  settle_cycles: int) -> np.ndarray:
+    """The first orbit's guess at the section (``sh``: the family's shooter, for the system's layout)."""
     from ..excitation import Harmonic
 
     if isinstance(guess, Bifurcation):
         return np.array(guess.state.vector, dtype=float)
-    if isinstance(guess, State):
+    if isinstance(guess, (State, StructureState)):
         try:
-            check_state(guess, osc)
+            if isinstance(guess, State):
+                check_state(guess, osc)
+            else:
+                check_structure_state(guess, osc)
         except InputError as exc:
             raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is not a state of this system ({exc})",
-                             fix="give a state of this oscillator, e.g. a run's final_state") from None
-        return at_section(guess.vector)
-    return at_section(settled(osc, Harmonic(a_g, freq_hz, phase=phase), settle_cycles).final_state.vector)
+                             fix="give a state of this system, e.g. a run's final_state") from None
+        return sh.at_section(guess.vector)
+    return sh.at_section(settled(osc, Harmonic(a_g, freq_hz, phase=phase), settle_cycles).final_state.vector)
 
 
-def _first_run(osc: Oscillator, a_g: float, freq_hz: float, phase: float, vec: np.ndarray, k: int) -> Any:
+def _first_run(sh: Any, a_g: float, freq_hz: float, phase: float, vec: np.ndarray, k: int) -> Any:
     from ..excitation import Harmonic
 
-    run = simulate(osc, Harmonic(a_g, freq_hz, phase=phase), k / freq_hz, State(vec), sample_rate_hz=0)
+    state = sh._state(vec)
+    run = simulate(sh.osc, Harmonic(a_g, freq_hz, phase=phase), k / freq_hz, state, sample_rate_hz=0)
     if not run.success:
-        raise InputError(Problem.BAD_STATE, "guess", State(vec), why=f"cannot be shot from: {run.message}",
+        raise InputError(Problem.BAD_STATE, "guess", state, why=f"cannot be shot from: {run.message}",
                          fix="start from another state, or a smaller a_g")
     return run

@@ -38,7 +38,7 @@ from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from . import _hybrid as hy
 from ._args import exact_monodromy, settled, tolerance
-from ._shooting import _Failed, _Newton
+from ._shooting import _Failed, _Newton, at_section
 
 
 
@@ -340,6 +340,41 @@ class _Shooter(_Newton):
     def section(self, vec: np.ndarray) -> np.ndarray:
         """(D, V) of a state vector, shape (2,)."""
         return vec[[I_D, I_V]]
+
+    # what a branch of orbits reads of each (analysis._follower, _detect)
+    def extent(self, run: Run) -> tuple[float, float]:
+        """The mass's largest and smallest displacement over the run, m."""
+        return float(run.displacement_max), float(run.displacement_min)
+
+    def clearances(self, run: Run) -> dict[str, float]:
+        """Each bumper's smallest clearance over the run, m (negative: touched), by side."""
+        gaps = self.h.gaps
+        if not np.isfinite(gaps[0]):
+            return {}
+        return {"left": float(run.displacement_min) + gaps[0], "right": gaps[1] - float(run.displacement_max)}
+
+    def summary(self, run: Run, exc: Harmonic) -> dict[str, float]:
+        """A branch's row of the orbit run over its period: alpha, excursion, extrema, eta, contacts."""
+        table = run.contact_table
+        done = table[np.isfinite(table[:, 2])]
+        peak = abs(exc.peak_m_s2)
+        b = self.osc.bumpers
+        gap = b.total_gap if b is not None else math.nan
+        exc_m = run.displacement_max - run.displacement_min
+        return {"alpha": run.abs_acceleration_max / peak if peak > 0 else math.nan, "excursion_m": exc_m,
+                "displacement_max_m": run.displacement_max, "displacement_min_m": run.displacement_min,
+                "eta": exc_m / gap if gap > 0 else math.nan, "contacts_per_period": int(done.shape[0]),
+                "impact_velocity_max_m_s": float(np.abs(done[:, 3]).max()) if done.shape[0] else 0.0}
+
+    def advance(self, exc: Harmonic, duration: float, vec: np.ndarray) -> Optional[np.ndarray]:
+        """The state vector ``duration`` s on under ``exc`` (None where the engine stopped)."""
+        run = short_run(self.osc, exc, duration, vec, self.system)
+        return np.array(run.vector) if run.success else None
+
+    def at_section(self, vec: np.ndarray) -> np.ndarray:
+        """The state vector moved to time 0 (a whole number of forcing periods back): a contact in
+        progress keeps its start relative to the section."""
+        return at_section(vec, self.system.layout, 2)
 
     def _scales(self, free_idx: np.ndarray) -> np.ndarray:
         s = np.full(free_idx.size, self.scale_d)

@@ -30,7 +30,7 @@ from ..model.contact_laws import linear_form
 from ..model.structure import Structure
 from . import _hybrid as hy
 from ._args import exact_monodromy, settled, tolerance
-from ._shooting import _Failed, _Newton
+from ._shooting import _Failed, _Newton, at_section
 
 ACT_YIELD = hy.ACT_YIELD
 
@@ -164,10 +164,12 @@ class _StructureShooter(_Newton):
     ``coords`` are the core's monodromy coordinates: the n displacements, the n velocities, the nc
     contacts' compressions, the n_sp springs' slips (then a Bouc-Wen z, where there is one)."""
 
-    def __init__(self, model: Structure | Adjacent, excitation: Harmonic, period: float, exact: bool) -> None:
+    def __init__(self, model: Structure | Adjacent, excitation: Harmonic, period: float, exact: bool,
+                 like: Optional["_StructureShooter"] = None) -> None:
         self.model, self.exc, self.period, self.exact = model, excitation, period, exact
+        self.osc = model  # (the name the one-mass shooter gives its system)
         self.fell_back = ""
-        self.asm: Assembly = assemble(model)
+        self.asm: Assembly = like.asm if like is not None and like.model is model else assemble(model)
         self.system = self.asm.system
         lay = self.system.layout
         self.lay = lay
@@ -283,6 +285,55 @@ class _StructureShooter(_Newton):
         """Every mass's (x, v) of a state vector, shape (2, n)."""
         lay = self.lay
         return np.stack([vec[lay["x"]:lay["x"] + self.n], vec[lay["v"]:lay["v"] + self.n]])
+
+    # what a branch of orbits reads of each (analysis._follower, _detect)
+    def _parts(self, run: Any) -> tuple:
+        return (run.first, run.second) if hasattr(run, "first") else (run,)
+
+    def extent(self, run: Any) -> tuple[float, float]:
+        """The first moving mass's largest and smallest displacement over the run, m (the base of an
+        isolated building)."""
+        first = self._parts(run)[0]
+        q = next(q for q, d in enumerate(self.asm.dofs[0]) if d >= 0)
+        return float(first.displacement_max[q]), float(first.displacement_min[q])
+
+    def clearances(self, run: Any) -> dict[str, float]:
+        """Each wall side's and link's smallest clearance over the run, m (negative: touched)."""
+        labels = self.labels()[2 * self.n:2 * self.n + self.nc]
+        return {name.replace("delta_", ""): float(c) for name, c in zip(labels, run.clearance_m)}
+
+    def summary(self, run: Any, exc: Harmonic) -> dict[str, float]:
+        """A branch's row of the orbit run over its period: the largest alpha over every level, the first
+        moving mass's excursion and extrema (eta against its wall's total gap, when it has one at its
+        level), the contacts at every wall side and link."""
+        parts = self._parts(run)
+        tables = [p.contact_table for p in parts] + ([run.link_table] if len(parts) > 1 else [])
+        done = np.vstack([t[np.isfinite(t[:, 2])] for t in tables if len(t)] or [np.zeros((0, 9))])
+        peak = abs(exc.peak_m_s2)
+        amax = max(float(np.max(p.abs_acceleration_max)) for p in parts)
+        dmax, dmin = self.extent(run)
+        first = structures_of(self.model)[0][0]
+        level = next(q for q, d in enumerate(self.asm.dofs[0]) if d >= 0)
+        walls = [w for w in first.walls if w.level == level]
+        gap = walls[0].gap_left_m + walls[0].gap_right_m if walls else math.nan
+        return {"alpha": amax / peak if peak > 0 else math.nan, "excursion_m": dmax - dmin,
+                "displacement_max_m": dmax, "displacement_min_m": dmin,
+                "eta": (dmax - dmin) / gap if gap > 0 else math.nan,
+                "contacts_per_period": int(done.shape[0]),
+                "impact_velocity_max_m_s": float(np.abs(done[:, 3]).max()) if done.shape[0] else 0.0}
+
+    def advance(self, exc: Harmonic, duration: float, vec: np.ndarray) -> Optional[np.ndarray]:
+        """The state vector ``duration`` s on under ``exc`` (None where the engine stopped)."""
+        try:
+            run = simulate_structure(self.model, exc, duration, self._state(vec), sample_rate_hz=0)
+        except InputError:
+            return None
+        return np.array(run.final_state.vector) if run.success else None
+
+    def at_section(self, vec: np.ndarray) -> np.ndarray:
+        """The state vector moved to time 0 (a whole number of forcing periods back): a contact in
+        progress keeps its start relative to the section."""
+        return at_section(vec, self.lay, self.nc)
 
     def free_state_matrix(self) -> np.ndarray:
         """The state matrix (2n, 2n) of the masses' free motion, no contact, every element on its stiffest

@@ -283,8 +283,8 @@ def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True, st
     if kind is not Oscillator:  # (a structure's file, or two adjacent ones': to_toml writes them)
         if not structures:
             raise typer.BadParameter(f"{path} is a structure of several masses: this command takes one mass "
-                                     "so far (simulate, sweep, campaign, study, design, bifurcation, basins "
-                                     "and lyapunov take structures)")
+                                     "so far (the others take structures: simulate, sweep, continue, "
+                                     "bifurcation, basins, lyapunov, design ...)")
         return kind.from_toml(path)
     return Oscillator.from_toml(path)
 

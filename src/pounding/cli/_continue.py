@@ -10,8 +10,9 @@ import typer
 
 from .._errors import Interrupted
 from .._io import interrupts_deferred
-from ._app import (ARG_SYSTEM, OPT_A_G, OPT_NO_BUMPERS, OPT_PRESET, command, console,
-                   figure_path, files, interrupted, kv_table, save_figure, system, working, write_csv)
+from ._app import (ARG_SYSTEM, OPT_A_G, OPT_NO_BUMPERS, OPT_PRESET, command, console, err_console,
+                   figure_path, files, interrupted, kv_table, one_mass_options, save_figure, system, working,
+                   write_csv)
 
 CSV = (".csv",)
 
@@ -40,7 +41,12 @@ def continue_branch(
 
     paths = files(out=(out, CSV), bifurcations=(bifurcations, CSV))
     plot = figure_path("--plot", plot)
-    osc = system(system_file, preset, bumpers=not no_bumpers)
+    osc = system(system_file, preset, bumpers=not no_bumpers, structures=True)
+    several = one_mass_options(osc, no_bumpers)
+    if several and sweeps:
+        err_console.print("[yellow]warning:[/] --sweeps draws one mass's sweeps over its branch; a "
+                          "structure's branch is drawn alone")
+        sweeps = False
     complete = True
     with working(f"following the branch from {start:g} to {end:g} Hz ..."):
         try:

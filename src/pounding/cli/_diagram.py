@@ -81,18 +81,22 @@ def bifurcation(
             console.print(f"dataset -> {paths['netcdf']}")
     if plot is not None and len(steps) and not held:
         # (followed after the files are written: its failure or a Ctrl-C loses nothing)
-        branches = _branch(osc, a_g, fmin, fmax) if branch and not several else None
-        if branch and several:
-            err_console.print("[yellow]warning:[/] --branch follows one mass's branch; a structure's "
-                              "continuation is not there yet: the diagram is drawn alone")
+        branches = _branch(osc, a_g, fmin, fmax) if branch else None
+        # (a structure's branch: its first moving mass's section, the level drawn with it)
+        level = {"level": 1 if _first_fixed(osc) else 0} if several and branches is not None else {}
         with interrupts_deferred() as more:
-            save_figure(lambda: result.plot(branches=branches), plot)
+            save_figure(lambda: result.plot(branches=branches, **level), plot)
         held += more
     if result.status == Status.INTERRUPTED or held:
         interrupted(f"{len(steps)} steps finished; they are in the summary"
                     + (" and the files written" if any(paths.values()) or plot else ""))
     if not result.success:
         raise typer.Exit(code=1)
+
+
+def _first_fixed(model) -> bool:
+    """Whether a structure's (a pair's first) base is fixed: its first moving level is then 1."""
+    return (model.structures[0] if hasattr(model, "structures") else model).fixed
 
 
 def _branch(osc, a_g: float, fmin: float, fmax: float):

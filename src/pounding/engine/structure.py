@@ -49,6 +49,20 @@ class Assembly(NamedTuple):
     pairs: tuple           # each contact slot's (i, j, sign, gap, law)
     elements: tuple        # each hysteretic element's (i, j, slopes, breaks, rule), the core's order
     system_bw: np.ndarray  # the Bouc-Wen numbers (the core's, zeros for none)
+    contact_tracks: tuple = ()  # each contact slot's tracked pair (its extrema), -1: against the ground
+
+
+def clearances(asm: Assembly, extrema: np.ndarray) -> np.ndarray:
+    """Each contact slot's smallest clearance over a run, m: its gap less the largest of ``sign (x_i - x_j)``
+    (negative: it touched), from the run's exact extrema (the core's: 7 per dof, then 4 per tracked pair)."""
+    n = asm.system.n
+    per_dof, tracked = extrema[:7 * n].reshape(n, 7), extrema[7 * n:].reshape(-1, 4)
+    out = np.empty(len(asm.pairs))
+    for c, (i, _, sign, gap, _) in enumerate(asm.pairs):
+        q = asm.contact_tracks[c]
+        top, bottom = (tracked[q, 0], tracked[q, 2]) if q >= 0 else (per_dof[i, 0], per_dof[i, 2])
+        out[c] = gap - (top if sign > 0 else -bottom)
+    return out
 
 
 def structures_of(model: Structure | Adjacent) -> tuple[tuple[Structure, ...], tuple]:
@@ -136,15 +150,19 @@ def assemble(model: Structure | Adjacent) -> Assembly:
         slots.append((-1, k, 0))
         pairs.append((dofs[0][link.level_first], dofs[1][link.level_second], 1.0, float(link.gap_m),
                       link.law))
-    # each storey's drift: its top level against the one below (the ground below a fixed base's first)
+    # each storey's drift: its top level against the one below (the ground below a fixed base's first); then
+    # each contact between two masses (a link, a bumper on its stand): its pair's relative displacement
     tracked = tuple((levels[i + 1], levels[i]) for s, levels in zip(structures, dofs)
                     for i in range(len(s.storeys)))
+    between = [c for c, (_, j, _, _, _) in enumerate(pairs) if j >= 0]
+    contact_tracks = tuple(len(tracked) + between.index(c) if c in between else -1 for c in range(len(pairs)))
+    tracked += tuple((pairs[c][0], pairs[c][1]) for c in between)
     system = _core.system(masses, k0, c0, elements, bw, bool(contacts), contacts or _NO_WALLS, tracked)
     return Assembly(system, tuple(dofs), tuple(isolator), tuple(slots), tuple(stands), np.array(masses),
                     k_fast, c_all, tuple(pairs),
                     tuple((i, j, list(slopes), list(breaks), rule)
                           for i, j, _, slopes, breaks, rule in elements),
-                    np.asarray(bw, dtype=float))
+                    np.asarray(bw, dtype=float), contact_tracks)
 
 
 def _add_pair(a: np.ndarray, i: int, j: int, value: float) -> None:
@@ -437,8 +455,10 @@ def run_of(model: Any, asm: Any, excitation: Any, rate: float, out: tuple, t0: f
     structures = structures_of(model)[0]
     parts = [StructureRun._part(s, b, asm, structures, excitation, rate, samples, contacts, extrema, status,
                                 t0) for b, s in enumerate(structures)]
+    clear = clearances(asm, extrema)
     if len(parts) == 1:
-        run: Any = dataclasses.replace(parts[0], event_table=events, energy=energy, final_state=final)
+        run: Any = dataclasses.replace(parts[0], event_table=events, energy=energy, final_state=final,
+                                       clearance_m=clear)
     else:
         links = [c for c, (owner, _, _) in enumerate(asm.slots) if owner == -1]
         link_rows = contacts[np.isin(contacts[:, 0], links)].copy() if len(contacts) else np.zeros((0, 9))
@@ -446,7 +466,7 @@ def run_of(model: Any, asm: Any, excitation: Any, rate: float, out: tuple, t0: f
         n, nh = asm.system.n, asm.system.n_elements
         run = AdjacentRun(model, excitation, rate, parts[0], parts[1], samples[:, 0],
                           samples[:, [1 + 3 * n + nh + c for c in links]], link_rows, events, energy, final,
-                          status)
+                          status, clear)
     if status == Status.INTERRUPTED:
         raise Interrupted(run, round(final.time_s - t0, 6), duration, "simulated seconds")
     return run

@@ -130,6 +130,9 @@ class StructureRun:
         then its right's; ``stands`` names them).
     stand_displacement_max, stand_displacement_min : ndarray, shape (n_stands,)
         Their exact extrema, m.
+    clearance_m : ndarray, shape (2 n_walls,)
+        Each wall side's smallest clearance over the run (its gap less the largest approach, exact;
+        negative: it touched), m; empty for one of two adjacent structures (``AdjacentRun.clearance_m``).
 
     Examples
     --------
@@ -175,6 +178,7 @@ class StructureRun:
     stand_displacement: np.ndarray = field(default_factory=lambda: np.zeros((0, 0)), repr=False)
     stand_displacement_max: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     stand_displacement_min: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    clearance_m: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
 
     @classmethod
     def _part(cls, structure: "Structure", b: int, asm: Any, asm_structures: tuple, excitation: Any,
@@ -390,6 +394,9 @@ class AdjacentRun:
         Pass as ``state`` to continue.
     status : Status
         How the run ended (``message`` says it in words).
+    clearance_m : ndarray, shape (n_slots,)
+        Each contact slot's smallest clearance over the run (its gap less the largest approach, exact;
+        negative: it touched), m: the first's wall sides, the second's, then the links.
 
     Examples
     --------
@@ -419,6 +426,7 @@ class AdjacentRun:
     energy: StructureEnergy = field(repr=False)
     final_state: Any = field(repr=False)
     status: Status = Status.SUCCESS
+    clearance_m: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
 
     @property
     def success(self) -> bool:

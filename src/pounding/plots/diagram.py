@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 
 from .._checks import integer, one_of
+from .._errors import InputError, Problem
 from ._legend import place_legend
 
 DIRECTION_COLOR = {"up": "C0", "down": "C3"}
@@ -66,6 +67,14 @@ def plot_bifurcation_diagram(diagram: Any, ax: Any = None, *, branches: Any = No
     if "level" in ds.dims:
         level = integer("level", level, -ds.sizes["level"], ds.sizes["level"] - 1,
                         "give a level's place along the diagram's level")
+        if branches is not None:  # (a branch's section is its first moving mass's)
+            model = diagram.oscillator
+            fixed = (model.structures[0] if hasattr(model, "structures") else model).fixed
+            first = 1 if fixed else 0  # (the first structure's levels come first along level)
+            if level % ds.sizes["level"] != first:
+                raise InputError(Problem.BAD_STATE, "level", level,
+                                 why="is not the mass the branches' section is of (the first structure's "
+                                     "first moving level)", fix=f"draw the branches with level={first}")
         ds = ds.isel(level=level)
         prefix = "" if len(set(diagram.data["level_structure"].values.tolist())) == 1 else \
             f"{ds['level_structure'].item()}'s "

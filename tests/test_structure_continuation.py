@@ -1,0 +1,94 @@
+"""Continuation of a structure's periodic orbits (pounding.continuation with a Structure or an Adjacent
+pair): the exact n-dof monodromy along the branch, its folds and grazings located.
+
+- One level is the oscillator's branch, row for row and bifurcation for bifurcation.
+- At a located fold a multiplier is 1; at a located grazing the wall side's or link's clearance over the
+  orbit is 0 (its run from the bifurcation's state); every row is a periodic orbit (``Branch.orbit``).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import pounding as pd_
+
+ISO = pd_.Isolator(slopes=[2e5], breakpoints=[], damping=4e3)
+
+
+def _building() -> pd_.Structure:
+    return pd_.Structure(2.0e3, ISO, [pd_.Storey(1.0e3, 2.0e6, 2.0e3)],
+                         [pd_.Wall(0, 0.02, 0.02, pd_.KelvinVoigt(2e6, 2e3))])
+
+
+def _pair() -> pd_.Adjacent:
+    first = pd_.Structure(2.0e3, ISO, [pd_.Storey(1.0e3, 2.0e6, 2.0e3)])
+    second = pd_.Structure.fixed_base([pd_.Storey(2.0e3, 8.0e6, 4.0e3)])
+    return pd_.Adjacent(first, second, [pd_.Link(1, 1, 0.02, pd_.KelvinVoigt(2e6, 2e3))])
+
+
+def test_one_level_is_the_oscillators_branch():
+    osc = pd_.presets.paper_damped()
+    one = pd_.continuation(osc, 0.05, (1.5, 2.5))
+    many = pd_.continuation(pd_.Structure.from_oscillator(osc), 0.05, (1.5, 2.5))
+    a, b = one.to_dataframe(), many.to_dataframe()
+    assert list(a.columns) == list(b.columns) and len(a) == len(b)
+    numbers = [c for c in a.columns if a[c].dtype != bool]
+    np.testing.assert_allclose(b[numbers].to_numpy(float), a[numbers].to_numpy(float), rtol=1e-12, atol=1e-15)
+    assert [(x.kind, round(x.freq_hz, 9)) for x in many.bifurcations] == [
+        (x.kind, round(x.freq_hz, 9)) for x in one.bifurcations]
+    assert [x.side for x in many.bifurcations if x.kind == "grazing"] == ["wall0_left", "wall0_right"]
+
+
+@pytest.mark.parametrize("make, slot", [(_building, None), (_pair, 0)])
+def test_folds_have_a_multiplier_1_and_grazings_touch(make, slot):
+    model = make()
+    branch = pd_.continuation(model, 0.05, (1.0, 2.5))
+    assert branch.success, branch.message
+    kinds = [b.kind for b in branch.bifurcations]
+    assert kinds.count("fold") == 2 and kinds.count("grazing") >= 2
+    for bif in branch.bifurcations:
+        assert bif.located and isinstance(bif.state, pd_.StructureState)
+        if bif.kind == "fold":
+            assert np.abs(bif.multipliers - 1.0).min() <= 1e-6
+        if bif.kind == "grazing":
+            exc = pd_.Harmonic(bif.a_g, bif.freq_hz, phase=bif.phase_rad)
+            run = pd_.simulate(model, exc, 1.0 / bif.freq_hz, bif.state, sample_rate_hz=0)
+            names = [f"wall0_{s}" for s in ("left", "right")] if slot is None else ["link0"]
+            c = run.clearance_m[names.index(bif.side)]
+            assert abs(c) <= 1e-7 * 0.02, (bif.side, c)
+    # a row is a periodic orbit, with the branch's multipliers
+    i = len(branch) // 3
+    orbit = branch.orbit(i)
+    assert orbit.converged and orbit.iterations <= 1, orbit.message
+    row = branch.multipliers[i][np.isfinite(branch.multipliers[i])]
+    np.testing.assert_allclose(np.sort(np.abs(orbit.multipliers)), np.sort(np.abs(row)), atol=1e-7)
+
+
+def test_a_number_of_the_structure_continued():
+    branch = pd_.continuation(_building(), 0.05, 1.6, parameter="storeys[0].stiffness_n_m", values=(2e6, 4e6))
+    assert branch.success, branch.message
+    assert branch.to_dataframe().columns[0] == "storeys[0].stiffness_n_m"
+    assert isinstance(branch.oscillator, pd_.Structure)
+
+
+def test_refusals():
+    with pytest.raises(pd_.InputError, match="StructureState"):
+        pd_.continuation(_building(), 0.05, (1.0, 2.0), guess=pd_.State.at_rest(pd_.presets.paper_damped()))
+    with pytest.raises(pd_.InputError, match="parameter"):
+        pd_.continuation(_building(), 0.05, 1.6, parameter="storeys[3].stiffness_n_m", values=(1e6, 2e6))
+
+
+def test_the_command_line_follows_a_building_s_branch(tmp_path):
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+
+    _building().to_toml(tmp_path / "b.toml")
+    result = CliRunner().invoke(app, ["continue", str(tmp_path / "b.toml"), "--a-g", "0.05", "--from", "1.0",
+                                      "--to", "2.5", "--out", str(tmp_path / "branch.csv"), "--plot",
+                                      str(tmp_path / "branch.png"), "--sweeps"])
+    assert result.exit_code == 0, result.output
+    assert "grazing (wall0_left)" in result.output and "fold" in result.output
+    assert "drawn alone" in result.output
+    assert (tmp_path / "branch.png").stat().st_size > 10_000
