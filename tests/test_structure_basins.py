@@ -61,3 +61,21 @@ def test_a_structure_s_box_is_the_shifts_that_leave_its_walls_and_links_open():
     # (the first building shifted towards its neighbour closes the link at its gap; away from it, no wall)
     assert result.displacement_m.max() == pytest.approx(pair.links[0].gap_m)
     assert result.displacement_m.min() == pytest.approx(-0.05)
+
+
+def test_a_building_s_basin_stability_is_its_basins_share_that_pounds():
+    b = _building()
+    m = pd_.basin_stability_map(b, [0.05], [1.6, 2.2], samples=30, scheduler="serial")
+    for f in (1.6, 2.2):
+        share = float(m.data["pounding_probability"].sel(a_g=0.05, freq_hz=f))
+        rng = np.random.default_rng(0)  # (the map's states: the same draw, at each point)
+        d, v = rng.uniform(-0.03, 0.03, 30), rng.uniform(-1.0, 1.0, 30)
+        pounded = 0
+        for x, y in zip(d, v):
+            start = pd_.StructureState.at_rest(b, 0.0, float(x), float(y))
+            settled = pd_.simulate(b, pd_.Harmonic(0.05, f), 400 / f, start, sample_rate_hz=0).final_state
+            window = pd_.simulate(b, pd_.Harmonic(0.05, f), 5 / f, settled, sample_rate_hz=0)
+            pounded += len(window.contacts) > 0
+        assert share == pytest.approx(pounded / 30)
+    with pytest.raises(pd_.InputError, match="walls or links"):
+        pd_.basin_stability_map(pd_.Structure(2.0e3, b.isolator, b.storeys), [0.05], [1.6], samples=2)

@@ -92,3 +92,26 @@ def test_the_command_line_follows_a_building_s_branch(tmp_path):
     assert "grazing (wall0_left)" in result.output and "fold" in result.output
     assert "drawn alone" in result.output
     assert (tmp_path / "branch.png").stat().st_size > 10_000
+
+
+def test_a_building_s_fold_and_grazing_followed_in_two_parameters():
+    b = _building()
+    branch = pd_.continuation(b, 0.05, (1.0, 2.5))
+    fold = branch.folds()[0]
+    curve = pd_.bifurcation_curve(b, fold, a_g=(0.04, 0.06), freqs_hz=(1.0, 3.0))
+    df = curve.to_dataframe()
+    assert len(df) > 20 and df["a_g"].min() == pytest.approx(0.04)
+    np.testing.assert_allclose(df["critical_multiplier"], 1.0, atol=1e-6)  # (a fold all along)
+    grazing = next(x for x in branch.bifurcations if x.kind == "grazing")
+    curve = pd_.bifurcation_curve(b, grazing, a_g=(0.04, 0.06), freqs_hz=(0.5, 3.0))
+    assert curve.success, curve.message
+    df = curve.to_dataframe()
+    slot = ["wall0_left", "wall0_right"].index(grazing.side)
+    for i in (0, len(df) // 2, len(df) - 1):  # (the orbit just touches the wall: its exact clearance 0)
+        row = df.iloc[i]
+        exc = pd_.Harmonic(row["a_g"], row["freq_hz"], phase=row["phase_rad"])
+        state = pd_.StructureState._of(curve.states[i], ((0, 1),), 2)
+        run = pd_.simulate(b, exc, 1.0 / row["freq_hz"], state, sample_rate_hz=0)
+        assert abs(run.clearance_m[slot]) <= 1e-7 * 0.02
+    with pytest.raises(pd_.InputError, match="oscillator"):
+        pd_.coexistence_map(b)

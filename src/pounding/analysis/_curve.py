@@ -70,10 +70,7 @@ class CurveFollower:
         to its bumper over the family's length (negative: the orbit presses into it)."""
         if self.kind == "fold":
             return fold_test(np.linalg.eigvals(jac) if jac.size else np.zeros(1))
-        gaps = self.fam._ref.h.gaps
-        if self.side == "left":
-            return float((run.displacement_min + gaps[0]) / self.fam.length_m)
-        return float((gaps[1] - run.displacement_max) / self.fam.length_m)
+        return float(self.fam._ref.clearances(run)[self.side] / self.fam.length_m)
 
     def evaluate(self, vec: np.ndarray, f: float, a: float) -> CurvePoint:
         """The equations at ``(vec, f, a)``; raises _Failed where the engine cannot run them."""
@@ -296,8 +293,7 @@ class CurveFollower:
     def _signature(self, q: CurvePoint) -> np.ndarray:
         """What does not depend on the section: the forcing and the orbit's extrema, scaled."""
         size = self.fam.length_m
-        return np.array([q.f / self.fs, q.a / self.as_, q.run.displacement_max / size,
-                         q.run.displacement_min / size])
+        return np.append([q.f / self.fs, q.a / self.as_], np.array(self.fam._ref.extent(q.run)) / size)
 
     def _at_phase(self, pt: CurvePoint, phase: float) -> Optional[CurvePoint]:
         """``pt``'s orbit with its section at forcing angle ``phase`` (the family's section is set

@@ -220,19 +220,21 @@ class CoexistenceMap:
                 f"responses, {len(self.not_assessed())} not assessed)")
 
 
-def curve_table(pts: Sequence["CurvePoint"]) -> tuple[pd.DataFrame, np.ndarray]:
+def curve_table(pts: Sequence["CurvePoint"], shooter: Any = None) -> tuple[pd.DataFrame, np.ndarray]:
+    """The curve's rows (``shooter``: its family's, which reads each orbit's run: one mass's or a
+    structure's) and the states at their sections."""
     rows = []
     for p in pts:
         run = p.run
-        peak = abs(run.excitation.peak_m_s2)
-        done = run.contact_table[np.isfinite(run.contact_table[:, 2])]
+        view = shooter.summary(run, run.excitation)
         mult = p.mult
         crit = mult[int(np.argmin(np.abs(mult - 1.0)))].real if mult.size else math.nan
-        rows.append({"freq_hz": p.f, "a_g": p.a, "alpha": run.abs_acceleration_max / peak if peak > 0
-                     else math.nan, "excursion_m": run.displacement_max - run.displacement_min,
-                     "displacement_max_m": run.displacement_max, "displacement_min_m": run.displacement_min,
+        rows.append({"freq_hz": p.f, "a_g": p.a, **{k: view[k] for k in ("alpha", "excursion_m",
+                                                                           "displacement_max_m",
+                                                                           "displacement_min_m",
+                                                                           "contacts_per_period")},
                      "max_abs_multiplier": float(np.abs(mult).max()) if mult.size else math.nan,
-                     "critical_multiplier": float(crit), "contacts_per_period": int(done.shape[0]),
+                     "critical_multiplier": float(crit),
                      "test": p.g, "residual": float(np.max(np.abs(p.r), initial=0.0)), "phase_rad": p.phase})
     states = np.array([p.vec for p in pts]) if pts else np.zeros((0, 0))
     return pd.DataFrame(rows, columns=list(CURVE_COLUMNS)), states

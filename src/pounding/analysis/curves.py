@@ -11,9 +11,11 @@ import numpy as np
 
 from .._checks import integer, one_of, real
 from .._errors import InputError, Interrupted, Problem, Status
-from ..engine.simulate import check_oscillator, check_state, short_run
-from ..excitation import Harmonic
+from ..engine.simulate import check_oscillator, check_state
+from ..engine.structure import check_structure_state
 from ..model import Oscillator
+from ..model.adjacent import Adjacent
+from ..model.structure import Structure
 from ..protocols.campaign import PAPER_YBS_A_G
 from . import _hybrid as hy
 from ._arclength import Family
@@ -30,7 +32,7 @@ MAX_TEST_FREQS = 100_000  # the test matrix's frequencies at most
 
 
 def bifurcation_curve(
-    oscillator: Oscillator,
+    oscillator: Any,
     bifurcation: Bifurcation,
     *,
     a_g: Any = (0.02, 0.12),
@@ -49,8 +51,9 @@ def bifurcation_curve(
 
     Parameters
     ----------
-    oscillator : Oscillator
-        The system of the branch the bifurcation is on.
+    oscillator : Oscillator, Structure or Adjacent
+        The system of the branch the bifurcation is on (a structure's grazing names its wall side
+        or link: ``Bifurcation.side``).
     bifurcation : Bifurcation
         A ``"fold"`` or ``"grazing"`` of a :class:`Branch` in ``freq_hz`` or ``a_g``.
     a_g : (float, float)
@@ -93,7 +96,9 @@ def bifurcation_curve(
     >>> round(float(df["freq_hz"].min()), 3), round(float(df["freq_hz"].max()), 3)
     (1.746, 2.276)
     """
-    check_oscillator(oscillator)
+    several = isinstance(oscillator, (Structure, Adjacent))
+    if not several:
+        check_oscillator(oscillator)
     if not isinstance(bifurcation, Bifurcation):
         raise InputError(Problem.WRONG_TYPE, "bifurcation", bifurcation, got=type(bifurcation).__name__,
                          expected="pounding.Bifurcation (from Branch.bifurcations or Branch.folds())")
@@ -110,7 +115,7 @@ def bifurcation_curve(
                          why="is on a branch in a number of the " "system, not in the forcing",
                          fix="continue the branch in 'freq_hz' or 'a_g' and pass its " "bifurcation")
     try:
-        check_state(bifurcation.state, oscillator)
+        (check_structure_state if several else check_state)(bifurcation.state, oscillator)
     except InputError as exc:
         raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind,
                          why=f"is not of this system ({exc})",
@@ -241,6 +246,10 @@ def coexistence_map(
     >>> m.matrix["verdict"].value_counts().to_dict()
     {'one': 7, 'coexist': 4}
     """
+    if isinstance(oscillator, (Structure, Adjacent)):
+        raise InputError(Problem.WRONG_MODE, "oscillator", type(oscillator).__name__, mode="one mass",
+                         fix="a structure's folds and grazings: pounding.continuation, then "
+                             "pounding.bifurcation_curve of each (the map takes one mass so far)")
     check_oscillator(oscillator)
     a_box = _box("a_g", a_g, "g")
     f_box = _box("freqs_hz", freqs_hz, "Hz")
@@ -343,12 +352,12 @@ def _common(osc: Oscillator, tol: Any, max_step: Any, max_points: Any, method: A
     return tol, max_step, max_points, exact_monodromy(osc, method)
 
 
-def _follower(osc: Oscillator, bif: Bifurcation, f_box: tuple, a_box: tuple, tol: float, max_step: float,
+def _follower(osc: Any, bif: Bifurcation, f_box: tuple, a_box: tuple, tol: float, max_step: float,
               exact: bool) -> CurveFollower:
-    exc = Harmonic(bif.a_g, bif.freq_hz, phase=bif.phase_rad)
-    run = short_run(osc, exc, bif.period_multiple / bif.freq_hz, bif.state)
     fam = Family(osc, bif.a_g, bif.freq_hz, "freq_hz", bif.period_multiple, exact, bif.phase_rad,
-                 length_scale(osc, run), f_box[1] - f_box[0], 2.0 * math.pi * bif.freq_hz)
+                 1.0, f_box[1] - f_box[0], 2.0 * math.pi * bif.freq_hz)
+    _, run = fam._ref._image(np.array(bif.state.vector, dtype=float))  # (a period from the bifurcation)
+    fam.set_length(length_scale(osc, run))
     return CurveFollower(fam, bif.kind, bif.side, f_box, a_box, tol, max_step)
 
 
@@ -396,7 +405,7 @@ def _follow(cf: CurveFollower, start: CurvePoint, pts: list[CurvePoint], max_poi
 
 def _result(osc: Oscillator, bif: Bifurcation, cf: Optional[CurveFollower], pts: list[CurvePoint],
             f_box: tuple, a_box: tuple, status: Status, message: str) -> BifurcationCurve:
-    table, states = curve_table(pts)
+    table, states = curve_table(pts, cf.fam._ref if cf is not None else None)
     if cf is not None and cf.fam.fell_back:
         message += cf.fam.fell_back
     return BifurcationCurve(osc, bif.kind, bif.side, bif.period_multiple, f_box, a_box, table, states, status,

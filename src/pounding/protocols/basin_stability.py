@@ -16,8 +16,11 @@ from .._errors import InputError, Interrupted, Problem
 from .._runner import run_tasks
 from .._runner.progress import Progress
 from ..engine.simulate import check_oscillator, check_rtol, kernel_system
+from ..engine.structure import assemble
 from ..excitation import Harmonic
 from ..model import Oscillator
+from ..model.adjacent import Adjacent
+from ..model.structure import Structure
 from .basins import (MAX_STATES, N_ROW, R_LEFT, R_PERIOD, R_RIGHT, ROWS_PER_TASK, SIGNATURE, initial_states,
                      run_states, state_box, steady_options)
 
@@ -25,7 +28,7 @@ if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
 
-def basin_stability_map(oscillator: Oscillator, a_g_levels: Any, freqs_hz: Any, *, samples: int = 200,
+def basin_stability_map(oscillator: Any, a_g_levels: Any, freqs_hz: Any, *, samples: int = 200,
                         displacement_m: Any = None, velocity_m_s: Any = None, seed: int = 0,
                         max_cycles: int = 500, measure_cycles: int = 5, max_period: int = 8,
                         steady_rtol: float = 1e-8, rtol: float = 1e-10, scheduler: Any = None,
@@ -36,8 +39,9 @@ def basin_stability_map(oscillator: Oscillator, a_g_levels: Any, freqs_hz: Any, 
 
     Parameters
     ----------
-    oscillator : Oscillator
-        The system (with bumpers).
+    oscillator : Oscillator, Structure or Adjacent
+        The system (with bumpers; a structure with walls or links: its states shifted as one
+        body, as :func:`pounding.basins` has them).
     a_g_levels : array_like, shape (m,)
         Peak table accelerations, g.
     freqs_hz : array_like, shape (n,)
@@ -82,10 +86,12 @@ def basin_stability_map(oscillator: Oscillator, a_g_levels: Any, freqs_hz: Any, 
     >>> m.data["pounding_probability"].values.round(2).tolist()
     [[1.0, 0.5, 0.0]]
     """
-    check_oscillator(oscillator)
-    if oscillator.bumpers is None:
+    several = isinstance(oscillator, (Structure, Adjacent))
+    if not several:
+        check_oscillator(oscillator)
+    if (oscillator.bumpers is None) if not several else not assemble(oscillator).pairs:
         raise InputError(Problem.MISSING_INPUT, "oscillator", "no bumpers",
-                         what="bumpers (without them nothing pounds)")
+                         what="bumpers, walls or links (without them nothing pounds)")
     levels = np.atleast_1d(float_array("a_g_levels", a_g_levels))
     freqs = np.atleast_1d(float_array("freqs_hz", freqs_hz))
     for name, values in (("a_g_levels", levels), ("freqs_hz", freqs)):
@@ -108,14 +114,19 @@ def basin_stability_map(oscillator: Oscillator, a_g_levels: Any, freqs_hz: Any, 
     rtol = check_rtol(rtol)
     rng = np.random.default_rng(integer("seed", seed, 0))
     starts = initial_states(oscillator, rng.uniform(*d_box, samples), rng.uniform(*v_box, samples))
-    system = kernel_system(oscillator)
+    signs = None
+    if several:
+        asm = assemble(oscillator)
+        system, signs = asm.system, np.array([pair[2] for pair in asm.pairs], dtype=float)
+    else:
+        system = kernel_system(oscillator)
     points = [(i, j) for i in range(levels.size) for j in range(freqs.size)]
     tasks, where = [], []
     for i, j in points:
         exc = Harmonic(float(levels[i]), float(freqs[j]))
         for k in range(0, samples, ROWS_PER_TASK):
             chunk = starts[k:k + ROWS_PER_TASK]
-            tasks.append((system, exc.peak_m_s2, exc.omega_rad_s, chunk, steady, float(rtol), None))
+            tasks.append((system, exc.peak_m_s2, exc.omega_rad_s, chunk, steady, float(rtol), signs))
             where.append((i, j, k))
     ran = run_tasks(run_states, tasks, scheduler=scheduler, workers=workers, progress=progress,
                     label="basin stability", total=len(points) * samples, on_error="stop")
