@@ -24,8 +24,8 @@ _NAMES = {
                 "simulate"),
     ".excitation": ("Harmonic", "Record"),
     ".excitation.spectrum": ("response_spectrum",),
-    ".identification": ("ContactLawFit", "Identification", "ModelFamily", "Targets", "fit_contact_law",
-                        "identify", "paper_targets", "rank_contact_laws"),
+    ".identification": ("ContactLawFit", "Identification", "ModelFamily", "StructureFamily", "Targets",
+                        "fit_contact_law", "identify", "paper_targets", "rank_contact_laws"),
     ".metrics": ("HysteresisLoop", "impact_table"),
     ".model": ("Adjacent", "Link", "BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley",
                "Isolator", "Jankowski",
@@ -72,8 +72,8 @@ if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
                          StructureState, simulate)
     from .excitation import Harmonic, Record  # noqa: F401
     from .excitation.spectrum import response_spectrum  # noqa: F401
-    from .identification import (ContactLawFit, Identification, ModelFamily, Targets,  # noqa: F401
-                                 fit_contact_law, identify, paper_targets, rank_contact_laws)
+    from .identification import (ContactLawFit, Identification, ModelFamily, StructureFamily,  # noqa: F401
+                                 Targets, fit_contact_law, identify, paper_targets, rank_contact_laws)
     from .metrics import HysteresisLoop, impact_table  # noqa: F401
     from .model import (Adjacent, BoucWen, Bumpers, ElasticPlastic, Hertzdamp, HuntCrossley,  # noqa: F401
                         Isolator, Jankowski, KelvinVoigt, Link, MeasurementChain, MultilinearBumper,

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 import os
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from pathlib import Path
 from typing import Any
 
@@ -29,6 +29,7 @@ from ..protocols.campaign import sweep_quantities
 from ..protocols.sweep import check_sweep_options
 from ..protocols.sweep import make_plan, paper_frequencies_hz, sweep
 from .family import ModelFamily, check_bounds
+from .structure_family import StructureFamily
 from .measured import CUTOFF, apply_cutoff, split_cutoff
 from .targets import Targets
 
@@ -179,7 +180,7 @@ def evaluate(oscillator: Oscillator, targets: Targets, *, freqs_hz: Any = None,
 
     options = {**DEFAULT_SWEEP, **sweep_options}
     cases = list(targets.cases)
-    plans = [make_plan(oscillator if conf == "YBs" else oscillator.without_bumpers(), a_g, freqs_hz,
+    plans = [make_plan(oscillator if conf == "YBs" else bare(oscillator), a_g, freqs_hz,
                        direction, **options) for conf, a_g, direction in cases]
     ran = run_tasks(_sweep_task, plans, workers=workers, progress=progress, label=label,
                     total=sum(p.freqs_hz.size for p in plans), budget=[p.max_steps for p in plans],
@@ -205,8 +206,9 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     ----------
     targets : Targets
         E.g. :func:`pounding.paper_targets` or ``Targets.from_toml``.
-    family : ModelFamily
-        Structure and fixed numbers.
+    family : ModelFamily or StructureFamily
+        Structure and fixed numbers; or a structure of several masses whose numbers are named as in
+        its file (``walls[0].stand.mass_kg``), the targets its base's (level 0).
     bounds : dict
         ``name -> (low, high)`` for every free number (low < high, finite); with
         ``"measurement_cutoff_hz"``, the low-pass corner (Hz) of the accelerometers of the
@@ -277,9 +279,10 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     if not isinstance(targets, Targets):
         raise InputError(Problem.WRONG_TYPE, "targets", targets, got=type(targets).__name__,
                          expected="pounding.Targets (paper_targets() or Targets.from_toml)")
-    if not isinstance(family, ModelFamily):
+    if not isinstance(family, (ModelFamily, StructureFamily)):
         raise InputError(Problem.WRONG_TYPE, "family", family, got=type(family).__name__,
-                         expected="pounding.ModelFamily")
+                         expected="pounding.ModelFamily, or pounding.StructureFamily (a rig of several "
+                                  "masses)")
     check_sweep_options(sweep_options, also="identify's own")
     bounds, cutoff, sweep_options = split_cutoff(bounds, sweep_options)
     if cutoff is not None and not bounds:
@@ -451,12 +454,19 @@ class _Scale:
         return np.clip((x - self.lo) / (self.hi - self.lo), 0.0, 1.0)
 
 
-def _model_values(oscillator: Oscillator, targets: Targets, freqs_hz: Any, options: dict,
+def bare(system: Any) -> Any:
+    """The NBs configuration of a system: one mass without its bumpers, a structure without its walls."""
+    if isinstance(system, Oscillator):
+        return system.without_bumpers()
+    return replace(system, walls=())
+
+
+def _model_values(oscillator: Any, targets: Targets, freqs_hz: Any, options: dict,
                   check_only: bool = False) -> dict:
     """``(configuration, a_g, direction) -> sweep_quantities`` for every case of the targets."""
     out = {}
     for conf, a_g, direction in targets.cases:
-        osc = oscillator if conf == "YBs" else oscillator.without_bumpers()
+        osc = oscillator if conf == "YBs" else bare(oscillator)
         if check_only:
             make_plan(osc, a_g, freqs_hz, direction, **options)
             continue

@@ -42,7 +42,7 @@ STRUCTURE_TABLE2_QUANTITIES = ("nu_r_top", "alpha_top_max", "alpha_base_max", "d
                                "contact_nu_min", "contact_nu_max")
 
 
-def sweep_quantities(sw: SweepResult) -> dict[str, float]:
+def sweep_quantities(sw: Any) -> dict[str, float]:
     """The paper's per-sweep quantities (Tables 2-4) of one sweep, by their table names.
 
     Table 2's are over the sweep (``nu_r``, max ``alpha``, ``eta``, ``e``, the contact
@@ -52,6 +52,8 @@ def sweep_quantities(sw: SweepResult) -> dict[str, float]:
     ``dissipated_energy_per_mass`` in m^2/s^2).  NaN where a quantity does not exist
     (no contact, no bumpers).
     """
+    if not isinstance(sw, SweepResult):  # (a structure's sweep: its base's paper quantities)
+        return sw.paper_quantities(0)
     df = sw.to_dataframe().iloc[: sw.steps_done]
     rng = sw.contact_range_hz
     step = df.iloc[sw.step_index(sw.resonance_hz)]

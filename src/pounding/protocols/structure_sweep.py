@@ -22,12 +22,13 @@ from ..engine.structure import StructureState, assemble
 from ..excitation import GRAVITY_M_S2, Harmonic
 from ._step_kernel import W_CYCLES
 from .sweep_result import sweep_message
-from .structure_sweep_result import (C_COUNT, C_IMPULSE, C_PEAK, C_TIME, CONTACT_STATS, StructureSweepResult,
+from .structure_sweep_result import (C_COUNT, C_IMPULSE, C_PEAK, C_RESTITUTION, C_TIME, CONTACT_STATS,
+                                     StructureSweepResult,
                                      labels_of)
 
 # the core's rows: per dof (dmax, t, dmin, t, amax, t, -), per tracked pair (max, t, min, t); contacts
 _DOF_COLS, _PAIR_COLS = 7, 4
-_SLOT, _T_START, _T_END, _IMPULSE, _PEAK = 0, 1, 2, 5, 6
+_SLOT, _T_START, _T_END, _V_IN, _V_OUT, _IMPULSE, _PEAK = 0, 1, 2, 3, 4, 5, 6
 
 
 def run_structure_plan(plan, advance: Callable[[int], None] | None = None,
@@ -104,6 +105,7 @@ def run_structure_plan(plan, advance: Callable[[int], None] | None = None,
         drift_metrics=drift, contact_metrics=contact, cycles_run=cycles_run, period_multiple=period_multiple,
         window_cycles=window_cycles, window_states=window_states, step_start_s=step_start_s, steps_done=done,
         final_state=StructureState._of(state, asm.dofs, system.n), status=status, window_strobes=strobes,
+        omega_min_rad_s=plan.omega_min_rad_s,
         message=sweep_message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted))
     if interrupted:
         raise Interrupted(result, done, n_steps)
@@ -142,3 +144,6 @@ def _measure(out: tuple, level_dof: list, peak_m_s2: float, m: int, t0: float,
         contact[c, C_TIME] = float(np.mean(rows[:, _T_END] - rows[:, _T_START])) if len(rows) else math.nan
         contact[c, C_IMPULSE] = float(np.mean(rows[:, _IMPULSE])) if len(rows) else math.nan
         contact[c, C_PEAK] = float(np.max(rows[:, _PEAK])) if len(rows) else math.nan
+        moving = rows[rows[:, _V_IN] != 0.0]  # (a contact met at rest has no restitution)
+        contact[c, C_RESTITUTION] = (float(np.mean(-moving[:, _V_OUT] / moving[:, _V_IN])) if len(moving)
+                                     else math.nan)

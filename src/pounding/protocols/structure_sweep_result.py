@@ -10,12 +10,14 @@ import numpy as np
 import pandas as pd
 
 from .._checks import integer
+from ..data import PAPER_OMEGA_MIN_RAD_S
 from .._errors import Status
 
 # the contact statistics of a step, per contact slot
-C_COUNT, C_TIME, C_IMPULSE, C_PEAK = 0, 1, 2, 3
-CONTACT_STATS = 4
-CONTACT_NAMES = ("contacts_per_cycle", "contact_time_mean_s", "impulse_mean_n_s", "peak_force_max_n")
+C_COUNT, C_TIME, C_IMPULSE, C_PEAK, C_RESTITUTION = 0, 1, 2, 3, 4
+CONTACT_STATS = 5
+CONTACT_NAMES = ("contacts_per_cycle", "contact_time_mean_s", "impulse_mean_n_s", "peak_force_max_n",
+                 "restitution_mean")
 _NAMES = ("first", "second")
 
 
@@ -72,14 +74,17 @@ class StructureSweepResult:
         peak (m/s^2) over the window (NaN: a step not measured).
     drift_metrics : ndarray, shape (n, n_storeys, 2)
         Each storey's exact drift max and min, m.
-    contact_metrics : ndarray, shape (n, n_slots, 4)
+    contact_metrics : ndarray, shape (n, n_slots, 5)
         Per contact slot: contacts per cycle (those that ended in the window), mean contact time (s),
-        mean impulse (N s), largest peak force (N).
+        mean impulse (N s), largest peak force (N), mean restitution (the pair's relative velocity out over
+        in, negated).
     cycles_run, period_multiple, window_cycles : ndarray of int, shape (n,)
         Cycles each step ran; the period multiple of its steady response (0: not periodic); its window's
         cycles.
     window_states : ndarray, shape (n, n_state)
         The exact state at each window's start.
+    omega_min_rad_s : float
+        ``Omega_min`` of ``D_tmax = A_t / Omega_min^2``, rad/s (normalizes ``e``: ``paper_quantities``).
     window_strobes : ndarray, shape (n, measure_cycles, 2, n_levels)
         Each level's displacement (m) and velocity (m/s) at the end of each of the window's cycles (table
         phase 0: the stroboscopic section); NaN beyond a step's window and where it was not measured.
@@ -138,6 +143,7 @@ class StructureSweepResult:
     status: Status
     message: str
     window_strobes: np.ndarray = field(default_factory=lambda: np.zeros((0, 0, 2, 0)), repr=False)
+    omega_min_rad_s: float = PAPER_OMEGA_MIN_RAD_S
 
     # ------------------------------------------------------------------ derived
     @property
@@ -191,6 +197,51 @@ class StructureSweepResult:
     def nu_r(self, level: int = -1) -> float:
         """The pseudo-resonance ``nu_R`` of ``level``: where its alpha peaks, over ``f_R``."""
         return self.resonance_hz(level) / self.f_ref_hz
+
+    def paper_quantities(self, level: int = 0) -> dict[str, float]:
+        """The paper's per-sweep quantities (Tables 2-4, as ``campaign.sweep_quantities`` gives a single
+        mass's) of one level of the (first) structure: by default its base, the mass a shaking table's
+        rig carries.  Over the sweep: ``nu_r`` and the largest ``alpha`` of the level, ``eta`` (its
+        largest excursion over the total gap of its wall; NaN without a wall at the level), ``e`` (that
+        excursion over ``D_tmax = A_t / Omega_min^2``), ``excursion_max_m``, the contact range in ``nu``
+        (of the level's walls); at the level's resonance step, its walls' mean ``contact_time_ms`` and
+        ``restitution``.  The forces and the dissipated energy (``mean_force_over_mg``,
+        ``peak_force_over_mg``, ``dissipated_energy_per_mass``) are not measured here: NaN."""
+        q = self._level(level)
+        b, lv = self.levels[q]
+        done = slice(0, self.steps_done)
+        nan = float("nan")
+        names = ("nu_r", "alpha", "eta", "e", "excursion_max_m", "contact_nu_min", "contact_nu_max",
+                 "mean_force_over_mg", "contact_time_ms", "peak_force_over_mg", "dissipated_energy_per_mass",
+                 "restitution")
+        out = dict.fromkeys(names, nan)
+        alpha = self.alpha[done, q]
+        if not np.any(np.isfinite(alpha)):
+            return out
+        excursion = self.level_metrics[done, q, 0] - self.level_metrics[done, q, 1]
+        structure = self.structure.structures[b] if hasattr(self.structure, "structures") else self.structure
+        walls = [c for c, slot in enumerate(self.contact_slots)
+                 if slot[0] == b and slot[1] == "wall" and slot[3] == lv]
+        gap = sum(getattr(structure.walls[self.contact_slots[c][2]], f"gap_{self.contact_slots[c][4]}_m")
+                  for c in walls) if walls else nan
+        i = int(np.nanargmax(alpha))
+        counts = self.contact_metrics[done][:, walls, C_COUNT] if walls else np.zeros((self.steps_done, 0))
+        hit = np.nansum(counts, axis=1) > 0
+        at = self.contact_metrics[i, walls] if walls else np.zeros((0, CONTACT_STATS))
+        weight = np.nan_to_num(at[:, C_COUNT])
+
+        def mean(col: int) -> float:
+            ok = (weight > 0) & np.isfinite(at[:, col])
+            return float(np.average(at[ok, col], weights=weight[ok])) if ok.any() else nan
+
+        widest = float(np.nanmax(excursion))
+        out.update({"nu_r": float(self.freqs_hz[i]) / self.f_ref_hz, "alpha": float(alpha[i]),
+                    "eta": widest / gap, "e": widest / (self.peak_m_s2 / self.omega_min_rad_s**2),
+                    "excursion_max_m": widest,
+                    "contact_nu_min": float(self.nu[done][hit].min()) if hit.any() else nan,
+                    "contact_nu_max": float(self.nu[done][hit].max()) if hit.any() else nan,
+                    "contact_time_ms": mean(C_TIME) * 1e3, "restitution": mean(C_RESTITUTION)})
+        return out
 
     def quantities(self) -> dict[str, float]:
         """The sweep in a few numbers (a campaign's Table 2 row, a study point's): ``nu_r_top`` (where the
@@ -288,7 +339,7 @@ class StructureSweepResult:
              "drift_max": (("step", "storey"), self.drift_metrics[:, :, 0], {"units": "m"}),
              "drift_min": (("step", "storey"), self.drift_metrics[:, :, 1], {"units": "m"}),
              **{name: (("step", "contact"), self.contact_metrics[:, :, k], {"units": unit})
-                for k, (name, unit) in enumerate(zip(CONTACT_NAMES, ("1/cycle", "s", "N s", "N")))},
+                for k, (name, unit) in enumerate(zip(CONTACT_NAMES, ("1/cycle", "s", "N s", "N", "1")))},
              "period_multiple": ("step", self.period_multiple),
              "cycles_run": ("step", self.cycles_run)},
             coords={"freq_hz": ("step", self.freqs_hz, {"units": "Hz"}), "nu": ("step", self.nu),

@@ -1,0 +1,51 @@
+"""Model updating of a structure (pounding.identify with a StructureFamily): a rig of several masses fitted
+by the dotted names of its numbers, on its base's targets.
+
+- A one-level structure's targets are the oscillator's (its base's paper quantities, to rounding).
+- The same fit of a one-level structure and of the oscillator find the same number.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+import pounding as pd_
+
+
+def test_a_one_level_structure_s_targets_are_the_oscillators():
+    osc = pd_.presets.paper_calibrated()
+    targets = pd_.paper_targets()
+    freqs = np.arange(0.5, 3.51, 0.1)
+    one = pd_.identification.evaluate(osc, targets, freqs_hz=freqs)
+    many = pd_.identification.evaluate(pd_.Structure.from_oscillator(osc), targets, freqs_hz=freqs)
+    assert list(one["quantity"]) == list(many["quantity"])
+    a, b = one["model"].to_numpy(float), many["model"].to_numpy(float)
+    assert (np.isnan(a) == np.isnan(b)).all()
+    np.testing.assert_allclose(b[np.isfinite(a)], a[np.isfinite(a)], rtol=1e-9)
+    assert list(one["within"]) == list(many["within"])
+
+
+def test_the_same_fit_finds_the_same_number():
+    damped = pd_.presets.paper_damped()
+    targets = pd_.Targets.from_records([{"configuration": "NBs", "a_g": 0.05, "quantity": "alpha",
+                                         "value": 2.99}])
+    options = dict(freqs_hz=[0.9, 1.0, 1.1, 1.2, 1.3], popsize=4, maxiter=3, workers=1)
+    fixed = pd_.ModelFamily(500.0).values_of(damped)
+    del fixed["isolator_damping"]
+    one = pd_.identify(targets, pd_.ModelFamily(500.0, fixed=fixed), {"isolator_damping": (100.0, 5000.0)},
+                       **options)
+    family = pd_.StructureFamily(pd_.Structure.from_oscillator(damped))
+    many = pd_.identify(targets, family, {"isolator.damping": (100.0, 5000.0)}, **options)
+    assert many.parameters["isolator.damping"] == pytest.approx(one.parameters["isolator_damping"], rel=1e-9)
+    assert isinstance(many.oscillator, pd_.Structure) and many.n_within == one.n_within == 1
+
+
+def test_a_structure_family_names_what_it_refuses():
+    rig = pd_.Structure.from_oscillator(pd_.presets.paper_calibrated())
+    with pytest.raises(pd_.InputError, match="names no number"):
+        pd_.StructureFamily(rig).free_names({"walls[0].stand.mass_kg": (1.0, 50.0)})
+    with pytest.raises(pd_.InputError, match="isolated"):
+        pd_.StructureFamily(pd_.Structure.fixed_base([pd_.Storey(1e3, 1e6)]))
+    with pytest.raises(pd_.InputError, match="Structure"):
+        pd_.StructureFamily(pd_.presets.paper_calibrated())
