@@ -49,3 +49,26 @@ def test_a_structure_family_names_what_it_refuses():
         pd_.StructureFamily(pd_.Structure.fixed_base([pd_.Storey(1e3, 1e6)]))
     with pytest.raises(pd_.InputError, match="Structure"):
         pd_.StructureFamily(pd_.presets.paper_calibrated())
+
+
+def test_a_structure_family_file_on_the_command_line(tmp_path):
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+
+    pd_.Structure.from_oscillator(pd_.presets.paper_damped()).to_toml(tmp_path / "rig.toml")
+    (tmp_path / "family.toml").write_text('structure = "rig.toml"\n'
+                                          '[bounds]\n"isolator.damping" = [100.0, 5000.0]\n')
+    (tmp_path / "targets.toml").write_text('[[target]]\nconfiguration = "NBs"\na_g = 0.05\n'
+                                           'quantity = "alpha"\nvalue = 2.99\n')
+    result = CliRunner().invoke(app, ["identify", str(tmp_path / "targets.toml"), "--family",
+                                      str(tmp_path / "family.toml"), "--out", str(tmp_path / "fit.toml"),
+                                      "--fmin", "0.9", "--fmax", "1.3", "--fstep", "0.1", "--maxiter", "2",
+                                      "--popsize", "3", "--workers", "1"])
+    assert result.exit_code == 0, result.output
+    fitted = pd_.Structure.from_toml(tmp_path / "fit.toml")
+    assert 100.0 <= fitted.isolator.damping <= 5000.0
+    (tmp_path / "bad.toml").write_text('structure = "rig.toml"\n[bounds]\n"walls[3].gap_m" = [0.01, 0.02]\n')
+    bad = CliRunner().invoke(app, ["identify", str(tmp_path / "targets.toml"), "--family",
+                                   str(tmp_path / "bad.toml")])
+    assert bad.exit_code == 2 and "names no number" in bad.output

@@ -118,7 +118,9 @@ def identify(
     targets: Optional[Path] = typer.Argument(
         None, metavar="TARGETS.toml", help="Targets TOML (see examples/). Omit for --paper."
     ),
-    family: Path = typer.Option(..., "--family", help="Model family TOML: structure, fixed numbers, bounds."),
+    family: Path = typer.Option(..., "--family", help="Model family TOML: structure, fixed numbers, bounds "
+                                "(or a rig of several masses: structure = \"rig.toml\" and [bounds] of "
+                                "dotted names)."),
     out: Path = typer.Option(Path("calibrated.toml"), "--out", help="Write the fitted YBs system (TOML)."),
     paper: bool = typer.Option(
         False, "--paper", metavar=NO_METAVAR, help="Fit the paper's Tables 2-4 (instead of TARGETS.toml)."
@@ -140,14 +142,15 @@ def identify(
     ),
 ) -> None:
     """Model updating: fit a family's free numbers so that the simulated sweeps match measured targets."""
-    from ..identification import ModelFamily, Targets, paper_targets
+    from ..identification import Targets, paper_targets
     from ..identification import identify as run_identify
+    from ..identification.structure_family import read_family
 
     paths = files(out=(out, (".toml",)), residuals=(residuals, (".csv",)))
     if (targets is None) == (not paper):
         raise typer.BadParameter("give either TARGETS.toml or --paper (one of them)")
     goal = paper_targets() if paper else Targets.from_toml(targets)
-    fam, bounds = ModelFamily.from_toml(family)
+    fam, bounds = read_family(family)
     complete = True
     try:
         fit = run_identify(

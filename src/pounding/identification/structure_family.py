@@ -13,11 +13,15 @@ from __future__ import annotations
 
 import copy
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
+from .._checks import parse_toml, read_text, read_toml
 from .._errors import InputError, Problem
 from ..model.dotted import get_value, set_value, why_unresolved
 from ..model.structure import Structure
+
+FAMILY_KEYS = ("structure", "bounds")
 
 
 @dataclass(frozen=True, eq=False)
@@ -71,6 +75,38 @@ class StructureFamily:
             set_value(table, name, float(value))
         return Structure.from_dict(table)
 
+    @classmethod
+    def from_toml(cls, path: str | Path) -> tuple["StructureFamily", dict[str, tuple[float, float]]]:
+        """A family and its bounds from a file: ``structure = "rig.toml"`` (the base's file, relative to
+        this one) and a ``[bounds]`` table of dotted names (quoted: ``"walls[0].stand.mass_kg" = [1,
+        100]``)."""
+        from .family import check_bounds
+
+        table = read_toml("family", path, FAMILY_KEYS)
+        if "structure" not in table:
+            raise InputError(Problem.MISSING_KEY, "structure", None, choices="structure = \"rig.toml\" (the "
+                             "base structure's file)")
+        if not isinstance(table["structure"], str):
+            raise InputError(Problem.WRONG_TYPE, "structure", table["structure"],
+                             got=type(table["structure"]).__name__, expected="the path of a structure's file")
+        try:
+            base = Structure.from_toml(Path(path).parent / table["structure"])
+        except InputError as exc:
+            raise exc.relabel("path", "structure") from None
+        family = cls(base)
+        return family, check_bounds(family, table.get("bounds", {}))
+
     def value(self, name: str) -> float:
         """The base's value of a number, by its dotted name."""
         return float(get_value(self.base.to_dict(), name))
+
+
+def read_family(path: str | Path) -> tuple[Any, dict[str, tuple[float, float]]]:
+    """A family file's family and bounds: a :class:`StructureFamily`'s (it names a ``structure``) or a
+    :class:`~pounding.ModelFamily`'s."""
+    from .family import ModelFamily
+
+    table = parse_toml(str(path), read_text("family", path))
+    if "structure" in table:
+        return StructureFamily.from_toml(path)
+    return ModelFamily.from_toml(path)
