@@ -79,3 +79,17 @@ def test_a_building_s_basin_stability_is_its_basins_share_that_pounds():
         assert share == pytest.approx(pounded / 30)
     with pytest.raises(pd_.InputError, match="walls or links"):
         pd_.basin_stability_map(pd_.Structure(2.0e3, b.isolator, b.storeys), [0.05], [1.6], samples=2)
+
+
+def test_a_building_s_alpha_is_its_levels_not_its_bumpers_stands():
+    # (the stands' impact accelerations are far above the floors': alpha is a floor's, as in a sweep)
+    wall = pd_.Wall(0, 0.01, 0.01, pd_.KelvinVoigt(1e8, 2e4), stand=pd_.Stand(20.0, 2e6, 50.0))
+    b = pd_.Structure(2.0e3, pd_.Isolator([2e5], [], damping=2e3), [pd_.Storey(1.0e3, 2.0e6, 2.0e3)], [wall])
+    exc = pd_.Harmonic(0.1, 1.6)
+    result = pd_.basins(b, exc, n=(2, 1), velocity_m_s=(-0.1, 0.1), max_cycles=300, scheduler="serial")
+    i = int(np.flatnonzero(result.labels.ravel() >= 0)[0])
+    start = pd_.StructureState.at_rest(b, 0.0, float(result.displacement_m[i]), float(result.velocity_m_s[i]))
+    settled = pd_.simulate(b, exc, 300 / exc.freq_hz, start, sample_rate_hz=0).final_state
+    window = pd_.simulate(b, exc, 5 / exc.freq_hz, settled, sample_rate_hz=0)
+    levels = float(window.abs_acceleration_max.max()) / exc.peak_m_s2
+    assert result.attractors["alpha"].iloc[result.labels.ravel()[i]] == pytest.approx(levels, rel=1e-6)

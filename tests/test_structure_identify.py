@@ -49,6 +49,10 @@ def test_a_structure_family_names_what_it_refuses():
         pd_.StructureFamily(pd_.Structure.fixed_base([pd_.Storey(1e3, 1e6)]))
     with pytest.raises(pd_.InputError, match="Structure"):
         pd_.StructureFamily(pd_.presets.paper_calibrated())
+    with pytest.raises(pd_.InputError) as err:  # (a structure's metrics are exact: no chain to fit)
+        pd_.identify(pd_.paper_targets(), pd_.StructureFamily(rig), {"isolator.damping": (100.0, 5000.0),
+                                                                      "measurement_cutoff_hz": (10.0, 100.0)})
+    assert err.value.field == "bounds.measurement_cutoff_hz"
 
 
 def test_a_structure_family_file_on_the_command_line(tmp_path):

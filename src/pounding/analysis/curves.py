@@ -356,7 +356,10 @@ def _follower(osc: Any, bif: Bifurcation, f_box: tuple, a_box: tuple, tol: float
               exact: bool) -> CurveFollower:
     fam = Family(osc, bif.a_g, bif.freq_hz, "freq_hz", bif.period_multiple, exact, bif.phase_rad,
                  1.0, f_box[1] - f_box[0], 2.0 * math.pi * bif.freq_hz)
-    _, run = fam._ref._image(np.array(bif.state.vector, dtype=float))  # (a period from the bifurcation)
+    try:
+        _, run = fam._ref._image(np.array(bif.state.vector, dtype=float))  # (a period from the bifurcation)
+    except _Failed as exc:
+        raise _NoStart(f"a period from its state does not run ({exc})") from None
     fam.set_length(length_scale(osc, run))
     return CurveFollower(fam, bif.kind, bif.side, f_box, a_box, tol, max_step)
 

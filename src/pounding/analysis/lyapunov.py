@@ -44,8 +44,7 @@ from .._checks import integer
 from .._errors import InputError, Interrupted, Problem, Status
 from .._runner.progress import Progress, progress_reporter
 from ..engine import State, simulate
-from ..engine._layout import T as I_T
-from ..engine.simulate import check_oscillator, check_state
+from ..engine.simulate import check_oscillator, check_state, kernel_system
 from ..excitation import Harmonic
 from ..protocols.bifurcation_diagram import BifurcationDiagram, periods
 from . import _hybrid as hy
@@ -54,6 +53,7 @@ from .lyapunov_result import LyapunovSpectrum
 from ..engine.structure import StructureState, assemble, check_structure_state
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
+from ._shooting import at_section
 from .periodic import _Failed, _Shooter
 from .structure_periodic import _StructureShooter
 
@@ -406,6 +406,9 @@ def largest_exponents(diagram: BifurcationDiagram, *, cycles: int = 200, align_c
     several = isinstance(diagram.oscillator, (Structure, Adjacent))
     asm = assemble(diagram.oscillator) if several else None
 
+    layout = (asm.system if asm is not None else kernel_system(diagram.oscillator)).layout
+    n_contacts = len(asm.pairs) if asm is not None else 2  # (one mass: its two bumpers' slots)
+
     def state_of(vec: np.ndarray) -> Any:
         return StructureState._of(vec, asm.dofs, asm.system.n) if asm is not None else State(vec)
 
@@ -414,8 +417,9 @@ def largest_exponents(diagram: BifurcationDiagram, *, cycles: int = 200, align_c
             for sw in diagram.sweeps:
                 i = dirs.index(sw.direction)
                 for f, vec in zip(sw.freqs_hz[:sw.steps_done], sw.window_states[:sw.steps_done]):
-                    start = np.array(vec, dtype=float)
-                    start[I_T] = 0.0  # (the window starts at table phase 0: the forcing's time 0)
+                    # (the window starts at table phase 0: the forcing's time 0, a contact in progress
+                    # keeping its start relative to it)
+                    start = at_section(np.array(vec, dtype=float), layout, n_contacts)
                     spec = lyapunov(diagram.oscillator, Harmonic(sw.a_g, float(f), g=sw.g), cycles=cycles,
                                     transient_cycles=0, align_cycles=align_cycles, state=state_of(start),
                                     method=method)

@@ -284,6 +284,9 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
                          expected="pounding.ModelFamily, or pounding.StructureFamily (a rig of several "
                                   "masses)")
     check_sweep_options(sweep_options, also="identify's own")
+    if isinstance(family, StructureFamily) and isinstance(bounds, dict) and CUTOFF in bounds:
+        raise InputError(Problem.WRONG_MODE, f"bounds.{CUTOFF}", bounds[CUTOFF], mode="one mass's fit",
+                         fix="leave it out: a structure's metrics are its exact ones (no measurement chain)")
     bounds, cutoff, sweep_options = split_cutoff(bounds, sweep_options)
     if cutoff is not None and not bounds:
         family.free_names({})  # (every number fixed: only the cutoff is fitted)

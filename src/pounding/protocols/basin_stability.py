@@ -22,7 +22,7 @@ from ..model import Oscillator
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from .basins import (MAX_STATES, N_ROW, R_LEFT, R_PERIOD, R_RIGHT, ROWS_PER_TASK, SIGNATURE, initial_states,
-                     run_states, state_box, steady_options)
+                     run_states, state_box, steady_options, structure_view)
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
@@ -114,19 +114,14 @@ def basin_stability_map(oscillator: Any, a_g_levels: Any, freqs_hz: Any, *, samp
     rtol = check_rtol(rtol)
     rng = np.random.default_rng(integer("seed", seed, 0))
     starts = initial_states(oscillator, rng.uniform(*d_box, samples), rng.uniform(*v_box, samples))
-    signs = None
-    if several:
-        asm = assemble(oscillator)
-        system, signs = asm.system, np.array([pair[2] for pair in asm.pairs], dtype=float)
-    else:
-        system = kernel_system(oscillator)
+    system, view = structure_view(oscillator) if several else (kernel_system(oscillator), None)
     points = [(i, j) for i in range(levels.size) for j in range(freqs.size)]
     tasks, where = [], []
     for i, j in points:
         exc = Harmonic(float(levels[i]), float(freqs[j]))
         for k in range(0, samples, ROWS_PER_TASK):
             chunk = starts[k:k + ROWS_PER_TASK]
-            tasks.append((system, exc.peak_m_s2, exc.omega_rad_s, chunk, steady, float(rtol), signs))
+            tasks.append((system, exc.peak_m_s2, exc.omega_rad_s, chunk, steady, float(rtol), view))
             where.append((i, j, k))
     ran = run_tasks(run_states, tasks, scheduler=scheduler, workers=workers, progress=progress,
                     label="basin stability", total=len(points) * samples, on_error="stop")

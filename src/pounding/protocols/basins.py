@@ -53,10 +53,10 @@ def run_states(task: tuple, ctx: Context) -> np.ndarray:
     """Run each initial state of the task until it settles: per state, a row of the ``R_*`` columns
     (period, alpha, excursion, contacts per cycle with the left and with the right bumper, D and V
     at the section, cycles run).  ``task``: (system, amplitude,
-    omega, states (n, state length), steady options, rtol, signs), ``signs`` for a structure (its contact
-    slots' signs; None for one mass): its settled window is run once more, for its largest alpha over every
-    mass and its contacts at every wall side and link (``_window_row``)."""
-    system, amp, omega, states, steady, rtol, signs = task
+    omega, states (n, state length), steady options, rtol, view), ``view`` for a structure (its
+    ``structure_view``; None for one mass): its settled window is run once more, for its largest alpha over
+    every level and its contacts at every wall side and link (``_window_row``)."""
+    system, amp, omega, states, steady, rtol, view = task
     out = np.full((len(states), N_ROW), np.nan)
     try:
         for i, start in enumerate(states):
@@ -71,8 +71,8 @@ def run_states(task: tuple, ctx: Context) -> np.ndarray:
                       win[W_AMAX] / amp, 0.5 * (win[W_DMAX] - win[W_DMIN]),
                       win[W_SUMS + S_COUNT] * per_cycle, win[W_SUMS + SIDE_SUMS + S_COUNT] * per_cycle,
                       strobes[-1, 0], strobes[-1, 1], n)
-            if signs is not None and code == Status.SUCCESS:
-                out[i, [R_ALPHA, R_LEFT, R_RIGHT]] = _window_row(system, signs, amp, omega, win_state,
+            if view is not None and code == Status.SUCCESS:
+                out[i, [R_ALPHA, R_LEFT, R_RIGHT]] = _window_row(system, view, amp, omega, win_state,
                                                                  int(win[W_CYCLES]), rtol, ctx)
             ctx.advance(1)
     except KeyboardInterrupt as stop:  # (a progress callback's Ctrl-C: keep the states finished)
@@ -82,18 +82,27 @@ def run_states(task: tuple, ctx: Context) -> np.ndarray:
     return out
 
 
-def _window_row(system: Any, signs: np.ndarray, amp: float, omega: float, win_state: np.ndarray, m: int,
+def structure_view(model: Any) -> tuple[Any, tuple[np.ndarray, list[int]]]:
+    """A structure's core system, and what a basin's window reads of it: its contact slots' signs and its
+    levels' dofs (the stands' left out of alpha: a floor's acceleration, not a bumper's)."""
+    asm = assemble(model)
+    levels = [d for dofs in asm.dofs for d in dofs if d >= 0]
+    return asm.system, (np.array([pair[2] for pair in asm.pairs], dtype=float), levels)
+
+
+def _window_row(system: Any, view: tuple, amp: float, omega: float, win_state: np.ndarray, m: int,
                 rtol: float, ctx: Context) -> tuple[float, float, float]:
-    """A structure's settled window run once more from its exact start: (its largest alpha over every mass,
-    contacts per cycle at the wall sides and links that stop negative motion, at those that stop positive
-    motion)."""
+    """A structure's settled window run once more from its exact start: (its largest alpha over every
+    level, contacts per cycle at the wall sides and links that stop negative motion, at those that stop
+    positive motion)."""
+    signs, levels = view
     t0 = float(win_state[T])
     period = 2.0 * math.pi / omega
     forcing = Forcing(EXC_HARMONIC, np.array([amp, omega, -(omega * t0)]), np.zeros(1), np.zeros(1))
     out = _core.run(system, forcing, win_state.copy(), t0 + m * period, -1.0, rtol, 1_000_000, False,
                     ctx.control)
     contacts, extrema = out[2], out[5]
-    amax = float(np.max(extrema[:7 * system.n].reshape(system.n, 7)[:, 4]))
+    amax = float(np.max(extrema[:7 * system.n].reshape(system.n, 7)[levels, 4]))
     ended = contacts[np.isfinite(contacts[:, 2])] if len(contacts) else np.zeros((0, 9))
     slot_sign = signs[ended[:, 0].astype(int)] if len(ended) else np.zeros(0)
     return amax / amp, float(np.sum(slot_sign < 0)) / m, float(np.sum(slot_sign > 0)) / m
@@ -112,7 +121,7 @@ def basins(oscillator: Any, excitation: Harmonic, *, displacement_m: Any = None,
         The system.  A structure's initial states shift it (the first of a pair) as one body:
         each of its moving levels at the state's displacement and velocity, its isolator on its
         backbone (``StructureState.at_rest``); its attractors are matched by their largest alpha
-        over every mass and their contacts per cycle at every wall side and link, and their
+        over every level and their contacts per cycle at every wall side and link, and their
         ``excursion_m``, ``displacement_m`` and ``velocity_m_s`` are its first moving mass's.
     excitation : Harmonic
         The shaking (its phase is ignored: every state starts at table phase 0).
@@ -196,15 +205,10 @@ def basins(oscillator: Any, excitation: Harmonic, *, displacement_m: Any = None,
     match_rtol = positive("match_rtol", match_rtol, "(relative)")
     rtol = check_rtol(rtol)
     starts = initial_states(oscillator, dd, vv)
-    signs = None
-    if several:
-        asm = assemble(oscillator)
-        system, signs = asm.system, np.array([pair[2] for pair in asm.pairs], dtype=float)
-    else:
-        system = kernel_system(oscillator)
+    system, view = structure_view(oscillator) if several else (kernel_system(oscillator), None)
     amp, omega = excitation.peak_m_s2, excitation.omega_rad_s
     chunks = [starts[i:i + ROWS_PER_TASK] for i in range(0, len(starts), ROWS_PER_TASK)]
-    tasks = [(system, amp, omega, c, steady, float(rtol), signs) for c in chunks]
+    tasks = [(system, amp, omega, c, steady, float(rtol), view) for c in chunks]
     ran = run_tasks(run_states, tasks, scheduler=scheduler, workers=workers, progress=progress,
                     label=f"basins at {excitation.freq_hz:g} Hz", total=len(starts), on_error="stop")
     ran.raise_first_error(lambda i: f"the states {i * ROWS_PER_TASK} to {(i + 1) * ROWS_PER_TASK - 1}")

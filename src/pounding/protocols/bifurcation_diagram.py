@@ -51,7 +51,7 @@ def bifurcation_diagram(oscillator: Any, a_g: float, freqs_hz: Any, *,
     oscillator : Oscillator, Structure or Adjacent
         The system: one mass, or a structure of several (or two adjacent ones), whose diagram
         then holds every level's samples (a ``level`` dimension) and each level's alpha and
-        excursion; its period is the whole state's.
+        excursion; its period is that of every level's samples (x, v).
     a_g : float
         Peak table acceleration, g.
     freqs_hz : array_like, shape (n,)
