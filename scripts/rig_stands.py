@@ -47,6 +47,8 @@ def main() -> None:
     ap.add_argument("--popsize", type=int, default=6)
     ap.add_argument("--seed", type=int, default=7)
     ap.add_argument("--workers", type=int, default=None)
+    ap.add_argument("--no-refine", action="store_true", help="skip the least-squares polish (sequential: "
+                    "about 40 evaluations per free number)")
     ap.add_argument("--out", type=Path, default=DATA, help="where to write the rig and its residuals")
     args = ap.parse_args()
     family = pd_.StructureFamily(rig())
@@ -54,8 +56,14 @@ def main() -> None:
     x0 = {name: family.value(name.replace("walls[0].gap_m", "walls[0].gap_left_m")) for name in bounds}
     targets = pd_.paper_targets()
     start = time.time()
-    fit = pd_.identify(targets, family, bounds, x0=x0, seed=args.seed, maxiter=args.maxiter,
-                       popsize=args.popsize, workers=args.workers, loss="misses", progress=True)
+    try:
+        fit = pd_.identify(targets, family, bounds, x0=x0, seed=args.seed, maxiter=args.maxiter,
+                           popsize=args.popsize, workers=args.workers, loss="misses", progress=True,
+                           refine=not args.no_refine)
+    except pd_.Interrupted as stop:  # (Ctrl-C: the best candidate so far, written with partial = true)
+        if stop.partial is None:
+            raise
+        fit = stop.partial
     print(f"{fit.n_evaluations} evaluations, {time.time() - start:.0f} s; {fit.n_within} of "
           f"{len(fit.residuals)} targets met; cost {fit.cost:.4g}")
     print(fit.parameter_table().to_string(index=False))

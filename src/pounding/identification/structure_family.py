@@ -37,7 +37,7 @@ class StructureFamily:
     Examples
     --------
     >>> import pounding
-    >>> rig = pounding.Structure.from_oscillator(pounding.presets.paper_calibrated())
+    >>> rig = pounding.Structure.from_oscillator(pounding.presets.paper_damped())
     >>> family = pounding.StructureFamily(rig)
     >>> family.free_names({"walls[0].law.stiffness": (1e5, 1e7)})
     ('walls[0].law.stiffness',)
