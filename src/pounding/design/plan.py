@@ -22,25 +22,12 @@ from ..model.structure import Structure
 from ..model.oscillator import _check_keys
 from ..studies.spec import _table, system_from_table
 from .hazard import HazardCurve
-from .spectra import DesignSpectrum, asce7_displacement, asce7_spectrum, ec8_spectrum, user_spectrum
+from .site import hazard_curve_of, site_spectra, text_field as _text
+from .spectra import DesignSpectrum, asce7_displacement
 from .bumper_types import BumperType, bumper_types, grid_of, typed_store
 from .stripes import suite_sources
 
 TOP_KEYS = ("title", "system", "bumpers", "site", "records", "design", "run")
-SITE_CODES = ("asce7-16", "en1998-1", "user")
-SITE_KEYS = {
-    "asce7-16": ("code", "s_ds_g", "s_d1_g", "t_l_s", "hazard_curve"),
-    "en1998-1": (
-        "code",
-        "a_gr_g",
-        "ground_type",
-        "spectrum_type",
-        "importance",
-        "hazard_curve",
-        "mce_factor",
-    ),
-    "user": ("code", "spectrum", "mce_spectrum", "hazard_curve"),
-}
 RECORD_KEYS = ("suite", "period_s", "levels_g", "scale_range_s")
 DESIGN_KEYS = ("gaps_m", "grid", "bumper_types", "target_probability", "level", "years", "t_m_s", "beta_m",
                "wall", "event", "limit")
@@ -49,7 +36,6 @@ MASS_EVENTS = ("contact", "acceleration", "displacement")
 BUILDING_EVENTS = ("contact", "displacement", "drift", "top_acceleration")
 RUN_KEYS = ("scheduler", "workers", "store")
 MAX_GAP_M = 2.0  # a design gap beyond this is a unit error (mm given for m)
-EC8_MCE_FACTOR = 1.5  # EN 1998-1 has no MCE: the "MCE" level is this factor times its spectrum (stated)
 
 
 @dataclass(frozen=True, eq=False)
@@ -182,7 +168,7 @@ class DesignPlan:
                 choices="a [bumpers] table (gap_left, gap_right, [bumpers.law]) or a system with "
                 "bumpers: a design chooses their gap",
             )
-        design_spec, mce_spec, hazard_file = _site(_table("site", table["site"]), base)
+        design_spec, mce_spec, hazard_file = site_spectra(_table("site", table["site"]), base)
         rec = _table("records", table["records"])
         _check_keys(rec, "records.", RECORD_KEYS, ("suite", "period_s"))
         records = suite_sources(rec["suite"])
@@ -192,7 +178,7 @@ class DesignPlan:
             design_sa, mce_sa = float(design_spec.sa_g(period)), float(mce_spec.sa_g(period))
         except InputError as exc:
             raise exc.relabel("period_s", "records.period_s") from None
-        hazard = None if hazard_file is None else _hazard(hazard_file, base, period)
+        hazard = None if hazard_file is None else hazard_curve_of(hazard_file, base, period)
         levels = (
             # (by default 0.1 to 1.5 times the MCE intensity, with the design and MCE intensities themselves)
             np.unique(np.round(np.concatenate([np.linspace(0.1, 1.5, 8) * mce_sa, [design_sa, mce_sa]]), 6))
@@ -339,14 +325,6 @@ def own_kind(system: Any, grid: dict, gap_dim: str) -> BumperType:
     return BumperType(system.bumpers.law.TYPE, system, grid)
 
 
-def _text(field: str, value: Any) -> str:
-    if not isinstance(value, str):
-        raise InputError(
-            Problem.WRONG_TYPE, field, value, got=type(value).__name__, expected="text (a string)"
-        )
-    return value
-
-
 def _check_runs(system: Any, records: list, levels: np.ndarray, period: float, grid: dict,
                 gap_dim: str = "bumpers.gap") -> None:
     """The runs the plan asks for are valid, before any: the study's own checks (the grid's names and
@@ -377,77 +355,6 @@ def _path(value: Any, base: Path) -> Any:
     if not isinstance(value, str) or value == "el-centro" or value.startswith("fema-p695:"):
         return value
     return str((base / Path(value).expanduser()).resolve())
-
-
-def _site(site: Mapping[str, Any], base: Path) -> tuple[DesignSpectrum, DesignSpectrum, HazardCurve | None]:
-    try:
-        return _site_spectra(site, base)
-    except InputError as exc:  # (the spectra's own fields, named as the file names them)
-        if exc.field.startswith("site."):
-            raise
-        raise exc.relabel("", "site.") from None
-
-
-def _site_spectra(site: Mapping[str, Any], base: Path) -> tuple[DesignSpectrum, DesignSpectrum, Any]:
-    code = one_of("site.code", site.get("code", "asce7-16"), SITE_CODES)
-    _check_keys(site, "site.", SITE_KEYS[code], ())
-    if code == "asce7-16":
-        for key in ("s_ds_g", "s_d1_g"):
-            if key not in site:
-                raise InputError(Problem.MISSING_KEY, f"site.{key}", None, choices=", ".join(SITE_KEYS[code]))
-        args = (site["s_ds_g"], site["s_d1_g"], site.get("t_l_s", 8.0))
-        design_spec, mce_spec = asce7_spectrum(*args), asce7_spectrum(*args, level="mce")
-    elif code == "en1998-1":
-        if "a_gr_g" not in site:
-            raise InputError(Problem.MISSING_KEY, "site.a_gr_g", None, choices=", ".join(SITE_KEYS[code]))
-        design_spec = ec8_spectrum(
-            site["a_gr_g"],
-            site.get("ground_type", "B"),
-            site.get("spectrum_type", 1),
-            importance=site.get("importance", 1.0),
-        )
-        factor = positive("site.mce_factor", site.get("mce_factor", EC8_MCE_FACTOR), "(a factor)")
-        mce_spec = ec8_spectrum(
-            site["a_gr_g"] * factor,
-            site.get("ground_type", "B"),
-            site.get("spectrum_type", 1),
-            importance=site.get("importance", 1.0),
-            name=f"{factor:g} x {design_spec.name}",
-        )
-    else:
-        for key in ("spectrum", "mce_spectrum"):
-            if key not in site:
-                raise InputError(
-                    Problem.MISSING_KEY,
-                    f"site.{key}",
-                    None,
-                    choices="spectrum and mce_spectrum (CSV files: period s, Sa g)",
-                )
-        try:
-            design_spec = user_spectrum(path=base / _text("site.spectrum", site["spectrum"]), name="design")
-        except InputError as exc:
-            raise exc.relabel("path", "site.spectrum") from None
-        try:
-            mce_spec = user_spectrum(path=base / _text("site.mce_spectrum", site["mce_spectrum"]), name="MCE")
-        except InputError as exc:
-            raise exc.relabel("path", "site.mce_spectrum") from None
-    return design_spec, mce_spec, site.get("hazard_curve")
-
-
-def _hazard(value: Any, base: Path, period_s: float) -> HazardCurve:
-    """The hazard curve a site table names (a CSV of Sa g and annual frequency), for Sa(period_s)."""
-    if not isinstance(value, str):
-        raise InputError(
-            Problem.WRONG_TYPE,
-            "site.hazard_curve",
-            value,
-            got=type(value).__name__,
-            expected="the path of a CSV file (Sa in g, annual frequency of exceedance)",
-        )
-    try:
-        return HazardCurve.from_csv(base / value, period_s)
-    except InputError as exc:
-        raise exc.relabel("path", "site.hazard_curve") from None
 
 
 @dataclass(frozen=True, eq=False)
