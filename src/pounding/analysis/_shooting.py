@@ -13,6 +13,29 @@ from .._errors import InputError, Problem
 from . import _hybrid as hy
 
 
+class Floquet:
+    """What an orbit's result (one mass's or a structure's) says of its ``multipliers``."""
+
+    multipliers: np.ndarray
+
+    @property
+    def max_abs_multiplier(self) -> float:
+        """The largest ``|multiplier|`` (NaN when there is no monodromy: a search that stopped early)."""
+        return float(np.abs(self.multipliers).max()) if self.multipliers.size else math.nan
+
+    @property
+    def stable(self) -> bool:
+        """Every multiplier inside the unit circle."""
+        return self.max_abs_multiplier < 1.0
+
+
+def multipliers_of(jac: np.ndarray) -> np.ndarray:
+    """The Floquet multipliers of a monodromy ``jac``, largest modulus first (NaN where it is not finite)."""
+    finite = jac.size and np.isfinite(jac).all()
+    mult = np.linalg.eigvals(jac) if finite else np.full(jac.shape[0], np.nan + 0j)
+    return mult[np.argsort(-np.abs(mult), kind="stable")]
+
+
 def at_section(vec: np.ndarray, layout: dict, n_contacts: int) -> np.ndarray:
     """The state vector moved to time 0 (a whole number of forcing periods back): a contact in
     progress keeps its start relative to the section (``layout``: the core system's)."""

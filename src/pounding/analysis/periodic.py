@@ -38,12 +38,12 @@ from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from . import _hybrid as hy
 from ._args import exact_monodromy, settled, tolerance
-from ._shooting import _Failed, _Newton, at_section
+from ._shooting import Floquet, _Failed, _Newton, at_section, multipliers_of
 
 
 
 @dataclass(frozen=True, eq=False)
-class PeriodicOrbit:
+class PeriodicOrbit(Floquet):
     """A periodic response and its stability (what :func:`periodic_orbit` returns).
 
     Attributes
@@ -99,16 +99,6 @@ class PeriodicOrbit:
     method: str
     run: Run = field(repr=False)
     message: str
-
-    @property
-    def max_abs_multiplier(self) -> float:
-        """The largest ``|multiplier|`` (NaN when there is no monodromy: a search that stopped early)."""
-        return float(np.abs(self.multipliers).max()) if self.multipliers.size else math.nan
-
-    @property
-    def stable(self) -> bool:
-        """Every multiplier inside the unit circle."""
-        return self.max_abs_multiplier < 1.0
 
     @property
     def alpha(self) -> float:
@@ -247,9 +237,7 @@ def periodic_orbit(
     # progress its own (the guess's otherwise)
     state = simulate(oscillator, excitation, period, State(vec), sample_rate_hz=0).final_state
     run = simulate(oscillator, excitation, period, state, sample_rate_hz=samples_per_period / period)
-    mult = np.linalg.eigvals(jac) if jac.size and np.isfinite(jac).all() else np.full(jac.shape[0],
-                                                                                      np.nan + 0j)
-    mult = mult[np.argsort(-np.abs(mult), kind="stable")]
+    mult = multipliers_of(jac)
     names = tuple(shooter.names(vec, frozen))
     return PeriodicOrbit(state, period, mult, jac, names, res, res <= tol, it,
                          "exact" if shooter.exact else "finite-difference", run, message)

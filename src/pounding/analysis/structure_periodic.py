@@ -30,13 +30,13 @@ from ..model.contact_laws import linear_form
 from ..model.structure import Structure
 from . import _hybrid as hy
 from ._args import exact_monodromy, settled, tolerance
-from ._shooting import _Failed, _Newton, at_section
+from ._shooting import Floquet, _Failed, _Newton, at_section, multipliers_of
 
 ACT_YIELD = hy.ACT_YIELD
 
 
 @dataclass(frozen=True, eq=False)
-class StructurePeriodicOrbit:
+class StructurePeriodicOrbit(Floquet):
     """A periodic response of a structure (or two adjacent ones) and its stability.
 
     Attributes
@@ -96,16 +96,6 @@ class StructurePeriodicOrbit:
     message: str
 
     @property
-    def max_abs_multiplier(self) -> float:
-        """The largest ``|multiplier|`` (NaN when there is no monodromy: a search that stopped early)."""
-        return float(np.abs(self.multipliers).max()) if self.multipliers.size else math.nan
-
-    @property
-    def stable(self) -> bool:
-        """Every multiplier inside the unit circle."""
-        return self.max_abs_multiplier < 1.0
-
-    @property
     def contacts_per_period(self) -> int:
         """Contacts at every wall side and link in one period (each once: those that end in it)."""
         run = self.run
@@ -150,9 +140,7 @@ def structure_periodic_orbit(model: Structure | Adjacent, excitation: Harmonic, 
         vec, res, jac, frozen, it, message = shooter.solve(np.array(guess.vector, dtype=float), tol, max_iter)
     state = simulate_structure(model, excitation, period, shooter._state(vec), sample_rate_hz=0).final_state
     run = simulate_structure(model, excitation, period, state, sample_rate_hz=samples_per_period / period)
-    mult = (np.linalg.eigvals(jac) if jac.size and np.isfinite(jac).all()
-            else np.full(jac.shape[0], np.nan + 0j))
-    mult = mult[np.argsort(-np.abs(mult), kind="stable")]
+    mult = multipliers_of(jac)
     method = "exact" if shooter.exact else "finite-difference"
     return StructurePeriodicOrbit(state, period, mult, jac, tuple(shooter.names(vec, frozen)), res,
                                   res <= tol, it, method, run, message)
