@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import one_of, real
+from .._checks import integer, one_of, real
 from .._errors import InputError, Problem
 from ..engine.simulate import simulate
 from ..excitation import Harmonic
@@ -25,6 +25,23 @@ def tolerance(tol: Any, low: float, high: float, default: float) -> float:
         raise InputError(Problem.OUT_OF_RANGE, "tol", tol, range=f"[{low:g}, {high:g}]",
                          hint=f" (relative to the orbit's size; {default:g} by default)")
     return tol
+
+
+def orbit_arguments(excitation: Any, period_multiple: Any, tol: Any, max_iter: Any, settle_cycles: Any,
+                    samples_per_period: Any) -> tuple[int, float, int, int, int]:
+    """:func:`pounding.periodic_orbit`'s arguments, one mass's or a structure's alike, checked:
+    ``(period_multiple, tol, max_iter, settle_cycles, samples_per_period)``."""
+    if not isinstance(excitation, Harmonic):
+        raise InputError(Problem.WRONG_TYPE, "excitation", excitation, got=type(excitation).__name__,
+                         expected="pounding.Harmonic (a periodic orbit needs a periodic forcing)")
+    period_multiple = integer("period_multiple", period_multiple, 1, 64, "give the orbit's period in forcing "
+                              "periods: 1, 2 for a period-doubled response, ...")
+    tol = tolerance(tol, 1e-15, 1e-2, 1e-10)
+    max_iter = integer("max_iter", max_iter, 1, 1000, "100 Newton iterations are plenty")
+    settle_cycles = integer("settle_cycles", settle_cycles, 1, 100_000, "give a guess instead")
+    samples_per_period = integer("samples_per_period", samples_per_period, 2, 1_000_000,
+                                 "the run's extrema are exact whatever the sampling")
+    return period_multiple, tol, max_iter, settle_cycles, samples_per_period
 
 
 def step_size(max_step: Any, low: float, what: str) -> float:

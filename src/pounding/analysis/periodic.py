@@ -24,7 +24,6 @@ from typing import Any, Optional
 
 import numpy as np
 
-from .._checks import integer
 from .._errors import InputError, Problem
 from ..engine import Run, State, simulate
 from ..engine._layout import DEF_L, DEF_R, REGION, STATE_BASE, ZETA
@@ -37,7 +36,7 @@ from ..model import Oscillator
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from . import _hybrid as hy
-from ._args import exact_monodromy, settled, tolerance
+from ._args import exact_monodromy, orbit_arguments, settled
 from ._shooting import Floquet, _Failed, _Newton, at_section, multipliers_of
 
 
@@ -207,16 +206,8 @@ def periodic_orbit(
                                         tol=tol, max_iter=max_iter, settle_cycles=settle_cycles,
                                         method=method, samples_per_period=samples_per_period)
     check_oscillator(oscillator)
-    if not isinstance(excitation, Harmonic):
-        raise InputError(Problem.WRONG_TYPE, "excitation", excitation, got=type(excitation).__name__,
-                         expected="pounding.Harmonic (a periodic orbit needs a periodic forcing)")
-    period_multiple = integer("period_multiple", period_multiple, 1, 64, "give the orbit's period in forcing "
-                              "periods: 1, 2 for a period-doubled response, ...")
-    tol = tolerance(tol, 1e-15, 1e-2, 1e-10)
-    max_iter = integer("max_iter", max_iter, 1, 1000, "100 Newton iterations are plenty")
-    settle_cycles = integer("settle_cycles", settle_cycles, 1, 100_000, "give a guess instead")
-    samples_per_period = integer("samples_per_period", samples_per_period, 2, 1_000_000,
-                                 "the run's extrema are exact whatever the sampling")
+    period_multiple, tol, max_iter, settle_cycles, samples_per_period = orbit_arguments(
+        excitation, period_multiple, tol, max_iter, settle_cycles, samples_per_period)
     exact = exact_monodromy(oscillator, method)
     period = period_multiple / excitation.freq_hz
     if guess is None:
