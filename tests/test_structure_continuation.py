@@ -9,6 +9,7 @@ pair): the exact n-dof monodromy along the branch, its folds and grazings locate
 from __future__ import annotations
 
 import numpy as np
+import pandas as pd
 import pytest
 
 import pounding as pd_
@@ -113,5 +114,49 @@ def test_a_building_s_fold_and_grazing_followed_in_two_parameters():
         state = pd_.StructureState._of(curve.states[i], ((0, 1),), 2)
         run = pd_.simulate(b, exc, 1.0 / row["freq_hz"], state, sample_rate_hz=0)
         assert abs(run.clearance_m[slot]) <= 1e-7 * 0.02
-    with pytest.raises(pd_.InputError, match="oscillator"):
-        pd_.coexistence_map(b)
+
+
+def test_one_level_s_coexistence_map_is_the_oscillators():
+    osc = pd_.presets.paper_damped()
+    kw = dict(a_g=(0.04, 0.06), freqs_hz=(1.5, 2.5), levels=[0.05], kinds=["fold"], max_step=0.05,
+              basin_sample=2, test_freqs_hz=[1.6, 1.8, 2.2])
+    one, many = pd_.coexistence_map(osc, **kw), pd_.coexistence_map(pd_.Structure.from_oscillator(osc), **kw)
+    assert one.matrix["verdict"].tolist() == ["one", "coexist", "one"]  # (cannot pass vacuously)
+    pd.testing.assert_frame_equal(many.matrix, one.matrix)
+    cols = ["freq_hz", "a_g"]
+    np.testing.assert_allclose(many.to_dataframe()[cols], one.to_dataframe()[cols], rtol=1e-9)
+
+
+def test_a_building_s_coexistence_map_is_judged_by_its_branch_sweeps_and_basins(tmp_path):
+    b = _building()
+    freqs = np.round(np.arange(1.3, 1.91, 0.1), 10)
+    up, down = pd_.sweep(b, 0.05, freqs), pd_.sweep(b, 0.05, freqs, direction="down")
+    m = pd_.coexistence_map(b, a_g=(0.04, 0.06), freqs_hz=(1.0, 2.5), levels=[0.05], kinds=["fold"],
+                            basin_sample=2, sweeps=[up, down], test_freqs_hz=freqs)
+    assert m.branches[0].success and len(m.curves) >= 1
+    rows = m.matrix.set_index("freq_hz")
+    # the sweeps part at 1.5-1.7 Hz (up on the impacting response, down on the one that misses the wall)
+    differ = np.abs(up.alpha.max(axis=1) - down.alpha.max(axis=1)[::-1]) > 0.05 * up.alpha.max(axis=1)
+    assert freqs[differ].tolist() == [1.5, 1.6, 1.7]
+    np.testing.assert_array_equal(rows["sweep_responses"].to_numpy(), np.where(differ, 2.0, 1.0))
+    assert (rows.loc[freqs[differ], "verdict"] == "coexist").all()
+    assert (rows.loc[freqs[differ], "stable_orbits"] == 2).all()  # (the branch agrees)
+    assert rows.loc[1.3, "stable_orbits"] == 1 and rows.loc[1.9, "stable_orbits"] == 1
+    with pytest.raises(pd_.InputError, match="StructureSweepResult"):
+        pd_.coexistence_map(b, levels=[0.05], sweeps=[pd_.sweep(pd_.presets.paper_damped(), 0.05, [1.0])])
+
+
+def test_the_command_line_maps_a_building_s_coexistence(tmp_path):
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+
+    _building().to_toml(tmp_path / "b.toml")
+    result = CliRunner().invoke(app, ["coexistence", str(tmp_path / "b.toml"), "--a-g-min", "0.045",
+                                      "--a-g-max", "0.055", "--levels", "0.05", "--from", "1.4",
+                                      "--to", "1.8", "--basin-sample", "0",
+                                      "--matrix", str(tmp_path / "m.csv")])
+    assert result.exit_code == 0, result.output
+    matrix = pd.read_csv(tmp_path / "m.csv")
+    assert "coexist" in set(matrix["verdict"]) and len(matrix) == 5
+    assert CliRunner().invoke(app, ["coexistence", str(tmp_path / "b.toml"), "--no-bumpers"]).exit_code == 2

@@ -158,7 +158,7 @@ def _curve(oscillator: Oscillator, bifurcation: Bifurcation, f_box: tuple, a_box
 
 
 def coexistence_map(
-    oscillator: Oscillator,
+    oscillator: Any,
     *,
     a_g: Any = (0.02, 0.12),
     freqs_hz: Any = (0.5, 5.0),
@@ -187,8 +187,10 @@ def coexistence_map(
 
     Parameters
     ----------
-    oscillator : Oscillator
-        The system.
+    oscillator : Oscillator, Structure or Adjacent
+        The system.  A structure's branches, curves and basin samples are those of
+        :func:`continuation`, :func:`bifurcation_curve` and :func:`pounding.basins` for it (a response
+        read by its largest alpha over every level and its first moving mass's excursion).
     a_g : (float, float)
         The map's range of a_G, g.
     freqs_hz : (float, float)
@@ -209,8 +211,9 @@ def coexistence_map(
         Largest scaled residual of each curve's points, as in :func:`bifurcation_curve`.
     method : {"auto", "exact", "finite-difference"}
         The monodromy, as in :func:`periodic_orbit`; also the branches'.
-    sweeps : sequence of SweepResult, or CampaignResult, optional
-        Sweeps of this system at the levels (up and down): witnesses at their frequencies.
+    sweeps : sequence of SweepResult or StructureSweepResult, or CampaignResult, optional
+        Sweeps of this system at the levels (up and down): witnesses at their frequencies (a
+        structure's: :func:`pounding.sweep` of it).
     basin_sample : int
         Points per axis of the basin sample run at each test point (0: none; then a branch's single
         stable orbit is only "one on the branch").
@@ -246,11 +249,9 @@ def coexistence_map(
     >>> m.matrix["verdict"].value_counts().to_dict()
     {'one': 7, 'coexist': 4}
     """
-    if isinstance(oscillator, (Structure, Adjacent)):
-        raise InputError(Problem.WRONG_MODE, "oscillator", type(oscillator).__name__, mode="one mass",
-                         fix="a structure's folds and grazings: pounding.continuation, then "
-                             "pounding.bifurcation_curve of each (the map takes one mass so far)")
-    check_oscillator(oscillator)
+    several = isinstance(oscillator, (Structure, Adjacent))
+    if not several:
+        check_oscillator(oscillator)
     a_box = _box("a_g", a_g, "g")
     f_box = _box("freqs_hz", freqs_hz, "Hz")
     if levels is None:
@@ -275,7 +276,7 @@ def coexistence_map(
                          expected="a sequence of 'fold', 'grazing'")
     kinds = tuple(dict.fromkeys(one_of("kinds", k, CURVE_KINDS) for k in kinds))
     tol, max_step, max_points, exact = _common(oscillator, tol, max_step, max_points, method)
-    witnesses = check_sweeps(sweeps)
+    witnesses = check_sweeps(sweeps, several)
     basin_sample = check_basin_sample(basin_sample)
     if test_freqs_hz is None:
         freqs = np.round(np.arange(f_box[0], f_box[1] + 1e-9 * step, step), 10)

@@ -71,7 +71,7 @@ def sweep_witness(sweeps: Sequence["SweepResult"], a_g: float, freq_hz: float) -
     for sw in sweeps:
         if not math.isclose(sw.a_g, a_g, rel_tol=1e-9):
             continue
-        df = sw.exact_dataframe()
+        df = _witness_table(sw)
         at = df[np.isclose(df["freq_hz"].to_numpy(float), freq_hz, rtol=0.0, atol=1e-9) & df["steady"]]
         for _, row in at.iterrows():
             settled.append((int(row["period_multiple"]), bool(row["contact"]), float(row["alpha"]),
@@ -80,6 +80,33 @@ def sweep_witness(sweeps: Sequence["SweepResult"], a_g: float, freq_hz: float) -
     if not settled:
         return math.nan, ""
     return float(distinct(settled)), f"sweeps settled: {', '.join(words)}"
+
+
+def _witness_table(sweep: Any) -> pd.DataFrame:
+    """One row per step of a sweep: ``freq_hz``, ``steady``, ``period_multiple``, ``contact``, ``alpha``
+    and ``excursion_m``.  A structure's (:class:`~pounding.protocols.StructureSweepResult`): its largest
+    alpha over every level, its first moving mass's excursion, and whether any wall side or link was hit
+    in the window (what a branch's and a basin's rows read of it)."""
+    from ..protocols import StructureSweepResult
+
+    if not isinstance(sweep, StructureSweepResult):
+        return sweep.exact_dataframe()
+    structure0 = sweep.levels.index((0, 1 if _fixed(sweep.structure) else 0))
+    m = sweep.level_metrics
+    contacts = np.nan_to_num(sweep.contact_metrics[:, :, 0]) if sweep.contact_metrics.size else \
+        np.zeros((len(sweep.freqs_hz), 1))
+    with np.errstate(all="ignore"):
+        alpha = np.nanmax(np.where(np.isfinite(sweep.alpha), sweep.alpha, -np.inf), axis=1)
+    return pd.DataFrame({"freq_hz": sweep.freqs_hz, "steady": sweep.period_multiple > 0,
+                         "period_multiple": sweep.period_multiple, "contact": contacts.max(axis=1) > 0.0,
+                         "alpha": alpha, "excursion_m": m[:, structure0, 0] - m[:, structure0, 1]})
+
+
+def _fixed(model: Any) -> bool:
+    """Whether a structure (or a pair's first) stands on the ground (its level 0 does not move)."""
+    from ..engine.structure import structures_of
+
+    return bool(structures_of(model)[0][0].fixed)
 
 
 def distinct(responses: Sequence[tuple]) -> int:
@@ -186,16 +213,19 @@ def check_basin_sample(value: Any) -> int:
     return int(value)
 
 
-def check_sweeps(value: Any) -> tuple:
-    """``sweeps``: SweepResults (or a CampaignResult: its sweeps with bumpers)."""
-    from ..protocols import CampaignResult, SweepResult
+def check_sweeps(value: Any, several: bool = False) -> tuple:
+    """``sweeps``: SweepResults (or a CampaignResult: its sweeps with bumpers); for a structure
+    (``several``), StructureSweepResults."""
+    from ..protocols import CampaignResult, StructureSweepResult, SweepResult
 
     if value is None:
         return ()
     if isinstance(value, CampaignResult):
-        return tuple(sw for (conf, _a, _d), sw in value.sweeps.items() if conf == "YBs")
+        value = tuple(sw for (conf, _a, _d), sw in value.sweeps.items() if conf == "YBs")
+    kind, words = ((StructureSweepResult, "StructureSweepResult (pounding.sweep of the structure)") if several
+                   else (SweepResult, "SweepResult (or a CampaignResult)"))
     if isinstance(value, (str, bytes, Mapping)) or not isinstance(value, Sequence) or not all(
-            isinstance(s, SweepResult) for s in value):
+            isinstance(s, kind) for s in value):
         raise InputError(Problem.WRONG_TYPE, "sweeps", value, got=type(value).__name__,
-                         expected="a sequence of SweepResult (or a CampaignResult)")
+                         expected=f"a sequence of {words}")
     return tuple(value)

@@ -139,8 +139,8 @@ def coexistence(
 ) -> None:
     """Where two responses coexist (where up and down sweeps must differ): branches at a_G levels,
     their folds followed in (a_G, f), and each test point judged by the branch and a basin sample
-    (coexisting, one response, or not assessed). Exits 1 when a branch stopped short of the range
-    (the map is then incomplete)."""
+    (coexisting, one response, or not assessed). SYSTEM.toml may be a building's or a pair's file.
+    Exits 1 when a branch stopped short of the range (the map is then incomplete)."""
     from ..analysis.curves import coexistence_map
 
     paths = files(out=(out, CSV), matrix=(matrix, CSV))
@@ -153,7 +153,8 @@ def coexistence(
             chosen = []
         if not chosen:
             raise typer.BadParameter(f"--levels {levels!r}: give numbers separated by commas, e.g. 0.03,0.05")
-    osc = system(system_file, preset, bumpers=not no_bumpers)
+    osc = system(system_file, preset, bumpers=not no_bumpers, structures=True)
+    one_mass_options(osc, no_bumpers)
     complete = True
     kinds = ("fold", "grazing") if grazings else ("fold",)
     with working(f"branches and {' and '.join(kinds)} curves, a_G {a_g_min:g} to {a_g_max:g} ..."):
