@@ -265,9 +265,8 @@ def kv_table(title: str, system: Any = None) -> tuple[Table, Callable[[str, str]
     return table, add
 
 
-def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True, structures: bool = False):
-    """The system of a command: SYSTEM.toml (an oscillator's, or with ``structures`` a structure's too) or
-    a preset."""
+def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True):
+    """The system of a command: SYSTEM.toml (an oscillator's, a structure's or a pair's) or a preset."""
     from .. import presets
     from .._checks import parse_toml, read_text
     from ..model import Oscillator
@@ -281,10 +280,6 @@ def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True, st
     table = parse_toml(str(path), text)
     kind = system_type(table)
     if kind is not Oscillator:  # (a structure's file, or two adjacent ones': to_toml writes them)
-        if not structures:
-            raise typer.BadParameter(f"{path} is a structure of several masses: this command takes one mass "
-                                     "so far (the others take structures: simulate, sweep, continue, "
-                                     "bifurcation, basins, lyapunov, design ...)")
         return kind.from_toml(path)
     return Oscillator.from_toml(path)
 

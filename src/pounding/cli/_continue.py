@@ -41,7 +41,7 @@ def continue_branch(
 
     paths = files(out=(out, CSV), bifurcations=(bifurcations, CSV))
     plot = figure_path("--plot", plot)
-    osc = system(system_file, preset, bumpers=not no_bumpers, structures=True)
+    osc = system(system_file, preset, bumpers=not no_bumpers)
     several = one_mass_options(osc, no_bumpers)
     if several and sweeps:
         err_console.print("[yellow]warning:[/] --sweeps draws one mass's sweeps over its branch; a "
@@ -153,7 +153,7 @@ def coexistence(
             chosen = []
         if not chosen:
             raise typer.BadParameter(f"--levels {levels!r}: give numbers separated by commas, e.g. 0.03,0.05")
-    osc = system(system_file, preset, bumpers=not no_bumpers, structures=True)
+    osc = system(system_file, preset, bumpers=not no_bumpers)
     one_mass_options(osc, no_bumpers)
     complete = True
     kinds = ("fold", "grazing") if grazings else ("fold",)

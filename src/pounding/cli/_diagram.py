@@ -49,7 +49,7 @@ def bifurcation(
 
     paths = files(out=(out, CSV), netcdf=(netcdf, NETCDF))
     plot = figure_path("--plot", plot)
-    osc = system(system_file, preset, bumpers=not no_bumpers, structures=True)
+    osc = system(system_file, preset, bumpers=not no_bumpers)
     several = one_mass_options(osc, no_bumpers)
     freqs = frequencies(fmin, fmax, fstep)
     kwargs = dict(direction=direction, transient_cycles=transient_cycles, record_cycles=record_cycles,
@@ -145,7 +145,7 @@ def basins_command(
 
     paths = files(out=(out, CSV), netcdf=(netcdf, NETCDF))
     plot = figure_path("--plot", plot)
-    osc = system(system_file, preset, bumpers=not no_bumpers, structures=True)
+    osc = system(system_file, preset, bumpers=not no_bumpers)
     one_mass_options(osc, no_bumpers)
     lo, hi = open_range(osc)  # (a structure's: the shifts of it as one body that leave it open)
     d_box = None if dmin is None and dmax is None else (
@@ -206,7 +206,7 @@ def lyapunov_command(
 
     paths = files(out=(out, CSV), netcdf=(netcdf, NETCDF))
     plot = figure_path("--plot", plot)
-    osc = system(system_file, preset, bumpers=not no_bumpers, structures=True)
+    osc = system(system_file, preset, bumpers=not no_bumpers)
     one_mass_options(osc, no_bumpers)
     try:
         spec = lyapunov(osc, Harmonic(a_g, freq), cycles=cycles, transient_cycles=transient_cycles,

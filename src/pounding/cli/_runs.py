@@ -88,7 +88,7 @@ def simulate(
 
     out = files(contacts=(contacts, CSV), history=(history, CSV))
     plot = figure_path("--plot", plot)
-    osc = system(system_file, preset, bumpers=not no_bumpers, structures=True)
+    osc = system(system_file, preset, bumpers=not no_bumpers)
     exc, what = excitation(a_g, freq, record, record_dt, record_units, scale_pga)
     if duration is None:
         duration = exc.t[-1] if record is not None else 20.0
@@ -295,7 +295,7 @@ def sweep(
     paths = files(out=(out, CSV), netcdf=(netcdf, NETCDF))
     plot = figure_path("--plot", plot)
 
-    osc = system(system_file, preset, bumpers=not no_bumpers, structures=True)
+    osc = system(system_file, preset, bumpers=not no_bumpers)
     several = one_mass_options(osc, no_bumpers)
     freqs = frequencies(fmin, fmax, fstep)
     options = steady_options(steady, cycles, max_cycles)
@@ -419,8 +419,8 @@ def campaign(
     if preset is not None:
         nbs_osc, ybs_osc = presets.by_name(preset, bumpers=False), presets.by_name(preset)
     elif nbs or ybs:  # (an oscillator's file, or a structure's: without its walls, and with them)
-        nbs_osc = system(nbs, None, structures=True) if nbs else None
-        ybs_osc = system(ybs, None, structures=True) if ybs else None
+        nbs_osc = system(nbs, None) if nbs else None
+        ybs_osc = system(ybs, None) if ybs else None
     else:
         raise typer.BadParameter("give --preset NAME, or --nbs and/or --ybs TOML files")
     complete = True

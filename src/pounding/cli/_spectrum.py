@@ -79,7 +79,7 @@ def spectrum(
                                      "file")
         from ._app import system
 
-        building = system(structure, None, structures=True)
+        building = system(structure, None)
         if not isinstance(building, Structure):
             other = ("two adjacent ones" if hasattr(building, "links")
                      else "a single mass's (its spectrum: without --structure)")
