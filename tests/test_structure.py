@@ -326,8 +326,6 @@ def test_the_command_line_runs_a_structure_and_other_commands_say_they_take_one_
     assert len(pd.read_csv(out["contacts"])) > 0
     assert "displacement_m[3]" in pd.read_csv(out["history"], nrows=2).columns
     assert out["plot"].stat().st_size > 10_000
-    one_mass = runner.invoke(app, ["coexistence", str(building)])
-    assert one_mass.exit_code == 2 and "takes one mass" in one_mass.output, one_mass.output
     diagram = runner.invoke(app, ["bifurcation", str(building), "--a-g", "0.3", "--fmin", "0.6",
                                   "--fmax", "0.8", "--fstep", "0.2", "--transient-cycles", "20",
                                   "--record-cycles", "10",

@@ -8,12 +8,15 @@ pair): the exact n-dof monodromy along the branch, its folds and grazings locate
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import numpy as np
 import pandas as pd
 import pytest
 
 import pounding as pd_
 
+ROOT = Path(__file__).resolve().parents[1]
 ISO = pd_.Isolator(slopes=[2e5], breakpoints=[], damping=4e3)
 
 
@@ -144,6 +147,34 @@ def test_a_building_s_coexistence_map_is_judged_by_its_branch_sweeps_and_basins(
     assert rows.loc[1.3, "stable_orbits"] == 1 and rows.loc[1.9, "stable_orbits"] == 1
     with pytest.raises(pd_.InputError, match="StructureSweepResult"):
         pd_.coexistence_map(b, levels=[0.05], sweeps=[pd_.sweep(pd_.presets.paper_damped(), 0.05, [1.0])])
+
+
+def test_a_branch_with_no_orbit_to_start_from_says_so_and_the_map_starts_at_the_other_end(monkeypatch):
+    from pounding.analysis import curves
+
+    moat = pd_.Structure.from_toml(ROOT / "examples" / "building_moat.toml")
+    with pytest.raises(pd_.InputError, match="no periodic orbit of 1 period.* to start from at 0.5") as err:
+        pd_.continuation(moat, 0.1, (0.5, 0.9))  # (100 periods from rest at 0.5 Hz do not settle near one)
+    assert err.value.field == "freqs_hz" and "reversed" in str(err.value)
+    real, boxes = curves.continuation, []
+
+    def low_end_fails(osc, level, box, **kw):
+        boxes.append(tuple(box))
+        if box[0] < box[1]:
+            raise pd_.InputError(pd_.Problem.BAD_STATE, "freqs_hz", box, why="no orbit there", fix="-")
+        return real(osc, level, box, **kw)
+
+    monkeypatch.setattr(curves, "continuation", low_end_fails)
+    kw = dict(a_g=(0.04, 0.06), freqs_hz=(1.5, 2.5), levels=[0.05], kinds=["fold"], max_step=0.05,
+              basin_sample=0, test_freqs_hz=[1.6, 1.8, 2.2])
+    m = pd_.coexistence_map(pd_.presets.paper_damped(), **kw)
+    assert boxes == [(1.5, 2.5), (2.5, 1.5)]
+    assert m.matrix["stable_orbits"].tolist() == [1.0, 2.0, 1.0]  # (the same branch, followed downwards)
+    monkeypatch.setattr(curves, "continuation", lambda osc, level, box, **kw: low_end_fails(osc, level,
+                                                                                          sorted(box)))
+    with pytest.raises(pd_.InputError, match="no periodic response to start its branch") as err:
+        pd_.coexistence_map(pd_.presets.paper_damped(), **kw)
+    assert err.value.field == "levels"
 
 
 def test_the_command_line_maps_a_building_s_coexistence(tmp_path):

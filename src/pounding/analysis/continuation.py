@@ -190,7 +190,17 @@ def continuation(
     follower.doubled = isinstance(guess, Bifurcation) and guess.kind == "period-doubling"
     try:
         with hy.one_blas_thread():
-            follower.start(vec, p_start, guess if isinstance(guess, Bifurcation) else None)
+            try:
+                follower.start(vec, p_start, guess if isinstance(guess, Bifurcation) else None)
+            except InputError as exc:
+                if guess is not None:
+                    raise
+                raise InputError(Problem.BAD_STATE, parameter if parameter != "freq_hz" else "freqs_hz",
+                                 values, why=f"gives no periodic orbit of {period_multiple} period(s) to "
+                                 f"start from at {p_start:g}: Newton did not converge from the response "
+                                 f"settled over {settle_cycles} periods from rest there",
+                                 fix="start the branch at the range's other end (give it reversed), raise "
+                                     "settle_cycles, or give a guess (a sweep's window state)") from exc
             follower.follow()
     except KeyboardInterrupt:
         raise Interrupted(follower.branch(oscillator, values, Status.INTERRUPTED, "interrupted"),

@@ -288,7 +288,7 @@ def coexistence_map(
     notes: list[str] = []
     try:
         for level in levels:
-            br = continuation(oscillator, level, f_box, max_step=max_step, method=method)
+            br = _level_branch(oscillator, level, f_box, max_step, method)
             branches.append(br)
             for bif in br.bifurcations:
                 if bif.kind in kinds and not any(c.passes(bif) for c in curves):
@@ -320,6 +320,25 @@ def coexistence_map(
 
 
 # ---------------------------------------------------------------------- pieces
+def _level_branch(osc: Any, level: float, f_box: tuple, max_step: float, method: str) -> Branch:
+    """The branch at ``level`` over the map's frequencies, started at the low end, else (no periodic
+    response settles there to start from) at the high end."""
+    try:
+        return continuation(osc, level, f_box, max_step=max_step, method=method)
+    except InputError as low:
+        if low.field != "freqs_hz":
+            raise
+        try:
+            return continuation(osc, level, f_box[::-1], max_step=max_step, method=method)
+        except InputError as high:
+            if high.field != "freqs_hz":
+                raise
+        raise InputError(Problem.BAD_STATE, "levels", level,
+                         why=f"has no periodic response to start its branch from at {f_box[0]:g} Hz nor at "
+                             f"{f_box[1]:g} Hz (Newton did not converge from the responses settled there)",
+                         fix="leave this a_G out of levels, or narrow freqs_hz") from None
+
+
 def _sequence(field: str, value: Any, what: str) -> list:
     """A non-empty list, or an InputError naming ``field`` (a string, a mapping, a scalar or a 0-d
     array is none)."""

@@ -227,7 +227,11 @@ class StructureState:
                     "give the displacement in m")
         v = at_most("velocity_m_s", real("velocity_m_s", velocity_m_s), 1000.0, " m/s",
                     "give the velocity in m/s")
-        asm = assemble(structure)
+        return cls._shifted(assemble(structure), time_s, d, v)
+
+    @classmethod
+    def _shifted(cls, asm: "Assembly", time_s: float, d: float, v: float) -> "StructureState":
+        """``at_rest`` of the assembled structure, its numbers checked."""
         lay = asm.system.layout
         vec = np.zeros(lay["size"])
         vec[0] = time_s
@@ -289,7 +293,7 @@ _FIX = "start from StructureState.at_rest(structure) or a final_state of this st
 def _check_state(state: Optional[StructureState], model: Structure | Adjacent,
                  asm: Assembly) -> StructureState:
     if state is None:
-        return StructureState.at_rest(model)
+        return StructureState._shifted(asm, 0.0, 0.0, 0.0)
     if not isinstance(state, StructureState):
         raise InputError(Problem.WRONG_TYPE, "state", state, got=type(state).__name__,
                          expected="pounding.StructureState (StructureState.at_rest(structure) or a run's "
