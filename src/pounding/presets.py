@@ -23,9 +23,11 @@ if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
 
     from .model import MeasurementChain
+    from .model.structure import Structure
 
 __all__ = ["by_name", "measurement_profile", "paper_calibrated", "paper_calibrated_measured",
-           "paper_calibrated_v1", "paper_calibrated_v2", "paper_damped", "paper_printed", "residuals"]
+           "paper_calibrated_v1", "paper_calibrated_v2", "paper_damped", "paper_printed", "paper_rig_stands",
+           "residuals", "rig_stands_scan"]
 
 PAPER_SLOPES_N_M = (38_000.0, 18_000.0, 2_000.0)
 PAPER_BREAKPOINTS_M = (0.015, 0.040)
@@ -117,6 +119,9 @@ CALIBRATED_V2_RESIDUALS_FILE = "paper_calibrated_v2_residuals.csv"
 MEASURED_FILE = "paper_calibrated_measured.toml"
 MEASURED_RESIDUALS_FILE = "paper_calibrated_measured_residuals.csv"
 MEASURED_PROFILE_FILE = "measurement_profile.csv"
+RIG_STANDS_FILE = "paper_rig_stands.toml"
+RIG_STANDS_RESIDUALS_FILE = "paper_rig_stands_residuals.csv"
+RIG_STANDS_SCAN_FILE = "paper_rig_stands_scan.csv"
 
 
 def _data_system(name: str, bumpers: bool) -> Oscillator:
@@ -167,6 +172,59 @@ def paper_calibrated(bumpers: bool = True) -> Oscillator:
     16.4
     """
     return _data_system(CALIBRATED_FILE, bumpers)
+
+
+def paper_rig_stands() -> "Structure":
+    """The paper's rig with its bumpers on stands of their own: the hypothesis that the steel stands
+    the bumpers are bolted to explain the YBs accelerations, fitted.
+
+    Made by ``scripts/rig_stands.py --maxiter 12 --popsize 6 --seed 7 --no-refine``: the calibrated
+    preset's 500 kg on its isolator (its backbone kept), a wall at the base whose bumpers each stand on
+    a :class:`~pounding.Stand` (a mass on a spring and a dashpot to the table), the stand's three
+    numbers fitted with the bumper's law, the gap and the isolator's dashpot to
+    :func:`pounding.paper_targets`.  What it reaches, and what the stand would have to be, is in
+    ``docs/calibration.md`` ("The stands hypothesis"); its residuals are
+    ``residuals("paper-rig-stands")``.
+
+    Returns
+    -------
+    Structure
+        The rig (read from ``pounding/data/paper_rig_stands.toml``); ``.bare()`` is its NBs.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> rig = pounding.presets.paper_rig_stands()
+    >>> rig.n_levels, rig.walls[0].stand is not None
+    (1, True)
+    """
+    from .model.structure import Structure
+
+    with resources.files("pounding.data").joinpath(RIG_STANDS_FILE).open("r", encoding="utf-8") as fh:
+        return Structure.from_toml_text(fh.read())
+
+
+def rig_stands_scan() -> "pd.DataFrame":
+    """The calibrated preset with its bumpers on stands of 5 to 50 kg and 1e5 to 3e8 N/m (5 % damping),
+    each evaluated on :func:`pounding.paper_targets` (``scripts/rig_stands.py --scan``; a test
+    re-evaluates rows of it).
+
+    Returns
+    -------
+    DataFrame
+        One row per stand: ``mass_kg``, ``stiffness_n_m``, ``damping_n_s_m``, ``freq_hz`` (the stand's
+        own frequency, sqrt(k / m) / 2 pi), ``met`` (targets met, of 36), and the YBs ``alpha``, ``nu_r``,
+        ``contact_time_ms`` and ``restitution`` at each a_G (``alpha_0.05`` ...).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> scan = pounding.presets.rig_stands_scan()
+    >>> steel = scan[(scan["mass_kg"] == 10) & (scan["stiffness_n_m"] == 1e8)].iloc[0]
+    >>> round(steel["freq_hz"]), round(float(steel["alpha_0.05"]), 1), int(steel["met"])
+    (503, 40.3, 24)
+    """
+    return _data_table(RIG_STANDS_SCAN_FILE)
 
 
 def paper_calibrated_v1(bumpers: bool = True) -> Oscillator:
@@ -299,7 +357,8 @@ BEST_PRESET = "paper-calibrated"
 RESIDUALS = {"paper-calibrated": CALIBRATED_RESIDUALS_FILE,
              "paper-calibrated-v1": CALIBRATED_V1_RESIDUALS_FILE,
              "paper-calibrated-v2": CALIBRATED_V2_RESIDUALS_FILE,
-             "paper-calibrated-measured": MEASURED_RESIDUALS_FILE}
+             "paper-calibrated-measured": MEASURED_RESIDUALS_FILE,
+             "paper-rig-stands": RIG_STANDS_RESIDUALS_FILE}
 
 
 def residuals(name: str = BEST_PRESET) -> "pd.DataFrame":
@@ -310,8 +369,8 @@ def residuals(name: str = BEST_PRESET) -> "pd.DataFrame":
     ----------
     name : str
         The preset's name: "paper-calibrated" (default), "paper-calibrated-v1",
-        "paper-calibrated-v2" or "paper-calibrated-measured" (its metrics measured through its
-        chain).
+        "paper-calibrated-v2", "paper-calibrated-measured" (its metrics measured through its
+        chain) or "paper-rig-stands" (:func:`paper_rig_stands`).
 
     Returns
     -------
