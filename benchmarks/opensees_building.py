@@ -325,6 +325,14 @@ def main() -> None:
           f"{TARGET_SPEED:g}x): {'met' if speed >= TARGET_SPEED else 'MISSED'}")
     print(f"  OpenSees at dt {rows[0][0]:.3g} s as one analyze call, nothing read per step: "
           f"{bare_best * 1e3:.1f} ms, {bare_best / pd_best:.1f}x")
+    # what a call costs whatever its length (checks, assembly, the result's tables), and the core's per
+    # sample: the ratio's ceiling with an infinitely fast core is OpenSees' time over the first
+    one_step = lambda: pd_.simulate(building, rec, rec.dt_s, sample_rate_hz=0)  # noqa: E731
+    fixed, _, _ = cpu_timed(one_step, max(rounds, 3))
+    per_sample = (pd_best - fixed) / rec.t.size
+    print(f"  pounding's cost of a call of one record step: {fixed * 1e3:.3f} ms (ceiling of the ratio with "
+          f"a core that took no time: {os_best / fixed:.0f}x); the rest, {per_sample * 1e6:.2f} us a record "
+          f"sample ({TARGET_SPEED:g}x would need the whole run in {os_best / TARGET_SPEED * 1e3:.3f} ms)")
     for dt, best, _, _ in rows[1:]:
         print(f"  at dt {dt:.3g} s: {best / pd_best:,.0f}x")
     met = [dt for dt, (worst, same) in worst_at.items() if worst <= TARGET_ERROR and same]
