@@ -220,8 +220,10 @@ def rig_stands_scan() -> "pd.DataFrame":
     --------
     >>> import pounding
     >>> scan = pounding.presets.rig_stands_scan()
-    >>> steel = scan[(scan["mass_kg"] == 10) & (scan["stiffness_n_m"] == 1e8)].iloc[0]
-    >>> round(steel["freq_hz"]), round(float(steel["alpha_0.05"]), 1), int(steel["met"])
+    >>> steel = scan[(scan["mass_kg"] == 10) & (scan["stiffness_n_m"] == 1e8)]
+    >>> steel = steel.iloc[0]  # (a 10 kg stand on 1e8 N/m)
+    >>> hz, alpha = round(steel["freq_hz"]), round(float(steel["alpha_0.05"]), 1)
+    >>> hz, alpha, int(steel["met"])
     (503, 40.3, 24)
     """
     return _data_table(RIG_STANDS_SCAN_FILE)
