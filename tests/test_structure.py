@@ -307,7 +307,7 @@ def test_a_state_of_another_structure_is_refused():
         pd_.simulate(three, 0.1, 1.0)
 
 
-def test_the_command_line_runs_a_structure_and_other_commands_say_they_take_one_mass(tmp_path):
+def test_the_command_line_runs_a_building_s_file(tmp_path):
     from typer.testing import CliRunner
 
     from pounding.cli import app

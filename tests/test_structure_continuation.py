@@ -8,6 +8,7 @@ pair): the exact n-dof monodromy along the branch, its folds and grazings locate
 
 from __future__ import annotations
 
+import dataclasses
 from pathlib import Path
 
 import numpy as np
@@ -145,6 +146,12 @@ def test_a_building_s_coexistence_map_is_judged_by_its_branch_sweeps_and_basins(
     assert (rows.loc[freqs[differ], "verdict"] == "coexist").all()
     assert (rows.loc[freqs[differ], "stable_orbits"] == 2).all()  # (the branch agrees)
     assert rows.loc[1.3, "stable_orbits"] == 1 and rows.loc[1.9, "stable_orbits"] == 1
+    from pounding.analysis.witnesses import sweep_witness
+
+    blank = dataclasses.replace(up, level_metrics=up.level_metrics.copy())
+    blank.level_metrics[2] = np.nan  # (its window not measured again: no metrics, not a response)
+    assert np.isnan(sweep_witness([blank], 0.05, float(freqs[2]))[0])
+    assert sweep_witness([up, blank], 0.05, float(freqs[2]))[0] == 1.0
     with pytest.raises(pd_.InputError, match="StructureSweepResult"):
         pd_.coexistence_map(b, levels=[0.05], sweeps=[pd_.sweep(pd_.presets.paper_damped(), 0.05, [1.0])])
 
@@ -169,6 +176,7 @@ def test_a_branch_with_no_orbit_to_start_from_says_so_and_the_map_starts_at_the_
               basin_sample=0, test_freqs_hz=[1.6, 1.8, 2.2])
     m = pd_.coexistence_map(pd_.presets.paper_damped(), **kw)
     assert boxes == [(1.5, 2.5), (2.5, 1.5)]
+    assert any("started at 2.5 Hz" in note for note in m.notes)
     assert m.matrix["stable_orbits"].tolist() == [1.0, 2.0, 1.0]  # (the same branch, followed downwards)
     monkeypatch.setattr(curves, "continuation", lambda osc, level, box, **kw: low_end_fails(osc, level,
                                                                                           sorted(box)))

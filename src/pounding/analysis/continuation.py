@@ -195,10 +195,11 @@ def continuation(
             except InputError as exc:
                 if guess is not None:
                     raise
-                raise InputError(Problem.BAD_STATE, parameter if parameter != "freq_hz" else "freqs_hz",
-                                 values, why=f"gives no periodic orbit of {period_multiple} period(s) to "
-                                 f"start from at {p_start:g}: Newton did not converge from the response "
-                                 f"settled over {settle_cycles} periods from rest there",
+                field_name = {"freq_hz": "freqs_hz", "a_g": "a_g"}.get(parameter, "values")
+                raise InputError(Problem.BAD_STATE, field_name, values,
+                                 why=f"gives no periodic orbit of {period_multiple} period(s) to start "
+                                     f"from at {p_start:g}: Newton did not converge from the response "
+                                     f"settled over {settle_cycles} periods from rest there",
                                  fix="start the branch at the range's other end (give it reversed), raise "
                                      "settle_cycles, or give a guess (a sweep's window state)") from exc
             follower.follow()

@@ -141,7 +141,7 @@ class CoexistenceMap:
 
     Attributes
     ----------
-    oscillator : Oscillator
+    oscillator : Oscillator, Structure or Adjacent
         The system.
     a_g, freqs_hz : (float, float)
         The map's box: table accelerations, g, and frequencies, Hz.
@@ -160,7 +160,7 @@ class CoexistenceMap:
         branch", "not assessed") and ``evidence`` (in words).
     notes : tuple of str
         The bifurcations not followed, and why (e.g. a branch that turns at a grazing, where no
-        multiplier is 1).
+        multiplier is 1); a branch started at the high end of the range (none settled at the low end).
 
     Examples
     --------

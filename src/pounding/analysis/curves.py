@@ -288,7 +288,7 @@ def coexistence_map(
     notes: list[str] = []
     try:
         for level in levels:
-            br = _level_branch(oscillator, level, f_box, max_step, method)
+            br = _level_branch(oscillator, level, f_box, max_step, method, notes)
             branches.append(br)
             for bif in br.bifurcations:
                 if bif.kind in kinds and not any(c.passes(bif) for c in curves):
@@ -320,16 +320,20 @@ def coexistence_map(
 
 
 # ---------------------------------------------------------------------- pieces
-def _level_branch(osc: Any, level: float, f_box: tuple, max_step: float, method: str) -> Branch:
+def _level_branch(osc: Any, level: float, f_box: tuple, max_step: float, method: str,
+                  notes: list[str]) -> Branch:
     """The branch at ``level`` over the map's frequencies, started at the low end, else (no periodic
-    response settles there to start from) at the high end."""
+    response settles there to start from) at the high end, which ``notes`` then says."""
     try:
         return continuation(osc, level, f_box, max_step=max_step, method=method)
     except InputError as low:
         if low.field != "freqs_hz":
             raise
         try:
-            return continuation(osc, level, f_box[::-1], max_step=max_step, method=method)
+            branch = continuation(osc, level, f_box[::-1], max_step=max_step, method=method)
+            notes.append(f"the branch at a_G {level:g} was started at {f_box[1]:g} Hz: no periodic response "
+                         f"settled at {f_box[0]:g} Hz to start it from")
+            return branch
         except InputError as high:
             if high.field != "freqs_hz":
                 raise

@@ -32,8 +32,6 @@ from .._runner.progress import Progress, progress_reporter
 from ..excitation import Harmonic
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..model import Oscillator
-    from ..protocols import SweepResult
     from .branch import Branch
 
 DIFFER_RTOL = 0.05  # two settled responses differ when alpha or the excursion differ by more (relative)
@@ -64,7 +62,7 @@ def branch_counts(branches: Sequence["Branch"], freqs: np.ndarray) -> pd.DataFra
     return pd.DataFrame(rows, columns=["a_g", "freq_hz", "stable_orbits", "branch_reached"])
 
 
-def sweep_witness(sweeps: Sequence["SweepResult"], a_g: float, freq_hz: float) -> tuple[float, str]:
+def sweep_witness(sweeps: Sequence[Any], a_g: float, freq_hz: float) -> tuple[float, str]:
     """``(responses, words)``: the distinct settled responses the sweeps at ``a_g`` show at ``freq_hz``
     (NaN when no step there settled), and what they were."""
     settled, words = [], []
@@ -97,7 +95,9 @@ def _witness_table(sweep: Any) -> pd.DataFrame:
         np.zeros((len(sweep.freqs_hz), 1))
     with np.errstate(all="ignore"):
         alpha = np.nanmax(np.where(np.isfinite(sweep.alpha), sweep.alpha, -np.inf), axis=1)
-    return pd.DataFrame({"freq_hz": sweep.freqs_hz, "steady": sweep.period_multiple > 0,
+    # (a step whose window was not measured again has no metrics: not a settled response)
+    steady = (sweep.period_multiple > 0) & np.isfinite(alpha)
+    return pd.DataFrame({"freq_hz": sweep.freqs_hz, "steady": steady,
                          "period_multiple": sweep.period_multiple, "contact": contacts.max(axis=1) > 0.0,
                          "alpha": alpha, "excursion_m": m[:, structure0, 0] - m[:, structure0, 1]})
 
@@ -127,13 +127,14 @@ def _near(a: tuple, b: tuple) -> bool:
             and math.isclose(a[3], b[3], rel_tol=DIFFER_RTOL, abs_tol=1e-12))
 
 
-def judge_matrix(oscillator: "Oscillator", branches: Sequence["Branch"], freqs: np.ndarray, *,
-                sweeps: Sequence["SweepResult"] = (), basin_sample: int = 4, max_cycles: int = 500,
+def judge_matrix(oscillator: Any, branches: Sequence["Branch"], freqs: np.ndarray, *,
+                sweeps: Sequence[Any] = (), basin_sample: int = 4, max_cycles: int = 500,
                 progress: Progress = False) -> pd.DataFrame:
     """The test matrix (one row per branch's a_G and frequency) with every point judged by its witnesses
     (see the module's docstring for the rule): columns ``MATRIX_COLUMNS``.
 
-    ``basin_sample`` is the basin grid's points per axis (``n x n`` states over the gaps and +-1 m/s;
+    ``basin_sample`` is the basin grid's points per axis (``n x n`` states over the gaps, or a
+    structure's shifts that leave its walls and links open, and +-1 m/s;
     0: no sample), run at every point.  A Ctrl-C keeps the points judged so far: :class:`Interrupted`
     with the matrix as ``partial``, the points not reached "not assessed".
     """
@@ -220,12 +221,15 @@ def check_sweeps(value: Any, several: bool = False) -> tuple:
 
     if value is None:
         return ()
+    kind, words = ((StructureSweepResult, "StructureSweepResult (pounding.sweep of the structure)") if several
+                   else (SweepResult, "SweepResult"))
+    given = value
     if isinstance(value, CampaignResult):
         value = tuple(sw for (conf, _a, _d), sw in value.sweeps.items() if conf == "YBs")
-    kind, words = ((StructureSweepResult, "StructureSweepResult (pounding.sweep of the structure)") if several
-                   else (SweepResult, "SweepResult (or a CampaignResult)"))
     if isinstance(value, (str, bytes, Mapping)) or not isinstance(value, Sequence) or not all(
             isinstance(s, kind) for s in value):
-        raise InputError(Problem.WRONG_TYPE, "sweeps", value, got=type(value).__name__,
-                         expected=f"a sequence of {words}")
+        got = (f"a CampaignResult of {type(value[0]).__name__}s"
+               if isinstance(given, CampaignResult) and value else type(given).__name__)
+        raise InputError(Problem.WRONG_TYPE, "sweeps", given, got=got,
+                         expected=f"a sequence of {words}, or a CampaignResult of this system")
     return tuple(value)

@@ -173,7 +173,7 @@ def coexistence(
         add(f"curve {i}: {c.kind}{' ' + c.side if c.side else ''}",
             f"{len(c)} points, a_G {df.a_g.min():.4g}-{df.a_g.max():.4g}; {c.status.name}: {c.message}")
     for note in cmap.notes:
-        add("not followed", note)
+        add("note", note)
     for verdict, words in (("coexist", "coexisting"), ("one", "one response"),
                            ("one on the branch", "one on the branch"), ("not assessed", "not assessed")):
         rows = cmap.matrix[cmap.matrix["verdict"] == verdict]
