@@ -377,13 +377,12 @@ def structure_rates(asm: Assembly) -> tuple[float, float]:
     largest undamped frequency with every hysteretic element at its stiffest slope (and the contacts'
     linear springs), or a dof's damping rate if larger (inf in contact for a nonlinear or multi-branch
     law)."""
-    from scipy.linalg import eigvalsh
-
     m = asm.masses
     k, c = asm.k_fast.copy(), asm.c_all.copy()
+    scale = 1.0 / np.sqrt(m)
 
-    def rate(k: np.ndarray, c: np.ndarray) -> float:
-        lam = float(eigvalsh(k, np.diag(m))[-1])
+    def rate(k: np.ndarray, c: np.ndarray) -> float:  # (K v = lam M v: M^-1/2 K M^-1/2's eigenvalues)
+        lam = float(np.linalg.eigvalsh(k * np.outer(scale, scale))[-1])
         return max(math.sqrt(max(lam, 0.0)), float(np.max(np.diag(c) / m)))
 
     free = rate(k, c)

@@ -216,7 +216,9 @@ class StructureRun:
                 peak, when = ground_peak(excitation, t0, t1)
                 rows.append(np.array([0.0, t0, 0.0, t0, peak, when, np.nan]))
         ex = np.array(rows).reshape(len(dofs), 7)
-        table = contacts[np.isin(contacts[:, 0], mine)].copy()
+        owned = np.zeros(len(asm.slots), dtype=bool)
+        owned[mine] = True
+        table = contacts[owned[contacts[:, 0].astype(int)]] if len(contacts) else contacts[:0].copy()
         table[:, 0] = np.searchsorted(mine, table[:, 0])  # (slot numbers of this structure's own)
         on = [dof for _, _, dof in asm.stands[b]]
         stand_ex = per_dof[on]
