@@ -53,6 +53,10 @@ class PeriodicOrbit(Floquet):
         Its period, s: ``period_multiple`` periods of the forcing.
     multipliers : ndarray of complex, shape (r,)
         Floquet multipliers: the eigenvalues of ``monodromy``, largest modulus first.
+    max_abs_multiplier : float
+        The largest ``|multiplier|`` (NaN without a monodromy: a search that stopped early).
+    stable : bool
+        Whether every multiplier lies inside the unit circle.
     monodromy : ndarray, shape (r, r)
         Jacobian of the stroboscopic map in the shooting coordinates ``coordinates``.
     coordinates : tuple of str
