@@ -199,3 +199,29 @@ def test_the_command_line_maps_a_building_s_coexistence(tmp_path):
     matrix = pd.read_csv(tmp_path / "m.csv")
     assert "coexist" in set(matrix["verdict"]) and len(matrix) == 5
     assert CliRunner().invoke(app, ["coexistence", str(tmp_path / "b.toml"), "--no-bumpers"]).exit_code == 2
+
+
+def test_the_command_line_exits_1_when_a_branch_left_test_points_unreached(tmp_path, monkeypatch):
+    from typer.testing import CliRunner
+
+    from pounding.analysis import curves
+    from pounding.cli import app
+
+    real = curves.coexistence_map
+
+    def short_branch(*args, **kw):  # (the map as it is, the branch said not to reach its last two points)
+        m = real(*args, **kw)
+        matrix = m.matrix.copy()
+        matrix.loc[matrix.index[-2:], "branch_reached"] = False
+        return dataclasses.replace(m, matrix=matrix)
+
+    monkeypatch.setattr(curves, "coexistence_map", short_branch)
+    _building().to_toml(tmp_path / "b.toml")
+    args = ["coexistence", str(tmp_path / "b.toml"), "--a-g-min", "0.045", "--a-g-max", "0.055", "--levels",
+            "0.05", "--from", "1.4", "--to", "1.8", "--basin-sample", "0"]
+    result = CliRunner().invoke(app, args)
+    assert result.exit_code == 1, result.output
+    assert "2 test point(s) no branch reached: a_G 0.05: 1.7-1.8" in result.output.replace("\n", " ")
+    monkeypatch.setattr(curves, "coexistence_map", real)
+    assert CliRunner().invoke(app, args).exit_code == 0
+

@@ -140,7 +140,8 @@ def coexistence(
     """Where two responses coexist (where up and down sweeps must differ): branches at a_G levels,
     their folds followed in (a_G, f), and each test point judged by the branch and a basin sample
     (coexisting, one response, or not assessed). SYSTEM.toml may be a building's or a pair's file.
-    Exits 1 when a branch stopped short of the range (the map is then incomplete)."""
+    Exits 1 when a branch stopped short of the range or left test points unreached (the map is then
+    incomplete)."""
     from ..analysis.curves import coexistence_map
 
     paths = files(out=(out, CSV), matrix=(matrix, CSV))
@@ -194,5 +195,9 @@ def coexistence(
     if not complete or held:
         interrupted(f"{len(cmap.curves)} curves followed; they are in the summary"
                     + (" and the files written" if any(paths.values()) or plot else ""))
-    if not all(br.success for br in cmap.branches):
-        raise typer.Exit(code=1)  # (a branch stopped short: the map is incomplete; the summary says where)
+    short = cmap.matrix[~cmap.matrix["branch_reached"].astype(bool)]
+    if not all(br.success for br in cmap.branches) or len(short):
+        if len(short):  # (a branch that turned back, or started at the other end, and never came here)
+            console.print(f"{len(short)} test point(s) no branch reached: "
+                          + "; ".join(f"a_G {a:g}: {_freq_list(g.freq_hz)}" for a, g in short.groupby("a_g")))
+        raise typer.Exit(code=1)  # (the map is incomplete; the summary says where)
