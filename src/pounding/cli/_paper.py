@@ -52,6 +52,9 @@ def reproduce(
     exact_only: bool = typer.Option(
         False, "--exact-only", metavar=NO_METAVAR, help="Only the exact metrics (the default preset "
         "otherwise adds paper-calibrated-measured, its metrics measured through its fitted low-pass)."),
+    stands: bool = typer.Option(True, "--stands/--no-stands", help="Test whether stands under the "
+                                "bumpers explain the YBs accelerations (the YBs system on four stands, a few "
+                                "seconds)."),
 ) -> None:
     """The paper's tables and figures from the model, beside the measurements, in one HTML report."""
     from .. import presets
@@ -93,6 +96,7 @@ def reproduce(
             progress=True,
             measured=measured,
             profile=profile,
+            stands=stands,
         )
     except Interrupted as stop:
         interrupted(f"{stop}; no report written (a report of part of the campaign would mislead)")
@@ -110,6 +114,8 @@ def reproduce(
     if report.measured is not None:
         console.print(f"as measured ({escape(report.measured.chain.describe())}): "
                       f"{escape(report.measured.verdict.summary())}")
+    if report.stands is not None:
+        console.print(f"stands under the bumpers: {escape(report.stands.verdict)}")
     console.print(f"report -> {report.index_html} (tables CSV, {len(report.figures)} figures PNG)")
 
 

@@ -21,6 +21,7 @@ from .compare import comparison, inconsistency_notes
 from .figures import fig05_measured, paper_figures
 from .html import table_html, untargeted_notes, write_page
 from .measured_story import MeasuredStory, measured_story, story_html
+from .stands import StandsTest, stands_html, stands_test
 from .verdict import Verdict, verdict
 
 TABLE_TITLES = {"targets": "Calibration targets (Tables 2-4; sweeps up, fixed 30 cycles per step): systems "
@@ -56,6 +57,8 @@ class Report:
         worst misses and the measurements no model can meet together.
     measured : MeasuredStory or None
         With ``measured=``: the campaign, Tables 2-4 and verdict as measured through the chain.
+    stands : StandsTest or None
+        With ``stands=True`` (and bumpers): the YBs system on each stand, and the verdict in words.
 
     Examples
     --------
@@ -83,6 +86,7 @@ class Report:
     comparisons: dict[str, pd.DataFrame]
     verdict: Verdict
     measured: MeasuredStory | None = None
+    stands: StandsTest | None = None
 
 
 def targets_beside(systems: dict[str, Oscillator], evaluated: dict[int, pd.DataFrame] | None = None,
@@ -117,7 +121,7 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
               system_label: str = "custom systems", freqs_hz: Any = None, workers: int | None = None,
               progress: Progress = False, beside: dict[str, Oscillator] | None = None,
               measured: tuple[Oscillator, MeasurementChain] | None = None,
-              profile: pd.DataFrame | None = None, **sweep_options: Any) -> Report:
+              profile: pd.DataFrame | None = None, stands: bool = False, **sweep_options: Any) -> Report:
     """Run the paper's campaign and write Tables 2-4 (CSV), the figure analogues (PNG) and
     ``index.html`` into ``out_dir``.
 
@@ -145,6 +149,10 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
         Tables 2-4 and Fig. 5 as measured, and says the paper states no filter.
     profile : DataFrame, optional
         With ``measured``: targets met against the chain's cutoff, shown beside it.
+    stands : bool
+        Also test whether stands under the bumpers explain the YBs accelerations: the YBs system with
+        each bumper on a stand of its own (10 kg; 1e8, 1e7, 1e6 and 1e5 N/m), each evaluated on the
+        paper's targets (four more evaluations, a few seconds); ``stands.csv`` and a section of the page.
 
     Returns
     -------
@@ -201,12 +209,16 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
         story = measured_story(*measured, campaign_of, profile, evaluate_of)
         for t in ("2", "3", "4"):
             comparisons[f"{t} measured"] = story.comparisons[t]
+    stands_result = stands_test(ybs_system, own, evaluate_of) if stands else None
     if beside:
         comparisons["targets"] = targets_beside(beside, {id(ybs_system): own}, workers, progress)
     tables = {t: out / ("targets.csv" if t == "targets" else f"table{t.replace(' ', '_')}.csv")
               for t in comparisons}
     for t, df in comparisons.items():
         atomic_write(tables[t], lambda tmp, df=df: df.to_csv(tmp, index=False))
+    if stands_result is not None:
+        tables["stands"] = out / "stands.csv"
+        atomic_write(tables["stands"], lambda tmp: stands_result.table.to_csv(tmp, index=False))
     announce(progress, "coexistence: following the YBs branches and their folds ...")
     cmap, why_not = coexistence_of(result, ybs_system, progress=progress)
     if cmap is not None:  # (each test point with its witnesses)
@@ -246,8 +258,9 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
                      if t != "targets"},
         figures={name: (path, captions[name]) for name, path in figures.items()},
         notes=inconsistency_notes(), statuses=statuses, verdict=judged,
-        story=None if story is None else story_html(judged, story, system_label, table_html))
-    return Report(out, index, tables, figures, result, comparisons, judged, story)
+        story=(([] if story is None else story_html(judged, story, system_label, table_html))
+               + ([] if stands_result is None else stands_html(stands_result, table_html))) or None)
+    return Report(out, index, tables, figures, result, comparisons, judged, story, stands_result)
 
 
 def _title(key: str) -> str:
