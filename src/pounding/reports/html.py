@@ -210,8 +210,8 @@ def write_page(path: Path, *, title: str, system_label: str, systems: dict[str, 
     """Write ``index.html``: every image embedded, so the page opens from disk, offline.
 
     ``verdict`` (a :class:`~pounding.reports.verdict.Verdict`) opens the page; ``story`` (HTML
-    parts: the exact metrics against the measured ones) follows it; ``table_notes`` are shown under
-    the table of their name."""
+    parts: the exact metrics against the measured ones, the stands' test) follows it; ``table_notes``
+    are shown under the table of their name."""
     e = html.escape
     parts = [f"<!DOCTYPE html><html lang='en'><head><meta charset='utf-8'><title>{e(title)}</title>",
              f"<style>{CSS}</style></head><body>", f"<h1>{e(title)}</h1>",

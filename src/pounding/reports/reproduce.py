@@ -43,7 +43,8 @@ class Report:
         The report's page, ``out_dir / "index.html"``.
     tables : dict of str to Path
         ``"2"``, ``"3"``, ``"4"`` (and ``"targets"`` with ``beside``; ``"coexistence"``: the test
-        points, each with its witnesses and verdict, when the branches were continued) -> the CSV.
+        points, each with its witnesses and verdict, when the branches were continued; ``"stands"``
+        with ``stands=True``: the YBs system on each stand) -> the CSV.
     figures : dict of str to Path
         Figure name (``"fig04"`` ... ``"fig17"``, the paper's numbering, and ``"coexistence"`` when the
         YBs branches could be continued) -> its PNG.
