@@ -225,3 +225,22 @@ def test_the_command_line_exits_1_when_a_branch_left_test_points_unreached(tmp_p
     monkeypatch.setattr(curves, "coexistence_map", real)
     assert CliRunner().invoke(app, args).exit_code == 0
 
+
+
+def test_no_bumpers_takes_a_one_mass_file_s_bumpers_away(tmp_path):
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+
+    pd_.presets.paper_printed().to_toml(tmp_path / "ybs.toml")
+    args = ["sweep", str(tmp_path / "ybs.toml"), "--a-g", "0.05", "--fmin", "1.0", "--fmax", "1.2"]
+    with_bumpers = CliRunner().invoke(app, args)
+    without = CliRunner().invoke(app, [*args, "--no-bumpers"])
+    preset = CliRunner().invoke(app, ["sweep", "--preset", "paper-printed", "--no-bumpers", *args[2:]])
+    assert with_bumpers.exit_code == without.exit_code == preset.exit_code == 0, without.output
+    assert "1.1 - 1.2" in with_bumpers.output  # (the contact range, with bumpers)
+    def contact_range(output: str) -> list[str]:
+        return [x for x in output.splitlines() if "contact range" in x]
+
+    line = contact_range(without.output)
+    assert line and "none" in line[0] and line == contact_range(preset.output)

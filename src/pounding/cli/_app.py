@@ -126,7 +126,8 @@ PRESET_NAMES = ("paper-printed", "paper-damped", "paper-calibrated", "paper-cali
 PRESET_LIST = ", ".join(PRESET_NAMES[:-1]) + " or " + PRESET_NAMES[-1]
 OPT_PRESET = typer.Option(None, "--preset", help=f"Use a built-in system: {PRESET_LIST}.")
 OPT_NO_BUMPERS = typer.Option(
-    False, "--no-bumpers", metavar=NO_METAVAR, help="With --preset: the NBs configuration."
+    False, "--no-bumpers", metavar=NO_METAVAR, help="The NBs configuration: the preset's or the one-mass "
+    "file's system without its bumpers."
 )
 MAX_FREQUENCIES = 100_000
 
@@ -281,7 +282,8 @@ def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True):
     kind = system_type(table)
     if kind is not Oscillator:  # (a structure's file, or two adjacent ones': to_toml writes them)
         return kind.from_toml(path)
-    return Oscillator.from_toml(path)
+    osc = Oscillator.from_toml(path)
+    return osc if bumpers else osc.without_bumpers()  # (--no-bumpers: the file's system, NBs)
 
 
 def one_mass_options(osc, no_bumpers: bool) -> bool:
