@@ -92,13 +92,25 @@ def falling_on_stop(omega: float, zeta: float, x_eq: float, d: float, e: float, 
         return brentq(lambda s: free_state(omega, zeta, x_eq, x, v, s)[0] - d, lo, hi, xtol=1e-300,
                       rtol=4 * np.finfo(float).eps, maxiter=500)
 
+    def away(u: float) -> tuple[float, float]:
+        """The flight from the stop at speed ``u`` away: its duration and the speed it comes back with."""
+        if zeta == 0.0:
+            return 2.0 * math.atan(u / (omega * a)) / omega, u
+        if 2.0 * u / (omega * omega * a) * omega < 0.05:
+            return _short_flight(omega, zeta, a, u)
+        tau = flight(d, -u)
+        return tau, free_state(omega, zeta, x_eq, d, -u, tau)[1]
+
     total_after = math.nan
     for k in range(n_impacts):
         if x == d and v >= 0.0:  # (at the stop, not leaving: stuck already)
             break
-        tau = flight(x, v)
+        if x == d:
+            tau, v_arr = away(-v)
+        else:
+            tau = flight(x, v)
+            _, v_arr = free_state(omega, zeta, x_eq, x, v, tau)
         t += tau
-        _, v_arr = free_state(omega, zeta, x_eq, x, v, tau)
         times.append(t)
         vin.append(v_arr)
         x, v = d, -e * v_arr
@@ -108,9 +120,8 @@ def falling_on_stop(omega: float, zeta: float, x_eq: float, d: float, e: float, 
         for _ in range(100_000):
             if u <= 0.0:
                 break
-            tau = 2.0 * math.atan(u / (omega * a)) / omega if zeta == 0.0 else flight(d, -u)
+            tau, u_arr = away(u)
             total_after += tau
-            u_arr = u if zeta == 0.0 else free_state(omega, zeta, x_eq, d, -u, tau)[1]
             u = e * u_arr
             if tau <= tail_tol * (t + total_after):
                 total_after += 2.0 * u / (omega * omega * a * (1.0 - e))  # (the bound of the rest)
@@ -118,6 +129,26 @@ def falling_on_stop(omega: float, zeta: float, x_eq: float, d: float, e: float, 
     vin_a = np.asarray(vin)
     return Chatter(np.asarray(times), vin_a, e * vin_a, t + total_after if e < 1.0 else math.nan,
                    omega * omega * a)
+
+
+def _short_flight(omega: float, zeta: float, a: float, u: float, terms: int = 40) -> tuple[float, float]:
+    """A short flight from the stop at speed ``u`` away, with ``y = d - x``: ``y'' = -omega^2 a - 2 zeta
+    omega y' - omega^2 y`` from ``(0, u)``, by the Taylor series of its exact solution (the closed form
+    loses its digits to cancellation when the flight is short against the period).  Its duration (the
+    root of ``y(t) / t``) and the speed it comes back with."""
+    c = [0.0, u]
+    for k in range(terms):
+        push = omega * omega * a if k == 0 else 0.0
+        rhs = -2.0 * zeta * omega * (k + 1) * c[k + 1] - omega * omega * c[k] - push
+        c.append(rhs / ((k + 2) * (k + 1)))
+
+    def over_t(t: float) -> float:
+        return sum(c[k] * t ** (k - 1) for k in range(len(c) - 1, 0, -1))
+
+    guess = 2.0 * u / (omega * omega * a)
+    tau = brentq(over_t, 0.5 * guess, 2.0 * guess, xtol=1e-300, rtol=4 * np.finfo(float).eps, maxiter=500)
+    speed = sum(k * c[k] * tau ** (k - 1) for k in range(1, len(c)))
+    return tau, -speed
 
 
 @dataclass(frozen=True)

@@ -26,6 +26,7 @@ def test_every_law_has_the_id_the_core_gives_it():
         "elastic_plastic": pd_.ElasticPlastic(1e5, 1e4, 0.01),
         "hertzdamp": pd_.Hertzdamp(1e6, 0.5),
         "multilinear_kinematic": pd_.MultilinearBumper((1e5, 1e4), (0.01,), hysteresis="kinematic"),
+        "rigid": pd_.RigidStop(0.7),
     }
     assert set(laws) == set(_core.LAW_IDS)  # (every law the core knows is checked here)
     for name, law in laws.items():

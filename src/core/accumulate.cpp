@@ -79,7 +79,10 @@ void outputs_in_phase(Phase& ph, const System& sy, double t, double tau, const d
         row[1 + 3 * n + e] = f;
     }
     double* fc = row + 1 + 3 * n + sy.n_h();
-    for (int c = 0; c < ph.nc; ++c) fc[c] = ph.ct[static_cast<size_t>(c)].in ? contact_force(ph, c, y, a).f : 0.0;
+    for (int c = 0; c < ph.nc; ++c) {
+        const bool held = ph.stk.any && ph.stk.held_of[static_cast<size_t>(c)] >= 0;  // (a rigid stop held shut)
+        fc[c] = held ? held_force(ph, c, tau, y, a).g : ph.ct[static_cast<size_t>(c)].in ? contact_force(ph, c, y, a).f : 0.0;
+    }
 }
 
 void energies(const double* st, const System& sy, double& kin, double& iso, double& bmp) {
@@ -143,6 +146,10 @@ double abs_acc_rate_linear(const Phase& ph, int i, const double* y, const double
     for (int j = 0; j < n; ++j) q += rk[j] * y[n + j] + rc[j] * a[j];
     return -ph.minv[static_cast<size_t>(i)] * q;
 }
+
+// the held rigid stops' impulse and peak force over the sub-interval: exactly on a linear phase's polynomial,
+// by Gauss-Lobatto on a numerical one
+void held_statistics(Phase& ph, const Layout& L, double* st, double tau, const Ends& e, bool linear, Buffers& b);
 
 }  // namespace
 
@@ -227,6 +234,7 @@ void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, 
             }
         }
     }
+    if (ph.stk.any && tau > 0.0) held_statistics(ph, L, st, tau, e, linear, b);
     // displacement extrema of each dof, at its velocity's zeros and the ends
     for (int i = 0; i < n; ++i) {
         double* ex = extrema + 7 * i;
@@ -260,6 +268,11 @@ void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, 
     // absolute acceleration extrema of each dof
     for (int i = 0; i < n; ++i) {
         double* ex = extrema + 7 * i;
+        if (ph.stk.any && ph.stk.grp[static_cast<size_t>(i)] >= 0) {  // held: the ends (the group's motion)
+            track_abs_acceleration(ex, t0, e.a0[i] + table_acceleration(ph, 0.0));
+            track_abs_acceleration(ex, t0 + tau, e.a1[i] + table_acceleration(ph, tau));
+            continue;
+        }
         if (linear) {
             // a linear phase's absolute acceleration -(K x + C v + R0)_i / m_i and its rate at the ends; the
             // polynomial only where the rate changes sign
@@ -321,5 +334,54 @@ void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, 
         st[acc + A_PEAK] = std::max(st[acc + A_PEAK], peak);
     }
 }
+
+namespace {
+
+void held_statistics(Phase& ph, const Layout& L, double* st, double tau, const Ends& e, bool linear, Buffers& b) {
+    for (const int c : ph.stk.held) {
+        const int acc = L.acc_at(c);
+        double impulse = 0.0, peak = st[acc + A_PEAK];
+        if (linear) {
+            Fn ff, fr;
+            held_force_poly(ph, c, ff.q);
+            double tk = tau;
+            for (int k = 0; k <= ff.q.deg; ++k) {
+                impulse += ff.q.c[k] * tk / (k + 1);
+                tk *= tau;
+            }
+            peak = std::max({peak, poly_val(ff.q, 0.0), poly_val(ff.q, tau)});
+            poly_deriv(ff.q, fr.q);
+            fr.kind = FN_POLY;
+            const double r0 = poly_val(fr.q, 0.0), r1 = poly_val(fr.q, tau);
+            ph.poly_evaluations += 4;
+            if (r0 > 0.0 && r1 < 0.0) {
+                const double tm = find_root(fr, ph, 0.0, tau, r0, r1, NaN, NaN, XTOL_EXTREMUM_S);
+                peak = std::max(peak, poly_val(ff.q, tm));
+            }
+        } else {
+            double* y = b.ym.data();
+            double* a = b.am.data();
+            for (int qn = 0; qn < N_LOBATTO; ++qn) {
+                const double tq = tau * LOBATTO_X[qn];
+                if (qn == 0) {
+                    std::copy(e.y0, e.y0 + 2 * ph.n, y);
+                    std::copy(e.a0, e.a0 + ph.n, a);
+                } else if (qn == N_LOBATTO - 1) {
+                    std::copy(e.y1, e.y1 + 2 * ph.n, y);
+                    std::copy(e.a1, e.a1 + ph.n, a);
+                } else {
+                    phase_eval(ph, tq, y, a);
+                }
+                const double f = held_force(ph, c, tq, y, a).g;
+                impulse += tau * LOBATTO_W[qn] * f;
+                peak = std::max(peak, f);
+            }
+        }
+        st[acc + A_IMPULSE] += impulse;
+        st[acc + A_PEAK] = peak;
+    }
+}
+
+}  // namespace
 
 }  // namespace pounding::run_parts

@@ -182,7 +182,7 @@ NB_MODULE(_pounding_core, m) {
               return nb::make_tuple(array1(out.state.data(), out.state.size()), rows_array(out.samples),
                                     rows_array(out.contacts), rows_array(out.events),
                                     array1(out.ledger, LEDGER_LEN), array1(out.extrema.data(), out.extrema.size()),
-                                    out.status);
+                                    out.status, rows_array(out.chatters));
           },
           nb::arg("system"), nb::arg("kind"), nb::arg("p"), nb::arg("rec_t"), nb::arg("rec_a"), nb::arg("state0"),
           nb::arg("t_end"), nb::arg("sample_dt"), nb::arg("rtol"), nb::arg("max_events"), nb::arg("with_energy"),
@@ -294,6 +294,7 @@ NB_MODULE(_pounding_core, m) {
     laws["elastic_plastic"] = static_cast<int>(ELASTIC_PLASTIC);
     laws["hertzdamp"] = static_cast<int>(HERTZDAMP);
     laws["multilinear_kinematic"] = static_cast<int>(MULTILINEAR_KINEMATIC);
+    laws["rigid"] = static_cast<int>(RIGID);
     m.attr("LAW_IDS") = laws;
     nb::dict status;  // how a run ended: pounding.Status (tests/test_core.py holds them equal)
     status["SUCCESS"] = static_cast<int>(SUCCESS);

@@ -34,12 +34,48 @@ double abs_acceleration_rate(Phase& ph, int i, double tau, const double* y, cons
 
 }  // namespace
 
+EventValue held_force(Phase& ph, int c, double tau, const double* y, const double* a) {
+    const int n = ph.n;
+    const Sticking& st = ph.stk;
+    const int h = st.held_of[static_cast<size_t>(c)];
+    const char* side = &st.side[static_cast<size_t>(h * n)];
+    const int g_c = st.grp[static_cast<size_t>(ph.ct[static_cast<size_t>(c)].i)];
+    double* au = ph.au.data();
+    double* aur = ph.aur.data();
+    free_acceleration(ph, tau, y, ph.bw[0] != 0.0 ? phase_zeta(ph, tau) : 0.0, au);
+    // the table acceleration and its rate
+    const double ang = ph.w * tau + ph.phi;
+    const double ag = ph.ax0 + ph.ax1 * tau + ph.axh * std::sin(ang);
+    const double agr = ph.ax1 + ph.axh * ph.w * std::cos(ang);
+    double mean_rate = 0.0;  // the group's acceleration rate (0 on the ground)
+    for (int k = 0; k < n; ++k) {
+        if (st.grp[static_cast<size_t>(k)] != g_c) continue;
+        aur[k] = abs_acceleration_rate(ph, k, tau, y, a) - agr;
+        mean_rate += ph.mass[static_cast<size_t>(k)] * aur[k];
+    }
+    mean_rate = st.grounded[static_cast<size_t>(g_c)] ? 0.0 : mean_rate / st.gmass[static_cast<size_t>(g_c)];
+    double f = 0.0, rate = 0.0, scale = 0.0;
+    for (int k = 0; k < n; ++k) {
+        if (!side[k]) continue;
+        const double m = ph.mass[static_cast<size_t>(k)];
+        f += m * (au[k] - a[k]);
+        rate += m * (aur[k] - mean_rate);
+        double s = std::abs(ph.R0[static_cast<size_t>(k)]) + m * (std::abs(ag) + std::abs(a[k]));
+        for (int j = 0; j < n; ++j)
+            s += std::abs(ph.K[static_cast<size_t>(k * n + j)] * y[j]) + std::abs(ph.C[static_cast<size_t>(k * n + j)] * y[n + j]);
+        scale += s;
+    }
+    const double sign = ph.ct[static_cast<size_t>(c)].sign;
+    return {sign * f, sign * rate, scale};
+}
+
 EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y, const double* a) {
     const int n = ph.n;
     if (e.kind == KIND_ZETA) {  // (alpha: minus z's sign at the phase start)
         const double z = phase_zeta(ph, tau);
         return {-e.alpha * z, -e.alpha * zeta_rate(ph, rel(y + n, ph.iso_i, ph.iso_j), z), 1.0};
     }
+    if (e.kind == KIND_HELD) return held_force(ph, e.side, tau, y, a);
     const double dx = rel(y, e.i, e.j), dv = rel(y + n, e.i, e.j), da = rel(a, e.i, e.j);
     if (e.kind == KIND_LINEAR) {
         const double g = e.alpha + e.beta * dx + e.gamma * dv;
@@ -282,6 +318,11 @@ void event_fn(const EventRow* evs, int i, Phase& ph, Fn& fn) {
         fn.kind = FN_EVENT;
         return;
     }
+    if (e.kind == KIND_HELD) {  // a held rigid stop's force: a polynomial of the series
+        held_force_poly(ph, e.side, fn.q);
+        fn.kind = FN_POLY;
+        return;
+    }
     if (e.kind == KIND_LINEAR) {
         pair_poly(ph, e.i, e.j, e.alpha, e.beta, e.gamma, 0.0, fn.q);
         fn.kind = FN_POLY;
@@ -397,6 +438,16 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
     if (fn.kind == FN_POLY_RELAX) rate.idx = i;  // (the event's rate on the trajectory)
     double* y = ph.ye.data();
     double* a = ph.ae.data();
+    if (leaves && fn.kind == FN_POLY && gp0 > 0.0 && gp1 < 0.0 && evs[i].action == ACT_CONTACT &&
+        law_is_rigid(slot(ph, evs[i].side).law)) {
+        // a rebound off a rigid stop, rising first: where it turns, on the polynomial, then its root beyond
+        // (or there, when the rise is below the rounding)
+        const double tm = find_root(rate, ph, 0.0, h, gp0, gp1, NaN, NaN, xtol);
+        double gm, unused;
+        fn_eval(fn, ph, tm, gm, unused);
+        if (gm <= tol0) return tm;
+        return find_root(fn, ph, tm, h, gm, g1, 0.0, gp1, xtol);
+    }
     if (leaves) {
         double tp = h;
         for (int it = 0; it < 60; ++it) {
@@ -476,6 +527,12 @@ int bumper_events(const double* st, const Phase& ph, const System& sy, EventRow*
         r.j = ct.j;
         r.index = c;
         r.side = c;
+        if (in_contact && law_is_rigid(ct.law)) {  // held shut: released when its force would pull
+            r.kind = KIND_HELD;
+            r.action = ACT_RELEASE;
+            n += 1;
+            continue;
+        }
         if (!in_contact) {
             // surface at sign (gap + relaxing compression): g = gap + d(t) - sign u
             r.alpha = gap;

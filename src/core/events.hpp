@@ -13,7 +13,7 @@
 
 namespace pounding {
 
-constexpr int KIND_LINEAR = 0, KIND_RELEASE = 1, KIND_ZETA = 2;
+constexpr int KIND_LINEAR = 0, KIND_RELEASE = 1, KIND_ZETA = 2, KIND_HELD = 3;  // (held: a rigid stop's force)
 constexpr int SIDE_NONE = -1;
 constexpr double ROUNDING = 256.0 * EPS;  // relative size of rounding noise in event values
 constexpr double XTOL_S = 1e-15;          // event instants and displacement extrema, s
@@ -32,6 +32,10 @@ struct EventRow {
 struct EventValue { double g, gp, scale; };  // value, rate, size of the terms summed
 
 EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y, const double* a);
+
+// a held rigid stop c's force (N), its rate (N/s) and the size of its terms at tau (y, a: the trajectory
+// there, a with the held stops' constraint)
+EventValue held_force(Phase& ph, int c, double tau, const double* y, const double* a);
 
 // A scalar function of tau on the current sub-interval, whose roots the loop looks for: a polynomial of
 // the series (a linear phase; with a contact's relaxation added for a contact start), or a function of the

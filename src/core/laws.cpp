@@ -1,5 +1,6 @@
 // The contact laws (laws.hpp): Kelvin-Voigt, Hunt-Crossley, Jankowski, Hertzdamp, the multi-linear
-// backbone (elastic, or with Masing's loops from Iwan's springs) and the elastic-plastic impact law.
+// backbone (elastic, or with Masing's loops from Iwan's springs), the elastic-plastic impact law and the rigid
+// stop.
 #include "laws.hpp"
 
 #include <algorithm>
@@ -436,8 +437,10 @@ Branch branch_coefficients(int law, const double* p, int j) {
 // ---------------------------------------------------------------- the dispatch: what the engine asks
 
 bool law_is_linear(int law) {
-    return law == KELVIN_VOIGT || law == MULTILINEAR || law == ELASTIC_PLASTIC || law == MULTILINEAR_KINEMATIC;
+    return law == KELVIN_VOIGT || law == RIGID || law == MULTILINEAR || law == ELASTIC_PLASTIC || law == MULTILINEAR_KINEMATIC;
 }
+
+bool law_is_rigid(int law) { return law == RIGID; }
 
 bool law_has_memory(int law) { return law == ELASTIC_PLASTIC || law == MULTILINEAR_KINEMATIC; }
 
@@ -460,6 +463,7 @@ void law_moved(int law, const double* p, double* z, double d, bool in_contact) {
 
 Branch law_linear_branch(int law, const double* p, double d, double dd, const double* z) {
     if (law == KELVIN_VOIGT) return {p[0], p[1], 0.0, 0};
+    if (law == RIGID) return {0.0, 0.0, 0.0, 0};
     if (law == ELASTIC_PLASTIC) {
         const EpLine l = ep_line(p, z[0]);
         return {l.k, 0.0, l.r, l.j};
@@ -503,6 +507,7 @@ void law_after_event(int law, const double* p, double* z, double d, double code)
 Force law_force(int law, const double* p, double d, double dd, const double* z) {
     const double k = p[0];
     double c = p[1];
+    if (law == RIGID) return {0.0, 0.0, 0.0, 0.0};  // (a held stop's force: sticking.hpp)
     if (law == KELVIN_VOIGT) return {k * d + c * dd, k * d, k, c};
     if (law == ELASTIC_PLASTIC) {
         const double f = ep_force(p, d, z[0]);
@@ -529,6 +534,7 @@ Force law_force(int law, const double* p, double d, double dd, const double* z) 
 }
 
 double law_energy(int law, const double* p, double d, const double* z) {
+    if (law == RIGID) return 0.0;
     if (law == KELVIN_VOIGT) return 0.5 * p[0] * d * d;
     if (law == MULTILINEAR) return ml_energy(p, d);
     if (law == ELASTIC_PLASTIC) return ep_energy(p, d, z[0]);
@@ -538,7 +544,7 @@ double law_energy(int law, const double* p, double d, const double* z) {
 }
 
 Relaxed law_relax(int law, const double* p, double d0, double tau, const double* z) {
-    if (d0 <= 0.0) return {0.0, 0.0};
+    if (d0 <= 0.0 || law == RIGID) return {0.0, 0.0};
     if (law == KELVIN_VOIGT) {
         if (p[1] <= 0.0) return {0.0, 0.0};
         const double rate = p[0] / p[1];
@@ -565,6 +571,7 @@ double law_relax_horizon(int law, const double* p, double d0, const double* z) {
 }
 
 Relaxed law_release(int law, const double* p, double d, double dd, double ddd, const double* z) {
+    if (law == RIGID) return {1.0, 0.0};  // (a held stop releases by its force: sticking.hpp)
     if (law == KELVIN_VOIGT) return {p[0] * d + p[1] * dd, p[0] * dd + p[1] * ddd};
     if (law == JANKOWSKI) return {1.0, 0.0};
     if (law == ELASTIC_PLASTIC) {
@@ -593,6 +600,10 @@ void law_force_many(int law, const double* p, const double* d, const double* dd,
         return;
     }
     double z[N_LAW_STATE] = {0};
+    if (law == RIGID) {  // (no force at any compression: the impulses are the law)
+        for (int64_t i = 0; i < n; ++i) out[i] = 0.0;
+        return;
+    }
     for (int64_t i = 0; i < n; ++i) out[i] = law_force(law, p, d[i], dd[i], z).f;
 }
 

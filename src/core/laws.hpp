@@ -12,7 +12,7 @@ namespace pounding {
 
 enum LawId : int {
     KELVIN_VOIGT = 0, HUNT_CROSSLEY = 1, JANKOWSKI = 2, MULTILINEAR = 3, ELASTIC_PLASTIC = 4, HERTZDAMP = 5,
-    MULTILINEAR_KINEMATIC = 6
+    MULTILINEAR_KINEMATIC = 6, RIGID = 7
 };
 
 constexpr double BRANCH_TIE = 1e-9;  // relative: a compression this close to a breakpoint is at it
@@ -25,6 +25,10 @@ struct Relaxed { double d, rate; };             // a free recovery's compression
 struct Edges { double lower, upper; };          // -1: none
 
 bool law_is_linear(int law);
+// a rigid stop (p[0]: the coefficient of restitution): no compression, an impulse at each impact (Newton's
+// law), held shut while the motion pushes into it (sticking.hpp); its force in phases is none of the law's
+bool law_is_rigid(int law);
+inline double law_restitution(const double* p) { return p[0]; }
 bool law_has_memory(int law);
 bool law_switches_at_rest(int law);
 void law_contact_state(int law, const double* p, double rate, double* z, double d);

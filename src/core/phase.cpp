@@ -57,6 +57,7 @@ void end_derivatives(const Phase& ph, const double* y, const double* a, const do
         double* out = D + (k + 2) * n;
         minv_ab(ph, ph.K, D + k * n, ph.C, D + (k + 1) * n, out);
         for (int i = 0; i < n; ++i) out[i] = -out[i] - g[k];
+        ph.stk.project(ph.mass, out);
     }
 }
 
@@ -184,6 +185,7 @@ int series(const Phase& ph, const double* y0, const double* r, double a0, double
     const double* K = ph.K.data();
     const double* C = ph.C.data();
     const double* minv = ph.minv.data();
+    const bool held = ph.stk.any;  // (one mass held: it does not move)
     double wk = 1.0;  // w^k / k!
     double hk = 1.0;  // h^k
     for (int k = 0;; ++k) {
@@ -201,7 +203,7 @@ int series(const Phase& ph, const double* y0, const double* r, double a0, double
         if (n == 1) {  // (one mass: the loops unrolled)
             double f = minv[0] * (K[0] * Xk[0] + C[0] * Vk[0]);
             if (k == 0 && r != nullptr) f += r[0];
-            Vn[0] = (-f - g) * inv;
+            Vn[0] = held ? 0.0 : (-f - g) * inv;
             Xn[0] = Vk[0] * inv;
         } else {
             for (int i = 0; i < n; ++i) {
@@ -214,6 +216,7 @@ int series(const Phase& ph, const double* y0, const double* r, double a0, double
                 Vn[i] = (-f - g) * inv;
                 Xn[i] = Vk[i] * inv;
             }
+            if (held) ph.stk.project(ph.mass, Vn);
         }
         const int m = k + 1;  // the term just computed
         hk *= h;
@@ -349,7 +352,7 @@ double zeta_rate(const Phase& ph, double du, double z) {
     return du / ph.bw[1] * (a - zn * (s + gamma));
 }
 
-void phase_rhs(Phase& ph, double tau, const double* y, double z, double* a) {
+void phase_rhs(Phase& ph, double tau, const double* y, double z, double* a, bool held) {
     // dof i: (-R0_i - m_i a_g(tau) - (C v)_i - (K x)_i - the Bouc-Wen spring's - the nonlinear contacts') / m_i,
     // summed in that order (a one-mass system's numbers as the engine has always summed them)
     const int n = ph.n;
@@ -378,6 +381,41 @@ void phase_rhs(Phase& ph, double tau, const double* y, double z, double* a) {
         if (k.j >= 0) a[k.j] += k.sign * f;
     }
     for (int i = 0; i < n; ++i) a[i] /= ph.mass[static_cast<size_t>(i)];
+    if (held) ph.stk.project(ph.mass, a);
+}
+
+void free_acceleration(Phase& ph, double tau, const double* y, double zeta, double* au) {
+    phase_rhs(ph, tau, y, zeta, au, false);
+}
+
+void held_force_poly(const Phase& ph, int c, Poly& q) {
+    ensure_series(ph);
+    const int n = ph.n, ny = ph.ny, nt = ph.nt;
+    const double* t = ph.tc.data();
+    const Sticking& st = ph.stk;
+    const char* side = &st.side[static_cast<size_t>(st.held_of[static_cast<size_t>(c)] * n)];
+    const double sign = ph.ct[static_cast<size_t>(c)].sign;
+    q.deg = nt - 1;
+    double wk = 1.0;  // w^k / k!
+    for (int k = 0; k < nt; ++k) {
+        const int m4 = k % 4;
+        double g = ph.axh * wk * (m4 == 0 ? ph.sphi : m4 == 1 ? ph.cphi : m4 == 2 ? -ph.sphi : -ph.cphi);
+        if (k == 0) g += ph.ax0;
+        if (k == 1) g += ph.ax1;
+        wk *= ph.w / (k + 1);
+        const double* Yk = t + k * ny;
+        double f = 0.0;
+        for (int i = 0; i < n; ++i) {
+            if (!side[i]) continue;
+            const double* rk = &ph.K[static_cast<size_t>(i * n)];
+            const double* rc = &ph.C[static_cast<size_t>(i * n)];
+            double s = k == 0 ? ph.R0[static_cast<size_t>(i)] : 0.0;
+            for (int j = 0; j < n; ++j) s += rk[j] * Yk[j] + rc[j] * Yk[n + j];
+            const double a_held = k + 1 < nt ? (k + 1) * t[(k + 1) * ny + n + i] : 0.0;
+            f += -s - ph.mass[static_cast<size_t>(i)] * (g + a_held);
+        }
+        q.c[k] = sign * f;
+    }
 }
 
 Dp5 dp5_step(Phase& ph, double h) {

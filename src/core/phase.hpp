@@ -25,6 +25,7 @@
 
 #include "core.hpp"
 #include "laws.hpp"
+#include "sticking.hpp"
 
 namespace pounding {
 
@@ -59,6 +60,7 @@ struct Phase {
     double zeta0 = 0.0;
     bool numeric = false;
     std::vector<ContactPhase> ct;
+    Sticking stk;  // the rigid stops held shut in this phase: every acceleration is projected by it
     // the isolator: its pair, dashpot and linear branch (force kiso u + riso + cd u'), its Bouc-Wen spring
     int iso_i = 0, iso_j = GROUND;
     double cd = 0.0, kiso = 0.0, riso = 0.0;
@@ -80,6 +82,7 @@ struct Phase {
     std::vector<double> work;  // scratch: the derivatives at an end, the table's, m . D, forces, DP5 stages
     int w_D = 0, w_g = 0, w_P = 0, w_q = 0, w_stage = 0;
     std::vector<double> ye, ae;  // an evaluation's y and a (the root finders')
+    std::vector<double> au, aur;  // accelerations without the held stops, their rates (held forces)
     // the current sub-interval's ends, as the loop has them (the start's velocities at rest signed by their
     // accelerations), its length, and the relative velocities' zeros found on it so far (per pair)
     const double *e_y0 = nullptr, *e_a0 = nullptr, *e_y1 = nullptr, *e_a1 = nullptr;
@@ -106,6 +109,8 @@ struct Phase {
         ye.assign(static_cast<size_t>(ny), 0.0);
         rbuf.assign(static_cast<size_t>(n), 0.0);
         ae.assign(static_cast<size_t>(n), 0.0);
+        au.assign(static_cast<size_t>(n), 0.0);
+        aur.assign(static_cast<size_t>(n), 0.0);
         dp5.assign(static_cast<size_t>(2 * ny + n + 2), 0.0);
         w_D = 0;                 // 10 n
         w_g = 10 * n;            // 10
@@ -167,11 +172,18 @@ void linear_integrals(Phase& ph, const std::vector<double>& c_lin, const std::ve
                       const double* y0, const double* a0, double s0, double c0, const double* y1, const double* a1,
                       double s1, double c1, bool energy, double& vcv, double& gv, double* du, double* dvv);
 
+// ---------------------------------------------------------------- held rigid stops
+
+// the accelerations (n) at (tau, y) without the held stops' constraint (zeta: the Bouc-Wen z there)
+void free_acceleration(Phase& ph, double tau, const double* y, double zeta, double* au);
+// the held force of contact c as a polynomial of the current series (a linear phase)
+void held_force_poly(const Phase& ph, int c, Poly& q);
+
 // ---------------------------------------------------------------- the numerical phase
 
 double zeta_rate(const Phase& ph, double du, double z);
 // the accelerations (n) at (tau, y, z) with the nonlinear forces
-void phase_rhs(Phase& ph, double tau, const double* y, double z, double* a);
+void phase_rhs(Phase& ph, double tau, const double* y, double z, double* a, bool held = true);
 // the step of length h from the start: y (ny), a (n), z; the error estimates
 struct Dp5 { const double* y; const double* a; const double* ey; double z, ez; };
 Dp5 dp5_step(Phase& ph, double h);

@@ -9,6 +9,7 @@
 #include <memory>
 
 #include "events.hpp"
+#include "impact.hpp"
 #include "isolator.hpp"
 #include "laws.hpp"
 #include "phase.hpp"
@@ -58,6 +59,7 @@ void eom_acceleration(const Phase& ph, const double* y, double tau, double s, do
         const double f = ph.minv[static_cast<size_t>(i)] * q + ph.minv[static_cast<size_t>(i)] * ph.R0[static_cast<size_t>(i)];
         a[i] = -f - g;
     }
+    ph.stk.project(ph.mass, a);
 }
 
 double quad_form(const double* Q, const double* u, int dim) {
@@ -70,6 +72,19 @@ double quad_form(const double* Q, const double* u, int dim) {
     return s;
 }
 
+
+// the table's acceleration at t (outside a phase)
+double excitation_value(const Forcing& fo, double t) {
+    const Piece pc = excitation_piece(fo, t, 0);
+    return pc.a0 + pc.amp * std::sin(pc.phase);
+}
+
+// a rigid stop's scales in the phase (h_phase: its sub-interval, short against its periods)
+ImpactScales impact_scales(const Phase& ph, double h_phase, double v_res) {
+    constexpr double LOCAL = 1e-6;        // a chatter's remainder, against the sub-interval: summed at once
+    constexpr double FLIGHT_ROUND = 64.0; // a rebound's height, in the rounding of the run's length: no flight
+    return {v_res, FLIGHT_ROUND * ROUNDING * ph.xrun, LOCAL * h_phase, h_phase};
+}
 
 void eval_end(Phase& ph, double h, Buffers& b) {
     if (!ph.numeric) {
@@ -234,20 +249,23 @@ void jump(double* st, const System& sy, const EventRow& ev, Rows& contacts, cons
 }
 
 void record_event(double* st, const System& sy, const EventRow& ev, Rows& events, Rows& samples, double sample_dt,
-                  double* extrema, Buffers& b, std::vector<double>& row) {
+                  double* extrema, Buffers& b, std::vector<double>& row, Sticking& stk, double ag) {
     double* r = events.push();
     r[0] = st[T];
     r[1] = static_cast<double>(ev.action);
     r[2] = static_cast<double>(ev.index);
     outputs(st, sy, b.q.data(), row.data());
+    held_outputs(st, sy, stk, ag, row.data());
     for (int i = 0; i < sy.n; ++i) track_abs_acceleration(extrema + 7 * i, st[T], row[1 + 2 * sy.n + i]);
     if (sample_dt >= 0.0) std::copy(row.begin(), row.end(), samples.push());
 }
 
-void finish(const double* st, const System& sy, Rows& samples, Rows& contacts, Buffers& b, std::vector<double>& row) {
+void finish(const double* st, const System& sy, Rows& samples, Rows& contacts, Buffers& b, std::vector<double>& row,
+            Sticking& stk, double ag) {
     const Layout& L = sy.lay;
     if (samples.row(samples.n - 1)[0] < st[T]) {
         outputs(st, sy, b.q.data(), row.data());
+        held_outputs(st, sy, stk, ag, row.data());
         std::copy(row.begin(), row.end(), samples.push());
     }
     for (int c = 0; c < sy.nc(); ++c) {
@@ -396,7 +414,10 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
     int status = SUCCESS;
     int zero_run = 0;
     double h_num = 1e-4;
+    Sticking stk_out;  // (the held stops of the state an output row is made from)
+    double ag_now = excitation_value(fo, st[T]);
     outputs(st, sy, b.q.data(), row.data());
+    held_outputs(st, sy, stk_out, ag_now, row.data());
     std::copy(row.begin(), row.end(), out.samples.push());
     for (int i = 0; i < n; ++i) track_abs_acceleration(extrema + 7 * i, t_run0, row[1 + 2 * n + i]);
     int64_t j_next = 1;
@@ -565,9 +586,19 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
         t_last = t;
         h_last = tau;
         if (i_ev < 0) continue;
-        jump(st, sy, evs[static_cast<size_t>(i_ev)], out.contacts, resolution);
-        record_event(st, sy, evs[static_cast<size_t>(i_ev)], out.events, out.samples, sample_dt, extrema, b, row);
-        zero_run = tau <= 1e-12 * std::max(1.0, std::abs(t)) ? zero_run + 1 : 0;
+        const EventRow& ev = evs[static_cast<size_t>(i_ev)];
+        ag_now = table_acceleration(ph, tau);
+        bool resolved = false;  // (a rigid impact that sent the pair apart or held it: no Zeno step)
+        if (ev.action == ACT_CONTACT && law_is_rigid(sy.contact[static_cast<size_t>(ev.index)].law)) {
+            resolved = rigid_contact(st, sy, ph, tau, stk_out, ev.index, ag_now, impact_scales(ph, h_phase, resolution[0]),
+                                     ledger, out.contacts, out.chatters, b.q.data(), row.data());
+        } else if (ev.kind == KIND_HELD) {
+            rigid_release(st, sy, ev.index, out.contacts);
+        } else {
+            jump(st, sy, ev, out.contacts, resolution);
+        }
+        record_event(st, sy, ev, out.events, out.samples, sample_dt, extrema, b, row, stk_out, ag_now);
+        zero_run = tau <= 1e-12 * std::max(1.0, std::abs(t)) && !resolved ? zero_run + 1 : 0;
         if (zero_run > ZENO_REPEATS) {
             status = ZENO;
             break;
@@ -577,7 +608,9 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
             break;
         }
     }
-    finish(st, sy, out.samples, out.contacts, b, row);
+    ag_now = excitation_value(fo, st[T]);
+    finish(st, sy, out.samples, out.contacts, b, row, stk_out, ag_now);
+    close_chatters(st, sy, out.chatters);
     control.add_work(work - published);
     control.at(CTL_EVALS).fetch_add(ph.evaluations, std::memory_order_relaxed);
     double kin1, iso1, bmp1;

@@ -24,6 +24,9 @@ struct RunResult {
     Rows samples{1, 256};     // (t, x (n), v (n), absolute accelerations (n), isolator force, contact forces)
     Rows contacts{CONTACT_COLS, 16};
     Rows events{EVENT_COLS, 64};
+    // rigid stops' chatter sequences: contact, first impact's time, the accumulation's (or the last impact's),
+    // the impacts followed one by one, 1 when the sequence accumulated (the stop then held)
+    Rows chatters{5, 4};
     double ledger[LEDGER_LEN] = {0};
     // per dof: x max, its time, x min, its time, |a_abs| max, its time, a_abs there; then per tracked pair:
     // its relative displacement's max, its time, min, its time
@@ -34,6 +37,7 @@ struct RunResult {
         samples.clear();
         contacts.clear();
         events.clear();
+        chatters.clear();
         extrema.assign(static_cast<size_t>(sy.lay.extrema_len() + 4 * sy.n_track()), 0.0);
         status = SUCCESS;
     }

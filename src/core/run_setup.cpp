@@ -135,6 +135,7 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
             any_nl = true;
         }
     }
+    ph.stk.build(sy, st);  // (the rigid stops held shut)
     ph.ax0 = pc.a0;
     ph.ax1 = pc.a1;
     ph.axh = pc.amp;

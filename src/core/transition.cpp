@@ -63,7 +63,7 @@ void transition_inputs(const Phase& ph, double* out) {
 const Transition* TransitionCache::get(const Phase& ph, const System& sy, double h) {
     for (Transition& e : entries)
         if (e.h == h && e.w == ph.w && e.xrun == ph.xrun && e.vrun == ph.vrun && same(e.K, ph.K) &&
-            same(e.C, ph.C)) {
+            same(e.C, ph.C) && e.grp == ph.stk.grp && e.grounded == ph.stk.grounded) {
             e.uses += 1;
             return &e;
         }
@@ -72,6 +72,8 @@ const Transition* TransitionCache::get(const Phase& ph, const System& sy, double
     const int n = ph.n, ny = ph.ny, dim = 3 * n + 4, np = static_cast<int>(pi.size());
     e.K = ph.K;
     e.C = ph.C;
+    e.grp = ph.stk.grp;
+    e.grounded = ph.stk.grounded;
     e.h = h;
     e.w = ph.w;
     e.xrun = ph.xrun;

@@ -29,8 +29,8 @@ _NAMES = {
     ".metrics": ("HysteresisLoop", "impact_table"),
     ".model": ("Adjacent", "Link", "BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley",
                "Isolator", "Jankowski",
-               "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "Sensor", "Stand",
-               "Storey", "Structure", "Wall"),
+               "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "RigidStop", "Sensor",
+               "Stand", "Storey", "Structure", "Wall"),
     ".protocols": ("BasinStabilityMap", "Basins", "BifurcationDiagram", "CampaignResult", "PoundingSpectrum",
                    "StructureSweepResult", "SweepResult", "basin_stability_map", "basins",
                    "bifurcation_diagram",
@@ -77,7 +77,7 @@ if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
     from .metrics import HysteresisLoop, impact_table  # noqa: F401
     from .model import (Adjacent, BoucWen, Bumpers, ElasticPlastic, Hertzdamp, HuntCrossley,  # noqa: F401
                         Isolator, Jankowski, KelvinVoigt, Link, MeasurementChain, MultilinearBumper,
-                        Oscillator, Sensor, Stand, Storey, Structure, Wall)
+                        Oscillator, RigidStop, Sensor, Stand, Storey, Structure, Wall)
     from .protocols import (BasinStabilityMap, Basins, BifurcationDiagram, CampaignResult,  # noqa: F401
                             PoundingSpectrum, StructureSweepResult, SweepResult, basin_stability_map, basins,
                             bifurcation_diagram,

@@ -96,7 +96,8 @@ def run(sy: System, forcing: Any, state0: np.ndarray, t_end: float, sample_dt: f
 
     ``sample_dt`` is the history's step (0: events only; -1: not even those); ``with_energy`` False
     skips the energy integrals outside contacts (the ledger is then NaN).  Returns ``(state, samples,
-    contacts, events, ledger, extrema, status)``."""
+    contacts, events, ledger, extrema, status, chatters)``: ``chatters`` the rigid stops' chatter sequences
+    (contact, first impact s, accumulation or last impact s, impacts, accumulated 1/0)."""
     return _c.run(sy, int(forcing.kind), _f64(forcing.p), _f64(forcing.rec_t), _f64(forcing.rec_a),
                   _f64(state0), float(t_end), float(sample_dt), float(rtol), int(max_events),
                   bool(with_energy), ctl)

@@ -16,7 +16,7 @@ from .._control import (DEFAULT_MAX_STEPS, new_control, request_stop, run_interr
                         stop_requested)
 from .._errors import InputError, Problem
 from ..model import Oscillator
-from ..model.contact_laws import linear_form
+from ..model.contact_laws import is_rigid, linear_form
 SUBINTERVALS_PER_PERIOD = 8.0  # the core's (src/core/run.cpp): sub-intervals per period of the fastest motion
 
 
@@ -53,6 +53,8 @@ def contact_rate(oscillator: Oscillator) -> float:
     b = oscillator.bumpers
     if b is not None:
         for law in (b.left, b.right):
+            if is_rigid(law):  # (no stiffness: its impacts are events, its phases the isolator's)
+                continue
             form = linear_form(law)
             if form is None:  # (several linear branches, or a nonlinear law)
                 return math.inf

@@ -314,8 +314,8 @@ class Run:
         Exact extrema over the run (located events, independent of the sampling), m, m/s^2.
     displacement_max_time_s, displacement_min_time_s, abs_acceleration_max_time_s : float
         When each extremum was reached, s.
-    contact_table, event_table : ndarray
-        The raw arrays behind ``contacts`` and ``events`` (side coded 0 left, 1 right).
+    contact_table, event_table, chatter_table : ndarray
+        The raw arrays behind ``contacts``, ``events`` and ``chatters`` (side coded 0 left, 1 right).
     contacts : DataFrame
         One row per contact, each column named with its unit: ``side`` ("left"/"right"),
         ``t_start_s``, ``t_end_s``, ``v_in_m_s``, ``v_out_m_s`` (relative velocity at start and
@@ -329,7 +329,15 @@ class Run:
         times ``w``, the faster of the forcing and the isolator's first branch) is no impact
         and not listed, though the motion goes through it exactly; an incoming velocity below
         1e-9 of the velocity scale is recorded as 0 (the mass met the surface at rest, e.g.
-        at zero gap: its restitution is NaN).
+        at zero gap: its restitution is NaN).  A rigid stop's impact is instantaneous
+        (``t_end_s == t_start_s``, NaN ``peak_force_n``); see :class:`pounding.RigidStop`.
+    chatters : DataFrame
+        Rigid stops' (:class:`pounding.RigidStop`) chatter sequences, one row each: ``side``,
+        ``t_first_s`` (its first impact), ``t_end_s`` (where it accumulated, or its last impact),
+        ``impacts`` (followed one by one; an accumulated sequence has infinitely many more, summed
+        in closed form) and ``accumulated`` (the stop was then held shut).  A sequence is three
+        impacts or more on one stop, each within a sub-interval (an eighth of the fastest period)
+        of the one before, or any that accumulated.  Empty without rigid stops.
     events : DataFrame
         Every event: ``t_s``, ``kind`` (yield, reversal, branch, contact_start, contact_end,
         bumper_branch, bouc_wen_zero), ``index`` (spring or side).
@@ -387,6 +395,12 @@ class Run:
     oscillator: "Oscillator" = field(repr=False)
     excitation: "Excitation" = field(repr=False)
     sample_rate_hz: float = 1000.0
+    chatter_table: np.ndarray = field(default_factory=lambda: np.zeros((0, 5)), repr=False)
+
+    @cached_property
+    def chatters(self) -> pd.DataFrame:
+        """The rigid stops' chatter sequences (see :class:`pounding.RigidStop`), one row each."""
+        return chatter_frame(self.chatter_table, SIDES)
 
     @cached_property
     def contacts(self) -> pd.DataFrame:
@@ -471,3 +485,17 @@ class Run:
         from ..plots import plot_run
 
         return plot_run(self, ax=ax, **kwargs)
+
+
+SIDES = ("left", "right")
+
+
+def chatter_frame(table: np.ndarray, names: Any, column: str = "side") -> pd.DataFrame:
+    """The chatter sequences of a run's ``chatter_table`` (contact, first impact s, end s, impacts,
+    accumulated), the contact named by ``names`` (a sequence of names by the core's slot) in ``column``."""
+    table = np.asarray(table).reshape(-1, 5)
+    return pd.DataFrame({
+        column: [names[int(c)] for c in table[:, 0]],
+        "t_first_s": table[:, 1], "t_end_s": table[:, 2],
+        "impacts": table[:, 3].astype(int), "accumulated": table[:, 4] != 0.0,
+    })

@@ -321,7 +321,7 @@ def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, sta
         state = check_state(state, oscillator)
     if system is None:
         system = kernel_system(oscillator)
-    st, _, contacts, events, _, extrema, status = _core.run(
+    st, _, contacts, events, _, extrema, status, _ = _core.run(
         system, kernel_forcing(excitation), np.array(state.vector), state.time_s + duration, 0.0, 1e-10,
         10_000_000, False, new_control(SHORT_RUN_STEPS))
     if status == Status.SUCCESS and not all(map(math.isfinite, extrema.tolist())):
@@ -337,7 +337,7 @@ def _run(oscillator: Oscillator, excitation: Harmonic | Record, duration: float,
         system = kernel_system(oscillator)
     forcing = kernel_forcing(excitation)
     ctl = new_control(max_steps)
-    st, samples, contacts, events, ledger, extrema, status = run_interruptibly(lambda: _core.run(
+    st, samples, contacts, events, ledger, extrema, status, chatters = run_interruptibly(lambda: _core.run(
         system, forcing, state.vector.copy(),
         t0 + duration, 1.0 / rate if rate > 0 else 0.0, rtol, int(max_events), True, ctl), [ctl],
         direct=direct)
@@ -359,7 +359,7 @@ def _run(oscillator: Oscillator, excitation: Harmonic | Record, duration: float,
         abs_acceleration_max=float(extrema[4]), abs_acceleration_max_time_s=float(extrema[5]),
         contact_table=contacts, event_table=events, energy=energy, final_state=State._from_kernel(st),
         status=status, message=status.message, oscillator=oscillator, excitation=excitation,
-        sample_rate_hz=rate)
+        sample_rate_hz=rate, chatter_table=chatters)
     if status == Status.INTERRUPTED:
         raise Interrupted(run, round(run.final_state.time_s - t0, 6), duration, "simulated seconds")
     return run

@@ -20,11 +20,11 @@ from .._checks import at_most, integer, positive, real
 from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model._law_states import state_problem
-from ..model.contact_laws import N_LAW_STATE, linear_form
+from ..model.contact_laws import N_LAW_STATE, is_rigid, linear_form
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from ._control import DEFAULT_MAX_STEPS, check_budget, new_control, run_interruptibly, steps_per_second
-from .result import MAX_TIME_S
+from .result import MAX_TIME_S, chatter_frame
 from ._run_args import DIRECT_CALL_STEPS, check_rtol, history_rate, kernel_forcing
 from .structure_result import AdjacentRun, StructureEnergy, StructureRun
 
@@ -387,6 +387,8 @@ def structure_rates(asm: Assembly) -> tuple[float, float]:
 
     free = rate(k, c)
     for i, j, _, _, law in asm.pairs:
+        if is_rigid(law):  # (no stiffness: its impacts are events)
+            continue
         form = linear_form(law)
         if form is None:
             return free, math.inf
@@ -449,7 +451,7 @@ def simulate_structure(structure: Structure | Adjacent, excitation: Harmonic | R
 def run_of(model: Any, asm: Any, excitation: Any, rate: float, out: tuple, t0: float,
            duration: float) -> "StructureRun | AdjacentRun":
     """The result of the core's run of one structure, or two adjacent ones (``Interrupted`` on Ctrl-C)."""
-    st, samples, contacts, events, ledger, extrema, status = out
+    st, samples, contacts, events, ledger, extrema, status, chatters = out
     energy = StructureEnergy.of(ledger)
     status = Status(int(status))
     if status == Status.SUCCESS and not (np.all(np.isfinite(extrema)) and np.isfinite(energy.residual)):
@@ -459,9 +461,11 @@ def run_of(model: Any, asm: Any, excitation: Any, rate: float, out: tuple, t0: f
     parts = [StructureRun._part(s, b, asm, structures, excitation, rate, samples, contacts, extrema, status,
                                 t0) for b, s in enumerate(structures)]
     clear = clearances(asm, extrema)
+    names = tuple(contact_name(slot, len(parts) > 1) for slot in asm.slots)
+    chatter = chatter_frame(chatters, names, "contact")
     if len(parts) == 1:
         run: Any = dataclasses.replace(parts[0], event_table=events, energy=energy, final_state=final,
-                                       clearance_m=clear)
+                                       clearance_m=clear, chatters=chatter)
     else:
         links = [c for c, (owner, _, _) in enumerate(asm.slots) if owner == -1]
         link_rows = contacts[np.isin(contacts[:, 0], links)].copy() if len(contacts) else np.zeros((0, 9))
@@ -469,7 +473,17 @@ def run_of(model: Any, asm: Any, excitation: Any, rate: float, out: tuple, t0: f
         n, nh = asm.system.n, asm.system.n_elements
         run = AdjacentRun(model, excitation, rate, parts[0], parts[1], samples[:, 0],
                           samples[:, [1 + 3 * n + nh + c for c in links]], link_rows, events, energy, final,
-                          status, clear)
+                          status, clear, chatter)
     if status == Status.INTERRUPTED:
         raise Interrupted(run, round(final.time_s - t0, 6), duration, "simulated seconds")
     return run
+
+
+def contact_name(slot: tuple, pair: bool) -> str:
+    """A contact slot's name in a structure's (or a pair's) tables: ``wall 0 left``, ``first wall 1 right``,
+    ``link 0``."""
+    owner, k, side = slot
+    if owner < 0:
+        return f"link {k}"
+    who = ("first " if owner == 0 else "second ") if pair else ""
+    return f"{who}wall {k} {('left', 'right')[side]}"

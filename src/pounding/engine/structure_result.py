@@ -13,6 +13,7 @@ import pandas as pd
 from .._errors import Status
 from ._layout import (EVENT_NAMES, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT, L_ISOLATOR, L_KINETIC,
                       L_VISCOUS)
+from .result import chatter_frame
 
 if TYPE_CHECKING:
     from ..excitation import Harmonic, Record
@@ -133,6 +134,11 @@ class StructureRun:
     clearance_m : ndarray, shape (2 n_walls,)
         Each wall side's smallest clearance over the run (its gap less the largest approach, exact;
         negative: it touched), m; empty for one of two adjacent structures (``AdjacentRun.clearance_m``).
+    chatters : pandas.DataFrame
+        Rigid stops' (:class:`~pounding.RigidStop`) chatter sequences: ``contact`` (``wall 0 left``),
+        ``t_first_s``, ``t_end_s`` (its accumulation, or last impact), ``impacts`` followed one by one,
+        ``accumulated``; see :attr:`pounding.Run.chatters` (empty for one of two adjacent structures: the
+        pair's ``AdjacentRun.chatters``).
 
     Examples
     --------
@@ -179,6 +185,8 @@ class StructureRun:
     stand_displacement_max: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     stand_displacement_min: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     clearance_m: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    chatters: pd.DataFrame = field(default_factory=lambda: chatter_frame(np.zeros((0, 5)), (), "contact"),
+                                   repr=False)
 
     @classmethod
     def _part(cls, structure: "Structure", b: int, asm: Any, asm_structures: tuple, excitation: Any,
@@ -396,6 +404,9 @@ class AdjacentRun:
         Pass as ``state`` to continue.
     status : Status
         How the run ended (``message`` says it in words).
+    chatters : pandas.DataFrame
+        The rigid stops' chatter sequences (``contact``: ``first wall 0 left``, ``link 0``); see
+        :attr:`StructureRun.chatters`.
     clearance_m : ndarray, shape (n_slots,)
         Each contact slot's smallest clearance over the run (its gap less the largest approach, exact;
         negative: it touched), m: the first's wall sides, the second's, then the links.
@@ -429,6 +440,8 @@ class AdjacentRun:
     final_state: Any = field(repr=False)
     status: Status = Status.SUCCESS
     clearance_m: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    chatters: pd.DataFrame = field(default_factory=lambda: chatter_frame(np.zeros((0, 5)), (), "contact"),
+                                   repr=False)
 
     @property
     def success(self) -> bool:

@@ -20,9 +20,10 @@ from ..model.contact_laws import (ELASTIC_PLASTIC, LAWS, MAX_BRANCHES, MAX_EXPON
                                   N_LAW_PARAMS,
                                   ContactLaw, ElasticPlastic,
                                   Hertzdamp, HuntCrossley, Jankowski, KelvinVoigt, MultilinearBumper,
-                                  law_force_many)
+                                  RigidStop, law_force_many)
 
 MIN_SAMPLES_IN_CONTACT = 3
+UNFITTED = (Hertzdamp.TYPE, RigidStop.TYPE)  # laws a cyclic test cannot fit (each says why)
 # rank_contact_laws' name of MultilinearBumper(hysteresis="kinematic")
 KINEMATIC_ROW = "multilinear_kinematic"
 MIN_RATIO = 1e-6  # the elastic-plastic fit's least K2 / K1
@@ -321,9 +322,14 @@ def fit_contact_law(
     (1.5, '3e+07 N/m^n', 1.0)
     """
     one_of("law", law, LAWS)
+    if law == RigidStop.TYPE:
+        raise InputError(Problem.NOT_ONE_OF, "law", law,
+                         choices=", ".join(repr(k) for k in LAWS if k not in UNFITTED)
+                         + " (a rigid stop has no force against compression to fit: its restitution is the "
+                           "measured impacts' v_out / v_in, pounding.RigidStop(restitution))")
     if law == Hertzdamp.TYPE:
         raise InputError(Problem.NOT_ONE_OF, "law", law,
-                         choices=", ".join(repr(k) for k in LAWS if k != Hertzdamp.TYPE)
+                         choices=", ".join(repr(k) for k in LAWS if k not in UNFITTED)
                          + " (Hertzdamp's damping is set by each impact's velocity, which a cyclic test has "
                            "not: fit 'hunt_crossley', whose damping c is Hertzdamp's xi_norm k / v_in)")
     n_branches = integer("n_branches", n_branches, 1, MAX_BRANCHES)
@@ -517,7 +523,7 @@ def rank_contact_laws(displacement_m: Any, force_n: Any, *, time_s: Any = None, 
     counts[KINEMATIC_ROW] = counts[MultilinearBumper.TYPE]
     rows = []
     for name in [*LAWS, KINEMATIC_ROW]:
-        if (name == Jankowski.TYPE and effective_mass_kg is None) or name == Hertzdamp.TYPE:
+        if (name == Jankowski.TYPE and effective_mass_kg is None) or name in UNFITTED:
             continue
         law, hysteresis = (MultilinearBumper.TYPE, "kinematic") if name == KINEMATIC_ROW else (name,
                                                                                                "elastic")

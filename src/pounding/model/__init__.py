@@ -2,6 +2,7 @@
 
 from .bumpers import Bumpers
 from .contact_laws import ElasticPlastic, Hertzdamp, HuntCrossley, Jankowski, KelvinVoigt, MultilinearBumper
+from .rigid_stop import RigidStop
 from .isolator import BoucWen, Isolator
 from .measurement import MeasurementChain, Sensor
 from .oscillator import Oscillator
@@ -12,5 +13,5 @@ from .structure_parts import Stand, Storey, Wall
 __all__ = ["Adjacent", "Link", "BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley",
            "Isolator",
            "Jankowski",
-           "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "Sensor", "Stand", "Storey",
-           "Structure", "Wall"]
+           "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "RigidStop", "Sensor",
+           "Stand", "Storey", "Structure", "Wall"]

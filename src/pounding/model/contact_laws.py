@@ -28,6 +28,7 @@ from .._errors import InputError, Problem
 from . import _law_states
 from .._core import LAW_IDS, LAYOUT
 from .._core import law_force_many  # noqa: F401  (the core's: a law's forces along a path)
+from .rigid_stop import RigidStop
 
 # each law's id, as the core's laws (src/core/laws.cpp, the law's C++ side) know it
 KELVIN_VOIGT, HUNT_CROSSLEY, JANKOWSKI, MULTILINEAR, ELASTIC_PLASTIC, HERTZDAMP, MULTILINEAR_KINEMATIC = (
@@ -551,10 +552,17 @@ def linear_form(law: Any) -> Optional[tuple[float, float]]:
     return (law.stiffness, law.damping) if law.LINEAR else None
 
 
-ContactLaw = Union[KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper, ElasticPlastic, Hertzdamp]
+ContactLaw = Union[KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper, ElasticPlastic, Hertzdamp,
+                   RigidStop]
 LAWS: dict[str, type] = {KelvinVoigt.TYPE: KelvinVoigt, HuntCrossley.TYPE: HuntCrossley,
                          Jankowski.TYPE: Jankowski, MultilinearBumper.TYPE: MultilinearBumper,
-                         ElasticPlastic.TYPE: ElasticPlastic, Hertzdamp.TYPE: Hertzdamp}
+                         ElasticPlastic.TYPE: ElasticPlastic, Hertzdamp.TYPE: Hertzdamp,
+                         RigidStop.TYPE: RigidStop}
+
+
+def is_rigid(law: Any) -> bool:
+    """Whether ``law`` is a rigid stop (no stiffness: an impulse at each impact)."""
+    return bool(getattr(law, "RIGID", False))
 
 
 def law_to_dict(law: ContactLaw) -> dict[str, Any]:

@@ -75,7 +75,7 @@ def run_structure_plan(plan, advance: Callable[[int], None] | None = None,
                 period = 1.0 / float(f)
                 out = _core.run(system, kernel_forcing(at), win_state.copy(), t0 + m * period, period,
                                 plan.rtol, plan.max_events_per_cycle * m, False, ctl)
-                code = int(out[-1])
+                code = int(out[6])
                 if code == Status.INTERRUPTED:
                     state = start
                     interrupted = True

@@ -1,0 +1,275 @@
+#include "impact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "isolator.hpp"
+#include "laws.hpp"
+#include "run_parts.hpp"
+
+namespace pounding::run_parts {
+
+namespace {
+
+constexpr int MIN_CHATTER = 3;  // impacts: a shorter sequence followed by a flight is no chatter
+
+// the accelerations (n) of the state without the held stops (au) and with them (a)
+void state_accelerations(const double* st, const System& sy, const Sticking& stk, double ag, double* q,
+                         double* row, std::vector<double>& au, std::vector<double>& a) {
+    const int n = sy.n;
+    outputs(st, sy, q, row);
+    au.resize(static_cast<size_t>(n));
+    a.resize(static_cast<size_t>(n));
+    for (int k = 0; k < n; ++k) {
+        au[static_cast<size_t>(k)] = row[1 + 2 * n + k] - ag;
+        a[static_cast<size_t>(k)] = au[static_cast<size_t>(k)];
+    }
+    stk.project(sy.mass, a.data());
+}
+
+void push_chatter(Rows& chatters, int c, double t_first, double t_end, double count, bool accumulated) {
+    double* r = chatters.push();
+    r[0] = static_cast<double>(c);
+    r[1] = t_first;
+    r[2] = t_end;
+    r[3] = count;
+    r[4] = accumulated ? 1.0 : 0.0;
+}
+
+// a free rigid stop's running sequence in its accumulators: first impact, impacts, last impact
+inline double& seq_first(double* st, const Layout& L, int c) { return st[L.acc_at(c) + A_TSTART]; }
+inline double& seq_count(double* st, const Layout& L, int c) { return st[L.acc_at(c) + A_DSTART]; }
+inline double& seq_last(double* st, const Layout& L, int c) { return st[L.acc_at(c) + A_PEAK]; }
+
+// After a velocity jump: the springs a hysteretic element slips and the turns of a deformable bumper's law
+// follow the new velocities (their reversal events watch a velocity crossing zero, which a jump steps over)
+void after_velocity_jump(double* st, const System& sy) {
+    const Layout& L = sy.lay;
+    const double* v = st + L.v;
+    for (int e = 0; e < sy.n_h(); ++e) {
+        const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+        if (h.rule != RULE_KINEMATIC) continue;
+        double dir = 0.0;
+        for (int i = 0; i < h.n_springs(); ++i)
+            if (st[L.base + L.n_sp + h.first + i] != 0.0) dir = st[L.base + L.n_sp + h.first + i];
+        if (dir != 0.0 && dir * rel(v, h.i, h.j) <= 0.0) iso_transition(sy, st, ACT_REVERSAL, e, 0.0);
+    }
+    for (int c = 0; c < sy.nc(); ++c) {
+        const Contact& ct = sy.contact[static_cast<size_t>(c)];
+        if (st[L.in_at(c)] == 0.0 || law_is_rigid(ct.law)) continue;
+        const double turn = law_turn_sign(ct.law, ct.p, st + L.z_at(c));
+        if (turn != 0.0 && turn * ct.sign * rel(v, ct.i, ct.j) <= 0.0)
+            law_after_event(ct.law, ct.p, st + L.z_at(c), st[L.def_at(c)], 0.0);
+    }
+}
+
+// the push of contact c shut (its relative acceleration towards compression, m/s^2) in the state
+double push_of(const double* st, const System& sy, const Sticking& stk, int c, double ag, double* q, double* row,
+               std::vector<double>& au, std::vector<double>& a) {
+    const Contact& ct = sy.contact[static_cast<size_t>(c)];
+    state_accelerations(st, sy, stk, ag, q, row, au, a);
+    return ct.sign * (a[static_cast<size_t>(ct.i)] - (ct.j >= 0 ? a[static_cast<size_t>(ct.j)] : 0.0));
+}
+
+// the rate in time of the push of contact c (m/s^3) along the motion held at the stop from the state s0 (at
+// rest against it): the free accelerations' rate -M^-1 (K v + C a) - a_g' (a: the held motion's), with the
+// other held stops' constraint
+double held_push_rate(std::vector<double>& s0, const System& sy, const Phase& ph, double tau, const Sticking& stk,
+                      int c, double ag, double* q, double* row) {
+    const Layout& L = sy.lay;
+    const Contact& ct = sy.contact[static_cast<size_t>(c)];
+    static thread_local std::vector<double> au, a, rate_u;
+    static thread_local Sticking held;
+    const double in = s0[static_cast<size_t>(L.in_at(c))];
+    s0[static_cast<size_t>(L.in_at(c))] = 1.0;
+    held.build(sy, s0.data());
+    state_accelerations(s0.data(), sy, held, ag, q, row, au, a);
+    s0[static_cast<size_t>(L.in_at(c))] = in;
+    const double* v = s0.data() + L.v;
+    const int n = sy.n;
+    rate_u.resize(static_cast<size_t>(n));
+    const double ag_rate = ph.ax1 + ph.axh * ph.w * std::cos(ph.w * tau + ph.phi);
+    for (int i = 0; i < n; ++i) {
+        double s = 0.0;
+        for (int j = 0; j < n; ++j)
+            s += ph.K[static_cast<size_t>(i * n + j)] * v[j] + ph.C[static_cast<size_t>(i * n + j)] * a[static_cast<size_t>(j)];
+        rate_u[static_cast<size_t>(i)] = -ph.minv[static_cast<size_t>(i)] * s - ag_rate;
+    }
+    stk.project(sy.mass, rate_u.data());
+    return ct.sign * (rate_u[static_cast<size_t>(ct.i)] - (ct.j >= 0 ? rate_u[static_cast<size_t>(ct.j)] : 0.0));
+}
+
+// The time from the impact to the accumulation of a chatter that rebounded at u (mi, mj: the sides' masses).
+// The local series: flights from the stop under the push P0 (at rest relative to it) with a dashpot c (the
+// push's change with the relative velocity) and a rate J (the push's change in time, the stop held): each
+// flight lasts 2 u_k / P_k (1 - eps_c / 3 - 2 eps_J / 3) and returns at u_k (1 - 2 eps_c / 3 + 2 eps_J / 3),
+// eps_c = c u_k / P0, eps_J = J u_k / P0^2, P_k the push at its start; summed to first order in the eps:
+// T = 2 u / P0 [1 / (1 - e) - (2 eps_c + 4 eps_J) e / (3 (1 - e) (1 - e^2)) - (eps_c + 2 eps_J) / (3 (1 - e^2))]
+// (the second order, T (eps / (1 - e))^2, is below the run's rounding where the engine takes the remainder).
+double accumulation(const double* st, const System& sy, const Phase& ph, double tau, const Sticking& stk, int c,
+                    double ag, double u, double mi, double mj, double* q, double* row) {
+    const Layout& L = sy.lay;
+    const Contact& ct = sy.contact[static_cast<size_t>(c)];
+    const double e = law_restitution(ct.p);
+    static thread_local std::vector<double> s0, au, a;
+    // the state at rest against the stop: the relative velocity brought to zero
+    s0.assign(st, st + L.size);
+    double* v = s0.data() + L.v;
+    const double mu = 1.0 / ((mi < INF ? 1.0 / mi : 0.0) + (mj < INF ? 1.0 / mj : 0.0));
+    if (mi < INF) stk.add_velocity(v, ct.i, ct.sign * mu * u / mi);
+    if (mj < INF) stk.add_velocity(v, ct.j, -ct.sign * mu * u / mj);
+    const double p_rest = push_of(s0.data(), sy, stk, c, ag, q, row, au, a);
+    const double p_out = push_of(st, sy, stk, c, ag, q, row, au, a);
+    const double damp = (p_out - p_rest) / u;  // (the push at -u relative velocity, against the one at rest)
+    const double rate = held_push_rate(s0, sy, ph, tau, stk, c, ag, q, row);
+    const double p0 = p_rest;
+    const double eps_c = damp * u / p0, eps_j = rate * u / (p0 * p0);
+    const double e2 = 1.0 - e * e;
+    return 2.0 * u / p0 *
+           (1.0 / (1.0 - e) - (2.0 * eps_c + 4.0 * eps_j) * e / (3.0 * (1.0 - e) * e2) - (eps_c + 2.0 * eps_j) / (3.0 * e2));
+}
+
+}  // namespace
+
+bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
+                   const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q, double* row) {
+    const Layout& L = sy.lay;
+    const Contact& ct = sy.contact[static_cast<size_t>(c)];
+    const double t = st[T];
+    const double e = law_restitution(ct.p);
+    double* v = st + L.v;
+    stk.build(sy, st);
+    const double mi = stk.side_mass(sy.mass, ct.i), mj = stk.side_mass(sy.mass, ct.j);
+    const double inv = (mi < INF ? 1.0 / mi : 0.0) + (mj < INF ? 1.0 / mj : 0.0);
+    if (inv == 0.0) return false;  // (both ends immovable)
+    const double mu = 1.0 / inv;
+    // the sequence this impact belongs to
+    if (!(seq_count(st, L, c) > 0.0 && t - seq_last(st, L, c) <= sc.window_s)) {
+        if (seq_count(st, L, c) >= MIN_CHATTER)
+            push_chatter(chatters, c, seq_first(st, L, c), seq_last(st, L, c), seq_count(st, L, c), false);
+        seq_first(st, L, c) = t;
+        seq_count(st, L, c) = 0.0;
+    }
+    seq_count(st, L, c) += 1.0;
+    seq_last(st, L, c) = t;
+    // Newton's impact: the normal velocity from vn to -e vn
+    const double vn = ct.sign * rel(v, ct.i, ct.j);
+    double u = 0.0;  // the rebound's speed
+    if (vn > sc.v_res) {
+        const double v_in = rel(v, ct.i, ct.j);
+        const double impulse = mu * (1.0 + e) * vn;
+        if (mi < INF) stk.add_velocity(v, ct.i, -ct.sign * impulse / mi);
+        if (mj < INF) stk.add_velocity(v, ct.j, ct.sign * impulse / mj);
+        u = e * vn;
+        after_velocity_jump(st, sy);
+        const double loss = 0.5 * mu * (1.0 - e * e) * vn * vn;
+        ledger[L_BUMPER_LOSS] += loss;
+        double* r = contacts.push();
+        r[0] = static_cast<double>(c);
+        r[1] = t;
+        r[2] = t;
+        r[3] = v_in;
+        r[4] = rel(v, ct.i, ct.j);
+        r[5] = impulse;
+        r[6] = NaN;  // (an impulse has no peak force)
+        r[7] = 0.0;
+        r[8] = loss;
+    }
+    // does the motion push the stop shut?  (the accelerations with the stops already held)
+    static thread_local std::vector<double> au, a, s0;
+    state_accelerations(st, sy, stk, ag, q, row, au, a);
+    double push = ct.sign * (a[static_cast<size_t>(ct.i)] - (ct.j >= 0 ? a[static_cast<size_t>(ct.j)] : 0.0));
+    const double round = ROUNDING * (std::abs(ag) + std::abs(au[static_cast<size_t>(ct.i)]) +
+                                     (ct.j >= 0 ? std::abs(au[static_cast<size_t>(ct.j)]) : 0.0));
+    if (u == 0.0 && std::abs(push) <= round) {  // (no push to rounding, met at rest: the push's rate decides)
+        s0.assign(st, st + L.size);
+        push = held_push_rate(s0, sy, ph, tau, stk, c, ag, q, row) > 0.0 ? round + MIN_NORMAL : -1.0;
+    }
+    if (!(push > 0.0)) return u > 0.0 || vn > sc.v_res;  // (it flies off, or leaves it at rest: a touch)
+    const double remainder = e < 1.0 ? 2.0 * u / (push * (1.0 - e)) : INF;
+    const bool hold = u == 0.0 || u * u <= 2.0 * push * sc.h_min || remainder <= sc.local_s;
+    if (!hold) return true;
+    if (sticking_closes_loop(sy, st, c)) return u > 0.0;  // (a loop of held stops: it bounces instead)
+    const double t_acc = u > 0.0 ? t + accumulation(st, sy, ph, tau, stk, c, ag, u, mi, mj, q, row) : t;
+    if (u > 0.0) {  // the chatter's remainder at once: the relative velocity to rest
+        const double v_in = rel(v, ct.i, ct.j);
+        const double impulse = mu * u;
+        if (mi < INF) stk.add_velocity(v, ct.i, ct.sign * impulse / mi);
+        if (mj < INF) stk.add_velocity(v, ct.j, -ct.sign * impulse / mj);
+        const double loss = 0.5 * mu * u * u;
+        ledger[L_BUMPER_LOSS] += loss;
+        double* r = contacts.push();
+        r[0] = static_cast<double>(c);
+        r[1] = t;
+        r[2] = t_acc;
+        r[3] = v_in;
+        r[4] = rel(v, ct.i, ct.j);
+        r[5] = impulse;
+        r[6] = NaN;
+        r[7] = 0.0;
+        r[8] = loss;
+    }
+    if (ct.j < 0 && stk.grp[static_cast<size_t>(ct.i)] < 0) {  // on the stop exactly, at rest on it
+        st[L.x + ct.i] = ct.sign * ct.gap;
+        v[ct.i] = 0.0;
+    }
+    after_velocity_jump(st, sy);
+    const bool accumulated = u > 0.0;
+    if (accumulated || seq_count(st, L, c) >= MIN_CHATTER)
+        push_chatter(chatters, c, seq_first(st, L, c), t_acc, seq_count(st, L, c), accumulated);
+    // held: its accumulators now the hold's (start, impulse, peak force)
+    const int acc = L.acc_at(c);
+    st[L.in_at(c)] = 1.0;
+    st[L.def_at(c)] = 0.0;
+    for (int k = 0; k < N_ACC; ++k) st[acc + k] = 0.0;
+    st[acc + A_TSTART] = t;
+    stk.build(sy, st);
+    return true;
+}
+
+void rigid_release(double* st, const System& sy, int c, Rows& contacts) {
+    const Layout& L = sy.lay;
+    const int acc = L.acc_at(c);
+    st[L.in_at(c)] = 0.0;
+    double* r = contacts.push();
+    r[0] = static_cast<double>(c);
+    r[1] = st[acc + A_TSTART];
+    r[2] = st[T];
+    r[3] = 0.0;
+    r[4] = 0.0;
+    r[5] = st[acc + A_IMPULSE];
+    r[6] = st[acc + A_PEAK];
+    r[7] = 0.0;
+    r[8] = 0.0;
+    for (int k = 0; k < N_ACC; ++k) st[acc + k] = 0.0;  // (no sequence running)
+}
+
+void close_chatters(const double* st, const System& sy, Rows& chatters) {
+    const Layout& L = sy.lay;
+    for (int c = 0; c < sy.nc(); ++c) {
+        if (!sy.has_b || !law_is_rigid(sy.contact[static_cast<size_t>(c)].law) || st[L.in_at(c)] != 0.0) continue;
+        const int acc = L.acc_at(c);
+        if (st[acc + A_DSTART] >= MIN_CHATTER)
+            push_chatter(chatters, c, st[acc + A_TSTART], st[acc + A_PEAK], st[acc + A_DSTART], false);
+    }
+}
+
+void held_outputs(const double* st, const System& sy, Sticking& stk, double ag, double* row) {
+    stk.build(sy, st);
+    if (!stk.any) return;
+    const int n = sy.n;
+    static thread_local std::vector<double> au, a;
+    au.resize(static_cast<size_t>(n));
+    a.resize(static_cast<size_t>(n));
+    for (int k = 0; k < n; ++k) au[static_cast<size_t>(k)] = a[static_cast<size_t>(k)] = row[1 + 2 * n + k] - ag;
+    stk.project(sy.mass, a.data());
+    for (int k = 0; k < n; ++k) row[1 + 2 * n + k] = a[static_cast<size_t>(k)] + ag;
+    double* fc = row + 1 + 3 * n + sy.n_h();
+    for (size_t h = 0; h < stk.held.size(); ++h) {
+        const int c = stk.held[h];
+        fc[c] = stk.force(sy.contact[static_cast<size_t>(c)].sign, static_cast<int>(h), sy.mass, au.data(), a.data());
+    }
+}
+
+}  // namespace pounding::run_parts

@@ -1,0 +1,165 @@
+#include "sticking.hpp"
+
+#include <numeric>
+
+#include "laws.hpp"
+
+namespace pounding {
+
+namespace {
+
+// union-find over the dofs and the ground (node n), on a buffer of the caller's
+struct Sets {
+    std::vector<int>& up;
+    Sets(std::vector<int>& buf, int size) : up(buf) {
+        up.resize(static_cast<size_t>(size));
+        std::iota(up.begin(), up.end(), 0);
+    }
+    int find(int a) {
+        while (up[static_cast<size_t>(a)] != a) a = up[static_cast<size_t>(a)] = up[static_cast<size_t>(up[static_cast<size_t>(a)])];
+        return a;
+    }
+    bool join(int a, int b) {  // false when they were already one
+        a = find(a);
+        b = find(b);
+        if (a == b) return false;
+        up[static_cast<size_t>(a)] = b;
+        return true;
+    }
+};
+
+inline int node(const Contact& ct, int n) { return ct.j >= 0 ? ct.j : n; }
+
+bool is_held(const System& sy, const double* st, int c) {
+    return sy.has_b && law_is_rigid(sy.contact[static_cast<size_t>(c)].law) && st[sy.lay.in_at(c)] != 0.0;
+}
+
+}  // namespace
+
+bool Sticking::build(const System& sy, const double* st) {
+    n = sy.n;
+    held.clear();
+    held_of.assign(static_cast<size_t>(sy.nc()), -1);
+    any = false;
+    for (int c = 0; c < sy.nc(); ++c)
+        if (is_held(sy, st, c)) {
+            held_of[static_cast<size_t>(c)] = static_cast<int>(held.size());
+            held.push_back(c);
+        }
+    grp.assign(static_cast<size_t>(n), -1);
+    grounded.clear();
+    gmass.clear();
+    ngrp = 0;
+    if (held.empty()) return true;
+    any = true;
+    Sets sets(up, n + 1);
+    bool tree = true;
+    for (int c : held) {
+        const Contact& ct = sy.contact[static_cast<size_t>(c)];
+        tree = sets.join(ct.i, node(ct, n)) && tree;
+    }
+    std::vector<int> root_grp(static_cast<size_t>(n + 1), -1);
+    auto group_of_root = [&](int r) {
+        if (root_grp[static_cast<size_t>(r)] < 0) {
+            root_grp[static_cast<size_t>(r)] = ngrp++;
+            grounded.push_back(0);
+            gmass.push_back(0.0);
+        }
+        return root_grp[static_cast<size_t>(r)];
+    };
+    for (int c : held) {  // the dofs bound by a held stop
+        const Contact& ct = sy.contact[static_cast<size_t>(c)];
+        const int g = group_of_root(sets.find(ct.i));
+        if (ct.j < 0) grounded[static_cast<size_t>(g)] = 1;
+    }
+    for (int k = 0; k < n; ++k) {
+        const int r = sets.find(k);
+        if (root_grp[static_cast<size_t>(r)] < 0) continue;
+        const int g = root_grp[static_cast<size_t>(r)];
+        grp[static_cast<size_t>(k)] = g;
+        gmass[static_cast<size_t>(g)] += sy.mass[static_cast<size_t>(k)];
+    }
+    // each held stop's side: the dofs its first end reaches through the other held stops (not the ground)
+    const int nh = static_cast<int>(held.size());
+    side.assign(static_cast<size_t>(nh * n), 0);
+    std::vector<int> stack;
+    for (int h = 0; h < nh; ++h) {
+        char* s = &side[static_cast<size_t>(h * n)];
+        const int i0 = sy.contact[static_cast<size_t>(held[static_cast<size_t>(h)])].i;
+        stack.assign(1, i0);
+        s[i0] = 1;
+        while (!stack.empty()) {
+            const int k = stack.back();
+            stack.pop_back();
+            for (int q = 0; q < nh; ++q) {
+                if (q == h) continue;
+                const Contact& ct = sy.contact[static_cast<size_t>(held[static_cast<size_t>(q)])];
+                int other = -1;
+                if (ct.i == k) other = ct.j;
+                else if (ct.j == k) other = ct.i;
+                if (other >= 0 && !s[other]) {
+                    s[other] = 1;
+                    stack.push_back(other);
+                }
+            }
+        }
+    }
+    return tree;
+}
+
+void Sticking::project(const std::vector<double>& mass, double* a) const {
+    if (!any) return;
+    for (int g = 0; g < ngrp; ++g) {
+        double mean = 0.0;
+        if (!grounded[static_cast<size_t>(g)]) {
+            double s = 0.0;
+            for (int k = 0; k < n; ++k)
+                if (grp[static_cast<size_t>(k)] == g) s += mass[static_cast<size_t>(k)] * a[k];
+            mean = s / gmass[static_cast<size_t>(g)];
+        }
+        for (int k = 0; k < n; ++k)
+            if (grp[static_cast<size_t>(k)] == g) a[k] = mean;
+    }
+}
+
+double Sticking::force(double sign, int h, const std::vector<double>& mass, const double* au,
+                       const double* a) const {
+    const char* s = &side[static_cast<size_t>(h * n)];
+    double f = 0.0;
+    for (int k = 0; k < n; ++k)
+        if (s[k]) f += mass[static_cast<size_t>(k)] * (au[k] - a[k]);
+    return sign * f;
+}
+
+double Sticking::side_mass(const std::vector<double>& mass, int k) const {
+    if (k < 0) return INF;
+    const int g = any ? grp[static_cast<size_t>(k)] : -1;
+    if (g < 0) return mass[static_cast<size_t>(k)];
+    return grounded[static_cast<size_t>(g)] ? INF : gmass[static_cast<size_t>(g)];
+}
+
+void Sticking::add_velocity(double* v, int k, double dv) const {
+    if (k < 0) return;
+    const int g = any ? grp[static_cast<size_t>(k)] : -1;
+    if (g < 0) {
+        v[k] += dv;
+        return;
+    }
+    if (grounded[static_cast<size_t>(g)]) return;
+    for (int q = 0; q < n; ++q)
+        if (grp[static_cast<size_t>(q)] == g) v[q] += dv;
+}
+
+bool sticking_closes_loop(const System& sy, const double* st, int c) {
+    static thread_local std::vector<int> buf;
+    Sets sets(buf, sy.n + 1);
+    for (int q = 0; q < sy.nc(); ++q) {
+        if (q == c || !is_held(sy, st, q)) continue;
+        const Contact& ct = sy.contact[static_cast<size_t>(q)];
+        sets.join(ct.i, node(ct, sy.n));
+    }
+    const Contact& ct = sy.contact[static_cast<size_t>(c)];
+    return !sets.join(ct.i, node(ct, sy.n));
+}
+
+}  // namespace pounding

@@ -1,0 +1,43 @@
+// Rigid stops held shut: sticking.
+//
+// A rigid stop (laws.hpp, law_is_rigid) in contact holds its pair's compression at zero: the two ends (or the
+// end and the ground) move together while the motion pushes them into each other.  The held stops bind the
+// dofs into groups; a group with a stop on the ground does not move relative to the ground (its accelerations
+// are zero), the others move as one body (each member's acceleration is the group's mass-weighted mean of the
+// accelerations the system would have without the held stops).  The held stops of a group form a tree (a loop
+// is never closed: the run bounces instead, see sticking_closes_loop), so each held stop's force is what the
+// dofs on its first end's side need: F = sign sum_(k on that side) m_k (a_free_k - a_k), pushing while F > 0.
+#pragma once
+
+#include <vector>
+
+#include "core.hpp"
+
+namespace pounding {
+
+struct Sticking {
+    bool any = false;
+    int n = 0, ngrp = 0;
+    std::vector<int> grp;       // per dof: its group, -1 when no held stop binds it
+    std::vector<int> grounded;  // per group: 1 when a held stop ties it to the ground
+    std::vector<double> gmass;  // per group: its mass, kg
+    std::vector<int> held;      // the held stops (contact indices)
+    std::vector<char> side;     // per held stop (held.size() x n): dof k on its first end's side
+    std::vector<int> held_of;   // per contact: its index in held, -1 when not held
+    std::vector<int> up;        // (scratch: the union-find's parents)
+    // the groups of the rigid stops in contact in the state (st[in] != 0); false when they close a loop
+    bool build(const System& sy, const double* st);
+    // the accelerations a (n) with the held stops, from those without them (in place)
+    void project(const std::vector<double>& mass, double* a) const;
+    // held stop h's force, N (sign: the stop's), from the accelerations without (au) and with (a) the held stops
+    double force(double sign, int h, const std::vector<double>& mass, const double* au, const double* a) const;
+    // a dof's side of an impact: its group's mass (infinite when it cannot move), kg
+    double side_mass(const std::vector<double>& mass, int k) const;
+    // add dv to the velocity of dof k and every dof moving with it (nothing for the ground or a grounded group)
+    void add_velocity(double* v, int k, double dv) const;
+};
+
+// would holding contact c shut close a loop of held stops (through the ground too)?
+bool sticking_closes_loop(const System& sy, const double* st, int c);
+
+}  // namespace pounding

@@ -1,0 +1,307 @@
+"""Rigid stops (issue 51): Newton's impacts, complete chatter, sticking and its release, against closed
+forms (tests/reference_impact.py, checked there against solve_ivp) and invariants."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+import warnings
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import pounding
+from pounding import Status
+from reference_impact import falling_on_stop, impact_orbits
+
+K, M = 100.0, 1.0  # the linear oscillator: omega 10 rad/s
+OMEGA = math.sqrt(K / M)
+
+
+def oscillator(e: float, gap_right: float = 0.01, zeta: float = 0.0, gap_left: float = 0.5,
+               e_left: float | None = None, omega: float = OMEGA) -> pounding.Oscillator:
+    iso = pounding.Isolator(slopes=[M * omega ** 2], damping=2.0 * zeta * omega * M)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # (gaps beyond a bumper's plausible range)
+        return pounding.Oscillator(M, iso, pounding.Bumpers(
+            gap_left, gap_right, pounding.RigidStop(e if e_left is None else e_left), pounding.RigidStop(e)))
+
+
+def constant(a: float, until: float = 100.0) -> pounding.Record:
+    return pounding.Record(np.array([0.0, until]), np.array([a, a]))
+
+
+def ledger_residual(run) -> float:
+    e = run.energy
+    return e.input_work - (e.kinetic + e.isolator_elastic + e.bumper_elastic + e.viscous + e.hysteretic
+                           + e.bumper_dissipation)
+
+
+# ---------------------------------------------------------------- complete chatter: the closed form
+
+
+@pytest.mark.parametrize("e, zeta", [(0.5, 0.0), (0.9, 0.0), (0.5, 0.05), (0.9, 0.02), (0.95, 0.2)])
+def test_a_mass_falling_on_a_stop_chatters_and_sticks_as_the_closed_form_says(e, zeta):
+    d, x_eq = 0.01, 0.02  # (the static position beyond the stop: a_g = -omega^2 x_eq)
+    ref = falling_on_stop(OMEGA, zeta, x_eq, d, e, 0.0, 0.0, n_impacts=400)
+    run = pounding.simulate(oscillator(e, d, zeta), constant(-OMEGA ** 2 * x_eq), duration=30.0,
+                            sample_rate_hz=0)
+    assert run.status == Status.SUCCESS
+    c = run.contacts
+    impacts = c[c.t_end_s == c.t_start_s]
+    n = len(impacts)
+    assert 10 < n < len(ref.times_s)
+    np.testing.assert_allclose(impacts.t_start_s, ref.times_s[:n], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(impacts.v_in_m_s, ref.v_in[:n], rtol=1e-9, atol=1e-13)
+    np.testing.assert_allclose(-impacts.v_out_m_s, e * ref.v_in[:n], rtol=1e-9, atol=1e-13)
+    # one sequence, accumulated where the series sums to, then held by the closed form's force
+    (chatter,) = run.chatters.itertuples()
+    assert chatter.accumulated and chatter.t_end_s == pytest.approx(ref.accumulation_s, abs=1e-12)
+    assert chatter.impacts == (impacts.t_start_s >= chatter.t_first_s).sum()
+    held = c.iloc[-1]
+    assert held.t_start_s == pytest.approx(impacts.t_start_s.iloc[-1], abs=1e-15) and math.isnan(held.t_end_s)
+    assert held.peak_force_n == pytest.approx(M * ref.sticking_accel, rel=1e-12)
+    assert held.impulse_n_s == pytest.approx(M * ref.sticking_accel * (30.0 - held.t_start_s), rel=1e-9)
+    end = run.final_state
+    assert end.displacement_m == d and end.velocity_m_s == 0.0 and end.in_contact == (False, True)
+    # the kinetic energy went into the stop, impact by impact and the remainder at once
+    lost = 0.5 * M * (1 - e * e) * ref.v_in[:n] ** 2
+    np.testing.assert_allclose(c.bumper_dissipation_j[:n], lost, rtol=1e-8)
+    assert abs(ledger_residual(run)) < 1e-12 * run.energy.input_work
+
+
+def test_a_plastic_stop_holds_at_the_first_impact_and_an_elastic_one_never():
+    push = constant(-OMEGA ** 2 * 0.02)
+    plastic = pounding.simulate(oscillator(0.0), push, duration=2.0, sample_rate_hz=0)
+    (hit, held) = plastic.contacts.itertuples()
+    assert hit.v_out_m_s == 0.0 and hit.t_start_s == held.t_start_s and math.isnan(held.t_end_s)
+    assert held.peak_force_n == pytest.approx(1.0, rel=1e-12)  # (omega^2 (x_eq - d) per kg)
+    assert plastic.chatters.empty  # (one impact: no sequence)
+    elastic = pounding.simulate(oscillator(1.0), push, duration=2.0, sample_rate_hz=0)
+    assert elastic.chatters.empty and not elastic.final_state.in_contact[1]
+    assert elastic.energy.bumper_dissipation == 0.0
+    assert (elastic.contacts.v_out_m_s == -elastic.contacts.v_in_m_s).all()
+
+
+# ---------------------------------------------------------------- sticking and its release
+
+
+def test_a_mass_at_rest_on_the_stop_is_held_until_the_force_would_pull():
+    """Pressed by the spring and the table, ``F = -k d - m A sin(W t + phi)``: held from the start until F
+    crosses zero, at ``sin(W t + phi) = -k d / (m A)``."""
+    a, f_hz, d = 3.0, 1.0, 0.01
+    osc = oscillator(0.5, d)
+    table = pounding.Harmonic(a_g=a, freq_hz=f_hz, phase=-math.pi / 2, g=1.0)
+    run = pounding.simulate(osc, table, duration=0.5, state=pounding.State.at_rest(osc, displacement_m=d))
+    held = run.contacts.iloc[0]
+    w = 2.0 * math.pi * f_hz
+    release = (math.pi / 2 - math.asin(K * d / (M * a))) / w
+    assert held.t_start_s == 0.0 and held.t_end_s == pytest.approx(release, abs=1e-12)
+    assert held.peak_force_n == pytest.approx(-K * d + M * a, rel=1e-12)  # (at t = 0)
+    # the impulse: the force's integral in closed form
+    impulse = -K * d * release + M * a / w * (math.cos(w * release - math.pi / 2) - math.cos(-math.pi / 2))
+    assert held.impulse_n_s == pytest.approx(impulse, rel=1e-10)
+    # held: the mass moves with the table (its absolute acceleration the table's), pushed, never pulled
+    inside = (run.t > 0.0) & (run.t < release)
+    np.testing.assert_allclose(run.displacement[inside], d, rtol=0, atol=0)
+    np.testing.assert_allclose(run.abs_acceleration[inside], table.acceleration(run.t[inside]), atol=1e-12)
+    force = K * -d * 0 + (-K * d - M * table.acceleration(run.t[inside]))
+    np.testing.assert_allclose(run.bumper_force_right[inside], force, rtol=1e-9, atol=1e-12)
+    assert (run.bumper_force_right >= 0.0).all() and (run.bumper_force_left == 0.0).all()
+
+
+def test_a_mass_pulled_off_the_stop_at_the_start_leaves_at_once():
+    osc = oscillator(0.5, 0.01)
+    run = pounding.simulate(osc, pounding.Harmonic(a_g=3.0, freq_hz=1.0, phase=math.pi / 2, g=1.0),
+                            duration=0.2, state=pounding.State.at_rest(osc, displacement_m=0.01))
+    assert run.status == Status.SUCCESS and run.contacts.empty and run.displacement_max == 0.01
+
+
+# ---------------------------------------------------------------- the forced impact oscillator
+
+ZETA, A, E, W = 0.05, 3.0, 0.8, 2.0 * math.pi  # (W: the oscillator's natural frequency, rad/s)
+
+
+def _orbit(r: float, d: float):
+    orbs = [o for o in impact_orbits(W, ZETA, A, r * W, d, E) if not o.grazes]
+    assert orbs, "no one-impact orbit there"
+    return orbs[0]
+
+
+def impact_oscillator(d: float) -> pounding.Oscillator:
+    return oscillator(E, d, ZETA, omega=W)
+
+
+@pytest.mark.parametrize("r, d", [(1.5, 0.0), (2.0, 0.005), (2.4, 0.005), (3.0, 0.0)])
+def test_the_period_one_orbit_of_the_impact_oscillator_returns_after_one_period(r, d):
+    o = _orbit(r, d)
+    big = r * W
+    period = 2.0 * math.pi / big
+    osc = impact_oscillator(d)
+    # a_g = A cos(W t + phase) = A sin(W t + phase + pi / 2)
+    table = pounding.Harmonic(a_g=A, freq_hz=big / (2 * math.pi), phase=o.phase_rad + math.pi / 2, g=1.0)
+    start = pounding.State.at_rest(osc, displacement_m=d, velocity_m_s=-E * o.v_in)
+    run = pounding.simulate(osc, table, duration=3.0 * period * (1 + 1e-9), state=start, sample_rate_hz=0)
+    c = run.contacts
+    np.testing.assert_allclose(c.t_start_s, period * np.arange(1, 4), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(c.v_in_m_s, o.v_in, rtol=1e-10)
+
+
+def test_the_impact_oscillator_settles_on_its_orbit_only_where_its_multipliers_say_it_is_stable():
+    """Across its stability boundary (a multiplier through -1 as the forcing frequency grows), a start near
+    the orbit comes back to it on the stable side and leaves it on the other."""
+    d = 0.0
+    ratios = np.linspace(2.3, 3.0, 71)
+    stable = [max(abs(_orbit(r, d).multipliers)) < 1.0 for r in ratios]
+    k = stable.index(False)  # (the boundary lies between ratios k - 1 and k)
+    assert 0 < k and all(stable[:k]) and not any(stable[k:])
+    for r, expect in ((ratios[k - 3], True), (ratios[k + 2], False)):
+        o = _orbit(r, d)
+        big = r * W
+        period = 2.0 * math.pi / big
+        osc = impact_oscillator(d)
+        table = pounding.Harmonic(a_g=A, freq_hz=big / (2 * math.pi), phase=o.phase_rad + math.pi / 2, g=1.0)
+        start = pounding.State.at_rest(osc, displacement_m=d - 1e-5, velocity_m_s=-E * o.v_in * 1.001)
+        run = pounding.simulate(osc, table, duration=300.0 * period, state=start, sample_rate_hz=0)
+        late = run.contacts[run.contacts.t_start_s > 250.0 * period]
+        on_orbit = np.allclose(late.v_in_m_s, o.v_in, rtol=1e-6) and len(late) in (49, 50, 51)
+        assert on_orbit == expect, (r, late.v_in_m_s.describe())
+
+
+# ---------------------------------------------------------------- a stiff bumper tends to the rigid stop
+
+
+def _kv_restitution(stiffness: float, damping: float) -> float:
+    """A free mass's restitution on a Kelvin-Voigt bumper (contact ends when its force would pull):
+    ``m x'' = -(k x + c x')`` from ``(0, 1)``, solved in closed form (underdamped)."""
+    w0 = math.sqrt(stiffness / M)
+    z = damping / (2.0 * math.sqrt(stiffness * M))
+    wd = w0 * math.sqrt(1 - z * z)
+
+    def state(t: float) -> tuple[float, float]:
+        ex = math.exp(-z * w0 * t)
+        x = ex * math.sin(wd * t) / wd
+        v = ex * (math.cos(wd * t) - z * w0 / wd * math.sin(wd * t))
+        return x, v
+
+    from scipy.optimize import brentq
+    end = brentq(lambda t: stiffness * state(t)[0] + damping * state(t)[1], 0.5 * math.pi / wd, math.pi / wd,
+                 xtol=1e-16)
+    return -state(end)[1]
+
+
+def test_a_stiff_kelvin_voigt_bumper_tends_to_the_rigid_stop_first_order_in_its_contact_time():
+    """Held at the same restitution (the damping ratio fixed), the bumper's impacts tend to the rigid
+    stop's as its stiffness grows: the first impacts' rebound speeds and times converge, the error falling
+    with the contact time (about pi sqrt(m / k))."""
+    zeta_b, d = 0.1, 0.01
+    table = pounding.Harmonic(a_g=5.0, freq_hz=1.3, g=1.0)
+    e = _kv_restitution(1.0, 2.0 * zeta_b)
+    rigid = pounding.simulate(oscillator(e, d, 0.02, gap_left=d), table, duration=3.0, sample_rate_hz=0)
+    ref = rigid.contacts.iloc[:6]
+    errors, contact_times = [], []
+    for kb in (1e7, 1e8, 1e9, 1e10):
+        law = pounding.KelvinVoigt(kb, 2.0 * zeta_b * math.sqrt(kb * M))
+        assert _kv_restitution(kb, law.damping) == pytest.approx(e, rel=1e-9)
+        iso = pounding.Isolator(slopes=[K], damping=2.0 * 0.02 * OMEGA * M)
+        osc = pounding.Oscillator(M, iso, pounding.Bumpers(d, d, law))
+        run = pounding.simulate(osc, table, duration=3.0, sample_rate_hz=0)
+        got = run.contacts.iloc[:6]
+        errors.append(np.max(np.abs(got.v_out_m_s.values - ref.v_out_m_s.values)))
+        contact_times.append(float((got.t_end_s - got.t_start_s).mean()))
+    errors, contact_times = np.array(errors), np.array(contact_times)
+    assert np.all(np.diff(errors) < 0)
+    # first order: the error over the contact time stays the same as both fall 30-fold (about 5 /s here)
+    ratio = errors / contact_times
+    assert ratio.max() < 1.3 * ratio.min() and errors[-1] < 1e-3 * np.abs(ref.v_out_m_s).max()
+
+
+# ---------------------------------------------------------------- invariants
+
+
+def test_a_continued_run_equals_one_long_run_through_chatter_and_sticking():
+    osc = oscillator(0.7, 0.005, 0.02, gap_left=0.005)
+    table = pounding.Harmonic(a_g=4.0, freq_hz=0.7, g=1.0)
+    one = pounding.simulate(osc, table, duration=6.0, sample_rate_hz=0)
+    assert not one.chatters.empty and one.chatters.accumulated.any()
+    held = one.contacts[one.contacts.t_end_s > one.contacts.t_start_s + 0.01]
+    cut = float(held.t_start_s.iloc[0] + 0.5 * (held.t_end_s.iloc[0] - held.t_start_s.iloc[0]))  # (in a hold)
+    first = pounding.simulate(osc, table, duration=cut, sample_rate_hz=0)
+    rest = pounding.simulate(osc, table, duration=6.0 - cut, state=first.final_state, sample_rate_hz=0)
+    assert rest.final_state.displacement_m == pytest.approx(one.final_state.displacement_m, abs=1e-12)
+    assert rest.final_state.velocity_m_s == pytest.approx(one.final_state.velocity_m_s, abs=1e-11)
+    whole = one.contacts
+    joined = np.concatenate([first.contact_table[~np.isnan(first.contact_table[:, 2])], rest.contact_table])
+    later = joined[joined[:, 1] > cut + 1e-9]
+    np.testing.assert_allclose(later[:, 1], whole.t_start_s.values[-len(later):], atol=1e-11)
+
+
+def test_mirrored_stops_give_the_mirrored_motion():
+    osc = oscillator(0.6, 0.004, 0.03, gap_left=0.007, e_left=0.3)
+    table = pounding.Harmonic(a_g=4.0, freq_hz=0.9, g=1.0)
+    run = pounding.simulate(osc, table, duration=5.0, sample_rate_hz=0)
+    mirror = dataclasses.replace(osc, bumpers=osc.bumpers.mirrored())
+    flipped = pounding.simulate(mirror, dataclasses.replace(table, a_g=-4.0), duration=5.0, sample_rate_hz=0)
+    np.testing.assert_allclose(flipped.contacts.t_start_s, run.contacts.t_start_s, atol=1e-12)
+    np.testing.assert_allclose(flipped.contacts.v_in_m_s, -run.contacts.v_in_m_s, atol=1e-12)
+    assert (flipped.contacts.side.values != run.contacts.side.values).all()
+    assert flipped.displacement_max == pytest.approx(-run.displacement_min, abs=1e-14)
+
+
+# ---------------------------------------------------------------- never a hang or a budget stop in chatter
+
+
+@settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(mass=st.floats(0.1, 1e3), omega=st.floats(1.0, 60.0), zeta=st.sampled_from([0.0, 0.02, 0.3]),
+       e=st.one_of(st.sampled_from([0.0, 1.0]), st.floats(0.0, 1.0)),
+       gap_l=st.one_of(st.just(0.0), st.floats(0.0, 0.05)),
+       gap_r=st.one_of(st.just(0.0), st.floats(0.0, 0.05)),
+       a=st.floats(0.0, 20.0), f_hz=st.floats(0.1, 8.0), on_stop=st.booleans(), constant_push=st.booleans())
+def test_no_run_hangs_or_stops_on_its_budget_in_chatter(mass, omega, zeta, e, gap_l, gap_r, a, f_hz,
+                                                       on_stop, constant_push):
+    iso = pounding.Isolator(slopes=[mass * omega ** 2], damping=2.0 * zeta * omega * mass)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        osc = pounding.Oscillator(mass, iso, pounding.Bumpers(gap_l, gap_r, pounding.RigidStop(e)))
+        table = constant(-a) if constant_push else pounding.Harmonic(a_g=a, freq_hz=f_hz, g=1.0)
+    start = pounding.State.at_rest(osc, displacement_m=gap_r if on_stop else 0.0)
+    run = pounding.simulate(osc, table, duration=3.0, state=start, sample_rate_hz=0, max_events=2_000_000)
+    assert run.status == Status.SUCCESS, run.message
+    en = run.energy
+    scale = sum(abs(x) for x in (en.input_work, en.kinetic, en.isolator_elastic, en.viscous,
+                                 en.bumper_dissipation))
+    stored = mass * omega ** 2 * max(gap_l, gap_r, 1e-3) ** 2
+    assert abs(ledger_residual(run)) <= 1e-9 * scale + 1e-15 * stored
+    holds = run.contacts[~(run.contacts.t_end_s == run.contacts.t_start_s)]
+    assert (holds.impulse_n_s.fillna(0.0) >= -1e-12 * mass * max(a, 1.0)).all()  # (a stop never pulls)
+    assert -gap_l - 1e-12 <= run.displacement_min and run.displacement_max <= gap_r + 1e-12
+
+
+# ---------------------------------------------------------------- structures: a wall, two masses
+
+
+def test_a_building_against_a_rigid_moat_wall_and_two_buildings_against_each_other_close_their_ledgers():
+    rec = pounding.records.el_centro().scaled(pga_g=0.6)
+    b = pounding.Structure.from_toml("examples/building_moat.toml")
+    for e in (0.0, 0.5, 1.0):
+        rigid = dataclasses.replace(b, walls=(dataclasses.replace(b.walls[0], law=pounding.RigidStop(e)),))
+        run = pounding.simulate(rigid, rec, duration=20.0, sample_rate_hz=0)
+        assert run.success and len(run.contacts) > 3
+        assert abs(run.energy.residual) < 1e-9 * run.energy.input_work
+    pair = pounding.Adjacent.from_toml("examples/adjacent_buildings.toml")
+    for e in (0.0, 0.6, 1.0):
+        link = dataclasses.replace(pair.links[0], law=pounding.RigidStop(e))
+        rigid = dataclasses.replace(pair, links=(link,))
+        run = pounding.simulate(rigid, rec.scaled(pga_g=0.5), duration=20.0, sample_rate_hz=0)
+        assert run.success and len(run.links) > 0
+        assert abs(run.energy.residual) < 1e-9 * run.energy.input_work
+        impacts = run.links[run.links.t_end == run.links.t_start]
+        np.testing.assert_allclose(impacts.v_out, -e * impacts.v_in, atol=1e-12)
+
+
+def test_a_rigid_stop_refuses_a_restitution_outside_0_to_1():
+    for bad in (-0.1, 1.5, math.nan, "x"):
+        with pytest.raises(pounding.InputError, match="restitution"):
+            pounding.RigidStop(bad)
