@@ -9,7 +9,7 @@ import warnings
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, given, settings
+from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import pounding
@@ -218,6 +218,23 @@ def test_a_stiff_kelvin_voigt_bumper_tends_to_the_rigid_stop_first_order_in_its_
     assert ratio.max() < 1.3 * ratio.min() and errors[-1] < 1e-3 * np.abs(ref.v_out_m_s).max()
 
 
+def test_a_return_that_barely_reaches_the_stop_is_an_impact_not_a_pass_through():
+    """Found by a fuzz: the mass comes back to the left stop after each rebound with less to spare, and one
+    return dips 7 nm past it inside a sub-interval that ends as it comes back out (its end within the
+    rounding of zero): the crossing before the dip is the impact, not the one after it."""
+    mass, omega, gap = 823.135633938375, 21.948266301722516, 0.01951727485062605
+    iso = pounding.Isolator(slopes=[mass * omega ** 2])
+    osc = pounding.Oscillator(mass, iso, pounding.Bumpers(0.0, gap, pounding.RigidStop(0.15054298312394565),
+                                                          pounding.RigidStop(0.0)))
+    push = constant(-2.0045586059931297)
+    run = pounding.simulate(osc, push, duration=3.0, state=pounding.State.at_rest(osc, displacement_m=gap),
+                            sample_rate_hz=0)
+    assert run.displacement_min >= -1e-15
+    impacts = run.contacts.t_start_s.values
+    assert np.any(np.abs(impacts - 1.17582222812465) < 1e-9)  # (the return the engine had passed through)
+    assert (run.contacts.v_in_m_s < 0).all()  # (every impact on the left stop, met moving into it)
+
+
 # ---------------------------------------------------------------- invariants
 
 
@@ -261,6 +278,7 @@ def test_mirrored_stops_give_the_mirrored_motion():
        a=st.floats(0.0, 20.0), f_hz=st.floats(0.1, 8.0), on_stop=st.booleans(), constant_push=st.booleans())
 def test_no_run_hangs_or_stops_on_its_budget_in_chatter(mass, omega, zeta, e, gap_l, gap_r, a, f_hz,
                                                        on_stop, constant_push):
+    assume(gap_l + gap_r > 0.0)  # (no gap at all: a clamp, refused; the test below)
     iso = pounding.Isolator(slopes=[mass * omega ** 2], damping=2.0 * zeta * omega * mass)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -299,6 +317,16 @@ def test_a_building_against_a_rigid_moat_wall_and_two_buildings_against_each_oth
         assert abs(run.energy.residual) < 1e-9 * run.energy.input_work
         impacts = run.links[run.links.t_end == run.links.t_start]
         np.testing.assert_allclose(impacts.v_out, -e * impacts.v_in, atol=1e-12)
+
+
+def test_rigid_stops_on_both_sides_without_a_gap_are_refused_as_a_clamp():
+    with pytest.raises(pounding.InputError, match="bumpers.gap_left.*clamped"):
+        pounding.Bumpers(0.0, 0.0, pounding.RigidStop(0.5))
+    with pytest.raises(pounding.InputError, match="wall.gap_left_m.*clamped"):
+        pounding.Wall(0, 0.0, 0.0, pounding.RigidStop(1.0))
+    # (one deformable side, or a gap: a mass that can move)
+    assert pounding.Bumpers(0.0, 0.0, pounding.RigidStop(0.5), pounding.KelvinVoigt(1e6)).gap_right == 0.0
+    assert pounding.Wall(0, 0.0, 0.001, pounding.RigidStop(1.0)).gap_right_m == 0.001
 
 
 def test_a_rigid_stop_refuses_a_restitution_outside_0_to_1():

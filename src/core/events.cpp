@@ -432,19 +432,55 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
     if (!crosses && !leaves && !(gp0 < 0.0 && gp1 > 0.0)) return -1.0;  // (at zero, moving away: nothing)
     Fn fn;
     event_fn(evs, i, ph, fn);
-    if (crosses) return find_root(fn, ph, 0.0, h, g0, g1, gp0, gp1, xtol);
     Fn rate;
     rate_fn(fn, rate);
     if (fn.kind == FN_POLY_RELAX) rate.idx = i;  // (the event's rate on the trajectory)
     double* y = ph.ye.data();
     double* a = ph.ae.data();
+    // its minimum inside, when it falls at the start and rises at the end: (time, value, scale).  A function of
+    // the pair's displacement alone has it where the pair's velocity is zero (found once for every such event
+    // of the sub-interval)
+    auto minimum = [&](double& tm, double& gm, double& sc) {
+        const EventRow& e = evs[i];
+        const Phase::Zeros& z = velocity_zeros(ph, e.i, e.j);
+        if (fn.kind == FN_POLY && e.kind == KIND_LINEAR && e.gamma == 0.0 && e.beta != 0.0 && z.count == 1 &&
+            z.t[0] < h) {
+            tm = z.t[0];
+            gm = e.alpha + e.beta * z.x[0];
+            sc = std::abs(e.alpha) + std::abs(e.beta * z.x[0]) + (e.side == SIDE_NONE ? 0.0 : ph.xround);
+        } else {
+            tm = find_root(rate, ph, 0.0, h, gp0, gp1, NaN, NaN, xtol);
+            phase_eval(ph, tm, y, a);
+            const EventValue ev = event_value(e, ph, tm, y, a);
+            gm = ev.g;
+            sc = ev.scale;
+        }
+    };
+    if (crosses) {
+        // down and back up to zero by the end (its end within the rounding of zero, on its way up): the bracket
+        // over the whole sub-interval holds two crossings, the first before the minimum
+        if (gp0 < 0.0 && gp1 > 0.0 && g1 >= -tol1) {
+            double tm, gm, sc;
+            minimum(tm, gm, sc);
+            if (gm < 0.0 && tm > 0.0) return find_root(fn, ph, 0.0, tm, g0, gm, gp0, 0.0, xtol);
+        }
+        return find_root(fn, ph, 0.0, h, g0, g1, gp0, gp1, xtol);
+    }
     if (leaves && fn.kind == FN_POLY && gp0 > 0.0 && gp1 < 0.0 && evs[i].action == ACT_CONTACT &&
         law_is_rigid(slot(ph, evs[i].side).law)) {
-        // a rebound off a rigid stop, rising first: where it turns, on the polynomial, then its root beyond
-        // (or there, when the rise is below the rounding)
-        const double tm = find_root(rate, ph, 0.0, h, gp0, gp1, NaN, NaN, xtol);
-        double gm, unused;
-        fn_eval(fn, ph, tm, gm, unused);
+        // a rebound off a rigid stop, rising first: where it turns (the pair's velocity zero, found once for
+        // the sub-interval), then its root beyond (or there, when the rise is below the rounding)
+        const EventRow& e = evs[i];
+        const Phase::Zeros& z = velocity_zeros(ph, e.i, e.j);
+        double tm, gm;
+        if (e.kind == KIND_LINEAR && e.gamma == 0.0 && z.count == 1 && 0.0 < z.t[0] && z.t[0] < h) {
+            tm = z.t[0];
+            gm = e.alpha + e.beta * z.x[0];
+        } else {
+            double unused;
+            tm = find_root(rate, ph, 0.0, h, gp0, gp1, NaN, NaN, xtol);
+            fn_eval(fn, ph, tm, gm, unused);
+        }
         if (gm <= tol0) return tm;
         return find_root(fn, ph, tm, h, gm, g1, 0.0, gp1, xtol);
     }
@@ -461,23 +497,9 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
         return 0.0;
     }
     if (!(gp0 < 0.0 && gp1 > 0.0)) return -1.0;
-    // a local minimum inside: does it dip below zero?  A function of the pair's displacement alone has it
-    // where the pair's velocity is zero (found once for every such event of the sub-interval)
-    const EventRow& e = evs[i];
+    // a local minimum inside: does it dip below zero?
     double tm, gm, sc;
-    const Phase::Zeros& z = velocity_zeros(ph, e.i, e.j);
-    if (fn.kind == FN_POLY && e.kind == KIND_LINEAR && e.gamma == 0.0 && e.beta != 0.0 && z.count == 1 &&
-        z.t[0] < h) {
-        tm = z.t[0];
-        gm = e.alpha + e.beta * z.x[0];
-        sc = std::abs(e.alpha) + std::abs(e.beta * z.x[0]) + (e.side == SIDE_NONE ? 0.0 : ph.xround);
-    } else {
-        tm = find_root(rate, ph, 0.0, h, gp0, gp1, NaN, NaN, xtol);
-        phase_eval(ph, tm, y, a);
-        const EventValue ev = event_value(e, ph, tm, y, a);
-        gm = ev.g;
-        sc = ev.scale;
-    }
+    minimum(tm, gm, sc);
     if (gm >= -ROUNDING * sc) return -1.0;
     if (g0 <= tol0) return 0.0;  // it leaves the boundary on the wrong side at once
     return find_root(fn, ph, 0.0, tm, g0, gm, gp0, 0.0, xtol);

@@ -133,7 +133,9 @@ double accumulation(const double* st, const System& sy, const Phase& ph, double 
 }  // namespace
 
 bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
-                   const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q, double* row) {
+                   const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q, double* row,
+                   double& flight) {
+    flight = INF;
     const Layout& L = sy.lay;
     const Contact& ct = sy.contact[static_cast<size_t>(c)];
     const double t = st[T];
@@ -155,16 +157,18 @@ bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, St
     seq_last(st, L, c) = t;
     // Newton's impact: the normal velocity from vn to -e vn
     const double vn = ct.sign * rel(v, ct.i, ct.j);
-    double u = 0.0;  // the rebound's speed
-    if (vn > sc.v_res) {
-        const double v_in = rel(v, ct.i, ct.j);
-        const double impulse = mu * (1.0 + e) * vn;
+    const double v_in = rel(v, ct.i, ct.j);
+    double u = 0.0, impulse = 0.0, loss = 0.0;  // the rebound's speed, the impulse, the energy lost
+    if (vn > 0.0) {
+        impulse = mu * (1.0 + e) * vn;
         if (mi < INF) stk.add_velocity(v, ct.i, -ct.sign * impulse / mi);
         if (mj < INF) stk.add_velocity(v, ct.j, ct.sign * impulse / mj);
         u = e * vn;
         after_velocity_jump(st, sy);
-        const double loss = 0.5 * mu * (1.0 - e * e) * vn * vn;
+        loss = 0.5 * mu * (1.0 - e * e) * vn * vn;
         ledger[L_BUMPER_LOSS] += loss;
+    }
+    if (vn > sc.v_res) {  // (a touch slower than the resolution: computed, not listed)
         double* r = contacts.push();
         r[0] = static_cast<double>(c);
         r[1] = t;
@@ -189,9 +193,13 @@ bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, St
     if (!(push > 0.0)) return u > 0.0 || vn > sc.v_res;  // (it flies off, or leaves it at rest: a touch)
     const double remainder = e < 1.0 ? 2.0 * u / (push * (1.0 - e)) : INF;
     const bool hold = u == 0.0 || u * u <= 2.0 * push * sc.h_min || remainder <= sc.local_s;
-    if (!hold) return true;
+    if (!hold) {
+        flight = 2.0 * u / push;
+        return true;
+    }
     if (sticking_closes_loop(sy, st, c)) return u > 0.0;  // (a loop of held stops: it bounces instead)
-    const double t_acc = u > 0.0 ? t + accumulation(st, sy, ph, tau, stk, c, ag, u, mi, mj, q, row) : t;
+    // (e = 1: a rebound below the resolution never accumulates; it is held at once)
+    const double t_acc = u > 0.0 && e < 1.0 ? t + accumulation(st, sy, ph, tau, stk, c, ag, u, mi, mj, q, row) : t;
     if (u > 0.0) {  // the chatter's remainder at once: the relative velocity to rest
         const double v_in = rel(v, ct.i, ct.j);
         const double impulse = mu * u;
@@ -199,16 +207,18 @@ bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, St
         if (mj < INF) stk.add_velocity(v, ct.j, -ct.sign * impulse / mj);
         const double loss = 0.5 * mu * u * u;
         ledger[L_BUMPER_LOSS] += loss;
-        double* r = contacts.push();
-        r[0] = static_cast<double>(c);
-        r[1] = t;
-        r[2] = t_acc;
-        r[3] = v_in;
-        r[4] = rel(v, ct.i, ct.j);
-        r[5] = impulse;
-        r[6] = NaN;
-        r[7] = 0.0;
-        r[8] = loss;
+        if (u > sc.v_res) {  // (a remainder slower than the resolution: computed, not listed)
+            double* r = contacts.push();
+            r[0] = static_cast<double>(c);
+            r[1] = t;
+            r[2] = t_acc;
+            r[3] = v_in;
+            r[4] = rel(v, ct.i, ct.j);
+            r[5] = impulse;
+            r[6] = NaN;
+            r[7] = 0.0;
+            r[8] = loss;
+        }
     }
     if (ct.j < 0 && stk.grp[static_cast<size_t>(ct.i)] < 0) {  // on the stop exactly, at rest on it
         st[L.x + ct.i] = ct.sign * ct.gap;

@@ -30,8 +30,10 @@ struct ImpactScales {
 // contact c (a rigid stop) met at st[T], tau into the phase ph that led to it (ag: the table's acceleration
 // then); true when the impact resolved the meeting (a rebound, the stop held, or the motion leaving it),
 // false when nothing moved apart
+// (flight: the rebound's flight time to first order, 2 u / A, or INF; the next sub-interval need not be longer)
 bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
-                   const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q, double* row);
+                   const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q, double* row,
+                   double& flight);
 // a held rigid stop c released at st[T]: the hold's row
 void rigid_release(double* st, const System& sy, int c, Rows& contacts);
 // the chatter sequences still open at the end of a run (three impacts or more)

@@ -28,6 +28,7 @@ constexpr double TINY_SPEED = 1e-300;  // the velocity of a start at rest, for t
 constexpr int64_t POLL_EVERY = 64;     // sub-intervals between two looks at the run control
 constexpr double RESOLUTION = 1e-9;    // relative to the run's scales: below it, a touch is no impact
 constexpr int MAX_EVENTS_PER_PHASE = 256;
+constexpr double FLIGHT_MARGIN = 1.25;  // a rigid rebound's first sub-interval, in its estimated flights
 
 // ---------------------------------------------------------------- the forcing angle, accelerations
 
@@ -424,6 +425,7 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
     int64_t j_rec = 0;
     int64_t work = 0, published = 0;
     int64_t next_poll = 0;
+    double h_flight = INF;  // (the last rigid rebound's flight, to first order)
     const Control control{ctl};
     while (st[T] < t_end) {
         if (work >= next_poll) {  // the run control, polled every POLL_EVERY sub-intervals
@@ -464,6 +466,10 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
             h = TWO_PI / (SUBINTERVALS_PER_PERIOD * std::max(std::max(ph.rate, pc.omega), 1e-300));
             if (has_ml) t_horizon = t + horizon;
             h_phase = h;
+            // a rebound off a rigid stop: a first sub-interval about its flight long (a series of fewer terms,
+            // polynomials of lower degree; the phase's own length from the next on)
+            if (FLIGHT_MARGIN * h_flight < h) h = FLIGHT_MARGIN * h_flight;
+            h_flight = INF;
         }
         const double t_stop = std::min({pc.t_next, t_end, t_horizon});
         bool to_stop = h >= t_stop - t;
@@ -591,14 +597,16 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
         bool resolved = false;  // (a rigid impact that sent the pair apart or held it: no Zeno step)
         if (ev.action == ACT_CONTACT && law_is_rigid(sy.contact[static_cast<size_t>(ev.index)].law)) {
             resolved = rigid_contact(st, sy, ph, tau, stk_out, ev.index, ag_now, impact_scales(ph, h_phase, resolution[0]),
-                                     ledger, out.contacts, out.chatters, b.q.data(), row.data());
+                                     ledger, out.contacts, out.chatters, b.q.data(), row.data(), h_flight);
         } else if (ev.kind == KIND_HELD) {
             rigid_release(st, sy, ev.index, out.contacts);
         } else {
             jump(st, sy, ev, out.contacts, resolution);
         }
         record_event(st, sy, ev, out.events, out.samples, sample_dt, extrema, b, row, stk_out, ag_now);
-        zero_run = tau <= 1e-12 * std::max(1.0, std::abs(t)) && !resolved ? zero_run + 1 : 0;
+        // (a rigid impact that resolved its meeting after a short flight is a chatter's, summed in closed form
+        // when it accumulates; one at the same instant as the last event is not)
+        zero_run = tau <= 1e-12 * std::max(1.0, std::abs(t)) && (!resolved || tau == 0.0) ? zero_run + 1 : 0;
         if (zero_run > ZENO_REPEATS) {
             status = ZENO;
             break;

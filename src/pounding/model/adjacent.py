@@ -12,7 +12,7 @@ from .._checks import at_most, integer, non_negative, plausible
 from .._errors import InputError, Problem
 from ._toml import TomlFile
 from .bumpers import MAX_GAP_M
-from .contact_laws import LAWS, law_from_dict, law_to_dict
+from .contact_laws import check_law, law_from_dict, law_to_dict
 from .oscillator import _check_keys
 from .structure import Structure
 from .structure_parts import MAX_STOREYS
@@ -61,10 +61,7 @@ class Link:
         at_most("link.gap_m", gap, MAX_GAP_M, " m", "give the gap in m (5 cm is 0.05)")
         plausible("link.gap_m", gap, 0.0, 2.0, "gaps are in m (5 cm is 0.05)")
         object.__setattr__(self, "gap_m", gap)
-        if not isinstance(self.law, tuple(LAWS.values())):
-            raise InputError(Problem.WRONG_TYPE, "link.law", self.law, got=type(self.law).__name__,
-                             expected="contact law (KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper, "
-                                      "ElasticPlastic or Hertzdamp)")
+        check_law("link.law", self.law)
 
     def to_dict(self) -> dict[str, Any]:
         return {"level_first": self.level_first, "level_second": self.level_second, "gap_m": self.gap_m,

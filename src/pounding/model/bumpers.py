@@ -6,8 +6,7 @@ from dataclasses import dataclass
 from typing import Any, ClassVar, Optional
 
 from .._checks import at_most, non_negative, plausible, positive
-from .._errors import InputError, Problem
-from .contact_laws import LAWS, ContactLaw, law_to_dict
+from .contact_laws import ContactLaw, check_law, law_to_dict, refuse_clamp
 
 MAX_GAP_M = 1e3  # refused beyond (a unit error)
 
@@ -72,11 +71,8 @@ class Bumpers:
             value = getattr(self, name)
             if value is None and name == "law_right":
                 continue
-            if not isinstance(value, tuple(LAWS.values())):
-                raise InputError(Problem.WRONG_TYPE, f"bumpers.{name}", value,
-                                 got=type(value).__name__,
-                                 expected="contact law (KelvinVoigt, HuntCrossley, Jankowski, "
-                                          "MultilinearBumper, ElasticPlastic or Hertzdamp)")
+            check_law(f"bumpers.{name}", value)
+        refuse_clamp("bumpers.gap_left", self.gap_left, self.gap_right, self.left, self.right)
 
     @property
     def left(self) -> ContactLaw:

@@ -601,3 +601,20 @@ def law_from_dict(table: dict[str, Any], field: str) -> ContactLaw:
         return cls(**{k: v for k, v in table.items() if k != "type"})
     except InputError as exc:  # name the field by its place in the file
         raise exc.relabel("law", field) from None
+
+
+def check_law(field: str, value: Any) -> None:
+    """Refuse anything but a contact law for ``field`` (``bumpers.law``, ``wall.law_right``)."""
+    if not isinstance(value, tuple(LAWS.values())):
+        raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__,
+                         expected="contact law (" + ", ".join(cls.__name__ for cls in LAWS.values()) + ")")
+
+
+def refuse_clamp(field: str, gap_left: float, gap_right: float, left: Any, right: Any) -> None:
+    """Refuse rigid stops on both sides with no gap between them (``field``: the left gap's name): the mass
+    would be clamped, every impact at once against both (Newton's law has no answer there)."""
+    if is_rigid(left) and is_rigid(right) and gap_left + gap_right == 0.0:
+        raise InputError(Problem.BAD_STATE, field, gap_left,
+                         why="and the other gap are 0 with rigid stops on both sides: the mass is clamped "
+                             "between them",
+                         fix="give one of the gaps a positive value, or a deformable law to one side")

@@ -10,7 +10,7 @@ from .._checks import (at_least, at_most, backbone, integer, non_negative, plaus
                        real_tuple)
 from .._errors import InputError, Problem
 from .bumpers import MAX_GAP_M
-from .contact_laws import LAWS, law_to_dict
+from .contact_laws import check_law, law_to_dict, refuse_clamp
 from .isolator import HYSTERESIS_RULES
 from .oscillator import MAX_MASS_KG, MIN_MASS_KG
 
@@ -206,10 +206,8 @@ class Wall:
             value = getattr(self, name)
             if value is None and name == "law_right":
                 continue
-            if not isinstance(value, tuple(LAWS.values())):
-                raise InputError(Problem.WRONG_TYPE, f"wall.{name}", value, got=type(value).__name__,
-                                 expected="contact law (KelvinVoigt, HuntCrossley, Jankowski, "
-                                          "MultilinearBumper, ElasticPlastic or Hertzdamp)")
+            check_law(f"wall.{name}", value)
+        refuse_clamp("wall.gap_left_m", self.gap_left_m, self.gap_right_m, self.left, self.right)
         if self.stand is not None and not isinstance(self.stand, Stand):
             raise InputError(Problem.WRONG_TYPE, "wall.stand", self.stand, got=type(self.stand).__name__,
                              expected="Stand or None")
