@@ -14,7 +14,10 @@ accumulate a chatter (it steps each rebound until its event finder stalls), so i
 from __future__ import annotations
 
 import math
+import os
 import time
+
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # (idle BLAS threads spin: CPU time that is not the engine's)
 
 import numpy as np
 from scipy.integrate import solve_ivp

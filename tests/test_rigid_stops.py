@@ -149,6 +149,29 @@ def test_the_period_one_orbit_of_the_impact_oscillator_returns_after_one_period(
     np.testing.assert_allclose(c.v_in_m_s, o.v_in, rtol=1e-10)
 
 
+@pytest.mark.parametrize("r, d, settled", [(1.5, 0.0, True), (2.0, 0.005, True), (2.4, 0.005, True),
+                                           (2.8, 0.0, False)])
+def test_the_period_one_orbit_s_exact_multipliers_are_the_saltation_closed_form_s(r, d, settled):
+    """Newton shooting with the exact monodromy (Newton's law's saltation matrix at each impact) finds the
+    orbit and the closed form's multipliers, on its stable side and (from a guess on it) its unstable one."""
+    o = _orbit(r, d)
+    big = r * W
+    period = 2.0 * math.pi / big
+    osc = impact_oscillator(d)
+    # the impact half a period after the table's phase 0, where the orbit is sampled: mid-flight
+    table = pounding.Harmonic(a_g=A, freq_hz=big / (2 * math.pi), phase=o.phase_rad + math.pi / 2 - math.pi,
+                              g=1.0)
+    guess = None
+    if not settled:  # (an unstable orbit: the state half a flight before its impact)
+        on = pounding.State.at_rest(osc, displacement_m=d, velocity_m_s=-E * o.v_in, time_s=0.5 * period)
+        guess = pounding.simulate(osc, table, duration=0.5 * period, state=on, sample_rate_hz=0).final_state
+    orbit = pounding.periodic_orbit(osc, table, guess=guess)
+    assert orbit.converged and orbit.method == "exact", orbit.message
+    np.testing.assert_allclose(np.sort_complex(orbit.multipliers[:2]), np.sort_complex(o.multipliers),
+                               atol=1e-8)
+    assert orbit.stable == settled
+
+
 def test_the_impact_oscillator_settles_on_its_orbit_only_where_its_multipliers_say_it_is_stable():
     """Across its stability boundary (a multiplier through -1 as the forcing frequency grows), a start near
     the orbit comes back to it on the stable side and leaves it on the other."""

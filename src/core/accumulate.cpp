@@ -283,6 +283,10 @@ void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, 
             if (r0 * r1 < 0.0) {
                 Fn fa, fr;
                 abs_acc_poly(ph, i, fa.q);
+                // (its bound over the sub-interval, sum |c_k| tau^k, below the largest so far: no new extremum)
+                double bound = 0.0;
+                for (int k = fa.q.deg; k >= 0; --k) bound = bound * tau + std::abs(fa.q.c[k]);
+                if (bound <= ex[4]) continue;
                 poly_deriv(fa.q, fr.q);
                 fr.kind = FN_POLY;
                 const double tm = find_root(fr, ph, 0.0, tau, r0, r1, NaN, NaN, XTOL_EXTREMUM_S);

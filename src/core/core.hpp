@@ -17,6 +17,7 @@
 // For n = 1 and two contact slots that is Python's long-standing layout (T 0, D 1, V 2, ..., STATE_BASE 37).
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdint>
@@ -202,9 +203,12 @@ struct Rows {
     std::vector<double> data;
     int64_t n = 0;
     explicit Rows(int c = 1, int64_t reserve = 64) : cols(c) { data.reserve(static_cast<size_t>(reserve * c)); }
-    double* push() {
-        data.resize(static_cast<size_t>((n + 1) * cols), 0.0);
-        return &data[static_cast<size_t>(n++ * cols)];
+    double* push() {  // (the buffer grows by doubling: its size may run ahead of the rows, n * cols)
+        const size_t need = static_cast<size_t>((n + 1) * cols);
+        if (need > data.size()) data.resize(std::max(need, 2 * data.size()));
+        double* r = &data[static_cast<size_t>(n++ * cols)];
+        std::fill(r, r + cols, 0.0);
+        return r;
     }
     void clear() {
         data.clear();

@@ -42,28 +42,6 @@ inline double& seq_first(double* st, const Layout& L, int c) { return st[L.acc_a
 inline double& seq_count(double* st, const Layout& L, int c) { return st[L.acc_at(c) + A_DSTART]; }
 inline double& seq_last(double* st, const Layout& L, int c) { return st[L.acc_at(c) + A_PEAK]; }
 
-// After a velocity jump: the springs a hysteretic element slips and the turns of a deformable bumper's law
-// follow the new velocities (their reversal events watch a velocity crossing zero, which a jump steps over)
-void after_velocity_jump(double* st, const System& sy) {
-    const Layout& L = sy.lay;
-    const double* v = st + L.v;
-    for (int e = 0; e < sy.n_h(); ++e) {
-        const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
-        if (h.rule != RULE_KINEMATIC) continue;
-        double dir = 0.0;
-        for (int i = 0; i < h.n_springs(); ++i)
-            if (st[L.base + L.n_sp + h.first + i] != 0.0) dir = st[L.base + L.n_sp + h.first + i];
-        if (dir != 0.0 && dir * rel(v, h.i, h.j) <= 0.0) iso_transition(sy, st, ACT_REVERSAL, e, 0.0);
-    }
-    for (int c = 0; c < sy.nc(); ++c) {
-        const Contact& ct = sy.contact[static_cast<size_t>(c)];
-        if (st[L.in_at(c)] == 0.0 || law_is_rigid(ct.law)) continue;
-        const double turn = law_turn_sign(ct.law, ct.p, st + L.z_at(c));
-        if (turn != 0.0 && turn * ct.sign * rel(v, ct.i, ct.j) <= 0.0)
-            law_after_event(ct.law, ct.p, st + L.z_at(c), st[L.def_at(c)], 0.0);
-    }
-}
-
 // the push of contact c shut (its relative acceleration towards compression, m/s^2) in the state
 double push_of(const double* st, const System& sy, const Sticking& stk, int c, double ag, double* q, double* row,
                std::vector<double>& au, std::vector<double>& a) {
@@ -131,6 +109,28 @@ double accumulation(const double* st, const System& sy, const Phase& ph, double 
 }
 
 }  // namespace
+
+// After a velocity jump: the springs a hysteretic element slips and the turns of a deformable bumper's law
+// follow the new velocities (their reversal events watch a velocity crossing zero, which a jump steps over)
+void after_velocity_jump(double* st, const System& sy) {
+    const Layout& L = sy.lay;
+    const double* v = st + L.v;
+    for (int e = 0; e < sy.n_h(); ++e) {
+        const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+        if (h.rule != RULE_KINEMATIC) continue;
+        double dir = 0.0;
+        for (int i = 0; i < h.n_springs(); ++i)
+            if (st[L.base + L.n_sp + h.first + i] != 0.0) dir = st[L.base + L.n_sp + h.first + i];
+        if (dir != 0.0 && dir * rel(v, h.i, h.j) <= 0.0) iso_transition(sy, st, ACT_REVERSAL, e, 0.0);
+    }
+    for (int c = 0; c < sy.nc(); ++c) {
+        const Contact& ct = sy.contact[static_cast<size_t>(c)];
+        if (st[L.in_at(c)] == 0.0 || law_is_rigid(ct.law)) continue;
+        const double turn = law_turn_sign(ct.law, ct.p, st + L.z_at(c));
+        if (turn != 0.0 && turn * ct.sign * rel(v, ct.i, ct.j) <= 0.0)
+            law_after_event(ct.law, ct.p, st + L.z_at(c), st[L.def_at(c)], 0.0);
+    }
+}
 
 bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
                    const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q, double* row,

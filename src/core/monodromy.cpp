@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "impact.hpp"
 #include "isolator.hpp"
 #include "laws.hpp"
 
@@ -172,6 +173,60 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
         to_state(sy, cx, xa, st.data());
         next = st;
         std::vector<double> grad(static_cast<size_t>(n), 0.0);
+        if ((action == ACT_CONTACT || action == ACT_RELEASE) && sy.has_b &&
+            law_is_rigid(sy.contact[static_cast<size_t>(index)].law)) {
+            // a rigid stop: its impact is a reset of the velocities (Newton's law), whose saltation matrix is
+            // R + (f+ - R f-) grad^T / (grad . f-); a hold (sticking) has no mode here
+            if (action == ACT_RELEASE) return -2 - e;
+            const Contact& ct = sy.contact[static_cast<size_t>(index)];
+            const double restitution = law_restitution(ct.p);
+            const double mi = sy.mass[static_cast<size_t>(ct.i)];
+            const double mj = ct.j >= 0 ? sy.mass[static_cast<size_t>(ct.j)] : INF;
+            const double mu = 1.0 / (1.0 / mi + (ct.j >= 0 ? 1.0 / mj : 0.0));
+            // R = I - (1 + e) u n^T on the velocities: n^T v the compression rate, u the velocities' change per
+            // unit of it
+            std::vector<double> u(static_cast<size_t>(n), 0.0), nn(static_cast<size_t>(n), 0.0);
+            u[static_cast<size_t>(cx.v + ct.i)] = ct.sign * mu / mi;
+            nn[static_cast<size_t>(cx.v + ct.i)] = ct.sign;
+            if (ct.j >= 0) {
+                u[static_cast<size_t>(cx.v + ct.j)] = -ct.sign * mu / mj;
+                nn[static_cast<size_t>(cx.v + ct.j)] = -ct.sign;
+            }
+            Mat reset = Mat::identity(n);
+            for (int r = 0; r < n; ++r)
+                for (int q = 0; q < n; ++q) reset(r, q) -= (1.0 + restitution) * u[static_cast<size_t>(r)] * nn[static_cast<size_t>(q)];
+            add_rel(grad, 0, ct.i, ct.j, ct.sign);
+            double rate = 0.0;
+            for (int q = 0; q < n; ++q) rate += grad[static_cast<size_t>(q)] * f_before[static_cast<size_t>(q)];
+            if (!(rate > 0.0)) {  // (met at rest or grazing: no saltation)
+                x_end.assign(xa.begin(), xa.begin() + n);
+                return e;
+            }
+            std::vector<double> xr(xa);
+            for (int r = 0; r < n; ++r) {
+                double sum = 0.0;
+                for (int q = 0; q < n; ++q) sum += reset(r, q) * xa[static_cast<size_t>(q)];
+                xr[static_cast<size_t>(r)] = sum;
+            }
+            // the mode after it: the same stop free, an element's slipping springs stopped by the jump
+            next = st;
+            to_state(sy, cx, xr, next.data());
+            run_parts::after_velocity_jump(next.data(), sy);
+            const Mat a_after = augmented(sy, cx, next.data(), omega, amp);
+            const std::vector<double> f_after = matvec(a_after, xr);
+            std::vector<double> rf(static_cast<size_t>(n), 0.0);  // R f-
+            for (int r = 0; r < n; ++r)
+                for (int q = 0; q < n; ++q) rf[static_cast<size_t>(r)] += reset(r, q) * f_before[static_cast<size_t>(q)];
+            Mat jump = reset;
+            for (int r = 0; r < n; ++r)
+                for (int q = 0; q < n; ++q)
+                    jump(r, q) += (f_after[static_cast<size_t>(r)] - rf[static_cast<size_t>(r)]) * grad[static_cast<size_t>(q)] / rate;
+            jac = matmul(jump, jac);
+            xa = xr;
+            st = next;
+            a = a_after;
+            continue;
+        }
         if (action == ACT_CONTACT || action == ACT_RELEASE) {
             const Contact& ct = sy.contact[static_cast<size_t>(index)];
             const Branch b = branch_of(sy, index, st.data());

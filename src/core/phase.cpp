@@ -7,10 +7,33 @@ namespace pounding {
 namespace {
 constexpr double SERIES_TAIL = 1e-18;  // a series' next terms, against the motion's scale
 constexpr int HERMITE_ORDER = 8;
-// c_k of int_0^T f = sum_k c_k T^(k+1) (f^(k)(0) + (-1)^k f^(k)(T)), exact to degree 2p + 1
-constexpr double HERMITE_C[HERMITE_ORDER + 1] = {
-    0.5, 0.11764705882352941, 0.01715686274509804, 0.001715686274509804, 0.00012254901960784314,
-    6.2845651080945196e-06, 2.2444875386051856e-07, 5.101108042284513e-09, 5.66789782476057e-11};
+// int_0^T f = sum_k c_k T^(k+1) (f^(k)(0) + (-1)^k f^(k)(T)):
+// c_k of the rule of order p (exact to degree 2 p + 1): (1/2) p! (2p + 1 - k)! / ((2p + 1)! (p - k)! (k + 1)!)
+struct HermiteTable {
+    double c[HERMITE_ORDER + 1][HERMITE_ORDER + 1];
+    constexpr HermiteTable() : c() {
+        for (int p = 0; p <= HERMITE_ORDER; ++p)
+            for (int k = 0; k <= p; ++k) {
+                double v = 0.5;  // the ratio of factorials, built as a product of ratios
+                for (int f = 2 * p + 1 - k + 1; f <= 2 * p + 1; ++f) v /= f;           // (2p+1-k)! / (2p+1)!
+                for (int f = p - k + 1; f <= p; ++f) v *= f;                         // p! / (p-k)!
+                for (int f = 2; f <= k + 1; ++f) v /= f;                             // 1 / (k+1)!
+                c[p][k] = v;
+            }
+    }
+};
+constexpr HermiteTable HERMITE;
+// the rule's order for a sub-interval of x = tau times the fastest rate of the integrands: the lowest whose
+// error bound x^(2p+2) / (2p+2)! is below 1e-18 (the full order at a whole sub-interval)
+int hermite_order(double x) {
+    double term = x * x / 2.0;  // x^(2p+2) / (2p+2)! at p = 0
+    for (int p = 0; p < HERMITE_ORDER; ++p) {
+        if (term <= 1e-18) return std::max(p, 2);
+        term *= x * x / ((2.0 * p + 3.0) * (2.0 * p + 4.0));
+    }
+    return HERMITE_ORDER;
+}
+
 // binom(k, j), and binom(k, j) (1 if 2 j = k, else 2): sum_j binom(k, j) a_j b_(k-j) for a = b in half the terms
 constexpr double SYM[HERMITE_ORDER + 1][HERMITE_ORDER / 2 + 1] = {
     {1, 0, 0, 0, 0}, {2, 0, 0, 0, 0}, {2, 2, 0, 0, 0}, {2, 6, 0, 0, 0}, {2, 8, 6, 0, 0}, {2, 10, 20, 0, 0},
@@ -46,14 +69,14 @@ inline double quad(const std::vector<double>& A, const double* x, const double* 
 
 // the displacements' derivatives D_0..D_9 (each n) at one end, from x, v, a there and the table acceleration's
 // derivatives G_1..G_7: D_(k+2) = -M^-1 (K D_k + C D_(k+1)) - G_k 1
-void end_derivatives(const Phase& ph, const double* y, const double* a, const double* g, double* D) {
+void end_derivatives(const Phase& ph, int order, const double* y, const double* a, const double* g, double* D) {
     const int n = ph.n;
     for (int i = 0; i < n; ++i) {
         D[i] = y[i];
         D[n + i] = y[n + i];
         D[2 * n + i] = a[i];
     }
-    for (int k = 1; k + 2 <= HERMITE_ORDER + 1; ++k) {
+    for (int k = 1; k + 2 <= order + 1; ++k) {
         double* out = D + (k + 2) * n;
         minv_ab(ph, ph.K, D + k * n, ph.C, D + (k + 1) * n, out);
         for (int i = 0; i < n; ++i) out[i] = -out[i] - g[k];
@@ -63,22 +86,22 @@ void end_derivatives(const Phase& ph, const double* y, const double* a, const do
 
 // one end's share of the integrals: sum_k c_k T^(k+1) sgn^k f^(k), f the integrands (D: the displacements'
 // derivatives D_0..D_9 there, g: the table acceleration's G_0..G_8)
-void hermite_end(Phase& ph, const std::vector<double>& c_lin, const std::vector<double>& mass, const double* D,
-                 const double* g, double big_t, double sgn, bool energy, double& vcv, double& gv, double* du,
-                 double* dvv) {
+void hermite_end(Phase& ph, int order, const std::vector<double>& c_lin, const std::vector<double>& mass,
+                 const double* D, const double* g, double big_t, double sgn, bool energy, double& vcv, double& gv,
+                 double* du, double* dvv) {
     const int n = ph.n;
     double q[HERMITE_ORDER + 1];
     double t = big_t;
-    for (int k = 0; k <= HERMITE_ORDER; ++k) {
-        q[k] = HERMITE_C[k] * t * ((k % 2) ? sgn : 1.0);
+    for (int k = 0; k <= order; ++k) {
+        q[k] = HERMITE.c[order][k] * t * ((k % 2) ? sgn : 1.0);
         t *= big_t;
     }
     if (energy && n == 1) {  // (one mass: scalars)
         const double c = c_lin[0], m = mass[0];
         double CD[HERMITE_ORDER + 2], P[HERMITE_ORDER + 1];
-        for (int k = 1; k <= HERMITE_ORDER + 1; ++k) CD[k] = c * D[k];
-        for (int k = 0; k <= HERMITE_ORDER; ++k) P[k] = m * D[k + 1];
-        for (int k = 0; k <= HERMITE_ORDER; ++k) {
+        for (int k = 1; k <= order + 1; ++k) CD[k] = c * D[k];
+        for (int k = 0; k <= order; ++k) P[k] = m * D[k + 1];
+        for (int k = 0; k <= order; ++k) {
             double s_vcv = 0.0, s_gv = 0.0;
             for (int j = 0; j <= k / 2; ++j) s_vcv += SYM[k][j] * (D[j + 1] * CD[k - j + 1]);
             for (int j = 0; j <= k; ++j) s_gv += BINOM[k][j] * g[j] * P[k - j];
@@ -89,7 +112,7 @@ void hermite_end(Phase& ph, const std::vector<double>& c_lin, const std::vector<
         // int v^T C v: f^(k) = sum_j binom(k, j) D_(j+1) . (C D_(k-j+1)); int a_g (m . v): sum_j binom G_j P_(k-j)
         double* CD = ph.work.data() + ph.w_q;  // C D_m, m = 1..9 (9 n)
         double P[HERMITE_ORDER + 1];
-        for (int m = 1; m <= HERMITE_ORDER + 1; ++m) {
+        for (int m = 1; m <= order + 1; ++m) {
             const double* d = D + m * n;
             double* out = CD + (m - 1) * n;
             for (int i = 0; i < n; ++i) {
@@ -99,13 +122,13 @@ void hermite_end(Phase& ph, const std::vector<double>& c_lin, const std::vector<
                 out[i] = s;
             }
         }
-        for (int k = 0; k <= HERMITE_ORDER; ++k) {
+        for (int k = 0; k <= order; ++k) {
             const double* d = D + (k + 1) * n;
             double s = 0.0;
             for (int i = 0; i < n; ++i) s += mass[static_cast<size_t>(i)] * d[i];
             P[k] = s;
         }
-        for (int k = 0; k <= HERMITE_ORDER; ++k) {
+        for (int k = 0; k <= order; ++k) {
             double s_vcv = 0.0;
             for (int j = 0; j <= k / 2; ++j) {
                 const double* a = D + (j + 1) * n;
@@ -124,10 +147,10 @@ void hermite_end(Phase& ph, const std::vector<double>& c_lin, const std::vector<
         const ContactPhase& ct = ph.ct[static_cast<size_t>(c)];
         if (!ct.in || ct.nl) continue;
         double W[HERMITE_ORDER + 2];
-        for (int m = 0; m <= HERMITE_ORDER + 1; ++m)
+        for (int m = 0; m <= order + 1; ++m)
             W[m] = ct.j >= 0 ? D[m * n + ct.i] - D[m * n + ct.j] : D[m * n + ct.i];
         double s_u = 0.0, s_vv = 0.0;
-        for (int k = 0; k <= HERMITE_ORDER; ++k) {
+        for (int k = 0; k <= order; ++k) {
             double f = 0.0;
             for (int j = 0; j <= k / 2; ++j) f += SYM[k][j] * W[j + 1] * W[k - j + 1];
             s_vv += q[k] * f;
@@ -332,12 +355,14 @@ void linear_integrals(Phase& ph, const std::vector<double>& c_lin, const std::ve
         du[c] = 0.0;
         dvv[c] = 0.0;
     }
-    table_derivatives(ph, 0.0, s0, c0, HERMITE_ORDER, g);
-    end_derivatives(ph, y0, a0, g, D);
-    hermite_end(ph, c_lin, mass, D, g, tau, 1.0, energy, vcv, gv, du, dvv);
-    table_derivatives(ph, tau, s1, c1, HERMITE_ORDER, g);
-    end_derivatives(ph, y1, a1, g, D);
-    hermite_end(ph, c_lin, mass, D, g, tau, -1.0, energy, vcv, gv, du, dvv);
+    // (the integrands' fastest rate: a product of two motions, each at most the phase's or the forcing's)
+    const int order = hermite_order(2.0 * std::max(ph.rate, std::abs(ph.w)) * tau);
+    table_derivatives(ph, 0.0, s0, c0, order, g);
+    end_derivatives(ph, order, y0, a0, g, D);
+    hermite_end(ph, order, c_lin, mass, D, g, tau, 1.0, energy, vcv, gv, du, dvv);
+    table_derivatives(ph, tau, s1, c1, order, g);
+    end_derivatives(ph, order, y1, a1, g, D);
+    hermite_end(ph, order, c_lin, mass, D, g, tau, -1.0, energy, vcv, gv, du, dvv);
     (void)n;
 }
 

@@ -32,7 +32,7 @@ from ..engine._layout import V as I_V
 from ..model import Oscillator
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
-from ..model.contact_laws import linear_form
+from ..model.contact_laws import is_rigid, linear_form
 
 I_DL, I_DR = 2, 3  # the compressions' places in x
 FIRST_SLIP = 4
@@ -50,11 +50,11 @@ def unsupported(system: "Oscillator | Structure | Adjacent") -> str | None:
                 return f"{who}isolator has a Bouc-Wen spring (a nonlinear phase)"
             for w, wall in enumerate(s.walls):
                 for side, law in (("left", wall.left), ("right", wall.right)):
-                    if linear_form(law) is None:
-                        return f"{who}wall {w}'s {side} law is {type(law).__name__} (exact: Kelvin-Voigt)"
+                    if linear_form(law) is None and not is_rigid(law):
+                        return f"{who}wall {w}'s {side} law is {type(law).__name__} (exact: Kelvin-Voigt, rigid)"
         for k, link in enumerate(links):
-            if linear_form(link.law) is None:
-                return f"link {k}'s law is {type(link.law).__name__} (exact: Kelvin-Voigt)"
+            if linear_form(link.law) is None and not is_rigid(link.law):
+                return f"link {k}'s law is {type(link.law).__name__} (exact: Kelvin-Voigt, rigid)"
         return None
     iso = system.isolator
     if iso.bouc_wen is not None:
@@ -62,8 +62,8 @@ def unsupported(system: "Oscillator | Structure | Adjacent") -> str | None:
     b = system.bumpers
     if b is not None:
         for side, law in (("left", b.left), ("right", b.right)):
-            if linear_form(law) is None:
-                return f"its {side} bumper's law is {type(law).__name__} (exact: Kelvin-Voigt)"
+            if linear_form(law) is None and not is_rigid(law):
+                return f"its {side} bumper's law is {type(law).__name__} (exact: Kelvin-Voigt, rigid)"
     return None
 
 
