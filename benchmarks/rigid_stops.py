@@ -5,10 +5,11 @@ on the same motion.
     python benchmarks/rigid_stops.py
 
 The system: a linear oscillator (1 kg, 10 rad/s, 2 % damping) between rigid stops 5 mm away (restitution
-0.8), shaken at 1.2 Hz and 4 m/s^2: every half cycle it is thrown against a stop, chatters, accumulates and
-sticks until the table pulls it off.  Target: >= 1 million impacts per second of CPU.  The peer cannot
-accumulate a chatter (it steps each rebound until its event finder stalls), so it runs the first 0.4 s only
-(its impacts per CPU second are what it manages there); the agreement of the impact times is printed.
+0.9), shaken at 0.5 Hz and 40 m/s^2: every half cycle it is thrown against a stop, chatters (about 50
+impacts), accumulates and sticks until the table pulls it off.  Target: >= 1 million impacts per second of
+CPU.  The peer cannot accumulate a chatter (it steps each rebound until its event finder stalls), so it runs
+the first 0.4 s only (its impacts per CPU second are what it manages there); the agreement of the impact
+times is printed.
 """
 
 from __future__ import annotations
@@ -17,15 +18,17 @@ import math
 import os
 import time
 
-os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")  # (idle BLAS threads spin: CPU time that is not the engine's)
+# (idle BLAS threads spin: CPU time that is not the engine's)
+os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
 
 import numpy as np
 from scipy.integrate import solve_ivp
 
 import pounding
 
-M, OMEGA, ZETA, GAP, E = 1.0, 10.0, 0.02, 0.005, 0.8
-A, F_HZ = 4.0, 1.2
+GRAVITY = 9.81  # m/s^2
+M, OMEGA, ZETA, GAP, E = 1.0, 10.0, 0.02, 0.005, 0.9
+A, F_HZ = 40.0, 0.5
 
 
 def system() -> pounding.Oscillator:
@@ -34,7 +37,7 @@ def system() -> pounding.Oscillator:
 
 
 def table() -> pounding.Harmonic:
-    return pounding.Harmonic(a_g=A, freq_hz=F_HZ, g=1.0)
+    return pounding.Harmonic(a_g=A / GRAVITY, freq_hz=F_HZ, g=GRAVITY)  # (a_g in g)
 
 
 def cpu(f, repeat: int = 3):
@@ -78,7 +81,7 @@ def scipy_impacts(t_end: float, max_impacts: int = 10_000) -> list[float]:
 
 def main() -> None:
     osc, tab = system(), table()
-    duration = 200.0
+    duration = 2000.0
     secs, run = cpu(lambda: pounding.simulate(osc, tab, duration=duration, sample_rate_hz=0))
     c = run.contacts
     impacts = int((c.t_end_s == c.t_start_s).sum())
@@ -90,12 +93,12 @@ def main() -> None:
     window = 0.4
     peer_secs, times = cpu(lambda: scipy_impacts(window), repeat=1)
     ours = c.t_start_s.values[(c.t_end_s.values == c.t_start_s.values) & (c.t_start_s.values < window)]
-    n = min(len(times), len(ours))
+    n = min(len(times), len(ours), 20)  # (further on the peer's flights shrink below its tolerances)
     agree = float(np.max(np.abs(np.asarray(times[:n]) - ours[:n]))) if n else math.nan
     peer_rate = len(times) / peer_secs
     print(f"scipy solve_ivp DOP853 + events (rtol 1e-10), restarted at each impact: {len(times)} impacts in "
           f"the first {window:g} s, {peer_secs:.3f} CPU s: {peer_rate:,.0f} impacts per CPU second")
-    print(f"  impact times agree to {agree:.1e} s over its {n} impacts; pounding / scipy: "
+    print(f"  impact times agree to {agree:.1e} s over its first {n} impacts; pounding / scipy: "
           f"{rate / peer_rate:,.0f}x impacts per CPU second")
 
 

@@ -29,7 +29,7 @@ with warnings.catch_warnings():
     warnings.simplefilter("ignore")  # (a gap of 10 m on the left: no stop there)
     stops = pounding.Bumpers(10.0, 0.0, pounding.RigidStop(E))
 osc = pounding.Oscillator(1.0, iso, stops)
-a_g = A / 9.80665  # (in g)
+a_g = A / 9.81  # (in g)
 freqs = np.round(np.arange(2.0, 3.6001, 0.01), 3)
 diagram = pounding.bifurcation_diagram(osc, a_g, freqs, direction="up", transient_cycles=150,
                                        record_cycles=40)
@@ -47,7 +47,7 @@ boundary = rows[np.argmax(rows[:, 2] > 1.0), 0]
 print(f"period-one orbit: stable up to {boundary:g} Hz (its largest |multiplier| crosses 1 there)")
 
 fig, ax = plt.subplots(figsize=(7, 4))
-diagram.plot(ax=ax, s=1)
+diagram.plot(ax=ax, ms=1)
 stable = rows[:, 2] < 1.0
 ax.plot(rows[stable, 0], rows[stable, 1] * 1e3, "k-", lw=1, label="period one, stable")
 ax.plot(rows[~stable, 0], rows[~stable, 1] * 1e3, "k--", lw=1, label="period one, unstable")

@@ -51,7 +51,8 @@ def unsupported(system: "Oscillator | Structure | Adjacent") -> str | None:
             for w, wall in enumerate(s.walls):
                 for side, law in (("left", wall.left), ("right", wall.right)):
                     if linear_form(law) is None and not is_rigid(law):
-                        return f"{who}wall {w}'s {side} law is {type(law).__name__} (exact: Kelvin-Voigt, rigid)"
+                        return (f"{who}wall {w}'s {side} law is {type(law).__name__} "
+                                "(exact: Kelvin-Voigt, rigid)")
         for k, link in enumerate(links):
             if linear_form(link.law) is None and not is_rigid(link.law):
                 return f"link {k}'s law is {type(link.law).__name__} (exact: Kelvin-Voigt, rigid)"

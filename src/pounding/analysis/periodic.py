@@ -35,6 +35,7 @@ from ..excitation import Harmonic
 from ..model import Oscillator
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
+from ..model.contact_laws import is_rigid
 from . import _hybrid as hy
 from ._args import exact_monodromy, orbit_arguments, settled
 from ._shooting import Floquet, _Failed, _Newton, at_section, multipliers_of
@@ -330,11 +331,20 @@ class _Shooter(_Newton):
         return float(run.displacement_max), float(run.displacement_min)
 
     def clearances(self, run: Run) -> dict[str, float]:
-        """Each bumper's smallest clearance over the run, m (negative: touched), by side."""
+        """Each bumper's smallest clearance over the run, m (negative: touched), by side.  A rigid stop's
+        orbit that impacts it has no clearance but an impact speed: its test is minus the slowest impact's
+        speed over the forcing's angular frequency (m), which falls to 0 at a grazing as the clearance
+        rises from it."""
         gaps = self.h.gaps
         if not np.isfinite(gaps[0]):
             return {}
-        return {"left": float(run.displacement_min) + gaps[0], "right": gaps[1] - float(run.displacement_max)}
+        out = {"left": float(run.displacement_min) + gaps[0], "right": gaps[1] - float(run.displacement_max)}
+        table = run.contact_table
+        for code, side, law in ((0.0, "left", self.osc.bumpers.left), (1.0, "right", self.osc.bumpers.right)):
+            hits = table[(table[:, 0] == code) & (table[:, 2] == table[:, 1])] if is_rigid(law) else table[:0]
+            if len(hits):
+                out[side] = -float(np.abs(hits[:, 3]).min()) / self.exc.omega_rad_s
+        return out
 
     def summary(self, run: Run, exc: Harmonic) -> dict[str, float]:
         """A branch's row of the orbit run over its period: alpha, excursion, extrema, eta, contacts."""
