@@ -356,3 +356,37 @@ def test_a_rigid_stop_refuses_a_restitution_outside_0_to_1():
     for bad in (-0.1, 1.5, math.nan, "x"):
         with pytest.raises(pounding.InputError, match="restitution"):
             pounding.RigidStop(bad)
+
+
+# ---------------------------------------------------------------- the analyses with rigid stops
+
+
+def _classic() -> pounding.Oscillator:
+    """The gallery's impact oscillator: 1 Hz, 5 % damping, a rigid stop at its rest position (e = 0.8)."""
+    iso = pounding.Isolator(slopes=[W ** 2], damping=2.0 * ZETA * W)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # (a gap of 10 m on the left: no stop there)
+        return pounding.Oscillator(1.0, iso, pounding.Bumpers(10.0, 0.0, pounding.RigidStop(E)))
+
+
+def test_lyapunov_exponents_with_rigid_impacts_exact_against_finite_differences():
+    table = pounding.Harmonic(a_g=A, freq_hz=3.0, g=1.0)  # (chaotic: past the period-doubling cascade)
+    exact = pounding.lyapunov(_classic(), table, cycles=100)
+    fd = pounding.lyapunov(_classic(), table, cycles=100, method="finite-difference")
+    assert exact.method == "exact" and fd.method == "finite-difference"
+    np.testing.assert_allclose(exact.exponents, fd.exponents, rtol=0, atol=1e-5 * np.abs(fd.exponents).max())
+
+
+def test_an_impacting_branch_is_continued_with_no_grazing_and_basins_sort_its_states():
+    """On its impacting branch the orbit's clearance of the rigid stop is 0 at every point: the grazing test
+    is its slowest impact's speed instead, which stays away from 0 there (no grazing is reported)."""
+    branch = pounding.continuation(_classic(), A / 9.81, (2.0, 2.6))
+    assert branch.status == Status.SUCCESS and not branch.bifurcations
+    # there one attractor, the stable period-one orbit (its largest multiplier 0.7 in modulus): every start
+    # ends on it
+    table = pounding.Harmonic(a_g=A, freq_hz=2.3, g=1.0)
+    b = pounding.basins(_classic(), table, n=(4, 4))
+    assert b.not_settled == 0.0 and len(b.attractors) == 1 and b.attractors["period"].iloc[0] == 1
+    orbit = pounding.periodic_orbit(_classic(), table)
+    assert orbit.stable and orbit.method == "exact"
+    np.testing.assert_allclose(orbit.max_abs_multiplier, max(abs(_orbit(2.3, 0.0).multipliers)), rtol=1e-8)
