@@ -390,3 +390,21 @@ def test_an_impacting_branch_is_continued_with_no_grazing_and_basins_sort_its_st
     orbit = pounding.periodic_orbit(_classic(), table)
     assert orbit.stable and orbit.method == "exact"
     np.testing.assert_allclose(orbit.max_abs_multiplier, max(abs(_orbit(2.3, 0.0).multipliers)), rtol=1e-8)
+
+
+def test_a_building_s_orbit_against_a_rigid_wall_has_its_finite_difference_multipliers():
+    """Two masses (a base on its isolator, a floor) with the floor against a rigid stop: Newton's law acts on
+    the floor alone, and the exact multipliers equal those of finite differences of the same orbit."""
+    iso = pounding.Isolator(slopes=[8.0 * math.pi ** 2], damping=0.4 * math.pi)
+    stop = pounding.Wall(1, 0.5, 0.0, pounding.RigidStop(0.8))
+    building = pounding.Structure(1.0, iso, [pounding.Storey(1.0, 16.0 * math.pi ** 2)], [stop])
+    for f_hz in (1.5, 2.5):  # (stable, and past a Neimark-Sacker point)
+        table = pounding.Harmonic(3.0 / 9.81, f_hz)
+        exact = pounding.periodic_orbit(building, table)
+        fd = pounding.periodic_orbit(building, table, method="finite-difference")
+        assert exact.method == "exact" and exact.converged and fd.converged
+        np.testing.assert_allclose(np.sort_complex(exact.multipliers), np.sort_complex(fd.multipliers),
+                                   atol=1e-5)
+    branch = pounding.continuation(building, 3.0 / 9.81, (2.6, 1.8))
+    assert branch.status == Status.SUCCESS
+    assert not [b for b in branch.bifurcations if b.kind == "grazing"]  # (it impacts all along)

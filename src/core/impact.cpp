@@ -200,25 +200,12 @@ bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, St
     if (sticking_closes_loop(sy, st, c)) return u > 0.0;  // (a loop of held stops: it bounces instead)
     // (e = 1: a rebound below the resolution never accumulates; it is held at once)
     const double t_acc = u > 0.0 && e < 1.0 ? t + accumulation(st, sy, ph, tau, stk, c, ag, u, mi, mj, q, row) : t;
-    if (u > 0.0) {  // the chatter's remainder at once: the relative velocity to rest
-        const double v_in = rel(v, ct.i, ct.j);
+    if (u > 0.0) {  // the chatter's remainder at once: the relative velocity to rest (in the chatter's row)
         const double impulse = mu * u;
         if (mi < INF) stk.add_velocity(v, ct.i, ct.sign * impulse / mi);
         if (mj < INF) stk.add_velocity(v, ct.j, -ct.sign * impulse / mj);
         const double loss = 0.5 * mu * u * u;
         ledger[L_BUMPER_LOSS] += loss;
-        if (u > sc.v_res) {  // (a remainder slower than the resolution: computed, not listed)
-            double* r = contacts.push();
-            r[0] = static_cast<double>(c);
-            r[1] = t;
-            r[2] = t_acc;
-            r[3] = v_in;
-            r[4] = rel(v, ct.i, ct.j);
-            r[5] = impulse;
-            r[6] = NaN;
-            r[7] = 0.0;
-            r[8] = loss;
-        }
     }
     if (ct.j < 0 && stk.grp[static_cast<size_t>(ct.i)] < 0) {  // on the stop exactly, at rest on it
         st[L.x + ct.i] = ct.sign * ct.gap;

@@ -25,7 +25,7 @@ from ..engine.structure import (Assembly, StructureState, assemble, check_struct
                                 simulate_structure, structures_of)
 from ..excitation import Harmonic
 from ..model.adjacent import Adjacent
-from ..model.contact_laws import linear_form
+from ..model.contact_laws import is_rigid, linear_form
 from ..model.structure import Structure
 from . import _hybrid as hy
 from ._args import exact_monodromy, orbit_arguments, settled
@@ -281,9 +281,28 @@ class _StructureShooter(_Newton):
         return float(first.displacement_max[q]), float(first.displacement_min[q])
 
     def clearances(self, run: Any) -> dict[str, float]:
-        """Each wall side's and link's smallest clearance over the run, m (negative: touched)."""
+        """Each wall side's and link's smallest clearance over the run, m (negative: touched).  A rigid stop
+        that the orbit impacts has no clearance but an impact speed: minus the slowest impact's speed over
+        the forcing's angular frequency, m (0 at a grazing, as the clearance)."""
         labels = self.labels()[2 * self.n:2 * self.n + self.nc]
-        return {name.replace("delta_", ""): float(c) for name, c in zip(labels, run.clearance_m)}
+        out = [float(c) for c in run.clearance_m]
+        parts = self._parts(run)
+        tables, offset = [], 0  # (each part's rows, in the core's slot numbers: walls in order, then links)
+        for part in parts:
+            t = part.contact_table.copy()
+            t[:, 0] += offset
+            tables.append(t)
+            offset += 2 * len(part.structure.walls)
+        if len(parts) > 1:
+            t = run.link_table.copy()
+            t[:, 0] += offset
+            tables.append(t)
+        rows = np.vstack(tables) if tables else np.zeros((0, 9))
+        for c, (_, _, _, _, law) in enumerate(self.asm.pairs):
+            hits = rows[(rows[:, 0] == c) & (rows[:, 2] == rows[:, 1])] if is_rigid(law) else rows[:0]
+            if len(hits):
+                out[c] = -float(np.abs(hits[:, 3]).min()) / self.exc.omega_rad_s
+        return {name.replace("delta_", ""): c for name, c in zip(labels, out)}
 
     def summary(self, run: Any, exc: Harmonic) -> dict[str, float]:
         """A branch's row of the orbit run over its period: the largest alpha over every level, the first

@@ -42,10 +42,10 @@ class RigidStop:
     (NaN) and no compression; its ``impulse_n_s`` is Newton's impulse and its
     ``bumper_dissipation_j`` the kinetic energy lost.  When impacts accumulate (complete
     chatter: the rebounds shrink by ``e`` each time while the motion pushes the stop shut),
-    the engine sums the rest of the geometric sequence in closed form, lists that remainder as
-    one row ending at the accumulation time, and holds the stop shut (a row from the hold's
-    start to its release, with the hold's impulse and peak force).  ``Run.chatters`` lists each
-    sequence: how many impacts it held and where it accumulated.
+    the engine sums the rest of the geometric sequence in closed form (its energy in the
+    ledger's dissipation) and holds the stop shut: a row from the hold's start to its release,
+    with the hold's impulse and peak force (``v_in_m_s`` 0: no restitution).  ``Run.chatters``
+    lists each sequence: how many impacts it held and where it accumulated.
 
     Examples
     --------
