@@ -59,13 +59,15 @@ class Harmonic:
 
     def __post_init__(self) -> None:
         a_g = at_most("a_g", real("a_g", self.a_g), MAX_A_G, " g", "a_g is in g: 0.05 is 5 % of g")
-        plausible("a_g", abs(a_g), 0.0, 5.0, "a_g is the peak table acceleration in g (0.05 is 5 % of g)")
         freq = at_most("freq_hz", positive("freq_hz", self.freq_hz, "Hz"), MAX_FREQ_HZ, " Hz",
                        "give it in Hz")
         plausible("freq_hz", freq, 0.0, 1e3, "the frequency is in Hz, not rad/s")
         phase = real("phase", self.phase)
         g = at_most("g", positive("g", self.g, "m/s^2"), MAX_A_G, " m/s^2", "give g in m/s^2 (9.81)")
         plausible("g", g, 1.0, 30.0, "g is gravity's acceleration in m/s^2 (9.81 on Earth)")
+        # (the peak against Earth's gravity: a_g given with g = 1 is in m/s^2)
+        plausible("a_g", abs(a_g) * g / GRAVITY_M_S2, 0.0, 5.0,
+                  "a_g is the peak table acceleration in g (0.05 is 5 % of g)")
         for name, value in (("a_g", a_g), ("freq_hz", freq), ("phase", phase), ("g", g)):
             object.__setattr__(self, name, value)
 
