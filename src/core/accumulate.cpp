@@ -271,6 +271,21 @@ void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, 
         if (ph.stk.any && ph.stk.grp[static_cast<size_t>(i)] >= 0) {  // held: the ends (the group's motion)
             track_abs_acceleration(ex, t0, e.a0[i] + table_acceleration(ph, 0.0));
             track_abs_acceleration(ex, t0 + tau, e.a1[i] + table_acceleration(ph, tau));
+            const int g = ph.stk.grp[static_cast<size_t>(i)];
+            if (ph.stk.grounded[static_cast<size_t>(g)] && ph.axh != 0.0 && ph.w > 0.0) {
+                // held on the ground it moves with the table: the table's crests inside, where
+                // ax1 + axh w cos(w s + phi) = 0
+                const double c = -ph.ax1 / (ph.axh * ph.w);
+                if (std::abs(c) <= 1.0) {
+                    const double theta = std::acos(c);
+                    for (const double target : {theta, -theta}) {
+                        double s = std::fmod(target - ph.phi, TWO_PI);
+                        if (s < 0.0) s += TWO_PI;
+                        s /= ph.w;
+                        if (0.0 < s && s < tau) track_abs_acceleration(ex, t0 + s, table_acceleration(ph, s));
+                    }
+                }
+            }
             continue;
         }
         if (linear) {

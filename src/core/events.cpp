@@ -57,10 +57,10 @@ EventValue held_force(Phase& ph, int c, double tau, const double* y, const doubl
     double f = 0.0, rate = 0.0, scale = 0.0;
     for (int k = 0; k < n; ++k) {
         if (!side[k]) continue;
-        const double m = ph.mass[static_cast<size_t>(k)];
+        const double m = side[k] * ph.mass[static_cast<size_t>(k)];
         f += m * (au[k] - a[k]);
         rate += m * (aur[k] - mean_rate);
-        double s = std::abs(ph.R0[static_cast<size_t>(k)]) + m * (std::abs(ag) + std::abs(a[k]));
+        double s = std::abs(ph.R0[static_cast<size_t>(k)]) + std::abs(m) * (std::abs(ag) + std::abs(a[k]));
         for (int j = 0; j < n; ++j)
             s += std::abs(ph.K[static_cast<size_t>(k * n + j)] * y[j]) + std::abs(ph.C[static_cast<size_t>(k * n + j)] * y[n + j]);
         scale += s;

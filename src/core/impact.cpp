@@ -132,15 +132,98 @@ void after_velocity_jump(double* st, const System& sy) {
     }
 }
 
+namespace {
+
+// the impulse each held stop of the struck groups would carry were the impulse J (on contact c, Newton's, along
+// its normal) to move them as one: P_h = sign_h sum_(its side) side_k m_k (dv_k alone - dv of k's group); the
+// first that would pull (P_h < 0), or -1
+int tensile_hold(const System& sy, const Sticking& stk, int c, double impulse, double mi, double mj) {
+    const Contact& ct = sy.contact[static_cast<size_t>(c)];
+    const int n = sy.n;
+    static thread_local std::vector<double> alone, group;
+    alone.assign(static_cast<size_t>(n), 0.0);
+    group.assign(static_cast<size_t>(n), 0.0);
+    alone[static_cast<size_t>(ct.i)] -= ct.sign * impulse / sy.mass[static_cast<size_t>(ct.i)];
+    if (ct.j >= 0) alone[static_cast<size_t>(ct.j)] += ct.sign * impulse / sy.mass[static_cast<size_t>(ct.j)];
+    stk.add_velocity(group.data(), ct.i, mi < INF ? -ct.sign * impulse / mi : 0.0);
+    if (ct.j >= 0) stk.add_velocity(group.data(), ct.j, mj < INF ? ct.sign * impulse / mj : 0.0);
+    for (size_t h = 0; h < stk.held.size(); ++h) {
+        const char* side = &stk.side[h * static_cast<size_t>(n)];
+        double p = 0.0, scale = 0.0;
+        for (int k = 0; k < n; ++k) {
+            if (!side[k]) continue;
+            const double m = side[k] * sy.mass[static_cast<size_t>(k)];
+            p += m * (alone[static_cast<size_t>(k)] - group[static_cast<size_t>(k)]);
+            scale += std::abs(m) * (std::abs(alone[static_cast<size_t>(k)]) + std::abs(group[static_cast<size_t>(k)]));
+        }
+        if (sy.contact[static_cast<size_t>(stk.held[h])].sign * p < -ROUNDING * scale) return stk.held[h];
+    }
+    return -1;
+}
+
+// the held stops' forces (N) in the state: those that would pull let go (after a velocity jump, which changes a
+// dashpot's share of a hold's force at once), but contact c's own
+void release_pulling(double* st, const System& sy, Sticking& stk, int c, double ag, double* q, double* row,
+                     Rows& contacts) {
+    static thread_local std::vector<double> au, a;
+    for (int pass = 0; pass < sy.nc(); ++pass) {
+        stk.build(sy, st);
+        if (!stk.any) return;
+        state_accelerations(st, sy, stk, ag, q, row, au, a);
+        int pulls = -1;
+        for (size_t h = 0; h < stk.held.size() && pulls < 0; ++h) {
+            const Contact& ct = sy.contact[static_cast<size_t>(stk.held[h])];
+            const double f = stk.force(ct.sign, static_cast<int>(h), sy.mass, au.data(), a.data());
+            double scale = 0.0;
+            for (int k = 0; k < sy.n; ++k)
+                scale += sy.mass[static_cast<size_t>(k)] * (std::abs(au[static_cast<size_t>(k)]) + std::abs(ag));
+            if (stk.held[h] != c && f < -ROUNDING * scale) pulls = stk.held[h];
+        }
+        if (pulls < 0) return;
+        rigid_release(st, sy, pulls, contacts);
+    }
+}
+
+}  // namespace
+
+void release_tensile(double* st, const System& sy, Sticking& stk, int c, Rows& contacts) {
+    const Layout& L = sy.lay;
+    const Contact& ct = sy.contact[static_cast<size_t>(c)];
+    for (int pass = 0; pass < sy.nc(); ++pass) {
+        stk.build(sy, st);
+        if (!stk.any) return;
+        const double vn = ct.sign * rel(st + L.v, ct.i, ct.j);
+        if (!(vn > 0.0)) return;
+        const double mi = stk.side_mass(sy.mass, ct.i), mj = stk.side_mass(sy.mass, ct.j);
+        const double inv = (mi < INF ? 1.0 / mi : 0.0) + (mj < INF ? 1.0 / mj : 0.0);
+        if (inv == 0.0) return;
+        const double impulse = (1.0 + law_restitution(ct.p)) * vn / inv;
+        const int h = tensile_hold(sy, stk, c, impulse, mi, mj);
+        if (h < 0) return;
+        rigid_release(st, sy, h, contacts);
+    }
+}
+
 bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
                    const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q, double* row,
                    double& flight) {
+    const Contact& ct = sy.contact[static_cast<size_t>(c)];
+    const bool jump = ct.sign * rel(st + sy.lay.v, ct.i, ct.j) > 0.0;  // (an impulse to come: velocities jump)
+    const bool resolved = rigid_contact_(st, sy, ph, tau, stk, c, ag, sc, ledger, contacts, chatters, q, row, flight);
+    if (jump) release_pulling(st, sy, stk, c, ag, q, row, contacts);
+    return resolved;
+}
+
+bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
+                    const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q, double* row,
+                    double& flight) {
     flight = INF;
     const Layout& L = sy.lay;
     const Contact& ct = sy.contact[static_cast<size_t>(c)];
     const double t = st[T];
     const double e = law_restitution(ct.p);
     double* v = st + L.v;
+    release_tensile(st, sy, stk, c, contacts);  // (a hold the impulse would have to pull through lets go)
     stk.build(sy, st);
     const double mi = stk.side_mass(sy.mass, ct.i), mj = stk.side_mass(sy.mass, ct.j);
     const double inv = (mi < INF ? 1.0 / mi : 0.0) + (mj < INF ? 1.0 / mj : 0.0);
@@ -188,7 +271,8 @@ bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, St
                                      (ct.j >= 0 ? std::abs(au[static_cast<size_t>(ct.j)]) : 0.0));
     if (u == 0.0 && std::abs(push) <= round) {  // (no push to rounding, met at rest: the push's rate decides)
         s0.assign(st, st + L.size);
-        push = held_push_rate(s0, sy, ph, tau, stk, c, ag, q, row) > 0.0 ? round + MIN_NORMAL : -1.0;
+        // (a rate of 0 too, met at rest: the push grows at a higher order, the motion went into the stop)
+        push = held_push_rate(s0, sy, ph, tau, stk, c, ag, q, row) >= 0.0 ? round + MIN_NORMAL : -1.0;
     }
     if (!(push > 0.0)) return u > 0.0 || vn > sc.v_res;  // (it flies off, or leaves it at rest: a touch)
     const double remainder = e < 1.0 ? 2.0 * u / (push * (1.0 - e)) : INF;

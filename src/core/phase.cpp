@@ -437,7 +437,7 @@ void held_force_poly(const Phase& ph, int c, Poly& q) {
             double s = k == 0 ? ph.R0[static_cast<size_t>(i)] : 0.0;
             for (int j = 0; j < n; ++j) s += rk[j] * Yk[j] + rc[j] * Yk[n + j];
             const double a_held = k + 1 < nt ? (k + 1) * t[(k + 1) * ny + n + i] : 0.0;
-            f += -s - ph.mass[static_cast<size_t>(i)] * (g + a_held);
+            f += side[i] * (-s - ph.mass[static_cast<size_t>(i)] * (g + a_held));
         }
         q.c[k] = sign * f;
     }

@@ -79,29 +79,38 @@ bool Sticking::build(const System& sy, const double* st) {
         grp[static_cast<size_t>(k)] = g;
         gmass[static_cast<size_t>(g)] += sy.mass[static_cast<size_t>(k)];
     }
-    // each held stop's side: the dofs its first end reaches through the other held stops (not the ground)
+    // each held stop's side: the dofs one of its ends reaches through the other held stops, the ground left out:
+    // its first end's (+1), unless another held stop ties those to the ground, then its second end's (-1)
     const int nh = static_cast<int>(held.size());
     side.assign(static_cast<size_t>(nh * n), 0);
     std::vector<int> stack;
     for (int h = 0; h < nh; ++h) {
         char* s = &side[static_cast<size_t>(h * n)];
-        const int i0 = sy.contact[static_cast<size_t>(held[static_cast<size_t>(h)])].i;
-        stack.assign(1, i0);
-        s[i0] = 1;
-        while (!stack.empty()) {
-            const int k = stack.back();
-            stack.pop_back();
-            for (int q = 0; q < nh; ++q) {
-                if (q == h) continue;
-                const Contact& ct = sy.contact[static_cast<size_t>(held[static_cast<size_t>(q)])];
-                int other = -1;
-                if (ct.i == k) other = ct.j;
-                else if (ct.j == k) other = ct.i;
-                if (other >= 0 && !s[other]) {
-                    s[other] = 1;
-                    stack.push_back(other);
+        const Contact& own = sy.contact[static_cast<size_t>(held[static_cast<size_t>(h)])];
+        for (const int end : {own.i, own.j}) {
+            if (end < 0) break;  // (the second end the ground: the first's side never reaches it)
+            const char mark = end == own.i ? 1 : -1;
+            std::fill(s, s + n, 0);
+            bool grounded_side = false;
+            stack.assign(1, end);
+            s[end] = mark;
+            while (!stack.empty()) {
+                const int k = stack.back();
+                stack.pop_back();
+                for (int q = 0; q < nh; ++q) {
+                    if (q == h) continue;
+                    const Contact& ct = sy.contact[static_cast<size_t>(held[static_cast<size_t>(q)])];
+                    int other = -2;
+                    if (ct.i == k) other = ct.j;
+                    else if (ct.j == k) other = ct.i;
+                    if (other == GROUND) grounded_side = true;
+                    if (other >= 0 && !s[other]) {
+                        s[other] = mark;
+                        stack.push_back(other);
+                    }
                 }
             }
+            if (!grounded_side) break;
         }
     }
     return tree;
@@ -127,7 +136,7 @@ double Sticking::force(double sign, int h, const std::vector<double>& mass, cons
     const char* s = &side[static_cast<size_t>(h * n)];
     double f = 0.0;
     for (int k = 0; k < n; ++k)
-        if (s[k]) f += mass[static_cast<size_t>(k)] * (au[k] - a[k]);
+        if (s[k]) f += s[k] * mass[static_cast<size_t>(k)] * (au[k] - a[k]);
     return sign * f;
 }
 

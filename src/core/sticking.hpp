@@ -22,7 +22,8 @@ struct Sticking {
     std::vector<int> grounded;  // per group: 1 when a held stop ties it to the ground
     std::vector<double> gmass;  // per group: its mass, kg
     std::vector<int> held;      // the held stops (contact indices)
-    std::vector<char> side;     // per held stop (held.size() x n): dof k on its first end's side
+    std::vector<char> side;     // per held stop (held.size() x n): +1 dof k on its first end's side, -1 on its
+                                // second's (when the first's is held to the ground), 0 neither
     std::vector<int> held_of;   // per contact: its index in held, -1 when not held
     std::vector<int> up;        // (scratch: the union-find's parents)
     // the groups of the rigid stops in contact in the state (st[in] != 0); false when they close a loop
