@@ -408,3 +408,69 @@ def test_a_building_s_orbit_against_a_rigid_wall_has_its_finite_difference_multi
     branch = pounding.continuation(building, 3.0 / 9.81, (2.6, 1.8))
     assert branch.status == Status.SUCCESS
     assert not [b for b in branch.bifurcations if b.kind == "grazing"]  # (it impacts all along)
+
+
+# ---------------------------------------------------------------- holds between structures (a review)
+
+
+def _pair(wall_on_first: bool) -> tuple:
+    """Two fixed-base one-storey structures of 1000 kg, pressed by a constant table towards a rigid wall
+    (no restitution) of one of them, the other against it through a rigid link 2 mm wide."""
+    soft, stiff, m = 5e5, 1e6, 1000.0
+
+    def storey(k: float) -> pounding.Storey:
+        return pounding.Storey(m, k, 2 * 0.2 * math.sqrt(k * m), height_m=3.0)
+
+    stop = pounding.RigidStop(0.0)
+    if wall_on_first:  # ground | wall | first | link | second, pushed left
+        first = pounding.Structure.fixed_base([storey(stiff)], [pounding.Wall(1, 0.01, 0.5, stop)])
+        second, a = pounding.Structure.fixed_base([storey(soft)]), 20.0
+    else:  # first | link | second | wall | ground, pushed right
+        first = pounding.Structure.fixed_base([storey(soft)])
+        second = pounding.Structure.fixed_base([storey(stiff)], [pounding.Wall(1, 0.5, 0.01, stop)])
+        a = -20.0
+    pair = pounding.Adjacent(first, second, (pounding.Link(1, 1, 0.002, pounding.RigidStop(0.0)),))
+    return pair, constant(a)
+
+
+@pytest.mark.parametrize("wall_on_first", [True, False])
+def test_a_structure_held_on_its_wall_holds_its_neighbour_through_a_link_as_statics_says(wall_on_first):
+    """At rest at the end: the link carries the soft structure's push, 20 kN less its spring's 6 kN, and the
+    wall both structures' (40 kN less 10 and 6 kN of their springs), whichever side the wall is on."""
+    pair, table = _pair(wall_on_first)
+    run = pounding.simulate(pair, table, duration=3.0, sample_rate_hz=100)
+    assert run.status == Status.SUCCESS
+    walled = run.first if wall_on_first else run.second
+    np.testing.assert_allclose(run.link_force[-1], [14000.0], rtol=1e-6)
+    np.testing.assert_allclose(np.max(walled.contact_force[-1]), 24000.0, rtol=1e-6)
+    assert abs(run.energy.residual) < 1e-12 * run.energy.input_work
+
+
+def test_an_impact_on_a_held_pair_lets_go_of_the_link_that_would_pull():
+    """The first presses the second through a held link; the second then hits its own wall moving away from
+    the first: the wall's impulse acts on the second alone (1 kg), the link would have to pull and lets go."""
+    first = pounding.Structure.fixed_base([pounding.Storey(1.0, 4000.0, 0.0, height_m=3.0)])
+    second = pounding.Structure.fixed_base([pounding.Storey(1.0, 100.0, 0.0, height_m=3.0)],
+                                           [pounding.Wall(1, 0.01, 0.5, pounding.RigidStop(0.0))])
+    pair = pounding.Adjacent(first, second, (pounding.Link(1, 1, 0.0005, pounding.RigidStop(0.0)),))
+    run = pounding.simulate(pair, constant(60.0), duration=0.1, sample_rate_hz=0)
+    assert run.status == Status.SUCCESS
+    hit = run.second.contacts.iloc[0]
+    assert hit.impulse == pytest.approx(1.0 * abs(hit.v_in), rel=1e-12)
+
+
+def test_two_structures_at_rest_on_a_zero_gap_rigid_link_are_held_from_the_start():
+    pair = pounding.Adjacent.from_toml("examples/adjacent_buildings.toml")
+    for e in (0.0, 1.0):
+        link = dataclasses.replace(pair.links[0], law=pounding.RigidStop(e), gap_m=0.0)
+        run = pounding.simulate(dataclasses.replace(pair, links=(link,)),
+                                pounding.Harmonic(a_g=0.2, freq_hz=1.0, phase=math.pi), duration=5.0,
+                                sample_rate_hz=0)
+        assert run.status == Status.SUCCESS and len(run.links) > 0
+
+
+def test_a_mass_held_on_a_stop_has_the_table_s_crest_as_its_peak_acceleration():
+    osc = oscillator(0.0, 0.005, 0.02, gap_left=0.005)
+    run = pounding.simulate(osc, pounding.Harmonic(a_g=10.0, freq_hz=1.3, g=1.0), duration=6.0,
+                            sample_rate_hz=0)
+    assert run.abs_acceleration_max == pytest.approx(10.0, rel=1e-12)
