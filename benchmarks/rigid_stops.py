@@ -16,7 +16,6 @@ from __future__ import annotations
 
 import math
 import os
-import time
 
 # (idle BLAS threads spin: CPU time that is not the engine's)
 os.environ.setdefault("OPENBLAS_NUM_THREADS", "1")
@@ -25,6 +24,7 @@ import numpy as np
 from scipy.integrate import solve_ivp
 
 import pounding
+from structures import cpu_best
 
 GRAVITY = 9.81  # m/s^2
 M, OMEGA, ZETA, GAP, E = 1.0, 10.0, 0.02, 0.005, 0.9
@@ -38,15 +38,6 @@ def system() -> pounding.Oscillator:
 
 def table() -> pounding.Harmonic:
     return pounding.Harmonic(a_g=A / GRAVITY, freq_hz=F_HZ, g=GRAVITY)  # (a_g in g)
-
-
-def cpu(f, repeat: int = 3):
-    best, out = math.inf, None
-    for _ in range(repeat):
-        t0 = time.process_time()
-        out = f()
-        best = min(best, time.process_time() - t0)
-    return best, out
 
 
 def scipy_impacts(t_end: float, max_impacts: int = 10_000) -> list[float]:
@@ -82,7 +73,7 @@ def scipy_impacts(t_end: float, max_impacts: int = 10_000) -> list[float]:
 def main() -> None:
     osc, tab = system(), table()
     duration = 2000.0
-    secs, run = cpu(lambda: pounding.simulate(osc, tab, duration=duration, sample_rate_hz=0))
+    secs, run = cpu_best(lambda: pounding.simulate(osc, tab, duration=duration, sample_rate_hz=0), 3)
     c = run.contacts
     impacts = int((c.t_end_s == c.t_start_s).sum())
     chatters = run.chatters
@@ -91,7 +82,7 @@ def main() -> None:
           f"({int(chatters.accumulated.sum())} accumulated, then held), {secs:.3f} CPU s")
     print(f"  impacts per CPU second: {rate:,.0f}  (target >= 1,000,000)")
     window = 0.4
-    peer_secs, times = cpu(lambda: scipy_impacts(window), repeat=1)
+    peer_secs, times = cpu_best(lambda: scipy_impacts(window), 1)
     ours = c.t_start_s.values[(c.t_end_s.values == c.t_start_s.values) & (c.t_start_s.values < window)]
     n = min(len(times), len(ours), 20)  # (further on the peer's flights shrink below its tolerances)
     agree = float(np.max(np.abs(np.asarray(times[:n]) - ours[:n]))) if n else math.nan

@@ -11,6 +11,7 @@ import pandas as pd
 
 from .._checks import at_most, real
 from .._errors import InputError, Problem, Status
+from ._chatter import SIDES, chatter_frame
 from ._layout import DEF_L, DEF_R, EVENT_NAMES, IN_L, IN_R, REGION, STATE_BASE, Z_L, Z_R, ZETA
 from ._layout import D as I_D
 from ._layout import T as I_T
@@ -485,17 +486,3 @@ class Run:
         from ..plots import plot_run
 
         return plot_run(self, ax=ax, **kwargs)
-
-
-SIDES = ("left", "right")
-
-
-def chatter_frame(table: np.ndarray, names: Any, column: str = "side") -> pd.DataFrame:
-    """The chatter sequences of a run's ``chatter_table`` (contact, first impact s, end s, impacts,
-    accumulated), the contact named by ``names`` (a sequence of names by the core's slot) in ``column``."""
-    table = np.asarray(table).reshape(-1, 5)
-    return pd.DataFrame({
-        column: [names[int(c)] for c in table[:, 0]],
-        "t_first_s": table[:, 1], "t_end_s": table[:, 2],
-        "impacts": table[:, 3].astype(int), "accumulated": table[:, 4] != 0.0,
-    })

@@ -24,7 +24,8 @@ from ..model.contact_laws import N_LAW_STATE, is_rigid, linear_form
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from ._control import DEFAULT_MAX_STEPS, check_budget, new_control, run_interruptibly, steps_per_second
-from .result import MAX_TIME_S, chatter_frame
+from ._chatter import chatter_frame
+from .result import MAX_TIME_S
 from ._run_args import DIRECT_CALL_STEPS, check_rtol, history_rate, kernel_forcing
 from .structure_result import AdjacentRun, StructureEnergy, StructureRun
 

@@ -13,7 +13,7 @@ import pandas as pd
 from .._errors import Status
 from ._layout import (EVENT_NAMES, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT, L_ISOLATOR, L_KINETIC,
                       L_VISCOUS)
-from .result import chatter_frame
+from ._chatter import chatter_frame
 
 if TYPE_CHECKING:
     from ..excitation import Harmonic, Record

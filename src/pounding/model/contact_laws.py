@@ -28,7 +28,7 @@ from .._errors import InputError, Problem
 from . import _law_states
 from .._core import LAW_IDS, LAYOUT
 from .._core import law_force_many  # noqa: F401  (the core's: a law's forces along a path)
-from .rigid_stop import RigidStop
+from .rigid_stop import RigidStop, is_rigid, refuse_clamp  # noqa: F401  (what the engine and models ask)
 
 # each law's id, as the core's laws (src/core/laws.cpp, the law's C++ side) know it
 KELVIN_VOIGT, HUNT_CROSSLEY, JANKOWSKI, MULTILINEAR, ELASTIC_PLASTIC, HERTZDAMP, MULTILINEAR_KINEMATIC = (
@@ -560,11 +560,6 @@ LAWS: dict[str, type] = {KelvinVoigt.TYPE: KelvinVoigt, HuntCrossley.TYPE: HuntC
                          RigidStop.TYPE: RigidStop}
 
 
-def is_rigid(law: Any) -> bool:
-    """Whether ``law`` is a rigid stop (no stiffness: an impulse at each impact)."""
-    return bool(getattr(law, "RIGID", False))
-
-
 def law_to_dict(law: ContactLaw) -> dict[str, Any]:
     """The law as a TOML-ready table: ``type`` plus its fields."""
     out: dict[str, Any] = {"type": law.TYPE}
@@ -608,13 +603,3 @@ def check_law(field: str, value: Any) -> None:
     if not isinstance(value, tuple(LAWS.values())):
         raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__,
                          expected="contact law (" + ", ".join(cls.__name__ for cls in LAWS.values()) + ")")
-
-
-def refuse_clamp(field: str, gap_left: float, gap_right: float, left: Any, right: Any) -> None:
-    """Refuse rigid stops on both sides with no gap between them (``field``: the left gap's name): the mass
-    would be clamped, every impact at once against both (Newton's law has no answer there)."""
-    if is_rigid(left) and is_rigid(right) and gap_left + gap_right == 0.0:
-        raise InputError(Problem.BAD_STATE, field, gap_left,
-                         why="and the other gap are 0 with rigid stops on both sides: the mass is clamped "
-                             "between them",
-                         fix="give one of the gaps a positive value, or a deformable law to one side")

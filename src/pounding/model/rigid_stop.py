@@ -13,7 +13,7 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import ClassVar
+from typing import Any, ClassVar
 
 import numpy as np
 
@@ -81,3 +81,18 @@ class RigidStop:
         out = np.zeros(LAYOUT["N_LAW_PARAMS"])
         out[0] = self.restitution
         return out
+
+
+def is_rigid(law: Any) -> bool:
+    """Whether ``law`` is a rigid stop (no stiffness: an impulse at each impact)."""
+    return bool(getattr(law, "RIGID", False))
+
+
+def refuse_clamp(field: str, gap_left: float, gap_right: float, left: Any, right: Any) -> None:
+    """Refuse rigid stops on both sides with no gap between them (``field``: the left gap's name): the mass
+    would be clamped, every impact at once against both (Newton's law has no answer there)."""
+    if is_rigid(left) and is_rigid(right) and gap_left + gap_right == 0.0:
+        raise InputError(Problem.BAD_STATE, field, gap_left,
+                         why="and the other gap are 0 with rigid stops on both sides: the mass is clamped "
+                             "between them",
+                         fix="give one of the gaps a positive value, or a deformable law to one side")
