@@ -184,8 +184,7 @@ void release_pulling(double* st, const System& sy, Sticking& stk, int c, double 
     }
 }
 
-}  // namespace
-
+// before an impact on contact c: the holds its impulse would have to pull through let go (their rows)
 void release_tensile(double* st, const System& sy, Sticking& stk, int c, Rows& contacts) {
     const Layout& L = sy.lay;
     const Contact& ct = sy.contact[static_cast<size_t>(c)];
@@ -204,6 +203,13 @@ void release_tensile(double* st, const System& sy, Sticking& stk, int c, Rows& c
     }
 }
 
+// the impact itself (rigid_contact without the release of the holds that would pull after it)
+bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
+                    const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q, double* row,
+                    double& flight);
+
+}  // namespace
+
 bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
                    const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q, double* row,
                    double& flight) {
@@ -213,6 +219,8 @@ bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, St
     if (jump) release_pulling(st, sy, stk, c, ag, q, row, contacts);
     return resolved;
 }
+
+namespace {
 
 bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
                     const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q, double* row,
@@ -308,6 +316,8 @@ bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, S
     stk.build(sy, st);
     return true;
 }
+
+}  // namespace
 
 void rigid_release(double* st, const System& sy, int c, Rows& contacts) {
     const Layout& L = sy.lay;

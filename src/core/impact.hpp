@@ -37,12 +37,6 @@ bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, St
 // after a velocity jump: a hysteretic element's slipping springs and a deformable bumper's law's turns follow the
 // new velocities (their reversal events watch a velocity crossing zero, which a jump steps over)
 void after_velocity_jump(double* st, const System& sy);
-// before an impact on contact c: the holds its impulse would have to pull through let go (their rows)
-void release_tensile(double* st, const System& sy, Sticking& stk, int c, Rows& contacts);
-// the impact itself (rigid_contact without the release of holds that would pull after it)
-bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
-                    const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q, double* row,
-                    double& flight);
 // a held rigid stop c released at st[T]: the hold's row
 void rigid_release(double* st, const System& sy, int c, Rows& contacts);
 // the chatter sequences still open at the end of a run (three impacts or more)
