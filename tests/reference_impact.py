@@ -227,3 +227,35 @@ def _touches(omega: float, zeta: float, a: float, big_omega: float, phase: float
         if x > d + 1e-12 * max(1.0, abs(d)):
             return True
     return False
+
+
+@dataclass(frozen=True)
+class Grazing:
+    """Where the forced impact oscillator's orbit clear of the stop grazes it, and the Poincare map's
+    square-root term there.  ``freq_hz`` the forcing frequency at which the steady state's amplitude
+    is ``d``; ``term`` (2,) the map's change over ``sqrt(delta)`` (``delta`` the depth the free orbit
+    would reach past the stop) at the section where the forcing's angle is ``phase_rad``
+    (``a_g = a sin(Omega t + phase)``): the impact's velocity jump ``-(1 + e) sqrt(2 Omega^2 d delta)``
+    (``Omega^2 d`` the steady state's acceleration away from the stop at its crest) carried over the rest
+    of the period by the free part's transition ``Phi(T - t_g)``."""
+
+    freq_hz: float
+    term: np.ndarray
+
+
+def grazing(omega: float, zeta: float, a: float, d: float, e: float, phase_rad: float,
+            lo_hz: float, hi_hz: float) -> Grazing:
+    """The grazing between ``lo_hz`` and ``hi_hz`` (the amplitude ``a / |omega^2 - Omega^2 + 2 i zeta
+    omega Omega|`` crosses ``d`` once there)."""
+    def amplitude(f: float) -> float:
+        w = 2.0 * math.pi * f
+        return a / abs(complex(omega * omega - w * w, 2.0 * zeta * omega * w))
+
+    f = brentq(lambda f: amplitude(f) - d, lo_hz, hi_hz, xtol=1e-15, rtol=1e-15)
+    big = 2.0 * math.pi * f
+    den = complex(omega * omega - big * big, 2.0 * zeta * omega * big)
+    amp = -a / den  # (a sin(Omega t + phase) = a cos(Omega t + phase - pi / 2): x_p = Re(amp e^(i angle)))
+    angle0 = phase_rad - 0.5 * math.pi
+    t_g = ((-angle0 - math.atan2(amp.imag, amp.real)) % (2.0 * math.pi)) / big  # (the crest's time)
+    jump = np.array([0.0, -(1.0 + e) * math.sqrt(2.0 * big * big * d)])
+    return Grazing(f, expm(_flow(omega, zeta) * (2.0 * math.pi / big - t_g)) @ jump)

@@ -11,6 +11,7 @@ from typing import TYPE_CHECKING, Callable, Optional
 import numpy as np
 
 from ._arclength import Point
+from ._grazing import locate_grazing, map_scaling
 from .branch import Bifurcation
 
 if TYPE_CHECKING:
@@ -86,9 +87,17 @@ def other_direction(fl: "Follower", pt: Point, own: np.ndarray) -> np.ndarray:
 def detect(fl: "Follower", a: Point, b: Point, ds: float) -> None:
     ta, tb = tests_at(fl, a), tests_at(fl, b)
     found = []
+    grazes = any(name.startswith("grazing") and va * tb[name] < 0.0 for name, va in ta.items())
     for name, va in ta.items():
         vb = tb[name]
         counted = name in ("period-doubling", "neimark-sacker")
+        if name.startswith("grazing") and va * vb < 0.0:
+            side = name.partition(" ")[2]
+            got = locate_grazing(fl, a, b, side)
+            if got is not None:
+                pt, ok = got
+                found.append((fl._s(a, pt), name, pt, ok))
+                continue
         if (counted and va != vb) or (not counted and va * vb < 0.0):
             if counted:
                 def fn(pt: Point, name: str = name, mid: float = 0.5 * (va + vb)) -> float:
@@ -103,12 +112,23 @@ def detect(fl: "Follower", a: Point, b: Point, ds: float) -> None:
                 def fn(pt: Point, name: str = name) -> float:
                     return tests_at(fl, pt)[name]
             pt = locate(fl, a, ds, fn, b)
-            if pt is not None:
-                found.append((fl._s(a, pt), name, pt,
-                              abs(fn(pt)) <= 1e-8 or (counted and fl.bracket <= 1e-9 * ds)))
+            if pt is None:
+                continue
+            ok = abs(fn(pt)) <= 1e-8 or (counted and fl.bracket <= 1e-9 * ds)
+            if counted and grazes and not ok:
+                continue  # (the multipliers jump at the grazing, where the map is not smooth: no crossing)
+            found.append((fl._s(a, pt), name, pt, ok))
+    grazings = [pt.p for _, name, pt, ok in found if name.startswith("grazing") and ok]
     for _, name, pt, ok in sorted(found, key=lambda item: item[0]):
         kind, _, side = name.partition(" ")
-        fl.bifs.append(bifurcation_at(fl, kind, side, pt, ok))
+        if kind in ("period-doubling", "neimark-sacker") and any(
+                abs(pt.p - p) <= 1e-6 * fl.fam.p_scale for p in grazings):
+            continue  # (the multipliers jump at the grazing, where the map is not smooth: no crossing)
+        bif = bifurcation_at(fl, kind, side, pt, ok)
+        if kind == "grazing" and ok:
+            gamma, term = map_scaling(fl, pt, side, side in fl.fam.shooter(pt.p).rigid_sides())
+            bif = replace(bif, scaling_exponent=gamma, scaling_term=term)
+        fl.bifs.append(bif)
 
 def locate(fl: "Follower", a: Point, ds: float, fn: Callable[[Point], float], b: Point) -> Optional[Point]:
     """Illinois regula falsi on the step length for the zero of ``fn`` between ``a`` (0) and ``b`` (ds);

@@ -16,6 +16,7 @@ from ._arclength import Closure, Family, Point, system_at
 from .branch import COLUMNS, Bifurcation, Branch
 from .periodic import _Failed
 from ._detect import branch_point, detect, locate, other_direction
+from ._grazing import cross, impacts_barely
 
 
 class Follower:
@@ -124,9 +125,12 @@ class Follower:
             b = self.step(a, ds)
             cos = float(a.tau_x @ b.tau_x + a.tau_q * b.tau_q) if b is not None else -1.0
             if b is None or (cos < self.MIN_COS and ds > 4 * self.MIN_STEP):
+                if ds < self.CREEP * self.max_step and impacts_barely(self, a) and self._leap_past(a):
+                    ds = self.max_step / 4.0  # (past a rigid stop's grazing, from its impacting side)
+                    continue
                 ds *= self.SHRINK
                 if ds < self.MIN_STEP:
-                    if self._leap_past(a):
+                    if self._cross(a) or self._leap_past(a):
                         ds = self.max_step / 4.0
                         continue
                     self.status = Status.STEP_FAILED
@@ -177,6 +181,17 @@ class Follower:
             self._rescale()
             self._resection()
             ds = min(ds * self.GROW, self.max_step) if b.iterations <= 4 else ds
+
+    def _cross(self, a: Point) -> bool:
+        """Past a rigid stop's grazing next to ``a`` (:func:`cross`), its bifurcations detected and the
+        orbit past it taken; False where none was found."""
+        got = cross(self, a)
+        if got is None:
+            return False
+        b, ds = got
+        detect(self, a, b, ds)
+        self._append(b, ds)
+        return True
 
     def _leap_past(self, a: Point) -> bool:
         """A step in the parameter alone from ``a`` (``_leap``), its bifurcations detected and the

@@ -346,6 +346,11 @@ class _Shooter(_Newton):
                 out[side] = -float(np.abs(hits[:, 3]).min()) / self.exc.omega_rad_s
         return out
 
+    def rigid_sides(self) -> set[str]:
+        """The sides of :meth:`clearances` that are rigid stops."""
+        b = self.osc.bumpers
+        return {side for side, law in (("left", b.left), ("right", b.right)) if is_rigid(law)} if b else set()
+
     def summary(self, run: Run, exc: Harmonic) -> dict[str, float]:
         """A branch's row of the orbit run over its period: alpha, excursion, extrema, eta, contacts."""
         table = run.contact_table

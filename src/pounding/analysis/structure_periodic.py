@@ -304,6 +304,12 @@ class _StructureShooter(_Newton):
                 out[c] = -float(np.abs(hits[:, 3]).min()) / self.exc.omega_rad_s
         return {name.replace("delta_", ""): c for name, c in zip(labels, out)}
 
+    def rigid_sides(self) -> set[str]:
+        """The sides of :meth:`clearances` that are rigid stops."""
+        labels = self.labels()[2 * self.n:2 * self.n + self.nc]
+        pairs = zip(labels, self.asm.pairs)
+        return {name.replace("delta_", "") for name, (*_, law) in pairs if is_rigid(law)}
+
     def summary(self, run: Any, exc: Harmonic) -> dict[str, float]:
         """A branch's row of the orbit run over its period: the largest alpha over every level, the first
         moving mass's excursion and extrema (eta against its wall's total gap, when it has one at its

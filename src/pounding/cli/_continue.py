@@ -3,6 +3,7 @@ bifurcations, optionally with the sweeps that jump at them."""
 
 from __future__ import annotations
 
+import math
 from pathlib import Path
 from typing import Optional
 
@@ -58,7 +59,9 @@ def continue_branch(
     add("orbits", f"{len(branch)} ({int((~branch.data['stable']).sum())} unstable)")
     for label, bif in _one_line_each(branch.bifurcations):
         add(label, f"f = {bif.freq_hz:.6g} Hz, alpha = {bif.alpha:.4g}"
-            + ("" if bif.located else " (not located to tolerance)"))
+            + ("" if bif.located else " (not located to tolerance)")
+            + (f", the map goes as depth^{bif.scaling_exponent:.3f}" if math.isfinite(bif.scaling_exponent)
+               else ""))
     console.print(table)
     runs = []
     if sweeps and complete and plot is not None:

@@ -1,0 +1,76 @@
+"""Continuation through grazing (issue 51): where an orbit clear of a stop comes to touch it, the branch is
+followed past it, the grazing located where the closed form puts it, and the Poincare map's singular term
+there measured: a square root at a rigid stop, against its closed form (tests/reference_impact.py)."""
+
+from __future__ import annotations
+
+import math
+import warnings
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+import pounding
+from pounding import Status
+from reference_impact import grazing, impact_orbits
+
+ZETA, A, E, W, D = 0.05, 3.0, 0.8, 2.0 * math.pi, 0.01  # (the gallery's oscillator, its stop 10 mm off)
+
+
+def _oscillator(law) -> pounding.Oscillator:
+    iso = pounding.Isolator(slopes=[W ** 2], damping=2.0 * ZETA * W)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # (a gap of 10 m on the left: no stop there)
+        return pounding.Oscillator(1.0, iso, pounding.Bumpers(10.0, D, law))
+
+
+def _period_doubling_hz() -> float:
+    """Where the one-impact orbit's multiplier crosses -1 (closed form)."""
+    def smallest(f: float) -> float:
+        orbit = next(o for o in impact_orbits(W, ZETA, A, 2.0 * math.pi * f, D, E) if not o.grazes)
+        return float(min(orbit.multipliers.real)) + 1.0
+    return brentq(smallest, 2.3, 2.5, xtol=1e-14)
+
+
+@pytest.mark.parametrize("freqs_hz", [(2.0, 4.0), (4.0, 2.9)])
+def test_a_branch_is_continued_through_a_rigid_stop_s_grazing_with_the_map_s_square_root(freqs_hz):
+    """From the impacting side (its impact speed falls to 0) and from the clear side (its clearance falls
+    to 0: the steps cannot pass, and the orbit past it is found from the map's normal form)."""
+    branch = pounding.continuation(_oscillator(pounding.RigidStop(E)), A / 9.81, freqs_hz, tol=1e-12)
+    assert branch.status == Status.SUCCESS, branch.message
+    grazings = [b for b in branch.bifurcations if b.kind == "grazing"]
+    assert len(grazings) == 1 and grazings[0].located and grazings[0].side == "right"
+    bif = grazings[0]
+    closed = grazing(W, ZETA, A, D, E, bif.phase_rad, 2.5, 3.5)
+    # to the orbits' accuracy: tol 1e-12 of the length scale (5 m: the 10 m gap) over dC/df 7.7e-3 m/Hz
+    assert abs(bif.value - closed.freq_hz) < 1e-9
+    f = branch.data["freq_hz"]
+    assert f.min() < closed.freq_hz - 0.02 and f.max() > closed.freq_hz + 0.02  # (orbits both sides)
+    # the square root, and its term: the truncation falls as the depth's square root (relative 4.9e-3,
+    # 4.9e-4, 4.9e-5 at depths 1e-6, 1e-8, 1e-10 of the orbit's size; measured at 1e-10)
+    assert abs(bif.scaling_exponent - 0.5) < 1e-5
+    np.testing.assert_allclose(bif.scaling_term[:2], closed.term, rtol=1e-4)
+    assert not bif.scaling_term[2:].any()
+    # the multipliers jump at the grazing (unbounded on the impacting side, as 1 / impact speed): no
+    # period-doubling is reported there, only the one the closed form has
+    others = [b for b in branch.bifurcations if b.kind != "grazing"]
+    if min(freqs_hz) < 2.3:
+        assert [b.kind for b in others] == ["period-doubling"]
+        assert abs(others[0].value - _period_doubling_hz()) < 1e-8
+    else:
+        assert not others
+
+
+@pytest.mark.parametrize("damping, exponent", [(0.0, 1.5), (50.0, 1.0)])
+def test_a_deformable_bumper_s_grazing_scales_with_the_power_its_force_starts_with(damping, exponent):
+    """A spring's force starts from 0 at the touch: the map's change goes as the depth to 3/2; a dashpot's
+    jumps to c v: as the depth itself.  The grazing is where the linear response's amplitude is the gap."""
+    law = pounding.KelvinVoigt(stiffness=1e5, damping=damping)
+    branch = pounding.continuation(_oscillator(law), A / 9.81, (4.0, 2.5))
+    assert branch.status == Status.SUCCESS, branch.message
+    (bif,) = [b for b in branch.bifurcations if b.kind == "grazing"]
+    closed = grazing(W, ZETA, A, D, E, bif.phase_rad, 2.5, 3.5)
+    assert bif.located and abs(bif.value - closed.freq_hz) < 1e-7  # (tol 1e-10 of the 5 m length scale)
+    assert abs(bif.scaling_exponent - exponent) < 5e-3  # (measured: 1.50010, 1.00195)
+    assert not [b for b in branch.bifurcations if abs(b.value - bif.value) < 1e-4 and b is not bif]
