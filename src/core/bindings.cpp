@@ -49,12 +49,9 @@ Array2 array2(const double* values, size_t rows, size_t cols) {
 // a NumPy array that takes over the rows' buffer (no copy: a long run's tables are most of its memory)
 Array2 rows_array(Rows& r) {
     const size_t rows = static_cast<size_t>(r.n), cols = static_cast<size_t>(r.cols);
-    auto* owned = new std::vector<double>(std::move(r.data));
-    r.data.clear();
-    r.n = 0;
-    owned->resize(std::max(rows * cols, size_t(1)));  // (a valid pointer for an empty table)
-    nb::capsule owner(owned, [](void* p) noexcept { delete static_cast<std::vector<double>*>(p); });
-    return Array2(owned->data(), {rows, cols}, owner);
+    double* owned = r.release();
+    nb::capsule owner(owned, [](void* p) noexcept { std::free(p); });
+    return Array2(owned, {rows, cols}, owner);
 }
 
 // a contact from (i, j, sign, gap, law, params); a hysteretic element from (i, j, c_d, slopes, breaks, rule)

@@ -21,6 +21,10 @@
 #include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#include <utility>
 #include <limits>
 #include <vector>
 
@@ -200,22 +204,58 @@ struct Control {
 // A growable table of rows (the run's outputs), in row-major order.
 struct Rows {
     int cols;
-    std::vector<double> data;
     int64_t n = 0;
-    explicit Rows(int c = 1, int64_t reserve = 64) : cols(c) { data.reserve(static_cast<size_t>(reserve * c)); }
-    double* push() {  // (the buffer grows by doubling: its size may run ahead of the rows, n * cols)
+    explicit Rows(int c = 1, int64_t reserve = 64) : cols(c) {
+        grow(static_cast<size_t>(std::max<int64_t>(reserve, 1) * std::max(c, 1)));
+    }
+    ~Rows() { std::free(buf_); }
+    Rows(const Rows& o) : cols(o.cols), n(o.n) {
+        grow(std::max(o.cap_, size_t(1)));
+        if (o.n > 0) std::memcpy(buf_, o.buf_, static_cast<size_t>(o.n * o.cols) * sizeof(double));
+    }
+    Rows(Rows&& o) noexcept : cols(o.cols), n(o.n), buf_(o.buf_), cap_(o.cap_) {
+        o.buf_ = nullptr;
+        o.cap_ = 0;
+        o.n = 0;
+    }
+    Rows& operator=(Rows o) noexcept {
+        std::swap(cols, o.cols);
+        std::swap(n, o.n);
+        std::swap(buf_, o.buf_);
+        std::swap(cap_, o.cap_);
+        return *this;
+    }
+    // (the buffer grows by doubling with realloc: a large one is remapped, not copied, and the kernel
+    // zeroes only the pages the rows reach)
+    double* push() {
         const size_t need = static_cast<size_t>((n + 1) * cols);
-        if (need > data.size()) data.resize(std::max(need, 2 * data.size()));
-        double* r = &data[static_cast<size_t>(n++ * cols)];
+        if (need > cap_) grow(std::max(need, 2 * cap_));
+        double* r = buf_ + static_cast<size_t>(n++ * cols);
         std::fill(r, r + cols, 0.0);
         return r;
     }
-    void clear() {
-        data.clear();
+    void clear() { n = 0; }
+    double* row(int64_t i) { return buf_ + static_cast<size_t>(i * cols); }
+    const double* row(int64_t i) const { return buf_ + static_cast<size_t>(i * cols); }
+    // the buffer (n * cols values, at least one), handed over: the caller frees it with std::free
+    double* release() {
+        if (buf_ == nullptr) grow(1);
+        double* out = buf_;
+        buf_ = nullptr;
+        cap_ = 0;
         n = 0;
+        return out;
     }
-    double* row(int64_t i) { return &data[static_cast<size_t>(i * cols)]; }
-    const double* row(int64_t i) const { return &data[static_cast<size_t>(i * cols)]; }
+
+  private:
+    double* buf_ = nullptr;
+    size_t cap_ = 0;  // (values)
+    void grow(size_t values) {
+        void* p = std::realloc(buf_, values * sizeof(double));
+        if (p == nullptr) throw std::bad_alloc();
+        buf_ = static_cast<double*>(p);
+        cap_ = values;
+    }
 };
 
 inline double sgn(double x) { return x > 0.0 ? 1.0 : (x < 0.0 ? -1.0 : 0.0); }

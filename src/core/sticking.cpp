@@ -37,6 +37,14 @@ bool is_held(const System& sy, const double* st, int c) {
 }  // namespace
 
 bool Sticking::build(const System& sy, const double* st) {
+    const bool none = [&] {
+        for (int c = 0; c < sy.nc(); ++c)
+            if (is_held(sy, st, c)) return false;
+        return true;
+    }();
+    if (none && !any && n == sy.n && held_of.size() == static_cast<size_t>(sy.nc()) &&
+        grp.size() == static_cast<size_t>(sy.n))
+        return true;  // (nothing held, as before: the tables stand)
     n = sy.n;
     held.clear();
     held_of.assign(static_cast<size_t>(sy.nc()), -1);
