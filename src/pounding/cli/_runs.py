@@ -10,6 +10,7 @@ from rich.markup import escape
 
 from .._errors import Interrupted
 from .._io import atomic_write, interrupts_deferred
+from ..engine.structure_peaks import impulses
 from ._app import (
     working,
     one_mass_options,
@@ -108,17 +109,26 @@ def simulate(
     table, add_row = kv_table(f"{what}, {run.final_state.time_s:g} s", system_file or preset)
     add_row("status", run.message)
     add_row("D max / min [mm]", f"{run.displacement_max * 1e3:.4f} / {run.displacement_min * 1e3:.4f}")
-    add_row("max |abs. acceleration| [g]", f"{run.abs_acceleration_max / exc.g:.4f}")
+    rigid = int(impulses(run.contact_table).sum())  # (a rigid stop's impacts: impulses, no force)
+    between = "inf at the rigid impacts (impulses); {} between them" if rigid else "{}"
+    add_row("max |abs. acceleration| [g]", between.format(f"{run.abs_acceleration_max / exc.g:.4f}"))
     peak = abs(exc.peak_m_s2) if record is None else exc.pga_g * exc.g
     alpha = run.abs_acceleration_max / peak if peak != 0 else float("nan")
-    add_row("alpha = max|a_abs| / " + ("A_t" if record is None else "PGA"), f"{alpha:.4f}" if peak
-            else "- (no shaking)")
+    add_row("alpha = max|a_abs| / " + ("A_t" if record is None else "PGA"), between.format(f"{alpha:.4f}")
+            if peak else "- (no shaking)")
     n = len(run.contacts)
-    add_row("contacts", f"{n} ({(run.contacts['side'] == 'left').sum()} left)" if n else "0")
+    left = f"{(run.contacts['side'] == 'left').sum()} left"
+    add_row("contacts", f"{n} ({rigid} rigid impacts, {left})" if rigid else f"{n} ({left})" if n else "0")
     done = run.impacts.dropna(subset=["contact_time_s"])
+    lasting = done[done["contact_time_s"] > 0.0]  # (a rigid stop's holds and the deformable contacts)
     if len(done):
         add_row("mean restitution s", f"{done['restitution'].mean():.4f}")
-        add_row("mean contact time [ms]", f"{done['contact_time_s'].mean() * 1e3:.3f}")
+    if len(lasting):
+        add_row("mean contact time [ms]" + (" (holds and deformable contacts)" if rigid else ""),
+                f"{lasting['contact_time_s'].mean() * 1e3:.3f}")
+    if rigid:
+        add_row("max peak force [kN]", "inf (the rigid impacts' impulses: see the contacts' impulse_n_s)")
+    elif len(done):
         add_row("max peak force [kN]", f"{done['peak_force_n'].max() / 1e3:.3f}")
     e = run.energy
     add_row("energy in / residual [J]", f"{e.input_work:.6g} / {e.residual:.2e}")

@@ -3,13 +3,28 @@ keep of it)."""
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .structure_result import AdjacentRun, StructureRun
 
 
 # (the core's contact rows: slot, t_start, t_end, v_in, v_out, impulse, peak force, ...)
-_PEAK_FORCE, _V_IN = 6, 3
+_T_START, _T_END, _PEAK_FORCE, _V_IN = 1, 2, 6, 3
+
+
+def impulses(table: np.ndarray) -> np.ndarray:
+    """Which rows of a contact table are a rigid stop's impacts (instantaneous: an impulse, no force)."""
+    return table[:, _T_END] == table[:, _T_START]
+
+
+def force_max(table: np.ndarray) -> float:
+    """A contact table's largest force, N: 0 without contact, inf where a rigid stop was struck (an impulse's
+    force is unbounded; its impulse is in the table)."""
+    if not len(table):
+        return 0.0
+    return math.inf if impulses(table).any() else float(table[:, _PEAK_FORCE].max())
 
 
 def peaks_of(run: "StructureRun | AdjacentRun", g: float) -> dict[str, float]:
@@ -18,7 +33,8 @@ def peaks_of(run: "StructureRun | AdjacentRun", g: float) -> dict[str, float]:
     (``top_acc_max_g``, g); the largest absolute acceleration (``acc_max_g``, g) and storey drift ratio
     (``drift_ratio_max``) over every level and storey; the contacts at every wall and link (``impacts``),
     their largest force (``impact_force_max_n``, N) and approach speed (``impact_speed_max_m_s``), 0 without
-    contact; ``status``."""
+    contact; ``status``.  A rigid stop's impact is an impulse: its force, and the acceleration of the level
+    it strikes, are unbounded (inf), the rest exact."""
     parts = [run.first, run.second] if isinstance(run, AdjacentRun) else [run]
     first = parts[0]
 
@@ -29,11 +45,20 @@ def peaks_of(run: "StructureRun | AdjacentRun", g: float) -> dict[str, float]:
               for part in parts if len(part.structure.storeys)]
     tables = [part.contact_table for part in parts] + ([run.link_table] if len(parts) > 1 else [])
     rows = np.concatenate(tables) if tables else np.zeros((0, 9))
+    struck = [{part.structure.walls[int(slot) // 2].level for slot in part.contact_table[
+        impulses(part.contact_table), 0]} for part in parts]  # (each part's levels a rigid impact struck)
+    if len(parts) > 1:
+        for slot in run.link_table[impulses(run.link_table), 0]:
+            link = run.adjacent.links[int(slot)]
+            struck[0].add(link.level_first)
+            struck[1].add(link.level_second)
+    top = len(first.structure.storeys)
     return {"base_disp_max_m": peak(first, 0), "top_disp_max_m": peak(first, -1),
-            "acc_max_g": max(float(np.max(p.abs_acceleration_max)) for p in parts) / g,
-            "top_acc_max_g": float(first.abs_acceleration_max[-1]) / g,
+            "acc_max_g": math.inf if any(struck) else max(float(np.max(p.abs_acceleration_max))
+                                                          for p in parts) / g,
+            "top_acc_max_g": math.inf if top in struck[0] else float(first.abs_acceleration_max[-1]) / g,
             "drift_ratio_max": float(max(np.max(r) for r in ratios)) if ratios else float("nan"),
             "impacts": float(len(rows)),
-            "impact_force_max_n": float(rows[:, _PEAK_FORCE].max()) if len(rows) else 0.0,
+            "impact_force_max_n": force_max(rows),
             "impact_speed_max_m_s": float(np.abs(rows[:, _V_IN]).max()) if len(rows) else 0.0,
             "status": float(run.status)}

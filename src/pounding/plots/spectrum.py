@@ -89,5 +89,7 @@ def plot_pounding_spectrum(spectrum: Any, ax: Any = None, *, kind: str = "curves
         ax.set_ylabel("gap [mm] (one band per gap computed)")
     what = "median over " + (f"{n} records (16-84 % shaded)" if n > 1 and kind == "curves"
                              else f"{n} record(s)")
-    ax.set_title(f"{quantity}: {what}", fontsize=9)
+    unbounded = "" if np.isfinite(np.asarray(median)[~np.isnan(np.asarray(median))]).all() else (
+        "; inf (a rigid stop's impulse) not drawn")
+    ax.set_title(f"{quantity}: {what}{unbounded}", fontsize=9)
     return artists

@@ -22,6 +22,7 @@ from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Record
 from ..excitation.spectrum import _records, damping_ratio_value, periods_array
 from ..engine.result import CONTACT_COLUMNS
+from ..engine.structure_peaks import force_max, impulses
 from ..model import Bumpers, Isolator, Oscillator, Structure
 from .._runner import Context, run_tasks
 from .._runner.progress import Progress
@@ -40,19 +41,19 @@ def _isolator(template: Isolator | None, mass_kg: float, period_s: float, zeta: 
     return replace(template, slopes=tuple(s * scale for s in template.slopes), damping=c)
 
 
-PEAK_FORCE = CONTACT_COLUMNS.index("peak_force_n")
 V_IN = CONTACT_COLUMNS.index("v_in_m_s")
 MAX_COMPRESSION = CONTACT_COLUMNS.index("max_compression_m")
 
 
 def _peaks(run: Any, g: float) -> tuple[float, ...]:
-    """(max |a_abs| in g, max |D| in m, impacts, peak impact force N, peak impact speed m/s, status)."""
+    """(max |a_abs| in g, max |D| in m, impacts, peak impact force N, peak impact speed m/s, status); the
+    acceleration and force inf where a rigid stop was struck (an impulse)."""
     table = run.contact_table  # (the raw array: building the DataFrame cost more than a run)
     n = table.shape[0]
-    force = float(table[:, PEAK_FORCE].max()) if n else 0.0
     speed = float(np.abs(table[:, V_IN]).max()) if n else 0.0
-    return (run.abs_acceleration_max / g, max(abs(run.displacement_max), abs(run.displacement_min)), float(n),
-            force, speed, float(run.status))
+    acc = math.inf if impulses(table).any() else run.abs_acceleration_max / g
+    return (acc, max(abs(run.displacement_max), abs(run.displacement_min)), float(n), force_max(table), speed,
+            float(run.status))
 
 
 def superstructure_at(structure: Structure, period_s: float) -> Structure:

@@ -95,7 +95,10 @@ class PoundingSpectrum:
 
     def summary(self) -> "xr.Dataset":
         """The 16th, 50th (median) and 84th percentiles over the records (dim ``percentile``) of every
-        quantity; runs that did not finish, or ended early (``status`` not 0), are left out."""
+        quantity; runs that did not finish, or ended early (``status`` not 0), are left out.  A percentile
+        that reaches a rigid stop's unbounded acceleration or force (inf) is inf."""
+        import xarray as xr
+
         full = self.data
         hit_ok, free_ok = full["status"] == 0, full["status_free"] == 0
         ds = full.drop_vars(["status", "status_free"])
@@ -103,9 +106,14 @@ class PoundingSpectrum:
             ok = free_ok if "gap_m" not in ds[name].dims else hit_ok & free_ok if name in (
                 "amplification", "disp_ratio") else hit_ok
             ds[name] = ds[name].where(ok)
+        # (a rigid stop's impacts: an acceleration and force of inf; the interpolation between two of them
+        # would be inf - inf, so inf goes in as a finite stand-in and what it reaches comes back as inf)
+        big = np.finfo(float).max / 4.0
+        ds = ds.map(lambda v: v.clip(max=big))
         with warnings.catch_warnings():  # (a period and gap where no run finished: NaN, said by the NaN)
             warnings.filterwarnings("ignore", "All-NaN slice", RuntimeWarning)
             stats = ds.quantile(np.array(PERCENTILES) / 100.0, dim="record", skipna=True)
+        stats = stats.map(lambda v: xr.where(v >= big / 8.0, np.inf, v, keep_attrs=True))
         return stats.assign_coords(quantile=list(PERCENTILES)).rename(quantile="percentile")
 
     def to_dataframe(self) -> pd.DataFrame:

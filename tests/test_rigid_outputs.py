@@ -1,0 +1,68 @@
+"""What the protocols and the command line report of rigid stops (issue 51): an impact is an impulse, so its
+force and the acceleration of the mass it strikes are unbounded (inf), never the finite peaks between
+impacts; the displacements, counts and speeds are exact."""
+
+from __future__ import annotations
+
+import warnings
+from pathlib import Path
+
+import numpy as np
+from typer.testing import CliRunner
+
+import pounding
+from pounding.cli import app
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _spectrum(bumper, gaps_m, structure=None) -> pounding.PoundingSpectrum:
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # (a rigid stop far off: a gap past the plausible)
+        return pounding.pounding_spectrum(pounding.records.el_centro(), [1.0, 2.0], gaps_m=gaps_m,
+                                          bumper=bumper, structure=structure)
+
+
+def test_a_spectrum_with_rigid_stops_reports_unbounded_accelerations_and_forces_where_they_struck():
+    sp = _spectrum(pounding.RigidStop(0.7), [0.02, 0.3])
+    ds = sp.data
+    hit = ds["impacts"] > 0
+    assert bool(hit.sel(gap_m=0.02).all()) and not bool(hit.sel(gap_m=0.3).any())  # (0.14 m free at most)
+    for name in ("acc_max_g", "impact_force_max_n", "amplification"):
+        assert bool(np.isinf(ds[name].where(hit)).sum() == hit.sum()), name
+        assert bool(np.isfinite(ds[name].where(~hit, 0.0)).all()), name
+    # no impact: the free run's acceleration; a rigid stop holds the mass within its gap exactly
+    np.testing.assert_array_equal(ds["acc_max_g"].sel(gap_m=0.3), ds["acc_max_free_g"])
+    assert bool((ds["disp_max_m"].sel(gap_m=0.02) <= 0.02 * (1 + 1e-12)).all())
+    # the median over the records is inf too (an interpolation between infs would give NaN)
+    assert bool(np.isinf(sp.summary()["amplification"].sel(percentile=50.0, gap_m=0.02)).all())
+
+
+def test_a_building_struck_at_its_base_by_a_rigid_moat_wall_keeps_its_top_floor_s_finite_acceleration():
+    iso = pounding.Isolator(slopes=[2.0e5], damping=2.0e3)
+    storey = pounding.Storey(1.0e4, 4.0e6, 2.0e4, height_m=3.0)
+    wall = pounding.Wall(0, 0.05, 0.05, pounding.RigidStop(0.5))
+    building = pounding.Structure(1.0e4, iso, [storey], [wall])
+    ds = _spectrum(None, [0.02], structure=building).data
+    hit = (ds["impacts"] > 0).values
+    assert hit.any()
+    for name in ("acc_max_g", "impact_force_max_n"):
+        assert np.isinf(ds[name].values[hit]).all()
+    assert np.isfinite(ds["top_acc_max_g"].values).all()  # (the top floor is not struck: its peak is finite)
+    soft = pounding.Wall(0, 0.05, 0.05, pounding.KelvinVoigt(1e8, 1e5))
+    ds = _spectrum(None, [0.02], structure=pounding.Structure(1.0e4, iso, [storey], [soft])).data
+    assert np.isfinite(ds["acc_max_g"].values).all() and np.isfinite(ds["impact_force_max_n"].values).all()
+
+
+def test_simulate_says_the_rigid_impacts_are_impulses_and_keeps_holds_apart(tmp_path):
+    text = (ROOT / "examples" / "paper_printed_ybs.toml").read_text()
+    law = text[text.index("[bumpers.law]"):]
+    path = tmp_path / "rigid.toml"
+    path.write_text(text.replace(law, '[bumpers.law]\ntype = "rigid"\nrestitution = 0.7\n'))
+    args = ["simulate", str(path), "--a-g", "0.1", "--freq", "2.0", "--duration", "10"]
+    result = CliRunner().invoke(app, args)
+    assert result.exit_code == 0, result.output
+    out = " ".join(result.output.split())
+    assert "inf at the rigid impacts (impulses); 0.1" in out and "40 rigid impacts" in out
+    assert "max peak force [kN] │ inf" in out
+    assert "mean contact time" not in out  # (no hold: the table lets go before a chatter accumulates)
