@@ -66,7 +66,8 @@ bool Sticking::build(const System& sy, const double* st) {
         const Contact& ct = sy.contact[static_cast<size_t>(c)];
         tree = sets.join(ct.i, node(ct, n)) && tree;
     }
-    std::vector<int> root_grp(static_cast<size_t>(n + 1), -1);
+    std::vector<int>& root_grp = roots;  // (scratch kept between builds: no allocation a build)
+    root_grp.assign(static_cast<size_t>(n + 1), -1);
     auto group_of_root = [&](int r) {
         if (root_grp[static_cast<size_t>(r)] < 0) {
             root_grp[static_cast<size_t>(r)] = ngrp++;
@@ -91,7 +92,7 @@ bool Sticking::build(const System& sy, const double* st) {
     // its first end's (+1), unless another held stop ties those to the ground, then its second end's (-1)
     const int nh = static_cast<int>(held.size());
     side.assign(static_cast<size_t>(nh * n), 0);
-    std::vector<int> stack;
+    std::vector<int>& stack = stack_;
     for (int h = 0; h < nh; ++h) {
         char* s = &side[static_cast<size_t>(h * n)];
         const Contact& own = sy.contact[static_cast<size_t>(held[static_cast<size_t>(h)])];

@@ -26,6 +26,8 @@ struct Sticking {
                                 // second's (when the first's is held to the ground), 0 neither
     std::vector<int> held_of;   // per contact: its index in held, -1 when not held
     std::vector<int> up;        // (scratch: the union-find's parents)
+    std::vector<int> roots;     // (scratch: each root's group)
+    std::vector<int> stack_;    // (scratch: the walk over the held stops)
     // the groups of the rigid stops in contact in the state (st[in] != 0); false when they close a loop
     bool build(const System& sy, const double* st);
     // the accelerations a (n) with the held stops, from those without them (in place)
