@@ -74,3 +74,31 @@ def test_a_deformable_bumper_s_grazing_scales_with_the_power_its_force_starts_wi
     assert bif.located and abs(bif.value - closed.freq_hz) < 1e-7  # (tol 1e-10 of the 5 m length scale)
     assert abs(bif.scaling_exponent - exponent) < 5e-3  # (measured: 1.50010, 1.00195)
     assert not [b for b in branch.bifurcations if abs(b.value - bif.value) < 1e-4 and b is not bif]
+
+
+def test_a_branch_that_turns_at_the_grazing_reports_the_grazing_and_its_fold_where_the_closed_form_has_them():
+    """In a_g at 1.3 Hz the orbit past the grazing lies back on the clear side (the normal form's beta < 0: a
+    non-smooth fold): the grazing, and the fold it makes, at the a_g where the linear response's amplitude is
+    the gap; the impacting branch then turns again at a smooth fold of its own."""
+    osc = _oscillator(pounding.RigidStop(E))
+    branch = pounding.continuation(osc, (0.005, 0.1), 1.3, parameter="a_g")
+    assert branch.status == Status.SUCCESS, branch.message
+    big = 2.0 * math.pi * 1.3
+    closed = D * abs(complex(W * W - big * big, 2.0 * ZETA * W * big)) / 9.81
+    kinds = [(b.kind, b.located) for b in branch.bifurcations]
+    assert kinds == [("grazing", True), ("fold", True), ("fold", True)], kinds
+    graze, turn, smooth = branch.bifurcations
+    assert abs(graze.value - closed) < 1e-9 * closed and turn.value == graze.value
+    assert abs(graze.scaling_exponent - 0.5) < 1e-5 and smooth.value < graze.value
+
+
+@pytest.mark.parametrize("e", [0.0, 1.0])
+def test_no_period_doubling_is_reported_where_the_multipliers_jump_at_a_grazing(e):
+    """Past a rigid stop's grazing the impacting orbit's multipliers are unbounded (as one over its impact
+    speed), below -1 at once: the count of those past -1 changes at the grazing, with no crossing of -1."""
+    branch = pounding.continuation(_oscillator(pounding.RigidStop(e)), A / 9.81, (4.0, 2.5))
+    assert branch.status == Status.SUCCESS, branch.message
+    assert [b.kind for b in branch.bifurcations] == ["grazing"]
+    assert abs(branch.bifurcations[0].value - grazing(W, ZETA, A, D, e, 0.0, 2.5, 3.5).freq_hz) < 1e-7
+    past = branch.data[branch.data["freq_hz"] < branch.bifurcations[0].value - 1e-3]
+    assert (past["max_abs_multiplier"] > 1.0).all()  # (unstable all the way down to 2.5 Hz)

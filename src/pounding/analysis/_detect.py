@@ -84,13 +84,20 @@ def other_direction(fl: "Follower", pt: Point, own: np.ndarray) -> np.ndarray:
     u = best - (best @ own) * own
     return u / np.linalg.norm(u)
 
-def detect(fl: "Follower", a: Point, b: Point, ds: float) -> None:
+def detect(fl: "Follower", a: Point, b: Point, ds: float, known: str = "") -> None:
+    """The bifurcations between ``a`` and ``b``, located and recorded (``known``: a grazing crossed by
+    its normal form, recorded already with the fold it makes when the branch turns there).  Across a
+    grazing the multipliers jump (the map is not smooth there: unbounded on a rigid stop's impacting
+    side), so a change in the count of those past -1 or outside the unit circle on that step is no
+    period-doubling or Neimark-Sacker point, and is not reported."""
     ta, tb = tests_at(fl, a), tests_at(fl, b)
     found = []
-    grazes = any(name.startswith("grazing") and va * tb[name] < 0.0 for name, va in ta.items())
+    grazes = bool(known) or any(name.startswith("grazing") and va * tb[name] < 0.0 for name, va in ta.items())
     for name, va in ta.items():
         vb = tb[name]
         counted = name in ("period-doubling", "neimark-sacker")
+        if name == known or (counted and grazes) or (known and name == "fold"):
+            continue  # (crossed by the normal form: a turn there is the grazing's own, recorded with it)
         if name.startswith("grazing") and va * vb < 0.0:
             side = name.partition(" ")[2]
             got = locate_grazing(fl, a, b, side)
@@ -115,20 +122,20 @@ def detect(fl: "Follower", a: Point, b: Point, ds: float) -> None:
             if pt is None:
                 continue
             ok = abs(fn(pt)) <= 1e-8 or (counted and fl.bracket <= 1e-9 * ds)
-            if counted and grazes and not ok:
-                continue  # (the multipliers jump at the grazing, where the map is not smooth: no crossing)
             found.append((fl._s(a, pt), name, pt, ok))
-    grazings = [pt.p for _, name, pt, ok in found if name.startswith("grazing") and ok]
     for _, name, pt, ok in sorted(found, key=lambda item: item[0]):
         kind, _, side = name.partition(" ")
-        if kind in ("period-doubling", "neimark-sacker") and any(
-                abs(pt.p - p) <= 1e-6 * fl.fam.p_scale for p in grazings):
-            continue  # (the multipliers jump at the grazing, where the map is not smooth: no crossing)
-        bif = bifurcation_at(fl, kind, side, pt, ok)
-        if kind == "grazing" and ok:
-            gamma, term = map_scaling(fl, pt, side, side in fl.fam.shooter(pt.p).rigid_sides())
-            bif = replace(bif, scaling_exponent=gamma, scaling_term=term)
-        fl.bifs.append(bif)
+        fl.bifs.append(grazing_at(fl, pt, side, ok) if kind == "grazing"
+                       else bifurcation_at(fl, kind, side, pt, ok))
+
+
+def grazing_at(fl: "Follower", pt: Point, side: str, located: bool = True) -> Bifurcation:
+    """The grazing of ``side`` at the clear orbit ``pt``, with the map's scaling there when located."""
+    bif = bifurcation_at(fl, "grazing", side, pt, located)
+    if not located:
+        return bif
+    gamma, term = map_scaling(fl, pt, side, side in fl.fam.shooter(pt.p).rigid_sides())
+    return replace(bif, scaling_exponent=gamma, scaling_term=term)
 
 def locate(fl: "Follower", a: Point, ds: float, fn: Callable[[Point], float], b: Point) -> Optional[Point]:
     """Illinois regula falsi on the step length for the zero of ``fn`` between ``a`` (0) and ``b`` (ds);

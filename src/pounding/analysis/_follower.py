@@ -15,7 +15,7 @@ from .._errors import InputError, Problem, Status
 from ._arclength import Closure, Family, Point, system_at
 from .branch import COLUMNS, Bifurcation, Branch
 from .periodic import _Failed
-from ._detect import branch_point, detect, locate, other_direction
+from ._detect import bifurcation_at, branch_point, detect, grazing_at, locate, other_direction
 from ._grazing import cross, impacts_barely
 
 
@@ -188,8 +188,13 @@ class Follower:
         got = cross(self, a)
         if got is None:
             return False
-        b, ds = got
-        detect(self, a, b, ds)
+        b, ds, graze, side = got
+        # (the grazing located there, reported as such: past a non-smooth fold b lies back on the clear
+        # side of it in the parameter, where no secant would find it again)
+        self.bifs.append(grazing_at(self, graze, side))
+        if (b.p - graze.p) * (a.p - graze.p) > 0.0:  # (b back on a's side: the branch turned at the grazing)
+            self.bifs.append(bifurcation_at(self, "fold", "", graze, True))
+        detect(self, a, b, ds, known=f"grazing {side}")
         self._append(b, ds)
         return True
 

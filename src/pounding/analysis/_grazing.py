@@ -92,7 +92,7 @@ def impacts_barely(fl: "Follower", pt: Point) -> bool:
     return any(-1e-3 * size < tests[s] < 0.0 for s in sh.rigid_sides() if s in tests)
 
 
-def cross(fl: "Follower", a: Point) -> Optional[tuple[Point, float]]:
+def cross(fl: "Follower", a: Point) -> Optional[tuple[Point, float, Point, str]]:
     """From the clear orbit ``a`` next to a grazing that the follower's steps cannot pass (the map's
     derivative is infinite there): the grazing located (:func:`_secant` from the branch's last two
     points), and the orbit past it, Newton's from the prediction of the map's normal form
@@ -105,7 +105,7 @@ def cross(fl: "Follower", a: Point) -> Optional[tuple[Point, float]]:
     ``y = y_c + (I - M)^-1 c w``.  (``P_p`` is not taken from the grazing orbit's linearization: its
     difference in p straddles the grazing.)  ``beta > 0``: the impacting branch goes on past the grazing;
     ``beta < 0``: it turns back there (a non-smooth fold), on the clear side.  ``(orbit, arclength
-    from a)``, or None where none was found."""
+    from a, the grazing orbit, its side)``, or None where none was found."""
     fam = fl.fam
     if len(fl.points) < 2 or fl.points[-1] is not a:
         return None
@@ -126,8 +126,10 @@ def cross(fl: "Follower", a: Point) -> Optional[tuple[Point, float]]:
     gamma, term, grad = _scaling(fl, g, side, True)
     if term.size == 0:
         return None
-    slope = (_test(fl, a, side) - _test(fl, g, side)) * fam.length_m / (a.p - g.p)  # dC/dp, m per unit
-    drift = (fam.coords(a.vec) - fam.coords(g.vec)) / (a.p - g.p)  # dy_c/dp
+    # dC/dp (m per unit) and dy_c/dp along the clear branch: from the branch's previous point, not a
+    # (a and g are both within tol of the grazing, so their difference would be rounding)
+    slope = (_test(fl, prev, side) - _test(fl, g, side)) * fam.length_m / (prev.p - g.p)
+    drift = (fam.coords(prev.vec) - fam.coords(g.vec)) / (prev.p - g.p)
     r = g.free.size
     try:
         lift = np.linalg.lstsq(g.emb, term, rcond=None)[0]  # (the term in the free coordinates)
@@ -164,7 +166,7 @@ def cross(fl: "Follower", a: Point) -> Optional[tuple[Point, float]]:
     secant = np.append((fam.coords(best.vec) - fam.coords(g.vec)) / fam.scales, (best.p - g.p) / fam.p_scale)
     secant /= np.linalg.norm(secant)
     best.tau_x, best.tau_q = fam.tangent(best, secant[:-1], secant[-1])
-    return best, abs(fl._s(a, best))
+    return best, abs(fl._s(a, best)), g, side
 
 
 def _past(fl: "Follower", vec: np.ndarray, p: float, side: str, max_iter: int = 80) -> Optional[Point]:

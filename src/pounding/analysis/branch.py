@@ -87,8 +87,8 @@ class Bifurcation:
         For a located grazing, ``c``: the map's singular part over ``delta ** gamma`` (``gamma`` 1/2 at
         a rigid stop, else the measured one to the nearest half), in the state coordinates of
         ``direction`` (their units per m^gamma); empty otherwise.  At a rigid stop it is the impact's
-        velocity jump ``-(1 + e) sqrt(2 a_n delta)`` (``a_n`` the acceleration away from the stop at the
-        touch) carried to the section by the flow.
+        velocity jump over ``sqrt(delta)``, ``-(1 + e) sqrt(2 a_n)`` (``a_n`` the acceleration away from
+        the stop at the touch), carried to the section by the flow.
 
     Examples
     --------

@@ -10,7 +10,6 @@ from rich.markup import escape
 
 from .._errors import Interrupted
 from .._io import atomic_write, interrupts_deferred
-from ..engine.structure_peaks import impulses
 from ._app import (
     working,
     one_mass_options,
@@ -109,6 +108,8 @@ def simulate(
     table, add_row = kv_table(f"{what}, {run.final_state.time_s:g} s", system_file or preset)
     add_row("status", run.message)
     add_row("D max / min [mm]", f"{run.displacement_max * 1e3:.4f} / {run.displacement_min * 1e3:.4f}")
+    from ..engine.structure_peaks import impulses  # (here: the help imports no engine)
+
     rigid = int(impulses(run.contact_table).sum())  # (a rigid stop's impacts: impulses, no force)
     between = "inf at the rigid impacts (impulses); {} between them" if rigid else "{}"
     add_row("max |abs. acceleration| [g]", between.format(f"{run.abs_acceleration_max / exc.g:.4f}"))

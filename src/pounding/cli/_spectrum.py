@@ -121,9 +121,12 @@ def spectrum(
     stats = result.summary()["amplification"].sel(percentile=50.0)
     worst = stats.where(np.isfinite(stats), -np.inf).argmax(dim=("period_s", "gap_m"))
     at = {k: float(stats[k][int(v)]) for k, v in worst.items()}
+    unbounded = int(np.isinf(stats).sum())  # (a rigid stop struck: an impulse's acceleration)
+    largest = (f"unbounded (inf: a rigid stop's impulses) at {unbounded} of {stats.size} periods and gaps"
+               if unbounded else f"{float(stats.max()):.3g} at T = {at['period_s']:g} s, gap "
+               f"{at['gap_m'] * 1e3:g} mm")
     console.print(f"{len(recs)} record(s) x {len(periods_s)} periods x {len(gaps_m)} gaps: the largest "
-                  f"median amplification by pounding {float(stats.max()):.3g} at T = {at['period_s']:g} s, "
-                  f"gap {at['gap_m'] * 1e3:g} mm; files -> {out}")
+                  f"median amplification by pounding {largest}; files -> {out}")
     if not complete or held:
         interrupted(f"the finished runs are in {out} (NaN where a run did not finish)")
 

@@ -107,13 +107,16 @@ class PoundingSpectrum:
                 "amplification", "disp_ratio") else hit_ok
             ds[name] = ds[name].where(ok)
         # (a rigid stop's impacts: an acceleration and force of inf; the interpolation between two of them
-        # would be inf - inf, so inf goes in as a finite stand-in and what it reaches comes back as inf)
+        # would be inf - inf, so inf goes in as a finite stand-in, and a percentile above every finite value
+        # of its period and gap, which only the stand-in can give, comes back as inf)
         big = np.finfo(float).max / 4.0
+        finite_max = ds.map(lambda v: v.where(np.isfinite(v)).max("record", skipna=True).fillna(-np.inf))
         ds = ds.map(lambda v: v.clip(max=big))
         with warnings.catch_warnings():  # (a period and gap where no run finished: NaN, said by the NaN)
             warnings.filterwarnings("ignore", "All-NaN slice", RuntimeWarning)
             stats = ds.quantile(np.array(PERCENTILES) / 100.0, dim="record", skipna=True)
-        stats = stats.map(lambda v: xr.where(v >= big / 8.0, np.inf, v, keep_attrs=True))
+        stats = xr.Dataset({name: xr.where(v > finite_max[name], np.inf, v, keep_attrs=True)
+                            for name, v in stats.data_vars.items()}, attrs=stats.attrs)
         return stats.assign_coords(quantile=list(PERCENTILES)).rename(quantile="percentile")
 
     def to_dataframe(self) -> pd.DataFrame:
