@@ -66,3 +66,17 @@ def test_simulate_says_the_rigid_impacts_are_impulses_and_keeps_holds_apart(tmp_
     assert "inf at the rigid impacts (impulses); 0.1" in out and "40 rigid impacts" in out
     assert "max peak force [kN] │ inf" in out
     assert "mean contact time" not in out  # (no hold: the table lets go before a chatter accumulates)
+
+
+def test_percentiles_over_records_keep_inf_and_equal_numpy_s_on_finite_values():
+    from pounding._tables import percentiles
+
+    rng = np.random.default_rng(3)
+    finite = rng.uniform(0.0, 1.0, (5, 7))
+    np.testing.assert_array_equal(percentiles(finite, (16.0, 50.0, 84.0), axis=1),
+                                  np.percentile(finite, (16.0, 50.0, 84.0), axis=1))
+    # between two finite values: interpolated; reaching an inf: inf (NumPy's gives NaN there); NaN left out
+    got = percentiles(np.array([[1.0, 2.0, np.inf, np.inf, np.nan]]), (16.0, 50.0, 84.0), axis=1)[:, 0]
+    np.testing.assert_allclose(got[0], 1.48, rtol=1e-15)
+    assert np.isinf(got[1:]).all()
+    assert np.isnan(percentiles(np.full((1, 3), np.nan), 50.0, axis=1)).all()

@@ -22,3 +22,22 @@ def frame_to_xarray(df: Any, dim: str, attrs: dict | None = None, index: str | N
 def xarray_to_frame(ds: Any) -> Any:
     """A Dataset as a long table: one row per point of its dimensions, their coordinates as columns."""
     return ds.to_dataframe().reset_index()
+
+
+def percentiles(values: Any, qs: Any, axis: int = -1) -> Any:
+    """The percentiles ``qs`` (0-100) of ``values`` along ``axis``, NaN left out, inf kept (a rigid stop's
+    impulse: an unbounded acceleration or force).  Shape: ``qs``'s, then ``values``' without ``axis``.
+
+    NumPy's interpolation between two infs gives inf - inf = NaN, so inf goes in as a finite stand-in and a
+    percentile above every finite value of its slice, which only the stand-in can give, comes back as inf."""
+    import warnings
+
+    import numpy as np
+
+    v = np.asarray(values, dtype=float)
+    big = np.finfo(float).max / 4.0
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # (a slice with no value: NaN, said by the NaN)
+        finite_max = np.nanmax(np.where(np.isfinite(v), v, np.nan), axis=axis)
+        out = np.nanpercentile(np.minimum(v, big), qs, axis=axis)
+    return np.where(out > np.where(np.isnan(finite_max), -np.inf, finite_max), np.inf, out)

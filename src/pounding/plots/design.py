@@ -6,6 +6,7 @@ from typing import Any
 
 import numpy as np
 
+from .._tables import percentiles
 from ._legend import place_legend
 
 
@@ -419,7 +420,6 @@ def plot_responses(analysis: Any, quantity: str = "acc_max_g", ax: Any = None) -
     >>> len(pounding.plots.plot_responses(msa, "acc_max_g"))  # 2 gaps: line, band
     4
     """
-    import warnings
 
     from .._errors import InputError, Problem
 
@@ -440,10 +440,7 @@ def plot_responses(analysis: Any, quantity: str = "acc_max_g", ax: Any = None) -
     for i in range(ds.sizes[first] if first else 1):
         sel = {**fixed, **({first: i} if first else {})}
         v = values.isel(sel).transpose("sa_g", "record").values
-        with warnings.catch_warnings():
-            warnings.simplefilter("ignore", RuntimeWarning)  # (a stripe with no finished run: NaN)
-            mid = np.nanmedian(v, axis=1)
-            lo, hi = np.nanpercentile(v, 16, axis=1), np.nanpercentile(v, 84, axis=1)
+        mid, lo, hi = percentiles(v, (50.0, 16.0, 84.0), axis=1)  # (a stripe with no finished run: NaN)
         label = (f"{first} = {float(ds[first].values[i]):g} {analysis.unit(first)}".rstrip(" -") if first
                  else quantity)
         (ln,) = ax.plot(x, mid, "o-", ms=3, label=label)

@@ -2,13 +2,14 @@
 
 from __future__ import annotations
 
-import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 import pandas as pd
+
+from .._tables import percentiles
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
@@ -106,18 +107,10 @@ class PoundingSpectrum:
             ok = free_ok if "gap_m" not in ds[name].dims else hit_ok & free_ok if name in (
                 "amplification", "disp_ratio") else hit_ok
             ds[name] = ds[name].where(ok)
-        # (a rigid stop's impacts: an acceleration and force of inf; the interpolation between two of them
-        # would be inf - inf, so inf goes in as a finite stand-in, and a percentile above every finite value
-        # of its period and gap, which only the stand-in can give, comes back as inf)
-        big = np.finfo(float).max / 4.0
-        finite_max = ds.map(lambda v: v.where(np.isfinite(v)).max("record", skipna=True).fillna(-np.inf))
-        ds = ds.map(lambda v: v.clip(max=big))
-        with warnings.catch_warnings():  # (a period and gap where no run finished: NaN, said by the NaN)
-            warnings.filterwarnings("ignore", "All-NaN slice", RuntimeWarning)
-            stats = ds.quantile(np.array(PERCENTILES) / 100.0, dim="record", skipna=True)
-        stats = xr.Dataset({name: xr.where(v > finite_max[name], np.inf, v, keep_attrs=True)
-                            for name, v in stats.data_vars.items()}, attrs=stats.attrs)
-        return stats.assign_coords(quantile=list(PERCENTILES)).rename(quantile="percentile")
+        # (inf kept: a rigid stop's impulses; _tables.percentiles)
+        stats = xr.apply_ufunc(lambda v: np.moveaxis(percentiles(v, list(PERCENTILES), axis=-1), 0, -1), ds,
+                               input_core_dims=[["record"]], output_core_dims=[["percentile"]])
+        return stats.assign_coords(percentile=list(PERCENTILES)).transpose("percentile", ...)
 
     def to_dataframe(self) -> pd.DataFrame:
         """One row per record, period and gap, every quantity a column (the free-run ones repeated)."""
