@@ -88,15 +88,16 @@ def detect(fl: "Follower", a: Point, b: Point, ds: float, known: str = "") -> No
     """The bifurcations between ``a`` and ``b``, located and recorded (``known``: a grazing crossed by
     its normal form, recorded already with the fold it makes when the branch turns there).  Across a
     grazing the multipliers jump (the map is not smooth there: unbounded on a rigid stop's impacting
-    side), so a change in the count of those past -1 or outside the unit circle on that step is no
-    period-doubling or Neimark-Sacker point, and is not reported."""
+    side), so a change in the count of those past -1 or outside the unit circle on that step is reported
+    only where a multiplier is on the circle at its located point (a crossing just past the grazing, as a
+    soft stop's can have), not where the count jumped at the grazing."""
     ta, tb = tests_at(fl, a), tests_at(fl, b)
     found = []
     grazes = bool(known) or any(name.startswith("grazing") and va * tb[name] < 0.0 for name, va in ta.items())
     for name, va in ta.items():
         vb = tb[name]
         counted = name in ("period-doubling", "neimark-sacker")
-        if name == known or (counted and grazes) or (known and name == "fold"):
+        if name == known or (known and name == "fold"):
             continue  # (crossed by the normal form: a turn there is the grazing's own, recorded with it)
         if name.startswith("grazing") and va * vb < 0.0:
             side = name.partition(" ")[2]
@@ -122,6 +123,8 @@ def detect(fl: "Follower", a: Point, b: Point, ds: float, known: str = "") -> No
             if pt is None:
                 continue
             ok = abs(fn(pt)) <= 1e-8 or (counted and fl.bracket <= 1e-9 * ds)
+            if counted and grazes and not (ok and _on_the_circle(pt.mult, name)):
+                continue  # (the count jumped at the grazing: no multiplier there is -1 or on the circle)
             found.append((fl._s(a, pt), name, pt, ok))
     for _, name, pt, ok in sorted(found, key=lambda item: item[0]):
         kind, _, side = name.partition(" ")
@@ -189,6 +192,16 @@ def bifurcation_at(fl: "Follower", kind: str, side: str, pt: Point, located: boo
                        fam.parameter)
 
 # ---- the result
+
+
+def _on_the_circle(mult: np.ndarray, name: str) -> bool:
+    """Whether a multiplier at a located count change crosses the unit circle there (a real one at -1 for
+    a period-doubling, a complex pair of modulus 1 for a Neimark-Sacker point) to 1e-3, rather than
+    jumping past it (at a grazing)."""
+    real_ = np.abs(mult.imag) <= 1e-9 * np.maximum(np.abs(mult), 1e-300)
+    if name == "period-doubling":
+        return bool(np.any(real_ & (np.abs(mult.real + 1.0) <= 1e-3)))
+    return bool(np.any(~real_ & (np.abs(np.abs(mult) - 1.0) <= 1e-3)))
 
 
 def _crossing(mult: np.ndarray) -> float:
