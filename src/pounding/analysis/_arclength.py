@@ -132,6 +132,10 @@ class Family:
     def coords(self, vec: np.ndarray) -> np.ndarray:
         return self._ref.coords(vec)
 
+    def orbit_size(self, run: Run) -> float:
+        """The orbit's size, m: its largest extent from rest (displacement or compression)."""
+        return max(abs(x) for x in self._ref.extent(run))
+
     # ------------------------------------------------------------------ pieces
     def image(self, vec: np.ndarray, p: float, a_g: Optional[float] = None) -> tuple[np.ndarray, Run]:
         """``(x of P(vec; p), the run)``; raises _Failed where the engine cannot run it."""

@@ -247,7 +247,7 @@ class Follower:
         """Grow the length scale with the orbits (a resonance peak 30 times the first orbit
         would otherwise take the steps' whole length), the last tangent renormalised."""
         b, fam = self.points[-1], self.fam
-        size = max(abs(x) for x in fam._ref.extent(b.run))
+        size = fam.orbit_size(b.run)
         if size <= 2.0 * fam.length_m:
             return
         old = fam.scales.copy()

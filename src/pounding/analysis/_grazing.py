@@ -87,7 +87,7 @@ def impacts_barely(fl: "Follower", pt: Point) -> bool:
     nothing (Newton's reach there is the orbit's depth past the grazing)."""
     fam = fl.fam
     sh = fam.shooter(pt.p)
-    size = max(abs(x) for x in fam._ref.extent(pt.run))
+    size = fam.orbit_size(pt.run)
     tests = sh.clearances(pt.run)
     return any(-1e-3 * size < tests[s] < 0.0 for s in sh.rigid_sides() if s in tests)
 
@@ -115,7 +115,7 @@ def cross(fl: "Follower", a: Point) -> Optional[tuple[Point, float, Point, str]]
     if not near:
         return None
     side = min(near, key=tests.get)
-    size = max(abs(x) for x in fam._ref.extent(a.run))
+    size = fam.orbit_size(a.run)
     if side not in sh.rigid_sides() or tests[side] * fam.length_m > 1e-3 * size:
         return None  # (no rigid stop's grazing next to a: the steps failed for another reason)
     prev = fl.points[-2]
@@ -221,7 +221,7 @@ def _scaling(fl: "Follower", pt: Point, side: str, rigid: bool) -> tuple[float, 
     fam = fl.fam
     sh = fam.shooter(pt.p)
     vec, n = pt.vec, fam.n
-    size = max(abs(x) for x in fam._ref.extent(pt.run))
+    size = fam.orbit_size(pt.run)
 
     def clearance(v: np.ndarray) -> float:
         return sh.clearances(fam.image(v, pt.p)[1])[side]
