@@ -343,6 +343,64 @@ void poly_deriv(const Poly& q, Poly& out) {
     for (int k = 1; k <= q.deg; ++k) out.c[k - 1] = k * q.c[k];
 }
 
+namespace {
+// linear_integrals for one mass that is not held, both ends at once: scalars, and int v^2 once for the
+// viscous loss and the contacts'
+void one_mass_integrals(const Phase& ph, int order, double c, double m, double tau, const double* y0,
+                        const double* a0, double s0, double c0, const double* y1, const double* a1, double s1,
+                        double c1, bool energy, double& vcv, double& gv, double* du, double* dvv) {
+    double g0[HERMITE_ORDER + 1], g1[HERMITE_ORDER + 1];
+    double D0[HERMITE_ORDER + 2], D1[HERMITE_ORDER + 2];
+    table_derivatives(ph, 0.0, s0, c0, order, g0);
+    table_derivatives(ph, tau, s1, c1, order, g1);
+    const double kk = ph.K[0], cc = ph.C[0], mi = ph.minv[0];
+    D0[0] = y0[0];
+    D0[1] = y0[1];
+    D0[2] = a0[0];
+    D1[0] = y1[0];
+    D1[1] = y1[1];
+    D1[2] = a1[0];
+    for (int k = 1; k + 2 <= order + 1; ++k) {
+        D0[k + 2] = -(mi * (kk * D0[k] + cc * D0[k + 1])) - g0[k];
+        D1[k + 2] = -(mi * (kk * D1[k] + cc * D1[k + 1])) - g1[k];
+    }
+    // sum_k c_k T^(k+1) (f^(k)(0) + (-1)^k f^(k)(T)) for f = v^2, a_g v, x
+    double s_vv = 0.0, s_gv = 0.0, s_u = 0.0;
+    const double* hc = HERMITE.c[order];
+    double t = tau;
+    for (int k = 0; k <= order; ++k) {
+        const double sg = (k & 1) ? -1.0 : 1.0;
+        const double q = hc[k] * t;
+        t *= tau;
+        double f0 = 0.0, f1 = 0.0;
+        for (int j = 0; j <= k / 2; ++j) {
+            f0 += SYM[k][j] * (D0[j + 1] * D0[k - j + 1]);
+            f1 += SYM[k][j] * (D1[j + 1] * D1[k - j + 1]);
+        }
+        s_vv += q * (f0 + sg * f1);
+        s_u += q * (D0[k] + sg * D1[k]);
+        if (energy) {
+            double e0 = 0.0, e1 = 0.0;
+            for (int j = 0; j <= k; ++j) {
+                e0 += BINOM[k][j] * (g0[j] * D0[k - j + 1]);
+                e1 += BINOM[k][j] * (g1[j] * D1[k - j + 1]);
+            }
+            s_gv += q * (e0 + sg * e1);
+        }
+    }
+    if (energy) {
+        vcv = c * s_vv;
+        gv = m * s_gv;
+    }
+    for (int k = 0; k < ph.nc; ++k) {  // the contacts in contact with a linear law (the mass against the ground)
+        const ContactPhase& ct = ph.ct[static_cast<size_t>(k)];
+        if (!ct.in || ct.nl) continue;
+        du[k] = s_u;
+        dvv[k] = s_vv;
+    }
+}
+}  // namespace
+
 void linear_integrals(Phase& ph, const std::vector<double>& c_lin, const std::vector<double>& mass, double tau,
                       const double* y0, const double* a0, double s0, double c0, const double* y1, const double* a1,
                       double s1, double c1, bool energy, double& vcv, double& gv, double* du, double* dvv) {
@@ -357,6 +415,10 @@ void linear_integrals(Phase& ph, const std::vector<double>& c_lin, const std::ve
     }
     // (the integrands' fastest rate: a product of two motions, each at most the phase's or the forcing's)
     const int order = hermite_order(2.0 * std::max(ph.rate, std::abs(ph.w)) * tau);
+    if (n == 1 && !ph.stk.any) {
+        one_mass_integrals(ph, order, c_lin[0], mass[0], tau, y0, a0, s0, c0, y1, a1, s1, c1, energy, vcv, gv, du, dvv);
+        return;
+    }
     table_derivatives(ph, 0.0, s0, c0, order, g);
     end_derivatives(ph, order, y0, a0, g, D);
     hermite_end(ph, order, c_lin, mass, D, g, tau, 1.0, energy, vcv, gv, du, dvv);
