@@ -308,34 +308,35 @@ double find_root(const Fn& fn, Phase& ph, double xa, double xb, double fa, doubl
     return brent(fn, ph, xa, xb, fa, fb, xtol);
 }
 
+namespace {
+// the kind of event function event_fn makes
+int event_fn_kind(const EventRow& e, const Phase& ph) {
+    if (ph.numeric || e.kind == KIND_ZETA) return FN_EVENT;
+    if (e.kind == KIND_LINEAR && e.action == ACT_CONTACT && slot(ph, e.side).def0 > 0.0) return FN_POLY_RELAX;
+    return FN_POLY;
+}
+}  // namespace
+
 void event_fn(const EventRow* evs, int i, Phase& ph, Fn& fn) {
     const EventRow& e = evs[i];
     fn.evs = evs;
     fn.idx = i;
     fn.i = e.i;
     fn.j = e.j;
-    if (ph.numeric || e.kind == KIND_ZETA) {
-        fn.kind = FN_EVENT;
-        return;
-    }
+    fn.kind = event_fn_kind(e, ph);
+    if (fn.kind == FN_EVENT) return;
     if (e.kind == KIND_HELD) {  // a held rigid stop's force: a polynomial of the series
         held_force_poly(ph, e.side, fn.q);
-        fn.kind = FN_POLY;
         return;
     }
     if (e.kind == KIND_LINEAR) {
         pair_poly(ph, e.i, e.j, e.alpha, e.beta, e.gamma, 0.0, fn.q);
-        fn.kind = FN_POLY;
-        if (e.action == ACT_CONTACT && slot(ph, e.side).def0 > 0.0) {  // against a relaxing surface
-            fn.kind = FN_POLY_RELAX;
-            fn.idx = e.side;
-        }
+        if (fn.kind == FN_POLY_RELAX) fn.idx = e.side;  // (against a relaxing surface)
         return;
     }
     // a linear law's release: its branch's force kb x + rb + cb x' with x = sign (x_i - x_j) - gap
     const ContactPhase& k = slot(ph, e.side);
     pair_poly(ph, e.i, e.j, k.rb - k.kb * k.gap, k.kb * k.sign, k.cb * k.sign, 0.0, fn.q);
-    fn.kind = FN_POLY;
 }
 
 namespace {
@@ -376,7 +377,7 @@ const Phase::Zeros& velocity_zeros(Phase& ph, int i, int j) {
     const int n = ph.n;
     const double v0 = rel(ph.e_y0 + n, i, j), v1 = rel(ph.e_y1 + n, i, j);
     const double a0 = rel(ph.e_a0, i, j), a1 = rel(ph.e_a1, i, j);
-    Fn fv, fa, fx;
+    Fn fv, fa;
     const bool poly = !ph.numeric;
     auto velocity_fn = [&]() {  // (made only where a zero may be: the polynomial needs the phase's series)
         if (poly) {
@@ -413,9 +414,8 @@ const Phase::Zeros& velocity_zeros(Phase& ph, int i, int j) {
     }
     for (int k = 0; k < z.count; ++k) {  // the relative displacement there
         if (poly) {
-            pair_poly(ph, i, j, 0.0, 1.0, 0.0, 0.0, fx.q);
             ph.poly_evaluations += 1;
-            z.x[k] = poly_val(fx.q, z.t[k]);
+            z.x[k] = pair_x(ph, i, j, z.t[k]);
         } else {
             phase_eval(ph, z.t[k], ph.ye.data(), ph.ae.data());
             z.x[k] = rel(ph.ye.data(), i, j);
@@ -430,11 +430,23 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
     const bool crosses = g0 > tol0 && g1 <= 0.0;
     const bool leaves = g0 <= tol0 && g1 < -tol1;
     if (!crosses && !leaves && !(gp0 < 0.0 && gp1 > 0.0)) return -1.0;  // (at zero, moving away: nothing)
-    Fn fn;
-    event_fn(evs, i, ph, fn);
-    Fn rate;
-    rate_fn(fn, rate);
-    if (fn.kind == FN_POLY_RELAX) rate.idx = i;  // (the event's rate on the trajectory)
+    // the event's function and its rate, made when first asked for (a polynomial needs the series' terms)
+    const int kind = event_fn_kind(evs[i], ph);
+    Fn fn, rate;
+    bool made_fn = false, made_rate = false;
+    auto the_fn = [&]() -> const Fn& {
+        if (!made_fn) event_fn(evs, i, ph, fn);
+        made_fn = true;
+        return fn;
+    };
+    auto the_rate = [&]() -> const Fn& {
+        if (!made_rate) {
+            rate_fn(the_fn(), rate);
+            if (kind == FN_POLY_RELAX) rate.idx = i;  // (the event's rate on the trajectory)
+        }
+        made_rate = true;
+        return rate;
+    };
     double* y = ph.ye.data();
     double* a = ph.ae.data();
     // its minimum inside, when it falls at the start and rises at the end: (time, value, scale).  A function of
@@ -443,13 +455,13 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
     auto minimum = [&](double& tm, double& gm, double& sc) {
         const EventRow& e = evs[i];
         const Phase::Zeros& z = velocity_zeros(ph, e.i, e.j);
-        if (fn.kind == FN_POLY && e.kind == KIND_LINEAR && e.gamma == 0.0 && e.beta != 0.0 && z.count == 1 &&
+        if (kind == FN_POLY && e.kind == KIND_LINEAR && e.gamma == 0.0 && e.beta != 0.0 && z.count == 1 &&
             z.t[0] < h) {
             tm = z.t[0];
             gm = e.alpha + e.beta * z.x[0];
             sc = std::abs(e.alpha) + std::abs(e.beta * z.x[0]) + (e.side == SIDE_NONE ? 0.0 : ph.xround);
         } else {
-            tm = find_root(rate, ph, 0.0, h, gp0, gp1, NaN, NaN, xtol);
+            tm = find_root(the_rate(), ph, 0.0, h, gp0, gp1, NaN, NaN, xtol);
             phase_eval(ph, tm, y, a);
             const EventValue ev = event_value(e, ph, tm, y, a);
             gm = ev.g;
@@ -462,11 +474,11 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
         if (gp0 < 0.0 && gp1 > 0.0 && g1 >= -tol1) {
             double tm, gm, sc;
             minimum(tm, gm, sc);
-            if (gm < 0.0 && tm > 0.0) return find_root(fn, ph, 0.0, tm, g0, gm, gp0, 0.0, xtol);
+            if (gm < 0.0 && tm > 0.0) return find_root(the_fn(), ph, 0.0, tm, g0, gm, gp0, 0.0, xtol);
         }
-        return find_root(fn, ph, 0.0, h, g0, g1, gp0, gp1, xtol);
+        return find_root(the_fn(), ph, 0.0, h, g0, g1, gp0, gp1, xtol);
     }
-    if (leaves && fn.kind == FN_POLY && gp0 > 0.0 && gp1 < 0.0 && evs[i].action == ACT_CONTACT &&
+    if (leaves && kind == FN_POLY && gp0 > 0.0 && gp1 < 0.0 && evs[i].action == ACT_CONTACT &&
         law_is_rigid(slot(ph, evs[i].side).law)) {
         // a rebound off a rigid stop, rising first: where it turns (the pair's velocity zero, found once for
         // the sub-interval), then its root beyond (or there, when the rise is below the rounding)
@@ -478,11 +490,11 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
             gm = e.alpha + e.beta * z.x[0];
         } else {
             double unused;
-            tm = find_root(rate, ph, 0.0, h, gp0, gp1, NaN, NaN, xtol);
-            fn_eval(fn, ph, tm, gm, unused);
+            tm = find_root(the_rate(), ph, 0.0, h, gp0, gp1, NaN, NaN, xtol);
+            fn_eval(the_fn(), ph, tm, gm, unused);
         }
         if (gm <= tol0) return tm;
-        return find_root(fn, ph, tm, h, gm, g1, 0.0, gp1, xtol);
+        return find_root(the_fn(), ph, tm, h, gm, g1, 0.0, gp1, xtol);
     }
     if (leaves) {
         double tp = h;
@@ -490,10 +502,10 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
             tp *= 0.5;
             phase_eval(ph, tp, y, a);
             const EventValue ev = event_value(evs[i], ph, tp, y, a);
-            if (ev.g > ROUNDING * ev.scale) return find_root(fn, ph, tp, h, ev.g, g1, ev.gp, gp1, xtol);
+            if (ev.g > ROUNDING * ev.scale) return find_root(the_fn(), ph, tp, h, ev.g, g1, ev.gp, gp1, xtol);
         }
         // it first rose, by less than the rounding, and came back: where it turned
-        if (gp0 > 0.0 && gp1 < 0.0) return find_root(rate, ph, 0.0, h, gp0, gp1, NaN, NaN, xtol);
+        if (gp0 > 0.0 && gp1 < 0.0) return find_root(the_rate(), ph, 0.0, h, gp0, gp1, NaN, NaN, xtol);
         return 0.0;
     }
     if (!(gp0 < 0.0 && gp1 > 0.0)) return -1.0;
@@ -502,7 +514,7 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
     minimum(tm, gm, sc);
     if (gm >= -ROUNDING * sc) return -1.0;
     if (g0 <= tol0) return 0.0;  // it leaves the boundary on the wrong side at once
-    return find_root(fn, ph, 0.0, tm, g0, gm, gp0, 0.0, xtol);
+    return find_root(the_fn(), ph, 0.0, tm, g0, gm, gp0, 0.0, xtol);
 }
 
 int bumper_events(const double* st, const Phase& ph, const System& sy, EventRow* evs, int n) {

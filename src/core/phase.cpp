@@ -197,6 +197,44 @@ int series_terms(double r) {
     return MAX_TERMS;
 }
 
+namespace {
+// series() for one mass: scalars, the same sums
+int series_one(const Phase& ph, const double* y0, const double* r, double a0, double a1, double amp, double sp,
+               double cp, double h, double* t, int need, double scale, bool held) {
+    const double w = ph.w, kk = ph.K[0], cc = ph.C[0], mi = ph.minv[0];
+    const double phase[4] = {sp, cp, -sp, -cp};  // sin(w tau + phi)'s k-th derivative at 0, by k mod 4
+    double x = y0[0], v = y0[1];
+    double wk = 1.0;  // w^k / k!
+    double hk = 1.0;  // h^k
+    for (int k = 0;; ++k) {
+        // the table acceleration's series: a0 + a1 tau + amp sin(w tau + phi)
+        double g = amp * wk * phase[k & 3];
+        if (k == 0) g += a0;
+        if (k == 1) g += a1;
+        const double inv = INV.v[k + 1];
+        wk *= w * inv;
+        double f = mi * (kk * x + cc * v);
+        if (k == 0 && r != nullptr) f += r[0];
+        const double vn = held ? 0.0 : (-f - g) * inv;
+        const double xn = v * inv;
+        t[2 * (k + 1)] = xn;
+        t[2 * (k + 1) + 1] = vn;
+        const int m = k + 1;  // the term just computed
+        hk *= h;
+        if (m + 1 >= need) {
+            // its size and the last one's, as lengths over [0, h]: both below the tail bound, done
+            const double hp = hk / (h > 0.0 ? h : 1.0);
+            const double e_m = std::max(0.0, hk * (std::abs(xn) + h * std::abs(vn)));  // (NaN: 0, as series')
+            const double e_p = std::max(0.0, hp * (std::abs(x) + h * std::abs(v)));
+            if ((e_m <= SERIES_TAIL * scale && e_p <= 1e3 * SERIES_TAIL * scale) || m + 1 >= MAX_TERMS || h == 0.0)
+                return m + 1;
+        }
+        x = xn;
+        v = vn;
+    }
+}
+}  // namespace
+
 int series(const Phase& ph, const double* y0, const double* r, double a0, double a1, double amp, double sp,
            double cp, double h, double* t) {
     const int n = ph.n, ny = ph.ny;
@@ -208,7 +246,8 @@ int series(const Phase& ph, const double* y0, const double* r, double a0, double
     const double* K = ph.K.data();
     const double* C = ph.C.data();
     const double* minv = ph.minv.data();
-    const bool held = ph.stk.any;  // (one mass held: it does not move)
+    const bool held = ph.stk.any;  // (held masses do not move)
+    if (n == 1) return series_one(ph, y0, r, a0, a1, amp, sp, cp, h, t, need, scale, held);
     double wk = 1.0;  // w^k / k!
     double hk = 1.0;  // h^k
     for (int k = 0;; ++k) {
@@ -223,24 +262,17 @@ int series(const Phase& ph, const double* y0, const double* r, double a0, double
         const double* Vk = Xk + n;
         double* Xn = t + (k + 1) * ny;
         double* Vn = Xn + n;
-        if (n == 1) {  // (one mass: the loops unrolled)
-            double f = minv[0] * (K[0] * Xk[0] + C[0] * Vk[0]);
-            if (k == 0 && r != nullptr) f += r[0];
-            Vn[0] = held ? 0.0 : (-f - g) * inv;
-            Xn[0] = Vk[0] * inv;
-        } else {
-            for (int i = 0; i < n; ++i) {
-                const double* rk = K + i * n;
-                const double* rc = C + i * n;
-                double s = 0.0;
-                for (int j = 0; j < n; ++j) s += rk[j] * Xk[j] + rc[j] * Vk[j];
-                double f = minv[i] * s;
-                if (k == 0 && r != nullptr) f += r[i];
-                Vn[i] = (-f - g) * inv;
-                Xn[i] = Vk[i] * inv;
-            }
-            if (held) ph.stk.project(ph.mass, Vn);
+        for (int i = 0; i < n; ++i) {
+            const double* rk = K + i * n;
+            const double* rc = C + i * n;
+            double s = 0.0;
+            for (int j = 0; j < n; ++j) s += rk[j] * Xk[j] + rc[j] * Vk[j];
+            double f = minv[i] * s;
+            if (k == 0 && r != nullptr) f += r[i];
+            Vn[i] = (-f - g) * inv;
+            Xn[i] = Vk[i] * inv;
         }
+        if (held) ph.stk.project(ph.mass, Vn);
         const int m = k + 1;  // the term just computed
         hk *= h;
         if (m + 1 >= need) {
@@ -270,6 +302,22 @@ void lin_eval(const Phase& ph, double tau, double* y, double* a) {
     ensure_series(ph);
     const int n = ph.n, ny = ph.ny, nt = ph.nt;
     const double* t = ph.tc.data();
+    if (n == 1) {  // (one mass: scalars, the same sums)
+        double x = t[(nt - 1) * 2], v = t[(nt - 1) * 2 + 1], acc = (nt - 1) * v;
+        for (int k = nt - 2; k >= 1; --k) {
+            x = x * tau + t[2 * k];
+            v = v * tau + t[2 * k + 1];
+            acc = acc * tau + k * t[2 * k + 1];
+        }
+        if (nt >= 2) {
+            x = x * tau + t[0];
+            v = v * tau + t[1];
+        }
+        y[0] = x;
+        y[1] = v;
+        a[0] = acc;
+        return;
+    }
     for (int q = 0; q < ny; ++q) y[q] = t[(nt - 1) * ny + q];
     for (int i = 0; i < n; ++i) a[i] = (nt - 1) * t[(nt - 1) * ny + n + i];
     for (int k = nt - 2; k >= 0; --k) {
@@ -315,6 +363,18 @@ void pair_poly(const Phase& ph, int i, int j, double alpha, double beta, double 
             }
     }
     q.c[0] += alpha;
+}
+
+double pair_x(const Phase& ph, int i, int j, double tau) {
+    ensure_series(ph);
+    const int ny = ph.ny;
+    const double* t = ph.tc.data();
+    double f = 0.0;
+    for (int k = ph.nt - 1; k >= 0; --k) {
+        const double* Yk = t + k * ny;
+        f = f * tau + (j < 0 ? Yk[i] : Yk[i] - Yk[j]);
+    }
+    return f;
 }
 
 void abs_acc_poly(const Phase& ph, int i, Poly& q) {

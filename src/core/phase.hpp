@@ -143,6 +143,8 @@ void table_derivatives(const Phase& ph, double tau, double s, double c, int m, d
 
 // scalar polynomials of the current series: alpha + beta (x_i - x_j) + gamma (v_i - v_j) + delta (a_i - a_j)
 void pair_poly(const Phase& ph, int i, int j, double alpha, double beta, double gamma, double delta, Poly& q);
+// the relative displacement x_i - x_j at tau of the current series (as pair_poly's polynomial of it would give)
+double pair_x(const Phase& ph, int i, int j, double tau);
 // dof i's absolute acceleration -(K x + C v + R0)_i / m_i (a linear phase's: no sine)
 void abs_acc_poly(const Phase& ph, int i, Poly& q);
 // the derivative of q
