@@ -123,6 +123,8 @@ struct Hysteretic {
     int n_springs() const { return static_cast<int>(slopes.size()) - 1; }
 };
 
+bool law_is_rigid(int law);  // (laws.hpp: the contact laws' one place)
+
 // The system as the kernels take it (pounding.engine.simulate.kernel_system packs a one-mass system).
 struct System {
     int n = 1;                    // degrees of freedom
@@ -135,6 +137,7 @@ struct System {
     std::vector<int> track_i, track_j;  // pairs whose relative displacement's extrema a run finds (drifts)
     // derived by finish(): the damping of every phase (c0 and the elements' dashpots), the layout
     std::vector<double> c_lin;
+    std::vector<int> rigid;  // the contacts with a rigid stop's law
     double total_mass = 0.0;
     Layout lay;
 
@@ -159,6 +162,9 @@ struct System {
         if (static_cast<int>(c_lin.size()) != n * n) c_lin.assign(static_cast<size_t>(n * n), 0.0);
         if (static_cast<int>(k0.size()) != n * n) k0.assign(static_cast<size_t>(n * n), 0.0);
         for (const Hysteretic& h : hyst) add_pair(c_lin, h.i, h.j, h.c_d);
+        rigid.clear();
+        for (int c = 0; c < nc(); ++c)
+            if (law_is_rigid(contact[static_cast<size_t>(c)].law)) rigid.push_back(c);
         total_mass = 0.0;
         for (double m : mass) total_mass += m;
     }

@@ -86,6 +86,7 @@ EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y
         scale += ph.xround;
         if (e.action != ACT_CONTACT) return {g, gp, scale};
         const ContactPhase& k = slot(ph, e.side);
+        if (!(k.def0 > 0.0)) return {g, gp, scale};  // (no surface relaxing: law_relax's nothing)
         const Relaxed r = law_relax(k.law, k.p, k.def0, tau, k.lz);
         return {g + r.d, gp + r.rate, scale + r.d};
     }

@@ -272,7 +272,11 @@ bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, S
         r[8] = loss;
     }
     // does the motion push the stop shut?  (the accelerations with the stops already held)
-    static thread_local std::vector<double> au, a, s0;
+    struct Scratch { std::vector<double> au, a, s0; };
+    static thread_local Scratch scratch;  // (one thread-local lookup)
+    std::vector<double>& au = scratch.au;
+    std::vector<double>& a = scratch.a;
+    std::vector<double>& s0 = scratch.s0;
     state_accelerations(st, sy, stk, ag, q, row, au, a);
     double push = ct.sign * (a[static_cast<size_t>(ct.i)] - (ct.j >= 0 ? a[static_cast<size_t>(ct.j)] : 0.0));
     const double round = ROUNDING * (std::abs(ag) + std::abs(au[static_cast<size_t>(ct.i)]) +

@@ -370,9 +370,10 @@ double pair_x(const Phase& ph, int i, int j, double tau) {
     const int ny = ph.ny;
     const double* t = ph.tc.data();
     double f = 0.0;
-    for (int k = ph.nt - 1; k >= 0; --k) {
-        const double* Yk = t + k * ny;
-        f = f * tau + (j < 0 ? Yk[i] : Yk[i] - Yk[j]);
+    if (j < 0) {
+        for (int k = ph.nt - 1; k >= 0; --k) f = f * tau + t[k * ny + i];
+    } else {
+        for (int k = ph.nt - 1; k >= 0; --k) f = f * tau + (t[k * ny + i] - t[k * ny + j]);
     }
     return f;
 }

@@ -91,8 +91,13 @@ static double rate_bound(const Phase& ph, double k_extra) {
 void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
     const Layout& L = sy.lay;
     const int n = sy.n;
-    ph.K = sy.k0;
-    ph.C = sy.c_lin;
+    if (ph.K.size() == sy.k0.size() && ph.C.size() == sy.c_lin.size()) {  // (no reallocation: a copy)
+        std::copy(sy.k0.begin(), sy.k0.end(), ph.K.begin());
+        std::copy(sy.c_lin.begin(), sy.c_lin.end(), ph.C.begin());
+    } else {
+        ph.K = sy.k0;
+        ph.C = sy.c_lin;
+    }
     std::fill(ph.R0.begin(), ph.R0.end(), 0.0);
     IsoLinear iso{0.0, 0.0};
     ph.el_k.resize(static_cast<size_t>(sy.n_h()));

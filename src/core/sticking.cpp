@@ -31,20 +31,19 @@ struct Sets {
 inline int node(const Contact& ct, int n) { return ct.j >= 0 ? ct.j : n; }
 
 bool is_held(const System& sy, const double* st, int c) {
-    return sy.has_b && law_is_rigid(sy.contact[static_cast<size_t>(c)].law) && st[sy.lay.in_at(c)] != 0.0;
+    return sy.has_b && st[sy.lay.in_at(c)] != 0.0 && law_is_rigid(sy.contact[static_cast<size_t>(c)].law);
 }
 
 }  // namespace
 
 bool Sticking::build(const System& sy, const double* st) {
-    const bool none = [&] {
-        for (int c = 0; c < sy.nc(); ++c)
-            if (is_held(sy, st, c)) return false;
-        return true;
-    }();
-    if (none && !any && n == sy.n && held_of.size() == static_cast<size_t>(sy.nc()) &&
-        grp.size() == static_cast<size_t>(sy.n))
-        return true;  // (nothing held, as before: the tables stand)
+    if (!any && n == sy.n && held_of.size() == static_cast<size_t>(sy.nc()) &&
+        grp.size() == static_cast<size_t>(sy.n)) {
+        bool none = true;
+        if (sy.has_b)
+            for (const int c : sy.rigid) none = none && st[sy.lay.in_at(c)] == 0.0;
+        if (none) return true;  // (nothing held, as before: the tables stand)
+    }
     n = sy.n;
     held.clear();
     held_of.assign(static_cast<size_t>(sy.nc()), -1);
