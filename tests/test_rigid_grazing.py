@@ -92,6 +92,49 @@ def test_a_branch_that_turns_at_the_grazing_reports_the_grazing_and_its_fold_whe
     assert abs(graze.scaling_exponent - 0.5) < 1e-5 and smooth.value < graze.value
 
 
+def test_a_branch_that_meets_the_non_smooth_fold_from_its_impacting_side_goes_round_it_onto_the_clear_one():
+    """The same branch the other way: down the impacting orbits to their smooth fold, up to the grazing,
+    where the impacting branch ends and the clear one turns back; the follower goes round it (no branch
+    point or grazing reported where a step lands on the clear branch, no retracing of the impacting one)
+    and on down the clear orbits to the range's end."""
+    osc = _oscillator(pounding.RigidStop(E))
+    branch = pounding.continuation(osc, (0.1, 0.005), 1.3, parameter="a_g")
+    assert branch.status == Status.SUCCESS, branch.message
+    assert "a_g = 0.005" in branch.message
+    big = 2.0 * math.pi * 1.3
+    closed = D * abs(complex(W * W - big * big, 2.0 * ZETA * W * big)) / 9.81
+    kinds = [(b.kind, b.located) for b in branch.bifurcations]
+    assert kinds == [("fold", True), ("grazing", True), ("fold", True)], kinds
+    smooth, graze, turn = branch.bifurcations
+    assert abs(graze.value - closed) < 1e-9 * closed and turn.value == graze.value
+    assert abs(graze.scaling_exponent - 0.5) < 1e-5
+    ahead = pounding.continuation(osc, (0.005, 0.1), 1.3, parameter="a_g").bifurcations[-1]
+    assert abs(smooth.value - ahead.value) < 1e-7 * ahead.value  # (the same smooth fold: 3e-8 apart)
+    # past the turn every orbit is the linear response, clear of the stop
+    p = branch.to_dataframe()["a_g"].to_numpy()
+    past = p[int(np.argmin(np.abs(p - graze.value))) + 1:]
+    assert np.all(np.diff(past) < 0.0) and past[-1] == 0.005
+
+
+def test_a_branch_that_stalls_next_to_a_non_smooth_fold_goes_round_it():
+    """The printed YBs isolator with a rigid stop 15 mm to the right, down in frequency: the impacting
+    branch's steps stall next to a grazing where it ends (the slowest impact 5e-6 m over the forcing's
+    angular frequency, multipliers of 3,600), and the clear orbit is Newton's a little ahead; the grazing
+    is located from them, with the square root, and the branch goes on."""
+    base = pounding.presets.paper_printed()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        stops = pounding.Bumpers(0.3, 0.015, pounding.RigidStop(0.8))
+        osc = pounding.Oscillator(base.mass, base.isolator, stops)
+    branch = pounding.continuation(osc, 0.1, (3.0, 1.0))
+    assert branch.status == Status.SUCCESS, branch.message
+    grazings = [b for b in branch.bifurcations if b.kind == "grazing"]
+    assert len(grazings) == 2 and all(g.located and abs(g.scaling_exponent - 0.5) < 1e-3 for g in grazings)
+    folds = {b.value for b in branch.bifurcations if b.kind == "fold" and b.located}
+    assert {g.value for g in grazings} <= folds  # (each grazing a non-smooth fold)
+    assert abs(grazings[1].value - 1.63596) < 1e-4
+
+
 @pytest.mark.parametrize("e", [0.0, 1.0])
 def test_no_period_doubling_is_reported_where_the_multipliers_jump_at_a_grazing(e):
     """Past a rigid stop's grazing the impacting orbit's multipliers are unbounded (as one over its impact

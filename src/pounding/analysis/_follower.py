@@ -16,7 +16,7 @@ from ._arclength import Closure, Family, Point, system_at
 from .branch import COLUMNS, Bifurcation, Branch
 from .periodic import _Failed
 from ._detect import bifurcation_at, branch_point, detect, grazing_at, locate, other_direction
-from ._grazing import cross, impacts_barely
+from ._grazing import cross, fold_from_impacts, impacts_barely
 
 
 class Follower:
@@ -130,7 +130,7 @@ class Follower:
                     continue
                 ds *= self.SHRINK
                 if ds < self.MIN_STEP:
-                    if self._cross(a) or self._leap_past(a):
+                    if self._cross(a) or self._leap_past(a) or self._turn(a):
                         ds = self.max_step / 4.0
                         continue
                     self.status = Status.STEP_FAILED
@@ -138,6 +138,9 @@ class Follower:
                                     "smallest step (the branch may end there: a grazing of a stiff bumper, "
                                     "or an orbit the engine cannot run)")
                     return
+                continue
+            if self._turn(a, b, ds):  # (a step that went round a non-smooth fold onto the clear branch)
+                ds = self.max_step / 4.0
                 continue
             if branch_point(self, a, b, ds):
                 if self.looped:
@@ -165,7 +168,7 @@ class Follower:
             # (steps stuck at a fraction of the largest: a non-smooth point)
             if self.creep >= self.CREEP_POINTS:
                 self.creep = 0
-                if not self._leap_past(b):
+                if not (self._leap_past(b) or self._turn(b)):
                     self.status = Status.STEP_FAILED
                     self.message = (f"the branch stalled at {self.fam.parameter} = {b.p:.8g}: "
                                     f"{self.CREEP_POINTS} steps below 1e-3 of the largest (a non-smooth "
@@ -198,6 +201,42 @@ class Follower:
         self._append(b, ds)
         return True
 
+    def _turn(self, a: Point, b: Optional[Point] = None, ds: float = 0.0) -> bool:
+        """Round a non-smooth fold met from its impacting side (:func:`fold_from_impacts`): the impacting
+        branch through ``a`` ends at a rigid stop's grazing ahead, where the clear branch turns back.
+        ``b``: a step's orbit that landed on the clear branch (None: the steps stalled at ``a``, and
+        the clear orbit is Newton's at ``a``'s parameter).  The grazing and its fold reported, the
+        branch goes on along the clear orbits away from the grazing; False where ``a`` is no such
+        point."""
+        fam = self.fam
+        if b is None and not impacts_barely(self, a):
+            return False
+        travel = self._travel(a)
+        if b is None:  # (ahead, where the impacting orbit's depth and Newton's reach shrink: the clear one)
+            for size in (1e-6, 1e-5, 1e-4, 1e-3):
+                p = a.p + travel * size * self.max_step * fam.p_scale
+                b = fam.correct(a.vec, p, fam.coords(a.vec), p, np.zeros(fam.n), 1.0, self.tol, max_iter=40)
+                if b is not None and fold_from_impacts(self, a, b, [], travel) == ():
+                    break
+                b = None
+            if b is None:
+                return False
+            b.tau_x, b.tau_q = fam.tangent(b, np.zeros(fam.n), -travel)
+        step = abs(b.p - a.p) if b.p != a.p else 1e-6 * self.max_step * fam.p_scale
+        backs = [b.p - travel * f * step for f in (0.5, 1.0, 4.0)]  # (a second clear orbit, behind b)
+        got = fold_from_impacts(self, a, b, backs, travel)
+        if not got:
+            return False
+        g, side = got
+        away = -travel  # (the clear branch lies behind the grazing: on along it, away from it)
+        for pt in (g, b):
+            pt.tau_x, pt.tau_q = fam.tangent(pt, np.zeros(fam.n), away)
+        self.bifs.append(grazing_at(self, g, side))
+        self.bifs.append(bifurcation_at(self, "fold", "", g, True))
+        self._append(g, abs(self._s(a, g)))
+        self._append(b, abs(self._s(g, b)))
+        return True
+
     def _leap_past(self, a: Point) -> bool:
         """A step in the parameter alone from ``a`` (``_leap``), its bifurcations detected and the
         point taken; False where none got past."""
@@ -215,8 +254,7 @@ class Follower:
         derivative is infinite there, and arclength steps shrink to nothing), a step in the
         parameter alone, the orbit solved at the new value by Newton from ``a``'s state."""
         fam = self.fam
-        direction = math.copysign(1.0, a.tau_q) if abs(a.tau_q) > 1e-12 else math.copysign(1.0,
-                                                                                           self.p1 - self.p0)
+        direction = self._travel(a)
         for size in (0.05, 0.2, 1.0):
             dp = direction * size * self.max_step * fam.p_scale
             p_new = a.p + dp
@@ -228,6 +266,11 @@ class Follower:
             b.tau_x, b.tau_q = fam.tangent(b, np.zeros(fam.n), direction)
             return b, abs(self._s(a, b))
         return None
+
+    def _travel(self, a: Point) -> float:
+        """The sign of the parameter's change along the branch at ``a`` (the range's, where the tangent
+        is across the parameter)."""
+        return math.copysign(1.0, a.tau_q) if abs(a.tau_q) > 1e-12 else math.copysign(1.0, self.p1 - self.p0)
 
     def _closed(self, b: Point, ds: float) -> bool:
         """Whether the step to ``b`` passed by the branch's second point again (a closed branch):

@@ -92,6 +92,42 @@ def impacts_barely(fl: "Follower", pt: Point) -> bool:
     return any(-1e-3 * size < tests[s] < 0.0 for s in sh.rigid_sides() if s in tests)
 
 
+def fold_from_impacts(fl: "Follower", a: Point, c: Point, p_others: list,
+                      travel: float) -> Optional[tuple]:
+    """A non-smooth fold met from its impacting side: ``a``'s orbit meets a rigid stop, ``c``'s (near it)
+    keeps clear of it, and the grazing where their branches meet lies ahead of both in the direction of
+    ``travel`` (the sign of the parameter's change along the impacting branch) instead of between them
+    (where the detectors locate a grazing the branch crosses).  The grazing is located from the clear
+    side (:func:`_secant`, from ``c`` and the first clear orbit found at ``p_others``, Newton's from
+    ``c``).  ``(the grazing orbit, its side)``; ``()`` where ``a`` meets a rigid stop that ``c``
+    keeps clear of but ``p_others`` is empty; None where ``a`` and ``c`` are no such pair."""
+    fam = fl.fam
+    sh_a, sh_c = fam.shooter(a.p), fam.shooter(c.p)
+    ta, tc = sh_a.clearances(a.run), sh_c.clearances(c.run)
+    for side in sh_a.rigid_sides():
+        if not (side in ta and side in tc and ta[side] < 0.0 < tc[side]):
+            continue
+        if not p_others:
+            return ()
+        for p_other in p_others:
+            other = fam.correct(c.vec, p_other, fam.coords(c.vec), p_other, np.zeros(fam.n), 1.0, fl.tol,
+                                max_iter=40)
+            t_other = _test(fl, other, side) if other is not None else -math.inf
+            if t_other > 0.0 and p_other != c.p:
+                break
+        else:
+            continue
+        other.tau_x, other.tau_q = fam.tangent(other, c.tau_x, c.tau_q)
+        pts = sorted([(p_other, t_other, other), (c.p, tc[side] / fam.length_m, c)], key=lambda q: -q[1])
+        got = _secant(fl, pts, None, math.nan, side)  # (the nearer to the grazing last)
+        if got is None or not got[1]:
+            continue
+        g = got[0]
+        if (g.p - a.p) * travel > 0.0 and (g.p - c.p) * travel > 0.0:
+            return g, side
+    return None
+
+
 def cross(fl: "Follower", a: Point) -> Optional[tuple[Point, float, Point, str]]:
     """From the clear orbit ``a`` next to a grazing that the follower's steps cannot pass (the map's
     derivative is infinite there): the grazing located (:func:`_secant` from the branch's last two
