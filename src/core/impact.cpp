@@ -6,15 +6,11 @@
 
 #include "isolator.hpp"
 #include "laws.hpp"
+#include "impact_parts.hpp"
 #include "run_parts.hpp"
 
 namespace pounding::run_parts {
 
-namespace {
-
-constexpr int MIN_CHATTER = 3;  // impacts: a shorter sequence followed by a flight is no chatter
-
-// the accelerations (n) of the state without the held stops (au) and with them (a)
 void state_accelerations(const double* st, const System& sy, const Sticking& stk, double ag, double* q,
                          double* row, std::vector<double>& au, std::vector<double>& a) {
     const int n = sy.n;
@@ -27,6 +23,10 @@ void state_accelerations(const double* st, const System& sy, const Sticking& stk
     }
     stk.project(sy.mass, a.data());
 }
+
+namespace {
+
+constexpr int MIN_CHATTER = 3;  // impacts: a shorter sequence followed by a flight is no chatter
 
 void push_chatter(Rows& chatters, int c, double t_first, double t_end, double count, bool accumulated) {
     double* r = chatters.push();
@@ -109,6 +109,22 @@ double accumulation(const double* st, const System& sy, const Phase& ph, double 
 }
 
 }  // namespace
+
+void count_impact(double* st, const Layout& L, int c, double t, double window_s, Rows& chatters) {
+    if (!(seq_count(st, L, c) > 0.0 && t - seq_last(st, L, c) <= window_s)) {
+        if (seq_count(st, L, c) >= MIN_CHATTER)
+            push_chatter(chatters, c, seq_first(st, L, c), seq_last(st, L, c), seq_count(st, L, c), false);
+        seq_first(st, L, c) = t;
+        seq_count(st, L, c) = 0.0;
+    }
+    seq_count(st, L, c) += 1.0;
+    seq_last(st, L, c) = t;
+}
+
+void end_sequence(double* st, const Layout& L, int c, double t, Rows& chatters) {
+    if (seq_count(st, L, c) >= MIN_CHATTER)
+        push_chatter(chatters, c, seq_first(st, L, c), t, seq_count(st, L, c), false);
+}
 
 // After a velocity jump: the springs a hysteretic element slips and the turns of a deformable bumper's law
 // follow the new velocities (their reversal events watch a velocity crossing zero, which a jump steps over)
@@ -213,6 +229,11 @@ bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, S
 bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
                    const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q, double* row,
                    double& flight) {
+    if (impacts_at_once(st, sy, ph, tau, stk, c, ag, sc, ledger, contacts, chatters, q, row)) {
+        flight = INF;
+        release_pulling(st, sy, stk, -1, ag, q, row, contacts);
+        return true;
+    }
     const Contact& ct = sy.contact[static_cast<size_t>(c)];
     const bool jump = ct.sign * rel(st + sy.lay.v, ct.i, ct.j) > 0.0;  // (an impulse to come: velocities jump)
     const bool resolved = rigid_contact_(st, sy, ph, tau, stk, c, ag, sc, ledger, contacts, chatters, q, row, flight);
@@ -238,14 +259,7 @@ bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, S
     if (inv == 0.0) return false;  // (both ends immovable)
     const double mu = 1.0 / inv;
     // the sequence this impact belongs to
-    if (!(seq_count(st, L, c) > 0.0 && t - seq_last(st, L, c) <= sc.window_s)) {
-        if (seq_count(st, L, c) >= MIN_CHATTER)
-            push_chatter(chatters, c, seq_first(st, L, c), seq_last(st, L, c), seq_count(st, L, c), false);
-        seq_first(st, L, c) = t;
-        seq_count(st, L, c) = 0.0;
-    }
-    seq_count(st, L, c) += 1.0;
-    seq_last(st, L, c) = t;
+    count_impact(st, L, c, t, sc.window_s, chatters);
     // Newton's impact: the normal velocity from vn to -e vn
     const double vn = ct.sign * rel(v, ct.i, ct.j);
     const double v_in = rel(v, ct.i, ct.j);

@@ -1,0 +1,29 @@
+// What impact.cpp and impacts_at_once.cpp share (internal to the core).
+#pragma once
+
+#include <vector>
+
+#include "impact.hpp"
+#include "run_parts.hpp"
+
+namespace pounding::run_parts {
+
+// the accelerations (n) of the state without the held stops (au) and with them (a)
+void state_accelerations(const double* st, const System& sy, const Sticking& stk, double ag, double* q,
+                         double* row, std::vector<double>& au, std::vector<double>& a);
+// a free rigid stop's impact at t counted in its running sequence (a new one after a pause longer than
+// window_s, the last one's row written when it held three impacts or more)
+void count_impact(double* st, const Layout& L, int c, double t, double window_s, Rows& chatters);
+// a free rigid stop's running sequence ended at t by a hold (its row, when it held three impacts or more)
+void end_sequence(double* st, const Layout& L, int c, double t, Rows& chatters);
+// impacts at one instant on the rigid stops touching contact c through shared dofs, one of them free
+// besides c: Moreau's law (each separates at least e times its closing speed, the impulses pushing only),
+// those left at rest held where the motion pushes them shut.  False where contact c meets its stop alone
+// (or with held stops only: their groups' masses take the impact) or the problem was not solved: the
+// impacts are then taken one by one
+// (ph, tau: the phase that led to the instant, for the rates of the forces that are zero to the rounding)
+bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
+                     const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q,
+                     double* row);
+
+}  // namespace pounding::run_parts

@@ -1,0 +1,291 @@
+// Impacts at one instant on rigid stops that share a dof (impact_parts.hpp): Moreau's impact law over the
+// touching contacts, a linear complementarity problem solved over its active sets.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "impact_parts.hpp"
+#include "isolator.hpp"
+#include "laws.hpp"
+
+namespace pounding::run_parts {
+
+namespace {
+
+constexpr int MAX_AT_ONCE = 12;  // contacts: beyond this many the impacts are taken one after the other
+
+// a rigid stop at its stop (held, or within h of it)
+bool touching(const double* st, const System& sy, int d, double h) {
+    const Contact& ct = sy.contact[static_cast<size_t>(d)];
+    if (!law_is_rigid(ct.law)) return false;
+    if (st[sy.lay.in_at(d)] != 0.0) return true;
+    return ct.sign * rel(st + sy.lay.x, ct.i, ct.j) - ct.gap >= -h;
+}
+
+// the touching rigid stops that reach contact c through shared dofs (c first)
+std::vector<int> cluster_of(const double* st, const System& sy, int c, double h) {
+    std::vector<int> out{c};
+    std::vector<char> dof(static_cast<size_t>(sy.n), 0), in(static_cast<size_t>(sy.nc()), 0);
+    in[static_cast<size_t>(c)] = 1;
+    auto mark = [&](const Contact& ct) {
+        dof[static_cast<size_t>(ct.i)] = 1;
+        if (ct.j >= 0) dof[static_cast<size_t>(ct.j)] = 1;
+    };
+    mark(sy.contact[static_cast<size_t>(c)]);
+    for (bool grew = true; grew;) {
+        grew = false;
+        for (int d = 0; d < sy.nc(); ++d) {
+            if (in[static_cast<size_t>(d)] || !touching(st, sy, d, h)) continue;
+            const Contact& ct = sy.contact[static_cast<size_t>(d)];
+            if (!dof[static_cast<size_t>(ct.i)] && !(ct.j >= 0 && dof[static_cast<size_t>(ct.j)])) continue;
+            in[static_cast<size_t>(d)] = 1;
+            out.push_back(d);
+            mark(ct);
+            grew = true;
+        }
+    }
+    return out;
+}
+
+// w = W lam - b >= 0, lam >= 0, lam . w = 0 (W k x k, symmetric positive semidefinite), over the active
+// sets in order of size; false where none is found to the rounding
+bool solve_lcp(const std::vector<double>& W, const std::vector<double>& b, int k, std::vector<double>& lam) {
+    double scale = 0.0, wmax = 0.0;
+    for (int a = 0; a < k; ++a) {
+        scale = std::max(scale, std::abs(b[static_cast<size_t>(a)]));
+        wmax = std::max(wmax, W[static_cast<size_t>(a * k + a)]);
+    }
+    const double tol = 1e-12 * scale;
+    std::vector<int> sets;
+    for (int s = 0; s < (1 << k); ++s) sets.push_back(s);
+    std::stable_sort(sets.begin(), sets.end(),
+                     [](int x, int y) { return __builtin_popcount(x) < __builtin_popcount(y); });
+    std::vector<double> A, r;
+    std::vector<int> idx;
+    for (const int s : sets) {
+        idx.clear();
+        for (int a = 0; a < k; ++a)
+            if (s & (1 << a)) idx.push_back(a);
+        const int m = static_cast<int>(idx.size());
+        A.assign(static_cast<size_t>(m * m), 0.0);
+        r.assign(static_cast<size_t>(m), 0.0);
+        for (int p = 0; p < m; ++p) {
+            r[static_cast<size_t>(p)] = b[static_cast<size_t>(idx[static_cast<size_t>(p)])];
+            for (int q = 0; q < m; ++q)
+                A[static_cast<size_t>(p * m + q)] = W[static_cast<size_t>(idx[static_cast<size_t>(p)] * k + idx[static_cast<size_t>(q)])];
+        }
+        bool ok = true;  // (Gaussian elimination with partial pivoting)
+        for (int p = 0; p < m && ok; ++p) {
+            int piv = p;
+            for (int q = p + 1; q < m; ++q)
+                if (std::abs(A[static_cast<size_t>(q * m + p)]) > std::abs(A[static_cast<size_t>(piv * m + p)])) piv = q;
+            if (!(std::abs(A[static_cast<size_t>(piv * m + p)]) > 1e-12 * wmax)) {
+                ok = false;
+                break;
+            }
+            if (piv != p) {
+                for (int q = 0; q < m; ++q) std::swap(A[static_cast<size_t>(p * m + q)], A[static_cast<size_t>(piv * m + q)]);
+                std::swap(r[static_cast<size_t>(p)], r[static_cast<size_t>(piv)]);
+            }
+            for (int q = p + 1; q < m; ++q) {
+                const double f = A[static_cast<size_t>(q * m + p)] / A[static_cast<size_t>(p * m + p)];
+                for (int z = p; z < m; ++z) A[static_cast<size_t>(q * m + z)] -= f * A[static_cast<size_t>(p * m + z)];
+                r[static_cast<size_t>(q)] -= f * r[static_cast<size_t>(p)];
+            }
+        }
+        if (!ok) continue;
+        for (int p = m - 1; p >= 0; --p) {
+            double s2 = r[static_cast<size_t>(p)];
+            for (int q = p + 1; q < m; ++q) s2 -= A[static_cast<size_t>(p * m + q)] * r[static_cast<size_t>(q)];
+            r[static_cast<size_t>(p)] = s2 / A[static_cast<size_t>(p * m + p)];
+        }
+        lam.assign(static_cast<size_t>(k), 0.0);
+        for (int p = 0; p < m; ++p) {
+            if (r[static_cast<size_t>(p)] < -tol / std::max(wmax, MIN_NORMAL)) ok = false;
+            lam[static_cast<size_t>(idx[static_cast<size_t>(p)])] = std::max(r[static_cast<size_t>(p)], 0.0);
+        }
+        for (int a = 0; a < k && ok; ++a) {
+            if (s & (1 << a)) continue;
+            double w = -b[static_cast<size_t>(a)];
+            for (int q = 0; q < k; ++q) w += W[static_cast<size_t>(a * k + q)] * lam[static_cast<size_t>(q)];
+            if (w < -tol) ok = false;
+        }
+        if (ok) return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
+                     const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q,
+                     double* row) {
+    const Layout& L = sy.lay;
+    {  // (most impacts: no other free rigid stop touching at a dof of c's)
+        const Contact& own = sy.contact[static_cast<size_t>(c)];
+        bool any = false;
+        for (const int d : sy.rigid) {
+            if (d == c || st[L.in_at(d)] != 0.0 || !touching(st, sy, d, sc.h_min)) continue;
+            const Contact& ct = sy.contact[static_cast<size_t>(d)];
+            any = any || ct.i == own.i || ct.j == own.i || (own.j >= 0 && (ct.i == own.j || ct.j == own.j));
+        }
+        if (!any) return false;
+    }
+    const std::vector<int> set = cluster_of(st, sy, c, sc.h_min);
+    const int k = static_cast<int>(set.size());
+    bool other_free = false, bodies = false;
+    for (int a = 0; a < k; ++a) {
+        const int d = set[static_cast<size_t>(a)];
+        if (a > 0) other_free = other_free || st[L.in_at(d)] == 0.0;
+        bodies = bodies || sy.contact[static_cast<size_t>(d)].j >= 0;
+    }
+    // (one contact, or the held groups' masses do; or one dof between stops on the ground: it is clamped,
+    // one stop after the other)
+    if (k < 2 || k > MAX_AT_ONCE || !other_free || !bodies) return false;
+    const int n = sy.n;
+    double* v = st + L.v;
+    // each contact's row of J (its compression rate J v) and W = J M^-1 J^T
+    std::vector<double> J(static_cast<size_t>(k * n), 0.0), W(static_cast<size_t>(k * k), 0.0);
+    std::vector<double> u0(static_cast<size_t>(k)), b(static_cast<size_t>(k)), lam;
+    for (int a = 0; a < k; ++a) {
+        const Contact& ct = sy.contact[static_cast<size_t>(set[static_cast<size_t>(a)])];
+        J[static_cast<size_t>(a * n + ct.i)] += ct.sign;
+        if (ct.j >= 0) J[static_cast<size_t>(a * n + ct.j)] -= ct.sign;
+    }
+    for (int a = 0; a < k; ++a) {
+        double u = 0.0;
+        for (int i = 0; i < n; ++i) u += J[static_cast<size_t>(a * n + i)] * v[i];
+        u0[static_cast<size_t>(a)] = u;
+        const double e = law_restitution(sy.contact[static_cast<size_t>(set[static_cast<size_t>(a)])].p);
+        // Moreau's law: each separates at least e times its closing speed (none at rest), pushing only
+        b[static_cast<size_t>(a)] = u + e * std::max(u, 0.0);
+        for (int d = 0; d < k; ++d) {
+            double s = 0.0;
+            for (int i = 0; i < n; ++i)
+                s += J[static_cast<size_t>(a * n + i)] * J[static_cast<size_t>(d * n + i)] / sy.mass[static_cast<size_t>(i)];
+            W[static_cast<size_t>(a * k + d)] = s;
+        }
+    }
+    if (!solve_lcp(W, b, k, lam)) return false;  // (taken one after the other)
+    const double t = st[T];
+    std::vector<double> v_in(static_cast<size_t>(k));
+    for (int a = 0; a < k; ++a) {
+        const Contact& ct = sy.contact[static_cast<size_t>(set[static_cast<size_t>(a)])];
+        v_in[static_cast<size_t>(a)] = rel(v, ct.i, ct.j);
+    }
+    for (int a = 0; a < k; ++a)
+        for (int i = 0; i < n; ++i)
+            v[i] -= J[static_cast<size_t>(a * n + i)] * lam[static_cast<size_t>(a)] / sy.mass[static_cast<size_t>(i)];
+    after_velocity_jump(st, sy);
+    std::vector<int> rest;  // (free contacts left at rest against their stops: held where pushed)
+    for (int a = 0; a < k; ++a) {
+        const int d = set[static_cast<size_t>(a)];
+        const Contact& ct = sy.contact[static_cast<size_t>(d)];
+        const int acc = L.acc_at(d);
+        double u1 = 0.0;
+        for (int i = 0; i < n; ++i) u1 += J[static_cast<size_t>(a * n + i)] * v[i];
+        const double la = lam[static_cast<size_t>(a)], u = u0[static_cast<size_t>(a)];
+        const double loss = 0.5 * la * (u + u1);  // (its share of the kinetic energy lost: they sum to it)
+        ledger[L_BUMPER_LOSS] += loss;
+        if (st[L.in_at(d)] != 0.0) {  // held: it carries the impulse, or lets go where the pair moves apart
+            st[acc + A_IMPULSE] += la;
+            if (u1 < -sc.v_res) rigid_release(st, sy, d, contacts);
+            continue;
+        }
+        if (u > sc.v_res || la * W[static_cast<size_t>(a * k + a)] > sc.v_res) {  // (an impulse that shows)
+            count_impact(st, L, d, t, sc.window_s, chatters);
+            double* r = contacts.push();
+            r[0] = static_cast<double>(d);
+            r[1] = t;
+            r[2] = t;
+            r[3] = v_in[static_cast<size_t>(a)];
+            r[4] = rel(v, ct.i, ct.j);
+            r[5] = la;
+            r[6] = NaN;
+            r[7] = 0.0;
+            r[8] = loss;
+        }
+        if (std::abs(u1) <= sc.v_res) rest.push_back(d);
+    }
+    // those at rest held where the motion pushes them shut: the smallest set whose holds all push and
+    // with which none of the others is pushed shut (each set tried, the smallest first: where nothing
+    // pushes, to the rounding, nothing is held)
+    const int nr = static_cast<int>(rest.size());
+    static thread_local std::vector<double> au, a, ju, jh;
+    auto hold = [&](int s) {
+        for (int p = 0; p < nr; ++p) st[L.in_at(rest[static_cast<size_t>(p)])] = (s >> p) & 1 ? 1.0 : 0.0;
+    };
+    // (a force or push zero to the rounding: its rate decides, along the motion with the holds, whose
+    // accelerations' rate is -M^-1 (K v + C a) - a_g')
+    const double ag_rate = ph.ax1 + ph.axh * ph.w * std::cos(ph.w * tau + ph.phi);
+    auto consistent = [&](int s) {
+        hold(s);
+        if (!stk.build(sy, st)) return false;  // (a loop of holds)
+        state_accelerations(st, sy, stk, ag, q, row, au, a);
+        ju.assign(static_cast<size_t>(n), 0.0);
+        for (int i = 0; i < n; ++i) {
+            double f = 0.0;
+            for (int j = 0; j < n; ++j)
+                f += ph.K[static_cast<size_t>(i * n + j)] * v[j] + ph.C[static_cast<size_t>(i * n + j)] * a[static_cast<size_t>(j)];
+            ju[static_cast<size_t>(i)] = -ph.minv[static_cast<size_t>(i)] * f - ag_rate;
+        }
+        jh = ju;
+        stk.project(sy.mass, jh.data());
+        // (the rounding of accelerations and their rates: against the run's scales as well as the instant's,
+        // where every force is passing through zero)
+        double round = std::abs(ph.ax0) + std::abs(ph.axh) + ph.xrun * ph.rate * ph.rate;
+        double round_rate = std::abs(ph.ax1) + std::abs(ph.axh * ph.w) + ph.xrun * ph.rate * ph.rate * ph.rate;
+        double mass = 0.0;
+        for (int i = 0; i < n; ++i) {
+            round += std::abs(au[static_cast<size_t>(i)]) + std::abs(ag);
+            round_rate += std::abs(ju[static_cast<size_t>(i)]) + std::abs(ag_rate);
+            mass += sy.mass[static_cast<size_t>(i)];
+        }
+        round *= ROUNDING;
+        round_rate *= ROUNDING;
+        for (int p = 0; p < nr; ++p) {
+            const int d = rest[static_cast<size_t>(p)];
+            const Contact& ct = sy.contact[static_cast<size_t>(d)];
+            if ((s >> p) & 1) {  // held: it pushes, or is about to
+                const int h = stk.held_of[static_cast<size_t>(d)];
+                const double f = stk.force(ct.sign, h, sy.mass, au.data(), a.data());
+                if (f < -mass * round) return false;
+                if (f <= mass * round && stk.force(ct.sign, h, sy.mass, ju.data(), jh.data()) < -mass * round_rate)
+                    return false;
+            } else {  // free: the motion does not push it shut, nor is about to
+                auto closing = [&](const std::vector<double>& x) {
+                    return ct.sign * (x[static_cast<size_t>(ct.i)] - (ct.j >= 0 ? x[static_cast<size_t>(ct.j)] : 0.0));
+                };
+                const double push = closing(a), rate = closing(jh);
+                if (push > round || (push >= -round && rate > round_rate)) return false;
+                // (contact c's own event found its free motion closing it, at a higher order where these
+                // are zero to the rounding: it is held)
+                if (d == c && push >= -round && rate >= -round_rate) return false;
+            }
+        }
+        return true;
+    };
+    int chosen = (1 << nr) - 1;  // (none consistent: all held, their forces watched from the next interval)
+    bool found = false;
+    for (int size = nr; size >= 0 && !found; --size)
+        for (int s = 0; s < (1 << nr) && !found; ++s)
+            if (__builtin_popcount(s) == size && consistent(s)) {
+                chosen = s;
+                found = true;
+            }
+    hold(chosen);
+    for (const int d : rest) {
+        if (st[L.in_at(d)] == 0.0) continue;
+        const int acc = L.acc_at(d);
+        end_sequence(st, L, d, t, chatters);
+        const Contact& ct = sy.contact[static_cast<size_t>(d)];
+        if (ct.j < 0) st[L.x + ct.i] = ct.sign * ct.gap;  // (on the stop exactly)
+        st[L.def_at(d)] = 0.0;
+        for (int z = 0; z < N_ACC; ++z) st[acc + z] = 0.0;
+        st[acc + A_TSTART] = t;
+    }
+    stk.build(sy, st);
+    return true;
+}
+
+}  // namespace pounding::run_parts
