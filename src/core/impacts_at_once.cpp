@@ -267,7 +267,7 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
     };
     int chosen = (1 << nr) - 1;  // (none consistent: all held, their forces watched from the next interval)
     bool found = false;
-    for (int size = nr; size >= 0 && !found; --size)
+    for (int size = 0; size <= nr && !found; ++size)
         for (int s = 0; s < (1 << nr) && !found; ++s)
             if (__builtin_popcount(s) == size && consistent(s)) {
                 chosen = s;
