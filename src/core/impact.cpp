@@ -229,15 +229,20 @@ bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, S
 bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
                    const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q, double* row,
                    double& flight) {
-    if (impacts_at_once(st, sy, ph, tau, stk, c, ag, sc, ledger, contacts, chatters, q, row)) {
+    if (others_touch(st, sy, c, sc.h_min) &&
+        impacts_at_once(st, sy, ph, tau, stk, c, ag, sc, ledger, contacts, chatters, q, row)) {
         flight = INF;
-        release_pulling(st, sy, stk, -1, ag, q, row, contacts);
+        stk.build(sy, st);  // (the holds, if any: most impacts have none to release)
+        if (stk.any) release_pulling(st, sy, stk, -1, ag, q, row, contacts);
         return true;
     }
     const Contact& ct = sy.contact[static_cast<size_t>(c)];
     const bool jump = ct.sign * rel(st + sy.lay.v, ct.i, ct.j) > 0.0;  // (an impulse to come: velocities jump)
     const bool resolved = rigid_contact_(st, sy, ph, tau, stk, c, ag, sc, ledger, contacts, chatters, q, row, flight);
-    if (jump) release_pulling(st, sy, stk, c, ag, q, row, contacts);
+    if (jump) {
+        stk.build(sy, st);
+        if (stk.any) release_pulling(st, sy, stk, c, ag, q, row, contacts);
+    }
     return resolved;
 }
 

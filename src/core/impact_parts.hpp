@@ -21,6 +21,18 @@ void end_sequence(double* st, const Layout& L, int c, double t, Rows& chatters);
 // those left at rest held where the motion pushes them shut.  False where contact c meets its stop alone
 // (or with held stops only: their groups' masses take the impact) or the problem was not solved: the
 // impacts are then taken one by one
+// whether another free rigid stop touches (within h) at a dof of contact c's (most impacts: none)
+inline bool others_touch(const double* st, const System& sy, int c, double h) {
+    const Layout& L = sy.lay;
+    const Contact& own = sy.contact[static_cast<size_t>(c)];
+    for (const int d : sy.rigid) {
+        if (d == c || st[L.in_at(d)] != 0.0) continue;
+        const Contact& ct = sy.contact[static_cast<size_t>(d)];
+        const bool shares = ct.i == own.i || ct.j == own.i || (own.j >= 0 && (ct.i == own.j || ct.j == own.j));
+        if (shares && ct.sign * rel(st + L.x, ct.i, ct.j) - ct.gap >= -h) return true;
+    }
+    return false;
+}
 // (ph, tau: the phase that led to the instant, for the rates of the forces that are zero to the rounding)
 bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
                      const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q,

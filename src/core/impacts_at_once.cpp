@@ -121,16 +121,6 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
                      const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q,
                      double* row) {
     const Layout& L = sy.lay;
-    {  // (most impacts: no other free rigid stop touching at a dof of c's)
-        const Contact& own = sy.contact[static_cast<size_t>(c)];
-        bool any = false;
-        for (const int d : sy.rigid) {
-            if (d == c || st[L.in_at(d)] != 0.0 || !touching(st, sy, d, sc.h_min)) continue;
-            const Contact& ct = sy.contact[static_cast<size_t>(d)];
-            any = any || ct.i == own.i || ct.j == own.i || (own.j >= 0 && (ct.i == own.j || ct.j == own.j));
-        }
-        if (!any) return false;
-    }
     const std::vector<int> set = cluster_of(st, sy, c, sc.h_min);
     const int k = static_cast<int>(set.size());
     bool other_free = false, bodies = false;
