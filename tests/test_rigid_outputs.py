@@ -54,6 +54,50 @@ def test_a_building_struck_at_its_base_by_a_rigid_moat_wall_keeps_its_top_floor_
     assert np.isfinite(ds["acc_max_g"].values).all() and np.isfinite(ds["impact_force_max_n"].values).all()
 
 
+def _building(law) -> pounding.Structure:
+    iso = pounding.Isolator(slopes=[4.0e5, 1.0e5], breakpoints=[0.02], damping=2.0e3)
+    wall = pounding.Wall(0, 0.03, 0.03, law)
+    return pounding.Structure(3.0e3, iso, [pounding.Storey(2.0e3, 4.0e6, 4.0e3)] * 2, [wall])
+
+
+def test_a_study_of_a_building_on_a_rigid_moat_wall_keeps_its_direct_runs_peaks_inf_where_it_struck(tmp_path):
+    b = _building(pounding.RigidStop(0.5))
+    spec = pounding.StudySpec(b, {"kind": "simulate", "a_g": 0.3, "freq_hz": 0.9, "duration_s": 6.0},
+                              {"walls[0].gap_m": [0.02, 0.5]})
+    ds = pounding.study(spec, str(tmp_path / "s.zarr"), scheduler="serial").compute()
+    for gap in (0.02, 0.5):
+        wall = pounding.Wall(0, gap, gap, pounding.RigidStop(0.5))
+        run = pounding.simulate(pounding.Structure(b.base_mass_kg, b.isolator, b.storeys, [wall]),
+                                pounding.Harmonic(0.3, 0.9), 6.0)
+        point = ds.sel({"walls[0].gap_m": gap})
+        struck = bool((run.contacts.t_start == run.contacts.t_end).any())
+        assert struck == (gap == 0.02)
+        assert float(point["impacts"]) == len(run.contacts)
+        # struck at the base: unbounded there and as the force, the top floor's peak finite and exact
+        expected = np.inf if struck else run.abs_acceleration_max.max() / 9.81
+        assert float(point["acc_max_g"]) == expected
+        assert float(point["impact_force_max_n"]) == (np.inf if struck else 0.0)
+        assert float(point["top_acc_max_g"]) == run.abs_acceleration_max[-1] / 9.81
+
+
+def test_a_stripe_analysis_on_a_rigid_moat_wall_counts_an_impulse_as_exceeding_any_acceleration(tmp_path):
+    from pounding import design
+    path = str(tmp_path / "b.zarr")
+    design.stripe_analysis(_building(pounding.RigidStop(0.5)), "el-centro", [0.5, 1.0], period_s=1.5,
+                           store=path, progress=False, scheduler="serial",
+                           grid={"walls[0].gap_m": [0.02, 0.6]})
+    msa = design.open_stripe_analysis(path)
+    ds = msa.data
+    hit = (ds["impacts"] > 0) & (ds["status"] == 0)
+    assert bool(hit.sel({"walls[0].gap_m": 0.02}).all()) and not bool(hit.sel({"walls[0].gap_m": 0.6}).any())
+    assert bool(np.isinf(ds["acc_max_g"].where(hit, np.inf)).all())
+    assert bool(np.isfinite(ds["acc_max_g"].where(~hit, 0.0)).all())
+    # an impulse exceeds every acceleration limit; a free run only where its own peak does
+    outcomes = msa.outcomes("acceleration", 1e6)
+    np.testing.assert_array_equal(outcomes.values, hit.astype(float).values)
+    assert float(msa.fraction("acceleration", 1e6).sel({"walls[0].gap_m": 0.02}).min()) == 1.0
+
+
 def test_simulate_says_the_rigid_impacts_are_impulses_and_keeps_holds_apart(tmp_path):
     text = (ROOT / "examples" / "paper_printed_ybs.toml").read_text()
     law = text[text.index("[bumpers.law]"):]
