@@ -6,6 +6,7 @@
 #include "impact.hpp"
 #include "isolator.hpp"
 #include "laws.hpp"
+#include "sticking.hpp"
 
 namespace pounding {
 
@@ -140,6 +141,45 @@ Mat exponential(const Mat& a, double tau) {
     return out;
 }
 
+// the mode's accelerations with the rigid stops held in st: each held group's rows of the velocities' rates
+// replaced by their mass-weighted mean (sticking.hpp), a group held to the ground's by zero
+void hold_rows(const System& sy, const Coords& cx, const double* st, Mat& a) {
+    if (!sy.has_b) return;
+    Sticking stk;
+    stk.build(sy, st);
+    if (!stk.any) return;
+    std::vector<double> col(static_cast<size_t>(cx.n));
+    for (int q = 0; q < a.cols; ++q) {
+        for (int i = 0; i < cx.n; ++i) col[static_cast<size_t>(i)] = a(cx.v + i, q);
+        stk.project(sy.mass, col.data());
+        for (int i = 0; i < cx.n; ++i) a(cx.v + i, q) = col[static_cast<size_t>(i)];
+    }
+}
+
+// the mode of the state st: its linear field, with its holds
+Mat mode(const System& sy, const Coords& cx, const double* st, double omega, double amp) {
+    Mat a = augmented(sy, cx, st, omega, amp);
+    hold_rows(sy, cx, st, a);
+    return a;
+}
+
+bool any_held(const System& sy, const double* st) {
+    for (const int c : sy.rigid)
+        if (sy.has_b && st[sy.lay.in_at(c)] != 0.0) return true;
+    return false;
+}
+
+// whether the impact at event e on rigid stop c began a hold: the next event of c is its release
+bool begins_hold(const double* events, int n_events, int e, int c) {
+    for (int k = e + 1; k < n_events; ++k) {
+        if (static_cast<int>(events[3 * k + 2]) != c) continue;
+        const int action = static_cast<int>(events[3 * k + 1]);
+        if (action == ACT_RELEASE) return true;
+        if (action == ACT_CONTACT) return false;
+    }
+    return false;
+}
+
 Mat top_left(const Mat& m, int n) {
     Mat out(n, n);
     for (int i = 0; i < n; ++i)
@@ -160,7 +200,7 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
     xa[static_cast<size_t>(n + 1)] = std::cos(omega * t + phase);
     xa[static_cast<size_t>(n + 2)] = 1.0;
     jac = Mat::identity(n);
-    Mat a = augmented(sy, cx, st.data(), omega, amp);
+    Mat a = mode(sy, cx, st.data(), omega, amp);
     for (int e = 0; e <= n_events; ++e) {
         const double t_ev = e < n_events ? events[3 * e] : t_end;
         const Mat step = exponential(a, t_ev - t);
@@ -176,10 +216,20 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
         if ((action == ACT_CONTACT || action == ACT_RELEASE) && sy.has_b &&
             law_is_rigid(sy.contact[static_cast<size_t>(index)].law)) {
             // a rigid stop: its impact is a reset of the velocities (Newton's law), whose saltation matrix is
-            // R + (f+ - R f-) grad^T / (grad . f-); a hold (sticking) has no mode here
-            if (action == ACT_RELEASE) return -2 - e;
+            // R + (f+ - R f-) grad^T / (grad . f-); one that begins a hold (a chatter's accumulation, taken at
+            // that instant) brings the pair to rest, R's with e = 0, and f+ is the held mode's.  Its release,
+            // where the hold's force falls to zero, leaves the field continuous: no saltation
+            if (action == ACT_RELEASE) {
+                if (st[sy.lay.in_at(index)] == 0.0) return -2 - e;  // (a hold this did not see begin)
+                next[sy.lay.in_at(index)] = 0.0;
+                st = next;
+                a = mode(sy, cx, st.data(), omega, amp);
+                continue;
+            }
+            if (any_held(sy, st.data())) return -2 - e;  // (an impact on a held group: its masses' reset)
+            const bool holds = begins_hold(events, n_events, e, index);
             const Contact& ct = sy.contact[static_cast<size_t>(index)];
-            const double restitution = law_restitution(ct.p);
+            const double restitution = holds ? 0.0 : law_restitution(ct.p);
             const double mi = sy.mass[static_cast<size_t>(ct.i)];
             const double mj = ct.j >= 0 ? sy.mass[static_cast<size_t>(ct.j)] : INF;
             const double mu = 1.0 / (1.0 / mi + (ct.j >= 0 ? 1.0 / mj : 0.0));
@@ -208,11 +258,15 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
                 for (int q = 0; q < n; ++q) sum += reset(r, q) * xa[static_cast<size_t>(q)];
                 xr[static_cast<size_t>(r)] = sum;
             }
-            // the mode after it: the same stop free, an element's slipping springs stopped by the jump
+            // the mode after it: the same stop free (or held), an element's slipping springs stopped by the jump
             next = st;
             to_state(sy, cx, xr, next.data());
+            if (holds) {
+                next[sy.lay.in_at(index)] = 1.0;
+                next[sy.lay.def_at(index)] = 0.0;
+            }
             run_parts::after_velocity_jump(next.data(), sy);
-            const Mat a_after = augmented(sy, cx, next.data(), omega, amp);
+            const Mat a_after = mode(sy, cx, next.data(), omega, amp);
             const std::vector<double> f_after = matvec(a_after, xr);
             std::vector<double> rf(static_cast<size_t>(n), 0.0);  // R f-
             for (int r = 0; r < n; ++r)
@@ -249,7 +303,7 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
         } else {
             return -2 - e;  // (a contact law's branch, a Bouc-Wen spring: no linear modes)
         }
-        const Mat a_after = augmented(sy, cx, next.data(), omega, amp);
+        const Mat a_after = mode(sy, cx, next.data(), omega, amp);
         const std::vector<double> f_after = matvec(a_after, xa);
         double rate = 0.0;
         for (int i = 0; i < n; ++i) rate += grad[static_cast<size_t>(i)] * f_before[static_cast<size_t>(i)];
