@@ -135,6 +135,23 @@ def test_a_branch_that_stalls_next_to_a_non_smooth_fold_goes_round_it():
     assert abs(grazings[1].value - 1.63596) < 1e-4
 
 
+def test_a_grazing_of_both_stops_at_once_is_located_and_said_where_the_branch_stops():
+    """Symmetric stops, a symmetric orbit: both stops grazed at the closed form's a_g at once.  The map there
+    goes as the depth's fourth root (the first impact's square root moves the second's depth), which one
+    stop's normal form does not describe: the branch stops there and says so, with no fold of that normal
+    form reported."""
+    iso = pounding.Isolator(slopes=[W ** 2], damping=2.0 * ZETA * W)
+    osc = pounding.Oscillator(1.0, iso, pounding.Bumpers(D, D, pounding.RigidStop(E)))
+    branch = pounding.continuation(osc, (0.005, 0.1), 1.3, parameter="a_g")
+    assert branch.status == Status.STEP_FAILED and "two stops at once" in branch.message
+    (graze,) = branch.bifurcations
+    big = 2.0 * math.pi * 1.3
+    closed = D * abs(complex(W * W - big * big, 2.0 * ZETA * W * big)) / 9.81
+    assert graze.kind == "grazing" and graze.side == "left and right" and graze.located
+    assert abs(graze.value - closed) < 1e-9 * closed
+    assert abs(graze.scaling_exponent - 0.25) < 0.01
+
+
 @pytest.mark.parametrize("e", [0.0, 1.0])
 def test_no_period_doubling_is_reported_where_the_multipliers_jump_at_a_grazing(e):
     """Past a rigid stop's grazing the impacting orbit's multipliers are unbounded (as one over its impact

@@ -16,7 +16,7 @@ from ._arclength import Closure, Family, Point, system_at
 from .branch import COLUMNS, Bifurcation, Branch
 from .periodic import _Failed
 from ._detect import bifurcation_at, branch_point, detect, grazing_at, locate, other_direction
-from ._grazing import cross, fold_from_impacts, impacts_barely
+from ._grazing import cross, double_grazing, fold_from_impacts, impacts_barely
 
 
 class Follower:
@@ -134,6 +134,8 @@ class Follower:
                         ds = self.max_step / 4.0
                         continue
                     self.status = Status.STEP_FAILED
+                    if self._grazes_two(a):
+                        return
                     self.message = (f"the corrector failed at {self.fam.parameter} = {a.p:.8g} even with the "
                                     "smallest step (the branch may end there: a grazing of a stiff bumper, "
                                     "or an orbit the engine cannot run)")
@@ -235,6 +237,21 @@ class Follower:
         self.bifs.append(bifurcation_at(self, "fold", "", g, True))
         self._append(g, abs(self._s(a, g)))
         self._append(b, abs(self._s(g, b)))
+        return True
+
+    def _grazes_two(self, a: Point) -> bool:
+        """Where the branch stops at a grazing of two rigid stops at once (:func:`double_grazing`): that
+        grazing reported (its sides joined, its measured scaling) and said in the message."""
+        got = double_grazing(self, a)
+        if got is None:
+            return False
+        g, sides = got
+        bif = replace(grazing_at(self, g, sides[0]), side=" and ".join(sides))
+        self.bifs.append(bif)
+        self.message = (f"the branch reached a grazing of two stops at once ({bif.side}: a symmetric orbit) "
+                        f"at {self.fam.parameter} = {g.p:.10g}, where the map goes as depth^"
+                        f"{bif.scaling_exponent:.3f} (the second impact's depth moved by the first's square "
+                        "root); the follower does not go past such a grazing")
         return True
 
     def _leap_past(self, a: Point) -> bool:

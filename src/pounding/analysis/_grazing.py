@@ -128,20 +128,12 @@ def fold_from_impacts(fl: "Follower", a: Point, c: Point, p_others: list,
     return None
 
 
-def cross(fl: "Follower", a: Point) -> Optional[tuple[Point, float, Point, str]]:
-    """From the clear orbit ``a`` next to a grazing that the follower's steps cannot pass (the map's
-    derivative is infinite there): the grazing located (:func:`_secant` from the branch's last two
-    points), and the orbit past it, Newton's from the prediction of the map's normal form
-
-        P(x_g + y; p_g + mu) = x_g + M y + P_p mu + c sqrt(delta),   delta = -(C(mu) + g . (y - y_c)),
-
-    (``C`` the clear orbit's clearance, ``y_c`` its state, both continued past the grazing along the
-    clear branch's secant; ``g`` the clearance's gradient in the state, ``c`` :func:`map_scaling`'s
-    term): with ``w = sqrt(delta)``, ``w^2 + beta w + C(mu) = 0``, ``beta = g (I - M)^-1 c``, and
-    ``y = y_c + (I - M)^-1 c w``.  (``P_p`` is not taken from the grazing orbit's linearization: its
-    difference in p straddles the grazing.)  ``beta > 0``: the impacting branch goes on past the grazing;
-    ``beta < 0``: it turns back there (a non-smooth fold), on the clear side.  ``(orbit, arclength
-    from a, the grazing orbit, its side)``, or None where none was found."""
+def _nearest_grazing(fl: "Follower", a: Point) -> Optional[tuple[Point, tuple[str, ...]]]:
+    """From the clear orbit ``a``, the branch's last point, next to a rigid stop's grazing (its clearance
+    below 1e-3 of the orbit's size): the grazing located (:func:`_secant` from the branch's last two
+    points), and the rigid stops it grazes (two at once: a symmetric orbit between symmetric stops, its
+    other clearance within 1e-6 of the orbit's size there).  None where there is none, or it was not
+    located."""
     fam = fl.fam
     if len(fl.points) < 2 or fl.points[-1] is not a:
         return None
@@ -158,7 +150,41 @@ def cross(fl: "Follower", a: Point) -> Optional[tuple[Point, float, Point, str]]
     got = _secant(fl, [(prev.p, _test(fl, prev, side), prev), (a.p, tests[side], a)], None, math.nan, side)
     if got is None or not got[1]:
         return None
-    g, _ = got
+    g = got[0]
+    at_g = fam.shooter(g.p).clearances(g.run)
+    others = [s for s in sh.rigid_sides() if s != side and s in at_g and abs(at_g[s]) <= 1e-6 * size]
+    return g, (side, *others)
+
+
+def double_grazing(fl: "Follower", a: Point) -> Optional[tuple[Point, tuple[str, ...]]]:
+    """From the clear orbit ``a`` next to a grazing the steps cannot pass: the grazing, when it is of two
+    rigid stops at once (a symmetric orbit between symmetric stops), and its sides.  There the map's leading
+    singular term goes as the depth's fourth root (the first impact's square root moves the second's depth),
+    not as one stop's normal form; None where the grazing is of one stop, or none was located."""
+    got = _nearest_grazing(fl, a)
+    return got if got is not None and len(got[1]) > 1 else None
+
+
+def cross(fl: "Follower", a: Point) -> Optional[tuple[Point, float, Point, str]]:
+    """From the clear orbit ``a`` next to a grazing that the follower's steps cannot pass (the map's
+    derivative is infinite there): the grazing located (:func:`_secant` from the branch's last two
+    points), and the orbit past it, Newton's from the prediction of the map's normal form
+
+        P(x_g + y; p_g + mu) = x_g + M y + P_p mu + c sqrt(delta),   delta = -(C(mu) + g . (y - y_c)),
+
+    (``C`` the clear orbit's clearance, ``y_c`` its state, both continued past the grazing along the
+    clear branch's secant; ``g`` the clearance's gradient in the state, ``c`` :func:`map_scaling`'s
+    term): with ``w = sqrt(delta)``, ``w^2 + beta w + C(mu) = 0``, ``beta = g (I - M)^-1 c``, and
+    ``y = y_c + (I - M)^-1 c w``.  (``P_p`` is not taken from the grazing orbit's linearization: its
+    difference in p straddles the grazing.)  ``beta > 0``: the impacting branch goes on past the grazing;
+    ``beta < 0``: it turns back there (a non-smooth fold), on the clear side.  ``(orbit, arclength
+    from a, the grazing orbit, its side)``, or None where none was found."""
+    fam = fl.fam
+    got = _nearest_grazing(fl, a)
+    if got is None or len(got[1]) > 1:
+        return None  # (none; or of two stops at once, which the normal form of one does not describe)
+    g, (side,) = got
+    prev = fl.points[-2]
     gamma, term, grad = _scaling(fl, g, side, True)
     if term.size == 0:
         return None
