@@ -285,6 +285,31 @@ void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, 
                         if (0.0 < s && s < tau) track_abs_acceleration(ex, t0 + s, table_acceleration(ph, s));
                     }
                 }
+            } else if (linear) {
+                // a group moving as one: its absolute acceleration the mass-weighted mean of its dofs' free
+                // ones, -(K x + C v + R0)_k / M (the holds' forces inside it cancel), extreme where its rate
+                // changes sign
+                Fn fa, fr, fk;
+                fa.q.deg = 0;
+                fa.q.c[0] = 0.0;
+                const double share = 1.0 / ph.stk.gmass[static_cast<size_t>(g)];
+                for (int k = 0; k < n; ++k) {
+                    if (ph.stk.grp[static_cast<size_t>(k)] != g) continue;
+                    abs_acc_poly(ph, k, fk.q);
+                    const double w = ph.mass[static_cast<size_t>(k)] * share;
+                    for (int m = fa.q.deg + 1; m <= fk.q.deg; ++m) fa.q.c[m] = 0.0;
+                    fa.q.deg = std::max(fa.q.deg, fk.q.deg);
+                    for (int m = 0; m <= fk.q.deg; ++m) fa.q.c[m] += w * fk.q.c[m];
+                }
+                poly_deriv(fa.q, fr.q);
+                fr.kind = FN_POLY;
+                const double r0 = poly_val(fr.q, 0.0), r1 = poly_val(fr.q, tau);
+                ph.poly_evaluations += 2;
+                if (r0 * r1 < 0.0) {
+                    const double tm = find_root(fr, ph, 0.0, tau, r0, r1, NaN, NaN, XTOL_EXTREMUM_S);
+                    ph.poly_evaluations += 1;
+                    track_abs_acceleration(ex, t0 + tm, poly_val(fa.q, tm));
+                }
             }
             continue;
         }
