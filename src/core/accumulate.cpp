@@ -285,7 +285,7 @@ void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, 
                         if (0.0 < s && s < tau) track_abs_acceleration(ex, t0 + s, table_acceleration(ph, s));
                     }
                 }
-            } else if (linear) {
+            } else if (linear && !ph.stk.grounded[static_cast<size_t>(g)]) {
                 // a group moving as one: its absolute acceleration the mass-weighted mean of its dofs' free
                 // ones, -(K x + C v + R0)_k / M (the holds' forces inside it cancel), extreme where its rate
                 // changes sign

@@ -14,6 +14,12 @@ namespace {
 
 constexpr int MAX_AT_ONCE = 12;  // contacts: beyond this many the impacts are taken one after the other
 
+int bits(int s) {  // (the members of a set)
+    int count = 0;
+    for (; s != 0; s &= s - 1) ++count;
+    return count;
+}
+
 // a rigid stop at its stop (held, or within h of it)
 bool touching(const double* st, const System& sy, int d, double h) {
     const Contact& ct = sy.contact[static_cast<size_t>(d)];
@@ -58,8 +64,7 @@ bool solve_lcp(const std::vector<double>& W, const std::vector<double>& b, int k
     const double tol = 1e-12 * scale;
     std::vector<int> sets;
     for (int s = 0; s < (1 << k); ++s) sets.push_back(s);
-    std::stable_sort(sets.begin(), sets.end(),
-                     [](int x, int y) { return __builtin_popcount(x) < __builtin_popcount(y); });
+    std::stable_sort(sets.begin(), sets.end(), [](int x, int y) { return bits(x) < bits(y); });
     std::vector<double> A, r;
     std::vector<int> idx;
     for (const int s : sets) {
@@ -255,21 +260,23 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
         }
         return true;
     };
-    int chosen = (1 << nr) - 1;  // (none consistent: all held, their forces watched from the next interval)
-    bool found = false;
-    for (int size = 0; size <= nr && !found; ++size)
-        for (int s = 0; s < (1 << nr) && !found; ++s)
-            if (__builtin_popcount(s) == size && consistent(s)) {
-                chosen = s;
-                found = true;
-            }
-    hold(chosen);
+    int chosen = -1, fallback = 0;  // (none consistent: the largest set of holds that closes no loop)
+    for (int size = 0; size <= nr && chosen < 0; ++size)
+        for (int s = 0; s < (1 << nr) && chosen < 0; ++s) {
+            if (bits(s) != size) continue;
+            if (consistent(s)) chosen = s;
+            else if (stk.build(sy, st)) fallback = s;  // (consistent() left set s in st)
+        }
+    hold(chosen >= 0 ? chosen : fallback);
     for (const int d : rest) {
         if (st[L.in_at(d)] == 0.0) continue;
         const int acc = L.acc_at(d);
         end_sequence(st, L, d, t, chatters);
         const Contact& ct = sy.contact[static_cast<size_t>(d)];
-        if (ct.j < 0) st[L.x + ct.i] = ct.sign * ct.gap;  // (on the stop exactly)
+        if (ct.j < 0) {  // (on the stop exactly, at rest on it)
+            st[L.x + ct.i] = ct.sign * ct.gap;
+            v[ct.i] = 0.0;
+        }
         st[L.def_at(d)] = 0.0;
         for (int z = 0; z < N_ACC; ++z) st[acc + z] = 0.0;
         st[acc + A_TSTART] = t;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "impact.hpp"
+#include "impact_parts.hpp"
 #include "isolator.hpp"
 #include "laws.hpp"
 #include "sticking.hpp"
@@ -226,7 +227,14 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
                 a = mode(sy, cx, st.data(), omega, amp);
                 continue;
             }
-            if (any_held(sy, st.data())) return -2 - e;  // (an impact on a held group: its masses' reset)
+            if (any_held(sy, st.data())) return -2 - e;  // (an impact while a stop is held: its groups' reset)
+            {  // (impacts at one instant: their joint reset has no saltation here)
+                double scale = 0.0;
+                for (int i = 0; i < sy.n; ++i) scale = std::max(scale, std::abs(st[sy.lay.x + i]));
+                for (const int d : sy.rigid) scale = std::max(scale, sy.contact[static_cast<size_t>(d)].gap);
+                if (run_parts::others_touch(st.data(), sy, index, 64.0 * ROUNDING * scale + MIN_NORMAL))
+                    return -2 - e;
+            }
             const bool holds = begins_hold(events, n_events, e, index);
             const Contact& ct = sy.contact[static_cast<size_t>(index)];
             const double restitution = holds ? 0.0 : law_restitution(ct.p);
