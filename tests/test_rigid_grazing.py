@@ -25,6 +25,12 @@ def _oscillator(law) -> pounding.Oscillator:
         return pounding.Oscillator(1.0, iso, pounding.Bumpers(10.0, D, law))
 
 
+def _grazing_a_g(freq_hz: float) -> float:
+    """The a_g (in g) at which the linear response's amplitude at freq_hz is the gap D: its grazing."""
+    big = 2.0 * math.pi * freq_hz
+    return D * abs(complex(W * W - big * big, 2.0 * ZETA * W * big)) / 9.81
+
+
 def _period_doubling_hz() -> float:
     """Where the one-impact orbit's multiplier crosses -1 (closed form)."""
     def smallest(f: float) -> float:
@@ -83,8 +89,7 @@ def test_a_branch_that_turns_at_the_grazing_reports_the_grazing_and_its_fold_whe
     osc = _oscillator(pounding.RigidStop(E))
     branch = pounding.continuation(osc, (0.005, 0.1), 1.3, parameter="a_g")
     assert branch.status == Status.SUCCESS, branch.message
-    big = 2.0 * math.pi * 1.3
-    closed = D * abs(complex(W * W - big * big, 2.0 * ZETA * W * big)) / 9.81
+    closed = _grazing_a_g(1.3)
     kinds = [(b.kind, b.located) for b in branch.bifurcations]
     assert kinds == [("grazing", True), ("fold", True), ("fold", True)], kinds
     graze, turn, smooth = branch.bifurcations
@@ -101,8 +106,7 @@ def test_a_branch_that_meets_the_non_smooth_fold_from_its_impacting_side_goes_ro
     branch = pounding.continuation(osc, (0.1, 0.005), 1.3, parameter="a_g")
     assert branch.status == Status.SUCCESS, branch.message
     assert "a_g = 0.005" in branch.message
-    big = 2.0 * math.pi * 1.3
-    closed = D * abs(complex(W * W - big * big, 2.0 * ZETA * W * big)) / 9.81
+    closed = _grazing_a_g(1.3)
     kinds = [(b.kind, b.located) for b in branch.bifurcations]
     assert kinds == [("fold", True), ("grazing", True), ("fold", True)], kinds
     smooth, graze, turn = branch.bifurcations
@@ -145,8 +149,7 @@ def test_a_grazing_of_both_stops_at_once_is_located_and_said_where_the_branch_st
     branch = pounding.continuation(osc, (0.005, 0.1), 1.3, parameter="a_g")
     assert branch.status == Status.STEP_FAILED and "two stops at once" in branch.message
     (graze,) = branch.bifurcations
-    big = 2.0 * math.pi * 1.3
-    closed = D * abs(complex(W * W - big * big, 2.0 * ZETA * W * big)) / 9.81
+    closed = _grazing_a_g(1.3)
     assert graze.kind == "grazing" and graze.side == "left and right" and graze.located
     assert abs(graze.value - closed) < 1e-9 * closed
     assert abs(graze.scaling_exponent - 0.25) < 0.01
