@@ -129,7 +129,7 @@ def test_percentiles_over_records_keep_inf_and_equal_numpy_s_on_finite_values():
 def test_two_masses_held_together_have_their_group_s_peak_acceleration_between_a_sub_interval_s_ends():
     """A rigid link with no gap holds two bases together half of each cycle, the pair moving as one; the
     group's absolute acceleration peaks inside its sub-intervals (an eighth of a period long), where it is
-    found, not only at their ends: against 20 kHz samples, never below them and within 1e-8 g of their max
+    found, not only at their ends: against 20 kHz samples, never below them and within 1e-7 g of their max
     (it was 3e-4 m/s^2 below when only the ends were seen)."""
     def iso(w: float) -> pounding.Isolator:
         return pounding.Isolator(slopes=[w * w], damping=0.1 * w)
