@@ -68,7 +68,7 @@ def run_states(task: tuple, ctx: Context) -> np.ndarray:
                 raise Interrupted(out, i, len(states), "states")
             per_cycle = 1.0 / max(win[W_CYCLES], 1.0)
             out[i] = (k if code == Status.SUCCESS else 0,  # (the engine stopped early: not settled)
-                      win[W_AMAX] / amp, 0.5 * (win[W_DMAX] - win[W_DMIN]),
+                      win[W_AMAX] / amp, win[W_DMAX] - win[W_DMIN],  # (the excursion: D_max - D_min)
                       win[W_SUMS + S_COUNT] * per_cycle, win[W_SUMS + SIDE_SUMS + S_COUNT] * per_cycle,
                       strobes[-1, 0], strobes[-1, 1], n)
             if view is not None and code == Status.SUCCESS:
