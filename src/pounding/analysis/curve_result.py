@@ -11,6 +11,7 @@ import numpy as np
 import pandas as pd
 
 from .._errors import Status
+from ._through_sweeps import STEP_COLUMNS
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..model import Oscillator
@@ -161,6 +162,13 @@ class CoexistenceMap:
     notes : tuple of str
         The bifurcations not followed, and why (e.g. a branch that turns at a grazing, where no
         multiplier is 1); a branch started at the high end of the range (none settled at the low end).
+    seeded : tuple of Branch
+        With sweeps: the short branches started at the settled steps the level's branch does not pass
+        through (from the step to half way to its neighbours, both ways).
+    steps : DataFrame
+        With sweeps: one row per step (``a_g``, ``direction``, ``freq_hz``, ``alpha``, ``excursion_m``,
+        ``period_multiple``, ``steady``, ``on_branch``, ``branch``: "level" or "seeded", and ``why``
+        a step lies off every branch: another period, not settled, no orbit solved from it).
 
     Examples
     --------
@@ -185,6 +193,8 @@ class CoexistenceMap:
     curves: tuple[BifurcationCurve, ...] = field(repr=False)
     matrix: pd.DataFrame = field(repr=False)
     notes: tuple[str, ...] = ()
+    seeded: tuple["Branch", ...] = field(default=(), repr=False)
+    steps: pd.DataFrame = field(default_factory=lambda: pd.DataFrame(columns=list(STEP_COLUMNS)), repr=False)
 
     def to_xarray(self) -> Any:
         """The test matrix on (``a_g``, ``freq_hz``): each point's witnesses, responses and verdict."""
@@ -210,6 +220,7 @@ class CoexistenceMap:
         responses coexist filled); returns the artists."""
         from ..plots.curves import plot_curves
 
+        kwargs.setdefault("box", (self.freqs_hz, self.a_g))
         return plot_curves(list(self.curves), ax=ax, matrix=self.matrix, **kwargs)
 
     def __repr__(self) -> str:

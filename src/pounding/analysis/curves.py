@@ -8,6 +8,7 @@ from collections.abc import Mapping
 from typing import Any, Optional, Sequence
 
 import numpy as np
+import pandas as pd
 
 from .._checks import integer, one_of, real
 from .._errors import InputError, Interrupted, Problem, Status
@@ -24,6 +25,7 @@ from .branch import Bifurcation, Branch
 from .continuation import continuation
 from .curve_result import BifurcationCurve, CoexistenceMap, curve_table
 from .witnesses import check_basin_sample, check_sweeps, judge_matrix
+from ._through_sweeps import STEP_COLUMNS, through_sweeps
 from .periodic import _Failed
 from ._args import exact_monodromy, length_scale, step_size, tolerance
 
@@ -213,7 +215,10 @@ def coexistence_map(
         The monodromy, as in :func:`periodic_orbit`; also the branches'.
     sweeps : sequence of SweepResult or StructureSweepResult, or CampaignResult, optional
         Sweeps of this system at the levels (up and down): witnesses at their frequencies (a
-        structure's: :func:`pounding.sweep` of it).
+        structure's: :func:`pounding.sweep` of it).  Each settled period-1 step that the level's
+        branch does not pass through starts a short branch of its own (``seeded``), from the step's
+        exact state to half way to its neighbouring steps: every settled period-1 step then lies on a
+        branch (``steps`` says which, and why a step lies off every one: another period, not settled).
     basin_sample : int
         Points per axis of the basin sample run at each test point (0: none; then a branch's single
         stable orbit is only "one on the branch").
@@ -227,7 +232,8 @@ def coexistence_map(
     CoexistenceMap
         ``branches``, ``curves``, ``matrix`` (one row per level and frequency: ``stable_orbits`` on
         the branch, NaN where it did not reach, ``sweep_responses``, ``basin_responses``,
-        ``responses``, ``verdict``, ``evidence``), ``.plot()``, ``.to_dataframe()``.
+        ``responses``, ``verdict``, ``evidence``), ``seeded`` and ``steps`` (with ``sweeps``),
+        ``.plot()``, ``.to_dataframe()``.
 
     Raises
     ------
@@ -284,12 +290,19 @@ def coexistence_map(
         freqs = np.sort(np.asarray([real(f"test_freqs_hz[{i}]", v) for i, v in
                                     enumerate(_sequence("test_freqs_hz", test_freqs_hz, "frequencies, Hz"))]))
     branches: list[Branch] = []
+    seeded: list[Branch] = []
+    steps: list[pd.DataFrame] = []
     curves: list[BifurcationCurve] = []
     notes: list[str] = []
     try:
         for level in levels:
             br = _level_branch(oscillator, level, f_box, max_step, method, notes)
             branches.append(br)
+            own = [sw for sw in witnesses if math.isclose(sw.a_g, level, rel_tol=1e-9)]
+            if own:  # (every settled step of the level's sweeps on a branch, or said to be off)
+                more, table = through_sweeps(oscillator, own, [br], f_box, method)
+                seeded.extend(more)
+                steps.append(table)
             for bif in br.bifurcations:
                 if bif.kind in kinds and not any(c.passes(bif) for c in curves):
                     try:
@@ -306,17 +319,23 @@ def coexistence_map(
         raise Interrupted(CoexistenceMap(oscillator, a_box, f_box, tuple(levels), tuple(branches),
                                          tuple(curves),
                                          judge_matrix(oscillator, branches, freqs, sweeps=witnesses,
-                                                      basin_sample=0),
-                                         tuple(notes)), len(curves), None, "curves") from None
+                                                      basin_sample=0, seeded=seeded),
+                                         tuple(notes), tuple(seeded), _steps(steps)),
+                          len(curves), None, "curves") from None
     try:
         matrix = judge_matrix(oscillator, branches, freqs, sweeps=witnesses, basin_sample=basin_sample,
-                              progress=progress)
+                              progress=progress, seeded=seeded)
     except Interrupted as exc:
         raise Interrupted(CoexistenceMap(oscillator, a_box, f_box, tuple(levels), tuple(branches),
-                                         tuple(curves), exc.partial, tuple(notes)), len(curves), None,
-                          "curves") from None
+                                         tuple(curves), exc.partial, tuple(notes), tuple(seeded),
+                                         _steps(steps)), len(curves), None, "curves") from None
     return CoexistenceMap(oscillator, a_box, f_box, tuple(levels), tuple(branches), tuple(curves), matrix,
-                          tuple(notes))
+                          tuple(notes), tuple(seeded), _steps(steps))
+
+
+def _steps(tables: list[pd.DataFrame]) -> pd.DataFrame:
+    return (pd.concat(tables, ignore_index=True) if tables
+            else pd.DataFrame(columns=list(STEP_COLUMNS)))
 
 
 # ---------------------------------------------------------------------- pieces

@@ -5,13 +5,16 @@ that a point has one response only (another branch, an isola, a response of anot
 followed), and where the branch did not reach it says nothing.  So each test point is judged by its
 witnesses:
 
-- the branch: its stable orbits there (where it reached the frequency);
+- the branch: its stable orbits there (where it reached the frequency), and those of the branches
+  started at the sweeps' settled steps that lie off it (:func:`through_sweeps`);
 - the sweeps (an up and a down sweep at the point's a_G, when given): two steps that both settled on
   responses that differ (in alpha, excursion or period) show two responses; one settled step shows one;
 - a basin sample: a small grid of initial states at table phase 0, each run until it settles
   (:func:`pounding.basins`); two attractors show two responses.
 
-The point's ``responses`` is the most any witness shows.  Two or more is coexistence, whoever shows
+The point's ``responses`` is the most any witness shows, or the distinct responses all of them show
+together where that is more (a stable orbit of the branch and a sweep's step settled on another response
+are two, though each witness shows one).  Two or more is coexistence, whoever shows
 it.  One response is said (``verdict`` "one") only where the basin sample ran, every state of it settled
 on the same response, and the branch or the sweeps agree; without a sample, a branch's single stable
 orbit is "one on the branch" (others not sought); anything else is "not assessed", and ``evidence``
@@ -62,9 +65,43 @@ def branch_counts(branches: Sequence["Branch"], freqs: np.ndarray) -> pd.DataFra
     return pd.DataFrame(rows, columns=["a_g", "freq_hz", "stable_orbits", "branch_reached"])
 
 
+def branch_responses(branch: Any, freq_hz: float) -> list[tuple[int, bool, float, float, bool]]:
+    """The branch's orbits at ``freq_hz``, read along its segments that span it (linear between its
+    points): ``(period, impacts, alpha, excursion_m, stable)`` each (stable: both ends of the segment)."""
+    df = branch.to_dataframe()
+    f = df["freq_hz"].to_numpy(float)
+    alpha, exc = df["alpha"].to_numpy(float), df["excursion_m"].to_numpy(float)
+    hits = df["contacts_per_period"].to_numpy(float) > 0
+    stable = df["stable"].to_numpy(bool)
+    out = []
+    for j in range(f.size - 1):
+        lo, hi = min(f[j], f[j + 1]), max(f[j], f[j + 1])
+        if not lo <= freq_hz <= hi:
+            continue
+        w = 0.0 if hi == lo else (freq_hz - f[j]) / (f[j + 1] - f[j])
+        near = j if w <= 0.5 else j + 1
+        a = alpha[j] + w * (alpha[j + 1] - alpha[j])
+        e = exc[j] + w * (exc[j + 1] - exc[j])
+        out.append((int(branch.period_multiple), bool(hits[near]), float(a), float(e),
+                    bool(stable[j] and stable[j + 1])))
+    if f.size == 1 and math.isclose(f[0], freq_hz, rel_tol=0.0, abs_tol=1e-12):
+        out.append((int(branch.period_multiple), bool(hits[0]), float(alpha[0]), float(exc[0]),
+                    bool(stable[0])))
+    return out
+
+
 def sweep_witness(sweeps: Sequence[Any], a_g: float, freq_hz: float) -> tuple[float, str]:
     """``(responses, words)``: the distinct settled responses the sweeps at ``a_g`` show at ``freq_hz``
     (NaN when no step there settled), and what they were."""
+    settled, words = sweep_responses(sweeps, a_g, freq_hz)
+    if not settled:
+        return math.nan, ""
+    return float(distinct(settled)), f"sweeps settled: {', '.join(words)}"
+
+
+def sweep_responses(sweeps: Sequence[Any], a_g: float, freq_hz: float) -> tuple[list[tuple], list[str]]:
+    """The settled steps of the sweeps at ``a_g`` at ``freq_hz``: their responses ``(period, impacts,
+    alpha, excursion_m)`` and each in words."""
     settled, words = [], []
     for sw in sweeps:
         if not math.isclose(sw.a_g, a_g, rel_tol=1e-9):
@@ -75,9 +112,7 @@ def sweep_witness(sweeps: Sequence[Any], a_g: float, freq_hz: float) -> tuple[fl
             settled.append((int(row["period_multiple"]), bool(row["contact"]), float(row["alpha"]),
                             float(row["excursion_m"])))
             words.append(f"{sw.direction} alpha {float(row['alpha']):.3g}")
-    if not settled:
-        return math.nan, ""
-    return float(distinct(settled)), f"sweeps settled: {', '.join(words)}"
+    return settled, words
 
 
 def _witness_table(sweep: Any) -> pd.DataFrame:
@@ -129,10 +164,12 @@ def _near(a: tuple, b: tuple) -> bool:
 
 def judge_matrix(oscillator: Any, branches: Sequence["Branch"], freqs: np.ndarray, *,
                 sweeps: Sequence[Any] = (), basin_sample: int = 4, max_cycles: int = 500,
-                progress: Progress = False) -> pd.DataFrame:
+                progress: Progress = False, seeded: Sequence["Branch"] = ()) -> pd.DataFrame:
     """The test matrix (one row per branch's a_G and frequency) with every point judged by its witnesses
     (see the module's docstring for the rule): columns ``MATRIX_COLUMNS``.
 
+    ``seeded`` are branches through the sweeps' settled steps (:func:`through_sweeps`): their stable
+    orbits that differ from every orbit of the level's branch count among ``stable_orbits`` too.
     ``basin_sample`` is the basin grid's points per axis (``n x n`` states over the gaps, or a
     structure's shifts that leave its walls and links open, and +-1 m/s;
     0: no sample), run at every point.  A Ctrl-C keeps the points judged so far: :class:`Interrupted`
@@ -141,13 +178,26 @@ def judge_matrix(oscillator: Any, branches: Sequence["Branch"], freqs: np.ndarra
     from ..protocols import basins
 
     matrix = branch_counts(branches, np.asarray(freqs, dtype=float))
+    level_of = {float(br.a_g): br for br in branches}
     sweeps = tuple(sweeps)
     out = []
     todo = []
     for row in matrix.to_dict("records"):
-        sw_n, sw_words = sweep_witness(sweeps, row["a_g"], row["freq_hz"]) if sweeps else (math.nan, "")
-        row.update(sweep_responses=sw_n, basin_responses=math.nan, basin_not_settled=math.nan,
-                   evidence_sweeps=sw_words)
+        a_g, f = row["a_g"], row["freq_hz"]
+        on_level = branch_responses(level_of[a_g], f) if a_g in level_of else []
+        found = [r[:4] for r in on_level if r[4]]
+        others = [r[:4] for br in seeded if math.isclose(br.a_g, a_g, rel_tol=1e-9)
+                  for r in branch_responses(br, f) if r[4]]
+        others = [r for r in others if not any(_near(r, m[:4]) for m in on_level)]
+        if others:  # (stable orbits of the steps' own branches, none of the level branch's)
+            row["stable_orbits"] = (0.0 if math.isnan(row["stable_orbits"]) else row["stable_orbits"]) \
+                + distinct(others)
+            row["branch_reached"] = True
+        settled, sw_words = sweep_responses(sweeps, a_g, f) if sweeps else ([], [])
+        row.update(sweep_responses=float(distinct(settled)) if settled else math.nan,
+                   basin_responses=math.nan, basin_not_settled=math.nan,
+                   evidence_sweeps=f"sweeps settled: {', '.join(sw_words)}" if sw_words else "",
+                   seen=found + others + settled)
         out.append(row)
         if basin_sample:  # (at every point: where another witness shows two, a third one more)
             todo.append(row)
@@ -158,9 +208,10 @@ def judge_matrix(oscillator: Any, branches: Sequence["Branch"], freqs: np.ndarra
                 b = basins(oscillator, Harmonic(row["a_g"], row["freq_hz"]), n=(basin_sample, basin_sample),
                            max_cycles=max_cycles, scheduler="serial")
                 att = b.attractors
-                row["basin_responses"] = float(distinct(list(zip(att["period"], att["impacts"], att["alpha"],
-                                                                 att["excursion_m"]))))
+                seen = list(zip(att["period"], att["impacts"], att["alpha"], att["excursion_m"]))
+                row["basin_responses"] = float(distinct(seen))
                 row["basin_not_settled"] = b.not_settled
+                row["seen"] = row["seen"] + seen
                 advance(1)
     except (Interrupted, KeyboardInterrupt) as exc:
         interrupted = exc
@@ -179,7 +230,9 @@ def _max(*values: float) -> float:
 def _judged(row: dict, basin_sample: int) -> dict:
     """The point's responses, verdict and evidence from its witnesses."""
     stable, sweeps, basin = row["stable_orbits"], row["sweep_responses"], row["basin_responses"]
-    responses = _max(stable, sweeps, basin)
+    # the most any witness shows, or more: the witnesses' responses together (a branch's stable orbit
+    # and a sweep's settled step on another response are two)
+    responses = _max(stable, sweeps, basin, float(distinct(row["seen"])) if row.get("seen") else math.nan)
     words = []
     if row["branch_reached"]:
         words.append(f"branch: {int(stable)} stable orbit{'s' if stable != 1 else ''}")

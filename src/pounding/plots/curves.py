@@ -21,7 +21,8 @@ MATRIX_LOOK = (
 )
 
 
-def plot_curves(curves: list, ax: Any = None, *, matrix: Optional[Any] = None, **kwargs: Any) -> list:
+def plot_curves(curves: list, ax: Any = None, *, matrix: Optional[Any] = None,
+                box: Optional[tuple] = None, **kwargs: Any) -> list:
     """Fold curves solid, grazing curves dotted, in the (frequency, a_G) plane.
 
     Parameters
@@ -34,6 +35,10 @@ def plot_curves(curves: list, ax: Any = None, *, matrix: Optional[Any] = None, *
         A test matrix (``CoexistenceMap.matrix``: ``a_g``, ``freq_hz``, ``verdict``): each point drawn
         as its verdict says: filled where two or more responses coexist, hollow where one response is
         shown, a cross where the number is not assessed.
+    box : ((float, float), (float, float)), optional
+        The map's frequencies (Hz) and a_G: an end of a curve that did not end well (its ``status``)
+        and lies inside this box is marked where the curve stopped short (without ``box``, every end
+        of such a curve).
     **kwargs
         Passed to the curves' lines.
 
@@ -74,8 +79,35 @@ def plot_curves(curves: list, ax: Any = None, *, matrix: Optional[Any] = None, *
         color = kwargs.get("color") or ("C0" if c.kind == "fold" else "C2" if c.side == "left" else "C1")
         kw = {k: v for k, v in kwargs.items() if k != "color"}
         artists += ax.plot(df["freq_hz"], df["a_g"], STYLE.get(c.kind, "-"), color=color, label=label, **kw)
+        short = _stopped_ends(c, df, box)
+        if short:
+            f, a = zip(*short)
+            artists += ax.plot(f, a, ls="none", marker="s", ms=6, mfc="none", mec="k", mew=1.2,
+                               label=None if "stopped" in seen else "a curve stopped short here (not at the "
+                                                                      "map's edge: see its status)")
+            seen.add("stopped")
     ax.set_xlabel("frequency f [Hz]")
     ax.set_ylabel(A_G_LABEL)
     if artists:
         place_legend(ax, fontsize="small")
     return artists
+
+
+def _stopped_ends(curve: Any, df: Any, box: Optional[tuple]) -> list[tuple[float, float]]:
+    """The ends of a curve that did not end well (``status`` not SUCCESS) that lie inside ``box``
+    (both ends without a box): where it stopped short."""
+    from .._errors import Status
+
+    if curve.status == Status.SUCCESS or not len(df):
+        return []
+    ends = {(float(df["freq_hz"].iloc[0]), float(df["a_g"].iloc[0])),
+            (float(df["freq_hz"].iloc[-1]), float(df["a_g"].iloc[-1]))}
+    if box is None:
+        return sorted(ends)
+    (f0, f1), (a0, a1) = (sorted(box[0]), sorted(box[1]))
+
+    def at_edge(v: float, lo: float, hi: float) -> bool:
+        tol = 1e-6 * max(abs(hi - lo), 1e-12)
+        return abs(v - lo) <= tol or abs(v - hi) <= tol
+
+    return sorted(e for e in ends if not (at_edge(e[0], f0, f1) or at_edge(e[1], a0, a1)))
