@@ -43,23 +43,75 @@ def coexistence_of(result: "CampaignResult", ybs_system: "Oscillator", basin_sam
     return cmap, ""
 
 
-def add_branches(fig: "Figure", cmap: "CoexistenceMap", f_ref_hz: float) -> None:
-    """Each level's branch on the Fig. 5 analogue's panels (alpha, eta against nu), thin, in the
-    level's colour: stable solid, unstable dashed."""
+def add_branches(fig: "Figure", cmap: "CoexistenceMap", f_ref_hz: float) -> str:
+    """Each level's branches on the Fig. 5 analogue's panels (alpha, eta against nu), thin, in the
+    level's colour: stable solid, unstable dashed; the level's branch and those started at the sweeps'
+    settled steps it does not pass through (``cmap.seeded``).  eta is over the rig's nominal total gap,
+    as the sweeps' (``paper_gap_total_m``), whatever the model's own.  A settled step off every
+    period-1 branch (another period, no orbit solved) is marked.  Returns what the figure shows, in
+    words: its caption's second part."""
+    from ..data import paper_gap_total_m
+
     ax_alpha, ax_eta = fig.axes[0], fig.axes[1]
-    for i, br in enumerate(sorted(cmap.branches, key=lambda b: b.a_g)):
+    delta = paper_gap_total_m()
+    colour = {float(a): f"C{i}" for i, a in enumerate(sorted({float(b.a_g) for b in cmap.branches}))}
+    first = True
+    for br in sorted(cmap.branches, key=lambda b: b.a_g) + list(cmap.seeded):
         df = br.to_dataframe()
         nu = df["freq_hz"].to_numpy(float) / f_ref_hz
         stable = df["stable"].to_numpy(bool)
-        for ax, y in ((ax_alpha, "alpha"), (ax_eta, "eta")):
-            vals = df[y].to_numpy(float)
+        for ax, vals in ((ax_alpha, df["alpha"].to_numpy(float)),
+                         (ax_eta, df["excursion_m"].to_numpy(float) / delta)):
             for want, style in ((True, "-"), (False, "--")):
                 shown = np.where(stable == want, vals, np.nan)
-                ax.plot(nu, shown, style, color=f"C{i}", lw=0.6, alpha=0.8,
+                ax.plot(nu, shown, style, color=colour.get(float(br.a_g), "0.4"), lw=0.6, alpha=0.8,
+                        gid="branch",
                         label=(f"continued branch, {'stable' if want else 'unstable'} (each a_G's colour)"
-                               if ax is ax_alpha and i == 0 else None))
+                               if ax is ax_alpha and first else None))
+        first = False
+    steps = cmap.steps
+    off = steps[steps["steady"].astype(bool) & ~steps["on_branch"].astype(bool)] if len(steps) else steps
+    if len(off):
+        ax_alpha.plot(off["freq_hz"] / f_ref_hz, off["alpha"], "x", color="0.2", ms=6, mew=1.2,
+                      label="settled step off every period-1 branch (another period)")
+        ax_eta.plot(off["freq_hz"] / f_ref_hz, off["excursion_m"] / delta, "x", color="0.2", ms=6, mew=1.2)
     place_legend(ax_alpha, fontsize="x-small", ncol=2)
     fig.suptitle(fig.get_suptitle().replace("pseudo-FRFs", "FRFs + branches"))
+    return branches_caption(cmap, f_ref_hz)
+
+
+def branches_caption(cmap: "CoexistenceMap", f_ref_hz: float) -> str:
+    """What Fig. 5's branches show, in words: eta's gap, which steps lie on which branches, and where
+    two stable responses coexist (the test points the coexistence map judges so)."""
+    from ..data import paper_gap_total_m
+
+    words = [f"eta = E / Delta over the rig's nominal total gap, Delta = {paper_gap_total_m() * 1e3:g} mm "
+             "(as Table 2), for the sweeps and the branches alike, whatever the model's own gap. Thin "
+             "lines: the period-1 branches continued at each a_G (stable solid, unstable dashed), from the "
+             "low end of the range and from each settled sweep step that branch does not pass through (a "
+             "short branch each, to half way to the neighbouring steps)."]
+    grid = np.unique(cmap.matrix["freq_hz"].to_numpy(float))
+    step = float(np.min(np.diff(grid))) if grid.size > 1 else None
+    steps = cmap.steps
+    if len(steps):
+        settled = steps[steps["steady"].astype(bool)]
+        on = int(settled["on_branch"].astype(bool).sum())
+        off = settled[~settled["on_branch"].astype(bool)]
+        words.append(f"Of the sweeps' {len(settled)} settled steps, {on} lie on a drawn branch"
+                     + (f"; {len(off)} lie off every period-1 branch (marked x): "
+                        + "; ".join(f"a_G {a:g} {d} at {_freqs(part, step)} "
+                                    f"({'; '.join(part['why'].unique())})"
+                                    for (a, d), part in off.groupby(["a_g", "direction"]))
+                        if len(off) else "") + ".")
+    both = cmap.matrix[cmap.matrix["verdict"] == "coexist"]
+    if len(both):
+        words.append("Two or more stable responses coexist at " + "; ".join(
+            f"a_G {a:g}: {_freqs(part, step)}" for a, part in both.groupby("a_g"))
+            + " (the coexistence map's test points, each judged by the branches, the sweeps and a basin "
+              "sample): there a sweep's response depends on where it came from.")
+    else:
+        words.append("No test point shows two stable responses.")
+    return " ".join(words)
 
 
 def fig_coexistence(cmap: "CoexistenceMap") -> "Figure":
@@ -121,5 +173,15 @@ VERDICT_WORDS = {"coexist": "two or more responses", "one": "one response (a bas
                  "not assessed": "not assessed"}
 
 
-def _freqs(rows: pd.DataFrame) -> str:
-    return ", ".join(f"{f:g}" for f in rows["freq_hz"]) + " Hz"
+def _freqs(rows: pd.DataFrame, step_hz: float | None = None) -> str:
+    """The rows' frequencies in words; with the grid's ``step_hz``, runs of consecutive ones joined
+    (``0.5, 1.3-2.3 Hz``)."""
+    f = np.unique(np.round(rows["freq_hz"].to_numpy(float), 9))
+    if not f.size:
+        return "no frequency"
+    runs, start = [], 0
+    for i in range(1, f.size + 1):
+        if i == f.size or step_hz is None or not np.isclose(f[i] - f[i - 1], step_hz, rtol=1e-6):
+            runs.append(f"{f[start]:g}" if i - 1 == start else f"{f[start]:g}-{f[i - 1]:g}")
+            start = i
+    return ", ".join(runs) + " Hz"

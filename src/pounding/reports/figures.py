@@ -24,7 +24,8 @@ if TYPE_CHECKING:  # pragma: no cover
 
 NU = r"$\nu = f/f_R$ [-]"
 ALPHA = r"$\alpha = A_{max}/A_t$ [-]"
-ETA = r"$\eta = E/\Delta$ [-]"
+# eta over the rig's nominal total gap (Table 2's), whatever a model's own gap: one eta in every figure
+ETA = rf"$\eta = E/\Delta$, $\Delta$ = {paper_gap_total_m() * 1e3:g} mm [-]"
 E_NBS = r"$e = E/D_{tmax}$ [-]"
 A_G = r"$a_G = A_t/g$ [-]"
 MEASURED = dict(marker="o", mfc="none", mec="k", ls="none", ms=8, mew=1.5)
@@ -85,8 +86,18 @@ def _figure(title: str, panels: int = 2, sharex: bool = True):
 
     fig, axes = plt.subplots(panels, 1, figsize=(6.5, 3.4 * panels), sharex=sharex, squeeze=False,
                              constrained_layout=True)
-    fig.suptitle(title)
+    suptitle(fig, title)
     return fig, axes[:, 0]
+
+
+def suptitle(fig, title: str, fontsize: float = 12.0) -> None:
+    """The figure's title, wrapped to the figure's width (a long title on a narrow figure is cut at
+    both ends otherwise)."""
+    import textwrap
+
+    width_in = fig.get_size_inches()[0]
+    chars = max(20, int(width_in * 72.0 / (0.56 * fontsize)))
+    fig.suptitle(textwrap.fill(title, chars), fontsize=fontsize)
 
 
 def _frf(df: pd.DataFrame, conf: str, a_gs, y: str, axes, colour_of=None, conf_label=False) -> None:
@@ -147,9 +158,9 @@ def fig05_measured(result, chain: str):
     """Fig. 5's analogue with every window measured through a chain (``chain``: its description)."""
     df = steps(result)
     fig = fig05(result, df, None)
-    import textwrap
-
-    fig.suptitle(textwrap.fill(f"Fig. 5 analogue as measured ({chain})", 90), fontsize="small")
+    suptitle(fig, f"Fig. 5 analogue as measured ({chain}); no branches drawn: a branch's metrics are "
+                  "exact, these are read through the chain (Fig. 5 has the exact ones with their branches)",
+             fontsize=9.0)
     return fig
 
 
@@ -180,7 +191,7 @@ def _loops(result, a_gs, title, linestyle="-"):
     n = max(len(shown), 1)
     fig, axes = plt.subplots(1, n, figsize=(3.3 * n + 0.6, 4.4), sharex=True, sharey=True, squeeze=False,
                              constrained_layout=True)
-    fig.suptitle(title)
+    suptitle(fig, title)
     for ax, (i, ag, sw) in zip(axes[0], shown):
         loop = sw.hysteresis_loop(sw.resonance_hz)
         plot_hysteresis(loop, ax=ax, per="half_gap", color=f"C{i}", ls=linestyle,
@@ -207,29 +218,56 @@ def fig08(result, df, peaks):
     return fig
 
 
-def _nbs_vs_ybs(peaks, title, x: str, xlabel: str):
-    fig, ax = _figure(title, sharex=True)
+def _nbs_vs_ybs(peaks, title, x: str, xlabel: str, annotate: str | None = None, nu_r_panel: bool = False):
+    """NBs against YBs maxima: against a_G (``x="a_g"``) or against their resonance (``x="nu_r"``), each
+    line joined in the order of its x axis; ``annotate`` ("nu_r" or "a_g") labels each model point with
+    that number; ``nu_r_panel`` adds a third panel, the resonance against a_G."""
+    fig, ax = _figure(title, panels=3 if nu_r_panel else 2, sharex=True)
     for conf in ("NBs", "YBs"):
         meas_alpha = measured_value("alpha", conf)
         meas_e = _measured_excursion(conf, "eta")
+        nu = measured_value("nu_r", conf)
         if x == "a_g":
             _versus_a_g(ax[0], peaks, conf, "alpha", meas_alpha, conf)
             _versus_a_g(ax[1], peaks, conf, "e_gap", meas_e, conf)
-        else:  # against the resonance: the envelope of the peaks
+            if nu_r_panel:
+                _versus_a_g(ax[2], peaks, conf, "nu_r", nu, conf)
+        else:  # against the resonance: the envelope of the peaks, joined in the order of nu_R
             for d, sub in peaks[peaks["configuration"] == conf].groupby("direction"):
+                sub = sub.sort_values(["nu_r", "a_g"])
                 style = dict(CONF_STYLE[conf], **DIRECTION_LOOK[d])
                 ax[0].plot(sub["nu_r"], sub["alpha"], label=f"{conf} model ({d} sweep)", **style)
                 ax[1].plot(sub["nu_r"], sub["e_gap"], **style)
-            nu = measured_value("nu_r", conf)
             ax[0].plot(nu, meas_alpha.reindex(nu.index), label=f"{conf} measured", **MEASURED_OF[conf])
             ax[1].plot(nu, meas_e.reindex(nu.index), **MEASURED_OF[conf])
-    ax[0].set_ylabel(ALPHA), ax[1].set_ylabel(ETA), ax[1].set_xlabel(xlabel)
+        if annotate:
+            _annotate(ax[:2], peaks[peaks["configuration"] == conf], x, annotate)
+    ax[0].set_ylabel(ALPHA), ax[1].set_ylabel(ETA), ax[-1].set_xlabel(xlabel)
+    if nu_r_panel:
+        ax[2].set_ylabel(r"$\nu_R$ [-]")
     place_legend(ax[0], fontsize="x-small")
     return fig
 
 
+def _annotate(axes, peaks: pd.DataFrame, x: str, what: str) -> None:
+    """Each model point labelled with its ``what`` (``"nu_r"``: nu_R, ``"a_g"``: a_G), small, beside it;
+    the up sweep's above, the down sweep's below (where they coincide, both are read)."""
+    if not len(peaks):
+        return
+    mid = 0.5 * (float(peaks[x].min()) + float(peaks[x].max()))
+    for _, row in peaks.iterrows():
+        text = (rf"$\nu_R$ {row['nu_r']:.2g}" if what == "nu_r" else f"a_G {row['a_g']:g}")
+        dy = 6 if row["direction"] == "up" else -10
+        right = row[x] > mid  # (the text towards the middle: inside the axes at either end)
+        for ax, y in zip(axes, ("alpha", "e_gap")):
+            ax.annotate(text, (row[x], row[y]), xytext=(-4 if right else 4, dy), textcoords="offset points",
+                        fontsize=6, ha="right" if right else "left",
+                        color=CONF_STYLE[row["configuration"]]["color"], annotation_clip=True)
+
+
 def fig09(result, df, peaks):
-    return _nbs_vs_ybs(peaks, "Fig. 9 analogue: NBs vs YBs maxima against the table acceleration", "a_g", A_G)
+    return _nbs_vs_ybs(peaks, "Fig. 9 analogue: NBs vs YBs maxima against the table acceleration, each "
+                       "labelled with its resonance nu_R", "a_g", A_G, annotate="nu_r")
 
 
 def fig10(result, df, peaks):
@@ -276,13 +314,13 @@ def fig15(result, df, peaks):
 
 
 def fig16(result, df, peaks):
-    return _nbs_vs_ybs(peaks, "Fig. 16 analogue: NBs (circles) and YBs (stars) maxima at their resonance",
-                       "nu_r", r"$\nu_R$ [-]")
+    return _nbs_vs_ybs(peaks, "Fig. 16 analogue: NBs (circles) and YBs (stars) maxima at their resonance, "
+                       "each labelled with its a_G", "nu_r", r"$\nu_R$ [-]", annotate="a_g")
 
 
 def fig17(result, df, peaks):
-    return _nbs_vs_ybs(peaks, "Fig. 17 analogue: NBs (circles) vs YBs (stars) against the table acceleration",
-                       "a_g", A_G)
+    return _nbs_vs_ybs(peaks, "Fig. 17 analogue: NBs (circles) vs YBs (stars) against the table "
+                       "acceleration, with the resonance's shift (c)", "a_g", A_G, nu_r_panel=True)
 
 
 FIGURES = {"fig04": fig04, "fig05": fig05, "fig06": fig06, "fig07": fig07, "fig08": fig08, "fig09": fig09,

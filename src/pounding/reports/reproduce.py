@@ -231,13 +231,14 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
         made = paper_figures(result)
         if story is not None:
             made["fig05_measured"] = fig05_measured(story.campaign, story.chain.describe())
+        more = {}
         if cmap is not None:
-            add_branches(made["fig05"], cmap, float(result.data.attrs["f_ref_hz"]))
+            more["fig05"] = add_branches(made["fig05"], cmap, float(result.data.attrs["f_ref_hz"]))
             made["coexistence"] = fig_coexistence(cmap)
         with progress_reporter(progress, len(made), "figures") as advance:
             for name, fig in made.items():
                 figures[name] = out / f"{name}.png"
-                captions[name] = fig.get_suptitle()
+                captions[name] = " ".join(filter(None, (fig.get_suptitle(), more.get(name))))
                 atomic_write(figures[name], lambda tmp, fig=fig: fig.savefig(tmp, dpi=110))
                 plt.close(fig)
                 advance(1)
