@@ -46,9 +46,10 @@ def _is_number(token: str) -> bool:
     return True
 
 
-def read_columns(field: str, path: Any,
-                 columns: dict[str, Any]) -> tuple[dict[str, np.ndarray], dict[str, str], np.ndarray]:
-    """Read the columns ``columns`` (role -> column name or 0-based index) of a delimited file.
+def read_columns(field: str, path: Any, columns: dict[str, Any],
+                 required: tuple[str, ...] = ()) -> tuple[dict[str, np.ndarray], dict[str, str], np.ndarray]:
+    """Read the columns ``columns`` (role -> column name or 0-based index) of a delimited file; the roles
+    in ``required`` may not miss a value (an empty field or ``nan`` there is an error quoting it).
 
     Returns
     -------
@@ -114,6 +115,9 @@ def read_columns(field: str, path: Any,
                     raise InputError(Problem.BAD_CELL, field, str(path), line=number, column=names[role],
                                      token=token, hint=_hint(token)) from None
                 value = math.nan
+            if role in required and not math.isfinite(value):
+                raise InputError(Problem.BAD_CELL, field, str(path), line=number, column=names[role],
+                                 token=token, hint=" (this column cannot miss a value: fill or remove it)")
             out[role][r] = value
     return out, names, np.array([number for number, _ in rows])
 

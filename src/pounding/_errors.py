@@ -54,7 +54,7 @@ class Problem(enum.Enum):
     WRONG_MODE = ("applies to {mode} only", "{fix}")
     WRONG_CONFIGURATION = ("is a system {got}", "{fix}")
     TOO_MUCH_WORK = ("asks for {estimate} {unit}, more than the most allowed, {budget}", "{fix}")
-    NOT_ONE_OF = ("is not one of {choices}", "use one of {choices}")
+    NOT_ONE_OF = ("is not one of {choices}", "use one of those, spelled as listed")
     UNKNOWN_KEY = ("is not a known key", "remove it or use one of {choices}")
     MISSING_KEY = ("is missing", "add it; the keys are {choices}")
     WRONG_TYPE = ("has type {got}, not {expected}", "give a {expected}")

@@ -46,10 +46,36 @@ class _Command(TyperCommand):
 
 
 class _Group(TyperGroup):
-    """The ``pounding`` group, likewise."""
+    """The ``pounding`` group, likewise; and every usage error (an option missing, unknown or given with
+    one it excludes, a value Click or a command refuses) one line, exit 2, as bad input is: Click's own
+    four lines (usage, a hint, a blank line, the error) read as a crash's."""
 
     def get_help_option(self, ctx: Any) -> Any:
         return _plain_help(super().get_help_option(ctx))
+
+    def main(self, args: Any = None, prog_name: Any = None, complete_var: Any = None,
+             standalone_mode: bool = True, **extra: Any) -> Any:
+        if not standalone_mode:
+            return super().main(args, prog_name, complete_var, standalone_mode, **extra)
+        # (Click's exceptions, from wherever this Typer takes Click: its own copy since 0.25, Click before)
+        errors = sys.modules[typer.BadParameter.__module__]
+        try:
+            code = super().main(args, prog_name, complete_var, False, **extra)
+        except getattr(errors, "NoArgsIsHelpError", ()) as exc:  # (no arguments: the help, as asked)
+            exc.show()
+            sys.exit(exc.exit_code)
+        except errors.UsageError as exc:
+            name = exc.ctx.command_path if exc.ctx is not None else "pounding"
+            line = f"{exc.format_message()} (see {name} --help)"
+            err_console.print(f"[bold red]error:[/] {escape(line)}", soft_wrap=True)
+            sys.exit(2)
+        except errors.ClickException as exc:
+            exc.show()
+            sys.exit(exc.exit_code)
+        except typer.Abort:  # (Ctrl-C or end of input while Click prompts)
+            err_console.print("[yellow]interrupted[/]")
+            sys.exit(INTERRUPTED_EXIT)
+        sys.exit(code if isinstance(code, int) else 0)
 
 
 # Help texts are plain text (rich_markup_mode=None): in Rich's markup "[system]" is a style and vanished

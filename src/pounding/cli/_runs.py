@@ -234,6 +234,10 @@ def excitation(a_g: float | None, freq: float | None, record: Path | None, recor
         rec = Record.from_at2(record)
     else:
         columns = _text_columns(record)
+        if columns == 0:
+            raise typer.BadParameter(f"{record.name} holds no samples (an empty file, or comments only): "
+                                     "give a record of time and acceleration, or of acceleration with "
+                                     "--record-dt")
         if record_dt is not None and columns != 1:
             raise typer.BadParameter(f"{record.name} has {columns} columns: --record-dt is for a file of one "
                                      "column (accelerations); leave it out to read time and acceleration")

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 from functools import cached_property
@@ -13,12 +14,17 @@ import numpy as np
 import pandas as pd
 
 from .._checks import at_most, float_array, one_of, plausible, positive
-from .._errors import InputError, Problem
+from .._errors import InputError, PoundingWarning, Problem
 from .._units import ACC_UNITS
 from .harmonic import MAX_A_G, MAX_ACCEL_M_S2, MAX_TIME_S, RECORD, GRAVITY_M_S2
 
 UNIFORM_RTOL = 1e-6  # time steps equal within this are a uniform sampling
 MIN_STEP_S = 1e-9  # the shortest time step accepted, s (records are sampled at 1 kHz and slower)
+# a record's PGA as read in its stated unit is plausible within this, g (the strongest recorded shaking is
+# about 4 g, the weakest worth a pounding analysis some hundredths of g); outside it, a reading in another
+# unit that lands inside is named in a warning (El Centro's m/s^2 read as g: 3.13 g; its g read as m/s^2:
+# 0.0325 g)
+PLAUSIBLE_PGA_G = (0.05, 2.0)
 
 
 @dataclass(frozen=True, eq=False)
@@ -95,7 +101,8 @@ class Record:
         at_most(f"record.accel[{i}]", float(accel[i]), MAX_ACCEL_M_S2, " m/s^2 (1000 g)",
                 "give the acceleration in m/s^2 (Record.from_g takes units of g)")
         plausible(f"record.accel[{i}]", abs(float(accel[i])), 0.0, 5.0 * GRAVITY_M_S2,
-                  "the acceleration is in m/s^2 (use Record.from_g for units of g)")
+                  f"{abs(float(accel[i])) / GRAVITY_M_S2:.3g} g; the acceleration is in m/s^2 (use "
+                  "Record.from_g for units of g)")
         if not isinstance(self.name, str):
             raise InputError(Problem.WRONG_TYPE, "record.name", self.name, got=type(self.name).__name__,
                              expected="str")
@@ -116,7 +123,8 @@ class Record:
                meta: Mapping[str, Any] | None = None) -> "Record":
         """A record given in units of ``g``."""
         g = positive("g", g, "m/s^2")
-        return cls(t, float_array("accel_g", accel_g, min_len=2) * g, name, meta or {}, g)
+        return cls(t, float_array("accel_g", accel_g, min_len=2) * g, name, meta or {}, g).check_units(
+            "g", "Record.from_g; Record takes m/s^2")
 
     @classmethod
     def from_at2(cls, path: str | Path, *, g: float = GRAVITY_M_S2) -> "Record":
@@ -139,10 +147,11 @@ class Record:
         g = positive("g", g, "m/s^2")
         factor = g if unit == "g" else 1e-2
         meta.update(source=str(path))
-        return cls(dt * np.arange(values.size), values * factor, Path(path).stem, meta, g)
+        return cls(dt * np.arange(values.size), values * factor, Path(path).stem, meta, g).check_units(
+            "g" if unit == "g" else "cm/s2", "the file's unit")
 
     @classmethod
-    def from_csv(cls, path: str | Path, *, accel: Any, time: Any = None, dt: float | None = None,
+    def from_csv(cls, path: str | Path, *, accel: Any = None, time: Any = None, dt: float | None = None,
                  units: str = "g", g: float = GRAVITY_M_S2, name: str | None = None) -> "Record":
         """Delimited text (CSV, TSV, semicolons or whitespace; a header line or none).
 
@@ -163,21 +172,22 @@ class Record:
         name : str, optional
             Default: the file's stem.
         """
+        from .._checks import input_path
         from .._delimited import read_columns
 
+        input_path("path", path)  # (the file first: a path that is wrong is the first thing to say)
+        if accel is None:
+            raise InputError(Problem.MISSING_INPUT, "accel", accel,
+                             what="the acceleration column (accel=): its header name or 0-based index")
         units = one_of("units", units, tuple(ACC_UNITS))
         g = positive("g", g, "m/s^2")
         if (time is None) == (dt is None):
             raise InputError(Problem.MISSING_INPUT, "time", time,
                              what="either the time column (time=) or the time step (dt=), not both")
         columns = {"accel": accel} if time is None else {"time": time, "accel": accel}
-        values, names, lines = read_columns("path", path, columns)
+        # (a record cannot miss a sample: an empty field or a nan is refused, quoted as written)
+        values, names, lines = read_columns("path", path, columns, required=tuple(columns))
         a = values["accel"]
-        bad = np.flatnonzero(~np.isfinite(a))
-        if bad.size:
-            raise InputError(Problem.BAD_CELL, "path", str(path), line=int(lines[bad[0]]),
-                             column=names["accel"],
-                             token="", hint=" (a record cannot miss a sample: fill or remove it)")
         if time is None:
             step = positive("dt", dt, "s")
             t = step * np.arange(a.size)
@@ -191,7 +201,7 @@ class Record:
                                  before=float(t[i]), after=float(t[i + 1]))
         factor = g if units == "g" else ACC_UNITS[units]
         meta = {"source": str(path), "unit": units, "columns": names}
-        return cls(t, a * factor, Path(path).stem if name is None else name, meta, g)
+        return cls(t, a * factor, Path(path).stem if name is None else name, meta, g).check_units(units)
 
     def scaled(self, *, pga_g: float | None = None, sa_g: float | None = None, period_s: float | None = None,
                damping_ratio: float | None = None, factor: float | None = None) -> "Record":
@@ -240,11 +250,47 @@ class Record:
                              why="the record is all zeros", fix="give a record that moves")
         factor = target / now
         meta = {**self.meta, "scale_factor": self.meta.get("scale_factor", 1.0) * factor}
-        return Record(self.t, self.accel * factor, self.name, meta, self.g)
+        return self._derived(self.accel * factor, meta)
 
     def negated(self) -> "Record":
         """The same record with the opposite sign."""
-        return Record(self.t, -self.accel, self.name, self.meta, self.g)
+        return self._derived(-self.accel, self.meta)
+
+    def _derived(self, accel: np.ndarray, meta: Mapping[str, Any]) -> "Record":
+        """This record's times with other accelerations (scaled, negated): its times and unit checked
+        already, and a level scaled to on purpose is no unit mistake (the scale factor's plausibility
+        is checked where it is asked for), so only the hard bound is checked again."""
+        accel = np.array(accel, dtype=float)
+        i = int(np.argmax(np.abs(accel)))
+        at_most(f"record.accel[{i}]", float(accel[i]), MAX_ACCEL_M_S2, " m/s^2 (1000 g)",
+                "scale the record less")
+        accel.setflags(write=False)
+        out = object.__new__(Record)
+        for name, value in (("t", self.t), ("accel", accel), ("name", self.name), ("meta", dict(meta)),
+                            ("g", self.g)):
+            object.__setattr__(out, name, value)
+        return out
+
+    def check_units(self, unit: str, field: str = "units") -> "Record":
+        """Warn when the record's PGA, read in ``unit`` ("g", "m/s2", "cm/s2"), is implausible for
+        shaking and another of those units would make it plausible: a file in m/s^2 read as g (El Centro
+        at 3.13 g) or one in g read as m/s^2 (El Centro at 0.0325 g).  ``field`` names where the unit
+        was given.  Returns the record."""
+        lo, hi = PLAUSIBLE_PGA_G
+        pga = self.pga_g
+        if lo <= pga <= hi or pga == 0.0:
+            return self
+        to_si = {u: (self.g if f is None else f) for u, f in ACC_UNITS.items()}
+        raw = pga * self.g / to_si[unit]  # (the file's own numbers)
+        other = [(u, raw * f / self.g) for u, f in to_si.items()
+                 if u != unit and lo <= raw * f / self.g <= hi]
+        if other:
+            u, reading = other[0]
+            name = f" {self.name!r}" if self.name else ""
+            warnings.warn(f"read in {unit} ({field}), the record{name} has a PGA of {pga:.3g} g, "
+                          f"outside the plausible [{lo:g}, {hi:g}] g of strong shaking: if its values are in "
+                          f"{u}, its PGA is {reading:.3g} g (give that unit)", PoundingWarning, stacklevel=3)
+        return self
 
     # ---- what it is -------------------------------------------------------------------------
     @property
