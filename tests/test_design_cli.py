@@ -112,6 +112,11 @@ def test_pounding_design_runs_reports_and_resumes(tmp_path):
     assert "27 runs" in result.output and "code's minimum clearance" in result.output
     page = (out / "index.html").read_text()
     assert "Verdict" in page and "Design chart" in page and "data:image/png;base64" in page
+    # every table in a box that scrolls, and the verdict's in two that fit a page (no empty column)
+    assert page.count("<table") == page.count("<div class='wide'><table")
+    verdict = page.split("<h2>Verdict</h2>")[1].split("<h2>")[0]
+    heads = [t.split("</thead>")[0].count("<th") for t in verdict.split("<table")[1:]]
+    assert len(heads) == 2 and max(heads) <= 12, heads
     for name in ("decision.csv", "runs.csv", "fragility.csv", "suite.csv"):
         assert (out / name).is_file()
     import pandas as pd

@@ -74,6 +74,11 @@ def test_reduced_report_writes_every_file(report):
     assert "YBs FRFs + branches" in page and "fold curves in (a_G, f)" in page
 
 
+def test_every_table_of_the_page_scrolls_inside_it(report):
+    page = Path(report.index_html).read_text(encoding="utf-8")
+    assert page.count("<table") > 5 and page.count("<table") == page.count("<div class='wide'><table")
+
+
 def _browser():
     chromium, driver = shutil.which("chromium"), shutil.which("chromedriver")
     if not (chromium and driver):

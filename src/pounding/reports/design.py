@@ -65,6 +65,31 @@ def _words(plan: Any, decision: Any) -> dict:
     return words
 
 
+RESPONSE_COLUMNS = ("stripe_g", "acc_median_g", "acc_pounding_median_g", "force_median_n",
+                    "acc_penalty_median")
+VERDICT_COLUMNS = ("meets_target", "fitted", "runs_at_level", "pounded_at_level", "p_upper_95")
+
+
+def _verdict_tables(table: pd.DataFrame, words: dict) -> str:
+    """The decision table as two that fit a page: the design numbers with the probabilities and the
+    verdict, then with the responses at the stripe nearest the level; columns with no value left out
+    (``decision.csv`` has them all)."""
+    empty = [c for c in table.columns if table[c].isna().all()]
+    shown = table.drop(columns=empty)
+    known = set(RESPONSE_COLUMNS) | set(VERDICT_COLUMNS)
+    dims = [c for c in shown.columns if c not in known and not c.startswith("p_")]
+    probs = [c for c in shown.columns if c.startswith("p_") and c != "p_upper_95"]
+    first = dims + [c for c in VERDICT_COLUMNS[:1] if c in shown] + probs + [
+        c for c in VERDICT_COLUMNS[1:] if c in shown]
+    second = dims + [c for c in RESPONSE_COLUMNS if c in shown]
+    note = ("" if not empty else "<p class='tnote'>Left out, with no value at any design point: "
+            + html.escape(", ".join(words.get(c, c) for c in empty))
+            + " (decision.csv has every column).</p>")
+    return (_table(shown[first].rename(columns=words)) + "<p class='tnote'>What the runs at the stripe "
+            "nearest the level show, per design point:</p>" + _table(shown[second].rename(columns=words))
+            + note)
+
+
 def _table(df: pd.DataFrame) -> str:
     return (
         "<div class='wide'>"
@@ -268,7 +293,7 @@ def write_report(outcome: Any, folder: Path) -> Path:
         f"<h1>{e(plan.title)}</h1>",
         "<h2>Verdict</h2>",
         f"<p><b>{e(decision.verdict())}</b></p>",
-        _table(table.rename(columns=_words(plan, decision))),
+        _verdict_tables(table, _words(plan, decision)),
         "<h2>The design</h2>",
         _table(settings),
         _table(statuses),
