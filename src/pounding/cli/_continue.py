@@ -57,6 +57,9 @@ def continue_branch(
     table, add = kv_table(f"branch at a_G = {a_g:g}, {start:g} to {end:g} Hz", system_file or preset)
     add("status", branch.message)
     add("orbits", f"{len(branch)} ({int((~branch.data['stable']).sum())} unstable)")
+    gap = _not_covered(branch, start, end)
+    if gap:
+        add("not covered", gap)
     for label, bif in _one_line_each(branch.bifurcations):
         add(label, f"f = {bif.freq_hz:.6g} Hz, alpha = {bif.alpha:.4g}"
             + ("" if bif.located else " (not located to tolerance)")
@@ -85,8 +88,29 @@ def continue_branch(
     if not complete or held:
         interrupted(f"{len(branch)} orbits followed; they are in the summary"
                     + (" and the files written" if any(paths.values()) or plot else ""))
-    if not branch.success:
+    if not branch.success or gap:
+        if gap:
+            err_console.print(f"the branch did not cover {gap}")
         raise typer.Exit(code=1)
+
+
+def _not_covered(branch, start: float, end: float) -> str:
+    """The part of ``[start, end]`` the branch's orbits never reached (it turned back at a fold, or stopped
+    short), with how to follow it; "" when it covered the whole range."""
+    if not len(branch):
+        return f"{min(start, end):g}-{max(start, end):g} Hz (no orbit)"
+    f = branch.data["freq_hz"].to_numpy(float)
+    lo, hi = float(f.min()), float(f.max())
+    tol = 1e-9 * max(abs(end - start), 1.0)
+    missing = [(a, b) for a, b in ((min(start, end), lo), (hi, max(start, end))) if b - a > tol]
+    if not missing:
+        return ""
+    a, b = missing[0]
+    far = b if abs(b - end) <= tol else a  # (the range's far end, where another branch can start)
+    near = a if far == b else b
+    return (f"{a:.6g}-{b:.6g} Hz of {min(start, end):g}-{max(start, end):g} Hz (the branch turned back "
+            f"or stopped at {near:.6g} Hz; follow the rest from the other end: --from {far:g} "
+            f"--to {near:.6g})")
 
 
 def _freq_list(freqs) -> str:
@@ -103,16 +127,18 @@ def _freq_list(freqs) -> str:
 
 
 def _one_line_each(bifurcations: list) -> list:
-    """``(label, bifurcation)`` per line of the summary: a grazing of both bumpers at one orbit (a
-    symmetric system's) is one line, "grazing (left and right)", not two."""
+    """``(label, bifurcation)`` per line of the summary: a grazing of both sides at one orbit (a
+    symmetric system's: both bumpers, or a wall's two sides) is one line, "grazing (left and right)" or
+    "grazing (wall0_left and wall0_right)", not two."""
     out: list = []
     for bif in bifurcations:
         prev = out[-1][1] if out else None
+        sides = sorted((bif.side, prev.side)) if prev is not None else []
         if (prev is not None and bif.kind == prev.kind == "grazing"
-                and {bif.side, prev.side} == {"left", "right"}
+                and sides[0].endswith("left") and sides[1] == sides[0][:-4] + "right"
                 and abs(bif.freq_hz - prev.freq_hz) <= 1e-7 * max(1.0, abs(bif.freq_hz))
                 and abs(bif.a_g - prev.a_g) <= 1e-12 * max(1.0, abs(bif.a_g))):
-            out[-1] = ("grazing (left and right)", prev)
+            out[-1] = (f"grazing ({sides[0]} and {sides[1]})", prev)
             continue
         out.append((f"{bif.kind}{f' ({bif.side})' if bif.side else ''}", bif))
     return out
@@ -170,8 +196,9 @@ def coexistence(
     table, add = kv_table(f"coexistence, a_G {a_g_min:g}-{a_g_max:g}, {start:g}-{end:g} Hz", system_file
                           or preset)
     for br in cmap.branches:
-        add(f"branch a_G = {br.a_g:g}", f"{len(br)} orbits, folds at "
-            + (", ".join(f"{b.freq_hz:.4g}" for b in br.folds()) or "none") + f" Hz ({br.status.name})")
+        folds = ", ".join(f"{b.freq_hz:.4g}" for b in br.folds())
+        add(f"branch a_G = {br.a_g:g}", f"{len(br)} orbits, "
+            + (f"folds at {folds} Hz" if folds else "no fold") + f" ({br.status.name})")
     for i, c in enumerate(cmap.curves):
         df = c.to_dataframe()
         add(f"curve {i}: {c.kind}{' ' + c.side if c.side else ''}",

@@ -65,9 +65,14 @@ def bifurcation(
         jumps = sw.jumps()
         pairs = zip(jumps["freq_from_hz"], jumps["freq_to_hz"], jumps["kind"])
         add(f"jumps {sw.direction} [Hz]", ", ".join(f"{a:g}->{b:g} ({k})" for a, b, k in pairs) or "none")
-    not_periodic = steps.loc[steps["period"] == 0, "freq_hz"]
-    add("not periodic [Hz]", ", ".join(f"{f:g}" for f in not_periodic.unique()[:12])
-        + (" ..." if not_periodic.nunique() > 12 else "") or "none")
+    not_periodic = steps.loc[steps["period"] == 0]
+    if len(not_periodic):  # (each frequency once, in order, with the directions that did not settle)
+        where = [f"{f:g}" + ("" if part["direction"].nunique() > 1 or steps["direction"].nunique() == 1
+                             else f" ({part['direction'].iloc[0]})")
+                 for f, part in not_periodic.groupby("freq_hz", sort=True)]
+        add("not periodic [Hz]", ", ".join(where[:16]) + (" ..." if len(where) > 16 else ""))
+    else:
+        add("not periodic [Hz]", "none")
     if several:
         top = steps.groupby("freq_hz")["alpha"].max()
         add("largest alpha (any level)", f"{top.max():.3g} at {top.idxmax():g} Hz" if len(top) else "none")

@@ -346,5 +346,6 @@ def _message(sweeps: list, dirs: Sequence[str], period: np.ndarray, status: Stat
     else:
         counts = [f"{int((period == k).sum())} {'not periodic' if k == 0 else f'of period {k}'}"
                   for k in kinds]
-        how = "responses: " + ", ".join(counts)
+        how = (f"of its {int(ran.sum())} steps ({len(dirs)} direction{'s' if len(dirs) > 1 else ''} x {n} "
+               "frequencies): " + ", ".join(counts))
     return f"{which} ran all {n} frequencies; {how}."
