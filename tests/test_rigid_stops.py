@@ -11,6 +11,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
+from scipy.optimize import brentq
 
 import pounding
 from pounding import Status
@@ -70,6 +71,127 @@ def test_a_mass_falling_on_a_stop_chatters_and_sticks_as_the_closed_form_says(e,
     lost = 0.5 * M * (1 - e * e) * ref.v_in[:n] ** 2
     np.testing.assert_allclose(c.bumper_dissipation_j[:n], lost, rtol=1e-8)
     assert abs(ledger_residual(run)) < 1e-12 * run.energy.input_work
+
+
+# ---------------------------------------------------------------- complete chatter: any last rebound
+
+
+def _flight(omega: float, zeta: float, a: float, y0: float, v0: float) -> tuple[float, float]:
+    """The exact flight of a linear oscillator whose static position lies ``a`` past a stop: its opening
+    ``y >= 0`` off the stop follows ``y'' + 2 zeta omega y' + omega^2 (y + a) = 0`` from ``(y0, v0)``; its
+    duration (the first root of the closed form, brentq to rounding) and the speed it comes back with. The
+    closed form is written in the opening itself: a flight short against the period keeps its digits."""
+    s, wd = zeta * omega, omega * math.sqrt(1.0 - zeta * zeta)
+    b = (v0 + s * (y0 + a)) / wd
+
+    def y(t: float) -> float:  # (y + a = exp(-s t) ((y0 + a) cos + b sin), the constant a taken out exactly)
+        c, sn = math.cos(wd * t), math.sin(wd * t)
+        return (math.exp(-s * t) * (y0 * c + b * sn)
+                + a * (math.expm1(-s * t) * c - 2.0 * math.sin(0.5 * wd * t) ** 2))
+
+    guess = 2.0 * v0 / (omega * omega * a) if y0 == 0.0 else 0.05 * math.pi / wd
+    step = min(guess, 0.05 * math.pi / wd)
+    lo = 1e-3 * step if y0 == 0.0 else 0.0
+    hi = lo + step
+    while y(hi) > 0.0:
+        lo, hi = hi, hi + step
+    t = brentq(y, lo, hi, xtol=1e-300, rtol=4.0 * np.finfo(float).eps, maxiter=500)
+    c, sn = math.cos(wd * t), math.sin(wd * t)
+    back = -math.exp(-s * t) * (v0 * c - (s * b + wd * (y0 + a)) * sn)
+    return t, back
+
+
+def _accumulation(omega: float, zeta: float, a: float, e: float, drop: float) -> float:
+    """Where the impacts of the oscillator dropped from rest ``drop`` off the stop accumulate: the sum of its
+    exact flights (``_flight``), each rebound ``e`` times the speed it came back with, until a flight is below
+    1e-18 s (the rest, a geometric tail, below that over 1 - e)."""
+    t, back = _flight(omega, zeta, a, drop, 0.0)
+    while True:
+        tau, back = _flight(omega, zeta, a, 0.0, e * back)
+        t += tau
+        if tau < 1e-18:
+            return t + tau * e / (1.0 - e)
+
+
+@pytest.mark.parametrize("zeta", [0.0, 0.02])
+@pytest.mark.parametrize("e", [0.5, 0.7, 0.8, 0.9, 0.95])
+@pytest.mark.parametrize("past", [5e-6, 5e-8, 5e-10])
+def test_a_chatter_accumulates_at_the_sum_of_its_exact_flights_whatever_its_last_rebound(past, e, zeta):
+    """The issue's oscillator (1 g on 100 N/m) dropped from 10 mm onto a stop, pushed by a constant table
+    whose static position lies ``past`` beyond it (5 mm/s^2 for 50 nm). The impacts are followed one by one
+    until their rebound is below the run's length resolution; then the rest is summed at once. The closer the
+    static position to the stop, the larger that last rebound against the flight's own velocity scale
+    ``omega past``: about 0.08 %, 1 % and 8 % here. Summed to first order in it, the accumulation was up to
+    9e-12 s, 9e-9 s and 9e-6 s late."""
+    m, k, drop = 0.001, 100.0, 0.01
+    omega = math.sqrt(k / m)
+    iso = pounding.Isolator(slopes=[k], damping=2.0 * zeta * omega * m)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # (gaps beyond a bumper's plausible range)
+        osc = pounding.Oscillator(m, iso, pounding.Bumpers(0.5, 0.0, pounding.RigidStop(e)))
+    want = _accumulation(omega, zeta, past, e, drop)
+    run = pounding.simulate(osc, constant(-omega ** 2 * past), duration=want + 0.01, sample_rate_hz=0,
+                            state=pounding.State.at_rest(osc, displacement_m=-drop))
+    assert run.status == Status.SUCCESS
+    (chatter,) = run.chatters[run.chatters.accumulated].itertuples()
+    assert abs(chatter.t_end_s - want) <= 1e-12
+    held = run.contacts.iloc[-1]  # (and held from its last impact on by the push, m omega^2 past)
+    assert math.isnan(held.t_end_s) and held.peak_force_n == pytest.approx(m * omega ** 2 * past, rel=1e-12)
+
+
+def _flight_shaken(omega: float, zeta: float, amp: float, w: float, phase: float, t0: float,
+                   u: float) -> tuple[float, float]:
+    """The exact flight from a stop at its rest position (the gap 0) of a linear oscillator on a table shaken
+    as ``a_g = amp sin(w t + phase)``, leaving at ``t0`` with speed ``u``: its opening ``y = -x`` follows
+    ``y'' = -omega^2 y - 2 zeta omega y' + a_g(t)``, summed as its Taylor series about ``t0`` (the table's
+    derivatives exact, 80 terms: the flights are shorter than a radian of either frequency); its duration
+    (the root of ``y / t``, brentq to rounding) and the speed it comes back with."""
+    c = [0.0, u]
+    for k in range(78):
+        table = amp * w ** k * math.sin(w * t0 + phase + 0.5 * k * math.pi) / math.factorial(k)
+        c.append((-omega * omega * c[k] - 2.0 * zeta * omega * (k + 1) * c[k + 1] + table)
+                 / ((k + 2) * (k + 1)))
+    over_t = np.polynomial.Polynomial(c[1:])
+    hi = 2.0 * u / -(amp * math.sin(w * t0 + phase))  # (the first order's, to a bracket)
+    while over_t(hi) > 0.0:
+        hi *= 1.5
+    t = brentq(over_t, 1e-3 * hi, hi, xtol=1e-300, rtol=4.0 * np.finfo(float).eps, maxiter=500)
+    return t, -over_t.deriv()(t) * t - over_t(t)  # (y' = (t f)' with y = t f)
+
+
+@pytest.mark.parametrize("f_hz, phase, e, zeta", [(2.0, math.pi / 2, 0.9, 0.0), (5.0, math.pi / 3, 0.9, 0.02),
+                                                  (5.0, 2 * math.pi / 3, 0.8, 0.0),
+                                                  (10.0, math.pi / 4, 0.9, 0.02)])
+def test_a_chatter_on_a_shaken_table_accumulates_at_the_sum_of_its_exact_flights(f_hz, phase, e, zeta):
+    """The issue's oscillator leaving its stop at 1 um/s while the table pushes it back (5 mm/s^2 at its
+    crest), the push rising, at its crest or falling through the chatter: the remainder, taken at a rebound of
+    about 1 % of the flight's velocity scale, takes the push's rates in time (the first-order sum, with the
+    first rate alone, was 1.4e-9 s to 1.1e-7 s off)."""
+    m, k, amp, u0 = 0.001, 100.0, -5e-3, 1e-6
+    omega, w = math.sqrt(k / m), 2.0 * math.pi * f_hz
+    t, u = 0.0, u0
+    while True:
+        tau, back = _flight_shaken(omega, zeta, amp, w, phase, t, u)
+        t, u = t + tau, e * back
+        if tau < 1e-18:
+            break
+    iso = pounding.Isolator(slopes=[k], damping=2.0 * zeta * omega * m)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")  # (gaps beyond a bumper's plausible range)
+        osc = pounding.Oscillator(m, iso, pounding.Bumpers(0.5, 0.0, pounding.RigidStop(e)))
+    table = pounding.Harmonic(a_g=amp, freq_hz=f_hz, phase=phase, g=1.0)
+    run = pounding.simulate(osc, table, duration=t + 1e-3, sample_rate_hz=0,
+                            state=pounding.State.at_rest(osc, velocity_m_s=-u0))
+    (chatter,) = run.chatters[run.chatters.accumulated].itertuples()
+    assert abs(chatter.t_end_s - t) <= 1e-12
+
+
+def test_the_chatter_s_exact_flights_are_the_closed_form_s_of_a_mass_falling_on_a_stop():
+    """The oracle above against tests/reference_impact.py's (its own closed form, from rest 10 mm off the
+    stop)."""
+    for zeta, e in [(0.0, 0.9), (0.02, 0.8)]:
+        ref = falling_on_stop(OMEGA, zeta, 0.02, 0.01, e, 0.0, 0.0, n_impacts=400)
+        assert _accumulation(OMEGA, zeta, 0.01, e, 0.01) == pytest.approx(ref.accumulation_s, abs=1e-13)
 
 
 def test_a_plastic_stop_holds_at_the_first_impact_and_an_elastic_one_never():

@@ -50,41 +50,171 @@ double push_of(const double* st, const System& sy, const Sticking& stk, int c, d
     return ct.sign * (a[static_cast<size_t>(ct.i)] - (ct.j >= 0 ? a[static_cast<size_t>(ct.j)] : 0.0));
 }
 
-// the rate in time of the push of contact c (m/s^3) along the motion held at the stop from the state s0 (at
-// rest against it): the free accelerations' rate -M^-1 (K v + C a) - a_g' (a: the held motion's), with the
-// other held stops' constraint
-double held_push_rate(std::vector<double>& s0, const System& sy, const Phase& ph, double tau, const Sticking& stk,
-                      int c, double ag, double* q, double* row) {
+// the push of contact c's rates in time, d^k P / dt^k for k = 1..order (m/s^(2+k)), along the motion held at
+// the stop from the state s0 (at rest against it), into rates[0..order-1]: the free accelerations' derivatives
+// -M^-1 (K x^(k) + C x^(k+1)) - a_g^(k), with the other held stops' constraint, x^(k) the held motion's (the same
+// with contact c held too: its velocities, accelerations and their rates)
+void held_push_rates(std::vector<double>& s0, const System& sy, const Phase& ph, double tau, const Sticking& stk,
+                     int c, double ag, double* q, double* row, int order, double* rates) {
     const Layout& L = sy.lay;
     const Contact& ct = sy.contact[static_cast<size_t>(c)];
-    static thread_local std::vector<double> au, a, rate_u;
+    const int n = sy.n;
+    static thread_local std::vector<double> au, a, xs, rate_u;
     static thread_local Sticking held;
     const double in = s0[static_cast<size_t>(L.in_at(c))];
     s0[static_cast<size_t>(L.in_at(c))] = 1.0;
     held.build(sy, s0.data());
     state_accelerations(s0.data(), sy, held, ag, q, row, au, a);
     s0[static_cast<size_t>(L.in_at(c))] = in;
-    const double* v = s0.data() + L.v;
-    const int n = sy.n;
+    // the held motion's derivatives x^(k), k = 1..order + 1 (row k - 1 of xs)
+    xs.resize(static_cast<size_t>((order + 1) * n));
+    std::copy(s0.data() + L.v, s0.data() + L.v + n, xs.begin());
+    std::copy(a.begin(), a.end(), xs.begin() + n);
     rate_u.resize(static_cast<size_t>(n));
-    const double ag_rate = ph.ax1 + ph.axh * ph.w * std::cos(ph.w * tau + ph.phi);
-    for (int i = 0; i < n; ++i) {
-        double s = 0.0;
-        for (int j = 0; j < n; ++j)
-            s += ph.K[static_cast<size_t>(i * n + j)] * v[j] + ph.C[static_cast<size_t>(i * n + j)] * a[static_cast<size_t>(j)];
-        rate_u[static_cast<size_t>(i)] = -ph.minv[static_cast<size_t>(i)] * s - ag_rate;
+    const double angle = ph.w * tau + ph.phi;
+    const double sn = ph.axh != 0.0 && order > 1 ? std::sin(angle) : 0.0, cs = std::cos(angle);
+    const double turn[4] = {sn, cs, -sn, -cs};  // (sin's derivatives at the angle)
+    double wk = ph.w;  // (w^k)
+    for (int k = 1; k <= order; ++k, wk *= ph.w) {
+        // the table's k-th rate: ax1 (k = 1) and the harmonic's, axh w^k sin^(k)
+        const double ag_k = (k == 1 ? ph.ax1 : 0.0) + ph.axh * wk * turn[k % 4];
+        const double* x = &xs[static_cast<size_t>((k - 1) * n)];
+        const double* x1 = &xs[static_cast<size_t>(k * n)];
+        for (int i = 0; i < n; ++i) {
+            double s = 0.0;
+            for (int j = 0; j < n; ++j)
+                s += ph.K[static_cast<size_t>(i * n + j)] * x[j] + ph.C[static_cast<size_t>(i * n + j)] * x1[j];
+            rate_u[static_cast<size_t>(i)] = -ph.minv[static_cast<size_t>(i)] * s - ag_k;
+        }
+        if (k < order) {  // (the held motion's next derivative: the same with c held)
+            double* next = &xs[static_cast<size_t>((k + 1) * n)];
+            std::copy(rate_u.begin(), rate_u.end(), next);
+            held.project(sy.mass, next);
+        }
+        stk.project(sy.mass, rate_u.data());
+        const double rel_j = ct.j >= 0 ? rate_u[static_cast<size_t>(ct.j)] : 0.0;
+        rates[k - 1] = ct.sign * (rate_u[static_cast<size_t>(ct.i)] - rel_j);
     }
-    stk.project(sy.mass, rate_u.data());
-    return ct.sign * (rate_u[static_cast<size_t>(ct.i)] - (ct.j >= 0 ? rate_u[static_cast<size_t>(ct.j)] : 0.0));
 }
 
-// The time from the impact to the accumulation of a chatter that rebounded at u (mi, mj: the sides' masses).
-// The local series: flights from the stop under the push P0 (at rest relative to it) with a dashpot c (the
-// push's change with the relative velocity) and a rate J (the push's change in time, the stop held): each
-// flight lasts 2 u_k / P_k (1 - eps_c / 3 - 2 eps_J / 3) and returns at u_k (1 - 2 eps_c / 3 + 2 eps_J / 3),
-// eps_c = c u_k / P0, eps_J = J u_k / P0^2, P_k the push at its start; summed to first order in the eps:
-// T = 2 u / P0 [1 / (1 - e) - (2 eps_c + 4 eps_J) e / (3 (1 - e) (1 - e^2)) - (eps_c + 2 eps_J) / (3 (1 - e^2))]
-// (the second order, T (eps / (1 - e))^2, is below the run's rounding where the engine takes the remainder).
+// the rate in time of the push of contact c (m/s^3) along the motion held at the stop from the state s0
+double held_push_rate(std::vector<double>& s0, const System& sy, const Phase& ph, double tau, const Sticking& stk,
+                      int c, double ag, double* q, double* row) {
+    double rate;
+    held_push_rates(s0, sy, ph, tau, stk, c, ag, q, row, 1, &rate);
+    return rate;
+}
+
+constexpr int PUSH_RATES = 8;  // the push's rates in time the chatter's local model takes
+
+// The chatter's local model: the pair's opening y (m) off the stop, from the impact on (time s), flies as
+//     y'' = -(P(s) + c y' + kappa y),   P(s) = sum_n p_n s^n  (n = 0..PUSH_RATES),
+// P the push along the motion held at the stop (p_0 at rest against it, the rest its rates in time / n!), c its
+// change with the opening's speed (a dashpot), kappa with the opening (a spring).  One mass on a linear isolator
+// is this model exactly (a harmonic table's push to its PUSH_RATES-th rate, far below rounding over a chatter's
+// remainder short against the table's period).
+struct LocalChatter {
+    double p[PUSH_RATES + 1];
+    double c, kappa, e;
+    // the push's Taylor coefficients at s (f[0..PUSH_RATES])
+    void push_at(double s, double* f) const {
+        std::copy(p, p + PUSH_RATES + 1, f);
+        if (s == 0.0) return;
+        for (int i = 0; i < PUSH_RATES; ++i)  // (the shift of the polynomial to s, by repeated synthetic division)
+            for (int k = PUSH_RATES - 1; k >= i; --k) f[k] += s * f[k + 1];
+    }
+};
+
+// The first-order sum of the remainder's flights from a rebound u at s: each flight lasts
+// 2 u_k / P_k (1 - eps_c / 3 - 2 eps_J / 3) and returns at u_k (1 - 2 eps_c / 3 + 2 eps_J / 3), eps_c = c u_k / P,
+// eps_J = J u_k / P^2, P_k the push at its start, J its rate:
+// T = 2 u / P [1 / (1 - e) - (2 eps_c + 4 eps_J) e / (3 (1 - e) (1 - e^2)) - (eps_c + 2 eps_J) / (3 (1 - e^2))].
+// neglected: its second order, T (eps / (1 - e))^2 with eps^2 the largest of eps_c^2, eps_J^2 and kappa u^2 / P^2
+// (the spring's), and the push's change beyond its rate over T, T sum_(n >= 2) |p_n| T^n / P
+double first_order_remainder(const LocalChatter& m, double s, double u, double& neglected) {
+    double f[PUSH_RATES + 1];
+    m.push_at(s, f);
+    const double e = m.e, p = f[0], rate = f[1];
+    const double eps_c = m.c * u / p, eps_j = rate * u / (p * p);
+    const double e2 = 1.0 - e * e;
+    const double t = 2.0 * u / p *
+                     (1.0 / (1.0 - e) - (2.0 * eps_c + 4.0 * eps_j) * e / (3.0 * (1.0 - e) * e2) -
+                      (eps_c + 2.0 * eps_j) / (3.0 * e2));
+    const double eps2 = std::max({eps_c * eps_c, eps_j * eps_j, std::abs(m.kappa) * u * u / (p * p)});
+    double beyond = 0.0, tn = std::abs(t);
+    for (int k = 2; k <= PUSH_RATES; ++k) beyond += std::abs(f[k]) * (tn *= std::abs(t));
+    neglected = std::abs(t) * (eps2 / ((1.0 - e) * (1.0 - e)) + beyond / std::abs(p));
+    return t;
+}
+
+// One flight of the local model from the stop at s with speed u away: its length and the speed it comes back
+// with, by the Taylor series of the exact solution, y = sum y_n tau^n (its root that of y / tau, by Newton's
+// steps kept inside a bracket).  False when the model's pair does not come back (the push let go).
+bool local_flight(const LocalChatter& m, double s, double u, double& tau, double& back) {
+    constexpr int TERMS = 64;
+    double y[TERMS + 1], f[PUSH_RATES + 1];
+    m.push_at(s, f);  // (the push's coefficients in tau)
+    if (!(f[0] > 0.0)) return false;
+    y[0] = 0.0;
+    y[1] = u;
+    for (int k = 0; k + 2 <= TERMS; ++k) {
+        const double push = k <= PUSH_RATES ? f[k] : 0.0;
+        y[k + 2] = -(m.c * (k + 1) * y[k + 1] + m.kappa * y[k] + push) / ((k + 2.0) * (k + 1.0));
+    }
+    // y(tau) / tau and its derivative, the terms taken while they matter
+    int used = TERMS;
+    auto over = [&](double x, double& d) {
+        double v = 0.0, dv = 0.0;
+        for (int k = used; k >= 1; --k) {
+            dv = dv * x + v;
+            v = v * x + y[k];
+        }
+        d = dv;
+        return v;
+    };
+    auto terms_for = [&](double x) {  // (the last term above the rounding of u at x)
+        double xk = 1.0;
+        int last = 1;
+        for (int k = 1; k <= TERMS; ++k, xk *= x)
+            if (std::abs(y[k]) * xk > 0.25 * EPS * u) last = k;
+        return std::min(TERMS, last + 1);
+    };
+    // a bracket: y > 0 at lo, y < 0 at hi (from the first-order length, 2 u / P)
+    double hi = 2.0 * u / f[0], lo = 0.0, d;
+    used = terms_for(hi);
+    for (int grow = 0; over(hi, d) >= 0.0; ++grow) {
+        if (grow == 60) return false;
+        lo = hi;
+        hi *= 2.0;
+        used = terms_for(hi);
+    }
+    if (used == TERMS && std::abs(y[TERMS]) * std::pow(hi, TERMS - 1) > EPS * u) return false;  // (too long)
+    // from the first order's length, 2 u / P (1 - eps_c / 3 - 2 eps_J / 3)
+    double x = 2.0 * u / f[0] * (1.0 - m.c * u / (3.0 * f[0]) - 2.0 * f[1] * u / (3.0 * f[0] * f[0]));
+    if (!(lo < x && x < hi)) x = 0.5 * (lo + hi);
+    for (int it = 0; it < 100; ++it) {
+        const double v = over(x, d);
+        if (v > 0.0) lo = x; else hi = x;
+        double next = d < 0.0 ? x - v / d : 0.5 * (lo + hi);
+        if (!(lo < next && next < hi)) next = 0.5 * (lo + hi);
+        const bool done = std::abs(next - x) <= 2.0 * EPS * x || hi - lo <= 2.0 * EPS * hi;
+        x = next;
+        if (done) break;
+    }
+    tau = x;
+    double dy = 0.0;  // y'(tau)
+    for (int k = used; k >= 1; --k) dy = dy * tau + k * y[k];
+    back = -dy;
+    return back > 0.0;
+}
+
+// The time from the impact to the accumulation of a chatter that rebounded at u (mi, mj: the sides' masses)
+// under the local model above.  While the first-order sum of the rest would neglect more than the rounding of
+// the accumulation's instant t + T (its rebounds still a sizeable share of the flight's velocity scales, P / c,
+// P^2 / J, P / sqrt(kappa)), the model's flights are taken one by one (exactly, by their series); the rest is
+// then summed to first order.  (The switch to the remainder, at a rebound below the run's length resolution,
+// can come while the rebounds are still large against those scales: the first order alone missed its second,
+// T eps^2 / (1 - e)^2, there.)
 double accumulation(const double* st, const System& sy, const Phase& ph, double tau, const Sticking& stk, int c,
                     double ag, double u, double mi, double mj, double* q, double* row) {
     const Layout& L = sy.lay;
@@ -99,13 +229,35 @@ double accumulation(const double* st, const System& sy, const Phase& ph, double 
     if (mj < INF) stk.add_velocity(v, ct.j, -ct.sign * mu * u / mj);
     const double p_rest = push_of(s0.data(), sy, stk, c, ag, q, row, au, a);
     const double p_out = push_of(st, sy, stk, c, ag, q, row, au, a);
-    const double damp = (p_out - p_rest) / u;  // (the push at -u relative velocity, against the one at rest)
-    const double rate = held_push_rate(s0, sy, ph, tau, stk, c, ag, q, row);
-    const double p0 = p_rest;
-    const double eps_c = damp * u / p0, eps_j = rate * u / (p0 * p0);
-    const double e2 = 1.0 - e * e;
-    return 2.0 * u / p0 *
-           (1.0 / (1.0 - e) - (2.0 * eps_c + 4.0 * eps_j) * e / (3.0 * (1.0 - e) * e2) - (eps_c + 2.0 * eps_j) / (3.0 * e2));
+    // the push at the stop opened by dx at rest (the sides moved apart as the impulse moves them)
+    double* x = s0.data() + L.x;
+    const double dx = 1e-6 * ph.xrun;
+    if (mi < INF) stk.add_velocity(x, ct.i, -ct.sign * mu * dx / mi);
+    if (mj < INF) stk.add_velocity(x, ct.j, ct.sign * mu * dx / mj);
+    const double p_open = push_of(s0.data(), sy, stk, c, ag, q, row, au, a);
+    std::copy(st + L.x, st + L.x + sy.n, x);
+    LocalChatter m;
+    held_push_rates(s0, sy, ph, tau, stk, c, ag, q, row, PUSH_RATES, m.p + 1);
+    m.p[0] = p_rest;
+    double factorial = 1.0;  // (the rates over n!: the push's Taylor coefficients)
+    for (int k = 2; k <= PUSH_RATES; ++k) m.p[k] /= (factorial *= k);
+    m.c = (p_out - p_rest) / u;
+    m.kappa = dx > 0.0 ? (p_open - p_rest) / dx : 0.0;
+    m.e = e;
+    double neglected;
+    const double first = first_order_remainder(m, 0.0, u, neglected);
+    if (neglected <= EPS * std::abs(st[T] + first)) return first;  // (the usual case: a cheap closed form)
+    constexpr int MAX_FLIGHTS = 1 << 20;
+    double s = 0.0, rebound = u;
+    for (int k = 0; k < MAX_FLIGHTS; ++k) {
+        double flight, back;
+        if (!local_flight(m, s, rebound, flight, back)) return first;  // (the model lets go: its first order)
+        s += flight;
+        rebound = e * back;
+        const double rest = first_order_remainder(m, s, rebound, neglected);
+        if (neglected <= EPS * std::abs(st[T] + s + rest)) return s + rest;
+    }
+    return s + first_order_remainder(m, s, rebound, neglected);
 }
 
 }  // namespace

@@ -5,11 +5,12 @@
 // the two sides, each side a free dof, a group of dofs held together (its mass) or the ground and what is
 // held to it (immovable).  Chatter: while the motion pushes the stop shut (acceleration A > 0 after the
 // impact), the rebounds shrink geometrically, e each time: flights 2 u e^k / A from a rebound speed u, which
-// accumulate at t + 2 u / (A (1 - e)) (with its first-order corrections for the push's change with the
-// relative velocity, a dashpot, and in time: accumulation() in impact.cpp).  Impacts are followed one by one
-// until that remainder is short against the phase's time scales (its local series is then exact to rounding) or the rebound's height u^2 / (2 A) is
-// below the run's length resolution; the remainder is then taken at once (the relative velocity brought to
-// rest, its kinetic energy lost) and the stop is held (sticking.hpp) until its force would pull.
+// accumulate at t + 2 u / (A (1 - e)) (to first order; accumulation() in impact.cpp sums the pair's local
+// model, the push with its rates in time and its change with the opening and its speed, to rounding).  Impacts
+// are followed one by one until that remainder is short against the phase's time scales or the rebound's
+// height u^2 / (2 A) is below the run's length resolution; the remainder is then taken at once (the relative
+// velocity brought to rest, its kinetic energy lost) and the stop is held (sticking.hpp) until its force would
+// pull.
 #pragma once
 
 #include "core.hpp"
