@@ -94,7 +94,7 @@ def test_the_command_line_follows_a_building_s_branch(tmp_path):
                                       "--to", "2.5", "--out", str(tmp_path / "branch.csv"), "--plot",
                                       str(tmp_path / "branch.png"), "--sweeps"])
     assert result.exit_code == 0, result.output
-    assert "grazing (wall0_left)" in result.output and "fold" in result.output
+    assert "grazing (wall0_left and wall0_right)" in result.output and "fold" in result.output
     assert "drawn alone" in result.output
     assert (tmp_path / "branch.png").stat().st_size > 10_000
 

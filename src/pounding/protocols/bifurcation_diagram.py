@@ -103,8 +103,8 @@ def bifurcation_diagram(oscillator: Any, a_g: float, freqs_hz: Any, *,
     >>> diagram = pounding.bifurcation_diagram(osc, 0.05, freqs,
     ...     transient_cycles=30, record_cycles=10)
     >>> print(diagram.message)
-    Both directions ran all 6 frequencies; responses: 1 not periodic, 11 of
-    period 1.
+    Both directions ran all 6 frequencies; of its 12 steps (2 directions x 6
+    frequencies): 1 not periodic, 11 of period 1.
     >>> df = diagram.to_dataframe(cycles=False)
     >>> alpha = df.pivot(index="freq_hz", columns="direction", values="alpha")
     >>> print(alpha.round(2).to_string())
