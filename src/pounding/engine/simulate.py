@@ -11,7 +11,7 @@ from .._checks import integer, positive
 from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
-from ..model._law_states import state_problem
+from ..model._law_states import state_problem, stateless
 from ..model.contact_laws import N_LAW_STATE, KelvinVoigt
 from ._control import (
     DEFAULT_MAX_STEPS,
@@ -23,9 +23,9 @@ from ._control import (
     steps_per_second,
 )
 from .. import _core
-from ._system import System
-from ._layout import (DEF_L, DEF_R, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT, L_ISOLATOR, L_KINETIC,
-                      L_VISCOUS, REGION, STATE_BASE, Z_L, Z_R, ZETA, D, V)
+from ._system import Forcing, System
+from ._layout import (DEF_L, DEF_R, IN_L, IN_R, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT, L_ISOLATOR,
+                      L_KINETIC, L_VISCOUS, REGION, STATE_BASE, Z_L, Z_R, ZETA, D, T, V)
 from ._run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPLES,  # noqa: F401
                         MAX_SAMPLES, check_rtol, history_rate, kernel_forcing)
 from .result import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, EnergyLedger, Run, State
@@ -65,8 +65,14 @@ def _check_state_fits(state: State, oscillator: Oscillator) -> None:
     Tolerances are relative (1e-9 of the system's lengths): a run's final state holds the
     rounding of its last event.
     """
-    vec = state.vector
-    d = state.displacement_m
+    _check_vector_fits(state.vector, oscillator)
+
+
+def _check_vector_fits(vec: np.ndarray, oscillator: Oscillator) -> None:
+    """:func:`_check_state_fits` of a state's raw vector (of the right size, its numbers finite), read
+    as Python floats (a solver's runs check one a run: numpy's scalars cost several times more)."""
+    x = vec.tolist()
+    d = x[D]
     iso = oscillator.isolator
     b = oscillator.bumpers
     lengths = [abs(d), 1e-3, *iso.breakpoints] + ([b.gap_left, b.gap_right] if b else [])
@@ -76,8 +82,8 @@ def _check_state_fits(state: State, oscillator: Oscillator) -> None:
     def bad(field: str, value: float, why: str) -> InputError:
         return InputError(Problem.BAD_STATE, f"state.{field}", value, why=why, fix=fix)
 
-    comp = state.bumper_compression_m
-    touching = state.in_contact
+    comp = x[DEF_L], x[DEF_R]
+    touching = bool(x[IN_L]), bool(x[IN_R])
     if b is None:
         if any(touching) or any(comp):
             raise bad("in_contact", touching, "has a bumper in contact or compressed, but the system has no "
@@ -94,11 +100,13 @@ def _check_state_fits(state: State, oscillator: Oscillator) -> None:
                                                f"{sign * (gap + comp[j]):g} m) while not in contact")
             at = (Z_L, Z_R)[j]
             law = (b.left, b.right)[j]
+            if law.STATE_CHECK is stateless and not any(x[at:at + N_LAW_STATE]):
+                continue  # (a stateless law's block of zeros: what its check accepts, without numpy)
             found = state_problem(law, vec[at:at + N_LAW_STATE], touching[j], comp[j], tol, side)
             if found is not None:
                 q, value, why = found
                 raise bad(f"vector[{at + q}]", value, why)
-    z = float(vec[ZETA])
+    z = x[ZETA]
     if iso.bouc_wen is None and z != 0.0:
         raise bad(f"vector[{ZETA}]", z,
                   "is an isolator's Bouc-Wen z, but this isolator has no Bouc-Wen spring")
@@ -107,21 +115,21 @@ def _check_state_fits(state: State, oscillator: Oscillator) -> None:
                   f"is beyond the Bouc-Wen spring's largest |z|, {iso.bouc_wen.z_max:g}")
     n_sp = iso.n_branches - 1
     if iso.hysteresis == "elastic":
-        region = int(vec[REGION])
+        region = int(x[REGION])
         edges = (0.0, *iso.breakpoints, np.inf)
         a = abs(region)
         wrong_side = region != 0 and np.sign(region) != np.sign(d)
         if a > n_sp or not edges[a] - tol <= abs(d) <= edges[a + 1] + tol or wrong_side:
             raise bad("isolator_branch", region, f"is not the backbone branch of displacement {d:g} m")
         return
-    if vec[REGION] != 0.0:
+    if x[REGION] != 0.0:
         raise bad("isolator_branch", vec[REGION], "is set, but a kinematic isolator has no branch state")
     for i, brk in enumerate(iso.breakpoints):
-        strain = d - vec[STATE_BASE + i]
-        direction = vec[STATE_BASE + n_sp + i]
+        strain = d - x[STATE_BASE + i]
+        direction = x[STATE_BASE + n_sp + i]
         beyond = abs(strain) > brk + tol if direction == 0.0 else abs(strain - direction * brk) > tol
         if beyond:
-            raise bad(f"plastic_slips_m[{i}]", float(vec[STATE_BASE + i]),
+            raise bad(f"plastic_slips_m[{i}]", x[STATE_BASE + i],
                       f"leaves spring {i}'s strain {strain:g} m beyond its yield displacement {brk:g} m")
 
 
@@ -293,7 +301,7 @@ class NotAState(Exception):
 
 
 def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, state: State | np.ndarray,
-              system: Optional[System] = None) -> ShortRun:
+              system: Optional[System] = None, forcing: Optional[Forcing] = None) -> ShortRun:
     """A run of a period or so, events only, for the periodic-orbit solvers' many runs: the state
     checked, the arguments trusted (the caller checked them), the kernel called in this thread
     (no helper thread: Ctrl-C lands when it returns) within ``SHORT_RUN_STEPS`` sub-intervals
@@ -301,29 +309,36 @@ def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, sta
 
     ``state`` may be a raw state vector (the solvers' own: only what ties it to this system is
     checked, and one that is none of its states raises :class:`NotAState`); ``system`` the
-    oscillator's :func:`kernel_system`, when the caller keeps it for many runs.  A continuation
-    makes some 15,000 runs of about 12 us in the kernel each: the public ``simulate``'s checks and
-    ``Run`` took 90 us a run around them.
+    oscillator's :func:`kernel_system` and ``forcing`` the excitation's :func:`kernel_forcing`, when
+    the caller keeps them for many runs.  A continuation makes some 15,000 runs of about 12 us in the
+    kernel each: the public ``simulate``'s checks and ``Run`` took 90 us a run around them.
     """
     if isinstance(state, np.ndarray):
         # the moves of a solver change the continuous numbers only: those are checked here, and a
         # vector that fails is checked in full (for the message)
         size = STATE_BASE + 2 * (oscillator.isolator.n_branches - 1)
-        fits = (state.size == size and all(map(math.isfinite, state.tolist()))
-                and abs(state[D]) <= MAX_DISPLACEMENT_M and abs(state[V]) <= MAX_VELOCITY_M_S
-                and state[DEF_L] >= 0.0 and state[DEF_R] >= 0.0)
+        x = state.tolist()
+        fits = (state.size == size and all(map(math.isfinite, x))
+                and abs(x[D]) <= MAX_DISPLACEMENT_M and abs(x[V]) <= MAX_VELOCITY_M_S
+                and x[DEF_L] >= 0.0 and x[DEF_R] >= 0.0)
         try:
-            state = State._from_kernel(state) if fits else State(state)
-            _check_state_fits(state, oscillator)
+            if fits:  # (no State made: its vector's copy is what the kernel takes)
+                _check_vector_fits(state, oscillator)
+                vector, t0 = np.array(state, dtype=float), x[T]
+            else:
+                checked = State(state)
+                _check_state_fits(checked, oscillator)
+                vector, t0 = np.array(checked.vector), checked.time_s
         except InputError as exc:  # (the public checks' words, as the solver's failure)
             raise NotAState(str(exc)) from None
     else:
         state = check_state(state, oscillator)
+        vector, t0 = np.array(state.vector), state.time_s
     if system is None:
         system = kernel_system(oscillator)
     st, _, contacts, events, _, extrema, status, _ = _core.run(
-        system, kernel_forcing(excitation), np.array(state.vector), state.time_s + duration, 0.0, 1e-10,
-        10_000_000, False, new_control(SHORT_RUN_STEPS))
+        system, kernel_forcing(excitation) if forcing is None else forcing, vector, t0 + duration, 0.0,
+        1e-10, 10_000_000, False, new_control(SHORT_RUN_STEPS))
     if status == Status.SUCCESS and not all(map(math.isfinite, extrema.tolist())):
         status = int(Status.NONFINITE)
     return ShortRun(st, events, contacts, extrema, excitation, int(status))

@@ -12,6 +12,7 @@ can be in, else ``(q, value, why)``: the place in the block, its value and why i
 
 from __future__ import annotations
 
+import functools
 from typing import Any, Optional
 
 import numpy as np
@@ -90,32 +91,41 @@ def kinematic(block: np.ndarray, law: Any, touching: bool, comp: float, tol: flo
     strain within its breakpoint (at it while slipping); the other places 0.  Out of contact (the
     bumper recovering) no spring slips in compression, and the springs do not pull."""
     slopes, breaks = law.slopes, law.breakpoints
-    soft = [i for i in range(len(breaks)) if slopes[i] > slopes[i + 1]]
-    for q in range(block.size):
-        i = (q - 1) % 3
-        if (q == 0 or i not in soft) and block[q] != 0.0:
-            return q, float(block[q]), ("is no state of this kinematic multi-linear bumper (a place for a "
-                                        "softening it has not): 0")
+    soft, unused = _softenings(slopes, breaks, block.size)
+    z = block.tolist()  # (Python's floats: the same numbers, read faster than numpy's scalars)
+    for q in unused:
+        if z[q] != 0.0:
+            return q, z[q], ("is no state of this kinematic multi-linear bumper (a place for a "
+                             "softening it has not): 0")
     for i in soft:
-        u, s = block[1 + i], block[4 + i]
+        u, s = z[1 + i], z[4 + i]
         if s not in (-1.0, 0.0, 1.0):
-            return 4 + i, float(s), "is a slip direction: -1, 0 or +1"
+            return 4 + i, s, "is a slip direction: -1, 0 or +1"
         strain = comp - u
         if (abs(strain) > breaks[i] + tol) if s == 0.0 else abs(strain - s * breaks[i]) > tol:
-            return 1 + i, float(u), (f"leaves the bumper spring {i}'s strain {strain:g} m beyond its "
-                                     f"breakpoint {breaks[i]:g} m")
+            return 1 + i, u, (f"leaves the bumper spring {i}'s strain {strain:g} m beyond its "
+                              f"breakpoint {breaks[i]:g} m")
         if s > 0.0 and not touching:
-            return 4 + i, float(s), ("slips the bumper spring in compression while out of contact (it holds "
-                                     "once the contact ends)")
+            return 4 + i, s, ("slips the bumper spring in compression while out of contact (it holds "
+                              "once the contact ends)")
     if not touching and comp > 0.0:
         k_lin = slopes[0] - sum(slopes[i] - slopes[i + 1] for i in soft)
-        force = max(k_lin, 0.0) * comp + sum((slopes[i] - slopes[i + 1]) * (comp - block[1 + i])
-                                             if block[4 + i] == 0.0
-                                             else (slopes[i] - slopes[i + 1]) * block[4 + i] * breaks[i]
-                                             for i in soft)
+        held = 0.0  # (added in order: numpy's scalars were, where Python 3.12's sum of floats compensates)
+        for i in soft:
+            held = held + ((slopes[i] - slopes[i + 1]) * (comp - z[1 + i]) if z[4 + i] == 0.0
+                           else (slopes[i] - slopes[i + 1]) * z[4 + i] * breaks[i])
+        force = max(k_lin, 0.0) * comp + held
         force += sum((slopes[i + 1] - slopes[i]) * max(comp - breaks[i], 0.0)
                      for i in range(len(breaks)) if slopes[i + 1] > slopes[i])
         if force < -tol * max(slopes) - 1e-9:
-            return 1, float(block[1]), (f"makes the recovering bumper pull ({force:g} N at its compression "
-                                        f"{comp:g} m)")
+            return 1, z[1], (f"makes the recovering bumper pull ({force:g} N at its compression "
+                             f"{comp:g} m)")
     return None
+
+
+@functools.lru_cache(maxsize=64)
+def _softenings(slopes: tuple, breaks: tuple, size: int) -> tuple[tuple[int, ...], tuple[int, ...]]:
+    """(the breakpoints where a kinematic multi-linear backbone softens (its slope falls), the places of
+    a block of ``size`` numbers it has no use for, in order)."""
+    soft = tuple(i for i in range(len(breaks)) if slopes[i] > slopes[i + 1])
+    return soft, tuple(q for q in range(size) if q == 0 or (q - 1) % 3 not in soft)
