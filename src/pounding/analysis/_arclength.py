@@ -17,6 +17,7 @@ fresh one when it does not.  ``dP/dp`` is a central difference of the map.
 from __future__ import annotations
 
 import copy
+import math
 from dataclasses import dataclass
 from typing import Any, Optional
 
@@ -71,6 +72,7 @@ class Family:
         self.phase = phase
         self.p_scale = p_scale
         self._cache: dict[tuple[float, float], _Shooter] = {}
+        self._borders: dict[tuple, tuple] = {}  # (see _bordering)
         self.fell_back = ""
         self.length_m = length_m
         sh = self._ref = self.shooter(self.start_value)  # (for what does not depend on p: the coordinates)
@@ -145,11 +147,11 @@ class Family:
     def residual(self, vec: np.ndarray, p: float,
                  a_g: Optional[float] = None) -> tuple[np.ndarray, Run, tuple, np.ndarray, np.ndarray]:
         """``(scaled residual in the free coordinates, run, frozen springs, free, emb)``."""
-        x_end, run = self.image(vec, p, a_g)
         sh = self.shooter(p, a_g)
+        end, run = sh._image(vec)
         frozen = sh.frozen(vec, run)
         free, emb = sh._layout(vec, frozen)
-        r = (x_end - self.coords(vec))[free] / self.scales[free]
+        r = (self.coords(end) - self.coords(vec))[free] / self.scales[free]
         return r, run, frozen, free, emb
 
     def linearize(self, vec: np.ndarray, p: float, run: Run, frozen: tuple) -> tuple[np.ndarray, np.ndarray]:
@@ -175,14 +177,27 @@ class Family:
         """The scaled extended Jacobian ``[[S^-1 (M - I) S_w, S^-1 dP/dp s_p], [row]]``, (r+1, r+1).
 
         ``row_x`` (n,) and ``row_q``: the last row's tangent in the full scaled coordinates."""
-        s_w = self.scales[free]
+        s_w, eye, ratio, lift = self._bordering(free, emb)
         r = free.size
         a = np.empty((r + 1, r + 1))
-        a[:r, :r] = (jac - np.eye(r)) * (s_w[None, :] / s_w[:, None])
+        a[:r, :r] = (jac - eye) * ratio
         a[:r, r] = dp / s_w * self.p_scale
-        a[r, :r] = row_x @ (emb * s_w[None, :] / self.scales[:, None])
+        a[r, :r] = row_x @ lift
         a[r, r] = row_q
         return a
+
+    def _bordering(self, free: np.ndarray, emb: np.ndarray) -> tuple:
+        """What :meth:`bordered` takes of the layout and the scales alone, ``(s_w, I, s_w / s_w^T, E s_w /
+        s)``: made once for each (a corrector borders the same layout at every iteration)."""
+        key = (free.tobytes(), emb.shape, emb.tobytes(), self.scales.tobytes())
+        got = self._borders.get(key)
+        if got is None:
+            if len(self._borders) >= 64:
+                self._borders.clear()
+            s_w = self.scales[free]
+            got = self._borders[key] = (s_w, np.eye(free.size), s_w[None, :] / s_w[:, None],
+                                        emb * s_w[None, :] / self.scales[:, None])
+        return got
 
     def tangent(self, pt: Point, prev_x: np.ndarray, prev_q: float) -> tuple[np.ndarray, float]:
         """The unit tangent at ``pt`` oriented along ``(prev_x, prev_q)`` (full scaled coordinates)."""
@@ -217,8 +232,9 @@ class Family:
                 return None
             x = self.coords(vec)
             arc = float(tau_x @ ((x - target_x) / self.scales) + tau_q * (p - target_p) / self.p_scale)
-            norm = max(float(np.max(np.abs(r), initial=0.0)), abs(arc))
-            if not np.isfinite(norm):
+            largest = float(np.abs(r).max(initial=0.0))
+            norm = max(largest, abs(arc))
+            if not math.isfinite(norm):
                 return None
             if norm <= tol:
                 try:
@@ -227,8 +243,8 @@ class Family:
                     return None
                 mult = np.linalg.eigvals(jac) if jac.size else np.zeros(0, complex)
                 mult = mult[np.argsort(-np.abs(mult), kind="stable")]
-                return Point(vec, p, run, jac, dp, free, emb, frozen, tau_x, tau_q,
-                             float(np.max(np.abs(r), initial=0.0)), mult, it, self.phase)
+                return Point(vec, p, run, jac, dp, free, emb, frozen, tau_x, tau_q, largest, mult, it,
+                             self.phase)
             here = (tuple(free), frozen)
             if chord is not None and jac is None and (tuple(chord.free), chord.frozen) == here:
                 jac, dp, key = chord.jac, chord.dp, here
@@ -241,7 +257,7 @@ class Family:
             last = norm
             a = self.bordered(jac, dp, free, emb, tau_x, tau_q)
             try:
-                step = np.linalg.solve(a, -np.append(r, arc))
+                step = np.linalg.solve(a, -np.concatenate((r, [arc])))
             except np.linalg.LinAlgError:
                 return None
             p_new = p + step[-1] * self.p_scale

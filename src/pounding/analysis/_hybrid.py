@@ -127,10 +127,15 @@ def coordinates(h: Hybrid, vec: np.ndarray) -> np.ndarray:
                            vec[STATE_BASE:STATE_BASE + h.n_slips]))
 
 
+def coordinate_places(h: Hybrid) -> list[int]:
+    """Where :func:`coordinates` reads ``x`` in an engine state vector."""
+    return [I_D, I_V, DEF_L, DEF_R, *range(STATE_BASE, STATE_BASE + h.n_slips)]
+
+
 def mode_of(h: Hybrid, vec: np.ndarray) -> tuple:
     """``(in contact left, in contact right, slip directions or the backbone branch)``."""
     n = h.slopes.size - 1
-    iso = tuple(vec[STATE_BASE + n:STATE_BASE + 2 * n]) if h.kinematic else int(vec[REGION])
+    iso = tuple(vec[STATE_BASE + n:STATE_BASE + 2 * n].tolist()) if h.kinematic else int(vec[REGION])
     return bool(vec[IN_L]), bool(vec[IN_R]), iso
 
 

@@ -30,6 +30,7 @@ from ..engine._layout import DEF_L, DEF_R, REGION, STATE_BASE, ZETA
 from ..engine._layout import D as I_D
 from ..engine._layout import T as I_T
 from ..engine._layout import V as I_V
+from ..engine._run_args import kernel_forcing
 from ..engine.simulate import NotAState, check_oscillator, check_state, kernel_system, short_run
 from ..excitation import Harmonic
 from ..model import Oscillator
@@ -253,21 +254,38 @@ class _Shooter(_Newton):
         same = like is not None and like.osc is oscillator
         self.h = like.h if same else hy.Hybrid.of(oscillator)
         self.system = like.system if same else kernel_system(oscillator)  # (the kernel's arguments)
+        self._forcing: Any = None  # (the excitation as the kernel takes it: made at the first run)
         bw = oscillator.isolator.bouc_wen
         self.z_max = bw.z_max if bw is not None else 0.0
         self.scale_d = 1e-3
+        # where ``coords`` reads the state vector, and the layouts met so far by mode (a solver asks
+        # for one several times a run)
+        self._at = like._at if same else np.array(hy.coordinate_places(self.h) + ([ZETA] if self.z_max > 0.0
+                                                                                  else []))
+        self._layouts: dict = like._layouts if same else {}
 
     def coords(self, vec: np.ndarray) -> np.ndarray:
         """``x`` (``_hybrid``), then the isolator's Bouc-Wen z for a system with one."""
-        x = hy.coordinates(self.h, vec)
-        return np.append(x, vec[ZETA]) if self.z_max > 0.0 else x
+        return vec[self._at]
 
     # the shooting coordinates: which entries of x are free, and how the others follow D
     def _layout(self, vec: np.ndarray, frozen: tuple = ()) -> tuple[np.ndarray, np.ndarray]:
         """(indices of ``coords`` that are free, embedding E: shape (n, r), dx = E dz).  ``frozen``:
-        isolator springs that stay elastic over the period, whose slips are left out."""
+        isolator springs that stay elastic over the period, whose slips are left out.  (Both read-only:
+        one pair for every state of the same mode.)"""
+        mode = hy.mode_of(self.h, vec)
+        key = (mode, tuple(frozen))
+        got = self._layouts.get(key)
+        if got is None:
+            if len(self._layouts) >= 256:
+                self._layouts.clear()
+            got = self._layouts[key] = self._new_layout(*mode, frozen)
+            for a in got:
+                a.setflags(write=False)
+        return got
+
+    def _new_layout(self, in_l: bool, in_r: bool, iso: Any, frozen: tuple) -> tuple[np.ndarray, np.ndarray]:
         h = self.h
-        in_l, in_r, iso = hy.mode_of(h, vec)
         n = h.size + (self.z_max > 0.0)
         follows = np.zeros(n)  # dx_i = follows_i dD for the entries that are not free
         free = [0, 1]
@@ -297,8 +315,7 @@ class _Shooter(_Newton):
         if not self.h.kinematic:
             return ()
         iso = hy.mode_of(self.h, vec)[2]
-        ev = run.event_table
-        yielded = set(ev[ev[:, 1] == hy.ACT_YIELD, 2].astype(int).tolist())
+        yielded = {int(i) for _, action, i in run.event_table.tolist() if action == hy.ACT_YIELD}
         return tuple(i for i, s in enumerate(iso) if s == 0.0 and i not in yielded)
 
     def labels(self) -> list[str]:
@@ -383,7 +400,9 @@ class _Shooter(_Newton):
 
     def _image(self, vec: np.ndarray) -> tuple[np.ndarray, Run]:
         try:
-            run = short_run(self.osc, self.exc, self.period, vec, self.system)
+            if self._forcing is None:
+                self._forcing = kernel_forcing(self.exc)
+            run = short_run(self.osc, self.exc, self.period, vec, self.system, self._forcing)
         except NotAState as exc:
             raise _Failed(f"a trial state left the system's states ({exc})") from None
         if not run.success:
@@ -412,26 +431,30 @@ class _Shooter(_Newton):
 
     def _moved(self, vec: np.ndarray, dx: np.ndarray) -> np.ndarray:
         """The state vector moved by ``dx`` (in ``coords``), its followers kept on their
-        constraints and the elastic rule's branch the one of the new D."""
+        constraints and the elastic rule's branch the one of the new D.  (Its numbers as Python's
+        floats: the same arithmetic as numpy's scalars, at a fraction of their cost.)"""
         out = vec.copy()
         h = self.h
-        out[I_D] += dx[0]
-        out[I_V] += dx[1]
-        out[DEF_L] = max(0.0, vec[DEF_L] + dx[hy.I_DL])
-        out[DEF_R] = max(0.0, vec[DEF_R] + dx[hy.I_DR])
+        x, step = vec.tolist(), dx.tolist()
+        d = x[I_D] + step[0]
+        out[I_D] = d
+        out[I_V] = x[I_V] + step[1]
+        out[DEF_L] = max(0.0, x[DEF_L] + step[hy.I_DL])
+        out[DEF_R] = max(0.0, x[DEF_R] + step[hy.I_DR])
         n = h.n_slips
-        out[STATE_BASE:STATE_BASE + n] += dx[hy.FIRST_SLIP:hy.FIRST_SLIP + n]
+        if n:
+            out[STATE_BASE:STATE_BASE + n] += dx[hy.FIRST_SLIP:hy.FIRST_SLIP + n]
         if self.z_max > 0.0:
-            out[ZETA] = min(max(vec[ZETA] + dx[h.size], -self.z_max), self.z_max)
+            out[ZETA] = min(max(x[ZETA] + step[h.size], -self.z_max), self.z_max)
         in_l, in_r, iso = hy.mode_of(h, vec)
-        for touching, row, depth in ((in_l, DEF_L, -out[I_D] - h.gaps[0]),
-                                     (in_r, DEF_R, out[I_D] - h.gaps[1])):
-            if touching:
-                out[row] = max(0.0, depth)
+        if in_l:
+            out[DEF_L] = max(0.0, -d - h.gaps[0])
+        if in_r:
+            out[DEF_R] = max(0.0, d - h.gaps[1])
         if h.kinematic:
             for i, s in enumerate(iso):
                 if s != 0.0:
-                    out[STATE_BASE + i] = out[I_D] - s * h.breaks[i]
+                    out[STATE_BASE + i] = d - s * float(h.breaks[i])
         elif h.breaks.size:
-            out[REGION] = np.sign(out[I_D]) * np.searchsorted(h.breaks, abs(out[I_D]), side="right")
+            out[REGION] = np.sign(d) * np.searchsorted(h.breaks, abs(d), side="right")
         return out
