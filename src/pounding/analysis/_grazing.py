@@ -284,9 +284,17 @@ def _scaling(fl: "Follower", pt: Point, side: str, rigid: bool) -> tuple[float, 
     sh = fam.shooter(pt.p)
     vec, n = pt.vec, fam.n
     size = fam.orbit_size(pt.run)
+    images: dict[bytes, tuple] = {}  # (a state's image, run once: a move along a coordinate held at a bound
+    # leaves the state as it was, and the depths' states give both an image and a clearance)
+
+    def image(v: np.ndarray) -> tuple:
+        key = v.tobytes()
+        if key not in images:
+            images[key] = fam.image(v, pt.p)
+        return images[key]
 
     def clearance(v: np.ndarray) -> float:
-        return sh.clearances(fam.image(v, pt.p)[1])[side]
+        return sh.clearances(image(v)[1])[side]
 
     try:
         c0 = clearance(vec)
@@ -300,13 +308,13 @@ def _scaling(fl: "Follower", pt: Point, side: str, rigid: bool) -> tuple[float, 
         k = float(np.linalg.norm(grad))
         if not k > 0.0 or not math.isfinite(k):
             return math.nan, np.zeros(0), np.zeros(0)
-        base = fam.image(vec, pt.p)[0]
+        base = image(vec)[0]
         diffs, depths = [], []
         for depth in DEPTHS:
             dx = -(depth * size + max(c0, 0.0)) / k * grad / k * fam.scales
             minus = sh._moved(vec, -dx)
-            plus = fam.image(sh._moved(vec, dx), pt.p)[0]
-            diffs.append(plus + fam.image(minus, pt.p)[0] - 2.0 * base)
+            plus = image(sh._moved(vec, dx))[0]
+            diffs.append(plus + image(minus)[0] - 2.0 * base)
             depths.append(clearance(minus) - 2.0 * c0)
     except _Failed:
         return math.nan, np.zeros(0), np.zeros(0)
