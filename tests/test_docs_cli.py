@@ -1,5 +1,6 @@
 """Every command-line example of the documentation runs as written and gives something: exit code 0,
-something printed, and every file it names written and not empty.
+something printed, no warning, and every file it names written and not empty; every shipped example file
+reads without a warning.
 
 The commands are read from the pages' ``bash`` blocks (a line ending in a backslash goes on), each run in
 a folder of its own where ``examples/`` is the repository's.  A command the README also shows is left to
@@ -55,6 +56,7 @@ def test_every_command_line_example_of_the_docs_runs_and_gives_something(page, c
     done = CliRunner().invoke(app, args, catch_exceptions=False)
     assert done.exit_code == 0, (page, command, done.output[-3000:])
     assert done.output.strip(), (page, command)
+    assert "warning:" not in done.output, (page, command, done.output[-3000:])  # (an example never warns)
     written = [args[i + 1] for i, a in enumerate(args[:-1]) if a in OUTPUTS]
     for name in written:
         path = tmp_path / name
@@ -62,3 +64,37 @@ def test_every_command_line_example_of_the_docs_runs_and_gives_something(page, c
         size = sum(f.stat().st_size for f in path.rglob("*") if f.is_file()) if path.is_dir() else \
             path.stat().st_size
         assert size > 0, (command, name)
+
+
+SYSTEMS = ("adjacent_buildings", "building_moat", "elastic_plastic_ybs", "masing_ybs", "paper_printed_nbs",
+           "paper_printed_ybs", "soft_stop_building")
+
+
+def test_every_shipped_example_file_reads_without_a_warning():
+    """A shipped example never warns about itself: each file read as its command reads it, pounding's
+    warnings as errors (the design and study files with their systems and records)."""
+    import warnings
+
+    import tomllib
+
+    import pounding
+    from pounding.design.plan import DesignPlan
+    from pounding.model.systems import system_type
+    from pounding.studies.spec import StudySpec
+
+    examples = ROOT / "examples"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", pounding.PoundingWarning)  # (not a dependency's deprecations)
+        for name in SYSTEMS:
+            path = examples / f"{name}.toml"
+            system_type(tomllib.loads(path.read_text(encoding="utf-8"))).from_toml(path)
+        pounding.Targets.from_toml(examples / "targets.toml")
+        pounding.ModelFamily.from_toml(examples / "family.toml")
+        for name in ("study_gaps", "study_moat"):
+            StudySpec.from_toml(examples / f"{name}.toml")
+        for name in ("design_ups", "design_building"):
+            DesignPlan.from_toml(examples / f"{name}.toml")
+        pounding.Record.from_at2(examples / "el_centro_ns.AT2")
+    shipped = {p.stem for p in examples.glob("*.toml")}
+    assert shipped == set(SYSTEMS) | {"targets", "family", "study_gaps", "study_moat", "design_ups",
+                                      "design_building"}, "a new example: read it here too"
