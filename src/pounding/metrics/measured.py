@@ -110,7 +110,8 @@ def _standard_error(x: np.ndarray) -> float:
 def measure_window(t: np.ndarray, table: np.ndarray, raw_acc: np.ndarray, acc: np.ndarray, d_raw: np.ndarray,
                    d: np.ndarray, bounds: np.ndarray, period: float, amp: float, fs: float, *,
                    names: tuple[str, ...], mass_kg: float, gap: float | None, steady_rtol: float,
-                   omega_min_rad_s: float, noise: float) -> tuple[dict, dict, Any, int]:
+                   omega_min_rad_s: float, noise: float,
+                   contact_timing: str = "pulse") -> tuple[dict, dict, Any, int]:
     """The paper's quantities over one window of whole cycles of a sampled record.
 
     Parameters
@@ -137,6 +138,9 @@ def measure_window(t: np.ndarray, table: np.ndarray, raw_acc: np.ndarray, acc: n
         As :func:`pounding.lab.analyse_stepped_sine`'s.
     noise : float
         The displacement's noise (standard deviation of the recorded less the smoothed), m.
+    contact_timing : str
+        ``"pulse"``: contacts timed by their force pulses; ``"laser"``: by the displacement's gap
+        crossings (:func:`pounding.metrics.measured_contacts.window_contacts`).
 
     Returns
     -------
@@ -149,7 +153,7 @@ def measure_window(t: np.ndarray, table: np.ndarray, raw_acc: np.ndarray, acc: n
     found : DataFrame or None
         The contacts (with ``gap``).
     unconfirmed : int
-        Gap crossings without a force pulse.
+        Gap crossings without a force pulse (with ``"laser"`` timing, contacts still).
     """
     measure_cycles = bounds.size - 1
     w0, s1 = float(bounds[0]), float(bounds[-1])
@@ -201,7 +205,7 @@ def measure_window(t: np.ndarray, table: np.ndarray, raw_acc: np.ndarray, acc: n
         found, unconfirmed = window_contacts(t[win], d_raw[win], d[win],
                                              acc[win, 0] - zero[0],
                                              raw_acc[win, 0] - zero[0], table[win], mass_kg, 0.5 * gap,
-                                             fs, (w0, s1))
+                                             fs, (w0, s1), contact_timing)
         contacts["contact"] = len(found) > 0
         contacts["contacts_per_cycle"] = len(found) / measure_cycles
         contacts.update(contact_means(found))

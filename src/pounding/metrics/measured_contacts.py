@@ -50,6 +50,8 @@ MIN_FLIGHT_S = 0.010  # a velocity needs at least this much free flight beside t
 CONFIRM_SIGMA = 5.0  # a contact's bumper force pulse rises above this many noise standard deviations
 EDGE_SIGMA = 2.0  # its flanks are followed down to this many
 EDGE_FLOOR = 0.02  # or to this fraction of its peak, whichever is higher
+LASER_FLIGHT_S = 0.040  # laser timing: the free flight a velocity is fitted on, s
+LASER_FIT_DEGREE = 3  # laser timing: the degree of the polynomial fitted there
 IMPACT_COLUMNS = ("side", "t_start_s", "t_end_s", "contact_time_s", "v_in_m_s", "v_out_m_s", "restitution",
                   "impulse_n_s", "mean_force_n", "peak_force_n", "dissipated_energy_j")
 
@@ -129,23 +131,11 @@ def _zero_edge(t: np.ndarray, c: np.ndarray, edge: int, step: int, half: float) 
     return float(min(max(at, lo), hi))
 
 
-def window_contacts(t: np.ndarray, d_raw: np.ndarray, d: np.ndarray, a_abs: np.ndarray, a_raw: np.ndarray,
-                    a_table: np.ndarray, mass_kg: float, half_gap_m: float, fs: float,
-                    starts_in: tuple[float, float]) -> tuple[pd.DataFrame, int]:
-    """The contacts that start in ``starts_in = (t_from, t_to)``: one row each, :data:`IMPACT_COLUMNS`,
-    and how many gap crossings there had no bumper force pulse (not counted: see the module).
-
-    The arrays are the samples of a stretch around the window (its free flight on either side
-    gives the first and last contacts their velocities): ``d_raw`` the recorded displacement,
-    ``d`` its smoothed version, ``a_abs`` the mass's smoothed absolute acceleration and ``a_raw`` the
-    same unsmoothed, ``a_table`` the table's.
-    """
-    from scipy import integrate, signal
-
-    n = max(5, 2 * round(0.005 * fs) + 1)
-    v = signal.savgol_filter(d, n, 3, deriv=1, delta=1.0 / fs) if d.size > n else np.gradient(d, t)
-    noise = float(np.nanstd(d_raw - d))
-    merge = max(1, round(MERGE_S * fs))
+def _gap_intervals(d: np.ndarray, half_gap_m: float, merge: int,
+                   noise: float) -> tuple[np.ndarray, list[tuple[str, float, int, int]]]:
+    """Where the displacement ``d`` is beyond the gap (a mask: contacts cut by the stretch's ends too,
+    which have no free flight), and the crossings deeper than ``noise``, those less than ``merge``
+    samples apart one: ``(side, sign, a, b)``, ``d`` beyond the gap from sample ``a`` to ``b - 1``."""
     in_contact = np.zeros(d.size, dtype=bool)
     intervals = []
     for side, sign in (("left", -1.0), ("right", 1.0)):
@@ -166,6 +156,88 @@ def window_contacts(t: np.ndarray, d_raw: np.ndarray, d: np.ndarray, a_abs: np.n
             in_contact[a:b] = True
             if y[a:b].max() > noise:  # (deeper than the noise: a contact, not a flicker)
                 intervals.append((side, sign, a, b))
+    return in_contact, intervals
+
+
+def _laser_velocity(t: np.ndarray, d: np.ndarray, mask: np.ndarray, at: float) -> float:
+    """The velocity at ``at`` from the laser alone: the slope there of a least-squares polynomial of
+    degree :data:`LASER_FIT_DEGREE` through ``d[mask]`` (a run of free flight next to ``at``), NaN
+    with less than :data:`MIN_FLIGHT_S` of it or too few samples."""
+    idx = np.flatnonzero(mask & np.isfinite(d))
+    if idx.size < LASER_FIT_DEGREE + 2 or t[idx[-1]] - t[idx[0]] < MIN_FLIGHT_S:
+        return float("nan")
+    tau = t[idx] - at
+    scale = float(np.abs(tau).max())  # (tau / scale within [-1, 1]: a well-conditioned fit)
+    coef = np.polynomial.polynomial.polyfit(tau / scale, d[idx], LASER_FIT_DEGREE)
+    return float(coef[1] / scale)
+
+
+def _laser_contacts(t: np.ndarray, d_raw: np.ndarray, f_b: np.ndarray, f_raw: np.ndarray, free: np.ndarray,
+                    intervals: list, half_gap_m: float, level: float, merge: int, mass_kg: float, fs: float,
+                    starts_in: tuple[float, float]) -> tuple[pd.DataFrame, int]:
+    """:func:`window_contacts` timed by the laser: each contact from the gap crossing in to the gap
+    crossing out of the recorded displacement (linearly between its samples), the velocities from the
+    laser alone there (:func:`_laser_velocity` over up to :data:`LASER_FLIGHT_S` of free flight), the
+    impulse the bumper force ``f_raw``'s integral between the crossings, the peak the smoothed ``f_b``'s
+    largest value where the pulse is looked for. A crossing without a force pulse above ``level`` is a
+    contact still (the laser is the witness) and is counted too."""
+    from scipy import integrate
+
+    rows, unconfirmed = [], 0
+    for side, sign, a, b in intervals:
+        y = sign * d_raw - half_gap_m
+        t0, t1 = _crossing(t, y, a), _crossing(t, y, b)
+        # (shorter than a sample: not measured)
+        if not starts_in[0] <= t0 < starts_in[1] or t1 - t0 < 1.0 / fs:
+            continue
+        c = sign * f_raw  # compressive force, > 0
+        lo, hi = max(a - merge, 1), min(b + merge, t.size - 1)
+        if c[lo:hi].max() <= level:  # (no pulse in the accelerations: counted, and a contact still)
+            unconfirmed += 1
+        inside = np.arange(a, b)
+        c0, c1 = (float(np.interp(x, t[i - 1:i + 1], c[i - 1:i + 1])) for x, i in ((t0, a), (t1, b)))
+        impulse = float(integrate.trapezoid(np.concatenate([[c0], c[inside], [c1]]),
+                                            np.concatenate([[t0], t[inside], [t1]])))
+        before = _flight(free, a - 1, -1) & (t >= t0 - LASER_FLIGHT_S)
+        after = _flight(free, b, 1) & (t <= t1 + LASER_FLIGHT_S)
+        rows.append({"side": side, "t_start_s": t0, "t_end_s": t1, "contact_time_s": t1 - t0,
+                     "v_in_m_s": _laser_velocity(t, d_raw, before, t0),
+                     "v_out_m_s": _laser_velocity(t, d_raw, after, t1), "impulse_n_s": impulse,
+                     "peak_force_n": float((sign * f_b[lo:hi]).max())})
+    return _finish(rows, mass_kg), unconfirmed
+
+
+def _finish(rows: list[dict], mass_kg: float) -> pd.DataFrame:
+    """The contacts' table from their rows: mean force, restitution and dissipated energy added."""
+    out = pd.DataFrame(rows)
+    if out.empty:
+        return pd.DataFrame(columns=list(IMPACT_COLUMNS))
+    out["mean_force_n"] = out["impulse_n_s"] / out["contact_time_s"]
+    out["restitution"] = -out["v_out_m_s"] / out["v_in_m_s"]
+    out["dissipated_energy_j"] = 0.5 * mass_kg * (out["v_in_m_s"] ** 2 - out["v_out_m_s"] ** 2)
+    return out[list(IMPACT_COLUMNS)].sort_values("t_start_s").reset_index(drop=True)
+
+
+def window_contacts(t: np.ndarray, d_raw: np.ndarray, d: np.ndarray, a_abs: np.ndarray, a_raw: np.ndarray,
+                    a_table: np.ndarray, mass_kg: float, half_gap_m: float, fs: float,
+                    starts_in: tuple[float, float], timing: str = "pulse") -> tuple[pd.DataFrame, int]:
+    """The contacts that start in ``starts_in = (t_from, t_to)``: one row each, :data:`IMPACT_COLUMNS`,
+    and how many gap crossings there had no bumper force pulse (not counted with ``timing="pulse"``,
+    counted with ``"laser"``: see the module).
+
+    The arrays are the samples of a stretch around the window (its free flight on either side
+    gives the first and last contacts their velocities): ``d_raw`` the recorded displacement,
+    ``d`` its smoothed version, ``a_abs`` the mass's smoothed absolute acceleration and ``a_raw`` the
+    same unsmoothed, ``a_table`` the table's.
+    """
+    from scipy import integrate, signal
+
+    n = max(5, 2 * round(0.005 * fs) + 1)
+    v = signal.savgol_filter(d, n, 3, deriv=1, delta=1.0 / fs) if d.size > n else np.gradient(d, t)
+    noise = float(np.nanstd(d_raw - d))
+    merge = max(1, round(MERGE_S * fs))
+    # (the laser's timing reads its own samples; the pulse's finds the crossings on the smoothed ones)
+    in_contact, intervals = _gap_intervals(d_raw if timing == "laser" else d, half_gap_m, merge, noise)
     free = ~in_contact
     if not intervals:
         return pd.DataFrame(columns=list(IMPACT_COLUMNS)), 0
@@ -178,6 +250,9 @@ def window_contacts(t: np.ndarray, d_raw: np.ndarray, d: np.ndarray, a_abs: np.n
     force_noise = (1.4826 * float(np.median(np.abs(f_raw[free] - np.median(f_raw[free])))) if free.any()
                    else 0.0)
     level = CONFIRM_SIGMA * force_noise
+    if timing == "laser":
+        return _laser_contacts(t, d_raw, f_b, f_raw, free, intervals, half_gap_m, level, merge, mass_kg, fs,
+                               starts_in)
     # the contacts: the force pulse at each gap crossing, from the zero before it to the zero after it
     not_free = in_contact.copy()  # (a flight ends at the gap or at the force, whichever comes first)
     rows, unconfirmed = [], 0
@@ -221,10 +296,4 @@ def window_contacts(t: np.ndarray, d_raw: np.ndarray, d: np.ndarray, a_abs: np.n
     for r in rows:
         r["v_in_m_s"] = _velocity_at(t, d_raw, a_rel, r.pop("before"), r["t_start_s"], b_all)[0]
         r["v_out_m_s"] = _velocity_at(t, d_raw, a_rel, r.pop("after"), r["t_end_s"], b_all)[0]
-    out = pd.DataFrame(rows)
-    if out.empty:
-        return pd.DataFrame(columns=list(IMPACT_COLUMNS)), unconfirmed
-    out["mean_force_n"] = out["impulse_n_s"] / out["contact_time_s"]
-    out["restitution"] = -out["v_out_m_s"] / out["v_in_m_s"]
-    out["dissipated_energy_j"] = 0.5 * mass_kg * (out["v_in_m_s"] ** 2 - out["v_out_m_s"] ** 2)
-    return out[list(IMPACT_COLUMNS)].sort_values("t_start_s").reset_index(drop=True), unconfirmed
+    return _finish(rows, mass_kg), unconfirmed

@@ -24,6 +24,9 @@ from .._checks import boolean, integer, non_negative, one_of, positive
 from .._errors import InputError, Problem
 
 CHANNELS = ("table", "mass", "laser")
+# how a measured window's contacts are timed: by the flanks of the bumper's force pulse in the
+# accelerations, or by the laser's gap crossings (see pounding.metrics.measured_contacts)
+CONTACT_TIMINGS = ("pulse", "laser")
 MAX_ORDER = 10  # Butterworth poles at most (beyond, second-order sections lose their accuracy)
 
 
@@ -96,6 +99,13 @@ class MeasurementChain:
     oversample : int
         The exact histories are taken at this many times ``sample_rate_hz`` for the causal
         (analogue) filters before sampling (10).
+    contact_timing : str
+        How a measured window's contacts are timed (and their velocities read): ``"pulse"`` (the
+        default), by the flanks of the bumper's force pulse in the accelerations, the velocities from
+        the displacement's free flight fitted with the measured acceleration; ``"laser"``, where the
+        laser's displacement crosses the gap, the velocities from the laser alone
+        (:mod:`pounding.metrics.measured_contacts`). What the instruments record does not depend on
+        it.
 
     Examples
     --------
@@ -119,11 +129,14 @@ class MeasurementChain:
     mass: Sensor = field(default_factory=Sensor)
     laser: Sensor = field(default_factory=Sensor)
     oversample: int = 10
+    contact_timing: str = "pulse"
 
     def __post_init__(self) -> None:
         fs = positive("sample_rate_hz", self.sample_rate_hz, "Hz")
         object.__setattr__(self, "sample_rate_hz", fs)
         object.__setattr__(self, "oversample", integer("oversample", self.oversample, 1, 1000))
+        timing = one_of("contact_timing", self.contact_timing, CONTACT_TIMINGS)
+        object.__setattr__(self, "contact_timing", timing)
         for name in CHANNELS:
             sensor = getattr(self, name)
             if not isinstance(sensor, Sensor):
@@ -151,6 +164,7 @@ class MeasurementChain:
         zero_phase: bool = True,
         sample_rate_hz: float = 1000.0,
         laser: bool = False,
+        contact_timing: str = "pulse",
     ) -> "MeasurementChain":
         """The accelerometers (table and mass) through one Butterworth low-pass, the laser as read
         (or through it too, ``laser=True``): the chain the paper's accelerations are tested against.
@@ -167,6 +181,9 @@ class MeasurementChain:
             The recording's rate, Hz (1000).
         laser : bool
             Filter the displacement too.
+        contact_timing : str
+            ``"pulse"`` (contacts timed by the force pulses in the filtered accelerations) or
+            ``"laser"`` (by the laser's gap crossings): see :class:`MeasurementChain`.
 
         Returns
         -------
@@ -178,9 +195,12 @@ class MeasurementChain:
         >>> chain = pounding.MeasurementChain.lowpass(20.0, zero_phase=False)
         >>> round(chain.mass.gain(20.0), 4)  # -3 dB at the corner, causal
         0.7071
+        >>> pounding.MeasurementChain.lowpass(15.0, contact_timing="laser").describe()[-42:]
+        'contacts timed by the laser's gap crossings'
         """
         sensor = Sensor(cutoff_hz, order, zero_phase)
-        return cls(sample_rate_hz, sensor, sensor, sensor if boolean("laser", laser) else Sensor())
+        return cls(sample_rate_hz, sensor, sensor, sensor if boolean("laser", laser) else Sensor(),
+                   contact_timing=contact_timing)
 
     def gain(self, freq_hz: Any, channel: str = "mass") -> Any:
         """A channel's magnitude at ``freq_hz`` as the chain runs its filter (causal at the internal
@@ -227,7 +247,8 @@ class MeasurementChain:
         return replace(self, table=table, mass=mass)
 
     def describe(self) -> str:
-        """The chain in words (one line)."""
+        """The chain in words (one line; contacts timed by their force pulses unless it says they are
+        timed by the laser's gap crossings)."""
         parts = [f"sampled at {self.sample_rate_hz:g} Hz"]
         for name, sensor in zip(CHANNELS, self.sensors):
             if sensor.lowpass_hz is not None:
@@ -236,7 +257,9 @@ class MeasurementChain:
                 parts.append(f"{name}: {kind} Butterworth low-pass, {corner}")
             if sensor.resolution > 0.0:
                 parts.append(f"{name}: quantum {sensor.resolution:g}")
-        return "; ".join(parts) if len(parts) > 1 else parts[0] + ", no filter (ideal sampling)"
+        text = "; ".join(parts) if len(parts) > 1 else parts[0] + ", no filter (ideal sampling)"
+        laser = self.contact_timing == "laser"
+        return text + ("; contacts timed by the laser's gap crossings" if laser else "")
 
     # ---- the pipeline, in the order the lab's instruments apply it
     def analogue_sos(self) -> list[np.ndarray | None]:
