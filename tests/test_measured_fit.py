@@ -3,6 +3,8 @@ chain, and bad bounds named."""
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import pytest
 
 import pounding
@@ -94,3 +96,27 @@ def test_the_measured_preset_reproduces_its_stored_residuals_through_its_chain()
     assert pounding.presets.by_name("paper-calibrated-measured").bumpers.law == ybs.bumpers.law
     # the exact preset is kept, and is not this one
     assert pounding.presets.paper_calibrated().bumpers.law != ybs.bumpers.law
+
+
+def test_the_laser_preset_reproduces_its_stored_residuals_through_its_chain():
+    import numpy as np
+
+    ybs, chain = pounding.presets.paper_calibrated_laser()
+    assert chain.contact_timing == "laser" and 5.0 <= chain.mass.lowpass_hz <= 100.0
+    stored = pounding.presets.residuals("paper-calibrated-laser")
+    now = evaluate(ybs, pounding.paper_targets(), measurement=chain)
+    assert list(now["quantity"]) == list(stored["quantity"])
+    np.testing.assert_allclose(now["model"], stored["model"], rtol=1e-6, atol=1e-9, equal_nan=True)
+    assert list(now["within"]) == list(stored["within"])
+    profile = pounding.presets.measurement_profile("laser")
+    shipped = profile[profile["shipped"]].iloc[0]
+    assert int(profile["shipped"].sum()) == 1 and bool(shipped["cutoff_free"])
+    assert (profile["timing"] == "laser").all() and set(profile["start_from"]) == {"calibrated", "measured"}
+    assert shipped["cutoff_hz"] == pytest.approx(chain.mass.lowpass_hz)
+    assert int(shipped["met"]) == int(now["within"].sum()) == int(profile["met"].max())
+    assert pounding.presets.by_name("paper-calibrated-laser").bumpers.law == ybs.bumpers.law
+    # timed by the force pulses instead, the same system meets fewer: the laser's reading is the count
+    pulse = evaluate(ybs, pounding.paper_targets(), measurement=replace(chain, contact_timing="pulse"))
+    assert int(pulse["within"].sum()) < int(now["within"].sum())
+    with pytest.raises(pounding.InputError, match="contact_timing"):
+        pounding.presets.measurement_profile("force")

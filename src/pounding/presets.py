@@ -7,7 +7,9 @@ these values do not reproduce the paper's measured curves.  ``paper_damped``: th
 Tables 2-4 by model updating (``scripts/calibrate_paper.py``), multi-linear bumpers with
 Masing hysteresis (the most targets met); ``paper_calibrated_v2``: multi-linear elastic
 bumpers fitted by least squares (the accelerations near, the contacts not);
-``paper_calibrated_v1``: the first such fit, Kelvin-Voigt bumpers.
+``paper_calibrated_v1``: the first such fit, Kelvin-Voigt bumpers.  ``paper_calibrated_measured``
+and ``paper_calibrated_laser``: the calibration refitted with its metrics measured through a low-pass
+on the accelerometers, the contacts timed by their force pulses or by the laser (docs/measurement.md).
 """
 
 from __future__ import annotations
@@ -25,9 +27,9 @@ if TYPE_CHECKING:  # pragma: no cover
     from .model import MeasurementChain
     from .model.structure import Structure
 
-__all__ = ["by_name", "measurement_profile", "paper_calibrated", "paper_calibrated_measured",
-           "paper_calibrated_v1", "paper_calibrated_v2", "paper_damped", "paper_printed", "paper_rig_stands",
-           "residuals", "rig_stands_scan"]
+__all__ = ["by_name", "measurement_profile", "paper_calibrated", "paper_calibrated_laser",
+           "paper_calibrated_measured", "paper_calibrated_v1", "paper_calibrated_v2", "paper_damped",
+           "paper_printed", "paper_rig_stands", "residuals", "rig_stands_scan"]
 
 PAPER_SLOPES_N_M = (38_000.0, 18_000.0, 2_000.0)
 PAPER_BREAKPOINTS_M = (0.015, 0.040)
@@ -119,6 +121,9 @@ CALIBRATED_V2_RESIDUALS_FILE = "paper_calibrated_v2_residuals.csv"
 MEASURED_FILE = "paper_calibrated_measured.toml"
 MEASURED_RESIDUALS_FILE = "paper_calibrated_measured_residuals.csv"
 MEASURED_PROFILE_FILE = "measurement_profile.csv"
+LASER_FILE = "paper_calibrated_laser.toml"
+LASER_RESIDUALS_FILE = "paper_calibrated_laser_residuals.csv"
+LASER_PROFILE_FILE = "measurement_profile_laser.csv"
 RIG_STANDS_FILE = "paper_rig_stands.toml"
 RIG_STANDS_RESIDUALS_FILE = "paper_rig_stands_residuals.csv"
 RIG_STANDS_SCAN_FILE = "paper_rig_stands_scan.csv"
@@ -316,28 +321,81 @@ def paper_calibrated_measured(bumpers: bool = True) -> tuple[Oscillator, "Measur
     >>> 5.0 <= chain.mass.lowpass_hz <= 100.0  # Hz, fitted
     True
     """
+    return _measured_system(MEASURED_FILE, bumpers)
+
+
+def paper_calibrated_laser(bumpers: bool = True) -> tuple[Oscillator, "MeasurementChain"]:
+    """The paper's calibration with its accelerations measured through a low-pass and its contacts
+    timed by the laser: the system and the chain (``docs/measurement.md``, "Contacts timed by the
+    laser").
+
+    As :func:`paper_calibrated_measured`, but the chain times each contact by the laser's gap
+    crossings (``contact_timing="laser"``: the velocities from the laser alone) instead of the force
+    pulses in the filtered accelerations, which a low-pass near 15 Hz stretches to about 50 ms.  Made by
+    ``scripts/calibrate_measured.py --timing laser --free-cutoff --start-cutoff 15 60 --start-from
+    calibrated measured`` (the free fit with the most targets met, then the lowest cost): the bumper's
+    steep third slope and its dashpot refitted by least squares ("misses" loss) together with the
+    cutoff of a 4th-order zero-phase Butterworth low-pass on the accelerometers, every metric measured
+    through the chain.  Its residuals are ``residuals("paper-calibrated-laser")``, its fits
+    ``measurement_profile("laser")``.
+
+    Parameters
+    ----------
+    bumpers : bool
+        True: the YBs configuration (with bumpers); False: the same system without them (NBs).
+
+    Returns
+    -------
+    (Oscillator, MeasurementChain)
+        The system (``pounding/data/paper_calibrated_laser.toml``) and the chain its metrics are
+        measured through (give it as ``measurement=``).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> ybs, chain = pounding.presets.paper_calibrated_laser()
+    >>> chain.contact_timing, chain.mass.zero_phase, chain.laser.lowpass_hz
+    ('laser', True, None)
+    >>> 5.0 <= chain.mass.lowpass_hz <= 100.0  # Hz, fitted
+    True
+    """
+    return _measured_system(LASER_FILE, bumpers)
+
+
+def _measured_system(name: str, bumpers: bool) -> tuple[Oscillator, "MeasurementChain"]:
+    """A system refitted as measured and its chain: a low-pass on the accelerometers at the TOML's
+    ``[meta]`` ``measurement_cutoff_hz``, the contacts timed as its ``contact_timing`` says (by the
+    force pulses when it says nothing)."""
     import tomllib
 
     from .model import MeasurementChain
 
-    with resources.files("pounding.data").joinpath(MEASURED_FILE).open("r", encoding="utf-8") as fh:
+    with resources.files("pounding.data").joinpath(name).open("r", encoding="utf-8") as fh:
         text = fh.read()
-    cutoff = float(tomllib.loads(text)["meta"]["measurement_cutoff_hz"])
+    meta = tomllib.loads(text)["meta"]
+    chain = MeasurementChain.lowpass(float(meta["measurement_cutoff_hz"]),
+                                     contact_timing=meta.get("contact_timing", "pulse"))
     osc = Oscillator.from_toml_text(text)
-    return (osc if bumpers else osc.without_bumpers()), MeasurementChain.lowpass(cutoff)
+    return (osc if bumpers else osc.without_bumpers()), chain
 
 
-def measurement_profile() -> "pd.DataFrame":
-    """Targets met against the cutoff of :func:`paper_calibrated_measured`'s chain: the bumper's
-    pulse-shaping numbers refitted at fixed cutoffs from 10 to 100 Hz, and with the cutoff free
-    (``scripts/calibrate_measured.py``).
+def measurement_profile(contact_timing: str = "pulse") -> "pd.DataFrame":
+    """Targets met against the cutoff of :func:`paper_calibrated_measured`'s chain (or, ``"laser"``,
+    of :func:`paper_calibrated_laser`'s): the bumper's pulse-shaping numbers refitted at fixed cutoffs
+    from 10 to 100 Hz, and with the cutoff free (``scripts/calibrate_measured.py``).
+
+    Parameters
+    ----------
+    contact_timing : str
+        ``"pulse"`` (contacts timed by their force pulses) or ``"laser"`` (by the laser's gap
+        crossings: its fits also say ``timing`` and ``start_from``, the preset each started from).
 
     Returns
     -------
     DataFrame
         One row per fit: ``cutoff_hz``, ``cutoff_free``, ``start_cutoff_hz`` (where a free
-        cutoff started), ``shipped`` (the fit :func:`paper_calibrated_measured` is), ``met`` (of
-        36), ``cost``, ``evaluations``, ``seconds``, the fitted numbers (``bumper_slope_3`` N/m,
+        cutoff started), ``shipped`` (the fit the preset is), ``met`` (of 36), ``cost``,
+        ``evaluations``, ``seconds``, the fitted numbers (``bumper_slope_3`` N/m,
         ``bumper_damping`` N s/m) and ``missed`` (the targets missed).
 
     Examples
@@ -346,13 +404,19 @@ def measurement_profile() -> "pd.DataFrame":
     >>> profile = pounding.presets.measurement_profile()
     >>> int(profile["met"].max()) <= 36
     True
+    >>> int(pounding.presets.measurement_profile("laser")["shipped"].sum())
+    1
     """
-    return _data_table(MEASURED_PROFILE_FILE)
+    from .model.measurement import CONTACT_TIMINGS
+
+    timing = one_of("contact_timing", contact_timing, CONTACT_TIMINGS)
+    return _data_table(LASER_PROFILE_FILE if timing == "laser" else MEASURED_PROFILE_FILE)
 
 
 PRESETS = {"paper-printed": paper_printed, "paper-damped": paper_damped, "paper-calibrated": paper_calibrated,
            "paper-calibrated-v1": paper_calibrated_v1, "paper-calibrated-v2": paper_calibrated_v2,
-           "paper-calibrated-measured": lambda bumpers=True: paper_calibrated_measured(bumpers)[0]}
+           "paper-calibrated-measured": lambda bumpers=True: paper_calibrated_measured(bumpers)[0],
+           "paper-calibrated-laser": lambda bumpers=True: paper_calibrated_laser(bumpers)[0]}
 # what `pounding reproduce` uses unless told otherwise: the preset closest to the measurements
 BEST_PRESET = "paper-calibrated"
 # the calibrated presets' residual tables, by preset name
@@ -360,6 +424,7 @@ RESIDUALS = {"paper-calibrated": CALIBRATED_RESIDUALS_FILE,
              "paper-calibrated-v1": CALIBRATED_V1_RESIDUALS_FILE,
              "paper-calibrated-v2": CALIBRATED_V2_RESIDUALS_FILE,
              "paper-calibrated-measured": MEASURED_RESIDUALS_FILE,
+             "paper-calibrated-laser": LASER_RESIDUALS_FILE,
              "paper-rig-stands": RIG_STANDS_RESIDUALS_FILE}
 
 
@@ -371,8 +436,8 @@ def residuals(name: str = BEST_PRESET) -> "pd.DataFrame":
     ----------
     name : str
         The preset's name: "paper-calibrated" (default), "paper-calibrated-v1",
-        "paper-calibrated-v2", "paper-calibrated-measured" (its metrics measured through its
-        chain) or "paper-rig-stands" (:func:`paper_rig_stands`).
+        "paper-calibrated-v2", "paper-calibrated-measured" and "paper-calibrated-laser" (their
+        metrics measured through their chains) or "paper-rig-stands" (:func:`paper_rig_stands`).
 
     Returns
     -------
@@ -402,8 +467,9 @@ def by_name(name: str, bumpers: bool = True) -> Oscillator:
     ----------
     name : str
         The name the command line's ``--preset`` takes: "paper-printed", "paper-damped",
-        "paper-calibrated", "paper-calibrated-v1", "paper-calibrated-v2" or
-        "paper-calibrated-measured" (its system; its chain: :func:`paper_calibrated_measured`).
+        "paper-calibrated", "paper-calibrated-v1", "paper-calibrated-v2",
+        "paper-calibrated-measured" (its system; its chain: :func:`paper_calibrated_measured`) or
+        "paper-calibrated-laser" (its system; its chain: :func:`paper_calibrated_laser`).
     bumpers : bool
         True: the YBs configuration (with bumpers); False: the same system without them (NBs).
 

@@ -148,7 +148,7 @@ OPT_FREQ = typer.Option(..., "--freq", help="Forcing frequency, Hz.")
 # the built-in systems' names, as presets.PRESETS has them (written here so that the help needs no import of
 # the model; tests/test_cli_hardening.py holds the two equal)
 PRESET_NAMES = ("paper-printed", "paper-damped", "paper-calibrated", "paper-calibrated-v1",
-                "paper-calibrated-v2", "paper-calibrated-measured")
+                "paper-calibrated-v2", "paper-calibrated-measured", "paper-calibrated-laser")
 PRESET_LIST = ", ".join(PRESET_NAMES[:-1]) + " or " + PRESET_NAMES[-1]
 OPT_PRESET = typer.Option(None, "--preset", help=f"Use a built-in system: {PRESET_LIST}.")
 OPT_NO_BUMPERS = typer.Option(
