@@ -73,3 +73,45 @@ def test_the_command_line_refuses_both_stories_flags():
 
     result = CliRunner().invoke(app, ["reproduce", "--exact-only", "--lowpass-hz", "15"])
     assert result.exit_code == 2 and "not both" in result.output
+
+
+def test_the_report_tells_a_third_story_with_the_contacts_timed_by_the_laser(tmp_path):
+    ybs = pounding.presets.paper_calibrated()
+    pulse = pounding.MeasurementChain.lowpass(15.0)
+    laser = pounding.MeasurementChain.lowpass(15.0, contact_timing="laser")
+    report = pounding.reports.reproduce(
+        ybs.without_bumpers(), ybs, tmp_path / "r", measured=(ybs, pulse), laser=(ybs, laser), **SMALL
+    )
+    page = report.index_html.read_text()
+    # one function tells both measured stories, each in its own section with its own count
+    assert "Which story" in page and "The story as measured with the contacts timed by the laser" in page
+    met = int(evaluate(ybs, pounding.paper_targets(), measurement=laser)["within"].sum())
+    assert report.laser.verdict.met == met and f"<b>{met} of 36</b>" in page
+    assert report.laser.verdict.met != report.measured.verdict.met  # (the stories differ: told apart)
+    assert "where the laser&#x27;s displacement crosses the gap" in page
+    for t in ("2", "3", "4"):
+        assert (tmp_path / "r" / f"table{t}_laser.csv").is_file()
+        assert (tmp_path / "r" / f"table{t}_measured.csv").is_file()
+    assert {"fig05_measured", "fig05_laser"} <= set(report.figures)
+    assert report.laser.campaign.data.attrs["measurement"] == laser.describe()
+    # the laser keeps the contacts short where the filtered force pulses stretch them
+    t3 = {k: report.comparisons[f"3 {k}"].set_index("a_g")["contact_time_ms_model"]
+          for k in ("measured", "laser")}
+    assert t3["laser"].loc[0.05] < 0.7 * t3["measured"].loc[0.05]
+    # a chain that times the contacts by their pulses is not the laser's story
+    with pytest.raises(pounding.InputError, match="contact_timing") as err:
+        pounding.reports.reproduce(ybs.without_bumpers(), ybs, tmp_path / "x", laser=(ybs, pulse), **SMALL)
+    assert err.value.field == "laser"
+
+
+def test_the_command_line_leaves_the_laser_story_out_when_told(tmp_path):
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+
+    grid = ["--fmin", "1.5", "--fmax", "2.0", "--fstep", "0.5", "--no-stands", "--out", str(tmp_path / "r")]
+    told = CliRunner().invoke(app, ["reproduce", "--lowpass-hz", "20", "--no-laser", *grid])
+    assert told.exit_code == 0, told.output
+    said = " ".join(told.output.split())
+    assert "as measured (sampled at 1000 Hz" in said and "timed by the laser" not in said
+    assert not (tmp_path / "r" / "table2_laser.csv").exists()

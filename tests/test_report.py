@@ -162,6 +162,10 @@ def test_cli_reproduce_on_a_reduced_grid(tmp_path):
     met = int(pd_.presets.residuals("paper-calibrated-measured")["within"].sum())
     assert "as measured (sampled at 1000 Hz; table: zero-phase" in said and f"meets {met} of 36" in said
     assert (out / "table2_measured.csv").is_file() and "Which story" in (out / "index.html").read_text()
+    laser_met = int(pd_.presets.residuals("paper-calibrated-laser")["within"].sum())
+    assert "as measured, timed by the laser (sampled at 1000 Hz" in said
+    assert f"meets {laser_met} of 36" in said
+    assert (out / "table2_laser.csv").is_file()
     beside = pd.read_csv(out / "targets.csv")  # the calibration targets, printed preset beside
     assert {"measured", "allowed", "paper-printed", "paper-calibrated",
             "paper-calibrated met"} <= set(beside.columns)

@@ -1,9 +1,11 @@
-"""The report's second story: the paper's targets with the metrics measured through a chain.
+"""The report's measured stories: the paper's targets with the metrics measured through a chain.
 
 The paper does not state how its accelerations were filtered. :func:`measured_story` runs the campaign
 and the verdict again with every window measured through a :class:`~pounding.MeasurementChain` (the
 lab pipeline's method), and the page says which story each number tells: the exact metrics, or the
-metrics as the lab's instruments would have read them.
+metrics as the lab's instruments would have read them. The same function tells both measured stories:
+the contacts timed by their force pulses in the filtered accelerations, and timed by the laser's gap
+crossings (the chain's ``contact_timing``); :func:`story_html` words each as its chain reads.
 """
 
 from __future__ import annotations
@@ -21,6 +23,16 @@ from .verdict import Verdict, verdict
 
 NO_FILTER_STATED = ("The paper does not state how its accelerations were filtered or sampled: the chain is a "
                     "hypothesis tested against its numbers, not a fact of its test.")
+# per contact timing: the section's heading, how the contacts are read, the shipped fit's name
+READINGS = {
+    "pulse": ("Which story: exact metrics, or as measured?",
+              "contacts found on the displacement, confirmed and timed by the filtered force pulses",
+              "presets.paper_calibrated_measured()"),
+    "laser": ("The story as measured with the contacts timed by the laser",
+              "contacts found and timed where the laser's displacement crosses the gap, their speeds from "
+              "the laser alone, their forces from the filtered accelerations between the crossings",
+              "presets.paper_calibrated_laser()"),
+}
 
 
 @dataclass(frozen=True, eq=False)
@@ -61,17 +73,21 @@ def measured_story(system: Oscillator, chain: MeasurementChain, campaign_of: Any
     against); ``evaluate_of(system, targets, label=..., **options)`` runs the targets' sweeps."""
     result = campaign_of(system.without_bumpers(), system, measurement=chain)
     tables = {t: comparison(result, t) for t in ("2", "3", "4")}
-    judged = verdict(evaluate_of(system, paper_targets(), label="targets as measured", measurement=chain))
+    timed = ", timed by the laser" if chain.contact_timing == "laser" else ""
+    judged = verdict(evaluate_of(system, paper_targets(), label=f"targets as measured{timed}",
+                                 measurement=chain))
     own_exact = verdict(evaluate_of(system, paper_targets(), label="targets of the measured system, exact"))
     return MeasuredStory(system, chain, result, tables, judged, profile, own_exact)
 
 
 def story_html(exact: Verdict, story: MeasuredStory, exact_label: str, table: Any) -> list[str]:
-    """The section that says which story the report tells (``table``: the page's table writer)."""
+    """The section that says which story the report tells (``table``: the page's table writer), worded
+    as the story's chain times the contacts (:data:`READINGS`)."""
     e = html.escape
     cutoff = story.chain.mass.lowpass_hz
+    heading, reading, shipped = READINGS[story.chain.contact_timing]
     parts = [
-        "<h2>Which story: exact metrics, or as measured?</h2>",
+        f"<h2>{e(heading)}</h2>",
         f"<p><b>{e(NO_FILTER_STATED)}</b></p>",
         f"<p>Exact metrics (the model's own peaks and located contacts), {e(exact_label)}: "
         f"<b>{exact.met} of {exact.total}</b> targets met. As measured through the chain "
@@ -79,8 +95,7 @@ def story_html(exact: Verdict, story: MeasuredStory, exact_label: str, table: An
         f"{story.verdict.total}</b> targets met"
         + (f", with the accelerometers' cutoff at {cutoff:.3g} Hz" if cutoff is not None else "")
         + ". Measured metrics are taken as the lab pipeline takes them from a recording (alpha from the "
-        "filtered accelerometers; contacts found on the displacement, confirmed and timed by the filtered "
-        "force pulses).</p>",
+        f"filtered accelerometers; {e(reading)}).</p>",
     ]
     both = exact.residuals[["configuration", "a_g", "quantity", "target", "model", "within"]].merge(
         story.verdict.residuals[["configuration", "a_g", "quantity", "model", "within"]],
@@ -96,8 +111,8 @@ def story_html(exact: Verdict, story: MeasuredStory, exact_label: str, table: An
     if story.profile is not None and len(story.profile):
         parts += ["<h3>Targets met against the cutoff</h3>",
                   "<p>The bumper's pulse-shaping numbers refitted at each fixed cutoff (a local fit from the "
-                  "exact calibration: <code>scripts/calibrate_measured.py</code>); the row with the cutoff "
-                  "free is the fit shipped as <code>presets.paper_calibrated_measured()</code>.</p>",
+                  "exact calibration: <code>scripts/calibrate_measured.py</code>); the fit with the cutoff "
+                  f"free marked shipped is <code>{e(shipped)}</code>.</p>",
                   table(story.profile)]
     return parts
 

@@ -58,6 +58,8 @@ class Report:
         worst misses and the measurements no model can meet together.
     measured : MeasuredStory or None
         With ``measured=``: the campaign, Tables 2-4 and verdict as measured through the chain.
+    laser : MeasuredStory or None
+        With ``laser=``: the same, through the chain that times the contacts by the laser.
     stands : StandsTest or None
         With ``stands=True`` (and bumpers): the YBs system on each stand, and the verdict in words.
 
@@ -88,6 +90,7 @@ class Report:
     verdict: Verdict
     measured: MeasuredStory | None = None
     stands: StandsTest | None = None
+    laser: MeasuredStory | None = None
 
 
 def targets_beside(systems: dict[str, Oscillator], evaluated: dict[int, pd.DataFrame] | None = None,
@@ -122,7 +125,9 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
               system_label: str = "custom systems", freqs_hz: Any = None, workers: int | None = None,
               progress: Progress = False, beside: dict[str, Oscillator] | None = None,
               measured: tuple[Oscillator, MeasurementChain] | None = None,
-              profile: pd.DataFrame | None = None, stands: bool = False, **sweep_options: Any) -> Report:
+              profile: pd.DataFrame | None = None, stands: bool = False,
+              laser: tuple[Oscillator, MeasurementChain] | None = None,
+              laser_profile: pd.DataFrame | None = None, **sweep_options: Any) -> Report:
     """Run the paper's campaign and write Tables 2-4 (CSV), the figure analogues (PNG) and
     ``index.html`` into ``out_dir``.
 
@@ -150,6 +155,12 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
         Tables 2-4 and Fig. 5 as measured, and says the paper states no filter.
     profile : DataFrame, optional
         With ``measured``: targets met against the chain's cutoff, shown beside it.
+    laser : (Oscillator, MeasurementChain), optional
+        A third story told the same way: a YBs system and a chain that times the contacts by the laser's
+        gap crossings (``contact_timing="laser"``, e.g. ``presets.paper_calibrated_laser()``): its
+        campaign, Tables 2-4 (``table2_laser.csv`` ...), Fig. 5 and verdict as measured.
+    laser_profile : DataFrame, optional
+        With ``laser``: its fits against the cutoff (``presets.measurement_profile("laser")``).
     stands : bool
         Also test whether stands under the bumpers explain the YBs accelerations: the YBs system with
         each bumper on a stand of its own (10 kg; 1e8, 1e7, 1e6 and 1e5 N/m), each evaluated on the
@@ -184,11 +195,17 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
         raise InputError(Problem.UNKNOWN_KEY, "measurement", sweep_options["measurement"],
                          choices="measured=(system, chain): the report's own campaign keeps the exact "
                                  "metrics, and the chain tells the second story")
-    if measured is not None and (not isinstance(measured, tuple) or len(measured) != 2
-                                 or not isinstance(measured[0], Oscillator)
-                                 or not isinstance(measured[1], MeasurementChain)):
-        raise InputError(Problem.WRONG_TYPE, "measured", measured, got=type(measured).__name__,
-                         expected="(Oscillator, MeasurementChain), e.g. presets.paper_calibrated_measured()")
+    for name, pair, example in (("measured", measured, "presets.paper_calibrated_measured()"),
+                                ("laser", laser, "presets.paper_calibrated_laser()")):
+        if pair is not None and (not isinstance(pair, tuple) or len(pair) != 2
+                                 or not isinstance(pair[0], Oscillator)
+                                 or not isinstance(pair[1], MeasurementChain)):
+            raise InputError(Problem.WRONG_TYPE, name, pair, got=type(pair).__name__,
+                             expected=f"(Oscillator, MeasurementChain), e.g. {example}")
+    if laser is not None and laser[1].contact_timing != "laser":
+        raise InputError(Problem.BAD_STATE, "laser", laser[1].describe(),
+                         why="its chain times the contacts by their force pulses",
+                         fix="give a chain with contact_timing=\"laser\" (or tell that story as measured=)")
     result = campaign(nbs_system, ybs_system, freqs_hz=freqs_hz, workers=workers, progress=progress,
                       label="campaign, exact metrics", **sweep_options)
     out.mkdir(parents=True, exist_ok=True)
@@ -201,15 +218,20 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
     # the verdict: the paper's targets, sweeps up, fixed 30 cycles
     own = evaluate_of(ybs_system, paper_targets(), "targets (the verdict's sweeps)")
     judged = verdict(own)
-    story = None
-    if measured is not None:
-        def campaign_of(nbs: Oscillator, ybs: Oscillator, **chain: Any) -> CampaignResult:
-            return campaign(nbs, ybs, freqs_hz=freqs_hz, workers=workers, progress=progress,
-                            label="campaign, as measured", **sweep_options, **chain)
+    stories: dict[str, MeasuredStory] = {}  # (the measured stories, by their tables' suffix)
+    for key, pair, known, timed in (("measured", measured, profile, ""),
+                                    ("laser", laser, laser_profile, ", timed by the laser")):
+        if pair is None:
+            continue
 
-        story = measured_story(*measured, campaign_of, profile, evaluate_of)
+        def campaign_of(nbs: Oscillator, ybs: Oscillator, timed: str = timed, **chain: Any) -> CampaignResult:
+            return campaign(nbs, ybs, freqs_hz=freqs_hz, workers=workers, progress=progress,
+                            label=f"campaign, as measured{timed}", **sweep_options, **chain)
+
+        stories[key] = measured_story(*pair, campaign_of, known, evaluate_of)
         for t in ("2", "3", "4"):
-            comparisons[f"{t} measured"] = story.comparisons[t]
+            comparisons[f"{t} {key}"] = stories[key].comparisons[t]
+    story, laser_story = stories.get("measured"), stories.get("laser")
     stands_result = stands_test(ybs_system, own, evaluate_of) if stands else None
     if beside:
         comparisons["targets"] = targets_beside(beside, {id(ybs_system): own}, workers, progress)
@@ -229,8 +251,8 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
     with plt.ioff():  # (written, never shown; the caller's backend, a notebook's too, left as it is)
         announce(progress, "drawing the figures ...")
         made = paper_figures(result)
-        if story is not None:
-            made["fig05_measured"] = fig05_measured(story.campaign, story.chain.describe())
+        for key, told in stories.items():
+            made[f"fig05_{key}"] = fig05_measured(told.campaign, told.chain.describe())
         more = {}
         if cmap is not None:
             more["fig05"] = add_branches(made["fig05"], cmap, float(result.data.attrs["f_ref_hz"]))
@@ -260,15 +282,20 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
                      if t != "targets"},
         figures={name: (path, captions[name]) for name, path in figures.items()},
         notes=inconsistency_notes(), statuses=statuses, verdict=judged,
-        story=(([] if story is None else story_html(judged, story, system_label, table_html))
+        story=([part for told in stories.values()
+                for part in story_html(judged, told, system_label, table_html)]
                + ([] if stands_result is None else stands_html(stands_result, table_html))) or None)
-    return Report(out, index, tables, figures, result, comparisons, judged, story, stands_result)
+    return Report(out, index, tables, figures, result, comparisons, judged, story, stands_result, laser_story)
+
+
+MEASURED_TITLES = {"measured": " (as measured through the chain)",
+                   "laser": " (as measured through the chain, the contacts timed by the laser)"}
 
 
 def _title(key: str) -> str:
     """A table's heading (a measured one: the exact one's, said so)."""
     base, _, measured = key.partition(" ")
-    return TABLE_TITLES[base] + (" (as measured through the chain)" if measured else "")
+    return TABLE_TITLES[base] + MEASURED_TITLES.get(measured, "")
 
 
 def _sweep_status(key: tuple, sw: Any) -> dict:
