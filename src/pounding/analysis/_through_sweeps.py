@@ -25,7 +25,7 @@ from ..model.structure import Structure
 from .witnesses import _witness_table, branch_responses
 
 ON_BRANCH_RTOL = 1e-3   # a step lies on a branch when alpha and the excursion agree this closely
-LOCAL_MAX_STEP = 0.25   # a step's own branch: at least 4 points each side
+LOCAL_MAX_STEP = 0.5    # a step's own branch: at least 2 points each side (more where it bends)
 STEP_COLUMNS = ("a_g", "direction", "freq_hz", "alpha", "excursion_m", "period_multiple", "steady",
                 "on_branch", "branch", "why")
 

@@ -24,6 +24,7 @@ says why.
 from __future__ import annotations
 
 import math
+import weakref
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -65,29 +66,36 @@ def branch_counts(branches: Sequence["Branch"], freqs: np.ndarray) -> pd.DataFra
     return pd.DataFrame(rows, columns=["a_g", "freq_hz", "stable_orbits", "branch_reached"])
 
 
-def branch_responses(branch: Any, freq_hz: float) -> list[tuple[int, bool, float, float, bool]]:
+def branch_responses(branch: "Branch", freq_hz: float) -> list[tuple[int, bool, float, float, bool]]:
     """The branch's orbits at ``freq_hz``, read along its segments that span it (linear between its
     points): ``(period, impacts, alpha, excursion_m, stable)`` each (stable: both ends of the segment)."""
-    df = branch.to_dataframe()
-    f = df["freq_hz"].to_numpy(float)
-    alpha, exc = df["alpha"].to_numpy(float), df["excursion_m"].to_numpy(float)
-    hits = df["contacts_per_period"].to_numpy(float) > 0
-    stable = df["stable"].to_numpy(bool)
+    f, alpha, exc, hits, stable = _reading(branch)
+    period = int(branch.period_multiple)
+    lo, hi = np.minimum(f[:-1], f[1:]), np.maximum(f[:-1], f[1:])
     out = []
-    for j in range(f.size - 1):
-        lo, hi = min(f[j], f[j + 1]), max(f[j], f[j + 1])
-        if not lo <= freq_hz <= hi:
-            continue
-        w = 0.0 if hi == lo else (freq_hz - f[j]) / (f[j + 1] - f[j])
+    for j in np.flatnonzero((lo <= freq_hz) & (freq_hz <= hi)):
+        w = 0.0 if hi[j] == lo[j] else (freq_hz - f[j]) / (f[j + 1] - f[j])
         near = j if w <= 0.5 else j + 1
         a = alpha[j] + w * (alpha[j + 1] - alpha[j])
         e = exc[j] + w * (exc[j + 1] - exc[j])
-        out.append((int(branch.period_multiple), bool(hits[near]), float(a), float(e),
-                    bool(stable[j] and stable[j + 1])))
+        out.append((period, bool(hits[near]), float(a), float(e), bool(stable[j] and stable[j + 1])))
     if f.size == 1 and math.isclose(f[0], freq_hz, rel_tol=0.0, abs_tol=1e-12):
-        out.append((int(branch.period_multiple), bool(hits[0]), float(alpha[0]), float(exc[0]),
-                    bool(stable[0])))
+        out.append((period, bool(hits[0]), float(alpha[0]), float(exc[0]), bool(stable[0])))
     return out
+
+
+_READINGS: "weakref.WeakKeyDictionary" = weakref.WeakKeyDictionary()
+
+
+def _reading(branch: "Branch") -> tuple[np.ndarray, ...]:
+    """A branch's ``freq_hz``, ``alpha``, ``excursion_m``, impacts and ``stable`` as arrays, read once per
+    branch (a branch is frozen; a map reads each one at hundreds of frequencies)."""
+    if branch not in _READINGS:
+        df = branch.data
+        _READINGS[branch] = (df["freq_hz"].to_numpy(float), df["alpha"].to_numpy(float),
+                             df["excursion_m"].to_numpy(float), df["contacts_per_period"].to_numpy(float) > 0,
+                             df["stable"].to_numpy(bool))
+    return _READINGS[branch]
 
 
 def sweep_witness(sweeps: Sequence[Any], a_g: float, freq_hz: float) -> tuple[float, str]:
