@@ -138,7 +138,7 @@ def engine_cost(duration_s: float, repeats: int) -> dict:
         t0 = time.process_time()
         out = _core.run(sy, fo, state0.copy(), duration_s, 0.0, 1e-10, 10**9, False, ctl)
         best = min(best, time.process_time() - t0)
-    n_events = max(int(out[3].shape[0]), 1)
+    n_events = max(int(out.events.shape[0]), 1)
     return {"duration_s": duration_s, "cpu_s": best, "rate": duration_s / best, "events": n_events,
             "subintervals": int(ctl[CTL_WORK]), "us_per_event": best / n_events * 1e6,
             "evals_per_event": int(ctl[CTL_EVALS]) / n_events}

@@ -157,7 +157,7 @@ def test_kernel_stops_on_a_preset_stop_flag_and_counts_its_work():
     state = pd_.State.at_rest(osc).vector.copy()
     ctl = new_control(10**9)
     out = run_kernel(kernel_system(osc), forcing, state, 10.0, 0.0, 1e-10, 10**6, True, ctl)
-    assert out[6] == 0 and ctl[CTL_WORK] > 100
+    assert out.status == 0 and ctl[CTL_WORK] > 100
     request_stop([ctl])
     out = run_kernel(kernel_system(osc), forcing, state, 10.0, 0.0, 1e-10, 10**6, True, ctl)
-    assert out[6] == pd_.Status.INTERRUPTED and out[0][0] == 0.0
+    assert out.status == pd_.Status.INTERRUPTED and out.state[0] == 0.0

@@ -53,9 +53,9 @@ def test_a_system_pickles_and_runs_the_same_after():
     state = pd_.State.at_rest(osc).vector
     runs = [_core.run(s, fo, state.copy(), 3.0, 0.01, 1e-10, 10**6, True, _control.new_control(10**9))
             for s in (sy, back)]
-    for a, b in zip(runs[0][:6], runs[1][:6], strict=True):
-        np.testing.assert_array_equal(a, b)
-    assert runs[0][6] == Status.SUCCESS
+    for name in ("state", "samples", "contacts", "events", "ledger", "extrema", "chatters"):
+        np.testing.assert_array_equal(getattr(runs[0], name), getattr(runs[1], name))
+    assert runs[0].status == runs[1].status == Status.SUCCESS
 
 
 def test_a_run_releases_the_gil_and_stops_when_asked():
@@ -77,8 +77,8 @@ def test_a_run_releases_the_gil_and_stops_when_asked():
     assert seen >= 10_000, "the run held the GIL: its progress could not be watched"
     _control.request_stop([ctl])
     worker.join()
-    assert box["out"][6] == Status.INTERRUPTED
-    assert 0 < box["out"][0][_layout.T] < 1e6
+    assert box["out"].status == Status.INTERRUPTED
+    assert 0 < box["out"].state[_layout.T] < 1e6
 
 
 def test_a_budget_stops_a_run_with_its_status():
@@ -86,7 +86,7 @@ def test_a_budget_stops_a_run_with_its_status():
     ctl = _control.new_control(500)
     out = _core.run(kernel_system(osc), kernel_forcing(pd_.Harmonic(0.1, 2.0)), pd_.State.at_rest(osc).vector,
                     1e3, -1.0, 1e-10, 10**9, False, ctl)
-    assert out[6] == Status.BUDGET and ctl[_control.CTL_WORK] <= 500
+    assert out.status == Status.BUDGET and ctl[_control.CTL_WORK] <= 500
 
 
 @pytest.mark.parametrize("n", [1, 2, 4, 9])
@@ -97,3 +97,26 @@ def test_the_core_matrix_exponential_matches_scipy(n):
     for scale in (1e-3, 1.0, 30.0):
         a = scale * rng.standard_normal((n, n))
         np.testing.assert_allclose(_core.expm(a), expm(a), rtol=1e-12, atol=1e-14 * np.abs(expm(a)).max())
+
+
+def test_the_door_names_what_a_run_returns_and_every_index_is_the_core_s():
+    osc = pd_.presets.paper_damped()
+    out = _core.run(kernel_system(osc), kernel_forcing(pd_.Harmonic(0.1, 2.0)), pd_.State.at_rest(osc).vector,
+                    5.0, 0.0, 1e-10, 10**6, True, _control.new_control(10**9))
+    with pytest.raises(TypeError):
+        out[0]  # (fields, never positions)
+    fields = {"state", "samples", "contacts", "events", "ledger", "extrema", "status", "chatters"}
+    assert set(type(out).__slots__) == fields
+    # every column and slot named once, each name on its own index
+    for names, size in ((_core.CONTACT_COLUMNS, "CONTACT_COLS"), (_core.LEDGER, "LEDGER_LEN"),
+                        (_core.DOF_EXTREMA, "DOF_EXTREMA"), (_core.PAIR_EXTREMA, "PAIR_EXTREMA")):
+        assert sorted(names.values()) == list(range(_core.LAYOUT[size])), (size, names)
+    assert out.contacts.shape[1] == _core.LAYOUT["CONTACT_COLS"] and len(out.contacts) > 0
+    # the named places are where the public run reads them
+    run = pd_.simulate(osc, pd_.Harmonic(0.1, 2.0), 5.0)
+    ex = out.per_dof(1)[0]
+    assert (ex[_core.DOF_EXTREMA["d_max"]], ex[_core.DOF_EXTREMA["a_abs_max"]]) == (
+        run.displacement_max, run.abs_acceleration_max)
+    assert out.ledger[_core.LEDGER["input"]] == run.energy.input_work
+    assert out.contacts[0, _core.CONTACT_COLUMNS["v_in_m_s"]] == run.contacts["v_in_m_s"].iloc[0]
+    assert set(_core.EXCITATION) == {"harmonic", "record"}

@@ -83,13 +83,13 @@ def test_a_record_goes_interval_by_interval():
     rec = pd_.Record(0.01 * np.arange(2001), 3.0 * accel / np.abs(accel).max())
     osc = pd_.presets.paper_damped()
     ctl, out = _kernel_run(osc, rec, 20.0)
-    events = len(out[3])
+    events = len(out.events)
     # 2,000 intervals, each one sub-interval (shorter than an eighth of the phases' periods), plus the
     # pieces the events and the velocity turns cut off
     assert 2000 <= ctl[CTL_WORK] <= 2000 + 2 * events + 50
     # a sample every 0.2 s, read off the same trajectory as a 200 Hz history's
     _, out = _kernel_run(osc, rec, 20.0, sample_dt=0.2)
-    samples = out[1]
+    samples = out.samples
     uniform = samples[np.abs(samples[:, 0] / 0.2 - np.round(samples[:, 0] / 0.2)) < 1e-9]  # (not events')
     assert len(uniform) == 101
     ref = pd_.simulate(osc, rec, 20.0, sample_rate_hz=200.0)

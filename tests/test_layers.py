@@ -166,20 +166,22 @@ def test_no_module_imports_one_that_imports_it_back():
     assert cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c"]]
 
 
+def import_nodes(root: Path):
+    """Every import statement under ``root``: (the module's path relative to it, the node)."""
+    for path in sorted(root.rglob("*.py")):
+        for node in ast.walk(ast.parse(path.read_text())):
+            if isinstance(node, (ast.Import, ast.ImportFrom)):
+                yield path.relative_to(root), node
+
+
 def importers_of_the_compiled_core(root: Path) -> list[str]:
     """Every module that imports the compiled module (``_pounding_core``) other than its door,
     ``pounding/_core.py``, as ``file:line``."""
     bad = []
-    for path in sorted(root.rglob("*.py")):
-        rel = str(path.relative_to(root))
-        for node in ast.walk(ast.parse(path.read_text())):
-            names = []
-            if isinstance(node, ast.ImportFrom):
-                names = [node.module or "", *(a.name for a in node.names)]
-            elif isinstance(node, ast.Import):
-                names = [a.name for a in node.names]
-            if rel != "_core.py" and any("_pounding_core" in n for n in names):
-                bad.append(f"{rel}:{node.lineno}")
+    for rel, node in import_nodes(root):
+        names = [getattr(node, "module", None) or "", *(a.name for a in node.names)]
+        if str(rel) != "_core.py" and any("_pounding_core" in n for n in names):
+            bad.append(f"{rel}:{node.lineno}")
     return bad
 
 
@@ -188,3 +190,31 @@ def test_only_the_door_imports_the_compiled_core(tmp_path):
     (tmp_path / "analysis").mkdir()
     (tmp_path / "analysis" / "planted.py").write_text("def f():\n    from .. import _pounding_core\n")
     assert importers_of_the_compiled_core(tmp_path) == ["analysis/planted.py:2"]
+
+
+RUN_KERNELS = {"run", "step", "monodromy", "system"}  # (the door's runs: the engine's to call)
+
+
+def callers_of_the_core_runs(root: Path) -> list[str]:
+    """Every module outside the engine that takes the core's runs (or the door module itself, which would
+    let it call them), as ``file:line``: the protocols and the analyses go through ``engine.kernels``."""
+    bad = []
+    for rel, node in import_nodes(root):
+        if rel.parts[0] == "engine" or str(rel) == "_core.py" or not isinstance(node, ast.ImportFrom):
+            continue
+        door = (node.module or "").split(".")[-1] == "_core"
+        takes = {a.name for a in node.names}
+        if (door and takes & RUN_KERNELS) or (not door and "_core" in takes):
+            bad.append(f"{rel}:{node.lineno}")
+    return bad
+
+
+def test_only_the_engine_runs_the_core(tmp_path):
+    assert callers_of_the_core_runs(ROOT) == []
+    (tmp_path / "protocols").mkdir()
+    (tmp_path / "protocols" / "a.py").write_text("from .. import _core\n")
+    (tmp_path / "protocols" / "b.py").write_text("from .._core import LAYOUT, step\n")
+    (tmp_path / "protocols" / "c.py").write_text("from .._core import LAYOUT\n")  # (a name: allowed)
+    (tmp_path / "engine").mkdir()
+    (tmp_path / "engine" / "d.py").write_text("from .. import _core\n")
+    assert callers_of_the_core_runs(tmp_path) == ["protocols/a.py:1", "protocols/b.py:1"]

@@ -17,7 +17,8 @@ from pounding import _core
 from pounding._control import new_control
 from pounding.engine._layout import ACT_CONTACT, ACT_RELEASE, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT
 from pounding.engine._layout import L_ISOLATOR, L_KINETIC, L_VISCOUS
-from pounding.engine._system import EXC_HARMONIC, Forcing
+from pounding._core import EXCITATION, Forcing
+from pounding.engine._layout import DOF_EXTREMA_LEN, X_D_MAX, X_D_MIN
 from reference_ndof import Structure, TouchAtRest, reference
 
 KELVIN_VOIGT = _core.LAW_IDS["kelvin_voigt"]
@@ -49,7 +50,8 @@ def core_run(s: Structure, t_end: float, y0: np.ndarray, bumpers: bool = True, s
     lay = sy.layout
     state = np.zeros(lay["size"])
     state[lay["x"]:lay["x"] + y0.size] = y0
-    forcing = Forcing(EXC_HARMONIC, np.array([s.a_g, s.omega, 0.0]), np.zeros(1), np.zeros(1))
+    forcing = Forcing(kind=EXCITATION["harmonic"], p=np.array([s.a_g, s.omega, 0.0]), rec_t=np.zeros(1),
+                      rec_a=np.zeros(1))
     return sy, _core.run(sy, forcing, state, t_end, sample_dt, 1e-10, 10**6, True, new_control(10**9))
 
 
@@ -68,7 +70,7 @@ def structures(draw, n=None):
 
 
 def contact_starts(out) -> np.ndarray:
-    events = out[3]
+    events = out.events
     return events[events[:, 1] == ACT_CONTACT]
 
 
@@ -90,7 +92,7 @@ def test_random_structures_match_the_reference(s, v0):
     y0 = np.zeros(2 * s.mass.size)
     y0[s.mass.size:] = v0  # (the whole structure moving)
     sy, out = core_run(s, 3.0, y0)
-    assert out[6] == 0, out[6]
+    assert out.status == 0, out.status
     starts = contact_starts(out)
     try:
         ref = reference(s, 3.0, y0)
@@ -108,12 +110,12 @@ def test_random_structures_match_the_reference(s, v0):
     assume(last_digit_spread(s, y0, starts) <= 1e-10)
     assert [int(c) for c in starts[:, 2]] == [c for c, _ in ref.contact_starts]
     np.testing.assert_allclose(starts[:, 0], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
-    ends = out[3][out[3][:, 1] == ACT_RELEASE]
+    ends = out.events[out.events[:, 1] == ACT_RELEASE]
     np.testing.assert_allclose(ends[:, 0], [t for _, t in ref.contact_ends], rtol=0, atol=1e-9)
     lay = sy.layout
     n = s.mass.size
     scale = np.abs(ref.y).max()
-    np.testing.assert_allclose(out[0][lay["x"]:lay["x"] + 2 * n], ref.y, rtol=0, atol=1e-7 * scale)
+    np.testing.assert_allclose(out.state[lay["x"]:lay["x"] + 2 * n], ref.y, rtol=0, atol=1e-7 * scale)
 
 
 @settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -130,7 +132,7 @@ def test_bumpers_between_two_masses_match_the_reference(s, v0, data):
     y0 = np.zeros(2 * n)
     y0[n + level] = v0  # (the bumpers' mass pushed: the pairs move apart and back)
     _, out = core_run(s, 2.0, y0)
-    assert out[6] == 0, out[6]
+    assert out.status == 0, out.status
     starts = contact_starts(out)
     try:
         ref = reference(s, 2.0, y0)
@@ -143,7 +145,7 @@ def test_bumpers_between_two_masses_match_the_reference(s, v0, data):
           f"{'both' if -1 not in s.partners else 'one'} against a mass")
     assert [int(c) for c in starts[:, 2]] == [c for c, _ in ref.contact_starts]
     np.testing.assert_allclose(starts[:, 0], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
-    ledger = out[4]
+    ledger = out.ledger
     residual = ledger[L_INPUT] - ledger[L_VISCOUS] - ledger[L_HYSTERETIC] - ledger[L_BUMPER_LOSS] - (
         ledger[L_KINETIC] + ledger[L_ISOLATOR] + ledger[L_BUMPER])
     assert abs(residual) <= 1e-9 * max(abs(ledger[L_INPUT]), abs(ledger[L_VISCOUS]), abs(ledger[L_KINETIC]))
@@ -155,7 +157,7 @@ def test_the_ledger_closes_over_every_mass_and_contact(s, v0):
     y0 = np.zeros(2 * s.mass.size)
     y0[s.mass.size:] = v0
     _, out = core_run(s, 3.0, y0)
-    ledger = out[4]
+    ledger = out.ledger
     flows = [ledger[k]
              for k in (L_INPUT, L_VISCOUS, L_HYSTERETIC, L_BUMPER_LOSS, L_KINETIC, L_ISOLATOR, L_BUMPER)]
     residual = ledger[L_INPUT] - ledger[L_VISCOUS] - ledger[L_HYSTERETIC] - ledger[L_BUMPER_LOSS] - (
@@ -180,7 +182,7 @@ def test_a_linear_structure_reaches_its_frequency_response(n):
     # from the steady state's own start: x(0) = Im X, v(0) = w Re X
     y0 = np.concatenate([x.imag, s.omega * x.real])
     _, out = core_run(s, 5.0, y0, bumpers=False, sample_dt=0.01)
-    samples = out[1]
+    samples = out.samples
     t = samples[:, 0]
     expect = (x[None, :] * np.exp(1j * s.omega * t)[:, None]).imag
     np.testing.assert_allclose(samples[:, 1:1 + n], expect, rtol=0, atol=1e-10 * np.abs(x).max())
@@ -195,10 +197,10 @@ def test_the_outputs_have_a_column_per_dof_and_contact():
                   c0=shear(np.array([500.0, 400.0])), k_iso=3e4, c_iso=100.0, gaps=(0.005, 0.005), k_b=5e6,
                   c_b=1e3, a_g=3.0, omega=2 * math.pi * 1.0)
     sy, out = core_run(s, 2.0, np.zeros(6), sample_dt=0.01)
-    assert out[1].shape[1] == sy.layout["sample_cols"] == 1 + 3 * 3 + 1 + 2
-    assert out[5].shape == (7 * 3,)  # extrema of every mass
-    assert len(out[2]) > 0  # the base pounded
+    assert out.samples.shape[1] == sy.layout["sample_cols"] == 1 + 3 * 3 + 1 + 2
+    assert out.extrema.shape == (DOF_EXTREMA_LEN * 3,)  # extrema of every mass
+    assert len(out.contacts) > 0  # the base pounded
     # every mass's extrema bound its sampled history
     for i in range(3):
-        assert out[5][7 * i] >= out[1][:, 1 + i].max() - 1e-12
-        assert out[5][7 * i + 2] <= out[1][:, 1 + i].min() + 1e-12
+        assert out.per_dof(3)[i, X_D_MAX] >= out.samples[:, 1 + i].max() - 1e-12
+        assert out.per_dof(3)[i, X_D_MIN] <= out.samples[:, 1 + i].min() + 1e-12

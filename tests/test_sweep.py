@@ -226,7 +226,7 @@ def test_paper_frequencies():
     (1e-5, 0.5, True),      # decaying fast: within tolerance of its orbit after 40 cycles
 ])
 def test_periodicity_of_strobes_at_and_above_rounding_noise(size, ratio, steady):
-    from pounding.protocols._step_kernel import CY_DMAX, CY_DMIN, CYCLE_COLS, periodicity
+    from pounding.engine.kernels import CY_DMAX, CY_DMIN, CYCLE_COLS, periodicity
 
     def period(strobe, cyc, n):  # steady_rtol 1e-6, windows of 5 cycles
         return periodicity(strobe, cyc, n, 5, 4, 1e-6, 2.0 * math.pi, False)

@@ -106,21 +106,24 @@ void energies(const double* st, const System& sy, double& kin, double& iso, doub
 }
 
 void track_abs_acceleration(double* ex, double t, double a) {
-    if (std::abs(a) > ex[4]) {
-        ex[4] = std::abs(a);
-        ex[5] = t;
-        ex[6] = a;
+    if (std::abs(a) > ex[EX_A_ABS_MAX]) {
+        ex[EX_A_ABS_MAX] = std::abs(a);
+        ex[EX_A_ABS_MAX_T] = t;
+        ex[EX_A_AT_MAX] = a;
     }
 }
 
 void track_displacement(double* ex, double t, double d) {
-    if (d > ex[0]) {
-        ex[0] = d;
-        ex[1] = t;
+    static_assert(int(PX_MAX) == int(EX_D_MAX) && int(PX_MAX_T) == int(EX_D_MAX_T) &&
+                      int(PX_MIN) == int(EX_D_MIN) && int(PX_MIN_T) == int(EX_D_MIN_T),
+                  "a dof's displacement extrema and a pair's share their places");
+    if (d > ex[EX_D_MAX]) {
+        ex[EX_D_MAX] = d;
+        ex[EX_D_MAX_T] = t;
     }
-    if (d < ex[2]) {
-        ex[2] = d;
-        ex[3] = t;
+    if (d < ex[EX_D_MIN]) {
+        ex[EX_D_MIN] = d;
+        ex[EX_D_MIN_T] = t;
     }
 }
 
@@ -237,7 +240,7 @@ void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, 
     if (ph.stk.any && tau > 0.0) held_statistics(ph, L, st, tau, e, linear, b);
     // displacement extrema of each dof, at its velocity's zeros and the ends
     for (int i = 0; i < n; ++i) {
-        double* ex = extrema + 7 * i;
+        double* ex = extrema + DOF_EXTREMA * i;
         track_displacement(ex, t0, e.y0[i]);
         track_displacement(ex, t0 + tau, e.y1[i]);
         const Phase::Zeros& z = velocity_zeros(ph, i, GROUND);
@@ -246,7 +249,7 @@ void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, 
     }
     // the tracked pairs' relative displacement (a storey's drift): the same, on the pair
     for (int p = 0; p < sy.n_track(); ++p) {
-        double* ex = extrema + 7 * n + 4 * p;
+        double* ex = extrema + DOF_EXTREMA * n + PAIR_EXTREMA * p;
         const int i = sy.track_i[static_cast<size_t>(p)], j = sy.track_j[static_cast<size_t>(p)];
         track_displacement(ex, t0, rel(e.y0, i, j));
         track_displacement(ex, t0 + tau, rel(e.y1, i, j));
@@ -267,7 +270,7 @@ void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, 
     }
     // absolute acceleration extrema of each dof
     for (int i = 0; i < n; ++i) {
-        double* ex = extrema + 7 * i;
+        double* ex = extrema + DOF_EXTREMA * i;
         if (ph.stk.any && ph.stk.grp[static_cast<size_t>(i)] >= 0) {  // held: the ends (the group's motion)
             track_abs_acceleration(ex, t0, e.a0[i] + table_acceleration(ph, 0.0));
             track_abs_acceleration(ex, t0 + tau, e.a1[i] + table_acceleration(ph, tau));
@@ -326,7 +329,7 @@ void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, 
                 // (its bound over the sub-interval, sum |c_k| tau^k, below the largest so far: no new extremum)
                 double bound = 0.0;
                 for (int k = fa.q.deg; k >= 0; --k) bound = bound * tau + std::abs(fa.q.c[k]);
-                if (bound <= ex[4]) continue;
+                if (bound <= ex[EX_A_ABS_MAX]) continue;
                 poly_deriv(fa.q, fr.q);
                 fr.kind = FN_POLY;
                 const double tm = find_root(fr, ph, 0.0, tau, r0, r1, NaN, NaN, XTOL_EXTREMUM_S);

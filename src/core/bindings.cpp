@@ -6,6 +6,8 @@
 #include <nanobind/stl/vector.h>
 
 #include <algorithm>
+#include <initializer_list>
+#include <utility>
 #include <cstring>
 #include <vector>
 
@@ -274,7 +276,9 @@ NB_MODULE(_pounding_core, m) {
     layout["N_LAW_PARAMS"] = N_LAW_PARAMS;
     layout["BW_PARAMS"] = BW_PARAMS;
     layout["SAMPLE_COLS"] = one.sample_cols();
-    layout["CONTACT_COLS"] = CONTACT_COLS;
+    layout["CONTACT_COLS"] = static_cast<int>(CONTACT_COLS);
+    layout["DOF_EXTREMA"] = static_cast<int>(DOF_EXTREMA);
+    layout["PAIR_EXTREMA"] = static_cast<int>(PAIR_EXTREMA);
     layout["EVENT_COLS"] = EVENT_COLS;
     layout["LEDGER_LEN"] = static_cast<int>(LEDGER_LEN);
     layout["WINDOW_COLS"] = WINDOW_COLS;
@@ -282,7 +286,39 @@ NB_MODULE(_pounding_core, m) {
     layout["SIDE_SUMS"] = SIDE_SUMS;
     layout["N_IMPACT"] = N_IMPACT;
     layout["CTL_LEN"] = CTL_LEN;
+    // a step's per-cycle record and window (step.hpp), and a contact side's sums within them
+    layout["CY_DMAX"] = CY_DMAX;
+    layout["CY_DMIN"] = CY_DMIN;
+    layout["CY_AMAX"] = CY_AMAX;
+    layout["CY_SUMS"] = CY_SUMS;
+    layout["W_DMAX"] = W_DMAX;
+    layout["W_DMIN"] = W_DMIN;
+    layout["W_AMAX"] = W_AMAX;
+    layout["W_CYCLES"] = W_CYCLES;
+    layout["W_SUMS"] = W_SUMS;
+    layout["S_COUNT"] = S_COUNT;
+    layout["S_N_RESTITUTION"] = S_N_RESTITUTION;
+    layout["S_SUMS"] = S_SUMS;
     m.attr("LAYOUT") = layout;
+    // the outputs' columns and slots by name (core.hpp's enums): pounding._core reads them by these names
+    const auto named = [](std::initializer_list<std::pair<const char*, int>> items) {
+        nb::dict d;
+        for (const auto& [name, index] : items) d[name] = index;
+        return d;
+    };
+    m.attr("CONTACT_COLUMNS") = named({{"contact", CC_CONTACT}, {"t_start_s", CC_T_START}, {"t_end_s", CC_T_END},
+                                       {"v_in_m_s", CC_V_IN}, {"v_out_m_s", CC_V_OUT}, {"impulse_n_s", CC_IMPULSE},
+                                       {"peak_force_n", CC_PEAK_FORCE}, {"max_compression_m", CC_MAX_COMPRESSION},
+                                       {"work_j", CC_WORK}});  // a contact table's columns
+    m.attr("LEDGER") = named({{"input", L_INPUT}, {"viscous", L_VISCOUS}, {"hysteretic", L_HYSTERETIC},
+                              {"bumper_loss", L_BUMPER_LOSS}, {"kinetic", L_KINETIC}, {"isolator", L_ISOLATOR},
+                              {"bumper", L_BUMPER}});  // the energy ledger's slots
+    m.attr("DOF_EXTREMA") = named({{"d_max", EX_D_MAX}, {"d_max_t", EX_D_MAX_T}, {"d_min", EX_D_MIN},
+                                   {"d_min_t", EX_D_MIN_T}, {"a_abs_max", EX_A_ABS_MAX},
+                                   {"a_abs_max_t", EX_A_ABS_MAX_T}, {"a_at_max", EX_A_AT_MAX}});  // a dof's
+    m.attr("PAIR_EXTREMA") = named({{"max", PX_MAX}, {"max_t", PX_MAX_T}, {"min", PX_MIN},
+                                    {"min_t", PX_MIN_T}});  // a tracked pair's (a storey's drift)
+    m.attr("EXCITATION") = named({{"harmonic", EXC_HARMONIC}, {"record", EXC_RECORD}});  // the forcing's kinds
     nb::dict laws;  // each law's id: the Python dataclasses' LAW_ID (tests/test_core.py holds them equal)
     laws["kelvin_voigt"] = static_cast<int>(KELVIN_VOIGT);
     laws["hunt_crossley"] = static_cast<int>(HUNT_CROSSLEY);

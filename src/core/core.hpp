@@ -40,6 +40,13 @@ constexpr int GROUND = -1;      // a pair's second end when it is the ground (th
 constexpr int T = 0;
 constexpr int A_TSTART = 0, A_VIN = 1, A_DSTART = 2, A_IMPULSE = 3, A_PEAK = 4, A_MAXCOMP = 5, A_WORK = 6;
 
+// a run's exact extrema: per dof, its displacement's max and min (m) with their times (s) and its absolute
+// acceleration's largest magnitude (m/s^2), its time and signed value; then per tracked pair (a storey's
+// drift), the relative displacement's max and min with their times
+enum DofExtremum : int { EX_D_MAX = 0, EX_D_MAX_T, EX_D_MIN, EX_D_MIN_T, EX_A_ABS_MAX, EX_A_ABS_MAX_T, EX_A_AT_MAX,
+                         DOF_EXTREMA };
+enum PairExtremum : int { PX_MAX = 0, PX_MAX_T, PX_MIN, PX_MIN_T, PAIR_EXTREMA };
+
 // where each block of the state vector starts, for n dofs, nc contact slots, n_h hysteretic elements and n_sp
 // springs of theirs in all
 struct Layout {
@@ -66,7 +73,7 @@ struct Layout {
     // the outputs' columns: samples t, x (n), v (n), absolute accelerations (n), each hysteretic element's force
     // (the isolator's first), contact forces
     int sample_cols() const { return 1 + 3 * n + n_h + nc; }
-    int extrema_len() const { return 7 * n; }
+    int extrema_len() const { return DOF_EXTREMA * n; }
 };
 
 // how a run ended: the codes of pounding.Status
@@ -85,8 +92,11 @@ enum Action : int {
 // its budget, and the trajectory evaluations at an instant (what locating events costs)
 constexpr int CTL_STOP = 0, CTL_WORK = 1, CTL_BUDGET = 2, CTL_EVALS = 3, CTL_LEN = 4;
 
-// outputs' columns
-constexpr int CONTACT_COLS = 9;  // contact, t_start, t_end, v_in, v_out, impulse, peak_force, max_compression, work
+// outputs' columns (bindings.cpp exports each by name: pounding._core reads them by these names)
+// a contact's row: its slot, start and end (s), velocities in and out (m/s), impulse (N s), peak force (N),
+// deepest compression (m), the work its law did (J)
+enum ContactCol : int { CC_CONTACT = 0, CC_T_START, CC_T_END, CC_V_IN, CC_V_OUT, CC_IMPULSE, CC_PEAK_FORCE,
+                        CC_MAX_COMPRESSION, CC_WORK, CONTACT_COLS };
 constexpr int EVENT_COLS = 3;    // t, action, index
 enum Ledger : int { L_INPUT = 0, L_VISCOUS, L_HYSTERETIC, L_BUMPER_LOSS, L_KINETIC, L_ISOLATOR, L_BUMPER,
                     LEDGER_LEN };
@@ -185,7 +195,7 @@ inline double rel(const double* y, int i, int j) { return j >= 0 ? y[i] - y[j] :
 // The excitation: harmonic (p = amplitude m/s^2, omega rad/s, phase rad) or a record (times s and
 // accelerations m/s^2, linear between samples; p[0] its uniform step, 0 if none).  It moves the ground,
 // so every mass feels -m a_g.
-constexpr int EXC_HARMONIC = 0;
+constexpr int EXC_HARMONIC = 0, EXC_RECORD = 1;
 struct Forcing {
     int kind = EXC_HARMONIC;
     double p[3] = {0, 0, 0};

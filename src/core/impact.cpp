@@ -432,15 +432,15 @@ bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, S
     }
     if (vn > sc.v_res) {  // (a touch slower than the resolution: computed, not listed)
         double* r = contacts.push();
-        r[0] = static_cast<double>(c);
-        r[1] = t;
-        r[2] = t;
-        r[3] = v_in;
-        r[4] = rel(v, ct.i, ct.j);
-        r[5] = impulse;
-        r[6] = NaN;  // (an impulse has no peak force)
-        r[7] = 0.0;
-        r[8] = loss;
+        r[CC_CONTACT] = static_cast<double>(c);
+        r[CC_T_START] = t;
+        r[CC_T_END] = t;
+        r[CC_V_IN] = v_in;
+        r[CC_V_OUT] = rel(v, ct.i, ct.j);
+        r[CC_IMPULSE] = impulse;
+        r[CC_PEAK_FORCE] = NaN;  // (an impulse has no peak force)
+        r[CC_MAX_COMPRESSION] = 0.0;
+        r[CC_WORK] = loss;
     }
     // does the motion push the stop shut?  (the accelerations with the stops already held)
     struct Scratch { std::vector<double> au, a, s0; };
@@ -499,15 +499,15 @@ void rigid_release(double* st, const System& sy, int c, Rows& contacts) {
     const int acc = L.acc_at(c);
     st[L.in_at(c)] = 0.0;
     double* r = contacts.push();
-    r[0] = static_cast<double>(c);
-    r[1] = st[acc + A_TSTART];
-    r[2] = st[T];
-    r[3] = 0.0;
-    r[4] = 0.0;
-    r[5] = st[acc + A_IMPULSE];
-    r[6] = st[acc + A_PEAK];
-    r[7] = 0.0;
-    r[8] = 0.0;
+    r[CC_CONTACT] = static_cast<double>(c);
+    r[CC_T_START] = st[acc + A_TSTART];
+    r[CC_T_END] = st[T];
+    r[CC_V_IN] = 0.0;
+    r[CC_V_OUT] = 0.0;
+    r[CC_IMPULSE] = st[acc + A_IMPULSE];
+    r[CC_PEAK_FORCE] = st[acc + A_PEAK];
+    r[CC_MAX_COMPRESSION] = 0.0;
+    r[CC_WORK] = 0.0;
     for (int k = 0; k < N_ACC; ++k) st[acc + k] = 0.0;  // (no sequence running)
 }
 

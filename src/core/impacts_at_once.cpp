@@ -190,15 +190,15 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
         if (u > sc.v_res || la * W[static_cast<size_t>(a * k + a)] > sc.v_res) {  // (an impulse that shows)
             count_impact(st, L, d, t, sc.window_s, chatters);
             double* r = contacts.push();
-            r[0] = static_cast<double>(d);
-            r[1] = t;
-            r[2] = t;
-            r[3] = v_in[static_cast<size_t>(a)];
-            r[4] = rel(v, ct.i, ct.j);
-            r[5] = la;
-            r[6] = NaN;
-            r[7] = 0.0;
-            r[8] = loss;
+            r[CC_CONTACT] = static_cast<double>(d);
+            r[CC_T_START] = t;
+            r[CC_T_END] = t;
+            r[CC_V_IN] = v_in[static_cast<size_t>(a)];
+            r[CC_V_OUT] = rel(v, ct.i, ct.j);
+            r[CC_IMPULSE] = la;
+            r[CC_PEAK_FORCE] = NaN;
+            r[CC_MAX_COMPRESSION] = 0.0;
+            r[CC_WORK] = loss;
         }
         if (std::abs(u1) <= sc.v_res) rest.push_back(d);
     }

@@ -229,15 +229,15 @@ void jump(double* st, const System& sy, const EventRow& ev, Rows& contacts, cons
         // a touch below the resolution in both depth and impulse is no impact: computed, not listed
         if (st[acc + A_MAXCOMP] - st[acc + A_DSTART] > depth_res || std::abs(st[acc + A_IMPULSE]) > impulse_res) {
             double* r = contacts.push();
-            r[0] = static_cast<double>(index);
-            r[1] = st[acc + A_TSTART];
-            r[2] = t_ev;
-            r[3] = st[acc + A_VIN];
-            r[4] = rel(st + L.v, ct.i, ct.j);
-            r[5] = st[acc + A_IMPULSE];
-            r[6] = st[acc + A_PEAK];
-            r[7] = st[acc + A_MAXCOMP];
-            r[8] = st[acc + A_WORK];
+            r[CC_CONTACT] = static_cast<double>(index);
+            r[CC_T_START] = st[acc + A_TSTART];
+            r[CC_T_END] = t_ev;
+            r[CC_V_IN] = st[acc + A_VIN];
+            r[CC_V_OUT] = rel(st + L.v, ct.i, ct.j);
+            r[CC_IMPULSE] = st[acc + A_IMPULSE];
+            r[CC_PEAK_FORCE] = st[acc + A_PEAK];
+            r[CC_MAX_COMPRESSION] = st[acc + A_MAXCOMP];
+            r[CC_WORK] = st[acc + A_WORK];
         }
     } else if (action == ACT_LAW_BRANCH) {
         const Contact& ct = sy.contact[static_cast<size_t>(index)];
@@ -257,7 +257,7 @@ void record_event(double* st, const System& sy, const EventRow& ev, Rows& events
     r[2] = static_cast<double>(ev.index);
     outputs(st, sy, b.q.data(), row.data());
     held_outputs(st, sy, stk, ag, row.data());
-    for (int i = 0; i < sy.n; ++i) track_abs_acceleration(extrema + 7 * i, st[T], row[1 + 2 * sy.n + i]);
+    for (int i = 0; i < sy.n; ++i) track_abs_acceleration(extrema + DOF_EXTREMA * i, st[T], row[1 + 2 * sy.n + i]);
     if (sample_dt >= 0.0) std::copy(row.begin(), row.end(), samples.push());
 }
 
@@ -273,15 +273,15 @@ void finish(const double* st, const System& sy, Rows& samples, Rows& contacts, B
         if (st[L.in_at(c)] == 0.0) continue;
         const int acc = L.acc_at(c);
         double* r = contacts.push();
-        r[0] = static_cast<double>(c);
-        r[1] = st[acc + A_TSTART];
-        r[2] = NaN;
-        r[3] = st[acc + A_VIN];
-        r[4] = NaN;
-        r[5] = st[acc + A_IMPULSE];
-        r[6] = st[acc + A_PEAK];
-        r[7] = st[acc + A_MAXCOMP];
-        r[8] = st[acc + A_WORK];
+        r[CC_CONTACT] = static_cast<double>(c);
+        r[CC_T_START] = st[acc + A_TSTART];
+        r[CC_T_END] = NaN;
+        r[CC_V_IN] = st[acc + A_VIN];
+        r[CC_V_OUT] = NaN;
+        r[CC_IMPULSE] = st[acc + A_IMPULSE];
+        r[CC_PEAK_FORCE] = st[acc + A_PEAK];
+        r[CC_MAX_COMPRESSION] = st[acc + A_MAXCOMP];
+        r[CC_WORK] = st[acc + A_WORK];
     }
 }
 
@@ -331,20 +331,20 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
     for (int j = 0; j < LEDGER_LEN; ++j) ledger[j] = 0.0;
     double* extrema = out.extrema.data();
     for (int i = 0; i < n; ++i) {
-        double* ex = extrema + 7 * i;
-        ex[0] = st[L.x + i];
-        ex[1] = t_run0;
-        ex[2] = st[L.x + i];
-        ex[3] = t_run0;
-        ex[4] = 0.0;
-        ex[5] = t_run0;
-        ex[6] = 0.0;
+        double* ex = extrema + DOF_EXTREMA * i;
+        ex[EX_D_MAX] = st[L.x + i];
+        ex[EX_D_MAX_T] = t_run0;
+        ex[EX_D_MIN] = st[L.x + i];
+        ex[EX_D_MIN_T] = t_run0;
+        ex[EX_A_ABS_MAX] = 0.0;
+        ex[EX_A_ABS_MAX_T] = t_run0;
+        ex[EX_A_AT_MAX] = 0.0;
     }
     for (int p = 0; p < sy.n_track(); ++p) {  // (the tracked pairs: a storey's drift)
-        double* ex = extrema + 7 * n + 4 * p;
+        double* ex = extrema + DOF_EXTREMA * n + PAIR_EXTREMA * p;
         const double d = rel(st + L.x, sy.track_i[static_cast<size_t>(p)], sy.track_j[static_cast<size_t>(p)]);
-        ex[0] = ex[2] = d;
-        ex[1] = ex[3] = t_run0;
+        ex[PX_MAX] = ex[PX_MIN] = d;
+        ex[PX_MAX_T] = ex[PX_MIN_T] = t_run0;
     }
     std::unique_ptr<RunWorkspace> local;  // (a workspace of this run's own only when none is given)
     if (workspace == nullptr) {
@@ -420,7 +420,7 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
     outputs(st, sy, b.q.data(), row.data());
     held_outputs(st, sy, stk_out, ag_now, row.data());
     std::copy(row.begin(), row.end(), out.samples.push());
-    for (int i = 0; i < n; ++i) track_abs_acceleration(extrema + 7 * i, t_run0, row[1 + 2 * n + i]);
+    for (int i = 0; i < n; ++i) track_abs_acceleration(extrema + DOF_EXTREMA * i, t_run0, row[1 + 2 * n + i]);
     int64_t j_next = 1;
     int64_t j_rec = 0;
     int64_t work = 0, published = 0;

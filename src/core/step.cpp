@@ -150,9 +150,9 @@ void step_kernel(const System& sy, double amp, double omega, const double* state
         st = run.state;
         status = run.status;
         double* cy = &cyc[static_cast<size_t>(n) * CYCLE_COLS];
-        cy[CY_DMAX] = run.extrema[0];  // (the first dof's: the isolated mass)
-        cy[CY_DMIN] = run.extrema[2];
-        cy[CY_AMAX] = run.extrema[4];
+        cy[CY_DMAX] = run.extrema[EX_D_MAX];  // (the first dof's: the isolated mass)
+        cy[CY_DMIN] = run.extrema[EX_D_MIN];
+        cy[CY_AMAX] = run.extrema[EX_A_ABS_MAX];
         add_impacts(run.contacts, sy.mass[0], cy + CY_SUMS);
         double* sb = &strobe[static_cast<size_t>(n) * cols];
         for (int q = 0; q < 2 * nd; ++q) sb[q] = st[L.x + q];

@@ -13,12 +13,16 @@ compiled module: the engine, the protocols and the analyses call these functions
 * :func:`impact_row`, :func:`law_force_many`, :func:`periodicity`, :func:`expm` - the smaller kernels.
 
 Each run releases the GIL, and polls its run control (``pounding._control``: Ctrl-C and the work budget).
-``LAYOUT`` gives the state vector's offsets and the outputs' columns as the core writes them; ``LAW_IDS``
-each contact law's id, ``STATUS`` the codes a run ends with, ``ACTIONS`` the events' codes (by name).
+What comes back is named, never positional: :class:`RunOutput`, :class:`StepOutput`, :class:`Monodromy`.
+Every index is the core's own, by name: ``LAYOUT`` the state vector's offsets and the outputs' sizes,
+``CONTACT_COLUMNS`` a contact table's columns, ``LEDGER`` the energy ledger's slots, ``DOF_EXTREMA`` and
+``PAIR_EXTREMA`` a run's extrema per dof and per tracked pair, ``EXCITATION`` the forcing's kinds,
+``LAW_IDS`` each contact law's id, ``STATUS`` the codes a run ends with, ``ACTIONS`` the events' codes.
 """
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -35,6 +39,129 @@ LAYOUT: dict[str, int] = dict(_c.LAYOUT)
 LAW_IDS: dict[str, int] = dict(_c.LAW_IDS)
 STATUS: dict[str, int] = dict(_c.STATUS)
 ACTIONS: dict[str, int] = dict(_c.ACTIONS)
+CONTACT_COLUMNS: dict[str, int] = dict(_c.CONTACT_COLUMNS)
+LEDGER: dict[str, int] = dict(_c.LEDGER)
+DOF_EXTREMA: dict[str, int] = dict(_c.DOF_EXTREMA)
+PAIR_EXTREMA: dict[str, int] = dict(_c.PAIR_EXTREMA)
+EXCITATION: dict[str, int] = dict(_c.EXCITATION)
+
+
+@dataclass(frozen=True, slots=True)
+class Forcing:
+    """The excitation as the core takes it (``engine._run_args.kernel_forcing`` makes it).
+
+    Attributes
+    ----------
+    kind : int
+        :data:`EXCITATION`'s ``harmonic`` or ``record``.
+    p : ndarray, shape (3,)
+        Harmonic: amplitude m/s^2, omega rad/s, phase rad; a record: its uniform step s (0 if none), 0, 0.
+    rec_t, rec_a : ndarray, shape (k,)
+        A record's times (s) and accelerations (m/s^2); one-element zeros for a harmonic.
+    """
+
+    kind: int
+    p: np.ndarray
+    rec_t: np.ndarray
+    rec_a: np.ndarray
+
+
+@dataclass(frozen=True, slots=True)
+class RunOutput:
+    """What a run returns (:func:`run`).
+
+    Attributes
+    ----------
+    state : ndarray, shape (size,)
+        The state vector at the run's end.
+    samples : ndarray, shape (k, sample columns)
+        The history (``System.layout``'s sample columns), empty when not asked for.
+    contacts : ndarray, shape (c, CONTACT_COLS)
+        One row per contact, columns :data:`CONTACT_COLUMNS`.
+    events : ndarray, shape (e, EVENT_COLS)
+        t, action (:data:`ACTIONS`), index.
+    ledger : ndarray, shape (LEDGER_LEN,)
+        The energy ledger, J, slots :data:`LEDGER` (NaN without the energy integrals).
+    extrema : ndarray, shape (DOF_EXTREMA n + PAIR_EXTREMA p,)
+        The exact extrema: per dof (:data:`DOF_EXTREMA`), then per tracked pair (:data:`PAIR_EXTREMA`);
+        :meth:`per_dof` and :meth:`per_pair` give them as tables.
+    status : int
+        How the run ended (:data:`STATUS`).
+    chatters : ndarray, shape (q, 5)
+        The rigid stops' chatter sequences: contact, first impact s, accumulation or last impact s,
+        impacts, accumulated 1/0.
+    """
+
+    state: np.ndarray
+    samples: np.ndarray
+    contacts: np.ndarray
+    events: np.ndarray
+    ledger: np.ndarray
+    extrema: np.ndarray
+    status: int
+    chatters: np.ndarray
+
+    def per_dof(self, n: int) -> np.ndarray:
+        """The extrema of each of the ``n`` dofs, shape (n, DOF_EXTREMA), columns :data:`DOF_EXTREMA`."""
+        return self.extrema[:_N_DOF_EXTREMA * n].reshape(n, _N_DOF_EXTREMA)
+
+    def per_pair(self, n: int) -> np.ndarray:
+        """The extrema of each tracked pair of a system of ``n`` dofs, shape (p, PAIR_EXTREMA), columns
+        :data:`PAIR_EXTREMA`."""
+        return self.extrema[_N_DOF_EXTREMA * n:].reshape(-1, _N_PAIR_EXTREMA)
+
+
+@dataclass(frozen=True, slots=True)
+class StepOutput:
+    """What one frequency step returns (:func:`step`).
+
+    Attributes
+    ----------
+    state : ndarray, shape (size,)
+        The state at the step's end.
+    cycles_run : int
+    period_multiple : int
+        The period multiple the step settled with (0: not settled).
+    window : ndarray, shape (WINDOW_COLS,)
+        The measurement window's metrics (``_step_kernel``'s ``W_*`` columns).
+    window_state : ndarray, shape (size,)
+        The state at the window's start.
+    window_strobes : ndarray, shape (k, 2)
+        The first dof's displacement and velocity at each of the window's cycle ends.
+    status : int
+        :data:`STATUS`.
+    """
+
+    state: np.ndarray
+    cycles_run: int
+    period_multiple: int
+    window: np.ndarray
+    window_state: np.ndarray
+    window_strobes: np.ndarray
+    status: int
+
+
+@dataclass(frozen=True, slots=True)
+class Monodromy:
+    """The exact Jacobian of a run's map of the coordinates (:func:`monodromy`).
+
+    Attributes
+    ----------
+    jacobian : ndarray, shape (m, m)
+        Of the coordinates (displacements, velocities, compressions, slips).
+    x_end : ndarray, shape (m,)
+        Those coordinates at the end.
+    code : int
+        -1, or the row of an event met tangentially, or ``-2 - row`` for an event of a phase that is not
+        linear.
+    """
+
+    jacobian: np.ndarray
+    x_end: np.ndarray
+    code: int
+
+
+_N_DOF_EXTREMA, _N_PAIR_EXTREMA = LAYOUT["DOF_EXTREMA"], LAYOUT["PAIR_EXTREMA"]
 
 
 def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray,
@@ -89,29 +216,30 @@ def _f64(a: Any) -> np.ndarray:
     return np.ascontiguousarray(a, dtype=np.float64)
 
 
-def run(sy: System, forcing: Any, state0: np.ndarray, t_end: float, sample_dt: float, rtol: float,
-        max_events: int, with_energy: bool, ctl: np.ndarray) -> tuple:
-    """Simulate ``sy`` under ``forcing`` (``engine._system.Forcing``: kind, parameters, record times and
-    accelerations) from ``state0`` to ``t_end``.
+def run(sy: System, forcing: Forcing, state0: np.ndarray, t_end: float, sample_dt: float, rtol: float,
+        max_events: int, with_energy: bool, ctl: np.ndarray) -> RunOutput:
+    """Simulate ``sy`` under ``forcing`` (:class:`Forcing`) from ``state0`` to ``t_end``.
 
     ``sample_dt`` is the history's step (0: events only; -1: not even those); ``with_energy`` False
-    skips the energy integrals outside contacts (the ledger is then NaN).  Returns ``(state, samples,
-    contacts, events, ledger, extrema, status, chatters)``: ``chatters`` the rigid stops' chatter sequences
-    (contact, first impact s, accumulation or last impact s, impacts, accumulated 1/0)."""
-    return _c.run(sy, int(forcing.kind), _f64(forcing.p), _f64(forcing.rec_t), _f64(forcing.rec_a),
-                  _f64(state0), float(t_end), float(sample_dt), float(rtol), int(max_events),
-                  bool(with_energy), ctl)
+    skips the energy integrals outside contacts (the ledger is then NaN)."""
+    state, samples, contacts, events, ledger, extrema, status, chatters = _c.run(
+        sy, int(forcing.kind), _f64(forcing.p), _f64(forcing.rec_t), _f64(forcing.rec_a), _f64(state0),
+        float(t_end), float(sample_dt), float(rtol), int(max_events), bool(with_energy), ctl)
+    return RunOutput(state=state, samples=samples, contacts=contacts, events=events, ledger=ledger,
+                     extrema=extrema, status=int(status), chatters=chatters)
 
 
 def step(sy: System, amp: float, omega: float, state0: np.ndarray, steady: tuple, rtol: float,
-         max_events: int, ctl: np.ndarray) -> tuple:
+         max_events: int, ctl: np.ndarray) -> StepOutput:
     """Hold ``amp sin(omega (t - t0))`` (m/s^2, rad/s) from ``state0`` (time ``t0``) cycle by cycle until
-    steady; ``steady`` is ``(adaptive, n_cycles, measure_cycles, steady_rtol, max_period)``.  Returns
-    ``(state, cycles_run, period_multiple, window, window_state, window_strobes, status)``."""
+    steady; ``steady`` is ``(adaptive, n_cycles, measure_cycles, steady_rtol, max_period)``."""
     adaptive, n_cycles, measure_cycles, steady_rtol, max_period = steady
-    return _c.step(sy, float(amp), float(omega), _f64(state0), bool(adaptive), int(n_cycles),
-                   int(measure_cycles), float(steady_rtol), int(max_period), float(rtol), int(max_events),
-                   ctl)
+    state, cycles_run, period_multiple, window, window_state, window_strobes, status = _c.step(
+        sy, float(amp), float(omega), _f64(state0), bool(adaptive), int(n_cycles), int(measure_cycles),
+        float(steady_rtol), int(max_period), float(rtol), int(max_events), ctl)
+    return StepOutput(state=state, cycles_run=int(cycles_run), period_multiple=int(period_multiple),
+                      window=window, window_state=window_state, window_strobes=window_strobes,
+                      status=int(status))
 
 
 def periodicity(strobe: np.ndarray, cyc: np.ndarray, n: int, window: int, max_period: int,
@@ -138,13 +266,12 @@ def spectrum(t: np.ndarray, acc: np.ndarray, omegas: np.ndarray, zeta: float, ou
 
 
 def monodromy(sy: System, state0: np.ndarray, events: np.ndarray, t_end: float, omega: float, amp: float,
-              phase: float) -> tuple:
-    """``(jac, x_end, code)`` of ``sy`` from the state vector ``state0`` to ``t_end`` along ``events`` (rows
-    of t, action, index) under ``amp sin(omega t + phase)``: the exact Jacobian of the map of the coordinates
-    (displacements, velocities, compressions, slips), those coordinates at ``t_end``, and -1, or the row of
-    an event met tangentially, or ``-2 - row`` for an event of a phase that is not linear."""
-    return _c.monodromy(sy, _f64(state0), _f64(events).reshape(-1, 3), float(t_end), float(omega), float(amp),
-                        float(phase))
+              phase: float) -> Monodromy:
+    """The exact Jacobian of ``sy``'s map from the state vector ``state0`` to ``t_end`` along ``events``
+    (rows of t, action, index) under ``amp sin(omega t + phase)``."""
+    jac, x_end, code = _c.monodromy(sy, _f64(state0), _f64(events).reshape(-1, 3), float(t_end), float(omega),
+                                    float(amp), float(phase))
+    return Monodromy(jacobian=jac, x_end=x_end, code=int(code))
 
 
 def root_guess(fa: float, fb: float, sa: float, sb: float) -> float:

@@ -24,9 +24,10 @@ from typing import NamedTuple
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from .. import _core
 from ..engine._layout import (ACT_CONTACT, ACT_REGION, ACT_RELEASE, ACT_REVERSAL,  # noqa: F401  (the
                               ACT_YIELD, DEF_L, DEF_R, IN_L, IN_R, REGION, STATE_BASE)  # events' codes, here)
+from ..engine.kernels import System
+from ..engine.kernels import monodromy as exact_monodromy
 from ..engine._layout import D as I_D
 from ..engine._layout import V as I_V
 from ..model import Oscillator
@@ -146,7 +147,7 @@ def one_blas_thread() -> threadpool_limits:
     return threadpool_limits(limits=1, user_api="blas")
 
 
-def monodromy(system: _core.System, vec0: np.ndarray, events: np.ndarray, t_end: float, omega: float,
+def monodromy(system: System, vec0: np.ndarray, events: np.ndarray, t_end: float, omega: float,
               amp: float, phase: float) -> tuple[np.ndarray, np.ndarray]:
     """The Jacobian of the map from ``x`` at the state vector ``vec0``'s time to ``x`` at
     ``t_end``, along the engine's ``events`` (rows of t, action, index), and ``x`` at ``t_end``
@@ -163,8 +164,9 @@ def monodromy(system: _core.System, vec0: np.ndarray, events: np.ndarray, t_end:
     x_end : ndarray, shape (n,)
     """
     rows = np.ascontiguousarray(events, dtype=float).reshape(-1, 3)
-    jac, x_end, bad = _core.monodromy(system, np.asarray(vec0, dtype=float), rows, float(t_end), float(omega),
-                                      float(amp), float(phase))
+    m = exact_monodromy(system, np.asarray(vec0, dtype=float), rows, float(t_end), float(omega), float(amp),
+                        float(phase))
+    jac, x_end, bad = m.jacobian, m.x_end, m.code
     if bad >= 0:
         row = rows[bad]
         raise NoExactMonodromy(f"event {int(row[1])} at t = {row[0]} is tangent (a grazing)")
@@ -174,7 +176,7 @@ def monodromy(system: _core.System, vec0: np.ndarray, events: np.ndarray, t_end:
     return jac, x_end
 
 
-def oscillator_monodromy(h: Hybrid, system: _core.System, vec0: np.ndarray, events: np.ndarray, t_end: float,
+def oscillator_monodromy(h: Hybrid, system: System, vec0: np.ndarray, events: np.ndarray, t_end: float,
                          omega: float, amp: float, phase: float) -> tuple[np.ndarray, np.ndarray]:
     """:func:`monodromy` of one mass in its coordinates ``x`` (:func:`coordinates`: the system's,
     without the unused slips of an isolator of the elastic rule, which come last)."""

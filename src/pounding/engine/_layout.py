@@ -11,7 +11,7 @@ isolator's branch ``REGION``, each contact's running totals (``ACC_L``, ``ACC_R`
 from __future__ import annotations
 
 from .._control import CTL_BUDGET, CTL_LEN, CTL_STOP, CTL_WORK  # noqa: F401  (pounding._control's)
-from .._core import ACTIONS, LAYOUT
+from .._core import ACTIONS, CONTACT_COLUMNS, DOF_EXTREMA, LAYOUT, LEDGER, PAIR_EXTREMA  # noqa: F401
 
 T, D, V = LAYOUT["T"], LAYOUT["D"], LAYOUT["V"]
 DEF_L, DEF_R = LAYOUT["DEF"], LAYOUT["DEF"] + 1
@@ -40,5 +40,12 @@ CONTACT_COLS = LAYOUT["CONTACT_COLS"]
 EVENT_COLS = LAYOUT["EVENT_COLS"]      # t, action, index
 # the energy ledger's slots, J: work of the input, dissipated by the dashpot, the isolator's hysteresis and
 # the bumpers, and the changes of the kinetic, the isolator's and the bumpers' elastic energies
-L_INPUT, L_VISCOUS, L_HYSTERETIC, L_BUMPER_LOSS, L_KINETIC, L_ISOLATOR, L_BUMPER = range(7)
+L_INPUT, L_VISCOUS, L_HYSTERETIC, L_BUMPER_LOSS, L_KINETIC, L_ISOLATOR, L_BUMPER = (
+    LEDGER[k] for k in ("input", "viscous", "hysteretic", "bumper_loss", "kinetic", "isolator", "bumper"))
+# a run's exact extrema (``RunOutput.per_dof``'s columns): a dof's displacement max and its time, min and its
+# time, its absolute acceleration's largest magnitude and its time; a tracked pair's (``per_pair``) the same
+X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T, X_A_MAX, X_A_MAX_T = (
+    DOF_EXTREMA[k] for k in ("d_max", "d_max_t", "d_min", "d_min_t", "a_abs_max", "a_abs_max_t"))
+P_MAX, P_MAX_T, P_MIN, P_MIN_T = (PAIR_EXTREMA[k] for k in ("max", "max_t", "min", "min_t"))
+DOF_EXTREMA_LEN = LAYOUT["DOF_EXTREMA"]
 LEDGER_LEN = LAYOUT["LEDGER_LEN"]

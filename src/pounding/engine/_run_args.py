@@ -23,7 +23,7 @@ def check_rtol(rtol: float) -> float:
 def kernel_forcing(excitation: Harmonic | Record) -> Forcing:
     """The excitation as the kernels' forcing record."""
     kind, p, rec_t, rec_a = excitation.kernel_arrays()
-    return Forcing(int(kind), p, rec_t, rec_a)
+    return Forcing(kind=int(kind), p=p, rec_t=rec_t, rec_a=rec_a)
 
 
 # a run whose every sub-interval (and event) fits in this many returns within about 0.1 s: it

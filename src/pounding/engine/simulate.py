@@ -25,7 +25,8 @@ from ._control import (
 from .. import _core
 from ._system import Forcing, System
 from ._layout import (DEF_L, DEF_R, IN_L, IN_R, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT, L_ISOLATOR,
-                      L_KINETIC, L_VISCOUS, REGION, STATE_BASE, Z_L, Z_R, ZETA, D, T, V)
+                      L_KINETIC, L_VISCOUS, REGION, STATE_BASE, X_A_MAX, X_A_MAX_T, X_D_MAX, X_D_MAX_T,
+                      X_D_MIN, X_D_MIN_T, Z_L, Z_R, ZETA, D, T, V)
 from ._run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPLES,  # noqa: F401
                         MAX_SAMPLES, check_rtol, history_rate, kernel_forcing)
 from .result import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, EnergyLedger, Run, State
@@ -271,14 +272,14 @@ class ShortRun:
     __slots__ = ("vector", "event_table", "contact_table", "displacement_max", "displacement_min",
                  "abs_acceleration_max", "excitation", "status")
 
-    def __init__(self, vector: np.ndarray, event_table: np.ndarray, contact_table: np.ndarray,
-                 extrema: np.ndarray, excitation: Harmonic, status: int) -> None:
-        self.vector = vector
-        self.event_table = event_table
-        self.contact_table = contact_table
-        self.displacement_max = float(extrema[0])
-        self.displacement_min = float(extrema[2])
-        self.abs_acceleration_max = float(extrema[4])
+    def __init__(self, out: _core.RunOutput, excitation: Harmonic, status: int) -> None:
+        self.vector = out.state
+        self.event_table = out.events
+        self.contact_table = out.contacts
+        extrema = out.per_dof(1)[0]
+        self.displacement_max = float(extrema[X_D_MAX])
+        self.displacement_min = float(extrema[X_D_MIN])
+        self.abs_acceleration_max = float(extrema[X_A_MAX])
         self.excitation = excitation
         self.status = status
 
@@ -336,12 +337,12 @@ def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, sta
         vector, t0 = np.array(state.vector), state.time_s
     if system is None:
         system = kernel_system(oscillator)
-    st, _, contacts, events, _, extrema, status, _ = _core.run(
-        system, kernel_forcing(excitation) if forcing is None else forcing, vector, t0 + duration, 0.0,
-        1e-10, 10_000_000, False, new_control(SHORT_RUN_STEPS))
-    if status == Status.SUCCESS and not all(map(math.isfinite, extrema.tolist())):
+    out = _core.run(system, kernel_forcing(excitation) if forcing is None else forcing, vector, t0 + duration,
+                    0.0, 1e-10, 10_000_000, False, new_control(SHORT_RUN_STEPS))
+    status = out.status
+    if status == Status.SUCCESS and not all(map(math.isfinite, out.extrema.tolist())):
         status = int(Status.NONFINITE)
-    return ShortRun(st, events, contacts, extrema, excitation, int(status))
+    return ShortRun(out, excitation, status)
 
 
 def _run(oscillator: Oscillator, excitation: Harmonic | Record, duration: float, state: State, rtol: float,
@@ -352,11 +353,12 @@ def _run(oscillator: Oscillator, excitation: Harmonic | Record, duration: float,
         system = kernel_system(oscillator)
     forcing = kernel_forcing(excitation)
     ctl = new_control(max_steps)
-    st, samples, contacts, events, ledger, extrema, status, chatters = run_interruptibly(lambda: _core.run(
+    out = run_interruptibly(lambda: _core.run(
         system, forcing, state.vector.copy(),
         t0 + duration, 1.0 / rate if rate > 0 else 0.0, rtol, int(max_events), True, ctl), [ctl],
         direct=direct)
-    status = Status(int(status))
+    ledger, extrema = out.ledger, out.per_dof(1)[0]
+    status = Status(out.status)
     if status == Status.SUCCESS and not (np.all(np.isfinite(ledger)) and np.all(np.isfinite(extrema))):
         status = Status.NONFINITE
 
@@ -365,16 +367,17 @@ def _run(oscillator: Oscillator, excitation: Harmonic | Record, duration: float,
         isolator_elastic=float(ledger[L_ISOLATOR]), bumper_elastic=float(ledger[L_BUMPER]),
         viscous=float(ledger[L_VISCOUS]), hysteretic=float(ledger[L_HYSTERETIC]),
         bumper_dissipation=float(ledger[L_BUMPER_LOSS]))
-    cols = samples.T
+    cols = out.samples.T
     run = Run(
         t=cols[0], displacement=cols[1], velocity=cols[2], abs_acceleration=cols[3],
         isolator_force=cols[4], bumper_force_left=cols[5], bumper_force_right=cols[6],
-        displacement_max=float(extrema[0]), displacement_max_time_s=float(extrema[1]),
-        displacement_min=float(extrema[2]), displacement_min_time_s=float(extrema[3]),
-        abs_acceleration_max=float(extrema[4]), abs_acceleration_max_time_s=float(extrema[5]),
-        contact_table=contacts, event_table=events, energy=energy, final_state=State._from_kernel(st),
+        displacement_max=float(extrema[X_D_MAX]), displacement_max_time_s=float(extrema[X_D_MAX_T]),
+        displacement_min=float(extrema[X_D_MIN]), displacement_min_time_s=float(extrema[X_D_MIN_T]),
+        abs_acceleration_max=float(extrema[X_A_MAX]), abs_acceleration_max_time_s=float(extrema[X_A_MAX_T]),
+        contact_table=out.contacts, event_table=out.events, energy=energy,
+        final_state=State._from_kernel(out.state),
         status=status, message=status.message, oscillator=oscillator, excitation=excitation,
-        sample_rate_hz=rate, chatter_table=chatters)
+        sample_rate_hz=rate, chatter_table=out.chatters)
     if status == Status.INTERRUPTED:
         raise Interrupted(run, round(run.final_state.time_s - t0, 6), duration, "simulated seconds")
     return run

@@ -26,6 +26,7 @@ from ..model.structure import Structure
 from ._control import DEFAULT_MAX_STEPS, check_budget, new_control, run_interruptibly, steps_per_second
 from ._chatter import chatter_frame
 from .result import MAX_TIME_S
+from ._layout import CONTACT_COLUMNS, P_MAX, P_MIN, X_D_MAX, X_D_MIN
 from ._run_args import DIRECT_CALL_STEPS, check_rtol, history_rate, kernel_forcing
 from .structure_result import AdjacentRun, StructureEnergy, StructureRun
 
@@ -53,15 +54,15 @@ class Assembly(NamedTuple):
     contact_tracks: tuple = ()  # each contact slot's tracked pair (its extrema), -1: against the ground
 
 
-def clearances(asm: Assembly, extrema: np.ndarray) -> np.ndarray:
+def clearances(asm: Assembly, run: _core.RunOutput) -> np.ndarray:
     """Each contact slot's smallest clearance over a run, m: its gap less the largest of ``sign (x_i - x_j)``
-    (negative: it touched), from the run's exact extrema (the core's: 7 per dof, then 4 per tracked pair)."""
-    n = asm.system.n
-    per_dof, tracked = extrema[:7 * n].reshape(n, 7), extrema[7 * n:].reshape(-1, 4)
+    (negative: it touched), from the run's exact extrema."""
+    per_dof, tracked = run.per_dof(asm.system.n), run.per_pair(asm.system.n)
     out = np.empty(len(asm.pairs))
     for c, (i, _, sign, gap, _) in enumerate(asm.pairs):
         q = asm.contact_tracks[c]
-        top, bottom = (tracked[q, 0], tracked[q, 2]) if q >= 0 else (per_dof[i, 0], per_dof[i, 2])
+        top, bottom = ((tracked[q, P_MAX], tracked[q, P_MIN]) if q >= 0
+                       else (per_dof[i, X_D_MAX], per_dof[i, X_D_MIN]))
         out[c] = gap - (top if sign > 0 else -bottom)
     return out
 
@@ -449,28 +450,29 @@ def simulate_structure(structure: Structure | Adjacent, excitation: Harmonic | R
     return run_of(structure, asm, excitation, rate, out, t0, duration)
 
 
-def run_of(model: Any, asm: Any, excitation: Any, rate: float, out: tuple, t0: float,
+def run_of(model: Any, asm: Any, excitation: Any, rate: float, out: _core.RunOutput, t0: float,
            duration: float) -> "StructureRun | AdjacentRun":
     """The result of the core's run of one structure, or two adjacent ones (``Interrupted`` on Ctrl-C)."""
-    st, samples, contacts, events, ledger, extrema, status, chatters = out
-    energy = StructureEnergy.of(ledger)
-    status = Status(int(status))
-    if status == Status.SUCCESS and not (np.all(np.isfinite(extrema)) and np.isfinite(energy.residual)):
+    samples, contacts, events = out.samples, out.contacts, out.events
+    energy = StructureEnergy.of(out.ledger)
+    status = Status(out.status)
+    if status == Status.SUCCESS and not (np.all(np.isfinite(out.extrema)) and np.isfinite(energy.residual)):
         status = Status.NONFINITE
-    final = StructureState._of(st, asm.dofs, asm.system.n)
+    final = StructureState._of(out.state, asm.dofs, asm.system.n)
     structures = structures_of(model)[0]
-    parts = [StructureRun._part(s, b, asm, structures, excitation, rate, samples, contacts, extrema, status,
-                                t0) for b, s in enumerate(structures)]
-    clear = clearances(asm, extrema)
+    parts = [StructureRun._part(s, b, asm, structures, excitation, rate, out, status, t0)
+             for b, s in enumerate(structures)]
+    clear = clearances(asm, out)
     names = tuple(contact_name(slot, len(parts) > 1) for slot in asm.slots)
-    chatter = chatter_frame(chatters, names, "contact")
+    chatter = chatter_frame(out.chatters, names, "contact")
     if len(parts) == 1:
         run: Any = dataclasses.replace(parts[0], event_table=events, energy=energy, final_state=final,
                                        clearance_m=clear, chatters=chatter)
     else:
         links = [c for c, (owner, _, _) in enumerate(asm.slots) if owner == -1]
-        link_rows = contacts[np.isin(contacts[:, 0], links)].copy() if len(contacts) else np.zeros((0, 9))
-        link_rows[:, 0] -= links[0]
+        slot = CONTACT_COLUMNS["contact"]
+        link_rows = contacts[np.isin(contacts[:, slot], links)].copy()
+        link_rows[:, slot] -= links[0]
         n, nh = asm.system.n, asm.system.n_elements
         run = AdjacentRun(model, excitation, rate, parts[0], parts[1], samples[:, 0],
                           samples[:, [1 + 3 * n + nh + c for c in links]], link_rows, events, energy, final,

@@ -7,11 +7,12 @@ import math
 
 import numpy as np
 
+from ._layout import CONTACT_COLUMNS
 from .structure_result import AdjacentRun, StructureRun
 
-
-# (the core's contact rows: slot, t_start, t_end, v_in, v_out, impulse, peak force, ...)
-_T_START, _T_END, _PEAK_FORCE, _V_IN = 1, 2, 6, 3
+# (the core's contact rows)
+_SLOT, _T_START, _T_END, _PEAK_FORCE, _V_IN = (
+    CONTACT_COLUMNS[k] for k in ("contact", "t_start_s", "t_end_s", "peak_force_n", "v_in_m_s"))
 
 
 def impulses(table: np.ndarray) -> np.ndarray:
@@ -44,11 +45,11 @@ def peaks_of(run: "StructureRun | AdjacentRun", g: float) -> dict[str, float]:
     ratios = [part.peak_drift / np.array([s.height_m for s in part.structure.storeys])
               for part in parts if len(part.structure.storeys)]
     tables = [part.contact_table for part in parts] + ([run.link_table] if len(parts) > 1 else [])
-    rows = np.concatenate(tables) if tables else np.zeros((0, 9))
+    rows = np.concatenate(tables)  # (never empty: the first part's table at least)
     struck = [{part.structure.walls[int(slot) // 2].level for slot in part.contact_table[
-        impulses(part.contact_table), 0]} for part in parts]  # (each part's levels a rigid impact struck)
+        impulses(part.contact_table), _SLOT]} for part in parts]  # (each part's levels a rigid impact struck)
     if len(parts) > 1:
-        for slot in run.link_table[impulses(run.link_table), 0]:
+        for slot in run.link_table[impulses(run.link_table), _SLOT]:
             link = run.adjacent.links[int(slot)]
             struck[0].add(link.level_first)
             struck[1].add(link.level_second)

@@ -11,8 +11,10 @@ import numpy as np
 import pandas as pd
 
 from .._errors import Status
-from ._layout import (EVENT_NAMES, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT, L_ISOLATOR, L_KINETIC,
-                      L_VISCOUS)
+from ._layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
+from ._layout import (DOF_EXTREMA_LEN, EVENT_NAMES, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT,
+                      L_ISOLATOR, L_KINETIC, L_VISCOUS, P_MAX, P_MAX_T, P_MIN, P_MIN_T, X_A_MAX, X_A_MAX_T,
+                      X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T)
 from ._chatter import chatter_frame
 
 if TYPE_CHECKING:
@@ -190,11 +192,11 @@ class StructureRun:
 
     @classmethod
     def _part(cls, structure: "Structure", b: int, asm: Any, asm_structures: tuple, excitation: Any,
-              rate: float,
-              samples: np.ndarray, contacts: np.ndarray, extrema: np.ndarray, status: Status,
-              t0: float) -> "StructureRun":
-        """Structure ``b``'s columns of a joint run (``asm``: the assembly, engine.structure)."""
+              rate: float, out: Any, status: Status, t0: float) -> "StructureRun":
+        """Structure ``b``'s columns of a joint run (``out``: the core's ``RunOutput``; ``asm``: the
+        assembly, engine.structure)."""
         n, nh = asm.system.n, asm.system.n_elements
+        samples, contacts = out.samples, out.contacts
         dofs = asm.dofs[b]
         t = samples[:, 0]
         k = t.size
@@ -211,7 +213,7 @@ class StructureRun:
         isolator_force = samples[:, 1 + 3 * n + e].copy() if e >= 0 else np.full(k, np.nan)
         mine = [c for c, (owner, _, _) in enumerate(asm.slots) if owner == b]
         contact_force = samples[:, [1 + 3 * n + nh + c for c in mine]]
-        per_dof, tracked = extrema[:7 * n].reshape(n, 7), extrema[7 * n:].reshape(-1, 4)
+        per_dof, tracked = out.per_dof(n), out.per_pair(n)
         first = sum(len(s.storeys) for s in asm_structures[:b])  # (this structure's storeys' drifts)
         drifts = tracked[first:first + len(structure.storeys)]
         ex = per_dof
@@ -222,19 +224,32 @@ class StructureRun:
                 rows.append(ex[d])
             else:  # the ground: still, and shaken by the table
                 peak, when = ground_peak(excitation, t0, t1)
-                rows.append(np.array([0.0, t0, 0.0, t0, peak, when, np.nan]))
-        ex = np.array(rows).reshape(len(dofs), 7)
+                ground = np.full(DOF_EXTREMA_LEN, np.nan)
+                ground[[X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T, X_A_MAX, X_A_MAX_T]] = (
+                    0.0, t0, 0.0, t0, peak, when)
+                rows.append(ground)
+        ex = np.array(rows).reshape(len(dofs), DOF_EXTREMA_LEN)
+        slot = CORE_CONTACT_COLUMNS["contact"]
         owned = np.zeros(len(asm.slots), dtype=bool)
         owned[mine] = True
-        table = contacts[owned[contacts[:, 0].astype(int)]] if len(contacts) else contacts[:0].copy()
-        table[:, 0] = np.searchsorted(mine, table[:, 0])  # (slot numbers of this structure's own)
+        table = contacts[owned[contacts[:, slot].astype(int)]]
+        table[:, slot] = np.searchsorted(mine, table[:, slot])  # (slot numbers of this structure's own)
         on = [dof for _, _, dof in asm.stands[b]]
         stand_ex = per_dof[on]
-        return cls(structure, excitation, rate, t, displacement, velocity, abs_acceleration, isolator_force,
-                   contact_force, ex[:, 0].copy(), ex[:, 1].copy(), ex[:, 2].copy(), ex[:, 3].copy(),
-                   ex[:, 4].copy(), ex[:, 5].copy(), table, np.zeros((0, 3)), None, None, status,
-                   drifts[:, 0].copy(), drifts[:, 1].copy(), drifts[:, 2].copy(), drifts[:, 3].copy(),
-                   samples[:, [1 + d for d in on]], stand_ex[:, 0].copy(), stand_ex[:, 2].copy())
+        return cls(structure=structure, excitation=excitation, sample_rate_hz=rate, t=t,
+                   displacement=displacement, velocity=velocity, abs_acceleration=abs_acceleration,
+                   isolator_force=isolator_force, contact_force=contact_force,
+                   displacement_max=ex[:, X_D_MAX].copy(), displacement_max_time_s=ex[:, X_D_MAX_T].copy(),
+                   displacement_min=ex[:, X_D_MIN].copy(), displacement_min_time_s=ex[:, X_D_MIN_T].copy(),
+                   abs_acceleration_max=ex[:, X_A_MAX].copy(),
+                   abs_acceleration_max_time_s=ex[:, X_A_MAX_T].copy(),
+                   contact_table=table, event_table=np.zeros((0, 3)), energy=None, final_state=None,
+                   status=status, drift_max=drifts[:, P_MAX].copy(),
+                   drift_max_time_s=drifts[:, P_MAX_T].copy(),
+                   drift_min=drifts[:, P_MIN].copy(), drift_min_time_s=drifts[:, P_MIN_T].copy(),
+                   stand_displacement=samples[:, [1 + d for d in on]],
+                   stand_displacement_max=stand_ex[:, X_D_MAX].copy(),
+                   stand_displacement_min=stand_ex[:, X_D_MIN].copy())
 
     # ------------------------------------------------------------------ derived
     @property

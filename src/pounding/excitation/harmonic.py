@@ -8,10 +8,10 @@ from dataclasses import dataclass
 import numpy as np
 
 from .._checks import at_most, plausible, positive, real
+from .._core import EXCITATION
 from .._units import GRAVITY_M_S2  # (re-exported: pounding.excitation.GRAVITY_M_S2)
 
-HARMONIC = 0
-RECORD = 1
+HARMONIC, RECORD = EXCITATION["harmonic"], EXCITATION["record"]  # (the core's kinds)
 # refused beyond: no shaking table or earthquake comes near (a unit error, or overflow ahead)
 MAX_A_G = 1e3
 MAX_ACCEL_M_S2 = MAX_A_G * GRAVITY_M_S2

@@ -24,8 +24,6 @@ from .._runner import Context, run_tasks
 from .._runner.progress import Progress
 from ..engine import State
 from ..engine._layout import T
-from .. import _core
-from ..engine._system import EXC_HARMONIC, Forcing
 from ..engine.simulate import check_oscillator, check_rtol, kernel_system
 from ..engine.structure import StructureState, assemble
 from ..model.adjacent import Adjacent
@@ -33,7 +31,8 @@ from ..model.structure import Structure
 from ..excitation import Harmonic
 from ..metrics._impacts import S_COUNT, SIDE_SUMS
 from ..model import Oscillator
-from ._step_kernel import W_AMAX, W_CYCLES, W_DMAX, W_DMIN, W_SUMS, step_kernel
+from ..engine.kernels import (CONTACT_COLUMNS, DOF_EXTREMA, W_AMAX, W_CYCLES, W_DMAX, W_DMIN, W_SUMS,
+                              run_step, run_window)
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
@@ -62,17 +61,18 @@ def run_states(task: tuple, ctx: Context) -> np.ndarray:
         for i, start in enumerate(states):
             if ctx.stopped():
                 raise Interrupted(out, i, len(states), "states")
-            _, n, k, win, win_state, strobes, code = step_kernel(system, amp, omega, start.copy(), steady,
-                                                                 rtol, 1_000_000, ctx.control)
+            step = run_step(system, amp, omega, start.copy(), steady, rtol, 1_000_000, ctx.control)
+            win, code = step.window, step.status
             if code == Status.INTERRUPTED:  # (stopped: Ctrl-C; the state is left NaN)
                 raise Interrupted(out, i, len(states), "states")
             per_cycle = 1.0 / max(win[W_CYCLES], 1.0)
-            out[i] = (k if code == Status.SUCCESS else 0,  # (the engine stopped early: not settled)
+            # (the engine stopped early: not settled)
+            out[i] = (step.period_multiple if code == Status.SUCCESS else 0,
                       win[W_AMAX] / amp, win[W_DMAX] - win[W_DMIN],  # (the excursion: D_max - D_min)
                       win[W_SUMS + S_COUNT] * per_cycle, win[W_SUMS + SIDE_SUMS + S_COUNT] * per_cycle,
-                      strobes[-1, 0], strobes[-1, 1], n)
+                      step.window_strobes[-1, 0], step.window_strobes[-1, 1], step.cycles_run)
             if view is not None and code == Status.SUCCESS:
-                out[i, [R_ALPHA, R_LEFT, R_RIGHT]] = _window_row(system, view, amp, omega, win_state,
+                out[i, [R_ALPHA, R_LEFT, R_RIGHT]] = _window_row(system, view, amp, omega, step.window_state,
                                                                  int(win[W_CYCLES]), rtol, ctx)
             ctx.advance(1)
     except KeyboardInterrupt as stop:  # (a progress callback's Ctrl-C: keep the states finished)
@@ -98,13 +98,11 @@ def _window_row(system: Any, view: tuple, amp: float, omega: float, win_state: n
     signs, levels = view
     t0 = float(win_state[T])
     period = 2.0 * math.pi / omega
-    forcing = Forcing(EXC_HARMONIC, np.array([amp, omega, -(omega * t0)]), np.zeros(1), np.zeros(1))
-    out = _core.run(system, forcing, win_state.copy(), t0 + m * period, -1.0, rtol, 1_000_000, False,
-                    ctx.control)
-    contacts, extrema = out[2], out[5]
-    amax = float(np.max(extrema[:7 * system.n].reshape(system.n, 7)[levels, 4]))
-    ended = contacts[np.isfinite(contacts[:, 2])] if len(contacts) else np.zeros((0, 9))
-    slot_sign = signs[ended[:, 0].astype(int)] if len(ended) else np.zeros(0)
+    out = run_window(system, amp, omega, -(omega * t0), win_state, t0 + m * period, -1.0, rtol, 1_000_000,
+                     ctx.control)
+    amax = float(np.max(out.per_dof(system.n)[levels, DOF_EXTREMA["a_abs_max"]]))
+    ended = out.contacts[np.isfinite(out.contacts[:, CONTACT_COLUMNS["t_end_s"]])]
+    slot_sign = signs[ended[:, CONTACT_COLUMNS["contact"]].astype(int)]
     return amax / amp, float(np.sum(slot_sign < 0)) / m, float(np.sum(slot_sign > 0)) / m
 
 

@@ -13,22 +13,23 @@ from collections.abc import Callable
 
 import numpy as np
 
-from .. import _core
 from .._errors import Interrupted, Status
 from ..engine._control import new_control, stop_requested
 from ..engine._layout import T
-from ..engine._run_args import kernel_forcing
+from ..engine.kernels import CONTACT_COLUMNS, DOF_EXTREMA, PAIR_EXTREMA, W_CYCLES, RunOutput, run_window
 from ..engine.structure import StructureState, assemble
 from ..excitation import GRAVITY_M_S2, Harmonic
-from ._step_kernel import W_CYCLES
 from .sweep_result import sweep_message
 from .structure_sweep_result import (C_COUNT, C_IMPULSE, C_PEAK, C_RESTITUTION, C_TIME, CONTACT_STATS,
                                      StructureSweepResult,
                                      labels_of)
 
-# the core's rows: per dof (dmax, t, dmin, t, amax, t, -), per tracked pair (max, t, min, t); contacts
-_DOF_COLS, _PAIR_COLS = 7, 4
-_SLOT, _T_START, _T_END, _V_IN, _V_OUT, _IMPULSE, _PEAK = 0, 1, 2, 3, 4, 5, 6
+# the core's columns: a level's extrema, a storey's drift, a contact's row
+_LEVEL = [DOF_EXTREMA[k] for k in ("d_max", "d_min", "a_abs_max")]
+_DRIFT = [PAIR_EXTREMA[k] for k in ("max", "min")]
+_SLOT, _T_START, _T_END, _V_IN, _V_OUT, _IMPULSE, _PEAK = (
+    CONTACT_COLUMNS[k] for k in ("contact", "t_start_s", "t_end_s", "v_in_m_s", "v_out_m_s", "impulse_n_s",
+                                 "peak_force_n"))
 
 
 def run_structure_plan(plan, advance: Callable[[int], None] | None = None,
@@ -63,7 +64,8 @@ def run_structure_plan(plan, advance: Callable[[int], None] | None = None,
                 interrupted = True
                 break
             start = state
-            exc, (state, n, k, win, win_state, _, code) = plan.step(system, f, start, ctl)
+            exc, stepped = plan.step(system, f, start, ctl)
+            state, code, win, win_state = stepped.state, stepped.status, stepped.window, stepped.window_state
             if code == Status.INTERRUPTED:
                 state = start
                 interrupted = True
@@ -73,20 +75,20 @@ def run_structure_plan(plan, advance: Callable[[int], None] | None = None,
                 t0 = float(win_state[T])
                 at = Harmonic(plan.a_g, f, phase=-(exc.omega_rad_s * t0))
                 period = 1.0 / float(f)
-                out = _core.run(system, kernel_forcing(at), win_state.copy(), t0 + m * period, period,
-                                plan.rtol, plan.max_events_per_cycle * m, False, ctl)
-                code = int(out[6])
+                out = run_window(system, at.peak_m_s2, at.omega_rad_s, at.phase, win_state, t0 + m * period,
+                                 period, plan.rtol, plan.max_events_per_cycle * m, ctl)
+                code = out.status
                 if code == Status.INTERRUPTED:
                     state = start
                     interrupted = True
                     break
                 if code == Status.SUCCESS:
                     _measure(out, level_dof, at.peak_m_s2, m, t0, level[i], drift[i], contact[i], system.n)
-                    strobes[i, :min(m, strobe_cap)] = _strobes(out[1], level_dof, t0, period, m,
+                    strobes[i, :min(m, strobe_cap)] = _strobes(out.samples, level_dof, t0, period, m,
                                                                system.n)[:strobe_cap]
             step_start_s[i] = start[T]
-            cycles_run[i] = n
-            period_multiple[i] = k
+            cycles_run[i] = stepped.cycles_run
+            period_multiple[i] = stepped.period_multiple
             window_cycles[i] = m
             window_states[i] = win_state
             done = i + 1
@@ -126,17 +128,15 @@ def _strobes(samples: np.ndarray, level_dof: list, t0: float, period: float, m: 
     return out
 
 
-def _measure(out: tuple, level_dof: list, peak_m_s2: float, m: int, t0: float,
+def _measure(out: RunOutput, level_dof: list, peak_m_s2: float, m: int, t0: float,
              level: np.ndarray, drift: np.ndarray, contact: np.ndarray, n_dof: int) -> None:
     """One window's run (the core's output) into a step's rows: each level's extrema, each storey's drift,
     each contact slot's statistics (the contacts that ended in the window, per cycle)."""
-    contacts, extrema = out[2], out[5]
-    per_dof = extrema[:_DOF_COLS * n_dof].reshape(n_dof, _DOF_COLS)
-    pairs = extrema[_DOF_COLS * n_dof:].reshape(-1, _PAIR_COLS)
+    contacts, per_dof, pairs = out.contacts, out.per_dof(n_dof), out.per_pair(n_dof)
     for q, d in enumerate(level_dof):
-        level[q] = per_dof[d, [0, 2, 4]] if d >= 0 else (0.0, 0.0, peak_m_s2)  # (a fixed base: the ground)
-    drift[:] = pairs[:len(drift), [0, 2]]
-    ended = contacts[np.isfinite(contacts[:, _T_END])] if len(contacts) else np.zeros((0, 9))
+        level[q] = per_dof[d, _LEVEL] if d >= 0 else (0.0, 0.0, peak_m_s2)  # (a fixed base: the ground)
+    drift[:] = pairs[:len(drift)][:, _DRIFT]
+    ended = contacts[np.isfinite(contacts[:, _T_END])]
     for c in range(contact.shape[0]):
         rows = ended[ended[:, _SLOT] == c]
         contact[c, C_COUNT] = len(rows) / m

@@ -24,7 +24,7 @@ from ..engine.simulate import check_oscillator, check_rtol, check_state, kernel_
 from ..excitation import MAX_FREQ_HZ, GRAVITY_M_S2, Harmonic
 from ..model import MeasurementChain, Oscillator
 from .._runner.progress import Progress, progress_reporter
-from ._step_kernel import W_CYCLES, WINDOW_COLS, step_kernel
+from ..engine.kernels import W_CYCLES, WINDOW_COLS, StepOutput, run_step
 from .sweep_result import SweepResult, sweep_message
 
 Direction = Literal["up", "down"]
@@ -88,15 +88,16 @@ class SweepPlan:
     max_steps: int
     measurement: MeasurementChain | None = None
 
-    def step(self, system: Any, freq_hz: float, start: np.ndarray, control: np.ndarray) -> tuple:
+    def step(self, system: Any, freq_hz: float, start: np.ndarray,
+             control: np.ndarray) -> tuple[Harmonic, StepOutput]:
         """One step at ``freq_hz`` from the state ``start``, in the core (``system``: the plan's, as the core
-        takes it): ``(excitation, (state, cycles, period multiple, window, window state, strobes,
-        code))``; a single mass's sweep and a structure's run their steps alike."""
+        takes it): its excitation and what the step gave; a single mass's sweep and a structure's run their
+        steps alike."""
         exc = Harmonic(self.a_g, freq_hz)
         steady = (self.steady == "adaptive", int(self.cycles), int(self.measure_cycles),
                   float(self.steady_rtol), int(self.max_period))
-        return exc, step_kernel(system, exc.peak_m_s2, exc.omega_rad_s, start, steady, self.rtol,
-                                self.max_events_per_cycle, control)
+        return exc, run_step(system, exc.peak_m_s2, exc.omega_rad_s, start, steady, self.rtol,
+                             self.max_events_per_cycle, control)
 
 
 @dataclass(frozen=True)
@@ -387,17 +388,18 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
                 interrupted = True
                 break
             start = state
-            _, (state, n, k, win, win_state, strobes, code) = plan.step(system, f, start, ctl)
+            _, out = plan.step(system, f, start, ctl)
+            state, code = out.state, out.status
             if code == Status.INTERRUPTED:  # the step did not finish: drop it
                 state = start
                 interrupted = True
                 break
             step_start_s[i] = start[T]
-            window[i] = win
-            cycles_run[i] = n
-            period_multiple[i] = k
-            window_states[i] = win_state
-            window_strobes[i, :len(strobes)] = strobes
+            window[i] = out.window
+            cycles_run[i] = out.cycles_run
+            period_multiple[i] = out.period_multiple
+            window_states[i] = out.window_state
+            window_strobes[i, :len(out.window_strobes)] = out.window_strobes
             done = i + 1
             if advance is not None:
                 advance(1)

@@ -14,7 +14,7 @@ from .._checks import integer, positive
 from .._errors import InputError, Problem, Status
 from ..engine import State
 from ..metrics._impacts import IMPACT_COLUMNS, S_COUNT, S_N_RESTITUTION, S_SUMS, SIDE_SUMS
-from ._step_kernel import W_AMAX, W_CYCLES, W_DMAX, W_DMIN, W_SUMS
+from ..engine.kernels import W_AMAX, W_CYCLES, W_DMAX, W_DMIN, W_SUMS
 from .measured_sweep import MEASURED_COLUMNS
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -65,7 +65,7 @@ class SweepResult:
     freqs_hz : ndarray, shape (n,)
         Step frequencies in stepping order (increasing "up", decreasing "down").
     window : ndarray, shape (n, WINDOW_COLS)
-        Raw window measurements (NaN for steps not run); see ``_step_kernel``.
+        Raw window measurements (NaN for steps not run); see ``engine.kernels``.
     cycles_run, period_multiple : ndarray of int, shape (n,)
         Cycles each step ran; period multiple of its steady response (0: not periodic).
     window_states : ndarray, shape (n, n_state)
