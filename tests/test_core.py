@@ -120,3 +120,25 @@ def test_the_door_names_what_a_run_returns_and_every_index_is_the_core_s():
     assert out.ledger[_core.LEDGER["input"]] == run.energy.input_work
     assert out.contacts[0, _core.CONTACT_COLUMNS["v_in_m_s"]] == run.contacts["v_in_m_s"].iloc[0]
     assert set(_core.EXCITATION) == {"harmonic", "record"}
+
+
+def test_a_system_goes_in_by_name_and_comes_back_from_a_pickle_by_name():
+    slot = _core.contact_slot(i=0, j=-1, sign=1.0, gap_m=0.03, law=_core.LAW_IDS["hunt_crossley"],
+                              params=[5e8, 1.5, 2e8])
+    assert (slot.i, slot.j, slot.sign, slot.gap_m) == (0, -1, 1.0, 0.03)
+    assert slot.params[:3] == [5e8, 1.5, 2e8] and len(slot.params) == _core.LAYOUT["N_LAW_PARAMS"]
+    with pytest.raises(TypeError):  # (keywords only: never positions)
+        _core.ContactSlot(0, -1, 1.0, 0.03, 1, [5e8])
+    with pytest.raises(ValueError, match="at most"):  # (more parameters than a slot holds: refused, not cut)
+        _core.contact_slot(i=0, j=-1, sign=1.0, gap_m=0.03, law=1, params=[1.0] * 11)
+    iso = _core.element(i=0, j=-1, c_d=1000.0, slopes=[38e3, 2e3], breaks=[0.015], rule=0)
+    sy = _core.system([500.0], np.zeros((1, 1)), np.zeros((1, 1)), [iso], np.zeros(6), True, [slot])
+    back = pickle.loads(pickle.dumps(sy))
+    assert back.__getstate__() == sy.__getstate__()
+    named = {"n", "mass", "k0", "c0", "elements", "bw", "has_b", "contacts", "track_i", "track_j"}
+    assert set(sy.__getstate__()) == named
+    assert pickle.loads(pickle.dumps(slot)).gap_m == 0.03
+    assert pickle.loads(pickle.dumps(iso)).breaks == [0.015]
+    with pytest.raises(ValueError, match="ContactSlot"):
+        _core.system([500.0], np.zeros((1, 1)), np.zeros((1, 1)), [iso], np.zeros(6), True,
+                     [(0, -1, 1.0, 0.03, 1, [5e8])])

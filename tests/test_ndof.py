@@ -39,10 +39,11 @@ def shear(values: np.ndarray) -> np.ndarray:
 def core_system(s: Structure, bumpers: bool = True):
     params = np.zeros(_core.LAYOUT["N_LAW_PARAMS"])
     params[:2] = s.k_b, s.c_b
-    contacts = [(s.level, s.partners[0], -1.0, s.gaps[0], KELVIN_VOIGT, params),
-                (s.level, s.partners[1], 1.0, s.gaps[1], KELVIN_VOIGT, params)]
-    return _core.system(s.mass, s.k0, s.c0, [(0, -1, s.c_iso, [s.k_iso], [], 1)], np.zeros(6), bumpers,
-                        contacts)
+    contacts = [_core.contact_slot(i=s.level, j=partner, sign=sign, gap_m=gap, law=KELVIN_VOIGT,
+                                   params=params)
+                for partner, sign, gap in zip(s.partners, (-1.0, 1.0), s.gaps)]
+    isolator = _core.element(i=0, j=-1, c_d=s.c_iso, slopes=[s.k_iso], breaks=[], rule=1)
+    return _core.system(s.mass, s.k0, s.c0, [isolator], np.zeros(6), bumpers, contacts)
 
 
 def core_run(s: Structure, t_end: float, y0: np.ndarray, bumpers: bool = True, sample_dt: float = 0.0):

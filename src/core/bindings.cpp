@@ -56,58 +56,112 @@ Array2 rows_array(Rows& r) {
     return Array2(owned, {rows, cols}, owner);
 }
 
-// a contact from (i, j, sign, gap, law, params); a hysteretic element from (i, j, c_d, slopes, breaks, rule)
-using ContactTuple = std::tuple<int, int, double, double, int, std::vector<double>>;
-using ElementTuple = std::tuple<int, int, double, std::vector<double>, std::vector<double>, int>;
-using SystemState = std::tuple<int, std::vector<double>, std::vector<double>, std::vector<double>,
-                               std::vector<ElementTuple>, std::vector<double>, bool, std::vector<ContactTuple>,
-                               std::vector<int>, std::vector<int>>;
-
-SystemState system_state(const System& s) {
-    std::vector<ContactTuple> cs;
-    for (const Contact& c : s.contact)
-        cs.emplace_back(c.i, c.j, c.sign, c.gap, c.law, std::vector<double>(c.p, c.p + N_LAW_PARAMS));
-    std::vector<ElementTuple> es;
-    for (const Hysteretic& h : s.hyst) es.emplace_back(h.i, h.j, h.c_d, h.slopes, h.breaks, h.rule);
-    return {s.n, s.mass, s.k0, s.c0, es, std::vector<double>(s.bw, s.bw + BW_PARAMS), s.has_b, cs, s.track_i,
-            s.track_j};
+// A system enters by name: its contact slots (ContactSlot) and hysteretic elements (Element) built with keyword
+// arguments, the System from them the same way; a pickle carries each by name too.  (The sizes and indices are
+// checked in Python, pounding._core.system: the core trusts its inputs.)
+Contact contact_of(int i, int j, double sign, double gap_m, int law, const std::vector<double>& params) {
+    Contact c;
+    c.i = i;
+    c.j = j;
+    c.sign = sign;
+    c.gap = gap_m;
+    c.law = law;
+    for (int k = 0; k < N_LAW_PARAMS; ++k) c.p[k] = k < static_cast<int>(params.size()) ? params[k] : 0.0;
+    return c;
 }
 
-// (the sizes and indices are checked in Python, pounding._core.system: the core trusts its inputs)
-void fill_system(System& s, const SystemState& st) {
-    s.n = std::get<0>(st);
-    s.mass = std::get<1>(st);
-    s.k0 = std::get<2>(st);
-    s.c0 = std::get<3>(st);
-    s.hyst.clear();
-    for (const ElementTuple& t : std::get<4>(st)) {
-        Hysteretic h;
-        h.i = std::get<0>(t);
-        h.j = std::get<1>(t);
-        h.c_d = std::get<2>(t);
-        h.slopes = std::get<3>(t);
-        h.breaks = std::get<4>(t);
-        h.rule = std::get<5>(t);
-        s.hyst.push_back(h);
-    }
-    const std::vector<double>& bw = std::get<5>(st);
+Hysteretic element_of(int i, int j, double c_d, const std::vector<double>& slopes, const std::vector<double>& breaks,
+                      int rule) {
+    Hysteretic h;
+    h.i = i;
+    h.j = j;
+    h.c_d = c_d;
+    h.slopes = slopes;
+    h.breaks = breaks;
+    h.rule = rule;
+    return h;
+}
+
+nb::dict contact_state(const Contact& c) {
+    nb::dict d;
+    d["i"] = c.i;
+    d["j"] = c.j;
+    d["sign"] = c.sign;
+    d["gap_m"] = c.gap;
+    d["law"] = c.law;
+    d["params"] = std::vector<double>(c.p, c.p + N_LAW_PARAMS);
+    return d;
+}
+
+Contact contact_from_state(const nb::dict& d) {
+    return contact_of(nb::cast<int>(d["i"]), nb::cast<int>(d["j"]), nb::cast<double>(d["sign"]),
+                      nb::cast<double>(d["gap_m"]), nb::cast<int>(d["law"]),
+                      nb::cast<std::vector<double>>(d["params"]));
+}
+
+nb::dict element_state(const Hysteretic& h) {
+    nb::dict d;
+    d["i"] = h.i;
+    d["j"] = h.j;
+    d["c_d"] = h.c_d;
+    d["slopes"] = h.slopes;
+    d["breaks"] = h.breaks;
+    d["rule"] = h.rule;
+    return d;
+}
+
+Hysteretic element_from_state(const nb::dict& d) {
+    return element_of(nb::cast<int>(d["i"]), nb::cast<int>(d["j"]), nb::cast<double>(d["c_d"]),
+                      nb::cast<std::vector<double>>(d["slopes"]), nb::cast<std::vector<double>>(d["breaks"]),
+                      nb::cast<int>(d["rule"]));
+}
+
+void fill_system(System& s, int n, const std::vector<double>& mass, const std::vector<double>& k0,
+                 const std::vector<double>& c0, const std::vector<Hysteretic>& elements, const std::vector<double>& bw,
+                 bool has_b, const std::vector<Contact>& contacts, const std::vector<int>& track_i,
+                 const std::vector<int>& track_j) {
+    s.n = n;
+    s.mass = mass;
+    s.k0 = k0;
+    s.c0 = c0;
+    s.hyst = elements;
     for (int j = 0; j < BW_PARAMS; ++j) s.bw[j] = j < static_cast<int>(bw.size()) ? bw[j] : 0.0;
-    s.has_b = std::get<6>(st);
-    s.contact.clear();
-    for (const ContactTuple& t : std::get<7>(st)) {
-        Contact c;
-        c.i = std::get<0>(t);
-        c.j = std::get<1>(t);
-        c.sign = std::get<2>(t);
-        c.gap = std::get<3>(t);
-        c.law = std::get<4>(t);
-        const std::vector<double>& p = std::get<5>(t);
-        for (int j = 0; j < N_LAW_PARAMS; ++j) c.p[j] = j < static_cast<int>(p.size()) ? p[j] : 0.0;
-        s.contact.push_back(c);
-    }
-    s.track_i = std::get<8>(st);
-    s.track_j = std::get<9>(st);
+    s.has_b = has_b;
+    s.contact = contacts;
+    s.track_i = track_i;
+    s.track_j = track_j;
     s.finish();
+}
+
+nb::dict system_state(const System& s) {
+    nb::dict d;
+    d["n"] = s.n;
+    d["mass"] = s.mass;
+    d["k0"] = s.k0;
+    d["c0"] = s.c0;
+    nb::list elements, contacts;
+    for (const Hysteretic& h : s.hyst) elements.append(element_state(h));
+    for (const Contact& c : s.contact) contacts.append(contact_state(c));
+    d["elements"] = elements;
+    d["bw"] = std::vector<double>(s.bw, s.bw + BW_PARAMS);
+    d["has_b"] = s.has_b;
+    d["contacts"] = contacts;
+    d["track_i"] = s.track_i;
+    d["track_j"] = s.track_j;
+    return d;
+}
+
+void system_from_state(System& s, const nb::dict& d) {
+    std::vector<Hysteretic> elements;
+    std::vector<Contact> contacts;
+    for (nb::handle e : nb::cast<nb::list>(d["elements"]))
+        elements.push_back(element_from_state(nb::cast<nb::dict>(e)));
+    for (nb::handle c : nb::cast<nb::list>(d["contacts"]))
+        contacts.push_back(contact_from_state(nb::cast<nb::dict>(c)));
+    fill_system(s, nb::cast<int>(d["n"]), nb::cast<std::vector<double>>(d["mass"]),
+                nb::cast<std::vector<double>>(d["k0"]), nb::cast<std::vector<double>>(d["c0"]), elements,
+                nb::cast<std::vector<double>>(d["bw"]), nb::cast<bool>(d["has_b"]), contacts,
+                nb::cast<std::vector<int>>(d["track_i"]), nb::cast<std::vector<int>>(d["track_j"]));
 }
 
 Forcing forcing_of(int kind, Vec p, Vec rec_t, Vec rec_a) {
@@ -125,15 +179,50 @@ Forcing forcing_of(int kind, Vec p, Vec rec_t, Vec rec_a) {
 NB_MODULE(_pounding_core, m) {
     m.doc() = "pounding's compiled core (C++17): the event-driven engine and its kernels.";
 
+    nb::class_<Contact>(m, "ContactSlot")
+        .def("__init__",
+             [](Contact* c, int i, int j, double sign, double gap_m, int law, const std::vector<double>& params) {
+                 new (c) Contact(contact_of(i, j, sign, gap_m, law, params));
+             },
+             nb::kw_only(), nb::arg("i"), nb::arg("j"), nb::arg("sign"), nb::arg("gap_m"), nb::arg("law"),
+             nb::arg("params"))
+        .def_ro("i", &Contact::i)
+        .def_ro("j", &Contact::j)
+        .def_ro("sign", &Contact::sign)
+        .def_ro("gap_m", &Contact::gap)
+        .def_ro("law", &Contact::law)
+        .def_prop_ro("params", [](const Contact& c) { return std::vector<double>(c.p, c.p + N_LAW_PARAMS); })
+        .def("__getstate__", &contact_state)
+        .def("__setstate__", [](Contact& c, const nb::dict& d) { new (&c) Contact(contact_from_state(d)); });
+
+    nb::class_<Hysteretic>(m, "Element")
+        .def("__init__",
+             [](Hysteretic* h, int i, int j, double c_d, const std::vector<double>& slopes,
+                const std::vector<double>& breaks, int rule) {
+                 new (h) Hysteretic(element_of(i, j, c_d, slopes, breaks, rule));
+             },
+             nb::kw_only(), nb::arg("i"), nb::arg("j"), nb::arg("c_d"), nb::arg("slopes"), nb::arg("breaks"),
+             nb::arg("rule"))
+        .def_ro("i", &Hysteretic::i)
+        .def_ro("j", &Hysteretic::j)
+        .def_ro("c_d", &Hysteretic::c_d)
+        .def_ro("slopes", &Hysteretic::slopes)
+        .def_ro("breaks", &Hysteretic::breaks)
+        .def_ro("rule", &Hysteretic::rule)
+        .def("__getstate__", &element_state)
+        .def("__setstate__", [](Hysteretic& h, const nb::dict& d) { new (&h) Hysteretic(element_from_state(d)); });
+
     nb::class_<System>(m, "System")
         .def("__init__",
              [](System* s, int n, const std::vector<double>& mass, const std::vector<double>& k0,
-                const std::vector<double>& c0, const std::vector<ElementTuple>& elements,
-                const std::vector<double>& bw, bool has_b, const std::vector<ContactTuple>& contacts,
+                const std::vector<double>& c0, const std::vector<Hysteretic>& elements,
+                const std::vector<double>& bw, bool has_b, const std::vector<Contact>& contacts,
                 const std::vector<int>& track_i, const std::vector<int>& track_j) {
                  new (s) System();
-                 fill_system(*s, SystemState{n, mass, k0, c0, elements, bw, has_b, contacts, track_i, track_j});
-             })
+                 fill_system(*s, n, mass, k0, c0, elements, bw, has_b, contacts, track_i, track_j);
+             },
+             nb::kw_only(), nb::arg("n"), nb::arg("mass"), nb::arg("k0"), nb::arg("c0"), nb::arg("elements"),
+             nb::arg("bw"), nb::arg("has_b"), nb::arg("contacts"), nb::arg("track_i"), nb::arg("track_j"))
         .def_ro("n", &System::n)
         .def_ro("mass", &System::mass)
         .def_prop_ro("n_elements", &System::n_h)
@@ -155,10 +244,10 @@ NB_MODULE(_pounding_core, m) {
             d["sample_cols"] = s.lay.sample_cols();
             return d;
         })
-        .def("__getstate__", [](const System& s) { return system_state(s); })
-        .def("__setstate__", [](System& s, const SystemState& st) {
+        .def("__getstate__", &system_state)
+        .def("__setstate__", [](System& s, const nb::dict& d) {
             new (&s) System();
-            fill_system(s, st);
+            system_from_state(s, d);
         });
 
     m.def("run",

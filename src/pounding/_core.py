@@ -35,6 +35,8 @@ except ImportError as exc:  # pragma: no cover  (a source tree never built)
         "compiles it with CMake; see docs/building.md)") from exc
 
 System = _c.System
+ContactSlot = _c.ContactSlot  # (built by keyword: i, j, sign, gap_m, law, params)
+Element = _c.Element  # (built by keyword: i, j, c_d, slopes, breaks, rule)
 LAYOUT: dict[str, int] = dict(_c.LAYOUT)
 LAW_IDS: dict[str, int] = dict(_c.LAW_IDS)
 STATUS: dict[str, int] = dict(_c.STATUS)
@@ -164,19 +166,16 @@ class Monodromy:
 _N_DOF_EXTREMA, _N_PAIR_EXTREMA = LAYOUT["DOF_EXTREMA"], LAYOUT["PAIR_EXTREMA"]
 
 
-def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray,
-           elements: list[tuple[int, int, float, Any, Any, int]], bw: np.ndarray, has_b: bool,
-           contacts: list[tuple[int, int, float, float, int, np.ndarray]],
-           tracked: tuple[tuple[int, int], ...] = ()) -> System:
+def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Element], bw: np.ndarray,
+           has_b: bool, contacts: list[ContactSlot], tracked: tuple[tuple[int, int], ...] = ()) -> System:
     """A system as the core takes it: ``mass`` (kg, shape (n,)), the linear springs and dashpots ``k0``,
-    ``c0`` (N/m, N s/m, shape (n, n)), the hysteretic elements, each ``(i, j, c_d, slopes, breaks, rule)``
-    (dof i against dof j, -1 the ground; its dashpot N s/m, backbone slopes N/m and breaks m, rule 0
-    kinematic or 1 elastic; the isolator first, which carries the Bouc-Wen numbers ``bw``, zeros for none;
-    no element at all: a structure fixed at its base),
-    and the contact slots, each ``(i, j, sign, gap, law id, parameters)``: dof i against dof j (-1: the
-    ground), compressed by ``sign (x_i - x_j) - gap``; ``has_b`` makes them active.  ``tracked``: pairs
-    ``(i, j)`` whose relative displacement's exact extrema a run adds after the dofs' (4 numbers each: max,
-    its time, min, its time; a storey's drift).
+    ``c0`` (N/m, N s/m, shape (n, n)), the hysteretic elements (:class:`Element`: dof ``i`` against dof ``j``,
+    -1 the ground; its dashpot ``c_d`` N s/m, backbone ``slopes`` N/m and ``breaks`` m, ``rule`` 0 kinematic
+    or 1 elastic; the isolator first, which carries the Bouc-Wen numbers ``bw``, zeros for none; no element
+    at all: a structure fixed at its base), and the contact slots (:class:`ContactSlot`: dof ``i`` against dof
+    ``j``, -1 the ground, compressed by ``sign (x_i - x_j) - gap_m``; its ``law`` id of :data:`LAW_IDS` and
+    ``params``); ``has_b`` makes them active.  ``tracked``: pairs ``(i, j)`` whose relative displacement's
+    exact extrema a run adds after the dofs' (:data:`PAIR_EXTREMA`; a storey's drift).
 
     The core trusts what it is given: the sizes and indices are checked here (a ``ValueError`` is a
     caller's bug; the public functions check what users give before)."""
@@ -188,28 +187,47 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray,
     if not elements and any(bw):
         raise ValueError("a Bouc-Wen spring is the isolator's: a system without elements has none")
 
-    def pair(i: int, j: int, what: str) -> tuple[int, int]:
+    def pair(i: int, j: int, what: str) -> None:
         if not (0 <= i < n and (j == -1 or (0 <= j < n and j != i))):
             raise ValueError(f"{what}: the pair ({i}, {j}) is not two of the {n} dofs (or one and the "
                              "ground, -1)")
-        return int(i), int(j)
 
-    packed = []
-    for e, (i, j, c_d, slopes, breaks, rule) in enumerate(elements):
-        slopes, breaks = [float(x) for x in slopes], [float(x) for x in breaks]
-        if len(slopes) < 1 or len(breaks) != len(slopes) - 1 or int(rule) not in (0, 1):
-            raise ValueError(f"element {e}: {len(slopes)} slopes need {len(slopes) - 1} breaks, rule 0 or 1")
-        packed.append((*pair(i, j, f"element {e}"), float(c_d), slopes, breaks, int(rule)))
+    for e, el in enumerate(elements):
+        if not isinstance(el, Element):
+            raise ValueError(f"element {e}: an Element, got {type(el).__name__}")
+        pair(el.i, el.j, f"element {e}")
+        if len(el.slopes) < 1 or len(el.breaks) != len(el.slopes) - 1 or el.rule not in (0, 1):
+            raise ValueError(f"element {e}: {len(el.slopes)} slopes need {len(el.slopes) - 1} breaks, "
+                             "rule 0 or 1")
     if len(bw) != LAYOUT["BW_PARAMS"]:
         raise ValueError(f"bw: {LAYOUT['BW_PARAMS']} numbers, got {len(bw)}")
-    slots = []
-    for c, (i, j, sign, gap, law, p) in enumerate(contacts):
-        if sign not in (-1.0, 1.0) or int(law) not in LAW_IDS.values() or len(p) > LAYOUT["N_LAW_PARAMS"]:
-            raise ValueError(f"contact {c}: sign +-1, a law id of LAW_IDS, at most N_LAW_PARAMS parameters")
-        slots.append((*pair(i, j, f"contact {c}"), float(sign), float(gap), int(law), [float(x) for x in p]))
-    pairs = [pair(i, j, f"tracked pair {q}") for q, (i, j) in enumerate(tracked)]
-    return _c.System(n, m.tolist(), k0.reshape(n * n).tolist(), c0.reshape(n * n).tolist(), packed,
-                     [float(x) for x in bw], bool(has_b), slots, [i for i, _ in pairs], [j for _, j in pairs])
+    for c, slot in enumerate(contacts):
+        if not isinstance(slot, ContactSlot):
+            raise ValueError(f"contact {c}: a ContactSlot, got {type(slot).__name__}")
+        pair(slot.i, slot.j, f"contact {c}")
+        if slot.sign not in (-1.0, 1.0) or slot.law not in LAW_IDS.values():
+            raise ValueError(f"contact {c}: sign +-1 and a law id of LAW_IDS")
+    for q, (i, j) in enumerate(tracked):
+        pair(i, j, f"tracked pair {q}")
+    return _c.System(n=n, mass=m.tolist(), k0=k0.reshape(n * n).tolist(), c0=c0.reshape(n * n).tolist(),
+                     elements=list(elements), bw=[float(x) for x in bw], has_b=bool(has_b),
+                     contacts=list(contacts),
+                     track_i=[int(i) for i, _ in tracked], track_j=[int(j) for _, j in tracked])
+
+
+def contact_slot(*, i: int, j: int, sign: float, gap_m: float, law: int, params: Any) -> ContactSlot:
+    """A contact slot (:class:`ContactSlot`) from numbers as the model gives them: ``params`` at most
+    ``N_LAW_PARAMS`` numbers (the rest 0)."""
+    params = [float(x) for x in params]
+    if len(params) > LAYOUT["N_LAW_PARAMS"]:
+        raise ValueError(f"a contact law's parameters: at most {LAYOUT['N_LAW_PARAMS']}, got {len(params)}")
+    return ContactSlot(i=int(i), j=int(j), sign=float(sign), gap_m=float(gap_m), law=int(law), params=params)
+
+
+def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int) -> Element:
+    """A hysteretic element (:class:`Element`) from numbers as the model gives them."""
+    return Element(i=int(i), j=int(j), c_d=float(c_d), slopes=[float(x) for x in slopes],
+                   breaks=[float(x) for x in breaks], rule=int(rule))
 
 
 def _f64(a: Any) -> np.ndarray:

@@ -143,9 +143,10 @@ def kernel_system(oscillator: Oscillator) -> System:
     gap_l = gap_r = 0.0
     if b is not None:
         left, right, gap_l, gap_r = b.left, b.right, b.gap_left, b.gap_right
-    contacts = [(0, -1, -1.0, float(gap_l), int(left.LAW_ID), left.params()),
-                (0, -1, 1.0, float(gap_r), int(right.LAW_ID), right.params())]
-    isolator = (0, -1, float(oscillator.isolator.damping), slopes, breaks, int(rule))
+    contacts = [_core.contact_slot(i=0, j=-1, sign=sign, gap_m=gap, law=law.LAW_ID, params=law.params())
+                for sign, gap, law in ((-1.0, gap_l, left), (1.0, gap_r, right))]
+    isolator = _core.element(i=0, j=-1, c_d=oscillator.isolator.damping, slopes=slopes, breaks=breaks,
+                             rule=rule)
     return _core.system([float(oscillator.mass)], np.zeros((1, 1)), np.zeros((1, 1)), [isolator], bw,
                         b is not None, contacts)
 

@@ -30,7 +30,6 @@ from ._layout import CONTACT_COLUMNS, P_MAX, P_MIN, X_D_MAX, X_D_MIN
 from ._run_args import DIRECT_CALL_STEPS, check_rtol, history_rate, kernel_forcing
 from .structure_result import AdjacentRun, StructureEnergy, StructureRun
 
-_NO_WALLS: list = []
 
 
 class Assembly(NamedTuple):
@@ -143,12 +142,14 @@ def assemble(model: Structure | Adjacent) -> Assembly:
             for side, (sign, gap, law) in enumerate(((-1.0, wall.gap_left_m, wall.left),
                                                      (1.0, wall.gap_right_m, wall.right))):
                 other = on.get((w, side), -1)  # (the ground, or the bumper's stand)
-                contacts.append((levels[wall.level], other, sign, float(gap), int(law.LAW_ID), law.params()))
+                contacts.append(_core.contact_slot(i=levels[wall.level], j=other, sign=sign, gap_m=gap,
+                                                   law=law.LAW_ID, params=law.params()))
                 slots.append((b, w, side))
                 pairs.append((levels[wall.level], other, sign, float(gap), law))
     for k, link in enumerate(links):
-        contacts.append((dofs[0][link.level_first], dofs[1][link.level_second], 1.0, float(link.gap_m),
-                         int(link.law.LAW_ID), link.law.params()))
+        contacts.append(_core.contact_slot(i=dofs[0][link.level_first], j=dofs[1][link.level_second],
+                                           sign=1.0, gap_m=link.gap_m, law=link.law.LAW_ID,
+                                           params=link.law.params()))
         slots.append((-1, k, 0))
         pairs.append((dofs[0][link.level_first], dofs[1][link.level_second], 1.0, float(link.gap_m),
                       link.law))
@@ -159,7 +160,9 @@ def assemble(model: Structure | Adjacent) -> Assembly:
     between = [c for c, (_, j, _, _, _) in enumerate(pairs) if j >= 0]
     contact_tracks = tuple(len(tracked) + between.index(c) if c in between else -1 for c in range(len(pairs)))
     tracked += tuple((pairs[c][0], pairs[c][1]) for c in between)
-    system = _core.system(masses, k0, c0, elements, bw, bool(contacts), contacts or _NO_WALLS, tracked)
+    kernel_elements = [_core.element(i=i, j=j, c_d=c_d, slopes=slopes, breaks=breaks, rule=rule)
+                       for i, j, c_d, slopes, breaks, rule in elements]
+    system = _core.system(masses, k0, c0, kernel_elements, bw, bool(contacts), contacts, tracked)
     return Assembly(system, tuple(dofs), tuple(isolator), tuple(slots), tuple(stands), np.array(masses),
                     k_fast, c_all, tuple(pairs),
                     tuple((i, j, list(slopes), list(breaks), rule)
