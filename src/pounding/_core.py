@@ -2,12 +2,15 @@
 
 The core takes plain structures (a system, a forcing, options) and returns arrays; every argument is
 checked before it gets here (the core trusts its inputs).  Nothing else in the package imports the
-compiled module: the engine, the protocols and the analyses call these functions.
+compiled module, and only the engine calls its runs (the protocols and analyses through
+``engine.kernels``).
 
-* :class:`System` - an oscillator as the core takes it (:func:`system`); picklable, so it travels to
-  worker processes.
+* :class:`System` - a system as the core takes it (:func:`system`, from :class:`ContactSlot` and
+  :class:`Element`, each built by keyword: :func:`contact_slot`, :func:`element`); picklable by name, so it
+  travels to worker processes.
+* :class:`Forcing` - the excitation as the core takes it.
 * :func:`run` - the event-driven run (``engine.simulate``'s kernel).
-* :func:`step` - one frequency step of a sweep, cycles until steady (``protocols.sweep``'s).
+* :func:`step` - one frequency step of a sweep, cycles until steady (``engine.kernels.run_step``).
 * :func:`spectrum` - exact elastic response peaks under a record.
 * :func:`monodromy` - the exact monodromy of a hybrid system of linear modes.
 * :func:`impact_row`, :func:`law_force_many`, :func:`periodicity`, :func:`expm` - the smaller kernels.
