@@ -218,3 +218,28 @@ def test_only_the_engine_runs_the_core(tmp_path):
     (tmp_path / "engine").mkdir()
     (tmp_path / "engine" / "d.py").write_text("from .. import _core\n")
     assert callers_of_the_core_runs(tmp_path) == ["protocols/a.py:1", "protocols/b.py:1"]
+
+
+def private_names_across_packages(root: Path) -> list[str]:
+    """Every private name (a leading underscore, not a module) a module imports from another package, as
+    ``file:line name``: what is shared is public where it belongs."""
+    bad = []
+    for rel, node in import_nodes(root):
+        if not isinstance(node, ast.ImportFrom) or node.level < 2 or len(rel.parts) < 2:
+            continue  # (a package's own modules may share their private names)
+        home = root.joinpath(*(node.module or "").split("."))
+        for alias in node.names:
+            is_module = (home / f"{alias.name}.py").exists() or (home / alias.name).is_dir()
+            if alias.name.startswith("_") and not alias.name.startswith("__") and not is_module:
+                bad.append(f"{rel}:{node.lineno} {alias.name}")
+    return bad
+
+
+def test_no_private_name_crosses_a_package(tmp_path):
+    assert private_names_across_packages(ROOT) == []
+    for folder, text in (("model", "def _helper(): ...\n"), ("design", "from ..model.m import _helper\n"),
+                         ("studies", "from .. import _core\nfrom ..model import m\n")):
+        (tmp_path / folder).mkdir()
+        (tmp_path / folder / ("m.py" if folder == "model" else "a.py")).write_text(text)
+    (tmp_path / "_core.py").write_text("")
+    assert private_names_across_packages(tmp_path) == ["design/a.py:1 _helper"]

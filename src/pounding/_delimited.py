@@ -26,14 +26,16 @@ DELIMITERS = (",", "\t", ";")
 MISSING = {"", "nan", "NaN", "NAN"}
 
 
-def _delimiter(line: str) -> str | None:
+def delimiter_of(line: str) -> str | None:
+    """The delimiter a text record's line uses (one of ``DELIMITERS``), None for runs of whitespace."""
     for d in DELIMITERS:
         if d in line:
             return d
     return None  # runs of whitespace
 
 
-def _split(line: str, delimiter: str | None) -> list[str]:
+def split_fields(line: str, delimiter: str | None) -> list[str]:
+    """A line's fields, each stripped of blanks and quotes."""
     fields = line.split(delimiter) if delimiter is not None else line.split()
     return [f.strip().strip('"').strip("'").strip() for f in fields]  # (quoted fields, as spreadsheets write)
 
@@ -71,8 +73,8 @@ def read_columns(field: str, path: Any, columns: dict[str, Any],
              if ln.strip() and not ln.lstrip().startswith(COMMENT)]
     if not lines:
         raise InputError(Problem.EMPTY, field, str(path))
-    delimiter = _delimiter(lines[0][1])
-    first = _split(lines[0][1], delimiter)
+    delimiter = delimiter_of(lines[0][1])
+    first = split_fields(lines[0][1], delimiter)
     header = None if all(_is_number(t) for t in first) else first
     rows = lines[1:] if header is not None else lines
     if not rows:
@@ -98,7 +100,7 @@ def read_columns(field: str, path: Any, columns: dict[str, Any],
     needed = max(index.values()) + 1
     out = {role: np.empty(len(rows)) for role in columns}
     for r, (number, line) in enumerate(rows):
-        fields = _split(line, delimiter)
+        fields = split_fields(line, delimiter)
         if len(fields) < needed:
             missing = next(role for role, i in index.items() if i >= len(fields))
             raise InputError(Problem.SHORT_LINE, field, str(path), line=number, got=len(fields),

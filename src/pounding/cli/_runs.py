@@ -257,11 +257,11 @@ def _text_columns(path: Path) -> int:
     """The number of fields on a text record's first line (0 for an empty or unreadable file: the
     reader then says what is wrong)."""
     from .._checks import read_text
-    from .._delimited import COMMENT, _delimiter, _split
+    from .._delimited import COMMENT, delimiter_of, split_fields
 
     for line in read_text("--record", path).splitlines():
         if line.strip() and not line.lstrip().startswith(COMMENT):
-            return len(_split(line, _delimiter(line)))
+            return len(split_fields(line, delimiter_of(line)))
     return 0
 
 

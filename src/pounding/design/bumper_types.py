@@ -13,8 +13,8 @@ import numpy as np
 
 from .._errors import InputError, Problem
 from ..model import Oscillator
-from ..model.oscillator import _check_keys
-from ..studies.spec import _table
+from ..model.oscillator import check_keys
+from ..studies.spec import check_table
 
 TYPE_KEYS = ("law", "capacity_m", "grid")
 
@@ -32,7 +32,7 @@ class BumperType:
 def bumper_types(system: Oscillator, des: Mapping[str, Any], grid: dict, gaps: np.ndarray) -> tuple:
     """The design's bumper types: each ``[design.bumper_types.NAME]`` table's law (and capacity) on
     the base system's bumpers, with its own grid or the design's; or the base bumpers alone."""
-    tables = dict(_table("design.bumper_types", des.get("bumper_types", {})))
+    tables = dict(check_table("design.bumper_types", des.get("bumper_types", {})))
     if not tables:
         return ()  # (the base system's bumpers alone: DesignPlan.kinds)
     out = []
@@ -46,8 +46,8 @@ def bumper_types(system: Oscillator, des: Mapping[str, Any], grid: dict, gaps: n
                 choices="a name of letters, digits, - and _ that starts with a letter (up to 40; not "
                 "'free', the store of the runs without bumpers)",
             )
-        kind = _table(where, value)
-        _check_keys(kind, where + ".", TYPE_KEYS, ("law",))
+        kind = check_table(where, value)
+        check_keys(kind, where + ".", TYPE_KEYS, ("law",))
         tables_ = system.to_dict()
         bumpers = dict(tables_["bumpers"])
         bumpers.pop("law_right", None)  # (a type's law is both sides')
@@ -71,7 +71,7 @@ def grid_of(field: str, value: Any, gaps: np.ndarray, gap_dim: str = "bumpers.ga
     grid = {gap_dim: gaps.tolist()}
     stem = gap_dim[: -len("_m")] if gap_dim.endswith("_m") else gap_dim
     same = (gap_dim, f"{stem}_left", f"{stem}_right", f"{stem}_left_m", f"{stem}_right_m")
-    for name, values in _table(field, value).items():
+    for name, values in check_table(field, value).items():
         if name in same:
             raise InputError(Problem.DUPLICATE, f"{field}.{name}", values, repeated="design.gaps_m")
         grid[name] = values

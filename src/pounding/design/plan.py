@@ -19,8 +19,8 @@ from .._checks import float_array, integer, one_of, parse_toml, positive, read_t
 from .._errors import InputError, Problem
 from ..model import Oscillator
 from ..model.structure import Structure
-from ..model.oscillator import _check_keys
-from ..studies.spec import _table, system_from_table
+from ..model.oscillator import check_keys
+from ..studies.spec import check_table, system_from_table
 from .hazard import HazardCurve
 from .site import hazard_curve_of, site_spectra, text_field as _text
 from .spectra import DesignSpectrum, asce7_displacement
@@ -142,7 +142,7 @@ class DesignPlan:
     def from_dict(cls, table: Mapping[str, Any], source: Path = Path("design.toml")) -> "DesignPlan":
         """From the file's tables (see :meth:`from_toml`)."""
         base = source.parent
-        _check_keys(table, "", TOP_KEYS, ("system", "site", "records", "design"))
+        check_keys(table, "", TOP_KEYS, ("system", "site", "records", "design"))
         system = system_from_table(table["system"], base)
         building = isinstance(system, Structure)
         if not (building or isinstance(system, Oscillator)):
@@ -158,7 +158,7 @@ class DesignPlan:
                              choices="a building with a wall (walls[0], its moat): a design chooses its gap")
         if "bumpers" in table:
             tables = system.to_dict()
-            tables["bumpers"] = dict(_table("bumpers", table["bumpers"]))
+            tables["bumpers"] = dict(check_table("bumpers", table["bumpers"]))
             system = Oscillator.from_dict(tables)
         if not building and system.bumpers is None:
             raise InputError(
@@ -168,9 +168,9 @@ class DesignPlan:
                 choices="a [bumpers] table (gap_left, gap_right, [bumpers.law]) or a system with "
                 "bumpers: a design chooses their gap",
             )
-        design_spec, mce_spec, hazard_file = site_spectra(_table("site", table["site"]), base)
-        rec = _table("records", table["records"])
-        _check_keys(rec, "records.", RECORD_KEYS, ("suite", "period_s"))
+        design_spec, mce_spec, hazard_file = site_spectra(check_table("site", table["site"]), base)
+        rec = check_table("records", table["records"])
+        check_keys(rec, "records.", RECORD_KEYS, ("suite", "period_s"))
         records = suite_sources(rec["suite"])
         records = [_path(r, base) for r in records]
         period = positive("records.period_s", rec["period_s"], "s")
@@ -205,8 +205,8 @@ class DesignPlan:
                 list(scale_range),
                 hint=" (two periods, s: lo < hi)",
             )
-        des = _table("design", table["design"])
-        _check_keys(des, "design.", DESIGN_KEYS, ("gaps_m",))
+        des = check_table("design", table["design"])
+        check_keys(des, "design.", DESIGN_KEYS, ("gaps_m",))
         gaps = float_array("design.gaps_m", des["gaps_m"])
         if np.any(gaps <= 0):
             i = int(np.flatnonzero(gaps <= 0)[0])
@@ -267,8 +267,8 @@ class DesignPlan:
                 raise exc.relabel("damping_ratio", "design.beta_m").relabel(
                     "period_s", "design.t_m_s"
                 ) from None
-        run = _table("run", table.get("run", {}))
-        _check_keys(run, "run.", RUN_KEYS, ())
+        run = check_table("run", table.get("run", {}))
+        check_keys(run, "run.", RUN_KEYS, ())
         store = None if "store" not in run else _path(_text("run.store", run["store"]), base)
         scheduler = run.get("scheduler")
         if scheduler is not None:
@@ -379,13 +379,13 @@ def run_plan(
     ``store`` with ``_NAME`` before ``.zarr`` per type; resumed when it holds this design), the runs
     without bumpers (:func:`free_store`), the fragility of pounding at every design point and the
     decision over them all."""
-    from ..excitation.spectrum import _records
+    from ..excitation.spectrum import check_records
     from ..studies.points import load_record
     from .decision import decide
     from .stripes import stripe_analysis
     from .suite import scale_suite
 
-    recs = _records([load_record(r) for r in plan.records])
+    recs = check_records([load_record(r) for r in plan.records])
     suite = scale_suite(recs, plan.mce_spectrum, period_range_s=plan.scale_range_s, n_periods=21)
     common = dict(
         period_s=plan.period_s,

@@ -9,7 +9,7 @@ from typing import Any
 
 from .._checks import one_of, positive
 from .._errors import InputError, Problem
-from ..model.oscillator import _check_keys
+from ..model.oscillator import check_keys
 from .hazard import HazardCurve
 from .spectra import DesignSpectrum, asce7_spectrum, ec8_spectrum, user_spectrum
 
@@ -42,7 +42,7 @@ def site_spectra(site: Mapping[str, Any],
 
 def _site_spectra(site: Mapping[str, Any], base: Path) -> tuple[DesignSpectrum, DesignSpectrum, Any]:
     code = one_of("site.code", site.get("code", "asce7-16"), SITE_CODES)
-    _check_keys(site, "site.", SITE_KEYS[code], ())
+    check_keys(site, "site.", SITE_KEYS[code], ())
     if code == "asce7-16":
         for key in ("s_ds_g", "s_d1_g"):
             if key not in site:

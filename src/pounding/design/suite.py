@@ -25,7 +25,7 @@ import numpy as np
 from .._checks import integer, positive, real
 from .._errors import InputError, PoundingWarning, Problem
 from ..excitation.record import Record
-from ..excitation.spectrum import _records, response_spectrum
+from ..excitation.spectrum import check_records, response_spectrum
 from .spectra import DesignSpectrum
 
 PLOT_PERIODS_S = np.geomspace(0.02, 6.0, 60)  # where the scaled spectra are drawn
@@ -177,7 +177,7 @@ def scale_suite(
     >>> round(float(suite.factors[0]), 3)
     3.275
     """
-    recs = _records(records)
+    recs = check_records(records)
     if not isinstance(target, DesignSpectrum):
         raise InputError(
             Problem.WRONG_TYPE,
@@ -317,7 +317,7 @@ def stripe_factors(
     array([[0.728],
            [1.456]])
     """
-    recs = _records(records)
+    recs = check_records(records)
     levels = np.atleast_1d(np.asarray(levels_g, dtype=float))
     for i, v in enumerate(levels):
         positive(f"levels_g[{i}]", v, "g")

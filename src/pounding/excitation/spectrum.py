@@ -13,7 +13,9 @@ from ._spectrum_run import MAX_INTERVALS, damping_ratio_value, periods_array, sp
 from .record import Record
 
 
-def _records(records: Any) -> list[Record]:
+def check_records(records: Any) -> list[Record]:
+    """``records`` (one :class:`Record` or a non-empty sequence of them) as a list, or an InputError naming
+    the entry that is none."""
     if isinstance(records, Record):
         return [records]
     if isinstance(records, Sequence) and not isinstance(records, (str, bytes)) and len(records) > 0:
@@ -70,7 +72,7 @@ def response_spectrum(record: Record | Sequence[Record], periods_s: Any, damping
     >>> spec["sd_m"].sel(period_s=1.0).values.round(3)  # m
     array([0.113])
     """
-    recs = _records(record)
+    recs = check_records(record)
     periods = periods_array(periods_s)
     zeta = damping_ratio_value(damping_ratio)
     peaks, done = spectrum_peaks([(r.t, r.accel) for r in recs], periods, zeta)

@@ -177,13 +177,13 @@ def evaluate(oscillator: Oscillator, targets: Targets, *, freqs_hz: Any = None,
     (``progress``, described by ``label``).  ``sweep_options`` are :func:`pounding.sweep`'s (default:
     fixed 30 cycles, last 5 measured).  Ctrl-C raises :class:`~pounding.Interrupted` (no table).
     """
-    from ..protocols.campaign import _sweep_task
+    from ..protocols.campaign import sweep_task
 
     options = {**DEFAULT_SWEEP, **sweep_options}
     cases = list(targets.cases)
     plans = [make_plan(oscillator if conf == "YBs" else bare(oscillator), a_g, freqs_hz,
                        direction, **options) for conf, a_g, direction in cases]
-    ran = run_tasks(_sweep_task, plans, workers=workers, progress=progress, label=label,
+    ran = run_tasks(sweep_task, plans, workers=workers, progress=progress, label=label,
                     total=sum(p.freqs_hz.size for p in plans), budget=[p.max_steps for p in plans],
                     on_error="stop")
     ran.raise_first_error(lambda i: "the {} sweep at a_G {:g} g, {}".format(*cases[i]))

@@ -13,7 +13,7 @@ from .._errors import InputError, Problem
 from ._toml import TomlFile
 from .bumpers import MAX_GAP_M
 from .contact_laws import check_law, law_from_dict, law_to_dict
-from .oscillator import _check_keys
+from .oscillator import check_keys
 from .structure import Structure
 from .structure_parts import MAX_STOREYS
 
@@ -156,7 +156,7 @@ class Adjacent(TomlFile):
     def from_dict(cls, table: dict[str, Any]) -> "Adjacent":
         """Build from nested tables; every key is checked and unknown keys are errors."""
         table = {k: v for k, v in table.items() if k != "meta"} if isinstance(table, dict) else table
-        _check_keys(table, "", cls.FIELDS, required=cls.FIELDS)
+        check_keys(table, "", cls.FIELDS, required=cls.FIELDS)
         structures = []
         for name in ("first", "second"):
             if not isinstance(table[name], dict):
@@ -172,7 +172,7 @@ class Adjacent(TomlFile):
                              expected="array of tables ([[links]])")
         links = []
         for i, row in enumerate(rows):
-            _check_keys(row, f"links[{i}].", Link.FIELDS, required=Link.FIELDS)
+            check_keys(row, f"links[{i}].", Link.FIELDS, required=Link.FIELDS)
             try:
                 links.append(Link(row["level_first"], row["level_second"], row["gap_m"],
                                   law_from_dict(row["law"], f"links[{i}].law")))

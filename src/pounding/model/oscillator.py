@@ -101,16 +101,16 @@ class Oscillator(TomlFile):
                 raise InputError(Problem.WRONG_TYPE, "meta", table["meta"], got=type(table["meta"]).__name__,
                                  expected="table of notes")
             table = {k: v for k, v in table.items() if k != "meta"}
-        _check_keys(table, "", cls.FIELDS, required=("mass", "isolator"))
+        check_keys(table, "", cls.FIELDS, required=("mass", "isolator"))
         iso_table = table["isolator"]
         # every field, defaults included: a file says what the system is
-        _check_keys(iso_table, "isolator.", Isolator.FIELDS,
+        check_keys(iso_table, "isolator.", Isolator.FIELDS,
                     required=tuple(f for f in Isolator.FIELDS if f not in Isolator.OPTIONAL))
         isolator = Isolator(**iso_table)
         bumpers = None
         if "bumpers" in table:
             b = table["bumpers"]
-            _check_keys(b, "bumpers.", Bumpers.FIELDS, required=("gap_left", "gap_right", "law"))
+            check_keys(b, "bumpers.", Bumpers.FIELDS, required=("gap_left", "gap_right", "law"))
             law_right = b.get("law_right")
             bumpers = Bumpers(
                 gap_left=b["gap_left"], gap_right=b["gap_right"],
@@ -121,7 +121,9 @@ class Oscillator(TomlFile):
         return cls(mass=table["mass"], isolator=isolator, bumpers=bumpers)
 
 
-def _check_keys(table: Any, prefix: str, allowed: tuple[str, ...], required: tuple[str, ...]) -> None:
+def check_keys(table: Any, prefix: str, allowed: tuple[str, ...], required: tuple[str, ...]) -> None:
+    """A TOML table's keys: every key one of ``allowed`` and every ``required`` one there, or an InputError
+    naming the key (``prefix`` + key) and the choices."""
     if not isinstance(table, dict):
         raise InputError(Problem.WRONG_TYPE, prefix.rstrip(".") or "system", table,
                          got=type(table).__name__, expected="table")

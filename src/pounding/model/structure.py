@@ -18,7 +18,7 @@ from .._errors import InputError, Problem
 from ._toml import TomlFile
 from .contact_laws import law_from_dict
 from .isolator import Isolator
-from .oscillator import Oscillator, _check_keys
+from .oscillator import Oscillator, check_keys
 from .structure_parts import MAX_STOREYS, Stand, Storey, Wall, _mass
 
 PathLike = Union[str, Path]
@@ -276,11 +276,11 @@ class Structure(TomlFile):
     def from_dict(cls, table: dict[str, Any]) -> "Structure":
         """Build from nested tables; every key is checked and unknown keys are errors."""
         table = {k: v for k, v in table.items() if k != "meta"} if isinstance(table, dict) else table
-        _check_keys(table, "", cls.FIELDS, required=())
+        check_keys(table, "", cls.FIELDS, required=())
         isolator = None
         if "isolator" in table:  # (neither it nor base_mass_kg: a fixed base)
             iso_table = table["isolator"]
-            _check_keys(iso_table, "isolator.", Isolator.FIELDS,
+            check_keys(iso_table, "isolator.", Isolator.FIELDS,
                         required=tuple(f for f in Isolator.FIELDS if f not in Isolator.OPTIONAL))
             isolator = Isolator(**iso_table)
         storeys, walls = [], []
@@ -292,17 +292,17 @@ class Structure(TomlFile):
             for i, row in enumerate(rows):
                 prefix = f"{name}[{i}]."
                 if name == "storeys":
-                    _check_keys(row, prefix, Storey.FIELDS, required=("mass_kg", "stiffness_n_m"))
+                    check_keys(row, prefix, Storey.FIELDS, required=("mass_kg", "stiffness_n_m"))
                     try:
                         out.append(Storey(**row))
                     except InputError as exc:
                         raise exc.relabel("storey.", prefix) from None
                 else:
-                    _check_keys(row, prefix, Wall.FIELDS,
+                    check_keys(row, prefix, Wall.FIELDS,
                                 required=("level", "gap_left_m", "gap_right_m", "law"))
                     right, stand = row.get("law_right"), row.get("stand")
                     if stand is not None:
-                        _check_keys(stand, prefix + "stand.", Stand.FIELDS,
+                        check_keys(stand, prefix + "stand.", Stand.FIELDS,
                                     required=("mass_kg", "stiffness_n_m"))
                     try:
                         out.append(Wall(row["level"], row["gap_left_m"], row["gap_right_m"],

@@ -199,7 +199,7 @@ class CampaignResult:
         return plot_campaign(self, ax=ax, **kwargs)
 
 
-def _sweep_task(plan: SweepPlan, ctx: Context) -> Any:
+def sweep_task(plan: SweepPlan, ctx: Context) -> Any:
     """One sweep of the campaign, as a task of the shared runner."""
     if isinstance(plan.oscillator, (Structure, Adjacent)):
         from .structure_sweep import run_structure_plan
@@ -341,7 +341,7 @@ def campaign(
                 plan = make_plan(osc, ag, freqs_hz, d, **sweep_options)
                 plans.append(((conf, ag, d), plan))
     total = sum(p.freqs_hz.size for _, p in plans)
-    done = run_tasks(_sweep_task, [plan for _, plan in plans], scheduler=scheduler, workers=workers,
+    done = run_tasks(sweep_task, [plan for _, plan in plans], scheduler=scheduler, workers=workers,
                      progress=progress, label=label, total=total,
                      budget=[plan.max_steps for _, plan in plans], on_error="finish")
     done.raise_first_error(lambda i: "the {} sweep at a_G {:g} g, {}".format(*plans[i][0]))

@@ -20,7 +20,7 @@ import numpy as np
 from .._checks import float_array, integer, positive
 from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Record
-from ..excitation.spectrum import _records, damping_ratio_value, periods_array
+from ..excitation.spectrum import check_records, damping_ratio_value, periods_array
 from ..engine.result import CONTACT_COLUMNS
 from ..engine.structure_peaks import force_max, impulses
 from ..model import Bumpers, Isolator, Oscillator, Structure
@@ -45,7 +45,7 @@ V_IN = CONTACT_COLUMNS.index("v_in_m_s")
 MAX_COMPRESSION = CONTACT_COLUMNS.index("max_compression_m")
 
 
-def _peaks(run: Any, g: float) -> tuple[float, ...]:
+def peaks_of_run(run: Any, g: float) -> tuple[float, ...]:
     """(max |a_abs| in g, max |D| in m, impacts, peak impact force N, peak impact speed m/s, status); the
     acceleration and force inf where a rigid stop was struck (an impulse)."""
     table = run.contact_table  # (the raw array: building the DataFrame cost more than a run)
@@ -105,7 +105,7 @@ def _one_record(task: tuple, ctx: Context) -> tuple[np.ndarray, np.ndarray]:
                 try:
                     run = simulate(system, rec, duration, sample_rate_hz=0, max_steps=max_steps)
                     if structure is None:
-                        peaks = _peaks(run, rec.g)
+                        peaks = peaks_of_run(run, rec.g)
                     else:
                         q = peaks_of(run, rec.g)
                         q["disp_max_m"] = q["base_disp_max_m"]  # (the moat's demand: the base's)
@@ -206,7 +206,7 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
     """
     from ..presets import paper_damped
 
-    recs = _records(records)
+    recs = check_records(records)
     periods = periods_array(periods_s)
     if (periods <= 0.0).any():
         raise InputError(Problem.NOT_POSITIVE, "periods_s", periods.tolist()[:6], unit="s")

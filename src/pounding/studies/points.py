@@ -13,7 +13,7 @@ from .._errors import InputError, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
 from ..protocols.campaign import TABLE2_QUANTITIES, TABLE3_QUANTITIES, TABLE4_QUANTITIES, sweep_quantities
-from ..protocols.pounding_spectrum import MAX_COMPRESSION, _peaks
+from ..protocols.pounding_spectrum import MAX_COMPRESSION, peaks_of_run
 from ..protocols.pounding_spectrum_result import QUANTITIES as RUN_QUANTITIES
 from ..protocols.pounding_spectrum_result import UNITS as RUN_UNITS
 
@@ -160,7 +160,7 @@ def compute_point(system: Any, options: dict[str, Any], max_steps: int | None = 
 
             state = State.at_rest(system, velocity_m_s=options["v0_m_s"])
         run = simulate(system, exc, duration, state, sample_rate_hz=0, max_steps=steps)
-        peaks = _peaks(run, exc.g)
+        peaks = peaks_of_run(run, exc.g)
         if kind == "record":
             table = run.contact_table
             deepest = float(table[:, MAX_COMPRESSION].max()) if table.shape[0] else 0.0

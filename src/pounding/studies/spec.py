@@ -123,8 +123,8 @@ class StudySpec:
             if key not in table:
                 raise InputError(Problem.MISSING_KEY, key, None, choices="system, compute, grid")
         base = Path(base_dir)
-        compute = dict(_table("compute", table["compute"]))
-        grid = dict(_table("grid", table["grid"]))
+        compute = dict(check_table("compute", table["compute"]))
+        grid = dict(check_table("grid", table["grid"]))
         if "record" in compute:
             compute["record"] = _record_path(compute["record"], base)
         if isinstance(grid.get("record"), list):
@@ -226,7 +226,8 @@ def split_values(compute: Mapping[str, Any], values: Mapping[str, Any]
 
 
 # ---------------------------------------------------------------------- checks
-def _table(field: str, value: Any) -> dict:
+def check_table(field: str, value: Any) -> dict:
+    """``value`` as a dict, or an InputError naming ``field`` when it is no TOML table."""
     if not isinstance(value, Mapping):
         raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__, expected="table")
     return dict(value)
@@ -238,7 +239,7 @@ def system_from_table(value: Any, base_dir: Path) -> System:
     oscillator's file's bumpers."""
     if isinstance(value, SYSTEM_TYPES):
         return value
-    table = _table("system", value)
+    table = check_table("system", value)
     if "preset" in table or "file" in table:
         extra = sorted(set(table) - {"preset", "file", "bumpers"})
         if extra or ("preset" in table and "file" in table):
@@ -289,7 +290,7 @@ def _record_path(value: Any, base_dir: Path) -> Any:
 
 
 def _check_compute(value: Any) -> dict[str, Any]:
-    compute = _table("compute", value)
+    compute = check_table("compute", value)
     if "kind" not in compute:
         raise InputError(Problem.MISSING_KEY, "compute.kind", None, choices=", ".join(KINDS))
     kind = compute["kind"]
@@ -344,7 +345,7 @@ def _number(key: str, value: Any) -> Any:
 
 
 def _check_grid(value: Any, compute: dict[str, Any], system: System) -> dict[str, tuple]:
-    grid = _table("grid", value)
+    grid = check_table("grid", value)
     if not grid:
         raise InputError(Problem.EMPTY, "grid", grid)
     table = system.to_dict()
