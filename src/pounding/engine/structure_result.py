@@ -85,6 +85,14 @@ class StructureEnergy:
                                   + self.elastic + self.contact_elastic)
 
 
+# a run's fields read off the core's extrema: each level's (per dof), each storey's drift (per tracked pair)
+_LEVEL_EXTREMA = (("displacement_max", X_D_MAX), ("displacement_max_time_s", X_D_MAX_T),
+                  ("displacement_min", X_D_MIN), ("displacement_min_time_s", X_D_MIN_T),
+                  ("abs_acceleration_max", X_A_MAX), ("abs_acceleration_max_time_s", X_A_MAX_T))
+_DRIFT_EXTREMA = (("drift_max", P_MAX), ("drift_max_time_s", P_MAX_T), ("drift_min", P_MIN),
+                  ("drift_min_time_s", P_MIN_T))
+
+
 @dataclass(frozen=True)
 class StructureRun:
     """A structure's run.
@@ -216,19 +224,11 @@ class StructureRun:
         per_dof, tracked = out.per_dof(n), out.per_pair(n)
         first = sum(len(s.storeys) for s in asm_structures[:b])  # (this structure's storeys' drifts)
         drifts = tracked[first:first + len(structure.storeys)]
-        ex = per_dof
-        t1 = t[-1] if k else t0
-        rows = []
-        for d in dofs:
-            if d >= 0:
-                rows.append(ex[d])
-            else:  # the ground: still, and shaken by the table
-                peak, when = ground_peak(excitation, t0, t1)
-                ground = np.full(DOF_EXTREMA_LEN, np.nan)
-                ground[[X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T, X_A_MAX, X_A_MAX_T]] = (
-                    0.0, t0, 0.0, t0, peak, when)
-                rows.append(ground)
-        ex = np.array(rows).reshape(len(dofs), DOF_EXTREMA_LEN)
+        ground = np.full(DOF_EXTREMA_LEN, np.nan)  # (a fixed base's level: still, and shaken by the table)
+        ground[[X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T]] = (0.0, t0, 0.0, t0)
+        if min(dofs, default=0) < 0:
+            ground[[X_A_MAX, X_A_MAX_T]] = ground_peak(excitation, t0, t[-1] if k else t0)
+        ex = np.array([per_dof[d] if d >= 0 else ground for d in dofs]).reshape(len(dofs), DOF_EXTREMA_LEN)
         slot = CORE_CONTACT_COLUMNS["contact"]
         owned = np.zeros(len(asm.slots), dtype=bool)
         owned[mine] = True
@@ -239,14 +239,9 @@ class StructureRun:
         return cls(structure=structure, excitation=excitation, sample_rate_hz=rate, t=t,
                    displacement=displacement, velocity=velocity, abs_acceleration=abs_acceleration,
                    isolator_force=isolator_force, contact_force=contact_force,
-                   displacement_max=ex[:, X_D_MAX].copy(), displacement_max_time_s=ex[:, X_D_MAX_T].copy(),
-                   displacement_min=ex[:, X_D_MIN].copy(), displacement_min_time_s=ex[:, X_D_MIN_T].copy(),
-                   abs_acceleration_max=ex[:, X_A_MAX].copy(),
-                   abs_acceleration_max_time_s=ex[:, X_A_MAX_T].copy(),
+                   **{name: ex[:, q].copy() for name, q in _LEVEL_EXTREMA},
                    contact_table=table, event_table=np.zeros((0, 3)), energy=None, final_state=None,
-                   status=status, drift_max=drifts[:, P_MAX].copy(),
-                   drift_max_time_s=drifts[:, P_MAX_T].copy(),
-                   drift_min=drifts[:, P_MIN].copy(), drift_min_time_s=drifts[:, P_MIN_T].copy(),
+                   status=status, **{name: drifts[:, q].copy() for name, q in _DRIFT_EXTREMA},
                    stand_displacement=samples[:, [1 + d for d in on]],
                    stand_displacement_max=stand_ex[:, X_D_MAX].copy(),
                    stand_displacement_min=stand_ex[:, X_D_MIN].copy())
