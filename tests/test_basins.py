@@ -87,7 +87,8 @@ def test_ctrl_c_keeps_the_states_finished():
 
 
 def test_the_plot_and_the_command_line(coexisting, tmp_path):
-    artists = coexisting.plot()
+    artists = pd_.plots.plot_basins(coexisting)
+    assert coexisting.plot().__class__.__name__ == "Figure"
     assert len(artists) == 3
     out, png = tmp_path / "b.nc", tmp_path / "b.png"
     res = CliRunner().invoke(app, ["basins", "--preset", "paper-damped", "--a-g", "0.05", "--freq", "1.8",
@@ -112,7 +113,7 @@ def test_basin_stability_map_is_the_basins_fraction_at_each_point():
     assert ds["standard_error"].sel(a_g=0.05).values[1] == pytest.approx(np.sqrt(share * (1 - share) / 50))
     assert ds["impacting_attractors"].values.tolist() == [[1, 1, 0]]
     assert ds["free_attractors"].values.tolist() == [[0, 1, 1]]
-    assert m.complete and len(m.plot()) >= 2
+    assert m.complete and len(pd_.plots.plot_basin_stability(m)) >= 2
     # a state still settling when max_cycles ends pounds all the same if it touches the bumpers
     short = pd_.basin_stability_map(DAMPED, [0.05], [1.5], samples=10, max_cycles=11, measure_cycles=5)
     assert short.data["pounding_probability"].item() == 1.0 and short.data["not_settled"].item() > 0.5

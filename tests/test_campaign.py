@@ -129,7 +129,7 @@ def test_campaign_plot_returns_artists():
     ybs = pd_.presets.paper_printed()
     res = pd_.campaign(ybs.without_bumpers(), ybs, nbs_a_g=(0.05,), ybs_a_g=(0.05,), freqs_hz=[1.0, 2.0],
                        steady="fixed", cycles=3, measure_cycles=2)
-    artists = res.plot()
+    artists = pd_.plots.plot_campaign(res)
     assert len(artists) >= 8
     assert np.isfinite(res.data["alpha"].sel(configuration="YBs").values).all()
 

@@ -143,8 +143,9 @@ def test_period_doubling_starts_the_doubled_branch(damped: pd_.Branch) -> None:
 
 
 def test_branch_plot_with_sweeps(damped: pd_.Branch, sweeps: tuple) -> None:
-    artists = damped.plot(sweeps=list(sweeps))
+    artists = pd_.plots.plot_branch(damped, sweeps=list(sweeps))
     assert artists and artists[0].figure is not None
+    assert damped.plot(sweeps=list(sweeps)).__class__.__name__ == "Figure"
     with pytest.raises(pd_.InputError, match="not in this result"):
         damped.plot(y="nonsense")
     with pytest.raises(pd_.InputError, match="index"):

@@ -111,7 +111,7 @@ def test_coexistence_map_matches_the_sweeps() -> None:
         differ = np.abs(a_up - a_down) > 0.05 * np.maximum(a_up, a_down)
         two = rows.stable_orbits.to_numpy() >= 2
         assert differ.any() and np.all(two[differ]), (level, rows.freq_hz[differ & ~two].tolist())
-    ax = m.plot()
+    ax = m.plot()  # (its Figure)
     assert ax and len(m.to_dataframe()) == sum(len(c) for c in m.curves)
     assert "coexisting" in repr(m)
 

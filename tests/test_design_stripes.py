@@ -311,7 +311,7 @@ def test_decide_chooses_over_bumper_types_as_over_their_own_tables(tmp_path):
     labels = [label for label, _ in both.by_gap()]
     assert labels == ["steel", "rubber, bumpers.law.stiffness 200000 N/m",
                       "rubber, bumpers.law.stiffness 2e+06 N/m"]
-    assert len(both.plot()) == 2 * 3 + 2
+    assert len(pounding.plots.plot_decision(both)) == 2 * 3 + 2
     # where no run pounds at the chosen gap, the verdict says the runs do not tell the options apart
     wide = design.decide({"steel": b, "rubber": a}, 0.2, 0.4, target_probability=0.01)
     assert wide.recommended["bumpers.gap"] == 0.12

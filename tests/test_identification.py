@@ -72,7 +72,7 @@ def test_only_samples_in_compression_are_fitted():
 def test_plot_returns_artists():
     t, d, v = mts_test()
     fit = pd_.fit_contact_law(d, 1.0e6 * d + 100.0 * v, velocity_m_s=v)
-    artists = fit.plot()
+    artists = pd_.plots.plot_contact_law_fit(fit)
     assert len(artists) == 2
 
 

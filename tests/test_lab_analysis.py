@@ -117,7 +117,8 @@ def test_targets_and_plot_of_a_measured_sweep(tmp_path):
 
     _, ax = plt.subplots(2, 1)
     pd_.sweep(osc, 0.05, freqs, "up", steady="fixed", cycles=30).plot(ax=ax)  # the model, and the lab over it
-    artists = lab.plot(ax=ax)
+    artists = pd_.plots.plot_lab_sweep(lab, ax=ax)
+    assert lab.plot(ax=ax) is ax[0].figure
     assert len(artists) >= 2 and artists[0].get_label().startswith("lab, a_G = 0.05")
     plt.close("all")
 

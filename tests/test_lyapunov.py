@@ -170,7 +170,7 @@ def test_results_save_and_plot(tmp_path, chaotic):
     with xr.open_dataset(path) as back:
         np.testing.assert_array_equal(back["exponent"].values, chaotic.exponents)
         assert back.attrs["kaplan_yorke_dimension"] == pytest.approx(chaotic.kaplan_yorke_dimension)
-    artists = chaotic.plot()
+    artists = pd_.plots.plot_lyapunov(chaotic)
     assert len(artists) >= 2
     import matplotlib.pyplot as plt
 

@@ -184,7 +184,7 @@ def test_identification_plot_returns_artists():
     targets = pd_.Targets.from_records([dict(configuration="NBs", a_g=0.05, quantity="alpha", value=2.5)])
     fit = pd_.identify(targets, family, {"isolator_damping": (200.0, 3000.0)}, maxiter=0, refine=False,
                        **FAST)
-    assert len(fit.plot()) == 3  # the bar, the marker, the +-1 band
+    assert len(pd_.plots.plot_identification(fit)) == 3  # the bar, the marker, the +-1 band
 
 
 def test_calibrated_preset_reproduces_its_stored_residuals():

@@ -257,7 +257,7 @@ def test_an_orbit_plots():
 
     matplotlib.use("Agg")
     orbit = pd_.periodic_orbit(pd_.presets.paper_damped(), pd_.Harmonic(0.05, 1.5))
-    artists = orbit.plot(c="k", ls=":")
+    artists = pd_.plots.plot_orbit(orbit, c="k", ls=":")
     assert artists[0].get_linestyle() == ":" and artists[0].get_color() == "k"
     assert len(artists[2].get_xdata()) == 2  # (the two contacts' starts)
     assert math.isnan(pd_.periodic_orbit(pd_.presets.paper_damped(), pd_.Harmonic(0.0, 1.5)).alpha)

@@ -15,7 +15,8 @@ def test_run_plot_on_given_axes():
     osc = pd_.presets.paper_printed()
     run = pd_.simulate(osc, pd_.Harmonic(0.05, 2.2), 1.0, pd_.State.at_rest(osc, velocity_m_s=0.6))
     fig, ax = plt.subplots()
-    artists = run.plot(ax=ax)
+    artists = pd_.plots.plot_run(run, ax=ax)
+    assert run.plot(ax=ax) is fig
     assert artists and artists[0].axes is ax
     assert ax.get_xlabel() == "t [s]" and "mm" in ax.get_ylabel()
     # one shaded span per contact, one dotted line per bumper surface
@@ -44,7 +45,8 @@ def test_hysteresis_loop_plot():
     osc = pd_.presets.paper_printed()
     res = pd_.sweep(osc, 0.05, [1.5], steady="fixed", cycles=3, measure_cycles=2)
     fig, ax = plt.subplots()
-    artists = res.hysteresis_loop(1.5).plot(ax=ax)
+    artists = pd_.plots.plot_hysteresis(res.hysteresis_loop(1.5), ax=ax)
+    assert res.hysteresis_loop(1.5).plot(ax=ax) is fig
     assert artists[0].axes is ax and ax.get_xlabel() == "d = D / Delta [-]"
     assert len(artists) == 3  # the loop and the two bumper surfaces
     plt.close(fig)

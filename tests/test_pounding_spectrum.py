@@ -75,10 +75,11 @@ def test_summary_table_plots_and_file(spectrum, tmp_path):
     back = xr.open_dataset(path)
     np.testing.assert_allclose(back["amplification"], spectrum.data["amplification"])
     back.close()
-    curves = spectrum.plot()
+    curves = pd_.plots.plot_pounding_spectrum(spectrum)
     assert len(curves) >= 2 * GAPS.size  # (a line and a band per gap, and the line at 1)
     _, ax = plt.subplots()
-    mesh = spectrum.plot(ax=ax, kind="map", quantity="impacts")
+    mesh = pd_.plots.plot_pounding_spectrum(spectrum, ax=ax, kind="map", quantity="impacts")
+    assert spectrum.plot(ax=ax, kind="map", quantity="impacts") is ax.figure
     assert len(mesh) == 1
     # one band per gap computed, labelled with it (not bands around uneven gaps' midpoints)
     labels = [t.get_text() for t in ax.get_yticklabels()]

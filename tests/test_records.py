@@ -296,7 +296,8 @@ def test_a_record_plots():
     import matplotlib.pyplot as plt
 
     rec = el_centro()
-    artists = rec.plot()
+    artists = pd_.plots.plot_record(rec)
+    assert rec.plot().__class__.__name__ == "Figure"
     assert artists[0].get_label() == rec.name and len(artists) == 3
     spectrum = pd_.response_spectrum([rec, rec.scaled(pga_g=0.1)], np.linspace(0.05, 3.0, 30))
     lines = pd_.plots.plot_response_spectrum(spectrum)

@@ -245,11 +245,13 @@ def test_results_give_their_tables_and_figure(tmp_path):
     ds = run.to_xarray()
     assert ds["displacement"].dims == ("sample", "level") and ds["displacement"].attrs["units"] == "m"
     assert ds.attrs["status"] == "SUCCESS"
-    artists = run.plot()
+    artists = pd_.plots.plot_structure_run(run)
     assert len(artists) > 6
     import matplotlib.pyplot as plt
 
-    plt.gcf().savefig(tmp_path / "building.png")
+    fig = run.plot()  # (its Figure, to save)
+    assert fig is not artists[0].figure
+    fig.savefig(tmp_path / "building.png")
     plt.close("all")
     assert (tmp_path / "building.png").stat().st_size > 10_000
     assert list(run.events.columns) == ["t", "event", "index"]

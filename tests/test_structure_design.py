@@ -150,7 +150,7 @@ def test_the_gap_decided_for_pounding_and_for_drift(msa):
     smallest = min(g for g, v in p.items() if v <= 0.1)
     assert drift_choice.recommended["walls[0].gap_m"] == smallest
     assert "storey drift ratio above" in drift_choice.verdict()
-    assert len(drift_choice.plot()) >= 3
+    assert len(pd_.plots.plot_decision(drift_choice)) >= 3
     with pytest.raises(pd_.InputError, match="limit"):
         design.decide(msa, 0.5, 1.0, gap_dim="walls[0].gap_m", event="drift")
     with pytest.raises(pd_.InputError, match="limit"):

@@ -78,7 +78,7 @@ def test_the_diagram_plots_a_level_and_refuses_one_it_has_not():
     matplotlib.use("Agg")
     d = pd_.bifurcation_diagram(_building(), 0.1, [1.0, 2.0], direction="up", transient_cycles=20,
                                 record_cycles=10)
-    artists = d.plot(level=0)
+    artists = pd_.plots.plot_bifurcation_diagram(d, level=0)
     assert artists[0].axes.get_title().endswith("level 0")
     assert "x at table phase 0" in artists[0].axes.get_ylabel()
     with pytest.raises(pd_.InputError, match="level"):

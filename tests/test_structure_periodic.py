@@ -222,7 +222,8 @@ def test_the_orbit_plots_each_level_in_its_phase_plane():
 
     matplotlib.use("Agg")
     orbit = pd_.periodic_orbit(_moat(), pd_.Harmonic(0.1, 1.5))
-    ax = orbit.plot()
+    assert orbit.plot().__class__.__name__ == "Figure"
+    ax = pd_.plots.plot_structure_orbit(orbit)
     assert len(ax.get_lines()) == 4
     assert "2 contacts per period" in ax.get_title()
     assert math.isclose(ax.get_lines()[0].get_xdata()[0], orbit.state.displacements_m[0] * 1e3)

@@ -64,7 +64,7 @@ def test_each_point_is_a_run_of_the_building_at_that_period_and_gap():
     assert float(wide["impacts"].max()) == 0.0
     np.testing.assert_array_equal(wide["amplification"], 1.0)
     assert float(ds["impacts"].sel(gap_m=0.02).min()) > 0
-    assert len(ps.plot(quantity="drift_ratio_max")) > 0
+    assert len(pd_.plots.plot_pounding_spectrum(ps, quantity="drift_ratio_max")) > 0
 
 
 def test_each_wall_keeps_its_own_laws_unless_one_is_given_and_a_budget_stop_is_kept():

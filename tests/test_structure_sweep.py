@@ -158,7 +158,7 @@ def test_a_pair_names_its_structures_and_links():
     assert ds["alpha"].shape == (2, 6) and ds["contacts_per_cycle"].shape == (2, 1)
     assert list(ds["level_structure"].values) == ["first"] * 3 + ["second"] * 3
     assert list(ds["storey_structure"].values) == ["first"] * 2 + ["second"] * 2
-    assert len(res.plot()) == 7
+    assert len(pd_.plots.plot_structure_sweep(res)) == 7
 
 
 def test_bad_arguments_are_named():
@@ -203,7 +203,7 @@ def test_a_campaign_of_a_building_without_and_with_its_moat_wall(tmp_path):
     alpha = res.data["alpha"].sel(configuration="YBs", a_g=0.3, direction="down")
     np.testing.assert_array_equal(alpha.values, direct.alpha[::-1])  # (down: the steps high to low)
     assert np.isnan(table.loc[table["configuration"] == "NBs", "contact_nu_min"]).all()
-    assert len(res.plot()) == 12
+    assert len(pd_.plots.plot_campaign(res)) == 12
     with pytest.raises(pd_.InputError, match="table3"):
         res.table3()
     with pytest.raises(pd_.InputError, match="nbs_system"):  # (the walled building as NBs)

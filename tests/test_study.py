@@ -302,7 +302,7 @@ def test_a_study_plots(tmp_path):
     matplotlib.use("Agg")
     pd_.study(_spec(), tmp_path / "s.zarr", progress=False)
     result = pd_.open_study(tmp_path / "s.zarr")
-    lines = result.plot("impacts", x="a_g", hue="bumpers.gap_left")
+    lines = pd_.plots.plot_study(result, "impacts", x="a_g", hue="bumpers.gap_left")
     assert len(lines) == 3
     with pytest.raises(pd_.InputError, match="quantity"):
         result.plot("done")
@@ -413,7 +413,7 @@ def test_plot_picks_the_other_axes_by_where(tmp_path):
     matplotlib.use("Agg")
     pd_.study(_spec(), tmp_path / "s.zarr", progress=False)
     result = pd_.open_study(tmp_path / "s.zarr")
-    assert len(result.plot("impacts", x="a_g", where={"bumpers.gap_left": 0.014})) == 1
+    assert len(pd_.plots.plot_study(result, "impacts", x="a_g", where={"bumpers.gap_left": 0.014})) == 1
     with pytest.raises(pd_.InputError, match="hue"):
         result.plot("impacts", x="a_g", hue="a_g")
 

@@ -315,12 +315,16 @@ class Branch:
         return StructureState._of(self.states[index], asm.dofs, asm.system.n)
 
     def plot(self, ax: Any = None, *, y: str = "alpha", x: Optional[str] = None,
-             sweeps: "SweepResult | Sequence[SweepResult] | None" = None, **kwargs: Any) -> list:
+             sweeps: "SweepResult | Sequence[SweepResult] | None" = None, **kwargs: Any) -> Any:
         """The branch: ``y`` against the parameter (``nu`` for the frequency), stable orbits
-        solid, unstable dashed, bifurcations marked; ``sweeps`` drawn over it as markers."""
-        from ..plots.branch import plot_branch
+        solid, unstable dashed, bifurcations marked; ``sweeps`` drawn over it as markers.
 
-        return plot_branch(self, ax=ax, y=y, x=x, sweeps=sweeps, **kwargs)
+        Returns its Figure.
+        """
+        from ..plots.branch import plot_branch
+        from ..plots import figure_of
+
+        return figure_of(plot_branch(self, ax=ax, y=y, x=x, sweeps=sweeps, **kwargs), ax)
 
     def __repr__(self) -> str:
         kinds = ", ".join(f"{b.kind} at {b.value:.6g}" for b in self.bifurcations) or "none"

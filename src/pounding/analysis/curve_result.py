@@ -121,11 +121,12 @@ class BifurcationCurve:
                     1.0)
         return bool(np.min(np.linalg.norm(a + t[:, None] * d - q, axis=1)) <= within)
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> list:
-        """The curve in the (f, a_G) plane; returns the artists."""
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """The curve in the (f, a_G) plane; returns its Figure."""
         from ..plots.curves import plot_curves
+        from ..plots import figure_of
 
-        return plot_curves([self], ax=ax, **kwargs)
+        return figure_of(plot_curves([self], ax=ax, **kwargs), ax)
 
     def __repr__(self) -> str:
         return (f"BifurcationCurve({self.kind}{' ' + self.side if self.side else ''}, {len(self)} points, f "
@@ -215,13 +216,14 @@ class CoexistenceMap:
         """The test matrix's points whose number of responses no witness settles (with why)."""
         return self.matrix[self.matrix["verdict"] == "not assessed"].reset_index(drop=True)
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> list:
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
         """The curves in the (f, a_G) plane over the test matrix (points where two stable
-        responses coexist filled); returns the artists."""
+        responses coexist filled); returns its Figure."""
         from ..plots.curves import plot_curves
+        from ..plots import figure_of
 
         kwargs.setdefault("box", (self.freqs_hz, self.a_g))
-        return plot_curves(list(self.curves), ax=ax, matrix=self.matrix, **kwargs)
+        return figure_of(plot_curves(list(self.curves), ax=ax, matrix=self.matrix, **kwargs), ax)
 
     def __repr__(self) -> str:
         kinds = ", ".join(f"{c.kind}{' ' + c.side if c.side else ''}" for c in self.curves) or "none"

@@ -152,12 +152,16 @@ class LyapunovSpectrum:
 
         return atomic_write(output_file("path", path), self.to_xarray().to_netcdf)
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> list:
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
         """The running estimates against the periods counted, one line per exponent; returns the
-        artists."""
-        from ..plots.lyapunov import plot_lyapunov
+        artists.
 
-        return plot_lyapunov(self, ax=ax, **kwargs)
+        Returns its Figure.
+        """
+        from ..plots.lyapunov import plot_lyapunov
+        from ..plots import figure_of
+
+        return figure_of(plot_lyapunov(self, ax=ax, **kwargs), ax)
 
     def __repr__(self) -> str:
         lam = ", ".join(f"{x:.4g}" for x in self.exponents)

@@ -138,11 +138,12 @@ class PeriodicOrbit(Floquet):
         """Incoming velocities of the period's contacts, m/s, shape (contacts_per_period,)."""
         return np.asarray(self._contacts()[:, 3], dtype=float)
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> list:
-        """The orbit in the phase plane (D, V), its contacts marked; returns the artists."""
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """The orbit in the phase plane (D, V), its contacts marked; returns its Figure."""
         from ..plots.periodic import plot_orbit
+        from ..plots import figure_of
 
-        return plot_orbit(self, ax=ax, **kwargs)
+        return figure_of(plot_orbit(self, ax=ax, **kwargs), ax)
 
 
 def periodic_orbit(

@@ -107,10 +107,11 @@ class StructurePeriodicOrbit(Floquet):
         return int(sum(np.isfinite(t[:, 2]).sum() for t in tables if len(t)))
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
-        """Each level's orbit in its phase plane (x, v), its contacts marked; returns the axes."""
+        """Each level's orbit in its phase plane (x, v), its contacts marked; returns its Figure."""
         from ..plots.periodic import plot_structure_orbit
+        from ..plots import figure_of
 
-        return plot_structure_orbit(self, ax=ax, **kwargs)
+        return figure_of(plot_structure_orbit(self, ax=ax, **kwargs), ax)
 
 
 def structure_periodic_orbit(model: Structure | Adjacent, excitation: Harmonic, *,

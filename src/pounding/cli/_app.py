@@ -376,14 +376,15 @@ def figure_path(name: str, path: Optional[Path]) -> Optional[Path]:
 
 
 def save_figure(draw: Callable, path: Path) -> None:
-    """Draw with ``draw()`` (it returns artists) and save the figure atomically."""
+    """Draw with ``draw()`` (it returns its artists or Figure) and save the figure atomically."""
     import matplotlib
 
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    artists = draw()
-    fig = artists[0].figure
+    from ..plots import figure_of
+
+    fig = figure_of(draw())
     try:
         atomic_write(path, lambda tmp: fig.savefig(tmp, dpi=150))
     finally:

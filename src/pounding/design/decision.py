@@ -185,12 +185,16 @@ class Decision:
             )
         return " ".join(parts)
 
-    def plot(self, ax: Any = None) -> list:
+    def plot(self, ax: Any = None) -> Any:
         """The design chart: the probability of pounding at both levels against the gap (one line
-        per value of the other design dimensions), the target and the code's minimum."""
-        from ..plots.design import plot_decision
+        per value of the other design dimensions), the target and the code's minimum.
 
-        return plot_decision(self, ax=ax)
+        Returns its Figure.
+        """
+        from ..plots.design import plot_decision
+        from ..plots import figure_of
+
+        return figure_of(plot_decision(self, ax=ax), ax)
 
     def by_gap(self) -> list[tuple[str, Any]]:
         """The table's rows grouped by the other design dimensions: ``(label, rows sorted by gap)``

@@ -129,12 +129,13 @@ class Fragility:
         lo, hi = self.band(x)
         return pd.DataFrame({"im_g": x, "probability": self.probability(x), "lower": lo, "upper": hi})
 
-    def plot(self, ax: Any = None, *, data: bool = True, **line: Any) -> list:
+    def plot(self, ax: Any = None, *, data: bool = True, **line: Any) -> Any:
         """The curve, its band and (``data``) the stripes' fractions or the capacities' empirical
-        distribution; returns the artists."""
+        distribution; returns its Figure."""
         from ..plots.design import plot_fragility
+        from ..plots import figure_of
 
-        return plot_fragility(self, ax=ax, data=data, **line)
+        return figure_of(plot_fragility(self, ax=ax, data=data, **line), ax)
 
     def __repr__(self) -> str:
         ci = self.interval()

@@ -151,11 +151,12 @@ class HazardCurve:
             }
         )
 
-    def plot(self, ax: Any = None) -> list:
-        """The curve in log-log axes; returns the artists."""
+    def plot(self, ax: Any = None) -> Any:
+        """The curve in log-log axes; returns its Figure."""
         from ..plots.design import plot_hazard_curve
+        from ..plots import figure_of
 
-        return plot_hazard_curve(self, ax=ax)
+        return figure_of(plot_hazard_curve(self, ax=ax), ax)
 
 
 def probability_in_years(annual_frequency_per_year: Any, years: float = 50.0) -> Any:

@@ -150,11 +150,12 @@ class DesignSpectrum:
         t = self.default_periods() if periods_s is None else float_array("periods_s", periods_s)
         return pd.DataFrame({"period_s": t, "sa_g": self.sa_g(t)})
 
-    def plot(self, ax: Any = None, **line: Any) -> list:
-        """The spectrum against the period, corner periods marked; returns the artists."""
+    def plot(self, ax: Any = None, **line: Any) -> Any:
+        """The spectrum against the period, corner periods marked; returns its Figure."""
         from ..plots.design import plot_design_spectrum
+        from ..plots import figure_of
 
-        return plot_design_spectrum(self, ax=ax, **line)
+        return figure_of(plot_design_spectrum(self, ax=ax, **line), ax)
 
     def __repr__(self) -> str:
         shown = ", ".join(

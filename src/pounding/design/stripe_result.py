@@ -300,12 +300,16 @@ class StripeAnalysis:
         """One row per run: the stripe, the record, the design point and the run's quantities."""
         return self.data.drop_vars(["session"], errors="ignore").to_dataframe().reset_index()
 
-    def plot(self, event: str = "contact", limit: float | None = None, *, ax: Any = None) -> list:
+    def plot(self, event: str = "contact", limit: float | None = None, *, ax: Any = None) -> Any:
         """The fraction of runs with the event per stripe (markers) and the fitted curves, one per
-        design point (the design grid's first dimension; the others at their first value)."""
-        from ..plots.design import plot_stripes
+        design point (the design grid's first dimension; the others at their first value).
 
-        return plot_stripes(self, event, limit, ax=ax)
+        Returns its Figure.
+        """
+        from ..plots.design import plot_stripes
+        from ..plots import figure_of
+
+        return figure_of(plot_stripes(self, event, limit, ax=ax), ax)
 
     def __repr__(self) -> str:
         ds = self.data

@@ -110,11 +110,13 @@ class ScaledSuite:
             out[f"psa_g_at_{hi:g}_s"] = psa.sel(period_s=hi).values
         return pd.DataFrame(out)
 
-    def plot(self, ax: Any = None) -> list:
-        """Each scaled spectrum (thin), their mean and the target, the rule's periods shaded."""
+    def plot(self, ax: Any = None) -> Any:
+        """Each scaled spectrum (thin), their mean and the target, the rule's periods shaded.
+        Returns its Figure."""
         from ..plots.design import plot_scaled_suite
+        from ..plots import figure_of
 
-        return plot_scaled_suite(self, ax=ax)
+        return figure_of(plot_scaled_suite(self, ax=ax), ax)
 
     def __repr__(self) -> str:
         lo, hi = self.period_range_s

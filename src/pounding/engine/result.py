@@ -481,8 +481,9 @@ class Run:
         labels[rows[ok]] = names[ok]
         return labels
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> list:
-        """Plot displacement and absolute acceleration against time; see :func:`pounding.plots.plot_run`."""
-        from ..plots import plot_run
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """Plot displacement and absolute acceleration against time; see :func:`pounding.plots.plot_run`.
+        Returns its Figure."""
+        from ..plots import plot_run, figure_of
 
-        return plot_run(self, ax=ax, **kwargs)
+        return figure_of(plot_run(self, ax=ax, **kwargs), ax)

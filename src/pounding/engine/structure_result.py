@@ -358,10 +358,13 @@ class StructureRun:
 
     def plot(self, **kwargs: Any) -> Any:
         """Each level's displacement and absolute acceleration against time, and the peak envelopes over
-        the height; see :func:`pounding.plots.plot_structure_run`."""
-        from ..plots import plot_structure_run
+        the height; see :func:`pounding.plots.plot_structure_run`.
 
-        return plot_structure_run(self, **kwargs)
+        Returns its Figure.
+        """
+        from ..plots import plot_structure_run, figure_of
+
+        return figure_of(plot_structure_run(self, **kwargs), kwargs.get("axes"))
 
 
 def ground_peak(excitation: Any, t0: float, t1: float) -> tuple[float, float]:
@@ -505,7 +508,10 @@ class AdjacentRun:
 
     def plot(self, **kwargs: Any) -> Any:
         """The linked levels' displacements and their separation against each gap; see
-        :func:`pounding.plots.plot_adjacent_run`."""
-        from ..plots import plot_adjacent_run
+        :func:`pounding.plots.plot_adjacent_run`.
 
-        return plot_adjacent_run(self, **kwargs)
+        Returns its Figure.
+        """
+        from ..plots import plot_adjacent_run, figure_of
+
+        return figure_of(plot_adjacent_run(self, **kwargs), kwargs.get("axes"))

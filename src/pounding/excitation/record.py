@@ -328,11 +328,12 @@ class Record:
         """``time_s``, ``accel_m_s2``, ``accel_g``: one row per sample."""
         return pd.DataFrame({"time_s": self.t, "accel_m_s2": self.accel, "accel_g": self.accel / self.g})
 
-    def plot(self, ax: Any = None) -> list:
-        """The acceleration (g) against time, its peak marked; returns the artists."""
+    def plot(self, ax: Any = None) -> Any:
+        """The acceleration (g) against time, its peak marked; returns its Figure."""
         from ..plots.record import plot_record
+        from ..plots import figure_of
 
-        return plot_record(self, ax=ax)
+        return figure_of(plot_record(self, ax=ax), ax)
 
     def __repr__(self) -> str:
         name = f"{self.name!r}, " if self.name else ""

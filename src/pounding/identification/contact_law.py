@@ -97,10 +97,11 @@ class ContactLawFit:
                              "residual_n": self.force_n - model})
 
     def plot(self, ax=None):
-        """Measured and fitted force against compression; returns the artists."""
+        """Measured and fitted force against compression; returns its Figure."""
         from ..plots.contact_law import plot_contact_law_fit
+        from ..plots import figure_of
 
-        return plot_contact_law_fit(self, ax=ax)
+        return figure_of(plot_contact_law_fit(self, ax=ax), ax)
 
 
 def _force(law: ContactLaw, d: np.ndarray, v: np.ndarray) -> np.ndarray:

@@ -159,12 +159,15 @@ class Identification:
                 "measurement": "exact" if self.measurement is None else self.measurement.describe()}
         return self.oscillator.to_toml(path, meta=meta)
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> list:
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
         """Normalized residual per target against the +-1 band; see
-        :func:`pounding.plots.plot_identification`."""
-        from ..plots import plot_identification
+        :func:`pounding.plots.plot_identification`.
 
-        return plot_identification(self, ax=ax, **kwargs)
+        Returns its Figure.
+        """
+        from ..plots import plot_identification, figure_of
+
+        return figure_of(plot_identification(self, ax=ax, **kwargs), ax)
 
 
 def evaluate(oscillator: Oscillator, targets: Targets, *, freqs_hz: Any = None,

@@ -148,10 +148,13 @@ class LabSweep:
         return [{"configuration": configuration, "a_g": a_g, "quantity": q, "value": v,
                  "direction": self.direction} for q, v in values.items() if np.isfinite(v)]
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> list:
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
         """alpha (top) and eta or e (bottom) against nu, as :meth:`pounding.SweepResult.plot`
         draws a sweep (pass the same ``ax`` to overlay lab and model); see
-        :func:`pounding.plots.plot_lab_sweep`."""
-        from ..plots import plot_lab_sweep
+        :func:`pounding.plots.plot_lab_sweep`.
 
-        return plot_lab_sweep(self, ax=ax, **kwargs)
+        Returns its Figure.
+        """
+        from ..plots import plot_lab_sweep, figure_of
+
+        return figure_of(plot_lab_sweep(self, ax=ax, **kwargs), ax)

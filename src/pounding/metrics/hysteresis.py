@@ -79,8 +79,8 @@ class HysteresisLoop:
         """Columns ``t`` (s), ``d`` and ``r`` (dimensionless)."""
         return pd.DataFrame({"t": self.t, "d": self.d, "r": self.r})
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> list:
-        """Draw the loop; see :func:`pounding.plots.plot_hysteresis`."""
-        from ..plots import plot_hysteresis
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """Draw the loop; see :func:`pounding.plots.plot_hysteresis`. Returns its Figure."""
+        from ..plots import plot_hysteresis, figure_of
 
-        return plot_hysteresis(self, ax=ax, **kwargs)
+        return figure_of(plot_hysteresis(self, ax=ax, **kwargs), ax)

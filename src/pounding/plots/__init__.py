@@ -1,4 +1,5 @@
-"""Figures, apart from computing: every function takes ``ax=`` and returns its artists."""
+"""Figures, apart from computing: every function takes ``ax=`` and returns its artists; every result's
+``.plot()`` returns the Figure they are on (:func:`figure_of`)."""
 
 from .adjacent import plot_adjacent_run
 from .basins import plot_basin_stability, plot_basins
@@ -8,6 +9,7 @@ from .curves import plot_curves
 from .design import (plot_decision, plot_design_spectrum, plot_fragility, plot_hazard_curve,
                      plot_responses, plot_scaled_suite, plot_stripes)
 from .diagram import plot_bifurcation_diagram
+from ._figure import figure_of
 from .identification import plot_identification
 from .lyapunov import plot_lyapunov
 from .periodic import plot_orbit, plot_structure_orbit
@@ -19,7 +21,8 @@ from .structure_sweep import plot_structure_sweep
 from .study import plot_study
 from .sweep import plot_campaign, plot_hysteresis, plot_lab_sweep, plot_sweep
 
-__all__ = ["plot_adjacent_run", "plot_basin_stability", "plot_basins", "plot_bifurcation_diagram",
+__all__ = ["figure_of", "plot_adjacent_run", "plot_basin_stability", "plot_basins",
+           "plot_bifurcation_diagram",
            "plot_branch",
            "plot_campaign",
            "plot_contact_law_fit", "plot_curves", "plot_decision", "plot_design_spectrum", "plot_fragility",

@@ -33,7 +33,7 @@ def plot_basins(result: Any, ax: Any = None, **kwargs: Any) -> list:
     >>> import pounding
     >>> osc = pounding.presets.paper_damped()
     >>> b = pounding.basins(osc, pounding.Harmonic(0.05, 1.8), n=(8, 8))
-    >>> artists = b.plot()
+    >>> artists = pounding.plots.plot_basins(b)
     >>> len(artists) >= 3
     True
     """
@@ -97,7 +97,7 @@ def plot_basin_stability(result: Any, ax: Any = None, *, curves: Any = None, **k
     >>> osc = pounding.presets.paper_damped()
     >>> m = pounding.basin_stability_map(osc, [0.04, 0.05], [1.5, 1.8, 2.1],
     ...                                  samples=10)
-    >>> len(m.plot()) >= 2
+    >>> len(pounding.plots.plot_basin_stability(m)) >= 2
     True
     """
     import matplotlib.pyplot as plt

@@ -38,8 +38,10 @@ def plot_design_spectrum(spectrum: Any, ax: Any = None, **line: Any) -> list:
 
     Examples
     --------
+    >>> import pounding
     >>> from pounding import design
-    >>> artists = design.asce7_spectrum(1.0, 0.6).plot()
+    >>> spectrum = design.asce7_spectrum(1.0, 0.6)
+    >>> artists = pounding.plots.plot_design_spectrum(spectrum)
     >>> len(artists)  # the line, T_0 and T_S
     3
     """
@@ -87,10 +89,11 @@ def plot_hazard_curve(curve: Any, ax: Any = None) -> list:
 
     Examples
     --------
+    >>> import pounding
     >>> from pounding import design
     >>> curve = design.HazardCurve([0.1, 0.5, 1.0], [1e-2, 1e-3, 2e-4],
     ...                            period_s=2.0)
-    >>> len(curve.plot())
+    >>> len(pounding.plots.plot_hazard_curve(curve))
     1
     """
     ax = _axes(ax)
@@ -131,7 +134,7 @@ def plot_scaled_suite(suite: Any, ax: Any = None) -> list:
     >>> from pounding import design
     >>> suite = design.scale_suite(pounding.records.el_centro(),
     ...                            design.asce7_spectrum(1.0, 0.6), period_s=2.0)
-    >>> len(suite.plot())  # the record, the mean, the target, the period
+    >>> len(pounding.plots.plot_scaled_suite(suite))  # records, mean, target, T
     4
     """
     ax = _axes(ax, (6.5, 4.0))
@@ -197,10 +200,11 @@ def plot_fragility(fragility: Any, ax: Any = None, *, data: bool = True, **line:
 
     Examples
     --------
+    >>> import pounding
     >>> from pounding import design
     >>> curve = design.fit_fragility([0.2, 0.4, 0.6, 0.8], [20, 20, 20, 20],
     ...                              [1, 7, 13, 17], n_bootstrap=200)
-    >>> len(curve.plot())
+    >>> len(pounding.plots.plot_fragility(curve))
     3
     """
     ax = _axes(ax)
@@ -289,7 +293,7 @@ def plot_stripes(analysis: Any, event: str = "contact", limit: float | None = No
     >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
     ...                              store="plot.zarr", progress=False,
     ...                              grid={"bumpers.gap": [0.02, 0.2]})
-    >>> len(msa.plot())  # each gap's markers; no curve: each has all or no contacts
+    >>> len(pounding.plots.plot_stripes(msa))  # each gap's markers, no curve
     2
     """
     from .._errors import InputError
@@ -352,7 +356,8 @@ def plot_decision(decision: Any, ax: Any = None) -> list:
     >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
     ...                              store="chart.zarr", progress=False,
     ...                              grid={"bumpers.gap": [0.02, 0.2]})
-    >>> len(design.decide(msa, 0.3, 0.45).plot())  # 2 lines, target, choice
+    >>> choice = design.decide(msa, 0.3, 0.45)
+    >>> len(pounding.plots.plot_decision(choice))  # 2 lines, target, choice
     4
     """
     ax = _axes(ax, (6.5, 4.0))
@@ -418,7 +423,7 @@ def plot_responses(analysis: Any, quantity: str = "acc_max_g", ax: Any = None) -
     >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
     ...                              store="resp.zarr", progress=False,
     ...                              grid={"bumpers.gap": [0.02, 0.2]})
-    >>> len(pounding.plots.plot_responses(msa, "acc_max_g"))  # 2 gaps: line, band
+    >>> len(pounding.plots.plot_responses(msa, "acc_max_g"))  # line, band
     4
     """
 

@@ -51,7 +51,7 @@ def plot_bifurcation_diagram(diagram: Any, ax: Any = None, *, branches: Any = No
     >>> diagram = pounding.bifurcation_diagram(osc, 0.05, freqs,
     ...     transient_cycles=30, record_cycles=10)
     >>> branch = pounding.continuation(osc, 0.05, (1.4, 2.0))
-    >>> artists = diagram.plot(branches=branch)
+    >>> artists = pounding.plots.plot_bifurcation_diagram(diagram, branches=branch)
     >>> len(artists) > 2
     True
     """

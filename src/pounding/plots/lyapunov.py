@@ -32,7 +32,7 @@ def plot_lyapunov(spectrum: Any, ax: Any = None, **kwargs: Any) -> list:
     >>> import pounding
     >>> osc = pounding.presets.paper_damped()
     >>> spec = pounding.lyapunov(osc, pounding.Harmonic(0.05, 1.5), cycles=50)
-    >>> artists = spec.plot()
+    >>> artists = pounding.plots.plot_lyapunov(spec)
     >>> len(artists)  # the two finite exponents and the zero line
     3
     """

@@ -97,7 +97,8 @@ def plot_structure_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> Any:
     >>> stop = pounding.Wall(0, 0.02, 0.02, pounding.KelvinVoigt(1.0e8, 2.0e4))
     >>> b = pounding.Structure(2.0e3, iso,
     ...                        [pounding.Storey(1.0e3, 2.0e6, 2.0e3)], [stop])
-    >>> ax = pounding.periodic_orbit(b, pounding.Harmonic(0.1, 1.5)).plot()
+    >>> orbit = pounding.periodic_orbit(b, pounding.Harmonic(0.1, 1.5))
+    >>> ax = pounding.plots.plot_structure_orbit(orbit)
     >>> len(ax.get_lines())  # two levels, each its orbit and its section state
     4
     """

@@ -175,13 +175,17 @@ class BasinStabilityMap:
         """The labelled data (``data``)."""
         return self.data
 
-    def plot(self, ax: Any = None, *, curves: Any = None, **kwargs: Any) -> list:
+    def plot(self, ax: Any = None, *, curves: Any = None, **kwargs: Any) -> Any:
         """The probability of pounding over frequency and a_G; ``curves`` (a
         :class:`~pounding.CoexistenceMap`) drawn over it: the folds and grazings that bound where
-        responses coexist."""
-        from ..plots.basins import plot_basin_stability
+        responses coexist.
 
-        return plot_basin_stability(self, ax=ax, curves=curves, **kwargs)
+        Returns its Figure.
+        """
+        from ..plots.basins import plot_basin_stability
+        from ..plots import figure_of
+
+        return figure_of(plot_basin_stability(self, ax=ax, curves=curves, **kwargs), ax)
 
 
 def _map(osc: Oscillator, levels: np.ndarray, freqs: np.ndarray, samples: int, rows: np.ndarray,

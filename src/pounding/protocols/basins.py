@@ -305,12 +305,16 @@ class Basins:
                          "complete": int(self.complete), "system": self.oscillator.to_toml_text()})
         return ds
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> list:
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
         """The basins in the plane of initial displacement (mm) and velocity, coloured by attractor,
-        the attractors' samples at the section marked."""
-        from ..plots.basins import plot_basins
+        the attractors' samples at the section marked.
 
-        return plot_basins(self, ax=ax, **kwargs)
+        Returns its Figure.
+        """
+        from ..plots.basins import plot_basins
+        from ..plots import figure_of
+
+        return figure_of(plot_basins(self, ax=ax, **kwargs), ax)
 
     def __repr__(self) -> str:
         shares = ", ".join(f"{r.fraction:.3f}" for r in self.attractors.itertuples())

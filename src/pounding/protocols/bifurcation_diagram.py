@@ -260,14 +260,16 @@ class BifurcationDiagram:
         return atomic_write(output_file("path", path), self.data.to_netcdf)
 
     def plot(self, ax: Any = None, *, branches: Any = None, y: str = "displacement", level: int = -1,
-             **kwargs: Any) -> list:
+             **kwargs: Any) -> Any:
         """The diagram: the section's ``y`` ("displacement", mm, or "velocity", m/s) against the
         frequency, up and down in two colours; ``branches`` (from :func:`pounding.continuation`)
         drawn under it at the same section, stable solid, unstable dashed; a structure's ``level``
-        (its place along ``level``, the top by default)."""
+        (its place along ``level``, the top by default); returns its Figure."""
         from ..plots.diagram import plot_bifurcation_diagram
+        from ..plots import figure_of
 
-        return plot_bifurcation_diagram(self, ax=ax, branches=branches, y=y, level=level, **kwargs)
+        drawn = plot_bifurcation_diagram(self, ax=ax, branches=branches, y=y, level=level, **kwargs)
+        return figure_of(drawn, ax)
 
     def __repr__(self) -> str:
         n = self.data.sizes

@@ -192,11 +192,12 @@ class CampaignResult:
         (``E_d / M``, m^2/s^2) and ``restitution`` ``s``."""
         return self._rows(("nu_r",) + TABLE4_QUANTITIES, yb_only=True)
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> list:
-        """alpha and eta/e against nu for both configurations; see :func:`pounding.plots.plot_campaign`."""
-        from ..plots import plot_campaign
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """alpha and eta/e against nu for both configurations; see :func:`pounding.plots.plot_campaign`.
+        Returns its Figure."""
+        from ..plots import plot_campaign, figure_of
 
-        return plot_campaign(self, ax=ax, **kwargs)
+        return figure_of(plot_campaign(self, ax=ax, **kwargs), ax)
 
 
 def sweep_task(plan: SweepPlan, ctx: Context) -> Any:

@@ -126,10 +126,14 @@ class PoundingSpectrum:
 
         return atomic_write(output_file("path", path), self.data.to_netcdf)
 
-    def plot(self, ax: Any = None, *, kind: str = "curves", quantity: str = "amplification") -> list:
+    def plot(self, ax: Any = None, *, kind: str = "curves", quantity: str = "amplification") -> Any:
         """``kind="curves"``: the median over the records against the period, one curve per gap, the 16-84 %
         band shaded; ``kind="map"``: the median over period and gap.  See
-        :func:`pounding.plots.plot_pounding_spectrum`."""
-        from ..plots.spectrum import plot_pounding_spectrum
+        :func:`pounding.plots.plot_pounding_spectrum`.
 
-        return plot_pounding_spectrum(self, ax=ax, kind=kind, quantity=quantity)
+        Returns its Figure.
+        """
+        from ..plots.spectrum import plot_pounding_spectrum
+        from ..plots import figure_of
+
+        return figure_of(plot_pounding_spectrum(self, ax=ax, kind=kind, quantity=quantity), ax)

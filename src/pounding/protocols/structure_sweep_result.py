@@ -356,10 +356,13 @@ class StructureSweepResult:
     # ------------------------------------------------------------------ plot
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
         """Each level's alpha against ``nu`` (and, with contacts, each slot's contacts per cycle);
-        see :func:`pounding.plots.plot_structure_sweep`."""
-        from ..plots import plot_structure_sweep
+        see :func:`pounding.plots.plot_structure_sweep`.
 
-        return plot_structure_sweep(self, ax=ax, **kwargs)
+        Returns its Figure.
+        """
+        from ..plots import plot_structure_sweep, figure_of
+
+        return figure_of(plot_structure_sweep(self, ax=ax, **kwargs), ax)
 
 
 def _slot_name(slot: tuple) -> str:

@@ -365,11 +365,12 @@ class SweepResult:
         run = simulate(self.oscillator, exc, n_cyc / f, state, sample_rate_hz=points * f)
         return HysteresisLoop.from_run(run, total_gap_m, f, self.a_g, n_cyc)
 
-    def plot(self, ax: Any = None, **kwargs: Any) -> list:
-        """alpha and eta (e without bumpers) against nu; see :func:`pounding.plots.plot_sweep`."""
-        from ..plots import plot_sweep
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """alpha and eta (e without bumpers) against nu; see :func:`pounding.plots.plot_sweep`.
+        Returns its Figure."""
+        from ..plots import plot_sweep, figure_of
 
-        return plot_sweep(self, ax=ax, **kwargs)
+        return figure_of(plot_sweep(self, ax=ax, **kwargs), ax)
 
 
 def _measured_sides(impacts: pd.DataFrame | None, freqs_hz: np.ndarray,

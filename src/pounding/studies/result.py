@@ -74,12 +74,15 @@ class StudyResult:
         return df.drop(columns="done")
 
     def plot(self, quantity: str, x: str | None = None, hue: str | None = None, ax: Any = None,
-             where: dict | None = None) -> list:
+             where: dict | None = None) -> Any:
         """``quantity`` against the axis ``x``, one line per value of ``hue``; see
-        :func:`pounding.plots.plot_study`."""
-        from ..plots import plot_study
+        :func:`pounding.plots.plot_study`.
 
-        return plot_study(self, quantity, x=x, hue=hue, ax=ax, where=where)
+        Returns its Figure.
+        """
+        from ..plots import plot_study, figure_of
+
+        return figure_of(plot_study(self, quantity, x=x, hue=hue, ax=ax, where=where), ax)
 
 
 def open_study(store: str | Path) -> StudyResult:
