@@ -24,6 +24,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
 
 
 @dataclass
@@ -141,10 +142,12 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         a = -inv_m * forces(t, y) - a_g
         return np.concatenate([y[n:], a])
 
-    def make_events():
+    def make_events(quiet_contact=None):
         evs = []
         for c in range(2):
             sg = SIGNS[c]
+            if c == quiet_contact:
+                continue
             if inside[c]:
                 def release(t, y, c=c, sg=sg):
                     dx, dv = rel(y, c)
@@ -180,12 +183,16 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         return evs
 
     t, y = 0.0, np.array(y0, dtype=float)
+    quiet = None  # (a contact just released, until when its start is not looked for)
     x_max, x_min = y[:n].copy(), y[:n].copy()
     knots = np.asarray(s.record[0]) if s.record is not None else np.zeros(0)
     while t < t_end:
-        evs = make_events()
+        quiet_now = quiet is not None and t < quiet[1]
+        evs = make_events(quiet[0] if quiet_now else None)
         after = knots[knots > t * (1.0 + 1e-15) + 1e-15]  # (a record's kink: a stretch ends at the next)
         t_next = min(t_end, float(after[0])) if after.size else t_end
+        if quiet_now:
+            t_next = min(t_next, quiet[1])
         turns = [_turn(i, n) for i in range(n)]  # (each mass's velocity's zeros: its extrema)
         sol = solve_ivp(rhs, (t, t_next), y, method="DOP853", rtol=rtol, atol=atol, events=evs + turns,
                         dense_output=True, max_step=max_step)
@@ -200,6 +207,9 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
                 deepest[c] = max(deepest[c], float(np.max(SIGNS[c] * depth - s.gaps[c])))
         hits = [(float(te[0]), c) for c, te in enumerate(sol.t_events[:len(evs)])
                 if te.size and te[0] > t + 1e-13]
+        dip = _stepped_over(evs, sol, t)
+        if dip is not None:
+            hits.append(dip)
         t_stop = min(hits)[0] if hits else float(sol.t[-1])
         for i in range(n):  # the extrema up to where this stretch stops
             turned = zip(sol.t_events[len(evs) + i], sol.y_events[len(evs) + i])
@@ -212,6 +222,15 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
                 slip[q] = drift(end, i) - mode[q] * d_y
         if not hits:
             if sol.status != 0:
+                fired = [evs[k] for k, te in enumerate(sol.t_events[:len(evs)]) if te.size]
+                just = [f.contact for f in fired if hasattr(f, "contact") and not inside[f.contact]
+                        and relax[f.contact][1] == t]
+                if just and quiet is None or just and quiet[1] <= t:
+                    # a contact released here, its function zero with a zero rate (a Kelvin-Voigt wall's
+                    # surface relaxes at the mass's own speed as the force crosses zero): the sign of its
+                    # first step is rounding; a nanosecond without its check, then on
+                    quiet = (just[0], t + 1e-9)
+                    continue
                 raise TouchAtRest(f"an event fires again at its own instant, t = {t}")
             t, y = float(sol.t[-1]), sol.y[:, -1]
             if t_next < t_end:
@@ -244,6 +263,37 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
     out.y = y
     out.x_max, out.x_min = x_max, x_min
     return out
+
+
+def _stepped_over(evs, sol, t0: float):
+    """The earliest crossing of a contact's event function inside one solver step, ``(t, index)``, or None.
+
+    ``solve_ivp`` checks an event's sign at step ends only: a wall's force that dips below zero and back
+    within a step (the mass leaves the wall for half a millisecond, 1.5 um, and strikes it again: a draw
+    of test_yielding_storeys_match_the_reference, the reference one contact short and every later yield
+    off by up to 4.5e-7 s) is missed.  Each contact's function is sampled at 8 points inside every step
+    from the dense output; a sample at or below zero after one above it brackets the crossing."""
+    if sol.t.size < 2:
+        return None
+    inner = (sol.t[:-1, None] + np.diff(sol.t)[:, None] * np.linspace(0.0, 1.0, 10)[1:-1]).ravel()
+    grid = np.sort(np.concatenate([sol.t, inner]))
+    ys = sol.sol(grid)
+    best = None
+    for k, f in enumerate(evs):
+        if not hasattr(f, "contact"):
+            continue
+        g = np.array([f(tt, ys[:, m]) for m, tt in enumerate(grid)])
+        down = np.flatnonzero((g[:-1] > 0.0) & (g[1:] <= 0.0))
+        if down.size:
+            m = down[0]
+            root = brentq(lambda tt: f(tt, sol.sol(tt)), grid[m], grid[m + 1], xtol=1e-16, rtol=8.9e-16)
+            for _ in range(64):  # (just past the crossing, as solve_ivp's own events: the function <= 0)
+                if f(root, sol.sol(root)) <= 0.0 or root >= grid[m + 1]:
+                    break
+                root = np.nextafter(root, np.inf)
+            if root > t0 + 1e-13 and (best is None or root < best[0]):
+                best = (float(root), k)
+    return best
 
 
 def _turn(i: int, n: int):
