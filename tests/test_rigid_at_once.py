@@ -43,13 +43,13 @@ def test_a_mass_struck_against_one_resting_on_a_stop_rebounds_as_off_an_immovabl
     link = run.links.iloc[0]
     wall = run.second.contacts.iloc[0]
     impulse = M1 * (1.0 + e_link) * V0
-    assert link.t_start == link.t_end == wall.t_start == 0.0  # (one instant, one row each)
-    assert link.v_in == pytest.approx(V0, rel=1e-15)
-    assert link.v_out == pytest.approx(-e_link * V0, abs=1e-15)
-    assert link.impulse == pytest.approx(impulse, rel=1e-14)
-    assert wall.impulse == pytest.approx(impulse, rel=1e-14)  # (through the resting mass to the wall)
-    assert link.work == pytest.approx(0.5 * M1 * V0 ** 2 * (1.0 - e_link ** 2), rel=1e-12, abs=1e-15)
-    assert len(run.links[run.links.t_end == 0.0]) == 1  # (not a sequence of them)
+    assert link.t_start_s == link.t_end_s == wall.t_start_s == 0.0  # (one instant, one row each)
+    assert link.v_in_m_s == pytest.approx(V0, rel=1e-15)
+    assert link.v_out_m_s == pytest.approx(-e_link * V0, abs=1e-15)
+    assert link.impulse_n_s == pytest.approx(impulse, rel=1e-14)
+    assert wall.impulse_n_s == pytest.approx(impulse, rel=1e-14)  # (through the resting mass to the wall)
+    assert link.work_j == pytest.approx(0.5 * M1 * V0 ** 2 * (1.0 - e_link ** 2), rel=1e-12, abs=1e-15)
+    assert len(run.links[run.links.t_end_s == 0.0]) == 1  # (not a sequence of them)
     assert abs(run.energy.residual) <= 1e-12 * 0.5 * M1 * V0 ** 2
 
 
@@ -68,7 +68,7 @@ def test_plastic_impacts_at_one_instant_no_longer_stop_the_run():
     run = pounding.simulate(pair, table, 5.0, sample_rate_hz=200)
     assert run.status == Status.SUCCESS, run.message
     rows = pd.concat([run.first.contacts, run.links])
-    at_once = rows[rows.t_start == rows.t_end]
-    assert at_once.groupby("t_start").size().max() <= 2  # (the wall and the link, once each)
+    at_once = rows[rows.t_start_s == rows.t_end_s]
+    assert at_once.groupby("t_start_s").size().max() <= 2  # (the wall and the link, once each)
     assert abs(run.energy.residual) < 1e-9 * run.energy.input_work
     assert np.nanmin(run.link_force) >= 0.0 and np.nanmin(run.first.contact_force) >= 0.0  # (never pulls)

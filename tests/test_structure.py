@@ -81,7 +81,8 @@ def test_a_wall_at_any_level_matches_the_reference(pair, v0):
           f"{'the base' if ref_s.level == 0 else 'a floor'}")
     assert list(run.contacts["side"].map({"left": 0, "right": 1})) == [c for c, _ in ref.contact_starts]
     assert (run.contacts["level"] == ref_s.level).all()
-    np.testing.assert_allclose(run.contacts["t_start"], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
+    starts = [t for _, t in ref.contact_starts]
+    np.testing.assert_allclose(run.contacts["t_start_s"], starts, rtol=0, atol=1e-9)
     scale = np.abs(ref.y).max()
     np.testing.assert_allclose(run.final_state.displacements_m, ref.y[:n], rtol=0, atol=1e-7 * scale)
     np.testing.assert_allclose(run.final_state.velocities_m_s, ref.y[n:], rtol=0, atol=1e-7 * scale)
@@ -194,7 +195,7 @@ def test_the_ledger_closes_and_no_wall_pulls(seed, law):
         assert abs(e.residual) <= 1e-9 * max(flows)
     assert (run.contact_force >= 0.0).all()
     if len(run.contacts):
-        assert (run.contacts["peak_force"] > 0).all()
+        assert (run.contacts["peak_force_n"] > 0).all()
     # the exact extrema bound the samples
     assert (run.displacement_max >= run.displacement.max(axis=0) - 1e-12).all()
     assert (run.displacement_min <= run.displacement.min(axis=0) + 1e-12).all()
@@ -221,8 +222,8 @@ def test_a_continued_run_equals_one_long_run(rule):
     scale = np.abs(whole.displacement_max).max()
     np.testing.assert_allclose(second.final_state.displacements_m, whole.final_state.displacements_m, rtol=0,
                                atol=1e-9 * scale)
-    joined = list(first.contacts.dropna()["t_start"]) + list(second.contacts["t_start"])
-    np.testing.assert_allclose(joined, whole.contacts["t_start"], rtol=0, atol=1e-9)
+    joined = list(first.contacts.dropna()["t_start_s"]) + list(second.contacts["t_start_s"])
+    np.testing.assert_allclose(joined, whole.contacts["t_start_s"], rtol=0, atol=1e-9)
     np.testing.assert_allclose(np.maximum(first.displacement_max, second.displacement_max),
                                whole.displacement_max, rtol=1e-9)
 
@@ -245,6 +246,24 @@ def test_results_give_their_tables_and_figure(tmp_path):
     ds = run.to_xarray()
     assert ds["displacement"].dims == ("sample", "level") and ds["displacement"].attrs["units"] == "m"
     assert ds.attrs["status"] == "SUCCESS"
+    # one vocabulary: the samples' times a coordinate, the contacts by wall and side, the drifts
+    assert "time_s" in ds.coords and ds["time_s"].dims == ("sample",) and ds["time_s"].attrs["units"] == "s"
+    np.testing.assert_array_equal(ds["time_s"].values, run.t)
+    assert list(ds["contact"].values) == ["wall 0 left", "wall 0 right", "wall 1 left", "wall 1 right"]
+    assert list(ds["side"].values) == ["left", "right"] * 2 and list(ds["wall"].values) == [0, 0, 1, 1]
+    np.testing.assert_array_equal(ds["drift"].values, run.drift)
+    np.testing.assert_array_equal(ds["drift_max"].values, run.drift_max)
+    assert ds["drift_min"].dims == ("storey",)
+    assert list(run.contacts.columns) == ["wall", "level", "side", "t_start_s", "t_end_s", "v_in_m_s",
+                                          "v_out_m_s", "impulse_n_s", "peak_force_n", "max_compression_m",
+                                          "work_j"]
+    with pytest.warns(FutureWarning, match="'peak_force' is now 'peak_force_n'"):
+        old = run.contacts["peak_force"]
+    np.testing.assert_array_equal(old, run.contacts["peak_force_n"])
+    with pytest.warns(FutureWarning, match="'t_start' is now 't_start_s'"):
+        np.testing.assert_array_equal(run.contacts.t_start, run.contacts["t_start_s"])
+    series = run.energy.to_series()
+    assert series.name == "energy_J" and series["residual"] == run.energy.residual
     artists = pd_.plots.plot_structure_run(run)
     assert len(artists) > 6
     import matplotlib.pyplot as plt
@@ -254,7 +273,9 @@ def test_results_give_their_tables_and_figure(tmp_path):
     fig.savefig(tmp_path / "building.png")
     plt.close("all")
     assert (tmp_path / "building.png").stat().st_size > 10_000
-    assert list(run.events.columns) == ["t", "event", "index"]
+    assert list(run.events.columns) == ["t_s", "kind", "index"]
+    with pytest.warns(FutureWarning, match="'event' is now 'kind'"):
+        assert (run.events["event"] == run.events["kind"]).all()
 
 
 def test_toml_round_trip_and_its_errors(tmp_path):
@@ -420,13 +441,14 @@ def test_yielding_storeys_match_the_reference(pair, v0):
     assume(all(depth > 1e-7 for depth in ref.depths) and all(speed > 1e-4 for speed in ref.speeds))
     assume(len(ref.contact_starts) + len(ref.yields) <= 60)
     events = run.events
-    yields = events[events["event"] == "yield"]
+    yields = events[events["kind"] == "yield"]
     event(f"{'yields' if ref.yields else 'no yield'}, {'contacts' if ref.contact_starts else 'no contact'}")
     # the storeys' springs are the core's elements after the isolator: a yield's index is its spring's
     storey_of = [i for i, s in enumerate(building.storeys) if not s.is_linear]
     assert [storey_of[k] for k in yields["index"]] == [i for i, _ in ref.yields]
-    np.testing.assert_allclose(yields["t"], [t for _, t in ref.yields], rtol=0, atol=1e-9)
-    np.testing.assert_allclose(run.contacts["t_start"], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(yields["t_s"], [t for _, t in ref.yields], rtol=0, atol=1e-9)
+    starts = [t for _, t in ref.contact_starts]
+    np.testing.assert_allclose(run.contacts["t_start_s"], starts, rtol=0, atol=1e-9)
     scale = np.abs(ref.y).max()
     np.testing.assert_allclose(run.final_state.displacements_m, ref.y[:n], rtol=0, atol=1e-7 * scale)
     e = run.energy
@@ -509,7 +531,7 @@ def test_an_isolated_building_pounding_a_fixed_base_neighbour_matches_the_refere
     assume(len(ref.contact_starts) <= 40)
     event("contacts" if ref.contact_starts else "no contact")
     assert all(c == 1 for c, _ in ref.contact_starts)  # (the far bumper never)
-    np.testing.assert_allclose(run.links["t_start"], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(run.links["t_start_s"], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
     scale = np.abs(ref.y).max()
     levels = np.concatenate([run.final_state.displacements_m[:n1], run.final_state.displacements_m[n1 + 1:]])
     np.testing.assert_allclose(levels, ref.y[:n], rtol=0, atol=1e-7 * scale)
@@ -532,7 +554,8 @@ def test_a_fixed_base_building_against_a_stop_matches_the_reference():
     ref = reference(RefStructure(np.array([1000.0, 800.0, 600.0]), k0, c0, 2e6, 500.0, (0.01, 0.012), 5e6,
                                  2e3, 4.0, 2 * math.pi * 2.0, level=2), 3.0, np.zeros(6))
     assert len(ref.contact_starts) > 5
-    np.testing.assert_allclose(run.contacts["t_start"], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
+    starts = [t for _, t in ref.contact_starts]
+    np.testing.assert_allclose(run.contacts["t_start_s"], starts, rtol=0, atol=1e-9)
     # the ground level: still, shaken by the table, its exact peak the table's
     assert (run.displacement[:, 0] == 0.0).all() and np.isnan(run.isolator_force).all()
     assert run.drift_max[0] == run.displacement_max[1] and run.drift_min[0] == run.displacement_min[1]
@@ -564,7 +587,7 @@ def test_two_identical_buildings_move_as_one_and_as_each_alone():
         for name in ("displacement_max", "displacement_min", "abs_acceleration_max", "drift_max",
                      "drift_min"):
             np.testing.assert_allclose(getattr(part, name), getattr(alone, name), rtol=1e-9)
-        np.testing.assert_allclose(part.contacts["t_start"], alone.contacts["t_start"], rtol=0, atol=1e-9)
+        np.testing.assert_allclose(part.contacts["t_start_s"], alone.contacts["t_start_s"], rtol=0, atol=1e-9)
         assert list(part.contacts["level"]) == list(alone.contacts["level"])
     assert pd_.Adjacent.from_dict(pair.to_dict()) == pair
 
@@ -655,7 +678,8 @@ def test_bumpers_on_flexible_stands_match_the_reference(case, v0):
     event("contacts" if ref.contact_starts else "no contact")
     sides = list(run.contacts["side"].map({"left": 0, "right": 1}))
     assert sides == [c for c, _ in ref.contact_starts]
-    np.testing.assert_allclose(run.contacts["t_start"], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
+    starts = [t for _, t in ref.contact_starts]
+    np.testing.assert_allclose(run.contacts["t_start_s"], starts, rtol=0, atol=1e-9)
     scale = np.abs(ref.y).max()
     np.testing.assert_allclose(run.final_state.displacements_m, ref.y[:n], rtol=0, atol=1e-7 * scale)
     stands = run.stands
@@ -673,7 +697,7 @@ def test_a_state_that_does_not_fit_the_structure_is_refused_and_named():
     far = pd_.Structure(3.0e4, iso, [pd_.Storey(2.0e4, 4.0e7)], [pd_.Wall(0, 0.08, 0.08, face)])
     exc = pd_.Harmonic(0.3, 1.2)
     run = pd_.simulate(near, exc, 10.0, sample_rate_hz=0)
-    stop = run.contacts["t_start"].iloc[-1] + 1e-3  # (a moment inside the last contact)
+    stop = run.contacts["t_start_s"].iloc[-1] + 1e-3  # (a moment inside the last contact)
     inside = pd_.simulate(near, exc, stop, sample_rate_hz=0).final_state
     assert pd_.simulate(near, exc, 1.0, inside).success  # (its own structure takes it)
     with pytest.raises(pd_.InputError, match=r"state\.vector\[\d+\].*contact \d's compression in contact"):
@@ -736,7 +760,8 @@ def test_a_wall_at_any_level_under_a_record_matches_the_reference(pair, v0, seed
     assume(len(ref.contact_starts) <= 40)
     event("contacts" if ref.contact_starts else "no contact")
     assert list(run.contacts["side"].map({"left": 0, "right": 1})) == [c for c, _ in ref.contact_starts]
-    np.testing.assert_allclose(run.contacts["t_start"], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
+    starts = [t for _, t in ref.contact_starts]
+    np.testing.assert_allclose(run.contacts["t_start_s"], starts, rtol=0, atol=1e-9)
     scale = np.abs(ref.y).max()
     np.testing.assert_allclose(run.final_state.displacements_m, ref.y[:n], rtol=0, atol=1e-7 * scale)
 

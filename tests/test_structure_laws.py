@@ -99,7 +99,7 @@ def test_random_structures_with_any_law_match_the_reference(kind, where, data, r
     try:
         ref = reference(ref_s, duration, np.zeros(2 * n))
         if len(ref.contact_starts) != len(contacts) or not np.allclose(
-                contacts["t_start"], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9):
+                contacts["t_start_s"], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9):
             ref = reference(ref_s, duration, np.zeros(2 * n), rtol=3e-14, steps_per_period=500.0)
     except TouchAtRest:
         assume(False)
@@ -117,7 +117,7 @@ def test_random_structures_with_any_law_match_the_reference(kind, where, data, r
                   (run.second.displacement_max[1:], run.second.displacement_min[1:])]  # (not the ground)
         n1 = model.first.n_levels
         final = np.delete(run.final_state.displacements_m, n1)
-    np.testing.assert_allclose(contacts["t_start"], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
+    np.testing.assert_allclose(contacts["t_start_s"], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
     x_max = np.concatenate([hi for hi, _ in levels])
     x_min = np.concatenate([lo for _, lo in levels])
     scale = np.maximum(np.abs(ref.x_max), np.abs(ref.x_min))

@@ -44,7 +44,7 @@ def test_each_point_keeps_what_a_direct_run_of_its_structure_gives(tmp_path):
             assert float(point["acc_max_g"]) == run.abs_acceleration_max.max() / 9.81
             assert float(point["drift_ratio_max"]) == np.max(run.peak_drift / heights)
             assert float(point["impacts"]) == len(run.contacts)
-            force = run.contacts["peak_force"].max() if len(run.contacts) else 0.0
+            force = run.contacts["peak_force_n"].max() if len(run.contacts) else 0.0
             assert float(point["impact_force_max_n"]) == force
     # the wide moat is never reached
     assert float(ds["impacts"].sel({"walls[0].gap_m": 0.5}).max()) == 0.0

@@ -134,7 +134,7 @@ def test_a_fixed_schedule_equals_simulating_it_step_by_step(b, a_g):
         np.testing.assert_allclose(extrema[:, 1], run.displacement_min, rtol=0, atol=1e-9 * scale)
         np.testing.assert_allclose(res.level_metrics[i, :, 2], run.abs_acceleration_max, rtol=1e-9)
         np.testing.assert_allclose(res.drift_metrics[i, :, 0], run.drift_max, rtol=0, atol=1e-9 * scale)
-        ended = run.contacts.dropna(subset=["t_end"])
+        ended = run.contacts.dropna(subset=["t_end_s"])
         for c, side in enumerate(("left", "right")):
             assert res.contact_metrics[i, c, 0] * window == np.sum(ended["side"] == side)
     vec = motion(b, state.vector)

@@ -169,6 +169,15 @@ class PoundingWarning(UserWarning):
     """
 
 
+def warn_renamed(old: str, new: str, stacklevel: int = 3) -> None:
+    """A ``FutureWarning`` that ``old`` (a field, column or TOML key) is now ``new``: the old name works
+    for one more release."""
+    import warnings
+
+    warnings.warn(f"'{old}' is now '{new}' (with its unit); '{old}' goes in the next release", FutureWarning,
+                  stacklevel=stacklevel)
+
+
 class Interrupted(KeyboardInterrupt):
     """Ctrl-C during a long run; ``partial`` holds what was finished (the rest is NaN).
 

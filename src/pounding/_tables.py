@@ -5,6 +5,10 @@ from __future__ import annotations
 
 from typing import Any
 
+import pandas as pd
+
+from ._errors import warn_renamed
+
 
 def frame_to_xarray(df: Any, dim: str, attrs: dict | None = None, index: str | None = None) -> Any:
     """A table as an ``xarray.Dataset``: its columns as variables along ``dim`` (one per row), or along
@@ -41,3 +45,46 @@ def percentiles(values: Any, qs: Any, axis: int = -1) -> Any:
         finite_max = np.nanmax(np.where(np.isfinite(v), v, np.nan), axis=axis)
         out = np.nanpercentile(np.minimum(v, big), qs, axis=axis)
     return np.where(out > np.where(np.isnan(finite_max), -np.inf, finite_max), np.inf, out)
+
+
+class RenamedColumns(pd.DataFrame):
+    """A table that still answers to its columns' old names for one release (``OLD``: old name -> new),
+    with a ``FutureWarning`` naming the new one; its subclasses say which names."""
+
+    OLD: dict = {}
+
+    @property
+    def _constructor(self) -> Any:
+        return type(self)
+
+    def _renamed(self, key: Any) -> Any:
+        if isinstance(key, str) and key in self.OLD and key not in self.columns:
+            warn_renamed(key, self.OLD[key], stacklevel=4)
+            return self.OLD[key]
+        if isinstance(key, list) and any(isinstance(k, str) and k in self.OLD for k in key):
+            return [self._renamed(k) for k in key]
+        return key
+
+    def __getitem__(self, key: Any) -> Any:
+        return super().__getitem__(self._renamed(key))
+
+    def __getattr__(self, name: str) -> Any:
+        if name in type(self).OLD:
+            return self[name]
+        return super().__getattr__(name)
+
+
+class ContactTable(RenamedColumns):
+    """A structure's contacts (:attr:`StructureRun.contacts`, :attr:`AdjacentRun.links`): each column named
+    with its unit; the names without units (0.1's) still answer, with a ``FutureWarning``."""
+
+    OLD = {"t_start": "t_start_s", "t_end": "t_end_s", "v_in": "v_in_m_s", "v_out": "v_out_m_s",
+           "impulse": "impulse_n_s", "peak_force": "peak_force_n", "max_compression": "max_compression_m",
+           "work": "work_j"}
+
+
+class EventTable(RenamedColumns):
+    """A run's events (``t_s``, ``kind``, ``index``); a structure's names of 0.1 (``t``, ``event``) still
+    answer, with a ``FutureWarning``."""
+
+    OLD = {"t": "t_s", "event": "kind"}

@@ -232,8 +232,18 @@ def _state_vector(vector: Any) -> np.ndarray:
     return vec
 
 
+class LedgerSeries:
+    """What every energy ledger (a frozen dataclass of terms in J with a ``residual``) has: ``to_series``."""
+
+    def to_series(self) -> pd.Series:
+        """Every term and the ``residual``, J, as a Series named ``energy_J``."""
+        data = {f.name: getattr(self, f.name) for f in fields(self)}  # type: ignore[arg-type]
+        data["residual"] = self.residual  # type: ignore[attr-defined]
+        return pd.Series(data, name="energy_J")
+
+
 @dataclass(frozen=True)
-class EnergyLedger:
+class EnergyLedger(LedgerSeries):
     """Where the energy went over a run, J.
 
     ``input_work`` (work of the inertial forcing ``-M A(t)`` on the relative motion) equals
@@ -282,16 +292,22 @@ class EnergyLedger:
         return self.input_work - (self.kinetic + self.isolator_elastic + self.bumper_elastic
                                    + self.viscous + self.hysteretic + self.bumper_dissipation)
 
-    def to_series(self) -> pd.Series:
-        """Every term and the ``residual``, J, as a Series named ``energy_J``."""
-        data = {f.name: getattr(self, f.name) for f in fields(self)}
-        data["residual"] = self.residual
-        return pd.Series(data, name="energy_J")
+
+
+def events_frame(e: np.ndarray) -> pd.DataFrame:
+    """An event table from the core's rows (time, action code, index): ``t_s``, ``kind`` (the action's name,
+    categorical) and ``index``; the columns' names of 0.1 (``t``, ``event``) still answer, with a warning."""
+    from .._tables import EventTable
+
+    codes = e[:, 1].astype(int)
+    return EventTable({"t_s": e[:, 0], "kind": pd.Categorical.from_codes(codes, categories=list(EVENT_NAMES)),
+                       "index": e[:, 2].astype(int)})
 
 
 HISTORY_COLUMNS = ("t", "displacement", "velocity", "abs_acceleration", "isolator_force",
                    "bumper_force_left", "bumper_force_right")
-HISTORY_UNIT_OF = {"t_s": "s", "displacement_m": "m", "velocity_m_s": "m/s", "abs_acceleration_m_s2": "m/s^2",
+HISTORY_UNIT_OF = {"t_s": "s", "time_s": "s", "displacement_m": "m", "velocity_m_s": "m/s",
+                   "abs_acceleration_m_s2": "m/s^2",
                    "isolator_force_n": "N", "bumper_force_left_n": "N", "bumper_force_right_n": "N"}
 HISTORY_UNITS = {"t": "t_s", "displacement": "displacement_m", "velocity": "velocity_m_s",
                  "abs_acceleration": "abs_acceleration_m_s2", "isolator_force": "isolator_force_n",
@@ -413,12 +429,7 @@ class Run:
     @cached_property
     def events(self) -> pd.DataFrame:
         """Every event: time ``t_s``, ``kind`` and ``index`` (spring or side), built on first use."""
-        codes = self.event_table[:, 1].astype(int)
-        return pd.DataFrame({
-            "t_s": self.event_table[:, 0],
-            "kind": pd.Categorical.from_codes(codes, categories=list(EVENT_NAMES)),
-            "index": self.event_table[:, 2].astype(int),
-        })
+        return events_frame(self.event_table)
 
     @cached_property
     def impacts(self) -> pd.DataFrame:
@@ -440,14 +451,15 @@ class Run:
         return self.displacement_max - self.displacement_min
 
     def to_xarray(self) -> Any:
-        """The sampled histories as a Dataset along ``sample`` (``t_s`` a variable: an event's sample may
-        share its time with the one before it), each variable's unit in its ``units``; ``status`` and
-        ``message`` as attributes."""
+        """The sampled histories as a Dataset along ``sample``, its times the coordinate ``time_s`` (not an
+        index: an event's sample may share its time with the one before it), each variable's unit in its
+        ``units``; ``status`` and ``message`` as attributes."""
         from .._tables import frame_to_xarray
 
         ds = frame_to_xarray(self.to_dataframe(units=True), "sample",
                              {"status": self.status.name, "message": self.message})
-        for name in ds.data_vars:
+        ds = ds.set_coords("t_s").rename({"t_s": "time_s"})
+        for name in [*ds.data_vars, "time_s"]:
             ds[name].attrs["units"] = HISTORY_UNIT_OF.get(name, "")
         return ds
 

@@ -11,29 +11,27 @@ import numpy as np
 import pandas as pd
 
 from .._errors import Status
+from .._tables import ContactTable
 from ._layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
-from ._layout import (DOF_EXTREMA_LEN, EVENT_NAMES, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT,
+from ._layout import (DOF_EXTREMA_LEN, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT,
                       L_ISOLATOR, L_KINETIC, L_VISCOUS, P_MAX, P_MAX_T, P_MIN, P_MIN_T, X_A_MAX, X_A_MAX_T,
                       X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T)
 from ._chatter import chatter_frame
+from .result import LedgerSeries, events_frame
 
 if TYPE_CHECKING:
     from ..excitation import Harmonic, Record
     from ..model.structure import Structure
     from .structure import StructureState
 
-CONTACT_COLUMNS = ("wall", "level", "side", "t_start", "t_end", "v_in", "v_out", "impulse", "peak_force",
-                   "max_compression", "work")
+CONTACT_COLUMNS = ("wall", "level", "side", "t_start_s", "t_end_s", "v_in_m_s", "v_out_m_s", "impulse_n_s",
+                   "peak_force_n", "max_compression_m", "work_j")
 
 
-def events_frame(e: np.ndarray) -> pd.DataFrame:
-    """An event table (the core's rows: time, action code, index) with the actions named."""
-    return pd.DataFrame({"t": e[:, 0], "event": [EVENT_NAMES[int(a)] for a in e[:, 1]],
-                         "index": e[:, 2].astype(int)})
 
 
 @dataclass(frozen=True)
-class StructureEnergy:
+class StructureEnergy(LedgerSeries):
     """The energy ledger of a structure's run, J: the input's work equals what the dashpots (storeys' and
     isolator's), the isolator's hysteresis and the walls' laws dissipated plus the change of the kinetic
     and elastic energies (``residual``: the difference, rounding).
@@ -63,6 +61,8 @@ class StructureEnergy:
     >>> e = pounding.simulate(b, pounding.Harmonic(0.2, 1.5), 5.0).energy
     >>> abs(e.residual) < 1e-9 * e.input_work
     True
+    >>> list(e.to_series().index)[:3]
+    ['input_work', 'viscous', 'hysteretic']
     """
 
     input_work: float
@@ -111,8 +111,9 @@ class StructureRun:
         Exact extrema of each level over the run (m, m/s^2: not from the samples); their times in
         ``*_time_s``.
     contacts : pandas.DataFrame
-        One row per contact: wall, level, side, times (s), the pair's velocities in and out (m/s), impulse
-        (N s), peak force (N), largest compression (m), the work of the contact force (J).
+        One row per contact: ``wall``, ``level``, ``side``, ``t_start_s``, ``t_end_s``, the pair's velocities
+        in and out ``v_in_m_s``, ``v_out_m_s``, ``impulse_n_s``, ``peak_force_n``, the largest compression
+        ``max_compression_m``, the work of the contact force ``work_j``.
     energy : StructureEnergy or None
         The energy ledger (None for one of two adjacent structures: the pair's is ``AdjacentRun.energy``).
     final_state : StructureState or None
@@ -277,7 +278,7 @@ class StructureRun:
         c = self.contact_table
         slot = c[:, 0].astype(int)
         walls = self.structure.walls
-        return pd.DataFrame({
+        return ContactTable({
             "wall": slot // 2,
             "level": [walls[s // 2].level for s in slot],
             "side": np.where(slot % 2 == 0, "left", "right"),
@@ -296,10 +297,10 @@ class StructureRun:
 
     @property
     def events(self) -> pd.DataFrame:
-        """Every event: time (s), what happened and the element's index: a contact slot for a contact's
-        start or end (wall ``w``'s left side ``2 w``, right ``2 w + 1``), a spring for a yield (numbered
-        through the isolator's springs, then each multi-linear storey's), an element for a reversal or a
-        branch change (0 the isolator, then the multi-linear storeys)."""
+        """Every event: ``t_s``, what happened (``kind``) and the element's ``index``: a contact slot for a
+        contact's start or end (wall ``w``'s left side ``2 w``, right ``2 w + 1``), a spring for a yield
+        (numbered through the isolator's springs, then each multi-linear storey's), an element for a reversal
+        or a branch change (0 the isolator, then the multi-linear storeys)."""
         return events_frame(self.event_table)
 
     def peaks(self) -> pd.DataFrame:
@@ -319,23 +320,32 @@ class StructureRun:
 
     # ------------------------------------------------------------------ tables
     def to_xarray(self) -> Any:
-        """The histories as a Dataset along ``sample`` and ``level`` (``contact``: the wall sides), units in
-        each variable's ``units``; ``status`` and ``message`` as attributes."""
+        """The histories as a Dataset along ``sample`` (its coordinate ``time_s``), ``level``, ``storey`` (the
+        drifts: storey ``i`` between levels ``i`` and ``i + 1``) and ``contact`` (the wall sides, labelled
+        ``wall 0 left``, with their ``wall`` and ``side``), each variable's unit in its ``units``; the exact
+        extrema along ``level`` and ``storey``; ``status`` and ``message`` as attributes."""
         import xarray as xr
 
         n = self.structure.n_levels
-        nc = self.contact_force.shape[1]
+        walls = range(self.contact_force.shape[1] // 2)
         ds = xr.Dataset(
-            {"t": ("sample", self.t, {"units": "s"}),
-             "displacement": (("sample", "level"), self.displacement, {"units": "m"}),
+            {"displacement": (("sample", "level"), self.displacement, {"units": "m"}),
              "velocity": (("sample", "level"), self.velocity, {"units": "m/s"}),
              "abs_acceleration": (("sample", "level"), self.abs_acceleration, {"units": "m/s^2"}),
+             "drift": (("sample", "storey"), self.drift, {"units": "m"}),
              "isolator_force": ("sample", self.isolator_force, {"units": "N"}),
              "contact_force": (("sample", "contact"), self.contact_force, {"units": "N"}),
              "displacement_max": ("level", self.displacement_max, {"units": "m"}),
              "displacement_min": ("level", self.displacement_min, {"units": "m"}),
-             "abs_acceleration_max": ("level", self.abs_acceleration_max, {"units": "m/s^2"})},
-            coords={"level": np.arange(n), "contact": np.arange(nc)},
+             "abs_acceleration_max": ("level", self.abs_acceleration_max, {"units": "m/s^2"}),
+             "drift_max": ("storey", self.drift_max, {"units": "m"}),
+             "drift_min": ("storey", self.drift_min, {"units": "m"})},
+            coords={"time_s": ("sample", self.t, {"units": "s"}), "level": np.arange(n),
+                    "storey": np.arange(n - 1),
+                    "contact": np.array([f"wall {w} {side}" for w in walls for side in ("left", "right")],
+                                        dtype=str),
+                    "wall": ("contact", np.repeat(np.arange(len(walls)), 2)),
+                    "side": ("contact", np.array(["left", "right"] * len(walls), dtype=str))},
             attrs={"status": self.status.name, "message": self.message})
         if self.stand_displacement.shape[1]:
             ds["stand_displacement"] = (("sample", "stand"), self.stand_displacement, {"units": "m"})
@@ -437,7 +447,7 @@ class AdjacentRun:
     >>> run = pounding.simulate(pounding.Adjacent(isolated, old, [roof]),
     ...                         pounding.Harmonic(a_g=0.4, freq_hz=1.0), 10.0)
     >>> list(run.links.columns)[:4]
-    ['link', 'level_first', 'level_second', 't_start']
+    ['link', 'level_first', 'level_second', 't_start_s']
     """
 
     adjacent: Any
@@ -466,13 +476,14 @@ class AdjacentRun:
 
     @property
     def links(self) -> pd.DataFrame:
-        """One row per contact at a link: the link, its levels, times (s), the velocities in and out (m/s, of
-        the first's level less the second's), impulse (N s), peak force (N), deepest compression (m), work
-        (J)."""
+        """One row per contact at a link: ``link``, ``level_first``, ``level_second``, ``t_start_s``,
+        ``t_end_s``, the velocities in and out ``v_in_m_s``, ``v_out_m_s`` (of the first's level less the
+        second's), ``impulse_n_s``, ``peak_force_n``, the deepest compression ``max_compression_m``,
+        ``work_j``."""
         c = self.link_table
         k = c[:, 0].astype(int)
         links = self.adjacent.links
-        return pd.DataFrame({
+        return ContactTable({
             "link": k,
             "level_first": [links[j].level_first for j in k],
             "level_second": [links[j].level_second for j in k],
@@ -481,7 +492,7 @@ class AdjacentRun:
 
     @property
     def events(self) -> pd.DataFrame:
-        """Every event of the pair: time (s), what happened and the element's index."""
+        """Every event of the pair: ``t_s``, what happened (``kind``) and the element's ``index``."""
         return events_frame(self.event_table)
 
     def to_dataframe(self) -> pd.DataFrame:
@@ -494,14 +505,17 @@ class AdjacentRun:
         return out
 
     def to_xarray(self) -> Any:
-        """Each structure's Dataset (``first``/``second`` prefixes on the variables) and the links' forces."""
+        """Each structure's Dataset (``first``/``second`` prefixes on the variables, ``_first``/``_second``
+        suffixes on their dimensions) along ``sample`` (its coordinate ``time_s``), and the links' forces."""
         import xarray as xr
 
-        first = self.first.to_xarray().rename({"level": "level_first", "contact": "wall_first"})
-        second = self.second.to_xarray().drop_vars("t").rename({"level": "level_second",
-                                                               "contact": "wall_second"})
-        ds = xr.merge([first.rename({v: f"first_{v}" for v in first.data_vars if v != "t"}),
-                       second.rename({v: f"second_{v}" for v in second.data_vars})], combine_attrs="override")
+        parts = []
+        for name, run in (("first", self.first), ("second", self.second)):
+            ds = run.to_xarray().reset_coords(["wall", "side"], drop=True)
+            ds = ds.rename({dim: f"{dim}_{name}" for dim in ("level", "storey", "contact", "stand")
+                            if dim in ds.dims})
+            parts.append(ds.rename({v: f"{name}_{v}" for v in ds.data_vars}))
+        ds = xr.merge(parts, compat="override", join="exact", combine_attrs="override")
         ds["link_force"] = (("sample", "link"), self.link_force, {"units": "N"})
         ds.attrs = {"status": self.status.name, "message": self.message}
         return ds

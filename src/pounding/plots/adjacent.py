@@ -56,7 +56,8 @@ def plot_adjacent_run(run: "AdjacentRun", axes: Any = None) -> list:
         artists.append(ax_s.axhline(link.gap_m * 1e3, color=f"C{2 * j}", ls="--", lw=0.8))
     hits = run.links
     if len(hits):
-        artists += ax_s.plot(hits["t_start"], [run.adjacent.links[k].gap_m * 1e3 for k in hits["link"]], "v",
+        gaps_mm = [run.adjacent.links[k].gap_m * 1e3 for k in hits["link"]]
+        artists += ax_s.plot(hits["t_start_s"], gaps_mm, "v",
                              color="k", ms=4, label=f"contacts ({len(hits)})")
     ax_x.set_ylabel("displacement [mm]")
     ax_s.set_ylabel("separation closed [mm]")

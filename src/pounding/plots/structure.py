@@ -65,7 +65,7 @@ def plot_structure_run(run: "StructureRun", axes: Any = None, *, levels: Any = N
         name = ground if i == 0 else f"floor {i}"
         artists += ax_d.plot(run.t, run.displacement[:, i] * 1e3, lw=0.9, label=name)
         artists += ax_a.plot(run.t, run.abs_acceleration[:, i] / GRAVITY_M_S2, lw=0.8, label=name)
-    starts = run.contacts["t_start"].to_numpy()
+    starts = run.contacts["t_start_s"].to_numpy()
     for t in starts:
         artists.append(ax_d.axvline(t, color="0.6", lw=0.5, ls=":"))
     ax_d.set_ylabel("displacement [mm]")
