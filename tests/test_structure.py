@@ -456,6 +456,35 @@ def test_yielding_storeys_match_the_reference(pair, v0):
     assert (e.hysteretic > 0.0) == bool(ref.yields) and abs(e.residual) <= 1e-9 * max(flows)
 
 
+def test_a_release_from_the_wall_inside_one_reference_step():
+    # a draw of the test above: the mass leaves the Kelvin-Voigt wall at 1.28258 s for half a millisecond,
+    # 1.5 um, inside one of the reference's solver steps; the reference found it only once it looked inside
+    # its steps (before, it had one contact fewer and 11 yields off by up to 4.5e-7 s; the core was right)
+    mass = np.array([1757.9569248808666, 1385.910490100944, 1723.402207940972, 294.48364318314384])
+    k1 = [4044101.9622754767, 2321266.7955069137, 3511122.079081978]
+    k2, d_y = [0.0, 336134.890289802, 1629596.5474134947], [0.0, 0.0009255145939550116, 0.000476802307095588]
+    c = [240.47142747182792, 785.3125590380987, 345.5141480456388]
+    storeys = [pd_.Storey(mass[1], k1[0], c[0])] + [
+        pd_.Storey(mass[i + 1], k1[i], c[i], slopes_after_n_m=[k2[i]], breakpoints_m=[d_y[i]])
+        for i in (1, 2)]
+    gaps = (0.011012809250331537, 0.023227398335871337)
+    building = pd_.Structure(mass[0], linear_isolator(69404.80238528113, 889.8401493356631), storeys,
+                             [pd_.Wall(0, *gaps, pd_.KelvinVoigt(8700238.0, 197.0))])
+    a_g, omega, v0 = 5.978752934441097, 13.254527522532543, 0.2622502857835954
+    ref_s = RefStructure(mass=mass, k0=building.shear_matrix([k1[0], k2[1], k2[2]]),
+                         c0=building.damping_matrix, k_iso=69404.80238528113, c_iso=889.8401493356631,
+                         gaps=gaps, k_b=8700238.0, c_b=197.0, a_g=a_g, omega=omega,
+                         plastic=[(i, k1[i] - k2[i], d_y[i]) for i in (1, 2)])
+    run = pd_.simulate(building, pd_.Harmonic(a_g / 9.80665, omega / (2 * math.pi), g=9.80665), 2.0,
+                       moving(building, v0), sample_rate_hz=0)
+    ref = reference(ref_s, 2.0, np.concatenate([np.zeros(4), np.full(4, v0)]))
+    assert len(ref.contact_starts) == len(run.contacts) == 16 and len(ref.yields) == 29
+    starts = [t for _, t in ref.contact_starts]
+    np.testing.assert_allclose(run.contacts["t_start_s"], starts, rtol=0, atol=1e-9)
+    yields = run.events[run.events["kind"] == "yield"]
+    np.testing.assert_allclose(yields["t_s"], [t for _, t in ref.yields], rtol=0, atol=1e-9)
+
+
 def test_rayleigh_damping_gives_the_two_modes_their_ratios_and_leaves_the_isolation_undamped():
     iso = pd_.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02])
     storeys = [pd_.Storey(m, k) for m, k in ((2.5e4, 6.0e7), (2.0e4, 5.0e7), (1.5e4, 3.0e7))]
