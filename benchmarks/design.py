@@ -65,7 +65,7 @@ def main() -> None:
     if args.quick:
         names, records = names[:4], records[:4]
     runs = len(names) * len(LEVELS_G) * len(GAPS_M) * len(STIFFNESSES)
-    grid = {"bumpers.gap": GAPS_M, "bumpers.law.stiffness": STIFFNESSES}
+    grid = {"bumpers.gap_m": GAPS_M, "bumpers.law.stiffness": STIFFNESSES}
     # warm: compile, read the records, and start the process pool's server once
     with tempfile.TemporaryDirectory() as tmp:
         design.stripe_analysis(
@@ -74,7 +74,7 @@ def main() -> None:
             LEVELS_G[:1],
             period_s=1.0,
             store=Path(tmp) / "w.zarr",
-            grid={"bumpers.gap": GAPS_M[:1]},
+            grid={"bumpers.gap_m": GAPS_M[:1]},
             progress=False,
             scheduler="processes",
             workers=2,

@@ -127,7 +127,7 @@ def pounding_long(osc, exc, duration_s, v0, measure, rtol=1e-10, rounds=ROUNDS,
 
     run()
     best, last = timed(run, rounds, min_wall_s)
-    gap = osc.bumpers.gap_left + osc.bumpers.gap_right
+    gap = osc.bumpers.gap_left_m + osc.bumpers.gap_right_m
     return Outcome(f"pounding (rtol {rtol:g})", best, duration_s,
                    np.array([last.abs_acceleration_max / exc.peak_m_s2]), np.array([last.excursion_m / gap]))
 
@@ -136,7 +136,7 @@ def pounding_long(osc, exc, duration_s, v0, measure, rtol=1e-10, rounds=ROUNDS,
 def scipy_sweep(osc, a_g, freqs_hz, cycles, measure, rtol, atol) -> Outcome:
     """The tests' solve_ivp script (DOP853 + events) running the same protocol."""
     state, t, alpha, eta = None, 0.0, [], []
-    gap = osc.bumpers.gap_left + osc.bumpers.gap_right
+    gap = osc.bumpers.gap_left_m + osc.bumpers.gap_right_m
     t0 = time.perf_counter()
     for f in freqs_hz:
         exc = pd_.Harmonic(a_g, f, phase=-(2 * math.pi * f * t))
@@ -151,7 +151,7 @@ def scipy_sweep(osc, a_g, freqs_hz, cycles, measure, rtol, atol) -> Outcome:
 
 
 def scipy_long(osc, exc, duration_s, v0, measure, rtol, atol) -> Outcome:
-    gap = osc.bumpers.gap_left + osc.bumpers.gap_right
+    gap = osc.bumpers.gap_left_m + osc.bumpers.gap_right_m
     t0 = time.perf_counter()
     first = reference(osc, exc, duration_s - measure * exc.period_s, v0=v0, rtol=rtol, atol=atol)
     res = reference(osc, exc, duration_s, state=first.state, measure=True, rtol=rtol, atol=atol)
@@ -216,8 +216,8 @@ class OpenSeesModel:
         ops.uniaxialMaterial("Parallel", 3, *tags, 2)
         ops.element("zeroLength", 1, 1, 2, "-mat", 3, "-dir", 1)
         if b is not None:
-            ops.uniaxialMaterial("ViscoelasticGap", 4, b.law.stiffness, b.law.damping, -b.gap_right)
-            ops.uniaxialMaterial("ViscoelasticGap", 5, b.law.stiffness, b.law.damping, -b.gap_left)
+            ops.uniaxialMaterial("ViscoelasticGap", 4, b.law.stiffness, b.law.damping, -b.gap_right_m)
+            ops.uniaxialMaterial("ViscoelasticGap", 5, b.law.stiffness, b.law.damping, -b.gap_left_m)
             ops.element("zeroLength", 2, 2, 1, "-mat", 4, "-dir", 1)  # strain -D: right bumper
             ops.element("zeroLength", 3, 1, 2, "-mat", 5, "-dir", 1)  # strain +D: left bumper
         ops.constraints("Plain")
@@ -266,7 +266,7 @@ class OpenSeesModel:
 def opensees_sweep(ops, osc, a_g, freqs_hz, cycles, measure, dt_s, rounds=ROUNDS,
                    min_wall_s=None) -> Outcome:
     peak = a_g * pd_.excitation.GRAVITY_M_S2
-    gap = osc.bumpers.gap_left + osc.bumpers.gap_right
+    gap = osc.bumpers.gap_left_m + osc.bumpers.gap_right_m
 
     def run():
         model = OpenSeesModel(ops, osc, dt_s)
@@ -284,7 +284,7 @@ def opensees_sweep(ops, osc, a_g, freqs_hz, cycles, measure, dt_s, rounds=ROUNDS
 
 def opensees_long(ops, osc, exc, duration_s, v0, measure, dt_s, rounds=ROUNDS,
                   min_wall_s=None) -> Outcome:
-    gap = osc.bumpers.gap_left + osc.bumpers.gap_right
+    gap = osc.bumpers.gap_left_m + osc.bumpers.gap_right_m
 
     def run():
         model = OpenSeesModel(ops, osc, dt_s)

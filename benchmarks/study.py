@@ -38,7 +38,7 @@ TARGET_OVERHEAD, TARGET_SCALING = 0.05, 1.8
 def spec(n_gap: int, n_ag: int, duration_s: float) -> pd_.StudySpec:
     return pd_.StudySpec(pd_.presets.paper_printed(), {"kind": "simulate", "freq_hz": 2.0,
                                                        "duration_s": duration_s},
-                         {"bumpers.gap_right": list(np.round(np.linspace(0.008, 0.03, n_gap), 6)),
+                         {"bumpers.gap_right_m": list(np.round(np.linspace(0.008, 0.03, n_gap), 6)),
                           "a_g": list(np.round(np.linspace(0.03, 0.3, n_ag), 6))})
 
 

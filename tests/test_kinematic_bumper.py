@@ -41,7 +41,7 @@ def test_one_slope_is_kelvin_voigt_exactly():
     kv = pd_.presets.paper_damped()
     b = kv.bumpers
     law = pd_.MultilinearBumper((b.law.stiffness,), (), b.law.damping, hysteresis="kinematic")
-    kin = pd_.Oscillator(kv.mass, kv.isolator, pd_.Bumpers(b.gap_left, b.gap_right, law))
+    kin = pd_.Oscillator(kv.mass, kv.isolator, pd_.Bumpers(b.gap_left_m, b.gap_right_m, law))
     state = pd_.State.at_rest(kv, velocity_m_s=0.6)
     runs = [pd_.simulate(osc, pd_.Harmonic(0.1, 2.5), 5.0, state, sample_rate_hz=200) for osc in (kv, kin)]
     assert len(runs[0].contacts) > 4

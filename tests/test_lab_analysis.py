@@ -260,7 +260,7 @@ def test_a_bumper_with_a_set_is_timed_by_its_force_pulse():
     # and leaves them before it crosses back; timed by the gap crossings its 20 ms contacts came
     # out 12 ms long (mean force 36 % low), timed by the force pulse they are within 0.4 ms
     osc = pd_.presets.paper_calibrated()
-    gap = osc.bumpers.gap_left + osc.bumpers.gap_right  # (the fitted model's own gap)
+    gap = osc.bumpers.gap_left_m + osc.bumpers.gap_right_m  # (the fitted model's own gap)
     freqs = np.round(np.arange(1.0, 2.61, 0.2), 10)
     rec = synthetic_test(osc, 0.05, freqs, cycles=30, seed=1, **SENSORS)
     df = analyse_stepped_sine(rec, mass_kg=500.0, gap_total_m=gap, freqs_hz=freqs).to_dataframe()

@@ -30,7 +30,7 @@ def gap_crossings(run):
     t, d, v = run.t[keep], run.displacement[keep], run.velocity[keep]
     bumpers = run.oscillator.bumpers
     out = []
-    for sign, gap in ((1.0, bumpers.gap_right), (-1.0, bumpers.gap_left)):
+    for sign, gap in ((1.0, bumpers.gap_right_m), (-1.0, bumpers.gap_left_m)):
         y = sign * d - gap
         edges = np.diff((y > 0.0).astype(np.int8))
         ins, outs = np.flatnonzero(edges == 1) + 1, np.flatnonzero(edges == -1) + 1

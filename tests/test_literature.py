@@ -38,7 +38,7 @@ def rig() -> pd_.Oscillator:
     stop = pd_.KelvinVoigt(stiffness=BETA * M * WN**2, damping=0.0)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", pd_.PoundingWarning)  # (the left gap is implausibly wide on purpose)
-        return pd_.Oscillator(M, iso, pd_.Bumpers(gap_left=0.4, gap_right=E, law=stop))
+        return pd_.Oscillator(M, iso, pd_.Bumpers(gap_left_m=0.4, gap_right_m=E, law=stop))
 
 
 def a_g_of(f: float) -> float:

@@ -17,7 +17,7 @@ from pounding.engine._layout import DEF_L, DEF_R, IN_L, IN_R, D, V
 M, K, ZETA, BETA = 100.0, 4000.0, 0.02, 30.0
 SOFT = pd_.Oscillator(
     mass=M, isolator=pd_.Isolator(slopes=[K], damping=2.0 * ZETA * math.sqrt(K * M)),
-    bumpers=pd_.Bumpers(gap_left=0.3, gap_right=0.005, law=pd_.KelvinVoigt(
+    bumpers=pd_.Bumpers(gap_left_m=0.3, gap_right_m=0.005, law=pd_.KelvinVoigt(
         stiffness=BETA * K, damping=2.0 * ZETA * math.sqrt(BETA * K * M))))
 CHAOS = pd_.Harmonic(0.1, 2.6)
 

@@ -27,7 +27,7 @@ def test_paper_printed_values_exactly():
     assert osc.isolator.slopes == (38e3, 18e3, 2e3)
     assert osc.isolator.breakpoints == (0.015, 0.04)
     assert osc.isolator.damping == 1.0
-    assert osc.bumpers.gap_left == osc.bumpers.gap_right == 0.015
+    assert osc.bumpers.gap_left_m == osc.bumpers.gap_right_m == 0.015
     assert osc.bumpers.law == pd_.KelvinVoigt(1.46e6, 5.0)
     assert osc.bumpers.total_gap == pytest.approx(0.03)
     assert pd_.presets.paper_printed(bumpers=False).bumpers is None
@@ -56,7 +56,7 @@ def test_slopes_and_breakpoints_mismatch():
 
 def test_negative_gap_and_stiffness():
     law = pd_.KelvinVoigt(1e6, 5.0)
-    _raises(lambda: pd_.Bumpers(-0.01, 0.01, law), "bumpers.gap_left", "-0.01", ">= 0")
+    _raises(lambda: pd_.Bumpers(-0.01, 0.01, law), "bumpers.gap_left_m", "-0.01", ">= 0")
     _raises(lambda: pd_.KelvinVoigt(-1.0, 5.0), "law.stiffness", "> 0")
     _raises(lambda: pd_.Isolator((1e4, -1.0), (0.01,)), "isolator.slopes[1]", ">= 0")
 
@@ -68,7 +68,7 @@ def test_nan_and_inf_anywhere(bad):
     _raises(lambda: pd_.Isolator((1e4, bad), (0.01,)), "isolator.slopes[1]", "finite")
     _raises(lambda: pd_.Isolator((1e4, 1e3), (bad,)), "isolator.breakpoints[0]", "finite")
     _raises(lambda: pd_.Isolator((1e4,), damping=bad), "isolator.damping", "finite")
-    _raises(lambda: pd_.Bumpers(0.01, bad, law), "bumpers.gap_right", "finite")
+    _raises(lambda: pd_.Bumpers(0.01, bad, law), "bumpers.gap_right_m", "finite")
     _raises(lambda: pd_.KelvinVoigt(1e6, bad), "law.damping", "finite")
     _raises(lambda: pd_.Harmonic(bad, 2.0), "a_g", "finite")
     _raises(lambda: pd_.Harmonic(0.05, bad), "freq_hz", "finite")
@@ -124,3 +124,34 @@ def test_example_file_is_the_printed_preset():
 
     path = Path(__file__).parents[1] / "examples" / "paper_printed_ybs.toml"
     assert pd_.Oscillator.from_toml(path) == pd_.presets.paper_printed()
+
+
+def test_the_gaps_names_before_still_work_with_a_warning_naming_the_new_one():
+    law = pd_.KelvinVoigt(1.46e6, 5.0)
+    new = pd_.Bumpers(gap_left_m=0.015, gap_right_m=0.02, law=law)
+    with pytest.warns(FutureWarning, match="'gap_left' is now 'gap_left_m'"):
+        old = pd_.Bumpers(gap_left=0.015, gap_right_m=0.02, law=law)
+    assert old == new
+    with pytest.warns(FutureWarning, match="'gap_right' is now 'gap_right_m'"):
+        assert new.gap_right == 0.02
+    with pytest.raises(TypeError, match="gap_middle"):
+        pd_.Bumpers(0.01, 0.01, law, gap_middle=0.01)
+    with pytest.raises(InputError, match="bumpers.gap_right_m"):
+        pd_.Bumpers(gap_left_m=0.01, law=law)
+    # a TOML file of 0.1: the same system, a warning per old key; both spellings of one key: an error
+    text = pd_.presets.paper_printed().to_toml_text()
+    assert "gap_left_m = 0.015" in text
+    with pytest.warns(FutureWarning, match="'bumpers.gap_left' is now 'bumpers.gap_left_m'"):
+        before = pd_.Oscillator.from_toml_text(text.replace("gap_left_m =", "gap_left ="))
+    assert before == pd_.presets.paper_printed()
+    with pytest.raises(InputError, match="bumpers.gap_left") as info:
+        both = text.replace("gap_left_m = 0.015", "gap_left_m = 0.015\ngap_left = 0.015")
+        pd_.Oscillator.from_toml_text(both)
+    assert "its new name" in str(info.value)
+    # the dotted names a study or a continuation varies
+    from pounding.model.dotted import get_value, set_value
+
+    table = pd_.presets.paper_printed().to_dict()
+    with pytest.warns(FutureWarning, match="'bumpers.gap' is now 'bumpers.gap_m'"):
+        set_value(table, "bumpers.gap", 0.02)
+    assert get_value(table, "bumpers.gap_left_m") == get_value(table, "bumpers.gap_right_m") == 0.02

@@ -196,7 +196,7 @@ def test_calibrated_preset_reproduces_its_stored_residuals():
     assert list(now["within"]) == list(stored["within"])
     osc = pd_.presets.paper_calibrated()
     # (fitted within +-3 mm)
-    assert osc.isolator.n_branches == 4 and abs(osc.bumpers.gap_left - 0.015) <= 0.003
+    assert osc.isolator.n_branches == 4 and abs(osc.bumpers.gap_left_m - 0.015) <= 0.003
     assert isinstance(osc.bumpers.law, pd_.MultilinearBumper) and len(osc.bumpers.law.slopes) == 3
     assert osc.bumpers.law.hysteresis == "kinematic"
     assert pd_.presets.by_name("paper-calibrated", bumpers=False).bumpers is None
@@ -290,7 +290,7 @@ def test_eta_is_compared_over_the_rigs_nominal_gap(tmp_path):
     # a model with 13 mm gaps: its eta over its own 26 mm, but the lab's eta is E over the nominal
     # 30 mm, so the residual compares the model's largest excursion over 30 mm
     osc = pd_.Oscillator.from_toml_text(pd_.presets.paper_calibrated_v1().to_toml_text().replace(
-        "gap_left = 0.015", "gap_left = 0.013").replace("gap_right = 0.015", "gap_right = 0.013"))
+        "gap_left_m = 0.015", "gap_left_m = 0.013").replace("gap_right_m = 0.015", "gap_right_m = 0.013"))
     recs = [dict(configuration="YBs", a_g=0.05, quantity=q, value=1.2) for q in ("eta", "excursion_max_m")]
     own, nominal = (evaluate(osc, pd_.Targets.from_records(recs, eta_gap_total_m=d), **FAST)
                     .set_index("quantity")["model"] for d in (None, 0.03))

@@ -61,7 +61,7 @@ def _fd_jacobian(osc, exc, vec, period, free, step):
         for sgn in steps:
             w = np.array(vec, dtype=float)
             w[place[name]] += sgn * step * scale.get(name, 1.0)
-            gl, gr = osc.bumpers.gap_left, osc.bumpers.gap_right
+            gl, gr = osc.bumpers.gap_left_m, osc.bumpers.gap_right_m
             if w[IN_L]:
                 w[DEF_L] = -w[I_D] - gl
             if w[IN_R]:

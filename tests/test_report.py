@@ -243,8 +243,8 @@ def test_table_2_compares_eta_over_the_rigs_nominal_gap():
     from pounding.reports.compare import comparison
 
     text = pd_.presets.paper_damped().to_toml_text()
-    ybs = pd_.Oscillator.from_toml_text(text.replace("gap_left = 0.015", "gap_left = 0.013")
-                                        .replace("gap_right = 0.015", "gap_right = 0.013"))
+    ybs = pd_.Oscillator.from_toml_text(text.replace("gap_left_m = 0.015", "gap_left_m = 0.013")
+                                        .replace("gap_right_m = 0.015", "gap_right_m = 0.013"))
     result = pd_.campaign(None, ybs, ybs_a_g=(0.05,), freqs_hz=[1.5, 2.0], directions=("up",),
                           steady="fixed", cycles=6, measure_cycles=2)
     own = result.table2().iloc[0]

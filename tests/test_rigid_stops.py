@@ -21,13 +21,14 @@ K, M = 100.0, 1.0  # the linear oscillator: omega 10 rad/s
 OMEGA = math.sqrt(K / M)
 
 
-def oscillator(e: float, gap_right: float = 0.01, zeta: float = 0.0, gap_left: float = 0.5,
+def oscillator(e: float, gap_right_m: float = 0.01, zeta: float = 0.0, gap_left_m: float = 0.5,
                e_left: float | None = None, omega: float = OMEGA) -> pounding.Oscillator:
     iso = pounding.Isolator(slopes=[M * omega ** 2], damping=2.0 * zeta * omega * M)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # (gaps beyond a bumper's plausible range)
         return pounding.Oscillator(M, iso, pounding.Bumpers(
-            gap_left, gap_right, pounding.RigidStop(e if e_left is None else e_left), pounding.RigidStop(e)))
+            gap_left_m, gap_right_m, pounding.RigidStop(e if e_left is None else e_left),
+            pounding.RigidStop(e)))
 
 
 def constant(a: float, until: float = 100.0) -> pounding.Record:
@@ -344,7 +345,7 @@ def test_a_stiff_kelvin_voigt_bumper_tends_to_the_rigid_stop_first_order_in_its_
     zeta_b, d = 0.1, 0.01
     table = pounding.Harmonic(a_g=5.0, freq_hz=1.3, g=1.0)
     e = _kv_restitution(1.0, 2.0 * zeta_b)
-    rigid = pounding.simulate(oscillator(e, d, 0.02, gap_left=d), table, duration=3.0, sample_rate_hz=0)
+    rigid = pounding.simulate(oscillator(e, d, 0.02, gap_left_m=d), table, duration=3.0, sample_rate_hz=0)
     ref = rigid.contacts.iloc[:6]
     errors, contact_times = [], []
     for kb in (1e7, 1e8, 1e9, 1e10):
@@ -384,7 +385,7 @@ def test_a_return_that_barely_reaches_the_stop_is_an_impact_not_a_pass_through()
 
 
 def test_a_continued_run_equals_one_long_run_through_chatter_and_sticking():
-    osc = oscillator(0.7, 0.005, 0.02, gap_left=0.005)
+    osc = oscillator(0.7, 0.005, 0.02, gap_left_m=0.005)
     table = pounding.Harmonic(a_g=4.0, freq_hz=0.7, g=1.0)
     one = pounding.simulate(osc, table, duration=6.0, sample_rate_hz=0)
     assert not one.chatters.empty and one.chatters.accumulated.any()
@@ -401,7 +402,7 @@ def test_a_continued_run_equals_one_long_run_through_chatter_and_sticking():
 
 
 def test_mirrored_stops_give_the_mirrored_motion():
-    osc = oscillator(0.6, 0.004, 0.03, gap_left=0.007, e_left=0.3)
+    osc = oscillator(0.6, 0.004, 0.03, gap_left_m=0.007, e_left=0.3)
     table = pounding.Harmonic(a_g=4.0, freq_hz=0.9, g=1.0)
     run = pounding.simulate(osc, table, duration=5.0, sample_rate_hz=0)
     mirror = dataclasses.replace(osc, bumpers=osc.bumpers.mirrored())
@@ -465,12 +466,12 @@ def test_a_building_against_a_rigid_moat_wall_and_two_buildings_against_each_oth
 
 
 def test_rigid_stops_on_both_sides_without_a_gap_are_refused_as_a_clamp():
-    with pytest.raises(pounding.InputError, match="bumpers.gap_left.*clamped"):
+    with pytest.raises(pounding.InputError, match="bumpers.gap_left_m.*clamped"):
         pounding.Bumpers(0.0, 0.0, pounding.RigidStop(0.5))
     with pytest.raises(pounding.InputError, match="wall.gap_left_m.*clamped"):
         pounding.Wall(0, 0.0, 0.0, pounding.RigidStop(1.0))
     # (one deformable side, or a gap: a mass that can move)
-    assert pounding.Bumpers(0.0, 0.0, pounding.RigidStop(0.5), pounding.KelvinVoigt(1e6)).gap_right == 0.0
+    assert pounding.Bumpers(0.0, 0.0, pounding.RigidStop(0.5), pounding.KelvinVoigt(1e6)).gap_right_m == 0.0
     assert pounding.Wall(0, 0.0, 0.001, pounding.RigidStop(1.0)).gap_right_m == 0.001
 
 
@@ -592,7 +593,7 @@ def test_two_structures_at_rest_on_a_zero_gap_rigid_link_are_held_from_the_start
 
 
 def test_a_mass_held_on_a_stop_has_the_table_s_crest_as_its_peak_acceleration():
-    osc = oscillator(0.0, 0.005, 0.02, gap_left=0.005)
+    osc = oscillator(0.0, 0.005, 0.02, gap_left_m=0.005)
     run = pounding.simulate(osc, pounding.Harmonic(a_g=10.0, freq_hz=1.3, g=1.0), duration=6.0,
                             sample_rate_hz=0)
     assert run.abs_acceleration_max == pytest.approx(10.0, rel=1e-12)

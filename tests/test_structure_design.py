@@ -102,7 +102,7 @@ def test_a_building_design_file_decides_the_moat_gap_for_drift(tmp_path):
 
 
 @pytest.mark.parametrize("change, field", [
-    (lambda t: t.update(bumpers={"gap_left": 0.1, "gap_right": 0.1}), "bumpers"),
+    (lambda t: t.update(bumpers={"gap_left_m": 0.1, "gap_right_m": 0.1}), "bumpers"),
     (lambda t: t["design"].update(wall=1), "design.wall"),
     (lambda t: t["design"].update(event="drift"), "design.limit"),
     (lambda t: t["design"].update(limit=0.01), "design.limit"),

@@ -24,7 +24,7 @@ QUANTITIES = ("acc_max_g", "disp_max_m", "impacts", "impact_force_max_n", "impac
 def _spec(n_gap: int = 3, n_ag: int = 4, duration_s: float = 5.0) -> pd_.StudySpec:
     return pd_.StudySpec(
         pd_.presets.paper_printed(), {"kind": "simulate", "freq_hz": 2.0, "duration_s": duration_s},
-        {"bumpers.gap_left": list(np.round(np.linspace(0.008, 0.02, n_gap), 6)),
+        {"bumpers.gap_left_m": list(np.round(np.linspace(0.008, 0.02, n_gap), 6)),
          "a_g": list(np.round(np.linspace(0.05, 0.3, n_ag), 6))})
 
 
@@ -37,12 +37,13 @@ def test_every_scheduler_gives_the_same_dataset(tmp_path):
 
     spec = _spec()
     serial = _data(pd_.study(spec, tmp_path / "serial.zarr", workers=1, progress=False))
-    assert bool(serial["done"].all()) and serial.sizes == {"bumpers.gap_left": 3, "a_g": 4}
+    assert bool(serial["done"].all()) and serial.sizes == {"bumpers.gap_left_m": 3, "a_g": 4}
     # each point is the run it stands for
     osc, options = spec.point((1, 2))
     run = pd_.simulate(osc, pd_.Harmonic(options["a_g"], 2.0), 5.0, sample_rate_hz=0)
-    point = serial.isel({"bumpers.gap_left": 1, "a_g": 2})
-    assert osc.bumpers.gap_left == spec.grid["bumpers.gap_left"][1] and options["a_g"] == spec.grid["a_g"][2]
+    point = serial.isel({"bumpers.gap_left_m": 1, "a_g": 2})
+    assert osc.bumpers.gap_left_m == spec.grid["bumpers.gap_left_m"][1]
+    assert options["a_g"] == spec.grid["a_g"][2]
     assert float(point["acc_max_g"]) == run.abs_acceleration_max / 9.81
     assert float(point["impacts"]) == len(run.contacts)
     runs = {"threads": pd_.study(spec, tmp_path / "threads.zarr", scheduler="threads", workers=2,
@@ -58,7 +59,7 @@ def test_every_scheduler_gives_the_same_dataset(tmp_path):
     result = pd_.open_study(tmp_path / "dask.zarr")
     assert result.complete and result.spec.sha256 == spec.sha256
     df = result.to_dataframe()
-    assert len(df) == 12 and list(df.columns[:2]) == ["bumpers.gap_left", "a_g"]
+    assert len(df) == 12 and list(df.columns[:2]) == ["bumpers.gap_left_m", "a_g"]
 
 
 def test_a_rerun_computes_only_what_is_not_done(tmp_path):
@@ -99,7 +100,7 @@ kind = "simulate"
 freq_hz = 2.0
 duration_s = 4000.0
 [grid]
-"bumpers.gap_right" = [0.008, 0.01, 0.012, 0.014, 0.016, 0.018, 0.02, 0.022]
+"bumpers.gap_right_m" = [0.008, 0.01, 0.012, 0.014, 0.016, 0.018, 0.02, 0.022]
 "a_g" = [0.05, 0.075, 0.1, 0.125, 0.15, 0.175, 0.2, 0.225, 0.25, 0.275, 0.3, 0.325]
 """
 
@@ -302,7 +303,7 @@ def test_a_study_plots(tmp_path):
     matplotlib.use("Agg")
     pd_.study(_spec(), tmp_path / "s.zarr", progress=False)
     result = pd_.open_study(tmp_path / "s.zarr")
-    lines = pd_.plots.plot_study(result, "impacts", x="a_g", hue="bumpers.gap_left")
+    lines = pd_.plots.plot_study(result, "impacts", x="a_g", hue="bumpers.gap_left_m")
     assert len(lines) == 3
     with pytest.raises(pd_.InputError, match="quantity"):
         result.plot("done")
@@ -413,7 +414,7 @@ def test_plot_picks_the_other_axes_by_where(tmp_path):
     matplotlib.use("Agg")
     pd_.study(_spec(), tmp_path / "s.zarr", progress=False)
     result = pd_.open_study(tmp_path / "s.zarr")
-    assert len(pd_.plots.plot_study(result, "impacts", x="a_g", where={"bumpers.gap_left": 0.014})) == 1
+    assert len(pd_.plots.plot_study(result, "impacts", x="a_g", where={"bumpers.gap_left_m": 0.014})) == 1
     with pytest.raises(pd_.InputError, match="hue"):
         result.plot("impacts", x="a_g", hue="a_g")
 
@@ -467,7 +468,7 @@ def test_a_disk_that_fills_ends_the_study_with_a_named_error_and_a_resume_finish
     from pounding.cli import app
 
     spec = pd_.StudySpec(pd_.presets.paper_damped(), {"kind": "simulate", "freq_hz": 2.0, "duration_s": 1.0},
-                         {"a_g": [0.02, 0.04, 0.06, 0.08], "bumpers.gap_left": [0.01, 0.02, 0.03]})
+                         {"a_g": [0.02, 0.04, 0.06, 0.08], "bumpers.gap_left_m": [0.01, 0.02, 0.03]})
     whole = pd_.study(spec, tmp_path / "whole.zarr", workers=1, progress=False).load()
     original = zarr.Array.__setitem__
     writes = {"n": 0}
@@ -490,7 +491,7 @@ def test_a_disk_that_fills_ends_the_study_with_a_named_error_and_a_resume_finish
     toml = tmp_path / "s.toml"
     toml.write_text('[system]\npreset = "paper-damped"\n[compute]\nkind = "simulate"\nfreq_hz = 2.0\n'
                     'duration_s = 1.0\n[grid]\na_g = [0.02, 0.04, 0.06, 0.08]\n'
-                    '"bumpers.gap_left" = [0.01, 0.02, 0.03]\n')
+                    '"bumpers.gap_left_m" = [0.01, 0.02, 0.03]\n')
     cli_store = str(tmp_path / "cli.zarr")
     out = CliRunner().invoke(app, ["study", str(toml), "--store", cli_store, "--workers", "1"])
     assert out.exit_code == 1 and "could not be written" in out.output and "Traceback" not in out.output

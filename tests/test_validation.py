@@ -112,7 +112,7 @@ def test_final_states_of_runs_always_fit():
         (lambda: pd_.Isolator([38e3], [], damping=1e300), "isolator.damping"),
         (lambda: pd_.KelvinVoigt(1e300, 5.0), "law.stiffness"),
         (lambda: pd_.HuntCrossley(1e8, 1e300, 1.0), "law.exponent"),
-        (lambda: pd_.Bumpers(1e300, 0.015, pd_.KelvinVoigt(1e6)), "bumpers.gap_left"),
+        (lambda: pd_.Bumpers(1e300, 0.015, pd_.KelvinVoigt(1e6)), "bumpers.gap_left_m"),
         (lambda: pd_.Oscillator(1e300, ISO), "mass"),
         (lambda: pd_.sweep(OSC, 1e300), "a_g"),
     ],

@@ -18,7 +18,7 @@ import pounding
 
 spec = pounding.StudySpec(pounding.presets.paper_printed(),
                           {"kind": "simulate", "freq_hz": 2.0, "duration_s": 20.0},
-                          {"bumpers.gap_left": list(np.round(np.linspace(0.005, 0.03, 6), 3)),
+                          {"bumpers.gap_left_m": list(np.round(np.linspace(0.005, 0.03, 6), 3)),
                            "a_g": [0.05, 0.1, 0.2]})
 store = Path(tempfile.mkdtemp()) / "gaps.zarr"
 dataset = pounding.study(spec, store, progress=False)      # an xarray Dataset on the grid's axes
@@ -28,7 +28,7 @@ print(dataset["impacts"].to_pandas())
 # Impacts against the left gap, one line per table acceleration (the store opened again, as a later
 # session would).
 result = pounding.open_study(store)
-result.plot("impacts", x="bumpers.gap_left", hue="a_g")
+result.plot("impacts", x="bumpers.gap_left_m", hue="a_g")
 
 # %%
 # Rerunning the same study on the same store computes nothing: every point is done, and each keeps the

@@ -173,7 +173,7 @@ def paper_calibrated(bumpers: bool = True) -> Oscillator:
     >>> law = ybs.bumpers.law
     >>> ybs.isolator.n_branches, type(law).__name__, law.hysteresis
     (4, 'MultilinearBumper', 'kinematic')
-    >>> round(ybs.bumpers.gap_left * 1e3, 1)  # mm
+    >>> round(ybs.bumpers.gap_left_m * 1e3, 1)  # mm
     16.4
     """
     return _data_system(CALIBRATED_FILE, bumpers)
@@ -282,7 +282,8 @@ def paper_calibrated_v2(bumpers: bool = True) -> Oscillator:
     >>> import pounding
     >>> ybs = pounding.presets.paper_calibrated_v2()
     >>> law = ybs.bumpers.law
-    >>> law.hysteresis, len(law.slopes), round(ybs.bumpers.gap_right * 1e3, 1)  # mm
+    >>> gap_mm = round(ybs.bumpers.gap_right_m * 1e3, 1)
+    >>> law.hysteresis, len(law.slopes), gap_mm
     ('elastic', 3, 13.2)
     """
     return _data_system(CALIBRATED_V2_FILE, bumpers)

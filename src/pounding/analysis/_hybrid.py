@@ -102,7 +102,7 @@ class Hybrid(NamedTuple):
         if b is None:
             gaps, k, c = (np.inf, np.inf), (0.0, 0.0), (0.0, 0.0)
         else:
-            gaps = (float(b.gap_left), float(b.gap_right))
+            gaps = (float(b.gap_left_m), float(b.gap_right_m))
             # (a law other than Kelvin-Voigt: no linear modes; its numbers are not used but for the
             # coordinates, where its compressions are no shooting coordinates)
             forms = [linear_form(law) for law in (b.left, b.right)]

@@ -146,7 +146,7 @@ class Branch:
         and its contacts at every wall side and link; its grazings name the wall side or link
         (``side``: ``wall0_left``, ``link0``).
     parameter : str
-        ``"freq_hz"``, ``"a_g"`` or a dotted name of the system (``"bumpers.gap_left"``).
+        ``"freq_hz"``, ``"a_g"`` or a dotted name of the system (``"bumpers.gap_left_m"``).
     values : tuple of float
         The range asked for, ``(start, end)``.
     period_multiple : int

@@ -70,7 +70,7 @@ def continuation(
         (either order: the branch starts at ``start``); one frequency otherwise.
     parameter : str
         What varies: ``"freq_hz"``, ``"a_g"`` or a dotted name of a number of the system
-        (``"bumpers.gap_left"``, ``"isolator.damping"``, ``"bumpers.law.stiffness"``), whose
+        (``"bumpers.gap_left_m"``, ``"isolator.damping"``, ``"bumpers.law.stiffness"``), whose
         range is then ``values``.
     values : (float, float), optional
         The range of a system number continued (``parameter`` a dotted name).
@@ -224,7 +224,7 @@ def _pair(field: str, value: Any, unit: str) -> tuple[float, float]:
 def _check_range(osc: Any, parameter: Any, a_g: Any, freqs_hz: Any, values: Any) -> tuple:
     if not isinstance(parameter, str):
         raise InputError(Problem.WRONG_TYPE, "parameter", parameter, got=type(parameter).__name__,
-                         expected="str ('freq_hz', 'a_g' or a dotted name such as 'bumpers.gap_left')")
+                         expected="str ('freq_hz', 'a_g' or a dotted name such as 'bumpers.gap_left_m')")
     if parameter == "freq_hz":
         pair = _pair("freqs_hz", freqs_hz, "Hz")
         for i, f in enumerate(pair):
@@ -239,7 +239,7 @@ def _check_range(osc: Any, parameter: Any, a_g: Any, freqs_hz: Any, values: Any)
     if why is not None:
         raise InputError(Problem.BAD_STATE, "parameter", parameter,
                          why=f"names no number of the system: {why}",
-                         fix="give 'freq_hz', 'a_g' or a dotted name such as 'bumpers.gap_left'")
+                         fix="give 'freq_hz', 'a_g' or a dotted name such as 'bumpers.gap_left_m'")
     if values is None:
         raise InputError(Problem.MISSING_INPUT, "values", None, what=f"the range (start, end) of {parameter}")
     pair = _pair("values", values, "the parameter's unit")

@@ -22,7 +22,7 @@ TYPE_KEYS = ("law", "capacity_m", "grid")
 @dataclass(frozen=True, eq=False)
 class BumperType:
     """One bumper type of a design: its name, the system with its bumpers, and its design grid
-    (``bumpers.gap`` and the type's own dotted names)."""
+    (``bumpers.gap_m`` and the type's own dotted names)."""
 
     name: str
     system: Any  # Oscillator, or a Structure (a building: its moat's wall)
@@ -65,8 +65,8 @@ def bumper_types(system: Oscillator, des: Mapping[str, Any], grid: dict, gaps: n
     return tuple(out)
 
 
-def grid_of(field: str, value: Any, gaps: np.ndarray, gap_dim: str = "bumpers.gap") -> dict:
-    """A design grid: ``gap_dim`` (``bumpers.gap``, or a building's ``walls[w].gap_m``) from
+def grid_of(field: str, value: Any, gaps: np.ndarray, gap_dim: str = "bumpers.gap_m") -> dict:
+    """A design grid: ``gap_dim`` (``bumpers.gap_m``, or a building's ``walls[w].gap_m``) from
     ``design.gaps_m``, then the table's dotted names."""
     grid = {gap_dim: gaps.tolist()}
     stem = gap_dim[: -len("_m")] if gap_dim.endswith("_m") else gap_dim

@@ -65,7 +65,7 @@ class Decision:
     limit : float or None
         The demand's threshold (None for pounding).
     units : dict
-        The design dimensions' units (``"bumpers.gap"`` -> ``"m"``), per bumper type (keyed by its name,
+        The design dimensions' units (``"bumpers.gap_m"`` -> ``"m"``), per bumper type (keyed by its name,
         None for a single analysis), as the stores record them: what the labels show.
 
     Examples
@@ -75,9 +75,9 @@ class Decision:
     >>> ybs = pounding.presets.paper_damped()
     >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
     ...                              store="decide.zarr", progress=False,
-    ...                              grid={"bumpers.gap": [0.02, 0.2]})
+    ...                              grid={"bumpers.gap_m": [0.02, 0.2]})
     >>> choice = design.decide(msa, 0.3, 0.45, target_probability=0.1)
-    >>> choice.recommended["bumpers.gap"]
+    >>> choice.recommended["bumpers.gap_m"]
     0.2
     """
 
@@ -261,7 +261,7 @@ def decide(
     *,
     target_probability: float = 0.1,
     level: str = "mce",
-    gap_dim: str = "bumpers.gap",
+    gap_dim: str = "bumpers.gap_m",
     hazard: HazardCurve | None = None,
     years: float = 50.0,
     code_minimum_gap_m: float | None = None,
@@ -286,7 +286,7 @@ def decide(
     level : {"design", "mce"}
         Where the target applies.
     gap_dim : str
-        The grid's gap dimension (``"bumpers.gap"``).
+        The grid's gap dimension (``"bumpers.gap_m"``).
     hazard : HazardCurve, optional
         The site's curve for the same intensity: adds the probability of pounding in ``years``.
     years : float
@@ -317,9 +317,9 @@ def decide(
     >>> ybs = pounding.presets.paper_damped()
     >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
     ...                              store="choose.zarr", progress=False,
-    ...                              grid={"bumpers.gap": [0.02, 0.2]})
+    ...                              grid={"bumpers.gap_m": [0.02, 0.2]})
     >>> choice = design.decide(msa, 0.3, 0.45, target_probability=0.1)
-    >>> columns = ["bumpers.gap", "p_contact_design", "p_contact_mce"]
+    >>> columns = ["bumpers.gap_m", "p_contact_design", "p_contact_mce"]
     >>> choice.data[columns].values.round(3)
     array([[0.02 , 0.443, 0.885],
            [0.2  , 0.   , 0.   ]])

@@ -62,7 +62,7 @@ class DesignPlan:
     scale_range_s : tuple of float
         The range over which the suite is shown scaled to the MCE_R spectrum.
     grid : dict
-        The design grid (``bumpers.gap`` from ``gaps_m``, and any other dotted names).
+        The design grid (``bumpers.gap_m`` from ``gaps_m``, and any other dotted names).
     bumper_types : tuple of BumperType
         The ``[design.bumper_types.NAME]`` tables (each a law, optionally a capacity and its own
         grid), one stripe analysis each; empty: the base system's bumpers alone (:attr:`kinds`).
@@ -80,7 +80,7 @@ class DesignPlan:
     bumper_types : tuple of BumperType
         (above)
     gap_dim : str
-        The grid's gap: ``bumpers.gap``, or a building's ``walls[w].gap_m`` (``[design] wall``).
+        The grid's gap: ``bumpers.gap_m``, or a building's ``walls[w].gap_m`` (``[design] wall``).
     event : str
         The demand the target is on: ``contact`` (pounding, default), or ``displacement``,
         ``acceleration`` (one mass), ``drift``, ``top_acceleration`` (a building) beyond ``limit``.
@@ -107,7 +107,7 @@ class DesignPlan:
     store: Path | None = None
     source: Path = field(default_factory=lambda: Path("."))
     bumper_types: tuple = ()
-    gap_dim: str = "bumpers.gap"
+    gap_dim: str = "bumpers.gap_m"
     event: str = "contact"
     limit: float | None = None
 
@@ -165,7 +165,7 @@ class DesignPlan:
                 Problem.MISSING_KEY,
                 "bumpers",
                 None,
-                choices="a [bumpers] table (gap_left, gap_right, [bumpers.law]) or a system with "
+                choices="a [bumpers] table (gap_left_m, gap_right_m, [bumpers.law]) or a system with "
                 "bumpers: a design chooses their gap",
             )
         design_spec, mce_spec, hazard_file = site_spectra(check_table("site", table["site"]), base)
@@ -223,7 +223,7 @@ class DesignPlan:
                 what=" m",
                 fix=f"give the gaps in m ({gaps[i]:g} mm is {gaps[i] / 1e3:g})",
             )
-        gap_dim = "bumpers.gap"
+        gap_dim = "bumpers.gap_m"
         if building:
             wall = integer("design.wall", des.get("wall", 0), 0, len(system.walls) - 1,
                            f"the building has {len(system.walls)} wall(s): walls[0] ...")
@@ -326,7 +326,7 @@ def own_kind(system: Any, grid: dict, gap_dim: str) -> BumperType:
 
 
 def _check_runs(system: Any, records: list, levels: np.ndarray, period: float, grid: dict,
-                gap_dim: str = "bumpers.gap") -> None:
+                gap_dim: str = "bumpers.gap_m") -> None:
     """The runs the plan asks for are valid, before any: the study's own checks (the grid's names and
     values, every record read and scaled), named by the design file's fields."""
     from ..studies import StudySpec

@@ -39,7 +39,7 @@ class StripeAnalysis:
     ----------
     data : xarray.Dataset
         The study's store: dims ``sa_g`` (the stripes, g), ``record`` and the design grid's
-        (e.g. ``bumpers.gap``); per run ``acc_max_g``, ``disp_max_m``, ``impacts``,
+        (e.g. ``bumpers.gap_m``); per run ``acc_max_g``, ``disp_max_m``, ``impacts``,
         ``impact_force_max_n``, ``impact_speed_max_m_s``, ``compression_max_m``, ``status``;
         ``done``.  A building's runs (a :class:`~pounding.Structure`): ``base_disp_max_m``,
         ``top_disp_max_m``, ``acc_max_g`` (over its floors), ``top_acc_max_g``, ``drift_ratio_max``,
@@ -63,9 +63,9 @@ class StripeAnalysis:
     >>> ybs = pounding.presets.paper_damped()
     >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
     ...                              store="msa.zarr", progress=False,
-    ...                              grid={"bumpers.gap": [0.02, 0.2]})
+    ...                              grid={"bumpers.gap_m": [0.02, 0.2]})
     >>> print(msa.fraction("contact").to_pandas())
-    bumpers.gap  0.02  0.20
+    bumpers.gap_m  0.02  0.20
     sa_g
     0.2           0.0   0.0
     0.5           1.0   0.0
@@ -83,7 +83,7 @@ class StripeAnalysis:
         return tuple(d for d in self.data["done"].dims if d not in RESERVED)
 
     def unit(self, dim: str) -> str:
-        """The unit of a design dimension (``"m"`` for ``bumpers.gap``), as the store records it."""
+        """The unit of a design dimension (``"m"`` for ``bumpers.gap_m``), as the store records it."""
         from ..model.dotted import unit_of
 
         recorded = self.data[dim].attrs.get("units") if dim in self.data.coords else None
@@ -169,7 +169,7 @@ class StripeAnalysis:
         seed: int = 0,
     ) -> Fragility:
         """The event's lognormal fragility over the stripes at one design point (``at``: a value for
-        each design dimension, e.g. ``{"bumpers.gap": 0.1}``), by maximum likelihood
+        each design dimension, e.g. ``{"bumpers.gap_m": 0.1}``), by maximum likelihood
         (:func:`fit_fragility`).  Its band resamples *records* (each with its runs at every stripe):
         the same records are in every stripe, so resampling runs within stripes would understate
         the record-to-record spread."""

@@ -93,7 +93,7 @@ def stripe_analysis(
         The Zarr store (created, or resumed when it holds this analysis).
     grid : dict, optional
         The design grid: dotted names of the system's numbers and their values, e.g.
-        ``{"bumpers.gap": [0.05, 0.1], "bumpers.law.stiffness": [1e6, 3e6]}``.
+        ``{"bumpers.gap_m": [0.05, 0.1], "bumpers.law.stiffness": [1e6, 3e6]}``.
     damping_ratio : float
         The intensity measure's spectral damping.
     scheduler : None, str or dask.distributed.Client

@@ -89,7 +89,7 @@ class State:
             Time, s.
         displacement_m : float
             Displacement relative to the table, m, between the bumpers' surfaces
-            (``-gap_left <= D <= gap_right``).  The isolator is where a slow push from 0
+            (``-gap_left_m <= D <= gap_right_m``).  The isolator is where a slow push from 0
             would leave it (on the backbone; a Bouc-Wen spring's z at 0).
         velocity_m_s : float
             Velocity relative to the table, m/s.
@@ -105,11 +105,11 @@ class State:
         v = at_most("velocity_m_s", real("velocity_m_s", velocity_m_s), MAX_VELOCITY_M_S, " m/s",
                     "give the velocity in m/s")
         b = oscillator.bumpers
-        if b is not None and not -b.gap_left <= d <= b.gap_right:
-            side, surface = ("left", -b.gap_left) if d < 0 else ("right", b.gap_right)
+        if b is not None and not -b.gap_left_m <= d <= b.gap_right_m:
+            side, surface = ("left", -b.gap_left_m) if d < 0 else ("right", b.gap_right_m)
             raise InputError(Problem.BAD_STATE, "displacement_m", d,
                              why=f"is inside the {side} bumper, whose surface is at {surface:g} m",
-                             fix=f"give a displacement between {-b.gap_left:g} and {b.gap_right:g} m "
+                             fix=f"give a displacement between {-b.gap_left_m:g} and {b.gap_right_m:g} m "
                                  "(a state in contact comes from a run's final_state)")
         iso = oscillator.isolator
         n_sp = iso.n_branches - 1

@@ -76,7 +76,7 @@ def _check_vector_fits(vec: np.ndarray, oscillator: Oscillator) -> None:
     d = x[D]
     iso = oscillator.isolator
     b = oscillator.bumpers
-    lengths = [abs(d), 1e-3, *iso.breakpoints] + ([b.gap_left, b.gap_right] if b else [])
+    lengths = [abs(d), 1e-3, *iso.breakpoints] + ([b.gap_left_m, b.gap_right_m] if b else [])
     tol = 1e-9 * max(lengths)
     fix = "start from State.at_rest(oscillator) or a final_state of this system"
 
@@ -90,7 +90,7 @@ def _check_vector_fits(vec: np.ndarray, oscillator: Oscillator) -> None:
             raise bad("in_contact", touching, "has a bumper in contact or compressed, but the system has no "
                                               "bumpers")
     else:
-        for j, (side, gap, sign) in enumerate((("left", b.gap_left, -1.0), ("right", b.gap_right, 1.0))):
+        for j, (side, gap, sign) in enumerate((("left", b.gap_left_m, -1.0), ("right", b.gap_right_m, 1.0))):
             depth = sign * d - gap  # how far the mass is beyond this bumper's free surface
             if touching[j] and abs(depth - comp[j]) > tol:
                 raise bad(f"bumper_compression_m[{j}]", comp[j],
@@ -142,7 +142,7 @@ def kernel_system(oscillator: Oscillator) -> System:
     left = right = _NO_LAW
     gap_l = gap_r = 0.0
     if b is not None:
-        left, right, gap_l, gap_r = b.left, b.right, b.gap_left, b.gap_right
+        left, right, gap_l, gap_r = b.left, b.right, b.gap_left_m, b.gap_right_m
     contacts = [_core.contact_slot(i=0, j=-1, sign=sign, gap_m=gap, law=law.LAW_ID, params=law.params())
                 for sign, gap, law in ((-1.0, gap_l, left), (1.0, gap_r, right))]
     isolator = _core.element(i=0, j=-1, c_d=oscillator.isolator.damping, slopes=slopes, breaks=breaks,

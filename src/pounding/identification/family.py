@@ -226,18 +226,18 @@ class ModelFamily:
             out.update({f"bumper_slope_{i + 1}": float(k) for i, k in enumerate(b.law.slopes)})
             out.update({f"bumper_breakpoint_{i + 1}": float(x) for i, x in enumerate(b.law.breakpoints)})
             out["bumper_damping"] = float(b.law.damping)
-            out["gap"] = float(b.gap_left)
+            out["gap"] = float(b.gap_left_m)
             return out
         out["bumper_stiffness"] = float(b.law.stiffness)
         if self.law == "elastic_plastic":
             out["bumper_post_yield_ratio"] = float(b.law.post_yield_stiffness / b.law.stiffness)
             out["bumper_yield_compression"] = float(b.law.yield_compression)
-            out["gap"] = float(b.gap_left)
+            out["gap"] = float(b.gap_left_m)
             return out
         out["bumper_damping"] = float(b.law.damping)
         if self.law == "hunt_crossley":
             out["bumper_exponent"] = float(b.law.exponent)
-        out["gap"] = float(b.gap_left)
+        out["gap"] = float(b.gap_left_m)
         return out
 
     @classmethod

@@ -64,7 +64,7 @@ class HysteresisLoop:
         normalised by ``total_gap_m`` (m) and the run's ``g``."""
         g = run.excitation.g
         b = run.oscillator.bumpers
-        surfaces = None if b is None else (-b.gap_left / total_gap_m, b.gap_right / total_gap_m)
+        surfaces = None if b is None else (-b.gap_left_m / total_gap_m, b.gap_right_m / total_gap_m)
         return cls(d=run.displacement / total_gap_m, r=run.abs_acceleration / g, t=run.t,
                    freq_hz=freq_hz, a_g=a_g, total_gap_m=total_gap_m, cycles=cycles,
                    bumper_surfaces_d=surfaces)

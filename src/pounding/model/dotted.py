@@ -8,15 +8,30 @@ from typing import Any
 
 _INDEX = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?$")
 
-# names that stand for several numbers set together: ``bumpers.gap``, the same gap both sides (and a
+# names that stand for several numbers set together: ``bumpers.gap_m``, the same gap both sides (and a
 # structure's wall's ``walls[i].gap_m``: :func:`alias_of`)
-ALIASES = {"bumpers.gap": ("bumpers.gap_left", "bumpers.gap_right")}
+ALIASES = {"bumpers.gap_m": ("bumpers.gap_left_m", "bumpers.gap_right_m")}
 _WALL_GAP = re.compile(r"^((?:first\.|second\.)?walls\[\d+\])\.gap_m$")
+# the names before (0.1's), read for one release with a FutureWarning naming the new one
+RENAMED = {"bumpers.gap": "bumpers.gap_m", "bumpers.gap_left": "bumpers.gap_left_m",
+           "bumpers.gap_right": "bumpers.gap_right_m"}
+
+
+def current_name(name: str) -> str:
+    """``name``, or its new spelling when it is one of the names before (``bumpers.gap`` ->
+    ``bumpers.gap_m``), with a ``FutureWarning``."""
+    if name in RENAMED:
+        from .._errors import warn_renamed
+
+        warn_renamed(name, RENAMED[name], stacklevel=4)
+        return RENAMED[name]
+    return name
 
 
 def alias_of(name: str) -> tuple[str, ...] | None:
-    """The names an alias sets together (``bumpers.gap``: both gaps; ``walls[2].gap_m``: that wall's two
+    """The names an alias sets together (``bumpers.gap_m``: both gaps; ``walls[2].gap_m``: that wall's two
     gaps, ``second.walls[0].gap_m`` a pair's), or None for a name that is not one."""
+    name = current_name(name)
     if name in ALIASES:
         return ALIASES[name]
     m = _WALL_GAP.match(name)
@@ -25,7 +40,8 @@ def alias_of(name: str) -> tuple[str, ...] | None:
 
 def set_value(table: dict, name: str, value: Any) -> None:
     """Set the dotted ``name`` (``bumpers.law.stiffness``, ``isolator.slopes[0]``, or an alias:
-    ``bumpers.gap`` sets both gaps) in nested tables."""
+    ``bumpers.gap_m`` sets both gaps) in nested tables."""
+    name = current_name(name)
     if alias_of(name):
         for each in alias_of(name):
             set_value(table, each, value)
@@ -49,6 +65,7 @@ def set_value(table: dict, name: str, value: Any) -> None:
 
 def why_unresolved(table: dict, name: str) -> str | None:
     """None when the dotted ``name`` reaches a number of the system ``table``; else why not."""
+    name = current_name(name)
     if alias_of(name):
         for each in alias_of(name):
             why = why_unresolved(table, each)
@@ -78,6 +95,7 @@ def why_unresolved(table: dict, name: str) -> str | None:
 
 def get_value(table: dict, name: str) -> Any:
     """The value at the dotted ``name`` (one :func:`why_unresolved` accepts; an alias's first)."""
+    name = current_name(name)
     if alias_of(name):
         return get_value(table, alias_of(name)[0])
     node: Any = table
@@ -103,7 +121,7 @@ _HERTZ_TYPES = ("hunt_crossley", "jankowski", "hertzdamp")
 
 
 def unit_of(name: str, table: dict | None = None) -> str:
-    """The unit of the dotted ``name`` (``bumpers.gap`` -> ``"m"``, ``isolator.damping`` -> ``"N s/m"``,
+    """The unit of the dotted ``name`` (``bumpers.gap_m`` -> ``"m"``, ``isolator.damping`` -> ``"N s/m"``,
     ``a_g`` -> ``"g"``); ``table`` (``Oscillator.to_dict``) tells a Hertz-type law's stiffness
     (``N/m^1.5``) from a linear one's.  ``""`` for a name it does not know."""
     key = _INDEX.match(name.split(".")[-1] or "")
@@ -126,7 +144,7 @@ def unit_of(name: str, table: dict | None = None) -> str:
 
 
 def with_unit(name: str, value: Any, table: dict | None = None, sep: str = " = ") -> str:
-    """``name`` and ``value`` with its unit: ``"bumpers.gap = 0.05 m"``, ``"a_g = 0.3 g"``."""
+    """``name`` and ``value`` with its unit: ``"bumpers.gap_m = 0.05 m"``, ``"a_g = 0.3 g"``."""
     unit = unit_of(name, table)
     shown = f"{value:g}" if isinstance(value, (int, float)) and not isinstance(value, bool) else str(value)
     return f"{name}{sep}{shown}" + (f" {unit}" if unit and unit != "-" else "")

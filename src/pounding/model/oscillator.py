@@ -8,7 +8,7 @@ from typing import Any, ClassVar, Optional, Union
 
 
 from .._checks import at_least, at_most, plausible, positive
-from .._errors import InputError, Problem
+from .._errors import InputError, Problem, warn_renamed
 from ._toml import TomlFile
 from .bumpers import Bumpers
 from .contact_laws import law_from_dict
@@ -109,16 +109,33 @@ class Oscillator(TomlFile):
         isolator = Isolator(**iso_table)
         bumpers = None
         if "bumpers" in table:
-            b = table["bumpers"]
-            check_keys(b, "bumpers.", Bumpers.FIELDS, required=("gap_left", "gap_right", "law"))
+            b = renamed_keys(table["bumpers"], "bumpers.", Bumpers.RENAMED)
+            check_keys(b, "bumpers.", Bumpers.FIELDS, required=("gap_left_m", "gap_right_m", "law"))
             law_right = b.get("law_right")
             bumpers = Bumpers(
-                gap_left=b["gap_left"], gap_right=b["gap_right"],
+                gap_left_m=b["gap_left_m"], gap_right_m=b["gap_right_m"],
                 law=law_from_dict(b["law"], "bumpers.law"),
                 law_right=None if law_right is None else law_from_dict(law_right, "bumpers.law_right"),
                 capacity_m=b.get("capacity_m"),
             )
         return cls(mass=table["mass"], isolator=isolator, bumpers=bumpers)
+
+
+def renamed_keys(table: Any, prefix: str, renamed: dict[str, str]) -> Any:
+    """A TOML table with its keys' names before (``renamed``: old -> new) read as the new ones, each with a
+    ``FutureWarning`` naming it (``prefix`` + key); both spellings of one key is an error."""
+    if not isinstance(table, dict) or not any(k in table for k in renamed):
+        return table
+    out = dict(table)
+    for old, new in renamed.items():
+        if old in out:
+            if new in out:
+                raise InputError(Problem.BAD_STATE, prefix + old, out[old],
+                                 why=f"is given as well as {prefix + new}, its new name",
+                                 fix=f"keep {prefix + new} only")
+            warn_renamed(prefix + old, prefix + new, stacklevel=4)
+            out[new] = out.pop(old)
+    return out
 
 
 def check_keys(table: Any, prefix: str, allowed: tuple[str, ...], required: tuple[str, ...]) -> None:

@@ -254,7 +254,7 @@ class Structure(TomlFile):
             raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator, got=type(oscillator).__name__,
                              expected="Oscillator")
         b = oscillator.bumpers
-        walls = () if b is None else (Wall(0, b.gap_left, b.gap_right, b.left,
+        walls = () if b is None else (Wall(0, b.gap_left_m, b.gap_right_m, b.left,
                                            None if b.right is b.left else b.right),)
         return cls(oscillator.mass, oscillator.isolator, (), walls)
 

@@ -292,7 +292,7 @@ def plot_stripes(analysis: Any, event: str = "contact", limit: float | None = No
     >>> ybs = pounding.presets.paper_damped()
     >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
     ...                              store="plot.zarr", progress=False,
-    ...                              grid={"bumpers.gap": [0.02, 0.2]})
+    ...                              grid={"bumpers.gap_m": [0.02, 0.2]})
     >>> len(pounding.plots.plot_stripes(msa))  # each gap's markers, no curve
     2
     """
@@ -355,7 +355,7 @@ def plot_decision(decision: Any, ax: Any = None) -> list:
     >>> ybs = pounding.presets.paper_damped()
     >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
     ...                              store="chart.zarr", progress=False,
-    ...                              grid={"bumpers.gap": [0.02, 0.2]})
+    ...                              grid={"bumpers.gap_m": [0.02, 0.2]})
     >>> choice = design.decide(msa, 0.3, 0.45)
     >>> len(pounding.plots.plot_decision(choice))  # 2 lines, target, choice
     4
@@ -422,7 +422,7 @@ def plot_responses(analysis: Any, quantity: str = "acc_max_g", ax: Any = None) -
     >>> ybs = pounding.presets.paper_damped()
     >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
     ...                              store="resp.zarr", progress=False,
-    ...                              grid={"bumpers.gap": [0.02, 0.2]})
+    ...                              grid={"bumpers.gap_m": [0.02, 0.2]})
     >>> len(pounding.plots.plot_responses(msa, "acc_max_g"))  # line, band
     4
     """

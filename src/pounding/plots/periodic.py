@@ -63,7 +63,7 @@ def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
                            "v", color="C3", markersize=5, label="contact starts")
     b = run.oscillator.bumpers
     if b is not None:
-        for x_mm in (-b.gap_left * 1e3, b.gap_right * 1e3):
+        for x_mm in (-b.gap_left_m * 1e3, b.gap_right_m * 1e3):
             artists.append(ax.axvline(x_mm, color="0.6", linewidth=0.8))
     ax.set_xlabel("displacement D [mm]")
     ax.set_ylabel("velocity V [m/s]")

@@ -56,7 +56,7 @@ def plot_run(run: "Run", ax: Any = None, *, contacts: bool = True) -> list:
             artists.append(ax.axvspan(start, end, color="0.85", lw=0))
     b = run.oscillator.bumpers
     if b is not None:
-        for y in (-b.gap_left, b.gap_right):
+        for y in (-b.gap_left_m, b.gap_right_m):
             artists.append(ax.axhline(y * 1e3, color="0.4", ls=":", lw=0.8))
     ax.set_xlim(float(np.min(run.t)), float(np.max(run.t)))
     return artists

@@ -42,7 +42,7 @@ def plot_study(result: Any, quantity: str, *, x: str | None = None, hue: str | N
     >>> spec = pounding.StudySpec(pounding.presets.paper_damped(),
     ...                           {"kind": "simulate", "a_g": 0.05, "freq_hz": 1.5,
     ...                            "duration_s": 5.0},
-    ...                           {"bumpers.gap_left": [0.010, 0.015, 0.020]})
+    ...                           {"bumpers.gap_left_m": [0.010, 0.015, 0.020]})
     >>> _ = pounding.study(spec, "gaps.zarr", progress=False)
     >>> artists = pounding.plots.plot_study(pounding.open_study("gaps.zarr"),
     ...                                     "acc_max_g")

@@ -343,7 +343,7 @@ def open_range(osc: Any) -> tuple[float, float]:
     can start at with every contact open: (-inf, inf) without any."""
     if isinstance(osc, Oscillator):
         b = osc.bumpers
-        return (-b.gap_left, b.gap_right) if b is not None else (-math.inf, math.inf)
+        return (-b.gap_left_m, b.gap_right_m) if b is not None else (-math.inf, math.inf)
     asm = assemble(osc)
     moved = {dof for dof in asm.dofs[0] if dof >= 0}
     lo, hi = -math.inf, math.inf

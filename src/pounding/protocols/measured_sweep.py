@@ -71,7 +71,7 @@ def measure_steps(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray, wind
     bumpers = oscillator.bumpers
     gap = None if bumpers is None else bumpers.total_gap
     # the lab reads symmetric gaps about the laser's zero: an off-centre mass is centred
-    centre = 0.0 if bumpers is None else 0.5 * (bumpers.gap_right - bumpers.gap_left)
+    centre = 0.0 if bumpers is None else 0.5 * (bumpers.gap_right_m - bumpers.gap_left_m)
     rows, impacts = [], []
     fs = chain.sample_rate_hz
     missing = {q: math.nan for q in MEASURED_COLUMNS} | {"window_start_s": math.nan}

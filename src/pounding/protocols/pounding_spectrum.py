@@ -76,7 +76,7 @@ def _systems(task: tuple, period: float) -> list:
 
         def at(w: Any, b: Bumpers) -> Any:
             laws = {"law": override, "law_right": None} if override is not None else {}
-            return replace(w, gap_left_m=b.gap_left, gap_right_m=b.gap_right, **laws)
+            return replace(w, gap_left_m=b.gap_left_m, gap_right_m=b.gap_right_m, **laws)
 
         return [replace(building, walls=())] + [
             replace(building, walls=tuple(at(w, b) for w in building.walls)) for b in bumpers]

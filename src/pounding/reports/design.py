@@ -36,7 +36,7 @@ NOTES = (
 
 COLUMN_WORDS = {
     "bumper": "bumper type",
-    "bumpers.gap": "gap [m]",
+    "bumpers.gap_m": "gap [m]",
     "bumpers.law.stiffness": "bumper stiffness [N/m]",
     "p_contact_design": "P(pounding | design)",
     "p_contact_mce": "P(pounding | MCE)",

@@ -32,16 +32,16 @@ class StudyResult:
     >>> spec = pounding.StudySpec(pounding.presets.paper_damped(),
     ...                           {"kind": "simulate", "freq_hz": 1.5,
     ...                            "duration_s": 5.0},
-    ...                           {"bumpers.gap_left": [0.01, 0.02],
+    ...                           {"bumpers.gap_left_m": [0.01, 0.02],
     ...                            "a_g": [0.03, 0.05]})
     >>> _ = pounding.study(spec, "gaps.zarr", progress=False)
     >>> res = pounding.open_study("gaps.zarr")
     >>> res.done, res.complete, res.spec.dims
-    (4, True, ('bumpers.gap_left', 'a_g'))
+    (4, True, ('bumpers.gap_left_m', 'a_g'))
     >>> df = res.to_dataframe()  # one row per point done
-    >>> print(df[["bumpers.gap_left", "a_g",
+    >>> print(df[["bumpers.gap_left_m", "a_g",
     ...           "acc_max_g"]].round(3).to_string(index=False))
-     bumpers.gap_left  a_g  acc_max_g
+     bumpers.gap_left_m  a_g  acc_max_g
                  0.01 0.03      0.522
                  0.01 0.05      0.713
                  0.02 0.03      0.107

@@ -96,12 +96,12 @@ def study(
     >>> spec = pounding.StudySpec(pounding.presets.paper_damped(),
     ...                           {"kind": "simulate", "freq_hz": 1.5,
     ...                            "duration_s": 5.0},
-    ...                           {"bumpers.gap_left": [0.01, 0.02],
+    ...                           {"bumpers.gap_left_m": [0.01, 0.02],
     ...                            "a_g": [0.03, 0.05]})
     >>> ds = pounding.study(spec, "gaps.zarr", progress=False)
     >>> print(ds["impacts"].to_pandas())
     a_g               0.03  0.05
-    bumpers.gap_left
+    bumpers.gap_left_m
     0.01               7.0  10.0
     0.02               0.0  12.0
 

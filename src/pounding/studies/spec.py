@@ -60,8 +60,8 @@ class StudySpec:
         acceleration; ``duration_s``, default the record's).
     grid : dict
         Dotted name -> values (one axis each, in order): a number of the system
-        (``"mass"``, ``"isolator.damping"``, ``"isolator.slopes[0]"``, ``"bumpers.gap_left"``,
-        ``"bumpers.law.stiffness"``; ``"bumpers.gap"`` sets both gaps; a structure's
+        (``"mass"``, ``"isolator.damping"``, ``"isolator.slopes[0]"``, ``"bumpers.gap_left_m"``,
+        ``"bumpers.law.stiffness"``; ``"bumpers.gap_m"`` sets both gaps; a structure's
         ``"storeys[2].stiffness_n_m"``, ``"walls[0].law.stiffness"``, ``"walls[0].gap_m"`` for both of a
         wall's gaps) or a compute key (``"a_g"``, ``"record"``, ...). A structure's points keep its own
         quantities (``studies.points.quantities_of``).
@@ -74,15 +74,15 @@ class StudySpec:
     >>> spec = pounding.StudySpec(pounding.presets.paper_damped(),
     ...                           {"kind": "simulate", "freq_hz": 1.5,
     ...                            "duration_s": 5.0},
-    ...                           {"bumpers.gap_left": [0.01, 0.02],
+    ...                           {"bumpers.gap_left_m": [0.01, 0.02],
     ...                            "a_g": [0.03, 0.05]})
     >>> spec.kind, spec.dims, spec.shape, spec.size
-    ('simulate', ('bumpers.gap_left', 'a_g'), (2, 2), 4)
+    ('simulate', ('bumpers.gap_left_m', 'a_g'), (2, 2), 4)
     >>> spec.compute  # the defaults written out
     {'kind': 'simulate', 'freq_hz': 1.5, 'duration_s': 5.0, 'phase_rad': 0.0,
      'v0_m_s': 0.0}
     >>> system, options = spec.point((1, 0))  # the second gap, the first a_G
-    >>> system.bumpers.gap_left, options["a_g"]
+    >>> system.bumpers.gap_left_m, options["a_g"]
     (0.02, 0.03)
     """
 
