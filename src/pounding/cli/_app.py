@@ -306,10 +306,10 @@ def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True):
     text = read_text("SYSTEM", path)
     table = parse_toml(str(path), text)
     kind = system_type(table)
-    if kind is not Oscillator:  # (a structure's file, or two adjacent ones': to_toml writes them)
-        return kind.from_toml(path)
-    osc = Oscillator.from_toml(path)
-    return osc if bumpers else osc.without_bumpers()  # (--no-bumpers: the file's system, NBs)
+    system = kind.from_dict(table)  # (the file read and parsed once; a structure's or a pair's, or one mass)
+    if kind is not Oscillator or bumpers:
+        return system
+    return system.without_bumpers()  # (--no-bumpers: the file's system, NBs)
 
 
 def one_mass_options(osc, no_bumpers: bool) -> bool:

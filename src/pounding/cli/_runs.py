@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 from pathlib import Path
 from typing import Any, Optional
 
@@ -105,32 +107,27 @@ def simulate(
             run = run_simulation(osc, exc, duration, start, sample_rate_hz=rate)
     except Interrupted as stop:
         run, complete = stop.partial, False
-    table, add_row = kv_table(f"{what}, {run.final_state.time_s:g} s", system_file or preset)
+    s = run.summary()
+    table, add_row = kv_table(f"{what}, {s['t_end_s']:g} s", system_file or preset)
     add_row("status", run.message)
-    add_row("D max / min [mm]", f"{run.displacement_max * 1e3:.4f} / {run.displacement_min * 1e3:.4f}")
-    from ..engine.structure_peaks import impulses  # (here: the help imports no engine)
-
-    rigid = int(impulses(run.contact_table).sum())  # (a rigid stop's impacts: impulses, no force)
+    add_row("D max / min [mm]", f"{s['displacement_max_m'] * 1e3:.4f} / {s['displacement_min_m'] * 1e3:.4f}")
+    rigid = s["rigid_impacts"]  # (a rigid stop's impacts: impulses, no force)
     between = "inf at the rigid impacts (impulses); {} between them" if rigid else "{}"
-    add_row("max |abs. acceleration| [g]", between.format(f"{run.abs_acceleration_max / exc.g:.4f}"))
-    peak = abs(exc.peak_m_s2) if record is None else exc.pga_g * exc.g
-    alpha = run.abs_acceleration_max / peak if peak != 0 else float("nan")
+    add_row("max |abs. acceleration| [g]", between.format(f"{s['abs_acceleration_max_m_s2'] / exc.g:.4f}"))
+    alpha = s["alpha"]
     add_row("alpha = max|a_abs| / " + ("A_t" if record is None else "PGA"), between.format(f"{alpha:.4f}")
-            if peak else "- (no shaking)")
-    n = len(run.contacts)
-    left = f"{(run.contacts['side'] == 'left').sum()} left"
+            if not math.isnan(alpha) else "- (no shaking)")
+    n, left = s["contacts"], f"{s['contacts_left']} left"
     add_row("contacts", f"{n} ({rigid} rigid impacts, {left})" if rigid else f"{n} ({left})" if n else "0")
-    done = run.impacts.dropna(subset=["contact_time_s"])
-    lasting = done[done["contact_time_s"] > 0.0]  # (a rigid stop's holds and the deformable contacts)
-    if len(done):
-        add_row("mean restitution s", f"{done['restitution'].mean():.4f}")
-    if len(lasting):
+    if not math.isnan(s["restitution_mean"]):
+        add_row("mean restitution s", f"{s['restitution_mean']:.4f}")
+    if not math.isnan(s["contact_time_mean_s"]):
         add_row("mean contact time [ms]" + (" (holds and deformable contacts)" if rigid else ""),
-                f"{lasting['contact_time_s'].mean() * 1e3:.3f}")
+                f"{s['contact_time_mean_s'] * 1e3:.3f}")
     if rigid:
         add_row("max peak force [kN]", "inf (the rigid impacts' impulses: see the contacts' impulse_n_s)")
-    elif len(done):
-        add_row("max peak force [kN]", f"{done['peak_force_n'].max() / 1e3:.3f}")
+    elif not math.isnan(s["peak_force_max_n"]):
+        add_row("max peak force [kN]", f"{s['peak_force_max_n'] / 1e3:.3f}")
     e = run.energy
     add_row("energy in / residual [J]", f"{e.input_work:.6g} / {e.residual:.2e}")
     console.print(table)
@@ -168,19 +165,20 @@ def _simulate_structure(building: Any, exc: Any, what: str, duration: float, sam
             run = run_simulation(building, exc, duration, sample_rate_hz=sample_rate)
     except Interrupted as stop:
         run, complete = stop.partial, False
+    s = run.summary()
     table, add_row = kv_table(f"{what}, {run.final_state.time_s:g} s", system_file)
     add_row("status", run.message)
     pair = hasattr(run, "links")
     parts = (("first", run.first), ("second", run.second)) if pair else (("", run),)
     for name, part in parts:
-        n = len(part.contacts)
+        prefix = f"{name}_" if pair else ""
+        at = [(int(k.rsplit("_", 1)[1]), v) for k, v in s.items()
+              if k.startswith(f"{prefix}contacts_level_") and v]
         add_row(f"{name}: walls' contacts" if pair else "contacts",
-                ", ".join(f"{k} at level {lv}" for lv, k in part.contacts["level"].value_counts()
-                          .sort_index().items()) if n else "0")
+                ", ".join(f"{v} at level {lv}" for lv, v in at) if s[f"{prefix}contacts"] else "0")
     if pair:
-        add_row("contacts at the links", str(len(run.links)))
-    e = run.energy
-    add_row("energy in / residual [J]", f"{e.input_work:.6g} / {e.residual:.2e}")
+        add_row("contacts at the links", str(s["link_contacts"]))
+    add_row("energy in / residual [J]", f"{s['input_work_j']:.6g} / {s['energy_residual_j']:.2e}")
     console.print(table)
     for name, part in parts:
         levels = Table(title=f"{name + ': ' if name else ''}each level (extrema exact)")

@@ -3,7 +3,8 @@
 from .result import EnergyLedger, Run, State
 from .simulate import simulate
 from .structure import StructureState
-from .structure_result import AdjacentRun, StructureEnergy, StructureRun
+from .adjacent_result import AdjacentRun
+from .structure_result import StructureEnergy, StructureRun
 
 __all__ = ["AdjacentRun", "EnergyLedger", "Run", "State", "StructureEnergy", "StructureRun", "StructureState",
            "simulate"]

@@ -10,6 +10,8 @@ isolator's branch ``REGION``, each contact's running totals (``ACC_L``, ``ACC_R`
 
 from __future__ import annotations
 
+import numpy as np
+
 from .._control import CTL_BUDGET, CTL_LEN, CTL_STOP, CTL_WORK  # noqa: F401  (pounding._control's)
 from .._core import ACTIONS, CONTACT_COLUMNS, DOF_EXTREMA, LAYOUT, LEDGER, PAIR_EXTREMA  # noqa: F401
 
@@ -49,3 +51,8 @@ X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T, X_A_MAX, X_A_MAX_T = (
 P_MAX, P_MAX_T, P_MIN, P_MIN_T = (PAIR_EXTREMA[k] for k in ("max", "max_t", "min", "min_t"))
 DOF_EXTREMA_LEN = LAYOUT["DOF_EXTREMA"]
 LEDGER_LEN = LAYOUT["LEDGER_LEN"]
+
+
+def impulses(table: np.ndarray) -> np.ndarray:
+    """Which rows of a contact table are a rigid stop's impacts (instantaneous: an impulse, no force)."""
+    return table[:, CONTACT_COLUMNS["t_end_s"]] == table[:, CONTACT_COLUMNS["t_start_s"]]

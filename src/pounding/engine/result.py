@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass, field, fields
 from functools import cached_property
 from typing import TYPE_CHECKING, Any
@@ -12,7 +14,7 @@ import pandas as pd
 from .._checks import at_most, real
 from .._errors import InputError, Problem, Status
 from ._chatter import SIDES, chatter_frame
-from ._layout import DEF_L, DEF_R, EVENT_NAMES, IN_L, IN_R, REGION, STATE_BASE, Z_L, Z_R, ZETA
+from ._layout import DEF_L, DEF_R, EVENT_NAMES, IN_L, IN_R, REGION, STATE_BASE, Z_L, Z_R, ZETA, impulses
 from ._layout import D as I_D
 from ._layout import T as I_T
 from ._layout import V as I_V
@@ -444,6 +446,50 @@ class Run:
     def success(self) -> bool:
         """Whether the run reached its end time (``status`` is ``Status.SUCCESS``)."""
         return self.status == Status.SUCCESS
+
+    def summary(self) -> pd.Series:
+        """The run in a few numbers, each name with its unit (what ``pounding simulate`` prints).
+
+        Returns
+        -------
+        pandas.Series
+            ``t_end_s``; the exact ``displacement_max_m``, ``displacement_min_m`` and
+            ``abs_acceleration_max_m_s2`` (between a rigid stop's impacts, which are impulses);
+            ``alpha``, that over the table's peak (a sine's amplitude, a record's PGA; NaN without
+            shaking); ``contacts``, ``contacts_left`` and ``rigid_impacts``; over the finished contacts
+            ``restitution_mean``, ``contact_time_mean_s`` (those that last: holds and deformable
+            contacts) and ``peak_force_max_n`` (inf with rigid impacts; NaN without contacts);
+            ``input_work_j`` and ``energy_residual_j``; ``status`` (its name).
+
+        Examples
+        --------
+        >>> import pounding
+        >>> run = pounding.simulate(pounding.presets.paper_damped(),
+        ...                         pounding.Harmonic(a_g=0.1, freq_hz=2.0), 5.0)
+        >>> s = run.summary()
+        >>> int(s["contacts"]), round(s["alpha"], 2), s["status"]
+        (19, 4.47, 'SUCCESS')
+        """
+        rigid = int(impulses(self.contact_table).sum())
+        peak = abs(self.excitation.peak_m_s2)
+        done = self.impacts.dropna(subset=["contact_time_s"])
+        lasting = done[done["contact_time_s"] > 0.0]
+        nan = float("nan")
+        return pd.Series({
+            "t_end_s": self.final_state.time_s,
+            "displacement_max_m": self.displacement_max, "displacement_min_m": self.displacement_min,
+            "abs_acceleration_max_m_s2": self.abs_acceleration_max,
+            "alpha": self.abs_acceleration_max / peak if peak else nan,
+            "contacts": len(self.contact_table),
+            "contacts_left": int((self.contact_table[:, 0] == 0.0).sum()),
+            "rigid_impacts": rigid,
+            "restitution_mean": float(done["restitution"].mean()) if len(done) else nan,
+            "contact_time_mean_s": float(lasting["contact_time_s"].mean()) if len(lasting) else nan,
+            "peak_force_max_n": (math.inf if rigid else float(done["peak_force_n"].max()) if len(done)
+                                 else nan),
+            "input_work_j": self.energy.input_work, "energy_residual_j": self.energy.residual,
+            "status": self.status.name,
+        }, name="summary", dtype=object)
 
     @property
     def excursion_m(self) -> float:

@@ -28,7 +28,8 @@ from ._chatter import chatter_frame
 from .result import MAX_TIME_S
 from ._layout import CONTACT_COLUMNS, P_MAX, P_MIN, X_D_MAX, X_D_MIN
 from ._run_args import DIRECT_CALL_STEPS, check_rtol, history_rate, kernel_forcing
-from .structure_result import AdjacentRun, StructureEnergy, StructureRun
+from .adjacent_result import AdjacentRun
+from .structure_result import StructureEnergy, StructureRun
 
 
 

@@ -7,17 +7,12 @@ import math
 
 import numpy as np
 
-from ._layout import CONTACT_COLUMNS
-from .structure_result import AdjacentRun, StructureRun
+from ._layout import CONTACT_COLUMNS, impulses
+from .adjacent_result import AdjacentRun
+from .structure_result import StructureRun
 
 # (the core's contact rows)
-_SLOT, _T_START, _T_END, _PEAK_FORCE, _V_IN = (
-    CONTACT_COLUMNS[k] for k in ("contact", "t_start_s", "t_end_s", "peak_force_n", "v_in_m_s"))
-
-
-def impulses(table: np.ndarray) -> np.ndarray:
-    """Which rows of a contact table are a rigid stop's impacts (instantaneous: an impulse, no force)."""
-    return table[:, _T_END] == table[:, _T_START]
+_SLOT, _PEAK_FORCE, _V_IN = (CONTACT_COLUMNS[k] for k in ("contact", "peak_force_n", "v_in_m_s"))
 
 
 def force_max(table: np.ndarray) -> float:

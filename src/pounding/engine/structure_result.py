@@ -318,6 +318,40 @@ class StructureRun:
             "drift_ratio_peak": drift / heights,
         }).set_index("level")
 
+    def summary(self) -> pd.Series:
+        """The run in a few numbers, each name with its unit (what ``pounding simulate`` prints above its
+        table of levels, :meth:`peaks`).
+
+        Returns
+        -------
+        pandas.Series
+            ``t_end_s``; ``contacts`` at every wall, and ``contacts_level_<k>`` at each level with a wall;
+            ``input_work_j`` and ``energy_residual_j`` (NaN for one of two adjacent structures: the pair's
+            are ``AdjacentRun.summary()``'s); ``status`` (its name).
+
+        Examples
+        --------
+        >>> import pounding
+        >>> iso = pounding.Isolator(slopes=[2.0e5], breakpoints=[], damping=2.0e3)
+        >>> stop = pounding.Wall(2, 0.05, 0.05, pounding.KelvinVoigt(1.0e8, 1.0e4))
+        >>> storeys = [pounding.Storey(1.0e3, 2.0e6)] * 2
+        >>> b = pounding.Structure(2.0e3, iso, storeys, [stop])
+        >>> s = pounding.simulate(b, pounding.Harmonic(0.3, 1.5), 5.0).summary()
+        >>> int(s["contacts"]) == int(s["contacts_level_2"]) > 0, s["status"]
+        (True, 'SUCCESS')
+        """
+        levels = self.contacts["level"].value_counts()
+        nan = float("nan")
+        return pd.Series({
+            "t_end_s": float(self.t[-1]) if self.t.size else nan,
+            "contacts": len(self.contact_table),
+            **{f"contacts_level_{lv}": int(levels.get(lv, 0))
+               for lv in sorted({w.level for w in self.structure.walls})},
+            "input_work_j": self.energy.input_work if self.energy is not None else nan,
+            "energy_residual_j": self.energy.residual if self.energy is not None else nan,
+            "status": self.status.name,
+        }, name="summary", dtype=object)
+
     # ------------------------------------------------------------------ tables
     def to_xarray(self) -> Any:
         """The histories as a Dataset along ``sample`` (its coordinate ``time_s``), ``level``, ``storey`` (the
@@ -397,135 +431,3 @@ def ground_peak(excitation: Any, t0: float, t1: float) -> tuple[float, float]:
     values = np.abs(excitation.acceleration(times))
     j = int(np.argmax(values))
     return float(values[j]), float(times[j])
-
-
-@dataclass(frozen=True)
-class AdjacentRun:
-    """A run of two adjacent structures.
-
-    Attributes
-    ----------
-    adjacent : Adjacent
-        The pair run.
-    excitation : Harmonic or Record
-        The ground's motion.
-    sample_rate_hz : float
-        The uniform samples' rate, Hz (0: events only).
-    first, second : StructureRun
-        Each structure's histories, exact extrema per level and walls' contacts.
-    t : ndarray, shape (k,)
-        Sample times, s.
-    link_force : ndarray, shape (k, n_links)
-        Each link's force, N (>= 0).
-    link_table : ndarray
-        The core's rows behind ``links``.
-    event_table : ndarray
-        Every event of the pair: time, action code, the element's index (``events`` names them).
-    energy : StructureEnergy
-        The energy ledger of the pair (the links' in ``contact_dissipation`` and ``contact_elastic``).
-    final_state : StructureState
-        Pass as ``state`` to continue.
-    status : Status
-        How the run ended (``message`` says it in words).
-    chatters : pandas.DataFrame
-        The rigid stops' chatter sequences (``contact``: ``first wall 0 left``, ``link 0``); see
-        :attr:`StructureRun.chatters`.
-    clearance_m : ndarray, shape (n_slots,)
-        Each contact slot's smallest clearance over the run (its gap less the largest approach, exact;
-        negative: it touched), m: the first's wall sides, the second's, then the links.
-
-    Examples
-    --------
-    >>> import pounding
-    >>> iso = pounding.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02],
-    ...                         damping=2.0e4)
-    >>> isolated = pounding.Structure(3.0e4, iso,
-    ...                               [pounding.Storey(2.0e4, 4.0e7)] * 3)
-    >>> old = pounding.Structure.fixed_base(
-    ...     [pounding.Storey(2.5e4, 3.0e7, 5.0e4)] * 3)
-    >>> roof = pounding.Link(3, 3, 0.15, pounding.KelvinVoigt(5.0e8, 2.0e5))
-    >>> run = pounding.simulate(pounding.Adjacent(isolated, old, [roof]),
-    ...                         pounding.Harmonic(a_g=0.4, freq_hz=1.0), 10.0)
-    >>> list(run.links.columns)[:4]
-    ['link', 'level_first', 'level_second', 't_start_s']
-    """
-
-    adjacent: Any
-    excitation: Any
-    sample_rate_hz: float
-    first: StructureRun
-    second: StructureRun
-    t: np.ndarray
-    link_force: np.ndarray
-    link_table: np.ndarray = field(repr=False)
-    event_table: np.ndarray = field(repr=False)
-    energy: StructureEnergy = field(repr=False)
-    final_state: Any = field(repr=False)
-    status: Status = Status.SUCCESS
-    clearance_m: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
-    chatters: pd.DataFrame = field(default_factory=lambda: chatter_frame(np.zeros((0, 5)), (), "contact"),
-                                   repr=False)
-
-    @property
-    def success(self) -> bool:
-        return self.status == Status.SUCCESS
-
-    @property
-    def message(self) -> str:
-        return self.status.message
-
-    @property
-    def links(self) -> pd.DataFrame:
-        """One row per contact at a link: ``link``, ``level_first``, ``level_second``, ``t_start_s``,
-        ``t_end_s``, the velocities in and out ``v_in_m_s``, ``v_out_m_s`` (of the first's level less the
-        second's), ``impulse_n_s``, ``peak_force_n``, the deepest compression ``max_compression_m``,
-        ``work_j``."""
-        c = self.link_table
-        k = c[:, 0].astype(int)
-        links = self.adjacent.links
-        return ContactTable({
-            "link": k,
-            "level_first": [links[j].level_first for j in k],
-            "level_second": [links[j].level_second for j in k],
-            **{name: c[:, q] for q, name in enumerate(CONTACT_COLUMNS[3:], start=1)},
-        })
-
-    @property
-    def events(self) -> pd.DataFrame:
-        """Every event of the pair: ``t_s``, what happened (``kind``) and the element's ``index``."""
-        return events_frame(self.event_table)
-
-    def to_dataframe(self) -> pd.DataFrame:
-        """Both structures' histories side by side (columns ``first.``/``second.``), and the links' forces."""
-        frames = [self.first.to_dataframe().add_prefix("first."),
-                  self.second.to_dataframe().drop(columns="t_s").add_prefix("second.")]
-        out = pd.concat(frames, axis=1).rename(columns={"first.t_s": "t_s"})
-        for j in range(self.link_force.shape[1]):
-            out[f"link_force_n[{j}]"] = self.link_force[:, j]
-        return out
-
-    def to_xarray(self) -> Any:
-        """Each structure's Dataset (``first``/``second`` prefixes on the variables, ``_first``/``_second``
-        suffixes on their dimensions) along ``sample`` (its coordinate ``time_s``), and the links' forces."""
-        import xarray as xr
-
-        parts = []
-        for name, run in (("first", self.first), ("second", self.second)):
-            ds = run.to_xarray().reset_coords(["wall", "side"], drop=True)
-            ds = ds.rename({dim: f"{dim}_{name}" for dim in ("level", "storey", "contact", "stand")
-                            if dim in ds.dims})
-            parts.append(ds.rename({v: f"{name}_{v}" for v in ds.data_vars}))
-        ds = xr.merge(parts, compat="override", join="exact", combine_attrs="override")
-        ds["link_force"] = (("sample", "link"), self.link_force, {"units": "N"})
-        ds.attrs = {"status": self.status.name, "message": self.message}
-        return ds
-
-    def plot(self, **kwargs: Any) -> Any:
-        """The linked levels' displacements and their separation against each gap; see
-        :func:`pounding.plots.plot_adjacent_run`.
-
-        Returns its Figure.
-        """
-        from ..plots import plot_adjacent_run, figure_of
-
-        return figure_of(plot_adjacent_run(self, **kwargs), kwargs.get("axes"))

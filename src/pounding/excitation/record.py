@@ -299,6 +299,11 @@ class Record:
         return float(np.abs(self.accel).max()) / self.g
 
     @property
+    def peak_m_s2(self) -> float:
+        """The peak ground acceleration, ``max |a|``, in m/s^2 (as a sine's ``Harmonic.peak_m_s2``)."""
+        return float(np.abs(self.accel).max())
+
+    @property
     def duration_s(self) -> float:
         """``t[-1] - t[0]`` in s."""
         return float(self.t[-1] - self.t[0])

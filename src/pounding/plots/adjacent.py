@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import TYPE_CHECKING, Any
 
 if TYPE_CHECKING:
-    from ..engine.structure_result import AdjacentRun
+    from ..engine.adjacent_result import AdjacentRun
 
 
 def plot_adjacent_run(run: "AdjacentRun", axes: Any = None) -> list:

@@ -1,0 +1,160 @@
+"""What a run of two adjacent structures returns: :class:`AdjacentRun` (each structure's
+:class:`~pounding.StructureRun`, the contacts at their links, the pair's energy ledger and events)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from .._errors import Status
+from .._tables import ContactTable
+from ._chatter import chatter_frame
+from .result import events_frame
+from .structure_result import CONTACT_COLUMNS, StructureEnergy, StructureRun
+
+
+@dataclass(frozen=True)
+class AdjacentRun:
+    """A run of two adjacent structures.
+
+    Attributes
+    ----------
+    adjacent : Adjacent
+        The pair run.
+    excitation : Harmonic or Record
+        The ground's motion.
+    sample_rate_hz : float
+        The uniform samples' rate, Hz (0: events only).
+    first, second : StructureRun
+        Each structure's histories, exact extrema per level and walls' contacts.
+    t : ndarray, shape (k,)
+        Sample times, s.
+    link_force : ndarray, shape (k, n_links)
+        Each link's force, N (>= 0).
+    link_table : ndarray
+        The core's rows behind ``links``.
+    event_table : ndarray
+        Every event of the pair: time, action code, the element's index (``events`` names them).
+    energy : StructureEnergy
+        The energy ledger of the pair (the links' in ``contact_dissipation`` and ``contact_elastic``).
+    final_state : StructureState
+        Pass as ``state`` to continue.
+    status : Status
+        How the run ended (``message`` says it in words).
+    chatters : pandas.DataFrame
+        The rigid stops' chatter sequences (``contact``: ``first wall 0 left``, ``link 0``); see
+        :attr:`StructureRun.chatters`.
+    clearance_m : ndarray, shape (n_slots,)
+        Each contact slot's smallest clearance over the run (its gap less the largest approach, exact;
+        negative: it touched), m: the first's wall sides, the second's, then the links.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> iso = pounding.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02],
+    ...                         damping=2.0e4)
+    >>> isolated = pounding.Structure(3.0e4, iso,
+    ...                               [pounding.Storey(2.0e4, 4.0e7)] * 3)
+    >>> old = pounding.Structure.fixed_base(
+    ...     [pounding.Storey(2.5e4, 3.0e7, 5.0e4)] * 3)
+    >>> roof = pounding.Link(3, 3, 0.15, pounding.KelvinVoigt(5.0e8, 2.0e5))
+    >>> run = pounding.simulate(pounding.Adjacent(isolated, old, [roof]),
+    ...                         pounding.Harmonic(a_g=0.4, freq_hz=1.0), 10.0)
+    >>> list(run.links.columns)[:4]
+    ['link', 'level_first', 'level_second', 't_start_s']
+    """
+
+    adjacent: Any
+    excitation: Any
+    sample_rate_hz: float
+    first: StructureRun
+    second: StructureRun
+    t: np.ndarray
+    link_force: np.ndarray
+    link_table: np.ndarray = field(repr=False)
+    event_table: np.ndarray = field(repr=False)
+    energy: StructureEnergy = field(repr=False)
+    final_state: Any = field(repr=False)
+    status: Status = Status.SUCCESS
+    clearance_m: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
+    chatters: pd.DataFrame = field(default_factory=lambda: chatter_frame(np.zeros((0, 5)), (), "contact"),
+                                   repr=False)
+
+    @property
+    def success(self) -> bool:
+        return self.status == Status.SUCCESS
+
+    @property
+    def message(self) -> str:
+        return self.status.message
+
+    @property
+    def links(self) -> pd.DataFrame:
+        """One row per contact at a link: ``link``, ``level_first``, ``level_second``, ``t_start_s``,
+        ``t_end_s``, the velocities in and out ``v_in_m_s``, ``v_out_m_s`` (of the first's level less the
+        second's), ``impulse_n_s``, ``peak_force_n``, the deepest compression ``max_compression_m``,
+        ``work_j``."""
+        c = self.link_table
+        k = c[:, 0].astype(int)
+        links = self.adjacent.links
+        return ContactTable({
+            "link": k,
+            "level_first": [links[j].level_first for j in k],
+            "level_second": [links[j].level_second for j in k],
+            **{name: c[:, q] for q, name in enumerate(CONTACT_COLUMNS[3:], start=1)},
+        })
+
+    def summary(self) -> pd.Series:
+        """The pair's run in a few numbers: ``t_end_s``; each structure's (``first_``, ``second_``)
+        :meth:`StructureRun.summary` contacts; ``link_contacts``; ``input_work_j`` and ``energy_residual_j``;
+        ``status``."""
+        out: dict[str, Any] = {"t_end_s": float(self.t[-1]) if self.t.size else float("nan")}
+        for name, part in (("first", self.first), ("second", self.second)):
+            mine = part.summary()
+            out.update({f"{name}_{k}": v for k, v in mine.items() if k.startswith("contacts")})
+        out.update({"link_contacts": len(self.link_table), "input_work_j": self.energy.input_work,
+                    "energy_residual_j": self.energy.residual, "status": self.status.name})
+        return pd.Series(out, name="summary", dtype=object)
+
+    @property
+    def events(self) -> pd.DataFrame:
+        """Every event of the pair: ``t_s``, what happened (``kind``) and the element's ``index``."""
+        return events_frame(self.event_table)
+
+    def to_dataframe(self) -> pd.DataFrame:
+        """Both structures' histories side by side (columns ``first.``/``second.``), and the links' forces."""
+        frames = [self.first.to_dataframe().add_prefix("first."),
+                  self.second.to_dataframe().drop(columns="t_s").add_prefix("second.")]
+        out = pd.concat(frames, axis=1).rename(columns={"first.t_s": "t_s"})
+        for j in range(self.link_force.shape[1]):
+            out[f"link_force_n[{j}]"] = self.link_force[:, j]
+        return out
+
+    def to_xarray(self) -> Any:
+        """Each structure's Dataset (``first``/``second`` prefixes on the variables, ``_first``/``_second``
+        suffixes on their dimensions) along ``sample`` (its coordinate ``time_s``), and the links' forces."""
+        import xarray as xr
+
+        parts = []
+        for name, run in (("first", self.first), ("second", self.second)):
+            ds = run.to_xarray().reset_coords(["wall", "side"], drop=True)
+            ds = ds.rename({dim: f"{dim}_{name}" for dim in ("level", "storey", "contact", "stand")
+                            if dim in ds.dims})
+            parts.append(ds.rename({v: f"{name}_{v}" for v in ds.data_vars}))
+        ds = xr.merge(parts, compat="override", join="exact", combine_attrs="override")
+        ds["link_force"] = (("sample", "link"), self.link_force, {"units": "N"})
+        ds.attrs = {"status": self.status.name, "message": self.message}
+        return ds
+
+    def plot(self, **kwargs: Any) -> Any:
+        """The linked levels' displacements and their separation against each gap; see
+        :func:`pounding.plots.plot_adjacent_run`.
+
+        Returns its Figure.
+        """
+        from ..plots import plot_adjacent_run, figure_of
+
+        return figure_of(plot_adjacent_run(self, **kwargs), kwargs.get("axes"))
