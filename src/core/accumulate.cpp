@@ -166,78 +166,90 @@ constexpr double LOBATTO_W[N_LOBATTO] = {0.02380952380952377, 0.1384130236807831
                                          0.2438095238095238, 0.2158726906049313, 0.13841302368078298,
                                          0.02380952380952377};
 
-void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, const Ends& e, double* ledger,
-                double* extrema, Buffers& b, bool with_energy, const Given& given) {
+namespace {
+
+// a linear phase's energy integrals (dashpots, forcing) and each contact in progress's impulse, work and loss,
+// in closed form (or as a kept transition's forms: ``given``)
+void linear_contributions(Phase& ph, const System& sy, double* st, double tau, const Ends& e, double* ledger,
+                          Buffers& b, bool with_energy, const Given& given) {
+    const Layout& L = sy.lay;
+    double vcv = given.vcv, gv = given.gv;
+    if (!given.have)
+        linear_integrals(ph, sy.c_lin, sy.mass, tau, e.y0, e.a0, e.s0, e.c0, e.y1, e.a1, e.s1, e.c1,
+                         with_energy, vcv, gv, b.du.data(), b.dvv.data());
+    ledger[L_INPUT] -= gv;
+    ledger[L_VISCOUS] += vcv;
+    for (int c = 0; c < ph.nc; ++c) {
+        const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
+        if (!k.in) continue;
+        const double sg = k.sign, gap = k.gap;
+        const int acc = L.acc_at(c);
+        const double x0 = sg * rel(e.y0, k.i, k.j) - gap, x1 = sg * rel(e.y1, k.i, k.j) - gap;
+        st[acc + A_IMPULSE] += k.kb * (sg * b.du[c] - gap * tau) + k.rb * tau + k.cb * (x1 - x0);
+        st[acc + A_WORK] += 0.5 * k.kb * (x1 * x1 - x0 * x0) + k.rb * (x1 - x0) + k.cb * b.dvv[c];
+        ledger[L_BUMPER_LOSS] += k.cb * b.dvv[c] + law_branch_loss(k.law, k.p, k.jb, x0, x1, k.lz);
+    }
+}
+
+// a nonlinear phase's: the same by 7-point Gauss-Lobatto, with the Bouc-Wen spring's hysteresis and a linear
+// law's branch loss
+void numeric_contributions(Phase& ph, const System& sy, double* st, double tau, const Ends& e, double* ledger,
+                           Buffers& b) {
     const int n = ph.n;
     const Layout& L = sy.lay;
-    bool any_in = false;
-    for (const ContactPhase& k : ph.ct) any_in = any_in || k.in;
-    const bool linear = !ph.numeric;
-    if (tau > 0.0 && linear && (with_energy || any_in)) {
-        double vcv = given.vcv, gv = given.gv;
-        if (!given.have)
-            linear_integrals(ph, sy.c_lin, sy.mass, tau, e.y0, e.a0, e.s0, e.c0, e.y1, e.a1, e.s1, e.c1,
-                             with_energy, vcv, gv, b.du.data(), b.dvv.data());
-        ledger[L_INPUT] -= gv;
-        ledger[L_VISCOUS] += vcv;
+    const double bw = ph.bw[0];
+    double* y = b.ym.data();
+    double* a = b.am.data();
+    for (int qn = 0; qn < N_LOBATTO; ++qn) {
+        const double tq = tau * LOBATTO_X[qn];
+        const double wq = tau * LOBATTO_W[qn];
+        if (qn == 0) {
+            std::copy(e.y0, e.y0 + 2 * n, y);
+            std::copy(e.a0, e.a0 + n, a);
+        } else if (qn == N_LOBATTO - 1) {
+            std::copy(e.y1, e.y1 + 2 * n, y);
+            std::copy(e.a1, e.a1 + n, a);
+        } else {
+            phase_eval(ph, tq, y, a);
+        }
+        const double* v = y + n;
+        const double ag = table_acceleration(ph, tq);
+        double mv = 0.0, vcv = 0.0;
+        for (int i = 0; i < n; ++i) {
+            mv += sy.mass[static_cast<size_t>(i)] * v[i];
+            double s = 0.0;
+            for (int j = 0; j < n; ++j) s += sy.c_lin[static_cast<size_t>(i * n + j)] * v[j];
+            vcv += v[i] * s;
+        }
+        ledger[L_INPUT] -= wq * ag * mv;
+        ledger[L_VISCOUS] += wq * vcv;
+        if (bw != 0.0) ledger[L_HYSTERETIC] += wq * bw * phase_zeta(ph, tq) * rel(v, ph.iso_i, ph.iso_j);
         for (int c = 0; c < ph.nc; ++c) {
-            const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
-            if (!k.in) continue;
-            const double sg = k.sign, gap = k.gap;
+            if (!ph.ct[static_cast<size_t>(c)].in) continue;
+            const ContactForce f = contact_force(ph, c, y, a);
             const int acc = L.acc_at(c);
-            const double x0 = sg * rel(e.y0, k.i, k.j) - gap, x1 = sg * rel(e.y1, k.i, k.j) - gap;
-            st[acc + A_IMPULSE] += k.kb * (sg * b.du[c] - gap * tau) + k.rb * tau + k.cb * (x1 - x0);
-            st[acc + A_WORK] += 0.5 * k.kb * (x1 * x1 - x0 * x0) + k.rb * (x1 - x0) + k.cb * b.dvv[c];
-            ledger[L_BUMPER_LOSS] += k.cb * b.dvv[c] + law_branch_loss(k.law, k.p, k.jb, x0, x1, k.lz);
-        }
-    } else if (tau > 0.0 && (with_energy || any_in)) {
-        const double bw = ph.bw[0];
-        double* y = b.ym.data();
-        double* a = b.am.data();
-        for (int qn = 0; qn < N_LOBATTO; ++qn) {
-            const double tq = tau * LOBATTO_X[qn];
-            const double wq = tau * LOBATTO_W[qn];
-            if (qn == 0) {
-                std::copy(e.y0, e.y0 + 2 * n, y);
-                std::copy(e.a0, e.a0 + n, a);
-            } else if (qn == N_LOBATTO - 1) {
-                std::copy(e.y1, e.y1 + 2 * n, y);
-                std::copy(e.a1, e.a1 + n, a);
-            } else {
-                phase_eval(ph, tq, y, a);
-            }
-            const double* v = y + n;
-            const double ag = table_acceleration(ph, tq);
-            double mv = 0.0, vcv = 0.0;
-            for (int i = 0; i < n; ++i) {
-                mv += sy.mass[static_cast<size_t>(i)] * v[i];
-                double s = 0.0;
-                for (int j = 0; j < n; ++j) s += sy.c_lin[static_cast<size_t>(i * n + j)] * v[j];
-                vcv += v[i] * s;
-            }
-            ledger[L_INPUT] -= wq * ag * mv;
-            ledger[L_VISCOUS] += wq * vcv;
-            if (bw != 0.0) ledger[L_HYSTERETIC] += wq * bw * phase_zeta(ph, tq) * rel(v, ph.iso_i, ph.iso_j);
-            for (int c = 0; c < ph.nc; ++c) {
-                if (!ph.ct[static_cast<size_t>(c)].in) continue;
-                const ContactForce f = contact_force(ph, c, y, a);
-                const int acc = L.acc_at(c);
-                st[acc + A_IMPULSE] += wq * f.f;
-                st[acc + A_WORK] += wq * f.f * f.dx;
-                ledger[L_BUMPER_LOSS] += wq * (f.f - f.elastic) * f.dx;
-            }
-        }
-        if (bw != 0.0)
-            ledger[L_HYSTERETIC] -= bouc_wen_energy(ph, phase_zeta(ph, tau)) - bouc_wen_energy(ph, ph.zeta0);
-        for (int c = 0; c < ph.nc; ++c) {  // a linear law's branch in a numerical phase: its spring's loss
-            const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
-            if (k.in && law_is_linear(k.law)) {
-                ledger[L_BUMPER_LOSS] += law_branch_loss(k.law, k.p, k.jb, k.sign * rel(e.y0, k.i, k.j) - k.gap,
-                                                         k.sign * rel(e.y1, k.i, k.j) - k.gap, k.lz);
-            }
+            st[acc + A_IMPULSE] += wq * f.f;
+            st[acc + A_WORK] += wq * f.f * f.dx;
+            ledger[L_BUMPER_LOSS] += wq * (f.f - f.elastic) * f.dx;
         }
     }
-    if (ph.stk.any && tau > 0.0) held_statistics(ph, L, st, tau, e, linear, b);
+    if (bw != 0.0)
+        ledger[L_HYSTERETIC] -= bouc_wen_energy(ph, phase_zeta(ph, tau)) - bouc_wen_energy(ph, ph.zeta0);
+    for (int c = 0; c < ph.nc; ++c) {  // a linear law's branch in a numerical phase: its spring's loss
+        const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
+        if (k.in && law_is_linear(k.law)) {
+            ledger[L_BUMPER_LOSS] += law_branch_loss(k.law, k.p, k.jb, k.sign * rel(e.y0, k.i, k.j) - k.gap,
+                                                     k.sign * rel(e.y1, k.i, k.j) - k.gap, k.lz);
+        }
+    }
+}
+
+// each dof's displacement extrema and each tracked pair's (a storey's drift), at the velocity's zeros and the
+// ends; each contact in progress's deepest compression
+void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, double tau, const Ends& e,
+                          double* extrema) {
+    const int n = ph.n;
+    const Layout& L = sy.lay;
     // displacement extrema of each dof, at its velocity's zeros and the ends
     for (int i = 0; i < n; ++i) {
         double* ex = extrema + DOF_EXTREMA * i;
@@ -268,91 +280,99 @@ void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, 
         for (int q = 0; q < z.count; ++q)
             if (z.t[q] < tau) mc = std::max(mc, k.sign * z.x[q] - k.gap);
     }
-    // absolute acceleration extrema of each dof
-    for (int i = 0; i < n; ++i) {
-        double* ex = extrema + DOF_EXTREMA * i;
-        if (ph.stk.any && ph.stk.grp[static_cast<size_t>(i)] >= 0) {  // held: the ends (the group's motion)
-            track_abs_acceleration(ex, t0, e.a0[i] + table_acceleration(ph, 0.0));
-            track_abs_acceleration(ex, t0 + tau, e.a1[i] + table_acceleration(ph, tau));
-            const int g = ph.stk.grp[static_cast<size_t>(i)];
-            if (ph.stk.grounded[static_cast<size_t>(g)] && ph.axh != 0.0 && ph.w > 0.0) {
-                // held on the ground it moves with the table: the table's crests inside, where
-                // ax1 + axh w cos(w s + phi) = 0
-                const double c = -ph.ax1 / (ph.axh * ph.w);
-                if (std::abs(c) <= 1.0) {
-                    const double theta = std::acos(c);
-                    for (const double target : {theta, -theta}) {
-                        double s = std::fmod(target - ph.phi, TWO_PI);
-                        if (s < 0.0) s += TWO_PI;
-                        s /= ph.w;
-                        if (0.0 < s && s < tau) track_abs_acceleration(ex, t0 + s, table_acceleration(ph, s));
-                    }
-                }
-            } else if (linear && !ph.stk.grounded[static_cast<size_t>(g)]) {
-                // a group moving as one: its absolute acceleration the mass-weighted mean of its dofs' free
-                // ones, -(K x + C v + R0)_k / M (the holds' forces inside it cancel), extreme where its rate
-                // changes sign
-                Fn fa, fr, fk;
-                fa.q.deg = 0;
-                fa.q.c[0] = 0.0;
-                const double share = 1.0 / ph.stk.gmass[static_cast<size_t>(g)];
-                for (int k = 0; k < n; ++k) {
-                    if (ph.stk.grp[static_cast<size_t>(k)] != g) continue;
-                    abs_acc_poly(ph, k, fk.q);
-                    const double w = ph.mass[static_cast<size_t>(k)] * share;
-                    for (int m = fa.q.deg + 1; m <= fk.q.deg; ++m) fa.q.c[m] = 0.0;
-                    fa.q.deg = std::max(fa.q.deg, fk.q.deg);
-                    for (int m = 0; m <= fk.q.deg; ++m) fa.q.c[m] += w * fk.q.c[m];
-                }
-                poly_deriv(fa.q, fr.q);
-                fr.kind = FN_POLY;
-                const double r0 = poly_val(fr.q, 0.0), r1 = poly_val(fr.q, tau);
-                ph.poly_evaluations += 2;
-                if (r0 * r1 < 0.0) {
-                    const double tm = find_root(fr, ph, 0.0, tau, r0, r1, NaN, NaN, XTOL_EXTREMUM_S);
-                    ph.poly_evaluations += 1;
-                    track_abs_acceleration(ex, t0 + tm, poly_val(fa.q, tm));
-                }
+}
+
+// a held dof's absolute acceleration extrema: its group's motion (on the ground: the table's crests inside)
+void held_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, const Ends& e, bool linear) {
+    const int n = ph.n;
+    track_abs_acceleration(ex, t0, e.a0[i] + table_acceleration(ph, 0.0));
+    track_abs_acceleration(ex, t0 + tau, e.a1[i] + table_acceleration(ph, tau));
+    const int g = ph.stk.grp[static_cast<size_t>(i)];
+    if (ph.stk.grounded[static_cast<size_t>(g)] && ph.axh != 0.0 && ph.w > 0.0) {
+        // held on the ground it moves with the table: the table's crests inside, where
+        // ax1 + axh w cos(w s + phi) = 0
+        const double c = -ph.ax1 / (ph.axh * ph.w);
+        if (std::abs(c) <= 1.0) {
+            const double theta = std::acos(c);
+            for (const double target : {theta, -theta}) {
+                double s = std::fmod(target - ph.phi, TWO_PI);
+                if (s < 0.0) s += TWO_PI;
+                s /= ph.w;
+                if (0.0 < s && s < tau) track_abs_acceleration(ex, t0 + s, table_acceleration(ph, s));
             }
-            continue;
         }
-        if (linear) {
-            // a linear phase's absolute acceleration -(K x + C v + R0)_i / m_i and its rate at the ends; the
-            // polynomial only where the rate changes sign
-            const double aa0 = abs_acc_linear(ph, i, e.y0), aa1 = abs_acc_linear(ph, i, e.y1);
-            const double r0 = abs_acc_rate_linear(ph, i, e.y0, e.a0), r1 = abs_acc_rate_linear(ph, i, e.y1, e.a1);
-            track_abs_acceleration(ex, t0, aa0);
-            track_abs_acceleration(ex, t0 + tau, aa1);
-            if (r0 * r1 < 0.0) {
-                Fn fa, fr;
-                abs_acc_poly(ph, i, fa.q);
-                // (its bound over the sub-interval, sum |c_k| tau^k, below the largest so far: no new extremum)
-                double bound = 0.0;
-                for (int k = fa.q.deg; k >= 0; --k) bound = bound * tau + std::abs(fa.q.c[k]);
-                if (bound <= ex[EX_A_ABS_MAX]) continue;
-                poly_deriv(fa.q, fr.q);
-                fr.kind = FN_POLY;
-                const double tm = find_root(fr, ph, 0.0, tau, r0, r1, NaN, NaN, XTOL_EXTREMUM_S);
-                ph.poly_evaluations += 1;
-                track_abs_acceleration(ex, t0 + tm, poly_val(fa.q, tm));
-            }
-        } else {
-            Fn fr;
-            fr.kind = FN_AABS_RATE;
-            fr.idx = i;
-            double r0, r1, unused;
-            track_abs_acceleration(ex, t0, e.a0[i] + table_acceleration(ph, 0.0));
-            track_abs_acceleration(ex, t0 + tau, e.a1[i] + table_acceleration(ph, tau));
-            fn_eval(fr, ph, 0.0, r0, unused);
-            fn_eval(fr, ph, tau, r1, unused);
-            if (r0 * r1 < 0.0) {
-                const double tm = find_root(fr, ph, 0.0, tau, r0, r1, NaN, NaN, XTOL_EXTREMUM_S);
-                phase_eval(ph, tm, b.ym.data(), b.am.data());
-                track_abs_acceleration(ex, t0 + tm, b.am[static_cast<size_t>(i)] + table_acceleration(ph, tm));
-            }
+    } else if (linear && !ph.stk.grounded[static_cast<size_t>(g)]) {
+        // a group moving as one: its absolute acceleration the mass-weighted mean of its dofs' free
+        // ones, -(K x + C v + R0)_k / M (the holds' forces inside it cancel), extreme where its rate
+        // changes sign
+        Fn fa, fr, fk;
+        fa.q.deg = 0;
+        fa.q.c[0] = 0.0;
+        const double share = 1.0 / ph.stk.gmass[static_cast<size_t>(g)];
+        for (int k = 0; k < n; ++k) {
+            if (ph.stk.grp[static_cast<size_t>(k)] != g) continue;
+            abs_acc_poly(ph, k, fk.q);
+            const double w = ph.mass[static_cast<size_t>(k)] * share;
+            for (int m = fa.q.deg + 1; m <= fk.q.deg; ++m) fa.q.c[m] = 0.0;
+            fa.q.deg = std::max(fa.q.deg, fk.q.deg);
+            for (int m = 0; m <= fk.q.deg; ++m) fa.q.c[m] += w * fk.q.c[m];
+        }
+        poly_deriv(fa.q, fr.q);
+        fr.kind = FN_POLY;
+        const double r0 = poly_val(fr.q, 0.0), r1 = poly_val(fr.q, tau);
+        ph.poly_evaluations += 2;
+        if (r0 * r1 < 0.0) {
+            const double tm = find_root(fr, ph, 0.0, tau, r0, r1, NaN, NaN, XTOL_EXTREMUM_S);
+            ph.poly_evaluations += 1;
+            track_abs_acceleration(ex, t0 + tm, poly_val(fa.q, tm));
         }
     }
-    // peak contact forces
+}
+
+// a free dof's: a linear phase's at the ends and where its polynomial's rate changes sign (skipped when the
+// polynomial's bound is below the largest so far), a nonlinear one's where the numerical rate does
+void free_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, const Ends& e, bool linear,
+                           Buffers& b) {
+    if (linear) {
+        // a linear phase's absolute acceleration -(K x + C v + R0)_i / m_i and its rate at the ends; the
+        // polynomial only where the rate changes sign
+        const double aa0 = abs_acc_linear(ph, i, e.y0), aa1 = abs_acc_linear(ph, i, e.y1);
+        const double r0 = abs_acc_rate_linear(ph, i, e.y0, e.a0), r1 = abs_acc_rate_linear(ph, i, e.y1, e.a1);
+        track_abs_acceleration(ex, t0, aa0);
+        track_abs_acceleration(ex, t0 + tau, aa1);
+        if (r0 * r1 < 0.0) {
+            Fn fa, fr;
+            abs_acc_poly(ph, i, fa.q);
+            // (its bound over the sub-interval, sum |c_k| tau^k, below the largest so far: no new extremum)
+            double bound = 0.0;
+            for (int k = fa.q.deg; k >= 0; --k) bound = bound * tau + std::abs(fa.q.c[k]);
+            if (bound <= ex[EX_A_ABS_MAX]) return;
+            poly_deriv(fa.q, fr.q);
+            fr.kind = FN_POLY;
+            const double tm = find_root(fr, ph, 0.0, tau, r0, r1, NaN, NaN, XTOL_EXTREMUM_S);
+            ph.poly_evaluations += 1;
+            track_abs_acceleration(ex, t0 + tm, poly_val(fa.q, tm));
+        }
+    } else {
+        Fn fr;
+        fr.kind = FN_AABS_RATE;
+        fr.idx = i;
+        double r0, r1, unused;
+        track_abs_acceleration(ex, t0, e.a0[i] + table_acceleration(ph, 0.0));
+        track_abs_acceleration(ex, t0 + tau, e.a1[i] + table_acceleration(ph, tau));
+        fn_eval(fr, ph, 0.0, r0, unused);
+        fn_eval(fr, ph, tau, r1, unused);
+        if (r0 * r1 < 0.0) {
+            const double tm = find_root(fr, ph, 0.0, tau, r0, r1, NaN, NaN, XTOL_EXTREMUM_S);
+            phase_eval(ph, tm, b.ym.data(), b.am.data());
+            track_abs_acceleration(ex, t0 + tm, b.am[static_cast<size_t>(i)] + table_acceleration(ph, tm));
+        }
+    }
+}
+
+// each contact in progress's peak force: the ends, and where its rate changes sign
+void peak_contact_forces(Phase& ph, const Layout& L, double* st, double tau, const Ends& e, bool linear,
+                         Buffers& b) {
     for (int c = 0; c < ph.nc; ++c) {
         const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
         if (!k.in) continue;
@@ -380,6 +400,31 @@ void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, 
         }
         st[acc + A_PEAK] = std::max(st[acc + A_PEAK], peak);
     }
+}
+
+}  // namespace
+
+// what a sub-interval adds: the energy integrals and contact statistics, the held stops' impulses, then the
+// extrema (displacements, drifts, compressions, absolute accelerations, contact forces)
+void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, const Ends& e, double* ledger,
+                double* extrema, Buffers& b, bool with_energy, const Given& given) {
+    bool any_in = false;
+    for (const ContactPhase& k : ph.ct) any_in = any_in || k.in;
+    const bool linear = !ph.numeric;
+    if (tau > 0.0 && linear && (with_energy || any_in))
+        linear_contributions(ph, sy, st, tau, e, ledger, b, with_energy, given);
+    else if (tau > 0.0 && (with_energy || any_in))
+        numeric_contributions(ph, sy, st, tau, e, ledger, b);
+    if (ph.stk.any && tau > 0.0) held_statistics(ph, sy.lay, st, tau, e, linear, b);
+    displacement_extrema(ph, sy, st, t0, tau, e, extrema);
+    for (int i = 0; i < ph.n; ++i) {
+        double* ex = extrema + DOF_EXTREMA * i;
+        if (ph.stk.any && ph.stk.grp[static_cast<size_t>(i)] >= 0)
+            held_abs_acceleration(ph, i, ex, t0, tau, e, linear);
+        else
+            free_abs_acceleration(ph, i, ex, t0, tau, e, linear, b);
+    }
+    peak_contact_forces(ph, sy.lay, st, tau, e, linear, b);
 }
 
 namespace {

@@ -7,6 +7,7 @@
 #include "impact_parts.hpp"
 #include "isolator.hpp"
 #include "laws.hpp"
+#include "linalg.hpp"
 
 namespace pounding::run_parts {
 
@@ -65,49 +66,24 @@ bool solve_lcp(const std::vector<double>& W, const std::vector<double>& b, int k
     std::vector<int> sets;
     for (int s = 0; s < (1 << k); ++s) sets.push_back(s);
     std::stable_sort(sets.begin(), sets.end(), [](int x, int y) { return bits(x) < bits(y); });
-    std::vector<double> A, r;
     std::vector<int> idx;
     for (const int s : sets) {
         idx.clear();
         for (int a = 0; a < k; ++a)
             if (s & (1 << a)) idx.push_back(a);
         const int m = static_cast<int>(idx.size());
-        A.assign(static_cast<size_t>(m * m), 0.0);
-        r.assign(static_cast<size_t>(m), 0.0);
+        Mat A(m, m), r(m, 1);
         for (int p = 0; p < m; ++p) {
-            r[static_cast<size_t>(p)] = b[static_cast<size_t>(idx[static_cast<size_t>(p)])];
+            r(p, 0) = b[static_cast<size_t>(idx[static_cast<size_t>(p)])];
             for (int q = 0; q < m; ++q)
-                A[static_cast<size_t>(p * m + q)] = W[static_cast<size_t>(idx[static_cast<size_t>(p)] * k + idx[static_cast<size_t>(q)])];
+                A(p, q) = W[static_cast<size_t>(idx[static_cast<size_t>(p)] * k + idx[static_cast<size_t>(q)])];
         }
-        bool ok = true;  // (Gaussian elimination with partial pivoting)
-        for (int p = 0; p < m && ok; ++p) {
-            int piv = p;
-            for (int q = p + 1; q < m; ++q)
-                if (std::abs(A[static_cast<size_t>(q * m + p)]) > std::abs(A[static_cast<size_t>(piv * m + p)])) piv = q;
-            if (!(std::abs(A[static_cast<size_t>(piv * m + p)]) > 1e-12 * wmax)) {
-                ok = false;
-                break;
-            }
-            if (piv != p) {
-                for (int q = 0; q < m; ++q) std::swap(A[static_cast<size_t>(p * m + q)], A[static_cast<size_t>(piv * m + q)]);
-                std::swap(r[static_cast<size_t>(p)], r[static_cast<size_t>(piv)]);
-            }
-            for (int q = p + 1; q < m; ++q) {
-                const double f = A[static_cast<size_t>(q * m + p)] / A[static_cast<size_t>(p * m + p)];
-                for (int z = p; z < m; ++z) A[static_cast<size_t>(q * m + z)] -= f * A[static_cast<size_t>(p * m + z)];
-                r[static_cast<size_t>(q)] -= f * r[static_cast<size_t>(p)];
-            }
-        }
+        bool ok = solve_in_place(A, r, 1e-12 * wmax);  // (a singular active set: the next one)
         if (!ok) continue;
-        for (int p = m - 1; p >= 0; --p) {
-            double s2 = r[static_cast<size_t>(p)];
-            for (int q = p + 1; q < m; ++q) s2 -= A[static_cast<size_t>(p * m + q)] * r[static_cast<size_t>(q)];
-            r[static_cast<size_t>(p)] = s2 / A[static_cast<size_t>(p * m + p)];
-        }
         lam.assign(static_cast<size_t>(k), 0.0);
         for (int p = 0; p < m; ++p) {
-            if (r[static_cast<size_t>(p)] < -tol / std::max(wmax, MIN_NORMAL)) ok = false;
-            lam[static_cast<size_t>(idx[static_cast<size_t>(p)])] = std::max(r[static_cast<size_t>(p)], 0.0);
+            if (r(p, 0) < -tol / std::max(wmax, MIN_NORMAL)) ok = false;
+            lam[static_cast<size_t>(idx[static_cast<size_t>(p)])] = std::max(r(p, 0), 0.0);
         }
         for (int a = 0; a < k && ok; ++a) {
             if (s & (1 << a)) continue;

@@ -9,19 +9,36 @@
 namespace pounding {
 namespace {
 
+// ---------------------------------------------------------------- each law's parameters, decoded once
+// (in the order its Python dataclass's params() writes them: pounding/model/contact_laws.py)
+
+struct KelvinVoigtP { double k, c; };  // stiffness, damping
+KelvinVoigtP kelvin_voigt(const double* p) { return {p[0], p[1]}; }
+
+// Hunt-Crossley, Jankowski and Hertzdamp: stiffness, damping (Hertzdamp's xi_norm), exponent
+struct HertzP { double k, c, n; };
+HertzP hertz(const double* p) { return {p[0], p[1], p[2]}; }
+
+// the multi-linear backbone, elastic or kinematic: damping, the number of slopes n, 4 slopes, 3 breakpoints
+struct MlP { double c; int n; const double* k; const double* b; };
+MlP multilinear(const double* p) { return {p[0], static_cast<int>(p[1]), p + 2, p + 6}; }
+
+struct EpP { double k1, k2, dy; };  // elastic-plastic: the elastic and the plastic slopes, the yield compression
+EpP elastic_plastic(const double* p) { return {p[0], p[1], p[2]}; }
+
 // ---------------------------------------------------------------- multi-linear backbone
 // p: damping, number of slopes n, 4 slopes, 3 breakpoints
 constexpr double ML_TIE = 1e-9;  // relative: a compression this close above a breakpoint recovers below it
 
 struct MlBranch { double force, slope; int j; double offset; };
 
-MlBranch ml_branch(const double* p, double d) {
-    const int n = static_cast<int>(p[1]);
+MlBranch ml_branch(const MlP& ml, double d) {
+    const int n = ml.n;
     double force = 0.0, lower = 0.0;
     for (int j = 0; j < n; ++j) {
-        const double k = p[2 + j];
-        if (j == n - 1 || d <= p[6 + j]) return {force + k * (d - lower), k, j, force - k * lower};
-        const double upper = p[6 + j];
+        const double k = ml.k[j];
+        if (j == n - 1 || d <= ml.b[j]) return {force + k * (d - lower), k, j, force - k * lower};
+        const double upper = ml.b[j];
         force += k * (upper - lower);
         lower = upper;
     }
@@ -30,18 +47,18 @@ MlBranch ml_branch(const double* p, double d) {
 
 struct Line { double k, offset, lower; };
 
-Line ml_branch_line(const double* p, int j) {
-    const double lower = j == 0 ? 0.0 : p[5 + j];
-    const double k = p[2 + j];
-    return {k, ml_branch(p, lower).force - k * lower, lower};
+Line ml_branch_line(const MlP& ml, int j) {
+    const double lower = j == 0 ? 0.0 : ml.b[j - 1];
+    const double k = ml.k[j];
+    return {k, ml_branch(ml, lower).force - k * lower, lower};
 }
 
-double ml_energy(const double* p, double d) {
-    const int n = static_cast<int>(p[1]);
+double ml_energy(const MlP& ml, double d) {
+    const int n = ml.n;
     double energy = 0.0, force = 0.0, lower = 0.0;
     for (int j = 0; j < n; ++j) {
-        const double k = p[2 + j];
-        const double upper = j == n - 1 ? d : std::min(d, p[6 + j]);
+        const double k = ml.k[j];
+        const double upper = j == n - 1 ? d : std::min(d, ml.b[j]);
         if (upper <= lower) break;
         energy += (force + 0.5 * k * (upper - lower)) * (upper - lower);
         force += k * (upper - lower);
@@ -52,11 +69,11 @@ double ml_energy(const double* p, double d) {
 
 struct DownBranch { double k, offset, lower, t_edge; };
 
-DownBranch ml_down_branch(const double* p, double d) {
-    const double c = p[0];
-    int j = ml_branch(p, d).j;
-    if (j > 0 && d <= p[5 + j] * (1.0 + ML_TIE)) j -= 1;
-    const Line l = ml_branch_line(p, j);
+DownBranch ml_down_branch(const MlP& ml, double d) {
+    const double c = ml.c;
+    int j = ml_branch(ml, d).j;
+    if (j > 0 && d <= ml.b[j - 1] * (1.0 + ML_TIE)) j -= 1;
+    const Line l = ml_branch_line(ml, j);
     if (j == 0) return {l.k, l.offset, l.lower, INF};
     if (l.k > 0.0) {
         const double target = -l.offset / l.k;
@@ -65,12 +82,12 @@ DownBranch ml_down_branch(const double* p, double d) {
     return {l.k, l.offset, l.lower, (d - l.lower) * c / l.offset};
 }
 
-Relaxed ml_relax(const double* p, double d0, double tau) {
-    const double c = p[0];
+Relaxed ml_relax(const MlP& ml, double d0, double tau) {
+    const double c = ml.c;
     if (c <= 0.0 || d0 <= 0.0) return {0.0, 0.0};
     double d = d0, left = tau;
     for (int pass = 0; pass < 8; ++pass) {
-        const DownBranch b = ml_down_branch(p, d);
+        const DownBranch b = ml_down_branch(ml, d);
         if (b.t_edge < left) {
             left -= b.t_edge;
             d = b.lower;
@@ -89,9 +106,9 @@ Relaxed ml_relax(const double* p, double d0, double tau) {
     return {0.0, 0.0};
 }
 
-double ml_relax_horizon(const double* p, double d0) {
-    if (p[0] <= 0.0 || d0 <= 0.0) return INF;
-    return ml_down_branch(p, d0).t_edge;
+double ml_relax_horizon(const MlP& ml, double d0) {
+    if (ml.c <= 0.0 || d0 <= 0.0) return INF;
+    return ml_down_branch(ml, d0).t_edge;
 }
 
 // ---------------------------------------------------------------- elastic-plastic (ImpactMaterial)
@@ -101,18 +118,18 @@ constexpr double EP_YIELD = -1.0, EP_UNLOAD = -2.0;
 
 struct EpLine { double k, r; int j; };
 
-EpLine ep_line(const double* p, double z) {
-    const double k1 = p[0], k2 = p[1];
-    if (z == EP_YIELD) return {k2, (k1 - k2) * p[2], EP_YIELD_BRANCH};
+EpLine ep_line(const EpP& ep, double z) {
+    const double k1 = ep.k1, k2 = ep.k2;
+    if (z == EP_YIELD) return {k2, (k1 - k2) * ep.dy, EP_YIELD_BRANCH};
     if (z == EP_UNLOAD) return {k2, 0.0, EP_UNLOAD_BRANCH};
     return {k1, -k1 * z, EP_ELASTIC};
 }
 
-Edges ep_edges(const double* p, double z) {
+Edges ep_edges(const EpP& ep, double z) {
     if (z < 0.0) return {-1.0, -1.0};
-    const double k1 = p[0], k2 = p[1];
+    const double k1 = ep.k1, k2 = ep.k2;
     const double s = k1 * z / (k1 - k2);
-    return {z > 0.0 ? s : -1.0, p[2] + s};
+    return {z > 0.0 ? s : -1.0, ep.dy + s};
 }
 
 double ep_turn_sign(double z) {
@@ -121,30 +138,30 @@ double ep_turn_sign(double z) {
     return 0.0;
 }
 
-double ep_after_event(const double* p, double z, double d, double code) {
-    const double k1 = p[0], k2 = p[1];
+double ep_after_event(const EpP& ep, double z, double d, double code) {
+    const double k1 = ep.k1, k2 = ep.k2;
     if (z == EP_YIELD) {
-        const double f = k2 * d + (k1 - k2) * p[2];
+        const double f = k2 * d + (k1 - k2) * ep.dy;
         return std::max(d - f / k1, 0.0);
     }
     if (z == EP_UNLOAD) return std::max(d * (1.0 - k2 / k1), 0.0);
     return code;
 }
 
-double ep_force(const double* p, double d, double z) {
-    const EpLine l = ep_line(p, z);
+double ep_force(const EpP& ep, double d, double z) {
+    const EpLine l = ep_line(ep, z);
     return std::max(l.k * d + l.r, 0.0);
 }
 
-double ep_energy(const double* p, double d, double z) {
-    const double k1 = p[0], k2 = p[1];
-    const double f = ep_force(p, d, z);
+double ep_energy(const EpP& ep, double d, double z) {
+    const double k1 = ep.k1, k2 = ep.k2;
+    const double f = ep_force(ep, d, z);
     const double dp = z >= 0.0 ? z : std::max(d - f / k1, 0.0);
     return 0.5 * f * f / k1 + 0.5 * k1 * k2 * dp * dp / (k1 - k2);
 }
 
-void ep_force_path(const double* p, const double* d, double* out, int64_t n) {
-    const double k1 = p[0], k2 = p[1], dy = p[2];
+void ep_force_path(const EpP& ep, const double* d, double* out, int64_t n) {
+    const double k1 = ep.k1, k2 = ep.k2, dy = ep.dy;
     double f = 0.0, prev = 0.0;
     for (int64_t i = 0; i < n; ++i) {
         const double x = d[i];
@@ -166,11 +183,11 @@ void ep_force_path(const double* p, const double* d, double* out, int64_t n) {
 constexpr double KB_TIE = 1e-9;
 constexpr double KB_EDGE_UP = -1.0;
 
-double kb_linear_slope(const double* p) {
-    const int n = static_cast<int>(p[1]);
-    double k = p[2];
+double kb_linear_slope(const MlP& ml) {
+    const int n = ml.n;
+    double k = ml.k[0];
     for (int i = 0; i < n - 1; ++i) {
-        const double step = p[2 + i] - p[3 + i];
+        const double step = ml.k[i] - ml.k[i + 1];
         if (step > 0.0) k -= step;
     }
     return std::max(k, 0.0);
@@ -178,13 +195,13 @@ double kb_linear_slope(const double* p) {
 
 struct KbSpring { double force, k, r; int m; };
 
-KbSpring kb_spring(const double* p, const double* z, double x, double dx) {
-    const int n = static_cast<int>(p[1]);
-    double k = kb_linear_slope(p), r = 0.0;
+KbSpring kb_spring(const MlP& ml, const double* z, double x, double dx) {
+    const int n = ml.n;
+    double k = kb_linear_slope(ml), r = 0.0;
     int m = 0;
     for (int i = 0; i < n - 1; ++i) {
-        const double b = p[6 + i];
-        const double step = p[2 + i] - p[3 + i];
+        const double b = ml.b[i];
+        const double step = ml.k[i] - ml.k[i + 1];
         if (step > 0.0) {
             const double s = z[4 + i];
             if (s == 0.0) {
@@ -204,13 +221,13 @@ KbSpring kb_spring(const double* p, const double* z, double x, double dx) {
     return {k * x + r, k, r, m};
 }
 
-Edges kb_edges(const double* p, int j, const double* z) {
-    const int n = static_cast<int>(p[1]);
+Edges kb_edges(const MlP& ml, int j, const double* z) {
+    const int n = ml.n;
     double lower = -1.0, upper = INF;
     int count = 0;
     for (int i = 0; i < n - 1; ++i) {
-        const double b = p[6 + i];
-        const double step = p[2 + i] - p[3 + i];
+        const double b = ml.b[i];
+        const double step = ml.k[i] - ml.k[i + 1];
         if (step > 0.0) {
             if (z[4 + i] == 0.0) {
                 const double u = z[1 + i];
@@ -226,20 +243,20 @@ Edges kb_edges(const double* p, int j, const double* z) {
     return {lower, upper < INF ? upper : -1.0};
 }
 
-double kb_turn_sign(const double* p, const double* z) {
-    const int n = static_cast<int>(p[1]);
+double kb_turn_sign(const MlP& ml, const double* z) {
+    const int n = ml.n;
     for (int i = 0; i < n - 1; ++i)
         if (z[4 + i] != 0.0) return z[4 + i];
     return 0.0;
 }
 
-void kb_after_event(const double* p, double* z, double x, double code) {
-    const int n = static_cast<int>(p[1]);
+void kb_after_event(const MlP& ml, double* z, double x, double code) {
+    const int n = ml.n;
     if (code == 0.0) {
         for (int i = 0; i < n - 1; ++i) {
             const double s = z[4 + i];
             if (s != 0.0) {
-                z[1 + i] = x - s * p[6 + i];
+                z[1 + i] = x - s * ml.b[i];
                 z[4 + i] = 0.0;
             }
         }
@@ -248,14 +265,14 @@ void kb_after_event(const double* p, double* z, double x, double code) {
     const double sg = code == KB_EDGE_UP ? 1.0 : -1.0;
     double best = INF;
     for (int i = 0; i < n - 1; ++i) {
-        const double b = p[6 + i];
-        const double step = p[2 + i] - p[3 + i];
+        const double b = ml.b[i];
+        const double step = ml.k[i] - ml.k[i + 1];
         if (step > 0.0 && z[4 + i] == 0.0) best = std::min(best, std::abs(x - (z[1 + i] + sg * b)) / b);
         else if (step < 0.0) best = std::min(best, std::abs(x - b) / b);
     }
     for (int i = 0; i < n - 1; ++i) {
-        const double b = p[6 + i];
-        const double step = p[2 + i] - p[3 + i];
+        const double b = ml.b[i];
+        const double step = ml.k[i] - ml.k[i + 1];
         if (step > 0.0 && z[4 + i] == 0.0) {
             const double gap = std::abs(x - (z[1 + i] + sg * b)) / b;
             if (gap <= best + KB_TIE) z[4 + i] = sg;
@@ -263,23 +280,23 @@ void kb_after_event(const double* p, double* z, double x, double code) {
     }
 }
 
-double kb_branch_loss(const double* p, const double* z, double x0, double x1) {
-    const int n = static_cast<int>(p[1]);
+double kb_branch_loss(const MlP& ml, const double* z, double x0, double x1) {
+    const int n = ml.n;
     double loss = 0.0;
     for (int i = 0; i < n - 1; ++i) {
         const double s = z[4 + i];
-        if (s != 0.0) loss += s * (p[2 + i] - p[3 + i]) * p[6 + i] * (x1 - x0);
+        if (s != 0.0) loss += s * (ml.k[i] - ml.k[i + 1]) * ml.b[i] * (x1 - x0);
     }
     return loss;
 }
 
-double kb_energy(const double* p, double x, const double* z) {
-    const int n = static_cast<int>(p[1]);
-    const double k_lin = kb_linear_slope(p);
+double kb_energy(const MlP& ml, double x, const double* z) {
+    const int n = ml.n;
+    const double k_lin = kb_linear_slope(ml);
     double e = 0.5 * k_lin * x * x;
     for (int i = 0; i < n - 1; ++i) {
-        const double b = p[6 + i];
-        const double step = p[2 + i] - p[3 + i];
+        const double b = ml.b[i];
+        const double step = ml.k[i] - ml.k[i + 1];
         if (step > 0.0) {
             const double s = z[4 + i];
             const double strain = s == 0.0 ? x - z[1 + i] : s * b;
@@ -291,31 +308,31 @@ double kb_energy(const double* p, double x, const double* z) {
     return e;
 }
 
-void kb_contact_state(const double* p, double* z, double x) {
-    const int n = static_cast<int>(p[1]);
+void kb_contact_state(const MlP& ml, double* z, double x) {
+    const int n = ml.n;
     for (int i = 0; i < n - 1; ++i) {
         if (z[4 + i] < 0.0) {
-            z[1 + i] = x + p[6 + i];
+            z[1 + i] = x + ml.b[i];
             z[4 + i] = 0.0;
         }
     }
 }
 
-void kb_release_state(const double* p, double* z, double x) {
-    const int n = static_cast<int>(p[1]);
+void kb_release_state(const MlP& ml, double* z, double x) {
+    const int n = ml.n;
     for (int i = 0; i < n - 1; ++i) {
         if (z[4 + i] > 0.0) {
-            z[1 + i] = x - p[6 + i];
+            z[1 + i] = x - ml.b[i];
             z[4 + i] = 0.0;
         }
     }
 }
 
-void kb_moved(const double* p, double* z, double x, bool in_contact) {
-    const int n = static_cast<int>(p[1]);
+void kb_moved(const MlP& ml, double* z, double x, bool in_contact) {
+    const int n = ml.n;
     for (int i = 0; i < n - 1; ++i) {
-        const double b = p[6 + i];
-        if (p[2 + i] - p[3 + i] <= 0.0) continue;
+        const double b = ml.b[i];
+        if (ml.k[i] - ml.k[i + 1] <= 0.0) continue;
         double s = z[4 + i];
         if (s == 0.0 && !in_contact && x - (z[1 + i] - b) <= KB_TIE * b) {
             s = -1.0;
@@ -325,12 +342,12 @@ void kb_moved(const double* p, double* z, double x, bool in_contact) {
     }
 }
 
-Line kb_down_piece(const double* p, const double* z, double x) {
-    const int n = static_cast<int>(p[1]);
-    double k = kb_linear_slope(p), r = 0.0, lower = 0.0;
+Line kb_down_piece(const MlP& ml, const double* z, double x) {
+    const int n = ml.n;
+    double k = kb_linear_slope(ml), r = 0.0, lower = 0.0;
     for (int i = 0; i < n - 1; ++i) {
-        const double b = p[6 + i];
-        const double step = p[2 + i] - p[3 + i];
+        const double b = ml.b[i];
+        const double step = ml.k[i] - ml.k[i + 1];
         if (step > 0.0) {
             const double u = z[1 + i];
             if (z[4 + i] == 0.0 && x - (u - b) > KB_TIE * b) {
@@ -349,12 +366,12 @@ Line kb_down_piece(const double* p, const double* z, double x) {
     return {k, r, lower};
 }
 
-Relaxed kb_relax(const double* p, double d0, double tau, const double* z) {
-    const double c = p[0];
+Relaxed kb_relax(const MlP& ml, double d0, double tau, const double* z) {
+    const double c = ml.c;
     if (d0 <= 0.0) return {0.0, 0.0};
     double x = d0, left = tau;
     for (int pass = 0; pass < 16; ++pass) {
-        const Line pc = kb_down_piece(p, z, x);
+        const Line pc = kb_down_piece(ml, z, x);
         const double k = pc.k, r = pc.offset, lower = pc.lower;
         const double f = k * x + r;
         if (f <= 0.0) return {x, 0.0};
@@ -389,10 +406,10 @@ Relaxed kb_relax(const double* p, double d0, double tau, const double* z) {
     return {x, 0.0};
 }
 
-double kb_relax_horizon(const double* p, double d0, const double* z) {
-    const double c = p[0];
+double kb_relax_horizon(const MlP& ml, double d0, const double* z) {
+    const double c = ml.c;
     if (c <= 0.0 || d0 <= 0.0) return INF;
-    const Line pc = kb_down_piece(p, z, d0);
+    const Line pc = kb_down_piece(ml, z, d0);
     const double k = pc.k, r = pc.offset, lower = pc.lower;
     if (k * d0 + r <= 0.0) return INF;
     if (k > 0.0) {
@@ -403,17 +420,17 @@ double kb_relax_horizon(const double* p, double d0, const double* z) {
     return (d0 - lower) * c / r;
 }
 
-void kb_force_path(const double* p, const double* d, const double* v, double* out, int64_t count) {
-    const int n = static_cast<int>(p[1]);
-    const double k_lin = kb_linear_slope(p);
+void kb_force_path(const MlP& ml, const double* d, const double* v, double* out, int64_t count) {
+    const int n = ml.n;
+    const double k_lin = kb_linear_slope(ml);
     double e[3] = {0.0, 0.0, 0.0};
     double prev = 0.0;
     for (int64_t q = 0; q < count; ++q) {
         const double x = d[q];
-        double f = k_lin * x + p[0] * v[q];
+        double f = k_lin * x + ml.c * v[q];
         for (int i = 0; i < n - 1; ++i) {
-            const double b = p[6 + i];
-            const double step = p[2 + i] - p[3 + i];
+            const double b = ml.b[i];
+            const double step = ml.k[i] - ml.k[i + 1];
             if (step > 0.0) {
                 e[i] = std::min(std::max(e[i] + x - prev, -b), b);
                 f += step * e[i];
@@ -427,9 +444,13 @@ void kb_force_path(const double* p, const double* d, const double* v, double* ou
 }
 
 Branch branch_coefficients(int law, const double* p, int j) {
-    if (law == KELVIN_VOIGT) return {p[0], p[1], 0.0, 0};
-    const Line l = ml_branch_line(p, j);
-    return {l.k, p[0], l.offset, j};
+    if (law == KELVIN_VOIGT) {
+        const KelvinVoigtP kv = kelvin_voigt(p);
+        return {kv.k, kv.c, 0.0, 0};
+    }
+    const MlP ml = multilinear(p);
+    const Line l = ml_branch_line(ml, j);
+    return {l.k, ml.c, l.offset, j};
 }
 
 }  // namespace
@@ -447,83 +468,99 @@ bool law_has_memory(int law) { return law == ELASTIC_PLASTIC || law == MULTILINE
 bool law_switches_at_rest(int law) { return law == JANKOWSKI; }
 
 void law_contact_state(int law, const double* p, double rate, double* z, double d) {
-    if (law == HERTZDAMP) z[0] = rate > 0.0 ? p[1] * p[0] / rate : 0.0;
-    else if (law == MULTILINEAR_KINEMATIC) kb_contact_state(p, z, d);
-    else z[0] = 0.0;
+    if (law == HERTZDAMP) {  // (its damping xi_norm k / v_in, from the speed the contact started at)
+        const HertzP h = hertz(p);
+        z[0] = rate > 0.0 ? h.c * h.k / rate : 0.0;
+    } else if (law == MULTILINEAR_KINEMATIC) {
+        kb_contact_state(multilinear(p), z, d);
+    } else {
+        z[0] = 0.0;
+    }
 }
 
 void law_release_state(int law, const double* p, double* z, double d) {
     if (law == ELASTIC_PLASTIC) z[0] = 0.0;
-    else if (law == MULTILINEAR_KINEMATIC) kb_release_state(p, z, d);
+    else if (law == MULTILINEAR_KINEMATIC) kb_release_state(multilinear(p), z, d);
 }
 
 void law_moved(int law, const double* p, double* z, double d, bool in_contact) {
-    if (law == MULTILINEAR_KINEMATIC) kb_moved(p, z, d, in_contact);
+    if (law == MULTILINEAR_KINEMATIC) kb_moved(multilinear(p), z, d, in_contact);
 }
 
 Branch law_linear_branch(int law, const double* p, double d, double dd, const double* z) {
-    if (law == KELVIN_VOIGT) return {p[0], p[1], 0.0, 0};
+    if (law == KELVIN_VOIGT) {
+        const KelvinVoigtP kv = kelvin_voigt(p);
+        return {kv.k, kv.c, 0.0, 0};
+    }
     if (law == RIGID) return {0.0, 0.0, 0.0, 0};
     if (law == ELASTIC_PLASTIC) {
-        const EpLine l = ep_line(p, z[0]);
+        const EpLine l = ep_line(elastic_plastic(p), z[0]);
         return {l.k, 0.0, l.r, l.j};
     }
+    const MlP ml = multilinear(p);
     if (law == MULTILINEAR_KINEMATIC) {
-        const KbSpring s = kb_spring(p, z, d, dd);
-        return {s.k, p[0], s.r, s.m};
+        const KbSpring s = kb_spring(ml, z, d, dd);
+        return {s.k, ml.c, s.r, s.m};
     }
-    const int n = static_cast<int>(p[1]);
-    int j = ml_branch(p, d).j;
-    if (j < n - 1 && dd > 0.0 && std::abs(d - p[6 + j]) <= BRANCH_TIE * p[6 + j]) j += 1;
-    else if (j > 0 && dd < 0.0 && std::abs(d - p[5 + j]) <= BRANCH_TIE * p[5 + j]) j -= 1;
+    int j = ml_branch(ml, d).j;
+    if (j < ml.n - 1 && dd > 0.0 && std::abs(d - ml.b[j]) <= BRANCH_TIE * ml.b[j]) j += 1;
+    else if (j > 0 && dd < 0.0 && std::abs(d - ml.b[j - 1]) <= BRANCH_TIE * ml.b[j - 1]) j -= 1;
     return branch_coefficients(law, p, j);
 }
 
 Edges law_branch_edges(int law, const double* p, int j, const double* z) {
-    if (law == ELASTIC_PLASTIC) return ep_edges(p, z[0]);
-    if (law == MULTILINEAR_KINEMATIC) return kb_edges(p, j, z);
+    if (law == ELASTIC_PLASTIC) return ep_edges(elastic_plastic(p), z[0]);
+    if (law == MULTILINEAR_KINEMATIC) return kb_edges(multilinear(p), j, z);
     if (law != MULTILINEAR) return {-1.0, -1.0};
-    const int n = static_cast<int>(p[1]);
-    return {j > 0 ? p[5 + j] : -1.0, j < n - 1 ? p[6 + j] : -1.0};
+    const MlP ml = multilinear(p);
+    return {j > 0 ? ml.b[j - 1] : -1.0, j < ml.n - 1 ? ml.b[j] : -1.0};
 }
 
 double law_branch_loss(int law, const double* p, int j, double d0, double d1, const double* z) {
-    if (law == ELASTIC_PLASTIC && j == EP_YIELD_BRANCH) return (p[0] - p[1]) * p[2] * (d1 - d0);
-    if (law == MULTILINEAR_KINEMATIC) return kb_branch_loss(p, z, d0, d1);
+    if (law == ELASTIC_PLASTIC && j == EP_YIELD_BRANCH) {
+        const EpP ep = elastic_plastic(p);
+        return (ep.k1 - ep.k2) * ep.dy * (d1 - d0);
+    }
+    if (law == MULTILINEAR_KINEMATIC) return kb_branch_loss(multilinear(p), z, d0, d1);
     return 0.0;
 }
 
 double law_turn_sign(int law, const double* p, const double* z) {
     if (law == ELASTIC_PLASTIC) return ep_turn_sign(z[0]);
-    if (law == MULTILINEAR_KINEMATIC) return kb_turn_sign(p, z);
+    if (law == MULTILINEAR_KINEMATIC) return kb_turn_sign(multilinear(p), z);
     return 0.0;
 }
 
 void law_after_event(int law, const double* p, double* z, double d, double code) {
-    if (law == ELASTIC_PLASTIC) z[0] = ep_after_event(p, z[0], d, code);
-    else if (law == MULTILINEAR_KINEMATIC) kb_after_event(p, z, d, code);
+    if (law == ELASTIC_PLASTIC) z[0] = ep_after_event(elastic_plastic(p), z[0], d, code);
+    else if (law == MULTILINEAR_KINEMATIC) kb_after_event(multilinear(p), z, d, code);
 }
 
 Force law_force(int law, const double* p, double d, double dd, const double* z) {
-    const double k = p[0];
-    double c = p[1];
     if (law == RIGID) return {0.0, 0.0, 0.0, 0.0};  // (a held stop's force: sticking.hpp)
-    if (law == KELVIN_VOIGT) return {k * d + c * dd, k * d, k, c};
+    if (law == KELVIN_VOIGT) {
+        const KelvinVoigtP kv = kelvin_voigt(p);
+        return {kv.k * d + kv.c * dd, kv.k * d, kv.k, kv.c};
+    }
     if (law == ELASTIC_PLASTIC) {
-        const double f = ep_force(p, d, z[0]);
-        return {f, f, ep_line(p, z[0]).k, 0.0};
+        const EpP ep = elastic_plastic(p);
+        const double f = ep_force(ep, d, z[0]);
+        return {f, f, ep_line(ep, z[0]).k, 0.0};
     }
     if (law == MULTILINEAR_KINEMATIC) {
-        const KbSpring s = kb_spring(p, z, d, dd);
-        return {s.force + k * dd, s.force, s.k, k};
+        const MlP ml = multilinear(p);
+        const KbSpring s = kb_spring(ml, z, d, dd);
+        return {s.force + ml.c * dd, s.force, s.k, ml.c};
     }
     if (law == MULTILINEAR) {
-        const MlBranch b = ml_branch(p, d);
-        return {b.force + k * dd, b.force, b.slope, k};
+        const MlP ml = multilinear(p);
+        const MlBranch b = ml_branch(ml, d);
+        return {b.force + ml.c * dd, b.force, b.slope, ml.c};
     }
+    const HertzP h = hertz(p);
+    const double k = h.k, n = h.n;
+    const double c = law == HERTZDAMP ? z[0] : h.c;
     const double dpos = d > 0.0 ? d : 0.0;
-    const double n = p[2];
-    if (law == HERTZDAMP) c = z[0];
     const double dn = std::pow(dpos, n);
     const double slope = dpos > 0.0 ? n * std::pow(dpos, n - 1.0) : (n == 1.0 ? 1.0 : 0.0);
     if (law == HUNT_CROSSLEY || law == HERTZDAMP) return {dn * (k + c * dd), k * dn, slope * (k + c * dd), c * dn};
@@ -535,68 +572,78 @@ Force law_force(int law, const double* p, double d, double dd, const double* z) 
 
 double law_energy(int law, const double* p, double d, const double* z) {
     if (law == RIGID) return 0.0;
-    if (law == KELVIN_VOIGT) return 0.5 * p[0] * d * d;
-    if (law == MULTILINEAR) return ml_energy(p, d);
-    if (law == ELASTIC_PLASTIC) return ep_energy(p, d, z[0]);
-    if (law == MULTILINEAR_KINEMATIC) return kb_energy(p, d, z);
+    if (law == KELVIN_VOIGT) return 0.5 * kelvin_voigt(p).k * d * d;
+    if (law == MULTILINEAR) return ml_energy(multilinear(p), d);
+    if (law == ELASTIC_PLASTIC) return ep_energy(elastic_plastic(p), d, z[0]);
+    if (law == MULTILINEAR_KINEMATIC) return kb_energy(multilinear(p), d, z);
+    const HertzP h = hertz(p);
     const double dpos = d > 0.0 ? d : 0.0;
-    return p[0] * std::pow(dpos, p[2] + 1.0) / (p[2] + 1.0);
+    return h.k * std::pow(dpos, h.n + 1.0) / (h.n + 1.0);
 }
 
 Relaxed law_relax(int law, const double* p, double d0, double tau, const double* z) {
     if (d0 <= 0.0 || law == RIGID) return {0.0, 0.0};
     if (law == KELVIN_VOIGT) {
-        if (p[1] <= 0.0) return {0.0, 0.0};
-        const double rate = p[0] / p[1];
+        const KelvinVoigtP kv = kelvin_voigt(p);
+        if (kv.c <= 0.0) return {0.0, 0.0};
+        const double rate = kv.k / kv.c;
         const double x = rate * tau;
         if (x > EXP_NORMAL_LIMIT) return {0.0, 0.0};  // (below the smallest normal double: exactly 0)
         const double d = d0 * std::exp(-x);
         if (d < MIN_NORMAL) return {0.0, 0.0};
         return {d, -rate * d};
     }
-    if (law == MULTILINEAR) return ml_relax(p, d0, tau);
-    if (law == MULTILINEAR_KINEMATIC) return kb_relax(p, d0, tau, z);
-    const double c = law == HERTZDAMP ? z[0] : p[1];
-    if (law == JANKOWSKI || law == ELASTIC_PLASTIC || c <= 0.0) return {0.0, 0.0};
-    const double speed = p[0] / c;
+    if (law == MULTILINEAR) return ml_relax(multilinear(p), d0, tau);
+    if (law == MULTILINEAR_KINEMATIC) return kb_relax(multilinear(p), d0, tau, z);
+    if (law == JANKOWSKI || law == ELASTIC_PLASTIC) return {0.0, 0.0};
+    const HertzP h = hertz(p);
+    const double c = law == HERTZDAMP ? z[0] : h.c;
+    if (c <= 0.0) return {0.0, 0.0};
+    const double speed = h.k / c;
     const double d = d0 - speed * tau;
     if (d <= 0.0) return {0.0, 0.0};
     return {d, -speed};
 }
 
 double law_relax_horizon(int law, const double* p, double d0, const double* z) {
-    if (law == MULTILINEAR) return ml_relax_horizon(p, d0);
-    if (law == MULTILINEAR_KINEMATIC) return kb_relax_horizon(p, d0, z);
+    if (law == MULTILINEAR) return ml_relax_horizon(multilinear(p), d0);
+    if (law == MULTILINEAR_KINEMATIC) return kb_relax_horizon(multilinear(p), d0, z);
     return INF;
 }
 
 Relaxed law_release(int law, const double* p, double d, double dd, double ddd, const double* z) {
     if (law == RIGID) return {1.0, 0.0};  // (a held stop releases by its force: sticking.hpp)
-    if (law == KELVIN_VOIGT) return {p[0] * d + p[1] * dd, p[0] * dd + p[1] * ddd};
+    if (law == KELVIN_VOIGT) {
+        const KelvinVoigtP kv = kelvin_voigt(p);
+        return {kv.k * d + kv.c * dd, kv.k * dd + kv.c * ddd};
+    }
     if (law == JANKOWSKI) return {1.0, 0.0};
     if (law == ELASTIC_PLASTIC) {
-        const EpLine l = ep_line(p, z[0]);
+        const EpLine l = ep_line(elastic_plastic(p), z[0]);
         return {l.k * d + std::abs(l.r), l.k * dd};
     }
     if (law == MULTILINEAR_KINEMATIC) {
-        const KbSpring s = kb_spring(p, z, d, dd);
-        return {s.force + p[0] * dd, s.k * dd + p[0] * ddd};
+        const MlP ml = multilinear(p);
+        const KbSpring s = kb_spring(ml, z, d, dd);
+        return {s.force + ml.c * dd, s.k * dd + ml.c * ddd};
     }
     if (law == MULTILINEAR) {
-        const MlBranch b = ml_branch(p, d);
-        return {b.force + p[0] * dd, b.slope * dd + p[0] * ddd};
+        const MlP ml = multilinear(p);
+        const MlBranch b = ml_branch(ml, d);
+        return {b.force + ml.c * dd, b.slope * dd + ml.c * ddd};
     }
-    const double c = law == HERTZDAMP ? z[0] : p[1];
-    return {p[0] + c * dd, c * ddd};
+    const HertzP h = hertz(p);
+    const double c = law == HERTZDAMP ? z[0] : h.c;
+    return {h.k + c * dd, c * ddd};
 }
 
 void law_force_many(int law, const double* p, const double* d, const double* dd, double* out, int64_t n) {
     if (law == ELASTIC_PLASTIC) {
-        ep_force_path(p, d, out, n);
+        ep_force_path(elastic_plastic(p), d, out, n);
         return;
     }
     if (law == MULTILINEAR_KINEMATIC) {
-        kb_force_path(p, d, dd, out, n);
+        kb_force_path(multilinear(p), d, dd, out, n);
         return;
     }
     double z[N_LAW_STATE] = {0};

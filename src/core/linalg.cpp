@@ -149,12 +149,13 @@ std::vector<double> matvec(const Mat& x, const std::vector<double>& v) {
     return out;
 }
 
-Mat solve(Mat lu, Mat x) {
+bool solve_in_place(Mat& lu, Mat& x, double min_pivot) {
     const int n = lu.rows, m = x.cols;
     for (int c = 0; c < n; ++c) {
         int piv = c;
         for (int r = c + 1; r < n; ++r)
             if (std::abs(lu(r, c)) > std::abs(lu(piv, c))) piv = r;
+        if (min_pivot >= 0.0 && !(std::abs(lu(piv, c)) > min_pivot)) return false;
         if (piv != c) {
             for (int j = 0; j < n; ++j) std::swap(lu(c, j), lu(piv, j));
             for (int j = 0; j < m; ++j) std::swap(x(c, j), x(piv, j));
@@ -173,6 +174,11 @@ Mat solve(Mat lu, Mat x) {
             for (int k = c + 1; k < n; ++k) acc -= lu(c, k) * x(k, j);
             x(c, j) = acc / lu(c, c);
         }
+    return true;
+}
+
+Mat solve(Mat lu, Mat x) {
+    solve_in_place(lu, x, -1.0);
     return x;
 }
 

@@ -25,6 +25,9 @@ Mat matmul(const Mat& x, const Mat& y);
 std::vector<double> matvec(const Mat& x, const std::vector<double>& v);
 // x^-1 y by Gaussian elimination with partial pivoting
 Mat solve(Mat x, Mat y);
+// the same in place (x overwritten by its factor, y by the solution); false, the work left half done, when a
+// pivot is not above min_pivot in magnitude (min_pivot < 0: no pivot refused)
+bool solve_in_place(Mat& x, Mat& y, double min_pivot);
 // exp(a): balanced (a diagonal similarity by powers of 2), then scaling and squaring with the lowest adequate
 // diagonal Pade approximant of degree 3 to 13 (Higham 2005)
 Mat expm(const Mat& a);

@@ -317,20 +317,66 @@ struct RunWorkspace::Impl {
 RunWorkspace::RunWorkspace() : impl(new Impl()) {}
 RunWorkspace::~RunWorkspace() = default;
 
-void run_kernel(const System& sy, const Forcing& fo, const double* state0, const RunOptions& opt, int64_t* ctl,
-                RunResult& out, RunWorkspace* workspace) {
+namespace {
+
+// ---------------------------------------------------------------- the loop's steps
+//
+// A run reads as a story (run_kernel, at the end): set up; then, sub-interval by sub-interval, poll the run
+// control, take the next sub-interval (the same phase moved on, or a new phase), advance to its end (a kept
+// transition, the series, or a numerical step), find the earliest event inside it, accumulate what it adds
+// and move the state to its end, then apply the event; finish.  What the steps share is a Loop.
+
+struct Loop {
+    const System& sy;
+    const Forcing& fo;
+    const RunOptions& opt;
+    RunResult& out;
+    RunWorkspace::Impl& w;
+    const Layout& L;
+    const int n;
+    double* st;
+    double* ledger;
+    double* extrema;
+    double t_run0;
+    Phase& ph;
+    Buffers& b;
+    std::vector<double>& row;
+    Control control;
+    // the run's constants
+    double z_max = 0.0;
+    double resolution[3] = {0.0, 0.0, 0.0};
+    bool record = false;
+    bool has_ml = false;
+    int n_pairs = 0;
+    double kin0 = 0.0, iso0 = 0.0, bmp0 = 0.0;
+    // what goes from one sub-interval to the next
+    bool continuing = false;
+    double t_horizon = INF;
+    double h_phase = 0.0;
+    double s1 = 0.0, c1 = 1.0;  // the forcing angle's sine and cosine at the end of the last sub-interval
+    Rotation rot;               // sin and cos of w h, for the last (w, h)
+    double t_last = 0.0, h_last = 0.0;
+    int n_ev = 0;
+    int status = SUCCESS;
+    int zero_run = 0;
+    double h_num = 1e-4;
+    Sticking stk_out;  // (the held stops of the state an output row is made from)
+    double ag_now = 0.0;
+    int64_t j_next = 1, j_rec = 0;
+    int64_t work = 0, published = 0, next_poll = 0;
+    double h_flight = INF;  // (the last rigid rebound's flight, to first order)
+    // this sub-interval's
+    Piece pc{};
+    double t = 0.0, h = 0.0, t_stop = 0.0, tau = 0.0;
+    bool to_stop = false;
+    const Transition* tr = nullptr;
+    int i_ev = -1;
+};
+
+// every dof's extrema and every tracked pair's (a storey's drift) start where the run starts
+void start_extrema(const System& sy, const double* st, double t_run0, double* extrema) {
     const Layout& L = sy.lay;
-    const int n = sy.n;
-    const double t_end = opt.t_end, sample_dt = opt.sample_dt, rtol = opt.rtol;
-    out.reset(sy);
-    std::vector<double>& stv = out.state;
-    stv.assign(state0, state0 + L.size);
-    double* st = stv.data();
-    const double t_run0 = st[T];
-    double* ledger = out.ledger;
-    for (int j = 0; j < LEDGER_LEN; ++j) ledger[j] = 0.0;
-    double* extrema = out.extrema.data();
-    for (int i = 0; i < n; ++i) {
+    for (int i = 0; i < sy.n; ++i) {
         double* ex = extrema + DOF_EXTREMA * i;
         ex[EX_D_MAX] = st[L.x + i];
         ex[EX_D_MAX_T] = t_run0;
@@ -340,19 +386,19 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
         ex[EX_A_ABS_MAX_T] = t_run0;
         ex[EX_A_AT_MAX] = 0.0;
     }
-    for (int p = 0; p < sy.n_track(); ++p) {  // (the tracked pairs: a storey's drift)
-        double* ex = extrema + DOF_EXTREMA * n + PAIR_EXTREMA * p;
+    for (int p = 0; p < sy.n_track(); ++p) {
+        double* ex = extrema + DOF_EXTREMA * sy.n + PAIR_EXTREMA * p;
         const double d = rel(st + L.x, sy.track_i[static_cast<size_t>(p)], sy.track_j[static_cast<size_t>(p)]);
         ex[PX_MAX] = ex[PX_MIN] = d;
         ex[PX_MAX_T] = ex[PX_MIN_T] = t_run0;
     }
-    std::unique_ptr<RunWorkspace> local;  // (a workspace of this run's own only when none is given)
-    if (workspace == nullptr) {
-        local = std::make_unique<RunWorkspace>();
-        workspace = local.get();
-    }
-    RunWorkspace::Impl& w = *workspace->impl;
-    if (!w.fits(sy)) {  // (another system: new buffers, no transitions kept)
+}
+
+// the workspace made for this system (another system: new buffers, no transitions kept), with room for the
+// event rows a phase can have: the isolator's (two a spring and a reversal), each contact's (its start or
+// release, a relaxing law's twin, a branch's two edges and its rate's turn), the Bouc-Wen z's
+void fit_workspace(RunWorkspace::Impl& w, const System& sy) {
+    if (!w.fits(sy)) {
         w.n = sy.n;
         w.nc = sy.nc();
         w.mass = sy.mass;
@@ -369,266 +415,342 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
             w.elements.push_back(h.j);
         }
         w.ph.size(sy.n, sy.nc());
-        w.b.size(n, sy.nc());
-        w.row.assign(static_cast<size_t>(L.sample_cols()), 0.0);
+        w.b.size(sy.n, sy.nc());
+        w.row.assign(static_cast<size_t>(sy.lay.sample_cols()), 0.0);
         w.transitions.setup(sy);
     }
-    // the event rows a phase can have: the isolator's (two a spring and a reversal), each contact's (its
-    // start or release, a relaxing law's twin, a branch's two edges and its rate's turn), the Bouc-Wen z's
     const size_t rows = static_cast<size_t>(
         std::max(MAX_EVENTS_PER_PHASE, 2 * sy.n_springs() + sy.n_h() + 6 * sy.nc() + 1));
     if (w.evs.size() < rows) {
         w.evs.assign(rows, EventRow());
         w.ev_end.assign(3 * rows, 0.0);
     }
-    Phase& ph = w.ph;
-    run_constants(ph, sy, fo);
+}
+
+// the run's constants, its energies at the start and its first sample
+void set_up(Loop& lp) {
+    const System& sy = lp.sy;
+    Phase& ph = lp.ph;
+    run_constants(ph, sy, lp.fo);
     ph.evaluations = 0;
     ph.poly_evaluations = 0;
-    Buffers& b = w.b;
-    std::vector<double>& row = w.row;
-    const double z_max = sy.bw[0] != 0.0 ? std::pow(sy.bw[2] / (sy.bw[3] + sy.bw[4]), 1.0 / sy.bw[5]) : 0.0;
+    lp.z_max = sy.bw[0] != 0.0 ? std::pow(sy.bw[2] / (sy.bw[3] + sy.bw[4]), 1.0 / sy.bw[5]) : 0.0;
     const double v_res = RESOLUTION * ph.vrun;
-    const double resolution[3] = {v_res, RESOLUTION * ph.xrun, sy.total_mass * v_res};
-    std::vector<EventRow>& evs = w.evs;
-    std::vector<double>& ev_end = w.ev_end;
-    std::vector<int>& pair_i = w.pair_i;  // (each element's pair and each contact's: n_h + nc at most)
-    std::vector<int>& pair_j = w.pair_j;
+    lp.resolution[0] = v_res;
+    lp.resolution[1] = RESOLUTION * ph.xrun;
+    lp.resolution[2] = sy.total_mass * v_res;
+    std::vector<int>& pair_i = lp.w.pair_i;  // (each element's pair and each contact's: n_h + nc at most)
+    std::vector<int>& pair_j = lp.w.pair_j;
     pair_i.resize(static_cast<size_t>(sy.n_h() + sy.nc() + 1));
     pair_j.resize(static_cast<size_t>(sy.n_h() + sy.nc() + 1));
-    const int n_pairs = event_pairs(sy, pair_i.data(), pair_j.data());
-    const bool record = fo.kind != EXC_HARMONIC;
-    bool continuing = false;
-    double t_horizon = INF;
-    bool has_ml = false;
+    lp.n_pairs = event_pairs(sy, pair_i.data(), pair_j.data());
+    lp.record = lp.fo.kind != EXC_HARMONIC;
     if (sy.has_b)
         for (const Contact& c : sy.contact)
-            if (c.law == MULTILINEAR || c.law == MULTILINEAR_KINEMATIC) has_ml = true;
-    double h_phase = 0.0;
-    double s1 = 0.0, c1 = 1.0;  // the forcing angle's sine and cosine at the end of the last sub-interval
-    Rotation rot;  // sin and cos of w h, for the last (w, h)
-    TransitionCache& transitions = w.transitions;
-    double t_last = 0.0, h_last = 0.0;
-    int n_ev = 0;
-    double kin0, iso0, bmp0;
-    energies(st, sy, kin0, iso0, bmp0);
-    int status = SUCCESS;
-    int zero_run = 0;
-    double h_num = 1e-4;
-    Sticking stk_out;  // (the held stops of the state an output row is made from)
-    double ag_now = excitation_value(fo, st[T]);
-    outputs(st, sy, b.q.data(), row.data());
-    held_outputs(st, sy, stk_out, ag_now, row.data());
-    std::copy(row.begin(), row.end(), out.samples.push());
-    for (int i = 0; i < n; ++i) track_abs_acceleration(extrema + DOF_EXTREMA * i, t_run0, row[1 + 2 * n + i]);
-    int64_t j_next = 1;
-    int64_t j_rec = 0;
-    int64_t work = 0, published = 0;
-    int64_t next_poll = 0;
-    double h_flight = INF;  // (the last rigid rebound's flight, to first order)
-    const Control control{ctl};
-    while (st[T] < t_end) {
-        if (work >= next_poll) {  // the run control, polled every POLL_EVERY sub-intervals
-            const int64_t left = control.add_work(work - published);  // (the work shows as it is done)
-            published = work;
-            if (control.stop()) {
-                status = INTERRUPTED;
-                break;
-            }
-            if (left <= 0) {
-                status = BUDGET;
-                break;
-            }
-            next_poll = work + std::min(POLL_EVERY, left);
+            if (c.law == MULTILINEAR || c.law == MULTILINEAR_KINEMATIC) lp.has_ml = true;
+    energies(lp.st, sy, lp.kin0, lp.iso0, lp.bmp0);
+    lp.ag_now = excitation_value(lp.fo, lp.st[T]);
+    outputs(lp.st, sy, lp.b.q.data(), lp.row.data());
+    held_outputs(lp.st, sy, lp.stk_out, lp.ag_now, lp.row.data());
+    std::copy(lp.row.begin(), lp.row.end(), lp.out.samples.push());
+    for (int i = 0; i < lp.n; ++i)
+        track_abs_acceleration(lp.extrema + DOF_EXTREMA * i, lp.t_run0, lp.row[static_cast<size_t>(1 + 2 * lp.n + i)]);
+}
+
+// the run control, polled every POLL_EVERY sub-intervals (the work shows as it is done): false to stop
+bool poll(Loop& lp) {
+    if (lp.work >= lp.next_poll) {
+        const int64_t left = lp.control.add_work(lp.work - lp.published);
+        lp.published = lp.work;
+        if (lp.control.stop()) {
+            lp.status = INTERRUPTED;
+            return false;
         }
-        work += 1;
-        const double t = st[T];
-        const Piece pc = excitation_piece(fo, t, j_rec);
-        j_rec = pc.j;
-        double h;
-        if (continuing) {  // the same phase: only the start values and the forcing move
-            ph.phi = pc.phase;
-            for (int q = 0; q < 2 * n; ++q) ph.y0[static_cast<size_t>(q)] = st[L.x + q];
-            ph.dp5_h = -1.0;
-            for (int c = 0; c < sy.nc(); ++c) ph.ct[static_cast<size_t>(c)].def0 = st[L.def_at(c)];
-            if (record) {  // (the record's piece: a0 + a1 tau, a new one at each knot)
-                ph.ax0 = pc.a0;
-                ph.ax1 = pc.a1;
-            }
-            // the forcing angle where the last sub-interval ended, moved on by the rounding of the clock
-            const double wd = pc.omega * ((t - t_last) - h_last);
-            ph.sphi = s1 + wd * c1;
-            ph.cphi = c1 - wd * s1;
-            h = h_phase;
-        } else {
-            set_phase(ph, st, sy, pc);
-            const double horizon = has_ml ? relax_horizon(st, sy) : INF;
-            h = TWO_PI / (SUBINTERVALS_PER_PERIOD * std::max(std::max(ph.rate, pc.omega), 1e-300));
-            if (has_ml) t_horizon = t + horizon;
-            h_phase = h;
-            // a rebound off a rigid stop: a first sub-interval about its flight long (a series of fewer terms,
-            // polynomials of lower degree; the phase's own length from the next on)
-            if (FLIGHT_MARGIN * h_flight < h) h = FLIGHT_MARGIN * h_flight;
-            h_flight = INF;
+        if (left <= 0) {
+            lp.status = BUDGET;
+            return false;
         }
-        const double t_stop = std::min({pc.t_next, t_end, t_horizon});
-        bool to_stop = h >= t_stop - t;
-        if (to_stop) h = t_stop - t;
-        const Transition* tr = nullptr;
-        if (!ph.numeric) {
-            ph.tc_ok = false;  // (the series: made when first asked for)
-            ph.series_h = h;
-            // a full sub-interval, or a record's whole step, goes by its phase's transition (computed the first
-            // time, the same numbers every time: a run's path never depends on what an earlier run kept)
-            const double step = fo.kind != EXC_HARMONIC ? fo.p[0] : 0.0;
-            if (h == h_phase) tr = transitions.get(ph, sy, h);
-            // (a step of the record's as its times give it: k dt rounded, so within a few ulps of the clock)
-            else if (step > 0.0 && std::abs(h - step) <= 8.0 * EPS * (std::abs(t) + step))
-                tr = transitions.get(ph, sy, step);
-            eom_acceleration(ph, ph.y0.data(), 0.0, ph.sphi, b.a0.data());
-            if (tr != nullptr) {
-                transition_inputs(ph, b.u.data());
-                const int dim = tr->dim;
-                for (int q = 0; q < 2 * n; ++q) {
-                    const double* row = &tr->T[static_cast<size_t>(q * dim)];
-                    double s = 0.0;
-                    for (int k = 0; k < dim; ++k) s += row[k] * b.u[static_cast<size_t>(k)];
-                    b.y1[static_cast<size_t>(q)] = s;
-                }
-                eom_acceleration(ph, b.y1.data(), h, angle_at(ph, pc.omega, h, rot).s, b.a1.data());
-            } else {
-                lin_eval(ph, h, b.y1.data(), b.a1.data());
-                ph.evaluations -= 1;  // (the end of the sub-interval: not an evaluation inside it)
-            }
-        } else {
-            const NumStep ns = numeric_step(ph, h, h_num, rtol, t);
-            h = ns.h;
-            h_num = ns.h_num;
-            if (ns.shortened) to_stop = false;
-            if (ns.status != SUCCESS) {
-                status = ns.status;
-                break;
-            }
-            const Dp5 r = dp5_step(ph, h);
-            std::copy(r.y, r.y + 2 * n, b.y1.begin());
-            std::copy(r.a, r.a + n, b.a1.begin());
-            phase_rhs(ph, 0.0, ph.y0.data(), ph.zeta0, b.a0.data());
+        lp.next_poll = lp.work + std::min(POLL_EVERY, left);
+    }
+    lp.work += 1;
+    return true;
+}
+
+// the next sub-interval: the same phase moved on (only the start values and the forcing move), or a new
+// phase; its length h, cut at the forcing's next piece, the end and a relaxing law's horizon
+void next_subinterval(Loop& lp) {
+    Phase& ph = lp.ph;
+    const System& sy = lp.sy;
+    const double* st = lp.st;
+    const double t = lp.t = st[T];
+    const Piece pc = lp.pc = excitation_piece(lp.fo, t, lp.j_rec);
+    lp.j_rec = pc.j;
+    double h;
+    if (lp.continuing) {
+        ph.phi = pc.phase;
+        for (int q = 0; q < 2 * lp.n; ++q) ph.y0[static_cast<size_t>(q)] = st[lp.L.x + q];
+        ph.dp5_h = -1.0;
+        for (int c = 0; c < sy.nc(); ++c) ph.ct[static_cast<size_t>(c)].def0 = st[lp.L.def_at(c)];
+        if (lp.record) {  // (the record's piece: a0 + a1 tau, a new one at each knot)
+            ph.ax0 = pc.a0;
+            ph.ax1 = pc.a1;
         }
-        if (!continuing) n_ev = phase_events(ph, st, sy, evs.data());  // (they stay until one of them fires)
-        // a start at rest moves the way its acceleration points: the sign tests take the velocity as the
-        // smallest of that sign
-        for (int q = 0; q < 2 * n; ++q) b.y0s[static_cast<size_t>(q)] = ph.y0[static_cast<size_t>(q)];
-        for (int i = 0; i < n; ++i)
-            if (b.y0s[static_cast<size_t>(n + i)] == 0.0 && b.a0[static_cast<size_t>(i)] != 0.0)
-                b.y0s[static_cast<size_t>(n + i)] = std::copysign(TINY_SPEED, b.a0[static_cast<size_t>(i)]);
-        ph.zeros.clear();
-        ph.e_y0 = b.y0s.data();
-        ph.e_a0 = b.a0.data();
-        ph.e_y1 = b.y1.data();
-        ph.e_a1 = b.a1.data();
-        ph.e_h = h;
-        const double cut = velocity_cuts(ph, sy, h, b, pair_i.data(), pair_j.data(), n_pairs);
-        if (cut < h) {
-            h = cut;
-            to_stop = false;
-            eval_end(ph, h, b);
-            tr = nullptr;
-            ph.e_h = h;
-        }
-        const Earliest ee = earliest_event(ph, evs.data(), n_ev, ev_end, continuing, h, b);
-        double tau = ee.tau;
-        const int i_ev = ee.i;
-        // the same phase goes on (stopped at a record's knot, not at a relaxing law's horizon or the end)
-        continuing = i_ev < 0 && !ph.numeric && (!to_stop || (record && pc.t_next < std::min(t_horizon, t_end)));
-        if (i_ev >= 0) {
-            to_stop = false;
-            if (tau < h) {
-                eval_end(ph, tau, b);
-                tr = nullptr;
-                ph.e_h = tau;
-            }
-        }
-        // the forcing angle at the end
-        const Angle end_angle = angle_at(ph, pc.omega, tau, rot);
-        s1 = end_angle.s;
-        c1 = end_angle.c;
-        Given given;
-        if (tr != nullptr) {  // the integrals as forms of the inputs
-            const int dim = tr->dim;
-            const double* u = b.u.data();
-            given.have = true;
-            if (opt.with_energy) {
-                given.vcv = quad_form(tr->Q.data(), u, dim);
-                for (int k = 0; k < 4; ++k) {
-                    double s = 0.0;
-                    for (int j = 0; j < dim; ++j) s += tr->R[static_cast<size_t>(k * dim + j)] * u[j];
-                    given.gv += u[2 * n + n + k] * s;
-                }
-            }
-            for (int c = 0; c < sy.nc(); ++c) {
-                if (!ph.ct[static_cast<size_t>(c)].in) continue;
-                const int p = transitions.pair_of[static_cast<size_t>(c)];
+        // the forcing angle where the last sub-interval ended, moved on by the rounding of the clock
+        const double wd = pc.omega * ((t - lp.t_last) - lp.h_last);
+        ph.sphi = lp.s1 + wd * lp.c1;
+        ph.cphi = lp.c1 - wd * lp.s1;
+        h = lp.h_phase;
+    } else {
+        set_phase(ph, st, sy, pc);
+        const double horizon = lp.has_ml ? relax_horizon(st, sy) : INF;
+        h = TWO_PI / (SUBINTERVALS_PER_PERIOD * std::max(std::max(ph.rate, pc.omega), 1e-300));
+        if (lp.has_ml) lp.t_horizon = t + horizon;
+        lp.h_phase = h;
+        // a rebound off a rigid stop: a first sub-interval about its flight long (a series of fewer terms,
+        // polynomials of lower degree; the phase's own length from the next on)
+        if (FLIGHT_MARGIN * lp.h_flight < h) h = FLIGHT_MARGIN * lp.h_flight;
+        lp.h_flight = INF;
+    }
+    lp.t_stop = std::min({pc.t_next, lp.opt.t_end, lp.t_horizon});
+    lp.to_stop = h >= lp.t_stop - t;
+    if (lp.to_stop) h = lp.t_stop - t;
+    lp.h = h;
+}
+
+// the state at the sub-interval's end: by the phase's kept transition (a full sub-interval, or a record's
+// whole step), its series, or a numerical step (a nonlinear phase; false when it failed)
+bool advance_to_end(Loop& lp) {
+    Phase& ph = lp.ph;
+    Buffers& b = lp.b;
+    const int n = lp.n;
+    lp.tr = nullptr;
+    if (!ph.numeric) {
+        ph.tc_ok = false;  // (the series: made when first asked for)
+        ph.series_h = lp.h;
+        // (computed the first time, the same numbers every time: a run's path never depends on what an
+        // earlier run kept; a step of the record's as its times give it: k dt rounded, so within a few ulps
+        // of the clock)
+        const double step = lp.fo.kind != EXC_HARMONIC ? lp.fo.p[0] : 0.0;
+        if (lp.h == lp.h_phase) lp.tr = lp.w.transitions.get(ph, lp.sy, lp.h);
+        else if (step > 0.0 && std::abs(lp.h - step) <= 8.0 * EPS * (std::abs(lp.t) + step))
+            lp.tr = lp.w.transitions.get(ph, lp.sy, step);
+        eom_acceleration(ph, ph.y0.data(), 0.0, ph.sphi, b.a0.data());
+        if (lp.tr != nullptr) {
+            transition_inputs(ph, b.u.data());
+            const int dim = lp.tr->dim;
+            for (int q = 0; q < 2 * n; ++q) {
+                const double* tq = &lp.tr->T[static_cast<size_t>(q * dim)];
                 double s = 0.0;
-                for (int j = 0; j < dim; ++j) s += tr->L[static_cast<size_t>(p * dim + j)] * u[j];
-                b.du[static_cast<size_t>(c)] = s;
-                b.dvv[static_cast<size_t>(c)] = quad_form(&tr->Qp[static_cast<size_t>(p * dim * dim)], u, dim);
+                for (int k = 0; k < dim; ++k) s += tq[k] * b.u[static_cast<size_t>(k)];
+                b.y1[static_cast<size_t>(q)] = s;
             }
-        }
-        const Ends ends{ph.y0.data(), b.a0.data(), b.y1.data(), b.a1.data(), ph.sphi, ph.cphi, s1, c1};
-        accumulate(ph, sy, st, t, tau, ends, ledger, extrema, b, opt.with_energy, given);
-        if (sample_dt > 0.0) samples_inside(ph, sy, out.samples, j_next, sample_dt, t_run0, t, tau, t_end, b);
-        move_bumpers(st, sy, b.y1.data(), tau, ledger);
-        bool finite = true;
-        for (int q = 0; q < 2 * n; ++q) finite = finite && std::abs(b.y1[static_cast<size_t>(q)]) <= DBL_MAXV;
-        if (!finite) {  // inf or NaN: nothing after it holds
-            status = NONFINITE;
-            break;
-        }
-        // the isolator at the sub-interval's end
-        ledger[L_HYSTERETIC] += iso_advance(sy, st, ph.y0.data(), b.y1.data());
-        if (sy.bw[0] != 0.0) st[L.zeta] = std::min(std::max(phase_zeta(ph, tau), -z_max), z_max);
-        for (int q = 0; q < 2 * n; ++q) st[L.x + q] = b.y1[static_cast<size_t>(q)];
-        st[T] = to_stop ? t_stop : t + tau;
-        t_last = t;
-        h_last = tau;
-        if (i_ev < 0) continue;
-        const EventRow& ev = evs[static_cast<size_t>(i_ev)];
-        ag_now = table_acceleration(ph, tau);
-        bool resolved = false;  // (a rigid impact that sent the pair apart or held it: no Zeno step)
-        if (ev.action == ACT_CONTACT && law_is_rigid(sy.contact[static_cast<size_t>(ev.index)].law)) {
-            resolved = rigid_contact(st, sy, ph, tau, stk_out, ev.index, ag_now, impact_scales(ph, h_phase, resolution[0]),
-                                     ledger, out.contacts, out.chatters, b.q.data(), row.data(), h_flight);
-        } else if (ev.kind == KIND_HELD) {
-            rigid_release(st, sy, ev.index, out.contacts);
+            eom_acceleration(ph, b.y1.data(), lp.h, angle_at(ph, lp.pc.omega, lp.h, lp.rot).s, b.a1.data());
         } else {
-            jump(st, sy, ev, out.contacts, resolution);
+            lin_eval(ph, lp.h, b.y1.data(), b.a1.data());
+            ph.evaluations -= 1;  // (the end of the sub-interval: not an evaluation inside it)
         }
-        record_event(st, sy, ev, out.events, out.samples, sample_dt, extrema, b, row, stk_out, ag_now);
-        // (a rigid impact that resolved its meeting after a short flight is a chatter's, summed in closed form
-        // when it accumulates; one at the same instant as the last event is not)
-        zero_run = tau <= 1e-12 * std::max(1.0, std::abs(t)) && (!resolved || tau == 0.0) ? zero_run + 1 : 0;
-        if (zero_run > ZENO_REPEATS) {
-            status = ZENO;
-            break;
-        }
-        if (out.events.n >= opt.max_events) {
-            status = MAX_EVENTS;
-            break;
+        return true;
+    }
+    const NumStep ns = numeric_step(ph, lp.h, lp.h_num, lp.opt.rtol, lp.t);
+    lp.h = ns.h;
+    lp.h_num = ns.h_num;
+    if (ns.shortened) lp.to_stop = false;
+    if (ns.status != SUCCESS) {
+        lp.status = ns.status;
+        return false;
+    }
+    const Dp5 r = dp5_step(ph, lp.h);
+    std::copy(r.y, r.y + 2 * n, b.y1.begin());
+    std::copy(r.a, r.a + n, b.a1.begin());
+    phase_rhs(ph, 0.0, ph.y0.data(), ph.zeta0, b.a0.data());
+    return true;
+}
+
+// the earliest event inside the sub-interval (a velocity's zero cut first), the sub-interval ended there
+// (tau), and whether the same phase goes on after it (stopped at a record's knot, not at a relaxing law's
+// horizon or the end)
+void earliest(Loop& lp) {
+    Phase& ph = lp.ph;
+    Buffers& b = lp.b;
+    const int n = lp.n;
+    if (!lp.continuing) lp.n_ev = phase_events(ph, lp.st, lp.sy, lp.w.evs.data());  // (until one fires)
+    // a start at rest moves the way its acceleration points: the sign tests take the velocity as the
+    // smallest of that sign
+    for (int q = 0; q < 2 * n; ++q) b.y0s[static_cast<size_t>(q)] = ph.y0[static_cast<size_t>(q)];
+    for (int i = 0; i < n; ++i)
+        if (b.y0s[static_cast<size_t>(n + i)] == 0.0 && b.a0[static_cast<size_t>(i)] != 0.0)
+            b.y0s[static_cast<size_t>(n + i)] = std::copysign(TINY_SPEED, b.a0[static_cast<size_t>(i)]);
+    ph.zeros.clear();
+    ph.e_y0 = b.y0s.data();
+    ph.e_a0 = b.a0.data();
+    ph.e_y1 = b.y1.data();
+    ph.e_a1 = b.a1.data();
+    ph.e_h = lp.h;
+    const double cut = velocity_cuts(ph, lp.sy, lp.h, b, lp.w.pair_i.data(), lp.w.pair_j.data(), lp.n_pairs);
+    if (cut < lp.h) {
+        lp.h = cut;
+        lp.to_stop = false;
+        eval_end(ph, lp.h, b);
+        lp.tr = nullptr;
+        ph.e_h = lp.h;
+    }
+    const Earliest ee = earliest_event(ph, lp.w.evs.data(), lp.n_ev, lp.w.ev_end, lp.continuing, lp.h, b);
+    lp.tau = ee.tau;
+    lp.i_ev = ee.i;
+    lp.continuing = lp.i_ev < 0 && !ph.numeric &&
+                    (!lp.to_stop || (lp.record && lp.pc.t_next < std::min(lp.t_horizon, lp.opt.t_end)));
+    if (lp.i_ev >= 0) {
+        lp.to_stop = false;
+        if (lp.tau < lp.h) {
+            eval_end(ph, lp.tau, b);
+            lp.tr = nullptr;
+            ph.e_h = lp.tau;
         }
     }
-    ag_now = excitation_value(fo, st[T]);
-    finish(st, sy, out.samples, out.contacts, b, row, stk_out, ag_now);
-    close_chatters(st, sy, out.chatters);
-    control.add_work(work - published);
-    control.at(CTL_EVALS).fetch_add(ph.evaluations, std::memory_order_relaxed);
+    const Angle end_angle = angle_at(ph, lp.pc.omega, lp.tau, lp.rot);  // the forcing angle at the end
+    lp.s1 = end_angle.s;
+    lp.c1 = end_angle.c;
+}
+
+// a kept transition's integrals over the sub-interval, as forms of its inputs: the dashpots' and the
+// forcing's work, and each contact in progress's compression change and its rate's square
+Given transition_integrals(Loop& lp) {
+    Given given;
+    const Transition* tr = lp.tr;
+    if (tr == nullptr) return given;
+    Buffers& b = lp.b;
+    const int n = lp.n, dim = tr->dim;
+    const double* u = b.u.data();
+    given.have = true;
+    if (lp.opt.with_energy) {
+        given.vcv = quad_form(tr->Q.data(), u, dim);
+        for (int k = 0; k < 4; ++k) {
+            double s = 0.0;
+            for (int j = 0; j < dim; ++j) s += tr->R[static_cast<size_t>(k * dim + j)] * u[j];
+            given.gv += u[2 * n + n + k] * s;
+        }
+    }
+    for (int c = 0; c < lp.sy.nc(); ++c) {
+        if (!lp.ph.ct[static_cast<size_t>(c)].in) continue;
+        const int p = lp.w.transitions.pair_of[static_cast<size_t>(c)];
+        double s = 0.0;
+        for (int j = 0; j < dim; ++j) s += tr->L[static_cast<size_t>(p * dim + j)] * u[j];
+        b.du[static_cast<size_t>(c)] = s;
+        b.dvv[static_cast<size_t>(c)] = quad_form(&tr->Qp[static_cast<size_t>(p * dim * dim)], u, dim);
+    }
+    return given;
+}
+
+// what the sub-interval adds (energies, extrema, contact statistics, samples), then the state at its end:
+// the bumpers, the isolator, the Bouc-Wen z, the dofs and the clock (false: a motion no longer finite)
+bool move_to_end(Loop& lp) {
+    Phase& ph = lp.ph;
+    Buffers& b = lp.b;
+    const System& sy = lp.sy;
+    double* st = lp.st;
+    const Given given = transition_integrals(lp);
+    const Ends ends{ph.y0.data(), b.a0.data(), b.y1.data(), b.a1.data(), ph.sphi, ph.cphi, lp.s1, lp.c1};
+    accumulate(ph, sy, st, lp.t, lp.tau, ends, lp.ledger, lp.extrema, b, lp.opt.with_energy, given);
+    if (lp.opt.sample_dt > 0.0)
+        samples_inside(ph, sy, lp.out.samples, lp.j_next, lp.opt.sample_dt, lp.t_run0, lp.t, lp.tau, lp.opt.t_end,
+                       b);
+    move_bumpers(st, sy, b.y1.data(), lp.tau, lp.ledger);
+    bool finite = true;
+    for (int q = 0; q < 2 * lp.n; ++q) finite = finite && std::abs(b.y1[static_cast<size_t>(q)]) <= DBL_MAXV;
+    if (!finite) {  // inf or NaN: nothing after it holds
+        lp.status = NONFINITE;
+        return false;
+    }
+    lp.ledger[L_HYSTERETIC] += iso_advance(sy, st, ph.y0.data(), b.y1.data());  // (the isolator at the end)
+    if (sy.bw[0] != 0.0) st[lp.L.zeta] = std::min(std::max(phase_zeta(ph, lp.tau), -lp.z_max), lp.z_max);
+    for (int q = 0; q < 2 * lp.n; ++q) st[lp.L.x + q] = b.y1[static_cast<size_t>(q)];
+    st[T] = lp.to_stop ? lp.t_stop : lp.t + lp.tau;
+    lp.t_last = lp.t;
+    lp.h_last = lp.tau;
+    return true;
+}
+
+// the event at the sub-interval's end: a rigid stop's impact (resolved in closed form), a held stop's release
+// or any other jump; its row and sample (false: the run stops, Zeno or at its most events)
+bool apply_event(Loop& lp) {
+    const System& sy = lp.sy;
+    double* st = lp.st;
+    const EventRow& ev = lp.w.evs[static_cast<size_t>(lp.i_ev)];
+    lp.ag_now = table_acceleration(lp.ph, lp.tau);
+    bool resolved = false;  // (a rigid impact that sent the pair apart or held it: no Zeno step)
+    if (ev.action == ACT_CONTACT && law_is_rigid(sy.contact[static_cast<size_t>(ev.index)].law)) {
+        resolved = rigid_contact(st, sy, lp.ph, lp.tau, lp.stk_out, ev.index, lp.ag_now,
+                                 impact_scales(lp.ph, lp.h_phase, lp.resolution[0]), lp.ledger, lp.out.contacts,
+                                 lp.out.chatters, lp.b.q.data(), lp.row.data(), lp.h_flight);
+    } else if (ev.kind == KIND_HELD) {
+        rigid_release(st, sy, ev.index, lp.out.contacts);
+    } else {
+        jump(st, sy, ev, lp.out.contacts, lp.resolution);
+    }
+    record_event(st, sy, ev, lp.out.events, lp.out.samples, lp.opt.sample_dt, lp.extrema, lp.b, lp.row, lp.stk_out,
+                 lp.ag_now);
+    // (a rigid impact that resolved its meeting after a short flight is a chatter's, summed in closed form
+    // when it accumulates; one at the same instant as the last event is not)
+    const double tau = lp.tau, t = lp.t;
+    lp.zero_run = tau <= 1e-12 * std::max(1.0, std::abs(t)) && (!resolved || tau == 0.0) ? lp.zero_run + 1 : 0;
+    if (lp.zero_run > ZENO_REPEATS) {
+        lp.status = ZENO;
+        return false;
+    }
+    if (lp.out.events.n >= lp.opt.max_events) {
+        lp.status = MAX_EVENTS;
+        return false;
+    }
+    return true;
+}
+
+// the last sample, the chatters still open, the work and the evaluations, the stored energies' changes
+void finish_run(Loop& lp) {
+    double* st = lp.st;
+    double* ledger = lp.ledger;
+    lp.ag_now = excitation_value(lp.fo, st[T]);
+    finish(st, lp.sy, lp.out.samples, lp.out.contacts, lp.b, lp.row, lp.stk_out, lp.ag_now);
+    close_chatters(st, lp.sy, lp.out.chatters);
+    lp.control.add_work(lp.work - lp.published);
+    lp.control.at(CTL_EVALS).fetch_add(lp.ph.evaluations, std::memory_order_relaxed);
     double kin1, iso1, bmp1;
-    energies(st, sy, kin1, iso1, bmp1);
-    ledger[L_KINETIC] = kin1 - kin0;
-    ledger[L_ISOLATOR] = iso1 - iso0;
-    ledger[L_BUMPER] = bmp1 - bmp0;
-    if (!opt.with_energy)
+    energies(st, lp.sy, kin1, iso1, bmp1);
+    ledger[L_KINETIC] = kin1 - lp.kin0;
+    ledger[L_ISOLATOR] = iso1 - lp.iso0;
+    ledger[L_BUMPER] = bmp1 - lp.bmp0;
+    if (!lp.opt.with_energy)
         for (int j = 0; j < LEDGER_LEN; ++j) ledger[j] = NaN;
-    out.status = status;
+    lp.out.status = lp.status;
+}
+
+}  // namespace
+
+void run_kernel(const System& sy, const Forcing& fo, const double* state0, const RunOptions& opt, int64_t* ctl,
+                RunResult& out, RunWorkspace* workspace) {
+    out.reset(sy);
+    out.state.assign(state0, state0 + sy.lay.size);
+    double* st = out.state.data();
+    for (int j = 0; j < LEDGER_LEN; ++j) out.ledger[j] = 0.0;
+    start_extrema(sy, st, st[T], out.extrema.data());
+    std::unique_ptr<RunWorkspace> local;  // (a workspace of this run's own only when none is given)
+    if (workspace == nullptr) {
+        local = std::make_unique<RunWorkspace>();
+        workspace = local.get();
+    }
+    RunWorkspace::Impl& w = *workspace->impl;
+    fit_workspace(w, sy);
+    Loop lp{sy, fo, opt, out, w, sy.lay, sy.n, st, out.ledger, out.extrema.data(), st[T], w.ph, w.b, w.row,
+            Control{ctl}};
+    set_up(lp);
+    while (st[T] < opt.t_end) {
+        if (!poll(lp)) break;
+        next_subinterval(lp);
+        if (!advance_to_end(lp)) break;
+        earliest(lp);
+        if (!move_to_end(lp)) break;
+        if (lp.i_ev >= 0 && !apply_event(lp)) break;
+    }
+    finish_run(lp);
 }
 
 }  // namespace pounding
