@@ -26,7 +26,7 @@ import numpy as np
 
 from .._errors import InputError, Problem
 from ..engine import Run, State, simulate
-from ..engine._layout import DEF_L, DEF_R, REGION, STATE_BASE, ZETA
+from ..engine._layout import C_SLOT, C_T_END, C_T_START, C_V_IN, DEF_L, DEF_R, REGION, STATE_BASE, ZETA
 from ..engine._layout import D as I_D
 from ..engine._layout import T as I_T
 from ..engine._layout import V as I_V
@@ -126,7 +126,7 @@ class PeriodicOrbit(Floquet):
         """The period's contacts, each once: those that end in it (one in progress at the section
         is reported whole when it ends; one in progress at the end is the same contact again)."""
         table = self.run.contact_table
-        return table[np.isfinite(table[:, 2])]
+        return table[np.isfinite(table[:, C_T_END])]
 
     @property
     def contacts_per_period(self) -> int:
@@ -136,7 +136,7 @@ class PeriodicOrbit(Floquet):
     @property
     def impact_velocities_m_s(self) -> np.ndarray:
         """Incoming velocities of the period's contacts, m/s, shape (contacts_per_period,)."""
-        return np.asarray(self._contacts()[:, 3], dtype=float)
+        return np.asarray(self._contacts()[:, C_V_IN], dtype=float)
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
         """The orbit in the phase plane (D, V), its contacts marked; returns its Figure."""
@@ -359,9 +359,10 @@ class _Shooter(_Newton):
         out = {"left": float(run.displacement_min) + gaps[0], "right": gaps[1] - float(run.displacement_max)}
         table = run.contact_table
         for code, side, law in ((0.0, "left", self.osc.bumpers.left), (1.0, "right", self.osc.bumpers.right)):
-            hits = table[(table[:, 0] == code) & (table[:, 2] == table[:, 1])] if is_rigid(law) else table[:0]
+            rigid_hits = (table[:, C_SLOT] == code) & (table[:, C_T_END] == table[:, C_T_START])
+            hits = table[rigid_hits] if is_rigid(law) else table[:0]
             if len(hits):
-                out[side] = -float(np.abs(hits[:, 3]).min()) / self.exc.omega_rad_s
+                out[side] = -float(np.abs(hits[:, C_V_IN]).min()) / self.exc.omega_rad_s
         return out
 
     def rigid_sides(self) -> set[str]:
@@ -372,7 +373,7 @@ class _Shooter(_Newton):
     def summary(self, run: Run, exc: Harmonic) -> dict[str, float]:
         """A branch's row of the orbit run over its period: alpha, excursion, extrema, eta, contacts."""
         table = run.contact_table
-        done = table[np.isfinite(table[:, 2])]
+        done = table[np.isfinite(table[:, C_T_END])]
         peak = abs(exc.peak_m_s2)
         b = self.osc.bumpers
         gap = b.total_gap if b is not None else math.nan
@@ -380,7 +381,7 @@ class _Shooter(_Newton):
         return {"alpha": run.abs_acceleration_max / peak if peak > 0 else math.nan, "excursion_m": exc_m,
                 "displacement_max_m": run.displacement_max, "displacement_min_m": run.displacement_min,
                 "eta": exc_m / gap if gap > 0 else math.nan, "contacts_per_period": int(done.shape[0]),
-                "impact_velocity_max_m_s": float(np.abs(done[:, 3]).max()) if done.shape[0] else 0.0}
+                "impact_velocity_max_m_s": float(np.abs(done[:, C_V_IN]).max()) if done.shape[0] else 0.0}
 
     def advance(self, exc: Harmonic, duration: float, vec: np.ndarray) -> Optional[np.ndarray]:
         """The state vector ``duration`` s on under ``exc`` (None where the engine stopped)."""

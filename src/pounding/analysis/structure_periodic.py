@@ -21,6 +21,7 @@ from typing import Any, Optional
 import numpy as np
 
 from .._errors import InputError, Problem
+from ..engine._layout import C_SLOT, C_T_END, C_T_START, C_V_IN, CONTACT_COLS
 from ..engine.structure import (Assembly, StructureState, assemble, check_structure_state,
                                 simulate_structure, structures_of)
 from ..excitation import Harmonic
@@ -104,7 +105,7 @@ class StructurePeriodicOrbit(Floquet):
         run = self.run
         tables = [run.contact_table] if hasattr(run, "contact_table") else [
             run.first.contact_table, run.second.contact_table, run.link_table]
-        return int(sum(np.isfinite(t[:, 2]).sum() for t in tables if len(t)))
+        return int(sum(np.isfinite(t[:, C_T_END]).sum() for t in tables if len(t)))
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
         """Each level's orbit in its phase plane (x, v), its contacts marked; returns its Figure."""
@@ -291,25 +292,26 @@ class _StructureShooter(_Newton):
         tables, offset = [], 0  # (each part's rows, in the core's slot numbers: walls in order, then links)
         for part in parts:
             t = part.contact_table.copy()
-            t[:, 0] += offset
+            t[:, C_SLOT] += offset
             tables.append(t)
             offset += 2 * len(part.structure.walls)
         if len(parts) > 1:
             t = run.link_table.copy()
-            t[:, 0] += offset
+            t[:, C_SLOT] += offset
             tables.append(t)
-        rows = np.vstack(tables) if tables else np.zeros((0, 9))
-        for c, (_, _, _, _, law) in enumerate(self.asm.pairs):
-            hits = rows[(rows[:, 0] == c) & (rows[:, 2] == rows[:, 1])] if is_rigid(law) else rows[:0]
+        rows = np.vstack(tables) if tables else np.zeros((0, CONTACT_COLS))
+        for c, law in enumerate(pair.law for pair in self.asm.pairs):
+            rigid_hits = (rows[:, C_SLOT] == c) & (rows[:, C_T_END] == rows[:, C_T_START])
+            hits = rows[rigid_hits] if is_rigid(law) else rows[:0]
             if len(hits):
-                out[c] = -float(np.abs(hits[:, 3]).min()) / self.exc.omega_rad_s
+                out[c] = -float(np.abs(hits[:, C_V_IN]).min()) / self.exc.omega_rad_s
         return {name.replace("delta_", ""): c for name, c in zip(labels, out)}
 
     def rigid_sides(self) -> set[str]:
         """The sides of :meth:`clearances` that are rigid stops."""
         labels = self.labels()[2 * self.n:2 * self.n + self.nc]
         pairs = zip(labels, self.asm.pairs)
-        return {name.replace("delta_", "") for name, (*_, law) in pairs if is_rigid(law)}
+        return {name.replace("delta_", "") for name, pair in pairs if is_rigid(pair.law)}
 
     def summary(self, run: Any, exc: Harmonic) -> dict[str, float]:
         """A branch's row of the orbit run over its period: the largest alpha over every level, the first
@@ -317,7 +319,8 @@ class _StructureShooter(_Newton):
         level), the contacts at every wall side and link."""
         parts = self._parts(run)
         tables = [p.contact_table for p in parts] + ([run.link_table] if len(parts) > 1 else [])
-        done = np.vstack([t[np.isfinite(t[:, 2])] for t in tables if len(t)] or [np.zeros((0, 9))])
+        ended = [t[np.isfinite(t[:, C_T_END])] for t in tables if len(t)]
+        done = np.vstack(ended or [np.zeros((0, CONTACT_COLS))])
         peak = abs(exc.peak_m_s2)
         amax = max(float(np.max(p.abs_acceleration_max)) for p in parts)
         dmax, dmin = self.extent(run)
@@ -329,7 +332,7 @@ class _StructureShooter(_Newton):
                 "displacement_max_m": dmax, "displacement_min_m": dmin,
                 "eta": (dmax - dmin) / gap if gap > 0 else math.nan,
                 "contacts_per_period": int(done.shape[0]),
-                "impact_velocity_max_m_s": float(np.abs(done[:, 3]).max()) if done.shape[0] else 0.0}
+                "impact_velocity_max_m_s": float(np.abs(done[:, C_V_IN]).max()) if done.shape[0] else 0.0}
 
     def advance(self, exc: Harmonic, duration: float, vec: np.ndarray) -> Optional[np.ndarray]:
         """The state vector ``duration`` s on under ``exc`` (None where the engine stopped)."""

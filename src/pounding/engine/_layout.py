@@ -37,8 +37,11 @@ SIDE_L, SIDE_R = 0, 1  # a contact's index: the left and the right bumper
 
 # outputs
 SAMPLE_COLS = LAYOUT["SAMPLE_COLS"]    # t, D, V, abs_acceleration, isolator_force, bumper forces left, right
-# side, t_start, t_end, v_in, v_out, impulse, peak_force, max_compression, work
+# a contact table's columns (CONTACT_COLUMNS: slot, t_start_s, t_end_s, v_in_m_s, v_out_m_s, impulse_n_s,
+# peak_force_n, max_compression_m, work_j), those read by name here
 CONTACT_COLS = LAYOUT["CONTACT_COLS"]
+C_SLOT, C_T_START, C_T_END, C_V_IN = (CONTACT_COLUMNS[k]
+                                      for k in ("contact", "t_start_s", "t_end_s", "v_in_m_s"))
 EVENT_COLS = LAYOUT["EVENT_COLS"]      # t, action, index
 # the energy ledger's slots, J: work of the input, dissipated by the dashpot, the isolator's hysteresis and
 # the bumpers, and the changes of the kinetic, the isolator's and the bumpers' elastic energies

@@ -33,6 +33,29 @@ from .structure_result import StructureEnergy, StructureRun
 
 
 
+class Pair(NamedTuple):
+    """A contact slot of an assembly: dof ``i`` against dof ``j`` (-1: the ground), open while
+    ``sign (x_i - x_j) <= gap_m``, and its law."""
+
+    i: int
+    j: int
+    sign: float
+    gap_m: float
+    law: Any
+
+
+class HystereticElement(NamedTuple):
+    """A hysteretic element of an assembly (an isolator, a multi-linear storey): between dofs ``i`` and
+    ``j`` (-1: the ground), its backbone's ``slopes`` (N/m) and ``breaks`` (m), its ``rule`` (the core's
+    code: elastic, kinematic)."""
+
+    i: int
+    j: int
+    slopes: list
+    breaks: list
+    rule: int
+
+
 class Assembly(NamedTuple):
     """One structure, or two side by side, as the core's system, and where each part went.
 
@@ -48,8 +71,8 @@ class Assembly(NamedTuple):
     masses: np.ndarray     # (n,) kg
     k_fast: np.ndarray     # (n, n) N/m: the linear springs and every element at its stiffest slope
     c_all: np.ndarray      # (n, n) N s/m: the dashpots
-    pairs: tuple           # each contact slot's (i, j, sign, gap, law)
-    elements: tuple        # each hysteretic element's (i, j, slopes, breaks, rule), the core's order
+    pairs: tuple           # each contact slot's Pair
+    elements: tuple        # each hysteretic element's HystereticElement, in the core's order
     system_bw: np.ndarray  # the Bouc-Wen numbers (the core's, zeros for none)
     contact_tracks: tuple = ()  # each contact slot's tracked pair (its extrema), -1: against the ground
 
@@ -146,27 +169,27 @@ def assemble(model: Structure | Adjacent) -> Assembly:
                 contacts.append(_core.contact_slot(i=levels[wall.level], j=other, sign=sign, gap_m=gap,
                                                    law=law.LAW_ID, params=law.params()))
                 slots.append((b, w, side))
-                pairs.append((levels[wall.level], other, sign, float(gap), law))
+                pairs.append(Pair(levels[wall.level], other, sign, float(gap), law))
     for k, link in enumerate(links):
         contacts.append(_core.contact_slot(i=dofs[0][link.level_first], j=dofs[1][link.level_second],
                                            sign=1.0, gap_m=link.gap_m, law=link.law.LAW_ID,
                                            params=link.law.params()))
         slots.append((-1, k, 0))
-        pairs.append((dofs[0][link.level_first], dofs[1][link.level_second], 1.0, float(link.gap_m),
-                      link.law))
+        pairs.append(Pair(dofs[0][link.level_first], dofs[1][link.level_second], 1.0, float(link.gap_m),
+                          link.law))
     # each storey's drift: its top level against the one below (the ground below a fixed base's first); then
     # each contact between two masses (a link, a bumper on its stand): its pair's relative displacement
     tracked = tuple((levels[i + 1], levels[i]) for s, levels in zip(structures, dofs)
                     for i in range(len(s.storeys)))
-    between = [c for c, (_, j, _, _, _) in enumerate(pairs) if j >= 0]
+    between = [c for c, pair in enumerate(pairs) if pair.j >= 0]
     contact_tracks = tuple(len(tracked) + between.index(c) if c in between else -1 for c in range(len(pairs)))
-    tracked += tuple((pairs[c][0], pairs[c][1]) for c in between)
+    tracked += tuple((pairs[c].i, pairs[c].j) for c in between)
     kernel_elements = [_core.element(i=i, j=j, c_d=c_d, slopes=slopes, breaks=breaks, rule=rule)
                        for i, j, c_d, slopes, breaks, rule in elements]
     system = _core.system(masses, k0, c0, kernel_elements, bw, bool(contacts), contacts, tracked)
     return Assembly(system, tuple(dofs), tuple(isolator), tuple(slots), tuple(stands), np.array(masses),
                     k_fast, c_all, tuple(pairs),
-                    tuple((i, j, list(slopes), list(breaks), rule)
+                    tuple(HystereticElement(i, j, list(slopes), list(breaks), rule)
                           for i, j, _, slopes, breaks, rule in elements),
                     np.asarray(bw, dtype=float), contact_tracks)
 
@@ -325,8 +348,8 @@ def _check_state_fits(state: StructureState, asm: Assembly) -> None:
     lay = asm.system.layout
     n = asm.system.n
     x = vec[lay["x"]:lay["x"] + n]
-    lengths = [float(np.abs(x).max(initial=0.0)), 1e-3] + [gap for *_, gap, _ in asm.pairs]
-    lengths += [b for *_, breaks, _ in asm.elements for b in breaks]
+    lengths = [float(np.abs(x).max(initial=0.0)), 1e-3] + [pair.gap_m for pair in asm.pairs]
+    lengths += [b for element in asm.elements for b in element.breaks]
     tol = 1e-9 * max(lengths)
 
     def bad(at: int, why: str) -> InputError:

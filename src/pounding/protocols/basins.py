@@ -87,7 +87,7 @@ def structure_view(model: Any) -> tuple[Any, tuple[np.ndarray, list[int]]]:
     levels' dofs (the stands' left out of alpha: a floor's acceleration, not a bumper's)."""
     asm = assemble(model)
     levels = [d for dofs in asm.dofs for d in dofs if d >= 0]
-    return asm.system, (np.array([pair[2] for pair in asm.pairs], dtype=float), levels)
+    return asm.system, (np.array([pair.sign for pair in asm.pairs], dtype=float), levels)
 
 
 def _window_row(system: Any, view: tuple, amp: float, omega: float, win_state: np.ndarray, m: int,
