@@ -368,7 +368,7 @@ NB_MODULE(_pounding_core, m) {
     layout["CONTACT_COLS"] = static_cast<int>(CONTACT_COLS);
     layout["DOF_EXTREMA"] = static_cast<int>(DOF_EXTREMA);
     layout["PAIR_EXTREMA"] = static_cast<int>(PAIR_EXTREMA);
-    layout["EVENT_COLS"] = EVENT_COLS;
+    layout["EVENT_COLS"] = static_cast<int>(EVENT_COLS);
     layout["LEDGER_LEN"] = static_cast<int>(LEDGER_LEN);
     layout["WINDOW_COLS"] = WINDOW_COLS;
     layout["CYCLE_COLS"] = CYCLE_COLS;
@@ -399,6 +399,7 @@ NB_MODULE(_pounding_core, m) {
                                        {"v_in_m_s", CC_V_IN}, {"v_out_m_s", CC_V_OUT}, {"impulse_n_s", CC_IMPULSE},
                                        {"peak_force_n", CC_PEAK_FORCE}, {"max_compression_m", CC_MAX_COMPRESSION},
                                        {"work_j", CC_WORK}});  // a contact table's columns
+    m.attr("EVENT_COLUMNS") = named({{"t_s", EC_T}, {"action", EC_ACTION}, {"index", EC_INDEX}});
     m.attr("LEDGER") = named({{"input", L_INPUT}, {"viscous", L_VISCOUS}, {"hysteretic", L_HYSTERETIC},
                               {"bumper_loss", L_BUMPER_LOSS}, {"kinetic", L_KINETIC}, {"isolator", L_ISOLATOR},
                               {"bumper", L_BUMPER}});  // the energy ledger's slots

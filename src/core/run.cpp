@@ -252,9 +252,9 @@ void jump(double* st, const System& sy, const EventRow& ev, Rows& contacts, cons
 void record_event(double* st, const System& sy, const EventRow& ev, Rows& events, Rows& samples, double sample_dt,
                   double* extrema, Buffers& b, std::vector<double>& row, Sticking& stk, double ag) {
     double* r = events.push();
-    r[0] = st[T];
-    r[1] = static_cast<double>(ev.action);
-    r[2] = static_cast<double>(ev.index);
+    r[EC_T] = st[T];
+    r[EC_ACTION] = static_cast<double>(ev.action);
+    r[EC_INDEX] = static_cast<double>(ev.index);
     outputs(st, sy, b.q.data(), row.data());
     held_outputs(st, sy, stk, ag, row.data());
     for (int i = 0; i < sy.n; ++i) track_abs_acceleration(extrema + DOF_EXTREMA * i, st[T], row[1 + 2 * sy.n + i]);

@@ -18,8 +18,9 @@ compiled module, and only the engine calls its runs (the protocols and analyses 
 Each run releases the GIL, and polls its run control (``pounding._control``: Ctrl-C and the work budget).
 What comes back is named, never positional: :class:`RunOutput`, :class:`StepOutput`, :class:`Monodromy`.
 Every index is the core's own, by name: ``LAYOUT`` the state vector's offsets and the outputs' sizes,
-``CONTACT_COLUMNS`` a contact table's columns, ``LEDGER`` the energy ledger's slots, ``DOF_EXTREMA`` and
-``PAIR_EXTREMA`` a run's extrema per dof and per tracked pair, ``EXCITATION`` the forcing's kinds,
+``CONTACT_COLUMNS`` a contact table's columns, ``EVENT_COLUMNS`` an event table's, ``LEDGER`` the energy
+ledger's slots, ``DOF_EXTREMA`` and ``PAIR_EXTREMA`` a run's extrema per dof and per tracked pair,
+``EXCITATION`` the forcing's kinds,
 ``LAW_IDS`` each contact law's id, ``STATUS`` the codes a run ends with, ``ACTIONS`` the events' codes.
 """
 
@@ -45,6 +46,7 @@ LAW_IDS: dict[str, int] = dict(_c.LAW_IDS)
 STATUS: dict[str, int] = dict(_c.STATUS)
 ACTIONS: dict[str, int] = dict(_c.ACTIONS)
 CONTACT_COLUMNS: dict[str, int] = dict(_c.CONTACT_COLUMNS)
+EVENT_COLUMNS: dict[str, int] = dict(_c.EVENT_COLUMNS)
 LEDGER: dict[str, int] = dict(_c.LEDGER)
 DOF_EXTREMA: dict[str, int] = dict(_c.DOF_EXTREMA)
 PAIR_EXTREMA: dict[str, int] = dict(_c.PAIR_EXTREMA)

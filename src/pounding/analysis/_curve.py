@@ -26,6 +26,7 @@ import numpy as np
 
 from ..engine import Run
 from ._arclength import Closure, Family, fold_test
+from ..engine._layout import E_T
 from .periodic import _Failed
 
 
@@ -320,7 +321,7 @@ class CurveFollower:
         Returns the point to go on from: ``q`` solved at the new section, or ``q`` itself."""
         fam = self.fam
         period = fam.shooter(q.f, q.a).period
-        times = np.sort(np.mod(q.run.event_table[:, 0], period))
+        times = np.sort(np.mod(q.run.event_table[:, E_T], period))
         if times.size == 0 or min(times.min(), period - times.max()) > self.MARGIN * period:
             return q
         cyc = np.concatenate((times, [times[0] + period]))

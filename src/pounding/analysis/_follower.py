@@ -14,6 +14,7 @@ import pandas as pd
 from .._errors import InputError, Problem, Status
 from ._arclength import Closure, Family, Point, system_at
 from .branch import COLUMNS, Bifurcation, Branch
+from ..engine._layout import E_T
 from .periodic import _Failed
 from ._detect import bifurcation_at, branch_point, detect, grazing_at, locate, other_direction
 from ._grazing import cross, double_grazing, fold_from_impacts, impacts_barely
@@ -327,7 +328,7 @@ class Follower:
         b = self.points[-1]
         fam = self.fam
         period = fam.shooter(b.p).period
-        times = np.sort(np.mod(b.run.event_table[:, 0], period))  # (the run starts at the section, time 0)
+        times = np.sort(np.mod(b.run.event_table[:, E_T], period))  # (the run starts at the section, time 0)
         if times.size == 0 or min(times.min(), period - times.max()) > self.MARGIN * period:
             return
         cyc = np.concatenate((times, [times[0] + period]))

@@ -24,7 +24,7 @@ from typing import NamedTuple
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from ..engine._layout import (ACT_CONTACT, ACT_REGION, ACT_RELEASE, ACT_REVERSAL,  # noqa: F401  (the
+from ..engine._layout import (ACT_CONTACT, ACT_REGION, ACT_RELEASE, ACT_REVERSAL, E_ACTION, E_INDEX,  # noqa: F401  (the
                               ACT_YIELD, DEF_L, DEF_R, IN_L, IN_R, REGION, STATE_BASE)  # events' codes, here)
 from ..engine.kernels import System
 from ..engine.kernels import monodromy as exact_monodromy

@@ -213,7 +213,7 @@ class _Tangent:
                         kept.append((vec, run))
                     size = max(size, self.sh._size_of(run))
                     ev = run.event_table  # (the elastic rule has no yields)
-                    slips.update(ev[ev[:, 1] == hy.ACT_YIELD, 2].astype(int).tolist())
+                    slips.update(ev[ev[:, hy.E_ACTION] == hy.ACT_YIELD, hy.E_INDEX].astype(int).tolist())
                     advance(1)
             except _Failed as exc:
                 status, why = Status.STEP_FAILED, str(exc)

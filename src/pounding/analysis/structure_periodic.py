@@ -21,7 +21,7 @@ from typing import Any, Optional
 import numpy as np
 
 from .._errors import InputError, Problem
-from ..engine._layout import C_SLOT, C_T_END, C_T_START, C_V_IN, CONTACT_COLS
+from ..engine._layout import C_SLOT, C_T_END, C_T_START, C_V_IN, CONTACT_COLS, E_ACTION, E_INDEX
 from ..engine.structure import (Assembly, StructureState, assemble, check_structure_state,
                                 simulate_structure, structures_of)
 from ..excitation import Harmonic
@@ -227,7 +227,7 @@ class _StructureShooter(_Newton):
         """The springs that stick at the section and do not yield over the period: their slips are
         constants of the motion (multipliers 1 that say nothing of stability), not coordinates."""
         ev = run.event_table
-        yielded = set(ev[ev[:, 1] == ACT_YIELD, 2].astype(int).tolist())
+        yielded = set(ev[ev[:, E_ACTION] == ACT_YIELD, E_INDEX].astype(int).tolist())
         return tuple(g for g, *_ in self.springs if self._slip_dir(vec, g) == 0.0 and g not in yielded)
 
     def labels(self) -> list[str]:

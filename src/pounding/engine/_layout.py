@@ -13,7 +13,7 @@ from __future__ import annotations
 import numpy as np
 
 from .._control import CTL_BUDGET, CTL_LEN, CTL_STOP, CTL_WORK  # noqa: F401  (pounding._control's)
-from .._core import ACTIONS, CONTACT_COLUMNS, DOF_EXTREMA, LAYOUT, LEDGER, PAIR_EXTREMA  # noqa: F401
+from .._core import ACTIONS, CONTACT_COLUMNS, DOF_EXTREMA, EVENT_COLUMNS, LAYOUT, LEDGER, PAIR_EXTREMA  # noqa: F401
 
 T, D, V = LAYOUT["T"], LAYOUT["D"], LAYOUT["V"]
 DEF_L, DEF_R = LAYOUT["DEF"], LAYOUT["DEF"] + 1
@@ -42,7 +42,8 @@ SAMPLE_COLS = LAYOUT["SAMPLE_COLS"]    # t, D, V, abs_acceleration, isolator_for
 CONTACT_COLS = LAYOUT["CONTACT_COLS"]
 C_SLOT, C_T_START, C_T_END, C_V_IN = (CONTACT_COLUMNS[k]
                                       for k in ("contact", "t_start_s", "t_end_s", "v_in_m_s"))
-EVENT_COLS = LAYOUT["EVENT_COLS"]      # t, action, index
+EVENT_COLS = LAYOUT["EVENT_COLS"]
+E_T, E_ACTION, E_INDEX = (EVENT_COLUMNS[k] for k in ("t_s", "action", "index"))  # an event table's columns
 # the energy ledger's slots, J: work of the input, dissipated by the dashpot, the isolator's hysteresis and
 # the bumpers, and the changes of the kinetic, the isolator's and the bumpers' elastic energies
 L_INPUT, L_VISCOUS, L_HYSTERETIC, L_BUMPER_LOSS, L_KINETIC, L_ISOLATOR, L_BUMPER = (

@@ -12,6 +12,8 @@ import pandas as pd
 from .._errors import Status
 from .._tables import ContactTable
 from ._chatter import chatter_frame
+from ._layout import C_SLOT
+from ._layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
 from .result import events_frame
 from .structure_result import CONTACT_COLUMNS, StructureEnergy, StructureRun
 
@@ -98,13 +100,13 @@ class AdjacentRun:
         second's), ``impulse_n_s``, ``peak_force_n``, the deepest compression ``max_compression_m``,
         ``work_j``."""
         c = self.link_table
-        k = c[:, 0].astype(int)
+        k = c[:, C_SLOT].astype(int)
         links = self.adjacent.links
         return ContactTable({
             "link": k,
             "level_first": [links[j].level_first for j in k],
             "level_second": [links[j].level_second for j in k],
-            **{name: c[:, q] for q, name in enumerate(CONTACT_COLUMNS[3:], start=1)},
+            **{name: c[:, CORE_CONTACT_COLUMNS[name]] for name in CONTACT_COLUMNS[3:]},
         })
 
     def summary(self) -> pd.Series:

@@ -14,7 +14,8 @@ import pandas as pd
 from .._checks import at_most, real
 from .._errors import InputError, Problem, Status
 from ._chatter import SIDES, chatter_frame
-from ._layout import DEF_L, DEF_R, EVENT_NAMES, IN_L, IN_R, REGION, STATE_BASE, Z_L, Z_R, ZETA, impulses
+from ._layout import (C_SLOT, DEF_L, DEF_R, E_ACTION, E_INDEX, E_T, EVENT_NAMES, IN_L, IN_R, REGION,
+                      STATE_BASE, Z_L, Z_R, ZETA, impulses)
 from ._layout import D as I_D
 from ._layout import T as I_T
 from ._layout import V as I_V
@@ -301,9 +302,9 @@ def events_frame(e: np.ndarray) -> pd.DataFrame:
     categorical) and ``index``; the columns' names of 0.1 (``t``, ``event``) still answer, with a warning."""
     from .._tables import EventTable
 
-    codes = e[:, 1].astype(int)
-    return EventTable({"t_s": e[:, 0], "kind": pd.Categorical.from_codes(codes, categories=list(EVENT_NAMES)),
-                       "index": e[:, 2].astype(int)})
+    codes = e[:, E_ACTION].astype(int)
+    kinds = pd.Categorical.from_codes(codes, categories=list(EVENT_NAMES))
+    return EventTable({"t_s": e[:, E_T], "kind": kinds, "index": e[:, E_INDEX].astype(int)})
 
 
 HISTORY_COLUMNS = ("t", "displacement", "velocity", "abs_acceleration", "isolator_force",
@@ -425,7 +426,7 @@ class Run:
     def contacts(self) -> pd.DataFrame:
         """One row per contact (see the class docstring), built on first use."""
         df = pd.DataFrame(self.contact_table, columns=list(CONTACT_COLUMNS))
-        df["side"] = np.where(self.contact_table[:, 0] == 0.0, "left", "right")
+        df["side"] = np.where(self.contact_table[:, C_SLOT] == 0.0, "left", "right")
         return df
 
     @cached_property
@@ -481,7 +482,7 @@ class Run:
             "abs_acceleration_max_m_s2": self.abs_acceleration_max,
             "alpha": self.abs_acceleration_max / peak if peak else nan,
             "contacts": len(self.contact_table),
-            "contacts_left": int((self.contact_table[:, 0] == 0.0).sum()),
+            "contacts_left": int((self.contact_table[:, C_SLOT] == 0.0).sum()),
             "rigid_impacts": rigid,
             "restitution_mean": float(done["restitution"].mean()) if len(done) else nan,
             "contact_time_mean_s": float(lasting["contact_time_s"].mean()) if len(lasting) else nan,
@@ -525,7 +526,7 @@ class Run:
     def _event_labels(self) -> np.ndarray:
         """Per history row, the event it was taken after ("" for the uniform samples)."""
         labels = np.full(self.t.size, "", dtype=object)
-        times = self.event_table[:, 0]
+        times = self.event_table[:, E_T]
         if times.size == 0 or self.t.size == 0:
             return labels
         # an event's row is the last of the rows at its time (the uniform grid may have one
@@ -535,7 +536,7 @@ class Run:
         group_size = np.searchsorted(times, times, side="right") - first_of_group
         rows = last - (group_size - 1 - (np.arange(times.size) - first_of_group))
         ok = (rows >= 0) & (self.t[np.clip(rows, 0, None)] == times)
-        names = np.array(EVENT_NAMES, dtype=object)[self.event_table[:, 1].astype(int)]
+        names = np.array(EVENT_NAMES, dtype=object)[self.event_table[:, E_ACTION].astype(int)]
         labels[rows[ok]] = names[ok]
         return labels
 

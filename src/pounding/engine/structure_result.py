@@ -13,7 +13,7 @@ import pandas as pd
 from .._errors import Status
 from .._tables import ContactTable
 from ._layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
-from ._layout import (DOF_EXTREMA_LEN, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT,
+from ._layout import (C_SLOT, DOF_EXTREMA_LEN, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT,
                       L_ISOLATOR, L_KINETIC, L_VISCOUS, P_MAX, P_MAX_T, P_MIN, P_MIN_T, X_A_MAX, X_A_MAX_T,
                       X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T)
 from ._chatter import chatter_frame
@@ -276,13 +276,13 @@ class StructureRun:
     @property
     def contacts(self) -> pd.DataFrame:
         c = self.contact_table
-        slot = c[:, 0].astype(int)
+        slot = c[:, C_SLOT].astype(int)
         walls = self.structure.walls
         return ContactTable({
             "wall": slot // 2,
             "level": [walls[s // 2].level for s in slot],
             "side": np.where(slot % 2 == 0, "left", "right"),
-            **{name: c[:, k] for k, name in enumerate(CONTACT_COLUMNS[3:], start=1)},
+            **{name: c[:, CORE_CONTACT_COLUMNS[name]] for name in CONTACT_COLUMNS[3:]},
         })
 
     @property

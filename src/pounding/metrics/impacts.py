@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ._impacts import IMPACT_COLUMNS, N_IMPACT, impact_row
+from ._impacts import CONTACT_COLUMNS, IMPACT_COLUMNS, N_IMPACT, impact_row
 
 
 def impact_table(contact_table: np.ndarray, mass_kg: float) -> pd.DataFrame:
@@ -44,6 +44,6 @@ def impact_table(contact_table: np.ndarray, mass_kg: float) -> pd.DataFrame:
     for i in range(contact_table.shape[0]):
         impact_row(contact_table[i], float(mass_kg), values[i])
     df = pd.DataFrame(values, columns=list(IMPACT_COLUMNS))
-    df.insert(0, "t_start_s", contact_table[:, 1])
-    df.insert(0, "side", np.where(contact_table[:, 0] == 0.0, "left", "right"))
+    df.insert(0, "t_start_s", contact_table[:, CONTACT_COLUMNS["t_start_s"]])
+    df.insert(0, "side", np.where(contact_table[:, CONTACT_COLUMNS["contact"]] == 0.0, "left", "right"))
     return df

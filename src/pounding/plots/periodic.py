@@ -6,6 +6,7 @@ from typing import Any
 
 import numpy as np
 
+from ..engine._layout import C_T_START
 from ._legend import place_legend
 
 
@@ -57,7 +58,7 @@ def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
     contacts = orbit._contacts()
     if contacts.size:  # where each contact starts: the mass at the bumper's surface
         t0 = run.t[0]
-        starts = (contacts[:, 1] - t0) % orbit.period_s + t0
+        starts = (contacts[:, C_T_START] - t0) % orbit.period_s + t0
         artists += ax.plot(np.interp(starts, run.t, run.displacement) * 1e3,
                            np.interp(starts, run.t, run.velocity),
                            "v", color="C3", markersize=5, label="contact starts")
