@@ -112,7 +112,7 @@ ENTRIES = {
     "simulate": (
         pd_.simulate,
         {
-            "oscillator": OSC,
+            "system": OSC,
             "excitation": EXC,
             "duration": 2.0,
             "state": None,
@@ -126,7 +126,7 @@ ENTRIES = {
     "sweep": (
         pd_.sweep,
         {
-            "oscillator": OSC,
+            "system": OSC,
             "a_g": 0.05,
             "freqs_hz": [2.0, 2.2],
             "direction": "up",

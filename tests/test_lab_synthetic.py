@@ -75,11 +75,11 @@ def test_the_anti_alias_filter_is_a_butterworth_low_pass():
     ({"sample_rate_hz": 0.0}, "sample_rate_hz"),
     ({"noise": -0.01}, "noise"), ({"gains": ()}, "gains"), ({"gains": (1.0, -1.0)}, "gains[1]"),
     ({"offsets_m_s2": (0.0, 0.0)}, "offsets_m_s2"), ({"anti_alias_hz": 6000.0}, "anti_alias_hz"),
-    ({"laser_resolution_m": -1e-5}, "laser_resolution_m"), ({"oscillator": "paper"}, "oscillator"),
+    ({"laser_resolution_m": -1e-5}, "laser_resolution_m"), ({"system": "paper"}, "system"),
     ({"state": 3}, "state"), ({"oversample": 0}, "oversample"),
 ])
 def test_bad_arguments_are_named(kwargs, field):
-    args = {"oscillator": OSC, "a_g": A_G, "freqs_hz": FREQS, "cycles": 2, "gains": (1.0,), **kwargs}
+    args = {"system": OSC, "a_g": A_G, "freqs_hz": FREQS, "cycles": 2, "gains": (1.0,), **kwargs}
     with pytest.raises(pd_.InputError) as info:
         synthetic_test(**args)
     assert info.value.field == field

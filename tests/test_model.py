@@ -89,7 +89,7 @@ def test_bad_simulate_arguments():
     _raises(lambda: pd_.simulate(osc, exc, -1.0), "duration", "> 0")
     _raises(lambda: pd_.simulate(osc, exc, 1.0, sample_rate_hz=-5), "sample_rate_hz")
     _raises(lambda: pd_.simulate(osc, exc, 1.0, rtol=0.5), "rtol")
-    _raises(lambda: pd_.simulate("system.toml", exc, 1.0), "oscillator", "Oscillator")
+    _raises(lambda: pd_.simulate("system.toml", exc, 1.0), "system", "Oscillator")
     _raises(lambda: pd_.simulate(osc, 0.05, 1.0), "excitation", "Harmonic")
     other = pd_.Oscillator(500.0, pd_.Isolator((1e4,)))
     _raises(lambda: pd_.simulate(osc, exc, 1.0, pd_.State.at_rest(other)), "state")
@@ -155,3 +155,13 @@ def test_the_gaps_names_before_still_work_with_a_warning_naming_the_new_one():
     with pytest.warns(FutureWarning, match="'bumpers.gap' is now 'bumpers.gap_m'"):
         set_value(table, "bumpers.gap", 0.02)
     assert get_value(table, "bumpers.gap_left_m") == get_value(table, "bumpers.gap_right_m") == 0.02
+
+
+def test_a_system_is_given_as_system_and_the_name_before_still_works():
+    osc, exc = pd_.presets.paper_damped(), pd_.Harmonic(0.05, 2.0)
+    with pytest.warns(FutureWarning, match="'oscillator' is now 'system'"):
+        before = pd_.simulate(oscillator=osc, excitation=exc, duration=1.0)
+    now = pd_.simulate(system=osc, excitation=exc, duration=1.0)
+    np.testing.assert_array_equal(before.displacement, now.displacement)
+    with pytest.raises(TypeError, match="both 'system' and 'oscillator'"):
+        pd_.sweep(system=osc, oscillator=osc, a_g=0.05, freqs_hz=[1.0])

@@ -246,10 +246,10 @@ def test_a_section_inside_a_contact_reports_the_orbit_s_own_contacts():
     ({"max_iter": 2.5}, "max_iter"),
 ])
 def test_bad_arguments_are_named(kwargs, words):
-    args = {"oscillator": pd_.presets.paper_damped(), "excitation": pd_.Harmonic(0.05, 1.5)}
+    args = {"system": pd_.presets.paper_damped(), "excitation": pd_.Harmonic(0.05, 1.5)}
     args.update(kwargs)
     with pytest.raises(pd_.InputError, match=words):
-        pd_.periodic_orbit(args.pop("oscillator"), args.pop("excitation"), **args)
+        pd_.periodic_orbit(args.pop("system"), args.pop("excitation"), **args)
 
 
 def test_an_orbit_plots():

@@ -208,7 +208,7 @@ def test_progress_callback_and_interruption_keep_the_finished_steps():
     (dict(progress="yes"), "progress"),
 ])
 def test_bad_arguments_name_the_field_and_the_fix(kwargs, field):
-    args = dict(oscillator=pd_.presets.paper_printed(), a_g=0.05, freqs_hz=[1.0, 2.0])
+    args = dict(system=pd_.presets.paper_printed(), a_g=0.05, freqs_hz=[1.0, 2.0])
     args.update(kwargs)
     with pytest.raises(pd_.InputError) as info:
         pd_.sweep(**args)

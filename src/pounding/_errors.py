@@ -178,6 +178,27 @@ def warn_renamed(old: str, new: str, stacklevel: int = 3) -> None:
                   stacklevel=stacklevel)
 
 
+def renamed_keyword(old: str, new: str) -> Any:
+    """A decorator: the function's keyword argument ``new`` also answers to ``old``, its name before, for one
+    release (a ``FutureWarning`` naming the new one); both at once is a ``TypeError``."""
+    import functools
+
+    def wrap(fn: Any) -> Any:
+        @functools.wraps(fn)
+        def inner(*args: Any, **kwargs: Any) -> Any:
+            if old in kwargs:
+                if new in kwargs:
+                    raise TypeError(f"{fn.__name__}() got both '{new}' and '{old}', its name before: "
+                                    f"give '{new}'")
+                warn_renamed(old, new)
+                kwargs[new] = kwargs.pop(old)
+            return fn(*args, **kwargs)
+
+        return inner
+
+    return wrap
+
+
 class Interrupted(KeyboardInterrupt):
     """Ctrl-C during a long run; ``partial`` holds what was finished (the rest is NaN).
 

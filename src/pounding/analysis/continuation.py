@@ -24,7 +24,7 @@ from typing import Any, Optional
 import numpy as np
 
 from .._checks import integer, positive, real
-from .._errors import InputError, Interrupted, Problem, Status
+from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..engine import State
 from ..engine.simulate import check_oscillator, check_state, simulate
 from ..engine.structure import StructureState, check_structure_state
@@ -40,8 +40,9 @@ from ._args import exact_monodromy, length_scale, section_angle, settled, step_s
 MAX_POINTS = 100_000
 
 
+@renamed_keyword("oscillator", "system")
 def continuation(
-    oscillator: Any,
+    system: Any,
     a_g: Any,
     freqs_hz: Any,
     *,
@@ -61,7 +62,7 @@ def continuation(
 
     Parameters
     ----------
-    oscillator : Oscillator
+    system : Oscillator
         The system.
     a_g : float or (float, float)
         The table's peak acceleration, g; ``(start, end)`` with ``parameter="a_g"``.
@@ -128,11 +129,11 @@ def continuation(
     >>> [round(b.freq_hz, 3) for b in branch.folds()]
     [1.237, 2.014, 1.605]
     """
-    several = isinstance(oscillator, (Structure, Adjacent))
+    several = isinstance(system, (Structure, Adjacent))
     if not several:
-        check_oscillator(oscillator)
+        check_oscillator(system)
     kind = StructureState if several else State
-    parameter, values, a_g, freq_hz = _check_range(oscillator, parameter, a_g, freqs_hz, values)
+    parameter, values, a_g, freq_hz = _check_range(system, parameter, a_g, freqs_hz, values)
     period_multiple = integer("period_multiple", period_multiple, 1, 64,
                               "give the orbits' period in forcing periods")
     tol = tolerance(tol, 1e-14, 1e-3, 1e-10)
@@ -141,7 +142,7 @@ def continuation(
     phase_rad = section_angle(phase_rad)
     settle_cycles = integer("settle_cycles", settle_cycles, 1, 100_000, "give a guess instead")
     f_ref_hz = positive("f_ref_hz", f_ref_hz, "Hz")
-    exact = exact_monodromy(oscillator, method)
+    exact = exact_monodromy(system, method)
     if isinstance(guess, Bifurcation):
         if guess.kind not in ("period-doubling", "branch-point"):
             raise InputError(Problem.BAD_STATE, "guess", guess,
@@ -175,7 +176,7 @@ def continuation(
                                   "Bifurcation")
     p0, p1 = values
     p_start = guess.value if isinstance(guess, Bifurcation) else p0
-    start_osc = system_at(oscillator, parameter, p_start)
+    start_osc = system_at(system, parameter, p_start)
     fam_a_g = p_start if parameter == "a_g" else a_g
     fam_f = p_start if parameter == "freq_hz" else freq_hz
     f_mid = math.sqrt(p0 * p1) if parameter == "freq_hz" else freq_hz
@@ -204,9 +205,9 @@ def continuation(
                                      "settle_cycles, or give a guess (a sweep's window state)") from exc
             follower.follow()
     except KeyboardInterrupt:
-        raise Interrupted(follower.branch(oscillator, values, Status.INTERRUPTED, "interrupted"),
+        raise Interrupted(follower.branch(system, values, Status.INTERRUPTED, "interrupted"),
                           len(follower.points), None, "points") from None
-    return follower.branch(oscillator, values, follower.status, follower.message)
+    return follower.branch(system, values, follower.status, follower.message)
 
 
 # ---------------------------------------------------------------------- arguments

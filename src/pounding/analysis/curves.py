@@ -11,7 +11,7 @@ import numpy as np
 import pandas as pd
 
 from .._checks import integer, one_of, real
-from .._errors import InputError, Interrupted, Problem, Status
+from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..engine.simulate import check_oscillator, check_state
 from ..engine.structure import check_structure_state
 from ..model import Oscillator
@@ -33,8 +33,9 @@ CURVE_KINDS = ("fold", "grazing")
 MAX_TEST_FREQS = 100_000  # the test matrix's frequencies at most
 
 
+@renamed_keyword("oscillator", "system")
 def bifurcation_curve(
-    oscillator: Any,
+    system: Any,
     bifurcation: Bifurcation,
     *,
     a_g: Any = (0.02, 0.12),
@@ -53,7 +54,7 @@ def bifurcation_curve(
 
     Parameters
     ----------
-    oscillator : Oscillator, Structure or Adjacent
+    system : Oscillator, Structure or Adjacent
         The system of the branch the bifurcation is on (a structure's grazing names its wall side
         or link: ``Bifurcation.side``).
     bifurcation : Bifurcation
@@ -98,9 +99,9 @@ def bifurcation_curve(
     >>> round(float(df["freq_hz"].min()), 3), round(float(df["freq_hz"].max()), 3)
     (1.746, 2.276)
     """
-    several = isinstance(oscillator, (Structure, Adjacent))
+    several = isinstance(system, (Structure, Adjacent))
     if not several:
-        check_oscillator(oscillator)
+        check_oscillator(system)
     if not isinstance(bifurcation, Bifurcation):
         raise InputError(Problem.WRONG_TYPE, "bifurcation", bifurcation, got=type(bifurcation).__name__,
                          expected="pounding.Bifurcation (from Branch.bifurcations or Branch.folds())")
@@ -117,20 +118,20 @@ def bifurcation_curve(
                          why="is on a branch in a number of the " "system, not in the forcing",
                          fix="continue the branch in 'freq_hz' or 'a_g' and pass its " "bifurcation")
     try:
-        (check_structure_state if several else check_state)(bifurcation.state, oscillator)
+        (check_structure_state if several else check_state)(bifurcation.state, system)
     except InputError as exc:
         raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind,
                          why=f"is not of this system ({exc})",
-                         fix="pass the oscillator the branch was followed on") from None
+                         fix="pass the system the branch was followed on") from None
     a_box = _box("a_g", a_g, "g")
     f_box = _box("freqs_hz", freqs_hz, "Hz")
     for name, box, v in (("a_g", a_box, bifurcation.a_g), ("freqs_hz", f_box, bifurcation.freq_hz)):
         if not box[0] <= v <= box[1]:
             raise InputError(Problem.OUT_OF_RANGE, name, box, range=f"a range holding {v:g}",
                              hint=" (the bifurcation's own value)")
-    tol, max_step, max_points, exact = _common(oscillator, tol, max_step, max_points, method)
+    tol, max_step, max_points, exact = _common(system, tol, max_step, max_points, method)
     try:
-        return _curve(oscillator, bifurcation, f_box, a_box, tol, max_step, max_points, exact)
+        return _curve(system, bifurcation, f_box, a_box, tol, max_step, max_points, exact)
     except _NoStart as exc:
         raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind, why=str(exc),
                          fix="locate it again: continue the branch with a smaller max_step") from None
@@ -159,8 +160,9 @@ def _curve(oscillator: Oscillator, bifurcation: Bifurcation, f_box: tuple, a_box
     return _result(oscillator, bifurcation, follower, pts, f_box, a_box, status, message)
 
 
+@renamed_keyword("oscillator", "system")
 def coexistence_map(
-    oscillator: Any,
+    system: Any,
     *,
     a_g: Any = (0.02, 0.12),
     freqs_hz: Any = (0.5, 5.0),
@@ -189,7 +191,7 @@ def coexistence_map(
 
     Parameters
     ----------
-    oscillator : Oscillator, Structure or Adjacent
+    system : Oscillator, Structure or Adjacent
         The system.  A structure's branches, curves and basin samples are those of
         :func:`continuation`, :func:`bifurcation_curve` and :func:`pounding.basins` for it (a response
         read by its largest alpha over every level and its first moving mass's excursion).
@@ -255,9 +257,9 @@ def coexistence_map(
     >>> m.matrix["verdict"].value_counts().to_dict()
     {'one': 7, 'coexist': 4}
     """
-    several = isinstance(oscillator, (Structure, Adjacent))
+    several = isinstance(system, (Structure, Adjacent))
     if not several:
-        check_oscillator(oscillator)
+        check_oscillator(system)
     a_box = _box("a_g", a_g, "g")
     f_box = _box("freqs_hz", freqs_hz, "Hz")
     if levels is None:
@@ -281,7 +283,7 @@ def coexistence_map(
         raise InputError(Problem.WRONG_TYPE, "kinds", kinds, got=type(kinds).__name__,
                          expected="a sequence of 'fold', 'grazing'")
     kinds = tuple(dict.fromkeys(one_of("kinds", k, CURVE_KINDS) for k in kinds))
-    tol, max_step, max_points, exact = _common(oscillator, tol, max_step, max_points, method)
+    tol, max_step, max_points, exact = _common(system, tol, max_step, max_points, method)
     witnesses = check_sweeps(sweeps, several)
     basin_sample = check_basin_sample(basin_sample)
     if test_freqs_hz is None:
@@ -296,17 +298,17 @@ def coexistence_map(
     notes: list[str] = []
     try:
         for level in levels:
-            br = _level_branch(oscillator, level, f_box, max_step, method, notes)
+            br = _level_branch(system, level, f_box, max_step, method, notes)
             branches.append(br)
             own = [sw for sw in witnesses if math.isclose(sw.a_g, level, rel_tol=1e-9)]
             if own:  # (every settled step of the level's sweeps on a branch, or said to be off)
-                more, table = through_sweeps(oscillator, own, [br], f_box, method)
+                more, table = through_sweeps(system, own, [br], f_box, method)
                 seeded.extend(more)
                 steps.append(table)
             for bif in br.bifurcations:
                 if bif.kind in kinds and not any(c.passes(bif) for c in curves):
                     try:
-                        curves.append(_curve(oscillator, bif, f_box, a_box, tol, max_step, max_points, exact))
+                        curves.append(_curve(system, bif, f_box, a_box, tol, max_step, max_points, exact))
                     except _NoStart as exc:
                         notes.append(f"the {bif.kind} at {bif.freq_hz:.6g} Hz, a_G {bif.a_g:g} was not "
                                      f"followed: {exc}")
@@ -316,20 +318,20 @@ def coexistence_map(
             curves.append(partial)
         elif isinstance(partial, Branch):
             branches.append(partial)
-        raise Interrupted(CoexistenceMap(oscillator, a_box, f_box, tuple(levels), tuple(branches),
+        raise Interrupted(CoexistenceMap(system, a_box, f_box, tuple(levels), tuple(branches),
                                          tuple(curves),
-                                         judge_matrix(oscillator, branches, freqs, sweeps=witnesses,
+                                         judge_matrix(system, branches, freqs, sweeps=witnesses,
                                                       basin_sample=0, seeded=seeded),
                                          tuple(notes), tuple(seeded), _steps(steps)),
                           len(curves), None, "curves") from None
     try:
-        matrix = judge_matrix(oscillator, branches, freqs, sweeps=witnesses, basin_sample=basin_sample,
+        matrix = judge_matrix(system, branches, freqs, sweeps=witnesses, basin_sample=basin_sample,
                               progress=progress, seeded=seeded)
     except Interrupted as exc:
-        raise Interrupted(CoexistenceMap(oscillator, a_box, f_box, tuple(levels), tuple(branches),
+        raise Interrupted(CoexistenceMap(system, a_box, f_box, tuple(levels), tuple(branches),
                                          tuple(curves), exc.partial, tuple(notes), tuple(seeded),
                                          _steps(steps)), len(curves), None, "curves") from None
-    return CoexistenceMap(oscillator, a_box, f_box, tuple(levels), tuple(branches), tuple(curves), matrix,
+    return CoexistenceMap(system, a_box, f_box, tuple(levels), tuple(branches), tuple(curves), matrix,
                           tuple(notes), tuple(seeded), _steps(steps))
 
 

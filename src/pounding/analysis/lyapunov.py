@@ -41,7 +41,7 @@ import numpy as np
 from scipy.linalg import lapack
 
 from .._checks import integer
-from .._errors import InputError, Interrupted, Problem, Status
+from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from .._runner.progress import Progress, progress_reporter
 from ..engine import State, simulate
 from ..engine.simulate import check_oscillator, check_state, kernel_system
@@ -64,7 +64,8 @@ PERIODIC_RTOL = 1e-9  # sections that repeat to this (of the motion's size) make
 RESOLVED = 1e-13  # a diagonal of R below this times the largest: the direction is erased (-inf)
 
 
-def lyapunov(oscillator: Any, excitation: Harmonic, *, cycles: int = 1000,
+@renamed_keyword("oscillator", "system")
+def lyapunov(system: Any, excitation: Harmonic, *, cycles: int = 1000,
              transient_cycles: int = 200, align_cycles: int = 20, state: Optional[Any] = None,
              method: str = "auto", progress: Progress = False) -> LyapunovSpectrum:
     """The Lyapunov spectrum of the response to a harmonic table motion, from the exact tangent
@@ -72,7 +73,7 @@ def lyapunov(oscillator: Any, excitation: Harmonic, *, cycles: int = 1000,
 
     Parameters
     ----------
-    oscillator : Oscillator, Structure or Adjacent
+    system : Oscillator, Structure or Adjacent
         The system: one mass, or a structure of several (or two adjacent ones), whose tangent
         coordinates are then every mass's displacement and velocity (measured in the real modal
         coordinates of its free motion), the relaxing contacts' compressions and the slips.
@@ -111,9 +112,9 @@ def lyapunov(oscillator: Any, excitation: Harmonic, *, cycles: int = 1000,
     >>> [round(float(x), 12) for x in spec.exponents]  # -c / (2 m)
     [-0.2, -0.2]
     """
-    structure = isinstance(oscillator, (Structure, Adjacent))
+    structure = isinstance(system, (Structure, Adjacent))
     if not structure:
-        check_oscillator(oscillator)
+        check_oscillator(system)
     if not isinstance(excitation, Harmonic):
         raise InputError(Problem.WRONG_TYPE, "excitation", excitation, got=type(excitation).__name__,
                          expected="pounding.Harmonic (the exponents are of the stroboscopic map of a "
@@ -122,20 +123,20 @@ def lyapunov(oscillator: Any, excitation: Harmonic, *, cycles: int = 1000,
                      "when they have settled")
     transient_cycles = integer("transient_cycles", transient_cycles, 0, MAX_CYCLES)
     align_cycles = integer("align_cycles", align_cycles, 0, MAX_CYCLES)
-    exact = exact_monodromy(oscillator, method)
+    exact = exact_monodromy(system, method)
     kind = StructureState if structure else State
     if state is not None and not isinstance(state, kind):
         raise InputError(Problem.WRONG_TYPE, "state", state, got=type(state).__name__,
                          expected=f"pounding.{kind.__name__} (e.g. run.final_state)")
-    state = check_structure_state(state, oscillator) if structure else check_state(state, oscillator)
+    state = check_structure_state(state, system) if structure else check_state(state, system)
     if transient_cycles:
-        run = simulate(oscillator, excitation, transient_cycles / excitation.freq_hz, state, sample_rate_hz=0)
+        run = simulate(system, excitation, transient_cycles / excitation.freq_hz, state, sample_rate_hz=0)
         if not run.success:
             raise InputError(Problem.BAD_STATE, "transient_cycles", transient_cycles,
                              why=f"the transient did not run through: {run.message}",
                              fix="start from another state, or count fewer transient cycles")
         state = run.final_state
-    return _Tangent(oscillator, excitation, exact, state).run(align_cycles, cycles, progress)
+    return _Tangent(system, excitation, exact, state).run(align_cycles, cycles, progress)
 
 
 class _Tangent:

@@ -24,7 +24,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from .._errors import InputError, Problem
+from .._errors import InputError, Problem, renamed_keyword
 from ..engine import Run, State, simulate
 from ..engine._layout import C_SLOT, C_T_END, C_T_START, C_V_IN, DEF_L, DEF_R, REGION, STATE_BASE, ZETA
 from ..engine._layout import D as I_D
@@ -146,8 +146,9 @@ class PeriodicOrbit(Floquet):
         return figure_of(plot_orbit(self, ax=ax, **kwargs), ax)
 
 
+@renamed_keyword("oscillator", "system")
 def periodic_orbit(
-    oscillator: Oscillator,
+    system: Oscillator,
     excitation: Harmonic,
     *,
     guess: Optional[State] = None,
@@ -162,7 +163,7 @@ def periodic_orbit(
 
     Parameters
     ----------
-    oscillator : Oscillator, Structure or Adjacent
+    system : Oscillator, Structure or Adjacent
         The system: one mass, or a structure of several (or two adjacent ones), whose orbit is
         then a :class:`StructurePeriodicOrbit` (``guess`` a :class:`StructureState`; its
         shooting coordinates every mass's displacement and velocity, the relaxing contacts'
@@ -206,35 +207,35 @@ def periodic_orbit(
     >>> [round(float(v), 3) for v in orbit.impact_velocities_m_s]
     [-0.068, 0.068]
     """
-    if isinstance(oscillator, (Structure, Adjacent)):
+    if isinstance(system, (Structure, Adjacent)):
         from .structure_periodic import structure_periodic_orbit
 
-        return structure_periodic_orbit(oscillator, excitation, guess=guess, period_multiple=period_multiple,
+        return structure_periodic_orbit(system, excitation, guess=guess, period_multiple=period_multiple,
                                         tol=tol, max_iter=max_iter, settle_cycles=settle_cycles,
                                         method=method, samples_per_period=samples_per_period)
-    check_oscillator(oscillator)
+    check_oscillator(system)
     period_multiple, tol, max_iter, settle_cycles, samples_per_period = orbit_arguments(
         excitation, period_multiple, tol, max_iter, settle_cycles, samples_per_period)
-    exact = exact_monodromy(oscillator, method)
+    exact = exact_monodromy(system, method)
     period = period_multiple / excitation.freq_hz
     if guess is None:
-        guess = settled(oscillator, excitation, settle_cycles).final_state
+        guess = settled(system, excitation, settle_cycles).final_state
     elif not isinstance(guess, State):
         raise InputError(Problem.WRONG_TYPE, "guess", guess, got=type(guess).__name__,
                          expected="pounding.State (e.g. run.final_state)")
     else:
         try:
-            check_state(guess, oscillator)
+            check_state(guess, system)
         except InputError as exc:
             raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is not a state of this system ({exc})",
-                             fix="give a state of this oscillator, e.g. a run's final_state") from None
-    shooter = _Shooter(oscillator, excitation, period, exact)
+                             fix="give a state of this system, e.g. a run's final_state") from None
+    shooter = _Shooter(system, excitation, period, exact)
     with hy.one_blas_thread():
         vec, res, jac, frozen, it, message = shooter.solve(np.array(guess.vector, dtype=float), tol, max_iter)
     # the state one period on: the same point of the orbit, with the running totals of a contact in
     # progress its own (the guess's otherwise)
-    state = simulate(oscillator, excitation, period, State(vec), sample_rate_hz=0).final_state
-    run = simulate(oscillator, excitation, period, state, sample_rate_hz=samples_per_period / period)
+    state = simulate(system, excitation, period, State(vec), sample_rate_hz=0).final_state
+    run = simulate(system, excitation, period, state, sample_rate_hz=samples_per_period / period)
     mult = multipliers_of(jac)
     names = tuple(shooter.names(vec, frozen))
     return PeriodicOrbit(state, period, mult, jac, names, res, res <= tol, it,

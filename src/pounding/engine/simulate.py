@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Optional
 import numpy as np
 
 from .._checks import integer, positive
-from .._errors import InputError, Interrupted, Problem, Status
+from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
 from ..model._law_states import state_problem, stateless
@@ -37,9 +37,10 @@ if TYPE_CHECKING:
 _NO_LAW = KelvinVoigt(1.0, 0.0)  # stands in for absent bumpers (never touched)
 
 
-def check_oscillator(oscillator: Oscillator) -> None:
+def check_oscillator(oscillator: Oscillator, field: str = "system") -> None:
+    """An InputError naming ``field`` unless ``oscillator`` is one."""
     if not isinstance(oscillator, Oscillator):
-        raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator,
+        raise InputError(Problem.WRONG_TYPE, field, oscillator,
                          got=type(oscillator).__name__, expected="pounding.Oscillator")
 
 
@@ -151,8 +152,9 @@ def kernel_system(oscillator: Oscillator) -> System:
                         b is not None, contacts)
 
 
+@renamed_keyword("oscillator", "system")
 def simulate(
-    oscillator: "Oscillator | Structure",
+    system: "Oscillator | Structure",
     excitation: Harmonic | Record,
     duration: float,
     state: Optional[State] = None,
@@ -162,11 +164,11 @@ def simulate(
     max_events: int = 10_000_000,
     max_steps: int = DEFAULT_MAX_STEPS,
 ) -> Run:
-    """Simulate the oscillator under a base excitation, exactly at every non-smooth instant.
+    """Simulate the system under a base excitation, exactly at every non-smooth instant.
 
     Parameters
     ----------
-    oscillator : Oscillator, Structure or Adjacent
+    system : Oscillator, Structure or Adjacent
         The system: one mass, or a structure of several (then ``state`` is a
         :class:`StructureState` and a :class:`StructureRun` is returned: each level's histories
         and exact extrema, contacts per wall side), or two adjacent structures (an
@@ -226,12 +228,12 @@ def simulate(
     from ..model.adjacent import Adjacent
     from ..model.structure import Structure
 
-    if isinstance(oscillator, (Structure, Adjacent)):  # (several masses: the same run, a result per level)
+    if isinstance(system, (Structure, Adjacent)):  # (several masses: the same run, a result per level)
         from .structure import simulate_structure
 
-        return simulate_structure(oscillator, excitation, duration, state, rtol=rtol,  # type: ignore[return-value]
+        return simulate_structure(system, excitation, duration, state, rtol=rtol,  # type: ignore[return-value]
                                   sample_rate_hz=sample_rate_hz, max_events=max_events, max_steps=max_steps)
-    check_oscillator(oscillator)
+    check_oscillator(system)
     if not isinstance(excitation, (Harmonic, Record)):
         raise InputError(Problem.WRONG_TYPE, "excitation", excitation,
                          got=type(excitation).__name__, expected="pounding.Harmonic or pounding.Record")
@@ -239,11 +241,11 @@ def simulate(
     rtol = check_rtol(rtol)
     max_events = integer("max_events", max_events, 1)
     max_steps = integer("max_steps", max_steps, 1)
-    state = check_state(state, oscillator)
+    state = check_state(state, system)
     rate = history_rate(sample_rate_hz, duration)
     t0 = state.time_s
     omega = excitation.omega_rad_s if isinstance(excitation, Harmonic) else 0.0
-    iso_rate, why = isolator_rate(oscillator)
+    iso_rate, why = isolator_rate(system)
     per_s = float(steps_per_second(iso_rate, omega))
     if omega > iso_rate:
         why = f"the forcing, {omega:.3g} rad/s"
@@ -255,8 +257,8 @@ def simulate(
                  "shorten the duration, or check the system's numbers (SI units: kg, N/m, N s/m)")
 
     # at most this many sub-intervals (every phase as fast as the fastest), plus one per event
-    most = float(steps_per_second(contact_rate(oscillator), omega)) * duration + knots
-    return _run(oscillator, excitation, duration, state, rtol, rate, max_events, max_steps,
+    most = float(steps_per_second(contact_rate(system), omega)) * duration + knots
+    return _run(system, excitation, duration, state, rtol, rate, max_events, max_steps,
                 direct=most < DIRECT_CALL_STEPS)
 
 

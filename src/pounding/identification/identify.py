@@ -21,7 +21,7 @@ import numpy as np
 import pandas as pd
 
 from .._checks import boolean, integer, one_of, real
-from .._errors import InputError, Interrupted, Problem, Status
+from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..model import MeasurementChain, Oscillator
 from .._runner import run_tasks, scheduler_kind, task_pool
 from .._runner.progress import Progress, progress_reporter
@@ -170,10 +170,11 @@ class Identification:
         return figure_of(plot_identification(self, ax=ax, **kwargs), ax)
 
 
-def evaluate(oscillator: Oscillator, targets: Targets, *, freqs_hz: Any = None,
+@renamed_keyword("oscillator", "system")
+def evaluate(system: Oscillator, targets: Targets, *, freqs_hz: Any = None,
              workers: int | None = None, progress: Progress = False, label: str = "targets",
              **sweep_options: Any) -> pd.DataFrame:
-    """Run the sweeps the targets need with ``oscillator`` (YBs; NBs is it without bumpers)
+    """Run the sweeps the targets need with ``system`` (YBs; NBs is it without bumpers)
     and return the residual table of :class:`Identification`.
 
     The sweeps run in parallel on ``workers`` threads (default: every core), with a progress bar
@@ -184,7 +185,7 @@ def evaluate(oscillator: Oscillator, targets: Targets, *, freqs_hz: Any = None,
 
     options = {**DEFAULT_SWEEP, **sweep_options}
     cases = list(targets.cases)
-    plans = [make_plan(oscillator if conf == "YBs" else bare(oscillator), a_g, freqs_hz,
+    plans = [make_plan(system if conf == "YBs" else bare(system), a_g, freqs_hz,
                        direction, **options) for conf, a_g, direction in cases]
     ran = run_tasks(sweep_task, plans, workers=workers, progress=progress, label=label,
                     total=sum(p.freqs_hz.size for p in plans), budget=[p.max_steps for p in plans],

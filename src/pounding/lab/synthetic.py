@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 
 from .._checks import float_array, integer, non_negative, plausible, positive, real_tuple
-from .._errors import InputError, Problem
+from .._errors import InputError, Problem, renamed_keyword
 from ..engine import State, simulate
 from ..excitation import MAX_A_G, GRAVITY_M_S2, Harmonic
 from ..model import Oscillator
@@ -28,17 +28,18 @@ ANTI_ALIAS_ORDER = 4  # poles of the Butterworth anti-alias filter
 MAX_OUTPUT_SAMPLES = 50_000_000  # a recording longer than this is refused (memory grows with it)
 
 
-def synthetic_test(oscillator: Oscillator, a_g: float, freqs_hz: Any, *, cycles: int = 30,
+@renamed_keyword("oscillator", "system")
+def synthetic_test(system: Oscillator, a_g: float, freqs_hz: Any, *, cycles: int = 30,
                    sample_rate_hz: float | None = None, noise: float = 0.01,
                    anti_alias_hz: float | None = None, gains: Any = (1.0, 1.0), offsets_m_s2: Any = None,
                    laser_resolution_m: float | None = None,
                    oversample: int | None = None, seed: int = 0, state: State | None = None,
                    g: float = GRAVITY_M_S2, measurement: MeasurementChain | None = None) -> LabRecord:
-    """Record a stepped-sine test of ``oscillator`` through realistic sensors.
+    """Record a stepped-sine test of ``system`` through realistic sensors.
 
     Parameters
     ----------
-    oscillator : Oscillator
+    system : Oscillator
         The system on the table.
     a_g : float
         Table acceleration amplitude, g.
@@ -98,8 +99,8 @@ def synthetic_test(oscillator: Oscillator, a_g: float, freqs_hz: Any, *, cycles:
     >>> rec.meta["step_start_s"].round(3).tolist()  # s: when each step starts
     [0.0, 10.0, 16.667]
     """
-    if not isinstance(oscillator, Oscillator):
-        raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator, got=type(oscillator).__name__,
+    if not isinstance(system, Oscillator):
+        raise InputError(Problem.WRONG_TYPE, "system", system, got=type(system).__name__,
                          expected="pounding.Oscillator")
     a_g = positive("a_g", a_g, "g")
     if a_g > MAX_A_G:
@@ -132,7 +133,7 @@ def synthetic_test(oscillator: Oscillator, a_g: float, freqs_hz: Any, *, cycles:
                          budget=f"{MAX_OUTPUT_SAMPLES:.3g}",
                          fix="fewer steps or cycles, or a lower sample_rate_hz")
     if state is None:
-        state = State.at_rest(oscillator)
+        state = State.at_rest(system)
     elif not isinstance(state, State):
         raise InputError(Problem.WRONG_TYPE, "state", state, got=type(state).__name__,
                          expected="pounding.State")
@@ -147,9 +148,9 @@ def synthetic_test(oscillator: Oscillator, a_g: float, freqs_hz: Any, *, cycles:
         t_start = t0 + m_next / fs_int
         starts.append(t_start)
         exc = Harmonic(a_g, float(f), phase=-(2.0 * math.pi * f * t_start), g=g)
-        run = simulate(oscillator, exc, n_int / fs_int, state, sample_rate_hz=fs_int)
+        run = simulate(system, exc, n_int / fs_int, state, sample_rate_hz=fs_int)
         if not run.success:
-            raise InputError(Problem.BAD_STATE, "oscillator", oscillator, why=f"the step at {f:g} Hz failed: "
+            raise InputError(Problem.BAD_STATE, "system", system, why=f"the step at {f:g} Hz failed: "
                              f"{run.message}", fix="check the system; a shorter or milder test may run")
         uniform = run.to_dataframe()["event"].to_numpy() == ""
         t = run.t[uniform]

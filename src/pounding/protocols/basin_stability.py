@@ -12,7 +12,7 @@ import numpy as np
 import pandas as pd
 
 from .._checks import float_array, integer, positive
-from .._errors import InputError, Interrupted, Problem
+from .._errors import InputError, Interrupted, Problem, renamed_keyword
 from .._runner import run_tasks
 from .._runner.progress import Progress
 from ..engine.simulate import check_oscillator, check_rtol, kernel_system
@@ -28,7 +28,8 @@ if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
 
-def basin_stability_map(oscillator: Any, a_g_levels: Any, freqs_hz: Any, *, samples: int = 200,
+@renamed_keyword("oscillator", "system")
+def basin_stability_map(system: Any, a_g_levels: Any, freqs_hz: Any, *, samples: int = 200,
                         displacement_m: Any = None, velocity_m_s: Any = None, seed: int = 0,
                         max_cycles: int = 500, measure_cycles: int = 5, max_period: int = 8,
                         steady_rtol: float = 1e-8, rtol: float = 1e-10, scheduler: Any = None,
@@ -39,7 +40,7 @@ def basin_stability_map(oscillator: Any, a_g_levels: Any, freqs_hz: Any, *, samp
 
     Parameters
     ----------
-    oscillator : Oscillator, Structure or Adjacent
+    system : Oscillator, Structure or Adjacent
         The system (with bumpers; a structure with walls or links: its states shifted as one
         body, as :func:`pounding.basins` has them).
     a_g_levels : array_like, shape (m,)
@@ -86,11 +87,11 @@ def basin_stability_map(oscillator: Any, a_g_levels: Any, freqs_hz: Any, *, samp
     >>> m.data["pounding_probability"].values.round(2).tolist()
     [[1.0, 0.5, 0.0]]
     """
-    several = isinstance(oscillator, (Structure, Adjacent))
+    several = isinstance(system, (Structure, Adjacent))
     if not several:
-        check_oscillator(oscillator)
-    if (oscillator.bumpers is None) if not several else not assemble(oscillator).pairs:
-        raise InputError(Problem.MISSING_INPUT, "oscillator", "no bumpers",
+        check_oscillator(system)
+    if (system.bumpers is None) if not several else not assemble(system).pairs:
+        raise InputError(Problem.MISSING_INPUT, "system", "no bumpers",
                          what="bumpers, walls or links (without them nothing pounds)")
     levels = np.atleast_1d(float_array("a_g_levels", a_g_levels))
     freqs = np.atleast_1d(float_array("freqs_hz", freqs_hz))
@@ -109,19 +110,19 @@ def basin_stability_map(oscillator: Any, a_g_levels: Any, freqs_hz: Any, *, samp
         raise InputError(Problem.TOO_LARGE, "samples", samples, maximum=MAX_STATES // n_points,
                          what=f" states at each of {n_points} points",
                          fix="give fewer samples or a coarser matrix")
-    d_box, v_box = state_box(oscillator, displacement_m, velocity_m_s)
+    d_box, v_box = state_box(system, displacement_m, velocity_m_s)
     steady = steady_options(max_cycles, measure_cycles, max_period, steady_rtol)
     rtol = check_rtol(rtol)
     rng = np.random.default_rng(integer("seed", seed, 0))
-    starts = initial_states(oscillator, rng.uniform(*d_box, samples), rng.uniform(*v_box, samples))
-    system, view = structure_view(oscillator) if several else (kernel_system(oscillator), None)
+    starts = initial_states(system, rng.uniform(*d_box, samples), rng.uniform(*v_box, samples))
+    core_system, view = structure_view(system) if several else (kernel_system(system), None)
     points = [(i, j) for i in range(levels.size) for j in range(freqs.size)]
     tasks, where = [], []
     for i, j in points:
         exc = Harmonic(float(levels[i]), float(freqs[j]))
         for k in range(0, samples, ROWS_PER_TASK):
             chunk = starts[k:k + ROWS_PER_TASK]
-            tasks.append((system, exc.peak_m_s2, exc.omega_rad_s, chunk, steady, float(rtol), view))
+            tasks.append((core_system, exc.peak_m_s2, exc.omega_rad_s, chunk, steady, float(rtol), view))
             where.append((i, j, k))
     ran = run_tasks(run_states, tasks, scheduler=scheduler, workers=workers, progress=progress,
                     label="basin stability", total=len(points) * samples, on_error="stop")
@@ -131,7 +132,7 @@ def basin_stability_map(oscillator: Any, a_g_levels: Any, freqs_hz: Any, *, samp
     for (i, j, k), value in zip(where, ran.values):
         if value is not None:
             rows[i, j, k:k + len(value)] = value
-    result = _map(oscillator, levels, freqs, samples, rows, not ran.complete)
+    result = _map(system, levels, freqs, samples, rows, not ran.complete)
     if ran.interrupted:
         raise Interrupted(result, int(np.isfinite(rows[..., R_PERIOD]).sum()), rows[..., 0].size, "states")
     return result

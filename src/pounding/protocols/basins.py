@@ -19,7 +19,7 @@ import numpy as np
 import pandas as pd
 
 from .._checks import integer, one_of, positive, real
-from .._errors import InputError, Interrupted, Problem, Status
+from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from .._runner import Context, run_tasks
 from .._runner.progress import Progress
 from ..engine import State
@@ -106,7 +106,8 @@ def _window_row(system: Any, view: tuple, amp: float, omega: float, win_state: n
     return amax / amp, float(np.sum(slot_sign < 0)) / m, float(np.sum(slot_sign > 0)) / m
 
 
-def basins(oscillator: Any, excitation: Harmonic, *, displacement_m: Any = None,
+@renamed_keyword("oscillator", "system")
+def basins(system: Any, excitation: Harmonic, *, displacement_m: Any = None,
            velocity_m_s: Any = None, n: Any = None, sampling: str = "grid", seed: int = 0,
            max_cycles: int = 500, measure_cycles: int = 5, max_period: int = 8, steady_rtol: float = 1e-8,
            match_rtol: float = 1e-4, rtol: float = 1e-10, scheduler: Any = None, workers: Any = None,
@@ -115,7 +116,7 @@ def basins(oscillator: Any, excitation: Harmonic, *, displacement_m: Any = None,
 
     Parameters
     ----------
-    oscillator : Oscillator, Structure or Adjacent
+    system : Oscillator, Structure or Adjacent
         The system.  A structure's initial states shift it (the first of a pair) as one body:
         each of its moving levels at the state's displacement and velocity, its isolator on its
         backbone (``StructureState.at_rest``); its attractors are matched by their largest alpha
@@ -181,14 +182,14 @@ def basins(oscillator: Any, excitation: Harmonic, *, displacement_m: Any = None,
     >>> b.fractions.round(2).tolist()
     [0.51, 0.49]
     """
-    several = isinstance(oscillator, (Structure, Adjacent))
+    several = isinstance(system, (Structure, Adjacent))
     if not several:
-        check_oscillator(oscillator)
+        check_oscillator(system)
     if not isinstance(excitation, Harmonic):
         raise InputError(Problem.WRONG_TYPE, "excitation", excitation, got=type(excitation).__name__,
                          expected="pounding.Harmonic (basins are of a periodic forcing)")
     one_of("sampling", sampling, ("grid", "random"))
-    d_box, v_box = state_box(oscillator, displacement_m, velocity_m_s)
+    d_box, v_box = state_box(system, displacement_m, velocity_m_s)
     if sampling == "grid":
         shape = _grid_shape((50, 50) if n is None else n)
         d = np.linspace(*d_box, shape[0])
@@ -202,17 +203,17 @@ def basins(oscillator: Any, excitation: Harmonic, *, displacement_m: Any = None,
     steady = steady_options(max_cycles, measure_cycles, max_period, steady_rtol)
     match_rtol = positive("match_rtol", match_rtol, "(relative)")
     rtol = check_rtol(rtol)
-    starts = initial_states(oscillator, dd, vv)
-    system, view = structure_view(oscillator) if several else (kernel_system(oscillator), None)
+    starts = initial_states(system, dd, vv)
+    core_system, view = structure_view(system) if several else (kernel_system(system), None)
     amp, omega = excitation.peak_m_s2, excitation.omega_rad_s
     chunks = [starts[i:i + ROWS_PER_TASK] for i in range(0, len(starts), ROWS_PER_TASK)]
-    tasks = [(system, amp, omega, c, steady, float(rtol), view) for c in chunks]
+    tasks = [(core_system, amp, omega, c, steady, float(rtol), view) for c in chunks]
     ran = run_tasks(run_states, tasks, scheduler=scheduler, workers=workers, progress=progress,
                     label=f"basins at {excitation.freq_hz:g} Hz", total=len(starts), on_error="stop")
     ran.raise_first_error(lambda i: f"the states {i * ROWS_PER_TASK} to {(i + 1) * ROWS_PER_TASK - 1}")
     rows = np.vstack([v if v is not None else np.full((len(c), N_ROW), np.nan)
                       for v, c in zip(ran.values, chunks)])
-    result = _basins(oscillator, excitation, sampling, shape, dd, vv, rows, match_rtol, not ran.complete)
+    result = _basins(system, excitation, sampling, shape, dd, vv, rows, match_rtol, not ran.complete)
     if ran.interrupted:
         raise Interrupted(result, int(np.isfinite(rows[:, R_PERIOD]).sum()), len(rows), "states")
     return result

@@ -19,7 +19,7 @@ import pandas as pd
 
 from .._checks import integer, one_of
 from .._control import DEFAULT_MAX_STEPS, new_control, run_interruptibly
-from .._errors import InputError, Interrupted, Problem, Status
+from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from .._runner.progress import Progress, progress_reporter
 from .structure_sweep_result import C_COUNT
 from .sweep import MAX_CYCLES_PER_STEP, _is_structure, make_plan, run_plan
@@ -34,7 +34,8 @@ MAX_RECORD_CYCLES = 10_000
 STEP_QUANTITIES = ("alpha", "excursion_m", "contacts_per_cycle")
 
 
-def bifurcation_diagram(oscillator: Any, a_g: float, freqs_hz: Any, *,
+@renamed_keyword("oscillator", "system")
+def bifurcation_diagram(system: Any, a_g: float, freqs_hz: Any, *,
                         direction: DiagramDirection = "both", transient_cycles: int = 100,
                         record_cycles: int = 20, max_period: int = 8, steady_rtol: float = 1e-6,
                         rtol: float = 1e-10, max_steps: int = DEFAULT_MAX_STEPS,
@@ -48,7 +49,7 @@ def bifurcation_diagram(oscillator: Any, a_g: float, freqs_hz: Any, *,
 
     Parameters
     ----------
-    oscillator : Oscillator, Structure or Adjacent
+    system : Oscillator, Structure or Adjacent
         The system: one mass, or a structure of several (or two adjacent ones), whose diagram
         then holds every level's samples (a ``level`` dimension) and each level's alpha and
         excursion; its period is that of every level's samples (x, v).
@@ -129,31 +130,31 @@ def bifurcation_diagram(oscillator: Any, a_g: float, freqs_hz: Any, *,
     dirs = ("up", "down") if direction == "both" else (direction,)
     options = dict(steady="fixed", cycles=transient + record, measure_cycles=record, max_period=max_period,
                    steady_rtol=steady_rtol, rtol=rtol, max_steps=max_steps)
-    plans = [make_plan(oscillator, a_g, freqs_hz, d, **options) for d in dirs]  # (all checked first)
+    plans = [make_plan(system, a_g, freqs_hz, d, **options) for d in dirs]  # (all checked first)
     n_total = sum(p.freqs_hz.size for p in plans)
     ctl = new_control(plans[0].max_steps)
     sweeps: list[SweepResult] = []
     state: Optional[Any] = None
     run = run_plan
-    if _is_structure(oscillator):
+    if _is_structure(system):
         from .structure_sweep import run_structure_plan as run
     with progress_reporter(progress, n_total, f"bifurcation diagram, a_G = {plans[0].a_g:g}") as advance:
         for plan in plans:
             if state is not None:  # (down from where up ended)
-                plan = make_plan(oscillator, a_g, freqs_hz, plan.direction, state, **options)
+                plan = make_plan(system, a_g, freqs_hz, plan.direction, state, **options)
             try:
                 sw = run_interruptibly(lambda: run(plan, advance, ctl), [ctl])
             except Interrupted as stop:
                 sweeps.append(stop.partial)
                 done = sum(s.steps_done for s in sweeps)
-                raise Interrupted(_diagram(oscillator, sweeps, dirs, transient, record, max_period,
+                raise Interrupted(_diagram(system, sweeps, dirs, transient, record, max_period,
                                            steady_rtol, True), done,
                                   n_total, "steps") from None
             sweeps.append(sw)
             state = sw.final_state
             if sw.status != Status.SUCCESS:
                 break
-    return _diagram(oscillator, sweeps, dirs, transient, record, max_period, steady_rtol, False)
+    return _diagram(system, sweeps, dirs, transient, record, max_period, steady_rtol, False)
 
 
 def periods(strobes: np.ndarray, amplitude_m: np.ndarray, omega_rad_s: np.ndarray, max_period: int,

@@ -15,7 +15,7 @@ from typing import Any, Literal
 import numpy as np
 
 from .._checks import at_least, at_most, float_array, integer, one_of, plausible, positive
-from .._errors import InputError, Interrupted, Problem, Status
+from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..engine import State
 from ..engine._layout import T
 from ..engine._control import (DEFAULT_MAX_STEPS, check_budget, isolator_rate, new_control,
@@ -242,7 +242,8 @@ def with_sweep_options(fn: Callable) -> Callable:
 
 
 @with_sweep_options
-def sweep(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = None,
+@renamed_keyword("oscillator", "system")
+def sweep(system: Oscillator, a_g: float, freqs_hz: np.ndarray | None = None,
           direction: Direction = "up", *, state: State | None = None, progress: Progress = False,
           **options: Any) -> SweepResult:
     """Stepped-sine sweep: hold each frequency in turn, the state carried over, and measure.
@@ -252,7 +253,7 @@ def sweep(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = None
 
     Parameters
     ----------
-    oscillator : Oscillator
+    system : Oscillator
         The system (with bumpers: YBs; without: NBs).
     a_g : float
         Peak table acceleration in g (``A_t = a_g * 9.81`` m/s^2), > 0.
@@ -344,7 +345,7 @@ def sweep(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = None
     >>> fixed.cycles_run.tolist(), fixed.status.name
     ([10, 10], 'SUCCESS')
     """
-    plan = make_plan(oscillator, a_g, freqs_hz, direction, state, **options)
+    plan = make_plan(system, a_g, freqs_hz, direction, state, **options)
     ctl = new_control(plan.max_steps)
     run = run_plan
     if _is_structure(plan.oscillator):
