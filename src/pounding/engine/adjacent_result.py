@@ -14,12 +14,12 @@ from .._tables import ContactTable
 from ._chatter import chatter_frame
 from ._layout import C_SLOT
 from ._layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
-from .result import events_frame
+from .result import Outcome, events_frame
 from .structure_result import CONTACT_COLUMNS, StructureEnergy, StructureRun
 
 
 @dataclass(frozen=True)
-class AdjacentRun:
+class AdjacentRun(Outcome):
     """A run of two adjacent structures.
 
     Attributes
@@ -84,14 +84,6 @@ class AdjacentRun:
     clearance_m: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     chatters: pd.DataFrame = field(default_factory=lambda: chatter_frame(np.zeros((0, 5)), (), "contact"),
                                    repr=False)
-
-    @property
-    def success(self) -> bool:
-        return self.status == Status.SUCCESS
-
-    @property
-    def message(self) -> str:
-        return self.status.message
 
     @property
     def links(self) -> pd.DataFrame:

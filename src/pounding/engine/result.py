@@ -235,6 +235,21 @@ def _state_vector(vector: Any) -> np.ndarray:
     return vec
 
 
+class Outcome:
+    """What every run result (a dataclass with a ``status``) says of how it ended: ``success`` and
+    ``message``."""
+
+    @property
+    def success(self) -> bool:
+        """Whether the run reached its end time (``status`` is ``Status.SUCCESS``)."""
+        return self.status == Status.SUCCESS  # type: ignore[attr-defined]
+
+    @property
+    def message(self) -> str:
+        """The status in words: why the run stopped early and what to do."""
+        return self.status.message  # type: ignore[attr-defined]
+
+
 class LedgerSeries:
     """What every energy ledger (a frozen dataclass of terms in J with a ``residual``) has: ``to_series``."""
 

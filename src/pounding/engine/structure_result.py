@@ -17,7 +17,7 @@ from ._layout import (C_SLOT, DOF_EXTREMA_LEN, L_BUMPER, L_BUMPER_LOSS, L_HYSTER
                       L_ISOLATOR, L_KINETIC, L_VISCOUS, P_MAX, P_MAX_T, P_MIN, P_MIN_T, X_A_MAX, X_A_MAX_T,
                       X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T)
 from ._chatter import chatter_frame
-from .result import LedgerSeries, events_frame
+from .result import LedgerSeries, Outcome, events_frame
 
 if TYPE_CHECKING:
     from ..excitation import Harmonic, Record
@@ -94,7 +94,7 @@ _DRIFT_EXTREMA = (("drift_max", P_MAX), ("drift_max_time_s", P_MAX_T), ("drift_m
 
 
 @dataclass(frozen=True)
-class StructureRun:
+class StructureRun(Outcome):
     """A structure's run.
 
     Attributes
@@ -248,14 +248,6 @@ class StructureRun:
                    stand_displacement_min=stand_ex[:, X_D_MIN].copy())
 
     # ------------------------------------------------------------------ derived
-    @property
-    def success(self) -> bool:
-        return self.status == Status.SUCCESS
-
-    @property
-    def message(self) -> str:
-        return self.status.message
-
     @property
     def drift(self) -> np.ndarray:
         """Each storey's drift (the floor's displacement less the one below), m, shape (k, n_levels - 1),
