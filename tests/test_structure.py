@@ -17,7 +17,7 @@ from hypothesis import HealthCheck, assume, event, example, given, settings
 from hypothesis import strategies as st
 
 import pounding as pd_
-from pounding.engine.structure import kernel_structure
+from pounding.engine.assembly import kernel_structure
 from reference_ndof import Structure as RefStructure
 from reference_ndof import TouchAtRest, reference
 
@@ -809,7 +809,7 @@ def test_each_contact_s_clearance_is_its_exact_closest_approach():
     pair = pd_.Adjacent(first, second, [pd_.Link(1, 1, 0.006, kv)])
     run = pd_.simulate(pair, pd_.Harmonic(0.4, 1.5), 4.0, sample_rate_hz=40_000)
     x = {}
-    from pounding.engine.structure import assemble
+    from pounding.engine.assembly import assemble
 
     asm = assemble(pair)
     for b, part in enumerate((run.first, run.second)):

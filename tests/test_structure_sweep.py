@@ -14,7 +14,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import pounding as pd_
-from pounding.engine.structure import kernel_structure
+from pounding.engine.assembly import kernel_structure
 
 matplotlib.use("Agg")
 

@@ -35,9 +35,10 @@ def window_states(system: Any, sweep: Any) -> Iterator[tuple[int, float, Any]]:
     its window, moved to the section (time 0, table phase 0; a contact in progress keeps its start
     relative to it), as a guess for :func:`periodic_orbit`, :func:`continuation` or :func:`lyapunov`
     under ``Harmonic(sweep.a_g, freq_hz)``."""
-    from ..engine.result import State
+    from ..engine.state import State
     from ..engine.simulate import kernel_system
-    from ..engine.structure import StructureState, assemble
+    from ..engine.assembly import assemble
+    from ..engine.structure import StructureState
     from ._shooting import at_section
 
     if isinstance(system, (Structure, Adjacent)):

@@ -309,7 +309,8 @@ class Branch:
 
         if isinstance(self.oscillator, Oscillator):
             return State(self.states[index])
-        from ..engine.structure import StructureState, assemble
+        from ..engine.assembly import assemble
+        from ..engine.structure import StructureState
 
         asm = assemble(self.oscillator)
         return StructureState._of(self.states[index], asm.dofs, asm.system.n)

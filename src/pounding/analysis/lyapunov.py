@@ -50,7 +50,8 @@ from ..protocols.bifurcation_diagram import BifurcationDiagram, periods
 from . import _hybrid as hy
 from ._args import exact_monodromy
 from .lyapunov_result import LyapunovSpectrum
-from ..engine.structure import StructureState, assemble, check_structure_state
+from ..engine.assembly import assemble
+from ..engine.structure import StructureState, check_structure_state
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from ._shooting import at_section

@@ -1,6 +1,7 @@
 """Compiled, event-driven integration (private modules) behind :func:`simulate`."""
 
-from .result import EnergyLedger, Run, State
+from .result import EnergyLedger, Run
+from .state import State
 from .simulate import simulate
 from .structure import StructureState
 from .adjacent_result import AdjacentRun

@@ -29,7 +29,8 @@ from ._layout import (DEF_L, DEF_R, IN_L, IN_R, L_BUMPER, L_BUMPER_LOSS, L_HYSTE
                       X_D_MIN, X_D_MIN_T, Z_L, Z_R, ZETA, D, T, V)
 from ._run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPLES,  # noqa: F401
                         MAX_SAMPLES, check_rtol, history_rate, kernel_forcing)
-from .result import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, EnergyLedger, Run, State
+from .result import EnergyLedger, Run
+from .state import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, State
 
 if TYPE_CHECKING:
     from ..model.structure import Structure

@@ -1,17 +1,13 @@
-"""A structure of several masses through the core: its system (:func:`kernel_structure`), its state
-(:class:`StructureState`) and its run (:func:`simulate_structure`, which :func:`pounding.simulate`
-calls for a :class:`~pounding.Structure`).
-
-The core's contact slots are the walls' sides in order: wall ``w``'s left side is slot ``2 w``
-(sign -1: it stops negative displacements), its right side slot ``2 w + 1``.
-"""
+"""A structure of several masses through the core: its state (:class:`StructureState`) and its run
+(:func:`simulate_structure`, which :func:`pounding.simulate` calls for a :class:`~pounding.Structure`); its
+system is assembled in :mod:`.assembly`."""
 
 from __future__ import annotations
 
 import dataclasses
 import math
 from dataclasses import dataclass, field
-from typing import Any, NamedTuple, Optional
+from typing import Any, Optional
 
 import numpy as np
 
@@ -25,186 +21,13 @@ from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from ._control import DEFAULT_MAX_STEPS, check_budget, new_control, run_interruptibly, steps_per_second
 from ._chatter import chatter_frame
-from .result import MAX_TIME_S
-from ._layout import CONTACT_COLUMNS, P_MAX, P_MIN, X_D_MAX, X_D_MIN
+from .state import MAX_TIME_S
+from ._layout import CONTACT_COLUMNS
 from ._run_args import DIRECT_CALL_STEPS, check_rtol, history_rate, kernel_forcing
 from .adjacent_result import AdjacentRun
+from .assembly import Assembly, _add_pair, assemble, clearances, structures_of
 from .structure_result import StructureEnergy, StructureRun
 
-
-
-class Pair(NamedTuple):
-    """A contact slot of an assembly: dof ``i`` against dof ``j`` (-1: the ground), open while
-    ``sign (x_i - x_j) <= gap_m``, and its law."""
-
-    i: int
-    j: int
-    sign: float
-    gap_m: float
-    law: Any
-
-
-class HystereticElement(NamedTuple):
-    """A hysteretic element of an assembly (an isolator, a multi-linear storey): between dofs ``i`` and
-    ``j`` (-1: the ground), its backbone's ``slopes`` (N/m) and ``breaks`` (m), its ``rule`` (the core's
-    code: elastic, kinematic)."""
-
-    i: int
-    j: int
-    slopes: list
-    breaks: list
-    rule: int
-
-
-class Assembly(NamedTuple):
-    """One structure, or two side by side, as the core's system, and where each part went.
-
-    ``dofs[b][level]``: the core's dof of structure ``b``'s level (-1: the ground, a fixed base's level
-    0); ``isolator[b]``: the element of its isolator (-1: a fixed base); ``slots[c]``: what contact slot
-    ``c`` is, ``(b, wall, side)`` for a structure's wall (side 0 left, 1 right) or ``(-1, link, 0)``."""
-
-    system: _core.System
-    dofs: tuple
-    isolator: tuple
-    slots: tuple
-    stands: tuple          # per structure: its stands' dofs, (wall, side, dof) each
-    masses: np.ndarray     # (n,) kg
-    k_fast: np.ndarray     # (n, n) N/m: the linear springs and every element at its stiffest slope
-    c_all: np.ndarray      # (n, n) N s/m: the dashpots
-    pairs: tuple           # each contact slot's Pair
-    elements: tuple        # each hysteretic element's HystereticElement, in the core's order
-    system_bw: np.ndarray  # the Bouc-Wen numbers (the core's, zeros for none)
-    contact_tracks: tuple = ()  # each contact slot's tracked pair (its extrema), -1: against the ground
-
-
-def clearances(asm: Assembly, run: _core.RunOutput) -> np.ndarray:
-    """Each contact slot's smallest clearance over a run, m: its gap less the largest of ``sign (x_i - x_j)``
-    (negative: it touched), from the run's exact extrema."""
-    per_dof, tracked = run.per_dof(asm.system.n), run.per_pair(asm.system.n)
-    out = np.empty(len(asm.pairs))
-    for c, (i, _, sign, gap, _) in enumerate(asm.pairs):
-        q = asm.contact_tracks[c]
-        top, bottom = ((tracked[q, P_MAX], tracked[q, P_MIN]) if q >= 0
-                       else (per_dof[i, X_D_MAX], per_dof[i, X_D_MIN]))
-        out[c] = gap - (top if sign > 0 else -bottom)
-    return out
-
-
-def structures_of(model: Structure | Adjacent) -> tuple[tuple[Structure, ...], tuple]:
-    """(the structures, the links) of a model."""
-    if isinstance(model, Adjacent):
-        return model.structures, model.links
-    return (model,), ()
-
-
-def assemble(model: Structure | Adjacent) -> Assembly:
-    """The core's system of one structure or two adjacent ones: their levels' dofs in order (a fixed
-    base's level 0 is the ground), the storeys' linear springs and dashpots, the hysteretic elements (the
-    isolator with a Bouc-Wen spring first, the other isolator, then the multi-linear storeys), and the
-    contact slots (each structure's walls, left then right side, then the links).  One structure of one
-    level with one wall is, number for number, the oscillator's system."""
-    structures, links = structures_of(model)
-    dofs, masses = [], []
-    for s in structures:
-        levels = []
-        for level in range(s.n_levels):
-            if s.fixed and level == 0:
-                levels.append(-1)
-            else:
-                levels.append(len(masses))
-                masses.append(float(s.masses_kg[level]))
-        dofs.append(tuple(levels))
-    stands, stand_numbers = [], []  # (a bumper on a stand: a mass of its own, after every level)
-    for s in structures:
-        mine = []
-        for w, wall in enumerate(s.walls):
-            if wall.stand is not None:
-                for side in (0, 1):
-                    mine.append((w, side, len(masses)))
-                    masses.append(float(wall.stand.mass_kg))
-                    stand_numbers.append(wall.stand)
-        stands.append(tuple(mine))
-    n = len(masses)
-    k0, c0 = np.zeros((n, n)), np.zeros((n, n))
-    first_stand = n - len(stand_numbers)
-    for q, stand in enumerate(stand_numbers):
-        k0[first_stand + q, first_stand + q] = stand.stiffness_n_m
-        c0[first_stand + q, first_stand + q] = stand.damping_n_s_m
-    for s, levels in zip(structures, dofs):
-        ks = s.shear_matrix([st.stiffness_n_m if st.is_linear else 0.0 for st in s.storeys])
-        cs = s.damping_matrix
-        inside = [lv for lv in range(s.n_levels) if levels[lv] >= 0]  # (a fixed base's ground row dropped)
-        at = [levels[lv] for lv in inside]
-        k0[np.ix_(at, at)] += ks[np.ix_(inside, inside)]
-        c0[np.ix_(at, at)] += cs[np.ix_(inside, inside)]
-    order = sorted(range(len(structures)), key=lambda b: not (structures[b].isolator is not None
-                                                             and structures[b].isolator.bouc_wen is not None))
-    elements, isolator, bw = [], [-1] * len(structures), np.zeros(_core.LAYOUT["BW_PARAMS"])
-    for b in order:
-        s = structures[b]
-        if s.fixed:
-            continue
-        slopes, breaks, rule, b_w = s.isolator.kernel_arrays()
-        if not elements:
-            bw = b_w
-        isolator[b] = len(elements)
-        elements.append((dofs[b][0], -1, float(s.isolator.damping), slopes, breaks, int(rule)))
-    for s, levels in zip(structures, dofs):
-        for i, st in enumerate(s.storeys):
-            if not st.is_linear:
-                top, bottom = levels[i + 1], levels[i]
-                elements.append((top, bottom, *st.kernel_element(i)[2:]))
-    k_fast, c_all = k0.copy(), c0.copy()
-    for e, (i, j, c_d, slopes, _, _) in enumerate(elements):
-        k = max(abs(x) for x in slopes) + (bw[0] * bw[2] / bw[1] if e == 0 and bw[0] != 0.0 else 0.0)
-        _add_pair(k_fast, i, j, k)
-        _add_pair(c_all, i, j, c_d)
-    contacts, slots, pairs = [], [], []
-    for b, (s, levels) in enumerate(zip(structures, dofs)):
-        on = {(w, side): dof for w, side, dof in stands[b]}
-        for w, wall in enumerate(s.walls):
-            for side, (sign, gap, law) in enumerate(((-1.0, wall.gap_left_m, wall.left),
-                                                     (1.0, wall.gap_right_m, wall.right))):
-                other = on.get((w, side), -1)  # (the ground, or the bumper's stand)
-                contacts.append(_core.contact_slot(i=levels[wall.level], j=other, sign=sign, gap_m=gap,
-                                                   law=law.LAW_ID, params=law.params()))
-                slots.append((b, w, side))
-                pairs.append(Pair(levels[wall.level], other, sign, float(gap), law))
-    for k, link in enumerate(links):
-        contacts.append(_core.contact_slot(i=dofs[0][link.level_first], j=dofs[1][link.level_second],
-                                           sign=1.0, gap_m=link.gap_m, law=link.law.LAW_ID,
-                                           params=link.law.params()))
-        slots.append((-1, k, 0))
-        pairs.append(Pair(dofs[0][link.level_first], dofs[1][link.level_second], 1.0, float(link.gap_m),
-                          link.law))
-    # each storey's drift: its top level against the one below (the ground below a fixed base's first); then
-    # each contact between two masses (a link, a bumper on its stand): its pair's relative displacement
-    tracked = tuple((levels[i + 1], levels[i]) for s, levels in zip(structures, dofs)
-                    for i in range(len(s.storeys)))
-    between = [c for c, pair in enumerate(pairs) if pair.j >= 0]
-    contact_tracks = tuple(len(tracked) + between.index(c) if c in between else -1 for c in range(len(pairs)))
-    tracked += tuple((pairs[c].i, pairs[c].j) for c in between)
-    kernel_elements = [_core.element(i=i, j=j, c_d=c_d, slopes=slopes, breaks=breaks, rule=rule)
-                       for i, j, c_d, slopes, breaks, rule in elements]
-    system = _core.system(masses, k0, c0, kernel_elements, bw, bool(contacts), contacts, tracked)
-    return Assembly(system, tuple(dofs), tuple(isolator), tuple(slots), tuple(stands), np.array(masses),
-                    k_fast, c_all, tuple(pairs),
-                    tuple(HystereticElement(i, j, list(slopes), list(breaks), rule)
-                          for i, j, _, slopes, breaks, rule in elements),
-                    np.asarray(bw, dtype=float), contact_tracks)
-
-
-def _add_pair(a: np.ndarray, i: int, j: int, value: float) -> None:
-    a[i, i] += value
-    if j >= 0:
-        a[j, j] += value
-        a[i, j] -= value
-        a[j, i] -= value
-
-
-def kernel_structure(structure: Structure | Adjacent) -> _core.System:
-    """The structure as the core's system (:func:`assemble`)."""
-    return assemble(structure).system
 
 
 @dataclass(frozen=True)

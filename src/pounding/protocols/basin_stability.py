@@ -16,7 +16,7 @@ from .._errors import InputError, Interrupted, Problem, renamed_keyword
 from .._runner import run_tasks
 from .._runner.progress import Progress
 from ..engine.simulate import check_oscillator, check_rtol, kernel_system
-from ..engine.structure import assemble
+from ..engine.assembly import assemble
 from ..excitation import Harmonic
 from ..model import Oscillator
 from ..model.adjacent import Adjacent

@@ -25,7 +25,8 @@ from .._runner.progress import Progress
 from ..engine import State
 from ..engine._layout import T
 from ..engine.simulate import check_oscillator, check_rtol, kernel_system
-from ..engine.structure import StructureState, assemble
+from ..engine.assembly import assemble
+from ..engine.structure import StructureState
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from ..excitation import Harmonic

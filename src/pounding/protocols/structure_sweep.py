@@ -17,7 +17,8 @@ from .._errors import Interrupted, Status
 from ..engine._control import new_control, stop_requested
 from ..engine._layout import T
 from ..engine.kernels import CONTACT_COLUMNS, DOF_EXTREMA, PAIR_EXTREMA, W_CYCLES, RunOutput, run_window
-from ..engine.structure import StructureState, assemble
+from ..engine.assembly import assemble
+from ..engine.structure import StructureState
 from ..excitation import GRAVITY_M_S2, Harmonic
 from .sweep_result import sweep_message
 from .structure_sweep_result import (C_COUNT, C_IMPULSE, C_PEAK, C_RESTITUTION, C_TIME, CONTACT_STATS,
