@@ -54,3 +54,22 @@ def test_a_run_and_a_campaign_as_tables_and_datasets():
     df = result.to_dataframe()
     assert isinstance(df, pd.DataFrame) and len(df) == 4
     assert {"configuration", "a_g", "direction", "freq_hz", "alpha"} <= set(df.columns)
+
+
+def test_every_run_gives_its_quantities_as_a_study_keeps_them():
+    osc = pd_.presets.paper_damped()
+    run = pd_.simulate(osc, pd_.Harmonic(0.05, 2.2), 3.0, state=pd_.State.at_rest(osc, velocity_m_s=0.6))
+    q = run.quantities()
+    assert q["impacts"] == len(run.contacts) > 0 and q["status"] == 0.0
+    assert q["acc_max_g"] == run.abs_acceleration_max / 9.81
+    assert q["disp_max_m"] == max(abs(run.displacement_max), abs(run.displacement_min))
+    assert q["compression_max_m"] == run.contacts["max_compression_m"].max()
+    assert q["impact_speed_max_m_s"] == run.contacts["v_in_m_s"].abs().max()
+    iso = pd_.Isolator(slopes=[2.0e5], breakpoints=[], damping=2.0e3)
+    wall = pd_.Wall(0, 0.02, 0.02, pd_.KelvinVoigt(1e8, 1e4))
+    b = pd_.Structure(2.0e3, iso, [pd_.Storey(1.0e3, 2.0e6)] * 2, [wall])
+    brun = pd_.simulate(b, pd_.Harmonic(0.3, 1.5), 3.0)
+    bq = brun.quantities()
+    assert bq["impacts"] == len(brun.contacts) > 0
+    assert bq["base_disp_max_m"] == max(abs(brun.displacement_max[0]), abs(brun.displacement_min[0]))
+    assert bq["impact_force_max_n"] == brun.contacts["peak_force_n"].max()

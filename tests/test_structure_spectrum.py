@@ -11,7 +11,6 @@ import numpy as np
 import pytest
 
 import pounding as pd_
-from pounding.engine.structure_peaks import peaks_of
 from pounding.protocols.pounding_spectrum import superstructure_at
 
 
@@ -45,7 +44,7 @@ def test_each_point_is_a_run_of_the_building_at_that_period_and_gap():
     for period in (0.2, 0.5):
         scaled = superstructure_at(b, period)
         bare = dataclasses.replace(scaled, walls=())
-        free = peaks_of(pd_.simulate(bare, quake, 8.0, sample_rate_hz=0), quake.g)
+        free = pd_.simulate(bare, quake, 8.0, sample_rate_hz=0).quantities()
         point = ds.sel(period_s=period)
         assert float(point["disp_max_free_m"]) == free["base_disp_max_m"]
         assert float(point["drift_ratio_max_free"]) == free["drift_ratio_max"]
@@ -53,7 +52,7 @@ def test_each_point_is_a_run_of_the_building_at_that_period_and_gap():
         for gap in (0.02, 0.5):
             wall = dataclasses.replace(b.walls[0], gap_left_m=gap, gap_right_m=gap)
             walled = dataclasses.replace(scaled, walls=(wall,))
-            hit = peaks_of(pd_.simulate(walled, quake, 8.0, sample_rate_hz=0), quake.g)
+            hit = pd_.simulate(walled, quake, 8.0, sample_rate_hz=0).quantities()
             at = point.sel(gap_m=gap)
             for name in ("acc_max_g", "impacts", "impact_force_max_n", "impact_speed_max_m_s",
                          "top_acc_max_g", "drift_ratio_max"):
@@ -81,7 +80,7 @@ def test_each_wall_keeps_its_own_laws_unless_one_is_given_and_a_budget_stop_is_k
                       for w in superstructure_at(b, 0.4).walls)
         run = pd_.simulate(dataclasses.replace(superstructure_at(b, 0.4), walls=walls), quake, 6.0,
                            sample_rate_hz=0)
-        hit = peaks_of(run, quake.g)
+        hit = run.quantities()
         point = ps.data.isel(record=0, period_s=0, gap_m=0)
         assert float(point["impacts"]) == hit["impacts"] > 0
         assert float(point["impact_force_max_n"]) == hit["impact_force_max_n"]

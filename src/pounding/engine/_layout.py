@@ -10,6 +10,8 @@ isolator's branch ``REGION``, each contact's running totals (``ACC_L``, ``ACC_R`
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from .._control import CTL_BUDGET, CTL_LEN, CTL_STOP, CTL_WORK  # noqa: F401  (pounding._control's)
@@ -40,8 +42,8 @@ SAMPLE_COLS = LAYOUT["SAMPLE_COLS"]    # t, D, V, abs_acceleration, isolator_for
 # a contact table's columns (CONTACT_COLUMNS: slot, t_start_s, t_end_s, v_in_m_s, v_out_m_s, impulse_n_s,
 # peak_force_n, max_compression_m, work_j), those read by name here
 CONTACT_COLS = LAYOUT["CONTACT_COLS"]
-C_SLOT, C_T_START, C_T_END, C_V_IN = (CONTACT_COLUMNS[k]
-                                      for k in ("contact", "t_start_s", "t_end_s", "v_in_m_s"))
+C_SLOT, C_T_START, C_T_END, C_V_IN, C_MAX_COMPRESSION = (
+    CONTACT_COLUMNS[k] for k in ("contact", "t_start_s", "t_end_s", "v_in_m_s", "max_compression_m"))
 EVENT_COLS = LAYOUT["EVENT_COLS"]
 E_T, E_ACTION, E_INDEX = (EVENT_COLUMNS[k] for k in ("t_s", "action", "index"))  # an event table's columns
 # the energy ledger's slots, J: work of the input, dissipated by the dashpot, the isolator's hysteresis and
@@ -60,3 +62,11 @@ LEDGER_LEN = LAYOUT["LEDGER_LEN"]
 def impulses(table: np.ndarray) -> np.ndarray:
     """Which rows of a contact table are a rigid stop's impacts (instantaneous: an impulse, no force)."""
     return table[:, CONTACT_COLUMNS["t_end_s"]] == table[:, CONTACT_COLUMNS["t_start_s"]]
+
+
+def force_max(table: np.ndarray) -> float:
+    """A contact table's largest force, N: 0 without contact, inf where a rigid stop was struck (an impulse's
+    force is unbounded; its impulse is in the table)."""
+    if not len(table):
+        return 0.0
+    return math.inf if impulses(table).any() else float(table[:, CONTACT_COLUMNS["peak_force_n"]].max())

@@ -15,7 +15,7 @@ from ._chatter import chatter_frame
 from ._layout import C_SLOT
 from ._layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
 from .result import Outcome, events_frame
-from .structure_result import CONTACT_COLUMNS, StructureEnergy, StructureRun
+from .structure_result import CONTACT_COLUMNS, StructureEnergy, StructureRun, peaks_of
 
 
 @dataclass(frozen=True)
@@ -112,6 +112,12 @@ class AdjacentRun(Outcome):
         out.update({"link_contacts": len(self.link_table), "input_work_j": self.energy.input_work,
                     "energy_residual_j": self.energy.residual, "status": self.status.name})
         return pd.Series(out, name="summary", dtype=object)
+
+    def quantities(self) -> dict[str, float]:
+        """The pair's run in a few peaks: the first structure's base and top floor, the largest acceleration
+        and drift ratio over both, the contacts at every wall and link; see
+        :func:`~pounding.engine.structure_result.peaks_of`."""
+        return peaks_of(self, self.excitation.g)
 
     @property
     def events(self) -> pd.DataFrame:

@@ -14,7 +14,8 @@ import pandas as pd
 from .._errors import Status
 from ._chatter import SIDES, chatter_frame
 from .state import State
-from ._layout import (C_SLOT, E_ACTION, E_INDEX, E_T, EVENT_NAMES, impulses)
+from ._layout import (C_MAX_COMPRESSION, C_SLOT, C_V_IN, E_ACTION, E_INDEX, E_T, EVENT_NAMES, force_max,
+                      impulses)
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..excitation import Excitation
@@ -248,6 +249,21 @@ class Run:
     def success(self) -> bool:
         """Whether the run reached its end time (``status`` is ``Status.SUCCESS``)."""
         return self.status == Status.SUCCESS
+
+    def quantities(self) -> dict[str, float]:
+        """The run in a few peaks (a study's point, a pounding spectrum's run): ``acc_max_g`` (inf where a
+        rigid stop struck: an impulse), ``disp_max_m`` (the largest of ``|D|``), ``impacts``,
+        ``impact_force_max_n`` (inf with rigid impacts; 0 without contact), ``impact_speed_max_m_s``,
+        ``compression_max_m`` (the bumpers' deepest) and ``status``."""
+        table = self.contact_table  # (the raw array: building the DataFrame cost more than a run)
+        n = table.shape[0]
+        acc = math.inf if impulses(table).any() else self.abs_acceleration_max / self.excitation.g
+        return {"acc_max_g": acc,
+                "disp_max_m": max(abs(self.displacement_max), abs(self.displacement_min)),
+                "impacts": float(n), "impact_force_max_n": force_max(table),
+                "impact_speed_max_m_s": float(np.abs(table[:, C_V_IN]).max()) if n else 0.0,
+                "compression_max_m": float(table[:, C_MAX_COMPRESSION].max()) if n else 0.0,
+                "status": float(self.status)}
 
     def summary(self) -> pd.Series:
         """The run in a few numbers, each name with its unit (what ``pounding simulate`` prints).

@@ -13,7 +13,8 @@ import pandas as pd
 from .._errors import Status
 from .._tables import ContactTable
 from ._layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
-from ._layout import (C_SLOT, DOF_EXTREMA_LEN, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT,
+from ._layout import force_max, impulses
+from ._layout import (C_SLOT, C_V_IN, DOF_EXTREMA_LEN, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT,
                       L_ISOLATOR, L_KINETIC, L_VISCOUS, P_MAX, P_MAX_T, P_MIN, P_MIN_T, X_A_MAX, X_A_MAX_T,
                       X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T)
 from ._chatter import chatter_frame
@@ -344,6 +345,12 @@ class StructureRun(Outcome):
             "status": self.status.name,
         }, name="summary", dtype=object)
 
+    def quantities(self) -> dict[str, float]:
+        """The run in a few peaks (a study's point, a pounding spectrum's run, a design's stripe): the base's
+        and the top floor's largest displacements, the largest accelerations (g), drift ratio, contacts,
+        force and approach speed; see :func:`peaks_of`."""
+        return peaks_of(self, self.excitation.g)
+
     # ------------------------------------------------------------------ tables
     def to_xarray(self) -> Any:
         """The histories as a Dataset along ``sample`` (its coordinate ``time_s``), ``level``, ``storey`` (the
@@ -423,3 +430,40 @@ def ground_peak(excitation: Any, t0: float, t1: float) -> tuple[float, float]:
     values = np.abs(excitation.acceleration(times))
     j = int(np.argmax(values))
     return float(values[j]), float(times[j])
+
+
+def peaks_of(run: Any, g: float) -> dict[str, float]:
+    """A structure's run (or two adjacent ones') in a few peaks: the (first) structure's base and top floor's
+    largest displacement (``base_disp_max_m``, ``top_disp_max_m``) and the top floor's acceleration
+    (``top_acc_max_g``, g); the largest absolute acceleration (``acc_max_g``, g) and storey drift ratio
+    (``drift_ratio_max``) over every level and storey; the contacts at every wall and link (``impacts``),
+    their largest force (``impact_force_max_n``, N) and approach speed (``impact_speed_max_m_s``), 0 without
+    contact; ``status``.  A rigid stop's impact is an impulse: its force, and the acceleration of the level
+    it strikes, are unbounded (inf), the rest exact."""
+    parts = [run.first, run.second] if hasattr(run, "link_table") else [run]  # (two adjacent ones, or one)
+    first = parts[0]
+
+    def peak(part: StructureRun, level: int) -> float:
+        return max(abs(float(part.displacement_max[level])), abs(float(part.displacement_min[level])))
+
+    ratios = [part.peak_drift / np.array([s.height_m for s in part.structure.storeys])
+              for part in parts if len(part.structure.storeys)]
+    tables = [part.contact_table for part in parts] + ([run.link_table] if len(parts) > 1 else [])
+    rows = np.concatenate(tables)  # (never empty: the first part's table at least)
+    struck = [{part.structure.walls[int(slot) // 2].level for slot in part.contact_table[
+        impulses(part.contact_table), C_SLOT]} for part in parts]  # (each part's levels a rigid impact hit)
+    if len(parts) > 1:
+        for slot in run.link_table[impulses(run.link_table), C_SLOT]:
+            link = run.adjacent.links[int(slot)]
+            struck[0].add(link.level_first)
+            struck[1].add(link.level_second)
+    top = len(first.structure.storeys)
+    return {"base_disp_max_m": peak(first, 0), "top_disp_max_m": peak(first, -1),
+            "acc_max_g": math.inf if any(struck) else max(float(np.max(p.abs_acceleration_max))
+                                                          for p in parts) / g,
+            "top_acc_max_g": math.inf if top in struck[0] else float(first.abs_acceleration_max[-1]) / g,
+            "drift_ratio_max": float(max(np.max(r) for r in ratios)) if ratios else float("nan"),
+            "impacts": float(len(rows)),
+            "impact_force_max_n": force_max(rows),
+            "impact_speed_max_m_s": float(np.abs(rows[:, C_V_IN]).max()) if len(rows) else 0.0,
+            "status": float(run.status)}

@@ -43,32 +43,11 @@ STRUCTURE_TABLE2_QUANTITIES = ("nu_r_top", "alpha_top_max", "alpha_base_max", "d
 
 
 def sweep_quantities(sw: Any) -> dict[str, float]:
-    """The paper's per-sweep quantities (Tables 2-4) of one sweep, by their table names.
-
-    Table 2's are over the sweep (``nu_r``, max ``alpha``, ``eta``, ``e``, the contact
-    range in ``nu``; and the largest excursion ``excursion_max_m``, m); Tables 3 and 4's are the impact means
-    at the resonance step
-    (``contact_time_ms``, ``restitution``, ``mean_force_over_mg``, ``peak_force_over_mg``,
-    ``dissipated_energy_per_mass`` in m^2/s^2).  NaN where a quantity does not exist
-    (no contact, no bumpers).
-    """
+    """The paper's per-sweep quantities (Tables 2-4) of one sweep, by their table names
+    (:meth:`SweepResult.quantities`; a structure's sweep: its base's, ``paper_quantities(0)``)."""
     if not isinstance(sw, SweepResult):  # (a structure's sweep: its base's paper quantities)
         return sw.paper_quantities(0)
-    df = sw.to_dataframe().iloc[: sw.steps_done]
-    rng = sw.contact_range_hz
-    step = df.iloc[sw.step_index(sw.resonance_hz)]
-    mg = sw.oscillator.mass * sw.g
-    return {
-        "nu_r": sw.nu_r, "alpha": sw.alpha_max, "eta": df["eta"].max(), "e": df["e"].max(),
-        "excursion_max_m": df["excursion_m"].max(),
-        "contact_nu_min": np.nan if rng is None else rng[0] / sw.f_ref_hz,
-        "contact_nu_max": np.nan if rng is None else rng[1] / sw.f_ref_hz,
-        "mean_force_over_mg": step["mean_force_n"] / mg,
-        "contact_time_ms": step["contact_time_s"] * 1e3,
-        "peak_force_over_mg": step["peak_force_n"] / mg,
-        "dissipated_energy_per_mass": step["dissipated_energy_j"] / sw.oscillator.mass,
-        "restitution": step["restitution"],
-    }
+    return sw.quantities()
 
 
 @dataclass(frozen=True, eq=False)

@@ -21,8 +21,6 @@ from .._checks import float_array, integer, positive
 from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Record
 from ..excitation.spectrum import check_records, damping_ratio_value, periods_array
-from ..engine.result import CONTACT_COLUMNS
-from ..engine.structure_peaks import force_max, impulses
 from ..model import Bumpers, Isolator, Oscillator, Structure
 from .._runner import Context, run_tasks
 from .._runner.progress import Progress
@@ -41,19 +39,6 @@ def _isolator(template: Isolator | None, mass_kg: float, period_s: float, zeta: 
     return replace(template, slopes=tuple(s * scale for s in template.slopes), damping=c)
 
 
-V_IN = CONTACT_COLUMNS.index("v_in_m_s")
-MAX_COMPRESSION = CONTACT_COLUMNS.index("max_compression_m")
-
-
-def peaks_of_run(run: Any, g: float) -> tuple[float, ...]:
-    """(max |a_abs| in g, max |D| in m, impacts, peak impact force N, peak impact speed m/s, status); the
-    acceleration and force inf where a rigid stop was struck (an impulse)."""
-    table = run.contact_table  # (the raw array: building the DataFrame cost more than a run)
-    n = table.shape[0]
-    speed = float(np.abs(table[:, V_IN]).max()) if n else 0.0
-    acc = math.inf if impulses(table).any() else run.abs_acceleration_max / g
-    return (acc, max(abs(run.displacement_max), abs(run.displacement_min)), float(n), force_max(table), speed,
-            float(run.status))
 
 
 def superstructure_at(structure: Structure, period_s: float) -> Structure:
@@ -90,7 +75,6 @@ def _one_record(task: tuple, ctx: Context) -> tuple[np.ndarray, np.ndarray]:
     None, the law every wall takes or None: their own); a structure's peaks are ``STRUCTURE_QUANTITIES``,
     the oscillator's ``QUANTITIES``."""
     from ..engine.simulate import simulate
-    from ..engine.structure_peaks import peaks_of
 
     rec, periods, bumpers, _, _, _, max_steps, structure, _ = task
     names = QUANTITIES if structure is None else STRUCTURE_QUANTITIES
@@ -103,13 +87,10 @@ def _one_record(task: tuple, ctx: Context) -> tuple[np.ndarray, np.ndarray]:
                 if ctx.stopped():  # (a stop was asked for: what is done is kept)
                     raise Interrupted((free, hit), i, periods.size, "periods")
                 try:
-                    run = simulate(system, rec, duration, sample_rate_hz=0, max_steps=max_steps)
-                    if structure is None:
-                        peaks = peaks_of_run(run, rec.g)
-                    else:
-                        q = peaks_of(run, rec.g)
+                    q = simulate(system, rec, duration, sample_rate_hz=0, max_steps=max_steps).quantities()
+                    if structure is not None:
                         q["disp_max_m"] = q["base_disp_max_m"]  # (the moat's demand: the base's)
-                        peaks = tuple(q[k] for k in names)
+                    peaks = tuple(q[k] for k in names)
                 except InputError as exc:  # (refused up front: over its budget; the others go on)
                     if exc.problem not in (Problem.OVER_BUDGET, Problem.TOO_MUCH_WORK):
                         raise

@@ -16,7 +16,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
     from ..excitation import Record
 
-# per run: what peaks_of_run returns, in this order
+# per run: what a run's quantities() give, in this order
 QUANTITIES = ("acc_max_g", "disp_max_m", "impacts", "impact_force_max_n", "impact_speed_max_m_s", "status")
 # a building's (``structure=``): the same, ``disp_max_m`` its base's and ``acc_max_g`` the largest over its
 # floors, and its top floor's acceleration and largest storey drift ratio

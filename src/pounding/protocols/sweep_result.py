@@ -32,6 +32,12 @@ SIDES = ("left", "right")
 DEFAULT_JUMP_RATIO = 1.5
 
 
+# a sweep's quantities (``SweepResult.quantities``): the paper's Table 2, 3 and 4 rows
+PAPER_QUANTITIES = ("nu_r", "alpha", "eta", "e", "contact_nu_min", "contact_nu_max", "excursion_max_m",
+                    "mean_force_over_mg", "contact_time_ms", "peak_force_over_mg",
+                    "dissipated_energy_per_mass", "restitution")
+
+
 @dataclass(frozen=True, eq=False)
 class SweepResult:
     """Result of :func:`pounding.sweep`: one row of metrics per frequency step.
@@ -316,6 +322,33 @@ class SweepResult:
         columns = ["freq_from_hz", "freq_to_hz", "alpha_from", "alpha_to", "excursion_from_m",
                    "excursion_to_m", "contact_from", "contact_to", "kind"]
         return pd.DataFrame(rows, columns=columns)
+
+    def quantities(self) -> dict[str, float]:
+        """The sweep in a few numbers (a campaign's Tables 2-4 row, a study point's), by their table names.
+
+        Table 2's are over the sweep (``nu_r``, max ``alpha``, ``eta``, ``e``, the contact range in ``nu``;
+        and the largest excursion ``excursion_max_m``, m); Tables 3 and 4's are the impact means at the
+        resonance step (``contact_time_ms``, ``restitution``, ``mean_force_over_mg``, ``peak_force_over_mg``,
+        ``dissipated_energy_per_mass`` in m^2/s^2).  NaN where a quantity does not exist (no contact, no
+        bumpers, no step done).
+        """
+        if self.steps_done == 0:
+            return {k: math.nan for k in PAPER_QUANTITIES}
+        df = self.to_dataframe().iloc[: self.steps_done]
+        rng = self.contact_range_hz
+        step = df.iloc[self.step_index(self.resonance_hz)]
+        mg = self.oscillator.mass * self.g
+        return {
+            "nu_r": self.nu_r, "alpha": self.alpha_max, "eta": df["eta"].max(), "e": df["e"].max(),
+            "excursion_max_m": df["excursion_m"].max(),
+            "contact_nu_min": np.nan if rng is None else rng[0] / self.f_ref_hz,
+            "contact_nu_max": np.nan if rng is None else rng[1] / self.f_ref_hz,
+            "mean_force_over_mg": step["mean_force_n"] / mg,
+            "contact_time_ms": step["contact_time_s"] * 1e3,
+            "peak_force_over_mg": step["peak_force_n"] / mg,
+            "dissipated_energy_per_mass": step["dissipated_energy_j"] / self.oscillator.mass,
+            "restitution": step["restitution"],
+        }
 
     def step_index(self, freq_hz: float) -> int:
         """Index (stepping order) of the step at ``freq_hz`` (to 1e-9 Hz)."""

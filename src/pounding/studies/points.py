@@ -12,8 +12,7 @@ import numpy as np
 from .._errors import InputError, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
-from ..protocols.campaign import TABLE2_QUANTITIES, TABLE3_QUANTITIES, TABLE4_QUANTITIES, sweep_quantities
-from ..protocols.pounding_spectrum import MAX_COMPRESSION, peaks_of_run
+from ..protocols.campaign import TABLE2_QUANTITIES, TABLE3_QUANTITIES, TABLE4_QUANTITIES
 from ..protocols.pounding_spectrum_result import QUANTITIES as RUN_QUANTITIES
 from ..protocols.pounding_spectrum_result import UNITS as RUN_UNITS
 
@@ -43,7 +42,6 @@ SET_PREFIX = "fema-p695:"
 def quantities_of(kind: str, system: Any) -> tuple[str, ...]:
     """The quantities a point of ``kind`` keeps, in order, for ``system`` (a system, or its tables): a
     single mass's, or a structure's (``STRUCTURE_QUANTITIES``)."""
-    from ..model import Oscillator
     from ..model.systems import system_type
 
     one = system_type(system) is Oscillator if isinstance(system, dict) else isinstance(system, Oscillator)
@@ -132,40 +130,24 @@ def compute_point(system: Any, options: dict[str, Any], max_steps: int | None = 
     steps = DEFAULT_MAX_STEPS if max_steps is None else max_steps
     names = quantities_of(kind, system)
     try:
-        if not isinstance(system, Oscillator):
-            from .structure_points import structure_point
-
-            return structure_point(system, options, steps, names,
-                                   None if kind == "sweep" else excitation_of(options),
-                                   {k: options[k] for k in SWEEP_ARGS if options.get(k) is not None})
         if kind == "sweep":
             kwargs = {k: options[k] for k in SWEEP_ARGS if options.get(k) is not None}
             freqs = options.get("freqs_hz")
-            sw = sweep(system, options["a_g"], None if freqs is None else np.asarray(freqs, dtype=float),
-                       options.get("direction", "up"), max_steps=steps, **kwargs)
-            if sw.steps_done == 0:
-                q = {k: math.nan for k in SWEEP_QUANTITIES}
-            else:
-                q = sweep_quantities(sw)
-            q["steps_done"] = float(sw.steps_done)
-            q["status"] = float(sw.status)
-            return np.array([q[k] for k in SWEEP_QUANTITIES], dtype=float)
-        exc = excitation_of(options)
-        duration = options.get("duration_s")
-        if duration is None:  # (a record's own length)
-            duration = float(exc.t[-1])
-        state = None
-        if options.get("v0_m_s"):
-            from ..engine import State
+            res = sweep(system, options["a_g"], None if freqs is None else np.asarray(freqs, dtype=float),
+                        options.get("direction", "up"), max_steps=steps, **kwargs)
+            q = {**res.quantities(), "steps_done": float(res.steps_done), "status": float(res.status)}
+        else:
+            exc = excitation_of(options)
+            duration = options.get("duration_s")
+            if duration is None:  # (a record's own length)
+                duration = float(exc.t[-1])
+            state = None
+            if options.get("v0_m_s"):
+                from ..engine import State
 
-            state = State.at_rest(system, velocity_m_s=options["v0_m_s"])
-        run = simulate(system, exc, duration, state, sample_rate_hz=0, max_steps=steps)
-        peaks = peaks_of_run(run, exc.g)
-        if kind == "record":
-            table = run.contact_table
-            deepest = float(table[:, MAX_COMPRESSION].max()) if table.shape[0] else 0.0
-            peaks = (*peaks[:-1], deepest, peaks[-1])
-        return np.array(peaks, dtype=float)
+                state = State.at_rest(system, velocity_m_s=options["v0_m_s"])
+            q = simulate(system, exc, duration, state, sample_rate_hz=0, max_steps=steps).quantities()
+        return np.array([q[k] for k in names], dtype=float)
     except InputError as exc:
         if exc.problem not in (Problem.OVER_BUDGET, Problem.TOO_MUCH_WORK):
             raise
