@@ -23,7 +23,7 @@ SENSORS = dict(noise=0.01, gains=(1.02, 0.98), laser_resolution_m=1e-5, seed=1)
 
 def main(out_png: str = "lab_vs_model.png") -> None:
     osc = pd_.presets.paper_calibrated()
-    gap = osc.bumpers.gap_left_m + osc.bumpers.gap_right_m  # (the fitted model's own gap: not the nominal 30 mm)
+    gap = osc.bumpers.total_gap  # (the fitted model's own gap: not the nominal 30 mm)
     model = pd_.sweep(osc, A_G, FREQS, "up", steady="fixed", cycles=30, measure_cycles=5)
     sim = model.to_dataframe()
     contact = sim["contact"].to_numpy()
