@@ -92,4 +92,21 @@ struct Given { bool have = false; double vcv = 0.0, gv = 0.0; };
 void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, const Ends& e, double* ledger,
                 double* extrema, Buffers& b, bool with_energy, const Given& given);
 
+// ---------------------------------------------------------------- the state at an event (jump.cpp)
+
+// the bumpers at the end of a sub-interval of length tau: one in contact follows its pair (y1), one out of
+// contact relaxes, its loss added to the ledger
+void move_bumpers(double* st, const System& sy, const double* y1, double tau, double* ledger);
+
+// the state across an event (resolution: the run's velocity, depth and impulse below which a touch is none)
+void jump(double* st, const System& sy, const EventRow& ev, Rows& contacts, const double* resolution);
+
+// an event's row, and the sample just after it (its extrema tracked)
+void record_event(double* st, const System& sy, const EventRow& ev, Rows& events, Rows& samples, double sample_dt,
+                  double* extrema, Buffers& b, std::vector<double>& row, Sticking& stk, double ag);
+
+// the end of a run: its last sample, and a row for each contact still going on
+void finish(const double* st, const System& sy, Rows& samples, Rows& contacts, Buffers& b, std::vector<double>& row,
+            Sticking& stk, double ag);
+
 }  // namespace pounding::run_parts
