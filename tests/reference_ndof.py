@@ -225,7 +225,7 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
                 fired = [evs[k] for k, te in enumerate(sol.t_events[:len(evs)]) if te.size]
                 just = [f.contact for f in fired if hasattr(f, "contact") and not inside[f.contact]
                         and relax[f.contact][1] == t]
-                if just and quiet is None or just and quiet[1] <= t:
+                if just and (quiet is None or quiet[1] <= t):
                     # a contact released here, its function zero with a zero rate (a Kelvin-Voigt wall's
                     # surface relaxes at the mass's own speed as the force crosses zero): the sign of its
                     # first step is rounding; a nanosecond without its check, then on

@@ -12,6 +12,7 @@ import numpy as np
 import pandas as pd
 
 from .._errors import Status
+from .._tables import EventTable
 from ._chatter import SIDES, chatter_frame
 from .state import State
 from ._layout import (C_MAX_COMPRESSION, C_SLOT, C_V_IN, E_ACTION, E_INDEX, E_T, EVENT_NAMES, force_max,
@@ -102,8 +103,6 @@ class EnergyLedger(LedgerSeries):
 def events_frame(e: np.ndarray) -> pd.DataFrame:
     """An event table from the core's rows (time, action code, index): ``t_s``, ``kind`` (the action's name,
     categorical) and ``index``; the columns' names of 0.1 (``t``, ``event``) still answer, with a warning."""
-    from .._tables import EventTable
-
     codes = e[:, E_ACTION].astype(int)
     kinds = pd.Categorical.from_codes(codes, categories=list(EVENT_NAMES))
     return EventTable({"t_s": e[:, E_T], "kind": kinds, "index": e[:, E_INDEX].astype(int)})
