@@ -19,6 +19,14 @@ from ._errors import InputError, PoundingWarning, Problem
 MAX_COUNT = 10**12
 
 
+def instance_of(field: str, value: Any, types: type | tuple[type, ...], expected: str) -> Any:
+    """Return ``value`` if it is an instance of ``types``, or raise naming ``field``, its type and
+    ``expected`` (what to give instead, in words)."""
+    if not isinstance(value, types):
+        raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__, expected=expected)
+    return value
+
+
 def real(field: str, value: Any) -> float:
     """Return ``value`` as a finite float, or raise naming ``field``."""
     if isinstance(value, (bool, str, bytes)):  # (text that reads as a number is still text)

@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import integer, one_of, real
+from .._checks import instance_of, integer, one_of, real
 from .._errors import InputError, Problem
 from ..engine.simulate import simulate
 from ..excitation import Harmonic
@@ -31,9 +31,8 @@ def orbit_arguments(excitation: Any, period_multiple: Any, tol: Any, max_iter: A
                     samples_per_period: Any) -> tuple[int, float, int, int, int]:
     """:func:`pounding.periodic_orbit`'s arguments, one mass's or a structure's alike, checked:
     ``(period_multiple, tol, max_iter, settle_cycles, samples_per_period)``."""
-    if not isinstance(excitation, Harmonic):
-        raise InputError(Problem.WRONG_TYPE, "excitation", excitation, got=type(excitation).__name__,
-                         expected="pounding.Harmonic (a periodic orbit needs a periodic forcing)")
+    instance_of("excitation", excitation, Harmonic,
+                "pounding.Harmonic (a periodic orbit needs a periodic forcing)")
     period_multiple = integer("period_multiple", period_multiple, 1, 64, "give the orbit's period in forcing "
                               "periods: 1, 2 for a period-doubled response, ...")
     tol = tolerance(tol, 1e-15, 1e-2, 1e-10)

@@ -23,7 +23,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from .._checks import integer, positive, real
+from .._checks import instance_of, integer, positive, real
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..engine import State
 from ..engine.simulate import check_oscillator, check_state, simulate
@@ -223,9 +223,8 @@ def _pair(field: str, value: Any, unit: str) -> tuple[float, float]:
 
 
 def _check_range(osc: Any, parameter: Any, a_g: Any, freqs_hz: Any, values: Any) -> tuple:
-    if not isinstance(parameter, str):
-        raise InputError(Problem.WRONG_TYPE, "parameter", parameter, got=type(parameter).__name__,
-                         expected="str ('freq_hz', 'a_g' or a dotted name such as 'bumpers.gap_left_m')")
+    instance_of("parameter", parameter, str,
+                "str ('freq_hz', 'a_g' or a dotted name such as 'bumpers.gap_left_m')")
     if parameter == "freq_hz":
         pair = _pair("freqs_hz", freqs_hz, "Hz")
         for i, f in enumerate(pair):

@@ -10,7 +10,7 @@ from typing import Any, Optional, Sequence
 import numpy as np
 import pandas as pd
 
-from .._checks import integer, one_of, real
+from .._checks import instance_of, integer, one_of, real
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..engine.simulate import check_oscillator, check_state
 from ..engine.structure import check_structure_state
@@ -102,9 +102,8 @@ def bifurcation_curve(
     several = isinstance(system, (Structure, Adjacent))
     if not several:
         check_oscillator(system)
-    if not isinstance(bifurcation, Bifurcation):
-        raise InputError(Problem.WRONG_TYPE, "bifurcation", bifurcation, got=type(bifurcation).__name__,
-                         expected="pounding.Bifurcation (from Branch.bifurcations or Branch.folds())")
+    instance_of("bifurcation", bifurcation, Bifurcation,
+                "pounding.Bifurcation (from Branch.bifurcations or Branch.folds())")
     if bifurcation.kind not in CURVE_KINDS:
         raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind,
                          why="is followed in one parameter only",

@@ -40,7 +40,7 @@ from typing import Any, Optional
 import numpy as np
 from scipy.linalg import lapack
 
-from .._checks import integer
+from .._checks import instance_of, integer
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from .._runner.progress import Progress, progress_reporter
 from ..engine import State, simulate
@@ -116,9 +116,8 @@ def lyapunov(system: Any, excitation: Harmonic, *, cycles: int = 1000,
     structure = isinstance(system, (Structure, Adjacent))
     if not structure:
         check_oscillator(system)
-    if not isinstance(excitation, Harmonic):
-        raise InputError(Problem.WRONG_TYPE, "excitation", excitation, got=type(excitation).__name__,
-                         expected="pounding.Harmonic (the exponents are of the stroboscopic map of a "
+    instance_of("excitation", excitation, Harmonic,
+                "pounding.Harmonic (the exponents are of the stroboscopic map of a "
                                   "periodic forcing)")
     cycles = integer("cycles", cycles, 1, MAX_CYCLES, "count fewer periods; the estimates' history shows "
                      "when they have settled")
@@ -387,9 +386,8 @@ def largest_exponents(diagram: BifurcationDiagram, *, cycles: int = 200, align_c
     >>> (d.data["largest_exponent"] < 0).values.tolist()  # periodic: both stable
     [[True, True]]
     """
-    if not isinstance(diagram, BifurcationDiagram):
-        raise InputError(Problem.WRONG_TYPE, "diagram", diagram, got=type(diagram).__name__,
-                         expected="pounding.BifurcationDiagram (from pounding.bifurcation_diagram)")
+    instance_of("diagram", diagram, BifurcationDiagram,
+                "pounding.BifurcationDiagram (from pounding.bifurcation_diagram)")
     cycles = integer("cycles", cycles, 1, MAX_CYCLES)
     align_cycles = integer("align_cycles", align_cycles, 0, MAX_CYCLES)
     exact_monodromy(diagram.oscillator, method)  # (checked once, before any step)

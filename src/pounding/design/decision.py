@@ -15,7 +15,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import one_of, positive
+from .._checks import instance_of, one_of, positive
 from .._errors import InputError, Problem
 from ..model.dotted import unit_of
 from .hazard import HazardCurve
@@ -428,14 +428,8 @@ def _analyses(analysis: Any) -> dict:
 
 
 def _check_analysis(analysis: Any, field: str, gap_dim: str, hazard: HazardCurve | None) -> None:
-    if not isinstance(analysis, StripeAnalysis):
-        raise InputError(
-            Problem.WRONG_TYPE,
-            field,
-            analysis,
-            got=type(analysis).__name__,
-            expected="pounding.design.StripeAnalysis (stripe_analysis), or a dict of them by bumper type",
-        )
+    instance_of(field, analysis, StripeAnalysis,
+                "pounding.design.StripeAnalysis (stripe_analysis), or a dict of them by bumper type")
     if gap_dim not in analysis.design_dims:
         raise InputError(
             Problem.NOT_IN_RESULT, "gap_dim", gap_dim, choices=", ".join(analysis.design_dims) or "none"

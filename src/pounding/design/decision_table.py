@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 from scipy import stats
 
+from .._checks import instance_of
 from .._errors import InputError, Problem
 from .hazard import HazardCurve, probability_in_years
 from .stripe_result import StripeAnalysis
@@ -91,14 +92,7 @@ def table_rows(
 def _penalty(analysis: StripeAnalysis, free: StripeAnalysis, stripe: int, ok: Any) -> Any:
     """Per design point, the median over the records of the peak acceleration with bumpers over the
     one without, at ``stripe`` (the two analyses must have the same stripes and records)."""
-    if not isinstance(free, StripeAnalysis):
-        raise InputError(
-            Problem.WRONG_TYPE,
-            "free",
-            free,
-            got=type(free).__name__,
-            expected="pounding.design.StripeAnalysis (without bumpers) or None",
-        )
+    instance_of("free", free, StripeAnalysis, "pounding.design.StripeAnalysis (without bumpers) or None")
     same = np.array_equal(free.levels_g, analysis.levels_g) and list(free.data["record"].values) == list(
         analysis.data["record"].values
     )

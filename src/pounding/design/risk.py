@@ -6,8 +6,8 @@ import warnings
 import numpy as np
 from scipy import integrate
 
-from .._checks import positive
-from .._errors import InputError, PoundingWarning, Problem
+from .._checks import instance_of, positive
+from .._errors import PoundingWarning
 from .fragility import Fragility
 from .hazard import HazardCurve, probability_in_years
 
@@ -47,22 +47,9 @@ def annual_frequency(fragility: Fragility, hazard: HazardCurve) -> float:
     >>> f"{design.annual_frequency(frag, curve):.3e}"  # per year
     '4.701e-04'
     """
-    if not isinstance(fragility, Fragility):
-        raise InputError(
-            Problem.WRONG_TYPE,
-            "fragility",
-            fragility,
-            got=type(fragility).__name__,
-            expected="pounding.design.Fragility (fit_fragility, fit_fragility_capacities)",
-        )
-    if not isinstance(hazard, HazardCurve):
-        raise InputError(
-            Problem.WRONG_TYPE,
-            "hazard",
-            hazard,
-            got=type(hazard).__name__,
-            expected="pounding.design.HazardCurve",
-        )
+    instance_of("fragility", fragility, Fragility,
+                "pounding.design.Fragility (fit_fragility, fit_fragility_capacities)")
+    instance_of("hazard", hazard, HazardCurve, "pounding.design.HazardCurve")
     x = fragility.median_g * np.exp(fragility.beta * Z_GRID)
     integrand = hazard.annual_frequency(x) * np.exp(-0.5 * Z_GRID**2) / np.sqrt(2.0 * np.pi)
     total = float(integrate.simpson(integrand, x=Z_GRID))

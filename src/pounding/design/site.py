@@ -7,7 +7,7 @@ from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
-from .._checks import one_of, positive
+from .._checks import instance_of, one_of, positive
 from .._errors import InputError, Problem
 from ..model.oscillator import check_keys
 from .hazard import HazardCurve
@@ -90,14 +90,8 @@ def _site_spectra(site: Mapping[str, Any], base: Path) -> tuple[DesignSpectrum, 
 
 def hazard_curve_of(value: Any, base: Path, period_s: float) -> HazardCurve:
     """The hazard curve a site table names (a CSV of Sa g and annual frequency), for Sa(period_s)."""
-    if not isinstance(value, str):
-        raise InputError(
-            Problem.WRONG_TYPE,
-            "site.hazard_curve",
-            value,
-            got=type(value).__name__,
-            expected="the path of a CSV file (Sa in g, annual frequency of exceedance)",
-        )
+    instance_of("site.hazard_curve", value, str,
+                "the path of a CSV file (Sa in g, annual frequency of exceedance)")
     try:
         return HazardCurve.from_csv(base / value, period_s)
     except InputError as exc:
@@ -106,8 +100,5 @@ def hazard_curve_of(value: Any, base: Path, period_s: float) -> HazardCurve:
 
 def text_field(field: str, value: Any) -> str:
     """``value``, a text, or an error naming ``field``."""
-    if not isinstance(value, str):
-        raise InputError(
-            Problem.WRONG_TYPE, field, value, got=type(value).__name__, expected="text (a string)"
-        )
+    instance_of(field, value, str, "text (a string)")
     return value

@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import float_array, positive
+from .._checks import float_array, instance_of, positive
 from .._errors import InputError, Interrupted, Problem
 from ..model import Oscillator, Structure
 from ..model.systems import system_type
@@ -38,15 +38,9 @@ def suite_sources(records: str | Sequence[str]) -> list[str]:
         return [records]
     if isinstance(records, (list, tuple)) and records:
         for i, r in enumerate(records):
-            if not isinstance(r, (str, Path)):
-                raise InputError(
-                    Problem.WRONG_TYPE,
-                    f"records[{i}]",
-                    r,
-                    got=type(r).__name__,
-                    expected="str (a record's name, e.g. 'fema-p695:far_field:0' or 'el-centro', or a file's "
-                    "path: each worker reads it)",
-                )
+            instance_of(f"records[{i}]", r, (str, Path),
+                        "str (a record's name, e.g. 'fema-p695:far_field:0' or 'el-centro', or a file's "
+                    "path: each worker reads it)")
         return [str(r) for r in records]
     raise InputError(
         Problem.WRONG_TYPE,
@@ -128,11 +122,8 @@ def stripe_analysis(
     >>> msa.data["impacts"].values.ravel().tolist()
     [7.0, 27.0]
     """
-    if not isinstance(system, (Oscillator, Structure)):
-        raise InputError(
-            Problem.WRONG_TYPE, "system", system, got=type(system).__name__,
-            expected="pounding.Oscillator or pounding.Structure (a building with its walls)"
-        )
+    instance_of("system", system, (Oscillator, Structure),
+                "pounding.Oscillator or pounding.Structure (a building with its walls)")
     sources = suite_sources(records)
     levels = float_array("levels_g", levels_g)
     for i, v in enumerate(levels):

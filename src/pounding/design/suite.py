@@ -22,7 +22,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import integer, positive, real
+from .._checks import instance_of, integer, positive, real
 from .._errors import InputError, PoundingWarning, Problem
 from ..excitation.record import Record
 from ..excitation.spectrum import check_records, response_spectrum
@@ -180,14 +180,8 @@ def scale_suite(
     3.275
     """
     recs = check_records(records)
-    if not isinstance(target, DesignSpectrum):
-        raise InputError(
-            Problem.WRONG_TYPE,
-            "target",
-            target,
-            got=type(target).__name__,
-            expected="pounding.design.DesignSpectrum (asce7_spectrum, ec8_spectrum, ...)",
-        )
+    instance_of("target", target, DesignSpectrum,
+                "pounding.design.DesignSpectrum (asce7_spectrum, ec8_spectrum, ...)")
     if (period_s is None) == (period_range_s is None):
         raise InputError(
             Problem.MISSING_INPUT,

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING, Optional
 
 import numpy as np
 
-from .._checks import integer, positive
+from .._checks import instance_of, integer, positive
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
@@ -40,18 +40,14 @@ _NO_LAW = KelvinVoigt(1.0, 0.0)  # stands in for absent bumpers (never touched)
 
 def check_oscillator(oscillator: Oscillator, field: str = "system") -> None:
     """An InputError naming ``field`` unless ``oscillator`` is one."""
-    if not isinstance(oscillator, Oscillator):
-        raise InputError(Problem.WRONG_TYPE, field, oscillator,
-                         got=type(oscillator).__name__, expected="pounding.Oscillator")
+    instance_of(field, oscillator, Oscillator, "pounding.Oscillator")
 
 
 def check_state(state: Optional[State], oscillator: Oscillator) -> State:
     """``state``, or rest at t = 0 when None; it must belong to a system like ``oscillator``."""
     if state is None:
         return State.at_rest(oscillator)
-    if not isinstance(state, State):
-        raise InputError(Problem.WRONG_TYPE, "state", state, got=type(state).__name__,
-                         expected="pounding.State (e.g. run.final_state)")
+    instance_of("state", state, State, "pounding.State (e.g. run.final_state)")
     expected = STATE_BASE + 2 * (oscillator.isolator.n_branches - 1)
     if state.vector.size != expected:
         raise InputError(Problem.BAD_STATE, "state", state,
@@ -235,9 +231,7 @@ def simulate(
         return simulate_structure(system, excitation, duration, state, rtol=rtol,  # type: ignore[return-value]
                                   sample_rate_hz=sample_rate_hz, max_events=max_events, max_steps=max_steps)
     check_oscillator(system)
-    if not isinstance(excitation, (Harmonic, Record)):
-        raise InputError(Problem.WRONG_TYPE, "excitation", excitation,
-                         got=type(excitation).__name__, expected="pounding.Harmonic or pounding.Record")
+    instance_of("excitation", excitation, (Harmonic, Record), "pounding.Harmonic or pounding.Record")
     duration = positive("duration", duration, "s")
     rtol = check_rtol(rtol)
     max_events = integer("max_events", max_events, 1)

@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .._checks import at_most, real
+from .._checks import at_most, instance_of, real
 from .._errors import InputError, Problem
 from ._layout import DEF_L, DEF_R, IN_L, IN_R, REGION, STATE_BASE, Z_L, Z_R, ZETA
 from ._layout import D as I_D
@@ -93,9 +93,7 @@ class State:
         """
         from ..model import Oscillator
 
-        if not isinstance(oscillator, Oscillator):
-            raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator, got=type(oscillator).__name__,
-                             expected="pounding.Oscillator")
+        instance_of("oscillator", oscillator, Oscillator, "pounding.Oscillator")
         time_s = at_most("time_s", real("time_s", time_s), MAX_TIME_S, " s", "give the time in s")
         d = at_most("displacement_m", real("displacement_m", displacement_m), MAX_DISPLACEMENT_M, " m",
                     "give the displacement in m")

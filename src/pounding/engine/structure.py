@@ -12,7 +12,7 @@ from typing import Any, Optional
 import numpy as np
 
 from .. import _core
-from .._checks import at_most, integer, positive, real
+from .._checks import at_most, instance_of, integer, positive, real
 from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model._law_states import state_problem
@@ -71,9 +71,7 @@ class StructureState:
         moving at ``velocity_m_s`` (m/s), its isolator where a slow push from 0 would leave it (on its
         backbone), a fixed base's first storey deformed by the shift; the stands and a second structure
         at rest.  The shift must leave every wall and link open."""
-        if not isinstance(structure, (Structure, Adjacent)):
-            raise InputError(Problem.WRONG_TYPE, "structure", structure, got=type(structure).__name__,
-                             expected="pounding.Structure or pounding.Adjacent")
+        instance_of("structure", structure, (Structure, Adjacent), "pounding.Structure or pounding.Adjacent")
         time_s = at_most("time_s", real("time_s", time_s), MAX_TIME_S, " s", "give the time in s")
         d = at_most("displacement_m", real("displacement_m", displacement_m), 100.0, " m",
                     "give the displacement in m")
@@ -146,9 +144,8 @@ def _check_state(state: Optional[StructureState], model: Structure | Adjacent,
                  asm: Assembly) -> StructureState:
     if state is None:
         return StructureState._shifted(asm, 0.0, 0.0, 0.0)
-    if not isinstance(state, StructureState):
-        raise InputError(Problem.WRONG_TYPE, "state", state, got=type(state).__name__,
-                         expected="pounding.StructureState (StructureState.at_rest(structure) or a run's "
+    instance_of("state", state, StructureState,
+                "pounding.StructureState (StructureState.at_rest(structure) or a run's "
                                   "final_state)")
     size = asm.system.layout["size"]
     if state.vector.size != size or state.dofs != asm.dofs or state.n_dof != asm.system.n:
@@ -268,12 +265,8 @@ def simulate_structure(structure: Structure | Adjacent, excitation: Harmonic | R
     """Simulate a structure (or two adjacent ones) under a base excitation, exactly at every contact
     (``pounding.simulate`` with a :class:`~pounding.Structure` or :class:`~pounding.Adjacent`; the same
     arguments, a :class:`StructureRun` or :class:`AdjacentRun` back)."""
-    if not isinstance(structure, (Structure, Adjacent)):
-        raise InputError(Problem.WRONG_TYPE, "structure", structure, got=type(structure).__name__,
-                         expected="pounding.Structure or pounding.Adjacent")
-    if not isinstance(excitation, (Harmonic, Record)):
-        raise InputError(Problem.WRONG_TYPE, "excitation", excitation,
-                         got=type(excitation).__name__, expected="pounding.Harmonic or pounding.Record")
+    instance_of("structure", structure, (Structure, Adjacent), "pounding.Structure or pounding.Adjacent")
+    instance_of("excitation", excitation, (Harmonic, Record), "pounding.Harmonic or pounding.Record")
     duration = positive("duration", duration, "s")
     rtol = check_rtol(rtol)
     max_events = integer("max_events", max_events, 1)

@@ -13,7 +13,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .._checks import at_most, float_array, one_of, plausible, positive
+from .._checks import at_most, float_array, instance_of, one_of, plausible, positive
 from .._errors import InputError, PoundingWarning, Problem
 from .._units import ACC_UNITS
 from .harmonic import MAX_A_G, MAX_ACCEL_M_S2, MAX_TIME_S, RECORD, GRAVITY_M_S2
@@ -103,12 +103,8 @@ class Record:
         plausible(f"record.accel[{i}]", abs(float(accel[i])), 0.0, 5.0 * GRAVITY_M_S2,
                   f"{abs(float(accel[i])) / GRAVITY_M_S2:.3g} g; the acceleration is in m/s^2 (use "
                   "Record.from_g for units of g)")
-        if not isinstance(self.name, str):
-            raise InputError(Problem.WRONG_TYPE, "record.name", self.name, got=type(self.name).__name__,
-                             expected="str")
-        if not isinstance(self.meta, Mapping):
-            raise InputError(Problem.WRONG_TYPE, "record.meta", self.meta, got=type(self.meta).__name__,
-                             expected="dict")
+        instance_of("record.name", self.name, str, "str")
+        instance_of("record.meta", self.meta, Mapping, "dict")
         g = at_most("record.g", positive("record.g", self.g, "m/s^2"), MAX_A_G, " m/s^2", "give g in m/s^2")
         t.setflags(write=False)
         accel.setflags(write=False)

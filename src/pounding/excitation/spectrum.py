@@ -8,6 +8,7 @@ from typing import Any
 
 import numpy as np
 
+from .._checks import instance_of
 from .._errors import InputError, Interrupted, Problem
 from ._spectrum_run import MAX_INTERVALS, damping_ratio_value, periods_array, spectrum_peaks  # noqa: F401
 from .record import Record
@@ -20,9 +21,7 @@ def check_records(records: Any) -> list[Record]:
         return [records]
     if isinstance(records, Sequence) and not isinstance(records, (str, bytes)) and len(records) > 0:
         for i, r in enumerate(records):
-            if not isinstance(r, Record):
-                raise InputError(Problem.WRONG_TYPE, f"records[{i}]", r, got=type(r).__name__,
-                                 expected="pounding.Record")
+            instance_of(f"records[{i}]", r, Record, "pounding.Record")
         return list(records)
     raise InputError(Problem.WRONG_TYPE, "record", records, got=type(records).__name__,
                      expected="pounding.Record or a non-empty list of them")

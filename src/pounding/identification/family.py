@@ -40,7 +40,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import integer, one_of, positive, read_toml, real
+from .._checks import instance_of, integer, one_of, positive, read_toml, real
 from .._errors import InputError, PoundingWarning, Problem
 from ..model import (BoucWen, Bumpers, ElasticPlastic, HuntCrossley, Isolator, KelvinVoigt, MultilinearBumper,
                      Oscillator)
@@ -110,9 +110,7 @@ class ModelFamily:
     bouc_wen: bool = False
 
     def __post_init__(self) -> None:
-        if not isinstance(self.bouc_wen, bool):
-            raise InputError(Problem.WRONG_TYPE, "family.bouc_wen", self.bouc_wen,
-                             got=type(self.bouc_wen).__name__, expected="true or false")
+        instance_of("family.bouc_wen", self.bouc_wen, bool, "true or false")
         object.__setattr__(self, "bumper_branches", integer("family.bumper_branches", self.bumper_branches, 1,
                                                             MAX_BUMPER_BRANCHES,
                                                             fix=f"give 1 to {MAX_BUMPER_BRANCHES} bumper "
@@ -123,9 +121,7 @@ class ModelFamily:
                                                                     "branches"))
         one_of("family.hysteresis", self.hysteresis, ("kinematic", "elastic"))
         one_of("family.law", self.law, tuple(LAW_PARAMETERS))
-        if not isinstance(self.fixed, dict):
-            raise InputError(Problem.WRONG_TYPE, "family.fixed", self.fixed, got=type(self.fixed).__name__,
-                             expected="dict of name -> value")
+        instance_of("family.fixed", self.fixed, dict, "dict of name -> value")
         names = self.parameter_names
         fixed = {}
         for name, value in self.fixed.items():
@@ -259,9 +255,8 @@ MAX_BUMPER_BRANCHES = 4  # (contact_laws.MAX_BRANCHES)
 
 def check_bounds(family: ModelFamily, bounds: Any) -> dict[str, tuple[float, float]]:
     """``bounds`` as ``name -> (low, high)`` floats, checked (finite, low < high, known names)."""
-    if not isinstance(bounds, dict):
-        raise InputError(Problem.WRONG_TYPE, "bounds", bounds, got=type(bounds).__name__,
-                         expected="dict of name -> (low, high), e.g. {\"isolator_damping\": (100, 5000)}")
+    instance_of("bounds", bounds, dict,
+                "dict of name -> (low, high), e.g. {\"isolator_damping\": (100, 5000)}")
     if not bounds:
         raise InputError(Problem.EMPTY, "bounds", bounds)
     out = {}

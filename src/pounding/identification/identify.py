@@ -20,7 +20,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .._checks import boolean, integer, one_of, real
+from .._checks import boolean, instance_of, integer, one_of, real
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..model import MeasurementChain, Oscillator
 from .._runner import run_tasks, scheduler_kind, task_pool
@@ -281,12 +281,9 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     >>> round(fit.parameters["isolator_damping"]), fit.n_within
     (548, 1)
     """
-    if not isinstance(targets, Targets):
-        raise InputError(Problem.WRONG_TYPE, "targets", targets, got=type(targets).__name__,
-                         expected="pounding.Targets (paper_targets() or Targets.from_toml)")
-    if not isinstance(family, (ModelFamily, StructureFamily)):
-        raise InputError(Problem.WRONG_TYPE, "family", family, got=type(family).__name__,
-                         expected="pounding.ModelFamily, or pounding.StructureFamily (a rig of several "
+    instance_of("targets", targets, Targets, "pounding.Targets (paper_targets() or Targets.from_toml)")
+    instance_of("family", family, (ModelFamily, StructureFamily),
+                "pounding.ModelFamily, or pounding.StructureFamily (a rig of several "
                                   "masses)")
     check_sweep_options(sweep_options, also="identify's own")
     if isinstance(family, StructureFamily) and isinstance(bounds, dict) and CUTOFF in bounds:
@@ -318,9 +315,7 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     scale = _Scale(bounds)
     cases_freqs = paper_frequencies_hz() if freqs_hz is None else freqs_hz
     if x0 is not None:
-        if not isinstance(x0, dict):
-            raise InputError(Problem.WRONG_TYPE, "x0", x0, got=type(x0).__name__,
-                             expected="dict name -> value")
+        instance_of("x0", x0, dict, "dict name -> value")
         unknown = sorted(set(x0) ^ set(names))
         if unknown:
             raise InputError(Problem.UNKNOWN_KEY if unknown[0] in x0 else Problem.MISSING_KEY,

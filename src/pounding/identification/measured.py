@@ -13,7 +13,7 @@ from __future__ import annotations
 import warnings
 from typing import Any
 
-from .._checks import real
+from .._checks import instance_of, real
 from .._errors import InputError, PoundingWarning, Problem
 from ..model import MeasurementChain
 
@@ -37,9 +37,8 @@ def split_cutoff(bounds: Any, options: dict) -> tuple[Any, tuple[float, float] |
     chain = options.get("measurement")
     if chain is None:
         chain = MeasurementChain.lowpass(high if high < 500.0 else 100.0)
-    elif not isinstance(chain, MeasurementChain):
-        raise InputError(Problem.WRONG_TYPE, "measurement", chain, got=type(chain).__name__,
-                         expected="pounding.MeasurementChain (its accelerometers' cutoff is fitted)")
+    instance_of("measurement", chain, MeasurementChain,
+                "pounding.MeasurementChain (its accelerometers' cutoff is fitted)")
     nyquist = 0.5 * (chain.sample_rate_hz if chain.mass.zero_phase else chain.internal_rate_hz)
     if low < 1.0 or high >= nyquist:
         raise InputError(Problem.OUT_OF_RANGE, f"bounds.{CUTOFF}", [low, high],

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from .._checks import parse_toml, read_text, read_toml
+from .._checks import instance_of, parse_toml, read_text, read_toml
 from .._errors import InputError, Problem
 from ..model.dotted import get_value, set_value, why_unresolved
 from ..model.structure import Structure
@@ -48,9 +48,8 @@ class StructureFamily:
     base: Structure
 
     def __post_init__(self) -> None:
-        if not isinstance(self.base, Structure):
-            raise InputError(Problem.WRONG_TYPE, "base", self.base, got=type(self.base).__name__,
-                             expected="pounding.Structure (one structure; its base is the measured mass)")
+        instance_of("base", self.base, Structure,
+                    "pounding.Structure (one structure; its base is the measured mass)")
         if self.base.fixed:
             raise InputError(Problem.WRONG_MODE, "base", "a fixed base", mode="an isolated structure",
                              fix="give the rig's isolated base (level 0, the mass its targets are of)")
@@ -86,9 +85,7 @@ class StructureFamily:
         if "structure" not in table:
             raise InputError(Problem.MISSING_KEY, "structure", None, choices="structure = \"rig.toml\" (the "
                              "base structure's file)")
-        if not isinstance(table["structure"], str):
-            raise InputError(Problem.WRONG_TYPE, "structure", table["structure"],
-                             got=type(table["structure"]).__name__, expected="the path of a structure's file")
+        instance_of("structure", table["structure"], str, "the path of a structure's file")
         try:
             base = Structure.from_toml(Path(path).parent / table["structure"])
         except InputError as exc:

@@ -33,7 +33,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .._checks import at_most, boolean, gap_total, one_of, positive, read_toml, real
+from .._checks import at_most, boolean, gap_total, instance_of, one_of, positive, read_toml, real
 from .._errors import InputError, Problem
 from ..data import paper_gap_total_m, paper_measurements
 from ..excitation import MAX_A_G
@@ -190,9 +190,7 @@ class Targets:
         tol_table = dict(DEFAULT_TOLERANCES)
         for q, spec in (tolerances or {}).items():
             _known_quantity(f"tolerances.{q}", q)
-            if not isinstance(spec, dict):
-                raise InputError(Problem.WRONG_TYPE, f"tolerances.{q}", spec, got=type(spec).__name__,
-                                 expected="table such as {tolerance = 0.1, relative = true}")
+            instance_of(f"tolerances.{q}", spec, dict, "table such as {tolerance = 0.1, relative = true}")
             for key in spec:
                 if key not in ("tolerance", "relative"):
                     raise InputError(Problem.UNKNOWN_KEY, f"tolerances.{q}.{key}", spec[key],
@@ -207,8 +205,7 @@ class Targets:
         seen = set()
         for i, rec in enumerate(records):
             where = f"target[{i}]"
-            if not isinstance(rec, dict):
-                raise InputError(Problem.WRONG_TYPE, where, rec, got=type(rec).__name__, expected="table")
+            instance_of(where, rec, dict, "table")
             for key in rec:
                 if key not in TARGET_KEYS:
                     raise InputError(Problem.UNKNOWN_KEY, f"{where}.{key}", rec[key],

@@ -41,7 +41,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .._checks import float_array, integer, non_negative, positive
+from .._checks import float_array, instance_of, integer, non_negative, positive
 from .._errors import InputError, PoundingWarning, Problem
 from ..data import PAPER_F_REF_HZ, PAPER_OMEGA_MIN_RAD_S
 from ._sanity import fundamental, warn_inconsistent, warn_time_scale
@@ -182,9 +182,7 @@ def analyse_stepped_sine(record: LabRecord, *, mass_kg: float, gap_total_m: floa
     >>> f"{1e3 * at['contact_time_s']:.0f} ms, restitution {at['restitution']:.2f}"
     '50 ms, restitution 0.97'
     """
-    if not isinstance(record, LabRecord):
-        raise InputError(Problem.WRONG_TYPE, "record", record, got=type(record).__name__,
-                         expected="pounding.lab.LabRecord (read_test or synthetic_test)")
+    instance_of("record", record, LabRecord, "pounding.lab.LabRecord (read_test or synthetic_test)")
     mass_kg = positive("mass_kg", mass_kg, "kg")
     gap = None if gap_total_m is None else positive("gap_total_m", gap_total_m, "m")
     sched = None if freqs_hz is None else float_array("freqs_hz", freqs_hz)

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .._checks import one_of, positive
+from .._checks import instance_of, one_of, positive
 from .._delimited import as_columns, read_columns
 from .._errors import InputError, PoundingWarning, Problem
 from .._units import ACC_UNITS, LENGTH_UNITS, TIME_UNITS
@@ -250,9 +250,8 @@ def read_test(path: str | Path, *, time: Any, table_acc: Any, mass_acc: Any, dis
 def _units(units: Any) -> dict[str, str]:
     if units is None:
         return dict(DEFAULT_UNITS)
-    if not isinstance(units, dict):
-        raise InputError(Problem.WRONG_TYPE, "units", units, got=type(units).__name__,
-                         expected='dict such as {"time": "ms", "table_acc": "g", "mass_acc": "g", '
+    instance_of("units", units, dict,
+                'dict such as {"time": "ms", "table_acc": "g", "mass_acc": "g", '
                                   '"displacement": "mm"}')
     out = dict(DEFAULT_UNITS)
     choices = {"time": TIME_UNITS, "table_acc": ACC_UNITS, "mass_acc": ACC_UNITS,

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import float_array, integer, non_negative, plausible, positive, real_tuple
+from .._checks import float_array, instance_of, integer, non_negative, plausible, positive, real_tuple
 from .._errors import InputError, Problem, renamed_keyword
 from ..engine import State, simulate
 from ..excitation import MAX_A_G, GRAVITY_M_S2, Harmonic
@@ -99,9 +99,7 @@ def synthetic_test(system: Oscillator, a_g: float, freqs_hz: Any, *, cycles: int
     >>> rec.meta["step_start_s"].round(3).tolist()  # s: when each step starts
     [0.0, 10.0, 16.667]
     """
-    if not isinstance(system, Oscillator):
-        raise InputError(Problem.WRONG_TYPE, "system", system, got=type(system).__name__,
-                         expected="pounding.Oscillator")
+    instance_of("system", system, Oscillator, "pounding.Oscillator")
     a_g = positive("a_g", a_g, "g")
     if a_g > MAX_A_G:
         raise InputError(Problem.TOO_LARGE, "a_g", a_g, maximum=MAX_A_G, what=" g",
@@ -134,9 +132,7 @@ def synthetic_test(system: Oscillator, a_g: float, freqs_hz: Any, *, cycles: int
                          fix="fewer steps or cycles, or a lower sample_rate_hz")
     if state is None:
         state = State.at_rest(system)
-    elif not isinstance(state, State):
-        raise InputError(Problem.WRONG_TYPE, "state", state, got=type(state).__name__,
-                         expected="pounding.State")
+    instance_of("state", state, State, "pounding.State")
 
     zi = None  # (the causal filters' states, carried from step to step: the test does not stop)
     rng = np.random.default_rng(seed)
@@ -185,9 +181,7 @@ def _chain(measurement: Any, sample_rate_hz: Any, anti_alias_hz: Any, laser_reso
     shorthands = {"sample_rate_hz": sample_rate_hz, "anti_alias_hz": anti_alias_hz,
                   "laser_resolution_m": laser_resolution_m, "oversample": oversample}
     if measurement is not None:
-        if not isinstance(measurement, MeasurementChain):
-            raise InputError(Problem.WRONG_TYPE, "measurement", measurement, got=type(measurement).__name__,
-                             expected="pounding.MeasurementChain or None")
+        instance_of("measurement", measurement, MeasurementChain, "pounding.MeasurementChain or None")
         given = [k for k, v in shorthands.items() if v is not None]
         if given:
             raise InputError(Problem.DUPLICATE, given[0], shorthands[given[0]],

@@ -8,7 +8,7 @@ from typing import Any, Optional, TypeVar, Union
 
 import tomli_w
 
-from .._checks import parse_toml, read_text
+from .._checks import instance_of, parse_toml, read_text
 from .._errors import InputError, Problem
 
 PathLike = Union[str, Path]
@@ -42,8 +42,7 @@ class TomlFile:
     @classmethod
     def from_toml_text(cls: type[T], text: str) -> T:
         """Read it from TOML text (e.g. a saved result's ``system`` attribute)."""
-        if not isinstance(text, str):
-            raise InputError(Problem.WRONG_TYPE, "text", text, got=type(text).__name__, expected="str")
+        instance_of("text", text, str, "str")
         return cls.from_dict(parse_toml("text", text))
 
     def to_toml_text(self, meta: Optional[dict[str, Any]] = None) -> str:

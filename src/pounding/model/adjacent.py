@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import Any, ClassVar, Union
 
 
-from .._checks import at_most, integer, non_negative, plausible
+from .._checks import at_most, instance_of, integer, non_negative, plausible
 from .._errors import InputError, Problem
 from ._toml import TomlFile
 from .bumpers import MAX_GAP_M
@@ -108,9 +108,7 @@ class Adjacent(TomlFile):
 
     def __post_init__(self) -> None:
         for name in ("first", "second"):
-            if not isinstance(getattr(self, name), Structure):
-                raise InputError(Problem.WRONG_TYPE, name, getattr(self, name),
-                                 got=type(getattr(self, name)).__name__, expected="pounding.Structure")
+            instance_of(name, getattr(self, name), Structure, "pounding.Structure")
         links = self.links
         if isinstance(links, (str, bytes, dict)) or not hasattr(links, "__iter__"):
             raise InputError(Problem.WRONG_TYPE, "links", links, got=type(links).__name__,
@@ -120,9 +118,7 @@ class Adjacent(TomlFile):
             raise InputError(Problem.EMPTY, "links", [], hint=" (a Link: where the two structures may hit)")
         pairs = []
         for i, link in enumerate(links):
-            if not isinstance(link, Link):
-                raise InputError(Problem.WRONG_TYPE, f"links[{i}]", link, got=type(link).__name__,
-                                 expected="Link")
+            instance_of(f"links[{i}]", link, Link, "Link")
             for name, s in (("level_first", self.first), ("level_second", self.second)):
                 level = getattr(link, name)
                 lowest = 1 if s.fixed else 0
@@ -159,17 +155,13 @@ class Adjacent(TomlFile):
         check_keys(table, "", cls.FIELDS, required=cls.FIELDS)
         structures = []
         for name in ("first", "second"):
-            if not isinstance(table[name], dict):
-                raise InputError(Problem.WRONG_TYPE, name, table[name], got=type(table[name]).__name__,
-                                 expected=f"table ([{name}]: a structure)")
+            instance_of(name, table[name], dict, f"table ([{name}]: a structure)")
             try:
                 structures.append(Structure.from_dict(table[name]))
             except InputError as exc:
                 raise exc.relabel("", f"{name}.") from None
         rows = table["links"]
-        if not isinstance(rows, list):
-            raise InputError(Problem.WRONG_TYPE, "links", rows, got=type(rows).__name__,
-                             expected="array of tables ([[links]])")
+        instance_of("links", rows, list, "array of tables ([[links]])")
         links = []
         for i, row in enumerate(rows):
             check_keys(row, f"links[{i}].", Link.FIELDS, required=Link.FIELDS)

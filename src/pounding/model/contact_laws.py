@@ -23,7 +23,7 @@ from typing import Any, ClassVar, Optional, Union
 
 import numpy as np
 
-from .._checks import at_most, backbone, non_negative, positive, real
+from .._checks import at_most, backbone, instance_of, non_negative, positive, real
 from .._errors import InputError, Problem
 from . import _law_states
 from .._core import LAW_IDS, LAYOUT
@@ -576,8 +576,7 @@ def law_from_dict(table: dict[str, Any], field: str) -> ContactLaw:
     changed would otherwise be read with the new law's defaults filling what it lacks.  (But a
     multi-linear law's ``hysteresis``, added later, which files written before it lack.)
     """
-    if not isinstance(table, dict):
-        raise InputError(Problem.WRONG_TYPE, field, table, got=type(table).__name__, expected="table")
+    instance_of(field, table, dict, "table")
     kind = table.get("type")
     if kind not in LAWS:
         raise InputError(Problem.NOT_ONE_OF, f"{field}.type", kind, choices=", ".join(map(repr, LAWS)))
@@ -600,6 +599,5 @@ def law_from_dict(table: dict[str, Any], field: str) -> ContactLaw:
 
 def check_law(field: str, value: Any) -> None:
     """Refuse anything but a contact law for ``field`` (``bumpers.law``, ``wall.law_right``)."""
-    if not isinstance(value, tuple(LAWS.values())):
-        raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__,
-                         expected="contact law (" + ", ".join(cls.__name__ for cls in LAWS.values()) + ")")
+    instance_of(field, value, tuple(LAWS.values()),
+                "contact law (" + ", ".join(cls.__name__ for cls in LAWS.values()) + ")")

@@ -20,7 +20,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import boolean, integer, non_negative, one_of, positive
+from .._checks import boolean, instance_of, integer, non_negative, one_of, positive
 from .._errors import InputError, Problem
 
 CHANNELS = ("table", "mass", "laser")
@@ -139,10 +139,7 @@ class MeasurementChain:
         object.__setattr__(self, "contact_timing", timing)
         for name in CHANNELS:
             sensor = getattr(self, name)
-            if not isinstance(sensor, Sensor):
-                raise InputError(
-                    Problem.WRONG_TYPE, name, sensor, got=type(sensor).__name__, expected="pounding.Sensor"
-                )
+            instance_of(name, sensor, Sensor, "pounding.Sensor")
             if sensor.lowpass_hz is not None:
                 nyquist = 0.5 * fs * (1 if sensor.zero_phase else self.oversample)
                 if sensor.lowpass_hz >= nyquist:

@@ -7,7 +7,7 @@ from pathlib import Path
 from typing import Any, ClassVar, Optional, Union
 
 
-from .._checks import at_least, at_most, plausible, positive
+from .._checks import at_least, at_most, instance_of, plausible, positive
 from .._errors import InputError, Problem, warn_renamed
 from ._toml import TomlFile
 from .bumpers import Bumpers
@@ -70,9 +70,7 @@ class Oscillator(TomlFile):
         at_least("mass", mass, MIN_MASS_KG, " kg", "give the mass in kg: 500 kg is 500.0")
         plausible("mass", mass, 1e-3, 1e9, "the mass is in kg (500 kg is 500.0)")
         object.__setattr__(self, "mass", mass)
-        if not isinstance(self.isolator, Isolator):
-            raise InputError(Problem.WRONG_TYPE, "isolator", self.isolator,
-                             got=type(self.isolator).__name__, expected="Isolator")
+        instance_of("isolator", self.isolator, Isolator, "Isolator")
         if self.bumpers is not None and not isinstance(self.bumpers, Bumpers):
             raise InputError(Problem.WRONG_TYPE, "bumpers", self.bumpers,
                              got=type(self.bumpers).__name__, expected="Bumpers or None")
@@ -97,9 +95,7 @@ class Oscillator(TomlFile):
     def from_dict(cls, table: dict[str, Any]) -> "Oscillator":
         """Build from nested tables; every key is checked and unknown keys are errors."""
         if "meta" in table:  # notes about the file (who wrote it, whether it is partial): not the system
-            if not isinstance(table["meta"], dict):
-                raise InputError(Problem.WRONG_TYPE, "meta", table["meta"], got=type(table["meta"]).__name__,
-                                 expected="table of notes")
+            instance_of("meta", table["meta"], dict, "table of notes")
             table = {k: v for k, v in table.items() if k != "meta"}
         check_keys(table, "", cls.FIELDS, required=("mass", "isolator"))
         iso_table = table["isolator"]
@@ -141,9 +137,7 @@ def renamed_keys(table: Any, prefix: str, renamed: dict[str, str]) -> Any:
 def check_keys(table: Any, prefix: str, allowed: tuple[str, ...], required: tuple[str, ...]) -> None:
     """A TOML table's keys: every key one of ``allowed`` and every ``required`` one there, or an InputError
     naming the key (``prefix`` + key) and the choices."""
-    if not isinstance(table, dict):
-        raise InputError(Problem.WRONG_TYPE, prefix.rstrip(".") or "system", table,
-                         got=type(table).__name__, expected="table")
+    instance_of(prefix.rstrip(".") or "system", table, dict, "table")
     for key in table:
         if key not in allowed:
             raise InputError(Problem.UNKNOWN_KEY, prefix + key, table[key], choices=", ".join(allowed))

@@ -13,7 +13,7 @@ from typing import Any, ClassVar, NamedTuple, Optional, Union
 
 import numpy as np
 
-from .._checks import (plausible, real_tuple)
+from .._checks import (instance_of, plausible, real_tuple)
 from .._errors import InputError, Problem
 from ._toml import TomlFile
 from .contact_laws import law_from_dict
@@ -100,9 +100,7 @@ class Structure(TomlFile):
                                  "Structure.fixed_base)")
         if self.isolator is not None:
             object.__setattr__(self, "base_mass_kg", _mass("base_mass_kg", self.base_mass_kg))
-            if not isinstance(self.isolator, Isolator):
-                raise InputError(Problem.WRONG_TYPE, "isolator", self.isolator,
-                                 got=type(self.isolator).__name__, expected="Isolator or None")
+            instance_of("isolator", self.isolator, Isolator, "Isolator or None")
         for name, kind in (("storeys", Storey), ("walls", Wall)):
             items = getattr(self, name)
             if isinstance(items, (str, bytes, dict)) or not hasattr(items, "__iter__"):
@@ -110,9 +108,7 @@ class Structure(TomlFile):
                                  expected=f"sequence of {kind.__name__}")
             items = tuple(items)
             for i, item in enumerate(items):
-                if not isinstance(item, kind):
-                    raise InputError(Problem.WRONG_TYPE, f"{name}[{i}]", item, got=type(item).__name__,
-                                     expected=kind.__name__)
+                instance_of(f"{name}[{i}]", item, kind, kind.__name__)
             object.__setattr__(self, name, items)
         if len(self.storeys) > MAX_STOREYS:
             raise InputError(Problem.TOO_LARGE, "storeys", len(self.storeys), maximum=MAX_STOREYS,
@@ -250,9 +246,7 @@ class Structure(TomlFile):
     @classmethod
     def from_oscillator(cls, oscillator: Oscillator) -> "Structure":
         """The single oscillator as a structure of one level (its bumpers a wall at the base)."""
-        if not isinstance(oscillator, Oscillator):
-            raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator, got=type(oscillator).__name__,
-                             expected="Oscillator")
+        instance_of("oscillator", oscillator, Oscillator, "Oscillator")
         b = oscillator.bumpers
         walls = () if b is None else (Wall(0, b.gap_left_m, b.gap_right_m, b.left,
                                            None if b.right is b.left else b.right),)
@@ -286,9 +280,7 @@ class Structure(TomlFile):
         storeys, walls = [], []
         for name, out in (("storeys", storeys), ("walls", walls)):
             rows = table.get(name, [])
-            if not isinstance(rows, list):
-                raise InputError(Problem.WRONG_TYPE, name, rows, got=type(rows).__name__,
-                                 expected=f"array of tables ([[{name}]])")
+            instance_of(name, rows, list, f"array of tables ([[{name}]])")
             for i, row in enumerate(rows):
                 prefix = f"{name}[{i}]."
                 if name == "storeys":

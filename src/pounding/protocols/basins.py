@@ -18,7 +18,7 @@ from typing import TYPE_CHECKING, Any, Sequence
 import numpy as np
 import pandas as pd
 
-from .._checks import integer, one_of, positive, real
+from .._checks import instance_of, integer, one_of, positive, real
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from .._runner import Context, run_tasks
 from .._runner.progress import Progress
@@ -186,9 +186,7 @@ def basins(system: Any, excitation: Harmonic, *, displacement_m: Any = None,
     several = isinstance(system, (Structure, Adjacent))
     if not several:
         check_oscillator(system)
-    if not isinstance(excitation, Harmonic):
-        raise InputError(Problem.WRONG_TYPE, "excitation", excitation, got=type(excitation).__name__,
-                         expected="pounding.Harmonic (basins are of a periodic forcing)")
+    instance_of("excitation", excitation, Harmonic, "pounding.Harmonic (basins are of a periodic forcing)")
     one_of("sampling", sampling, ("grid", "random"))
     d_box, v_box = state_box(system, displacement_m, velocity_m_s)
     if sampling == "grid":

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import pandas as pd
 
-from .._checks import one_of, real_tuple
+from .._checks import instance_of, one_of, real_tuple
 from .._errors import InputError, Interrupted, Problem
 from ..model import Adjacent, Oscillator, Structure
 from .._runner import Context, run_tasks
@@ -294,9 +294,8 @@ def campaign(
         if osc is None:
             continue
         field_name = f"{conf.lower()}_system"
-        if not isinstance(osc, (Oscillator, Structure, Adjacent)):
-            raise InputError(Problem.WRONG_TYPE, field_name, osc, got=type(osc).__name__,
-                             expected="pounding.Oscillator (or a Structure, or an Adjacent pair)")
+        instance_of(field_name, osc, (Oscillator, Structure, Adjacent),
+                    "pounding.Oscillator (or a Structure, or an Adjacent pair)")
         if _touches(osc) != (conf == "YBs"):
             what = "bumpers" if isinstance(osc, Oscillator) else "walls or links"
             fix = (f"give the system without {what} (oscillator.without_bumpers(), or a structure with "

@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import float_array, integer, positive
+from .._checks import float_array, instance_of, integer, positive
 from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Record
 from ..excitation.spectrum import check_records, damping_ratio_value, periods_array
@@ -204,9 +204,7 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
         else bumper
     bumpers = [Bumpers(float(g), float(g), law) for g in gaps]  # (checked here, warned once, not in a worker)
     if isolator is not None:
-        if not isinstance(isolator, Isolator):
-            raise InputError(Problem.WRONG_TYPE, "isolator", isolator, got=type(isolator).__name__,
-                             expected="pounding.Isolator or None (linear)")
+        instance_of("isolator", isolator, Isolator, "pounding.Isolator or None (linear)")
         if isolator.bouc_wen is not None:
             raise InputError(Problem.BAD_STATE, "isolator", "Isolator(..., bouc_wen=...)",
                              why="a Bouc-Wen spring has no single stiffness to scale to each period",
@@ -249,9 +247,7 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
 def _check_structure(structure: Any, isolator: Any, mass_kg: float, zeta: float) -> None:
     """A building for the spectrum: a Structure with storeys and at least one wall; the single mass's
     arguments left alone."""
-    if not isinstance(structure, Structure):
-        raise InputError(Problem.WRONG_TYPE, "structure", structure, got=type(structure).__name__,
-                         expected="pounding.Structure (a building with its walls) or None")
+    instance_of("structure", structure, Structure, "pounding.Structure (a building with its walls) or None")
     if not structure.storeys:
         raise InputError(Problem.BAD_STATE, "structure", "Structure(storeys=[])",
                          why="has no superstructure whose period could be varied",

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import integer
+from .._checks import instance_of, integer
 from .._errors import InputError, Interrupted, Problem, StoreError
 from .._runner import GUARD, Context, run_tasks, scheduler_kind
 from .._runner._dask import dask_client
@@ -121,12 +121,9 @@ def study(
                          fix=GUARD)
     if isinstance(spec, (str, Path)):
         spec = StudySpec.from_toml(spec)
-    if not isinstance(spec, StudySpec):
-        raise InputError(Problem.WRONG_TYPE, "spec", spec, got=type(spec).__name__,
-                         expected="pounding.StudySpec or the path of a study TOML file")
+    instance_of("spec", spec, StudySpec, "pounding.StudySpec or the path of a study TOML file")
     store = check_store(store)
-    if not isinstance(resume, bool):
-        raise InputError(Problem.WRONG_TYPE, "resume", resume, got=type(resume).__name__, expected="bool")
+    instance_of("resume", resume, bool, "bool")
     if max_steps is not None:
         max_steps = integer("max_steps", max_steps, 1)
     kind_of_scheduler = scheduler_kind(scheduler)

@@ -19,7 +19,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import parse_toml, read_text
+from .._checks import instance_of, parse_toml, read_text
 from .._errors import InputError, Problem
 from ..model import Adjacent, Oscillator, Structure
 from ..model.systems import system_from_dict, system_type
@@ -91,9 +91,8 @@ class StudySpec:
     grid: Mapping[str, tuple]
 
     def __post_init__(self) -> None:
-        if not isinstance(self.system, SYSTEM_TYPES):
-            raise InputError(Problem.WRONG_TYPE, "system", self.system, got=type(self.system).__name__,
-                             expected="pounding.Oscillator, pounding.Structure or pounding.Adjacent")
+        instance_of("system", self.system, SYSTEM_TYPES,
+                    "pounding.Oscillator, pounding.Structure or pounding.Adjacent")
         compute = _check_compute(self.compute)
         grid = _check_grid(self.grid, compute, self.system)
         compute = _with_defaults(compute, grid)
@@ -113,8 +112,7 @@ class StudySpec:
     def from_dict(cls, table: Mapping[str, Any], base_dir: str | Path = ".") -> "StudySpec":
         """Build from the TOML form's tables (``system``, ``compute``, ``grid``); a system
         ``file`` is read relative to ``base_dir``."""
-        if not isinstance(table, Mapping):
-            raise InputError(Problem.WRONG_TYPE, "study", table, got=type(table).__name__, expected="table")
+        instance_of("study", table, Mapping, "table")
         unknown = sorted(set(table) - {"system", "compute", "grid", "meta"})
         if unknown:
             raise InputError(Problem.UNKNOWN_KEY, unknown[0], table[unknown[0]],
@@ -228,8 +226,7 @@ def split_values(compute: Mapping[str, Any], values: Mapping[str, Any]
 # ---------------------------------------------------------------------- checks
 def check_table(field: str, value: Any) -> dict:
     """``value`` as a dict, or an InputError naming ``field`` when it is no TOML table."""
-    if not isinstance(value, Mapping):
-        raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__, expected="table")
+    instance_of(field, value, Mapping, "table")
     return dict(value)
 
 
@@ -248,9 +245,8 @@ def system_from_table(value: Any, base_dir: Path) -> System:
                              choices="preset = NAME or file = PATH (one of them), and bumpers = true/false; "
                                      "or the system's own tables, without preset or file")
         bumpers = table.get("bumpers", True)
-        if not isinstance(bumpers, bool):
-            raise InputError(Problem.WRONG_TYPE, "system.bumpers", bumpers, got=type(bumpers).__name__,
-                             expected="true or false (with preset or file: keep the bumpers or not)")
+        instance_of("system.bumpers", bumpers, bool,
+                    "true or false (with preset or file: keep the bumpers or not)")
         if "preset" in table:
             from ..presets import by_name
 
@@ -259,9 +255,7 @@ def system_from_table(value: Any, base_dir: Path) -> System:
             except InputError as exc:
                 raise exc.relabel("preset", "system.preset") from None
         path = table["file"]
-        if not isinstance(path, str):
-            raise InputError(Problem.WRONG_TYPE, "system.file", path, got=type(path).__name__,
-                             expected="path")
+        instance_of("system.file", path, str, "path")
         try:
             file_table = parse_toml(str(base_dir / path), read_text("path", base_dir / path))
             osc = system_type(file_table).from_toml(base_dir / path)
@@ -305,9 +299,7 @@ def _check_compute(value: Any) -> dict[str, Any]:
         if key == "kind":
             continue
         if key in STRING_KEYS:
-            if not isinstance(v, str):
-                raise InputError(Problem.WRONG_TYPE, f"compute.{key}", v, got=type(v).__name__,
-                                 expected="str")
+            instance_of(f"compute.{key}", v, str, "str")
         elif key == "freqs_hz":
             if (not isinstance(v, (list, tuple)) or not v
                     or not all(isinstance(x, (int, float)) and not isinstance(x, bool) for x in v)):
@@ -353,8 +345,7 @@ def _check_grid(value: Any, compute: dict[str, Any], system: System) -> dict[str
     keys = COMPUTE_KEYS[compute["kind"]]
     for name, values in grid.items():
         field = f"grid.{name!s}"
-        if not isinstance(name, str):
-            raise InputError(Problem.WRONG_TYPE, field, name, got=type(name).__name__, expected="str")
+        instance_of(field, name, str, "str")
         if isinstance(values, (str, bytes)) or not isinstance(values, (list, tuple, np.ndarray)):
             raise InputError(Problem.WRONG_TYPE, field, values, got=type(values).__name__,
                              expected="list of values, e.g. [0.01, 0.02]")
