@@ -31,7 +31,7 @@ TARGET_S = 15.0
 
 def system() -> pd_.Oscillator:
     ups = pd_.presets.paper_calibrated()
-    return pd_.Oscillator(ups.mass, ups.isolator, pd_.Bumpers(0.1, 0.1, pd_.KelvinVoigt(1.5e6, 400.0)))
+    return pd_.Oscillator(ups.mass_kg, ups.isolator, pd_.Bumpers(0.1, 0.1, pd_.KelvinVoigt(1.5e6, 400.0)))
 
 
 def loop_seconds(records: list, sample: int) -> tuple[float, int]:
@@ -46,7 +46,7 @@ def loop_seconds(records: list, sample: int) -> tuple[float, int]:
             for gap in GAPS_M:
                 for k in STIFFNESSES:
                     osc = pd_.Oscillator(
-                        base.mass, base.isolator, pd_.Bumpers(gap, gap, pd_.KelvinVoigt(k, 400.0))
+                        base.mass_kg, base.isolator, pd_.Bumpers(gap, gap, pd_.KelvinVoigt(k, 400.0))
                     )
                     pd_.simulate(osc, scaled, scaled.duration_s, sample_rate_hz=0)
                     runs += 1

@@ -43,11 +43,12 @@ def systems() -> dict[str, pd_.Oscillator]:
         "hertzdamp": pd_.Hertzdamp.from_restitution(3e8, 0.85),
         "hunt_crossley": pd_.HuntCrossley(3e8, 1.5, 1e8),
     }
-    out = {name: pd_.Oscillator(base.mass, base.isolator, pd_.Bumpers(0.015, 0.015, law)) for name,
+    out = {name: pd_.Oscillator(base.mass_kg, base.isolator, pd_.Bumpers(0.015, 0.015, law)) for name,
            law in laws.items()}
     # the isolator with a Bouc-Wen spring (every phase integrated numerically), Kelvin-Voigt bumpers
     rubber = replace(base.isolator, bouc_wen=pd_.BoucWen(10e3, 0.005))
-    out["kelvin_voigt, Bouc-Wen isolator"] = pd_.Oscillator(base.mass, rubber, pd_.Bumpers(0.015, 0.015, kv))
+    out["kelvin_voigt, Bouc-Wen isolator"] = pd_.Oscillator(base.mass_kg, rubber,
+                                                            pd_.Bumpers(0.015, 0.015, kv))
     return out
 
 

@@ -110,7 +110,7 @@ def ill_conditioned_steps(osc, a_g, freqs_hz, cycles, measure, ref, rel_change=1
     In the printed system (0.01 % damping) the onset of impacts is such a place: the sweep
     grazes the bumpers and the lightly damped transient that follows decides the next steps.
     """
-    nudged = pd_.Oscillator(osc.mass * (1.0 + rel_change), osc.isolator, osc.bumpers)
+    nudged = pd_.Oscillator(osc.mass_kg * (1.0 + rel_change), osc.isolator, osc.bumpers)
     other = pounding_sweep(nudged, a_g, freqs_hz, cycles, measure, rtol=1e-12, rounds=1)
     change = np.maximum(np.abs(other.alpha / ref.alpha - 1.0), np.abs(other.eta / ref.eta - 1.0))
     return change > tol
@@ -197,7 +197,7 @@ class OpenSeesModel:
 
     def __init__(self, ops, osc, dt_s: float):
         self.ops, self.dt = ops, dt_s
-        self.mass = osc.mass
+        self.mass = osc.mass_kg
         iso, b = osc.isolator, osc.bumpers
         ops.wipe()
         ops.logFile(os.devnull, "-noEcho")  # ViscoelasticGap prints every impact
@@ -205,7 +205,7 @@ class OpenSeesModel:
         ops.node(1, 0.0)
         ops.node(2, 0.0)
         ops.fix(1, 1)
-        ops.mass(2, osc.mass)
+        ops.mass(2, osc.mass_kg)
         k = iso.slopes
         ops.uniaxialMaterial("Elastic", 1, k[-1])
         tags = [1]

@@ -365,7 +365,7 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
     ki = K[:-1] - K[1:]
     u = np.zeros(n_sp)
     s = np.zeros(n_sp)
-    m, cd = osc.mass, iso.damping
+    m, cd = osc.mass_kg, iso.damping
     kinematic = iso.hysteresis == "kinematic"
     bw = iso.bouc_wen  # its z is the last of the carried states (acc[6])
     b = osc.bumpers

@@ -100,7 +100,7 @@ ENTRIES = {
                                    set()),
     "Bumpers": (pd_.Bumpers, {"gap_left_m": 0.015, "gap_right_m": 0.015, "law": LAW, "law_right": None},
                 set()),
-    "Oscillator": (pd_.Oscillator, {"mass": 500.0, "isolator": ISO, "bumpers": BUMPERS}, set()),
+    "Oscillator": (pd_.Oscillator, {"mass_kg": 500.0, "isolator": ISO, "bumpers": BUMPERS}, set()),
     "Harmonic": (pd_.Harmonic, {"a_g": 0.05, "freq_hz": 2.2, "phase": 0.0, "g": 9.81}, set()),
     "Record": (pd_.Record, {"t": [0.0, 0.5, 1.0], "accel": [0.0, 1.0, 0.0]}, {"t", "accel"}),
     "State.at_rest": (

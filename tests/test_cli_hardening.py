@@ -74,7 +74,7 @@ def test_bad_inputs_and_outputs_fail_at_once_naming_them(tmp_path, args, words):
     text = " ".join(out.output.split())  # (the console wraps long lines)
     assert out.exit_code == 2, out.output
     assert words in text and "Fix" in text, text
-    assert "Traceback" not in text and "Oscillator(mass=500.0, isolator" not in text
+    assert "Traceback" not in text and "Oscillator(mass_kg=500.0, isolator" not in text
     assert time.perf_counter() - t0 < 5.0  # before any computation
     assert existing.read_text() == "keep me"
 

@@ -89,7 +89,7 @@ def test_measurements_made_by_a_model_are_consistent():
     assert np.isfinite(model).all()
     for rec, value in zip(recs, model):
         rec["value"] = float(value)
-    checks = pd_.Targets.from_records(recs).check_consistency(osc.mass, osc.bumpers.total_gap)
+    checks = pd_.Targets.from_records(recs).check_consistency(osc.mass_kg, osc.bumpers.total_gap)
     assert set(checks["check"]) == {"alpha_vs_excursion", "alpha_vs_excursion_sinusoidal", "alpha_vs_impact",
                                     "energy_vs_restitution", "contact_time_vs_compression"}
     assert checks["consistent"].all(), checks[~checks["consistent"]].to_string()

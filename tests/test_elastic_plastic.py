@@ -224,6 +224,6 @@ def test_the_example_file_reads_and_sweeps():
 
     osc = pd_.Oscillator.from_toml(Path(__file__).parents[1] / "examples" / "elastic_plastic_ybs.toml")
     assert osc.bumpers.law == pd_.ElasticPlastic(2e7, 1e6, 0.002)
-    assert osc.bumpers.law.yield_velocity_m_s(osc.mass) == pytest.approx(0.4)
+    assert osc.bumpers.law.yield_velocity_m_s(osc.mass_kg) == pytest.approx(0.4)
     res = pd_.sweep(osc, 0.1, freqs_hz=[1.5, 2.5], steady="fixed", cycles=8, measure_cycles=2)
     assert res.to_dataframe()["contact"].all()

@@ -230,7 +230,7 @@ def test_history_samples_and_dataframe():
     np.testing.assert_array_equal(df.loc[df["event"] != "", "t"], run.events["t_s"])
     # absolute acceleration is the restoring force over the mass
     total = df["isolator_force"] + df["bumper_force_right"] - df["bumper_force_left"]
-    np.testing.assert_allclose(df["abs_acceleration"], -total / osc.mass, rtol=1e-9, atol=1e-9)
+    np.testing.assert_allclose(df["abs_acceleration"], -total / osc.mass_kg, rtol=1e-9, atol=1e-9)
     assert set(run.events["kind"]) <= {"yield", "reversal", "branch", "contact_start", "contact_end"}
 
 

@@ -114,7 +114,7 @@ def check_numeric_ledger(osc, exc, v0):
     run = pd_.simulate(osc, exc, 3.0, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=2000,
                        rtol=1e-11)
     e = run.energy
-    through = 0.5 * osc.mass * float(np.sum(run.contacts["v_in_m_s"].to_numpy() ** 2))
+    through = 0.5 * osc.mass_kg * float(np.sum(run.contacts["v_in_m_s"].to_numpy() ** 2))
     flows = max(abs(e.input_work), abs(e.kinetic), e.viscous + abs(e.hysteretic) + e.bumper_dissipation,
                 through)
     assert abs(e.residual) <= 1e-8 * flows

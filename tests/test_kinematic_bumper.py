@@ -41,7 +41,7 @@ def test_one_slope_is_kelvin_voigt_exactly():
     kv = pd_.presets.paper_damped()
     b = kv.bumpers
     law = pd_.MultilinearBumper((b.law.stiffness,), (), b.law.damping, hysteresis="kinematic")
-    kin = pd_.Oscillator(kv.mass, kv.isolator, pd_.Bumpers(b.gap_left_m, b.gap_right_m, law))
+    kin = pd_.Oscillator(kv.mass_kg, kv.isolator, pd_.Bumpers(b.gap_left_m, b.gap_right_m, law))
     state = pd_.State.at_rest(kv, velocity_m_s=0.6)
     runs = [pd_.simulate(osc, pd_.Harmonic(0.1, 2.5), 5.0, state, sample_rate_hz=200) for osc in (kv, kin)]
     assert len(runs[0].contacts) > 4
@@ -185,7 +185,7 @@ def test_the_example_file_reads_and_sweeps_and_its_loops_dissipate():
     assert osc.bumpers.law == D_SHAPED
     res = pd_.sweep(osc, 0.1, freqs_hz=[1.5, 2.5], steady="fixed", cycles=8, measure_cycles=2)
     assert res.to_dataframe()["contact"].all()
-    elastic = pd_.Oscillator(osc.mass, osc.isolator,
+    elastic = pd_.Oscillator(osc.mass_kg, osc.isolator,
                              pd_.Bumpers(0.015, 0.015, pd_.MultilinearBumper(D_SHAPED.slopes,
                                                                              D_SHAPED.breakpoints, 500.0)))
     runs = [pd_.simulate(o, pd_.Harmonic(0.1, 1.5), 10.0, pd_.State.at_rest(o, velocity_m_s=0.6))
@@ -200,7 +200,7 @@ def test_model_family_fits_kinematic_bumpers():
     values = family.values_of(osc)
     assert family.oscillator(values) == osc
     with pytest.raises(pd_.InputError):  # an elastic multi-linear system is not of this family
-        family.values_of(pd_.Oscillator(osc.mass, osc.isolator, pd_.Bumpers(0.015, 0.015,
+        family.values_of(pd_.Oscillator(osc.mass_kg, osc.isolator, pd_.Bumpers(0.015, 0.015,
                                                                             pd_.MultilinearBumper(
             D_SHAPED.slopes, D_SHAPED.breakpoints, 500.0))))
 

@@ -96,7 +96,7 @@ def test_a_measured_sweep_keeps_to_the_sweeps_limits_and_its_edges():
     assert stopped.to_dataframe()["alpha"].isna().all()
     # zero gaps: eta undefined (NaN), as the exact table says, not a crash
     touching = pounding.Oscillator(
-        system.mass, system.isolator, pounding.Bumpers(0.0, 0.0, pounding.KelvinVoigt(1.46e6, 100.0))
+        system.mass_kg, system.isolator, pounding.Bumpers(0.0, 0.0, pounding.KelvinVoigt(1.46e6, 100.0))
     )
     flat = pounding.sweep(touching, 0.05, [1.5], measurement=chain, steady="fixed", cycles=10)
     assert np.isnan(flat.to_dataframe()["eta"]).all()

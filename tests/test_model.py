@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import dataclasses
 import math
 
 import numpy as np
@@ -23,7 +24,7 @@ def _raises(fn, *fragments):
 
 def test_paper_printed_values_exactly():
     osc = pd_.presets.paper_printed()
-    assert osc.mass == 500.0
+    assert osc.mass_kg == 500.0
     assert osc.isolator.slopes == (38e3, 18e3, 2e3)
     assert osc.isolator.breakpoints == (0.015, 0.04)
     assert osc.isolator.damping == 1.0
@@ -43,7 +44,7 @@ def test_backbone_is_odd_and_piecewise_linear():
 @pytest.mark.parametrize("mass", [0.0, -1.0])
 def test_non_positive_mass(mass):
     iso = pd_.Isolator((1e4,))
-    _raises(lambda: pd_.Oscillator(mass, iso), "mass", repr(mass), "> 0")
+    _raises(lambda: pd_.Oscillator(mass, iso), "mass_kg", repr(mass), "> 0")
 
 
 def test_breakpoints_not_increasing():
@@ -64,7 +65,7 @@ def test_negative_gap_and_stiffness():
 @pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
 def test_nan_and_inf_anywhere(bad):
     law = pd_.KelvinVoigt(1e6, 5.0)
-    _raises(lambda: pd_.Oscillator(bad, pd_.Isolator((1e4,))), "mass", "finite")
+    _raises(lambda: pd_.Oscillator(bad, pd_.Isolator((1e4,))), "mass_kg", "finite")
     _raises(lambda: pd_.Isolator((1e4, bad), (0.01,)), "isolator.slopes[1]", "finite")
     _raises(lambda: pd_.Isolator((1e4, 1e3), (bad,)), "isolator.breakpoints[0]", "finite")
     _raises(lambda: pd_.Isolator((1e4,), damping=bad), "isolator.damping", "finite")
@@ -155,6 +156,41 @@ def test_the_gaps_names_before_still_work_with_a_warning_naming_the_new_one():
     with pytest.warns(FutureWarning, match="'bumpers.gap' is now 'bumpers.gap_m'"):
         set_value(table, "bumpers.gap", 0.02)
     assert get_value(table, "bumpers.gap_left_m") == get_value(table, "bumpers.gap_right_m") == 0.02
+
+
+def test_the_mass_is_mass_kg_and_its_name_before_still_works_with_a_warning():
+    iso = pd_.presets.paper_printed().isolator
+    new = pd_.Oscillator(mass_kg=500.0, isolator=iso)
+    assert new == pd_.Oscillator(500.0, iso) and new.mass_kg == 500.0
+    with pytest.warns(FutureWarning, match="'mass' is now 'mass_kg'"):
+        assert pd_.Oscillator(mass=500.0, isolator=iso) == new
+    with pytest.warns(FutureWarning, match="'mass' is now 'mass_kg'"):
+        assert new.mass == 500.0
+    with pytest.raises(TypeError, match="both 'mass_kg' and 'mass'"):
+        pd_.Oscillator(mass_kg=500.0, mass=500.0, isolator=iso)
+    with pytest.raises(TypeError, match="weight"):
+        pd_.Oscillator(weight=500.0, isolator=iso)
+    with pytest.raises(InputError, match="mass_kg"):
+        pd_.Oscillator(isolator=iso)
+    # a TOML file of 0.1 (its key "mass"), and the dotted name a study varies
+    text = pd_.presets.paper_printed().to_toml_text()
+    assert text.startswith("mass_kg = 500.0")
+    with pytest.warns(FutureWarning, match="'mass' is now 'mass_kg'"):
+        before = pd_.Oscillator.from_toml_text(text.replace("mass_kg =", "mass ="))
+    assert before == pd_.presets.paper_printed()
+    with pytest.raises(InputError, match="mass"):
+        pd_.Oscillator.from_toml_text(text.replace("mass_kg = 500.0", "mass_kg = 500.0\nmass = 500.0"))
+    from pounding.model.dotted import get_value, set_value
+
+    table = pd_.presets.paper_printed().to_dict()
+    with pytest.warns(FutureWarning, match="'mass' is now 'mass_kg'"):
+        set_value(table, "mass", 600.0)
+    assert get_value(table, "mass_kg") == 600.0 and pd_.Oscillator.from_dict(table).mass_kg == 600.0
+    # replace() and pickling keep working (frozen, with its own __init__)
+    import pickle
+
+    assert dataclasses.replace(new, mass_kg=600.0).mass_kg == 600.0
+    assert pickle.loads(pickle.dumps(new)) == new
 
 
 def test_a_system_is_given_as_system_and_the_name_before_still_works():

@@ -27,7 +27,7 @@ def _free_impact(law, v0):
 def test_one_slope_is_kelvin_voigt_exactly():
     kv = pd_.presets.paper_damped()
     b = kv.bumpers
-    ml = pd_.Oscillator(kv.mass, kv.isolator,
+    ml = pd_.Oscillator(kv.mass_kg, kv.isolator,
                         pd_.Bumpers(b.gap_left_m, b.gap_right_m, pd_.MultilinearBumper((b.law.stiffness,), (),
                                                                                    b.law.damping)))
     state = pd_.State.at_rest(kv, velocity_m_s=0.6)

@@ -80,7 +80,7 @@ def _agree(osc, run, ref, time_tol, state_rtol):
         # the work relative to the largest of itself and the impacts' kinetic energy: an elastic
         # law's contacts do no work (Jankowski with xi = 0: 1e-12 J of integration error per
         # contact against the reference's 4e-14 J, where the largest work was 8e-14 J)
-        energy = 0.5 * osc.mass * float(np.max(done["v_in_m_s"].to_numpy() ** 2))
+        energy = 0.5 * osc.mass_kg * float(np.max(done["v_in_m_s"].to_numpy() ** 2))
         np.testing.assert_allclose(done["bumper_dissipation_j"], work, rtol=0,
                                    atol=state_rtol * max(np.abs(work).max(), energy))
     flows = max(abs(ref.input_work), ref.viscous, 1e-12)
@@ -130,7 +130,7 @@ def test_record_excitation_matches_reference():
     t = np.linspace(0.0, 2.0, 41)
     accel = rng.normal(0.0, 2.0, t.size)
     osc = pd_.presets.paper_printed()
-    osc = pd_.Oscillator(osc.mass, pd_.Isolator((38e3, 18e3, 2e3), (0.015, 0.04), damping=600.0),
+    osc = pd_.Oscillator(osc.mass_kg, pd_.Isolator((38e3, 18e3, 2e3), (0.015, 0.04), damping=600.0),
                          pd_.Bumpers(0.008, 0.01, pd_.KelvinVoigt(1.46e6, 500.0)))
     exc = pd_.Record(t, accel)
     run = pd_.simulate(osc, exc, 2.5, sample_rate_hz=0)

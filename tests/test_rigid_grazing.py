@@ -129,7 +129,7 @@ def test_a_branch_that_stalls_next_to_a_non_smooth_fold_goes_round_it():
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         stops = pounding.Bumpers(0.3, 0.015, pounding.RigidStop(0.8))
-        osc = pounding.Oscillator(base.mass, base.isolator, stops)
+        osc = pounding.Oscillator(base.mass_kg, base.isolator, stops)
     branch = pounding.continuation(osc, 0.1, (3.0, 1.0))
     assert branch.status == Status.SUCCESS, branch.message
     grazings = [b for b in branch.bifurcations if b.kind == "grazing"]

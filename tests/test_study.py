@@ -259,12 +259,12 @@ def test_a_script_without_a_main_guard_is_told_why_its_workers_failed(tmp_path):
     ({"bumpers.gapleft": [0.01]}, {}, "grid.bumpers.gapleft"),
     ({"isolator.slopes[7]": [1e4]}, {}, "index 0 to"),
     ({"a_g": []}, {}, "grid.a_g"),
-    ({"mass": [500.0, -1.0]}, {}, "grid.mass"),
-    ({"mass": [500.0, 500.0]}, {}, "repeats"),
-    ({"mass": ["heavy"]}, {}, "grid.mass"),
-    ({"mass": [500.0]}, {"a_g": None}, "compute.a_g"),
-    ({"mass": [500.0]}, {"kind": "simulation"}, "compute.kind"),
-    ({"mass": [500.0]}, {"cycles": 30}, "compute.cycles"),
+    ({"mass_kg": [500.0, -1.0]}, {}, "grid.mass_kg"),
+    ({"mass_kg": [500.0, 500.0]}, {}, "repeats"),
+    ({"mass_kg": ["heavy"]}, {}, "grid.mass_kg"),
+    ({"mass_kg": [500.0]}, {"a_g": None}, "compute.a_g"),
+    ({"mass_kg": [500.0]}, {"kind": "simulation"}, "compute.kind"),
+    ({"mass_kg": [500.0]}, {"cycles": 30}, "compute.cycles"),
     ({"bumpers.law.stiffness": [1e6, float("nan")]}, {}, "grid.bumpers.law.stiffness"),
 ])
 def test_bad_specs_fail_before_any_work_naming_the_entry(tmp_path, grid, compute, words):
@@ -355,12 +355,12 @@ def test_a_folder_that_is_not_a_study_is_never_overwritten(tmp_path):
 
 
 @pytest.mark.parametrize("compute, grid, words", [
-    ({"kind": "sweep", "a_g": 0.05, "direction": "sideways"}, {"mass": [500.0]}, "compute.direction"),
+    ({"kind": "sweep", "a_g": 0.05, "direction": "sideways"}, {"mass_kg": [500.0]}, "compute.direction"),
     ({"kind": "sweep", "a_g": 0.05, "steady": "fixed"}, {"cycles": [5, 0]}, "grid.cycles"),
-    ({"kind": "sweep", "a_g": 0.05, "freqs_hz": [-1.0, 2.0]}, {"mass": [500.0]}, "compute.freqs_hz"),
+    ({"kind": "sweep", "a_g": 0.05, "freqs_hz": [-1.0, 2.0]}, {"mass_kg": [500.0]}, "compute.freqs_hz"),
     ({"kind": "simulate", "a_g": 0.1, "freq_hz": 2.0}, {"duration_s": [-1.0, 30.0]}, "grid.duration_s"),
     ({"kind": "simulate", "a_g": 0.1, "freq_hz": 2.0, "duration_s": 5.0}, {"duration_s": [3.0]}, "not both"),
-    ({"kind": "simulate", "a_g": 0.1, "freq_hz": -2.0, "duration_s": 5.0}, {"mass": [500.0]},
+    ({"kind": "simulate", "a_g": 0.1, "freq_hz": -2.0, "duration_s": 5.0}, {"mass_kg": [500.0]},
      "compute.freq_hz"),
 ])
 def test_compute_options_are_checked_before_any_work(tmp_path, compute, grid, words):
@@ -372,14 +372,14 @@ def test_compute_options_are_checked_before_any_work(tmp_path, compute, grid, wo
 def test_the_same_study_written_two_ways_is_one_study(tmp_path):
     a = pd_.StudySpec(pd_.presets.paper_printed(), {"kind": "simulate", "a_g": 0.1, "freq_hz": 2,
                                                     "duration_s": 5},
-                      {"mass": [500, 600]})
+                      {"mass_kg": [500, 600]})
     b = pd_.StudySpec(pd_.presets.paper_printed(), {"duration_s": 5.0, "freq_hz": 2.0, "a_g": 0.1,
                                                     "kind": "simulate"},
-                      {"mass": [500.0, 600.0]})
+                      {"mass_kg": [500.0, 600.0]})
     assert a.sha256 == b.sha256
     # a sweep given cycles only runs with the documented default steady = "fixed"
     sweep = pd_.StudySpec(pd_.presets.paper_printed(), {"kind": "sweep", "a_g": 0.05, "cycles": 5,
-                                                        "freqs_hz": [1.5, 2.0]}, {"mass": [500.0]})
+                                                        "freqs_hz": [1.5, 2.0]}, {"mass_kg": [500.0]})
     assert sweep.compute["steady"] == "fixed"
     ds = pd_.study(sweep, tmp_path / "sw.zarr", progress=False).load()
     assert float(ds["steps_done"].sum()) == 2 and float(ds["status"].sum()) == 0

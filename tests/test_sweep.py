@@ -18,7 +18,7 @@ from pounding.protocols.sweep import paper_frequencies_hz
 def damped_paper(c_d: float, bumpers: bool = True) -> pd_.Oscillator:
     """The printed system with isolator damping ``c_d`` (MODEL.md §5 reads 1 kN s/m)."""
     base = pd_.presets.paper_printed(bumpers=bumpers)
-    return pd_.Oscillator(base.mass, dataclasses.replace(base.isolator, damping=c_d), base.bumpers)
+    return pd_.Oscillator(base.mass_kg, dataclasses.replace(base.isolator, damping=c_d), base.bumpers)
 
 
 @settings(max_examples=8, deadline=None)

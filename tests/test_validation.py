@@ -113,7 +113,7 @@ def test_final_states_of_runs_always_fit():
         (lambda: pd_.KelvinVoigt(1e300, 5.0), "law.stiffness"),
         (lambda: pd_.HuntCrossley(1e8, 1e300, 1.0), "law.exponent"),
         (lambda: pd_.Bumpers(1e300, 0.015, pd_.KelvinVoigt(1e6)), "bumpers.gap_left_m"),
-        (lambda: pd_.Oscillator(1e300, ISO), "mass"),
+        (lambda: pd_.Oscillator(1e300, ISO), "mass_kg"),
         (lambda: pd_.sweep(OSC, 1e300), "a_g"),
     ],
 )
@@ -248,7 +248,7 @@ def test_contact_law_fits_refuse_data_no_bumper_test_has(call, field, problem):
         (lambda: pd_.sweep(OSC, 0.05, [1.0], f_ref_hz=1e-300), "f_ref_hz"),
         (lambda: pd_.sweep(OSC, 0.05, [1.0], f_ref_hz=1e300), "f_ref_hz"),
         # a mass whose phases' rates overflow
-        (lambda: pd_.Oscillator(1e-300, ISO), "mass"),
+        (lambda: pd_.Oscillator(1e-300, ISO), "mass_kg"),
         (lambda: pd_.campaign(None, OSC, ybs_a_g=[]), "ybs_a_g"),
         # record steps below what a run can resolve
         (lambda: pd_.Record(np.arange(5) * 1e-300, [0.0, 1.0, 0.0, -1.0, 0.0]), "record.t[4] - record.t[3]"),
@@ -263,6 +263,6 @@ def test_scales_that_overflowed_are_named(call, field):
 
 def test_a_tiny_mass_in_toml_is_named(tmp_path):
     path = tmp_path / "tiny.toml"
-    path.write_text(OSC.to_toml_text().replace("mass = 500.0", "mass = 1e-300"))
+    path.write_text(OSC.to_toml_text().replace("mass_kg = 500.0", "mass_kg = 1e-300"))
     assert "1e-300" in path.read_text()
-    _raises(lambda: pd_.Oscillator.from_toml(path), "mass", Problem.TOO_SMALL)
+    _raises(lambda: pd_.Oscillator.from_toml(path), "mass_kg", Problem.TOO_SMALL)

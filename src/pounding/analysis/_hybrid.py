@@ -109,7 +109,7 @@ class Hybrid(NamedTuple):
             k = tuple(float(f[0]) if f else float(getattr(law, "stiffness", np.nan))
                       for f, law in zip(forms, (b.left, b.right)))
             c = tuple(float(f[1]) if f else 0.0 for f in forms)
-        return cls(float(oscillator.mass), float(iso.damping), np.array(iso.slopes, dtype=float),
+        return cls(float(oscillator.mass_kg), float(iso.damping), np.array(iso.slopes, dtype=float),
                    np.array(iso.breakpoints, dtype=float), iso.hysteresis == "kinematic", gaps, k, c)
 
     @property

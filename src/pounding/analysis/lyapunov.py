@@ -108,7 +108,7 @@ def lyapunov(system: Any, excitation: Harmonic, *, cycles: int = 1000,
 
     >>> import pounding
     >>> iso = pounding.Isolator(slopes=[4000.0], damping=40.0)
-    >>> osc = pounding.Oscillator(mass=100.0, isolator=iso)
+    >>> osc = pounding.Oscillator(mass_kg=100.0, isolator=iso)
     >>> spec = pounding.lyapunov(osc, pounding.Harmonic(0.05, 1.0), cycles=50)
     >>> [round(float(x), 12) for x in spec.exponents]  # -c / (2 m)
     [-0.2, -0.2]
@@ -152,8 +152,8 @@ class _Tangent:
         self.fell_back = 0  # periods whose exact Jacobian gave way to finite differences
         if not self.structure:
             iso = oscillator.isolator
-            omega_n = math.sqrt(max(float(iso.slopes[0]), 1e-300) / oscillator.mass)
-            zeta = iso.damping / (2.0 * oscillator.mass * omega_n)
+            omega_n = math.sqrt(max(float(iso.slopes[0]), 1e-300) / oscillator.mass_kg)
+            zeta = iso.damping / (2.0 * oscillator.mass_kg * omega_n)
             self.omega_n, self.zeta = omega_n, zeta
 
     def _metric(self, keep: np.ndarray) -> np.ndarray:

@@ -33,7 +33,7 @@ def isolator_rate(oscillator: Oscillator) -> tuple[float, str]:
     if iso.bouc_wen is not None:  # (its initial stiffness, in parallel)
         k += iso.bouc_wen.a * iso.bouc_wen.stiffness
     c = iso.damping
-    m = oscillator.mass
+    m = oscillator.mass_kg
     rate = max(math.sqrt(k / m + (0.5 * c / m) ** 2), c / m)
     return rate, (
         f"the isolator's fastest motion {rate:.3g} rad/s: stiffness {k:.3g} N/m, damping "
@@ -60,7 +60,7 @@ def contact_rate(oscillator: Oscillator) -> float:
                 return math.inf
             k += form[0]
             c += form[1]
-    m = oscillator.mass
+    m = oscillator.mass_kg
     return max(math.sqrt(k / m + (0.5 * c / m) ** 2), c / m)
 
 

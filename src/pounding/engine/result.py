@@ -242,7 +242,7 @@ class Run:
         the bumper's own dissipation; see :func:`pounding.impact_table`."""
         from ..metrics import impact_table
 
-        return impact_table(self.contact_table, self.oscillator.mass)
+        return impact_table(self.contact_table, self.oscillator.mass_kg)
 
     @property
     def success(self) -> bool:

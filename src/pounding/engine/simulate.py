@@ -145,7 +145,7 @@ def kernel_system(oscillator: Oscillator) -> System:
                 for sign, gap, law in ((-1.0, gap_l, left), (1.0, gap_r, right))]
     isolator = _core.element(i=0, j=-1, c_d=oscillator.isolator.damping, slopes=slopes, breaks=breaks,
                              rule=rule)
-    return _core.system([float(oscillator.mass)], np.zeros((1, 1)), np.zeros((1, 1)), [isolator], bw,
+    return _core.system([float(oscillator.mass_kg)], np.zeros((1, 1)), np.zeros((1, 1)), [isolator], bw,
                         b is not None, contacts)
 
 

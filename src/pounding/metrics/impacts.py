@@ -32,7 +32,7 @@ def impact_table(contact_table: np.ndarray, mass_kg: float) -> pd.DataFrame:
     >>> osc = pounding.presets.paper_damped()
     >>> run = pounding.simulate(osc, pounding.Harmonic(0.05, 1.5), 5.0)
     >>> # what run.impacts holds
-    >>> table = pounding.impact_table(run.contact_table, osc.mass)
+    >>> table = pounding.impact_table(run.contact_table, osc.mass_kg)
     >>> len(table), table["side"].value_counts().to_dict()
     (13, {'left': 7, 'right': 6})
     >>> last = table.iloc[-1]

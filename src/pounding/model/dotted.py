@@ -13,7 +13,7 @@ _INDEX = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?$")
 ALIASES = {"bumpers.gap_m": ("bumpers.gap_left_m", "bumpers.gap_right_m")}
 _WALL_GAP = re.compile(r"^((?:first\.|second\.)?walls\[\d+\])\.gap_m$")
 # the names before (0.1's), read for one release with a FutureWarning naming the new one
-RENAMED = {"bumpers.gap": "bumpers.gap_m", "bumpers.gap_left": "bumpers.gap_left_m",
+RENAMED = {"mass": "mass_kg", "bumpers.gap": "bumpers.gap_m", "bumpers.gap_left": "bumpers.gap_left_m",
            "bumpers.gap_right": "bumpers.gap_right_m"}
 
 

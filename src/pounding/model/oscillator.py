@@ -19,7 +19,7 @@ MAX_MASS_KG = 1e12  # refused beyond (a unit error)
 MIN_MASS_KG = 1e-6  # refused below (1 mg: the phases' rates k/m overflowed at 1e-300 kg)
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, init=False)
 class Oscillator(TomlFile):
     """Single-degree-of-freedom base-isolated mass, optionally bounded by bumpers.
 
@@ -29,8 +29,8 @@ class Oscillator(TomlFile):
 
     Parameters
     ----------
-    mass : float
-        ``M`` in kg, > 0.
+    mass_kg : float
+        ``M`` in kg, > 0.  (``mass``, its name before, still works for one release, with a warning.)
     isolator : Isolator
         Backbone, hysteresis rule and dashpot of the isolator.
     bumpers : Bumpers or None
@@ -48,7 +48,7 @@ class Oscillator(TomlFile):
     >>> bumpers = pounding.Bumpers(0.015, 0.015,
     ...                            pounding.KelvinVoigt(stiffness=1.46e6,
     ...                                                 damping=5.0))
-    >>> ybs = pounding.Oscillator(mass=500.0, isolator=isolator, bumpers=bumpers)
+    >>> ybs = pounding.Oscillator(mass_kg=500.0, isolator=isolator, bumpers=bumpers)
     >>> ybs == pounding.presets.paper_damped()
     True
     >>> ybs.without_bumpers().bumpers is None
@@ -58,18 +58,43 @@ class Oscillator(TomlFile):
     True
     """
 
-    mass: float
+    mass_kg: float
     isolator: Isolator
     bumpers: Optional[Bumpers] = None
 
-    FIELDS: ClassVar[tuple[str, ...]] = ("mass", "isolator", "bumpers")
+    FIELDS: ClassVar[tuple[str, ...]] = ("mass_kg", "isolator", "bumpers")
+    # the names before (0.1's), still read for one release with a warning: in Python, TOML and dotted names
+    RENAMED: ClassVar[dict[str, str]] = {"mass": "mass_kg"}
+
+    def __init__(self, mass_kg: Any = None, isolator: Any = None, bumpers: Optional[Bumpers] = None,
+                 **renamed: Any) -> None:
+        for old, value in renamed.items():
+            if old not in self.RENAMED:
+                raise TypeError(f"Oscillator() got an unexpected keyword argument '{old}'")
+            if mass_kg is not None:
+                raise TypeError("Oscillator() got both 'mass_kg' and 'mass', its name before: give 'mass_kg'")
+            warn_renamed(old, self.RENAMED[old])
+            mass_kg = value
+        for name, value in (("mass_kg", mass_kg), ("isolator", isolator)):
+            if value is None:
+                raise InputError(Problem.MISSING_INPUT, name, None, what=f"Oscillator({name}=...)")
+        object.__setattr__(self, "mass_kg", mass_kg)
+        object.__setattr__(self, "isolator", isolator)
+        object.__setattr__(self, "bumpers", bumpers)
+        self.__post_init__()
+
+    @property
+    def mass(self) -> float:
+        """``mass_kg`` under its name before (a warning: it goes in the next release)."""
+        warn_renamed("mass", "mass_kg")
+        return self.mass_kg
 
     def __post_init__(self) -> None:
-        mass = positive("mass", self.mass, "kg")
-        at_most("mass", mass, MAX_MASS_KG, " kg", "give the mass in kg")
-        at_least("mass", mass, MIN_MASS_KG, " kg", "give the mass in kg: 500 kg is 500.0")
-        plausible("mass", mass, 1e-3, 1e9, "the mass is in kg (500 kg is 500.0)")
-        object.__setattr__(self, "mass", mass)
+        mass = positive("mass_kg", self.mass_kg, "kg")
+        at_most("mass_kg", mass, MAX_MASS_KG, " kg", "give the mass in kg")
+        at_least("mass_kg", mass, MIN_MASS_KG, " kg", "give the mass in kg: 500 kg is 500.0")
+        plausible("mass_kg", mass, 1e-3, 1e9, "the mass is in kg (500 kg is 500.0)")
+        object.__setattr__(self, "mass_kg", mass)
         instance_of("isolator", self.isolator, Isolator, "Isolator")
         if self.bumpers is not None and not isinstance(self.bumpers, Bumpers):
             raise InputError(Problem.WRONG_TYPE, "bumpers", self.bumpers,
@@ -86,7 +111,7 @@ class Oscillator(TomlFile):
     # ------------------------------------------------------------------ TOML
     def to_dict(self) -> dict[str, Any]:
         """The system as nested tables with the constructor's field names."""
-        out: dict[str, Any] = {"mass": self.mass, "isolator": self.isolator.to_dict()}
+        out: dict[str, Any] = {"mass_kg": self.mass_kg, "isolator": self.isolator.to_dict()}
         if self.bumpers is not None:
             out["bumpers"] = self.bumpers.to_dict()
         return out
@@ -97,7 +122,8 @@ class Oscillator(TomlFile):
         if "meta" in table:  # notes about the file (who wrote it, whether it is partial): not the system
             instance_of("meta", table["meta"], dict, "table of notes")
             table = {k: v for k, v in table.items() if k != "meta"}
-        check_keys(table, "", cls.FIELDS, required=("mass", "isolator"))
+        table = renamed_keys(table, "", cls.RENAMED)
+        check_keys(table, "", cls.FIELDS, required=("mass_kg", "isolator"))
         iso_table = table["isolator"]
         # every field, defaults included: a file says what the system is
         check_keys(iso_table, "isolator.", Isolator.FIELDS,
@@ -114,7 +140,7 @@ class Oscillator(TomlFile):
                 law_right=None if law_right is None else law_from_dict(law_right, "bumpers.law_right"),
                 capacity_m=b.get("capacity_m"),
             )
-        return cls(mass=table["mass"], isolator=isolator, bumpers=bumpers)
+        return cls(mass_kg=table["mass_kg"], isolator=isolator, bumpers=bumpers)
 
 
 def renamed_keys(table: Any, prefix: str, renamed: dict[str, str]) -> Any:

@@ -250,7 +250,7 @@ class Structure(TomlFile):
         b = oscillator.bumpers
         walls = () if b is None else (Wall(0, b.gap_left_m, b.gap_right_m, b.left,
                                            None if b.right is b.left else b.right),)
-        return cls(oscillator.mass, oscillator.isolator, (), walls)
+        return cls(oscillator.mass_kg, oscillator.isolator, (), walls)
 
     # ------------------------------------------------------------------ TOML
     def to_dict(self) -> dict[str, Any]:

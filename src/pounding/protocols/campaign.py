@@ -301,7 +301,7 @@ def campaign(
             fix = (f"give the system without {what} (oscillator.without_bumpers(), or a structure with "
                    "walls=[]); were the NBs and YBs systems swapped?" if conf == "NBs" else
                    f"give a system with {what}; were the NBs and YBs systems swapped?")
-            shown = (f"Oscillator(mass={osc.mass:g}, ...)" if isinstance(osc, Oscillator)
+            shown = (f"Oscillator(mass_kg={osc.mass_kg:g}, ...)" if isinstance(osc, Oscillator)
                      else type(osc).__name__)
             raise InputError(Problem.WRONG_CONFIGURATION, field_name, shown,
                              got=f"with {what}" if _touches(osc) else f"without {what}", fix=fix)

@@ -337,7 +337,7 @@ class SweepResult:
         df = self.to_dataframe().iloc[: self.steps_done]
         rng = self.contact_range_hz
         step = df.iloc[self.step_index(self.resonance_hz)]
-        mg = self.oscillator.mass * self.g
+        mg = self.oscillator.mass_kg * self.g
         return {
             "nu_r": self.nu_r, "alpha": self.alpha_max, "eta": df["eta"].max(), "e": df["e"].max(),
             "excursion_max_m": df["excursion_m"].max(),
@@ -346,7 +346,7 @@ class SweepResult:
             "mean_force_over_mg": step["mean_force_n"] / mg,
             "contact_time_ms": step["contact_time_s"] * 1e3,
             "peak_force_over_mg": step["peak_force_n"] / mg,
-            "dissipated_energy_per_mass": step["dissipated_energy_j"] / self.oscillator.mass,
+            "dissipated_energy_per_mass": step["dissipated_energy_j"] / self.oscillator.mass_kg,
             "restitution": step["restitution"],
         }
 
