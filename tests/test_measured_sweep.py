@@ -50,7 +50,7 @@ def test_a_sweep_measured_through_a_chain_is_what_the_lab_reads_of_the_same_test
     )
     lab = pounding.lab.analyse_stepped_sine(
         rec,
-        mass_kg=system.mass,
+        mass_kg=system.mass_kg,
         gap_total_m=system.bumpers.total_gap,
         freqs_hz=freqs,
         measure_cycles=5,

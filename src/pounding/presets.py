@@ -99,9 +99,9 @@ def paper_damped(bumpers: bool = True, hysteresis: str = "kinematic") -> Oscilla
     --------
     >>> import pounding
     >>> ybs = pounding.presets.paper_damped()
-    >>> iso = ybs.isolator
+    >>> iso, m = ybs.isolator, ybs.mass_kg
     >>> # N s/m, of critical
-    >>> iso.damping, round(iso.damping / (2 * (iso.slopes[0] * ybs.mass_kg) ** 0.5), 3)
+    >>> iso.damping, round(iso.damping / (2 * (iso.slopes[0] * m) ** 0.5), 3)
     (1000.0, 0.115)
     """
     osc = paper_printed(bumpers, hysteresis)

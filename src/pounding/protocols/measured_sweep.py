@@ -107,7 +107,7 @@ def measure_steps(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray, wind
         amp = table_amplitude(t_s[in_win], table[in_win], f)  # (A_t as the table's accelerometer reads it)
         shape, contacts, found, _ = measure_window(
             t_s, table, raw_acc, acc, disp, d, bounds, period, amp, fs, names=("alpha", "alpha_1"),
-            mass_kg=oscillator.mass, gap=gap, steady_rtol=steady_rtol, omega_min_rad_s=omega_min_rad_s,
+            mass_kg=oscillator.mass_kg, gap=gap, steady_rtol=steady_rtol, omega_min_rad_s=omega_min_rad_s,
             noise=noise, contact_timing=chain.contact_timing)
         row = {q: shape.get(q, contacts.get(q, math.nan)) for q in MEASURED_COLUMNS}
         row["displacement_max_m"] += centre
