@@ -68,7 +68,7 @@ def check_supported(b: pd_.Structure) -> None:
     problems = []
     if b.fixed or b.rayleigh is not None:
         problems.append("an isolated base without Rayleigh damping")
-    if iso is not None and (len(iso.slopes) != 2 or iso.hysteresis != "kinematic"
+    if iso is not None and (len(iso.slopes_n_m) != 2 or iso.hysteresis != "kinematic"
                             or iso.bouc_wen is not None):
         problems.append("a bilinear kinematic isolator")
     if any(not s.is_linear for s in b.storeys):
@@ -131,8 +131,8 @@ def check_materials(ops, b: pd_.Structure) -> None:
         want = k_w * min(0.0, strain + gap)
         if abs(ops.getStress() - want) > 1e-9 * k_w * gap:
             raise AssertionError(f"ElasticPPGap at strain {strain}: {ops.getStress()} N, expected {want} N")
-    k0, k1 = b.isolator.slopes
-    dy = b.isolator.breakpoints[0]
+    k0, k1 = b.isolator.slopes_n_m
+    dy = b.isolator.breakpoints_m[0]
     ops.uniaxialMaterial("Steel01", 2, k0 * dy, k0, k1 / k0)
     ops.testUniaxialMaterial(2)
     slip = 0.0  # the plastic spring's slip
@@ -156,9 +156,9 @@ def opensees_model(ops, b: pd_.Structure, rec, dt_s: float) -> None:
         ops.node(level + 1, 0.0)
         ops.mass(level + 1, float(m))
     iso = b.isolator
-    k0, k1 = iso.slopes
-    ops.uniaxialMaterial("Steel01", 1, k0 * iso.breakpoints[0], k0, k1 / k0)
-    ops.uniaxialMaterial("Viscous", 2, iso.damping, 1.0)
+    k0, k1 = iso.slopes_n_m
+    ops.uniaxialMaterial("Steel01", 1, k0 * iso.breakpoints_m[0], k0, k1 / k0)
+    ops.uniaxialMaterial("Viscous", 2, iso.damping_n_s_m, 1.0)
     ops.uniaxialMaterial("Parallel", 3, 1, 2)
     ops.element("zeroLength", 1, GROUND, 1, "-mat", 3, "-dir", 1)
     for i, s in enumerate(b.storeys):  # storey i + 1: level i + 1 on level i

@@ -206,13 +206,13 @@ class OpenSeesModel:
         ops.node(2, 0.0)
         ops.fix(1, 1)
         ops.mass(2, osc.mass_kg)
-        k = iso.slopes
+        k = iso.slopes_n_m
         ops.uniaxialMaterial("Elastic", 1, k[-1])
         tags = [1]
-        for i, brk in enumerate(iso.breakpoints):  # spring i: stiffness K_i - K_i+1, slips at D_i
+        for i, brk in enumerate(iso.breakpoints_m):  # spring i: stiffness K_i - K_i+1, slips at D_i
             ops.uniaxialMaterial("ElasticPP", 10 + i, k[i] - k[i + 1], brk)
             tags.append(10 + i)
-        ops.uniaxialMaterial("Viscous", 2, iso.damping, 1.0)
+        ops.uniaxialMaterial("Viscous", 2, iso.damping_n_s_m, 1.0)
         ops.uniaxialMaterial("Parallel", 3, *tags, 2)
         ops.element("zeroLength", 1, 1, 2, "-mat", 3, "-dir", 1)
         if b is not None:

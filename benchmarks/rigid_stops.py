@@ -32,7 +32,7 @@ A, F_HZ = 40.0, 0.5
 
 
 def system() -> pounding.Oscillator:
-    iso = pounding.Isolator(slopes=[M * OMEGA ** 2], damping=2.0 * ZETA * OMEGA * M)
+    iso = pounding.Isolator(slopes_n_m=[M * OMEGA ** 2], damping_n_s_m=2.0 * ZETA * OMEGA * M)
     return pounding.Oscillator(M, iso, pounding.Bumpers(GAP, GAP, pounding.RigidStop(E)))
 
 

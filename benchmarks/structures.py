@@ -35,7 +35,7 @@ TARGET_SET_S = 5.0
 def building(levels: int) -> pd_.Structure:
     """A base of 30 t on a bilinear isolator, ``levels - 1`` storeys of 20 t and 40 MN/m (2 % damping),
     a moat wall 6 cm from the base."""
-    iso = pd_.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02], damping=2.0e4)
+    iso = pd_.Isolator(slopes_n_m=[4.0e6, 1.0e6], breakpoints_m=[0.02], damping_n_s_m=2.0e4)
     storeys = [pd_.Storey(2.0e4, 4.0e7, 4.0e4)] * (levels - 1)
     moat = pd_.Wall(0, 0.06, 0.06, pd_.KelvinVoigt(stiffness=2.0e8, damping=1.0e5))
     return pd_.Structure(3.0e4, iso, storeys, [moat])

@@ -40,7 +40,7 @@ STAND_BOUNDS = {"walls[0].stand.mass_kg": (1.0, 100.0),            # kg: a brack
 LAW_BOUNDS = {"walls[0].law.slopes[0]": (2e5, 5e7), "walls[0].law.slopes[1]": (0.0, 5e6),
               "walls[0].law.slopes[2]": (5e5, 2e8), "walls[0].law.breakpoints[0]": (2e-4, 0.006),
               "walls[0].law.breakpoints[1]": (0.002, 0.02), "walls[0].law.damping": (10.0, 2e4)}
-OTHER_BOUNDS = {"walls[0].gap_m": (0.012, 0.018), "isolator.damping": (100.0, 5000.0)}
+OTHER_BOUNDS = {"walls[0].gap_m": (0.012, 0.018), "isolator.damping_n_s_m": (100.0, 5000.0)}
 STAND_START = pd_.Stand(mass_kg=20.0, stiffness_n_m=1e6, damping_n_s_m=200.0)
 SCAN_MASSES_KG = (5.0, 10.0, 20.0, 50.0)
 SCAN_STIFFNESSES_N_M = (3e8, 1e8, 3e7, 1e7, 3e6, 1e6, 3e5, 1e5)

@@ -359,13 +359,13 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
     |a_abs| (dense output sampled every ``sample_dt`` s, and at every event).
     """
     iso = osc.isolator
-    K = np.array(iso.slopes)
-    Db = np.array(iso.breakpoints)
+    K = np.array(iso.slopes_n_m)
+    Db = np.array(iso.breakpoints_m)
     n_sp = len(Db)
     ki = K[:-1] - K[1:]
     u = np.zeros(n_sp)
     s = np.zeros(n_sp)
-    m, cd = osc.mass_kg, iso.damping
+    m, cd = osc.mass_kg, iso.damping_n_s_m
     kinematic = iso.hysteresis == "kinematic"
     bw = iso.bouc_wen  # its z is the last of the carried states (acc[6])
     b = osc.bumpers

@@ -42,7 +42,7 @@ def oscillators(draw, bumpers=True, hysteresis=None, gaps="open", law="kelvin_vo
     Bouc-Wen spring in parallel."""
     iso = draw(isolators(hysteresis))
     if bouc_wen:
-        iso = replace(iso, bouc_wen=draw(bouc_wens(iso.slopes[0])))
+        iso = replace(iso, bouc_wen=draw(bouc_wens(iso.slopes_n_m[0])))
     mass = draw(st.floats(100.0, 1500.0))
     b = None
     if bumpers:

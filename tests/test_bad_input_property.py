@@ -79,12 +79,12 @@ ENTRIES = {
     "Isolator": (
         pd_.Isolator,
         {
-            "slopes": [38e3, 18e3, 2e3],
-            "breakpoints": [0.015, 0.04],
+            "slopes_n_m": [38e3, 18e3, 2e3],
+            "breakpoints_m": [0.015, 0.04],
             "hysteresis": "kinematic",
-            "damping": 1000.0,
+            "damping_n_s_m": 1000.0,
         },
-        {"slopes", "breakpoints"},
+        {"slopes_n_m", "breakpoints_m"},
     ),
     "KelvinVoigt": (pd_.KelvinVoigt, {"stiffness": 1.46e6, "damping": 5.0}, set()),
     "HuntCrossley": (pd_.HuntCrossley, {"stiffness": 1e8, "exponent": 1.5, "damping": 1e5}, set()),

@@ -22,7 +22,7 @@ def _steady_state(m, k, c, a_t, omega, t):
        a_g=st.floats(0.01, 0.5), f=st.floats(0.2, 6.0))
 def test_linear_isolator_reaches_closed_form_steady_state(m, k, zeta, a_g, f):
     c = 2 * zeta * math.sqrt(k * m)
-    osc = pd_.Oscillator(m, pd_.Isolator((k,), damping=c))
+    osc = pd_.Oscillator(m, pd_.Isolator((k,), damping_n_s_m=c))
     exc = pd_.Harmonic(a_g, f)
     decay_s = 40.0 / (zeta * math.sqrt(k / m))  # e^-40: transients gone
     warm = pd_.simulate(osc, exc, decay_s, sample_rate_hz=0)
@@ -43,7 +43,7 @@ def test_a_long_run_stays_on_the_closed_form_steady_state():
     # angle; the clock's rounding must not pile up between that angle and the clock's
     m, k, zeta, a_g, f = 500.0, 2e4, 0.05, 0.1, 2.2
     c = 2 * zeta * math.sqrt(k * m)
-    osc = pd_.Oscillator(m, pd_.Isolator((k,), damping=c))
+    osc = pd_.Oscillator(m, pd_.Isolator((k,), damping_n_s_m=c))
     exc = pd_.Harmonic(a_g, f)
     warm = pd_.simulate(osc, exc, 3000.0, sample_rate_hz=0)
     run = pd_.simulate(osc, exc, 2.0 / f, warm.final_state, sample_rate_hz=200 * f)
@@ -57,7 +57,7 @@ def test_free_vibration_every_damping_regime(zeta):
     m, k = 200.0, 8e3
     wn = math.sqrt(k / m)
     c = 2 * zeta * math.sqrt(k * m)
-    osc = pd_.Oscillator(m, pd_.Isolator((k,), damping=c))
+    osc = pd_.Oscillator(m, pd_.Isolator((k,), damping_n_s_m=c))
     v0 = 0.3
     run = pd_.simulate(osc, pd_.Record([0.0, 1.0], [0.0, 0.0]), 3.0,
                        pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=500)
@@ -104,7 +104,7 @@ def test_steady_state_energy_flows_match_closed_form(m, k, zeta, a_g, f, span):
     # started on the steady-state orbit, V = W cos(w t + psi): int c V^2 and -int M A_g V over
     # any window in closed form
     c = 2 * zeta * math.sqrt(k * m)
-    osc = pd_.Oscillator(m, pd_.Isolator((k,), damping=c))
+    osc = pd_.Oscillator(m, pd_.Isolator((k,), damping_n_s_m=c))
     exc = pd_.Harmonic(a_g, f)
     w, a_t = exc.omega_rad_s, exc.peak_m_s2
     z = -m * a_t / (k - m * w**2 + 1j * c * w)           # D = Im(z e^{i w t})

@@ -18,7 +18,7 @@ M, K, C = 500.0, 40000.0, 800.0
 
 
 def linear() -> pd_.Oscillator:
-    return pd_.Oscillator(M, pd_.Isolator(slopes=(K,), breakpoints=(), damping=C))
+    return pd_.Oscillator(M, pd_.Isolator(slopes_n_m=(K,), breakpoints_m=(), damping_n_s_m=C))
 
 
 def closed_form_excursion(a_g: float, freq_hz: np.ndarray, c: np.ndarray | float = C) -> np.ndarray:
@@ -56,9 +56,9 @@ def test_linear_branch_in_a_g_and_in_a_system_number() -> None:
     by_a = pd_.continuation(linear(), (0.01, 0.2), 1.2, parameter="a_g")
     df = by_a.to_dataframe()
     assert np.allclose(df.excursion_m, closed_form_excursion(1.0, 1.2) * df.a_g, rtol=1e-8)
-    by_c = pd_.continuation(linear(), 0.05, 1.2, parameter="isolator.damping", values=(200.0, 2000.0))
+    by_c = pd_.continuation(linear(), 0.05, 1.2, parameter="isolator.damping_n_s_m", values=(200.0, 2000.0))
     dc = by_c.to_dataframe()
-    c = dc["isolator.damping"].to_numpy()
+    c = dc["isolator.damping_n_s_m"].to_numpy()
     assert c[0] == 200.0 and c[-1] == pytest.approx(2000.0)
     assert np.allclose(dc.excursion_m, closed_form_excursion(0.05, 1.2, c), rtol=1e-8)
 

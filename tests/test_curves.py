@@ -19,7 +19,7 @@ GAP_L, GAP_R = 0.025, 0.02
 
 def linear_with_bumpers() -> pd_.Oscillator:
     law = pd_.KelvinVoigt(1.0e6, 2000.0)
-    return pd_.Oscillator(M, pd_.Isolator(slopes=(K,), breakpoints=(), damping=C),
+    return pd_.Oscillator(M, pd_.Isolator(slopes_n_m=(K,), breakpoints_m=(), damping_n_s_m=C),
                           pd_.Bumpers(GAP_L, GAP_R, law, law))
 
 
@@ -139,7 +139,8 @@ def test_only_folds_and_grazings_are_followed(damped: tuple) -> None:
     with pytest.raises(pd_.InputError, match="bifurcation"):
         pd_.bifurcation_curve(osc, "fold")
     with pytest.raises(pd_.InputError, match="not of this system"):
-        pd_.bifurcation_curve(pd_.Oscillator(M, pd_.Isolator(slopes=(K,), breakpoints=(), damping=C)),
+        pd_.bifurcation_curve(pd_.Oscillator(M, pd_.Isolator(slopes_n_m=(K,), breakpoints_m=(),
+                                                             damping_n_s_m=C)),
                               br.folds()[0])
     for kwargs, field in (({"levels": [0.5]}, "levels"), ({"kinds": ["period-doubling"]}, "kinds"),
                           ({"levels": "0.05"}, "levels"), ({"freq_step_hz": 0.0}, "freq_step_hz")):

@@ -234,7 +234,7 @@ def test_the_design_page_file_reads(tmp_path):
     (tmp_path / "ups_hazard_sa1.csv").write_text((ROOT / "examples" / "ups_hazard_sa1.csv").read_text())
     plan = DesignPlan.from_toml(path)
     rubber, pad = plan.bumper_types
-    assert "isolator.damping" in pad.grid and "isolator.damping" not in rubber.grid
+    assert "isolator.damping_n_s_m" in pad.grid and "isolator.damping_n_s_m" not in rubber.grid
 
 
 def test_a_bumper_type_sets_both_sides_and_a_plan_follows_its_system(tmp_path):

@@ -257,7 +257,7 @@ def test_decide_picks_the_smallest_gap_meeting_the_target(tmp_path):
     with pytest.raises(pounding.InputError, match="target_probability"):
         design.decide(msa, 0.4, 0.6, target_probability=1.0)
     with pytest.raises(pounding.InputError, match="gap_dim"):
-        design.decide(msa, 0.4, 0.6, gap_dim="isolator.damping")
+        design.decide(msa, 0.4, 0.6, gap_dim="isolator.damping_n_s_m")
     with pytest.raises(pounding.InputError, match="level"):
         design.decide(msa, 0.4, 0.6, level="MCE")
     with pytest.raises(pounding.InputError, match="design_sa_g"):
@@ -479,7 +479,7 @@ def test_at_the_chosen_gap_the_option_that_pounds_least_wins_before_the_softest_
     levels, records = [0.1, 0.3], [f"r{i}" for i in range(10)]
     impacts = np.zeros((2, 10, 1, 2))
     impacts[1, 0, 0, 0] = 1.0  # (damping 200, the MCE stripe, one run)
-    dims = ("sa_g", "record", "bumpers.gap_m", "isolator.damping")
+    dims = ("sa_g", "record", "bumpers.gap_m", "isolator.damping_n_s_m")
     ds = xr.Dataset(
         {
             "impacts": (dims, impacts),
@@ -491,10 +491,10 @@ def test_at_the_chosen_gap_the_option_that_pounds_least_wins_before_the_softest_
             "impact_force_max_n": (dims, 100.0 * impacts),
         },
         coords={"sa_g": levels, "record": records, "bumpers.gap_m": [0.1],
-                "isolator.damping": [200.0, 300.0]},
+                "isolator.damping_n_s_m": [200.0, 300.0]},
     )
     choice = design.decide(design.StripeAnalysis(ds, 1.0, 0.05, True), 0.1, 0.3, target_probability=0.2)
-    assert choice.recommended["isolator.damping"] == 300.0
+    assert choice.recommended["isolator.damping_n_s_m"] == 300.0
     assert "it pounds least" not in choice.verdict() and "did not pound rank first" in choice.verdict()
     # and an analysis of another intensity measure is not decided with it
     other = design.StripeAnalysis(ds, 2.0, 0.05, True)

@@ -52,7 +52,7 @@ def test_energy_ledger_closes_on_a_stiff_lightly_damped_contact():
 def test_energy_ledger_closes_with_hunt_crossley(v0):
     # a nonlinear law is integrated numerically: the ledger closes to the integration tolerance
     law = pd_.HuntCrossley(5e8, 1.5, 2e8)
-    osc = pd_.Oscillator(500.0, pd_.Isolator((38e3, 18e3, 2e3), (0.015, 0.04), damping=500.0),
+    osc = pd_.Oscillator(500.0, pd_.Isolator((38e3, 18e3, 2e3), (0.015, 0.04), damping_n_s_m=500.0),
                          pd_.Bumpers(0.01, 0.01, law))
     run = pd_.simulate(osc, pd_.Harmonic(0.2, 1.5), 4.0, pd_.State.at_rest(osc, velocity_m_s=v0))
     assert len(run.contacts) > 3
@@ -239,7 +239,7 @@ def test_energy_ledger_closes_under_a_record():
     rng = np.random.default_rng(3)
     t = np.linspace(0.0, 3.0, 61)
     exc = pd_.Record(t, rng.normal(0.0, 3.0, t.size))
-    osc = pd_.Oscillator(500.0, pd_.Isolator((38e3, 18e3, 2e3), (0.015, 0.04), damping=300.0),
+    osc = pd_.Oscillator(500.0, pd_.Isolator((38e3, 18e3, 2e3), (0.015, 0.04), damping_n_s_m=300.0),
                          pd_.Bumpers(0.01, 0.012, pd_.KelvinVoigt(1.46e6, 400.0)))
     run = pd_.simulate(osc, exc, 3.5, sample_rate_hz=0)
     assert len(run.contacts) > 2

@@ -34,7 +34,8 @@ ZETA, BETA, E = 0.01, 29.0, 0.00126
 
 
 def rig() -> pd_.Oscillator:
-    iso = pd_.Isolator(slopes=[M * WN**2], breakpoints=[], hysteresis="elastic", damping=2 * ZETA * M * WN)
+    iso = pd_.Isolator(slopes_n_m=[M * WN**2], breakpoints_m=[], hysteresis="elastic",
+                       damping_n_s_m=2 * ZETA * M * WN)
     stop = pd_.KelvinVoigt(stiffness=BETA * M * WN**2, damping=0.0)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", pd_.PoundingWarning)  # (the left gap is implausibly wide on purpose)

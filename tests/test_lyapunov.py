@@ -16,7 +16,7 @@ from pounding.engine._layout import DEF_L, DEF_R, IN_L, IN_R, D, V
 # stiffer, here 5 mm away on one side): chaotic at a_G 0.1, 2.6 Hz
 M, K, ZETA, BETA = 100.0, 4000.0, 0.02, 30.0
 SOFT = pd_.Oscillator(
-    mass_kg=M, isolator=pd_.Isolator(slopes=[K], damping=2.0 * ZETA * math.sqrt(K * M)),
+    mass_kg=M, isolator=pd_.Isolator(slopes_n_m=[K], damping_n_s_m=2.0 * ZETA * math.sqrt(K * M)),
     bumpers=pd_.Bumpers(gap_left_m=0.3, gap_right_m=0.005, law=pd_.KelvinVoigt(
         stiffness=BETA * K, damping=2.0 * ZETA * math.sqrt(BETA * K * M))))
 CHAOS = pd_.Harmonic(0.1, 2.6)
@@ -32,7 +32,7 @@ def test_linear_isolator_without_bumpers_has_both_exponents_minus_zeta_omega(dam
     """x'' + 2 zeta omega x' + omega^2 x = -a(t): the flow contracts every direction at -zeta omega
     = -c / 2m; both exponents equal it to 1e-9, and so do the running estimates (the frame is
     measured in the isolator's own units, where the flow is a rotation)."""
-    osc = pd_.Oscillator(mass_kg=100.0, isolator=pd_.Isolator(slopes=[4000.0], damping=damping))
+    osc = pd_.Oscillator(mass_kg=100.0, isolator=pd_.Isolator(slopes_n_m=[4000.0], damping_n_s_m=damping))
     spec = pd_.lyapunov(osc, pd_.Harmonic(0.05, 1.3), cycles=40, transient_cycles=300)
     expected = -damping / 200.0
     assert spec.coordinates == ("D", "V") and spec.method == "exact" and spec.period == 1
@@ -252,6 +252,6 @@ def test_compiled_exponential_keeps_its_digits_on_a_stiff_contact():
 def test_not_chaotic_where_the_largest_exponent_is_zero():
     """An undamped linear isolator: both exponents are 0 (a rotation), estimated at the rounding's
     level; neither chaos nor a dimension."""
-    osc = pd_.Oscillator(mass_kg=100.0, isolator=pd_.Isolator(slopes=[4000.0], damping=0.0))
+    osc = pd_.Oscillator(mass_kg=100.0, isolator=pd_.Isolator(slopes_n_m=[4000.0], damping_n_s_m=0.0))
     spec = pd_.lyapunov(osc, pd_.Harmonic(0.05, 1.3), cycles=200, transient_cycles=0)
     assert abs(spec.largest) < 1e-12 and not spec.chaotic

@@ -13,7 +13,8 @@ from pounding import MeasurementChain, Sensor
 
 def linear_nbs() -> pounding.Oscillator:
     """A linear isolator without bumpers: its steady response is a pure sine."""
-    return pounding.Oscillator(500.0, pounding.Isolator([18_000.0], [], hysteresis="elastic", damping=600.0))
+    return pounding.Oscillator(500.0, pounding.Isolator([18_000.0], [], hysteresis="elastic",
+                                                        damping_n_s_m=600.0))
 
 
 @pytest.mark.parametrize("zero_phase", [True, False])

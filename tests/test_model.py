@@ -25,9 +25,9 @@ def _raises(fn, *fragments):
 def test_paper_printed_values_exactly():
     osc = pd_.presets.paper_printed()
     assert osc.mass_kg == 500.0
-    assert osc.isolator.slopes == (38e3, 18e3, 2e3)
-    assert osc.isolator.breakpoints == (0.015, 0.04)
-    assert osc.isolator.damping == 1.0
+    assert osc.isolator.slopes_n_m == (38e3, 18e3, 2e3)
+    assert osc.isolator.breakpoints_m == (0.015, 0.04)
+    assert osc.isolator.damping_n_s_m == 1.0
     assert osc.bumpers.gap_left_m == osc.bumpers.gap_right_m == 0.015
     assert osc.bumpers.law == pd_.KelvinVoigt(1.46e6, 5.0)
     assert osc.bumpers.total_gap == pytest.approx(0.03)
@@ -48,27 +48,27 @@ def test_non_positive_mass(mass):
 
 
 def test_breakpoints_not_increasing():
-    _raises(lambda: pd_.Isolator((3.0, 2.0, 1.0), (0.04, 0.015)), "isolator.breakpoints", "increasing")
+    _raises(lambda: pd_.Isolator((3.0, 2.0, 1.0), (0.04, 0.015)), "isolator.breakpoints_m", "increasing")
 
 
 def test_slopes_and_breakpoints_mismatch():
-    _raises(lambda: pd_.Isolator((3.0, 2.0, 1.0), (0.01,)), "isolator.breakpoints", "2 are needed")
+    _raises(lambda: pd_.Isolator((3.0, 2.0, 1.0), (0.01,)), "isolator.breakpoints_m", "2 are needed")
 
 
 def test_negative_gap_and_stiffness():
     law = pd_.KelvinVoigt(1e6, 5.0)
     _raises(lambda: pd_.Bumpers(-0.01, 0.01, law), "bumpers.gap_left_m", "-0.01", ">= 0")
     _raises(lambda: pd_.KelvinVoigt(-1.0, 5.0), "law.stiffness", "> 0")
-    _raises(lambda: pd_.Isolator((1e4, -1.0), (0.01,)), "isolator.slopes[1]", ">= 0")
+    _raises(lambda: pd_.Isolator((1e4, -1.0), (0.01,)), "isolator.slopes_n_m[1]", ">= 0")
 
 
 @pytest.mark.parametrize("bad", [math.nan, math.inf, -math.inf])
 def test_nan_and_inf_anywhere(bad):
     law = pd_.KelvinVoigt(1e6, 5.0)
     _raises(lambda: pd_.Oscillator(bad, pd_.Isolator((1e4,))), "mass_kg", "finite")
-    _raises(lambda: pd_.Isolator((1e4, bad), (0.01,)), "isolator.slopes[1]", "finite")
-    _raises(lambda: pd_.Isolator((1e4, 1e3), (bad,)), "isolator.breakpoints[0]", "finite")
-    _raises(lambda: pd_.Isolator((1e4,), damping=bad), "isolator.damping", "finite")
+    _raises(lambda: pd_.Isolator((1e4, bad), (0.01,)), "isolator.slopes_n_m[1]", "finite")
+    _raises(lambda: pd_.Isolator((1e4, 1e3), (bad,)), "isolator.breakpoints_m[0]", "finite")
+    _raises(lambda: pd_.Isolator((1e4,), damping_n_s_m=bad), "isolator.damping_n_s_m", "finite")
     _raises(lambda: pd_.Bumpers(0.01, bad, law), "bumpers.gap_right_m", "finite")
     _raises(lambda: pd_.KelvinVoigt(1e6, bad), "law.damping", "finite")
     _raises(lambda: pd_.Harmonic(bad, 2.0), "a_g", "finite")
@@ -107,7 +107,7 @@ def test_toml_round_trip(tmp_path):
 
 def test_toml_unknown_key(tmp_path):
     text = pd_.presets.paper_printed().to_toml(tmp_path / "a.toml").read_text()
-    (tmp_path / "b.toml").write_text(text.replace("damping = 1.0", "dampnig = 1.0"))
+    (tmp_path / "b.toml").write_text(text.replace("damping_n_s_m = 1.0", "dampnig = 1.0"))
     _raises(lambda: pd_.Oscillator.from_toml(tmp_path / "b.toml"), "isolator.dampnig", "not a known key")
     (tmp_path / "c.toml").write_text("colour = 'red'\n" + text)
     _raises(lambda: pd_.Oscillator.from_toml(tmp_path / "c.toml"), "colour")
@@ -170,7 +170,7 @@ def test_the_mass_is_mass_kg_and_its_name_before_still_works_with_a_warning():
         pd_.Oscillator(mass_kg=500.0, mass=500.0, isolator=iso)
     with pytest.raises(TypeError, match="weight"):
         pd_.Oscillator(weight=500.0, isolator=iso)
-    with pytest.raises(InputError, match="mass_kg"):
+    with pytest.raises(TypeError, match="mass_kg"):
         pd_.Oscillator(isolator=iso)
     # a TOML file of 0.1 (its key "mass"), and the dotted name a study varies
     text = pd_.presets.paper_printed().to_toml_text()
@@ -191,6 +191,46 @@ def test_the_mass_is_mass_kg_and_its_name_before_still_works_with_a_warning():
 
     assert dataclasses.replace(new, mass_kg=600.0).mass_kg == 600.0
     assert pickle.loads(pickle.dumps(new)) == new
+
+
+def test_the_isolator_s_numbers_carry_their_units_and_their_names_before_still_work():
+    new = pd_.Isolator(slopes_n_m=[38e3, 18e3], breakpoints_m=[0.015], damping_n_s_m=600.0)
+    assert new == pd_.Isolator((38e3, 18e3), (0.015,), "kinematic", 600.0)
+    with pytest.warns(FutureWarning) as caught:
+        before = pd_.Isolator(slopes=[38e3, 18e3], breakpoints=[0.015], damping=600.0)
+    assert before == new
+    assert sorted(str(w.message).split("'")[1] for w in caught) == ["breakpoints", "damping", "slopes"]
+    with pytest.warns(FutureWarning, match="'damping' is now 'damping_n_s_m'"):
+        assert new.damping == 600.0
+    with pytest.warns(FutureWarning, match="'slopes' is now 'slopes_n_m'"):
+        assert new.slopes == (38e3, 18e3)
+    with pytest.raises(TypeError, match="both 'damping_n_s_m' and 'damping'"):
+        pd_.Isolator([38e3], damping=1.0, damping_n_s_m=1.0)
+    with pytest.raises(InputError) as err:
+        pd_.Isolator([38e3, -1.0], [0.015])
+    assert err.value.field == "isolator.slopes_n_m[1]"
+    # a TOML file of 0.1 (a one-mass system's and a building's), and the dotted names a study varies
+    text = pd_.presets.paper_printed().to_toml_text()
+    assert "slopes_n_m = [" in text and "damping_n_s_m = " in text
+    old = text.replace("slopes_n_m =", "slopes =").replace("breakpoints_m =", "breakpoints =")
+    with pytest.warns(FutureWarning) as caught:
+        assert pd_.Oscillator.from_toml_text(old) == pd_.presets.paper_printed()
+    assert sorted(str(w.message).split("'")[1] for w in caught) == ["isolator.breakpoints", "isolator.slopes"]
+    building = pd_.Structure(3e4, new, [pd_.Storey(2e4, 4e7)])
+    old = building.to_toml_text().replace("damping_n_s_m = 600.0", "damping = 600.0")
+    with pytest.warns(FutureWarning, match="'isolator.damping' is now 'isolator.damping_n_s_m'"):
+        assert pd_.Structure.from_toml_text(old) == building
+    from pounding.model.dotted import get_value, set_value
+
+    table = pd_.presets.paper_printed().to_dict()
+    with pytest.warns(FutureWarning, match=r"'isolator.slopes\[1\]' is now 'isolator.slopes_n_m\[1\]'"):
+        set_value(table, "isolator.slopes[1]", 20e3)
+    assert get_value(table, "isolator.slopes_n_m[1]") == 20e3
+    pair = pd_.Adjacent(building, pd_.Structure.fixed_base([pd_.Storey(2e4, 4e7)]),
+                        [pd_.Link(1, 1, 0.1, pd_.KelvinVoigt(1e8, 1e5))]).to_dict()
+    with pytest.warns(FutureWarning, match="'first.isolator.damping' is now 'first.isolator.damping_n_s_m'"):
+        set_value(pair, "first.isolator.damping", 700.0)
+    assert get_value(pair, "first.isolator.damping_n_s_m") == 700.0
 
 
 def test_a_system_is_given_as_system_and_the_name_before_still_works():

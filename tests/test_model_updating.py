@@ -168,7 +168,7 @@ def test_cli_identify_writes_a_system(tmp_path):
                                  "--cycles", "10"])
     assert result.exit_code == 0, result.output
     fitted = pd_.Oscillator.from_toml(out)
-    assert fitted.bumpers is not None and fitted.isolator.slopes == (38e3, 18e3, 2e3)
+    assert fitted.bumpers is not None and fitted.isolator.slopes_n_m == (38e3, 18e3, 2e3)
     assert len(pd.read_csv(res_csv)) == 5
     bad = runner.invoke(app, ["identify", "--family", "examples/family.toml"])
     assert bad.exit_code != 0

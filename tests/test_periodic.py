@@ -69,7 +69,7 @@ def _fd_jacobian(osc, exc, vec, period, free, step):
             for i in range(n_sp):
                 s = w[STATE_BASE + n_sp + i]
                 if s != 0.0:
-                    w[STATE_BASE + i] = w[I_D] - s * osc.isolator.breakpoints[i]
+                    w[STATE_BASE + i] = w[I_D] - s * osc.isolator.breakpoints_m[i]
             try:
                 end = _image(osc, exc, w, period).final_state.vector
             except pd_.InputError as exc_info:

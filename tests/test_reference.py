@@ -130,7 +130,7 @@ def test_record_excitation_matches_reference():
     t = np.linspace(0.0, 2.0, 41)
     accel = rng.normal(0.0, 2.0, t.size)
     osc = pd_.presets.paper_printed()
-    osc = pd_.Oscillator(osc.mass_kg, pd_.Isolator((38e3, 18e3, 2e3), (0.015, 0.04), damping=600.0),
+    osc = pd_.Oscillator(osc.mass_kg, pd_.Isolator((38e3, 18e3, 2e3), (0.015, 0.04), damping_n_s_m=600.0),
                          pd_.Bumpers(0.008, 0.01, pd_.KelvinVoigt(1.46e6, 500.0)))
     exc = pd_.Record(t, accel)
     run = pd_.simulate(osc, exc, 2.5, sample_rate_hz=0)

@@ -65,7 +65,7 @@ def test_every_run_gives_its_quantities_as_a_study_keeps_them():
     assert q["disp_max_m"] == max(abs(run.displacement_max), abs(run.displacement_min))
     assert q["compression_max_m"] == run.contacts["max_compression_m"].max()
     assert q["impact_speed_max_m_s"] == run.contacts["v_in_m_s"].abs().max()
-    iso = pd_.Isolator(slopes=[2.0e5], breakpoints=[], damping=2.0e3)
+    iso = pd_.Isolator(slopes_n_m=[2.0e5], breakpoints_m=[], damping_n_s_m=2.0e3)
     wall = pd_.Wall(0, 0.02, 0.02, pd_.KelvinVoigt(1e8, 1e4))
     b = pd_.Structure(2.0e3, iso, [pd_.Storey(1.0e3, 2.0e6)] * 2, [wall])
     brun = pd_.simulate(b, pd_.Harmonic(0.3, 1.5), 3.0)

@@ -23,7 +23,7 @@ def _pair(e_wall: float, e_link: float, k: float = 4.0) -> pounding.Adjacent:
     """The first structure's base against the second's through a link, the second's against its wall's right
     side, both gaps zero; each base on a linear isolator of ``k`` rad^2/s^2 per kg."""
     def iso(m: float) -> pounding.Isolator:
-        return pounding.Isolator(slopes=[m * k], damping=0.0)
+        return pounding.Isolator(slopes_n_m=[m * k], damping_n_s_m=0.0)
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # (a stop at zero gap)
@@ -56,7 +56,7 @@ def test_a_mass_struck_against_one_resting_on_a_stop_rebounds_as_off_an_immovabl
 def test_plastic_impacts_at_one_instant_no_longer_stop_the_run():
     """A random pair that stopped with ZENO at 1.09 s: 70 link impacts and 67 wall impacts at that instant,
     each pair shrinking the velocities by m2 / (m1 + m2) = 0.52."""
-    iso = [pounding.Isolator(slopes=[m * w * w], damping=0.1 * m * w)
+    iso = [pounding.Isolator(slopes_n_m=[m * w * w], damping_n_s_m=0.1 * m * w)
            for m, w in ((2.930841294302915, 11.461258479291144), (3.159865012553199, 15.560433687671601))]
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")

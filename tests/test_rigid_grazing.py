@@ -19,7 +19,7 @@ ZETA, A, E, W, D = 0.05, 3.0, 0.8, 2.0 * math.pi, 0.01  # (the gallery's oscilla
 
 
 def _oscillator(law) -> pounding.Oscillator:
-    iso = pounding.Isolator(slopes=[W ** 2], damping=2.0 * ZETA * W)
+    iso = pounding.Isolator(slopes_n_m=[W ** 2], damping_n_s_m=2.0 * ZETA * W)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # (a gap of 10 m on the left: no stop there)
         return pounding.Oscillator(1.0, iso, pounding.Bumpers(10.0, D, law))
@@ -144,7 +144,7 @@ def test_a_grazing_of_both_stops_at_once_is_located_and_said_where_the_branch_st
     goes as the depth's fourth root (the first impact's square root moves the second's depth), which one
     stop's normal form does not describe: the branch stops there and says so, with no fold of that normal
     form reported."""
-    iso = pounding.Isolator(slopes=[W ** 2], damping=2.0 * ZETA * W)
+    iso = pounding.Isolator(slopes_n_m=[W ** 2], damping_n_s_m=2.0 * ZETA * W)
     osc = pounding.Oscillator(1.0, iso, pounding.Bumpers(D, D, pounding.RigidStop(E)))
     branch = pounding.continuation(osc, (0.005, 0.1), 1.3, parameter="a_g")
     assert branch.status == Status.STEP_FAILED and "two stops at once" in branch.message

@@ -39,7 +39,7 @@ def test_a_spectrum_with_rigid_stops_reports_unbounded_accelerations_and_forces_
 
 
 def test_a_building_struck_at_its_base_by_a_rigid_moat_wall_keeps_its_top_floor_s_finite_acceleration():
-    iso = pounding.Isolator(slopes=[2.0e5], damping=2.0e3)
+    iso = pounding.Isolator(slopes_n_m=[2.0e5], damping_n_s_m=2.0e3)
     storey = pounding.Storey(1.0e4, 4.0e6, 2.0e4, height_m=3.0)
     wall = pounding.Wall(0, 0.05, 0.05, pounding.RigidStop(0.5))
     building = pounding.Structure(1.0e4, iso, [storey], [wall])
@@ -55,7 +55,7 @@ def test_a_building_struck_at_its_base_by_a_rigid_moat_wall_keeps_its_top_floor_
 
 
 def _building(law) -> pounding.Structure:
-    iso = pounding.Isolator(slopes=[4.0e5, 1.0e5], breakpoints=[0.02], damping=2.0e3)
+    iso = pounding.Isolator(slopes_n_m=[4.0e5, 1.0e5], breakpoints_m=[0.02], damping_n_s_m=2.0e3)
     wall = pounding.Wall(0, 0.03, 0.03, law)
     return pounding.Structure(3.0e3, iso, [pounding.Storey(2.0e3, 4.0e6, 4.0e3)] * 2, [wall])
 
@@ -132,7 +132,7 @@ def test_two_masses_held_together_have_their_group_s_peak_acceleration_between_a
     found, not only at their ends: against 20 kHz samples, never below them and within 1e-7 g of their max
     (it was 3e-4 m/s^2 below when only the ends were seen)."""
     def iso(w: float) -> pounding.Isolator:
-        return pounding.Isolator(slopes=[w * w], damping=0.1 * w)
+        return pounding.Isolator(slopes_n_m=[w * w], damping_n_s_m=0.1 * w)
 
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # (1 kg bases)
@@ -152,7 +152,7 @@ def test_a_base_held_on_its_wall_under_a_record_has_the_table_s_acceleration_and
     """Held to the ground, a group moves with the table: under a record (linear between its samples) its
     peak is at the samples, never the mean of its free accelerations (which leaves the wall's force out:
     7.5 % too high, in a review, before that case was told apart)."""
-    iso = pounding.Isolator(slopes=[4.0 * np.pi ** 2], damping=0.4 * np.pi)
+    iso = pounding.Isolator(slopes_n_m=[4.0 * np.pi ** 2], damping_n_s_m=0.4 * np.pi)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # (a 1 kg building)
         building = pounding.Structure(1.0, iso, [pounding.Storey(1.0, 16.0 * np.pi ** 2, 0.5)],

@@ -20,7 +20,7 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "benchmarks"))
 
 
 def _building(e: float) -> pounding.Structure:
-    iso = pounding.Isolator(slopes=[4.0 * math.pi ** 2], damping=0.4 * math.pi)
+    iso = pounding.Isolator(slopes_n_m=[4.0 * math.pi ** 2], damping_n_s_m=0.4 * math.pi)
     stop = pounding.Wall(0, 0.01, 0.01, pounding.RigidStop(e))
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # (a 1 kg building)

@@ -23,7 +23,7 @@ OMEGA = math.sqrt(K / M)
 
 def oscillator(e: float, gap_right_m: float = 0.01, zeta: float = 0.0, gap_left_m: float = 0.5,
                e_left: float | None = None, omega: float = OMEGA) -> pounding.Oscillator:
-    iso = pounding.Isolator(slopes=[M * omega ** 2], damping=2.0 * zeta * omega * M)
+    iso = pounding.Isolator(slopes_n_m=[M * omega ** 2], damping_n_s_m=2.0 * zeta * omega * M)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # (gaps beyond a bumper's plausible range)
         return pounding.Oscillator(M, iso, pounding.Bumpers(
@@ -126,7 +126,7 @@ def test_a_chatter_accumulates_at_the_sum_of_its_exact_flights_whatever_its_last
     9e-12 s, 9e-9 s and 9e-6 s late."""
     m, k, drop = 0.001, 100.0, 0.01
     omega = math.sqrt(k / m)
-    iso = pounding.Isolator(slopes=[k], damping=2.0 * zeta * omega * m)
+    iso = pounding.Isolator(slopes_n_m=[k], damping_n_s_m=2.0 * zeta * omega * m)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # (gaps beyond a bumper's plausible range)
         osc = pounding.Oscillator(m, iso, pounding.Bumpers(0.5, 0.0, pounding.RigidStop(e)))
@@ -176,7 +176,7 @@ def test_a_chatter_on_a_shaken_table_accumulates_at_the_sum_of_its_exact_flights
         t, u = t + tau, e * back
         if tau < 1e-18:
             break
-    iso = pounding.Isolator(slopes=[k], damping=2.0 * zeta * omega * m)
+    iso = pounding.Isolator(slopes_n_m=[k], damping_n_s_m=2.0 * zeta * omega * m)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # (gaps beyond a bumper's plausible range)
         osc = pounding.Oscillator(m, iso, pounding.Bumpers(0.5, 0.0, pounding.RigidStop(e)))
@@ -351,7 +351,7 @@ def test_a_stiff_kelvin_voigt_bumper_tends_to_the_rigid_stop_first_order_in_its_
     for kb in (1e7, 1e8, 1e9, 1e10):
         law = pounding.KelvinVoigt(kb, 2.0 * zeta_b * math.sqrt(kb * M))
         assert _kv_restitution(kb, law.damping) == pytest.approx(e, rel=1e-9)
-        iso = pounding.Isolator(slopes=[K], damping=2.0 * 0.02 * OMEGA * M)
+        iso = pounding.Isolator(slopes_n_m=[K], damping_n_s_m=2.0 * 0.02 * OMEGA * M)
         osc = pounding.Oscillator(M, iso, pounding.Bumpers(d, d, law))
         run = pounding.simulate(osc, table, duration=3.0, sample_rate_hz=0)
         got = run.contacts.iloc[:6]
@@ -369,7 +369,7 @@ def test_a_return_that_barely_reaches_the_stop_is_an_impact_not_a_pass_through()
     return dips 7 nm past it inside a sub-interval that ends as it comes back out (its end within the
     rounding of zero): the crossing before the dip is the impact, not the one after it."""
     mass, omega, gap = 823.135633938375, 21.948266301722516, 0.01951727485062605
-    iso = pounding.Isolator(slopes=[mass * omega ** 2])
+    iso = pounding.Isolator(slopes_n_m=[mass * omega ** 2])
     osc = pounding.Oscillator(mass, iso, pounding.Bumpers(0.0, gap, pounding.RigidStop(0.15054298312394565),
                                                           pounding.RigidStop(0.0)))
     push = constant(-2.0045586059931297)
@@ -425,7 +425,7 @@ def test_mirrored_stops_give_the_mirrored_motion():
 def test_no_run_hangs_or_stops_on_its_budget_in_chatter(mass, omega, zeta, e, gap_l, gap_r, a, f_hz,
                                                        on_stop, constant_push):
     assume(gap_l + gap_r > 0.0)  # (no gap at all: a clamp, refused; the test below)
-    iso = pounding.Isolator(slopes=[mass * omega ** 2], damping=2.0 * zeta * omega * mass)
+    iso = pounding.Isolator(slopes_n_m=[mass * omega ** 2], damping_n_s_m=2.0 * zeta * omega * mass)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         osc = pounding.Oscillator(mass, iso, pounding.Bumpers(gap_l, gap_r, pounding.RigidStop(e)))
@@ -486,7 +486,7 @@ def test_a_rigid_stop_refuses_a_restitution_outside_0_to_1():
 
 def _classic() -> pounding.Oscillator:
     """The gallery's impact oscillator: 1 Hz, 5 % damping, a rigid stop at its rest position (e = 0.8)."""
-    iso = pounding.Isolator(slopes=[W ** 2], damping=2.0 * ZETA * W)
+    iso = pounding.Isolator(slopes_n_m=[W ** 2], damping_n_s_m=2.0 * ZETA * W)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")  # (a gap of 10 m on the left: no stop there)
         return pounding.Oscillator(1.0, iso, pounding.Bumpers(10.0, 0.0, pounding.RigidStop(E)))
@@ -518,7 +518,7 @@ def test_an_impacting_branch_is_continued_with_no_grazing_and_basins_sort_its_st
 def test_a_building_s_orbit_against_a_rigid_wall_has_its_finite_difference_multipliers():
     """Two masses (a base on its isolator, a floor) with the floor against a rigid stop: Newton's law acts on
     the floor alone, and the exact multipliers equal those of finite differences of the same orbit."""
-    iso = pounding.Isolator(slopes=[8.0 * math.pi ** 2], damping=0.4 * math.pi)
+    iso = pounding.Isolator(slopes_n_m=[8.0 * math.pi ** 2], damping_n_s_m=0.4 * math.pi)
     stop = pounding.Wall(1, 0.5, 0.0, pounding.RigidStop(0.8))
     building = pounding.Structure(1.0, iso, [pounding.Storey(1.0, 16.0 * math.pi ** 2)], [stop])
     for f_hz in (1.5, 2.5):  # (stable, and past a Neimark-Sacker point)

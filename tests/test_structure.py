@@ -25,7 +25,7 @@ matplotlib.use("Agg")
 
 
 def linear_isolator(k: float, c: float) -> pd_.Isolator:
-    return pd_.Isolator(slopes=[k], breakpoints=[], damping=c)
+    return pd_.Isolator(slopes_n_m=[k], breakpoints_m=[], damping_n_s_m=c)
 
 
 @st.composite
@@ -165,8 +165,8 @@ def test_modes_equal_the_closed_form_of_two_masses():
 def test_the_ledger_closes_and_no_wall_pulls(seed, law):
     rng = np.random.default_rng(seed)
     n = int(rng.integers(2, 5))
-    iso = pd_.Isolator(slopes=[rng.uniform(2e4, 6e4) * n, rng.uniform(5e3, 2e4) * n],
-                       breakpoints=[rng.uniform(0.005, 0.02)], damping=rng.uniform(0.0, 1e3),
+    iso = pd_.Isolator(slopes_n_m=[rng.uniform(2e4, 6e4) * n, rng.uniform(5e3, 2e4) * n],
+                       breakpoints_m=[rng.uniform(0.005, 0.02)], damping_n_s_m=rng.uniform(0.0, 1e3),
                        hysteresis=str(rng.choice(["kinematic", "elastic"])))
     laws = {"kv": pd_.KelvinVoigt(rng.uniform(1e6, 1e7), rng.uniform(1e2, 3e3)),
             "multilinear": pd_.MultilinearBumper([4e6, 1e6, 2e7], [0.002, 0.006], rng.uniform(0.0, 500.0)),
@@ -209,7 +209,7 @@ def test_the_ledger_closes_and_no_wall_pulls(seed, law):
 def test_a_continued_run_equals_one_long_run(rule):
     # (the elastic rule's continued run: its state past the first break was refused once, its unused
     # slips checked as a kinematic spring's)
-    iso = pd_.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02], damping=2.0e4, hysteresis=rule)
+    iso = pd_.Isolator(slopes_n_m=[4.0e6, 1.0e6], breakpoints_m=[0.02], damping_n_s_m=2.0e4, hysteresis=rule)
     b = pd_.Structure(3.0e4, iso, [pd_.Storey(2.0e4, 4.0e7, 4.0e4)] * 3,
                       [pd_.Wall(0, 0.10, 0.10, pd_.KelvinVoigt(2.0e8, 1.0e5))])
     exc = pd_.Harmonic(0.3, 1.2)
@@ -229,7 +229,7 @@ def test_a_continued_run_equals_one_long_run(rule):
 
 
 def test_results_give_their_tables_and_figure(tmp_path):
-    iso = pd_.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02], damping=2.0e4)
+    iso = pd_.Isolator(slopes_n_m=[4.0e6, 1.0e6], breakpoints_m=[0.02], damping_n_s_m=2.0e4)
     b = pd_.Structure(3.0e4, iso, [pd_.Storey(2.0e4, 4.0e7, 4.0e4, height_m=3.5)] * 2,
                       [pd_.Wall(0, 0.05, 0.05, pd_.KelvinVoigt(2.0e8, 1.0e5)),
                        pd_.Wall(2, 0.08, 0.08, pd_.KelvinVoigt(1.0e8, 1.0e5))])
@@ -279,7 +279,7 @@ def test_results_give_their_tables_and_figure(tmp_path):
 
 
 def test_toml_round_trip_and_its_errors(tmp_path):
-    iso = pd_.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02], damping=2.0e4)
+    iso = pd_.Isolator(slopes_n_m=[4.0e6, 1.0e6], breakpoints_m=[0.02], damping_n_s_m=2.0e4)
     b = pd_.Structure(3.0e4, iso, [pd_.Storey(2.0e4, 4.0e7, 4.0e4)] * 2,
                       [pd_.Wall(1, 0.05, 0.06, pd_.KelvinVoigt(2.0e8, 1.0e5),
                                 pd_.MultilinearBumper([4e6, 1e6], [0.01], 100.0))])
@@ -486,7 +486,7 @@ def test_a_release_from_the_wall_inside_one_reference_step():
 
 
 def test_rayleigh_damping_gives_the_two_modes_their_ratios_and_leaves_the_isolation_undamped():
-    iso = pd_.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02])
+    iso = pd_.Isolator(slopes_n_m=[4.0e6, 1.0e6], breakpoints_m=[0.02])
     storeys = [pd_.Storey(m, k) for m, k in ((2.5e4, 6.0e7), (2.0e4, 5.0e7), (1.5e4, 3.0e7))]
     b = pd_.Structure(3.0e4, iso, storeys, rayleigh=(0.02, 0.05))
     c = b.damping_matrix
@@ -600,7 +600,7 @@ def test_a_fixed_base_building_against_a_stop_matches_the_reference():
 
 
 def test_two_identical_buildings_move_as_one_and_as_each_alone():
-    iso = pd_.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02], damping=2.0e4)
+    iso = pd_.Isolator(slopes_n_m=[4.0e6, 1.0e6], breakpoints_m=[0.02], damping_n_s_m=2.0e4)
     b = pd_.Structure(3.0e4, iso, [pd_.Storey(2.0e4, 4.0e7, 4.0e4)] * 2,
                       [pd_.Wall(0, 0.08, 0.08, pd_.KelvinVoigt(2.0e8, 1.0e5))])
     pair = pd_.Adjacent(b, b, [pd_.Link(2, 2, 0.01, pd_.KelvinVoigt(5e8, 1e5))])
@@ -640,7 +640,7 @@ def test_adjacent_structures_check_their_fields(tmp_path):
         pd_.Link(1, 1, -0.05, law)
     with pytest.raises(pd_.InputError, match="link.law"):
         pd_.Link(1, 1, 0.05, "kv")
-    bw = pd_.Isolator(slopes=[1e5], breakpoints=[], bouc_wen=pd_.BoucWen(1e4, 0.01))
+    bw = pd_.Isolator(slopes_n_m=[1e5], breakpoints_m=[], bouc_wen=pd_.BoucWen(1e4, 0.01))
     with_bw = pd_.Structure(1e3, bw, [pd_.Storey(1e3, 1e6)])
     with pytest.raises(pd_.InputError, match="Bouc-Wen"):
         pd_.Adjacent(with_bw, with_bw, [pd_.Link(1, 1, 0.05, law)])
@@ -720,7 +720,7 @@ def test_bumpers_on_flexible_stands_match_the_reference(case, v0):
 
 
 def test_a_state_that_does_not_fit_the_structure_is_refused_and_named():
-    iso = pd_.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02], damping=2.0e4)
+    iso = pd_.Isolator(slopes_n_m=[4.0e6, 1.0e6], breakpoints_m=[0.02], damping_n_s_m=2.0e4)
     face = pd_.KelvinVoigt(2e8, 1e5)
     near = pd_.Structure(3.0e4, iso, [pd_.Storey(2.0e4, 4.0e7)], [pd_.Wall(0, 0.01, 0.01, face)])
     far = pd_.Structure(3.0e4, iso, [pd_.Storey(2.0e4, 4.0e7)], [pd_.Wall(0, 0.08, 0.08, face)])
@@ -738,7 +738,7 @@ def test_a_state_that_does_not_fit_the_structure_is_refused_and_named():
 
 
 def test_rayleigh_that_would_give_a_mode_negative_damping_is_refused():
-    iso = pd_.Isolator(slopes=[4e6, 1e6], breakpoints=[0.02], damping=2e4)
+    iso = pd_.Isolator(slopes_n_m=[4e6, 1e6], breakpoints_m=[0.02], damping_n_s_m=2e4)
     with pytest.raises(pd_.InputError, match="rayleigh.*mode 5"):
         pd_.Structure(3e4, iso, [pd_.Storey(2e4, 4e7)] * 5, rayleigh=(0.25, 0.01))
     b = pd_.Structure(3e4, iso, [pd_.Storey(2e4, 4e7)] * 5, rayleigh=(0.0, 0.05))  # (mode 1 undamped: fine)
@@ -746,7 +746,7 @@ def test_rayleigh_that_would_give_a_mode_negative_damping_is_refused():
 
 
 def test_files_name_the_storey_wall_or_link_at_fault_and_round_trip_exactly():
-    iso = pd_.Isolator(slopes=[4e6, 1e6], breakpoints=[0.02], damping=2e4)
+    iso = pd_.Isolator(slopes_n_m=[4e6, 1e6], breakpoints_m=[0.02], damping_n_s_m=2e4)
     b = pd_.Structure(3e4, iso, [pd_.Storey(2e4, 4e7), pd_.Storey(2e4, 4e7, hysteresis="elastic")],
                       [pd_.Wall(2, 0.05, 0.05, pd_.KelvinVoigt(2e8, 1e5), stand=pd_.Stand(50.0, 1e6))])
     assert pd_.Structure.from_toml_text(b.to_toml_text()) == b
@@ -801,7 +801,7 @@ def test_each_contact_s_clearance_is_its_exact_closest_approach():
     # within what the samples can miss at an extremum (half an acceleration below 200 m/s^2 times the
     # sample step squared, 25 us: 6e-8 m)
     kv = pd_.KelvinVoigt(2e7, 2e3)
-    iso = pd_.Isolator([1e5, 3e4], [0.004], damping=500.0)
+    iso = pd_.Isolator([1e5, 3e4], [0.004], damping_n_s_m=500.0)
     first = pd_.Structure(1000.0, iso, [pd_.Storey(800.0, 2e6, 500.0)],
                           [pd_.Wall(0, 0.01, 0.012, kv, stand=pd_.Stand(30.0, 3e6, 100.0))])
     second = pd_.Structure.fixed_base([pd_.Storey(900.0, 5e6, 500.0)] * 2,

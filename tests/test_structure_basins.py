@@ -16,7 +16,7 @@ EXC = pd_.Harmonic(0.05, 1.6)
 
 
 def _building() -> pd_.Structure:
-    iso = pd_.Isolator(slopes=[2e5], breakpoints=[], damping=2e3)
+    iso = pd_.Isolator(slopes_n_m=[2e5], breakpoints_m=[], damping_n_s_m=2e3)
     return pd_.Structure(2.0e3, iso, [pd_.Storey(1.0e3, 2.0e6, 2.0e3)],
                          [pd_.Wall(0, 0.03, 0.03, pd_.KelvinVoigt(1.0e8, 2.0e4))])
 
@@ -84,7 +84,8 @@ def test_a_building_s_basin_stability_is_its_basins_share_that_pounds():
 def test_a_building_s_alpha_is_its_levels_not_its_bumpers_stands():
     # (the stands' impact accelerations are far above the floors': alpha is a floor's, as in a sweep)
     wall = pd_.Wall(0, 0.01, 0.01, pd_.KelvinVoigt(1e8, 2e4), stand=pd_.Stand(20.0, 2e6, 50.0))
-    b = pd_.Structure(2.0e3, pd_.Isolator([2e5], [], damping=2e3), [pd_.Storey(1.0e3, 2.0e6, 2.0e3)], [wall])
+    b = pd_.Structure(2.0e3, pd_.Isolator([2e5], [], damping_n_s_m=2e3), [pd_.Storey(1.0e3, 2.0e6, 2.0e3)],
+                      [wall])
     exc = pd_.Harmonic(0.1, 1.6)
     result = pd_.basins(b, exc, n=(2, 1), velocity_m_s=(-0.1, 0.1), max_cycles=300, scheduler="serial")
     i = int(np.flatnonzero(result.labels.ravel() >= 0)[0])

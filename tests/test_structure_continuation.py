@@ -18,7 +18,7 @@ import pytest
 import pounding as pd_
 
 ROOT = Path(__file__).resolve().parents[1]
-ISO = pd_.Isolator(slopes=[2e5], breakpoints=[], damping=4e3)
+ISO = pd_.Isolator(slopes_n_m=[2e5], breakpoints_m=[], damping_n_s_m=4e3)
 
 
 def _building() -> pd_.Structure:

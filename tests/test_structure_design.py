@@ -14,7 +14,7 @@ from pounding import design
 
 
 def building() -> pd_.Structure:
-    iso = pd_.Isolator(slopes=[4.0e5, 1.0e5], breakpoints=[0.02], damping=2.0e3)
+    iso = pd_.Isolator(slopes_n_m=[4.0e5, 1.0e5], breakpoints_m=[0.02], damping_n_s_m=2.0e3)
     wall = pd_.Wall(0, 0.05, 0.05, pd_.KelvinVoigt(2.0e7, 1.0e4))
     return pd_.Structure(3.0e3, iso, [pd_.Storey(2.0e3, 4.0e6, 4.0e3)] * 2, [wall])
 
@@ -51,7 +51,7 @@ def test_a_building_stripe_analysis_keeps_its_demands(msa):
 
 
 def test_a_building_without_storeys_reads_back_with_its_wall(tmp_path):
-    iso = pd_.Isolator(slopes=[4.0e5], breakpoints=[], damping=2.0e3)
+    iso = pd_.Isolator(slopes_n_m=[4.0e5], breakpoints_m=[], damping_n_s_m=2.0e3)
     base = pd_.Structure(3.0e3, iso, [], [pd_.Wall(0, 0.02, 0.02, pd_.KelvinVoigt(2.0e7, 1.0e4))])
     design.stripe_analysis(base, "el-centro", [0.5], period_s=1.5, store=str(tmp_path / "s.zarr"),
                            progress=False, scheduler="serial")

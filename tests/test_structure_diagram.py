@@ -16,7 +16,7 @@ import pounding as pd_
 
 
 def _building(gap: float = 0.02) -> pd_.Structure:
-    iso = pd_.Isolator(slopes=[2e5, 5e4], breakpoints=[0.005], damping=4e3)
+    iso = pd_.Isolator(slopes_n_m=[2e5, 5e4], breakpoints_m=[0.005], damping_n_s_m=4e3)
     return pd_.Structure(2.0e3, iso, [pd_.Storey(1.0e3, 2.0e6, 2.0e3)],
                          [pd_.Wall(0, gap, gap, pd_.KelvinVoigt(1.0e8, 2.0e4))])
 

@@ -36,8 +36,9 @@ def test_the_same_fit_finds_the_same_number():
     one = pd_.identify(targets, pd_.ModelFamily(500.0, fixed=fixed), {"isolator_damping": (100.0, 5000.0)},
                        **options)
     family = pd_.StructureFamily(pd_.Structure.from_oscillator(damped))
-    many = pd_.identify(targets, family, {"isolator.damping": (100.0, 5000.0)}, **options)
-    assert many.parameters["isolator.damping"] == pytest.approx(one.parameters["isolator_damping"], rel=1e-9)
+    many = pd_.identify(targets, family, {"isolator.damping_n_s_m": (100.0, 5000.0)}, **options)
+    assert many.parameters["isolator.damping_n_s_m"] == pytest.approx(one.parameters["isolator_damping"],
+                                                                      rel=1e-9)
     assert isinstance(many.oscillator, pd_.Structure) and many.n_within == one.n_within == 1
 
 
@@ -50,8 +51,8 @@ def test_a_structure_family_names_what_it_refuses():
     with pytest.raises(pd_.InputError, match="Structure"):
         pd_.StructureFamily(pd_.presets.paper_calibrated())
     with pytest.raises(pd_.InputError) as err:  # (a structure's metrics are exact: no chain to fit)
-        pd_.identify(pd_.paper_targets(), pd_.StructureFamily(rig), {"isolator.damping": (100.0, 5000.0),
-                                                                      "measurement_cutoff_hz": (10.0, 100.0)})
+        pd_.identify(pd_.paper_targets(), pd_.StructureFamily(rig),
+                     {"isolator.damping_n_s_m": (100.0, 5000.0), "measurement_cutoff_hz": (10.0, 100.0)})
     assert err.value.field == "bounds.measurement_cutoff_hz"
 
 
@@ -62,7 +63,7 @@ def test_a_structure_family_file_on_the_command_line(tmp_path):
 
     pd_.Structure.from_oscillator(pd_.presets.paper_damped()).to_toml(tmp_path / "rig.toml")
     (tmp_path / "family.toml").write_text('structure = "rig.toml"\n'
-                                          '[bounds]\n"isolator.damping" = [100.0, 5000.0]\n')
+                                          '[bounds]\n"isolator.damping_n_s_m" = [100.0, 5000.0]\n')
     (tmp_path / "targets.toml").write_text('[[target]]\nconfiguration = "NBs"\na_g = 0.05\n'
                                            'quantity = "alpha"\nvalue = 2.99\n')
     result = CliRunner().invoke(app, ["identify", str(tmp_path / "targets.toml"), "--family",
@@ -71,7 +72,7 @@ def test_a_structure_family_file_on_the_command_line(tmp_path):
                                       "--popsize", "3", "--workers", "1"])
     assert result.exit_code == 0, result.output
     fitted = pd_.Structure.from_toml(tmp_path / "fit.toml")
-    assert 100.0 <= fitted.isolator.damping <= 5000.0
+    assert 100.0 <= fitted.isolator.damping_n_s_m <= 5000.0
     (tmp_path / "bad.toml").write_text('structure = "rig.toml"\n[bounds]\n"walls[3].gap_m" = [0.01, 0.02]\n')
     bad = CliRunner().invoke(app, ["identify", str(tmp_path / "targets.toml"), "--family",
                                    str(tmp_path / "bad.toml")])

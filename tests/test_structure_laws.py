@@ -51,7 +51,7 @@ def cases(draw, kind: str, where: str):
         k, c = rng.uniform(3e5, 5e6, n - 1), rng.uniform(0.0, 2e3, n - 1)
         level = draw(st.integers(0, n - 1))
         gaps = (draw(st.floats(0.002, 0.02)), draw(st.floats(0.002, 0.02)))
-        model = pd_.Structure(mass[0], pd_.Isolator([k_iso], [], damping=c_iso),
+        model = pd_.Structure(mass[0], pd_.Isolator([k_iso], [], damping_n_s_m=c_iso),
                               [pd_.Storey(*v) for v in zip(mass[1:], k, c)], [pd_.Wall(level, *gaps, law)])
         ref = RefStructure(mass=mass, k0=model.stiffness_matrix, c0=model.damping_matrix, k_iso=k_iso,
                            c_iso=c_iso, gaps=gaps, k_b=k_step, c_b=0.0, a_g=a_g, omega=omega, level=level,
@@ -63,7 +63,7 @@ def cases(draw, kind: str, where: str):
     k2, c2 = rng.uniform(5e5, 5e6, n2), rng.uniform(0.0, 1e3, n2)
     level_first, level_second = draw(st.integers(0, n1 - 1)), draw(st.integers(1, n2))
     gap = draw(st.floats(0.002, 0.02))
-    first = pd_.Structure(mass[0], pd_.Isolator([k_iso], [], damping=c_iso),
+    first = pd_.Structure(mass[0], pd_.Isolator([k_iso], [], damping_n_s_m=c_iso),
                           [pd_.Storey(*v) for v in zip(mass[1:n1], k1, c1)])
     second = pd_.Structure.fixed_base([pd_.Storey(*v) for v in zip(mass[n1:], k2, c2)])
     model = pd_.Adjacent(first, second, [pd_.Link(level_first, level_second, gap, law)])

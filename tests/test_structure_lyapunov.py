@@ -22,15 +22,15 @@ import pounding as pd_
 def test_a_linear_structure_has_the_real_parts_of_its_eigenvalues(seed, n, a_g, freq):
     rng = np.random.default_rng(seed)
     mass = rng.uniform(300.0, 3000.0, n)
-    iso = pd_.Isolator([rng.uniform(2e4, 1e5) * n], [], damping=rng.uniform(1e2, 3e3))
+    iso = pd_.Isolator([rng.uniform(2e4, 1e5) * n], [], damping_n_s_m=rng.uniform(1e2, 3e3))
     k, c = rng.uniform(5e5, 5e6, n - 1), rng.uniform(1e2, 3e3, n - 1)
     b = pd_.Structure(mass[0], iso, [pd_.Storey(*v) for v in zip(mass[1:], k, c)])
     spec = pd_.lyapunov(b, pd_.Harmonic(a_g, freq), cycles=5, transient_cycles=0, align_cycles=0)
     m = b.masses_kg
     k = b.stiffness_matrix.copy()
     c = b.damping_matrix.copy()
-    k[0, 0] += iso.slopes[0]
-    c[0, 0] += iso.damping
+    k[0, 0] += iso.slopes_n_m[0]
+    c[0, 0] += iso.damping_n_s_m
     a = np.block([[np.zeros((n, n)), np.eye(n)], [-k / m[:, None], -c / m[:, None]]])
     expected = np.sort(np.linalg.eigvals(a).real)[::-1]
     assert spec.method == "exact" and spec.coordinates[:2] == ("x_0", "x_1")
@@ -41,7 +41,7 @@ def test_a_linear_structure_has_the_real_parts_of_its_eigenvalues(seed, n, a_g, 
 
 def _chaotic() -> pd_.Structure:
     stop = pd_.Wall(0, 0.02, 0.02, pd_.KelvinVoigt(1.0e8, 2.0e4))
-    iso = pd_.Isolator(slopes=[2e5, 5e4], breakpoints=[0.005], damping=4e3)
+    iso = pd_.Isolator(slopes_n_m=[2e5, 5e4], breakpoints_m=[0.005], damping_n_s_m=4e3)
     return pd_.Structure(2.0e3, iso, [pd_.Storey(1.0e3, 2.0e6, 2.0e3)], [stop])
 
 

@@ -28,7 +28,7 @@ def _linear(rng: np.random.Generator, n: int, rayleigh: bool) -> pd_.Structure:
     mass = rng.uniform(300.0, 3000.0, n)
     k = rng.uniform(5e5, 5e6, n - 1)
     c = rng.uniform(0.0, 3e3, n - 1)
-    iso = pd_.Isolator([rng.uniform(2e4, 1e5) * n], [], damping=rng.uniform(1e2, 3e3))
+    iso = pd_.Isolator([rng.uniform(2e4, 1e5) * n], [], damping_n_s_m=rng.uniform(1e2, 3e3))
     if rayleigh and n > 2:
         return pd_.Structure(mass[0], iso, [pd_.Storey(m, kk) for m, kk in zip(mass[1:], k)],
                              rayleigh=(0.02, 0.05))
@@ -50,8 +50,8 @@ def test_a_linear_structure_is_on_its_frequency_response_with_multipliers_exp_la
     m = np.diag(b.masses_kg)
     k = b.stiffness_matrix.copy()
     c = b.damping_matrix.copy()
-    k[0, 0] += b.isolator.slopes[0]
-    c[0, 0] += b.isolator.damping
+    k[0, 0] += b.isolator.slopes_n_m[0]
+    c[0, 0] += b.isolator.damping_n_s_m
     w, amp = exc.omega_rad_s, exc.peak_m_s2
     h = np.linalg.solve(k - w**2 * m + 1j * w * c, -m @ np.ones(n) * amp)  # x = Im(h e^(i(w t + phase)))
     t0 = orbit.state.time_s
@@ -73,7 +73,7 @@ def test_a_linear_structure_is_on_its_frequency_response_with_multipliers_exp_la
 def _isolator(rng: np.random.Generator, rule: str, scale: float) -> pd_.Isolator:
     k1 = rng.uniform(3e4, 1e5) * scale
     return pd_.Isolator([k1, k1 * rng.uniform(0.1, 0.5)], [rng.uniform(0.002, 0.01)], hysteresis=rule,
-                        damping=rng.uniform(1e2, 1e3))
+                        damping_n_s_m=rng.uniform(1e2, 1e3))
 
 
 @st.composite
@@ -172,7 +172,7 @@ def test_one_level_structure_is_the_oscillator_orbit_for_orbit(osc, a_g, freq):
 
 
 def _moat() -> pd_.Structure:
-    iso = pd_.Isolator(slopes=[2.0e5], breakpoints=[], damping=4.0e3)
+    iso = pd_.Isolator(slopes_n_m=[2.0e5], breakpoints_m=[], damping_n_s_m=4.0e3)
     stop = pd_.Wall(0, 0.02, 0.02, pd_.KelvinVoigt(1.0e8, 2.0e4))
     return pd_.Structure(2.0e3, iso, [pd_.Storey(1.0e3, 2.0e6, 2.0e3)], [stop])
 
@@ -187,7 +187,7 @@ def test_an_impacting_orbit_of_a_building_and_of_a_pair():
     fd = pd_.periodic_orbit(_moat(), pd_.Harmonic(0.1, 1.5), method="finite-difference")
     assert fd.method == "finite-difference"
     assert np.abs(fd.monodromy - orbit.monodromy).max() <= 1e-6 * np.abs(orbit.monodromy).max()
-    iso = pd_.Isolator(slopes=[4.0e5, 1.0e5], breakpoints=[0.01], damping=2.0e3)
+    iso = pd_.Isolator(slopes_n_m=[4.0e5, 1.0e5], breakpoints_m=[0.01], damping_n_s_m=2.0e3)
     first = pd_.Structure(3.0e3, iso, [pd_.Storey(2.0e3, 4.0e6, 2.0e3)])
     second = pd_.Structure.fixed_base([pd_.Storey(2.0e3, 6.0e6, 3.0e3)] * 2)
     pair = pd_.Adjacent(first, second, [pd_.Link(1, 1, 0.01, pd_.KelvinVoigt(5.0e7, 1.0e4))])

@@ -15,7 +15,7 @@ from pounding.protocols.pounding_spectrum import superstructure_at
 
 
 def building() -> pd_.Structure:
-    iso = pd_.Isolator(slopes=[4.0e5, 1.0e5], breakpoints=[0.02], damping=2.0e3)
+    iso = pd_.Isolator(slopes_n_m=[4.0e5, 1.0e5], breakpoints_m=[0.02], damping_n_s_m=2.0e3)
     storeys = [pd_.Storey(2.0e3, 4.0e6, 4.0e3), pd_.Storey(1.5e3, 3.0e6, 3.0e3, slopes_after_n_m=(1.0e6,),
                                                             breakpoints_m=(0.01,))]
     return pd_.Structure(3.0e3, iso, storeys, [pd_.Wall(0, 0.03, 0.03, pd_.KelvinVoigt(2.0e7, 1.0e4))])

@@ -20,7 +20,7 @@ matplotlib.use("Agg")
 
 
 def linear_isolator(k: float, c: float) -> pd_.Isolator:
-    return pd_.Isolator(slopes=[k], breakpoints=[], damping=c)
+    return pd_.Isolator(slopes_n_m=[k], breakpoints_m=[], damping_n_s_m=c)
 
 
 @pytest.mark.parametrize("preset, schedule", [("paper_damped", {}), ("nbs", {}), (
@@ -142,7 +142,7 @@ def test_a_fixed_schedule_equals_simulating_it_step_by_step(b, a_g):
 
 
 def test_a_pair_names_its_structures_and_links():
-    iso = pd_.Isolator(slopes=[4.0e5, 1.0e5], breakpoints=[0.02], damping=2.0e3)
+    iso = pd_.Isolator(slopes_n_m=[4.0e5, 1.0e5], breakpoints_m=[0.02], damping_n_s_m=2.0e3)
     isolated = pd_.Structure(3.0e3, iso, [pd_.Storey(2.0e3, 4.0e6, 4.0e3)] * 2)
     old = pd_.Structure.fixed_base([pd_.Storey(2.5e3, 3.0e6, 5.0e3)] * 2)
     pair = pd_.Adjacent(isolated, old, [pd_.Link(2, 2, 0.02, pd_.KelvinVoigt(5.0e7, 2.0e4))])
@@ -188,7 +188,7 @@ def test_bad_arguments_are_named():
 
 
 def test_a_campaign_of_a_building_without_and_with_its_moat_wall(tmp_path):
-    iso = pd_.Isolator(slopes=[4.0e5, 1.0e5], breakpoints=[0.02], damping=2.0e3)
+    iso = pd_.Isolator(slopes_n_m=[4.0e5, 1.0e5], breakpoints_m=[0.02], damping_n_s_m=2.0e3)
     bare = pd_.Structure(3.0e3, iso, [pd_.Storey(2.0e3, 4.0e6, 4.0e3)] * 2)
     walled = dataclasses.replace(bare, walls=(pd_.Wall(0, 0.03, 0.03, pd_.KelvinVoigt(2.0e7, 1.0e4)),))
     options = {"freqs_hz": [0.6, 0.9, 1.2], "steady": "fixed", "cycles": 6, "measure_cycles": 2}

@@ -257,7 +257,7 @@ def test_a_script_without_a_main_guard_is_told_why_its_workers_failed(tmp_path):
 
 @pytest.mark.parametrize("grid, compute, words", [
     ({"bumpers.gapleft": [0.01]}, {}, "grid.bumpers.gapleft"),
-    ({"isolator.slopes[7]": [1e4]}, {}, "index 0 to"),
+    ({"isolator.slopes_n_m[7]": [1e4]}, {}, "index 0 to"),
     ({"a_g": []}, {}, "grid.a_g"),
     ({"mass_kg": [500.0, -1.0]}, {}, "grid.mass_kg"),
     ({"mass_kg": [500.0, 500.0]}, {}, "repeats"),

@@ -18,7 +18,7 @@ from pounding.protocols.sweep import paper_frequencies_hz
 def damped_paper(c_d: float, bumpers: bool = True) -> pd_.Oscillator:
     """The printed system with isolator damping ``c_d`` (MODEL.md §5 reads 1 kN s/m)."""
     base = pd_.presets.paper_printed(bumpers=bumpers)
-    return pd_.Oscillator(base.mass_kg, dataclasses.replace(base.isolator, damping=c_d), base.bumpers)
+    return pd_.Oscillator(base.mass_kg, dataclasses.replace(base.isolator, damping_n_s_m=c_d), base.bumpers)
 
 
 @settings(max_examples=8, deadline=None)
@@ -26,7 +26,7 @@ def damped_paper(c_d: float, bumpers: bool = True) -> pd_.Oscillator:
        a_g=st.floats(0.01, 0.3), direction=st.sampled_from(["up", "down"]))
 def test_linear_sweep_equals_closed_form_frequency_response(m, k, zeta, a_g, direction):
     c = 2 * zeta * math.sqrt(k * m)
-    osc = pd_.Oscillator(m, pd_.Isolator((k,), damping=c))
+    osc = pd_.Oscillator(m, pd_.Isolator((k,), damping_n_s_m=c))
     f_n = math.sqrt(k / m) / (2 * math.pi)
     freqs = f_n * np.array([0.5, 0.9, 1.0, 1.1, 2.0])
     res = pd_.sweep(osc, a_g, freqs, direction, steady_rtol=1e-8, max_cycles=2000)

@@ -40,7 +40,7 @@ def test_at_rest_refuses_bad_motion(kwargs, field):
 
 def test_at_rest_puts_a_displaced_isolator_on_its_backbone():
     for rule in ("kinematic", "elastic"):
-        osc = pd_.Oscillator(500.0, pd_.Isolator(ISO.slopes, ISO.breakpoints, rule, 1000.0))
+        osc = pd_.Oscillator(500.0, pd_.Isolator(ISO.slopes_n_m, ISO.breakpoints_m, rule, 1000.0))
         state = pd_.State.at_rest(osc, displacement_m=0.05)
         run = pd_.simulate(osc, pd_.Harmonic(0.0, 1.0), 1e-6, state)  # the force is the backbone's
         assert run.isolator_force[0] == pytest.approx(ISO.backbone(0.05), rel=1e-12)
@@ -108,8 +108,8 @@ def test_final_states_of_runs_always_fit():
         (lambda: pd_.Harmonic(0.05, 2.2, g=1e300), "g"),
         (lambda: pd_.Harmonic(0.05, 1e300), "freq_hz"),
         (lambda: pd_.Record([0.0, 1.0], [0.0, 1e300]), "record.accel[1]"),
-        (lambda: pd_.Isolator([1e300], []), "isolator.slopes[0]"),
-        (lambda: pd_.Isolator([38e3], [], damping=1e300), "isolator.damping"),
+        (lambda: pd_.Isolator([1e300], []), "isolator.slopes_n_m[0]"),
+        (lambda: pd_.Isolator([38e3], [], damping_n_s_m=1e300), "isolator.damping_n_s_m"),
         (lambda: pd_.KelvinVoigt(1e300, 5.0), "law.stiffness"),
         (lambda: pd_.HuntCrossley(1e8, 1e300, 1.0), "law.exponent"),
         (lambda: pd_.Bumpers(1e300, 0.015, pd_.KelvinVoigt(1e6)), "bumpers.gap_left_m"),
@@ -143,7 +143,7 @@ def test_wrong_lengths_and_orders_get_their_own_fix():
         lambda: pd_.Record([0.0, 1.0, 1.0], [0.0, 1.0, 2.0]), "record.t[1:3]", Problem.NOT_INCREASING
     )
     assert "0.015" not in str(err)
-    err = _raises(lambda: pd_.Isolator([1.0, 2.0], []), "isolator.breakpoints", Problem.BREAKPOINT_COUNT)
+    err = _raises(lambda: pd_.Isolator([1.0, 2.0], []), "isolator.breakpoints_m", Problem.BREAKPOINT_COUNT)
     assert "one breakpoint fewer" in str(err)
     vec = pd_.State.at_rest(OSC).vector
     err = _raises(

@@ -19,7 +19,7 @@ import pounding
 
 m, k, zeta = 100.0, 4000.0, 0.02
 stop = pounding.KelvinVoigt(stiffness=30 * k, damping=2 * zeta * math.sqrt(30 * k * m))
-iso = pounding.Isolator(slopes=[k], damping=2 * zeta * math.sqrt(k * m))
+iso = pounding.Isolator(slopes_n_m=[k], damping_n_s_m=2 * zeta * math.sqrt(k * m))
 soft = pounding.Oscillator(mass_kg=m, isolator=iso,
                            bumpers=pounding.Bumpers(gap_left_m=0.3, gap_right_m=0.005, law=stop))
 

@@ -13,7 +13,7 @@ import matplotlib.pyplot as plt
 
 import pounding
 
-isolator = pounding.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02], damping=2.0e4)
+isolator = pounding.Isolator(slopes_n_m=[4.0e6, 1.0e6], breakpoints_m=[0.02], damping_n_s_m=2.0e4)
 storeys = [pounding.Storey(mass_kg=2.0e4, stiffness_n_m=4.0e7, damping_n_s_m=4.0e4)] * 3
 moat = pounding.Wall(level=0, gap_left_m=0.10, gap_right_m=0.10,
                      law=pounding.KelvinVoigt(stiffness=2.0e8, damping=1.0e5))

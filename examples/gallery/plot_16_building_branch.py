@@ -16,7 +16,7 @@ import numpy as np
 
 import pounding
 
-isolator = pounding.Isolator(slopes=[2.0e5], breakpoints=[], damping=4.0e3)
+isolator = pounding.Isolator(slopes_n_m=[2.0e5], breakpoints_m=[], damping_n_s_m=4.0e3)
 wall = pounding.Wall(level=0, gap_left_m=0.02, gap_right_m=0.02,
                      law=pounding.KelvinVoigt(stiffness=2.0e6, damping=2.0e3))
 storey = pounding.Storey(mass_kg=1.0e3, stiffness_n_m=2.0e6, damping_n_s_m=2.0e3)

@@ -15,7 +15,7 @@ import numpy as np
 
 import pounding
 
-iso = pounding.Isolator(slopes=[100.0], damping=0.4)
+iso = pounding.Isolator(slopes_n_m=[100.0], damping_n_s_m=0.4)
 osc = pounding.Oscillator(1.0, iso, pounding.Bumpers(0.005, 0.005, pounding.RigidStop(0.8)))
 table = pounding.Harmonic(a_g=40.0 / 9.81, freq_hz=0.5)  # (a_g in g: 40 m/s^2)
 run = pounding.simulate(osc, table, duration=2.5, sample_rate_hz=4000)

@@ -24,7 +24,7 @@ import numpy as np
 import pounding
 
 W0, ZETA, A, E = 2.0 * math.pi, 0.05, 3.0, 0.8
-iso = pounding.Isolator(slopes=[W0 ** 2], damping=2.0 * ZETA * W0)  # (1 kg)
+iso = pounding.Isolator(slopes_n_m=[W0 ** 2], damping_n_s_m=2.0 * ZETA * W0)  # (1 kg)
 with warnings.catch_warnings():
     warnings.simplefilter("ignore")  # (a gap of 10 m on the left: no stop there)
     stops = pounding.Bumpers(10.0, 0.0, pounding.RigidStop(E))

@@ -199,25 +199,28 @@ def read_toml(field: str, path: Any, keys: Sequence[str]) -> dict:
 
 
 def backbone(prefix: str, slopes: Any, breakpoints: Any, max_slope: float, slope_what: str, slope_fix: str,
-             max_break: float, break_fix: str) -> tuple[tuple[float, ...], tuple[float, ...]]:
+             max_break: float, break_fix: str, names: tuple[str, str] = ("slopes", "breakpoints"),
+             ) -> tuple[tuple[float, ...], tuple[float, ...]]:
     """A multi-linear backbone's ``(slopes, breakpoints)``, checked: slopes in N/m (the first
     > 0, the others >= 0, each at most ``max_slope``), one breakpoint fewer, in m, > 0, at most
-    ``max_break`` and increasing.  ``prefix`` names the fields (``isolator``, ``law``)."""
-    out_slopes = real_tuple(f"{prefix}.slopes", slopes)
+    ``max_break`` and increasing.  ``prefix`` and ``names`` name the fields (``isolator.slopes_n_m``,
+    ``law.slopes``)."""
+    s_name, b_name = (f"{prefix}.{name}" for name in names)
+    out_slopes = real_tuple(s_name, slopes)
     if not out_slopes:
-        raise InputError(Problem.EMPTY, f"{prefix}.slopes", list(out_slopes))
-    positive(f"{prefix}.slopes[0]", out_slopes[0], "N/m")
+        raise InputError(Problem.EMPTY, s_name, list(out_slopes))
+    positive(f"{s_name}[0]", out_slopes[0], "N/m")
     for j, k in enumerate(out_slopes):
-        non_negative(f"{prefix}.slopes[{j}]", k, "N/m")
-        at_most(f"{prefix}.slopes[{j}]", k, max_slope, slope_what, slope_fix)
-    out_breaks = real_tuple(f"{prefix}.breakpoints", breakpoints)
+        non_negative(f"{s_name}[{j}]", k, "N/m")
+        at_most(f"{s_name}[{j}]", k, max_slope, slope_what, slope_fix)
+    out_breaks = real_tuple(b_name, breakpoints)
     if len(out_breaks) != len(out_slopes) - 1:
-        raise InputError(Problem.BREAKPOINT_COUNT, f"{prefix}.breakpoints", list(out_breaks),
+        raise InputError(Problem.BREAKPOINT_COUNT, b_name, list(out_breaks),
                          got=len(out_breaks), expected=len(out_slopes) - 1)
     for j, d in enumerate(out_breaks):
-        positive(f"{prefix}.breakpoints[{j}]", d, "m")
-        at_most(f"{prefix}.breakpoints[{j}]", d, max_break, " m", break_fix)
-    increasing(f"{prefix}.breakpoints", out_breaks)
+        positive(f"{b_name}[{j}]", d, "m")
+        at_most(f"{b_name}[{j}]", d, max_break, " m", break_fix)
+    increasing(b_name, out_breaks)
     return out_slopes, out_breaks
 
 

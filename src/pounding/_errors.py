@@ -22,8 +22,8 @@ class Problem(enum.Enum):
     --------
     >>> import pounding
     >>> try:
-    ...     pounding.Isolator(slopes=[38_000.0, 18_000.0],
-    ...                       breakpoints=[0.015, 0.040])
+    ...     pounding.Isolator(slopes_n_m=[38_000.0, 18_000.0],
+    ...                       breakpoints_m=[0.015, 0.040])
     ... except pounding.InputError as err:
     ...     problem = err.problem
     >>> problem is pounding.Problem.BREAKPOINT_COUNT, problem.name
@@ -101,7 +101,7 @@ class InputError(ValueError):
     Attributes
     ----------
     field : str
-        Dotted name of the offending field, e.g. ``"isolator.breakpoints"``.
+        Dotted name of the offending field, e.g. ``"isolator.breakpoints_m"``.
     value : Any
         The value received.
     problem : Problem
@@ -176,6 +176,41 @@ def warn_renamed(old: str, new: str, stacklevel: int = 3) -> None:
 
     warnings.warn(f"'{old}' is now '{new}' (with its unit); '{old}' goes in the next release", FutureWarning,
                   stacklevel=stacklevel)
+
+
+def renamed_fields(renamed: dict[str, str]) -> Any:
+    """A class decorator for a dataclass whose fields were renamed (``renamed``: old -> new): the names
+    before still answer for one release, as keywords of the constructor and as attributes, each with a
+    ``FutureWarning`` naming the new one; both names of one field at once is a ``TypeError``.  The class's
+    ``RENAMED`` holds them (what its TOML tables and dotted names read too)."""
+    import functools
+
+    def wrap(cls: Any) -> Any:
+        init = cls.__init__
+
+        @functools.wraps(init)
+        def __init__(self: Any, *args: Any, **kwargs: Any) -> None:
+            for old, new in renamed.items():
+                if old in kwargs:
+                    if new in kwargs:
+                        raise TypeError(f"{cls.__name__}() got both '{new}' and '{old}', its name before: "
+                                        f"give '{new}'")
+                    warn_renamed(old, new)
+                    kwargs[new] = kwargs.pop(old)
+            init(self, *args, **kwargs)
+
+        cls.__init__ = __init__
+        for old, new in renamed.items():
+            def before(self: Any, old: str = old, new: str = new) -> Any:
+                warn_renamed(old, new)
+                return getattr(self, new)
+
+            setattr(cls, old, property(before, doc=f"``{new}`` under its name before (a warning: it goes in "
+                                                   "the next release)."))
+        cls.RENAMED = dict(renamed)
+        return cls
+
+    return wrap
 
 
 def renamed_keyword(old: str, new: str) -> Any:

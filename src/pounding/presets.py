@@ -59,7 +59,7 @@ def paper_printed(bumpers: bool = True, hysteresis: str = "kinematic") -> Oscill
     --------
     >>> import pounding
     >>> ybs = pounding.presets.paper_printed()
-    >>> ybs.mass_kg, ybs.isolator.slopes, ybs.isolator.breakpoints
+    >>> ybs.mass_kg, ybs.isolator.slopes_n_m, ybs.isolator.breakpoints_m
     (500.0, (38000.0, 18000.0, 2000.0), (0.015, 0.04))
     >>> ybs.bumpers.total_gap
     0.03
@@ -100,13 +100,14 @@ def paper_damped(bumpers: bool = True, hysteresis: str = "kinematic") -> Oscilla
     >>> import pounding
     >>> ybs = pounding.presets.paper_damped()
     >>> iso, m = ybs.isolator, ybs.mass_kg
+    >>> c = iso.damping_n_s_m
     >>> # N s/m, of critical
-    >>> iso.damping, round(iso.damping / (2 * (iso.slopes[0] * m) ** 0.5), 3)
+    >>> c, round(c / (2 * (iso.slopes_n_m[0] * m) ** 0.5), 3)
     (1000.0, 0.115)
     """
     osc = paper_printed(bumpers, hysteresis)
     iso = osc.isolator
-    damped = Isolator(iso.slopes, iso.breakpoints, iso.hysteresis, PAPER_DAMPED_C_D_N_S_M)
+    damped = Isolator(iso.slopes_n_m, iso.breakpoints_m, iso.hysteresis, PAPER_DAMPED_C_D_N_S_M)
     return Oscillator(osc.mass_kg, damped, osc.bumpers)
 
 

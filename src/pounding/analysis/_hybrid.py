@@ -109,8 +109,8 @@ class Hybrid(NamedTuple):
             k = tuple(float(f[0]) if f else float(getattr(law, "stiffness", np.nan))
                       for f, law in zip(forms, (b.left, b.right)))
             c = tuple(float(f[1]) if f else 0.0 for f in forms)
-        return cls(float(oscillator.mass_kg), float(iso.damping), np.array(iso.slopes, dtype=float),
-                   np.array(iso.breakpoints, dtype=float), iso.hysteresis == "kinematic", gaps, k, c)
+        return cls(float(oscillator.mass_kg), float(iso.damping_n_s_m), np.array(iso.slopes_n_m, dtype=float),
+                   np.array(iso.breakpoints_m, dtype=float), iso.hysteresis == "kinematic", gaps, k, c)
 
     @property
     def n_slips(self) -> int:

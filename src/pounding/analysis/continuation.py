@@ -71,7 +71,7 @@ def continuation(
         (either order: the branch starts at ``start``); one frequency otherwise.
     parameter : str
         What varies: ``"freq_hz"``, ``"a_g"`` or a dotted name of a number of the system
-        (``"bumpers.gap_left_m"``, ``"isolator.damping"``, ``"bumpers.law.stiffness"``), whose
+        (``"bumpers.gap_left_m"``, ``"isolator.damping_n_s_m"``, ``"bumpers.law.stiffness"``), whose
         range is then ``values``.
     values : (float, float), optional
         The range of a system number continued (``parameter`` a dotted name).

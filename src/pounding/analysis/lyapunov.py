@@ -107,7 +107,7 @@ def lyapunov(system: Any, excitation: Harmonic, *, cycles: int = 1000,
     A linear isolator without bumpers: both exponents are ``-zeta omega_n``.
 
     >>> import pounding
-    >>> iso = pounding.Isolator(slopes=[4000.0], damping=40.0)
+    >>> iso = pounding.Isolator(slopes_n_m=[4000.0], damping_n_s_m=40.0)
     >>> osc = pounding.Oscillator(mass_kg=100.0, isolator=iso)
     >>> spec = pounding.lyapunov(osc, pounding.Harmonic(0.05, 1.0), cycles=50)
     >>> [round(float(x), 12) for x in spec.exponents]  # -c / (2 m)
@@ -152,8 +152,8 @@ class _Tangent:
         self.fell_back = 0  # periods whose exact Jacobian gave way to finite differences
         if not self.structure:
             iso = oscillator.isolator
-            omega_n = math.sqrt(max(float(iso.slopes[0]), 1e-300) / oscillator.mass_kg)
-            zeta = iso.damping / (2.0 * oscillator.mass_kg * omega_n)
+            omega_n = math.sqrt(max(float(iso.slopes_n_m[0]), 1e-300) / oscillator.mass_kg)
+            zeta = iso.damping_n_s_m / (2.0 * oscillator.mass_kg * omega_n)
             self.omega_n, self.zeta = omega_n, zeta
 
     def _metric(self, keep: np.ndarray) -> np.ndarray:

@@ -29,10 +29,10 @@ def isolator_rate(oscillator: Oscillator) -> tuple[float, str]:
     ``SUBINTERVALS_PER_PERIOD * max(rate, omega) / (2 pi)`` bounds the work per second below.
     """
     iso = oscillator.isolator
-    k = max(abs(s) for s in iso.slopes)
+    k = max(abs(s) for s in iso.slopes_n_m)
     if iso.bouc_wen is not None:  # (its initial stiffness, in parallel)
         k += iso.bouc_wen.a * iso.bouc_wen.stiffness
-    c = iso.damping
+    c = iso.damping_n_s_m
     m = oscillator.mass_kg
     rate = max(math.sqrt(k / m + (0.5 * c / m) ** 2), c / m)
     return rate, (
@@ -45,11 +45,11 @@ def contact_rate(oscillator: Oscillator) -> float:
     """An upper bound of the fastest rate of any phase, rad/s: the isolator's stiffest tangent
     and both linear bumpers at once (inf for a nonlinear law, which is integrated numerically)."""
     iso = oscillator.isolator
-    k = max(abs(s) for s in iso.slopes) if iso.hysteresis == "elastic" else (
-        abs(iso.slopes[-1]) + sum(abs(a - b) for a, b in zip(iso.slopes, iso.slopes[1:])))
+    k = max(abs(s) for s in iso.slopes_n_m) if iso.hysteresis == "elastic" else (
+        abs(iso.slopes_n_m[-1]) + sum(abs(a - b) for a, b in zip(iso.slopes_n_m, iso.slopes_n_m[1:])))
     if iso.bouc_wen is not None:
         k += iso.bouc_wen.a * iso.bouc_wen.stiffness
-    c = iso.damping
+    c = iso.damping_n_s_m
     b = oscillator.bumpers
     if b is not None:
         for law in (b.left, b.right):

@@ -56,8 +56,8 @@ class AdjacentRun(Outcome):
     Examples
     --------
     >>> import pounding
-    >>> iso = pounding.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02],
-    ...                         damping=2.0e4)
+    >>> iso = pounding.Isolator(slopes_n_m=[4.0e6, 1.0e6], breakpoints_m=[0.02],
+    ...                         damping_n_s_m=2.0e4)
     >>> isolated = pounding.Structure(3.0e4, iso,
     ...                               [pounding.Storey(2.0e4, 4.0e7)] * 3)
     >>> old = pounding.Structure.fixed_base(

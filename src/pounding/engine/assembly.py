@@ -134,7 +134,7 @@ def assemble(model: Structure | Adjacent) -> Assembly:
         if not elements:
             bw = b_w
         isolator[b] = len(elements)
-        elements.append((dofs[b][0], -1, float(s.isolator.damping), slopes, breaks, int(rule)))
+        elements.append((dofs[b][0], -1, float(s.isolator.damping_n_s_m), slopes, breaks, int(rule)))
     for s, levels in zip(structures, dofs):
         for i, st in enumerate(s.storeys):
             if not st.is_linear:

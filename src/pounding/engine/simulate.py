@@ -74,7 +74,7 @@ def _check_vector_fits(vec: np.ndarray, oscillator: Oscillator) -> None:
     d = x[D]
     iso = oscillator.isolator
     b = oscillator.bumpers
-    lengths = [abs(d), 1e-3, *iso.breakpoints] + ([b.gap_left_m, b.gap_right_m] if b else [])
+    lengths = [abs(d), 1e-3, *iso.breakpoints_m] + ([b.gap_left_m, b.gap_right_m] if b else [])
     tol = 1e-9 * max(lengths)
     fix = "start from State.at_rest(oscillator) or a final_state of this system"
 
@@ -115,7 +115,7 @@ def _check_vector_fits(vec: np.ndarray, oscillator: Oscillator) -> None:
     n_sp = iso.n_branches - 1
     if iso.hysteresis == "elastic":
         region = int(x[REGION])
-        edges = (0.0, *iso.breakpoints, np.inf)
+        edges = (0.0, *iso.breakpoints_m, np.inf)
         a = abs(region)
         wrong_side = region != 0 and np.sign(region) != np.sign(d)
         if a > n_sp or not edges[a] - tol <= abs(d) <= edges[a + 1] + tol or wrong_side:
@@ -123,7 +123,7 @@ def _check_vector_fits(vec: np.ndarray, oscillator: Oscillator) -> None:
         return
     if x[REGION] != 0.0:
         raise bad("isolator_branch", vec[REGION], "is set, but a kinematic isolator has no branch state")
-    for i, brk in enumerate(iso.breakpoints):
+    for i, brk in enumerate(iso.breakpoints_m):
         strain = d - x[STATE_BASE + i]
         direction = x[STATE_BASE + n_sp + i]
         beyond = abs(strain) > brk + tol if direction == 0.0 else abs(strain - direction * brk) > tol
@@ -143,7 +143,7 @@ def kernel_system(oscillator: Oscillator) -> System:
         left, right, gap_l, gap_r = b.left, b.right, b.gap_left_m, b.gap_right_m
     contacts = [_core.contact_slot(i=0, j=-1, sign=sign, gap_m=gap, law=law.LAW_ID, params=law.params())
                 for sign, gap, law in ((-1.0, gap_l, left), (1.0, gap_r, right))]
-    isolator = _core.element(i=0, j=-1, c_d=oscillator.isolator.damping, slopes=slopes, breaks=breaks,
+    isolator = _core.element(i=0, j=-1, c_d=oscillator.isolator.damping_n_s_m, slopes=slopes, breaks=breaks,
                              rule=rule)
     return _core.system([float(oscillator.mass_kg)], np.zeros((1, 1)), np.zeros((1, 1)), [isolator], bw,
                         b is not None, contacts)

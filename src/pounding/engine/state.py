@@ -110,7 +110,7 @@ class State:
         n_sp = iso.n_branches - 1
         vec = np.zeros(STATE_BASE + 2 * n_sp)
         vec[I_T], vec[I_D], vec[I_V] = time_s, d, v
-        breaks = np.asarray(iso.breakpoints)
+        breaks = np.asarray(iso.breakpoints_m)
         if iso.hysteresis == "elastic":
             vec[REGION] = np.sign(d) * np.searchsorted(breaks, abs(d), side="right")
         else:  # the springs that a monotonic push to d made slip keep that slip

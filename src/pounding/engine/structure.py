@@ -48,7 +48,7 @@ class StructureState:
     Examples
     --------
     >>> import pounding
-    >>> iso = pounding.Isolator(slopes=[1.0e5], breakpoints=[])
+    >>> iso = pounding.Isolator(slopes_n_m=[1.0e5], breakpoints_m=[])
     >>> b = pounding.Structure(1.0e3, iso, [pounding.Storey(1.0e3, 1.0e6)])
     >>> first = pounding.simulate(b, pounding.Harmonic(0.1, 1.0), 2.0)
     >>> state = first.final_state

@@ -57,7 +57,7 @@ class StructureEnergy(LedgerSeries):
     Examples
     --------
     >>> import pounding
-    >>> iso = pounding.Isolator(slopes=[1.0e5, 2.0e4], breakpoints=[0.01])
+    >>> iso = pounding.Isolator(slopes_n_m=[1.0e5, 2.0e4], breakpoints_m=[0.01])
     >>> b = pounding.Structure(1.0e3, iso, [pounding.Storey(1.0e3, 1.0e6, 1.0e3)])
     >>> e = pounding.simulate(b, pounding.Harmonic(0.2, 1.5), 5.0).energy
     >>> abs(e.residual) < 1e-9 * e.input_work
@@ -157,7 +157,8 @@ class StructureRun(Outcome):
     A two-storey building whose top floor hits a stop 5 cm away:
 
     >>> import pounding
-    >>> iso = pounding.Isolator(slopes=[2.0e5], breakpoints=[], damping=2.0e3)
+    >>> iso = pounding.Isolator(slopes_n_m=[2.0e5], breakpoints_m=[],
+    ...                         damping_n_s_m=2.0e3)
     >>> stop = pounding.Wall(2, 0.05, 0.05, pounding.KelvinVoigt(1.0e8, 1.0e4))
     >>> b = pounding.Structure(2.0e3, iso, [pounding.Storey(1.0e3, 2.0e6)] * 2,
     ...                        [stop])
@@ -325,7 +326,8 @@ class StructureRun(Outcome):
         Examples
         --------
         >>> import pounding
-        >>> iso = pounding.Isolator(slopes=[2.0e5], breakpoints=[], damping=2.0e3)
+        >>> iso = pounding.Isolator(slopes_n_m=[2.0e5], breakpoints_m=[],
+        ...                         damping_n_s_m=2.0e3)
         >>> stop = pounding.Wall(2, 0.05, 0.05, pounding.KelvinVoigt(1.0e8, 1.0e4))
         >>> storeys = [pounding.Storey(1.0e3, 2.0e6)] * 2
         >>> b = pounding.Structure(2.0e3, iso, storeys, [stop])

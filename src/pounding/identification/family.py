@@ -205,9 +205,9 @@ class ModelFamily:
                                      or b.law.hysteresis != MULTILINEAR_LAWS[self.law]))):
             raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator, got="another structure",
                              expected=f"a YBs system with {self.branches} branches and {self.law} bumpers")
-        out = {f"slope_{i + 1}": float(k) for i, k in enumerate(iso.slopes)}
-        out.update({f"breakpoint_{i + 1}": float(x) for i, x in enumerate(iso.breakpoints)})
-        out["isolator_damping"] = float(iso.damping)
+        out = {f"slope_{i + 1}": float(k) for i, k in enumerate(iso.slopes_n_m)}
+        out.update({f"breakpoint_{i + 1}": float(x) for i, x in enumerate(iso.breakpoints_m)})
+        out["isolator_damping"] = float(iso.damping_n_s_m)
         if self.bouc_wen:
             bw = iso.bouc_wen
             if (bw.a, bw.beta, bw.gamma) != (1.0, 0.5, 0.5):

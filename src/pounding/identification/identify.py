@@ -95,7 +95,7 @@ class Identification:
     ...                         popsize=4, maxiter=3)
     >>> fit.status.name, fit.n_within
     ('SUCCESS', 1)
-    >>> round(fit.oscillator.isolator.damping)  # N s/m
+    >>> round(fit.oscillator.isolator.damping_n_s_m)  # N s/m
     548
     >>> # read back with pounding.Oscillator.from_toml
     >>> fit.to_toml("fitted.toml").name

@@ -3,7 +3,7 @@ are fitted or kept.
 
 A rig that is more than one mass (the paper's bumpers on steel stands, a specimen on a flexible table) is
 a :class:`~pounding.Structure`; :func:`pounding.identify` fits any of its numbers, named by their dotted
-paths in its TOML tables (``isolator.damping``, ``walls[0].law.stiffness``, ``walls[0].stand.mass_kg``,
+paths in its TOML tables (``isolator.damping_n_s_m``, ``walls[0].law.stiffness``, ``walls[0].stand.mass_kg``,
 ``storeys[0].stiffness_n_m``), every other number kept at the base's value.  The targets are of the base
 (level 0: the mass a shaking table's rig carries): its NBs sweeps run the structure without its walls,
 its YBs sweeps with them (``StructureSweepResult.paper_quantities``).
@@ -63,7 +63,7 @@ class StructureFamily:
                 raise InputError(Problem.BAD_STATE, f"bounds.{name}", bounds[name],
                                  why=f"names no number of the structure: {why}",
                                  fix="name a number by its path in the structure's file, e.g. "
-                                     "'walls[0].law.stiffness' or 'isolator.damping'")
+                                     "'walls[0].law.stiffness' or 'isolator.damping_n_s_m'")
         return tuple(bounds)
 
     def oscillator(self, values: dict[str, float]) -> Structure:

@@ -86,8 +86,8 @@ class Adjacent(TomlFile):
     A three-storey isolated building 15 cm from a fixed-base neighbour, their roofs level:
 
     >>> import pounding
-    >>> iso = pounding.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02],
-    ...                         damping=2.0e4)
+    >>> iso = pounding.Isolator(slopes_n_m=[4.0e6, 1.0e6], breakpoints_m=[0.02],
+    ...                         damping_n_s_m=2.0e4)
     >>> isolated = pounding.Structure(3.0e4, iso,
     ...                               [pounding.Storey(2.0e4, 4.0e7)] * 3)
     >>> old = pounding.Structure.fixed_base(

@@ -1,4 +1,4 @@
-"""Dotted names of a system's numbers (``bumpers.law.stiffness``, ``isolator.slopes[0]``) in
+"""Dotted names of a system's numbers (``bumpers.law.stiffness``, ``isolator.slopes_n_m[0]``) in
 its nested tables (``Oscillator.to_dict``): what parameter studies and continuation vary."""
 
 from __future__ import annotations
@@ -17,15 +17,26 @@ RENAMED = {"mass": "mass_kg", "bumpers.gap": "bumpers.gap_m", "bumpers.gap_left"
            "bumpers.gap_right": "bumpers.gap_right_m"}
 
 
+# an isolator's numbers by their names before, wherever the isolator is (``isolator.slopes_n_m[0]``,
+# ``first.isolator.damping_n_s_m``)
+_ISOLATOR_BEFORE = re.compile(
+    r"^((?:first\.|second\.)?isolator\.)(slopes|breakpoints|damping)((?:\[\d+\])?)$")
+_ISOLATOR_RENAMED = {"slopes": "slopes_n_m", "breakpoints": "breakpoints_m", "damping": "damping_n_s_m"}
+
+
 def current_name(name: str) -> str:
     """``name``, or its new spelling when it is one of the names before (``bumpers.gap`` ->
-    ``bumpers.gap_m``), with a ``FutureWarning``."""
-    if name in RENAMED:
-        from .._errors import warn_renamed
+    ``bumpers.gap_m``, ``isolator.slopes_n_m[0]`` -> ``isolator.slopes_n_m[0]``), with a ``FutureWarning``."""
+    new = RENAMED.get(name)
+    m = _ISOLATOR_BEFORE.match(name) if new is None else None
+    if m:
+        new = m.group(1) + _ISOLATOR_RENAMED[m.group(2)] + m.group(3)
+    if new is None:
+        return name
+    from .._errors import warn_renamed
 
-        warn_renamed(name, RENAMED[name], stacklevel=4)
-        return RENAMED[name]
-    return name
+    warn_renamed(name, new, stacklevel=4)
+    return new
 
 
 def alias_of(name: str) -> tuple[str, ...] | None:
@@ -39,7 +50,7 @@ def alias_of(name: str) -> tuple[str, ...] | None:
 
 
 def set_value(table: dict, name: str, value: Any) -> None:
-    """Set the dotted ``name`` (``bumpers.law.stiffness``, ``isolator.slopes[0]``, or an alias:
+    """Set the dotted ``name`` (``bumpers.law.stiffness``, ``isolator.slopes_n_m[0]``, or an alias:
     ``bumpers.gap_m`` sets both gaps) in nested tables."""
     name = current_name(name)
     if alias_of(name):
@@ -110,7 +121,8 @@ def get_value(table: dict, name: str) -> Any:
 # the units of a system's numbers by their last key (SI); a Hertz-type law's by its exponent
 _UNITS = {"mass": "kg", "mass_kg": "kg", "base_mass_kg": "kg", "stiffness_n_m": "N/m",
           "damping_n_s_m": "N s/m", "height_m": "m", "gap_left_m": "m", "gap_right_m": "m", "gap_m": "m",
-          "slopes_after_n_m": "N/m", "breakpoints_m": "m", "slopes": "N/m", "breakpoints": "m",
+          "slopes_after_n_m": "N/m", "breakpoints_m": "m", "slopes_n_m": "N/m", "slopes": "N/m",
+          "breakpoints": "m",
           "gap_left": "m", "gap_right": "m", "gap": "m",
           "capacity_m": "m", "yield_displacement": "m", "yield_compression": "m",
           "post_yield_stiffness": "N/m", "effective_mass": "kg", "exponent": "-", "damping_ratio": "-",
@@ -121,7 +133,8 @@ _HERTZ_TYPES = ("hunt_crossley", "jankowski", "hertzdamp")
 
 
 def unit_of(name: str, table: dict | None = None) -> str:
-    """The unit of the dotted ``name`` (``bumpers.gap_m`` -> ``"m"``, ``isolator.damping`` -> ``"N s/m"``,
+    """The unit of the dotted ``name`` (``bumpers.gap_m`` -> ``"m"``,
+    ``isolator.damping_n_s_m`` -> ``"N s/m"``,
     ``a_g`` -> ``"g"``); ``table`` (``Oscillator.to_dict``) tells a Hertz-type law's stiffness
     (``N/m^1.5``) from a linear one's.  ``""`` for a name it does not know."""
     key = _INDEX.match(name.split(".")[-1] or "")

@@ -8,7 +8,7 @@ from typing import Any, ClassVar, Literal, Optional
 import numpy as np
 
 from .._checks import at_most, backbone, non_negative, one_of, plausible, positive, real
-from .._errors import InputError, Problem
+from .._errors import InputError, Problem, renamed_fields
 
 HYSTERESIS_RULES = ("kinematic", "elastic")
 # magnitudes beyond any real isolator (refused: the engine's numbers would overflow)
@@ -56,7 +56,7 @@ class BoucWen:
     >>> bw.yield_force_n  # N
     100.0
     >>> hdr = pounding.Oscillator(500.0, pounding.Isolator([18_000.0],
-    ...                                                    damping=500.0,
+    ...                                                    damping_n_s_m=500.0,
     ...                                                    bouc_wen=bw))
     >>> run = pounding.simulate(hdr, pounding.Harmonic(a_g=0.1, freq_hz=1.0),
     ...                         duration=5.0)
@@ -126,32 +126,36 @@ class BoucWen:
         return {name: getattr(self, name) for name in self.FIELDS}
 
 
+@renamed_fields({"slopes": "slopes_n_m", "breakpoints": "breakpoints_m", "damping": "damping_n_s_m"})
 @dataclass(frozen=True)
 class Isolator:
     """Isolator ("damper") of the paper: rate-independent force ``R_d`` plus ``C_d * dD/dt``.
 
-    The backbone of ``R_d`` is symmetric and multi-linear: slope ``slopes[j]`` between
-    breakpoints ``breakpoints[j-1]`` and ``breakpoints[j]`` (with ``breakpoints[-1] = 0`` and
+    The backbone of ``R_d`` is symmetric and multi-linear: slope ``slopes_n_m[j]`` between
+    breakpoints ``breakpoints_m[j-1]`` and ``breakpoints_m[j]`` (with ``breakpoints_m[-1] = 0`` and
     the last slope running to infinity).  Any number of branches; softening (decreasing
     slopes, the paper's case) or hardening (real rubber bearings at large drift).
 
     Parameters
     ----------
-    slopes : sequence of float, shape (n,)
+    slopes_n_m : sequence of float, shape (n,)
         Branch stiffnesses ``K_1 ... K_n`` in N/m.  The first must be > 0, the others >= 0.
-    breakpoints : sequence of float, shape (n - 1,)
+    breakpoints_m : sequence of float, shape (n - 1,)
         Displacements ``0 < D_1 < ... < D_{n-1}`` in m where the slope changes.
     hysteresis : {"kinematic", "elastic"}
         ``"kinematic"``: Masing / kinematic hardening, built exactly as a spring of slope
         ``K_n`` in parallel with ``n - 1`` elastic-perfectly-plastic springs (spring ``i`` of
         stiffness ``K_i - K_{i+1}`` slips at ``D_i``), as SAP2000's multi-linear plastic link.
         ``"elastic"``: the force follows the backbone both ways (no hysteresis).
-    damping : float
+    damping_n_s_m : float
         Linear dashpot ``C_d`` in N s/m, >= 0.
     bouc_wen : BoucWen, optional
         A Bouc-Wen spring in parallel (high-damping rubber: damping that depends on the
         amplitude).  With it every phase is integrated numerically (about 30 times the cost of
         the paper's campaign).
+
+    (``slopes``, ``breakpoints`` and ``damping``, the names before, still work for one release, with a
+    warning.)
 
     Notes
     -----
@@ -165,38 +169,39 @@ class Isolator:
     :func:`pounding.presets.paper_damped`:
 
     >>> import pounding
-    >>> iso = pounding.Isolator(slopes=[38_000.0, 18_000.0, 2_000.0],
-    ...                         breakpoints=[0.015, 0.040],
-    ...                         hysteresis="kinematic", damping=1_000.0)
+    >>> iso = pounding.Isolator(slopes_n_m=[38_000.0, 18_000.0, 2_000.0],
+    ...                         breakpoints_m=[0.015, 0.040],
+    ...                         hysteresis="kinematic", damping_n_s_m=1_000.0)
     >>> iso.n_branches, iso.yield_forces  # N at 15 and 40 mm
     (3, array([ 570., 1020.]))
     >>> float(iso.backbone(-0.05))  # N at -50 mm
     -1040.0
     """
 
-    slopes: tuple[float, ...]
-    breakpoints: tuple[float, ...] = ()
+    slopes_n_m: tuple[float, ...]
+    breakpoints_m: tuple[float, ...] = ()
     hysteresis: Literal["kinematic", "elastic"] = "kinematic"
-    damping: float = 0.0
+    damping_n_s_m: float = 0.0
     bouc_wen: Optional[BoucWen] = None
 
-    FIELDS: ClassVar[tuple[str, ...]] = ("slopes", "breakpoints", "hysteresis", "damping", "bouc_wen")
+    FIELDS: ClassVar[tuple[str, ...]] = ("slopes_n_m", "breakpoints_m", "hysteresis", "damping_n_s_m",
+                                         "bouc_wen")
     OPTIONAL: ClassVar[tuple[str, ...]] = ("bouc_wen",)
 
     def __post_init__(self) -> None:
-        slopes, breakpoints = backbone("isolator", self.slopes, self.breakpoints, MAX_STIFFNESS_N_M,
+        slopes, breakpoints = backbone("isolator", self.slopes_n_m, self.breakpoints_m, MAX_STIFFNESS_N_M,
                                        " N/m, stiffer than any isolator",
                                        "give the slopes in N/m (38 kN/m is 38000.0)", MAX_BREAKPOINT_M,
-                                       "give the breakpoints in m")
+                                       "give the breakpoints in m", ("slopes_n_m", "breakpoints_m"))
         for j, d in enumerate(breakpoints):
-            plausible(f"isolator.breakpoints[{j}]", d, 0.0, 1.0,
+            plausible(f"isolator.breakpoints_m[{j}]", d, 0.0, 1.0,
                       "breakpoints are displacements in m (15 mm is 0.015)")
         one_of("isolator.hysteresis", self.hysteresis, HYSTERESIS_RULES)
-        damping = non_negative("isolator.damping", self.damping, "N s/m")
-        at_most("isolator.damping", damping, MAX_DAMPING_N_S_M, " N s/m", "give the damping in N s/m")
-        object.__setattr__(self, "slopes", slopes)
-        object.__setattr__(self, "breakpoints", breakpoints)
-        object.__setattr__(self, "damping", damping)
+        damping = non_negative("isolator.damping_n_s_m", self.damping_n_s_m, "N s/m")
+        at_most("isolator.damping_n_s_m", damping, MAX_DAMPING_N_S_M, " N s/m", "give the damping in N s/m")
+        object.__setattr__(self, "slopes_n_m", slopes)
+        object.__setattr__(self, "breakpoints_m", breakpoints)
+        object.__setattr__(self, "damping_n_s_m", damping)
         if isinstance(self.bouc_wen, dict):  # (from TOML: a table)
             unknown = sorted(set(self.bouc_wen) - set(BoucWen.FIELDS))
             if unknown:
@@ -214,27 +219,27 @@ class Isolator:
     @property
     def n_branches(self) -> int:
         """Number of backbone branches ``n``."""
-        return len(self.slopes)
+        return len(self.slopes_n_m)
 
     @property
     def yield_forces(self) -> np.ndarray:
         """Backbone force at each breakpoint, N, shape (n - 1,) (the paper's "yielding forces")."""
-        return self.backbone(np.asarray(self.breakpoints))
+        return self.backbone(np.asarray(self.breakpoints_m))
 
     def backbone(self, displacement: Any) -> np.ndarray:
         """Backbone force (N) at displacement(s) in m, any shape; odd in the displacement."""
         d = np.asarray(displacement, dtype=float)
         a = np.abs(d)
-        force = self.slopes[0] * np.minimum(a, self.breakpoints[0] if self.breakpoints else np.inf)
-        edges = (*self.breakpoints, np.inf)
+        force = self.slopes_n_m[0] * np.minimum(a, self.breakpoints_m[0] if self.breakpoints_m else np.inf)
+        edges = (*self.breakpoints_m, np.inf)
         for j in range(1, self.n_branches):
-            force = force + self.slopes[j] * np.clip(a - edges[j - 1], 0.0, edges[j] - edges[j - 1])
+            force = force + self.slopes_n_m[j] * np.clip(a - edges[j - 1], 0.0, edges[j] - edges[j - 1])
         return np.sign(d) * force
 
     def to_dict(self) -> dict[str, Any]:
         """The constructor's fields as plain values (the TOML form: ``Oscillator.to_toml`` writes it)."""
-        out: dict[str, Any] = {"slopes": list(self.slopes), "breakpoints": list(self.breakpoints),
-                               "hysteresis": self.hysteresis, "damping": self.damping}
+        out: dict[str, Any] = {"slopes_n_m": list(self.slopes_n_m), "breakpoints_m": list(self.breakpoints_m),
+                               "hysteresis": self.hysteresis, "damping_n_s_m": self.damping_n_s_m}
         if self.bouc_wen is not None:
             out["bouc_wen"] = self.bouc_wen.to_dict()
         return out
@@ -243,5 +248,5 @@ class Isolator:
         """``(slopes, breakpoints, rule, bouc_wen)`` as the compiled engine takes them (the last
         :meth:`BoucWen.kernel_array`, zeros without one)."""
         bw = self.bouc_wen.kernel_array() if self.bouc_wen is not None else np.zeros(BW_PARAMS)
-        return (np.array(self.slopes, dtype=float), np.array(self.breakpoints, dtype=float),
+        return (np.array(self.slopes_n_m, dtype=float), np.array(self.breakpoints_m, dtype=float),
                 HYSTERESIS_RULES.index(self.hysteresis), bw)

@@ -8,7 +8,7 @@ from typing import Any, ClassVar, Optional, Union
 
 
 from .._checks import at_least, at_most, instance_of, plausible, positive
-from .._errors import InputError, Problem, warn_renamed
+from .._errors import InputError, Problem, renamed_fields, warn_renamed
 from ._toml import TomlFile
 from .bumpers import Bumpers
 from .contact_laws import law_from_dict
@@ -19,7 +19,8 @@ MAX_MASS_KG = 1e12  # refused beyond (a unit error)
 MIN_MASS_KG = 1e-6  # refused below (1 mg: the phases' rates k/m overflowed at 1e-300 kg)
 
 
-@dataclass(frozen=True, init=False)
+@renamed_fields({"mass": "mass_kg"})  # (the names before, 0.1's: one more release, with a warning)
+@dataclass(frozen=True)
 class Oscillator(TomlFile):
     """Single-degree-of-freedom base-isolated mass, optionally bounded by bumpers.
 
@@ -42,9 +43,9 @@ class Oscillator(TomlFile):
     by hand, saved to TOML and read back:
 
     >>> import pounding
-    >>> isolator = pounding.Isolator(slopes=[38_000.0, 18_000.0, 2_000.0],
-    ...                              breakpoints=[0.015, 0.040],
-    ...                              hysteresis="kinematic", damping=1_000.0)
+    >>> isolator = pounding.Isolator(slopes_n_m=[38_000.0, 18_000.0, 2_000.0],
+    ...                              breakpoints_m=[0.015, 0.040],
+    ...                              hysteresis="kinematic", damping_n_s_m=1_000.0)
     >>> bumpers = pounding.Bumpers(0.015, 0.015,
     ...                            pounding.KelvinVoigt(stiffness=1.46e6,
     ...                                                 damping=5.0))
@@ -63,31 +64,6 @@ class Oscillator(TomlFile):
     bumpers: Optional[Bumpers] = None
 
     FIELDS: ClassVar[tuple[str, ...]] = ("mass_kg", "isolator", "bumpers")
-    # the names before (0.1's), still read for one release with a warning: in Python, TOML and dotted names
-    RENAMED: ClassVar[dict[str, str]] = {"mass": "mass_kg"}
-
-    def __init__(self, mass_kg: Any = None, isolator: Any = None, bumpers: Optional[Bumpers] = None,
-                 **renamed: Any) -> None:
-        for old, value in renamed.items():
-            if old not in self.RENAMED:
-                raise TypeError(f"Oscillator() got an unexpected keyword argument '{old}'")
-            if mass_kg is not None:
-                raise TypeError("Oscillator() got both 'mass_kg' and 'mass', its name before: give 'mass_kg'")
-            warn_renamed(old, self.RENAMED[old])
-            mass_kg = value
-        for name, value in (("mass_kg", mass_kg), ("isolator", isolator)):
-            if value is None:
-                raise InputError(Problem.MISSING_INPUT, name, None, what=f"Oscillator({name}=...)")
-        object.__setattr__(self, "mass_kg", mass_kg)
-        object.__setattr__(self, "isolator", isolator)
-        object.__setattr__(self, "bumpers", bumpers)
-        self.__post_init__()
-
-    @property
-    def mass(self) -> float:
-        """``mass_kg`` under its name before (a warning: it goes in the next release)."""
-        warn_renamed("mass", "mass_kg")
-        return self.mass_kg
 
     def __post_init__(self) -> None:
         mass = positive("mass_kg", self.mass_kg, "kg")
@@ -124,7 +100,7 @@ class Oscillator(TomlFile):
             table = {k: v for k, v in table.items() if k != "meta"}
         table = renamed_keys(table, "", cls.RENAMED)
         check_keys(table, "", cls.FIELDS, required=("mass_kg", "isolator"))
-        iso_table = table["isolator"]
+        iso_table = renamed_keys(table["isolator"], "isolator.", Isolator.RENAMED)
         # every field, defaults included: a file says what the system is
         check_keys(iso_table, "isolator.", Isolator.FIELDS,
                     required=tuple(f for f in Isolator.FIELDS if f not in Isolator.OPTIONAL))

@@ -18,7 +18,7 @@ from .._errors import InputError, Problem
 from ._toml import TomlFile
 from .contact_laws import law_from_dict
 from .isolator import Isolator
-from .oscillator import Oscillator, check_keys
+from .oscillator import Oscillator, check_keys, renamed_keys
 from .structure_parts import MAX_STOREYS, Stand, Storey, Wall, _mass
 
 PathLike = Union[str, Path]
@@ -66,8 +66,8 @@ class Structure(TomlFile):
     A three-storey building on a bilinear isolator, in a moat 10 cm wide around its base:
 
     >>> import pounding
-    >>> iso = pounding.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02],
-    ...                         damping=2.0e4)
+    >>> iso = pounding.Isolator(slopes_n_m=[4.0e6, 1.0e6], breakpoints_m=[0.02],
+    ...                         damping_n_s_m=2.0e4)
     >>> storeys = [pounding.Storey(2.0e4, 4.0e7, 4.0e4)] * 3
     >>> moat = pounding.Wall(0, 0.10, 0.10, pounding.KelvinVoigt(2.0e8, 1.0e5))
     >>> b = pounding.Structure(3.0e4, iso, storeys, walls=[moat])
@@ -234,7 +234,7 @@ class Structure(TomlFile):
             k, m = k[1:, 1:], m[1:]
         else:
             k = k.copy()
-            k[0, 0] += self.isolator.slopes[0]
+            k[0, 0] += self.isolator.slopes_n_m[0]
         if m.size == 0:
             return Modes(np.zeros(0), np.zeros((0, 0)))
         w2, shapes = eigh(k, np.diag(m))
@@ -273,7 +273,7 @@ class Structure(TomlFile):
         check_keys(table, "", cls.FIELDS, required=())
         isolator = None
         if "isolator" in table:  # (neither it nor base_mass_kg: a fixed base)
-            iso_table = table["isolator"]
+            iso_table = renamed_keys(table["isolator"], "isolator.", Isolator.RENAMED)
             check_keys(iso_table, "isolator.", Isolator.FIELDS,
                         required=tuple(f for f in Isolator.FIELDS if f not in Isolator.OPTIONAL))
             isolator = Isolator(**iso_table)

@@ -94,7 +94,8 @@ def plot_structure_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> Any:
     Examples
     --------
     >>> import pounding
-    >>> iso = pounding.Isolator(slopes=[2.0e5], breakpoints=[], damping=4.0e3)
+    >>> iso = pounding.Isolator(slopes_n_m=[2.0e5], breakpoints_m=[],
+    ...                         damping_n_s_m=4.0e3)
     >>> stop = pounding.Wall(0, 0.02, 0.02, pounding.KelvinVoigt(1.0e8, 2.0e4))
     >>> b = pounding.Structure(2.0e3, iso,
     ...                        [pounding.Storey(1.0e3, 2.0e6, 2.0e3)], [stop])

@@ -33,8 +33,8 @@ def plot_structure_run(run: "StructureRun", axes: Any = None, *, levels: Any = N
     Examples
     --------
     >>> import pounding
-    >>> iso = pounding.Isolator(slopes=[4.0e6, 1.0e6], breakpoints=[0.02],
-    ...                         damping=2.0e4)
+    >>> iso = pounding.Isolator(slopes_n_m=[4.0e6, 1.0e6], breakpoints_m=[0.02],
+    ...                         damping_n_s_m=2.0e4)
     >>> moat = pounding.Wall(0, 0.05, 0.05, pounding.KelvinVoigt(2.0e8, 1.0e5))
     >>> b = pounding.Structure(3.0e4, iso, [pounding.Storey(2.0e4, 4.0e7)] * 3,
     ...                        [moat])

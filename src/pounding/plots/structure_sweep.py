@@ -26,7 +26,8 @@ def plot_structure_sweep(result: "StructureSweepResult", ax: Any = None) -> list
     Examples
     --------
     >>> import pounding
-    >>> iso = pounding.Isolator(slopes=[2.0e5], breakpoints=[], damping=4.0e3)
+    >>> iso = pounding.Isolator(slopes_n_m=[2.0e5], breakpoints_m=[],
+    ...                         damping_n_s_m=4.0e3)
     >>> b = pounding.Structure(2.0e3, iso, [pounding.Storey(1.0e3, 2.0e6, 2.0e3)])
     >>> res = pounding.sweep(b, 0.1, [1.0, 1.5, 2.0])
     >>> len(pounding.plots.plot_structure_sweep(res)) > 0

@@ -35,8 +35,8 @@ def _isolator(template: Isolator | None, mass_kg: float, period_s: float, zeta: 
     c = 2.0 * zeta * math.sqrt(k * mass_kg)
     if template is None:
         return Isolator((k,), (), "elastic", c)
-    scale = k / template.slopes[0]
-    return replace(template, slopes=tuple(s * scale for s in template.slopes), damping=c)
+    scale = k / template.slopes_n_m[0]
+    return replace(template, slopes_n_m=tuple(s * scale for s in template.slopes_n_m), damping_n_s_m=c)
 
 
 

@@ -104,7 +104,8 @@ class StructureSweepResult:
     A two-storey building on a linear isolator, a stop at its base 2 cm away, swept at 0.1 g:
 
     >>> import pounding
-    >>> iso = pounding.Isolator(slopes=[2.0e5], breakpoints=[], damping=4.0e3)
+    >>> iso = pounding.Isolator(slopes_n_m=[2.0e5], breakpoints_m=[],
+    ...                         damping_n_s_m=4.0e3)
     >>> stop = pounding.Wall(0, 0.02, 0.02, pounding.KelvinVoigt(1.0e8, 1.0e4))
     >>> storeys = [pounding.Storey(1.0e3, 2.0e6, 2.0e3)] * 2
     >>> b = pounding.Structure(2.0e3, iso, storeys, [stop])

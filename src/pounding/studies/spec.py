@@ -60,7 +60,7 @@ class StudySpec:
         acceleration; ``duration_s``, default the record's).
     grid : dict
         Dotted name -> values (one axis each, in order): a number of the system
-        (``"mass_kg"``, ``"isolator.damping"``, ``"isolator.slopes[0]"``, ``"bumpers.gap_left_m"``,
+        (``"mass_kg"``, ``"isolator.damping_n_s_m"``, ``"isolator.slopes_n_m[0]"``, ``"bumpers.gap_left_m"``,
         ``"bumpers.law.stiffness"``; ``"bumpers.gap_m"`` sets both gaps; a structure's
         ``"storeys[2].stiffness_n_m"``, ``"walls[0].law.stiffness"``, ``"walls[0].gap_m"`` for both of a
         wall's gaps) or a compute key (``"a_g"``, ``"record"``, ...). A structure's points keep its own
