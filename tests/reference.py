@@ -409,13 +409,13 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
         # (|z| held at 2 z_max in the power: the motion never leaves |z| <= z_max, but a trial stage of a
         # step that is then rejected can, and |z|^n overflowed there)
         zn = min(abs(z), 2.0 * bw.z_max) ** bw.n
-        return vv / bw.yield_displacement * (bw.a - zn * (bw.beta * np.sign(vv * z) + bw.gamma))
+        return vv / bw.yield_displacement_m * (bw.a - zn * (bw.beta * np.sign(vv * z) + bw.gamma))
 
     def rhs(tt, y):
         dd, vv = y[0], y[1]
         f = iso_force(dd) + cd * vv
         if bw is not None:
-            f += bw.stiffness * bw.yield_displacement * y[8]
+            f += bw.stiffness_n_m * bw.yield_displacement_m * y[8]
         rates = [0.0, 0.0, 0.0, 0.0]
         for j in range(len(sides)):
             if inc[j]:
@@ -534,7 +534,7 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
         return None
 
     def a_abs(tt, dd, vv, z=0.0):
-        f = iso_force(dd) + cd * vv + (0.0 if bw is None else bw.stiffness * bw.yield_displacement * z)
+        f = iso_force(dd) + cd * vv + (0.0 if bw is None else bw.stiffness_n_m * bw.yield_displacement_m * z)
         for j in range(len(sides)):
             if inc[j]:
                 f = f + sides[j][0] * bump_force(j, dd, vv)

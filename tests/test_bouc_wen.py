@@ -124,13 +124,13 @@ def test_toml_round_trip_and_bad_values(tmp_path):
     with pytest.raises(pd_.InputError) as info:
         pd_.Oscillator.from_toml(path)
     assert info.value.field == "isolator.bouc_wen.m"
-    for kwargs, field in (({"stiffness": -1.0}, "isolator.bouc_wen.stiffness"),
-                          ({"yield_displacement": 0.0}, "isolator.bouc_wen.yield_displacement"),
+    for kwargs, field in (({"stiffness_n_m": -1.0}, "isolator.bouc_wen.stiffness_n_m"),
+                          ({"yield_displacement_m": 0.0}, "isolator.bouc_wen.yield_displacement_m"),
                           ({"a": 0.0}, "isolator.bouc_wen.a"),
                           ({"n": 0.5}, "isolator.bouc_wen.n"),
                           ({"n": np.nan}, "isolator.bouc_wen.n")):
         with pytest.raises(pd_.InputError) as info:
-            pd_.BoucWen(**{"stiffness": K_BW, "yield_displacement": U_Y, **kwargs})
+            pd_.BoucWen(**{"stiffness_n_m": K_BW, "yield_displacement_m": U_Y, **kwargs})
         assert info.value.field == field
     with pytest.raises(pd_.InputError) as info:
         pd_.Isolator((1e4,), bouc_wen=3.0)

@@ -231,6 +231,23 @@ def test_the_isolator_s_numbers_carry_their_units_and_their_names_before_still_w
     with pytest.warns(FutureWarning, match="'first.isolator.damping' is now 'first.isolator.damping_n_s_m'"):
         set_value(pair, "first.isolator.damping", 700.0)
     assert get_value(pair, "first.isolator.damping_n_s_m") == 700.0
+    # its Bouc-Wen spring's too
+    bw = pd_.BoucWen(stiffness_n_m=2e4, yield_displacement_m=0.005)
+    with pytest.warns(FutureWarning) as caught:
+        assert pd_.BoucWen(stiffness=2e4, yield_displacement=0.005) == bw
+    assert sorted(str(w.message).split("'")[1] for w in caught) == ["stiffness", "yield_displacement"]
+    with pytest.warns(FutureWarning, match="'yield_displacement' is now 'yield_displacement_m'"):
+        assert bw.yield_displacement == 0.005
+    rubber = pd_.Oscillator(500.0, pd_.Isolator([1.8e4], damping_n_s_m=500.0, bouc_wen=bw))
+    text = rubber.to_toml_text()
+    assert "stiffness_n_m = 20000.0" in text
+    before = text.replace("stiffness_n_m = 2", "stiffness = 2")
+    with pytest.warns(FutureWarning, match="'isolator.bouc_wen.stiffness' is now 'isolator.bouc_wen.stiff"):
+        assert pd_.Oscillator.from_toml_text(before) == rubber
+    table = rubber.to_dict()
+    with pytest.warns(FutureWarning, match="'isolator.bouc_wen.stiffness' is now"):
+        set_value(table, "isolator.bouc_wen.stiffness", 3e4)
+    assert get_value(table, "isolator.bouc_wen.stiffness_n_m") == 3e4
 
 
 def test_a_system_is_given_as_system_and_the_name_before_still_works():

@@ -178,6 +178,16 @@ def warn_renamed(old: str, new: str, stacklevel: int = 3) -> None:
                   stacklevel=stacklevel)
 
 
+def _take_renamed(called: str, kwargs: dict, old: str, new: str) -> None:
+    """``kwargs``'s ``old`` keyword moved to ``new``, with a ``FutureWarning`` (stacklevel: the caller of the
+    decorated function); both at once is a ``TypeError``."""
+    if old in kwargs:
+        if new in kwargs:
+            raise TypeError(f"{called}() got both '{new}' and '{old}', its name before: give '{new}'")
+        warn_renamed(old, new, stacklevel=4)
+        kwargs[new] = kwargs.pop(old)
+
+
 def renamed_fields(renamed: dict[str, str]) -> Any:
     """A class decorator for a dataclass whose fields were renamed (``renamed``: old -> new): the names
     before still answer for one release, as keywords of the constructor and as attributes, each with a
@@ -191,12 +201,7 @@ def renamed_fields(renamed: dict[str, str]) -> Any:
         @functools.wraps(init)
         def __init__(self: Any, *args: Any, **kwargs: Any) -> None:
             for old, new in renamed.items():
-                if old in kwargs:
-                    if new in kwargs:
-                        raise TypeError(f"{cls.__name__}() got both '{new}' and '{old}', its name before: "
-                                        f"give '{new}'")
-                    warn_renamed(old, new)
-                    kwargs[new] = kwargs.pop(old)
+                _take_renamed(cls.__name__, kwargs, old, new)
             init(self, *args, **kwargs)
 
         cls.__init__ = __init__
@@ -221,12 +226,7 @@ def renamed_keyword(old: str, new: str) -> Any:
     def wrap(fn: Any) -> Any:
         @functools.wraps(fn)
         def inner(*args: Any, **kwargs: Any) -> Any:
-            if old in kwargs:
-                if new in kwargs:
-                    raise TypeError(f"{fn.__name__}() got both '{new}' and '{old}', its name before: "
-                                    f"give '{new}'")
-                warn_renamed(old, new)
-                kwargs[new] = kwargs.pop(old)
+            _take_renamed(fn.__name__, kwargs, old, new)
             return fn(*args, **kwargs)
 
         return inner

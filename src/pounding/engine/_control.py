@@ -31,7 +31,7 @@ def isolator_rate(oscillator: Oscillator) -> tuple[float, str]:
     iso = oscillator.isolator
     k = max(abs(s) for s in iso.slopes_n_m)
     if iso.bouc_wen is not None:  # (its initial stiffness, in parallel)
-        k += iso.bouc_wen.a * iso.bouc_wen.stiffness
+        k += iso.bouc_wen.a * iso.bouc_wen.stiffness_n_m
     c = iso.damping_n_s_m
     m = oscillator.mass_kg
     rate = max(math.sqrt(k / m + (0.5 * c / m) ** 2), c / m)
@@ -48,7 +48,7 @@ def contact_rate(oscillator: Oscillator) -> float:
     k = max(abs(s) for s in iso.slopes_n_m) if iso.hysteresis == "elastic" else (
         abs(iso.slopes_n_m[-1]) + sum(abs(a - b) for a, b in zip(iso.slopes_n_m, iso.slopes_n_m[1:])))
     if iso.bouc_wen is not None:
-        k += iso.bouc_wen.a * iso.bouc_wen.stiffness
+        k += iso.bouc_wen.a * iso.bouc_wen.stiffness_n_m
     c = iso.damping_n_s_m
     b = oscillator.bumpers
     if b is not None:

@@ -215,8 +215,8 @@ class ModelFamily:
                                  got=f"a Bouc-Wen spring with a = {bw.a:g}, "
                                  f"beta = {bw.beta:g}, gamma = {bw.gamma:g}",
                                  expected="the family's: a = 1, beta = gamma = 0.5")
-            out.update(bw_stiffness=float(iso.bouc_wen.stiffness),
-                       bw_yield_displacement=float(iso.bouc_wen.yield_displacement),
+            out.update(bw_stiffness=float(iso.bouc_wen.stiffness_n_m),
+                       bw_yield_displacement=float(iso.bouc_wen.yield_displacement_m),
                        bw_n=float(iso.bouc_wen.n))
         if multilinear:
             out.update({f"bumper_slope_{i + 1}": float(k) for i, k in enumerate(b.law.slopes)})

@@ -9,7 +9,7 @@ from typing import Any, Optional, TypeVar, Union
 import tomli_w
 
 from .._checks import instance_of, parse_toml, read_text
-from .._errors import InputError, Problem
+from .._errors import InputError, Problem, warn_renamed
 
 PathLike = Union[str, Path]
 T = TypeVar("T", bound="TomlFile")
@@ -61,3 +61,19 @@ class TomlFile:
 
         return write_text(output_file("path", path, (".toml",)), self.to_toml_text(meta))
 
+
+def renamed_keys(table: Any, prefix: str, renamed: dict[str, str]) -> Any:
+    """A TOML table with its keys' names before (``renamed``: old -> new) read as the new ones, each with a
+    ``FutureWarning`` naming it (``prefix`` + key); both spellings of one key is an error."""
+    if not isinstance(table, dict) or not any(k in table for k in renamed):
+        return table
+    out = dict(table)
+    for old, new in renamed.items():
+        if old in out:
+            if new in out:
+                raise InputError(Problem.BAD_STATE, prefix + old, out[old],
+                                 why=f"is given as well as {prefix + new}, its new name",
+                                 fix=f"keep {prefix + new} only")
+            warn_renamed(prefix + old, prefix + new, stacklevel=4)
+            out[new] = out.pop(old)
+    return out

@@ -6,6 +6,8 @@ from __future__ import annotations
 import re
 from typing import Any
 
+from .isolator import BoucWen, Isolator
+
 _INDEX = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?$")
 
 # names that stand for several numbers set together: ``bumpers.gap_m``, the same gap both sides (and a
@@ -17,20 +19,25 @@ RENAMED = {"mass": "mass_kg", "bumpers.gap": "bumpers.gap_m", "bumpers.gap_left"
            "bumpers.gap_right": "bumpers.gap_right_m"}
 
 
-# an isolator's numbers by their names before, wherever the isolator is (``isolator.slopes_n_m[0]``,
-# ``first.isolator.damping_n_s_m``)
-_ISOLATOR_BEFORE = re.compile(
-    r"^((?:first\.|second\.)?isolator\.)(slopes|breakpoints|damping)((?:\[\d+\])?)$")
-_ISOLATOR_RENAMED = {"slopes": "slopes_n_m", "breakpoints": "breakpoints_m", "damping": "damping_n_s_m"}
+# an isolator's numbers and its Bouc-Wen spring's by their names before, wherever the isolator is
+# (``isolator.slopes[0]``, ``first.isolator.damping``, ``isolator.bouc_wen.stiffness``): what comes before
+# the name, the name, its index
+_FIELDS_BEFORE = (
+    (re.compile(r"^((?:first\.|second\.)?isolator\.)(slopes|breakpoints|damping)((?:\[\d+\])?)$"),
+     Isolator.RENAMED),
+    (re.compile(r"^((?:first\.|second\.)?isolator\.bouc_wen\.)(stiffness|yield_displacement)()$"),
+     BoucWen.RENAMED),
+)
 
 
 def current_name(name: str) -> str:
     """``name``, or its new spelling when it is one of the names before (``bumpers.gap`` ->
-    ``bumpers.gap_m``, ``isolator.slopes_n_m[0]`` -> ``isolator.slopes_n_m[0]``), with a ``FutureWarning``."""
+    ``bumpers.gap_m``, ``isolator.slopes[0]`` -> ``isolator.slopes_n_m[0]``), with a ``FutureWarning``."""
     new = RENAMED.get(name)
-    m = _ISOLATOR_BEFORE.match(name) if new is None else None
-    if m:
-        new = m.group(1) + _ISOLATOR_RENAMED[m.group(2)] + m.group(3)
+    for pattern, renamed in _FIELDS_BEFORE if new is None else ():
+        m = pattern.match(name)
+        if m:
+            new = m.group(1) + renamed[m.group(2)] + m.group(3)
     if new is None:
         return name
     from .._errors import warn_renamed
@@ -124,7 +131,7 @@ _UNITS = {"mass": "kg", "mass_kg": "kg", "base_mass_kg": "kg", "stiffness_n_m": 
           "slopes_after_n_m": "N/m", "breakpoints_m": "m", "slopes_n_m": "N/m", "slopes": "N/m",
           "breakpoints": "m",
           "gap_left": "m", "gap_right": "m", "gap": "m",
-          "capacity_m": "m", "yield_displacement": "m", "yield_compression": "m",
+          "capacity_m": "m", "yield_displacement": "m", "yield_displacement_m": "m", "yield_compression": "m",
           "post_yield_stiffness": "N/m", "effective_mass": "kg", "exponent": "-", "damping_ratio": "-",
           "xi_norm": "-", "a": "-", "beta": "-",
           "gamma": "-", "n": "-", "a_g": "g", "freq_hz": "Hz", "duration_s": "s", "period_s": "s",

@@ -9,6 +9,7 @@ import numpy as np
 
 from .._checks import at_most, backbone, non_negative, one_of, plausible, positive, real
 from .._errors import InputError, Problem, renamed_fields
+from ._toml import renamed_keys
 
 HYSTERESIS_RULES = ("kinematic", "elastic")
 # magnitudes beyond any real isolator (refused: the engine's numbers would overflow)
@@ -20,31 +21,35 @@ MAX_BW_Z = 1e3  # |z| saturates at (a / (beta + gamma))^(1/n): beyond this the p
 BW_PARAMS = 6  # the kernels' Bouc-Wen array: force scale k u_y (N), u_y (m), A, beta, gamma, n
 
 
+@renamed_fields({"stiffness": "stiffness_n_m", "yield_displacement": "yield_displacement_m"})
 @dataclass(frozen=True)
 class BoucWen:
     """A Bouc-Wen hysteretic spring, in parallel with the isolator's backbone and dashpot: the
     rate-independent hysteresis of high-damping rubber, whose damping depends on the amplitude.
 
-    Its force is ``stiffness * yield_displacement * z`` with the dimensionless ``z`` following::
+    Its force is ``stiffness_n_m * yield_displacement_m * z`` with the dimensionless ``z`` following::
 
-        dz/dt = (dD/dt / yield_displacement) (a - |z|^n (beta sgn(z dD/dt) + gamma))
+        dz/dt = (dD/dt / yield_displacement_m) (a - |z|^n (beta sgn(z dD/dt) + gamma))
 
     (Wen 1976).  From ``z = 0`` it starts with stiffness ``a * stiffness`` and saturates at
     ``|z| = (a / (beta + gamma))^(1/n)``: with the defaults at the yield force
-    ``stiffness * yield_displacement``; the larger ``n``, the sharper the yield (``n`` to
+    ``stiffness_n_m * yield_displacement_m``; the larger ``n``, the sharper the yield (``n`` to
     infinity: an elastic-perfectly-plastic spring).  Integrated numerically inside the engine,
     every phase of motion (its kinks, where ``dD/dt`` or ``z`` cross zero, are located as events).
 
     Parameters
     ----------
-    stiffness : float
+    stiffness_n_m : float
         N/m, > 0.
-    yield_displacement : float
+    yield_displacement_m : float
         m, > 0.
     a, beta, gamma : float
         ``a > 0``; ``beta >= |gamma|`` and ``beta + gamma > 0`` (so that every loop dissipates).
     n : float
         Sharpness, 1 to 100.
+
+    (``stiffness`` and ``yield_displacement``, the names before, still work for one release, with a
+    warning.)
 
     Examples
     --------
@@ -52,7 +57,8 @@ class BoucWen:
     under 5 s of a 1 Hz, 0.1 g table motion:
 
     >>> import pounding
-    >>> bw = pounding.BoucWen(stiffness=20_000.0, yield_displacement=0.005, n=2.0)
+    >>> bw = pounding.BoucWen(stiffness_n_m=20_000.0, yield_displacement_m=0.005,
+    ...                       n=2.0)
     >>> bw.yield_force_n  # N
     100.0
     >>> hdr = pounding.Oscillator(500.0, pounding.Isolator([18_000.0],
@@ -64,22 +70,23 @@ class BoucWen:
     '0.104 m, 144 J by hysteresis'
     """
 
-    stiffness: float
-    yield_displacement: float
+    stiffness_n_m: float
+    yield_displacement_m: float
     a: float = 1.0
     beta: float = 0.5
     gamma: float = 0.5
     n: float = 1.0
 
-    FIELDS: ClassVar[tuple[str, ...]] = ("stiffness", "yield_displacement", "a", "beta", "gamma", "n")
+    FIELDS: ClassVar[tuple[str, ...]] = ("stiffness_n_m", "yield_displacement_m", "a", "beta", "gamma", "n")
 
     def __post_init__(self) -> None:
-        stiffness = positive("isolator.bouc_wen.stiffness", self.stiffness, "N/m")
-        at_most("isolator.bouc_wen.stiffness", stiffness, MAX_STIFFNESS_N_M,
+        stiffness = positive("isolator.bouc_wen.stiffness_n_m", self.stiffness_n_m, "N/m")
+        at_most("isolator.bouc_wen.stiffness_n_m", stiffness, MAX_STIFFNESS_N_M,
                 " N/m, stiffer than any isolator", "give the stiffness in N/m")
-        uy = positive("isolator.bouc_wen.yield_displacement", self.yield_displacement, "m")
-        at_most("isolator.bouc_wen.yield_displacement", uy, MAX_BREAKPOINT_M, " m", "give it in m")
-        plausible("isolator.bouc_wen.yield_displacement", uy, 0.0, 1.0, "a displacement in m (5 mm is 0.005)")
+        uy = positive("isolator.bouc_wen.yield_displacement_m", self.yield_displacement_m, "m")
+        at_most("isolator.bouc_wen.yield_displacement_m", uy, MAX_BREAKPOINT_M, " m", "give it in m")
+        plausible("isolator.bouc_wen.yield_displacement_m", uy, 0.0, 1.0,
+                  "a displacement in m (5 mm is 0.005)")
         a = positive("isolator.bouc_wen.a", self.a, "")
         beta = real("isolator.bouc_wen.beta", self.beta)
         gamma = real("isolator.bouc_wen.gamma", self.gamma)
@@ -93,17 +100,17 @@ class BoucWen:
             raise InputError(Problem.OUT_OF_RANGE, "isolator.bouc_wen.n", n,
                              range=f"[1, {MAX_BW_EXPONENT:g}]", hint=" (1: a smooth yield; larger, sharper)")
         at_most("isolator.bouc_wen.a", a * stiffness, MAX_STIFFNESS_N_M,
-                " N/m of initial stiffness a * stiffness, "
+                " N/m of initial stiffness a * stiffness_n_m, "
                 "stiffer than any isolator", "give a of order 1 (it scales the initial stiffness)")
         z_max = (a / (beta + gamma)) ** (1.0 / n)
         if z_max > MAX_BW_Z:
             raise InputError(Problem.OUT_OF_RANGE, "isolator.bouc_wen.beta", beta,
                              range=f"values that keep z_max = (a / (beta + gamma))^(1/n) = {z_max:g} within "
                                    f"{MAX_BW_Z:g}",
-                             hint=" (beta + gamma of the order of a: the force saturates near stiffness * "
-                                  "yield_displacement)")
-        for name, value in (("stiffness", stiffness), ("yield_displacement", uy), ("a", a), ("beta", beta),
-                            ("gamma", gamma), ("n", n)):
+                             hint=" (beta + gamma of the order of a: the force saturates near "
+                                  "stiffness_n_m * yield_displacement_m)")
+        for name, value in (("stiffness_n_m", stiffness), ("yield_displacement_m", uy), ("a", a),
+                            ("beta", beta), ("gamma", gamma), ("n", n)):
             object.__setattr__(self, name, value)
 
     @property
@@ -113,13 +120,13 @@ class BoucWen:
 
     @property
     def yield_force_n(self) -> float:
-        """The force it saturates at, N: ``stiffness * yield_displacement * z_max``."""
-        return self.stiffness * self.yield_displacement * self.z_max
+        """The force it saturates at, N: ``stiffness_n_m * yield_displacement_m * z_max``."""
+        return self.stiffness_n_m * self.yield_displacement_m * self.z_max
 
     def kernel_array(self) -> np.ndarray:
-        """``(stiffness * yield_displacement, yield_displacement, a, beta, gamma, n)``, shape (6,)."""
-        return np.array([self.stiffness * self.yield_displacement, self.yield_displacement, self.a, self.beta,
-                         self.gamma, self.n])
+        """``(stiffness_n_m * yield_displacement_m, yield_displacement_m, a, beta, gamma, n)``, shape (6,)."""
+        return np.array([self.stiffness_n_m * self.yield_displacement_m, self.yield_displacement_m, self.a,
+                         self.beta, self.gamma, self.n])
 
     def to_dict(self) -> dict[str, Any]:
         """The constructor's fields as plain values (the TOML form: ``Oscillator.to_toml`` writes it)."""
@@ -203,11 +210,13 @@ class Isolator:
         object.__setattr__(self, "breakpoints_m", breakpoints)
         object.__setattr__(self, "damping_n_s_m", damping)
         if isinstance(self.bouc_wen, dict):  # (from TOML: a table)
+            table = renamed_keys(self.bouc_wen, "isolator.bouc_wen.", BoucWen.RENAMED)
+            object.__setattr__(self, "bouc_wen", table)
             unknown = sorted(set(self.bouc_wen) - set(BoucWen.FIELDS))
             if unknown:
                 raise InputError(Problem.UNKNOWN_KEY, f"isolator.bouc_wen.{unknown[0]}",
                                  self.bouc_wen[unknown[0]], choices=", ".join(BoucWen.FIELDS))
-            for key in ("stiffness", "yield_displacement"):
+            for key in ("stiffness_n_m", "yield_displacement_m"):
                 if key not in self.bouc_wen:
                     raise InputError(Problem.MISSING_KEY, f"isolator.bouc_wen.{key}", None,
                                      choices=", ".join(BoucWen.FIELDS))

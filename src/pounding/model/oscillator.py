@@ -8,8 +8,8 @@ from typing import Any, ClassVar, Optional, Union
 
 
 from .._checks import at_least, at_most, instance_of, plausible, positive
-from .._errors import InputError, Problem, renamed_fields, warn_renamed
-from ._toml import TomlFile
+from .._errors import InputError, Problem, renamed_fields
+from ._toml import TomlFile, renamed_keys
 from .bumpers import Bumpers
 from .contact_laws import law_from_dict
 from .isolator import Isolator
@@ -117,23 +117,6 @@ class Oscillator(TomlFile):
                 capacity_m=b.get("capacity_m"),
             )
         return cls(mass_kg=table["mass_kg"], isolator=isolator, bumpers=bumpers)
-
-
-def renamed_keys(table: Any, prefix: str, renamed: dict[str, str]) -> Any:
-    """A TOML table with its keys' names before (``renamed``: old -> new) read as the new ones, each with a
-    ``FutureWarning`` naming it (``prefix`` + key); both spellings of one key is an error."""
-    if not isinstance(table, dict) or not any(k in table for k in renamed):
-        return table
-    out = dict(table)
-    for old, new in renamed.items():
-        if old in out:
-            if new in out:
-                raise InputError(Problem.BAD_STATE, prefix + old, out[old],
-                                 why=f"is given as well as {prefix + new}, its new name",
-                                 fix=f"keep {prefix + new} only")
-            warn_renamed(prefix + old, prefix + new, stacklevel=4)
-            out[new] = out.pop(old)
-    return out
 
 
 def check_keys(table: Any, prefix: str, allowed: tuple[str, ...], required: tuple[str, ...]) -> None:

@@ -18,7 +18,8 @@ from .._errors import InputError, Problem
 from ._toml import TomlFile
 from .contact_laws import law_from_dict
 from .isolator import Isolator
-from .oscillator import Oscillator, check_keys, renamed_keys
+from ._toml import renamed_keys
+from .oscillator import Oscillator, check_keys
 from .structure_parts import MAX_STOREYS, Stand, Storey, Wall, _mass
 
 PathLike = Union[str, Path]
