@@ -12,7 +12,7 @@ from strategies import harmonics, oscillators
 from test_reference import _compare
 
 import pounding as pd_
-from pounding.model.contact_laws import law_force_many
+from pounding.engine.kernels import law_forces
 
 SETTINGS = settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 LAW = pd_.ElasticPlastic(2e6, 2e5, 0.002)
@@ -26,9 +26,7 @@ def _free_impact(law, v0, mass=500.0):
 
 
 def _path_forces(law, d):
-    out = np.empty(d.size)
-    law_force_many(law.LAW_ID, law.params(), np.ascontiguousarray(d), np.ascontiguousarray(d), out)
-    return out
+    return law_forces(law.LAW_ID, law.params(), d, d)
 
 
 def test_free_impacts_meet_the_closed_form_restitution():

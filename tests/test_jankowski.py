@@ -187,10 +187,9 @@ def test_fit_contact_law_recovers_a_jankowski_law():
     t = np.linspace(0.0, 4.0, 4001)
     d = 0.01 + 0.008 * np.sin(2 * np.pi * 1.0 * t)  # +-8 mm about 10 mm, 1 Hz (as the paper's Fig. 3)
     v = 0.008 * 2 * np.pi * np.cos(2 * np.pi * t)
-    force = np.empty_like(d)
-    from pounding.model.contact_laws import law_force_many
+    from pounding.engine.kernels import law_forces
 
-    law_force_many(truth.LAW_ID, truth.params(), d, v, force)
+    force = law_forces(truth.LAW_ID, truth.params(), d, v)
     fit = pd_.fit_contact_law(d, force, velocity_m_s=v, law="jankowski", effective_mass_kg=500.0)
     for name in ("stiffness", "damping_ratio", "exponent"):
         assert getattr(fit.law, name) == pytest.approx(getattr(truth, name), rel=1e-6), name

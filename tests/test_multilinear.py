@@ -11,7 +11,7 @@ from strategies import harmonics, oscillators
 from test_reference import _compare
 
 import pounding as pd_
-from pounding.model.contact_laws import law_force_many
+from pounding.engine.kernels import law_forces
 
 SETTINGS = settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 D_SHAPED = pd_.MultilinearBumper((1.46e6, 1e5, 5e6), (0.001, 0.004), 500.0)  # stiff, a plateau, steep
@@ -77,8 +77,7 @@ def test_a_soft_branch_lengthens_the_contact_with_the_impact_velocity():
 def test_backbone_force_and_energy_agree():
     d = np.linspace(0.0, 0.006, 601)
     v = np.full_like(d, 0.1)
-    out = np.empty_like(d)
-    law_force_many(D_SHAPED.LAW_ID, D_SHAPED.params(), d, v, out)
+    out = law_forces(D_SHAPED.LAW_ID, D_SHAPED.params(), d, v)
     np.testing.assert_allclose(out, D_SHAPED.backbone(d) + 500.0 * 0.1, rtol=1e-14, atol=1e-9)
     # the backbone: 1460 N at 1 mm, 300 N more to 4 mm, then 5 MN/m
     assert D_SHAPED.backbone([0.001, 0.004, 0.005]).tolist() == pytest.approx([1460.0, 1760.0, 6760.0])
@@ -111,8 +110,7 @@ def _loops(law, freqs_hz=(0.5, 1.0, 2.0)):
         d.append(0.01 + 0.008 * np.sin(2 * np.pi * f * t))
         v.append(0.008 * 2 * np.pi * f * np.cos(2 * np.pi * f * t))
     d, v = np.concatenate(d), np.concatenate(v)
-    force = np.empty_like(d)
-    law_force_many(law.LAW_ID, law.params(), d, v, force)
+    force = law_forces(law.LAW_ID, law.params(), d, v)
     return d, v, force
 
 

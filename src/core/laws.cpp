@@ -10,7 +10,7 @@ namespace pounding {
 namespace {
 
 // ---------------------------------------------------------------- each law's parameters, decoded once
-// (in the order its Python dataclass's params() writes them: pounding/model/contact_laws.py)
+// (in the order its Python dataclass's params() writes them: pounding/model/contact_laws/<law>.py)
 
 struct KelvinVoigtP { double k, c; };  // stiffness, damping
 KelvinVoigtP kelvin_voigt(const double* p) { return {p[0], p[1]}; }

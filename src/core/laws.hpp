@@ -1,5 +1,5 @@
 // Contact laws: what the engine asks of a bumper's law, by law id.  This header and laws.cpp are the one
-// place where a law's kind is tested; each law's Python dataclass (pounding/model/contact_laws.py) gives
+// place where a law's kind is tested; each law's Python dataclass (pounding/model/contact_laws/<law>.py) gives
 // its LAW_ID and lays out its parameters p[0..N_LAW_PARAMS) and the block of its state z[0..N_LAW_STATE).
 //
 // Compression d (m, >= 0), its rate dd (m/s).  A law is "linear" when its force is k d + r + c dd on each

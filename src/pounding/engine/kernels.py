@@ -7,6 +7,7 @@ compiled core (``pounding._core``, the one door).
 * :func:`run_window` - a run of whole forcing cycles from a state, events only or sampled (a settled window
   measured once more); a :class:`RunOutput`.
 * :func:`monodromy` - the exact Jacobian of a run's map (:class:`Monodromy`).
+* :func:`law_forces` - a contact law's forces along a path of compressions (a fit's model).
 
 The step holds its cycles one forcing period at a time (the state carried over is exact, so cutting at cycle
 ends changes nothing).  After each cycle the state at the cycle end (the stroboscopic sample, table phase 0)
@@ -60,3 +61,14 @@ def monodromy(system: Any, state: np.ndarray, events: np.ndarray, t_end_s: float
     compressions, slips) from the state vector ``state`` to ``t_end_s`` along the run's ``events`` (rows of
     t, action, index) under ``amp_m_s2 sin(omega_rad_s t + phase_rad)``."""
     return _core.monodromy(system, state, events, t_end_s, omega_rad_s, amp_m_s2, phase_rad)
+
+
+def law_forces(law_id: int, params: np.ndarray, d_m: np.ndarray, dd_m_s: np.ndarray) -> np.ndarray:
+    """A contact law's force (N) along a path from the unloaded bumper, shape (p,): its core id
+    ``law_id`` and parameters ``params`` (a law's ``LAW_ID`` and ``params()``), the compressions ``d_m``
+    (m) and their rates ``dd_m_s`` (m/s), shape (p,) each, in the path's order (a hysteretic law's
+    state follows it)."""
+    out = np.empty(np.size(d_m))
+    _core.law_force_many(law_id, params, np.ascontiguousarray(d_m, dtype=float),
+                         np.ascontiguousarray(dd_m_s, dtype=float), out)
+    return out

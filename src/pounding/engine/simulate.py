@@ -11,7 +11,7 @@ from .._checks import instance_of, integer, positive
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
-from ..model._law_states import state_problem, stateless
+from ..model.contact_laws import state_problem, stateless
 from ..model.contact_laws import N_LAW_STATE, KelvinVoigt
 from ._control import (
     DEFAULT_MAX_STEPS,

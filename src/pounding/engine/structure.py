@@ -15,7 +15,7 @@ from .. import _core
 from .._checks import at_most, instance_of, integer, positive, real
 from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Harmonic, Record
-from ..model._law_states import state_problem
+from ..model.contact_laws import state_problem
 from ..model.contact_laws import N_LAW_STATE, is_rigid, linear_form
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure

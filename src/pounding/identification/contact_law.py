@@ -16,17 +16,16 @@ import pandas as pd
 
 from .._checks import at_least, at_most, float_array, integer, one_of, plausible, positive, real_tuple
 from .._errors import InputError, Problem
-from ..model.contact_laws import (ELASTIC_PLASTIC, LAWS, MAX_BRANCHES, MAX_EXPONENT, MULTILINEAR_KINEMATIC,
-                                  N_LAW_PARAMS,
-                                  ContactLaw, ElasticPlastic,
+from ..model.contact_laws import (LAWS, MAX_BRANCHES, MAX_EXPONENT, ContactLaw, ElasticPlastic,
                                   Hertzdamp, HuntCrossley, Jankowski, KelvinVoigt, MultilinearBumper,
-                                  RigidStop, law_force_many)
+                                  RigidStop)
+from ._law_fits import (elastic_plastic_search, kinematic_fit, law_force, multilinear_fit, multilinear_search,
+                        nnls_fit)
 
 MIN_SAMPLES_IN_CONTACT = 3
 UNFITTED = (Hertzdamp.TYPE, RigidStop.TYPE)  # laws a cyclic test cannot fit (each says why)
 # rank_contact_laws' name of MultilinearBumper(hysteresis="kinematic")
 KINEMATIC_ROW = "multilinear_kinematic"
-MIN_RATIO = 1e-6  # the elastic-plastic fit's least K2 / K1
 MIN_STIFFNESS = 1e-300  # the fitted stiffness's floor, N/m^n: at it, no stiffness fits (an error)
 # the scales of a bumper test: beyond them the data are in other units (and the least squares overflow)
 MAX_COMPRESSION_M = 1e3
@@ -81,7 +80,7 @@ class ContactLawFit:
         if d.size != v.size:
             raise InputError(Problem.SIZE_MISMATCH, "velocity_m_s", f"array of {v.size}",
                              got=v.size, expected=d.size, other="compression_m")
-        return _force(self.law, d, v)
+        return law_force(self.law, d, v)
 
     def to_xarray(self) -> Any:
         """The table of :meth:`to_dataframe` as a Dataset along ``sample``."""
@@ -91,7 +90,7 @@ class ContactLawFit:
 
     def to_dataframe(self) -> pd.DataFrame:
         """One row per fitted sample: compression, rate, measured and fitted force, residual."""
-        model = _force(self.law, self.compression_m, self.velocity_m_s)
+        model = law_force(self.law, self.compression_m, self.velocity_m_s)
         return pd.DataFrame({"compression_m": self.compression_m, "velocity_m_s": self.velocity_m_s,
                              "force_n": self.force_n, "model_force_n": model,
                              "residual_n": self.force_n - model})
@@ -102,157 +101,6 @@ class ContactLawFit:
         from ..plots import figure_of
 
         return figure_of(plot_contact_law_fit(self, ax=ax), ax)
-
-
-def _force(law: ContactLaw, d: np.ndarray, v: np.ndarray) -> np.ndarray:
-    out = np.empty(d.size)
-    law_force_many(law.LAW_ID, law.params(), np.ascontiguousarray(d), np.ascontiguousarray(v), out)
-    return out
-
-
-def _nnls_fit(d, v, force, exponent=None, law=HuntCrossley.TYPE):
-    """Non-negative (stiffness, damping) and the residual norm: ``F = k d + c v`` (Kelvin-Voigt,
-    ``exponent`` None), ``F = d^n (k + c v)`` (Hunt-Crossley) or ``F = k d^n + c d^((n-1)/2) v``
-    while ``v > 0`` (Jankowski)."""
-    if exponent is None:
-        cols = np.column_stack([d, v])
-    elif law == Jankowski.TYPE:
-        cols = np.column_stack([d**exponent, d ** (0.5 * (exponent - 1.0)) * np.maximum(v, 0.0)])
-    else:
-        dn = d**exponent
-        cols = np.column_stack([dn, dn * v])
-    scale = np.linalg.norm(cols, axis=0)
-    scale[scale == 0.0] = 1.0  # columns of very different sizes: solve the scaled problem
-    from scipy.optimize import nnls  # here: scipy.optimize costs 0.3 s of `import pounding`
-
-    (k, c), resid = nnls(cols / scale, force)
-    return k / scale[0], c / scale[1], resid
-
-
-def _segments(d: np.ndarray, breakpoints: np.ndarray) -> np.ndarray:
-    """How much of each compression lies on each branch: ``R(d) = segments @ slopes``, shape (n, m)."""
-    edges = np.concatenate([[0.0], breakpoints, [np.inf]])
-    return np.clip(d[:, None] - edges[None, :-1], 0.0, np.diff(edges)[None, :])
-
-
-def _multilinear_fit(d, v, force, breakpoints):
-    """Non-negative slopes and damping of a multi-linear law with these breakpoints, and the
-    residual norm (``F = segments(d) @ slopes + c v``)."""
-    cols = np.column_stack([_segments(d, breakpoints), v])
-    scale = np.linalg.norm(cols, axis=0)
-    scale[scale == 0.0] = 1.0
-    from scipy.optimize import nnls
-
-    x, resid = nnls(cols / scale, force)
-    x = x / scale
-    return x[:-1], x[-1], resid
-
-
-def _slip_column(d, b):
-    """The strain (m) of a spring that slips at +-``b`` along the path ``d`` from the unloaded
-    bumper: a kinematic law's softening, per N/m of it."""
-    p = np.zeros(N_LAW_PARAMS)
-    p[1], p[2], p[6] = 2.0, 1.0, b  # slopes (1, 0): the slipping spring alone
-    out = np.empty(d.size)
-    law_force_many(MULTILINEAR_KINEMATIC, p, d, np.zeros_like(d), out)
-    return out
-
-
-def _kinematic_fit(d, v, force, breakpoints):
-    """Slopes and damping of a kinematic multi-linear law with these breakpoints, and the
-    residual norm.  Its force is linear in ``k_lin``, each step's size and the damping, for each
-    choice of which steps soften (a slipping spring) and which harden (an elastic ramp): every
-    choice by non-negative least squares, the best kept."""
-    from itertools import product
-
-    from scipy.optimize import nnls
-
-    slips = [_slip_column(d, b) for b in breakpoints]
-    ramps = [np.maximum(d - b, 0.0) for b in breakpoints]
-    best = (np.inf, None, 0.0)
-    for soft in product((True, False), repeat=len(breakpoints)):
-        cols = np.column_stack([d, *[slips[i] if soft[i] else ramps[i] for i in range(len(soft))], v])
-        scale = np.linalg.norm(cols, axis=0)
-        scale[scale == 0.0] = 1.0
-        x, resid = nnls(cols / scale, force)
-        x = x / scale
-        if resid < best[0]:
-            slopes = [x[0] + sum(x[1 + i] for i in range(len(soft)) if soft[i])]
-            for i in range(len(soft)):
-                slopes.append(slopes[-1] - x[1 + i] if soft[i] else slopes[-1] + x[1 + i])
-            best = (resid, np.maximum(np.array(slopes), 0.0), x[-1])
-    return best[1], best[2], best[0]
-
-
-def _multilinear_search(d, v, force, n_branches, kinematic=False):
-    """Breakpoints minimising the residual: Nelder-Mead on their fractions of the deepest
-    compression, from a grid of starts (the residual is piecewise smooth in them)."""
-    from itertools import combinations
-
-    from scipy.optimize import minimize
-
-    top = float(d.max())
-
-    def breaks_of(u):
-        return top * np.sort(np.clip(u, 1e-3, 1.0 - 1e-3))
-
-    def cost(u):
-        b = breaks_of(u)
-        if np.any(np.diff(b) <= 1e-6 * top):
-            return np.inf
-        return (_kinematic_fit if kinematic else _multilinear_fit)(d, v, force, b)[2]
-
-    grid = np.linspace(0.1, 0.9, 9)
-    starts = sorted(combinations(grid, n_branches - 1), key=lambda u: cost(np.array(u)))[:3]
-    best = min((minimize(cost, np.array(u), method="Nelder-Mead",
-                         options={"xatol": 1e-10, "fatol": 0.0, "maxiter": 600 * n_branches})
-                for u in starts),
-               key=lambda r: r.fun)
-    return breaks_of(best.x)
-
-
-def _elastic_plastic_force(k1, ratio, dy, d):
-    p = np.zeros(N_LAW_PARAMS)
-    p[:3] = k1, ratio * k1, dy
-    out = np.empty(d.size)
-    law_force_many(ELASTIC_PLASTIC, p, d, d, out)
-    return out
-
-
-def _elastic_plastic_search(d, force):
-    """``(K1, K2, delta_y)`` of the elastic-plastic law closest to the path: the force is
-    ``K1`` times that of the law with ``K1 = 1``, so a grid over ``delta_y`` and ``K2 / K1``
-    with ``K1`` by linear least squares, then a local least-squares polish of all three (in
-    logarithms, the ratio through a logistic: every trial stays a valid law)."""
-    from scipy.optimize import least_squares
-
-    d = np.ascontiguousarray(d)
-    top = float(d.max())
-    best = (np.inf, 0.0, 0.0, 0.0)
-    for dy in top * np.geomspace(0.01, 0.9, 15):
-        for ratio in (0.003, 0.03, 0.1, 0.3, 0.6, 0.9):
-            unit = _elastic_plastic_force(1.0, ratio, dy, d)
-            k1 = float(unit @ force) / max(float(unit @ unit), 1e-300)
-            if k1 <= 0.0:
-                continue
-            cost = float(np.sum((force - k1 * unit) ** 2))
-            if cost < best[0]:
-                best = (cost, k1, ratio, dy)
-    if not np.isfinite(best[0]):
-        raise InputError(Problem.NO_FIT, "force_n", "the forces given",
-                         why="fit no elastic-plastic law (they fall as the bumper is compressed)",
-                         fix="give the force the bumper pushes with, positive in compression")
-    _, k1, ratio, dy = best
-
-    def ratio_of(u):  # K2 / K1 kept in [1e-6, 1 - 1e-6]: a valid law, and no degenerate flat line
-        return float(np.clip(1.0 / (1.0 + np.exp(-u)), MIN_RATIO, 1.0 - MIN_RATIO))
-
-    def resid(x):
-        return _elastic_plastic_force(np.exp(x[0]), ratio_of(x[1]), np.exp(x[2]), d) - force
-
-    x0 = np.array([np.log(k1), np.log(ratio / (1.0 - ratio)), np.log(dy)])
-    x = least_squares(resid, x0, x_scale=1.0, xtol=1e-14, ftol=1e-14, gtol=1e-14, diff_step=1e-7).x
-    return float(np.exp(x[0])), float(np.exp(x[0]) * ratio_of(x[1])), float(np.exp(x[2]))
 
 
 def fit_contact_law(
@@ -378,27 +226,27 @@ def fit_contact_law(
                        else "time_s")
     d, v, force = d[contact], v[contact], force[contact]
     if law == KelvinVoigt.TYPE:
-        k, c, _ = _nnls_fit(d, v, force)
+        k, c, _ = nnls_fit(d, v, force)
         fitted: ContactLaw = KelvinVoigt(max(k, MIN_STIFFNESS), c)
     elif law == MultilinearBumper.TYPE:
         kinematic = hysteresis == "kinematic"
         if breakpoints is None:
-            b = np.empty(0) if n_branches == 1 else _multilinear_search(d, v, force, n_branches, kinematic)
+            b = np.empty(0) if n_branches == 1 else multilinear_search(d, v, force, n_branches, kinematic)
         else:
             b = np.array(MultilinearBumper((1.0,) * (len(real_tuple("breakpoints", breakpoints)) + 1),
                                            breakpoints).breakpoints)  # (checked as the law checks them)
-        slopes, c, _ = (_kinematic_fit if kinematic else _multilinear_fit)(d, v, force, b)
+        slopes, c, _ = (kinematic_fit if kinematic else multilinear_fit)(d, v, force, b)
         slopes[0] = max(slopes[0], MIN_STIFFNESS)
         fitted = MultilinearBumper(tuple(slopes), tuple(b), c, hysteresis)
     elif law == ElasticPlastic.TYPE:
-        fitted = ElasticPlastic(*_elastic_plastic_search(d, force))
+        fitted = ElasticPlastic(*elastic_plastic_search(d, force))
     else:
         lo, hi = _exponent_bounds(exponent_bounds)
         from scipy.optimize import minimize_scalar
 
-        best = minimize_scalar(lambda n: _nnls_fit(d, v, force, n, law)[2], bounds=(lo, hi), method="bounded",
+        best = minimize_scalar(lambda n: nnls_fit(d, v, force, n, law)[2], bounds=(lo, hi), method="bounded",
                                options={"xatol": 1e-10})
-        k, c, _ = _nnls_fit(d, v, force, best.x, law)
+        k, c, _ = nnls_fit(d, v, force, best.x, law)
         k = max(k, MIN_STIFFNESS)
         if law == Jankowski.TYPE:
             fitted = Jankowski(k, c / (2.0 * np.sqrt(effective_mass_kg * k)), effective_mass_kg,
@@ -409,7 +257,7 @@ def fit_contact_law(
         raise InputError(Problem.NO_FIT, "force_n", "the forces given",
                          why=f"fit no {law} law (no stiffness makes their force grow with the compression)",
                          fix="give the force the bumper pushes with, positive in compression, in N")
-    resid = force - _force(fitted, d, v)
+    resid = force - law_force(fitted, d, v)
     rms = float(np.sqrt(np.mean(resid**2)))
     var = float(np.var(force))
     r2 = 1.0 - rms**2 / var if var > 0.0 else 1.0

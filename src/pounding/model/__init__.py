@@ -2,7 +2,7 @@
 
 from .bumpers import Bumpers
 from .contact_laws import ElasticPlastic, Hertzdamp, HuntCrossley, Jankowski, KelvinVoigt, MultilinearBumper
-from .rigid_stop import RigidStop
+from .contact_laws import RigidStop
 from .isolator import BoucWen, Isolator
 from .measurement import MeasurementChain, Sensor
 from .oscillator import Oscillator

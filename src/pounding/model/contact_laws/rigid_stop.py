@@ -17,10 +17,10 @@ from typing import Any, ClassVar
 
 import numpy as np
 
-from .._checks import real
-from .._core import LAW_IDS, LAYOUT
-from .._errors import InputError, Problem
-from . import _law_states
+from ..._checks import real
+from ..._core import LAW_IDS, LAYOUT
+from ..._errors import InputError, Problem
+from . import law_states
 
 RIGID_ID = LAW_IDS["rigid"]
 
@@ -64,7 +64,7 @@ class RigidStop:
     restitution: float
 
     TYPE: ClassVar[str] = "rigid"
-    STATE_CHECK: ClassVar[Callable] = staticmethod(_law_states.stateless)
+    STATE_CHECK: ClassVar[Callable] = staticmethod(law_states.stateless)
     LINEAR: ClassVar[bool] = False  # (no stiffness: the exact monodromy and the rate bound leave it out)
     RIGID: ClassVar[bool] = True
     LAW_ID: ClassVar[int] = RIGID_ID
