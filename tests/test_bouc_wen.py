@@ -12,7 +12,7 @@ from strategies import harmonics, oscillators
 from test_jankowski import check_numeric_ledger, compare_numeric_law
 
 import pounding as pd_
-from pounding.engine._layout import ZETA
+from pounding.engine.layout import ZETA
 
 SETTINGS = settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 K_POST, K_BW, U_Y = 5e3, 30e3, 0.01

@@ -147,9 +147,9 @@ def test_a_1e5_s_default_simulate_stays_under_1_gb():
 
 
 def test_kernel_stops_on_a_preset_stop_flag_and_counts_its_work():
-    from pounding.engine._control import new_control, request_stop
+    from pounding.engine.control import new_control, request_stop
     from pounding._core import run as run_kernel
-    from pounding.engine._layout import CTL_WORK
+    from pounding.engine.layout import CTL_WORK
     from pounding.engine.simulate import kernel_forcing, kernel_system
 
     osc = pd_.presets.paper_damped()

@@ -12,7 +12,7 @@ import pytest
 import pounding as pd_
 from pounding import _control, _core
 from pounding._errors import Status
-from pounding.engine import _layout
+from pounding.engine import layout
 from pounding.engine.simulate import kernel_forcing, kernel_system
 from pounding.model import contact_laws
 
@@ -39,10 +39,10 @@ def test_every_law_has_the_id_the_core_gives_it():
 
 def test_statuses_actions_and_the_control_array_agree_with_the_core():
     assert {s.name: int(s) for s in Status} == _core.STATUS
-    assert [_layout.EVENT_NAMES.index(k) for k in _core.ACTIONS] == list(_core.ACTIONS.values())
+    assert [layout.EVENT_NAMES.index(k) for k in _core.ACTIONS] == list(_core.ACTIONS.values())
     assert sorted(_core.ACTIONS.values()) == list(range(len(_core.ACTIONS)))
     assert _control.CTL_LEN == _core.LAYOUT["CTL_LEN"]
-    assert _layout.LEDGER_LEN == _layout.L_BUMPER + 1
+    assert layout.LEDGER_LEN == layout.L_BUMPER + 1
 
 
 def test_a_system_pickles_and_runs_the_same_after():
@@ -78,7 +78,7 @@ def test_a_run_releases_the_gil_and_stops_when_asked():
     _control.request_stop([ctl])
     worker.join()
     assert box["out"].status == Status.INTERRUPTED
-    assert 0 < box["out"].state[_layout.T] < 1e6
+    assert 0 < box["out"].state[layout.T] < 1e6
 
 
 def test_a_budget_stops_a_run_with_its_status():

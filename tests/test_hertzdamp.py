@@ -93,12 +93,12 @@ def test_toml_round_trip_bad_values_and_the_fit_refuses(tmp_path):
 
 
 def test_every_slot_name_of_the_layout_is_bound_once():
-    # a name bound twice in _layout.py is silently the second one: P_ZR, the phase's root, was
+    # a name bound twice in layout.py is silently the second one: P_ZR, the phase's root, was
     # once also given to Hertzdamp's damping, and the linear phases' setup overwrote it
     import ast
     from pathlib import Path
 
-    import pounding.engine._layout as layout
+    import pounding.engine.layout as layout
 
     tree = ast.parse(Path(layout.__file__).read_text())
     names = [t.id for node in tree.body if isinstance(node, ast.Assign)

@@ -204,7 +204,7 @@ def test_model_family_fits_kinematic_bumpers():
 
 
 def test_states_the_engine_never_reaches_are_refused():
-    from pounding.engine._layout import DEF_R, Z_R
+    from pounding.engine.layout import DEF_R, Z_R
 
     osc = pd_.Oscillator(500.0, pd_.Isolator((5e3,), (), "kinematic", 100.0),
                          pd_.Bumpers(0.01, 0.01, pd_.MultilinearBumper(

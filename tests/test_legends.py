@@ -11,7 +11,7 @@ import numpy as np  # noqa: E402
 import pytest  # noqa: E402
 
 import pounding as pd_  # noqa: E402
-from pounding.plots._legend import legends_over_data, place_legend  # noqa: E402
+from pounding.plots.legend import legends_over_data, place_legend  # noqa: E402
 
 
 @pytest.fixture(autouse=True)

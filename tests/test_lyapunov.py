@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 import pounding as pd_
-from pounding.engine._layout import DEF_L, DEF_R, IN_L, IN_R, D, V
+from pounding.engine.layout import DEF_L, DEF_R, IN_L, IN_R, D, V
 
 # a soft impact oscillator (the literature's: a linear oscillator, zeta 0.02, striking a stop 30 times
 # stiffer, here 5 mm away on one side): chaotic at a_G 0.1, 2.6 Hz

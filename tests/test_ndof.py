@@ -15,10 +15,10 @@ from hypothesis import strategies as st
 
 from pounding import _core
 from pounding._control import new_control
-from pounding.engine._layout import ACT_CONTACT, ACT_RELEASE, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT
-from pounding.engine._layout import L_ISOLATOR, L_KINETIC, L_VISCOUS
+from pounding.engine.layout import ACT_CONTACT, ACT_RELEASE, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT
+from pounding.engine.layout import L_ISOLATOR, L_KINETIC, L_VISCOUS
 from pounding._core import EXCITATION, Forcing
-from pounding.engine._layout import DOF_EXTREMA_LEN, X_D_MAX, X_D_MIN
+from pounding.engine.layout import DOF_EXTREMA_LEN, X_D_MAX, X_D_MIN
 from reference_ndof import Structure, TouchAtRest, reference
 
 KELVIN_VOIGT = _core.LAW_IDS["kelvin_voigt"]

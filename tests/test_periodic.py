@@ -12,9 +12,9 @@ from hypothesis import strategies as st
 
 import pounding as pd_
 from pounding.analysis import _hybrid as hy
-from pounding.engine._layout import DEF_L, DEF_R, IN_L, IN_R, STATE_BASE
-from pounding.engine._layout import D as I_D
-from pounding.engine._layout import V as I_V
+from pounding.engine.layout import DEF_L, DEF_R, IN_L, IN_R, STATE_BASE
+from pounding.engine.layout import D as I_D
+from pounding.engine.layout import V as I_V
 from strategies import harmonics, oscillators
 
 

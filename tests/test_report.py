@@ -26,7 +26,7 @@ COVERED: dict[str, list] = {}  # per figure saved by the report: its legends tha
 def report(tmp_path_factory):
     from matplotlib.figure import Figure
 
-    from pounding.plots._legend import legends_over_data
+    from pounding.plots.legend import legends_over_data
 
     ybs = pd_.presets.paper_damped()
     out = tmp_path_factory.mktemp("report")

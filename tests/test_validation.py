@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import pounding as pd_
-from pounding.engine._layout import DEF_R, IN_R, STATE_BASE, Z_L, Z_R
+from pounding.engine.layout import DEF_R, IN_R, STATE_BASE, Z_L, Z_R
 from pounding._errors import Problem
 
 ISO = pd_.Isolator([38e3, 18e3, 2e3], [0.015, 0.04], "kinematic", 1000.0)

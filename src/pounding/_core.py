@@ -55,7 +55,7 @@ EXCITATION: dict[str, int] = dict(_c.EXCITATION)
 
 @dataclass(frozen=True, slots=True)
 class Forcing:
-    """The excitation as the core takes it (``engine._run_args.kernel_forcing`` makes it).
+    """The excitation as the core takes it (``engine.run_args.kernel_forcing`` makes it).
 
     Attributes
     ----------

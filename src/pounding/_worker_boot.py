@@ -3,4 +3,4 @@ imported otherwise): pounding's modules and its compiled core are loaded once in
 worker starts with them in memory.  At the top of the package's layers (it imports everything)."""
 
 from . import engine, protocols, studies  # noqa: F401
-from .studies import _worker  # noqa: F401
+from .studies import worker_preload  # noqa: F401

@@ -121,7 +121,7 @@ def run_tasks(fn: Callable[[Any, Context], Any], tasks: Sequence[Any], *, schedu
 
             return on_processes(fn, tasks, n_workers, advance, budgets, on_error, counted, preload,
                                 executor=executor)
-        from ._dask import on_dask
+        from .dask_client import on_dask
 
         return on_dask(fn, tasks, executor if executor is not None else scheduler, n_workers, advance,
                        budgets, on_error, counted)
@@ -162,7 +162,7 @@ def task_pool(scheduler: Any = None, workers: Any = None,
         finally:
             stop_pool(ex)
         return
-    from ._dask import dask_client
+    from .dask_client import dask_client
 
     client, cluster = dask_client(scheduler, n_workers)
     try:

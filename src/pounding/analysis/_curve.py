@@ -26,7 +26,7 @@ import numpy as np
 
 from ..engine import Run
 from ._arclength import Closure, Family, fold_test
-from ..engine._layout import E_T
+from ..engine.layout import E_T
 from .periodic import _Failed
 
 

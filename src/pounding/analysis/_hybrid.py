@@ -13,7 +13,7 @@ saltation matrix ``S = I + (f_m' - f_m) grad(g)^T / (grad(g) . f_m)``.
 
 The coordinates ``x``: ``D`` (m), ``V`` (m/s), the bumpers' compressions ``delta_L``,
 ``delta_R`` (m), then the kinematic isolator's slips ``u_i`` (m).  Where the engine has the
-same system in its state vector (``engine._layout``), :func:`coordinates` and :func:`mode_of`
+same system in its state vector (``engine.layout``), :func:`coordinates` and :func:`mode_of`
 read it.
 """
 
@@ -24,12 +24,12 @@ from typing import NamedTuple
 import numpy as np
 from threadpoolctl import threadpool_limits
 
-from ..engine._layout import (ACT_CONTACT, ACT_REGION, ACT_RELEASE, ACT_REVERSAL, E_ACTION, E_INDEX,  # noqa: F401  (the
+from ..engine.layout import (ACT_CONTACT, ACT_REGION, ACT_RELEASE, ACT_REVERSAL, E_ACTION, E_INDEX,  # noqa: F401  (the
                               ACT_YIELD, DEF_L, DEF_R, IN_L, IN_R, REGION, STATE_BASE)  # events' codes, here)
 from ..engine.kernels import System
 from ..engine.kernels import monodromy as exact_monodromy
-from ..engine._layout import D as I_D
-from ..engine._layout import V as I_V
+from ..engine.layout import D as I_D
+from ..engine.layout import V as I_V
 from ..model import Oscillator
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure

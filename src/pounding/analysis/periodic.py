@@ -26,11 +26,11 @@ import numpy as np
 
 from .._errors import InputError, Problem, renamed_keyword
 from ..engine import Run, State, simulate
-from ..engine._layout import C_SLOT, C_T_END, C_T_START, C_V_IN, DEF_L, DEF_R, REGION, STATE_BASE, ZETA
-from ..engine._layout import D as I_D
-from ..engine._layout import T as I_T
-from ..engine._layout import V as I_V
-from ..engine._run_args import kernel_forcing
+from ..engine.layout import C_SLOT, C_T_END, C_T_START, C_V_IN, DEF_L, DEF_R, REGION, STATE_BASE, ZETA
+from ..engine.layout import D as I_D
+from ..engine.layout import T as I_T
+from ..engine.layout import V as I_V
+from ..engine.run_args import kernel_forcing
 from ..engine.simulate import NotAState, check_oscillator, check_state, kernel_system, short_run
 from ..excitation import Harmonic
 from ..model import Oscillator

@@ -21,7 +21,7 @@ from typing import Any, Optional
 import numpy as np
 
 from .._errors import InputError, Problem
-from ..engine._layout import C_SLOT, C_T_END, C_T_START, C_V_IN, CONTACT_COLS, E_ACTION, E_INDEX
+from ..engine.layout import C_SLOT, C_T_END, C_T_START, C_V_IN, CONTACT_COLS, E_ACTION, E_INDEX
 from ..engine.assembly import Assembly, assemble, structures_of
 from ..engine.structure import StructureState, check_structure_state, simulate_structure
 from ..excitation import Harmonic

@@ -12,8 +12,8 @@ import pandas as pd
 from .._errors import Status
 from .._tables import ContactTable
 from ._chatter import chatter_frame
-from ._layout import C_SLOT
-from ._layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
+from .layout import C_SLOT
+from .layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
 from .result import Outcome, events_frame
 from .structure_result import CONTACT_COLUMNS, StructureEnergy, StructureRun, peaks_of
 

@@ -16,7 +16,7 @@ import numpy as np
 from .. import _core
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
-from ._layout import P_MAX, P_MIN, X_D_MAX, X_D_MIN
+from .layout import P_MAX, P_MIN, X_D_MAX, X_D_MIN
 
 
 class Pair(NamedTuple):

@@ -13,7 +13,7 @@ from ..excitation import Harmonic, Record
 from ..model import Oscillator
 from ..model.contact_laws import state_problem, stateless
 from ..model.contact_laws import N_LAW_STATE, KelvinVoigt
-from ._control import (
+from .control import (
     DEFAULT_MAX_STEPS,
     check_budget,
     contact_rate,
@@ -24,10 +24,10 @@ from ._control import (
 )
 from .. import _core
 from ._system import Forcing, System
-from ._layout import (DEF_L, DEF_R, IN_L, IN_R, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT, L_ISOLATOR,
+from .layout import (DEF_L, DEF_R, IN_L, IN_R, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT, L_ISOLATOR,
                       L_KINETIC, L_VISCOUS, REGION, STATE_BASE, X_A_MAX, X_A_MAX_T, X_D_MAX, X_D_MAX_T,
                       X_D_MIN, X_D_MIN_T, Z_L, Z_R, ZETA, D, T, V)
-from ._run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPLES,  # noqa: F401
+from .run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPLES,  # noqa: F401
                         MAX_SAMPLES, check_rtol, history_rate, kernel_forcing)
 from .result import EnergyLedger, Run
 from .state import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, State

@@ -10,10 +10,10 @@ import numpy as np
 
 from .._checks import at_most, instance_of, real
 from .._errors import InputError, Problem
-from ._layout import DEF_L, DEF_R, IN_L, IN_R, REGION, STATE_BASE, Z_L, Z_R, ZETA
-from ._layout import D as I_D
-from ._layout import T as I_T
-from ._layout import V as I_V
+from .layout import DEF_L, DEF_R, IN_L, IN_R, REGION, STATE_BASE, Z_L, Z_R, ZETA
+from .layout import D as I_D
+from .layout import T as I_T
+from .layout import V as I_V
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..model import Oscillator
@@ -195,7 +195,7 @@ _FROM_A_RUN = "start from State.at_rest(...) or a run's final_state"
 
 
 def _state_vector(vector: Any) -> np.ndarray:
-    """The raw state vector, checked for what holds whatever the system (see ``_layout``)."""
+    """The raw state vector, checked for what holds whatever the system (see ``layout``)."""
     try:
         vec = np.array(vector, dtype=float)
     except (TypeError, ValueError):

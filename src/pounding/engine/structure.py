@@ -19,11 +19,11 @@ from ..model.contact_laws import state_problem
 from ..model.contact_laws import N_LAW_STATE, is_rigid, linear_form
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
-from ._control import DEFAULT_MAX_STEPS, check_budget, new_control, run_interruptibly, steps_per_second
+from .control import DEFAULT_MAX_STEPS, check_budget, new_control, run_interruptibly, steps_per_second
 from ._chatter import chatter_frame
 from .state import MAX_TIME_S
-from ._layout import CONTACT_COLUMNS
-from ._run_args import DIRECT_CALL_STEPS, check_rtol, history_rate, kernel_forcing
+from .layout import CONTACT_COLUMNS
+from .run_args import DIRECT_CALL_STEPS, check_rtol, history_rate, kernel_forcing
 from .adjacent_result import AdjacentRun
 from .assembly import Assembly, _add_pair, assemble, clearances, structures_of
 from .structure_result import StructureEnergy, StructureRun

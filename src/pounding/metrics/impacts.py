@@ -1,11 +1,25 @@
-"""Per-impact tables from a run's contacts."""
+"""Per-impact measurements (paper Sect. 3.5): one function, :func:`impact_row` (the core's), turns a row of
+the engine's contact table into the paper's quantities; :func:`impact_table` makes a run's table of them, and
+the compiled sweep steps sum them per side (the ``S_*`` places)."""
 
 from __future__ import annotations
+
+import math
 
 import numpy as np
 import pandas as pd
 
-from ._impacts import CONTACT_COLUMNS, IMPACT_COLUMNS, N_IMPACT, impact_row
+from .._core import CONTACT_COLUMNS, LAYOUT, impact_row  # noqa: F401  (the core's)
+
+IMPACT_COLUMNS = ("restitution", "contact_time_s", "impulse_n_s", "mean_force_n", "peak_force_n",
+                  "dissipated_energy_j", "bumper_dissipation_j")
+N_IMPACT = len(IMPACT_COLUMNS)
+
+# per side, the sums a sweep keeps over its measurement window (the core's): completed contacts, of which with
+# a defined restitution, then the sums of the N_IMPACT columns
+S_COUNT, S_N_RESTITUTION, S_SUMS, SIDE_SUMS = (LAYOUT[k] for k in ("S_COUNT", "S_N_RESTITUTION", "S_SUMS",
+                                                                 "SIDE_SUMS"))
+assert N_IMPACT == LAYOUT["N_IMPACT"]  # (IMPACT_COLUMNS names the core's N_IMPACT quantities)
 
 
 def impact_table(contact_table: np.ndarray, mass_kg: float) -> pd.DataFrame:
@@ -22,7 +36,7 @@ def impact_table(contact_table: np.ndarray, mass_kg: float) -> pd.DataFrame:
     -------
     DataFrame
         ``side``, ``t_start_s`` and the columns of
-        :data:`~pounding.metrics._impacts.IMPACT_COLUMNS`; see :func:`impact_row`.
+        :data:`~pounding.metrics.impacts.IMPACT_COLUMNS`; see :func:`impact_row`.
 
     Examples
     --------
@@ -40,10 +54,33 @@ def impact_table(contact_table: np.ndarray, mass_kg: float) -> pd.DataFrame:
     ...       f"ms, F_peak = {last.peak_force_n:.0f} N")
     s = 0.974, dt_c = 50.0 ms, F_peak = 1446 N
     """
-    values = np.empty((contact_table.shape[0], N_IMPACT))
-    for i in range(contact_table.shape[0]):
-        impact_row(contact_table[i], float(mass_kg), values[i])
-    df = pd.DataFrame(values, columns=list(IMPACT_COLUMNS))
+    df = pd.DataFrame(impact_values(contact_table, mass_kg), columns=list(IMPACT_COLUMNS))
     df.insert(0, "t_start_s", contact_table[:, CONTACT_COLUMNS["t_start_s"]])
     df.insert(0, "side", np.where(contact_table[:, CONTACT_COLUMNS["contact"]] == 0.0, "left", "right"))
     return df
+
+
+def impact_values(contact_table: np.ndarray, mass_kg: float | np.ndarray) -> np.ndarray:
+    """The per-impact quantities of :data:`IMPACT_COLUMNS` of each row of an engine's contact table, shape
+    (n, N_IMPACT): ``mass_kg`` the impacting mass (kg), one for every row or one per row, shape (n,) (a
+    pair's effective mass ``m_i m_j / (m_i + m_j)``, the mass itself against the ground)."""
+    n = contact_table.shape[0]
+    masses = np.broadcast_to(np.asarray(mass_kg, dtype=float), (n,))
+    values = np.empty((n, N_IMPACT))
+    for i in range(n):
+        impact_row(contact_table[i], float(masses[i]), values[i])
+    return values
+
+
+def impact_summary(impacts: pd.DataFrame, rigid: int) -> dict[str, float]:
+    """A run's contacts in a few numbers (its ``summary()``'s), from its per-impact table and its number of
+    rigid impacts: ``restitution_mean`` over the finished contacts, ``contact_time_mean_s`` over those that
+    last (holds and deformable contacts), ``peak_force_max_n`` (inf with rigid impacts; NaN without
+    contacts)."""
+    done = impacts.dropna(subset=["contact_time_s"])
+    lasting = done[done["contact_time_s"] > 0.0]
+    nan = float("nan")
+    return {"restitution_mean": float(done["restitution"].mean()) if len(done) else nan,
+            "contact_time_mean_s": float(lasting["contact_time_s"].mean()) if len(lasting) else nan,
+            "peak_force_max_n": (math.inf if rigid else float(done["peak_force_n"].max()) if len(done)
+                                 else nan)}

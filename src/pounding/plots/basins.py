@@ -7,7 +7,7 @@ from typing import Any
 import numpy as np
 
 from ._labels import A_G_LABEL
-from ._legend import place_legend
+from .legend import place_legend
 
 
 def plot_basins(result: Any, ax: Any = None, **kwargs: Any) -> list:

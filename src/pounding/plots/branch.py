@@ -10,7 +10,7 @@ import numpy as np
 
 from .._errors import InputError, Problem
 from ._labels import A_G_LABEL
-from ._legend import place_legend
+from .legend import place_legend
 
 # marker and short label of each bifurcation kind
 MARKS = {"fold": ("s", "F"), "branch-point": ("D", "BP"), "period-doubling": ("o", "PD"),

@@ -6,7 +6,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from ._legend import place_legend
+from .legend import place_legend
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..identification.contact_law import ContactLawFit

@@ -5,7 +5,7 @@ from __future__ import annotations
 from typing import Any, Optional
 
 from ._labels import A_G_LABEL
-from ._legend import place_legend
+from .legend import place_legend
 
 STYLE = {"fold": "-", "grazing": ":"}
 # a test point as its verdict says (witnesses: the branch, the sweeps, a basin sample)

@@ -7,7 +7,7 @@ from typing import Any
 import numpy as np
 
 from .._tables import percentiles
-from ._legend import place_legend
+from .legend import place_legend
 
 
 def _axes(ax: Any, size: tuple[float, float] = (6.0, 3.8)) -> Any:

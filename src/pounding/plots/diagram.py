@@ -9,7 +9,7 @@ import numpy as np
 
 from .._checks import integer, one_of
 from .._errors import InputError, Problem
-from ._legend import place_legend
+from .legend import place_legend
 
 DIRECTION_COLOR = {"up": "C0", "down": "C3"}
 DIRECTION_MARKER = {"up": "^", "down": "v"}

@@ -6,8 +6,8 @@ from typing import Any
 
 import numpy as np
 
-from ..engine._layout import C_T_START
-from ._legend import place_legend
+from ..engine.layout import C_T_START
+from .legend import place_legend
 
 
 def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:

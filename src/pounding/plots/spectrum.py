@@ -6,7 +6,7 @@ from typing import Any
 
 import numpy as np
 
-from ._legend import place_legend
+from .legend import place_legend
 
 KINDS = ("curves", "map")
 

@@ -6,7 +6,7 @@ from typing import Any
 
 import numpy as np
 
-from ._legend import place_legend
+from .legend import place_legend
 
 
 def plot_study(result: Any, quantity: str, *, x: str | None = None, hue: str | None = None, ax: Any = None,

@@ -23,14 +23,14 @@ from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from .._runner import Context, run_tasks
 from .._runner.progress import Progress
 from ..engine import State
-from ..engine._layout import T
+from ..engine.layout import T
 from ..engine.simulate import check_oscillator, check_rtol, kernel_system
 from ..engine.assembly import assemble
 from ..engine.structure import StructureState
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from ..excitation import Harmonic
-from ..metrics._impacts import S_COUNT, SIDE_SUMS
+from ..metrics.impacts import S_COUNT, SIDE_SUMS
 from ..model import Oscillator
 from ..engine.kernels import (CONTACT_COLUMNS, DOF_EXTREMA, W_AMAX, W_CYCLES, W_DMAX, W_DMIN, W_SUMS,
                               run_step, run_window)

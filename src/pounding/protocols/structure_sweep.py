@@ -14,8 +14,8 @@ from collections.abc import Callable
 import numpy as np
 
 from .._errors import Interrupted, Status
-from ..engine._control import new_control, stop_requested
-from ..engine._layout import T
+from ..engine.control import new_control, stop_requested
+from ..engine.layout import T
 from ..engine.kernels import CONTACT_COLUMNS, DOF_EXTREMA, PAIR_EXTREMA, W_CYCLES, RunOutput, run_window
 from ..engine.assembly import assemble
 from ..engine.structure import StructureState

@@ -17,8 +17,8 @@ import numpy as np
 from .._checks import at_least, at_most, float_array, integer, one_of, plausible, positive
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..engine import State
-from ..engine._layout import T
-from ..engine._control import (DEFAULT_MAX_STEPS, check_budget, isolator_rate, new_control,
+from ..engine.layout import T
+from ..engine.control import (DEFAULT_MAX_STEPS, check_budget, isolator_rate, new_control,
                                run_interruptibly, steps_per_second, stop_requested)
 from ..engine.simulate import check_oscillator, check_rtol, check_state, kernel_system
 from ..excitation import MAX_FREQ_HZ, GRAVITY_M_S2, Harmonic
@@ -352,7 +352,7 @@ def sweep(system: Oscillator, a_g: float, freqs_hz: np.ndarray | None = None,
         from .structure_sweep import run_structure_plan as run
     with progress_reporter(progress, plan.freqs_hz.size,
                            f"sweep {direction}, a_G = {plan.a_g:g}") as advance:
-        # on a helper thread, so that Ctrl-C stops the step kernel at once (engine/_control.py)
+        # on a helper thread, so that Ctrl-C stops the step kernel at once (engine/control.py)
         return run_interruptibly(lambda: run(plan, advance, ctl), [ctl])
 
 
@@ -360,7 +360,7 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
              control: np.ndarray | None = None) -> SweepResult:
     """Run a validated plan step by step; ``advance(1)`` after each step.
 
-    ``control`` is the run control the step kernels poll (``engine._control``; default a
+    ``control`` is the run control the step kernels poll (``engine.control``; default a
     fresh one with the plan's budget): another thread stops the sweep with
     ``request_stop([control])``.  On such a stop (or a KeyboardInterrupt raised by
     ``advance``) the unfinished step is dropped and :class:`~pounding.Interrupted` is

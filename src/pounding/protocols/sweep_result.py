@@ -13,7 +13,7 @@ import pandas as pd
 from .._checks import integer, positive
 from .._errors import InputError, Problem, Status
 from ..engine import State
-from ..metrics._impacts import IMPACT_COLUMNS, S_COUNT, S_N_RESTITUTION, S_SUMS, SIDE_SUMS
+from ..metrics.impacts import IMPACT_COLUMNS, S_COUNT, S_N_RESTITUTION, S_SUMS, SIDE_SUMS
 from ..engine.kernels import W_AMAX, W_CYCLES, W_DMAX, W_DMIN, W_SUMS
 from .measured_sweep import MEASURED_COLUMNS
 

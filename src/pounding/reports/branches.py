@@ -9,7 +9,7 @@ import numpy as np
 import pandas as pd
 
 from .._errors import InputError, Status
-from ..plots._legend import place_legend
+from ..plots.legend import place_legend
 
 if TYPE_CHECKING:  # pragma: no cover
     from matplotlib.figure import Figure

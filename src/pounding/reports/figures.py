@@ -14,7 +14,7 @@ import numpy as np
 import pandas as pd
 
 from ..data import paper_gap_total_m, paper_measurements
-from ..plots._legend import place_legend
+from ..plots.legend import place_legend
 from ..plots.sweep import DIRECTION_STYLE, plot_hysteresis
 
 if TYPE_CHECKING:  # pragma: no cover

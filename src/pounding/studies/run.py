@@ -19,13 +19,13 @@ import numpy as np
 from .._checks import instance_of, integer
 from .._errors import InputError, Interrupted, Problem, StoreError
 from .._runner import GUARD, Context, run_tasks, scheduler_kind
-from .._runner._dask import dask_client
+from .._runner.dask_client import dask_client
 from .._runner.progress import Progress
 from .spec import StudySpec
 from .store import (OTHER, STUDY, check_store, chunk_grid, chunk_shape, create, open_checked,
                           refuse_other, region, run_chunk, store_state)
 
-_PRELOAD = ("pounding.studies._worker",)  # (what a chunk needs, loaded once per worker server)
+_PRELOAD = ("pounding.studies.worker_preload",)  # (what a chunk needs, loaded once per worker server)
 BATCHES_PER_WORKER = 8  # chunks a worker gets over a study, at least: balance against per-batch cost
 MAX_BATCH = 256         # points in a chunk, at most
 

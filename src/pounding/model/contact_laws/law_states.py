@@ -1,6 +1,6 @@
 """What a bumper law's own state may hold: each law's check of its block of the state vector.
 
-A law keeps ``N_LAW_STATE`` numbers in the engine's state (``engine/_layout.Z_L``, ``Z_R``):
+A law keeps ``N_LAW_STATE`` numbers in the engine's state (``engine/layout.Z_L``, ``Z_R``):
 0 for a stateless law; Hertzdamp's damping; an elastic-plastic law's line or offset; a
 kinematic multi-linear law's slips and slip directions.  Each law class names its check as
 ``STATE_CHECK``; :func:`state_problem` calls it, and the engine names the field and raises
