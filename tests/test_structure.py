@@ -110,6 +110,14 @@ def test_one_level_is_the_oscillator_bit_for_bit(preset):
         assert rs.displacement_max[0] == ro.displacement_max and rs.displacement_min[0] == ro.displacement_min
         assert rs.abs_acceleration_max[0] == ro.abs_acceleration_max
         assert rs.energy.input_work == ro.energy.input_work
+        # its impacts and its summary's, the oscillator's (the one mass its wall's sides stop)
+        pd.testing.assert_frame_equal(rs.impacts.drop(columns=["wall", "level"]), ro.impacts,
+                                      check_exact=True)
+        for name in ("contacts", "rigid_impacts", "restitution_mean", "contact_time_mean_s",
+                     "peak_force_max_n"):
+            a, b = rs.summary()[name], ro.summary()[name]
+            assert a == b or (math.isnan(a) and math.isnan(b)), name
+        assert rs.excursion_m[0] == ro.excursion_m
 
 
 @pytest.mark.parametrize("n_storeys", [1, 3, 5])
@@ -823,3 +831,38 @@ def test_each_contact_s_clearance_is_its_exact_closest_approach():
     assert run.clearance_m.shape == (len(asm.pairs),) and (run.clearance_m < 0).any()  # (some touched)
     assert (run.clearance_m <= sampled + 1e-12).all()
     np.testing.assert_allclose(run.clearance_m, sampled, rtol=0, atol=1e-7)
+
+
+def test_impacts_of_a_building_and_of_a_pair_take_the_impacting_pair_s_effective_mass():
+    kv = pd_.KelvinVoigt(2e7, 2e3)
+    iso = pd_.Isolator([1e5, 3e4], [0.004], damping_n_s_m=500.0)
+    first = pd_.Structure(1000.0, iso, [pd_.Storey(800.0, 2e6, 500.0)],
+                          [pd_.Wall(0, 0.01, 0.012, kv, stand=pd_.Stand(30.0, 3e6, 100.0))])
+    second = pd_.Structure.fixed_base([pd_.Storey(900.0, 5e6, 500.0)] * 2,
+                                      walls=[pd_.Wall(2, 0.004, 0.005, kv)])
+    pair = pd_.Adjacent(first, second, [pd_.Link(1, 1, 0.006, kv)])
+    run = pd_.simulate(pair, pd_.Harmonic(0.4, 1.5), 4.0, sample_rate_hz=0)
+
+    def check(impacts, contacts, labels, mu):
+        assert len(impacts) == len(contacts) > 0
+        assert impacts.columns.tolist() == [*labels, "t_start_s", "restitution", "contact_time_s",
+                                            "impulse_n_s", "mean_force_n", "peak_force_n",
+                                            "dissipated_energy_j", "bumper_dissipation_j"]
+        for name in (*labels, "t_start_s"):
+            assert impacts[name].tolist() == contacts[name].tolist()
+        v_in, v_out = contacts["v_in_m_s"].to_numpy(), contacts["v_out_m_s"].to_numpy()
+        np.testing.assert_allclose(impacts["dissipated_energy_j"], 0.5 * mu * (v_in**2 - v_out**2),
+                                   rtol=1e-14)
+        np.testing.assert_allclose(impacts["restitution"], -v_out / v_in, rtol=1e-14)
+        np.testing.assert_array_equal(impacts["bumper_dissipation_j"], contacts["work_j"])
+
+    # against a wall on its stand: the level's mass and the stand's; against a rigid wall: the level's own
+    check(run.first.impacts, run.first.contacts, ("wall", "level", "side"), 1000.0 * 30.0 / 1030.0)
+    check(run.second.impacts, run.second.contacts, ("wall", "level", "side"), 900.0)
+    check(run.link_impacts, run.links, ("link", "level_first", "level_second"), 800.0 * 900.0 / 1700.0)
+    s = run.first.summary()
+    done = run.first.impacts.dropna(subset=["contact_time_s"])
+    assert s["restitution_mean"] == done["restitution"].mean() and s["rigid_impacts"] == 0
+    assert s["peak_force_max_n"] == done["peak_force_n"].max()
+    np.testing.assert_array_equal(run.first.excursion_m,
+                                  run.first.displacement_max - run.first.displacement_min)

@@ -15,7 +15,7 @@ from ._chatter import chatter_frame
 from .layout import C_SLOT
 from .layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
 from .result import Outcome, events_frame
-from .structure_result import CONTACT_COLUMNS, StructureEnergy, StructureRun, peaks_of
+from .structure_result import CONTACT_COLUMNS, StructureEnergy, StructureRun, impact_frame, peaks_of
 
 
 @dataclass(frozen=True)
@@ -100,6 +100,20 @@ class AdjacentRun(Outcome):
             "level_second": [links[j].level_second for j in k],
             **{name: c[:, CORE_CONTACT_COLUMNS[name]] for name in CONTACT_COLUMNS[3:]},
         })
+
+    @property
+    def link_impacts(self) -> pd.DataFrame:
+        """The paper's per-impact quantities (Sect. 3.5), one row per contact at a link: ``link``,
+        ``level_first``, ``level_second``, ``t_start_s``, then the columns of
+        :attr:`StructureRun.impacts` (``dissipated_energy_j`` with the pair's effective mass
+        ``m1 m2 / (m1 + m2)`` of the two levels, the one level's own against a fixed base's ground)."""
+        first, second = self.adjacent.structures
+        mass = []
+        for k in self.link_table[:, C_SLOT].astype(int):
+            link = self.adjacent.links[k]
+            m1, m2 = float(first.masses_kg[link.level_first]), float(second.masses_kg[link.level_second])
+            mass.append(m2 if np.isnan(m1) else m1 if np.isnan(m2) else m1 * m2 / (m1 + m2))
+        return impact_frame(self.links, ("link", "level_first", "level_second"), self.link_table, mass)
 
     def summary(self) -> pd.Series:
         """The pair's run in a few numbers: ``t_end_s``; each structure's (``first_``, ``second_``)

@@ -15,7 +15,7 @@ from .._errors import Status
 from .._tables import EventTable
 from ._chatter import SIDES, chatter_frame
 from .state import State
-from ._layout import (C_MAX_COMPRESSION, C_SLOT, C_V_IN, E_ACTION, E_INDEX, E_T, EVENT_NAMES, force_max,
+from .layout import (C_MAX_COMPRESSION, C_SLOT, C_V_IN, E_ACTION, E_INDEX, E_T, EVENT_NAMES, force_max,
                       impulses)
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -287,10 +287,10 @@ class Run:
         >>> int(s["contacts"]), round(s["alpha"], 2), s["status"]
         (19, 4.47, 'SUCCESS')
         """
+        from ..metrics.impacts import impact_summary
+
         rigid = int(impulses(self.contact_table).sum())
         peak = abs(self.excitation.peak_m_s2)
-        done = self.impacts.dropna(subset=["contact_time_s"])
-        lasting = done[done["contact_time_s"] > 0.0]
         nan = float("nan")
         return pd.Series({
             "t_end_s": self.final_state.time_s,
@@ -299,11 +299,7 @@ class Run:
             "alpha": self.abs_acceleration_max / peak if peak else nan,
             "contacts": len(self.contact_table),
             "contacts_left": int((self.contact_table[:, C_SLOT] == 0.0).sum()),
-            "rigid_impacts": rigid,
-            "restitution_mean": float(done["restitution"].mean()) if len(done) else nan,
-            "contact_time_mean_s": float(lasting["contact_time_s"].mean()) if len(lasting) else nan,
-            "peak_force_max_n": (math.inf if rigid else float(done["peak_force_n"].max()) if len(done)
-                                 else nan),
+            "rigid_impacts": rigid, **impact_summary(self.impacts, rigid),
             "input_work_j": self.energy.input_work, "energy_residual_j": self.energy.residual,
             "status": self.status.name,
         }, name="summary", dtype=object)

@@ -12,9 +12,9 @@ import pandas as pd
 
 from .._errors import Status
 from .._tables import ContactTable
-from ._layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
-from ._layout import force_max, impulses
-from ._layout import (C_SLOT, C_V_IN, DOF_EXTREMA_LEN, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT,
+from .layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
+from .layout import force_max, impulses
+from .layout import (C_SLOT, C_V_IN, DOF_EXTREMA_LEN, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT,
                       L_ISOLATOR, L_KINETIC, L_VISCOUS, P_MAX, P_MAX_T, P_MIN, P_MIN_T, X_A_MAX, X_A_MAX_T,
                       X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T)
 from ._chatter import chatter_frame
@@ -280,6 +280,28 @@ class StructureRun(Outcome):
         })
 
     @property
+    def impacts(self) -> pd.DataFrame:
+        """The paper's per-impact quantities (Sect. 3.5), one row per contact at a wall: ``wall``,
+        ``level``, ``side``, ``t_start_s``, then ``restitution``, ``contact_time_s``, ``impulse_n_s``,
+        ``mean_force_n``, ``peak_force_n``, ``dissipated_energy_j`` (the kinetic energy the impact took
+        from the pair's relative motion, ``mu (v_in^2 - v_out^2) / 2`` with ``mu`` the level's mass, or
+        with a wall on a stand the pair's effective mass ``m m_s / (m + m_s)``) and
+        ``bumper_dissipation_j`` (what the wall's law itself dissipated).  A one-level structure's is its
+        oscillator's ``Run.impacts``, row for row."""
+        walls, masses = self.structure.walls, self.structure.masses_kg
+        mass = []
+        for s in self.contact_table[:, C_SLOT].astype(int):
+            wall = walls[s // 2]
+            m = float(masses[wall.level])
+            mass.append(m if wall.stand is None else m * wall.stand.mass_kg / (m + wall.stand.mass_kg))
+        return impact_frame(self.contacts, ("wall", "level", "side"), self.contact_table, mass)
+
+    @property
+    def excursion_m(self) -> np.ndarray:
+        """Each level's ``D_max - D_min`` over the run, m, shape (levels,)."""
+        return self.displacement_max - self.displacement_min
+
+    @property
     def stands(self) -> pd.DataFrame:
         """One row per stand (walls with a :class:`~pounding.Stand`, each side's): wall, level, side, exact
         extrema of its displacement (m)."""
@@ -320,6 +342,9 @@ class StructureRun(Outcome):
         -------
         pandas.Series
             ``t_end_s``; ``contacts`` at every wall, and ``contacts_level_<k>`` at each level with a wall;
+            ``rigid_impacts``; over the finished contacts ``restitution_mean``, ``contact_time_mean_s``
+            (those that last) and ``peak_force_max_n`` (inf with rigid impacts; NaN without contacts), from
+            :attr:`impacts`;
             ``input_work_j`` and ``energy_residual_j`` (NaN for one of two adjacent structures: the pair's
             are ``AdjacentRun.summary()``'s); ``status`` (its name).
 
@@ -335,13 +360,17 @@ class StructureRun(Outcome):
         >>> int(s["contacts"]) == int(s["contacts_level_2"]) > 0, s["status"]
         (True, 'SUCCESS')
         """
+        from ..metrics.impacts import impact_summary
+
         levels = self.contacts["level"].value_counts()
         nan = float("nan")
+        rigid = int(impulses(self.contact_table).sum())
         return pd.Series({
             "t_end_s": float(self.t[-1]) if self.t.size else nan,
             "contacts": len(self.contact_table),
             **{f"contacts_level_{lv}": int(levels.get(lv, 0))
                for lv in sorted({w.level for w in self.structure.walls})},
+            "rigid_impacts": rigid, **impact_summary(self.impacts, rigid),
             "input_work_j": self.energy.input_work if self.energy is not None else nan,
             "energy_residual_j": self.energy.residual if self.energy is not None else nan,
             "status": self.status.name,
@@ -410,6 +439,18 @@ class StructureRun(Outcome):
         from ..plots import plot_structure_run, figure_of
 
         return figure_of(plot_structure_run(self, **kwargs), kwargs.get("axes"))
+
+
+def impact_frame(contacts: pd.DataFrame, labels: tuple[str, ...], table: np.ndarray,
+                 masses_kg: list[float]) -> pd.DataFrame:
+    """A per-impact table: the ``labels`` columns and ``t_start_s`` of a contact table's frame
+    (``contacts``), then the quantities of each row of the core's ``table`` (``metrics.impacts``) for the
+    impacting masses ``masses_kg`` (one a row)."""
+    from ..metrics.impacts import IMPACT_COLUMNS, impact_values
+
+    df = pd.DataFrame(contacts[[*labels, "t_start_s"]])  # (a plain frame: no names of 0.1 to answer)
+    df[list(IMPACT_COLUMNS)] = impact_values(table, np.array(masses_kg, dtype=float))
+    return df
 
 
 def ground_peak(excitation: Any, t0: float, t1: float) -> tuple[float, float]:
