@@ -252,16 +252,21 @@ def test_results_give_their_tables_and_figure(tmp_path):
     frame = run.to_dataframe()
     assert frame.shape == (k, 1 + 3 * 3 + 1 + 4) and "displacement_m[2]" in frame
     ds = run.to_xarray()
-    assert ds["displacement"].dims == ("sample", "level") and ds["displacement"].attrs["units"] == "m"
+    assert ds["displacement_m"].dims == ("sample", "level") and ds["displacement_m"].attrs["units"] == "m"
     assert ds.attrs["status"] == "SUCCESS"
     # one vocabulary: the samples' times a coordinate, the contacts by wall and side, the drifts
     assert "time_s" in ds.coords and ds["time_s"].dims == ("sample",) and ds["time_s"].attrs["units"] == "s"
     np.testing.assert_array_equal(ds["time_s"].values, run.t)
     assert list(ds["contact"].values) == ["wall 0 left", "wall 0 right", "wall 1 left", "wall 1 right"]
     assert list(ds["side"].values) == ["left", "right"] * 2 and list(ds["wall"].values) == [0, 0, 1, 1]
-    np.testing.assert_array_equal(ds["drift"].values, run.drift)
-    np.testing.assert_array_equal(ds["drift_max"].values, run.drift_max)
-    assert ds["drift_min"].dims == ("storey",)
+    np.testing.assert_array_equal(ds["drift_m"].values, run.drift)
+    np.testing.assert_array_equal(ds["drift_max_m"].values, run.drift_max)
+    assert ds["drift_min_m"].dims == ("storey",)
+    # each variable's name ends with its unit, as a single mass's Dataset's
+    assert set(ds.data_vars) == {"displacement_m", "velocity_m_s", "abs_acceleration_m_s2", "drift_m",
+                                 "isolator_force_n", "contact_force_n", "displacement_max_m",
+                                 "displacement_min_m", "abs_acceleration_max_m_s2", "drift_max_m",
+                                 "drift_min_m"}
     assert list(run.contacts.columns) == ["wall", "level", "side", "t_start_s", "t_end_s", "v_in_m_s",
                                           "v_out_m_s", "impulse_n_s", "peak_force_n", "max_compression_m",
                                           "work_j"]
@@ -866,3 +871,4 @@ def test_impacts_of_a_building_and_of_a_pair_take_the_impacting_pair_s_effective
     assert s["peak_force_max_n"] == done["peak_force_n"].max()
     np.testing.assert_array_equal(run.first.excursion_m,
                                   run.first.displacement_max - run.first.displacement_min)
+    assert {"first_displacement_m", "second_drift_max_m", "link_force_n"} <= set(run.to_xarray().data_vars)

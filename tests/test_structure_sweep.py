@@ -156,6 +156,8 @@ def test_a_pair_names_its_structures_and_links():
     assert list(links["kind"]) == ["link", "link"] and links["contacts_per_cycle"].max() > 0
     ds = res.to_xarray()
     assert ds["alpha"].shape == (2, 6) and ds["contacts_per_cycle"].shape == (2, 1)
+    assert ds["displacement_max_m"].shape == ds["abs_acceleration_max_m_s2"].shape == (2, 6)
+    assert ds["drift_max_m"].shape == (2, 4)
     assert list(ds["level_structure"].values) == ["first"] * 3 + ["second"] * 3
     assert list(ds["storey_structure"].values) == ["first"] * 2 + ["second"] * 2
     assert len(pd_.plots.plot_structure_sweep(res)) == 7

@@ -159,7 +159,7 @@ class AdjacentRun(Outcome):
                             if dim in ds.dims})
             parts.append(ds.rename({v: f"{name}_{v}" for v in ds.data_vars}))
         ds = xr.merge(parts, compat="override", join="exact", combine_attrs="override")
-        ds["link_force"] = (("sample", "link"), self.link_force, {"units": "N"})
+        ds["link_force_n"] = (("sample", "link"), self.link_force, {"units": "N"})
         ds.attrs = {"status": self.status.name, "message": self.message}
         return ds
 

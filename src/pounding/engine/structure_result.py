@@ -387,23 +387,25 @@ class StructureRun(Outcome):
         """The histories as a Dataset along ``sample`` (its coordinate ``time_s``), ``level``, ``storey`` (the
         drifts: storey ``i`` between levels ``i`` and ``i + 1``) and ``contact`` (the wall sides, labelled
         ``wall 0 left``, with their ``wall`` and ``side``), each variable's unit in its ``units``; the exact
-        extrema along ``level`` and ``storey``; ``status`` and ``message`` as attributes."""
+        extrema along ``level`` and ``storey``; ``status`` and ``message`` as attributes.  Each variable's
+        name ends with its unit, as a single mass's (``displacement_m``, ``abs_acceleration_m_s2``,
+        ``contact_force_n``, ``drift_max_m``, ...)."""
         import xarray as xr
 
         n = self.structure.n_levels
         walls = range(self.contact_force.shape[1] // 2)
         ds = xr.Dataset(
-            {"displacement": (("sample", "level"), self.displacement, {"units": "m"}),
-             "velocity": (("sample", "level"), self.velocity, {"units": "m/s"}),
-             "abs_acceleration": (("sample", "level"), self.abs_acceleration, {"units": "m/s^2"}),
-             "drift": (("sample", "storey"), self.drift, {"units": "m"}),
-             "isolator_force": ("sample", self.isolator_force, {"units": "N"}),
-             "contact_force": (("sample", "contact"), self.contact_force, {"units": "N"}),
-             "displacement_max": ("level", self.displacement_max, {"units": "m"}),
-             "displacement_min": ("level", self.displacement_min, {"units": "m"}),
-             "abs_acceleration_max": ("level", self.abs_acceleration_max, {"units": "m/s^2"}),
-             "drift_max": ("storey", self.drift_max, {"units": "m"}),
-             "drift_min": ("storey", self.drift_min, {"units": "m"})},
+            {"displacement_m": (("sample", "level"), self.displacement, {"units": "m"}),
+             "velocity_m_s": (("sample", "level"), self.velocity, {"units": "m/s"}),
+             "abs_acceleration_m_s2": (("sample", "level"), self.abs_acceleration, {"units": "m/s^2"}),
+             "drift_m": (("sample", "storey"), self.drift, {"units": "m"}),
+             "isolator_force_n": ("sample", self.isolator_force, {"units": "N"}),
+             "contact_force_n": (("sample", "contact"), self.contact_force, {"units": "N"}),
+             "displacement_max_m": ("level", self.displacement_max, {"units": "m"}),
+             "displacement_min_m": ("level", self.displacement_min, {"units": "m"}),
+             "abs_acceleration_max_m_s2": ("level", self.abs_acceleration_max, {"units": "m/s^2"}),
+             "drift_max_m": ("storey", self.drift_max, {"units": "m"}),
+             "drift_min_m": ("storey", self.drift_min, {"units": "m"})},
             coords={"time_s": ("sample", self.t, {"units": "s"}), "level": np.arange(n),
                     "storey": np.arange(n - 1),
                     "contact": np.array([f"wall {w} {side}" for w in walls for side in ("left", "right")],
@@ -412,7 +414,7 @@ class StructureRun(Outcome):
                     "side": ("contact", np.array(["left", "right"] * len(walls), dtype=str))},
             attrs={"status": self.status.name, "message": self.message})
         if self.stand_displacement.shape[1]:
-            ds["stand_displacement"] = (("sample", "stand"), self.stand_displacement, {"units": "m"})
+            ds["stand_displacement_m"] = (("sample", "stand"), self.stand_displacement, {"units": "m"})
         return ds
 
     def to_dataframe(self) -> pd.DataFrame:

@@ -327,18 +327,20 @@ class StructureSweepResult:
     def to_xarray(self) -> Any:
         """The metrics as a Dataset along ``step``, ``level``, ``storey`` and ``contact`` (units in each
         variable's ``units``; each level's and storey's number and structure, ``first`` or ``second``, as
-        coordinates; ``status``, ``message``, ``a_g`` as attributes)."""
+        coordinates; ``status``, ``message``, ``a_g`` as attributes).  Each variable's name ends with its
+        unit, as a single mass's sweep's (``displacement_max_m``, ``abs_acceleration_max_m_s2``,
+        ``drift_max_m``)."""
         import xarray as xr
 
         m = self.level_metrics
         level = self._level_columns()
         ds = xr.Dataset(
             {"alpha": (("step", "level"), self.alpha, {"units": "1"}),
-             "displacement_max": (("step", "level"), m[:, :, 0], {"units": "m"}),
-             "displacement_min": (("step", "level"), m[:, :, 1], {"units": "m"}),
-             "abs_acceleration_max": (("step", "level"), m[:, :, 2], {"units": "m/s^2"}),
-             "drift_max": (("step", "storey"), self.drift_metrics[:, :, 0], {"units": "m"}),
-             "drift_min": (("step", "storey"), self.drift_metrics[:, :, 1], {"units": "m"}),
+             "displacement_max_m": (("step", "level"), m[:, :, 0], {"units": "m"}),
+             "displacement_min_m": (("step", "level"), m[:, :, 1], {"units": "m"}),
+             "abs_acceleration_max_m_s2": (("step", "level"), m[:, :, 2], {"units": "m/s^2"}),
+             "drift_max_m": (("step", "storey"), self.drift_metrics[:, :, 0], {"units": "m"}),
+             "drift_min_m": (("step", "storey"), self.drift_metrics[:, :, 1], {"units": "m"}),
              **{name: (("step", "contact"), self.contact_metrics[:, :, k], {"units": unit})
                 for k, (name, unit) in enumerate(zip(CONTACT_NAMES, ("1/cycle", "s", "N s", "N", "1")))},
              "period_multiple": ("step", self.period_multiple),
