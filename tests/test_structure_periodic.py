@@ -169,6 +169,11 @@ def test_one_level_structure_is_the_oscillator_orbit_for_orbit(osc, a_g, freq):
                                atol=1e-12 * max(1.0, np.abs(one.monodromy).max()))
     assert [c.replace("x_0", "D").replace("v_0", "V").replace("delta_wall0_left", "delta_L")
             .replace("delta_wall0_right", "delta_R") for c in many.coordinates] == list(one.coordinates)
+    # what an orbit says of its motion, per level (one here)
+    assert many.contacts_per_period == one.contacts_per_period
+    np.testing.assert_allclose(many.impact_velocities_m_s, one.impact_velocities_m_s, rtol=1e-8, atol=1e-12)
+    np.testing.assert_allclose(many.alpha, [one.alpha], rtol=1e-8)
+    np.testing.assert_allclose(many.excursion_m, [one.excursion_m], rtol=1e-8, atol=1e-14)
 
 
 def _moat() -> pd_.Structure:
@@ -198,6 +203,11 @@ def test_an_impacting_orbit_of_a_building_and_of_a_pair():
     assert orbit.coordinates == ("x_first.0", "x_first.1", "x_second.1", "x_second.2", "v_first.0",
                                  "v_first.1", "v_second.1", "v_second.2", "delta_link0", "u_0")
     assert orbit.contacts_per_period == 3 and len(orbit.run.link_table) > 0
+    # per level, the first's then the second's; the contacts at walls and links, in the order they began
+    assert orbit.alpha.shape == orbit.excursion_m.shape == (5,)
+    np.testing.assert_array_equal(orbit.excursion_m[2:], orbit.run.second.displacement_max
+                                  - orbit.run.second.displacement_min)
+    assert orbit.impact_velocities_m_s.shape == (3,)
 
 
 def test_refusals_name_the_field_and_the_fix():

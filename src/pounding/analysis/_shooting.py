@@ -10,6 +10,7 @@ from typing import Any
 import numpy as np
 
 from .._errors import InputError, Problem
+from ..engine.layout import C_T_END, C_T_START, C_V_IN, CONTACT_COLS
 from . import _hybrid as hy
 
 
@@ -27,6 +28,34 @@ class Floquet:
     def stable(self) -> bool:
         """Every multiplier inside the unit circle."""
         return self.max_abs_multiplier < 1.0
+
+    def _contact_tables(self) -> list:
+        """The orbit run's contact tables (the core's columns): a structure's walls, a pair's links."""
+        raise NotImplementedError
+
+    def _period_contacts(self) -> np.ndarray:
+        """The period's contacts, each once, in the order they began: those that end in it (one in progress
+        at the section is reported whole when it ends; one in progress at the end is the same contact
+        again)."""
+        return finished_contacts(self._contact_tables())
+
+    @property
+    def contacts_per_period(self) -> int:
+        """Contacts in one period of the orbit, at every bumper, wall side and link."""
+        return int(self._period_contacts().shape[0])
+
+    @property
+    def impact_velocities_m_s(self) -> np.ndarray:
+        """Incoming (approach) velocities of the period's contacts in the order they began, m/s, shape
+        (contacts_per_period,)."""
+        return np.asarray(self._period_contacts()[:, C_V_IN], dtype=float)
+
+
+def finished_contacts(tables: list) -> np.ndarray:
+    """The rows of contact tables (the core's columns) whose contact ended, in the order they began."""
+    rows = np.vstack([t for t in tables if len(t)] or [np.zeros((0, CONTACT_COLS))])
+    rows = rows[np.isfinite(rows[:, C_T_END])]
+    return rows[np.argsort(rows[:, C_T_START], kind="stable")]
 
 
 def multipliers_of(jac: np.ndarray) -> np.ndarray:

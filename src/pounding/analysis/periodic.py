@@ -122,21 +122,8 @@ class PeriodicOrbit(Floquet):
         b = self.run.oscillator.bumpers
         return self.excursion_m / b.total_gap if b is not None else math.nan
 
-    def _contacts(self) -> np.ndarray:
-        """The period's contacts, each once: those that end in it (one in progress at the section
-        is reported whole when it ends; one in progress at the end is the same contact again)."""
-        table = self.run.contact_table
-        return table[np.isfinite(table[:, C_T_END])]
-
-    @property
-    def contacts_per_period(self) -> int:
-        """Contacts with either bumper in one period of the orbit."""
-        return int(self._contacts().shape[0])
-
-    @property
-    def impact_velocities_m_s(self) -> np.ndarray:
-        """Incoming velocities of the period's contacts, m/s, shape (contacts_per_period,)."""
-        return np.asarray(self._contacts()[:, C_V_IN], dtype=float)
+    def _contact_tables(self) -> list:
+        return [self.run.contact_table]
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
         """The orbit in the phase plane (D, V), its contacts marked; returns its Figure."""

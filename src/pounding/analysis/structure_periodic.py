@@ -30,7 +30,7 @@ from ..model.contact_laws import is_rigid, linear_form
 from ..model.structure import Structure
 from . import _hybrid as hy
 from ._args import exact_monodromy, orbit_arguments, settled
-from ._shooting import Floquet, _Failed, _Newton, at_section, multipliers_of
+from ._shooting import Floquet, _Failed, _Newton, at_section, finished_contacts, multipliers_of
 
 ACT_YIELD = hy.ACT_YIELD
 
@@ -100,13 +100,22 @@ class StructurePeriodicOrbit(Floquet):
     run: Any = field(repr=False)
     message: str
 
+    def _contact_tables(self) -> list:
+        return contact_tables(self.run)
+
     @property
-    def contacts_per_period(self) -> int:
-        """Contacts at every wall side and link in one period (each once: those that end in it)."""
-        run = self.run
-        tables = [run.contact_table] if hasattr(run, "contact_table") else [
-            run.first.contact_table, run.second.contact_table, run.link_table]
-        return int(sum(np.isfinite(t[:, C_T_END]).sum() for t in tables if len(t)))
+    def alpha(self) -> np.ndarray:
+        """Each level's peak absolute acceleration over the table's peak, shape (levels,) (a pair's: the
+        first's levels, then the second's)."""
+        peak = abs(self.run.excitation.peak_m_s2)
+        acc = np.concatenate([part.abs_acceleration_max for part in run_parts(self.run)])
+        return acc / peak if peak > 0.0 else np.full(acc.shape, math.nan)
+
+    @property
+    def excursion_m(self) -> np.ndarray:
+        """Each level's ``D_max - D_min`` over the period, m, shape (levels,) (a pair's: the first's levels,
+        then the second's)."""
+        return np.concatenate([part.excursion_m for part in run_parts(self.run)])
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
         """Each level's orbit in its phase plane (x, v), its contacts marked; returns its Figure."""
@@ -114,6 +123,17 @@ class StructurePeriodicOrbit(Floquet):
         from ..plots import figure_of
 
         return figure_of(plot_structure_orbit(self, ax=ax, **kwargs), ax)
+
+
+def run_parts(run: Any) -> tuple:
+    """The structures' runs of a run: a structure's itself, a pair's first and second."""
+    return (run.first, run.second) if hasattr(run, "first") else (run,)
+
+
+def contact_tables(run: Any) -> list:
+    """A run's contact tables (the core's columns): each structure's walls', then a pair's links'."""
+    parts = run_parts(run)
+    return [p.contact_table for p in parts] + ([run.link_table] if len(parts) > 1 else [])
 
 
 def structure_periodic_orbit(model: Structure | Adjacent, excitation: Harmonic, *,
@@ -273,13 +293,10 @@ class _StructureShooter(_Newton):
         return np.stack([vec[lay["x"]:lay["x"] + self.n], vec[lay["v"]:lay["v"] + self.n]])
 
     # what a branch of orbits reads of each (analysis._follower, _detect)
-    def _parts(self, run: Any) -> tuple:
-        return (run.first, run.second) if hasattr(run, "first") else (run,)
-
     def extent(self, run: Any) -> tuple[float, float]:
         """The first moving mass's largest and smallest displacement over the run, m (the base of an
         isolated building)."""
-        first = self._parts(run)[0]
+        first = run_parts(run)[0]
         q = next(q for q, d in enumerate(self.asm.dofs[0]) if d >= 0)
         return float(first.displacement_max[q]), float(first.displacement_min[q])
 
@@ -289,7 +306,7 @@ class _StructureShooter(_Newton):
         the forcing's angular frequency, m (0 at a grazing, as the clearance)."""
         labels = self.labels()[2 * self.n:2 * self.n + self.nc]
         out = [float(c) for c in run.clearance_m]
-        parts = self._parts(run)
+        parts = run_parts(run)
         tables, offset = [], 0  # (each part's rows, in the core's slot numbers: walls in order, then links)
         for part in parts:
             t = part.contact_table.copy()
@@ -318,10 +335,8 @@ class _StructureShooter(_Newton):
         """A branch's row of the orbit run over its period: the largest alpha over every level, the first
         moving mass's excursion and extrema (eta against its wall's total gap, when it has one at its
         level), the contacts at every wall side and link."""
-        parts = self._parts(run)
-        tables = [p.contact_table for p in parts] + ([run.link_table] if len(parts) > 1 else [])
-        ended = [t[np.isfinite(t[:, C_T_END])] for t in tables if len(t)]
-        done = np.vstack(ended or [np.zeros((0, CONTACT_COLS))])
+        parts = run_parts(run)
+        done = finished_contacts(contact_tables(run))
         peak = abs(exc.peak_m_s2)
         amax = max(float(np.max(p.abs_acceleration_max)) for p in parts)
         dmax, dmin = self.extent(run)
@@ -372,7 +387,7 @@ class _StructureShooter(_Newton):
         return np.array(run.final_state.vector), run
 
     def _size_of(self, run: Any) -> float:
-        parts = (run.first, run.second) if hasattr(run, "first") else (run,)
+        parts = run_parts(run)
         return max([1e-6] + [float(np.max(np.abs(np.concatenate((p.displacement_max, p.displacement_min)))))
                              for p in parts])
 
