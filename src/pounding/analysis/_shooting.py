@@ -33,22 +33,23 @@ class Floquet:
         """The orbit run's contact tables (the core's columns): a structure's walls, a pair's links."""
         raise NotImplementedError
 
-    def _period_contacts(self) -> np.ndarray:
-        """The period's contacts, each once, in the order they began: those that end in it (one in progress
-        at the section is reported whole when it ends; one in progress at the end is the same contact
-        again)."""
+    @property
+    def period_contact_table(self) -> np.ndarray:
+        """The period's contacts, each once, in the order they began, shape (contacts_per_period, 9) (a run's
+        ``contact_table`` columns): those that end in it (one in progress at the section is reported whole
+        when it ends; one in progress at the end is the same contact again)."""
         return finished_contacts(self._contact_tables())
 
     @property
     def contacts_per_period(self) -> int:
         """Contacts in one period of the orbit, at every bumper, wall side and link."""
-        return int(self._period_contacts().shape[0])
+        return int(self.period_contact_table.shape[0])
 
     @property
     def impact_velocities_m_s(self) -> np.ndarray:
         """Incoming (approach) velocities of the period's contacts in the order they began, m/s, shape
         (contacts_per_period,)."""
-        return np.asarray(self._period_contacts()[:, C_V_IN], dtype=float)
+        return np.asarray(self.period_contact_table[:, C_V_IN], dtype=float)
 
 
 def finished_contacts(tables: list) -> np.ndarray:

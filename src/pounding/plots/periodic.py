@@ -55,7 +55,7 @@ def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
     artists = list(ax.plot(run.displacement * 1e3, run.velocity, **style))
     artists += ax.plot([orbit.state.displacement_m * 1e3], [orbit.state.velocity_m_s], "o",
                        color=style["color"], markersize=4, label="section state")
-    contacts = orbit._contacts()
+    contacts = orbit.period_contact_table
     if contacts.size:  # where each contact starts: the mass at the bumper's surface
         t0 = run.t[0]
         starts = (contacts[:, C_T_START] - t0) % orbit.period_s + t0
