@@ -37,7 +37,7 @@ def _pair(e_wall: float, e_link: float, k: float = 4.0) -> pounding.Adjacent:
 def test_a_mass_struck_against_one_resting_on_a_stop_rebounds_as_off_an_immovable_one(e_wall, e_link):
     pair = _pair(e_wall, e_link)
     still = pounding.Record(np.array([0.0, 1.0]), np.array([0.0, 0.0]))
-    start = pounding.StructureState.at_rest(pair, velocity_m_s=V0)  # (the first moving into the second)
+    start = pounding.State.at_rest(pair, velocity_m_s=V0)  # (the first moving into the second)
     run = pounding.simulate(pair, still, 0.1, state=start, sample_rate_hz=0)
     assert run.status == Status.SUCCESS, run.message
     link = run.links.iloc[0]

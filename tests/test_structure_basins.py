@@ -40,7 +40,7 @@ def test_a_building_s_attractors_are_where_its_runs_settle():
     assert result.displacement_m.min() == pytest.approx(-0.03) and result.displacement_m.max() == 0.03
     for label in (0, 1):
         i = int(np.flatnonzero(result.labels.ravel() == label)[0])
-        start = pd_.StructureState.at_rest(b, 0.0, float(result.displacement_m[i]),
+        start = pd_.State.at_rest(b, 0.0, float(result.displacement_m[i]),
                                            float(result.velocity_m_s[i]))
         settled = pd_.simulate(b, EXC, 400 / EXC.freq_hz, start, sample_rate_hz=0).final_state
         window = pd_.simulate(b, EXC, 5 / EXC.freq_hz, settled, sample_rate_hz=0)
@@ -53,7 +53,7 @@ def test_a_structure_s_box_is_the_shifts_that_leave_its_walls_and_links_open():
     with pytest.raises(pd_.InputError, match="walls and links open"):
         pd_.basins(_building(), EXC, displacement_m=(-0.05, 0.01), n=(2, 2))
     with pytest.raises(pd_.InputError, match="wall 0's right side"):
-        pd_.StructureState.at_rest(_building(), 0.0, 0.04)
+        pd_.State.at_rest(_building(), 0.0, 0.04)
     from pathlib import Path
 
     pair = pd_.Adjacent.from_toml(Path(__file__).parents[1] / "examples" / "adjacent_buildings.toml")
@@ -72,7 +72,7 @@ def test_a_building_s_basin_stability_is_its_basins_share_that_pounds():
         d, v = rng.uniform(-0.03, 0.03, 30), rng.uniform(-1.0, 1.0, 30)
         pounded = 0
         for x, y in zip(d, v):
-            start = pd_.StructureState.at_rest(b, 0.0, float(x), float(y))
+            start = pd_.State.at_rest(b, 0.0, float(x), float(y))
             settled = pd_.simulate(b, pd_.Harmonic(0.05, f), 400 / f, start, sample_rate_hz=0).final_state
             window = pd_.simulate(b, pd_.Harmonic(0.05, f), 5 / f, settled, sample_rate_hz=0)
             pounded += len(window.contacts) > 0
@@ -89,7 +89,7 @@ def test_a_building_s_alpha_is_its_levels_not_its_bumpers_stands():
     exc = pd_.Harmonic(0.1, 1.6)
     result = pd_.basins(b, exc, n=(2, 1), velocity_m_s=(-0.1, 0.1), max_cycles=300, scheduler="serial")
     i = int(np.flatnonzero(result.labels.ravel() >= 0)[0])
-    start = pd_.StructureState.at_rest(b, 0.0, float(result.displacement_m[i]), float(result.velocity_m_s[i]))
+    start = pd_.State.at_rest(b, 0.0, float(result.displacement_m[i]), float(result.velocity_m_s[i]))
     settled = pd_.simulate(b, exc, 300 / exc.freq_hz, start, sample_rate_hz=0).final_state
     window = pd_.simulate(b, exc, 5 / exc.freq_hz, settled, sample_rate_hz=0)
     levels = float(window.abs_acceleration_max.max()) / exc.peak_m_s2

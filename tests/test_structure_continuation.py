@@ -53,7 +53,7 @@ def test_folds_have_a_multiplier_1_and_grazings_touch(make, slot):
     kinds = [b.kind for b in branch.bifurcations]
     assert kinds.count("fold") == 2 and kinds.count("grazing") >= 2
     for bif in branch.bifurcations:
-        assert bif.located and isinstance(bif.state, pd_.StructureState)
+        assert bif.located and isinstance(bif.state, pd_.State)
         if bif.kind == "fold":
             assert np.abs(bif.multipliers - 1.0).min() <= 1e-6
         if bif.kind == "grazing":
@@ -78,7 +78,7 @@ def test_a_number_of_the_structure_continued():
 
 
 def test_refusals():
-    with pytest.raises(pd_.InputError, match="StructureState"):
+    with pytest.raises(pd_.InputError, match="state"):
         pd_.continuation(_building(), 0.05, (1.0, 2.0), guess=pd_.State.at_rest(pd_.presets.paper_damped()))
     with pytest.raises(pd_.InputError, match="parameter"):
         pd_.continuation(_building(), 0.05, 1.6, parameter="storeys[3].stiffness_n_m", values=(1e6, 2e6))
@@ -115,7 +115,7 @@ def test_a_building_s_fold_and_grazing_followed_in_two_parameters():
     for i in (0, len(df) // 2, len(df) - 1):  # (the orbit just touches the wall: its exact clearance 0)
         row = df.iloc[i]
         exc = pd_.Harmonic(row["a_g"], row["freq_hz"], phase=row["phase_rad"])
-        state = pd_.StructureState._of(curve.states[i], ((0, 1),), 2)
+        state = pd_.State._of(curve.states[i], ((0, 1),), pd_.State.at_rest(b).layout)
         run = pd_.simulate(b, exc, 1.0 / row["freq_hz"], state, sample_rate_hz=0)
         assert abs(run.clearance_m[slot]) <= 1e-7 * 0.02
 

@@ -47,7 +47,7 @@ def test_period_one_samples_are_the_periodic_orbit_of_every_level():
         # a family, set by the slips it keeps)
         for i, f in enumerate(sw.freqs_hz):
             exc = pd_.Harmonic(0.05, f, phase=-(2 * np.pi * f * sw.step_start_s[i]))
-            guess = pd_.StructureState._of(sw.window_states[i], ((0, 1),), 2)
+            guess = pd_.State._of(sw.window_states[i], ((0, 1),), pd_.State.at_rest(b).layout)
             orbit = pd_.periodic_orbit(b, exc, guess=guess)
             assert orbit.converged, orbit.message
             x = ds.strobe_displacement_m.sel(direction=sw.direction, freq_hz=f).values  # (cycle, level)

@@ -56,7 +56,7 @@ def test_a_chaotic_impacting_building_exact_against_finite_differences():
     np.testing.assert_allclose(exact.exponents[finite], fd.exponents[finite], rtol=0,
                                atol=1e-5 * np.abs(exact.exponents[finite]).max())
     # where the count ended: the structure's state after the transient, the alignment and the count
-    assert isinstance(exact.final_state, pd_.StructureState)
+    assert isinstance(exact.final_state, pd_.State)
     assert exact.final_state.time_s == pytest.approx((200 + 20 + 60) / 1.5, abs=1e-9)
 
 
@@ -71,5 +71,5 @@ def test_one_level_on_a_periodic_response_has_the_oscillators_exponents():
 
 
 def test_a_state_of_one_mass_is_refused_for_a_structure():
-    with pytest.raises(pd_.InputError, match="StructureState"):
+    with pytest.raises(pd_.InputError, match="state"):
         pd_.lyapunov(_chaotic(), pd_.Harmonic(0.2, 1.5), state=pd_.State.at_rest(pd_.presets.paper_damped()))

@@ -43,7 +43,7 @@ def test_a_linear_structure_is_on_its_frequency_response_with_multipliers_exp_la
     rng = np.random.default_rng(seed)
     b = _linear(rng, n, rayleigh)
     exc = pd_.Harmonic(a_g, freq, phase=phase)
-    guess = pd_.StructureState.at_rest(b)
+    guess = pd_.State.at_rest(b)
     orbit = pd_.periodic_orbit(b, exc, guess=guess)
     assert orbit.converged and orbit.method == "exact", orbit.message
     # the frequency response: M x'' + C x' + K x = -M 1 A sin(w t + phase)
@@ -158,8 +158,8 @@ def test_one_level_structure_is_the_oscillator_orbit_for_orbit(osc, a_g, freq):
     exc = pd_.Harmonic(a_g, freq)
     one = pd_.periodic_orbit(osc, exc, settle_cycles=20)
     b = pd_.Structure.from_oscillator(osc)
-    state = pd_.StructureState._of(np.array(pd_.simulate(osc, exc, 20 / freq, sample_rate_hz=0)
-                                            .final_state.vector), ((0,),), 1)
+    state = pd_.State._of(np.array(pd_.simulate(osc, exc, 20 / freq, sample_rate_hz=0).final_state.vector),
+                          ((0,),), pd_.State.at_rest(b).layout)
     many = pd_.periodic_orbit(b, exc, guess=state)
     assert one.method == many.method and one.iterations == many.iterations
     assert one.converged == many.converged
@@ -214,7 +214,7 @@ def test_refusals_name_the_field_and_the_fix():
     b = _moat()
     with pytest.raises(pd_.InputError, match="excitation"):
         pd_.periodic_orbit(b, pd_.Record(np.array([0.0, 0.01, 0.02]), np.array([0.0, 1.0, 0.0])))
-    with pytest.raises(pd_.InputError, match="StructureState"):
+    with pytest.raises(pd_.InputError, match="state"):
         pd_.periodic_orbit(b, pd_.Harmonic(0.1, 1.5), guess=pd_.State.at_rest(pd_.presets.paper_damped()))
     hc = pd_.Structure(2.0e3, b.isolator, b.storeys,
                        [pd_.Wall(1, 0.02, 0.02, pd_.HuntCrossley(1e9, 1.5, 1e9))])

@@ -114,7 +114,7 @@ def test_a_fixed_schedule_equals_simulating_it_step_by_step(b, a_g):
     freqs, cycles, window = [0.9, 1.6, 2.4], 5, 2
     res = pd_.sweep(b, a_g, freqs, steady="fixed", cycles=cycles, measure_cycles=window)
     assert res.success and res.steps_done == 3
-    state = pd_.StructureState.at_rest(b)
+    state = pd_.State.at_rest(b)
     for i, f in enumerate(freqs):
         w = 2 * math.pi * f
         exc = pd_.Harmonic(a_g, f, phase=-w * state.time_s)

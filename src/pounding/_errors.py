@@ -169,12 +169,12 @@ class PoundingWarning(UserWarning):
     """
 
 
-def warn_renamed(old: str, new: str, stacklevel: int = 3) -> None:
-    """A ``FutureWarning`` that ``old`` (a field, column or TOML key) is now ``new``: the old name works
-    for one more release."""
+def warn_renamed(old: str, new: str, stacklevel: int = 3, why: str = "with its unit") -> None:
+    """A ``FutureWarning`` that ``old`` (a field, column, TOML key or class) is now ``new`` (``why``): the
+    old name works for one more release."""
     import warnings
 
-    warnings.warn(f"'{old}' is now '{new}' (with its unit); '{old}' goes in the next release", FutureWarning,
+    warnings.warn(f"'{old}' is now '{new}' ({why}); '{old}' goes in the next release", FutureWarning,
                   stacklevel=stacklevel)
 
 

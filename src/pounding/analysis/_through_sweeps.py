@@ -38,7 +38,6 @@ def window_states(system: Any, sweep: Any) -> Iterator[tuple[int, float, Any]]:
     from ..engine.state import State
     from ..engine.simulate import kernel_system
     from ..engine.assembly import assemble
-    from ..engine.structure import StructureState
     from ._shooting import at_section
 
     if isinstance(system, (Structure, Adjacent)):
@@ -46,7 +45,7 @@ def window_states(system: Any, sweep: Any) -> Iterator[tuple[int, float, Any]]:
         layout, n_contacts = asm.system.layout, len(asm.pairs)
 
         def state_of(vec: np.ndarray) -> Any:
-            return StructureState._of(vec, asm.dofs, asm.system.n)
+            return State._of(vec, asm.dofs, asm.system.layout)
     else:
         layout, n_contacts = kernel_system(system).layout, 2  # (one mass: its two bumpers' slots)
         state_of = State

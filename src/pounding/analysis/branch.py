@@ -53,7 +53,7 @@ class Bifurcation:
         The forcing there (Hz, g).
     multipliers : ndarray of complex
         The orbit's Floquet multipliers there, largest modulus first.
-    state : State or StructureState
+    state : State
         The orbit's state at the section (time 0).
     index : int
         The branch's rows before it: it lies between rows ``index - 1`` and ``index``.
@@ -304,16 +304,15 @@ class Branch:
         return periodic_orbit(osc, exc, guess=self._state(int(index)), **kwargs)
 
     def _state(self, index: int) -> Any:
-        """Orbit ``index``'s state at its section: a State, or a structure's StructureState."""
+        """Orbit ``index``'s state at its section."""
         from ..model import Oscillator
 
         if isinstance(self.oscillator, Oscillator):
             return State(self.states[index])
         from ..engine.assembly import assemble
-        from ..engine.structure import StructureState
 
         asm = assemble(self.oscillator)
-        return StructureState._of(self.states[index], asm.dofs, asm.system.n)
+        return State._of(self.states[index], asm.dofs, asm.system.layout)
 
     def plot(self, ax: Any = None, *, y: str = "alpha", x: Optional[str] = None,
              sweeps: "SweepResult | Sequence[SweepResult] | None" = None, **kwargs: Any) -> Any:

@@ -27,7 +27,7 @@ from .._checks import instance_of, integer, positive, real
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..engine import State
 from ..engine.simulate import check_oscillator, check_state, simulate
-from ..engine.structure import StructureState, check_structure_state
+from ..engine.structure import check_structure_state
 from ..model.adjacent import Adjacent
 from ..model.dotted import why_unresolved
 from ..model.structure import Structure
@@ -49,7 +49,7 @@ def continuation(
     parameter: str = "freq_hz",
     values: Optional[tuple[float, float]] = None,
     period_multiple: int = 1,
-    guess: "State | StructureState | Bifurcation | None" = None,
+    guess: "State | Bifurcation | None" = None,
     tol: float = 1e-10,
     max_step: float = 0.02,
     max_points: int = 5000,
@@ -132,7 +132,6 @@ def continuation(
     several = isinstance(system, (Structure, Adjacent))
     if not several:
         check_oscillator(system)
-    kind = StructureState if several else State
     parameter, values, a_g, freq_hz = _check_range(system, parameter, a_g, freqs_hz, values)
     period_multiple = integer("period_multiple", period_multiple, 1, 64,
                               "give the orbits' period in forcing periods")
@@ -170,17 +169,16 @@ def continuation(
                              "periodic_orbit of period_multiple=2 from a sweep's state")
         period_multiple = guess.period_multiple * (2 if guess.kind == "period-doubling" else 1)
         phase_rad = guess.phase_rad
-    elif guess is not None and not isinstance(guess, kind):
+    elif guess is not None and not isinstance(guess, State):
         raise InputError(Problem.WRONG_TYPE, "guess", guess, got=type(guess).__name__,
-                         expected=f"pounding.{kind.__name__}, or a period-doubling or branch-point "
-                                  "Bifurcation")
+                         expected="pounding.State, or a period-doubling or branch-point Bifurcation")
     p0, p1 = values
     p_start = guess.value if isinstance(guess, Bifurcation) else p0
     start_osc = system_at(system, parameter, p_start)
     fam_a_g = p_start if parameter == "a_g" else a_g
     fam_f = p_start if parameter == "freq_hz" else freq_hz
     f_mid = math.sqrt(p0 * p1) if parameter == "freq_hz" else freq_hz
-    if isinstance(guess, kind):  # (its section: the forcing's angle at its time)
+    if isinstance(guess, State):  # (its section: the forcing's angle at its time)
         phase_rad = section_angle((phase_rad + 2.0 * math.pi * fam_f * guess.time_s) % (2.0 * math.pi))
     fam = Family(start_osc, fam_a_g, fam_f, parameter, period_multiple, exact,
                  phase_rad, 1.0, abs(p1 - p0), 2.0 * math.pi * f_mid)
@@ -259,7 +257,7 @@ def _start_vector(osc: Any, sh: Any, a_g: float, freq_hz: float, phase: float, g
 
     if isinstance(guess, Bifurcation):
         return np.array(guess.state.vector, dtype=float)
-    if isinstance(guess, (State, StructureState)):
+    if isinstance(guess, State):
         try:
             if isinstance(guess, State):
                 check_state(guess, osc)

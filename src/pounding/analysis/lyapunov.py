@@ -51,7 +51,7 @@ from . import _hybrid as hy
 from ._args import exact_monodromy
 from .lyapunov_result import LyapunovSpectrum
 from ..engine.assembly import assemble
-from ..engine.structure import StructureState, check_structure_state
+from ..engine.structure import check_structure_state
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from ._shooting import at_section
@@ -88,7 +88,7 @@ def lyapunov(system: Any, excitation: Harmonic, *, cycles: int = 1000,
     align_cycles : int
         Periods the tangent frame is carried before the count starts (it turns towards the
         directions that grow most).
-    state : State or StructureState, optional
+    state : State, optional
         Where to start (its time sets the section's phase); default: at rest at time 0.
     method : {"auto", "exact", "finite-difference"}
         The Jacobian of each period: composed exactly (systems whose phases are all linear:
@@ -124,10 +124,8 @@ def lyapunov(system: Any, excitation: Harmonic, *, cycles: int = 1000,
     transient_cycles = integer("transient_cycles", transient_cycles, 0, MAX_CYCLES)
     align_cycles = integer("align_cycles", align_cycles, 0, MAX_CYCLES)
     exact = exact_monodromy(system, method)
-    kind = StructureState if structure else State
-    if state is not None and not isinstance(state, kind):
-        raise InputError(Problem.WRONG_TYPE, "state", state, got=type(state).__name__,
-                         expected=f"pounding.{kind.__name__} (e.g. run.final_state)")
+    if state is not None:
+        instance_of("state", state, State, "pounding.State (e.g. run.final_state)")
     state = check_structure_state(state, system) if structure else check_state(state, system)
     if transient_cycles:
         run = simulate(system, excitation, transient_cycles / excitation.freq_hz, state, sample_rate_hz=0)
@@ -410,7 +408,7 @@ def largest_exponents(diagram: BifurcationDiagram, *, cycles: int = 200, align_c
     n_contacts = len(asm.pairs) if asm is not None else 2  # (one mass: its two bumpers' slots)
 
     def state_of(vec: np.ndarray) -> Any:
-        return StructureState._of(vec, asm.dofs, asm.system.n) if asm is not None else State(vec)
+        return State._of(vec, asm.dofs, asm.system.layout) if asm is not None else State(vec)
 
     with progress_reporter(progress, total, "largest Lyapunov exponents") as advance:
         try:

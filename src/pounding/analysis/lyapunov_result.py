@@ -43,7 +43,7 @@ class LyapunovSpectrum:
         The response's period in forcing periods when its counted sections repeat (to 1e-9 of its
         size), 0 when they do not. A periodic response's exponents are exact: the logarithms of
         its Floquet multipliers over its period (``history`` keeps the running estimates).
-    final_state : State or StructureState
+    final_state : State
         Where the last counted period ended (continue from it).
     status : Status
         ``SUCCESS``, ``INTERRUPTED`` (Ctrl-C), or why the engine stopped.

@@ -152,7 +152,7 @@ def periodic_orbit(
     ----------
     system : Oscillator, Structure or Adjacent
         The system: one mass, or a structure of several (or two adjacent ones), whose orbit is
-        then a :class:`StructurePeriodicOrbit` (``guess`` a :class:`StructureState`; its
+        then a :class:`StructurePeriodicOrbit` (``guess`` a structure's :class:`State`; its
         shooting coordinates every mass's displacement and velocity, the relaxing contacts'
         compressions and the sticking springs' slips; the monodromy exact, saltation at each
         contact, for Kelvin-Voigt contacts and multi-linear isolators and storeys).

@@ -23,7 +23,8 @@ import numpy as np
 from .._errors import InputError, Problem
 from ..engine.layout import C_SLOT, C_T_END, C_T_START, C_V_IN, CONTACT_COLS, E_ACTION, E_INDEX
 from ..engine.assembly import Assembly, assemble, structures_of
-from ..engine.structure import StructureState, check_structure_state, simulate_structure
+from ..engine.state import State
+from ..engine.structure import check_structure_state, simulate_structure
 from ..excitation import Harmonic
 from ..model.adjacent import Adjacent
 from ..model.contact_laws import is_rigid, linear_form
@@ -41,7 +42,7 @@ class StructurePeriodicOrbit(Floquet):
 
     Attributes
     ----------
-    state : StructureState
+    state : State
         The orbit's state at the section time (``state.time_s``).
     period_s : float
         Its period, s: ``period_multiple`` periods of the forcing.
@@ -88,7 +89,7 @@ class StructurePeriodicOrbit(Floquet):
     (2, True)
     """
 
-    state: StructureState
+    state: State
     period_s: float
     multipliers: np.ndarray = field(repr=False)
     monodromy: np.ndarray = field(repr=False)
@@ -137,20 +138,20 @@ def contact_tables(run: Any) -> list:
 
 
 def structure_periodic_orbit(model: Structure | Adjacent, excitation: Harmonic, *,
-                             guess: Optional[StructureState] = None, period_multiple: int = 1,
+                             guess: Optional[State] = None, period_multiple: int = 1,
                              tol: float = 1e-10, max_iter: int = 40, settle_cycles: int = 100,
                              method: str = "auto", samples_per_period: int = 400) -> StructurePeriodicOrbit:
     """:func:`pounding.periodic_orbit` of a structure or an adjacent pair (the same arguments; ``guess`` a
-    :class:`~pounding.StructureState`)."""
+    :class:`~pounding.State`)."""
     period_multiple, tol, max_iter, settle_cycles, samples_per_period = orbit_arguments(
         excitation, period_multiple, tol, max_iter, settle_cycles, samples_per_period)
     exact = exact_monodromy(model, method)
     period = period_multiple / excitation.freq_hz
     if guess is None:
         guess = settled(model, excitation, settle_cycles).final_state
-    elif not isinstance(guess, StructureState):
+    elif not isinstance(guess, State):
         raise InputError(Problem.WRONG_TYPE, "guess", guess, got=type(guess).__name__,
-                         expected="pounding.StructureState (e.g. run.final_state)")
+                         expected="pounding.State (e.g. run.final_state)")
     else:
         guess = check_structure_state(guess, model)
     shooter = _StructureShooter(model, excitation, period, exact)
@@ -395,8 +396,8 @@ class _StructureShooter(_Newton):
         return hy.monodromy(self.system, vec, run.event_table, vec[0] + self.period, self.exc.omega_rad_s,
                             self.exc.peak_m_s2, self.exc.phase)
 
-    def _state(self, vec: np.ndarray) -> StructureState:
-        return StructureState._of(vec, self.asm.dofs, self.n)
+    def _state(self, vec: np.ndarray) -> State:
+        return State._of(vec, self.asm.dofs, self.lay)
 
     def _inwards(self, vec: np.ndarray, idx: int, step: float) -> float:
         if 2 * self.n <= idx < 2 * self.n + self.nc:

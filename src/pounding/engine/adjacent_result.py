@@ -42,7 +42,7 @@ class AdjacentRun(Outcome):
         Every event of the pair: time, action code, the element's index (``events`` names them).
     energy : StructureEnergy
         The energy ledger of the pair (the links' in ``contact_dissipation`` and ``contact_elastic``).
-    final_state : StructureState
+    final_state : State
         Pass as ``state`` to continue.
     status : Status
         How the run ended (``message`` says it in words).

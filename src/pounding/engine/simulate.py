@@ -30,7 +30,7 @@ from .layout import (DEF_L, DEF_R, IN_L, IN_R, L_BUMPER, L_BUMPER_LOSS, L_HYSTER
 from .run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPLES,  # noqa: F401
                         MAX_SAMPLES, check_rtol, history_rate, kernel_forcing)
 from .result import EnergyLedger, Run
-from .state import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, State
+from .state import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, ONE_MASS_DOFS, State
 
 if TYPE_CHECKING:
     from ..model.structure import Structure
@@ -49,6 +49,10 @@ def check_state(state: Optional[State], oscillator: Oscillator) -> State:
         return State.at_rest(oscillator)
     instance_of("state", state, State, "pounding.State (e.g. run.final_state)")
     expected = STATE_BASE + 2 * (oscillator.isolator.n_branches - 1)
+    if state.layout is not None and not _one_mass_layout(state):
+        raise InputError(Problem.BAD_STATE, "state", state,
+                         why=f"is the state of a structure of levels {state.dofs}, not of a single mass",
+                         fix="start from State.at_rest(oscillator) or a final_state of this system")
     if state.vector.size != expected:
         raise InputError(Problem.BAD_STATE, "state", state,
                          why=f"has {state.vector.size} numbers where this system's states have {expected} "
@@ -56,6 +60,13 @@ def check_state(state: Optional[State], oscillator: Oscillator) -> State:
                          fix="start from State.at_rest(oscillator) or a final_state of this system")
     _check_state_fits(state, oscillator)
     return state
+
+
+def _one_mass_layout(state: State) -> bool:
+    """Whether a state a structure's run made is laid out as a single mass's (a structure of one level with
+    one wall, as a single mass's run on its bumpers makes it)."""
+    one = State._of(state.vector, ONE_MASS_DOFS, None)._lay
+    return state.dofs == ONE_MASS_DOFS and all(state.layout.get(k) == v for k, v in one.items())
 
 
 def _check_state_fits(state: State, oscillator: Oscillator) -> None:
@@ -167,7 +178,7 @@ def simulate(
     ----------
     system : Oscillator, Structure or Adjacent
         The system: one mass, or a structure of several (then ``state`` is a
-        :class:`StructureState` and a :class:`StructureRun` is returned: each level's histories
+        :class:`State` of its own and a :class:`StructureRun` is returned: each level's histories
         and exact extrema, contacts per wall side), or two adjacent structures (an
         :class:`AdjacentRun`: each one's, and the contacts at their links).
     excitation : Harmonic or Record

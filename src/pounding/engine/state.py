@@ -1,41 +1,52 @@
-"""Where a single mass is: :class:`State`, the core's state vector with its fields named, and the bounds a
-state's numbers are checked against."""
+"""Where a system is: :class:`State`, the core's state vector with its fields named (a single mass's, a
+structure's or a pair's), and the bounds a state's numbers are checked against."""
 
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, Optional
 
 import numpy as np
 
 from .._checks import at_most, instance_of, real
 from .._errors import InputError, Problem
-from .layout import DEF_L, DEF_R, IN_L, IN_R, REGION, STATE_BASE, Z_L, Z_R, ZETA
+from .layout import ACC_L, DEF_L, DEF_R, IN_L, IN_R, N_LAW_STATE, REGION, STATE_BASE, Z_L, ZETA
 from .layout import D as I_D
 from .layout import T as I_T
 from .layout import V as I_V
 
 if TYPE_CHECKING:  # pragma: no cover
-    from ..model import Oscillator
+    from ..model import Adjacent, Oscillator, Structure
+    from .assembly import Assembly
+
+
+ONE_MASS_DOFS = ((0,),)  # a single mass: one structure, one level, the one moving mass
 
 
 @dataclass(frozen=True, eq=False)
 class State:
-    """Complete state of the system at one instant, from which a run continues exactly.
+    """Complete state of a system at one instant, from which a run continues exactly: one mass, a
+    structure or two adjacent ones.
 
-    Build one at rest with :meth:`at_rest`; every :class:`Run` has its ``final_state``.
-    The raw vector (``vector``) also holds the isolator's internal variables and the
-    running totals of a contact in progress, so that a continued run reports that contact
-    whole.
+    Build one at rest with :meth:`at_rest`; every run has its ``final_state``.  The raw vector
+    (``vector``) also holds the isolators' internal variables and the running totals of a contact in
+    progress, so that a continued run reports that contact whole.
 
     Attributes
     ----------
-    vector : ndarray, shape (37 + 2 (n - 1),)
-        The raw state, read-only, for an isolator of ``n`` branches: time, displacement,
-        velocity, the bumpers' compressions and contact flags, the isolator's branch, the
-        running totals of a contact in progress, the bumper laws' states, the Bouc-Wen ``z``,
-        then the slips and slip directions of the isolator's ``n - 1`` springs.  Read it
-        through the properties (``time_s``, ``displacement_m``, ``in_contact``, ...).
+    vector : ndarray
+        The core's state vector, read-only: time, each moving mass's displacement and velocity, each
+        contact's compression and flag, each hysteretic element's branch, each contact's running totals
+        and law state, the Bouc-Wen ``z``, then the springs' slips and slip directions.  Read it through
+        the properties (``time_s``, ``displacements_m``, ``in_contact``, ...).  A single mass's has
+        ``37 + 2 (n - 1)`` numbers for an isolator of ``n`` branches: its two contact slots are its
+        bumpers (left, right), present or not.
+    dofs : tuple of tuple of int
+        Each structure's levels' places among the moving masses (-1: the ground of a fixed base); a
+        single mass: ``((0,),)``.
+    layout : dict or None
+        Where each block starts in ``vector`` (the core system's ``layout``); None for a single mass
+        (the core's one-mass layout).
 
     Examples
     --------
@@ -55,58 +66,91 @@ class State:
     >>> pounding.simulate(ybs, pounding.Harmonic(a_g=0.05, freq_hz=2.2), 0.5,
     ...                   state=end).final_state.time_s
     1.0
+
+    A building's state, each level's numbers:
+
+    >>> iso = pounding.Isolator(slopes_n_m=[1.0e5], breakpoints_m=[])
+    >>> b = pounding.Structure(1.0e3, iso, [pounding.Storey(1.0e3, 1.0e6)])
+    >>> state = pounding.simulate(b, pounding.Harmonic(0.1, 1.0), 2.0).final_state
+    >>> state.time_s, state.displacements_m.shape
+    (2.0, (2,))
+    >>> later = pounding.simulate(b, pounding.Harmonic(0.1, 1.0), 2.0, state)
+    >>> float(later.t[0]), float(later.t[-1])
+    (2.0, 4.0)
     """
 
     vector: np.ndarray = field(repr=False)
+    dofs: tuple = ONE_MASS_DOFS
+    layout: Optional[dict] = field(default=None, repr=False)
 
     def __post_init__(self) -> None:
-        vec = _state_vector(self.vector)
+        if self.layout is None:
+            vec = _state_vector(self.vector)
+        else:
+            vec = _structure_vector(self.vector, self.layout)
+            object.__setattr__(self, "dofs", tuple(tuple(int(d) for d in levels) for levels in self.dofs))
+            object.__setattr__(self, "layout", dict(self.layout))
         vec.setflags(write=False)
         object.__setattr__(self, "vector", vec)
 
     @classmethod
     def _from_kernel(cls, vector: np.ndarray) -> "State":
-        """A state the engine itself produced: not checked again (a kernel's final state)."""
+        """A single mass's state the engine itself produced: not checked again (a kernel's final state)."""
+        return cls._of(vector, ONE_MASS_DOFS, None)
+
+    @classmethod
+    def _of(cls, vector: np.ndarray, dofs: tuple, layout: Optional[dict]) -> "State":
+        """A state the engine made (of the system whose core ``layout`` it is; None: a single mass's): not
+        checked again."""
         state = object.__new__(cls)
         vec = np.array(vector, dtype=float)
         vec.setflags(write=False)
         object.__setattr__(state, "vector", vec)
+        object.__setattr__(state, "dofs", tuple(tuple(d) for d in dofs))
+        object.__setattr__(state, "layout", layout)
         return state
 
     @classmethod
-    def at_rest(cls, oscillator: "Oscillator", time_s: float = 0.0, displacement_m: float = 0.0,
-                velocity_m_s: float = 0.0) -> "State":
-        """Relaxed bumpers and an isolator on its backbone, with the given time and motion.
+    def at_rest(cls, system: "Oscillator | Structure | Adjacent", time_s: float = 0.0,
+                displacement_m: float = 0.0, velocity_m_s: float = 0.0) -> "State":
+        """Relaxed contacts and isolators on their backbones, with the given time and motion.
 
         Parameters
         ----------
-        oscillator : Oscillator
+        system : Oscillator, Structure or Adjacent
             The system the state is for.
         time_s : float
             Time, s.
         displacement_m : float
-            Displacement relative to the table, m, between the bumpers' surfaces
-            (``-gap_left_m <= D <= gap_right_m``).  The isolator is where a slow push from 0
-            would leave it (on the backbone; a Bouc-Wen spring's z at 0).
+            Displacement relative to the ground, m, of the single mass, or of every moving level of a
+            structure (the first of a pair), shifted as one body; each isolator where a slow push from 0
+            would leave it (on its backbone; a Bouc-Wen spring's z at 0), a fixed base's first storey
+            deformed by the shift, stands and a pair's second structure at rest.  It must leave every
+            bumper, wall and link open (a single mass: ``-gap_left_m <= D <= gap_right_m``).
         velocity_m_s : float
-            Velocity relative to the table, m/s.
+            Velocity relative to the ground, m/s, of the same masses.
         """
-        from ..model import Oscillator
+        from ..model import Adjacent, Oscillator, Structure
 
-        instance_of("oscillator", oscillator, Oscillator, "pounding.Oscillator")
+        instance_of("system", system, (Oscillator, Structure, Adjacent),
+                    "pounding.Oscillator, pounding.Structure or pounding.Adjacent")
         time_s = at_most("time_s", real("time_s", time_s), MAX_TIME_S, " s", "give the time in s")
         d = at_most("displacement_m", real("displacement_m", displacement_m), MAX_DISPLACEMENT_M, " m",
                     "give the displacement in m")
         v = at_most("velocity_m_s", real("velocity_m_s", velocity_m_s), MAX_VELOCITY_M_S, " m/s",
                     "give the velocity in m/s")
-        b = oscillator.bumpers
+        if not isinstance(system, Oscillator):  # (a structure, or a pair: through its assembly)
+            from .assembly import assemble
+
+            return shifted(assemble(system), time_s, d, v)
+        b = system.bumpers
         if b is not None and not -b.gap_left_m <= d <= b.gap_right_m:
             side, surface = ("left", -b.gap_left_m) if d < 0 else ("right", b.gap_right_m)
             raise InputError(Problem.BAD_STATE, "displacement_m", d,
                              why=f"is inside the {side} bumper, whose surface is at {surface:g} m",
                              fix=f"give a displacement between {-b.gap_left_m:g} and {b.gap_right_m:g} m "
                                  "(a state in contact comes from a run's final_state)")
-        iso = oscillator.isolator
+        iso = system.isolator
         n_sp = iso.n_branches - 1
         vec = np.zeros(STATE_BASE + 2 * n_sp)
         vec[I_T], vec[I_D], vec[I_V] = time_s, d, v
@@ -117,69 +161,163 @@ class State:
             vec[STATE_BASE:STATE_BASE + n_sp] = d - np.clip(d, -breaks, breaks)
         return cls(vec)
 
+    # ------------------------------------------------------------------ where each block is
+    @property
+    def _lay(self) -> dict:
+        """The layout: the system's, or a single mass's for this vector's isolator."""
+        if self.layout is not None:
+            return self.layout
+        return {"x": I_D, "v": I_V, "def": DEF_L, "in": IN_L, "region": REGION, "acc": ACC_L, "z": Z_L,
+                "zeta": ZETA, "base": STATE_BASE, "n_springs": (self.vector.size - STATE_BASE) // 2,
+                "size": self.vector.size}
+
+    @property
+    def n_dof(self) -> int:
+        """The moving masses: the levels, then the walls' stands (a single mass: 1)."""
+        lay = self._lay
+        return lay["v"] - lay["x"]
+
+    @property
+    def n_contacts(self) -> int:
+        """The contact slots: a single mass's two bumpers; a structure's walls' sides (wall ``w``'s left
+        ``2 w``, its right ``2 w + 1``), then a pair's links."""
+        lay = self._lay
+        return lay["in"] - lay["def"]
+
+    def _per_level(self, start: int) -> np.ndarray:
+        values = self.vector[start:start + self.n_dof]
+        return np.array([values[d] if d >= 0 else 0.0 for levels in self.dofs for d in levels])
+
+    # ------------------------------------------------------------------ its numbers
     @property
     def time_s(self) -> float:
         """Time, s."""
         return float(self.vector[I_T])
 
     @property
+    def displacements_m(self) -> np.ndarray:
+        """Each level's displacement relative to the ground, m, shape (levels,) (the first structure's
+        levels, then the second's; 0 for a fixed base's ground; a single mass: its one)."""
+        return self._per_level(self._lay["x"])
+
+    @property
+    def velocities_m_s(self) -> np.ndarray:
+        """Each level's velocity relative to the ground, m/s, shape (levels,)."""
+        return self._per_level(self._lay["v"])
+
+    @property
     def displacement_m(self) -> float:
-        """Displacement ``D`` of the mass relative to the table, m."""
-        return float(self.vector[I_D])
+        """Displacement ``D`` of a single mass relative to the table, m (a structure's:
+        :attr:`displacements_m`)."""
+        return float(self.vector[self._one("displacement_m", "displacements_m", "x")])
 
     @property
     def velocity_m_s(self) -> float:
-        """Velocity of the mass relative to the table, m/s."""
-        return float(self.vector[I_V])
+        """Velocity of a single mass relative to the table, m/s (a structure's: :attr:`velocities_m_s`)."""
+        return float(self.vector[self._one("velocity_m_s", "velocities_m_s", "v")])
+
+    def _one(self, name: str, instead: str, block: str) -> int:
+        if self.n_dof != 1:
+            raise InputError(Problem.WRONG_MODE, f"state.{name}", f"a state of {self.n_dof} masses",
+                             mode="the state of a single mass", fix=f"read state.{instead}, one per level")
+        return self._lay[block]
 
     @property
-    def bumper_compression_m(self) -> tuple[float, float]:
-        """Compression of the (left, right) bumper, m."""
-        return float(self.vector[DEF_L]), float(self.vector[DEF_R])
+    def bumper_compression_m(self) -> tuple[float, ...]:
+        """Compression of each contact slot's law, m: a single mass's (left, right) bumper."""
+        at = self._lay["def"]
+        return tuple(float(self.vector[at + c]) for c in range(self.n_contacts))
 
     @property
-    def in_contact(self) -> tuple[bool, bool]:
-        """Whether the mass touches the (left, right) bumper."""
-        return bool(self.vector[IN_L]), bool(self.vector[IN_R])
+    def in_contact(self) -> tuple[bool, ...]:
+        """Whether each contact slot touches: a single mass's (left, right) bumper."""
+        at = self._lay["in"]
+        return tuple(bool(self.vector[at + c]) for c in range(self.n_contacts))
 
     @property
-    def bumper_law_state(self) -> tuple[float, float]:
-        """The (left, right) bumper law's own state: an elastic-plastic law's plastic offset (m,
-        >= 0) or its line (-1 the yield line, -2 the unloading line); Hertzdamp's damping of the
-        last contact (N s/m^(n+1)); 0 for the other laws (a kinematic multi-linear law's springs:
-        :attr:`bumper_slips_m`)."""
-        return float(self.vector[Z_L]), float(self.vector[Z_R])
-
-    @property
-    def bouc_wen_z(self) -> float:
-        """The isolator's Bouc-Wen variable ``z`` (0 without a Bouc-Wen spring)."""
-        return float(self.vector[ZETA])
+    def bumper_law_state(self) -> tuple[float, ...]:
+        """Each contact slot's law's own state (a single mass's (left, right) bumper): an elastic-plastic
+        law's plastic offset (m, >= 0) or its line (-1 the yield line, -2 the unloading line); Hertzdamp's
+        damping of the last contact (N s/m^(n+1)); 0 for the other laws (a kinematic multi-linear law's
+        springs: :attr:`bumper_slips_m`)."""
+        at = self._lay["z"]
+        return tuple(float(self.vector[at + c * N_LAW_STATE]) for c in range(self.n_contacts))
 
     @property
     def bumper_slips_m(self) -> np.ndarray:
-        """Slips (m) of a kinematic multi-linear bumper's springs, shape (2, 3): (left, right) by
-        breakpoint (0 for a breakpoint that is no softening, and for the other laws)."""
-        return np.array([self.vector[Z_L + 1:Z_L + 4], self.vector[Z_R + 1:Z_R + 4]])
+        """Slips (m) of a kinematic multi-linear law's springs, shape (contacts, 3): by contact slot (a
+        single mass's left, right) and breakpoint (0 for a breakpoint that is no softening, and for the
+        other laws)."""
+        return self._law_block(1)
 
     @property
     def bumper_slip_directions(self) -> np.ndarray:
-        """Slip directions (-1, 0, +1) of those springs, shape (2, 3)."""
-        return np.array([self.vector[Z_L + 4:Z_L + 7], self.vector[Z_R + 4:Z_R + 7]])
+        """Slip directions (-1, 0, +1) of those springs, shape (contacts, 3)."""
+        return self._law_block(4)
+
+    def _law_block(self, first: int) -> np.ndarray:
+        at = self._lay["z"]
+        return np.array([self.vector[at + c * N_LAW_STATE + first:at + c * N_LAW_STATE + first + 3]
+                         for c in range(self.n_contacts)]).reshape(self.n_contacts, 3)
+
+    @property
+    def bouc_wen_z(self) -> float:
+        """The Bouc-Wen variable ``z`` of the isolator that has one (0 without a Bouc-Wen spring)."""
+        return float(self.vector[self._lay["zeta"]])
 
     @property
     def isolator_branch(self) -> int:
-        """Backbone branch of an ``elastic`` isolator (0: centre, +-j: j-th outer branch)."""
-        return int(self.vector[REGION])
+        """Backbone branch of the first hysteretic element (a single mass's isolator) under the
+        ``elastic`` rule (0: centre, +-j: j-th outer branch)."""
+        lay = self._lay
+        return int(self.vector[lay["region"]]) if lay["acc"] > lay["region"] else 0
 
     @property
     def plastic_slips_m(self) -> np.ndarray:
-        """Slip ``u_i`` of each elastic-perfectly-plastic spring of a ``kinematic`` isolator, m."""
-        n_sp = (self.vector.size - STATE_BASE) // 2
-        return self.vector[STATE_BASE:STATE_BASE + n_sp].copy()
+        """Slip ``u_i`` of each elastic-perfectly-plastic spring of the ``kinematic`` hysteretic elements
+        (a single mass's isolator's), m, shape (springs,)."""
+        lay = self._lay
+        return self.vector[lay["base"]:lay["base"] + lay["n_springs"]].copy()
 
     def __repr__(self) -> str:
-        return (f"State(time_s={self.time_s:.6g}, displacement_m={self.displacement_m:.6g}, "
-                f"velocity_m_s={self.velocity_m_s:.6g}, in_contact={self.in_contact})")
+        if self.layout is None:
+            return (f"State(time_s={self.time_s:.6g}, displacement_m={self.displacement_m:.6g}, "
+                    f"velocity_m_s={self.velocity_m_s:.6g}, in_contact={self.in_contact})")
+        return (f"State(time_s={self.time_s:.6g}, displacements_m={self.displacements_m.round(9).tolist()}, "
+                f"dofs={self.dofs})")
+
+
+
+def shifted(asm: "Assembly", time_s: float, d: float, v: float) -> State:
+    """A structure's (or a pair's) state at rest, its first structure shifted as one body (``at_rest``),
+    from its assembly; an InputError where the shift closes a wall or a link."""
+    lay = asm.system.layout
+    vec = np.zeros(lay["size"])
+    vec[0] = time_s
+    moved = [dof for dof in asm.dofs[0] if dof >= 0]
+    vec[[lay["x"] + q for q in moved]] = d
+    vec[[lay["v"] + q for q in moved]] = v
+    x = vec[lay["x"]:lay["x"] + asm.system.n]
+    for c, (i, j, sign, gap, _) in enumerate(asm.pairs):
+        depth = sign * (x[i] - (x[j] if j >= 0 else 0.0)) - gap
+        if depth > 0.0:
+            slot = asm.slots[c]
+            what = (f"link {slot[1]}" if slot[0] < 0 else
+                    f"wall {slot[1]}'s {('left', 'right')[slot[2]]} side")
+            raise InputError(Problem.BAD_STATE, "displacement_m", d,
+                             why=f"puts {what} {depth:g} m past its gap",
+                             fix="give a shift that leaves every wall and link open (a state in contact "
+                                 "comes from a run's final_state)")
+    first = 0
+    for e, (i, j, _, breaks, rule) in enumerate(asm.elements):  # (each on its backbone)
+        u = x[i] - (x[j] if j >= 0 else 0.0)
+        b = np.asarray(breaks, dtype=float)
+        if rule == 1:
+            vec[lay["region"] + e] = np.sign(u) * np.searchsorted(b, abs(u), side="right")
+        else:
+            vec[lay["base"] + first:lay["base"] + first + b.size] = u - np.clip(u, -b, b)
+        first += b.size
+    return State._of(vec, asm.dofs, lay)
 
 
 MAX_TIME_S = 1e12
@@ -224,4 +362,20 @@ def _state_vector(vector: Any) -> np.ndarray:
     if bad.size:
         raise _bad_state(f"vector[{STATE_BASE + n_sp + bad[0]}]", float(dirs[bad[0]]),
                          "is not a slip direction (-1, 0 or 1)", _FROM_A_RUN)
+    return vec
+
+
+def _structure_vector(vector: Any, layout: dict) -> np.ndarray:
+    """A structure's raw state vector, checked for what holds whatever the structure: its length, its
+    numbers finite (what ties it to its structure is checked where it is used)."""
+    try:
+        vec = np.array(vector, dtype=float)
+    except (TypeError, ValueError):
+        raise InputError(Problem.NOT_A_NUMBER, "state.vector", vector) from None
+    if vec.ndim != 1 or vec.size != layout.get("size"):
+        raise _bad_state("vector", f"array of shape {vec.shape}",
+                         f"is no state vector of this layout (length {layout.get('size')})", _FROM_A_RUN)
+    bad = np.flatnonzero(~np.isfinite(vec))
+    if bad.size:
+        raise InputError(Problem.NOT_FINITE, f"state.vector[{bad[0]}]", float(vec[bad[0]]))
     return vec

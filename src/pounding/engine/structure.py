@@ -1,4 +1,4 @@
-"""A structure of several masses through the core: its state (:class:`StructureState`) and its run
+"""A structure of several masses through the core: the checks of its state (a :class:`State`) and its run
 (:func:`simulate_structure`, which :func:`pounding.simulate` calls for a :class:`~pounding.Structure`); its
 system is assembled in :mod:`.assembly`."""
 
@@ -6,13 +6,12 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from dataclasses import dataclass, field
 from typing import Any, Optional
 
 import numpy as np
 
 from .. import _core
-from .._checks import at_most, instance_of, integer, positive, real
+from .._checks import instance_of, integer, positive
 from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model.contact_laws import state_problem
@@ -21,7 +20,7 @@ from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from .control import DEFAULT_MAX_STEPS, check_budget, new_control, run_interruptibly, steps_per_second
 from ._chatter import chatter_frame
-from .state import MAX_TIME_S
+from .state import State, shifted
 from .layout import CONTACT_COLUMNS
 from .run_args import DIRECT_CALL_STEPS, check_rtol, history_rate, kernel_forcing
 from .adjacent_result import AdjacentRun
@@ -30,123 +29,13 @@ from .structure_result import StructureEnergy, StructureRun
 
 
 
-@dataclass(frozen=True)
-class StructureState:
-    """Where a structure (or two adjacent ones) is: the core's state vector.  Start from :meth:`at_rest`
-    or a run's ``final_state``; pass it as ``state`` to continue the run.
-
-    Attributes
-    ----------
-    vector : ndarray
-        The core's state vector (read-only): time, each moving level's displacement and velocity, the
-        contacts' states, the hysteretic elements'.
-    dofs : tuple
-        Each structure's levels' places in it (-1: the ground of a fixed base).
-    n_dof : int
-        The moving masses: the levels, then the walls' stands.
-
-    Examples
-    --------
-    >>> import pounding
-    >>> iso = pounding.Isolator(slopes_n_m=[1.0e5], breakpoints_m=[])
-    >>> b = pounding.Structure(1.0e3, iso, [pounding.Storey(1.0e3, 1.0e6)])
-    >>> first = pounding.simulate(b, pounding.Harmonic(0.1, 1.0), 2.0)
-    >>> state = first.final_state
-    >>> state.time_s, state.displacements_m.shape
-    (2.0, (2,))
-    >>> later = pounding.simulate(b, pounding.Harmonic(0.1, 1.0), 2.0, state)
-    >>> float(later.t[0]), float(later.t[-1])
-    (2.0, 4.0)
-    """
-
-    vector: np.ndarray = field(repr=False)
-    dofs: tuple
-    n_dof: int
-
-    @classmethod
-    def at_rest(cls, structure: Structure | Adjacent, time_s: float = 0.0, displacement_m: float = 0.0,
-                velocity_m_s: float = 0.0) -> "StructureState":
-        """At ``time_s``, the contacts' laws relaxed: every level at rest at 0, or the (first) structure
-        shifted as one body, each of its moving levels at ``displacement_m`` (m, relative to the ground)
-        moving at ``velocity_m_s`` (m/s), its isolator where a slow push from 0 would leave it (on its
-        backbone), a fixed base's first storey deformed by the shift; the stands and a second structure
-        at rest.  The shift must leave every wall and link open."""
-        instance_of("structure", structure, (Structure, Adjacent), "pounding.Structure or pounding.Adjacent")
-        time_s = at_most("time_s", real("time_s", time_s), MAX_TIME_S, " s", "give the time in s")
-        d = at_most("displacement_m", real("displacement_m", displacement_m), 100.0, " m",
-                    "give the displacement in m")
-        v = at_most("velocity_m_s", real("velocity_m_s", velocity_m_s), 1000.0, " m/s",
-                    "give the velocity in m/s")
-        return cls._shifted(assemble(structure), time_s, d, v)
-
-    @classmethod
-    def _shifted(cls, asm: "Assembly", time_s: float, d: float, v: float) -> "StructureState":
-        """``at_rest`` of the assembled structure, its numbers checked."""
-        lay = asm.system.layout
-        vec = np.zeros(lay["size"])
-        vec[0] = time_s
-        moved = [dof for dof in asm.dofs[0] if dof >= 0]
-        vec[[lay["x"] + q for q in moved]] = d
-        vec[[lay["v"] + q for q in moved]] = v
-        x = vec[lay["x"]:lay["x"] + asm.system.n]
-        for c, (i, j, sign, gap, _) in enumerate(asm.pairs):
-            depth = sign * (x[i] - (x[j] if j >= 0 else 0.0)) - gap
-            if depth > 0.0:
-                slot = asm.slots[c]
-                what = (f"link {slot[1]}" if slot[0] < 0 else
-                        f"wall {slot[1]}'s {('left', 'right')[slot[2]]} side")
-                raise InputError(Problem.BAD_STATE, "displacement_m", d,
-                                 why=f"puts {what} {depth:g} m past its gap",
-                                 fix="give a shift that leaves every wall and link open (a state in contact "
-                                     "comes from a run's final_state)")
-        first = 0
-        for e, (i, j, _, breaks, rule) in enumerate(asm.elements):  # (each on its backbone)
-            u = x[i] - (x[j] if j >= 0 else 0.0)
-            b = np.asarray(breaks, dtype=float)
-            if rule == 1:
-                vec[lay["region"] + e] = np.sign(u) * np.searchsorted(b, abs(u), side="right")
-            else:
-                vec[lay["base"] + first:lay["base"] + first + b.size] = u - np.clip(u, -b, b)
-            first += b.size
-        return cls._of(vec, asm.dofs, asm.system.n)
-
-    @classmethod
-    def _of(cls, vector: np.ndarray, dofs: tuple, n_dof: int) -> "StructureState":
-        vec = np.array(vector, dtype=float)
-        vec.setflags(write=False)
-        return cls(vec, tuple(tuple(d) for d in dofs), int(n_dof))
-
-    def _per_level(self, start: int) -> np.ndarray:
-        values = self.vector[start:start + self.n_dof]
-        return np.array([values[d] if d >= 0 else 0.0 for levels in self.dofs for d in levels])
-
-    @property
-    def time_s(self) -> float:
-        """Time, s."""
-        return float(self.vector[0])
-
-    @property
-    def displacements_m(self) -> np.ndarray:
-        """Each level's displacement relative to the ground, m, shape (levels,) (the first structure's
-        levels, then the second's; 0 for a fixed base)."""
-        return self._per_level(1)
-
-    @property
-    def velocities_m_s(self) -> np.ndarray:
-        """Each level's velocity relative to the ground, m/s, shape (levels,)."""
-        return self._per_level(1 + self.n_dof)
+_FIX = "start from State.at_rest(structure) or a final_state of this structure"
 
 
-_FIX = "start from StructureState.at_rest(structure) or a final_state of this structure"
-
-
-def _check_state(state: Optional[StructureState], model: Structure | Adjacent,
-                 asm: Assembly) -> StructureState:
+def _check_state(state: Optional[State], model: Structure | Adjacent, asm: Assembly) -> State:
     if state is None:
-        return StructureState._shifted(asm, 0.0, 0.0, 0.0)
-    instance_of("state", state, StructureState,
-                "pounding.StructureState (StructureState.at_rest(structure) or a run's "
-                                  "final_state)")
+        return shifted(asm, 0.0, 0.0, 0.0)
+    instance_of("state", state, State, "pounding.State (State.at_rest(structure) or a run's final_state)")
     size = asm.system.layout["size"]
     if state.vector.size != size or state.dofs != asm.dofs or state.n_dof != asm.system.n:
         raise InputError(Problem.BAD_STATE, "state", state,
@@ -160,7 +49,7 @@ def _check_state(state: Optional[StructureState], model: Structure | Adjacent,
     return state
 
 
-def _check_state_fits(state: StructureState, asm: Assembly) -> None:
+def _check_state_fits(state: State, asm: Assembly) -> None:
     """A state the structure can be in: each contact's flag, compression and law state agree with the
     levels' displacements (to 1e-9 of its lengths: a run's final state holds the rounding of its last
     event), each element's branch and springs are ones its backbone has, a Bouc-Wen z within its bound."""
@@ -246,7 +135,7 @@ def structure_rates(asm: Assembly) -> tuple[float, float]:
     return free, rate(k, c)
 
 
-def check_structure_state(state: Optional[StructureState], model: Structure | Adjacent) -> StructureState:
+def check_structure_state(state: Optional[State], model: Structure | Adjacent) -> State:
     """``state`` checked against the structure (None: at rest at 0), for the protocols."""
     return _check_state(state, model, assemble(model))
 
@@ -259,7 +148,7 @@ def structure_rate(model: Structure | Adjacent) -> tuple[float, str]:
 
 
 def simulate_structure(structure: Structure | Adjacent, excitation: Harmonic | Record, duration: float,
-                       state: Optional[StructureState] = None, *, rtol: float = 1e-10,
+                       state: Optional[State] = None, *, rtol: float = 1e-10,
                        sample_rate_hz: Optional[float] = None, max_events: int = 10_000_000,
                        max_steps: int = DEFAULT_MAX_STEPS) -> StructureRun | AdjacentRun:
     """Simulate a structure (or two adjacent ones) under a base excitation, exactly at every contact
@@ -301,7 +190,7 @@ def run_of(model: Any, asm: Any, excitation: Any, rate: float, out: _core.RunOut
     status = Status(out.status)
     if status == Status.SUCCESS and not (np.all(np.isfinite(out.extrema)) and np.isfinite(energy.residual)):
         status = Status.NONFINITE
-    final = StructureState._of(out.state, asm.dofs, asm.system.n)
+    final = State._of(out.state, asm.dofs, asm.system.layout)
     structures = structures_of(model)[0]
     parts = [StructureRun._part(s, b, asm, structures, excitation, rate, out, status, t0)
              for b, s in enumerate(structures)]

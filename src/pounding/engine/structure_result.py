@@ -23,7 +23,7 @@ from .result import LedgerSeries, Outcome, events_frame
 if TYPE_CHECKING:
     from ..excitation import Harmonic, Record
     from ..model.structure import Structure
-    from .structure import StructureState
+    from .state import State
 
 CONTACT_COLUMNS = ("wall", "level", "side", "t_start_s", "t_end_s", "v_in_m_s", "v_out_m_s", "impulse_n_s",
                    "peak_force_n", "max_compression_m", "work_j")
@@ -117,7 +117,7 @@ class StructureRun(Outcome):
         ``max_compression_m``, the work of the contact force ``work_j``.
     energy : StructureEnergy or None
         The energy ledger (None for one of two adjacent structures: the pair's is ``AdjacentRun.energy``).
-    final_state : StructureState or None
+    final_state : State or None
         Pass as ``state`` to continue (None for one of two adjacent structures: ``AdjacentRun``'s).
     status : Status
         How the run ended (``message`` says it in words).
@@ -188,7 +188,7 @@ class StructureRun(Outcome):
     contact_table: np.ndarray = field(repr=False)
     event_table: np.ndarray = field(repr=False)
     energy: Optional[StructureEnergy] = field(repr=False)
-    final_state: Optional["StructureState"] = field(repr=False)
+    final_state: Optional["State"] = field(repr=False)
     status: Status = Status.SUCCESS
     drift_max: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     drift_max_time_s: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)

@@ -26,7 +26,6 @@ from ..engine import State
 from ..engine.layout import T
 from ..engine.simulate import check_oscillator, check_rtol, kernel_system
 from ..engine.assembly import assemble
-from ..engine.structure import StructureState
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from ..excitation import Harmonic
@@ -120,7 +119,7 @@ def basins(system: Any, excitation: Harmonic, *, displacement_m: Any = None,
     system : Oscillator, Structure or Adjacent
         The system.  A structure's initial states shift it (the first of a pair) as one body:
         each of its moving levels at the state's displacement and velocity, its isolator on its
-        backbone (``StructureState.at_rest``); its attractors are matched by their largest alpha
+        backbone (``State.at_rest``); its attractors are matched by their largest alpha
         over every level and their contacts per cycle at every wall side and link, and their
         ``excursion_m``, ``displacement_m`` and ``velocity_m_s`` are its first moving mass's.
     excitation : Harmonic
@@ -375,9 +374,8 @@ def steady_options(max_cycles: Any, measure_cycles: Any, max_period: Any, steady
 def initial_states(osc: Any, dd: np.ndarray, vv: np.ndarray) -> np.ndarray:
     """State vectors at time 0 (table phase 0), the bumpers relaxed and the isolator on its
     backbone, at displacements ``dd`` (m) and velocities ``vv`` (m/s) (a structure's: its first's
-    moving levels shifted as one body, ``StructureState.at_rest``); shape (states, length)."""
-    kind = StructureState if isinstance(osc, (Structure, Adjacent)) else State
-    starts = np.array([kind.at_rest(osc, 0.0, float(x), float(y)).vector for x, y in zip(dd, vv)])
+    moving levels shifted as one body, ``State.at_rest``); shape (states, length)."""
+    starts = np.array([State.at_rest(osc, 0.0, float(x), float(y)).vector for x, y in zip(dd, vv)])
     starts[:, T] = 0.0
     return starts
 

@@ -18,7 +18,7 @@ from ..engine.control import new_control, stop_requested
 from ..engine.layout import T
 from ..engine.kernels import CONTACT_COLUMNS, DOF_EXTREMA, PAIR_EXTREMA, W_CYCLES, RunOutput, run_window
 from ..engine.assembly import assemble
-from ..engine.structure import StructureState
+from ..engine.state import State
 from ..excitation import GRAVITY_M_S2, Harmonic
 from .sweep_result import sweep_message
 from .structure_sweep_result import (C_COUNT, C_IMPULSE, C_PEAK, C_RESTITUTION, C_TIME, CONTACT_STATS,
@@ -107,7 +107,7 @@ def run_structure_plan(plan, advance: Callable[[int], None] | None = None,
         g=GRAVITY_M_S2, levels=levels, storeys=storeys, contact_slots=slots, level_metrics=level,
         drift_metrics=drift, contact_metrics=contact, cycles_run=cycles_run, period_multiple=period_multiple,
         window_cycles=window_cycles, window_states=window_states, step_start_s=step_start_s, steps_done=done,
-        final_state=StructureState._of(state, asm.dofs, system.n), status=status, window_strobes=strobes,
+        final_state=State._of(state, asm.dofs, system.layout), status=status, window_strobes=strobes,
         omega_min_rad_s=plan.omega_min_rad_s,
         message=sweep_message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted))
     if interrupted:

@@ -92,7 +92,7 @@ class StructureSweepResult:
         When each step began, s.
     steps_done : int
         Steps finished.
-    final_state : StructureState
+    final_state : State
         Where the sweep ended (``state`` of the next sweep).
     status : Status
         How the sweep ended.
