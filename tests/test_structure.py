@@ -808,18 +808,24 @@ def test_a_wall_at_any_level_under_a_record_matches_the_reference(pair, v0, seed
     np.testing.assert_allclose(run.final_state.displacements_m, ref.y[:n], rtol=0, atol=1e-7 * scale)
 
 
-def test_each_contact_s_clearance_is_its_exact_closest_approach():
-    # a wall on stands (the level against its stand), a wall of the second structure at a floor, a link: the
-    # exact clearance of each is its gap less the largest approach, at most the densely sampled one's and
-    # within what the samples can miss at an extremum (half an acceleration below 200 m/s^2 times the
-    # sample step squared, 25 us: 6e-8 m)
+def _pair_on_a_stand() -> pd_.Adjacent:
+    """An isolated building against a wall on stands (its base's), a fixed-base neighbour with a wall at its
+    top floor, and a link between their first floors."""
     kv = pd_.KelvinVoigt(2e7, 2e3)
     iso = pd_.Isolator([1e5, 3e4], [0.004], damping_n_s_m=500.0)
     first = pd_.Structure(1000.0, iso, [pd_.Storey(800.0, 2e6, 500.0)],
                           [pd_.Wall(0, 0.01, 0.012, kv, stand=pd_.Stand(30.0, 3e6, 100.0))])
     second = pd_.Structure.fixed_base([pd_.Storey(900.0, 5e6, 500.0)] * 2,
                                       walls=[pd_.Wall(2, 0.004, 0.005, kv)])
-    pair = pd_.Adjacent(first, second, [pd_.Link(1, 1, 0.006, kv)])
+    return pd_.Adjacent(first, second, [pd_.Link(1, 1, 0.006, kv)])
+
+
+def test_each_contact_s_clearance_is_its_exact_closest_approach():
+    # a wall on stands (the level against its stand), a wall of the second structure at a floor, a link: the
+    # exact clearance of each is its gap less the largest approach, at most the densely sampled one's and
+    # within what the samples can miss at an extremum (half an acceleration below 200 m/s^2 times the
+    # sample step squared, 25 us: 6e-8 m)
+    pair = _pair_on_a_stand()
     run = pd_.simulate(pair, pd_.Harmonic(0.4, 1.5), 4.0, sample_rate_hz=40_000)
     x = {}
     from pounding.engine.assembly import assemble
@@ -839,13 +845,7 @@ def test_each_contact_s_clearance_is_its_exact_closest_approach():
 
 
 def test_impacts_of_a_building_and_of_a_pair_take_the_impacting_pair_s_effective_mass():
-    kv = pd_.KelvinVoigt(2e7, 2e3)
-    iso = pd_.Isolator([1e5, 3e4], [0.004], damping_n_s_m=500.0)
-    first = pd_.Structure(1000.0, iso, [pd_.Storey(800.0, 2e6, 500.0)],
-                          [pd_.Wall(0, 0.01, 0.012, kv, stand=pd_.Stand(30.0, 3e6, 100.0))])
-    second = pd_.Structure.fixed_base([pd_.Storey(900.0, 5e6, 500.0)] * 2,
-                                      walls=[pd_.Wall(2, 0.004, 0.005, kv)])
-    pair = pd_.Adjacent(first, second, [pd_.Link(1, 1, 0.006, kv)])
+    pair = _pair_on_a_stand()
     run = pd_.simulate(pair, pd_.Harmonic(0.4, 1.5), 4.0, sample_rate_hz=0)
 
     def check(impacts, contacts, labels, mu):

@@ -27,8 +27,6 @@ COLUMNS = ("freq_hz", "nu", "a_g", "alpha", "excursion_m", "displacement_max_m",
 
 def _first_mass(state: Any) -> tuple[float, float]:
     """(displacement m, velocity m/s) of the mass, or of a structure's first moving mass (its base)."""
-    if isinstance(state, State):
-        return state.displacement_m, state.velocity_m_s
     q = next(q for q, d in enumerate(state.dofs[0]) if d >= 0)
     return float(state.displacements_m[q]), float(state.velocities_m_s[q])
 
