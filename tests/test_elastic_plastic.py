@@ -80,9 +80,9 @@ def test_turns_on_the_yield_line_match_reference():
 def test_elastic_plastic_ledger_closes_and_the_bumper_never_pulls(osc, exc, v0):
     run = pd_.simulate(osc, exc, 3.0, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=2000)
     e = run.energy
-    flows = max(abs(e.input_work), abs(e.kinetic), e.viscous + abs(e.hysteretic) + e.bumper_dissipation)
+    flows = max(abs(e.input_work), abs(e.kinetic), e.viscous + abs(e.hysteretic) + e.contact_dissipation)
     assert abs(e.residual) <= 1e-10 * flows
-    assert e.bumper_dissipation >= -1e-10 * flows
+    assert e.contact_dissipation >= -1e-10 * flows
     assert run.bumper_force_left.min() >= 0.0 and run.bumper_force_right.min() >= 0.0
     done = run.contacts.dropna()
     assert (done["bumper_dissipation_j"] >= -1e-9 * max(1.0, float(done["bumper_dissipation_j"].abs().max()
@@ -158,7 +158,7 @@ def test_a_nearly_flat_unloading_line_releases_at_zero_compression():
         run = pd_.simulate(osc, pd_.Harmonic(0.3, 1.8), t_end, sample_rate_hz=0)
         c = run.contacts.dropna().iloc[-1]
         ends.append(c["t_end_s"])
-        assert abs(run.energy.residual) < 1e-10 * run.energy.bumper_dissipation
+        assert abs(run.energy.residual) < 1e-10 * run.energy.contact_dissipation
     assert ends[0] == pytest.approx(ends[1], abs=1e-12)
 
 

@@ -15,7 +15,7 @@ ANY_GAP = st.one_of(oscillators(), oscillators(gaps="zero"))  # open gaps, or th
 
 
 def _flows(e):
-    return max(abs(e.input_work), abs(e.kinetic), e.viscous + abs(e.hysteretic) + e.bumper_dissipation)
+    return max(abs(e.input_work), abs(e.kinetic), e.viscous + abs(e.hysteretic) + e.contact_dissipation)
 
 
 @SETTINGS
@@ -26,7 +26,7 @@ def test_energy_ledger_closes_from_rest(osc, exc):
     # a hardening Masing loop can return energy (negative hysteretic term, see Isolator), and
     # then the input work can be negative: compare with the largest flow
     assert abs(e.residual) <= 1e-8 * _flows(e)
-    assert e.viscous >= 0 and e.bumper_dissipation >= -1e-12 * _flows(e)
+    assert e.viscous >= 0 and e.contact_dissipation >= -1e-12 * _flows(e)
 
 
 @SETTINGS

@@ -121,10 +121,10 @@ def check_numeric_ledger(osc, exc, v0):
                        rtol=1e-11)
     e = run.energy
     through = 0.5 * osc.mass_kg * float(np.sum(run.contacts["v_in_m_s"].to_numpy() ** 2))
-    flows = max(abs(e.input_work), abs(e.kinetic), e.viscous + abs(e.hysteretic) + e.bumper_dissipation,
+    flows = max(abs(e.input_work), abs(e.kinetic), e.viscous + abs(e.hysteretic) + e.contact_dissipation,
                 through)
     assert abs(e.residual) <= 1e-8 * flows
-    assert e.bumper_dissipation >= -1e-12 * flows
+    assert e.contact_dissipation >= -1e-12 * flows
     assert run.bumper_force_left.min() >= 0.0 and run.bumper_force_right.min() >= 0.0
     return run
 
@@ -138,7 +138,7 @@ def test_from_restitution_gives_that_restitution(restitution):
     assert impact["restitution"] == pytest.approx(restitution, rel=0.015)
     dissipated = 0.5 * 500.0 * 0.25 * (1.0 - impact["restitution"] ** 2)
     # (to the integration tolerance of the impact energy, 62.5 J: v_out is good to 1e-9 of itself)
-    assert run.energy.bumper_dissipation == pytest.approx(dissipated, rel=1e-6, abs=1e-8 * 62.5)
+    assert run.energy.contact_dissipation == pytest.approx(dissipated, rel=1e-6, abs=1e-8 * 62.5)
 
 
 def test_without_damping_it_is_hertz():

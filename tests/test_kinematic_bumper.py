@@ -119,8 +119,8 @@ def test_random_kinematic_systems_match_reference(osc, exc, v0):
 @given(osc=oscillators(law="multilinear_kinematic"), exc=harmonics(), v0=st.floats(-0.8, 0.8))
 def test_kinematic_ledger_closes_and_the_bumper_never_pulls(osc, exc, v0):
     e = check_closed_form_ledger(osc, exc, v0).energy
-    flows = max(abs(e.input_work), abs(e.kinetic), e.viscous + abs(e.hysteretic) + e.bumper_dissipation)
-    assert e.bumper_dissipation >= -1e-12 * flows
+    flows = max(abs(e.input_work), abs(e.kinetic), e.viscous + abs(e.hysteretic) + e.contact_dissipation)
+    assert e.contact_dissipation >= -1e-12 * flows
 
 
 @settings(max_examples=10, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -189,7 +189,7 @@ def test_the_example_file_reads_and_sweeps_and_its_loops_dissipate():
     runs = [pd_.simulate(o, pd_.Harmonic(0.1, 1.5), 10.0, pd_.State.at_rest(o, velocity_m_s=0.6))
             for o in (osc, elastic)]
     assert len(runs[0].contacts) > 5 and len(runs[1].contacts) > 5
-    assert runs[0].energy.bumper_dissipation > 2.0 * runs[1].energy.bumper_dissipation  # Masing's loops
+    assert runs[0].energy.contact_dissipation > 2.0 * runs[1].energy.contact_dissipation  # Masing's loops
 
 
 def test_model_family_fits_kinematic_bumpers():

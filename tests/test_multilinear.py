@@ -163,7 +163,7 @@ def check_closed_form_ledger(osc, exc, v0):
     bumper pulls, every finished contact pushed; returns the run."""
     run = pd_.simulate(osc, exc, 3.0, pd_.State.at_rest(osc, velocity_m_s=v0), sample_rate_hz=2000)
     e = run.energy
-    flows = max(abs(e.input_work), abs(e.kinetic), e.viscous + abs(e.hysteretic) + e.bumper_dissipation)
+    flows = max(abs(e.input_work), abs(e.kinetic), e.viscous + abs(e.hysteretic) + e.contact_dissipation)
     assert abs(e.residual) <= 1e-10 * flows
     assert run.bumper_force_left.min() >= -1e-9 and run.bumper_force_right.min() >= -1e-9
     assert (run.contacts.dropna()["impulse_n_s"] > 0).all()

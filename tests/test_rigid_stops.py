@@ -37,8 +37,8 @@ def constant(a: float, until: float = 100.0) -> pounding.Record:
 
 def ledger_residual(run) -> float:
     e = run.energy
-    return e.input_work - (e.kinetic + e.isolator_elastic + e.bumper_elastic + e.viscous + e.hysteretic
-                           + e.bumper_dissipation)
+    return e.input_work - (e.kinetic + e.elastic + e.contact_elastic + e.viscous + e.hysteretic
+                           + e.contact_dissipation)
 
 
 # ---------------------------------------------------------------- complete chatter: the closed form
@@ -204,7 +204,7 @@ def test_a_plastic_stop_holds_at_the_first_impact_and_an_elastic_one_never():
     assert plastic.chatters.empty  # (one impact: no sequence)
     elastic = pounding.simulate(oscillator(1.0), push, duration=2.0, sample_rate_hz=0)
     assert elastic.chatters.empty and not elastic.final_state.in_contact[1]
-    assert elastic.energy.bumper_dissipation == 0.0
+    assert elastic.energy.contact_dissipation == 0.0
     assert (elastic.contacts.v_out_m_s == -elastic.contacts.v_in_m_s).all()
 
 
@@ -434,8 +434,8 @@ def test_no_run_hangs_or_stops_on_its_budget_in_chatter(mass, omega, zeta, e, ga
     run = pounding.simulate(osc, table, duration=3.0, state=start, sample_rate_hz=0, max_events=2_000_000)
     assert run.status == Status.SUCCESS, run.message
     en = run.energy
-    scale = sum(abs(x) for x in (en.input_work, en.kinetic, en.isolator_elastic, en.viscous,
-                                 en.bumper_dissipation))
+    scale = sum(abs(x) for x in (en.input_work, en.kinetic, en.elastic, en.viscous,
+                                 en.contact_dissipation))
     stored = mass * omega ** 2 * max(gap_l, gap_r, 1e-3) ** 2
     assert abs(ledger_residual(run)) <= 1e-9 * scale + 1e-15 * stored
     holds = run.contacts[~(run.contacts.t_end_s == run.contacts.t_start_s)]

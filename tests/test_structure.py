@@ -913,3 +913,26 @@ def test_one_state_for_every_system():
         assert pd_.StructureState is pd_.State
     with pytest.warns(FutureWarning, match="pounding.State"):
         from pounding.engine import StructureState  # noqa: F401
+
+
+def test_one_ledger_for_every_system():
+    osc = pd_.presets.paper_damped()
+    exc = pd_.Harmonic(0.1, 2.0)
+    eo = pd_.simulate(osc, exc, 5.0).energy
+    es = pd_.simulate(pd_.Structure.from_oscillator(osc), exc, 5.0).energy
+    assert type(eo) is type(es) is pd_.EnergyLedger
+    pd.testing.assert_series_equal(eo.to_series(), es.to_series(), check_exact=True)
+    assert list(eo.to_series().index) == ["input_work", "viscous", "hysteretic", "contact_dissipation",
+                                          "kinetic", "elastic", "contact_elastic", "residual"]
+    assert eo.contact_dissipation > 0.0
+    # 0.1's names of a single mass's terms still answer, with a warning naming the new one
+    for old, new in (("isolator_elastic", "elastic"), ("bumper_elastic", "contact_elastic"),
+                     ("bumper_dissipation", "contact_dissipation")):
+        with pytest.warns(FutureWarning, match=f"'{new}'"):
+            assert getattr(eo, old) == getattr(eo, new)
+    with pytest.warns(FutureWarning, match="'contact_dissipation'"):
+        e = pd_.EnergyLedger(1.0, 0.0, 0.0, kinetic=0.0, elastic=0.0, contact_elastic=0.0,
+                             bumper_dissipation=1.0)
+    assert e.residual == 0.0
+    with pytest.warns(FutureWarning, match="pounding.EnergyLedger"):
+        assert pd_.StructureEnergy is pd_.EnergyLedger

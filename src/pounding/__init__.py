@@ -19,8 +19,7 @@ _NAMES = {
                   "continuation", "largest_exponents", "lyapunov", "periodic_orbit"),
     "._errors": ("InputError", "Interrupted", "MissingExtra", "OutputError", "PoundingWarning", "Problem",
                  "Status", "StoreError"),
-    ".engine": ("AdjacentRun", "EnergyLedger", "Run", "State", "StructureEnergy", "StructureRun",
-                "simulate"),
+    ".engine": ("AdjacentRun", "EnergyLedger", "Run", "State", "StructureRun", "simulate"),
     ".excitation": ("Harmonic", "Record"),
     ".excitation.spectrum": ("response_spectrum",),
     ".identification": ("ContactLawFit", "Identification", "ModelFamily", "StructureFamily", "Targets",
@@ -46,14 +45,14 @@ __all__ = sorted(_WHERE) + ["data", "lab", "plots", "presets", "records"]
 
 
 # names of 0.1 that still answer for one release, with a FutureWarning: the old name -> the new one
-_RENAMED = {"StructureState": "State"}
+_RENAMED = {"StructureState": "State", "StructureEnergy": "EnergyLedger"}
 
 
 def __getattr__(name: str) -> Any:
     if name in _RENAMED:
         from ._errors import warn_renamed
 
-        warn_renamed(f"pounding.{name}", f"pounding.{_RENAMED[name]}", why="one State for every system")
+        warn_renamed(f"pounding.{name}", f"pounding.{_RENAMED[name]}", why="one class for every system")
         return getattr(importlib.import_module(".engine", __name__), _RENAMED[name])
     if name in _WHERE:
         value = getattr(importlib.import_module(_WHERE[name], __name__), name)
@@ -76,8 +75,7 @@ if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
     from .analysis import (Bifurcation, BifurcationCurve, Branch, CoexistenceMap, LyapunovSpectrum,  # noqa: F401
                            PeriodicOrbit, StructurePeriodicOrbit, bifurcation_curve, coexistence_map,
                            continuation, largest_exponents, lyapunov, periodic_orbit)
-    from .engine import (AdjacentRun, EnergyLedger, Run, State, StructureEnergy, StructureRun,  # noqa: F401
-                         simulate)
+    from .engine import AdjacentRun, EnergyLedger, Run, State, StructureRun, simulate  # noqa: F401
     from .excitation import Harmonic, Record  # noqa: F401
     from .excitation.spectrum import response_spectrum  # noqa: F401
     from .identification import (ContactLawFit, Identification, ModelFamily, StructureFamily,  # noqa: F401

@@ -178,21 +178,21 @@ def warn_renamed(old: str, new: str, stacklevel: int = 3, why: str = "with its u
                   stacklevel=stacklevel)
 
 
-def _take_renamed(called: str, kwargs: dict, old: str, new: str) -> None:
+def _take_renamed(called: str, kwargs: dict, old: str, new: str, why: str = "with its unit") -> None:
     """``kwargs``'s ``old`` keyword moved to ``new``, with a ``FutureWarning`` (stacklevel: the caller of the
     decorated function); both at once is a ``TypeError``."""
     if old in kwargs:
         if new in kwargs:
             raise TypeError(f"{called}() got both '{new}' and '{old}', its name before: give '{new}'")
-        warn_renamed(old, new, stacklevel=4)
+        warn_renamed(old, new, stacklevel=4, why=why)
         kwargs[new] = kwargs.pop(old)
 
 
-def renamed_fields(renamed: dict[str, str]) -> Any:
-    """A class decorator for a dataclass whose fields were renamed (``renamed``: old -> new): the names
-    before still answer for one release, as keywords of the constructor and as attributes, each with a
-    ``FutureWarning`` naming the new one; both names of one field at once is a ``TypeError``.  The class's
-    ``RENAMED`` holds them (what its TOML tables and dotted names read too)."""
+def renamed_fields(renamed: dict[str, str], why: str = "with its unit") -> Any:
+    """A class decorator for a dataclass whose fields were renamed (``renamed``: old -> new; ``why``: what
+    the warning says of it): the names before still answer for one release, as keywords of the constructor
+    and as attributes, each with a ``FutureWarning`` naming the new one; both names of one field at once is
+    a ``TypeError``.  The class's ``RENAMED`` holds them (what its TOML tables and dotted names read too)."""
     import functools
 
     def wrap(cls: Any) -> Any:
@@ -201,13 +201,13 @@ def renamed_fields(renamed: dict[str, str]) -> Any:
         @functools.wraps(init)
         def __init__(self: Any, *args: Any, **kwargs: Any) -> None:
             for old, new in renamed.items():
-                _take_renamed(cls.__name__, kwargs, old, new)
+                _take_renamed(cls.__name__, kwargs, old, new, why)
             init(self, *args, **kwargs)
 
         cls.__init__ = __init__
         for old, new in renamed.items():
             def before(self: Any, old: str = old, new: str = new) -> Any:
-                warn_renamed(old, new)
+                warn_renamed(old, new, why=why)
                 return getattr(self, new)
 
             setattr(cls, old, property(before, doc=f"``{new}`` under its name before (a warning: it goes in "

@@ -4,15 +4,20 @@ from .result import EnergyLedger, Run
 from .state import State
 from .simulate import simulate
 from .adjacent_result import AdjacentRun
-from .structure_result import StructureEnergy, StructureRun
+from .structure_result import StructureRun
 
-__all__ = ["AdjacentRun", "EnergyLedger", "Run", "State", "StructureEnergy", "StructureRun", "simulate"]
+__all__ = ["AdjacentRun", "EnergyLedger", "Run", "State", "StructureRun", "simulate"]
+
+
+# 0.1's names, one class for every system now: they still answer for one release, with a FutureWarning
+_RENAMED = {"StructureState": ("State", State), "StructureEnergy": ("EnergyLedger", EnergyLedger)}
 
 
 def __getattr__(name: str) -> object:
-    if name == "StructureState":  # (0.1's name: one State for every system now)
+    if name in _RENAMED:
         from .._errors import warn_renamed
 
-        warn_renamed("pounding.engine.StructureState", "pounding.State", why="one State for every system")
-        return State
+        new, cls = _RENAMED[name]
+        warn_renamed(f"pounding.engine.{name}", f"pounding.{new}", why="one class for every system")
+        return cls
     raise AttributeError(f"module 'pounding.engine' has no attribute {name!r}")

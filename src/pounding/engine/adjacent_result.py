@@ -15,7 +15,8 @@ from ._chatter import chatter_frame
 from .layout import C_SLOT
 from .layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
 from .result import Outcome, events_frame
-from .structure_result import CONTACT_COLUMNS, StructureEnergy, StructureRun, impact_frame, peaks_of
+from .result import EnergyLedger
+from .structure_result import CONTACT_COLUMNS, StructureRun, impact_frame, peaks_of
 
 
 @dataclass(frozen=True)
@@ -40,7 +41,7 @@ class AdjacentRun(Outcome):
         The core's rows behind ``links``.
     event_table : ndarray
         Every event of the pair: time, action code, the element's index (``events`` names them).
-    energy : StructureEnergy
+    energy : EnergyLedger
         The energy ledger of the pair (the links' in ``contact_dissipation`` and ``contact_elastic``).
     final_state : State
         Pass as ``state`` to continue.
@@ -78,7 +79,7 @@ class AdjacentRun(Outcome):
     link_force: np.ndarray
     link_table: np.ndarray = field(repr=False)
     event_table: np.ndarray = field(repr=False)
-    energy: StructureEnergy = field(repr=False)
+    energy: EnergyLedger = field(repr=False)
     final_state: Any = field(repr=False)
     status: Status = Status.SUCCESS
     clearance_m: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)

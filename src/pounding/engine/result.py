@@ -11,12 +11,13 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 import pandas as pd
 
-from .._errors import Status
+from .._errors import Status, renamed_fields
 from .._tables import EventTable
 from ._chatter import SIDES, chatter_frame
 from .state import State
-from .layout import (C_MAX_COMPRESSION, C_SLOT, C_V_IN, E_ACTION, E_INDEX, E_T, EVENT_NAMES, force_max,
-                      impulses)
+from .layout import (C_MAX_COMPRESSION, C_SLOT, C_V_IN, E_ACTION, E_INDEX, E_T, EVENT_NAMES, L_BUMPER,
+                     L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT, L_ISOLATOR, L_KINETIC, L_VISCOUS, force_max,
+                     impulses)
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..excitation import Excitation
@@ -38,37 +39,38 @@ class Outcome:
         return self.status.message  # type: ignore[attr-defined]
 
 
-class LedgerSeries:
-    """What every energy ledger (a frozen dataclass of terms in J with a ``residual``) has: ``to_series``."""
-
-    def to_series(self) -> pd.Series:
-        """Every term and the ``residual``, J, as a Series named ``energy_J``."""
-        data = {f.name: getattr(self, f.name) for f in fields(self)}  # type: ignore[arg-type]
-        data["residual"] = self.residual  # type: ignore[attr-defined]
-        return pd.Series(data, name="energy_J")
-
-
+@renamed_fields({"isolator_elastic": "elastic", "bumper_elastic": "contact_elastic",
+                 "bumper_dissipation": "contact_dissipation"}, why="one ledger for every system")
 @dataclass(frozen=True)
-class EnergyLedger(LedgerSeries):
-    """Where the energy went over a run, J.
+class EnergyLedger:
+    """Where the energy went over a run, J: a single mass's, a structure's or a pair's.
 
-    ``input_work`` (work of the inertial forcing ``-M A(t)`` on the relative motion) equals
-    the changes of the stored energies plus the dissipated ones; ``residual`` is what is
-    left, a check on the integration (it is at rounding level for an exact run).
+    ``input_work`` (the work of the inertial forcing ``-M A(t)`` on the motion relative to the ground)
+    equals what the dashpots, the hysteresis and the contacts dissipated plus the change of the kinetic
+    and elastic energies; ``residual`` is what is left, a check on the integration (at rounding level for
+    an exact run).
 
     Attributes
     ----------
     input_work : float
         Work of ``-M A(t)`` on the relative motion over the run, J.
-    kinetic, isolator_elastic, bumper_elastic : float
-        Changes over the run of the stored energies, J: the mass's kinetic energy, the
-        isolator's elastic energy and the bumpers' (what they would give back when unloaded).
     viscous : float
-        Dissipated by the isolator's dashpot ``C_d``, J.
+        Dissipated by the dashpots (the isolators' ``C_d``, the storeys'), J.
     hysteretic : float
-        Dissipated by the isolator's hysteresis (its slipping springs and Bouc-Wen spring), J.
-    bumper_dissipation : float
-        Taken from the mass by the bumpers and not given back (their dashpots and slips), J.
+        Dissipated by the hysteresis of the isolators (their slipping springs and Bouc-Wen spring) and
+        of the multi-linear storeys, J.
+    contact_dissipation : float
+        Taken by the contacts' laws and not given back (bumpers' and walls' dashpots and slips, a rigid
+        stop's impacts), J.
+    kinetic : float
+        Change of the kinetic energy, J.
+    elastic : float
+        Change of the elastic energy of the isolators' and the storeys' springs, J.
+    contact_elastic : float
+        Change of the contacts' laws' elastic energy (what they would give back when unloaded), J.
+
+    The names of 0.1 (``isolator_elastic``, ``bumper_elastic``, ``bumper_dissipation``) still answer for
+    one release, with a ``FutureWarning``.
 
     Examples
     --------
@@ -82,22 +84,35 @@ class EnergyLedger(LedgerSeries):
     '142.0 J in: 106.2 J viscous, 29.2 J hysteretic'
     >>> bool(abs(ledger.residual) < 1e-9)  # J: every joule accounted for
     True
+    >>> list(ledger.to_series().index)[:4]
+    ['input_work', 'viscous', 'hysteretic', 'contact_dissipation']
     """
 
     input_work: float
-    kinetic: float
-    isolator_elastic: float
-    bumper_elastic: float
     viscous: float
     hysteretic: float
-    bumper_dissipation: float
+    contact_dissipation: float
+    kinetic: float
+    elastic: float
+    contact_elastic: float
+
+    @classmethod
+    def of(cls, ledger: np.ndarray) -> "EnergyLedger":
+        """The ledger of the core's run (its ``ledger``, the core's ``LEDGER`` slots)."""
+        return cls(*(float(ledger[k]) for k in (L_INPUT, L_VISCOUS, L_HYSTERETIC, L_BUMPER_LOSS, L_KINETIC,
+                                                L_ISOLATOR, L_BUMPER)))
 
     @property
     def residual(self) -> float:
         """``input_work`` minus every stored and dissipated term, J."""
-        return self.input_work - (self.kinetic + self.isolator_elastic + self.bumper_elastic
-                                   + self.viscous + self.hysteretic + self.bumper_dissipation)
+        return self.input_work - (self.viscous + self.hysteretic + self.contact_dissipation + self.kinetic
+                                  + self.elastic + self.contact_elastic)
 
+    def to_series(self) -> pd.Series:
+        """Every term and the ``residual``, J, as a Series named ``energy_J``."""
+        data = {f.name: getattr(self, f.name) for f in fields(self)}
+        data["residual"] = self.residual
+        return pd.Series(data, name="energy_J")
 
 
 def events_frame(e: np.ndarray) -> pd.DataFrame:

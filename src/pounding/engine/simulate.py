@@ -24,8 +24,7 @@ from .control import (
 )
 from .. import _core
 from ._system import Forcing, System
-from .layout import (DEF_L, DEF_R, IN_L, IN_R, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT, L_ISOLATOR,
-                      L_KINETIC, L_VISCOUS, REGION, STATE_BASE, X_A_MAX, X_A_MAX_T, X_D_MAX, X_D_MAX_T,
+from .layout import (DEF_L, DEF_R, IN_L, IN_R, REGION, STATE_BASE, X_A_MAX, X_A_MAX_T, X_D_MAX, X_D_MAX_T,
                       X_D_MIN, X_D_MIN_T, Z_L, Z_R, ZETA, D, T, V)
 from .run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPLES,  # noqa: F401
                         MAX_SAMPLES, check_rtol, history_rate, kernel_forcing)
@@ -371,11 +370,7 @@ def _run(oscillator: Oscillator, excitation: Harmonic | Record, duration: float,
     if status == Status.SUCCESS and not (np.all(np.isfinite(ledger)) and np.all(np.isfinite(extrema))):
         status = Status.NONFINITE
 
-    energy = EnergyLedger(
-        input_work=float(ledger[L_INPUT]), kinetic=float(ledger[L_KINETIC]),
-        isolator_elastic=float(ledger[L_ISOLATOR]), bumper_elastic=float(ledger[L_BUMPER]),
-        viscous=float(ledger[L_VISCOUS]), hysteretic=float(ledger[L_HYSTERETIC]),
-        bumper_dissipation=float(ledger[L_BUMPER_LOSS]))
+    energy = EnergyLedger.of(ledger)
     cols = out.samples.T
     run = Run(
         t=cols[0], displacement=cols[1], velocity=cols[2], abs_acceleration=cols[3],

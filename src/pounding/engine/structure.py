@@ -25,7 +25,8 @@ from .layout import CONTACT_COLUMNS
 from .run_args import DIRECT_CALL_STEPS, check_rtol, history_rate, kernel_forcing
 from .adjacent_result import AdjacentRun
 from .assembly import Assembly, _add_pair, assemble, clearances, structures_of
-from .structure_result import StructureEnergy, StructureRun
+from .result import EnergyLedger
+from .structure_result import StructureRun
 
 
 
@@ -186,7 +187,7 @@ def run_of(model: Any, asm: Any, excitation: Any, rate: float, out: _core.RunOut
            duration: float) -> "StructureRun | AdjacentRun":
     """The result of the core's run of one structure, or two adjacent ones (``Interrupted`` on Ctrl-C)."""
     samples, contacts, events = out.samples, out.contacts, out.events
-    energy = StructureEnergy.of(out.ledger)
+    energy = EnergyLedger.of(out.ledger)
     status = Status(out.status)
     if status == Status.SUCCESS and not (np.all(np.isfinite(out.extrema)) and np.isfinite(energy.residual)):
         status = Status.NONFINITE

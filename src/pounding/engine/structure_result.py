@@ -1,5 +1,5 @@
 """What a structure's run returns: :class:`StructureRun` (histories per level, exact extrema per level,
-contacts per wall side, the energy ledger over every element) and :class:`StructureEnergy`."""
+contacts per wall side, the energy ledger over every element)."""
 
 from __future__ import annotations
 
@@ -14,11 +14,10 @@ from .._errors import Status
 from .._tables import ContactTable
 from .layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
 from .layout import force_max, impulses
-from .layout import (C_SLOT, C_V_IN, DOF_EXTREMA_LEN, L_BUMPER, L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT,
-                      L_ISOLATOR, L_KINETIC, L_VISCOUS, P_MAX, P_MAX_T, P_MIN, P_MIN_T, X_A_MAX, X_A_MAX_T,
+from .layout import (C_SLOT, C_V_IN, DOF_EXTREMA_LEN, P_MAX, P_MAX_T, P_MIN, P_MIN_T, X_A_MAX, X_A_MAX_T,
                       X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T)
 from ._chatter import chatter_frame
-from .result import LedgerSeries, Outcome, events_frame
+from .result import EnergyLedger, Outcome, events_frame
 
 if TYPE_CHECKING:
     from ..excitation import Harmonic, Record
@@ -29,61 +28,6 @@ CONTACT_COLUMNS = ("wall", "level", "side", "t_start_s", "t_end_s", "v_in_m_s", 
                    "peak_force_n", "max_compression_m", "work_j")
 
 
-
-
-@dataclass(frozen=True)
-class StructureEnergy(LedgerSeries):
-    """The energy ledger of a structure's run, J: the input's work equals what the dashpots (storeys' and
-    isolator's), the isolator's hysteresis and the walls' laws dissipated plus the change of the kinetic
-    and elastic energies (``residual``: the difference, rounding).
-
-    Attributes
-    ----------
-    input_work : float
-        The work of the ground's motion on the structure.
-    viscous : float
-        Dissipated by the storeys' and the isolator's dashpots.
-    hysteretic : float
-        Dissipated by the hysteresis of the isolators and of the multi-linear storeys.
-    contact_dissipation : float
-        Dissipated by the walls' laws.
-    kinetic : float
-        Change of the kinetic energy.
-    elastic : float
-        Change of the isolator's and the storeys' elastic energy.
-    contact_elastic : float
-        Change of the walls' laws' elastic energy.
-
-    Examples
-    --------
-    >>> import pounding
-    >>> iso = pounding.Isolator(slopes_n_m=[1.0e5, 2.0e4], breakpoints_m=[0.01])
-    >>> b = pounding.Structure(1.0e3, iso, [pounding.Storey(1.0e3, 1.0e6, 1.0e3)])
-    >>> e = pounding.simulate(b, pounding.Harmonic(0.2, 1.5), 5.0).energy
-    >>> abs(e.residual) < 1e-9 * e.input_work
-    True
-    >>> list(e.to_series().index)[:3]
-    ['input_work', 'viscous', 'hysteretic']
-    """
-
-    input_work: float
-    viscous: float
-    hysteretic: float
-    contact_dissipation: float
-    kinetic: float
-    elastic: float            # the isolator's and the storeys' springs
-    contact_elastic: float    # the walls' laws
-
-    @classmethod
-    def of(cls, ledger: np.ndarray) -> "StructureEnergy":
-        return cls(*(float(ledger[k]) for k in (L_INPUT, L_VISCOUS, L_HYSTERETIC, L_BUMPER_LOSS, L_KINETIC,
-                                                L_ISOLATOR, L_BUMPER)))
-
-    @property
-    def residual(self) -> float:
-        """The input's work less every other term, J (rounding)."""
-        return self.input_work - (self.viscous + self.hysteretic + self.contact_dissipation + self.kinetic
-                                  + self.elastic + self.contact_elastic)
 
 
 # a run's fields read off the core's extrema: each level's (per dof), each storey's drift (per tracked pair)
@@ -115,7 +59,7 @@ class StructureRun(Outcome):
         One row per contact: ``wall``, ``level``, ``side``, ``t_start_s``, ``t_end_s``, the pair's velocities
         in and out ``v_in_m_s``, ``v_out_m_s``, ``impulse_n_s``, ``peak_force_n``, the largest compression
         ``max_compression_m``, the work of the contact force ``work_j``.
-    energy : StructureEnergy or None
+    energy : EnergyLedger or None
         The energy ledger (None for one of two adjacent structures: the pair's is ``AdjacentRun.energy``).
     final_state : State or None
         Pass as ``state`` to continue (None for one of two adjacent structures: ``AdjacentRun``'s).
@@ -187,7 +131,7 @@ class StructureRun(Outcome):
     abs_acceleration_max_time_s: np.ndarray
     contact_table: np.ndarray = field(repr=False)
     event_table: np.ndarray = field(repr=False)
-    energy: Optional[StructureEnergy] = field(repr=False)
+    energy: Optional[EnergyLedger] = field(repr=False)
     final_state: Optional["State"] = field(repr=False)
     status: Status = Status.SUCCESS
     drift_max: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
