@@ -368,6 +368,7 @@ def test_the_command_line_runs_a_building_s_file(tmp_path):
                                  "--history", str(out["history"]), "--plot", str(out["plot"])])
     assert result.exit_code == 0, result.output
     assert "at level 0" in result.output and "drift ratio [%]" in result.output
+    assert "mean restitution s" in result.output and "max peak force [kN]" in result.output  # (as one mass's)
     assert len(pd.read_csv(out["contacts"])) > 0
     assert "displacement_m[3]" in pd.read_csv(out["history"], nrows=2).columns
     assert out["plot"].stat().st_size > 10_000

@@ -119,15 +119,7 @@ def simulate(
             if not math.isnan(alpha) else "- (no shaking)")
     n, left = s["contacts"], f"{s['contacts_left']} left"
     add_row("contacts", f"{n} ({rigid} rigid impacts, {left})" if rigid else f"{n} ({left})" if n else "0")
-    if not math.isnan(s["restitution_mean"]):
-        add_row("mean restitution s", f"{s['restitution_mean']:.4f}")
-    if not math.isnan(s["contact_time_mean_s"]):
-        add_row("mean contact time [ms]" + (" (holds and deformable contacts)" if rigid else ""),
-                f"{s['contact_time_mean_s'] * 1e3:.3f}")
-    if rigid:
-        add_row("max peak force [kN]", "inf (the rigid impacts' impulses: see the contacts' impulse_n_s)")
-    elif not math.isnan(s["peak_force_max_n"]):
-        add_row("max peak force [kN]", f"{s['peak_force_max_n'] / 1e3:.3f}")
+    _contact_rows(add_row, s)
     e = run.energy
     add_row("energy in / residual [J]", f"{e.input_work:.6g} / {e.residual:.2e}")
     console.print(table)
@@ -148,6 +140,21 @@ def simulate(
         )
     if not run.success:
         raise typer.Exit(code=1)
+
+
+def _contact_rows(add_row: Any, s: Any) -> None:
+    """A run's summary's contacts in the table ``pounding simulate`` prints, whatever the system: the mean
+    restitution and contact time, the largest force (inf with rigid impacts)."""
+    rigid = s["rigid_impacts"]
+    if not math.isnan(s["restitution_mean"]):
+        add_row("mean restitution s", f"{s['restitution_mean']:.4f}")
+    if not math.isnan(s["contact_time_mean_s"]):
+        add_row("mean contact time [ms]" + (" (holds and deformable contacts)" if rigid else ""),
+                f"{s['contact_time_mean_s'] * 1e3:.3f}")
+    if rigid:
+        add_row("max peak force [kN]", "inf (the rigid impacts' impulses: see the contacts' impulse_n_s)")
+    elif not math.isnan(s["peak_force_max_n"]):
+        add_row("max peak force [kN]", f"{s['peak_force_max_n'] / 1e3:.3f}")
 
 
 def _simulate_structure(building: Any, exc: Any, what: str, duration: float, sample_rate: Optional[float],
@@ -178,6 +185,8 @@ def _simulate_structure(building: Any, exc: Any, what: str, duration: float, sam
                 ", ".join(f"{v} at level {lv}" for lv, v in at) if s[f"{prefix}contacts"] else "0")
     if pair:
         add_row("contacts at the links", str(s["link_contacts"]))
+    else:
+        _contact_rows(add_row, s)
     add_row("energy in / residual [J]", f"{s['input_work_j']:.6g} / {s['energy_residual_j']:.2e}")
     console.print(table)
     for name, part in parts:
