@@ -909,6 +909,27 @@ def test_one_state_for_every_system():
         pd_.simulate(osc, exc, 1.0, rest)
     with pytest.raises(pd_.InputError, match="system"):
         pd_.State.at_rest("building")
+    with pytest.raises(pd_.InputError, match="displacement_m"):  # (a shift beyond any gap)
+        pd_.State.at_rest(b, 0.0, 200.0)
+    with pytest.warns(FutureWarning, match="'system'"):
+        assert pd_.State.at_rest(structure=b).n_dof == 2
+    # a state built by hand: its layout and levels checked; pickled and copied, still read-only
+    again = pd_.State(rest.vector, rest.dofs, rest.layout)
+    np.testing.assert_array_equal(again.displacements_m, rest.displacements_m)
+    for layout, why in ((2, "layout"), ({"x": 1}, "lacks"), (dict(rest.layout, z=3), "out of order")):
+        with pytest.raises(pd_.InputError, match=why):
+            pd_.State(rest.vector, rest.dofs, layout)
+    with pytest.raises(pd_.InputError, match="dofs"):
+        pd_.State(rest.vector, ((0, 5),), rest.layout)
+    with pytest.raises(pd_.InputError, match="dofs"):
+        pd_.State(so.vector, ((0, 1),))
+    with pytest.raises(pd_.InputError, match="contact slots"):  # (another structure's)
+        pd_.simulate(one, exc, 1.0, rest)
+    import copy
+    import pickle
+
+    for twin in (pickle.loads(pickle.dumps(rest)), copy.deepcopy(rest)):
+        assert not twin.vector.flags.writeable and twin.layout == rest.layout and twin.dofs == rest.dofs
     # 0.1's name still answers, with a warning naming the new one
     with pytest.warns(FutureWarning, match="pounding.State"):
         assert pd_.StructureState is pd_.State
@@ -932,8 +953,10 @@ def test_one_ledger_for_every_system():
         with pytest.warns(FutureWarning, match=f"'{new}'"):
             assert getattr(eo, old) == getattr(eo, new)
     with pytest.warns(FutureWarning, match="'contact_dissipation'"):
-        e = pd_.EnergyLedger(1.0, 0.0, 0.0, kinetic=0.0, elastic=0.0, contact_elastic=0.0,
-                             bumper_dissipation=1.0)
+        e = pd_.EnergyLedger(input_work=1.0, viscous=0.0, hysteretic=0.0, kinetic=0.0, elastic=0.0,
+                             contact_elastic=0.0, bumper_dissipation=1.0)
     assert e.residual == 0.0
+    with pytest.raises(TypeError):  # (by keyword: the terms' order is not 0.1's)
+        pd_.EnergyLedger(1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0)
     with pytest.warns(FutureWarning, match="pounding.EnergyLedger"):
         assert pd_.StructureEnergy is pd_.EnergyLedger

@@ -244,3 +244,14 @@ def test_no_bumpers_takes_a_one_mass_file_s_bumpers_away(tmp_path):
 
     line = contact_range(without.output)
     assert line and "none" in line[0] and line == contact_range(preset.output)
+
+
+def test_a_branch_starts_from_a_structure_s_state():
+    # a run's final state as the first orbit's guess (its section: its time's forcing angle)
+    b = _building()
+    start = pd_.simulate(b, pd_.Harmonic(0.05, 1.0), 20.0, sample_rate_hz=0).final_state
+    branch = pd_.continuation(b, 0.05, (1.0, 1.1), guess=start)
+    assert branch.success and len(branch.to_dataframe()) > 1, branch.message
+    other = pd_.simulate(_pair(), pd_.Harmonic(0.05, 1.0), 1.0).final_state
+    with pytest.raises(pd_.InputError, match="guess"):  # (a state of another structure)
+        pd_.continuation(b, 0.05, (1.0, 1.1), guess=other)

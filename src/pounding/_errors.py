@@ -218,15 +218,15 @@ def renamed_fields(renamed: dict[str, str], why: str = "with its unit") -> Any:
     return wrap
 
 
-def renamed_keyword(old: str, new: str) -> Any:
+def renamed_keyword(old: str, new: str, why: str = "one name for every system") -> Any:
     """A decorator: the function's keyword argument ``new`` also answers to ``old``, its name before, for one
-    release (a ``FutureWarning`` naming the new one); both at once is a ``TypeError``."""
+    release (a ``FutureWarning`` naming the new one and ``why``); both at once is a ``TypeError``."""
     import functools
 
     def wrap(fn: Any) -> Any:
         @functools.wraps(fn)
         def inner(*args: Any, **kwargs: Any) -> Any:
-            _take_renamed(fn.__name__, kwargs, old, new)
+            _take_renamed(fn.__name__, kwargs, old, new, why)
             return fn(*args, **kwargs)
 
         return inner

@@ -68,7 +68,11 @@ def law_forces(law_id: int, params: np.ndarray, d_m: np.ndarray, dd_m_s: np.ndar
     ``law_id`` and parameters ``params`` (a law's ``LAW_ID`` and ``params()``), the compressions ``d_m``
     (m) and their rates ``dd_m_s`` (m/s), shape (p,) each, in the path's order (a hysteretic law's
     state follows it)."""
-    out = np.empty(np.size(d_m))
-    _core.law_force_many(law_id, params, np.ascontiguousarray(d_m, dtype=float),
-                         np.ascontiguousarray(dd_m_s, dtype=float), out)
+    d = np.ascontiguousarray(d_m, dtype=float)
+    dd = np.ascontiguousarray(dd_m_s, dtype=float)
+    if d.ndim != 1 or dd.shape != d.shape:
+        raise ValueError(f"law_forces: compressions of shape {d.shape} and rates of shape {dd.shape}; give "
+                         "two 1-D arrays of one length")
+    out = np.empty(d.size)
+    _core.law_force_many(law_id, params, d, dd, out)
     return out

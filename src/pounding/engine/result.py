@@ -41,7 +41,7 @@ class Outcome:
 
 @renamed_fields({"isolator_elastic": "elastic", "bumper_elastic": "contact_elastic",
                  "bumper_dissipation": "contact_dissipation"}, why="one ledger for every system")
-@dataclass(frozen=True)
+@dataclass(frozen=True, kw_only=True)
 class EnergyLedger:
     """Where the energy went over a run, J: a single mass's, a structure's or a pair's.
 
@@ -69,8 +69,9 @@ class EnergyLedger:
     contact_elastic : float
         Change of the contacts' laws' elastic energy (what they would give back when unloaded), J.
 
-    The names of 0.1 (``isolator_elastic``, ``bumper_elastic``, ``bumper_dissipation``) still answer for
-    one release, with a ``FutureWarning``.
+    The terms are given by keyword (their order changed from 0.1's); the names of 0.1
+    (``isolator_elastic``, ``bumper_elastic``, ``bumper_dissipation``) still answer for one release, with a
+    ``FutureWarning``.
 
     Examples
     --------
@@ -99,8 +100,10 @@ class EnergyLedger:
     @classmethod
     def of(cls, ledger: np.ndarray) -> "EnergyLedger":
         """The ledger of the core's run (its ``ledger``, the core's ``LEDGER`` slots)."""
-        return cls(*(float(ledger[k]) for k in (L_INPUT, L_VISCOUS, L_HYSTERETIC, L_BUMPER_LOSS, L_KINETIC,
-                                                L_ISOLATOR, L_BUMPER)))
+        return cls(**{name: float(ledger[k]) for name, k in (
+            ("input_work", L_INPUT), ("viscous", L_VISCOUS), ("hysteretic", L_HYSTERETIC),
+            ("contact_dissipation", L_BUMPER_LOSS), ("kinetic", L_KINETIC), ("elastic", L_ISOLATOR),
+            ("contact_elastic", L_BUMPER))})
 
     @property
     def residual(self) -> float:

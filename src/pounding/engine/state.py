@@ -9,8 +9,8 @@ from typing import TYPE_CHECKING, Any, Optional
 import numpy as np
 
 from .._checks import at_most, instance_of, real
-from .._errors import InputError, Problem
-from .layout import ACC_L, DEF_L, DEF_R, IN_L, IN_R, N_LAW_STATE, REGION, STATE_BASE, Z_L, ZETA
+from .._errors import InputError, Problem, renamed_keyword
+from .layout import ACC_L, ACC_R, DEF_L, DEF_R, IN_L, IN_R, N_LAW_STATE, REGION, STATE_BASE, Z_L, ZETA
 from .layout import D as I_D
 from .layout import T as I_T
 from .layout import V as I_V
@@ -85,13 +85,23 @@ class State:
 
     def __post_init__(self) -> None:
         if self.layout is None:
+            if self.dofs != ONE_MASS_DOFS:
+                raise _bad_state("dofs", self.dofs, "are levels of a structure, but no layout is given (a "
+                                 "single mass's state has dofs ((0,),))", _FROM_A_RUN)
             vec = _state_vector(self.vector)
         else:
-            vec = _structure_vector(self.vector, self.layout)
-            object.__setattr__(self, "dofs", tuple(tuple(int(d) for d in levels) for levels in self.dofs))
-            object.__setattr__(self, "layout", dict(self.layout))
+            layout = _layout(self.layout)
+            vec = _structure_vector(self.vector, layout)
+            object.__setattr__(self, "dofs", _dofs(self.dofs, layout["v"] - layout["x"]))
+            object.__setattr__(self, "layout", layout)
         vec.setflags(write=False)
         object.__setattr__(self, "vector", vec)
+
+    def __setstate__(self, saved: dict) -> None:
+        """Unpickled (or deep-copied): the vector read-only again."""
+        for name, value in saved.items():
+            object.__setattr__(self, name, value)
+        self.vector.setflags(write=False)
 
     @classmethod
     def _from_kernel(cls, vector: np.ndarray) -> "State":
@@ -107,10 +117,12 @@ class State:
         vec.setflags(write=False)
         object.__setattr__(state, "vector", vec)
         object.__setattr__(state, "dofs", tuple(tuple(d) for d in dofs))
-        object.__setattr__(state, "layout", layout)
+        object.__setattr__(state, "layout", None if layout is None else dict(layout))  # (its own copy)
         return state
 
     @classmethod
+    @renamed_keyword("oscillator", "system")
+    @renamed_keyword("structure", "system")
     def at_rest(cls, system: "Oscillator | Structure | Adjacent", time_s: float = 0.0,
                 displacement_m: float = 0.0, velocity_m_s: float = 0.0) -> "State":
         """Relaxed contacts and isolators on their backbones, with the given time and motion.
@@ -142,6 +154,8 @@ class State:
         if not isinstance(system, Oscillator):  # (a structure, or a pair: through its assembly)
             from .assembly import assemble
 
+            at_most("displacement_m", d, MAX_SHIFT_M, " m", "give the shift in m")
+            at_most("velocity_m_s", v, MAX_SHIFT_VELOCITY_M_S, " m/s", "give the velocity in m/s")
             return shifted(assemble(system), time_s, d, v)
         b = system.bumpers
         if b is not None and not -b.gap_left_m <= d <= b.gap_right_m:
@@ -274,8 +288,9 @@ class State:
 
     @property
     def plastic_slips_m(self) -> np.ndarray:
-        """Slip ``u_i`` of each elastic-perfectly-plastic spring of the ``kinematic`` hysteretic elements
-        (a single mass's isolator's), m, shape (springs,)."""
+        """Slip ``u_i`` of each elastic-perfectly-plastic spring of the hysteretic elements (a single mass's
+        isolator's), m, shape (springs,): every element's springs in turn (those of an element of the
+        ``elastic`` rule, which has no slips, stay 0)."""
         lay = self._lay
         return self.vector[lay["base"]:lay["base"] + lay["n_springs"]].copy()
 
@@ -321,6 +336,8 @@ def shifted(asm: "Assembly", time_s: float, d: float, v: float) -> State:
 
 
 MAX_TIME_S = 1e12
+MAX_SHIFT_M = 100.0  # a structure shifted as one body (at_rest): beyond any gap
+MAX_SHIFT_VELOCITY_M_S = 1000.0
 MAX_DISPLACEMENT_M = 1e6
 MAX_VELOCITY_M_S = 1e6
 
@@ -379,3 +396,43 @@ def _structure_vector(vector: Any, layout: dict) -> np.ndarray:
     if bad.size:
         raise InputError(Problem.NOT_FINITE, f"state.vector[{bad[0]}]", float(vec[bad[0]]))
     return vec
+
+
+LAYOUT_KEYS = ("x", "v", "def", "in", "region", "acc", "z", "zeta", "base", "n_springs", "size")
+
+
+def _layout(layout: Any) -> dict:
+    """A state's layout, checked: the core system's (``system.layout``), each block after the one before."""
+    if not isinstance(layout, dict):
+        raise _bad_state("layout", layout, "is not a core system's layout (a dict; 0.1's StructureState took "
+                         "n_dof here)", "start from State.at_rest(system) or a run's final_state")
+    missing = [k for k in LAYOUT_KEYS if k not in layout]
+    if missing:
+        raise _bad_state("layout", layout, f"lacks {', '.join(missing)}", _FROM_A_RUN)
+    try:
+        at = [int(layout[k]) for k in LAYOUT_KEYS]
+    except (TypeError, ValueError):
+        raise _bad_state("layout", layout, "holds a place that is not a whole number",
+                         _FROM_A_RUN) from None
+    x, v, d, i, region, acc, z, zeta, base, n_springs, size = at
+    n, nc = v - x, i - d
+    if not (x == I_D and n >= 1 and d == v + n and region == i + nc and acc >= region
+            and z == acc + nc * (ACC_R - ACC_L) and zeta == z + nc * N_LAW_STATE and base == zeta + 1
+            and n_springs >= 0 and size == base + 2 * n_springs):
+        raise _bad_state("layout", layout, "is no layout the core makes (its blocks out of order)",
+                         _FROM_A_RUN)
+    return dict(zip(LAYOUT_KEYS, at)) | {k: v for k, v in layout.items() if k not in LAYOUT_KEYS}
+
+
+def _dofs(dofs: Any, n_dof: int) -> tuple:
+    """A state's levels' places, checked: a tuple per structure of its levels' dofs, each -1 (a fixed
+    base's ground) or one of the ``n_dof`` moving masses."""
+    try:
+        out = tuple(tuple(int(q) for q in levels) for levels in dofs)
+    except (TypeError, ValueError):
+        raise _bad_state("dofs", dofs, "are not a tuple of levels' places per structure",
+                         _FROM_A_RUN) from None
+    if not out or any(not -1 <= q < n_dof for levels in out for q in levels):
+        raise _bad_state("dofs", dofs, f"name a place outside the layout's {n_dof} moving masses",
+                         _FROM_A_RUN)
+    return out

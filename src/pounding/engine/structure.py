@@ -20,7 +20,7 @@ from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from .control import DEFAULT_MAX_STEPS, check_budget, new_control, run_interruptibly, steps_per_second
 from ._chatter import chatter_frame
-from .state import State, shifted
+from .state import LAYOUT_KEYS, State, shifted
 from .layout import CONTACT_COLUMNS
 from .run_args import DIRECT_CALL_STEPS, check_rtol, history_rate, kernel_forcing
 from .adjacent_result import AdjacentRun
@@ -37,11 +37,13 @@ def _check_state(state: Optional[State], model: Structure | Adjacent, asm: Assem
     if state is None:
         return shifted(asm, 0.0, 0.0, 0.0)
     instance_of("state", state, State, "pounding.State (State.at_rest(structure) or a run's final_state)")
-    size = asm.system.layout["size"]
-    if state.vector.size != size or state.dofs != asm.dofs or state.n_dof != asm.system.n:
+    lay = asm.system.layout
+    if state.vector.size != lay["size"] or state.dofs != asm.dofs or any(
+            state._lay[k] != lay[k] for k in LAYOUT_KEYS):
         raise InputError(Problem.BAD_STATE, "state", state,
-                         why=f"is a state of {state.vector.size} numbers and levels {state.dofs}, where this "
-                             f"structure's have {size} and {asm.dofs}",
+                         why=f"is a state of {state.vector.size} numbers, levels {state.dofs} and "
+                             f"{state.n_contacts} contact slots, where this structure's have {lay['size']}, "
+                             f"{asm.dofs} and {lay['in'] - lay['def']}",
                          fix=_FIX)
     if not np.all(np.isfinite(state.vector)):
         raise InputError(Problem.BAD_STATE, "state", state, why="holds a number that is not finite",
