@@ -105,7 +105,7 @@ ENTRIES = {
     "Record": (pd_.Record, {"t": [0.0, 0.5, 1.0], "accel": [0.0, 1.0, 0.0]}, {"t", "accel"}),
     "State.at_rest": (
         pd_.State.at_rest,
-        {"oscillator": OSC, "time_s": 0.0, "displacement_m": 0.0, "velocity_m_s": 0.6},
+        {"system": OSC, "time_s": 0.0, "displacement_m": 0.0, "velocity_m_s": 0.6},
         set(),
     ),
     "State": (pd_.State, {"vector": pd_.State.at_rest(OSC).vector}, {"vector"}),
