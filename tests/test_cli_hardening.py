@@ -304,15 +304,15 @@ def test_cell_formats_numbers_text_and_gaps():
 def test_a_ctrl_c_while_the_campaign_is_written_says_it_is_complete(tmp_path, monkeypatch):
     """Ctrl-C after the last step, while the files are written: they are all written, and the line
     says the campaign is complete (it said "complete = 0")."""
-    from pounding.cli import _runs
+    from pounding.cli import _campaign
 
-    save = _runs._save_campaign
+    save = _campaign._save_campaign
 
     def save_and_interrupt(result, out):
         os.kill(os.getpid(), signal.SIGINT)  # (held off while the files are written)
         save(result, out)
 
-    monkeypatch.setattr(_runs, "_save_campaign", save_and_interrupt)
+    monkeypatch.setattr(_campaign, "_save_campaign", save_and_interrupt)
     out = _run("campaign", "--preset", "paper-damped", "--out", str(tmp_path / "c"), "--fmin", "1.5",
                "--fmax", "1.6", "--steady", "fixed", "--cycles", "5")
     assert out.exit_code == 130, out.output

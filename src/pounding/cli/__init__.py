@@ -7,7 +7,7 @@ atomically, answers bad input with exit code 2 and a line naming the field and t
 run that stopped early with 1, and Ctrl-C with 130 and a line saying what was kept.
 """
 
-from . import _continue, _design, _diagram, _lab, _paper, _runs, _spectrum, _study  # noqa: F401 - they register the commands
+from . import _continue, _design, _diagram, _lab, _paper, _runs, _campaign, _spectrum, _study  # noqa: F401 - they register the commands
 from ._app import app
 
 __all__ = ["app"]
