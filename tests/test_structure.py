@@ -407,7 +407,9 @@ def test_the_command_line_runs_a_building_s_file(tmp_path):
                                  "--duration", "8", "--contacts", str(links)])
     assert result.exit_code == 0, result.output
     assert "contacts at the links" in result.output and "ground" in result.output
-    assert list(pd.read_csv(links).columns[:3]) == ["link", "level_first", "level_second"]
+    written = pd.read_csv(links)
+    assert list(written.columns[:3]) == ["contact", "level_first", "level_second"]
+    assert len(written) > 0 and set(written["contact"]) <= {"link 0", "link 1"}
 
 
 @st.composite
@@ -873,6 +875,20 @@ def test_impacts_of_a_building_and_of_a_pair_take_the_impacting_pair_s_effective
     np.testing.assert_array_equal(run.first.excursion_m,
                                   run.first.displacement_max - run.first.displacement_min)
     assert {"first_displacement_m", "second_drift_max_m", "link_force_n"} <= set(run.to_xarray().data_vars)
+    # every contact of the pair in one table, in the order they began, each named and with its levels
+    every = run.contacts
+    assert len(every) == len(run.first.contacts) + len(run.second.contacts) + len(run.links)
+    assert every["t_start_s"].is_monotonic_increasing
+    for name, part, own in (("first", run.first.contacts, "level_first"),
+                            ("second", run.second.contacts, "level_second")):
+        mine = every[every["contact"].str.startswith(name)]
+        assert mine["contact"].tolist() == [f"{name} wall {w} {side}" for w, side in zip(part.wall, part.side)]
+        assert mine[own].tolist() == part["level"].tolist()
+        assert mine.drop(columns=["contact", "level_first", "level_second"]).to_numpy().tolist() == \
+            part.drop(columns=["wall", "level", "side"]).to_numpy().tolist()
+    at_links = every[every["contact"].str.startswith("link")]
+    assert at_links["t_start_s"].tolist() == run.links["t_start_s"].tolist()
+    assert set(every["contact"]) >= {"first wall 0 left", "link 0"}
 
 
 def test_one_state_for_every_system():

@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from .._errors import InputError, Problem
-from ..engine.layout import C_T_END, C_T_START, C_V_IN, CONTACT_COLS
+from ..engine.layout import A_TSTART, C_T_END, C_T_START, C_V_IN, CONTACT_COLS, N_ACC
 from . import _hybrid as hy
 
 
@@ -73,7 +73,7 @@ def at_section(vec: np.ndarray, layout: dict, n_contacts: int) -> np.ndarray:
     t = out[0]
     for c in range(n_contacts):
         if out[layout["in"] + c]:
-            out[layout["acc"] + 7 * c] -= t  # (its running totals' first: the contact's start, A_TSTART)
+            out[layout["acc"] + N_ACC * c + A_TSTART] -= t  # (its running totals' start time)
     out[0] = 0.0
     return out
 

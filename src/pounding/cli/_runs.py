@@ -75,7 +75,8 @@ def simulate(
     """Simulate a harmonic excitation or a record and summarise the run (exact extrema, contacts, energy).
 
     SYSTEM.toml may be a structure of several masses (examples/building_moat.toml), or two adjacent ones
-    (examples/adjacent_buildings.toml): a row per level; --contacts then writes the links' contacts."""
+    (examples/adjacent_buildings.toml): a row per level; --contacts then writes every contact, at the walls
+    and the links."""
     from ..engine import State
     from ..engine import simulate as run_simulation
 
@@ -194,7 +195,7 @@ def _simulate_structure(building: Any, exc: Any, what: str, duration: float, sam
         console.print(levels)
     with interrupts_deferred() as held:
         if out["contacts"] is not None:
-            write_csv(run.links if pair else run.contacts, out["contacts"])
+            write_csv(run.contacts, out["contacts"])
             console.print(f"contacts -> {out['contacts']}")
         if out["history"] is not None:
             write_csv(run.to_dataframe(), out["history"])

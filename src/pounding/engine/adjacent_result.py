@@ -103,6 +103,29 @@ class AdjacentRun(Outcome):
         })
 
     @property
+    def contacts(self) -> pd.DataFrame:
+        """Every contact of the pair in the order they began: ``contact`` (``first wall 0 left``, ``second
+        wall 1 right``, ``link 0``: the names of :attr:`chatters`), ``level_first`` and ``level_second``
+        (the levels it joins: a wall's level on its own structure's side, NaN on the other), then the
+        columns of :attr:`links` from ``t_start_s`` on (``v_in_m_s``: the first's level less the
+        second's at a link, the level's own at a wall)."""
+        frames = []
+        for name, part in (("first", self.first), ("second", self.second)):
+            walls = part.contacts
+            level = walls["level"].astype(float)
+            frames.append(pd.DataFrame({
+                "contact": [f"{name} wall {w} {side}" for w, side in zip(walls["wall"], walls["side"])],
+                "level_first": level if name == "first" else np.nan,
+                "level_second": level if name == "second" else np.nan,
+                **{c: walls[c] for c in CONTACT_COLUMNS[3:]}}))
+        links = self.links
+        frames.append(pd.DataFrame({"contact": [f"link {k}" for k in links["link"]],
+                                    "level_first": links["level_first"].astype(float),
+                                    "level_second": links["level_second"].astype(float),
+                                    **{c: links[c] for c in CONTACT_COLUMNS[3:]}}))
+        return pd.concat(frames, ignore_index=True).sort_values("t_start_s", kind="stable", ignore_index=True)
+
+    @property
     def link_impacts(self) -> pd.DataFrame:
         """The paper's per-impact quantities (Sect. 3.5), one row per contact at a link: ``link``,
         ``level_first``, ``level_second``, ``t_start_s``, then the columns of
