@@ -882,7 +882,8 @@ def test_impacts_of_a_building_and_of_a_pair_take_the_impacting_pair_s_effective
     for name, part, own in (("first", run.first.contacts, "level_first"),
                             ("second", run.second.contacts, "level_second")):
         mine = every[every["contact"].str.startswith(name)]
-        assert mine["contact"].tolist() == [f"{name} wall {w} {side}" for w, side in zip(part.wall, part.side)]
+        names = [f"{name} wall {w} {side}" for w, side in zip(part.wall, part.side)]
+        assert mine["contact"].tolist() == names
         assert mine[own].tolist() == part["level"].tolist()
         assert mine.drop(columns=["contact", "level_first", "level_second"]).to_numpy().tolist() == \
             part.drop(columns=["wall", "level", "side"]).to_numpy().tolist()
