@@ -139,15 +139,23 @@ def test_toml_round_trip_and_bad_values(tmp_path):
 
 def test_a_state_whose_z_is_impossible_is_refused():
     osc = _nbs(1.0)
-    vec = pd_.State.at_rest(osc).vector.copy()
-    vec[ZETA] = 1.5  # beyond z_max = 1
+    rest = pd_.State.at_rest(osc)  # (without bumpers: no contact slots, z at the layout's place)
+    zeta = rest.layout["zeta"]
+    vec = rest.vector.copy()
+    vec[zeta] = 1.5  # beyond z_max = 1
     with pytest.raises(pd_.InputError) as info:
-        pd_.simulate(osc, pd_.Harmonic(0.05, 1.0), 0.1, pd_.State(vec))
-    assert info.value.field == f"state.vector[{ZETA}]"
-    vec[ZETA] = 0.5  # a z for an isolator without the spring
-    with pytest.raises(pd_.InputError):
+        pd_.simulate(osc, pd_.Harmonic(0.05, 1.0), 0.1, pd_.State(vec, rest.dofs, rest.layout))
+    assert info.value.field == f"state.vector[{zeta}]"
+    vec[zeta] = 0.5  # a z for an isolator without the spring
+    with pytest.raises(pd_.InputError, match="no isolator here has a Bouc-Wen spring"):
         pd_.simulate(pd_.Oscillator(500.0, pd_.Isolator((K_POST,))), pd_.Harmonic(0.05, 1.0), 0.1,
-                     pd_.State(vec))
+                     pd_.State(vec, rest.dofs, rest.layout))
+    # 0.1's vector of a mass without bumpers (two unused contact slots): the same check, at 0.1's place
+    old = np.zeros(ZETA + 1)
+    old[ZETA] = 1.5
+    with pytest.raises(pd_.InputError) as info, pytest.warns(FutureWarning, match="0.1's"):
+        pd_.simulate(osc, pd_.Harmonic(0.05, 1.0), 0.1, pd_.State(old))
+    assert info.value.field == f"state.vector[{zeta}]"
 
 
 def test_model_family_with_a_bouc_wen_isolator(tmp_path):

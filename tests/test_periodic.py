@@ -12,6 +12,7 @@ from hypothesis import strategies as st
 
 import pounding as pd_
 from pounding.analysis import _hybrid as hy
+from pounding.engine.simulate import kernel_system
 from pounding.engine.layout import DEF_L, DEF_R, IN_L, IN_R, STATE_BASE
 from pounding.engine.layout import D as I_D
 from pounding.engine.layout import V as I_V
@@ -117,7 +118,7 @@ def test_exact_monodromy_equals_finite_differences_of_the_engine(rule, events, d
     # and the propagation by the modes' exponentials ends where the engine ends
     _, x_end = hy.oscillator_monodromy(shooter.h, shooter.system, vec, run.event_table, vec[0] + period,
                                        exc.omega_rad_s, exc.peak_m_s2, exc.phase)
-    end = hy.coordinates(hy.Hybrid.of(osc), run.final_state.vector)
+    end = hy.coordinates(hy.Hybrid.of(osc, kernel_system(osc).layout), run.final_state.vector)
     # each coordinate to 1e-8 of its own scale: lengths (D, compressions, slips) of the orbit's size,
     # the velocity (the second) of that size times the forcing's rate or of itself
     scale = np.full(end.size, size)

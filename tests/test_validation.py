@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 import pounding as pd_
-from pounding.engine.layout import DEF_R, IN_R, STATE_BASE, Z_L, Z_R
+from pounding.engine.layout import DEF_R, IN_R, REGION, STATE_BASE, Z_L, Z_R, ZETA
 from pounding._errors import Problem
 
 ISO = pd_.Isolator([38e3, 18e3, 2e3], [0.015, 0.04], "kinematic", 1000.0)
@@ -266,3 +266,29 @@ def test_a_tiny_mass_in_toml_is_named(tmp_path):
     path.write_text(OSC.to_toml_text().replace("mass_kg = 500.0", "mass_kg = 1e-300"))
     assert "1e-300" in path.read_text()
     _raises(lambda: pd_.Oscillator.from_toml(path), "mass_kg", Problem.TOO_SMALL)
+
+
+def test_a_mass_without_bumpers_is_the_one_level_structure_without_walls():
+    bare = OSC.without_bumpers()
+    exc = pd_.Harmonic(0.3, 1.2)
+    run = pd_.simulate(bare, exc, 3.0, pd_.State.at_rest(bare, velocity_m_s=0.2))
+    end = run.final_state
+    assert end.n_contacts == 0 and end.in_contact == () and end.layout is not None
+    assert not run.bumper_force_left.any() and not run.bumper_force_right.any()
+    assert run.contact_table.size == 0
+    assert np.any(end.plastic_slips_m != 0.0)  # (the isolator yielded: its springs' state is carried)
+    one = pd_.Structure.from_oscillator(bare)
+    assert not one.walls
+    np.testing.assert_array_equal(pd_.simulate(one, exc, 3.0, pd_.State.at_rest(one, velocity_m_s=0.2))
+                                  .final_state.vector, end.vector)
+    # 0.1's vector of it (two unused contact slots) continues the run as its own state does, with a warning
+    lay, old = end.layout, np.zeros(STATE_BASE + end.plastic_slips_m.size * 2)
+    old[:3] = end.vector[:3]  # (t, D, V)
+    old[REGION] = end.vector[lay["region"]]
+    old[ZETA:] = end.vector[lay["zeta"]:]  # (z, then the slips and their directions)
+    with pytest.warns(FutureWarning, match="0.1's"):
+        legacy = pd_.simulate(bare, exc, 1.0, pd_.State(old))
+    again = pd_.simulate(bare, exc, 1.0, end)
+    np.testing.assert_array_equal(legacy.final_state.vector, again.final_state.vector)
+    # and a state with its bumpers' numbers is refused for it, as a bumperless state is for a mass with them
+    _raises(lambda: pd_.simulate(OSC, exc, 1.0, end), "state")

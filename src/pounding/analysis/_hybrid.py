@@ -13,8 +13,8 @@ saltation matrix ``S = I + (f_m' - f_m) grad(g)^T / (grad(g) . f_m)``.
 
 The coordinates ``x``: ``D`` (m), ``V`` (m/s), the bumpers' compressions ``delta_L``,
 ``delta_R`` (m), then the kinematic isolator's slips ``u_i`` (m).  Where the engine has the
-same system in its state vector (``engine.layout``), :func:`coordinates` and :func:`mode_of`
-read it.
+same system in its state vector (its core system's layout), :func:`coordinates` and :func:`mode_of`
+read it; without bumpers there are no compressions.
 """
 
 from __future__ import annotations
@@ -25,19 +25,13 @@ import numpy as np
 from threadpoolctl import threadpool_limits
 
 from ..engine.layout import (ACT_CONTACT, ACT_REGION, ACT_RELEASE, ACT_REVERSAL, E_ACTION, E_INDEX,  # noqa: F401  (the
-                              ACT_YIELD, DEF_L, DEF_R, IN_L, IN_R, REGION, STATE_BASE)  # events' codes, here)
+                              ACT_YIELD)  # events' codes, here)
 from ..engine.kernels import System
 from ..engine.kernels import monodromy as exact_monodromy
-from ..engine.layout import D as I_D
-from ..engine.layout import V as I_V
 from ..model import Oscillator
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from ..model.contact_laws import is_rigid, linear_form
-
-I_DL, I_DR = 2, 3  # the compressions' places in x
-FIRST_SLIP = 4
-
 
 def unsupported(system: "Oscillator | Structure | Adjacent") -> str | None:
     """Why the monodromy of this system (one mass, a structure or a pair) cannot be composed exactly here
@@ -83,8 +77,9 @@ class NoExactMonodromy(Exception):
 
 
 class Hybrid(NamedTuple):
-    """One mass's numbers (SI units) its shooting coordinates and their constraints are read by (the
-    propagation itself takes the core's system: :func:`monodromy`)."""
+    """One mass's numbers (SI units) its shooting coordinates and their constraints are read by, and where
+    its core system's state vector holds them (``lay``: the system's layout; the propagation itself takes
+    the core's system: :func:`monodromy`)."""
 
     mass: float
     c_d: float
@@ -94,9 +89,10 @@ class Hybrid(NamedTuple):
     gaps: tuple[float, float]         # left, right (inf without bumpers)
     stiffness: tuple[float, float]    # of the bumpers, N/m
     damping: tuple[float, float]      # N s/m
+    lay: dict                         # the core system's layout
 
     @classmethod
-    def of(cls, oscillator: Oscillator) -> "Hybrid":
+    def of(cls, oscillator: Oscillator, layout: dict) -> "Hybrid":
         iso = oscillator.isolator
         b = oscillator.bumpers
         if b is None:
@@ -110,7 +106,23 @@ class Hybrid(NamedTuple):
                       for f, law in zip(forms, (b.left, b.right)))
             c = tuple(float(f[1]) if f else 0.0 for f in forms)
         return cls(float(oscillator.mass_kg), float(iso.damping_n_s_m), np.array(iso.slopes_n_m, dtype=float),
-                   np.array(iso.breakpoints_m, dtype=float), iso.hysteresis == "kinematic", gaps, k, c)
+                   np.array(iso.breakpoints_m, dtype=float), iso.hysteresis == "kinematic", gaps, k, c,
+                   dict(layout))
+
+    @property
+    def n_contacts(self) -> int:
+        """The bumpers' contact slots: 2 (left, right), or 0 without bumpers."""
+        return self.lay["in"] - self.lay["def"]
+
+    @property
+    def compressions(self) -> tuple[int, ...]:
+        """The bumpers' compressions' places in ``x`` (left, right; none without bumpers)."""
+        return tuple(range(2, 2 + self.n_contacts))
+
+    @property
+    def first_slip(self) -> int:
+        """The first slip's place in ``x``."""
+        return 2 + self.n_contacts
 
     @property
     def n_slips(self) -> int:
@@ -119,25 +131,30 @@ class Hybrid(NamedTuple):
     @property
     def size(self) -> int:
         """Length of ``x``."""
-        return FIRST_SLIP + self.n_slips
+        return self.first_slip + self.n_slips
 
 
 def coordinates(h: Hybrid, vec: np.ndarray) -> np.ndarray:
     """``x`` from an engine state vector."""
-    return np.concatenate(([vec[I_D], vec[I_V], vec[DEF_L], vec[DEF_R]],
-                           vec[STATE_BASE:STATE_BASE + h.n_slips]))
+    return vec[coordinate_places(h)]
 
 
 def coordinate_places(h: Hybrid) -> list[int]:
     """Where :func:`coordinates` reads ``x`` in an engine state vector."""
-    return [I_D, I_V, DEF_L, DEF_R, *range(STATE_BASE, STATE_BASE + h.n_slips)]
+    lay = h.lay
+    return [lay["x"], lay["v"], *range(lay["def"], lay["in"]), *range(lay["base"], lay["base"] + h.n_slips)]
 
 
 def mode_of(h: Hybrid, vec: np.ndarray) -> tuple:
-    """``(in contact left, in contact right, slip directions or the backbone branch)``."""
+    """``(in contact left, in contact right, slip directions or the backbone branch)`` (never in contact
+    without bumpers)."""
+    lay = h.lay
     n = h.slopes.size - 1
-    iso = tuple(vec[STATE_BASE + n:STATE_BASE + 2 * n].tolist()) if h.kinematic else int(vec[REGION])
-    return bool(vec[IN_L]), bool(vec[IN_R]), iso
+    base = lay["base"]
+    iso = tuple(vec[base + n:base + 2 * n].tolist()) if h.kinematic else int(vec[lay["region"]])
+    if not h.n_contacts:
+        return False, False, iso
+    return bool(vec[lay["in"]]), bool(vec[lay["in"] + 1]), iso
 
 
 def one_blas_thread() -> threadpool_limits:

@@ -20,8 +20,6 @@ import numpy as np
 import pandas as pd
 
 from .._errors import InputError
-from ..model.adjacent import Adjacent
-from ..model.structure import Structure
 from .witnesses import _witness_table, branch_responses
 
 ON_BRANCH_RTOL = 1e-3   # a step lies on a branch when alpha and the excursion agree this closely
@@ -36,22 +34,14 @@ def window_states(system: Any, sweep: Any) -> Iterator[tuple[int, float, Any]]:
     relative to it), as a guess for :func:`periodic_orbit`, :func:`continuation` or :func:`lyapunov`
     under ``Harmonic(sweep.a_g, freq_hz)``."""
     from ..engine.state import State
-    from ..engine.simulate import kernel_system
     from ..engine.assembly import assemble
     from ._shooting import at_section
 
-    if isinstance(system, (Structure, Adjacent)):
-        asm = assemble(system)
-        layout, n_contacts = asm.system.layout, len(asm.pairs)
-
-        def state_of(vec: np.ndarray) -> Any:
-            return State._of(vec, asm.dofs, asm.system.layout)
-    else:
-        layout, n_contacts = kernel_system(system).layout, 2  # (one mass: its two bumpers' slots)
-        state_of = State
+    asm = assemble(system)
+    layout, n_contacts = asm.system.layout, len(asm.pairs)
     for i in range(int(sweep.steps_done)):
         vec = at_section(np.array(sweep.window_states[i], dtype=float), layout, n_contacts)
-        yield i, float(sweep.freqs_hz[i]), state_of(vec)
+        yield i, float(sweep.freqs_hz[i]), State._of(vec, asm.dofs, layout)
 
 
 def _on(branch: Any, freq_hz: float, alpha: float, excursion_m: float) -> bool:

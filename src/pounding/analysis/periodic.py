@@ -26,12 +26,11 @@ import numpy as np
 
 from .._errors import InputError, Problem, renamed_keyword
 from ..engine import Run, State, simulate
-from ..engine.layout import C_SLOT, C_T_END, C_T_START, C_V_IN, DEF_L, DEF_R, REGION, STATE_BASE, ZETA
-from ..engine.layout import D as I_D
-from ..engine.layout import T as I_T
-from ..engine.layout import V as I_V
+from ..engine.layout import C_SLOT, C_T_END, C_T_START, C_V_IN
+from ..engine.assembly import assemble
 from ..engine.run_args import kernel_forcing
-from ..engine.simulate import NotAState, check_oscillator, check_state, kernel_system, short_run
+from ..engine.state import ONE_MASS_DOFS, one_mass_layout
+from ..engine.simulate import NotAState, check_oscillator, check_state, short_run
 from ..excitation import Harmonic
 from ..model import Oscillator
 from ..model.adjacent import Adjacent
@@ -221,7 +220,7 @@ def periodic_orbit(
         vec, res, jac, frozen, it, message = shooter.solve(np.array(guess.vector, dtype=float), tol, max_iter)
     # the state one period on: the same point of the orbit, with the running totals of a contact in
     # progress its own (the guess's otherwise)
-    state = simulate(system, excitation, period, State(vec), sample_rate_hz=0).final_state
+    state = simulate(system, excitation, period, shooter._state(vec), sample_rate_hz=0).final_state
     run = simulate(system, excitation, period, state, sample_rate_hz=samples_per_period / period)
     mult = multipliers_of(jac)
     names = tuple(shooter.names(vec, frozen))
@@ -241,16 +240,18 @@ class _Shooter(_Newton):
         self.fell_back = ""  # why the exact monodromy gave way to finite differences, if it did
         # what depends on the oscillator alone: from ``like``, a shooter of the same oscillator
         same = like is not None and like.osc is oscillator
-        self.h = like.h if same else hy.Hybrid.of(oscillator)
-        self.system = like.system if same else kernel_system(oscillator)  # (the kernel's arguments)
+        self.asm = like.asm if same else assemble(oscillator)  # (the kernel's arguments)
+        self.system = self.asm.system
+        self.h = like.h if same else hy.Hybrid.of(oscillator, self.system.layout)
+        self.lay = self.h.lay
         self._forcing: Any = None  # (the excitation as the kernel takes it: made at the first run)
         bw = oscillator.isolator.bouc_wen
         self.z_max = bw.z_max if bw is not None else 0.0
         self.scale_d = 1e-3
         # where ``coords`` reads the state vector, and the layouts met so far by mode (a solver asks
         # for one several times a run)
-        self._at = like._at if same else np.array(hy.coordinate_places(self.h) + ([ZETA] if self.z_max > 0.0
-                                                                                  else []))
+        self._at = like._at if same else np.array(hy.coordinate_places(self.h) + (
+            [self.lay["zeta"]] if self.z_max > 0.0 else []))
         self._layouts: dict = like._layouts if same else {}
 
     def coords(self, vec: np.ndarray) -> np.ndarray:
@@ -278,17 +279,17 @@ class _Shooter(_Newton):
         n = h.size + (self.z_max > 0.0)
         follows = np.zeros(n)  # dx_i = follows_i dD for the entries that are not free
         free = [0, 1]
-        for touching, row, sign, side in ((in_l, hy.I_DL, -1.0, 0), (in_r, hy.I_DR, 1.0, 1)):
+        for touching, row, sign, side in zip((in_l, in_r), h.compressions, (-1.0, 1.0), (0, 1)):
             if touching:
                 follows[row] = sign
-            elif h.damping[side] > 0.0 and self.osc.bumpers is not None:
+            elif h.damping[side] > 0.0:
                 free.append(row)
         if h.kinematic:
             for i, s in enumerate(iso):
                 if s != 0.0:
-                    follows[hy.FIRST_SLIP + i] = 1.0
+                    follows[h.first_slip + i] = 1.0
                 elif i not in frozen:
-                    free.append(hy.FIRST_SLIP + i)
+                    free.append(h.first_slip + i)
         if self.z_max > 0.0:
             free.append(n - 1)
         free_idx = np.array(sorted(free))
@@ -309,7 +310,8 @@ class _Shooter(_Newton):
 
     def labels(self) -> list[str]:
         """The names of ``coords``' entries."""
-        return (["D", "V", "delta_L", "delta_R"] + [f"u_{i}" for i in range(self.h.n_slips)]
+        bumpers = ["delta_L", "delta_R"][:self.h.n_contacts]
+        return (["D", "V", *bumpers] + [f"u_{i}" for i in range(self.h.n_slips)]
                 + (["z"] if self.z_max > 0.0 else []))
 
     def names(self, vec: np.ndarray, frozen: tuple = ()) -> list[str]:
@@ -320,16 +322,15 @@ class _Shooter(_Newton):
         """Indices (in ``coords``) of a Lyapunov spectrum's coordinates: D, V, a relaxing bumper's
         compression, the slips of ``slips`` (the springs that slip during the run), z."""
         keep = [0, 1]
-        keep += [row for side, row in ((0, hy.I_DL), (1, hy.I_DR))
-                 if self.osc.bumpers is not None and self.h.damping[side] > 0.0]
-        keep += [hy.FIRST_SLIP + i for i in sorted(slips)]
+        keep += [row for side, row in enumerate(self.h.compressions) if self.h.damping[side] > 0.0]
+        keep += [self.h.first_slip + i for i in sorted(slips)]
         if self.z_max > 0.0:
             keep.append(self.h.size)
         return np.array(keep)
 
     def section(self, vec: np.ndarray) -> np.ndarray:
         """(D, V) of a state vector, shape (2,)."""
-        return vec[[I_D, I_V]]
+        return vec[[self.lay["x"], self.lay["v"]]]
 
     # what a branch of orbits reads of each (analysis._follower, _detect)
     def extent(self, run: Run) -> tuple[float, float]:
@@ -373,13 +374,13 @@ class _Shooter(_Newton):
 
     def advance(self, exc: Harmonic, duration: float, vec: np.ndarray) -> Optional[np.ndarray]:
         """The state vector ``duration`` s on under ``exc`` (None where the engine stopped)."""
-        run = short_run(self.osc, exc, duration, vec, self.system)
+        run = short_run(self.osc, exc, duration, vec, self.asm)
         return np.array(run.vector) if run.success else None
 
     def at_section(self, vec: np.ndarray) -> np.ndarray:
         """The state vector moved to time 0 (a whole number of forcing periods back): a contact in
         progress keeps its start relative to the section."""
-        return at_section(vec, self.system.layout, 2)
+        return at_section(vec, self.lay, self.h.n_contacts)
 
     def _scales(self, free_idx: np.ndarray) -> np.ndarray:
         s = np.full(free_idx.size, self.scale_d)
@@ -392,7 +393,7 @@ class _Shooter(_Newton):
         try:
             if self._forcing is None:
                 self._forcing = kernel_forcing(self.exc)
-            run = short_run(self.osc, self.exc, self.period, vec, self.system, self._forcing)
+            run = short_run(self.osc, self.exc, self.period, vec, self.asm, self._forcing)
         except NotAState as exc:
             raise _Failed(f"a trial state left the system's states ({exc})") from None
         if not run.success:
@@ -400,11 +401,11 @@ class _Shooter(_Newton):
         return np.array(run.vector), run
 
     def _propagate(self, vec: np.ndarray, run: Run) -> tuple[np.ndarray, np.ndarray]:
-        return hy.oscillator_monodromy(self.h, self.system, vec, run.event_table, vec[I_T] + self.period,
+        return hy.oscillator_monodromy(self.h, self.system, vec, run.event_table, vec[0] + self.period,
                                        self.exc.omega_rad_s, self.exc.peak_m_s2, self.exc.phase)
 
     def _state(self, vec: np.ndarray) -> State:
-        return State(vec)
+        return State(vec, ONE_MASS_DOFS, one_mass_layout(self.lay))
 
     def _size_of(self, run: Run) -> float:
         """The orbit's size, m: its largest |D| (1e-6 m at least)."""
@@ -413,10 +414,11 @@ class _Shooter(_Newton):
     def _inwards(self, vec: np.ndarray, idx: int, step: float) -> float:
         """0 for a central difference along coordinate ``idx``, else the direction of a one-sided
         one: a compression (>= 0) inwards, z near ``z_max`` towards 0."""
-        if idx in (hy.I_DL, hy.I_DR):
+        zeta = self.lay["zeta"]
+        if idx in self.h.compressions:
             return 1.0
-        if self.z_max > 0.0 and idx == self.h.size and abs(vec[ZETA]) + step > self.z_max:
-            return 1.0 if vec[ZETA] < 0.0 else -1.0
+        if self.z_max > 0.0 and idx == self.h.size and abs(vec[zeta]) + step > self.z_max:
+            return 1.0 if vec[zeta] < 0.0 else -1.0
         return 0.0
 
     def _moved(self, vec: np.ndarray, dx: np.ndarray) -> np.ndarray:
@@ -424,27 +426,28 @@ class _Shooter(_Newton):
         constraints and the elastic rule's branch the one of the new D.  (Its numbers as Python's
         floats: the same arithmetic as numpy's scalars, at a fraction of their cost.)"""
         out = vec.copy()
-        h = self.h
+        h, lay = self.h, self.lay
         x, step = vec.tolist(), dx.tolist()
-        d = x[I_D] + step[0]
-        out[I_D] = d
-        out[I_V] = x[I_V] + step[1]
-        out[DEF_L] = max(0.0, x[DEF_L] + step[hy.I_DL])
-        out[DEF_R] = max(0.0, x[DEF_R] + step[hy.I_DR])
+        at_d, at_v, base = lay["x"], lay["v"], lay["base"]
+        d = x[at_d] + step[0]
+        out[at_d] = d
+        out[at_v] = x[at_v] + step[1]
+        for c, row in enumerate(h.compressions):
+            out[lay["def"] + c] = max(0.0, x[lay["def"] + c] + step[row])
         n = h.n_slips
         if n:
-            out[STATE_BASE:STATE_BASE + n] += dx[hy.FIRST_SLIP:hy.FIRST_SLIP + n]
+            out[base:base + n] += dx[h.first_slip:h.first_slip + n]
         if self.z_max > 0.0:
-            out[ZETA] = min(max(x[ZETA] + step[h.size], -self.z_max), self.z_max)
+            out[lay["zeta"]] = min(max(x[lay["zeta"]] + step[h.size], -self.z_max), self.z_max)
         in_l, in_r, iso = hy.mode_of(h, vec)
         if in_l:
-            out[DEF_L] = max(0.0, -d - h.gaps[0])
+            out[lay["def"]] = max(0.0, -d - h.gaps[0])
         if in_r:
-            out[DEF_R] = max(0.0, d - h.gaps[1])
+            out[lay["def"] + 1] = max(0.0, d - h.gaps[1])
         if h.kinematic:
             for i, s in enumerate(iso):
                 if s != 0.0:
-                    out[STATE_BASE + i] = d - s * float(h.breaks[i])
+                    out[base + i] = d - s * float(h.breaks[i])
         elif h.breaks.size:
-            out[REGION] = np.sign(d) * np.searchsorted(h.breaks, abs(d), side="right")
+            out[lay["region"]] = np.sign(d) * np.searchsorted(h.breaks, abs(d), side="right")
         return out

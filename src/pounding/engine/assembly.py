@@ -15,6 +15,7 @@ import numpy as np
 
 from .. import _core
 from ..model.adjacent import Adjacent
+from ..model.oscillator import Oscillator
 from ..model.structure import Structure
 from .layout import P_MAX, P_MIN, X_D_MAX, X_D_MIN
 
@@ -76,15 +77,18 @@ def clearances(asm: Assembly, run: _core.RunOutput) -> np.ndarray:
     return out
 
 
-def structures_of(model: Structure | Adjacent) -> tuple[tuple[Structure, ...], tuple]:
-    """(the structures, the links) of a model."""
+def structures_of(model: Oscillator | Structure | Adjacent) -> tuple[tuple[Structure, ...], tuple]:
+    """(the structures, the links) of a model (a single mass: the one-level structure it is)."""
     if isinstance(model, Adjacent):
         return model.structures, model.links
+    if isinstance(model, Oscillator):
+        return (Structure.from_oscillator(model),), ()
     return (model,), ()
 
 
-def assemble(model: Structure | Adjacent) -> Assembly:
-    """The core's system of one structure or two adjacent ones: their levels' dofs in order (a fixed
+def assemble(model: Oscillator | Structure | Adjacent) -> Assembly:
+    """The core's system of a single mass (the one-level structure it is), one structure or two adjacent
+    ones: their levels' dofs in order (a fixed
     base's level 0 is the ground), the storeys' linear springs and dashpots, the hysteretic elements (the
     isolator with a Bouc-Wen spring first, the other isolator, then the multi-linear storeys), and the
     contact slots (each structure's walls, left then right side, then the links).  One structure of one

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import math
+import warnings
 from typing import TYPE_CHECKING, Optional
 
 import numpy as np
@@ -11,8 +12,6 @@ from .._checks import instance_of, integer, positive
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
-from ..model.contact_laws import state_problem, stateless
-from ..model.contact_laws import N_LAW_STATE, KelvinVoigt
 from .control import (
     DEFAULT_MAX_STEPS,
     check_budget,
@@ -24,139 +23,64 @@ from .control import (
 )
 from .. import _core
 from ._system import Forcing, System
-from .layout import (DEF_L, DEF_R, IN_L, IN_R, REGION, STATE_BASE, X_A_MAX, X_A_MAX_T, X_D_MAX, X_D_MAX_T,
-                      X_D_MIN, X_D_MIN_T, Z_L, Z_R, ZETA, D, T, V)
+from .layout import X_A_MAX, X_A_MAX_T, X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T
 from .run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPLES,  # noqa: F401
                         MAX_SAMPLES, check_rtol, history_rate, kernel_forcing)
 from .result import EnergyLedger, Run
-from .state import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, ONE_MASS_DOFS, State
+from .assembly import Assembly, assemble
+from .state import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, State, one_mass_layout
+from .state_check import check_fits, check_layout
 
 if TYPE_CHECKING:
     from ..model.structure import Structure
-
-_NO_LAW = KelvinVoigt(1.0, 0.0)  # stands in for absent bumpers (never touched)
-
 
 def check_oscillator(oscillator: Oscillator, field: str = "system") -> None:
     """An InputError naming ``field`` unless ``oscillator`` is one."""
     instance_of(field, oscillator, Oscillator, "pounding.Oscillator")
 
 
-def check_state(state: Optional[State], oscillator: Oscillator) -> State:
-    """``state``, or rest at t = 0 when None; it must belong to a system like ``oscillator``."""
+_FIX = "start from State.at_rest(oscillator) or a final_state of this system"
+
+
+def check_state(state: Optional[State], oscillator: Oscillator, asm: Optional[Assembly] = None) -> State:
+    """``state``, or rest at t = 0 when None; it must belong to a system like ``oscillator`` (``asm``: its
+    assembly, when the caller has it)."""
     if state is None:
         return State.at_rest(oscillator)
     instance_of("state", state, State, "pounding.State (e.g. run.final_state)")
-    expected = STATE_BASE + 2 * (oscillator.isolator.n_branches - 1)
-    if state.layout is not None and not _one_mass_layout(state):
-        raise InputError(Problem.BAD_STATE, "state", state,
-                         why=f"is the state of a structure of levels {state.dofs}, not of a single mass",
-                         fix="start from State.at_rest(oscillator) or a final_state of this system")
-    if state.vector.size != expected:
-        raise InputError(Problem.BAD_STATE, "state", state,
-                         why=f"has {state.vector.size} numbers where this system's states have {expected} "
-                             "(it is from a system with another number of isolator branches)",
-                         fix="start from State.at_rest(oscillator) or a final_state of this system")
-    _check_state_fits(state, oscillator)
+    asm = assemble(oscillator) if asm is None else asm
+    state = _without_bumpers(state, asm)
+    check_layout(state, asm, _FIX)
+    check_fits(state.vector, asm, _FIX)
     return state
 
 
-def _one_mass_layout(state: State) -> bool:
-    """Whether a state a structure's run made is laid out as a single mass's (a structure of one level with
-    one wall, as a single mass's run on its bumpers makes it)."""
-    one = State._of(state.vector, ONE_MASS_DOFS, None)._lay
-    return state.dofs == ONE_MASS_DOFS and all(state.layout.get(k) == v for k, v in one.items())
-
-
-def _check_state_fits(state: State, oscillator: Oscillator) -> None:
-    """A state the system can be in: contacts, bumper surfaces and isolator springs agree.
-
-    Tolerances are relative (1e-9 of the system's lengths): a run's final state holds the
-    rounding of its last event.
-    """
-    _check_vector_fits(state.vector, oscillator)
-
-
-def _check_vector_fits(vec: np.ndarray, oscillator: Oscillator) -> None:
-    """:func:`_check_state_fits` of a state's raw vector (of the right size, its numbers finite), read
-    as Python floats (a solver's runs check one a run: numpy's scalars cost several times more)."""
-    x = vec.tolist()
-    d = x[D]
-    iso = oscillator.isolator
-    b = oscillator.bumpers
-    lengths = [abs(d), 1e-3, *iso.breakpoints_m] + ([b.gap_left_m, b.gap_right_m] if b else [])
-    tol = 1e-9 * max(lengths)
-    fix = "start from State.at_rest(oscillator) or a final_state of this system"
-
-    def bad(field: str, value: float, why: str) -> InputError:
-        return InputError(Problem.BAD_STATE, f"state.{field}", value, why=why, fix=fix)
-
-    comp = x[DEF_L], x[DEF_R]
-    touching = bool(x[IN_L]), bool(x[IN_R])
-    if b is None:
-        if any(touching) or any(comp):
-            raise bad("in_contact", touching, "has a bumper in contact or compressed, but the system has no "
-                                              "bumpers")
-    else:
-        for j, (side, gap, sign) in enumerate((("left", b.gap_left_m, -1.0), ("right", b.gap_right_m, 1.0))):
-            depth = sign * d - gap  # how far the mass is beyond this bumper's free surface
-            if touching[j] and abs(depth - comp[j]) > tol:
-                raise bad(f"bumper_compression_m[{j}]", comp[j],
-                          f"differs from the {side} bumper's depth {depth:g} m at the state's displacement "
-                          "while in contact")
-            if not touching[j] and depth - comp[j] > tol:
-                raise bad("displacement_m", d, f"is inside the {side} bumper (its surface is at "
-                                               f"{sign * (gap + comp[j]):g} m) while not in contact")
-            at = (Z_L, Z_R)[j]
-            law = (b.left, b.right)[j]
-            if law.STATE_CHECK is stateless and not any(x[at:at + N_LAW_STATE]):
-                continue  # (a stateless law's block of zeros: what its check accepts, without numpy)
-            found = state_problem(law, vec[at:at + N_LAW_STATE], touching[j], comp[j], tol, side)
-            if found is not None:
-                q, value, why = found
-                raise bad(f"vector[{at + q}]", value, why)
-    z = x[ZETA]
-    if iso.bouc_wen is None and z != 0.0:
-        raise bad(f"vector[{ZETA}]", z,
-                  "is an isolator's Bouc-Wen z, but this isolator has no Bouc-Wen spring")
-    if iso.bouc_wen is not None and abs(z) > iso.bouc_wen.z_max * (1.0 + 1e-9):
-        raise bad(f"vector[{ZETA}]", z,
-                  f"is beyond the Bouc-Wen spring's largest |z|, {iso.bouc_wen.z_max:g}")
-    n_sp = iso.n_branches - 1
-    if iso.hysteresis == "elastic":
-        region = int(x[REGION])
-        edges = (0.0, *iso.breakpoints_m, np.inf)
-        a = abs(region)
-        wrong_side = region != 0 and np.sign(region) != np.sign(d)
-        if a > n_sp or not edges[a] - tol <= abs(d) <= edges[a + 1] + tol or wrong_side:
-            raise bad("isolator_branch", region, f"is not the backbone branch of displacement {d:g} m")
-        return
-    if x[REGION] != 0.0:
-        raise bad("isolator_branch", vec[REGION], "is set, but a kinematic isolator has no branch state")
-    for i, brk in enumerate(iso.breakpoints_m):
-        strain = d - x[STATE_BASE + i]
-        direction = x[STATE_BASE + n_sp + i]
-        beyond = abs(strain) > brk + tol if direction == 0.0 else abs(strain - direction * brk) > tol
-        if beyond:
-            raise bad(f"plastic_slips_m[{i}]", x[STATE_BASE + i],
-                      f"leaves spring {i}'s strain {strain:g} m beyond its yield displacement {brk:g} m")
+def _without_bumpers(state: State, asm: Assembly) -> State:
+    """A single mass's state laid out with its two bumpers' slots (0.1's, the core's one-mass layout), for a
+    mass without bumpers, out of contact: the same state in that system's layout (no contact slots)."""
+    lay = asm.system.layout
+    if state.layout is not None or state.dofs != asm.dofs or lay["in"] != lay["def"]:
+        return state
+    old, vec = state._lay, state.vector
+    dropped = (old["region"] - old["def"]) + (old["zeta"] - old["acc"])  # (the contacts' blocks)
+    contacts = np.concatenate((vec[old["def"]:old["region"]], vec[old["acc"]:old["zeta"]]))
+    if vec.size - dropped != lay["size"]:
+        return state  # (not that state: the layout check says why)
+    if contacts.any():
+        raise InputError(Problem.BAD_STATE, "state.in_contact", state.in_contact,
+                         why="has a bumper in contact or compressed, but the system has no bumpers", fix=_FIX)
+    kept = np.concatenate((vec[:old["def"]], vec[old["region"]:old["acc"]], vec[old["zeta"]:]))
+    warnings.warn(f"this state's vector is laid out as 0.1's for a mass without bumpers ({vec.size} numbers, "
+                  f"two unused contact slots); this system's states have {kept.size}, and it is taken as one "
+                  "of those: build one from State.at_rest(oscillator) or a run's final_state (its "
+                  "layout says where each number is)", FutureWarning, stacklevel=4)
+    return State._from_kernel(kept, lay)
 
 
 def kernel_system(oscillator: Oscillator) -> System:
-    """The oscillator as the core's system: one dof on its isolator, two contact slots (the left bumper,
-    sign -1, and the right one, +1, against the ground)."""
-    slopes, breaks, rule, bw = oscillator.isolator.kernel_arrays()
-    b = oscillator.bumpers
-    left = right = _NO_LAW
-    gap_l = gap_r = 0.0
-    if b is not None:
-        left, right, gap_l, gap_r = b.left, b.right, b.gap_left_m, b.gap_right_m
-    contacts = [_core.contact_slot(i=0, j=-1, sign=sign, gap_m=gap, law=law.LAW_ID, params=law.params())
-                for sign, gap, law in ((-1.0, gap_l, left), (1.0, gap_r, right))]
-    isolator = _core.element(i=0, j=-1, c_d=oscillator.isolator.damping_n_s_m, slopes=slopes, breaks=breaks,
-                             rule=rule)
-    return _core.system([float(oscillator.mass_kg)], np.zeros((1, 1)), np.zeros((1, 1)), [isolator], bw,
-                        b is not None, contacts)
+    """The oscillator as the core's system: the one-level structure it is, assembled (:func:`assemble`: its
+    bumpers the wall at its base, contact slot 0 the left, sign -1, and 1 the right)."""
+    return assemble(oscillator).system
 
 
 @renamed_keyword("oscillator", "system")
@@ -246,7 +170,8 @@ def simulate(
     rtol = check_rtol(rtol)
     max_events = integer("max_events", max_events, 1)
     max_steps = integer("max_steps", max_steps, 1)
-    state = check_state(state, system)
+    asm = assemble(system)
+    state = check_state(state, system, asm)
     rate = history_rate(sample_rate_hz, duration)
     t0 = state.time_s
     omega = excitation.omega_rad_s if isinstance(excitation, Harmonic) else 0.0
@@ -264,7 +189,7 @@ def simulate(
     # at most this many sub-intervals (every phase as fast as the fastest), plus one per event
     most = float(steps_per_second(contact_rate(system), omega)) * duration + knots
     return _run(system, excitation, duration, state, rtol, rate, max_events, max_steps,
-                direct=most < DIRECT_CALL_STEPS)
+                direct=most < DIRECT_CALL_STEPS, system=asm.system)
 
 
 # the work budget of a short run (``short_run``): a forcing period or two of any system fits in it
@@ -278,9 +203,10 @@ class ShortRun:
     and contact tables (``Run``'s columns), the exact extrema and the status."""
 
     __slots__ = ("vector", "event_table", "contact_table", "displacement_max", "displacement_min",
-                 "abs_acceleration_max", "excitation", "status")
+                 "abs_acceleration_max", "excitation", "status", "layout")
 
-    def __init__(self, out: _core.RunOutput, excitation: Harmonic, status: int) -> None:
+    def __init__(self, out: _core.RunOutput, excitation: Harmonic, status: int, layout: dict) -> None:
+        self.layout = layout  # (the core system's)
         self.vector = out.state
         self.event_table = out.events
         self.contact_table = out.contacts
@@ -301,7 +227,7 @@ class ShortRun:
 
     @property
     def final_state(self) -> State:
-        return State._from_kernel(self.vector)
+        return State._from_kernel(self.vector, self.layout)
 
 
 class NotAState(Exception):
@@ -310,47 +236,42 @@ class NotAState(Exception):
 
 
 def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, state: State | np.ndarray,
-              system: Optional[System] = None, forcing: Optional[Forcing] = None) -> ShortRun:
+              asm: Optional[Assembly] = None, forcing: Optional[Forcing] = None) -> ShortRun:
     """A run of a period or so, events only, for the periodic-orbit solvers' many runs: the state
     checked, the arguments trusted (the caller checked them), the kernel called in this thread
     (no helper thread: Ctrl-C lands when it returns) within ``SHORT_RUN_STEPS`` sub-intervals
     (status ``BUDGET`` beyond).
 
     ``state`` may be a raw state vector (the solvers' own: only what ties it to this system is
-    checked, and one that is none of its states raises :class:`NotAState`); ``system`` the
-    oscillator's :func:`kernel_system` and ``forcing`` the excitation's :func:`kernel_forcing`, when
+    checked, and one that is none of its states raises :class:`NotAState`); ``asm`` the
+    oscillator's :func:`assemble` and ``forcing`` the excitation's :func:`kernel_forcing`, when
     the caller keeps them for many runs.  A continuation makes some 15,000 runs of about 12 us in the
     kernel each: the public ``simulate``'s checks and ``Run`` took 90 us a run around them.
     """
+    if asm is None:
+        asm = assemble(oscillator)
+    lay = asm.system.layout
     if isinstance(state, np.ndarray):
-        # the moves of a solver change the continuous numbers only: those are checked here, and a
-        # vector that fails is checked in full (for the message)
-        size = STATE_BASE + 2 * (oscillator.isolator.n_branches - 1)
+        # the moves of a solver change the continuous numbers only: those are checked here (a vector that
+        # fails: in full, for the message)
         x = state.tolist()
-        fits = (state.size == size and all(map(math.isfinite, x))
-                and abs(x[D]) <= MAX_DISPLACEMENT_M and abs(x[V]) <= MAX_VELOCITY_M_S
-                and x[DEF_L] >= 0.0 and x[DEF_R] >= 0.0)
         try:
-            if fits:  # (no State made: its vector's copy is what the kernel takes)
-                _check_vector_fits(state, oscillator)
-                vector, t0 = np.array(state, dtype=float), x[T]
-            else:
-                checked = State(state)
-                _check_state_fits(checked, oscillator)
-                vector, t0 = np.array(checked.vector), checked.time_s
+            if not (state.size == lay["size"] and all(map(math.isfinite, x))
+                    and abs(x[lay["x"]]) <= MAX_DISPLACEMENT_M and abs(x[lay["v"]]) <= MAX_VELOCITY_M_S):
+                check_layout(State(state, asm.dofs, one_mass_layout(lay)), asm, _FIX)  # (it says why)
+            check_fits(state, asm, _FIX)
         except InputError as exc:  # (the public checks' words, as the solver's failure)
             raise NotAState(str(exc)) from None
+        vector, t0 = np.array(state, dtype=float), x[0]
     else:
-        state = check_state(state, oscillator)
+        state = check_state(state, oscillator, asm)
         vector, t0 = np.array(state.vector), state.time_s
-    if system is None:
-        system = kernel_system(oscillator)
-    out = _core.run(system, kernel_forcing(excitation) if forcing is None else forcing, vector, t0 + duration,
-                    0.0, 1e-10, 10_000_000, False, new_control(SHORT_RUN_STEPS))
+    out = _core.run(asm.system, kernel_forcing(excitation) if forcing is None else forcing, vector,
+                    t0 + duration, 0.0, 1e-10, 10_000_000, False, new_control(SHORT_RUN_STEPS))
     status = out.status
     if status == Status.SUCCESS and not all(map(math.isfinite, out.extrema.tolist())):
         status = int(Status.NONFINITE)
-    return ShortRun(out, excitation, status)
+    return ShortRun(out, excitation, status, lay)
 
 
 def _run(oscillator: Oscillator, excitation: Harmonic | Record, duration: float, state: State, rtol: float,
@@ -366,6 +287,7 @@ def _run(oscillator: Oscillator, excitation: Harmonic | Record, duration: float,
         t0 + duration, 1.0 / rate if rate > 0 else 0.0, rtol, int(max_events), True, ctl), [ctl],
         direct=direct)
     ledger, extrema = out.ledger, out.per_dof(1)[0]
+    lay = system.layout
     status = Status(out.status)
     if status == Status.SUCCESS and not (np.all(np.isfinite(ledger)) and np.all(np.isfinite(extrema))):
         status = Status.NONFINITE
@@ -374,14 +296,22 @@ def _run(oscillator: Oscillator, excitation: Harmonic | Record, duration: float,
     cols = out.samples.T
     run = Run(
         t=cols[0], displacement=cols[1], velocity=cols[2], abs_acceleration=cols[3],
-        isolator_force=cols[4], bumper_force_left=cols[5], bumper_force_right=cols[6],
+        isolator_force=cols[4], **_bumper_forces(cols, lay),
         displacement_max=float(extrema[X_D_MAX]), displacement_max_time_s=float(extrema[X_D_MAX_T]),
         displacement_min=float(extrema[X_D_MIN]), displacement_min_time_s=float(extrema[X_D_MIN_T]),
         abs_acceleration_max=float(extrema[X_A_MAX]), abs_acceleration_max_time_s=float(extrema[X_A_MAX_T]),
         contact_table=out.contacts, event_table=out.events, energy=energy,
-        final_state=State._from_kernel(out.state),
+        final_state=State._from_kernel(out.state, lay),
         status=status, message=status.message, oscillator=oscillator, excitation=excitation,
         sample_rate_hz=rate, chatter_table=out.chatters)
     if status == Status.INTERRUPTED:
         raise Interrupted(run, round(run.final_state.time_s - t0, 6), duration, "simulated seconds")
     return run
+
+
+def _bumper_forces(cols: np.ndarray, layout: dict) -> dict:
+    """A single mass's run's bumper forces from its samples' columns (``t, D, V, a_abs, F_I`` then each
+    contact slot's force): zeros without bumpers."""
+    if layout["in"] == layout["def"]:
+        return {"bumper_force_left": np.zeros_like(cols[0]), "bumper_force_right": np.zeros_like(cols[0])}
+    return {"bumper_force_left": cols[5], "bumper_force_right": cols[6]}

@@ -38,15 +38,17 @@ class State:
         The core's state vector, read-only: time, each moving mass's displacement and velocity, each
         contact's compression and flag, each hysteretic element's branch, each contact's running totals
         and law state, the Bouc-Wen ``z``, then the springs' slips and slip directions.  Read it through
-        the properties (``time_s``, ``displacements_m``, ``in_contact``, ...).  A single mass's has
-        ``37 + 2 (n - 1)`` numbers for an isolator of ``n`` branches: its two contact slots are its
-        bumpers (left, right), present or not.
+        the properties (``time_s``, ``displacements_m``, ``in_contact``, ...).  A single mass's is the
+        one-level structure's it is: with bumpers, ``37 + 2 (n - 1)`` numbers for an isolator of ``n``
+        branches, its two contact slots its bumpers (left, right); without, no contact slots
+        (``5 + 2 (n - 1)`` numbers; 0.1's vector of a mass without bumpers, its two slots unused, is
+        still taken).
     dofs : tuple of tuple of int
         Each structure's levels' places among the moving masses (-1: the ground of a fixed base); a
         single mass: ``((0,),)``.
     layout : dict or None
         Where each block starts in ``vector`` (the core system's ``layout``); None for a single mass
-        (the core's one-mass layout).
+        with its bumpers (the core's one-mass layout).
 
     Examples
     --------
@@ -104,19 +106,23 @@ class State:
         self.vector.setflags(write=False)
 
     @classmethod
-    def _from_kernel(cls, vector: np.ndarray) -> "State":
-        """A single mass's state the engine itself produced: not checked again (a kernel's final state)."""
-        return cls._of(vector, ONE_MASS_DOFS, None)
+    def _from_kernel(cls, vector: np.ndarray, layout: Optional[dict] = None) -> "State":
+        """A single mass's state the engine itself produced (a kernel's final state), not checked again:
+        ``layout`` its core system's (one with bumpers, or None: the core's one-mass layout, kept as None)."""
+        return cls._of(vector, ONE_MASS_DOFS, layout)
 
     @classmethod
     def _of(cls, vector: np.ndarray, dofs: tuple, layout: Optional[dict]) -> "State":
-        """A state the engine made (of the system whose core ``layout`` it is; None: a single mass's): not
-        checked again."""
+        """A state the engine made (of the system whose core ``layout`` it is; None: a single mass's with
+        its bumpers, whose layout is kept as None): not checked again."""
         state = object.__new__(cls)
         vec = np.array(vector, dtype=float)
         vec.setflags(write=False)
         object.__setattr__(state, "vector", vec)
-        object.__setattr__(state, "dofs", tuple(tuple(d) for d in dofs))
+        dofs = tuple(tuple(d) for d in dofs)
+        if dofs == ONE_MASS_DOFS:
+            layout = one_mass_layout(layout)
+        object.__setattr__(state, "dofs", dofs)
         object.__setattr__(state, "layout", None if layout is None else dict(layout))  # (its own copy)
         return state
 
@@ -164,16 +170,10 @@ class State:
                              why=f"is inside the {side} bumper, whose surface is at {surface:g} m",
                              fix=f"give a displacement between {-b.gap_left_m:g} and {b.gap_right_m:g} m "
                                  "(a state in contact comes from a run's final_state)")
-        iso = system.isolator
-        n_sp = iso.n_branches - 1
-        vec = np.zeros(STATE_BASE + 2 * n_sp)
-        vec[I_T], vec[I_D], vec[I_V] = time_s, d, v
-        breaks = np.asarray(iso.breakpoints_m)
-        if iso.hysteresis == "elastic":
-            vec[REGION] = np.sign(d) * np.searchsorted(breaks, abs(d), side="right")
-        else:  # the springs that a monotonic push to d made slip keep that slip
-            vec[STATE_BASE:STATE_BASE + n_sp] = d - np.clip(d, -breaks, breaks)
-        return cls(vec)
+        from .assembly import assemble
+
+        rest = shifted(assemble(system), time_s, d, v)  # (the one-level structure the mass is)
+        return cls._from_kernel(rest.vector, rest.layout)
 
     # ------------------------------------------------------------------ where each block is
     @property
@@ -295,12 +295,20 @@ class State:
         return self.vector[lay["base"]:lay["base"] + lay["n_springs"]].copy()
 
     def __repr__(self) -> str:
-        if self.layout is None:
+        if self.dofs == ONE_MASS_DOFS and self.n_dof == 1:
             return (f"State(time_s={self.time_s:.6g}, displacement_m={self.displacement_m:.6g}, "
                     f"velocity_m_s={self.velocity_m_s:.6g}, in_contact={self.in_contact})")
         return (f"State(time_s={self.time_s:.6g}, displacements_m={self.displacements_m.round(9).tolist()}, "
                 f"dofs={self.dofs})")
 
+
+
+def one_mass_layout(layout: Optional[dict]) -> Optional[dict]:
+    """A single mass's state's ``layout``: None for the core's one-mass layout (a mass with its two bumpers'
+    contact slots), the core system's for one without bumpers."""
+    if layout is None or (layout["v"] - layout["x"] == 1 and layout["in"] - layout["def"] == 2):
+        return None
+    return layout
 
 
 def shifted(asm: "Assembly", time_s: float, d: float, v: float) -> State:

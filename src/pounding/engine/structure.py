@@ -12,15 +12,15 @@ import numpy as np
 
 from .. import _core
 from .._checks import instance_of, integer, positive
-from .._errors import InputError, Interrupted, Problem, Status
+from .._errors import Interrupted, Status
 from ..excitation import Harmonic, Record
-from ..model.contact_laws import state_problem
-from ..model.contact_laws import N_LAW_STATE, is_rigid, linear_form
+from ..model.contact_laws import is_rigid, linear_form
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from .control import DEFAULT_MAX_STEPS, check_budget, new_control, run_interruptibly, steps_per_second
 from ._chatter import chatter_frame
-from .state import LAYOUT_KEYS, State, shifted
+from .state import State, shifted
+from .state_check import check_fits, check_layout, contact_name
 from .layout import CONTACT_COLUMNS
 from .run_args import DIRECT_CALL_STEPS, check_rtol, history_rate, kernel_forcing
 from .adjacent_result import AdjacentRun
@@ -37,80 +37,9 @@ def _check_state(state: Optional[State], model: Structure | Adjacent, asm: Assem
     if state is None:
         return shifted(asm, 0.0, 0.0, 0.0)
     instance_of("state", state, State, "pounding.State (State.at_rest(structure) or a run's final_state)")
-    lay = asm.system.layout
-    if state.vector.size != lay["size"] or state.dofs != asm.dofs or any(
-            state._lay[k] != lay[k] for k in LAYOUT_KEYS):
-        raise InputError(Problem.BAD_STATE, "state", state,
-                         why=f"is a state of {state.vector.size} numbers, levels {state.dofs} and "
-                             f"{state.n_contacts} contact slots, where this structure's have {lay['size']}, "
-                             f"{asm.dofs} and {lay['in'] - lay['def']}",
-                         fix=_FIX)
-    if not np.all(np.isfinite(state.vector)):
-        raise InputError(Problem.BAD_STATE, "state", state, why="holds a number that is not finite",
-                         fix=_FIX)
-    _check_state_fits(state, asm)
+    check_layout(state, asm, _FIX)
+    check_fits(state.vector, asm, _FIX)
     return state
-
-
-def _check_state_fits(state: State, asm: Assembly) -> None:
-    """A state the structure can be in: each contact's flag, compression and law state agree with the
-    levels' displacements (to 1e-9 of its lengths: a run's final state holds the rounding of its last
-    event), each element's branch and springs are ones its backbone has, a Bouc-Wen z within its bound."""
-    vec = state.vector
-    lay = asm.system.layout
-    n = asm.system.n
-    x = vec[lay["x"]:lay["x"] + n]
-    lengths = [float(np.abs(x).max(initial=0.0)), 1e-3] + [pair.gap_m for pair in asm.pairs]
-    lengths += [b for element in asm.elements for b in element.breaks]
-    tol = 1e-9 * max(lengths)
-
-    def bad(at: int, why: str) -> InputError:
-        return InputError(Problem.BAD_STATE, f"state.vector[{at}]", float(vec[at]), why=why, fix=_FIX)
-
-    for c, (i, j, sign, gap, law) in enumerate(asm.pairs):
-        comp, flag = float(vec[lay["def"] + c]), float(vec[lay["in"] + c])
-        depth = sign * (x[i] - (x[j] if j >= 0 else 0.0)) - gap  # (how far the pair is past the gap)
-        if flag not in (0.0, 1.0):
-            raise bad(lay["in"] + c, f"is contact {c}'s flag: 0 or 1")
-        if comp < 0.0:
-            raise bad(lay["def"] + c, f"is contact {c}'s compression: it is >= 0")
-        if flag == 1.0 and abs(depth - comp) > tol:
-            raise bad(lay["def"] + c, f"is contact {c}'s compression in contact, but its pair is {depth:g} m "
-                                      "past the gap")
-        if flag == 0.0 and depth - comp > tol:
-            raise bad(lay["in"] + c, f"says contact {c} is open, but its pair is {depth:g} m past the gap, "
-                                     f"inside the bumper's surface ({comp:g} m)")
-        at = lay["z"] + c * N_LAW_STATE
-        found = state_problem(law, vec[at:at + N_LAW_STATE], flag == 1.0, comp, tol, f"contact {c}")
-        if found is not None:
-            q, _, why = found
-            raise bad(at + q, why)
-    first = 0
-    for e, (i, j, slopes, breaks, rule) in enumerate(asm.elements):
-        n_sp = len(breaks)
-        u = x[i] - (x[j] if j >= 0 else 0.0)
-        if rule == 1:
-            region = float(vec[lay["region"] + e])
-            if region != round(region) or abs(region) > n_sp:
-                raise bad(lay["region"] + e, f"is element {e}'s branch: a whole number from {-n_sp} to "
-                                             f"{n_sp}")
-            first += n_sp  # (the elastic rule has no slips: its springs' places are unused)
-            continue
-        for k in range(n_sp):
-            slip = lay["base"] + first + k
-            direction = lay["base"] + lay["n_springs"] + first + k
-            if vec[direction] not in (-1.0, 0.0, 1.0):
-                raise bad(direction, f"is element {e}'s spring {k} slip direction: -1, 0 or 1")
-            if abs(u - vec[slip]) > breaks[k] * (1.0 + 1e-9) + tol:
-                raise bad(slip, f"is element {e}'s spring {k} slip, strained beyond its yield {breaks[k]:g} "
-                                f"m by the deformation {u:g} m")
-        first += n_sp
-    bw = asm.system_bw
-    z = float(vec[lay["zeta"]])
-    if bw[0] == 0.0 and z != 0.0:
-        raise bad(lay["zeta"], "is a Bouc-Wen z, but no isolator here has a Bouc-Wen spring")
-    if bw[0] != 0.0 and abs(z) > (bw[2] / (bw[3] + bw[4])) ** (1.0 / bw[5]) * (1.0 + 1e-9):
-        raise bad(lay["zeta"], "is beyond the Bouc-Wen spring's bound on z")
 
 
 def structure_rates(asm: Assembly) -> tuple[float, float]:
@@ -215,13 +144,3 @@ def run_of(model: Any, asm: Any, excitation: Any, rate: float, out: _core.RunOut
     if status == Status.INTERRUPTED:
         raise Interrupted(run, round(final.time_s - t0, 6), duration, "simulated seconds")
     return run
-
-
-def contact_name(slot: tuple, pair: bool) -> str:
-    """A contact slot's name in a structure's (or a pair's) tables: ``wall 0 left``, ``first wall 1 right``,
-    ``link 0``."""
-    owner, k, side = slot
-    if owner < 0:
-        return f"link {k}"
-    who = ("first " if owner == 0 else "second ") if pair else ""
-    return f"{who}wall {k} {('left', 'right')[side]}"

@@ -19,6 +19,7 @@ import pandas as pd
 
 from .._errors import InputError, Problem, Status
 from ..engine import State, simulate
+from ..engine.simulate import kernel_system
 from ..excitation import GRAVITY_M_S2, Harmonic
 from ..metrics.measured import measure_window, smooth
 from ..metrics.measured_contacts import FLIGHT_FIT_S
@@ -73,6 +74,7 @@ def measure_steps(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray, wind
     # the lab reads symmetric gaps about the laser's zero: an off-centre mass is centred
     centre = 0.0 if bumpers is None else 0.5 * (bumpers.gap_right_m - bumpers.gap_left_m)
     rows, impacts = [], []
+    layout = kernel_system(oscillator).layout  # (the window states')
     fs = chain.sample_rate_hz
     missing = {q: math.nan for q in MEASURED_COLUMNS} | {"window_start_s": math.nan}
     for i, f in enumerate(np.asarray(freqs_hz, dtype=float)):
@@ -85,7 +87,7 @@ def measure_steps(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray, wind
         lead = lead_cycles(chain, f)
         total = 2 * lead + cycles
         period = 1.0 / f
-        start = State._from_kernel(window_states[i])
+        start = State._from_kernel(window_states[i], layout)
         t0 = float(start.time_s)
         exc = Harmonic(a_g, float(f), phase=-(2.0 * math.pi * f * t0), g=g)
         # (within the sweep's own limits: a window it could not run is not measured)

@@ -428,7 +428,7 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
         omega_min_rad_s=plan.omega_min_rad_s, f_ref_hz=plan.f_ref_hz, g=GRAVITY_M_S2,
         window=window, cycles_run=cycles_run, period_multiple=period_multiple,
         window_states=window_states, window_strobes=window_strobes, step_start_s=step_start_s,
-        steps_done=done, final_state=State._from_kernel(state), status=status,
+        steps_done=done, final_state=State._from_kernel(state, system.layout), status=status,
         message=sweep_message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted),
         measurement=plan.measurement if measured is not None else None, measured=measured,
         measured_impacts=measured_impacts)

@@ -391,7 +391,9 @@ class SweepResult:
         total_gap_m = positive("total_gap_m", total_gap_m, "m")
         points = integer("points_per_cycle", points_per_cycle, 8)
         f = float(self.freqs_hz[i])
-        state = State._from_kernel(self.window_states[i])
+        from ..engine.simulate import kernel_system
+
+        state = State._from_kernel(self.window_states[i], kernel_system(self.oscillator).layout)
         omega = 2 * math.pi * f
         n_cyc = max(1, int(self.period_multiple[i]))
         exc = Harmonic(self.a_g, f, phase=-(omega * float(self.step_start_s[i])), g=self.g)

@@ -1,0 +1,142 @@
+"""Whether a state is one its system can be in: one check for every system (a single mass, a structure, a
+pair), against the system's assembly (:func:`check_fits`), and the check of its layout (:func:`check_layout`).
+
+A state fits when each contact's flag, compression and law state agree with the displacements, each
+hysteretic element's branch is the one of its deformation, each kinematic spring's slip leaves it within its
+yield (at its yield while it slips) and a Bouc-Wen z is within its bound.  Lengths are compared to 1e-9 of the
+system's own (a run's final state holds the rounding of its last event).
+"""
+
+from __future__ import annotations
+
+import math
+from bisect import bisect_right
+
+import numpy as np
+
+from .._errors import InputError, Problem
+from ..model.contact_laws import N_LAW_STATE, state_problem, stateless
+from .assembly import Assembly
+from .state import LAYOUT_KEYS, State
+
+
+def contact_name(slot: tuple, pair: bool) -> str:
+    """A contact slot's name in a structure's (or a pair's) tables: ``wall 0 left``, ``first wall 1 right``,
+    ``link 0``."""
+    owner, k, side = slot
+    if owner < 0:
+        return f"link {k}"
+    who = ("first " if owner == 0 else "second ") if pair else ""
+    return f"{who}wall {k} {('left', 'right')[side]}"
+
+
+def one_mass(asm: Assembly) -> bool:
+    """Whether the assembly is a single mass's (one structure, one moving level, no stand)."""
+    return asm.dofs == ((0,),) and int(asm.system.n) == 1
+
+
+def check_layout(state: State, asm: Assembly, fix: str) -> None:
+    """An InputError unless ``state`` is laid out as the assembly's states are (its size, levels and
+    blocks), its numbers finite."""
+    lay = asm.system.layout
+    if state.vector.size != lay["size"] or state.dofs != asm.dofs or any(
+            state._lay[k] != lay[k] for k in LAYOUT_KEYS):
+        n_contacts = lay["in"] - lay["def"]
+        if state.dofs == asm.dofs and state.n_contacts == n_contacts:
+            why = (f"has {state.vector.size} numbers where this system's states have {lay['size']} (it is "
+                   "from a system with another number of isolator branches or hysteretic storeys)")
+        elif one_mass(asm) and state.dofs == asm.dofs:
+            why = (f"has {state.n_contacts} contact slots where this system has {n_contacts} (it is from a "
+                   f"system {'with' if state.n_contacts else 'without'} bumpers)")
+        else:
+            whose = "this single mass's states" if one_mass(asm) else "this system's"
+            why = (f"is a state of {state.vector.size} numbers, levels {state.dofs} and {state.n_contacts} "
+                   f"contact slots, where {whose} have {lay['size']}, {asm.dofs} and {n_contacts}")
+        raise InputError(Problem.BAD_STATE, "state", state, why=why, fix=fix)
+    if not np.all(np.isfinite(state.vector)):
+        raise InputError(Problem.BAD_STATE, "state", state, why="holds a number that is not finite", fix=fix)
+
+
+def check_fits(vec: np.ndarray, asm: Assembly, fix: str) -> None:
+    """An InputError (its field a :class:`State` property's, or ``vector[i]``) unless the state vector
+    ``vec`` (laid out as the assembly's, its numbers finite) is a state the system can be in.
+
+    Read as Python floats: a solver checks one a run, and numpy's scalars cost several times more."""
+    x_all = vec.tolist()
+    lay = asm.system.layout
+    n = int(asm.system.n)
+    x = x_all[lay["x"]:lay["x"] + n]
+    single = one_mass(asm)
+    lengths = [max(map(abs, x), default=0.0), 1e-3] + [pair.gap_m for pair in asm.pairs]
+    lengths += [b for element in asm.elements for b in element.breaks]
+    tol = 1e-9 * max(lengths)
+
+    def bad(field: str, value: float, why: str) -> InputError:
+        return InputError(Problem.BAD_STATE, f"state.{field}", value, why=why, fix=fix)
+
+    def rel(i: int, j: int) -> float:
+        return x[i] - (x[j] if j >= 0 else 0.0)
+
+    pair = len(asm.dofs) > 1
+    for c, (i, j, sign, gap, law) in enumerate(asm.pairs):
+        comp, flag = x_all[lay["def"] + c], x_all[lay["in"] + c]
+        side = ("left", "right")[c] if single else contact_name(asm.slots[c], pair)
+        depth = sign * rel(i, j) - gap  # (how far the pair is past its gap: beyond the bumper's free surface)
+        if flag not in (0.0, 1.0):
+            raise bad(f"in_contact[{c}]", flag, f"is the {side} bumper's contact flag: 0 or 1")
+        if comp < 0.0:
+            raise bad(f"bumper_compression_m[{c}]", comp, f"is the {side} bumper's compression: it is >= 0")
+        if flag == 1.0 and abs(depth - comp) > tol:
+            raise bad(f"bumper_compression_m[{c}]", comp,
+                      f"differs from the {side} bumper's depth {depth:g} m at the state's displacement while "
+                      "in contact")
+        if flag == 0.0 and depth - comp > tol:
+            field = "displacement_m" if single else f"vector[{lay['x'] + i}]"
+            raise bad(field, x[i], f"puts the {side} bumper's pair {depth:g} m past its gap, inside its "
+                                   f"surface ({comp:g} m of compression) while not in contact")
+        at = lay["z"] + c * N_LAW_STATE
+        if law.STATE_CHECK is stateless and not any(x_all[at:at + N_LAW_STATE]):
+            continue  # (a stateless law's block of zeros: what its check accepts, without numpy)
+        found = state_problem(law, vec[at:at + N_LAW_STATE], flag == 1.0, comp, tol, side)
+        if found is not None:
+            q, value, why = found
+            raise bad(f"vector[{at + q}]", value, why)
+    first = 0
+    for e, (i, j, slopes, breaks, rule) in enumerate(asm.elements):
+        n_sp = len(breaks)
+        u = rel(i, j)
+        who = "the isolator's" if single else f"element {e}'s"
+        if rule == 1:  # (elastic: the branch of its deformation; no slips, their places unused)
+            region = x_all[lay["region"] + e]
+            a = int(abs(region))
+            edges = (0.0, *breaks, math.inf)
+            if (region != round(region) or a > n_sp or not edges[a] - tol <= abs(u) <= edges[a + 1] + tol
+                    or (region != 0.0 and math.copysign(1.0, region) != math.copysign(1.0, u))):
+                field = "isolator_branch" if e == 0 else f"vector[{lay['region'] + e}]"
+                raise bad(field, region, f"is not {who} backbone branch at its deformation {u:g} m (that is "
+                                         f"{math.copysign(bisect_right(breaks, abs(u)), u):g})")
+            first += n_sp
+            continue
+        if x_all[lay["region"] + e] != 0.0:
+            raise bad(f"vector[{lay['region'] + e}]", x_all[lay["region"] + e],
+                      f"is {who} backbone branch, but a kinematic element has no branch state")
+        for k in range(n_sp):
+            slip = x_all[lay["base"] + first + k]
+            direction = x_all[lay["base"] + lay["n_springs"] + first + k]
+            if direction not in (-1.0, 0.0, 1.0):
+                raise bad(f"vector[{lay['base'] + lay['n_springs'] + first + k}]", direction,
+                          f"is {who} spring {k}'s slip direction: -1, 0 or 1")
+            strain = u - slip
+            brk = breaks[k]
+            if abs(strain) > brk + tol if direction == 0.0 else abs(strain - direction * brk) > tol:
+                raise bad(f"plastic_slips_m[{first + k}]", slip,
+                          f"leaves {who} spring {k}'s strain {strain:g} m beyond its yield displacement "
+                          f"{brk:g} m" + ("" if direction == 0.0 else " (or off it while it slips)"))
+        first += n_sp
+    bw = asm.system_bw
+    z = x_all[lay["zeta"]]
+    if bw[0] == 0.0 and z != 0.0:
+        raise bad(f"vector[{lay['zeta']}]", z, "is a Bouc-Wen z, but no isolator here has a Bouc-Wen spring")
+    if bw[0] != 0.0 and abs(z) > (bw[2] / (bw[3] + bw[4])) ** (1.0 / bw[5]) * (1.0 + 1e-9):
+        raise bad(f"vector[{lay['zeta']}]", z, "is beyond the Bouc-Wen spring's largest |z|, "
+                                               f"{(bw[2] / (bw[3] + bw[4])) ** (1.0 / bw[5]):g}")
