@@ -292,3 +292,37 @@ def test_a_mass_without_bumpers_is_the_one_level_structure_without_walls():
     np.testing.assert_array_equal(legacy.final_state.vector, again.final_state.vector)
     # and a state with its bumpers' numbers is refused for it, as a bumperless state is for a mass with them
     _raises(lambda: pd_.simulate(OSC, exc, 1.0, end), "state")
+
+
+def test_every_protocol_runs_a_mass_without_bumpers_from_a_state_laid_out_with_two_slots():
+    """A state with two bumpers' slots (0.1's layout, or a run's with bumpers) given to a mass without
+    bumpers: taken in its own layout, with a warning, by every protocol that takes a state."""
+    bare = pd_.Oscillator(500.0, pd_.Isolator([3.8e4, 2e3], [0.015], "kinematic", 1500.0))
+    with_them = pd_.Oscillator(500.0, bare.isolator, pd_.Bumpers(0.05, 0.05, pd_.KelvinVoigt(1.46e6, 50.0)))
+    exc = pd_.Harmonic(0.1, 1.5)
+    hit = pd_.simulate(with_them, pd_.Harmonic(0.4, 1.5), 4.0)  # (it pounds: its contacts' totals stay)
+    assert len(hit.contacts) and not any(hit.final_state.in_contact)
+    two_slots = pd_.State._of(hit.final_state.vector, hit.final_state.dofs, None)
+    assert two_slots.vector[STATE_BASE - 30:STATE_BASE - 2].any()  # (a finished contact's totals)
+    own = pd_.simulate(bare, exc, 1.0)  # (from rest: its own layout)
+    assert own.final_state.n_contacts == 0
+    with pytest.warns(FutureWarning, match="two bumpers' contact slots") as said:
+        run = pd_.simulate(bare, exc, 1.0, two_slots)
+    assert said[0].filename == __file__  # (the warning names the caller's line)
+    assert run.final_state.vector.size == own.final_state.vector.size
+    with pytest.warns(FutureWarning, match="two bumpers' contact slots"):
+        swept = pd_.sweep(bare, 0.1, [1.0, 1.5], cycles=6, measure_cycles=2, steady="fixed",
+                          state=two_slots)
+    assert swept.success
+    rest = pd_.State._of(pd_.State.at_rest(with_them).vector, ((0,),), None)
+    with pytest.warns(FutureWarning, match="two bumpers' contact slots"):
+        orbit = pd_.periodic_orbit(bare, exc, guess=rest)
+    assert orbit.converged and orbit.coordinates[:2] == ("D", "V") and "delta_L" not in orbit.coordinates
+    with pytest.warns(FutureWarning, match="two bumpers' contact slots"):
+        branch = pd_.continuation(bare, 0.1, (1.4, 1.6), guess=rest)
+    again = branch.orbit(0)
+    assert again.converged and again.state.n_contacts == 0
+    diagram = pd_.bifurcation_diagram(bare, 0.1, [1.4, 1.6], direction="up", transient_cycles=20,
+                                      record_cycles=4, max_period=2)
+    exponents = pd_.largest_exponents(diagram, cycles=20, align_cycles=4)
+    assert np.isfinite(exponents.data["largest_exponent"].values).all()

@@ -303,10 +303,6 @@ class Branch:
 
     def _state(self, index: int) -> Any:
         """Orbit ``index``'s state at its section."""
-        from ..model import Oscillator
-
-        if isinstance(self.oscillator, Oscillator):
-            return State(self.states[index])
         from ..engine.assembly import assemble
 
         asm = assemble(self.oscillator)

@@ -259,7 +259,8 @@ def _start_vector(osc: Any, sh: Any, a_g: float, freq_hz: float, phase: float, g
         return np.array(guess.state.vector, dtype=float)
     if isinstance(guess, State):
         try:
-            (check_structure_state if isinstance(osc, (Structure, Adjacent)) else check_state)(guess, osc)
+            check = check_structure_state if isinstance(osc, (Structure, Adjacent)) else check_state
+            guess = check(guess, osc)
         except InputError as exc:
             raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is not a state of this system ({exc})",
                              fix="give a state of this system, e.g. a run's final_state") from None

@@ -44,7 +44,7 @@ from .._checks import instance_of, integer
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from .._runner.progress import Progress, progress_reporter
 from ..engine import State, simulate
-from ..engine.simulate import check_oscillator, check_state, kernel_system
+from ..engine.simulate import check_oscillator, check_state
 from ..excitation import Harmonic
 from ..protocols.bifurcation_diagram import BifurcationDiagram, periods
 from . import _hybrid as hy
@@ -401,14 +401,11 @@ def largest_exponents(diagram: BifurcationDiagram, *, cycles: int = 200, align_c
         return replace(diagram, data=new)
 
     done = 0
-    several = isinstance(diagram.oscillator, (Structure, Adjacent))
-    asm = assemble(diagram.oscillator) if several else None
-
-    layout = (asm.system if asm is not None else kernel_system(diagram.oscillator)).layout
-    n_contacts = len(asm.pairs) if asm is not None else 2  # (one mass: its two bumpers' slots)
+    asm = assemble(diagram.oscillator)  # (a single mass: the one-level structure it is)
+    layout, n_contacts = asm.system.layout, len(asm.pairs)
 
     def state_of(vec: np.ndarray) -> Any:
-        return State._of(vec, asm.dofs, asm.system.layout) if asm is not None else State(vec)
+        return State._of(vec, asm.dofs, layout)
 
     with progress_reporter(progress, total, "largest Lyapunov exponents") as advance:
         try:

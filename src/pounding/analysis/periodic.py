@@ -211,7 +211,7 @@ def periodic_orbit(
                          expected="pounding.State (e.g. run.final_state)")
     else:
         try:
-            check_state(guess, system)
+            guess = check_state(guess, system)
         except InputError as exc:
             raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is not a state of this system ({exc})",
                              fix="give a state of this system, e.g. a run's final_state") from None

@@ -28,7 +28,7 @@ from .run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPL
                         MAX_SAMPLES, check_rtol, history_rate, kernel_forcing)
 from .result import EnergyLedger, Run
 from .assembly import Assembly, assemble
-from .state import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, State, one_mass_layout
+from .state import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, State, one_mass_layout, shifted
 from .state_check import check_fits, check_layout
 
 if TYPE_CHECKING:
@@ -44,11 +44,12 @@ _FIX = "start from State.at_rest(oscillator) or a final_state of this system"
 
 def check_state(state: Optional[State], oscillator: Oscillator, asm: Optional[Assembly] = None) -> State:
     """``state``, or rest at t = 0 when None; it must belong to a system like ``oscillator`` (``asm``: its
-    assembly, when the caller has it)."""
-    if state is None:
-        return State.at_rest(oscillator)
-    instance_of("state", state, State, "pounding.State (e.g. run.final_state)")
+    assembly, when the caller has it).  Returns the state to run from (a mass without bumpers: laid out as
+    its own, see :func:`_without_bumpers`)."""
     asm = assemble(oscillator) if asm is None else asm
+    if state is None:
+        return shifted(asm, 0.0, 0.0, 0.0)
+    instance_of("state", state, State, "pounding.State (e.g. run.final_state)")
     state = _without_bumpers(state, asm)
     check_layout(state, asm, _FIX)
     check_fits(state.vector, asm, _FIX)
@@ -56,25 +57,38 @@ def check_state(state: Optional[State], oscillator: Oscillator, asm: Optional[As
 
 
 def _without_bumpers(state: State, asm: Assembly) -> State:
-    """A single mass's state laid out with its two bumpers' slots (0.1's, the core's one-mass layout), for a
-    mass without bumpers, out of contact: the same state in that system's layout (no contact slots)."""
+    """A single mass's state laid out with two bumpers' contact slots (the core's one-mass layout: 0.1's
+    for every mass, or a run's with bumpers), given to a mass without bumpers: the same state in that
+    system's layout (no contact slots; a finished contact's running totals and the laws' states are left
+    behind), with a ``FutureWarning``; refused while a bumper touches or is compressed."""
     lay = asm.system.layout
     if state.layout is not None or state.dofs != asm.dofs or lay["in"] != lay["def"]:
         return state
     old, vec = state._lay, state.vector
     dropped = (old["region"] - old["def"]) + (old["zeta"] - old["acc"])  # (the contacts' blocks)
-    contacts = np.concatenate((vec[old["def"]:old["region"]], vec[old["acc"]:old["zeta"]]))
     if vec.size - dropped != lay["size"]:
         return state  # (not that state: the layout check says why)
-    if contacts.any():
+    if vec[old["def"]:old["region"]].any():
         raise InputError(Problem.BAD_STATE, "state.in_contact", state.in_contact,
-                         why="has a bumper in contact or compressed, but the system has no bumpers", fix=_FIX)
+                         why=f"has a bumper in contact or compressed (compressions "
+                             f"{state.bumper_compression_m} m), but the system has no bumpers", fix=_FIX)
     kept = np.concatenate((vec[:old["def"]], vec[old["region"]:old["acc"]], vec[old["zeta"]:]))
-    warnings.warn(f"this state's vector is laid out as 0.1's for a mass without bumpers ({vec.size} numbers, "
-                  f"two unused contact slots); this system's states have {kept.size}, and it is taken as one "
-                  "of those: build one from State.at_rest(oscillator) or a run's final_state (its "
-                  "layout says where each number is)", FutureWarning, stacklevel=4)
+    warnings.warn(f"this state has two bumpers' contact slots ({vec.size} numbers: a state of a mass with "
+                  "bumpers, or 0.1's layout for every mass), but the system has no bumpers: it is taken as "
+                  f"the same state in this system's layout ({kept.size} numbers); give a state of this "
+                  "system (State.at_rest(oscillator) or a run's final_state)", FutureWarning,
+                  stacklevel=_caller_level())
     return State._from_kernel(kept, lay)
+
+
+def _caller_level() -> int:
+    """The ``stacklevel`` of a warning that names the first caller outside the package."""
+    import sys
+
+    frame, level = sys._getframe(1), 1
+    while frame is not None and frame.f_globals.get("__name__", "").startswith("pounding"):
+        frame, level = frame.f_back, level + 1
+    return level
 
 
 def kernel_system(oscillator: Oscillator) -> System:
@@ -256,9 +270,13 @@ def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, sta
         # fails: in full, for the message)
         x = state.tolist()
         try:
-            if not (state.size == lay["size"] and all(map(math.isfinite, x))
-                    and abs(x[lay["x"]]) <= MAX_DISPLACEMENT_M and abs(x[lay["v"]]) <= MAX_VELOCITY_M_S):
+            if not (state.size == lay["size"] and all(map(math.isfinite, x))):
                 check_layout(State(state, asm.dofs, one_mass_layout(lay)), asm, _FIX)  # (it says why)
+            d, v = x[lay["x"]], x[lay["v"]]
+            if abs(d) > MAX_DISPLACEMENT_M or abs(v) > MAX_VELOCITY_M_S:
+                raise InputError(Problem.BAD_STATE, "state", (d, v),
+                                 why=f"has a displacement or a velocity beyond {MAX_DISPLACEMENT_M:g} m or "
+                                     f"{MAX_VELOCITY_M_S:g} m/s", fix=_FIX)
             check_fits(state, asm, _FIX)
         except InputError as exc:  # (the public checks' words, as the solver's failure)
             raise NotAState(str(exc)) from None

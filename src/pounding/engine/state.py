@@ -47,8 +47,9 @@ class State:
         Each structure's levels' places among the moving masses (-1: the ground of a fixed base); a
         single mass: ``((0,),)``.
     layout : dict or None
-        Where each block starts in ``vector`` (the core system's ``layout``); None for a single mass
-        with its bumpers (the core's one-mass layout).
+        Where each block starts in ``vector`` (the core system's ``layout``); None for the core's one-mass
+        layout (one level and two contact slots: a single mass with its bumpers, or a one-level
+        structure with one wall).
 
     Examples
     --------
@@ -113,8 +114,9 @@ class State:
 
     @classmethod
     def _of(cls, vector: np.ndarray, dofs: tuple, layout: Optional[dict]) -> "State":
-        """A state the engine made (of the system whose core ``layout`` it is; None: a single mass's with
-        its bumpers, whose layout is kept as None): not checked again."""
+        """A state the engine made (of the system whose core ``layout`` it is), not checked again.  The
+        core's one-mass layout (one level, two contact slots: a single mass with its bumpers, or a one-level
+        structure with one wall) is kept as None."""
         state = object.__new__(cls)
         vec = np.array(vector, dtype=float)
         vec.setflags(write=False)
@@ -365,7 +367,9 @@ def _state_vector(vector: Any) -> np.ndarray:
         raise InputError(Problem.NOT_A_NUMBER, "state.vector", vector) from None
     if vec.ndim != 1 or vec.size < STATE_BASE or (vec.size - STATE_BASE) % 2:
         raise _bad_state("vector", f"array of shape {vec.shape}",
-                         f"is no state vector (length {STATE_BASE} + 2 x (isolator branches - 1))",
+                         f"is no state vector of a single mass with bumpers (length {STATE_BASE} + 2 x "
+                         "(isolator branches - 1)); another system's state needs its layout: "
+                         "State(vector, dofs, layout) with a run's final_state's dofs and layout",
                          _FROM_A_RUN)
     bad = np.flatnonzero(~np.isfinite(vec))
     if bad.size:

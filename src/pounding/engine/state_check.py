@@ -43,8 +43,9 @@ def check_layout(state: State, asm: Assembly, fix: str) -> None:
             state._lay[k] != lay[k] for k in LAYOUT_KEYS):
         n_contacts = lay["in"] - lay["def"]
         if state.dofs == asm.dofs and state.n_contacts == n_contacts:
+            what = "isolator branches" if one_mass(asm) else "isolator branches or hysteretic storeys"
             why = (f"has {state.vector.size} numbers where this system's states have {lay['size']} (it is "
-                   "from a system with another number of isolator branches or hysteretic storeys)")
+                   f"from a system with another number of {what})")
         elif one_mass(asm) and state.dofs == asm.dofs:
             why = (f"has {state.n_contacts} contact slots where this system has {n_contacts} (it is from a "
                    f"system {'with' if state.n_contacts else 'without'} bumpers)")
@@ -118,7 +119,8 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str) -> None:
             first += n_sp
             continue
         if x_all[lay["region"] + e] != 0.0:
-            raise bad(f"vector[{lay['region'] + e}]", x_all[lay["region"] + e],
+            field = "isolator_branch" if e == 0 else f"vector[{lay['region'] + e}]"
+            raise bad(field, x_all[lay["region"] + e],
                       f"is {who} backbone branch, but a kinematic element has no branch state")
         for k in range(n_sp):
             slip = x_all[lay["base"] + first + k]

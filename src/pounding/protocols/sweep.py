@@ -210,7 +210,7 @@ def make_plan(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = 
         rate, why = structure_rate(oscillator)
     else:
         if state is not None:
-            check_state(state, oscillator)
+            state = check_state(state, oscillator)
         rate, why = isolator_rate(oscillator)
     # the least work the sweep can take: every step's fewest cycles
     least_cycles = n_cycles if steady == "fixed" else min(n_cycles, 2 * measure_cycles + 1)
