@@ -169,6 +169,17 @@ class PoundingWarning(UserWarning):
     """
 
 
+def outside_stacklevel() -> int:
+    """The ``stacklevel`` for a ``warnings.warn`` made by this function's caller that names the first caller
+    outside the package (the user's line, however deep in the package the warning is made)."""
+    import sys
+
+    frame, level = sys._getframe(1), 1
+    while frame is not None and frame.f_globals.get("__name__", "").startswith("pounding"):
+        frame, level = frame.f_back, level + 1
+    return level
+
+
 def warn_renamed(old: str, new: str, stacklevel: int = 3, why: str = "with its unit") -> None:
     """A ``FutureWarning`` that ``old`` (a field, column, TOML key or class) is now ``new`` (``why``): the
     old name works for one more release."""

@@ -9,7 +9,7 @@ from typing import TYPE_CHECKING, Optional
 import numpy as np
 
 from .._checks import instance_of, integer, positive
-from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
+from .._errors import InputError, Interrupted, Problem, Status, outside_stacklevel, renamed_keyword
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
 from .control import (
@@ -77,18 +77,8 @@ def _without_bumpers(state: State, asm: Assembly) -> State:
                   "bumpers, or 0.1's layout for every mass), but the system has no bumpers: it is taken as "
                   f"the same state in this system's layout ({kept.size} numbers); give a state of this "
                   "system (State.at_rest(oscillator) or a run's final_state)", FutureWarning,
-                  stacklevel=_caller_level())
+                  stacklevel=outside_stacklevel())
     return State._from_kernel(kept, lay)
-
-
-def _caller_level() -> int:
-    """The ``stacklevel`` of a warning that names the first caller outside the package."""
-    import sys
-
-    frame, level = sys._getframe(1), 1
-    while frame is not None and frame.f_globals.get("__name__", "").startswith("pounding"):
-        frame, level = frame.f_back, level + 1
-    return level
 
 
 def kernel_system(oscillator: Oscillator) -> System:
