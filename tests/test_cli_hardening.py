@@ -414,13 +414,14 @@ def test_a_grazing_of_both_bumpers_is_one_line():
 
     from pounding.cli._continue import _one_line_each
 
-    left = B(kind="grazing", side="left", freq_hz=1.6053052485, a_g=0.05)
-    right = B(kind="grazing", side="right", freq_hz=1.6053052498, a_g=0.05)
+    left = B(kind="grazing", side="wall0_left", freq_hz=1.6053052485, a_g=0.05)
+    right = B(kind="grazing", side="wall0_right", freq_hz=1.6053052498, a_g=0.05)
     fold = B(kind="fold", side="", freq_hz=1.6052636858, a_g=0.05)
     labels = [label for label, _ in _one_line_each([fold, left, right])]
-    assert labels == ["fold", "grazing (left and right)"]
-    far = B(kind="grazing", side="right", freq_hz=1.2350879755, a_g=0.05)
-    assert [label for label, _ in _one_line_each([left, far])] == ["grazing (left)", "grazing (right)"]
+    assert labels == ["fold", "grazing (wall0_left and wall0_right)"]
+    far = B(kind="grazing", side="wall0_right", freq_hz=1.2350879755, a_g=0.05)
+    labels = [label for label, _ in _one_line_each([left, far])]
+    assert labels == ["grazing (wall0_left)", "grazing (wall0_right)"]
 
 
 def test_wide_bounds_are_warned_about():

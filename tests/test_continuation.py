@@ -107,8 +107,8 @@ def test_bifurcations_are_located(damped: pd_.Branch) -> None:
             continue
         exc = pd_.Harmonic(b.a_g, b.freq_hz, phase=b.phase_rad)
         run = pd_.simulate(osc, exc, 1.0 / b.freq_hz, b.state, sample_rate_hz=0)
-        reach = run.displacement_max if b.side == "right" else -run.displacement_min
-        gap = osc.bumpers.gap_right_m if b.side == "right" else osc.bumpers.gap_left_m
+        reach = run.displacement_max if b.side == "wall0_right" else -run.displacement_min
+        gap = osc.bumpers.gap_right_m if b.side == "wall0_right" else osc.bumpers.gap_left_m
         assert reach == pytest.approx(gap, rel=1e-7)
     table = damped.bifurcation_table()
     assert list(table.kind) == kinds

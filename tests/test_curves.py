@@ -45,7 +45,7 @@ def upper_fold_curve(damped: tuple) -> pd_.BifurcationCurve:
 def test_grazing_curve_is_the_closed_form() -> None:
     osc = linear_with_bumpers()
     br = pd_.continuation(osc, 0.05, (0.5, 3.0))
-    right = [b for b in br.bifurcations if b.kind == "grazing" and b.side == "right"]
+    right = [b for b in br.bifurcations if b.kind == "grazing" and b.side == "wall0_right"]
     assert len(right) == 2  # (below and above the resonance, 1.42 Hz)
     curve = pd_.bifurcation_curve(osc, right[0], a_g=(0.02, 0.2), freqs_hz=(0.5, 3.0))
     df = curve.to_dataframe()

@@ -77,7 +77,7 @@ def test_grazing_amplitude_is_the_closed_form(name: str, omega: float,
                                               request: pytest.FixtureRequest) -> None:
     br = request.getfixturevalue(name)
     graze = [b for b in br.bifurcations if b.kind == "grazing"]
-    assert br.success and len(graze) == 1 and graze[0].side == "right"
+    assert br.success and len(graze) == 1 and graze[0].side == "wall0_right"
     assert f_of(graze[0].a_g) == pytest.approx(grazing_f(omega), rel=2e-6)
 
 

@@ -35,7 +35,7 @@ def test_linear_isolator_without_bumpers_has_both_exponents_minus_zeta_omega(dam
     osc = pd_.Oscillator(mass_kg=100.0, isolator=pd_.Isolator(slopes_n_m=[4000.0], damping_n_s_m=damping))
     spec = pd_.lyapunov(osc, pd_.Harmonic(0.05, 1.3), cycles=40, transient_cycles=300)
     expected = -damping / 200.0
-    assert spec.coordinates == ("D", "V") and spec.method == "exact" and spec.period == 1
+    assert spec.coordinates == ("x_0", "v_0") and spec.method == "exact" and spec.period == 1
     np.testing.assert_allclose(spec.exponents, [expected, expected], rtol=1e-9)
     np.testing.assert_allclose(spec.history[-1], [expected, expected], rtol=1e-9)
     assert spec.kaplan_yorke_dimension == 0.0 and not spec.chaotic

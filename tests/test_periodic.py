@@ -37,7 +37,7 @@ def test_linear_isolator_without_bumpers_is_the_closed_form():
         lam = np.roots([m, c, k])
         expected = np.exp(lam / f)
         np.testing.assert_allclose(np.sort_complex(orbit.multipliers), np.sort_complex(expected), rtol=1e-9)
-        assert orbit.stable and orbit.coordinates == ("D", "V")
+        assert orbit.stable and orbit.coordinates == ("x_0", "v_0")
 
 
 def _image(osc, exc, vec, period):
@@ -47,13 +47,13 @@ def _image(osc, exc, vec, period):
 
 
 def _fd_jacobian(osc, exc, vec, period, free, step):
-    """Central differences of the engine's map in the free coordinates (D, V, relaxing compressions,
+    """Central differences of the engine's map in the free coordinates (x_0, v_0, relaxing compressions,
     elastic springs' slips), the others kept on their constraints (depth in contact, slip at the
     breakpoint while slipping); written here from the state's meaning, not from the code under test."""
     n_sp = osc.isolator.n_branches - 1 if osc.isolator.hysteresis == "kinematic" else 0
-    place = {"D": I_D, "V": I_V, "delta_L": DEF_L, "delta_R": DEF_R,
+    place = {"x_0": I_D, "v_0": I_V, "delta_wall0_left": DEF_L, "delta_wall0_right": DEF_R,
              **{f"u_{i}": STATE_BASE + i for i in range(n_sp)}}
-    scale = {"V": exc.omega_rad_s}
+    scale = {"v_0": exc.omega_rad_s}
     cols = []
     for name in free:
         ends = []
@@ -104,7 +104,7 @@ def test_exact_monodromy_equals_finite_differences_of_the_engine(rule, events, d
     run = _image(osc, exc, vec, period)
     actions = set(run.event_table[:, 1].astype(int).tolist())
     assume({int(e) for e in events} <= actions)
-    from pounding.analysis.periodic import _Shooter
+    from pounding.analysis._shooter import _Shooter
 
     shooter = _Shooter(osc, exc, period, exact=True)
     free = shooter.names(vec)
@@ -116,9 +116,12 @@ def test_exact_monodromy_equals_finite_differences_of_the_engine(rule, events, d
     assume(np.abs(fd1 - fd2).max() <= 1e-7 * norm)  # (no grazing within the differences' reach)
     assert np.abs(exact - fd1).max() <= 1e-5 * norm, (free, exact, fd1)
     # and the propagation by the modes' exponentials ends where the engine ends
-    _, x_end = hy.oscillator_monodromy(shooter.h, shooter.system, vec, run.event_table, vec[0] + period,
-                                       exc.omega_rad_s, exc.peak_m_s2, exc.phase)
-    end = hy.coordinates(hy.Hybrid.of(osc, kernel_system(osc).layout), run.final_state.vector)
+    _, x_end = hy.monodromy(kernel_system(osc), vec, run.event_table, vec[0] + period, exc.omega_rad_s,
+                            exc.peak_m_s2, exc.phase)
+    n_sp = osc.isolator.n_branches - 1 if osc.isolator.hysteresis == "kinematic" else 0
+    fs = run.final_state.vector  # (D, V, the compressions, the slips: read by the state's layout)
+    end = np.array([fs[I_D], fs[I_V], fs[DEF_L], fs[DEF_R], *fs[STATE_BASE:STATE_BASE + n_sp]])
+    x_end = x_end[:end.size]  # (an elastic isolator's unused slips come last)
     # each coordinate to 1e-8 of its own scale: lengths (D, compressions, slips) of the orbit's size,
     # the velocity (the second) of that size times the forcing's rate or of itself
     scale = np.full(end.size, size)

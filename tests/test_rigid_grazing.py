@@ -46,7 +46,7 @@ def test_a_branch_is_continued_through_a_rigid_stop_s_grazing_with_the_map_s_squ
     branch = pounding.continuation(_oscillator(pounding.RigidStop(E)), A / 9.81, freqs_hz, tol=1e-12)
     assert branch.status == Status.SUCCESS, branch.message
     grazings = [b for b in branch.bifurcations if b.kind == "grazing"]
-    assert len(grazings) == 1 and grazings[0].located and grazings[0].side == "right"
+    assert len(grazings) == 1 and grazings[0].located and grazings[0].side == "wall0_right"
     bif = grazings[0]
     closed = grazing(W, ZETA, A, D, E, bif.phase_rad, 2.5, 3.5)
     # to the orbits' accuracy: tol 1e-12 of the length scale (5 m: the 10 m gap) over dC/df 7.7e-3 m/Hz
@@ -150,7 +150,7 @@ def test_a_grazing_of_both_stops_at_once_is_located_and_said_where_the_branch_st
     assert branch.status == Status.STEP_FAILED and "two stops at once" in branch.message
     (graze,) = branch.bifurcations
     closed = _grazing_a_g(1.3)
-    assert graze.kind == "grazing" and graze.side == "left and right" and graze.located
+    assert graze.kind == "grazing" and graze.side == "wall0_left and wall0_right" and graze.located
     assert abs(graze.value - closed) < 1e-9 * closed
     assert abs(graze.scaling_exponent - 0.25) < 0.01
 

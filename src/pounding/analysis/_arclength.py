@@ -27,10 +27,9 @@ from .._errors import InputError
 
 from ..engine import Run
 from ..excitation import Harmonic
-from ..model import Oscillator
 from ..model.dotted import get_value, set_value
-from .periodic import _Failed, _Shooter
-from .structure_periodic import _StructureShooter
+from ._shooter import _Shooter
+from ._shooting import _Failed
 
 
 @dataclass
@@ -79,7 +78,7 @@ class Family:
         labels = sh.labels()
         self.n = len(labels)
         self.scales = np.full(self.n, length_m)
-        self.scales[[i for i, name in enumerate(labels) if name == "V" or name.startswith("v_")]] *= omega_ref
+        self.scales[[i for i, name in enumerate(labels) if name.startswith("v_")]] *= omega_ref
         if sh.z_max > 0.0:
             self.scales[-1] = 1.0
 
@@ -123,8 +122,7 @@ class Family:
         sh = self._cache.get(key)
         if sh is None:
             osc, exc = self.system(p, a_g)
-            kind = _Shooter if isinstance(osc, Oscillator) else _StructureShooter
-            sh = kind(osc, exc, self.k / exc.freq_hz, self.exact, getattr(self, "_ref", None))
+            sh = _Shooter(osc, exc, self.k / exc.freq_hz, self.exact, getattr(self, "_ref", None))
             if len(self._cache) > 32:
                 self._cache.clear()
             self._cache[key] = sh

@@ -10,9 +10,10 @@ import numpy as np
 
 from .._checks import instance_of, integer, one_of, real
 from .._errors import InputError, Problem
-from ..engine.simulate import simulate
+from ..engine.assembly import structures_of
+from ..engine.layout import X_D_MAX, X_D_MIN
+from ..engine.simulate import ShortRun, simulate
 from ..excitation import Harmonic
-from ..model import Oscillator
 from . import _hybrid as hy
 
 METHODS = ("auto", "exact", "finite-difference")
@@ -90,16 +91,12 @@ def settled(oscillator: Any, excitation: Harmonic, settle_cycles: int) -> Any:
                          ) from None
 
 
-def length_scale(oscillator: Any, run: Any) -> float:
-    """The lengths' scale of a family of orbits, m: half the total gap, or the orbit's largest |D|
-    if larger (1e-6 m at least); a structure's: half its narrowest wall's or link's total gap, or
-    its levels' largest displacement."""
-    if isinstance(oscillator, Oscillator):
-        b = oscillator.bumpers
-        return max(b.total_gap / 2.0 if b is not None else 0.0, abs(run.displacement_max),
-                   abs(run.displacement_min), 1e-6)
-    parts = (run.first, run.second) if hasattr(run, "first") else (run,)
-    size = max(float(np.max(np.abs(np.concatenate((p.displacement_max, p.displacement_min))))) for p in parts)
-    structures, links = hy.structures_and_links(oscillator)
+def length_scale(system: Any, run: ShortRun) -> float:
+    """The lengths' scale of a family of orbits, m: half the narrowest wall's (a single mass's bumpers') or
+    link's total gap, or the levels' largest displacement over ``run`` if larger (1e-6 m at least)."""
+    levels = [d for dofs in run.asm.dofs for d in dofs if d >= 0]
+    ex = run.extrema[levels]
+    size = max(float(np.abs(ex[:, X_D_MAX]).max()), float(np.abs(ex[:, X_D_MIN]).max()))
+    structures, links = structures_of(system)
     gaps = [w.gap_left_m + w.gap_right_m for s in structures for w in s.walls] + [k.gap_m for k in links]
     return max(min(gaps) / 2.0 if gaps else 0.0, size, 1e-6)

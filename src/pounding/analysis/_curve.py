@@ -27,7 +27,7 @@ import numpy as np
 from ..engine import Run
 from ._arclength import Closure, Family, fold_test
 from ..engine.layout import E_T
-from .periodic import _Failed
+from ._shooting import _Failed
 
 
 @dataclass

@@ -15,7 +15,7 @@ from .._errors import InputError, Problem, Status
 from ._arclength import Closure, Family, Point, system_at
 from .branch import COLUMNS, Bifurcation, Branch
 from ..engine.layout import E_T
-from .periodic import _Failed
+from ._shooting import _Failed
 from ._detect import bifurcation_at, branch_point, detect, grazing_at, locate, other_direction
 from ._grazing import cross, double_grazing, fold_from_impacts, impacts_barely
 

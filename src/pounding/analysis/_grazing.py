@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Optional
 import numpy as np
 
 from ._arclength import Point
-from .periodic import _Failed
+from ._shooting import _Failed
 
 if TYPE_CHECKING:
     from ._follower import Follower

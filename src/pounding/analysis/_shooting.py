@@ -1,6 +1,5 @@
-"""Newton shooting on a stroboscopic map, whatever the system (one mass: ``periodic._Shooter``; a structure:
-``structure_periodic._StructureShooter``): the loop, the residual, the Jacobian (exact where the shooter
-can propagate the modes, else finite differences)."""
+"""Newton shooting on a stroboscopic map, whatever the system (its map: ``_shooter._Shooter``): the loop, the
+residual, the Jacobian (exact where the shooter can propagate the modes, else finite differences)."""
 
 from __future__ import annotations
 

@@ -56,11 +56,12 @@ class Bifurcation:
     index : int
         The branch's rows before it: it lies between rows ``index - 1`` and ``index``.
     side : str
-        ``"left"`` or ``"right"`` for a grazing, else ``""``.
+        The contact of a grazing (``"wall0_left"``, ``"wall0_right"``: a single mass's bumpers; a
+        structure's ``"wall<w>_<side>"``, ``"link<k>"``), else ``""``.
     direction : ndarray
-        For a period-doubling, the critical eigenvector in the coordinates ``D, V, delta_L,
-        delta_R, u_i (, z)`` (unscaled); for a branch point, the other branch's tangent (those
-        coordinates, then the parameter); else the branch's tangent's coordinate parts.
+        For a period-doubling, the critical eigenvector in the shooting coordinates (every one of
+        :attr:`PeriodicOrbit.coordinates`' names, unscaled); for a branch point, the other branch's
+        tangent (those coordinates, then the parameter); else the branch's tangent's coordinate parts.
     period_multiple : int
         The branch's period, in forcing periods.
     alpha : float

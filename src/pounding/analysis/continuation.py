@@ -26,8 +26,7 @@ import numpy as np
 from .._checks import instance_of, integer, positive, real
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..engine import State
-from ..engine.simulate import check_oscillator, check_state, simulate
-from ..engine.structure import check_structure_state
+from ..engine.simulate import check_oscillator, check_state, short_run
 from ..model.adjacent import Adjacent
 from ..model.dotted import why_unresolved
 from ..model.structure import Structure
@@ -259,8 +258,7 @@ def _start_vector(osc: Any, sh: Any, a_g: float, freq_hz: float, phase: float, g
         return np.array(guess.state.vector, dtype=float)
     if isinstance(guess, State):
         try:
-            check = check_structure_state if isinstance(osc, (Structure, Adjacent)) else check_state
-            guess = check(guess, osc)
+            guess = check_state(guess, osc)
         except InputError as exc:
             raise InputError(Problem.BAD_STATE, "guess", guess, why=f"is not a state of this system ({exc})",
                              fix="give a state of this system, e.g. a run's final_state") from None
@@ -272,7 +270,7 @@ def _first_run(sh: Any, a_g: float, freq_hz: float, phase: float, vec: np.ndarra
     from ..excitation import Harmonic
 
     state = sh._state(vec)
-    run = simulate(sh.osc, Harmonic(a_g, freq_hz, phase=phase), k / freq_hz, state, sample_rate_hz=0)
+    run = short_run(sh.model, Harmonic(a_g, freq_hz, phase=phase), k / freq_hz, state, sh.asm)
     if not run.success:
         raise InputError(Problem.BAD_STATE, "guess", state, why=f"cannot be shot from: {run.message}",
                          fix="start from another state, or a smaller a_g")

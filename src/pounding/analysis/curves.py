@@ -13,7 +13,6 @@ import pandas as pd
 from .._checks import instance_of, integer, one_of, real
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..engine.simulate import check_oscillator, check_state
-from ..engine.structure import check_structure_state
 from ..model import Oscillator
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
@@ -26,7 +25,7 @@ from .continuation import continuation
 from .curve_result import BifurcationCurve, CoexistenceMap, curve_table
 from .witnesses import check_basin_sample, check_sweeps, judge_matrix
 from ._through_sweeps import STEP_COLUMNS, through_sweeps
-from .periodic import _Failed
+from ._shooting import _Failed
 from ._args import exact_monodromy, length_scale, step_size, tolerance
 
 CURVE_KINDS = ("fold", "grazing")
@@ -117,7 +116,7 @@ def bifurcation_curve(
                          why="is on a branch in a number of the " "system, not in the forcing",
                          fix="continue the branch in 'freq_hz' or 'a_g' and pass its " "bifurcation")
     try:
-        (check_structure_state if several else check_state)(bifurcation.state, system)
+        check_state(bifurcation.state, system)
     except InputError as exc:
         raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind,
                          why=f"is not of this system ({exc})",

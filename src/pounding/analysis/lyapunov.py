@@ -51,12 +51,11 @@ from . import _hybrid as hy
 from ._args import exact_monodromy
 from .lyapunov_result import LyapunovSpectrum
 from ..engine.assembly import assemble
-from ..engine.structure import check_structure_state
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from ._shooting import at_section
-from .periodic import _Failed, _Shooter
-from .structure_periodic import _StructureShooter
+from ._shooter import _Shooter
+from ._shooting import _Failed
 
 MAX_CYCLES = 10_000_000
 MAX_PERIOD = 8  # the longest period (in forcing periods) a response is checked for
@@ -126,7 +125,7 @@ def lyapunov(system: Any, excitation: Harmonic, *, cycles: int = 1000,
     exact = exact_monodromy(system, method)
     if state is not None:
         instance_of("state", state, State, "pounding.State (e.g. run.final_state)")
-    state = check_structure_state(state, system) if structure else check_state(state, system)
+    state = check_state(state, system)
     if transient_cycles:
         run = simulate(system, excitation, transient_cycles / excitation.freq_hz, state, sample_rate_hz=0)
         if not run.success:
@@ -144,8 +143,7 @@ class _Tangent:
         self.exc = excitation
         self.period = 1.0 / excitation.freq_hz
         self.structure = isinstance(oscillator, (Structure, Adjacent))
-        shooter = _StructureShooter if self.structure else _Shooter
-        self.sh: Any = shooter(oscillator, excitation, self.period, exact)
+        self.sh = _Shooter(oscillator, excitation, self.period, exact)
         self.start = np.array(state.vector, dtype=float)
         self.fell_back = 0  # periods whose exact Jacobian gave way to finite differences
         if not self.structure:

@@ -27,9 +27,9 @@ class LyapunovSpectrum:
     exponents : ndarray, shape (n,)
         The exponents, 1/s, largest first (``-inf`` for a direction the map erases).
     coordinates : tuple of str
-        The tangent coordinates (``D``, ``V``, ``delta_L``, ``delta_R``, ``u_i``, ``z``; a
-        structure's as :attr:`StructurePeriodicOrbit.coordinates`): the exponents are of the
-        state they make up.
+        The tangent coordinates, named as :attr:`PeriodicOrbit.coordinates` (a single mass's ``x_0``,
+        ``v_0``, ``delta_wall0_left``, ``delta_wall0_right``, ``u_<i>``, ``z``): the exponents are of
+        the state they make up.
     history : ndarray, shape (cycles, n)
         The running estimates after each counted period, 1/s, in the order of ``exponents`` (the last
         row is ``exponents`` but for a periodic response, whose exponents are its Floquet values).
@@ -59,7 +59,7 @@ class LyapunovSpectrum:
     >>> osc = pounding.presets.paper_damped()
     >>> spec = pounding.lyapunov(osc, pounding.Harmonic(0.05, 1.5), cycles=200)
     >>> spec.coordinates
-    ('D', 'V', 'delta_L', 'delta_R', 'u_0')
+    ('x_0', 'v_0', 'delta_wall0_left', 'delta_wall0_right', 'u_0')
     >>> spec.largest < 0.0, spec.chaotic
     (True, False)
     """

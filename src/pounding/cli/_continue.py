@@ -128,7 +128,7 @@ def _freq_list(freqs) -> str:
 
 def _one_line_each(bifurcations: list) -> list:
     """``(label, bifurcation)`` per line of the summary: a grazing of both sides at one orbit (a
-    symmetric system's: both bumpers, or a wall's two sides) is one line, "grazing (left and right)" or
+    symmetric system's: a wall's two sides, a single mass's two bumpers) is one line,
     "grazing (wall0_left and wall0_right)", not two."""
     out: list = []
     for bif in bifurcations:

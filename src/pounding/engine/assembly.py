@@ -14,6 +14,7 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from .. import _core
+from .._checks import instance_of
 from ..model.adjacent import Adjacent
 from ..model.oscillator import Oscillator
 from ..model.structure import Structure
@@ -75,6 +76,13 @@ def clearances(asm: Assembly, run: _core.RunOutput) -> np.ndarray:
                        else (per_dof[i, X_D_MAX], per_dof[i, X_D_MIN]))
         out[c] = gap - (top if sign > 0 else -bottom)
     return out
+
+
+def check_system(system: Any, field: str = "system") -> None:
+    """An InputError naming ``field`` unless ``system`` is one the core runs: a single mass, a structure or
+    two adjacent ones."""
+    instance_of(field, system, (Oscillator, Structure, Adjacent),
+                "pounding.Oscillator, pounding.Structure or pounding.Adjacent")
 
 
 def structures_of(model: Oscillator | Structure | Adjacent) -> tuple[tuple[Structure, ...], tuple]:

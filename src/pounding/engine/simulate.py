@@ -3,13 +3,12 @@
 from __future__ import annotations
 
 import math
-import warnings
 from typing import TYPE_CHECKING, Optional
 
 import numpy as np
 
 from .._checks import instance_of, integer, positive
-from .._errors import InputError, Interrupted, Problem, Status, outside_stacklevel, renamed_keyword
+from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
 from .control import (
@@ -27,58 +26,17 @@ from .layout import X_A_MAX, X_A_MAX_T, X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T
 from .run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPLES,  # noqa: F401
                         MAX_SAMPLES, check_rtol, history_rate, kernel_forcing)
 from .result import EnergyLedger, Run
-from .assembly import Assembly, assemble
-from .state import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, State, one_mass_layout, shifted
-from .state_check import check_fits, check_layout
+from .assembly import Assembly, assemble, clearances
+from .state import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, State, one_mass_layout
+from .state_check import _FIX, check_fits, check_layout, check_state  # noqa: F401  (check_state: here too)
 
 if TYPE_CHECKING:
+    from ..model.adjacent import Adjacent
     from ..model.structure import Structure
 
 def check_oscillator(oscillator: Oscillator, field: str = "system") -> None:
     """An InputError naming ``field`` unless ``oscillator`` is one."""
     instance_of(field, oscillator, Oscillator, "pounding.Oscillator")
-
-
-_FIX = "start from State.at_rest(oscillator) or a final_state of this system"
-
-
-def check_state(state: Optional[State], oscillator: Oscillator, asm: Optional[Assembly] = None) -> State:
-    """``state``, or rest at t = 0 when None; it must belong to a system like ``oscillator`` (``asm``: its
-    assembly, when the caller has it).  Returns the state to run from (a mass without bumpers: laid out as
-    its own, see :func:`_without_bumpers`)."""
-    asm = assemble(oscillator) if asm is None else asm
-    if state is None:
-        return shifted(asm, 0.0, 0.0, 0.0)
-    instance_of("state", state, State, "pounding.State (e.g. run.final_state)")
-    state = _without_bumpers(state, asm)
-    check_layout(state, asm, _FIX)
-    check_fits(state.vector, asm, _FIX)
-    return state
-
-
-def _without_bumpers(state: State, asm: Assembly) -> State:
-    """A single mass's state laid out with two bumpers' contact slots (the core's one-mass layout: 0.1's
-    for every mass, or a run's with bumpers), given to a mass without bumpers: the same state in that
-    system's layout (no contact slots; a finished contact's running totals and the laws' states are left
-    behind), with a ``FutureWarning``; refused while a bumper touches or is compressed."""
-    lay = asm.system.layout
-    if state.layout is not None or state.dofs != asm.dofs or lay["in"] != lay["def"]:
-        return state
-    old, vec = state._lay, state.vector
-    dropped = (old["region"] - old["def"]) + (old["zeta"] - old["acc"])  # (the contacts' blocks)
-    if vec.size - dropped != lay["size"]:
-        return state  # (not that state: the layout check says why)
-    if vec[old["def"]:old["region"]].any():
-        raise InputError(Problem.BAD_STATE, "state.in_contact", state.in_contact,
-                         why=f"has a bumper in contact or compressed (compressions "
-                             f"{state.bumper_compression_m} m), but the system has no bumpers", fix=_FIX)
-    kept = np.concatenate((vec[:old["def"]], vec[old["region"]:old["acc"]], vec[old["zeta"]:]))
-    warnings.warn(f"this state has two bumpers' contact slots ({vec.size} numbers: a state of a mass with "
-                  "bumpers, or 0.1's layout for every mass), but the system has no bumpers: it is taken as "
-                  f"the same state in this system's layout ({kept.size} numbers); give a state of this "
-                  "system (State.at_rest(oscillator) or a run's final_state)", FutureWarning,
-                  stacklevel=outside_stacklevel())
-    return State._from_kernel(kept, lay)
 
 
 def kernel_system(oscillator: Oscillator) -> System:
@@ -202,24 +160,30 @@ SHORT_RUN_STEPS = 1_000_000
 
 
 class ShortRun:
-    """What the periodic-orbit solvers read of a run (:func:`short_run`), without the public
-    ``Run``'s histories, energy ledger and checks: ``vector`` (the final state's), the event
-    and contact tables (``Run``'s columns), the exact extrema and the status."""
+    """What the periodic-orbit solvers read of a run (:func:`short_run`), of any system, without the
+    public run's histories, energy ledger and checks: ``vector`` (the final state's), the core's event
+    and contact tables (a contact's slot its number in the assembly), the exact extrema of each dof
+    (``extrema``, shape (n, DOF_EXTREMA)), the start time and the status."""
 
-    __slots__ = ("vector", "event_table", "contact_table", "displacement_max", "displacement_min",
-                 "abs_acceleration_max", "excitation", "status", "layout")
+    __slots__ = ("vector", "event_table", "contact_table", "extrema", "excitation", "status", "asm",
+                 "t_start_s", "_out")
 
-    def __init__(self, out: _core.RunOutput, excitation: Harmonic, status: int, layout: dict) -> None:
-        self.layout = layout  # (the core system's)
+    def __init__(self, out: _core.RunOutput, excitation: Harmonic, status: int, asm: Assembly,
+                 t_start_s: float) -> None:
+        self.asm = asm
+        self._out = out
         self.vector = out.state
         self.event_table = out.events
         self.contact_table = out.contacts
-        extrema = out.per_dof(1)[0]
-        self.displacement_max = float(extrema[X_D_MAX])
-        self.displacement_min = float(extrema[X_D_MIN])
-        self.abs_acceleration_max = float(extrema[X_A_MAX])
+        self.extrema = out.per_dof(asm.system.n)
         self.excitation = excitation
         self.status = status
+        self.t_start_s = t_start_s
+
+    @property
+    def clearance_m(self) -> np.ndarray:
+        """Each contact slot's smallest clearance over the run, m (negative: it touched)."""
+        return clearances(self.asm, self._out)
 
     @property
     def success(self) -> bool:
@@ -231,7 +195,7 @@ class ShortRun:
 
     @property
     def final_state(self) -> State:
-        return State._from_kernel(self.vector, self.layout)
+        return State._of(self.vector, self.asm.dofs, self.asm.system.layout)
 
 
 class NotAState(Exception):
@@ -239,22 +203,25 @@ class NotAState(Exception):
     states: the solver's own failure, not the caller's input (``InputError`` is for that)."""
 
 
-def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, state: State | np.ndarray,
-              asm: Optional[Assembly] = None, forcing: Optional[Forcing] = None) -> ShortRun:
+def short_run(model: "Oscillator | Structure | Adjacent", excitation: Harmonic, duration: float,
+              state: State | np.ndarray, asm: Optional[Assembly] = None,
+              forcing: Optional[Forcing] = None) -> ShortRun:
     """A run of a period or so, events only, for the periodic-orbit solvers' many runs: the state
     checked, the arguments trusted (the caller checked them), the kernel called in this thread
     (no helper thread: Ctrl-C lands when it returns) within ``SHORT_RUN_STEPS`` sub-intervals
     (status ``BUDGET`` beyond).
 
-    ``state`` may be a raw state vector (the solvers' own: only what ties it to this system is
-    checked, and one that is none of its states raises :class:`NotAState`); ``asm`` the
-    oscillator's :func:`assemble` and ``forcing`` the excitation's :func:`kernel_forcing`, when
-    the caller keeps them for many runs.  A continuation makes some 15,000 runs of about 12 us in the
-    kernel each: the public ``simulate``'s checks and ``Run`` took 90 us a run around them.
+    ``model`` is any system (a single mass, a structure, a pair).  ``state`` may be a raw state vector
+    (the solvers' own: only what ties it to this system is checked, and one that is none of its states
+    raises :class:`NotAState`); ``asm`` the model's :func:`assemble` and ``forcing`` the excitation's
+    :func:`kernel_forcing`, when the caller keeps them for many runs.  A continuation makes some 15,000
+    runs of about 12 us in the kernel each: the public ``simulate``'s checks and ``Run`` took 90 us a run
+    around them.
     """
     if asm is None:
-        asm = assemble(oscillator)
+        asm = assemble(model)
     lay = asm.system.layout
+    n = int(asm.system.n)
     if isinstance(state, np.ndarray):
         # the moves of a solver change the continuous numbers only: those are checked here (a vector that
         # fails: in full, for the message)
@@ -262,8 +229,9 @@ def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, sta
         try:
             if not (state.size == lay["size"] and all(map(math.isfinite, x))):
                 check_layout(State(state, asm.dofs, one_mass_layout(lay)), asm, _FIX)  # (it says why)
-            d, v = x[lay["x"]], x[lay["v"]]
-            if abs(d) > MAX_DISPLACEMENT_M or abs(v) > MAX_VELOCITY_M_S:
+            d = max(map(abs, x[lay["x"]:lay["x"] + n]))
+            v = max(map(abs, x[lay["v"]:lay["v"] + n]))
+            if d > MAX_DISPLACEMENT_M or v > MAX_VELOCITY_M_S:
                 raise InputError(Problem.BAD_STATE, "state", (d, v),
                                  why=f"has a displacement or a velocity beyond {MAX_DISPLACEMENT_M:g} m or "
                                      f"{MAX_VELOCITY_M_S:g} m/s", fix=_FIX)
@@ -272,14 +240,14 @@ def short_run(oscillator: Oscillator, excitation: Harmonic, duration: float, sta
             raise NotAState(str(exc)) from None
         vector, t0 = np.array(state, dtype=float), x[0]
     else:
-        state = check_state(state, oscillator, asm)
+        state = check_state(state, model, asm)
         vector, t0 = np.array(state.vector), state.time_s
     out = _core.run(asm.system, kernel_forcing(excitation) if forcing is None else forcing, vector,
                     t0 + duration, 0.0, 1e-10, 10_000_000, False, new_control(SHORT_RUN_STEPS))
     status = out.status
     if status == Status.SUCCESS and not all(map(math.isfinite, out.extrema.tolist())):
         status = int(Status.NONFINITE)
-    return ShortRun(out, excitation, status, lay)
+    return ShortRun(out, excitation, status, asm, t0)
 
 
 def _run(oscillator: Oscillator, excitation: Harmonic | Record, duration: float, state: State, rtol: float,

@@ -1,5 +1,6 @@
 """Whether a state is one its system can be in: one check for every system (a single mass, a structure, a
-pair), against the system's assembly (:func:`check_fits`), and the check of its layout (:func:`check_layout`).
+pair), against the system's assembly (:func:`check_fits`), the check of its layout (:func:`check_layout`),
+and both for a state given to a protocol (:func:`check_state`).
 
 A state fits when each contact's flag, compression and law state agree with the displacements, each
 hysteretic element's branch is the one of its deformation, each kinematic spring's slip leaves it within its
@@ -10,14 +11,20 @@ system's own (a run's final state holds the rounding of its last event).
 from __future__ import annotations
 
 import math
+import warnings
 from bisect import bisect_right
+from typing import TYPE_CHECKING, Optional
 
 import numpy as np
 
-from .._errors import InputError, Problem
+from .._checks import instance_of
+from .._errors import InputError, Problem, outside_stacklevel
 from ..model.contact_laws import N_LAW_STATE, state_problem, stateless
-from .assembly import Assembly
-from .state import LAYOUT_KEYS, State
+from .assembly import Assembly, assemble
+from .state import LAYOUT_KEYS, State, shifted
+
+if TYPE_CHECKING:
+    from ..model import Adjacent, Oscillator, Structure
 
 
 def contact_name(slot: tuple, pair: bool) -> str:
@@ -142,3 +149,46 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str) -> None:
     if bw[0] != 0.0 and abs(z) > (bw[2] / (bw[3] + bw[4])) ** (1.0 / bw[5]) * (1.0 + 1e-9):
         raise bad(f"vector[{lay['zeta']}]", z, "is beyond the Bouc-Wen spring's largest |z|, "
                                                f"{(bw[2] / (bw[3] + bw[4])) ** (1.0 / bw[5]):g}")
+
+
+_FIX = "start from State.at_rest(system) or a final_state of this system"
+
+
+def check_state(state: Optional[State], system: "Oscillator | Structure | Adjacent",
+                asm: Optional[Assembly] = None) -> State:
+    """``state``, or rest at t = 0 when None; it must belong to a system like ``system`` (a single mass, a
+    structure or a pair; ``asm``: its assembly, when the caller has it).  Returns the state to run from (a
+    mass without bumpers: laid out as its own, see :func:`_without_bumpers`)."""
+    asm = assemble(system) if asm is None else asm
+    if state is None:
+        return shifted(asm, 0.0, 0.0, 0.0)
+    instance_of("state", state, State, "pounding.State (e.g. run.final_state)")
+    state = _without_bumpers(state, asm)
+    check_layout(state, asm, _FIX)
+    check_fits(state.vector, asm, _FIX)
+    return state
+
+
+def _without_bumpers(state: State, asm: Assembly) -> State:
+    """A single mass's state laid out with two bumpers' contact slots (the core's one-mass layout: 0.1's
+    for every mass, or a run's with bumpers), given to a mass without bumpers: the same state in that
+    system's layout (no contact slots; a finished contact's running totals and the laws' states are left
+    behind), with a ``FutureWarning``; refused while a bumper touches or is compressed."""
+    lay = asm.system.layout
+    if state.layout is not None or state.dofs != asm.dofs or lay["in"] != lay["def"]:
+        return state
+    old, vec = state._lay, state.vector
+    dropped = (old["region"] - old["def"]) + (old["zeta"] - old["acc"])  # (the contacts' blocks)
+    if vec.size - dropped != lay["size"]:
+        return state  # (not that state: the layout check says why)
+    if vec[old["def"]:old["region"]].any():
+        raise InputError(Problem.BAD_STATE, "state.in_contact", state.in_contact,
+                         why=f"has a bumper in contact or compressed (compressions "
+                             f"{state.bumper_compression_m} m), but the system has no bumpers", fix=_FIX)
+    kept = np.concatenate((vec[:old["def"]], vec[old["region"]:old["acc"]], vec[old["zeta"]:]))
+    warnings.warn(f"this state has two bumpers' contact slots ({vec.size} numbers: a state of a mass with "
+                  "bumpers, or 0.1's layout for every mass), but the system has no bumpers: it is taken as "
+                  f"the same state in this system's layout ({kept.size} numbers); give a state of this "
+                  "system (State.at_rest(oscillator) or a run's final_state)", FutureWarning,
+                  stacklevel=outside_stacklevel())
+    return State._from_kernel(kept, lay)

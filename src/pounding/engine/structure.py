@@ -19,10 +19,11 @@ from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from .control import DEFAULT_MAX_STEPS, check_budget, new_control, run_interruptibly, steps_per_second
 from ._chatter import chatter_frame
-from .state import State, shifted
-from .state_check import check_fits, check_layout, contact_name
+from .state import State
+from .state_check import contact_name
 from .layout import CONTACT_COLUMNS
 from .run_args import DIRECT_CALL_STEPS, check_rtol, history_rate, kernel_forcing
+from .state_check import check_state
 from .adjacent_result import AdjacentRun
 from .assembly import Assembly, _add_pair, assemble, clearances, structures_of
 from .result import EnergyLedger
@@ -30,16 +31,6 @@ from .structure_result import StructureRun
 
 
 
-_FIX = "start from State.at_rest(structure) or a final_state of this structure"
-
-
-def _check_state(state: Optional[State], model: Structure | Adjacent, asm: Assembly) -> State:
-    if state is None:
-        return shifted(asm, 0.0, 0.0, 0.0)
-    instance_of("state", state, State, "pounding.State (State.at_rest(structure) or a run's final_state)")
-    check_layout(state, asm, _FIX)
-    check_fits(state.vector, asm, _FIX)
-    return state
 
 
 def structure_rates(asm: Assembly) -> tuple[float, float]:
@@ -67,11 +58,6 @@ def structure_rates(asm: Assembly) -> tuple[float, float]:
     return free, rate(k, c)
 
 
-def check_structure_state(state: Optional[State], model: Structure | Adjacent) -> State:
-    """``state`` checked against the structure (None: at rest at 0), for the protocols."""
-    return _check_state(state, model, assemble(model))
-
-
 def structure_rate(model: Structure | Adjacent) -> tuple[float, str]:
     """The fastest rate of the structure's motion out of contact, rad/s, and what sets it (what a
     protocol's work estimate counts from, as ``isolator_rate`` for one mass)."""
@@ -93,7 +79,7 @@ def simulate_structure(structure: Structure | Adjacent, excitation: Harmonic | R
     max_events = integer("max_events", max_events, 1)
     max_steps = integer("max_steps", max_steps, 1)
     asm = assemble(structure)
-    state = _check_state(state, structure, asm)
+    state = check_state(state, structure, asm)
     rate = history_rate(sample_rate_hz, duration)
     t0 = state.time_s
     omega = excitation.omega_rad_s if isinstance(excitation, Harmonic) else 0.0

@@ -76,7 +76,8 @@ def plot_curves(curves: list, ax: Any = None, *, matrix: Optional[Any] = None,
         name = c.kind + (f" ({c.side})" if c.side else "")
         label = f"{name} curve" if name not in seen else None
         seen.add(name)
-        color = kwargs.get("color") or ("C0" if c.kind == "fold" else "C2" if c.side == "left" else "C1")
+        left = c.side.endswith("left")
+        color = kwargs.get("color") or ("C0" if c.kind == "fold" else "C2" if left else "C1")
         kw = {k: v for k, v in kwargs.items() if k != "color"}
         artists += ax.plot(df["freq_hz"], df["a_g"], STYLE.get(c.kind, "-"), color=color, label=label, **kw)
         short = _stopped_ends(c, df, box)

@@ -204,9 +204,9 @@ def make_plan(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = 
     max_events_per_cycle = integer("max_events_per_cycle", max_events_per_cycle, 1)
     max_steps = integer("max_steps", max_steps, 1)
     if several:
-        from ..engine.structure import check_structure_state, structure_rate
+        from ..engine.structure import structure_rate
 
-        state = check_structure_state(state, oscillator)
+        state = check_state(state, oscillator)
         rate, why = structure_rate(oscillator)
     else:
         if state is not None:

@@ -1,0 +1,337 @@
+"""The stroboscopic map of any system (a single mass, a structure, a pair) in its shooting coordinates:
+what ``periodic_orbit``, ``continuation`` and ``lyapunov`` shoot with (the Newton loop: ``_shooting``).
+
+The map takes the core's state vector at the section time to the one a period (or ``period_multiple``
+periods) later, by the core's short runs (``engine.simulate.short_run``).  Its coordinates are the core's
+monodromy coordinates: every dof's displacement and velocity, each contact's compression, each
+hysteretic element's slips (then a Bouc-Wen z, where there is one).  The free ones are the shooting
+coordinates: the displacements and velocities, the compression of a Kelvin-Voigt contact not touched (it
+relaxes), the slip of a spring that sticks and yields over the period.  A contact in progress and a
+slipping spring follow the masses.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any, Optional
+
+import numpy as np
+
+from .._errors import InputError
+from ..engine.assembly import Assembly, assemble, structures_of
+from ..engine.layout import C_SLOT, C_T_END, C_T_START, C_V_IN, X_A_MAX, X_D_MAX, X_D_MIN
+from ..engine.run_args import kernel_forcing
+from ..engine.simulate import NotAState, ShortRun, short_run
+from ..engine.state import State
+from ..engine.structure_result import ground_peak
+from ..excitation import Harmonic
+from ..model.contact_laws import is_rigid, linear_form
+from . import _hybrid as hy
+from ._shooting import _Failed, _Newton, at_section, finished_contacts
+
+
+class _Shooter(_Newton):
+    """The map of a system's core state vector, its residual and Jacobian in the shooting coordinates.
+
+    ``coords`` are the core's monodromy coordinates: the n displacements, the n velocities, the nc
+    contacts' compressions, the n_sp springs' slips (then a Bouc-Wen z, where there is one).  ``like``: a
+    shooter of the same system, whose assembly and layouts this one shares."""
+
+    def __init__(self, model: Any, excitation: Harmonic, period: float, exact: bool,
+                 like: Optional["_Shooter"] = None) -> None:
+        self.osc = self.model = model
+        self.exc, self.period, self.exact = excitation, period, exact
+        self.fell_back = ""  # why the exact monodromy gave way to finite differences, if it did
+        self._forcing: Any = None  # (the excitation as the kernel takes it: made at the first run)
+        if like is not None and like.model is model:
+            self.__dict__.update(like._shared)
+            return
+        self.asm: Assembly = assemble(model)
+        self.system = self.asm.system
+        lay = self.lay = self.system.layout
+        self.n = int(self.system.n)
+        self.nc = len(self.asm.pairs)
+        self.n_sp = int(lay["n_springs"])
+        self.size = 2 * self.n + self.nc + self.n_sp
+        structures = structures_of(model)[0]
+        bw_iso = [s.isolator.bouc_wen for s in structures if s.isolator is not None
+                  and s.isolator.bouc_wen is not None]
+        self.z_max = bw_iso[0].z_max if bw_iso else 0.0
+        # each contact slot: (i, j, sign, gap, relaxes: a Kelvin-Voigt law with damping, free when apart)
+        self.slots = [(i, j, sign, gap, bool((linear_form(law) or (0.0, 0.0))[1] > 0.0))
+                      for i, j, sign, gap, law in self.asm.pairs]
+        self.springs = []  # each kinematic spring: (global index, i, j, break)
+        self.elastic = []  # each element of the elastic rule: (element, i, j, breaks)
+        first = 0
+        for e, (i, j, slopes, breaks, rule) in enumerate(self.asm.elements):
+            if rule == 0:
+                self.springs += [(first + s, i, j, float(breaks[s])) for s in range(len(breaks))]
+            elif breaks:
+                self.elastic.append((e, i, j, np.array(breaks, dtype=float)))
+            first += len(slopes) - 1
+        n = self.n
+        # where ``coords`` reads a state vector, and where its mode (contacts touching, springs slipping)
+        self._at = np.array([*range(lay["x"], lay["x"] + n), *range(lay["v"], lay["v"] + n),
+                             *range(lay["def"], lay["def"] + self.nc),
+                             *range(lay["base"], lay["base"] + self.n_sp)]
+                            + ([lay["zeta"]] if self.z_max > 0.0 else []))
+        touching = [lay["in"] + c for c in range(self.nc)] if self.system.has_b else []
+        self._mode_at = touching + [lay["base"] + self.n_sp + g for g, *_ in self.springs]
+        self._layouts: dict = {}  # (the layouts met so far, by mode: asked for several times a run)
+        # the levels' dofs (a fixed base's ground has none), the first moving level's, whether any is fixed
+        levels = [d for dofs in self.asm.dofs for d in dofs]
+        self._levels = [d for d in levels if d >= 0]
+        self._fixed = any(d < 0 for d in levels)
+        self._first = next(d for d in self.asm.dofs[0] if d >= 0)
+        self._names = self._labels(structures)
+        level = self.asm.dofs[0].index(self._first)  # (its wall's total gap, for eta: NaN without one)
+        walls = [w for w in structures[0].walls if w.level == level]
+        self._gap = walls[0].gap_left_m + walls[0].gap_right_m if walls else math.nan
+        self._shared = {k: self.__dict__[k] for k in _SHARED}
+        self._shared["_shared"] = self._shared
+
+    # the core's numbers of a state vector
+    def _rel(self, vec: Any, i: int, j: int) -> float:
+        x = self.lay["x"]
+        return float(vec[x + i] - (vec[x + j] if j >= 0 else 0.0))
+
+    def coords(self, vec: np.ndarray) -> np.ndarray:
+        return vec[self._at]
+
+    def _slip_dir(self, vec: np.ndarray, g: int) -> float:
+        return float(vec[self.lay["base"] + self.n_sp + g])
+
+    def _layout(self, vec: np.ndarray, frozen: tuple = ()) -> tuple[np.ndarray, np.ndarray]:
+        """(indices of ``coords`` that are free, embedding E: shape (size, r), dx = E dz).  ``frozen``:
+        springs that stick over the period, whose slips are left out.  (Both read-only: one pair for every
+        state of the same mode.)"""
+        key = (tuple(vec[self._mode_at].tolist()), tuple(frozen))
+        got = self._layouts.get(key)
+        if got is None:
+            if len(self._layouts) >= 256:
+                self._layouts.clear()
+            got = self._layouts[key] = self._new_layout(vec, frozen)
+            for a in got:
+                a.setflags(write=False)
+        return got
+
+    def _new_layout(self, vec: np.ndarray, frozen: tuple) -> tuple[np.ndarray, np.ndarray]:
+        n, lay = self.n, self.lay
+        total = self.size + (self.z_max > 0.0)
+        follows = np.zeros((total, n))  # d coords = follows dx for the entries that are not free
+        free = list(range(2 * n))
+        for c, (i, j, sign, _, relaxes) in enumerate(self.slots):
+            row = 2 * n + c
+            if self.system.has_b and vec[lay["in"] + c]:
+                follows[row, i] += sign
+                if j >= 0:
+                    follows[row, j] -= sign
+            elif self.system.has_b and relaxes:
+                free.append(row)
+        for g, i, j, _ in self.springs:
+            row = 2 * n + self.nc + g
+            if self._slip_dir(vec, g) != 0.0:
+                follows[row, i] += 1.0
+                if j >= 0:
+                    follows[row, j] -= 1.0
+            elif g not in frozen:
+                free.append(row)
+        if self.z_max > 0.0:
+            free.append(self.size)
+        free_idx = np.array(sorted(free))
+        emb = np.zeros((total, free_idx.size))
+        emb[free_idx, np.arange(free_idx.size)] = 1.0
+        emb[:, :n] += follows  # (the displacements are the first n free coordinates)
+        return free_idx, emb
+
+    def frozen(self, vec: np.ndarray, run: ShortRun) -> tuple:
+        """The springs that stick at the section and do not yield over the period: their slips are
+        constants of the motion (multipliers 1 that say nothing of stability), not coordinates."""
+        if not self.springs:
+            return ()
+        yielded = {int(i) for _, action, i in run.event_table.tolist() if action == hy.ACT_YIELD}
+        return tuple(g for g, *_ in self.springs if self._slip_dir(vec, g) == 0.0 and g not in yielded)
+
+    def _labels(self, structures: tuple) -> list[str]:
+        named = len(structures) > 1
+        dof = [""] * self.n
+        for b, levels in enumerate(self.asm.dofs):
+            prefix = ("first." if b == 0 else "second.") if named else ""
+            for level, d in enumerate(levels):
+                if d >= 0:
+                    dof[d] = f"{prefix}{level}"
+            for w, side, d in self.asm.stands[b]:
+                dof[d] = f"{prefix}stand_{w}_{('left', 'right')[side]}"
+        contact = []
+        for b, w, side in self.asm.slots:
+            if b < 0:
+                contact.append(f"delta_link{w}")
+            else:
+                prefix = ("first." if b == 0 else "second.") if named else ""
+                contact.append(f"{prefix}delta_wall{w}_{('left', 'right')[side]}")
+        return ([f"x_{d}" for d in dof] + [f"v_{d}" for d in dof] + contact
+                + [f"u_{g}" for g in range(self.n_sp)] + (["z"] if self.z_max > 0.0 else []))
+
+    def labels(self) -> list[str]:
+        """The names of ``coords``' entries: ``x_<level>`` and ``v_<level>`` of each moving level
+        (``first.``/``second.`` for a pair; ``stand_<wall>_<side>`` for a wall's stand),
+        ``delta_wall<w>_<side>`` and ``delta_link<k>`` of each contact, ``u_<spring>``, ``z``."""
+        return list(self._names)
+
+    def names(self, vec: np.ndarray, frozen: tuple = ()) -> list[str]:
+        return [self._names[i] for i in self._layout(vec, frozen)[0]]
+
+    def spectrum_coordinates(self, slips: set) -> np.ndarray:
+        """Indices (in ``coords``) of a Lyapunov spectrum's coordinates: every displacement and velocity,
+        a relaxing contact's compression, the slips of ``slips`` (the springs that slip during the run), z."""
+        keep = list(range(2 * self.n))
+        if self.system.has_b:
+            keep += [2 * self.n + c for c, slot in enumerate(self.slots) if slot[4]]
+        keep += [2 * self.n + self.nc + g for g in sorted(slips)]
+        if self.z_max > 0.0:
+            keep.append(self.size)
+        return np.array(keep)
+
+    def section(self, vec: np.ndarray) -> np.ndarray:
+        """Every dof's (x, v) of a state vector, shape (2, n)."""
+        lay = self.lay
+        return np.stack([vec[lay["x"]:lay["x"] + self.n], vec[lay["v"]:lay["v"] + self.n]])
+
+    # what a branch of orbits reads of each (analysis._follower, _detect)
+    def extent(self, run: ShortRun) -> tuple[float, float]:
+        """The first moving level's largest and smallest displacement over the run, m (a single mass's; the
+        base of an isolated building)."""
+        ex = run.extrema[self._first]
+        return float(ex[X_D_MAX]), float(ex[X_D_MIN])
+
+    def clearances(self, run: ShortRun) -> dict[str, float]:
+        """Each wall side's and link's smallest clearance over the run, m (negative: touched).  A rigid stop
+        that the orbit impacts has no clearance but an impact speed: minus the slowest impact's speed over
+        the forcing's angular frequency, m (0 at a grazing, as the clearance)."""
+        out = run.clearance_m.tolist()
+        rows = run.contact_table
+        for c, pair in enumerate(self.asm.pairs):
+            if is_rigid(pair.law):
+                hits = rows[(rows[:, C_SLOT] == c) & (rows[:, C_T_END] == rows[:, C_T_START])]
+                if len(hits):
+                    out[c] = -float(np.abs(hits[:, C_V_IN]).min()) / self.exc.omega_rad_s
+        return {name.replace("delta_", ""): c for name, c in zip(self._contact_names, out)}
+
+    @property
+    def _contact_names(self) -> list[str]:
+        return self._names[2 * self.n:2 * self.n + self.nc]
+
+    def rigid_sides(self) -> set[str]:
+        """The sides of :meth:`clearances` that are rigid stops."""
+        pairs = zip(self._contact_names, self.asm.pairs)
+        return {name.replace("delta_", "") for name, pair in pairs if is_rigid(pair.law)}
+
+    def summary(self, run: ShortRun, exc: Harmonic) -> dict[str, float]:
+        """A branch's row of the orbit run over its period: the largest alpha over every level, the first
+        moving level's excursion and extrema (eta against its wall's total gap, when it has one at its
+        level), the contacts at every wall side and link."""
+        done = finished_contacts([run.contact_table])
+        peak = abs(exc.peak_m_s2)
+        amax = float(run.extrema[self._levels, X_A_MAX].max())
+        if self._fixed:  # (a fixed base's level: shaken by the table)
+            amax = max(amax, ground_peak(exc, run.t_start_s, float(run.vector[0]))[0])
+        dmax, dmin = self.extent(run)
+        gap = self._gap
+        return {"alpha": amax / peak if peak > 0 else math.nan, "excursion_m": dmax - dmin,
+                "displacement_max_m": dmax, "displacement_min_m": dmin,
+                "eta": (dmax - dmin) / gap if gap > 0 else math.nan,
+                "contacts_per_period": int(done.shape[0]),
+                "impact_velocity_max_m_s": float(np.abs(done[:, C_V_IN]).max()) if done.shape[0] else 0.0}
+
+    def advance(self, exc: Harmonic, duration: float, vec: np.ndarray) -> Optional[np.ndarray]:
+        """The state vector ``duration`` s on under ``exc`` (None where the engine stopped)."""
+        try:
+            run = short_run(self.model, exc, duration, vec, self.asm)
+        except InputError:
+            return None
+        return np.array(run.vector) if run.success else None
+
+    def at_section(self, vec: np.ndarray) -> np.ndarray:
+        """The state vector moved to time 0 (a whole number of forcing periods back): a contact in
+        progress keeps its start relative to the section."""
+        return at_section(vec, self.lay, self.nc)
+
+    def free_state_matrix(self) -> np.ndarray:
+        """The state matrix (2n, 2n) of the masses' free motion, no contact, every element on its stiffest
+        slope (a linear structure's own)."""
+        n, m = self.n, self.asm.masses
+        return np.block([[np.zeros((n, n)), np.eye(n)],
+                         [-self.asm.k_fast / m[:, None], -self.asm.c_all / m[:, None]]])
+
+    def _scales(self, free_idx: np.ndarray) -> np.ndarray:
+        s = np.full(free_idx.size, self.scale_d)
+        s[(free_idx >= self.n) & (free_idx < 2 * self.n)] = self.scale_d * self.exc.omega_rad_s
+        if self.z_max > 0.0:
+            s[free_idx == self.size] = 1.0  # (z is dimensionless, |z| <= z_max about 1)
+        return s
+
+    def _image(self, vec: np.ndarray) -> tuple[np.ndarray, ShortRun]:
+        try:
+            if self._forcing is None:
+                self._forcing = kernel_forcing(self.exc)
+            run = short_run(self.model, self.exc, self.period, vec, self.asm, self._forcing)
+        except NotAState as exc:
+            raise _Failed(f"a trial state left the system's states ({exc})") from None
+        if not run.success:
+            raise _Failed(f"the engine stopped over a period: {run.message}")
+        return np.array(run.vector), run
+
+    def _size_of(self, run: ShortRun) -> float:
+        """The orbit's size, m: its largest |x| of any level (1e-6 m at least)."""
+        ex = run.extrema[self._levels]
+        return max(1e-6, float(np.abs(ex[:, X_D_MAX]).max()), float(np.abs(ex[:, X_D_MIN]).max()))
+
+    def _propagate(self, vec: np.ndarray, run: ShortRun) -> tuple[np.ndarray, np.ndarray]:
+        return hy.monodromy(self.system, vec, run.event_table, vec[0] + self.period, self.exc.omega_rad_s,
+                            self.exc.peak_m_s2, self.exc.phase)
+
+    def _state(self, vec: np.ndarray) -> State:
+        return State._of(vec, self.asm.dofs, self.lay)
+
+    def _inwards(self, vec: np.ndarray, idx: int, step: float) -> float:
+        """0 for a central difference along coordinate ``idx``, else the direction of a one-sided one: a
+        compression (>= 0) inwards, z near ``z_max`` towards 0."""
+        if 2 * self.n <= idx < 2 * self.n + self.nc:
+            return 1.0
+        if self.z_max > 0.0 and idx == self.size and abs(vec[self.lay["zeta"]]) + step > self.z_max:
+            return 1.0 if vec[self.lay["zeta"]] < 0.0 else -1.0
+        return 0.0
+
+    def _moved(self, vec: np.ndarray, dx: np.ndarray) -> np.ndarray:
+        """The state vector moved by ``dx`` (in ``coords``), its followers kept on their constraints and the
+        elastic rule's branches the ones of the new deformations.  (Its numbers as Python's floats: the same
+        arithmetic as numpy's, at a fraction of its cost for the few numbers of a state.)"""
+        lay, n, nc, n_sp = self.lay, self.n, self.nc, self.n_sp
+        y, step = vec.tolist(), dx.tolist()
+        at_x, at_v, d0, base = lay["x"], lay["v"], lay["def"], lay["base"]
+        for k in range(n):
+            y[at_x + k] += step[k]
+            y[at_v + k] += step[n + k]
+        for c in range(nc):
+            y[d0 + c] = max(0.0, y[d0 + c] + step[2 * n + c])
+        for g in range(n_sp):
+            y[base + g] += step[2 * n + nc + g]
+        if self.z_max > 0.0:
+            y[lay["zeta"]] = min(max(y[lay["zeta"]] + step[self.size], -self.z_max), self.z_max)
+        if self.system.has_b:
+            for c, (i, j, sign, gap, _) in enumerate(self.slots):
+                if y[lay["in"] + c]:
+                    y[d0 + c] = max(0.0, sign * self._rel(y, i, j) - gap)
+        for g, i, j, brk in self.springs:
+            s = y[base + n_sp + g]
+            if s != 0.0:
+                y[base + g] = self._rel(y, i, j) - s * brk
+        for e, i, j, breaks in self.elastic:
+            u = self._rel(y, i, j)
+            y[lay["region"] + e] = float(np.sign(u) * np.searchsorted(breaks, abs(u), side="right"))
+        return np.array(y)
+
+
+# what a shooter of the same system shares (``like``)
+_SHARED = ("asm", "system", "lay", "n", "nc", "n_sp", "size", "z_max", "slots", "springs", "elastic", "_at",
+           "_mode_at", "_layouts", "_levels", "_fixed", "_first", "_names", "_gap")
