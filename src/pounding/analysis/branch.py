@@ -184,8 +184,8 @@ class Branch:
     >>> branch.status.name, branch.parameter, branch.a_g
     ('SUCCESS', 'freq_hz', 0.05)
     >>> [(b.kind, b.side, round(b.freq_hz, 3)) for b in branch.bifurcations]
-    [('fold', '', 2.014), ('fold', '', 1.605), ('grazing', 'left', 1.605),
-     ('grazing', 'right', 1.605)]
+    [('fold', '', 2.014), ('fold', '', 1.605), ('grazing', 'wall0_left', 1.605),
+     ('grazing', 'wall0_right', 1.605)]
     >>> df = branch.to_dataframe()
     >>> round(float(df["alpha"].max()), 1), bool(df["stable"].iloc[0])
     (12.8, True)
