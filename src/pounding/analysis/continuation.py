@@ -26,10 +26,9 @@ import numpy as np
 from .._checks import instance_of, integer, positive, real
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..engine import State
-from ..engine.simulate import check_oscillator, check_state, short_run
-from ..model.adjacent import Adjacent
+from ..engine.assembly import check_system
+from ..engine.simulate import check_state, short_run
 from ..model.dotted import why_unresolved
-from ..model.structure import Structure
 from . import _hybrid as hy
 from ._arclength import Family, system_at
 from ._follower import Follower
@@ -128,9 +127,7 @@ def continuation(
     >>> [round(b.freq_hz, 3) for b in branch.folds()]
     [1.237, 2.014, 1.605]
     """
-    several = isinstance(system, (Structure, Adjacent))
-    if not several:
-        check_oscillator(system)
+    check_system(system)
     parameter, values, a_g, freq_hz = _check_range(system, parameter, a_g, freqs_hz, values)
     period_multiple = integer("period_multiple", period_multiple, 1, 64,
                               "give the orbits' period in forcing periods")

@@ -12,7 +12,8 @@ import pandas as pd
 
 from .._checks import instance_of, integer, one_of, real
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
-from ..engine.simulate import check_oscillator, check_state
+from ..engine.assembly import check_system
+from ..engine.simulate import check_state
 from ..model import Oscillator
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
@@ -98,9 +99,7 @@ def bifurcation_curve(
     >>> round(float(df["freq_hz"].min()), 3), round(float(df["freq_hz"].max()), 3)
     (1.746, 2.276)
     """
-    several = isinstance(system, (Structure, Adjacent))
-    if not several:
-        check_oscillator(system)
+    check_system(system)
     instance_of("bifurcation", bifurcation, Bifurcation,
                 "pounding.Bifurcation (from Branch.bifurcations or Branch.folds())")
     if bifurcation.kind not in CURVE_KINDS:
@@ -255,9 +254,7 @@ def coexistence_map(
     >>> m.matrix["verdict"].value_counts().to_dict()
     {'one': 7, 'coexist': 4}
     """
-    several = isinstance(system, (Structure, Adjacent))
-    if not several:
-        check_oscillator(system)
+    check_system(system)
     a_box = _box("a_g", a_g, "g")
     f_box = _box("freqs_hz", freqs_hz, "Hz")
     if levels is None:
@@ -282,7 +279,7 @@ def coexistence_map(
                          expected="a sequence of 'fold', 'grazing'")
     kinds = tuple(dict.fromkeys(one_of("kinds", k, CURVE_KINDS) for k in kinds))
     tol, max_step, max_points, exact = _common(system, tol, max_step, max_points, method)
-    witnesses = check_sweeps(sweeps, several)
+    witnesses = check_sweeps(sweeps, isinstance(system, (Structure, Adjacent)))  # (until one sweep result)
     basin_sample = check_basin_sample(basin_sample)
     if test_freqs_hz is None:
         freqs = np.round(np.arange(f_box[0], f_box[1] + 1e-9 * step, step), 10)

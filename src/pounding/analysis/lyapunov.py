@@ -44,13 +44,13 @@ from .._checks import instance_of, integer
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from .._runner.progress import Progress, progress_reporter
 from ..engine import State, simulate
-from ..engine.simulate import check_oscillator, check_state
+from ..engine.simulate import check_state
 from ..excitation import Harmonic
 from ..protocols.bifurcation_diagram import BifurcationDiagram, periods
 from . import _hybrid as hy
 from ._args import exact_monodromy
 from .lyapunov_result import LyapunovSpectrum
-from ..engine.assembly import assemble
+from ..engine.assembly import assemble, check_system
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
 from ._shooting import at_section
@@ -112,9 +112,7 @@ def lyapunov(system: Any, excitation: Harmonic, *, cycles: int = 1000,
     >>> [round(float(x), 12) for x in spec.exponents]  # -c / (2 m)
     [-0.2, -0.2]
     """
-    structure = isinstance(system, (Structure, Adjacent))
-    if not structure:
-        check_oscillator(system)
+    check_system(system)
     instance_of("excitation", excitation, Harmonic,
                 "pounding.Harmonic (the exponents are of the stroboscopic map of a "
                                   "periodic forcing)")
