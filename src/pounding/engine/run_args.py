@@ -3,12 +3,17 @@ tolerance, the history's sample rate, the forcing as the core takes it."""
 
 from __future__ import annotations
 
-from typing import Optional
+from typing import Any, NamedTuple, Optional
 
-from .._checks import non_negative, positive
+import numpy as np
+
+from .._checks import instance_of, integer, non_negative, positive
 from .._errors import InputError, Problem
 from ..excitation import Harmonic, Record
 from ._system import Forcing
+from .assembly import Assembly, assemble
+from .state import State
+from .state_check import check_state
 
 
 def check_rtol(rtol: float) -> float:
@@ -50,3 +55,37 @@ def history_rate(sample_rate_hz: Optional[float], duration: float) -> float:
                          fix="lower it or shorten the duration (extrema, contacts and energies are exact "
                              "without samples: sample_rate_hz=0 keeps the events only)")
     return rate
+
+
+class RunArgs(NamedTuple):
+    """A run's arguments, checked (:func:`checked_run_args`), with what its work estimate counts from."""
+
+    asm: Assembly        # the system, assembled
+    state: State         # the state to run from
+    duration: float      # s
+    rtol: float
+    rate: float          # samples per second (0: none)
+    max_events: int
+    max_steps: int
+    omega: float         # the forcing's angular frequency, rad/s (0 for a record)
+    knots: int           # a record's samples within the run (0 for a harmonic)
+
+
+def checked_run_args(system: Any, excitation: Any, duration: Any, state: Any, rtol: Any, sample_rate_hz: Any,
+                     max_events: Any, max_steps: Any) -> RunArgs:
+    """``simulate``'s arguments of any system checked, in their order (the system's own type checked
+    before), its state the one to run from."""
+    instance_of("excitation", excitation, (Harmonic, Record), "pounding.Harmonic or pounding.Record")
+    duration = positive("duration", duration, "s")
+    rtol = check_rtol(rtol)
+    max_events = integer("max_events", max_events, 1)
+    max_steps = integer("max_steps", max_steps, 1)
+    asm = assemble(system)
+    state = check_state(state, system, asm)
+    rate = history_rate(sample_rate_hz, duration)
+    t0 = state.time_s
+    omega = excitation.omega_rad_s if isinstance(excitation, Harmonic) else 0.0
+    knots = 0
+    if isinstance(excitation, Record):
+        knots = int(np.count_nonzero((excitation.t >= t0) & (excitation.t <= t0 + duration)))
+    return RunArgs(asm, state, duration, rtol, rate, max_events, max_steps, omega, knots)

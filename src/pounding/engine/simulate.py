@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING, Optional
 
 import numpy as np
 
-from .._checks import instance_of, integer, positive
+from .._checks import instance_of
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
@@ -24,7 +24,7 @@ from .. import _core
 from ._system import Forcing, System
 from .layout import X_A_MAX, X_A_MAX_T, X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T
 from .run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPLES,  # noqa: F401
-                        MAX_SAMPLES, check_rtol, history_rate, kernel_forcing)
+                        MAX_SAMPLES, check_rtol, checked_run_args, history_rate, kernel_forcing)
 from .result import EnergyLedger, Run
 from .assembly import Assembly, assemble, clearances
 from .state import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, State, one_mass_layout
@@ -127,23 +127,13 @@ def simulate(
         return simulate_structure(system, excitation, duration, state, rtol=rtol,  # type: ignore[return-value]
                                   sample_rate_hz=sample_rate_hz, max_events=max_events, max_steps=max_steps)
     check_oscillator(system)
-    instance_of("excitation", excitation, (Harmonic, Record), "pounding.Harmonic or pounding.Record")
-    duration = positive("duration", duration, "s")
-    rtol = check_rtol(rtol)
-    max_events = integer("max_events", max_events, 1)
-    max_steps = integer("max_steps", max_steps, 1)
-    asm = assemble(system)
-    state = check_state(state, system, asm)
-    rate = history_rate(sample_rate_hz, duration)
-    t0 = state.time_s
-    omega = excitation.omega_rad_s if isinstance(excitation, Harmonic) else 0.0
+    asm, state, duration, rtol, rate, max_events, max_steps, omega, knots = checked_run_args(
+        system, excitation, duration, state, rtol, sample_rate_hz, max_events, max_steps)
     iso_rate, why = isolator_rate(system)
     per_s = float(steps_per_second(iso_rate, omega))
     if omega > iso_rate:
         why = f"the forcing, {omega:.3g} rad/s"
-    knots = 0
     if isinstance(excitation, Record):
-        knots = int(np.count_nonzero((excitation.t >= t0) & (excitation.t <= t0 + duration)))
         why += f", and {knots} record samples"
     check_budget("duration", duration, per_s * duration + knots, max_steps, why,
                  "shorten the duration, or check the system's numbers (SI units: kg, N/m, N s/m)")

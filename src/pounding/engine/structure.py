@@ -11,7 +11,7 @@ from typing import Any, Optional
 import numpy as np
 
 from .. import _core
-from .._checks import instance_of, integer, positive
+from .._checks import instance_of
 from .._errors import Interrupted, Status
 from ..excitation import Harmonic, Record
 from ..model.contact_laws import is_rigid, linear_form
@@ -22,8 +22,7 @@ from ._chatter import chatter_frame
 from .state import State
 from .state_check import contact_name
 from .layout import CONTACT_COLUMNS
-from .run_args import DIRECT_CALL_STEPS, check_rtol, history_rate, kernel_forcing
-from .state_check import check_state
+from .run_args import DIRECT_CALL_STEPS, checked_run_args, kernel_forcing
 from .adjacent_result import AdjacentRun
 from .assembly import Assembly, _add_pair, assemble, clearances, structures_of
 from .result import EnergyLedger
@@ -73,21 +72,12 @@ def simulate_structure(structure: Structure | Adjacent, excitation: Harmonic | R
     (``pounding.simulate`` with a :class:`~pounding.Structure` or :class:`~pounding.Adjacent`; the same
     arguments, a :class:`StructureRun` or :class:`AdjacentRun` back)."""
     instance_of("structure", structure, (Structure, Adjacent), "pounding.Structure or pounding.Adjacent")
-    instance_of("excitation", excitation, (Harmonic, Record), "pounding.Harmonic or pounding.Record")
-    duration = positive("duration", duration, "s")
-    rtol = check_rtol(rtol)
-    max_events = integer("max_events", max_events, 1)
-    max_steps = integer("max_steps", max_steps, 1)
-    asm = assemble(structure)
-    state = check_state(state, structure, asm)
-    rate = history_rate(sample_rate_hz, duration)
+    asm, state, duration, rtol, rate, max_events, max_steps, omega, knots = checked_run_args(
+        structure, excitation, duration, state, rtol, sample_rate_hz, max_events, max_steps)
     t0 = state.time_s
-    omega = excitation.omega_rad_s if isinstance(excitation, Harmonic) else 0.0
     free, touching = structure_rates(asm)
-    knots = 0
     why = f"the structure's fastest motion {max(free, omega):.3g} rad/s"
     if isinstance(excitation, Record):
-        knots = int(np.count_nonzero((excitation.t >= t0) & (excitation.t <= t0 + duration)))
         why += f", and {knots} record samples"
     estimate = float(steps_per_second(free, omega)) * duration + knots
     check_budget("duration", duration, estimate, max_steps, why,
