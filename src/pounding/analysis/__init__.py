@@ -9,7 +9,7 @@ from .curves import bifurcation_curve, coexistence_map
 from .lyapunov import largest_exponents, lyapunov
 from .lyapunov_result import LyapunovSpectrum
 from .periodic import PeriodicOrbit, periodic_orbit
-from .structure_periodic import StructurePeriodicOrbit
+from .periodic import StructurePeriodicOrbit
 
 __all__ = ["Bifurcation", "BifurcationCurve", "Branch", "CoexistenceMap", "LyapunovSpectrum", "PeriodicOrbit",
            "StructurePeriodicOrbit", "bifurcation_curve", "coexistence_map", "continuation",

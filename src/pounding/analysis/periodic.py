@@ -36,12 +36,30 @@ from . import _hybrid as hy
 from ._args import exact_monodromy, orbit_arguments, settled
 from ._shooter import _Shooter
 from ._shooting import Floquet, _Failed, multipliers_of  # noqa: F401  (_Failed: the solvers' failure, here)
-from .structure_periodic import StructurePeriodicOrbit
+
 
 
 
 @dataclass(frozen=True, eq=False)
-class PeriodicOrbit(Floquet):
+class _Orbit(Floquet):
+    """What every periodic orbit holds (its attributes: :class:`PeriodicOrbit`'s)."""
+
+    state: State
+    period_s: float
+    multipliers: np.ndarray = field(repr=False)
+    monodromy: np.ndarray = field(repr=False)
+    coordinates: tuple[str, ...]
+    residual: float
+    converged: bool
+    iterations: int
+    method: str
+    run: Any = field(repr=False)
+    message: str
+
+
+
+@dataclass(frozen=True, eq=False)
+class PeriodicOrbit(_Orbit):
     """A periodic response and its stability (what :func:`periodic_orbit` returns).
 
     Attributes
@@ -91,18 +109,6 @@ class PeriodicOrbit(Floquet):
     ...       f"{orbit.max_abs_multiplier:.3f}")
     alpha 8.30, eta 1.066, max |mu| 0.368
     """
-
-    state: State
-    period_s: float
-    multipliers: np.ndarray = field(repr=False)
-    monodromy: np.ndarray = field(repr=False)
-    coordinates: tuple[str, ...]
-    residual: float
-    converged: bool
-    iterations: int
-    method: str
-    run: Run = field(repr=False)
-    message: str
 
     @property
     def alpha(self) -> float:
@@ -219,3 +225,76 @@ def periodic_orbit(
     kind = PeriodicOrbit if isinstance(run, Run) else StructurePeriodicOrbit
     return kind(state, period, multipliers_of(jac), jac, tuple(shooter.names(vec, frozen)), res, res <= tol,
                 it, "exact" if shooter.exact else "finite-difference", run, message)
+
+
+@dataclass(frozen=True, eq=False)
+class StructurePeriodicOrbit(_Orbit):
+    """A periodic response of a structure (or two adjacent ones) and its stability.
+
+    Attributes
+    ----------
+    As :class:`PeriodicOrbit`'s, but:
+
+    coordinates : tuple of str
+        Names of the shooting coordinates: ``x_<level>`` and ``v_<level>`` for each moving level
+        (``first.``/``second.`` for a pair; ``stand_<wall>_<side>`` for a wall's stand),
+        ``delta_wall<w>_<side>`` and ``delta_link<k>`` for a relaxing contact's compression,
+        ``u_<spring>`` for a spring's slip.
+    residual : float
+        Largest difference between the state and its image a period later, each coordinate over its scale
+        (lengths over the largest ``|x|`` of any level over the guess's period, velocities over that times
+        Omega).
+    run : StructureRun or AdjacentRun
+        One period from ``state``, densely sampled.
+    alpha, excursion_m : ndarray, shape (levels,)
+        Each level's (a pair's: the first's levels, then the second's).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> iso = pounding.Isolator(slopes_n_m=[2.0e5], breakpoints_m=[],
+    ...                         damping_n_s_m=4.0e3)
+    >>> stop = pounding.Wall(0, 0.02, 0.02, pounding.KelvinVoigt(1.0e8, 2.0e4))
+    >>> b = pounding.Structure(2.0e3, iso,
+    ...                        [pounding.Storey(1.0e3, 2.0e6, 2.0e3)], [stop])
+    >>> orbit = pounding.periodic_orbit(b, pounding.Harmonic(0.1, 1.5))
+    >>> orbit.converged, orbit.method, orbit.coordinates[:4]
+    (True, 'exact', ('x_0', 'x_1', 'v_0', 'v_1'))
+    >>> orbit.contacts_per_period, orbit.stable
+    (2, True)
+    """
+
+    def _contact_tables(self) -> list:
+        return _contact_tables_of(self.run)
+
+    @property
+    def alpha(self) -> np.ndarray:
+        """Each level's peak absolute acceleration over the table's peak, shape (levels,) (a pair's: the
+        first's levels, then the second's)."""
+        peak = abs(self.run.excitation.peak_m_s2)
+        acc = np.concatenate([part.abs_acceleration_max for part in _run_parts(self.run)])
+        return acc / peak if peak > 0.0 else np.full(acc.shape, math.nan)
+
+    @property
+    def excursion_m(self) -> np.ndarray:
+        """Each level's ``D_max - D_min`` over the period, m, shape (levels,) (a pair's: the first's levels,
+        then the second's)."""
+        return np.concatenate([part.excursion_m for part in _run_parts(self.run)])
+
+    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
+        """Each level's orbit in its phase plane (x, v), its contacts marked; returns its Figure."""
+        from ..plots.periodic import plot_structure_orbit
+        from ..plots import figure_of
+
+        return figure_of(plot_structure_orbit(self, ax=ax, **kwargs), ax)
+
+
+def _run_parts(run: Any) -> tuple:
+    """The structures' runs of a run: a structure's itself, a pair's first and second."""
+    return (run.first, run.second) if hasattr(run, "first") else (run,)
+
+
+def _contact_tables_of(run: Any) -> list:
+    """A run's contact tables (the core's columns): each structure's walls', then a pair's links'."""
+    parts = _run_parts(run)
+    return [p.contact_table for p in parts] + ([run.link_table] if len(parts) > 1 else [])
