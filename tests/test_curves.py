@@ -131,6 +131,18 @@ def test_bad_arguments_are_named(damped: tuple, kwargs: dict, field: str) -> Non
         pd_.bifurcation_curve(osc, br.folds()[0], **kwargs)
 
 
+def test_a_grazing_is_followed_at_one_named_contact(damped: tuple) -> None:
+    """A grazing of both bumpers at once (the branch's summary line) or one named in 0.x's words is
+    refused with the contact names the system has, not a KeyError deep in the follower."""
+    import dataclasses
+
+    osc, br = damped
+    graze = next(b for b in br.bifurcations if b.kind == "grazing")
+    for side in ("wall0_left and wall0_right", "left", ""):
+        with pytest.raises(pd_.InputError, match=r"bifurcation\.side.*wall0_left, wall0_right"):
+            pd_.bifurcation_curve(osc, dataclasses.replace(graze, side=side))
+
+
 def test_only_folds_and_grazings_are_followed(damped: tuple) -> None:
     osc, br = damped
     pd = next(b for b in br.bifurcations if b.kind == "period-doubling")

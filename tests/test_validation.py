@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pytest
 
@@ -327,3 +329,27 @@ def test_every_protocol_runs_a_mass_without_bumpers_from_a_state_laid_out_with_t
                                       record_cycles=4, max_period=2)
     exponents = pd_.largest_exponents(diagram, cycles=20, align_cycles=4)
     assert np.isfinite(exponents.data["largest_exponent"].values).all()
+    # 0.1's layout was a single mass's alone: a structure of one level without walls refuses it
+    level = pd_.Structure.from_oscillator(bare)
+    for run_it in (lambda: pd_.simulate(level, exc, 1.0, two_slots),
+                   lambda: pd_.periodic_orbit(level, exc, guess=rest, max_iter=2)):
+        with warnings.catch_warnings():
+            warnings.simplefilter("error", FutureWarning)
+            with pytest.raises(pd_.InputError, match="contact slots"):
+                run_it()
+
+
+def test_a_shooter_s_advance_is_none_from_a_vector_that_is_no_state():
+    """The solvers' raw vectors: one that is none of the system's states gives no state on (None), as a
+    run that stopped does, not an exception out of the follower."""
+    from pounding.analysis._shooter import _Shooter
+
+    stop = pd_.Wall(0, 0.02, 0.02, pd_.KelvinVoigt(1.0e8, 2.0e4))
+    b = pd_.Structure(2.0e3, pd_.Isolator([2.0e5], [], "elastic", 4.0e3), [pd_.Storey(1.0e3, 2.0e6, 2.0e3)],
+                      [stop])
+    exc = pd_.Harmonic(0.1, 1.5)
+    sh = _Shooter(b, exc, 1 / 1.5, True)
+    vec = np.array(pd_.State.at_rest(b).vector)
+    assert sh.advance(exc, 0.3, vec) is not None
+    vec[sh.lay["x"]] = 0.5  # (the base 0.5 m into a wall 0.02 m away, flagged apart)
+    assert sh.advance(exc, 0.3, vec) is None

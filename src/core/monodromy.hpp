@@ -7,7 +7,7 @@
 // augmented system is homogeneous and X(t) = expm(A~ t) X(0) exactly; at an event with guard g(x) = 0 the
 // perturbations jump by the saltation matrix S = I + (f_m' - f_m) grad(g)^T / (grad(g) . f_m).
 // Coordinates x: the displacements (n), the velocities (n), the contacts' compressions (nc), the elements'
-// slips (n_sp): for one mass with its two bumpers, D, V, delta_L, delta_R, u_i.
+// slips (n_sp): for one mass with its two bumpers, x_0, v_0, delta_wall0_left, delta_wall0_right, u_i.
 #pragma once
 
 #include <vector>

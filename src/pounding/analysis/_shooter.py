@@ -215,16 +215,20 @@ class _Shooter(_Newton):
                 hits = rows[(rows[:, C_SLOT] == c) & (rows[:, C_T_END] == rows[:, C_T_START])]
                 if len(hits):
                     out[c] = -float(np.abs(hits[:, C_V_IN]).min()) / self.exc.omega_rad_s
-        return {name.replace("delta_", ""): c for name, c in zip(self._contact_names, out)}
+        return dict(zip(self.sides(), out))
 
     @property
     def _contact_names(self) -> list[str]:
         return self._names[2 * self.n:2 * self.n + self.nc]
 
+    def sides(self) -> list[str]:
+        """The keys of :meth:`clearances`: each contact's name (``wall0_left``, ``first.wall0_right``,
+        ``link0``), what a grazing's ``side`` is."""
+        return [name.replace("delta_", "") for name in self._contact_names]
+
     def rigid_sides(self) -> set[str]:
         """The sides of :meth:`clearances` that are rigid stops."""
-        pairs = zip(self._contact_names, self.asm.pairs)
-        return {name.replace("delta_", "") for name, pair in pairs if is_rigid(pair.law)}
+        return {side for side, pair in zip(self.sides(), self.asm.pairs) if is_rigid(pair.law)}
 
     def summary(self, run: ShortRun, exc: Harmonic) -> dict[str, float]:
         """A branch's row of the orbit run over its period: the largest alpha over every level, the first
@@ -247,7 +251,7 @@ class _Shooter(_Newton):
         """The state vector ``duration`` s on under ``exc`` (None where the engine stopped)."""
         try:
             run = short_run(self.model, exc, duration, vec, self.asm)
-        except InputError:
+        except (InputError, NotAState):
             return None
         return np.array(run.vector) if run.success else None
 

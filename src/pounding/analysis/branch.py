@@ -59,9 +59,11 @@ class Bifurcation:
         The contact of a grazing (``"wall0_left"``, ``"wall0_right"``: a single mass's bumpers; a
         structure's ``"wall<w>_<side>"``, ``"link<k>"``), else ``""``.
     direction : ndarray
-        For a period-doubling, the critical eigenvector in the shooting coordinates (every one of
-        :attr:`PeriodicOrbit.coordinates`' names, unscaled); for a branch point, the other branch's
-        tangent (those coordinates, then the parameter); else the branch's tangent's coordinate parts.
+        For a period-doubling, the critical eigenvector in every coordinate of the system's state (every
+        level's ``x_<level>``, then ``v_<level>``, every contact's compression, every hysteretic element's
+        slips ``u_<i>``, zero for one of the elastic rule, then ``z``; unscaled); for a branch point, the
+        other branch's tangent (those coordinates, then the parameter); else the branch's tangent's
+        coordinate parts.
     period_multiple : int
         The branch's period, in forcing periods.
     alpha : float

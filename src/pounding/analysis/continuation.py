@@ -60,8 +60,8 @@ def continuation(
 
     Parameters
     ----------
-    system : Oscillator
-        The system.
+    system : Oscillator, Structure or Adjacent
+        The system: a single mass, a structure or two adjacent ones.
     a_g : float or (float, float)
         The table's peak acceleration, g; ``(start, end)`` with ``parameter="a_g"``.
     freqs_hz : (float, float) or float
@@ -86,7 +86,7 @@ def continuation(
         start value (the response a sweep would settle on).
     tol : float
         Largest scaled residual accepted at each point (lengths over the scale of the
-        branch: half the total gap, or the first orbit's largest ``|D|`` if larger).
+        branch: half the narrowest total gap, or the first orbit's largest ``|x|`` if larger).
     max_step : float
         Largest arclength step, in units where the parameter's range is 1 (0.02: at least 50
         points over the range).

@@ -29,12 +29,13 @@ class BifurcationCurve:
 
     Attributes
     ----------
-    oscillator : Oscillator
+    oscillator : Oscillator, Structure or Adjacent
         The system.
     kind : {"fold", "grazing"}
-        What is followed: a fold (a multiplier is 1) or a grazing (the orbit just touches a bumper).
+        What is followed: a fold (a multiplier is 1) or a grazing (the orbit just touches a contact).
     side : str
-        ``"left"`` or ``"right"`` for a grazing, else ``""``.
+        The contact of a grazing (:attr:`Bifurcation.side`: ``"wall0_left"``, ``"wall0_right"`` for a
+        single mass's bumpers), else ``""``.
     period_multiple : int
         The orbits' period, in forcing periods.
     freqs_hz, a_g : (float, float)

@@ -14,6 +14,7 @@ from .._checks import instance_of, integer, one_of, real
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..engine.assembly import check_system
 from ..engine.simulate import check_state
+from ..excitation import Harmonic
 from ..model import Oscillator
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
@@ -26,6 +27,7 @@ from .continuation import continuation
 from .curve_result import BifurcationCurve, CoexistenceMap, curve_table
 from .witnesses import check_basin_sample, check_sweeps, judge_matrix
 from ._through_sweeps import STEP_COLUMNS, through_sweeps
+from ._shooter import _Shooter
 from ._shooting import _Failed
 from ._args import exact_monodromy, length_scale, step_size, tolerance
 
@@ -120,6 +122,15 @@ def bifurcation_curve(
         raise InputError(Problem.BAD_STATE, "bifurcation", bifurcation.kind,
                          why=f"is not of this system ({exc})",
                          fix="pass the system the branch was followed on") from None
+    if bifurcation.kind == "grazing":
+        sides = _Shooter(system, Harmonic(bifurcation.a_g, bifurcation.freq_hz), 1.0 / bifurcation.freq_hz,
+                         False).sides()
+        if bifurcation.side not in sides:
+            raise InputError(Problem.BAD_STATE, "bifurcation.side", bifurcation.side,
+                             why=f"names no one contact of this system (its contacts: {', '.join(sides)})",
+                             fix="follow one contact's grazing at a time, e.g. "
+                                 f"dataclasses.replace(bifurcation, side={sides[0]!r})" if sides else
+                                 "a system without contacts has no grazing")
     a_box = _box("a_g", a_g, "g")
     f_box = _box("freqs_hz", freqs_hz, "Hz")
     for name, box, v in (("a_g", a_box, bifurcation.a_g), ("freqs_hz", f_box, bifurcation.freq_hz)):

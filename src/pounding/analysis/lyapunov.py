@@ -7,8 +7,9 @@ systems whose phases are all linear, else by central differences of the map) car
 orthonormal frame of tangent vectors, re-orthonormalised after every period (Benettin's method
 with QR).  The exponents are the averages of the logarithms of the diagonal of R per second.
 
-The tangent coordinates are the state's: ``D`` and ``V``, the compression of a Kelvin-Voigt
-bumper with a dashpot (out of contact it relaxes: a state of its own), the slip of each isolator
+The tangent coordinates are the state's (:func:`pounding.periodic_orbit`'s names): every level's
+displacement and velocity (a single mass's ``x_0`` and ``v_0``), the compression of a Kelvin-Voigt
+contact with a dashpot (out of contact it relaxes: a state of its own), the slip of each
 spring that slips during the run (a spring that never does is a constant, a parameter of the
 response, as in :func:`pounding.periodic_orbit`), the Bouc-Wen z.  At each section a coordinate
 that follows the mass there (a touched bumper's compression, a slipping spring's slip) is put back
@@ -16,8 +17,9 @@ on its constraint.
 
 Two choices make the estimates exact where a closed form exists:
 
-- Lengths and velocities are measured in the isolator's own units: ``(omega_d D, V + zeta
-  omega_n D)`` with ``omega_n``, ``zeta`` and ``omega_d`` of its first slope, so the free linear
+- Lengths and velocities are measured in the isolator's own units (a single mass's; a structure's in its
+  free motion's real modal coordinates): ``(omega_d x, v + zeta omega_n x)`` with ``omega_n``, ``zeta``
+  and ``omega_d`` of its first slope, so the free linear
   oscillator's flow is a rotation times ``exp(-zeta omega_n t)`` and every frame vector shrinks at
   exactly that rate.  (Exponents do not depend on a fixed change of coordinates; finite-time
   estimates do, by O(1/t).)

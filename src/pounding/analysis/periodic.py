@@ -1,19 +1,19 @@
 """``periodic_orbit``: a periodic response found by Newton shooting on the engine's
 stroboscopic map, with its Floquet multipliers.
 
-The map takes the state at a time ``t0`` to the state one forcing period (or ``period_multiple``
-periods) later, by the engine (``pounding.simulate``, exact at every event).  Its Jacobian, the
-monodromy matrix, is composed exactly for systems whose phases are all linear (a multi-linear
-isolator without Bouc-Wen spring, Kelvin-Voigt bumpers): the closed-form state-transition
-matrices of the phases between the engine's events, and a saltation matrix at every event
-(``_hybrid``).  For the other systems it is a central finite difference of the map
-(``PeriodicOrbit.method`` says which).
+The map takes the state of any system (a single mass, a structure, a pair) at a time ``t0`` to the
+state one forcing period (or ``period_multiple`` periods) later, by the engine (exact at every event;
+the map: ``_shooter``).  Its Jacobian, the monodromy matrix, is composed exactly for systems whose
+phases are all linear (multi-linear isolators and storeys without a Bouc-Wen spring, Kelvin-Voigt or
+rigid contacts): the closed-form state-transition matrices of the phases between the engine's events,
+and a saltation matrix at every event (``_hybrid``).  For the other systems it is a central finite
+difference of the map (``PeriodicOrbit.method`` says which).
 
-The shooting coordinates are the state's free numbers at ``t0``: the displacement and velocity,
-the compression of a Kelvin-Voigt bumper not touched (it relaxes), the slip of an isolator spring
-that does not slip; a bumper in contact and a slipping spring follow the mass.  The bumpers of
-other laws are no coordinates: their compressions and their own states follow the motion (a
-stiff bumper's relaxation is over long before the period ends).
+The shooting coordinates are the state's free numbers at ``t0``: every level's displacement and
+velocity, the compression of a Kelvin-Voigt contact not touched (it relaxes), the slip of a spring
+that does not slip; a contact in progress and a slipping spring follow the masses.  The contacts of
+other laws are no coordinates: their compressions and their own states follow the motion (a stiff
+contact's relaxation is over long before the period ends).
 """
 
 from __future__ import annotations
@@ -38,8 +38,6 @@ from ._shooter import _Shooter
 from ._shooting import Floquet, _Failed, multipliers_of  # noqa: F401  (_Failed: the solvers' failure, here)
 
 
-
-
 @dataclass(frozen=True, eq=False)
 class _Orbit(Floquet):
     """What every periodic orbit holds (its attributes: :class:`PeriodicOrbit`'s)."""
@@ -55,7 +53,6 @@ class _Orbit(Floquet):
     method: str
     run: Any = field(repr=False)
     message: str
-
 
 
 @dataclass(frozen=True, eq=False)
@@ -82,7 +79,7 @@ class PeriodicOrbit(_Orbit):
         isolator's slips), ``z`` (a Bouc-Wen spring's): a one-level structure's names.
     residual : float
         Largest difference between the state and its image one period later, each coordinate
-        over its scale (lengths over the largest ``|D|`` over the guess's first period, velocities
+        over its scale (lengths over the largest ``|x|`` over the guess's first period, velocities
         over that times Omega, the Bouc-Wen z over 1).
     converged : bool
         Whether ``residual <= tol``.
@@ -131,7 +128,7 @@ class PeriodicOrbit(_Orbit):
         return [self.run.contact_table]
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
-        """The orbit in the phase plane (D, V), its contacts marked; returns its Figure."""
+        """The orbit in the phase plane (x, v), its contacts marked; returns its Figure."""
         from ..plots.periodic import plot_orbit
         from ..plots import figure_of
 

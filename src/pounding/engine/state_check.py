@@ -23,8 +23,10 @@ from ..model.contact_laws import N_LAW_STATE, state_problem, stateless
 from .assembly import Assembly, assemble
 from .state import LAYOUT_KEYS, State, shifted
 
+from ..model.oscillator import Oscillator
+
 if TYPE_CHECKING:
-    from ..model import Adjacent, Oscillator, Structure
+    from ..model import Adjacent, Structure
 
 
 def contact_name(slot: tuple, pair: bool) -> str:
@@ -158,12 +160,13 @@ def check_state(state: Optional[State], system: "Oscillator | Structure | Adjace
                 asm: Optional[Assembly] = None) -> State:
     """``state``, or rest at t = 0 when None; it must belong to a system like ``system`` (a single mass, a
     structure or a pair; ``asm``: its assembly, when the caller has it).  Returns the state to run from (a
-    mass without bumpers: laid out as its own, see :func:`_without_bumpers`)."""
+    single mass without bumpers given 0.1's state: laid out as its own, see :func:`_without_bumpers`)."""
     asm = assemble(system) if asm is None else asm
     if state is None:
         return shifted(asm, 0.0, 0.0, 0.0)
     instance_of("state", state, State, "pounding.State (e.g. run.final_state)")
-    state = _without_bumpers(state, asm)
+    if isinstance(system, Oscillator):  # (0.1's layout was a single mass's alone)
+        state = _without_bumpers(state, asm)
     check_layout(state, asm, _FIX)
     check_fits(state.vector, asm, _FIX)
     return state

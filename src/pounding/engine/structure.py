@@ -29,9 +29,6 @@ from .result import EnergyLedger
 from .structure_result import StructureRun
 
 
-
-
-
 def structure_rates(asm: Assembly) -> tuple[float, float]:
     """(out of contact, in every contact at once) the fastest rate of the assembled structures, rad/s: the
     largest undamped frequency with every hysteretic element at its stiffest slope (and the contacts'
