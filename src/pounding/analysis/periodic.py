@@ -230,8 +230,14 @@ class StructurePeriodicOrbit(_Orbit):
 
     Attributes
     ----------
-    As :class:`PeriodicOrbit`'s, but:
-
+    state : State
+        The orbit's state at the section time (``state.time_s``).
+    period_s : float
+        Its period, s: ``period_multiple`` periods of the forcing.
+    multipliers : ndarray of complex, shape (r,)
+        Floquet multipliers: the eigenvalues of ``monodromy``, largest modulus first.
+    monodromy : ndarray, shape (r, r)
+        Jacobian of the stroboscopic map in the shooting coordinates ``coordinates``.
     coordinates : tuple of str
         Names of the shooting coordinates: ``x_<level>`` and ``v_<level>`` for each moving level
         (``first.``/``second.`` for a pair; ``stand_<wall>_<side>`` for a wall's stand),
@@ -241,8 +247,16 @@ class StructurePeriodicOrbit(_Orbit):
         Largest difference between the state and its image a period later, each coordinate over its scale
         (lengths over the largest ``|x|`` of any level over the guess's period, velocities over that times
         Omega).
+    converged : bool
+        Whether ``residual <= tol``.
+    iterations : int
+        Newton iterations made.
+    method : str
+        ``"exact"`` (state-transition and saltation matrices) or ``"finite-difference"``.
     run : StructureRun or AdjacentRun
         One period from ``state``, densely sampled.
+    message : str
+        What happened, for people.
     alpha, excursion_m : ndarray, shape (levels,)
         Each level's (a pair's: the first's levels, then the second's).
 
