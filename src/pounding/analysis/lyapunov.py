@@ -17,12 +17,11 @@ on its constraint.
 
 Two choices make the estimates exact where a closed form exists:
 
-- Lengths and velocities are measured in the isolator's own units (a single mass's; a structure's in its
-  free motion's real modal coordinates): ``(omega_d x, v + zeta omega_n x)`` with ``omega_n``, ``zeta``
-  and ``omega_d`` of its first slope, so the free linear
-  oscillator's flow is a rotation times ``exp(-zeta omega_n t)`` and every frame vector shrinks at
-  exactly that rate.  (Exponents do not depend on a fixed change of coordinates; finite-time
-  estimates do, by O(1/t).)
+- A single mass's lengths and velocities are measured in its isolator's own units,
+  ``(omega_d x, v + zeta omega_n x)`` with ``omega_n``, ``zeta`` and ``omega_d`` of its first slope, so
+  the free linear oscillator's flow is a rotation times ``exp(-zeta omega_n t)`` and every frame vector
+  shrinks at exactly that rate; a structure's in its free motion's real modal coordinates, the same
+  way.  (Exponents do not depend on a fixed change of coordinates; finite-time estimates do, by O(1/t).)
 - The frame is carried for ``align_cycles`` periods before the count starts, so on a periodic
   orbit whose largest multiplier is real and alone it is aligned and each period's R gives the
   multipliers' moduli.
@@ -55,9 +54,8 @@ from .lyapunov_result import LyapunovSpectrum
 from ..engine.assembly import assemble, check_system
 from ..model.adjacent import Adjacent
 from ..model.structure import Structure
-from ._shooting import at_section
 from ._shooter import _Shooter
-from ._shooting import _Failed
+from ._shooting import _Failed, at_section
 
 MAX_CYCLES = 10_000_000
 MAX_PERIOD = 8  # the longest period (in forcing periods) a response is checked for

@@ -20,10 +20,9 @@ import numpy as np
 from .._checks import instance_of
 from .._errors import InputError, Problem, outside_stacklevel
 from ..model.contact_laws import N_LAW_STATE, state_problem, stateless
+from ..model.oscillator import Oscillator
 from .assembly import Assembly, assemble
 from .state import LAYOUT_KEYS, State, shifted
-
-from ..model.oscillator import Oscillator
 
 if TYPE_CHECKING:
     from ..model import Adjacent, Structure
