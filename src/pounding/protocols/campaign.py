@@ -19,6 +19,7 @@ from .._checks import instance_of, one_of, real_tuple
 from .._errors import InputError, Interrupted, Problem
 from ..model import Adjacent, Oscillator, Structure
 from .._runner import Context, run_tasks
+from ..engine.assembly import structures_of
 from .._runner.progress import Progress
 from .sweep import SweepPlan, check_sweep_options, make_plan, run_plan
 from .sweep_result import SIDE_COLUMNS, STEP_COLUMNS, SweepResult
@@ -189,12 +190,10 @@ def sweep_task(plan: SweepPlan, ctx: Context) -> Any:
 
 
 def _touches(system: Any) -> bool:
-    """Whether a system can pound: an oscillator's bumpers, a structure's walls, a pair's links or walls."""
-    if isinstance(system, Oscillator):
-        return system.bumpers is not None
-    if isinstance(system, Adjacent):
-        return bool(system.links) or any(s.walls for s in system.structures)
-    return bool(system.walls)
+    """Whether a system can pound: an oscillator's bumpers (its one level's wall), a structure's walls, a
+    pair's links or walls."""
+    structures, links = structures_of(system)
+    return bool(links) or any(s.walls for s in structures)
 
 
 def campaign(
@@ -305,8 +304,8 @@ def campaign(
                      else type(osc).__name__)
             raise InputError(Problem.WRONG_CONFIGURATION, field_name, shown,
                              got=f"with {what}" if _touches(osc) else f"without {what}", fix=fix)
-        if conf == "YBs" and nbs_system is not None and (len(kinds) > 1 or (
-                not isinstance(osc, Oscillator) and _levels(osc) != _levels(nbs_system))):
+        other = nbs_system is not None and (len(kinds) > 1 or _levels(osc) != _levels(nbs_system))
+        if conf == "YBs" and other:
             raise InputError(Problem.WRONG_CONFIGURATION, field_name, type(osc).__name__,
                              got=f"of other levels than nbs_system's, or of another kind "
                                  f"({type(osc).__name__} against {type(nbs_system).__name__})",
@@ -344,8 +343,8 @@ def campaign(
 
 
 def _levels(system: Any) -> tuple:
-    """A structure's (or pair's) levels: how many each structure has."""
-    return tuple(s.n_levels for s in (system.structures if isinstance(system, Adjacent) else (system,)))
+    """A system's levels: how many each of its structures has (a single mass: one)."""
+    return tuple(s.n_levels for s in structures_of(system)[0])
 
 
 def _dataset(sweeps: dict, plans: list, complete: bool) -> "xr.Dataset":
