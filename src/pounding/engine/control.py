@@ -1,7 +1,7 @@
 """The engine's up-front work estimate (the run control itself, Ctrl-C and the budget, is
 ``pounding._control``'s, re-exported here for the engine's callers).
 
-:func:`isolator_rate` and :func:`steps_per_second` give a lower bound of the kernels' work
+:func:`fastest_rates` and :func:`steps_per_second` give a lower bound of the kernels' work
 rate: a request that cannot finish within its budget is refused before any work starts.
 """
 
@@ -15,57 +15,63 @@ import numpy as np
 from .._control import (DEFAULT_MAX_STEPS, new_control, request_stop, run_interruptibly,  # noqa: F401
                         stop_requested)
 from .._errors import InputError, Problem
-from ..model import Oscillator
 from ..model.contact_laws import is_rigid, linear_form
+from .assembly import Assembly, _add_pair, assemble
+
 SUBINTERVALS_PER_PERIOD = 8.0  # the core's (src/core/run.cpp): sub-intervals per period of the fastest motion
 
 
-def isolator_rate(oscillator: Oscillator) -> tuple[float, str]:
-    """The fastest rate of the isolated mass out of contact, rad/s, and what sets it.
+def fastest_rates(asm: Assembly) -> tuple[float, float]:
+    """(out of contact, in every contact at once) the fastest rate of an assembled system's motion, rad/s.
 
-    Out of contact the kernel cuts time into ``SUBINTERVALS_PER_PERIOD`` sub-intervals per
-    period of the fastest of this motion (the frequency on the isolator's stiffest branch,
-    or its decay rate when overdamped) and the forcing; contacts and events only add, so
-    ``SUBINTERVALS_PER_PERIOD * max(rate, omega) / (2 pi)`` bounds the work per second below.
+    Out of contact: the largest undamped frequency with every hysteretic element (the isolator, a yielding
+    storey) at its stiffest slope and a Bouc-Wen spring at its initial stiffness, or a degree of freedom's
+    damping rate when larger (overdamped: ``sqrt(w^2 + (c / 2m)^2)`` and ``c / m`` with the largest
+    ``c / m``). In contact: the same with every contact's linear spring and dashpot added (inf for a
+    nonlinear or multi-branch law, which is integrated numerically; a rigid stop adds none: its impacts are
+    events). The kernel cuts time into ``SUBINTERVALS_PER_PERIOD`` sub-intervals per period of the fastest
+    of this motion and the forcing; contacts and events only add, so the first bounds the work per second
+    from below and the second from above.
     """
-    iso = oscillator.isolator
-    k = max(abs(s) for s in iso.slopes_n_m)
-    if iso.bouc_wen is not None:  # (its initial stiffness, in parallel)
-        k += iso.bouc_wen.a * iso.bouc_wen.stiffness_n_m
-    c = iso.damping_n_s_m
-    m = oscillator.mass_kg
-    rate = max(math.sqrt(k / m + (0.5 * c / m) ** 2), c / m)
-    return rate, (
-        f"the isolator's fastest motion {rate:.3g} rad/s: stiffness {k:.3g} N/m, damping "
-        f"{c:.3g} N s/m, mass {m:.3g} kg"
-    )
+    m = asm.masses
+    k, c = asm.k_fast.copy(), asm.c_all.copy()
+    scale = 1.0 / np.sqrt(m)
+
+    def rate(k: np.ndarray, c: np.ndarray) -> float:  # (K v = lam M v: M^-1/2 K M^-1/2's eigenvalues)
+        lam = float(np.linalg.eigvalsh(k * np.outer(scale, scale))[-1])
+        decay = float(np.max(np.diag(c) / m))
+        return max(math.sqrt(max(lam, 0.0) + (0.5 * decay) ** 2), decay)
+
+    free = rate(k, c)
+    for i, j, _, _, law in asm.pairs:
+        if is_rigid(law):
+            continue
+        form = linear_form(law)
+        if form is None:
+            return free, math.inf
+        _add_pair(k, i, j, form[0])
+        _add_pair(c, i, j, form[1])
+    return free, rate(k, c)
 
 
-def contact_rate(oscillator: Oscillator) -> float:
-    """An upper bound of the fastest rate of any phase, rad/s: the isolator's stiffest tangent
-    and both linear bumpers at once (inf for a nonlinear law, which is integrated numerically)."""
-    iso = oscillator.isolator
-    k = max(abs(s) for s in iso.slopes_n_m) if iso.hysteresis == "elastic" else (
-        abs(iso.slopes_n_m[-1]) + sum(abs(a - b) for a, b in zip(iso.slopes_n_m, iso.slopes_n_m[1:])))
-    if iso.bouc_wen is not None:
-        k += iso.bouc_wen.a * iso.bouc_wen.stiffness_n_m
-    c = iso.damping_n_s_m
-    b = oscillator.bumpers
-    if b is not None:
-        for law in (b.left, b.right):
-            if is_rigid(law):  # (no stiffness: its impacts are events, its phases the isolator's)
-                continue
-            form = linear_form(law)
-            if form is None:  # (several linear branches, or a nonlinear law)
-                return math.inf
-            k += form[0]
-            c += form[1]
-    m = oscillator.mass_kg
-    return max(math.sqrt(k / m + (0.5 * c / m) ** 2), c / m)
+def fastest_rate(system: Any) -> tuple[float, str]:
+    """The fastest rate of any system's motion out of contact, rad/s (:func:`fastest_rates`), and what sets
+    it, for a protocol's work estimate."""
+    asm = assemble(system)
+    free = fastest_rates(asm)[0]
+    return free, why_rate(asm, free)
+
+
+def why_rate(asm: Assembly, rate: float) -> str:
+    """What sets the fastest rate ``rate`` (rad/s) of an assembled system, for an estimate's message."""
+    if asm.masses.size > 1:
+        return f"the system's fastest motion {rate:.3g} rad/s"
+    return (f"the isolator's fastest motion {rate:.3g} rad/s: stiffness {asm.k_fast[0, 0]:.3g} N/m, damping "
+            f"{asm.c_all[0, 0]:.3g} N s/m, mass {asm.masses[0]:.3g} kg")
 
 
 def steps_per_second(rate_rad_s: float, omega_rad_s: Any) -> Any:
-    """Least sub-intervals per simulated second at isolator rate and forcing ``omega_rad_s``."""
+    """Least sub-intervals per simulated second at a system's fastest rate and forcing ``omega_rad_s``."""
     return SUBINTERVALS_PER_PERIOD * np.maximum(rate_rad_s, omega_rad_s) / (2.0 * math.pi)
 
 

@@ -1,7 +1,9 @@
-"""``simulate``: the validating wrapper around the compiled kernel."""
+"""``simulate``: the validating wrapper around the compiled kernel, one for every system (a single mass, a
+structure, two adjacent ones), and what the periodic-orbit solvers run (``short_run``)."""
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import TYPE_CHECKING, Optional
 
@@ -11,24 +13,20 @@ from .._checks import instance_of
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
-from .control import (
-    DEFAULT_MAX_STEPS,
-    check_budget,
-    contact_rate,
-    isolator_rate,
-    new_control,
-    run_interruptibly,
-    steps_per_second,
-)
+from .control import (DEFAULT_MAX_STEPS, check_budget, fastest_rates, new_control, run_interruptibly,
+                      steps_per_second, why_rate)
 from .. import _core
+from ._chatter import chatter_frame
 from ._system import Forcing, System
-from .layout import X_A_MAX, X_A_MAX_T, X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T
+from .layout import CONTACT_COLUMNS, X_A_MAX, X_A_MAX_T, X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T
 from .run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPLES,  # noqa: F401
                         MAX_SAMPLES, check_rtol, checked_run_args, history_rate, kernel_forcing)
+from .adjacent_result import AdjacentRun
 from .result import EnergyLedger, Run
-from .assembly import Assembly, assemble, clearances
+from .assembly import Assembly, assemble, check_system, clearances, structures_of
+from .structure_result import StructureRun
 from .state import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, State, one_mass_layout
-from .state_check import _FIX, check_fits, check_layout, check_state  # noqa: F401  (check_state: here too)
+from .state_check import _FIX, check_fits, check_layout, check_state, contact_name  # noqa: F401  (check_state: here too)
 
 if TYPE_CHECKING:
     from ..model.adjacent import Adjacent
@@ -47,7 +45,7 @@ def kernel_system(oscillator: Oscillator) -> System:
 
 @renamed_keyword("oscillator", "system")
 def simulate(
-    system: "Oscillator | Structure",
+    system: "Oscillator | Structure | Adjacent",
     excitation: Harmonic | Record,
     duration: float,
     state: Optional[State] = None,
@@ -56,7 +54,7 @@ def simulate(
     sample_rate_hz: Optional[float] = None,
     max_events: int = 10_000_000,
     max_steps: int = DEFAULT_MAX_STEPS,
-) -> Run:
+) -> "Run | StructureRun | AdjacentRun":
     """Simulate the system under a base excitation, exactly at every non-smooth instant.
 
     Parameters
@@ -85,14 +83,15 @@ def simulate(
         The run stops with ``Status.MAX_EVENTS`` after this many events.
     max_steps : int
         Work budget: the run stops with ``Status.BUDGET`` after this many integration steps
-        (sub-intervals: about 8 per period of the fastest motion, plus one per event).  A
+        (sub-intervals: about 8 per period of the system's fastest motion, plus one per event).  A
         run whose estimate exceeds it is refused before it starts.
 
     Returns
     -------
-    Run
-        Histories, exact extrema, contacts, energy ledger, final state, status and message.
-        A run that stops early keeps what it computed; ``status`` and ``message`` say why.
+    Run, StructureRun or AdjacentRun
+        Histories, exact extrema, contacts, energy ledger, final state, status and message (a
+        single mass's, each level's, each structure's and their links'). A run that stops early
+        keeps what it computed; ``status`` and ``message`` say why.
 
     Raises
     ------
@@ -118,30 +117,28 @@ def simulate(
     >>> float(later.t[0]), float(later.t[-1]), len(later.contacts)  # s, s, impacts
     (5.0, 10.0, 20)
     """
-    from ..model.adjacent import Adjacent
-    from ..model.structure import Structure
-
-    if isinstance(system, (Structure, Adjacent)):  # (several masses: the same run, a result per level)
-        from .structure import simulate_structure
-
-        return simulate_structure(system, excitation, duration, state, rtol=rtol,  # type: ignore[return-value]
-                                  sample_rate_hz=sample_rate_hz, max_events=max_events, max_steps=max_steps)
-    check_oscillator(system)
+    check_system(system)
     asm, state, duration, rtol, rate, max_events, max_steps, omega, knots = checked_run_args(
         system, excitation, duration, state, rtol, sample_rate_hz, max_events, max_steps)
-    iso_rate, why = isolator_rate(system)
-    per_s = float(steps_per_second(iso_rate, omega))
-    if omega > iso_rate:
-        why = f"the forcing, {omega:.3g} rad/s"
+    free, touching = fastest_rates(asm)
+    why = f"the forcing, {omega:.3g} rad/s" if omega > free else why_rate(asm, free)
     if isinstance(excitation, Record):
         why += f", and {knots} record samples"
-    check_budget("duration", duration, per_s * duration + knots, max_steps, why,
+    least = float(steps_per_second(free, omega)) * duration + knots
+    check_budget("duration", duration, least, max_steps, why,
                  "shorten the duration, or check the system's numbers (SI units: kg, N/m, N s/m)")
-
     # at most this many sub-intervals (every phase as fast as the fastest), plus one per event
-    most = float(steps_per_second(contact_rate(system), omega)) * duration + knots
-    return _run(system, excitation, duration, state, rtol, rate, max_events, max_steps,
-                direct=most < DIRECT_CALL_STEPS, system=asm.system)
+    most = float(steps_per_second(touching, omega)) * duration + knots
+    t0 = state.time_s
+    forcing = kernel_forcing(excitation)
+    ctl = new_control(max_steps)
+    out = run_interruptibly(lambda: _core.run(
+        asm.system, forcing, state.vector.copy(), t0 + duration, 1.0 / rate if rate > 0 else 0.0, rtol,
+        int(max_events), True, ctl), [ctl], direct=most < DIRECT_CALL_STEPS)
+    run = run_of(system, asm, excitation, rate, out, t0)
+    if run.status == Status.INTERRUPTED:
+        raise Interrupted(run, round(run.final_state.time_s - t0, 6), duration, "simulated seconds")
+    return run
 
 
 # the work budget of a short run (``short_run``): a forcing period or two of any system fits in it
@@ -240,39 +237,57 @@ def short_run(model: "Oscillator | Structure | Adjacent", excitation: Harmonic, 
     return ShortRun(out, excitation, status, asm, t0)
 
 
-def _run(oscillator: Oscillator, excitation: Harmonic | Record, duration: float, state: State, rtol: float,
-         rate: float, max_events: int, max_steps: int, direct: bool, system: Optional[System] = None) -> Run:
-    """The kernel on checked arguments, its outputs as a ``Run`` (``Interrupted`` on Ctrl-C)."""
-    t0 = state.time_s
-    if system is None:
-        system = kernel_system(oscillator)
-    forcing = kernel_forcing(excitation)
-    ctl = new_control(max_steps)
-    out = run_interruptibly(lambda: _core.run(
-        system, forcing, state.vector.copy(),
-        t0 + duration, 1.0 / rate if rate > 0 else 0.0, rtol, int(max_events), True, ctl), [ctl],
-        direct=direct)
-    ledger, extrema = out.ledger, out.per_dof(1)[0]
-    lay = system.layout
+def run_of(system: "Oscillator | Structure | Adjacent", asm: Assembly, excitation: Harmonic | Record,
+           rate: float, out: _core.RunOutput, t0: float) -> "Run | StructureRun | AdjacentRun":
+    """The result of the core's run of any system: a single mass's :class:`Run`, a structure's
+    :class:`StructureRun`, a pair's :class:`AdjacentRun` (its status ``NONFINITE`` where a successful
+    run's extrema or ledger are not finite; ``t0``: when it started, s)."""
+    energy = EnergyLedger.of(out.ledger)
     status = Status(out.status)
-    if status == Status.SUCCESS and not (np.all(np.isfinite(ledger)) and np.all(np.isfinite(extrema))):
+    if status == Status.SUCCESS and not (np.isfinite(out.ledger).all() and np.isfinite(out.extrema).all()):
         status = Status.NONFINITE
+    final = State._of(out.state, asm.dofs, asm.system.layout)
+    if isinstance(system, Oscillator):
+        return _one_mass_run(system, asm, excitation, rate, out, status, energy, final)
+    return _structures_run(system, asm, excitation, rate, out, status, energy, final, t0)
 
-    energy = EnergyLedger.of(ledger)
+
+def _one_mass_run(oscillator: Oscillator, asm: Assembly, excitation: Harmonic | Record, rate: float,
+                  out: _core.RunOutput, status: Status, energy: EnergyLedger, final: State) -> Run:
+    extrema = out.per_dof(1)[0]
     cols = out.samples.T
-    run = Run(
+    return Run(
         t=cols[0], displacement=cols[1], velocity=cols[2], abs_acceleration=cols[3],
-        isolator_force=cols[4], **_bumper_forces(cols, lay),
+        isolator_force=cols[4], **_bumper_forces(cols, asm.system.layout),
         displacement_max=float(extrema[X_D_MAX]), displacement_max_time_s=float(extrema[X_D_MAX_T]),
         displacement_min=float(extrema[X_D_MIN]), displacement_min_time_s=float(extrema[X_D_MIN_T]),
         abs_acceleration_max=float(extrema[X_A_MAX]), abs_acceleration_max_time_s=float(extrema[X_A_MAX_T]),
-        contact_table=out.contacts, event_table=out.events, energy=energy,
-        final_state=State._from_kernel(out.state, lay),
+        contact_table=out.contacts, event_table=out.events, energy=energy, final_state=final,
         status=status, message=status.message, oscillator=oscillator, excitation=excitation,
         sample_rate_hz=rate, chatter_table=out.chatters)
-    if status == Status.INTERRUPTED:
-        raise Interrupted(run, round(run.final_state.time_s - t0, 6), duration, "simulated seconds")
-    return run
+
+
+def _structures_run(model: "Structure | Adjacent", asm: Assembly, excitation: Harmonic | Record, rate: float,
+                    out: _core.RunOutput, status: Status, energy: EnergyLedger,
+                    final: State, t0: float) -> "StructureRun | AdjacentRun":
+    samples, contacts = out.samples, out.contacts
+    structures = structures_of(model)[0]
+    parts = [StructureRun._part(s, b, asm, structures, excitation, rate, out, status, t0)
+             for b, s in enumerate(structures)]
+    clear = clearances(asm, out)
+    names = tuple(contact_name(slot, len(parts) > 1) for slot in asm.slots)
+    chatter = chatter_frame(out.chatters, names, "contact")
+    if len(parts) == 1:
+        return dataclasses.replace(parts[0], event_table=out.events, energy=energy, final_state=final,
+                                   clearance_m=clear, chatters=chatter)
+    links = [c for c, (owner, _, _) in enumerate(asm.slots) if owner == -1]
+    slot = CONTACT_COLUMNS["contact"]
+    link_rows = contacts[np.isin(contacts[:, slot], links)].copy()
+    link_rows[:, slot] -= links[0]
+    n, nh = asm.system.n, asm.system.n_elements
+    return AdjacentRun(model, excitation, rate, parts[0], parts[1], samples[:, 0],
+                       samples[:, [1 + 3 * n + nh + c for c in links]], link_rows, out.events, energy, final,
+                       status, clear, chatter)
 
 
 def _bumper_forces(cols: np.ndarray, layout: dict) -> dict:

@@ -149,7 +149,7 @@ class StructureRun(Outcome):
     def _part(cls, structure: "Structure", b: int, asm: Any, asm_structures: tuple, excitation: Any,
               rate: float, out: Any, status: Status, t0: float) -> "StructureRun":
         """Structure ``b``'s columns of a joint run (``out``: the core's ``RunOutput``; ``asm``: the
-        assembly, engine.structure)."""
+        assembly, engine.assembly)."""
         n, nh = asm.system.n, asm.system.n_elements
         samples, contacts = out.samples, out.contacts
         dofs = asm.dofs[b]

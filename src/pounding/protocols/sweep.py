@@ -18,7 +18,7 @@ from .._checks import at_least, at_most, float_array, integer, one_of, plausible
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..engine import State
 from ..engine.layout import T
-from ..engine.control import (DEFAULT_MAX_STEPS, check_budget, isolator_rate, new_control,
+from ..engine.control import (DEFAULT_MAX_STEPS, check_budget, fastest_rate, new_control,
                                run_interruptibly, steps_per_second, stop_requested)
 from ..engine.simulate import check_oscillator, check_rtol, check_state, kernel_system
 from ..excitation import MAX_FREQ_HZ, GRAVITY_M_S2, Harmonic
@@ -203,15 +203,9 @@ def make_plan(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = 
     rtol = check_rtol(rtol)
     max_events_per_cycle = integer("max_events_per_cycle", max_events_per_cycle, 1)
     max_steps = integer("max_steps", max_steps, 1)
-    if several:
-        from ..engine.structure import structure_rate
-
+    if several or state is not None:
         state = check_state(state, oscillator)
-        rate, why = structure_rate(oscillator)
-    else:
-        if state is not None:
-            state = check_state(state, oscillator)
-        rate, why = isolator_rate(oscillator)
+    rate, why = fastest_rate(oscillator)
     # the least work the sweep can take: every step's fewest cycles
     least_cycles = n_cycles if steady == "fixed" else min(n_cycles, 2 * measure_cycles + 1)
     estimate = float(np.sum(steps_per_second(rate, 2.0 * math.pi * freqs) * least_cycles / freqs))
