@@ -14,9 +14,10 @@ from collections.abc import Callable
 import numpy as np
 
 from .._errors import Interrupted, Status
-from ..engine.control import new_control, stop_requested
+from ..engine.control import new_control
 from ..engine.layout import T
-from ..engine.kernels import CONTACT_COLUMNS, DOF_EXTREMA, PAIR_EXTREMA, W_CYCLES, RunOutput, run_window
+from ..engine.kernels import (CONTACT_COLUMNS, DOF_EXTREMA, PAIR_EXTREMA, W_CYCLES, RunOutput, StepOutput,
+                              run_window)
 from ..engine.assembly import assemble
 from ..engine.state import State
 from ..excitation import GRAVITY_M_S2, Harmonic
@@ -56,50 +57,31 @@ def run_structure_plan(plan, advance: Callable[[int], None] | None = None,
     strobes = np.full((n_steps, strobe_cap, 2, len(levels)), np.nan)
     step_start_s = np.full(n_steps, np.nan)
     state = plan.state.vector.copy()
-    status = Status.SUCCESS
-    done = 0
-    interrupted = False
-    try:
-        for i, f in enumerate(plan.freqs_hz):
-            if stop_requested(ctl):
-                interrupted = True
-                break
-            start = state
-            exc, stepped = plan.step(system, f, start, ctl)
-            state, code, win, win_state = stepped.state, stepped.status, stepped.window, stepped.window_state
+
+    def take(i: int, f: float, start: np.ndarray, exc: Harmonic, stepped: StepOutput) -> int:
+        code, win_state = stepped.status, stepped.window_state
+        m = int(stepped.window[W_CYCLES])
+        if code == Status.SUCCESS:  # the window once more, from its exact start, every level measured
+            t0 = float(win_state[T])
+            at = Harmonic(plan.a_g, f, phase=-(exc.omega_rad_s * t0))
+            period = 1.0 / float(f)
+            out = run_window(system, at.peak_m_s2, at.omega_rad_s, at.phase, win_state, t0 + m * period,
+                             period, plan.rtol, plan.max_events_per_cycle * m, ctl)
+            code = out.status
             if code == Status.INTERRUPTED:
-                state = start
-                interrupted = True
-                break
-            m = int(win[W_CYCLES])
-            if code == Status.SUCCESS:  # the window once more, from its exact start, every level measured
-                t0 = float(win_state[T])
-                at = Harmonic(plan.a_g, f, phase=-(exc.omega_rad_s * t0))
-                period = 1.0 / float(f)
-                out = run_window(system, at.peak_m_s2, at.omega_rad_s, at.phase, win_state, t0 + m * period,
-                                 period, plan.rtol, plan.max_events_per_cycle * m, ctl)
-                code = out.status
-                if code == Status.INTERRUPTED:
-                    state = start
-                    interrupted = True
-                    break
-                if code == Status.SUCCESS:
-                    _measure(out, level_dof, at.peak_m_s2, m, t0, level[i], drift[i], contact[i], system.n)
-                    strobes[i, :min(m, strobe_cap)] = _strobes(out.samples, level_dof, t0, period, m,
-                                                               system.n)[:strobe_cap]
-            step_start_s[i] = start[T]
-            cycles_run[i] = stepped.cycles_run
-            period_multiple[i] = stepped.period_multiple
-            window_cycles[i] = m
-            window_states[i] = win_state
-            done = i + 1
-            if advance is not None:
-                advance(1)
-            if code != Status.SUCCESS:
-                status = Status(int(code))
-                break
-    except KeyboardInterrupt:
-        interrupted = True
+                return code
+            if code == Status.SUCCESS:
+                _measure(out, level_dof, at.peak_m_s2, m, t0, level[i], drift[i], contact[i], system.n)
+                strobes[i, :min(m, strobe_cap)] = _strobes(out.samples, level_dof, t0, period, m,
+                                                           system.n)[:strobe_cap]
+        step_start_s[i] = start[T]
+        cycles_run[i] = stepped.cycles_run
+        period_multiple[i] = stepped.period_multiple
+        window_cycles[i] = m
+        window_states[i] = win_state
+        return code
+
+    state, done, status, interrupted = plan.steps(system, state, ctl, advance, take)
     result = StructureSweepResult(
         structure=model, a_g=plan.a_g, freqs_hz=plan.freqs_hz, direction=plan.direction,
         steady_mode=plan.steady, cycles=plan.cycles, measure_cycles=plan.measure_cycles,

@@ -99,6 +99,40 @@ class SweepPlan:
         return exc, run_step(system, exc.peak_m_s2, exc.omega_rad_s, start, steady, self.rtol,
                              self.max_events_per_cycle, control)
 
+    def steps(self, system: Any, state: np.ndarray, control: np.ndarray,
+              advance: Callable[[int], None] | None,
+              take: Callable[[int, float, np.ndarray, Harmonic, StepOutput], int],
+              ) -> tuple[np.ndarray, int, Status, bool]:
+        """Every step of the plan in its order from ``state`` (a single mass's sweep and a structure's
+        alike): ``take(i, freq_hz, start, excitation, step)`` keeps step ``i`` and returns its status (a
+        structure's measured window may end it); ``advance(1)`` after each. A step that did not finish
+        (a stop from ``control``, a KeyboardInterrupt) is dropped, and a status other than success ends
+        the sweep. Returns (the state after the last finished step, the steps finished, the status,
+        whether it was interrupted)."""
+        status, done, interrupted = Status.SUCCESS, 0, False
+        try:
+            for i, f in enumerate(self.freqs_hz):
+                if stop_requested(control):
+                    interrupted = True
+                    break
+                exc, stepped = self.step(system, f, state, control)
+                code = stepped.status
+                if code != Status.INTERRUPTED:
+                    code = take(i, f, state, exc, stepped)
+                if code == Status.INTERRUPTED:  # (the step did not finish: dropped)
+                    interrupted = True
+                    break
+                state = stepped.state
+                done = i + 1
+                if advance is not None:
+                    advance(1)
+                if code != Status.SUCCESS:
+                    status = Status(int(code))
+                    break
+        except KeyboardInterrupt:
+            interrupted = True
+        return state, done, status, interrupted
+
 
 @dataclass(frozen=True)
 class SweepOptions:
@@ -374,35 +408,17 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
     strobe_cap = plan.measure_cycles + (plan.max_period - 1 if plan.steady == "adaptive" else 0)
     window_strobes = np.full((n_steps, strobe_cap, 2), np.nan)
     step_start_s = np.full(n_steps, np.nan)
-    status = Status.SUCCESS
-    done = 0
-    interrupted = False
-    try:
-        for i, f in enumerate(plan.freqs_hz):
-            if stop_requested(ctl):
-                interrupted = True
-                break
-            start = state
-            _, out = plan.step(system, f, start, ctl)
-            state, code = out.state, out.status
-            if code == Status.INTERRUPTED:  # the step did not finish: drop it
-                state = start
-                interrupted = True
-                break
-            step_start_s[i] = start[T]
-            window[i] = out.window
-            cycles_run[i] = out.cycles_run
-            period_multiple[i] = out.period_multiple
-            window_states[i] = out.window_state
-            window_strobes[i, :len(out.window_strobes)] = out.window_strobes
-            done = i + 1
-            if advance is not None:
-                advance(1)
-            if code != 0:
-                status = Status(int(code))
-                break
-    except KeyboardInterrupt:
-        interrupted = True
+
+    def take(i: int, f: float, start: np.ndarray, exc: Harmonic, out: StepOutput) -> int:
+        step_start_s[i] = start[T]
+        window[i] = out.window
+        cycles_run[i] = out.cycles_run
+        period_multiple[i] = out.period_multiple
+        window_states[i] = out.window_state
+        window_strobes[i, :len(out.window_strobes)] = out.window_strobes
+        return out.status
+
+    state, done, status, interrupted = plan.steps(system, state, ctl, advance, take)
     measured = measured_impacts = None
     if plan.measurement is not None and not interrupted and done:
         from .measured_sweep import measure_steps
