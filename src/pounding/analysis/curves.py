@@ -12,12 +12,10 @@ import pandas as pd
 
 from .._checks import instance_of, integer, one_of, real
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
-from ..engine.assembly import check_system
+from ..model.systems import check_system, is_single_mass
 from ..engine.simulate import check_state
 from ..excitation import Harmonic
 from ..model import Oscillator
-from ..model.adjacent import Adjacent
-from ..model.structure import Structure
 from ..protocols.campaign import PAPER_YBS_A_G
 from . import _hybrid as hy
 from ._arclength import Family
@@ -290,7 +288,7 @@ def coexistence_map(
                          expected="a sequence of 'fold', 'grazing'")
     kinds = tuple(dict.fromkeys(one_of("kinds", k, CURVE_KINDS) for k in kinds))
     tol, max_step, max_points, exact = _common(system, tol, max_step, max_points, method)
-    witnesses = check_sweeps(sweeps, isinstance(system, (Structure, Adjacent)))  # (until one sweep result)
+    witnesses = check_sweeps(sweeps, not is_single_mass(system))  # (until one sweep result)
     basin_sample = check_basin_sample(basin_sample)
     if test_freqs_hz is None:
         freqs = np.round(np.arange(f_box[0], f_box[1] + 1e-9 * step, step), 10)

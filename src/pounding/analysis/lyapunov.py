@@ -51,9 +51,8 @@ from ..protocols.bifurcation_diagram import BifurcationDiagram, periods
 from . import _hybrid as hy
 from ._args import exact_monodromy
 from .lyapunov_result import LyapunovSpectrum
-from ..engine.assembly import assemble, check_system
-from ..model.adjacent import Adjacent
-from ..model.structure import Structure
+from ..engine.assembly import assemble
+from ..model.systems import check_system, is_single_mass
 from ._shooter import _Shooter
 from ._shooting import _Failed, at_section
 
@@ -140,7 +139,7 @@ class _Tangent:
     def __init__(self, oscillator: Any, excitation: Harmonic, exact: bool, state: Any) -> None:
         self.exc = excitation
         self.period = 1.0 / excitation.freq_hz
-        self.structure = isinstance(oscillator, (Structure, Adjacent))
+        self.structure = not is_single_mass(oscillator)
         self.sh = _Shooter(oscillator, excitation, self.period, exact)
         self.start = np.array(state.vector, dtype=float)
         self.fell_back = 0  # periods whose exact Jacobian gave way to finite differences

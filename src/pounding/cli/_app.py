@@ -315,9 +315,9 @@ def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True):
 def one_mass_options(osc, no_bumpers: bool) -> bool:
     """Whether ``osc`` is a structure of several masses (or a pair), refusing ``--no-bumpers`` for one:
     its walls and links are in its file."""
-    from ..model import Oscillator
+    from ..model.systems import is_single_mass
 
-    several = not isinstance(osc, Oscillator)
+    several = not is_single_mass(osc)
     if several and no_bumpers:
         raise typer.BadParameter("--no-bumpers is for one mass (a structure's walls and links are in its "
                                  "file: remove them there)")

@@ -20,6 +20,7 @@ from .._errors import InputError, Problem
 from ..model import Oscillator
 from ..model.structure import Structure
 from ..model.oscillator import check_keys
+from ..model.systems import is_single_mass
 from ..studies.spec import check_table, system_from_table
 from .hazard import HazardCurve
 from .site import hazard_curve_of, site_spectra, text_field as _text
@@ -114,7 +115,7 @@ class DesignPlan:
     @property
     def building(self) -> bool:
         """Whether the system is a building (a Structure) rather than one mass."""
-        return not isinstance(self.system, Oscillator)
+        return not is_single_mass(self.system)
 
     @property
     def kinds(self) -> tuple:

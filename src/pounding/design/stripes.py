@@ -20,7 +20,7 @@ import numpy as np
 from .._checks import float_array, instance_of, positive
 from .._errors import InputError, Interrupted, Problem
 from ..model import Oscillator, Structure
-from ..model.systems import system_type
+from ..model.systems import is_single_mass, structures_of, system_type
 from ..studies import StudySpec, study
 from .stripe_result import RESERVED, StripeAnalysis
 
@@ -148,8 +148,8 @@ def stripe_analysis(
         {"kind": "record", "sa_period_s": period, "sa_damping_ratio": zeta},
         {"sa_g": levels.tolist(), "record": sources, **design_grid},
     )
-    has_bumpers = bool(system.walls) if isinstance(system, Structure) else system.bumpers is not None
-    capacity = system.bumpers.capacity_m if has_bumpers and isinstance(system, Oscillator) else None
+    has_bumpers = any(s.walls for s in structures_of(system)[0])
+    capacity = system.bumpers.capacity_m if has_bumpers and is_single_mass(system) else None
     try:
         ds = study(
             spec,

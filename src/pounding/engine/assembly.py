@@ -14,10 +14,10 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from .. import _core
-from .._checks import instance_of
 from ..model.adjacent import Adjacent
 from ..model.oscillator import Oscillator
 from ..model.structure import Structure
+from ..model.systems import structures_of
 from .layout import P_MAX, P_MIN, X_D_MAX, X_D_MIN
 
 
@@ -76,22 +76,6 @@ def clearances(asm: Assembly, run: _core.RunOutput) -> np.ndarray:
                        else (per_dof[i, X_D_MAX], per_dof[i, X_D_MIN]))
         out[c] = gap - (top if sign > 0 else -bottom)
     return out
-
-
-def check_system(system: Any, field: str = "system") -> None:
-    """An InputError naming ``field`` unless ``system`` is one the core runs: a single mass, a structure or
-    two adjacent ones."""
-    instance_of(field, system, (Oscillator, Structure, Adjacent),
-                "pounding.Oscillator, pounding.Structure or pounding.Adjacent")
-
-
-def structures_of(model: Oscillator | Structure | Adjacent) -> tuple[tuple[Structure, ...], tuple]:
-    """(the structures, the links) of a model (a single mass: the one-level structure it is)."""
-    if isinstance(model, Adjacent):
-        return model.structures, model.links
-    if isinstance(model, Oscillator):
-        return (Structure.from_oscillator(model),), ()
-    return (model,), ()
 
 
 def assemble(model: Oscillator | Structure | Adjacent) -> Assembly:

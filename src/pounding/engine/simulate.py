@@ -23,7 +23,8 @@ from .run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPL
                         MAX_SAMPLES, check_rtol, checked_run_args, history_rate, kernel_forcing)
 from .adjacent_result import AdjacentRun
 from .result import EnergyLedger, Run
-from .assembly import Assembly, assemble, check_system, clearances, structures_of
+from ..model.systems import check_system, is_single_mass, structures_of
+from .assembly import Assembly, assemble, clearances
 from .structure_result import StructureRun
 from .state import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, State, one_mass_layout
 from .state_check import _FIX, check_fits, check_layout, check_state, contact_name  # noqa: F401  (check_state: here too)
@@ -247,7 +248,7 @@ def run_of(system: "Oscillator | Structure | Adjacent", asm: Assembly, excitatio
     if status == Status.SUCCESS and not (np.isfinite(out.ledger).all() and np.isfinite(out.extrema).all()):
         status = Status.NONFINITE
     final = State._of(out.state, asm.dofs, asm.system.layout)
-    if isinstance(system, Oscillator):
+    if is_single_mass(system):
         return _one_mass_run(system, asm, excitation, rate, out, status, energy, final)
     return _structures_run(system, asm, excitation, rate, out, status, energy, final, t0)
 

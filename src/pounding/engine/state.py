@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any, Optional
 
 import numpy as np
 
-from .._checks import at_most, instance_of, real
+from .._checks import at_most, real
 from .._errors import InputError, Problem, renamed_keyword
 from .layout import ACC_L, ACC_R, DEF_L, DEF_R, IN_L, IN_R, N_LAW_STATE, REGION, STATE_BASE, Z_L, ZETA
 from .layout import D as I_D
@@ -150,16 +150,15 @@ class State:
         velocity_m_s : float
             Velocity relative to the ground, m/s, of the same masses.
         """
-        from ..model import Adjacent, Oscillator, Structure
+        from ..model.systems import check_system, is_single_mass
 
-        instance_of("system", system, (Oscillator, Structure, Adjacent),
-                    "pounding.Oscillator, pounding.Structure or pounding.Adjacent")
+        check_system(system)
         time_s = at_most("time_s", real("time_s", time_s), MAX_TIME_S, " s", "give the time in s")
         d = at_most("displacement_m", real("displacement_m", displacement_m), MAX_DISPLACEMENT_M, " m",
                     "give the displacement in m")
         v = at_most("velocity_m_s", real("velocity_m_s", velocity_m_s), MAX_VELOCITY_M_S, " m/s",
                     "give the velocity in m/s")
-        if not isinstance(system, Oscillator):  # (a structure, or a pair: through its assembly)
+        if not is_single_mass(system):  # (a structure, or a pair: through its assembly)
             from .assembly import assemble
 
             at_most("displacement_m", d, MAX_SHIFT_M, " m", "give the shift in m")

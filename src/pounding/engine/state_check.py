@@ -21,6 +21,7 @@ from .._checks import instance_of
 from .._errors import InputError, Problem, outside_stacklevel
 from ..model.contact_laws import N_LAW_STATE, state_problem, stateless
 from ..model.oscillator import Oscillator
+from ..model.systems import is_single_mass
 from .assembly import Assembly, assemble
 from .state import LAYOUT_KEYS, State, shifted
 
@@ -164,7 +165,7 @@ def check_state(state: Optional[State], system: "Oscillator | Structure | Adjace
     if state is None:
         return shifted(asm, 0.0, 0.0, 0.0)
     instance_of("state", state, State, "pounding.State (e.g. run.final_state)")
-    if isinstance(system, Oscillator):  # (0.1's layout was a single mass's alone)
+    if is_single_mass(system):  # (0.1's layout was a single mass's alone)
         state = _without_bumpers(state, asm)
     check_layout(state, asm, _FIX)
     check_fits(state.vector, asm, _FIX)

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 import os
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -437,9 +437,7 @@ def _loss_residuals(r: np.ndarray, loss: str) -> np.ndarray:
 
 def bare(system: Any) -> Any:
     """The NBs configuration of a system: one mass without its bumpers, a structure without its walls."""
-    if isinstance(system, Oscillator):
-        return system.without_bumpers()
-    return replace(system, walls=())
+    return system.without_bumpers()
 
 
 def _model_values(oscillator: Any, targets: Targets, freqs_hz: Any, options: dict,

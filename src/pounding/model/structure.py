@@ -7,6 +7,7 @@ Degrees of freedom are levels: 0 is the base (on its isolator), ``i`` the floor 
 
 from __future__ import annotations
 
+import dataclasses
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any, ClassVar, NamedTuple, Optional, Union
@@ -243,6 +244,11 @@ class Structure(TomlFile):
         big = np.argmax(np.abs(shapes), axis=0)
         shapes = shapes / shapes[big, np.arange(shapes.shape[1])]
         return Modes(periods, shapes)
+
+    def without_bumpers(self) -> "Structure":
+        """The structure without its walls (their bumpers, its moat): its NBs configuration, as
+        :meth:`Oscillator.without_bumpers` is a single mass's."""
+        return dataclasses.replace(self, walls=())
 
     @classmethod
     def from_oscillator(cls, oscillator: Oscillator) -> "Structure":

@@ -15,14 +15,13 @@ from .._checks import float_array, integer, positive
 from .._errors import InputError, Interrupted, Problem, renamed_keyword
 from .._runner import run_tasks
 from .._runner.progress import Progress
-from ..engine.simulate import check_oscillator, check_rtol, kernel_system
+from ..engine.simulate import check_rtol
 from ..engine.assembly import assemble
 from ..excitation import Harmonic
 from ..model import Oscillator
-from ..model.adjacent import Adjacent
-from ..model.structure import Structure
+from ..model.systems import check_system
 from .basins import (MAX_STATES, N_ROW, R_LEFT, R_PERIOD, R_RIGHT, ROWS_PER_TASK, SIGNATURE, initial_states,
-                     run_states, state_box, steady_options, structure_view)
+                     run_states, state_box, steady_options, core_view)
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
@@ -87,10 +86,8 @@ def basin_stability_map(system: Any, a_g_levels: Any, freqs_hz: Any, *, samples:
     >>> m.data["pounding_probability"].values.round(2).tolist()
     [[1.0, 0.5, 0.0]]
     """
-    several = isinstance(system, (Structure, Adjacent))
-    if not several:
-        check_oscillator(system)
-    if (system.bumpers is None) if not several else not assemble(system).pairs:
+    check_system(system)
+    if not assemble(system).pairs:
         raise InputError(Problem.MISSING_INPUT, "system", "no bumpers",
                          what="bumpers, walls or links (without them nothing pounds)")
     levels = np.atleast_1d(float_array("a_g_levels", a_g_levels))
@@ -115,7 +112,7 @@ def basin_stability_map(system: Any, a_g_levels: Any, freqs_hz: Any, *, samples:
     rtol = check_rtol(rtol)
     rng = np.random.default_rng(integer("seed", seed, 0))
     starts = initial_states(system, rng.uniform(*d_box, samples), rng.uniform(*v_box, samples))
-    core_system, view = structure_view(system) if several else (kernel_system(system), None)
+    core_system, view = core_view(system)
     points = [(i, j) for i in range(levels.size) for j in range(freqs.size)]
     tasks, where = [], []
     for i, j in points:

@@ -24,10 +24,9 @@ from .._runner import Context, run_tasks
 from .._runner.progress import Progress
 from ..engine import State
 from ..engine.layout import T
-from ..engine.simulate import check_oscillator, check_rtol, kernel_system
+from ..engine.simulate import check_rtol
 from ..engine.assembly import assemble
-from ..model.adjacent import Adjacent
-from ..model.structure import Structure
+from ..model.systems import check_system, is_single_mass
 from ..excitation import Harmonic
 from ..metrics.impacts import S_COUNT, SIDE_SUMS
 from ..model import Oscillator
@@ -53,7 +52,7 @@ def run_states(task: tuple, ctx: Context) -> np.ndarray:
     (period, alpha, excursion, contacts per cycle with the left and with the right bumper, D and V
     at the section, cycles run).  ``task``: (system, amplitude,
     omega, states (n, state length), steady options, rtol, view), ``view`` for a structure (its
-    ``structure_view``; None for one mass): its settled window is run once more, for its largest alpha over
+    ``core_view``; None for one mass): its settled window is run once more, for its largest alpha over
     every level and its contacts at every wall side and link (``_window_row``)."""
     system, amp, omega, states, steady, rtol, view = task
     out = np.full((len(states), N_ROW), np.nan)
@@ -82,10 +81,13 @@ def run_states(task: tuple, ctx: Context) -> np.ndarray:
     return out
 
 
-def structure_view(model: Any) -> tuple[Any, tuple[np.ndarray, list[int]]]:
-    """A structure's core system, and what a basin's window reads of it: its contact slots' signs and its
-    levels' dofs (the stands' left out of alpha: a floor's acceleration, not a bumper's)."""
+def core_view(model: Any) -> tuple[Any, tuple[np.ndarray, list[int]] | None]:
+    """Any system's core system, and what a basin's window reads of it: None for a single mass (the step
+    kernel's own window has its paper metrics), else its contact slots' signs and its levels' dofs (the
+    stands' left out of alpha: a floor's acceleration, not a bumper's)."""
     asm = assemble(model)
+    if is_single_mass(model):
+        return asm.system, None
     levels = [d for dofs in asm.dofs for d in dofs if d >= 0]
     return asm.system, (np.array([pair.sign for pair in asm.pairs], dtype=float), levels)
 
@@ -182,9 +184,7 @@ def basins(system: Any, excitation: Harmonic, *, displacement_m: Any = None,
     >>> b.fractions.round(2).tolist()
     [0.51, 0.49]
     """
-    several = isinstance(system, (Structure, Adjacent))
-    if not several:
-        check_oscillator(system)
+    check_system(system)
     instance_of("excitation", excitation, Harmonic, "pounding.Harmonic (basins are of a periodic forcing)")
     one_of("sampling", sampling, ("grid", "random"))
     d_box, v_box = state_box(system, displacement_m, velocity_m_s)
@@ -202,7 +202,7 @@ def basins(system: Any, excitation: Harmonic, *, displacement_m: Any = None,
     match_rtol = positive("match_rtol", match_rtol, "(relative)")
     rtol = check_rtol(rtol)
     starts = initial_states(system, dd, vv)
-    core_system, view = structure_view(system) if several else (kernel_system(system), None)
+    core_system, view = core_view(system)
     amp, omega = excitation.peak_m_s2, excitation.omega_rad_s
     chunks = [starts[i:i + ROWS_PER_TASK] for i in range(0, len(starts), ROWS_PER_TASK)]
     tasks = [(core_system, amp, omega, c, steady, float(rtol), view) for c in chunks]
@@ -332,17 +332,14 @@ def state_box(osc: Any, displacement_m: Any, velocity_m_s: Any) -> tuple[tuple, 
                  (lo if np.isfinite(lo) else -0.05, hi if np.isfinite(hi) else 0.05), "m")
     if bounded and (d_box[0] < lo or d_box[1] > hi):
         raise InputError(Problem.OUT_OF_RANGE, "displacement_m", d_box, range=f"[{lo:g}, {hi:g}]",
-                         hint=" (between the bumpers' surfaces, m)" if isinstance(osc, Oscillator) else
-                         " (the shifts of the structure that leave its walls and links open, m)")
+                         hint=" (the shifts of the mass, or of the structure as one body, that leave its "
+                              "bumpers, walls and links open, m)")
     return d_box, _box("velocity_m_s", velocity_m_s, (-1.0, 1.0), "m/s")
 
 
 def open_range(osc: Any) -> tuple[float, float]:
     """The displacements (m) the mass, or a structure shifted as one body (its first's moving levels),
     can start at with every contact open: (-inf, inf) without any."""
-    if isinstance(osc, Oscillator):
-        b = osc.bumpers
-        return (-b.gap_left_m, b.gap_right_m) if b is not None else (-math.inf, math.inf)
     asm = assemble(osc)
     moved = {dof for dof in asm.dofs[0] if dof >= 0}
     lo, hi = -math.inf, math.inf

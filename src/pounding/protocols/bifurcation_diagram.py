@@ -22,7 +22,8 @@ from .._control import DEFAULT_MAX_STEPS, new_control, run_interruptibly
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from .._runner.progress import Progress, progress_reporter
 from .structure_sweep_result import C_COUNT
-from .sweep import MAX_CYCLES_PER_STEP, _is_structure, make_plan, run_plan
+from ..model.systems import is_single_mass
+from .sweep import MAX_CYCLES_PER_STEP, make_plan, run_plan
 from .sweep_result import SweepResult
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -135,15 +136,12 @@ def bifurcation_diagram(system: Any, a_g: float, freqs_hz: Any, *,
     ctl = new_control(plans[0].max_steps)
     sweeps: list[SweepResult] = []
     state: Optional[Any] = None
-    run = run_plan
-    if _is_structure(system):
-        from .structure_sweep import run_structure_plan as run
     with progress_reporter(progress, n_total, f"bifurcation diagram, a_G = {plans[0].a_g:g}") as advance:
         for plan in plans:
             if state is not None:  # (down from where up ended)
                 plan = make_plan(system, a_g, freqs_hz, plan.direction, state, **options)
             try:
-                sw = run_interruptibly(lambda: run(plan, advance, ctl), [ctl])
+                sw = run_interruptibly(lambda: run_plan(plan, advance, ctl), [ctl])
             except Interrupted as stop:
                 sweeps.append(stop.partial)
                 done = sum(s.steps_done for s in sweeps)
@@ -285,7 +283,7 @@ def _diagram(osc: Any, sweeps: list, dirs: Sequence[str], transient: int, record
 
     freqs = np.sort(sweeps[0].freqs_hz)
     shape = (len(dirs), freqs.size)
-    several = _is_structure(osc)
+    several = not is_single_mass(osc)
     n_levels = len(sweeps[0].levels) if several else 0
     per_level = (n_levels,) if several else ()
     strobes = np.full(shape + (record, 2) + per_level, np.nan)

@@ -19,7 +19,7 @@ from .._checks import instance_of, one_of, real_tuple
 from .._errors import InputError, Interrupted, Problem
 from ..model import Adjacent, Oscillator, Structure
 from .._runner import Context, run_tasks
-from ..engine.assembly import structures_of
+from ..model.systems import structures_of
 from .._runner.progress import Progress
 from .sweep import SweepPlan, check_sweep_options, make_plan, run_plan
 from .sweep_result import SIDE_COLUMNS, STEP_COLUMNS, SweepResult
@@ -182,10 +182,6 @@ class CampaignResult:
 
 def sweep_task(plan: SweepPlan, ctx: Context) -> Any:
     """One sweep of the campaign, as a task of the shared runner."""
-    if isinstance(plan.oscillator, (Structure, Adjacent)):
-        from .structure_sweep import run_structure_plan
-
-        return run_structure_plan(plan, ctx.advance, ctx.control)
     return run_plan(plan, ctx.advance, ctx.control)
 
 
@@ -296,13 +292,11 @@ def campaign(
         instance_of(field_name, osc, (Oscillator, Structure, Adjacent),
                     "pounding.Oscillator (or a Structure, or an Adjacent pair)")
         if _touches(osc) != (conf == "YBs"):
-            what = "bumpers" if isinstance(osc, Oscillator) else "walls or links"
+            what = "bumpers, walls or links"
             fix = (f"give the system without {what} (oscillator.without_bumpers(), or a structure with "
                    "walls=[]); were the NBs and YBs systems swapped?" if conf == "NBs" else
                    f"give a system with {what}; were the NBs and YBs systems swapped?")
-            shown = (f"Oscillator(mass_kg={osc.mass_kg:g}, ...)" if isinstance(osc, Oscillator)
-                     else type(osc).__name__)
-            raise InputError(Problem.WRONG_CONFIGURATION, field_name, shown,
+            raise InputError(Problem.WRONG_CONFIGURATION, field_name, type(osc).__name__,
                              got=f"with {what}" if _touches(osc) else f"without {what}", fix=fix)
         other = nbs_system is not None and (len(kinds) > 1 or _levels(osc) != _levels(nbs_system))
         if conf == "YBs" and other:

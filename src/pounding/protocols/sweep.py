@@ -10,7 +10,7 @@ import inspect
 import math
 from collections.abc import Callable
 from dataclasses import dataclass, fields
-from typing import Any, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 import numpy as np
 
@@ -23,9 +23,13 @@ from ..engine.control import (DEFAULT_MAX_STEPS, check_budget, fastest_rate, new
 from ..engine.simulate import check_oscillator, check_rtol, check_state, kernel_system
 from ..excitation import MAX_FREQ_HZ, GRAVITY_M_S2, Harmonic
 from ..model import MeasurementChain, Oscillator
+from ..model.systems import is_single_mass
 from .._runner.progress import Progress, progress_reporter
 from ..engine.kernels import W_CYCLES, WINDOW_COLS, StepOutput, run_step
 from .sweep_result import SweepResult, sweep_message
+
+if TYPE_CHECKING:
+    from .structure_sweep_result import StructureSweepResult
 
 Direction = Literal["up", "down"]
 SteadyMode = Literal["adaptive", "fixed"]
@@ -33,13 +37,6 @@ SteadyMode = Literal["adaptive", "fixed"]
 from ..data import PAPER_F_REF_HZ, PAPER_OMEGA_MIN_RAD_S  # noqa: E402  (the paper's conventions)
 MAX_STEPS_PER_SWEEP = 100_000
 MAX_CYCLES_PER_STEP = 1_000_000
-
-
-def _is_structure(system: Any) -> bool:
-    """A :class:`~pounding.Structure` or :class:`~pounding.Adjacent` (several masses), not one mass."""
-    from ..model import Adjacent, Structure
-
-    return isinstance(system, (Structure, Adjacent))
 
 
 def paper_frequencies_hz() -> np.ndarray:
@@ -179,7 +176,7 @@ def make_plan(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = 
         raise InputError(Problem.WRONG_TYPE, "measurement", measurement, got=type(measurement).__name__,
                          expected="pounding.MeasurementChain or None (the exact metrics)")
 
-    several = _is_structure(oscillator)
+    several = not is_single_mass(oscillator)
     if several:
         if measurement is not None:
             raise InputError(Problem.WRONG_MODE, "measurement", measurement,
@@ -375,18 +372,15 @@ def sweep(system: Oscillator, a_g: float, freqs_hz: np.ndarray | None = None,
     """
     plan = make_plan(system, a_g, freqs_hz, direction, state, **options)
     ctl = new_control(plan.max_steps)
-    run = run_plan
-    if _is_structure(plan.oscillator):
-        from .structure_sweep import run_structure_plan as run
     with progress_reporter(progress, plan.freqs_hz.size,
                            f"sweep {direction}, a_G = {plan.a_g:g}") as advance:
         # on a helper thread, so that Ctrl-C stops the step kernel at once (engine/control.py)
-        return run_interruptibly(lambda: run(plan, advance, ctl), [ctl])
+        return run_interruptibly(lambda: run_plan(plan, advance, ctl), [ctl])
 
 
 def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
-             control: np.ndarray | None = None) -> SweepResult:
-    """Run a validated plan step by step; ``advance(1)`` after each step.
+             control: np.ndarray | None = None) -> "SweepResult | StructureSweepResult":
+    """Run a validated plan of any system step by step; ``advance(1)`` after each step.
 
     ``control`` is the run control the step kernels poll (``engine.control``; default a
     fresh one with the plan's budget): another thread stops the sweep with
@@ -394,6 +388,10 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
     ``advance``) the unfinished step is dropped and :class:`~pounding.Interrupted` is
     raised, carrying the finished steps.
     """
+    if not is_single_mass(plan.oscillator):  # (each level measured: a window run once more)
+        from .structure_sweep import run_structure_plan
+
+        return run_structure_plan(plan, advance, control)
     ctl = new_control(plan.max_steps) if control is None else control
     osc = plan.oscillator
     system = kernel_system(osc)
