@@ -20,7 +20,7 @@ from .._errors import InputError, Problem
 from ..model import Oscillator
 from ..model.structure import Structure
 from ..model.oscillator import check_keys
-from ..model.systems import is_single_mass
+from ..model.systems import is_single_mass, structures_of
 from ..studies.spec import check_table, system_from_table
 from .hazard import HazardCurve
 from .site import hazard_curve_of, site_spectra, text_field as _text
@@ -321,9 +321,8 @@ class DesignPlan:
 def own_kind(system: Any, grid: dict, gap_dim: str) -> BumperType:
     """The base system's own bumpers over the design grid, named by their law; a building's: the wall of
     ``gap_dim`` (``walls[w].gap_m``), named by its left side's law."""
-    if isinstance(system, Structure):
-        return BumperType(system.walls[int(gap_dim.split("[")[1].split("]")[0])].left.TYPE, system, grid)
-    return BumperType(system.bumpers.law.TYPE, system, grid)
+    wall = int(gap_dim.split("[")[1].split("]")[0]) if gap_dim.startswith("walls[") else 0  # (bumpers: 0)
+    return BumperType(structures_of(system)[0][0].walls[wall].left.TYPE, system, grid)
 
 
 def _check_runs(system: Any, records: list, levels: np.ndarray, period: float, grid: dict,
