@@ -118,14 +118,17 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         i, k_p, d_y = s.plastic[q]
         return k_p * (drift(y, i) - slip[q]) if mode[q] == 0 else mode[q] * k_p * d_y
 
+    # the linear springs and dashpots in one matrix: the storeys' and the isolator's (K x + C v = [K C] y)
+    kc = np.hstack([s.k0, s.c0])
+    kc[0, 0] += s.k_iso
+    kc[0, n] += s.c_iso
+
     def forces(t, y):
-        x, v = y[:n], y[n:]
-        f = s.k0 @ x + s.c0 @ v
+        f = kc @ y
         for q, (i, _, _) in enumerate(s.plastic):
             fp = plastic_force(q, y)
             f[i + 1] += fp
             f[i] -= fp
-        f[0] += s.k_iso * x[0] + s.c_iso * v[0]
         for c in range(2):
             if inside[c]:
                 sg = SIGNS[c]
@@ -139,8 +142,10 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
     def rhs(t, y):
         a_g = (float(np.interp(t, s.record[0], s.record[1], left=0.0, right=0.0)) if s.record is not None
                else s.a_g * math.sin(s.omega * t))
-        a = -inv_m * forces(t, y) - a_g
-        return np.concatenate([y[n:], a])
+        out = np.empty(2 * n)
+        out[:n] = y[n:]
+        out[n:] = -inv_m * forces(t, y) - a_g
+        return out
 
     def make_events(quiet_contact=None):
         evs = []
