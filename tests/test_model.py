@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+import warnings
 
 import numpy as np
 import pytest
@@ -258,3 +259,22 @@ def test_a_system_is_given_as_system_and_the_name_before_still_works():
     np.testing.assert_array_equal(before.displacement, now.displacement)
     with pytest.raises(TypeError, match="both 'system' and 'oscillator'"):
         pd_.sweep(system=osc, oscillator=osc, a_g=0.05, freqs_hz=[1.0])
+
+
+def test_a_single_mass_s_bumpers_are_its_wall_checked_and_warned_about_once():
+    # (its Bumpers checked the numbers; the one-level structure it is assembled as does not say it again)
+    law = pd_.KelvinVoigt(1e8, 1e3)
+    other = pd_.KelvinVoigt(2e8, 0.0)
+    for bumpers in (pd_.Bumpers(0.015, 0.02, law), pd_.Bumpers(0.0, 0.01, law, law_right=other)):
+        wall = pd_.Structure.from_oscillator(pd_.Oscillator(500.0, pd_.presets.paper_damped().isolator,
+                                                            bumpers)).walls[0]
+        assert wall == pd_.Wall(0, bumpers.gap_left_m, bumpers.gap_right_m, bumpers.left,
+                                None if bumpers.right is bumpers.left else bumpers.right)
+        assert wall.left is bumpers.left and wall.right is bumpers.right
+    with pytest.warns(pd_.PoundingWarning) as seen:
+        far = pd_.Oscillator(500.0, pd_.presets.paper_damped().isolator, pd_.Bumpers(3.0, 3.0, law))
+    assert [str(w.message).split(" = ")[0] for w in seen] == ["bumpers.gap_left_m", "bumpers.gap_right_m"]
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")  # (a second warning, the wall's, would raise here)
+        run = pd_.simulate(far, pd_.Harmonic(0.05, 2.0), 1.0)
+    assert run.status == pd_.Status.SUCCESS and len(run.contacts) == 0

@@ -255,8 +255,7 @@ class Structure(TomlFile):
         """The single oscillator as a structure of one level (its bumpers a wall at the base)."""
         instance_of("oscillator", oscillator, Oscillator, "Oscillator")
         b = oscillator.bumpers
-        walls = () if b is None else (Wall(0, b.gap_left_m, b.gap_right_m, b.left,
-                                           None if b.right is b.left else b.right),)
+        walls = () if b is None else (Wall._of_bumpers(b),)  # (its numbers checked, and warned of, once)
         return cls(oscillator.mass_kg, oscillator.isolator, (), walls)
 
     # ------------------------------------------------------------------ TOML

@@ -212,6 +212,18 @@ class Wall:
             raise InputError(Problem.WRONG_TYPE, "wall.stand", self.stand, got=type(self.stand).__name__,
                              expected="Stand or None")
 
+    @classmethod
+    def _of_bumpers(cls, bumpers: Any) -> "Wall":
+        """A single mass's bumpers as the wall at its level 0, from numbers its ``Bumpers`` checked (and
+        warned about) already: not checked, nor warned about, a second time."""
+        values = {"level": 0, "gap_left_m": bumpers.gap_left_m, "gap_right_m": bumpers.gap_right_m,
+                  "law": bumpers.left, "law_right": None if bumpers.right is bumpers.left else bumpers.right,
+                  "stand": None}
+        wall = object.__new__(cls)
+        for name, value in values.items():
+            object.__setattr__(wall, name, value)
+        return wall
+
     @property
     def left(self) -> Any:
         return self.law
