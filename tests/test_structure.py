@@ -397,9 +397,17 @@ def test_the_command_line_runs_a_building_s_file(tmp_path):
     assert len(pd.read_csv(steps)) == 3 * 4  # (a row per step and level)
     refused = runner.invoke(app, ["sweep", str(building), "--a-g", "0.3", "--no-bumpers"])
     assert refused.exit_code == 2 and "--no-bumpers" in refused.output
-    velocity = runner.invoke(app, ["simulate", str(building), "--a-g", "0.1", "--freq", "1",
-                                   "--velocity", "0.1"])
-    assert velocity.exit_code == 2 and "--velocity" in velocity.output
+    # a structure pushed as one body, as a single mass is: the same run as simulate's from that state
+    moving = tmp_path / "moving.csv"
+    velocity = runner.invoke(app, ["simulate", str(building), "--a-g", "0.3", "--freq", "0.8",
+                                   "--duration", "3", "--velocity", "0.5", "--contacts", str(moving)])
+    assert velocity.exit_code == 0, velocity.output
+    b = pd_.Structure.from_toml(building)
+    pushed = pd_.simulate(b, pd_.Harmonic(0.3, 0.8), 3.0, pd_.State.at_rest(b, velocity_m_s=0.5))
+    at_rest = pd_.simulate(b, pd_.Harmonic(0.3, 0.8), 3.0)
+    written = pd.read_csv(moving)
+    assert len(written) == len(pushed.contacts) != len(at_rest.contacts)  # (15 and 9)
+    np.testing.assert_array_equal(written["t_start_s"], pushed.contacts["t_start_s"])
     pair = ROOT / "examples" / "adjacent_buildings.toml"
     assert pd_.Adjacent.from_toml(pair).second.fixed
     links = tmp_path / "links.csv"

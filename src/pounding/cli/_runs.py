@@ -65,7 +65,8 @@ def simulate(
         "--sample-rate",
         help="History samples per second, Hz (default 1000, fewer for runs over 1000 s; 0: the events only).",
     ),
-    velocity: float = typer.Option(0.0, "--velocity", help="Initial velocity relative to the table, m/s."),
+    velocity: float = typer.Option(0.0, "--velocity", help="Initial velocity relative to the table, m/s (a "
+                                   "structure: every moving level's, as one body)."),
     contacts: Optional[Path] = typer.Option(None, "--contacts", help="Write the contact table (CSV)."),
     history: Optional[Path] = typer.Option(None, "--history", help="Write the sampled histories (CSV)."),
     plot: Optional[Path] = typer.Option(
@@ -86,41 +87,35 @@ def simulate(
     exc, what = excitation(a_g, freq, record, record_dt, record_units, scale_pga)
     if duration is None:
         duration = exc.t[-1] if record is not None else 20.0
-    if one_mass_options(osc, no_bumpers):  # a structure of several masses
-        if velocity != 0.0:
-            raise typer.BadParameter("--velocity is for one mass (a structure starts at rest)")
-        return _simulate_structure(osc, exc, what, duration, sample_rate, system_file, out, plot)
-    start = State.at_rest(osc, velocity_m_s=velocity)
+    several = one_mass_options(osc, no_bumpers)  # (a structure of several masses, or a pair)
+    start = State.at_rest(osc, velocity_m_s=velocity)  # (a structure's moving levels all at it, as one body)
     wants_history = history is not None or plot is not None
-    rate = sample_rate if wants_history else 0.0  # nothing to sample for: the events only
+    rate = sample_rate if wants_history else 0.0  # nothing to sample for: the events only (extrema are exact)
+    levels = sum(s.n_levels for s in getattr(osc, "structures", (osc,))) if several else 1
     complete = True
     try:
-        with working(f"simulating {duration:g} s of {what} ..."):
+        with working(f"simulating {duration:g} s of {what}" + (f" on {levels} levels" if several else "")
+                     + " ..."):
             run = run_simulation(osc, exc, duration, start, sample_rate_hz=rate)
     except Interrupted as stop:
         run, complete = stop.partial, False
     s = run.summary()
     table, add_row = kv_table(f"{what}, {s['t_end_s']:g} s", system_file or preset)
     add_row("status", run.message)
-    add_row("D max / min [mm]", f"{s['displacement_max_m'] * 1e3:.4f} / {s['displacement_min_m'] * 1e3:.4f}")
-    rigid = s["rigid_impacts"]  # (a rigid stop's impacts: impulses, no force)
-    between = "inf at the rigid impacts (impulses); {} between them" if rigid else "{}"
-    add_row("max |abs. acceleration| [g]", between.format(f"{s['abs_acceleration_max_m_s2'] / exc.g:.4f}"))
-    alpha = s["alpha"]
-    add_row("alpha = max|a_abs| / " + ("A_t" if record is None else "PGA"), between.format(f"{alpha:.4f}")
-            if not math.isnan(alpha) else "- (no shaking)")
-    n, left = s["contacts"], f"{s['contacts_left']} left"
-    add_row("contacts", f"{n} ({rigid} rigid impacts, {left})" if rigid else f"{n} ({left})" if n else "0")
-    _contact_rows(add_row, s)
-    e = run.energy
-    add_row("energy in / residual [J]", f"{e.input_work:.6g} / {e.residual:.2e}")
+    if several:
+        _structure_rows(add_row, run, s)
+    else:
+        _mass_rows(add_row, s, exc, record is None)
+    add_row("energy in / residual [J]", f"{s['input_work_j']:.6g} / {s['energy_residual_j']:.2e}")
     console.print(table)
+    if several:
+        _level_tables(run, exc)
     with interrupts_deferred() as held:  # the files are written whole, whatever Ctrl-C comes
         if out["contacts"] is not None:
             write_csv(run.contacts, out["contacts"])
             console.print(f"contacts -> {out['contacts']}")
         if out["history"] is not None:
-            write_csv(run.to_dataframe(units=True), out["history"])
+            write_csv(run.to_dataframe() if several else run.to_dataframe(units=True), out["history"])
             note = " (events only: --sample-rate 0)" if run.sample_rate_hz == 0 else ""
             console.print(f"history -> {out['history']}{note}")
         if plot is not None:
@@ -132,6 +127,55 @@ def simulate(
         )
     if not run.success:
         raise typer.Exit(code=1)
+
+
+def _mass_rows(add_row: Any, s: Any, exc: Any, harmonic: bool) -> None:
+    """A single mass's rows of the table ``pounding simulate`` prints: its exact extrema, alpha, contacts."""
+    add_row("D max / min [mm]", f"{s['displacement_max_m'] * 1e3:.4f} / {s['displacement_min_m'] * 1e3:.4f}")
+    rigid = s["rigid_impacts"]  # (a rigid stop's impacts: impulses, no force)
+    between = "inf at the rigid impacts (impulses); {} between them" if rigid else "{}"
+    add_row("max |abs. acceleration| [g]", between.format(f"{s['abs_acceleration_max_m_s2'] / exc.g:.4f}"))
+    alpha = s["alpha"]
+    add_row("alpha = max|a_abs| / " + ("A_t" if harmonic else "PGA"), between.format(f"{alpha:.4f}")
+            if not math.isnan(alpha) else "- (no shaking)")
+    n, left = s["contacts"], f"{s['contacts_left']} left"
+    add_row("contacts", f"{n} ({rigid} rigid impacts, {left})" if rigid else f"{n} ({left})" if n else "0")
+    _contact_rows(add_row, s)
+
+
+def _structure_rows(add_row: Any, run: Any, s: Any) -> None:
+    """A structure's (or a pair's) rows of the table ``pounding simulate`` prints: the contacts per level
+    (and at the links)."""
+    pair = hasattr(run, "links")
+    for name in ("first", "second") if pair else ("",):
+        prefix = f"{name}_" if pair else ""
+        at = [(int(k.rsplit("_", 1)[1]), v) for k, v in s.items()
+              if k.startswith(f"{prefix}contacts_level_") and v]
+        add_row(f"{name}: walls' contacts" if pair else "contacts",
+                ", ".join(f"{v} at level {lv}" for lv, v in at) if s[f"{prefix}contacts"] else "0")
+    if pair:
+        add_row("contacts at the links", str(s["link_contacts"]))
+    else:
+        _contact_rows(add_row, s)
+
+
+def _level_tables(run: Any, exc: Any) -> None:
+    """A structure's (each of a pair's) table of levels: exact extrema and drift ratios."""
+    from rich.table import Table
+
+    parts = (("first", run.first), ("second", run.second)) if hasattr(run, "links") else (("", run),)
+    for name, part in parts:
+        levels = Table(title=f"{name + ': ' if name else ''}each level (extrema exact)")
+        for head in ("level", "max / min [mm]", "max |a_abs| [g]", "drift ratio [%]"):
+            levels.add_column(escape(head), justify="right")
+        for level, row in part.peaks().iterrows():
+            ratio = row["drift_ratio_peak"]
+            base = "ground" if part.structure.fixed else "base"
+            levels.add_row(base if level == 0 else str(level),
+                           f"{row['displacement_max_m'] * 1e3:.2f} / {row['displacement_min_m'] * 1e3:.2f}",
+                           f"{row['abs_acceleration_max_m_s2'] / exc.g:.3f}",
+                           "-" if ratio != ratio else f"{ratio * 100:.3f}")
+        console.print(levels)
 
 
 def _contact_rows(add_row: Any, s: Any) -> None:
@@ -147,66 +191,6 @@ def _contact_rows(add_row: Any, s: Any) -> None:
         add_row("max peak force [kN]", "inf (the rigid impacts' impulses: see the contacts' impulse_n_s)")
     elif not math.isnan(s["peak_force_max_n"]):
         add_row("max peak force [kN]", f"{s['peak_force_max_n'] / 1e3:.3f}")
-
-
-def _simulate_structure(building: Any, exc: Any, what: str, duration: float, sample_rate: Optional[float],
-                        system_file: Optional[Path], out: dict, plot: Optional[Path]) -> None:
-    """``simulate`` for a structure or two adjacent ones: a row per level (exact extrema, the storey's drift
-    at the samples)."""
-    from rich.table import Table
-
-    from ..engine import simulate as run_simulation
-
-    complete = True
-    try:
-        levels = sum(s.n_levels for s in getattr(building, "structures", (building,)))
-        with working(f"simulating {duration:g} s of {what} on {levels} levels ..."):
-            run = run_simulation(building, exc, duration, sample_rate_hz=sample_rate)
-    except Interrupted as stop:
-        run, complete = stop.partial, False
-    s = run.summary()
-    table, add_row = kv_table(f"{what}, {run.final_state.time_s:g} s", system_file)
-    add_row("status", run.message)
-    pair = hasattr(run, "links")
-    parts = (("first", run.first), ("second", run.second)) if pair else (("", run),)
-    for name, part in parts:
-        prefix = f"{name}_" if pair else ""
-        at = [(int(k.rsplit("_", 1)[1]), v) for k, v in s.items()
-              if k.startswith(f"{prefix}contacts_level_") and v]
-        add_row(f"{name}: walls' contacts" if pair else "contacts",
-                ", ".join(f"{v} at level {lv}" for lv, v in at) if s[f"{prefix}contacts"] else "0")
-    if pair:
-        add_row("contacts at the links", str(s["link_contacts"]))
-    else:
-        _contact_rows(add_row, s)
-    add_row("energy in / residual [J]", f"{s['input_work_j']:.6g} / {s['energy_residual_j']:.2e}")
-    console.print(table)
-    for name, part in parts:
-        levels = Table(title=f"{name + ': ' if name else ''}each level (extrema exact)")
-        for head in ("level", "max / min [mm]", "max |a_abs| [g]", "drift ratio [%]"):
-            levels.add_column(escape(head), justify="right")
-        for level, row in part.peaks().iterrows():
-            ratio = row["drift_ratio_peak"]
-            base = "ground" if part.structure.fixed else "base"
-            levels.add_row(base if level == 0 else str(level),
-                           f"{row['displacement_max_m'] * 1e3:.2f} / {row['displacement_min_m'] * 1e3:.2f}",
-                           f"{row['abs_acceleration_max_m_s2'] / exc.g:.3f}",
-                           "-" if ratio != ratio else f"{ratio * 100:.3f}")
-        console.print(levels)
-    with interrupts_deferred() as held:
-        if out["contacts"] is not None:
-            write_csv(run.contacts, out["contacts"])
-            console.print(f"contacts -> {out['contacts']}")
-        if out["history"] is not None:
-            write_csv(run.to_dataframe(), out["history"])
-            console.print(f"history -> {out['history']}")
-        if plot is not None:
-            save_figure(run.plot, plot)
-    if not complete or held:
-        interrupted(f"the run up to t = {run.final_state.time_s:g} s of {duration:g} s is in the summary"
-                    + (" and the files written" if any(out.values()) or plot else ""))
-    if not run.success:
-        raise typer.Exit(code=1)
 
 
 def excitation(a_g: float | None, freq: float | None, record: Path | None, record_dt: float | None,
