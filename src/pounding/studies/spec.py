@@ -456,9 +456,6 @@ def check_options(system: System, options: dict[str, Any]) -> None:
     from .._checks import positive
     from .points import SWEEP_ARGS, excitation_of
 
-    if not isinstance(system, Oscillator) and options.get("v0_m_s"):
-        raise InputError(Problem.WRONG_MODE, "v0_m_s", options["v0_m_s"], mode="one mass (an Oscillator)",
-                         fix="leave it 0: a structure's points start at rest")
     if options["kind"] == "sweep":
         from ..protocols.sweep import make_plan
 
