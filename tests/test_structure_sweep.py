@@ -189,6 +189,41 @@ def test_bad_arguments_are_named():
     assert "level 1" in console.export_text()
 
 
+def test_what_is_no_system_is_named_by_every_sweep():
+    for bad in ("paper", pd_.Bumpers(0.01, 0.01, pd_.KelvinVoigt(1e7, 1e3)), None):
+        with pytest.raises(pd_.InputError, match="system"):
+            pd_.sweep(bad, 0.1, [1.0])
+        with pytest.raises(pd_.InputError, match="system"):
+            pd_.bifurcation_diagram(bad, 0.1, [1.0, 1.5])
+
+
+def test_a_ctrl_c_in_a_step_s_measured_window_keeps_the_steps_before(monkeypatch):
+    # (the window of each step is run once more for every level's metrics: a Ctrl-C there drops the step,
+    # and the sweep ends where the steps before it left the structure)
+    from pounding.protocols import structure_sweep
+
+    b = pd_.Structure(1e3, linear_isolator(1e5, 1e3), [pd_.Storey(1e3, 1e6, 1e3)],
+                      [pd_.Wall(0, 0.01, 0.01, pd_.KelvinVoigt(1e7, 1e3))])
+    first = pd_.sweep(b, 0.2, [1.0], steady="fixed", cycles=6, measure_cycles=2)
+    windows = []
+    real = structure_sweep.run_window
+
+    def stopped_at_the_second(*args, **kwargs):
+        windows.append(1)
+        if len(windows) == 2:
+            raise KeyboardInterrupt
+        return real(*args, **kwargs)
+
+    monkeypatch.setattr(structure_sweep, "run_window", stopped_at_the_second)
+    with pytest.raises(pd_.Interrupted) as info:
+        pd_.sweep(b, 0.2, [1.0, 1.5, 2.0], steady="fixed", cycles=6, measure_cycles=2)
+    partial = info.value.partial
+    assert len(windows) == 2 and partial.steps_done == 1
+    np.testing.assert_array_equal(partial.final_state.vector, first.final_state.vector)
+    np.testing.assert_array_equal(partial.level_metrics[0], first.level_metrics[0])
+    assert np.isnan(partial.level_metrics[1:]).all()
+
+
 def test_a_campaign_of_a_building_without_and_with_its_moat_wall(tmp_path):
     iso = pd_.Isolator(slopes_n_m=[4.0e5, 1.0e5], breakpoints_m=[0.02], damping_n_s_m=2.0e3)
     bare = pd_.Structure(3.0e3, iso, [pd_.Storey(2.0e3, 4.0e6, 4.0e3)] * 2)

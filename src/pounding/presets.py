@@ -195,7 +195,7 @@ def paper_rig_stands() -> "Structure":
     Returns
     -------
     Structure
-        The rig (read from ``pounding/data/paper_rig_stands.toml``); ``.bare()`` is its NBs.
+        The rig (read from ``pounding/data/paper_rig_stands.toml``); ``.without_bumpers()`` is its NBs.
 
     Examples
     --------

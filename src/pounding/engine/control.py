@@ -38,8 +38,11 @@ def fastest_rates(asm: Assembly) -> tuple[float, float]:
     scale = 1.0 / np.sqrt(m)
 
     def rate(k: np.ndarray, c: np.ndarray) -> float:  # (K v = lam M v: M^-1/2 K M^-1/2's eigenvalues)
-        lam = float(np.linalg.eigvalsh(k * np.outer(scale, scale))[-1])
-        decay = float(np.max(np.diag(c) / m))
+        if m.size == 1:  # (one mass: k / m itself, no eigensolver)
+            lam, decay = float(k[0, 0]) / float(m[0]), float(c[0, 0]) / float(m[0])
+        else:
+            lam = float(np.linalg.eigvalsh(k * np.outer(scale, scale))[-1])
+            decay = float(np.max(np.diag(c) / m))
         return max(math.sqrt(max(lam, 0.0) + (0.5 * decay) ** 2), decay)
 
     free = rate(k, c)

@@ -9,7 +9,6 @@ from typing import TYPE_CHECKING, Optional
 
 import numpy as np
 
-from .._checks import instance_of
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
@@ -32,11 +31,6 @@ from .state_check import _FIX, check_fits, check_layout, check_state, contact_na
 if TYPE_CHECKING:
     from ..model.adjacent import Adjacent
     from ..model.structure import Structure
-
-def check_oscillator(oscillator: Oscillator, field: str = "system") -> None:
-    """An InputError naming ``field`` unless ``oscillator`` is one."""
-    instance_of(field, oscillator, Oscillator, "pounding.Oscillator")
-
 
 def kernel_system(oscillator: Oscillator) -> System:
     """The oscillator as the core's system: the one-level structure it is, assembled (:func:`assemble`: its

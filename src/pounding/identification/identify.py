@@ -22,7 +22,7 @@ import pandas as pd
 
 from .._checks import boolean, instance_of, integer, one_of, real
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
-from ..model import MeasurementChain, Oscillator
+from ..model import MeasurementChain, Oscillator, Structure
 from .._runner import run_tasks, scheduler_kind, task_pool
 from .._runner.progress import Progress, progress_reporter
 from ..protocols.campaign import sweep_quantities
@@ -183,6 +183,9 @@ def evaluate(system: Oscillator, targets: Targets, *, freqs_hz: Any = None,
     """
     from ..protocols.campaign import sweep_task
 
+    instance_of("system", system, (Oscillator, Structure),
+                "pounding.Oscillator or pounding.Structure (a rig: one mass, or a structure whose base is "
+                "the measured mass)")
     options = {**DEFAULT_SWEEP, **sweep_options}
     cases = list(targets.cases)
     plans = [make_plan(system if conf == "YBs" else bare(system), a_g, freqs_hz,

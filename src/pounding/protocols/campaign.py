@@ -293,8 +293,8 @@ def campaign(
                     "pounding.Oscillator (or a Structure, or an Adjacent pair)")
         if _touches(osc) != (conf == "YBs"):
             what = "bumpers, walls or links"
-            fix = (f"give the system without {what} (oscillator.without_bumpers(), or a structure with "
-                   "walls=[]); were the NBs and YBs systems swapped?" if conf == "NBs" else
+            fix = (f"give the system without {what} (a single mass's or a structure's "
+                   "without_bumpers()); were the NBs and YBs systems swapped?" if conf == "NBs" else
                    f"give a system with {what}; were the NBs and YBs systems swapped?")
             raise InputError(Problem.WRONG_CONFIGURATION, field_name, type(osc).__name__,
                              got=f"with {what}" if _touches(osc) else f"without {what}", fix=fix)

@@ -20,10 +20,10 @@ from ..engine import State
 from ..engine.layout import T
 from ..engine.control import (DEFAULT_MAX_STEPS, check_budget, fastest_rate, new_control,
                                run_interruptibly, steps_per_second, stop_requested)
-from ..engine.simulate import check_oscillator, check_rtol, check_state, kernel_system
+from ..engine.simulate import check_rtol, check_state, kernel_system
 from ..excitation import MAX_FREQ_HZ, GRAVITY_M_S2, Harmonic
 from ..model import MeasurementChain, Oscillator
-from ..model.systems import is_single_mass
+from ..model.systems import check_system, is_single_mass
 from .._runner.progress import Progress, progress_reporter
 from ..engine.kernels import W_CYCLES, WINDOW_COLS, StepOutput, run_step
 from .sweep_result import SweepResult, sweep_message
@@ -176,14 +176,11 @@ def make_plan(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = 
         raise InputError(Problem.WRONG_TYPE, "measurement", measurement, got=type(measurement).__name__,
                          expected="pounding.MeasurementChain or None (the exact metrics)")
 
+    check_system(oscillator)
     several = not is_single_mass(oscillator)
-    if several:
-        if measurement is not None:
-            raise InputError(Problem.WRONG_MODE, "measurement", measurement,
-                             mode="a single mass (Oscillator)",
-                             fix="leave it None for a Structure: its metrics are the exact ones")
-    else:
-        check_oscillator(oscillator)
+    if several and measurement is not None:
+        raise InputError(Problem.WRONG_MODE, "measurement", measurement, mode="a single mass (Oscillator)",
+                         fix="leave it None for a Structure: its metrics are the exact ones")
     a_g = Harmonic(positive("a_g", a_g, "g (e.g. 0.05)"), 1.0).a_g  # its magnitude checks
     freqs = paper_frequencies_hz() if freqs_hz is None else float_array("freqs_hz", freqs_hz)
     if freqs.size > MAX_STEPS_PER_SWEEP:
