@@ -10,7 +10,7 @@ import numpy as np
 
 from .._checks import instance_of, integer, one_of, real
 from .._errors import InputError, Problem
-from ..model.systems import structures_of
+from ..engine.assembly import structures_of
 from ..engine.layout import X_D_MAX, X_D_MIN
 from ..engine.simulate import ShortRun, simulate
 from ..excitation import Harmonic

@@ -26,7 +26,7 @@ from ..engine.layout import (ACT_CONTACT, ACT_REGION, ACT_RELEASE, ACT_REVERSAL,
                               ACT_YIELD)  # events' codes, here)
 from ..engine.kernels import System
 from ..engine.kernels import monodromy as exact_monodromy
-from ..model.systems import structures_of
+from ..engine.assembly import structures_of
 from ..model.contact_laws import is_rigid, linear_form
 
 if TYPE_CHECKING:

@@ -18,8 +18,7 @@ from typing import Any, Optional
 import numpy as np
 
 from .._errors import InputError
-from ..engine.assembly import Assembly, assemble
-from ..model.systems import structures_of
+from ..engine.assembly import Assembly, assemble, structures_of
 from ..engine.layout import C_SLOT, C_T_END, C_T_START, C_V_IN, X_A_MAX, X_D_MAX, X_D_MIN
 from ..engine.run_args import kernel_forcing
 from ..engine.simulate import NotAState, ShortRun, short_run

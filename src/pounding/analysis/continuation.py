@@ -26,7 +26,7 @@ import numpy as np
 from .._checks import instance_of, integer, positive, real
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..engine import State
-from ..model.systems import check_system
+from ..engine.assembly import check_system
 from ..engine.simulate import check_state, short_run
 from ..model.dotted import why_unresolved
 from . import _hybrid as hy

@@ -12,7 +12,7 @@ import pandas as pd
 
 from .._checks import instance_of, integer, one_of, real
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
-from ..model.systems import check_system, is_single_mass
+from ..engine.assembly import check_system, is_single_mass
 from ..engine.simulate import check_state
 from ..excitation import Harmonic
 from ..model import Oscillator

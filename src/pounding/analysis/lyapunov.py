@@ -51,8 +51,7 @@ from ..protocols.bifurcation_diagram import BifurcationDiagram, periods
 from . import _hybrid as hy
 from ._args import exact_monodromy
 from .lyapunov_result import LyapunovSpectrum
-from ..engine.assembly import assemble
-from ..model.systems import check_system, is_single_mass
+from ..engine.assembly import assemble, check_system, is_single_mass
 from ._shooter import _Shooter
 from ._shooting import _Failed, at_section
 

@@ -26,7 +26,7 @@ import numpy as np
 
 from .._errors import InputError, Problem, renamed_keyword
 from ..engine import Run, State, simulate
-from ..model.systems import check_system
+from ..engine.assembly import check_system
 from ..engine.simulate import check_state
 from ..excitation import Harmonic
 from ..model import Oscillator

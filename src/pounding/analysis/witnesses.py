@@ -147,7 +147,7 @@ def _witness_table(sweep: Any) -> pd.DataFrame:
 
 def _fixed(model: Any) -> bool:
     """Whether a structure (or a pair's first) stands on the ground (its level 0 does not move)."""
-    from ..model.systems import structures_of
+    from ..engine.assembly import structures_of
 
     return bool(structures_of(model)[0][0].fixed)
 

@@ -315,7 +315,7 @@ def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True):
 def one_mass_options(osc, no_bumpers: bool) -> bool:
     """Whether ``osc`` is a structure of several masses (or a pair), refusing ``--no-bumpers`` for one:
     its walls and links are in its file."""
-    from ..model.systems import is_single_mass
+    from ..engine.assembly import is_single_mass
 
     several = not is_single_mass(osc)
     if several and no_bumpers:

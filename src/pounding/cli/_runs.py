@@ -80,6 +80,7 @@ def simulate(
     and the links."""
     from ..engine import State
     from ..engine import simulate as run_simulation
+    from ..engine.assembly import structures_of
 
     out = files(contacts=(contacts, CSV), history=(history, CSV))
     plot = figure_path("--plot", plot)
@@ -91,7 +92,7 @@ def simulate(
     start = State.at_rest(osc, velocity_m_s=velocity)  # (a structure's moving levels all at it, as one body)
     wants_history = history is not None or plot is not None
     rate = sample_rate if wants_history else 0.0  # nothing to sample for: the events only (extrema are exact)
-    levels = sum(s.n_levels for s in getattr(osc, "structures", (osc,))) if several else 1
+    levels = sum(s.n_levels for s in structures_of(osc)[0])
     complete = True
     try:
         with working(f"simulating {duration:g} s of {what}" + (f" on {levels} levels" if several else "")

@@ -72,7 +72,7 @@ def spectrum(
     periods_s, gaps_m = grid("--periods", periods), float_list("--gaps", gaps)
     building = None
     if structure is not None:
-        from ..model import Structure
+        from ..engine.assembly import PAIR, STRUCTURE, kind_of
 
         if damping != 0.05 or mass != 500.0:
             raise typer.BadParameter("--damping and --mass are the single mass's: a building's are in its "
@@ -80,8 +80,9 @@ def spectrum(
         from ._app import system
 
         building = system(structure, None)
-        if not isinstance(building, Structure):
-            other = ("two adjacent ones" if hasattr(building, "links")
+        kind = kind_of(building)
+        if kind != STRUCTURE:
+            other = ("two adjacent ones" if kind == PAIR
                      else "a single mass's (its spectrum: without --structure)")
             raise typer.BadParameter(f"--structure {structure}: give one building's file (a Structure with "
                                      f"its walls), not {other}")

@@ -18,9 +18,8 @@ import numpy as np
 from .._checks import float_array, integer, one_of, parse_toml, positive, read_text
 from .._errors import InputError, Problem
 from ..model import Oscillator
-from ..model.structure import Structure
 from ..model.oscillator import check_keys
-from ..model.systems import is_single_mass, structures_of
+from ..engine.assembly import MASS, STRUCTURE, is_single_mass, kind_of, structures_of
 from ..studies.spec import check_table, system_from_table
 from .hazard import HazardCurve
 from .site import hazard_curve_of, site_spectra, text_field as _text
@@ -145,8 +144,9 @@ class DesignPlan:
         base = source.parent
         check_keys(table, "", TOP_KEYS, ("system", "site", "records", "design"))
         system = system_from_table(table["system"], base)
-        building = isinstance(system, Structure)
-        if not (building or isinstance(system, Oscillator)):
+        kind = kind_of(system)
+        building = kind == STRUCTURE
+        if kind not in (MASS, STRUCTURE):
             raise InputError(Problem.WRONG_MODE, "system", type(system).__name__,
                              mode="one mass (an Oscillator) or one building (a Structure)",
                              fix="design the gap of one building at a time: give its file")

@@ -20,7 +20,8 @@ import numpy as np
 from .._checks import float_array, instance_of, positive
 from .._errors import InputError, Interrupted, Problem
 from ..model import Oscillator, Structure
-from ..model.systems import is_single_mass, structures_of, system_type
+from ..model.systems import system_type
+from ..engine.assembly import is_single_mass, structures_of
 from ..studies import StudySpec, study
 from .stripe_result import RESERVED, StripeAnalysis
 

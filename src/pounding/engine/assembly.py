@@ -14,10 +14,10 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from .. import _core
+from .._checks import instance_of
 from ..model.adjacent import Adjacent
 from ..model.oscillator import Oscillator
 from ..model.structure import Structure
-from ..model.systems import structures_of
 from .layout import P_MAX, P_MIN, X_D_MAX, X_D_MIN
 
 
@@ -76,6 +76,44 @@ def clearances(asm: Assembly, run: _core.RunOutput) -> np.ndarray:
                        else (per_dof[i, X_D_MAX], per_dof[i, X_D_MIN]))
         out[c] = gap - (top if sign > 0 else -bottom)
     return out
+
+
+MASS, STRUCTURE, PAIR = "single mass", "structure", "pair"  # the kinds of system (:func:`kind_of`)
+
+
+def kind_of(system: Any) -> str | None:
+    """Which kind of system ``system`` is: ``MASS``, ``STRUCTURE`` or ``PAIR`` (None: none). The one place
+    the kinds are told apart; everything else reads a system through what every kind has
+    (:func:`structures_of`: a single mass is the one-level structure it is) and asks this where a kind has
+    something of its own (a single mass's paper metrics, a pair's two structures)."""
+    for cls, kind in ((Oscillator, MASS), (Structure, STRUCTURE), (Adjacent, PAIR)):
+        if isinstance(system, cls):
+            return kind
+    return None
+
+
+def is_single_mass(system: Any) -> bool:
+    """Whether ``system`` is a single mass (an :class:`Oscillator`): the one-level structure whose sweeps,
+    basins and files keep the paper's metrics and names of their own."""
+    return kind_of(system) == MASS
+
+
+def check_system(system: Any, field: str = "system") -> None:
+    """An InputError naming ``field`` unless ``system`` is one the core runs: a single mass, a structure or
+    two adjacent ones."""
+    if kind_of(system) is None:
+        instance_of(field, system, (Oscillator, Structure, Adjacent),
+                    "pounding.Oscillator, pounding.Structure or pounding.Adjacent")
+
+
+def structures_of(model: Oscillator | Structure | Adjacent) -> tuple[tuple[Structure, ...], tuple]:
+    """(the structures, the links) of a model (a single mass: the one-level structure it is)."""
+    kind = kind_of(model)
+    if kind == PAIR:
+        return model.structures, model.links
+    if kind == MASS:
+        return (Structure.from_oscillator(model),), ()
+    return (model,), ()
 
 
 def assemble(model: Oscillator | Structure | Adjacent) -> Assembly:

@@ -22,8 +22,7 @@ from .run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPL
                         MAX_SAMPLES, check_rtol, checked_run_args, history_rate, kernel_forcing)
 from .adjacent_result import AdjacentRun
 from .result import EnergyLedger, Run
-from ..model.systems import check_system, is_single_mass, structures_of
-from .assembly import Assembly, assemble, clearances
+from .assembly import Assembly, assemble, check_system, clearances, is_single_mass, structures_of
 from .structure_result import StructureRun
 from .state import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, State, one_mass_layout
 from .state_check import _FIX, check_fits, check_layout, check_state, contact_name  # noqa: F401  (check_state: here too)

@@ -150,7 +150,7 @@ class State:
         velocity_m_s : float
             Velocity relative to the ground, m/s, of the same masses.
         """
-        from ..model.systems import check_system, is_single_mass
+        from .assembly import check_system, is_single_mass
 
         check_system(system)
         time_s = at_most("time_s", real("time_s", time_s), MAX_TIME_S, " s", "give the time in s")

@@ -21,8 +21,7 @@ from .._checks import instance_of
 from .._errors import InputError, Problem, outside_stacklevel
 from ..model.contact_laws import N_LAW_STATE, state_problem, stateless
 from ..model.oscillator import Oscillator
-from ..model.systems import is_single_mass
-from .assembly import Assembly, assemble
+from .assembly import Assembly, assemble, is_single_mass
 from .state import LAYOUT_KEYS, State, shifted
 
 if TYPE_CHECKING:

@@ -16,10 +16,9 @@ from .._errors import InputError, Interrupted, Problem, renamed_keyword
 from .._runner import run_tasks
 from .._runner.progress import Progress
 from ..engine.simulate import check_rtol
-from ..engine.assembly import assemble
+from ..engine.assembly import assemble, check_system
 from ..excitation import Harmonic
 from ..model import Oscillator
-from ..model.systems import check_system
 from .basins import (MAX_STATES, N_ROW, R_LEFT, R_PERIOD, R_RIGHT, ROWS_PER_TASK, SIGNATURE, initial_states,
                      run_states, state_box, steady_options, core_view)
 

@@ -25,8 +25,7 @@ from .._runner.progress import Progress
 from ..engine import State
 from ..engine.layout import T
 from ..engine.simulate import check_rtol
-from ..engine.assembly import assemble
-from ..model.systems import check_system, is_single_mass
+from ..engine.assembly import assemble, check_system, is_single_mass
 from ..excitation import Harmonic
 from ..metrics.impacts import S_COUNT, SIDE_SUMS
 from ..model import Oscillator

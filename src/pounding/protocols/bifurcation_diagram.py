@@ -22,7 +22,7 @@ from .._control import DEFAULT_MAX_STEPS, new_control, run_interruptibly
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from .._runner.progress import Progress, progress_reporter
 from .structure_sweep_result import C_COUNT
-from ..model.systems import is_single_mass
+from ..engine.assembly import is_single_mass
 from .sweep import MAX_CYCLES_PER_STEP, make_plan, run_plan
 from .sweep_result import SweepResult
 

@@ -19,7 +19,7 @@ from .._checks import instance_of, one_of, real_tuple
 from .._errors import InputError, Interrupted, Problem
 from ..model import Adjacent, Oscillator, Structure
 from .._runner import Context, run_tasks
-from ..model.systems import structures_of
+from ..engine.assembly import is_single_mass, structures_of
 from .._runner.progress import Progress
 from .sweep import SweepPlan, check_sweep_options, make_plan, run_plan
 from .sweep_result import SIDE_COLUMNS, STEP_COLUMNS, SweepResult
@@ -344,7 +344,7 @@ def _levels(system: Any) -> tuple:
 def _dataset(sweeps: dict, plans: list, complete: bool) -> "xr.Dataset":
     import xarray as xr
 
-    if not isinstance(plans[0][1].oscillator, Oscillator):
+    if not is_single_mass(plans[0][1].oscillator):
         return _structure_dataset(sweeps, plans, complete)
     confs = [c for c in CONFIGURATIONS if any(k[0] == c for k, _ in plans)]
     a_gs = sorted({k[1] for k, _ in plans})

@@ -25,7 +25,7 @@ def labels_of(model: Any, asm: Any) -> tuple[list, list, list]:
     """(levels, storeys, contact slots) of a structure or a pair, as rows of labels: a level
     ``(structure, level)``, a storey ``(structure, storey)`` (storey ``s`` under level ``s``), a slot
     ``(structure, "wall", wall, level, side)`` or ``(-1, "link", link, level_first, "")``."""
-    from ..model.systems import structures_of
+    from ..engine.assembly import structures_of
 
     structures, links = structures_of(model)
     levels = [(b, q) for b, s in enumerate(structures) for q in range(s.n_levels)]
@@ -306,7 +306,7 @@ class StructureSweepResult:
         return pd.DataFrame(frame)
 
     def _storey_heights(self) -> np.ndarray:
-        from ..model.systems import structures_of
+        from ..engine.assembly import structures_of
 
         structures = structures_of(self.structure)[0]
         return np.array([structures[b].storeys[s - 1].height_m for b, s in self.storeys])

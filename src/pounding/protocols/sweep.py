@@ -23,7 +23,7 @@ from ..engine.control import (DEFAULT_MAX_STEPS, check_budget, fastest_rate, new
 from ..engine.simulate import check_rtol, check_state, kernel_system
 from ..excitation import MAX_FREQ_HZ, GRAVITY_M_S2, Harmonic
 from ..model import MeasurementChain, Oscillator
-from ..model.systems import check_system, is_single_mass
+from ..engine.assembly import check_system, is_single_mass
 from .._runner.progress import Progress, progress_reporter
 from ..engine.kernels import W_CYCLES, WINDOW_COLS, StepOutput, run_step
 from .sweep_result import SweepResult, sweep_message

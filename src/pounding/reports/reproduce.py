@@ -13,6 +13,7 @@ from .. import __version__
 from .._io import atomic_write, output_dir
 from ..identification import evaluate, paper_targets
 from .._errors import InputError, Problem
+from ..engine.assembly import is_single_mass
 from ..model import MeasurementChain, Oscillator
 from ..protocols import CampaignResult, campaign
 from .._runner.progress import Progress, announce, progress_reporter
@@ -198,7 +199,7 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
     for name, pair, example in (("measured", measured, "presets.paper_calibrated_measured()"),
                                 ("laser", laser, "presets.paper_calibrated_laser()")):
         if pair is not None and (not isinstance(pair, tuple) or len(pair) != 2
-                                 or not isinstance(pair[0], Oscillator)
+                                 or not is_single_mass(pair[0])
                                  or not isinstance(pair[1], MeasurementChain)):
             raise InputError(Problem.WRONG_TYPE, name, pair, got=type(pair).__name__,
                              expected=f"(Oscillator, MeasurementChain), e.g. {example}")

@@ -42,7 +42,8 @@ SET_PREFIX = "fema-p695:"
 def quantities_of(kind: str, system: Any) -> tuple[str, ...]:
     """The quantities a point of ``kind`` keeps, in order, for ``system`` (a system, or its tables): a
     single mass's, or a structure's (``STRUCTURE_QUANTITIES``)."""
-    from ..model.systems import is_single_mass, system_type
+    from ..model.systems import system_type
+    from ..engine.assembly import is_single_mass
 
     one = system_type(system) is Oscillator if isinstance(system, dict) else is_single_mass(system)
     return QUANTITIES[kind] if one else STRUCTURE_QUANTITIES[kind]

@@ -23,6 +23,7 @@ from .._checks import instance_of, parse_toml, read_text
 from .._errors import InputError, Problem
 from ..model import Adjacent, Oscillator, Structure
 from ..model.systems import system_from_dict, system_type
+from ..engine.assembly import is_single_mass
 from ..model.dotted import alias_of, set_value, why_unresolved
 
 System = Oscillator | Structure | Adjacent
@@ -261,7 +262,7 @@ def system_from_table(value: Any, base_dir: Path) -> System:
             osc = system_type(file_table).from_toml(base_dir / path)
         except InputError as exc:
             raise exc.relabel("path", "system.file") from None
-        if not bumpers and not isinstance(osc, Oscillator):
+        if not bumpers and not is_single_mass(osc):
             raise InputError(Problem.WRONG_MODE, "system.bumpers", bumpers, mode="one mass (an Oscillator)",
                              fix="leave it out: a structure's walls and links are in its file")
         return osc if bumpers else osc.without_bumpers()
