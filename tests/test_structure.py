@@ -379,8 +379,6 @@ def test_the_command_line_runs_a_building_s_file(tmp_path):
     assert diagram.exit_code == 0, diagram.output
     assert "largest alpha (any level)" in diagram.output
     assert set(pd.read_csv(tmp_path / "diagram.csv")["level"]) == {0, 1, 2, 3}
-    refused = runner.invoke(app, ["bifurcation", str(building), "--a-g", "0.1", "--no-bumpers"])
-    assert refused.exit_code == 2 and "--no-bumpers is for one mass" in refused.output
     exps = runner.invoke(app, ["lyapunov", str(building), "--a-g", "0.1", "--freq", "1.0", "--cycles", "20",
                                "--transient-cycles", "10"])
     assert exps.exit_code == 0, exps.output
@@ -395,8 +393,15 @@ def test_the_command_line_runs_a_building_s_file(tmp_path):
     assert swept.exit_code == 0, swept.output
     assert "wall 0 left" in swept.output and "drift max [mm]" in swept.output
     assert len(pd.read_csv(steps)) == 3 * 4  # (a row per step and level)
-    refused = runner.invoke(app, ["sweep", str(building), "--a-g", "0.3", "--no-bumpers"])
-    assert refused.exit_code == 2 and "--no-bumpers" in refused.output
+    # --no-bumpers: the file's building without its moat, as a single mass's file without its bumpers
+    free = tmp_path / "free.csv"
+    nbs = runner.invoke(app, ["sweep", str(building), "--a-g", "0.3", "--fmin", "0.5", "--fmax", "1.1",
+                              "--fstep", "0.3", "--out", str(free), "--no-bumpers"])
+    assert nbs.exit_code == 0, nbs.output
+    assert "wall 0 left" not in nbs.output
+    alone = pd_.sweep(pd_.Structure.from_toml(building).without_bumpers(), 0.3, [0.5, 0.8, 1.1])
+    np.testing.assert_array_equal(pd.read_csv(free)["alpha"], alone.to_dataframe()["alpha"])
+    assert not np.array_equal(pd.read_csv(free)["alpha"], pd.read_csv(steps)["alpha"])  # (the moat is hit)
     # a structure pushed as one body, as a single mass is: the same run as simulate's from that state
     moving = tmp_path / "moving.csv"
     velocity = runner.invoke(app, ["simulate", str(building), "--a-g", "0.3", "--freq", "0.8",
@@ -986,3 +991,18 @@ def test_one_ledger_for_every_system():
         pd_.EnergyLedger(1.0, 0.0, 0.0, 0.0, 0.0, 0.0, 1.0)
     with pytest.warns(FutureWarning, match="pounding.EnergyLedger"):
         assert pd_.StructureEnergy is pd_.EnergyLedger
+
+
+def test_every_system_has_its_nbs_configuration():
+    # without_bumpers: a single mass without its bumpers, a structure without its walls, a pair with
+    # each structure without its walls and its links kept (they are where the two meet)
+    iso = pd_.Isolator(slopes_n_m=[4.0e6], breakpoints_m=[], damping_n_s_m=2.0e4)
+    moat = pd_.Wall(0, 0.05, 0.05, pd_.KelvinVoigt(2.0e8, 1.0e5))
+    isolated = pd_.Structure(3.0e4, iso, [pd_.Storey(2.0e4, 4.0e7)] * 2, [moat])
+    old = pd_.Structure.fixed_base([pd_.Storey(2.5e4, 3.0e7, 5.0e4)] * 2)
+    roof = pd_.Link(2, 2, 0.1, pd_.KelvinVoigt(5.0e8, 2.0e5))
+    pair = pd_.Adjacent(isolated, old, [roof])
+    nbs = pair.without_bumpers()
+    assert nbs.first == isolated.without_bumpers() and nbs.first.walls == () and nbs.second == old
+    assert nbs.links == (roof,) and pair.first.walls == (moat,)
+    assert pd_.presets.paper_damped().without_bumpers().bumpers is None

@@ -110,8 +110,11 @@ def test_what_a_structure_cannot_take_is_refused_and_named(tmp_path):
         pd_.StudySpec(b, {"kind": "simulate", "a_g": 0.3, "freq_hz": 0.9, "duration_s": 1.0},
                       {"storeys[1].stiffness_n_m": [-1.0]})
     b.to_toml(tmp_path / "b.toml")
-    with pytest.raises(pd_.InputError, match="system.bumpers"):
-        pd_.StudySpec.from_dict({"system": {"file": "b.toml", "bumpers": False},
-                                 "compute": {"kind": "simulate", "a_g": 0.3, "freq_hz": 0.9,
-                                             "duration_s": 1.0},
+    compute = {"kind": "simulate", "a_g": 0.3, "freq_hz": 0.9, "duration_s": 1.0}
+    # bumpers = false: the file's structure without its walls, as a single mass's file without its bumpers
+    nbs = pd_.StudySpec.from_dict({"system": {"file": "b.toml", "bumpers": False}, "compute": compute,
+                                   "grid": {"storeys[1].stiffness_n_m": [1e7]}}, base_dir=tmp_path)
+    assert b.walls and nbs.system == b.without_bumpers() and nbs.system.walls == ()
+    with pytest.raises(pd_.InputError, match=r"walls\[0\]"):  # (then no wall is left to vary)
+        pd_.StudySpec.from_dict({"system": {"file": "b.toml", "bumpers": False}, "compute": compute,
                                  "grid": {"walls[0].gap_m": [0.02]}}, base_dir=tmp_path)

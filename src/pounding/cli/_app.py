@@ -296,7 +296,6 @@ def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True):
     """The system of a command: SYSTEM.toml (an oscillator's, a structure's or a pair's) or a preset."""
     from .. import presets
     from .._checks import parse_toml, read_text
-    from ..model import Oscillator
     from ..model.systems import system_type
 
     if (path is None) == (preset is None):
@@ -307,21 +306,14 @@ def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True):
     table = parse_toml(str(path), text)
     kind = system_type(table)
     system = kind.from_dict(table)  # (the file read and parsed once; a structure's or a pair's, or one mass)
-    if kind is not Oscillator or bumpers:
-        return system
-    return system.without_bumpers()  # (--no-bumpers: the file's system, NBs)
+    return system if bumpers else system.without_bumpers()  # (--no-bumpers: the file's system, NBs)
 
 
-def one_mass_options(osc, no_bumpers: bool) -> bool:
-    """Whether ``osc`` is a structure of several masses (or a pair), refusing ``--no-bumpers`` for one:
-    its walls and links are in its file."""
+def several_masses(osc) -> bool:
+    """Whether ``osc`` is a structure of several masses (or a pair), not one mass."""
     from ..engine.assembly import is_single_mass
 
-    several = not is_single_mass(osc)
-    if several and no_bumpers:
-        raise typer.BadParameter("--no-bumpers is for one mass (a structure's walls and links are in its "
-                                 "file: remove them there)")
-    return several
+    return not is_single_mass(osc)
 
 
 def frequencies(fmin: float, fmax: float, fstep: float):

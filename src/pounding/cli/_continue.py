@@ -12,7 +12,7 @@ import typer
 from .._errors import Interrupted
 from .._io import interrupts_deferred
 from ._app import (ARG_SYSTEM, OPT_A_G, OPT_NO_BUMPERS, OPT_PRESET, command, console, err_console,
-                   figure_path, files, interrupted, kv_table, one_mass_options, save_figure, system, working,
+                   figure_path, files, interrupted, kv_table, several_masses, save_figure, system, working,
                    write_csv)
 
 CSV = (".csv",)
@@ -43,7 +43,7 @@ def continue_branch(
     paths = files(out=(out, CSV), bifurcations=(bifurcations, CSV))
     plot = figure_path("--plot", plot)
     osc = system(system_file, preset, bumpers=not no_bumpers)
-    several = one_mass_options(osc, no_bumpers)
+    several = several_masses(osc)
     if several and sweeps:
         err_console.print("[yellow]warning:[/] --sweeps draws one mass's sweeps over its branch; a "
                           "structure's branch is drawn alone")
@@ -184,7 +184,6 @@ def coexistence(
         if not chosen:
             raise typer.BadParameter(f"--levels {levels!r}: give numbers separated by commas, e.g. 0.03,0.05")
     osc = system(system_file, preset, bumpers=not no_bumpers)
-    one_mass_options(osc, no_bumpers)
     complete = True
     kinds = ("fold", "grazing") if grazings else ("fold",)
     with working(f"branches and {' and '.join(kinds)} curves, a_G {a_g_min:g} to {a_g_max:g} ..."):

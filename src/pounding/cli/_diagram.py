@@ -14,7 +14,7 @@ from .._errors import Interrupted, Status
 from .._io import atomic_write, interrupts_deferred
 from ._app import (ARG_SYSTEM, OPT_A_G, OPT_FMAX, OPT_FMIN, OPT_FREQ, OPT_NO_BUMPERS, OPT_PRESET,
                    OPT_SCHEDULER, command, console, err_console, figure_path, files,
-                   frequencies, interrupted, kv_table, one_mass_options, save_figure, system, working,
+                   frequencies, interrupted, kv_table, several_masses, save_figure, system, working,
                    write_csv)
 
 CSV = (".csv",)
@@ -50,7 +50,7 @@ def bifurcation(
     paths = files(out=(out, CSV), netcdf=(netcdf, NETCDF))
     plot = figure_path("--plot", plot)
     osc = system(system_file, preset, bumpers=not no_bumpers)
-    several = one_mass_options(osc, no_bumpers)
+    several = several_masses(osc)
     freqs = frequencies(fmin, fmax, fstep)
     kwargs = dict(direction=direction, transient_cycles=transient_cycles, record_cycles=record_cycles,
                   max_period=max_period)
@@ -151,7 +151,6 @@ def basins_command(
     paths = files(out=(out, CSV), netcdf=(netcdf, NETCDF))
     plot = figure_path("--plot", plot)
     osc = system(system_file, preset, bumpers=not no_bumpers)
-    one_mass_options(osc, no_bumpers)
     lo, hi = open_range(osc)  # (a structure's: the shifts of it as one body that leave it open)
     d_box = None if dmin is None and dmax is None else (
         dmin if dmin is not None else (lo if lo > -float("inf") else -0.05),
@@ -212,7 +211,6 @@ def lyapunov_command(
     paths = files(out=(out, CSV), netcdf=(netcdf, NETCDF))
     plot = figure_path("--plot", plot)
     osc = system(system_file, preset, bumpers=not no_bumpers)
-    one_mass_options(osc, no_bumpers)
     try:
         spec = lyapunov(osc, Harmonic(a_g, freq), cycles=cycles, transient_cycles=transient_cycles,
                         align_cycles=align_cycles, method=method, progress=True)

@@ -14,7 +14,7 @@ from .._errors import Interrupted
 from .._io import atomic_write, interrupts_deferred
 from ._app import (
     working,
-    one_mass_options,
+    several_masses,
     ARG_SYSTEM,
     OPT_A_G,
     OPT_CYCLES,
@@ -88,7 +88,7 @@ def simulate(
     exc, what = excitation(a_g, freq, record, record_dt, record_units, scale_pga)
     if duration is None:
         duration = exc.t[-1] if record is not None else 20.0
-    several = one_mass_options(osc, no_bumpers)  # (a structure of several masses, or a pair)
+    several = several_masses(osc)  # (a structure of several masses, or a pair)
     start = State.at_rest(osc, velocity_m_s=velocity)  # (a structure's moving levels all at it, as one body)
     wants_history = history is not None or plot is not None
     rate = sample_rate if wants_history else 0.0  # nothing to sample for: the events only (extrema are exact)
@@ -295,7 +295,7 @@ def sweep(
     plot = figure_path("--plot", plot)
 
     osc = system(system_file, preset, bumpers=not no_bumpers)
-    several = one_mass_options(osc, no_bumpers)
+    several = several_masses(osc)
     freqs = frequencies(fmin, fmax, fstep)
     options = steady_options(steady, cycles, max_cycles)
     from ..protocols.sweep import make_plan

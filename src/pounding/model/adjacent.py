@@ -3,7 +3,7 @@ shaken by the same ground, joined by links (a gap and a contact law between two 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import Any, ClassVar, Union
 
@@ -141,6 +141,11 @@ class Adjacent(TomlFile):
     @property
     def structures(self) -> tuple[Structure, Structure]:
         return self.first, self.second
+
+    def without_bumpers(self) -> "Adjacent":
+        """The pair with each structure without its walls (their bumpers, its moat), as
+        :meth:`Structure.without_bumpers`; the links stay: they are where the two structures meet."""
+        return replace(self, first=self.first.without_bumpers(), second=self.second.without_bumpers())
 
     # ------------------------------------------------------------------ TOML
     def to_dict(self) -> dict[str, Any]:

@@ -23,7 +23,6 @@ from .._checks import instance_of, parse_toml, read_text
 from .._errors import InputError, Problem
 from ..model import Adjacent, Oscillator, Structure
 from ..model.systems import system_from_dict, system_type
-from ..engine.assembly import is_single_mass
 from ..model.dotted import alias_of, set_value, why_unresolved
 
 System = Oscillator | Structure | Adjacent
@@ -233,8 +232,8 @@ def check_table(field: str, value: Any) -> dict:
 
 def system_from_table(value: Any, base_dir: Path) -> System:
     """The system of a TOML ``[system]`` table: a preset, a file (relative to ``base_dir``; an oscillator's,
-    a structure's or two adjacent ones') or its own tables; ``bumpers = false`` drops a preset's or an
-    oscillator's file's bumpers."""
+    a structure's or two adjacent ones') or its own tables; ``bumpers = false`` drops a preset's or a
+    file's bumpers (a structure's walls; a pair's links stay)."""
     if isinstance(value, SYSTEM_TYPES):
         return value
     table = check_table("system", value)
@@ -262,9 +261,6 @@ def system_from_table(value: Any, base_dir: Path) -> System:
             osc = system_type(file_table).from_toml(base_dir / path)
         except InputError as exc:
             raise exc.relabel("path", "system.file") from None
-        if not bumpers and not is_single_mass(osc):
-            raise InputError(Problem.WRONG_MODE, "system.bumpers", bumpers, mode="one mass (an Oscillator)",
-                             fix="leave it out: a structure's walls and links are in its file")
         return osc if bumpers else osc.without_bumpers()
     try:
         return system_from_dict(table)
