@@ -1,7 +1,6 @@
 """Figures, apart from computing: every function takes ``ax=`` and returns its artists; every result's
 ``.plot()`` returns the Figure they are on (:func:`figure_of`)."""
 
-from .adjacent import plot_adjacent_run
 from .basins import plot_basin_stability, plot_basins
 from .branch import plot_branch
 from .contact_law import plot_contact_law_fit
@@ -14,12 +13,10 @@ from .identification import plot_identification
 from .lyapunov import plot_lyapunov
 from .periodic import plot_orbit, plot_structure_orbit
 from .record import plot_record, plot_response_spectrum
-from .run import plot_run
+from .run import plot_adjacent_run, plot_run, plot_structure_run
 from .spectrum import plot_pounding_spectrum
-from .structure import plot_structure_run
-from .structure_sweep import plot_structure_sweep
 from .study import plot_study
-from .sweep import plot_campaign, plot_hysteresis, plot_lab_sweep, plot_sweep
+from .sweep import plot_campaign, plot_hysteresis, plot_lab_sweep, plot_structure_sweep, plot_sweep
 
 __all__ = ["figure_of", "plot_adjacent_run", "plot_basin_stability", "plot_basins",
            "plot_bifurcation_diagram",
