@@ -198,7 +198,6 @@ def test_the_command_line_maps_a_building_s_coexistence(tmp_path):
     assert result.exit_code == 0, result.output
     matrix = pd.read_csv(tmp_path / "m.csv")
     assert "coexist" in set(matrix["verdict"]) and len(matrix) == 5
-    assert CliRunner().invoke(app, ["coexistence", str(tmp_path / "b.toml"), "--no-bumpers"]).exit_code == 2
 
 
 def test_the_command_line_exits_1_when_a_branch_left_test_points_unreached(tmp_path, monkeypatch):
