@@ -21,8 +21,8 @@ def test_simulate_writes_contacts_and_history(tmp_path):
     assert result.exit_code == 0, result.output
     assert "D max / min [mm]" in result.output
     df = pd.read_csv(contacts)
-    assert list(df.columns) == ["side", "t_start_s", "t_end_s", "v_in_m_s", "v_out_m_s", "impulse_n_s",
-                                "peak_force_n", "max_compression_m", "bumper_dissipation_j"]
+    assert list(df.columns) == ["wall", "level", "side", "t_start_s", "t_end_s", "v_in_m_s", "v_out_m_s",
+                                "impulse_n_s", "peak_force_n", "max_compression_m", "bumper_dissipation_j"]
     assert len(df) > 10
     hist = pd.read_csv(history, keep_default_na=False)
     assert list(hist.columns) == ["t_s", "displacement_m", "velocity_m_s", "abs_acceleration_m_s2",

@@ -398,7 +398,7 @@ NB_MODULE(_pounding_core, m) {
     m.attr("CONTACT_COLUMNS") = named({{"contact", CC_CONTACT}, {"t_start_s", CC_T_START}, {"t_end_s", CC_T_END},
                                        {"v_in_m_s", CC_V_IN}, {"v_out_m_s", CC_V_OUT}, {"impulse_n_s", CC_IMPULSE},
                                        {"peak_force_n", CC_PEAK_FORCE}, {"max_compression_m", CC_MAX_COMPRESSION},
-                                       {"work_j", CC_WORK}});  // a contact table's columns
+                                       {"bumper_dissipation_j", CC_DISSIPATION}});  // a contact table's columns
     m.attr("EVENT_COLUMNS") = named({{"t_s", EC_T}, {"action", EC_ACTION}, {"index", EC_INDEX}});
     m.attr("LEDGER") = named({{"input", L_INPUT}, {"viscous", L_VISCOUS}, {"hysteretic", L_HYSTERETIC},
                               {"bumper_loss", L_BUMPER_LOSS}, {"kinetic", L_KINETIC}, {"isolator", L_ISOLATOR},

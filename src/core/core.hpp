@@ -94,9 +94,10 @@ constexpr int CTL_STOP = 0, CTL_WORK = 1, CTL_BUDGET = 2, CTL_EVALS = 3, CTL_LEN
 
 // outputs' columns (bindings.cpp exports each by name: pounding._core reads them by these names)
 // a contact's row: its slot, start and end (s), velocities in and out (m/s), impulse (N s), peak force (N),
-// deepest compression (m), the work its law did (J)
+// deepest compression (m), the energy the contact took from the motion (J: dissipated, or kept in a
+// kinematic bumper's set)
 enum ContactCol : int { CC_CONTACT = 0, CC_T_START, CC_T_END, CC_V_IN, CC_V_OUT, CC_IMPULSE, CC_PEAK_FORCE,
-                        CC_MAX_COMPRESSION, CC_WORK, CONTACT_COLS };
+                        CC_MAX_COMPRESSION, CC_DISSIPATION, CONTACT_COLS };
 // an event's row: its time (s), its action (enum Action), the element's or the contact's index
 enum EventCol : int { EC_T = 0, EC_ACTION, EC_INDEX, EVENT_COLS };
 enum Ledger : int { L_INPUT = 0, L_VISCOUS, L_HYSTERETIC, L_BUMPER_LOSS, L_KINETIC, L_ISOLATOR, L_BUMPER,

@@ -440,7 +440,7 @@ bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, S
         r[CC_IMPULSE] = impulse;
         r[CC_PEAK_FORCE] = NaN;  // (an impulse has no peak force)
         r[CC_MAX_COMPRESSION] = 0.0;
-        r[CC_WORK] = loss;
+        r[CC_DISSIPATION] = loss;
     }
     // does the motion push the stop shut?  (the accelerations with the stops already held)
     struct Scratch { std::vector<double> au, a, s0; };
@@ -507,7 +507,7 @@ void rigid_release(double* st, const System& sy, int c, Rows& contacts) {
     r[CC_IMPULSE] = st[acc + A_IMPULSE];
     r[CC_PEAK_FORCE] = st[acc + A_PEAK];
     r[CC_MAX_COMPRESSION] = 0.0;
-    r[CC_WORK] = 0.0;
+    r[CC_DISSIPATION] = 0.0;
     for (int k = 0; k < N_ACC; ++k) st[acc + k] = 0.0;  // (no sequence running)
 }
 

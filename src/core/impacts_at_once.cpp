@@ -174,7 +174,7 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
             r[CC_IMPULSE] = la;
             r[CC_PEAK_FORCE] = NaN;
             r[CC_MAX_COMPRESSION] = 0.0;
-            r[CC_WORK] = loss;
+            r[CC_DISSIPATION] = loss;
         }
         if (std::abs(u1) <= sc.v_res) rest.push_back(d);
     }

@@ -24,7 +24,7 @@ void contact_row(Rows& contacts, int c, const double* acc, double t_end, double 
     r[CC_IMPULSE] = acc[A_IMPULSE];
     r[CC_PEAK_FORCE] = acc[A_PEAK];
     r[CC_MAX_COMPRESSION] = acc[A_MAXCOMP];
-    r[CC_WORK] = acc[A_WORK];
+    r[CC_DISSIPATION] = acc[A_WORK];
 }
 
 }  // namespace

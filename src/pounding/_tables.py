@@ -75,12 +75,13 @@ class RenamedColumns(pd.DataFrame):
 
 
 class ContactTable(RenamedColumns):
-    """A structure's contacts (:attr:`StructureRun.contacts`, :attr:`AdjacentRun.links`): each column named
-    with its unit; the names without units (0.1's) still answer, with a ``FutureWarning``."""
+    """A run's contacts (:attr:`Run.contacts`, :attr:`StructureRun.contacts`, :attr:`AdjacentRun.links`):
+    each column named with its unit; the names without units (0.1's) and ``work_j`` (a structure's name
+    of ``bumper_dissipation_j`` until 0.2) still answer, with a ``FutureWarning``."""
 
     OLD = {"t_start": "t_start_s", "t_end": "t_end_s", "v_in": "v_in_m_s", "v_out": "v_out_m_s",
            "impulse": "impulse_n_s", "peak_force": "peak_force_n", "max_compression": "max_compression_m",
-           "work": "work_j"}
+           "work": "bumper_dissipation_j", "work_j": "bumper_dissipation_j"}
 
 
 class EventTable(RenamedColumns):

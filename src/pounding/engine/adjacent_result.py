@@ -16,7 +16,8 @@ from .layout import C_SLOT
 from .layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
 from .result import Outcome, events_frame
 from .result import EnergyLedger
-from .structure_result import CONTACT_COLUMNS, StructureRun, impact_frame, peaks_of
+from .result import CONTACT_COLUMNS, impact_frame
+from .structure_result import StructureRun, peaks_of
 
 
 @dataclass(frozen=True)
@@ -91,7 +92,7 @@ class AdjacentRun(Outcome):
         """One row per contact at a link: ``link``, ``level_first``, ``level_second``, ``t_start_s``,
         ``t_end_s``, the velocities in and out ``v_in_m_s``, ``v_out_m_s`` (of the first's level less the
         second's), ``impulse_n_s``, ``peak_force_n``, the deepest compression ``max_compression_m``,
-        ``work_j``."""
+        ``bumper_dissipation_j``."""
         c = self.link_table
         k = c[:, C_SLOT].astype(int)
         links = self.adjacent.links

@@ -40,7 +40,7 @@ SIDE_L, SIDE_R = 0, 1  # a contact's index: the left and the right bumper
 # outputs
 SAMPLE_COLS = LAYOUT["SAMPLE_COLS"]    # t, D, V, abs_acceleration, isolator_force, bumper forces left, right
 # a contact table's columns (CONTACT_COLUMNS: slot, t_start_s, t_end_s, v_in_m_s, v_out_m_s, impulse_n_s,
-# peak_force_n, max_compression_m, work_j), those read by name here
+# peak_force_n, max_compression_m, bumper_dissipation_j), those read by name here
 CONTACT_COLS = LAYOUT["CONTACT_COLS"]
 C_SLOT, C_T_START, C_T_END, C_V_IN, C_MAX_COMPRESSION = (
     CONTACT_COLUMNS[k] for k in ("contact", "t_start_s", "t_end_s", "v_in_m_s", "max_compression_m"))

@@ -12,9 +12,10 @@ import numpy as np
 import pandas as pd
 
 from .._errors import Status, renamed_fields
-from .._tables import EventTable
+from .._tables import ContactTable, EventTable
 from ._chatter import SIDES, chatter_frame
 from .state import State
+from .layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
 from .layout import (C_MAX_COMPRESSION, C_SLOT, C_V_IN, E_ACTION, E_INDEX, E_T, EVENT_NAMES, L_BUMPER,
                      L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT, L_ISOLATOR, L_KINETIC, L_VISCOUS, force_max,
                      impulses)
@@ -134,8 +135,34 @@ HISTORY_UNIT_OF = {"t_s": "s", "time_s": "s", "displacement_m": "m", "velocity_m
 HISTORY_UNITS = {"t": "t_s", "displacement": "displacement_m", "velocity": "velocity_m_s",
                  "abs_acceleration": "abs_acceleration_m_s2", "isolator_force": "isolator_force_n",
                  "bumper_force_left": "bumper_force_left_n", "bumper_force_right": "bumper_force_right_n"}
-CONTACT_COLUMNS = ("side", "t_start_s", "t_end_s", "v_in_m_s", "v_out_m_s", "impulse_n_s", "peak_force_n",
-                   "max_compression_m", "bumper_dissipation_j")
+# every run's contacts at walls (a single mass's bumpers are wall 0, at level 0): the wall, its level and
+# side, then the core's columns by their names
+CONTACT_COLUMNS = ("wall", "level", "side", "t_start_s", "t_end_s", "v_in_m_s", "v_out_m_s", "impulse_n_s",
+                   "peak_force_n", "max_compression_m", "bumper_dissipation_j")
+
+
+def wall_contacts(table: np.ndarray, wall_levels: Any) -> pd.DataFrame:
+    """A contact table's frame from the core's rows of contacts at walls (slot ``2 wall + side``):
+    :data:`CONTACT_COLUMNS`, each wall at its level in ``wall_levels``."""
+    slot = table[:, C_SLOT].astype(int)
+    return ContactTable({
+        "wall": slot // 2,
+        "level": np.asarray(wall_levels, dtype=int)[slot // 2] if slot.size else np.zeros(0, dtype=int),
+        "side": np.where(slot % 2 == 0, "left", "right"),
+        **{name: table[:, CORE_CONTACT_COLUMNS[name]] for name in CONTACT_COLUMNS[3:]},
+    })
+
+
+def impact_frame(contacts: pd.DataFrame, labels: tuple[str, ...], table: np.ndarray,
+                 masses_kg: Any) -> pd.DataFrame:
+    """A per-impact table: the ``labels`` columns and ``t_start_s`` of a contact table's frame
+    (``contacts``), then the quantities of each row of the core's ``table`` (``metrics.impacts``) for the
+    impacting masses ``masses_kg`` (one a row)."""
+    from ..metrics.impacts import IMPACT_COLUMNS, impact_values
+
+    df = pd.DataFrame(contacts[[*labels, "t_start_s"]])  # (a plain frame: no names of 0.1 to answer)
+    df[list(IMPACT_COLUMNS)] = impact_values(table, np.array(masses_kg, dtype=float))
+    return df
 
 
 @dataclass(frozen=True, eq=False)
@@ -156,8 +183,9 @@ class Run:
     contact_table, event_table, chatter_table : ndarray
         The raw arrays behind ``contacts``, ``events`` and ``chatters`` (side coded 0 left, 1 right).
     contacts : DataFrame
-        One row per contact, each column named with its unit: ``side`` ("left"/"right"),
-        ``t_start_s``, ``t_end_s``, ``v_in_m_s``, ``v_out_m_s`` (relative velocity at start and
+        One row per contact, each column named with its unit, as a one-level structure's:
+        ``wall`` and ``level`` (0: the bumpers are the wall at the mass's level), ``side``
+        ("left"/"right"), ``t_start_s``, ``t_end_s``, ``v_in_m_s``, ``v_out_m_s`` (relative velocity at start and
         end), ``impulse_n_s``, ``peak_force_n``, ``max_compression_m``, ``bumper_dissipation_j``
         (energy the bumper took from the mass, dissipated by its dashpot and slips during contact
         or while it recovers; a kinematic multi-linear bumper keeps part of it stored in its
@@ -244,9 +272,7 @@ class Run:
     @cached_property
     def contacts(self) -> pd.DataFrame:
         """One row per contact (see the class docstring), built on first use."""
-        df = pd.DataFrame(self.contact_table, columns=list(CONTACT_COLUMNS))
-        df["side"] = np.where(self.contact_table[:, C_SLOT] == 0.0, "left", "right")
-        return df
+        return wall_contacts(self.contact_table, [0])
 
     @cached_property
     def events(self) -> pd.DataFrame:
@@ -255,12 +281,13 @@ class Run:
 
     @cached_property
     def impacts(self) -> pd.DataFrame:
-        """The paper's per-impact quantities (Sect. 3.5), one row per contact: ``side``,
-        ``t_start_s`` and restitution, contact time, impulse, mean and peak force, ``E_d`` and
-        the bumper's own dissipation; see :func:`pounding.impact_table`."""
-        from ..metrics import impact_table
-
-        return impact_table(self.contact_table, self.oscillator.mass_kg)
+        """The paper's per-impact quantities (Sect. 3.5), one row per contact, as a one-level
+        structure's: ``wall``, ``level``, ``side``, ``t_start_s`` and restitution, contact time,
+        impulse, mean and peak force, ``E_d`` and the bumper's own dissipation; see
+        :func:`pounding.impact_table` (the same without ``wall`` and ``level``)."""
+        n = len(self.contact_table)
+        return impact_frame(self.contacts, ("wall", "level", "side"), self.contact_table,
+                            [self.oscillator.mass_kg] * n)
 
     @property
     def success(self) -> bool:

@@ -11,21 +11,18 @@ import numpy as np
 import pandas as pd
 
 from .._errors import Status
-from .._tables import ContactTable
 from .layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
 from .layout import force_max, impulses
 from .layout import (C_SLOT, C_V_IN, DOF_EXTREMA_LEN, P_MAX, P_MAX_T, P_MIN, P_MIN_T, X_A_MAX, X_A_MAX_T,
                       X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T)
 from ._chatter import chatter_frame
-from .result import EnergyLedger, Outcome, events_frame
+from .result import EnergyLedger, Outcome, events_frame, impact_frame, wall_contacts
 
 if TYPE_CHECKING:
     from ..excitation import Harmonic, Record
     from ..model.structure import Structure
     from .state import State
 
-CONTACT_COLUMNS = ("wall", "level", "side", "t_start_s", "t_end_s", "v_in_m_s", "v_out_m_s", "impulse_n_s",
-                   "peak_force_n", "max_compression_m", "work_j")
 
 
 
@@ -58,7 +55,8 @@ class StructureRun(Outcome):
     contacts : pandas.DataFrame
         One row per contact: ``wall``, ``level``, ``side``, ``t_start_s``, ``t_end_s``, the pair's velocities
         in and out ``v_in_m_s``, ``v_out_m_s``, ``impulse_n_s``, ``peak_force_n``, the largest compression
-        ``max_compression_m``, the work of the contact force ``work_j``.
+        ``max_compression_m``, the energy the contact took from the motion ``bumper_dissipation_j``
+        (dissipated, or kept in a kinematic bumper's set).
     energy : EnergyLedger or None
         The energy ledger (None for one of two adjacent structures: the pair's is ``AdjacentRun.energy``).
     final_state : State or None
@@ -213,15 +211,7 @@ class StructureRun(Outcome):
 
     @property
     def contacts(self) -> pd.DataFrame:
-        c = self.contact_table
-        slot = c[:, C_SLOT].astype(int)
-        walls = self.structure.walls
-        return ContactTable({
-            "wall": slot // 2,
-            "level": [walls[s // 2].level for s in slot],
-            "side": np.where(slot % 2 == 0, "left", "right"),
-            **{name: c[:, CORE_CONTACT_COLUMNS[name]] for name in CONTACT_COLUMNS[3:]},
-        })
+        return wall_contacts(self.contact_table, [w.level for w in self.structure.walls])
 
     @property
     def impacts(self) -> pd.DataFrame:
@@ -231,7 +221,7 @@ class StructureRun(Outcome):
         from the pair's relative motion, ``mu (v_in^2 - v_out^2) / 2`` with ``mu`` the level's mass, or
         with a wall on a stand the pair's effective mass ``m m_s / (m + m_s)``) and
         ``bumper_dissipation_j`` (what the wall's law itself dissipated).  A one-level structure's is its
-        oscillator's ``Run.impacts``, row for row."""
+        oscillator's ``Run.impacts``, column for column and row for row."""
         walls, masses = self.structure.walls, self.structure.masses_kg
         mass = []
         for s in self.contact_table[:, C_SLOT].astype(int):
@@ -385,18 +375,6 @@ class StructureRun(Outcome):
         from ..plots import plot_structure_run, figure_of
 
         return figure_of(plot_structure_run(self, **kwargs), kwargs.get("axes"))
-
-
-def impact_frame(contacts: pd.DataFrame, labels: tuple[str, ...], table: np.ndarray,
-                 masses_kg: list[float]) -> pd.DataFrame:
-    """A per-impact table: the ``labels`` columns and ``t_start_s`` of a contact table's frame
-    (``contacts``), then the quantities of each row of the core's ``table`` (``metrics.impacts``) for the
-    impacting masses ``masses_kg`` (one a row)."""
-    from ..metrics.impacts import IMPACT_COLUMNS, impact_values
-
-    df = pd.DataFrame(contacts[[*labels, "t_start_s"]])  # (a plain frame: no names of 0.1 to answer)
-    df[list(IMPACT_COLUMNS)] = impact_values(table, np.array(masses_kg, dtype=float))
-    return df
 
 
 def ground_peak(excitation: Any, t0: float, t1: float) -> tuple[float, float]:

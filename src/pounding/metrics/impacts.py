@@ -45,7 +45,7 @@ def impact_table(contact_table: np.ndarray, mass_kg: float) -> pd.DataFrame:
     >>> import pounding
     >>> osc = pounding.presets.paper_damped()
     >>> run = pounding.simulate(osc, pounding.Harmonic(0.05, 1.5), 5.0)
-    >>> # what run.impacts holds
+    >>> # what run.impacts holds (there with its wall and level too)
     >>> table = pounding.impact_table(run.contact_table, osc.mass_kg)
     >>> len(table), table["side"].value_counts().to_dict()
     (13, {'left': 7, 'right': 6})
