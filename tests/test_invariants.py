@@ -220,17 +220,25 @@ def test_history_samples_and_dataframe():
     run = pd_.simulate(osc, pd_.Harmonic(0.05, 2.2), 2.0, pd_.State.at_rest(osc, velocity_m_s=0.6),
                        sample_rate_hz=100)
     df = run.to_dataframe()
-    assert list(df.columns) == ["t", "displacement", "velocity", "abs_acceleration", "isolator_force",
-                                "bumper_force_left", "bumper_force_right", "event"]
-    assert df["t"].iloc[0] == 0.0 and df["t"].iloc[-1] == pytest.approx(2.0)
-    assert np.all(np.diff(df["t"]) >= 0)
+    assert list(df.columns) == ["t_s", "displacement_m", "velocity_m_s", "abs_acceleration_m_s2",
+                                "isolator_force_n", "bumper_force_left_n", "bumper_force_right_n", "event"]
+    assert df["t_s"].iloc[0] == 0.0 and df["t_s"].iloc[-1] == pytest.approx(2.0)
+    assert np.all(np.diff(df["t_s"]) >= 0)
     # every uniform sample is there, plus one per event, which names it
     assert len(df) == 201 + len(run.events)
     assert list(df.loc[df["event"] != "", "event"]) == list(run.events["kind"])
-    np.testing.assert_array_equal(df.loc[df["event"] != "", "t"], run.events["t_s"])
+    np.testing.assert_array_equal(df.loc[df["event"] != "", "t_s"], run.events["t_s"])
     # absolute acceleration is the restoring force over the mass
-    total = df["isolator_force"] + df["bumper_force_right"] - df["bumper_force_left"]
-    np.testing.assert_allclose(df["abs_acceleration"], -total / osc.mass_kg, rtol=1e-9, atol=1e-9)
+    total = df["isolator_force_n"] + df["bumper_force_right_n"] - df["bumper_force_left_n"]
+    np.testing.assert_allclose(df["abs_acceleration_m_s2"], -total / osc.mass_kg, rtol=1e-9, atol=1e-9)
+    # the names of 0.1, without units, still answer for one release, with a warning naming the new one
+    with pytest.warns(FutureWarning, match="'displacement' is now 'displacement_m'"):
+        np.testing.assert_array_equal(df["displacement"], df["displacement_m"])
+    with pytest.warns(FutureWarning, match="units=False"):
+        old = run.to_dataframe(units=False)
+    assert list(old.columns) == ["t", "displacement", "velocity", "abs_acceleration", "isolator_force",
+                                 "bumper_force_left", "bumper_force_right", "event"]
+    np.testing.assert_array_equal(old.to_numpy(), df.to_numpy())
     assert set(run.events["kind"]) <= {"yield", "reversal", "branch", "contact_start", "contact_end"}
 
 

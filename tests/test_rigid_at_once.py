@@ -48,7 +48,8 @@ def test_a_mass_struck_against_one_resting_on_a_stop_rebounds_as_off_an_immovabl
     assert link.v_out_m_s == pytest.approx(-e_link * V0, abs=1e-15)
     assert link.impulse_n_s == pytest.approx(impulse, rel=1e-14)
     assert wall.impulse_n_s == pytest.approx(impulse, rel=1e-14)  # (through the resting mass to the wall)
-    assert link.bumper_dissipation_j == pytest.approx(0.5 * M1 * V0 ** 2 * (1.0 - e_link ** 2), rel=1e-12, abs=1e-15)
+    assert link.bumper_dissipation_j == pytest.approx(0.5 * M1 * V0 ** 2 * (1.0 - e_link ** 2), rel=1e-12,
+                                                      abs=1e-15)
     assert len(run.links[run.links.t_end_s == 0.0]) == 1  # (not a sequence of them)
     assert abs(run.energy.residual) <= 1e-12 * 0.5 * M1 * V0 ** 2
 

@@ -52,6 +52,7 @@ class RenamedColumns(pd.DataFrame):
     with a ``FutureWarning`` naming the new one; its subclasses say which names."""
 
     OLD: dict = {}
+    WHY: dict = {}  # (old name -> why it changed, where not for its unit)
 
     @property
     def _constructor(self) -> Any:
@@ -59,7 +60,7 @@ class RenamedColumns(pd.DataFrame):
 
     def _renamed(self, key: Any) -> Any:
         if isinstance(key, str) and key in self.OLD and key not in self.columns:
-            warn_renamed(key, self.OLD[key], stacklevel=4)
+            warn_renamed(key, self.OLD[key], stacklevel=4, why=self.WHY.get(key, "with its unit"))
             return self.OLD[key]
         if isinstance(key, list) and any(isinstance(k, str) and k in self.OLD for k in key):
             return [self._renamed(k) for k in key]
@@ -82,6 +83,16 @@ class ContactTable(RenamedColumns):
     OLD = {"t_start": "t_start_s", "t_end": "t_end_s", "v_in": "v_in_m_s", "v_out": "v_out_m_s",
            "impulse": "impulse_n_s", "peak_force": "peak_force_n", "max_compression": "max_compression_m",
            "work": "bumper_dissipation_j", "work_j": "bumper_dissipation_j"}
+    WHY = {"work_j": "one name in every run's tables", "work": "one name in every run's tables"}
+
+
+class HistoryTable(RenamedColumns):
+    """A single mass's sampled histories (:meth:`Run.to_dataframe`): each column named with its unit; 0.1's
+    names without units (``t``, ``displacement``, ...) still answer, with a ``FutureWarning``."""
+
+    OLD = {"t": "t_s", "displacement": "displacement_m", "velocity": "velocity_m_s",
+           "abs_acceleration": "abs_acceleration_m_s2", "isolator_force": "isolator_force_n",
+           "bumper_force_left": "bumper_force_left_n", "bumper_force_right": "bumper_force_right_n"}
 
 
 class EventTable(RenamedColumns):

@@ -116,7 +116,7 @@ def simulate(
             write_csv(run.contacts, out["contacts"])
             console.print(f"contacts -> {out['contacts']}")
         if out["history"] is not None:
-            write_csv(run.to_dataframe() if several else run.to_dataframe(units=True), out["history"])
+            write_csv(run.to_dataframe(), out["history"])
             note = " (events only: --sample-rate 0)" if run.sample_rate_hz == 0 else ""
             console.print(f"history -> {out['history']}{note}")
         if plot is not None:

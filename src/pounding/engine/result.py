@@ -12,7 +12,7 @@ import numpy as np
 import pandas as pd
 
 from .._errors import Status, renamed_fields
-from .._tables import ContactTable, EventTable
+from .._tables import ContactTable, EventTable, HistoryTable
 from ._chatter import SIDES, chatter_frame
 from .state import State
 from .layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
@@ -132,9 +132,7 @@ HISTORY_COLUMNS = ("t", "displacement", "velocity", "abs_acceleration", "isolato
 HISTORY_UNIT_OF = {"t_s": "s", "time_s": "s", "displacement_m": "m", "velocity_m_s": "m/s",
                    "abs_acceleration_m_s2": "m/s^2",
                    "isolator_force_n": "N", "bumper_force_left_n": "N", "bumper_force_right_n": "N"}
-HISTORY_UNITS = {"t": "t_s", "displacement": "displacement_m", "velocity": "velocity_m_s",
-                 "abs_acceleration": "abs_acceleration_m_s2", "isolator_force": "isolator_force_n",
-                 "bumper_force_left": "bumper_force_left_n", "bumper_force_right": "bumper_force_right_n"}
+HISTORY_UNITS = HistoryTable.OLD  # (each attribute's column: its name with its unit)
 # every run's contacts at walls (a single mass's bumpers are wall 0, at level 0): the wall, its level and
 # side, then the core's columns by their names
 CONTACT_COLUMNS = ("wall", "level", "side", "t_start_s", "t_end_s", "v_in_m_s", "v_out_m_s", "impulse_n_s",
@@ -185,8 +183,8 @@ class Run:
     contacts : DataFrame
         One row per contact, each column named with its unit, as a one-level structure's:
         ``wall`` and ``level`` (0: the bumpers are the wall at the mass's level), ``side``
-        ("left"/"right"), ``t_start_s``, ``t_end_s``, ``v_in_m_s``, ``v_out_m_s`` (relative velocity at start and
-        end), ``impulse_n_s``, ``peak_force_n``, ``max_compression_m``, ``bumper_dissipation_j``
+        ("left"/"right"), ``t_start_s``, ``t_end_s``, ``v_in_m_s``, ``v_out_m_s`` (relative velocity
+        at start and end), ``impulse_n_s``, ``peak_force_n``, ``max_compression_m``, ``bumper_dissipation_j``
         (energy the bumper took from the mass, dissipated by its dashpot and slips during contact
         or while it recovers; a kinematic multi-linear bumper keeps part of it stored in its
         set).  A contact still going on at the end has NaN ``t_end_s`` and ``v_out_m_s``.
@@ -360,25 +358,35 @@ class Run:
         ``units``; ``status`` and ``message`` as attributes."""
         from .._tables import frame_to_xarray
 
-        ds = frame_to_xarray(self.to_dataframe(units=True), "sample",
+        ds = frame_to_xarray(self.to_dataframe(), "sample",
                              {"status": self.status.name, "message": self.message})
         ds = ds.set_coords("t_s").rename({"t_s": "time_s"})
         for name in [*ds.data_vars, "time_s"]:
             ds[name].attrs["units"] = HISTORY_UNIT_OF.get(name, "")
         return ds
 
-    def to_dataframe(self, units: bool = False) -> pd.DataFrame:
-        """The sampled histories, one row per sample, columns as the attributes (SI units).
+    def to_dataframe(self, units: bool | None = None) -> pd.DataFrame:
+        """The sampled histories, one row per sample, each column named with its unit (SI), as in the
+        CSV files the command line writes: ``t_s``, ``displacement_m``, ``velocity_m_s``,
+        ``abs_acceleration_m_s2``, ``isolator_force_n``, ``bumper_force_left_n``,
+        ``bumper_force_right_n`` and ``event``.
 
         The column ``event`` names the event after which a row was taken (``contact_start``,
         ``yield``, ...; empty for the uniform samples): an event's row holds the state just
-        after its jump, so it may share its time with the row before it.  With ``units``
-        the columns' names carry their units (``t_s``, ``displacement_m``, ...), as in the
-        CSV files the command line writes.
+        after its jump, so it may share its time with the row before it.  The names without
+        units of 0.1 (``t``, ``displacement``, ...) still answer, with a ``FutureWarning``;
+        ``units=False`` (0.1's default) gives them as the columns, with one too.
         """
-        df = pd.DataFrame({name: getattr(self, name) for name in HISTORY_COLUMNS})
+        df = HistoryTable({HISTORY_UNITS[name]: getattr(self, name) for name in HISTORY_COLUMNS})
         df["event"] = self._event_labels()
-        return df.rename(columns=HISTORY_UNITS) if units else df
+        if units is False:
+            import warnings
+
+            warnings.warn("to_dataframe(units=False): the columns' names without units go in the next "
+                          "release; read them by their names with units (t_s, displacement_m, ...), "
+                          "to_dataframe()'s", FutureWarning, stacklevel=2)
+            return pd.DataFrame(df).rename(columns={v: k for k, v in HISTORY_UNITS.items()})
+        return df
 
     def _event_labels(self) -> np.ndarray:
         """Per history row, the event it was taken after ("" for the uniform samples)."""
