@@ -85,13 +85,12 @@ def plot_structure_run(run: "StructureRun", axes: Any = None, *, levels: Any = N
 
     Examples
     --------
+    The paper's rig as a structure, its bumpers each on a steel stand of its own (the mass, level 0, and
+    the two stands):
+
     >>> import pounding
-    >>> iso = pounding.Isolator(slopes_n_m=[4.0e6, 1.0e6], breakpoints_m=[0.02],
-    ...                         damping_n_s_m=2.0e4)
-    >>> moat = pounding.Wall(0, 0.05, 0.05, pounding.KelvinVoigt(2.0e8, 1.0e5))
-    >>> b = pounding.Structure(3.0e4, iso, [pounding.Storey(2.0e4, 4.0e7)] * 3,
-    ...                        [moat])
-    >>> run = pounding.simulate(b, pounding.Harmonic(0.3, 1.2), 5.0)
+    >>> rig = pounding.presets.paper_rig_stands()
+    >>> run = pounding.simulate(rig, pounding.Harmonic(0.05, 2.0), 3.0)
     >>> len(pounding.plots.plot_structure_run(run)) > 0
     True
     """
@@ -162,16 +161,16 @@ def plot_adjacent_run(run: "AdjacentRun", axes: Any = None) -> list:
 
     Examples
     --------
+    A one-storey isolated building beside a one-storey fixed-base one, 5 cm apart at their roofs:
+
     >>> import pounding
-    >>> iso = pounding.Isolator(slopes_n_m=[4.0e6, 1.0e6], breakpoints_m=[0.02],
+    >>> iso = pounding.Isolator(slopes_n_m=[4.0e6], breakpoints_m=[],
     ...                         damping_n_s_m=2.0e4)
-    >>> isolated = pounding.Structure(3.0e4, iso,
-    ...                               [pounding.Storey(2.0e4, 4.0e7)] * 3)
-    >>> old = pounding.Structure.fixed_base(
-    ...     [pounding.Storey(2.5e4, 3.0e7, 5.0e4)] * 3)
-    >>> roof = pounding.Link(3, 3, 0.15, pounding.KelvinVoigt(5.0e8, 2.0e5))
-    >>> run = pounding.simulate(pounding.Adjacent(isolated, old, [roof]),
-    ...                         pounding.Harmonic(a_g=0.4, freq_hz=1.0), 10.0)
+    >>> pair = pounding.Adjacent(
+    ...     pounding.Structure(3.0e4, iso, [pounding.Storey(2.0e4, 4.0e7)]),
+    ...     pounding.Structure.fixed_base([pounding.Storey(2.5e4, 3.0e7, 5.0e4)]),
+    ...     [pounding.Link(1, 1, 0.05, pounding.KelvinVoigt(5.0e8, 2.0e5))])
+    >>> run = pounding.simulate(pair, pounding.Harmonic(0.4, 1.0), 5.0)
     >>> len(pounding.plots.plot_adjacent_run(run)) > 0
     True
     """
