@@ -886,6 +886,10 @@ def test_impacts_of_a_building_and_of_a_pair_take_the_impacting_pair_s_effective
     check(run.first.impacts, run.first.contacts, ("wall", "level", "side"), 1000.0 * 30.0 / 1030.0)
     check(run.second.impacts, run.second.contacts, ("wall", "level", "side"), 900.0)
     check(run.link_impacts, run.links, ("link", "level_first", "level_second"), 800.0 * 900.0 / 1700.0)
+    # every contact table of the pair answers to the old name of the last column, with a warning
+    for table in (run.contacts, run.links, run.first.contacts):
+        with pytest.warns(FutureWarning, match="'work' is now 'bumper_dissipation_j'"):
+            np.testing.assert_array_equal(table["work"], table["bumper_dissipation_j"])
     s = run.first.summary()
     done = run.first.impacts.dropna(subset=["contact_time_s"])
     assert s["restitution_mean"] == done["restitution"].mean() and s["rigid_impacts"] == 0

@@ -77,8 +77,8 @@ class RenamedColumns(pd.DataFrame):
 
 class ContactTable(RenamedColumns):
     """A run's contacts (:attr:`Run.contacts`, :attr:`StructureRun.contacts`, :attr:`AdjacentRun.links`):
-    each column named with its unit; the names without units (0.1's) and ``work_j`` (a structure's name
-    of ``bumper_dissipation_j`` until 0.2) still answer, with a ``FutureWarning``."""
+    each column named with its unit; the names without units (0.1's: ``work`` is ``bumper_dissipation_j``,
+    the name of that column in every run's tables) still answer, with a ``FutureWarning``."""
 
     OLD = {"t_start": "t_start_s", "t_end": "t_end_s", "v_in": "v_in_m_s", "v_out": "v_out_m_s",
            "impulse": "impulse_n_s", "peak_force": "peak_force_n", "max_compression": "max_compression_m",

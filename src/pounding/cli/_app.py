@@ -152,8 +152,8 @@ PRESET_NAMES = ("paper-printed", "paper-damped", "paper-calibrated", "paper-cali
 PRESET_LIST = ", ".join(PRESET_NAMES[:-1]) + " or " + PRESET_NAMES[-1]
 OPT_PRESET = typer.Option(None, "--preset", help=f"Use a built-in system: {PRESET_LIST}.")
 OPT_NO_BUMPERS = typer.Option(
-    False, "--no-bumpers", metavar=NO_METAVAR, help="The NBs configuration: the preset's or the one-mass "
-    "file's system without its bumpers."
+    False, "--no-bumpers", metavar=NO_METAVAR, help="The NBs configuration: the preset's or the file's "
+    "system without its bumpers (a structure without its walls; a pair keeps its links)."
 )
 MAX_FREQUENCIES = 100_000
 

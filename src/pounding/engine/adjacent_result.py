@@ -124,7 +124,8 @@ class AdjacentRun(Outcome):
                                     "level_first": links["level_first"].astype(float),
                                     "level_second": links["level_second"].astype(float),
                                     **{c: links[c] for c in CONTACT_COLUMNS[3:]}}))
-        return pd.concat(frames, ignore_index=True).sort_values("t_start_s", kind="stable", ignore_index=True)
+        return ContactTable(pd.concat(frames, ignore_index=True).sort_values("t_start_s", kind="stable",
+                                                                             ignore_index=True))
 
     @property
     def link_impacts(self) -> pd.DataFrame:

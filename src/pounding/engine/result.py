@@ -328,7 +328,7 @@ class Run:
         ...                         pounding.Harmonic(a_g=0.1, freq_hz=2.0), 5.0)
         >>> s = run.summary()
         >>> int(s["contacts"]), round(s["alpha"], 2), s["status"]
-        (19, 4.47, 'SUCCESS')
+        (19, 12.76, 'SUCCESS')
         """
         from ..metrics.impacts import impact_summary
 
