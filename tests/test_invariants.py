@@ -239,6 +239,8 @@ def test_history_samples_and_dataframe():
     assert list(old.columns) == ["t", "displacement", "velocity", "abs_acceleration", "isolator_force",
                                  "bumper_force_left", "bumper_force_right", "event"]
     np.testing.assert_array_equal(old.to_numpy(), df.to_numpy())
+    with pytest.raises(pd_.InputError, match="units"):
+        run.to_dataframe(units="yes")
     assert set(run.events["kind"]) <= {"yield", "reversal", "branch", "contact_start", "contact_end"}
 
 

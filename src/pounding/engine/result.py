@@ -377,6 +377,10 @@ class Run:
         units of 0.1 (``t``, ``displacement``, ...) still answer, with a ``FutureWarning``;
         ``units=False`` (0.1's default) gives them as the columns, with one too.
         """
+        if units is not None:
+            from .._checks import instance_of
+
+            instance_of("units", units, bool, "true or false (or leave it out: names with units)")
         df = HistoryTable({HISTORY_UNITS[name]: getattr(self, name) for name in HISTORY_COLUMNS})
         df["event"] = self._event_labels()
         if units is False:
