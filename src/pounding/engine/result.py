@@ -145,7 +145,7 @@ def wall_contacts(table: np.ndarray, wall_levels: Any) -> pd.DataFrame:
     slot = table[:, C_SLOT].astype(int)
     return ContactTable({
         "wall": slot // 2,
-        "level": np.asarray(wall_levels, dtype=int)[slot // 2] if slot.size else np.zeros(0, dtype=int),
+        "level": np.asarray(wall_levels, dtype=int)[slot // 2],
         "side": np.where(slot % 2 == 0, "left", "right"),
         **{name: table[:, CORE_CONTACT_COLUMNS[name]] for name in CONTACT_COLUMNS[3:]},
     })
@@ -155,7 +155,7 @@ def impact_frame(contacts: pd.DataFrame, labels: tuple[str, ...], table: np.ndar
                  masses_kg: Any) -> pd.DataFrame:
     """A per-impact table: the ``labels`` columns and ``t_start_s`` of a contact table's frame
     (``contacts``), then the quantities of each row of the core's ``table`` (``metrics.impacts``) for the
-    impacting masses ``masses_kg`` (one a row)."""
+    impacting masses ``masses_kg`` (one for every row, or one a row)."""
     from ..metrics.impacts import IMPACT_COLUMNS, impact_values
 
     df = pd.DataFrame(contacts[[*labels, "t_start_s"]])  # (a plain frame: no names of 0.1 to answer)
@@ -283,9 +283,8 @@ class Run:
         structure's: ``wall``, ``level``, ``side``, ``t_start_s`` and restitution, contact time,
         impulse, mean and peak force, ``E_d`` and the bumper's own dissipation; see
         :func:`pounding.impact_table` (the same without ``wall`` and ``level``)."""
-        n = len(self.contact_table)
         return impact_frame(self.contacts, ("wall", "level", "side"), self.contact_table,
-                            [self.oscillator.mass_kg] * n)
+                            self.oscillator.mass_kg)
 
     @property
     def success(self) -> bool:
