@@ -32,7 +32,7 @@ def linear_isolator(k: float, c: float) -> pd_.Isolator:
 def buildings(draw):
     """A random shear building on a linear isolator with a Kelvin-Voigt wall at one level, and its
     restatement for the reference."""
-    n = draw(st.integers(2, 5))
+    n = draw(st.integers(2, 6))
     rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
     mass = rng.uniform(100.0, 2000.0, n)
     k_storey = rng.uniform(1e5, 5e6, n - 1)
@@ -59,7 +59,24 @@ def moving(building: pd_.Structure, v0: float) -> pd_.State:
     return pd_.State._of(vec, rest.dofs, rest.layout)
 
 
-@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+def last_digit_spread(building: pd_.Structure, exc, v0: float, starts: np.ndarray) -> float:
+    """How far the contact starts move, s, when every mass changes in its last digits (relative +-4e-16):
+    what the problem itself makes of rounding, whatever solves it (inf: a contact more or less)."""
+    spread = 0.0
+    for change in (4e-16, -4e-16):
+        moved = pd_.Structure(building.base_mass_kg * (1.0 + change), building.isolator,
+                              [dataclasses.replace(s, mass_kg=s.mass_kg * (1.0 + change))
+                               for s in building.storeys], building.walls)
+        other = pd_.simulate(moved, exc, 3.0, moving(moved, v0), sample_rate_hz=0).contacts["t_start_s"]
+        if len(other) != len(starts):
+            return math.inf
+        spread = max(spread, float(np.abs(other.to_numpy() - starts).max(initial=0.0)))
+    return spread
+
+
+# (tests/test_ndof.py once drew 30 buildings of its own for this same property through the core's door:
+# one property, drawn once, through the path users take)
+@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(pair=buildings(), v0=st.floats(-0.4, 0.4))
 def test_a_wall_at_any_level_matches_the_reference(pair, v0):
     building, ref_s = pair
@@ -71,18 +88,25 @@ def test_a_wall_at_any_level_matches_the_reference(pair, v0):
     try:
         ref = reference(ref_s, 3.0, y0)
         if list(run.contacts["side"].map({"left": 0, "right": 1})) != [c for c, _ in ref.contact_starts]:
-            ref = reference(ref_s, 3.0, y0, steps_per_period=500.0)  # (a short dip between its steps)
-    except TouchAtRest:
+            # a dip beyond a gap shorter than one of the reference's steps falls between their signs (seen
+            # once in 500 draws: a 0.14 mm contact of a 5-mass structure): again with steps 5 times shorter
+            ref = reference(ref_s, 3.0, y0, steps_per_period=500.0)
+    except TouchAtRest:  # (a contact met at rest: dropped just below in any case)
         assume(False)
-    # touches whose existence hangs on the last digits say nothing (tests/test_ndof.py)
+    # a touch whose existence depends on the last digits (a graze, a contact met at rest) says nothing
     assume(all(depth > 1e-7 for depth in ref.depths) and all(speed > 1e-4 for speed in ref.speeds))
     assume(len(ref.contact_starts) <= 40)
+    # nor does a run whose contact times a change in the last digits of a mass moves by more than a tenth of
+    # the tolerance (seen: 4e-9 s after 25 stiff contacts of two masses): no solver can be checked there
+    assume(last_digit_spread(building, exc, v0, run.contacts["t_start_s"].to_numpy()) <= 1e-10)
     event(f"{'no contact' if not len(ref.contact_starts) else 'contacts'}, wall at "
           f"{'the base' if ref_s.level == 0 else 'a floor'}")
     assert list(run.contacts["side"].map({"left": 0, "right": 1})) == [c for c, _ in ref.contact_starts]
     assert (run.contacts["level"] == ref_s.level).all()
     starts = [t for _, t in ref.contact_starts]
     np.testing.assert_allclose(run.contacts["t_start_s"], starts, rtol=0, atol=1e-9)
+    ends = run.contacts["t_end_s"].dropna()  # (a contact still on at the end has no end yet)
+    np.testing.assert_allclose(ends, [t for _, t in ref.contact_ends], rtol=0, atol=1e-9)
     scale = np.abs(ref.y).max()
     np.testing.assert_allclose(run.final_state.displacements_m, ref.y[:n], rtol=0, atol=1e-7 * scale)
     np.testing.assert_allclose(run.final_state.velocities_m_s, ref.y[n:], rtol=0, atol=1e-7 * scale)
