@@ -107,6 +107,10 @@ def test_a_wall_at_any_level_matches_the_reference(pair, v0):
     np.testing.assert_allclose(run.contacts["t_start_s"], starts, rtol=0, atol=1e-9)
     ends = run.contacts["t_end_s"].dropna()  # (a contact still on at the end has no end yet)
     np.testing.assert_allclose(ends, [t for _, t in ref.contact_ends], rtol=0, atol=1e-9)
+    scale = np.maximum(np.abs(ref.x_max), np.abs(ref.x_min))  # every level's exact extrema
+    for mine, theirs in ((run.displacement_max, ref.x_max), (run.displacement_min, ref.x_min)):
+        off = np.abs(mine - theirs) / scale
+        assert np.all(off <= 1e-8), f"extrema {mine} against {theirs}: {off.max():.2e} of the level's peak"
     scale = np.abs(ref.y).max()
     np.testing.assert_allclose(run.final_state.displacements_m, ref.y[:n], rtol=0, atol=1e-7 * scale)
     np.testing.assert_allclose(run.final_state.velocities_m_s, ref.y[n:], rtol=0, atol=1e-7 * scale)
