@@ -434,6 +434,13 @@ def test_the_command_line_runs_a_building_s_file(tmp_path):
     alone = pd_.sweep(pd_.Structure.from_toml(building).without_bumpers(), 0.3, [0.5, 0.8, 1.1])
     np.testing.assert_array_equal(pd.read_csv(free)["alpha"], alone.to_dataframe()["alpha"])
     assert not np.array_equal(pd.read_csv(free)["alpha"], pd.read_csv(steps)["alpha"])  # (the moat is hit)
+    assert "warning:" not in nbs.output
+    # ... and a file with nothing to take away says so, and runs as written
+    said = runner.invoke(app, ["simulate", str(ROOT / "examples" / "paper_printed_nbs.toml"), "--a-g", "0.05",
+                               "--freq", "1.0", "--duration", "1", "--no-bumpers"])
+    assert said.exit_code == 0, said.output
+    assert "warning: --no-bumpers:" in said.output
+    assert "no bumpers or walls to take away" in " ".join(said.output.split()), said.output
     # a structure pushed as one body, as a single mass is: the same run as simulate's from that state
     moving = tmp_path / "moving.csv"
     velocity = runner.invoke(app, ["simulate", str(building), "--a-g", "0.3", "--freq", "0.8",

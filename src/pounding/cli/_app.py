@@ -306,7 +306,13 @@ def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True):
     table = parse_toml(str(path), text)
     kind = system_type(table)
     system = kind.from_dict(table)  # (the file read and parsed once; a structure's or a pair's, or one mass)
-    return system if bumpers else system.without_bumpers()  # (--no-bumpers: the file's system, NBs)
+    if bumpers:
+        return system
+    plain = system.without_bumpers()  # (--no-bumpers: the file's system, NBs)
+    if plain.to_dict() == system.to_dict():
+        warnings.warn(f"--no-bumpers: {path} has no bumpers or walls to take away; it runs as written",
+                      PoundingWarning, stacklevel=2)
+    return plain
 
 
 def several_masses(osc) -> bool:
