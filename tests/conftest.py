@@ -27,7 +27,7 @@ SLOWEST_FIRST = (
     "test_rigid_stops.py", "test_report_figures.py", "test_report_stands.py", "test_records.py",
     "test_cli_hardening.py", "test_elastic_plastic.py", "test_design_cli.py",
     "test_structure_continuation.py", "test_bouc_wen.py", "test_model_updating.py", "test_measured_fit.py",
-    "test_coexistence_witnesses.py", "test_runner.py", "test_design.py", "test_curves.py",
+    "test_runner.py", "test_design.py", "test_curves.py",
     "test_cli_without_extras.py", "test_jankowski.py",
 )
 

@@ -1,71 +1,16 @@
 """A coexistence map never claims uniqueness it has not shown: each test point is judged by the branch,
-the sweeps and a basin sample (issue 48)."""
+the sweeps and a basin sample (issue 48). The calibrated report's own map is read by
+tests/test_report_figures.py, which builds the report's campaign and map once for its figures and its
+witnesses."""
 
 from __future__ import annotations
 
 import math
 
-import numpy as np
 import pytest
 
 import pounding as pd_
 from pounding.analysis.witnesses import _judged, distinct
-from pounding.reports.branches import coexistence_of
-
-
-@pytest.fixture(scope="module")
-def calibrated_map():
-    """The calibrated report's coexistence data: its campaign's YBs sweeps at a_G 0.05 and 0.1, up and
-    down over the paper's grid (adaptive), and the map over them, as ``pounding reproduce`` builds it."""
-    ybs = pd_.presets.paper_calibrated()
-    result = pd_.campaign(None, ybs, ybs_a_g=(0.05, 0.1))
-    cmap, why_not = coexistence_of(result, ybs)
-    assert cmap is not None, why_not
-    return result, cmap
-
-
-@pytest.mark.parametrize("a_g, freqs", [(0.05, (2.0, 2.1, 2.2, 2.3)), (0.1, (2.7, 2.8, 2.9, 3.0))])
-def test_the_calibrated_report_finds_coexistence_where_its_sweeps_differ(calibrated_map, a_g, freqs):
-    result, cmap = calibrated_map
-    m = cmap.matrix
-    for f in freqs:
-        row = m[np.isclose(m["a_g"], a_g) & np.isclose(m["freq_hz"], f)].iloc[0]
-        # the witnesses: two settled sweeps on different responses, and a basin sample finding both
-        up = result.sweeps[("YBs", a_g, "up")].exact_dataframe().set_index("freq_hz")
-        down = result.sweeps[("YBs", a_g, "down")].exact_dataframe().set_index("freq_hz")
-        assert up.loc[f, "steady"] and down.loc[f, "steady"]
-        a_up, a_down = up.loc[f, "alpha"], down.loc[f, "alpha"]
-        assert abs(a_up - a_down) > 0.5 * max(a_up, a_down)
-        assert row["sweep_responses"] == 2 and row["basin_responses"] >= 2, row["evidence"]
-        assert row["verdict"] == "coexist" and row["responses"] >= 2, row["evidence"]
-        assert "sweeps settled" in row["evidence"] and "basin sample" in row["evidence"]
-
-
-def test_no_point_of_the_calibrated_map_claims_one_response_without_a_sample_that_agrees(calibrated_map):
-    _, cmap = calibrated_map
-    m = cmap.matrix
-    one = m[m["verdict"] == "one"]
-    assert len(one) and (one["basin_responses"] == 1).all() and (one["basin_not_settled"] == 0).all()
-    assert ((one["stable_orbits"] == 1) | (one["sweep_responses"] == 1)).all()
-    # a point no witness reaches is never drawn as one response
-    unreached = m[~m["branch_reached"] & m["sweep_responses"].isna() & m["basin_responses"].isna()]
-    assert (unreached["verdict"] == "not assessed").all()
-    assert set(m["verdict"]) <= {"coexist", "one", "not assessed"}
-
-
-def test_the_map_draws_each_verdict_with_its_own_label(calibrated_map):
-    import matplotlib
-
-    matplotlib.use("Agg")
-    _, cmap = calibrated_map
-    assert cmap.plot().__class__.__name__ == "Figure"
-    artists = pd_.plots.plot_curves(list(cmap.curves), matrix=cmap.matrix)
-    labels = {a.get_label() for a in artists}
-    assert any(lbl.startswith("two or more responses coexist") for lbl in labels)
-    assert any(lbl.startswith("one response: a basin sample agrees") for lbl in labels)
-    if (cmap.matrix["verdict"] == "not assessed").any():
-        assert any(lbl.startswith("not assessed") for lbl in labels)
-    assert not any("one stable response" in lbl for lbl in labels)
 
 
 def _row(stable=math.nan, reached=True, sweeps=math.nan, basin=math.nan, unsettled=0.0):

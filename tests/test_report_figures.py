@@ -1,6 +1,8 @@
 """The report's figures show what the runs show: Fig. 5's branches pass through the sweeps' settled steps
 and share their eta; no two figures are the same picture; every title, label and annotation is inside
-its picture; lines are joined in the order of their x axis; every curve is inside its axes."""
+its picture; lines are joined in the order of their x axis; every curve is inside its axes; and the
+coexistence map's witnesses (tests/test_coexistence_witnesses.py has the rule's own tests): one campaign
+and one map, built once, serve both."""
 
 from __future__ import annotations
 
@@ -26,11 +28,11 @@ CLOSED = {"fig07", "fig15"}
 
 @pytest.fixture(scope="module")
 def drawn():
-    """The calibrated campaign's figures, Fig. 5 with its branches (no basin samples: the map's
-    verdicts are not what these tests read), and the map."""
+    """The calibrated campaign's figures, Fig. 5 with its branches, and the map with its witnesses (the
+    branch, the sweeps and a basin sample at each test point), as ``pounding reproduce`` builds them."""
     ybs = pounding.presets.paper_calibrated()
     result = pounding.campaign(pounding.presets.paper_calibrated(bumpers=False), ybs)
-    cmap, why = coexistence_of(result, ybs, basin_sample=0)
+    cmap, why = coexistence_of(result, ybs)
     assert cmap is not None, why
     figs = paper_figures(result)
     caption = add_branches(figs["fig05"], cmap, float(result.data.attrs["f_ref_hz"]))
@@ -164,3 +166,45 @@ def test_the_design_spectra_keep_the_mce_plateau_inside_the_axes():
     top = max(float(np.max(ln.get_ydata())) for ln in ax.get_lines())
     assert top == pytest.approx(1.5) and ax.get_ylim()[1] >= top
     plt.close(fig)
+
+
+# ---- the map's witnesses (issue 48): each test point judged by the branch, the sweeps and a basin sample
+@pytest.mark.parametrize("a_g, freqs", [(0.05, (2.0, 2.1, 2.2, 2.3)), (0.1, (2.7, 2.8, 2.9, 3.0))])
+def test_the_calibrated_report_finds_coexistence_where_its_sweeps_differ(drawn, a_g, freqs):
+    result, cmap = drawn[:2]
+    m = cmap.matrix
+    for f in freqs:
+        row = m[np.isclose(m["a_g"], a_g) & np.isclose(m["freq_hz"], f)].iloc[0]
+        # the witnesses: two settled sweeps on different responses, and a basin sample finding both
+        up = result.sweeps[("YBs", a_g, "up")].exact_dataframe().set_index("freq_hz")
+        down = result.sweeps[("YBs", a_g, "down")].exact_dataframe().set_index("freq_hz")
+        assert up.loc[f, "steady"] and down.loc[f, "steady"]
+        a_up, a_down = up.loc[f, "alpha"], down.loc[f, "alpha"]
+        assert abs(a_up - a_down) > 0.5 * max(a_up, a_down)
+        assert row["sweep_responses"] == 2 and row["basin_responses"] >= 2, row["evidence"]
+        assert row["verdict"] == "coexist" and row["responses"] >= 2, row["evidence"]
+        assert "sweeps settled" in row["evidence"] and "basin sample" in row["evidence"]
+
+
+def test_no_point_of_the_calibrated_map_claims_one_response_without_a_sample_that_agrees(drawn):
+    cmap = drawn[1]
+    m = cmap.matrix
+    one = m[m["verdict"] == "one"]
+    assert len(one) and (one["basin_responses"] == 1).all() and (one["basin_not_settled"] == 0).all()
+    assert ((one["stable_orbits"] == 1) | (one["sweep_responses"] == 1)).all()
+    # a point no witness reaches is never drawn as one response
+    unreached = m[~m["branch_reached"] & m["sweep_responses"].isna() & m["basin_responses"].isna()]
+    assert (unreached["verdict"] == "not assessed").all()
+    assert set(m["verdict"]) <= {"coexist", "one", "not assessed"}
+
+
+def test_the_map_draws_each_verdict_with_its_own_label(drawn):
+    cmap = drawn[1]
+    assert cmap.plot().__class__.__name__ == "Figure"
+    artists = pounding.plots.plot_curves(list(cmap.curves), matrix=cmap.matrix)
+    labels = {a.get_label() for a in artists}
+    assert any(lbl.startswith("two or more responses coexist") for lbl in labels)
+    assert any(lbl.startswith("one response: a basin sample agrees") for lbl in labels)
+    if (cmap.matrix["verdict"] == "not assessed").any():
+        assert any(lbl.startswith("not assessed") for lbl in labels)
+    assert not any("one stable response" in lbl for lbl in labels)
