@@ -32,7 +32,9 @@ SLOWEST_FIRST = (
 )
 
 
-def pytest_collection_modifyitems(config, items):
+def pytest_configure(config):
+    # (here, not in the sort below: that runs in every worker, where an error ends the run as an internal
+    # error without its message)
     from pathlib import Path
 
     import pytest
@@ -40,5 +42,8 @@ def pytest_collection_modifyitems(config, items):
     stale = [name for name in SLOWEST_FIRST if not (Path(__file__).parent / name).is_file()]
     if stale:
         raise pytest.UsageError(f"tests/conftest.py's SLOWEST_FIRST names no such file: {stale}")
+
+
+def pytest_collection_modifyitems(config, items):
     rank = {name: i for i, name in enumerate(SLOWEST_FIRST)}
     items.sort(key=lambda item: rank.get(item.path.name, len(rank)))  # (stable: a file's own order kept)

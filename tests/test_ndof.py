@@ -1,7 +1,8 @@
-"""The core's structures of several masses (n = 2-6): a shear building on a linear isolator, Kelvin-Voigt
-bumpers against its base, against an independent solve_ivp reference with events (tests/reference_ndof.py),
-its frequency response in closed form, and its energy ledger.  A one-mass system goes through the same
-code (every other test file)."""
+"""The core's structures of several masses (n = 2-6), through the core's door: a shear building on a linear
+isolator with Kelvin-Voigt bumpers between its masses against an independent solve_ivp reference with events
+(tests/reference_ndof.py; bumpers against the ground are drawn through the public path in
+tests/test_structure.py), its frequency response in closed form, and its energy ledger.  A one-mass system
+goes through the same code (every other test file)."""
 
 from __future__ import annotations
 

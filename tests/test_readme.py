@@ -98,9 +98,9 @@ def test_the_core_site_holds_no_extra(tmp_path):
 
 
 def _the_report_is_what_the_readme_says(said: str, out: Path) -> None:
-    """``pounding reproduce`` as the README runs it (the default preset, the whole campaign; no other test
-    runs the command-line ``reproduce`` on a grid of its own): its verdicts, the stories as measured and
-    as timed by the laser, and the calibration targets with the printed preset beside them."""
+    """``pounding reproduce`` as the README runs it (the default preset, the whole campaign: no other test
+    runs the default command): its verdicts, the stories as measured and as timed by the laser, and the
+    calibration targets with the printed preset beside them."""
     import numpy as np
     import pandas as pd
 
@@ -141,7 +141,7 @@ def test_every_readme_block_runs_in_order_from_a_fresh_copy(tmp_path):
     env.update(PATH=f"{venv / 'bin'}{os.pathsep}{env.get('PATH', '')}", VIRTUAL_ENV=str(venv),
                MPLBACKEND="Agg", COLUMNS="100")  # (no screen here: figures are drawn, not shown)
     python = str(venv / "bin" / "python")
-    ran = []
+    ran, reproduced = [], False
     for i, (lang, code) in enumerate(_blocks()):
         if code.strip() == TEST_COMMAND:
             continue  # (this test is part of what it runs)
@@ -155,7 +155,10 @@ def test_every_readme_block_runs_in_order_from_a_fresh_copy(tmp_path):
             where = subprocess.run([python, "-c", "import pounding; print(pounding.__file__)"], env=env,
                                    capture_output=True, text=True, check=True).stdout.strip()
             assert Path(where).resolve().is_relative_to(work.resolve()), where
+        if "pounding reproduce" in code:
             _the_report_is_what_the_readme_says(out.stdout, work / "report")
+            reproduced = True
     print("README blocks (index, language, seconds):", ran)  # (shown with pytest -s or -rP)
     missing = [name for name in WRITTEN if not (work / name).exists()]
     assert not missing, (missing, ran)
+    assert reproduced, "no README block runs pounding reproduce: its output went unchecked"

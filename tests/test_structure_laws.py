@@ -1,7 +1,7 @@
-"""Random structures of 2 to 6 masses with multi-linear and Hunt-Crossley contacts, at a wall
-(any level) or between two structures, under a sine or a record, against the independent solve_ivp reference
-(tests/reference_ndof.py): every contact's start within 1e-9 s, every level's displacement extrema within
-1e-8 of its largest, and the final state.
+"""Random structures of 2 to 6 masses with multi-linear and Hunt-Crossley contacts (and Kelvin-Voigt links),
+at a wall (any level) or between two structures, under a sine or a record, against the independent
+solve_ivp reference (tests/reference_ndof.py): every contact's start within 1e-9 s, every level's
+displacement extrema within 1e-8 of its largest, and the final state.
 
 The nonlinear laws are integrated (``rtol``): after 15 Hunt-Crossley contacts of a drawn building a start
 was 1.2e-7 s off at the default 1e-10, 3e-9 s at 1e-12 and 1e-11 s at 1e-14 (the reference converging to
@@ -26,6 +26,9 @@ G = 9.80665
 
 def _law(kind: str, rng: np.random.Generator):
     """A random law of ``kind``, and a stiffness for the reference's step (its stiffness a few mm deep)."""
+    if kind == "kv":
+        k = rng.uniform(1e6, 2e7)
+        return pd_.KelvinVoigt(k, rng.uniform(1e2, 5e3)), k
     if kind == "multilinear":
         k1 = rng.uniform(1e6, 1e7)
         k2 = k1 * rng.uniform(1.5, 4.0)
@@ -73,10 +76,10 @@ def cases(draw, kind: str, where: str):
     return model, ref, where, kind
 
 
-@pytest.mark.parametrize("where", ["wall", "link"])
-# (Kelvin-Voigt walls and links, under a sine or a record, are drawn in tests/test_structure.py: each
-# property once)
-@pytest.mark.parametrize("kind", ["multilinear", "hunt"])
+# (a Kelvin-Voigt wall, under a sine or a record, is drawn in tests/test_structure.py: each property once;
+# a Kelvin-Voigt link is drawn here, the only place that puts a link under a record)
+@pytest.mark.parametrize("kind, where", [("kv", "link"), ("multilinear", "wall"), ("multilinear", "link"),
+                                         ("hunt", "wall"), ("hunt", "link")])
 @settings(max_examples=4, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(data=st.data(), record=st.booleans(), seed=st.integers(0, 2**32 - 1))
 def test_random_structures_with_any_law_match_the_reference(kind, where, data, record, seed):
@@ -102,7 +105,7 @@ def test_random_structures_with_any_law_match_the_reference(kind, where, data, r
             ref = reference(ref_s, duration, np.zeros(2 * n), rtol=3e-14, steps_per_period=500.0)
     except TouchAtRest:
         assume(False)
-    # touches whose existence hangs on the last digits say nothing (tests/test_ndof.py)
+    # touches whose existence hangs on the last digits say nothing (tests/test_structure.py)
     assume(all(depth > 1e-7 for depth in ref.depths) and all(speed > 1e-4 for speed in ref.speeds))
     assume(len(ref.contact_starts) <= 40)
     event(f"{kind} at a {where}, {'contacts' if ref.contact_starts else 'no contact'}")

@@ -310,8 +310,8 @@ def system(path: Optional[Path], preset: Optional[str], bumpers: bool = True):
         return system
     plain = system.without_bumpers()  # (--no-bumpers: the file's system, NBs)
     if plain.to_dict() == system.to_dict():
-        warnings.warn(f"--no-bumpers: {path} has no bumpers or walls to take away; it runs as written",
-                      PoundingWarning, stacklevel=2)
+        warnings.warn(f"--no-bumpers: {path} has no bumpers or walls to take away (links stay); it runs as "
+                      "written", PoundingWarning, stacklevel=2)
     return plain
 
 
