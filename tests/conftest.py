@@ -4,7 +4,9 @@ a landing does not depend on the draw: a new failure found locally becomes a reg
 
 import os
 import signal
+from pathlib import Path
 
+import pytest
 from hypothesis import settings
 
 settings.register_profile("ci", derandomize=True, database=None)
@@ -35,10 +37,6 @@ SLOWEST_FIRST = (
 def pytest_configure(config):
     # (here, not in the sort below: that runs in every worker, where an error ends the run as an internal
     # error without its message)
-    from pathlib import Path
-
-    import pytest
-
     stale = [name for name in SLOWEST_FIRST if not (Path(__file__).parent / name).is_file()]
     if stale:
         raise pytest.UsageError(f"tests/conftest.py's SLOWEST_FIRST names no such file: {stale}")

@@ -74,11 +74,11 @@ def last_digit_spread(building: pd_.Structure, exc, v0: float, starts: np.ndarra
     return spread
 
 
-def _extrema_match(run, ref) -> None:
-    """Every level's exact displacement extrema within 1e-8 of its peak (the bound that
-    tests/test_structure_laws.py asserts for the other laws)."""
+def extrema_match(x_max: np.ndarray, x_min: np.ndarray, ref) -> None:
+    """Every level's exact displacement extrema (m, one a level) against the reference's, within 1e-8 of
+    the level's peak (here and in tests/test_structure_laws.py)."""
     scale = np.maximum(np.abs(ref.x_max), np.abs(ref.x_min))
-    for mine, theirs in ((run.displacement_max, ref.x_max), (run.displacement_min, ref.x_min)):
+    for mine, theirs in ((x_max, ref.x_max), (x_min, ref.x_min)):
         off = np.abs(mine - theirs) / scale
         assert np.all(off <= 1e-8), f"extrema {mine} against {theirs}: {off.max():.2e} of the level's peak"
 
@@ -116,7 +116,7 @@ def test_a_wall_at_any_level_matches_the_reference(pair, v0):
     np.testing.assert_allclose(run.contacts["t_start_s"], starts, rtol=0, atol=1e-9)
     ends = run.contacts["t_end_s"].dropna()  # (a contact still on at the end has no end yet)
     np.testing.assert_allclose(ends, [t for _, t in ref.contact_ends], rtol=0, atol=1e-9)
-    _extrema_match(run, ref)
+    extrema_match(run.displacement_max, run.displacement_min, ref)
     scale = np.abs(ref.y).max()
     np.testing.assert_allclose(run.final_state.displacements_m, ref.y[:n], rtol=0, atol=1e-7 * scale)
     np.testing.assert_allclose(run.final_state.velocities_m_s, ref.y[n:], rtol=0, atol=1e-7 * scale)
@@ -868,7 +868,7 @@ def test_a_wall_at_any_level_under_a_record_matches_the_reference(pair, v0, seed
     np.testing.assert_allclose(run.contacts["t_start_s"], starts, rtol=0, atol=1e-9)
     ends = run.contacts["t_end_s"].dropna()  # (a contact still on at the end has no end yet)
     np.testing.assert_allclose(ends, [t for _, t in ref.contact_ends], rtol=0, atol=1e-9)
-    _extrema_match(run, ref)
+    extrema_match(run.displacement_max, run.displacement_min, ref)
     scale = np.abs(ref.y).max()
     np.testing.assert_allclose(run.final_state.displacements_m, ref.y[:n], rtol=0, atol=1e-7 * scale)
 

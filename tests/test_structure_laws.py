@@ -20,6 +20,7 @@ from hypothesis import strategies as st
 import pounding as pd_
 from reference_ndof import Structure as RefStructure
 from reference_ndof import TouchAtRest, reference
+from test_structure import extrema_match
 
 G = 9.80665
 
@@ -120,10 +121,5 @@ def test_random_structures_with_any_law_match_the_reference(kind, where, data, r
         n1 = model.first.n_levels
         final = np.delete(run.final_state.displacements_m, n1)
     np.testing.assert_allclose(contacts["t_start_s"], [t for _, t in ref.contact_starts], rtol=0, atol=1e-9)
-    x_max = np.concatenate([hi for hi, _ in levels])
-    x_min = np.concatenate([lo for _, lo in levels])
-    scale = np.maximum(np.abs(ref.x_max), np.abs(ref.x_min))
-    for mine, theirs in ((x_max, ref.x_max), (x_min, ref.x_min)):
-        off = np.abs(mine - theirs) / scale
-        assert np.all(off <= 1e-8), f"extrema {mine} against {theirs}: {off.max():.2e} of the level's peak"
+    extrema_match(np.concatenate([hi for hi, _ in levels]), np.concatenate([lo for _, lo in levels]), ref)
     np.testing.assert_allclose(final, ref.y[:n], rtol=0, atol=1e-8 * np.abs(ref.y).max())
