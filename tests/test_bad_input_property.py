@@ -238,7 +238,9 @@ def _finite_if_success(result) -> None:
         ]
         assert all(math.isfinite(v) for v in values), result
     if isinstance(result, pd_.SweepResult) and result.success:
-        assert np.isfinite(result.window[: result.steps_done]).all(), result
+        done = slice(0, result.steps_done)
+        assert np.isfinite(result.level_metrics[done]).all(), result
+        assert np.isfinite(result.contact_sums[done]).all(), result
     if isinstance(result, pd_.CampaignResult):
         for sw in result.sweeps.values():
             _finite_if_success(sw)

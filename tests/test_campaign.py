@@ -26,7 +26,7 @@ def test_printed_campaign_agrees_with_the_reference(printed_campaign):
     ds = printed_campaign.data
     assert len(printed_campaign.sweeps) == 14 and printed_campaign.complete
     for (conf, a_g, direction), sw in printed_campaign.sweeps.items():
-        ref = reference_sweep(sw.oscillator, a_g, sw.freqs_hz, CYCLES, MEASURED)
+        ref = reference_sweep(sw.system, a_g, sw.freqs_hz, CYCLES, MEASURED)
         got = ds.sel(configuration=conf, a_g=a_g, direction=direction)
         for row in ref:
             step = got.sel(freq_hz=row["freq_hz"])
@@ -57,7 +57,7 @@ def test_dataset_layout_and_netcdf_round_trip(printed_campaign, tmp_path):
     xr.testing.assert_allclose(back["alpha"], ds["alpha"])
     assert back["contact"].dtype == bool
     ybs = pd_.Oscillator.from_toml_text(back.attrs["system_YBs"])
-    assert ybs == printed_campaign.sweep("YBs", 0.05, "up").oscillator
+    assert ybs == printed_campaign.sweep("YBs", 0.05, "up").system
 
 
 def test_tables_2_3_4(printed_campaign):

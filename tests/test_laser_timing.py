@@ -20,7 +20,7 @@ def window_motion(sw, i):
     f = float(sw.freqs_hz[i])
     state = pounding.State(sw.window_states[i])
     exc = pounding.Harmonic(sw.a_g, f, phase=-(2.0 * math.pi * f * state.time_s))
-    return pounding.simulate(sw.oscillator, exc, sw.measure_cycles / f, state, sample_rate_hz=DENSE_HZ)
+    return pounding.simulate(sw.system, exc, sw.measure_cycles / f, state, sample_rate_hz=DENSE_HZ)
 
 
 def gap_crossings(run):

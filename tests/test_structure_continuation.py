@@ -152,7 +152,7 @@ def test_a_building_s_coexistence_map_is_judged_by_its_branch_sweeps_and_basins(
     blank.level_metrics[2] = np.nan  # (its window not measured again: no metrics, not a response)
     assert np.isnan(sweep_witness([blank], 0.05, float(freqs[2]))[0])
     assert sweep_witness([up, blank], 0.05, float(freqs[2]))[0] == 1.0
-    with pytest.raises(pd_.InputError, match="StructureSweepResult"):
+    with pytest.raises(pd_.InputError, match="sweeps of this system"):
         pd_.coexistence_map(b, levels=[0.05], sweeps=[pd_.sweep(pd_.presets.paper_damped(), 0.05, [1.0])])
 
 

@@ -5,6 +5,7 @@ schedule equals simulating it step by step, a pair names its structures and link
 from __future__ import annotations
 
 import dataclasses
+import importlib
 import math
 
 import matplotlib
@@ -12,6 +13,8 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
+
+import pandas
 
 import pounding as pd_
 from pounding.engine.assembly import kernel_structure
@@ -25,34 +28,46 @@ def linear_isolator(k: float, c: float) -> pd_.Isolator:
 
 @pytest.mark.parametrize("preset, schedule", [("paper_damped", {}), ("nbs", {}), (
     "paper_damped", {"steady": "fixed", "cycles": 20, "measure_cycles": 1})])
-def test_one_level_sweeps_as_the_oscillator(preset, schedule):
-    # (a one-cycle window: its contacts may begin before it, timed from their true start as the
-    # oscillator's are)
+def test_one_level_sweeps_as_the_oscillator_and_its_window_measured_again_as_the_step_measured_it(
+        preset, schedule):
+    # a one-level structure is the single mass: the same sweep, to the bit
     osc = pd_.presets.paper_printed(bumpers=False) if preset == "nbs" else pd_.presets.paper_damped()
     freqs = [1.2, 1.5, 2.0, 2.6] if not schedule else np.round(np.arange(1.0, 3.01, 0.1), 1)
     ro = pd_.sweep(osc, 0.05, freqs, **schedule)
     rs = pd_.sweep(pd_.Structure.from_oscillator(osc), 0.05, freqs, **schedule)
     assert rs.message == ro.message and rs.success
-    np.testing.assert_array_equal(rs.cycles_run, ro.cycles_run)
-    np.testing.assert_array_equal(rs.period_multiple, ro.period_multiple)
-    table = ro.to_dataframe()
-    # (the window is run once more in one piece: the same motion, cut elsewhere, to rounding)
-    np.testing.assert_allclose(rs.alpha[:, 0], table["alpha"], rtol=1e-9)
-    np.testing.assert_allclose(rs.level_metrics[:, 0, 0], table["displacement_max_m"], rtol=1e-9)
-    np.testing.assert_allclose(rs.level_metrics[:, 0, 1], table["displacement_min_m"], rtol=1e-9)
-    if osc.bumpers is None:
-        assert rs.contact_metrics.shape[1] == 0
-        return
-    contacts = rs.contacts_dataframe()
-    assert table["contacts_per_cycle"].sum() > 0
-    for c, side in enumerate(("left", "right")):
-        mine = contacts[contacts["side"] == side]
-        np.testing.assert_array_equal(mine["contacts_per_cycle"], table[f"contacts_per_cycle_{side}"])
-        np.testing.assert_allclose(mine["contact_time_mean_s"], table[f"contact_time_s_{side}"], rtol=1e-9)
-        timed = np.isfinite(mine["contact_time_mean_s"]).sum()
-        assert timed == (table[f"contacts_per_cycle_{side}"] > 0).sum()
-        np.testing.assert_allclose(mine["peak_force_max_n"].fillna(0.0) > 0,
-                                   table[f"contacts_per_cycle_{side}"] > 0)
+    pandas.testing.assert_frame_equal(rs.to_dataframe(), ro.to_dataframe())
+    pandas.testing.assert_frame_equal(rs.contacts_dataframe(), ro.contacts_dataframe())
+    # what a structure of several levels measures, its window run once more in one piece from its exact
+    # start (the same motion, cut elsewhere: to rounding), is what the core's step summed cycle by cycle
+    # (a one-cycle window: its contacts may begin before it, timed from their true start as the step's are)
+    from pounding.engine.assembly import assemble
+    from pounding.engine.control import new_control
+    from pounding.engine.kernels import run_window
+    from pounding.metrics.impacts import S_COUNT, S_N_RESTITUTION
+    from pounding.protocols.sweep_window import measure, slot_masses
+
+    asm = assemble(osc)
+    for i, f in enumerate(ro.freqs_hz):
+        start, m = ro.window_states[i], int(ro.window_cycles[i])
+        exc = pd_.Harmonic(0.05, f, phase=-(2 * np.pi * f * start[0]))
+        out = run_window(asm.system, exc.peak_m_s2, exc.omega_rad_s, exc.phase, start, start[0] + m / f,
+                         1 / f, 1e-10, 10**6, new_control(10**9))
+        level, drift = np.zeros((1, 3)), np.zeros((0, 2))
+        sums = np.zeros_like(ro.contact_sums[i])
+        measure(out, [0], exc.peak_m_s2, slot_masses(asm), level, drift, sums, 1)
+        np.testing.assert_allclose(level, ro.level_metrics[i], rtol=1e-9)
+        np.testing.assert_array_equal(sums[:, [S_COUNT, S_N_RESTITUTION]],
+                                      ro.contact_sums[i][:, [S_COUNT, S_N_RESTITUTION]])
+        np.testing.assert_allclose(sums, ro.contact_sums[i], rtol=1e-9, atol=1e-12)
+    assert osc.bumpers is None or ro.contact_sums[:, :, S_COUNT].sum() > 0
+    # one result for every system: the names before still answer, with a warning naming the new one
+    assert type(rs) is type(ro) is pd_.SweepResult
+    with pytest.warns(FutureWarning, match="pounding.SweepResult"):
+        assert pd_.StructureSweepResult is pd_.SweepResult
+    for old in ("oscillator", "structure"):
+        with pytest.warns(FutureWarning, match="SweepResult.system"):
+            assert getattr(ro, old) is osc
 
 
 @pytest.mark.parametrize("n_storeys", [1, 3])
@@ -81,7 +96,7 @@ def test_a_linear_building_sweeps_to_its_frequency_response(n_storeys):
     # the base's resonance among the steps: where its closed-form amplification is largest
     amplification = [abs(a_g - (2 * math.pi * f) ** 2 * np.linalg.solve(
         k - (2 * math.pi * f) ** 2 * np.diag(m) + 2j * math.pi * f * c, -m * a_g)[0]) for f in freqs]
-    assert res.resonance_hz(0) == freqs[int(np.argmax(amplification))]
+    assert res.resonance_of(0) == freqs[int(np.argmax(amplification))]
 
 
 @st.composite
@@ -136,7 +151,7 @@ def test_a_fixed_schedule_equals_simulating_it_step_by_step(b, a_g):
         np.testing.assert_allclose(res.drift_metrics[i, :, 0], run.drift_max, rtol=0, atol=1e-9 * scale)
         ended = run.contacts.dropna(subset=["t_end_s"])
         for c, side in enumerate(("left", "right")):
-            assert res.contact_metrics[i, c, 0] * window == np.sum(ended["side"] == side)
+            assert res.contacts_per_cycle[i, c] * window == np.sum(ended["side"] == side)
     vec = motion(b, state.vector)
     np.testing.assert_allclose(motion(b, res.final_state.vector), vec, rtol=0, atol=1e-10 * np.abs(vec).max())
 
@@ -155,7 +170,7 @@ def test_a_pair_names_its_structures_and_links():
     links = res.contacts_dataframe()
     assert list(links["kind"]) == ["link", "link"] and links["contacts_per_cycle"].max() > 0
     ds = res.to_xarray()
-    assert ds["alpha"].shape == (2, 6) and ds["contacts_per_cycle"].shape == (2, 1)
+    assert ds["alpha"].shape == (2, 6) and ds["contacts_per_cycle_per_contact"].shape == (2, 1)
     assert ds["displacement_max_m"].shape == ds["abs_acceleration_max_m_s2"].shape == (2, 6)
     assert ds["drift_max_m"].shape == (2, 4)
     assert list(ds["level_structure"].values) == ["first"] * 3 + ["second"] * 3
@@ -171,7 +186,7 @@ def test_bad_arguments_are_named():
         pd_.sweep(b, 0.1, [1.0], state=pd_.State.at_rest(pd_.presets.paper_damped()))
     res = pd_.sweep(b, 0.1, [1.0, 1.5], steady="fixed", cycles=3, measure_cycles=1)
     with pytest.raises(pd_.InputError, match="level"):
-        res.resonance_hz(2)
+        res.resonance_of(2)
     again = pd_.sweep(b, 0.1, [2.0], steady="fixed", cycles=3, measure_cycles=1, state=res.final_state)
     assert again.step_start_s[0] == pytest.approx(3.0 + 2.0)
     # a sweep stopped at its first step: NaN metrics, and the summary's table says "-" where nothing was
@@ -200,7 +215,7 @@ def test_what_is_no_system_is_named_by_every_sweep():
 def test_a_ctrl_c_in_a_step_s_measured_window_keeps_the_steps_before(monkeypatch):
     # (the window of each step is run once more for every level's metrics: a Ctrl-C there drops the step,
     # and the sweep ends where the steps before it left the structure)
-    from pounding.protocols import structure_sweep
+    structure_sweep = importlib.import_module("pounding.protocols.sweep")
 
     b = pd_.Structure(1e3, linear_isolator(1e5, 1e3), [pd_.Storey(1e3, 1e6, 1e3)],
                       [pd_.Wall(0, 0.01, 0.01, pd_.KelvinVoigt(1e7, 1e3))])

@@ -138,7 +138,7 @@ def test_results_table_xarray_netcdf_and_features(tmp_path):
     res = pd_.sweep(osc, 0.05, [2.2, 1.2, 1.6, 2.0], "down")
     assert list(res.freqs_hz) == [2.2, 2.0, 1.6, 1.2]
     df = res.to_dataframe()
-    assert list(df.columns[:4]) == ["freq_hz", "nu", "alpha", "excursion_m"]
+    assert list(df.columns[:5]) == ["freq_hz", "nu", "level", "alpha", "excursion_m"]  # (its one level: 0)
     ds = res.to_xarray()
     assert list(ds["freq_hz"].values) == [1.2, 1.6, 2.0, 2.2]
     assert ds.attrs["direction"] == "down" and ds["contact"].dtype == bool

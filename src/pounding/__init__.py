@@ -30,7 +30,7 @@ _NAMES = {
                "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "RigidStop", "Sensor",
                "Stand", "Storey", "Structure", "Wall"),
     ".protocols": ("BasinStabilityMap", "Basins", "BifurcationDiagram", "CampaignResult", "PoundingSpectrum",
-                   "StructureSweepResult", "SweepResult", "basin_stability_map", "basins",
+                   "SweepResult", "basin_stability_map", "basins",
                    "bifurcation_diagram",
                    "campaign",
                    "paper_frequencies_hz", "pounding_spectrum", "sweep"),
@@ -44,16 +44,18 @@ _MODULES = ("data", "lab", "plots", "presets", "records", "design", "reports", "
 __all__ = sorted(_WHERE) + ["data", "lab", "plots", "presets", "records"]
 
 
-# names of 0.1 that still answer for one release, with a FutureWarning: the old name -> the new one
-_RENAMED = {"StructureState": "State", "StructureEnergy": "EnergyLedger"}
+# names of 0.1 that still answer for one release, with a FutureWarning: the old name -> (where, the new one)
+_RENAMED = {"StructureState": (".engine", "State"), "StructureEnergy": (".engine", "EnergyLedger"),
+            "StructureSweepResult": (".protocols", "SweepResult")}
 
 
 def __getattr__(name: str) -> Any:
     if name in _RENAMED:
         from ._errors import warn_renamed
 
-        warn_renamed(f"pounding.{name}", f"pounding.{_RENAMED[name]}", why="one class for every system")
-        return getattr(importlib.import_module(".engine", __name__), _RENAMED[name])
+        where, new = _RENAMED[name]
+        warn_renamed(f"pounding.{name}", f"pounding.{new}", why="one class for every system")
+        return getattr(importlib.import_module(where, __name__), new)
     if name in _WHERE:
         value = getattr(importlib.import_module(_WHERE[name], __name__), name)
     elif name in _MODULES:
@@ -85,7 +87,7 @@ if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
                         Isolator, Jankowski, KelvinVoigt, Link, MeasurementChain, MultilinearBumper,
                         Oscillator, RigidStop, Sensor, Stand, Storey, Structure, Wall)
     from .protocols import (BasinStabilityMap, Basins, BifurcationDiagram, CampaignResult,  # noqa: F401
-                            PoundingSpectrum, StructureSweepResult, SweepResult, basin_stability_map, basins,
+                            PoundingSpectrum, SweepResult, basin_stability_map, basins,
                             bifurcation_diagram,
                             campaign, paper_frequencies_hz, pounding_spectrum, sweep)
     from .studies import StudyResult, StudySpec, open_study, study  # noqa: F401

@@ -69,7 +69,7 @@ def through_sweeps(system: Any, sweeps: Sequence[Any], branches: Sequence[Any], 
     ----------
     system : Oscillator, Structure or Adjacent
         The sweeps' system.
-    sweeps : sequence of SweepResult or StructureSweepResult
+    sweeps : sequence of SweepResult
         Harmonic sweeps of ``system`` (any a_G, up or down).
     branches : sequence of Branch
         Branches in the frequency already found (a level's, at the sweeps' a_G).

@@ -12,7 +12,7 @@ import pandas as pd
 
 from .._checks import instance_of, integer, one_of, real
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
-from ..engine.assembly import check_system, is_single_mass
+from ..engine.assembly import check_system
 from ..engine.simulate import check_state
 from ..excitation import Harmonic
 from ..model import Oscillator
@@ -221,7 +221,7 @@ def coexistence_map(
         Largest scaled residual of each curve's points, as in :func:`bifurcation_curve`.
     method : {"auto", "exact", "finite-difference"}
         The monodromy, as in :func:`periodic_orbit`; also the branches'.
-    sweeps : sequence of SweepResult or StructureSweepResult, or CampaignResult, optional
+    sweeps : sequence of SweepResult, or CampaignResult, optional
         Sweeps of this system at the levels (up and down): witnesses at their frequencies (a
         structure's: :func:`pounding.sweep` of it).  Each settled period-1 step that the level's
         branch does not pass through starts a short branch of its own (``seeded``), from the step's
@@ -288,7 +288,7 @@ def coexistence_map(
                          expected="a sequence of 'fold', 'grazing'")
     kinds = tuple(dict.fromkeys(one_of("kinds", k, CURVE_KINDS) for k in kinds))
     tol, max_step, max_points, exact = _common(system, tol, max_step, max_points, method)
-    witnesses = check_sweeps(sweeps, not is_single_mass(system))  # (until one sweep result)
+    witnesses = check_sweeps(sweeps, system)
     basin_sample = check_basin_sample(basin_sample)
     if test_freqs_hz is None:
         freqs = np.round(np.arange(f_box[0], f_box[1] + 1e-9 * step, step), 10)

@@ -125,17 +125,15 @@ def sweep_responses(sweeps: Sequence[Any], a_g: float, freq_hz: float) -> tuple[
 
 def _witness_table(sweep: Any) -> pd.DataFrame:
     """One row per step of a sweep: ``freq_hz``, ``steady``, ``period_multiple``, ``contact``, ``alpha``
-    and ``excursion_m``.  A structure's (:class:`~pounding.protocols.StructureSweepResult`): its largest
-    alpha over every level, its first moving mass's excursion, and whether any wall side or link was hit
-    in the window (what a branch's and a basin's rows read of it)."""
-    from ..protocols import StructureSweepResult
-
-    if not isinstance(sweep, StructureSweepResult):
+    and ``excursion_m``: a one-level system's exact table's; a structure's largest alpha over every level,
+    its first moving mass's excursion, and whether any wall side or link was hit in the window (what a
+    branch's and a basin's rows read of it)."""
+    if len(sweep.levels) == 1:
         return sweep.exact_dataframe()
-    structure0 = sweep.levels.index((0, 1 if _fixed(sweep.structure) else 0))
+    structure0 = sweep.levels.index((0, 1 if _fixed(sweep.system) else 0))
     m = sweep.level_metrics
-    contacts = np.nan_to_num(sweep.contact_metrics[:, :, 0]) if sweep.contact_metrics.size else \
-        np.zeros((len(sweep.freqs_hz), 1))
+    contacts = (np.nan_to_num(sweep.contacts_per_cycle) if sweep.contact_slots
+                else np.zeros((len(sweep.freqs_hz), 1)))
     with np.errstate(all="ignore"):
         alpha = np.nanmax(np.where(np.isfinite(sweep.alpha), sweep.alpha, -np.inf), axis=1)
     # (a step whose window was not measured again has no metrics: not a settled response)
@@ -275,22 +273,26 @@ def check_basin_sample(value: Any) -> int:
     return int(value)
 
 
-def check_sweeps(value: Any, several: bool = False) -> tuple:
-    """``sweeps``: SweepResults (or a CampaignResult: its sweeps with bumpers); for a structure
-    (``several``), StructureSweepResults."""
-    from ..protocols import CampaignResult, StructureSweepResult, SweepResult
+def check_sweeps(value: Any, system: Any) -> tuple:
+    """``sweeps``: SweepResults of ``system``'s levels (or a CampaignResult: its sweeps with bumpers)."""
+    from ..engine.assembly import structures_of
+    from ..protocols import CampaignResult, SweepResult
 
     if value is None:
         return ()
-    kind, words = ((StructureSweepResult, "StructureSweepResult (pounding.sweep of the structure)") if several
-                   else (SweepResult, "SweepResult"))
     given = value
     if isinstance(value, CampaignResult):
         value = tuple(sw for (conf, _a, _d), sw in value.sweeps.items() if conf == "YBs")
     if isinstance(value, (str, bytes, Mapping)) or not isinstance(value, Sequence) or not all(
-            isinstance(s, kind) for s in value):
+            isinstance(s, SweepResult) for s in value):
         got = (f"a CampaignResult of {type(value[0]).__name__}s"
                if isinstance(given, CampaignResult) and value else type(given).__name__)
         raise InputError(Problem.WRONG_TYPE, "sweeps", given, got=got,
-                         expected=f"a sequence of {words}, or a CampaignResult of this system")
+                         expected="a sequence of SweepResult, or a CampaignResult of this system")
+    levels = tuple((b, q) for b, s in enumerate(structures_of(system)[0]) for q in range(s.n_levels))
+    for sw in value:
+        if tuple(sw.levels) != levels:
+            raise InputError(Problem.WRONG_TYPE, "sweeps", given,
+                             got=f"a sweep of a system of {len(sw.levels)} level(s)",
+                             expected=f"sweeps of this system ({len(levels)} level(s)), from pounding.sweep")
     return tuple(value)

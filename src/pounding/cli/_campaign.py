@@ -114,16 +114,13 @@ def campaign(
 
 def _save_campaign(result, out: Path) -> None:
     """The campaign's files; each table says per sweep whether it finished (``complete``)."""
-    from ..protocols.sweep_result import SweepResult
-
     out.mkdir(parents=True, exist_ok=True)
     result.to_netcdf(out / "campaign.nc")
     steps = result.data.to_dataframe().reset_index()
     write_csv(steps[steps["ran"]].drop(columns=["ran"]), out / "steps.csv")
     finished = {key: sw.steps_done == sw.freqs_hz.size for key, sw in result.sweeps.items()}
-    one_mass = all(isinstance(sw, SweepResult) for sw in result.sweeps.values())
-    tables = [("table2", result.table2)] + ([("table3", result.table3), ("table4", result.table4)] if one_mass
-                                            else [])
+    tables = [("table2", result.table2)] + ([("table3", result.table3), ("table4", result.table4)]
+                                            if result.of_one_mass else [])
     for name, make in tables:
         df = make()
         df = df.copy()

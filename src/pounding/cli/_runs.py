@@ -358,7 +358,7 @@ def _structure_sweep_table(result):
     import numpy as np
     from rich.table import Table
 
-    from ..protocols.structure_sweep_result import level_name, slot_name
+    from ..protocols.sweep_window import level_name, slot_name
 
     done = slice(0, result.steps_done)
     table = Table(title="per level, over the steps")
@@ -376,7 +376,7 @@ def _structure_sweep_table(result):
         table.add_row(level_name(result.levels, q), largest(alpha, ".4f"), at, largest(excursion, ".3f", 1e3),
                       drift)
     for c in range(len(result.contact_slots)):
-        per_cycle = result.contact_metrics[done, c, 0]
+        per_cycle = result.contacts_per_cycle[done, c]
         hit = result.freqs_hz[done][per_cycle > 0]
         table.add_section()
         table.add_row(slot_name(result.contact_slots, c), "contacts:",

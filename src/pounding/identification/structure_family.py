@@ -6,7 +6,7 @@ a :class:`~pounding.Structure`; :func:`pounding.identify` fits any of its number
 paths in its TOML tables (``isolator.damping_n_s_m``, ``walls[0].law.stiffness``, ``walls[0].stand.mass_kg``,
 ``storeys[0].stiffness_n_m``), every other number kept at the base's value.  The targets are of the base
 (level 0: the mass a shaking table's rig carries): its NBs sweeps run the structure without its walls,
-its YBs sweeps with them (``StructureSweepResult.paper_quantities``).
+its YBs sweeps with them (``SweepResult.paper_quantities``).
 """
 
 from __future__ import annotations

@@ -13,7 +13,6 @@ from .legend import place_legend
 if TYPE_CHECKING:  # pragma: no cover
     from ..metrics import HysteresisLoop
     from ..protocols.campaign import CampaignResult
-    from ..protocols.structure_sweep_result import StructureSweepResult
     from ..protocols.sweep_result import SweepResult
 
 DIRECTION_STYLE = {"up": {"ls": "-", "marker": "^"}, "down": {"ls": "--", "marker": "v"}}
@@ -68,7 +67,7 @@ def plot_sweep(sweeps: "SweepResult | Sequence[SweepResult]", ax: Any = None, *,
         c = color if color is not None else colours.setdefault(sw.a_g, f"C{len(colours)}")
         style = DIRECTION_STYLE[sw.direction]
         text = f"{label or f'a_G = {sw.a_g:g}'} ({sw.direction})"
-        has_gap = sw.oscillator.bumpers is not None
+        has_gap = bool(sw.contact_slots)  # (a single mass's bumpers: its wall)
         y = df["eta"] if has_gap else df["e"]
         artists += ax_a.plot(df["nu"], df["alpha"], color=c, ms=4, label=text, **style)
         artists += ax_e.plot(df["nu"], y, color=c, ms=4, label=text, **style)
@@ -77,11 +76,11 @@ def plot_sweep(sweeps: "SweepResult | Sequence[SweepResult]", ax: Any = None, *,
             artists.append(ax_a.scatter(df["nu"][unsteady], df["alpha"][unsteady], s=40,
                                         facecolors="none", edgecolors="k", lw=0.8, zorder=3))
     ax_a.set_ylabel("alpha = max|a_abs| / A_t [-]")
-    kinds = {sw.oscillator.bumpers is not None for sw in sweeps}
+    kinds = {bool(sw.contact_slots) for sw in sweeps}
     ax_e.set_ylabel("eta = E / Delta [-]" if kinds == {True} else
                     "e = E / D_tmax [-]" if kinds == {False} else "eta (YBs) / e (NBs) [-]")
     ax_e.set_xlabel("nu = f / f_R [-]")
-    if any(sw.oscillator.bumpers is not None for sw in sweeps):
+    if any(sw.contact_slots for sw in sweeps):
         artists.append(ax_e.axhline(1.0, color="0.5", lw=0.8, ls=":"))
     place_legend(ax_a, fontsize="small")
     return artists
@@ -239,7 +238,7 @@ def plot_campaign(result: "CampaignResult", ax: Any = None) -> list:
         for (c, ag, d), sw in result.sweeps.items():
             if c != conf:
                 continue
-            if hasattr(sw, "alpha_top"):  # (a structure's sweep: its top floor above, its base below)
+            if len(sw.levels) > 1:  # (a structure's sweep: its top floor above, its base below)
                 order = np.argsort(sw.freqs_hz)
                 style = {"color": f"C{a_gs.index(ag)}", "marker": ".", "ls": "-" if d == "up" else "--",
                          "label": f"{ag:g} g {d}"}
@@ -255,14 +254,15 @@ def plot_campaign(result: "CampaignResult", ax: Any = None) -> list:
     return artists
 
 
-def plot_structure_sweep(result: "StructureSweepResult", ax: Any = None) -> list:
+def plot_structure_sweep(result: "SweepResult", ax: Any = None) -> list:
     """Each level's alpha (its absolute acceleration peak over the table's) against ``nu``, and below it,
     when the structure has contacts, each wall side's (or link's) contacts per cycle.
 
     Parameters
     ----------
-    result : StructureSweepResult
-        A result of :func:`pounding.sweep` for a :class:`~pounding.Structure` or :class:`~pounding.Adjacent`.
+    result : SweepResult
+        A result of :func:`pounding.sweep` (of a :class:`~pounding.Structure` or :class:`~pounding.Adjacent`:
+        a single mass's is drawn by :func:`plot_sweep`).
     ax : matplotlib Axes or sequence of two, optional
         Where to draw alpha (and the contacts); a new figure if omitted.
 
@@ -283,7 +283,7 @@ def plot_structure_sweep(result: "StructureSweepResult", ax: Any = None) -> list
     import matplotlib.pyplot as plt
     import numpy as np
 
-    from ..protocols.structure_sweep_result import level_name, slot_name
+    from ..protocols.sweep_window import level_name, slot_name
 
     order = np.argsort(result.freqs_hz)
     nu = result.nu[order]
@@ -307,7 +307,7 @@ def plot_structure_sweep(result: "StructureSweepResult", ax: Any = None) -> list
     ax_a.grid(True, alpha=0.3)
     if ax_c is not None:
         for c in range(len(slots)):
-            artists += ax_c.plot(nu, result.contact_metrics[order, c, 0], marker=".",
+            artists += ax_c.plot(nu, result.contacts_per_cycle[order, c], marker=".",
                                  label=slot_name(slots, c))
         ax_c.set_ylabel("contacts per cycle")
         ax_c.legend(fontsize="small")

@@ -7,10 +7,9 @@ from .bifurcation_diagram import BifurcationDiagram, bifurcation_diagram
 from .campaign import CampaignResult, campaign
 from .pounding_spectrum import pounding_spectrum
 from .pounding_spectrum_result import PoundingSpectrum
-from .structure_sweep_result import StructureSweepResult
 from .sweep import SweepPlan, paper_frequencies_hz, sweep
 from .sweep_result import SweepResult
 
 __all__ = ["BasinStabilityMap", "Basins", "BifurcationDiagram", "CampaignResult", "PoundingSpectrum",
-           "StructureSweepResult", "SweepPlan", "SweepResult", "campaign", "paper_frequencies_hz",
+           "SweepPlan", "SweepResult", "campaign", "paper_frequencies_hz",
            "basin_stability_map", "basins", "bifurcation_diagram", "pounding_spectrum", "sweep"]

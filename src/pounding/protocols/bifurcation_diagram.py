@@ -21,7 +21,6 @@ from .._checks import integer, one_of
 from .._control import DEFAULT_MAX_STEPS, new_control, run_interruptibly
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from .._runner.progress import Progress, progress_reporter
-from .structure_sweep_result import C_COUNT
 from ..engine.assembly import is_single_mass
 from .sweep import MAX_CYCLES_PER_STEP, make_plan, run_plan
 from .sweep_result import SweepResult
@@ -294,13 +293,14 @@ def _diagram(osc: Any, sweeps: list, dirs: Sequence[str], transient: int, record
         i = dirs.index(sw.direction)
         done = sw.steps_done
         cols = np.searchsorted(freqs, sw.freqs_hz[:done])
-        strobes[i, cols] = sw.window_strobes[:done, :record]
+        mine = sw.window_strobes[:done, :record]  # (steps, cycles, 2, levels)
+        strobes[i, cols] = mine if several else mine[..., 0]
         if several:
             m = sw.level_metrics[:done]
             excursion = m[:, :, 0] - m[:, :, 1]
             amplitude = 0.5 * np.nanmax(excursion, axis=1, initial=0.0)
             values = {"alpha": sw.alpha[:done], "excursion_m": excursion,
-                      "contacts_per_cycle": np.nansum(sw.contact_metrics[:done, :, C_COUNT], axis=1)}
+                      "contacts_per_cycle": np.nansum(sw.contacts_per_cycle[:done], axis=1)}
             omega = 2.0 * np.pi * sw.freqs_hz[:done]
         else:
             df = sw.to_dataframe().iloc[:done]

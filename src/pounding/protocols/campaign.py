@@ -22,7 +22,8 @@ from .._runner import Context, run_tasks
 from ..engine.assembly import is_single_mass, structures_of
 from .._runner.progress import Progress
 from .sweep import SweepPlan, check_sweep_options, make_plan, run_plan
-from .sweep_result import SIDE_COLUMNS, STEP_COLUMNS, SweepResult
+from .sweep_result import STEP_COLUMNS, SweepResult
+from .sweep_table import SIDE_COLUMNS
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
@@ -44,11 +45,9 @@ STRUCTURE_TABLE2_QUANTITIES = ("nu_r_top", "alpha_top_max", "alpha_base_max", "d
 
 
 def sweep_quantities(sw: Any) -> dict[str, float]:
-    """The paper's per-sweep quantities (Tables 2-4) of one sweep, by their table names
-    (:meth:`SweepResult.quantities`; a structure's sweep: its base's, ``paper_quantities(0)``)."""
-    if not isinstance(sw, SweepResult):  # (a structure's sweep: its base's paper quantities)
-        return sw.paper_quantities(0)
-    return sw.quantities()
+    """The paper's per-sweep quantities (Tables 2-4) of one sweep, by their table names: its base's
+    (:meth:`SweepResult.paper_quantities`; a single mass: its own)."""
+    return sw.paper_quantities(0)
 
 
 @dataclass(frozen=True, eq=False)
@@ -129,8 +128,10 @@ class CampaignResult:
         return atomic_write(output_file("path", path), self.data.to_netcdf)
 
     @property
-    def _of_structures(self) -> bool:
-        return any(not isinstance(sw, SweepResult) for sw in self.sweeps.values())
+    def of_one_mass(self) -> bool:
+        """Whether the campaign's systems are single masses: the paper's Tables 3 and 4 (one mass's impacts)
+        apply; a structure's campaign has :meth:`table2` per level."""
+        return all(is_single_mass(sw.system) for sw in self.sweeps.values())
 
     def table2(self) -> pd.DataFrame:
         """Analogue of the paper's Table 2: maximum alpha and excursion, resonance, contact range.
@@ -140,12 +141,12 @@ class CampaignResult:
         ``contact_nu_max`` (the contact range ``Delta nu_C``, NaN without contact) and
         ``excursion_max_m`` (max E, m).  A structure's campaign: ``nu_r_top``, ``alpha_top_max``,
         ``alpha_base_max``, ``drift_ratio_max``, ``contact_nu_min``, ``contact_nu_max``
-        (:meth:`StructureSweepResult.quantities`).
+        (:meth:`SweepResult.quantities`).
         """
         return self._rows(TABLE2_QUANTITIES, yb_only=False)
 
     def _rows(self, quantities: tuple[str, ...], yb_only: bool) -> pd.DataFrame:
-        if self._of_structures:
+        if not self.of_one_mass:
             if yb_only:
                 raise InputError(Problem.WRONG_MODE, "table", "table3/table4", mode="one mass's campaign",
                                  fix="a structure's campaign has table2() (its alpha per level) and its "
@@ -156,7 +157,7 @@ class CampaignResult:
         for (conf, ag, d), sw in self._started():
             if yb_only and conf != "YBs":
                 continue
-            q = sw.quantities() if self._of_structures else sweep_quantities(sw)
+            q = sweep_quantities(sw) if self.of_one_mass else sw.quantities()
             rows.append([conf, ag, d, *(q[k] for k in quantities)])
         # the columns even without rows: an NBs-only campaign, or one interrupted before any
         # YBs step finished, has empty Tables 3 and 4
@@ -216,7 +217,7 @@ def campaign(
         The system without bumpers (NBs) and with them (YBs); None leaves that
         configuration out.  Two structures (without walls or links, and with them; the same levels) make
         a structure's campaign: its data has a ``level`` dim, its Table 2 the top floor's and the base's
-        alpha (:meth:`StructureSweepResult.quantities`); Tables 3 and 4 are one mass's.
+        alpha (:meth:`SweepResult.quantities`); Tables 3 and 4 are one mass's.
     nbs_a_g, ybs_a_g : sequence of float
         Table accelerations in g (default the paper's: 0.03, 0.05, 0.1 and 0.03, 0.05,
         0.075, 0.1).
@@ -399,9 +400,9 @@ def _structure_dataset(sweeps: dict, plans: list, complete: bool) -> "xr.Dataset
         frame = sw.to_dataframe()
         for c in columns:
             data[c][idx + (cols,)] = frame[c].to_numpy().reshape(-1, n_levels)[done]
-        contacts[idx + (cols,)] = np.nansum(sw.contact_metrics[done, :, 0], axis=1)
+        contacts[idx + (cols,)] = np.nansum(sw.contacts_per_cycle[done], axis=1)
         ran[idx + (cols,)] = True
-        level_names = [f"{b}:{q}" if len(_levels(sw.structure)) > 1 else str(q) for b, q in sw.levels]
+        level_names = [f"{b}:{q}" if len(_levels(sw.system)) > 1 else str(q) for b, q in sw.levels]
     dims = ("configuration", "a_g", "direction", "freq_hz", "level")
     ds = xr.Dataset({**{c: (dims, v) for c, v in data.items()}, "contacts_per_cycle": (dims[:4], contacts),
                      "ran": (dims[:4], ran)},

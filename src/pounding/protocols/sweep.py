@@ -20,16 +20,18 @@ from ..engine import State
 from ..engine.layout import T
 from ..engine.control import (DEFAULT_MAX_STEPS, check_budget, fastest_rate, new_control,
                                run_interruptibly, steps_per_second, stop_requested)
-from ..engine.simulate import check_rtol, check_state, kernel_system
+from ..engine.simulate import check_rtol, check_state
 from ..excitation import MAX_FREQ_HZ, GRAVITY_M_S2, Harmonic
 from ..model import MeasurementChain, Oscillator
-from ..engine.assembly import check_system, is_single_mass
+from ..engine.assembly import assemble, check_system, is_single_mass
 from .._runner.progress import Progress, progress_reporter
-from ..engine.kernels import W_CYCLES, WINDOW_COLS, StepOutput, run_step
+from ..engine.kernels import W_CYCLES, StepOutput, run_step, run_window
+from ..metrics.impacts import SIDE_SUMS
 from .sweep_result import SweepResult, sweep_message
+from .sweep_window import from_step, labels_of, measure, slot_masses, strobes
 
-if TYPE_CHECKING:
-    from .structure_sweep_result import StructureSweepResult
+if TYPE_CHECKING:  # pragma: no cover
+    from ..model import Adjacent, Structure
 
 Direction = Literal["up", "down"]
 SteadyMode = Literal["adaptive", "fixed"]
@@ -265,7 +267,7 @@ def with_sweep_options(fn: Callable) -> Callable:
 
 @with_sweep_options
 @renamed_keyword("oscillator", "system")
-def sweep(system: Oscillator, a_g: float, freqs_hz: np.ndarray | None = None,
+def sweep(system: "Oscillator | Structure | Adjacent", a_g: float, freqs_hz: np.ndarray | None = None,
           direction: Direction = "up", *, state: State | None = None, progress: Progress = False,
           **options: Any) -> SweepResult:
     """Stepped-sine sweep: hold each frequency in turn, the state carried over, and measure.
@@ -275,8 +277,9 @@ def sweep(system: Oscillator, a_g: float, freqs_hz: np.ndarray | None = None,
 
     Parameters
     ----------
-    system : Oscillator
-        The system (with bumpers: YBs; without: NBs).
+    system : Oscillator, Structure or Adjacent
+        The system (a single mass with bumpers: YBs; without: NBs; a building, with its walls; two adjacent
+        buildings).
     a_g : float
         Peak table acceleration in g (``A_t = a_g * 9.81`` m/s^2), > 0.
     freqs_hz : array_like, shape (n,), optional
@@ -330,8 +333,9 @@ def sweep(system: Oscillator, a_g: float, freqs_hz: np.ndarray | None = None,
     Returns
     -------
     SweepResult
-        Per step: alpha, excursion, eta, e, contacts and the impact characterization per
-        side, steadiness and period multiple; the resonance, contact range and jumps.
+        Per step and level: alpha, excursion, eta, e, contacts and the impact characterization per
+        side, drift, steadiness and period multiple; per contact slot its contacts' means; the
+        resonance, contact range and jumps.
 
     Raises
     ------
@@ -376,8 +380,13 @@ def sweep(system: Oscillator, a_g: float, freqs_hz: np.ndarray | None = None,
 
 
 def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
-             control: np.ndarray | None = None) -> "SweepResult | StructureSweepResult":
+             control: np.ndarray | None = None) -> SweepResult:
     """Run a validated plan of any system step by step; ``advance(1)`` after each step.
+
+    Each step runs in the core until steady (or for its fixed cycles).  Its own window measures one moving
+    level and one wall's two sides (a single mass, a one-level structure); a system with more is measured
+    on its window run once more from the window's exact start: every level's extrema, every storey's drift,
+    every contact slot's impacts (``sweep_window``).
 
     ``control`` is the run control the step kernels poll (``engine.control``; default a
     fresh one with the plan's budget): another thread stops the sweep with
@@ -385,33 +394,53 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
     ``advance``) the unfinished step is dropped and :class:`~pounding.Interrupted` is
     raised, carrying the finished steps.
     """
-    if not is_single_mass(plan.oscillator):  # (each level measured: a window run once more)
-        from .structure_sweep import run_structure_plan
-
-        return run_structure_plan(plan, advance, control)
     ctl = new_control(plan.max_steps) if control is None else control
-    osc = plan.oscillator
-    system = kernel_system(osc)
+    model = plan.oscillator
+    asm = assemble(model)
+    system = asm.system
     n_steps = plan.freqs_hz.size
-    state = (plan.state or State.at_rest(osc)).vector.copy()
-    n_state = state.size
-    window = np.full((n_steps, WINDOW_COLS), np.nan)
+    levels, storeys, slots = labels_of(model, asm)
+    level_dof = [d for dofs in asm.dofs for d in dofs]
+    again = level_dof != [0] or len(slots) > 2  # (more than the step's own window measures)
+    masses = slot_masses(asm)
+    level = np.full((n_steps, len(levels), 3), np.nan)       # d_max, d_min, a_abs_max
+    drift = np.full((n_steps, len(storeys), 2), np.nan)      # max, min
+    sums = np.full((n_steps, len(slots), SIDE_SUMS), np.nan)
     cycles_run = np.zeros(n_steps, dtype=np.int64)
     period_multiple = np.zeros(n_steps, dtype=np.int64)
-    window_states = np.full((n_steps, n_state), np.nan)
+    window_cycles = np.zeros(n_steps, dtype=np.int64)
+    state = (plan.state if plan.state is not None else State.at_rest(model)).vector.copy()
+    window_states = np.full((n_steps, state.size), np.nan)
     # (a window is rounded up to whole periods when adaptive: up to max_period - 1 more cycles)
     strobe_cap = plan.measure_cycles + (plan.max_period - 1 if plan.steady == "adaptive" else 0)
-    window_strobes = np.full((n_steps, strobe_cap, 2), np.nan)
+    window_strobes = np.full((n_steps, strobe_cap, 2, len(levels)), np.nan)
     step_start_s = np.full(n_steps, np.nan)
 
-    def take(i: int, f: float, start: np.ndarray, exc: Harmonic, out: StepOutput) -> int:
+    def take(i: int, f: float, start: np.ndarray, exc: Harmonic, stepped: StepOutput) -> int:
+        code, win_state = stepped.status, stepped.window_state
+        m = int(stepped.window[W_CYCLES])
+        if not again:
+            level[i], sums[i] = from_step(stepped.window, len(slots))
+            window_strobes[i, :len(stepped.window_strobes), :, 0] = stepped.window_strobes
+        elif code == Status.SUCCESS:  # the window once more, from its exact start, every level measured
+            t0 = float(win_state[T])
+            at = Harmonic(plan.a_g, f, phase=-(exc.omega_rad_s * t0))
+            period = 1.0 / float(f)
+            out = run_window(system, at.peak_m_s2, at.omega_rad_s, at.phase, win_state, t0 + m * period,
+                             period, plan.rtol, plan.max_events_per_cycle * m, ctl)
+            code = out.status
+            if code == Status.INTERRUPTED:
+                return code
+            if code == Status.SUCCESS:
+                measure(out, level_dof, at.peak_m_s2, masses, level[i], drift[i], sums[i], system.n)
+                window_strobes[i, :min(m, strobe_cap)] = strobes(out.samples, level_dof, t0, period, m,
+                                                                 system.n)[:strobe_cap]
         step_start_s[i] = start[T]
-        window[i] = out.window
-        cycles_run[i] = out.cycles_run
-        period_multiple[i] = out.period_multiple
-        window_states[i] = out.window_state
-        window_strobes[i, :len(out.window_strobes)] = out.window_strobes
-        return out.status
+        cycles_run[i] = stepped.cycles_run
+        period_multiple[i] = stepped.period_multiple
+        window_cycles[i] = m
+        window_states[i] = win_state
+        return code
 
     state, done, status, interrupted = plan.steps(system, state, ctl, advance, take)
     measured = measured_impacts = None
@@ -420,7 +449,7 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
 
         try:  # (the step that stopped the sweep early is not measured: its window did not finish)
             measured, measured_impacts = measure_steps(
-                osc, plan.a_g, plan.freqs_hz, window_states, window[:, W_CYCLES],
+                model, plan.a_g, plan.freqs_hz, window_states, window_cycles.astype(float),
                 done if status == Status.SUCCESS else done - 1, plan.measurement,
                 omega_min_rad_s=plan.omega_min_rad_s, steady_rtol=plan.steady_rtol, rtol=plan.rtol,
                 max_events_per_cycle=plan.max_events_per_cycle, max_steps=plan.max_steps,
@@ -428,12 +457,14 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
         except KeyboardInterrupt:
             interrupted = True
     result = SweepResult(
-        oscillator=osc, a_g=plan.a_g, freqs_hz=plan.freqs_hz, direction=plan.direction,
+        system=model, a_g=plan.a_g, freqs_hz=plan.freqs_hz, direction=plan.direction,
         steady_mode=plan.steady, cycles=plan.cycles, measure_cycles=plan.measure_cycles,
         omega_min_rad_s=plan.omega_min_rad_s, f_ref_hz=plan.f_ref_hz, g=GRAVITY_M_S2,
-        window=window, cycles_run=cycles_run, period_multiple=period_multiple,
-        window_states=window_states, window_strobes=window_strobes, step_start_s=step_start_s,
-        steps_done=done, final_state=State._from_kernel(state, system.layout), status=status,
+        levels=levels, storeys=storeys, contact_slots=slots, level_metrics=level, drift_metrics=drift,
+        contact_sums=sums, window_cycles=window_cycles, cycles_run=cycles_run,
+        period_multiple=period_multiple, window_states=window_states, window_strobes=window_strobes,
+        step_start_s=step_start_s, steps_done=done, final_state=State._of(state, asm.dofs, system.layout),
+        status=status,
         message=sweep_message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted),
         measurement=plan.measurement if measured is not None else None, measured=measured,
         measured_impacts=measured_impacts)

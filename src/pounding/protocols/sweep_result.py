@@ -1,4 +1,5 @@
-"""What a sweep returns: per-step metrics, with the resonance, contact range and jumps."""
+"""What a sweep returns, for any system: per step and level, the paper's metrics and the structure's (alpha,
+extrema, eta, e, the contacts and their means, drift), with the resonance, the contact range and the jumps."""
 
 from __future__ import annotations
 
@@ -11,49 +12,51 @@ import numpy as np
 import pandas as pd
 
 from .._checks import integer, positive
-from .._errors import InputError, Problem, Status
+from .._errors import InputError, Problem, Status, warn_renamed
 from ..engine import State
-from ..metrics.impacts import IMPACT_COLUMNS, S_COUNT, S_N_RESTITUTION, S_SUMS, SIDE_SUMS
-from ..engine.kernels import W_AMAX, W_CYCLES, W_DMAX, W_DMIN, W_SUMS
-from .measured_sweep import MEASURED_COLUMNS
+from ..metrics.impacts import IMPACT_COLUMNS, S_COUNT
+from .sweep_table import contacts_table, dataset, exact_table, measured_table
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
 
     from ..metrics import HysteresisLoop
-    from ..model import Oscillator
 
-# the columns of SweepResult.to_dataframe(), in order
+# the columns of SweepResult.to_dataframe() after freq_hz, nu, (structure,) level; in order
 STEP_COLUMNS = ("freq_hz", "nu", "alpha", "excursion_m", "displacement_max_m", "displacement_min_m",
                 "eta", "e", "contact", "contacts_per_cycle", *IMPACT_COLUMNS, "steady",
                 "period_multiple", "cycles_run")
-SIDE_COLUMNS = ("contacts_per_cycle", *IMPACT_COLUMNS)
-SIDES = ("left", "right")
+LEVEL_COLUMNS = ("abs_acceleration_max_m_s2", "drift_peak_m", "drift_ratio_peak")
 DEFAULT_JUMP_RATIO = 1.5
 
-
-# a sweep's quantities (``SweepResult.quantities``): the paper's Table 2, 3 and 4 rows
+# a sweep's paper quantities (``SweepResult.paper_quantities``): the paper's Table 2, 3 and 4 rows
 PAPER_QUANTITIES = ("nu_r", "alpha", "eta", "e", "contact_nu_min", "contact_nu_max", "excursion_max_m",
                     "mean_force_over_mg", "contact_time_ms", "peak_force_over_mg",
                     "dissipated_energy_per_mass", "restitution")
+# a structure's sweep in a few numbers (``SweepResult.quantities`` of a structure)
+STRUCTURE_QUANTITIES = ("nu_r_top", "alpha_top_max", "alpha_base_max", "drift_ratio_max", "contact_nu_min",
+                        "contact_nu_max")
 
 
 @dataclass(frozen=True, eq=False)
 class SweepResult:
-    """Result of :func:`pounding.sweep`: one row of metrics per frequency step.
+    """Result of :func:`pounding.sweep`, for any system: per frequency step, each level's metrics over the
+    step's window (its last cycles), exact (event-located extrema, every contact whole).
 
-    The metrics are measured over each step's last cycles (the window) and are exact
-    (event-located extrema, every contact whole).  Use :meth:`to_dataframe` /
-    :meth:`to_xarray` for the table, :attr:`nu_r`, :attr:`contact_range_hz` and
-    :meth:`jumps` for the sweep's features, :meth:`hysteresis_loop` for Figs. 7/15 and
-    :meth:`plot` for alpha and eta against nu.
+    A single mass is the one-level case: one row per step.  Use :meth:`to_dataframe` / :meth:`to_xarray`
+    for the table (one row per step and level), :meth:`contacts_dataframe` per contact slot,
+    :attr:`nu_r`, :attr:`contact_range_hz` and :meth:`jumps` for the sweep's features,
+    :meth:`paper_quantities` for the paper's Tables 2-4, :meth:`hysteresis_loop` for Figs. 7/15 and
+    :meth:`plot`.
 
     Attributes
     ----------
-    oscillator : Oscillator
+    system : Oscillator, Structure or Adjacent
         The system swept.
     a_g : float
         Peak table acceleration in g (``A_t = a_g g``, :attr:`peak_m_s2`).
+    freqs_hz : ndarray, shape (n,)
+        Step frequencies in stepping order (increasing "up", decreasing "down").
     direction : {"up", "down"}
         The stepping direction.
     steady_mode : {"adaptive", "fixed"}
@@ -61,24 +64,33 @@ class SweepResult:
     cycles : int
         Cycles per step (fixed mode), or the most per step (adaptive mode: ``max_cycles``).
     measure_cycles : int
-        Cycles measured at the end of each step (the window).
+        Cycles measured at the end of each step (the window; adaptive: rounded up to whole periods).
     omega_min_rad_s : float
         ``Omega_min`` of ``D_tmax = A_t / Omega_min^2``, rad/s (normalizes ``e``).
     f_ref_hz : float
         ``f_R`` of ``nu = f / f_R``, Hz.
     g : float
         The acceleration of gravity used, m/s^2 (9.81).
-    freqs_hz : ndarray, shape (n,)
-        Step frequencies in stepping order (increasing "up", decreasing "down").
-    window : ndarray, shape (n, WINDOW_COLS)
-        Raw window measurements (NaN for steps not run); see ``engine.kernels``.
-    cycles_run, period_multiple : ndarray of int, shape (n,)
-        Cycles each step ran; period multiple of its steady response (0: not periodic).
+    levels, storeys, contact_slots : tuple of tuple
+        What the metrics' columns are: a level ``(structure, level)``; a storey ``(structure, storey)``
+        (storey ``s`` carries level ``s``); a contact slot ``(structure, "wall", wall, level, side)`` or
+        ``(-1, "link", link, level_first, "")`` (a single mass: level ``(0, 0)``, its bumpers wall 0).
+    level_metrics : ndarray, shape (n, n_levels, 3)
+        Each level's exact displacement max and min (m, relative to the ground) and absolute acceleration
+        peak (m/s^2) over the window (NaN: a step not measured).
+    drift_metrics : ndarray, shape (n, n_storeys, 2)
+        Each storey's exact drift max and min, m.
+    contact_sums : ndarray, shape (n, n_slots, SIDE_SUMS)
+        Per contact slot, over the contacts that ended in the window: their number, the number with a
+        restitution, and the sums of the ``IMPACT_COLUMNS`` (:mod:`pounding.metrics.impacts`' ``S_*``).
+    window_cycles, cycles_run, period_multiple : ndarray of int, shape (n,)
+        Each step's window's cycles; the cycles it ran; the period multiple of its steady response (0: not
+        periodic).
     window_states : ndarray, shape (n, n_state)
         The exact state at the start of each step's window (what loops restart from).
-    window_strobes : ndarray, shape (n, cycles, 2)
-        Each step's stroboscopic samples over its window: displacement (m) and velocity (m/s)
-        at the end of each of its cycles (table phase 0); NaN past the window's length.
+    window_strobes : ndarray, shape (n, cycles, 2, n_levels)
+        Each level's displacement (m) and velocity (m/s) at the end of each of the window's cycles (table
+        phase 0: the stroboscopic section); NaN past a step's window and where it was not measured.
     step_start_s : ndarray, shape (n,)
         When each step began (table phase 0 there), s.
     steps_done : int
@@ -88,11 +100,11 @@ class SweepResult:
     status, message : Status, str
         ``Status.SUCCESS`` or why the sweep stopped early, and a summary in words.
     measurement : MeasurementChain or None
-        The chain the metrics were measured through (``sweep(..., measurement=)``), or None:
+        The chain a single mass's metrics were measured through (``sweep(..., measurement=)``), or None:
         the exact metrics.
     measured : DataFrame or None
-        With a chain: per step, the metrics of its window as measured (alpha, excursion, eta,
-        e, the contacts and their means) and ``window_start_s``; they replace the exact ones in
+        With a chain: per step, the metrics of its window as measured (alpha, excursion, eta, e, the
+        contacts and their means) and ``window_start_s``; they replace the exact ones in
         :meth:`to_dataframe` and the sweep's features.
     measured_impacts : DataFrame or None
         With a chain: every contact read in the windows (the lab's columns, with ``freq_hz``).
@@ -111,9 +123,25 @@ class SweepResult:
     [True, False, False]
     >>> sw.jumps()[["freq_from_hz", "freq_to_hz", "kind"]].values.tolist()
     [[1.5, 2.0, 'down'], [2.0, 2.5, 'down']]
+
+    A two-storey building on a linear isolator, a stop at its base 2 cm away, swept at 0.1 g:
+
+    >>> iso = pounding.Isolator(slopes_n_m=[2.0e5], breakpoints_m=[],
+    ...                         damping_n_s_m=4.0e3)
+    >>> stop = pounding.Wall(0, 0.02, 0.02, pounding.KelvinVoigt(1.0e8, 1.0e4))
+    >>> storeys = [pounding.Storey(1.0e3, 2.0e6, 2.0e3)] * 2
+    >>> b = pounding.Structure(2.0e3, iso, storeys, [stop])
+    >>> res = pounding.sweep(b, 0.1, [1.0, 1.5, 2.0])
+    >>> res.message
+    'All 3 steps reached a periodic steady state.'
+    >>> res.alpha.shape  # (steps, levels)
+    (3, 3)
+    >>> df = res.to_dataframe()  # one row per step and level
+    >>> list(df.columns[:5])
+    ['freq_hz', 'nu', 'level', 'alpha', 'excursion_m']
     """
 
-    oscillator: "Oscillator" = field(repr=False)
+    system: Any = field(repr=False)
     a_g: float
     freqs_hz: np.ndarray = field(repr=False)
     direction: str
@@ -123,7 +151,13 @@ class SweepResult:
     omega_min_rad_s: float
     f_ref_hz: float
     g: float
-    window: np.ndarray = field(repr=False)
+    levels: tuple = field(repr=False)
+    storeys: tuple = field(repr=False)
+    contact_slots: tuple = field(repr=False)
+    level_metrics: np.ndarray = field(repr=False)
+    drift_metrics: np.ndarray = field(repr=False)
+    contact_sums: np.ndarray = field(repr=False)
+    window_cycles: np.ndarray = field(repr=False)
     cycles_run: np.ndarray = field(repr=False)
     period_multiple: np.ndarray = field(repr=False)
     window_states: np.ndarray = field(repr=False)
@@ -136,6 +170,19 @@ class SweepResult:
     measurement: Any = None
     measured: pd.DataFrame | None = field(default=None, repr=False)
     measured_impacts: pd.DataFrame | None = field(default=None, repr=False)
+
+    # ---- names before one result served every system
+    @property
+    def oscillator(self) -> Any:
+        """The system swept (its name before: :attr:`system`)."""
+        warn_renamed("SweepResult.oscillator", "SweepResult.system", why="one result for every system")
+        return self.system
+
+    @property
+    def structure(self) -> Any:
+        """The system swept (its name before: :attr:`system`)."""
+        warn_renamed("SweepResult.structure", "SweepResult.system", why="one result for every system")
+        return self.system
 
     # ---- derived scalars
     @property
@@ -150,75 +197,91 @@ class SweepResult:
 
     @property
     def total_gap_m(self) -> float:
-        """``Delta = g_L + g_R`` (NaN without bumpers), m."""
-        b = self.oscillator.bumpers
-        return math.nan if b is None else b.total_gap
+        """``Delta`` of the first structure's lowest level with a wall (a single mass: ``g_L + g_R`` of its
+        bumpers), m; NaN without walls."""
+        return float(next((g for g in self.level_gaps_m if not math.isnan(g)), math.nan))
 
     @property
     def success(self) -> bool:
         """True when every step ran (``status`` ``SUCCESS``); steps may be unsettled (``steady``)."""
         return self.status == Status.SUCCESS and self.steps_done == self.freqs_hz.size
 
+    @property
+    def nu(self) -> np.ndarray:
+        """``f / f_R`` of each step, shape (n,)."""
+        return self.freqs_hz / self.f_ref_hz
+
+    @property
+    def alpha(self) -> np.ndarray:
+        """Each level's ``max |a_abs| / A_t`` over each step's window, shape (n, n_levels)."""
+        return self.level_metrics[:, :, 2] / self.peak_m_s2
+
+    @property
+    def alpha_base(self) -> np.ndarray:
+        """The (first) structure's base's alpha per step, shape (n,) (a fixed base: 1, the ground's)."""
+        return self.alpha[:, 0]
+
+    @property
+    def alpha_top(self) -> np.ndarray:
+        """The (first) structure's top level's alpha per step, shape (n,) (a single mass: its own)."""
+        return self.alpha[:, self._top]
+
+    @property
+    def contacts_per_cycle(self) -> np.ndarray:
+        """Each contact slot's contacts per cycle over each step's window, shape (n, n_slots)."""
+        with np.errstate(invalid="ignore", divide="ignore"):
+            return self.contact_sums[:, :, S_COUNT] / self.window_cycles[:, None]
+
+    @property
+    def peak_drift(self) -> np.ndarray:
+        """Each storey's largest absolute drift per step, m, shape (n, n_storeys)."""
+        return np.maximum(np.abs(self.drift_metrics[:, :, 0]), np.abs(self.drift_metrics[:, :, 1]))
+
+    @cached_property
+    def _top(self) -> int:
+        return max(q for q, (b, _) in enumerate(self.levels) if b == 0)
+
+    def _level(self, level: int) -> int:
+        n = len(self.levels)
+        return integer("level", level, -n, n - 1) % n
+
+    @cached_property
+    def _structures(self) -> tuple:
+        from ..engine.assembly import structures_of
+
+        return structures_of(self.system)[0]
+
+    @property
+    def level_gaps_m(self) -> np.ndarray:
+        """Each level's total gap ``Delta`` (its walls' sides' gaps summed; a single mass: ``g_L + g_R``), m,
+        shape (n_levels,); NaN without a wall at the level."""
+        gaps = []
+        for b, lv in self.levels:
+            walls = [w for w in self._structures[b].walls if w.level == lv]
+            gaps.append(sum(w.gap_left_m + w.gap_right_m for w in walls) if walls else math.nan)
+        return np.array(gaps)
+
     # ---- the table
     @cached_property
     def _table(self) -> pd.DataFrame:
-        exact = self._exact_table
-        if self.measured is None:
-            return exact
-        table = exact.copy()
-        ran = np.arange(len(table)) < self.steps_done
-        for q in MEASURED_COLUMNS:
-            table[q] = self.measured[q].to_numpy()
-        table["contact"] = np.where(ran, self.measured["contact"].eq(True).to_numpy(), False)  # (NaN: unread)
-        table["bumper_dissipation_j"] = np.nan  # (not measurable from the accelerations)
-        per_side = _measured_sides(self.measured_impacts, self.freqs_hz, self.window[:, W_CYCLES])
-        for side in ("_left", "_right"):
-            for k in SIDE_COLUMNS:
-                table[k + side] = per_side.get(k + side, np.full(len(table), np.nan))
-        return table
+        return measured_table(self, self._exact_table)
 
     @cached_property
     def _exact_table(self) -> pd.DataFrame:
-        w = self.window
-        excursion = w[:, W_DMAX] - w[:, W_DMIN]
-        cols: dict[str, Any] = {
-            "freq_hz": self.freqs_hz,
-            "nu": self.freqs_hz / self.f_ref_hz,
-            "alpha": w[:, W_AMAX] / self.peak_m_s2,
-            "excursion_m": excursion,
-            "displacement_max_m": w[:, W_DMAX],
-            "displacement_min_m": w[:, W_DMIN],
-            # (undefined at zero gap, as without bumpers)
-            "eta": excursion / self.total_gap_m if self.total_gap_m > 0 else np.full_like(excursion, np.nan),
-            "e": excursion / self.d_tmax_m,
-        }
-        sides = [w[:, W_SUMS + j * SIDE_SUMS: W_SUMS + (j + 1) * SIDE_SUMS] for j in range(2)]
-        both = sides[0] + sides[1]
-        count = both[:, S_COUNT]
-        ran = np.arange(w.shape[0]) < self.steps_done
-        cols["contact"] = np.where(ran, count > 0, False)
-        per_side: dict[str, np.ndarray] = {}
-        for name, sums in (("", both), ("_left", sides[0]), ("_right", sides[1])):
-            for key, value in _impact_means(sums, w[:, W_CYCLES]).items():
-                per_side[key + name] = value
-        cols.update({k: per_side[k] for k in SIDE_COLUMNS})
-        cols["steady"] = np.where(ran, self.period_multiple > 0, False)
-        cols["period_multiple"] = self.period_multiple
-        cols["cycles_run"] = self.cycles_run
-        for side in ("_left", "_right"):
-            cols.update({k + side: per_side[k + side] for k in SIDE_COLUMNS})
-        return pd.DataFrame(cols)
+        return exact_table(self)
 
     def to_dataframe(self) -> pd.DataFrame:
-        """One row per step in stepping order (SI units; NaN where a step did not run).
+        """One row per step and level, steps in stepping order (a single mass: one row per step; SI units;
+        NaN where a step did not run).
 
-        Columns: ``freq_hz``, ``nu``, ``alpha``, ``excursion_m`` (``E``),
-        ``displacement_max_m``, ``displacement_min_m``, ``eta`` (``E / Delta``, NaN
-        without bumpers), ``e`` (``E / D_tmax``), ``contact``, ``contacts_per_cycle``,
-        the impact means over the window (both sides pooled): ``restitution``,
-        ``contact_time_s``, ``impulse_n_s``, ``mean_force_n``, ``peak_force_n``,
-        ``dissipated_energy_j`` (``E_d``), ``bumper_dissipation_j``; ``steady``,
-        ``period_multiple``, ``cycles_run``; then the impact columns per side with
+        Columns: ``freq_hz``, ``nu``, (``structure``: ``first`` or ``second`` of a pair), ``level``,
+        ``alpha``, ``excursion_m`` (``E``), ``displacement_max_m``, ``displacement_min_m``, ``eta``
+        (``E / Delta`` over the level's walls' total gap, NaN without a wall), ``e`` (``E / D_tmax``),
+        ``contact``, ``contacts_per_cycle``, the impact means over the window at the level's walls (both
+        sides pooled): ``restitution``, ``contact_time_s``, ``impulse_n_s``, ``mean_force_n``,
+        ``peak_force_n``, ``dissipated_energy_j`` (``E_d``), ``bumper_dissipation_j``; ``steady``,
+        ``period_multiple``, ``cycles_run``; ``abs_acceleration_max_m_s2``, the storey below's
+        ``drift_peak_m`` and ``drift_ratio_peak`` (NaN at a base); then the impact columns per side with
         suffixes ``_left`` and ``_right``.
         """
         return self._table.copy()
@@ -228,58 +291,62 @@ class SweepResult:
         measurement chain; the same as :meth:`to_dataframe` without one."""
         return self._exact_table.copy()
 
+    def contacts_dataframe(self) -> pd.DataFrame:
+        """One row per step and contact slot: ``freq_hz``, ``nu``, ``structure`` (-1 a link), ``kind``
+        (``wall`` or ``link``), its ``index``, ``level``, ``side``, then ``contacts_per_cycle`` and the impact
+        means over the window (``restitution``, ``contact_time_s``, ... as :meth:`to_dataframe`'s)."""
+        return contacts_table(self)
+
     def to_xarray(self) -> "xr.Dataset":
-        """The table as a Dataset on ``freq_hz`` (increasing), with ``nu`` and the step order."""
-        import xarray as xr
+        """The table as a Dataset on ``freq_hz`` (increasing) and ``level`` (its ``nu`` and the step order as
+        ``step``), with each contact slot's means along ``slot`` (``wall 0 left``, ...; its ``slot_kind``,
+        ``slot_level`` and ``slot_side`` as coordinates; ``contacts_per_cycle_per_contact``, ...) and each
+        storey's drift extrema along ``storey`` (``drift_max_m``, ``drift_min_m``), where there are any;
+        units in each variable's ``units``; the sweep's settings, status and message as attributes."""
+        return dataset(self)
 
-        df = self._table.copy()
-        df["step"] = np.arange(len(df))
-        df = df.sort_values("freq_hz").set_index("freq_hz")
-        ds = xr.Dataset.from_dataframe(df.drop(columns=["nu"]))
-        ds = ds.assign_coords(nu=("freq_hz", df["nu"].to_numpy()))
-        for name in ("contact", "steady"):
-            ds[name] = ds[name].astype(bool)
-        ds["freq_hz"].attrs["units"] = "Hz"
-        ds.attrs.update(self._attrs())
-        return ds
-
-    def _attrs(self) -> dict[str, Any]:
-        return {"a_g": self.a_g, "direction": self.direction, "steady_mode": self.steady_mode,
-                "cycles": self.cycles, "measure_cycles": self.measure_cycles,
-                "omega_min_rad_s": self.omega_min_rad_s, "f_ref_hz": self.f_ref_hz,
-                "total_gap_m": self.total_gap_m, "d_tmax_m": self.d_tmax_m,
-                "status": str(self.status), "message": self.message,
-                "measurement": "exact" if self.measurement is None else self.measurement.describe(),
-                "system": self.oscillator.to_toml_text()}
-
-    # ---- the sweep's features
-    def _done(self) -> pd.DataFrame:
-        df = self._table.iloc[: self.steps_done]
+    # ---- the sweep's features (of the first structure's top level: a single mass's own)
+    def _rows(self, q: int) -> pd.DataFrame:
+        """Level ``q``'s rows of the table over the steps that ran (an InputError if none did)."""
+        df = self._table.iloc[q::len(self.levels)].iloc[: self.steps_done]
         if df.empty:
             raise InputError(Problem.NOT_STARTED, "sweep", self.direction, what="its features")
         return df
 
+    def resonance_of(self, level: int = -1) -> float:
+        """The step frequency where ``level``'s alpha peaks, Hz (``level`` counts through :attr:`levels`;
+        -1 the last: a single structure's top level); NaN where no step measured it."""
+        alpha = self._rows(self._level(level))["alpha"].to_numpy()
+        if not np.any(np.isfinite(alpha)):
+            return math.nan
+        return float(self.freqs_hz[int(np.nanargmax(alpha))])
+
     @property
     def resonance_hz(self) -> float:
-        """Frequency of the step with the largest alpha (the pseudo-resonance ``f``), Hz."""
-        df = self._done()
-        return float(df["freq_hz"].iloc[int(np.nanargmax(df["alpha"].to_numpy()))])
+        """Frequency of the step with the largest alpha of the (first) structure's top level (a single mass:
+        the pseudo-resonance ``f``), Hz."""
+        return self.resonance_of(self._top)
 
     @property
     def nu_r(self) -> float:
-        """The pseudo-resonance ``nu_R = f / f_R`` where alpha peaks."""
+        """The pseudo-resonance ``nu_R = f / f_R`` where :attr:`resonance_hz` is."""
         return self.resonance_hz / self.f_ref_hz
 
     @property
     def alpha_max(self) -> float:
-        """The largest alpha over the steps that ran."""
-        return float(np.nanmax(self._done()["alpha"]))
+        """The largest alpha of the (first) structure's top level over the steps that ran."""
+        return float(np.nanmax(self._rows(self._top)["alpha"]))
 
     @property
     def contact_freqs_hz(self) -> np.ndarray:
-        """Frequencies of the steps with contact, increasing, Hz."""
-        df = self._done()
-        return np.sort(df.loc[df["contact"], "freq_hz"].to_numpy())
+        """Frequencies of the steps with a contact (at any wall or link), increasing, Hz."""
+        n_lev = len(self.levels)
+        done = self._table.iloc[: len(self._rows(0)) * n_lev]  # (the table's, measured if it was)
+        hit = done["contact"].to_numpy(bool).reshape(-1, n_lev).any(axis=1)
+        links = [c for c, slot in enumerate(self.contact_slots) if slot[1] == "link"]
+        if links:
+            hit |= np.sum(self.contact_sums[: self.steps_done, links, S_COUNT], axis=1) > 0
+        return np.sort(self.freqs_hz[: self.steps_done][hit])
 
     @property
     def contact_range_hz(self) -> tuple[float, float] | None:
@@ -291,8 +358,8 @@ class SweepResult:
     def jumps(self, ratio: float = DEFAULT_JUMP_RATIO) -> pd.DataFrame:
         """Where the response leaves one branch for another along the sweep.
 
-        A jump is a step-to-step change of alpha or of the excursion by a factor
-        ``ratio`` or more (default 1.5), in stepping order.
+        A jump is a step-to-step change of the (first) structure's top level's alpha or excursion by a
+        factor ``ratio`` or more (default 1.5), in stepping order.
 
         Returns
         -------
@@ -304,7 +371,7 @@ class SweepResult:
         ratio = positive("ratio", ratio, "(a factor > 1)")
         if ratio <= 1.0:
             raise InputError(Problem.TOO_SMALL, "ratio", ratio, minimum="1 (exclusive)", hint="")
-        df = self._done()
+        df = self._rows(self._top)
         a = df["alpha"].to_numpy()
         e = df["excursion_m"].to_numpy()
         rows = []
@@ -323,32 +390,69 @@ class SweepResult:
                    "excursion_to_m", "contact_from", "contact_to", "kind"]
         return pd.DataFrame(rows, columns=columns)
 
-    def quantities(self) -> dict[str, float]:
-        """The sweep in a few numbers (a campaign's Tables 2-4 row, a study point's), by their table names.
+    def paper_quantities(self, level: int = 0) -> dict[str, float]:
+        """The paper's per-sweep quantities (Tables 2-4) of one level (default the (first) structure's base:
+        what a shaking table's rig carries; a single mass: itself), by their table names.
 
-        Table 2's are over the sweep (``nu_r``, max ``alpha``, ``eta``, ``e``, the contact range in ``nu``;
-        and the largest excursion ``excursion_max_m``, m); Tables 3 and 4's are the impact means at the
-        resonance step (``contact_time_ms``, ``restitution``, ``mean_force_over_mg``, ``peak_force_over_mg``,
-        ``dissipated_energy_per_mass`` in m^2/s^2).  NaN where a quantity does not exist (no contact, no
-        bumpers, no step done).
+        Over the sweep: ``nu_r`` and the largest ``alpha`` of the level, the largest ``eta`` (the level's
+        excursion over its walls' total gap; NaN without a wall there) and ``e``, the largest excursion
+        ``excursion_max_m`` (m), the contact range in ``nu`` (at the level's walls); at the level's
+        resonance step, its walls' impact means: ``contact_time_ms``, ``restitution``,
+        ``mean_force_over_mg``, ``peak_force_over_mg`` and ``dissipated_energy_per_mass`` (m^2/s^2; ``m`` the
+        level's mass).  NaN where a quantity does not exist (no contact, no wall, no step measured).
         """
+        q = self._level(level)
+        out = dict.fromkeys(PAPER_QUANTITIES, math.nan)
         if self.steps_done == 0:
-            return {k: math.nan for k in PAPER_QUANTITIES}
-        df = self.to_dataframe().iloc[: self.steps_done]
-        rng = self.contact_range_hz
-        step = df.iloc[self.step_index(self.resonance_hz)]
-        mg = self.oscillator.mass_kg * self.g
-        return {
-            "nu_r": self.nu_r, "alpha": self.alpha_max, "eta": df["eta"].max(), "e": df["e"].max(),
-            "excursion_max_m": df["excursion_m"].max(),
-            "contact_nu_min": np.nan if rng is None else rng[0] / self.f_ref_hz,
-            "contact_nu_max": np.nan if rng is None else rng[1] / self.f_ref_hz,
+            return out
+        df = self._rows(q)
+        alpha = df["alpha"].to_numpy()
+        if not np.any(np.isfinite(alpha)):
+            return out
+        i = int(np.nanargmax(alpha))
+        hit = np.sort(df.loc[df["contact"], "freq_hz"].to_numpy())
+        step = df.iloc[i]
+        b, lv = self.levels[q]
+        mass = float(self._structures[b].masses_kg[lv])
+        mg = mass * self.g
+        out.update({
+            "nu_r": float(df["freq_hz"].iloc[i]) / self.f_ref_hz, "alpha": float(np.nanmax(alpha)),
+            "eta": df["eta"].max(), "e": df["e"].max(), "excursion_max_m": df["excursion_m"].max(),
+            "contact_nu_min": float(hit[0]) / self.f_ref_hz if hit.size else math.nan,
+            "contact_nu_max": float(hit[-1]) / self.f_ref_hz if hit.size else math.nan,
             "mean_force_over_mg": step["mean_force_n"] / mg,
             "contact_time_ms": step["contact_time_s"] * 1e3,
             "peak_force_over_mg": step["peak_force_n"] / mg,
-            "dissipated_energy_per_mass": step["dissipated_energy_j"] / self.oscillator.mass_kg,
-            "restitution": step["restitution"],
-        }
+            "dissipated_energy_per_mass": step["dissipated_energy_j"] / mass,
+            "restitution": step["restitution"]})
+        return out
+
+    def quantities(self) -> dict[str, float]:
+        """The sweep in a few numbers (a campaign's Tables 2-4 row, a study point's), by their table names.
+
+        A single mass: its :meth:`paper_quantities`.  A structure (or a pair): ``nu_r_top`` (where the top
+        level's alpha peaks), ``alpha_top_max``, ``alpha_base_max``, ``drift_ratio_max`` (over every storey
+        and step), ``contact_nu_min`` and ``contact_nu_max`` (the range of ``nu`` with a contact at any wall
+        or link; NaN without).  NaN for a sweep with no step done.
+        """
+        from ..engine.assembly import is_single_mass
+
+        if is_single_mass(self.system):
+            return self.paper_quantities(0)
+        done = slice(0, self.steps_done)
+        if self.steps_done == 0:
+            return dict.fromkeys(STRUCTURE_QUANTITIES, math.nan)
+        frame = self._table.iloc[: self.steps_done * len(self.levels)]
+        hits = np.sort(self.nu[done][np.sum(self.contact_sums[done, :, S_COUNT], axis=1) > 0])
+
+        def largest(values: np.ndarray) -> float:  # (NaN where no step measured it: no warning)
+            return float(np.nanmax(values)) if np.any(np.isfinite(values)) else math.nan
+
+        return dict(zip(STRUCTURE_QUANTITIES, (
+            self.resonance_of(self._top) / self.f_ref_hz, largest(self.alpha_top[done]),
+            largest(self.alpha_base[done]),
+            largest(frame["drift_ratio_peak"].to_numpy()) if self.storeys else math.nan,
+            float(hits[0]) if hits.size else math.nan, float(hits[-1]) if hits.size else math.nan)))
 
     def step_index(self, freq_hz: float) -> int:
         """Index (stepping order) of the step at ``freq_hz`` (to 1e-9 Hz)."""
@@ -361,7 +465,7 @@ class SweepResult:
 
     def hysteresis_loop(self, freq_hz: float, *, total_gap_m: float | None = None,
                         points_per_cycle: int = 2000) -> "HysteresisLoop":
-        """The loop ``r = F_I / (M g)`` against ``d = D / Delta`` of one step (Figs. 7, 15).
+        """The loop ``r = F_I / (M g)`` against ``d = D / Delta`` of one step of a single mass (Figs. 7, 15).
 
         The step's window is re-run exactly from its saved state over one period of the
         response (``period_multiple`` cycles, or one cycle if it was not periodic), with
@@ -378,72 +482,43 @@ class SweepResult:
             Uniform samples per forcing cycle.
         """
         from ..engine import simulate
+        from ..engine.assembly import assemble
         from ..excitation import Harmonic
         from ..metrics import HysteresisLoop
 
+        if len(self.levels) != 1:
+            raise InputError(Problem.WRONG_MODE, "hysteresis_loop", freq_hz, mode="a single mass's sweep",
+                             fix="plot a structure's contacts from a run of the step: pounding.simulate")
         i = self.step_index(freq_hz)
         if total_gap_m is None:
             if not self.total_gap_m > 0:  # (NaN without bumpers)
-                why = "no bumpers here" if self.oscillator.bumpers is None else "the gaps are zero"
+                why = "the gaps are zero" if self.contact_slots else "no bumpers here"
                 raise InputError(Problem.MISSING_KEY, "total_gap_m", None,
                                  choices=f"a length in m to normalize D ({why}), e.g. 0.03")
             total_gap_m = self.total_gap_m
         total_gap_m = positive("total_gap_m", total_gap_m, "m")
         points = integer("points_per_cycle", points_per_cycle, 8)
         f = float(self.freqs_hz[i])
-        from ..engine.simulate import kernel_system
-
-        state = State._from_kernel(self.window_states[i], kernel_system(self.oscillator).layout)
+        asm = assemble(self.system)
+        state = State._of(self.window_states[i], asm.dofs, asm.system.layout)
         omega = 2 * math.pi * f
         n_cyc = max(1, int(self.period_multiple[i]))
         exc = Harmonic(self.a_g, f, phase=-(omega * float(self.step_start_s[i])), g=self.g)
-        run = simulate(self.oscillator, exc, n_cyc / f, state, sample_rate_hz=points * f)
+        run = simulate(self.system, exc, n_cyc / f, state, sample_rate_hz=points * f)
         return HysteresisLoop.from_run(run, total_gap_m, f, self.a_g, n_cyc)
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
-        """alpha and eta (e without bumpers) against nu; see :func:`pounding.plots.plot_sweep`.
-        Returns its Figure."""
-        from ..plots import plot_sweep, figure_of
+        """alpha and eta (e without bumpers) against nu (a single mass), or each level's alpha and each
+        contact slot's contacts per cycle (several levels); see :func:`pounding.plots.plot_sweep` and
+        :func:`pounding.plots.plot_structure_sweep`.  Returns its Figure."""
+        from ..plots import figure_of, plot_structure_sweep, plot_sweep
 
-        return figure_of(plot_sweep(self, ax=ax, **kwargs), ax)
-
-
-def _measured_sides(impacts: pd.DataFrame | None, freqs_hz: np.ndarray,
-                    window_cycles: np.ndarray) -> dict[str, np.ndarray]:
-    """Per side, the measured contacts' means per step (``contacts_per_cycle`` and the impact
-    columns the lab measures; NaN where it cannot)."""
-    out: dict[str, np.ndarray] = {}
-    for side in SIDES:
-        for k in SIDE_COLUMNS:
-            out[f"{k}_{side}"] = np.full(freqs_hz.size, np.nan)
-        out[f"contacts_per_cycle_{side}"] = np.where(window_cycles > 0, 0.0, np.nan)
-        if impacts is None or not len(impacts):
-            continue
-        mine = impacts[impacts["side"] == side]
-        for i, f in enumerate(freqs_hz):
-            at = mine[mine["freq_hz"] == f]
-            if not len(at) or not window_cycles[i] > 0:
-                continue
-            out[f"contacts_per_cycle_{side}"][i] = len(at) / window_cycles[i]
-            for k in SIDE_COLUMNS:
-                if k in at.columns:
-                    out[f"{k}_{side}"][i] = float(at[k].mean())
-    return out
-
-
-def _impact_means(sums: np.ndarray, window_cycles: np.ndarray) -> dict[str, np.ndarray]:
-    """Window means of the impact quantities from per-side sums (NaN without contact)."""
-    count = sums[:, S_COUNT]
-    with np.errstate(invalid="ignore", divide="ignore"):
-        out = {"contacts_per_cycle": count / window_cycles}
-        for j, name in enumerate(IMPACT_COLUMNS):
-            n = sums[:, S_N_RESTITUTION] if j == 0 else count
-            out[name] = np.where(n > 0, sums[:, S_SUMS + j] / np.where(n > 0, n, 1.0), np.nan)
-    return out
+        draw = plot_sweep if len(self.levels) == 1 else plot_structure_sweep
+        return figure_of(draw(self, ax=ax, **kwargs), ax)
 
 
 def sweep_message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted) -> str:
-    """A sweep's ``message``: how it ended, in words (a single mass's or a structure's)."""
+    """A sweep's ``message``: how it ended, in words."""
     if interrupted and done == n_steps and plan.measurement is not None:
         return (f"Interrupted while measuring the windows through the chain: the {done} steps ran, "
                 "and their metrics are the exact ones (no chain).")

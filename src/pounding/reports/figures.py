@@ -73,12 +73,12 @@ def maxima(result: "CampaignResult", df: pd.DataFrame | None = None) -> pd.DataF
 
 
 def _mass(result, conf, ag, d) -> float:
-    return result.sweeps[(conf, ag, d)].oscillator.mass_kg
+    return result.sweeps[(conf, ag, d)].system.mass_kg
 
 
 def _mg(result, conf, ag, d) -> float:
     sw = result.sweeps[(conf, ag, d)]
-    return sw.oscillator.mass_kg * sw.g
+    return sw.system.mass_kg * sw.g
 
 
 def _figure(title: str, panels: int = 2, sharex: bool = True):
