@@ -21,9 +21,10 @@ from .._checks import integer, one_of
 from .._control import DEFAULT_MAX_STEPS, new_control, run_interruptibly
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from .._runner.progress import Progress, progress_reporter
-from ..engine.assembly import is_single_mass
+from ..metrics.impacts import S_COUNT
 from .sweep import MAX_CYCLES_PER_STEP, make_plan, run_plan
 from .sweep_result import SweepResult
+from .sweep_window import NAMES
 
 if TYPE_CHECKING:  # pragma: no cover
     import xarray as xr
@@ -282,48 +283,41 @@ def _diagram(osc: Any, sweeps: list, dirs: Sequence[str], transient: int, record
 
     freqs = np.sort(sweeps[0].freqs_hz)
     shape = (len(dirs), freqs.size)
-    several = not is_single_mass(osc)
-    n_levels = len(sweeps[0].levels) if several else 0
-    per_level = (n_levels,) if several else ()
-    strobes = np.full(shape + (record, 2) + per_level, np.nan)
+    levels = sweeps[0].levels
+    n_levels = len(levels)
+    strobes = np.full(shape + (record, 2, n_levels), np.nan)
     period = np.full(shape, -1, dtype=np.int64)
-    steps = {q: np.full(shape + (per_level if q != "contacts_per_cycle" else ()), np.nan)
+    steps = {q: np.full(shape + ((n_levels,) if q != "contacts_per_cycle" else ()), np.nan)
              for q in STEP_QUANTITIES}
     for sw in sweeps:
         i = dirs.index(sw.direction)
         done = sw.steps_done
         cols = np.searchsorted(freqs, sw.freqs_hz[:done])
-        mine = sw.window_strobes[:done, :record]  # (steps, cycles, 2, levels)
-        strobes[i, cols] = mine if several else mine[..., 0]
-        if several:
-            m = sw.level_metrics[:done]
-            excursion = m[:, :, 0] - m[:, :, 1]
-            amplitude = 0.5 * np.nanmax(excursion, axis=1, initial=0.0)
-            values = {"alpha": sw.alpha[:done], "excursion_m": excursion,
-                      "contacts_per_cycle": np.nansum(sw.contacts_per_cycle[:done], axis=1)}
-            omega = 2.0 * np.pi * sw.freqs_hz[:done]
-        else:
-            df = sw.to_dataframe().iloc[:done]
-            amplitude = 0.5 * (df["displacement_max_m"] - df["displacement_min_m"]).to_numpy()
-            values = {q: df[q].to_numpy() for q in STEP_QUANTITIES}
-            omega = 2.0 * np.pi * df["freq_hz"].to_numpy()
-        period[i, cols] = periods(strobes[i, cols], amplitude, omega, max_period, rtol)
+        strobes[i, cols] = sw.window_strobes[:done, :record]
+        m = sw.level_metrics[:done]
+        excursion = m[:, :, 0] - m[:, :, 1]
+        with np.errstate(invalid="ignore", divide="ignore"):  # (every wall side and link)
+            per_cycle = np.sum(sw.contact_sums[:done, :, S_COUNT], axis=1) / sw.window_cycles[:done]
+        values = {"alpha": sw.alpha[:done], "excursion_m": excursion, "contacts_per_cycle": per_cycle}
+        amplitude = 0.5 * np.nanmax(excursion, axis=1, initial=0.0)
+        period[i, cols] = periods(strobes[i, cols], amplitude, 2.0 * np.pi * sw.freqs_hz[:done], max_period,
+                                  rtol)
         for q in STEP_QUANTITIES:
             steps[q][i, cols] = values[q]
     dims = ("direction", "freq_hz")
-    lv = ("level",) if several else ()
-    coords: dict[str, Any] = {"direction": list(dirs), "freq_hz": freqs, "cycle": np.arange(record)}
-    if several:
-        coords["level"] = np.arange(n_levels)
-        coords["level_number"] = ("level", np.array([q for _, q in sweeps[0].levels], dtype=int))
-        coords["level_structure"] = ("level", np.array([("first", "second")[b] for b, _ in sweeps[0].levels],
-                                                       dtype=str))
+    coords: dict[str, Any] = {"direction": list(dirs), "freq_hz": freqs, "cycle": np.arange(record),
+                              "level": np.arange(n_levels),
+                              "level_number": ("level", np.array([q for _, q in levels], dtype=int)),
+                              "level_structure": ("level", np.array([NAMES[b] for b, _ in levels],
+                                                                    dtype=str))}
     ds = xr.Dataset(
-        {"strobe_displacement_m": (dims + ("cycle",) + lv, strobes[:, :, :, 0]),
-         "strobe_velocity_m_s": (dims + ("cycle",) + lv, strobes[:, :, :, 1]),
+        {"strobe_displacement_m": (dims + ("cycle", "level"), strobes[:, :, :, 0]),
+         "strobe_velocity_m_s": (dims + ("cycle", "level"), strobes[:, :, :, 1]),
          "period": (dims, period),
-         **{q: (dims + (lv if q != "contacts_per_cycle" else ()), v) for q, v in steps.items()}},
+         **{q: (dims + (("level",) if q != "contacts_per_cycle" else ()), v) for q, v in steps.items()}},
         coords=coords)
+    if n_levels == 1:  # (a single mass: no level axis)
+        ds = ds.isel(level=0, drop=True)  # (its coordinates along level go with it)
     ds["freq_hz"].attrs["units"] = "Hz"
     a_g = sweeps[0].a_g
     ds.attrs.update({"a_g": a_g, "transient_cycles": transient, "record_cycles": record,

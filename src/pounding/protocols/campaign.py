@@ -22,7 +22,7 @@ from .._runner import Context, run_tasks
 from ..engine.assembly import is_single_mass, structures_of
 from .._runner.progress import Progress
 from .sweep import SweepPlan, check_sweep_options, make_plan, run_plan
-from .sweep_result import STEP_COLUMNS, SweepResult
+from .sweep_result import LEVEL_COLUMNS, STEP_COLUMNS, SweepResult
 from .sweep_table import SIDE_COLUMNS
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -34,7 +34,7 @@ CONFIGURATIONS = ("NBs", "YBs")
 DIRECTIONS = ("up", "down")
 _BOOL_COLUMNS = ("contact", "steady")
 _DATA_COLUMNS = tuple(c for c in STEP_COLUMNS if c not in ("freq_hz", "nu")) + tuple(
-    f"{c}{s}" for s in ("_left", "_right") for c in SIDE_COLUMNS)
+    f"{c}{s}" for s in ("_left", "_right") for c in SIDE_COLUMNS) + LEVEL_COLUMNS
 
 
 TABLE2_QUANTITIES = ("nu_r", "alpha", "eta", "e", "contact_nu_min", "contact_nu_max", "excursion_max_m")
@@ -343,28 +343,34 @@ def _levels(system: Any) -> tuple:
 
 
 def _dataset(sweeps: dict, plans: list, complete: bool) -> "xr.Dataset":
+    """The campaign as a Dataset: every column of the sweeps' tables on configuration, a_g, direction,
+    freq_hz and level (a one-level system's without the level: one value per step), and ``ran``."""
     import xarray as xr
 
-    if not is_single_mass(plans[0][1].oscillator):
-        return _structure_dataset(sweeps, plans, complete)
     confs = [c for c in CONFIGURATIONS if any(k[0] == c for k, _ in plans)]
     a_gs = sorted({k[1] for k, _ in plans})
     dirs = [d for d in DIRECTIONS if any(k[2] == d for k, _ in plans)]
     freqs = np.unique(np.concatenate([p.freqs_hz for _, p in plans]))
-    shape = (len(confs), len(a_gs), len(dirs), freqs.size)
-    data = {c: np.full(shape, np.nan) for c in _DATA_COLUMNS}
-    for c in (*_BOOL_COLUMNS, "ran"):
-        data[c] = np.zeros(shape, dtype=bool)
+    levels = _levels(plans[0][1].oscillator)
+    n_levels = sum(levels)
+    shape = (len(confs), len(a_gs), len(dirs), freqs.size, n_levels)
+    data = {c: np.zeros(shape, dtype=bool) if c in _BOOL_COLUMNS else np.full(shape, np.nan)
+            for c in _DATA_COLUMNS}
+    ran = np.zeros(shape[:4], dtype=bool)
     for (conf, ag, d), sw in sweeps.items():
         idx = (confs.index(conf), a_gs.index(ag), dirs.index(d))
-        df = sw.to_dataframe().iloc[: sw.steps_done]
-        cols = np.searchsorted(freqs, df["freq_hz"].to_numpy())
-        for c in _DATA_COLUMNS:
-            data[c][idx + (cols,)] = df[c].to_numpy()
-        data["ran"][idx + (cols,)] = True
-    dims = ("configuration", "a_g", "direction", "freq_hz")
-    ds = xr.Dataset({c: (dims, v) for c, v in data.items()},
-                    coords={"configuration": confs, "a_g": a_gs, "direction": dirs, "freq_hz": freqs})
+        df = sw.to_dataframe().iloc[: sw.steps_done * n_levels]
+        cols = np.searchsorted(freqs, sw.freqs_hz[: sw.steps_done])
+        for c in data:
+            data[c][idx + (cols,)] = df[c].to_numpy().reshape(-1, n_levels)
+        ran[idx + (cols,)] = True
+    dims = ("configuration", "a_g", "direction", "freq_hz", "level")
+    names = [f"{b}:{q}" if len(levels) > 1 else str(q) for b, n in enumerate(levels) for q in range(n)]
+    ds = xr.Dataset({**{c: (dims, v) for c, v in data.items()}, "ran": (dims[:4], ran)},
+                    coords={"configuration": confs, "a_g": a_gs, "direction": dirs, "freq_hz": freqs,
+                            "level": names})
+    if n_levels == 1:  # (a single mass: one value per step)
+        ds = ds.isel(level=0, drop=True)
     first = plans[0][1]
     ds = ds.assign_coords(nu=("freq_hz", freqs / first.f_ref_hz))
     ds["freq_hz"].attrs["units"] = "Hz"
@@ -372,48 +378,6 @@ def _dataset(sweeps: dict, plans: list, complete: bool) -> "xr.Dataset":
                      "measure_cycles": first.measure_cycles, "f_ref_hz": first.f_ref_hz,
                      "omega_min_rad_s": first.omega_min_rad_s, "complete": int(complete),
                      "measurement": _measurement_attr(first.measurement, sweeps)})
-    for conf in confs:
-        osc = next(p.oscillator for k, p in plans if k[0] == conf)
-        ds.attrs[f"system_{conf}"] = osc.to_toml_text()
-    return ds
-
-
-def _structure_dataset(sweeps: dict, plans: list, complete: bool) -> "xr.Dataset":
-    """A structure's campaign as a Dataset: dims configuration, a_g, direction, freq_hz and level."""
-    import xarray as xr
-
-    confs = [c for c in CONFIGURATIONS if any(k[0] == c for k, _ in plans)]
-    a_gs = sorted({k[1] for k, _ in plans})
-    dirs = [d for d in DIRECTIONS if any(k[2] == d for k, _ in plans)]
-    freqs = np.unique(np.concatenate([p.freqs_hz for _, p in plans]))
-    columns = ("alpha", "displacement_max_m", "displacement_min_m", "drift_peak_m", "drift_ratio_peak")
-    n_levels = sum(_levels(plans[0][1].oscillator))
-    shape = (len(confs), len(a_gs), len(dirs), freqs.size, n_levels)
-    data = {c: np.full(shape, np.nan) for c in columns}
-    contacts = np.full(shape[:4], np.nan)
-    ran = np.zeros(shape[:4], dtype=bool)
-    level_names = None
-    for (conf, ag, d), sw in sweeps.items():
-        idx = (confs.index(conf), a_gs.index(ag), dirs.index(d))
-        done = slice(0, sw.steps_done)
-        cols = np.searchsorted(freqs, sw.freqs_hz[done])
-        frame = sw.to_dataframe()
-        for c in columns:
-            data[c][idx + (cols,)] = frame[c].to_numpy().reshape(-1, n_levels)[done]
-        contacts[idx + (cols,)] = np.nansum(sw.contacts_per_cycle[done], axis=1)
-        ran[idx + (cols,)] = True
-        level_names = [f"{b}:{q}" if len(_levels(sw.system)) > 1 else str(q) for b, q in sw.levels]
-    dims = ("configuration", "a_g", "direction", "freq_hz", "level")
-    ds = xr.Dataset({**{c: (dims, v) for c, v in data.items()}, "contacts_per_cycle": (dims[:4], contacts),
-                     "ran": (dims[:4], ran)},
-                    coords={"configuration": confs, "a_g": a_gs, "direction": dirs, "freq_hz": freqs,
-                            "level": level_names or [str(q) for q in range(n_levels)]})
-    first = plans[0][1]
-    ds = ds.assign_coords(nu=("freq_hz", freqs / first.f_ref_hz))
-    ds["freq_hz"].attrs["units"] = "Hz"
-    ds.attrs.update({"steady_mode": first.steady, "cycles": first.cycles,
-                     "measure_cycles": first.measure_cycles, "f_ref_hz": first.f_ref_hz,
-                     "complete": int(complete), "measurement": "exact"})
     for conf in confs:
         ds.attrs[f"system_{conf}"] = next(p.oscillator for k, p in plans if k[0] == conf).to_toml_text()
     return ds
