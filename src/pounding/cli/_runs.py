@@ -295,7 +295,6 @@ def sweep(
     plot = figure_path("--plot", plot)
 
     osc = system(system_file, preset, bumpers=not no_bumpers)
-    several = several_masses(osc)
     freqs = frequencies(fmin, fmax, fstep)
     options = steady_options(steady, cycles, max_cycles)
     from ..protocols.sweep import make_plan
@@ -309,34 +308,25 @@ def sweep(
         result = stop.partial
     table, add = kv_table(f"sweep {result.direction}, a_G = {a_g:g}", system_file or preset)
     add("status", result.message)
-    if several:
-        console.print(table)
-        if result.steps_done:
-            console.print(_structure_sweep_table(result))
-        table = None
-    elif result.steps_done:
-        add("nu_R (alpha peak)", f"{result.nu_r:g}")
-        add("alpha max", f"{result.alpha_max:.4f}")
+    several = len(result.levels) > 1
+    if result.steps_done:  # (the sweep's features: of the top level of the first structure, a mass's own)
+        add("nu_R (alpha peak" + (" of the top level)" if several else ")"), f"{result.nu_r:g}")
+        add("alpha max" + (" (top level)" if several else ""), f"{result.alpha_max:.4f}")
         rng = result.contact_range_hz
         add("contact range [Hz]", "none" if rng is None else f"{rng[0]:g} - {rng[1]:g}")
         jumps = result.jumps()
-        add(
-            "jumps [Hz]",
-            ", ".join(
-                f"{a:g}->{b:g} ({k})"
-                for a, b, k in zip(jumps["freq_from_hz"], jumps["freq_to_hz"], jumps["kind"])
-            )
-            or "none",
-        )
-    if table is not None:
-        console.print(table)
+        add("jumps [Hz]", ", ".join(f"{a:g}->{b:g} ({k})" for a, b, k in
+                                    zip(jumps["freq_from_hz"], jumps["freq_to_hz"], jumps["kind"])) or "none")
+    console.print(table)
+    if several and result.steps_done:
+        console.print(_structure_sweep_table(result))
     complete = result.steps_done == result.freqs_hz.size
     with interrupts_deferred() as held:
         if paths["out"] is not None:
             frame = result.to_dataframe()
             done = frame["freq_hz"].isin(result.freqs_hz[: result.steps_done])
-            write_csv(frame[done] if several else frame[SWEEP_CSV_COLUMNS].iloc[: result.steps_done],
-                      paths["out"])
+            # (one level: the columns issue 3 names; several: every column, one row per step and level)
+            write_csv(frame[done] if several else frame.loc[done, SWEEP_CSV_COLUMNS], paths["out"])
             console.print(f"per-step table -> {paths['out']}")
         if paths["netcdf"] is not None:
             atomic_write(paths["netcdf"], lambda tmp: result.to_xarray().to_netcdf(tmp))
