@@ -61,6 +61,17 @@ def test_one_level_sweeps_as_the_oscillator_and_its_window_measured_again_as_the
                                       ro.contact_sums[i][:, [S_COUNT, S_N_RESTITUTION]])
         np.testing.assert_allclose(sums, ro.contact_sums[i], rtol=1e-9, atol=1e-12)
     assert osc.bumpers is None or ro.contact_sums[:, :, S_COUNT].sum() > 0
+    # the step's own window measures a system of one mass with one wall; anything more (a stand's mass, a
+    # storey) is measured on the window run again
+    from pounding.protocols.sweep_window import step_measures_all
+
+    assert step_measures_all(asm) and step_measures_all(assemble(pd_.Structure.from_oscillator(osc)))
+    one = pd_.Structure.from_oscillator(pd_.presets.paper_damped())
+    wall = one.walls[0]
+    on_a_stand = dataclasses.replace(wall, stand=pd_.Stand(30.0, 3e6, 100.0))
+    for more in (dataclasses.replace(one, walls=(on_a_stand,)),
+                 dataclasses.replace(one, storeys=(pd_.Storey(100.0, 1e6, 10.0),))):
+        assert not step_measures_all(assemble(more))
     # one result for every system: the names before still answer, with a warning naming the new one
     assert type(rs) is type(ro) is pd_.SweepResult
     with pytest.warns(FutureWarning, match="pounding.SweepResult"):

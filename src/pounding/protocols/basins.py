@@ -25,9 +25,10 @@ from .._runner.progress import Progress
 from ..engine import State
 from ..engine.layout import T
 from ..engine.simulate import check_rtol
-from ..engine.assembly import assemble, check_system, is_single_mass
+from ..engine.assembly import assemble, check_system
 from ..excitation import Harmonic
 from ..metrics.impacts import S_COUNT, SIDE_SUMS
+from .sweep_window import step_measures_all
 from ..model import Oscillator
 from ..engine.kernels import (CONTACT_COLUMNS, DOF_EXTREMA, W_AMAX, W_CYCLES, W_DMAX, W_DMIN, W_SUMS,
                               run_step, run_window)
@@ -81,11 +82,11 @@ def run_states(task: tuple, ctx: Context) -> np.ndarray:
 
 
 def core_view(model: Any) -> tuple[Any, tuple[np.ndarray, list[int]] | None]:
-    """Any system's core system, and what a basin's window reads of it: None for a single mass (the step
-    kernel's own window has its paper metrics), else its contact slots' signs and its levels' dofs (the
-    stands' left out of alpha: a floor's acceleration, not a bumper's)."""
+    """Any system's core system, and what a basin's window reads of it: None where the step kernel's own
+    window measures it all (a single mass, a one-level structure with one wall), else its contact slots'
+    signs and its levels' dofs (the stands' left out of alpha: a floor's acceleration, not a bumper's)."""
     asm = assemble(model)
-    if is_single_mass(model):
+    if step_measures_all(asm):
         return asm.system, None
     levels = [d for dofs in asm.dofs for d in dofs if d >= 0]
     return asm.system, (np.array([pair.sign for pair in asm.pairs], dtype=float), levels)

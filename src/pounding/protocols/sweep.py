@@ -28,7 +28,7 @@ from .._runner.progress import Progress, progress_reporter
 from ..engine.kernels import W_CYCLES, StepOutput, run_step, run_window
 from ..metrics.impacts import SIDE_SUMS
 from .sweep_result import SweepResult, sweep_message
-from .sweep_window import from_step, labels_of, measure, slot_masses, strobes
+from .sweep_window import from_step, labels_of, measure, slot_masses, step_measures_all, strobes
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..model import Adjacent, Structure
@@ -401,7 +401,7 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
     n_steps = plan.freqs_hz.size
     levels, storeys, slots = labels_of(model, asm)
     level_dof = [d for dofs in asm.dofs for d in dofs]
-    again = level_dof != [0] or len(slots) > 2  # (more than the step's own window measures)
+    again = not step_measures_all(asm)
     masses = slot_masses(asm)
     level = np.full((n_steps, len(levels), 3), np.nan)       # d_max, d_min, a_abs_max
     drift = np.full((n_steps, len(storeys), 2), np.nan)      # max, min

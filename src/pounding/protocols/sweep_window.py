@@ -41,6 +41,14 @@ def labels_of(model: object, asm: object) -> tuple[tuple, tuple, tuple]:
     return levels, storeys, tuple(slots)
 
 
+def step_measures_all(asm: object) -> bool:
+    """Whether the core's step, which measures its window's first mass and first two contact slots, measures
+    all of a system: one mass (no stand), one moving level, one wall (a single mass, a one-level structure);
+    else a sweep or a basin runs the settled window once more (:func:`measure`)."""
+    level_dof = [d for dofs in asm.dofs for d in dofs]
+    return level_dof == [0] and asm.system.n == 1 and len(asm.slots) <= 2
+
+
 def slot_masses(asm: object) -> np.ndarray:
     """Each contact slot's impacting mass, kg, shape (n_slots,): its level's mass against the ground, the
     pair's effective mass ``m_i m_j / (m_i + m_j)`` against another mass (a link, a bumper on its stand)."""
