@@ -22,8 +22,8 @@ moat = pounding.Wall(level=0, gap_left_m=0.10, gap_right_m=0.10,
 building = pounding.Structure(base_mass_kg=3.0e4, isolator=isolator, storeys=storeys, walls=[moat])
 sweep = pounding.sweep(building, a_g=0.3, freqs_hz=np.arange(0.3, 1.61, 0.1))
 print(sweep.message)
-print(f"the roof's alpha peaks at {sweep.resonance_hz(level=-1):g} Hz, the base's at "
-      f"{sweep.resonance_hz(level=0):g} Hz")
+print(f"the roof's alpha peaks at {sweep.resonance_of(level=-1):g} Hz, the base's at "
+      f"{sweep.resonance_of(level=0):g} Hz")
 sweep.plot()
 
 # %%
