@@ -294,3 +294,23 @@ def test_a_campaign_of_a_building_without_and_with_its_moat_wall(tmp_path):
     assert "alpha_top_max" in result.output
     assert sorted(p.name for p in (tmp_path / "c").iterdir()) == ["campaign.nc", "campaign.png", "steps.csv",
                                                                   "table2.csv"]
+
+
+def test_a_fixed_base_s_paper_quantities_are_its_first_floor_s_and_the_ground_has_none():
+    wall = pd_.Wall(1, 0.005, 0.005, pd_.KelvinVoigt(1e7, 1e3))
+    b = pd_.Structure.fixed_base([pd_.Storey(1e3, 4e5, 2e3), pd_.Storey(1e3, 4e5, 2e3)], [wall])
+    res = pd_.sweep(b, 0.1, [2.0, 2.5, 3.0], steady="fixed", cycles=10, measure_cycles=2)
+    ground, first = res.paper_quantities(0), res.paper_quantities()
+    assert all(math.isnan(v) for v in ground.values())  # (level 0 is the ground: no response of its own)
+    assert first == res.paper_quantities(1) and first["alpha"] == np.nanmax(res.alpha[:, 1])
+    assert first["eta"] == np.nanmax(res.level_metrics[:, 1, 0] - res.level_metrics[:, 1, 1]) / 0.01
+    assert first["contact_nu_min"] == 2.0 and first["peak_force_over_mg"] > 0
+    assert res.to_xarray()["alpha"].dims == ("freq_hz", "level")
+    # a single mass's loop only: a structure's is refused by name
+    with pytest.raises(pd_.InputError, match="hysteresis_loop"):
+        res.hysteresis_loop(2.0)
+    with pytest.raises(pd_.InputError, match="hysteresis_loop"):
+        pd_.sweep(pd_.Structure.from_oscillator(pd_.presets.paper_damped()), 0.05, [1.5]).hysteresis_loop(1.5)
+    with pytest.warns(FutureWarning, match="pounding.protocols.SweepResult"):
+        from pounding.protocols import StructureSweepResult
+    assert StructureSweepResult is pd_.SweepResult

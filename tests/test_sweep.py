@@ -140,7 +140,7 @@ def test_results_table_xarray_netcdf_and_features(tmp_path):
     df = res.to_dataframe()
     assert list(df.columns[:5]) == ["freq_hz", "nu", "level", "alpha", "excursion_m"]  # (its one level: 0)
     ds = res.to_xarray()
-    assert list(ds["freq_hz"].values) == [1.2, 1.6, 2.0, 2.2]
+    assert list(ds["freq_hz"].values) == [1.2, 1.6, 2.0, 2.2] and ds["alpha"].dims == ("freq_hz",)
     assert ds.attrs["direction"] == "down" and ds["contact"].dtype == bool
     path = tmp_path / "sweep.nc"
     ds.to_netcdf(path)

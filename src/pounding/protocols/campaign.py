@@ -45,9 +45,9 @@ STRUCTURE_TABLE2_QUANTITIES = ("nu_r_top", "alpha_top_max", "alpha_base_max", "d
 
 
 def sweep_quantities(sw: Any) -> dict[str, float]:
-    """The paper's per-sweep quantities (Tables 2-4) of one sweep, by their table names: its base's
-    (:meth:`SweepResult.paper_quantities`; a single mass: its own)."""
-    return sw.paper_quantities(0)
+    """The paper's per-sweep quantities (Tables 2-4) of one sweep, by their table names: its lowest moving
+    level's (:meth:`SweepResult.paper_quantities`; a single mass: its own)."""
+    return sw.paper_quantities()
 
 
 @dataclass(frozen=True, eq=False)
@@ -216,8 +216,9 @@ def campaign(
     nbs_system, ybs_system : Oscillator, Structure, Adjacent or None
         The system without bumpers (NBs) and with them (YBs); None leaves that
         configuration out.  Two structures (without walls or links, and with them; the same levels) make
-        a structure's campaign: its data has a ``level`` dim, its Table 2 the top floor's and the base's
-        alpha (:meth:`SweepResult.quantities`); Tables 3 and 4 are one mass's.
+        a structure's campaign: its data has a ``level`` dim (but for a one-level structure's), its Table 2
+        the top floor's and the base's alpha (:meth:`SweepResult.quantities`); Tables 3 and 4 are one
+        mass's.
     nbs_a_g, ybs_a_g : sequence of float
         Table accelerations in g (default the paper's: 0.03, 0.05, 0.1 and 0.03, 0.05,
         0.075, 0.1).

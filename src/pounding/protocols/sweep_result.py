@@ -197,8 +197,8 @@ class SweepResult:
 
     @property
     def total_gap_m(self) -> float:
-        """``Delta`` of the first structure's lowest level with a wall (a single mass: ``g_L + g_R`` of its
-        bumpers), m; NaN without walls."""
+        """``Delta`` of the lowest level with a wall, the first structure's first (a single mass:
+        ``g_L + g_R`` of its bumpers), m; NaN without walls."""
         return float(next((g for g in self.level_gaps_m if not math.isnan(g)), math.nan))
 
     @property
@@ -236,6 +236,12 @@ class SweepResult:
     def peak_drift(self) -> np.ndarray:
         """Each storey's largest absolute drift per step, m, shape (n, n_storeys)."""
         return np.maximum(np.abs(self.drift_metrics[:, :, 0]), np.abs(self.drift_metrics[:, :, 1]))
+
+    @cached_property
+    def _moving(self) -> tuple:
+        """The levels that move (counted through :attr:`levels`): all but a fixed base's level 0."""
+        return tuple(q for q, (b, lv) in enumerate(self.levels)
+                     if not (lv == 0 and self._structures[b].fixed))
 
     @cached_property
     def _top(self) -> int:
@@ -395,20 +401,22 @@ class SweepResult:
                    "excursion_to_m", "contact_from", "contact_to", "kind"]
         return pd.DataFrame(rows, columns=columns)
 
-    def paper_quantities(self, level: int = 0) -> dict[str, float]:
-        """The paper's per-sweep quantities (Tables 2-4) of one level (default the (first) structure's base:
-        what a shaking table's rig carries; a single mass: itself), by their table names.
+    def paper_quantities(self, level: int | None = None) -> dict[str, float]:
+        """The paper's per-sweep quantities (Tables 2-4) of one level (counted through :attr:`levels`; default
+        the (first) structure's lowest moving level: its base, what a shaking table's rig carries, or the
+        first floor of a fixed base; a single mass: itself), by their table names.
 
         Over the sweep: ``nu_r`` and the largest ``alpha`` of the level, the largest ``eta`` (the level's
         excursion over its walls' total gap; NaN without a wall there) and ``e``, the largest excursion
         ``excursion_max_m`` (m), the contact range in ``nu`` (at the level's walls); at the level's
         resonance step, its walls' impact means: ``contact_time_ms``, ``restitution``,
         ``mean_force_over_mg``, ``peak_force_over_mg`` and ``dissipated_energy_per_mass`` (m^2/s^2; ``m`` the
-        level's mass).  NaN where a quantity does not exist (no contact, no wall, no step measured).
+        level's mass).  NaN where a quantity does not exist (no contact, no wall, no step measured, a fixed
+        base's level 0: the ground).
         """
-        q = self._level(level)
+        q = self._moving[0] if level is None else self._level(level)
         out = dict.fromkeys(PAPER_QUANTITIES, math.nan)
-        if self.steps_done == 0:
+        if self.steps_done == 0 or q not in self._moving:
             return out
         df = self._rows(q)
         alpha = df["alpha"].to_numpy()
@@ -443,7 +451,7 @@ class SweepResult:
         from ..engine.assembly import is_single_mass
 
         if is_single_mass(self.system):
-            return self.paper_quantities(0)
+            return self.paper_quantities()
         done = slice(0, self.steps_done)
         if self.steps_done == 0:
             return dict.fromkeys(STRUCTURE_QUANTITIES, math.nan)
@@ -491,7 +499,9 @@ class SweepResult:
         from ..excitation import Harmonic
         from ..metrics import HysteresisLoop
 
-        if len(self.levels) != 1:
+        from ..engine.assembly import is_single_mass
+
+        if not is_single_mass(self.system):  # (the loop reads a single mass's run: its bumpers' force)
             raise InputError(Problem.WRONG_MODE, "hysteresis_loop", freq_hz, mode="a single mass's sweep",
                              fix="plot a structure's contacts from a run of the step: pounding.simulate")
         i = self.step_index(freq_hz)

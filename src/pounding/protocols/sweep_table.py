@@ -79,6 +79,7 @@ def measured_table(sw: "SweepResult", exact: pd.DataFrame) -> pd.DataFrame:
         table[q] = sw.measured[q].to_numpy()
     table["contact"] = np.where(ran, sw.measured["contact"].eq(True).to_numpy(), False)  # (NaN: unread)
     table["bumper_dissipation_j"] = np.nan  # (not measurable from the accelerations)
+    table["abs_acceleration_max_m_s2"] = table["alpha"] * sw.peak_m_s2  # (the accelerometers' alpha)
     per_side = _measured_sides(sw.measured_impacts, sw.freqs_hz, sw.window_cycles)
     for side in ("_left", "_right"):
         for k in SIDE_COLUMNS:
@@ -135,6 +136,8 @@ def dataset(sw: "SweepResult") -> "xr.Dataset":
                               slot_kind=("slot", np.array([s[1] for s in slots], dtype=str)),
                               slot_level=("slot", np.array([s[3] for s in slots], dtype=int)),
                               slot_side=("slot", np.array([s[4] for s in slots], dtype=str)))
+    if n_lev == 1:  # (a single mass, a one-level structure: one value per step, as their campaign's)
+        ds = ds.isel(level=0, drop=True)
     for name in ds.data_vars:
         unit = _unit(name)
         if unit:
