@@ -198,12 +198,8 @@ def test_bad_arguments_are_named():
     res = pd_.sweep(b, 0.1, [1.0, 1.5], steady="fixed", cycles=3, measure_cycles=1)
     with pytest.raises(pd_.InputError, match="level"):
         res.resonance_of(2)
-    # (a structure's sweep's method before one result served every system: answers, with a warning)
+    # (the top level's: the sweep's resonance, as a single mass's own)
     assert res.resonance_hz == res.resonance_of(-1) and res.nu_r == res.resonance_of(-1) / res.f_ref_hz
-    with pytest.warns(FutureWarning, match=r"resonance_of\(level\)"):
-        assert res.resonance_hz(level=0) == res.resonance_of(0)
-    with pytest.warns(FutureWarning, match=r"resonance_of\(level\) / f_ref_hz"):
-        assert res.nu_r(0) == res.resonance_of(0) / res.f_ref_hz
     again = pd_.sweep(b, 0.1, [2.0], steady="fixed", cycles=3, measure_cycles=1, state=res.final_state)
     assert again.step_start_s[0] == pytest.approx(3.0 + 2.0)
     # a sweep stopped at its first step: NaN metrics, and the summary's table says "-" where nothing was

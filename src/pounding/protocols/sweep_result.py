@@ -330,18 +330,13 @@ class SweepResult:
     @property
     def resonance_hz(self) -> float:
         """Frequency of the step with the largest alpha of the (first) structure's top level (a single mass:
-        the pseudo-resonance ``f``), Hz.  (Called with a level, as a structure's sweep's method was, it
-        gives :meth:`resonance_of` that level, with a ``FutureWarning``.)"""
-        return _ByLevel(self.resonance_of(self._top), lambda level=-1: self.resonance_of(level),
-                        "resonance_hz(level)", "resonance_of(level)")
+        the pseudo-resonance ``f``), Hz; any level's: :meth:`resonance_of`."""
+        return self.resonance_of(self._top)
 
     @property
     def nu_r(self) -> float:
-        """The pseudo-resonance ``nu_R = f / f_R`` where :attr:`resonance_hz` is.  (Called with a level, as a
-        structure's sweep's method was: that level's, with a ``FutureWarning``.)"""
-        return _ByLevel(self.resonance_of(self._top) / self.f_ref_hz,
-                        lambda level=-1: self.resonance_of(level) / self.f_ref_hz, "nu_r(level)",
-                        "resonance_of(level) / f_ref_hz")
+        """The pseudo-resonance ``nu_R = f / f_R`` where :attr:`resonance_hz` is."""
+        return self.resonance_hz / self.f_ref_hz
 
     @property
     def alpha_max(self) -> float:
@@ -530,24 +525,6 @@ class SweepResult:
 
         draw = plot_sweep if len(self.levels) == 1 else plot_structure_sweep
         return figure_of(draw(self, ax=ax, **kwargs), ax)
-
-
-class _ByLevel(float):
-    """A sweep's value (a float) that, called with a level as a structure's sweep's method was before one
-    result served every system, gives that level's, with a ``FutureWarning`` naming the new call."""
-
-    def __new__(cls, value: float, of_level: Any, old: str, new: str) -> "_ByLevel":
-        out = super().__new__(cls, value)
-        out._of_level, out._old, out._new = of_level, old, new
-        return out
-
-    def __call__(self, level: int = -1) -> float:
-        warn_renamed(f"SweepResult.{self._old}", f"SweepResult.{self._new}",
-                     why="one result for every system")
-        return float(self._of_level(level))
-
-    def __reduce__(self) -> tuple:  # (pickled, copied: the float it is)
-        return (float, (float(self),))
 
 
 def sweep_message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted) -> str:
