@@ -59,7 +59,9 @@ def test_one_level_sweeps_as_the_oscillator_and_its_window_measured_again_as_the
         np.testing.assert_allclose(level, ro.level_metrics[i], rtol=1e-9)
         np.testing.assert_array_equal(sums[:, [S_COUNT, S_N_RESTITUTION]],
                                       ro.contact_sums[i][:, [S_COUNT, S_N_RESTITUTION]])
-        np.testing.assert_allclose(sums, ro.contact_sums[i], rtol=1e-9, atol=1e-12)
+        # (measured on these sweeps: 8.5e-13 relative at most on the extrema, 1.2e-11 on the sums; 1e-9 is
+        # the bound the two paths' comparison asserted before they were one)
+        np.testing.assert_allclose(sums, ro.contact_sums[i], rtol=1e-9)
     assert osc.bumpers is None or ro.contact_sums[:, :, S_COUNT].sum() > 0
     # the step's own window measures a system of one mass with one wall; anything more (a stand's mass, a
     # storey) is measured on the window run again
