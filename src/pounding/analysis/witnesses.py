@@ -290,9 +290,10 @@ def check_sweeps(value: Any, system: Any) -> tuple:
         raise InputError(Problem.WRONG_TYPE, "sweeps", given, got=got,
                          expected="a sequence of SweepResult, or a CampaignResult of this system")
     levels = tuple((b, q) for b, s in enumerate(structures_of(system)[0]) for q in range(s.n_levels))
-    for sw in value:
+    for k, sw in enumerate(value):
         if tuple(sw.levels) != levels:
-            raise InputError(Problem.WRONG_TYPE, "sweeps", given,
-                             got=f"a sweep of a system of {len(sw.levels)} level(s)",
-                             expected=f"sweeps of this system ({len(levels)} level(s)), from pounding.sweep")
+            raise InputError(Problem.WRONG_CONFIGURATION, f"sweeps[{k}]",
+                             f"a sweep at {sw.a_g:g} g of {len(sw.levels)} level(s)",
+                             got=f"of {len(sw.levels)} level(s) where this one has {len(levels)}",
+                             fix="give sweeps of this system (pounding.sweep of it)")
     return tuple(value)

@@ -23,6 +23,7 @@ from ..engine.assembly import is_single_mass, structures_of
 from .._runner.progress import Progress
 from .sweep import SweepPlan, check_sweep_options, make_plan, run_plan
 from .sweep_result import LEVEL_COLUMNS, STEP_COLUMNS, SweepResult
+from .sweep_features import STRUCTURE_QUANTITIES
 from .sweep_table import SIDE_COLUMNS
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -40,8 +41,7 @@ _DATA_COLUMNS = tuple(c for c in STEP_COLUMNS if c not in ("freq_hz", "nu")) + t
 TABLE2_QUANTITIES = ("nu_r", "alpha", "eta", "e", "contact_nu_min", "contact_nu_max", "excursion_max_m")
 TABLE3_QUANTITIES = ("mean_force_over_mg", "contact_time_ms", "peak_force_over_mg")
 TABLE4_QUANTITIES = ("dissipated_energy_per_mass", "restitution")
-STRUCTURE_TABLE2_QUANTITIES = ("nu_r_top", "alpha_top_max", "alpha_base_max", "drift_ratio_max",
-                               "contact_nu_min", "contact_nu_max")
+STRUCTURE_TABLE2_QUANTITIES = STRUCTURE_QUANTITIES  # (a structure's sweep's quantities)
 
 
 def sweep_quantities(sw: Any) -> dict[str, float]:

@@ -27,7 +27,7 @@ from ..engine.assembly import assemble, check_system, is_single_mass
 from .._runner.progress import Progress, progress_reporter
 from ..engine.kernels import W_CYCLES, StepOutput, run_step, run_window
 from ..metrics.impacts import SIDE_SUMS
-from .sweep_result import SweepResult, sweep_message
+from .sweep_result import SweepResult
 from .sweep_window import from_step, labels_of, measure, slot_masses, step_measures_all, strobes
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -471,3 +471,25 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
     if interrupted:
         raise Interrupted(result, done, n_steps)
     return result
+
+
+def sweep_message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted) -> str:
+    """A sweep's ``message``: how it ended, in words."""
+    if interrupted and done == n_steps and plan.measurement is not None:
+        return (f"Interrupted while measuring the windows through the chain: the {done} steps ran, "
+                "and their metrics are the exact ones (no chain).")
+    if interrupted:
+        return f"Interrupted after {done} of {n_steps} steps; the others are NaN."
+    if status != Status.SUCCESS:
+        return (f"Stopped at step {done} of {n_steps} ({plan.freqs_hz[done - 1]:g} Hz): "
+                f"{status.message}")
+    not_steady = int(np.sum(period_multiple[:done] == 0))
+    if plan.steady == "adaptive":
+        if not_steady:
+            return (f"{not_steady} of {n_steps} steps reached max_cycles = {plan.cycles} without "
+                    f"a periodic response (steady False); raise max_cycles or add damping.")
+        return f"All {n_steps} steps reached a periodic steady state."
+    if not_steady:
+        return (f"Fixed schedule of {plan.cycles} cycles: {not_steady} of {n_steps} steps were not "
+                f"periodic over their last {plan.measure_cycles} cycles (steady False).")
+    return f"Fixed schedule of {plan.cycles} cycles: every step was periodic when measured."

@@ -15,6 +15,8 @@ from .._checks import integer, positive
 from .._errors import InputError, Problem, Status, warn_renamed
 from ..engine import State
 from ..metrics.impacts import IMPACT_COLUMNS, S_COUNT
+from .sweep_features import (DEFAULT_JUMP_RATIO, PAPER_QUANTITIES, jumps_of, paper_quantities_of,
+                             structure_quantities_of)
 from .sweep_table import contacts_table, dataset, exact_table, measured_table
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -27,15 +29,6 @@ STEP_COLUMNS = ("freq_hz", "nu", "alpha", "excursion_m", "displacement_max_m", "
                 "eta", "e", "contact", "contacts_per_cycle", *IMPACT_COLUMNS, "steady",
                 "period_multiple", "cycles_run")
 LEVEL_COLUMNS = ("abs_acceleration_max_m_s2", "drift_peak_m", "drift_ratio_peak")
-DEFAULT_JUMP_RATIO = 1.5
-
-# a sweep's paper quantities (``SweepResult.paper_quantities``): the paper's Table 2, 3 and 4 rows
-PAPER_QUANTITIES = ("nu_r", "alpha", "eta", "e", "contact_nu_min", "contact_nu_max", "excursion_max_m",
-                    "mean_force_over_mg", "contact_time_ms", "peak_force_over_mg",
-                    "dissipated_energy_per_mass", "restitution")
-# a structure's sweep in a few numbers (``SweepResult.quantities`` of a structure)
-STRUCTURE_QUANTITIES = ("nu_r_top", "alpha_top_max", "alpha_base_max", "drift_ratio_max", "contact_nu_min",
-                        "contact_nu_max")
 
 
 @dataclass(frozen=True, eq=False)
@@ -258,14 +251,18 @@ class SweepResult:
         return structures_of(self.system)[0]
 
     @property
+    def level_masses_kg(self) -> np.ndarray:
+        """Each level's mass, kg, shape (n_levels,) (NaN for a fixed base's ground)."""
+        return np.concatenate([s.masses_kg for s in self._structures])
+
+    @property
     def level_gaps_m(self) -> np.ndarray:
-        """Each level's total gap ``Delta`` (its walls' sides' gaps summed; a single mass: ``g_L + g_R``), m,
+        """Each level's total gap ``Delta`` (its wall's two gaps; a single mass: ``g_L + g_R``), m,
         shape (n_levels,); NaN without a wall at the level."""
-        gaps = []
-        for b, lv in self.levels:
-            walls = [w for w in self._structures[b].walls if w.level == lv]
-            gaps.append(sum(w.gap_left_m + w.gap_right_m for w in walls) if walls else math.nan)
-        return np.array(gaps)
+        def gap(walls: tuple, lv: int) -> float:  # (a level has one wall at most)
+            return next((w.gap_left_m + w.gap_right_m for w in walls if w.level == lv), math.nan)
+
+        return np.array([gap(self._structures[b].walls, lv) for b, lv in self.levels])
 
     # ---- the table
     @cached_property
@@ -374,27 +371,7 @@ class SweepResult:
             ``excursion_from_m``, ``excursion_to_m``, ``contact_from``, ``contact_to``,
             ``kind`` ("up" when the response grows, "down" when it drops).
         """
-        ratio = positive("ratio", ratio, "(a factor > 1)")
-        if ratio <= 1.0:
-            raise InputError(Problem.TOO_SMALL, "ratio", ratio, minimum="1 (exclusive)", hint="")
-        df = self._rows(self._top)
-        a = df["alpha"].to_numpy()
-        e = df["excursion_m"].to_numpy()
-        rows = []
-        for i in range(len(df) - 1):
-            ra = a[i + 1] / a[i]
-            re = e[i + 1] / e[i]
-            if max(ra, 1 / ra, re, 1 / re) >= ratio:
-                rows.append({
-                    "freq_from_hz": df["freq_hz"].iloc[i], "freq_to_hz": df["freq_hz"].iloc[i + 1],
-                    "alpha_from": a[i], "alpha_to": a[i + 1],
-                    "excursion_from_m": e[i], "excursion_to_m": e[i + 1],
-                    "contact_from": bool(df["contact"].iloc[i]),
-                    "contact_to": bool(df["contact"].iloc[i + 1]),
-                    "kind": "up" if max(ra, re) >= max(1 / ra, 1 / re) else "down"})
-        columns = ["freq_from_hz", "freq_to_hz", "alpha_from", "alpha_to", "excursion_from_m",
-                   "excursion_to_m", "contact_from", "contact_to", "kind"]
-        return pd.DataFrame(rows, columns=columns)
+        return jumps_of(self._rows(self._top), ratio)
 
     def paper_quantities(self, level: int | None = None) -> dict[str, float]:
         """The paper's per-sweep quantities (Tables 2-4) of one level (counted through :attr:`levels`; default
@@ -410,30 +387,9 @@ class SweepResult:
         base's level 0: the ground).
         """
         q = self._moving[0] if level is None else self._level(level)
-        out = dict.fromkeys(PAPER_QUANTITIES, math.nan)
-        if self.steps_done == 0 or q not in self._moving:
-            return out
-        df = self._rows(q)
-        alpha = df["alpha"].to_numpy()
-        if not np.any(np.isfinite(alpha)):
-            return out
-        i = int(np.nanargmax(alpha))
-        hit = np.sort(df.loc[df["contact"], "freq_hz"].to_numpy())
-        step = df.iloc[i]
-        b, lv = self.levels[q]
-        mass = float(self._structures[b].masses_kg[lv])
-        mg = mass * self.g
-        out.update({
-            "nu_r": float(df["freq_hz"].iloc[i]) / self.f_ref_hz, "alpha": float(np.nanmax(alpha)),
-            "eta": df["eta"].max(), "e": df["e"].max(), "excursion_max_m": df["excursion_m"].max(),
-            "contact_nu_min": float(hit[0]) / self.f_ref_hz if hit.size else math.nan,
-            "contact_nu_max": float(hit[-1]) / self.f_ref_hz if hit.size else math.nan,
-            "mean_force_over_mg": step["mean_force_n"] / mg,
-            "contact_time_ms": step["contact_time_s"] * 1e3,
-            "peak_force_over_mg": step["peak_force_n"] / mg,
-            "dissipated_energy_per_mass": step["dissipated_energy_j"] / mass,
-            "restitution": step["restitution"]})
-        return out
+        if q not in self._moving:  # (a fixed base's ground)
+            return dict.fromkeys(PAPER_QUANTITIES, math.nan)
+        return paper_quantities_of(self, q)
 
     def quantities(self) -> dict[str, float]:
         """The sweep in a few numbers (a campaign's Tables 2-4 row, a study point's), by their table names.
@@ -447,20 +403,7 @@ class SweepResult:
 
         if is_single_mass(self.system):
             return self.paper_quantities()
-        done = slice(0, self.steps_done)
-        if self.steps_done == 0:
-            return dict.fromkeys(STRUCTURE_QUANTITIES, math.nan)
-        frame = self._table.iloc[: self.steps_done * len(self.levels)]
-        hits = np.sort(self.nu[done][np.sum(self.contact_sums[done, :, S_COUNT], axis=1) > 0])
-
-        def largest(values: np.ndarray) -> float:  # (NaN where no step measured it: no warning)
-            return float(np.nanmax(values)) if np.any(np.isfinite(values)) else math.nan
-
-        return dict(zip(STRUCTURE_QUANTITIES, (
-            self.resonance_of(self._top) / self.f_ref_hz, largest(self.alpha_top[done]),
-            largest(self.alpha_base[done]),
-            largest(frame["drift_ratio_peak"].to_numpy()) if self.storeys else math.nan,
-            float(hits[0]) if hits.size else math.nan, float(hits[-1]) if hits.size else math.nan)))
+        return structure_quantities_of(self)
 
     def step_index(self, freq_hz: float) -> int:
         """Index (stepping order) of the step at ``freq_hz`` (to 1e-9 Hz)."""
@@ -525,25 +468,3 @@ class SweepResult:
 
         draw = plot_sweep if len(self.levels) == 1 else plot_structure_sweep
         return figure_of(draw(self, ax=ax, **kwargs), ax)
-
-
-def sweep_message(status, done, n_steps, plan, cycles_run, period_multiple, interrupted) -> str:
-    """A sweep's ``message``: how it ended, in words."""
-    if interrupted and done == n_steps and plan.measurement is not None:
-        return (f"Interrupted while measuring the windows through the chain: the {done} steps ran, "
-                "and their metrics are the exact ones (no chain).")
-    if interrupted:
-        return f"Interrupted after {done} of {n_steps} steps; the others are NaN."
-    if status != Status.SUCCESS:
-        return (f"Stopped at step {done} of {n_steps} ({plan.freqs_hz[done - 1]:g} Hz): "
-                f"{status.message}")
-    not_steady = int(np.sum(period_multiple[:done] == 0))
-    if plan.steady == "adaptive":
-        if not_steady:
-            return (f"{not_steady} of {n_steps} steps reached max_cycles = {plan.cycles} without "
-                    f"a periodic response (steady False); raise max_cycles or add damping.")
-        return f"All {n_steps} steps reached a periodic steady state."
-    if not_steady:
-        return (f"Fixed schedule of {plan.cycles} cycles: {not_steady} of {n_steps} steps were not "
-                f"periodic over their last {plan.measure_cycles} cycles (steady False).")
-    return f"Fixed schedule of {plan.cycles} cycles: every step was periodic when measured."

@@ -13,6 +13,7 @@ from .._errors import InputError, Problem, Status
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
 from ..protocols.campaign import TABLE2_QUANTITIES, TABLE3_QUANTITIES, TABLE4_QUANTITIES
+from ..protocols.sweep_features import STRUCTURE_QUANTITIES as STRUCTURE_SWEEP_NAMES
 from ..protocols.pounding_spectrum_result import QUANTITIES as RUN_QUANTITIES
 from ..protocols.pounding_spectrum_result import UNITS as RUN_UNITS
 
@@ -25,8 +26,7 @@ QUANTITIES = {"sweep": SWEEP_QUANTITIES, "simulate": RUN_QUANTITIES, "record": R
 # wall and link
 STRUCTURE_RUN_QUANTITIES = ("base_disp_max_m", "top_disp_max_m", "acc_max_g", "top_acc_max_g",
                             "drift_ratio_max", "impacts", "impact_force_max_n", "status")
-STRUCTURE_SWEEP_QUANTITIES = ("nu_r_top", "alpha_top_max", "alpha_base_max", "drift_ratio_max",
-                              "contact_nu_min", "contact_nu_max", "steps_done", "status")
+STRUCTURE_SWEEP_QUANTITIES = STRUCTURE_SWEEP_NAMES + ("steps_done", "status")
 STRUCTURE_QUANTITIES = {"sweep": STRUCTURE_SWEEP_QUANTITIES, "simulate": STRUCTURE_RUN_QUANTITIES,
                         "record": STRUCTURE_RUN_QUANTITIES}
 UNITS = {**RUN_UNITS, "nu_r": "1", "alpha": "1", "eta": "1", "e": "1", "contact_nu_min": "1",
