@@ -392,11 +392,8 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
                 sides[j][5].restore(snap)
 
     def iso_force(dd):
-        if kinematic:
-            f = K[-1] * dd
-            for i in range(n_sp):
-                f += ki[i] * (s[i] * Db[i] if s[i] != 0 else dd - u[i])
-            return f
+        if kinematic:  # each spring's force: yielded at +-its breakpoint, or stretched by dd - u
+            return K[-1] * dd + float(ki @ np.where(s != 0, s * Db, dd - u))
         return float(iso.backbone(dd))
 
     def bump_force(j, dd, vv):
