@@ -392,8 +392,11 @@ def reference(osc: pd_.Oscillator, exc, t_end: float, d0=0.0, v0=0.0, rtol=1e-10
                 sides[j][5].restore(snap)
 
     def iso_force(dd):
-        if kinematic:  # each spring's force: yielded at +-its breakpoint, or stretched by dd - u
-            return K[-1] * dd + float(ki @ np.where(s != 0, s * Db, dd - u))
+        if kinematic:  # each spring's force: yielded at +-its breakpoint, or stretched by dd - u (dd: a
+            # displacement, or an array of them)
+            x = np.asarray(dd, dtype=float)
+            f = K[-1] * x + np.where(s != 0, s * Db, x[..., None] - u) @ ki
+            return float(f) if f.ndim == 0 else f
         return float(iso.backbone(dd))
 
     def bump_force(j, dd, vv):
