@@ -347,5 +347,5 @@ def _restated(s: Structure) -> tuple:
         return force, relax, release
     k, c = s.k_b, s.c_b
     return (lambda d, dd: k * d + c * dd,
-            lambda d_r, tau: 0.0 if c == 0.0 else d_r * math.exp(-k * tau / c),
+            lambda d_r, tau: 0.0 if c == 0.0 else d_r * np.exp(-k * tau / c),  # (tau: a time or an array)
             lambda d, dd: k * d + c * dd)
