@@ -77,11 +77,12 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
     n = s.mass.size
     inv_m = 1.0 / s.mass
     # the longest step: a hundredth (1 / steps_per_period) of the fastest period of the phase, so that a dip
-    # of an event function shorter than a step does not fall between two steps' signs: with the bumpers
-    # during a contact, without them outside every contact (the wall's stiffness is not in the motion then;
-    # the fastest period with them throughout took 1.4 times as long). (The steps bound the accuracy here,
-    # not rtol: on a draw of test_a_wall_at_any_level_matches_the_reference, steps 3 times longer moved the
-    # final velocity by 1.3e-8 of the motion's scale whatever rtol, against 4e-10 at these.)
+    # of an event function shorter than a step does not fall between two steps' signs: during a contact,
+    # with both bumpers' stiffness (as if both sides were engaged: shorter steps, safe); outside
+    # every contact, without them (their stiffness is not in the motion then; with them throughout, as
+    # before, test_a_wall_at_any_level_matches_the_reference ran 1.4 times as long). The steps bound the
+    # accuracy here, not rtol: on one of that test's draws, steps 3 times longer moved the final velocity by
+    # 1.3e-8 of the motion's scale whatever rtol, against 4e-10 at these.
     k = s.k0.copy()
     k[0, 0] += s.k_iso
     for i, k_p, _ in s.plastic:
@@ -95,9 +96,9 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
             k_in[s.level, j] -= s.k_b
             k_in[j, s.level] -= s.k_b
 
-    def longest_step(kk):
-        w_max = math.sqrt(float(np.max(np.linalg.eigvals(kk * inv_m[:, None]).real)))
-        return 2.0 * math.pi / w_max / steps_per_period
+    def longest_step(kk):  # (no stiffness at all: no bound)
+        w_max = math.sqrt(max(float(np.max(np.linalg.eigvals(kk * inv_m[:, None]).real)), 0.0))
+        return 2.0 * math.pi / w_max / steps_per_period if w_max > 0.0 else np.inf
 
     step_in, step_out = ((max_step, max_step) if max_step is not None
                          else (longest_step(k_in), longest_step(k)))
@@ -159,7 +160,7 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
                else s.a_g * math.sin(s.omega * t))
         out = a_lin @ y
         out[n:] -= a_g
-        if s.plastic or inside[0] or inside[1]:
+        if s.plastic or inside[0] or inside[1]:  # (otherwise those forces are all 0)
             out[n:] -= inv_m * nonlinear_forces(y)
         return out
 
@@ -319,8 +320,9 @@ def _stepped_over(evs, sol, t0: float):
 
 def _on_grid(f, grid: np.ndarray, ys: np.ndarray) -> np.ndarray:
     """An event function's values at the times ``grid`` (states ``ys``, one column each): in one call where
-    the function takes arrays (a Kelvin-Voigt law's), point by point where it does not (a law's branches),
-    or where the one call disagrees with the point-by-point values at the ends."""
+    the function takes arrays (the Kelvin-Voigt bumpers of ``k_b`` and ``c_b``), point by point where it
+    does not (a ``law``'s, restated by tests/reference.py with branches and math functions) or where the one
+    call disagrees with the point-by-point values at the ends."""
     try:
         g = np.broadcast_to(np.asarray(f(grid, ys), dtype=float), grid.shape)
         if g[0] == f(grid[0], ys[:, 0]) and g[-1] == f(grid[-1], ys[:, -1]):
