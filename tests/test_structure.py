@@ -59,15 +59,18 @@ def moving(building: pd_.Structure, v0: float) -> pd_.State:
     return pd_.State._of(vec, rest.dofs, rest.layout)
 
 
-def last_digit_spread(building: pd_.Structure, exc, v0: float, starts: np.ndarray) -> float:
-    """How far the contact starts move, s, when every mass changes in its last digits (relative +-4e-16):
-    what the problem itself makes of rounding, whatever solves it (inf: a contact more or less)."""
+def last_digit_spread(building: pd_.Structure, exc, v0: float, starts: np.ndarray,
+                      duration_s: float = 3.0) -> float:
+    """How far the contact starts move, s, when every mass changes in its last digits (relative +-4e-16)
+    over a run of ``duration_s``: what the problem itself makes of rounding, whatever solves it (inf: a
+    contact more or less)."""
     spread = 0.0
     for change in (4e-16, -4e-16):
         moved = pd_.Structure(building.base_mass_kg * (1.0 + change), building.isolator,
                               [dataclasses.replace(s, mass_kg=s.mass_kg * (1.0 + change))
                                for s in building.storeys], building.walls)
-        other = pd_.simulate(moved, exc, 3.0, moving(moved, v0), sample_rate_hz=0).contacts["t_start_s"]
+        other = pd_.simulate(moved, exc, duration_s, moving(moved, v0),
+                             sample_rate_hz=0).contacts["t_start_s"]
         if len(other) != len(starts):
             return math.inf
         spread = max(spread, float(np.abs(other.to_numpy() - starts).max(initial=0.0)))
@@ -862,6 +865,11 @@ def test_a_wall_at_any_level_under_a_record_matches_the_reference(pair, v0, seed
         assume(False)
     assume(all(depth > 1e-7 for depth in ref.depths) and all(speed > 1e-4 for speed in ref.speeds))
     assume(len(ref.contact_starts) <= 40)
+    # nor a run whose contact times the last digits of a mass move by more than a tenth of the tolerance, as
+    # under a sine (seen: a 2-mass draw whose last contact moved 1.6e-9 s so; the reference's own answers for
+    # it spread 3e-9 to 5.8e-9 s over its steps and tolerances)
+    starts_run = run.contacts["t_start_s"].to_numpy()
+    assume(last_digit_spread(building, pd_.Record(t, accel), v0, starts_run, 2.0) <= 1e-10)
     event("contacts" if ref.contact_starts else "no contact")
     assert list(run.contacts["side"].map({"left": 0, "right": 1})) == [c for c, _ in ref.contact_starts]
     starts = [t for _, t in ref.contact_starts]
