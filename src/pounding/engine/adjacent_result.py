@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -51,6 +52,10 @@ class AdjacentRun(Outcome):
     chatters : pandas.DataFrame
         The rigid stops' chatter sequences (``contact``: ``first wall 0 left``, ``link 0``); see
         :attr:`StructureRun.chatters`.
+    chatter_table : ndarray, shape (n_sequences, 5)
+        The core's rows behind ``chatters``.
+    contact_names : tuple of str
+        Each contact slot's name, as ``chatters`` gives it.
     clearance_m : ndarray, shape (n_slots,)
         Each contact slot's smallest clearance over the run (its gap less the largest approach, exact;
         negative: it touched), m: the first's wall sides, the second's, then the links.
@@ -84,8 +89,14 @@ class AdjacentRun(Outcome):
     final_state: Any = field(repr=False)
     status: Status = Status.SUCCESS
     clearance_m: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
-    chatters: pd.DataFrame = field(default_factory=lambda: chatter_frame(np.zeros((0, 5)), (), "contact"),
-                                   repr=False)
+    chatter_table: np.ndarray = field(default_factory=lambda: np.zeros((0, 5)), repr=False)
+    contact_names: tuple = field(default=(), repr=False)
+
+    @cached_property
+    def chatters(self) -> pd.DataFrame:
+        """The rigid stops' chatter sequences, one row each (see the class docstring), built on first use
+        from ``chatter_table`` (the core's rows) and ``contact_names`` (each contact slot's name)."""
+        return chatter_frame(self.chatter_table, self.contact_names, "contact")
 
     @property
     def links(self) -> pd.DataFrame:

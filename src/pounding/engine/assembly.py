@@ -9,6 +9,7 @@ The core's contact slots are the walls' sides in order: wall ``w``'s left side i
 
 from __future__ import annotations
 
+import functools
 from typing import Any, NamedTuple
 
 import numpy as np
@@ -112,8 +113,15 @@ def structures_of(model: Oscillator | Structure | Adjacent) -> tuple[tuple[Struc
     if kind == PAIR:
         return model.structures, model.links
     if kind == MASS:
-        return (Structure.from_oscillator(model),), ()
+        return (_one_level(model),), ()
     return (model,), ()
+
+
+@functools.lru_cache(maxsize=64)
+def _one_level(oscillator: Oscillator) -> Structure:
+    """The one-level structure a single mass is (:meth:`Structure.from_oscillator`), built once for the many
+    runs of one system (a sweep's, a study's, a continuation's)."""
+    return Structure.from_oscillator(oscillator)
 
 
 def assemble(model: Oscillator | Structure | Adjacent) -> Assembly:

@@ -23,6 +23,11 @@ from .layout import (C_MAX_COMPRESSION, C_SLOT, C_V_IN, E_ACTION, E_INDEX, E_T, 
 if TYPE_CHECKING:  # pragma: no cover
     from ..excitation import Excitation
     from ..model import Oscillator
+    from .structure_result import StructureRun
+
+# a run's exact extrema and their times (a single mass's floats; a structure's per level)
+EXTREMA_FIELDS = ("displacement_max", "displacement_max_time_s", "displacement_min",
+                  "displacement_min_time_s", "abs_acceleration_max", "abs_acceleration_max_time_s")
 
 
 class Outcome:
@@ -220,6 +225,10 @@ class Run:
         The system simulated.
     excitation : Harmonic or Record
         The base acceleration it was shaken with.
+    levels : StructureRun
+        The same run as the one-level structure the mass is (:meth:`pounding.Structure.from_oscillator`):
+        what every structure's run has (``peaks()``, ``clearance_m``, ``to_xarray()`` along ``level``), the
+        mass its level 0 and its bumpers wall 0.
 
     Examples
     --------
@@ -261,6 +270,24 @@ class Run:
     excitation: "Excitation" = field(repr=False)
     sample_rate_hz: float = 1000.0
     chatter_table: np.ndarray = field(default_factory=lambda: np.zeros((0, 5)), repr=False)
+    levels: "StructureRun | None" = field(default=None, repr=False)
+
+    @classmethod
+    def _of_levels(cls, levels: "StructureRun", oscillator: "Oscillator", chatter_table: np.ndarray) -> "Run":
+        """The single mass's run read off the run of the one-level structure it is (``levels``: its
+        level 0, its bumpers wall 0; ``chatter_table``: the core's chatter rows)."""
+        force = levels.contact_force
+        k = levels.t.size
+        return cls(
+            t=levels.t, displacement=levels.displacement[:, 0], velocity=levels.velocity[:, 0],
+            abs_acceleration=levels.abs_acceleration[:, 0], isolator_force=levels.isolator_force,
+            bumper_force_left=force[:, 0] if force.shape[1] else np.zeros(k),
+            bumper_force_right=force[:, 1] if force.shape[1] else np.zeros(k),
+            **{name: float(getattr(levels, name)[0]) for name in EXTREMA_FIELDS},
+            contact_table=levels.contact_table, event_table=levels.event_table, energy=levels.energy,
+            final_state=levels.final_state, status=levels.status, message=levels.status.message,
+            oscillator=oscillator, excitation=levels.excitation, sample_rate_hz=levels.sample_rate_hz,
+            chatter_table=chatter_table, levels=levels)
 
     @cached_property
     def chatters(self) -> pd.DataFrame:
@@ -269,22 +296,22 @@ class Run:
 
     @cached_property
     def contacts(self) -> pd.DataFrame:
-        """One row per contact (see the class docstring), built on first use."""
-        return wall_contacts(self.contact_table, [0])
+        """One row per contact (see the class docstring), built on first use: the one-level structure's
+        (:attr:`levels`)."""
+        return self.levels.contacts
 
     @cached_property
     def events(self) -> pd.DataFrame:
         """Every event: time ``t_s``, ``kind`` and ``index`` (spring or side), built on first use."""
-        return events_frame(self.event_table)
+        return self.levels.events
 
     @cached_property
     def impacts(self) -> pd.DataFrame:
-        """The paper's per-impact quantities (Sect. 3.5), one row per contact, as a one-level
-        structure's: ``wall``, ``level``, ``side``, ``t_start_s`` and restitution, contact time,
+        """The paper's per-impact quantities (Sect. 3.5), one row per contact, the one-level structure's
+        (:attr:`levels`): ``wall``, ``level``, ``side``, ``t_start_s`` and restitution, contact time,
         impulse, mean and peak force, ``E_d`` and the bumper's own dissipation; see
         :func:`pounding.impact_table` (the same without ``wall`` and ``level``)."""
-        return impact_frame(self.contacts, ("wall", "level", "side"), self.contact_table,
-                            self.oscillator.mass_kg)
+        return self.levels.impacts
 
     @property
     def success(self) -> bool:

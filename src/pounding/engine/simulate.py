@@ -3,7 +3,6 @@ structure, two adjacent ones), and what the periodic-orbit solvers run (``short_
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from typing import TYPE_CHECKING, Optional
 
@@ -15,9 +14,8 @@ from ..model import Oscillator
 from .control import (DEFAULT_MAX_STEPS, check_budget, fastest_rates, new_control, run_interruptibly,
                       steps_per_second, why_rate)
 from .. import _core
-from ._chatter import chatter_frame
 from ._system import Forcing, System
-from .layout import CONTACT_COLUMNS, X_A_MAX, X_A_MAX_T, X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T
+from .layout import CONTACT_COLUMNS
 from .run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPLES,  # noqa: F401
                         MAX_SAMPLES, check_rtol, checked_run_args, history_rate, kernel_forcing)
 from .adjacent_result import AdjacentRun
@@ -241,24 +239,10 @@ def run_of(system: "Oscillator | Structure | Adjacent", asm: Assembly, excitatio
     if status == Status.SUCCESS and not (np.isfinite(out.ledger).all() and np.isfinite(out.extrema).all()):
         status = Status.NONFINITE
     final = State._of(out.state, asm.dofs, asm.system.layout)
-    if is_single_mass(system):
-        return _one_mass_run(system, asm, excitation, rate, out, status, energy, final)
-    return _structures_run(system, asm, excitation, rate, out, status, energy, final, t0)
-
-
-def _one_mass_run(oscillator: Oscillator, asm: Assembly, excitation: Harmonic | Record, rate: float,
-                  out: _core.RunOutput, status: Status, energy: EnergyLedger, final: State) -> Run:
-    extrema = out.per_dof(1)[0]
-    cols = out.samples.T
-    return Run(
-        t=cols[0], displacement=cols[1], velocity=cols[2], abs_acceleration=cols[3],
-        isolator_force=cols[4], **_bumper_forces(cols, asm.system.layout),
-        displacement_max=float(extrema[X_D_MAX]), displacement_max_time_s=float(extrema[X_D_MAX_T]),
-        displacement_min=float(extrema[X_D_MIN]), displacement_min_time_s=float(extrema[X_D_MIN_T]),
-        abs_acceleration_max=float(extrema[X_A_MAX]), abs_acceleration_max_time_s=float(extrema[X_A_MAX_T]),
-        contact_table=out.contacts, event_table=out.events, energy=energy, final_state=final,
-        status=status, message=status.message, oscillator=oscillator, excitation=excitation,
-        sample_rate_hz=rate, chatter_table=out.chatters)
+    levels = _structures_run(system, asm, excitation, rate, out, status, energy, final, t0)
+    if is_single_mass(system):  # (its Run: the one-level structure's run, read as one mass's)
+        return Run._of_levels(levels, system, out.chatters)
+    return levels
 
 
 def _structures_run(model: "Structure | Adjacent", asm: Assembly, excitation: Harmonic | Record, rate: float,
@@ -266,14 +250,14 @@ def _structures_run(model: "Structure | Adjacent", asm: Assembly, excitation: Ha
                     final: State, t0: float) -> "StructureRun | AdjacentRun":
     samples, contacts = out.samples, out.contacts
     structures = structures_of(model)[0]
+    clear = clearances(asm, out)
+    names = tuple(contact_name(slot, len(structures) > 1) for slot in asm.slots)
+    if len(structures) == 1:
+        return StructureRun._part(structures[0], 0, asm, structures, excitation, rate, out, status, t0,
+                                  event_table=out.events, energy=energy, final_state=final, clearance_m=clear,
+                                  chatter_table=out.chatters, contact_names=names)
     parts = [StructureRun._part(s, b, asm, structures, excitation, rate, out, status, t0)
              for b, s in enumerate(structures)]
-    clear = clearances(asm, out)
-    names = tuple(contact_name(slot, len(parts) > 1) for slot in asm.slots)
-    chatter = chatter_frame(out.chatters, names, "contact")
-    if len(parts) == 1:
-        return dataclasses.replace(parts[0], event_table=out.events, energy=energy, final_state=final,
-                                   clearance_m=clear, chatters=chatter)
     links = [c for c, (owner, _, _) in enumerate(asm.slots) if owner == -1]
     slot = CONTACT_COLUMNS["contact"]
     link_rows = contacts[np.isin(contacts[:, slot], links)].copy()
@@ -281,12 +265,4 @@ def _structures_run(model: "Structure | Adjacent", asm: Assembly, excitation: Ha
     n, nh = asm.system.n, asm.system.n_elements
     return AdjacentRun(model, excitation, rate, parts[0], parts[1], samples[:, 0],
                        samples[:, [1 + 3 * n + nh + c for c in links]], link_rows, out.events, energy, final,
-                       status, clear, chatter)
-
-
-def _bumper_forces(cols: np.ndarray, layout: dict) -> dict:
-    """A single mass's run's bumper forces from its samples' columns (``t, D, V, a_abs, F_I`` then each
-    contact slot's force): zeros without bumpers."""
-    if layout["in"] == layout["def"]:
-        return {"bumper_force_left": np.zeros_like(cols[0]), "bumper_force_right": np.zeros_like(cols[0])}
-    return {"bumper_force_left": cols[5], "bumper_force_right": cols[6]}
+                       status, clear, out.chatters, names)

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import TYPE_CHECKING, Any, Optional
 
 import numpy as np
@@ -92,7 +93,11 @@ class StructureRun(Outcome):
         Rigid stops' (:class:`~pounding.RigidStop`) chatter sequences: ``contact`` (``wall 0 left``),
         ``t_first_s``, ``t_end_s`` (its accumulation, or last impact), ``impacts`` followed one by one,
         ``accumulated``; see :attr:`pounding.Run.chatters` (empty for one of two adjacent structures: the
-        pair's ``AdjacentRun.chatters``).
+        pair's ``AdjacentRun.chatters``); built on first use.
+    chatter_table : ndarray, shape (n_sequences, 5)
+        The core's rows behind ``chatters``.
+    contact_names : tuple of str
+        Each contact slot's name, as ``chatters`` gives it (``wall 0 left``).
 
     Examples
     --------
@@ -140,54 +145,68 @@ class StructureRun(Outcome):
     stand_displacement_max: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     stand_displacement_min: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     clearance_m: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
-    chatters: pd.DataFrame = field(default_factory=lambda: chatter_frame(np.zeros((0, 5)), (), "contact"),
-                                   repr=False)
+    chatter_table: np.ndarray = field(default_factory=lambda: np.zeros((0, 5)), repr=False)
+    contact_names: tuple = field(default=(), repr=False)
+
+    @cached_property
+    def chatters(self) -> pd.DataFrame:
+        """The rigid stops' chatter sequences, one row each (see the class docstring), built on first use
+        from ``chatter_table`` (the core's rows) and ``contact_names`` (each contact slot's name)."""
+        return chatter_frame(self.chatter_table, self.contact_names, "contact")
 
     @classmethod
     def _part(cls, structure: "Structure", b: int, asm: Any, asm_structures: tuple, excitation: Any,
-              rate: float, out: Any, status: Status, t0: float) -> "StructureRun":
+              rate: float, out: Any, status: Status, t0: float, **whole: Any) -> "StructureRun":
         """Structure ``b``'s columns of a joint run (``out``: the core's ``RunOutput``; ``asm``: the
-        assembly, engine.assembly)."""
+        assembly, engine.assembly; ``whole``: the fields of the run as a whole, where ``b`` is all of it)."""
         n, nh = asm.system.n, asm.system.n_elements
         samples, contacts = out.samples, out.contacts
         dofs = asm.dofs[b]
         t = samples[:, 0]
         k = t.size
 
-        def columns(first: int, ground: np.ndarray) -> np.ndarray:
-            return np.column_stack([samples[:, first + d] if d >= 0 else ground for d in dofs]) if dofs else \
-                np.zeros((k, 0))
+        fixed = min(dofs, default=0) < 0  # (a fixed base: its level 0 the ground)
 
-        zeros = np.zeros(k)
-        displacement = columns(1, zeros)
-        velocity = columns(1 + n, zeros)
-        abs_acceleration = columns(1 + 2 * n, excitation.acceleration(t) if k else zeros)
+        def columns(first: int, ground: Any) -> np.ndarray:
+            if not fixed:
+                return _columns(samples, [first + d for d in dofs])
+            return np.column_stack([samples[:, first + d] if d >= 0 else ground() for d in dofs])
+
+        displacement = columns(1, lambda: np.zeros(k))
+        velocity = columns(1 + n, lambda: np.zeros(k))
+        abs_acceleration = columns(1 + 2 * n, lambda: excitation.acceleration(t) if k else np.zeros(k))
         e = asm.isolator[b]
         isolator_force = samples[:, 1 + 3 * n + e].copy() if e >= 0 else np.full(k, np.nan)
         mine = [c for c, (owner, _, _) in enumerate(asm.slots) if owner == b]
-        contact_force = samples[:, [1 + 3 * n + nh + c for c in mine]]
+        contact_force = _columns(samples, [1 + 3 * n + nh + c for c in mine])
         per_dof, tracked = out.per_dof(n), out.per_pair(n)
         first = sum(len(s.storeys) for s in asm_structures[:b])  # (this structure's storeys' drifts)
         drifts = tracked[first:first + len(structure.storeys)]
-        ground = np.full(DOF_EXTREMA_LEN, np.nan)  # (a fixed base's level: still, and shaken by the table)
-        ground[[X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T]] = (0.0, t0, 0.0, t0)
-        if min(dofs, default=0) < 0:
+        if fixed:
+            ground = np.full(DOF_EXTREMA_LEN, np.nan)  # (a fixed base's level: still, shaken by the table)
+            ground[[X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T]] = (0.0, t0, 0.0, t0)
             ground[[X_A_MAX, X_A_MAX_T]] = ground_peak(excitation, t0, t[-1] if k else t0)
-        ex = np.array([per_dof[d] if d >= 0 else ground for d in dofs]).reshape(len(dofs), DOF_EXTREMA_LEN)
-        slot = CORE_CONTACT_COLUMNS["contact"]
-        owned = np.zeros(len(asm.slots), dtype=bool)
-        owned[mine] = True
-        table = contacts[owned[contacts[:, slot].astype(int)]]
-        table[:, slot] = np.searchsorted(mine, table[:, slot])  # (slot numbers of this structure's own)
+            ex = np.array([per_dof[d] if d >= 0 else ground for d in dofs]).reshape(len(dofs),
+                                                                                   DOF_EXTREMA_LEN)
+        else:
+            ex = per_dof[list(dofs)]
+        if len(mine) == len(asm.slots):  # (every contact slot its own, numbered as its)
+            table = contacts.copy()
+        else:
+            slot = CORE_CONTACT_COLUMNS["contact"]
+            owned = np.zeros(len(asm.slots), dtype=bool)
+            owned[mine] = True
+            table = contacts[owned[contacts[:, slot].astype(int)]]
+            table[:, slot] = np.searchsorted(mine, table[:, slot])  # (slot numbers of this structure's own)
         on = [dof for _, _, dof in asm.stands[b]]
         stand_ex = per_dof[on]
+        parts = {"event_table": np.zeros((0, 3)), "energy": None, "final_state": None, **whole}
         return cls(structure=structure, excitation=excitation, sample_rate_hz=rate, t=t,
                    displacement=displacement, velocity=velocity, abs_acceleration=abs_acceleration,
                    isolator_force=isolator_force, contact_force=contact_force,
-                   **{name: ex[:, q].copy() for name, q in _LEVEL_EXTREMA},
-                   contact_table=table, event_table=np.zeros((0, 3)), energy=None, final_state=None,
+                   **{name: ex[:, q].copy() for name, q in _LEVEL_EXTREMA}, contact_table=table, **parts,
                    status=status, **{name: drifts[:, q].copy() for name, q in _DRIFT_EXTREMA},
-                   stand_displacement=samples[:, [1 + d for d in on]],
+                   stand_displacement=_columns(samples, [1 + d for d in on]),
                    stand_displacement_max=stand_ex[:, X_D_MAX].copy(),
                    stand_displacement_min=stand_ex[:, X_D_MIN].copy())
 
@@ -375,6 +394,14 @@ class StructureRun(Outcome):
         from ..plots import plot_structure_run, figure_of
 
         return figure_of(plot_structure_run(self, **kwargs), kwargs.get("axes"))
+
+
+def _columns(samples: np.ndarray, cols: list) -> np.ndarray:
+    """The samples' columns ``cols``, shape (k, len(cols)): a view where they are consecutive (every
+    system's run is read this way, a single mass's too: no copy of its histories)."""
+    if cols and cols == list(range(cols[0], cols[0] + len(cols))):
+        return samples[:, cols[0]:cols[0] + len(cols)]
+    return samples[:, cols]
 
 
 def ground_peak(excitation: Any, t0: float, t1: float) -> tuple[float, float]:
