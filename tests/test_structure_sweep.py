@@ -188,7 +188,33 @@ def test_a_pair_names_its_structures_and_links():
     assert ds["drift_max_m"].shape == (2, 4)
     assert list(ds["level_structure"].values) == ["first"] * 3 + ["second"] * 3
     assert list(ds["storey_structure"].values) == ["first"] * 2 + ["second"] * 2
-    assert len(pd_.plots.plot_structure_sweep(res)) == 7
+    assert len(pd_.plots.plot_sweep(res)) == 7
+    with pytest.warns(FutureWarning, match="plot_sweep"):  # (its name before)
+        assert len(pd_.plots.plot_structure_sweep(res)) == 7
+
+
+def test_one_plot_draws_every_system_s_sweeps():
+    """plot_sweep draws a building's up and down sweeps on one pair of axes, each direction in its line style
+    and every level's and wall side's line labelled with it; a single mass's beside a building's is refused
+    with the field named."""
+    import matplotlib.pyplot as plt
+
+    b = pd_.Structure(1e3, linear_isolator(1e5, 1e3), [pd_.Storey(1e3, 1e6)],
+                      [pd_.Wall(1, 0.01, 0.01, pd_.KelvinVoigt(1e7, 1e3))])
+    sweeps = [pd_.sweep(b, 0.2, [1.0, 1.5, 2.0], d, steady="fixed", cycles=4, measure_cycles=1)
+              for d in ("up", "down")]
+    artists = pd_.plots.plot_sweep(sweeps)
+    fig = artists[0].figure
+    labels = [line.get_label() for ax in fig.axes for line in ax.get_lines()]
+    assert labels == ["level 0 (up)", "level 1 (up)", "level 0 (down)", "level 1 (down)",
+                      "wall 0 left (up)", "wall 0 right (up)", "wall 0 left (down)", "wall 0 right (down)"]
+    styles = {line.get_label(): line.get_linestyle() for ax in fig.axes for line in ax.get_lines()}
+    assert styles["level 1 (up)"] == "-" and styles["level 1 (down)"] == "--"
+    assert "up and down" in fig.axes[0].get_title()
+    plt.close(fig)
+    one = pd_.sweep(pd_.presets.paper_damped(), 0.05, [1.5, 2.0], steady="fixed", cycles=4, measure_cycles=1)
+    with pytest.raises(pd_.InputError, match="sweeps"):
+        pd_.plots.plot_sweep([one, sweeps[0]])
 
 
 def test_bad_arguments_are_named():

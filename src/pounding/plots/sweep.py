@@ -1,5 +1,5 @@
-"""Plots of sweeps: alpha and eta against nu (paper Figs. 4-5), hysteresis loops (Figs. 7, 15), and a
-structure's sweep (each level's alpha, each wall side's contacts per cycle)."""
+"""Plots of sweeps, one for every system: alpha and eta against nu (a single mass, paper Figs. 4-5), each
+level's alpha and each wall side's contacts per cycle (several levels); hysteresis loops (Figs. 7, 15)."""
 
 from __future__ import annotations
 
@@ -20,25 +20,27 @@ DIRECTION_STYLE = {"up": {"ls": "-", "marker": "^"}, "down": {"ls": "--", "marke
 
 def plot_sweep(sweeps: "SweepResult | Sequence[SweepResult]", ax: Any = None, *,
                label: str | None = None, color: Any = None) -> list:
-    """alpha (top) and eta, or e without bumpers (bottom), against nu.
+    """A sweep against nu, for every system: alpha (top) and eta, or e without bumpers (bottom), of a
+    single mass (paper Figs. 4-5); each level's alpha (top) and each wall side's or link's contacts per
+    cycle (bottom, with contacts) of a system of several levels.
 
     Up sweeps are drawn solid with upward markers, down sweeps dashed with downward ones.
 
     Parameters
     ----------
     sweeps : SweepResult or sequence of them
-        E.g. ``[up, down]`` of the same system and a_G.
-    ax : pair of matplotlib Axes, optional
-        ``(ax_alpha, ax_excursion)``; a new two-panel figure if omitted.
+        E.g. ``[up, down]`` of the same system and a_G (every one of one level, or every one of several).
+    ax : matplotlib Axes or pair of them, optional
+        ``(ax_alpha, ax_bottom)``, or one Axes for alpha alone (several levels); a new figure if omitted.
     label : str, optional
-        Legend label prefix (default ``a_G = ...``).
+        Legend label prefix (one level; default ``a_G = ...``).
     color : optional
-        One colour for all the sweeps given (default: one per a_G).
+        One colour for all the sweeps given (one level; default: one per a_G).
 
     Returns
     -------
     list of matplotlib artists
-        The sweeps' lines in both panels, the unsteady steps' circles, the line eta = 1.
+        The sweeps' lines in both panels (one level: the unsteady steps' circles, the line eta = 1).
 
     Examples
     --------
@@ -52,11 +54,33 @@ def plot_sweep(sweeps: "SweepResult | Sequence[SweepResult]", ax: Any = None, *,
     >>> artists = pounding.plots.plot_sweep(sweeps)
     >>> len(artists) > 0
     True
+
+    A two-level building's sweep: each level's alpha (no contacts: no bottom panel).
+
+    >>> iso = pounding.Isolator(slopes_n_m=[2.0e5], breakpoints_m=[],
+    ...                         damping_n_s_m=4.0e3)
+    >>> b = pounding.Structure(2.0e3, iso, [pounding.Storey(1.0e3, 2.0e6, 2.0e3)])
+    >>> len(pounding.plots.plot_sweep(pounding.sweep(b, 0.1, [1.0, 1.5, 2.0])))
+    2
     """
-    import matplotlib.pyplot as plt
+    from .._errors import InputError, Problem
 
     if not isinstance(sweeps, Sequence):
         sweeps = [sweeps]
+    several = {len(sw.levels) > 1 for sw in sweeps}
+    if len(several) > 1:
+        raise InputError(Problem.WRONG_MODE, "sweeps", "single masses and structures of several levels",
+                         mode="sweeps of one kind",
+                         fix="plot a single mass's sweeps and a building's on separate axes")
+    if several == {True}:
+        return _plot_levels(sweeps, ax)
+    return _plot_one_level(sweeps, ax, label, color)
+
+
+def _plot_one_level(sweeps: Sequence, ax: Any, label: str | None, color: Any) -> list:
+    """A single mass's sweeps (``plot_sweep``): alpha and eta (e without bumpers) against nu."""
+    import matplotlib.pyplot as plt
+
     if ax is None:
         _, ax = plt.subplots(2, 1, figsize=(7, 6), sharex=True, constrained_layout=True)
     ax_a, ax_e = ax
@@ -255,60 +279,54 @@ def plot_campaign(result: "CampaignResult", ax: Any = None) -> list:
 
 
 def plot_structure_sweep(result: "SweepResult", ax: Any = None) -> list:
-    """Each level's alpha (its absolute acceleration peak over the table's) against ``nu``, and below it,
-    when the structure has contacts, each wall side's (or link's) contacts per cycle.
+    """What :func:`plot_sweep` draws of a sweep of several levels (its name before, for one more release,
+    with a ``FutureWarning``)."""
+    from .._errors import warn_renamed
 
-    Parameters
-    ----------
-    result : SweepResult
-        A result of :func:`pounding.sweep` (of a :class:`~pounding.Structure` or :class:`~pounding.Adjacent`:
-        a single mass's is drawn by :func:`plot_sweep`).
-    ax : matplotlib Axes or sequence of two, optional
-        Where to draw alpha (and the contacts); a new figure if omitted.
+    warn_renamed("pounding.plots.plot_structure_sweep", "pounding.plots.plot_sweep", why="one plot for every "
+                 "system's sweep")
+    return plot_sweep(result, ax=ax)
 
-    Returns
-    -------
-    list of matplotlib artists
 
-    Examples
-    --------
-    >>> import pounding
-    >>> iso = pounding.Isolator(slopes_n_m=[2.0e5], breakpoints_m=[],
-    ...                         damping_n_s_m=4.0e3)
-    >>> b = pounding.Structure(2.0e3, iso, [pounding.Storey(1.0e3, 2.0e6, 2.0e3)])
-    >>> res = pounding.sweep(b, 0.1, [1.0, 1.5, 2.0])
-    >>> len(pounding.plots.plot_structure_sweep(res)) > 0
-    True
-    """
+def _plot_levels(sweeps: Sequence, ax: Any) -> list:
+    """Sweeps of several levels (``plot_sweep``): each level's alpha against nu and, with contacts, each
+    wall side's (or link's) contacts per cycle; each sweep's direction in its line style."""
     import matplotlib.pyplot as plt
-    import numpy as np
 
     from ..protocols.sweep_window import level_name, slot_name
 
-    order = np.argsort(result.freqs_hz)
-    nu = result.nu[order]
-    slots = result.contact_slots
+    slots = any(sw.contact_slots for sw in sweeps)
     if ax is None:
         if slots:
             _, (ax_a, ax_c) = plt.subplots(2, 1, figsize=(7, 6), sharex=True, constrained_layout=True)
         else:
             _, ax_a = plt.subplots(figsize=(7, 4), constrained_layout=True)
             ax_c = None
-    elif isinstance(ax, (list, tuple)):
+    elif isinstance(ax, (list, tuple, np.ndarray)):
         ax_a, ax_c = ax
     else:
         ax_a, ax_c = ax, None
     artists: list = []
-    for q in range(len(result.levels)):
-        artists += ax_a.plot(nu, result.alpha[order, q], marker=".", label=level_name(result.levels, q))
+    for sw in sweeps:
+        order = np.argsort(sw.freqs_hz)
+        nu = sw.nu[order]
+        ls = DIRECTION_STYLE[sw.direction]["ls"] if len(sweeps) > 1 else "-"
+        tag = f" ({sw.direction})" if len(sweeps) > 1 else ""
+        for q in range(len(sw.levels)):
+            artists += ax_a.plot(nu, sw.alpha[order, q], marker=".", ls=ls, color=f"C{q % 10}",
+                                 label=level_name(sw.levels, q) + tag)
+        if ax_c is not None:
+            for c in range(len(sw.contact_slots)):
+                artists += ax_c.plot(nu, sw.contacts_per_cycle[order, c], marker=".", ls=ls,
+                                     color=f"C{c % 10}", label=slot_name(sw.contact_slots, c) + tag)
+    first = sweeps[0]
     ax_a.set_ylabel("alpha = max|a_abs| / A_t")
-    ax_a.set_title(f"Sweep {result.direction}, a_G = {result.a_g:g} g")
+    ax_a.set_title(f"Sweep {' and '.join(dict.fromkeys(sw.direction for sw in sweeps))}, "
+                   f"a_G = {', '.join(dict.fromkeys(f'{sw.a_g:g}' for sw in sweeps))} g"
+                   if len(sweeps) > 1 else f"Sweep {first.direction}, a_G = {first.a_g:g} g")
     ax_a.legend(fontsize="small")
     ax_a.grid(True, alpha=0.3)
     if ax_c is not None:
-        for c in range(len(slots)):
-            artists += ax_c.plot(nu, result.contacts_per_cycle[order, c], marker=".",
-                                 label=slot_name(slots, c))
         ax_c.set_ylabel("contacts per cycle")
         ax_c.legend(fontsize="small")
         ax_c.grid(True, alpha=0.3)

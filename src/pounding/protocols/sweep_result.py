@@ -462,9 +462,8 @@ class SweepResult:
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
         """alpha and eta (e without bumpers) against nu (a single mass), or each level's alpha and each
-        contact slot's contacts per cycle (several levels); see :func:`pounding.plots.plot_sweep` and
-        :func:`pounding.plots.plot_structure_sweep`.  Returns its Figure."""
-        from ..plots import figure_of, plot_structure_sweep, plot_sweep
+        contact slot's contacts per cycle (several levels); see :func:`pounding.plots.plot_sweep`.  Returns
+        its Figure."""
+        from ..plots import figure_of, plot_sweep
 
-        draw = plot_sweep if len(self.levels) == 1 else plot_structure_sweep
-        return figure_of(draw(self, ax=ax, **kwargs), ax)
+        return figure_of(plot_sweep(self, ax=ax, **kwargs), ax)
