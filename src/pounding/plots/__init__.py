@@ -16,7 +16,7 @@ from .record import plot_record, plot_response_spectrum
 from .run import plot_adjacent_run, plot_run, plot_structure_run
 from .spectrum import plot_pounding_spectrum
 from .study import plot_study
-from .sweep import plot_campaign, plot_hysteresis, plot_lab_sweep, plot_structure_sweep, plot_sweep
+from .sweep import plot_campaign, plot_hysteresis, plot_lab_sweep, plot_sweep
 
 __all__ = ["figure_of", "plot_adjacent_run", "plot_basin_stability", "plot_basins",
            "plot_bifurcation_diagram",
@@ -27,4 +27,14 @@ __all__ = ["figure_of", "plot_adjacent_run", "plot_basin_stability", "plot_basin
            "plot_lyapunov",
            "plot_hysteresis", "plot_lab_sweep", "plot_orbit", "plot_pounding_spectrum", "plot_record",
            "plot_response_spectrum", "plot_run", "plot_structure_orbit", "plot_structure_run",
-           "plot_structure_sweep", "plot_study", "plot_sweep"]
+           "plot_study", "plot_sweep"]
+
+
+def __getattr__(name: str):
+    if name == "plot_structure_sweep":  # (its name before one plot drew every sweep, for one release)
+        from .._errors import warn_renamed
+
+        warn_renamed("pounding.plots.plot_structure_sweep", "pounding.plots.plot_sweep",
+                     why="one plot for every system's sweep")
+        return plot_sweep
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

@@ -278,16 +278,6 @@ def plot_campaign(result: "CampaignResult", ax: Any = None) -> list:
     return artists
 
 
-def plot_structure_sweep(result: "SweepResult", ax: Any = None) -> list:
-    """What :func:`plot_sweep` draws of a sweep of several levels (its name before, for one more release,
-    with a ``FutureWarning``)."""
-    from .._errors import warn_renamed
-
-    warn_renamed("pounding.plots.plot_structure_sweep", "pounding.plots.plot_sweep", why="one plot for every "
-                 "system's sweep")
-    return plot_sweep(result, ax=ax)
-
-
 def _plot_levels(sweeps: Sequence, ax: Any) -> list:
     """Sweeps of several levels (``plot_sweep``): each level's alpha against nu and, with contacts, each
     wall side's (or link's) contacts per cycle; each sweep's direction in its line style."""
