@@ -232,7 +232,32 @@ def test_the_orbit_plots_each_level_in_its_phase_plane():
     matplotlib.use("Agg")
     orbit = pd_.periodic_orbit(_moat(), pd_.Harmonic(0.1, 1.5))
     assert orbit.plot().__class__.__name__ == "Figure"
-    ax = pd_.plots.plot_structure_orbit(orbit)
-    assert len(ax.get_lines()) == 4
+    artists = pd_.plots.plot_orbit(orbit)
+    ax = artists[0].axes
+    assert len(artists) == len(ax.get_lines()) == 4
     assert "2 contacts per period" in ax.get_title()
     assert math.isclose(ax.get_lines()[0].get_xdata()[0], orbit.state.displacements_m[0] * 1e3)
+    with pytest.warns(FutureWarning, match="plot_orbit"):  # (its name before, returning the Axes)
+        assert len(pd_.plots.plot_structure_orbit(orbit).get_lines()) == 4
+
+
+def test_one_orbit_class_for_every_system():
+    """A structure's orbit is a PeriodicOrbit, its alpha, excursion and eta per level (eta over the gap of
+    the wall at that level, NaN without one); a one-level structure's numbers are its oscillator's to the
+    bit, as floats for the single mass; the old class name answers with a FutureWarning."""
+    osc = pd_.presets.paper_damped()
+    h = pd_.Harmonic(0.05, 1.5)
+    one, level = pd_.periodic_orbit(osc, h), pd_.periodic_orbit(pd_.Structure.from_oscillator(osc), h)
+    assert isinstance(one.alpha, float) and isinstance(one.eta, float)
+    assert level.alpha.shape == level.eta.shape == level.excursion_m.shape == (1,)
+    assert (one.alpha, one.excursion_m, one.eta) == (level.alpha[0], level.excursion_m[0], level.eta[0])
+    assert one.eta == one.excursion_m / osc.bumpers.total_gap
+    orbit = pd_.periodic_orbit(_moat(), pd_.Harmonic(0.1, 1.5))
+    walls = {w.level: w.gap_left_m + w.gap_right_m for w in _moat().walls}
+    expected = [orbit.excursion_m[lv] / walls[lv] if lv in walls else math.nan
+                for lv in range(orbit.excursion_m.size)]
+    np.testing.assert_array_equal(orbit.eta, expected)
+    with pytest.warns(FutureWarning, match="PeriodicOrbit"):
+        assert pd_.StructurePeriodicOrbit is pd_.PeriodicOrbit
+    with pytest.warns(FutureWarning, match="PeriodicOrbit"):
+        assert pd_.analysis.StructurePeriodicOrbit is pd_.PeriodicOrbit

@@ -15,7 +15,7 @@ __version__ = "0.1.0"
 # public name -> the module that defines it (relative to this package)
 _NAMES = {
     ".analysis": ("Bifurcation", "BifurcationCurve", "Branch", "CoexistenceMap", "LyapunovSpectrum",
-                  "PeriodicOrbit", "StructurePeriodicOrbit", "bifurcation_curve", "coexistence_map",
+                  "PeriodicOrbit", "bifurcation_curve", "coexistence_map",
                   "continuation", "largest_exponents", "lyapunov", "periodic_orbit"),
     "._errors": ("InputError", "Interrupted", "MissingExtra", "OutputError", "PoundingWarning", "Problem",
                  "Status", "StoreError"),
@@ -46,7 +46,8 @@ __all__ = sorted(_WHERE) + ["data", "lab", "plots", "presets", "records"]
 
 # names of 0.1 that still answer for one release, with a FutureWarning: the old name -> (where, the new one)
 _RENAMED = {"StructureState": (".engine", "State"), "StructureEnergy": (".engine", "EnergyLedger"),
-            "StructureSweepResult": (".protocols", "SweepResult")}
+            "StructureSweepResult": (".protocols", "SweepResult"),
+            "StructurePeriodicOrbit": (".analysis", "PeriodicOrbit")}
 
 
 def __getattr__(name: str) -> Any:
@@ -75,7 +76,7 @@ if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
     from ._errors import (InputError, Interrupted, MissingExtra, OutputError, PoundingWarning,  # noqa: F401
                           Problem, Status, StoreError)
     from .analysis import (Bifurcation, BifurcationCurve, Branch, CoexistenceMap, LyapunovSpectrum,  # noqa: F401
-                           PeriodicOrbit, StructurePeriodicOrbit, bifurcation_curve, coexistence_map,
+                           PeriodicOrbit, bifurcation_curve, coexistence_map,
                            continuation, largest_exponents, lyapunov, periodic_orbit)
     from .engine import AdjacentRun, EnergyLedger, Run, State, StructureRun, simulate  # noqa: F401
     from .excitation import Harmonic, Record  # noqa: F401

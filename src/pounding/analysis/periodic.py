@@ -25,7 +25,7 @@ from typing import Any, Optional
 import numpy as np
 
 from .._errors import InputError, Problem, renamed_keyword
-from ..engine import Run, State, simulate
+from ..engine import Run, State, simulate, structure_runs
 from ..engine.assembly import check_system
 from ..engine.simulate import check_state
 from ..excitation import Harmonic
@@ -57,7 +57,7 @@ class _Orbit(Floquet):
 
 @dataclass(frozen=True, eq=False)
 class PeriodicOrbit(_Orbit):
-    """A periodic response and its stability (what :func:`periodic_orbit` returns).
+    """A periodic response and its stability (what :func:`periodic_orbit` returns), of any system.
 
     Attributes
     ----------
@@ -74,13 +74,15 @@ class PeriodicOrbit(_Orbit):
     monodromy : ndarray, shape (r, r)
         Jacobian of the stroboscopic map in the shooting coordinates ``coordinates``.
     coordinates : tuple of str
-        Names of the shooting coordinates: ``x_0`` and ``v_0`` (the mass's displacement and velocity),
-        ``delta_wall0_left`` and ``delta_wall0_right`` (its bumpers' compressions), ``u_<i>`` (the
-        isolator's slips), ``z`` (a Bouc-Wen spring's): a one-level structure's names.
+        Names of the shooting coordinates: ``x_<level>`` and ``v_<level>`` for each moving level
+        (``first.``/``second.`` for a pair; ``stand_<wall>_<side>`` for a wall's stand),
+        ``delta_wall<w>_<side>`` and ``delta_link<k>`` for a relaxing contact's compression, ``u_<spring>``
+        for a spring's slip, ``z`` for a Bouc-Wen spring's; a single mass's are its one level's
+        (``x_0``, ``v_0``, ``delta_wall0_left``, ...).
     residual : float
         Largest difference between the state and its image one period later, each coordinate
-        over its scale (lengths over the largest ``|x|`` over the guess's first period, velocities
-        over that times Omega, the Bouc-Wen z over 1).
+        over its scale (lengths over the largest ``|x|`` of any level over the guess's first period,
+        velocities over that times Omega, the Bouc-Wen z over 1).
     converged : bool
         Whether ``residual <= tol``.
     iterations : int
@@ -88,10 +90,13 @@ class PeriodicOrbit(_Orbit):
     method : str
         How ``monodromy`` was computed: ``"exact"`` (state-transition and saltation matrices)
         or ``"finite-difference"``.
-    run : Run
+    run : Run, StructureRun or AdjacentRun
         One period from ``state``, densely sampled.
     message : str
         What happened, for people.
+    alpha, excursion_m, eta : float, or ndarray of shape (levels,)
+        A single mass's, or each level's of a system of several (a pair's: the first's levels, then the
+        second's): see the properties.
 
     Examples
     --------
@@ -105,34 +110,66 @@ class PeriodicOrbit(_Orbit):
     >>> print(f"alpha {orbit.alpha:.2f}, eta {orbit.eta:.3f}, max |mu| "
     ...       f"{orbit.max_abs_multiplier:.3f}")
     alpha 8.30, eta 1.066, max |mu| 0.368
+
+    A two-level building against a stop at its base:
+
+    >>> iso = pounding.Isolator(slopes_n_m=[2.0e5], breakpoints_m=[],
+    ...                         damping_n_s_m=4.0e3)
+    >>> stop = pounding.Wall(0, 0.02, 0.02, pounding.KelvinVoigt(1.0e8, 2.0e4))
+    >>> b = pounding.Structure(2.0e3, iso,
+    ...                        [pounding.Storey(1.0e3, 2.0e6, 2.0e3)], [stop])
+    >>> orbit = pounding.periodic_orbit(b, pounding.Harmonic(0.1, 1.5))
+    >>> orbit.converged, orbit.method, orbit.coordinates[:4]
+    (True, 'exact', ('x_0', 'x_1', 'v_0', 'v_1'))
+    >>> orbit.contacts_per_period, orbit.stable, orbit.alpha.shape
+    (2, True, (2,))
     """
 
+    def _levels(self, values: list) -> "float | np.ndarray":
+        """Per-level numbers as this orbit gives them: a single mass's its one float, else an array over
+        the levels (a pair's: the first's, then the second's)."""
+        out = np.concatenate(values)
+        return float(out[0]) if isinstance(self.run, Run) else out
+
     @property
-    def alpha(self) -> float:
-        """Peak absolute acceleration over the table's peak, ``max|a_abs| / A_t``."""
+    def alpha(self) -> "float | np.ndarray":
+        """Peak absolute acceleration over the table's peak, ``max|a_abs| / A_t``: a single mass's, or each
+        level's, shape (levels,)."""
         peak = abs(self.run.excitation.peak_m_s2)
-        return float(self.run.abs_acceleration_max / peak) if peak > 0.0 else math.nan
+        acc = [part.abs_acceleration_max for part in structure_runs(self.run)]
+        return self._levels([a / peak if peak > 0.0 else np.full(a.shape, math.nan) for a in acc])
 
     @property
-    def excursion_m(self) -> float:
-        """``D_max - D_min`` over the period, m."""
-        return float(self.run.displacement_max - self.run.displacement_min)
+    def excursion_m(self) -> "float | np.ndarray":
+        """``D_max - D_min`` over the period, m: a single mass's, or each level's, shape (levels,)."""
+        return self._levels([part.excursion_m for part in structure_runs(self.run)])
 
     @property
-    def eta(self) -> float:
-        """Excursion over the total gap (NaN without bumpers)."""
-        b = self.run.oscillator.bumpers
-        return self.excursion_m / b.total_gap if b is not None else math.nan
+    def eta(self) -> "float | np.ndarray":
+        """Excursion over the total gap of the wall at its level (``gap_left_m + gap_right_m``; a single
+        mass's bumpers), NaN without one: a single mass's, or each level's, shape (levels,)."""
+        return self._levels([part.excursion_m / _total_gaps(part.structure)
+                             for part in structure_runs(self.run)])
 
     def _contact_tables(self) -> list:
-        return [self.run.contact_table]
+        parts = structure_runs(self.run)
+        return [p.contact_table for p in parts] + ([self.run.link_table] if len(parts) > 1 else [])
 
     def plot(self, ax: Any = None, **kwargs: Any) -> Any:
-        """The orbit in the phase plane (x, v), its contacts marked; returns its Figure."""
+        """The orbit in the phase plane (x, v), each level's, its contacts marked; see
+        :func:`pounding.plots.plot_orbit`.  Returns its Figure."""
         from ..plots.periodic import plot_orbit
         from ..plots import figure_of
 
         return figure_of(plot_orbit(self, ax=ax, **kwargs), ax)
+
+
+def _total_gaps(structure: "Structure") -> np.ndarray:
+    """Each level's total gap: its first wall's ``gap_left_m + gap_right_m``, m (NaN without a wall)."""
+    gaps = np.full(structure.n_levels, math.nan)
+    for wall in reversed(structure.walls):
+        gaps[wall.level] = wall.gap_left_m + wall.gap_right_m
+    return gaps
 
 
 @renamed_keyword("oscillator", "system")
@@ -153,8 +190,8 @@ def periodic_orbit(
     Parameters
     ----------
     system : Oscillator, Structure or Adjacent
-        The system: one mass, or a structure of several (or two adjacent ones), whose orbit is
-        then a :class:`StructurePeriodicOrbit` (``guess`` a structure's :class:`State`; its
+        The system: one mass, or a structure of several (or two adjacent ones): ``guess`` is then a
+        structure's :class:`State` (its
         shooting coordinates every mass's displacement and velocity, the relaxing contacts'
         compressions and the sticking springs' slips; the monodromy exact, saltation at each
         contact, for Kelvin-Voigt contacts and multi-linear isolators and storeys).
@@ -179,7 +216,7 @@ def periodic_orbit(
 
     Returns
     -------
-    PeriodicOrbit or StructurePeriodicOrbit
+    PeriodicOrbit
         ``converged`` False when Newton did not reach ``tol`` (``message`` says why); the
         orbit is then the best iterate.
 
@@ -219,93 +256,5 @@ def periodic_orbit(
     # progress its own (the guess's otherwise)
     state = simulate(system, excitation, period, shooter._state(vec), sample_rate_hz=0).final_state
     run = simulate(system, excitation, period, state, sample_rate_hz=samples_per_period / period)
-    kind = PeriodicOrbit if isinstance(run, Run) else StructurePeriodicOrbit
-    return kind(state, period, multipliers_of(jac), jac, tuple(shooter.names(vec, frozen)), res, res <= tol,
-                it, "exact" if shooter.exact else "finite-difference", run, message)
-
-
-@dataclass(frozen=True, eq=False)
-class StructurePeriodicOrbit(_Orbit):
-    """A periodic response of a structure (or two adjacent ones) and its stability.
-
-    Attributes
-    ----------
-    state : State
-        The orbit's state at the section time (``state.time_s``).
-    period_s : float
-        Its period, s: ``period_multiple`` periods of the forcing.
-    multipliers : ndarray of complex, shape (r,)
-        Floquet multipliers: the eigenvalues of ``monodromy``, largest modulus first.
-    monodromy : ndarray, shape (r, r)
-        Jacobian of the stroboscopic map in the shooting coordinates ``coordinates``.
-    coordinates : tuple of str
-        Names of the shooting coordinates: ``x_<level>`` and ``v_<level>`` for each moving level
-        (``first.``/``second.`` for a pair; ``stand_<wall>_<side>`` for a wall's stand),
-        ``delta_wall<w>_<side>`` and ``delta_link<k>`` for a relaxing contact's compression,
-        ``u_<spring>`` for a spring's slip.
-    residual : float
-        Largest difference between the state and its image a period later, each coordinate over its scale
-        (lengths over the largest ``|x|`` of any level over the guess's period, velocities over that times
-        Omega).
-    converged : bool
-        Whether ``residual <= tol``.
-    iterations : int
-        Newton iterations made.
-    method : str
-        ``"exact"`` (state-transition and saltation matrices) or ``"finite-difference"``.
-    run : StructureRun or AdjacentRun
-        One period from ``state``, densely sampled.
-    message : str
-        What happened, for people.
-    alpha, excursion_m : ndarray, shape (levels,)
-        Each level's (a pair's: the first's levels, then the second's).
-
-    Examples
-    --------
-    >>> import pounding
-    >>> iso = pounding.Isolator(slopes_n_m=[2.0e5], breakpoints_m=[],
-    ...                         damping_n_s_m=4.0e3)
-    >>> stop = pounding.Wall(0, 0.02, 0.02, pounding.KelvinVoigt(1.0e8, 2.0e4))
-    >>> b = pounding.Structure(2.0e3, iso,
-    ...                        [pounding.Storey(1.0e3, 2.0e6, 2.0e3)], [stop])
-    >>> orbit = pounding.periodic_orbit(b, pounding.Harmonic(0.1, 1.5))
-    >>> orbit.converged, orbit.method, orbit.coordinates[:4]
-    (True, 'exact', ('x_0', 'x_1', 'v_0', 'v_1'))
-    >>> orbit.contacts_per_period, orbit.stable
-    (2, True)
-    """
-
-    def _contact_tables(self) -> list:
-        return _contact_tables_of(self.run)
-
-    @property
-    def alpha(self) -> np.ndarray:
-        """Each level's peak absolute acceleration over the table's peak, shape (levels,) (a pair's: the
-        first's levels, then the second's)."""
-        peak = abs(self.run.excitation.peak_m_s2)
-        acc = np.concatenate([part.abs_acceleration_max for part in _run_parts(self.run)])
-        return acc / peak if peak > 0.0 else np.full(acc.shape, math.nan)
-
-    @property
-    def excursion_m(self) -> np.ndarray:
-        """Each level's ``D_max - D_min`` over the period, m, shape (levels,) (a pair's: the first's levels,
-        then the second's)."""
-        return np.concatenate([part.excursion_m for part in _run_parts(self.run)])
-
-    def plot(self, ax: Any = None, **kwargs: Any) -> Any:
-        """Each level's orbit in its phase plane (x, v), its contacts marked; returns its Figure."""
-        from ..plots.periodic import plot_structure_orbit
-        from ..plots import figure_of
-
-        return figure_of(plot_structure_orbit(self, ax=ax, **kwargs), ax)
-
-
-def _run_parts(run: Any) -> tuple:
-    """The structures' runs of a run: a structure's itself, a pair's first and second."""
-    return (run.first, run.second) if hasattr(run, "first") else (run,)
-
-
-def _contact_tables_of(run: Any) -> list:
-    """A run's contact tables (the core's columns): each structure's walls', then a pair's links'."""
-    parts = _run_parts(run)
-    return [p.contact_table for p in parts] + ([run.link_table] if len(parts) > 1 else [])
+    return PeriodicOrbit(state, period, multipliers_of(jac), jac, tuple(shooter.names(vec, frozen)), res,
+                         res <= tol, it, "exact" if shooter.exact else "finite-difference", run, message)

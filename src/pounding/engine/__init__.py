@@ -2,11 +2,11 @@
 
 from .result import EnergyLedger, Run
 from .state import State
-from .simulate import simulate
+from .simulate import simulate, structure_runs
 from .adjacent_result import AdjacentRun
 from .structure_result import StructureRun
 
-__all__ = ["AdjacentRun", "EnergyLedger", "Run", "State", "StructureRun", "simulate"]
+__all__ = ["AdjacentRun", "EnergyLedger", "Run", "State", "StructureRun", "simulate", "structure_runs"]
 
 
 # 0.1's names, one class for every system now: they still answer for one release, with a FutureWarning

@@ -245,6 +245,14 @@ def run_of(system: "Oscillator | Structure | Adjacent", asm: Assembly, excitatio
     return levels
 
 
+def structure_runs(run: "Run | StructureRun | AdjacentRun") -> tuple:
+    """Every structure's run within a run, each a :class:`StructureRun`: a single mass's the one-level
+    structure's it is read off (``Run.levels``), a structure's its own, a pair's first and second."""
+    if isinstance(run, AdjacentRun):
+        return run.first, run.second
+    return (run.levels,) if isinstance(run, Run) else (run,)
+
+
 def _structures_run(model: "Structure | Adjacent", asm: Assembly, excitation: Harmonic | Record, rate: float,
                     out: _core.RunOutput, status: Status, energy: EnergyLedger,
                     final: State, t0: float) -> "StructureRun | AdjacentRun":

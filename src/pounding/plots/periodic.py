@@ -11,7 +11,8 @@ from .legend import place_legend
 
 
 def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
-    """A periodic orbit in the phase plane, displacement (mm) against velocity (m/s).
+    """A periodic orbit in the phase plane, displacement (mm) against velocity (m/s): a single mass's with
+    its contacts' starts and its bumpers' surfaces, or each level's of a system of several.
 
     Parameters
     ----------
@@ -20,13 +21,13 @@ def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
     ax : matplotlib Axes, optional
         Where to draw (a new figure if omitted).
     **kwargs
-        Passed to the orbit's line (solid when stable, dashed when not).
+        Passed to the orbit's lines (solid when stable, dashed when not).
 
     Returns
     -------
     list of matplotlib artists
-        The orbit's line, the mark of its section state, those of its contacts' starts, the
-        bumpers' surfaces.
+        A single mass's: the orbit's line, the mark of its section state, those of its contacts'
+        starts, the bumpers' surfaces.  Several levels: each moving level's line and section state.
 
     Examples
     --------
@@ -44,10 +45,14 @@ def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
     from matplotlib import cbook
     from matplotlib.lines import Line2D
 
+    from ..engine import Run
+
     kwargs = cbook.normalize_kwargs(kwargs, Line2D)  # (c, ls, lw: the long names)
     if ax is None:
         ax = plt.figure().add_subplot()
     run = orbit.run
+    if not isinstance(run, Run):  # (several levels)
+        return _plot_levels(orbit, ax, kwargs)
     style = {"color": "C0", "linestyle": "-" if orbit.stable else "--",
              "label": f"{'stable' if orbit.stable else 'unstable'}, "
                       f"max |mu| = {orbit.max_abs_multiplier:.3g}"}
@@ -74,44 +79,17 @@ def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
     return artists
 
 
-def plot_structure_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> Any:
-    """A structure's periodic orbit: each level in its phase plane, displacement (mm) against velocity
-    (m/s), the section state marked.
+def _plot_levels(orbit: Any, ax: Any, kwargs: dict) -> list:
+    """A structure's (or a pair's) periodic orbit (``plot_orbit``): each moving level's line in its phase
+    plane and its section state."""
+    from ..engine import structure_runs
 
-    Parameters
-    ----------
-    orbit : StructurePeriodicOrbit
-        From :func:`pounding.periodic_orbit` of a structure or an adjacent pair.
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
-    **kwargs
-        Passed to every level's line (solid when stable, dashed when not).
-
-    Returns
-    -------
-    matplotlib Axes
-
-    Examples
-    --------
-    >>> import pounding
-    >>> iso = pounding.Isolator(slopes_n_m=[2.0e5], breakpoints_m=[],
-    ...                         damping_n_s_m=4.0e3)
-    >>> stop = pounding.Wall(0, 0.02, 0.02, pounding.KelvinVoigt(1.0e8, 2.0e4))
-    >>> b = pounding.Structure(2.0e3, iso,
-    ...                        [pounding.Storey(1.0e3, 2.0e6, 2.0e3)], [stop])
-    >>> orbit = pounding.periodic_orbit(b, pounding.Harmonic(0.1, 1.5))
-    >>> ax = pounding.plots.plot_structure_orbit(orbit)
-    >>> len(ax.get_lines())  # two levels, each its orbit and its section state
-    4
-    """
-    import matplotlib.pyplot as plt
-
-    if ax is None:
-        ax = plt.figure().add_subplot()
     run = orbit.run
-    parts = [("first.", run.first), ("second.", run.second)] if hasattr(run, "first") else [("", run)]
+    parts = structure_runs(run)
+    prefixes = ("first.", "second.") if len(parts) > 1 else ("",)
+    artists: list = []
     k = 0
-    for prefix, part in parts:
+    for prefix, part in zip(prefixes, parts):
         x0, v0 = part.displacement[0], part.velocity[0]
         for level in range(part.displacement.shape[1]):
             if not np.any(part.displacement[:, level]) and not np.any(part.velocity[:, level]):
@@ -119,8 +97,8 @@ def plot_structure_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> Any:
             style = {"color": f"C{k % 10}", "linestyle": "-" if orbit.stable else "--",
                      "label": f"{prefix}level {level}"}
             style.update(kwargs)
-            ax.plot(part.displacement[:, level] * 1e3, part.velocity[:, level], **style)
-            ax.plot([x0[level] * 1e3], [v0[level]], "o", color=style["color"], markersize=4)
+            artists += ax.plot(part.displacement[:, level] * 1e3, part.velocity[:, level], **style)
+            artists += ax.plot([x0[level] * 1e3], [v0[level]], "o", color=style["color"], markersize=4)
             k += 1
     ax.set_xlabel("displacement x [mm]")
     ax.set_ylabel("velocity v [m/s]")
@@ -129,4 +107,10 @@ def plot_structure_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> Any:
                  f"{orbit.max_abs_multiplier:.3g} ({'stable' if orbit.stable else 'unstable'}), "
                  f"{orbit.contacts_per_period} contacts per period", fontsize="small")
     place_legend(ax, fontsize="small")
-    return ax
+    return artists
+
+
+def plot_structure_orbit_axes(orbit: Any, ax: Any = None, **kwargs: Any) -> Any:
+    """``plot_structure_orbit``, :func:`plot_orbit`'s name before for a structure's orbit (for one release,
+    through ``pounding.plots``): the same drawing, its Axes returned as that function did."""
+    return plot_orbit(orbit, ax=ax, **kwargs)[0].axes
