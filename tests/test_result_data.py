@@ -73,3 +73,22 @@ def test_every_run_gives_its_quantities_as_a_study_keeps_them():
     assert bq["impacts"] == len(brun.contacts) > 0
     assert bq["base_disp_max_m"] == max(abs(brun.displacement_max[0]), abs(brun.displacement_min[0]))
     assert bq["impact_force_max_n"] == brun.contacts["peak_force_n"].max()
+
+
+def test_a_single_mass_s_run_is_its_one_level_structure_s_read_as_one_mass():
+    """A single mass's Run holds the run of the one-level structure it is (``levels``): its histories,
+    extrema, contacts, impacts and events are that run's, number for number; a Run without its levels (made
+    by hand, or kept from before) builds the same tables from its own arrays."""
+    osc = pd_.presets.paper_damped()
+    run = pd_.simulate(osc, pd_.Harmonic(0.1, 2.0), 3.0)
+    lv = run.levels
+    assert isinstance(lv, pd_.StructureRun) and lv.structure == pd_.Structure.from_oscillator(osc)
+    np.testing.assert_array_equal(run.displacement, lv.displacement[:, 0])
+    np.testing.assert_array_equal(run.bumper_force_right, lv.contact_force[:, 1])
+    assert run.abs_acceleration_max == lv.abs_acceleration_max[0]
+    assert len(run.contacts) > 0
+    bare = dataclasses.replace(run, levels=None)
+    for name in ("contacts", "impacts", "events"):
+        pd.testing.assert_frame_equal(getattr(bare, name), getattr(run, name))
+    (only,) = pd_.engine.structure_runs(run)
+    assert only is lv

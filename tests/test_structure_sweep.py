@@ -215,6 +215,21 @@ def test_one_plot_draws_every_system_s_sweeps():
     one = pd_.sweep(pd_.presets.paper_damped(), 0.05, [1.5, 2.0], steady="fixed", cycles=4, measure_cycles=1)
     with pytest.raises(pd_.InputError, match="sweeps"):
         pd_.plots.plot_sweep([one, sweeps[0]])
+    # two levels of shaking: the a_G in the labels and the markers, one colour if asked
+    other = pd_.sweep(b, 0.3, [1.0, 1.5, 2.0], "up", steady="fixed", cycles=4, measure_cycles=1)
+    artists = pd_.plots.plot_sweep([sweeps[0], other], label="moat", color="k")
+    lines = [a for a in artists if a.axes is artists[0].axes]
+    assert [line.get_label() for line in lines] == [f"level {q} (moat, a_G = {a_g}, up)"
+                                                   for a_g in (0.2, 0.3) for q in (0, 1)]
+    assert {line.get_color() for line in artists} == {"k"} and lines[0].get_marker() != lines[2].get_marker()
+    plt.close("all")
+    # the old name draws a one-level structure's sweep by level, as it did
+    level = pd_.sweep(pd_.Structure.from_oscillator(pd_.presets.paper_damped()), 0.05, [1.5, 2.0],
+                      steady="fixed", cycles=4, measure_cycles=1)
+    with pytest.warns(FutureWarning, match="plot_sweep"):
+        drawn = pd_.plots.plot_structure_sweep(level)
+    assert [a.get_label() for a in drawn] == ["level 0", "wall 0 left", "wall 0 right"]
+    plt.close("all")
 
 
 def test_bad_arguments_are_named():

@@ -258,3 +258,13 @@ def periodic_orbit(
     run = simulate(system, excitation, period, state, sample_rate_hz=samples_per_period / period)
     return PeriodicOrbit(state, period, multipliers_of(jac), jac, tuple(shooter.names(vec, frozen)), res,
                          res <= tol, it, "exact" if shooter.exact else "finite-difference", run, message)
+
+
+def __getattr__(name: str) -> Any:
+    if name == "StructurePeriodicOrbit":  # (its name before one orbit served every system, for one release)
+        from .._errors import warn_renamed
+
+        warn_renamed("pounding.analysis.periodic.StructurePeriodicOrbit", "pounding.PeriodicOrbit",
+                     why="one class for every system")
+        return PeriodicOrbit
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

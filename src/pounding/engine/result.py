@@ -298,12 +298,14 @@ class Run:
     def contacts(self) -> pd.DataFrame:
         """One row per contact (see the class docstring), built on first use: the one-level structure's
         (:attr:`levels`)."""
+        if self.levels is None:  # (a Run made by hand, or kept from before it had its levels)
+            return wall_contacts(self.contact_table, [0])
         return self.levels.contacts
 
     @cached_property
     def events(self) -> pd.DataFrame:
         """Every event: time ``t_s``, ``kind`` and ``index`` (spring or side), built on first use."""
-        return self.levels.events
+        return events_frame(self.event_table)
 
     @cached_property
     def impacts(self) -> pd.DataFrame:
@@ -311,6 +313,9 @@ class Run:
         (:attr:`levels`): ``wall``, ``level``, ``side``, ``t_start_s`` and restitution, contact time,
         impulse, mean and peak force, ``E_d`` and the bumper's own dissipation; see
         :func:`pounding.impact_table` (the same without ``wall`` and ``level``)."""
+        if self.levels is None:
+            return impact_frame(self.contacts, ("wall", "level", "side"), self.contact_table,
+                                self.oscillator.mass_kg)
         return self.levels.impacts
 
     @property

@@ -41,7 +41,9 @@ def __getattr__(name: str):
     if name == "plot_structure_sweep":  # (its name before one plot drew every sweep, for one release)
         from .._errors import warn_renamed
 
+        from .sweep import plot_structure_sweep_levels
+
         warn_renamed("pounding.plots.plot_structure_sweep", "pounding.plots.plot_sweep",
                      why="one plot for every system's sweep")
-        return plot_sweep
+        return plot_structure_sweep_levels
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")

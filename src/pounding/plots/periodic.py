@@ -113,4 +113,9 @@ def _plot_levels(orbit: Any, ax: Any, kwargs: dict) -> list:
 def plot_structure_orbit_axes(orbit: Any, ax: Any = None, **kwargs: Any) -> Any:
     """``plot_structure_orbit``, :func:`plot_orbit`'s name before for a structure's orbit (for one release,
     through ``pounding.plots``): the same drawing, its Axes returned as that function did."""
-    return plot_orbit(orbit, ax=ax, **kwargs)[0].axes
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        ax = plt.figure().add_subplot()
+    plot_orbit(orbit, ax=ax, **kwargs)
+    return ax

@@ -33,9 +33,11 @@ def plot_sweep(sweeps: "SweepResult | Sequence[SweepResult]", ax: Any = None, *,
     ax : matplotlib Axes or pair of them, optional
         ``(ax_alpha, ax_bottom)``, or one Axes for alpha alone (several levels); a new figure if omitted.
     label : str, optional
-        Legend label prefix (one level; default ``a_G = ...``).
+        Legend label prefix (one level; default ``a_G = ...``), or what each line's label says in its
+        brackets (several levels: with the a_G where the sweeps' differ, and the direction).
     color : optional
-        One colour for all the sweeps given (one level; default: one per a_G).
+        One colour for all the sweeps given (default: one per a_G; several levels: one per level and
+        per contact slot, the a_G told by the markers).
 
     Returns
     -------
@@ -73,7 +75,7 @@ def plot_sweep(sweeps: "SweepResult | Sequence[SweepResult]", ax: Any = None, *,
                          mode="sweeps of one kind",
                          fix="plot a single mass's sweeps and a building's on separate axes")
     if several == {True}:
-        return _plot_levels(sweeps, ax)
+        return _plot_levels(sweeps, ax, label, color)
     return _plot_one_level(sweeps, ax, label, color)
 
 
@@ -278,7 +280,14 @@ def plot_campaign(result: "CampaignResult", ax: Any = None) -> list:
     return artists
 
 
-def _plot_levels(sweeps: Sequence, ax: Any) -> list:
+def plot_structure_sweep_levels(result: "SweepResult", ax: Any = None) -> list:
+    """``plot_structure_sweep``, :func:`plot_sweep`'s name before for a structure's sweep (for one release,
+    through ``pounding.plots``): each level's alpha and each contact slot's contacts per cycle, as it drew
+    them, a one-level structure's too."""
+    return _plot_levels([result], ax)
+
+
+def _plot_levels(sweeps: Sequence, ax: Any, label: str | None = None, color: Any = None) -> list:
     """Sweeps of several levels (``plot_sweep``): each level's alpha against nu and, with contacts, each
     wall side's (or link's) contacts per cycle; each sweep's direction in its line style."""
     import matplotlib.pyplot as plt
@@ -297,18 +306,24 @@ def _plot_levels(sweeps: Sequence, ax: Any) -> list:
     else:
         ax_a, ax_c = ax, None
     artists: list = []
+    a_gs = len({sw.a_g for sw in sweeps}) > 1
     for sw in sweeps:
         order = np.argsort(sw.freqs_hz)
         nu = sw.nu[order]
         ls = DIRECTION_STYLE[sw.direction]["ls"] if len(sweeps) > 1 else "-"
-        tag = f" ({sw.direction})" if len(sweeps) > 1 else ""
+        marker = "." if not a_gs else "os^vD<>"[sorted({w.a_g for w in sweeps}).index(sw.a_g) % 7]
+        said = [x for x in (label, f"a_G = {sw.a_g:g}" if a_gs else None,
+                            sw.direction if len(sweeps) > 1 else None) if x]
+        tag = f" ({', '.join(said)})" if said else ""
         for q in range(len(sw.levels)):
-            artists += ax_a.plot(nu, sw.alpha[order, q], marker=".", ls=ls, color=f"C{q % 10}",
+            artists += ax_a.plot(nu, sw.alpha[order, q], marker=marker, ls=ls,
+                                 color=color if color is not None else f"C{q % 10}",
                                  label=level_name(sw.levels, q) + tag)
         if ax_c is not None:
             for c in range(len(sw.contact_slots)):
-                artists += ax_c.plot(nu, sw.contacts_per_cycle[order, c], marker=".", ls=ls,
-                                     color=f"C{c % 10}", label=slot_name(sw.contact_slots, c) + tag)
+                artists += ax_c.plot(nu, sw.contacts_per_cycle[order, c], marker=marker, ls=ls,
+                                     color=color if color is not None else f"C{c % 10}",
+                                     label=slot_name(sw.contact_slots, c) + tag)
     first = sweeps[0]
     ax_a.set_ylabel("alpha = max|a_abs| / A_t")
     ax_a.set_title(f"Sweep {' and '.join(dict.fromkeys(sw.direction for sw in sweeps))}, "
