@@ -189,6 +189,21 @@ def warn_renamed(old: str, new: str, stacklevel: int = 3, why: str = "with its u
                   stacklevel=stacklevel)
 
 
+def old_names(module: str, renamed: dict) -> Any:
+    """A module's ``__getattr__`` that answers its names before: ``renamed`` maps each old name to (its new
+    name as users write it, a function giving the object, why it changed); each use warns with a
+    ``FutureWarning`` naming the new one; any other name is an ``AttributeError``."""
+
+    def __getattr__(name: str) -> Any:
+        if name in renamed:
+            new, get, why = renamed[name]
+            warn_renamed(f"{module}.{name}", new, why=why)
+            return get()
+        raise AttributeError(f"module {module!r} has no attribute {name!r}")
+
+    return __getattr__
+
+
 def _take_renamed(called: str, kwargs: dict, old: str, new: str, why: str = "with its unit") -> None:
     """``kwargs``'s ``old`` keyword moved to ``new``, with a ``FutureWarning`` (stacklevel: the caller of the
     decorated function); both at once is a ``TypeError``."""

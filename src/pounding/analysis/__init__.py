@@ -9,17 +9,14 @@ from .curves import bifurcation_curve, coexistence_map
 from .lyapunov import largest_exponents, lyapunov
 from .lyapunov_result import LyapunovSpectrum
 from .periodic import PeriodicOrbit, periodic_orbit
+from .._errors import old_names
 
 __all__ = ["Bifurcation", "BifurcationCurve", "Branch", "CoexistenceMap", "LyapunovSpectrum", "PeriodicOrbit",
            "bifurcation_curve", "coexistence_map", "continuation",
            "largest_exponents", "lyapunov", "periodic_orbit"]
 
 
-def __getattr__(name: str) -> object:
-    if name == "StructurePeriodicOrbit":  # (its name before one orbit served every system, for one release)
-        from .._errors import warn_renamed
-
-        warn_renamed("pounding.analysis.StructurePeriodicOrbit", "pounding.analysis.PeriodicOrbit",
-                     why="one class for every system")
-        return PeriodicOrbit
-    raise AttributeError(f"module 'pounding.analysis' has no attribute {name!r}")
+# its name before one orbit served every system, for one release
+__getattr__ = old_names(__name__, {
+    "StructurePeriodicOrbit": ("pounding.PeriodicOrbit", lambda: PeriodicOrbit,
+    "one class for every system")})

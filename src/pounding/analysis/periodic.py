@@ -24,7 +24,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from .._errors import InputError, Problem, renamed_keyword
+from .._errors import InputError, Problem, old_names, renamed_keyword
 from ..engine import Run, State, simulate, structure_runs
 from ..engine.assembly import check_system
 from ..engine.simulate import check_state
@@ -260,11 +260,7 @@ def periodic_orbit(
                          res <= tol, it, "exact" if shooter.exact else "finite-difference", run, message)
 
 
-def __getattr__(name: str) -> Any:
-    if name == "StructurePeriodicOrbit":  # (its name before one orbit served every system, for one release)
-        from .._errors import warn_renamed
-
-        warn_renamed("pounding.analysis.periodic.StructurePeriodicOrbit", "pounding.PeriodicOrbit",
-                     why="one class for every system")
-        return PeriodicOrbit
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+# its name before one orbit served every system, for one release
+__getattr__ = old_names(__name__, {
+    "StructurePeriodicOrbit": ("pounding.PeriodicOrbit", lambda: PeriodicOrbit,
+    "one class for every system")})

@@ -5,19 +5,12 @@ from .state import State
 from .simulate import simulate, structure_runs
 from .adjacent_result import AdjacentRun
 from .structure_result import StructureRun
+from .._errors import old_names
 
 __all__ = ["AdjacentRun", "EnergyLedger", "Run", "State", "StructureRun", "simulate", "structure_runs"]
 
 
 # 0.1's names, one class for every system now: they still answer for one release, with a FutureWarning
-_RENAMED = {"StructureState": ("State", State), "StructureEnergy": ("EnergyLedger", EnergyLedger)}
-
-
-def __getattr__(name: str) -> object:
-    if name in _RENAMED:
-        from .._errors import warn_renamed
-
-        new, cls = _RENAMED[name]
-        warn_renamed(f"pounding.engine.{name}", f"pounding.{new}", why="one class for every system")
-        return cls
-    raise AttributeError(f"module 'pounding.engine' has no attribute {name!r}")
+__getattr__ = old_names(__name__, {
+    "StructureState": ("pounding.State", lambda: State, "one class for every system"),
+    "StructureEnergy": ("pounding.EnergyLedger", lambda: EnergyLedger, "one class for every system")})

@@ -4,7 +4,6 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from functools import cached_property
 from typing import Any
 
 import numpy as np
@@ -12,7 +11,7 @@ import pandas as pd
 
 from .._errors import Status
 from .._tables import ContactTable
-from ._chatter import chatter_frame
+from ._chatter import NamedChatters
 from .layout import C_SLOT
 from .layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
 from .result import Outcome, events_frame
@@ -22,7 +21,7 @@ from .structure_result import StructureRun, peaks_of
 
 
 @dataclass(frozen=True)
-class AdjacentRun(Outcome):
+class AdjacentRun(NamedChatters, Outcome):
     """A run of two adjacent structures.
 
     Attributes
@@ -91,12 +90,6 @@ class AdjacentRun(Outcome):
     clearance_m: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     chatter_table: np.ndarray = field(default_factory=lambda: np.zeros((0, 5)), repr=False)
     contact_names: tuple = field(default=(), repr=False)
-
-    @cached_property
-    def chatters(self) -> pd.DataFrame:
-        """The rigid stops' chatter sequences, one row each (see the class docstring), built on first use
-        from ``chatter_table`` (the core's rows) and ``contact_names`` (each contact slot's name)."""
-        return chatter_frame(self.chatter_table, self.contact_names, "contact")
 
     @property
     def links(self) -> pd.DataFrame:

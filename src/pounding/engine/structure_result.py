@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from functools import cached_property
 from typing import TYPE_CHECKING, Any, Optional
 
 import numpy as np
@@ -16,7 +15,7 @@ from .layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
 from .layout import force_max, impulses
 from .layout import (C_SLOT, C_V_IN, DOF_EXTREMA_LEN, P_MAX, P_MAX_T, P_MIN, P_MIN_T, X_A_MAX, X_A_MAX_T,
                       X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T)
-from ._chatter import chatter_frame
+from ._chatter import NamedChatters
 from .result import EnergyLedger, Outcome, events_frame, impact_frame, wall_contacts
 
 if TYPE_CHECKING:
@@ -37,7 +36,7 @@ _DRIFT_EXTREMA = (("drift_max", P_MAX), ("drift_max_time_s", P_MAX_T), ("drift_m
 
 
 @dataclass(frozen=True)
-class StructureRun(Outcome):
+class StructureRun(NamedChatters, Outcome):
     """A structure's run.
 
     Attributes
@@ -147,12 +146,6 @@ class StructureRun(Outcome):
     clearance_m: np.ndarray = field(default_factory=lambda: np.zeros(0), repr=False)
     chatter_table: np.ndarray = field(default_factory=lambda: np.zeros((0, 5)), repr=False)
     contact_names: tuple = field(default=(), repr=False)
-
-    @cached_property
-    def chatters(self) -> pd.DataFrame:
-        """The rigid stops' chatter sequences, one row each (see the class docstring), built on first use
-        from ``chatter_table`` (the core's rows) and ``contact_names`` (each contact slot's name)."""
-        return chatter_frame(self.chatter_table, self.contact_names, "contact")
 
     @classmethod
     def _part(cls, structure: "Structure", b: int, asm: Any, asm_structures: tuple, excitation: Any,

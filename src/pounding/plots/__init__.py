@@ -1,6 +1,8 @@
 """Figures, apart from computing: every function takes ``ax=`` and returns its artists; every result's
 ``.plot()`` returns the Figure they are on (:func:`figure_of`)."""
 
+from typing import Any
+
 from .basins import plot_basin_stability, plot_basins
 from .branch import plot_branch
 from .contact_law import plot_contact_law_fit
@@ -17,6 +19,7 @@ from .run import plot_adjacent_run, plot_run, plot_structure_run
 from .spectrum import plot_pounding_spectrum
 from .study import plot_study
 from .sweep import plot_campaign, plot_hysteresis, plot_lab_sweep, plot_sweep
+from .._errors import old_names
 
 __all__ = ["figure_of", "plot_adjacent_run", "plot_basin_stability", "plot_basins",
            "plot_bifurcation_diagram",
@@ -30,20 +33,21 @@ __all__ = ["figure_of", "plot_adjacent_run", "plot_basin_stability", "plot_basin
            "plot_study", "plot_sweep"]
 
 
-def __getattr__(name: str):
-    if name == "plot_structure_orbit":  # (its name before one plot drew every orbit, for one release)
-        from .._errors import warn_renamed
-        from .periodic import plot_structure_orbit_axes
+def _structure_orbit() -> Any:
+    from .periodic import plot_structure_orbit_axes
 
-        warn_renamed("pounding.plots.plot_structure_orbit", "pounding.plots.plot_orbit",
-                     why="one plot for every system's orbit; it returns the artists, not the Axes")
-        return plot_structure_orbit_axes
-    if name == "plot_structure_sweep":  # (its name before one plot drew every sweep, for one release)
-        from .._errors import warn_renamed
+    return plot_structure_orbit_axes
 
-        from .sweep import plot_structure_sweep_levels
 
-        warn_renamed("pounding.plots.plot_structure_sweep", "pounding.plots.plot_sweep",
-                     why="one plot for every system's sweep")
-        return plot_structure_sweep_levels
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+def _structure_sweep() -> Any:
+    from .sweep import plot_structure_sweep_levels
+
+    return plot_structure_sweep_levels
+
+
+# their names before one plot drew every system's orbit and sweep, for one release
+__getattr__ = old_names(__name__, {
+    "plot_structure_orbit": ("pounding.plots.plot_orbit", _structure_orbit,
+                             "one plot for every system's orbit; it returns the artists, not the Axes"),
+    "plot_structure_sweep": ("pounding.plots.plot_sweep", _structure_sweep,
+                             "one plot for every system's sweep")})

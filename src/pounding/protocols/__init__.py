@@ -9,17 +9,14 @@ from .pounding_spectrum import pounding_spectrum
 from .pounding_spectrum_result import PoundingSpectrum
 from .sweep import SweepPlan, paper_frequencies_hz, sweep
 from .sweep_result import SweepResult
+from .._errors import old_names
 
 __all__ = ["BasinStabilityMap", "Basins", "BifurcationDiagram", "CampaignResult", "PoundingSpectrum",
            "SweepPlan", "SweepResult", "campaign", "paper_frequencies_hz",
            "basin_stability_map", "basins", "bifurcation_diagram", "pounding_spectrum", "sweep"]
 
 
-def __getattr__(name: str):
-    if name == "StructureSweepResult":  # (its name before one result served every system, for one release)
-        from .._errors import warn_renamed
-
-        warn_renamed("pounding.protocols.StructureSweepResult", "pounding.protocols.SweepResult",
-                     why="one class for every system")
-        return SweepResult
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+# its name before one result served every system, for one release
+__getattr__ = old_names(__name__, {
+    "StructureSweepResult": ("pounding.protocols.SweepResult", lambda: SweepResult,
+    "one class for every system")})
