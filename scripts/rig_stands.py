@@ -98,7 +98,7 @@ def main() -> None:
     if args.scan:
         scan(args.out)
         return
-    family = pd_.StructureFamily(rig())
+    family = pd_.SystemFamily(rig())
     bounds = {**STAND_BOUNDS, **LAW_BOUNDS, **OTHER_BOUNDS}
     x0 = {name: family.value(name.replace("walls[0].gap_m", "walls[0].gap_left_m")) for name in bounds}
     targets = pd_.paper_targets()

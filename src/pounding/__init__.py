@@ -22,7 +22,7 @@ _NAMES = {
     ".engine": ("AdjacentRun", "EnergyLedger", "Run", "State", "StructureRun", "simulate"),
     ".excitation": ("Harmonic", "Record"),
     ".excitation.spectrum": ("response_spectrum",),
-    ".identification": ("ContactLawFit", "Identification", "ModelFamily", "StructureFamily", "Targets",
+    ".identification": ("ContactLawFit", "Identification", "ModelFamily", "SystemFamily", "Targets",
                         "fit_contact_law", "identify", "paper_targets", "rank_contact_laws"),
     ".metrics": ("HysteresisLoop", "impact_table"),
     ".model": ("Adjacent", "Link", "BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley",
@@ -47,7 +47,8 @@ __all__ = sorted(_WHERE) + ["data", "lab", "plots", "presets", "records"]
 # names of 0.1 that still answer for one release, with a FutureWarning: the old name -> (where, the new one)
 _RENAMED = {"StructureState": (".engine", "State"), "StructureEnergy": (".engine", "EnergyLedger"),
             "StructureSweepResult": (".protocols", "SweepResult"),
-            "StructurePeriodicOrbit": (".analysis", "PeriodicOrbit")}
+            "StructurePeriodicOrbit": (".analysis", "PeriodicOrbit"),
+            "StructureFamily": (".identification", "SystemFamily")}
 
 
 def __getattr__(name: str) -> Any:
@@ -81,7 +82,7 @@ if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
     from .engine import AdjacentRun, EnergyLedger, Run, State, StructureRun, simulate  # noqa: F401
     from .excitation import Harmonic, Record  # noqa: F401
     from .excitation.spectrum import response_spectrum  # noqa: F401
-    from .identification import (ContactLawFit, Identification, ModelFamily, StructureFamily,  # noqa: F401
+    from .identification import (ContactLawFit, Identification, ModelFamily, SystemFamily,  # noqa: F401
                                  Targets, fit_contact_law, identify, paper_targets, rank_contact_laws)
     from .metrics import HysteresisLoop, impact_table  # noqa: F401
     from .model import (Adjacent, BoucWen, Bumpers, ElasticPlastic, Hertzdamp, HuntCrossley,  # noqa: F401

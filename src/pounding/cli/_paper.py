@@ -138,9 +138,9 @@ def identify(
     targets: Optional[Path] = typer.Argument(
         None, metavar="TARGETS.toml", help="Targets TOML (see examples/). Omit for --paper."
     ),
-    family: Path = typer.Option(..., "--family", help="Model family TOML: structure, fixed numbers, bounds "
-                                "(or a rig of several masses: structure = \"rig.toml\" and [bounds] of "
-                                "dotted names)."),
+    family: Path = typer.Option(..., "--family", help="Model family TOML: mass, branches, law, fixed "
+                                "numbers, bounds (or any system's numbers by their paths: system = "
+                                "\"rig.toml\" and [bounds] of dotted names)."),
     out: Path = typer.Option(Path("calibrated.toml"), "--out", help="Write the fitted YBs system (TOML)."),
     paper: bool = typer.Option(
         False, "--paper", metavar=NO_METAVAR, help="Fit the paper's Tables 2-4 (instead of TARGETS.toml)."
@@ -164,7 +164,7 @@ def identify(
     """Model updating: fit a family's free numbers so that the simulated sweeps match measured targets."""
     from ..identification import Targets, paper_targets
     from ..identification import identify as run_identify
-    from ..identification.structure_family import read_family
+    from ..identification.system_family import read_family
 
     paths = files(out=(out, (".toml",)), residuals=(residuals, (".csv",)))
     if (targets is None) == (not paper):

@@ -30,7 +30,7 @@ from ..protocols.sweep import check_sweep_options
 from ..protocols.sweep import make_plan, paper_frequencies_hz, sweep
 from ._scale import Scale as _Scale
 from .family import ModelFamily, check_bounds
-from .structure_family import StructureFamily
+from .system_family import SystemFamily
 from .measured import CUTOFF, apply_cutoff, split_cutoff
 from .targets import Targets
 
@@ -214,7 +214,7 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     ----------
     targets : Targets
         E.g. :func:`pounding.paper_targets` or ``Targets.from_toml``.
-    family : ModelFamily or StructureFamily
+    family : ModelFamily or SystemFamily
         Structure and fixed numbers; or a structure of several masses whose numbers are named as in
         its file (``walls[0].stand.mass_kg``), the targets its base's (level 0).
     bounds : dict
@@ -285,13 +285,13 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     (548, 1)
     """
     instance_of("targets", targets, Targets, "pounding.Targets (paper_targets() or Targets.from_toml)")
-    instance_of("family", family, (ModelFamily, StructureFamily),
-                "pounding.ModelFamily, or pounding.StructureFamily (a rig of several "
-                                  "masses)")
+    instance_of("family", family, (ModelFamily, SystemFamily),
+                "pounding.ModelFamily, or pounding.SystemFamily (any system's numbers by their paths)")
     check_sweep_options(sweep_options, also="identify's own")
-    if isinstance(family, StructureFamily) and isinstance(bounds, dict) and CUTOFF in bounds:
-        raise InputError(Problem.WRONG_MODE, f"bounds.{CUTOFF}", bounds[CUTOFF], mode="one mass's fit",
-                         fix="leave it out: a structure's metrics are its exact ones (no measurement chain)")
+    if isinstance(family, SystemFamily) and isinstance(bounds, dict) and CUTOFF in bounds:
+        raise InputError(Problem.WRONG_MODE, f"bounds.{CUTOFF}", bounds[CUTOFF], mode="a ModelFamily's fit",
+                         fix="leave it out (a SystemFamily's metrics are its exact ones: no measurement "
+                             "chain), or fit a single mass's cutoff with a pounding.ModelFamily")
     bounds, cutoff, sweep_options = split_cutoff(bounds, sweep_options)
     if cutoff is not None and not bounds:
         family.free_names({})  # (every number fixed: only the cutoff is fitted)
