@@ -19,4 +19,4 @@ __all__ = ["Bifurcation", "BifurcationCurve", "Branch", "CoexistenceMap", "Lyapu
 # its name before one orbit served every system, for one release
 __getattr__ = old_names(__name__, {
     "StructurePeriodicOrbit": ("pounding.PeriodicOrbit", lambda: PeriodicOrbit,
-    "one class for every system")})
+                               "one class for every system")})

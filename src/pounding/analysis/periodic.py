@@ -263,4 +263,4 @@ def periodic_orbit(
 # its name before one orbit served every system, for one release
 __getattr__ = old_names(__name__, {
     "StructurePeriodicOrbit": ("pounding.PeriodicOrbit", lambda: PeriodicOrbit,
-    "one class for every system")})
+                               "one class for every system")})

@@ -16,7 +16,7 @@ from .layout import force_max, impulses
 from .layout import (C_SLOT, C_V_IN, DOF_EXTREMA_LEN, P_MAX, P_MAX_T, P_MIN, P_MIN_T, X_A_MAX, X_A_MAX_T,
                       X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T)
 from ._chatter import NamedChatters
-from .result import EnergyLedger, Outcome, events_frame, impact_frame, wall_contacts
+from .result import EXTREMA_FIELDS, EnergyLedger, Outcome, events_frame, impact_frame, wall_contacts
 
 if TYPE_CHECKING:
     from ..excitation import Harmonic, Record
@@ -28,9 +28,7 @@ if TYPE_CHECKING:
 
 
 # a run's fields read off the core's extrema: each level's (per dof), each storey's drift (per tracked pair)
-_LEVEL_EXTREMA = (("displacement_max", X_D_MAX), ("displacement_max_time_s", X_D_MAX_T),
-                  ("displacement_min", X_D_MIN), ("displacement_min_time_s", X_D_MIN_T),
-                  ("abs_acceleration_max", X_A_MAX), ("abs_acceleration_max_time_s", X_A_MAX_T))
+_LEVEL_EXTREMA = tuple(zip(EXTREMA_FIELDS, (X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T, X_A_MAX, X_A_MAX_T)))
 _DRIFT_EXTREMA = (("drift_max", P_MAX), ("drift_max_time_s", P_MAX_T), ("drift_min", P_MIN),
                   ("drift_min_time_s", P_MIN_T))
 

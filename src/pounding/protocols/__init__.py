@@ -19,4 +19,4 @@ __all__ = ["BasinStabilityMap", "Basins", "BifurcationDiagram", "CampaignResult"
 # its name before one result served every system, for one release
 __getattr__ = old_names(__name__, {
     "StructureSweepResult": ("pounding.protocols.SweepResult", lambda: SweepResult,
-    "one class for every system")})
+                             "one class for every system")})
