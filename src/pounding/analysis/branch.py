@@ -134,8 +134,22 @@ class Bifurcation:
                           "scaling_exponent": self.scaling_exponent})
 
 
+class FollowedTable:
+    """What a followed branch or curve (a dataclass with ``status`` and a table ``data``, a row per point)
+    says of itself: ``success`` and its length."""
+
+    @property
+    def success(self) -> bool:
+        """True when it was followed to its end (``status`` is ``SUCCESS``; the class's ``status``
+        says what that end is)."""
+        return self.status == Status.SUCCESS  # type: ignore[attr-defined]
+
+    def __len__(self) -> int:
+        return int(self.data.shape[0])  # type: ignore[attr-defined]
+
+
 @dataclass(frozen=True, eq=False)
-class Branch:
+class Branch(FollowedTable):
     """A branch of periodic orbits followed in one parameter.
 
     Attributes
@@ -206,14 +220,6 @@ class Branch:
     message: str
     a_g: float = math.nan          # the forcing held fixed (NaN for the one continued)
     freq_hz: float = math.nan
-
-    @property
-    def success(self) -> bool:
-        """True when the branch reached an end of its range (``status`` is ``SUCCESS``)."""
-        return self.status == Status.SUCCESS
-
-    def __len__(self) -> int:
-        return int(self.data.shape[0])
 
     def to_xarray(self) -> Any:
         """The table of :meth:`to_dataframe` as a Dataset along ``orbit`` (the branch's order)."""

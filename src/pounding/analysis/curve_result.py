@@ -12,6 +12,7 @@ import pandas as pd
 
 from .._errors import Status
 from ._through_sweeps import STEP_COLUMNS
+from .branch import FollowedTable
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..model import Oscillator
@@ -24,7 +25,7 @@ CURVE_COLUMNS = ("freq_hz", "a_g", "alpha", "excursion_m", "displacement_max_m",
 
 
 @dataclass(frozen=True, eq=False)
-class BifurcationCurve:
+class BifurcationCurve(FollowedTable):
     """A fold or a grazing followed in (a_G, f).
 
     Attributes
@@ -82,14 +83,6 @@ class BifurcationCurve:
     status: Status
     message: str
     start: "Bifurcation" = field(repr=False)
-
-    @property
-    def success(self) -> bool:
-        """True when the curve reached its box's edges or closed (``status`` is ``SUCCESS``)."""
-        return self.status == Status.SUCCESS
-
-    def __len__(self) -> int:
-        return int(self.data.shape[0])
 
     def to_xarray(self) -> Any:
         """The table of :meth:`to_dataframe` as a Dataset along ``point``."""

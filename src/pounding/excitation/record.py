@@ -212,19 +212,17 @@ class Record:
         if sum(v is not None for v in (pga_g, sa_g, factor)) != 1:
             raise InputError(Problem.MISSING_INPUT, "pga_g", pga_g,
                              what="one of pga_g=, sa_g= (with period_s=) or factor=")
-        if factor is not None:
+        if sa_g is None:  # (period_s and damping_ratio are sa_g's alone)
             for name, value in (("period_s", period_s), ("damping_ratio", damping_ratio)):
                 if value is not None:
                     raise InputError(Problem.WRONG_MODE, name, value, mode="sa_g",
-                                     fix=f"leave {name} out when scaling by a factor")
+                                     fix=f"leave {name} out when scaling "
+                                         + ("by a factor" if factor is not None else "to pga_g"))
+        if factor is not None:
             target = positive("factor", factor, "(a factor)")
             plausible("factor", target, 0.01, 100.0, "a record scaled that far no longer resembles shaking")
             now = 1.0
         elif pga_g is not None:
-            for name, value in (("period_s", period_s), ("damping_ratio", damping_ratio)):
-                if value is not None:
-                    raise InputError(Problem.WRONG_MODE, name, value, mode="sa_g",
-                                     fix=f"leave {name} out when scaling to pga_g")
             target = positive("pga_g", pga_g, "g")
             plausible("pga_g", target, 0.0, 5.0, "pga_g is in g (0.3 is 30 % of g)")
             now = self.pga_g

@@ -26,6 +26,19 @@ def _mass(field_name: str, value: Any) -> float:
     return mass
 
 
+def _check_mass_spring(part: Any, prefix: str) -> float:
+    """Validate (and store as floats) a part's ``mass_kg``, ``stiffness_n_m`` and ``damping_n_s_m``, named
+    ``prefix.<field>`` in errors; return the stiffness."""
+    object.__setattr__(part, "mass_kg", _mass(f"{prefix}.mass_kg", part.mass_kg))
+    k = positive(f"{prefix}.stiffness_n_m", part.stiffness_n_m, "N/m")
+    at_most(f"{prefix}.stiffness_n_m", k, MAX_STOREY_STIFFNESS, " N/m", "give the stiffness in N/m")
+    object.__setattr__(part, "stiffness_n_m", k)
+    c = non_negative(f"{prefix}.damping_n_s_m", part.damping_n_s_m, "N s/m")
+    at_most(f"{prefix}.damping_n_s_m", c, MAX_STOREY_STIFFNESS, " N s/m", "give the damping in N s/m")
+    object.__setattr__(part, "damping_n_s_m", c)
+    return k
+
+
 @dataclass(frozen=True)
 class Storey:
     """One storey of a shear building: the floor's mass and the storey's lateral spring and dashpot
@@ -72,13 +85,7 @@ class Storey:
                                          "slopes_after_n_m", "breakpoints_m", "hysteresis")
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "mass_kg", _mass("storey.mass_kg", self.mass_kg))
-        k = positive("storey.stiffness_n_m", self.stiffness_n_m, "N/m")
-        at_most("storey.stiffness_n_m", k, MAX_STOREY_STIFFNESS, " N/m", "give the stiffness in N/m")
-        object.__setattr__(self, "stiffness_n_m", k)
-        c = non_negative("storey.damping_n_s_m", self.damping_n_s_m, "N s/m")
-        at_most("storey.damping_n_s_m", c, MAX_STOREY_STIFFNESS, " N s/m", "give the damping in N s/m")
-        object.__setattr__(self, "damping_n_s_m", c)
+        k = _check_mass_spring(self, "storey")
         h = positive("storey.height_m", self.height_m, "m")
         at_most("storey.height_m", h, 1e3, " m", "give the height in m")
         plausible("storey.height_m", h, 0.1, 20.0, "heights are in m (a storey of 3 m is 3.0)")
@@ -143,13 +150,7 @@ class Stand:
     FIELDS: ClassVar[tuple[str, ...]] = ("mass_kg", "stiffness_n_m", "damping_n_s_m")
 
     def __post_init__(self) -> None:
-        object.__setattr__(self, "mass_kg", _mass("stand.mass_kg", self.mass_kg))
-        k = positive("stand.stiffness_n_m", self.stiffness_n_m, "N/m")
-        at_most("stand.stiffness_n_m", k, MAX_STOREY_STIFFNESS, " N/m", "give the stiffness in N/m")
-        object.__setattr__(self, "stiffness_n_m", k)
-        c = non_negative("stand.damping_n_s_m", self.damping_n_s_m, "N s/m")
-        at_most("stand.damping_n_s_m", c, MAX_STOREY_STIFFNESS, " N s/m", "give the damping in N s/m")
-        object.__setattr__(self, "damping_n_s_m", c)
+        _check_mass_spring(self, "stand")
 
     def to_dict(self) -> dict[str, Any]:
         return {f: getattr(self, f) for f in self.FIELDS}

@@ -28,7 +28,7 @@ from ..engine.simulate import check_rtol
 from ..engine.assembly import assemble, check_system
 from ..excitation import Harmonic
 from ..metrics.impacts import S_COUNT, SIDE_SUMS
-from .sweep_window import step_measures_all
+from .sweep_window import check_adaptive_window, check_steady_rtol, step_measures_all
 from ..model import Oscillator
 from ..engine.kernels import (CONTACT_COLUMNS, DOF_EXTREMA, W_AMAX, W_CYCLES, W_DMAX, W_DMIN, W_SUMS,
                               run_step, run_window)
@@ -358,14 +358,8 @@ def steady_options(max_cycles: Any, measure_cycles: Any, max_period: Any, steady
     max_cycles = integer("max_cycles", max_cycles, 1, 1_000_000)
     measure_cycles = integer("measure_cycles", measure_cycles, 1, 10_000)
     max_period = integer("max_period", max_period, 1, 1000)
-    if max_cycles < 2 * measure_cycles + 1:
-        raise InputError(Problem.TOO_SMALL, "max_cycles", max_cycles, minimum=2 * measure_cycles + 1,
-                         hint=" (steadiness compares the window with the cycles before it)")
-    steady_rtol = positive("steady_rtol", steady_rtol, "(relative to the response amplitude)")
-    if not 1e-13 <= steady_rtol <= 0.1:
-        raise InputError(Problem.OUT_OF_RANGE, "steady_rtol", steady_rtol, range="[1e-13, 0.1]",
-                         hint=" (below 1e-12 is rounding noise)")
-    return (True, max_cycles, measure_cycles, float(steady_rtol), max_period)
+    check_adaptive_window(max_cycles, measure_cycles)
+    return (True, max_cycles, measure_cycles, check_steady_rtol(steady_rtol), max_period)
 
 
 def initial_states(osc: Any, dd: np.ndarray, vv: np.ndarray) -> np.ndarray:

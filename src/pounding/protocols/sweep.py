@@ -28,7 +28,8 @@ from .._runner.progress import Progress, progress_reporter
 from ..engine.kernels import W_CYCLES, StepOutput, run_step, run_window
 from ..metrics.impacts import SIDE_SUMS
 from .sweep_result import SweepResult
-from .sweep_window import from_step, labels_of, measure, slot_masses, step_measures_all, strobes
+from .sweep_window import (check_adaptive_window, check_steady_rtol, from_step, labels_of, measure,
+                           slot_masses, step_measures_all, strobes)
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..model import Adjacent, Structure
@@ -215,13 +216,8 @@ def make_plan(oscillator: Oscillator, a_g: float, freqs_hz: np.ndarray | None = 
                              fix="leave it None with steady='adaptive' (use max_cycles), or give "
                                  "steady='fixed'")
         n_cycles = integer("max_cycles", 500 if max_cycles is None else max_cycles, 1, MAX_CYCLES_PER_STEP)
-        if n_cycles < 2 * measure_cycles + 1:
-            raise InputError(Problem.TOO_SMALL, "max_cycles", n_cycles, minimum=2 * measure_cycles + 1,
-                             hint=" (steadiness compares the window with the cycles before it)")
-    steady_rtol = positive("steady_rtol", steady_rtol, "(relative to the response amplitude)")
-    if not 1e-13 <= steady_rtol <= 0.1:
-        raise InputError(Problem.OUT_OF_RANGE, "steady_rtol", steady_rtol, range="[1e-13, 0.1]",
-                         hint=" (below 1e-12 is rounding noise)")
+        check_adaptive_window(n_cycles, measure_cycles)
+    steady_rtol = check_steady_rtol(steady_rtol)
     max_period = integer("max_period", max_period, 1, 1000)
     # (each between 1 mHz and the largest frequency, in its unit: beyond, e and nu overflowed or divided by 0)
     omega_min_rad_s = positive("omega_min_rad_s", omega_min_rad_s, "rad/s")

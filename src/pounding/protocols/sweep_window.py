@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .._checks import positive
+from .._errors import InputError, Problem
 from ..engine.kernels import (CONTACT_COLUMNS, DOF_EXTREMA, PAIR_EXTREMA, W_AMAX, W_DMAX, W_DMIN, W_SUMS,
                               RunOutput)
 from ..metrics.impacts import IMPACT_COLUMNS, S_COUNT, S_N_RESTITUTION, S_SUMS, SIDE_SUMS, impact_values
@@ -21,6 +23,23 @@ _LEVEL = [DOF_EXTREMA[k] for k in ("d_max", "d_min", "a_abs_max")]
 _DRIFT = [PAIR_EXTREMA[k] for k in ("max", "min")]
 _SLOT, _T_END = CONTACT_COLUMNS["contact"], CONTACT_COLUMNS["t_end_s"]
 NAMES = ("first", "second")  # (a pair's structures)
+
+
+def check_adaptive_window(max_cycles: int, measure_cycles: int) -> None:
+    """Refuse an adaptive step whose window cannot be compared with the cycles before it (``max_cycles``
+    below ``2 measure_cycles + 1``)."""
+    if max_cycles < 2 * measure_cycles + 1:
+        raise InputError(Problem.TOO_SMALL, "max_cycles", max_cycles, minimum=2 * measure_cycles + 1,
+                         hint=" (steadiness compares the window with the cycles before it)")
+
+
+def check_steady_rtol(steady_rtol: object) -> float:
+    """``steady_rtol`` (relative to the response amplitude) as a float in [1e-13, 0.1]."""
+    rtol = positive("steady_rtol", steady_rtol, "(relative to the response amplitude)")
+    if not 1e-13 <= rtol <= 0.1:
+        raise InputError(Problem.OUT_OF_RANGE, "steady_rtol", rtol, range="[1e-13, 0.1]",
+                         hint=" (below 1e-12 is rounding noise)")
+    return float(rtol)
 
 
 def labels_of(model: object, asm: object) -> tuple[tuple, tuple, tuple]:
