@@ -17,6 +17,7 @@ from __future__ import annotations
 from importlib import resources
 from typing import TYPE_CHECKING
 
+from ._docs import fill_doc
 from ._checks import one_of
 from .data import PAPER_MASS_KG
 from .model import Bumpers, Isolator, KelvinVoigt, Oscillator
@@ -74,6 +75,7 @@ def paper_printed(bumpers: bool = True, hysteresis: str = "kinematic") -> Oscill
     return Oscillator(PAPER_MASS_KG, isolator, b)
 
 
+@fill_doc
 def paper_damped(bumpers: bool = True, hysteresis: str = "kinematic") -> Oscillator:
     """The printed parameters with the isolator damping read as ``C_d = 1 kN s/m``.
 
@@ -85,8 +87,7 @@ def paper_damped(bumpers: bool = True, hysteresis: str = "kinematic") -> Oscilla
 
     Parameters
     ----------
-    bumpers : bool
-        True: the YBs configuration (with bumpers); False: the same system without them (NBs).
+    {bumpers}
     hysteresis : {"kinematic", "elastic"}
         Rule of the tri-linear isolator, as in :func:`paper_printed`.
 
@@ -143,6 +144,7 @@ def _data_table(name: str) -> "pd.DataFrame":
         return pd.read_csv(fh)
 
 
+@fill_doc
 def paper_calibrated(bumpers: bool = True) -> Oscillator:
     """The paper's system calibrated against its own Tables 2-4 (``pounding.identify``).
 
@@ -159,8 +161,7 @@ def paper_calibrated(bumpers: bool = True) -> Oscillator:
 
     Parameters
     ----------
-    bumpers : bool
-        True: the YBs configuration (with bumpers); False: the same system without them (NBs).
+    {bumpers}
 
     Returns
     -------
@@ -235,14 +236,14 @@ def rig_stands_scan() -> "pd.DataFrame":
     return _data_table(RIG_STANDS_SCAN_FILE)
 
 
+@fill_doc
 def paper_calibrated_v1(bumpers: bool = True) -> Oscillator:
     """The first calibrated preset: the same isolator family with Kelvin-Voigt bumpers
     (``scripts/calibrate_paper.py --maxiter 40``); residuals ``residuals("paper-calibrated-v1")``.
 
     Parameters
     ----------
-    bumpers : bool
-        True: the YBs configuration (with bumpers); False: the same system without them (NBs).
+    {bumpers}
 
     Returns
     -------
@@ -259,6 +260,7 @@ def paper_calibrated_v1(bumpers: bool = True) -> Oscillator:
     return _data_system(CALIBRATED_V1_FILE, bumpers)
 
 
+@fill_doc
 def paper_calibrated_v2(bumpers: bool = True) -> Oscillator:
     """The second calibrated preset (by least squares): the same isolator family with
     elastic multi-linear bumpers of three slopes and 13.2 mm gaps
@@ -270,8 +272,7 @@ def paper_calibrated_v2(bumpers: bool = True) -> Oscillator:
 
     Parameters
     ----------
-    bumpers : bool
-        True: the YBs configuration (with bumpers); False: the same system without them (NBs).
+    {bumpers}
 
     Returns
     -------
@@ -290,6 +291,7 @@ def paper_calibrated_v2(bumpers: bool = True) -> Oscillator:
     return _data_system(CALIBRATED_V2_FILE, bumpers)
 
 
+@fill_doc
 def paper_calibrated_measured(bumpers: bool = True) -> tuple[Oscillator, "MeasurementChain"]:
     """The paper's calibration with its accelerations measured through a low-pass: the system and
     the chain (the hypothesis that the lab's filtering explains its alphas; ``docs/measurement.md``).
@@ -305,8 +307,7 @@ def paper_calibrated_measured(bumpers: bool = True) -> tuple[Oscillator, "Measur
 
     Parameters
     ----------
-    bumpers : bool
-        True: the YBs configuration (with bumpers); False: the same system without them (NBs).
+    {bumpers}
 
     Returns
     -------
@@ -326,6 +327,7 @@ def paper_calibrated_measured(bumpers: bool = True) -> tuple[Oscillator, "Measur
     return _measured_system(MEASURED_FILE, bumpers)
 
 
+@fill_doc
 def paper_calibrated_laser(bumpers: bool = True) -> tuple[Oscillator, "MeasurementChain"]:
     """The paper's calibration with its accelerations measured through a low-pass and its contacts
     timed by the laser: the system and the chain (``docs/measurement.md``, "Contacts timed by the
@@ -343,8 +345,7 @@ def paper_calibrated_laser(bumpers: bool = True) -> tuple[Oscillator, "Measureme
 
     Parameters
     ----------
-    bumpers : bool
-        True: the YBs configuration (with bumpers); False: the same system without them (NBs).
+    {bumpers}
 
     Returns
     -------
@@ -462,6 +463,7 @@ def residuals(name: str = BEST_PRESET) -> "pd.DataFrame":
     return _data_table(RESIDUALS[name])
 
 
+@fill_doc
 def by_name(name: str, bumpers: bool = True) -> Oscillator:
     """A preset by its CLI name (see :data:`PRESETS`).
 
@@ -472,8 +474,7 @@ def by_name(name: str, bumpers: bool = True) -> Oscillator:
         "paper-calibrated", "paper-calibrated-v1", "paper-calibrated-v2",
         "paper-calibrated-measured" (its system; its chain: :func:`paper_calibrated_measured`) or
         "paper-calibrated-laser" (its system; its chain: :func:`paper_calibrated_laser`).
-    bumpers : bool
-        True: the YBs configuration (with bumpers); False: the same system without them (NBs).
+    {bumpers}
 
     Returns
     -------

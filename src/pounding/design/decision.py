@@ -70,15 +70,18 @@ class Decision:
 
     Examples
     --------
+    Three gaps under El Centro scaled to two stripes; the smallest gap whose pounding at the MCE
+    (0.45 g) is at most 10 % likely:
+
     >>> import pounding
     >>> from pounding import design
-    >>> ybs = pounding.presets.paper_damped()
-    >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
-    ...                              store="decide.zarr", progress=False,
-    ...                              grid={"bumpers.gap_m": [0.02, 0.2]})
+    >>> gaps = {"bumpers.gap_m": [0.02, 0.05, 0.2]}
+    >>> msa = design.stripe_analysis(pounding.presets.paper_damped(), "el-centro",
+    ...                              [0.2, 0.5], period_s=1.0, grid=gaps,
+    ...                              store="decide.zarr", progress=False)
     >>> choice = design.decide(msa, 0.3, 0.45, target_probability=0.1)
-    >>> choice.recommended["bumpers.gap_m"]
-    0.2
+    >>> choice.level, choice.recommended["bumpers.gap_m"]
+    ('mce', 0.05)
     """
 
     data: Any
@@ -344,14 +347,8 @@ def decide(
         raise InputError(Problem.WRONG_MODE, "limit", limit, mode="an event other than contact",
                          fix="leave it None for pounding, or name the demand (event='drift', ...)")
     yrs = positive("years", years, "years")
-    if hazard is not None and not isinstance(hazard, HazardCurve):
-        raise InputError(
-            Problem.WRONG_TYPE,
-            "hazard",
-            hazard,
-            got=type(hazard).__name__,
-            expected="pounding.design.HazardCurve or None",
-        )
+    if hazard is not None:
+        instance_of("hazard", hazard, HazardCurve, "pounding.design.HazardCurve or None")
     if design_sa > mce_sa:
         raise InputError(
             Problem.BAD_STATE,
@@ -415,14 +412,9 @@ def _analyses(analysis: Any) -> dict:
                 Problem.EMPTY, "analysis", {}, fix="give at least one stripe analysis, by bumper type"
             )
         for name in analysis:
-            if not isinstance(name, str) or not name:
-                raise InputError(
-                    Problem.WRONG_TYPE,
-                    "analysis",
-                    name,
-                    got=type(name).__name__,
-                    expected="a name (text) per bumper type, e.g. {'rubber': msa}",
-                )
+            if not isinstance(name, str) or not name:  # (an empty name too)
+                raise InputError(Problem.WRONG_TYPE, "analysis", name, got=type(name).__name__,
+                                 expected="a name (text) per bumper type, e.g. {'rubber': msa}")
         return dict(analysis)
     return {None: analysis}
 

@@ -81,14 +81,16 @@ class EnergyLedger:
 
     Examples
     --------
+    Where the first 10 s of El Centro, scaled to 0.3 g, put their energy in the damped paper
+    system:
+
     >>> import pounding
-    >>> run = pounding.simulate(pounding.presets.paper_damped(),
-    ...                         pounding.Harmonic(a_g=0.1, freq_hz=2.0),
-    ...                         duration=5.0)
-    >>> ledger = run.energy
+    >>> quake = pounding.records.el_centro().scaled(pga_g=0.3)
+    >>> ledger = pounding.simulate(pounding.presets.paper_damped(), quake,
+    ...                            duration=10.0).energy
     >>> (f"{ledger.input_work:.1f} J in: {ledger.viscous:.1f} J viscous, "
     ...  f"{ledger.hysteretic:.1f} J hysteretic")
-    '142.0 J in: 106.2 J viscous, 29.2 J hysteretic'
+    '140.2 J in: 117.5 J viscous, 21.9 J hysteretic'
     >>> bool(abs(ledger.residual) < 1e-9)  # J: every joule accounted for
     True
     >>> list(ledger.to_series().index)[:4]

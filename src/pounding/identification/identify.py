@@ -267,21 +267,20 @@ def identify(targets: Targets, family: ModelFamily, bounds: dict[str, Any], *, s
     Examples
     --------
     Which isolator damping ``C_d`` (N s/m) gives the printed system the measured NBs resonant
-    amplification alpha = 2.99 at a_G = 0.05 g? One free number, one target, five sweep steps and
-    a tiny search (a real fit uses the defaults and many targets: docs/calibration.md):
+    amplification alpha = 2.99 at a_G = 0.05 g? One free number, named by its path in the system's
+    file, one target, five sweep steps and a tiny search (a real fit uses the defaults and many
+    targets: docs/calibration.md):
 
     >>> import pounding
-    >>> damped = pounding.presets.paper_damped()
-    >>> fixed = pounding.ModelFamily(500.0).values_of(damped)
-    >>> del fixed["isolator_damping"]  # fitted; every other number as printed
-    >>> targets = pounding.Targets.from_records([{"configuration": "NBs",
-    ...                                           "a_g": 0.05, "quantity": "alpha",
-    ...                                           "value": 2.99}])
-    >>> fit = pounding.identify(targets, pounding.ModelFamily(500.0, fixed=fixed),
-    ...                         {"isolator_damping": (100.0, 5000.0)},
+    >>> family = pounding.SystemFamily(pounding.presets.paper_damped())
+    >>> alpha = pounding.Targets.from_records([{"configuration": "NBs",
+    ...                                         "a_g": 0.05, "quantity": "alpha",
+    ...                                         "value": 2.99}])
+    >>> fit = pounding.identify(alpha, family,
+    ...                         {"isolator.damping_n_s_m": (100.0, 5000.0)},
     ...                         freqs_hz=[0.9, 1.0, 1.1, 1.2, 1.3],
     ...                         popsize=4, maxiter=3)
-    >>> round(fit.parameters["isolator_damping"]), fit.n_within
+    >>> round(fit.parameters["isolator.damping_n_s_m"]), fit.n_within
     (548, 1)
     """
     instance_of("targets", targets, Targets, "pounding.Targets (paper_targets() or Targets.from_toml)")

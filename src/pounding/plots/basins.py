@@ -6,10 +6,12 @@ from typing import Any
 
 import numpy as np
 
+from .._docs import fill_doc
 from ._labels import A_G_LABEL
 from .legend import place_legend
 
 
+@fill_doc
 def plot_basins(result: Any, ax: Any = None, **kwargs: Any) -> list:
     """Basins of attraction: each initial state (displacement in mm, velocity in m/s) coloured by
     the attractor it ends on (grey: not settled), each attractor's sample at the section marked.
@@ -18,8 +20,7 @@ def plot_basins(result: Any, ax: Any = None, **kwargs: Any) -> list:
     ----------
     result : Basins
         From :func:`pounding.basins`.
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
     **kwargs
         Passed to the image (a grid) or the scatter (random states).
 
@@ -71,6 +72,7 @@ def plot_basins(result: Any, ax: Any = None, **kwargs: Any) -> list:
     return artists
 
 
+@fill_doc
 def plot_basin_stability(result: Any, ax: Any = None, *, curves: Any = None, **kwargs: Any) -> list:
     """The probability of pounding over frequency and a_G (colour), with ``curves`` (a
     :class:`~pounding.CoexistenceMap`: its fold and grazing curves) over it.
@@ -79,8 +81,7 @@ def plot_basin_stability(result: Any, ax: Any = None, *, curves: Any = None, **k
     ----------
     result : BasinStabilityMap
         From :func:`pounding.basin_stability_map`.
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
     curves : CoexistenceMap, optional
         From :func:`pounding.coexistence_map`.
     **kwargs

@@ -8,6 +8,7 @@ from typing import Any, Optional
 
 import numpy as np
 
+from .._docs import fill_doc
 from .._errors import InputError, Problem
 from ._labels import A_G_LABEL
 from .legend import place_legend
@@ -17,6 +18,7 @@ MARKS = {"fold": ("s", "F"), "branch-point": ("D", "BP"), "period-doubling": ("o
          "neimark-sacker": ("*", "NS"), "grazing": ("x", "G")}
 
 
+@fill_doc
 def plot_branch(branch: Any, ax: Any = None, *, y: str = "alpha", x: Optional[str] = None,
                 sweeps: Any = None, **kwargs: Any) -> list:
     """A branch: ``y`` against the parameter, stable solid, unstable dashed, bifurcations marked.
@@ -25,8 +27,7 @@ def plot_branch(branch: Any, ax: Any = None, *, y: str = "alpha", x: Optional[st
     ----------
     branch : Branch or sequence of Branch
         From :func:`pounding.continuation` (several: e.g. a branch and its period-doubled one).
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
     y : str
         A column of ``Branch.to_dataframe()``: ``"alpha"`` (default), ``"eta"``,
         ``"excursion_m"``, ``"max_abs_multiplier"``, ...

@@ -6,12 +6,14 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._docs import fill_doc
 from .legend import place_legend
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..identification.contact_law import ContactLawFit
 
 
+@fill_doc
 def plot_contact_law_fit(fit: "ContactLawFit", ax: Any = None) -> list:
     """Measured force (points) and the fitted law at the same samples (line) against compression.
 
@@ -19,8 +21,7 @@ def plot_contact_law_fit(fit: "ContactLawFit", ax: Any = None) -> list:
     ----------
     fit : ContactLawFit
         A result of :func:`pounding.fit_contact_law`.
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
 
     Returns
     -------

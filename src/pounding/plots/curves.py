@@ -4,6 +4,7 @@ from __future__ import annotations
 
 from typing import Any, Optional
 
+from .._docs import fill_doc
 from ._labels import A_G_LABEL
 from .legend import place_legend
 
@@ -21,6 +22,7 @@ MATRIX_LOOK = (
 )
 
 
+@fill_doc
 def plot_curves(curves: list, ax: Any = None, *, matrix: Optional[Any] = None,
                 box: Optional[tuple] = None, **kwargs: Any) -> list:
     """Fold curves solid, grazing curves dotted, in the (frequency, a_G) plane.
@@ -29,8 +31,7 @@ def plot_curves(curves: list, ax: Any = None, *, matrix: Optional[Any] = None,
     ----------
     curves : list of BifurcationCurve
         From :func:`pounding.bifurcation_curve` (or ``CoexistenceMap.curves``).
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
     matrix : DataFrame, optional
         A test matrix (``CoexistenceMap.matrix``: ``a_g``, ``freq_hz``, ``verdict``): each point drawn
         as its verdict says: filled where two or more responses coexist, hollow where one response is

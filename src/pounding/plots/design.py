@@ -6,6 +6,7 @@ from typing import Any
 
 import numpy as np
 
+from .._docs import fill_doc
 from .._tables import percentiles
 from .legend import place_legend
 
@@ -18,6 +19,7 @@ def _axes(ax: Any, size: tuple[float, float] = (6.0, 3.8)) -> Any:
     return ax
 
 
+@fill_doc
 def plot_design_spectrum(spectrum: Any, ax: Any = None, **line: Any) -> list:
     """A design spectrum (:class:`pounding.design.DesignSpectrum`): Sa (g) against the period (s),
     its corner periods marked.
@@ -26,8 +28,7 @@ def plot_design_spectrum(spectrum: Any, ax: Any = None, **line: Any) -> list:
     ----------
     spectrum : DesignSpectrum
         From :func:`pounding.design.asce7_spectrum`, ``ec8_spectrum`` or ``user_spectrum``.
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
     **line
         Passed to ``ax.plot`` (``label``, ``color``, ...).
 
@@ -72,6 +73,7 @@ def plot_design_spectrum(spectrum: Any, ax: Any = None, **line: Any) -> list:
     return artists
 
 
+@fill_doc
 def plot_hazard_curve(curve: Any, ax: Any = None) -> list:
     """A hazard curve: the annual frequency of exceedance against Sa, log-log.
 
@@ -79,8 +81,7 @@ def plot_hazard_curve(curve: Any, ax: Any = None) -> list:
     ----------
     curve : HazardCurve
         The site's hazard curve.
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
 
     Returns
     -------
@@ -111,6 +112,7 @@ def plot_hazard_curve(curve: Any, ax: Any = None) -> list:
     return [ln]
 
 
+@fill_doc
 def plot_scaled_suite(suite: Any, ax: Any = None) -> list:
     """A scaled suite (:class:`pounding.design.ScaledSuite`): each record's pseudo-spectral
     acceleration (thin), the suite's mean (thick), the target (dashed) and the rule's periods
@@ -120,8 +122,7 @@ def plot_scaled_suite(suite: Any, ax: Any = None) -> list:
     ----------
     suite : ScaledSuite
         From :func:`pounding.design.scale_suite`.
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
 
     Returns
     -------
@@ -179,6 +180,7 @@ def plot_scaled_suite(suite: Any, ax: Any = None) -> list:
     return artists
 
 
+@fill_doc
 def plot_fragility(fragility: Any, ax: Any = None, *, data: bool = True, **line: Any) -> list:
     """A fragility curve with its bootstrap band and (``data``) what it was fitted to.
 
@@ -186,8 +188,7 @@ def plot_fragility(fragility: Any, ax: Any = None, *, data: bool = True, **line:
     ----------
     fragility : Fragility
         From :func:`pounding.design.fit_fragility` or ``fit_fragility_capacities``.
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
     data : bool
         Draw the stripes' fractions (or the capacities' empirical distribution).
     **line
@@ -264,6 +265,7 @@ def plot_fragility(fragility: Any, ax: Any = None, *, data: bool = True, **line:
     return artists
 
 
+@fill_doc
 def plot_stripes(analysis: Any, event: str = "contact", limit: float | None = None, ax: Any = None) -> list:
     """A stripe analysis: the fraction of runs with the event at each stripe (markers) and its
     fitted fragility (lines), one per value of the design grid's first dimension (the others at
@@ -277,8 +279,7 @@ def plot_stripes(analysis: Any, event: str = "contact", limit: float | None = No
         The event (``StripeAnalysis.outcomes``).
     limit : float, optional
         Its threshold.
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
 
     Returns
     -------
@@ -287,14 +288,16 @@ def plot_stripes(analysis: Any, event: str = "contact", limit: float | None = No
 
     Examples
     --------
+    The damped paper system as it is (no design grid) under El Centro scaled to three stripes:
+
     >>> import pounding
-    >>> from pounding import design
-    >>> ybs = pounding.presets.paper_damped()
-    >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
-    ...                              store="plot.zarr", progress=False,
-    ...                              grid={"bumpers.gap_m": [0.02, 0.2]})
-    >>> len(pounding.plots.plot_stripes(msa))  # each gap's markers, no curve
-    2
+    >>> msa = pounding.design.stripe_analysis(
+    ...     pounding.presets.paper_damped(), "el-centro", [0.1, 0.2, 0.5],
+    ...     period_s=1.0, store="plot.zarr", progress=False)
+    >>> msa.fraction("contact", None).values.tolist()  # of the records, pounding
+    [0.0, 1.0, 1.0]
+    >>> len(pounding.plots.plot_stripes(msa))  # its markers; no curve from one record
+    1
     """
     from .._errors import InputError
 
@@ -329,6 +332,7 @@ def plot_stripes(analysis: Any, event: str = "contact", limit: float | None = No
 OPTION_MARKERS = ("o", "s", "^", "D", "v", "P", "X", "*", "<", ">")  # (one shape per design option)
 
 
+@fill_doc
 def plot_decision(decision: Any, ax: Any = None) -> list:
     """The design chart of a :class:`pounding.design.Decision`: the probability of pounding at the
     design (dashed) and MCE (solid) intensities against the gap, one colour per value of the
@@ -339,8 +343,7 @@ def plot_decision(decision: Any, ax: Any = None) -> list:
     ----------
     decision : Decision
         From :func:`pounding.design.decide`.
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
 
     Returns
     -------
@@ -394,6 +397,7 @@ def plot_decision(decision: Any, ax: Any = None) -> list:
     return artists
 
 
+@fill_doc
 def plot_responses(analysis: Any, quantity: str = "acc_max_g", ax: Any = None) -> list:
     """A stripe analysis's response against the intensity: the median over the records (line) and
     the 16-84 % band (shaded) per stripe, one colour per value of the design grid's first dimension
@@ -407,8 +411,7 @@ def plot_responses(analysis: Any, quantity: str = "acc_max_g", ax: Any = None) -
         A run quantity: ``acc_max_g``, ``disp_max_m``, ``impacts``, ``impact_force_max_n``,
         ``impact_speed_max_m_s`` or ``compression_max_m``; a building's ``base_disp_max_m``,
         ``top_disp_max_m``, ``top_acc_max_g`` or ``drift_ratio_max``.
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
 
     Returns
     -------

@@ -7,6 +7,7 @@ from typing import Any
 
 import numpy as np
 
+from .._docs import fill_doc
 from .._checks import integer, one_of
 from .._errors import InputError, Problem
 from .legend import place_legend
@@ -15,6 +16,7 @@ DIRECTION_COLOR = {"up": "C0", "down": "C3"}
 DIRECTION_MARKER = {"up": "^", "down": "v"}
 
 
+@fill_doc
 def plot_bifurcation_diagram(diagram: Any, ax: Any = None, *, branches: Any = None, y: str = "displacement",
                              level: int = -1, **kwargs: Any) -> list:
     """A bifurcation diagram: each recorded stroboscopic sample (table phase 0) against the
@@ -25,8 +27,7 @@ def plot_bifurcation_diagram(diagram: Any, ax: Any = None, *, branches: Any = No
     ----------
     diagram : BifurcationDiagram
         From :func:`pounding.bifurcation_diagram`.
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
     branches : Branch or sequence of Branch, optional
         From :func:`pounding.continuation` in ``freq_hz`` (their orbits' crossings of the section,
         ``Branch.section()``).

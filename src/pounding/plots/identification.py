@@ -6,10 +6,13 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._docs import fill_doc
+
 if TYPE_CHECKING:  # pragma: no cover
     from ..identification.identify import Identification
 
 
+@fill_doc
 def plot_identification(fit: Identification, ax: Any = None) -> list:
     """Horizontal bars of ``(model - target) / allowed`` per target; within +-1 is met.
 
@@ -17,8 +20,7 @@ def plot_identification(fit: Identification, ax: Any = None) -> list:
     ----------
     fit : Identification
         A result of :func:`pounding.identify`.
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
 
     Returns
     -------

@@ -6,9 +6,11 @@ from typing import Any
 
 import numpy as np
 
+from .._docs import fill_doc
 from .legend import place_legend
 
 
+@fill_doc
 def plot_lyapunov(spectrum: Any, ax: Any = None, **kwargs: Any) -> list:
     """The running estimates of the finite exponents against the periods counted, the final values
     written in the legend, and zero marked (a positive largest exponent: chaos).
@@ -17,8 +19,7 @@ def plot_lyapunov(spectrum: Any, ax: Any = None, **kwargs: Any) -> list:
     ----------
     spectrum : LyapunovSpectrum
         From :func:`pounding.lyapunov`.
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
     **kwargs
         Passed to the lines (``lw``, ``alpha``, ...).
 

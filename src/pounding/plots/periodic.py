@@ -6,10 +6,12 @@ from typing import Any
 
 import numpy as np
 
+from .._docs import fill_doc
 from ..engine.layout import C_T_START
 from .legend import place_legend
 
 
+@fill_doc
 def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
     """A periodic orbit in the phase plane, displacement (mm) against velocity (m/s): a single mass's with
     its contacts' starts and its bumpers' surfaces, or each level's of a system of several.
@@ -18,8 +20,7 @@ def plot_orbit(orbit: Any, ax: Any = None, **kwargs: Any) -> list:
     ----------
     orbit : PeriodicOrbit
         From :func:`pounding.periodic_orbit`.
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
     **kwargs
         Passed to the orbit's lines (solid when stable, dashed when not).
 

@@ -6,12 +6,14 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._docs import fill_doc
 from .legend import place_legend
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..excitation import Record
 
 
+@fill_doc
 def plot_record(record: "Record", ax: Any = None) -> list:
     """The acceleration (g) against time (s), its peak marked.
 
@@ -19,8 +21,7 @@ def plot_record(record: "Record", ax: Any = None) -> list:
     ----------
     record : Record
         A ground motion, e.g. from :mod:`pounding.records`.
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
 
     Returns
     -------
@@ -51,6 +52,7 @@ def plot_record(record: "Record", ax: Any = None) -> list:
     return artists
 
 
+@fill_doc
 def plot_response_spectrum(spectrum: Any, ax: Any = None, *, quantity: str = "psa_g") -> list:
     """One curve per record of an elastic response spectrum (:func:`pounding.response_spectrum`).
 
@@ -58,8 +60,7 @@ def plot_response_spectrum(spectrum: Any, ax: Any = None, *, quantity: str = "ps
     ----------
     spectrum : xarray.Dataset
         From :func:`pounding.response_spectrum` (dims ``record`` and ``period_s``).
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
     quantity : str
         The variable drawn: ``psa_g`` (default), ``sa_g``, ``sd_m``, ``sv_m_s``, ``psv_m_s``, ...
 

@@ -6,11 +6,13 @@ from typing import Any
 
 import numpy as np
 
+from .._docs import fill_doc
 from .legend import place_legend
 
 KINDS = ("curves", "map")
 
 
+@fill_doc
 def plot_pounding_spectrum(spectrum: Any, ax: Any = None, *, kind: str = "curves",
                            quantity: str = "amplification") -> list:
     """A pounding spectrum (:func:`pounding.pounding_spectrum`) over the isolation period.
@@ -19,8 +21,7 @@ def plot_pounding_spectrum(spectrum: Any, ax: Any = None, *, kind: str = "curves
     ----------
     spectrum : PoundingSpectrum
         From :func:`pounding.pounding_spectrum`.
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
     kind : {"curves", "map"}
         "curves": the median over the records against the period, one line per gap, the 16-84 %
         band shaded (one record: its curves); "map": the median over period (x) and gap (y).

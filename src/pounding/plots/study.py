@@ -6,9 +6,11 @@ from typing import Any
 
 import numpy as np
 
+from .._docs import fill_doc
 from .legend import place_legend
 
 
+@fill_doc
 def plot_study(result: Any, quantity: str, *, x: str | None = None, hue: str | None = None, ax: Any = None,
                where: dict | None = None) -> list:
     """A study's quantity against one grid axis, one line per value of another.
@@ -23,8 +25,7 @@ def plot_study(result: Any, quantity: str, *, x: str | None = None, hue: str | N
         The grid axis along the horizontal (default: the first one longer than 1).
     hue : str, optional
         The axis whose values make the lines (default: the next one longer than 1, if any).
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
     where : dict, optional
         A value for each other axis longer than 1 (the nearest is taken): ``{"a_g": 0.05}``.
 
@@ -35,19 +36,18 @@ def plot_study(result: Any, quantity: str, *, x: str | None = None, hue: str | N
 
     Examples
     --------
-    A study of three left gaps, one 5 s run at a_G = 0.05 and 1.5 Hz each, written to
-    ``gaps.zarr``:
+    Three left gaps at two a_G, one 5 s run at 1.5 Hz each, written to ``gaps.zarr``; the peak
+    acceleration against the gap, a line per a_G:
 
     >>> import pounding
-    >>> spec = pounding.StudySpec(pounding.presets.paper_damped(),
-    ...                           {"kind": "simulate", "a_g": 0.05, "freq_hz": 1.5,
-    ...                            "duration_s": 5.0},
-    ...                           {"bumpers.gap_left_m": [0.010, 0.015, 0.020]})
+    >>> grid = {"bumpers.gap_left_m": [0.010, 0.015, 0.020], "a_g": [0.03, 0.05]}
+    >>> compute = {"kind": "simulate", "freq_hz": 1.5, "duration_s": 5.0}
+    >>> spec = pounding.StudySpec(pounding.presets.paper_damped(), compute, grid)
     >>> _ = pounding.study(spec, "gaps.zarr", progress=False)
     >>> artists = pounding.plots.plot_study(pounding.open_study("gaps.zarr"),
-    ...                                     "acc_max_g")
+    ...                                     "acc_max_g", hue="a_g")
     >>> len(artists)
-    1
+    2
     """
     import matplotlib.pyplot as plt
 

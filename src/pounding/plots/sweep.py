@@ -8,6 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from .._docs import fill_doc
 from .legend import place_legend
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -169,6 +170,7 @@ def plot_lab_sweep(lab: Any, ax: Any = None, *, label: str | None = None, color:
     return artists
 
 
+@fill_doc
 def plot_hysteresis(loop: "HysteresisLoop", ax: Any = None, *, per: str = "total_gap",
                     **line_kwargs: Any) -> list:
     """``r = F_I / (M g)`` against ``d`` (paper Figs. 7 and 15).
@@ -177,8 +179,7 @@ def plot_hysteresis(loop: "HysteresisLoop", ax: Any = None, *, per: str = "total
     ----------
     loop : HysteresisLoop
         From :meth:`SweepResult.hysteresis_loop`.
-    ax : matplotlib Axes, optional
-        Where to draw (a new figure if omitted).
+    {ax}
     per : {"total_gap", "half_gap"}
         ``d = D / Delta`` (the paper's definition, Sect. 3.3: symmetric bumpers at +-0.5), or
         ``d = D / (Delta / 2)`` (bumpers at +-1, where the paper's Figs. 7 and 15 draw them).

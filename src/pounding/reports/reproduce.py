@@ -178,11 +178,11 @@ def reproduce(nbs_system: Oscillator, ybs_system: Oscillator, out_dir: str | Pat
     couple of seconds, most of it writing the figures):
 
     >>> import pounding
-    >>> report = pounding.reports.reproduce(
-    ...     pounding.presets.paper_damped(bumpers=False),
-    ...     pounding.presets.paper_damped(), "report",
-    ...     freqs_hz=[1.5, 2.0], nbs_a_g=(0.05,), ybs_a_g=(0.05,),
-    ...     directions=("up",), steady="fixed", cycles=5)
+    >>> ybs = pounding.presets.paper_damped()
+    >>> report = pounding.reports.reproduce(ybs.without_bumpers(), ybs, "report",
+    ...                                     freqs_hz=[1.5, 2.0], nbs_a_g=(0.05,),
+    ...                                     ybs_a_g=(0.05,), directions=("up",),
+    ...                                     steady="fixed", cycles=5)
     >>> sorted(p.name for p in report.out_dir.iterdir())[:6]
     ['campaign.nc', 'coexistence.csv', 'coexistence.png', 'fig04.png', 'fig05.png',
      'fig06.png']

@@ -28,24 +28,24 @@ class StudyResult:
 
     Examples
     --------
+    Both gaps at once (``bumpers.gap_m``), each point 5 s at 1.5 Hz and a_G = 0.05 from rest:
+
     >>> import pounding
     >>> spec = pounding.StudySpec(pounding.presets.paper_damped(),
-    ...                           {"kind": "simulate", "freq_hz": 1.5,
+    ...                           {"kind": "simulate", "freq_hz": 1.5, "a_g": 0.05,
     ...                            "duration_s": 5.0},
-    ...                           {"bumpers.gap_left_m": [0.01, 0.02],
-    ...                            "a_g": [0.03, 0.05]})
-    >>> _ = pounding.study(spec, "gaps.zarr", progress=False)
-    >>> res = pounding.open_study("gaps.zarr")
+    ...                           {"bumpers.gap_m": [0.01, 0.02, 0.03]})
+    >>> _ = pounding.study(spec, "both_gaps.zarr", progress=False)
+    >>> res = pounding.open_study("both_gaps.zarr")
     >>> res.done, res.complete, res.spec.dims
-    (4, True, ('bumpers.gap_left_m', 'a_g'))
+    (3, True, ('bumpers.gap_m',))
     >>> df = res.to_dataframe()  # one row per point done
-    >>> print(df[["bumpers.gap_left_m", "a_g",
-    ...           "acc_max_g"]].round(3).to_string(index=False))
-     bumpers.gap_left_m  a_g  acc_max_g
-                 0.01 0.03      0.522
-                 0.01 0.05      0.713
-                 0.02 0.03      0.107
-                 0.02 0.05      0.533
+    >>> cols = ["bumpers.gap_m", "acc_max_g", "impacts"]
+    >>> print(df[cols].round(3).to_string(index=False))
+     bumpers.gap_m  acc_max_g  impacts
+              0.01      0.591     14.0
+              0.02      0.135      0.0
+              0.03      0.135      0.0
     """
 
     data: "xr.Dataset" = field(repr=False)

@@ -68,14 +68,14 @@ class StudySpec:
 
     Examples
     --------
-    The left gap against a_G, each point a 5 s harmonic run at 1.5 Hz from rest:
+    The left gap against a_G, each point a 5 s harmonic run at 1.5 Hz from rest, from the tables
+    of a study file (:meth:`from_toml` reads them from one):
 
     >>> import pounding
-    >>> spec = pounding.StudySpec(pounding.presets.paper_damped(),
-    ...                           {"kind": "simulate", "freq_hz": 1.5,
-    ...                            "duration_s": 5.0},
-    ...                           {"bumpers.gap_left_m": [0.01, 0.02],
-    ...                            "a_g": [0.03, 0.05]})
+    >>> spec = pounding.StudySpec.from_dict({
+    ...     "system": {"preset": "paper-damped"},
+    ...     "compute": {"kind": "simulate", "freq_hz": 1.5, "duration_s": 5.0},
+    ...     "grid": {"bumpers.gap_left_m": [0.01, 0.02], "a_g": [0.03, 0.05]}})
     >>> spec.kind, spec.dims, spec.shape, spec.size
     ('simulate', ('bumpers.gap_left_m', 'a_g'), (2, 2), 4)
     >>> spec.compute  # the defaults written out

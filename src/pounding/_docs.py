@@ -1,0 +1,36 @@
+"""Docstring fragments that many public functions share, written once (as scipy's ``doccer`` and
+matplotlib's ``_docstring``): a line holding only ``{name}`` in a docstring becomes the fragment ``name``,
+at that line's indentation, when the function is defined."""
+
+from __future__ import annotations
+
+import re
+from typing import Callable, TypeVar
+
+F = TypeVar("F", bound=Callable)
+
+FRAGMENTS = {
+    "ax": ("ax : matplotlib Axes, optional\n"
+           "    Where to draw (a new figure if omitted)."),
+    "bumpers": ("bumpers : bool\n"
+                "    True: the YBs configuration (with bumpers); False: the same system without them (NBs)."),
+}
+
+_PLACE = re.compile(r"^(\s*)\{(\w+)\}\s*$")
+
+
+def fill_doc(func: F) -> F:
+    """``func`` with its docstring's ``{name}`` lines replaced by :data:`FRAGMENTS`' texts (an unknown name
+    is a KeyError at import: a typo is seen at once)."""
+    if not func.__doc__:  # (python -OO)
+        return func
+    lines = []
+    for line in func.__doc__.splitlines():
+        place = _PLACE.match(line)
+        if place is None:
+            lines.append(line)
+            continue
+        indent, name = place.groups()
+        lines.extend(indent + part if part else part for part in FRAGMENTS[name].splitlines())
+    func.__doc__ = "\n".join(lines)
+    return func
