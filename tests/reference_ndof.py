@@ -193,6 +193,10 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
                 if mode[q] == 0:  # stuck: the spring's strain reaches +-D
                     def change(t, y, q=q, i=i, sg=sg, d_y=d_y):
                         return d_y - sg * (drift(y, i) - slip[q])
+
+                    def rate(t, y, i=i, sg=sg):  # (change's derivative: its minima are the drift's turns)
+                        return -sg * (y[n + i + 1] - y[n + i])
+                    change.rate = rate
                 elif mode[q] == sg:  # slipping: the drift's rate turns back
                     def change(t, y, i=i, sg=sg):
                         return sg * (y[n + i + 1] - y[n + i])
@@ -288,13 +292,16 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
 
 
 def _stepped_over(evs, sol, t0: float):
-    """The earliest crossing of a contact's event function inside one solver step, ``(t, index)``, or None.
+    """The earliest crossing of a contact's or a plastic spring's event function inside one solver step,
+    ``(t, index)``, or None.
 
     ``solve_ivp`` checks an event's sign at step ends only: a wall's force that dips below zero and back
     within a step (the mass leaves the wall for half a millisecond, 1.5 um, and strikes it again: a draw
     of test_yielding_storeys_match_the_reference, the reference one contact short and every later yield
-    off by up to 4.5e-7 s) is missed.  Each contact's function is sampled at 8 points inside every step
-    from the dense output; a sample at or below zero after one above it brackets the crossing."""
+    off by up to 4.5e-7 s) is missed; so is a storey's drift that touches its yield drift and turns back
+    within 6 us (another draw: one yield short, the later ones off by up to 1.1e-8 s).  Each such function
+    is sampled at 8 points inside every step from the dense output; a sample at or below zero after one
+    above it brackets the crossing."""
     if sol.t.size < 2:
         return None
     inner = (sol.t[:-1, None] + np.diff(sol.t)[:, None] * np.linspace(0.0, 1.0, 10)[1:-1]).ravel()
@@ -302,15 +309,25 @@ def _stepped_over(evs, sol, t0: float):
     ys = sol.sol(grid)
     best = None
     for k, f in enumerate(evs):
-        if not hasattr(f, "contact"):
+        if not (hasattr(f, "contact") or hasattr(f, "plastic")):
             continue
         g = _on_grid(f, grid, ys)
         down = np.flatnonzero((g[:-1] > 0.0) & (g[1:] <= 0.0))
-        if down.size:
-            m = down[0]
-            root = brentq(lambda tt: f(tt, sol.sol(tt)), grid[m], grid[m + 1], xtol=1e-16, rtol=8.9e-16)
+        lo, hi = (grid[down[0]], grid[down[0] + 1]) if down.size else (None, None)
+        if hasattr(f, "rate"):  # (a minimum between two samples that dips to zero: a graze within 6 us)
+            r = _on_grid(f.rate, grid, ys)
+            for m in np.flatnonzero((r[:-1] < 0.0) & (r[1:] >= 0.0) & (g[:-1] > 0.0) & (g[1:] > 0.0)):
+                if lo is not None and grid[m] >= lo:
+                    break
+                turn = brentq(lambda tt: f.rate(tt, sol.sol(tt)), grid[m], grid[m + 1], xtol=1e-16,
+                              rtol=8.9e-16)
+                if f(turn, sol.sol(turn)) <= 0.0:
+                    lo, hi = grid[m], turn
+                    break
+        if lo is not None:
+            root = brentq(lambda tt: f(tt, sol.sol(tt)), lo, hi, xtol=1e-16, rtol=8.9e-16)
             for _ in range(64):  # (just past the crossing, as solve_ivp's own events: the function <= 0)
-                if f(root, sol.sol(root)) <= 0.0 or root >= grid[m + 1]:
+                if f(root, sol.sol(root)) <= 0.0 or root >= hi:
                     break
                 root = np.nextafter(root, np.inf)
             if root > t0 + 1e-13 and (best is None or root < best[0]):

@@ -562,6 +562,32 @@ def test_a_release_from_the_wall_inside_one_reference_step():
     np.testing.assert_allclose(yields["t_s"], [t for _, t in ref.yields], rtol=0, atol=1e-9)
 
 
+def test_a_yield_that_turns_back_inside_one_reference_step():
+    # a draw of the yielding test: the storey's drift touches its yield drift at 0.357481 s and turns back
+    # 6 us later, inside one of the reference's solver steps; the reference found the yield only once it
+    # looked for its functions' minima inside its steps (before, it had one yield fewer and the later
+    # ones off by up to 1.1e-8 s; the core was right)
+    m0, m1 = 1664.9943032158353, 1458.9326426113541
+    k1, k2, d_y = 1409939.9052318125, 568213.0159506637, 0.0008989632545767889
+    k_iso, c_iso = 50553.917558027555, 467.949037748043
+    gaps, a_g, omega, v0 = (0.008371764967002355, 0.0234375), 5.40625, 7.412195167063418, 0.25
+    storeys = [pd_.Storey(m1, k1, 603.3840084555669, slopes_after_n_m=[k2], breakpoints_m=[d_y])]
+    building = pd_.Structure(m0, linear_isolator(k_iso, c_iso), storeys,
+                             [pd_.Wall(0, *gaps, pd_.KelvinVoigt(9731646.0, 100.0))])
+    ref_s = RefStructure(mass=np.array([m0, m1]), k0=building.shear_matrix([k2]), c0=building.damping_matrix,
+                         k_iso=k_iso, c_iso=c_iso, gaps=gaps, k_b=9731646.0, c_b=100.0, a_g=a_g, omega=omega,
+                         plastic=[(0, k1 - k2, d_y)])
+    run = pd_.simulate(building, pd_.Harmonic(a_g / 9.80665, omega / (2 * math.pi), g=9.80665), 2.0,
+                       moving(building, v0), sample_rate_hz=0)
+    ref = reference(ref_s, 2.0, np.concatenate([np.zeros(2), np.full(2, v0)]))
+    yields = run.events[run.events["kind"] == "yield"]
+    assert len(ref.yields) == len(yields) == 24 and len(ref.contact_starts) == len(run.contacts) == 15
+    assert abs(ref.yields[2][1] - 0.357481016) < 1e-9  # (the short one, which the reference missed)
+    np.testing.assert_allclose(yields["t_s"], [t for _, t in ref.yields], rtol=0, atol=1e-9)
+    starts = [t for _, t in ref.contact_starts]
+    np.testing.assert_allclose(run.contacts["t_start_s"], starts, rtol=0, atol=1e-9)
+
+
 def test_rayleigh_damping_gives_the_two_modes_their_ratios_and_leaves_the_isolation_undamped():
     iso = pd_.Isolator(slopes_n_m=[4.0e6, 1.0e6], breakpoints_m=[0.02])
     storeys = [pd_.Storey(m, k) for m, k in ((2.5e4, 6.0e7), (2.0e4, 5.0e7), (1.5e4, 3.0e7))]
