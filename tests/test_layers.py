@@ -14,7 +14,7 @@ ROOT = Path(pounding.__file__).resolve().parent
 
 # lowest first: each line may import from itself and the lines above it
 LAYERS = [
-    ("_errors", "_checks", "_io", "_core", "_control", "_delimited", "_units", "_tables", "data"),
+    ("_errors", "_checks", "_io", "_core", "_control", "_delimited", "_units", "_tables", "_docs", "data"),
     ("model",),
     ("presets",),
     ("excitation", "records"),

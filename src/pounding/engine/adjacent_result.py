@@ -61,18 +61,16 @@ class AdjacentRun(NamedChatters, Outcome):
 
     Examples
     --------
+    Two fixed-base two-storey frames, a soft one and a stiff one, their roofs 1 cm apart:
+
     >>> import pounding
-    >>> iso = pounding.Isolator(slopes_n_m=[4.0e6, 1.0e6], breakpoints_m=[0.02],
-    ...                         damping_n_s_m=2.0e4)
-    >>> isolated = pounding.Structure(3.0e4, iso,
-    ...                               [pounding.Storey(2.0e4, 4.0e7)] * 3)
-    >>> old = pounding.Structure.fixed_base(
-    ...     [pounding.Storey(2.5e4, 3.0e7, 5.0e4)] * 3)
-    >>> roof = pounding.Link(3, 3, 0.15, pounding.KelvinVoigt(5.0e8, 2.0e5))
-    >>> run = pounding.simulate(pounding.Adjacent(isolated, old, [roof]),
-    ...                         pounding.Harmonic(a_g=0.4, freq_hz=1.0), 10.0)
-    >>> list(run.links.columns)[:4]
-    ['link', 'level_first', 'level_second', 't_start_s']
+    >>> soft = pounding.Structure.fixed_base([pounding.Storey(2.0e4, 2.0e7, 4.0e4)] * 2)
+    >>> stiff = pounding.Structure.fixed_base([pounding.Storey(2.0e4, 1.2e8, 4.0e4)] * 2)
+    >>> roofs = pounding.Link(2, 2, 0.01, pounding.KelvinVoigt(5.0e8, 2.0e5))
+    >>> run = pounding.simulate(pounding.Adjacent(soft, stiff, [roofs]),
+    ...                         pounding.Harmonic(a_g=0.3, freq_hz=2.0), 5.0)
+    >>> len(run.links), list(run.links.columns)[:4]
+    (19, ['link', 'level_first', 'level_second', 't_start_s'])
     """
 
     adjacent: Any
