@@ -64,8 +64,10 @@ class AdjacentRun(NamedChatters, Outcome):
     Two fixed-base two-storey frames, a soft one and a stiff one, their roofs 1 cm apart:
 
     >>> import pounding
-    >>> soft = pounding.Structure.fixed_base([pounding.Storey(2.0e4, 2.0e7, 4.0e4)] * 2)
-    >>> stiff = pounding.Structure.fixed_base([pounding.Storey(2.0e4, 1.2e8, 4.0e4)] * 2)
+    >>> soft = pounding.Structure.fixed_base(
+    ...     [pounding.Storey(2.0e4, 2.0e7, 4.0e4)] * 2)
+    >>> stiff = pounding.Structure.fixed_base(
+    ...     [pounding.Storey(2.0e4, 1.2e8, 4.0e4)] * 2)
     >>> roofs = pounding.Link(2, 2, 0.01, pounding.KelvinVoigt(5.0e8, 2.0e5))
     >>> run = pounding.simulate(pounding.Adjacent(soft, stiff, [roofs]),
     ...                         pounding.Harmonic(a_g=0.3, freq_hz=2.0), 5.0)

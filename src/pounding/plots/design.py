@@ -296,7 +296,7 @@ def plot_stripes(analysis: Any, event: str = "contact", limit: float | None = No
     ...     period_s=1.0, store="plot.zarr", progress=False)
     >>> msa.fraction("contact", None).values.tolist()  # of the records, pounding
     [0.0, 1.0, 1.0]
-    >>> len(pounding.plots.plot_stripes(msa))  # its markers; no curve from one record
+    >>> len(pounding.plots.plot_stripes(msa))  # markers; one record: no curve
     1
     """
     from .._errors import InputError

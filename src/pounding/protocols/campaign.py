@@ -260,9 +260,10 @@ def campaign(
     fixed 10 cycles a step (a tiny version of the paper's matrix, which the defaults run):
 
     >>> import pounding
-    >>> res = pounding.campaign(None, pounding.presets.paper_damped(), ybs_a_g=[0.05],
-    ...                         freqs_hz=[1.5, 2.0, 2.5], directions=["up", "down"],
-    ...                         steady="fixed", cycles=10)
+    >>> ybs = pounding.presets.paper_damped()
+    >>> res = pounding.campaign(None, ybs, ybs_a_g=[0.05], freqs_hz=[1.5, 2.0, 2.5],
+    ...                         directions=["up", "down"], steady="fixed",
+    ...                         cycles=10)
     >>> dict(res.data.sizes)
     {'configuration': 1, 'a_g': 1, 'direction': 2, 'freq_hz': 3}
     >>> alpha = res.data["alpha"].sel(configuration="YBs", a_g=0.05)
