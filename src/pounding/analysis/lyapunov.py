@@ -17,11 +17,13 @@ on its constraint.
 
 Two choices make the estimates exact where a closed form exists:
 
-- A single mass's lengths and velocities are measured in its isolator's own units,
-  ``(omega_d x, v + zeta omega_n x)`` with ``omega_n``, ``zeta`` and ``omega_d`` of its first slope, so
-  the free linear oscillator's flow is a rotation times ``exp(-zeta omega_n t)`` and every frame vector
-  shrinks at exactly that rate; a structure's in its free motion's real modal coordinates, the same
-  way.  (Exponents do not depend on a fixed change of coordinates; finite-time estimates do, by O(1/t).)
+- Lengths and velocities are measured in the real modal coordinates of the free motion (no contact,
+  every spring on its stiffest slope), each mode's pair scaled so that its largest displacement is
+  ``1 / omega_d``: the free linear flow is a rotation times each mode's decay, and every frame vector
+  shrinks at exactly its rate.  A single mass's are its isolator's own units, ``(omega_d x, v + zeta
+  omega_n x)``.  The other coordinates (compressions, slips) are in units of the slowest mode's
+  frequency, a Bouc-Wen ``z`` (of order 1) a thousandth of it.  (Exponents do not depend on a fixed
+  change of coordinates; finite-time estimates do, by O(1/t).)
 - The frame is carried for ``align_cycles`` periods before the count starts, so on a periodic
   orbit whose largest multiplier is real and alone it is aligned and each period's R gives the
   multipliers' moduli.
@@ -33,7 +35,6 @@ period is beyond what double precision resolves next to the others, 1e-13).
 
 from __future__ import annotations
 
-import math
 from dataclasses import replace
 from collections.abc import Iterator
 from typing import Any, Optional
@@ -51,7 +52,7 @@ from ..protocols.bifurcation_diagram import BifurcationDiagram, periods
 from . import _hybrid as hy
 from ._args import exact_monodromy
 from .lyapunov_result import LyapunovSpectrum
-from ..engine.assembly import assemble, check_system, is_single_mass
+from ..engine.assembly import assemble, check_system
 from ._shooter import _Shooter
 from ._shooting import _Failed, at_section
 
@@ -138,29 +139,13 @@ class _Tangent:
     def __init__(self, oscillator: Any, excitation: Harmonic, exact: bool, state: Any) -> None:
         self.exc = excitation
         self.period = 1.0 / excitation.freq_hz
-        self.structure = not is_single_mass(oscillator)
         self.sh = _Shooter(oscillator, excitation, self.period, exact)
         self.start = np.array(state.vector, dtype=float)
         self.fell_back = 0  # periods whose exact Jacobian gave way to finite differences
-        if not self.structure:
-            iso = oscillator.isolator
-            omega_n = math.sqrt(max(float(iso.slopes_n_m[0]), 1e-300) / oscillator.mass_kg)
-            zeta = iso.damping_n_s_m / (2.0 * oscillator.mass_kg * omega_n)
-            self.omega_n, self.zeta = omega_n, zeta
 
     def _metric(self, keep: np.ndarray) -> np.ndarray:
-        """``W``: the tangent vectors measured as ``W dx`` (the isolator's own units; a structure's: its
-        free motion's real modal coordinates)."""
-        if self.structure:
-            return _modal_metric(self.sh.free_state_matrix(), keep.size)
-        w = np.eye(keep.size) * self.omega_n
-        w[1, 1] = 1.0
-        if self.zeta < 1.0:
-            w[0, 0] = self.omega_n * math.sqrt(1.0 - self.zeta**2)
-            w[1, 0] = self.zeta * self.omega_n
-        if self.sh.z_max > 0.0:
-            w[-1, -1] = self.omega_n * 1e-3  # (z of order 1 against lengths of a millimetre)
-        return w
+        """``W``: the tangent vectors measured as ``W dx`` (the free motion's real modal coordinates)."""
+        return _modal_metric(self.sh.free_state_matrix(), keep.size, self.sh.z_max > 0.0)
 
     def _jacobian(self, vec: np.ndarray, run: Any) -> np.ndarray:
         """The period's Jacobian in every coordinate of ``_Shooter.coords``, perturbations put on
@@ -316,12 +301,16 @@ class _Tangent:
         return head
 
 
-def _modal_metric(a: np.ndarray, size: int) -> np.ndarray:
+def _modal_metric(a: np.ndarray, size: int, z_last: bool) -> np.ndarray:
     """``W`` (size, size) whose first block takes the masses' (x, v) to the real modal coordinates of the
-    state matrix ``a`` (2n, 2n): each complex pair's ``(Re, Im)`` of one eigenvector, in which the free motion
-    is a rotation times its decay, so a linear structure's frame vectors shrink at exactly their rates; the
-    other coordinates (compressions, slips, z) in units of the slowest mode's frequency."""
+    state matrix ``a`` (2n, 2n): each complex pair's ``(Re, Im)`` of its eigenvector (``Im lambda > 0``)
+    scaled so that its largest displacement is ``1 / Im lambda``, in which the free motion is a rotation times
+    its decay, so a linear system's frame vectors shrink at exactly their rates (one mass: ``(omega_d x,
+    v + zeta omega_n x)``, whatever phase LAPACK gives the vector); the other coordinates (compressions,
+    slips) in units of the slowest mode's frequency, and ``z`` (the last, when ``z_last``: of order 1 against
+    lengths of a millimetre) a thousandth of it."""
     lam, vecs = np.linalg.eig(a)
+    n = a.shape[0] // 2
     cols, done = [], np.zeros(lam.size, dtype=bool)
     for i in np.argsort(np.abs(lam), kind="stable"):
         if done[i]:
@@ -330,7 +319,9 @@ def _modal_metric(a: np.ndarray, size: int) -> np.ndarray:
         if lam[i].imag != 0.0:
             j = int(np.argmin(np.where(done, np.inf, np.abs(lam - lam[i].conj()))))
             done[j] = True
-            v = vecs[:, i] if lam[i].imag > 0.0 else vecs[:, j]
+            k = i if lam[i].imag > 0.0 else j
+            v = vecs[:, k]
+            v = v / (v[int(np.argmax(np.abs(v[:n])))] * lam[k].imag)
             cols += [v.real, v.imag]
         else:
             cols.append(vecs[:, i].real)
@@ -338,6 +329,8 @@ def _modal_metric(a: np.ndarray, size: int) -> np.ndarray:
     n2 = a.shape[0]
     w = np.eye(size) * max(float(np.abs(lam).min()), 1e-6)
     w[:n2, :n2] = np.linalg.inv(t)
+    if z_last:
+        w[-1, -1] *= 1e-3
     return w
 
 
