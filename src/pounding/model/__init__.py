@@ -1,6 +1,5 @@
 """What the system is: mass, isolator, bumpers and their contact laws."""
 
-from .bumpers import Bumpers
 from .contact_laws import ElasticPlastic, Hertzdamp, HuntCrossley, Jankowski, KelvinVoigt, MultilinearBumper
 from .contact_laws import RigidStop
 from .isolator import BoucWen, Isolator
@@ -8,7 +7,7 @@ from .measurement import MeasurementChain, Sensor
 from .oscillator import Oscillator
 from .adjacent import Adjacent, Link
 from .structure import Structure
-from .structure_parts import Stand, Storey, Wall
+from .structure_parts import Bumpers, Stand, Storey, Wall
 
 __all__ = ["Adjacent", "Link", "BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley",
            "Isolator",

@@ -11,7 +11,7 @@ from typing import Any, ClassVar, Union
 from .._checks import at_most, instance_of, integer, non_negative, plausible
 from .._errors import InputError, Problem
 from ._toml import TomlFile
-from .bumpers import MAX_GAP_M
+from .structure_parts import MAX_GAP_M
 from .contact_laws import check_law, law_from_dict, law_to_dict
 from .oscillator import check_keys
 from .structure import Structure

@@ -7,16 +7,14 @@ from pathlib import Path
 from typing import Any, ClassVar, Optional, Union
 
 
-from .._checks import at_least, at_most, instance_of, plausible, positive
+from .._checks import instance_of
 from .._errors import InputError, Problem, renamed_fields
 from ._toml import TomlFile, renamed_keys
-from .bumpers import Bumpers
 from .contact_laws import law_from_dict
 from .isolator import Isolator
+from .structure_parts import Bumpers, check_mass
 
 PathLike = Union[str, Path]
-MAX_MASS_KG = 1e12  # refused beyond (a unit error)
-MIN_MASS_KG = 1e-6  # refused below (1 mg: the phases' rates k/m overflowed at 1e-300 kg)
 
 
 @renamed_fields({"mass": "mass_kg"})  # (the names before, 0.1's: one more release, with a warning)
@@ -66,11 +64,8 @@ class Oscillator(TomlFile):
     FIELDS: ClassVar[tuple[str, ...]] = ("mass_kg", "isolator", "bumpers")
 
     def __post_init__(self) -> None:
-        mass = positive("mass_kg", self.mass_kg, "kg")
-        at_most("mass_kg", mass, MAX_MASS_KG, " kg", "give the mass in kg")
-        at_least("mass_kg", mass, MIN_MASS_KG, " kg", "give the mass in kg: 500 kg is 500.0")
-        plausible("mass_kg", mass, 1e-3, 1e9, "the mass is in kg (500 kg is 500.0)")
-        object.__setattr__(self, "mass_kg", mass)
+        object.__setattr__(self, "mass_kg", check_mass("mass_kg", self.mass_kg,
+                                                       "the mass is in kg (500 kg is 500.0)"))
         instance_of("isolator", self.isolator, Isolator, "Isolator")
         if self.bumpers is not None and not isinstance(self.bumpers, Bumpers):
             raise InputError(Problem.WRONG_TYPE, "bumpers", self.bumpers,

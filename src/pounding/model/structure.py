@@ -21,7 +21,7 @@ from .contact_laws import law_from_dict
 from .isolator import Isolator
 from ._toml import renamed_keys
 from .oscillator import Oscillator, check_keys
-from .structure_parts import MAX_STOREYS, Stand, Storey, Wall, _mass
+from .structure_parts import MAX_STOREYS, Stand, Storey, Wall, check_mass
 
 PathLike = Union[str, Path]
 
@@ -101,7 +101,7 @@ class Structure(TomlFile):
                              fix="give both (an isolated base) or neither (a fixed base: "
                                  "Structure.fixed_base)")
         if self.isolator is not None:
-            object.__setattr__(self, "base_mass_kg", _mass("base_mass_kg", self.base_mass_kg))
+            object.__setattr__(self, "base_mass_kg", check_mass("base_mass_kg", self.base_mass_kg))
             instance_of("isolator", self.isolator, Isolator, "Isolator or None")
         for name, kind in (("storeys", Storey), ("walls", Wall)):
             items = getattr(self, name)

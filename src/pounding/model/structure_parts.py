@@ -1,5 +1,6 @@
 """The parts of a structure (pounding.Structure): a storey of a shear building, a wall that stops a level,
-the stand a wall's bumper may sit on."""
+the stand a wall's bumper may sit on; and a single mass's bumpers, the wall at its level 0 (one pair of sides,
+checked and written as a wall's)."""
 
 from __future__ import annotations
 
@@ -8,28 +9,30 @@ from typing import Any, ClassVar, Optional
 
 from .._checks import (at_least, at_most, backbone, integer, non_negative, plausible, positive,
                        real_tuple)
-from .._errors import InputError, Problem
-from .bumpers import MAX_GAP_M
-from .contact_laws import check_law, law_to_dict, refuse_clamp
+from .._errors import InputError, Problem, warn_renamed
+from .contact_laws import ContactLaw, check_law, law_to_dict, refuse_clamp
 from .isolator import HYSTERESIS_RULES
-from .oscillator import MAX_MASS_KG, MIN_MASS_KG
 
 MAX_STOREYS = 50          # refused beyond (the history's columns grow with it)
 MAX_STOREY_STIFFNESS = 1e13  # N/m, refused beyond (a unit error)
+MAX_MASS_KG = 1e12  # refused beyond (a unit error)
+MIN_MASS_KG = 1e-6  # refused below (1 mg: the phases' rates k/m overflowed at 1e-300 kg)
+MAX_GAP_M = 1e3  # refused beyond (a unit error)
 
 
-def _mass(field_name: str, value: Any) -> float:
+def check_mass(field_name: str, value: Any, hint: str = "masses are in kg (500 kg is 500.0)") -> float:
+    """A mass (kg) as a float: positive, within [MIN_MASS_KG, MAX_MASS_KG], warned of outside 1 g - 1e9 kg."""
     mass = positive(field_name, value, "kg")
     at_most(field_name, mass, MAX_MASS_KG, " kg", "give the mass in kg")
     at_least(field_name, mass, MIN_MASS_KG, " kg", "give the mass in kg: 500 kg is 500.0")
-    plausible(field_name, mass, 1e-3, 1e9, "masses are in kg (500 kg is 500.0)")
+    plausible(field_name, mass, 1e-3, 1e9, hint)
     return mass
 
 
 def _check_mass_spring(part: Any, prefix: str) -> float:
     """Validate (and store as floats) a part's ``mass_kg``, ``stiffness_n_m`` and ``damping_n_s_m``, named
     ``prefix.<field>`` in errors; return the stiffness."""
-    object.__setattr__(part, "mass_kg", _mass(f"{prefix}.mass_kg", part.mass_kg))
+    object.__setattr__(part, "mass_kg", check_mass(f"{prefix}.mass_kg", part.mass_kg))
     k = positive(f"{prefix}.stiffness_n_m", part.stiffness_n_m, "N/m")
     at_most(f"{prefix}.stiffness_n_m", k, MAX_STOREY_STIFFNESS, " N/m", "give the stiffness in N/m")
     object.__setattr__(part, "stiffness_n_m", k)
@@ -156,8 +159,47 @@ class Stand:
         return {f: getattr(self, f) for f in self.FIELDS}
 
 
+class _Sides:
+    """What a pair of contact sides has (a wall's, a single mass's bumpers: fields ``gap_left_m``,
+    ``gap_right_m``, ``law``, ``law_right``): each side's law, the checks of their gaps and laws, their
+    table."""
+
+    @property
+    def left(self) -> ContactLaw:
+        """The left side's contact law."""
+        return self.law  # type: ignore[attr-defined]
+
+    @property
+    def right(self) -> ContactLaw:
+        """The right side's contact law (``law`` unless ``law_right`` is given)."""
+        return self.law if self.law_right is None else self.law_right  # type: ignore[attr-defined]
+
+    def _check_gaps(self, prefix: str, plausible_max_m: float, example: str) -> None:
+        for name in ("gap_left_m", "gap_right_m"):
+            gap = non_negative(f"{prefix}.{name}", getattr(self, name), "m")
+            at_most(f"{prefix}.{name}", gap, MAX_GAP_M, " m", "give the gap in m (15 mm is 0.015)")
+            plausible(f"{prefix}.{name}", gap, 0.0, plausible_max_m, f"gaps are in m ({example})")
+            object.__setattr__(self, name, gap)
+
+    def _check_laws(self, prefix: str) -> None:
+        for name in ("law", "law_right"):
+            value = getattr(self, name)
+            if value is None and name == "law_right":
+                continue
+            check_law(f"{prefix}.{name}", value)
+        refuse_clamp(f"{prefix}.gap_left_m", self.gap_left_m, self.gap_right_m,  # type: ignore[attr-defined]
+                     self.left, self.right)
+
+    def _sides_dict(self) -> dict[str, Any]:
+        out: dict[str, Any] = {"gap_left_m": self.gap_left_m, "gap_right_m": self.gap_right_m,  # type: ignore
+                               "law": law_to_dict(self.law)}  # type: ignore[attr-defined]
+        if self.law_right is not None:  # type: ignore[attr-defined]
+            out["law_right"] = law_to_dict(self.law_right)  # type: ignore[attr-defined]
+        return out
+
+
 @dataclass(frozen=True)
-class Wall:
+class Wall(_Sides):
     """A wall on both sides of one level (a moat wall around the base, or a stop at a floor), each side
     behind its gap, with a contact law (a bumper on the wall, or the wall itself).
 
@@ -198,17 +240,8 @@ class Wall:
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "level", integer("wall.level", self.level, 0, MAX_STOREYS))
-        for name in ("gap_left_m", "gap_right_m"):
-            gap = non_negative(f"wall.{name}", getattr(self, name), "m")
-            at_most(f"wall.{name}", gap, MAX_GAP_M, " m", "give the gap in m (15 mm is 0.015)")
-            plausible(f"wall.{name}", gap, 0.0, 2.0, "gaps are in m (a 15 cm moat is 0.15)")
-            object.__setattr__(self, name, gap)
-        for name in ("law", "law_right"):
-            value = getattr(self, name)
-            if value is None and name == "law_right":
-                continue
-            check_law(f"wall.{name}", value)
-        refuse_clamp("wall.gap_left_m", self.gap_left_m, self.gap_right_m, self.left, self.right)
+        self._check_gaps("wall", 2.0, "a 15 cm moat is 0.15")
+        self._check_laws("wall")
         if self.stand is not None and not isinstance(self.stand, Stand):
             raise InputError(Problem.WRONG_TYPE, "wall.stand", self.stand, got=type(self.stand).__name__,
                              expected="Stand or None")
@@ -225,22 +258,121 @@ class Wall:
             object.__setattr__(wall, name, value)
         return wall
 
-    @property
-    def left(self) -> Any:
-        return self.law
-
-    @property
-    def right(self) -> Any:
-        return self.law if self.law_right is None else self.law_right
-
     def to_dict(self) -> dict[str, Any]:
-        out: dict[str, Any] = {"level": self.level, "gap_left_m": self.gap_left_m,
-                               "gap_right_m": self.gap_right_m, "law": law_to_dict(self.law)}
-        if self.law_right is not None:
-            out["law_right"] = law_to_dict(self.law_right)
+        out: dict[str, Any] = {"level": self.level, **self._sides_dict()}
         if self.stand is not None:
             out["stand"] = self.stand.to_dict()
         return out
 
 
-__all__ = ["Stand", "Storey", "Wall"]
+@dataclass(frozen=True, init=False)
+class Bumpers(_Sides):
+    """Left and right bumpers, each behind its gap (the paper's YBs configuration).
+
+    A bumper only pushes.  Contact with the right bumper starts when the displacement ``D``
+    reaches ``gap_right_m + d_R(t)``, where ``d_R >= 0`` is the bumper's current compression
+    (it may not have recovered from the previous contact); contact ends when the force would
+    become a pull; in between contacts the bumper relaxes by its own law.  Mirror for left.
+
+    Parameters
+    ----------
+    gap_left_m, gap_right_m : float
+        Distances in m from the mass at rest to each bumper's free surface, >= 0.  The
+        paper's total gap is ``gap_left_m + gap_right_m = 0.03`` m.  (``gap_left`` and
+        ``gap_right``, their names before, still work for one release, with a warning.)
+    law : KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper, ElasticPlastic or Hertzdamp
+        Contact law of the left bumper, and of the right one unless ``law_right`` is given.
+    law_right : KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper, ElasticPlastic or Hertzdamp, optional
+        Contact law of the right bumper when it differs from the left one.
+    capacity_m : float, optional
+        The deepest compression the bumpers take (m), > 0: what a design checks their runs'
+        ``compression_max_m`` against (``StripeAnalysis.outcomes("compression")``).  It does not
+        change the motion.
+
+    Each side's law is ``left`` and ``right``; ``total_gap`` is their gaps' sum.
+
+    Examples
+    --------
+    The paper's YBs bumpers, 15 mm from the mass on each side; a stiffer one on the right:
+
+    >>> import pounding
+    >>> epdm = pounding.KelvinVoigt(stiffness=1.46e6, damping=5.0)
+    >>> bumpers = pounding.Bumpers(gap_left_m=0.015, gap_right_m=0.015, law=epdm)
+    >>> bumpers.total_gap  # m
+    0.03
+    >>> stiff = pounding.Bumpers(0.015, 0.010, epdm,
+    ...                          law_right=pounding.KelvinVoigt(5.0e6, 5.0))
+    >>> stiff.right.stiffness, stiff.mirrored().gap_left_m
+    (5000000.0, 0.01)
+    """
+
+    gap_left_m: float
+    gap_right_m: float
+    law: ContactLaw
+    law_right: Optional[ContactLaw] = None
+    capacity_m: Optional[float] = None
+
+    FIELDS: ClassVar[tuple[str, ...]] = ("gap_left_m", "gap_right_m", "law", "law_right", "capacity_m")
+    # the names before (0.1's), still read for one release with a warning: in Python, TOML and dotted names
+    RENAMED: ClassVar[dict[str, str]] = {"gap_left": "gap_left_m", "gap_right": "gap_right_m"}
+
+    def __init__(self, gap_left_m: Any = None, gap_right_m: Any = None, law: Any = None,
+                 law_right: Optional[ContactLaw] = None, capacity_m: Optional[float] = None,
+                 **renamed: Any) -> None:
+        given = {"gap_left_m": gap_left_m, "gap_right_m": gap_right_m}
+        for old, value in renamed.items():
+            if old not in self.RENAMED:
+                raise TypeError(f"Bumpers() got an unexpected keyword argument '{old}'")
+            warn_renamed(old, self.RENAMED[old])
+            given[self.RENAMED[old]] = value
+        for name, value in (*given.items(), ("law", law)):
+            if value is None:
+                raise InputError(Problem.MISSING_INPUT, f"bumpers.{name}", None,
+                                 what=f"Bumpers({name}=...)")
+        object.__setattr__(self, "gap_left_m", given["gap_left_m"])
+        object.__setattr__(self, "gap_right_m", given["gap_right_m"])
+        object.__setattr__(self, "law", law)
+        object.__setattr__(self, "law_right", law_right)
+        object.__setattr__(self, "capacity_m", capacity_m)
+        self.__post_init__()
+
+    @property
+    def gap_left(self) -> float:
+        """``gap_left_m`` under its name before (a warning: it goes in the next release)."""
+        warn_renamed("gap_left", "gap_left_m")
+        return self.gap_left_m
+
+    @property
+    def gap_right(self) -> float:
+        """``gap_right_m`` under its name before (a warning: it goes in the next release)."""
+        warn_renamed("gap_right", "gap_right_m")
+        return self.gap_right_m
+
+    def __post_init__(self) -> None:
+        self._check_gaps("bumpers", 0.5, "15 mm is 0.015")
+        if self.capacity_m is not None:
+            capacity = positive("bumpers.capacity_m", self.capacity_m, "m")
+            plausible("bumpers.capacity_m", capacity, 0.0, 0.5, "a bumper's capacity is in m (20 mm is 0.02)")
+            object.__setattr__(self, "capacity_m", capacity)
+        self._check_laws("bumpers")
+
+    @property
+    def total_gap(self) -> float:
+        """``Delta = gap_left_m + gap_right_m`` in m."""
+        return self.gap_left_m + self.gap_right_m
+
+    def mirrored(self) -> "Bumpers":
+        """The same bumpers seen in a mirror (left and right swapped)."""
+        if self.law_right is None:
+            return Bumpers(self.gap_right_m, self.gap_left_m, self.law, capacity_m=self.capacity_m)
+        return Bumpers(self.gap_right_m, self.gap_left_m, self.law_right, self.law, self.capacity_m)
+
+    def to_dict(self) -> dict[str, Any]:
+        """The constructor's fields as plain values (the TOML form: ``Oscillator.to_toml`` writes it)."""
+        out = self._sides_dict()
+        if self.capacity_m is not None:
+            out["capacity_m"] = self.capacity_m
+        return out
+
+
+__all__ = ["Bumpers", "Stand", "Storey", "Wall"]
