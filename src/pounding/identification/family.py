@@ -17,6 +17,10 @@ fitted within bounds (the ``bounds`` of :func:`pounding.identify`).  Names:
   ``bumper_damping`` (N s/m), ``k`` the family's ``bumper_branches``;
 - ``gap``: the gap on each side, m.
 
+Each name is a number of the system's file, by its path (``ModelFamily.paths``: ``slope_1`` is
+``isolator.slopes_n_m[0]``, ``gap`` is ``bumpers.gap_m``), the name a :class:`~pounding.SystemFamily`
+gives it; a candidate is built by setting them in the file's tables, as a ``SystemFamily``'s is.
+
 TOML (``pounding identify ... --family FAMILY.toml``)::
 
     mass = 500.0
@@ -42,8 +46,8 @@ import numpy as np
 
 from .._checks import instance_of, integer, one_of, positive, read_toml, real
 from .._errors import InputError, PoundingWarning, Problem
-from ..model import (BoucWen, Bumpers, ElasticPlastic, HuntCrossley, Isolator, KelvinVoigt, MultilinearBumper,
-                     Oscillator)
+from ..model import MultilinearBumper, Oscillator
+from ..model.dotted import get_value, set_value
 
 WIDE_DECADES = 6  # bounds spanning more decades than this are warned about
 FAMILY_KEYS = ("mass", "branches", "hysteresis", "law", "fixed", "bounds", "bumper_branches", "bouc_wen")
@@ -99,6 +103,8 @@ class ModelFamily:
     >>> family.oscillator({"isolator_damping": 1000.0,
     ...                    "bumper_damping": 500.0}).bumpers.law
     KelvinVoigt(stiffness=1460000.0, damping=500.0)
+    >>> family.paths["isolator_damping"]  # its name in a SystemFamily
+    'isolator.damping_n_s_m'
     """
 
     mass: float
@@ -164,39 +170,67 @@ class ModelFamily:
                                  choices=f"{', '.join(names)} (each bounded here or fixed in the family)")
         return tuple(n for n in names if n in bounds)
 
+    @property
+    def paths(self) -> dict[str, str]:
+        """Each number's path in the system's file, as a :class:`~pounding.SystemFamily` names it
+        (``slope_1`` is ``isolator.slopes_n_m[0]``, ``gap`` is ``bumpers.gap_m``: both gaps), in
+        :attr:`parameter_names`' order; ``bumper_post_yield_ratio`` has none (the file's
+        ``bumpers.law.post_yield_stiffness`` is it times ``bumper_stiffness``)."""
+        n, k = self.branches, self.bumper_branches
+        law = {"bumper_stiffness": "stiffness", "bumper_damping": "damping", "bumper_exponent": "exponent",
+               "bumper_yield_compression": "yield_compression",
+               **{f"bumper_slope_{i + 1}": f"slopes[{i}]" for i in range(k)},
+               **{f"bumper_breakpoint_{i + 1}": f"breakpoints[{i}]" for i in range(k - 1)}}
+        paths = {f"slope_{i + 1}": f"isolator.slopes_n_m[{i}]" for i in range(n)}
+        paths.update({f"breakpoint_{i + 1}": f"isolator.breakpoints_m[{i}]" for i in range(n - 1)})
+        paths.update(isolator_damping="isolator.damping_n_s_m",
+                     bw_stiffness="isolator.bouc_wen.stiffness_n_m",
+                     bw_yield_displacement="isolator.bouc_wen.yield_displacement_m",
+                     bw_n="isolator.bouc_wen.n", gap="bumpers.gap_m",
+                     **{name: f"bumpers.law.{key}" for name, key in law.items()})
+        return {name: paths[name] for name in self.parameter_names if name in paths}
+
+    def _table(self) -> dict[str, Any]:
+        """The system's file as tables, every number of the family still to be set (None)."""
+        n, k = self.branches, self.bumper_branches
+        isolator: dict[str, Any] = {"slopes_n_m": [None] * n, "breakpoints_m": [None] * (n - 1),
+                                    "hysteresis": self.hysteresis, "damping_n_s_m": None}
+        if self.bouc_wen:  # (a = 1, beta = gamma = 0.5: BoucWen's defaults)
+            isolator["bouc_wen"] = {"stiffness_n_m": None, "yield_displacement_m": None, "n": None}
+        if self.law in MULTILINEAR_LAWS:
+            law: dict[str, Any] = {"type": MultilinearBumper.TYPE, "slopes": [None] * k,
+                                   "breakpoints": [None] * (k - 1), "damping": None,
+                                   "hysteresis": MULTILINEAR_LAWS[self.law]}
+        elif self.law == "elastic_plastic":
+            law = {"type": self.law, "stiffness": None, "post_yield_stiffness": None,
+                   "yield_compression": None}
+        else:
+            law = {"type": self.law, "stiffness": None, "damping": None,
+                   **({"exponent": None} if self.law == "hunt_crossley" else {})}
+        return {"mass_kg": self.mass, "isolator": isolator,
+                "bumpers": {"gap_left_m": None, "gap_right_m": None, "law": law}}
+
     def oscillator(self, values: dict[str, float]) -> Oscillator:
-        """The YBs system for ``values`` (free numbers) plus the fixed ones.
+        """The YBs system for ``values`` (free numbers) plus the fixed ones: each set by its path
+        (:attr:`paths`) in the system's file, which is then read as any system's.
 
         Raises :class:`~pounding.InputError` when they make no valid system (e.g.
         breakpoints out of order).
         """
         p = {**self.fixed, **values}
-        n = self.branches
-        bouc_wen = BoucWen(p["bw_stiffness"], p["bw_yield_displacement"],
-                           n=p["bw_n"]) if self.bouc_wen else None
-        isolator = Isolator(tuple(p[f"slope_{i + 1}"] for i in range(n)),
-                            tuple(p[f"breakpoint_{i + 1}"] for i in range(n - 1)), self.hysteresis,
-                            p["isolator_damping"], bouc_wen)
-        if self.law == "kelvin_voigt":
-            law: Any = KelvinVoigt(p["bumper_stiffness"], p["bumper_damping"])
-        elif self.law in MULTILINEAR_LAWS:
-            k = self.bumper_branches
-            law = MultilinearBumper(tuple(p[f"bumper_slope_{i + 1}"] for i in range(k)),
-                                    tuple(p[f"bumper_breakpoint_{i + 1}"] for i in range(k - 1)),
-                                    p["bumper_damping"], MULTILINEAR_LAWS[self.law])
-        elif self.law == "elastic_plastic":
+        table = self._table()
+        for name, path in self.paths.items():
+            set_value(table, path, p[name])
+        if self.law == "elastic_plastic":
             ratio = p["bumper_post_yield_ratio"]
             if not 0.0 < ratio < 1.0:
                 raise InputError(Problem.OUT_OF_RANGE, "bumper_post_yield_ratio", ratio, range="(0, 1)",
                                  hint=" (K2 / K1: the yield line is the softer one)")
-            law = ElasticPlastic(p["bumper_stiffness"], ratio * p["bumper_stiffness"],
-                                 p["bumper_yield_compression"])
-        else:
-            law = HuntCrossley(p["bumper_stiffness"], p["bumper_exponent"], p["bumper_damping"])
-        return Oscillator(self.mass, isolator, Bumpers(p["gap"], p["gap"], law))
+            table["bumpers"]["law"]["post_yield_stiffness"] = ratio * p["bumper_stiffness"]
+        return Oscillator.from_dict(table)
 
     def values_of(self, oscillator: Oscillator) -> dict[str, float]:
-        """Every number of the family read from a system of this family (YBs)."""
+        """Every number of the family read from a system of this family (YBs), by its path."""
         iso, b = oscillator.isolator, oscillator.bumpers
         multilinear = self.law in MULTILINEAR_LAWS
         if (b is None or iso.n_branches != self.branches or (iso.bouc_wen is not None) != self.bouc_wen
@@ -205,9 +239,6 @@ class ModelFamily:
                                      or b.law.hysteresis != MULTILINEAR_LAWS[self.law]))):
             raise InputError(Problem.WRONG_TYPE, "oscillator", oscillator, got="another structure",
                              expected=f"a YBs system with {self.branches} branches and {self.law} bumpers")
-        out = {f"slope_{i + 1}": float(k) for i, k in enumerate(iso.slopes_n_m)}
-        out.update({f"breakpoint_{i + 1}": float(x) for i, x in enumerate(iso.breakpoints_m)})
-        out["isolator_damping"] = float(iso.damping_n_s_m)
         if self.bouc_wen:
             bw = iso.bouc_wen
             if (bw.a, bw.beta, bw.gamma) != (1.0, 0.5, 0.5):
@@ -215,26 +246,11 @@ class ModelFamily:
                                  got=f"a Bouc-Wen spring with a = {bw.a:g}, "
                                  f"beta = {bw.beta:g}, gamma = {bw.gamma:g}",
                                  expected="the family's: a = 1, beta = gamma = 0.5")
-            out.update(bw_stiffness=float(iso.bouc_wen.stiffness_n_m),
-                       bw_yield_displacement=float(iso.bouc_wen.yield_displacement_m),
-                       bw_n=float(iso.bouc_wen.n))
-        if multilinear:
-            out.update({f"bumper_slope_{i + 1}": float(k) for i, k in enumerate(b.law.slopes)})
-            out.update({f"bumper_breakpoint_{i + 1}": float(x) for i, x in enumerate(b.law.breakpoints)})
-            out["bumper_damping"] = float(b.law.damping)
-            out["gap"] = float(b.gap_left_m)
-            return out
-        out["bumper_stiffness"] = float(b.law.stiffness)
-        if self.law == "elastic_plastic":
-            out["bumper_post_yield_ratio"] = float(b.law.post_yield_stiffness / b.law.stiffness)
-            out["bumper_yield_compression"] = float(b.law.yield_compression)
-            out["gap"] = float(b.gap_left_m)
-            return out
-        out["bumper_damping"] = float(b.law.damping)
-        if self.law == "hunt_crossley":
-            out["bumper_exponent"] = float(b.law.exponent)
-        out["gap"] = float(b.gap_left_m)
-        return out
+        table = oscillator.to_dict()
+        paths = self.paths
+        return {name: float(get_value(table, paths[name])) if name in paths
+                else float(b.law.post_yield_stiffness / b.law.stiffness)  # (bumper_post_yield_ratio)
+                for name in self.parameter_names}
 
     @classmethod
     def from_toml(cls, path: str | Path) -> tuple[ModelFamily, dict[str, tuple[float, float]]]:

@@ -7,8 +7,9 @@ structure's (``walls[0].law.stiffness``, ``walls[0].stand.mass_kg``, ``storeys[0
 other number keeps the base's value.  A rig that is more than one mass (the paper's bumpers on steel stands,
 a specimen on a flexible table) is a :class:`~pounding.Structure`.  The targets are of the base's level 0
 (the mass a shaking table's rig carries): its NBs sweeps run the system without its bumpers or walls, its
-YBs sweeps with them (``SweepResult.paper_quantities``).  :class:`~pounding.ModelFamily` is the other
-family, the paper's single mass built from its shape (the isolator's branches, the bumpers' law).
+YBs sweeps with them (``SweepResult.paper_quantities``).  :class:`~pounding.ModelFamily` is the paper's
+single mass built from its shape (the isolator's branches, the bumpers' law), its numbers short names for
+the same paths (``ModelFamily.paths``), set in the file's tables in the same way.
 """
 
 from __future__ import annotations
