@@ -301,7 +301,9 @@ def _stepped_over(evs, sol, t0: float):
     off by up to 4.5e-7 s) is missed; so is a storey's drift that touches its yield drift and turns back
     within 6 us (another draw: one yield short, the later ones off by up to 1.1e-8 s).  Each such function
     is sampled at 8 points inside every step from the dense output; a sample at or below zero after one
-    above it brackets the crossing."""
+    above it brackets the crossing.  A stuck plastic spring's function (it has a ``rate``: its derivative)
+    may dip to zero and back between two samples: where its rate turns from negative to positive between
+    them, its minimum is found, and a minimum at or below zero brackets a crossing before it."""
     if sol.t.size < 2:
         return None
     inner = (sol.t[:-1, None] + np.diff(sol.t)[:, None] * np.linspace(0.0, 1.0, 10)[1:-1]).ravel()
@@ -313,25 +315,27 @@ def _stepped_over(evs, sol, t0: float):
             continue
         g = _on_grid(f, grid, ys)
         down = np.flatnonzero((g[:-1] > 0.0) & (g[1:] <= 0.0))
-        lo, hi = (grid[down[0]], grid[down[0] + 1]) if down.size else (None, None)
+        brackets = [(grid[down[0]], grid[down[0] + 1])] if down.size else []
         if hasattr(f, "rate"):  # (a minimum between two samples that dips to zero: a graze within 6 us)
             r = _on_grid(f.rate, grid, ys)
             for m in np.flatnonzero((r[:-1] < 0.0) & (r[1:] >= 0.0) & (g[:-1] > 0.0) & (g[1:] > 0.0)):
-                if lo is not None and grid[m] >= lo:
+                if brackets and grid[m] >= brackets[0][0]:
                     break
                 turn = brentq(lambda tt: f.rate(tt, sol.sol(tt)), grid[m], grid[m + 1], xtol=1e-16,
                               rtol=8.9e-16)
                 if f(turn, sol.sol(turn)) <= 0.0:
-                    lo, hi = grid[m], turn
+                    brackets.insert(0, (grid[m], turn))  # (before the sampled crossing, if any)
                     break
-        if lo is not None:
+        for lo, hi in brackets:  # (the earliest whose root is past the stretch's start)
             root = brentq(lambda tt: f(tt, sol.sol(tt)), lo, hi, xtol=1e-16, rtol=8.9e-16)
             for _ in range(64):  # (just past the crossing, as solve_ivp's own events: the function <= 0)
                 if f(root, sol.sol(root)) <= 0.0 or root >= hi:
                     break
                 root = np.nextafter(root, np.inf)
-            if root > t0 + 1e-13 and (best is None or root < best[0]):
-                best = (float(root), k)
+            if root > t0 + 1e-13:
+                if best is None or root < best[0]:
+                    best = (float(root), k)
+                break
     return best
 
 

@@ -147,3 +147,34 @@ def test_examples_fit_the_page(name: str) -> None:
 def test_a_wide_example_is_seen() -> None:
     assert _long_example_lines(">>> x = 1\n>>> y = '" + "z" * 80 + "'\n") != []
     assert _long_example_lines("Text " * 40 + "\n\n>>> 1 + 1\n2\n") == []
+
+
+def test_a_docstring_fragment_takes_its_lines_place_and_a_typo_is_an_error() -> None:
+    from pounding._docs import FRAGMENTS, fill_doc
+
+    def drawn(ax=None):
+        """Draw.
+
+        Parameters
+        ----------
+        {ax}
+
+        Examples
+        --------
+        >>> {1}
+        {1}
+        """
+
+    doc = fill_doc(drawn).__doc__
+    first, second = FRAGMENTS["ax"].splitlines()
+    assert f"\n        {first}\n        {second}\n" in doc and "{ax}" not in doc
+    assert ">>> {1}\n        {1}\n" in doc  # (a doctest's output is not a fragment)
+
+    def typo():
+        """Draw.
+
+        {axe}
+        """
+
+    with pytest.raises(KeyError):
+        fill_doc(typo)

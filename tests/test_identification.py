@@ -7,6 +7,8 @@ import math
 import matplotlib
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 import pounding as pd_
 
@@ -100,3 +102,61 @@ def test_nan_and_no_contact_are_refused():
         pd_.fit_contact_law(d, f, velocity_m_s=v)
     with pytest.raises(pd_.InputError, match="compression"):
         pd_.fit_contact_law(-d, 1e6 * d, velocity_m_s=v)
+
+
+def _family_system_by_hand(family, p):
+    """The system of a ModelFamily for the numbers ``p``, built law by law with the constructors (the way
+    the family built it before its numbers were paths): the reference its paths must reproduce."""
+    n, k = family.branches, family.bumper_branches
+    bw = pd_.BoucWen(p["bw_stiffness"], p["bw_yield_displacement"], n=p["bw_n"]) if family.bouc_wen else None
+    iso = pd_.Isolator(tuple(p[f"slope_{i + 1}"] for i in range(n)),
+                       tuple(p[f"breakpoint_{i + 1}"] for i in range(n - 1)), family.hysteresis,
+                       p["isolator_damping"], bw)
+    if family.law == "kelvin_voigt":
+        law = pd_.KelvinVoigt(p["bumper_stiffness"], p["bumper_damping"])
+    elif family.law.startswith("multilinear"):
+        law = pd_.MultilinearBumper(tuple(p[f"bumper_slope_{i + 1}"] for i in range(k)),
+                                    tuple(p[f"bumper_breakpoint_{i + 1}"] for i in range(k - 1)),
+                                    p["bumper_damping"],
+                                    "kinematic" if family.law == "multilinear_kinematic" else "elastic")
+    elif family.law == "elastic_plastic":
+        law = pd_.ElasticPlastic(p["bumper_stiffness"], p["bumper_post_yield_ratio"] * p["bumper_stiffness"],
+                                 p["bumper_yield_compression"])
+    else:
+        law = pd_.HuntCrossley(p["bumper_stiffness"], p["bumper_exponent"], p["bumper_damping"])
+    return pd_.Oscillator(family.mass, iso, pd_.Bumpers(p["gap"], p["gap"], law))
+
+
+def _a_number(name, rng):
+    """A plausible value of a ModelFamily's number (softening backbones, increasing breakpoints)."""
+    kind, _, index = name.rpartition("_")
+    if index.isdigit():
+        i = int(index)
+        return {"slope": rng.uniform(3e4, 5e4) / i, "breakpoint": 0.005 * i * rng.uniform(0.9, 1.1),
+                "bumper_slope": rng.uniform(5e5, 1e6) / i,
+                "bumper_breakpoint": 0.003 * i * rng.uniform(0.9, 1.1)}[kind]
+    ranges = {"bumper_post_yield_ratio": (0.05, 0.9), "bumper_yield_compression": (1e-3, 5e-3),
+              "bumper_exponent": (1.0, 2.0), "bw_n": (1.0, 3.0), "bw_yield_displacement": (0.002, 0.01),
+              "gap": (0.005, 0.02)}
+    return float(rng.uniform(*ranges.get(name, (100.0, 2000.0))))
+
+
+@settings(max_examples=60, deadline=None)
+@given(law=st.sampled_from(["kelvin_voigt", "hunt_crossley", "elastic_plastic", "multilinear",
+                            "multilinear_kinematic"]),
+       branches=st.integers(1, 3), bumper_branches=st.integers(1, 3), bouc_wen=st.booleans(),
+       seed=st.integers(0, 2**32 - 1))
+def test_a_model_familys_paths_build_the_system_its_numbers_name(law, branches, bumper_branches, bouc_wen,
+                                                                 seed):
+    family = pd_.ModelFamily(500.0, branches=branches, law=law, bumper_branches=bumper_branches,
+                             bouc_wen=bouc_wen)
+    rng = np.random.default_rng(seed)
+    p = {name: _a_number(name, rng) for name in family.parameter_names}
+    built = family.oscillator(p)
+    assert built == _family_system_by_hand(family, p)
+    back = family.values_of(built)
+    assert list(back) == list(family.parameter_names)
+    assert all(back[name] == p[name] for name in back if name != "bumper_post_yield_ratio")
+    if law == "elastic_plastic":
+        assert back["bumper_post_yield_ratio"] == pytest.approx(p["bumper_post_yield_ratio"], rel=1e-15)
+    assert set(family.paths) == set(family.parameter_names) - {"bumper_post_yield_ratio"}

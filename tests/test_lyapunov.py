@@ -255,3 +255,42 @@ def test_not_chaotic_where_the_largest_exponent_is_zero():
     osc = pd_.Oscillator(mass_kg=100.0, isolator=pd_.Isolator(slopes_n_m=[4000.0], damping_n_s_m=0.0))
     spec = pd_.lyapunov(osc, pd_.Harmonic(0.05, 1.3), cycles=200, transient_cycles=0)
     assert abs(spec.largest) < 1e-12 and not spec.chaotic
+
+
+def test_the_metric_makes_each_mode_a_rotation_and_a_decay():
+    """The tangent metric W: one mass's is its isolator's own units, (omega_d x, v + zeta omega_n x); a
+    critically damped one's (omega_n x, v); a building's makes W A W^-1 block diagonal, each block
+    [[sigma, omega], [-omega, sigma]] of one mode, scaled so that its largest displacement is 1 / omega with
+    no phase (so that what LAPACK returns does not reach the estimates)."""
+    from pounding.analysis.lyapunov import _modal_metric
+
+    m, k, c = 100.0, 4000.0, 40.0
+    wn = math.sqrt(k / m)
+    zeta = c / (2.0 * m * wn)
+    a = np.array([[0.0, 1.0], [-k / m, -c / m]])
+    np.testing.assert_allclose(_modal_metric(a, 2, False), [[wn * math.sqrt(1.0 - zeta**2), 0.0],
+                                                            [zeta * wn, 1.0]], rtol=1e-12, atol=1e-12)
+    critical = np.array([[0.0, 1.0], [-k / m, -2.0 * wn]])
+    np.testing.assert_allclose(_modal_metric(critical, 3, True), np.diag([wn, 1.0, wn * 1e-3]), rtol=1e-12)
+    rng = np.random.default_rng(7)
+    n = 3
+    masses = rng.uniform(1e3, 3e3, n)
+    springs = rng.uniform(1e6, 5e6, n)
+    kk = np.diag(springs + np.append(springs[1:], 0.0)) - np.diag(springs[1:], 1) - np.diag(springs[1:], -1)
+    cc = 0.02 * kk / 50.0 + 0.1 * np.diag(masses)
+    a = np.block([[np.zeros((n, n)), np.eye(n)], [-kk / masses[:, None], -cc / masses[:, None]]])
+    w = _modal_metric(a, 2 * n + 1, False)
+    b = w[:2 * n, :2 * n] @ a @ np.linalg.inv(w[:2 * n, :2 * n])
+    t = np.linalg.inv(w[:2 * n, :2 * n])
+    scale = np.abs(a).max()
+    for j in range(n):
+        block = b[2 * j:2 * j + 2, 2 * j:2 * j + 2]
+        sigma, omega = block[0, 0], block[0, 1]
+        np.testing.assert_allclose(block, [[sigma, omega], [-omega, sigma]], atol=1e-9 * scale)
+        assert sigma < 0.0 < omega
+        rest = np.delete(b[2 * j:2 * j + 2], [2 * j, 2 * j + 1], axis=1)
+        np.testing.assert_allclose(rest, 0.0, atol=1e-9 * scale)
+        v = t[:n, 2 * j] + 1j * t[:n, 2 * j + 1]
+        p = int(np.argmax(np.abs(v)))
+        assert v[p].real == pytest.approx(1.0 / omega, rel=1e-9) and abs(v[p].imag) <= 1e-12 * abs(v[p].real)
+    assert w[-1, -1] == pytest.approx(np.abs(np.linalg.eigvals(a)).min(), rel=1e-12)

@@ -278,3 +278,19 @@ def test_a_single_mass_s_bumpers_are_its_wall_checked_and_warned_about_once():
         warnings.simplefilter("error")  # (a second warning, the wall's, would raise here)
         run = pd_.simulate(far, pd_.Harmonic(0.05, 2.0), 1.0)
     assert run.status == pd_.Status.SUCCESS and len(run.contacts) == 0
+
+
+def test_the_module_of_bumpers_before_answers_for_one_release():
+    import importlib
+    import pickle
+
+    before = importlib.import_module("pounding.model.bumpers")
+    with pytest.warns(FutureWarning, match="pounding.model.structure_parts.Bumpers"):
+        assert before.Bumpers is pd_.Bumpers
+    with pytest.raises(AttributeError):
+        before.Wall  # noqa: B018  (only its own names answer)
+    # a pickle made before names the old module: it still loads
+    old = pickle.dumps(pd_.Bumpers(0.01, 0.02, pd_.KelvinVoigt(1e6, 5.0)), protocol=0).replace(
+        b"pounding.model.structure_parts", b"pounding.model.bumpers")
+    with pytest.warns(FutureWarning):
+        assert pickle.loads(old) == pd_.Bumpers(0.01, 0.02, pd_.KelvinVoigt(1e6, 5.0))

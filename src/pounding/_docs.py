@@ -16,7 +16,7 @@ FRAGMENTS = {
                 "    True: the YBs configuration (with bumpers); False: the same system without them (NBs)."),
 }
 
-_PLACE = re.compile(r"^(\s*)\{(\w+)\}\s*$")
+_PLACE = re.compile(r"^(\s*)\{([A-Za-z_]\w*)\}\s*$")  # (a name: not a doctest's output such as {1})
 
 
 def fill_doc(func: F) -> F:

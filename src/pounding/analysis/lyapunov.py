@@ -21,9 +21,10 @@ Two choices make the estimates exact where a closed form exists:
   every spring on its stiffest slope), each mode's pair scaled so that its largest displacement is
   ``1 / omega_d``: the free linear flow is a rotation times each mode's decay, and every frame vector
   shrinks at exactly its rate.  A single mass's are its isolator's own units, ``(omega_d x, v + zeta
-  omega_n x)``.  The other coordinates (compressions, slips) are in units of the slowest mode's
-  frequency, a Bouc-Wen ``z`` (of order 1) a thousandth of it.  (Exponents do not depend on a fixed
-  change of coordinates; finite-time estimates do, by O(1/t).)
+  omega_n x)`` of its stiffest slope.  A system with a real mode (overdamped) is measured as
+  ``(omega x, v)``, ``omega`` its slowest undamped frequency.  The other coordinates (compressions,
+  slips) are in units of the slowest mode's frequency, a Bouc-Wen ``z`` (of order 1) a thousandth of
+  it.  (Exponents do not depend on a fixed change of coordinates; finite-time estimates do, by O(1/t).)
 - The frame is carried for ``align_cycles`` periods before the count starts, so on a periodic
   orbit whose largest multiplier is real and alone it is aligned and each period's R gives the
   multipliers' moduli.
@@ -35,6 +36,7 @@ period is beyond what double precision resolves next to the others, 1e-13).
 
 from __future__ import annotations
 
+import math
 from dataclasses import replace
 from collections.abc import Iterator
 from typing import Any, Optional
@@ -308,23 +310,29 @@ def _modal_metric(a: np.ndarray, size: int, z_last: bool) -> np.ndarray:
     its decay, so a linear system's frame vectors shrink at exactly their rates (one mass: ``(omega_d x,
     v + zeta omega_n x)``, whatever phase LAPACK gives the vector); the other coordinates (compressions,
     slips) in units of the slowest mode's frequency, and ``z`` (the last, when ``z_last``: of order 1 against
-    lengths of a millimetre) a thousandth of it."""
+    lengths of a millimetre) a thousandth of it.  A system with a real mode (overdamped, or critically
+    damped: its eigenvectors parallel) is measured as ``(omega x, v)``, ``omega`` its slowest undamped
+    frequency (one mass: ``omega_n``)."""
     lam, vecs = np.linalg.eig(a)
     n = a.shape[0] // 2
+    if (lam.imag == 0.0).any():
+        omega = math.sqrt(max(float(np.linalg.eigvals(-a[n:, :n]).real.min()), 0.0))
+        w = np.eye(size) * max(omega, 1e-6)
+        w[n:2 * n, n:2 * n] = np.eye(n)
+        if z_last:
+            w[-1, -1] *= 1e-3
+        return w
     cols, done = [], np.zeros(lam.size, dtype=bool)
     for i in np.argsort(np.abs(lam), kind="stable"):
         if done[i]:
             continue
         done[i] = True
-        if lam[i].imag != 0.0:
-            j = int(np.argmin(np.where(done, np.inf, np.abs(lam - lam[i].conj()))))
-            done[j] = True
-            k = i if lam[i].imag > 0.0 else j
-            v = vecs[:, k]
-            v = v / (v[int(np.argmax(np.abs(v[:n])))] * lam[k].imag)
-            cols += [v.real, v.imag]
-        else:
-            cols.append(vecs[:, i].real)
+        j = int(np.argmin(np.where(done, np.inf, np.abs(lam - lam[i].conj()))))
+        done[j] = True
+        k = i if lam[i].imag > 0.0 else j
+        v = vecs[:, k]
+        v = v / (v[int(np.argmax(np.abs(v[:n])))] * lam[k].imag)
+        cols += [v.real, v.imag]
     t = np.array(cols).T
     n2 = a.shape[0]
     w = np.eye(size) * max(float(np.abs(lam).min()), 1e-6)
