@@ -62,7 +62,6 @@ def campaign(
 ) -> None:
     """The paper's matrix: NBs at a_G 0.03, 0.05, 0.1 and YBs at 0.03, 0.05, 0.075, 0.1, up and down."""
     from .. import presets
-    from ..engine.assembly import is_single_mass
     from ..protocols import campaign as run_campaign
 
     out = folder("--out", out)
@@ -94,14 +93,14 @@ def campaign(
         _save_campaign(result, out)
     columns = ("configuration", "a_g", "direction", "nu_r", "alpha", "eta", "e", "contact_nu_min",
                "contact_nu_max")
-    if not is_single_mass(nbs_osc or ybs_osc):  # (a structure's campaign)
+    if not result.of_one_mass:  # (a structure's campaign: its table 2 per level)
         columns = ("configuration", "a_g", "direction", "nu_r_top", "alpha_top_max", "alpha_base_max",
                    "drift_ratio_max", "contact_nu_min", "contact_nu_max")
     summary = data_table("Table 2 analogue (model)", columns)
     for _, row in result.table2().iterrows():
         summary.add_row(*(cell(row[c]) for c in columns))
     console.print(summary)
-    tables = "table2-4.csv" if is_single_mass(nbs_osc or ybs_osc) else "table2.csv"
+    tables = "table2-4.csv" if result.of_one_mass else "table2.csv"
     console.print(f"campaign.nc, steps.csv, {tables}, campaign.png -> {out}")
     if not complete or held:
         done = sum(sw.steps_done for sw in result.sweeps.values())
