@@ -10,6 +10,7 @@ import pkgutil
 
 import numpy as np
 import pandas as pd
+import pytest
 import xarray as xr
 
 import pounding as pd_
@@ -71,8 +72,18 @@ def test_every_run_gives_its_quantities_as_a_study_keeps_them():
     brun = pd_.simulate(b, pd_.Harmonic(0.3, 1.5), 3.0)
     bq = brun.quantities()
     assert bq["impacts"] == len(brun.contacts) > 0
-    assert bq["base_disp_max_m"] == max(abs(brun.displacement_max[0]), abs(brun.displacement_min[0]))
+    assert bq["disp_max_m"] == max(abs(brun.displacement_max[0]), abs(brun.displacement_min[0]))
+    assert bq["top_disp_max_m"] == max(abs(brun.displacement_max[-1]), abs(brun.displacement_min[-1]))
     assert bq["impact_force_max_n"] == brun.contacts["peak_force_n"].max()
+    assert bq["compression_max_m"] == brun.contacts["max_compression_m"].max() > 0
+    # one name, one meaning for every system: a single mass is its structure's base and top, without storeys
+    assert tuple(q) == tuple(bq) == pd_.engine.structure_result.RUN_QUANTITIES
+    assert q["top_disp_max_m"] == q["disp_max_m"] and q["top_acc_max_g"] == q["acc_max_g"]
+    assert np.isnan(q["drift_ratio_max"]) and bq["drift_ratio_max"] > 0
+    with pytest.warns(FutureWarning, match="'base_disp_max_m' is now 'disp_max_m'"):
+        assert bq["base_disp_max_m"] == bq["disp_max_m"]
+    with pytest.raises(KeyError):
+        q["disp_max"]
 
 
 def test_a_single_mass_s_run_is_its_one_level_structure_s_read_as_one_mass():

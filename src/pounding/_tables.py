@@ -100,3 +100,32 @@ class EventTable(RenamedColumns):
     answer, with a ``FutureWarning``."""
 
     OLD = {"t": "t_s", "event": "kind"}
+
+
+class RenamedKeys(dict):
+    """A dict of named numbers that still answers to its keys' old names for one release (``OLD``: old name
+    -> new; ``WHY``: why), with a ``FutureWarning`` naming the new one; its subclasses say which names."""
+
+    OLD: dict = {}
+    WHY: str = "one name for every system"
+
+    @classmethod
+    def name_now(cls, key: Any) -> Any:
+        """``key``'s name now: itself, or (a name before) its new name, with a ``FutureWarning``."""
+        if isinstance(key, str) and key in cls.OLD:
+            warn_renamed(key, cls.OLD[key], stacklevel=4, why=cls.WHY)
+            return cls.OLD[key]
+        return key
+
+    def __missing__(self, key: Any) -> Any:
+        if isinstance(key, str) and key in self.OLD and self.OLD[key] in self:
+            warn_renamed(key, self.OLD[key], why=self.WHY)
+            return self[self.OLD[key]]
+        raise KeyError(key)
+
+
+class RunQuantities(RenamedKeys):
+    """A run's point (``quantities()`` of every run): the names of every system's; a building's
+    ``base_disp_max_m`` of before is ``disp_max_m`` (a single mass's, the base's: the moat's demand)."""
+
+    OLD = {"base_disp_max_m": "disp_max_m"}

@@ -24,10 +24,9 @@ EVENTS = {
     "drift": "a building's largest storey drift ratio exceeds the limit (e.g. 0.005)",
     "top_acceleration": "a building's top floor's peak absolute acceleration exceeds the limit (g)",
 }
-# each event's quantity in the store: a single mass's, or a building's where it differs
+# each event's quantity in the store (every system's run's names: a building's displacement its base's)
 _QUANTITY = {"contact": "disp_max_m", "acceleration": "acc_max_g", "compression": "compression_max_m",
              "displacement": "disp_max_m", "drift": "drift_ratio_max", "top_acceleration": "top_acc_max_g"}
-_BUILDING = {"disp_max_m": "base_disp_max_m"}
 RESERVED = ("sa_g", "record")
 
 
@@ -39,12 +38,10 @@ class StripeAnalysis:
     ----------
     data : xarray.Dataset
         The study's store: dims ``sa_g`` (the stripes, g), ``record`` and the design grid's
-        (e.g. ``bumpers.gap_m``); per run ``acc_max_g``, ``disp_max_m``, ``impacts``,
-        ``impact_force_max_n``, ``impact_speed_max_m_s``, ``compression_max_m``, ``status``;
-        ``done``.  A building's runs (a :class:`~pounding.Structure`): ``base_disp_max_m``,
-        ``top_disp_max_m``, ``acc_max_g`` (over its floors), ``top_acc_max_g``, ``drift_ratio_max``,
-        ``impacts``, ``impact_force_max_n``, ``status`` (its events: contact, drift, acceleration,
-        top_acceleration, displacement of the base).
+        (e.g. ``bumpers.gap_m``); per run every run's quantities (``Run.quantities()``):
+        ``acc_max_g`` (over every level), ``disp_max_m`` (a building's: its base's), ``impacts``,
+        ``impact_force_max_n``, ``impact_speed_max_m_s``, ``compression_max_m``, ``top_disp_max_m``,
+        ``top_acc_max_g``, ``drift_ratio_max`` (NaN without storeys), ``status``; ``done``.
     period_s : float
         The period (s) of the intensity measure, ``Sa(period_s)``.
     damping_ratio : float
@@ -129,8 +126,6 @@ class StripeAnalysis:
             lim = positive("limit", limit, {"acceleration": "g", "top_acceleration": "g",
                                             "drift": "(a ratio)"}.get(event, "m"))
             quantity = _QUANTITY[event]
-            if quantity not in ds:
-                quantity = _BUILDING.get(quantity, quantity)
             if quantity not in ds:
                 raise InputError(
                     Problem.NOT_IN_RESULT, "event", event, choices=", ".join(v for v in ds.data_vars)

@@ -190,12 +190,10 @@ def open_stripe_analysis(store: str | Path) -> StripeAnalysis:
     >>> design.open_stripe_analysis("again.zarr").period_s
     1.0
     """
-    import xarray as xr
-
-    from ..studies.store import SPEC_ATTR
+    from ..studies.store import SPEC_ATTR, open_dataset
 
     try:
-        ds = xr.open_zarr(str(store), consolidated=True).load()
+        ds = open_dataset(str(store)).load()
     except (FileNotFoundError, KeyError, ValueError) as exc:
         raise InputError(
             Problem.BAD_OUTPUT,

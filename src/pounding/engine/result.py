@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import math
 
 from dataclasses import dataclass, field, fields
 from functools import cached_property
@@ -16,9 +15,8 @@ from .._tables import ContactTable, EventTable, HistoryTable
 from ._chatter import SIDES, chatter_frame
 from .state import State
 from .layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
-from .layout import (C_MAX_COMPRESSION, C_SLOT, C_V_IN, E_ACTION, E_INDEX, E_T, EVENT_NAMES, L_BUMPER,
-                     L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT, L_ISOLATOR, L_KINETIC, L_VISCOUS, force_max,
-                     impulses)
+from .layout import (C_SLOT, E_ACTION, E_INDEX, E_T, EVENT_NAMES, L_BUMPER,
+                     L_BUMPER_LOSS, L_HYSTERETIC, L_INPUT, L_ISOLATOR, L_KINETIC, L_VISCOUS, impulses)
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..excitation import Excitation
@@ -297,12 +295,29 @@ class Run:
         return chatter_frame(self.chatter_table, SIDES)
 
     @cached_property
+    def _one_level(self) -> "StructureRun":
+        """The run of the one-level structure the mass is: :attr:`levels`, or (a Run made by hand, or kept
+        from before it had its levels) that run read off this one's own arrays."""
+        if self.levels is not None:
+            return self.levels
+        from ..model.structure import Structure
+        from .structure_result import StructureRun
+
+        one = {name: np.array([getattr(self, name)]) for name in EXTREMA_FIELDS}
+        return StructureRun(
+            structure=Structure.from_oscillator(self.oscillator), excitation=self.excitation,
+            sample_rate_hz=self.sample_rate_hz, t=self.t, displacement=self.displacement[:, None],
+            velocity=self.velocity[:, None], abs_acceleration=self.abs_acceleration[:, None],
+            isolator_force=self.isolator_force,
+            contact_force=np.column_stack([self.bumper_force_left, self.bumper_force_right]),
+            contact_table=self.contact_table, event_table=self.event_table, energy=self.energy,
+            final_state=self.final_state, status=self.status, chatter_table=self.chatter_table, **one)
+
+    @cached_property
     def contacts(self) -> pd.DataFrame:
         """One row per contact (see the class docstring), built on first use: the one-level structure's
         (:attr:`levels`)."""
-        if self.levels is None:  # (a Run made by hand, or kept from before it had its levels)
-            return wall_contacts(self.contact_table, [0])
-        return self.levels.contacts
+        return self._one_level.contacts
 
     @cached_property
     def events(self) -> pd.DataFrame:
@@ -315,10 +330,7 @@ class Run:
         (:attr:`levels`): ``wall``, ``level``, ``side``, ``t_start_s`` and restitution, contact time,
         impulse, mean and peak force, ``E_d`` and the bumper's own dissipation; see
         :func:`pounding.impact_table` (the same without ``wall`` and ``level``)."""
-        if self.levels is None:
-            return impact_frame(self.contacts, ("wall", "level", "side"), self.contact_table,
-                                self.oscillator.mass_kg)
-        return self.levels.impacts
+        return self._one_level.impacts
 
     @property
     def success(self) -> bool:
@@ -326,19 +338,14 @@ class Run:
         return self.status == Status.SUCCESS
 
     def quantities(self) -> dict[str, float]:
-        """The run in a few peaks (a study's point, a pounding spectrum's run): ``acc_max_g`` (inf where a
-        rigid stop struck: an impulse), ``disp_max_m`` (the largest of ``|D|``), ``impacts``,
-        ``impact_force_max_n`` (inf with rigid impacts; 0 without contact), ``impact_speed_max_m_s``,
-        ``compression_max_m`` (the bumpers' deepest) and ``status``."""
-        table = self.contact_table  # (the raw array: building the DataFrame cost more than a run)
-        n = table.shape[0]
-        acc = math.inf if impulses(table).any() else self.abs_acceleration_max / self.excitation.g
-        return {"acc_max_g": acc,
-                "disp_max_m": max(abs(self.displacement_max), abs(self.displacement_min)),
-                "impacts": float(n), "impact_force_max_n": force_max(table),
-                "impact_speed_max_m_s": float(np.abs(table[:, C_V_IN]).max()) if n else 0.0,
-                "compression_max_m": float(table[:, C_MAX_COMPRESSION].max()) if n else 0.0,
-                "status": float(self.status)}
+        """The run in a few peaks (a study's point, a pounding spectrum's run, a design's stripe), as every
+        run's: the one-level structure's (:attr:`levels`), see
+        :func:`~pounding.engine.structure_result.peaks_of`: ``acc_max_g`` (inf where a rigid stop struck:
+        an impulse), ``disp_max_m`` (the largest of ``|D|``), ``impacts``, ``impact_force_max_n`` (inf with
+        rigid impacts; 0 without contact), ``impact_speed_max_m_s``, ``compression_max_m`` (the bumpers'
+        deepest), ``top_disp_max_m`` and ``top_acc_max_g`` (the mass's again: it is its structure's top),
+        ``drift_ratio_max`` (NaN: no storey) and ``status``."""
+        return self._one_level.quantities()
 
     def summary(self) -> pd.Series:
         """The run in a few numbers, each name with its unit (what ``pounding simulate`` prints).

@@ -13,8 +13,8 @@ import pandas as pd
 from .._errors import Status
 from .layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
 from .layout import force_max, impulses
-from .layout import (C_SLOT, C_V_IN, DOF_EXTREMA_LEN, P_MAX, P_MAX_T, P_MIN, P_MIN_T, X_A_MAX, X_A_MAX_T,
-                      X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T)
+from .layout import (C_MAX_COMPRESSION, C_SLOT, C_V_IN, DOF_EXTREMA_LEN, P_MAX, P_MAX_T, P_MIN, P_MIN_T,
+                     X_A_MAX, X_A_MAX_T, X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T)
 from ._chatter import NamedChatters
 from .result import EXTREMA_FIELDS, EnergyLedger, Outcome, events_frame, impact_frame, wall_contacts
 
@@ -417,14 +417,25 @@ def ground_peak(excitation: Any, t0: float, t1: float) -> tuple[float, float]:
     return float(values[j]), float(times[j])
 
 
+# every run's point (a study's, a pounding spectrum's, a design stripe's), one meaning for every system: a
+# single mass is a one-level structure, its base, its top and its only level the mass
+RUN_QUANTITIES = ("acc_max_g", "disp_max_m", "impacts", "impact_force_max_n", "impact_speed_max_m_s",
+                  "compression_max_m", "top_disp_max_m", "top_acc_max_g", "drift_ratio_max", "status")
+
+
 def peaks_of(run: Any, g: float) -> dict[str, float]:
-    """A structure's run (or two adjacent ones') in a few peaks: the (first) structure's base and top floor's
-    largest displacement (``base_disp_max_m``, ``top_disp_max_m``) and the top floor's acceleration
-    (``top_acc_max_g``, g); the largest absolute acceleration (``acc_max_g``, g) and storey drift ratio
-    (``drift_ratio_max``) over every level and storey; the contacts at every wall and link (``impacts``),
-    their largest force (``impact_force_max_n``, N) and approach speed (``impact_speed_max_m_s``), 0 without
-    contact; ``status``.  A rigid stop's impact is an impulse: its force, and the acceleration of the level
-    it strikes, are unbounded (inf), the rest exact."""
+    """Every run in a few peaks, :data:`RUN_QUANTITIES` (a structure's, one of a single mass or two
+    adjacent ones'): the largest absolute acceleration over every level (``acc_max_g``, g); the (first)
+    structure's base's largest displacement (``disp_max_m``: a single mass's own, a building's base: the
+    moat's demand); the contacts at every wall and link (``impacts``), their largest force
+    (``impact_force_max_n``, N), approach speed (``impact_speed_max_m_s``) and compression
+    (``compression_max_m``), 0 without contact; the (first) structure's top level's largest displacement
+    and acceleration (``top_disp_max_m``, ``top_acc_max_g``: a single mass's own); the largest storey drift
+    ratio (``drift_ratio_max``, NaN without storeys); ``status``.  A rigid stop's impact is an impulse: its
+    force, and the acceleration of the level it strikes, are unbounded (inf), the rest exact.  The name
+    before of ``disp_max_m``, ``base_disp_max_m``, still answers (``RunQuantities``)."""
+    from .._tables import RunQuantities
+
     parts = [run.first, run.second] if hasattr(run, "link_table") else [run]  # (two adjacent ones, or one)
     first = parts[0]
 
@@ -443,12 +454,16 @@ def peaks_of(run: Any, g: float) -> dict[str, float]:
             struck[0].add(link.level_first)
             struck[1].add(link.level_second)
     top = len(first.structure.storeys)
-    return {"base_disp_max_m": peak(first, 0), "top_disp_max_m": peak(first, -1),
-            "acc_max_g": math.inf if any(struck) else max(float(np.max(p.abs_acceleration_max))
-                                                          for p in parts) / g,
-            "top_acc_max_g": math.inf if top in struck[0] else float(first.abs_acceleration_max[-1]) / g,
-            "drift_ratio_max": float(max(np.max(r) for r in ratios)) if ratios else float("nan"),
-            "impacts": float(len(rows)),
-            "impact_force_max_n": force_max(rows),
-            "impact_speed_max_m_s": float(np.abs(rows[:, C_V_IN]).max()) if len(rows) else 0.0,
-            "status": float(run.status)}
+    n = len(rows)
+    acc = max(float(np.max(part.abs_acceleration_max)) for part in parts) / g
+    return RunQuantities({
+        "acc_max_g": math.inf if any(struck) else acc,
+        "disp_max_m": peak(first, 0),
+        "impacts": float(n),
+        "impact_force_max_n": force_max(rows),
+        "impact_speed_max_m_s": float(np.abs(rows[:, C_V_IN]).max()) if n else 0.0,
+        "compression_max_m": float(rows[:, C_MAX_COMPRESSION].max()) if n else 0.0,
+        "top_disp_max_m": peak(first, -1),
+        "top_acc_max_g": math.inf if top in struck[0] else float(first.abs_acceleration_max[-1]) / g,
+        "drift_ratio_max": float(max(np.max(r) for r in ratios)) if ratios else math.nan,
+        "status": float(run.status)})

@@ -408,9 +408,9 @@ def plot_responses(analysis: Any, quantity: str = "acc_max_g", ax: Any = None) -
     analysis : StripeAnalysis
         From :func:`pounding.design.stripe_analysis`.
     quantity : str
-        A run quantity: ``acc_max_g``, ``disp_max_m``, ``impacts``, ``impact_force_max_n``,
-        ``impact_speed_max_m_s`` or ``compression_max_m``; a building's ``base_disp_max_m``,
-        ``top_disp_max_m``, ``top_acc_max_g`` or ``drift_ratio_max``.
+        A run quantity (every system's, ``Run.quantities()``): ``acc_max_g``, ``disp_max_m`` (a
+        building's: its base's), ``impacts``, ``impact_force_max_n``, ``impact_speed_max_m_s``,
+        ``compression_max_m``, ``top_disp_max_m``, ``top_acc_max_g`` or ``drift_ratio_max``.
     {ax}
 
     Returns
@@ -431,10 +431,12 @@ def plot_responses(analysis: Any, quantity: str = "acc_max_g", ax: Any = None) -
     """
 
     from .._errors import InputError, Problem
+    from .._tables import RunQuantities
+    from ..engine.structure_result import RUN_QUANTITIES
 
     ds = analysis.data
-    names = ("acc_max_g", "disp_max_m", "impacts", "impact_force_max_n", "impact_speed_max_m_s",
-             "compression_max_m", "base_disp_max_m", "top_disp_max_m", "top_acc_max_g", "drift_ratio_max")
+    names = RUN_QUANTITIES[:-1]  # (not the status)
+    quantity = RunQuantities.name_now(quantity)
     if quantity not in names or quantity not in ds:
         raise InputError(Problem.NOT_IN_RESULT, "quantity", quantity,
                          choices=", ".join(n for n in names if n in ds))

@@ -52,9 +52,11 @@ def plot_study(result: Any, quantity: str, *, x: str | None = None, hue: str | N
     import matplotlib.pyplot as plt
 
     from .._errors import InputError, Problem
+    from .._tables import RunQuantities
 
     ds = result.data
     quantities = [v for v in ds.data_vars if v not in ("done", "session")]
+    quantity = RunQuantities.name_now(quantity) if quantity not in quantities else quantity
     if quantity not in quantities:
         raise InputError(Problem.NOT_IN_RESULT, "quantity", quantity, choices=", ".join(quantities))
     long = [d for d in ds[quantity].dims if ds.sizes[d] > 1]

@@ -88,8 +88,6 @@ def _one_record(task: tuple, ctx: Context) -> tuple[np.ndarray, np.ndarray]:
                     raise Interrupted((free, hit), i, periods.size, "periods")
                 try:
                     q = simulate(system, rec, duration, sample_rate_hz=0, max_steps=max_steps).quantities()
-                    if structure is not None:
-                        q["disp_max_m"] = q["base_disp_max_m"]  # (the moat's demand: the base's)
                     peaks = tuple(q[k] for k in names)
                 except InputError as exc:  # (refused up front: over its budget; the others go on)
                     if exc.problem not in (Problem.OVER_BUDGET, Problem.TOO_MUCH_WORK):

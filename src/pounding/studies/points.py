@@ -14,25 +14,22 @@ from ..excitation import Harmonic, Record
 from ..model import Oscillator
 from ..protocols.campaign import TABLE2_QUANTITIES, TABLE3_QUANTITIES, TABLE4_QUANTITIES
 from ..protocols.sweep_features import STRUCTURE_QUANTITIES as STRUCTURE_SWEEP_NAMES
-from ..protocols.pounding_spectrum_result import QUANTITIES as RUN_QUANTITIES
 from ..protocols.pounding_spectrum_result import UNITS as RUN_UNITS
+from .._tables import RunQuantities
+from ..engine.structure_result import RUN_QUANTITIES
 
 SWEEP_QUANTITIES = TABLE2_QUANTITIES + TABLE3_QUANTITIES + TABLE4_QUANTITIES + ("steps_done", "status")
-# a record run adds the bumpers' deepest compression (against their capacity, in design studies)
-RECORD_QUANTITIES = RUN_QUANTITIES[:-1] + ("compression_max_m", "status")
-QUANTITIES = {"sweep": SWEEP_QUANTITIES, "simulate": RUN_QUANTITIES, "record": RECORD_QUANTITIES}
-# a structure's point (or two adjacent ones'): "base" and "top" are the (first) structure's base and top
-# floor; the largest acceleration and drift ratio are over every level and storey, the impacts over every
-# wall and link
-STRUCTURE_RUN_QUANTITIES = ("base_disp_max_m", "top_disp_max_m", "acc_max_g", "top_acc_max_g",
-                            "drift_ratio_max", "impacts", "impact_force_max_n", "status")
 STRUCTURE_SWEEP_QUANTITIES = STRUCTURE_SWEEP_NAMES + ("steps_done", "status")
-STRUCTURE_QUANTITIES = {"sweep": STRUCTURE_SWEEP_QUANTITIES, "simulate": STRUCTURE_RUN_QUANTITIES,
-                        "record": STRUCTURE_RUN_QUANTITIES}
+# a run's point (``simulate``, ``record``) is every system's run's quantities(), one name, one meaning: a
+# building's base is ``disp_max_m``, a single mass's top its own; a sweep's point, the sweep's few numbers
+QUANTITIES = {"sweep": SWEEP_QUANTITIES, "simulate": RUN_QUANTITIES, "record": RUN_QUANTITIES}
+STRUCTURE_QUANTITIES = {**QUANTITIES, "sweep": STRUCTURE_SWEEP_QUANTITIES}
+# a quantity's names before (a store written before keeps its array under them): new -> old
+NAMES_BEFORE = {new: old for old, new in RunQuantities.OLD.items()}
 UNITS = {**RUN_UNITS, "nu_r": "1", "alpha": "1", "eta": "1", "e": "1", "contact_nu_min": "1",
          "contact_nu_max": "1", "excursion_max_m": "m", "mean_force_over_mg": "1", "contact_time_ms": "ms",
          "peak_force_over_mg": "1", "dissipated_energy_per_mass": "m^2/s^2", "restitution": "1",
-         "steps_done": "1", "compression_max_m": "m", "base_disp_max_m": "m", "top_disp_max_m": "m",
+         "steps_done": "1", "compression_max_m": "m", "top_disp_max_m": "m",
          "top_acc_max_g": "g", "drift_ratio_max": "1", "nu_r_top": "1", "alpha_top_max": "1",
          "alpha_base_max": "1"}
 SWEEP_ARGS = ("steady", "cycles", "measure_cycles", "max_cycles", "steady_rtol", "f_ref_hz", "rtol")
@@ -40,8 +37,9 @@ SET_PREFIX = "fema-p695:"
 
 
 def quantities_of(kind: str, system: Any) -> tuple[str, ...]:
-    """The quantities a point of ``kind`` keeps, in order, for ``system`` (a system, or its tables): a
-    single mass's, or a structure's (``STRUCTURE_QUANTITIES``)."""
+    """The quantities a point of ``kind`` keeps, in order, for ``system`` (a system, or its tables): a run's
+    are every system's (:data:`RUN_QUANTITIES`), a sweep's a single mass's (the paper's) or a structure's
+    (``STRUCTURE_QUANTITIES``)."""
     from ..model.systems import system_type
     from ..engine.assembly import is_single_mass
 

@@ -8,7 +8,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .spec import StudySpec
-from .store import SPEC_ATTR, check_store, open_checked
+from .store import SPEC_ATTR, check_store, open_checked, open_dataset
 
 if TYPE_CHECKING:  # pragma: no cover
     import pandas as pd
@@ -118,9 +118,7 @@ def open_study(store: str | Path) -> StudyResult:
     0.05    8.39
     Name: alpha, dtype: float64
     """
-    import xarray as xr
-
     store = check_store(store)
     group = open_checked(store, None)
     spec = StudySpec._from_store(json.loads(dict(group.attrs)[SPEC_ATTR]))
-    return StudyResult(xr.open_zarr(store, consolidated=True), spec)
+    return StudyResult(open_dataset(store), spec)

@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from .._errors import InputError, Problem
-from .points import UNITS, quantities_of
+from .points import NAMES_BEFORE, UNITS, quantities_of
 from .spec import StudySpec
 from ..model.dotted import unit_of
 
@@ -174,6 +174,15 @@ def create(store: str, spec: StudySpec, chunks: tuple[int, ...]) -> None:
     shutil.rmtree(old, ignore_errors=True)
 
 
+def open_dataset(store: str) -> Any:
+    """A study's store as an ``xarray.Dataset`` (read lazily), each quantity by its name now (a store written
+    before a quantity was renamed, e.g. a building's ``base_disp_max_m``, reads as ``disp_max_m``)."""
+    import xarray as xr
+
+    ds = xr.open_zarr(store, consolidated=True)
+    return ds.rename({old: new for new, old in NAMES_BEFORE.items() if old in ds and new not in ds})
+
+
 def open_checked(store: str, spec: StudySpec | None) -> Any:
     """The store's Zarr group; a store of another spec (or no study) is refused."""
     import zarr
@@ -248,18 +257,24 @@ def run_chunk(spec_json: str, store: str, index: tuple[int, ...], session: int, 
     done = np.asarray(done_arr[sel])
     if done.all():
         return 0
-    # (a store written before a quantity was added has no array for it: it resumes without it)
+    # (a store written before a quantity was added has no array for it: it resumes without it; one written
+    # before a quantity was renamed has it under its name before)
     computed_names = quantities_of(kind, tables["system"])
-    quantities = [q for q in computed_names if q in group]
+    stored = {}
+    for q in computed_names:
+        name = q if q in group else NAMES_BEFORE.get(q)
+        if name is not None and name in group:
+            stored[q] = name
+    quantities = list(stored)
     partly = bool(done.any())  # (a chunk cut short before: its finished points are kept as they are)
-    block = {q: np.asarray(group[q][sel], dtype=float) if partly else np.full(done.shape, np.nan)
+    block = {q: np.asarray(group[stored[q]][sel], dtype=float) if partly else np.full(done.shape, np.nan)
              for q in quantities}
     new = np.zeros(done.shape, dtype=bool)
     sessions = np.asarray(group["session"][sel]) if partly else np.zeros(done.shape, dtype=np.int32)
 
     def flush() -> None:  # the data first, and last what says it is there
         for q in quantities:
-            group[q][sel] = block[q]
+            group[stored[q]][sel] = block[q]
         sessions[new] = session
         group["session"][sel] = sessions
         group["done"][sel] = done | new
