@@ -101,5 +101,12 @@ def test_a_single_mass_s_run_is_its_one_level_structure_s_read_as_one_mass():
     bare = dataclasses.replace(run, levels=None)
     for name in ("contacts", "impacts", "events"):
         pd.testing.assert_frame_equal(getattr(bare, name), getattr(run, name))
+    # one summary and one point for every run: a single mass's are its one-level structure's, run as one
+    structure_run = pd_.simulate(lv.structure, pd_.Harmonic(0.1, 2.0), 3.0)
+    for made in (run, bare):
+        pd.testing.assert_series_equal(made.summary(), structure_run.summary())
+        assert made.quantities() == structure_run.quantities() or all(
+            a == b or (a != a and b != b) for a, b in zip(made.quantities().values(),
+                                                           structure_run.quantities().values()))
     (only,) = pd_.engine.structure_runs(run)
     assert only is lv

@@ -14,7 +14,6 @@ from .._errors import Interrupted
 from .._io import atomic_write, interrupts_deferred
 from ._app import (
     working,
-    several_masses,
     ARG_SYSTEM,
     OPT_A_G,
     OPT_CYCLES,
@@ -88,14 +87,13 @@ def simulate(
     exc, what = excitation(a_g, freq, record, record_dt, record_units, scale_pga)
     if duration is None:
         duration = exc.t[-1] if record is not None else 20.0
-    several = several_masses(osc)  # (a structure of several masses, or a pair)
     start = State.at_rest(osc, velocity_m_s=velocity)  # (a structure's moving levels all at it, as one body)
     wants_history = history is not None or plot is not None
     rate = sample_rate if wants_history else 0.0  # nothing to sample for: the events only (extrema are exact)
     levels = sum(s.n_levels for s in structures_of(osc)[0])
     complete = True
     try:
-        with working(f"simulating {duration:g} s of {what}" + (f" on {levels} levels" if several else "")
+        with working(f"simulating {duration:g} s of {what}" + (f" on {levels} levels" if levels > 1 else "")
                      + " ..."):
             run = run_simulation(osc, exc, duration, start, sample_rate_hz=rate)
     except Interrupted as stop:
@@ -103,14 +101,13 @@ def simulate(
     s = run.summary()
     table, add_row = kv_table(f"{what}, {s['t_end_s']:g} s", system_file or preset)
     add_row("status", run.message)
-    if several:
-        _structure_rows(add_row, run, s)
+    if hasattr(run, "links"):  # (a pair: each structure's contacts, and the links')
+        _pair_rows(add_row, s)
     else:
-        _mass_rows(add_row, s, exc, record is None)
+        _run_rows(add_row, s, exc, record is None, levels > 1)
     add_row("energy in / residual [J]", f"{s['input_work_j']:.6g} / {s['energy_residual_j']:.2e}")
     console.print(table)
-    if several:
-        _level_tables(run, exc)
+    _level_tables(run, exc)
     with interrupts_deferred() as held:  # the files are written whole, whatever Ctrl-C comes
         if out["contacts"] is not None:
             write_csv(run.contacts, out["contacts"])
@@ -130,9 +127,13 @@ def simulate(
         raise typer.Exit(code=1)
 
 
-def _mass_rows(add_row: Any, s: Any, exc: Any, harmonic: bool) -> None:
-    """A single mass's rows of the table ``pounding simulate`` prints: its exact extrema, alpha, contacts."""
-    add_row("D max / min [mm]", f"{s['displacement_max_m'] * 1e3:.4f} / {s['displacement_min_m'] * 1e3:.4f}")
+def _run_rows(add_row: Any, s: Any, exc: Any, harmonic: bool, several: bool) -> None:
+    """A run's rows of the table ``pounding simulate`` prints, whatever the system (its summary's): the base's
+    exact extrema (a single mass's own), the largest acceleration and alpha, the contacts (per level, where
+    there are several)."""
+    base = "base " if several else ""
+    add_row(f"{base}D max / min [mm]",
+            f"{s['displacement_max_m'] * 1e3:.4f} / {s['displacement_min_m'] * 1e3:.4f}")
     rigid = s["rigid_impacts"]  # (a rigid stop's impacts: impulses, no force)
     between = "inf at the rigid impacts (impulses); {} between them" if rigid else "{}"
     add_row("max |abs. acceleration| [g]", between.format(f"{s['abs_acceleration_max_m_s2'] / exc.g:.4f}"))
@@ -141,31 +142,36 @@ def _mass_rows(add_row: Any, s: Any, exc: Any, harmonic: bool) -> None:
             if not math.isnan(alpha) else "- (no shaking)")
     n, left = s["contacts"], f"{s['contacts_left']} left"
     add_row("contacts", f"{n} ({rigid} rigid impacts, {left})" if rigid else f"{n} ({left})" if n else "0")
+    if n and several:
+        add_row("contacts per level", _per_level(s, ""))
     _contact_rows(add_row, s)
 
 
-def _structure_rows(add_row: Any, run: Any, s: Any) -> None:
-    """A structure's (or a pair's) rows of the table ``pounding simulate`` prints: the contacts per level
-    (and at the links)."""
-    pair = hasattr(run, "links")
-    for name in ("first", "second") if pair else ("",):
-        prefix = f"{name}_" if pair else ""
-        at = [(int(k.rsplit("_", 1)[1]), v) for k, v in s.items()
-              if k.startswith(f"{prefix}contacts_level_") and v]
-        add_row(f"{name}: walls' contacts" if pair else "contacts",
-                ", ".join(f"{v} at level {lv}" for lv, v in at) if s[f"{prefix}contacts"] else "0")
-    if pair:
-        add_row("contacts at the links", str(s["link_contacts"]))
-    else:
-        _contact_rows(add_row, s)
+def _per_level(s: Any, prefix: str) -> str:
+    """A summary's contacts at each level with a wall that was struck: ``3 at level 0, 2 at level 2``."""
+    at = [(int(k.rsplit("_", 1)[1]), v) for k, v in s.items()
+          if k.startswith(f"{prefix}contacts_level_") and v]
+    return ", ".join(f"{v} at level {lv}" for lv, v in at)
+
+
+def _pair_rows(add_row: Any, s: Any) -> None:
+    """A pair's rows of the table ``pounding simulate`` prints: each structure's contacts per level, and at
+    the links."""
+    for name in ("first", "second"):
+        add_row(f"{name}: walls' contacts", _per_level(s, f"{name}_") if s[f"{name}_contacts"] else "0")
+    add_row("contacts at the links", str(s["link_contacts"]))
 
 
 def _level_tables(run: Any, exc: Any) -> None:
-    """A structure's (each of a pair's) table of levels: exact extrema and drift ratios."""
+    """Each structure's table of levels (exact extrema and drift ratios), where it has more than one."""
     from rich.table import Table
 
-    parts = (("first", run.first), ("second", run.second)) if hasattr(run, "links") else (("", run),)
-    for name, part in parts:
+    from ..engine import structure_runs
+
+    parts = structure_runs(run)
+    for name, part in zip(("first", "second") if len(parts) == 2 else ("",), parts):
+        if part.structure.n_levels == 1:  # (one level: its extrema are the summary's)
+            continue
         levels = Table(title=f"{name + ': ' if name else ''}each level (extrema exact)")
         for head in ("level", "max / min [mm]", "max |a_abs| [g]", "drift ratio [%]"):
             levels.add_column(escape(head), justify="right")

@@ -14,9 +14,7 @@ from .._tables import ContactTable
 from ._chatter import NamedChatters
 from .layout import C_SLOT
 from .layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
-from .result import Outcome, events_frame
-from .result import EnergyLedger
-from .result import CONTACT_COLUMNS, impact_frame
+from .run_parts import CONTACT_COLUMNS, EnergyLedger, Outcome, events_frame, impact_frame
 from .structure_result import StructureRun, peaks_of
 
 

@@ -16,7 +16,7 @@ from .layout import force_max, impulses
 from .layout import (C_MAX_COMPRESSION, C_SLOT, C_V_IN, DOF_EXTREMA_LEN, P_MAX, P_MAX_T, P_MIN, P_MIN_T,
                      X_A_MAX, X_A_MAX_T, X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T)
 from ._chatter import NamedChatters
-from .result import EXTREMA_FIELDS, EnergyLedger, Outcome, events_frame, impact_frame, wall_contacts
+from .run_parts import EXTREMA_FIELDS, EnergyLedger, Outcome, events_frame, impact_frame, wall_contacts
 
 if TYPE_CHECKING:
     from ..excitation import Harmonic, Record
@@ -279,18 +279,22 @@ class StructureRun(NamedChatters, Outcome):
         }).set_index("level")
 
     def summary(self) -> pd.Series:
-        """The run in a few numbers, each name with its unit (what ``pounding simulate`` prints above its
-        table of levels, :meth:`peaks`).
+        """The run in a few numbers, each name with its unit, as every run's (what ``pounding simulate``
+        prints; a single mass's ``Run.summary()`` is its one-level structure's, this).
 
         Returns
         -------
         pandas.Series
-            ``t_end_s``; ``contacts`` at every wall, and ``contacts_level_<k>`` at each level with a wall;
-            ``rigid_impacts``; over the finished contacts ``restitution_mean``, ``contact_time_mean_s``
-            (those that last) and ``peak_force_max_n`` (inf with rigid impacts; NaN without contacts), from
-            :attr:`impacts`;
-            ``input_work_j`` and ``energy_residual_j`` (NaN for one of two adjacent structures: the pair's
-            are ``AdjacentRun.summary()``'s); ``status`` (its name).
+            ``t_end_s``; the base's (level 0's) exact ``displacement_max_m`` and ``displacement_min_m`` (each
+            level's: :meth:`peaks`); the exact ``abs_acceleration_max_m_s2`` over every level (between a rigid
+            stop's impacts, which are impulses) and ``alpha``, that over the table's peak (a sine's
+            amplitude, a record's PGA; NaN without shaking); ``contacts`` at every wall, ``contacts_left``
+            (at their left sides), and with more than one level ``contacts_level_<k>`` at each level with a
+            wall; ``rigid_impacts``; over the finished contacts ``restitution_mean``,
+            ``contact_time_mean_s`` (those that last: holds and deformable contacts) and ``peak_force_max_n``
+            (inf with rigid impacts; NaN without contacts), from :attr:`impacts`; ``input_work_j`` and
+            ``energy_residual_j`` (NaN for one of two adjacent structures: the pair's are
+            ``AdjacentRun.summary()``'s); ``status`` (its name).
 
         Examples
         --------
@@ -306,14 +310,22 @@ class StructureRun(NamedChatters, Outcome):
         """
         from ..metrics.impacts import impact_summary
 
-        levels = self.contacts["level"].value_counts()
         nan = float("nan")
-        rigid = int(impulses(self.contact_table).sum())
+        table = self.contact_table
+        rigid = int(impulses(table).sum())
+        peak = abs(self.excitation.peak_m_s2)
+        acc = float(np.max(self.abs_acceleration_max))
+        t_end = (self.final_state.time_s if self.final_state is not None
+                 else float(self.t[-1]) if self.t.size else nan)
+        walled = sorted({w.level for w in self.structure.walls}) if self.structure.storeys else []
+        at = self.contacts["level"].value_counts() if walled else None
         return pd.Series({
-            "t_end_s": float(self.t[-1]) if self.t.size else nan,
-            "contacts": len(self.contact_table),
-            **{f"contacts_level_{lv}": int(levels.get(lv, 0))
-               for lv in sorted({w.level for w in self.structure.walls})},
+            "t_end_s": t_end,
+            "displacement_max_m": float(self.displacement_max[0]),
+            "displacement_min_m": float(self.displacement_min[0]),
+            "abs_acceleration_max_m_s2": acc, "alpha": acc / peak if peak else nan,
+            "contacts": len(table), "contacts_left": int((table[:, C_SLOT] % 2 == 0.0).sum()),
+            **{f"contacts_level_{lv}": int(at.get(lv, 0)) for lv in walled},
             "rigid_impacts": rigid, **impact_summary(self.impacts, rigid),
             "input_work_j": self.energy.input_work if self.energy is not None else nan,
             "energy_residual_j": self.energy.residual if self.energy is not None else nan,
