@@ -14,6 +14,13 @@ FRAGMENTS = {
            "    Where to draw (a new figure if omitted)."),
     "bumpers": ("bumpers : bool\n"
                 "    True: the YBs configuration (with bumpers); False: the same system without them (NBs)."),
+    # a contact law's example: the paper's isolated 500 kg mass on bumpers of the law ``law``, 15 mm away,
+    # pushed at 0.6 m/s into them (``run``: half a second of it)
+    "pushed_run": (">>> osc = pounding.Oscillator(500.0, pounding.presets.paper_damped().isolator,\n"
+                   "...                           pounding.Bumpers(0.015, 0.015, law))\n"
+                   ">>> push = pounding.State.at_rest(osc, velocity_m_s=0.6)\n"
+                   ">>> run = pounding.simulate(osc, pounding.Harmonic(a_g=0.05, freq_hz=2.2),\n"
+                   "...                         duration=0.5, state=push)"),
 }
 
 _PLACE = re.compile(r"^(\s*)\{([A-Za-z_]\w*)\}\s*$")  # (a name: not a doctest's output such as {1})

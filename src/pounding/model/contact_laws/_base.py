@@ -3,6 +3,7 @@ bounds of its numbers and their checks."""
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from typing import Any
 
 import numpy as np
@@ -22,6 +23,25 @@ MAX_BRANCHES = 4  # slopes of a multi-linear law (its parameters hold 4 slopes a
 MAX_LAW_COEFFICIENT = 1e18  # stiffness or damping beyond any bumper (N/m^n, N s/m^(n+1)): refused
 MAX_EXPONENT = 10.0
 MAX_DAMPING_RATIO = 100.0  # Jankowski's xi: 10 already gives a restitution of about 0.03
+
+
+def engine_needs(type_name: str, state_check: Callable, *, linear: bool, law_id: int | None = None,
+                 rigid: bool = False) -> Callable[[type], type]:
+    """A contact law's class decorator: what the engine asks of the law, declared in one line above it (its
+    C++ side: src/core/laws.cpp).  It sets the class's ``TYPE`` (its ``type`` in a system's file),
+    ``STATE_CHECK`` (what its block of the state may hold: :mod:`.law_states`), ``LINEAR`` (whether its force
+    is stiffness d + damping dd at every compression: the exact monodromy and the rate bound need it),
+    ``RIGID`` (a rigid stop: an impact law, no force) and ``LAW_ID`` (the core's id; None: the class gives
+    its own, e.g. a property)."""
+
+    def declare(cls: type) -> type:
+        cls.TYPE, cls.LINEAR, cls.RIGID = type_name, linear, rigid  # type: ignore[attr-defined]
+        cls.STATE_CHECK = staticmethod(state_check)  # type: ignore[attr-defined]
+        if law_id is not None:
+            cls.LAW_ID = law_id  # type: ignore[attr-defined]
+        return cls
+
+    return declare
 
 
 def coefficient(field: str, value: Any, unit: str, strict: bool) -> float:

@@ -5,17 +5,17 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from collections.abc import Callable
-from typing import Any, ClassVar
+from typing import Any
 
 import numpy as np
 
 from ..._checks import at_most, positive
 from ..._errors import InputError, Problem
 from . import law_states
-from ._base import ELASTIC_PLASTIC, coefficient, padded
+from ._base import ELASTIC_PLASTIC, coefficient, engine_needs, padded
 
 
+@engine_needs("elastic_plastic", law_states.elastic_plastic, linear=False, law_id=ELASTIC_PLASTIC)
 @dataclass(frozen=True)
 class ElasticPlastic:
     """An elastic-plastic impact law: yield in compression, stiffer elastic unloading
@@ -62,10 +62,6 @@ class ElasticPlastic:
     post_yield_stiffness: float
     yield_compression: float
 
-    TYPE: ClassVar[str] = "elastic_plastic"
-    STATE_CHECK: ClassVar[Callable] = staticmethod(law_states.elastic_plastic)
-    LINEAR: ClassVar[bool] = False
-    LAW_ID: ClassVar[int] = ELASTIC_PLASTIC
 
     def __post_init__(self) -> None:
         k1 = coefficient("law.stiffness", self.stiffness, "N/m", True)

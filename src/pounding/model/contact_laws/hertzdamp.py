@@ -4,17 +4,18 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from collections.abc import Callable
-from typing import ClassVar
 
 import numpy as np
 
+from ..._docs import fill_doc
 from ..._checks import at_most, non_negative, real
 from ..._errors import InputError, Problem
 from . import law_states
-from ._base import HERTZDAMP, MAX_DAMPING_RATIO, coefficient, exponent_value, padded
+from ._base import HERTZDAMP, MAX_DAMPING_RATIO, coefficient, engine_needs, exponent_value, padded
 
 
+@engine_needs("hertzdamp", law_states.hertzdamp, linear=False, law_id=HERTZDAMP)
+@fill_doc
 @dataclass(frozen=True)
 class Hertzdamp:
     """Hertz contact with damping set by each impact's velocity (OpenSees' ``Hertzdamp``).
@@ -44,11 +45,7 @@ class Hertzdamp:
     >>> law = pounding.Hertzdamp.from_restitution(stiffness=1.46e7, restitution=0.7)
     >>> round(law.xi_norm, 3)
     0.686
-    >>> osc = pounding.Oscillator(500.0, pounding.presets.paper_damped().isolator,
-    ...                           pounding.Bumpers(0.015, 0.015, law))
-    >>> push = pounding.State.at_rest(osc, velocity_m_s=0.6)
-    >>> run = pounding.simulate(osc, pounding.Harmonic(a_g=0.05, freq_hz=2.2),
-    ...                         duration=0.5, state=push)
+    {pushed_run}
     >>> run.impacts["restitution"].round(2).tolist()
     [0.68, 0.69, 0.73]
     """
@@ -57,10 +54,6 @@ class Hertzdamp:
     xi_norm: float
     exponent: float = 1.5
 
-    TYPE: ClassVar[str] = "hertzdamp"
-    STATE_CHECK: ClassVar[Callable] = staticmethod(law_states.hertzdamp)
-    LINEAR: ClassVar[bool] = False
-    LAW_ID: ClassVar[int] = HERTZDAMP
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "stiffness", coefficient("law.stiffness", self.stiffness, "N/m^n", True))

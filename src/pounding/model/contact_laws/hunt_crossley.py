@@ -4,15 +4,16 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from collections.abc import Callable
-from typing import ClassVar
 
 import numpy as np
 
+from ..._docs import fill_doc
 from . import law_states
-from ._base import HUNT_CROSSLEY, coefficient, exponent_value, padded
+from ._base import HUNT_CROSSLEY, coefficient, engine_needs, exponent_value, padded
 
 
+@engine_needs("hunt_crossley", law_states.stateless, linear=False, law_id=HUNT_CROSSLEY)
+@fill_doc
 @dataclass(frozen=True)
 class HuntCrossley:
     """Hunt-Crossley law: ``F = stiffness * d**exponent + damping * d**exponent * dd``.
@@ -37,11 +38,7 @@ class HuntCrossley:
 
     >>> import pounding
     >>> law = pounding.HuntCrossley(stiffness=1.46e7, exponent=1.5, damping=2.0e7)
-    >>> osc = pounding.Oscillator(500.0, pounding.presets.paper_damped().isolator,
-    ...                           pounding.Bumpers(0.015, 0.015, law))
-    >>> push = pounding.State.at_rest(osc, velocity_m_s=0.6)
-    >>> run = pounding.simulate(osc, pounding.Harmonic(a_g=0.05, freq_hz=2.2),
-    ...                         duration=0.5, state=push)
+    {pushed_run}
     >>> run.impacts["restitution"].round(2).tolist()
     [0.66, 0.77, 0.84]
     """
@@ -50,10 +47,6 @@ class HuntCrossley:
     exponent: float = 1.5
     damping: float = 0.0
 
-    TYPE: ClassVar[str] = "hunt_crossley"
-    STATE_CHECK: ClassVar[Callable] = staticmethod(law_states.stateless)
-    LINEAR: ClassVar[bool] = False
-    LAW_ID: ClassVar[int] = HUNT_CROSSLEY
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "stiffness", coefficient("law.stiffness", self.stiffness, "N/m^n", True))

@@ -5,17 +5,19 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from collections.abc import Callable
-from typing import ClassVar
 
 import numpy as np
 
+from ..._docs import fill_doc
 from ..._checks import at_most, non_negative, positive, real
 from ..._errors import InputError, Problem
 from . import law_states
-from ._base import JANKOWSKI, MAX_DAMPING_RATIO, MAX_LAW_COEFFICIENT, coefficient, exponent_value, padded
+from ._base import (JANKOWSKI, MAX_DAMPING_RATIO, MAX_LAW_COEFFICIENT, coefficient, engine_needs,
+                    exponent_value, padded)
 
 
+@engine_needs("jankowski", law_states.stateless, linear=False, law_id=JANKOWSKI)
+@fill_doc
 @dataclass(frozen=True)
 class Jankowski:
     """Jankowski's nonlinear viscoelastic impact law (OpenSees' ``JankowskiImpact``).
@@ -51,11 +53,7 @@ class Jankowski:
     ...                                           effective_mass=500.0)
     >>> round(law.damping_ratio, 3)
     0.298
-    >>> osc = pounding.Oscillator(500.0, pounding.presets.paper_damped().isolator,
-    ...                           pounding.Bumpers(0.015, 0.015, law))
-    >>> push = pounding.State.at_rest(osc, velocity_m_s=0.6)
-    >>> run = pounding.simulate(osc, pounding.Harmonic(a_g=0.05, freq_hz=2.2),
-    ...                         duration=0.5, state=push)
+    {pushed_run}
     >>> run.impacts["restitution"].round(2).tolist()
     [0.68, 0.69, 0.71]
     """
@@ -65,10 +63,6 @@ class Jankowski:
     effective_mass: float
     exponent: float = 1.5
 
-    TYPE: ClassVar[str] = "jankowski"
-    STATE_CHECK: ClassVar[Callable] = staticmethod(law_states.stateless)
-    LINEAR: ClassVar[bool] = False
-    LAW_ID: ClassVar[int] = JANKOWSKI
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "stiffness", coefficient("law.stiffness", self.stiffness, "N/m^n", True))

@@ -4,15 +4,16 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from collections.abc import Callable
-from typing import ClassVar
 
 import numpy as np
 
+from ..._docs import fill_doc
 from . import law_states
-from ._base import KELVIN_VOIGT, coefficient, padded
+from ._base import KELVIN_VOIGT, coefficient, engine_needs, padded
 
 
+@engine_needs("kelvin_voigt", law_states.stateless, linear=True, law_id=KELVIN_VOIGT)
+@fill_doc
 @dataclass(frozen=True)
 class KelvinVoigt:
     """Linear spring in parallel with a linear dashpot (the paper's bumper).
@@ -32,14 +33,10 @@ class KelvinVoigt:
     The paper's EPDM bumpers (Sect. 5): nearly elastic impacts, hit first at 0.6 m/s:
 
     >>> import pounding
-    >>> epdm = pounding.KelvinVoigt(stiffness=1.46e6, damping=5.0)
-    >>> f"{epdm.relaxation_time_s:.2e} s"
+    >>> law = pounding.KelvinVoigt(stiffness=1.46e6, damping=5.0)
+    >>> f"{law.relaxation_time_s:.2e} s"
     '3.42e-06 s'
-    >>> osc = pounding.Oscillator(500.0, pounding.presets.paper_damped().isolator,
-    ...                           pounding.Bumpers(0.015, 0.015, epdm))
-    >>> push = pounding.State.at_rest(osc, velocity_m_s=0.6)
-    >>> run = pounding.simulate(osc, pounding.Harmonic(a_g=0.05, freq_hz=2.2),
-    ...                         duration=0.5, state=push)
+    {pushed_run}
     >>> run.impacts["restitution"].round(2).tolist()
     [0.95, 0.95, 0.93, 0.93]
     """
@@ -47,12 +44,6 @@ class KelvinVoigt:
     stiffness: float
     damping: float = 0.0
 
-    TYPE: ClassVar[str] = "kelvin_voigt"
-    # what the engine asks of the law (law_states.py): its state check, and whether its force
-    # is stiffness d + damping dd at every compression (the exact monodromy and the rate bound need it)
-    STATE_CHECK: ClassVar[Callable] = staticmethod(law_states.stateless)
-    LINEAR: ClassVar[bool] = True
-    LAW_ID: ClassVar[int] = KELVIN_VOIGT
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "stiffness", coefficient("law.stiffness", self.stiffness, "N/m", True))

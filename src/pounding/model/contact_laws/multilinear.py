@@ -4,17 +4,20 @@
 from __future__ import annotations
 
 from dataclasses import dataclass
-from collections.abc import Callable
 from typing import Any, ClassVar
 
 import numpy as np
 
+from ..._docs import fill_doc
 from ..._checks import backbone
 from ..._errors import InputError, Problem
 from . import law_states
-from ._base import MAX_BRANCHES, MAX_LAW_COEFFICIENT, MULTILINEAR, MULTILINEAR_KINEMATIC, coefficient, padded
+from ._base import (MAX_BRANCHES, MAX_LAW_COEFFICIENT, MULTILINEAR, MULTILINEAR_KINEMATIC, coefficient,
+                    engine_needs, padded)
 
 
+@engine_needs("multilinear", law_states.multilinear, linear=False)
+@fill_doc
 @dataclass(frozen=True)
 class MultilinearBumper:
     """A bumper whose spring is multi-linear in compression, with a dashpot in parallel.
@@ -66,11 +69,7 @@ class MultilinearBumper:
     ...                                  damping=200.0, hysteresis="kinematic")
     >>> law.backbone([0.002, 0.008, 0.015]).round(1).tolist()  # N
     [800.0, 1800.0, 8000.0]
-    >>> osc = pounding.Oscillator(500.0, pounding.presets.paper_damped().isolator,
-    ...                           pounding.Bumpers(0.015, 0.015, law))
-    >>> push = pounding.State.at_rest(osc, velocity_m_s=0.6)
-    >>> run = pounding.simulate(osc, pounding.Harmonic(a_g=0.05, freq_hz=2.2),
-    ...                         duration=0.5, state=push)
+    {pushed_run}
     >>> round(float(run.impacts["restitution"][0]), 2)
     0.67
     >>> # sets, mm (left, right)
@@ -83,9 +82,6 @@ class MultilinearBumper:
     damping: float = 0.0
     hysteresis: str = "elastic"
 
-    TYPE: ClassVar[str] = "multilinear"
-    STATE_CHECK: ClassVar[Callable] = staticmethod(law_states.multilinear)
-    LINEAR: ClassVar[bool] = False
     HYSTERESIS: ClassVar[tuple[str, ...]] = ("elastic", "kinematic")
     OPTIONAL_KEYS: ClassVar[tuple[str, ...]] = ("hysteresis",)  # (files from before it was: elastic)
 

@@ -11,9 +11,8 @@ force would pull.
 
 from __future__ import annotations
 
-from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any, ClassVar
+from typing import Any
 
 import numpy as np
 
@@ -21,10 +20,12 @@ from ..._checks import real
 from ..._core import LAW_IDS, LAYOUT
 from ..._errors import InputError, Problem
 from . import law_states
+from ._base import engine_needs
 
 RIGID_ID = LAW_IDS["rigid"]
 
 
+@engine_needs("rigid", law_states.stateless, linear=False, law_id=RIGID_ID, rigid=True)  # (no stiffness)
 @dataclass(frozen=True)
 class RigidStop:
     """A rigid stop: impacts with a coefficient of restitution, chatter and sticking.
@@ -63,11 +64,6 @@ class RigidStop:
 
     restitution: float
 
-    TYPE: ClassVar[str] = "rigid"
-    STATE_CHECK: ClassVar[Callable] = staticmethod(law_states.stateless)
-    LINEAR: ClassVar[bool] = False  # (no stiffness: the exact monodromy and the rate bound leave it out)
-    RIGID: ClassVar[bool] = True
-    LAW_ID: ClassVar[int] = RIGID_ID
 
     def __post_init__(self) -> None:
         e = real("law.restitution", self.restitution)
