@@ -14,6 +14,11 @@ FRAGMENTS = {
            "    Where to draw (a new figure if omitted)."),
     "bumpers": ("bumpers : bool\n"
                 "    True: the YBs configuration (with bumpers); False: the same system without them (NBs)."),
+    # a fit's bootstrap band (a fragility's)
+    "band": ("confidence : float\n"
+             "    The band's level, in (0, 1).\n"
+             "seed : int\n"
+             "    The bootstrap's random seed (the same seed, the same band)."),
     # a contact law's example: the paper's isolated 500 kg mass on bumpers of the law ``law``, 15 mm away,
     # pushed at 0.6 m/s into them (``run``: half a second of it)
     "pushed_run": (">>> osc = pounding.Oscillator(500.0, pounding.presets.paper_damped().isolator,\n"

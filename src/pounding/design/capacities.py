@@ -16,11 +16,13 @@ from typing import Any
 import numpy as np
 from scipy import optimize, special
 
+from .._docs import fill_doc
 from .._checks import integer, positive
 from .._errors import InputError, Problem
 from .fragility import LOG_SQRT_2PI, Fragility, _confidence, _seed
 
 
+@fill_doc
 def fit_fragility_capacities(
     capacity_g: Any,
     *,
@@ -43,10 +45,7 @@ def fit_fragility_capacities(
         A label.
     n_bootstrap : int
         Bootstrap resamples (records drawn with replacement) for the band (0: none).
-    confidence : float
-        The band's level, in (0, 1).
-    seed : int
-        The bootstrap's random seed.
+    {band}
 
     Returns
     -------
@@ -160,6 +159,7 @@ def _bootstrap_capacities(
     return out[:kept], reps - kept
 
 
+@fill_doc
 def fit_fragility_intervals(
     lower_g: Any,
     upper_g: Any,
@@ -183,10 +183,7 @@ def fit_fragility_intervals(
         A label.
     n_bootstrap : int
         Bootstrap resamples of the records (each a numerical fit: 200 by default).
-    confidence : float
-        The band's level, in (0, 1).
-    seed : int
-        The bootstrap's random seed.
+    {band}
 
     Returns
     -------

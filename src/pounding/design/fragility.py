@@ -24,6 +24,7 @@ from typing import Any
 import numpy as np
 from scipy import special
 
+from .._docs import fill_doc
 from .._checks import float_array, integer, positive
 from .._errors import InputError, Problem
 
@@ -152,6 +153,7 @@ class Fragility:
         )
 
 
+@fill_doc
 def fit_fragility(
     im_g: Any,
     n_runs: Any,
@@ -176,10 +178,7 @@ def fit_fragility(
         A label (e.g. ``"pounding"``).
     n_bootstrap : int
         Bootstrap resamples for the band (0: none).
-    confidence : float
-        The band's level, in (0, 1).
-    seed : int
-        The bootstrap's random seed (the same seed, the same band).
+    {band}
 
     Returns
     -------
