@@ -11,6 +11,7 @@ import numpy as np
 import pandas as pd
 
 from .._errors import Status
+from .._tables import RunQuantities
 from .layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
 from .layout import force_max, impulses
 from .layout import (C_MAX_COMPRESSION, C_SLOT, C_V_IN, DOF_EXTREMA_LEN, P_MAX, P_MAX_T, P_MIN, P_MIN_T,
@@ -446,8 +447,6 @@ def peaks_of(run: Any, g: float) -> dict[str, float]:
     ratio (``drift_ratio_max``, NaN without storeys); ``status``.  A rigid stop's impact is an impulse: its
     force, and the acceleration of the level it strikes, are unbounded (inf), the rest exact.  The name
     before of ``disp_max_m``, ``base_disp_max_m``, still answers (``RunQuantities``)."""
-    from .._tables import RunQuantities
-
     parts = [run.first, run.second] if hasattr(run, "link_table") else [run]  # (two adjacent ones, or one)
     first = parts[0]
 
@@ -457,14 +456,17 @@ def peaks_of(run: Any, g: float) -> dict[str, float]:
     ratios = [part.peak_drift / np.array([s.height_m for s in part.structure.storeys])
               for part in parts if len(part.structure.storeys)]
     tables = [part.contact_table for part in parts] + ([run.link_table] if len(parts) > 1 else [])
-    rows = np.concatenate(tables)  # (never empty: the first part's table at least)
-    struck = [{part.structure.walls[int(slot) // 2].level for slot in part.contact_table[
-        impulses(part.contact_table), C_SLOT]} for part in parts]  # (each part's levels a rigid impact hit)
-    if len(parts) > 1:
-        for slot in run.link_table[impulses(run.link_table), C_SLOT]:
-            link = run.adjacent.links[int(slot)]
-            struck[0].add(link.level_first)
-            struck[1].add(link.level_second)
+    rows = tables[0] if len(tables) == 1 else np.concatenate(tables)  # (never empty: the first part's)
+    struck: list[set] = [set() for _ in parts]  # (each part's levels a rigid impact hit)
+    if len(rows) and impulses(rows).any():
+        for part, levels in zip(parts, struck):
+            levels.update(part.structure.walls[int(slot) // 2].level
+                          for slot in part.contact_table[impulses(part.contact_table), C_SLOT])
+        if len(parts) > 1:
+            for slot in run.link_table[impulses(run.link_table), C_SLOT]:
+                link = run.adjacent.links[int(slot)]
+                struck[0].add(link.level_first)
+                struck[1].add(link.level_second)
     top = len(first.structure.storeys)
     n = len(rows)
     acc = max(float(np.max(part.abs_acceleration_max)) for part in parts) / g
