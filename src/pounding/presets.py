@@ -157,16 +157,9 @@ def paper_calibrated(bumpers: bool = True) -> Oscillator:
     times that rise and restitution that falls with a_G as measured, but its YBs accelerations
     are 2 to 2.4 times the measured ones (:func:`paper_calibrated_v2` comes near those and
     misses the contacts).  Its residuals are :func:`residuals`; what it cannot reach,
-    and why, is in ``docs/calibration.md``.
+    and why, is in ``docs/calibration.md``.  Its file: ``pounding/data/paper_calibrated.toml``.
 
-    Parameters
-    ----------
-    {bumpers}
-
-    Returns
-    -------
-    Oscillator
-        The calibrated system (read from ``pounding/data/paper_calibrated.toml``).
+    {data_preset}
 
     Examples
     --------
@@ -239,16 +232,10 @@ def rig_stands_scan() -> "pd.DataFrame":
 @fill_doc
 def paper_calibrated_v1(bumpers: bool = True) -> Oscillator:
     """The first calibrated preset: the same isolator family with Kelvin-Voigt bumpers
-    (``scripts/calibrate_paper.py --maxiter 40``); residuals ``residuals("paper-calibrated-v1")``.
+    (``scripts/calibrate_paper.py --maxiter 40``); residuals ``residuals("paper-calibrated-v1")``; its file
+    ``pounding/data/paper_calibrated_v1.toml``.
 
-    Parameters
-    ----------
-    {bumpers}
-
-    Returns
-    -------
-    Oscillator
-        The system (read from ``pounding/data/paper_calibrated_v1.toml``).
+    {data_preset}
 
     Examples
     --------
@@ -268,24 +255,16 @@ def paper_calibrated_v2(bumpers: bool = True) -> Oscillator:
     Its YBs accelerations (alpha) are within 11 % of the measured ones, but its contacts are
     too long, its restitution flat and its excursions short: 21 of the 36 targets (22 as it was
     fitted, with eta over its own gap, which its ``[meta]`` records); residuals
-    ``residuals("paper-calibrated-v2")``.
+    ``residuals("paper-calibrated-v2")``; its file ``pounding/data/paper_calibrated_v2.toml``.
 
-    Parameters
-    ----------
-    {bumpers}
-
-    Returns
-    -------
-    Oscillator
-        The system (read from ``pounding/data/paper_calibrated_v2.toml``).
+    {data_preset}
 
     Examples
     --------
     >>> import pounding
     >>> ybs = pounding.presets.paper_calibrated_v2()
-    >>> law = ybs.bumpers.law
     >>> gap_mm = round(ybs.bumpers.gap_right_m * 1e3, 1)
-    >>> law.hysteresis, len(law.slopes), gap_mm
+    >>> ybs.bumpers.law.hysteresis, len(ybs.bumpers.law.slopes), gap_mm
     ('elastic', 3, 13.2)
     """
     return _data_system(CALIBRATED_V2_FILE, bumpers)
@@ -303,17 +282,9 @@ def paper_calibrated_measured(bumpers: bool = True) -> tuple[Oscillator, "Measur
     and mass; the laser as read), within 5-100 Hz, every metric measured through it as the lab
     pipeline measures a recording.  Its residuals (measured metrics) are
     ``residuals("paper-calibrated-measured")``; :func:`paper_calibrated` stays the preset fitted
-    to the exact metrics.
+    to the exact metrics.  Its file: ``pounding/data/paper_calibrated_measured.toml``.
 
-    Parameters
-    ----------
-    {bumpers}
-
-    Returns
-    -------
-    (Oscillator, MeasurementChain)
-        The system (``pounding/data/paper_calibrated_measured.toml``) and the chain its metrics
-        are measured through (give it as ``measurement=``).
+    {measured_preset}
 
     Examples
     --------
@@ -341,17 +312,9 @@ def paper_calibrated_laser(bumpers: bool = True) -> tuple[Oscillator, "Measureme
     steep third slope and its dashpot refitted by least squares ("misses" loss) together with the
     cutoff of a 4th-order zero-phase Butterworth low-pass on the accelerometers, every metric measured
     through the chain.  Its residuals are ``residuals("paper-calibrated-laser")``, its fits
-    ``measurement_profile("laser")``.
+    ``measurement_profile("laser")``.  Its file: ``pounding/data/paper_calibrated_laser.toml``.
 
-    Parameters
-    ----------
-    {bumpers}
-
-    Returns
-    -------
-    (Oscillator, MeasurementChain)
-        The system (``pounding/data/paper_calibrated_laser.toml``) and the chain its metrics are
-        measured through (give it as ``measurement=``).
+    {measured_preset}
 
     Examples
     --------

@@ -16,6 +16,7 @@ from typing import Any
 import numpy as np
 
 from .._checks import instance_of, one_of, positive
+from .._docs import fill_doc
 from .._errors import InputError, Problem
 from ..model.dotted import unit_of
 from .hazard import HazardCurve
@@ -257,6 +258,7 @@ def _is_metric(column: str) -> bool:
     return column in _COLUMNS or column.startswith("p_")
 
 
+@fill_doc
 def decide(
     analysis: StripeAnalysis | Mapping[str, StripeAnalysis],
     design_sa_g: float,
@@ -315,12 +317,7 @@ def decide(
 
     Examples
     --------
-    >>> import pounding
-    >>> from pounding import design
-    >>> ybs = pounding.presets.paper_damped()
-    >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
-    ...                              store="choose.zarr", progress=False,
-    ...                              grid={"bumpers.gap_m": [0.02, 0.2]})
+    {two_gaps_msa}
     >>> choice = design.decide(msa, 0.3, 0.45, target_probability=0.1)
     >>> columns = ["bumpers.gap_m", "p_contact_design", "p_contact_mce"]
     >>> choice.data[columns].values.round(3)

@@ -11,6 +11,7 @@ from typing import Any
 import numpy as np
 
 from .._checks import one_of, positive
+from .._docs import fill_doc
 from .._errors import InputError, Problem, Status
 from .fragility import Fragility, fit_fragility
 
@@ -30,6 +31,7 @@ _QUANTITY = {"contact": "disp_max_m", "acceleration": "acc_max_g", "compression"
 RESERVED = ("sa_g", "record")
 
 
+@fill_doc
 @dataclass(frozen=True, eq=False)
 class StripeAnalysis:
     """The runs of a multiple-stripe analysis, and what they say of events (:func:`stripe_analysis`).
@@ -55,12 +57,7 @@ class StripeAnalysis:
     --------
     El Centro at two stripes of Sa(1 s) on the damped paper system with two gaps:
 
-    >>> import pounding
-    >>> from pounding import design
-    >>> ybs = pounding.presets.paper_damped()
-    >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
-    ...                              store="msa.zarr", progress=False,
-    ...                              grid={"bumpers.gap_m": [0.02, 0.2]})
+    {two_gaps_msa}
     >>> print(msa.fraction("contact").to_pandas())
     bumpers.gap_m  0.02  0.20
     sa_g

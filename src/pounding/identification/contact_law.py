@@ -14,6 +14,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
+from .._docs import fill_doc
 from .._checks import at_least, at_most, float_array, integer, one_of, plausible, positive, real_tuple
 from .._errors import InputError, Problem
 from ..model.contact_laws import (LAWS, MAX_BRANCHES, MAX_EXPONENT, ContactLaw, ElasticPlastic,
@@ -103,6 +104,7 @@ class ContactLawFit:
         return figure_of(plot_contact_law_fit(self, ax=ax), ax)
 
 
+@fill_doc
 def fit_contact_law(
     displacement_m: Any,
     force_n: Any,
@@ -120,15 +122,7 @@ def fit_contact_law(
 
     Parameters
     ----------
-    displacement_m : array_like, shape (n,)
-        Compression of the bumper, m (> 0 in contact; samples <= 0 are left out).
-    force_n : array_like, shape (n,)
-        Force the bumper pushes with, N.
-    time_s : array_like, shape (n,), optional
-        Sample times, s, strictly increasing: the compression rate is their numerical
-        derivative (second order).  Give this or ``velocity_m_s``.
-    velocity_m_s : array_like, shape (n,), optional
-        Compression rate, m/s, when it was measured.
+    {bumper_history}
     law : {"kelvin_voigt", "hunt_crossley", "jankowski", "multilinear", "elastic_plastic"}
         ``F = k d + c v``, ``F = d^n (k + c v)``, ``F = k d^n + 2 xi sqrt(m k d^(n-1)) v``
         while ``v > 0`` (``k d^n`` while ``v <= 0``), ``F = R(d) + c v`` with a multi-linear ``R``,
@@ -315,6 +309,7 @@ def _same_length(field: str, arr: np.ndarray, ref: np.ndarray) -> None:
                          expected=ref.size, other="displacement_m")
 
 
+@fill_doc
 def rank_contact_laws(displacement_m: Any, force_n: Any, *, time_s: Any = None, velocity_m_s: Any = None,
                       effective_mass_kg: float | None = None, n_branches: int = 3) -> pd.DataFrame:
     """Fit every contact law to one test and rank them by residual (the paper's Fig. 3 question:
@@ -327,15 +322,7 @@ def rank_contact_laws(displacement_m: Any, force_n: Any, *, time_s: Any = None, 
 
     Parameters
     ----------
-    displacement_m : array_like, shape (n,)
-        Compression of the bumper, m (> 0 in contact; samples <= 0 are left out).
-    force_n : array_like, shape (n,)
-        Force the bumper pushes with, N.
-    time_s : array_like, shape (n,), optional
-        Sample times, s, strictly increasing (the compression rate is their numerical
-        derivative).  Give this or ``velocity_m_s``.
-    velocity_m_s : array_like, shape (n,), optional
-        Compression rate, m/s, when it was measured.
+    {bumper_history}
     effective_mass_kg : float, optional
         Jankowski's effective mass, kg: without it Jankowski's law is left out.
     n_branches : int

@@ -353,12 +353,7 @@ def plot_decision(decision: Any, ax: Any = None) -> list:
 
     Examples
     --------
-    >>> import pounding
-    >>> from pounding import design
-    >>> ybs = pounding.presets.paper_damped()
-    >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
-    ...                              store="chart.zarr", progress=False,
-    ...                              grid={"bumpers.gap_m": [0.02, 0.2]})
+    {two_gaps_msa}
     >>> choice = design.decide(msa, 0.3, 0.45)
     >>> len(pounding.plots.plot_decision(choice))  # 2 lines, target, choice
     4
@@ -420,12 +415,7 @@ def plot_responses(analysis: Any, quantity: str = "acc_max_g", ax: Any = None) -
 
     Examples
     --------
-    >>> import pounding
-    >>> from pounding import design
-    >>> ybs = pounding.presets.paper_damped()
-    >>> msa = design.stripe_analysis(ybs, "el-centro", [0.2, 0.5], period_s=1.0,
-    ...                              store="resp.zarr", progress=False,
-    ...                              grid={"bumpers.gap_m": [0.02, 0.2]})
+    {two_gaps_msa}
     >>> len(pounding.plots.plot_responses(msa, "acc_max_g"))  # line, band
     4
     """
