@@ -968,6 +968,14 @@ def test_impacts_of_a_building_and_of_a_pair_take_the_impacting_pair_s_effective
     for table in (run.contacts, run.links, run.first.contacts):
         with pytest.warns(FutureWarning, match="'work' is now 'bumper_dissipation_j'"):
             np.testing.assert_array_equal(table["work"], table["bumper_dissipation_j"])
+    # the pair's summary counts each structure's contacts per level with a wall (one-level ones too)
+    pair_summary = run.summary()
+    for name, part in (("first", run.first), ("second", run.second)):
+        per_level = part.contacts["level"].value_counts()
+        assert pair_summary[f"{name}_contacts"] == len(part.contacts) > 0
+        assert pair_summary[f"{name}_contacts_left"] == int((part.contacts["side"] == "left").sum())
+        for level in {w.level for w in part.structure.walls}:
+            assert pair_summary[f"{name}_contacts_level_{level}"] == per_level.get(level, 0)
     s = run.first.summary()
     done = run.first.impacts.dropna(subset=["contact_time_s"])
     assert s["restitution_mean"] == done["restitution"].mean() and s["rigid_impacts"] == 0

@@ -104,7 +104,8 @@ class EventTable(RenamedColumns):
 
 class RenamedKeys(dict):
     """A dict of named numbers that still answers to its keys' old names for one release (``OLD``: old name
-    -> new; ``WHY``: why), with a ``FutureWarning`` naming the new one; its subclasses say which names."""
+    -> new; ``WHY``: why), by ``[]`` and ``get``, with a ``FutureWarning`` naming the new one; its subclasses
+    say which names.  ``in``, iteration and copies know the new names only."""
 
     OLD: dict = {}
     WHY: str = "one name for every system"
@@ -122,6 +123,12 @@ class RenamedKeys(dict):
             warn_renamed(key, self.OLD[key], why=self.WHY)
             return self[self.OLD[key]]
         raise KeyError(key)
+
+    def get(self, key: Any, default: Any = None) -> Any:
+        """``self[key]`` (an old name answering, with its warning), or ``default``."""
+        if key in self or (isinstance(key, str) and self.OLD.get(key) in self):
+            return self[key]
+        return default
 
 
 class RunQuantities(RenamedKeys):

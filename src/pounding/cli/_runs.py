@@ -77,7 +77,7 @@ def simulate(
     SYSTEM.toml may be a structure of several masses (examples/building_moat.toml), or two adjacent ones
     (examples/adjacent_buildings.toml): a row per level; --contacts then writes every contact, at the walls
     and the links."""
-    from ..engine import State
+    from ..engine import State, structure_runs
     from ..engine import simulate as run_simulation
     from ..engine.assembly import structures_of
 
@@ -104,7 +104,8 @@ def simulate(
     if hasattr(run, "links"):  # (a pair: each structure's contacts, and the links')
         _pair_rows(add_row, s)
     else:
-        _run_rows(add_row, s, exc, record is None, levels > 1)
+        fixed = structure_runs(run)[0].structure.fixed
+        _run_rows(add_row, s, exc, record is None, levels > 1, fixed)
     add_row("energy in / residual [J]", f"{s['input_work_j']:.6g} / {s['energy_residual_j']:.2e}")
     console.print(table)
     _level_tables(run, exc)
@@ -127,12 +128,13 @@ def simulate(
         raise typer.Exit(code=1)
 
 
-def _run_rows(add_row: Any, s: Any, exc: Any, harmonic: bool, several: bool) -> None:
+def _run_rows(add_row: Any, s: Any, exc: Any, harmonic: bool, several: bool, fixed: bool) -> None:
     """A run's rows of the table ``pounding simulate`` prints, whatever the system (its summary's): the base's
-    exact extrema (a single mass's own), the largest acceleration and alpha, the contacts (per level, where
-    there are several)."""
+    exact extrema (a single mass's own; a fixed base's none: it is the ground), the largest acceleration and
+    alpha, the contacts (per level, where there are several)."""
     base = "base " if several else ""
     add_row(f"{base}D max / min [mm]",
+            "- (a fixed base: the ground)" if fixed else
             f"{s['displacement_max_m'] * 1e3:.4f} / {s['displacement_min_m'] * 1e3:.4f}")
     rigid = s["rigid_impacts"]  # (a rigid stop's impacts: impulses, no force)
     between = "inf at the rigid impacts (impulses); {} between them" if rigid else "{}"

@@ -318,20 +318,28 @@ class StructureRun(NamedChatters, Outcome):
         acc = float(np.max(self.abs_acceleration_max))
         t_end = (self.final_state.time_s if self.final_state is not None
                  else float(self.t[-1]) if self.t.size else nan)
-        walled = sorted({w.level for w in self.structure.walls}) if self.structure.storeys else []
-        at = self.contacts["level"].value_counts() if walled else None
         return pd.Series({
             "t_end_s": t_end,
             "displacement_max_m": float(self.displacement_max[0]),
             "displacement_min_m": float(self.displacement_min[0]),
             "abs_acceleration_max_m_s2": acc, "alpha": acc / peak if peak else nan,
-            "contacts": len(table), "contacts_left": int((table[:, C_SLOT] % 2 == 0.0).sum()),
-            **{f"contacts_level_{lv}": int(at.get(lv, 0)) for lv in walled},
+            **self.contact_counts(per_level=bool(self.structure.storeys)),
             "rigid_impacts": rigid, **impact_summary(self.impacts, rigid),
             "input_work_j": self.energy.input_work if self.energy is not None else nan,
             "energy_residual_j": self.energy.residual if self.energy is not None else nan,
             "status": self.status.name,
         }, name="summary", dtype=object)
+
+    def contact_counts(self, per_level: bool = True) -> dict[str, int]:
+        """The contacts at its walls: ``contacts``, ``contacts_left`` (at their left sides) and, with
+        ``per_level``, ``contacts_level_<k>`` at each level with a wall."""
+        table = self.contact_table
+        out = {"contacts": len(table), "contacts_left": int((table[:, C_SLOT] % 2 == 0.0).sum())}
+        if per_level:
+            at = self.contacts["level"].value_counts()
+            out.update({f"contacts_level_{lv}": int(at.get(lv, 0))
+                        for lv in sorted({w.level for w in self.structure.walls})})
+        return out
 
     def quantities(self) -> dict[str, float]:
         """The run in a few peaks (a study's point, a pounding spectrum's run, a design's stripe): the base's

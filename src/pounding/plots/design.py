@@ -405,7 +405,8 @@ def plot_responses(analysis: Any, quantity: str = "acc_max_g", ax: Any = None) -
     quantity : str
         A run quantity (every system's, ``Run.quantities()``): ``acc_max_g``, ``disp_max_m`` (a
         building's: its base's), ``impacts``, ``impact_force_max_n``, ``impact_speed_max_m_s``,
-        ``compression_max_m``, ``top_disp_max_m``, ``top_acc_max_g`` or ``drift_ratio_max``.
+        ``compression_max_m``, ``top_disp_max_m``, ``top_acc_max_g`` or ``drift_ratio_max``
+        (a building's ``base_disp_max_m`` of before answers, with a ``FutureWarning``).
     {ax}
 
     Returns

@@ -22,8 +22,8 @@ from .._runner import GUARD, Context, run_tasks, scheduler_kind
 from .._runner.dask_client import dask_client
 from .._runner.progress import Progress
 from .spec import StudySpec
-from .store import (OTHER, STUDY, check_store, chunk_grid, chunk_shape, create, open_checked,
-                          refuse_other, region, run_chunk, store_state)
+from .store import (OTHER, STUDY, check_store, chunk_grid, chunk_shape, create, open_checked, open_dataset,
+                    refuse_other, region, run_chunk, store_state)
 
 _PRELOAD = ("pounding.studies.worker_preload",)  # (what a chunk needs, loaded once per worker server)
 BATCHES_PER_WORKER = 8  # chunks a worker gets over a study, at least: balance against per-batch cost
@@ -113,7 +113,6 @@ def study(
     """
     import multiprocessing as mp
 
-    import xarray as xr
 
     if getattr(mp.current_process(), "_inheriting", False):  # (multiprocessing's own test of this)
         raise InputError(Problem.BAD_STATE, "study", "started by a worker process importing the script",
@@ -169,7 +168,7 @@ def study(
             own.close()
     while True:  # (reading the store back is short: a Ctrl-C meanwhile is taken as one during the points)
         try:
-            ds = xr.open_zarr(store, consolidated=True)
+            ds = open_dataset(store)  # (each quantity by its name now, a store written before too)
             kept = int(ds["done"].sum())
             break
         except KeyboardInterrupt:
