@@ -211,8 +211,13 @@ def den_hartog(mass_kg: float, k_n_m: float, friction_n: float, force_amplitude_
     wn = math.sqrt(k_n_m / mass_kg)
     b = omega_rad_s / wn
     q = force_amplitude_n / k_n_m / (1.0 - b * b)
-    u = math.sin(math.pi / b) / (b * (1.0 + math.cos(math.pi / b)))
     xf = friction_n / k_n_m
+    denominator = b * (1.0 + math.cos(math.pi / b))  # (0 at b = 1/3, 1/5, ...: no such motion with friction)
+    if xf == 0.0:
+        return abs(q), math.atan2(0.0, q)
+    if denominator == 0.0:
+        return math.nan, math.nan
+    u = math.sin(math.pi / b) / denominator
     inside = q * q - (xf * u) ** 2
     if inside <= 0.0:
         return math.nan, math.nan
