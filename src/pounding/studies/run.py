@@ -113,7 +113,6 @@ def study(
     """
     import multiprocessing as mp
 
-
     if getattr(mp.current_process(), "_inheriting", False):  # (multiprocessing's own test of this)
         raise InputError(Problem.BAD_STATE, "study", "started by a worker process importing the script",
                          why="a study in a script that is not guarded runs again in every worker process",
