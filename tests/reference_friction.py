@@ -94,9 +94,14 @@ def _rest_force(s: FrictionStructure, k: np.ndarray, c: np.ndarray, t: float, x:
 
 
 def reference(s: FrictionStructure, t_end: float, x0: np.ndarray, v0: np.ndarray, rtol: float = 1e-12,
-              atol: float = 1e-15, max_phases: int = 100_000) -> FrictionResult:
+              atol: float = 1e-15, max_phases: int = 100_000, knots: np.ndarray | None = None) -> FrictionResult:
     """Integrate from (x0, v0) at t = 0 to ``t_end``: the histories at every step and event, the stick and
-    slip events, the works."""
+    slip events, the works.
+
+    ``knots``: the instants where the table's acceleration has a kink (a record's samples).  Each
+    integration stops at the next one: a held base's force is then linear in t between two of them (its rest
+    force, the table's piece), so that no crossing of it hides inside a long step of the solver (a stuck
+    single mass has a right-hand side of zero: the solver's steps would be as long as the run)."""
     n = s.n
     k, c = s.matrices()
     m = np.asarray(s.masses_kg, dtype=float)
@@ -110,9 +115,12 @@ def reference(s: FrictionStructure, t_end: float, x0: np.ndarray, v0: np.ndarray
     (out.sticks if mode == 0 else out.slips).append(t if mode == 0 else (t, mode))
     ts, xs, vs = [np.array([t])], [y[None, :n]], [y[None, n:2 * n]]
     short = 0
+    cuts = np.unique(np.append(np.asarray(knots if knots is not None else [], float), t_end))
+    cuts = cuts[cuts <= t_end]
     for _ in range(max_phases):
         if t >= t_end:
             break
+        t_stop = float(cuts[np.searchsorted(cuts, t, side="right")])
 
         def rhs(tt: float, yy: np.ndarray, mode: int = mode) -> np.ndarray:
             x, v = yy[:n], yy[n:2 * n]
@@ -149,8 +157,12 @@ def reference(s: FrictionStructure, t_end: float, x0: np.ndarray, v0: np.ndarray
 
             stop.terminal, stop.direction = True, -float(mode)
             events = [stop]
-        sol = solve_ivp(rhs, (t, t_end), y, method="DOP853", rtol=rtol, atol=atol, events=events,
-                        dense_output=mode == 0)
+        # (a slip from rest starts with its event function at zero: a first step short against any slip, so
+        # that a slip which comes back to rest inside the solver's first step is not taken for one that ended
+        # where it started, the bracket's end)
+        first = min(1e-7, 0.5 * (t_stop - t)) if mode != 0 and y[n] == 0.0 else None
+        sol = solve_ivp(rhs, (t, t_stop), y, method="DOP853", rtol=rtol, atol=atol, events=events,
+                        dense_output=mode == 0, first_step=first)
         if sol.status < 0:
             raise RuntimeError(sol.message)
         if mode == 0:  # (the friction needed to hold the base, over the stick)
@@ -162,9 +174,9 @@ def reference(s: FrictionStructure, t_end: float, x0: np.ndarray, v0: np.ndarray
         xs.append(sol.y[:n, 1:].T)
         vs.append(sol.y[n:2 * n, 1:].T)
         t_new, y = float(sol.t[-1]), sol.y[:, -1].copy()
-        if sol.status == 0:  # (t_end)
+        if sol.status == 0:  # (t_stop: a knot, or the end)
             t = t_new
-            break
+            continue
         short = short + 1 if t_new - t <= 1e-12 * max(1.0, t) else 0
         if short > 3:
             raise ReferenceStuck(f"phases of zero length at t = {t_new!r}")

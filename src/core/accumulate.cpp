@@ -76,6 +76,8 @@ void outputs_in_phase(Phase& ph, const System& sy, double t, double tau, const d
         double f = ph.el_k[static_cast<size_t>(e)] * rel(y, h.i, h.j) + ph.el_r[static_cast<size_t>(e)] +
                    h.c_d * rel(y + n, h.i, h.j);
         if (e == 0 && ph.bw[0] != 0.0) f += ph.bw[0] * phase_zeta(ph, tau);
+        if (ph.stk.any && ph.stk.held_of[static_cast<size_t>(ph.nc + e)] >= 0)  // (sticking: its friction)
+            f += held_force(ph, ph.nc + e, tau, y, a).g;
         row[1 + 3 * n + e] = f;
     }
     double* fc = row + 1 + 3 * n + sy.n_h();
@@ -431,6 +433,7 @@ namespace {
 
 void held_statistics(Phase& ph, const Layout& L, double* st, double tau, const Ends& e, bool linear, Buffers& b) {
     for (const int c : ph.stk.held) {
+        if (c >= ph.stk.nc) continue;  // (a sticking friction element's tie: its force is the element's)
         const int acc = L.acc_at(c);
         double impulse = 0.0, peak = st[acc + A_PEAK];
         if (linear) {

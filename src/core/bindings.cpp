@@ -71,7 +71,7 @@ Contact contact_of(int i, int j, double sign, double gap_m, int law, const std::
 }
 
 Hysteretic element_of(int i, int j, double c_d, const std::vector<double>& slopes, const std::vector<double>& breaks,
-                      int rule) {
+                      int rule, double friction) {
     Hysteretic h;
     h.i = i;
     h.j = j;
@@ -79,6 +79,7 @@ Hysteretic element_of(int i, int j, double c_d, const std::vector<double>& slope
     h.slopes = slopes;
     h.breaks = breaks;
     h.rule = rule;
+    h.friction = friction;
     return h;
 }
 
@@ -107,13 +108,14 @@ nb::dict element_state(const Hysteretic& h) {
     d["slopes"] = h.slopes;
     d["breaks"] = h.breaks;
     d["rule"] = h.rule;
+    d["friction_n"] = h.friction;
     return d;
 }
 
 Hysteretic element_from_state(const nb::dict& d) {
     return element_of(nb::cast<int>(d["i"]), nb::cast<int>(d["j"]), nb::cast<double>(d["c_d"]),
                       nb::cast<std::vector<double>>(d["slopes"]), nb::cast<std::vector<double>>(d["breaks"]),
-                      nb::cast<int>(d["rule"]));
+                      nb::cast<int>(d["rule"]), d.contains("friction_n") ? nb::cast<double>(d["friction_n"]) : 0.0);
 }
 
 void fill_system(System& s, int n, const std::vector<double>& mass, const std::vector<double>& k0,
@@ -198,17 +200,18 @@ NB_MODULE(_pounding_core, m) {
     nb::class_<Hysteretic>(m, "Element")
         .def("__init__",
              [](Hysteretic* h, int i, int j, double c_d, const std::vector<double>& slopes,
-                const std::vector<double>& breaks, int rule) {
-                 new (h) Hysteretic(element_of(i, j, c_d, slopes, breaks, rule));
+                const std::vector<double>& breaks, int rule, double friction_n) {
+                 new (h) Hysteretic(element_of(i, j, c_d, slopes, breaks, rule, friction_n));
              },
              nb::kw_only(), nb::arg("i"), nb::arg("j"), nb::arg("c_d"), nb::arg("slopes"), nb::arg("breaks"),
-             nb::arg("rule"))
+             nb::arg("rule"), nb::arg("friction_n") = 0.0)
         .def_ro("i", &Hysteretic::i)
         .def_ro("j", &Hysteretic::j)
         .def_ro("c_d", &Hysteretic::c_d)
         .def_ro("slopes", &Hysteretic::slopes)
         .def_ro("breaks", &Hysteretic::breaks)
         .def_ro("rule", &Hysteretic::rule)
+        .def_ro("friction_n", &Hysteretic::friction)
         .def("__getstate__", &element_state)
         .def("__setstate__", [](Hysteretic& h, const nb::dict& d) { new (&h) Hysteretic(element_from_state(d)); });
 
@@ -436,6 +439,8 @@ NB_MODULE(_pounding_core, m) {
     actions["contact_end"] = static_cast<int>(ACT_RELEASE);
     actions["bumper_branch"] = static_cast<int>(ACT_LAW_BRANCH);
     actions["bouc_wen_zero"] = static_cast<int>(ACT_BOUC_WEN);
+    actions["stick"] = static_cast<int>(ACT_STICK);
+    actions["slip"] = static_cast<int>(ACT_SLIP);
     m.attr("ACTIONS") = actions;
     m.attr("N_LAW_STATE") = N_LAW_STATE;
     m.attr("N_LAW_PARAMS") = N_LAW_PARAMS;

@@ -11,7 +11,8 @@
 //
 // The state vector (doubles), by Layout:
 //   T time s | x + i displacements m | v + i velocities m/s | def + c compressions | in + c in contact (1.0)
-//   region + e element e's backbone branch (elastic rule) | acc + N_ACC c a contact's running totals
+//   region + e element e's backbone branch (elastic rule) or its slip (friction rule: -1, 0 sticking, +1)
+//   | acc + N_ACC c a contact's running totals
 //   z + N_LAW_STATE c a contact law's state | zeta Bouc-Wen z | base + g slips of every element's springs
 //   (element e's from its first), then base + n_sp + g their slip directions
 // For n = 1 and two contact slots that is Python's long-standing layout (T 0, D 1, V 2, ..., STATE_BASE 37).
@@ -85,7 +86,7 @@ enum Status : int {
 // events' actions (their codes in a run's event table)
 enum Action : int {
     ACT_YIELD = 0, ACT_REVERSAL = 1, ACT_REGION = 2, ACT_CONTACT = 3, ACT_RELEASE = 4, ACT_LAW_BRANCH = 5,
-    ACT_BOUC_WEN = 6
+    ACT_BOUC_WEN = 6, ACT_STICK = 7, ACT_SLIP = 8
 };
 
 // the run control Python shares with a running kernel (int64): a stop flag, the work done (sub-intervals),
@@ -123,14 +124,15 @@ struct Contact {
 };
 
 // A hysteretic element: a rate-independent multi-linear spring (slopes N/m, n_springs + 1; breaks m, n_springs)
-// with its rule (0 kinematic, 1 elastic: isolator.hpp) and a dashpot c_d (N s/m), between dof i and dof j (or
-// the ground), deformed by u = x_i - x_j.  The isolator is element 0 of a system, and carries its Bouc-Wen
+// with its rule (0 kinematic, 1 elastic, 2 Coulomb friction: isolator.hpp) and a dashpot c_d (N s/m), between
+// dof i and dof j (or the ground), deformed by u = x_i - x_j.  The isolator is element 0 of a system, and carries its Bouc-Wen
 // spring if it has one; a storey with a hysteretic backbone is another.
 struct Hysteretic {
     int i = 0, j = GROUND;
     double c_d = 0.0;
     std::vector<double> slopes, breaks;
     int rule = 0;
+    double friction = 0.0;  // N: the Coulomb force of rule 2 (a friction isolator: mu W), 0 for the others
     int first = 0;  // its first spring's index among the system's (set by System::finish)
     int n_springs() const { return static_cast<int>(slopes.size()) - 1; }
 };
@@ -150,6 +152,7 @@ struct System {
     // derived by finish(): the damping of every phase (c0 and the elements' dashpots), the layout
     std::vector<double> c_lin;
     std::vector<int> rigid;  // the contacts with a rigid stop's law
+    std::vector<int> ties;   // the elements with the friction rule (each ties its pair while it sticks)
     double total_mass = 0.0;
     Layout lay;
 
@@ -177,6 +180,9 @@ struct System {
         rigid.clear();
         for (int c = 0; c < nc(); ++c)
             if (law_is_rigid(contact[static_cast<size_t>(c)].law)) rigid.push_back(c);
+        ties.clear();
+        for (int e = 0; e < n_h(); ++e)
+            if (hyst[static_cast<size_t>(e)].rule == 2) ties.push_back(e);  // (RULE_FRICTION: isolator.hpp)
         total_mass = 0.0;
         for (double m : mass) total_mass += m;
     }

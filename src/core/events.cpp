@@ -39,7 +39,7 @@ EventValue held_force(Phase& ph, int c, double tau, const double* y, const doubl
     const Sticking& st = ph.stk;
     const int h = st.held_of[static_cast<size_t>(c)];
     const char* side = &st.side[static_cast<size_t>(h * n)];
-    const int g_c = st.grp[static_cast<size_t>(ph.ct[static_cast<size_t>(c)].i)];
+    const int g_c = st.grp[static_cast<size_t>(st.end_i[static_cast<size_t>(h)])];
     double* au = ph.au.data();
     double* aur = ph.aur.data();
     free_acceleration(ph, tau, y, ph.bw[0] != 0.0 ? phase_zeta(ph, tau) : 0.0, au);
@@ -65,7 +65,7 @@ EventValue held_force(Phase& ph, int c, double tau, const double* y, const doubl
             s += std::abs(ph.K[static_cast<size_t>(k * n + j)] * y[j]) + std::abs(ph.C[static_cast<size_t>(k * n + j)] * y[n + j]);
         scale += s;
     }
-    const double sign = ph.ct[static_cast<size_t>(c)].sign;
+    const double sign = st.end_sign[static_cast<size_t>(h)];
     return {sign * f, sign * rate, scale};
 }
 
@@ -76,12 +76,17 @@ EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y
         return {-e.alpha * z, -e.alpha * zeta_rate(ph, rel(y + n, ph.iso_i, ph.iso_j), z), 1.0};
     }
     if (e.kind == KIND_HELD) return held_force(ph, e.side, tau, y, a);
+    if (e.kind == KIND_STICK) {
+        const EventValue d = held_force(ph, e.side, tau, y, a);
+        return {e.alpha + e.beta * d.g, e.beta * d.gp, std::abs(e.alpha) + d.scale};
+    }
     const double dx = rel(y, e.i, e.j), dv = rel(y + n, e.i, e.j), da = rel(a, e.i, e.j);
     if (e.kind == KIND_LINEAR) {
         const double g = e.alpha + e.beta * dx + e.gamma * dv;
         const double gp = e.beta * dv + e.gamma * da;
         double scale = std::abs(e.alpha) + std::abs(e.beta * dx) + std::abs(e.gamma * dv);
         if (e.side == SIDE_NONE) return {g, gp, scale};  // the isolator's events (most of them)
+        if (e.side == SIDE_VELOCITY) return {g, gp, scale + ph.vround};
         // a contact's displacement is rounded relative to the run's and the phase's lengths, not its own size
         scale += ph.xround;
         if (e.action != ACT_CONTACT) return {g, gp, scale};
@@ -328,6 +333,12 @@ void event_fn(const EventRow* evs, int i, Phase& ph, Fn& fn) {
     if (fn.kind == FN_EVENT) return;
     if (e.kind == KIND_HELD) {  // a held rigid stop's force: a polynomial of the series
         held_force_poly(ph, e.side, fn.q);
+        return;
+    }
+    if (e.kind == KIND_STICK) {  // alpha + beta D, D a sticking friction element's tie's force
+        held_force_poly(ph, e.side, fn.q);
+        for (int k = 0; k <= fn.q.deg; ++k) fn.q.c[k] *= e.beta;
+        fn.q.c[0] += e.alpha;
         return;
     }
     if (e.kind == KIND_LINEAR) {

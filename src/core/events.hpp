@@ -13,8 +13,11 @@
 
 namespace pounding {
 
-constexpr int KIND_LINEAR = 0, KIND_RELEASE = 1, KIND_ZETA = 2, KIND_HELD = 3;  // (held: a rigid stop's force)
-constexpr int SIDE_NONE = -1;
+// (held: a rigid stop's force; stick: alpha + beta D, D the force a sticking friction element's tie needs)
+constexpr int KIND_LINEAR = 0, KIND_RELEASE = 1, KIND_ZETA = 2, KIND_HELD = 3, KIND_STICK = 4;
+// an event row's side when it is no contact's: SIDE_NONE (rounded against its own terms), SIDE_VELOCITY (a
+// velocity rounded against the run's velocity too: a friction slip's end, which starts at rest)
+constexpr int SIDE_NONE = -1, SIDE_VELOCITY = -2;
 constexpr double ROUNDING = 256.0 * EPS;  // relative size of rounding noise in event values
 constexpr double XTOL_S = 1e-15;          // event instants and displacement extrema, s
 constexpr double XTOL_EXTREMUM_S = 1e-10; // instants of the other extrema
@@ -33,8 +36,8 @@ struct EventValue { double g, gp, scale; };  // value, rate, size of the terms s
 
 EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y, const double* a);
 
-// a held rigid stop c's force (N), its rate (N/s) and the size of its terms at tau (y, a: the trajectory
-// there, a with the held stops' constraint)
+// a held bond c's force (N: a rigid stop's, or a sticking friction element's tie's, sticking.hpp), its rate
+// (N/s) and the size of its terms at tau (y, a: the trajectory there, a with the held bonds' constraint)
 EventValue held_force(Phase& ph, int c, double tau, const double* y, const double* a);
 
 // A scalar function of tau on the current sub-interval, whose roots the loop looks for: a polynomial of

@@ -316,6 +316,7 @@ int tensile_hold(const System& sy, const Sticking& stk, int c, double impulse, d
     stk.add_velocity(group.data(), ct.i, mi < INF ? -ct.sign * impulse / mi : 0.0);
     if (ct.j >= 0) stk.add_velocity(group.data(), ct.j, mj < INF ? ct.sign * impulse / mj : 0.0);
     for (size_t h = 0; h < stk.held.size(); ++h) {
+        if (is_tie(stk, static_cast<int>(h))) continue;  // (a system with a friction rule has no rigid stop)
         const char* side = &stk.side[h * static_cast<size_t>(n)];
         double p = 0.0, scale = 0.0;
         for (int k = 0; k < n; ++k) {
@@ -340,6 +341,7 @@ void release_pulling(double* st, const System& sy, Sticking& stk, int c, double 
         state_accelerations(st, sy, stk, ag, q, row, au, a);
         int pulls = -1;
         for (size_t h = 0; h < stk.held.size() && pulls < 0; ++h) {
+            if (is_tie(stk, static_cast<int>(h))) continue;
             const Contact& ct = sy.contact[static_cast<size_t>(stk.held[h])];
             const double f = stk.force(ct.sign, static_cast<int>(h), sy.mass, au.data(), a.data());
             double scale = 0.0;
@@ -531,11 +533,26 @@ void held_outputs(const double* st, const System& sy, Sticking& stk, double ag, 
     for (int k = 0; k < n; ++k) au[static_cast<size_t>(k)] = a[static_cast<size_t>(k)] = row[1 + 2 * n + k] - ag;
     stk.project(sy.mass, a.data());
     for (int k = 0; k < n; ++k) row[1 + 2 * n + k] = a[static_cast<size_t>(k)] + ag;
-    double* fc = row + 1 + 3 * n + sy.n_h();
+    double* fe = row + 1 + 3 * n;  // (each element's force, then each contact's)
     for (size_t h = 0; h < stk.held.size(); ++h) {
-        const int c = stk.held[h];
-        fc[c] = stk.force(sy.contact[static_cast<size_t>(c)].sign, static_cast<int>(h), sy.mass, au.data(), a.data());
+        const int b = stk.held[h];
+        const double f = stk.force(stk.end_sign[h], static_cast<int>(h), sy.mass, au.data(), a.data());
+        if (is_tie(stk, static_cast<int>(h))) fe[b - sy.nc()] += f;  // (a sticking element: its friction force)
+        else fe[sy.n_h() + b] = f;
     }
+}
+
+double tie_force(double* st, const System& sy, int e, Sticking& stk, double ag, double* q, double* row) {
+    static thread_local std::vector<double> au, a;
+    double& slip = st[sy.lay.region + e];
+    const double was = slip;
+    slip = 0.0;
+    stk.build(sy, st);
+    state_accelerations(st, sy, stk, ag, q, row, au, a);
+    const int h = stk.held_of[static_cast<size_t>(sy.nc() + e)];
+    const double f = stk.force(1.0, h, sy.mass, au.data(), a.data());
+    slip = was;
+    return f;
 }
 
 }  // namespace pounding::run_parts

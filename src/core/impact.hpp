@@ -45,4 +45,8 @@ void close_chatters(const double* st, const System& sy, Rows& chatters);
 // a sample row from outputs() corrected for the held stops: their dofs' absolute accelerations and their forces
 void held_outputs(const double* st, const System& sy, Sticking& stk, double ag, double* row);
 
+// the force friction element e's tie would need in the state, were it sticking (N: isolator.hpp's D; stk and
+// row are scratch)
+double tie_force(double* st, const System& sy, int e, Sticking& stk, double ag, double* q, double* row);
+
 }  // namespace pounding::run_parts

@@ -16,6 +16,7 @@ double backbone_force_at_break(const Hysteretic& h, int j) {
 IsoLinear iso_linear(const System& sy, int e, const double* st) {
     const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
     const int n_sp = h.n_springs();
+    if (h.rule == RULE_FRICTION) return {h.slopes[0], st[sy.lay.region + e] * h.friction};  // (0 sticking)
     if (h.rule == RULE_ELASTIC) {
         const int r = static_cast<int>(st[sy.lay.region + e]);
         const int a = std::abs(r);
@@ -45,6 +46,7 @@ IsoLinear iso_linear(const System& sy, int e, const double* st) {
 double iso_energy(const System& sy, int e, const double* st, double d) {
     const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
     const int n_sp = h.n_springs();
+    if (h.rule == RULE_FRICTION) return 0.5 * h.slopes[0] * d * d;
     if (h.rule == RULE_ELASTIC) {
         const double a = std::abs(d);
         double u = 0.0, lo = 0.0, f_lo = 0.0;
@@ -69,15 +71,15 @@ double iso_energy(const System& sy, int e, const double* st, double d) {
 
 namespace {
 int add(const Hysteretic& h, EventRow* evs, int n, double alpha, double beta, double gamma, int action, int index,
-        double direction) {
+        double direction, int kind = KIND_LINEAR, int side = SIDE_NONE) {
     EventRow& r = evs[n];
-    r.kind = KIND_LINEAR;
+    r.kind = kind;
     r.i = h.i;
     r.j = h.j;
     r.alpha = alpha;
     r.beta = beta;
     r.gamma = gamma;
-    r.side = SIDE_NONE;
+    r.side = side;
     r.action = action;
     r.index = index;
     r.dir = direction;
@@ -89,6 +91,17 @@ int iso_events(const System& sy, const double* st, EventRow* evs, int n) {
     for (int e = 0; e < sy.n_h(); ++e) {
         const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
         const int n_sp = h.n_springs();
+        if (h.rule == RULE_FRICTION) {
+            const double s = st[sy.lay.region + e];
+            if (s != 0.0) {  // slipping: until s u' comes to zero
+                n = add(h, evs, n, 0.0, 0.0, s, ACT_STICK, e, 0.0, KIND_LINEAR, SIDE_VELOCITY);
+            } else {  // sticking: until the tie's force D reaches +F (then slips up) or -F (down)
+                const int bond = sy.nc() + e;
+                n = add(h, evs, n, h.friction, -1.0, 0.0, ACT_SLIP, e, 1.0, KIND_STICK, bond);
+                n = add(h, evs, n, h.friction, 1.0, 0.0, ACT_SLIP, e, -1.0, KIND_STICK, bond);
+            }
+            continue;
+        }
         if (n_sp == 0) continue;
         if (h.rule == RULE_ELASTIC) {
             const int r = static_cast<int>(st[sy.lay.region + e]);
@@ -122,10 +135,15 @@ int iso_events(const System& sy, const double* st, EventRow* evs, int n) {
 
 double iso_advance(const System& sy, double* st, const double* x_start, const double* x_end) {
     double work = 0.0;
-    for (const Hysteretic& h : sy.hyst) {
+    for (int e = 0; e < sy.n_h(); ++e) {
+        const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
         if (h.rule == RULE_ELASTIC) continue;
         const int n_sp = h.n_springs();
         const double d_start = rel(x_start, h.i, h.j), d_end = rel(x_end, h.i, h.j);
+        if (h.rule == RULE_FRICTION) {  // (a slip never turns inside a sub-interval: its end is an event)
+            if (st[sy.lay.region + e] != 0.0) work += h.friction * std::abs(d_end - d_start);
+            continue;
+        }
         double* slip = st + sy.lay.base + h.first;
         const double* dir = st + sy.lay.base + sy.lay.n_sp + h.first;
         for (int i = 0; i < n_sp; ++i) {
@@ -150,8 +168,27 @@ void iso_transition(const System& sy, double* st, int action, int index, double 
         st[base + index] = iso_u(sy, e, st) - direction * h.breaks[index - h.first];
     } else if (action == ACT_REVERSAL) {
         const Hysteretic& h = sy.hyst[static_cast<size_t>(index)];
+        if (h.rule == RULE_FRICTION) st[sy.lay.region + index] = -st[sy.lay.region + index];
         for (int i = 0; i < h.n_springs(); ++i) st[base + n_sp + h.first + i] = 0.0;
+    } else if (action == ACT_SLIP) {
+        st[sy.lay.region + index] = direction;
+    } else if (action == ACT_STICK) {  // the pair's relative velocity zero (the ground's end: the dof's)
+        const Hysteretic& h = sy.hyst[static_cast<size_t>(index)];
+        st[sy.lay.region + index] = 0.0;
+        st[sy.lay.v + h.i] = h.j >= 0 ? st[sy.lay.v + h.j] : 0.0;
     }
+}
+
+int friction_decision(const System& sy, double* st, int e, double tie_force) {
+    const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+    const double s = st[sy.lay.region + e];
+    if (std::abs(tie_force) <= h.friction) {
+        iso_transition(sy, st, ACT_STICK, e, 0.0);
+        return ACT_STICK;
+    }
+    const double on = tie_force > 0.0 ? 1.0 : -1.0;  // (the way D pushes: the way the pair accelerates)
+    iso_transition(sy, st, ACT_SLIP, e, on);
+    return on == -s ? ACT_REVERSAL : ACT_SLIP;
 }
 
 IsoLinear iso_linear_in_slips(const System& sy, int e, const double* st, double* d_slip, double* follows) {
@@ -159,7 +196,7 @@ IsoLinear iso_linear_in_slips(const System& sy, int e, const double* st, double*
     IsoLinear il = iso_linear(sy, e, st);
     std::fill(d_slip, d_slip + h.n_springs(), 0.0);
     std::fill(follows, follows + h.n_springs(), 0.0);
-    if (h.rule == RULE_ELASTIC) return il;  // (its slips are not used: constants of the monodromy)
+    if (h.rule != RULE_KINEMATIC) return il;  // (friction: no exact monodromy yet, Python refuses it)  // (its slips are not used: constants of the monodromy)
     const double* slip = st + sy.lay.base + h.first;
     const double* dir = st + sy.lay.base + sy.lay.n_sp + h.first;
     for (int i = 0; i < h.n_springs(); ++i) {

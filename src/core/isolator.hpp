@@ -4,14 +4,21 @@
 //     (spring i of stiffness K_i - K_(i+1), slipping when its strain u - u_i reaches +-D_i); state: the slips
 //     u_i and slip directions s_i at the layout's base, from the element's first spring on.
 //   elastic (rule 1): the force follows the backbone; state: its branch at the layout's region + e.
-// Events: a yield's index is the spring's among the system's; a branch change's and a reversal's the element's.
+//   Coulomb friction (rule 2): a spring of its one slope k in parallel with a friction force F (Hysteretic's
+//     friction, N) that sticks rigidly: while it slips, k u + s F with s the slip's direction (the sign of u');
+//     while it sticks, its pair is tied (sticking.hpp: a bond, nc + e) and the force is k u plus the friction
+//     the tie needs, D.  State: s at region + e (0 sticking).  A slip ends where u' = 0: there the run decides
+//     (friction_decision) to stick, when |D| <= F, or to slip the other way; a stick ends where |D| reaches F.
+//     Every phase is linear.  (F = mu W and k = W / R: a friction pendulum; k = 0: a flat slider.)
+// Events: a yield's index is the spring's among the system's; a branch change's, a reversal's, a stick's and a
+// slip's the element's.
 #pragma once
 
 #include "core.hpp"
 
 namespace pounding {
 
-constexpr int RULE_KINEMATIC = 0, RULE_ELASTIC = 1;
+constexpr int RULE_KINEMATIC = 0, RULE_ELASTIC = 1, RULE_FRICTION = 2;
 
 struct EventRow;  // events.hpp
 
@@ -28,6 +35,10 @@ int iso_events(const System& sy, const double* st, EventRow* evs, int n);
 // the slipping springs moved with their elements from x_start to x_end (displacements, n): the work they did
 double iso_advance(const System& sy, double* st, const double* x_start, const double* x_end);
 void iso_transition(const System& sy, double* st, int action, int index, double direction);
+// a friction element's slip that has come to rest (u' = 0), given the force D its tie would need there (N): it
+// sticks (|D| <= F: its pair's relative velocity set to zero) or slips on, the way D pushes; the action taken
+// (ACT_STICK, or ACT_REVERSAL / ACT_SLIP when it slips back / on)
+int friction_decision(const System& sy, double* st, int e, double tie_force);
 
 // The exact monodromy's view of an element (monodromy.cpp).  Its force as linear in u and its slips:
 // F = k u + r + sum_s d_slip[s] slip_s, with follows[s] 1 where spring s slips (its slip moves with u), 0 where it

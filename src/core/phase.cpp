@@ -541,8 +541,9 @@ void held_force_poly(const Phase& ph, int c, Poly& q) {
     const int n = ph.n, ny = ph.ny, nt = ph.nt;
     const double* t = ph.tc.data();
     const Sticking& st = ph.stk;
-    const char* side = &st.side[static_cast<size_t>(st.held_of[static_cast<size_t>(c)] * n)];
-    const double sign = ph.ct[static_cast<size_t>(c)].sign;
+    const int h = st.held_of[static_cast<size_t>(c)];
+    const char* side = &st.side[static_cast<size_t>(h * n)];
+    const double sign = st.end_sign[static_cast<size_t>(h)];
     q.deg = nt - 1;
     double wk = 1.0;  // w^k / k!
     for (int k = 0; k < nt; ++k) {

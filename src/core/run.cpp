@@ -138,14 +138,17 @@ double velocity_cuts(Phase& ph, const System& sy, double h, const Buffers& b, co
 
 struct Earliest { double tau; int i; };
 
+// (continuing: the same phase goes on from the last sub-interval's end, whose event values stand; but at a
+// record's knot a force's rate jumps with the table's, so that a held force's or a stick's is computed anew)
 Earliest earliest_event(Phase& ph, const EventRow* evs, int n_ev, std::vector<double>& ev_end, bool continuing,
-                        double h, const Buffers& b) {
+                        bool at_knot, double h, const Buffers& b) {
     double tau = h;
     int i_ev = -1;
     for (int i = 0; i < n_ev; ++i) {
         double g0, gp0, sc0;
         double* end = &ev_end[static_cast<size_t>(3 * i)];
-        if (continuing) {
+        const bool force = evs[i].kind == KIND_HELD || evs[i].kind == KIND_STICK;
+        if (continuing && !(at_knot && force)) {
             g0 = end[0];
             gp0 = end[1];
             sc0 = end[2];
@@ -323,6 +326,27 @@ void fit_workspace(RunWorkspace::Impl& w, const System& sy) {
     }
 }
 
+// a friction element at the start: moving, it slips; at rest, it sticks unless its tie would need more than
+// its friction (then it slips at once, the way the force pushes: an event at the start)
+void start_friction(Loop& lp) {
+    const System& sy = lp.sy;
+    double* st = lp.st;
+    for (const int e : sy.ties) {
+        const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+        double& slip = st[lp.L.region + e];
+        const double u_rate = rel(st + lp.L.v, h.i, h.j);
+        if (slip == 0.0 && u_rate != 0.0) slip = u_rate > 0.0 ? 1.0 : -1.0;
+        if (slip != 0.0) continue;
+        const double d = tie_force(st, sy, e, lp.stk_out, lp.ag_now, lp.b.q.data(), lp.row.data());
+        if (std::abs(d) <= h.friction) continue;
+        iso_transition(sy, st, ACT_SLIP, e, d > 0.0 ? 1.0 : -1.0);
+        double* r = lp.out.events.push();
+        r[EC_T] = st[T];
+        r[EC_ACTION] = static_cast<double>(ACT_SLIP);
+        r[EC_INDEX] = static_cast<double>(e);
+    }
+}
+
 // the run's constants, its energies at the start and its first sample
 void set_up(Loop& lp) {
     const System& sy = lp.sy;
@@ -344,8 +368,9 @@ void set_up(Loop& lp) {
     if (sy.has_b)
         for (const Contact& c : sy.contact)
             if (c.law == MULTILINEAR || c.law == MULTILINEAR_KINEMATIC) lp.has_ml = true;
-    energies(lp.st, sy, lp.kin0, lp.iso0, lp.bmp0);
     lp.ag_now = excitation_value(lp.fo, lp.st[T]);
+    start_friction(lp);
+    energies(lp.st, sy, lp.kin0, lp.iso0, lp.bmp0);
     outputs(lp.st, sy, lp.b.q.data(), lp.row.data());
     held_outputs(lp.st, sy, lp.stk_out, lp.ag_now, lp.row.data());
     std::copy(lp.row.begin(), lp.row.end(), lp.out.samples.push());
@@ -490,7 +515,7 @@ void earliest(Loop& lp) {
         lp.tr = nullptr;
         ph.e_h = lp.h;
     }
-    const Earliest ee = earliest_event(ph, lp.w.evs.data(), lp.n_ev, lp.w.ev_end, lp.continuing, lp.h, b);
+    const Earliest ee = earliest_event(ph, lp.w.evs.data(), lp.n_ev, lp.w.ev_end, lp.continuing, lp.record, lp.h, b);
     lp.tau = ee.tau;
     lp.i_ev = ee.i;
     lp.continuing = lp.i_ev < 0 && !ph.numeric &&
@@ -572,6 +597,7 @@ bool apply_event(Loop& lp) {
     const System& sy = lp.sy;
     double* st = lp.st;
     const EventRow& ev = lp.w.evs[static_cast<size_t>(lp.i_ev)];
+    EventRow taken = ev;  // (its action as taken: a friction slip's end sticks or slips on)
     lp.ag_now = table_acceleration(lp.ph, lp.tau);
     bool resolved = false;  // (a rigid impact that sent the pair apart or held it: no Zeno step)
     if (ev.action == ACT_CONTACT && law_is_rigid(sy.contact[static_cast<size_t>(ev.index)].law)) {
@@ -580,10 +606,13 @@ bool apply_event(Loop& lp) {
                                  lp.out.chatters, lp.b.q.data(), lp.row.data(), lp.h_flight);
     } else if (ev.kind == KIND_HELD) {
         rigid_release(st, sy, ev.index, lp.out.contacts);
+    } else if (ev.action == ACT_STICK) {  // a friction slip at rest: it sticks, or slips on (the way it takes)
+        const double d = tie_force(st, sy, ev.index, lp.stk_out, lp.ag_now, lp.b.q.data(), lp.row.data());
+        taken.action = friction_decision(sy, st, ev.index, d);
     } else {
         jump(st, sy, ev, lp.out.contacts, lp.resolution);
     }
-    record_event(st, sy, ev, lp.out.events, lp.out.samples, lp.opt.sample_dt, lp.extrema, lp.b, lp.row, lp.stk_out,
+    record_event(st, sy, taken, lp.out.events, lp.out.samples, lp.opt.sample_dt, lp.extrema, lp.b, lp.row, lp.stk_out,
                  lp.ag_now);
     // (a rigid impact that resolved its meeting after a short flight is a chatter's, summed in closed form
     // when it accumulates; one at the same instant as the last event is not)

@@ -46,10 +46,11 @@ Piece excitation_piece(const Forcing& fo, double t, int64_t j_hint) {
 // the run's length (m) and velocity (m/s) scales: the system's and the excitation's, not the start's
 void run_scales(const System& sy, const Forcing& fo, double& x, double& xw) {
     // (the isolator's first slope; a structure without one, fixed at its base: its stiffest own spring)
+    // (a flat slider's, of no slope: the same; a structure without any spring: 1 Hz)
     double k = sy.n_h() > 0 ? sy.iso().slopes[0] : 0.0;
-    if (sy.n_h() == 0)
+    if (k == 0.0)
         for (int i = 0; i < sy.n; ++i) k = std::max(k, sy.k0[static_cast<size_t>(i * sy.n + i)]);
-    double w = std::sqrt(k / sy.total_mass);
+    double w = k > 0.0 ? std::sqrt(k / sy.total_mass) : TWO_PI;
     double amp = 0.0;
     if (fo.kind == EXC_HARMONIC) {
         amp = std::abs(fo.p[0]);

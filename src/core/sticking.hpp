@@ -7,6 +7,10 @@
 // accelerations the system would have without the held stops).  The held stops of a group form a tree (a loop
 // is never closed: the run bounces instead, see sticking_closes_loop), so each held stop's force is what the
 // dofs on its first end's side need: F = sign sum_(k on that side) m_k (a_free_k - a_k), pushing while F > 0.
+//
+// A friction element that sticks (isolator.hpp's rule 2) ties its pair the same way: a bond like a held stop's,
+// of sign +1, whose force is the friction the stick needs.  Bonds are indexed: contact c is bond c, element e's
+// tie bond nc + e.
 #pragma once
 
 #include <vector>
@@ -21,18 +25,22 @@ struct Sticking {
     std::vector<int> grp;       // per dof: its group, -1 when no held stop binds it
     std::vector<int> grounded;  // per group: 1 when a held stop ties it to the ground
     std::vector<double> gmass;  // per group: its mass, kg
-    std::vector<int> held;      // the held stops (contact indices)
-    std::vector<char> side;     // per held stop (held.size() x n): +1 dof k on its first end's side, -1 on its
+    std::vector<int> held;      // the held bonds (a contact's index, or nc + an element's)
+    std::vector<int> end_i, end_j;  // per held bond: its pair (end_j GROUND for the ground)
+    std::vector<double> end_sign;   // per held bond: its sign (a contact's; +1 for a tie)
+    std::vector<char> side;     // per held bond (held.size() x n): +1 dof k on its first end's side, -1 on its
                                 // second's (when the first's is held to the ground), 0 neither
-    std::vector<int> held_of;   // per contact: its index in held, -1 when not held
+    std::vector<int> held_of;   // per bond (nc + n_h): its index in held, -1 when not held
+    int nc = 0;                 // (the first tie's bond: the contacts' count)
     std::vector<int> up;        // (scratch: the union-find's parents)
     std::vector<int> roots;     // (scratch: each root's group)
     std::vector<int> stack_;    // (scratch: the walk over the held stops)
-    // the groups of the rigid stops in contact in the state (st[in] != 0); false when they close a loop
+    // the groups of the rigid stops in contact in the state (st[in] != 0) and the friction elements sticking;
+    // false when they close a loop
     bool build(const System& sy, const double* st);
     // the accelerations a (n) with the held stops, from those without them (in place)
     void project(const std::vector<double>& mass, double* a) const;
-    // held stop h's force, N (sign: the stop's), from the accelerations without (au) and with (a) the held stops
+    // held bond h's force, N (sign: the bond's), from the accelerations without (au) and with (a) the held bonds
     double force(double sign, int h, const std::vector<double>& mass, const double* au, const double* a) const;
     // a dof's side of an impact: its group's mass (infinite when it cannot move), kg
     double side_mass(const std::vector<double>& mass, int k) const;
@@ -40,7 +48,10 @@ struct Sticking {
     void add_velocity(double* v, int k, double dv) const;
 };
 
-// would holding contact c shut close a loop of held stops (through the ground too)?
+// is a held bond a tie (a sticking friction element's)?
+inline bool is_tie(const Sticking& s, int h) { return s.held[static_cast<size_t>(h)] >= s.nc; }
+
+// would holding contact c shut close a loop of held bonds (through the ground too)?
 bool sticking_closes_loop(const System& sy, const double* st, int c);
 
 }  // namespace pounding

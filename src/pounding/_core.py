@@ -40,7 +40,7 @@ except ImportError as exc:  # pragma: no cover  (a source tree never built)
 
 System = _c.System
 ContactSlot = _c.ContactSlot  # (built by keyword: i, j, sign, gap_m, law, params)
-Element = _c.Element  # (built by keyword: i, j, c_d, slopes, breaks, rule)
+Element = _c.Element  # (built by keyword: i, j, c_d, slopes, breaks, rule, friction_n)
 LAYOUT: dict[str, int] = dict(_c.LAYOUT)
 LAW_IDS: dict[str, int] = dict(_c.LAW_IDS)
 STATUS: dict[str, int] = dict(_c.STATUS)
@@ -175,8 +175,8 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
            has_b: bool, contacts: list[ContactSlot], tracked: tuple[tuple[int, int], ...] = ()) -> System:
     """A system as the core takes it: ``mass`` (kg, shape (n,)), the linear springs and dashpots ``k0``,
     ``c0`` (N/m, N s/m, shape (n, n)), the hysteretic elements (:class:`Element`: dof ``i`` against dof ``j``,
-    -1 the ground; its dashpot ``c_d`` N s/m, backbone ``slopes`` N/m and ``breaks`` m, ``rule`` 0 kinematic
-    or 1 elastic; the isolator first, which carries the Bouc-Wen numbers ``bw``, zeros for none; no element
+    -1 the ground; its dashpot ``c_d`` N s/m, backbone ``slopes`` N/m and ``breaks`` m, ``rule`` 0 kinematic,
+    1 elastic or 2 Coulomb friction (one slope, its force ``friction_n`` N); the isolator first, which carries the Bouc-Wen numbers ``bw``, zeros for none; no element
     at all: a structure fixed at its base), and the contact slots (:class:`ContactSlot`: dof ``i`` against dof
     ``j``, -1 the ground, compressed by ``sign (x_i - x_j) - gap_m``; its ``law`` id of :data:`LAW_IDS` and
     ``params``); ``has_b`` makes them active.  ``tracked``: pairs ``(i, j)`` whose relative displacement's
@@ -201,9 +201,14 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
         if not isinstance(el, Element):
             raise ValueError(f"element {e}: an Element, got {type(el).__name__}")
         pair(el.i, el.j, f"element {e}")
-        if len(el.slopes) < 1 or len(el.breaks) != len(el.slopes) - 1 or el.rule not in (0, 1):
+        if len(el.slopes) < 1 or len(el.breaks) != len(el.slopes) - 1 or el.rule not in (0, 1, 2):
             raise ValueError(f"element {e}: {len(el.slopes)} slopes need {len(el.slopes) - 1} breaks, "
-                             "rule 0 or 1")
+                             "rule 0, 1 or 2")
+        if (el.rule == 2) != (el.friction_n > 0.0) or (el.rule == 2 and (len(el.slopes) != 1 or e != 0
+                                                                         or el.j != -1 or any(bw))):
+            raise ValueError(f"element {e}: the friction rule (2) is the isolator's (element 0, on the "
+                             "ground), of one slope, a friction force > 0 and no Bouc-Wen spring; no other "
+                             "rule has a friction force")
     if len(bw) != LAYOUT["BW_PARAMS"]:
         raise ValueError(f"bw: {LAYOUT['BW_PARAMS']} numbers, got {len(bw)}")
     for c, slot in enumerate(contacts):
@@ -229,10 +234,12 @@ def contact_slot(*, i: int, j: int, sign: float, gap_m: float, law: int, params:
     return ContactSlot(i=int(i), j=int(j), sign=float(sign), gap_m=float(gap_m), law=int(law), params=params)
 
 
-def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int) -> Element:
-    """A hysteretic element (:class:`Element`) from numbers as the model gives them."""
+def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int,
+            friction_n: float = 0.0) -> Element:
+    """A hysteretic element (:class:`Element`) from numbers as the model gives them (``friction_n``: the
+    Coulomb force of rule 2, N)."""
     return Element(i=int(i), j=int(j), c_d=float(c_d), slopes=[float(x) for x in slopes],
-                   breaks=[float(x) for x in breaks], rule=int(rule))
+                   breaks=[float(x) for x in breaks], rule=int(rule), friction_n=float(friction_n))
 
 
 def _f64(a: Any) -> np.ndarray:
