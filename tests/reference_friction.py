@@ -94,7 +94,8 @@ def _rest_force(s: FrictionStructure, k: np.ndarray, c: np.ndarray, t: float, x:
 
 
 def reference(s: FrictionStructure, t_end: float, x0: np.ndarray, v0: np.ndarray, rtol: float = 1e-12,
-              atol: float = 1e-15, max_phases: int = 100_000, knots: np.ndarray | None = None) -> FrictionResult:
+              atol: float = 1e-15, max_phases: int = 100_000,
+              knots: np.ndarray | None = None) -> FrictionResult:
     """Integrate from (x0, v0) at t = 0 to ``t_end``: the histories at every step and event, the stick and
     slip events, the works.
 

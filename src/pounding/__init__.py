@@ -25,8 +25,8 @@ _NAMES = {
     ".identification": ("ContactLawFit", "Identification", "ModelFamily", "SystemFamily", "Targets",
                         "fit_contact_law", "identify", "paper_targets", "rank_contact_laws"),
     ".metrics": ("HysteresisLoop", "impact_table"),
-    ".model": ("Adjacent", "Link", "BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley",
-               "Isolator", "Jankowski",
+    ".model": ("Adjacent", "Link", "BoucWen", "Bumpers", "ElasticPlastic", "FrictionIsolator", "Hertzdamp",
+               "HuntCrossley", "Isolator", "Jankowski",
                "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "RigidStop", "Sensor",
                "Stand", "Storey", "Structure", "Wall"),
     ".protocols": ("BasinStabilityMap", "Basins", "BifurcationDiagram", "CampaignResult", "PoundingSpectrum",
@@ -85,9 +85,9 @@ if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
     from .identification import (ContactLawFit, Identification, ModelFamily, SystemFamily,  # noqa: F401
                                  Targets, fit_contact_law, identify, paper_targets, rank_contact_laws)
     from .metrics import HysteresisLoop, impact_table  # noqa: F401
-    from .model import (Adjacent, BoucWen, Bumpers, ElasticPlastic, Hertzdamp, HuntCrossley,  # noqa: F401
-                        Isolator, Jankowski, KelvinVoigt, Link, MeasurementChain, MultilinearBumper,
-                        Oscillator, RigidStop, Sensor, Stand, Storey, Structure, Wall)
+    from .model import (Adjacent, BoucWen, Bumpers, ElasticPlastic, FrictionIsolator,  # noqa: F401
+                        Hertzdamp, HuntCrossley, Isolator, Jankowski, KelvinVoigt, Link, MeasurementChain,
+                        MultilinearBumper, Oscillator, RigidStop, Sensor, Stand, Storey, Structure, Wall)
     from .protocols import (BasinStabilityMap, Basins, BifurcationDiagram, CampaignResult,  # noqa: F401
                             PoundingSpectrum, SweepResult, basin_stability_map, basins,
                             bifurcation_diagram,

@@ -176,7 +176,8 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
     """A system as the core takes it: ``mass`` (kg, shape (n,)), the linear springs and dashpots ``k0``,
     ``c0`` (N/m, N s/m, shape (n, n)), the hysteretic elements (:class:`Element`: dof ``i`` against dof ``j``,
     -1 the ground; its dashpot ``c_d`` N s/m, backbone ``slopes`` N/m and ``breaks`` m, ``rule`` 0 kinematic,
-    1 elastic or 2 Coulomb friction (one slope, its force ``friction_n`` N); the isolator first, which carries the Bouc-Wen numbers ``bw``, zeros for none; no element
+    1 elastic or 2 Coulomb friction (one slope, its force ``friction_n`` N); the isolator first, which
+    carries the Bouc-Wen numbers ``bw``, zeros for none; no element
     at all: a structure fixed at its base), and the contact slots (:class:`ContactSlot`: dof ``i`` against dof
     ``j``, -1 the ground, compressed by ``sign (x_i - x_j) - gap_m``; its ``law`` id of :data:`LAW_IDS` and
     ``params``); ``has_b`` makes them active.  ``tracked``: pairs ``(i, j)`` whose relative displacement's
@@ -204,11 +205,11 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
         if len(el.slopes) < 1 or len(el.breaks) != len(el.slopes) - 1 or el.rule not in (0, 1, 2):
             raise ValueError(f"element {e}: {len(el.slopes)} slopes need {len(el.slopes) - 1} breaks, "
                              "rule 0, 1 or 2")
-        if (el.rule == 2) != (el.friction_n > 0.0) or (el.rule == 2 and (len(el.slopes) != 1 or e != 0
-                                                                         or el.j != -1 or any(bw))):
-            raise ValueError(f"element {e}: the friction rule (2) is the isolator's (element 0, on the "
-                             "ground), of one slope, a friction force > 0 and no Bouc-Wen spring; no other "
-                             "rule has a friction force")
+        if (el.rule == 2) != (el.friction_n > 0.0) or (el.rule == 2 and (len(el.slopes) != 1 or el.j != -1
+                                                                         or (e == 0 and any(bw)))):
+            raise ValueError(f"element {e}: the friction rule (2) is an isolator's (on the ground), of one "
+                             "slope, a friction force > 0 and no Bouc-Wen spring; no other rule has a "
+                             "friction force")
     if len(bw) != LAYOUT["BW_PARAMS"]:
         raise ValueError(f"bw: {LAYOUT['BW_PARAMS']} numbers, got {len(bw)}")
     for c, slot in enumerate(contacts):

@@ -126,6 +126,12 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str) -> None:
                                          f"{math.copysign(bisect_right(breaks, abs(u)), u):g})")
             first += n_sp
             continue
+        if rule == 2:  # (friction: its slip's direction, -1, 0 or 1; 0 while its pair moves: it slips)
+            slip = x_all[lay["region"] + e]
+            if slip not in (-1.0, 0.0, 1.0):
+                field = "isolator_branch" if e == 0 else f"vector[{lay['region'] + e}]"
+                raise bad(field, slip, f"is {who} slip direction: -1, 0 (sticking) or 1")
+            continue
         if x_all[lay["region"] + e] != 0.0:
             field = "isolator_branch" if e == 0 else f"vector[{lay['region'] + e}]"
             raise bad(field, x_all[lay["region"] + e],

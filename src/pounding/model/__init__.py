@@ -2,6 +2,7 @@
 
 from .contact_laws import ElasticPlastic, Hertzdamp, HuntCrossley, Jankowski, KelvinVoigt, MultilinearBumper
 from .contact_laws import RigidStop
+from .friction import FrictionIsolator
 from .isolator import BoucWen, Isolator
 from .measurement import MeasurementChain, Sensor
 from .oscillator import Oscillator
@@ -9,7 +10,8 @@ from .adjacent import Adjacent, Link
 from .structure import Structure
 from .structure_parts import Bumpers, Stand, Storey, Wall
 
-__all__ = ["Adjacent", "Link", "BoucWen", "Bumpers", "ElasticPlastic", "Hertzdamp", "HuntCrossley",
+__all__ = ["Adjacent", "Link", "BoucWen", "Bumpers", "ElasticPlastic", "FrictionIsolator", "Hertzdamp",
+           "HuntCrossley",
            "Isolator",
            "Jankowski",
            "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "RigidStop", "Sensor",

@@ -13,6 +13,7 @@ from .._errors import InputError, Problem
 from ._toml import TomlFile
 from .structure_parts import MAX_GAP_M
 from .contact_laws import check_law, law_from_dict, law_to_dict
+from .friction import refuse_rigid_stops
 from .oscillator import check_keys
 from .structure import Structure
 from .structure_parts import MAX_STOREYS
@@ -132,6 +133,8 @@ class Adjacent(TomlFile):
                 raise InputError(Problem.DUPLICATE, "links", levels, repeated=f"the levels {pair}")
             pairs.append(pair)
         object.__setattr__(self, "links", links)
+        for s in (self.first, self.second):  # (a friction isolator's system: no rigid stop yet)
+            refuse_rigid_stops(s.isolator, [(f"links[{i}].law", link.law) for i, link in enumerate(links)])
         with_bw = [s for s in (self.first, self.second) if s.isolator is not None and s.isolator.bouc_wen]
         if len(with_bw) > 1:
             raise InputError(Problem.WRONG_CONFIGURATION, "second.isolator", self.second.isolator,

@@ -253,6 +253,12 @@ class Isolator:
             out["bouc_wen"] = self.bouc_wen.to_dict()
         return out
 
+    @property
+    def kernel_friction_n(self) -> float:
+        """The friction force the engine's friction rule takes, N: 0, a rubber bearing has none
+        (:class:`FrictionIsolator`'s has)."""
+        return 0.0
+
     def kernel_arrays(self) -> tuple[np.ndarray, np.ndarray, int, np.ndarray]:
         """``(slopes, breakpoints, rule, bouc_wen)`` as the compiled engine takes them (the last
         :meth:`BoucWen.kernel_array`, zeros without one)."""

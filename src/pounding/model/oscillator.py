@@ -11,6 +11,7 @@ from .._checks import instance_of
 from .._errors import InputError, Problem, renamed_fields
 from ._toml import TomlFile, renamed_keys
 from .contact_laws import law_from_dict
+from .friction import FrictionIsolator, refuse_rigid_stops
 from .isolator import Isolator
 from .structure_parts import Bumpers, check_mass
 
@@ -66,10 +67,15 @@ class Oscillator(TomlFile):
     def __post_init__(self) -> None:
         object.__setattr__(self, "mass_kg", check_mass("mass_kg", self.mass_kg,
                                                        "the mass is in kg (500 kg is 500.0)"))
-        instance_of("isolator", self.isolator, Isolator, "Isolator")
+        instance_of("isolator", self.isolator, ISOLATORS, "Isolator or FrictionIsolator")
         if self.bumpers is not None and not isinstance(self.bumpers, Bumpers):
             raise InputError(Problem.WRONG_TYPE, "bumpers", self.bumpers,
                              got=type(self.bumpers).__name__, expected="Bumpers or None")
+        if isinstance(self.isolator, FrictionIsolator):  # (it carries the mass's weight)
+            object.__setattr__(self, "isolator", self.isolator.carrying(self.mass_kg))
+            if self.bumpers is not None:
+                refuse_rigid_stops(self.isolator, (("bumpers.law", self.bumpers.law),
+                                                   ("bumpers.law_right", self.bumpers.law_right)))
 
     def without_bumpers(self) -> "Oscillator":
         """The same mass and isolator in the NBs configuration."""
@@ -95,11 +101,7 @@ class Oscillator(TomlFile):
             table = {k: v for k, v in table.items() if k != "meta"}
         table = renamed_keys(table, "", cls.RENAMED)
         check_keys(table, "", cls.FIELDS, required=("mass_kg", "isolator"))
-        iso_table = renamed_keys(table["isolator"], "isolator.", Isolator.RENAMED)
-        # every field, defaults included: a file says what the system is
-        check_keys(iso_table, "isolator.", Isolator.FIELDS,
-                    required=tuple(f for f in Isolator.FIELDS if f not in Isolator.OPTIONAL))
-        isolator = Isolator(**iso_table)
+        isolator = isolator_from_dict(table["isolator"])
         bumpers = None
         if "bumpers" in table:
             b = renamed_keys(table["bumpers"], "bumpers.", Bumpers.RENAMED)
@@ -124,3 +126,17 @@ def check_keys(table: Any, prefix: str, allowed: tuple[str, ...], required: tupl
     for key in required:
         if key not in table:
             raise InputError(Problem.MISSING_KEY, prefix + key, None, choices=", ".join(allowed))
+
+
+ISOLATORS = (Isolator, FrictionIsolator)  # (every kind of isolator a system takes)
+
+
+def isolator_from_dict(table: Any, prefix: str = "isolator.") -> "Isolator | FrictionIsolator":
+    """An isolator from its TOML table: a friction isolator when it has ``mu``, else a rubber one (its
+    backbone); every key checked."""
+    instance_of(prefix.rstrip("."), table, dict, "table ([isolator])")
+    kind = FrictionIsolator if "mu" in table else Isolator
+    iso_table = renamed_keys(table, prefix, kind.RENAMED)
+    check_keys(iso_table, prefix, kind.FIELDS,
+               required=tuple(f for f in kind.FIELDS if f not in kind.OPTIONAL))
+    return kind(**iso_table)

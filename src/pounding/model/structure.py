@@ -18,9 +18,9 @@ from .._checks import (instance_of, plausible, real_tuple)
 from .._errors import InputError, Problem
 from ._toml import TomlFile
 from .contact_laws import law_from_dict
+from .friction import FrictionIsolator, refuse_rigid_stops
 from .isolator import Isolator
-from ._toml import renamed_keys
-from .oscillator import Oscillator, check_keys
+from .oscillator import ISOLATORS, Oscillator, check_keys, isolator_from_dict
 from .structure_parts import MAX_STOREYS, Stand, Storey, Wall, check_mass
 
 PathLike = Union[str, Path]
@@ -86,7 +86,7 @@ class Structure(TomlFile):
     """
 
     base_mass_kg: Optional[float]
-    isolator: Optional[Isolator]
+    isolator: Optional[Union[Isolator, FrictionIsolator]]
     storeys: tuple = ()
     walls: tuple = field(default=())
     rayleigh: Optional[tuple] = None
@@ -102,7 +102,7 @@ class Structure(TomlFile):
                                  "Structure.fixed_base)")
         if self.isolator is not None:
             object.__setattr__(self, "base_mass_kg", check_mass("base_mass_kg", self.base_mass_kg))
-            instance_of("isolator", self.isolator, Isolator, "Isolator or None")
+            instance_of("isolator", self.isolator, ISOLATORS, "Isolator, FrictionIsolator or None")
         for name, kind in (("storeys", Storey), ("walls", Wall)):
             items = getattr(self, name)
             if isinstance(items, (str, bytes, dict)) or not hasattr(items, "__iter__"):
@@ -141,6 +141,12 @@ class Structure(TomlFile):
                                        f"mode {k + 1}, of period {2 * np.pi / w[k]:.3g} s, the ratio "
                                        f"{zeta[k]:.3g})",
                                  hint=": bring the two ratios closer together")
+        if isinstance(self.isolator, FrictionIsolator):  # (it carries the whole structure's weight)
+            total = self.base_mass_kg + sum(st.mass_kg for st in self.storeys)
+            object.__setattr__(self, "isolator", self.isolator.carrying(total))
+            refuse_rigid_stops(self.isolator, [(f"walls[{i}].{side}", getattr(w, side))
+                                               for i, w in enumerate(self.walls)
+                                               for side in ("left", "right")])
         levels = [w.level for w in self.walls]
         if self.fixed and not self.storeys:
             raise InputError(Problem.WRONG_CONFIGURATION, "storeys", [],
@@ -279,10 +285,7 @@ class Structure(TomlFile):
         check_keys(table, "", cls.FIELDS, required=())
         isolator = None
         if "isolator" in table:  # (neither it nor base_mass_kg: a fixed base)
-            iso_table = renamed_keys(table["isolator"], "isolator.", Isolator.RENAMED)
-            check_keys(iso_table, "isolator.", Isolator.FIELDS,
-                        required=tuple(f for f in Isolator.FIELDS if f not in Isolator.OPTIONAL))
-            isolator = Isolator(**iso_table)
+            isolator = isolator_from_dict(table["isolator"])
         storeys, walls = [], []
         for name, out in (("storeys", storeys), ("walls", walls)):
             rows = table.get(name, [])

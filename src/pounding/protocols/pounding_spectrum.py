@@ -21,7 +21,8 @@ from .._checks import float_array, instance_of, integer, positive
 from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Record
 from ..excitation.spectrum import check_records, damping_ratio_value, periods_array
-from ..model import Bumpers, Isolator, Oscillator, Structure
+from .._units import GRAVITY_M_S2
+from ..model import Bumpers, FrictionIsolator, Isolator, Oscillator, Structure
 from .._runner import Context, run_tasks
 from .._runner.progress import Progress
 from .pounding_spectrum_result import QUANTITIES, STRUCTURE_QUANTITIES, PoundingSpectrum
@@ -29,12 +30,17 @@ from .pounding_spectrum_result import QUANTITIES, STRUCTURE_QUANTITIES, Pounding
 MAX_RUNS = 2_000_000  # records x periods x (gaps + 1): beyond, refused (hours of work)
 
 
-def _isolator(template: Isolator | None, mass_kg: float, period_s: float, zeta: float) -> Isolator:
-    """The isolator of initial period ``period_s``: linear, or ``template``'s shape scaled to it."""
+def _isolator(template: Isolator | FrictionIsolator | None, mass_kg: float, period_s: float,
+              zeta: float) -> Isolator | FrictionIsolator:
+    """The isolator of initial period ``period_s``: linear, or ``template``'s shape scaled to it (a friction
+    pendulum's radius ``g (T / 2 pi)^2``, its friction kept)."""
     k = mass_kg * (2.0 * math.pi / period_s) ** 2
     c = 2.0 * zeta * math.sqrt(k * mass_kg)
     if template is None:
         return Isolator((k,), (), "elastic", c)
+    if isinstance(template, FrictionIsolator):
+        return replace(template, radius_m=GRAVITY_M_S2 * (period_s / (2.0 * math.pi)) ** 2, damping_n_s_m=c,
+                       weight_n=None, weight_carried=False)
     scale = k / template.slopes_n_m[0]
     return replace(template, slopes_n_m=tuple(s * scale for s in template.slopes_n_m), damping_n_s_m=c)
 
@@ -107,7 +113,7 @@ def _one_record(task: tuple, ctx: Context) -> tuple[np.ndarray, np.ndarray]:
 
 def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gaps_m: Any,
                       damping_ratio: float = 0.05, mass_kg: float = 500.0, bumper: Any = None,
-                      isolator: Isolator | None = None, structure: Structure | None = None,
+                      isolator: Isolator | FrictionIsolator | None = None, structure: Structure | None = None,
                       workers: int | None = None, scheduler: Any = None, progress: Progress = False,
                       max_steps: int = 10_000_000) -> PoundingSpectrum:
     """Peak responses of the isolated mass with bumpers and without, over records, periods and gaps; or of
@@ -128,10 +134,12 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
     bumper : contact law, optional
         The bumpers' law (e.g. ``pounding.KelvinVoigt(1.46e6, 400.0)``); default the paper's
         (``presets.paper_damped()``).
-    isolator : Isolator, optional
+    isolator : Isolator or FrictionIsolator, optional
         A nonlinear isolator's shape: its slopes scaled so that its first is ``m (2 pi / T)^2`` at
         each period, its breakpoints and hysteresis kept, its damping set by ``damping_ratio``.
-        Default: linear.  (A Bouc-Wen spring is not scaled: refused.)
+        Default: linear.  (A Bouc-Wen spring is not scaled: refused.)  A friction pendulum's radius is
+        the period's, ``g (T / 2 pi)^2``, its friction kept (``damping_ratio`` 0 for none besides it; a
+        flat slider has no period: refused).
     structure : Structure, optional
         A building with its walls (a moat wall at its base, stops at floors): ``periods_s`` are then its
         superstructure's first fixed-base period (its storeys' stiffnesses scaled to it, their dashpots by
@@ -202,7 +210,12 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
         else bumper
     bumpers = [Bumpers(float(g), float(g), law) for g in gaps]  # (checked here, warned once, not in a worker)
     if isolator is not None:
-        instance_of("isolator", isolator, Isolator, "pounding.Isolator or None (linear)")
+        instance_of("isolator", isolator, (Isolator, FrictionIsolator),
+                    "pounding.Isolator, pounding.FrictionIsolator or None (linear)")
+        if isinstance(isolator, FrictionIsolator) and isolator.radius_m is None:
+            raise InputError(Problem.BAD_STATE, "isolator", isolator,
+                             why="is a flat slider: it has no period",
+                             fix="give a friction pendulum (its radius_m is then each period's)")
         if isolator.bouc_wen is not None:
             raise InputError(Problem.BAD_STATE, "isolator", "Isolator(..., bouc_wen=...)",
                              why="a Bouc-Wen spring has no single stiffness to scale to each period",
