@@ -25,6 +25,7 @@ from typing import Callable
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.optimize import brentq
 
 
 @dataclass
@@ -93,6 +94,34 @@ def _rest_force(s: FrictionStructure, k: np.ndarray, c: np.ndarray, t: float, x:
     return float(-s.masses_kg[0] * s.accel(t) - k[0] @ x - c[0] @ v)
 
 
+def _first_crossing(sol, events: list, per_step: int = 32) -> tuple[float, int | None]:
+    """The phase's end: the first instant where one of its event functions crosses zero in its direction, and
+    which (None: none did, the phase ran to its bracket's end).
+
+    solve_ivp looks at an event function's sign at its steps' ends only: a function that crosses zero and
+    comes back within one step goes unseen (a slip that ends and would slip on the same way 0.4 ms later,
+    inside a 4 ms step, was found so).  Its dense output is scanned here at ``per_step`` points in each step,
+    from the phase's start, and the first sign change is solved for with brentq on it."""
+    lo = sol.t[:-1, None]
+    grid = (lo + (sol.t[1:, None] - lo) * np.linspace(0.0, 1.0, per_step + 1)[None, 1:]).ravel()
+    grid = np.concatenate([sol.t[:1], grid])
+    ys = sol.sol(grid)
+    best_t, best = float(sol.t[-1]), None
+    if sol.status == 1:  # (the solver's own: the first crossing unless an earlier one hid inside a step)
+        best = next(i for i, te in enumerate(sol.t_events) if te.size)
+    for which, fn in enumerate(events):
+        vals = fn.direction * np.array([fn(tt, ys[:, i]) for i, tt in enumerate(grid)])
+        hits = np.flatnonzero((vals[:-1] < 0.0) & (vals[1:] >= 0.0))
+        if hits.size == 0:
+            continue
+        a, b = grid[hits[0]], grid[hits[0] + 1]
+        root = b if vals[hits[0] + 1] == 0.0 else brentq(lambda tt: fn(tt, sol.sol(tt)), a, b, xtol=1e-15,
+                                                          rtol=4 * np.finfo(float).eps)
+        if root < best_t:
+            best_t, best = float(root), which
+    return best_t, best
+
+
 def reference(s: FrictionStructure, t_end: float, x0: np.ndarray, v0: np.ndarray, rtol: float = 1e-12,
               atol: float = 1e-15, max_phases: int = 100_000,
               knots: np.ndarray | None = None) -> FrictionResult:
@@ -101,8 +130,9 @@ def reference(s: FrictionStructure, t_end: float, x0: np.ndarray, v0: np.ndarray
 
     ``knots``: the instants where the table's acceleration has a kink (a record's samples).  Each
     integration stops at the next one: a held base's force is then linear in t between two of them (its rest
-    force, the table's piece), so that no crossing of it hides inside a long step of the solver (a stuck
-    single mass has a right-hand side of zero: the solver's steps would be as long as the run)."""
+    force, the table's piece, for a single mass), and a stick's steps are at most 1 ms (a stuck single mass
+    has a right-hand side of zero: the solver's steps would be as long as the run).  Each phase's dense output
+    is scanned for a crossing the solver's steps stepped over (``_first_crossing``)."""
     n = s.n
     k, c = s.matrices()
     m = np.asarray(s.masses_kg, dtype=float)
@@ -139,7 +169,8 @@ def reference(s: FrictionStructure, t_end: float, x0: np.ndarray, v0: np.ndarray
                 dy[0], dy[n] = 0.0, 0.0
             dy[2 * n] = -ag * float(m @ v)
             dy[2 * n + 1] = float(v @ c @ v)
-            dy[2 * n + 2] = f * abs(v[0]) if mode != 0 else 0.0
+            dy[2 * n + 2] = f * mode * v[0]  # (|v0| in the slip, smooth past its end: the last step's
+            #  dense output, which places the end, would cut a kink of abs(v0) there; 0 when held)
             return dy
 
         if mode == 0:
@@ -163,19 +194,22 @@ def reference(s: FrictionStructure, t_end: float, x0: np.ndarray, v0: np.ndarray
         # where it started, the bracket's end)
         first = min(1e-7, 0.5 * (t_stop - t)) if mode != 0 and y[n] == 0.0 else None
         sol = solve_ivp(rhs, (t, t_stop), y, method="DOP853", rtol=rtol, atol=atol, events=events,
-                        dense_output=mode == 0, first_step=first)
+                        dense_output=True, first_step=first, max_step=np.inf if mode else 1e-3)
         if sol.status < 0:
             raise RuntimeError(sol.message)
+        t_new, fired = _first_crossing(sol, events)
+        steps = sol.t[1:][sol.t[1:] < t_new]
+        y = sol.sol(t_new) if fired is not None and t_new < sol.t[-1] else sol.y[:, -1].copy()
         if mode == 0:  # (the friction needed to hold the base, over the stick)
-            grid = np.linspace(t, sol.t[-1], 64)
+            grid = np.linspace(t, t_new, 64)
             ys = sol.sol(grid)
             held = [abs(_rest_force(s, k, c, tt, ys[:n, i], ys[n:2 * n, i])) for i, tt in enumerate(grid)]
             out.stick_force_max_n = max(out.stick_force_max_n, max(held))
-        ts.append(sol.t[1:])
-        xs.append(sol.y[:n, 1:].T)
-        vs.append(sol.y[n:2 * n, 1:].T)
-        t_new, y = float(sol.t[-1]), sol.y[:, -1].copy()
-        if sol.status == 0:  # (t_stop: a knot, or the end)
+        inside = sol.y[:, 1:1 + steps.size]  # (the solver's steps before the phase's end)
+        ts.append(np.append(steps, t_new))
+        xs.append(np.vstack([inside[:n].T, y[None, :n]]))
+        vs.append(np.vstack([inside[n:2 * n].T, y[None, n:2 * n]]))
+        if fired is None:  # (t_stop: a knot, or the end)
             t = t_new
             continue
         short = short + 1 if t_new - t <= 1e-12 * max(1.0, t) else 0
@@ -183,7 +217,7 @@ def reference(s: FrictionStructure, t_end: float, x0: np.ndarray, v0: np.ndarray
             raise ReferenceStuck(f"phases of zero length at t = {t_new!r}")
         t = t_new
         if mode == 0:  # a stick ended: the base slips the way D pushes
-            mode = 1 if sol.t_events[0].size else -1
+            mode = 1 if fired == 0 else -1
             out.slips.append((t, mode))
         else:  # a slip ended: a stick, or a reversal
             y[n] = 0.0
