@@ -591,6 +591,21 @@ bool move_to_end(Loop& lp) {
     return true;
 }
 
+// a stick whose force touched mu W without passing it: the slip it began ended at once, at the same instant,
+// and the element sticks again; neither is an event (the slip's row and sample are taken back), so that a
+// table whose force peaks at exactly mu W leaves no zero-length slips
+bool touched_mu_w(Loop& lp, int e) {
+    Rows& events = lp.out.events;
+    if (events.n == 0) return false;
+    const double* last = events.row(events.n - 1);
+    if (!(last[EC_T] == lp.st[T] && last[EC_ACTION] == static_cast<double>(ACT_SLIP) &&
+          last[EC_INDEX] == static_cast<double>(e)))
+        return false;
+    events.n -= 1;
+    if (lp.opt.sample_dt >= 0.0) lp.out.samples.n -= 1;
+    return true;
+}
+
 // the event at the sub-interval's end: a rigid stop's impact (resolved in closed form), a held stop's release
 // or any other jump; its row and sample (false: the run stops, Zeno or at its most events)
 bool apply_event(Loop& lp) {
@@ -600,6 +615,7 @@ bool apply_event(Loop& lp) {
     EventRow taken = ev;  // (its action as taken: a friction slip's end sticks or slips on)
     lp.ag_now = table_acceleration(lp.ph, lp.tau);
     bool resolved = false;  // (a rigid impact that sent the pair apart or held it: no Zeno step)
+    bool untouched = true;  // (false: a touch of mu W, taken back)
     if (ev.action == ACT_CONTACT && law_is_rigid(sy.contact[static_cast<size_t>(ev.index)].law)) {
         resolved = rigid_contact(st, sy, lp.ph, lp.tau, lp.stk_out, ev.index, lp.ag_now,
                                  impact_scales(lp.ph, lp.h_phase, lp.resolution[0]), lp.ledger, lp.out.contacts,
@@ -609,11 +625,13 @@ bool apply_event(Loop& lp) {
     } else if (ev.action == ACT_STICK) {  // a friction slip at rest: it sticks, or slips on (the way it takes)
         const double d = tie_force(st, sy, ev.index, lp.stk_out, lp.ag_now, lp.b.q.data(), lp.row.data());
         taken.action = friction_decision(sy, st, ev.index, d);
+        untouched = !(taken.action == ACT_STICK && touched_mu_w(lp, ev.index));
     } else {
         jump(st, sy, ev, lp.out.contacts, lp.resolution);
     }
-    record_event(st, sy, taken, lp.out.events, lp.out.samples, lp.opt.sample_dt, lp.extrema, lp.b, lp.row, lp.stk_out,
-                 lp.ag_now);
+    if (untouched)
+        record_event(st, sy, taken, lp.out.events, lp.out.samples, lp.opt.sample_dt, lp.extrema, lp.b, lp.row,
+                     lp.stk_out, lp.ag_now);
     // (a rigid impact that resolved its meeting after a short flight is a chatter's, summed in closed form
     // when it accumulates; one at the same instant as the last event is not)
     const double tau = lp.tau, t = lp.t;

@@ -1,0 +1,288 @@
+"""Friction isolators (flat sliders and friction pendulums) against the solve_ivp reference with stick and
+slip events (tests/reference_friction.py), Den Hartog's exact steady state, closed forms and invariants."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import pounding as pd_
+from reference_friction import FrictionStructure, den_hartog, reference
+
+G = 9.81
+EVENT_S = 1e-9  # the issue's bound on a stick's or a slip's instant against the reference
+
+
+def _system(s: FrictionStructure) -> pd_.Structure:
+    """The reference's structure as the package's: its base on a friction isolator, its storeys."""
+    radius = None if s.k_r == 0.0 else G * float(np.sum(s.masses_kg)) / s.k_r
+    iso = pd_.FrictionIsolator(mu=s.mu, radius_m=radius, damping_n_s_m=s.c_r)
+    storeys = [pd_.Storey(float(m), float(k), float(c)) for m, k, c in zip(s.masses_kg[1:], s.storey_k,
+                                                                            s.storey_c)]
+    return pd_.Structure(float(s.masses_kg[0]), iso, storeys, [])
+
+
+@st.composite
+def frictions(draw):
+    """A random structure of 1 to 4 levels on a flat slider or a friction pendulum, under a harmonic or a
+    record (a random acceleration every 10 ms), moving at the start or at rest."""
+    n = draw(st.integers(1, 4))
+    masses = np.array([draw(st.floats(1e3, 5e3)) for _ in range(n)])
+    weight = G * masses.sum()
+    k_r = 0.0 if draw(st.booleans()) else weight / draw(st.floats(1.0, 4.0))
+    ks = np.array([draw(st.floats(1e6, 5e7)) for _ in range(n - 1)])
+    cs = np.array([draw(st.floats(0.0, 5e4)) for _ in range(n - 1)])
+    c_r = draw(st.sampled_from([0.0, draw(st.floats(0.0, 2e4))]))
+    mu = draw(st.floats(0.01, 0.2))
+    if draw(st.booleans()):
+        a, f, phase = draw(st.floats(0.1, 0.6)), draw(st.floats(0.5, 3.0)), draw(st.floats(0.0, 6.28))
+        def accel(t, a=a, f=f, phase=phase):
+            return a * G * math.sin(2 * math.pi * f * t + phase)
+        excitation, knots = pd_.Harmonic(a, f, phase=phase), None
+    else:
+        seed = draw(st.integers(0, 2**31))
+        t = np.arange(0.0, 2.0001, 0.01)
+        acc = np.random.default_rng(seed).normal(0.0, 2.0, t.size)
+        def accel(tt, t=t, acc=acc):
+            return float(np.interp(tt, t, acc))
+        excitation, knots = pd_.Record(t, acc), t
+    v0 = draw(st.sampled_from([0.0, draw(st.floats(-0.3, 0.3))]))
+    return FrictionStructure(masses, ks, cs, k_r, c_r, mu, accel), excitation, knots, v0
+
+
+def _events(run) -> list[tuple[float, str]]:
+    return [(float(t), str(k)) for t, k in zip(run.events["t_s"], run.events["kind"])]
+
+
+def _reference_events(ref, moving: bool) -> list[tuple[float, str]]:
+    """The reference's sticks, slips from rest and reversals as the engine names them (a start that moves is
+    a slip the engine does not list: it starts slipping)."""
+    out = [(t, "stick") for t in ref.sticks if t > 0.0 or moving]
+    out += [(t, "reversal") for t in ref.reversals]
+    out += [(t, "slip") for t, _ in ref.slips if t not in ref.reversals and not (t == 0.0 and moving)]
+    return sorted(out)
+
+
+@settings(max_examples=20, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(frictions())
+def test_stick_and_slip_match_the_reference(case):
+    """Random structures on friction isolators: every stick, slip and reversal at the reference's instant
+    within 1e-9 s, the final state and the friction work to 1e-8 of their scales."""
+    s, excitation, knots, v0 = case
+    duration = 2.0
+    ref = reference(s, duration, np.zeros(s.n), np.full(s.n, v0), knots=knots)
+    system = _system(s)
+    start = pd_.State.at_rest(system, velocity_m_s=v0)
+    run = pd_.simulate(system, excitation, duration, start, sample_rate_hz=0)
+    assert run.success
+    mine, theirs = _events(run), _reference_events(ref, v0 != 0.0)
+    assert [k for _, k in mine] == [k for _, k in theirs]
+    assert max((abs(a - b) for (a, _), (b, _) in zip(mine, theirs)), default=0.0) <= EVENT_S
+    scale = max(np.abs(ref.x).max(), 1e-3)
+    np.testing.assert_allclose(run.final_state.displacements_m, ref.x[-1], rtol=0, atol=1e-8 * scale)
+    assert run.energy.hysteretic == pytest.approx(ref.friction_j, rel=1e-8, abs=1e-9 * abs(ref.input_work_j))
+
+
+@settings(max_examples=15, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(frictions())
+def test_the_ledger_closes_and_the_friction_never_exceeds_mu_w(case):
+    """The input work equals the viscous and friction works plus the change of the stored energies (to 1e-9
+    of the input); the friction force, the isolator's force less its spring and dashpot, is never more than
+    mu W, and a stuck base does not move."""
+    s, excitation, _, v0 = case
+    system = _system(s)
+    run = pd_.simulate(system, excitation, 2.0, pd_.State.at_rest(system, velocity_m_s=v0),
+                       sample_rate_hz=2000.0)
+    e = run.energy
+    stored = e.kinetic + e.elastic + e.contact_elastic
+    assert e.input_work == pytest.approx(e.viscous + e.hysteretic + e.contact_dissipation + stored,
+                                         rel=0, abs=1e-9 * max(abs(e.input_work), 1.0))
+    frame = run.to_dataframe()
+    iso = system.isolator
+    u, du = frame["displacement_m[0]"].to_numpy(), frame["velocity_m_s[0]"].to_numpy()
+    t = frame["t_s"].to_numpy()
+    friction = frame["isolator_force_n"].to_numpy() - iso.restoring_stiffness_n_m * u - s.c_r * du
+    assert np.abs(friction).max() <= iso.friction_force_n * (1 + 1e-9)
+    kinds = _events(run)
+    for (t0, k0), (t1, _) in zip(kinds, kinds[1:] + [(2.0, "end")]):
+        if k0 != "stick":
+            continue
+        inside = (t > t0) & (t <= t1)  # (a sample at t0 is the slip's end, at its root: moving by rounding)
+        assert np.all(du[inside] == 0.0) and (not inside.any() or np.ptp(u[inside]) == 0.0)
+
+
+def test_a_flat_slider_s_mass_accelerates_at_mu_g():
+    """A mass on a flat slider: while it slips its absolute acceleration is mu g exactly, so its largest
+    is mu g (Coulomb's closed form)."""
+    run = pd_.simulate(pd_.Oscillator(500.0, pd_.FrictionIsolator(mu=0.07)), pd_.Harmonic(0.3, 1.0), 5.0)
+    assert run.quantities()["acc_max_g"] == pytest.approx(0.07, rel=1e-12)
+    assert (run.events["kind"] == "reversal").sum() >= 8
+
+
+@pytest.mark.filterwarnings("ignore::pounding._errors.PoundingWarning")  # (implausible mu and R: valid)
+@settings(max_examples=25, deadline=None)
+@given(b=st.floats(0.3, 3.0), ratio=st.floats(0.0, 0.6), m=st.floats(100.0, 5000.0), fn=st.floats(0.2, 2.0))
+def test_a_non_stop_steady_state_is_den_hartog_s(b, ratio, m, fn):
+    """Den Hartog's exact non-stop motion through the engine: started at his x0 at rest with his phase, the
+    mass reverses at half the period at -x0 and returns to x0, to 1e-9 (a friction pendulum under the
+    force P0 cos(w t + phi), the table's -P0/m cos)."""
+    from hypothesis import assume
+
+    assume(abs(b - 1.0) > 0.05 and abs(b - 1.0 / 3.0) > 0.02)
+    k = m * (2 * math.pi * fn) ** 2
+    omega = b * 2 * math.pi * fn
+    p0 = 1000.0
+    x0, phi = den_hartog(m, k, ratio * p0, p0, omega)
+    assume(np.isfinite(x0) and -k * x0 + p0 * math.cos(phi) < -ratio * p0 * (1 + 1e-6))
+    mu = ratio * p0 / (G * m)
+    assume(mu == 0.0 or mu >= 1e-6)
+    iso = (pd_.FrictionIsolator(mu=mu, radius_m=G * m / k) if mu > 0.0 else
+           pd_.Isolator([k], hysteresis="elastic"))
+    system = pd_.Oscillator(m, iso)
+    excitation = pd_.Harmonic(p0 / (m * G), omega / (2 * math.pi), phase=phi - math.pi / 2)
+    period = 2 * math.pi / omega
+    start = dataclasses.replace(pd_.State.at_rest(system, displacement_m=x0))
+    run = pd_.simulate(system, excitation, period, start, sample_rate_hz=0)
+    assert run.success
+    if mu > 0.0:  # (a stop would not be Den Hartog's motion: there is none)
+        kinds = _events(run)
+        assert [k for _, k in kinds if k == "stick"] == []
+        turns = [t for t, k in kinds if k == "reversal" and t < period * (1 - 1e-9)]
+        assert len(turns) == 1 and turns[0] == pytest.approx(period / 2, rel=0, abs=1e-9 * period)
+    assert run.displacement_min == pytest.approx(-x0, rel=1e-9)
+    assert run.final_state.displacement_m == pytest.approx(x0, rel=1e-9)
+
+
+@pytest.mark.parametrize("mu", [0.1, 0.125, 0.2])
+def test_a_table_that_touches_mu_w_does_not_slip(mu):
+    """A mass on a flat slider under a table whose acceleration peaks at exactly mu g: the force needed to
+    hold it touches mu W at each peak without passing it, so it never slips (no slip and stick of zero length
+    at the peaks); a table a millionth stronger slips at every peak, a short slip and its stick."""
+    system = pd_.Oscillator(1000.0, pd_.FrictionIsolator(mu=mu))
+    run = pd_.simulate(system, pd_.Harmonic(mu, 1.0), 2.0, sample_rate_hz=100.0)
+    assert len(run.events) == 0 and np.all(run.to_dataframe()["displacement_m"] == 0.0)
+    stronger = pd_.simulate(system, pd_.Harmonic(mu * (1 + 1e-6), 1.0), 2.0, sample_rate_hz=0)
+    kinds, t = list(stronger.events["kind"]), stronger.events["t_s"].to_numpy()
+    assert kinds == ["slip", "stick"] * 4
+    assert np.all(np.diff(t)[::2] > 1e-4) and np.all(np.abs(t[::2] - [0.25, 0.75, 1.25, 1.75]) < 1e-3)
+
+
+def _pendulum_building(sign: float = 1.0) -> tuple[pd_.Structure, pd_.Harmonic]:
+    storeys = [pd_.Storey(3.0e3, 4.0e7, 4.0e4), pd_.Storey(3.0e3, 3.0e7, 3.0e4),
+               pd_.Storey(2.0e3, 2.0e7, 2.0e4)]
+    return (pd_.Structure(4.0e3, pd_.FrictionIsolator(mu=0.1, radius_m=2.0), storeys, []),
+            pd_.Harmonic(sign * 0.3, 1.5))
+
+
+def test_the_mirror_run_is_the_run_mirrored():
+    system, shake = _pendulum_building()
+    run = pd_.simulate(system, shake, 6.0, sample_rate_hz=0)
+    mirror = pd_.simulate(system, _pendulum_building(-1.0)[1], 6.0, sample_rate_hz=0)
+    assert list(mirror.events["kind"]) == list(run.events["kind"])
+    np.testing.assert_allclose(mirror.events["t_s"], run.events["t_s"], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(mirror.final_state.displacements_m, -run.final_state.displacements_m, rtol=0,
+                               atol=1e-14)
+
+
+def test_a_continued_run_is_one_long_run():
+    """Cut while it sticks and while it slips, and continued from the final state: the same run."""
+    system, shake = _pendulum_building()
+    whole = pd_.simulate(system, shake, 6.0, sample_rate_hz=0)
+    for cut in (1.0, 2.35):
+        first = pd_.simulate(system, shake, cut, sample_rate_hz=0)
+        rest = pd_.simulate(system, shake, 6.0 - cut, first.final_state, sample_rate_hz=0)
+        assert list(first.events["kind"]) + list(rest.events["kind"]) == list(whole.events["kind"])
+        np.testing.assert_allclose(rest.final_state.displacements_m, whole.final_state.displacements_m,
+                                   rtol=0, atol=1e-12)
+    kinds = set(whole.events["kind"])
+    assert {"stick", "slip"} <= kinds
+
+
+@pytest.mark.parametrize("preslip_m", [1e-4, 1e-5, 1e-6])
+def test_an_elastic_pre_slip_converges_to_the_exact_stick(preslip_m):
+    """OpenSees' sliders ring through each stick on a stiff pre-slip branch: with a pre-slip, the isolator is
+    that model (exact too); its peak and residual base displacements approach the rigid stick's as the
+    pre-slip shrinks, within 30 times the pre-slip."""
+    system, shake = _pendulum_building()
+    exact = pd_.simulate(system, shake, 6.0, sample_rate_hz=0)
+    smeared_system = dataclasses.replace(system, isolator=dataclasses.replace(system.isolator,
+                                                                              preslip_m=preslip_m))
+    assert smeared_system.isolator.hysteresis == "kinematic"
+    smeared = pd_.simulate(smeared_system, shake, 6.0, sample_rate_hz=0)
+    assert smeared.quantities()["disp_max_m"] == pytest.approx(exact.quantities()["disp_max_m"], rel=0,
+                                                               abs=30 * preslip_m)
+    np.testing.assert_allclose(smeared.final_state.displacements_m, exact.final_state.displacements_m,
+                               rtol=0, atol=30 * preslip_m)
+
+
+def test_against_bumpers_its_sticks_are_exact_and_few():
+    """A friction pendulum against compliant bumpers in steady harmonic motion: every stick and slip lasts
+    longer than a microsecond (no chatter of zero-length slips), and each cycle has the same events (here
+    14: four impacts' starts and ends and six reversals)."""
+    law = pd_.KelvinVoigt(2.0e6, 500.0)
+    system = pd_.Oscillator(500.0, pd_.FrictionIsolator(mu=0.05, radius_m=1.5),
+                            pd_.Bumpers(gap_left_m=0.03, gap_right_m=0.03, law=law))
+    shake = pd_.Harmonic(0.3, 1.0)
+    run = pd_.simulate(system, shake, 40.0, sample_rate_hz=0)
+    assert run.success
+    ev = run.events[run.events["t_s"] > 20.0]
+    friction = ev[ev["kind"].isin(["stick", "slip", "reversal"])]
+    assert len(friction) > 0 and np.diff(friction["t_s"].to_numpy()).min() > 1e-6
+    per_cycle = np.bincount(np.floor(ev["t_s"].to_numpy()).astype(int) - 20)
+    assert np.all(per_cycle == per_cycle[0]) and per_cycle[0] == 14
+
+
+def test_a_friction_isolator_s_toml_round_trips_and_its_weight_follows_the_system(tmp_path):
+    system, _ = _pendulum_building()
+    assert system.isolator.weight_n == pytest.approx(G * 12.0e3)
+    path = system.to_toml(tmp_path / "fps.toml")
+    text = path.read_text()
+    assert "mu = 0.1" in text and "weight_n" not in text
+    assert pd_.Structure.from_toml(path) == system
+    heavier = dataclasses.replace(system, base_mass_kg=8.0e3)
+    assert heavier.isolator.weight_n == pytest.approx(G * 16.0e3)
+    given_weight = dataclasses.replace(system, isolator=pd_.FrictionIsolator(mu=0.1, radius_m=2.0,
+                                                                             weight_n=1.0e5))
+    assert dataclasses.replace(given_weight, base_mass_kg=8.0e3).isolator.weight_n == 1.0e5
+    assert given_weight.isolator.restoring_stiffness_n_m == pytest.approx(5.0e4)
+
+
+@pytest.mark.parametrize("kwargs, field", [
+    ({"mu": 0.0}, "isolator.mu"),
+    ({"mu": 1.5}, "isolator.mu"),
+    ({"mu": math.nan}, "isolator.mu"),
+    ({"mu": 0.05, "radius_m": -1.0}, "isolator.radius_m"),
+    ({"mu": 0.05, "preslip_m": -1e-3}, "isolator.preslip_m"),
+    ({"mu": 0.05, "weight_n": 0.0}, "isolator.weight_n"),
+    ({"mu": 0.05, "damping_n_s_m": -1.0}, "isolator.damping_n_s_m"),
+    ({"mu": 0.05, "weight_carried": True}, "isolator.weight_carried"),
+])
+def test_bad_friction_isolators_are_refused_by_name(kwargs, field):
+    with pytest.raises(pd_.InputError) as info:
+        pd_.FrictionIsolator(**kwargs)
+    assert info.value.field == field
+
+
+def test_a_rigid_stop_beside_a_friction_isolator_is_refused_with_the_fix():
+    with pytest.raises(pd_.InputError, match="compliant law") as info:
+        pd_.Oscillator(500.0, pd_.FrictionIsolator(mu=0.05),
+                       pd_.Bumpers(gap_left_m=0.03, gap_right_m=0.03, law=pd_.RigidStop(0.5)))
+    assert info.value.field == "bumpers.law"
+
+
+def test_an_unsupported_monodromy_says_why():
+    from pounding.analysis._hybrid import unsupported
+
+    assert "sticks and slips" in unsupported(pd_.Oscillator(500.0, pd_.FrictionIsolator(mu=0.05)))
+    assert unsupported(pd_.Oscillator(500.0, pd_.FrictionIsolator(mu=0.05, preslip_m=1e-4))) is None
+
+
+def test_a_flat_slider_has_no_period_for_a_spectrum():
+    with pytest.raises(pd_.InputError, match="flat slider"):
+        pd_.pounding_spectrum(pd_.records.el_centro(), [1.0], gaps_m=[0.05],
+                              isolator=pd_.FrictionIsolator(mu=0.05))
