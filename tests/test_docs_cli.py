@@ -66,8 +66,8 @@ def test_every_command_line_example_of_the_docs_runs_and_gives_something(page, c
         assert size > 0, (command, name)
 
 
-SYSTEMS = ("adjacent_buildings", "building_moat", "elastic_plastic_ybs", "masing_ybs", "paper_printed_nbs",
-           "paper_printed_ybs", "soft_stop_building")
+SYSTEMS = ("adjacent_buildings", "building_moat", "elastic_plastic_ybs", "friction_pendulum_moat",
+           "masing_ybs", "paper_printed_nbs", "paper_printed_ybs", "soft_stop_building")
 
 
 def test_every_shipped_example_file_reads_without_a_warning():
