@@ -286,3 +286,22 @@ def test_a_flat_slider_has_no_period_for_a_spectrum():
     with pytest.raises(pd_.InputError, match="flat slider"):
         pd_.pounding_spectrum(pd_.records.el_centro(), [1.0], gaps_m=[0.05],
                               isolator=pd_.FrictionIsolator(mu=0.05))
+
+
+def test_mu_and_the_radius_are_identified_from_a_table_s_sweeps():
+    """Model updating of a friction pendulum: the peak alpha and excursion of two sweeps of a known bearing
+    (mu 0.06, R 1.5 m) without bumpers, and identify() finds mu and R again, by their names in the system's
+    file, within bounds a factor of two or more either side."""
+    truth = pd_.Oscillator(500.0, pd_.FrictionIsolator(mu=0.06, radius_m=1.5))
+    freqs = np.round(np.arange(0.2, 1.01, 0.1), 2)
+    records = []
+    for a_g in (0.066, 0.072):  # (slipping, and below Den Hartog's unbounded resonance: a_g < 4 mu / pi)
+        frame = pd_.sweep(truth, a_g, freqs_hz=freqs).to_dataframe()
+        records += [{"configuration": "NBs", "a_g": a_g, "quantity": "alpha", "value": frame["alpha"].max()},
+                    {"configuration": "NBs", "a_g": a_g, "quantity": "excursion_max_m",
+                     "value": frame["excursion_m"].max()}]
+    bounds = {"isolator.mu": (0.03, 0.12), "isolator.radius_m": (0.7, 4.0)}
+    fit = pd_.identify(pd_.Targets.from_records(records), pd_.SystemFamily(truth), bounds, seed=1, popsize=6,
+                       maxiter=8, freqs_hz=freqs, workers=1)
+    assert fit.parameters["isolator.mu"] == pytest.approx(0.06, rel=1e-4)
+    assert fit.parameters["isolator.radius_m"] == pytest.approx(1.5, rel=1e-4)
