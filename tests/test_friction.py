@@ -305,3 +305,17 @@ def test_mu_and_the_radius_are_identified_from_a_table_s_sweeps():
                        maxiter=8, freqs_hz=freqs, workers=1)
     assert fit.parameters["isolator.mu"] == pytest.approx(0.06, rel=1e-4)
     assert fit.parameters["isolator.radius_m"] == pytest.approx(1.5, rel=1e-4)
+
+
+def test_a_run_s_summary_has_its_residual_displacement_and_its_sticks():
+    """The summary every run has: the base's displacement at the end (a slide's residual) and the friction
+    isolator's sticks and slips, as its events count them (0 with a rubber bearing)."""
+    system, shake = _pendulum_building()
+    run = pd_.simulate(system, shake, 6.0, sample_rate_hz=0)
+    s = run.summary()
+    kinds = list(run.events["kind"])
+    assert s["displacement_end_m"] == run.final_state.displacements_m[0]
+    assert (s["sticks"], s["slips"]) == (kinds.count("stick"), kinds.count("slip")) and s["sticks"] > 0
+    rubber = pd_.simulate(pd_.presets.paper_damped(), pd_.Harmonic(0.05, 1.5), 3.0).summary()
+    assert (rubber["sticks"], rubber["slips"]) == (0, 0)
+    assert rubber["displacement_end_m"] != 0.0

@@ -287,9 +287,12 @@ class StructureRun(NamedChatters, Outcome):
         -------
         pandas.Series
             ``t_end_s``; the base's (level 0's) exact ``displacement_max_m`` and ``displacement_min_m`` (each
-            level's: :meth:`peaks`); the exact ``abs_acceleration_max_m_s2`` over every level (between a rigid
-            stop's impacts, which are impulses) and ``alpha``, that over the table's peak (a sine's
-            amplitude, a record's PGA; NaN without shaking); ``contacts`` at every wall, ``contacts_left``
+            level's: :meth:`peaks`) and ``displacement_end_m`` at the run's end (a yielding or sliding
+            isolator's residual displacement, once the shaking is over); ``sticks`` and ``slips``, a friction
+            isolator's (its slips from a stick; 0 with any other isolator); the exact
+            ``abs_acceleration_max_m_s2`` over every level (between a rigid stop's impacts, which are
+            impulses) and ``alpha``, that over the table's peak (a sine's amplitude, a record's PGA; NaN
+            without shaking); ``contacts`` at every wall, ``contacts_left``
             (at their left sides), and with more than one level ``contacts_level_<k>`` at each level with a
             wall; ``rigid_impacts``; over the finished contacts ``restitution_mean``,
             ``contact_time_mean_s`` (those that last: holds and deformable contacts) and ``peak_force_max_n``
@@ -316,12 +319,16 @@ class StructureRun(NamedChatters, Outcome):
         rigid = int(impulses(table).sum())
         peak = abs(self.excitation.peak_m_s2)
         acc = float(np.max(self.abs_acceleration_max))
+        kinds = np.asarray(self.events["kind"], dtype=object)
         t_end = (self.final_state.time_s if self.final_state is not None
                  else float(self.t[-1]) if self.t.size else nan)
         return pd.Series({
             "t_end_s": t_end,
             "displacement_max_m": float(self.displacement_max[0]),
             "displacement_min_m": float(self.displacement_min[0]),
+            "displacement_end_m": (float(self.final_state.displacements_m[0]) if self.final_state is not None
+                                   else nan),
+            "sticks": int((kinds == "stick").sum()), "slips": int((kinds == "slip").sum()),
             "abs_acceleration_max_m_s2": acc, "alpha": acc / peak if peak else nan,
             **self.contact_counts(per_level=bool(self.structure.storeys)),
             "rigid_impacts": rigid, **impact_summary(self.impacts, rigid),
