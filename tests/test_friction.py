@@ -319,3 +319,30 @@ def test_a_run_s_summary_has_its_residual_displacement_and_its_sticks():
     rubber = pd_.simulate(pd_.presets.paper_damped(), pd_.Harmonic(0.05, 1.5), 3.0).summary()
     assert (rubber["sticks"], rubber["slips"]) == (0, 0)
     assert rubber["displacement_end_m"] != 0.0
+
+
+def test_the_isolator_loop_is_drawn_for_any_run():
+    """plot_isolator_loop: a mass on a friction pendulum between bumpers (its loop, the two slip lines and
+    the bumpers' two gaps), a building's (the same through its run); what it cannot draw says why."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    osc = pd_.Oscillator(500.0, pd_.FrictionIsolator(mu=0.1, radius_m=1.5),
+                         pd_.Bumpers(0.03, 0.03, pd_.KelvinVoigt(2.0e6, 500.0)))
+    run = pd_.simulate(osc, pd_.Harmonic(0.2, 0.6), 10.0)
+    artists = pd_.plots.plot_isolator_loop(run, t_start_s=5.0)
+    assert len(artists) == 5
+    x, y = artists[0].get_data()
+    inside = run.t >= 5.0
+    np.testing.assert_array_equal(x, run.displacement[inside] * 1e3)
+    np.testing.assert_array_equal(y, run.levels.isolator_force[inside] / 1e3)
+    system, shake = _pendulum_building()
+    assert pd_.simulate(system, shake, 3.0).plot_isolator_loop() is not None
+    with pytest.raises(pd_.InputError, match="t_start_s"):
+        run.plot_isolator_loop(t_start_s=20.0)
+    fixed = pd_.Structure(None, None, [pd_.Storey(1.0e3, 1.0e6)], [])
+    with pytest.raises(pd_.InputError, match="isolated base"):
+        pd_.plots.plot_isolator_loop(pd_.simulate(fixed, shake, 1.0))
+    plt.close("all")

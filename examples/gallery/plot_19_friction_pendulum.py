@@ -49,7 +49,7 @@ print(steady.groupby("kind", observed=True).size().div(4).rename("per cycle").to
 
 frame = run.to_dataframe()
 window = frame[frame.t_s >= t_steady]
-fig, (ax, af) = plt.subplots(2, 1, figsize=(6, 6.5))
+fig, (ax, af) = plt.subplots(2, 1, figsize=(6, 7))
 ax.plot(window.t_s, window.displacement_m * 1e3, lw=0.9)
 starts, kinds = run.events["t_s"].to_numpy(), run.events["kind"].to_numpy()
 for t0, t1, k0 in zip(starts, np.append(starts[1:], run.t[-1]), kinds):
@@ -59,8 +59,6 @@ for gap in (-30.0, 30.0):
     ax.axhline(gap, color="k", lw=1.2)
 ax.set_xlabel("t [s]")
 ax.set_ylabel("base displacement [mm] (sticks shaded)")
-af.plot(window.displacement_m * 1e3, window.isolator_force_n / 1e3, lw=0.9)
-af.set_xlabel("base displacement [mm]")
-af.set_ylabel("isolator force [kN]")
+run.plot_isolator_loop(ax=af, t_start_s=t_steady)
 fig.tight_layout()
 plt.show()

@@ -302,3 +302,10 @@ class Run:
         from ..plots import plot_run, figure_of
 
         return figure_of(plot_run(self, ax=ax, **kwargs), ax)
+
+    def plot_isolator_loop(self, ax: Any = None, **kwargs: Any) -> Any:
+        """The isolator's force against the displacement; see :func:`pounding.plots.plot_isolator_loop`.
+        Returns its Figure."""
+        from ..plots import figure_of, plot_isolator_loop
+
+        return figure_of(plot_isolator_loop(self, ax=ax, **kwargs), ax)

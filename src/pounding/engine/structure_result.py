@@ -414,6 +414,13 @@ class StructureRun(NamedChatters, Outcome):
 
         return figure_of(plot_structure_run(self, **kwargs), kwargs.get("axes"))
 
+    def plot_isolator_loop(self, ax: Any = None, **kwargs: Any) -> Any:
+        """The isolator's force against the base's displacement; see
+        :func:`pounding.plots.plot_isolator_loop`.  Returns its Figure."""
+        from ..plots import figure_of, plot_isolator_loop
+
+        return figure_of(plot_isolator_loop(self, ax=ax, **kwargs), ax)
+
 
 def _columns(samples: np.ndarray, cols: list) -> np.ndarray:
     """The samples' columns ``cols``, shape (k, len(cols)): a view where they are consecutive (every
