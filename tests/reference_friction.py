@@ -11,6 +11,8 @@ weight the isolator carries.
 - Sticking, v_0 = 0 and x_0 held: f = -D, with D = -m_0 a_g - (K x)_0 - (C x')_0 the rest of the force on the
   base.  The stick ends where |D| reaches F, and the base slips the way D pushes.
 - Where a slip ends the base sticks if |D| <= F; otherwise it slips on, the other way (a reversal).
+- With a velocity dependence (``mu_fast``, ``rate_s_m``: OpenSees' VelDependent) a slip's friction is
+  W (mu_fast - (mu_fast - mu) e^(-rate |v_0|)); F = mu W still decides the sticks and their ends.
 
 The works are integrated alongside: the input's -int a_g (M 1 . x') dt, the dashpots' int x' C x' dt and the
 friction's F int |v_0| dt, so that the ledger can be checked: input = viscous + friction + the change of the
@@ -38,6 +40,8 @@ class FrictionStructure:
     mu: float                             # its friction coefficient
     accel: Callable[[float], float]       # the table's acceleration a_g(t), m/s^2
     g: float = 9.81
+    mu_fast: float | None = None          # a velocity-dependent friction's coefficient at high velocity
+    rate_s_m: float = 0.0                 # and its rate: mu_fast - (mu_fast - mu) exp(-rate |v_0|)
 
     @property
     def n(self) -> int:
@@ -47,6 +51,14 @@ class FrictionStructure:
     def friction_n(self) -> float:
         """F = mu W, N."""
         return self.mu * self.g * float(np.sum(self.masses_kg))
+
+    def slip_friction_n(self, mode: int, v0: float) -> float:
+        """The friction's magnitude in a slip the way ``mode`` at the base's velocity ``v0``, N: mu W, or
+        W (mu_fast - (mu_fast - mu) exp(-rate mode v0)) (mode v0 = |v0| in the slip, smooth past its end)."""
+        if self.mu_fast is None:
+            return self.friction_n
+        weight = self.g * float(np.sum(self.masses_kg))
+        return weight * (self.mu_fast - (self.mu_fast - self.mu) * math.exp(-self.rate_s_m * mode * v0))
 
     def matrices(self) -> tuple[np.ndarray, np.ndarray]:
         """K and C, (n, n)."""
@@ -157,10 +169,11 @@ def reference(s: FrictionStructure, t_end: float, x0: np.ndarray, v0: np.ndarray
             x, v = yy[:n], yy[n:2 * n]
             ag = s.accel(tt)
             force = -m * ag - k @ x - c @ v
+            fv = s.slip_friction_n(mode, v[0]) if mode != 0 else 0.0
             if mode == 0:
                 force[0] = 0.0  # (held: the friction takes the rest)
             else:
-                force[0] -= mode * f
+                force[0] -= mode * fv
             acc = force / m
             dy = np.empty_like(yy)
             dy[:n] = v
@@ -169,7 +182,7 @@ def reference(s: FrictionStructure, t_end: float, x0: np.ndarray, v0: np.ndarray
                 dy[0], dy[n] = 0.0, 0.0
             dy[2 * n] = -ag * float(m @ v)
             dy[2 * n + 1] = float(v @ c @ v)
-            dy[2 * n + 2] = f * mode * v[0]  # (|v0| in the slip, smooth past its end: the last step's
+            dy[2 * n + 2] = fv * mode * v[0]  # (|v0| in the slip, smooth past its end: the last step's
             #  dense output, which places the end, would cut a kink of abs(v0) there; 0 when held)
             return dy
 

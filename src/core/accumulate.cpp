@@ -20,7 +20,8 @@ double iso_force(const System& sy, int e, const double* st) {
     const IsoLinear iso = iso_linear(sy, e, st);
     const Layout& L = sy.lay;
     const double u = rel(st + L.x, h.i, h.j), du = rel(st + L.v, h.i, h.j);
-    return iso.k * u + iso.r0 + h.c_d * du + (e == 0 ? sy.bw[0] * st[L.zeta] : 0.0);
+    return iso.k * u + iso.r0 + h.c_d * du + (e == 0 ? sy.bw[0] * st[L.zeta] : 0.0) +
+           iso_rate_force(h, h.rule == RULE_FRICTION ? st[L.region + e] : 0.0, du);
 }
 
 // a sample row (or the absolute accelerations and forces) from the state, outside a phase
@@ -76,6 +77,7 @@ void outputs_in_phase(Phase& ph, const System& sy, double t, double tau, const d
         double f = ph.el_k[static_cast<size_t>(e)] * rel(y, h.i, h.j) + ph.el_r[static_cast<size_t>(e)] +
                    h.c_d * rel(y + n, h.i, h.j);
         if (e == 0 && ph.bw[0] != 0.0) f += ph.bw[0] * phase_zeta(ph, tau);
+        f += iso_rate_force(h, ph.el_s[static_cast<size_t>(e)], rel(y + n, h.i, h.j));
         if (ph.stk.any && ph.stk.held_of[static_cast<size_t>(ph.nc + e)] >= 0)  // (sticking: its friction)
             f += held_force(ph, ph.nc + e, tau, y, a).g;
         row[1 + 3 * n + e] = f;
@@ -226,6 +228,10 @@ void numeric_contributions(Phase& ph, const System& sy, double* st, double tau, 
         ledger[L_INPUT] -= wq * ag * mv;
         ledger[L_VISCOUS] += wq * vcv;
         if (bw != 0.0) ledger[L_HYSTERETIC] += wq * bw * phase_zeta(ph, tq) * rel(v, ph.iso_i, ph.iso_j);
+        for (const Phase::RateFriction& r : ph.rate_fr) {  // (a velocity-dependent friction's rest)
+            const double du = rel(v, r.h->i, r.h->j);
+            ledger[L_HYSTERETIC] += wq * iso_rate_force(*r.h, r.s, du) * du;
+        }
         for (int c = 0; c < ph.nc; ++c) {
             if (!ph.ct[static_cast<size_t>(c)].in) continue;
             const ContactForce f = contact_force(ph, c, y, a);

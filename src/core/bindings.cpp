@@ -71,7 +71,7 @@ Contact contact_of(int i, int j, double sign, double gap_m, int law, const std::
 }
 
 Hysteretic element_of(int i, int j, double c_d, const std::vector<double>& slopes, const std::vector<double>& breaks,
-                      int rule, double friction) {
+                      int rule, double friction, double friction_fast, double friction_rate) {
     Hysteretic h;
     h.i = i;
     h.j = j;
@@ -80,6 +80,8 @@ Hysteretic element_of(int i, int j, double c_d, const std::vector<double>& slope
     h.breaks = breaks;
     h.rule = rule;
     h.friction = friction;
+    h.friction_fast = friction_fast;
+    h.friction_rate = friction_rate;
     return h;
 }
 
@@ -109,13 +111,17 @@ nb::dict element_state(const Hysteretic& h) {
     d["breaks"] = h.breaks;
     d["rule"] = h.rule;
     d["friction_n"] = h.friction;
+    d["friction_fast_n"] = h.friction_fast;
+    d["friction_rate_s_m"] = h.friction_rate;
     return d;
 }
 
 Hysteretic element_from_state(const nb::dict& d) {
     return element_of(nb::cast<int>(d["i"]), nb::cast<int>(d["j"]), nb::cast<double>(d["c_d"]),
                       nb::cast<std::vector<double>>(d["slopes"]), nb::cast<std::vector<double>>(d["breaks"]),
-                      nb::cast<int>(d["rule"]), d.contains("friction_n") ? nb::cast<double>(d["friction_n"]) : 0.0);
+                      nb::cast<int>(d["rule"]), d.contains("friction_n") ? nb::cast<double>(d["friction_n"]) : 0.0,
+                      d.contains("friction_fast_n") ? nb::cast<double>(d["friction_fast_n"]) : 0.0,
+                      d.contains("friction_rate_s_m") ? nb::cast<double>(d["friction_rate_s_m"]) : 0.0);
 }
 
 void fill_system(System& s, int n, const std::vector<double>& mass, const std::vector<double>& k0,
@@ -200,11 +206,14 @@ NB_MODULE(_pounding_core, m) {
     nb::class_<Hysteretic>(m, "Element")
         .def("__init__",
              [](Hysteretic* h, int i, int j, double c_d, const std::vector<double>& slopes,
-                const std::vector<double>& breaks, int rule, double friction_n) {
-                 new (h) Hysteretic(element_of(i, j, c_d, slopes, breaks, rule, friction_n));
+                const std::vector<double>& breaks, int rule, double friction_n, double friction_fast_n,
+                double friction_rate_s_m) {
+                 new (h) Hysteretic(element_of(i, j, c_d, slopes, breaks, rule, friction_n, friction_fast_n,
+                                               friction_rate_s_m));
              },
              nb::kw_only(), nb::arg("i"), nb::arg("j"), nb::arg("c_d"), nb::arg("slopes"), nb::arg("breaks"),
-             nb::arg("rule"), nb::arg("friction_n") = 0.0)
+             nb::arg("rule"), nb::arg("friction_n") = 0.0, nb::arg("friction_fast_n") = 0.0,
+             nb::arg("friction_rate_s_m") = 0.0)
         .def_ro("i", &Hysteretic::i)
         .def_ro("j", &Hysteretic::j)
         .def_ro("c_d", &Hysteretic::c_d)
@@ -212,6 +221,8 @@ NB_MODULE(_pounding_core, m) {
         .def_ro("breaks", &Hysteretic::breaks)
         .def_ro("rule", &Hysteretic::rule)
         .def_ro("friction_n", &Hysteretic::friction)
+        .def_ro("friction_fast_n", &Hysteretic::friction_fast)
+        .def_ro("friction_rate_s_m", &Hysteretic::friction_rate)
         .def("__getstate__", &element_state)
         .def("__setstate__", [](Hysteretic& h, const nb::dict& d) { new (&h) Hysteretic(element_from_state(d)); });
 

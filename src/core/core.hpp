@@ -133,6 +133,9 @@ struct Hysteretic {
     std::vector<double> slopes, breaks;
     int rule = 0;
     double friction = 0.0;  // N: the Coulomb force of rule 2 (a friction isolator: mu W), 0 for the others
+    // rule 2's velocity dependence: a slip's force F_fast - (F_fast - friction) e^(-rate |u'|) (friction at
+    // rest, F_fast fast), as OpenSees' VelDependent; rate 0 (s/m): Coulomb's constant friction
+    double friction_fast = 0.0, friction_rate = 0.0;
     int first = 0;  // its first spring's index among the system's (set by System::finish)
     int n_springs() const { return static_cast<int>(slopes.size()) - 1; }
 };

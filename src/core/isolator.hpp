@@ -10,9 +10,14 @@
 //     the tie needs, D.  State: s at region + e (0 sticking).  A slip ends where u' = 0: there the run decides
 //     (friction_decision) to stick, when |D| <= F, or to slip the other way; a stick ends where |D| reaches F.
 //     Every phase is linear.  (F = mu W and k = W / R: a friction pendulum; k = 0: a flat slider.)
+//     With a velocity dependence (friction_rate > 0) a slip's force is k u + s (F_fast - (F_fast - F)
+//     e^(-rate |u'|)): its linear phase holds s F_fast, and the rest (iso_rate_force) makes the slip's phases
+//     numerical; a stick and its end, and the decision where a slip ends, are F's (the friction at rest).
 // Events: a yield's index is the spring's among the system's; a branch change's, a reversal's, a stick's and a
 // slip's the element's.
 #pragma once
+
+#include <cmath>
 
 #include "core.hpp"
 
@@ -29,6 +34,12 @@ inline double iso_u(const System& sy, int e, const double* st) {
 }
 
 IsoLinear iso_linear(const System& sy, int e, const double* st);
+// element e's force beyond its linear branch's while it slips the way s at the rate du (u'): a
+// velocity-dependent friction's -s (F_fast - F) e^(-rate s du); 0 for every other element and state
+inline double iso_rate_force(const Hysteretic& h, double s, double du) {
+    if (s == 0.0 || h.friction_rate == 0.0) return 0.0;
+    return -s * (h.friction_fast - h.friction) * std::exp(-h.friction_rate * s * du);
+}
 double iso_energy(const System& sy, int e, const double* st, double d);
 // every element's event rows after the n already in evs; the new count
 int iso_events(const System& sy, const double* st, EventRow* evs, int n);

@@ -1,5 +1,7 @@
 #include "phase.hpp"
 
+#include "isolator.hpp"
+
 #include <algorithm>
 
 namespace pounding {
@@ -520,6 +522,11 @@ void phase_rhs(Phase& ph, double tau, const double* y, double z, double* a, bool
         const double f = ph.bw[0] * z;
         a[ph.iso_i] -= f;
         if (ph.iso_j >= 0) a[ph.iso_j] += f;
+    }
+    for (const Phase::RateFriction& r : ph.rate_fr) {  // (a velocity-dependent friction's rest, isolator.hpp)
+        const double f = iso_rate_force(*r.h, r.s, rel(v, r.h->i, r.h->j));
+        a[r.h->i] -= f;
+        if (r.h->j >= 0) a[r.h->j] += f;
     }
     for (int c = ph.nc - 1; c >= 0; --c) {
         const ContactPhase& k = ph.ct[static_cast<size_t>(c)];

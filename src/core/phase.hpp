@@ -65,6 +65,9 @@ struct Phase {
     int iso_i = 0, iso_j = GROUND;
     double cd = 0.0, kiso = 0.0, riso = 0.0;
     std::vector<double> el_k, el_r;  // every hysteretic element's branch (force el_k u + el_r), for the outputs
+    std::vector<double> el_s;        // and its friction's slip direction (0: sticking, or no friction rule)
+    struct RateFriction { const Hysteretic* h; double s; };
+    std::vector<RateFriction> rate_fr;  // the elements slipping with a velocity-dependent friction (numerical)
     double bw[BW_PARAMS] = {0};
     // the run's and the phase's length (m) and velocity (m/s) scales, what event values are rounded against
     double xrun = 0.0, vrun = 0.0, xround = 0.0, vround = 0.0;

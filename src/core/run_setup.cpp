@@ -103,6 +103,8 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
     IsoLinear iso{0.0, 0.0};
     ph.el_k.resize(static_cast<size_t>(sy.n_h()));
     ph.el_r.resize(static_cast<size_t>(sy.n_h()));
+    ph.el_s.assign(static_cast<size_t>(sy.n_h()), 0.0);
+    ph.rate_fr.clear();
     for (int e = 0; e < sy.n_h(); ++e) {  // each element's present branch
         const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
         const IsoLinear el = iso_linear(sy, e, st);
@@ -111,6 +113,11 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
         if (h.j >= 0) ph.R0[static_cast<size_t>(h.j)] -= el.r0;
         ph.el_k[static_cast<size_t>(e)] = el.k;
         ph.el_r[static_cast<size_t>(e)] = el.r0;
+        if (h.rule == RULE_FRICTION) {
+            const double s = st[L.region + e];
+            ph.el_s[static_cast<size_t>(e)] = s;
+            if (iso_rate_force(h, s, 0.0) != 0.0) ph.rate_fr.push_back({&h, s});
+        }
         if (e == 0) iso = el;
     }
     bool any_nl = false;
@@ -150,7 +157,7 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
     ph.sphi = std::sin(pc.phase);
     ph.cphi = std::cos(pc.phase);
     for (int q = 0; q < 2 * n; ++q) ph.y0[static_cast<size_t>(q)] = st[L.x + q];
-    ph.numeric = any_nl || sy.bw[0] != 0.0;
+    ph.numeric = any_nl || sy.bw[0] != 0.0 || !ph.rate_fr.empty();
     ph.zeta0 = st[L.zeta];
     ph.dp5_h = -1.0;
     ph.tc_ok = false;

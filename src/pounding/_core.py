@@ -40,7 +40,8 @@ except ImportError as exc:  # pragma: no cover  (a source tree never built)
 
 System = _c.System
 ContactSlot = _c.ContactSlot  # (built by keyword: i, j, sign, gap_m, law, params)
-Element = _c.Element  # (built by keyword: i, j, c_d, slopes, breaks, rule, friction_n)
+Element = _c.Element  # (by keyword: i, j, c_d, slopes, breaks, rule, friction_n, friction_fast_n,
+#                        friction_rate_s_m)
 LAYOUT: dict[str, int] = dict(_c.LAYOUT)
 LAW_IDS: dict[str, int] = dict(_c.LAW_IDS)
 STATUS: dict[str, int] = dict(_c.STATUS)
@@ -210,6 +211,10 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
             raise ValueError(f"element {e}: the friction rule (2) is an isolator's (on the ground), of one "
                              "slope, a friction force > 0 and no Bouc-Wen spring; no other rule has a "
                              "friction force")
+        if el.friction_rate_s_m < 0.0 or (el.friction_rate_s_m > 0.0) != (el.friction_fast_n > 0.0) or (
+                el.friction_rate_s_m > 0.0 and el.rule != 2):
+            raise ValueError(f"element {e}: a velocity-dependent friction is the friction rule's, with a fast "
+                             "friction > 0 and a rate > 0 together")
     if len(bw) != LAYOUT["BW_PARAMS"]:
         raise ValueError(f"bw: {LAYOUT['BW_PARAMS']} numbers, got {len(bw)}")
     for c, slot in enumerate(contacts):
@@ -235,12 +240,14 @@ def contact_slot(*, i: int, j: int, sign: float, gap_m: float, law: int, params:
     return ContactSlot(i=int(i), j=int(j), sign=float(sign), gap_m=float(gap_m), law=int(law), params=params)
 
 
-def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int,
-            friction_n: float = 0.0) -> Element:
+def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int, friction_n: float = 0.0,
+            friction_fast_n: float = 0.0, friction_rate_s_m: float = 0.0) -> Element:
     """A hysteretic element (:class:`Element`) from numbers as the model gives them (``friction_n``: the
-    Coulomb force of rule 2, N)."""
+    friction of rule 2 at rest, N; with ``friction_rate_s_m`` > 0, s/m, a slip's friction is
+    ``friction_fast_n - (friction_fast_n - friction_n) exp(-friction_rate_s_m |u'|)``)."""
     return Element(i=int(i), j=int(j), c_d=float(c_d), slopes=[float(x) for x in slopes],
-                   breaks=[float(x) for x in breaks], rule=int(rule), friction_n=float(friction_n))
+                   breaks=[float(x) for x in breaks], rule=int(rule), friction_n=float(friction_n),
+                   friction_fast_n=float(friction_fast_n), friction_rate_s_m=float(friction_rate_s_m))
 
 
 def _f64(a: Any) -> np.ndarray:

@@ -42,7 +42,7 @@ def unsupported(system: "Oscillator | Structure | Adjacent") -> str | None:
         who = ("the first's " if b == 0 else "the second's ") if named else "its "
         if s.isolator is not None and s.isolator.bouc_wen is not None:
             return f"{who}isolator has a Bouc-Wen spring (a nonlinear phase)"
-        if s.isolator is not None and s.isolator.kernel_friction_n > 0.0:
+        if s.isolator is not None and s.isolator.kernel_friction:
             return f"{who}isolator sticks and slips (a stick's saltation is not composed yet)"
         for w, wall in enumerate(s.walls):
             for side, law in (("left", wall.left), ("right", wall.right)):

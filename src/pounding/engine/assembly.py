@@ -168,7 +168,7 @@ def assemble(model: Oscillator | Structure | Adjacent) -> Assembly:
     order = sorted(range(len(structures)), key=lambda b: not (structures[b].isolator is not None
                                                              and structures[b].isolator.bouc_wen is not None))
     elements, isolator, bw = [], [-1] * len(structures), np.zeros(_core.LAYOUT["BW_PARAMS"])
-    friction: dict[int, float] = {}  # (an isolator's Coulomb force, N, by its element: a friction isolator's)
+    friction: dict[int, dict] = {}  # (an isolator's friction, by its element: a friction isolator's)
     for b in order:
         s = structures[b]
         if s.fixed:
@@ -177,7 +177,7 @@ def assemble(model: Oscillator | Structure | Adjacent) -> Assembly:
         if not elements:
             bw = b_w
         isolator[b] = len(elements)
-        friction[len(elements)] = s.isolator.kernel_friction_n
+        friction[len(elements)] = s.isolator.kernel_friction
         elements.append((dofs[b][0], -1, float(s.isolator.damping_n_s_m), slopes, breaks, int(rule)))
     for s, levels in zip(structures, dofs):
         for i, st in enumerate(s.storeys):
@@ -215,7 +215,7 @@ def assemble(model: Oscillator | Structure | Adjacent) -> Assembly:
     contact_tracks = tuple(len(tracked) + between.index(c) if c in between else -1 for c in range(len(pairs)))
     tracked += tuple((pairs[c].i, pairs[c].j) for c in between)
     kernel_elements = [_core.element(i=i, j=j, c_d=c_d, slopes=slopes, breaks=breaks, rule=rule,
-                                     friction_n=friction.get(e, 0.0))
+                                     **friction.get(e, {}))
                        for e, (i, j, c_d, slopes, breaks, rule) in enumerate(elements)]
     system = _core.system(masses, k0, c0, kernel_elements, bw, bool(contacts), contacts, tracked)
     return Assembly(system, tuple(dofs), tuple(isolator), tuple(slots), tuple(stands), np.array(masses),

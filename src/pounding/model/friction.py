@@ -1,5 +1,5 @@
 """The friction isolator: a flat slider or a single friction pendulum, Coulomb friction with exact stick and
-slip.
+slip, constant or velocity-dependent.
 
 Its engine form is the isolator's element with the friction rule (the core's ``RULE_FRICTION``, isolator.hpp):
 a spring of the pendulum's restoring stiffness ``W / R`` in parallel with a friction force ``mu W`` that
@@ -59,6 +59,15 @@ class FrictionIsolator:
         True: it follows the system's mass when the system is changed).
     weight_carried : bool
         Whether ``weight_n`` is the system's (set by the system; not written to TOML).
+    mu_fast : float, optional
+        A velocity-dependent friction (OpenSees' ``VelDependent``): a slip's friction coefficient is
+        ``mu_fast - (mu_fast - mu) exp(-rate_s_m |v|)``, ``mu`` at rest (which still decides where a stick
+        ends) and ``mu_fast`` fast (> 0, at most 1; larger or smaller than ``mu``).  Its slips are then
+        integrated numerically, their ends still located as events.  None (the default): Coulomb's
+        constant ``mu``.
+    rate_s_m : float
+        How fast the friction goes from ``mu`` to ``mu_fast``, s/m (> 0 with ``mu_fast``, 0 without; 20 to
+        30 are usual for PTFE on steel: within 2 % of ``mu_fast`` from about 0.15 m/s).
 
     Examples
     --------
@@ -84,9 +93,13 @@ class FrictionIsolator:
     preslip_m: float = 0.0
     weight_n: Optional[float] = None
     weight_carried: bool = False
+    mu_fast: Optional[float] = None
+    rate_s_m: float = 0.0
 
-    FIELDS: ClassVar[tuple[str, ...]] = ("mu", "radius_m", "damping_n_s_m", "preslip_m", "weight_n")
-    OPTIONAL: ClassVar[tuple[str, ...]] = ("radius_m", "damping_n_s_m", "preslip_m", "weight_n")
+    FIELDS: ClassVar[tuple[str, ...]] = ("mu", "radius_m", "damping_n_s_m", "preslip_m", "weight_n", "mu_fast",
+                                         "rate_s_m")
+    OPTIONAL: ClassVar[tuple[str, ...]] = ("radius_m", "damping_n_s_m", "preslip_m", "weight_n", "mu_fast",
+                                           "rate_s_m")
     RENAMED: ClassVar[dict[str, str]] = {}
     bouc_wen: ClassVar[None] = None  # (no Bouc-Wen spring: what readers of any isolator ask)
 
@@ -109,6 +122,7 @@ class FrictionIsolator:
         at_most("isolator.preslip_m", preslip, MAX_BREAKPOINT_M, " m", "give the pre-slip in m")
         plausible("isolator.preslip_m", preslip, 0.0, 0.01, "an elastic pre-slip in m (1 mm is 0.001)")
         object.__setattr__(self, "preslip_m", preslip)
+        self._check_velocity_dependence()
         object.__setattr__(self, "weight_carried", boolean("isolator.weight_carried", self.weight_carried))
         if self.weight_carried and self.weight_n is None:
             raise InputError(Problem.WRONG_CONFIGURATION, "isolator.weight_carried", True,
@@ -123,6 +137,34 @@ class FrictionIsolator:
                     raise InputError(Problem.OUT_OF_RANGE, "isolator.weight_n", weight,
                                      range=f"a weight that keeps {name} = {k:g} N/m within "
                                            f"{MAX_STIFFNESS_N_M:g}", hint=" (a larger radius or pre-slip)")
+
+    def _check_velocity_dependence(self) -> None:
+        rate = non_negative("isolator.rate_s_m", self.rate_s_m, "s/m")
+        at_most("isolator.rate_s_m", rate, 1e4, " s/m", "give the rate in s/m (25 s/m: mu_fast reached, "
+                                                        "within 2 %, at 0.16 m/s)")
+        object.__setattr__(self, "rate_s_m", rate)
+        if self.mu_fast is None:
+            if rate > 0.0:
+                raise InputError(Problem.WRONG_CONFIGURATION, "isolator.rate_s_m", rate, got="without mu_fast",
+                                 fix="give mu_fast (the friction coefficient at high velocity) too, or leave "
+                                     "rate_s_m 0 (Coulomb's constant mu)")
+            return
+        fast = positive("isolator.mu_fast", self.mu_fast, "")
+        at_most("isolator.mu_fast", fast, MAX_MU, "", "give the friction coefficient (0.1 is 10 %)")
+        plausible("isolator.mu_fast", fast, 0.005, 0.3, "a sliding bearing's friction coefficient at high "
+                                                        "velocity (usually 0.05 to 0.15)")
+        object.__setattr__(self, "mu_fast", fast)
+        if not rate > 0.0:
+            raise InputError(Problem.WRONG_CONFIGURATION, "isolator.mu_fast", fast, got="without rate_s_m",
+                             fix="give rate_s_m > 0 (s/m: how fast mu goes from mu at rest to mu_fast; 20 to "
+                                 "30 are usual), or leave mu_fast out (Coulomb's constant mu)")
+        plausible("isolator.rate_s_m", rate, 1.0, 1000.0, "the rate at which friction reaches mu_fast, s/m "
+                                                          "(20 to 30 are usual)")
+        if self.preslip_m > 0.0:
+            raise InputError(Problem.WRONG_CONFIGURATION, "isolator.preslip_m", self.preslip_m,
+                             got="with a velocity-dependent friction (mu_fast)",
+                             fix="leave preslip_m 0 (the velocity dependence is for the rigid stick), or "
+                                 "mu_fast out")
 
     # ---------------------------------------------------------------- its numbers
 
@@ -148,6 +190,22 @@ class FrictionIsolator:
     def friction_force_n(self) -> float:
         """``mu W``, N: the force at which it slips."""
         return self.mu * self._weight()
+
+    @property
+    def friction_fast_force_n(self) -> float:
+        """``mu_fast W``, N: the friction of a fast slip (``friction_force_n`` without a velocity
+        dependence)."""
+        return (self.mu if self.mu_fast is None else self.mu_fast) * self._weight()
+
+    def friction_at(self, velocity_m_s: Any) -> np.ndarray:
+        """The friction force of a slip at these velocities (m/s, any shape), N, its magnitude:
+        ``W (mu_fast - (mu_fast - mu) exp(-rate_s_m |v|))`` (OpenSees' ``VelDependent``), ``mu W`` without
+        a velocity dependence."""
+        v = np.abs(np.asarray(velocity_m_s, dtype=float))
+        if self.mu_fast is None:
+            return np.full(v.shape, self.friction_force_n)
+        fast = self.friction_fast_force_n
+        return fast - (fast - self.friction_force_n) * np.exp(-self.rate_s_m * v)
 
     @property
     def restoring_stiffness_n_m(self) -> float:
@@ -207,6 +265,8 @@ class FrictionIsolator:
         out.update(damping_n_s_m=self.damping_n_s_m, preslip_m=self.preslip_m)
         if self.weight_n is not None and not self.weight_carried:
             out["weight_n"] = self.weight_n
+        if self.mu_fast is not None:
+            out.update(mu_fast=self.mu_fast, rate_s_m=self.rate_s_m)
         return out
 
     # ---------------------------------------------------------------- the engine's form
@@ -219,10 +279,16 @@ class FrictionIsolator:
                 np.zeros(BW_PARAMS))
 
     @property
-    def kernel_friction_n(self) -> float:
-        """The friction force the engine's friction rule takes, N (0 with a pre-slip: the kinematic rule
-        has it in its slopes)."""
-        return 0.0 if self.preslip_m > 0.0 else self.friction_force_n
+    def kernel_friction(self) -> dict[str, float]:
+        """The friction the engine's friction rule takes (``pounding._core.element``'s ``friction_n``, N,
+        at rest; ``friction_fast_n`` N and ``friction_rate_s_m`` s/m, a velocity dependence's, 0 without):
+        none with a pre-slip (the kinematic rule has it in its slopes)."""
+        if self.preslip_m > 0.0:
+            return {}
+        if self.mu_fast is None:
+            return {"friction_n": self.friction_force_n}
+        return {"friction_n": self.friction_force_n, "friction_fast_n": self.friction_fast_force_n,
+                "friction_rate_s_m": self.rate_s_m}
 
 
 def is_friction(isolator: Any) -> bool:

@@ -254,10 +254,10 @@ class Isolator:
         return out
 
     @property
-    def kernel_friction_n(self) -> float:
-        """The friction force the engine's friction rule takes, N: 0, a rubber bearing has none
+    def kernel_friction(self) -> dict[str, float]:
+        """The friction the engine's friction rule takes: none, a rubber bearing has none
         (:class:`FrictionIsolator`'s has)."""
-        return 0.0
+        return {}
 
     def kernel_arrays(self) -> tuple[np.ndarray, np.ndarray, int, np.ndarray]:
         """``(slopes, breakpoints, rule, bouc_wen)`` as the compiled engine takes them (the last
