@@ -21,7 +21,7 @@ double iso_force(const System& sy, int e, const double* st) {
     const Layout& L = sy.lay;
     const double u = rel(st + L.x, h.i, h.j), du = rel(st + L.v, h.i, h.j);
     return iso.k * u + iso.r0 + h.c_d * du + (e == 0 ? sy.bw[0] * st[L.zeta] : 0.0) +
-           iso_rate_force(h, h.rule == RULE_FRICTION ? st[L.region + e] : 0.0, du);
+           iso_rate_force(h, iso_slip(sy, e, st), du);
 }
 
 // a sample row (or the absolute accelerations and forces) from the state, outside a phase

@@ -34,6 +34,10 @@ inline double iso_u(const System& sy, int e, const double* st) {
 }
 
 IsoLinear iso_linear(const System& sy, int e, const double* st);
+// element e's friction slip direction (+-1; 0 sticking, or not a friction element)
+inline double iso_slip(const System& sy, int e, const double* st) {
+    return sy.hyst[static_cast<size_t>(e)].rule == RULE_FRICTION ? st[sy.lay.region + e] : 0.0;
+}
 // element e's force beyond its linear branch's while it slips the way s at the rate du (u'): a
 // velocity-dependent friction's -s (F_fast - F) e^(-rate s du); 0 for every other element and state
 inline double iso_rate_force(const Hysteretic& h, double s, double du) {

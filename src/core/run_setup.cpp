@@ -113,11 +113,9 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
         if (h.j >= 0) ph.R0[static_cast<size_t>(h.j)] -= el.r0;
         ph.el_k[static_cast<size_t>(e)] = el.k;
         ph.el_r[static_cast<size_t>(e)] = el.r0;
-        if (h.rule == RULE_FRICTION) {
-            const double s = st[L.region + e];
-            ph.el_s[static_cast<size_t>(e)] = s;
-            if (iso_rate_force(h, s, 0.0) != 0.0) ph.rate_fr.push_back({&h, s});
-        }
+        const double s = iso_slip(sy, e, st);
+        ph.el_s[static_cast<size_t>(e)] = s;
+        if (iso_rate_force(h, s, 0.0) != 0.0) ph.rate_fr.push_back({&h, s});
         if (e == 0) iso = el;
     }
     bool any_nl = false;
