@@ -179,18 +179,22 @@ def test_a_non_stop_steady_state_is_den_hartog_s(b, ratio, m, fn):
 
 
 @pytest.mark.parametrize("mu", [0.1, 0.125, 0.2])
-def test_a_table_that_touches_mu_w_does_not_slip(mu):
-    """A mass on a flat slider under a table whose acceleration peaks at exactly mu g: the force needed to
-    hold it touches mu W at each peak without passing it, so it never slips (no slip and stick of zero length
-    at the peaks); a table a millionth stronger slips at every peak, a short slip and its stick."""
-    system = pd_.Oscillator(1000.0, pd_.FrictionIsolator(mu=mu))
-    run = pd_.simulate(system, pd_.Harmonic(mu, 1.0), 2.0, sample_rate_hz=100.0)
-    assert len(run.events) == 0 and np.all(run.to_dataframe()["displacement_m"] == 0.0)
+@pytest.mark.parametrize("phase", [0.0, math.pi / 2])
+@pytest.mark.parametrize("radius_m", [None, 2.0])
+def test_a_table_that_touches_mu_w_does_not_slip(mu, phase, radius_m):
+    """A mass on a flat slider or a friction pendulum under a table whose acceleration peaks at exactly mu g:
+    the force needed to hold it touches mu W at each peak without passing it (at the start and at the run's
+    end too, with the phase pi / 2), so it never slips (no slip and stick of no length at the peaks); a
+    table a millionth stronger slips at every peak, a short slip and its stick."""
+    system = pd_.Oscillator(1000.0, pd_.FrictionIsolator(mu=mu, radius_m=radius_m))
+    run = pd_.simulate(system, pd_.Harmonic(mu, 1.0, phase=phase), 2.0, sample_rate_hz=100.0)
+    frame = run.to_dataframe()
+    assert len(run.events) == 0 and len(frame) == 201
+    assert np.all(np.abs(frame["displacement_m"]) <= 1e-30) and run.final_state.velocity_m_s == 0.0
     stronger = pd_.simulate(system, pd_.Harmonic(mu * (1 + 1e-6), 1.0), 2.0, sample_rate_hz=0)
     kinds, t = list(stronger.events["kind"]), stronger.events["t_s"].to_numpy()
     assert kinds == ["slip", "stick"] * 4
     assert np.all(np.diff(t)[::2] > 1e-4) and np.all(np.abs(t[::2] - [0.25, 0.75, 1.25, 1.75]) < 1e-3)
-
 
 def _pendulum_building(sign: float = 1.0) -> tuple[pd_.Structure, pd_.Harmonic]:
     storeys = [pd_.Storey(3.0e3, 4.0e7, 4.0e4), pd_.Storey(3.0e3, 3.0e7, 3.0e4),

@@ -141,6 +141,7 @@ struct Hysteretic {
 };
 
 bool law_is_rigid(int law);  // (laws.hpp: the contact laws' one place)
+bool iso_is_friction(const Hysteretic& h);  // (isolator.hpp: the isolator rules' one place)
 
 // The system as the kernels take it (pounding.engine.simulate.kernel_system packs a one-mass system).
 struct System {
@@ -185,7 +186,7 @@ struct System {
             if (law_is_rigid(contact[static_cast<size_t>(c)].law)) rigid.push_back(c);
         ties.clear();
         for (int e = 0; e < n_h(); ++e)
-            if (hyst[static_cast<size_t>(e)].rule == 2) ties.push_back(e);  // (RULE_FRICTION: isolator.hpp)
+            if (iso_is_friction(hyst[static_cast<size_t>(e)])) ties.push_back(e);
         total_mass = 0.0;
         for (double m : mass) total_mass += m;
     }

@@ -544,7 +544,7 @@ void held_outputs(const double* st, const System& sy, Sticking& stk, double ag, 
 
 double tie_force(double* st, const System& sy, int e, Sticking& stk, double ag, double* q, double* row) {
     static thread_local std::vector<double> au, a;
-    double& slip = st[sy.lay.region + e];
+    double& slip = iso_slip_slot(sy, e, st);
     const double was = slip;
     slip = 0.0;
     stk.build(sy, st);

@@ -13,6 +13,8 @@ double backbone_force_at_break(const Hysteretic& h, int j) {
     return f;
 }
 
+bool iso_is_friction(const Hysteretic& h) { return h.rule == RULE_FRICTION; }
+
 IsoLinear iso_linear(const System& sy, int e, const double* st) {
     const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
     const int n_sp = h.n_springs();

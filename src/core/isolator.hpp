@@ -34,9 +34,11 @@ inline double iso_u(const System& sy, int e, const double* st) {
 }
 
 IsoLinear iso_linear(const System& sy, int e, const double* st);
+// a friction element's slip direction in the state (+-1; 0 sticking): its slot, for e a friction element
+inline double& iso_slip_slot(const System& sy, int e, double* st) { return st[sy.lay.region + e]; }
 // element e's friction slip direction (+-1; 0 sticking, or not a friction element)
 inline double iso_slip(const System& sy, int e, const double* st) {
-    return sy.hyst[static_cast<size_t>(e)].rule == RULE_FRICTION ? st[sy.lay.region + e] : 0.0;
+    return iso_is_friction(sy.hyst[static_cast<size_t>(e)]) ? st[sy.lay.region + e] : 0.0;
 }
 // element e's force beyond its linear branch's while it slips the way s at the rate du (u'): a
 // velocity-dependent friction's -s (F_fast - F) e^(-rate s du); 0 for every other element and state

@@ -258,6 +258,10 @@ struct Loop {
     int n_ev = 0;
     int status = SUCCESS;
     int zero_run = 0;
+    // the last event's slip from a stick (a stick's end, or the start's), until another event: its row, its
+    // element, the samples after it (and whether it pushed one) and the element's displacement there
+    struct Touch { int64_t row = -1; int e = -1; int64_t samples = 0; bool sampled = false; double u = 0.0; };
+    Touch touch;
     double h_num = 1e-4;
     Sticking stk_out;  // (the held stops of the state an output row is made from)
     double ag_now = 0.0;
@@ -326,6 +330,11 @@ void fit_workspace(RunWorkspace::Impl& w, const System& sy) {
     }
 }
 
+// the slip from a stick just recorded for element e (sampled: with a sample of its own), for touched_mu_w
+void note_touch(Loop& lp, int e, bool sampled) {
+    lp.touch = {lp.out.events.n - 1, e, lp.out.samples.n, sampled, iso_u(lp.sy, e, lp.st)};
+}
+
 // a friction element at the start: moving, it slips; at rest, it sticks unless its tie would need more than
 // its friction (then it slips at once, the way the force pushes: an event at the start)
 void start_friction(Loop& lp) {
@@ -333,7 +342,7 @@ void start_friction(Loop& lp) {
     double* st = lp.st;
     for (const int e : sy.ties) {
         const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
-        double& slip = st[lp.L.region + e];
+        double& slip = iso_slip_slot(sy, e, st);
         const double u_rate = rel(st + lp.L.v, h.i, h.j);
         if (slip == 0.0 && u_rate != 0.0) slip = u_rate > 0.0 ? 1.0 : -1.0;
         if (slip != 0.0) continue;
@@ -344,6 +353,7 @@ void start_friction(Loop& lp) {
         r[EC_T] = st[T];
         r[EC_ACTION] = static_cast<double>(ACT_SLIP);
         r[EC_INDEX] = static_cast<double>(e);
+        note_touch(lp, e, false);  // (no sample of its own: the start's)
     }
 }
 
@@ -591,20 +601,21 @@ bool move_to_end(Loop& lp) {
     return true;
 }
 
-// a stick whose force touched mu W without passing it: the slip it began ended at once, at the same instant,
-// and the element sticks again; neither is an event (the slip's row and sample are taken back), so that a
-// table whose force peaks at exactly mu W leaves no zero-length slips
+// a stick whose force touched mu W without passing it (to rounding): the slip it began came back to rest
+// before any other event, its element moved no more than the rounding of the run's lengths, and it sticks
+// again; neither is an event (the slip's row, and its sample where none came after it, are taken back), so
+// that a table whose force peaks at mu W leaves no slips of no length
 bool touched_mu_w(Loop& lp, int e) {
+    const Loop::Touch& t = lp.touch;
     Rows& events = lp.out.events;
-    if (events.n == 0) return false;
-    const double* last = events.row(events.n - 1);
-    if (!(last[EC_T] == lp.st[T] && last[EC_ACTION] == static_cast<double>(ACT_SLIP) &&
-          last[EC_INDEX] == static_cast<double>(e)))
-        return false;
+    if (t.row < 0 || t.row != events.n - 1 || t.e != e) return false;
+    const double u = iso_u(lp.sy, e, lp.st);
+    if (std::abs(u - t.u) > ROUNDING * (lp.ph.xround + std::abs(u))) return false;
     events.n -= 1;
-    if (lp.opt.sample_dt >= 0.0) lp.out.samples.n -= 1;
+    if (t.sampled && lp.out.samples.n == t.samples) lp.out.samples.n -= 1;
     return true;
 }
+
 
 // the event at the sub-interval's end: a rigid stop's impact (resolved in closed form), a held stop's release
 // or any other jump; its row and sample (false: the run stops, Zeno or at its most events)
@@ -632,6 +643,10 @@ bool apply_event(Loop& lp) {
     if (untouched)
         record_event(st, sy, taken, lp.out.events, lp.out.samples, lp.opt.sample_dt, lp.extrema, lp.b, lp.row,
                      lp.stk_out, lp.ag_now);
+    if (ev.kind == KIND_STICK)  // (a stick's end: its slip may yet turn out a touch of mu W)
+        note_touch(lp, ev.index, lp.opt.sample_dt >= 0.0);
+    else
+        lp.touch.row = -1;
     // (a rigid impact that resolved its meeting after a short flight is a chatter's, summed in closed form
     // when it accumulates; one at the same instant as the last event is not)
     const double tau = lp.tau, t = lp.t;
@@ -651,6 +666,12 @@ bool apply_event(Loop& lp) {
 void finish_run(Loop& lp) {
     double* st = lp.st;
     double* ledger = lp.ledger;
+    // a slip from a stick at the run's very end: where mu W is touched there, it would end at once; the
+    // element is left sticking and the slip not recorded (a continued run starts it, should it go on)
+    const Loop::Touch& t = lp.touch;
+    if (lp.status == SUCCESS && t.row >= 0 && t.row == lp.out.events.n - 1 &&
+        lp.out.events.row(t.row)[EC_T] == st[T] && touched_mu_w(lp, t.e))
+        iso_transition(lp.sy, st, ACT_STICK, t.e, 0.0);
     lp.ag_now = excitation_value(lp.fo, st[T]);
     finish(st, lp.sy, lp.out.samples, lp.out.contacts, lp.b, lp.row, lp.stk_out, lp.ag_now);
     close_chatters(st, lp.sy, lp.out.chatters);

@@ -2,6 +2,7 @@
 
 #include <numeric>
 
+#include "isolator.hpp"
 #include "laws.hpp"
 
 namespace pounding {
@@ -34,7 +35,7 @@ bool is_held(const System& sy, const double* st, int c) {
     return sy.has_b && st[sy.lay.in_at(c)] != 0.0 && law_is_rigid(sy.contact[static_cast<size_t>(c)].law);
 }
 
-bool sticks(const System& sy, const double* st, int e) { return st[sy.lay.region + e] == 0.0; }
+bool sticks(const System& sy, const double* st, int e) { return iso_slip(sy, e, st) == 0.0; }
 
 // the bonds held in the state, with their pairs and signs: the rigid stops held shut, then the ties
 template <class Visit>
