@@ -123,6 +123,9 @@ def _first_crossing(sol, events: list, per_step: int = 32) -> tuple[float, int |
         best = next(i for i, te in enumerate(sol.t_events) if te.size)
     for which, fn in enumerate(events):
         vals = fn.direction * np.array([fn(tt, ys[:, i]) for i, tt in enumerate(grid)])
+        if vals[0] == 0.0 and vals.size > 1 and vals[1] > 0.0:  # (at zero at the start, and crossing at once)
+            best_t, best = float(grid[0]), which
+            continue
         hits = np.flatnonzero((vals[:-1] < 0.0) & (vals[1:] >= 0.0))
         if hits.size == 0:
             continue

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -326,6 +327,19 @@ def test_a_velocity_dependent_slip_s_friction_is_its_law_and_the_ledger_closes()
     assert run.summary()["displacement_max_m"] > fast["displacement_max_m"]
 
 
+def test_a_pre_slip_too_stiff_for_the_weight_and_a_slip_against_its_velocity_are_refused_by_name():
+    with pytest.raises(pd_.InputError, match="under the weight") as info:
+        pd_.Oscillator(500.0, pd_.FrictionIsolator(mu=0.05, preslip_m=1e-15))
+    assert info.value.field == "isolator.preslip_m"
+    system = pd_.Oscillator(500.0, pd_.FrictionIsolator(mu=0.05, radius_m=1.5))
+    start = pd_.State.at_rest(system, velocity_m_s=-0.3)
+    vector = np.array(start.vector, dtype=float)
+    vector[start.layout["region"]] = 1.0  # (slipping the way it does not move)
+    with pytest.raises(pd_.InputError, match="against its pair's velocity") as info:
+        pd_.simulate(system, pd_.Harmonic(0.1, 1.0), 1.0, dataclasses.replace(start, vector=vector))
+    assert info.value.field == "state.isolator_branch"
+
+
 def test_a_rigid_stop_beside_a_friction_isolator_is_refused_with_the_fix():
     with pytest.raises(pd_.InputError, match="compliant law") as info:
         pd_.Oscillator(500.0, pd_.FrictionIsolator(mu=0.05),
@@ -377,6 +391,20 @@ def test_a_run_s_summary_has_its_residual_displacement_and_its_sticks():
     rubber = pd_.simulate(pd_.presets.paper_damped(), pd_.Harmonic(0.05, 1.5), 3.0).summary()
     assert (rubber["sticks"], rubber["slips"]) == (0, 0)
     assert rubber["displacement_end_m"] != 0.0
+
+
+def test_a_pair_s_summary_has_each_structure_s_sticks_and_residual():
+    """Two adjacent buildings, the first on a friction pendulum: each structure's run and the pair's summary
+    count its isolator's sticks and slips as the pair's events do, and its base's displacement at the end."""
+    pair = pd_.Adjacent.from_toml(Path(__file__).parents[1] / "examples" / "adjacent_buildings.toml")
+    pair = dataclasses.replace(pair, first=dataclasses.replace(
+        pair.first, isolator=pd_.FrictionIsolator(mu=0.05, radius_m=2.0)))
+    run = pd_.simulate(pair, pd_.Harmonic(0.3, 0.8), 5.0)
+    kinds = list(run.events["kind"])
+    s = run.summary()
+    assert (s["first_sticks"], s["first_slips"]) == (kinds.count("stick"), kinds.count("slip"))
+    assert s["first_sticks"] > 0 and list(run.first.events["kind"]).count("slip") == s["first_slips"]
+    assert s["first_displacement_end_m"] == run.final_state.displacements_m[0]
 
 
 def test_the_isolator_loop_is_drawn_for_any_run():

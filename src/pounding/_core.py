@@ -213,8 +213,8 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
                              "friction force")
         if el.friction_rate_s_m < 0.0 or (el.friction_rate_s_m > 0.0) != (el.friction_fast_n > 0.0) or (
                 el.friction_rate_s_m > 0.0 and el.rule != 2):
-            raise ValueError(f"element {e}: a velocity-dependent friction is the friction rule's, with a fast "
-                             "friction > 0 and a rate > 0 together")
+            raise ValueError(f"element {e}: a velocity-dependent friction is the friction rule's, with a "
+                             "fast friction > 0 and a rate > 0 together")
     if len(bw) != LAYOUT["BW_PARAMS"]:
         raise ValueError(f"bw: {LAYOUT['BW_PARAMS']} numbers, got {len(bw)}")
     for c, slot in enumerate(contacts):

@@ -215,8 +215,9 @@ class Run:
         Returns
         -------
         pandas.Series
-            ``t_end_s``; the exact ``displacement_max_m``, ``displacement_min_m`` and
-            ``abs_acceleration_max_m_s2`` (between a rigid stop's impacts, which are impulses);
+            ``t_end_s``; the exact ``displacement_max_m``, ``displacement_min_m``, the
+            ``displacement_end_m`` at the run's end, a friction isolator's ``sticks`` and ``slips`` (0
+            otherwise) and ``abs_acceleration_max_m_s2`` (between a rigid stop's impacts, which are impulses);
             ``alpha``, that over the table's peak (a sine's amplitude, a record's PGA; NaN without
             shaking); ``contacts``, ``contacts_left`` and ``rigid_impacts``; over the finished contacts
             ``restitution_mean``, ``contact_time_mean_s`` (those that last: holds and deformable

@@ -253,6 +253,17 @@ def structure_runs(run: "Run | StructureRun | AdjacentRun") -> tuple:
     return (run.levels,) if isinstance(run, Run) else (run,)
 
 
+def _friction_events(events: np.ndarray, element: int) -> np.ndarray:
+    """A pair's event rows of one structure's isolator's sticks, slips and reversals (a rubber bearing's
+    reversals too), its element numbered 0 as the structure's own isolator: what one structure of a pair
+    reads of the pair's events (none for a fixed base)."""
+    kinds = [_core.ACTIONS[k] for k in ("stick", "slip", "reversal")]
+    rows = events[(events[:, 2] == element) & np.isin(events[:, 1], kinds)].copy() if element >= 0 else \
+        events[:0].copy()
+    rows[:, 2] = 0.0
+    return rows
+
+
 def _structures_run(model: "Structure | Adjacent", asm: Assembly, excitation: Harmonic | Record, rate: float,
                     out: _core.RunOutput, status: Status, energy: EnergyLedger,
                     final: State, t0: float) -> "StructureRun | AdjacentRun":
@@ -264,7 +275,8 @@ def _structures_run(model: "Structure | Adjacent", asm: Assembly, excitation: Ha
         return StructureRun._part(structures[0], 0, asm, structures, excitation, rate, out, status, t0,
                                   event_table=out.events, energy=energy, final_state=final, clearance_m=clear,
                                   chatter_table=out.chatters, contact_names=names)
-    parts = [StructureRun._part(s, b, asm, structures, excitation, rate, out, status, t0)
+    parts = [StructureRun._part(s, b, asm, structures, excitation, rate, out, status, t0,
+                                event_table=_friction_events(out.events, asm.isolator[b]))
              for b, s in enumerate(structures)]
     links = [c for c, (owner, _, _) in enumerate(asm.slots) if owner == -1]
     slot = CONTACT_COLUMNS["contact"]

@@ -128,9 +128,14 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str) -> None:
             continue
         if rule == 2:  # (friction: its slip's direction, -1, 0 or 1; 0 while its pair moves: it slips)
             slip = x_all[lay["region"] + e]
+            field = "isolator_branch" if e == 0 else f"vector[{lay['region'] + e}]"
             if slip not in (-1.0, 0.0, 1.0):
-                field = "isolator_branch" if e == 0 else f"vector[{lay['region'] + e}]"
                 raise bad(field, slip, f"is {who} slip direction: -1, 0 (sticking) or 1")
+            v = x_all[lay["v"]:lay["v"] + n]
+            u_rate = v[i] - (v[j] if j >= 0 else 0.0)
+            if slip * u_rate < 0.0:
+                raise bad(field, slip, f"is {who} slip direction, against its pair's velocity {u_rate:g} m/s "
+                                       "(a slip goes the way its pair moves)")
             continue
         if x_all[lay["region"] + e] != 0.0:
             field = "isolator_branch" if e == 0 else f"vector[{lay['region'] + e}]"

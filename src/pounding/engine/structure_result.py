@@ -326,8 +326,7 @@ class StructureRun(NamedChatters, Outcome):
             "t_end_s": t_end,
             "displacement_max_m": float(self.displacement_max[0]),
             "displacement_min_m": float(self.displacement_min[0]),
-            "displacement_end_m": (float(self.final_state.displacements_m[0]) if self.final_state is not None
-                                   else nan),
+            "displacement_end_m": float(self.displacement[-1, 0]) if self.t.size else nan,
             "sticks": int((kinds == "stick").sum()), "slips": int((kinds == "slip").sum()),
             "abs_acceleration_max_m_s2": acc, "alpha": acc / peak if peak else nan,
             **self.contact_counts(per_level=bool(self.structure.storeys)),

@@ -96,8 +96,8 @@ class FrictionIsolator:
     mu_fast: Optional[float] = None
     rate_s_m: float = 0.0
 
-    FIELDS: ClassVar[tuple[str, ...]] = ("mu", "radius_m", "damping_n_s_m", "preslip_m", "weight_n", "mu_fast",
-                                         "rate_s_m")
+    FIELDS: ClassVar[tuple[str, ...]] = ("mu", "radius_m", "damping_n_s_m", "preslip_m", "weight_n",
+                                         "mu_fast", "rate_s_m")
     OPTIONAL: ClassVar[tuple[str, ...]] = ("radius_m", "damping_n_s_m", "preslip_m", "weight_n", "mu_fast",
                                            "rate_s_m")
     RENAMED: ClassVar[dict[str, str]] = {}
@@ -131,12 +131,16 @@ class FrictionIsolator:
             weight = positive("isolator.weight_n", self.weight_n, "N")
             at_most("isolator.weight_n", weight, MAX_WEIGHT_N, " N", "give the weight in N (mass times g)")
             object.__setattr__(self, "weight_n", weight)
-            for name, k in (("the restoring stiffness W / R", self.restoring_stiffness_n_m),
-                            ("the pre-slip stiffness mu W / preslip_m", self._preslip_stiffness())):
+            # (the field a stiffness too large is blamed on: the one the user gave beside the weight)
+            for name, field, value, k, smallest in (
+                    ("the restoring stiffness W / R", "isolator.radius_m", self.radius_m,
+                     self.restoring_stiffness_n_m, weight / MAX_STIFFNESS_N_M),
+                    ("the pre-slip stiffness mu W / preslip_m", "isolator.preslip_m", self.preslip_m,
+                     self._preslip_stiffness(), self.mu * weight / MAX_STIFFNESS_N_M)):
                 if math.isfinite(k) and k > MAX_STIFFNESS_N_M:  # (a rigid stick's is inf: no spring)
-                    raise InputError(Problem.OUT_OF_RANGE, "isolator.weight_n", weight,
-                                     range=f"a weight that keeps {name} = {k:g} N/m within "
-                                           f"{MAX_STIFFNESS_N_M:g}", hint=" (a larger radius or pre-slip)")
+                    raise InputError(Problem.TOO_SMALL, field, value, minimum=smallest,
+                                     hint=f" m under the weight {weight:g} N ({name} would be {k:g} N/m, "
+                                          f"beyond {MAX_STIFFNESS_N_M:g})")
 
     def _check_velocity_dependence(self) -> None:
         rate = non_negative("isolator.rate_s_m", self.rate_s_m, "s/m")
@@ -145,7 +149,8 @@ class FrictionIsolator:
         object.__setattr__(self, "rate_s_m", rate)
         if self.mu_fast is None:
             if rate > 0.0:
-                raise InputError(Problem.WRONG_CONFIGURATION, "isolator.rate_s_m", rate, got="without mu_fast",
+                raise InputError(Problem.WRONG_CONFIGURATION, "isolator.rate_s_m", rate,
+                                 got="without mu_fast",
                                  fix="give mu_fast (the friction coefficient at high velocity) too, or leave "
                                      "rate_s_m 0 (Coulomb's constant mu)")
             return

@@ -15,8 +15,9 @@ def plot_isolator_loop(run: Any, ax: Any = None, *, t_start_s: Optional[float] =
     """The isolator's force (kN) against the base's displacement (mm) over a run: its hysteresis loop.
 
     A friction isolator's slips run along its slip lines, ``+-mu W`` off the pendulum's ``(W / R) D``
-    (dotted), and its sticks are vertical: the force changes while the base stays put.  The walls at the
-    base (a single mass's bumpers, a building's moat) are drawn where their gaps close.
+    (dotted; with a velocity dependence ``+-mu_fast W`` dashed too), and its sticks are vertical: the force
+    changes while the base stays put.  The walls at the base (a single mass's bumpers, a building's moat)
+    are drawn where their gaps close.
 
     Parameters
     ----------
@@ -33,7 +34,8 @@ def plot_isolator_loop(run: Any, ax: Any = None, *, t_start_s: Optional[float] =
     Returns
     -------
     list of matplotlib artists
-        The loop's line, then the slip lines and the walls' gaps where there are any.
+        The loop's line, then the slip lines (two, or four with ``mu_fast``) and the walls' gaps where there
+        are any.
 
     Examples
     --------
@@ -78,12 +80,16 @@ def plot_isolator_loop(run: Any, ax: Any = None, *, t_start_s: Optional[float] =
     artists = list(ax.plot(d_mm, f_kn, **line))
     iso = structure.isolator
     friction = getattr(iso, "friction_force_n", None)
-    if friction is not None:  # (a friction isolator: its slip lines)
+    if friction is not None:  # (a friction isolator: its slip lines, at rest and fast)
         span = np.array([d_mm.min(), d_mm.max()])
         k = iso.restoring_stiffness_n_m
-        for sign, label in ((1.0, "slip at +-mu W"), (-1.0, None)):
-            artists += ax.plot(span, (k * span * 1e-3 + sign * friction) / 1e3, color="0.5", lw=0.8, ls=":",
-                               label=label)
+        lines = [(friction, "slip at +-mu W", ":")]
+        if iso.mu_fast is not None:
+            lines.append((iso.friction_fast_force_n, "slip at +-mu_fast W", "--"))
+        for force, label, style in lines:
+            for sign in (1.0, -1.0):
+                artists += ax.plot(span, (k * span * 1e-3 + sign * force) / 1e3, color="0.5", lw=0.8,
+                                   ls=style, label=label if sign > 0 else None)
     for wall in structure.walls:
         if wall.level != 0:
             continue
