@@ -347,11 +347,41 @@ def test_a_rigid_stop_beside_a_friction_isolator_is_refused_with_the_fix():
     assert info.value.field == "bumpers.law"
 
 
+def _orbit_systems() -> list:
+    building = pd_.Structure(4000.0, pd_.FrictionIsolator(mu=0.1, radius_m=2.0),
+                             [pd_.Storey(3000.0, 4e6, 4e3), pd_.Storey(2000.0, 3e6, 3e3)], [])
+    bumpers = pd_.Bumpers(0.03, 0.03, pd_.KelvinVoigt(2.0e6, 500.0))
+    return [(pd_.Oscillator(500.0, pd_.FrictionIsolator(mu=0.1, radius_m=1.5), bumpers),
+             pd_.Harmonic(0.2, 0.6)),
+            (pd_.Oscillator(500.0, pd_.FrictionIsolator(mu=0.05, radius_m=1.5, damping_n_s_m=300.0)),
+             pd_.Harmonic(0.08, 0.5)),
+            (building, pd_.Harmonic(0.25, 0.8))]
+
+
+@pytest.mark.parametrize("case", range(3))
+def test_an_orbit_that_sticks_has_exact_multipliers_equal_to_finite_differences(case):
+    """Periodic orbits that stick and slip in each period (against bumpers, with a dashpot, a building's
+    base): their monodromy composed exactly through every stick (its saltation: the slip's velocity the
+    guard, the held mode after it, the pair's velocity perturbation erased) and slip (the field continuous at
+    the force's balance), equal to the finite differences' to 1e-6."""
+    system, table = _orbit_systems()[case]
+    kinds = set(pd_.simulate(system, table, 40.0, sample_rate_hz=0).events["kind"])
+    assert {"stick", "slip"} <= kinds
+    exact = pd_.periodic_orbit(system, table)
+    fd = pd_.periodic_orbit(system, table, method="finite-difference")
+    assert exact.converged and fd.converged
+    assert exact.method == "exact", exact.message
+    np.testing.assert_allclose(np.sort_complex(exact.multipliers), np.sort_complex(fd.multipliers), atol=1e-6)
+    assert np.sum(np.abs(exact.multipliers) < 1e-12) >= 1  # (a stick forgets its pair's perturbations)
+
+
 def test_an_unsupported_monodromy_says_why():
     from pounding.analysis._hybrid import unsupported
 
-    assert "sticks and slips" in unsupported(pd_.Oscillator(500.0, pd_.FrictionIsolator(mu=0.05)))
+    assert unsupported(pd_.Oscillator(500.0, pd_.FrictionIsolator(mu=0.05))) is None
     assert unsupported(pd_.Oscillator(500.0, pd_.FrictionIsolator(mu=0.05, preslip_m=1e-4))) is None
+    fast = pd_.FrictionIsolator(mu=0.05, mu_fast=0.1, rate_s_m=20.0)
+    assert "depends on the velocity" in unsupported(pd_.Oscillator(500.0, fast))
 
 
 def test_a_flat_slider_has_no_period_for_a_spectrum():

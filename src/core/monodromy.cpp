@@ -145,7 +145,7 @@ Mat exponential(const Mat& a, double tau) {
 // the mode's accelerations with the rigid stops held in st: each held group's rows of the velocities' rates
 // replaced by their mass-weighted mean (sticking.hpp), a group held to the ground's by zero
 void hold_rows(const System& sy, const Coords& cx, const double* st, Mat& a) {
-    if (!sy.has_b) return;
+    if (!sy.has_b && sy.ties.empty()) return;
     Sticking stk;
     stk.build(sy, st);
     if (!stk.any) return;
@@ -301,6 +301,22 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
                 add_rel(grad, cx.v, ct.i, ct.j, ct.sign * b.c);
                 next[sy.lay.in_at(index)] = 0.0;
             }
+        } else if (action == ACT_SLIP) {
+            // a stick's end (its tie's force at mu W) or the start's slip: the slip begins from the force's
+            // balance, the pair's relative acceleration zero on both sides, so the field goes on continuous (no
+            // saltation, as a held stop's release); the way it slips is the way the tie's force pushes
+            std::vector<double> q(static_cast<size_t>(sy.n)), row(static_cast<size_t>(sy.lay.sample_cols()));
+            Sticking stk;
+            const double d = run_parts::tie_force(st.data(), sy, index, stk, amp * xa[static_cast<size_t>(n)],
+                                                  q.data(), row.data());
+            iso_transition(sy, next.data(), ACT_SLIP, index, d > 0.0 ? 1.0 : -1.0);
+            st = next;
+            a = mode(sy, cx, st.data(), omega, amp);
+            continue;
+        } else if (action == ACT_STICK) {  // a friction slip at rest, held: the guard its pair's velocity
+            const Hysteretic& h = sy.hyst[static_cast<size_t>(index)];
+            add_rel(grad, cx.v, h.i, h.j, 1.0);
+            iso_transition(sy, next.data(), ACT_STICK, index, 0.0);
         } else if (action == ACT_YIELD || action == ACT_REVERSAL || action == ACT_REGION) {
             const IsoGuard g = iso_guard(sy, action, index, st.data(), xa.data() + cx.v, f_before.data() + cx.v);
             const Hysteretic& h = sy.hyst[static_cast<size_t>(g.e)];

@@ -42,8 +42,8 @@ def unsupported(system: "Oscillator | Structure | Adjacent") -> str | None:
         who = ("the first's " if b == 0 else "the second's ") if named else "its "
         if s.isolator is not None and s.isolator.bouc_wen is not None:
             return f"{who}isolator has a Bouc-Wen spring (a nonlinear phase)"
-        if s.isolator is not None and s.isolator.kernel_friction:
-            return f"{who}isolator sticks and slips (a stick's saltation is not composed yet)"
+        if s.isolator is not None and s.isolator.kernel_friction.get("friction_rate_s_m", 0.0) > 0.0:
+            return f"{who}isolator's friction depends on the velocity (a nonlinear phase)"
         for w, wall in enumerate(s.walls):
             for side, law in (("left", wall.left), ("right", wall.right)):
                 if linear_form(law) is None and not is_rigid(law):
