@@ -15,11 +15,16 @@ double backbone_force_at_break(const Hysteretic& h, int j) {
 
 bool iso_is_friction(const Hysteretic& h) { return h.rule == RULE_FRICTION; }
 
+namespace {
+// a friction element's slip force in its linear phase, N: its friction, a velocity dependence's fast one
+// (the rest, iso_rate_force, numerical)
+double slip_friction(const Hysteretic& h) { return h.friction_rate != 0.0 ? h.friction_fast : h.friction; }
+}  // namespace
+
 IsoLinear iso_linear(const System& sy, int e, const double* st) {
     const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
     const int n_sp = h.n_springs();
-    if (h.rule == RULE_FRICTION)  // (0 sticking; a velocity-dependent slip's linear part: its fast friction)
-        return {h.slopes[0], st[sy.lay.region + e] * (h.friction_rate != 0.0 ? h.friction_fast : h.friction)};
+    if (h.rule == RULE_FRICTION) return {h.slopes[0], st[sy.lay.region + e] * slip_friction(h)};  // (0: sticks)
     if (h.rule == RULE_ELASTIC) {
         const int r = static_cast<int>(st[sy.lay.region + e]);
         const int a = std::abs(r);
@@ -145,7 +150,7 @@ double iso_advance(const System& sy, double* st, const double* x_start, const do
         const double d_start = rel(x_start, h.i, h.j), d_end = rel(x_end, h.i, h.j);
         if (h.rule == RULE_FRICTION) {  // (a slip never turns inside a sub-interval: its end is an event)
             if (st[sy.lay.region + e] != 0.0)  // (a velocity dependence's rest: numeric_contributions)
-                work += (h.friction_rate != 0.0 ? h.friction_fast : h.friction) * std::abs(d_end - d_start);
+                work += slip_friction(h) * std::abs(d_end - d_start);
             continue;
         }
         double* slip = st + sy.lay.base + h.first;

@@ -616,7 +616,6 @@ bool touched_mu_w(Loop& lp, int e) {
     return true;
 }
 
-
 // the event at the sub-interval's end: a rigid stop's impact (resolved in closed form), a held stop's release
 // or any other jump; its row and sample (false: the run stops, Zeno or at its most events)
 bool apply_event(Loop& lp) {

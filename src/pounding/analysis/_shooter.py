@@ -23,8 +23,8 @@ from ..engine.layout import C_SLOT, C_T_END, C_T_START, C_V_IN, X_A_MAX, X_D_MAX
 from ..engine.run_args import kernel_forcing
 from ..engine.simulate import NotAState, ShortRun, short_run
 from ..engine.state import State
-from ..engine.structure_result import ground_peak
 from ..excitation import Harmonic
+from ..excitation.peak import ground_peak
 from ..model.contact_laws import is_rigid, linear_form
 from . import _hybrid as hy
 from ._shooting import _Failed, _Newton, at_section, finished_contacts

@@ -253,7 +253,7 @@ def structure_runs(run: "Run | StructureRun | AdjacentRun") -> tuple:
     return (run.levels,) if isinstance(run, Run) else (run,)
 
 
-def _friction_events(events: np.ndarray, element: int) -> np.ndarray:
+def _isolator_switches(events: np.ndarray, element: int) -> np.ndarray:
     """A pair's event rows of one structure's isolator's sticks, slips and reversals (a rubber bearing's
     reversals too), its element numbered 0 as the structure's own isolator: what one structure of a pair
     reads of the pair's events (none for a fixed base)."""
@@ -276,7 +276,7 @@ def _structures_run(model: "Structure | Adjacent", asm: Assembly, excitation: Ha
                                   event_table=out.events, energy=energy, final_state=final, clearance_m=clear,
                                   chatter_table=out.chatters, contact_names=names)
     parts = [StructureRun._part(s, b, asm, structures, excitation, rate, out, status, t0,
-                                event_table=_friction_events(out.events, asm.isolator[b]))
+                                event_table=_isolator_switches(out.events, asm.isolator[b]))
              for b, s in enumerate(structures)]
     links = [c for c, (owner, _, _) in enumerate(asm.slots) if owner == -1]
     slot = CONTACT_COLUMNS["contact"]

@@ -12,6 +12,7 @@ import pandas as pd
 
 from .._errors import Status
 from .._tables import RunQuantities
+from ..excitation.peak import ground_peak
 from .layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
 from .layout import force_max, impulses
 from .layout import (C_MAX_COMPRESSION, C_SLOT, C_V_IN, DOF_EXTREMA_LEN, P_MAX, P_MAX_T, P_MIN, P_MIN_T,
@@ -427,28 +428,6 @@ def _columns(samples: np.ndarray, cols: list) -> np.ndarray:
     if cols and cols == list(range(cols[0], cols[0] + len(cols))):
         return samples[:, cols[0]:cols[0] + len(cols)]
     return samples[:, cols]
-
-
-def ground_peak(excitation: Any, t0: float, t1: float) -> tuple[float, float]:
-    """The largest absolute ground acceleration over [t0, t1], m/s^2, and when: exact (a sine's crest, or a
-    record's sample, linear between them)."""
-    from ..excitation import Harmonic
-
-    ends = np.array([t0, t1])
-    candidates = [ends]
-    if isinstance(excitation, Harmonic):  # crests where omega t + phase = pi/2 + k pi
-        w, phi = excitation.omega_rad_s, excitation.phase
-        first = math.ceil(((w * t0 + phi) - 0.5 * math.pi) / math.pi)
-        last = math.floor(((w * t1 + phi) - 0.5 * math.pi) / math.pi)
-        if last >= first:
-            candidates.append(np.array([(0.5 * math.pi + first * math.pi - phi) / w]))
-    else:
-        inside = excitation.t[(excitation.t >= t0) & (excitation.t <= t1)]
-        candidates.append(inside)
-    times = np.concatenate(candidates)
-    values = np.abs(excitation.acceleration(times))
-    j = int(np.argmax(values))
-    return float(values[j]), float(times[j])
 
 
 # every run's point (a study's, a pounding spectrum's, a design stripe's), one meaning for every system: a

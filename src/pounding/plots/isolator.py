@@ -6,6 +6,7 @@ from typing import Any, Optional
 
 import numpy as np
 
+from .._checks import real
 from .._errors import InputError, Problem
 from .legend import place_legend
 
@@ -64,8 +65,8 @@ def plot_isolator_loop(run: Any, ax: Any = None, *, t_start_s: Optional[float] =
     if t.size < 2:
         raise InputError(Problem.BAD_STATE, "run", f"{t.size} samples", why="has no histories to draw",
                          fix="simulate with sample_rate_hz > 0 (the default samples at 1 kHz)")
-    t0 = float(t[0]) if t_start_s is None else float(t_start_s)
-    t1 = float(t[-1]) if t_end_s is None else float(t_end_s)
+    t0 = float(t[0]) if t_start_s is None else real("t_start_s", t_start_s)
+    t1 = float(t[-1]) if t_end_s is None else real("t_end_s", t_end_s)
     inside = (t >= t0) & (t <= t1)
     if inside.sum() < 2:
         raise InputError(Problem.BAD_STATE, "t_start_s", t_start_s,
