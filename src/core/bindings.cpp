@@ -71,7 +71,8 @@ Contact contact_of(int i, int j, double sign, double gap_m, int law, const std::
 }
 
 Hysteretic element_of(int i, int j, double c_d, const std::vector<double>& slopes, const std::vector<double>& breaks,
-                      int rule, double friction, double friction_fast, double friction_rate) {
+                      int rule, double friction, double friction_fast, double friction_rate,
+                      const std::vector<double>& surface_friction) {
     Hysteretic h;
     h.i = i;
     h.j = j;
@@ -82,6 +83,7 @@ Hysteretic element_of(int i, int j, double c_d, const std::vector<double>& slope
     h.friction = friction;
     h.friction_fast = friction_fast;
     h.friction_rate = friction_rate;
+    h.surface_friction = surface_friction;
     return h;
 }
 
@@ -113,6 +115,7 @@ nb::dict element_state(const Hysteretic& h) {
     d["friction_n"] = h.friction;
     d["friction_fast_n"] = h.friction_fast;
     d["friction_rate_s_m"] = h.friction_rate;
+    d["surface_friction_n"] = h.surface_friction;
     return d;
 }
 
@@ -121,7 +124,9 @@ Hysteretic element_from_state(const nb::dict& d) {
                       nb::cast<std::vector<double>>(d["slopes"]), nb::cast<std::vector<double>>(d["breaks"]),
                       nb::cast<int>(d["rule"]), d.contains("friction_n") ? nb::cast<double>(d["friction_n"]) : 0.0,
                       d.contains("friction_fast_n") ? nb::cast<double>(d["friction_fast_n"]) : 0.0,
-                      d.contains("friction_rate_s_m") ? nb::cast<double>(d["friction_rate_s_m"]) : 0.0);
+                      d.contains("friction_rate_s_m") ? nb::cast<double>(d["friction_rate_s_m"]) : 0.0,
+                      d.contains("surface_friction_n") ? nb::cast<std::vector<double>>(d["surface_friction_n"])
+                                                       : std::vector<double>{});
 }
 
 void fill_system(System& s, int n, const std::vector<double>& mass, const std::vector<double>& k0,
@@ -207,13 +212,13 @@ NB_MODULE(_pounding_core, m) {
         .def("__init__",
              [](Hysteretic* h, int i, int j, double c_d, const std::vector<double>& slopes,
                 const std::vector<double>& breaks, int rule, double friction_n, double friction_fast_n,
-                double friction_rate_s_m) {
+                double friction_rate_s_m, const std::vector<double>& surface_friction_n) {
                  new (h) Hysteretic(element_of(i, j, c_d, slopes, breaks, rule, friction_n, friction_fast_n,
-                                               friction_rate_s_m));
+                                               friction_rate_s_m, surface_friction_n));
              },
              nb::kw_only(), nb::arg("i"), nb::arg("j"), nb::arg("c_d"), nb::arg("slopes"), nb::arg("breaks"),
              nb::arg("rule"), nb::arg("friction_n") = 0.0, nb::arg("friction_fast_n") = 0.0,
-             nb::arg("friction_rate_s_m") = 0.0)
+             nb::arg("friction_rate_s_m") = 0.0, nb::arg("surface_friction_n") = std::vector<double>{})
         .def_ro("i", &Hysteretic::i)
         .def_ro("j", &Hysteretic::j)
         .def_ro("c_d", &Hysteretic::c_d)
@@ -223,6 +228,7 @@ NB_MODULE(_pounding_core, m) {
         .def_ro("friction_n", &Hysteretic::friction)
         .def_ro("friction_fast_n", &Hysteretic::friction_fast)
         .def_ro("friction_rate_s_m", &Hysteretic::friction_rate)
+        .def_ro("surface_friction_n", &Hysteretic::surface_friction)
         .def("__getstate__", &element_state)
         .def("__setstate__", [](Hysteretic& h, const nb::dict& d) { new (&h) Hysteretic(element_from_state(d)); });
 
@@ -441,6 +447,7 @@ NB_MODULE(_pounding_core, m) {
     status["INTERRUPTED"] = static_cast<int>(INTERRUPTED);
     status["BUDGET"] = static_cast<int>(BUDGET);
     status["NONFINITE"] = static_cast<int>(NONFINITE);
+    status["CAPACITY"] = static_cast<int>(CAPACITY);
     m.attr("STATUS") = status;
     nb::dict actions;  // the events' actions: an event table's second column
     actions["yield"] = static_cast<int>(ACT_YIELD);
@@ -452,6 +459,8 @@ NB_MODULE(_pounding_core, m) {
     actions["bouc_wen_zero"] = static_cast<int>(ACT_BOUC_WEN);
     actions["stick"] = static_cast<int>(ACT_STICK);
     actions["slip"] = static_cast<int>(ACT_SLIP);
+    actions["surface_slip"] = static_cast<int>(ACT_SURFACE_SLIP);
+    actions["ring"] = static_cast<int>(ACT_RING);
     m.attr("ACTIONS") = actions;
     m.attr("N_LAW_STATE") = N_LAW_STATE;
     m.attr("N_LAW_PARAMS") = N_LAW_PARAMS;

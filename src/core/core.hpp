@@ -14,7 +14,8 @@
 //   region + e element e's backbone branch (elastic rule) or its slip (friction rule: -1, 0 sticking, +1)
 //   | acc + N_ACC c a contact's running totals
 //   z + N_LAW_STATE c a contact law's state | zeta Bouc-Wen z | base + g slips of every element's springs
-//   (element e's from its first), then base + n_sp + g their slip directions
+//   (element e's from its first), then base + n_sp + g their slip directions (a series of friction surfaces:
+//   each surface's displacement, then its state: +-1 slipping, 0 held, +-2 held at its ring on that side)
 // For n = 1 and two contact slots that is Python's long-standing layout (T 0, D 1, V 2, ..., STATE_BASE 37).
 #pragma once
 
@@ -79,14 +80,15 @@ struct Layout {
 
 // how a run ended: the codes of pounding.Status
 enum Status : int {
-    SUCCESS = 0, ZENO = -1, MAX_EVENTS = -2, STEP_FAILED = -4, INTERRUPTED = -5, BUDGET = -6, NONFINITE = -7
+    SUCCESS = 0, ZENO = -1, MAX_EVENTS = -2, STEP_FAILED = -4, INTERRUPTED = -5, BUDGET = -6, NONFINITE = -7,
+    CAPACITY = -8  // a friction isolator's surfaces all at their rings: its travel used up
     // (-3, DEGENERATE_PHASE, is gone: an undamped resonance is solved as any phase)
 };
 
 // events' actions (their codes in a run's event table)
 enum Action : int {
     ACT_YIELD = 0, ACT_REVERSAL = 1, ACT_REGION = 2, ACT_CONTACT = 3, ACT_RELEASE = 4, ACT_LAW_BRANCH = 5,
-    ACT_BOUC_WEN = 6, ACT_STICK = 7, ACT_SLIP = 8
+    ACT_BOUC_WEN = 6, ACT_STICK = 7, ACT_SLIP = 8, ACT_SURFACE_SLIP = 9, ACT_RING = 10
 };
 
 // the run control Python shares with a running kernel (int64): a stop flag, the work done (sub-intervals),
@@ -136,8 +138,13 @@ struct Hysteretic {
     // rule 2's velocity dependence: a slip's force F_fast - (F_fast - friction) e^(-rate |u'|) (friction at
     // rest, F_fast fast), as OpenSees' VelDependent; rate 0 (s/m): Coulomb's constant friction
     double friction_fast = 0.0, friction_rate = 0.0;
+    // rule 2 with surfaces in series (a triple friction pendulum's series model, isolator.hpp): each surface's
+    // friction (N; slopes its stiffness, breaks its travel to its ring); empty: one surface (friction, slopes[0])
+    std::vector<double> surface_friction;
     int first = 0;  // its first spring's index among the system's (set by System::finish)
-    int n_springs() const { return static_cast<int>(slopes.size()) - 1; }
+    bool series() const { return !surface_friction.empty(); }
+    // its springs: a series's surfaces (each with a displacement and a state), the backbone's breaks otherwise
+    int n_springs() const { return series() ? static_cast<int>(slopes.size()) : static_cast<int>(slopes.size()) - 1; }
 };
 
 bool law_is_rigid(int law);  // (laws.hpp: the contact laws' one place)

@@ -15,15 +15,82 @@ double backbone_force_at_break(const Hysteretic& h, int j) {
 
 bool iso_is_friction(const Hysteretic& h) { return h.rule == RULE_FRICTION; }
 
+int iso_element_of_spring(const System& sy, int index) {
+    int e = 0;
+    while (index >= sy.hyst[static_cast<size_t>(e)].first + sy.hyst[static_cast<size_t>(e)].n_springs()) ++e;
+    return e;
+}
+
 namespace {
 // a friction element's slip force in its linear phase, N: its friction, a velocity dependence's fast one
 // (the rest, iso_rate_force, numerical)
 double slip_friction(const Hysteretic& h) { return h.friction_rate != 0.0 ? h.friction_fast : h.friction; }
+
+// ---------------------------------------------------------------- surfaces in series (the header's rule)
+
+// a series's surfaces in the state: their displacements u_g (m) and states (+-1 slipping, 0 held, +-2 held at
+// the ring on that side)
+struct Surfaces {
+    const Hysteretic& h;
+    double* u;
+    double* state;
+    int n() const { return static_cast<int>(h.slopes.size()); }
+};
+Surfaces surfaces(const System& sy, const Hysteretic& h, const double* st) {
+    double* s = const_cast<double*>(st);  // (read-only where st is: the callers that write own it)
+    return {h, s + sy.lay.base + h.first, s + sy.lay.base + sy.lay.n_sp + h.first};
+}
+
+// the force at which surface g, held, slips the way s (N): k_g u_g + s F_g (+-inf at its ring that way)
+double threshold(const Surfaces& sf, int g, double s) {
+    if (sf.state[g] == 2.0 * s) return s * INF;
+    return sf.h.slopes[g] * sf.u[g] + s * sf.h.surface_friction[g];
+}
+// the force at which the series, held, slips the way s: the lowest threshold up, the highest down
+double series_threshold(const Surfaces& sf, double s) {
+    double best = s * INF;
+    for (int g = 0; g < sf.n(); ++g) {
+        const double t = threshold(sf, g, s);
+        if (s * t < s * best) best = t;
+    }
+    return best;
+}
+// its force while it slips the way s with the surfaces whose state is s: k u + r0 (k 0 when none slips)
+IsoLinear series_linear(const Surfaces& sf, double s) {
+    double compliance = 0.0, held = 0.0, friction = 0.0;
+    for (int g = 0; g < sf.n(); ++g) {
+        if (sf.state[g] == s) {
+            compliance += 1.0 / sf.h.slopes[g];
+            friction += sf.h.surface_friction[g] / sf.h.slopes[g];
+        } else {
+            held += sf.u[g];
+        }
+    }
+    if (compliance == 0.0) return {0.0, 0.0};  // (its travel used up: the run stops)
+    const double k = 1.0 / compliance;
+    return {k, k * (s * friction - held)};
+}
+// the held surfaces whose threshold the way s is the force f (to rounding) slip that way
+void slip_at(const Surfaces& sf, double s, double f) {
+    double scale = std::abs(f);
+    for (int g = 0; g < sf.n(); ++g) scale += sf.h.surface_friction[g];
+    for (int g = 0; g < sf.n(); ++g)
+        if (std::abs(sf.state[g]) != 1.0 && std::abs(threshold(sf, g, s) - f) <= 1e-9 * scale) sf.state[g] = s;
+}
+// the slipping surfaces held where they are (a stick)
+void hold(const Surfaces& sf) {
+    for (int g = 0; g < sf.n(); ++g)
+        if (std::abs(sf.state[g]) == 1.0) sf.state[g] = 0.0;
+}
 }  // namespace
 
 IsoLinear iso_linear(const System& sy, int e, const double* st) {
     const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
     const int n_sp = h.n_springs();
+    if (h.series()) {  // (held: the tie takes all of its force)
+        const double s = st[sy.lay.region + e];
+        return s != 0.0 ? series_linear(surfaces(sy, h, st), s) : IsoLinear{0.0, 0.0};
+    }
     if (h.rule == RULE_FRICTION) return {h.slopes[0], st[sy.lay.region + e] * slip_friction(h)};  // (0: sticks)
     if (h.rule == RULE_ELASTIC) {
         const int r = static_cast<int>(st[sy.lay.region + e]);
@@ -54,6 +121,18 @@ IsoLinear iso_linear(const System& sy, int e, const double* st) {
 double iso_energy(const System& sy, int e, const double* st, double d) {
     const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
     const int n_sp = h.n_springs();
+    if (h.series()) {  // (each surface's spring; a slipping one's displacement from the force at d)
+        const Surfaces sf = surfaces(sy, h, st);
+        const double s = st[sy.lay.region + e];
+        const IsoLinear il = iso_linear(sy, e, st);
+        const double f = il.k * d + il.r0;
+        double w = 0.0;
+        for (int g = 0; g < sf.n(); ++g) {
+            const double ug = s != 0.0 && sf.state[g] == s ? (f - s * h.surface_friction[g]) / h.slopes[g] : sf.u[g];
+            w += 0.5 * h.slopes[g] * ug * ug;
+        }
+        return w;
+    }
     if (h.rule == RULE_FRICTION) return 0.5 * h.slopes[0] * d * d;
     if (h.rule == RULE_ELASTIC) {
         const double a = std::abs(d);
@@ -95,10 +174,50 @@ int add(const Hysteretic& h, EventRow* evs, int n, double alpha, double beta, do
 }
 }  // namespace
 
+namespace {
+// a series's event rows: slipping, its slip's end and each surface's threshold or ring (at a value of u);
+// held, the tie's force reaching its thresholds
+int series_events(const System& sy, const double* st, int e, EventRow* evs, int n) {
+    const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+    const Surfaces sf = surfaces(sy, h, st);
+    const double s = st[sy.lay.region + e];
+    if (s == 0.0) {
+        const int bond = sy.nc() + e;
+        const double up = series_threshold(sf, 1.0), down = series_threshold(sf, -1.0);
+        if (std::isfinite(up)) n = add(h, evs, n, up, -1.0, 0.0, ACT_SLIP, e, 1.0, KIND_STICK, bond);
+        if (std::isfinite(down)) n = add(h, evs, n, -down, 1.0, 0.0, ACT_SLIP, e, -1.0, KIND_STICK, bond);
+        return n;
+    }
+    n = add(h, evs, n, 0.0, 0.0, s, ACT_STICK, e, 0.0, KIND_LINEAR, SIDE_VELOCITY);
+    const IsoLinear il = series_linear(sf, s);
+    if (il.k == 0.0) return n;
+    for (int g = 0; g < sf.n(); ++g) {
+        double f;  // the force where it happens: a held surface's threshold, a slipping one's ring
+        int action;
+        if (sf.state[g] == s) {
+            if (!std::isfinite(h.breaks[static_cast<size_t>(g)])) continue;
+            f = s * (h.slopes[g] * h.breaks[g] + h.surface_friction[g]);
+            action = ACT_RING;
+        } else {
+            f = threshold(sf, g, s);
+            if (!std::isfinite(f)) continue;
+            action = ACT_SURFACE_SLIP;
+        }
+        const double u_at = (f - il.r0) / il.k;  // (the slip moves u the way s: g = s (u_at - u) >= 0 before)
+        n = add(h, evs, n, s * u_at, -s, 0.0, action, h.first + g, s);
+    }
+    return n;
+}
+}  // namespace
+
 int iso_events(const System& sy, const double* st, EventRow* evs, int n) {
     for (int e = 0; e < sy.n_h(); ++e) {
         const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
         const int n_sp = h.n_springs();
+        if (h.series()) {
+            n = series_events(sy, st, e, evs, n);
+            continue;
+        }
         if (h.rule == RULE_FRICTION) {
             const double s = st[sy.lay.region + e];
             if (s != 0.0) {  // slipping: until s u' comes to zero
@@ -148,6 +267,19 @@ double iso_advance(const System& sy, double* st, const double* x_start, const do
         if (h.rule == RULE_ELASTIC) continue;
         const int n_sp = h.n_springs();
         const double d_start = rel(x_start, h.i, h.j), d_end = rel(x_end, h.i, h.j);
+        if (h.series()) {  // (the slipping surfaces moved with the force, each doing its friction's work)
+            const double s = st[sy.lay.region + e];
+            if (s == 0.0) continue;
+            const Surfaces sf = surfaces(sy, h, st);
+            const IsoLinear il = series_linear(sf, s);
+            const double f_start = il.k * d_start + il.r0, f_end = il.k * d_end + il.r0;
+            for (int g = 0; g < sf.n(); ++g) {
+                if (sf.state[g] != s) continue;
+                work += h.surface_friction[g] * std::abs(f_end - f_start) / h.slopes[g];
+                sf.u[g] = (f_end - s * h.surface_friction[g]) / h.slopes[g];
+            }
+            continue;
+        }
         if (h.rule == RULE_FRICTION) {  // (a slip never turns inside a sub-interval: its end is an event)
             if (st[sy.lay.region + e] != 0.0)  // (a velocity dependence's rest: numeric_contributions)
                 work += slip_friction(h) * std::abs(d_end - d_start);
@@ -170,32 +302,80 @@ void iso_transition(const System& sy, double* st, int action, int index, double 
     if (action == ACT_REGION) {
         st[sy.lay.region + index] += direction;
     } else if (action == ACT_YIELD) {  // (index: the spring's among the system's)
-        int e = 0;
-        while (index >= sy.hyst[static_cast<size_t>(e)].first + sy.hyst[static_cast<size_t>(e)].n_springs()) ++e;
+        const int e = iso_element_of_spring(sy, index);
         const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
         st[base + n_sp + index] = direction;
         st[base + index] = iso_u(sy, e, st) - direction * h.breaks[index - h.first];
     } else if (action == ACT_REVERSAL) {
         const Hysteretic& h = sy.hyst[static_cast<size_t>(index)];
+        if (h.series()) {  // (held, then slipping back from the lowest threshold that way)
+            const double s = -st[sy.lay.region + index];
+            const Surfaces sf = surfaces(sy, h, st);
+            hold(sf);
+            st[sy.lay.region + index] = s;
+            slip_at(sf, s, series_threshold(sf, s));
+            return;
+        }
         if (h.rule == RULE_FRICTION) st[sy.lay.region + index] = -st[sy.lay.region + index];
         for (int i = 0; i < h.n_springs(); ++i) st[base + n_sp + h.first + i] = 0.0;
     } else if (action == ACT_SLIP) {
         st[sy.lay.region + index] = direction;
+        const Hysteretic& h = sy.hyst[static_cast<size_t>(index)];
+        if (h.series()) {  // (from rest: the surfaces of the lowest threshold that way)
+            const Surfaces sf = surfaces(sy, h, st);
+            hold(sf);
+            slip_at(sf, direction, series_threshold(sf, direction));
+        }
     } else if (action == ACT_STICK) {  // the pair's relative velocity zero (the ground's end: the dof's)
         const Hysteretic& h = sy.hyst[static_cast<size_t>(index)];
         st[sy.lay.region + index] = 0.0;
         st[sy.lay.v + h.i] = h.j >= 0 ? st[sy.lay.v + h.j] : 0.0;
+        if (h.series()) hold(surfaces(sy, h, st));
+    } else if (action == ACT_SURFACE_SLIP || action == ACT_RING) {  // (index: the surface's spring's)
+        const int e = iso_element_of_spring(sy, index);
+        const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+        const Surfaces sf = surfaces(sy, h, st);
+        const int g = index - h.first;
+        const double s = st[sy.lay.region + e];
+        if (action == ACT_RING) {
+            sf.state[g] = 2.0 * s;
+            sf.u[g] = s * h.breaks[static_cast<size_t>(g)];
+        } else {
+            const double f = threshold(sf, g, s);
+            sf.state[g] = s;
+            slip_at(sf, s, f);  // (with any other of the same threshold)
+        }
     }
 }
 
-int friction_decision(const System& sy, double* st, int e, double tie_force) {
+double friction_slip_way(const System& sy, const double* st, int e, double tie_force) {
+    const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+    if (h.series()) {  // (every surface held where it is)
+        const Surfaces sf = surfaces(sy, h, st);
+        if (tie_force > series_threshold(sf, 1.0)) return 1.0;
+        return tie_force < series_threshold(sf, -1.0) ? -1.0 : 0.0;
+    }
+    if (std::abs(tie_force) <= h.friction) return 0.0;
+    return tie_force > 0.0 ? 1.0 : -1.0;  // (the way D pushes: the way the pair accelerates)
+}
+
+bool iso_travel_used(const System& sy, const double* st, int e) {
     const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
     const double s = st[sy.lay.region + e];
-    if (std::abs(tie_force) <= h.friction) {
+    if (!h.series() || s == 0.0) return false;
+    const Surfaces sf = surfaces(sy, h, st);
+    for (int g = 0; g < sf.n(); ++g)
+        if (sf.state[g] == s) return false;
+    return true;
+}
+
+int friction_decision(const System& sy, double* st, int e, double tie_force) {
+    const double s = st[sy.lay.region + e];
+    const double on = friction_slip_way(sy, st, e, tie_force);
+    if (on == 0.0) {
         iso_transition(sy, st, ACT_STICK, e, 0.0);
         return ACT_STICK;
     }
-    const double on = tie_force > 0.0 ? 1.0 : -1.0;  // (the way D pushes: the way the pair accelerates)
     iso_transition(sy, st, ACT_SLIP, e, on);
     return on == -s ? ACT_REVERSAL : ACT_SLIP;
 }
@@ -219,8 +399,7 @@ IsoLinear iso_linear_in_slips(const System& sy, int e, const double* st, double*
 
 IsoGuard iso_guard(const System& sy, int action, int index, const double* st, const double* v, const double* acc) {
     if (action == ACT_YIELD) {  // the spring's strain u - slip at +-its break
-        int e = 0;
-        while (index >= sy.hyst[static_cast<size_t>(e)].first + sy.hyst[static_cast<size_t>(e)].n_springs()) ++e;
+        const int e = iso_element_of_spring(sy, index);
         return {e, 1.0, 0.0, index, sgn(iso_u(sy, e, st) - st[sy.lay.base + index])};
     }
     if (action == ACT_REVERSAL) return {index, 0.0, 1.0, -1, 0.0};  // the slipping springs stop: u' = 0

@@ -13,8 +13,20 @@
 //     With a velocity dependence (friction_rate > 0) a slip's force is k u + s (F_fast - (F_fast - F)
 //     e^(-rate |u'|)): its linear phase holds s F_fast, and the rest (iso_rate_force) makes the slip's phases
 //     numerical; a stick and its end, and the decision where a slip ends, are F's (the friction at rest).
+//   Surfaces in series (Hysteretic::series(): the series model of a triple friction pendulum, Fenz and
+//     Constantinou 2008): surface g a spring of stiffness k_g (slopes[g]) in parallel with its friction F_g
+//     (surface_friction[g]), the surfaces one after another without mass between them, each carrying the
+//     element's force F; u = sum of their displacements u_g.  A surface slips where F reaches k_g u_g +- F_g
+//     and stays held otherwise; one that slips the way s reaches its ring at u_g = s d_g (breaks[g]) and is
+//     held there (rigid) until F comes back to k_g s d_g - s F_g.  While the element slips the way s with the
+//     set S of surfaces slipping, F = (u - sum_{g not in S} u_g + s sum_S F_g / k_g) / sum_S (1 / k_g): linear in
+//     u.  Its events: a held surface's threshold or a slipping one's ring (each at a value of u: ACT_SURFACE_SLIP,
+//     ACT_RING), the slip at rest (as one surface's), and while the whole element sticks the tie's force D (all
+//     of F) reaching the lowest threshold up or the highest down.  A slip whose every surface reaches its ring
+//     has used up the bearing's travel: the run stops (CAPACITY).  State: s at region + e; each surface's u_g and
+//     state at the springs' slots (core.hpp).
 // Events: a yield's index is the spring's among the system's; a branch change's, a reversal's, a stick's and a
-// slip's the element's.
+// slip's the element's; a surface's slip or ring the spring's (its surface's) among the system's.
 #pragma once
 
 #include <cmath>
@@ -34,6 +46,8 @@ inline double iso_u(const System& sy, int e, const double* st) {
 }
 
 IsoLinear iso_linear(const System& sy, int e, const double* st);
+// the element whose springs hold the system's spring (or series surface) index
+int iso_element_of_spring(const System& sy, int index);
 // a friction element's slip direction in the state (+-1; 0 sticking): its slot, for e a friction element
 inline double& iso_slip_slot(const System& sy, int e, double* st) { return st[sy.lay.region + e]; }
 // element e's friction slip direction (+-1; 0 sticking, or not a friction element)
@@ -56,6 +70,11 @@ void iso_transition(const System& sy, double* st, int action, int index, double 
 // sticks (|D| <= F: its pair's relative velocity set to zero) or slips on, the way D pushes; the action taken
 // (ACT_STICK, or ACT_REVERSAL / ACT_SLIP when it slips back / on)
 int friction_decision(const System& sy, double* st, int e, double tie_force);
+// the way a friction element held at rest slips under its tie's force D (N): 0 if it holds (D within its
+// thresholds: +-F, a series's lowest up and highest down), else +-1
+double friction_slip_way(const System& sy, const double* st, int e, double tie_force);
+// a series whose slip the way of its state has every surface at its ring (its travel used up)
+bool iso_travel_used(const System& sy, const double* st, int e);
 
 // The exact monodromy's view of an element (monodromy.cpp).  Its force as linear in u and its slips:
 // F = k u + r + sum_s d_slip[s] slip_s, with follows[s] 1 where spring s slips (its slip moves with u), 0 where it

@@ -342,13 +342,14 @@ void start_friction(Loop& lp) {
     double* st = lp.st;
     for (const int e : sy.ties) {
         const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
-        double& slip = iso_slip_slot(sy, e, st);
+        const double slip = iso_slip_slot(sy, e, st);
         const double u_rate = rel(st + lp.L.v, h.i, h.j);
-        if (slip == 0.0 && u_rate != 0.0) slip = u_rate > 0.0 ? 1.0 : -1.0;
-        if (slip != 0.0) continue;
+        if (slip == 0.0 && u_rate != 0.0) iso_transition(sy, st, ACT_SLIP, e, u_rate > 0.0 ? 1.0 : -1.0);
+        if (iso_slip_slot(sy, e, st) != 0.0) continue;
         const double d = tie_force(st, sy, e, lp.stk_out, lp.ag_now, lp.b.q.data(), lp.row.data());
-        if (std::abs(d) <= h.friction) continue;
-        iso_transition(sy, st, ACT_SLIP, e, d > 0.0 ? 1.0 : -1.0);
+        const double way = friction_slip_way(sy, st, e, d);
+        if (way == 0.0) continue;
+        iso_transition(sy, st, ACT_SLIP, e, way);
         double* r = lp.out.events.push();
         r[EC_T] = st[T];
         r[EC_ACTION] = static_cast<double>(ACT_SLIP);
@@ -642,6 +643,10 @@ bool apply_event(Loop& lp) {
     if (untouched)
         record_event(st, sy, taken, lp.out.events, lp.out.samples, lp.opt.sample_dt, lp.extrema, lp.b, lp.row,
                      lp.stk_out, lp.ag_now);
+    if (ev.action == ACT_RING && iso_travel_used(sy, st, iso_element_of_spring(sy, ev.index))) {
+        lp.status = CAPACITY;  // (every surface at its ring: the bearing's travel is used up)
+        return false;
+    }
     if (ev.kind == KIND_STICK)  // (a stick's end: its slip may yet turn out a touch of mu W)
         note_touch(lp, ev.index, lp.opt.sample_dt >= 0.0);
     else

@@ -28,7 +28,7 @@ _NAMES = {
     ".model": ("Adjacent", "Link", "BoucWen", "Bumpers", "ElasticPlastic", "FrictionIsolator", "Hertzdamp",
                "HuntCrossley", "Isolator", "Jankowski",
                "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "RigidStop", "Sensor",
-               "Stand", "Storey", "Structure", "Wall"),
+               "Stand", "Storey", "Structure", "TripleFrictionPendulum", "Wall"),
     ".protocols": ("BasinStabilityMap", "Basins", "BifurcationDiagram", "CampaignResult", "PoundingSpectrum",
                    "SweepResult", "basin_stability_map", "basins",
                    "bifurcation_diagram",
@@ -87,7 +87,8 @@ if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
     from .metrics import HysteresisLoop, impact_table  # noqa: F401
     from .model import (Adjacent, BoucWen, Bumpers, ElasticPlastic, FrictionIsolator,  # noqa: F401
                         Hertzdamp, HuntCrossley, Isolator, Jankowski, KelvinVoigt, Link, MeasurementChain,
-                        MultilinearBumper, Oscillator, RigidStop, Sensor, Stand, Storey, Structure, Wall)
+                        MultilinearBumper, Oscillator, RigidStop, Sensor, Stand, Storey, Structure,
+                        TripleFrictionPendulum, Wall)
     from .protocols import (BasinStabilityMap, Basins, BifurcationDiagram, CampaignResult,  # noqa: F401
                             PoundingSpectrum, SweepResult, basin_stability_map, basins,
                             bifurcation_diagram,

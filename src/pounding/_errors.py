@@ -452,6 +452,7 @@ class Status(enum.IntEnum):
     INTERRUPTED = -5
     BUDGET = -6
     NONFINITE = -7
+    CAPACITY = -8
 
     @property
     def message(self) -> str:
@@ -489,5 +490,10 @@ _STATUS_MESSAGES = {
         "Stopped early: the numbers left the range of floating point (inf or NaN), so nothing "
         "after that point can be trusted. Check the magnitudes of the system and the excitation "
         "(SI units: m, kg, N, s)."
+    ),
+    Status.CAPACITY: (
+        "Stopped early: a triple friction pendulum used up its travel (every surface at its ring), "
+        "beyond what its model holds. Give it larger displacement capacities, or a moat or stop "
+        "before its end; what was computed up to the stop is kept."
     ),
 }

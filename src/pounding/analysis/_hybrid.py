@@ -44,6 +44,9 @@ def unsupported(system: "Oscillator | Structure | Adjacent") -> str | None:
             return f"{who}isolator has a Bouc-Wen spring (a nonlinear phase)"
         if s.isolator is not None and s.isolator.kernel_friction.get("friction_rate_s_m", 0.0) > 0.0:
             return f"{who}isolator's friction depends on the velocity (a nonlinear phase)"
+        if s.isolator is not None and s.isolator.kernel_friction.get("surface_friction_n"):
+            return (f"{who}isolator is a triple friction pendulum (its surfaces' displacements, which its "
+                    "phases remember, have no exact saltation here yet)")
         for w, wall in enumerate(s.walls):
             for side, law in (("left", wall.left), ("right", wall.right)):
                 if linear_form(law) is None and not is_rigid(law):

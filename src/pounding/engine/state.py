@@ -386,10 +386,11 @@ def _state_vector(vector: Any) -> np.ndarray:
         raise _bad_state("isolator_branch", float(vec[REGION]), "is not a whole number", _FROM_A_RUN)
     n_sp = (vec.size - STATE_BASE) // 2
     dirs = vec[STATE_BASE + n_sp:]
-    bad = np.flatnonzero((dirs != -1.0) & (dirs != 0.0) & (dirs != 1.0))
+    bad = np.flatnonzero((dirs != np.round(dirs)) | (np.abs(dirs) > 2.0))
     if bad.size:
         raise _bad_state(f"vector[{STATE_BASE + n_sp + bad[0]}]", float(dirs[bad[0]]),
-                         "is not a slip direction (-1, 0 or 1)", _FROM_A_RUN)
+                         "is not a slip direction (-1, 0 or 1; a friction surface's +-2: at its ring)",
+                         _FROM_A_RUN)
     return vec
 
 

@@ -13,7 +13,7 @@ from __future__ import annotations
 import math
 import warnings
 from bisect import bisect_right
-from typing import TYPE_CHECKING, Optional
+from typing import TYPE_CHECKING, Any, Optional
 
 import numpy as np
 
@@ -136,6 +136,9 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str) -> None:
             if slip * u_rate < 0.0:
                 raise bad(field, slip, f"is {who} slip direction, against its pair's velocity {u_rate:g} m/s "
                                        "(a slip goes the way its pair moves)")
+            if n_sp:  # (surfaces in series: each one's displacement and state, summing to the element's)
+                _check_surfaces(x_all, lay, first, breaks, u, slip, tol, who, bad)
+            first += n_sp
             continue
         if x_all[lay["region"] + e] != 0.0:
             field = "isolator_branch" if e == 0 else f"vector[{lay['region'] + e}]"
@@ -205,3 +208,25 @@ def _without_bumpers(state: State, asm: Assembly) -> State:
                   "system (State.at_rest(oscillator) or a run's final_state)", FutureWarning,
                   stacklevel=outside_stacklevel())
     return State._from_kernel(kept, lay)
+
+
+def _check_surfaces(x_all: list, lay: dict, first: int, breaks: Any, u: float, slip: float, tol: float,
+                    who: str, bad: Any) -> None:
+    """A series of friction surfaces in the state (a triple friction pendulum's): each one's state -2 to 2
+    (+-1 slipping the way the element slips, 0 held, +-2 held at its ring on that side), its displacement
+    within its ring (at it for +-2), and their sum the element's deformation ``u``."""
+    total = 0.0
+    for k, ring in enumerate(breaks):
+        at_u, at_s = lay["base"] + first + k, lay["base"] + lay["n_springs"] + first + k
+        ug, state = x_all[at_u], x_all[at_s]
+        if state not in (-2.0, -1.0, 0.0, 1.0, 2.0) or (abs(state) == 1.0 and state != slip):
+            raise bad(f"vector[{at_s}]", state, f"is {who} surface {k}'s state: 0 held, +-2 at its ring, or "
+                                                f"the element's slip direction ({slip:g}) while it slips")
+        if abs(ug) > ring + tol or (abs(state) == 2.0 and abs(ug - math.copysign(ring, state)) > tol):
+            raise bad(f"vector[{at_u}]", ug, f"is {who} surface {k}'s displacement, beyond its ring at "
+                                             f"{ring:g} m (or off it while held there)")
+        total += ug
+    if abs(total - u) > tol:
+        raise bad(f"vector[{lay['base'] + first}]", x_all[lay["base"] + first],
+                  f"and {who} other surfaces' displacements sum to {total:g} m, not its displacement {u:g} m "
+                  "(a triple friction pendulum starts centred, or from a run's final_state)")

@@ -9,10 +9,11 @@ from .oscillator import Oscillator
 from .adjacent import Adjacent, Link
 from .structure import Structure
 from .structure_parts import Bumpers, Stand, Storey, Wall
+from .triple_friction import TripleFrictionPendulum
 
 __all__ = ["Adjacent", "Link", "BoucWen", "Bumpers", "ElasticPlastic", "FrictionIsolator", "Hertzdamp",
            "HuntCrossley",
            "Isolator",
            "Jankowski",
            "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "RigidStop", "Sensor",
-           "Stand", "Storey", "Structure", "Wall"]
+           "Stand", "Storey", "Structure", "TripleFrictionPendulum", "Wall"]

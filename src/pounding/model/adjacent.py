@@ -13,7 +13,7 @@ from .._errors import InputError, Problem
 from ._toml import TomlFile
 from .structure_parts import MAX_GAP_M
 from .contact_laws import check_law, law_from_dict, law_to_dict
-from .friction import refuse_rigid_stops
+from .sliders import refuse_rigid_stops
 from .oscillator import check_keys
 from .structure import Structure
 from .structure_parts import MAX_STOREYS

@@ -294,24 +294,3 @@ class FrictionIsolator:
             return {"friction_n": self.friction_force_n}
         return {"friction_n": self.friction_force_n, "friction_fast_n": self.friction_fast_force_n,
                 "friction_rate_s_m": self.rate_s_m}
-
-
-def is_friction(isolator: Any) -> bool:
-    """Is this isolator a friction isolator (a slider)?"""
-    return isinstance(isolator, FrictionIsolator)
-
-
-def refuse_rigid_stops(isolator: Any, laws: Any) -> None:
-    """A friction isolator's system has no rigid stop yet (``laws``: ``(field, law)`` pairs): an impulse on a
-    sticking base is not resolved.  Raises naming the first rigid one."""
-    from .contact_laws import is_rigid
-
-    if not is_friction(isolator):
-        return
-    for field_name, law in laws:
-        if law is not None and is_rigid(law):
-            raise InputError(Problem.WRONG_CONFIGURATION, field_name, law,
-                             got="a rigid stop, on a system isolated by friction (not supported yet: an "
-                                 "impulse on a sticking base)",
-                             fix="give it a compliant law (KelvinVoigt or HertzDamp with the stop's "
-                                 "stiffness), or the isolator an elastic pre-slip (preslip_m)")

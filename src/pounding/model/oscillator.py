@@ -11,7 +11,9 @@ from .._checks import instance_of
 from .._errors import InputError, Problem, renamed_fields
 from ._toml import TomlFile, renamed_keys
 from .contact_laws import law_from_dict
-from .friction import FrictionIsolator, refuse_rigid_stops
+from .friction import FrictionIsolator
+from .sliders import is_friction, refuse_rigid_stops
+from .triple_friction import TripleFrictionPendulum
 from .isolator import Isolator
 from .structure_parts import Bumpers, check_mass
 
@@ -67,11 +69,12 @@ class Oscillator(TomlFile):
     def __post_init__(self) -> None:
         object.__setattr__(self, "mass_kg", check_mass("mass_kg", self.mass_kg,
                                                        "the mass is in kg (500 kg is 500.0)"))
-        instance_of("isolator", self.isolator, ISOLATORS, "Isolator or FrictionIsolator")
+        instance_of("isolator", self.isolator, ISOLATORS,
+                    "Isolator, FrictionIsolator or TripleFrictionPendulum")
         if self.bumpers is not None and not isinstance(self.bumpers, Bumpers):
             raise InputError(Problem.WRONG_TYPE, "bumpers", self.bumpers,
                              got=type(self.bumpers).__name__, expected="Bumpers or None")
-        if isinstance(self.isolator, FrictionIsolator):  # (it carries the mass's weight)
+        if is_friction(self.isolator):  # (it carries the mass's weight)
             object.__setattr__(self, "isolator", self.isolator.carrying(self.mass_kg))
             if self.bumpers is not None:
                 refuse_rigid_stops(self.isolator, (("bumpers.law", self.bumpers.law),
@@ -128,14 +131,16 @@ def check_keys(table: Any, prefix: str, allowed: tuple[str, ...], required: tupl
             raise InputError(Problem.MISSING_KEY, prefix + key, None, choices=", ".join(allowed))
 
 
-ISOLATORS = (Isolator, FrictionIsolator)  # (every kind of isolator a system takes)
+ISOLATORS = (Isolator, FrictionIsolator, TripleFrictionPendulum)  # (every kind of isolator a system takes)
 
 
-def isolator_from_dict(table: Any, prefix: str = "isolator.") -> "Isolator | FrictionIsolator":
-    """An isolator from its TOML table: a friction isolator when it has ``mu``, else a rubber one (its
-    backbone); every key checked."""
+def isolator_from_dict(table: Any,
+                       prefix: str = "isolator.") -> "Isolator | FrictionIsolator | TripleFrictionPendulum":
+    """An isolator from its TOML table: a triple friction pendulum when it has ``radii_m``, a friction
+    isolator when it has ``mu``, else a rubber one (its backbone); every key checked."""
     instance_of(prefix.rstrip("."), table, dict, "table ([isolator])")
-    kind = FrictionIsolator if "mu" in table else Isolator
+    kind = (TripleFrictionPendulum if "radii_m" in table else FrictionIsolator if "mu" in table
+            else Isolator)
     iso_table = renamed_keys(table, prefix, kind.RENAMED)
     check_keys(iso_table, prefix, kind.FIELDS,
                required=tuple(f for f in kind.FIELDS if f not in kind.OPTIONAL))

@@ -18,7 +18,9 @@ from .._checks import (instance_of, plausible, real_tuple)
 from .._errors import InputError, Problem
 from ._toml import TomlFile
 from .contact_laws import law_from_dict
-from .friction import FrictionIsolator, refuse_rigid_stops
+from .friction import FrictionIsolator
+from .sliders import is_friction, refuse_rigid_stops
+from .triple_friction import TripleFrictionPendulum
 from .isolator import Isolator
 from .oscillator import ISOLATORS, Oscillator, check_keys, isolator_from_dict
 from .structure_parts import MAX_STOREYS, Stand, Storey, Wall, check_mass
@@ -86,7 +88,7 @@ class Structure(TomlFile):
     """
 
     base_mass_kg: Optional[float]
-    isolator: Optional[Union[Isolator, FrictionIsolator]]
+    isolator: Optional[Union[Isolator, FrictionIsolator, TripleFrictionPendulum]]
     storeys: tuple = ()
     walls: tuple = field(default=())
     rayleigh: Optional[tuple] = None
@@ -102,7 +104,8 @@ class Structure(TomlFile):
                                  "Structure.fixed_base)")
         if self.isolator is not None:
             object.__setattr__(self, "base_mass_kg", check_mass("base_mass_kg", self.base_mass_kg))
-            instance_of("isolator", self.isolator, ISOLATORS, "Isolator, FrictionIsolator or None")
+            instance_of("isolator", self.isolator, ISOLATORS,
+                        "Isolator, FrictionIsolator, TripleFrictionPendulum or None")
         for name, kind in (("storeys", Storey), ("walls", Wall)):
             items = getattr(self, name)
             if isinstance(items, (str, bytes, dict)) or not hasattr(items, "__iter__"):
@@ -141,7 +144,7 @@ class Structure(TomlFile):
                                        f"mode {k + 1}, of period {2 * np.pi / w[k]:.3g} s, the ratio "
                                        f"{zeta[k]:.3g})",
                                  hint=": bring the two ratios closer together")
-        if isinstance(self.isolator, FrictionIsolator):  # (it carries the whole structure's weight)
+        if is_friction(self.isolator):  # (it carries the whole structure's weight)
             total = self.base_mass_kg + sum(st.mass_kg for st in self.storeys)
             object.__setattr__(self, "isolator", self.isolator.carrying(total))
             refuse_rigid_stops(self.isolator, [(f"walls[{i}].{side}", getattr(w, side))

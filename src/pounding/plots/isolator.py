@@ -81,7 +81,13 @@ def plot_isolator_loop(run: Any, ax: Any = None, *, t_start_s: Optional[float] =
     artists = list(ax.plot(d_mm, f_kn, **line))
     iso = structure.isolator
     friction = getattr(iso, "friction_force_n", None)
-    if friction is not None:  # (a friction isolator: its slip lines, at rest and fast)
+    if hasattr(iso, "travel_m"):  # (a triple friction pendulum: its stages in a slide from rest, both ways)
+        lo, hi = max(d_mm.min() * 1e-3, -iso.travel_m), min(d_mm.max() * 1e-3, iso.travel_m)
+        for a, b in ((lo, 0.0), (0.0, hi)):
+            u = np.linspace(a, b, 400) if b > a else np.zeros(0)
+            artists += ax.plot(u * 1e3, iso.backbone(u) / 1e3, color="0.5", lw=0.8, ls=":",
+                               label="slide from rest (stages)" if a == 0.0 else None)
+    elif friction is not None:  # (a friction isolator: its slip lines, at rest and fast)
         span = np.array([d_mm.min(), d_mm.max()])
         k = iso.restoring_stiffness_n_m
         lines = [(friction, "slip at +-mu W", ":")]

@@ -1,0 +1,219 @@
+"""A slow, obviously-correct reference for a structure on friction surfaces in series (a triple friction
+pendulum's series model): scipy's solve_ivp (DOP853) restarted at every stick, slip, surface slip and ring.
+
+The model restated directly: n levels with displacements x relative to the ground, level 0 the base,
+M x'' + C x' + K x = -M 1 a_g(t) - e_0 F, with K and C the storeys (and the bearing's dashpot) and F the
+bearing's force.  The bearing is surfaces g = 0..3 one after another, each a spring k_g in parallel with a
+friction f_g, of displacement u_g, sum u_g = x_0, all carrying F:
+- a surface slips the way s only while F = k_g u_g + s f_g; it is held otherwise, and held at its ring once
+  u_g = s d_g (until F comes back to its threshold the other way);
+- with the set S slipping, F = (x_0 - sum_{held} u_g + s sum_S f_g / k_g) / sum_S 1 / k_g;
+- every surface held: the base is held (v_0 = 0) and F is what holding it needs, D = -m_0 a_g - (K x)_0 -
+  (C x')_0; the bearing slips up where D reaches the lowest threshold up min_g (k_g u_g + f_g), down where it
+  reaches the highest down, with the surfaces of that threshold.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from reference_friction import _first_crossing
+
+HELD, RING = 0, 2
+
+
+class ReferenceCapacity(RuntimeError):
+    """Every surface at its ring: the bearing's travel used up."""
+
+
+@dataclass
+class SeriesStructure:
+    masses_kg: np.ndarray          # (n,), level 0 the base
+    storey_k: np.ndarray           # (n - 1,), N/m
+    storey_c: np.ndarray           # (n - 1,), N s/m
+    k: np.ndarray                  # (4,) the surfaces' stiffnesses, N/m
+    f: np.ndarray                  # (4,) their frictions, N
+    cap: np.ndarray                # (4,) their travels to their rings, m
+    accel: Callable[[float], float]
+    c_r: float = 0.0               # the bearing's dashpot, N s/m
+
+    def matrices(self) -> tuple[np.ndarray, np.ndarray]:
+        n = len(self.masses_kg)
+        kk, cc = np.zeros((n, n)), np.zeros((n, n))
+        cc[0, 0] = self.c_r
+        for i, (ks, cs) in enumerate(zip(self.storey_k, self.storey_c)):
+            for mat, v in ((kk, ks), (cc, cs)):
+                mat[i, i] += v
+                mat[i + 1, i + 1] += v
+                mat[i, i + 1] -= v
+                mat[i + 1, i] -= v
+        return kk, cc
+
+
+@dataclass
+class SeriesResult:
+    t: np.ndarray
+    x: np.ndarray
+    events: list = field(default_factory=list)   # (t, kind, surface or -1): stick, slip, surface_slip, ring
+    friction_j: float = 0.0
+    input_j: float = 0.0
+    viscous_j: float = 0.0
+    u_end: np.ndarray | None = None
+
+
+def _force(s: SeriesStructure, x0: float, u: np.ndarray, state: np.ndarray, mode: int) -> float:
+    on = state == mode
+    return (x0 - u[~on].sum() + mode * (s.f[on] / s.k[on]).sum()) / (1.0 / s.k[on]).sum()
+
+
+def _threshold(s: SeriesStructure, u: np.ndarray, state: np.ndarray, g: int, way: int) -> float:
+    return np.inf * way if state[g] == RING * way else s.k[g] * u[g] + way * s.f[g]
+
+
+def _start(s: SeriesStructure, u: np.ndarray, state: np.ndarray, way: int, level: float) -> None:
+    """The held surfaces whose threshold the way ``way`` is ``level`` (to rounding) slip."""
+    scale = abs(level) + s.f.sum()
+    for g in range(4):
+        if abs(state[g]) != 1 and abs(_threshold(s, u, state, g, way) - level) <= 1e-9 * scale:
+            state[g] = way
+
+
+def reference(s: SeriesStructure, t_end: float, rtol: float = 1e-12, atol: float = 1e-15,
+              knots: np.ndarray | None = None, max_phases: int = 100_000) -> SeriesResult:
+    """From rest, centred, at t = 0 to ``t_end``."""
+    m = np.asarray(s.masses_kg, float)
+    n = m.size
+    kk, cc = s.matrices()
+    u, state = np.zeros(4), np.zeros(4)
+    y = np.zeros(2 * n + 2)  # x, v, the input's work, the dashpots'
+    t, mode = 0.0, 0
+    out = SeriesResult(t=np.array([0.0]), x=np.zeros((1, n)))
+    ts, xs = [np.array([0.0])], [np.zeros((1, n))]
+    cuts = np.unique(np.append(np.asarray(knots if knots is not None else [], float), t_end))
+    cuts = cuts[cuts <= t_end]
+
+    def rest(tt: float, yy: np.ndarray) -> float:
+        return float(-m[0] * s.accel(tt) - kk[0] @ yy[:n] - cc[0] @ yy[n:2 * n])
+
+    def held_way(tt: float, yy: np.ndarray) -> int:
+        d = rest(tt, yy)
+        hi = min(_threshold(s, u, state, g, 1) for g in range(4))
+        lo = max(_threshold(s, u, state, g, -1) for g in range(4))
+        return 1 if d > hi else -1 if d < lo else 0
+
+    def slip_from_rest(way: int) -> None:
+        state[np.abs(state) == 1] = HELD
+        _start(s, u, state, way, min(_threshold(s, u, state, g, way) * way for g in range(4)) * way)
+
+    mode = held_way(0.0, y)
+    if mode:
+        slip_from_rest(mode)
+        out.events.append((0.0, "slip", -1))
+    for _ in range(max_phases):
+        if t >= t_end:
+            break
+        t_stop = float(cuts[np.searchsorted(cuts, t, side="right")])
+        frozen_u, frozen_state, frozen_mode = u.copy(), state.copy(), mode
+
+        def rhs(tt: float, yy: np.ndarray) -> np.ndarray:
+            x, v = yy[:n], yy[n:2 * n]
+            ag = s.accel(tt)
+            force = -m * ag - kk @ x - cc @ v
+            if frozen_mode:
+                force[0] -= _force(s, x[0], frozen_u, frozen_state, frozen_mode)
+            else:
+                force[0] = 0.0
+            dy = np.zeros_like(yy)
+            dy[:n] = v
+            dy[n:2 * n] = force / m
+            if not frozen_mode:
+                dy[0] = dy[n] = 0.0
+            dy[2 * n] = -ag * float(m @ v)
+            dy[2 * n + 1] = float(v @ cc @ v)
+            return dy
+
+        events = []
+        if mode == 0:
+            hi = min(_threshold(s, u, state, g, 1) for g in range(4))
+            lo = max(_threshold(s, u, state, g, -1) for g in range(4))
+            for level, way in ((hi, 1), (lo, -1)):
+                if np.isfinite(level):
+                    def ev(tt, yy, level=level):
+                        return rest(tt, yy) - level
+                    ev.terminal, ev.direction, ev.what = True, float(way), ("slip", way, -1)
+                    events.append(ev)
+        else:
+            def stop(tt, yy):
+                return yy[n]
+            stop.terminal, stop.direction, stop.what = True, -float(mode), ("stop", 0, -1)
+            events.append(stop)
+            for g in range(4):
+                if state[g] == mode:
+                    level = mode * (s.k[g] * s.cap[g] + s.f[g])
+                    what = ("ring", mode, g)
+                else:
+                    level = _threshold(s, u, state, g, mode)
+                    what = ("surface_slip", mode, g)
+                if not np.isfinite(level):
+                    continue
+
+                def ev(tt, yy, level=level):
+                    return _force(s, yy[0], frozen_u, frozen_state, frozen_mode) - level
+                ev.terminal, ev.direction, ev.what = True, float(mode), what
+                events.append(ev)
+        first = min(1e-7, 0.5 * (t_stop - t)) if mode != 0 and y[n] == 0.0 else None
+        sol = solve_ivp(rhs, (t, t_stop), y, method="DOP853", rtol=rtol, atol=atol, events=events,
+                        dense_output=True, first_step=first, max_step=np.inf if mode else 1e-3)
+        if sol.status < 0:
+            raise RuntimeError(sol.message)
+        t_new, fired = _first_crossing(sol, events)
+        y = sol.sol(t_new) if fired is not None and t_new < sol.t[-1] else sol.y[:, -1].copy()
+        steps = sol.t[1:][sol.t[1:] < t_new]
+        ts.append(np.append(steps, t_new))
+        xs.append(np.vstack([sol.y[:n, 1:1 + steps.size].T, y[None, :n]]))
+        if mode:  # (the slipping surfaces moved with the force: their friction's work)
+            f0 = _force(s, float(sol.y[0, 0]), u, state, mode)
+            f1 = _force(s, float(y[0]), u, state, mode)
+            on = state == mode
+            out.friction_j += float((s.f[on] / s.k[on]).sum()) * mode * (f1 - f0)
+            u[on] = (f1 - mode * s.f[on]) / s.k[on]
+        t = t_new
+        if fired is None:
+            continue
+        kind, way, g = events[fired].what
+        if kind == "slip":
+            mode = way
+            slip_from_rest(way)
+            out.events.append((t, "slip", -1))
+        elif kind == "stop":
+            y[n] = 0.0
+            state[np.abs(state) == 1] = HELD
+            nxt = held_way(t, y)
+            if nxt == 0:
+                out.events.append((t, "stick", -1))
+            else:
+                slip_from_rest(nxt)
+                out.events.append((t, "reversal" if nxt == -mode else "slip", -1))
+            mode = nxt
+        elif kind == "ring":
+            state[g] = RING * mode
+            u[g] = mode * s.cap[g]
+            out.events.append((t, "ring", g))
+            if not (state == mode).any():
+                raise ReferenceCapacity(f"every surface at its ring at t = {t!r}")
+        else:
+            level = _threshold(s, u, state, g, mode)
+            state[g] = mode
+            _start(s, u, state, mode, level)
+            out.events.append((t, "surface_slip", g))
+    else:
+        raise RuntimeError(f"more than {max_phases} phases")
+    out.t = np.concatenate(ts)
+    out.x = np.concatenate(xs)
+    out.input_j, out.viscous_j = float(y[2 * n]), float(y[2 * n + 1])
+    out.u_end = u.copy()
+    return out

@@ -1,0 +1,198 @@
+"""The triple friction pendulum (four friction surfaces in series, each with its ring) against the solve_ivp
+reference with every stick, slip, surface slip and ring as an event (tests/reference_series_friction.py),
+the closed forms of its five stages (Fenz and Constantinou) and invariants."""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import pounding as pd_
+from reference_series_friction import ReferenceCapacity, SeriesStructure, reference
+
+G = 9.81
+EVENT_S = 1e-9  # the issue's bound on an event's instant against the reference
+TFP = dict(radii_m=(2.1, 0.3, 0.3, 2.1), mu=(0.05, 0.02, 0.02, 0.08), capacities_m=(0.35, 0.05, 0.05, 0.35))
+
+
+def _building(tfp: pd_.TripleFrictionPendulum, base_kg: float = 40_000.0, n_storeys: int = 3,
+              damping: float = 1e5) -> pd_.Structure:
+    return pd_.Structure(base_kg, tfp, [pd_.Storey(30_000.0, 6.0e7, damping)] * n_storeys, [])
+
+
+def _reference_of(b: pd_.Structure, accel) -> SeriesStructure:
+    iso = b.isolator
+    k = iso.kernel_arrays()[0]
+    return SeriesStructure(masses_kg=b.masses_kg, storey_k=np.array([s.stiffness_n_m for s in b.storeys]),
+                           storey_c=np.array([s.damping_n_s_m for s in b.storeys]), k=k,
+                           f=np.array(iso.friction_forces_n), cap=np.array(iso.series_capacities_m),
+                           accel=accel, c_r=iso.damping_n_s_m)
+
+
+@st.composite
+def triples(draw):
+    """A random building of 1 to 3 levels on a random triple friction pendulum, under a harmonic or a record
+    (a random acceleration every 10 ms)."""
+    r_in, r_out = draw(st.floats(0.2, 0.6)), draw(st.floats(1.5, 4.0))
+    radii = (r_out, r_in, r_in * draw(st.floats(0.8, 1.2)), r_out * draw(st.floats(0.8, 1.2)))
+    m_in = draw(st.floats(0.01, 0.03))
+    inner = (m_in, m_in * draw(st.floats(0.8, 1.2)))
+    mu = (max(inner) * draw(st.floats(1.2, 3.0)), *inner, max(inner) * draw(st.floats(1.2, 4.0)))
+    caps = (draw(st.floats(0.2, 0.5)), draw(st.floats(0.03, 0.08)), draw(st.floats(0.03, 0.08)),
+            draw(st.floats(0.2, 0.5)))
+    tfp = pd_.TripleFrictionPendulum(radii_m=radii, mu=mu, capacities_m=caps,
+                                     damping_n_s_m=draw(st.sampled_from([0.0, 2e4])))
+    n = draw(st.integers(1, 3))
+    storeys = [pd_.Storey(draw(st.floats(5e3, 3e4)), draw(st.floats(1e7, 8e7)), draw(st.floats(0.0, 2e5)))
+               for _ in range(n - 1)]
+    b = pd_.Structure(draw(st.floats(5e3, 4e4)), tfp, storeys, [])
+    if draw(st.booleans()):
+        a, f = draw(st.floats(0.05, 0.4)), draw(st.floats(0.3, 1.5))
+
+        def accel(t, a=a, f=f):
+            return a * G * math.sin(2 * math.pi * f * t)
+        return b, pd_.Harmonic(a, f), accel, None
+    t = np.arange(0.0, 4.0001, 0.01)
+    acc = np.random.default_rng(draw(st.integers(0, 2**31))).normal(0.0, draw(st.floats(0.5, 3.0)), t.size)
+
+    def accel(tt, t=t, acc=acc):
+        return float(np.interp(tt, t, acc))
+    return b, pd_.Record(t, acc), accel, t
+
+
+def _events(run) -> list:
+    ev = run.events
+    return [(float(t), k, int(i) if k in ("surface_slip", "ring") else -1)
+            for t, k, i in zip(ev["t_s"], ev["kind"], ev["index"])]
+
+
+@settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(triples())
+def test_every_stage_change_matches_the_reference(case):
+    b, excitation, accel, knots = case
+    run = pd_.simulate(b, excitation, 4.0, rtol=1e-12)
+    t_end = float(run.summary()["t_end_s"])
+    engine = _events(run)
+    try:
+        ref = reference(_reference_of(b, accel), t_end, knots=knots)
+    except ReferenceCapacity:  # (its last event the engine's stop: both at the travel's end)
+        assert run.status == pd_.Status.CAPACITY
+        return
+    if run.status == pd_.Status.CAPACITY:  # (the reference's last phase ends on the engine's last ring)
+        assert engine[-1][1] == "ring"
+        engine = engine[:-1]
+    assert [e[1:] for e in engine] == [e[1:] for e in ref.events]
+    assert max((abs(a[0] - e[0]) for a, e in zip(engine, ref.events)), default=0.0) < EVENT_S
+    n = b.masses_kg.size
+    assert np.allclose(run.final_state.vector[1:1 + n], ref.x[-1], rtol=0.0, atol=1e-8)
+    assert run.energy.hysteretic == pytest.approx(ref.friction_j, rel=1e-8, abs=1e-6)
+    if run.status == pd_.Status.SUCCESS:
+        lay = run.final_state.layout
+        u = run.final_state.vector[lay["base"]:lay["base"] + 4]
+        assert np.allclose(u, ref.u_end, rtol=0.0, atol=1e-8)
+
+
+def test_its_stages_are_fenz_and_constantinou_s():
+    """The series' slide from rest has the bearing's five stiffnesses and stage changes (Fenz and
+    Constantinou 2008: I on 2 and 3, II on 1 and 3, III on 1 and 4, IV on 2 and 4, V on 2 and 3)."""
+    tfp = _building(pd_.TripleFrictionPendulum(**TFP)).isolator
+    w = tfp.weight_n
+    r1, r2, r3, r4 = tfp.radii_m
+    m1, m2, m3, m4 = tfp.mu
+    d1, d2, d3, d4 = tfp.capacities_m
+    assert tfp.slopes_n_m == pytest.approx([w / (r2 + r3), w / (r1 + r3), w / (r1 + r4), w / (r2 + r4),
+                                            w / (r2 + r3)], rel=1e-12)
+    u_2 = (m1 - m2) * r2 + (m1 - m3) * r3  # (stage II begins at mu1 W)
+    u_3 = u_2 + (m4 - m1) * (r1 + r3)  # (III at mu4 W)
+    f_ring1 = m1 * w + w * d1 / r1  # (IV where surface 1 reaches its ring)
+    u_4 = u_3 + (f_ring1 - m4 * w) * (r1 + r4) / w
+    f_ring4 = m4 * w + w * d4 / r4
+    u_5 = u_4 + (f_ring4 - f_ring1) * (r2 + r4) / w
+    assert tfp.breakpoints_m[:4] == pytest.approx([u_2, u_3, u_4, u_5], rel=1e-12)
+    # (V ends where 2 and 3 reach theirs: each slid d2, d3 in all, in stages I and IV to V)
+    assert tfp.breakpoints_m[4] == pytest.approx(tfp.travel_m, rel=1e-12)
+    assert tfp.travel_m == pytest.approx(d1 + d2 + d3 + d4, rel=1e-12)
+    assert tfp.backbone(np.array([-u_3, u_3])) == pytest.approx([-m4 * w, m4 * w], rel=1e-12)
+
+
+def test_the_ledger_closes_and_a_continued_run_is_one_long_run():
+    b = _building(pd_.TripleFrictionPendulum(**TFP))
+    ex = pd_.Harmonic(a_g=0.15, freq_hz=0.5)
+    one = pd_.simulate(b, ex, 8.0)
+    assert one.success and one.summary()["slips"] >= 1
+    assert abs(one.summary()["energy_residual_j"]) < 1e-9 * one.summary()["input_work_j"]
+    first = pd_.simulate(b, ex, 3.7)
+    rest = pd_.simulate(b, ex, 4.3, first.final_state)
+    assert np.allclose(rest.final_state.vector, one.final_state.vector, rtol=0.0, atol=1e-12)
+
+
+def test_the_mirror_run_is_the_run_mirrored():
+    b = _building(pd_.TripleFrictionPendulum(**TFP))
+    up = pd_.simulate(b, pd_.Harmonic(a_g=0.2, freq_hz=0.6), 6.0)
+    down = pd_.simulate(b, pd_.Harmonic(a_g=-0.2, freq_hz=0.6), 6.0)
+    assert _events(up) and [e[1:] for e in _events(up)] == [e[1:] for e in _events(down)]
+    assert np.allclose(up.final_state.vector[1:5], -down.final_state.vector[1:5], rtol=0.0, atol=1e-12)
+
+
+def test_a_bearing_that_uses_up_its_travel_stops_the_run_saying_so():
+    b = _building(pd_.TripleFrictionPendulum(**TFP))
+    run = pd_.simulate(b, pd_.Harmonic(a_g=0.5, freq_hz=0.5), 6.0)
+    assert run.status == pd_.Status.CAPACITY and not run.success
+    assert "travel" in run.status.message
+    assert abs(run.summary()["displacement_min_m"]) == pytest.approx(b.isolator.travel_m, rel=1e-9)
+    assert list(run.events["kind"]).count("ring") == 4
+
+
+def test_a_triple_friction_pendulum_round_trips_through_toml_and_is_refused_by_name():
+    from pounding.model.oscillator import isolator_from_dict
+
+    tfp = pd_.TripleFrictionPendulum(**TFP, damping_n_s_m=1e3)
+    assert isolator_from_dict(tfp.to_dict()) == tfp
+    b = _building(tfp)
+    assert b.isolator.weight_n == pytest.approx(G * b.masses_kg.sum())
+    for kwargs, field in [(dict(TFP, radii_m=(2.1, 0.3, 0.3)), "isolator.radii_m"),
+                          (dict(TFP, radii_m=(0.2, 0.3, 0.3, 2.1)), "isolator.radii_m[0]"),
+                          (dict(TFP, mu=(0.05, 0.06, 0.02, 0.08)), "isolator.mu"),
+                          (dict(TFP, capacities_m=(0.35, -0.05, 0.05, 0.35)), "isolator.capacities_m[1]"),
+                          (dict(TFP, mu=(0.05, 0.02, math.nan, 0.08)), "isolator.mu[2]")]:
+        with pytest.raises(pd_.InputError) as err:
+            pd_.TripleFrictionPendulum(**kwargs)
+        assert err.value.field == field
+
+
+def test_a_state_whose_surfaces_do_not_sum_to_the_base_is_refused():
+    b = _building(pd_.TripleFrictionPendulum(**TFP))
+    ex = pd_.Harmonic(a_g=0.15, freq_hz=0.5)
+    first = pd_.simulate(b, ex, 3.7)
+    v = first.final_state.vector.copy()
+    v[first.final_state.layout["base"]] += 0.01
+    with pytest.raises(pd_.InputError, match="sum to"):
+        pd_.simulate(b, ex, 1.0, pd_.State(v, first.final_state.dofs, first.final_state.layout))
+
+
+def test_its_orbits_fall_back_to_finite_differences_saying_why():
+    from pounding.analysis._hybrid import unsupported
+
+    assert "triple friction pendulum" in unsupported(_building(pd_.TripleFrictionPendulum(**TFP)))
+
+
+def test_its_loop_is_drawn_with_its_stages():
+    """plot_isolator_loop draws a triple friction pendulum's loop with its slide from rest both ways, which
+    the loop's first slide follows."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    b = _building(pd_.TripleFrictionPendulum(**TFP))
+    run = pd_.simulate(b, pd_.Harmonic(a_g=0.2, freq_hz=0.5), 6.0)
+    artists = pd_.plots.plot_isolator_loop(run)
+    stages = [a for a in artists if a.get_label() == "slide from rest (stages)"]
+    assert len(stages) == 1 and len(artists) == 3
+    u_mm, f_kn = stages[0].get_data()
+    assert np.allclose(f_kn, b.isolator.backbone(u_mm * 1e-3) / 1e3, equal_nan=True)
+    plt.close("all")
