@@ -58,7 +58,10 @@ class FrictionStructure:
         if self.mu_fast is None:
             return self.friction_n
         weight = self.g * float(np.sum(self.masses_kg))
-        return weight * (self.mu_fast - (self.mu_fast - self.mu) * math.exp(-self.rate_s_m * mode * v0))
+        # (the exponent bounded: a solver's trial step far past a slip's end must not overflow; unchanged
+        #  wherever the slip is, mode v0 >= 0)
+        return weight * (self.mu_fast - (self.mu_fast - self.mu)
+                         * math.exp(min(-self.rate_s_m * mode * v0, 700.0)))
 
     def matrices(self) -> tuple[np.ndarray, np.ndarray]:
         """K and C, (n, n)."""

@@ -200,11 +200,19 @@ def reference(s: SeriesStructure, t_end: float, rtol: float = 1e-12, atol: float
                 out.events.append((t, "reversal" if nxt == -mode else "slip", -1))
             mode = nxt
         elif kind == "ring":
-            state[g] = RING * mode
-            u[g] = mode * s.cap[g]
-            out.events.append((t, "ring", g))
-            if not (state == mode).any():
-                raise ReferenceCapacity(f"every surface at its ring at t = {t!r}")
+            level = mode * (s.k[g] * s.cap[g] + s.f[g])
+            scale = abs(level) + s.f.sum()
+            for q in range(4):  # (it, and any other slipping one whose ring comes at the same force)
+                if q == g or (state[q] == mode and abs(mode * (s.k[q] * s.cap[q] + s.f[q]) - level)
+                              <= 1e-9 * scale):
+                    state[q] = RING * mode
+                    u[q] = mode * s.cap[q]
+                    out.events.append((t, "ring", q))
+            if not (state == mode).any():  # (none slips on: the rigid series jumps to the next threshold)
+                nxt = min(_threshold(s, u, state, q, mode) * mode for q in range(4)) * mode
+                if not np.isfinite(nxt):
+                    raise ReferenceCapacity(f"every surface at its ring at t = {t!r}")
+                _start(s, u, state, mode, nxt)
         else:
             level = _threshold(s, u, state, g, mode)
             state[g] = mode

@@ -38,12 +38,18 @@ def triples(draw):
     """A random building of 1 to 3 levels on a random triple friction pendulum, under a harmonic or a record
     (a random acceleration every 10 ms)."""
     r_in, r_out = draw(st.floats(0.2, 0.6)), draw(st.floats(1.5, 4.0))
-    radii = (r_out, r_in, r_in * draw(st.floats(0.8, 1.2)), r_out * draw(st.floats(0.8, 1.2)))
     m_in = draw(st.floats(0.01, 0.03))
-    inner = (m_in, m_in * draw(st.floats(0.8, 1.2)))
-    mu = (max(inner) * draw(st.floats(1.2, 3.0)), *inner, max(inner) * draw(st.floats(1.2, 4.0)))
-    caps = (draw(st.floats(0.2, 0.5)), draw(st.floats(0.03, 0.08)), draw(st.floats(0.03, 0.08)),
-            draw(st.floats(0.2, 0.5)))
+    if draw(st.booleans()):  # (the usual symmetric bearing: simultaneous slips and rings)
+        m_out, cap_in, cap_out = m_in * draw(st.floats(1.2, 3.0)), draw(st.floats(0.03, 0.08)), \
+            draw(st.floats(0.2, 0.5))
+        radii, mu = (r_out, r_in, r_in, r_out), (m_out, m_in, m_in, m_out)
+        caps = (cap_out, cap_in, cap_in, cap_out)
+    else:
+        radii = (r_out, r_in, r_in * draw(st.floats(0.8, 1.2)), r_out * draw(st.floats(0.8, 1.2)))
+        inner = (m_in, m_in * draw(st.floats(0.8, 1.2)))
+        mu = (max(inner) * draw(st.floats(1.2, 3.0)), *inner, max(inner) * draw(st.floats(1.2, 4.0)))
+        caps = (draw(st.floats(0.2, 0.5)), draw(st.floats(0.03, 0.08)), draw(st.floats(0.03, 0.08)),
+                draw(st.floats(0.2, 0.5)))
     tfp = pd_.TripleFrictionPendulum(radii_m=radii, mu=mu, capacities_m=caps,
                                      damping_n_s_m=draw(st.sampled_from([0.0, 2e4])))
     n = draw(st.integers(1, 3))
@@ -70,6 +76,26 @@ def _events(run) -> list:
             for t, k, i in zip(ev["t_s"], ev["kind"], ev["index"])]
 
 
+def _in_order(events: list) -> list:
+    """Events at one instant (two rings at once) in one order, by kind and index."""
+    return sorted(events, key=lambda e: (round(e[0], 9), e[1], e[2]))
+
+
+def _untouched(events: list) -> list:
+    """The reference's events without a slip from a stick that sticks again within 1 us: where the force
+    needed to hold the bearing touches its threshold, the engine takes such a slip back (its bearing moved
+    within the rounding of the run's lengths: a touch starts no slip, as for a single surface)."""
+    out, k = [], 0
+    while k < len(events):
+        if (events[k][1] == "slip" and k + 1 < len(events) and events[k + 1][1] == "stick"
+                and events[k + 1][0] - events[k][0] < 1e-6 and out and out[-1][1] == "stick"):
+            k += 2
+            continue
+        out.append(events[k])
+        k += 1
+    return out
+
+
 @settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(triples())
 def test_every_stage_change_matches_the_reference(case):
@@ -85,8 +111,9 @@ def test_every_stage_change_matches_the_reference(case):
     if run.status == pd_.Status.CAPACITY:  # (the reference's last phase ends on the engine's last ring)
         assert engine[-1][1] == "ring"
         engine = engine[:-1]
-    assert [e[1:] for e in engine] == [e[1:] for e in ref.events]
-    assert max((abs(a[0] - e[0]) for a, e in zip(engine, ref.events)), default=0.0) < EVENT_S
+    engine, expected = _in_order(engine), _in_order(_untouched(ref.events))
+    assert [e[1:] for e in engine] == [e[1:] for e in expected]
+    assert max((abs(a[0] - e[0]) for a, e in zip(engine, expected)), default=0.0) < EVENT_S
     n = b.masses_kg.size
     assert np.allclose(run.final_state.vector[1:1 + n], ref.x[-1], rtol=0.0, atol=1e-8)
     assert run.energy.hysteretic == pytest.approx(ref.friction_j, rel=1e-8, abs=1e-6)
@@ -174,10 +201,42 @@ def test_a_state_whose_surfaces_do_not_sum_to_the_base_is_refused():
         pd_.simulate(b, ex, 1.0, pd_.State(v, first.final_state.dofs, first.final_state.layout))
 
 
-def test_its_orbits_fall_back_to_finite_differences_saying_why():
-    from pounding.analysis._hybrid import unsupported
+def test_what_it_cannot_do_yet_is_refused_by_name():
+    """A periodic orbit, a start off centre (which leaves open how far each surface slid) and a run continued
+    from one that used up the travel are refused, naming the field."""
+    b = _building(pd_.TripleFrictionPendulum(**TFP))
+    with pytest.raises(pd_.InputError) as err:
+        pd_.periodic_orbit(pd_.Oscillator(1e4, pd_.TripleFrictionPendulum(**TFP)), pd_.Harmonic(0.2, 0.5),
+                           settle_cycles=3)
+    assert err.value.field == "system.isolator"
+    with pytest.raises(pd_.InputError) as err:
+        pd_.State.at_rest(b, displacement_m=0.05)
+    assert err.value.field == "displacement_m"
+    ex = pd_.Harmonic(a_g=0.5, freq_hz=0.5)
+    stopped = pd_.simulate(b, ex, 6.0)
+    assert stopped.status == pd_.Status.CAPACITY
+    with pytest.raises(pd_.InputError, match="travel used up"):
+        pd_.simulate(b, ex, 2.0, stopped.final_state)
 
-    assert "triple friction pendulum" in unsupported(_building(pd_.TripleFrictionPendulum(**TFP)))
+
+def test_rings_that_leave_no_surface_slipping_jump_to_the_next_threshold():
+    """Inner rings reached before mu1 W: the series, rigid for an instant, takes the force that starts the
+    next surface (a jump in force at one displacement); the run goes on, as the reference does."""
+    tfp = pd_.TripleFrictionPendulum(radii_m=(2.1, 0.3, 0.3, 2.1), mu=(0.10, 0.01, 0.01, 0.12),
+                                     capacities_m=(0.05, 0.01, 0.01, 0.05))
+    b = _building(tfp, n_storeys=0)
+    u, f = b.isolator._backbone_points()
+    assert np.any((np.diff(u) == 0.0) & (np.diff(f) > 0.0))
+    assert b.isolator.breakpoints_m[-1] == pytest.approx(0.12)
+
+    def accel(t):
+        return 0.1 * G * math.sin(2 * math.pi * 0.5 * t)
+    run = pd_.simulate(b, pd_.Harmonic(0.1, 0.5), 3.0, rtol=1e-12)
+    assert run.success and abs(run.summary()["energy_residual_j"]) < 1e-9 * run.summary()["input_work_j"]
+    ref = reference(_reference_of(b, accel), 3.0)
+    engine, expected = _in_order(_events(run)), _in_order(ref.events)
+    assert [e[1:] for e in engine] == [e[1:] for e in expected]
+    assert max(abs(a[0] - e[0]) for a, e in zip(engine, expected)) < EVENT_S
 
 
 def test_its_loop_is_drawn_with_its_stages():

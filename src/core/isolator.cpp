@@ -340,6 +340,12 @@ void iso_transition(const System& sy, double* st, int action, int index, double 
         if (action == ACT_RING) {
             sf.state[g] = 2.0 * s;
             sf.u[g] = s * h.breaks[static_cast<size_t>(g)];
+            bool slipping = false;
+            for (int q = 0; q < sf.n(); ++q) slipping = slipping || sf.state[q] == s;
+            const double next = series_threshold(sf, s);
+            // (none slips on: the series, rigid, takes at once the force that starts the next held one, a
+            // jump in force at no displacement; none left: the travel is used up, iso_travel_used)
+            if (!slipping && std::isfinite(next)) slip_at(sf, s, next);
         } else {
             const double f = threshold(sf, g, s);
             sf.state[g] = s;

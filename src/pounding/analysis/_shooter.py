@@ -17,7 +17,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from .._errors import InputError
+from .._errors import InputError, Problem
 from ..engine.assembly import Assembly, assemble, structures_of
 from ..engine.layout import C_SLOT, C_T_END, C_T_START, C_V_IN, X_A_MAX, X_D_MAX, X_D_MIN
 from ..engine.run_args import kernel_forcing
@@ -64,11 +64,16 @@ class _Shooter(_Newton):
         self.elastic = []  # each element of the elastic rule: (element, i, j, breaks)
         first = 0
         for e, (i, j, slopes, breaks, rule) in enumerate(self.asm.elements):
+            if rule == 2 and breaks:
+                raise InputError(Problem.WRONG_CONFIGURATION, "system.isolator", "TripleFrictionPendulum",
+                                 got="not supported in a periodic orbit yet (its surfaces' states are no "
+                                     "part of an orbit's coordinates here)",
+                                 fix="simulate or sweep it, or give a single FrictionIsolator")
             if rule == 0:
                 self.springs += [(first + s, i, j, float(breaks[s])) for s in range(len(breaks))]
             elif breaks:
                 self.elastic.append((e, i, j, np.array(breaks, dtype=float)))
-            first += len(slopes) - 1
+            first += len(breaks)
         n = self.n
         # where ``coords`` reads a state vector, and where its mode (contacts touching, springs slipping)
         self._at = np.array([*range(lay["x"], lay["x"] + n), *range(lay["v"], lay["v"] + n),

@@ -253,14 +253,22 @@ def structure_runs(run: "Run | StructureRun | AdjacentRun") -> tuple:
     return (run.levels,) if isinstance(run, Run) else (run,)
 
 
-def _isolator_switches(events: np.ndarray, element: int) -> np.ndarray:
+def _isolator_switches(events: np.ndarray, element: int, surfaces: range = range(0)) -> np.ndarray:
     """A pair's event rows of one structure's isolator's sticks, slips and reversals (a rubber bearing's
-    reversals too), its element numbered 0 as the structure's own isolator: what one structure of a pair
-    reads of the pair's events (none for a fixed base)."""
+    reversals too), its element numbered 0 as the structure's own isolator, and a triple friction
+    pendulum's surface slips and rings (``surfaces``: its surfaces' indices among the pair's springs),
+    numbered from 0 as its own: what one structure of a pair reads of the pair's events (none for a fixed
+    base)."""
+    if element < 0:
+        return events[:0].copy()
     kinds = [_core.ACTIONS[k] for k in ("stick", "slip", "reversal")]
-    rows = events[(events[:, 2] == element) & np.isin(events[:, 1], kinds)].copy() if element >= 0 else \
-        events[:0].copy()
-    rows[:, 2] = 0.0
+    own = np.isin(events[:, 1], [_core.ACTIONS["surface_slip"], _core.ACTIONS["ring"]]) & np.isin(
+        events[:, 2], list(surfaces))
+    mine = (events[:, 2] == element) & np.isin(events[:, 1], kinds)
+    rows = events[mine | own].copy()
+    rows[mine[mine | own], 2] = 0.0
+    if surfaces:
+        rows[own[mine | own], 2] -= surfaces.start
     return rows
 
 
@@ -275,8 +283,15 @@ def _structures_run(model: "Structure | Adjacent", asm: Assembly, excitation: Ha
         return StructureRun._part(structures[0], 0, asm, structures, excitation, rate, out, status, t0,
                                   event_table=out.events, energy=energy, final_state=final, clearance_m=clear,
                                   chatter_table=out.chatters, contact_names=names)
+    firsts = np.cumsum([0] + [len(el[3]) for el in asm.elements])  # (each element's first spring)
+
+    def surfaces(e: int) -> range:  # (a triple friction pendulum's surfaces among the pair's springs)
+        el = asm.elements[e] if e >= 0 else None
+        return range(int(firsts[e]), int(firsts[e + 1])) if el is not None and el[4] == 2 else range(0)
+
     parts = [StructureRun._part(s, b, asm, structures, excitation, rate, out, status, t0,
-                                event_table=_isolator_switches(out.events, asm.isolator[b]))
+                                event_table=_isolator_switches(out.events, asm.isolator[b],
+                                                               surfaces(asm.isolator[b])))
              for b, s in enumerate(structures)]
     links = [c for c, (owner, _, _) in enumerate(asm.slots) if owner == -1]
     slot = CONTACT_COLUMNS["contact"]

@@ -338,6 +338,12 @@ def shifted(asm: "Assembly", time_s: float, d: float, v: float) -> State:
         b = np.asarray(breaks, dtype=float)
         if rule == 1:
             vec[lay["region"] + e] = np.sign(u) * np.searchsorted(b, abs(u), side="right")
+        elif rule == 2 and b.size:  # (a triple friction pendulum: where on its surfaces is not one answer)
+            if u != 0.0:
+                raise InputError(Problem.BAD_STATE, "displacement_m", d,
+                                 why="moves a triple friction pendulum off centre, which leaves open how far "
+                                     "each of its surfaces has slid",
+                                 fix="start it centred (displacement_m 0) or from a run's final_state")
         else:
             vec[lay["base"] + first:lay["base"] + first + b.size] = u - np.clip(u, -b, b)
         first += b.size

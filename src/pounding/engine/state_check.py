@@ -215,7 +215,7 @@ def _check_surfaces(x_all: list, lay: dict, first: int, breaks: Any, u: float, s
     """A series of friction surfaces in the state (a triple friction pendulum's): each one's state -2 to 2
     (+-1 slipping the way the element slips, 0 held, +-2 held at its ring on that side), its displacement
     within its ring (at it for +-2), and their sum the element's deformation ``u``."""
-    total = 0.0
+    total, slipping = 0.0, False
     for k, ring in enumerate(breaks):
         at_u, at_s = lay["base"] + first + k, lay["base"] + lay["n_springs"] + first + k
         ug, state = x_all[at_u], x_all[at_s]
@@ -226,6 +226,12 @@ def _check_surfaces(x_all: list, lay: dict, first: int, breaks: Any, u: float, s
             raise bad(f"vector[{at_u}]", ug, f"is {who} surface {k}'s displacement, beyond its ring at "
                                              f"{ring:g} m (or off it while held there)")
         total += ug
+        slipping = slipping or state == slip
+    if slip != 0.0 and not slipping:
+        at = lay["base"] + lay["n_springs"] + first
+        raise bad(f"vector[{at}]", x_all[at],
+                  f"and {who} other surfaces' states leave none slipping while it slips: every surface at "
+                  "its ring, its travel used up (a run that stopped with Status.CAPACITY cannot go on)")
     if abs(total - u) > tol:
         raise bad(f"vector[{lay['base'] + first}]", x_all[lay["base"] + first],
                   f"and {who} other surfaces' displacements sum to {total:g} m, not its displacement {u:g} m "

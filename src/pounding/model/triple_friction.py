@@ -204,8 +204,8 @@ class TripleFrictionPendulum:
 
     @property
     def restoring_stiffness_n_m(self) -> float:
-        """Its first stage's stiffness, N/m: ``W / (R2 + R3)``."""
-        return self._weight() / (self.radii_m[1] + self.radii_m[2])
+        """Its first stage's stiffness from rest, N/m: ``W / (R2 + R3)`` where ``mu2 = mu3``."""
+        return self.slopes_n_m[0]
 
     @property
     def period_s(self) -> float:
@@ -221,13 +221,14 @@ class TripleFrictionPendulum:
     def slopes_n_m(self) -> tuple[float, ...]:
         """Its stages' stiffnesses from rest, N/m, in the order a monotonic slide meets them."""
         u, f = self._backbone_points()
-        return tuple(float(x) for x in np.diff(f[1:]) / np.diff(u[1:]))
+        du, df = np.diff(u), np.diff(f)
+        return tuple(float(x) for x in df[du > 0.0] / du[du > 0.0])
 
     @property
     def breakpoints_m(self) -> tuple[float, ...]:
         """The displacements where a monotonic slide from rest changes stage, m (the last: the travel)."""
         u, _ = self._backbone_points()
-        return tuple(float(x) for x in u[2:])
+        return tuple(float(x) for x in u[1:][np.diff(u) > 0.0])
 
     @property
     def n_branches(self) -> int:
@@ -248,13 +249,17 @@ class TripleFrictionPendulum:
         cap = np.array(self.series_capacities_m)
         ug = np.zeros(SURFACES)
         state = np.zeros(SURFACES)  # (0 held, 1 slipping, 2 at its ring)
-        us, fs = [0.0, 0.0], [0.0, float(f.min())]
-        force, u = float(f.min()), 0.0
+        us, fs = [0.0], [0.0]
+        force, u = 0.0, 0.0
         for _ in range(3 * SURFACES):
+            if not ((state == 1).any() or (state == 0).any()):
+                break  # (every surface at its ring: the travel)
+            if not (state == 1).any():  # (none slips on: the force jumps to the next held threshold)
+                force = max(force, float(np.where(state == 0, k * ug + f, np.inf).min()))
+                us.append(u)
+                fs.append(force)
             state[(state == 0) & (k * ug + f <= force * (1 + 1e-12))] = 1
             slipping = state == 1
-            if not slipping.any():
-                break
             thresholds = np.where(state == 0, k * ug + f, np.inf)
             rings = np.where(slipping, k * cap + f, np.inf)
             nxt = float(min(thresholds.min(), rings.min()))
