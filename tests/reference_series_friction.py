@@ -21,7 +21,7 @@ from typing import Callable
 import numpy as np
 from scipy.integrate import solve_ivp
 
-from reference_friction import _first_crossing
+from reference_friction import FrictionStructure, _first_crossing
 
 HELD, RING = 0, 2
 
@@ -42,16 +42,9 @@ class SeriesStructure:
     c_r: float = 0.0               # the bearing's dashpot, N s/m
 
     def matrices(self) -> tuple[np.ndarray, np.ndarray]:
-        n = len(self.masses_kg)
-        kk, cc = np.zeros((n, n)), np.zeros((n, n))
-        cc[0, 0] = self.c_r
-        for i, (ks, cs) in enumerate(zip(self.storey_k, self.storey_c)):
-            for mat, v in ((kk, ks), (cc, cs)):
-                mat[i, i] += v
-                mat[i + 1, i + 1] += v
-                mat[i, i + 1] -= v
-                mat[i + 1, i] -= v
-        return kk, cc
+        """K and C, (n, n): the storeys' and the bearing's dashpot (its springs are the surfaces')."""
+        return FrictionStructure(self.masses_kg, self.storey_k, self.storey_c, 0.0, self.c_r, 0.0,
+                                 self.accel).matrices()
 
 
 @dataclass

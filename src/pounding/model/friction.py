@@ -26,8 +26,44 @@ MAX_MU = 1.0
 MAX_WEIGHT_N = 1e12
 
 
+class CarriesWeight:
+    """What a sliding isolator does with the weight it carries (``weight_n``, N, and ``weight_carried``,
+    whether it is its system's): checked, bound to a system's mass, read."""
+
+    weight_n: Optional[float]
+    weight_carried: bool
+
+    def _check_weight(self) -> Optional[float]:
+        """Check ``weight_n`` and ``weight_carried`` (set on the frozen instance); the weight, or None."""
+        object.__setattr__(self, "weight_carried", boolean("isolator.weight_carried", self.weight_carried))
+        if self.weight_carried and self.weight_n is None:
+            raise InputError(Problem.WRONG_CONFIGURATION, "isolator.weight_carried", True,
+                             got="without a weight", fix="leave it False (a system sets it)")
+        if self.weight_n is None:
+            return None
+        weight = positive("isolator.weight_n", self.weight_n, "N")
+        at_most("isolator.weight_n", weight, MAX_WEIGHT_N, " N", "give the weight in N (mass times g)")
+        object.__setattr__(self, "weight_n", weight)
+        return weight
+
+    def carrying(self, mass_kg: float) -> Any:
+        """The same isolator carrying the weight of ``mass_kg`` (a ``weight_n`` given kept): what a system
+        does with it."""
+        if self.weight_n is not None and not self.weight_carried:
+            return self
+        return replace(self, weight_n=GRAVITY_M_S2 * float(mass_kg), weight_carried=True)  # type: ignore
+
+    def _weight(self) -> float:
+        if self.weight_n is None:
+            raise InputError(Problem.WRONG_CONFIGURATION, "isolator.weight_n", None,
+                             got="unknown until the isolator is put into a system",
+                             fix="put it into a Structure or Oscillator (it carries their weight), or give "
+                                 "weight_n")
+        return self.weight_n
+
+
 @dataclass(frozen=True)
-class FrictionIsolator:
+class FrictionIsolator(CarriesWeight):
     """A sliding isolator: a flat slider, or a single friction pendulum of radius ``radius_m``.
 
     Its force on the base, at the base's displacement ``D`` relative to the ground, is::
@@ -123,14 +159,8 @@ class FrictionIsolator:
         plausible("isolator.preslip_m", preslip, 0.0, 0.01, "an elastic pre-slip in m (1 mm is 0.001)")
         object.__setattr__(self, "preslip_m", preslip)
         self._check_velocity_dependence()
-        object.__setattr__(self, "weight_carried", boolean("isolator.weight_carried", self.weight_carried))
-        if self.weight_carried and self.weight_n is None:
-            raise InputError(Problem.WRONG_CONFIGURATION, "isolator.weight_carried", True,
-                             got="without a weight", fix="leave it False (a system sets it)")
-        if self.weight_n is not None:
-            weight = positive("isolator.weight_n", self.weight_n, "N")
-            at_most("isolator.weight_n", weight, MAX_WEIGHT_N, " N", "give the weight in N (mass times g)")
-            object.__setattr__(self, "weight_n", weight)
+        weight = self._check_weight()
+        if weight is not None:
             # (the field a stiffness too large is blamed on: the one the user gave beside the weight)
             for name, field, value, k, smallest in (
                     ("the restoring stiffness W / R", "isolator.radius_m", self.radius_m,
@@ -172,21 +202,6 @@ class FrictionIsolator:
                                  "mu_fast out")
 
     # ---------------------------------------------------------------- its numbers
-
-    def carrying(self, mass_kg: float) -> "FrictionIsolator":
-        """The same isolator carrying the weight of ``mass_kg`` (a ``weight_n`` given kept): what a system
-        does with it."""
-        if self.weight_n is not None and not self.weight_carried:
-            return self
-        return replace(self, weight_n=GRAVITY_M_S2 * float(mass_kg), weight_carried=True)
-
-    def _weight(self) -> float:
-        if self.weight_n is None:
-            raise InputError(Problem.WRONG_CONFIGURATION, "isolator.weight_n", None,
-                             got="unknown until the isolator is put into a system",
-                             fix="put it into a Structure or Oscillator (it carries their weight), or give "
-                                 "weight_n")
-        return self.weight_n
 
     def _preslip_stiffness(self) -> float:
         return self.friction_force_n / self.preslip_m if self.preslip_m > 0.0 else math.inf

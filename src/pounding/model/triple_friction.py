@@ -12,15 +12,15 @@ travels to the rings measured as the series' elements move.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any, ClassVar, Optional
 
 import numpy as np
 
-from .._checks import at_most, boolean, non_negative, plausible, positive, real_tuple
+from .._checks import at_most, non_negative, plausible, positive, real_tuple
 from .._errors import InputError, Problem
 from .._units import GRAVITY_M_S2
-from .friction import MAX_MU, MAX_WEIGHT_N, RULE_FRICTION
+from .friction import MAX_MU, RULE_FRICTION, CarriesWeight
 from .isolator import BW_PARAMS, MAX_DAMPING_N_S_M, MAX_STIFFNESS_N_M
 
 SURFACES = 4
@@ -38,7 +38,7 @@ def _four(field: str, values: Any, unit: str) -> tuple[float, ...]:
 
 
 @dataclass(frozen=True)
-class TripleFrictionPendulum:
+class TripleFrictionPendulum(CarriesWeight):
     """A triple friction pendulum bearing (TFP): four spherical sliding surfaces, each with its friction
     and its restraining ring, whose stiffness and damping change with the amplitude (stages I to V).
 
@@ -142,14 +142,8 @@ class TripleFrictionPendulum:
         damping = non_negative("isolator.damping_n_s_m", self.damping_n_s_m, "N s/m")
         at_most("isolator.damping_n_s_m", damping, MAX_DAMPING_N_S_M, " N s/m", "give the damping in N s/m")
         object.__setattr__(self, "damping_n_s_m", damping)
-        object.__setattr__(self, "weight_carried", boolean("isolator.weight_carried", self.weight_carried))
-        if self.weight_carried and self.weight_n is None:
-            raise InputError(Problem.WRONG_CONFIGURATION, "isolator.weight_carried", True,
-                             got="without a weight", fix="leave it False (a system sets it)")
-        if self.weight_n is not None:
-            weight = positive("isolator.weight_n", self.weight_n, "N")
-            at_most("isolator.weight_n", weight, MAX_WEIGHT_N, " N", "give the weight in N (mass times g)")
-            object.__setattr__(self, "weight_n", weight)
+        weight = self._check_weight()
+        if weight is not None:
             r_min = min(self.series_radii_m)
             if weight / r_min > MAX_STIFFNESS_N_M:
                 raise InputError(Problem.TOO_SMALL, "isolator.radii_m", self.radii_m,
@@ -157,20 +151,6 @@ class TripleFrictionPendulum:
                                  hint=f" m for each series radius under the weight {weight:g} N")
 
     # ---------------------------------------------------------------- its numbers
-
-    def carrying(self, mass_kg: float) -> "TripleFrictionPendulum":
-        """The same bearing carrying the weight of ``mass_kg`` (a ``weight_n`` given kept)."""
-        if self.weight_n is not None and not self.weight_carried:
-            return self
-        return replace(self, weight_n=GRAVITY_M_S2 * float(mass_kg), weight_carried=True)
-
-    def _weight(self) -> float:
-        if self.weight_n is None:
-            raise InputError(Problem.WRONG_CONFIGURATION, "isolator.weight_n", None,
-                             got="unknown until the isolator is put into a system",
-                             fix="put it into a Structure or Oscillator (it carries their weight), or give "
-                                 "weight_n")
-        return self.weight_n
 
     @property
     def series_radii_m(self) -> tuple[float, ...]:
