@@ -27,13 +27,12 @@ d 0.2 m.  In pounding's terms ``TripleFrictionPendulum(radii_m=(1.25, 0.36, 0.36
 from __future__ import annotations
 
 import argparse
-import time
 
 import numpy as np
 
 import peers  # (its load_opensees: the openseespy wheels' libraries preloaded)
 import pounding as pd_
-from opensees_building import cpu_timed
+from opensees_friction import convergence_table, equal_accuracy, pounding_reference, stepped_run
 
 RADII_M, MU, CAPACITIES_M = (1.25, 0.36, 0.36, 1.25), (0.052, 0.012, 0.012, 0.14), (0.2, 0.1, 0.1, 0.2)
 UYS_M = (1e-3, 3e-4, 1e-4)     # OpenSees' uy
@@ -179,37 +178,10 @@ def opensees_building(ops, b: pd_.Structure, rec, uy_m: float) -> None:
     ops.analysis("Transient")
 
 
-def opensees_run(ops, b: pd_.Structure, rec, dt_s: float, uy_m: float):
-    def run():
-        opensees_building(ops, b, rec, uy_m)
-        d_peak, hard = 0.0, 0
-        for _ in range(int(round(rec.duration_s / dt_s))):
-            if ops.analyze(1, dt_s) != 0:
-                hard += 1
-                ops.algorithm("KrylovNewton")
-                if ops.analyze(1, dt_s) != 0 and ops.analyze(10, dt_s / 10.0) != 0:
-                    raise RuntimeError(f"OpenSees failed to converge at t = {ops.getTime()} s")
-                ops.algorithm("Newton")
-            d_peak = max(d_peak, abs(ops.nodeDisp(1, 1)))
-        return {"d_peak": d_peak, "d_residual": ops.nodeDisp(1, 1), "hard": hard}
-
-    return run
-
-
 def building_runs(ops, uys, steps, rounds: int) -> None:
     b = the_building()
     rec = pd_.records.el_centro().scaled(pga_g=1.0)
-
-    def run_pd():
-        out = pd_.simulate(b, rec, rec.duration_s, sample_rate_hz=0)
-        if not out.success:
-            raise RuntimeError(out.message)
-        return out
-
-    run_pd()
-    pd_best, pd_median, out = cpu_timed(run_pd, max(rounds, 3))
-    ref = {"d_peak": max(abs(out.displacement_max[0]), abs(out.displacement_min[0])),
-           "d_residual": float(out.final_state.displacements_m[0])}
+    pd_best, pd_median, out, ref = pounding_reference(b, rec, rounds)
     kinds = out.events["kind"].value_counts()
     print(f"\n2. a building (40 t base, three 30 t storeys) under {rec.name} at PGA {rec.pga_g:.3g} g, "
           f"{rec.duration_s:g} s at {rec.dt_s:g} s")
@@ -217,32 +189,11 @@ def building_runs(ops, uys, steps, rounds: int) -> None:
           f"{int(kinds.get('surface_slip', 0))} surface slips, {int(kinds.get('ring', 0))} rings, "
           f"{int(kinds.get('stick', 0))} sticks; {pd_best * 1e3:.2f} CPU ms a run (median "
           f"{pd_median * 1e3:.2f})")
-    print("OpenSees uy m | dt s | CPU s | peak m | peak err | residual m | residual err | steps re-solved | "
-          "x pounding's time")
-    rows = []
-    for uy in uys:
-        for r in steps:
-            dt = rec.dt_s / r
-            if r == 1:
-                best, _, res = cpu_timed(opensees_run(ops, b, rec, dt, uy), rounds)
-            else:
-                t0 = time.process_time()
-                res = opensees_run(ops, b, rec, dt, uy)()
-                best = time.process_time() - t0
-            e_peak = res["d_peak"] / ref["d_peak"] - 1.0
-            e_res = res["d_residual"] / ref["d_residual"] - 1.0
-            rows.append((uy, dt, best, e_peak, e_res))
-            print(f"{uy:.0e} | {dt:.3g} | {best:.4g} | {res['d_peak']:.6f} | {e_peak:+.2e} | "
-                  f"{res['d_residual']:+.6f} | {e_res:+.2e} | {res['hard']} | {best / pd_best:,.0f}x",
-                  flush=True)
-    within = [row for row in rows if abs(row[3]) <= TARGET_ERROR and abs(row[4]) <= TARGET_ERROR]
-    if within:
-        uy, dt, cpu, _, _ = min(within, key=lambda row: row[2])
-        print(f"equal accuracy: the cheapest OpenSees run within {TARGET_ERROR:.0%} of pounding on the peak "
-              f"and the residual, uy {uy:.0e} m at dt {dt:.3g} s, {cpu:.3g} CPU s: {cpu / pd_best:,.0f}x "
-              "pounding's time")
-    else:
-        print(f"equal accuracy: no OpenSees run here within {TARGET_ERROR:.0%} of pounding on both")
+    def make_run(dt: float, uy: float):
+        return stepped_run(ops, lambda: opensees_building(ops, b, rec, uy), rec, dt)
+
+    rows = convergence_table(make_run, rec, ref, pd_best, uys, steps, rounds)
+    equal_accuracy(rows, pd_best, TARGET_ERROR)
 
 
 def main() -> None:

@@ -140,6 +140,23 @@ def _first_crossing(sol, events: list, per_step: int = 32) -> tuple[float, int |
     return best_t, best
 
 
+def _phase(rhs, t: float, t_stop: float, y: np.ndarray, events: list, from_rest: bool, held: bool,
+           rtol: float, atol: float):
+    """One phase from ``t`` to its first event or ``t_stop``: ``(its solution, its end, the event that fired
+    (None: none), the state there, the solver's steps before it)``.  A slip from rest (``from_rest``) starts
+    with its event function at zero: a first step short against any slip, so that a slip which comes back to
+    rest inside the solver's first step is not taken for one that ended where it started, the bracket's end;
+    a ``held`` phase's steps are at most 1 ms."""
+    first = min(1e-7, 0.5 * (t_stop - t)) if from_rest else None
+    sol = solve_ivp(rhs, (t, t_stop), y, method="DOP853", rtol=rtol, atol=atol, events=events,
+                    dense_output=True, first_step=first, max_step=1e-3 if held else np.inf)
+    if sol.status < 0:
+        raise RuntimeError(sol.message)
+    t_new, fired = _first_crossing(sol, events)
+    y_new = sol.sol(t_new) if fired is not None and t_new < sol.t[-1] else sol.y[:, -1].copy()
+    return sol, t_new, fired, y_new, sol.t[1:][sol.t[1:] < t_new]
+
+
 def reference(s: FrictionStructure, t_end: float, x0: np.ndarray, v0: np.ndarray, rtol: float = 1e-12,
               atol: float = 1e-15, max_phases: int = 100_000,
               knots: np.ndarray | None = None) -> FrictionResult:
@@ -208,17 +225,8 @@ def reference(s: FrictionStructure, t_end: float, x0: np.ndarray, v0: np.ndarray
 
             stop.terminal, stop.direction = True, -float(mode)
             events = [stop]
-        # (a slip from rest starts with its event function at zero: a first step short against any slip, so
-        # that a slip which comes back to rest inside the solver's first step is not taken for one that ended
-        # where it started, the bracket's end)
-        first = min(1e-7, 0.5 * (t_stop - t)) if mode != 0 and y[n] == 0.0 else None
-        sol = solve_ivp(rhs, (t, t_stop), y, method="DOP853", rtol=rtol, atol=atol, events=events,
-                        dense_output=True, first_step=first, max_step=np.inf if mode else 1e-3)
-        if sol.status < 0:
-            raise RuntimeError(sol.message)
-        t_new, fired = _first_crossing(sol, events)
-        steps = sol.t[1:][sol.t[1:] < t_new]
-        y = sol.sol(t_new) if fired is not None and t_new < sol.t[-1] else sol.y[:, -1].copy()
+        sol, t_new, fired, y, steps = _phase(rhs, t, t_stop, y, events, mode != 0 and y[n] == 0.0, mode == 0,
+                                             rtol, atol)
         if mode == 0:  # (the friction needed to hold the base, over the stick)
             grid = np.linspace(t, t_new, 64)
             ys = sol.sol(grid)

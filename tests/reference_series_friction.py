@@ -19,9 +19,8 @@ from dataclasses import dataclass, field
 from typing import Callable
 
 import numpy as np
-from scipy.integrate import solve_ivp
 
-from reference_friction import FrictionStructure, _first_crossing
+from reference_friction import FrictionStructure, _phase
 
 HELD, RING = 0, 2
 
@@ -158,14 +157,8 @@ def reference(s: SeriesStructure, t_end: float, rtol: float = 1e-12, atol: float
                     return _force(s, yy[0], frozen_u, frozen_state, frozen_mode) - level
                 ev.terminal, ev.direction, ev.what = True, float(mode), what
                 events.append(ev)
-        first = min(1e-7, 0.5 * (t_stop - t)) if mode != 0 and y[n] == 0.0 else None
-        sol = solve_ivp(rhs, (t, t_stop), y, method="DOP853", rtol=rtol, atol=atol, events=events,
-                        dense_output=True, first_step=first, max_step=np.inf if mode else 1e-3)
-        if sol.status < 0:
-            raise RuntimeError(sol.message)
-        t_new, fired = _first_crossing(sol, events)
-        y = sol.sol(t_new) if fired is not None and t_new < sol.t[-1] else sol.y[:, -1].copy()
-        steps = sol.t[1:][sol.t[1:] < t_new]
+        sol, t_new, fired, y, steps = _phase(rhs, t, t_stop, y, events, mode != 0 and y[n] == 0.0, mode == 0,
+                                             rtol, atol)
         ts.append(np.append(steps, t_new))
         xs.append(np.vstack([sol.y[:n, 1:1 + steps.size].T, y[None, :n]]))
         if mode:  # (the slipping surfaces moved with the force: their friction's work)
