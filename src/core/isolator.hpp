@@ -45,6 +45,14 @@ inline double iso_u(const System& sy, int e, const double* st) {
     return rel(st + sy.lay.x, sy.hyst[static_cast<size_t>(e)].i, sy.hyst[static_cast<size_t>(e)].j);
 }
 
+// the displacements x and velocities v (n each) with element e held at u, its pair's relative velocity none:
+// where a touch of a friction threshold was taken back (it moved by rounding), the state and the samples within
+inline void iso_hold_at(const System& sy, int e, double u, double* x, double* v) {
+    const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+    x[h.i] = u + (h.j >= 0 ? x[h.j] : 0.0);
+    v[h.i] = h.j >= 0 ? v[h.j] : 0.0;
+}
+
 IsoLinear iso_linear(const System& sy, int e, const double* st);
 // the element whose springs hold the system's spring (or series surface) index
 int iso_element_of_spring(const System& sy, int index);
