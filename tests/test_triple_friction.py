@@ -81,14 +81,24 @@ def _in_order(events: list) -> list:
     return sorted(events, key=lambda e: (round(e[0], 9), e[1], e[2]))
 
 
-def _untouched(events: list) -> list:
-    """The reference's events without a slip from a stick that sticks again within 1 us: where the force
-    needed to hold the bearing touches its threshold, the engine takes such a slip back (its bearing moved
-    within the rounding of the run's lengths: a touch starts no slip, as for a single surface)."""
-    out, k = [], 0
+def _untouched(ref) -> list:
+    """The reference's events without a slip from a stick that sticks again with its bearing moved by no
+    more than the rounding of the run's lengths (1e-12 of its largest displacement): where the force needed
+    to hold the bearing touches its threshold, the engine takes such a slip back (a touch starts no slip, as
+    for a single surface); seen: a slip of 17 us that moved the bearing 1e-14 m."""
+    u = ref.x[:, 0]  # (the base's displacement: the bearing's)
+    scale = max(float(np.abs(u).max()), 1e-3)
+
+    def u_at(t: float) -> float:
+        k = int(np.searchsorted(ref.t, t, side="right")) - 1
+        assert ref.t[k] == t  # (a phase's end: an event's instant)
+        return float(u[k])
+
+    events, out, k = ref.events, [], 0
     while k < len(events):
         if (events[k][1] == "slip" and k + 1 < len(events) and events[k + 1][1] == "stick"
-                and events[k + 1][0] - events[k][0] < 1e-6 and out and out[-1][1] == "stick"):
+                and out and out[-1][1] == "stick"
+                and abs(u_at(events[k + 1][0]) - u_at(events[k][0])) <= 1e-12 * scale):
             k += 2
             continue
         out.append(events[k])
@@ -108,10 +118,10 @@ def test_every_stage_change_matches_the_reference(case):
     except ReferenceCapacity:  # (its last event the engine's stop: both at the travel's end)
         assert run.status == pd_.Status.CAPACITY
         return
-    if run.status == pd_.Status.CAPACITY:  # (the reference's last phase ends on the engine's last ring)
-        assert engine[-1][1] == "ring"
-        engine = engine[:-1]
-    engine, expected = _in_order(engine), _in_order(_untouched(ref.events))
+    if run.status == pd_.Status.CAPACITY:  # (the reference's last phase ends on the engine's last rings:
+        assert engine[-1][1] == "ring"     # a symmetric bearing's last two surfaces reach theirs at once)
+        engine = [e for e in engine if not (e[1] == "ring" and e[0] == engine[-1][0])]
+    engine, expected = _in_order(engine), _in_order(_untouched(ref))
     assert [e[1:] for e in engine] == [e[1:] for e in expected]
     assert max((abs(a[0] - e[0]) for a, e in zip(engine, expected)), default=0.0) < EVENT_S
     n = b.masses_kg.size
