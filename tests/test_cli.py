@@ -51,11 +51,13 @@ def test_sweep_writes_the_issue_columns(tmp_path):
                                  "--out", str(out), "--netcdf", str(nc), "--plot", str(png)])
     assert result.exit_code == 0, result.output
     assert "nu_R" in result.output and "contact range [Hz]" in result.output
+    assert "events per cycle" in result.output
     df = pd.read_csv(out)
     assert list(df.columns) == ["freq_hz", "alpha", "excursion_m", "eta", "e", "contact",
                                 "contacts_per_cycle",
                                 "restitution", "contact_time_s", "mean_force_n", "peak_force_n",
-                                "dissipated_energy_j", "steady", "period_multiple"]
+                                "dissipated_energy_j", "steady", "period_multiple",
+                                "events_per_cycle", "sticks_per_cycle"]
     assert list(df["freq_hz"]) == [2.0, 1.5, 1.0]
     assert nc.stat().st_size > 0 and png.stat().st_size > 0
 

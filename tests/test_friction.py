@@ -262,6 +262,34 @@ def test_against_bumpers_its_sticks_are_exact_and_few():
     assert np.all(per_cycle == per_cycle[0]) and per_cycle[0] == 14
 
 
+def test_a_sweep_against_bumpers_counts_its_events_and_its_sticks_are_exact():
+    """A sweep of a friction pendulum against bumpers: each step's table gives the events and the sticks per
+    cycle of its window; they are the events of the window run again from its state, the same in every cycle
+    of its period, and every stick and slip there lasts longer than a microsecond (no chatter)."""
+    from pounding.engine.assembly import assemble
+
+    system = pd_.Oscillator(500.0, pd_.FrictionIsolator(mu=0.05, radius_m=1.5),
+                            pd_.Bumpers(gap_left_m=0.03, gap_right_m=0.03, law=pd_.KelvinVoigt(2.0e6, 500.0)))
+    sw = pd_.sweep(system, 0.1, [0.5, 1.0])
+    assert sw.status == pd_.Status.SUCCESS and sw.period_multiple.tolist() == [1, 1]
+    table = sw.to_dataframe()
+    assert table["sticks_per_cycle"].tolist() == [2.0, 0.0]  # (sticks at 0.5 Hz; at 1 Hz a non-stop slide)
+    asm = assemble(system)
+    for i, f in enumerate(sw.freqs_hz):
+        m = int(sw.window_cycles[i])
+        state = pd_.State._of(sw.window_states[i], asm.dofs, asm.system.layout)
+        exc = pd_.Harmonic(0.1, f, phase=-(2 * math.pi * f * float(sw.step_start_s[i])))
+        run = pd_.simulate(system, exc, m / f, state, sample_rate_hz=0)
+        assert run.success
+        ev = run.events
+        assert len(ev) == sw.window_events[i, 0] == table["events_per_cycle"][i] * m
+        assert (ev["kind"] == "stick").sum() == sw.window_events[i, 1]
+        cycle = np.floor((ev["t_s"].to_numpy() - state.time_s) * f + 1e-9).astype(int)
+        assert np.all(np.bincount(cycle, minlength=m) == table["events_per_cycle"][i])
+        friction = ev[ev["kind"].isin(["stick", "slip", "reversal"])]["t_s"].to_numpy()
+        assert len(friction) > 0 and np.diff(friction).min() > 1e-6
+
+
 def test_a_friction_isolator_s_toml_round_trips_and_its_weight_follows_the_system(tmp_path):
     system, _ = _pendulum_building()
     assert system.isolator.weight_n == pytest.approx(G * 12.0e3)

@@ -400,11 +400,15 @@ NB_MODULE(_pounding_core, m) {
     layout["CY_DMIN"] = CY_DMIN;
     layout["CY_AMAX"] = CY_AMAX;
     layout["CY_SUMS"] = CY_SUMS;
+    layout["CY_EVENTS"] = CY_EVENTS;
+    layout["CY_STICKS"] = CY_STICKS;
     layout["W_DMAX"] = W_DMAX;
     layout["W_DMIN"] = W_DMIN;
     layout["W_AMAX"] = W_AMAX;
     layout["W_CYCLES"] = W_CYCLES;
     layout["W_SUMS"] = W_SUMS;
+    layout["W_EVENTS"] = W_EVENTS;
+    layout["W_STICKS"] = W_STICKS;
     layout["S_COUNT"] = S_COUNT;
     layout["S_N_RESTITUTION"] = S_N_RESTITUTION;
     layout["S_SUMS"] = S_SUMS;

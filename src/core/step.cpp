@@ -154,6 +154,9 @@ void step_kernel(const System& sy, double amp, double omega, const double* state
         cy[CY_DMIN] = run.extrema[EX_D_MIN];
         cy[CY_AMAX] = run.extrema[EX_A_ABS_MAX];
         add_impacts(run.contacts, sy.mass[0], cy + CY_SUMS);
+        cy[CY_EVENTS] = static_cast<double>(run.events.n);
+        for (int64_t e = 0; e < run.events.n; ++e)
+            cy[CY_STICKS] += run.events.row(e)[EC_ACTION] == static_cast<double>(ACT_STICK) ? 1.0 : 0.0;
         double* sb = &strobe[static_cast<size_t>(n) * cols];
         for (int q = 0; q < 2 * nd; ++q) sb[q] = st[L.x + q];
         for (int q = 0; q < n_sp; ++q) sb[2 * nd + q] = st[L.base + q];
@@ -184,6 +187,8 @@ void step_kernel(const System& sy, double amp, double omega, const double* state
         out.window[W_DMIN] = std::min(out.window[W_DMIN], cy[CY_DMIN]);
         out.window[W_AMAX] = std::max(out.window[W_AMAX], cy[CY_AMAX]);
         for (int q = 0; q < 2 * SIDE_SUMS; ++q) out.window[W_SUMS + q] += cy[CY_SUMS + q];
+        out.window[W_EVENTS] += cy[CY_EVENTS];
+        out.window[W_STICKS] += cy[CY_STICKS];
     }
     out.strobes.resize(static_cast<size_t>(m) * 2);
     for (int j = 0; j < m; ++j) {

@@ -15,9 +15,12 @@ constexpr int S_COUNT = 0, S_N_RESTITUTION = 1, S_SUMS = 2, SIDE_SUMS = S_SUMS +
 void impact_row(const double* contact, double mass, double* out);
 void add_impacts(const Rows& contacts, double mass, double* sums);
 
-// the per-cycle record and the window
-constexpr int CY_DMAX = 0, CY_DMIN = 1, CY_AMAX = 2, CY_SUMS = 3, CYCLE_COLS = CY_SUMS + 2 * SIDE_SUMS;
-constexpr int W_DMAX = 0, W_DMIN = 1, W_AMAX = 2, W_CYCLES = 3, W_SUMS = 4, WINDOW_COLS = W_SUMS + 2 * SIDE_SUMS;
+// the per-cycle record and the window: the first dof's extrema, the first two slots' impact sums, and the
+// events the run located (every one; and the sticks of its friction isolators)
+constexpr int CY_DMAX = 0, CY_DMIN = 1, CY_AMAX = 2, CY_SUMS = 3, CY_EVENTS = CY_SUMS + 2 * SIDE_SUMS,
+              CY_STICKS = CY_EVENTS + 1, CYCLE_COLS = CY_STICKS + 1;
+constexpr int W_DMAX = 0, W_DMIN = 1, W_AMAX = 2, W_CYCLES = 3, W_SUMS = 4, W_EVENTS = W_SUMS + 2 * SIDE_SUMS,
+              W_STICKS = W_EVENTS + 1, WINDOW_COLS = W_STICKS + 1;
 
 struct Steady { bool adaptive; int n_cycles; int measure_cycles; double steady_rtol; int max_period; };
 

@@ -277,6 +277,8 @@ SWEEP_CSV_COLUMNS = [
     "dissipated_energy_j",
     "steady",
     "period_multiple",
+    "events_per_cycle",
+    "sticks_per_cycle",
 ]
 
 
@@ -329,6 +331,7 @@ def sweep(
         jumps = result.jumps()
         add("jumps [Hz]", ", ".join(f"{a:g}->{b:g} ({k})" for a, b, k in
                                     zip(jumps["freq_from_hz"], jumps["freq_to_hz"], jumps["kind"])) or "none")
+        add("events per cycle", _events_per_cycle(result))
     console.print(table)
     if several and result.steps_done:
         console.print(_structure_sweep_table(result))
@@ -352,6 +355,15 @@ def sweep(
         )
     if not result.success:
         raise typer.Exit(code=1)
+
+
+def _events_per_cycle(result) -> str:
+    """The fewest and the most events the engine located per cycle over the finished steps, with the most
+    sticks per cycle where a friction isolator stuck: ``"6 - 18 (sticks: up to 2)"``."""
+    done = result.steps_done
+    per_cycle = result.window_events[:done] / result.window_cycles[:done, None]
+    text = f"{per_cycle[:, 0].min():g} - {per_cycle[:, 0].max():g}"
+    return text + (f" (sticks: up to {per_cycle[:, 1].max():g})" if per_cycle[:, 1].max() > 0 else "")
 
 
 def _structure_sweep_table(result):

@@ -29,9 +29,10 @@ from .._core import (CONTACT_COLUMNS, Forcing, DOF_EXTREMA, EXCITATION, LAYOUT, 
 # a step's per-cycle record: exact extrema, then the impact sums of both sides (metrics: S_*)
 CY_DMAX, CY_DMIN, CY_AMAX, CY_SUMS = (LAYOUT[k] for k in ("CY_DMAX", "CY_DMIN", "CY_AMAX", "CY_SUMS"))
 CYCLE_COLS = LAYOUT["CYCLE_COLS"]
-# its measurement window: extrema, number of cycles, impact sums (left then right)
-W_DMAX, W_DMIN, W_AMAX, W_CYCLES, W_SUMS = (LAYOUT[k] for k in ("W_DMAX", "W_DMIN", "W_AMAX", "W_CYCLES",
-                                                                 "W_SUMS"))
+# its measurement window: extrema, number of cycles, impact sums (left then right), the events located
+# (all, and the friction isolators' sticks)
+W_DMAX, W_DMIN, W_AMAX, W_CYCLES, W_SUMS, W_EVENTS, W_STICKS = (
+    LAYOUT[k] for k in ("W_DMAX", "W_DMIN", "W_AMAX", "W_CYCLES", "W_SUMS", "W_EVENTS", "W_STICKS"))
 WINDOW_COLS = LAYOUT["WINDOW_COLS"]
 
 

@@ -25,7 +25,7 @@ from ..excitation import MAX_FREQ_HZ, GRAVITY_M_S2, Harmonic
 from ..model import MeasurementChain, Oscillator
 from ..engine.assembly import assemble, check_system, is_single_mass
 from .._runner.progress import Progress, progress_reporter
-from ..engine.kernels import W_CYCLES, StepOutput, run_step, run_window
+from ..engine.kernels import W_CYCLES, W_EVENTS, W_STICKS, StepOutput, run_step, run_window
 from ..metrics.impacts import SIDE_SUMS
 from .sweep_result import SweepResult
 from .sweep_window import (check_adaptive_window, check_steady_rtol, from_step, labels_of, measure,
@@ -405,6 +405,7 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
     cycles_run = np.zeros(n_steps, dtype=np.int64)
     period_multiple = np.zeros(n_steps, dtype=np.int64)
     window_cycles = np.zeros(n_steps, dtype=np.int64)
+    window_events = np.zeros((n_steps, 2), dtype=np.int64)  # every event located, the sticks
     state = (plan.state if plan.state is not None else State.at_rest(model)).vector.copy()
     window_states = np.full((n_steps, state.size), np.nan)
     # (a window is rounded up to whole periods when adaptive: up to max_period - 1 more cycles)
@@ -435,6 +436,7 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
         cycles_run[i] = stepped.cycles_run
         period_multiple[i] = stepped.period_multiple
         window_cycles[i] = m
+        window_events[i] = stepped.window[[W_EVENTS, W_STICKS]]
         window_states[i] = win_state
         return code
 
@@ -457,7 +459,7 @@ def run_plan(plan: SweepPlan, advance: Callable[[int], None] | None = None,
         steady_mode=plan.steady, cycles=plan.cycles, measure_cycles=plan.measure_cycles,
         omega_min_rad_s=plan.omega_min_rad_s, f_ref_hz=plan.f_ref_hz, g=GRAVITY_M_S2,
         levels=levels, storeys=storeys, contact_slots=slots, level_metrics=level, drift_metrics=drift,
-        contact_sums=sums, window_cycles=window_cycles, cycles_run=cycles_run,
+        contact_sums=sums, window_cycles=window_cycles, window_events=window_events, cycles_run=cycles_run,
         period_multiple=period_multiple, window_states=window_states, window_strobes=window_strobes,
         step_start_s=step_start_s, steps_done=done, final_state=State._of(state, asm.dofs, system.layout),
         status=status,

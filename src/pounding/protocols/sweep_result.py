@@ -27,7 +27,7 @@ if TYPE_CHECKING:  # pragma: no cover
 # the columns of SweepResult.to_dataframe() after freq_hz, nu, (structure,) level; in order
 STEP_COLUMNS = ("freq_hz", "nu", "alpha", "excursion_m", "displacement_max_m", "displacement_min_m",
                 "eta", "e", "contact", "contacts_per_cycle", *IMPACT_COLUMNS, "steady",
-                "period_multiple", "cycles_run")
+                "period_multiple", "cycles_run", "events_per_cycle", "sticks_per_cycle")
 LEVEL_COLUMNS = ("abs_acceleration_max_m_s2", "drift_peak_m", "drift_ratio_peak")
 
 
@@ -79,6 +79,9 @@ class SweepResult:
     window_cycles, cycles_run, period_multiple : ndarray of int, shape (n,)
         Each step's window's cycles; the cycles it ran; the period multiple of its steady response (0: not
         periodic).
+    window_events : ndarray of int, shape (n, 2)
+        The events the engine located in each step's window: all of them (contacts' starts and ends, a
+        bearing's yields, reversals, sticks and slips, ...), and the sticks of its friction isolators.
     window_states : ndarray, shape (n, n_state)
         The exact state at the start of each step's window (what loops restart from).
     window_strobes : ndarray, shape (n, cycles, 2, n_levels)
@@ -151,6 +154,7 @@ class SweepResult:
     drift_metrics: np.ndarray = field(repr=False)
     contact_sums: np.ndarray = field(repr=False)
     window_cycles: np.ndarray = field(repr=False)
+    window_events: np.ndarray = field(repr=False)
     cycles_run: np.ndarray = field(repr=False)
     period_multiple: np.ndarray = field(repr=False)
     window_states: np.ndarray = field(repr=False)
@@ -283,7 +287,9 @@ class SweepResult:
         ``contact``, ``contacts_per_cycle``, the impact means over the window at the level's walls (both
         sides pooled): ``restitution``, ``contact_time_s``, ``impulse_n_s``, ``mean_force_n``,
         ``peak_force_n``, ``dissipated_energy_j`` (``E_d``), ``bumper_dissipation_j``; ``steady``,
-        ``period_multiple``, ``cycles_run``; ``abs_acceleration_max_m_s2``, the storey below's
+        ``period_multiple``, ``cycles_run``, ``events_per_cycle`` (every event the engine located in the
+        window, per cycle: the whole system's) and ``sticks_per_cycle`` (its friction isolators' sticks);
+        ``abs_acceleration_max_m_s2``, the storey below's
         ``drift_peak_m`` and ``drift_ratio_peak`` (NaN at a base); then the impact columns per side with
         suffixes ``_left`` and ``_right``.
         """

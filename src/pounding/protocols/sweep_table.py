@@ -55,6 +55,10 @@ def exact_table(sw: "SweepResult") -> pd.DataFrame:
     cols.update({"steady": np.where(ran, np.repeat(sw.period_multiple > 0, n_lev), False),
                  "period_multiple": np.repeat(sw.period_multiple, n_lev),
                  "cycles_run": np.repeat(sw.cycles_run, n_lev)})
+    with np.errstate(invalid="ignore", divide="ignore"):  # (a step not run: no window)
+        per_cycle = sw.window_events / sw.window_cycles[:, None]
+    cols.update({"events_per_cycle": np.repeat(per_cycle[:, 0], n_lev),
+                 "sticks_per_cycle": np.repeat(per_cycle[:, 1], n_lev)})
     cols["abs_acceleration_max_m_s2"] = m[:, :, 2].ravel()
     drift, ratio = np.full((n, n_lev), np.nan), np.full((n, n_lev), np.nan)
     structures = structures_of(sw.system)[0]
@@ -113,7 +117,7 @@ def dataset(sw: "SweepResult") -> "xr.Dataset":
     ds["step"] = ds["step"].isel(level=0, drop=True)
     for name in ("contact", "steady"):
         ds[name] = ds[name].astype(bool)
-    for name in ("period_multiple", "cycles_run"):
+    for name in ("period_multiple", "cycles_run", "events_per_cycle", "sticks_per_cycle"):
         ds[name] = ds[name].isel(level=0, drop=True)
     order = np.argsort(sw.freqs_hz)
     ds = ds.assign_coords(nu=("freq_hz", ds["freq_hz"].values / sw.f_ref_hz),
