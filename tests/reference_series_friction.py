@@ -7,6 +7,11 @@ bearing's force.  The bearing is surfaces g = 0..3 one after another, each a spr
 friction f_g, of displacement u_g, sum u_g = x_0, all carrying F:
 - a surface slips the way s only while F = k_g u_g + s f_g; it is held otherwise, and held at its ring once
   u_g = s d_g (until F comes back to its threshold the other way);
+- a stiff ring (``ring`` > 0, N/m) instead adds ring (|u_g| - d_g) to the surface's spring beyond its travel:
+  a slipping surface is then where its spring's force, which rises with u_g, is F - s f_g (found by inverting
+  it, ``_inverse``), F is the force at which the slipping surfaces and the held ones add up to x_0 (on the
+  piece between the surfaces' knees where it falls), and its rings' entries and exits are events for the
+  record (``ring``, ``ring_off``);
 - with the set S slipping, F = (x_0 - sum_{held} u_g + s sum_S f_g / k_g) / sum_S 1 / k_g;
 - every surface held: the base is held (v_0 = 0) and F is what holding it needs, D = -m_0 a_g - (K x)_0 -
   (C x')_0; the bearing slips up where D reaches the lowest threshold up min_g (k_g u_g + f_g), down where it
@@ -15,6 +20,7 @@ friction f_g, of displacement u_g, sum u_g = x_0, all carrying F:
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field
 from typing import Callable
 
@@ -39,6 +45,7 @@ class SeriesStructure:
     cap: np.ndarray                # (4,) their travels to their rings, m
     accel: Callable[[float], float]
     c_r: float = 0.0               # the bearing's dashpot, N s/m
+    ring: float = 0.0              # each ring's stiffness, N/m (0: rigid)
 
     def matrices(self) -> tuple[np.ndarray, np.ndarray]:
         """K and C, (n, n): the storeys' and the bearing's dashpot (its springs are the surfaces')."""
@@ -51,27 +58,65 @@ class SeriesResult:
     t: np.ndarray
     x: np.ndarray
     events: list = field(default_factory=list)   # (t, kind, surface or -1): stick, slip, surface_slip, ring
+    # (t, the surfaces that started at once) at each surface slip: several of one threshold (to rounding)
+    slip_groups: list = field(default_factory=list)
     friction_j: float = 0.0
     input_j: float = 0.0
     viscous_j: float = 0.0
     u_end: np.ndarray | None = None
 
 
-def _force(s: SeriesStructure, x0: float, u: np.ndarray, state: np.ndarray, mode: int) -> float:
+def _spring(s: SeriesStructure, g: int, u: float) -> float:
+    """Surface g's spring force at u, N: k_g u, and a stiff ring's past its travel."""
+    beyond = max(abs(u) - s.cap[g], 0.0) if s.ring else 0.0
+    return float(s.k[g] * u + math.copysign(s.ring * beyond, u))
+
+
+def _inverse(s: SeriesStructure, g: int, y: float) -> float:
+    """The u at which surface g's spring force is y (it rises with u)."""
+    knee = s.k[g] * s.cap[g]
+    if not s.ring or abs(y) <= knee:
+        return float(y / s.k[g])
+    return math.copysign(s.cap[g] + (abs(y) - knee) / (s.k[g] + s.ring), y)
+
+
+def _force(s: SeriesStructure, x0: float, u: np.ndarray, state: np.ndarray, mode: int,
+           law: tuple | None = None) -> float:
+    """The bearing's force while the surfaces of ``state == mode`` slip, N (``law``: :func:`_law`'s, kept)."""
     on = state == mode
-    return (x0 - u[~on].sum() + mode * (s.f[on] / s.k[on]).sum()) / (1.0 / s.k[on]).sum()
+    if not s.ring:
+        return (x0 - u[~on].sum() + mode * (s.f[on] / s.k[on]).sum()) / (1.0 / s.k[on]).sum()
+    at, knees = law if law is not None else _law(s, u, state, mode)
+    return float(np.interp(x0 - u[~on].sum(), at, knees))  # (the slipping surfaces' share of x0)
+
+
+def _law(s: SeriesStructure, u: np.ndarray, state: np.ndarray, mode: int) -> tuple:
+    """With stiff rings: the slipping surfaces' share of x_0 at each of their knees' forces, and those
+    forces (N), far ones beyond them added: linear between them, so that F follows by interpolation."""
+    slipping = np.flatnonzero(state == mode)
+
+    def share(force: float) -> float:  # (rises with the force, linear between the surfaces' knees)
+        return sum(_inverse(s, g, force - mode * s.f[g]) for g in slipping)
+
+    far = float((np.abs(u).sum() + s.cap.sum() + 1.0) * 1e3 * (s.k + s.ring).sum() + s.f.sum())
+    knees = np.sort([mode * s.f[g] + side * s.k[g] * s.cap[g] for g in slipping for side in (-1, 1)]
+                    + [-far, far])
+    return np.array([share(f) for f in knees]), knees
 
 
 def _threshold(s: SeriesStructure, u: np.ndarray, state: np.ndarray, g: int, way: int) -> float:
-    return np.inf * way if state[g] == RING * way else s.k[g] * u[g] + way * s.f[g]
+    return np.inf * way if state[g] == RING * way else _spring(s, g, u[g]) + way * s.f[g]
 
 
-def _start(s: SeriesStructure, u: np.ndarray, state: np.ndarray, way: int, level: float) -> None:
-    """The held surfaces whose threshold the way ``way`` is ``level`` (to rounding) slip."""
+def _start(s: SeriesStructure, u: np.ndarray, state: np.ndarray, way: int, level: float) -> set:
+    """The held surfaces whose threshold the way ``way`` is ``level`` (to rounding) slip: which."""
     scale = abs(level) + s.f.sum()
+    started = set()
     for g in range(4):
         if abs(state[g]) != 1 and abs(_threshold(s, u, state, g, way) - level) <= 1e-9 * scale:
             state[g] = way
+            started.add(g)
+    return started
 
 
 def reference(s: SeriesStructure, t_end: float, rtol: float = 1e-12, atol: float = 1e-15,
@@ -110,13 +155,14 @@ def reference(s: SeriesStructure, t_end: float, rtol: float = 1e-12, atol: float
             break
         t_stop = float(cuts[np.searchsorted(cuts, t, side="right")])
         frozen_u, frozen_state, frozen_mode = u.copy(), state.copy(), mode
+        law = _law(s, u, state, mode) if s.ring and mode else None
 
         def rhs(tt: float, yy: np.ndarray) -> np.ndarray:
             x, v = yy[:n], yy[n:2 * n]
             ag = s.accel(tt)
             force = -m * ag - kk @ x - cc @ v
             if frozen_mode:
-                force[0] -= _force(s, x[0], frozen_u, frozen_state, frozen_mode)
+                force[0] -= _force(s, x[0], frozen_u, frozen_state, frozen_mode, law)
             else:
                 force[0] = 0.0
             dy = np.zeros_like(yy)
@@ -144,7 +190,12 @@ def reference(s: SeriesStructure, t_end: float, rtol: float = 1e-12, atol: float
             stop.terminal, stop.direction, stop.what = True, -float(mode), ("stop", 0, -1)
             events.append(stop)
             for g in range(4):
-                if state[g] == mode:
+                if state[g] == mode and s.ring and mode * u[g] < -s.cap[g] * (1 + 1e-12):
+                    level = mode * (s.f[g] - s.k[g] * s.cap[g])  # (past its far ring, coming back)
+                    what = ("ring_off", mode, g)
+                elif state[g] == mode and s.ring and mode * u[g] >= s.cap[g] * (1 - 1e-12):
+                    continue  # (sliding on into its stiff ring)
+                elif state[g] == mode:
                     level = mode * (s.k[g] * s.cap[g] + s.f[g])
                     what = ("ring", mode, g)
                 else:
@@ -154,7 +205,7 @@ def reference(s: SeriesStructure, t_end: float, rtol: float = 1e-12, atol: float
                     continue
 
                 def ev(tt, yy, level=level):
-                    return _force(s, yy[0], frozen_u, frozen_state, frozen_mode) - level
+                    return _force(s, yy[0], frozen_u, frozen_state, frozen_mode, law) - level
                 ev.terminal, ev.direction, ev.what = True, float(mode), what
                 events.append(ev)
         sol, t_new, fired, y, steps = _phase(rhs, t, t_stop, y, events, mode != 0 and y[n] == 0.0, mode == 0,
@@ -162,11 +213,11 @@ def reference(s: SeriesStructure, t_end: float, rtol: float = 1e-12, atol: float
         ts.append(np.append(steps, t_new))
         xs.append(np.vstack([sol.y[:n, 1:1 + steps.size].T, y[None, :n]]))
         if mode:  # (the slipping surfaces moved with the force: their friction's work)
-            f0 = _force(s, float(sol.y[0, 0]), u, state, mode)
             f1 = _force(s, float(y[0]), u, state, mode)
-            on = state == mode
-            out.friction_j += float((s.f[on] / s.k[on]).sum()) * mode * (f1 - f0)
-            u[on] = (f1 - mode * s.f[on]) / s.k[on]
+            for g in np.flatnonzero(state == mode):
+                moved = _inverse(s, g, f1 - mode * s.f[g])
+                out.friction_j += float(s.f[g]) * abs(moved - u[g])
+                u[g] = moved
         t = t_new
         if fired is None:
             continue
@@ -185,6 +236,16 @@ def reference(s: SeriesStructure, t_end: float, rtol: float = 1e-12, atol: float
                 slip_from_rest(nxt)
                 out.events.append((t, "reversal" if nxt == -mode else "slip", -1))
             mode = nxt
+        elif kind == "ring_off" or (kind == "ring" and s.ring):  # (a stiff ring: it slides on)
+            on_it = kind == "ring"
+            level = mode * (s.k[g] * s.cap[g] + s.f[g]) if on_it else mode * (s.f[g] - s.k[g] * s.cap[g])
+            for q in range(4):  # (it, and any other slipping one whose entry or exit comes at the same force)
+                mine = mode * (s.k[q] * s.cap[q] + s.f[q]) if on_it else mode * (s.f[q] - s.k[q] * s.cap[q])
+                knee = mode * s.cap[q] if on_it else -mode * s.cap[q]  # (where the phase just took it)
+                if q == g or (state[q] == mode and abs(u[q] - knee) <= 1e-9 * s.cap[q]
+                              and abs(mine - level) <= 1e-9 * (abs(level) + s.f.sum())):
+                    u[q] = mode * s.cap[q] if on_it else -mode * s.cap[q]
+                    out.events.append((t, kind, q))
         elif kind == "ring":
             level = mode * (s.k[g] * s.cap[g] + s.f[g])
             scale = abs(level) + s.f.sum()
@@ -202,7 +263,7 @@ def reference(s: SeriesStructure, t_end: float, rtol: float = 1e-12, atol: float
         else:
             level = _threshold(s, u, state, g, mode)
             state[g] = mode
-            _start(s, u, state, mode, level)
+            out.slip_groups.append((t, _start(s, u, state, mode, level) | {g}))
             out.events.append((t, "surface_slip", g))
     else:
         raise RuntimeError(f"more than {max_phases} phases")

@@ -91,3 +91,12 @@ def test_warm_up_is_a_no_op_that_says_so():
     result = runner.invoke(app, ["warm-up"])
     assert result.exit_code == 0 and "nothing to compile" in result.output, result.output
     assert "warm-up" not in runner.invoke(app, ["--help"]).output  # (kept for scripts, not offered)
+
+
+def test_simulate_prints_a_triple_friction_pendulum_s_surface_slips_and_rings():
+    """A triple friction pendulum's run: its sticks and slips, and its surfaces' slips and rings reached, as
+    the run's summary counts them."""
+    toml = Path(__file__).parents[1] / "examples" / "triple_friction_moat.toml"
+    result = runner.invoke(app, ["simulate", str(toml), "--a-g", "0.4", "--freq", "0.5", "--duration", "6"])
+    assert result.exit_code == 0, result.output
+    assert "isolator sticks / slips" in result.output and "surface slips / rings reached" in result.output

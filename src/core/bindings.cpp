@@ -72,7 +72,7 @@ Contact contact_of(int i, int j, double sign, double gap_m, int law, const std::
 
 Hysteretic element_of(int i, int j, double c_d, const std::vector<double>& slopes, const std::vector<double>& breaks,
                       int rule, double friction, double friction_fast, double friction_rate,
-                      const std::vector<double>& surface_friction) {
+                      const std::vector<double>& surface_friction, const std::vector<double>& surface_ring) {
     Hysteretic h;
     h.i = i;
     h.j = j;
@@ -84,6 +84,7 @@ Hysteretic element_of(int i, int j, double c_d, const std::vector<double>& slope
     h.friction_fast = friction_fast;
     h.friction_rate = friction_rate;
     h.surface_friction = surface_friction;
+    h.surface_ring = surface_ring;
     return h;
 }
 
@@ -116,6 +117,7 @@ nb::dict element_state(const Hysteretic& h) {
     d["friction_fast_n"] = h.friction_fast;
     d["friction_rate_s_m"] = h.friction_rate;
     d["surface_friction_n"] = h.surface_friction;
+    d["surface_ring_n_m"] = h.surface_ring;
     return d;
 }
 
@@ -126,7 +128,9 @@ Hysteretic element_from_state(const nb::dict& d) {
                       d.contains("friction_fast_n") ? nb::cast<double>(d["friction_fast_n"]) : 0.0,
                       d.contains("friction_rate_s_m") ? nb::cast<double>(d["friction_rate_s_m"]) : 0.0,
                       d.contains("surface_friction_n") ? nb::cast<std::vector<double>>(d["surface_friction_n"])
-                                                       : std::vector<double>{});
+                                                       : std::vector<double>{},
+                      d.contains("surface_ring_n_m") ? nb::cast<std::vector<double>>(d["surface_ring_n_m"])
+                                                     : std::vector<double>{});
 }
 
 void fill_system(System& s, int n, const std::vector<double>& mass, const std::vector<double>& k0,
@@ -212,13 +216,15 @@ NB_MODULE(_pounding_core, m) {
         .def("__init__",
              [](Hysteretic* h, int i, int j, double c_d, const std::vector<double>& slopes,
                 const std::vector<double>& breaks, int rule, double friction_n, double friction_fast_n,
-                double friction_rate_s_m, const std::vector<double>& surface_friction_n) {
+                double friction_rate_s_m, const std::vector<double>& surface_friction_n,
+                const std::vector<double>& surface_ring_n_m) {
                  new (h) Hysteretic(element_of(i, j, c_d, slopes, breaks, rule, friction_n, friction_fast_n,
-                                               friction_rate_s_m, surface_friction_n));
+                                               friction_rate_s_m, surface_friction_n, surface_ring_n_m));
              },
              nb::kw_only(), nb::arg("i"), nb::arg("j"), nb::arg("c_d"), nb::arg("slopes"), nb::arg("breaks"),
              nb::arg("rule"), nb::arg("friction_n") = 0.0, nb::arg("friction_fast_n") = 0.0,
-             nb::arg("friction_rate_s_m") = 0.0, nb::arg("surface_friction_n") = std::vector<double>{})
+             nb::arg("friction_rate_s_m") = 0.0, nb::arg("surface_friction_n") = std::vector<double>{},
+             nb::arg("surface_ring_n_m") = std::vector<double>{})
         .def_ro("i", &Hysteretic::i)
         .def_ro("j", &Hysteretic::j)
         .def_ro("c_d", &Hysteretic::c_d)
@@ -229,6 +235,7 @@ NB_MODULE(_pounding_core, m) {
         .def_ro("friction_fast_n", &Hysteretic::friction_fast)
         .def_ro("friction_rate_s_m", &Hysteretic::friction_rate)
         .def_ro("surface_friction_n", &Hysteretic::surface_friction)
+        .def_ro("surface_ring_n_m", &Hysteretic::surface_ring)
         .def("__getstate__", &element_state)
         .def("__setstate__", [](Hysteretic& h, const nb::dict& d) { new (&h) Hysteretic(element_from_state(d)); });
 
@@ -465,6 +472,7 @@ NB_MODULE(_pounding_core, m) {
     actions["slip"] = static_cast<int>(ACT_SLIP);
     actions["surface_slip"] = static_cast<int>(ACT_SURFACE_SLIP);
     actions["ring"] = static_cast<int>(ACT_RING);
+    actions["ring_off"] = static_cast<int>(ACT_RING_OFF);
     m.attr("ACTIONS") = actions;
     m.attr("N_LAW_STATE") = N_LAW_STATE;
     m.attr("N_LAW_PARAMS") = N_LAW_PARAMS;

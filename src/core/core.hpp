@@ -88,7 +88,7 @@ enum Status : int {
 // events' actions (their codes in a run's event table)
 enum Action : int {
     ACT_YIELD = 0, ACT_REVERSAL = 1, ACT_REGION = 2, ACT_CONTACT = 3, ACT_RELEASE = 4, ACT_LAW_BRANCH = 5,
-    ACT_BOUC_WEN = 6, ACT_STICK = 7, ACT_SLIP = 8, ACT_SURFACE_SLIP = 9, ACT_RING = 10
+    ACT_BOUC_WEN = 6, ACT_STICK = 7, ACT_SLIP = 8, ACT_SURFACE_SLIP = 9, ACT_RING = 10, ACT_RING_OFF = 11
 };
 
 // the run control Python shares with a running kernel (int64): a stop flag, the work done (sub-intervals),
@@ -141,6 +141,8 @@ struct Hysteretic {
     // rule 2 with surfaces in series (a triple friction pendulum's series model, isolator.hpp): each surface's
     // friction (N; slopes its stiffness, breaks its travel to its ring); empty: one surface (friction, slopes[0])
     std::vector<double> surface_friction;
+    // each surface's ring stiffness (N/m; 0: rigid), empty: every ring rigid
+    std::vector<double> surface_ring;
     int first = 0;  // its first spring's index among the system's (set by System::finish)
     bool series() const { return !surface_friction.empty(); }
     // its springs: a series's surfaces (each with a displacement and a state), the backbone's breaks otherwise

@@ -28,23 +28,49 @@ double slip_friction(const Hysteretic& h) { return h.friction_rate != 0.0 ? h.fr
 
 // ---------------------------------------------------------------- surfaces in series (the header's rule)
 
-// a series's surfaces in the state: their displacements u_g (m) and states (+-1 slipping, 0 held, +-2 held at
-// the ring on that side)
+// a series's surfaces in the state: their displacements u_g (m) and states (0 held, +-1 slipping that way, +-2
+// held at the rigid ring on that side, +-3 slipping that way on a stiff ring)
 struct Surfaces {
     const Hysteretic& h;
     double* u;
     double* state;
     int n() const { return static_cast<int>(h.slopes.size()); }
+    double ring(int g) const { return h.surface_ring.empty() ? 0.0 : h.surface_ring[static_cast<size_t>(g)]; }
+    bool slips(int g, double s) const { return state[g] == s || state[g] == 3.0 * s; }
+    bool slipping(int g) const { return std::abs(state[g]) == 1.0 || std::abs(state[g]) == 3.0; }
 };
 Surfaces surfaces(const System& sy, const Hysteretic& h, const double* st) {
     double* s = const_cast<double*>(st);  // (read-only where st is: the callers that write own it)
     return {h, s + sy.lay.base + h.first, s + sy.lay.base + sy.lay.n_sp + h.first};
 }
 
-// the force at which surface g, held, slips the way s (N): k_g u_g + s F_g (+-inf at its ring that way)
+// surface g's spring force at u (N): k_g u, and beyond its travel a stiff ring's k_r (|u| - d_g)
+double spring_force(const Surfaces& sf, int g, double u) {
+    const double beyond = std::abs(u) - sf.h.breaks[static_cast<size_t>(g)];
+    const double ring = sf.ring(g) > 0.0 && beyond > 0.0 ? sf.ring(g) * beyond : 0.0;
+    return sf.h.slopes[g] * u + (u > 0.0 ? ring : -ring);
+}
+// a surface slipping the way s: u_g = (F - s F_g + c) / k, its stiffness k and offset c (N) within its travel
+// (k_g, 0) or on a stiff ring (k_g + k_r, k_r d_g sign(u_g))
+struct SlipSpring { double k, c; };
+SlipSpring slip_spring(const Surfaces& sf, int g, double s) {
+    if (sf.state[g] != 3.0 * s) return {sf.h.slopes[g], 0.0};
+    const double kr = sf.ring(g), d = sf.h.breaks[static_cast<size_t>(g)];
+    return {sf.h.slopes[g] + kr, sf.u[g] > 0.0 ? kr * d : -kr * d};
+}
+// the state of surface g as it starts to slip the way s: on its stiff ring where it is there or beyond it on
+// that side, or beyond its travel on the other side (it comes off at -s d_g); else within its travel
+double slip_state(const Surfaces& sf, int g, double s) {
+    if (sf.ring(g) == 0.0) return s;
+    const double d = sf.h.breaks[static_cast<size_t>(g)], su = s * sf.u[g];
+    return su >= d * (1.0 - 1e-12) || su < -d * (1.0 + 1e-12) ? 3.0 * s : s;
+}
+
+// the force at which surface g, held, slips the way s (N): its spring's force + s F_g (+-inf at its rigid
+// ring that way)
 double threshold(const Surfaces& sf, int g, double s) {
     if (sf.state[g] == 2.0 * s) return s * INF;
-    return sf.h.slopes[g] * sf.u[g] + s * sf.h.surface_friction[g];
+    return spring_force(sf, g, sf.u[g]) + s * sf.h.surface_friction[g];
 }
 // the force at which the series, held, slips the way s: the lowest threshold up, the highest down
 double series_threshold(const Surfaces& sf, double s) {
@@ -55,32 +81,33 @@ double series_threshold(const Surfaces& sf, double s) {
     }
     return best;
 }
-// its force while it slips the way s with the surfaces whose state is s: k u + r0 (k 0 when none slips)
+// its force while it slips the way s with the surfaces that slip that way: k u + r0 (k 0 when none slips)
 IsoLinear series_linear(const Surfaces& sf, double s) {
-    double compliance = 0.0, held = 0.0, friction = 0.0;
+    double compliance = 0.0, held = 0.0, offset = 0.0;
     for (int g = 0; g < sf.n(); ++g) {
-        if (sf.state[g] == s) {
-            compliance += 1.0 / sf.h.slopes[g];
-            friction += sf.h.surface_friction[g] / sf.h.slopes[g];
+        if (sf.slips(g, s)) {
+            const SlipSpring sp = slip_spring(sf, g, s);
+            compliance += 1.0 / sp.k;
+            offset += (s * sf.h.surface_friction[g] - sp.c) / sp.k;
         } else {
             held += sf.u[g];
         }
     }
     if (compliance == 0.0) return {0.0, 0.0};  // (its travel used up: the run stops)
     const double k = 1.0 / compliance;
-    return {k, k * (s * friction - held)};
+    return {k, k * (offset - held)};
 }
 // the held surfaces whose threshold the way s is the force f (to rounding) slip that way
 void slip_at(const Surfaces& sf, double s, double f) {
     double scale = std::abs(f);
     for (int g = 0; g < sf.n(); ++g) scale += sf.h.surface_friction[g];
     for (int g = 0; g < sf.n(); ++g)
-        if (std::abs(sf.state[g]) != 1.0 && std::abs(threshold(sf, g, s) - f) <= 1e-9 * scale) sf.state[g] = s;
+        if (!sf.slipping(g) && std::abs(threshold(sf, g, s) - f) <= 1e-9 * scale) sf.state[g] = slip_state(sf, g, s);
 }
 // the slipping surfaces held where they are (a stick)
 void hold(const Surfaces& sf) {
     for (int g = 0; g < sf.n(); ++g)
-        if (std::abs(sf.state[g]) == 1.0) sf.state[g] = 0.0;
+        if (sf.slipping(g)) sf.state[g] = 0.0;
 }
 }  // namespace
 
@@ -128,8 +155,13 @@ double iso_energy(const System& sy, int e, const double* st, double d) {
         const double f = il.k * d + il.r0;
         double w = 0.0;
         for (int g = 0; g < sf.n(); ++g) {
-            const double ug = s != 0.0 && sf.state[g] == s ? (f - s * h.surface_friction[g]) / h.slopes[g] : sf.u[g];
-            w += 0.5 * h.slopes[g] * ug * ug;
+            double ug = sf.u[g];
+            if (s != 0.0 && sf.slips(g, s)) {
+                const SlipSpring sp = slip_spring(sf, g, s);
+                ug = (f - s * h.surface_friction[g] + sp.c) / sp.k;
+            }
+            const double beyond = std::max(std::abs(ug) - h.breaks[static_cast<size_t>(g)], 0.0);
+            w += 0.5 * h.slopes[g] * ug * ug + 0.5 * sf.ring(g) * beyond * beyond;
         }
         return w;
     }
@@ -198,6 +230,10 @@ int series_events(const System& sy, const double* st, int e, EventRow* evs, int 
             if (!std::isfinite(h.breaks[static_cast<size_t>(g)])) continue;
             f = s * (h.slopes[g] * h.breaks[g] + h.surface_friction[g]);
             action = ACT_RING;
+        } else if (sf.state[g] == 3.0 * s) {  // on a stiff ring: off it where it comes back inside its travel
+            if (s * sf.u[g] > 0.0) continue;  // (pressing on into it)
+            f = s * (h.surface_friction[g] - h.slopes[g] * h.breaks[g]);
+            action = ACT_RING_OFF;
         } else {
             f = threshold(sf, g, s);
             if (!std::isfinite(f)) continue;
@@ -274,9 +310,10 @@ double iso_advance(const System& sy, double* st, const double* x_start, const do
             const IsoLinear il = series_linear(sf, s);
             const double f_start = il.k * d_start + il.r0, f_end = il.k * d_end + il.r0;
             for (int g = 0; g < sf.n(); ++g) {
-                if (sf.state[g] != s) continue;
-                work += h.surface_friction[g] * std::abs(f_end - f_start) / h.slopes[g];
-                sf.u[g] = (f_end - s * h.surface_friction[g]) / h.slopes[g];
+                if (!sf.slips(g, s)) continue;
+                const SlipSpring sp = slip_spring(sf, g, s);
+                work += h.surface_friction[g] * std::abs(f_end - f_start) / sp.k;
+                sf.u[g] = (f_end - s * h.surface_friction[g] + sp.c) / sp.k;
             }
             continue;
         }
@@ -331,24 +368,30 @@ void iso_transition(const System& sy, double* st, int action, int index, double 
         st[sy.lay.region + index] = 0.0;
         st[sy.lay.v + h.i] = h.j >= 0 ? st[sy.lay.v + h.j] : 0.0;
         if (h.series()) hold(surfaces(sy, h, st));
-    } else if (action == ACT_SURFACE_SLIP || action == ACT_RING) {  // (index: the surface's spring's)
+    } else if (action == ACT_SURFACE_SLIP || action == ACT_RING || action == ACT_RING_OFF) {  // (index: its spring's)
         const int e = iso_element_of_spring(sy, index);
         const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
         const Surfaces sf = surfaces(sy, h, st);
         const int g = index - h.first;
         const double s = st[sy.lay.region + e];
-        if (action == ACT_RING) {
+        if (action == ACT_RING_OFF) {  // (back inside its travel, slipping on)
+            sf.state[g] = s;
+            sf.u[g] = -s * h.breaks[static_cast<size_t>(g)];
+        } else if (action == ACT_RING && sf.ring(g) > 0.0) {  // (a stiff ring: it slides on against it)
+            sf.state[g] = 3.0 * s;
+            sf.u[g] = s * h.breaks[static_cast<size_t>(g)];
+        } else if (action == ACT_RING) {
             sf.state[g] = 2.0 * s;
             sf.u[g] = s * h.breaks[static_cast<size_t>(g)];
             bool slipping = false;
-            for (int q = 0; q < sf.n(); ++q) slipping = slipping || sf.state[q] == s;
+            for (int q = 0; q < sf.n(); ++q) slipping = slipping || sf.slips(q, s);
             const double next = series_threshold(sf, s);
             // (none slips on: the series, rigid, takes at once the force that starts the next held one, a
             // jump in force at no displacement; none left: the travel is used up, iso_travel_used)
             if (!slipping && std::isfinite(next)) slip_at(sf, s, next);
         } else {
             const double f = threshold(sf, g, s);
-            sf.state[g] = s;
+            sf.state[g] = slip_state(sf, g, s);
             slip_at(sf, s, f);  // (with any other of the same threshold)
         }
     }
@@ -371,7 +414,7 @@ bool iso_travel_used(const System& sy, const double* st, int e) {
     if (!h.series() || s == 0.0) return false;
     const Surfaces sf = surfaces(sy, h, st);
     for (int g = 0; g < sf.n(); ++g)
-        if (sf.state[g] == s) return false;
+        if (sf.slips(g, s)) return false;
     return true;
 }
 

@@ -18,13 +18,17 @@
 //     (surface_friction[g]), the surfaces one after another without mass between them, each carrying the
 //     element's force F; u = sum of their displacements u_g.  A surface slips where F reaches k_g u_g +- F_g
 //     and stays held otherwise; one that slips the way s reaches its ring at u_g = s d_g (breaks[g]) and is
-//     held there (rigid) until F comes back to k_g s d_g - s F_g.  While the element slips the way s with the
-//     set S of surfaces slipping, F = (u - sum_{g not in S} u_g + s sum_S F_g / k_g) / sum_S (1 / k_g): linear in
-//     u.  Its events: a held surface's threshold or a slipping one's ring (each at a value of u: ACT_SURFACE_SLIP,
-//     ACT_RING), the slip at rest (as one surface's), and while the whole element sticks the tie's force D (all
-//     of F) reaching the lowest threshold up or the highest down.  A slip whose every surface reaches its ring
-//     has used up the bearing's travel: the run stops (CAPACITY).  State: s at region + e; each surface's u_g and
-//     state at the springs' slots (core.hpp).
+//     held there (rigid) until F comes back to k_g s d_g - s F_g.  A stiff ring (surface_ring[g] = k_r > 0)
+//     instead adds k_r (|u_g| - d_g) to the surface's spring beyond its travel: the surface slides on against it,
+//     stiffer, and comes off it where u_g comes back to its travel (ACT_RING_OFF).  While the element slips the
+//     way s with the set S of surfaces slipping, each u_g = (F - s F_g + c_g) / K_g (K_g = k_g, c_g = 0 within its
+//     travel; K_g = k_g + k_r, c_g = k_r d_g sign(u_g) on a stiff ring), so F = (u - sum_{g not in S} u_g + sum_S
+//     (s F_g - c_g) / K_g) / sum_S (1 / K_g): linear in u.  Its events: a held surface's threshold or a slipping
+//     one's ring (each at a value of u: ACT_SURFACE_SLIP, ACT_RING, ACT_RING_OFF), the slip at rest (as one
+//     surface's), and while the whole element sticks the tie's force D (all of F) reaching the lowest threshold
+//     up or the highest down.  A slip whose every surface reaches its rigid ring has used up the bearing's
+//     travel: the run stops (CAPACITY).  State: s at region + e; each surface's u_g and state (0 held, s slipping
+//     the way s, 2 s held at its rigid ring, 3 s slipping on its stiff ring) at the springs' slots (core.hpp).
 // Events: a yield's index is the spring's among the system's; a branch change's, a reversal's, a stick's and a
 // slip's the element's; a surface's slip or ring the spring's (its surface's) among the system's.
 #pragma once

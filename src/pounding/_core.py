@@ -29,6 +29,8 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any
 
+import math
+
 import numpy as np
 
 try:
@@ -41,7 +43,7 @@ except ImportError as exc:  # pragma: no cover  (a source tree never built)
 System = _c.System
 ContactSlot = _c.ContactSlot  # (built by keyword: i, j, sign, gap_m, law, params)
 Element = _c.Element  # (by keyword: i, j, c_d, slopes, breaks, rule, friction_n, friction_fast_n,
-#                        friction_rate_s_m, surface_friction_n)
+#                        friction_rate_s_m, surface_friction_n, surface_ring_n_m)
 LAYOUT: dict[str, int] = dict(_c.LAYOUT)
 LAW_IDS: dict[str, int] = dict(_c.LAW_IDS)
 STATUS: dict[str, int] = dict(_c.STATUS)
@@ -208,12 +210,16 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
             if (el.rule != 2 or surfaces < 2 or len(el.slopes) != surfaces or len(el.breaks) != surfaces
                     or el.friction_n != 0.0 or el.friction_rate_s_m != 0.0 or el.j != -1
                     or (e == 0 and any(bw)) or min(el.slopes) <= 0.0 or min(el.breaks) <= 0.0
-                    or min(el.surface_friction_n) <= 0.0):
+                    or min(el.surface_friction_n) <= 0.0
+                    or len(el.surface_ring_n_m) not in (0, surfaces)
+                    or not all(0.0 <= r < math.inf for r in el.surface_ring_n_m)):
                 raise ValueError(f"element {e}: surfaces in series are the friction rule's (2), on the "
-                                 "ground, at least two, each a slope > 0, a travel > 0 (inf: no ring) and a "
-                                 "friction > 0; no friction_n, velocity dependence or Bouc-Wen spring beside "
-                                 "them")
+                                 "ground, at least two, each a slope > 0, a travel > 0 (inf: no ring), a "
+                                 "friction > 0 and a finite ring stiffness >= 0 (0: rigid; none: all rigid); "
+                                 "no friction_n, velocity dependence or Bouc-Wen spring beside them")
             continue
+        if len(el.surface_ring_n_m):
+            raise ValueError(f"element {e}: ring stiffnesses are a series of surfaces' (surface_friction_n)")
         if len(el.slopes) < 1 or len(el.breaks) != len(el.slopes) - 1 or el.rule not in (0, 1, 2):
             raise ValueError(f"element {e}: {len(el.slopes)} slopes need {len(el.slopes) - 1} breaks, "
                              "rule 0, 1 or 2")
@@ -253,16 +259,17 @@ def contact_slot(*, i: int, j: int, sign: float, gap_m: float, law: int, params:
 
 def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int, friction_n: float = 0.0,
             friction_fast_n: float = 0.0, friction_rate_s_m: float = 0.0,
-            surface_friction_n: Any = ()) -> Element:
+            surface_friction_n: Any = (), surface_ring_n_m: Any = ()) -> Element:
     """A hysteretic element (:class:`Element`) from numbers as the model gives them (``friction_n``: the
     friction of rule 2 at rest, N; with ``friction_rate_s_m`` > 0, s/m, a slip's friction is
     ``friction_fast_n - (friction_fast_n - friction_n) exp(-friction_rate_s_m |u'|)``; ``surface_friction_n``:
     rule 2's surfaces in series, each surface's friction N, its stiffness in ``slopes`` N/m and its travel to
-    its ring in ``breaks`` m)."""
+    its ring in ``breaks`` m; ``surface_ring_n_m``: each ring's stiffness, N/m, 0 or none given: rigid)."""
     return Element(i=int(i), j=int(j), c_d=float(c_d), slopes=[float(x) for x in slopes],
                    breaks=[float(x) for x in breaks], rule=int(rule), friction_n=float(friction_n),
                    friction_fast_n=float(friction_fast_n), friction_rate_s_m=float(friction_rate_s_m),
-                   surface_friction_n=[float(x) for x in surface_friction_n])
+                   surface_friction_n=[float(x) for x in surface_friction_n],
+                   surface_ring_n_m=[float(x) for x in surface_ring_n_m])
 
 
 def _f64(a: Any) -> np.ndarray:

@@ -140,6 +140,8 @@ def _run_rows(add_row: Any, s: Any, exc: Any, harmonic: bool, several: bool, fix
         add_row(f"{base}D at the end [mm]", f"{s['displacement_end_m'] * 1e3:.4f}")
     if s["sticks"] or s["slips"]:
         add_row("isolator sticks / slips", f"{s['sticks']} / {s['slips']}")
+    if s["surface_slips"] or s["rings"]:  # (a triple friction pendulum's)
+        add_row("surface slips / rings reached", f"{s['surface_slips']} / {s['rings']}")
     rigid = s["rigid_impacts"]  # (a rigid stop's impacts: impulses, no force)
     between = "inf at the rigid impacts (impulses); {} between them" if rigid else "{}"
     add_row("max |abs. acceleration| [g]", between.format(f"{s['abs_acceleration_max_m_s2'] / exc.g:.4f}"))

@@ -36,13 +36,15 @@ class Pair(NamedTuple):
 class HystereticElement(NamedTuple):
     """A hysteretic element of an assembly (an isolator, a multi-linear storey): between dofs ``i`` and
     ``j`` (-1: the ground), its backbone's ``slopes`` (N/m) and ``breaks`` (m), its ``rule`` (the core's
-    code: elastic, kinematic)."""
+    code: elastic, kinematic, friction) and, for friction surfaces in series, each one's ring stiffness
+    (N/m; empty or 0: rigid)."""
 
     i: int
     j: int
     slopes: list
     breaks: list
     rule: int
+    rings: tuple = ()
 
 
 class Assembly(NamedTuple):
@@ -220,8 +222,9 @@ def assemble(model: Oscillator | Structure | Adjacent) -> Assembly:
     system = _core.system(masses, k0, c0, kernel_elements, bw, bool(contacts), contacts, tracked)
     return Assembly(system, tuple(dofs), tuple(isolator), tuple(slots), tuple(stands), np.array(masses),
                     k_fast, c_all, tuple(pairs),
-                    tuple(HystereticElement(i, j, list(slopes), list(breaks), rule)
-                          for i, j, _, slopes, breaks, rule in elements),
+                    tuple(HystereticElement(i, j, list(slopes), list(breaks), rule,
+                                            tuple(friction.get(e, {}).get("surface_ring_n_m", ())))
+                          for e, (i, j, _, slopes, breaks, rule) in enumerate(elements)),
                     np.asarray(bw, dtype=float), contact_tracks)
 
 

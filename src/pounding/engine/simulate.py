@@ -256,13 +256,13 @@ def structure_runs(run: "Run | StructureRun | AdjacentRun") -> tuple:
 def _isolator_switches(events: np.ndarray, element: int, surfaces: range = range(0)) -> np.ndarray:
     """A pair's event rows of one structure's isolator's sticks, slips and reversals (a rubber bearing's
     reversals too), its element numbered 0 as the structure's own isolator, and a triple friction
-    pendulum's surface slips and rings (``surfaces``: its surfaces' indices among the pair's springs),
-    numbered from 0 as its own: what one structure of a pair reads of the pair's events (none for a fixed
-    base)."""
+    pendulum's surface slips, rings and rings left (``surfaces``: its surfaces' indices among the pair's
+    springs), numbered from 0 as its own: what one structure of a pair reads of the pair's events (none for
+    a fixed base)."""
     if element < 0:
         return events[:0].copy()
     kinds = [_core.ACTIONS[k] for k in ("stick", "slip", "reversal")]
-    own = np.isin(events[:, 1], [_core.ACTIONS["surface_slip"], _core.ACTIONS["ring"]]) & np.isin(
+    own = np.isin(events[:, 1], [_core.ACTIONS[k] for k in ("surface_slip", "ring", "ring_off")]) & np.isin(
         events[:, 2], list(surfaces))
     mine = (events[:, 2] == element) & np.isin(events[:, 1], kinds)
     rows = events[mine | own].copy()

@@ -333,7 +333,7 @@ def shifted(asm: "Assembly", time_s: float, d: float, v: float) -> State:
                              fix="give a shift that leaves every wall and link open (a state in contact "
                                  "comes from a run's final_state)")
     first = 0
-    for e, (i, j, _, breaks, rule) in enumerate(asm.elements):  # (each on its backbone)
+    for e, (i, j, _, breaks, rule, _) in enumerate(asm.elements):  # (each on its backbone)
         u = x[i] - (x[j] if j >= 0 else 0.0)
         b = np.asarray(breaks, dtype=float)
         if rule == 1:
@@ -392,10 +392,11 @@ def _state_vector(vector: Any) -> np.ndarray:
         raise _bad_state("isolator_branch", float(vec[REGION]), "is not a whole number", _FROM_A_RUN)
     n_sp = (vec.size - STATE_BASE) // 2
     dirs = vec[STATE_BASE + n_sp:]
-    bad = np.flatnonzero((dirs != np.round(dirs)) | (np.abs(dirs) > 2.0))
+    bad = np.flatnonzero((dirs != np.round(dirs)) | (np.abs(dirs) > 3.0))
     if bad.size:
         raise _bad_state(f"vector[{STATE_BASE + n_sp + bad[0]}]", float(dirs[bad[0]]),
-                         "is not a slip direction (-1, 0 or 1; a friction surface's +-2: at its ring)",
+                         "is not a slip direction (-1, 0 or 1; a friction surface's +-2: at its rigid ring, "
+                         "+-3: slipping on its stiff ring)",
                          _FROM_A_RUN)
     return vec
 

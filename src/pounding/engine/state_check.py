@@ -111,7 +111,7 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str) -> None:
             q, value, why = found
             raise bad(f"vector[{at + q}]", value, why)
     first = 0
-    for e, (i, j, slopes, breaks, rule) in enumerate(asm.elements):
+    for e, (i, j, slopes, breaks, rule, rings) in enumerate(asm.elements):
         n_sp = len(breaks)
         u = rel(i, j)
         who = "the isolator's" if single else f"element {e}'s"
@@ -137,7 +137,7 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str) -> None:
                 raise bad(field, slip, f"is {who} slip direction, against its pair's velocity {u_rate:g} m/s "
                                        "(a slip goes the way its pair moves)")
             if n_sp:  # (surfaces in series: each one's displacement and state, summing to the element's)
-                _check_surfaces(x_all, lay, first, breaks, u, slip, tol, who, bad)
+                _check_surfaces(x_all, lay, first, breaks, rings, u, slip, tol, who, bad)
             first += n_sp
             continue
         if x_all[lay["region"] + e] != 0.0:
@@ -210,23 +210,29 @@ def _without_bumpers(state: State, asm: Assembly) -> State:
     return State._from_kernel(kept, lay)
 
 
-def _check_surfaces(x_all: list, lay: dict, first: int, breaks: Any, u: float, slip: float, tol: float,
-                    who: str, bad: Any) -> None:
-    """A series of friction surfaces in the state (a triple friction pendulum's): each one's state -2 to 2
-    (+-1 slipping the way the element slips, 0 held, +-2 held at its ring on that side), its displacement
-    within its ring (at it for +-2), and their sum the element's deformation ``u``."""
+def _check_surfaces(x_all: list, lay: dict, first: int, breaks: Any, rings: Any, u: float, slip: float,
+                    tol: float, who: str, bad: Any) -> None:
+    """A series of friction surfaces in the state (a triple friction pendulum's): each one's state (0 held,
+    the element's slip direction while it slips, 3 times it while it slips on its stiff ring (``rings``:
+    each one's stiffness, N/m; empty or 0: rigid), +-2 held at its rigid ring on that side), its displacement
+    within its rigid ring (at it for +-2), and their sum the element's deformation ``u``."""
     total, slipping = 0.0, False
     for k, ring in enumerate(breaks):
         at_u, at_s = lay["base"] + first + k, lay["base"] + lay["n_springs"] + first + k
         ug, state = x_all[at_u], x_all[at_s]
-        if state not in (-2.0, -1.0, 0.0, 1.0, 2.0) or (abs(state) == 1.0 and state != slip):
-            raise bad(f"vector[{at_s}]", state, f"is {who} surface {k}'s state: 0 held, +-2 at its ring, or "
-                                                f"the element's slip direction ({slip:g}) while it slips")
-        if abs(ug) > ring + tol or (abs(state) == 2.0 and abs(ug - math.copysign(ring, state)) > tol):
+        stiff = bool(rings) and rings[k] > 0.0
+        allowed = (0.0, slip, 3.0 * slip) if stiff else (-2.0, 0.0, slip, 2.0)
+        if state not in allowed:
+            raise bad(f"vector[{at_s}]", state, f"is {who} surface {k}'s state: 0 held, the element's slip "
+                                                f"direction ({slip:g}) while it slips"
+                                                + (" (3 times it on its stiff ring)" if stiff
+                                                   else ", +-2 at its ring"))
+        if not stiff and (abs(ug) > ring + tol
+                          or (abs(state) == 2.0 and abs(ug - math.copysign(ring, state)) > tol)):
             raise bad(f"vector[{at_u}]", ug, f"is {who} surface {k}'s displacement, beyond its ring at "
                                              f"{ring:g} m (or off it while held there)")
         total += ug
-        slipping = slipping or state == slip
+        slipping = slipping or state in (slip, 3.0 * slip) and slip != 0.0
     if slip != 0.0 and not slipping:
         at = lay["base"] + lay["n_springs"] + first
         raise bad(f"vector[{at}]", x_all[at],

@@ -290,7 +290,8 @@ class StructureRun(NamedChatters, Outcome):
             ``t_end_s``; the base's (level 0's) exact ``displacement_max_m`` and ``displacement_min_m`` (each
             level's: :meth:`peaks`) and ``displacement_end_m`` at the run's end (a yielding or sliding
             isolator's residual displacement, once the shaking is over); ``sticks`` and ``slips``, a friction
-            isolator's (its slips from a stick; 0 with any other isolator); the exact
+            isolator's (its slips from a stick; 0 with any other isolator); ``surface_slips`` and ``rings``, a
+            triple friction pendulum's surfaces' slips and rings reached; the exact
             ``abs_acceleration_max_m_s2`` over every level (between a rigid stop's impacts, which are
             impulses) and ``alpha``, that over the table's peak (a sine's amplitude, a record's PGA; NaN
             without shaking); ``contacts`` at every wall, ``contacts_left``
@@ -329,6 +330,7 @@ class StructureRun(NamedChatters, Outcome):
             "displacement_min_m": float(self.displacement_min[0]),
             "displacement_end_m": float(self.displacement[-1, 0]) if self.t.size else nan,
             "sticks": int((kinds == "stick").sum()), "slips": int((kinds == "slip").sum()),
+            "surface_slips": int((kinds == "surface_slip").sum()), "rings": int((kinds == "ring").sum()),
             "abs_acceleration_max_m_s2": acc, "alpha": acc / peak if peak else nan,
             **self.contact_counts(per_level=bool(self.structure.storeys)),
             "rigid_impacts": rigid, **impact_summary(self.impacts, rigid),

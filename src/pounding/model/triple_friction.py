@@ -1,12 +1,13 @@
 """The triple friction pendulum: four concave sliding surfaces in one bearing, with exact stick and slip on
-each and rigid restraining rings, modelled as Fenz and Constantinou's series of single pendulums.
+each and restraining rings (rigid or stiff), modelled as Fenz and Constantinou's series of single pendulums.
 
 Its engine form is the isolator's element with the friction rule's surfaces in series (the core's
 ``RULE_FRICTION`` with ``surface_friction_n``, isolator.hpp): four springs ``W / R_i`` each in parallel with a
 friction force ``mu_i W``, one after another without mass between them, each held at its ring once it gets
-there.  The series' radii and capacities are the bearing's own, modified so that it retraces the bearing's
-five stages (Fenz and Constantinou, 2008): the outer surfaces' radii less the inner ones' beside them, and the
-travels to the rings measured as the series' elements move.
+there (or, against a stiff ring, sliding on with the ring's stiffness added).  The series' radii and
+capacities are the bearing's own, modified so that it retraces the bearing's five stages (Fenz and
+Constantinou, 2008): the outer surfaces' radii less the inner ones' beside them, and the travels to the rings
+measured as the series' elements move.
 """
 
 from __future__ import annotations
@@ -47,8 +48,10 @@ class TripleFrictionPendulum(CarriesWeight):
     ``radii_m[1] = radii_m[2]``.  Its stages follow from where each surface sticks or slips, found as
     events on the exact trajectory: I, sliding on 2 and 3 (stiffness ``W / (R2 + R3)``); II, on 1 and 3
     from ``mu_1 W``; III, on 1 and 4 from ``mu_4 W``; IV, 1 at its ring, on 2 and 4; V, 4 at its ring too,
-    on 2 and 3 again (stiffening).  Where 2 and 3 reach theirs, the bearing's travel is used up: the run
-    stops there with :attr:`Status.CAPACITY <pounding.Status>`.  The force on the base while it slips is
+    on 2 and 3 again (stiffening).  Where 2 and 3 reach theirs, the bearing's travel is used up: with rigid
+    rings the run stops there with :attr:`Status.CAPACITY <pounding.Status>`; with stiff rings
+    (``ring_stiffness_n_m``) each surface slides on against its ring, stiffer, and comes off it on the way
+    back (the events ``ring`` and ``ring_off``).  The force on the base while it slips is
     linear in its displacement in every stage, so every phase is exact; while every surface sticks, the
     base is held.
 
@@ -72,6 +75,10 @@ class TripleFrictionPendulum(CarriesWeight):
     weight_n : float, optional
         The weight it carries, N.  None: the system's weight, set when it is put into one (``weight_carried``
         then True).
+    ring_stiffness_n_m : float, optional
+        Each ring's stiffness, N/m, > 0: a surface past its travel (its series displacement beyond
+        :attr:`series_capacities_m`) slides on with this stiffness added to its spring ``W / R``.  None: rigid
+        rings.
     weight_carried : bool
         Whether ``weight_n`` is the system's (set by the system; not written to TOML).
 
@@ -104,9 +111,11 @@ class TripleFrictionPendulum(CarriesWeight):
     damping_n_s_m: float = 0.0
     weight_n: Optional[float] = None
     weight_carried: bool = False
+    ring_stiffness_n_m: Optional[float] = None
 
-    FIELDS: ClassVar[tuple[str, ...]] = ("radii_m", "mu", "capacities_m", "damping_n_s_m", "weight_n")
-    OPTIONAL: ClassVar[tuple[str, ...]] = ("damping_n_s_m", "weight_n")
+    FIELDS: ClassVar[tuple[str, ...]] = ("radii_m", "mu", "capacities_m", "damping_n_s_m", "weight_n",
+                                         "ring_stiffness_n_m")
+    OPTIONAL: ClassVar[tuple[str, ...]] = ("damping_n_s_m", "weight_n", "ring_stiffness_n_m")
     RENAMED: ClassVar[dict[str, str]] = {}
     bouc_wen: ClassVar[None] = None  # (no Bouc-Wen spring: what readers of any isolator ask)
     preslip_m: ClassVar[float] = 0.0  # (a rigid stick on every surface)
@@ -142,6 +151,12 @@ class TripleFrictionPendulum(CarriesWeight):
         damping = non_negative("isolator.damping_n_s_m", self.damping_n_s_m, "N s/m")
         at_most("isolator.damping_n_s_m", damping, MAX_DAMPING_N_S_M, " N s/m", "give the damping in N s/m")
         object.__setattr__(self, "damping_n_s_m", damping)
+        if self.ring_stiffness_n_m is not None:
+            ring = positive("isolator.ring_stiffness_n_m", self.ring_stiffness_n_m,
+                            "N/m (leave it out: rigid)")
+            at_most("isolator.ring_stiffness_n_m", ring, MAX_STIFFNESS_N_M, " N/m",
+                    "give the stiffness in N/m, or leave it out for rigid rings")
+            object.__setattr__(self, "ring_stiffness_n_m", ring)
         weight = self._check_weight()
         if weight is not None:
             r_min = min(self.series_radii_m)
@@ -199,15 +214,17 @@ class TripleFrictionPendulum(CarriesWeight):
 
     @property
     def slopes_n_m(self) -> tuple[float, ...]:
-        """Its stages' stiffnesses from rest, N/m, in the order a monotonic slide meets them."""
-        u, f = self._backbone_points()
+        """Its stages' stiffnesses from rest, N/m, in the order a monotonic slide meets them (with stiff
+        rings, the last: every surface on its ring, without end)."""
+        u, f, last = self._backbone_points()
         du, df = np.diff(u), np.diff(f)
-        return tuple(float(x) for x in df[du > 0.0] / du[du > 0.0])
+        return tuple(float(x) for x in df[du > 0.0] / du[du > 0.0]) + ((last,) if last > 0.0 else ())
 
     @property
     def breakpoints_m(self) -> tuple[float, ...]:
-        """The displacements where a monotonic slide from rest changes stage, m (the last: the travel)."""
-        u, _ = self._backbone_points()
+        """The displacements where a monotonic slide from rest changes stage, m (with rigid rings the last
+        is the travel, where it ends)."""
+        u, _, _ = self._backbone_points()
         return tuple(float(x) for x in u[1:][np.diff(u) > 0.0])
 
     @property
@@ -220,48 +237,58 @@ class TripleFrictionPendulum(CarriesWeight):
         """The force where it starts to slide from rest, N, shape (1,)."""
         return np.array([self.friction_force_n])
 
-    def _backbone_points(self) -> tuple[np.ndarray, np.ndarray]:
+    def _backbone_points(self) -> tuple[np.ndarray, np.ndarray, float]:
         """The vertices ``(u, F)`` of a monotonic slide from rest (m, N): the series' surfaces slipping in
-        the order their thresholds come, each held at its ring, to the whole travel."""
+        the order their thresholds come, each held at its rigid ring (to the whole travel) or sliding on
+        against its stiff one; and the last stage's stiffness beyond the last vertex, N/m (0: rigid rings,
+        none beyond the travel)."""
         w = self._weight()
+        kr = self.ring_stiffness_n_m or 0.0
         k = np.array([w / r for r in self.series_radii_m])
         f = np.array(self.friction_forces_n)
         cap = np.array(self.series_capacities_m)
         ug = np.zeros(SURFACES)
-        state = np.zeros(SURFACES)  # (0 held, 1 slipping, 2 at its ring)
+        state = np.zeros(SURFACES)  # (0 held, 1 slipping, 2 at its rigid ring, 3 slipping on its stiff one)
         us, fs = [0.0], [0.0]
         force, u = 0.0, 0.0
         for _ in range(3 * SURFACES):
-            if not ((state == 1).any() or (state == 0).any()):
-                break  # (every surface at its ring: the travel)
-            if not (state == 1).any():  # (none slips on: the force jumps to the next held threshold)
+            if not ((state == 1) | (state == 3) | (state == 0)).any():
+                break  # (every surface at its rigid ring: the travel)
+            if not ((state == 1) | (state == 3)).any():  # (none slips on: the force jumps to the next one)
                 force = max(force, float(np.where(state == 0, k * ug + f, np.inf).min()))
                 us.append(u)
                 fs.append(force)
             state[(state == 0) & (k * ug + f <= force * (1 + 1e-12))] = 1
-            slipping = state == 1
+            slipping = (state == 1) | (state == 3)
+            stiffness = np.where(state == 3, k + kr, k)
             thresholds = np.where(state == 0, k * ug + f, np.inf)
-            rings = np.where(slipping, k * cap + f, np.inf)
+            rings = np.where(state == 1, k * cap + f, np.inf)
             nxt = float(min(thresholds.min(), rings.min()))
-            u += (nxt - force) * float(np.sum(1.0 / k[slipping]))
-            ug[slipping] = (nxt - f[slipping]) / k[slipping]
+            if not math.isfinite(nxt):
+                break  # (every surface slipping on its stiff ring: the last stage, without end)
+            u += (nxt - force) * float(np.sum(1.0 / stiffness[slipping]))
+            ug[slipping] += (nxt - force) / stiffness[slipping]
             force = nxt
-            reached = slipping & (rings <= nxt * (1 + 1e-12))
-            state[reached] = 2
+            reached = (state == 1) & (rings <= nxt * (1 + 1e-12))
+            state[reached] = 3 if kr > 0.0 else 2
             ug[reached] = cap[reached]
             us.append(u)
             fs.append(force)
-        return np.array(us), np.array(fs)
+        slipping = (state == 1) | (state == 3)
+        last = 1.0 / float(np.sum(1.0 / np.where(state == 3, k + kr, k)[slipping])) if kr > 0.0 else 0.0
+        return np.array(us), np.array(fs), last
 
     def backbone(self, displacement: Any) -> np.ndarray:
         """The force of a monotonic slide from rest (N) at displacement(s) in m, any shape: piecewise
-        linear through the stages, odd in the displacement; NaN beyond the travel."""
+        linear through the stages, odd in the displacement; NaN beyond the travel with rigid rings, its
+        last stage's stiffness on with stiff ones."""
         d = np.asarray(displacement, dtype=float)
         a = np.abs(d)
-        u, f = self._backbone_points()
+        u, f, last = self._backbone_points()
         out = np.interp(a, u[1:], f[1:])
         out = np.where(a > 0.0, out, 0.0)
-        return np.sign(d) * np.where(a <= u[-1] * (1 + 1e-12), out, np.nan)
+        beyond = f[-1] + last * (a - u[-1]) if last > 0.0 else np.nan
+        return np.sign(d) * np.where(a <= u[-1] * (1 + 1e-12), out, beyond)
 
     def to_dict(self) -> dict[str, Any]:
         """The constructor's fields as plain values, the unset ones left out (the TOML form)."""
@@ -269,6 +296,8 @@ class TripleFrictionPendulum(CarriesWeight):
                                "capacities_m": list(self.capacities_m), "damping_n_s_m": self.damping_n_s_m}
         if self.weight_n is not None and not self.weight_carried:
             out["weight_n"] = self.weight_n
+        if self.ring_stiffness_n_m is not None:
+            out["ring_stiffness_n_m"] = self.ring_stiffness_n_m
         return out
 
     # ---------------------------------------------------------------- the engine's form
@@ -282,5 +311,7 @@ class TripleFrictionPendulum(CarriesWeight):
 
     @property
     def kernel_friction(self) -> dict[str, Any]:
-        """The friction the engine's friction rule takes: each surface's, ``surface_friction_n`` (N)."""
-        return {"surface_friction_n": list(self.friction_forces_n)}
+        """The friction the engine's friction rule takes: each surface's, ``surface_friction_n`` (N), and
+        its ring's stiffness, ``surface_ring_n_m`` (N/m; none: rigid)."""
+        rings = [] if self.ring_stiffness_n_m is None else [self.ring_stiffness_n_m] * SURFACES
+        return {"surface_friction_n": list(self.friction_forces_n), "surface_ring_n_m": rings}
