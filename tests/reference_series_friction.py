@@ -120,16 +120,22 @@ def _start(s: SeriesStructure, u: np.ndarray, state: np.ndarray, way: int, level
 
 
 def reference(s: SeriesStructure, t_end: float, rtol: float = 1e-12, atol: float = 1e-15,
-              knots: np.ndarray | None = None, max_phases: int = 100_000) -> SeriesResult:
-    """From rest, centred, at t = 0 to ``t_end``."""
+              knots: np.ndarray | None = None, max_phases: int = 100_000, start: tuple | None = None
+              ) -> SeriesResult:
+    """From rest, centred, at t = 0 to ``t_end``; or from ``start``, ``(x, v, u, state)`` (the levels'
+    displacements and velocities, the surfaces' displacements and states, every surface held: 0 or +-2):
+    moving, the bearing slips the way it moves from the lowest threshold that way (no event)."""
     m = np.asarray(s.masses_kg, float)
     n = m.size
     kk, cc = s.matrices()
     u, state = np.zeros(4), np.zeros(4)
     y = np.zeros(2 * n + 2)  # x, v, the input's work, the dashpots'
+    if start is not None:
+        y[:n], y[n:2 * n] = start[0], start[1]
+        u, state = np.array(start[2], float), np.array(start[3], float)
     t, mode = 0.0, 0
-    out = SeriesResult(t=np.array([0.0]), x=np.zeros((1, n)))
-    ts, xs = [np.array([0.0])], [np.zeros((1, n))]
+    out = SeriesResult(t=np.array([0.0]), x=y[None, :n].copy())
+    ts, xs = [np.array([0.0])], [y[None, :n].copy()]
     cuts = np.unique(np.append(np.asarray(knots if knots is not None else [], float), t_end))
     cuts = cuts[cuts <= t_end]
 
@@ -146,8 +152,11 @@ def reference(s: SeriesStructure, t_end: float, rtol: float = 1e-12, atol: float
         state[np.abs(state) == 1] = HELD
         _start(s, u, state, way, min(_threshold(s, u, state, g, way) * way for g in range(4)) * way)
 
-    mode = held_way(0.0, y)
-    if mode:
+    if y[n] != 0.0:  # (a moving start: a slip, no event)
+        mode = 1 if y[n] > 0.0 else -1
+        slip_from_rest(mode)
+    mode = mode or held_way(0.0, y)
+    if mode and y[n] == 0.0:
         slip_from_rest(mode)
         out.events.append((0.0, "slip", -1))
     for _ in range(max_phases):

@@ -296,21 +296,59 @@ def test_a_state_whose_surfaces_do_not_sum_to_the_base_is_refused():
 
 
 def test_what_it_cannot_do_yet_is_refused_by_name():
-    """A periodic orbit, a start off centre (which leaves open how far each surface slid) and a run continued
-    from one that used up the travel are refused, naming the field."""
+    """A periodic orbit, a start beyond the rigid rings' travel and a run continued from one that used up
+    the travel are refused, naming the field."""
     b = _building(pd_.TripleFrictionPendulum(**TFP))
     with pytest.raises(pd_.InputError) as err:
         pd_.periodic_orbit(pd_.Oscillator(1e4, pd_.TripleFrictionPendulum(**TFP)), pd_.Harmonic(0.2, 0.5),
                            settle_cycles=3)
     assert err.value.field == "system.isolator"
-    with pytest.raises(pd_.InputError) as err:
-        pd_.State.at_rest(b, displacement_m=0.05)
+    with pytest.raises(pd_.InputError, match="travel") as err:
+        pd_.State.at_rest(b, displacement_m=-1.01 * b.isolator.travel_m)
     assert err.value.field == "displacement_m"
     ex = pd_.Harmonic(a_g=0.5, freq_hz=0.5)
     stopped = pd_.simulate(b, ex, 6.0)
     assert stopped.status == pd_.Status.CAPACITY
     with pytest.raises(pd_.InputError, match="travel used up"):
         pd_.simulate(b, ex, 2.0, stopped.final_state)
+
+
+@pytest.mark.parametrize("ring", [None, 5e6])
+@pytest.mark.parametrize("d", [0.0, 0.02, -0.3, 0.72, -0.9])
+def test_a_start_off_centre_is_where_a_slow_push_leaves_it_and_runs_as_the_reference(d, ring):
+    """State.at_rest off centre: each surface where a slow push from the centre leaves it (they sum to the
+    displacement; every one that slid holds the slide's force there, its rigid ring's at its ring; the mirror
+    push the mirror state); run from there, moving, against the reference started from the same state."""
+    tfp = pd_.TripleFrictionPendulum(**TFP, ring_stiffness_n_m=ring)
+    b = _building(tfp, n_storeys=2)
+    iso = b.isolator
+    if ring is None and abs(d) > iso.travel_m:
+        with pytest.raises(pd_.InputError, match="travel"):
+            pd_.State.at_rest(b, displacement_m=d)
+        return
+    state = pd_.State.at_rest(b, displacement_m=d, velocity_m_s=-0.3 * math.copysign(1.0, d))
+    lay = state.layout
+    u_g = state.vector[lay["base"]:lay["base"] + 4]
+    held = state.vector[lay["base"] + lay["n_springs"]:lay["base"] + lay["n_springs"] + 4]
+    assert u_g.sum() == pytest.approx(d, rel=1e-12)
+    k, f, cap = iso.kernel_arrays()[0], np.array(iso.friction_forces_n), np.array(iso.series_capacities_m)
+    spring = k * u_g + (ring or 0.0) * np.sign(u_g) * np.maximum(np.abs(u_g) - cap, 0.0)
+    slid = (u_g != 0.0) & (held == 0.0)
+    assert np.allclose((spring + np.sign(d) * f)[slid], iso.backbone(d), rtol=1e-12)
+    assert np.allclose(np.abs(u_g[held != 0.0]), cap[held != 0.0], rtol=1e-12)
+    mirror = pd_.State.at_rest(b, displacement_m=-d).vector
+    assert np.array_equal(mirror[lay["base"]:lay["base"] + 8], -state.vector[lay["base"]:lay["base"] + 8])
+
+    def accel(t):
+        return 0.15 * G * math.sin(2 * math.pi * 0.6 * t)
+    run = pd_.simulate(b, pd_.Harmonic(0.15, 0.6), 3.0, state, rtol=1e-12)
+    x0 = state.displacements_m
+    ref = reference(_reference_of(b, accel), 3.0,
+                    start=(x0, state.velocities_m_s, u_g, held))
+    engine, expected = _in_order(_grouped(_events(run), ref)), _in_order(_grouped(_untouched(ref), ref))
+    assert [e[1:] for e in engine] == [e[1:] for e in expected] and len(engine) >= 3
+    assert max(abs(a[0] - e[0]) for a, e in zip(engine, expected)) < EVENT_S
+    assert np.allclose(run.final_state.displacements_m, ref.x[-1], rtol=0.0, atol=1e-8)
 
 
 def test_rings_that_leave_no_surface_slipping_jump_to_the_next_threshold():
@@ -370,3 +408,15 @@ def test_a_pair_s_second_building_on_stiff_rings_lists_its_own_entries_and_exits
     assert not run.first.events["kind"].isin(["surface_slip", "ring", "ring_off"]).any()
     everyone = run.events["kind"]
     assert (everyone == "ring_off").sum() == (mine["kind"] == "ring_off").sum()
+
+
+def test_basins_start_a_triple_friction_pendulum_off_centre():
+    """Basins of a single mass on a triple friction pendulum against bumpers: its initial states off centre
+    (State.at_rest) each settle on a response."""
+    tfp = pd_.TripleFrictionPendulum(radii_m=(2.0, 0.4, 0.4, 2.0), mu=(0.05, 0.02, 0.02, 0.05),
+                                     capacities_m=(0.3, 0.05, 0.05, 0.3), ring_stiffness_n_m=5e6)
+    osc = pd_.Oscillator(500.0, tfp, pd_.Bumpers(gap_left_m=0.3, gap_right_m=0.3,
+                                                 law=pd_.KelvinVoigt(2e6, 500.0)))
+    b = pd_.basins(osc, pd_.Harmonic(0.15, 0.5), displacement_m=(-0.25, 0.25), velocity_m_s=(-0.5, 0.5),
+                   n=(3, 3), workers=1)
+    assert len(b.attractors) >= 2 and b.attractors["fraction"].sum() == pytest.approx(1.0)

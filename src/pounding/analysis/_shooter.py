@@ -63,7 +63,7 @@ class _Shooter(_Newton):
         self.springs = []  # each kinematic spring: (global index, i, j, break)
         self.elastic = []  # each element of the elastic rule: (element, i, j, breaks)
         first = 0
-        for e, (i, j, slopes, breaks, rule, _) in enumerate(self.asm.elements):
+        for e, (i, j, slopes, breaks, rule, *_) in enumerate(self.asm.elements):
             if rule == 2 and breaks:
                 raise InputError(Problem.WRONG_CONFIGURATION, "system.isolator", "TripleFrictionPendulum",
                                  got="not supported in a periodic orbit yet (its surfaces' states are no "

@@ -37,7 +37,7 @@ class HystereticElement(NamedTuple):
     """A hysteretic element of an assembly (an isolator, a multi-linear storey): between dofs ``i`` and
     ``j`` (-1: the ground), its backbone's ``slopes`` (N/m) and ``breaks`` (m), its ``rule`` (the core's
     code: elastic, kinematic, friction) and, for friction surfaces in series, each one's ring stiffness
-    (N/m; empty or 0: rigid)."""
+    (N/m; empty or 0: rigid) and friction (N)."""
 
     i: int
     j: int
@@ -45,6 +45,7 @@ class HystereticElement(NamedTuple):
     breaks: list
     rule: int
     rings: tuple = ()
+    frictions: tuple = ()
 
 
 class Assembly(NamedTuple):
@@ -223,7 +224,8 @@ def assemble(model: Oscillator | Structure | Adjacent) -> Assembly:
     return Assembly(system, tuple(dofs), tuple(isolator), tuple(slots), tuple(stands), np.array(masses),
                     k_fast, c_all, tuple(pairs),
                     tuple(HystereticElement(i, j, list(slopes), list(breaks), rule,
-                                            tuple(friction.get(e, {}).get("surface_ring_n_m", ())))
+                                            tuple(friction.get(e, {}).get("surface_ring_n_m", ())),
+                                            tuple(friction.get(e, {}).get("surface_friction_n", ())))
                           for e, (i, j, _, slopes, breaks, rule) in enumerate(elements)),
                     np.asarray(bw, dtype=float), contact_tracks)
 

@@ -333,17 +333,24 @@ def shifted(asm: "Assembly", time_s: float, d: float, v: float) -> State:
                              fix="give a shift that leaves every wall and link open (a state in contact "
                                  "comes from a run's final_state)")
     first = 0
-    for e, (i, j, _, breaks, rule, _) in enumerate(asm.elements):  # (each on its backbone)
+    for e, (i, j, slopes, breaks, rule, rings, frictions) in enumerate(asm.elements):  # (on its backbone)
         u = x[i] - (x[j] if j >= 0 else 0.0)
         b = np.asarray(breaks, dtype=float)
         if rule == 1:
             vec[lay["region"] + e] = np.sign(u) * np.searchsorted(b, abs(u), side="right")
-        elif rule == 2 and b.size:  # (a triple friction pendulum: where on its surfaces is not one answer)
-            if u != 0.0:
+        elif rule == 2 and b.size:  # (a triple friction pendulum: its surfaces where a slow push leaves them)
+            from ..model.triple_friction import slide
+
+            ring = float(rings[0]) if rings else 0.0
+            *_, u_g, held = slide(slopes, frictions, b, ring, u)
+            if abs(u_g.sum() - u) > 1e-9 * max(abs(u), 1e-3):  # (rigid rings: its travel ends short of u)
                 raise InputError(Problem.BAD_STATE, "displacement_m", d,
-                                 why="moves a triple friction pendulum off centre, which leaves open how far "
-                                     "each of its surfaces has slid",
-                                 fix="start it centred (displacement_m 0) or from a run's final_state")
+                                 why=f"is beyond the triple friction pendulum's travel, {b.sum():g} m, "
+                                     "where its rigid rings stop it",
+                                 fix="give a displacement within the travel (or stiff rings: "
+                                     "ring_stiffness_n_m)")
+            vec[lay["base"] + first:lay["base"] + first + b.size] = u_g
+            vec[lay["base"] + lay["n_springs"] + first:lay["base"] + lay["n_springs"] + first + b.size] = held
         else:
             vec[lay["base"] + first:lay["base"] + first + b.size] = u - np.clip(u, -b, b)
         first += b.size

@@ -111,7 +111,7 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str) -> None:
             q, value, why = found
             raise bad(f"vector[{at + q}]", value, why)
     first = 0
-    for e, (i, j, slopes, breaks, rule, rings) in enumerate(asm.elements):
+    for e, (i, j, slopes, breaks, rule, rings, _) in enumerate(asm.elements):
         n_sp = len(breaks)
         u = rel(i, j)
         who = "the isolator's" if single else f"element {e}'s"

@@ -38,6 +38,74 @@ def _four(field: str, values: Any, unit: str) -> tuple[float, ...]:
     return out
 
 
+def slide(k: Any, f: Any, cap: Any, ring: float, to_m: float = math.inf) -> tuple:
+    """A series of friction surfaces pushed slowly from rest, centred, to ``to_m`` (m; inf: as far as it
+    goes): the surfaces slip in the order their thresholds come, each held at its rigid ring or sliding on
+    against its stiff one (``ring``, N/m; 0: rigid).
+
+    Parameters
+    ----------
+    k, f, cap : sequence of floats, each of length n
+        Each surface's stiffness (N/m), friction (N) and travel to its ring (m).
+    ring : float
+        Each ring's stiffness, N/m (0: rigid).
+    to_m : float
+        Where the push stops, m (its sign the push's way).
+
+    Returns
+    -------
+    us, fs : ndarray, shape (m,)
+        The slide's vertices (m, N), from (0, 0), up to where it stops (a positive push's).
+    last : float
+        The stiffness past the last vertex, N/m (0: rigid rings, none past the travel).
+    u_g : ndarray, shape (n,)
+        Where each surface is when the push stops, m (signed as the push).
+    state : ndarray, shape (n,)
+        Each one's state there, held: 0, or +-2 at its rigid ring (the core's).
+    """
+    k, f, cap = (np.array(x, dtype=float) for x in (k, f, cap))
+    n, way, reach = k.size, (-1.0 if to_m < 0.0 else 1.0), abs(to_m)
+    ug, state = np.zeros(n), np.zeros(n)  # (0 held, 1 slipping, 2 at its rigid ring, 3 on its stiff one)
+    us, fs = [0.0], [0.0]
+    force, u = 0.0, 0.0
+    for _ in range(3 * n):
+        if not ((state == 1) | (state == 3) | (state == 0)).any() or u >= reach:
+            break  # (every surface at its rigid ring: the travel; or the push's end)
+        if not ((state == 1) | (state == 3)).any():  # (none slips on: the force jumps to the next one)
+            force = max(force, float(np.where(state == 0, k * ug + f, np.inf).min()))
+            us.append(u)
+            fs.append(force)
+        state[(state == 0) & (k * ug + f <= force * (1 + 1e-12))] = 1
+        slipping = (state == 1) | (state == 3)
+        stiffness = np.where(state == 3, k + ring, k)
+        thresholds = np.where(state == 0, k * ug + f, np.inf)
+        rings = np.where(state == 1, k * cap + f, np.inf)
+        nxt = float(min(thresholds.min(), rings.min()))
+        compliance = float(np.sum(1.0 / stiffness[slipping]))
+        if u + (nxt - force) * compliance > reach:  # (the push ends inside this stage)
+            nxt = force + (reach - u) / compliance
+            ug[slipping] += (nxt - force) / stiffness[slipping]
+            us.append(reach)
+            fs.append(nxt)
+            u, force = reach, nxt
+            break
+        if not math.isfinite(nxt):
+            break  # (every surface slipping on its stiff ring: the last stage, without end)
+        u += (nxt - force) * compliance
+        ug[slipping] += (nxt - force) / stiffness[slipping]
+        force = nxt
+        reached = (state == 1) & (rings <= nxt * (1 + 1e-12))
+        state[reached] = 3 if ring > 0.0 else 2
+        ug[reached] = cap[reached]
+        us.append(u)
+        fs.append(force)
+    slipping = (state == 1) | (state == 3)
+    compliance = float(np.sum(1.0 / np.where(state == 3, k + ring, k)[slipping]))
+    last = 1.0 / compliance if ring > 0.0 and compliance > 0.0 else 0.0  # (a push of 0: none slid)
+    held = np.where(state == 2, 2.0, 0.0)  # (a slow push's end: every surface held where it is)
+    return np.array(us), np.array(fs), last, way * ug, way * held
+
+
 @dataclass(frozen=True)
 class TripleFrictionPendulum(CarriesWeight):
     """A triple friction pendulum bearing (TFP): four spherical sliding surfaces, each with its friction
@@ -238,45 +306,12 @@ class TripleFrictionPendulum(CarriesWeight):
         return np.array([self.friction_force_n])
 
     def _backbone_points(self) -> tuple[np.ndarray, np.ndarray, float]:
-        """The vertices ``(u, F)`` of a monotonic slide from rest (m, N): the series' surfaces slipping in
-        the order their thresholds come, each held at its rigid ring (to the whole travel) or sliding on
-        against its stiff one; and the last stage's stiffness beyond the last vertex, N/m (0: rigid rings,
-        none beyond the travel)."""
+        """The vertices ``(u, F)`` of a monotonic slide from rest (m, N) and the last stage's stiffness
+        beyond the last vertex, N/m (0: rigid rings, none beyond the travel); see :func:`slide`."""
         w = self._weight()
-        kr = self.ring_stiffness_n_m or 0.0
-        k = np.array([w / r for r in self.series_radii_m])
-        f = np.array(self.friction_forces_n)
-        cap = np.array(self.series_capacities_m)
-        ug = np.zeros(SURFACES)
-        state = np.zeros(SURFACES)  # (0 held, 1 slipping, 2 at its rigid ring, 3 slipping on its stiff one)
-        us, fs = [0.0], [0.0]
-        force, u = 0.0, 0.0
-        for _ in range(3 * SURFACES):
-            if not ((state == 1) | (state == 3) | (state == 0)).any():
-                break  # (every surface at its rigid ring: the travel)
-            if not ((state == 1) | (state == 3)).any():  # (none slips on: the force jumps to the next one)
-                force = max(force, float(np.where(state == 0, k * ug + f, np.inf).min()))
-                us.append(u)
-                fs.append(force)
-            state[(state == 0) & (k * ug + f <= force * (1 + 1e-12))] = 1
-            slipping = (state == 1) | (state == 3)
-            stiffness = np.where(state == 3, k + kr, k)
-            thresholds = np.where(state == 0, k * ug + f, np.inf)
-            rings = np.where(state == 1, k * cap + f, np.inf)
-            nxt = float(min(thresholds.min(), rings.min()))
-            if not math.isfinite(nxt):
-                break  # (every surface slipping on its stiff ring: the last stage, without end)
-            u += (nxt - force) * float(np.sum(1.0 / stiffness[slipping]))
-            ug[slipping] += (nxt - force) / stiffness[slipping]
-            force = nxt
-            reached = (state == 1) & (rings <= nxt * (1 + 1e-12))
-            state[reached] = 3 if kr > 0.0 else 2
-            ug[reached] = cap[reached]
-            us.append(u)
-            fs.append(force)
-        slipping = (state == 1) | (state == 3)
-        last = 1.0 / float(np.sum(1.0 / np.where(state == 3, k + kr, k)[slipping])) if kr > 0.0 else 0.0
-        return np.array(us), np.array(fs), last
+        us, fs, last, _, _ = slide([w / r for r in self.series_radii_m], self.friction_forces_n,
+                                   self.series_capacities_m, self.ring_stiffness_n_m or 0.0)
+        return us, fs, last
 
     def backbone(self, displacement: Any) -> np.ndarray:
         """The force of a monotonic slide from rest (N) at displacement(s) in m, any shape: piecewise
