@@ -137,6 +137,25 @@ def test_the_ledger_closes_and_the_friction_never_exceeds_mu_w(case):
         assert np.all(du[inside] == 0.0) and (not inside.any() or np.ptp(u[inside]) == 0.0)
 
 
+def test_the_samples_inside_a_touch_taken_back_show_the_base_held():
+    """A record whose knot makes the force needed to hold the base touch mu W (hypothesis found it): the
+    slip it starts is taken back, and the sample at the knot, inside it, shows the base held (no velocity,
+    no drift), as every sample inside every stick does."""
+    iso = pd_.FrictionIsolator(mu=0.06694994405309965, radius_m=3.3125, damping_n_s_m=255.0)
+    b = pd_.Structure(4383.0, iso, [pd_.Storey(4117.0, 35309951.0, 15149.0)], [])
+    t = np.arange(0.0, 2.0001, 0.01)
+    run = pd_.simulate(b, pd_.Record(t, np.random.default_rng(0).normal(0.0, 2.0, t.size)), 2.0,
+                       sample_rate_hz=2000.0)
+    frame = run.to_dataframe()
+    ts, u, du = (frame[c].to_numpy() for c in ("t_s", "displacement_m[0]", "velocity_m_s[0]"))
+    kinds = _events(run)
+    sticks = [(t0, t1) for (t0, k0), (t1, _) in zip(kinds, kinds[1:] + [(2.0, "end")]) if k0 == "stick"]
+    assert any(t0 < 0.64 < t1 for t0, t1 in sticks)  # (the touch: at the knot 0.64 s, inside a stick)
+    for t0, t1 in sticks:
+        inside = (ts > t0) & (ts <= t1)
+        assert np.all(du[inside] == 0.0) and (not inside.any() or np.ptp(u[inside]) == 0.0)
+
+
 def test_a_flat_slider_s_mass_accelerates_at_mu_g():
     """A mass on a flat slider: while it slips its absolute acceleration is mu g exactly, so its largest
     is mu g (Coulomb's closed form)."""

@@ -131,6 +131,8 @@ def test_every_stage_change_matches_the_reference(case):
 def test_stiff_rings_match_the_reference(case):
     """Stiff rings: each surface slides on against its ring and comes off it on the way back, its entry
     (``ring``) and exit (``ring_off``) events on the reference's, the run never stopping at a capacity."""
+    b, excitation, _, _ = case
+    assert pd_.simulate(b, excitation, 4.0, rtol=1e-12).status == pd_.Status.SUCCESS
     _matches_the_reference(case)
 
 
@@ -406,8 +408,42 @@ def test_a_pair_s_second_building_on_stiff_rings_lists_its_own_entries_and_exits
     assert set(mine["kind"]) == {"surface_slip", "ring", "ring_off"}
     assert set(mine["index"]) == {0, 1, 2, 3}
     assert not run.first.events["kind"].isin(["surface_slip", "ring", "ring_off"]).any()
+    s = run.summary()
+    assert (s["second_surface_slips"], s["second_rings"]) == (list(mine["kind"]).count("surface_slip"),
+                                                              list(mine["kind"]).count("ring"))
     everyone = run.events["kind"]
     assert (everyone == "ring_off").sum() == (mine["kind"] == "ring_off").sum()
+
+
+def test_a_stiff_surface_s_state_must_match_where_it_is():
+    """A state whose stiff surface is marked on its ring while within its travel, or within its travel while
+    past its ring, is refused by its place in the vector."""
+    b = _building(pd_.TripleFrictionPendulum(**TFP, ring_stiffness_n_m=2e7))
+    ex = pd_.Harmonic(0.6, 0.4)
+    run = pd_.simulate(b, ex, 3.1)
+    lay = run.final_state.layout
+    states = slice(lay["base"] + lay["n_springs"], lay["base"] + lay["n_springs"] + 4)
+    v = run.final_state.vector
+    assert np.all(np.abs(v[states]) == 3.0)  # (every surface on its ring, sliding)
+    for change in (lambda w: w.__setitem__(states, w[states] / 3.0),  # (as if within their travels)
+                   lambda w: w.__setitem__(lay["base"], 0.01 * np.sign(w[lay["base"]]))):
+        w = v.copy()
+        change(w)
+        if w[lay["base"]] != v[lay["base"]]:  # (surface 0 back within its travel: the rest keep the sum)
+            w[lay["base"] + 1] += v[lay["base"]] - w[lay["base"]]
+        with pytest.raises(pd_.InputError, match="travel"):
+            pd_.simulate(b, ex, 1.0, pd_.State(w, run.final_state.dofs, lay))
+    assert pd_.simulate(b, ex, 1.0, run.final_state).success
+
+
+def test_a_touch_of_a_surface_s_threshold_leaves_every_surface_where_it_was():
+    """A table that only touches the inner surfaces' threshold: the touch is taken back, the bearing and
+    each of its surfaces exactly where they were (their displacements still summing to the bearing's)."""
+    osc = pd_.Oscillator(1000.0, pd_.TripleFrictionPendulum(**TFP))
+    run = pd_.simulate(osc, pd_.Harmonic(0.02, 1.0), 3.0)
+    lay = run.final_state.layout
+    assert run.final_state.displacement_m == 0.0
+    assert np.array_equal(run.final_state.vector[lay["base"]:lay["base"] + 4], np.zeros(4))
 
 
 def test_basins_start_a_triple_friction_pendulum_off_centre():

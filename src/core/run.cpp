@@ -260,7 +260,15 @@ struct Loop {
     int zero_run = 0;
     // the last event's slip from a stick (a stick's end, or the start's), until another event: its row, its
     // element, the samples after it (and whether it pushed one) and the element's displacement there
-    struct Touch { int64_t row = -1; int e = -1; int64_t samples = 0; bool sampled = false; double u = 0.0; };
+    // (springs: the element's spring slots at the touch, a series's surfaces' displacements)
+    struct Touch {
+        int64_t row = -1;
+        int e = -1;
+        int64_t samples = 0;
+        bool sampled = false;
+        double u = 0.0;
+        std::vector<double> springs;
+    };
     Touch touch;
     double h_num = 1e-4;
     Sticking stk_out;  // (the held stops of the state an output row is made from)
@@ -332,7 +340,15 @@ void fit_workspace(RunWorkspace::Impl& w, const System& sy) {
 
 // the slip from a stick just recorded for element e (sampled: with a sample of its own), for touched_mu_w
 void note_touch(Loop& lp, int e, bool sampled) {
-    lp.touch = {lp.out.events.n - 1, e, lp.out.samples.n, sampled, iso_u(lp.sy, e, lp.st)};
+    Loop::Touch& t = lp.touch;
+    t.row = lp.out.events.n - 1;
+    t.e = e;
+    t.samples = lp.out.samples.n;
+    t.sampled = sampled;
+    t.u = iso_u(lp.sy, e, lp.st);
+    const Hysteretic& h = lp.sy.hyst[static_cast<size_t>(e)];
+    const double* slots = lp.st + lp.L.base + h.first;
+    t.springs.assign(slots, slots + h.n_springs());
 }
 
 // a friction element at the start: moving, it slips; at rest, it sticks unless its tie would need more than
@@ -615,6 +631,7 @@ bool touched_mu_w(Loop& lp, int e) {
     if (std::abs(u - t.u) > ROUNDING * (lp.ph.xround + std::abs(u))) return false;
     events.n -= 1;
     iso_hold_at(lp.sy, e, t.u, lp.st + lp.L.x, lp.st + lp.L.v);
+    std::copy(t.springs.begin(), t.springs.end(), lp.st + lp.L.base + lp.sy.hyst[static_cast<size_t>(e)].first);
     for (int64_t r = t.samples; r < lp.out.samples.n; ++r) {
         double* row = lp.out.samples.row(r);
         iso_hold_at(lp.sy, e, t.u, row + 1, row + 1 + lp.sy.n);

@@ -167,6 +167,11 @@ def _pair_rows(add_row: Any, s: Any) -> None:
     the links."""
     for name in ("first", "second"):
         add_row(f"{name}: walls' contacts", _per_level(s, f"{name}_") if s[f"{name}_contacts"] else "0")
+        if s[f"{name}_sticks"] or s[f"{name}_slips"]:
+            add_row(f"{name}: isolator sticks / slips", f"{s[f'{name}_sticks']} / {s[f'{name}_slips']}")
+        if s[f"{name}_surface_slips"] or s[f"{name}_rings"]:
+            add_row(f"{name}: surface slips / rings reached",
+                    f"{s[f'{name}_surface_slips']} / {s[f'{name}_rings']}")
     add_row("contacts at the links", str(s["link_contacts"]))
 
 

@@ -147,13 +147,15 @@ class AdjacentRun(NamedChatters, Outcome):
         """The pair's run in a few numbers: ``t_end_s``; each structure's (``first_``, ``second_``) contacts
         at its walls, ``contacts``, ``contacts_left`` and ``contacts_level_<k>`` at each level with a wall
         (:meth:`StructureRun.contact_counts`), its base's ``displacement_end_m`` and its friction isolator's
-        ``sticks`` and ``slips``; ``link_contacts``; ``input_work_j`` and ``energy_residual_j``;
+        ``sticks``, ``slips``, ``surface_slips`` and ``rings``; ``link_contacts``; ``input_work_j`` and
+        ``energy_residual_j``;
         ``status``."""
         out: dict[str, Any] = {"t_end_s": float(self.t[-1]) if self.t.size else float("nan")}
         for name, part in (("first", self.first), ("second", self.second)):
             out.update({f"{name}_{k}": v for k, v in part.contact_counts().items()})
             s = part.summary()
-            out.update({f"{name}_{k}": s[k] for k in ("displacement_end_m", "sticks", "slips")})
+            kept = ("displacement_end_m", "sticks", "slips", "surface_slips", "rings")
+            out.update({f"{name}_{k}": s[k] for k in kept})
         out.update({"link_contacts": len(self.link_table), "input_work_j": self.energy.input_work,
                     "energy_residual_j": self.energy.residual, "status": self.status.name})
         return pd.Series(out, name="summary", dtype=object)

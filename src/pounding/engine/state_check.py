@@ -231,6 +231,14 @@ def _check_surfaces(x_all: list, lay: dict, first: int, breaks: Any, rings: Any,
                           or (abs(state) == 2.0 and abs(ug - math.copysign(ring, state)) > tol)):
             raise bad(f"vector[{at_u}]", ug, f"is {who} surface {k}'s displacement, beyond its ring at "
                                              f"{ring:g} m (or off it while held there)")
+        inside = -ring + tol < slip * ug < ring - tol  # (clearly within its travel: off its rings)
+        outside = not -ring - tol <= slip * ug <= ring + tol  # (clearly past a ring)
+        if stiff and ((abs(state) == 3.0 and inside) or (abs(state) == 1.0 and outside)):
+            why = (f"on its stiff ring (3 times the slip direction) while its displacement {ug:g} m is "
+                   f"within its travel {ring:g} m" if abs(state) == 3.0 else
+                   f"within its travel while its displacement {ug:g} m is past its ring at {ring:g} m "
+                   "(3 times the slip direction)")
+            raise bad(f"vector[{at_s}]", state, f"is {who} surface {k}'s state, {why}")
         total += ug
         slipping = slipping or state in (slip, 3.0 * slip) and slip != 0.0
     if slip != 0.0 and not slipping:

@@ -82,7 +82,8 @@ def plot_isolator_loop(run: Any, ax: Any = None, *, t_start_s: Optional[float] =
     iso = structure.isolator
     friction = getattr(iso, "friction_force_n", None)
     if hasattr(iso, "travel_m"):  # (a triple friction pendulum: its stages in a slide from rest, both ways)
-        lo, hi = max(d_mm.min() * 1e-3, -iso.travel_m), min(d_mm.max() * 1e-3, iso.travel_m)
+        reach = iso.travel_m if iso.ring_stiffness_n_m is None else np.inf  # (stiff rings: on past it)
+        lo, hi = max(d_mm.min() * 1e-3, -reach), min(d_mm.max() * 1e-3, reach)
         for a, b in ((lo, 0.0), (0.0, hi)):
             u = np.linspace(a, b, 400) if b > a else np.zeros(0)
             artists += ax.plot(u * 1e3, iso.backbone(u) / 1e3, color="0.5", lw=0.8, ls=":",
