@@ -155,8 +155,9 @@ void step_kernel(const System& sy, double amp, double omega, const double* state
         cy[CY_AMAX] = run.extrema[EX_A_ABS_MAX];
         add_impacts(run.contacts, sy.mass[0], cy + CY_SUMS);
         cy[CY_EVENTS] = static_cast<double>(run.events.n);
-        for (int64_t e = 0; e < run.events.n; ++e)
-            cy[CY_STICKS] += run.events.row(e)[EC_ACTION] == static_cast<double>(ACT_STICK) ? 1.0 : 0.0;
+        if (!sy.ties.empty())  // (sticks: a friction isolator's only)
+            for (int64_t e = 0; e < run.events.n; ++e)
+                cy[CY_STICKS] += run.events.row(e)[EC_ACTION] == static_cast<double>(ACT_STICK) ? 1.0 : 0.0;
         double* sb = &strobe[static_cast<size_t>(n) * cols];
         for (int q = 0; q < 2 * nd; ++q) sb[q] = st[L.x + q];
         for (int q = 0; q < n_sp; ++q) sb[2 * nd + q] = st[L.base + q];
