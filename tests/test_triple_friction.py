@@ -298,13 +298,13 @@ def test_a_state_whose_surfaces_do_not_sum_to_the_base_is_refused():
 
 
 def test_what_it_cannot_do_yet_is_refused_by_name():
-    """A periodic orbit, a start beyond the rigid rings' travel and a run continued from one that used up
+    """An exact monodromy, a start beyond the rigid rings' travel and a run continued from one that used up
     the travel are refused, naming the field."""
     b = _building(pd_.TripleFrictionPendulum(**TFP))
     with pytest.raises(pd_.InputError) as err:
         pd_.periodic_orbit(pd_.Oscillator(1e4, pd_.TripleFrictionPendulum(**TFP)), pd_.Harmonic(0.2, 0.5),
-                           settle_cycles=3)
-    assert err.value.field == "system.isolator"
+                           settle_cycles=3, method="exact")
+    assert err.value.field == "method"
     with pytest.raises(pd_.InputError, match="travel") as err:
         pd_.State.at_rest(b, displacement_m=-1.01 * b.isolator.travel_m)
     assert err.value.field == "displacement_m"
@@ -444,6 +444,69 @@ def test_a_touch_of_a_surface_s_threshold_leaves_every_surface_where_it_was():
     lay = run.final_state.layout
     assert run.final_state.displacement_m == 0.0
     assert np.array_equal(run.final_state.vector[lay["base"]:lay["base"] + 4], np.zeros(4))
+
+
+@pytest.mark.parametrize("a_g, freq_hz, phase, ring", [(0.2, 0.5, 0.0, None), (0.3, 0.8, 0.0, None),
+                                                        (0.4, 0.45, 2.5, 5e6)])
+def test_a_periodic_orbit_is_the_map_s_fixed_point_with_its_multipliers(a_g, freq_hz, phase, ring):
+    """A single mass's periodic orbit on a triple friction pendulum (finite differences: no exact monodromy
+    yet): a fixed point of the run over a period (to 1e-11 m), and its multipliers those of that map
+    differenced here through simulate in the map's coordinates (the base's x and v, and each surface held at
+    the section), each state built from the series' own law (the slipping surfaces where the force puts
+    them): every surface slipping at the section, or one held, or one on its stiff ring."""
+    tfp = pd_.TripleFrictionPendulum(**TFP, ring_stiffness_n_m=ring)
+    osc = pd_.Oscillator(1e4 if ring is None else 2e4, tfp)
+    exc = pd_.Harmonic(a_g, freq_hz, phase=phase)
+    orbit = pd_.periodic_orbit(osc, exc, settle_cycles=30 if ring is None else 200)
+    assert orbit.converged and orbit.stable
+    st, lay = orbit.state, orbit.state.layout
+    k, f = osc.isolator.kernel_arrays()[0], np.array(osc.isolator.friction_forces_n)
+    d = np.array(osc.isolator.series_capacities_m)
+    s = st.vector[lay["region"]]
+    states = st.vector[lay["base"] + lay["n_springs"]:lay["base"] + lay["n_springs"] + 4]
+    on = (states == s) | (states == 3 * s)
+    assert s != 0.0 and on.any() and (ring is None or (states == 3 * s).any())
+    stiff = np.where(states == 3 * s, k + (ring or 0.0), k)  # (on its stiff ring: k + k_r, and an offset)
+    side = np.where(states == 3 * s, (ring or 0.0) * d * np.sign(st.vector[lay["base"]:lay["base"] + 4]), 0.0)
+
+    base = lay["base"]
+    held = np.flatnonzero(states == 0.0)  # (each a coordinate of the map: where it is held)
+
+    def state_at(p: np.ndarray) -> pd_.State:  # (x, v, the held surfaces)
+        vec = st.vector.copy()
+        vec[lay["x"]], vec[lay["v"]] = p[0], p[1]
+        vec[base + held] = p[2:]
+        force = (p[0] - vec[base + held].sum() + np.sum((s * f[on] - side[on]) / stiff[on])) / np.sum(
+            1.0 / stiff[on])
+        vec[base:base + 4][on] = (force - s * f[on] + side[on]) / stiff[on]
+        return pd_.State(vec, st.dofs, lay)
+
+    def image(p: np.ndarray) -> np.ndarray:
+        end = pd_.simulate(osc, exc, 1.0 / freq_hz, state_at(p), sample_rate_hz=0).final_state
+        return np.array([end.displacement_m, end.velocity_m_s, *end.vector[base + held]])
+
+    p0 = np.array([st.displacement_m, st.velocity_m_s, *st.vector[base + held]])
+    assert np.allclose(image(p0), p0, rtol=0.0, atol=1e-11)
+    h = 1e-6
+    jac = np.column_stack([(image(p0 + h * e) - image(p0 - h * e)) / (2 * h) for e in np.eye(p0.size)])
+    mine = np.sort_complex(np.linalg.eigvals(jac))
+    assert np.allclose(mine, np.sort_complex(orbit.multipliers), rtol=0.0, atol=1e-6)
+
+
+def test_a_branch_of_orbits_and_the_lyapunov_exponents_of_a_triple_friction_pendulum():
+    """Continuation follows its orbits across a frequency range (each where periodic_orbit finds it), and
+    the Lyapunov spectrum of a periodic response is its multipliers' ln|mu| / T."""
+    osc = pd_.Oscillator(1e4, pd_.TripleFrictionPendulum(**TFP))
+    branch = pd_.continuation(osc, 0.15, (0.5, 1.2))
+    frame = branch.to_dataframe()
+    assert frame["freq_hz"].max() == pytest.approx(1.2) and frame["stable"].all()
+    mid = frame.iloc[(frame["freq_hz"] - 0.8).abs().argmin()]
+    orbit = pd_.periodic_orbit(osc, pd_.Harmonic(0.15, float(mid["freq_hz"])), settle_cycles=30)
+    assert orbit.alpha == pytest.approx(float(mid["alpha"]), rel=1e-6)
+    spectrum = pd_.lyapunov(osc, pd_.Harmonic(0.15, 0.7), cycles=200, transient_cycles=50)
+    orbit = pd_.periodic_orbit(osc, pd_.Harmonic(0.15, 0.7), settle_cycles=30)
+    expected = np.log(np.abs(orbit.multipliers).max()) * 0.7
+    assert spectrum.exponents[0] == pytest.approx(expected, rel=1e-3)
 
 
 def test_basins_start_a_triple_friction_pendulum_off_centre():

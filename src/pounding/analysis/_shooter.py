@@ -6,8 +6,11 @@ periods) later, by the core's short runs (``engine.simulate.short_run``).  Its c
 monodromy coordinates: every dof's displacement and velocity, each contact's compression, each
 hysteretic element's slips (then a Bouc-Wen z, where there is one).  The free ones are the shooting
 coordinates: the displacements and velocities, the compression of a Kelvin-Voigt contact not touched (it
-relaxes), the slip of a spring that sticks and yields over the period.  A contact in progress and a
-slipping spring follow the masses.
+relaxes), the slip of a spring that sticks and yields over the period, the displacement of a friction
+surface held in series with others (a triple friction pendulum's) that moves over the period.  A contact in
+progress, a slipping spring, the slipping surfaces of a series (where the force puts them) and, while the
+series sticks, its first surface held within its travel (the base's displacement less the others') follow
+the masses.
 """
 
 from __future__ import annotations
@@ -17,7 +20,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from .._errors import InputError, Problem
+from .._errors import InputError
 from ..engine.assembly import Assembly, assemble, structures_of
 from ..engine.layout import C_SLOT, C_T_END, C_T_START, C_V_IN, X_A_MAX, X_D_MAX, X_D_MIN
 from ..engine.run_args import kernel_forcing
@@ -62,14 +65,13 @@ class _Shooter(_Newton):
                       for i, j, sign, gap, law in self.asm.pairs]
         self.springs = []  # each kinematic spring: (global index, i, j, break)
         self.elastic = []  # each element of the elastic rule: (element, i, j, breaks)
+        self.series = []  # each series of friction surfaces: (element, i, first, k, f, d, ring), numpy arrays
         first = 0
-        for e, (i, j, slopes, breaks, rule, *_) in enumerate(self.asm.elements):
-            if rule == 2 and breaks:
-                raise InputError(Problem.WRONG_CONFIGURATION, "system.isolator", "TripleFrictionPendulum",
-                                 got="not supported in a periodic orbit yet (its surfaces' states are no "
-                                     "part of an orbit's coordinates here)",
-                                 fix="simulate or sweep it, or give a single FrictionIsolator")
-            if rule == 0:
+        for e, (i, j, slopes, breaks, rule, rings, frictions) in enumerate(self.asm.elements):
+            if rule == 2 and breaks:  # (its surfaces: held ones free, slipping ones following, _series_rows)
+                self.series.append((e, i, first, np.array(slopes, float), np.array(frictions, float),
+                                    np.array(breaks, float), float(rings[0]) if rings else 0.0))
+            elif rule == 0:
                 self.springs += [(first + s, i, j, float(breaks[s])) for s in range(len(breaks))]
             elif breaks:
                 self.elastic.append((e, i, j, np.array(breaks, dtype=float)))
@@ -82,6 +84,9 @@ class _Shooter(_Newton):
                             + ([lay["zeta"]] if self.z_max > 0.0 else []))
         touching = [lay["in"] + c for c in range(self.nc)] if self.system.has_b else []
         self._mode_at = touching + [lay["base"] + self.n_sp + g for g, *_ in self.springs]
+        for e, _, first, k, *_ in self.series:  # (its slip direction and its surfaces' states)
+            states = lay["base"] + self.n_sp + first
+            self._mode_at += [lay["region"] + e] + [states + g for g in range(k.size)]
         self._layouts: dict = {}  # (the layouts met so far, by mode: asked for several times a run)
         # the levels' dofs (a fixed base's ground has none), the first moving level's, whether any is fixed
         levels = [d for dofs in self.asm.dofs for d in dofs]
@@ -141,21 +146,63 @@ class _Shooter(_Newton):
                     follows[row, j] -= 1.0
             elif g not in frozen:
                 free.append(row)
+        followers = [self._series_rows(vec, s, frozen) for s in self.series]
+        for rows, held, _ in followers:
+            free += [r for r in held if -(r + 1) not in frozen]
         if self.z_max > 0.0:
             free.append(self.size)
         free_idx = np.array(sorted(free))
         emb = np.zeros((total, free_idx.size))
         emb[free_idx, np.arange(free_idx.size)] = 1.0
         emb[:, :n] += follows  # (the displacements are the first n free coordinates)
+        column = {int(r): c for c, r in enumerate(free_idx)}
+        for rows, held, (i, weights) in followers:  # (a follower: weights on the base's x and the held ones)
+            for row, w in zip(rows, weights):
+                emb[row, i] += w
+                for h in held:
+                    if h in column:
+                        emb[row, column[h]] -= w
         return free_idx, emb
+
+    def _series_rows(self, vec: np.ndarray, series: tuple, frozen: tuple) -> tuple:
+        """A series of friction surfaces in ``coords``: (its following surfaces' rows, its held surfaces'
+        rows, (its dof, each follower's weight w: d u_g = w (d x_i - sum of the held ones' d u_h))).
+        Slipping, the slipping surfaces follow the force (w = k / K_g, k the series' stiffness); held, the
+        first surface held within its travel follows the base (w = 1); a surface at its rigid ring is
+        neither (a constant)."""
+        e, i, first, k, _, d, ring = series
+        base = 2 * self.n + self.nc + first
+        states = vec[self.lay["base"] + self.n_sp + first:self.lay["base"] + self.n_sp + first + k.size]
+        s = vec[self.lay["region"] + e]
+        if s != 0.0:
+            on = (states == s) | (states == 3.0 * s)
+            stiff = np.where(states == 3.0 * s, k + ring, k)
+            k_series = 1.0 / float(np.sum(1.0 / stiff[on]))
+            rows = [base + g for g in range(k.size) if on[g]]
+            weights = [k_series / stiff[g] for g in range(k.size) if on[g]]
+        else:
+            inside = [g for g in range(k.size) if states[g] == 0.0]
+            rows, weights = ([base + inside[0]], [1.0]) if inside else ([], [])
+        held = [base + g for g in range(k.size) if states[g] == 0.0 and base + g not in rows]
+        return rows, held, (i, weights)
 
     def frozen(self, vec: np.ndarray, run: ShortRun) -> tuple:
         """The springs that stick at the section and do not yield over the period: their slips are
-        constants of the motion (multipliers 1 that say nothing of stability), not coordinates."""
-        if not self.springs:
-            return ()
-        yielded = {int(i) for _, action, i in run.event_table.tolist() if action == hy.ACT_YIELD}
-        return tuple(g for g, *_ in self.springs if self._slip_dir(vec, g) == 0.0 and g not in yielded)
+        constants of the motion (multipliers 1 that say nothing of stability), not coordinates.  (Friction
+        surfaces in series: -(row + 1) for the row in ``coords`` of each one held at the section that the
+        period leaves exactly where it was.)"""
+        out: tuple = ()
+        if self.springs:
+            yielded = {int(i) for _, action, i in run.event_table.tolist() if action == hy.ACT_YIELD}
+            out = tuple(g for g, *_ in self.springs if self._slip_dir(vec, g) == 0.0 and g not in yielded)
+        if not self.series:
+            return out
+        end = self.coords(np.asarray(run.vector))
+        here = self.coords(vec)
+        for series in self.series:
+            rows, held, _ = self._series_rows(vec, series, ())
+            out += tuple(-(r + 1) for r in held if end[r] == here[r])
+        return out
 
     def _labels(self, structures: tuple) -> list[str]:
         named = len(structures) > 1
@@ -185,6 +232,14 @@ class _Shooter(_Newton):
 
     def names(self, vec: np.ndarray, frozen: tuple = ()) -> list[str]:
         return [self._names[i] for i in self._layout(vec, frozen)[0]]
+
+    def moved_surfaces(self, vec: np.ndarray, end: np.ndarray) -> set:
+        """The springs (their indices among the system's) of friction surfaces in series that moved between
+        the state vectors ``vec`` and ``end``: coordinates of a Lyapunov spectrum, as a spring's slip that
+        yields."""
+        lay = self.lay
+        return {first + g for _, _, first, k, *_ in self.series for g in range(k.size)
+                if end[lay["base"] + first + g] != vec[lay["base"] + first + g]}
 
     def spectrum_coordinates(self, slips: set) -> np.ndarray:
         """Indices (in ``coords``) of a Lyapunov spectrum's coordinates: every displacement and velocity,
@@ -338,9 +393,27 @@ class _Shooter(_Newton):
         for e, i, j, breaks in self.elastic:
             u = self._rel(y, i, j)
             y[lay["region"] + e] = float(np.sign(u) * np.searchsorted(breaks, abs(u), side="right"))
+        for e, i, first, k, f, d, ring in self.series:  # (followers where the base and held ones put them)
+            at, st = base + first, base + n_sp + first
+            s = y[lay["region"] + e]
+            u = y[at_x + i]
+            if s != 0.0:
+                on = [g for g in range(k.size) if y[st + g] in (s, 3.0 * s)]
+                held = sum(y[at + g] for g in range(k.size) if g not in on)
+                stiff = [k[g] + ring if y[st + g] == 3.0 * s else k[g] for g in range(k.size)]
+                side = [math.copysign(ring * d[g], y[at + g]) if y[st + g] == 3.0 * s else 0.0
+                        for g in range(k.size)]
+                compliance = sum(1.0 / stiff[g] for g in on)
+                force = (u - held + sum((s * f[g] - side[g]) / stiff[g] for g in on)) / compliance
+                for g in on:
+                    y[at + g] = (force - s * f[g] + side[g]) / stiff[g]
+            else:
+                inside = [g for g in range(k.size) if y[st + g] == 0.0]
+                if inside:
+                    y[at + inside[0]] = u - sum(y[at + g] for g in range(k.size) if g != inside[0])
         return np.array(y)
 
 
 # what a shooter of the same system shares (``like``)
-_SHARED = ("asm", "system", "lay", "n", "nc", "n_sp", "size", "z_max", "slots", "springs", "elastic", "_at",
-           "_mode_at", "_layouts", "_levels", "_fixed", "_first", "_names", "_gap")
+_SHARED = ("asm", "system", "lay", "n", "nc", "n_sp", "size", "z_max", "slots", "springs", "elastic",
+           "series", "_at", "_mode_at", "_layouts", "_levels", "_fixed", "_first", "_names", "_gap")

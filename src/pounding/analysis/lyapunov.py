@@ -194,6 +194,7 @@ class _Tangent:
                     size = max(size, self.sh._size_of(run))
                     ev = run.event_table  # (the elastic rule has no yields)
                     slips.update(ev[ev[:, hy.E_ACTION] == hy.ACT_YIELD, hy.E_INDEX].astype(int).tolist())
+                    slips.update(self.sh.moved_surfaces(vec, np.asarray(run.vector)))
                     advance(1)
             except _Failed as exc:
                 status, why = Status.STEP_FAILED, str(exc)
