@@ -493,6 +493,18 @@ def test_a_periodic_orbit_is_the_map_s_fixed_point_with_its_multipliers(a_g, fre
     assert np.allclose(mine, np.sort_complex(orbit.multipliers), rtol=0.0, atol=1e-6)
 
 
+def test_an_orbit_s_multipliers_are_the_same_whether_the_section_sticks_or_slips():
+    """Sections in a stick and in a slip of one orbit: the same multipliers (a stuck bearing's surface that
+    slips first follows the base; the ones that never slip are constants, no coordinates)."""
+    osc = pd_.Oscillator(1e4, pd_.TripleFrictionPendulum(**TFP))
+    stuck = pd_.periodic_orbit(osc, pd_.Harmonic(0.025, 1.5), settle_cycles=60)
+    slipping = pd_.periodic_orbit(osc, pd_.Harmonic(0.025, 1.5, phase=1.0), settle_cycles=60)
+    lay = stuck.state.layout
+    assert stuck.state.vector[lay["region"]] == 0.0 and slipping.state.vector[lay["region"]] != 0.0
+    assert np.abs(stuck.multipliers).max() == pytest.approx(np.abs(slipping.multipliers).max(), rel=1e-6)
+    assert np.abs(stuck.multipliers).max() < 0.9  # (not a frozen surface's 1)
+
+
 def test_a_branch_of_orbits_and_the_lyapunov_exponents_of_a_triple_friction_pendulum():
     """Continuation follows its orbits across a frequency range (each where periodic_orbit finds it), and
     the Lyapunov spectrum of a periodic response is its multipliers' ln|mu| / T."""

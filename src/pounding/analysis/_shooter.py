@@ -168,9 +168,9 @@ class _Shooter(_Newton):
         """A series of friction surfaces in ``coords``: (its following surfaces' rows, its held surfaces'
         rows, (its dof, each follower's weight w: d u_g = w (d x_i - sum of the held ones' d u_h))).
         Slipping, the slipping surfaces follow the force (w = k / K_g, k the series' stiffness); held, the
-        first surface held within its travel follows the base (w = 1); a surface at its rigid ring is
-        neither (a constant)."""
-        e, i, first, k, _, d, ring = series
+        surface held within its travel of the lowest threshold (the first to slip: ``k_g u_g + F_g``, the
+        first of a tie) follows the base (w = 1); a surface at its rigid ring is neither (a constant)."""
+        e, i, first, k, f, d, ring = series
         base = 2 * self.n + self.nc + first
         states = vec[self.lay["base"] + self.n_sp + first:self.lay["base"] + self.n_sp + first + k.size]
         s = vec[self.lay["region"] + e]
@@ -182,7 +182,9 @@ class _Shooter(_Newton):
             weights = [k_series / stiff[g] for g in range(k.size) if on[g]]
         else:
             inside = [g for g in range(k.size) if states[g] == 0.0]
-            rows, weights = ([base + inside[0]], [1.0]) if inside else ([], [])
+            u = vec[self.lay["base"] + first:self.lay["base"] + first + k.size]
+            first_to_slip = min(inside, key=lambda g: k[g] * u[g] + f[g], default=None)
+            rows, weights = ([base + first_to_slip], [1.0]) if inside else ([], [])
         held = [base + g for g in range(k.size) if states[g] == 0.0 and base + g not in rows]
         return rows, held, (i, weights)
 
@@ -199,9 +201,10 @@ class _Shooter(_Newton):
             return out
         end = self.coords(np.asarray(run.vector))
         here = self.coords(vec)
-        for series in self.series:
-            rows, held, _ = self._series_rows(vec, series, ())
-            out += tuple(-(r + 1) for r in held if end[r] == here[r])
+        for e, _, first, k, *_ in self.series:
+            base, states = 2 * self.n + self.nc + first, self.lay["base"] + self.n_sp + first
+            out += tuple(-(base + g + 1) for g in range(k.size)
+                         if vec[states + g] == 0.0 and end[base + g] == here[base + g])
         return out
 
     def _labels(self, structures: tuple) -> list[str]:
@@ -407,10 +410,7 @@ class _Shooter(_Newton):
                 force = (u - held + sum((s * f[g] - side[g]) / stiff[g] for g in on)) / compliance
                 for g in on:
                     y[at + g] = (force - s * f[g] + side[g]) / stiff[g]
-            else:
-                inside = [g for g in range(k.size) if y[st + g] == 0.0]
-                if inside:
-                    y[at + inside[0]] = u - sum(y[at + g] for g in range(k.size) if g != inside[0])
+            # (stuck: the surface that follows the base took the same step as it, exactly as the sum needs)
         return np.array(y)
 
 
