@@ -531,3 +531,28 @@ def test_basins_start_a_triple_friction_pendulum_off_centre():
     b = pd_.basins(osc, pd_.Harmonic(0.15, 0.5), displacement_m=(-0.25, 0.25), velocity_m_s=(-0.5, 0.5),
                    n=(3, 3), workers=1)
     assert len(b.attractors) >= 2 and b.attractors["fraction"].sum() == pytest.approx(1.0)
+
+
+def test_a_stuck_section_s_steps_keep_the_surfaces_on_the_base_and_its_layout_follows_them():
+    """At a section where the bearing sticks: a step along any one coordinate (as a grazing's scaling takes
+    them, without the layout's embedding) leaves the surfaces summing to the base's displacement, the
+    first to slip following it; and a state of the same mode whose first to slip is another surface gets
+    its own layout (not the one cached for the first)."""
+    from pounding.analysis._shooter import _Shooter
+
+    osc = pd_.Oscillator(1e4, pd_.TripleFrictionPendulum(**TFP))
+    exc = pd_.Harmonic(0.025, 1.5)
+    orbit = pd_.periodic_orbit(osc, exc, settle_cycles=60)
+    vec, lay = np.array(orbit.state.vector), orbit.state.layout
+    base = lay["base"]
+    assert vec[lay["region"]] == 0.0
+    sh = _Shooter(osc, exc, 1 / 1.5, False)
+    free, emb = sh._layout(vec)
+    for q in range(emb.shape[0]):
+        moved = sh._moved(vec, np.eye(emb.shape[0])[q] * 1e-7)
+        assert moved[lay["x"]] - moved[base:base + 4].sum() == pytest.approx(0.0, abs=1e-15)
+        sh._image(moved)  # (a state of the system: it runs)
+    other = vec.copy()
+    other[base] -= 0.06  # (same mode; surface 0 now the first to slip)
+    other[base + 3] += 0.06
+    assert sh.names(other) == [sh._names[i] for i in sh._new_layout(other, ())[0]] != sh.names(vec)

@@ -115,7 +115,8 @@ class _Shooter(_Newton):
         """(indices of ``coords`` that are free, embedding E: shape (size, r), dx = E dz).  ``frozen``:
         springs that stick over the period, whose slips are left out.  (Both read-only: one pair for every
         state of the same mode.)"""
-        key = (tuple(vec[self._mode_at].tolist()), tuple(frozen))
+        key = (tuple(vec[self._mode_at].tolist()), tuple(frozen),
+               tuple(self._first_to_slip(vec, s) for s in self.series))  # (a stuck series's follower)
         got = self._layouts.get(key)
         if got is None:
             if len(self._layouts) >= 256:
@@ -181,12 +182,23 @@ class _Shooter(_Newton):
             rows = [base + g for g in range(k.size) if on[g]]
             weights = [k_series / stiff[g] for g in range(k.size) if on[g]]
         else:
-            inside = [g for g in range(k.size) if states[g] == 0.0]
-            u = vec[self.lay["base"] + first:self.lay["base"] + first + k.size]
-            first_to_slip = min(inside, key=lambda g: k[g] * u[g] + f[g], default=None)
-            rows, weights = ([base + first_to_slip], [1.0]) if inside else ([], [])
+            g0 = self._first_to_slip(vec, series)
+            rows, weights = ([base + g0], [1.0]) if g0 is not None else ([], [])
         held = [base + g for g in range(k.size) if states[g] == 0.0 and base + g not in rows]
         return rows, held, (i, weights)
+
+    def _first_to_slip(self, vec: Any, series: tuple) -> Optional[int]:
+        """A stuck series's surface held within its travel (state 0) of the lowest threshold up, its spring's
+        force (a stiff ring's past its travel) plus its friction: the first to slip, which follows the base
+        (the first of a tie); None while the series slips, or with every surface at a rigid ring."""
+        e, _, first, k, f, d, ring = series
+        lay = self.lay
+        if vec[lay["region"] + e] != 0.0:
+            return None
+        u = [vec[lay["base"] + first + g] for g in range(k.size)]
+        inside = [g for g in range(k.size) if vec[lay["base"] + self.n_sp + first + g] == 0.0]
+        return min(inside, default=None, key=lambda g: k[g] * u[g] + f[g]
+                   + math.copysign(ring * max(abs(u[g]) - d[g], 0.0), u[g]))
 
     def frozen(self, vec: np.ndarray, run: ShortRun) -> tuple:
         """The springs that stick at the section and do not yield over the period: their slips are
@@ -410,7 +422,10 @@ class _Shooter(_Newton):
                 force = (u - held + sum((s * f[g] - side[g]) / stiff[g] for g in on)) / compliance
                 for g in on:
                     y[at + g] = (force - s * f[g] + side[g]) / stiff[g]
-            # (stuck: the surface that follows the base took the same step as it, exactly as the sum needs)
+            else:  # (stuck: the first to slip, as the layout has it, where the base and the others leave it)
+                g0 = self._first_to_slip(vec, (e, i, first, k, f, d, ring))
+                if g0 is not None:
+                    y[at + g0] = u - sum(y[at + g] for g in range(k.size) if g != g0)
         return np.array(y)
 
 
