@@ -86,22 +86,28 @@ def _force(s: SeriesStructure, x0: float, u: np.ndarray, state: np.ndarray, mode
     on = state == mode
     if not s.ring:
         return (x0 - u[~on].sum() + mode * (s.f[on] / s.k[on]).sum()) / (1.0 / s.k[on]).sum()
-    at, knees = law if law is not None else _law(s, u, state, mode)
-    return float(np.interp(x0 - u[~on].sum(), at, knees))  # (the slipping surfaces' share of x0)
+    at, knees, k_end = law if law is not None else _law(s, u, state, mode)
+    share = x0 - u[~on].sum()  # (the slipping surfaces' share of x0)
+    if share <= at[0]:  # (past every knee below: each on its ring, the series' stiffness k_end)
+        return float(knees[0] + (share - at[0]) * k_end)
+    if share >= at[-1]:
+        return float(knees[-1] + (share - at[-1]) * k_end)
+    return float(np.interp(share, at, knees))
 
 
 def _law(s: SeriesStructure, u: np.ndarray, state: np.ndarray, mode: int) -> tuple:
-    """With stiff rings: the slipping surfaces' share of x_0 at each of their knees' forces, and those
-    forces (N), far ones beyond them added: linear between them, so that F follows by interpolation."""
+    """With stiff rings: the slipping surfaces' share of x_0 at each of their knees' forces, those forces
+    (N), and the series' stiffness past the outermost knees (every slipping surface on its ring, N/m):
+    linear between and beyond them, so that F follows by interpolation (from the nearest knee: from a far
+    point, the force would lose its digits)."""
     slipping = np.flatnonzero(state == mode)
 
     def share(force: float) -> float:  # (rises with the force, linear between the surfaces' knees)
         return sum(_inverse(s, g, force - mode * s.f[g]) for g in slipping)
 
-    far = float((np.abs(u).sum() + s.cap.sum() + 1.0) * 1e3 * (s.k + s.ring).sum() + s.f.sum())
-    knees = np.sort([mode * s.f[g] + side * s.k[g] * s.cap[g] for g in slipping for side in (-1, 1)]
-                    + [-far, far])
-    return np.array([share(f) for f in knees]), knees
+    knees = np.sort([mode * s.f[g] + side * s.k[g] * s.cap[g] for g in slipping for side in (-1, 1)])
+    k_end = 1.0 / float(np.sum(1.0 / (s.k[slipping] + s.ring)))
+    return np.array([share(f) for f in knees]), knees, k_end
 
 
 def _threshold(s: SeriesStructure, u: np.ndarray, state: np.ndarray, g: int, way: int) -> float:
