@@ -9,8 +9,7 @@ coordinates: the displacements and velocities, the compression of a Kelvin-Voigt
 relaxes), the slip of a spring that sticks and yields over the period, the displacement of a friction
 surface held in series with others (a triple friction pendulum's) that moves over the period.  A contact in
 progress, a slipping spring, the slipping surfaces of a series (where the force puts them) and, while the
-series sticks, its first surface held within its travel (the base's displacement less the others') follow
-the masses.
+series sticks, its surface that slips first (the base's displacement less the others') follow the masses.
 """
 
 from __future__ import annotations
