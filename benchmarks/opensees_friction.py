@@ -85,29 +85,35 @@ def opensees_model(ops, b: pd_.Structure, rec, preslip_m: float) -> None:
         ops.uniaxialMaterial("Viscous", mat + 1, s.damping_n_s_m, 1.0)
         ops.uniaxialMaterial("Parallel", mat + 2, mat, mat + 1)
         ops.element("zeroLength", 10 + i, i + 1, i + 2, "-mat", mat + 2, "-dir", 1)
-    ops.timeSeries("Constant", 2)
-    ops.pattern("Plain", 2, 2)
-    ops.load(1, 0.0, -weight, 0.0)
-    _solver(ops)
+    gravity(ops, 1, (0.0, -weight, 0.0), tag=2)
+    ops.timeSeries("Path", 1, "-dt", rec.dt_s, "-values", *rec.accel.tolist())
+    ops.pattern("UniformExcitation", 1, 1, "-accel", 1)
+    solver(ops)
+    ops.integrator("Newmark", 0.5, 0.25)
+    ops.analysis("Transient")
+
+
+def solver(ops, constraints: str = "Plain") -> None:
+    ops.constraints(constraints)
+    ops.numberer("Plain")
+    ops.system("BandGeneral")
+    ops.test("NormDispIncr", 1e-10, 100)
+    ops.algorithm("Newton")
+
+
+def gravity(ops, node: int, load: tuple, tag: int, constraints: str = "Plain") -> None:
+    """The weight on ``node`` (``load``: the node's force components, N) in one static step, then held
+    constant (pattern and series ``tag``) for the dynamic analysis that follows."""
+    ops.timeSeries("Constant", tag)
+    ops.pattern("Plain", tag, tag)
+    ops.load(node, *load)
+    solver(ops, constraints)
     ops.integrator("LoadControl", 1.0)
     ops.analysis("Static")
     if ops.analyze(1) != 0:
         raise RuntimeError("OpenSees: the gravity step failed")
     ops.loadConst("-time", 0.0)
     ops.wipeAnalysis()
-    ops.timeSeries("Path", 1, "-dt", rec.dt_s, "-values", *rec.accel.tolist())
-    ops.pattern("UniformExcitation", 1, 1, "-accel", 1)
-    _solver(ops)
-    ops.integrator("Newmark", 0.5, 0.25)
-    ops.analysis("Transient")
-
-
-def _solver(ops) -> None:
-    ops.constraints("Plain")
-    ops.numberer("Plain")
-    ops.system("BandGeneral")
-    ops.test("NormDispIncr", 1e-10, 100)
-    ops.algorithm("Newton")
 
 
 def opensees_run(ops, b: pd_.Structure, rec, dt_s: float, preslip_m: float):

@@ -32,7 +32,8 @@ import numpy as np
 
 import peers  # (its load_opensees: the openseespy wheels' libraries preloaded)
 import pounding as pd_
-from opensees_friction import convergence_table, equal_accuracy, pounding_reference, stepped_run
+from opensees_friction import (convergence_table, equal_accuracy, gravity, pounding_reference, solver,
+                               stepped_run)
 
 RADII_M, MU, CAPACITIES_M = (1.25, 0.36, 0.36, 1.25), (0.052, 0.012, 0.012, 0.14), (0.2, 0.1, 0.1, 0.2)
 UYS_M = (1e-3, 3e-4, 1e-4)     # OpenSees' uy
@@ -59,25 +60,8 @@ def _tfp_element(ops, weight_n: float, uy_m: float, i_node: int, j_node: int) ->
                 weight_n, uy_m, 1.0, 0.1, 1e-10)
 
 
-def _solver(ops) -> None:
-    ops.constraints("Transformation")
-    ops.numberer("Plain")
-    ops.system("BandGeneral")
-    ops.test("NormDispIncr", 1e-10, 100)
-    ops.algorithm("Newton")
-
-
 def _gravity(ops, node: int, weight_n: float) -> None:
-    ops.timeSeries("Constant", 100)
-    ops.pattern("Plain", 100, 100)
-    ops.load(node, 0.0, 0.0, -weight_n, 0.0, 0.0, 0.0)
-    _solver(ops)
-    ops.integrator("LoadControl", 1.0)
-    ops.analysis("Static")
-    if ops.analyze(1) != 0:
-        raise RuntimeError("OpenSees: the gravity step failed")
-    ops.loadConst("-time", 0.0)
-    ops.wipeAnalysis()
+    gravity(ops, node, (0.0, 0.0, -weight_n, 0.0, 0.0, 0.0), tag=100, constraints="Transformation")
 
 
 def opensees_law(ops, weight_n: float, uy_m: float, path_m: np.ndarray) -> np.ndarray:
@@ -93,7 +77,7 @@ def opensees_law(ops, weight_n: float, uy_m: float, path_m: np.ndarray) -> np.nd
     ops.timeSeries("Linear", 2)
     ops.pattern("Plain", 2, 2)
     ops.sp(1, 1, 1.0)
-    _solver(ops)
+    solver(ops, "Transformation")
     ops.integrator("LoadControl", 0.0)
     ops.analysis("Static")
     forces, last = np.empty(path_m.size), 0.0
@@ -173,7 +157,7 @@ def opensees_building(ops, b: pd_.Structure, rec, uy_m: float) -> None:
     _gravity(ops, 1, weight)
     ops.timeSeries("Path", 1, "-dt", rec.dt_s, "-values", *rec.accel.tolist())
     ops.pattern("UniformExcitation", 1, 1, "-accel", 1)
-    _solver(ops)
+    solver(ops, "Transformation")
     ops.integrator("Newmark", 0.5, 0.25)
     ops.analysis("Transient")
 
