@@ -429,6 +429,9 @@ def test_an_unsupported_monodromy_says_why():
     assert unsupported(pd_.Oscillator(500.0, pd_.FrictionIsolator(mu=0.05, preslip_m=1e-4))) is None
     fast = pd_.FrictionIsolator(mu=0.05, mu_fast=0.1, rate_s_m=20.0)
     assert "depends on the velocity" in unsupported(pd_.Oscillator(500.0, fast))
+    triple = pd_.TripleFrictionPendulum(radii_m=(2.1, 0.3, 0.3, 2.1), mu=(0.05, 0.02, 0.02, 0.08),
+                                        capacities_m=(0.35, 0.05, 0.05, 0.35))
+    assert unsupported(pd_.Oscillator(500.0, triple)) is None
 
 
 def test_a_flat_slider_has_no_period_for_a_spectrum():

@@ -300,14 +300,10 @@ def test_a_state_whose_surfaces_do_not_sum_to_the_base_is_refused():
         pd_.simulate(b, ex, 1.0, pd_.State(v, first.final_state.dofs, first.final_state.layout))
 
 
-def test_what_it_cannot_do_yet_is_refused_by_name():
-    """An exact monodromy, a start beyond the rigid rings' travel and a run continued from one that used up
-    the travel are refused, naming the field."""
+def test_what_it_cannot_do_is_refused_by_name():
+    """A start beyond the rigid rings' travel and a run continued from one that used up the travel are
+    refused, naming the field."""
     b = _building(pd_.TripleFrictionPendulum(**TFP))
-    with pytest.raises(pd_.InputError) as err:
-        pd_.periodic_orbit(pd_.Oscillator(1e4, pd_.TripleFrictionPendulum(**TFP)), pd_.Harmonic(0.2, 0.5),
-                           settle_cycles=3, method="exact")
-    assert err.value.field == "method"
     with pytest.raises(pd_.InputError, match="travel") as err:
         pd_.State.at_rest(b, displacement_m=-1.01 * b.isolator.travel_m)
     assert err.value.field == "displacement_m"
@@ -452,16 +448,16 @@ def test_a_touch_of_a_surface_s_threshold_leaves_every_surface_where_it_was():
 @pytest.mark.parametrize("a_g, freq_hz, phase, ring", [(0.2, 0.5, 0.0, None), (0.3, 0.8, 0.0, None),
                                                         (0.4, 0.45, 2.5, 5e6)])
 def test_a_periodic_orbit_is_the_map_s_fixed_point_with_its_multipliers(a_g, freq_hz, phase, ring):
-    """A single mass's periodic orbit on a triple friction pendulum (finite differences: no exact monodromy
-    yet): a fixed point of the run over a period (to 1e-11 m), and its multipliers those of that map
-    differenced here through simulate in the map's coordinates (the base's x and v, and each surface held at
+    """A single mass's periodic orbit on a triple friction pendulum (its monodromy composed exactly): a fixed
+    point of the run over a period (to 1e-11 m), and its multipliers those of that map differenced here
+    through simulate in the map's coordinates (the base's x and v, and each surface held at
     the section), each state built from the series' own law (the slipping surfaces where the force puts
     them): every surface slipping at the section, or one held, or one on its stiff ring."""
     tfp = pd_.TripleFrictionPendulum(**TFP, ring_stiffness_n_m=ring)
     osc = pd_.Oscillator(1e4 if ring is None else 2e4, tfp)
     exc = pd_.Harmonic(a_g, freq_hz, phase=phase)
     orbit = pd_.periodic_orbit(osc, exc, settle_cycles=30 if ring is None else 200)
-    assert orbit.converged and orbit.stable
+    assert orbit.converged and orbit.stable and orbit.method == "exact", orbit.message
     st, lay = orbit.state, orbit.state.layout
     k, f = osc.isolator.kernel_arrays()[0], np.array(osc.isolator.friction_forces_n)
     d = np.array(osc.isolator.series_capacities_m)

@@ -408,6 +408,17 @@ double friction_slip_way(const System& sy, const double* st, int e, double tie_f
     return tie_force > 0.0 ? 1.0 : -1.0;  // (the way D pushes: the way the pair accelerates)
 }
 
+double friction_threshold_way(const System& sy, const double* st, int e, double tie_force) {
+    const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+    double up = h.friction, down = -h.friction;
+    if (h.series()) {
+        const Surfaces sf = surfaces(sy, h, st);
+        up = series_threshold(sf, 1.0);
+        down = series_threshold(sf, -1.0);
+    }
+    return std::abs(tie_force - up) <= std::abs(tie_force - down) ? 1.0 : -1.0;
+}
+
 bool iso_travel_used(const System& sy, const double* st, int e) {
     const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
     const double s = st[sy.lay.region + e];
@@ -434,7 +445,21 @@ IsoLinear iso_linear_in_slips(const System& sy, int e, const double* st, double*
     IsoLinear il = iso_linear(sy, e, st);
     std::fill(d_slip, d_slip + h.n_springs(), 0.0);
     std::fill(follows, follows + h.n_springs(), 0.0);
-    if (h.rule != RULE_KINEMATIC) return il;  // (friction: no exact monodromy yet, Python refuses it)  // (its slips are not used: constants of the monodromy)
+    if (h.series()) {  // (slipping: F = k (u - the held surfaces' u_h) + k offset, the slipping ones following)
+        const Surfaces sf = surfaces(sy, h, st);
+        const double s = st[sy.lay.region + e];
+        if (s == 0.0 || il.k == 0.0) return il;  // (held: the tie takes its force, every surface a constant)
+        for (int g = 0; g < sf.n(); ++g) {
+            if (sf.slips(g, s)) {
+                follows[g] = il.k / slip_spring(sf, g, s).k;  // (u_g' = F' / K_g)
+            } else {
+                d_slip[g] = -il.k;
+                il.r0 += il.k * sf.u[g];
+            }
+        }
+        return il;
+    }
+    if (h.rule != RULE_KINEMATIC) return il;  // (a single friction surface: no slips)
     const double* slip = st + sy.lay.base + h.first;
     const double* dir = st + sy.lay.base + sy.lay.n_sp + h.first;
     for (int i = 0; i < h.n_springs(); ++i) {
@@ -444,6 +469,21 @@ IsoLinear iso_linear_in_slips(const System& sy, int e, const double* st, double*
         il.r0 -= d_slip[i] * slip[i];
     }
     return il;
+}
+
+IsoGuard series_guard(const System& sy, int action, int index, const double* st, double* d_surface) {
+    const int e = iso_element_of_spring(sy, index);
+    const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+    const Surfaces sf = surfaces(sy, h, st);
+    const double s = st[sy.lay.region + e];
+    std::vector<double> follows(static_cast<size_t>(sf.n()));
+    const IsoLinear il = iso_linear_in_slips(sy, e, st, d_surface, follows.data());
+    if (action == ACT_SURFACE_SLIP) {  // (less its threshold: its spring's force, a stiff ring's past its travel)
+        const int g = index - h.first;
+        const bool beyond = std::abs(sf.u[g]) > h.breaks[static_cast<size_t>(g)];
+        d_surface[g] -= h.slopes[g] + (beyond ? sf.ring(g) : 0.0);
+    }
+    return {e, il.k, 0.0, -1, s};
 }
 
 IsoGuard iso_guard(const System& sy, int action, int index, const double* st, const double* v, const double* acc) {

@@ -85,18 +85,25 @@ int friction_decision(const System& sy, double* st, int e, double tie_force);
 // the way a friction element held at rest slips under its tie's force D (N): 0 if it holds (D within its
 // thresholds: +-F, a series's lowest up and highest down), else +-1
 double friction_slip_way(const System& sy, const double* st, int e, double tie_force);
+// the way a held friction element slips where its tie's force is at one of its thresholds: the nearer one's
+double friction_threshold_way(const System& sy, const double* st, int e, double tie_force);
 // a series whose slip the way of its state has every surface at its ring (its travel used up)
 bool iso_travel_used(const System& sy, const double* st, int e);
 
 // The exact monodromy's view of an element (monodromy.cpp).  Its force as linear in u and its slips:
 // F = k u + r + sum_s d_slip[s] slip_s, with follows[s] 1 where spring s slips (its slip moves with u), 0 where it
-// sticks (both of length n_springs).
+// sticks (both of length n_springs).  A series of friction surfaces: its slips are the surfaces' displacements,
+// each slipping one following the force (follows[g] = k / K_g), each held one in it (d_slip -k); held, none.
 IsoLinear iso_linear_in_slips(const System& sy, int e, const double* st, double* d_slip, double* follows);
 // An element event's guard, linear in the state: g = du u + dv u' - (slip >= 0 ? slip_slip : 0), slip the
 // system's index of the spring whose slip enters it; e the element; dir the direction iso_transition takes (v and
 // acc: the dofs' velocities and accelerations at the event, n each)
 struct IsoGuard { int e; double du, dv; int slip; double dir; };
 IsoGuard iso_guard(const System& sy, int action, int index, const double* st, const double* v, const double* acc);
+// A series's event (a surface's slip, a ring's entry or exit; index: the surface's spring among the system's) as a
+// guard linear in u and the element's surfaces: g = du u + sum_g d_surface[g] u_g (the series' force less the force
+// where it happens; d_surface of length n_springs), dir the way it slips
+IsoGuard series_guard(const System& sy, int action, int index, const double* st, double* d_surface);
 double backbone_force_at_break(const Hysteretic& h, int j);
 
 }  // namespace pounding

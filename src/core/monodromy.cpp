@@ -181,6 +181,44 @@ bool begins_hold(const double* events, int n_events, int e, int c) {
     return false;
 }
 
+// a series's slipping surfaces where the force puts them, as the engine has them at every step: their rows of the
+// Jacobian those of d u_g = (k / K_g) (d u - the held surfaces' d u_h) (the surfaces that start to slip together,
+// or one whose threshold a perturbation moves within the engine's grouping, forget where they were held)
+void follow_force(const System& sy, const Coords& cx, const double* st, Mat& jac) {
+    for (int e = 0; e < sy.n_h(); ++e) {
+        const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+        if (!h.series() || st[sy.lay.region + e] == 0.0) continue;
+        const int m = h.n_springs();
+        std::vector<double> d_slip(static_cast<size_t>(m)), follows(static_cast<size_t>(m));
+        const IsoLinear il = iso_linear_in_slips(sy, e, st, d_slip.data(), follows.data());
+        if (il.k == 0.0) continue;
+        for (int q = 0; q < jac.cols; ++q) {
+            double du = jac(h.i, q) - (h.j >= 0 ? jac(h.j, q) : 0.0);  // (d u - sum of the held d u_h)
+            for (int g = 0; g < m; ++g) du += d_slip[static_cast<size_t>(g)] / il.k * jac(cx.slip + h.first + g, q);
+            for (int g = 0; g < m; ++g)
+                if (follows[static_cast<size_t>(g)] != 0.0) jac(cx.slip + h.first + g, q) = follows[static_cast<size_t>(g)] * du;
+        }
+    }
+}
+
+// a start where friction elements stick (no rigid stop held): a perturbation of a tied pair's relative velocity
+// slides it by its square and sticks again, its momentum kept: the velocities' rows projected as the ties hold
+// them (a held group's mass-weighted mean, a group tied to the ground at rest)
+void tied_velocities(const System& sy, const Coords& cx, const double* st, Mat& jac) {
+    if (sy.ties.empty()) return;
+    Sticking stk;
+    stk.build(sy, st);
+    if (!stk.any) return;
+    for (size_t h = 0; h < stk.held.size(); ++h)
+        if (!is_tie(stk, static_cast<int>(h))) return;  // (a rigid stop held: a perturbation away from it leaves it)
+    std::vector<double> col(static_cast<size_t>(cx.n));
+    for (int q = 0; q < jac.cols; ++q) {
+        for (int i = 0; i < cx.n; ++i) col[static_cast<size_t>(i)] = jac(cx.v + i, q);
+        stk.project(sy.mass, col.data());
+        for (int i = 0; i < cx.n; ++i) jac(cx.v + i, q) = col[static_cast<size_t>(i)];
+    }
+}
+
 Mat top_left(const Mat& m, int n) {
     Mat out(n, n);
     for (int i = 0; i < n; ++i)
@@ -201,8 +239,10 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
     xa[static_cast<size_t>(n + 1)] = std::cos(omega * t + phase);
     xa[static_cast<size_t>(n + 2)] = 1.0;
     jac = Mat::identity(n);
+    tied_velocities(sy, cx, st.data(), jac);
     Mat a = mode(sy, cx, st.data(), omega, amp);
     for (int e = 0; e <= n_events; ++e) {
+        if (e > 0) follow_force(sy, cx, st.data(), jac);  // (after an event)
         const double t_ev = e < n_events ? events[3 * e] : t_end;
         const Mat step = exponential(a, t_ev - t);
         xa = matvec(step, xa);
@@ -304,12 +344,12 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
         } else if (action == ACT_SLIP) {
             // a stick's end (its tie's force at mu W) or the start's slip: the slip begins from the force's
             // balance, the pair's relative acceleration zero on both sides, so the field goes on continuous (no
-            // saltation, as a held stop's release); the way it slips is the way the tie's force pushes
+            // saltation, as a held stop's release); the way it slips is that of the threshold the tie's force is at
             std::vector<double> q(static_cast<size_t>(sy.n)), row(static_cast<size_t>(sy.lay.sample_cols()));
             Sticking stk;
             const double d = run_parts::tie_force(st.data(), sy, index, stk, amp * xa[static_cast<size_t>(n)],
                                                   q.data(), row.data());
-            iso_transition(sy, next.data(), ACT_SLIP, index, d > 0.0 ? 1.0 : -1.0);
+            iso_transition(sy, next.data(), ACT_SLIP, index, friction_threshold_way(sy, st.data(), index, d));
             st = next;
             a = mode(sy, cx, st.data(), omega, amp);
             continue;
@@ -323,6 +363,16 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
             add_rel(grad, 0, h.i, h.j, g.du);
             add_rel(grad, cx.v, h.i, h.j, g.dv);
             if (g.slip >= 0) grad[static_cast<size_t>(cx.slip + g.slip)] = -1.0;
+            iso_transition(sy, next.data(), action, index, g.dir);
+        } else if (action == ACT_SURFACE_SLIP || action == ACT_RING || action == ACT_RING_OFF) {
+            // a series's surface starts to slip, or one slipping meets its ring or leaves a stiff one: the force
+            // reaches where it happens (the held surfaces in it, a threshold's own surface's spring)
+            const int e_of = iso_element_of_spring(sy, index);
+            const Hysteretic& h = sy.hyst[static_cast<size_t>(e_of)];
+            std::vector<double> d_surface(static_cast<size_t>(h.n_springs()));
+            const IsoGuard g = series_guard(sy, action, index, st.data(), d_surface.data());
+            add_rel(grad, 0, h.i, h.j, g.du);
+            for (int q = 0; q < h.n_springs(); ++q) grad[static_cast<size_t>(cx.slip + h.first + q)] += d_surface[static_cast<size_t>(q)];
             iso_transition(sy, next.data(), action, index, g.dir);
         } else {
             return -2 - e;  // (a contact law's branch, a Bouc-Wen spring: no linear modes)

@@ -1,13 +1,16 @@
 // The exact monodromy of a periodic orbit: a system of n dofs as a hybrid system of linear modes.
 //
 // For systems whose every phase is linear (multi-linear hysteretic elements, elastic or kinematic, without a
-// Bouc-Wen spring; contact laws with one linear branch, Kelvin-Voigt) the motion between two events obeys
+// Bouc-Wen spring; friction of a constant coefficient, a single surface or surfaces in series; contact laws with
+// one linear branch, Kelvin-Voigt) the motion between two events obeys
 // x' = A_m x + b(t) with A_m constant in the mode m (which contacts touch, which springs slip, which backbone
 // branch holds).  With the harmonic forcing as two more states (sin, cos of its angle) and a constant 1 the
 // augmented system is homogeneous and X(t) = expm(A~ t) X(0) exactly; at an event with guard g(x) = 0 the
 // perturbations jump by the saltation matrix S = I + (f_m' - f_m) grad(g)^T / (grad(g) . f_m).
 // Coordinates x: the displacements (n), the velocities (n), the contacts' compressions (nc), the elements'
-// slips (n_sp): for one mass with its two bumpers, x_0, v_0, delta_wall0_left, delta_wall0_right, u_i.
+// slips (n_sp; a series's: its surfaces' displacements, the slipping ones put where the force puts them after
+// every event): for one mass with its two bumpers, x_0, v_0, delta_wall0_left, delta_wall0_right, u_i.  A start
+// where friction ties hold (no rigid stop held) forgets a perturbation of a tied pair's relative velocity.
 #pragma once
 
 #include <vector>

@@ -2,7 +2,8 @@
 monodromy of a periodic orbit.
 
 For the systems whose every phase is linear (multi-linear isolators and storeys, elastic or kinematic,
-without a Bouc-Wen spring; Kelvin-Voigt or rigid contacts) the motion between two events obeys
+without a Bouc-Wen spring; friction isolators of a constant friction, a triple friction pendulum's surfaces
+in series; Kelvin-Voigt or rigid contacts) the motion between two events obeys
 ``x' = A_m x + b(t)`` with ``A_m`` constant in the mode ``m`` (which contacts touch, which springs slip
 or which backbone branch holds).  With the forcing written as two more states, ``(sin theta, cos theta)``
 with ``theta = Omega t + phase``, and a constant 1, the augmented system is homogeneous,
@@ -12,7 +13,8 @@ phase's state-transition matrix.  At an event with guard ``g(x) = 0`` the mode c
 ``S = I + (f_m' - f_m) grad(g)^T / (grad(g) . f_m)``.  The core composes them (:func:`monodromy`).
 
 The coordinates ``x``: every dof's displacement (m), then velocity (m/s), each contact's compression (m),
-each hysteretic element's slips (m) (the shooter's ``coords``: ``_shooter``).
+each hysteretic element's slips (m; a series's: its surfaces' displacements) (the shooter's ``coords``:
+``_shooter``).
 """
 
 from __future__ import annotations
@@ -44,9 +46,6 @@ def unsupported(system: "Oscillator | Structure | Adjacent") -> str | None:
             return f"{who}isolator has a Bouc-Wen spring (a nonlinear phase)"
         if s.isolator is not None and s.isolator.kernel_friction.get("friction_rate_s_m", 0.0) > 0.0:
             return f"{who}isolator's friction depends on the velocity (a nonlinear phase)"
-        if s.isolator is not None and s.isolator.kernel_friction.get("surface_friction_n"):
-            return (f"{who}isolator is a triple friction pendulum (its surfaces' displacements, which its "
-                    "phases remember, have no exact saltation here yet)")
         for w, wall in enumerate(s.walls):
             for side, law in (("left", wall.left), ("right", wall.right)):
                 if linear_form(law) is None and not is_rigid(law):
