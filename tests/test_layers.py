@@ -195,10 +195,12 @@ def test_only_the_door_imports_the_compiled_core(tmp_path):
 # the door's functions (its kernels and the system's constructors): the engine's to call
 KERNELS = {node.name for node in ast.parse((ROOT / "_core.py").read_text()).body
            if isinstance(node, ast.FunctionDef) and not node.name.startswith("_")}
-# the two small kernels called below the engine in the flow of data, by the layers that own what they
-# compute: a record's elastic spectrum (the excitation's, for ``Record.scaled(sa_g=...)``) and an impact's
-# measurements (the metrics', which every run's result reads)
-BELOW_THE_ENGINE = {("excitation/_spectrum_run.py", "spectrum"), ("metrics/impacts.py", "impact_row")}
+# the small kernels called below the engine in the flow of data, by the layers that own what they compute:
+# a record's elastic spectrum and a pair's in each direction (the excitation's, for
+# ``Record.scaled(sa_g=...)`` and RotD spectra) and an impact's measurements (the metrics', which every
+# run's result reads)
+BELOW_THE_ENGINE = {("excitation/_spectrum_run.py", "spectrum"),
+                    ("excitation/_spectrum_run.py", "spectrum_pair"), ("metrics/impacts.py", "impact_row")}
 
 
 def callers_of_the_core_runs(root: Path) -> list[str]:

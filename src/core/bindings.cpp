@@ -344,6 +344,18 @@ NB_MODULE(_pounding_core, m) {
         return status;
     });
 
+    m.def("spectrum_pair", [](Vec t, Vec ax, Vec ay, Vec omegas, double zeta, Vec cos_a, Vec sin_a, OutMat out,
+                              Ctl ctl) {
+        int status;
+        {
+            nb::gil_scoped_release release;
+            status = spectrum_pair_kernel(t.data(), ax.data(), ay.data(), static_cast<int64_t>(t.shape(0)),
+                                          omegas.data(), static_cast<int64_t>(omegas.shape(0)), zeta, cos_a.data(),
+                                          sin_a.data(), static_cast<int64_t>(cos_a.shape(0)), out.data(), ctl.data());
+        }
+        return status;
+    });
+
     m.def("monodromy", [](const System& sy, Vec st0, Mat2 events, double t_end, double omega, double amp,
                           double phase) {
         Mat jac;

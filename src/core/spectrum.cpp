@@ -125,4 +125,90 @@ int spectrum_kernel(const double* t, const double* acc, int64_t n, const double*
     return SUCCESS;
 }
 
+namespace {
+// one component's interval: its closed form (C, S, p0, p1), its end state and its relative acceleration u'' at both
+// ends (a pure damped sinusoid: one zero at most in an interval shorter than half a damped period)
+struct Piece {
+    double cu, su, p0, p1, u1, v1, ddu0, ddu1, ca, sa;  // (ca, sa: u'' = exp(-sigma tau) (ca cos + sa sin))
+};
+Piece piece(double u, double v, double g0, double g_end, double h, double w2, double sig, double wd, double e,
+            double c, double s) {
+    Piece q;
+    const double g1 = (g_end - g0) / h;
+    q.p1 = -g1 / w2;
+    q.p0 = (-g0 - 2.0 * sig * q.p1) / w2;
+    q.cu = u - q.p0;
+    q.su = (v - q.p1 + sig * q.cu) / wd;
+    const double cv = deriv_a(q.cu, q.su, sig, wd), sv = deriv_b(q.cu, q.su, sig, wd);
+    q.ca = deriv_a(cv, sv, sig, wd);
+    q.sa = deriv_b(cv, sv, sig, wd);
+    q.u1 = e * (q.cu * c + q.su * s) + q.p0 + q.p1 * h;
+    q.v1 = e * (cv * c + sv * s) + q.p1;
+    q.ddu0 = -2.0 * sig * v - w2 * u - g0;
+    q.ddu1 = -2.0 * sig * q.v1 - w2 * q.u1 - g_end;
+    return q;
+}
+}  // namespace
+
+int spectrum_pair_kernel(const double* t, const double* ax, const double* ay, int64_t n, const double* omegas,
+                         int64_t n_omega, double zeta, const double* cos_a, const double* sin_a, int64_t n_angle,
+                         double* out, int64_t* ctl) {
+    const double rt = std::sqrt(1.0 - zeta * zeta);
+    for (int64_t j = 0; j < n_omega; ++j) {
+        const Control control{ctl};
+        if (control.stop()) return INTERRUPTED;
+        const double w = omegas[j];
+        if (control.add_work((n - 1) * (1 + n_angle / 8) + static_cast<int64_t>(w * rt * (t[n - 1] - t[0]) / PI)) < 0)
+            return BUDGET;
+        const double w2 = w * w, sig = zeta * w, wd = w * rt;
+        double* peak = out + j * n_angle;
+        std::fill(peak, peak + n_angle, 0.0);
+        double floor_peak = 0.0;  // (the smallest of the angles' peaks: an interval that cannot reach it is passed)
+        double ux = 0.0, vx = 0.0, uy = 0.0, vy = 0.0, h_prev = -1.0, e = 0.0, c = 0.0, s = 0.0;
+        for (int64_t k = 0; k < n - 1; ++k) {
+            const double h = t[k + 1] - t[k];
+            if (h != h_prev) {
+                e = std::exp(-sig * h);
+                c = std::cos(wd * h);
+                s = std::sin(wd * h);
+                h_prev = h;
+            }
+            const Piece px = piece(ux, vx, ax[k], ax[k + 1], h, w2, sig, wd, e, c, s);
+            const Piece py = piece(uy, vy, ay[k], ay[k + 1], h, w2, sig, wd, e, c, s);
+            // |u(tau)| <= |(C cos + S sin)| + |p0 + p1 tau| <= sqrt(|C|^2 + |S|^2) + the line's larger end
+            const double bound = std::sqrt(px.cu * px.cu + py.cu * py.cu + px.su * px.su + py.su * py.su) +
+                                 std::max(std::hypot(px.p0, py.p0), std::hypot(px.p0 + px.p1 * h, py.p0 + py.p1 * h));
+            if (bound >= floor_peak) {
+                const bool lng = wd * h >= PI;
+                const double h2_8 = h * h / 8.0;
+                for (int64_t q = 0; q < n_angle; ++q) {  // each direction: n.u, the same closed form
+                    const double ca = cos_a[q], sa = sin_a[q];
+                    const double nc = ca * px.cu + sa * py.cu, ns = ca * px.su + sa * py.su;
+                    const double n0 = ca * px.p0 + sa * py.p0, n1 = ca * px.p1 + sa * py.p1;
+                    // (nothing to find below this direction's peak: |n.u| is within |n.(C cos + S sin)| of the
+                    // line, and within |n.u''| h^2 / 8 of the chord)
+                    const double room = peak[q] - std::max(std::abs(n0), std::abs(n0 + n1 * h));
+                    if (room >= 0.0 && nc * nc + ns * ns <= room * room) continue;
+                    const double e1 = ca * px.u1 + sa * py.u1;
+                    const double chord = peak[q] - std::max(std::abs(ca * ux + sa * uy), std::abs(e1));
+                    const double na = ca * px.ca + sa * py.ca, nb = ca * px.sa + sa * py.sa;
+                    if (chord >= 0.0 && (na * na + nb * nb) * h2_8 * h2_8 <= chord * chord) continue;
+                    const double v0 = ca * vx + sa * vy, v1 = ca * px.v1 + sa * py.v1;
+                    const double d0 = ca * px.ddu0 + sa * py.ddu0, d1 = ca * px.ddu1 + sa * py.ddu1;
+                    double p = std::abs(e1);
+                    if (lng || ((v0 < 0.0) != (v1 < 0.0)) || ((d0 < 0.0) != (d1 < 0.0)))
+                        p = std::max(p, interior_peak(nc, ns, n0, n1, sig, wd, h));
+                    peak[q] = std::max(peak[q], p);
+                }
+                floor_peak = *std::min_element(peak, peak + n_angle);
+            }
+            ux = px.u1;
+            vx = px.v1;
+            uy = py.u1;
+            vy = py.v1;
+        }
+    }
+    return SUCCESS;
+}
+
 }  // namespace pounding

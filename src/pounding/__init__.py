@@ -20,8 +20,9 @@ _NAMES = {
     "._errors": ("InputError", "Interrupted", "MissingExtra", "OutputError", "PoundingWarning", "Problem",
                  "Status", "StoreError"),
     ".engine": ("AdjacentRun", "EnergyLedger", "Run", "State", "StructureRun", "simulate"),
-    ".excitation": ("Harmonic", "Record"),
+    ".excitation": ("Harmonic", "Record", "RecordPair"),
     ".excitation.spectrum": ("response_spectrum",),
+    ".excitation.rotd": ("rotd_spectrum",),
     ".identification": ("ContactLawFit", "Identification", "ModelFamily", "SystemFamily", "Targets",
                         "fit_contact_law", "identify", "paper_targets", "rank_contact_laws"),
     ".metrics": ("HysteresisLoop", "impact_table"),
@@ -80,7 +81,8 @@ if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
                            PeriodicOrbit, bifurcation_curve, coexistence_map,
                            continuation, largest_exponents, lyapunov, periodic_orbit)
     from .engine import AdjacentRun, EnergyLedger, Run, State, StructureRun, simulate  # noqa: F401
-    from .excitation import Harmonic, Record  # noqa: F401
+    from .excitation import Harmonic, Record, RecordPair  # noqa: F401
+    from .excitation.rotd import rotd_spectrum  # noqa: F401
     from .excitation.spectrum import response_spectrum  # noqa: F401
     from .identification import (ContactLawFit, Identification, ModelFamily, SystemFamily,  # noqa: F401
                                  Targets, fit_contact_law, identify, paper_targets, rank_contact_laws)

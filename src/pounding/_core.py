@@ -11,7 +11,8 @@ compiled module, and only the engine calls its runs (the protocols and analyses 
 * :class:`Forcing` - the excitation as the core takes it.
 * :func:`run` - the event-driven run (``engine.simulate``'s kernel).
 * :func:`step` - one frequency step of a sweep, cycles until steady (``engine.kernels.run_step``).
-* :func:`spectrum` - exact elastic response peaks under a record.
+* :func:`spectrum` - exact elastic response peaks under a record; :func:`spectrum_pair` - in each direction
+  under a pair of components (RotD spectra).
 * :func:`monodromy` - the exact monodromy of a hybrid system of linear modes.
 * :func:`impact_row`, :func:`law_force_many`, :func:`periodicity`, :func:`expm` - the smaller kernels.
 
@@ -323,6 +324,15 @@ def spectrum(t: np.ndarray, acc: np.ndarray, omegas: np.ndarray, zeta: float, ou
              ctl: np.ndarray) -> int:
     """Exact peaks (max |u|, |u'|, |a_abs|) of each oscillator under the record into ``out``; the status."""
     return _c.spectrum(_f64(t), _f64(acc), _f64(omegas), float(zeta), out, ctl)
+
+
+def spectrum_pair(t: np.ndarray, ax: np.ndarray, ay: np.ndarray, omegas: np.ndarray, zeta: float,
+                  angles_rad: np.ndarray, out: np.ndarray, ctl: np.ndarray) -> int:
+    """Exact peak ``max |cos(a) u_x + sin(a) u_y|`` of each oscillator (rows of ``out``) in each direction
+    ``a`` (its columns) under a pair of components; the status."""
+    angles = _f64(angles_rad)
+    return _c.spectrum_pair(_f64(t), _f64(ax), _f64(ay), _f64(omegas), float(zeta), np.cos(angles),
+                            np.sin(angles), out, ctl)
 
 
 def monodromy(sy: System, state0: np.ndarray, events: np.ndarray, t_end: float, omega: float, amp: float,

