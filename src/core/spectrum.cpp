@@ -8,11 +8,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace pounding {
 
 namespace {
 constexpr int NEWTON_ITERATIONS = 100;
+constexpr int64_t RESORT_EVERY = 32;  // (intervals searched between two sorts of the directions by their peaks)
 constexpr double PI = 3.141592653589793;
 
 double value(double a, double b, double d0, double d1, double sig, double wd, double tau) {
@@ -154,6 +156,8 @@ int spectrum_pair_kernel(const double* t, const double* ax, const double* ay, in
                          int64_t n_omega, double zeta, const double* cos_a, const double* sin_a, int64_t n_angle,
                          double* out, int64_t* ctl) {
     const double rt = std::sqrt(1.0 - zeta * zeta);
+    std::vector<int64_t> order(static_cast<size_t>(n_angle));
+    std::vector<double> snap(static_cast<size_t>(n_angle));
     for (int64_t j = 0; j < n_omega; ++j) {
         const Control control{ctl};
         if (control.stop()) return INTERRUPTED;
@@ -163,7 +167,11 @@ int spectrum_pair_kernel(const double* t, const double* ax, const double* ay, in
         const double w2 = w * w, sig = zeta * w, wd = w * rt;
         double* peak = out + j * n_angle;
         std::fill(peak, peak + n_angle, 0.0);
-        double floor_peak = 0.0;  // (the smallest of the angles' peaks: an interval that cannot reach it is passed)
+        // the directions in increasing order of their peaks as last sorted (each snapshot <= its peak now, the
+        // peaks only grow): an interval is searched in the directions whose snapshot its bound reaches
+        for (int64_t q = 0; q < n_angle; ++q) order[static_cast<size_t>(q)] = q;
+        std::fill(snap.begin(), snap.end(), 0.0);
+        int64_t since = 0;
         double ux = 0.0, vx = 0.0, uy = 0.0, vy = 0.0, h_prev = -1.0, e = 0.0, c = 0.0, s = 0.0;
         for (int64_t k = 0; k < n - 1; ++k) {
             const double h = t[k + 1] - t[k];
@@ -175,32 +183,41 @@ int spectrum_pair_kernel(const double* t, const double* ax, const double* ay, in
             }
             const Piece px = piece(ux, vx, ax[k], ax[k + 1], h, w2, sig, wd, e, c, s);
             const Piece py = piece(uy, vy, ay[k], ay[k + 1], h, w2, sig, wd, e, c, s);
-            // |u(tau)| <= |(C cos + S sin)| + |p0 + p1 tau| <= sqrt(|C|^2 + |S|^2) + the line's larger end
-            const double bound = std::sqrt(px.cu * px.cu + py.cu * py.cu + px.su * px.su + py.su * py.su) +
-                                 std::max(std::hypot(px.p0, py.p0), std::hypot(px.p0 + px.p1 * h, py.p0 + py.p1 * h));
-            if (bound >= floor_peak) {
-                const bool lng = wd * h >= PI;
-                const double h2_8 = h * h / 8.0;
-                for (int64_t q = 0; q < n_angle; ++q) {  // each direction: n.u, the same closed form
-                    const double ca = cos_a[q], sa = sin_a[q];
-                    const double nc = ca * px.cu + sa * py.cu, ns = ca * px.su + sa * py.su;
-                    const double n0 = ca * px.p0 + sa * py.p0, n1 = ca * px.p1 + sa * py.p1;
-                    // (nothing to find below this direction's peak: |n.u| is within |n.(C cos + S sin)| of the
-                    // line, and within |n.u''| h^2 / 8 of the chord)
-                    const double room = peak[q] - std::max(std::abs(n0), std::abs(n0 + n1 * h));
-                    if (room >= 0.0 && nc * nc + ns * ns <= room * room) continue;
-                    const double e1 = ca * px.u1 + sa * py.u1;
-                    const double chord = peak[q] - std::max(std::abs(ca * ux + sa * uy), std::abs(e1));
-                    const double na = ca * px.ca + sa * py.ca, nb = ca * px.sa + sa * py.sa;
-                    if (chord >= 0.0 && (na * na + nb * nb) * h2_8 * h2_8 <= chord * chord) continue;
-                    const double v0 = ca * vx + sa * vy, v1 = ca * px.v1 + sa * py.v1;
-                    const double d0 = ca * px.ddu0 + sa * py.ddu0, d1 = ca * px.ddu1 + sa * py.ddu1;
-                    double p = std::abs(e1);
-                    if (lng || ((v0 < 0.0) != (v1 < 0.0)) || ((d0 < 0.0) != (d1 < 0.0)))
-                        p = std::max(p, interior_peak(nc, ns, n0, n1, sig, wd, h));
-                    peak[q] = std::max(peak[q], p);
-                }
-                floor_peak = *std::min_element(peak, peak + n_angle);
+            const double h2_8 = h * h / 8.0;
+            // |u(tau)| <= |(C cos + S sin)| + |p0 + p1 tau| <= sqrt(|C|^2 + |S|^2) + the line's larger end, and
+            // <= the chord's larger end + max |u''| h^2 / 8, max |u''| <= sqrt(|ca|^2 + |sa|^2)
+            const double bound = std::min(
+                std::sqrt(px.cu * px.cu + py.cu * py.cu + px.su * px.su + py.su * py.su) +
+                    std::max(std::hypot(px.p0, py.p0), std::hypot(px.p0 + px.p1 * h, py.p0 + py.p1 * h)),
+                std::max(std::hypot(ux, uy), std::hypot(px.u1, py.u1)) +
+                    h2_8 * std::sqrt(px.ca * px.ca + py.ca * py.ca + px.sa * px.sa + py.sa * py.sa));
+            const bool lng = wd * h >= PI;
+            bool searched = false;
+            for (int64_t r = 0; r < n_angle && snap[static_cast<size_t>(r)] <= bound; ++r) {
+                const int64_t q = order[static_cast<size_t>(r)];  // each direction: n.u, the same closed form
+                searched = true;
+                const double ca = cos_a[q], sa = sin_a[q];
+                const double nc = ca * px.cu + sa * py.cu, ns = ca * px.su + sa * py.su;
+                const double n0 = ca * px.p0 + sa * py.p0, n1 = ca * px.p1 + sa * py.p1;
+                // (nothing to find below this direction's peak: |n.u| is within |n.(C cos + S sin)| of the
+                // line, and within |n.u''| h^2 / 8 of the chord)
+                const double room = peak[q] - std::max(std::abs(n0), std::abs(n0 + n1 * h));
+                if (room >= 0.0 && nc * nc + ns * ns <= room * room) continue;
+                const double e1 = ca * px.u1 + sa * py.u1;
+                const double chord = peak[q] - std::max(std::abs(ca * ux + sa * uy), std::abs(e1));
+                const double na = ca * px.ca + sa * py.ca, nb = ca * px.sa + sa * py.sa;
+                if (chord >= 0.0 && (na * na + nb * nb) * h2_8 * h2_8 <= chord * chord) continue;
+                const double v0 = ca * vx + sa * vy, v1 = ca * px.v1 + sa * py.v1;
+                const double d0 = ca * px.ddu0 + sa * py.ddu0, d1 = ca * px.ddu1 + sa * py.ddu1;
+                double p = std::abs(e1);
+                if (lng || ((v0 < 0.0) != (v1 < 0.0)) || ((d0 < 0.0) != (d1 < 0.0)))
+                    p = std::max(p, interior_peak(nc, ns, n0, n1, sig, wd, h));
+                peak[q] = std::max(peak[q], p);
+            }
+            if (searched && ++since >= RESORT_EVERY) {  // (the snapshot taken again, in order)
+                std::sort(order.begin(), order.end(), [peak](int64_t a, int64_t b) { return peak[a] < peak[b]; });
+                for (int64_t r = 0; r < n_angle; ++r) snap[static_cast<size_t>(r)] = peak[order[static_cast<size_t>(r)]];
+                since = 0;
             }
             ux = px.u1;
             vx = px.v1;
