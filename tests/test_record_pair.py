@@ -186,3 +186,75 @@ def test_the_command_line_writes_rotd_spectra(tmp_path):
         assert (tmp_path / "out" / name).stat().st_size > 0
     bad = CliRunner().invoke(app, ["rotd", "--record-x", at2, "--out", str(tmp_path / "x")])
     assert bad.exit_code == 2 and "both --record-x and --record-y" in bad.output
+
+
+def _linear() -> pd_.Oscillator:
+    """A mass on a linear isolator, no bumpers: its response scales with the motion."""
+    return pd_.Oscillator(500.0, pd_.Isolator(slopes_n_m=[2.0e4], breakpoints_m=[], damping_n_s_m=300.0))
+
+
+def test_orientations_run_the_motion_along_each_angle():
+    """Each angle's peaks are simulate's under pair.along(angle), bit for bit, on threads as in series."""
+    pair, system = _pair(5), pd_.presets.paper_damped()
+    found = pd_.orientations(system, pair, [0.0, 30.0, 200.0], duration_s=4.0, scheduler="serial")
+    threads = pd_.orientations(system, pair, [0.0, 30.0, 200.0], duration_s=4.0, workers=2)
+    for angle in (0.0, 30.0, 200.0):
+        alone = pd_.simulate(system, pair.along(angle), 4.0, sample_rate_hz=0).quantities()
+        assert found.table.loc[angle].to_dict() == pytest.approx(alone, rel=0.0, abs=0.0, nan_ok=True)
+    assert found.table.equals(threads.table)
+    angle, value = found.critical("disp_max_m")
+    assert value == found.table["disp_max_m"].max() and found.table.loc[angle, "disp_max_m"] == value
+    frame, data = found.to_dataframe(), found.to_xarray()
+    assert list(frame.index) == [0.0, 30.0, 200.0] and data.sizes["angle_deg"] == 3
+    assert data.attrs["duration_s"] == 4.0
+
+
+def test_the_critical_orientation_of_twin_components_is_45_degrees():
+    """A linear system under a pair whose components are one motion: the motion along a is
+    (cos a + sin a) times it, largest at 45 degrees (sqrt(2) times the motion along x) and none at 135."""
+    quake = pd_.records.el_centro()
+    found = pd_.orientations(_linear(), pd_.RecordPair(quake, quake), [0.0, 45.0, 135.0, 225.0],
+                             duration_s=10.0)
+    peaks = found.table["disp_max_m"]
+    assert found.critical("disp_max_m")[0] in (45.0, 225.0)
+    assert peaks[45.0] == pytest.approx(math.sqrt(2.0) * peaks[0.0], rel=1e-9)
+    assert peaks[225.0] == pytest.approx(peaks[45.0], rel=1e-9)  # (a linear system: mirror symmetric)
+    assert peaks[135.0] < 1e-12 * peaks[0.0]
+
+
+def test_orientations_refuse_bad_input_by_name():
+    pair = _pair(2)
+    system = pd_.presets.paper_damped()
+    for angles, field in (([0.0, 360.0], "angles_deg[1]"), ([-1.0], "angles_deg[0]"),
+                          ([90.0, 45.0], "angles_deg"), ([math.nan], "angles_deg[0]")):
+        with pytest.raises(pd_.InputError) as err:
+            pd_.orientations(system, pair, angles)
+        assert err.value.field == field
+    with pytest.raises(pd_.InputError) as err:
+        pd_.orientations(system, pair.x, [0.0])
+    assert err.value.field == "pair"
+    with pytest.raises(pd_.InputError) as err:
+        pd_.orientations(system, pair, [0.0], duration_s=-1.0)
+    assert err.value.field == "duration_s"
+    with pytest.raises(pd_.InputError) as err:
+        pd_.orientations("a building", pair, [0.0])
+    found = pd_.orientations(system, pair, [0.0, 90.0], duration_s=1.0)
+    with pytest.raises(pd_.InputError) as err:
+        found.critical("peak")
+    assert err.value.field == "quantity"
+
+
+def test_the_command_line_finds_the_critical_orientation(tmp_path):
+    from pounding.cli import app
+
+    at2 = str(ROOT / "examples" / "el_centro_ns.AT2")
+    done = CliRunner().invoke(app, ["orientations", "--preset", "paper-damped", "--record-x", at2,
+                                    "--record-y", at2, "--angles", "0,45,90", "--duration", "5",
+                                    "--out", str(tmp_path / "o")])
+    assert done.exit_code == 0, done.output
+    assert "at 45 deg" in done.output
+    for name in ("orientations.csv", "orientations.png"):
+        assert (tmp_path / "o" / name).stat().st_size > 0
+    bad = CliRunner().invoke(app, ["orientations", "--preset", "paper-damped", "--record-x", at2,
+                                   "--record-y", at2, "--pair", "3", "--out", str(tmp_path / "x")])
+    assert bad.exit_code == 2 and "--pair 3" in bad.output

@@ -30,10 +30,10 @@ _NAMES = {
                "HuntCrossley", "Isolator", "Jankowski",
                "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "RigidStop", "Sensor",
                "Stand", "Storey", "Structure", "TripleFrictionPendulum", "Wall"),
-    ".protocols": ("BasinStabilityMap", "Basins", "BifurcationDiagram", "CampaignResult", "PoundingSpectrum",
-                   "SweepResult", "basin_stability_map", "basins",
+    ".protocols": ("BasinStabilityMap", "Basins", "BifurcationDiagram", "CampaignResult", "Orientations",
+                   "PoundingSpectrum", "SweepResult", "basin_stability_map", "basins",
                    "bifurcation_diagram",
-                   "campaign",
+                   "campaign", "orientations",
                    "paper_frequencies_hz", "pounding_spectrum", "sweep"),
     ".studies": ("StudyResult", "StudySpec", "open_study", "study"),
 }
@@ -92,7 +92,7 @@ if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
                         MultilinearBumper, Oscillator, RigidStop, Sensor, Stand, Storey, Structure,
                         TripleFrictionPendulum, Wall)
     from .protocols import (BasinStabilityMap, Basins, BifurcationDiagram, CampaignResult,  # noqa: F401
-                            PoundingSpectrum, SweepResult, basin_stability_map, basins,
+                            Orientations, PoundingSpectrum, SweepResult, basin_stability_map, basins,
                             bifurcation_diagram,
-                            campaign, paper_frequencies_hz, pounding_spectrum, sweep)
+                            campaign, orientations, paper_frequencies_hz, pounding_spectrum, sweep)
     from .studies import StudyResult, StudySpec, open_study, study  # noqa: F401

@@ -14,6 +14,7 @@ from ._figure import figure_of
 from .identification import plot_identification
 from .isolator import plot_isolator_loop
 from .lyapunov import plot_lyapunov
+from .orientations import plot_orientations
 from .periodic import plot_orbit
 from .record import plot_pair, plot_record, plot_response_spectrum, plot_rotd_spectrum
 from .run import plot_adjacent_run, plot_run, plot_structure_run
@@ -29,7 +30,8 @@ __all__ = ["figure_of", "plot_adjacent_run", "plot_basin_stability", "plot_basin
            "plot_contact_law_fit", "plot_curves", "plot_decision", "plot_design_spectrum", "plot_fragility",
            "plot_hazard_curve", "plot_responses", "plot_scaled_suite", "plot_stripes", "plot_identification",
            "plot_lyapunov",
-           "plot_hysteresis", "plot_isolator_loop", "plot_lab_sweep", "plot_orbit", "plot_pounding_spectrum",
+           "plot_hysteresis", "plot_isolator_loop", "plot_lab_sweep", "plot_orbit", "plot_orientations",
+           "plot_pounding_spectrum",
            "plot_pair", "plot_record",
            "plot_response_spectrum", "plot_rotd_spectrum", "plot_run", "plot_structure_run",
            "plot_study", "plot_sweep"]
