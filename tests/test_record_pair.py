@@ -258,3 +258,34 @@ def test_the_command_line_finds_the_critical_orientation(tmp_path):
     bad = CliRunner().invoke(app, ["orientations", "--preset", "paper-damped", "--record-x", at2,
                                    "--record-y", at2, "--pair", "3", "--out", str(tmp_path / "x")])
     assert bad.exit_code == 2 and "--pair 3" in bad.output
+
+
+def test_a_study_turns_a_pair_and_scales_its_largest_direction(tmp_path):
+    """A study's points under a FEMA P695 pair ('fema-p695-pair:<set>:<index>') turned by angle_deg: each
+    simulate's under the pair scaled by one factor (its RotD100 PGA, the peak vector, to scale_pga_g) along
+    that angle, bit for bit; sa_g scales its RotD100 pseudo-acceleration; a single component refuses
+    angle_deg, and an index past the set is named."""
+    spec = pd_.StudySpec(pd_.presets.paper_damped(),
+                         {"kind": "record", "record": "fema-p695-pair:far_field:0", "scale_pga_g": 0.3,
+                          "duration_s": 3.0}, {"angle_deg": [0.0, 90.0, 200.0]})
+    data = pd_.study(spec, tmp_path / "pair.zarr", scheduler="serial", progress=False)
+    pair = pd_.records.fema_p695_pairs("far_field")[0]
+    scaled = pair.scaled(0.3 / pair.peak_vector_g)
+    assert scaled.peak_vector_g == pytest.approx(0.3, rel=1e-12)
+    for angle in (0.0, 90.0, 200.0):
+        alone = pd_.simulate(pd_.presets.paper_damped(), scaled.along(angle), 3.0, sample_rate_hz=0)
+        assert float(data["disp_max_m"].sel(angle_deg=angle)) == alone.quantities()["disp_max_m"]
+    from pounding.studies.points import excitation_of
+
+    at_sa = excitation_of({"kind": "record", "record": "fema-p695-pair:far_field:1", "sa_g": 0.5,
+                           "sa_period_s": 1.0, "angle_deg": 30.0})
+    second = pd_.records.fema_p695_pairs("far_field")[1]
+    factor = at_sa.accel[np.argmax(np.abs(at_sa.accel))] / second.along(30.0).accel[
+        np.argmax(np.abs(at_sa.accel))]
+    rotd = pd_.rotd_spectrum(second.scaled(factor), [1.0])
+    assert float(rotd["rotd100_psa_g"].values[0, 0]) == pytest.approx(0.5, rel=1e-9)
+    with pytest.raises(pd_.InputError) as err:
+        excitation_of({"kind": "record", "record": "el-centro", "angle_deg": 30.0})
+    assert err.value.field == "angle_deg"
+    with pytest.raises(pd_.InputError, match="22 pairs"):
+        excitation_of({"kind": "record", "record": "fema-p695-pair:far_field:22"})

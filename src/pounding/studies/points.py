@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 
 from .._errors import InputError, Problem, Status
-from ..excitation import Harmonic, Record
+from ..excitation import Harmonic, Record, RecordPair
 from ..model import Oscillator
 from ..protocols.campaign import TABLE2_QUANTITIES, TABLE3_QUANTITIES, TABLE4_QUANTITIES
 from ..protocols.sweep_features import STRUCTURE_QUANTITIES as STRUCTURE_SWEEP_NAMES
@@ -34,6 +34,7 @@ UNITS = {**RUN_UNITS, "nu_r": "1", "alpha": "1", "eta": "1", "e": "1", "contact_
          "alpha_base_max": "1"}
 SWEEP_ARGS = ("steady", "cycles", "measure_cycles", "max_cycles", "steady_rtol", "f_ref_hz", "rtol")
 SET_PREFIX = "fema-p695:"
+PAIR_PREFIX = "fema-p695-pair:"
 
 
 def quantities_of(kind: str, system: Any) -> tuple[str, ...]:
@@ -73,6 +74,42 @@ def load_record(source: str) -> Record:
     return Record.from_csv(path, time=0, accel=1)
 
 
+@functools.lru_cache(maxsize=64)
+def load_pair(source: str) -> RecordPair:
+    """A pair by its study name, ``"fema-p695-pair:<set>:<index>"`` (an event of a FEMA P695 set, from 0);
+    read once per process."""
+    parts = source[len(PAIR_PREFIX):].split(":")
+    if len(parts) != 2 or not parts[1].isdigit():
+        raise InputError(Problem.NOT_ONE_OF, "record", source,
+                         choices="'fema-p695-pair:<set>:<index>' (e.g. 'fema-p695-pair:far_field:0')")
+    pairs = _fema_pairs(parts[0])
+    if int(parts[1]) >= len(pairs):
+        raise InputError(Problem.OUT_OF_RANGE, "record", source, range=f"0 to {len(pairs) - 1}",
+                         hint=f" (the {parts[0]} set has {len(pairs)} pairs)")
+    return pairs[int(parts[1])]
+
+
+@functools.lru_cache(maxsize=1024)
+def pair_factor(source: str, scale_pga_g: float | None, sa_g: float | None, period_s: float | None,
+                damping_ratio: float) -> float:
+    """The one factor that scales a pair's largest direction (RotD100: its peak vector for a PGA, its RotD100
+    pseudo-acceleration at ``period_s`` for ``sa_g``) to the value asked for; 1 when none is."""
+    from ..excitation.rotd import rotd_spectrum
+
+    pair = load_pair(source)
+    if scale_pga_g is not None:
+        return scale_pga_g / pair.peak_vector_g
+    if sa_g is None:
+        return 1.0
+    now = float(rotd_spectrum(pair, [period_s], damping_ratio)["rotd100_psa_g"].values[0, 0])
+    if now <= 0.0:
+        raise InputError(Problem.NO_FIT, "record", source,
+                         why=f"has no spectral acceleration at {period_s:g} s, so no factor scales it "
+                             "to sa_g",
+                         fix="leave it out of the study")
+    return sa_g / now
+
+
 @functools.lru_cache(maxsize=1024)
 def record_psa_g(source: str, period_s: float, damping_ratio: float) -> float:
     """A record's pseudo-spectral acceleration (g) at a period: computed once per process."""
@@ -95,6 +132,14 @@ def record_at_sa(source: str, sa_g: float, period_s: float, damping_ratio: float
 
 
 @functools.lru_cache(maxsize=4)
+def _fema_pairs(name: str) -> tuple[RecordPair, ...]:
+    """A FEMA P695 set's pairs, read once per process."""
+    from ..excitation.records import fema_p695_pairs
+
+    return tuple(fema_p695_pairs(name))
+
+
+@functools.lru_cache(maxsize=4)
 def _fema_set(name: str) -> tuple[Record, ...]:
     """A FEMA P695 set, read once per process (its components are points of many studies)."""
     from ..excitation.records import fema_p695
@@ -107,6 +152,16 @@ def excitation_of(options: dict[str, Any]) -> Harmonic | Record | None:
     kind = options["kind"]
     if kind == "simulate":
         return Harmonic(options["a_g"], options["freq_hz"], options.get("phase_rad", 0.0))
+    if kind == "record" and options["record"].startswith(PAIR_PREFIX):  # (its motion along x, turned)
+        zeta = options.get("sa_damping_ratio")
+        factor = pair_factor(options["record"], options.get("scale_pga_g"), options.get("sa_g"),
+                             options.get("sa_period_s"), 0.05 if zeta is None else zeta)
+        pair = load_pair(options["record"])
+        return (pair if factor == 1.0 else pair.scaled(factor)).along(options.get("angle_deg") or 0.0)
+    if kind == "record" and options.get("angle_deg") is not None:
+        raise InputError(Problem.WRONG_MODE, "angle_deg", options["angle_deg"],
+                         mode="a pair of components (record = 'fema-p695-pair:<set>:<index>')",
+                         fix="leave angle_deg out for one component, or give a pair")
     if kind == "record":
         rec = load_record(options["record"])
         if options.get("scale_pga_g") is not None:

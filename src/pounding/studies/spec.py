@@ -35,7 +35,7 @@ COMPUTE_KEYS: dict[str, dict[str, Any]] = {
               "measure_cycles": 5, "max_cycles": None, "steady_rtol": None, "f_ref_hz": None, "rtol": None},
     "simulate": {"a_g": None, "freq_hz": None, "duration_s": None, "phase_rad": 0.0, "v0_m_s": 0.0},
     "record": {"record": None, "scale_pga_g": None, "duration_s": None, "sa_g": None, "sa_period_s": None,
-               "sa_damping_ratio": None},
+               "sa_damping_ratio": None, "angle_deg": None},
 }
 STRING_KEYS = ("direction", "steady", "record")  # compute keys whose values are text
 MAX_POINTS = 10_000_000
@@ -57,7 +57,10 @@ class StudySpec:
         its peaks; ``record`` one run under a record (``record``: a file, ``"el-centro"`` or
         ``"fema-p695:<set>:<index>"``; ``scale_pga_g``, or ``sa_g`` with ``sa_period_s`` and
         ``sa_damping_ratio`` (default 0.05): the record scaled to that pseudo-spectral
-        acceleration; ``duration_s``, default the record's).
+        acceleration; ``duration_s``, default the record's) or under a pair of components
+        (``"fema-p695-pair:<set>:<index>"``, an event's two), its motion along x turned by ``angle_deg``
+        (default 0: ``RecordPair.along``), the pair scaled by one factor to its largest direction's
+        (RotD100) ``scale_pga_g`` or ``sa_g``.
     grid : dict
         Dotted name -> values (one axis each, in order): a number of the system
         (``"mass_kg"``, ``"isolator.damping_n_s_m"``, ``"isolator.slopes_n_m[0]"``, ``"bumpers.gap_left_m"``,
@@ -270,7 +273,8 @@ def system_from_table(value: Any, base_dir: Path) -> System:
 
 def _is_record_file(value: Any) -> bool:
     """Whether a compute or grid value names a record file (not a built-in record, not absent)."""
-    return isinstance(value, str) and value != "el-centro" and not value.startswith("fema-p695:")
+    return isinstance(value, str) and value != "el-centro" and not value.startswith(("fema-p695:",
+                                                                                        "fema-p695-pair:"))
 
 
 def _record_path(value: Any, base_dir: Path) -> Any:
@@ -389,7 +393,7 @@ def _check_grid(value: Any, compute: dict[str, Any], system: System) -> dict[str
                              repeated=f"grid.{alias} (which sets {' and '.join(names)})")
     missing = [k for k, d in keys.items() if d is None and k not in compute and k not in out
                and k not in ("freqs_hz", "max_cycles", "steady_rtol", "f_ref_hz", "rtol", "scale_pga_g",
-                             "sa_g", "sa_period_s", "sa_damping_ratio",
+                             "sa_g", "sa_period_s", "sa_damping_ratio", "angle_deg",
                              "duration_s" if compute["kind"] == "record" else "")]
     if missing:
         raise InputError(Problem.MISSING_KEY, f"compute.{missing[0]}", None,
