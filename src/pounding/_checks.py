@@ -27,6 +27,19 @@ def instance_of(field: str, value: Any, types: type | tuple[type, ...], expected
     return value
 
 
+def one_or_more(field: str, value: Any, kind: type, expected: str, entry: str | None = None) -> list:
+    """``value`` (one ``kind``, or a non-empty sequence of them) as a list; an entry that is none is named
+    ``<entry>[i]`` (``entry`` defaults to ``field``)."""
+    if isinstance(value, kind):
+        return [value]
+    if isinstance(value, Sequence) and not isinstance(value, (str, bytes)) and len(value) > 0:
+        for i, v in enumerate(value):
+            instance_of(f"{entry or field}[{i}]", v, kind, expected)
+        return list(value)
+    raise InputError(Problem.WRONG_TYPE, field, value, got=type(value).__name__,
+                     expected=f"{expected} or a non-empty list of them")
+
+
 def real(field: str, value: Any) -> float:
     """Return ``value`` as a finite float, or raise naming ``field``."""
     if isinstance(value, (bool, str, bytes)):  # (text that reads as a number is still text)

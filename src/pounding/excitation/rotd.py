@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import instance_of, positive
+from .._checks import one_or_more, positive
 from .._errors import InputError, Interrupted, Problem
 from ._spectrum_run import damping_ratio_value, pair_peaks, periods_array
 from .pair import RecordPair
@@ -18,14 +18,7 @@ from .pair import RecordPair
 def check_pairs(pairs: Any) -> list[RecordPair]:
     """``pairs`` (one :class:`RecordPair` or a non-empty sequence of them) as a list, or an InputError
     naming the entry that is none."""
-    if isinstance(pairs, RecordPair):
-        return [pairs]
-    if isinstance(pairs, Sequence) and not isinstance(pairs, (str, bytes)) and len(pairs) > 0:
-        for i, p in enumerate(pairs):
-            instance_of(f"pairs[{i}]", p, RecordPair, "pounding.RecordPair")
-        return list(pairs)
-    raise InputError(Problem.WRONG_TYPE, "pairs", pairs, got=type(pairs).__name__,
-                     expected="pounding.RecordPair or a non-empty list of them")
+    return one_or_more("pairs", pairs, RecordPair, "pounding.RecordPair")
 
 
 def rotation_angles(angle_step_deg: Any) -> np.ndarray:

@@ -8,8 +8,8 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import instance_of
-from .._errors import InputError, Interrupted, Problem
+from .._checks import one_or_more
+from .._errors import Interrupted
 from ._spectrum_run import MAX_INTERVALS, damping_ratio_value, periods_array, spectrum_peaks  # noqa: F401
 from .record import Record
 
@@ -17,14 +17,7 @@ from .record import Record
 def check_records(records: Any) -> list[Record]:
     """``records`` (one :class:`Record` or a non-empty sequence of them) as a list, or an InputError naming
     the entry that is none."""
-    if isinstance(records, Record):
-        return [records]
-    if isinstance(records, Sequence) and not isinstance(records, (str, bytes)) and len(records) > 0:
-        for i, r in enumerate(records):
-            instance_of(f"records[{i}]", r, Record, "pounding.Record")
-        return list(records)
-    raise InputError(Problem.WRONG_TYPE, "record", records, got=type(records).__name__,
-                     expected="pounding.Record or a non-empty list of them")
+    return one_or_more("record", records, Record, "pounding.Record", entry="records")
 
 
 def response_spectrum(record: Record | Sequence[Record], periods_s: Any, damping_ratio: float = 0.05) -> Any:
