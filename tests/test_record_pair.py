@@ -200,10 +200,10 @@ def test_orientations_run_the_motion_along_each_angle():
     threads = pd_.orientations(system, pair, [0.0, 30.0, 200.0], duration_s=4.0, workers=2)
     for angle in (0.0, 30.0, 200.0):
         alone = pd_.simulate(system, pair.along(angle), 4.0, sample_rate_hz=0).quantities()
-        assert found.table.loc[angle].to_dict() == pytest.approx(alone, rel=0.0, abs=0.0, nan_ok=True)
-    assert found.table.equals(threads.table)
+        assert found.data.loc[angle].to_dict() == pytest.approx(alone, rel=0.0, abs=0.0, nan_ok=True)
+    assert found.data.equals(threads.data)
     angle, value = found.critical("disp_max_m")
-    assert value == found.table["disp_max_m"].max() and found.table.loc[angle, "disp_max_m"] == value
+    assert value == found.data["disp_max_m"].max() and found.data.loc[angle, "disp_max_m"] == value
     frame, data = found.to_dataframe(), found.to_xarray()
     assert list(frame.index) == [0.0, 30.0, 200.0] and data.sizes["angle_deg"] == 3
     assert data.attrs["duration_s"] == 4.0
@@ -215,7 +215,7 @@ def test_the_critical_orientation_of_twin_components_is_45_degrees():
     quake = pd_.records.el_centro()
     found = pd_.orientations(_linear(), pd_.RecordPair(quake, quake), [0.0, 45.0, 135.0, 225.0],
                              duration_s=10.0)
-    peaks = found.table["disp_max_m"]
+    peaks = found.data["disp_max_m"]
     assert found.critical("disp_max_m")[0] in (45.0, 225.0)
     assert peaks[45.0] == pytest.approx(math.sqrt(2.0) * peaks[0.0], rel=1e-9)
     assert peaks[225.0] == pytest.approx(peaks[45.0], rel=1e-9)  # (a linear system: mirror symmetric)

@@ -121,7 +121,7 @@ def orientations(
         write_csv(result.to_dataframe().reset_index(), out / "orientations.csv")
         save_figure(lambda: result.plot("disp_max_m"), out / "orientations.png")
     angle, value = result.critical("disp_max_m")
-    least = float(result.table["disp_max_m"].min())
+    least = float(result.data["disp_max_m"].min())
     console.print(f"{pair.name}: the largest displacement {value:.4g} m at {angle:g} deg (the least "
                   f"{least:.4g} m) over {result.angles_deg.size} angles; files -> {out}")
     if not complete or held:

@@ -19,7 +19,7 @@ def plot_orientations(result: Any, quantity: str = "disp_max_m", ax: Any = None)
     result : Orientations
         What :func:`pounding.orientations` returned.
     quantity : str
-        A column of its ``table`` (``disp_max_m``, ``acc_max_g``, ``drift_ratio_max``, ...).
+        A column of its ``data`` (``disp_max_m``, ``acc_max_g``, ``drift_ratio_max``, ...).
     {ax}
         A polar one (made when None).
 

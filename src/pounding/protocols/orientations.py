@@ -30,7 +30,7 @@ class Orientations:
 
     Attributes
     ----------
-    table : pandas.DataFrame
+    data : pandas.DataFrame
         One row per angle (index ``angle_deg``, degrees from x towards y), the run's quantities as every
         run gives them (``disp_max_m``, ``acc_max_g``, ``impacts``, ``drift_ratio_max``, ...; NaN where a
         run did not finish).
@@ -54,7 +54,7 @@ class Orientations:
     (90.0, 0.14)
     """
 
-    table: pd.DataFrame
+    data: pd.DataFrame
     pair_name: str = ""
     duration_s: float = math.nan
     attrs: dict = field(default_factory=dict, repr=False)
@@ -62,10 +62,10 @@ class Orientations:
     @property
     def angles_deg(self) -> np.ndarray:
         """The angles, degrees, shape (a,)."""
-        return self.table.index.to_numpy(dtype=float)
+        return self.data.index.to_numpy(dtype=float)
 
     def critical(self, quantity: str = "disp_max_m") -> tuple[float, float]:
-        """The most critical orientation for ``quantity`` (a column of :attr:`table`): ``(angle_deg, its
+        """The most critical orientation for ``quantity`` (a column of :attr:`data`): ``(angle_deg, its
         largest value)``."""
         column = self._column(quantity)
         if not np.isfinite(column).any():
@@ -74,20 +74,20 @@ class Orientations:
         return float(self.angles_deg[at]), float(column[at])
 
     def _column(self, quantity: str) -> np.ndarray:
-        if quantity not in self.table.columns:
+        if quantity not in self.data.columns:
             raise InputError(Problem.NOT_IN_RESULT, "quantity", quantity,
-                             choices=", ".join(self.table.columns))
-        return self.table[quantity].to_numpy(dtype=float)
+                             choices=", ".join(self.data.columns))
+        return self.data[quantity].to_numpy(dtype=float)
 
     def to_dataframe(self) -> pd.DataFrame:
-        """:attr:`table` (a copy)."""
-        return self.table.copy()
+        """:attr:`data` (a copy)."""
+        return self.data.copy()
 
     def to_xarray(self) -> Any:
-        """:attr:`table` as a Dataset along ``angle_deg``, with the pair's name and the runs' length."""
+        """:attr:`data` as a Dataset along ``angle_deg``, with the pair's name and the runs' length."""
         import xarray as xr
 
-        return xr.Dataset.from_dataframe(self.table).assign_attrs(
+        return xr.Dataset.from_dataframe(self.data).assign_attrs(
             pair=self.pair_name, duration_s=self.duration_s, **self.attrs)
 
     def plot(self, quantity: str = "disp_max_m", ax: Any = None) -> Any:
@@ -158,7 +158,7 @@ def orientations(system: Any, pair: RecordPair, angles_deg: Any = None, duration
     Returns
     -------
     Orientations
-        The peaks at each angle (``table``), ``critical(quantity)``, ``plot()``, ``to_dataframe()``,
+        The peaks at each angle (``data``), ``critical(quantity)``, ``plot()``, ``to_dataframe()``,
         ``to_xarray()``.
 
     Raises
