@@ -555,3 +555,33 @@ def test_a_stuck_section_s_steps_keep_the_surfaces_on_the_base_and_its_layout_fo
     other[base] -= 0.06  # (same mode; surface 0 now the first to slip)
     other[base + 3] += 0.06
     assert sh.names(other) == [sh._names[i] for i in sh._new_layout(other, ())[0]] != sh.names(vec)
+
+
+def test_a_surface_s_slip_inside_a_short_slip_is_found_whatever_the_run_s_length():
+    """A slip from rest so short that it crosses a held surface's threshold and sticks again inside one
+    sub-interval (the surface's guard dips below zero and comes back): the surface's slip is found in runs of
+    every length, and a run continued at its end is the one long run.  (Found by a review: at a slip from
+    rest the pair's acceleration is zero but for the rounding, whose sign had the guard rising at the start
+    and the velocity's zero found at the start itself; runs longer than 0.92 s missed the surface's slip.)"""
+    mu_out, mu_in = 0.0515552292951012, 0.01995535499736283
+    tfp = pd_.TripleFrictionPendulum(radii_m=(1.6, 0.5, 0.5, 1.6), mu=(mu_out, mu_in, mu_in, mu_out),
+                                     capacities_m=(0.3794394027646527, 0.07960883287238998,
+                                                   0.06402395755721013, 0.5120610596425584),
+                                     damping_n_s_m=20000.0, ring_stiffness_n_m=24959546.30814191)
+    osc = pd_.Oscillator(26523.026550384122, tfp)
+    table = pd_.Harmonic(0.02, 0.3)
+    rest = pd_.simulate(osc, table, 10.0, sample_rate_hz=0).final_state  # (stuck)
+    vec, base = rest.vector.copy(), rest.layout["base"]
+    vec[base + 1] -= 0.5e-6  # (the inner surfaces 1e-6 m apart, the same sum: one slips first)
+    vec[base + 2] += 0.5e-6
+    start = pd_.State(vec, rest.dofs, rest.layout)
+    ends = []
+    for duration in (0.92, 0.95, 2.0):
+        run = pd_.simulate(osc, table, duration, start, sample_rate_hz=0)
+        assert list(run.events["kind"][:3]) == ["slip", "surface_slip", "stick"], (duration, run.events)
+        ends.append(run.final_state.vector[base:base + 4])
+    np.testing.assert_array_equal(ends[1], ends[0])  # (stuck after the stick: nothing moves)
+    half = pd_.simulate(osc, table, 0.95, start, sample_rate_hz=0)
+    rest_of = pd_.simulate(osc, table, 1.05, half.final_state, sample_rate_hz=0)
+    np.testing.assert_array_equal(rest_of.final_state.vector, pd_.simulate(osc, table, 2.0, start,
+                                                                           sample_rate_hz=0).final_state.vector)

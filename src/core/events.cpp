@@ -403,7 +403,24 @@ const Phase::Zeros& velocity_zeros(Phase& ph, int i, int j) {
     };
     if (h > 0.0 && v0 * v1 < 0.0) {
         velocity_fn();
-        z.t[0] = find_root(fv, ph, 0.0, h, v0, v1, a0, a1, XTOL_S);
+        double lo = 0.0, v_lo = v0, a_lo = a0;
+        if (std::abs(v0) <= TINY_SPEED) {
+            // a start at rest: its velocity is zero at the start, the zero sought is the one it comes back
+            // through.  Where its acceleration there is zero but for the rounding (a friction slip from rest),
+            // the polynomial also crosses zero right at the start: the bracket begins where it already moves
+            // the way it starts
+            for (double tp = 0.5 * h; tp > 1e-12 * h; tp *= 0.5) {
+                double vp, ap;
+                fn_eval(fv, ph, tp, vp, ap);
+                if (vp * v0 > 0.0) {
+                    lo = tp;
+                    v_lo = vp;
+                    a_lo = ap;
+                    break;
+                }
+            }
+        }
+        z.t[0] = find_root(fv, ph, lo, h, v_lo, v1, a_lo, a1, XTOL_S);
         z.count = 1;
     } else if (h > 0.0 && v0 * v1 > 0.0 && a0 * a1 < 0.0 && may_turn_back(h, v0, v1, a0, a1)) {
         velocity_fn();

@@ -20,6 +20,7 @@ constexpr int KIND_LINEAR = 0, KIND_RELEASE = 1, KIND_ZETA = 2, KIND_HELD = 3, K
 constexpr int SIDE_NONE = -1, SIDE_VELOCITY = -2;
 constexpr double ROUNDING = 256.0 * EPS;  // relative size of rounding noise in event values
 constexpr double XTOL_S = 1e-15;          // event instants and displacement extrema, s
+constexpr double TINY_SPEED = 1e-300;     // the velocity of a start at rest, for the direction it moves, m/s
 constexpr double XTOL_EXTREMUM_S = 1e-10; // instants of the other extrema
 
 struct EventRow {

@@ -24,7 +24,6 @@ namespace {
 
 constexpr double SUBINTERVALS_PER_PERIOD = 8.0;
 constexpr int ZENO_REPEATS = 200;
-constexpr double TINY_SPEED = 1e-300;  // the velocity of a start at rest, for the direction it moves
 constexpr int64_t POLL_EVERY = 64;     // sub-intervals between two looks at the run control
 constexpr double RESOLUTION = 1e-9;    // relative to the run's scales: below it, a touch is no impact
 constexpr int MAX_EVENTS_PER_PHASE = 256;
@@ -528,6 +527,14 @@ void earliest(Loop& lp) {
     for (int i = 0; i < n; ++i)
         if (b.y0s[static_cast<size_t>(n + i)] == 0.0 && b.a0[static_cast<size_t>(i)] != 0.0)
             b.y0s[static_cast<size_t>(n + i)] = std::copysign(TINY_SPEED, b.a0[static_cast<size_t>(i)]);
+    // a friction slip from rest moves the way it slips: its force starts at the threshold, where the pair's
+    // acceleration is zero but for the rounding, whose sign says nothing
+    for (const int e : lp.sy.ties) {
+        const Hysteretic& hy = lp.sy.hyst[static_cast<size_t>(e)];
+        const double s = lp.st[lp.sy.lay.region + e];
+        if (s == 0.0 || rel(ph.y0.data() + n, hy.i, hy.j) != 0.0) continue;
+        b.y0s[static_cast<size_t>(n + hy.i)] = (hy.j >= 0 ? b.y0s[static_cast<size_t>(n + hy.j)] : 0.0) + s * TINY_SPEED;
+    }
     ph.zeros.clear();
     ph.e_y0 = b.y0s.data();
     ph.e_a0 = b.a0.data();
