@@ -289,3 +289,30 @@ def test_a_study_turns_a_pair_and_scales_its_largest_direction(tmp_path):
     assert err.value.field == "angle_deg"
     with pytest.raises(pd_.InputError, match="22 pairs"):
         excitation_of({"kind": "record", "record": "fema-p695-pair:far_field:22"})
+
+
+def test_rotd_at_the_edges_of_its_inputs():
+    """A pair a hundred orders of magnitude weak has its spectrum scaled exactly (the kernel's squares
+    neither under- nor overflow); periods beyond 1000 s, steps finer than 0.05 degrees and periods far below
+    the record's step (too much work: each direction's half periods counted) are refused by name; a step
+    over 15 degrees warns."""
+    pair = _pair(4)
+    spec = pd_.rotd_spectrum(pair, PERIODS)
+    tiny = pd_.RecordPair(pd_.Record(pair.t, pair.x.accel * 2.0 ** -600),
+                          pd_.Record(pair.t, pair.y.accel * 2.0 ** -600))
+    weak = pd_.rotd_spectrum(tiny, PERIODS)
+    np.testing.assert_array_equal(weak["sd_m"].values * 2.0 ** 600, spec["sd_m"].values)
+    for periods, field in (([1.0, 1001.0], "periods_s[1]"), ([1e-6], "periods_s")):
+        with pytest.raises(pd_.InputError) as err:
+            pd_.rotd_spectrum(pair, periods)
+        assert err.value.field == field
+    with pytest.raises(pd_.InputError) as err:
+        pd_.response_spectrum(pair.x, [2000.0])
+    assert err.value.field == "periods_s[0]"
+    with pytest.raises(pd_.InputError) as err:
+        pd_.rotd_spectrum(pair, [1.0], angle_step_deg=0.01)
+    assert err.value.field == "angle_step_deg"
+    with pytest.warns(pd_.PoundingWarning, match="angle_step_deg"):
+        pd_.rotd_spectrum(pair, [1.0], angle_step_deg=30.0)
+    figure = pair.plot()
+    assert len(figure.axes) == 1 and len(figure.axes[0].lines) == 2

@@ -14,7 +14,8 @@ namespace pounding {
 
 namespace {
 constexpr int NEWTON_ITERATIONS = 100;
-constexpr int64_t RESORT_EVERY = 32;  // (intervals searched between two sorts of the directions by their peaks)
+constexpr int64_t RESORT_EVERY = 32;
+constexpr int64_t STOP_POLL = 1024;  // (intervals of a pair's period between two looks at the stop flag)  // (intervals searched between two sorts of the directions by their peaks)
 constexpr double PI = 3.141592653589793;
 
 double value(double a, double b, double d0, double d1, double sig, double wd, double tau) {
@@ -162,7 +163,10 @@ int spectrum_pair_kernel(const double* t, const double* ax, const double* ay, in
         const Control control{ctl};
         if (control.stop()) return INTERRUPTED;
         const double w = omegas[j];
-        if (control.add_work((n - 1) * (1 + n_angle / 8) + static_cast<int64_t>(w * rt * (t[n - 1] - t[0]) / PI)) < 0)
+        // (each interval searched in a share of the directions; each direction searched for its peaks between
+        // the half periods inside an interval, at about four intervals' cost each)
+        if (control.add_work((n - 1) * (1 + n_angle / 8) +
+                             static_cast<int64_t>(w * rt * (t[n - 1] - t[0]) / PI) * 4 * (1 + n_angle)) < 0)
             return BUDGET;
         const double w2 = w * w, sig = zeta * w, wd = w * rt;
         double* peak = out + j * n_angle;
@@ -174,6 +178,7 @@ int spectrum_pair_kernel(const double* t, const double* ax, const double* ay, in
         int64_t since = 0;
         double ux = 0.0, vx = 0.0, uy = 0.0, vy = 0.0, h_prev = -1.0, e = 0.0, c = 0.0, s = 0.0;
         for (int64_t k = 0; k < n - 1; ++k) {
+            if ((k & (STOP_POLL - 1)) == STOP_POLL - 1 && control.stop()) return INTERRUPTED;
             const double h = t[k + 1] - t[k];
             if (h != h_prev) {
                 e = std::exp(-sig * h);

@@ -6,6 +6,7 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Optional
 
+import numpy as np
 import typer
 
 from .._errors import Interrupted
@@ -74,10 +75,13 @@ def rotd(
         table = spec[["rotd50_psa_g", "rotd100_psa_g", "rotd50_sd_m", "rotd100_sd_m", "rotd100_angle_deg"]]
         write_csv(table.to_dataframe().reset_index(), out / "rotd_spectrum.csv")
         save_figure(lambda: plot_rotd_spectrum(spec), out / "rotd_spectrum.png")
-    ratio = (spec["rotd100_psa_g"] / spec["rotd50_psa_g"]).where(spec["period_s"] > 0.0)
+    ratio = spec["rotd100_psa_g"] / spec["rotd50_psa_g"]
+    ratio = ratio.where(np.isfinite(ratio))
+    said = (f"RotD100 / RotD50 from {float(ratio.min()):.3f} to {float(ratio.max()):.3f} (median "
+            f"{float(ratio.median()):.3f})" if int(ratio.count())
+            else "no ratio (RotD50 zero or not computed)")
     console.print(f"{len(pairs)} pair(s) x {len(periods_s)} periods, {spec.sizes['angle_deg']} directions: "
-                  f"RotD100 / RotD50 from {float(ratio.min()):.3f} to {float(ratio.max()):.3f} (median "
-                  f"{float(ratio.median()):.3f}); files -> {out}")
+                  f"{said}; files -> {out}")
     if not complete or held:
         interrupted(f"the finished pairs are in {out} (NaN where a pair did not finish)")
 

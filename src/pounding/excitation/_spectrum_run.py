@@ -20,12 +20,21 @@ DONE, INTERRUPTED = int(Status.SUCCESS), int(Status.INTERRUPTED)
 MAX_INTERVALS = 2_000_000_000  # periods x record intervals: about a minute of one core
 
 
+MAX_PERIOD_S = 1000.0  # the longest period: beyond it the closed form's particular solution loses digits
+
+
 def periods_array(periods_s: Any) -> np.ndarray:
-    """Validated periods (s): finite, >= 0, strictly increasing, shape (p,)."""
+    """Validated periods (s): finite, in [0, 1000], strictly increasing, shape (p,)."""
     periods = float_array("periods_s", periods_s)
     if (periods < 0.0).any():
         i = int(np.flatnonzero(periods < 0.0)[0])
         raise InputError(Problem.NEGATIVE, f"periods_s[{i}]", float(periods[i]), unit="s")
+    if (periods > MAX_PERIOD_S).any():
+        i = int(np.flatnonzero(periods > MAX_PERIOD_S)[0])
+        raise InputError(Problem.OUT_OF_RANGE, f"periods_s[{i}]", float(periods[i]),
+                         range=f"[0, {MAX_PERIOD_S:g}] s",
+                         hint=" (the closed form subtracts a / omega^2 terms that cancel: at 1e4 s it keeps "
+                              "four digits, at 1e5 s none)")
     if periods.size > 1 and (np.diff(periods) <= 0.0).any():
         raise InputError(Problem.NOT_INCREASING, "periods_s", periods.tolist()[:6])
     return periods
@@ -83,7 +92,8 @@ def pair_peaks(pairs: Sequence[tuple[np.ndarray, np.ndarray, np.ndarray]], perio
     from .._control import new_control, run_interruptibly
 
     positive = periods > 0.0
-    half_periods = float(np.sum(2.0 / periods[positive])) * math.sqrt(1.0 - zeta * zeta)
+    half_periods = (float(np.sum(2.0 / periods[positive])) * math.sqrt(1.0 - zeta * zeta)
+                    * 4 * (1 + angles_rad.size))  # (each direction's, at about four intervals' cost)
     per_interval = positive.sum() * (1 + angles_rad.size // 8)  # (the kernel's own count)
     work = sum(per_interval * (t.size - 1) + half_periods * (t[-1] - t[0]) for t, _, _ in pairs)
     if work > MAX_INTERVALS:
@@ -98,12 +108,19 @@ def pair_peaks(pairs: Sequence[tuple[np.ndarray, np.ndarray, np.ndarray]], perio
     for i, (t_s, ax, ay) in enumerate(pairs):
         out = np.zeros((omegas.size, angles_rad.size))
         t, a_x, a_y = (np.array(v, dtype=float) for v in (t_s, ax, ay))
-        status = run_interruptibly(lambda t=t, a_x=a_x, a_y=a_y, out=out: spectrum_pair_kernel(
-            t, a_x, a_y, omegas, zeta, angles_rad, out, ctl), [ctl])
+        # (the accelerations by a power of two of their size, the peaks back by it: the same numbers, none of
+        # the kernel's squares under- or overflowing)
+        largest = max(float(np.abs(a_x).max()), float(np.abs(a_y).max()))
+        scale = 2.0 ** round(math.log2(largest)) if largest > 0.0 else 1.0
+        x_unit, y_unit = a_x / scale, a_y / scale
+        status = run_interruptibly(
+            lambda: spectrum_pair_kernel(t, x_unit, y_unit, omegas, zeta, angles_rad, out, ctl), [ctl])
         if status == INTERRUPTED:
             return peaks, i
         if status != DONE:  # (the budget was checked above)
             raise RuntimeError(f"rotd_spectrum: the kernel stopped with status {status}")
-        peaks[i, positive] = out
-        peaks[i, ~positive] = np.abs(np.outer(cos_a, a_x) + np.outer(sin_a, a_y)).max(axis=1)
+        peaks[i, positive] = out * scale
+        for k in range(0, angles_rad.size, 64):  # (64 directions at a time: a record's samples each)
+            along = np.outer(cos_a[k:k + 64], a_x) + np.outer(sin_a[k:k + 64], a_y)
+            peaks[i, ~positive, k:k + 64] = np.abs(along).max(axis=1)
     return peaks, len(pairs)

@@ -175,10 +175,11 @@ class RecordPair:
         return frame_to_xarray(self.to_dataframe(), "sample", {"name": self.name})
 
     def plot(self, ax: Any = None) -> Any:
-        """The two components (g) against time, and the acceleration's path in plan; returns the Figure."""
+        """The two components (g) against time on one axes, their peaks in the legend; returns the Figure."""
+        from ..plots import figure_of
         from ..plots.record import plot_pair
 
-        return plot_pair(self, ax=ax)
+        return figure_of(plot_pair(self, ax=ax), ax)
 
     def __repr__(self) -> str:
         name = f"{self.name!r}, " if self.name else ""

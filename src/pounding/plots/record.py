@@ -99,7 +99,7 @@ def plot_response_spectrum(spectrum: Any, ax: Any = None, *, quantity: str = "ps
 
 @fill_doc
 def plot_pair(pair: Any, ax: Any = None) -> list:
-    """A pair's two components (g) against time, on one axes, each with its peak.
+    """A pair's two components (g) against time, on one axes, each one's peak in the legend.
 
     Parameters
     ----------
