@@ -46,19 +46,22 @@ double root(double a1, double b1, double d1, double a2, double b2, double sig, d
     return x;
 }
 
-double interior_peak(double a, double b, double d0, double d1, double sig, double wd, double h) {
+// the peak of |f| inside (0, h), f = exp(-sig tau) (a cos + b sin) + d0 + d1 tau; (e, c, s) = exp(-sig h),
+// cos(wd h), sin(wd h): the end's factors, known to the caller (the same numbers as computed here)
+double interior_peak(double a, double b, double d0, double d1, double sig, double wd, double h, double e, double c,
+                     double s) {
     const double a1 = deriv_a(a, b, sig, wd), b1 = deriv_b(a, b, sig, wd);
     const double a2 = deriv_a(a1, b1, sig, wd), b2 = deriv_b(a1, b1, sig, wd);
     double peak = 0.0;
     const double phi = std::atan2(a2, b2);
     double k = std::floor(phi / PI) + 1.0;
     double lo = 0.0;
-    double f_lo = value(a1, b1, d1, 0.0, sig, wd, 0.0);
+    double f_lo = a1 + d1;  // (its rate at the start)
     while (true) {
         double cut = (k * PI - phi) / wd;
         const bool last = cut >= h;
         if (last) cut = h;
-        const double f_hi = value(a1, b1, d1, 0.0, sig, wd, cut);
+        const double f_hi = last ? e * (a1 * c + b1 * s) + d1 : value(a1, b1, d1, 0.0, sig, wd, cut);
         if (f_hi == 0.0 && !last) {
             peak = std::max(peak, std::abs(value(a, b, d0, d1, sig, wd, cut)));
         } else if ((f_lo < 0.0) != (f_hi < 0.0) && f_lo != 0.0 && f_hi != 0.0) {
@@ -109,12 +112,12 @@ int spectrum_kernel(const double* t, const double* acc, int64_t n, const double*
             const bool lng = wd * h >= PI;
             const double ddu0 = acc0 - g0, ddu1 = acc1 - acc[k + 1];
             const bool bend = (ddu0 < 0.0) != (ddu1 < 0.0);
-            if (lng || bend || ((v < 0.0) != (v1 < 0.0))) u_max = std::max(u_max, interior_peak(cu, su, p0, p1, sig, wd, h));
-            if (lng || bend) v_max = std::max(v_max, interior_peak(cv, sv, p1, 0.0, sig, wd, h));
+            if (lng || bend || ((v < 0.0) != (v1 < 0.0))) u_max = std::max(u_max, interior_peak(cu, su, p0, p1, sig, wd, h, e, c, s));
+            if (lng || bend) v_max = std::max(v_max, interior_peak(cv, sv, p1, 0.0, sig, wd, h, e, c, s));
             const double j0 = cj + g1, j1 = e * (cj * c + sj * s) + g1;
             const double q0 = cs, q1 = e * (cs * c + ss * s);
             if (lng || ((j0 < 0.0) != (j1 < 0.0)) || ((q0 < 0.0) != (q1 < 0.0)))
-                a_max = std::max(a_max, interior_peak(ca, sa, g0, g1, sig, wd, h));
+                a_max = std::max(a_max, interior_peak(ca, sa, g0, g1, sig, wd, h, e, c, s));
             u_max = std::max(u_max, std::abs(u1));
             v_max = std::max(v_max, std::abs(v1));
             a_max = std::max(a_max, std::abs(acc1));
@@ -132,7 +135,8 @@ namespace {
 // one component's interval: its closed form (C, S, p0, p1), its end state and its relative acceleration u'' at both
 // ends (a pure damped sinusoid: one zero at most in an interval shorter than half a damped period)
 struct Piece {
-    double cu, su, p0, p1, u1, v1, ddu0, ddu1, ca, sa;  // (ca, sa: u'' = exp(-sigma tau) (ca cos + sa sin))
+    // (ca, sa: u'' = exp(-sigma tau) (ca cos + sa sin); cj, sj: its rate's)
+    double cu, su, p0, p1, u1, v1, ddu0, ddu1, ca, sa, cj, sj;
 };
 Piece piece(double u, double v, double g0, double g_end, double h, double w2, double sig, double wd, double e,
             double c, double s) {
@@ -145,6 +149,8 @@ Piece piece(double u, double v, double g0, double g_end, double h, double w2, do
     const double cv = deriv_a(q.cu, q.su, sig, wd), sv = deriv_b(q.cu, q.su, sig, wd);
     q.ca = deriv_a(cv, sv, sig, wd);
     q.sa = deriv_b(cv, sv, sig, wd);
+    q.cj = deriv_a(q.ca, q.sa, sig, wd);
+    q.sj = deriv_b(q.ca, q.sa, sig, wd);
     q.u1 = e * (q.cu * c + q.su * s) + q.p0 + q.p1 * h;
     q.v1 = e * (cv * c + sv * s) + q.p1;
     q.ddu0 = -2.0 * sig * v - w2 * u - g0;
@@ -215,8 +221,15 @@ int spectrum_pair_kernel(const double* t, const double* ax, const double* ay, in
                 const double v0 = ca * vx + sa * vy, v1 = ca * px.v1 + sa * py.v1;
                 const double d0 = ca * px.ddu0 + sa * py.ddu0, d1 = ca * px.ddu1 + sa * py.ddu1;
                 double p = std::abs(e1);
-                if (lng || ((v0 < 0.0) != (v1 < 0.0)) || ((d0 < 0.0) != (d1 < 0.0)))
-                    p = std::max(p, interior_peak(nc, ns, n0, n1, sig, wd, h));
+                bool inside = lng || ((v0 < 0.0) != (v1 < 0.0));
+                if (!inside && ((d0 < 0.0) != (d1 < 0.0))) {
+                    // (a bend: the velocity, of one sign at both ends, crosses zero twice only by straying from
+                    // its chord further than the largest rate of u'' times h^2 / 8)
+                    const double ja = ca * px.cj + sa * py.cj, jb = ca * px.sj + sa * py.sj;
+                    const double least = std::min(std::abs(v0), std::abs(v1));
+                    inside = !(least * least > (ja * ja + jb * jb) * h2_8 * h2_8);
+                }
+                if (inside) p = std::max(p, interior_peak(nc, ns, n0, n1, sig, wd, h, e, c, s));
                 peak[q] = std::max(peak[q], p);
             }
             if (searched && ++since >= RESORT_EVERY) {  // (the snapshot taken again, in order)
