@@ -412,7 +412,7 @@ const Phase::Zeros& velocity_zeros(Phase& ph, int i, int j) {
             for (double tp = 0.5 * h; tp > 1e-12 * h; tp *= 0.5) {
                 double vp, ap;
                 fn_eval(fv, ph, tp, vp, ap);
-                if (vp * v0 > 0.0) {
+                if (vp != 0.0 && (vp < 0.0) == (v0 < 0.0)) {  // (signs: the product of two tiny ones underflows)
                     lo = tp;
                     v_lo = vp;
                     a_lo = ap;
