@@ -135,6 +135,31 @@ double velocity_cuts(Phase& ph, const System& sy, double h, const Buffers& b, co
     return cut;
 }
 
+// where a sub-interval must also end early: a stuck tie's force whose rate has one sign at both ends but turns
+// back and forth inside (its second derivative crossing zero, its rate there of the other sign) could cross
+// its threshold and come back unseen between two extrema; cut where its rate turns (a linear phase's
+// polynomial), each part then holding one extremum at most.  The cut instant (or h).
+double force_turn_cut(Phase& ph, const EventRow* evs, int n_ev, double h) {
+    double cut = h;
+    for (int i = 0; i < n_ev; ++i) {
+        if (evs[i].kind != KIND_STICK) continue;
+        Fn fn, rate, bend;
+        event_fn(evs, i, ph, fn);
+        if (fn.kind != FN_POLY) continue;
+        poly_deriv(fn.q, rate.q);
+        poly_deriv(rate.q, bend.q);
+        double r0, s0, r1, s1;
+        fn_eval(rate, ph, 0.0, r0, s0);
+        fn_eval(rate, ph, h, r1, s1);
+        if (!((r0 > 0.0 && r1 > 0.0) || (r0 < 0.0 && r1 < 0.0)) || (s0 < 0.0) == (s1 < 0.0)) continue;
+        const double tc = find_root(bend, ph, 0.0, h, s0, s1, NaN, NaN, XTOL_EXTREMUM_S);
+        double rc, unused;
+        fn_eval(rate, ph, tc, rc, unused);
+        if ((rc < 0.0) != (r0 < 0.0) && 0.0 < tc && tc < cut) cut = tc;
+    }
+    return cut;
+}
+
 struct Earliest { double tau; int i; };
 
 // (continuing: the same phase goes on from the last sub-interval's end, whose event values stand; but at a
@@ -541,7 +566,8 @@ void earliest(Loop& lp) {
     ph.e_y1 = b.y1.data();
     ph.e_a1 = b.a1.data();
     ph.e_h = lp.h;
-    const double cut = velocity_cuts(ph, lp.sy, lp.h, b, lp.w.pair_i.data(), lp.w.pair_j.data(), lp.n_pairs);
+    double cut = velocity_cuts(ph, lp.sy, lp.h, b, lp.w.pair_i.data(), lp.w.pair_j.data(), lp.n_pairs);
+    if (!ph.numeric && !lp.sy.ties.empty()) cut = std::min(cut, force_turn_cut(ph, lp.w.evs.data(), lp.n_ev, cut));
     if (cut < lp.h) {
         lp.h = cut;
         lp.to_stop = false;
