@@ -141,12 +141,15 @@ double velocity_cuts(Phase& ph, const System& sy, double h, const Buffers& b, co
 // polynomial), each part then holding one extremum at most.  The cut instant (or h).
 double force_turn_cut(Phase& ph, const EventRow* evs, int n_ev, double h) {
     double cut = h;
+    int last_side = -1;
     for (int i = 0; i < n_ev; ++i) {
-        if (evs[i].kind != KIND_STICK) continue;
-        Fn fn, rate, bend;
-        event_fn(evs, i, ph, fn);
-        if (fn.kind != FN_POLY) continue;
-        poly_deriv(fn.q, rate.q);
+        // (a tie's two thresholds share its force: its turns are looked at once)
+        if (evs[i].kind != KIND_STICK || evs[i].side == last_side) continue;
+        last_side = evs[i].side;
+        Fn rate, bend;
+        Poly force;
+        held_force_poly(ph, evs[i].side, force);
+        poly_deriv(force, rate.q);
         poly_deriv(rate.q, bend.q);
         double r0, s0, r1, s1;
         fn_eval(rate, ph, 0.0, r0, s0);
