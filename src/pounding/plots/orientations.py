@@ -43,11 +43,11 @@ def plot_orientations(result: Any, quantity: str = "disp_max_m", ax: Any = None)
 
     if ax is None:
         _, ax = plt.subplots(figsize=(4.5, 4.5), subplot_kw={"projection": "polar"}, constrained_layout=True)
+    angle, value = result.critical(quantity)  # (an unknown quantity refused by name)
     angles = np.radians(result.angles_deg)
-    values = result._column(quantity)
+    values = result.data[quantity].to_numpy(dtype=float)
     closed = np.append(angles, angles[:1]), np.append(values, values[:1])  # (round the circle)
     artists = list(ax.plot(*closed, "-o", lw=1.2, ms=3, label=quantity))
-    angle, value = result.critical(quantity)
     if np.isfinite(value):
         artists += ax.plot([np.radians(angle)], [value], "*", ms=12, color="C3",
                            label=f"critical: {value:.4g} at {angle:g} deg")

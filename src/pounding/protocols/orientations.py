@@ -70,7 +70,7 @@ class Orientations:
         column = self._column(quantity)
         if not np.isfinite(column).any():
             return math.nan, math.nan
-        at = int(np.nanargmax(np.where(np.isinf(column), np.inf, column)))
+        at = int(np.nanargmax(column))
         return float(self.angles_deg[at]), float(column[at])
 
     def _column(self, quantity: str) -> np.ndarray:
