@@ -65,12 +65,12 @@ void outputs(const double* st, const System& sy, double* q, double* row) {
 void outputs_in_phase(Phase& ph, const System& sy, double t, double tau, const double* y, const double* a,
                       double* row) {
     const int n = ph.n;
-    const double ag = table_acceleration(ph, tau);
+    const double ag = table_acceleration(ph, tau), bg = table_b(ph, tau);
     row[0] = t;
     for (int i = 0; i < n; ++i) {
         row[1 + i] = y[i];
         row[1 + n + i] = y[n + i];
-        row[1 + 2 * n + i] = a[i] + ag;
+        row[1 + 2 * n + i] = a[i] + ph.on(i, ag, bg);
     }
     for (int e = 0; e < sy.n_h(); ++e) {  // each element's force, the isolator's Bouc-Wen spring with its own
         const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
@@ -217,15 +217,20 @@ void numeric_contributions(Phase& ph, const System& sy, double* st, double tau, 
             phase_eval(ph, tq, y, a);
         }
         const double* v = y + n;
-        const double ag = table_acceleration(ph, tq);
-        double mv = 0.0, vcv = 0.0;
+        const double ag = table_acceleration(ph, tq), bg = table_b(ph, tq);
+        double mv = 0.0, mvb = 0.0, vcv = 0.0;  // (m . v, each component's influence weighted so)
         for (int i = 0; i < n; ++i) {
-            mv += sy.mass[static_cast<size_t>(i)] * v[i];
+            if (ph.plain) {
+                mv += sy.mass[static_cast<size_t>(i)] * v[i];
+            } else {
+                mv += sy.mass[static_cast<size_t>(i)] * ph.rA[static_cast<size_t>(i)] * v[i];
+                mvb += sy.mass[static_cast<size_t>(i)] * ph.rB[static_cast<size_t>(i)] * v[i];
+            }
             double s = 0.0;
             for (int j = 0; j < n; ++j) s += sy.c_lin[static_cast<size_t>(i * n + j)] * v[j];
             vcv += v[i] * s;
         }
-        ledger[L_INPUT] -= wq * ag * mv;
+        ledger[L_INPUT] -= ph.plain ? wq * ag * mv : wq * (ag * mv + bg * mvb);
         ledger[L_VISCOUS] += wq * vcv;
         if (bw != 0.0) ledger[L_HYSTERETIC] += wq * bw * phase_zeta(ph, tq) * rel(v, ph.iso_i, ph.iso_j);
         for (const Phase::RateFriction& r : ph.rate_fr) {  // (a velocity-dependent friction's rest)
@@ -293,20 +298,30 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
 // a held dof's absolute acceleration extrema: its group's motion (on the ground: the table's crests inside)
 void held_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, const Ends& e, bool linear) {
     const int n = ph.n;
-    track_abs_acceleration(ex, t0, e.a0[i] + table_acceleration(ph, 0.0));
-    track_abs_acceleration(ex, t0 + tau, e.a1[i] + table_acceleration(ph, tau));
+    track_abs_acceleration(ex, t0, e.a0[i] + table_on(ph, i, 0.0));
+    track_abs_acceleration(ex, t0 + tau, e.a1[i] + table_on(ph, i, tau));
     const int g = ph.stk.grp[static_cast<size_t>(i)];
-    if (ph.stk.grounded[static_cast<size_t>(g)] && ph.axh != 0.0 && ph.w > 0.0) {
+    // (the table on dof i: a line a0 + a1 s and a harmonic amp sin(w s + phi + lead); a plain table's the
+    // first component's)
+    double a1 = ph.ax1, amp = ph.axh, lead = 0.0;
+    if (!ph.plain) {
+        const double ri = ph.rA[static_cast<size_t>(i)], qi = ph.rB[static_cast<size_t>(i)];
+        const double S = ri * ph.axh + qi * ph.bs, C = qi * ph.bc;
+        a1 = ri * ph.ax1 + qi * ph.bx1;
+        amp = std::hypot(S, C);
+        lead = std::atan2(C, S);
+    }
+    if (ph.stk.grounded[static_cast<size_t>(g)] && amp != 0.0 && ph.w > 0.0) {
         // held on the ground it moves with the table: the table's crests inside, where
-        // ax1 + axh w cos(w s + phi) = 0
-        const double c = -ph.ax1 / (ph.axh * ph.w);
+        // a1 + amp w cos(w s + phi + lead) = 0
+        const double c = -a1 / (amp * ph.w);
         if (std::abs(c) <= 1.0) {
             const double theta = std::acos(c);
             for (const double target : {theta, -theta}) {
-                double s = std::fmod(target - ph.phi, TWO_PI);
+                double s = std::fmod(target - (ph.phi + lead), TWO_PI);
                 if (s < 0.0) s += TWO_PI;
                 s /= ph.w;
-                if (0.0 < s && s < tau) track_abs_acceleration(ex, t0 + s, table_acceleration(ph, s));
+                if (0.0 < s && s < tau) track_abs_acceleration(ex, t0 + s, table_on(ph, i, s));
             }
         }
     } else if (linear && !ph.stk.grounded[static_cast<size_t>(g)]) {
@@ -366,14 +381,14 @@ void free_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, 
         fr.kind = FN_AABS_RATE;
         fr.idx = i;
         double r0, r1, unused;
-        track_abs_acceleration(ex, t0, e.a0[i] + table_acceleration(ph, 0.0));
-        track_abs_acceleration(ex, t0 + tau, e.a1[i] + table_acceleration(ph, tau));
+        track_abs_acceleration(ex, t0, e.a0[i] + table_on(ph, i, 0.0));
+        track_abs_acceleration(ex, t0 + tau, e.a1[i] + table_on(ph, i, tau));
         fn_eval(fr, ph, 0.0, r0, unused);
         fn_eval(fr, ph, tau, r1, unused);
         if (r0 * r1 < 0.0) {
             const double tm = find_root(fr, ph, 0.0, tau, r0, r1, NaN, NaN, XTOL_EXTREMUM_S);
             phase_eval(ph, tm, b.ym.data(), b.am.data());
-            track_abs_acceleration(ex, t0 + tm, b.am[static_cast<size_t>(i)] + table_acceleration(ph, tm));
+            track_abs_acceleration(ex, t0 + tm, b.am[static_cast<size_t>(i)] + table_on(ph, i, tm));
         }
     }
 }

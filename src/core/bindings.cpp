@@ -136,7 +136,7 @@ Hysteretic element_from_state(const nb::dict& d) {
 void fill_system(System& s, int n, const std::vector<double>& mass, const std::vector<double>& k0,
                  const std::vector<double>& c0, const std::vector<Hysteretic>& elements, const std::vector<double>& bw,
                  bool has_b, const std::vector<Contact>& contacts, const std::vector<int>& track_i,
-                 const std::vector<int>& track_j) {
+                 const std::vector<int>& track_j, const std::vector<double>& infl) {
     s.n = n;
     s.mass = mass;
     s.k0 = k0;
@@ -147,6 +147,7 @@ void fill_system(System& s, int n, const std::vector<double>& mass, const std::v
     s.contact = contacts;
     s.track_i = track_i;
     s.track_j = track_j;
+    s.infl = infl;
     s.finish();
 }
 
@@ -165,6 +166,7 @@ nb::dict system_state(const System& s) {
     d["contacts"] = contacts;
     d["track_i"] = s.track_i;
     d["track_j"] = s.track_j;
+    d["infl"] = s.infl;
     return d;
 }
 
@@ -178,15 +180,20 @@ void system_from_state(System& s, const nb::dict& d) {
     fill_system(s, nb::cast<int>(d["n"]), nb::cast<std::vector<double>>(d["mass"]),
                 nb::cast<std::vector<double>>(d["k0"]), nb::cast<std::vector<double>>(d["c0"]), elements,
                 nb::cast<std::vector<double>>(d["bw"]), nb::cast<bool>(d["has_b"]), contacts,
-                nb::cast<std::vector<int>>(d["track_i"]), nb::cast<std::vector<int>>(d["track_j"]));
+                nb::cast<std::vector<int>>(d["track_i"]), nb::cast<std::vector<int>>(d["track_j"]),
+                d.contains("infl") ? nb::cast<std::vector<double>>(d["infl"]) : std::vector<double>());
 }
 
-Forcing forcing_of(int kind, Vec p, Vec rec_t, Vec rec_a) {
+// (p: amplitude, omega, phase, then the second component's amplitude and phase; rec_b empty: no second
+// component, else the same length as rec_t)
+Forcing forcing_of(int kind, Vec p, Vec rec_t, Vec rec_a, Vec rec_b) {
     Forcing f;
     f.kind = kind;
     for (int j = 0; j < 3; ++j) f.p[j] = j < static_cast<int>(p.shape(0)) ? p(j) : 0.0;
+    for (int j = 0; j < 2; ++j) f.pb[j] = j + 3 < static_cast<int>(p.shape(0)) ? p(j + 3) : 0.0;
     f.rec_t = rec_t.data();
     f.rec_a = rec_a.data();
+    f.rec_b = rec_b.shape(0) == rec_t.shape(0) && rec_b.shape(0) > 0 ? rec_b.data() : nullptr;
     f.n_rec = static_cast<int64_t>(rec_t.shape(0));
     return f;
 }
@@ -244,14 +251,17 @@ NB_MODULE(_pounding_core, m) {
              [](System* s, int n, const std::vector<double>& mass, const std::vector<double>& k0,
                 const std::vector<double>& c0, const std::vector<Hysteretic>& elements,
                 const std::vector<double>& bw, bool has_b, const std::vector<Contact>& contacts,
-                const std::vector<int>& track_i, const std::vector<int>& track_j) {
+                const std::vector<int>& track_i, const std::vector<int>& track_j, const std::vector<double>& infl) {
                  new (s) System();
-                 fill_system(*s, n, mass, k0, c0, elements, bw, has_b, contacts, track_i, track_j);
+                 fill_system(*s, n, mass, k0, c0, elements, bw, has_b, contacts, track_i, track_j, infl);
              },
              nb::kw_only(), nb::arg("n"), nb::arg("mass"), nb::arg("k0"), nb::arg("c0"), nb::arg("elements"),
-             nb::arg("bw"), nb::arg("has_b"), nb::arg("contacts"), nb::arg("track_i"), nb::arg("track_j"))
+             nb::arg("bw"), nb::arg("has_b"), nb::arg("contacts"), nb::arg("track_i"), nb::arg("track_j"),
+             nb::arg("infl") = std::vector<double>())
         .def_ro("n", &System::n)
         .def_ro("mass", &System::mass)
+        .def_ro("plain", &System::plain)
+        .def_ro("infl", &System::infl)
         .def_prop_ro("n_elements", &System::n_h)
         .def_ro("has_b", &System::has_b)
         .def_prop_ro("state_size", &System::state_size)
@@ -278,9 +288,9 @@ NB_MODULE(_pounding_core, m) {
         });
 
     m.def("run",
-          [](const System& sy, int kind, Vec p, Vec rec_t, Vec rec_a, Vec state0, double t_end, double sample_dt,
-             double rtol, int64_t max_events, bool with_energy, Ctl ctl) {
-              const Forcing fo = forcing_of(kind, p, rec_t, rec_a);
+          [](const System& sy, int kind, Vec p, Vec rec_t, Vec rec_a, Vec rec_b, Vec state0, double t_end,
+             double sample_dt, double rtol, int64_t max_events, bool with_energy, Ctl ctl) {
+              const Forcing fo = forcing_of(kind, p, rec_t, rec_a, rec_b);
               RunOptions opt;
               opt.t_end = t_end;
               opt.sample_dt = sample_dt;
@@ -299,8 +309,8 @@ NB_MODULE(_pounding_core, m) {
                                     array1(out.ledger, LEDGER_LEN), array1(out.extrema.data(), out.extrema.size()),
                                     out.status, rows_array(out.chatters));
           },
-          nb::arg("system"), nb::arg("kind"), nb::arg("p"), nb::arg("rec_t"), nb::arg("rec_a"), nb::arg("state0"),
-          nb::arg("t_end"), nb::arg("sample_dt"), nb::arg("rtol"), nb::arg("max_events"), nb::arg("with_energy"),
+          nb::arg("system"), nb::arg("kind"), nb::arg("p"), nb::arg("rec_t"), nb::arg("rec_a"), nb::arg("rec_b"),
+          nb::arg("state0"), nb::arg("t_end"), nb::arg("sample_dt"), nb::arg("rtol"), nb::arg("max_events"), nb::arg("with_energy"),
           nb::arg("ctl"));
 
     m.def("step",

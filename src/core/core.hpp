@@ -162,11 +162,15 @@ struct System {
     bool has_b = false;           // the contacts are active
     std::vector<Contact> contact; // the contact slots
     std::vector<int> track_i, track_j;  // pairs whose relative displacement's extrema a run finds (drifts)
+    // how the ground's two components move each dof (n x 2, row by dof: the table acceleration on dof i is
+    // infl[2 i] a_x + infl[2 i + 1] a_y); empty: every dof moves with the first component (a line's table)
+    std::vector<double> infl;
     // derived by finish(): the damping of every phase (c0 and the elements' dashpots), the layout
     std::vector<double> c_lin;
     std::vector<int> rigid;  // the contacts with a rigid stop's law
     std::vector<int> ties;   // the elements with the friction rule (each ties its pair while it sticks)
     double total_mass = 0.0;
+    bool plain = true;  // the table moves every dof with its first component alone (infl's rows 1, 0)
     Layout lay;
 
     int n_springs() const {  // the elements' springs, all together
@@ -198,6 +202,13 @@ struct System {
             if (iso_is_friction(hyst[static_cast<size_t>(e)])) ties.push_back(e);
         total_mass = 0.0;
         for (double m : mass) total_mass += m;
+        if (static_cast<int>(infl.size()) != 2 * n) {
+            infl.assign(static_cast<size_t>(2 * n), 0.0);
+            for (int i = 0; i < n; ++i) infl[static_cast<size_t>(2 * i)] = 1.0;
+        }
+        plain = true;
+        for (int i = 0; i < n; ++i)
+            plain = plain && infl[static_cast<size_t>(2 * i)] == 1.0 && infl[static_cast<size_t>(2 * i + 1)] == 0.0;
     }
     // a spring (or dashpot) of constant s between dofs i and j (or the ground) into an n x n matrix
     void add_pair(std::vector<double>& a, int i, int j, double s) const {
@@ -215,13 +226,16 @@ inline double rel(const double* y, int i, int j) { return j >= 0 ? y[i] - y[j] :
 
 // The excitation: harmonic (p = amplitude m/s^2, omega rad/s, phase rad) or a record (times s and
 // accelerations m/s^2, linear between samples; p[0] its uniform step, 0 if none).  It moves the ground,
-// so every mass feels -m a_g.
+// so every mass feels -m a_g (dof i: -m_i (infl[2 i] a_g + infl[2 i + 1] b_g)).  Its second component b_g:
+// a harmonic's pb[0] sin(omega t + pb[1]) (the same omega), a record's rec_b on the same times (null: none).
 constexpr int EXC_HARMONIC = 0, EXC_RECORD = 1;
 struct Forcing {
     int kind = EXC_HARMONIC;
     double p[3] = {0, 0, 0};
+    double pb[2] = {0, 0};
     const double* rec_t = nullptr;
     const double* rec_a = nullptr;
+    const double* rec_b = nullptr;
     int64_t n_rec = 0;
 };
 

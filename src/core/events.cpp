@@ -47,10 +47,13 @@ EventValue held_force(Phase& ph, int c, double tau, const double* y, const doubl
     const double ang = ph.w * tau + ph.phi;
     const double ag = ph.ax0 + ph.ax1 * tau + ph.axh * std::sin(ang);
     const double agr = ph.ax1 + ph.axh * ph.w * std::cos(ang);
+    // (the second component's and its rate)
+    const double bg = table_b(ph, tau);
+    const double bgr = ph.plain ? 0.0 : ph.bx1 + ph.w * (ph.bs * std::cos(ang) - ph.bc * std::sin(ang));
     double mean_rate = 0.0;  // the group's acceleration rate (0 on the ground)
     for (int k = 0; k < n; ++k) {
         if (st.grp[static_cast<size_t>(k)] != g_c) continue;
-        aur[k] = abs_acceleration_rate(ph, k, tau, y, a) - agr;
+        aur[k] = abs_acceleration_rate(ph, k, tau, y, a) - ph.on(k, agr, bgr);
         mean_rate += ph.mass[static_cast<size_t>(k)] * aur[k];
     }
     mean_rate = st.grounded[static_cast<size_t>(g_c)] ? 0.0 : mean_rate / st.gmass[static_cast<size_t>(g_c)];
@@ -60,7 +63,7 @@ EventValue held_force(Phase& ph, int c, double tau, const double* y, const doubl
         const double m = side[k] * ph.mass[static_cast<size_t>(k)];
         f += m * (au[k] - a[k]);
         rate += m * (aur[k] - mean_rate);
-        double s = std::abs(ph.R0[static_cast<size_t>(k)]) + std::abs(m) * (std::abs(ag) + std::abs(a[k]));
+        double s = std::abs(ph.R0[static_cast<size_t>(k)]) + std::abs(m) * (std::abs(ph.on(k, ag, bg)) + std::abs(a[k]));
         for (int j = 0; j < n; ++j)
             s += std::abs(ph.K[static_cast<size_t>(k * n + j)] * y[j]) + std::abs(ph.C[static_cast<size_t>(k * n + j)] * y[n + j]);
         scale += s;

@@ -11,14 +11,14 @@
 
 namespace pounding::run_parts {
 
-void state_accelerations(const double* st, const System& sy, const Sticking& stk, double ag, double* q,
+void state_accelerations(const double* st, const System& sy, const Sticking& stk, const double* ag, double* q,
                          double* row, std::vector<double>& au, std::vector<double>& a) {
     const int n = sy.n;
     outputs(st, sy, q, row);
     au.resize(static_cast<size_t>(n));
     a.resize(static_cast<size_t>(n));
     for (int k = 0; k < n; ++k) {
-        au[static_cast<size_t>(k)] = row[1 + 2 * n + k] - ag;
+        au[static_cast<size_t>(k)] = row[1 + 2 * n + k] - ag[k];
         a[static_cast<size_t>(k)] = au[static_cast<size_t>(k)];
     }
     stk.project(sy.mass, a.data());
@@ -43,7 +43,7 @@ inline double& seq_count(double* st, const Layout& L, int c) { return st[L.acc_a
 inline double& seq_last(double* st, const Layout& L, int c) { return st[L.acc_at(c) + A_PEAK]; }
 
 // the push of contact c shut (its relative acceleration towards compression, m/s^2) in the state
-double push_of(const double* st, const System& sy, const Sticking& stk, int c, double ag, double* q, double* row,
+double push_of(const double* st, const System& sy, const Sticking& stk, int c, const double* ag, double* q, double* row,
                std::vector<double>& au, std::vector<double>& a) {
     const Contact& ct = sy.contact[static_cast<size_t>(c)];
     state_accelerations(st, sy, stk, ag, q, row, au, a);
@@ -55,7 +55,7 @@ double push_of(const double* st, const System& sy, const Sticking& stk, int c, d
 // -M^-1 (K x^(k) + C x^(k+1)) - a_g^(k), with the other held stops' constraint, x^(k) the held motion's (the same
 // with contact c held too: its velocities, accelerations and their rates)
 void held_push_rates(std::vector<double>& s0, const System& sy, const Phase& ph, double tau, const Sticking& stk,
-                     int c, double ag, double* q, double* row, int order, double* rates) {
+                     int c, const double* ag, double* q, double* row, int order, double* rates) {
     const Layout& L = sy.lay;
     const Contact& ct = sy.contact[static_cast<size_t>(c)];
     const int n = sy.n;
@@ -72,19 +72,21 @@ void held_push_rates(std::vector<double>& s0, const System& sy, const Phase& ph,
     std::copy(a.begin(), a.end(), xs.begin() + n);
     rate_u.resize(static_cast<size_t>(n));
     const double angle = ph.w * tau + ph.phi;
-    const double sn = ph.axh != 0.0 && order > 1 ? std::sin(angle) : 0.0, cs = std::cos(angle);
+    const double sn = (ph.axh != 0.0 && order > 1) || !ph.plain ? std::sin(angle) : 0.0, cs = std::cos(angle);
     const double turn[4] = {sn, cs, -sn, -cs};  // (sin's derivatives at the angle)
+    const double turn_c[4] = {cs, -sn, -cs, sn};  // (cos's)
     double wk = ph.w;  // (w^k)
     for (int k = 1; k <= order; ++k, wk *= ph.w) {
-        // the table's k-th rate: ax1 (k = 1) and the harmonic's, axh w^k sin^(k)
+        // the table's k-th rate: ax1 (k = 1) and the harmonic's, axh w^k sin^(k) (and its second component's)
         const double ag_k = (k == 1 ? ph.ax1 : 0.0) + ph.axh * wk * turn[k % 4];
+        const double bg_k = ph.plain ? 0.0 : (k == 1 ? ph.bx1 : 0.0) + wk * (ph.bs * turn[k % 4] + ph.bc * turn_c[k % 4]);
         const double* x = &xs[static_cast<size_t>((k - 1) * n)];
         const double* x1 = &xs[static_cast<size_t>(k * n)];
         for (int i = 0; i < n; ++i) {
             double s = 0.0;
             for (int j = 0; j < n; ++j)
                 s += ph.K[static_cast<size_t>(i * n + j)] * x[j] + ph.C[static_cast<size_t>(i * n + j)] * x1[j];
-            rate_u[static_cast<size_t>(i)] = -ph.minv[static_cast<size_t>(i)] * s - ag_k;
+            rate_u[static_cast<size_t>(i)] = -ph.minv[static_cast<size_t>(i)] * s - ph.on(i, ag_k, bg_k);
         }
         if (k < order) {  // (the held motion's next derivative: the same with c held)
             double* next = &xs[static_cast<size_t>((k + 1) * n)];
@@ -99,7 +101,7 @@ void held_push_rates(std::vector<double>& s0, const System& sy, const Phase& ph,
 
 // the rate in time of the push of contact c (m/s^3) along the motion held at the stop from the state s0
 double held_push_rate(std::vector<double>& s0, const System& sy, const Phase& ph, double tau, const Sticking& stk,
-                      int c, double ag, double* q, double* row) {
+                      int c, const double* ag, double* q, double* row) {
     double rate;
     held_push_rates(s0, sy, ph, tau, stk, c, ag, q, row, 1, &rate);
     return rate;
@@ -216,7 +218,7 @@ bool local_flight(const LocalChatter& m, double s, double u, double& tau, double
 // can come while the rebounds are still large against those scales: the first order alone missed its second,
 // T eps^2 / (1 - e)^2, there.)
 double accumulation(const double* st, const System& sy, const Phase& ph, double tau, const Sticking& stk, int c,
-                    double ag, double u, double mi, double mj, double* q, double* row) {
+                    const double* ag, double u, double mi, double mj, double* q, double* row) {
     const Layout& L = sy.lay;
     const Contact& ct = sy.contact[static_cast<size_t>(c)];
     const double e = law_restitution(ct.p);
@@ -332,7 +334,7 @@ int tensile_hold(const System& sy, const Sticking& stk, int c, double impulse, d
 
 // the held stops' forces (N) in the state: those that would pull let go (after a velocity jump, which changes a
 // dashpot's share of a hold's force at once), but contact c's own
-void release_pulling(double* st, const System& sy, Sticking& stk, int c, double ag, double* q, double* row,
+void release_pulling(double* st, const System& sy, Sticking& stk, int c, const double* ag, double* q, double* row,
                      Rows& contacts) {
     static thread_local std::vector<double> au, a;
     for (int pass = 0; pass < sy.nc(); ++pass) {
@@ -346,7 +348,7 @@ void release_pulling(double* st, const System& sy, Sticking& stk, int c, double 
             const double f = stk.force(ct.sign, static_cast<int>(h), sy.mass, au.data(), a.data());
             double scale = 0.0;
             for (int k = 0; k < sy.n; ++k)
-                scale += sy.mass[static_cast<size_t>(k)] * (std::abs(au[static_cast<size_t>(k)]) + std::abs(ag));
+                scale += sy.mass[static_cast<size_t>(k)] * (std::abs(au[static_cast<size_t>(k)]) + std::abs(ag[k]));
             if (stk.held[h] != c && f < -ROUNDING * scale) pulls = stk.held[h];
         }
         if (pulls < 0) return;
@@ -374,13 +376,13 @@ void release_tensile(double* st, const System& sy, Sticking& stk, int c, Rows& c
 }
 
 // the impact itself (rigid_contact without the release of the holds that would pull after it)
-bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
+bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, const double* ag,
                     const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q, double* row,
                     double& flight);
 
 }  // namespace
 
-bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
+bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, const double* ag,
                    const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q, double* row,
                    double& flight) {
     if (others_touch(st, sy, c, sc.h_min) &&
@@ -402,7 +404,7 @@ bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, St
 
 namespace {
 
-bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
+bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, const double* ag,
                     const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q, double* row,
                     double& flight) {
     flight = INF;
@@ -452,7 +454,7 @@ bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, S
     std::vector<double>& s0 = scratch.s0;
     state_accelerations(st, sy, stk, ag, q, row, au, a);
     double push = ct.sign * (a[static_cast<size_t>(ct.i)] - (ct.j >= 0 ? a[static_cast<size_t>(ct.j)] : 0.0));
-    const double round = ROUNDING * (std::abs(ag) + std::abs(au[static_cast<size_t>(ct.i)]) +
+    const double round = ROUNDING * (std::abs(ag[ct.i]) + std::abs(au[static_cast<size_t>(ct.i)]) +
                                      (ct.j >= 0 ? std::abs(au[static_cast<size_t>(ct.j)]) : 0.0));
     if (u == 0.0 && std::abs(push) <= round) {  // (no push to rounding, met at rest: the push's rate decides)
         s0.assign(st, st + L.size);
@@ -523,16 +525,16 @@ void close_chatters(const double* st, const System& sy, Rows& chatters) {
     }
 }
 
-void held_outputs(const double* st, const System& sy, Sticking& stk, double ag, double* row) {
+void held_outputs(const double* st, const System& sy, Sticking& stk, const double* ag, double* row) {
     stk.build(sy, st);
     if (!stk.any) return;
     const int n = sy.n;
     static thread_local std::vector<double> au, a;
     au.resize(static_cast<size_t>(n));
     a.resize(static_cast<size_t>(n));
-    for (int k = 0; k < n; ++k) au[static_cast<size_t>(k)] = a[static_cast<size_t>(k)] = row[1 + 2 * n + k] - ag;
+    for (int k = 0; k < n; ++k) au[static_cast<size_t>(k)] = a[static_cast<size_t>(k)] = row[1 + 2 * n + k] - ag[k];
     stk.project(sy.mass, a.data());
-    for (int k = 0; k < n; ++k) row[1 + 2 * n + k] = a[static_cast<size_t>(k)] + ag;
+    for (int k = 0; k < n; ++k) row[1 + 2 * n + k] = a[static_cast<size_t>(k)] + ag[k];
     double* fe = row + 1 + 3 * n;  // (each element's force, then each contact's)
     for (size_t h = 0; h < stk.held.size(); ++h) {
         const int b = stk.held[h];
@@ -542,7 +544,7 @@ void held_outputs(const double* st, const System& sy, Sticking& stk, double ag, 
     }
 }
 
-double tie_force(double* st, const System& sy, int e, Sticking& stk, double ag, double* q, double* row) {
+double tie_force(double* st, const System& sy, int e, Sticking& stk, const double* ag, double* q, double* row) {
     static thread_local std::vector<double> au, a;
     double& slip = iso_slip_slot(sy, e, st);
     const double was = slip;

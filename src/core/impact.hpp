@@ -32,7 +32,7 @@ struct ImpactScales {
 // then); true when the impact resolved the meeting (a rebound, the stop held, or the motion leaving it),
 // false when nothing moved apart
 // (flight: the rebound's flight time to first order, 2 u / A, or INF; the next sub-interval need not be longer)
-bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
+bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, const double* ag,
                    const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q, double* row,
                    double& flight);
 // after a velocity jump: a hysteretic element's slipping springs and a deformable bumper's law's turns follow the
@@ -43,10 +43,10 @@ void rigid_release(double* st, const System& sy, int c, Rows& contacts);
 // the chatter sequences still open at the end of a run (three impacts or more)
 void close_chatters(const double* st, const System& sy, Rows& chatters);
 // a sample row from outputs() corrected for the held stops: their dofs' absolute accelerations and their forces
-void held_outputs(const double* st, const System& sy, Sticking& stk, double ag, double* row);
+void held_outputs(const double* st, const System& sy, Sticking& stk, const double* ag, double* row);
 
 // the force friction element e's tie would need in the state, were it sticking (N: isolator.hpp's D; stk and
 // row are scratch)
-double tie_force(double* st, const System& sy, int e, Sticking& stk, double ag, double* q, double* row);
+double tie_force(double* st, const System& sy, int e, Sticking& stk, const double* ag, double* q, double* row);
 
 }  // namespace pounding::run_parts

@@ -9,7 +9,7 @@
 namespace pounding::run_parts {
 
 // the accelerations (n) of the state without the held stops (au) and with them (a)
-void state_accelerations(const double* st, const System& sy, const Sticking& stk, double ag, double* q,
+void state_accelerations(const double* st, const System& sy, const Sticking& stk, const double* ag, double* q,
                          double* row, std::vector<double>& au, std::vector<double>& a);
 // a free rigid stop's impact at t counted in its running sequence (a new one after a pause longer than
 // window_s, the last one's row written when it held three impacts or more)
@@ -34,7 +34,7 @@ inline bool others_touch(const double* st, const System& sy, int c, double h) {
     return false;
 }
 // (ph, tau: the phase that led to the instant, for the rates of the forces that are zero to the rounding)
-bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
+bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, const double* ag,
                      const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q,
                      double* row);
 

@@ -98,7 +98,7 @@ bool solve_lcp(const std::vector<double>& W, const std::vector<double>& b, int k
 
 }  // namespace
 
-bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, double ag,
+bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, const double* ag,
                      const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q,
                      double* row) {
     const Layout& L = sy.lay;
@@ -188,7 +188,9 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
     };
     // (a force or push zero to the rounding: its rate decides, along the motion with the holds, whose
     // accelerations' rate is -M^-1 (K v + C a) - a_g')
-    const double ag_rate = ph.ax1 + ph.axh * ph.w * std::cos(ph.w * tau + ph.phi);
+    const double ang = ph.w * tau + ph.phi;
+    const double ag_rate = ph.ax1 + ph.axh * ph.w * std::cos(ang);
+    const double bg_rate = ph.plain ? 0.0 : ph.bx1 + ph.w * (ph.bs * std::cos(ang) - ph.bc * std::sin(ang));
     auto consistent = [&](int s) {
         hold(s);
         if (!stk.build(sy, st)) return false;  // (a loop of holds)
@@ -198,7 +200,7 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
             double f = 0.0;
             for (int j = 0; j < n; ++j)
                 f += ph.K[static_cast<size_t>(i * n + j)] * v[j] + ph.C[static_cast<size_t>(i * n + j)] * a[static_cast<size_t>(j)];
-            ju[static_cast<size_t>(i)] = -ph.minv[static_cast<size_t>(i)] * f - ag_rate;
+            ju[static_cast<size_t>(i)] = -ph.minv[static_cast<size_t>(i)] * f - ph.on(i, ag_rate, bg_rate);
         }
         jh = ju;
         stk.project(sy.mass, jh.data());
@@ -206,10 +208,14 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
         // where every force is passing through zero)
         double round = std::abs(ph.ax0) + std::abs(ph.axh) + ph.xrun * ph.rate * ph.rate;
         double round_rate = std::abs(ph.ax1) + std::abs(ph.axh * ph.w) + ph.xrun * ph.rate * ph.rate * ph.rate;
+        if (!ph.plain) {
+            round += std::abs(ph.bx0) + std::abs(ph.bs) + std::abs(ph.bc);
+            round_rate += std::abs(ph.bx1) + (std::abs(ph.bs) + std::abs(ph.bc)) * ph.w;
+        }
         double mass = 0.0;
         for (int i = 0; i < n; ++i) {
-            round += std::abs(au[static_cast<size_t>(i)]) + std::abs(ag);
-            round_rate += std::abs(ju[static_cast<size_t>(i)]) + std::abs(ag_rate);
+            round += std::abs(au[static_cast<size_t>(i)]) + std::abs(ag[i]);
+            round_rate += std::abs(ju[static_cast<size_t>(i)]) + std::abs(ph.on(i, ag_rate, bg_rate));
             mass += sy.mass[static_cast<size_t>(i)];
         }
         round *= ROUNDING;

@@ -92,7 +92,7 @@ void jump(double* st, const System& sy, const EventRow& ev, Rows& contacts, cons
 
 // an event's row, and the sample just after it
 void record_event(double* st, const System& sy, const EventRow& ev, Rows& events, Rows& samples, double sample_dt,
-                  double* extrema, Buffers& b, std::vector<double>& row, Sticking& stk, double ag) {
+                  double* extrema, Buffers& b, std::vector<double>& row, Sticking& stk, const double* ag) {
     double* r = events.push();
     r[EC_T] = st[T];
     r[EC_ACTION] = static_cast<double>(ev.action);
@@ -105,7 +105,7 @@ void record_event(double* st, const System& sy, const EventRow& ev, Rows& events
 
 // the end of a run: its last sample, and a row for each contact still going on
 void finish(const double* st, const System& sy, Rows& samples, Rows& contacts, Buffers& b, std::vector<double>& row,
-            Sticking& stk, double ag) {
+            Sticking& stk, const double* ag) {
     const Layout& L = sy.lay;
     if (samples.row(samples.n - 1)[0] < st[T]) {
         outputs(st, sy, b.q.data(), row.data());

@@ -108,7 +108,8 @@ Mat augmented(const System& sy, const Coords& cx, const double* st, double omega
         }
         for (int s = 0; s < cx.nsp; ++s) a(cx.v + i, cx.slip + s) = -G(i, s) / m;
         a(cx.v + i, one) = -R[static_cast<size_t>(i)] / m;
-        a(cx.v + i, s_) = -amp;  // the table moves every mass
+        a(cx.v + i, s_) = -amp * sy.infl[static_cast<size_t>(2 * i)];  // the table moves every mass (its first
+        // component: a monodromy's forcing has no second)
     }
     a(s_, c_) = omega;
     a(c_, s_) = -omega;
@@ -347,8 +348,10 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
             // saltation, as a held stop's release); the way it slips is that of the threshold the tie's force is at
             std::vector<double> q(static_cast<size_t>(sy.n)), row(static_cast<size_t>(sy.lay.sample_cols()));
             Sticking stk;
-            const double d = run_parts::tie_force(st.data(), sy, index, stk, amp * xa[static_cast<size_t>(n)],
-                                                  q.data(), row.data());
+            std::vector<double> ag(static_cast<size_t>(sy.n));
+            for (int i = 0; i < sy.n; ++i)
+                ag[static_cast<size_t>(i)] = sy.infl[static_cast<size_t>(2 * i)] * (amp * xa[static_cast<size_t>(n)]);
+            const double d = run_parts::tie_force(st.data(), sy, index, stk, ag.data(), q.data(), row.data());
             iso_transition(sy, next.data(), ACT_SLIP, index, friction_threshold_way(sy, st.data(), index, d));
             st = next;
             a = mode(sy, cx, st.data(), omega, amp);

@@ -71,7 +71,8 @@ inline double quad(const std::vector<double>& A, const double* x, const double* 
 
 // the displacements' derivatives D_0..D_9 (each n) at one end, from x, v, a there and the table acceleration's
 // derivatives G_1..G_7: D_(k+2) = -M^-1 (K D_k + C D_(k+1)) - G_k 1
-void end_derivatives(const Phase& ph, int order, const double* y, const double* a, const double* g, double* D) {
+void end_derivatives(const Phase& ph, int order, const double* y, const double* a, const double* g, const double* gb,
+                     double* D) {
     const int n = ph.n;
     for (int i = 0; i < n; ++i) {
         D[i] = y[i];
@@ -81,7 +82,10 @@ void end_derivatives(const Phase& ph, int order, const double* y, const double* 
     for (int k = 1; k + 2 <= order + 1; ++k) {
         double* out = D + (k + 2) * n;
         minv_ab(ph, ph.K, D + k * n, ph.C, D + (k + 1) * n, out);
-        for (int i = 0; i < n; ++i) out[i] = -out[i] - g[k];
+        if (ph.plain)
+            for (int i = 0; i < n; ++i) out[i] = -out[i] - g[k];
+        else
+            for (int i = 0; i < n; ++i) out[i] = -out[i] - ph.on(i, g[k], gb[k]);
         ph.stk.project(ph.mass, out);
     }
 }
@@ -89,8 +93,8 @@ void end_derivatives(const Phase& ph, int order, const double* y, const double* 
 // one end's share of the integrals: sum_k c_k T^(k+1) sgn^k f^(k), f the integrands (D: the displacements'
 // derivatives D_0..D_9 there, g: the table acceleration's G_0..G_8)
 void hermite_end(Phase& ph, int order, const std::vector<double>& c_lin, const std::vector<double>& mass,
-                 const double* D, const double* g, double big_t, double sgn, bool energy, double& vcv, double& gv,
-                 double* du, double* dvv) {
+                 const double* D, const double* g, const double* gb, double big_t, double sgn, bool energy,
+                 double& vcv, double& gv, double* du, double* dvv) {
     const int n = ph.n;
     double q[HERMITE_ORDER + 1];
     double t = big_t;
@@ -98,7 +102,7 @@ void hermite_end(Phase& ph, int order, const std::vector<double>& c_lin, const s
         q[k] = HERMITE.c[order][k] * t * ((k % 2) ? sgn : 1.0);
         t *= big_t;
     }
-    if (energy && n == 1) {  // (one mass: scalars)
+    if (energy && n == 1 && ph.plain) {  // (one mass: scalars)
         const double c = c_lin[0], m = mass[0];
         double CD[HERMITE_ORDER + 2], P[HERMITE_ORDER + 1];
         for (int k = 1; k <= order + 1; ++k) CD[k] = c * D[k];
@@ -113,7 +117,7 @@ void hermite_end(Phase& ph, int order, const std::vector<double>& c_lin, const s
     } else if (energy) {
         // int v^T C v: f^(k) = sum_j binom(k, j) D_(j+1) . (C D_(k-j+1)); int a_g (m . v): sum_j binom G_j P_(k-j)
         double* CD = ph.work.data() + ph.w_q;  // C D_m, m = 1..9 (9 n)
-        double P[HERMITE_ORDER + 1];
+        double P[HERMITE_ORDER + 1], PB[HERMITE_ORDER + 1];
         for (int m = 1; m <= order + 1; ++m) {
             const double* d = D + m * n;
             double* out = CD + (m - 1) * n;
@@ -124,11 +128,20 @@ void hermite_end(Phase& ph, int order, const std::vector<double>& c_lin, const s
                 out[i] = s;
             }
         }
+        // (m . v, or each component's influence weighted so: a_g's power is sum_i m_i (rA_i a_g + rB_i b_g) v_i)
         for (int k = 0; k <= order; ++k) {
             const double* d = D + (k + 1) * n;
-            double s = 0.0;
-            for (int i = 0; i < n; ++i) s += mass[static_cast<size_t>(i)] * d[i];
+            double s = 0.0, sb = 0.0;
+            if (ph.plain) {
+                for (int i = 0; i < n; ++i) s += mass[static_cast<size_t>(i)] * d[i];
+            } else {
+                for (int i = 0; i < n; ++i) {
+                    s += mass[static_cast<size_t>(i)] * ph.rA[static_cast<size_t>(i)] * d[i];
+                    sb += mass[static_cast<size_t>(i)] * ph.rB[static_cast<size_t>(i)] * d[i];
+                }
+            }
             P[k] = s;
+            PB[k] = sb;
         }
         for (int k = 0; k <= order; ++k) {
             double s_vcv = 0.0;
@@ -141,6 +154,8 @@ void hermite_end(Phase& ph, int order, const std::vector<double>& c_lin, const s
             }
             double s_gv = 0.0;
             for (int j = 0; j <= k; ++j) s_gv += BINOM[k][j] * g[j] * P[k - j];
+            if (!ph.plain)
+                for (int j = 0; j <= k; ++j) s_gv += BINOM[k][j] * gb[j] * PB[k - j];
             vcv += q[k] * s_vcv;
             gv += q[k] * s_gv;
         }
@@ -200,6 +215,16 @@ int series_terms(double r) {
 }
 
 namespace {
+// the second component's series coefficient k (wk: w^k / k!; sp, cp: the sine and cosine of the angle at 0)
+inline double table_b_term(const Phase& ph, int k, double wk, double sp, double cp) {
+    const int m4 = k & 3;
+    double g = wk * (ph.bs * (m4 == 0 ? sp : m4 == 1 ? cp : m4 == 2 ? -sp : -cp) +
+                     ph.bc * (m4 == 0 ? cp : m4 == 1 ? -sp : m4 == 2 ? -cp : sp));
+    if (k == 0) g += ph.bx0;
+    if (k == 1) g += ph.bx1;
+    return g;
+}
+
 // series() for one mass: scalars, the same sums
 int series_one(const Phase& ph, const double* y0, const double* r, double a0, double a1, double amp, double sp,
                double cp, double h, double* t, int need, double scale, bool held) {
@@ -213,6 +238,7 @@ int series_one(const Phase& ph, const double* y0, const double* r, double a0, do
         double g = amp * wk * phase[k & 3];
         if (k == 0) g += a0;
         if (k == 1) g += a1;
+        if (!ph.plain) g = ph.on(0, g, table_b_term(ph, k, wk, sp, cp));
         const double inv = INV.v[k + 1];
         wk *= w * inv;
         double f = mi * (kk * x + cc * v);
@@ -254,10 +280,11 @@ int series(const Phase& ph, const double* y0, const double* r, double a0, double
     double hk = 1.0;  // h^k
     for (int k = 0;; ++k) {
         const int m4 = k % 4;
-        // the table acceleration's series: a0 + a1 tau + amp sin(w tau + phi)
+        // the table acceleration's series: a0 + a1 tau + amp sin(w tau + phi) (and its second component's)
         double g = amp * wk * (m4 == 0 ? sp : m4 == 1 ? cp : m4 == 2 ? -sp : -cp);
         if (k == 0) g += a0;
         if (k == 1) g += a1;
+        const double gb = ph.plain ? 0.0 : table_b_term(ph, k, wk, sp, cp);
         const double inv = INV.v[k + 1];
         wk *= w * inv;
         const double* Xk = t + k * ny;
@@ -271,7 +298,7 @@ int series(const Phase& ph, const double* y0, const double* r, double a0, double
             for (int j = 0; j < n; ++j) s += rk[j] * Xk[j] + rc[j] * Vk[j];
             double f = minv[i] * s;
             if (k == 0 && r != nullptr) f += r[i];
-            Vn[i] = (-f - g) * inv;
+            Vn[i] = (-f - ph.on(i, g, gb)) * inv;
             Xn[i] = Vk[i] * inv;
         }
         if (held) ph.stk.project(ph.mass, Vn);
@@ -330,7 +357,7 @@ void lin_eval(const Phase& ph, double tau, double* y, double* a) {
     }
 }
 
-void table_derivatives(const Phase& ph, double tau, double s, double c, int m, double* g) {
+void table_derivatives(const Phase& ph, double tau, double s, double c, int m, double* g, double* gb) {
     const double w = ph.w, amp = ph.axh;
     g[0] = ph.ax0 + ph.ax1 * tau + amp * s;
     if (m >= 1) g[1] = ph.ax1 + amp * w * c;
@@ -340,6 +367,15 @@ void table_derivatives(const Phase& ph, double tau, double s, double c, int m, d
         const int m4 = k % 4;
         g[k] = amp * wk * (m4 == 0 ? s : m4 == 1 ? c : m4 == 2 ? -s : -c);
     }
+    if (gb == nullptr) return;
+    double wj = 1.0;
+    for (int k = 0; k <= m; ++k, wj *= w) {  // (bs sin + bc cos's k-th derivatives, then the line's)
+        const int m4 = k % 4;
+        gb[k] = wj * (ph.bs * (m4 == 0 ? s : m4 == 1 ? c : m4 == 2 ? -s : -c) +
+                      ph.bc * (m4 == 0 ? c : m4 == 1 ? -s : m4 == 2 ? -c : s));
+    }
+    gb[0] += ph.bx0 + ph.bx1 * tau;
+    if (m >= 1) gb[1] += ph.bx1;
 }
 
 void pair_poly(const Phase& ph, int i, int j, double alpha, double beta, double gamma, double delta, Poly& q) {
@@ -470,6 +506,7 @@ void linear_integrals(Phase& ph, const std::vector<double>& c_lin, const std::ve
     const int n = ph.n;
     double* D = ph.work.data() + ph.w_D;  // (HERMITE_ORDER + 2) n
     double* g = ph.work.data() + ph.w_g;  // HERMITE_ORDER + 1
+    double* gb = ph.plain ? nullptr : ph.work.data() + ph.w_gb;  // HERMITE_ORDER + 1 (a second component's)
     vcv = 0.0;
     gv = 0.0;
     for (int c = 0; c < ph.nc; ++c) {
@@ -478,16 +515,16 @@ void linear_integrals(Phase& ph, const std::vector<double>& c_lin, const std::ve
     }
     // (the integrands' fastest rate: a product of two motions, each at most the phase's or the forcing's)
     const int order = hermite_order(2.0 * std::max(ph.rate, std::abs(ph.w)) * tau);
-    if (n == 1 && !ph.stk.any) {
+    if (n == 1 && !ph.stk.any && ph.plain) {
         one_mass_integrals(ph, order, c_lin[0], mass[0], tau, y0, a0, s0, c0, y1, a1, s1, c1, energy, vcv, gv, du, dvv);
         return;
     }
-    table_derivatives(ph, 0.0, s0, c0, order, g);
-    end_derivatives(ph, order, y0, a0, g, D);
-    hermite_end(ph, order, c_lin, mass, D, g, tau, 1.0, energy, vcv, gv, du, dvv);
-    table_derivatives(ph, tau, s1, c1, order, g);
-    end_derivatives(ph, order, y1, a1, g, D);
-    hermite_end(ph, order, c_lin, mass, D, g, tau, -1.0, energy, vcv, gv, du, dvv);
+    table_derivatives(ph, 0.0, s0, c0, order, g, gb);
+    end_derivatives(ph, order, y0, a0, g, gb, D);
+    hermite_end(ph, order, c_lin, mass, D, g, gb, tau, 1.0, energy, vcv, gv, du, dvv);
+    table_derivatives(ph, tau, s1, c1, order, g, gb);
+    end_derivatives(ph, order, y1, a1, g, gb, D);
+    hermite_end(ph, order, c_lin, mass, D, g, gb, tau, -1.0, energy, vcv, gv, du, dvv);
     (void)n;
 }
 
@@ -509,11 +546,13 @@ void phase_rhs(Phase& ph, double tau, const double* y, double z, double* a, bool
     const double* x = y;
     const double* v = y + n;
     const double sn = std::sin(ph.w * tau + ph.phi);
+    const double ga = ph.plain ? 0.0 : table_acceleration(ph, tau), gb = table_b(ph, tau);
     for (int i = 0; i < n; ++i) {
         const double m = ph.mass[static_cast<size_t>(i)];
         const double* rk = &ph.K[static_cast<size_t>(i * n)];
         const double* rc = &ph.C[static_cast<size_t>(i * n)];
-        double f = (-ph.R0[static_cast<size_t>(i)] - m * ph.ax0) + (-m * ph.ax1) * tau + (-m * ph.axh) * sn;
+        double f = ph.plain ? (-ph.R0[static_cast<size_t>(i)] - m * ph.ax0) + (-m * ph.ax1) * tau + (-m * ph.axh) * sn
+                            : -ph.R0[static_cast<size_t>(i)] - m * ph.on(i, ga, gb);
         for (int j = 0; j < n; ++j) f -= rc[j] * v[j];
         for (int j = 0; j < n; ++j) f -= rk[j] * x[j];
         a[i] = f;
@@ -558,6 +597,7 @@ void held_force_poly(const Phase& ph, int c, Poly& q) {
         double g = ph.axh * wk * (m4 == 0 ? ph.sphi : m4 == 1 ? ph.cphi : m4 == 2 ? -ph.sphi : -ph.cphi);
         if (k == 0) g += ph.ax0;
         if (k == 1) g += ph.ax1;
+        const double gb = ph.plain ? 0.0 : table_b_term(ph, k, wk, ph.sphi, ph.cphi);
         wk *= ph.w / (k + 1);
         const double* Yk = t + k * ny;
         double f = 0.0;
@@ -568,7 +608,7 @@ void held_force_poly(const Phase& ph, int c, Poly& q) {
             double s = k == 0 ? ph.R0[static_cast<size_t>(i)] : 0.0;
             for (int j = 0; j < n; ++j) s += rk[j] * Yk[j] + rc[j] * Yk[n + j];
             const double a_held = k + 1 < nt ? (k + 1) * t[(k + 1) * ny + n + i] : 0.0;
-            f += side[i] * (-s - ph.mass[static_cast<size_t>(i)] * (g + a_held));
+            f += side[i] * (-s - ph.mass[static_cast<size_t>(i)] * (ph.on(i, g, gb) + a_held));
         }
         q.c[k] = sign * f;
     }

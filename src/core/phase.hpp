@@ -56,6 +56,11 @@ struct Phase {
     // restoring force at x = 0, the inverse masses; the table acceleration's piece
     std::vector<double> K, C, R0, minv, mass;
     double ax0 = 0.0, ax1 = 0.0, axh = 0.0, w = 0.0, phi = 0.0, sphi = 0.0, cphi = 1.0;
+    // the table's second component, on the first's angle: bx0 + bx1 tau + bs sin(w tau + phi) + bc cos(w tau +
+    // phi); how the two move each dof (rA, rB: System::infl's columns), plain: the first alone, on every dof
+    double bx0 = 0.0, bx1 = 0.0, bs = 0.0, bc = 0.0;
+    bool plain = true;
+    std::vector<double> rA, rB;
     std::vector<double> y0;  // the sub-interval's start: x (n) then v (n)
     double zeta0 = 0.0;
     bool numeric = false;
@@ -83,7 +88,7 @@ struct Phase {
     double dp5_h = -1.0;
     std::vector<double> dp5;
     std::vector<double> work;  // scratch: the derivatives at an end, the table's, m . D, forces, DP5 stages
-    int w_D = 0, w_g = 0, w_P = 0, w_q = 0, w_stage = 0;
+    int w_D = 0, w_g = 0, w_gb = 0, w_P = 0, w_q = 0, w_stage = 0;
     std::vector<double> ye, ae;  // an evaluation's y and a (the root finders')
     std::vector<double> au, aur;  // accelerations without the held stops, their rates (held forces)
     // the current sub-interval's ends, as the loop has them (the start's velocities at rest signed by their
@@ -117,10 +122,15 @@ struct Phase {
         dp5.assign(static_cast<size_t>(2 * ny + n + 2), 0.0);
         w_D = 0;                 // 10 n
         w_g = 10 * n;            // 10
-        w_P = w_g + 10;          // 10
+        w_gb = w_g + 10;         // 10
+        w_P = w_gb + 10;         // 10
         w_q = w_P + 10;          // 9 n (C D_m; the forces in phase_rhs)
         w_stage = w_q + 9 * n;   // 8 (ny + 1)
         work.assign(static_cast<size_t>(w_stage + 8 * (ny + 1)), 0.0);
+    }
+    // the table acceleration on dof i from its components' values (or derivatives) ga and gb
+    double on(int i, double ga, double gb) const {
+        return plain ? ga : rA[static_cast<size_t>(i)] * ga + rB[static_cast<size_t>(i)] * gb;
     }
     const double* X(int k) const { return &tc[static_cast<size_t>(k * ny)]; }
     const double* Vk(int k) const { return &tc[static_cast<size_t>(k * ny + n)]; }
@@ -141,8 +151,9 @@ inline void ensure_series(const Phase& ph) {
 }
 // y (ny) and the acceleration a (n) at tau of the current series
 void lin_eval(const Phase& ph, double tau, double* y, double* a);
-// the table acceleration's derivatives G_0..G_m at tau (sin and cos of the forcing angle there given)
-void table_derivatives(const Phase& ph, double tau, double s, double c, int m, double* g);
+// the table acceleration's derivatives G_0..G_m at tau (sin and cos of the forcing angle there given): its
+// first component's into g, its second's into gb (when not null)
+void table_derivatives(const Phase& ph, double tau, double s, double c, int m, double* g, double* gb = nullptr);
 
 // scalar polynomials of the current series: alpha + beta (x_i - x_j) + gamma (v_i - v_j) + delta (a_i - a_j)
 void pair_poly(const Phase& ph, int i, int j, double alpha, double beta, double gamma, double delta, Poly& q);
@@ -201,6 +212,21 @@ double phase_zeta(Phase& ph, double tau);
 
 inline double table_acceleration(const Phase& ph, double tau) {
     return ph.ax0 + ph.ax1 * tau + ph.axh * std::sin(ph.w * tau + ph.phi);
+}
+// the second component's (0 for a plain table)
+inline double table_b(const Phase& ph, double tau) {
+    if (ph.plain) return 0.0;
+    const double ang = ph.w * tau + ph.phi;
+    return ph.bx0 + ph.bx1 * tau + ph.bs * std::sin(ang) + ph.bc * std::cos(ang);
+}
+// the table acceleration on dof i at tau
+inline double table_on(const Phase& ph, int i, double tau) {
+    return ph.on(i, table_acceleration(ph, tau), table_b(ph, tau));
+}
+// the table acceleration on every dof at tau into ag (n)
+inline void table_on_dofs(const Phase& ph, double tau, double* ag) {
+    const double ga = table_acceleration(ph, tau), gb = table_b(ph, tau);
+    for (int i = 0; i < ph.n; ++i) ag[i] = ph.on(i, ga, gb);
 }
 
 // contact c in contact: force N, its spring part N, d(force)/dt N/s, the compression's rate m/s.  A linear

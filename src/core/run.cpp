@@ -47,17 +47,20 @@ Angle angle_at(const Phase& ph, double w, double tau, Rotation& rot) {
     return {ph.sphi * rot.c + ph.cphi * rot.s, ph.cphi * rot.c - ph.sphi * rot.s};
 }
 
-// a linear phase's accelerations at tau from the equation of motion (s: the forcing angle's sine there)
-void eom_acceleration(const Phase& ph, const double* y, double tau, double s, double* a) {
+// a linear phase's accelerations at tau from the equation of motion (s, c: the forcing angle's sine and cosine
+// there)
+void eom_acceleration(const Phase& ph, const double* y, double tau, double s, double c, double* a) {
     const int n = ph.n;
     const double g = (ph.ax0 + ph.ax1 * tau) + ph.axh * s;
+    // (the second component's, at the same angle)
+    const double gb = ph.plain ? 0.0 : (ph.bx0 + ph.bx1 * tau) + ph.bs * s + ph.bc * c;
     for (int i = 0; i < n; ++i) {
         const double* rk = &ph.K[static_cast<size_t>(i * n)];
         const double* rc = &ph.C[static_cast<size_t>(i * n)];
         double q = 0.0;
         for (int j = 0; j < n; ++j) q += rk[j] * y[j] + rc[j] * y[n + j];
         const double f = ph.minv[static_cast<size_t>(i)] * q + ph.minv[static_cast<size_t>(i)] * ph.R0[static_cast<size_t>(i)];
-        a[i] = -f - g;
+        a[i] = -f - ph.on(i, g, gb);
     }
     ph.stk.project(ph.mass, a);
 }
@@ -73,11 +76,6 @@ double quad_form(const double* Q, const double* u, int dim) {
 }
 
 
-// the table's acceleration at t (outside a phase)
-double excitation_value(const Forcing& fo, double t) {
-    const Piece pc = excitation_piece(fo, t, 0);
-    return pc.a0 + pc.amp * std::sin(pc.phase);
-}
 
 // a rigid stop's scales in the phase (h_phase: its sub-interval, short against its periods)
 ImpactScales impact_scales(const Phase& ph, double h_phase, double v_res) {
@@ -299,7 +297,7 @@ struct Loop {
     Touch touch;
     double h_num = 1e-4;
     Sticking stk_out;  // (the held stops of the state an output row is made from)
-    double ag_now = 0.0;
+    std::vector<double> ag_now;  // (the table's acceleration on each dof at the present event)
     int64_t j_next = 1, j_rec = 0;
     int64_t work = 0, published = 0, next_poll = 0;
     double h_flight = INF;  // (the last rigid rebound's flight, to first order)
@@ -389,7 +387,7 @@ void start_friction(Loop& lp) {
         const double u_rate = rel(st + lp.L.v, h.i, h.j);
         if (slip == 0.0 && u_rate != 0.0) iso_transition(sy, st, ACT_SLIP, e, u_rate > 0.0 ? 1.0 : -1.0);
         if (iso_slip_slot(sy, e, st) != 0.0) continue;
-        const double d = tie_force(st, sy, e, lp.stk_out, lp.ag_now, lp.b.q.data(), lp.row.data());
+        const double d = tie_force(st, sy, e, lp.stk_out, lp.ag_now.data(), lp.b.q.data(), lp.row.data());
         const double way = friction_slip_way(sy, st, e, d);
         if (way == 0.0) continue;
         iso_transition(sy, st, ACT_SLIP, e, way);
@@ -422,11 +420,12 @@ void set_up(Loop& lp) {
     if (sy.has_b)
         for (const Contact& c : sy.contact)
             if (c.law == MULTILINEAR || c.law == MULTILINEAR_KINEMATIC) lp.has_ml = true;
-    lp.ag_now = excitation_value(lp.fo, lp.st[T]);
+    lp.ag_now.assign(static_cast<size_t>(lp.n), 0.0);
+    table_at(lp.fo, sy, lp.st[T], lp.ag_now.data());
     start_friction(lp);
     energies(lp.st, sy, lp.kin0, lp.iso0, lp.bmp0);
     outputs(lp.st, sy, lp.b.q.data(), lp.row.data());
-    held_outputs(lp.st, sy, lp.stk_out, lp.ag_now, lp.row.data());
+    held_outputs(lp.st, sy, lp.stk_out, lp.ag_now.data(), lp.row.data());
     std::copy(lp.row.begin(), lp.row.end(), lp.out.samples.push());
     for (int i = 0; i < lp.n; ++i)
         track_abs_acceleration(lp.extrema + DOF_EXTREMA * i, lp.t_run0, lp.row[static_cast<size_t>(1 + 2 * lp.n + i)]);
@@ -469,6 +468,8 @@ void next_subinterval(Loop& lp) {
         if (lp.record) {  // (the record's piece: a0 + a1 tau, a new one at each knot)
             ph.ax0 = pc.a0;
             ph.ax1 = pc.a1;
+            ph.bx0 = pc.b0;
+            ph.bx1 = pc.b1;
         }
         // the forcing angle where the last sub-interval ended, moved on by the rounding of the clock
         const double wd = pc.omega * ((t - lp.t_last) - lp.h_last);
@@ -506,10 +507,12 @@ bool advance_to_end(Loop& lp) {
         // earlier run kept; a step of the record's as its times give it: k dt rounded, so within a few ulps
         // of the clock)
         const double step = lp.fo.kind != EXC_HARMONIC ? lp.fo.p[0] : 0.0;
-        if (lp.h == lp.h_phase) lp.tr = lp.w.transitions.get(ph, lp.sy, lp.h);
+        // (a table of two components, or not on every dof alike: no transition, its inputs are one table's)
+        if (!ph.plain) lp.tr = nullptr;
+        else if (lp.h == lp.h_phase) lp.tr = lp.w.transitions.get(ph, lp.sy, lp.h);
         else if (step > 0.0 && std::abs(lp.h - step) <= 8.0 * EPS * (std::abs(lp.t) + step))
             lp.tr = lp.w.transitions.get(ph, lp.sy, step);
-        eom_acceleration(ph, ph.y0.data(), 0.0, ph.sphi, b.a0.data());
+        eom_acceleration(ph, ph.y0.data(), 0.0, ph.sphi, ph.cphi, b.a0.data());
         if (lp.tr != nullptr) {
             transition_inputs(ph, b.u.data());
             const int dim = lp.tr->dim;
@@ -519,7 +522,8 @@ bool advance_to_end(Loop& lp) {
                 for (int k = 0; k < dim; ++k) s += tq[k] * b.u[static_cast<size_t>(k)];
                 b.y1[static_cast<size_t>(q)] = s;
             }
-            eom_acceleration(ph, b.y1.data(), lp.h, angle_at(ph, lp.pc.omega, lp.h, lp.rot).s, b.a1.data());
+            const Angle an = angle_at(ph, lp.pc.omega, lp.h, lp.rot);
+            eom_acceleration(ph, b.y1.data(), lp.h, an.s, an.c, b.a1.data());
         } else {
             lin_eval(ph, lp.h, b.y1.data(), b.a1.data());
             ph.evaluations -= 1;  // (the end of the sub-interval: not an evaluation inside it)
@@ -683,17 +687,17 @@ bool apply_event(Loop& lp) {
     double* st = lp.st;
     const EventRow& ev = lp.w.evs[static_cast<size_t>(lp.i_ev)];
     EventRow taken = ev;  // (its action as taken: a friction slip's end sticks or slips on)
-    lp.ag_now = table_acceleration(lp.ph, lp.tau);
+    table_on_dofs(lp.ph, lp.tau, lp.ag_now.data());
     bool resolved = false;  // (a rigid impact that sent the pair apart or held it: no Zeno step)
     bool untouched = true;  // (false: a touch of mu W, taken back)
     if (ev.action == ACT_CONTACT && law_is_rigid(sy.contact[static_cast<size_t>(ev.index)].law)) {
-        resolved = rigid_contact(st, sy, lp.ph, lp.tau, lp.stk_out, ev.index, lp.ag_now,
+        resolved = rigid_contact(st, sy, lp.ph, lp.tau, lp.stk_out, ev.index, lp.ag_now.data(),
                                  impact_scales(lp.ph, lp.h_phase, lp.resolution[0]), lp.ledger, lp.out.contacts,
                                  lp.out.chatters, lp.b.q.data(), lp.row.data(), lp.h_flight);
     } else if (ev.kind == KIND_HELD) {
         rigid_release(st, sy, ev.index, lp.out.contacts);
     } else if (ev.action == ACT_STICK) {  // a friction slip at rest: it sticks, or slips on (the way it takes)
-        const double d = tie_force(st, sy, ev.index, lp.stk_out, lp.ag_now, lp.b.q.data(), lp.row.data());
+        const double d = tie_force(st, sy, ev.index, lp.stk_out, lp.ag_now.data(), lp.b.q.data(), lp.row.data());
         taken.action = friction_decision(sy, st, ev.index, d);
         untouched = !(taken.action == ACT_STICK && touched_mu_w(lp, ev.index));
     } else {
@@ -701,7 +705,7 @@ bool apply_event(Loop& lp) {
     }
     if (untouched)
         record_event(st, sy, taken, lp.out.events, lp.out.samples, lp.opt.sample_dt, lp.extrema, lp.b, lp.row,
-                     lp.stk_out, lp.ag_now);
+                     lp.stk_out, lp.ag_now.data());
     if (ev.action == ACT_RING && iso_travel_used(sy, st, iso_element_of_spring(sy, ev.index))) {
         lp.status = CAPACITY;  // (every surface at its ring: the bearing's travel is used up)
         return false;
@@ -735,8 +739,8 @@ void finish_run(Loop& lp) {
     if (lp.status == SUCCESS && t.row >= 0 && t.row == lp.out.events.n - 1 &&
         lp.out.events.row(t.row)[EC_T] == st[T] && touched_mu_w(lp, t.e))
         iso_transition(lp.sy, st, ACT_STICK, t.e, 0.0);
-    lp.ag_now = excitation_value(lp.fo, st[T]);
-    finish(st, lp.sy, lp.out.samples, lp.out.contacts, lp.b, lp.row, lp.stk_out, lp.ag_now);
+    table_at(lp.fo, lp.sy, st[T], lp.ag_now.data());
+    finish(st, lp.sy, lp.out.samples, lp.out.contacts, lp.b, lp.row, lp.stk_out, lp.ag_now.data());
     close_chatters(st, lp.sy, lp.out.chatters);
     lp.control.add_work(lp.work - lp.published);
     lp.control.at(CTL_EVALS).fetch_add(lp.ph.evaluations, std::memory_order_relaxed);

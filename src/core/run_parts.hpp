@@ -14,10 +14,18 @@ namespace pounding::run_parts {
 // ---------------------------------------------------------------- the excitation (run_setup.cpp)
 
 // the table's acceleration from the instant t it was taken at, up to t_next: a0 + a1 s + amp sin(omega s +
-// phase), s the time since t (j: the record's sample there)
-struct Piece { double a0, a1, amp, omega, phase, t_next; int64_t j; };
+// phase), s the time since t (j: the record's sample there); its second component's b0 + b1 s + bs sin(omega s
+// + phase) + bc cos(omega s + phase)
+struct Piece {
+    double a0, a1, amp, omega, phase, t_next;
+    int64_t j;
+    double b0 = 0.0, b1 = 0.0, bs = 0.0, bc = 0.0;
+};
 
 Piece excitation_piece(const Forcing& fo, double t, int64_t j_hint);
+
+// the table's acceleration on each dof at t, outside a phase, into ag (n)
+void table_at(const Forcing& fo, const System& sy, double t, double* ag);
 
 // the run's length (m) and velocity (m/s) scales: the system's and the excitation's, not the start's
 void run_scales(const System& sy, const Forcing& fo, double& x, double& xw);
@@ -103,10 +111,10 @@ void jump(double* st, const System& sy, const EventRow& ev, Rows& contacts, cons
 
 // an event's row, and the sample just after it (its extrema tracked)
 void record_event(double* st, const System& sy, const EventRow& ev, Rows& events, Rows& samples, double sample_dt,
-                  double* extrema, Buffers& b, std::vector<double>& row, Sticking& stk, double ag);
+                  double* extrema, Buffers& b, std::vector<double>& row, Sticking& stk, const double* ag);
 
 // the end of a run: its last sample, and a row for each contact still going on
 void finish(const double* st, const System& sy, Rows& samples, Rows& contacts, Buffers& b, std::vector<double>& row,
-            Sticking& stk, double ag);
+            Sticking& stk, const double* ag);
 
 }  // namespace pounding::run_parts

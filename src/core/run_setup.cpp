@@ -18,7 +18,13 @@ Piece excitation_piece(const Forcing& fo, double t, int64_t j_hint) {
         const double omega = fo.p[1];
         const double angle = omega * t + fo.p[2];
         const double phase = angle - TWO_PI * std::floor(angle / TWO_PI);  // reduced to [0, 2 pi)
-        return {0.0, 0.0, fo.p[0], omega, phase, INF, j_hint};
+        Piece pc{0.0, 0.0, fo.p[0], omega, phase, INF, j_hint};
+        if (fo.pb[0] != 0.0) {  // (pb0 sin(angle + d), d its phase's lead on the first's)
+            const double d = fo.pb[1] - fo.p[2];
+            pc.bs = fo.pb[0] * std::cos(d);
+            pc.bc = fo.pb[0] * std::sin(d);
+        }
+        return pc;
     }
     const int64_t n = fo.n_rec;
     const double* rt = fo.rec_t;
@@ -40,7 +46,25 @@ Piece excitation_piece(const Forcing& fo, double t, int64_t j_hint) {
         }
     }
     const double slope = (ra[j + 1] - ra[j]) / (rt[j + 1] - rt[j]);
-    return {ra[j] + slope * (t - rt[j]), slope, 0.0, 0.0, 0.0, rt[j + 1], j};
+    Piece pc{ra[j] + slope * (t - rt[j]), slope, 0.0, 0.0, 0.0, rt[j + 1], j};
+    if (fo.rec_b != nullptr) {
+        const double* rb = fo.rec_b;
+        pc.b1 = (rb[j + 1] - rb[j]) / (rt[j + 1] - rt[j]);
+        pc.b0 = rb[j] + pc.b1 * (t - rt[j]);
+    }
+    return pc;
+}
+
+void table_at(const Forcing& fo, const System& sy, double t, double* ag) {
+    const Piece pc = excitation_piece(fo, t, 0);
+    const double ga = pc.a0 + pc.amp * std::sin(pc.phase);
+    if (sy.plain) {
+        for (int i = 0; i < sy.n; ++i) ag[i] = ga;
+        return;
+    }
+    const double gb = pc.b0 + pc.bs * std::sin(pc.phase) + pc.bc * std::cos(pc.phase);
+    for (int i = 0; i < sy.n; ++i)
+        ag[i] = sy.infl[static_cast<size_t>(2 * i)] * ga + sy.infl[static_cast<size_t>(2 * i + 1)] * gb;
 }
 
 // the run's length (m) and velocity (m/s) scales: the system's and the excitation's, not the start's
@@ -55,8 +79,11 @@ void run_scales(const System& sy, const Forcing& fo, double& x, double& xw) {
     if (fo.kind == EXC_HARMONIC) {
         amp = std::abs(fo.p[0]);
         w = std::max(w, fo.p[1]);
+        if (!sy.plain) amp = std::max(amp, std::abs(fo.pb[0]));
     } else {
         for (int64_t i = 0; i < fo.n_rec; ++i) amp = std::max(amp, std::abs(fo.rec_a[i]));
+        if (!sy.plain && fo.rec_b != nullptr)
+            for (int64_t i = 0; i < fo.n_rec; ++i) amp = std::max(amp, std::abs(fo.rec_b[i]));
     }
     double gaps = 0.0;
     if (sy.has_b)
@@ -154,6 +181,10 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
     ph.phi = pc.phase;
     ph.sphi = std::sin(pc.phase);
     ph.cphi = std::cos(pc.phase);
+    ph.bx0 = pc.b0;
+    ph.bx1 = pc.b1;
+    ph.bs = pc.bs;
+    ph.bc = pc.bc;
     for (int q = 0; q < 2 * n; ++q) ph.y0[static_cast<size_t>(q)] = st[L.x + q];
     ph.numeric = any_nl || sy.bw[0] != 0.0 || !ph.rate_fr.empty();
     ph.zeta0 = st[L.zeta];
@@ -180,6 +211,13 @@ void run_constants(Phase& ph, const System& sy, const Forcing& fo) {
     for (int i = 0; i < sy.n; ++i) {
         ph.mass[static_cast<size_t>(i)] = sy.mass[static_cast<size_t>(i)];
         ph.minv[static_cast<size_t>(i)] = 1.0 / sy.mass[static_cast<size_t>(i)];
+    }
+    ph.plain = sy.plain;
+    ph.rA.resize(static_cast<size_t>(sy.n));
+    ph.rB.resize(static_cast<size_t>(sy.n));
+    for (int i = 0; i < sy.n; ++i) {
+        ph.rA[static_cast<size_t>(i)] = sy.infl[static_cast<size_t>(2 * i)];
+        ph.rB[static_cast<size_t>(i)] = sy.infl[static_cast<size_t>(2 * i + 1)];
     }
     for (int c = 0; c < sy.nc(); ++c) {
         const Contact& ct = sy.contact[static_cast<size_t>(c)];

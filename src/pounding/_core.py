@@ -27,7 +27,7 @@ ledger's slots, ``DOF_EXTREMA`` and ``PAIR_EXTREMA`` a run's extrema per dof and
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import math
@@ -65,16 +65,24 @@ class Forcing:
     ----------
     kind : int
         :data:`EXCITATION`'s ``harmonic`` or ``record``.
-    p : ndarray, shape (3,)
-        Harmonic: amplitude m/s^2, omega rad/s, phase rad; a record: its uniform step s (0 if none), 0, 0.
+    p : ndarray, shape (3,) or (5,)
+        Harmonic: amplitude m/s^2, omega rad/s, phase rad, then the second component's amplitude m/s^2 and
+        phase rad (the same omega; none: no second component); a record: its uniform step s (0 if none),
+        0, 0.
     rec_t, rec_a : ndarray, shape (k,)
         A record's times (s) and accelerations (m/s^2); one-element zeros for a harmonic.
+    rec_b : ndarray, shape (k,) or (0,)
+        A record's second component (m/s^2) on the same times; empty: none.
+
+    The table acceleration on dof ``i`` is ``influence[i, 0] a + influence[i, 1] b`` (:func:`system`'s
+    ``influence``; by default every dof moves with the first component alone).
     """
 
     kind: int
     p: np.ndarray
     rec_t: np.ndarray
     rec_a: np.ndarray
+    rec_b: np.ndarray = field(default_factory=lambda: np.zeros(0))
 
 
 @dataclass(frozen=True, slots=True)
@@ -176,7 +184,8 @@ _N_DOF_EXTREMA, _N_PAIR_EXTREMA = LAYOUT["DOF_EXTREMA"], LAYOUT["PAIR_EXTREMA"]
 
 
 def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Element], bw: np.ndarray,
-           has_b: bool, contacts: list[ContactSlot], tracked: tuple[tuple[int, int], ...] = ()) -> System:
+           has_b: bool, contacts: list[ContactSlot], tracked: tuple[tuple[int, int], ...] = (),
+           influence: np.ndarray | None = None) -> System:
     """A system as the core takes it: ``mass`` (kg, shape (n,)), the linear springs and dashpots ``k0``,
     ``c0`` (N/m, N s/m, shape (n, n)), the hysteretic elements (:class:`Element`: dof ``i`` against dof ``j``,
     -1 the ground; its dashpot ``c_d`` N s/m, backbone ``slopes`` N/m and ``breaks`` m, ``rule`` 0 kinematic,
@@ -185,7 +194,9 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
     at all: a structure fixed at its base), and the contact slots (:class:`ContactSlot`: dof ``i`` against dof
     ``j``, -1 the ground, compressed by ``sign (x_i - x_j) - gap_m``; its ``law`` id of :data:`LAW_IDS` and
     ``params``); ``has_b`` makes them active.  ``tracked``: pairs ``(i, j)`` whose relative displacement's
-    exact extrema a run adds after the dofs' (:data:`PAIR_EXTREMA`; a storey's drift).
+    exact extrema a run adds after the dofs' (:data:`PAIR_EXTREMA`; a storey's drift).  ``influence``
+    (shape (n, 2), finite): how the ground's two components move each dof (dof ``i`` feels
+    ``-m_i (influence[i, 0] a + influence[i, 1] b)``); None: every dof with the first alone, ``(1, 0)``.
 
     The core trusts what it is given: the sizes and indices are checked here (a ``ValueError`` is a
     caller's bug; the public functions check what users give before)."""
@@ -243,10 +254,16 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
             raise ValueError(f"contact {c}: sign +-1 and a law id of LAW_IDS")
     for q, (i, j) in enumerate(tracked):
         pair(i, j, f"tracked pair {q}")
+    infl: list[float] = []
+    if influence is not None:
+        r = np.asarray(influence, dtype=float)
+        if r.shape != (n, 2) or not np.all(np.isfinite(r)):
+            raise ValueError(f"influence: finite, shape ({n}, 2), got {r.shape}")
+        infl = r.reshape(2 * n).tolist()
     return _c.System(n=n, mass=m.tolist(), k0=k0.reshape(n * n).tolist(), c0=c0.reshape(n * n).tolist(),
                      elements=list(elements), bw=[float(x) for x in bw], has_b=bool(has_b),
                      contacts=list(contacts),
-                     track_i=[int(i) for i, _ in tracked], track_j=[int(j) for _, j in tracked])
+                     track_i=[int(i) for i, _ in tracked], track_j=[int(j) for _, j in tracked], infl=infl)
 
 
 def contact_slot(*, i: int, j: int, sign: float, gap_m: float, law: int, params: Any) -> ContactSlot:
@@ -283,8 +300,12 @@ def run(sy: System, forcing: Forcing, state0: np.ndarray, t_end: float, sample_d
 
     ``sample_dt`` is the history's step (0: events only; -1: not even those); ``with_energy`` False
     skips the energy integrals outside contacts (the ledger is then NaN)."""
+    rec_b = _f64(forcing.rec_b)
+    if rec_b.size not in (0, np.size(forcing.rec_t)):
+        raise ValueError(f"rec_b: none or as many values as rec_t ({np.size(forcing.rec_t)}), "
+                         f"got {rec_b.size}")
     state, samples, contacts, events, ledger, extrema, status, chatters = _c.run(
-        sy, int(forcing.kind), _f64(forcing.p), _f64(forcing.rec_t), _f64(forcing.rec_a), _f64(state0),
+        sy, int(forcing.kind), _f64(forcing.p), _f64(forcing.rec_t), _f64(forcing.rec_a), rec_b, _f64(state0),
         float(t_end), float(sample_dt), float(rtol), int(max_events), bool(with_energy), ctl)
     return RunOutput(state=state, samples=samples, contacts=contacts, events=events, ledger=ledger,
                      extrema=extrema, status=int(status), chatters=chatters)
