@@ -14,7 +14,7 @@ import numpy as np
 import pytest
 from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
-from reference import ReferenceStalled, reference
+from reference import ReferenceFailed, ReferenceStalled, reference
 from strategies import LINEAR_LAWS, harmonics, oscillators, records
 
 import pounding as pd_
@@ -35,10 +35,12 @@ def _compare(osc, exc, v0=0.0, duration=DURATION_S, time_tol=1e-8, state_rtol=1e
     try:
         ref = reference(osc, exc, duration, v0=v0, rtol=ref_rtol, atol=ref_atol)
         _agree(osc, run, ref, time_tol, state_rtol)
-    except ReferenceStalled:
+    except (ReferenceStalled, ReferenceFailed):
         if not drawn:
             raise
-        assume(False)  # a degenerate graze the reference cannot step past
+        # a degenerate graze the reference cannot step past, or a start it cannot step from (hypothesis:
+        # v0 = 7e-165 m/s, DOP853's step below the spacing of numbers at t = 1.9e-6 s)
+        assume(False)
     except AssertionError:
         # the reference is the slow, plainly correct solver, but not always converged at its
         # tolerance: when it disagrees it is run once more at the tightest scipy takes, and the

@@ -136,20 +136,37 @@ def test_stiff_rings_match_the_reference(case):
     _matches_the_reference(case)
 
 
+REFERENCE_RTOL_TIGHTEST = 3e-14  # (scipy's floor is 100 eps = 2.2e-14)
+
+
 def _matches_the_reference(case) -> None:
     """Events within 1e-9 s of the reference's, the final state and the friction's work within 1e-8."""
     b, excitation, accel, knots = case
     run = pd_.simulate(b, excitation, 4.0, rtol=1e-12)
+    # (stiff rings: the reference at 1e-13; at 1e-12 its slow threshold crossings after a reversal drifted up
+    # to 5.5e-9 s from the engine's instants, at 1e-13 to 3.6e-10 s)
+    stiff = bool(b.isolator.ring_stiffness_n_m)
+    try:
+        return _agrees(run, b, accel, knots, {"rtol": 1e-13, "atol": 1e-16} if stiff else {})
+    except AssertionError:
+        if not stiff:
+            raise
+        # the reference is not always converged at 1e-13: where it disagrees it is run once more at the
+        # tightest scipy takes, and the engine must agree with that (hypothesis: a ring's exit 1.32e-9 s from
+        # the engine's at 1e-13, 4.4e-13 s at 5e-14 and 3e-14)
+        return _agrees(run, b, accel, knots, {"rtol": REFERENCE_RTOL_TIGHTEST, "atol": 1e-16})
+
+
+def _agrees(run, b, accel, knots, tight: dict):
+    """The run against the reference at the tolerances ``tight``: its events (returned, grouped), final state,
+    friction work and surfaces' slips."""
     t_end = float(run.summary()["t_end_s"])
     engine = _events(run)
     try:
-        # (stiff rings: the reference at its tightest, 1e-13; at 1e-12 its slow threshold crossings after a
-        # reversal drifted up to 5.5e-9 s from the engine's instants, at 1e-13 to 3.6e-10 s)
-        tight = {"rtol": 1e-13, "atol": 1e-16} if b.isolator.ring_stiffness_n_m else {}
         ref = reference(_reference_of(b, accel), t_end, knots=knots, **tight)
     except ReferenceCapacity:  # (its last event the engine's stop: both at the travel's end)
         assert run.status == pd_.Status.CAPACITY
-        return
+        return None
     if run.status == pd_.Status.CAPACITY:  # (the reference's last phase ends on the engine's last rings:
         assert engine[-1][1] == "ring"     # a symmetric bearing's last two surfaces reach theirs at once)
         engine = [e for e in engine if not (e[1] == "ring" and e[0] == engine[-1][0])]
