@@ -275,6 +275,9 @@ int series(const Phase& ph, const double* y0, const double* r, double a0, double
     const double* C = ph.C.data();
     const double* minv = ph.minv.data();
     const bool held = ph.stk.any;  // (held masses do not move)
+    const bool plain = ph.plain;
+    const double* rA = ph.rA.data();
+    const double* rB = ph.rB.data();
     if (n == 1) return series_one(ph, y0, r, a0, a1, amp, sp, cp, h, t, need, scale, held);
     double wk = 1.0;  // w^k / k!
     double hk = 1.0;  // h^k
@@ -298,7 +301,7 @@ int series(const Phase& ph, const double* y0, const double* r, double a0, double
             for (int j = 0; j < n; ++j) s += rk[j] * Xk[j] + rc[j] * Vk[j];
             double f = minv[i] * s;
             if (k == 0 && r != nullptr) f += r[i];
-            Vn[i] = (-f - ph.on(i, g, gb)) * inv;
+            Vn[i] = (-f - (plain ? g : rA[i] * g + rB[i] * gb)) * inv;
             Xn[i] = Vk[i] * inv;
         }
         if (held) ph.stk.project(ph.mass, Vn);
