@@ -372,7 +372,7 @@ NB_MODULE(_pounding_core, m) {
         std::vector<double> x_end;
         const int bad = monodromy(sy, st0.data(), events.data(), static_cast<int>(events.shape(0)), t_end, omega,
                                   amp, phase, jac, x_end);
-        return nb::make_tuple(array2(jac.a.data(), jac.rows, jac.cols), array1(x_end.data(), x_end.size()), bad);
+        return nb::make_tuple(array2(jac.data(), jac.rows(), jac.cols()), array1(x_end.data(), x_end.size()), bad);
     });
 
     // the event locator's numerics, for the tests
@@ -380,10 +380,10 @@ NB_MODULE(_pounding_core, m) {
     m.def("value_at_root", &value_at_root);
 
     m.def("expm", [](Mat2 a) {
-        Mat x(static_cast<int>(a.shape(0)), static_cast<int>(a.shape(1)));
-        std::memcpy(x.a.data(), a.data(), x.a.size() * sizeof(double));
+        Mat x(static_cast<Eigen::Index>(a.shape(0)), static_cast<Eigen::Index>(a.shape(1)));
+        std::memcpy(x.data(), a.data(), static_cast<size_t>(x.size()) * sizeof(double));
         const Mat e = expm(x);
-        return array2(e.a.data(), e.rows, e.cols);
+        return array2(e.data(), e.rows(), e.cols());
     });
 
     // the state vector's layout and the outputs' columns, as the core writes them: what Python reads them by

@@ -1,8 +1,8 @@
 // The compiled core of pounding: plain structures in (a system, a forcing, options), arrays out.
 //
-// Everything here is C++17 with no library beyond the standard one; the only door into it from Python is
-// the module pounding._pounding_core (bindings.cpp), which pounding/_core.py wraps.  Validation stays in
-// Python: the core trusts its inputs.
+// Everything here is C++17 on the standard library and Eigen's headers (linalg.hpp); the only door into it
+// from Python is the module pounding._pounding_core (bindings.cpp), which pounding/_core.py wraps.
+// Validation stays in Python: the core trusts its inputs.
 //
 // A system has n degrees of freedom (masses, displacements relative to the ground, which the table moves),
 // a linear part (springs and dashpots between them), hysteretic elements (each a multi-linear spring with its

@@ -72,13 +72,13 @@ bool solve_lcp(const std::vector<double>& W, const std::vector<double>& b, int k
         for (int a = 0; a < k; ++a)
             if (s & (1 << a)) idx.push_back(a);
         const int m = static_cast<int>(idx.size());
-        Mat A(m, m), r(m, 1);
+        Mat A(m, m), r(m, 1);  // (every entry set below)
         for (int p = 0; p < m; ++p) {
             r(p, 0) = b[static_cast<size_t>(idx[static_cast<size_t>(p)])];
             for (int q = 0; q < m; ++q)
                 A(p, q) = W[static_cast<size_t>(idx[static_cast<size_t>(p)] * k + idx[static_cast<size_t>(q)])];
         }
-        bool ok = solve_in_place(A, r, 1e-12 * wmax);  // (a singular active set: the next one)
+        bool ok = m == 0 || solve_checked(A, r, 1e-12 * wmax);  // (a singular active set: the next one)
         if (!ok) continue;
         lam.assign(static_cast<size_t>(k), 0.0);
         for (int p = 0; p < m; ++p) {

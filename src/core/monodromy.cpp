@@ -59,7 +59,8 @@ void add_pair(Mat& a, int i, int j, double s) {
 Mat augmented(const System& sy, const Coords& cx, const double* st, double omega, double amp) {
     const int n = cx.n, size = cx.size;
     const int s_ = size, c_ = size + 1, one = size + 2;
-    Mat a(size + 3, size + 3), K(n, n), C(n, n), G(n, std::max(cx.nsp, 1));
+    Mat a = Mat::Zero(size + 3, size + 3), K = Mat::Zero(n, n), C = Mat::Zero(n, n),
+        G = Mat::Zero(n, std::max(cx.nsp, 1));
     std::vector<double> R(static_cast<size_t>(n), 0.0);
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
@@ -123,7 +124,7 @@ void add_rel(std::vector<double>& g, int at, int i, int j, double s) {
 
 // expm(a tau), the states that evolve alone (a relaxing contact) by their scalar exponential
 Mat exponential(const Mat& a, double tau) {
-    const int size = a.rows;
+    const int size = static_cast<int>(a.rows());
     std::vector<int> rest;
     for (int i = 0; i < size; ++i) {
         bool joined = false;
@@ -132,11 +133,11 @@ Mat exponential(const Mat& a, double tau) {
         if (joined) rest.push_back(i);
     }
     const int nr = static_cast<int>(rest.size());
-    Mat sub(nr, nr);
+    Mat sub = Mat::Zero(nr, nr);
     for (int i = 0; i < nr; ++i)
         for (int j = 0; j < nr; ++j) sub(i, j) = a(rest[i], rest[j]) * tau;
-    const Mat block = expm(sub);
-    Mat out(size, size);
+    const Mat block = nr > 0 ? expm(sub) : sub;
+    Mat out = Mat::Zero(size, size);
     for (int i = 0; i < size; ++i) out(i, i) = std::exp(a(i, i) * tau);
     for (int i = 0; i < nr; ++i)
         for (int j = 0; j < nr; ++j) out(rest[i], rest[j]) = block(i, j);
@@ -151,7 +152,7 @@ void hold_rows(const System& sy, const Coords& cx, const double* st, Mat& a) {
     stk.build(sy, st);
     if (!stk.any) return;
     std::vector<double> col(static_cast<size_t>(cx.n));
-    for (int q = 0; q < a.cols; ++q) {
+    for (int q = 0; q < a.cols(); ++q) {
         for (int i = 0; i < cx.n; ++i) col[static_cast<size_t>(i)] = a(cx.v + i, q);
         stk.project(sy.mass, col.data());
         for (int i = 0; i < cx.n; ++i) a(cx.v + i, q) = col[static_cast<size_t>(i)];
@@ -193,7 +194,7 @@ void follow_force(const System& sy, const Coords& cx, const double* st, Mat& jac
         std::vector<double> d_slip(static_cast<size_t>(m)), follows(static_cast<size_t>(m));
         const IsoLinear il = iso_linear_in_slips(sy, e, st, d_slip.data(), follows.data());
         if (il.k == 0.0) continue;
-        for (int q = 0; q < jac.cols; ++q) {
+        for (int q = 0; q < jac.cols(); ++q) {
             double du = jac(h.i, q) - (h.j >= 0 ? jac(h.j, q) : 0.0);  // (d u - sum of the held d u_h)
             for (int g = 0; g < m; ++g) du += d_slip[static_cast<size_t>(g)] / il.k * jac(cx.slip + h.first + g, q);
             for (int g = 0; g < m; ++g)
@@ -213,7 +214,7 @@ void tied_velocities(const System& sy, const Coords& cx, const double* st, Mat& 
     for (size_t h = 0; h < stk.held.size(); ++h)
         if (!is_tie(stk, static_cast<int>(h))) return;  // (a rigid stop held: a perturbation away from it leaves it)
     std::vector<double> col(static_cast<size_t>(cx.n));
-    for (int q = 0; q < jac.cols; ++q) {
+    for (int q = 0; q < jac.cols(); ++q) {
         for (int i = 0; i < cx.n; ++i) col[static_cast<size_t>(i)] = jac(cx.v + i, q);
         stk.project(sy.mass, col.data());
         for (int i = 0; i < cx.n; ++i) jac(cx.v + i, q) = col[static_cast<size_t>(i)];
@@ -221,7 +222,7 @@ void tied_velocities(const System& sy, const Coords& cx, const double* st, Mat& 
 }
 
 Mat top_left(const Mat& m, int n) {
-    Mat out(n, n);
+    Mat out = Mat::Zero(n, n);
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) out(i, j) = m(i, j);
     return out;
@@ -239,7 +240,7 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
     xa[static_cast<size_t>(n)] = std::sin(omega * t + phase);
     xa[static_cast<size_t>(n + 1)] = std::cos(omega * t + phase);
     xa[static_cast<size_t>(n + 2)] = 1.0;
-    jac = Mat::identity(n);
+    jac = Mat::Identity(n, n);
     tied_velocities(sy, cx, st.data(), jac);
     Mat a = mode(sy, cx, st.data(), omega, amp);
     for (int e = 0; e <= n_events; ++e) {
@@ -247,7 +248,7 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
         const double t_ev = e < n_events ? events[3 * e] : t_end;
         const Mat step = exponential(a, t_ev - t);
         xa = matvec(step, xa);
-        jac = matmul(top_left(step, n), jac);
+        jac = (top_left(step, n) * jac).eval();
         t = t_ev;
         if (e == n_events) break;
         const int action = static_cast<int>(events[3 * e + 1]), index = static_cast<int>(events[3 * e + 2]);
@@ -291,7 +292,7 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
                 u[static_cast<size_t>(cx.v + ct.j)] = -ct.sign * mu / mj;
                 nn[static_cast<size_t>(cx.v + ct.j)] = -ct.sign;
             }
-            Mat reset = Mat::identity(n);
+            Mat reset = Mat::Identity(n, n);
             for (int r = 0; r < n; ++r)
                 for (int q = 0; q < n; ++q) reset(r, q) -= (1.0 + restitution) * u[static_cast<size_t>(r)] * nn[static_cast<size_t>(q)];
             add_rel(grad, 0, ct.i, ct.j, ct.sign);
@@ -324,7 +325,7 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
             for (int r = 0; r < n; ++r)
                 for (int q = 0; q < n; ++q)
                     jump(r, q) += (f_after[static_cast<size_t>(r)] - rf[static_cast<size_t>(r)]) * grad[static_cast<size_t>(q)] / rate;
-            jac = matmul(jump, jac);
+            jac = (jump * jac).eval();
             xa = xr;
             st = next;
             a = a_after;
@@ -392,12 +393,12 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
                 }
             }
         } else {
-            Mat jump = Mat::identity(n);
+            Mat jump = Mat::Identity(n, n);
             for (int i = 0; i < n; ++i)
                 for (int j = 0; j < n; ++j)
                     jump(i, j) += (f_after[static_cast<size_t>(i)] - f_before[static_cast<size_t>(i)]) *
                                   grad[static_cast<size_t>(j)] / rate;
-            jac = matmul(jump, jac);
+            jac = (jump * jac).eval();
         }
         if (action == ACT_CONTACT) {  // the compression is the depth (the relaxing surface's, met)
             const Contact& ct = sy.contact[static_cast<size_t>(index)];
