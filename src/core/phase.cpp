@@ -225,7 +225,9 @@ inline double table_b_term(const Phase& ph, int k, double wk, double sp, double 
     return g;
 }
 
-// series() for one mass: scalars, the same sums
+// series() for one mass: scalars, the same sums (Plain: a line's table, no second component to add: a few
+// instructions a term, so the test is made once, at compile time)
+template <bool Plain>
 int series_one(const Phase& ph, const double* y0, const double* r, double a0, double a1, double amp, double sp,
                double cp, double h, double* t, int need, double scale, bool held) {
     const double w = ph.w, kk = ph.K[0], cc = ph.C[0], mi = ph.minv[0];
@@ -238,7 +240,7 @@ int series_one(const Phase& ph, const double* y0, const double* r, double a0, do
         double g = amp * wk * phase[k & 3];
         if (k == 0) g += a0;
         if (k == 1) g += a1;
-        if (!ph.plain) g = ph.on(0, g, table_b_term(ph, k, wk, sp, cp));
+        if (!Plain) g = ph.on(0, g, table_b_term(ph, k, wk, sp, cp));
         const double inv = INV.v[k + 1];
         wk *= w * inv;
         double f = mi * (kk * x + cc * v);
@@ -278,7 +280,9 @@ int series(const Phase& ph, const double* y0, const double* r, double a0, double
     const bool plain = ph.plain;
     const double* rA = ph.rA.data();
     const double* rB = ph.rB.data();
-    if (n == 1) return series_one(ph, y0, r, a0, a1, amp, sp, cp, h, t, need, scale, held);
+    if (n == 1)
+        return plain ? series_one<true>(ph, y0, r, a0, a1, amp, sp, cp, h, t, need, scale, held)
+                     : series_one<false>(ph, y0, r, a0, a1, amp, sp, cp, h, t, need, scale, held);
     double wk = 1.0;  // w^k / k!
     double hk = 1.0;  // h^k
     for (int k = 0;; ++k) {
