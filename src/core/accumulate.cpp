@@ -340,6 +340,20 @@ void held_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, 
             fa.q.deg = std::max(fa.q.deg, fk.q.deg);
             for (int m = 0; m <= fk.q.deg; ++m) fa.q.c[m] += w * fk.q.c[m];
         }
+        if (!ph.plain) {
+            // (the group's mean of its dofs' free absolute accelerations is its relative acceleration and the
+            // mean of their tables; dof i's own table differs from that mean where the influences differ)
+            double ra = ph.rA[static_cast<size_t>(i)], rb = ph.rB[static_cast<size_t>(i)];
+            for (int k = 0; k < n; ++k) {
+                if (ph.stk.grp[static_cast<size_t>(k)] != g) continue;
+                const double w = ph.mass[static_cast<size_t>(k)] * share;
+                ra -= w * ph.rA[static_cast<size_t>(k)];
+                rb -= w * ph.rB[static_cast<size_t>(k)];
+            }
+            double ga[MAX_TERMS + 1], gb[MAX_TERMS + 1];
+            table_series(ph, fa.q.deg, ga, gb);
+            for (int m = 0; m <= fa.q.deg; ++m) fa.q.c[m] += ra * ga[m] + rb * gb[m];
+        }
         poly_deriv(fa.q, fr.q);
         fr.kind = FN_POLY;
         const double r0 = poly_val(fr.q, 0.0), r1 = poly_val(fr.q, tau);

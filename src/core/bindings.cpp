@@ -9,6 +9,7 @@
 #include <initializer_list>
 #include <utility>
 #include <cstring>
+#include <stdexcept>
 #include <vector>
 
 #include "core.hpp"
@@ -147,6 +148,8 @@ void fill_system(System& s, int n, const std::vector<double>& mass, const std::v
     s.contact = contacts;
     s.track_i = track_i;
     s.track_j = track_j;
+    if (!infl.empty() && static_cast<int>(infl.size()) != 2 * n)
+        throw std::invalid_argument("infl: 2 n values (each dof's influence of the two components), or none");
     s.infl = infl;
     s.finish();
 }

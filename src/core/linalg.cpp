@@ -59,10 +59,26 @@ std::vector<double> matvec(const Mat& x, const std::vector<double>& v) {
 
 bool solve_checked(const Mat& x, Mat& y, double min_pivot) {
     const Eigen::PartialPivLU<Mat> lu(x);
-    const auto d = lu.matrixLU().diagonal();
-    for (Eigen::Index i = 0; i < d.size(); ++i)
-        if (!(std::abs(d(i)) > min_pivot)) return false;
-    y = lu.solve(y).eval();
+    const Mat& f = lu.matrixLU();  // (U on and above the diagonal, L's multipliers below)
+    const Eigen::Index n = f.rows(), m = y.cols();
+    for (Eigen::Index i = 0; i < n; ++i)
+        if (!(std::abs(f(i, i)) > min_pivot)) return false;
+    // the substitutions by hand, in elimination's order (each term subtracted in turn, then a division by the
+    // pivot): Eigen's triangular solves multiply by the pivot's reciprocal and sum in blocks, other roundings
+    // that a chattering stop amplifies
+    y = (lu.permutationP() * y).eval();
+    for (Eigen::Index c = 0; c < n; ++c)
+        for (Eigen::Index r = c + 1; r < n; ++r) {
+            const double l = f(r, c);
+            if (l != 0.0)
+                for (Eigen::Index j = 0; j < m; ++j) y(r, j) -= l * y(c, j);
+        }
+    for (Eigen::Index c = n - 1; c >= 0; --c)
+        for (Eigen::Index j = 0; j < m; ++j) {
+            double acc = y(c, j);
+            for (Eigen::Index k = c + 1; k < n; ++k) acc -= f(c, k) * y(k, j);
+            y(c, j) = acc / f(c, c);
+        }
     return true;
 }
 

@@ -364,6 +364,19 @@ void lin_eval(const Phase& ph, double tau, double* y, double* a) {
     }
 }
 
+void table_series(const Phase& ph, int m, double* ga, double* gb) {
+    double wk = 1.0;  // w^k / k!
+    for (int k = 0; k <= m; ++k) {
+        const int m4 = k & 3;
+        double g = ph.axh * wk * (m4 == 0 ? ph.sphi : m4 == 1 ? ph.cphi : m4 == 2 ? -ph.sphi : -ph.cphi);
+        if (k == 0) g += ph.ax0;
+        if (k == 1) g += ph.ax1;
+        ga[k] = g;
+        gb[k] = table_b_term(ph, k, wk, ph.sphi, ph.cphi);
+        wk *= ph.w / (k + 1);
+    }
+}
+
 void table_derivatives(const Phase& ph, double tau, double s, double c, int m, double* g, double* gb) {
     const double w = ph.w, amp = ph.axh;
     g[0] = ph.ax0 + ph.ax1 * tau + amp * s;

@@ -151,6 +151,9 @@ inline void ensure_series(const Phase& ph) {
 }
 // y (ny) and the acceleration a (n) at tau of the current series
 void lin_eval(const Phase& ph, double tau, double* y, double* a);
+// the table acceleration's series about the sub-interval's start, coefficients 0..m of tau: its first
+// component's into ga, its second's into gb
+void table_series(const Phase& ph, int m, double* ga, double* gb);
 // the table acceleration's derivatives G_0..G_m at tau (sin and cos of the forcing angle there given): its
 // first component's into g, its second's into gb (when not null)
 void table_derivatives(const Phase& ph, double tau, double s, double c, int m, double* g, double* gb = nullptr);

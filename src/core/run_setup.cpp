@@ -79,11 +79,19 @@ void run_scales(const System& sy, const Forcing& fo, double& x, double& xw) {
     if (fo.kind == EXC_HARMONIC) {
         amp = std::abs(fo.p[0]);
         w = std::max(w, fo.p[1]);
-        if (!sy.plain) amp = std::max(amp, std::abs(fo.pb[0]));
     } else {
         for (int64_t i = 0; i < fo.n_rec; ++i) amp = std::max(amp, std::abs(fo.rec_a[i]));
-        if (!sy.plain && fo.rec_b != nullptr)
-            for (int64_t i = 0; i < fo.n_rec; ++i) amp = std::max(amp, std::abs(fo.rec_b[i]));
+    }
+    if (!sy.plain) {  // (the most any dof feels: |r_i| of the first's peak and |q_i| of the second's)
+        double amp_b = 0.0;
+        if (fo.kind == EXC_HARMONIC) amp_b = std::abs(fo.pb[0]);
+        else if (fo.rec_b != nullptr)
+            for (int64_t i = 0; i < fo.n_rec; ++i) amp_b = std::max(amp_b, std::abs(fo.rec_b[i]));
+        const double amp_a = amp;
+        amp = 0.0;
+        for (int i = 0; i < sy.n; ++i)
+            amp = std::max(amp, std::abs(sy.infl[static_cast<size_t>(2 * i)]) * amp_a +
+                                    std::abs(sy.infl[static_cast<size_t>(2 * i + 1)]) * amp_b);
     }
     double gaps = 0.0;
     if (sy.has_b)

@@ -290,6 +290,14 @@ def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int, 
                    surface_ring_n_m=[float(x) for x in surface_ring_n_m])
 
 
+def _one_component(sy: System, what: str) -> None:
+    """A ValueError unless no dof of ``sy`` moves with the ground's second component: ``what`` takes a
+    harmonic of one."""
+    if any(sy.infl[1::2]):
+        raise ValueError(f"{what}: a harmonic of one component; this system's dofs move with a second "
+                         "(its influence's second column), which it would leave out")
+
+
 def _f64(a: Any) -> np.ndarray:
     return np.ascontiguousarray(a, dtype=np.float64)
 
@@ -315,6 +323,7 @@ def step(sy: System, amp: float, omega: float, state0: np.ndarray, steady: tuple
          max_events: int, ctl: np.ndarray) -> StepOutput:
     """Hold ``amp sin(omega (t - t0))`` (m/s^2, rad/s) from ``state0`` (time ``t0``) cycle by cycle until
     steady; ``steady`` is ``(adaptive, n_cycles, measure_cycles, steady_rtol, max_period)``."""
+    _one_component(sy, "step")
     adaptive, n_cycles, measure_cycles, steady_rtol, max_period = steady
     state, cycles_run, period_multiple, window, window_state, window_strobes, status = _c.step(
         sy, float(amp), float(omega), _f64(state0), bool(adaptive), int(n_cycles), int(measure_cycles),
@@ -360,6 +369,7 @@ def monodromy(sy: System, state0: np.ndarray, events: np.ndarray, t_end: float, 
               phase: float) -> Monodromy:
     """The exact Jacobian of ``sy``'s map from the state vector ``state0`` to ``t_end`` along ``events``
     (rows of t, action, index) under ``amp sin(omega t + phase)``."""
+    _one_component(sy, "monodromy")
     jac, x_end, code = _c.monodromy(sy, _f64(state0), _f64(events).reshape(-1, 3), float(t_end), float(omega),
                                     float(amp), float(phase))
     return Monodromy(jacobian=jac, x_end=x_end, code=int(code))
