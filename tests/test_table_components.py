@@ -240,3 +240,28 @@ def test_a_held_pair_moved_by_different_tables_has_each_dof_s_own_acceleration_e
     exact = out.per_dof(2)[:, 4]
     assert np.all(exact >= sampled * (1 - 1e-12))
     np.testing.assert_allclose(exact, sampled, rtol=1e-6)  # (samples 0.1 ms apart round a crest by ~1e-8)
+
+
+def test_the_door_refuses_a_second_component_it_cannot_place():
+    sy = _plane_oscillator(2.0, 80.0, 1.5, False)
+    state0 = np.zeros(sy.state_size)
+    harmonic, record = _core.EXCITATION["harmonic"], _core.EXCITATION["record"]
+    t = np.linspace(0.0, 1.0, 11)
+    none = {"rec_t": np.zeros(1), "rec_a": np.zeros(1)}
+    bad = [_core.Forcing(kind=harmonic, p=np.array([1.0, 2.0, 0.0, 1.0]), **none),
+           _core.Forcing(kind=harmonic, p=np.array([1.0, 2.0, 0.0]), rec_b=np.zeros(1), **none),
+           _core.Forcing(kind=record, p=np.array([0.1, 0.0, 0.0]), rec_t=t, rec_a=np.zeros(11),
+                         rec_b=np.zeros(10)),
+           _core.Forcing(kind=record, p=np.array([0.1, 0.0, 0.0, 1.0, 0.0]), rec_t=t, rec_a=np.zeros(11))]
+    for forcing in bad:
+        with pytest.raises(ValueError, match="rec_b"):
+            _run(sy, forcing, state0, 1.0)
+    with pytest.raises(ValueError, match="influence"):
+        _core.system([1.0, 1.0], np.eye(2), np.zeros((2, 2)), [], np.zeros(_core.LAYOUT["BW_PARAMS"]), False,
+                     [], influence=np.ones((2, 3)))
+    state = sy.__getstate__()
+    state["infl"] = [1.0, 0.0, 0.0]  # (not 2 n values: refused, not read as a line's table)
+    with pytest.raises(ValueError, match="infl"):
+        _core.System.__new__(_core.System).__setstate__(state)
+    with pytest.raises(ValueError, match="second"):  # (a harmonic of one component: the monodromy, a step)
+        _core.monodromy(sy, state0, np.zeros((0, 3)), 1.0, 2.0, 1.0, 0.0)

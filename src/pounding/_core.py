@@ -309,9 +309,12 @@ def run(sy: System, forcing: Forcing, state0: np.ndarray, t_end: float, sample_d
     ``sample_dt`` is the history's step (0: events only; -1: not even those); ``with_energy`` False
     skips the energy integrals outside contacts (the ledger is then NaN)."""
     rec_b = _f64(forcing.rec_b)
-    if rec_b.size not in (0, np.size(forcing.rec_t)):
-        raise ValueError(f"rec_b: none or as many values as rec_t ({np.size(forcing.rec_t)}), "
-                         f"got {rec_b.size}")
+    harmonic = forcing.kind == EXCITATION["harmonic"]
+    sizes_b = (0,) if harmonic else (0, np.size(forcing.rec_t))
+    if rec_b.size not in sizes_b or np.size(forcing.p) not in ((3, 5) if harmonic else (3,)):
+        raise ValueError(f"a harmonic's p holds 3 or 5 numbers and no rec_b; a record's p 3 and rec_b none "
+                         f"or as many values as rec_t ({np.size(forcing.rec_t)}): got p "
+                         f"{np.size(forcing.p)}, rec_b {rec_b.size}")
     state, samples, contacts, events, ledger, extrema, status, chatters = _c.run(
         sy, int(forcing.kind), _f64(forcing.p), _f64(forcing.rec_t), _f64(forcing.rec_a), rec_b, _f64(state0),
         float(t_end), float(sample_dt), float(rtol), int(max_events), bool(with_energy), ctl)
