@@ -611,14 +611,10 @@ void held_force_poly(const Phase& ph, int c, Poly& q) {
     const char* side = &st.side[static_cast<size_t>(h * n)];
     const double sign = st.end_sign[static_cast<size_t>(h)];
     q.deg = nt - 1;
-    double wk = 1.0;  // w^k / k!
+    double ga[MAX_TERMS + 1], gb[MAX_TERMS + 1];  // (the table's series, each component's)
+    table_series(ph, nt - 1, ga, gb);
     for (int k = 0; k < nt; ++k) {
-        const int m4 = k % 4;
-        double g = ph.axh * wk * (m4 == 0 ? ph.sphi : m4 == 1 ? ph.cphi : m4 == 2 ? -ph.sphi : -ph.cphi);
-        if (k == 0) g += ph.ax0;
-        if (k == 1) g += ph.ax1;
-        const double gb = ph.plain ? 0.0 : table_b_term(ph, k, wk, ph.sphi, ph.cphi);
-        wk *= ph.w / (k + 1);
+        const double g = ga[k];
         const double* Yk = t + k * ny;
         double f = 0.0;
         for (int i = 0; i < n; ++i) {
@@ -628,7 +624,7 @@ void held_force_poly(const Phase& ph, int c, Poly& q) {
             double s = k == 0 ? ph.R0[static_cast<size_t>(i)] : 0.0;
             for (int j = 0; j < n; ++j) s += rk[j] * Yk[j] + rc[j] * Yk[n + j];
             const double a_held = k + 1 < nt ? (k + 1) * t[(k + 1) * ny + n + i] : 0.0;
-            f += side[i] * (-s - ph.mass[static_cast<size_t>(i)] * (ph.on(i, g, gb) + a_held));
+            f += side[i] * (-s - ph.mass[static_cast<size_t>(i)] * (ph.on(i, g, gb[k]) + a_held));
         }
         q.c[k] = sign * f;
     }
