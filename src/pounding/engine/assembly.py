@@ -127,7 +127,32 @@ def _one_level(oscillator: Oscillator) -> Structure:
     return Structure.from_oscillator(oscillator)
 
 
+# assemblies kept (:func:`assemble`): a pounding spectrum's systems at every period and gap (100 periods of 4
+# systems), each met again by every record a worker runs; a few kB each
+ASSEMBLIES_KEPT = 1024
+
+
 def assemble(model: Oscillator | Structure | Adjacent) -> Assembly:
+    """The core's system of a model and where each part went (:func:`_assemble`), built once for the many
+    runs of one system (a sweep's, a study's, a spectrum's, a continuation's): an equal model (the models
+    are frozen dataclasses, equal when their numbers are) gets the assembly kept for it, whose arrays are
+    read-only.  A model that cannot be hashed is assembled anew."""
+    try:
+        hash(model)
+    except TypeError:
+        return _assemble(model)
+    return _kept(model)
+
+
+@functools.lru_cache(maxsize=ASSEMBLIES_KEPT)
+def _kept(model: Oscillator | Structure | Adjacent) -> Assembly:
+    asm = _assemble(model)
+    for a in (asm.masses, asm.k_fast, asm.c_all, asm.system_bw):
+        a.flags.writeable = False
+    return asm
+
+
+def _assemble(model: Oscillator | Structure | Adjacent) -> Assembly:
     """The core's system of a single mass (the one-level structure it is), one structure or two adjacent
     ones: their levels' dofs in order (a fixed
     base's level 0 is the ground), the storeys' linear springs and dashpots, the hysteretic elements (the

@@ -7,6 +7,7 @@ rate: a request that cannot finish within its budget is refused before any work 
 
 from __future__ import annotations
 
+import functools
 import math
 from typing import Any
 
@@ -16,7 +17,7 @@ from .._control import (DEFAULT_MAX_STEPS, new_control, request_stop, run_interr
                         stop_requested)
 from .._errors import InputError, Problem
 from ..model.contact_laws import is_rigid, linear_form
-from .assembly import Assembly, _add_pair, assemble
+from .assembly import ASSEMBLIES_KEPT, Assembly, _add_pair, assemble
 
 SUBINTERVALS_PER_PERIOD = 8.0  # the core's (src/core/run.cpp): sub-intervals per period of the fastest motion
 
@@ -55,6 +56,21 @@ def fastest_rates(asm: Assembly) -> tuple[float, float]:
         _add_pair(k, i, j, form[0])
         _add_pair(c, i, j, form[1])
     return free, rate(k, c)
+
+
+def model_rates(model: Any, asm: Assembly) -> tuple[float, float]:
+    """:func:`fastest_rates` of a model's assembly ``asm``, kept with the assembly (:func:`assemble`) for the
+    many runs of one system."""
+    try:
+        hash(model)
+    except TypeError:
+        return fastest_rates(asm)
+    return _kept_rates(model)
+
+
+@functools.lru_cache(maxsize=ASSEMBLIES_KEPT)
+def _kept_rates(model: Any) -> tuple[float, float]:
+    return fastest_rates(assemble(model))
 
 
 def fastest_rate(system: Any) -> tuple[float, str]:

@@ -11,7 +11,7 @@ import numpy as np
 from .._errors import InputError, Interrupted, Problem, Status, renamed_keyword
 from ..excitation import Harmonic, Record
 from ..model import Oscillator
-from .control import (DEFAULT_MAX_STEPS, check_budget, fastest_rates, new_control, run_interruptibly,
+from .control import (DEFAULT_MAX_STEPS, check_budget, model_rates, new_control, run_interruptibly,
                       steps_per_second, why_rate)
 from .. import _core
 from ._system import Forcing, System
@@ -112,7 +112,7 @@ def simulate(
     check_system(system)
     asm, state, duration, rtol, rate, max_events, max_steps, omega, knots = checked_run_args(
         system, excitation, duration, state, rtol, sample_rate_hz, max_events, max_steps)
-    free, touching = fastest_rates(asm)
+    free, touching = model_rates(system, asm)
     why = f"the forcing, {omega:.3g} rad/s" if omega > free else why_rate(asm, free)
     if isinstance(excitation, Record):
         why += f", and {knots} record samples"
