@@ -121,12 +121,12 @@ def orientation_angles(angles_deg: Any) -> np.ndarray:
 
 def _one_angle(task: tuple, ctx: Context) -> dict:
     """One orientation's run: the system under the pair's motion along x turned by the task's angle."""
-    from ..engine.simulate import simulate
+    from ..engine.simulate import peaks
 
     system, record, duration, max_steps = task
     if ctx.stopped():  # (a stop was asked for before this one began)
         raise Interrupted(None, 0, 1, "runs")
-    return simulate(system, record, duration, sample_rate_hz=0, max_steps=max_steps).quantities()
+    return peaks(system, record, duration, max_steps=max_steps)
 
 
 def orientations(system: Any, pair: RecordPair, angles_deg: Any = None, duration_s: float | None = None, *,

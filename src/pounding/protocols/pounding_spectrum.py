@@ -80,7 +80,7 @@ def _one_record(task: tuple, ctx: Context) -> tuple[np.ndarray, np.ndarray]:
     ``task``: (record, periods, bumpers, damping ratio, mass kg, isolator template, max_steps, structure or
     None, the law every wall takes or None: their own); a structure's peaks are ``STRUCTURE_QUANTITIES``,
     the oscillator's ``QUANTITIES``."""
-    from ..engine.simulate import simulate
+    from ..engine.simulate import peaks
 
     rec, periods, bumpers, _, _, _, max_steps, structure, _ = task
     names = QUANTITIES if structure is None else STRUCTURE_QUANTITIES
@@ -93,16 +93,16 @@ def _one_record(task: tuple, ctx: Context) -> tuple[np.ndarray, np.ndarray]:
                 if ctx.stopped():  # (a stop was asked for: what is done is kept)
                     raise Interrupted((free, hit), i, periods.size, "periods")
                 try:
-                    q = simulate(system, rec, duration, sample_rate_hz=0, max_steps=max_steps).quantities()
-                    peaks = tuple(q[k] for k in names)
+                    q = peaks(system, rec, duration, max_steps=max_steps)
+                    row = tuple(q[k] for k in names)
                 except InputError as exc:  # (refused up front: over its budget; the others go on)
                     if exc.problem not in (Problem.OVER_BUDGET, Problem.TOO_MUCH_WORK):
                         raise
-                    peaks = tuple(float(Status.BUDGET) if k == "status" else math.nan for k in names)
+                    row = tuple(float(Status.BUDGET) if k == "status" else math.nan for k in names)
                 if j < 0:
-                    free[i] = peaks
+                    free[i] = row
                 else:
-                    hit[i, j] = peaks
+                    hit[i, j] = row
                 ctx.advance(1)
     except KeyboardInterrupt as stop:  # (a progress callback's Ctrl-C, or a stop: keep what is done)
         if isinstance(stop, Interrupted):

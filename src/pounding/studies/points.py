@@ -181,7 +181,7 @@ def excitation_of(options: dict[str, Any]) -> Harmonic | Record | None:
 def compute_point(system: Any, options: dict[str, Any], max_steps: int | None = None) -> np.ndarray:
     """The quantities (:func:`quantities_of`, in order) of one point: float64, NaN where a quantity
     does not exist.  A run refused over its budget is kept as ``status`` BUDGET, not raised."""
-    from ..engine.simulate import DEFAULT_MAX_STEPS, simulate
+    from ..engine.simulate import DEFAULT_MAX_STEPS, peaks
     from ..protocols.sweep import sweep
 
     kind = options["kind"]
@@ -204,7 +204,7 @@ def compute_point(system: Any, options: dict[str, Any], max_steps: int | None = 
                 from ..engine import State
 
                 state = State.at_rest(system, velocity_m_s=options["v0_m_s"])
-            q = simulate(system, exc, duration, state, sample_rate_hz=0, max_steps=steps).quantities()
+            q = peaks(system, exc, duration, state, max_steps=steps)
         return np.array([q[k] for k in names], dtype=float)
     except InputError as exc:
         if exc.problem not in (Problem.OVER_BUDGET, Problem.TOO_MUCH_WORK):
