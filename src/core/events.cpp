@@ -72,6 +72,63 @@ EventValue held_force(Phase& ph, int c, double tau, const double* y, const doubl
     return {sign * f, sign * rate, scale};
 }
 
+ForceTurn held_force_turn(Phase& ph, int c, double tau, const double* y, const double* a) {
+    const int n = ph.n;
+    const Sticking& st = ph.stk;
+    const int h = st.held_of[static_cast<size_t>(c)];
+    const char* side = &st.side[static_cast<size_t>(h * n)];
+    const double* v = y + n;
+    double* jerk = ph.au.data();
+    double* snap = ph.aur.data();
+    // the table's first and second derivatives there, each component's
+    const double ang = ph.w * tau + ph.phi;
+    double g[3], gb[3];
+    table_derivatives(ph, tau, std::sin(ang), std::cos(ang), 2, g, gb);
+    // the motion's jerk and snap with the holds: the free ones' (the equation of motion differentiated)
+    // projected as the accelerations are
+    for (int i = 0; i < n; ++i) {
+        const double* rk = &ph.K[static_cast<size_t>(i * n)];
+        const double* rc = &ph.C[static_cast<size_t>(i * n)];
+        double q = 0.0;
+        for (int j = 0; j < n; ++j) q += rk[j] * v[j] + rc[j] * a[j];
+        jerk[i] = -ph.minv[static_cast<size_t>(i)] * q - ph.on(i, g[1], gb[1]);
+    }
+    st.project(ph.mass, jerk);
+    for (int i = 0; i < n; ++i) {
+        const double* rk = &ph.K[static_cast<size_t>(i * n)];
+        const double* rc = &ph.C[static_cast<size_t>(i * n)];
+        double q = 0.0;
+        for (int j = 0; j < n; ++j) q += rk[j] * a[j] + rc[j] * jerk[j];
+        snap[i] = -ph.minv[static_cast<size_t>(i)] * q - ph.on(i, g[2], gb[2]);
+    }
+    st.project(ph.mass, snap);
+    // the force's rate and bend: sign sum over its side of -(K x + C v + R0)_i - m_i (table_i + a_i),
+    // differentiated once and twice; each with the size of its terms
+    ForceTurn out{0.0, 0.0, 0.0, 0.0};
+    for (int i = 0; i < n; ++i) {
+        if (!side[i]) continue;
+        const double* rk = &ph.K[static_cast<size_t>(i * n)];
+        const double* rc = &ph.C[static_cast<size_t>(i * n)];
+        const double m = side[i] * ph.mass[static_cast<size_t>(i)];
+        double r = 0.0, b = 0.0, rs = 0.0, bs = 0.0;
+        for (int j = 0; j < n; ++j) {
+            r += rk[j] * v[j] + rc[j] * a[j];
+            b += rk[j] * a[j] + rc[j] * jerk[j];
+            rs += std::abs(rk[j] * v[j]) + std::abs(rc[j] * a[j]);
+            bs += std::abs(rk[j] * a[j]) + std::abs(rc[j] * jerk[j]);
+        }
+        const double t1 = ph.on(i, g[1], gb[1]) + jerk[i], t2 = ph.on(i, g[2], gb[2]) + snap[i];
+        out.rate += -side[i] * r - m * t1;
+        out.bend += -side[i] * b - m * t2;
+        out.rate_scale += rs + std::abs(m) * (std::abs(ph.on(i, g[1], gb[1])) + std::abs(jerk[i]));
+        out.bend_scale += bs + std::abs(m) * (std::abs(ph.on(i, g[2], gb[2])) + std::abs(snap[i]));
+    }
+    const double sign = st.end_sign[static_cast<size_t>(h)];
+    out.rate *= sign;
+    out.bend *= sign;
+    return out;
+}
+
 EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y, const double* a) {
     const int n = ph.n;
     if (e.kind == KIND_ZETA) {  // (alpha: minus z's sign at the phase start)

@@ -41,6 +41,12 @@ EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y
 // (N/s) and the size of its terms at tau (y, a: the trajectory there, a with the held bonds' constraint)
 EventValue held_force(Phase& ph, int c, double tau, const double* y, const double* a);
 
+// a held bond c's force's rate (N/s) and its second derivative (N/s^2) at tau of a linear phase, each with the
+// size of its terms, from the trajectory there (y, a: a with the held bonds' constraint): the equation of motion
+// differentiated, no series (force_turn_cut's screen)
+struct ForceTurn { double rate, bend, rate_scale, bend_scale; };
+ForceTurn held_force_turn(Phase& ph, int c, double tau, const double* y, const double* a);
+
 // A scalar function of tau on the current sub-interval, whose roots the loop looks for: a polynomial of
 // the series (a linear phase; with a contact's relaxation added for a contact start), or a function of the
 // numerical trajectory

@@ -133,17 +133,34 @@ double velocity_cuts(Phase& ph, const System& sy, double h, const Buffers& b, co
     return cut;
 }
 
+// whether a held force's rate and bend at a sub-interval's two ends (held_force_turn) say, beyond any doubt of
+// rounding, that it does not turn back and forth inside: its rates of opposite signs, or its bends of one sign
+bool surely_no_turn(const ForceTurn& e0, const ForceTurn& e1) {
+    constexpr double MARGIN = 1e-6;  // (of the terms' sizes: far above the series' rounding)
+    const double r0 = MARGIN * e0.rate_scale, r1 = MARGIN * e1.rate_scale;
+    const double b0 = MARGIN * e0.bend_scale, b1 = MARGIN * e1.bend_scale;
+    const bool rates_apart = (e0.rate > r0 && e1.rate < -r1) || (e0.rate < -r0 && e1.rate > r1);
+    const bool bends_alike = (e0.bend > b0 && e1.bend > b1) || (e0.bend < -b0 && e1.bend < -b1);
+    return rates_apart || bends_alike;
+}
+
 // where a sub-interval must also end early: a stuck tie's force whose rate has one sign at both ends but turns
 // back and forth inside (its second derivative crossing zero, its rate there of the other sign) could cross
 // its threshold and come back unseen between two extrema; cut where its rate turns (a linear phase's
-// polynomial), each part then holding one extremum at most.  The cut instant (or h).
-double force_turn_cut(Phase& ph, const EventRow* evs, int n_ev, double h) {
+// polynomial), each part then holding one extremum at most.  The cut instant (or h).  With the sub-interval's
+// ends (y0 and b's a0, y1, a1 at h), a force that surely does not turn there is passed over without its
+// polynomial (the phase's series, the most of a stuck sub-interval's work otherwise).
+double force_turn_cut(Phase& ph, const EventRow* evs, int n_ev, double h, const Buffers* ends) {
     double cut = h;
     int last_side = -1;
     for (int i = 0; i < n_ev; ++i) {
         // (a tie's two thresholds share its force: its turns are looked at once)
         if (evs[i].kind != KIND_STICK || evs[i].side == last_side) continue;
         last_side = evs[i].side;
+        if (ends != nullptr &&
+            surely_no_turn(held_force_turn(ph, evs[i].side, 0.0, ph.y0.data(), ends->a0.data()),
+                           held_force_turn(ph, evs[i].side, h, ends->y1.data(), ends->a1.data())))
+            continue;
         Fn rate, bend;
         Poly force;
         held_force_poly(ph, evs[i].side, force);
@@ -574,7 +591,8 @@ void earliest(Loop& lp) {
     ph.e_a1 = b.a1.data();
     ph.e_h = lp.h;
     double cut = velocity_cuts(ph, lp.sy, lp.h, b, lp.w.pair_i.data(), lp.w.pair_j.data(), lp.n_pairs);
-    if (!ph.numeric && !lp.sy.ties.empty()) cut = std::min(cut, force_turn_cut(ph, lp.w.evs.data(), lp.n_ev, cut));
+    if (!ph.numeric && !lp.sy.ties.empty())  // (the ends known where no velocity cut came first)
+        cut = std::min(cut, force_turn_cut(ph, lp.w.evs.data(), lp.n_ev, cut, cut == lp.h ? &b : nullptr));
     if (cut < lp.h) {
         lp.h = cut;
         lp.to_stop = false;
