@@ -103,7 +103,12 @@ ForceTurn held_force_turn(Phase& ph, int c, double tau, const double* y, const d
     }
     st.project(ph.mass, snap);
     // the force's rate and bend: sign sum over its side of -(K x + C v + R0)_i - m_i (table_i + a_i),
-    // differentiated once and twice; each with the size of its terms
+    // differentiated once and twice; each with the size of its terms, the table's by its amplitude (at a crest
+    // its derivative's value is the rounding of its sine and cosine, not a size)
+    const double w = ph.w;
+    const double amp1 = std::abs(ph.ax1) + std::abs(ph.axh) * w, amp2 = std::abs(ph.axh) * w * w;
+    const double bmp1 = std::abs(ph.bx1) + (std::abs(ph.bs) + std::abs(ph.bc)) * w;
+    const double bmp2 = (std::abs(ph.bs) + std::abs(ph.bc)) * w * w;
     ForceTurn out{0.0, 0.0, 0.0, 0.0};
     for (int i = 0; i < n; ++i) {
         if (!side[i]) continue;
@@ -120,8 +125,10 @@ ForceTurn held_force_turn(Phase& ph, int c, double tau, const double* y, const d
         const double t1 = ph.on(i, g[1], gb[1]) + jerk[i], t2 = ph.on(i, g[2], gb[2]) + snap[i];
         out.rate += -side[i] * r - m * t1;
         out.bend += -side[i] * b - m * t2;
-        out.rate_scale += rs + std::abs(m) * (std::abs(ph.on(i, g[1], gb[1])) + std::abs(jerk[i]));
-        out.bend_scale += bs + std::abs(m) * (std::abs(ph.on(i, g[2], gb[2])) + std::abs(snap[i]));
+        const double table1 = std::abs(ph.on(i, amp1, 0.0)) + std::abs(ph.on(i, 0.0, bmp1));
+        const double table2 = std::abs(ph.on(i, amp2, 0.0)) + std::abs(ph.on(i, 0.0, bmp2));
+        out.rate_scale += rs + std::abs(m) * (table1 + std::abs(jerk[i]));
+        out.bend_scale += bs + std::abs(m) * (table2 + std::abs(snap[i]));
     }
     const double sign = st.end_sign[static_cast<size_t>(h)];
     out.rate *= sign;

@@ -318,9 +318,12 @@ struct Loop {
     int64_t j_next = 1, j_rec = 0;
     int64_t work = 0, published = 0, next_poll = 0;
     double h_flight = INF;  // (the last rigid rebound's flight, to first order)
-    // a record's step met at its knot by a phase faster than it, cut in equal parts: their length (0: none), and
-    // whether the last sub-interval ended at a knot
+    // a record's step met at its knot by a phase faster than it, cut in equal parts: their length (0: none), how
+    // many are left (the last ends at the knot), whether this sub-interval is one, and whether the last
+    // sub-interval ended at a knot
     double h_split = 0.0;
+    int parts = 0, parts_left = 0;
+    bool in_part = false;
     bool at_knot = false;
     // this sub-interval's
     Piece pc{};
@@ -510,23 +513,29 @@ void next_subinterval(Loop& lp) {
     }
     lp.t_stop = std::min({pc.t_next, lp.opt.t_end, lp.t_horizon});
     // a record's step, met at its knot by the same phase, longer than the phase's sub-interval: cut in m equal
-    // parts, each taking one kept transition (a step of the record's as its times give it: the nominal step's
-    // parts, the same numbers every step), rather than full sub-intervals and a remainder that would take the
-    // phase's series; the last part ends at the knot, within a few ulps of the others
+    // parts, each taking one kept transition (the nominal step's m-th, the same numbers every step), rather than
+    // full sub-intervals and a remainder that would take the phase's series; the m-th part ends at the knot.
+    // Only a step as the record's times give it (within a few ulps of the clock): another span's parts would
+    // each need a transition of their own, dearer than the series they spare
     if (!lp.continuing || !lp.record) {
         lp.h_split = 0.0;
     } else if (lp.at_knot) {
         lp.h_split = 0.0;
         const double span = pc.t_next - t, step = lp.fo.p[0];
-        if (lp.t_stop == pc.t_next && span > h) {
+        if (lp.t_stop == pc.t_next && span > h && step > 0.0 && std::abs(span - step) <= 8.0 * EPS * (std::abs(t) + step)) {
             const double m = std::ceil(span / h);
-            lp.h_split = step > 0.0 && std::abs(span - step) <= 8.0 * EPS * (std::abs(t) + step) ? step / m : span / m;
+            lp.h_split = step / m;
+            lp.parts = lp.parts_left = static_cast<int>(m);
         }
     }
-    const bool split = lp.h_split > 0.0 && lp.t_stop == pc.t_next;
-    if (split) h = lp.h_split;
-    lp.to_stop = h >= lp.t_stop - t || (split && (lp.t_stop - t) - h <= 8.0 * EPS * (std::abs(t) + h));
-    if (lp.to_stop) h = lp.t_stop - t;
+    lp.in_part = lp.h_split > 0.0 && lp.t_stop == pc.t_next;
+    if (lp.in_part) {
+        lp.to_stop = lp.parts_left <= 1 || lp.h_split >= lp.t_stop - t;
+        h = lp.to_stop ? lp.t_stop - t : lp.h_split;
+    } else {
+        lp.to_stop = h >= lp.t_stop - t;
+        if (lp.to_stop) h = lp.t_stop - t;
+    }
     lp.h = h;
 }
 
@@ -547,8 +556,8 @@ bool advance_to_end(Loop& lp) {
         // (a table of two components, or not on every dof alike: no transition, its inputs are one table's)
         if (!ph.plain) lp.tr = nullptr;
         else if (lp.h == lp.h_phase) lp.tr = lp.w.transitions.get(ph, lp.sy, lp.h);
-        else if (lp.h_split > 0.0 && std::abs(lp.h - lp.h_split) <= 8.0 * EPS * (std::abs(lp.t) + lp.h_split))
-            lp.tr = lp.w.transitions.get(ph, lp.sy, lp.h_split);
+        else if (lp.in_part && std::abs(lp.h - lp.h_split) <= (8.0 + lp.parts) * EPS * (std::abs(lp.t) + step))
+            lp.tr = lp.w.transitions.get(ph, lp.sy, lp.h_split);  // (the last: the clock's drift over the parts)
         else if (step > 0.0 && std::abs(lp.h - step) <= 8.0 * EPS * (std::abs(lp.t) + step))
             lp.tr = lp.w.transitions.get(ph, lp.sy, step);
         eom_acceleration(ph, ph.y0.data(), 0.0, ph.sphi, ph.cphi, b.a0.data());
@@ -694,6 +703,9 @@ bool move_to_end(Loop& lp) {
     for (int q = 0; q < 2 * lp.n; ++q) st[lp.L.x + q] = b.y1[static_cast<size_t>(q)];
     st[T] = lp.to_stop ? lp.t_stop : lp.t + lp.tau;
     lp.at_knot = lp.to_stop && lp.t_stop == lp.pc.t_next;
+    // (a part cut short by a velocity's turn: the rest of the step goes as without parts)
+    if (lp.in_part) lp.parts_left = lp.tau == lp.h_split || lp.to_stop ? lp.parts_left - 1 : 0;
+    if (lp.in_part && lp.parts_left <= 0) lp.h_split = 0.0;
     lp.t_last = lp.t;
     lp.h_last = lp.tau;
     return true;
