@@ -84,24 +84,20 @@ ForceTurn held_force_turn(Phase& ph, int c, double tau, const double* y, const d
     const double ang = ph.w * tau + ph.phi;
     double g[3], gb[3];
     table_derivatives(ph, tau, std::sin(ang), std::cos(ang), 2, g, gb);
-    // the motion's jerk and snap with the holds: the free ones' (the equation of motion differentiated)
-    // projected as the accelerations are
-    for (int i = 0; i < n; ++i) {
-        const double* rk = &ph.K[static_cast<size_t>(i * n)];
-        const double* rc = &ph.C[static_cast<size_t>(i * n)];
-        double q = 0.0;
-        for (int j = 0; j < n; ++j) q += rk[j] * v[j] + rc[j] * a[j];
-        jerk[i] = -ph.minv[static_cast<size_t>(i)] * q - ph.on(i, g[1], gb[1]);
-    }
-    st.project(ph.mass, jerk);
-    for (int i = 0; i < n; ++i) {
-        const double* rk = &ph.K[static_cast<size_t>(i * n)];
-        const double* rc = &ph.C[static_cast<size_t>(i * n)];
-        double q = 0.0;
-        for (int j = 0; j < n; ++j) q += rk[j] * a[j] + rc[j] * jerk[j];
-        snap[i] = -ph.minv[static_cast<size_t>(i)] * q - ph.on(i, g[2], gb[2]);
-    }
-    st.project(ph.mass, snap);
+    // the motion's jerk and snap with the holds: the free ones' (the equation of motion differentiated once
+    // more from the two derivatives below, d1 and d2, and the table's k-th) projected as the accelerations are
+    auto differentiated = [&](const double* d1, const double* d2, int k, double* out) {
+        for (int i = 0; i < n; ++i) {
+            const double* rk = &ph.K[static_cast<size_t>(i * n)];
+            const double* rc = &ph.C[static_cast<size_t>(i * n)];
+            double q = 0.0;
+            for (int j = 0; j < n; ++j) q += rk[j] * d1[j] + rc[j] * d2[j];
+            out[i] = -ph.minv[static_cast<size_t>(i)] * q - ph.on(i, g[k], gb[k]);
+        }
+        st.project(ph.mass, out);
+    };
+    differentiated(v, a, 1, jerk);
+    differentiated(a, jerk, 2, snap);
     // the force's rate and bend: sign sum over its side of -(K x + C v + R0)_i - m_i (table_i + a_i),
     // differentiated once and twice; each with the size of its terms, the table's by its amplitude (at a crest
     // its derivative's value is the rounding of its sine and cosine, not a size)

@@ -137,11 +137,16 @@ def assemble(model: Oscillator | Structure | Adjacent) -> Assembly:
     runs of one system (a sweep's, a study's, a spectrum's, a continuation's): an equal model (the models
     are frozen dataclasses, equal when their numbers are) gets the assembly kept for it, whose arrays are
     read-only.  A model that cannot be hashed is assembled anew."""
+    return _kept(model) if can_keep(model) else _assemble(model)
+
+
+def can_keep(model: Any) -> bool:
+    """Whether what is built from ``model`` can be kept for it (:func:`assemble`): it hashes."""
     try:
         hash(model)
     except TypeError:
-        return _assemble(model)
-    return _kept(model)
+        return False
+    return True
 
 
 @functools.lru_cache(maxsize=ASSEMBLIES_KEPT)

@@ -17,7 +17,7 @@ from .._control import (DEFAULT_MAX_STEPS, new_control, request_stop, run_interr
                         stop_requested)
 from .._errors import InputError, Problem
 from ..model.contact_laws import is_rigid, linear_form
-from .assembly import ASSEMBLIES_KEPT, Assembly, _add_pair, assemble
+from .assembly import ASSEMBLIES_KEPT, Assembly, _add_pair, assemble, can_keep
 
 SUBINTERVALS_PER_PERIOD = 8.0  # the core's (src/core/run.cpp): sub-intervals per period of the fastest motion
 
@@ -61,11 +61,7 @@ def fastest_rates(asm: Assembly) -> tuple[float, float]:
 def model_rates(model: Any, asm: Assembly) -> tuple[float, float]:
     """:func:`fastest_rates` of a model's assembly ``asm``, kept with the assembly (:func:`assemble`) for the
     many runs of one system."""
-    try:
-        hash(model)
-    except TypeError:
-        return fastest_rates(asm)
-    return _kept_rates(model)
+    return _kept_rates(model) if can_keep(model) else fastest_rates(asm)
 
 
 @functools.lru_cache(maxsize=ASSEMBLIES_KEPT)
