@@ -522,7 +522,8 @@ void next_subinterval(Loop& lp) {
     } else if (lp.at_knot) {
         lp.h_split = 0.0;
         const double span = pc.t_next - t, step = lp.fo.p[0];
-        if (lp.t_stop == pc.t_next && span > h && step > 0.0 && std::abs(span - step) <= 8.0 * EPS * (std::abs(t) + step)) {
+        const bool own_step = step > 0.0 && std::abs(span - step) <= 8.0 * EPS * (std::abs(t) + step);
+        if (lp.t_stop == pc.t_next && span > h && own_step) {
             const double m = std::ceil(span / h);
             lp.h_split = step / m;
             lp.parts = lp.parts_left = static_cast<int>(m);

@@ -115,7 +115,7 @@ def simulate(
 def peaks(system: "Oscillator | Structure | Adjacent", excitation: Harmonic | Record, duration: float,
           state: Optional[State] = None, *, max_steps: int = DEFAULT_MAX_STEPS) -> dict[str, float]:
     """``simulate(system, excitation, duration, state, sample_rate_hz=0, max_steps=max_steps).quantities()``,
-    number for number, without the energy integrals, which no peak reads (about a seventh of a record
+    number for number, without the energy integrals, which no peak reads (a tenth to a quarter of a record
     sample's work): what a study's point, a pounding spectrum's run and an orientation's run are read for.
     Checks, raises and interrupts as :func:`simulate` does."""
     return _run(system, excitation, duration, state, 1e-10, 0.0, 10_000_000, max_steps, False).quantities()
