@@ -132,6 +132,10 @@ ForceTurn held_force_turn(Phase& ph, int c, double tau, const double* y, const d
     return out;
 }
 
+EventValue stick_value(const EventRow& e, const EventValue& d) {
+    return {e.alpha + e.beta * d.g, e.beta * d.gp, std::abs(e.alpha) + d.scale};
+}
+
 EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y, const double* a) {
     const int n = ph.n;
     if (e.kind == KIND_ZETA) {  // (alpha: minus z's sign at the phase start)
@@ -139,10 +143,7 @@ EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y
         return {-e.alpha * z, -e.alpha * zeta_rate(ph, rel(y + n, ph.iso_i, ph.iso_j), z), 1.0};
     }
     if (e.kind == KIND_HELD) return held_force(ph, e.side, tau, y, a);
-    if (e.kind == KIND_STICK) {
-        const EventValue d = held_force(ph, e.side, tau, y, a);
-        return {e.alpha + e.beta * d.g, e.beta * d.gp, std::abs(e.alpha) + d.scale};
-    }
+    if (e.kind == KIND_STICK) return stick_value(e, held_force(ph, e.side, tau, y, a));
     const double dx = rel(y, e.i, e.j), dv = rel(y + n, e.i, e.j), da = rel(a, e.i, e.j);
     if (e.kind == KIND_LINEAR) {
         const double g = e.alpha + e.beta * dx + e.gamma * dv;

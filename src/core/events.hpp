@@ -36,6 +36,8 @@ struct EventRow {
 struct EventValue { double g, gp, scale; };  // value, rate, size of the terms summed
 
 EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y, const double* a);
+// a stick's event value from its tie's held force d (held_force: a tie's two thresholds share it)
+EventValue stick_value(const EventRow& e, const EventValue& d);
 
 // a held bond c's force (N: a rigid stop's, or a sticking friction element's tie's, sticking.hpp), its rate
 // (N/s) and the size of its terms at tau (y, a: the trajectory there, a with the held bonds' constraint)

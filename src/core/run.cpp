@@ -65,13 +65,23 @@ void eom_acceleration(const Phase& ph, const double* y, double tau, double s, do
     ph.stk.project(ph.mass, a);
 }
 
-double quad_form(const double* Q, const double* u, int dim) {
+// u^T Q u over u's entries that are not zero (nz: their indices; a product with a zero adds a zero, which
+// leaves a sum of finite terms as it is: the same numbers as the whole sum)
+double quad_form(const double* Q, const double* u, int dim, const int* nz, int n_nz) {
     double s = 0.0;
-    for (int a = 0; a < dim; ++a) {
+    for (int ia = 0; ia < n_nz; ++ia) {
+        const int a = nz[ia];
         double r = 0.0;
-        for (int c = 0; c < dim; ++c) r += Q[a * dim + c] * u[c];
+        for (int ic = 0; ic < n_nz; ++ic) r += Q[a * dim + nz[ic]] * u[nz[ic]];
         s += u[a] * r;
     }
+    return s;
+}
+
+// the row's product with u over u's entries that are not zero
+double row_product(const double* row, const double* u, const int* nz, int n_nz) {
+    double s = 0.0;
+    for (int k = 0; k < n_nz; ++k) s += row[nz[k]] * u[nz[k]];
     return s;
 }
 
@@ -186,21 +196,36 @@ Earliest earliest_event(Phase& ph, const EventRow* evs, int n_ev, std::vector<do
                         bool at_knot, double h, const Buffers& b) {
     double tau = h;
     int i_ev = -1;
+    // (a tie's two thresholds, one row after the other, share its held force at each end: found once)
+    int tie = -1;
+    bool tie0 = false;
+    EventValue d0{}, d1{};
     for (int i = 0; i < n_ev; ++i) {
         double g0, gp0, sc0;
         double* end = &ev_end[static_cast<size_t>(3 * i)];
-        const bool force = evs[i].kind == KIND_HELD || evs[i].kind == KIND_STICK;
+        const bool stick = evs[i].kind == KIND_STICK;
+        const bool force = evs[i].kind == KIND_HELD || stick;
+        const bool same_tie = stick && evs[i].side == tie;
+        if (stick && !same_tie) {
+            tie = evs[i].side;
+            tie0 = false;
+            d1 = held_force(ph, tie, h, b.y1.data(), b.a1.data());
+        }
         if (continuing && !(at_knot && force)) {
             g0 = end[0];
             gp0 = end[1];
             sc0 = end[2];
         } else {
-            const EventValue e0 = event_value(evs[i], ph, 0.0, b.y0s.data(), b.a0.data());
+            if (stick && !tie0) {
+                d0 = held_force(ph, tie, 0.0, b.y0s.data(), b.a0.data());
+                tie0 = true;
+            }
+            const EventValue e0 = stick ? stick_value(evs[i], d0) : event_value(evs[i], ph, 0.0, b.y0s.data(), b.a0.data());
             g0 = e0.g;
             gp0 = e0.gp;
             sc0 = e0.scale;
         }
-        const EventValue e1 = event_value(evs[i], ph, h, b.y1.data(), b.a1.data());
+        const EventValue e1 = stick ? stick_value(evs[i], d1) : event_value(evs[i], ph, h, b.y1.data(), b.a1.data());
         end[0] = e1.g;
         end[1] = e1.gp;
         end[2] = e1.scale;
@@ -330,6 +355,7 @@ struct Loop {
     double t = 0.0, h = 0.0, t_stop = 0.0, tau = 0.0;
     bool to_stop = false;
     const Transition* tr = nullptr;
+    uint64_t phase_id = 0;  // (this phase's count in the workspace: its kept transitions found at once)
     int i_ev = -1;
 };
 
@@ -502,6 +528,7 @@ void next_subinterval(Loop& lp) {
         h = lp.h_phase;
     } else {
         set_phase(ph, st, sy, pc);
+        lp.phase_id = ++lp.w.transitions.phases;
         const double horizon = lp.has_ml ? relax_horizon(st, sy) : INF;
         h = TWO_PI / (SUBINTERVALS_PER_PERIOD * std::max(std::max(ph.rate, pc.omega), 1e-300));
         if (lp.has_ml) lp.t_horizon = t + horizon;
@@ -556,21 +583,21 @@ bool advance_to_end(Loop& lp) {
         const double step = lp.fo.kind != EXC_HARMONIC ? lp.fo.p[0] : 0.0;
         // (a table of two components, or not on every dof alike: no transition, its inputs are one table's)
         if (!ph.plain) lp.tr = nullptr;
-        else if (lp.h == lp.h_phase) lp.tr = lp.w.transitions.get(ph, lp.sy, lp.h);
+        else if (lp.h == lp.h_phase) lp.tr = lp.w.transitions.get(ph, lp.sy, lp.h, lp.phase_id);
         else if (lp.in_part && std::abs(lp.h - lp.h_split) <= (8.0 + lp.parts) * EPS * (std::abs(lp.t) + step))
-            lp.tr = lp.w.transitions.get(ph, lp.sy, lp.h_split);  // (the last: the clock's drift over the parts)
+            lp.tr = lp.w.transitions.get(ph, lp.sy, lp.h_split, lp.phase_id);  // (the last: the clock's drift over the parts)
         else if (step > 0.0 && std::abs(lp.h - step) <= 8.0 * EPS * (std::abs(lp.t) + step))
-            lp.tr = lp.w.transitions.get(ph, lp.sy, step);
+            lp.tr = lp.w.transitions.get(ph, lp.sy, step, lp.phase_id);
         eom_acceleration(ph, ph.y0.data(), 0.0, ph.sphi, ph.cphi, b.a0.data());
         if (lp.tr != nullptr) {
             transition_inputs(ph, b.u.data());
             const int dim = lp.tr->dim;
-            for (int q = 0; q < 2 * n; ++q) {
-                const double* tq = &lp.tr->T[static_cast<size_t>(q * dim)];
-                double s = 0.0;
-                for (int k = 0; k < dim; ++k) s += tq[k] * b.u[static_cast<size_t>(k)];
-                b.y1[static_cast<size_t>(q)] = s;
-            }
+            b.n_nz = 0;
+            for (int k = 0; k < dim; ++k)
+                if (b.u[static_cast<size_t>(k)] != 0.0) b.nz[static_cast<size_t>(b.n_nz++)] = k;
+            for (int q = 0; q < 2 * n; ++q)
+                b.y1[static_cast<size_t>(q)] =
+                    row_product(&lp.tr->T[static_cast<size_t>(q * dim)], b.u.data(), b.nz.data(), b.n_nz);
             const Angle an = angle_at(ph, lp.pc.omega, lp.h, lp.rot);
             eom_acceleration(ph, b.y1.data(), lp.h, an.s, an.c, b.a1.data());
         } else {
@@ -659,22 +686,21 @@ Given transition_integrals(Loop& lp) {
     Buffers& b = lp.b;
     const int n = lp.n, dim = tr->dim;
     const double* u = b.u.data();
+    const int* nz = b.nz.data();
+    const int n_nz = b.n_nz;
     given.have = true;
     if (lp.opt.with_energy) {
-        given.vcv = quad_form(tr->Q.data(), u, dim);
+        given.vcv = quad_form(tr->Q.data(), u, dim, nz, n_nz);
         for (int k = 0; k < 4; ++k) {
-            double s = 0.0;
-            for (int j = 0; j < dim; ++j) s += tr->R[static_cast<size_t>(k * dim + j)] * u[j];
-            given.gv += u[2 * n + n + k] * s;
+            if (u[2 * n + n + k] == 0.0) continue;
+            given.gv += u[2 * n + n + k] * row_product(&tr->R[static_cast<size_t>(k * dim)], u, nz, n_nz);
         }
     }
     for (int c = 0; c < lp.sy.nc(); ++c) {
         if (!lp.ph.ct[static_cast<size_t>(c)].in) continue;
         const int p = lp.w.transitions.pair_of[static_cast<size_t>(c)];
-        double s = 0.0;
-        for (int j = 0; j < dim; ++j) s += tr->L[static_cast<size_t>(p * dim + j)] * u[j];
-        b.du[static_cast<size_t>(c)] = s;
-        b.dvv[static_cast<size_t>(c)] = quad_form(&tr->Qp[static_cast<size_t>(p * dim * dim)], u, dim);
+        b.du[static_cast<size_t>(c)] = row_product(&tr->L[static_cast<size_t>(p * dim)], u, nz, n_nz);
+        b.dvv[static_cast<size_t>(c)] = quad_form(&tr->Qp[static_cast<size_t>(p * dim * dim)], u, dim, nz, n_nz);
     }
     return given;
 }

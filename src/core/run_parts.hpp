@@ -53,6 +53,8 @@ int event_pairs(const System& sy, int* pi, int* pj);
 
 struct Buffers {
     std::vector<double> y0s, y1, a0, a1, ym, am, du, dvv, u;
+    std::vector<int> nz;    // (u's entries that are not zero: the products with a kept transition skip the rest)
+    int n_nz = 0;
     std::vector<double> q;  // internal forces
     void size(int n, int nc) {
         y0s.assign(static_cast<size_t>(2 * n), 0.0);
@@ -63,6 +65,7 @@ struct Buffers {
         am.assign(static_cast<size_t>(n), 0.0);
         q.assign(static_cast<size_t>(n), 0.0);
         u.assign(static_cast<size_t>(3 * n + 4), 0.0);
+        nz.assign(static_cast<size_t>(3 * n + 4), 0);
         du.assign(static_cast<size_t>(std::max(nc, 1)), 0.0);
         dvv.assign(static_cast<size_t>(std::max(nc, 1)), 0.0);
     }

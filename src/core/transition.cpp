@@ -34,6 +34,7 @@ void series_at(const double* t, int nt, int ny, double tau, double* y) {
 void TransitionCache::setup(const System& sy) {
     entries.assign(N_CACHE, Transition());
     next = 0;
+    recent[0] = recent[1] = Recent();
     pi.clear();
     pj.clear();
     pair_of.assign(static_cast<size_t>(sy.nc()), 0);
@@ -60,15 +61,32 @@ void transition_inputs(const Phase& ph, double* out) {
     out[ny + n + 3] = ph.axh * ph.sphi;
 }
 
-const Transition* TransitionCache::get(const Phase& ph, const System& sy, double h) {
-    for (Transition& e : entries)
+const Transition* TransitionCache::get(const Phase& ph, const System& sy, double h, uint64_t phase) {
+    // (found for this phase and h before, and not made over since: the same entry the search finds, as an
+    // entry is made only where none has its key)
+    for (const Recent& r : recent)
+        if (r.phase == phase && r.h == h && entries[static_cast<size_t>(r.idx)].made == r.made) {
+            entries[static_cast<size_t>(r.idx)].uses += 1;
+            return &entries[static_cast<size_t>(r.idx)];
+        }
+    auto remember = [&](int idx) {
+        recent[1] = recent[0];
+        recent[0] = Recent{phase, entries[static_cast<size_t>(idx)].made, h, idx};
+    };
+    for (int idx = 0; idx < N_CACHE; ++idx) {
+        Transition& e = entries[static_cast<size_t>(idx)];
         if (e.h == h && e.w == ph.w && e.xrun == ph.xrun && e.vrun == ph.vrun && same(e.K, ph.K) &&
             same(e.C, ph.C) && e.grp == ph.stk.grp && e.grounded == ph.stk.grounded) {
             e.uses += 1;
+            remember(idx);
             return &e;
         }
+    }
+    const int idx = next;
     Transition& e = entries[static_cast<size_t>(next)];
     next = (next + 1) % N_CACHE;
+    e.made = ++made;
+    remember(idx);
     const int n = ph.n, ny = ph.ny, dim = 3 * n + 4, np = static_cast<int>(pi.size());
     e.K = ph.K;
     e.C = ph.C;

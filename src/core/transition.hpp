@@ -29,6 +29,7 @@ struct Transition {
     std::vector<double> R;     // (4, dim)
     std::vector<double> L, Qp; // per pair: (dim) and (dim, dim)
     int uses = 0;
+    uint64_t made = 0;         // (its stamp: which computation filled it)
 };
 
 struct TransitionCache {
@@ -37,9 +38,19 @@ struct TransitionCache {
     std::vector<int> pi, pj;  // the contacts' distinct pairs (their integrals' rows)
     std::vector<int> pair_of; // each contact slot's pair
     std::vector<double> scratch;
+    // the last two found for a phase (its run's phase count: the same phase, its key unchanged), so that a phase
+    // going on finds its own without comparing its matrices
+    struct Recent {
+        uint64_t phase = 0, made = 0;
+        double h = -1.0;
+        int idx = -1;
+    };
+    Recent recent[2];
+    uint64_t made = 0, phases = 0;
     void setup(const System& sy);
-    // the phase's transition over h, computed now if it is not kept
-    const Transition* get(const Phase& ph, const System& sy, double h);
+    // the phase's transition over h, computed now if it is not kept (phase: a count that is the same while
+    // the phase's stiffness, damping and holds are, and new at each phase set up: TransitionCache::phases)
+    const Transition* get(const Phase& ph, const System& sy, double h, uint64_t phase);
 };
 
 // u of the current sub-interval (3 n + 4 values) into out
