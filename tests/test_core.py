@@ -42,6 +42,7 @@ def test_statuses_actions_and_the_control_array_agree_with_the_core():
     assert [layout.EVENT_NAMES.index(k) for k in _core.ACTIONS] == list(_core.ACTIONS.values())
     assert sorted(_core.ACTIONS.values()) == list(range(len(_core.ACTIONS)))
     assert _control.CTL_LEN == _core.LAYOUT["CTL_LEN"]
+    assert _control.CTL_SERIES == _core.LAYOUT["CTL_SERIES"]
     assert layout.LEDGER_LEN == layout.L_BUMPER + 1
 
 

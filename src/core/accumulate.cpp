@@ -9,6 +9,7 @@
 #include "isolator.hpp"
 #include "laws.hpp"
 #include "phase.hpp"
+#include "screen.hpp"
 
 namespace pounding::run_parts {
 
@@ -257,17 +258,32 @@ void numeric_contributions(Phase& ph, const System& sy, double* st, double tau, 
     }
 }
 
+// the screen's bound over [0, tau], made when first asked for in the sub-interval (accumulate resets it)
+const ExtremaScreen& ready(ExtremaScreen& sc, const Phase& ph, const Ends& e, double tau) {
+    if (sc.tau != tau) screen_interval(sc, ph, e.y0, e.a0, e.y1, tau);
+    return sc;
+}
+
 // each dof's displacement extrema and each tracked pair's (a storey's drift), at the velocity's zeros and the
-// ends; each contact in progress's deepest compression
+// ends (none inside where the screen clears it); each contact in progress's deepest compression
 void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, double tau, const Ends& e,
-                          double* extrema) {
+                          double* extrema, ExtremaScreen* sc) {
     const int n = ph.n;
     const Layout& L = sy.lay;
-    // displacement extrema of each dof, at its velocity's zeros and the ends
+    // (a displacement's fourth derivative is an acceleration's second: at most beta Z, a pair's twice that)
+    auto clears = [&](double f0, double d0, double f1, double d1, double times, const double* ex) {
+        const ExtremaScreen& s = ready(*sc, ph, e, tau);
+        return surely_within(f0, d0, f1, d1, tau, times * s.beta * s.z, ex[EX_D_MIN], ex[EX_D_MAX], s.xscale);
+    };
+    // displacement extrema of each dof, at its velocity's zeros and the ends (none inside where the screen
+    // clears it: within the largest and smallest so far)
     for (int i = 0; i < n; ++i) {
         double* ex = extrema + DOF_EXTREMA * i;
         track_displacement(ex, t0, e.y0[i]);
         track_displacement(ex, t0 + tau, e.y1[i]);
+        if (sc != nullptr && velocity_may_cross(ph, i, GROUND) &&
+            clears(e.y0[i], e.y0[n + i], e.y1[i], e.y1[n + i], 1.0, ex))
+            continue;
         const Phase::Zeros& z = velocity_zeros(ph, i, GROUND);
         for (int k = 0; k < z.count; ++k)
             if (z.t[k] < tau) track_displacement(ex, t0 + z.t[k], z.x[k]);
@@ -278,6 +294,9 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
         const int i = sy.track_i[static_cast<size_t>(p)], j = sy.track_j[static_cast<size_t>(p)];
         track_displacement(ex, t0, rel(e.y0, i, j));
         track_displacement(ex, t0 + tau, rel(e.y1, i, j));
+        if (sc != nullptr && velocity_may_cross(ph, i, j) &&
+            clears(rel(e.y0, i, j), rel(e.y0 + n, i, j), rel(e.y1, i, j), rel(e.y1 + n, i, j), j >= 0 ? 2.0 : 1.0, ex))
+            continue;
         const Phase::Zeros& z = velocity_zeros(ph, i, j);
         for (int k = 0; k < z.count; ++k)
             if (z.t[k] < tau) track_displacement(ex, t0 + z.t[k], z.x[k]);
@@ -369,7 +388,7 @@ void held_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, 
 // a free dof's: a linear phase's at the ends and where its polynomial's rate changes sign (skipped when the
 // polynomial's bound is below the largest so far), a nonlinear one's where the numerical rate does
 void free_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, const Ends& e, bool linear,
-                           Buffers& b) {
+                           Buffers& b, ExtremaScreen* sc) {
     if (linear) {
         // a linear phase's absolute acceleration -(K x + C v + R0)_i / m_i and its rate at the ends; the
         // polynomial only where the rate changes sign
@@ -378,6 +397,15 @@ void free_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, 
         track_abs_acceleration(ex, t0, aa0);
         track_abs_acceleration(ex, t0 + tau, aa1);
         if (r0 * r1 < 0.0) {
+            if (sc != nullptr) {  // (its fourth derivative: -(M^-1 (K a'' + C a^(3)))_i, screen.hpp)
+                const ExtremaScreen& s = ready(*sc, ph, e, tau);
+                const double kr = s.kr[static_cast<size_t>(i)], cr = s.cr[static_cast<size_t>(i)];
+                const double a4 = (kr + cr * s.alpha) * s.beta * s.z;
+                const double scale = kr * s.xscale + cr * s.vscale +
+                                     std::abs(ph.minv[static_cast<size_t>(i)] * ph.R0[static_cast<size_t>(i)]);
+                const double top = ex[EX_A_ABS_MAX];
+                if (surely_within(aa0, r0, aa1, r1, tau, a4, -top, top, scale)) return;
+            }
             Fn fa, fr;
             abs_acc_poly(ph, i, fa.q);
             // (its bound over the sub-interval, sum |c_k| tau^k, below the largest so far: no new extremum)
@@ -444,7 +472,7 @@ void peak_contact_forces(Phase& ph, const Layout& L, double* st, double tau, con
 // what a sub-interval adds: the energy integrals and contact statistics, the held stops' impulses, then the
 // extrema (displacements, drifts, compressions, absolute accelerations, contact forces)
 void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, const Ends& e, double* ledger,
-                double* extrema, Buffers& b, bool with_energy, const Given& given) {
+                double* extrema, Buffers& b, bool with_energy, const Given& given, ExtremaScreen* screen) {
     bool any_in = false;
     for (const ContactPhase& k : ph.ct) any_in = any_in || k.in;
     const bool linear = !ph.numeric;
@@ -453,13 +481,18 @@ void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, 
     else if (tau > 0.0 && (with_energy || any_in))
         numeric_contributions(ph, sy, st, tau, e, ledger, b);
     if (ph.stk.any && tau > 0.0) held_statistics(ph, sy.lay, st, tau, e, linear, b);
-    displacement_extrema(ph, sy, st, t0, tau, e, extrema);
+    ExtremaScreen* sc = nullptr;  // (the screen of what is extreme inside: a record's linear phase)
+    if (screen != nullptr && screen->on && linear && tau > 0.0) {
+        screen->tau = -1.0;  // (its bound made when first asked for: ready)
+        sc = screen;
+    }
+    displacement_extrema(ph, sy, st, t0, tau, e, extrema, sc);
     for (int i = 0; i < ph.n; ++i) {
         double* ex = extrema + DOF_EXTREMA * i;
         if (ph.stk.any && ph.stk.grp[static_cast<size_t>(i)] >= 0)
             held_abs_acceleration(ph, i, ex, t0, tau, e, linear);
         else
-            free_abs_acceleration(ph, i, ex, t0, tau, e, linear, b);
+            free_abs_acceleration(ph, i, ex, t0, tau, e, linear, b, sc);
     }
     peak_contact_forces(ph, sy.lay, st, tau, e, linear, b);
 }

@@ -445,6 +445,14 @@ bool may_turn_back(double h, double v0, double v1, double a0, double a1) {
     return !(v_c * v0 > 0.0 && std::abs(v_c) > margin);
 }
 
+bool velocity_may_cross(const Phase& ph, int i, int j) {
+    const int n = ph.n;
+    const double h = ph.e_h;
+    const double v0 = rel(ph.e_y0 + n, i, j), v1 = rel(ph.e_y1 + n, i, j);
+    const double a0 = rel(ph.e_a0, i, j), a1 = rel(ph.e_a1, i, j);
+    return h > 0.0 && (v0 * v1 < 0.0 || (v0 * v1 > 0.0 && a0 * a1 < 0.0 && may_turn_back(h, v0, v1, a0, a1)));
+}
+
 const Phase::Zeros& velocity_zeros(Phase& ph, int i, int j) {
     const double h = ph.e_h;
     for (const Phase::Zeros& z : ph.zeros)

@@ -90,6 +90,9 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
 
 // may a velocity, of one sign at both ends with accelerations of opposite signs, turn back inside?
 bool may_turn_back(double h, double v0, double v1, double a0, double a1);
+// whether the pair (i, j)'s relative velocity may cross zero inside the sub-interval (velocity_zeros looks
+// for its zeros only then): of opposite signs at its ends, or turning back inside
+bool velocity_may_cross(const Phase& ph, int i, int j);
 // the instants in (0, e_h) where the relative velocity of the pair (i, j) crosses zero (0, 1, or 2 where it
 // turns back inside) and the relative displacement there, from the sub-interval's ends; kept for the
 // sub-interval (a shorter end asked later reads the same zeros below it)

@@ -326,6 +326,7 @@ int series(const Phase& ph, const double* y0, const double* r, double a0, double
 }
 
 void taylor(const Phase& ph, double h) {
+    ph.series_made += 1;
     // the restoring force's constant part, as accelerations: M^-1 R0
     double* r = ph.rbuf.data();
     for (int i = 0; i < ph.n; ++i) r[i] = ph.minv[static_cast<size_t>(i)] * ph.R0[static_cast<size_t>(i)];

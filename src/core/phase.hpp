@@ -101,6 +101,7 @@ struct Phase {
     // and of scalar polynomials (a root finder's iterations on a linear phase)
     mutable int64_t evaluations = 0;
     mutable int64_t poly_evaluations = 0;
+    mutable int64_t series_made = 0;  // (the sub-intervals' series made: the dearest work of a linear one)
 
     void size(int n_dof, int n_contacts) {
         n = n_dof;

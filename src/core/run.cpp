@@ -14,6 +14,7 @@
 #include "laws.hpp"
 #include "phase.hpp"
 #include "run_parts.hpp"
+#include "screen.hpp"
 #include "transition.hpp"
 
 namespace pounding {
@@ -278,6 +279,7 @@ struct RunWorkspace::Impl {
     std::vector<double> ev_end;
     std::vector<int> pair_i, pair_j;
     TransitionCache transitions;
+    ExtremaScreen screen;  // (the present phase's)
 };
 
 RunWorkspace::RunWorkspace() : impl(new Impl()) {}
@@ -456,6 +458,7 @@ void set_up(Loop& lp) {
     run_constants(ph, sy, lp.fo);
     ph.evaluations = 0;
     ph.poly_evaluations = 0;
+    ph.series_made = 0;
     lp.z_max = sy.bw[0] != 0.0 ? std::pow(sy.bw[2] / (sy.bw[3] + sy.bw[4]), 1.0 / sy.bw[5]) : 0.0;
     const double v_res = RESOLUTION * ph.vrun;
     lp.resolution[0] = v_res;
@@ -529,6 +532,7 @@ void next_subinterval(Loop& lp) {
     } else {
         set_phase(ph, st, sy, pc);
         lp.phase_id = ++lp.w.transitions.phases;
+        screen_phase(lp.w.screen, ph);
         const double horizon = lp.has_ml ? relax_horizon(st, sy) : INF;
         h = TWO_PI / (SUBINTERVALS_PER_PERIOD * std::max(std::max(ph.rate, pc.omega), 1e-300));
         if (lp.has_ml) lp.t_horizon = t + horizon;
@@ -714,7 +718,8 @@ bool move_to_end(Loop& lp) {
     double* st = lp.st;
     const Given given = transition_integrals(lp);
     const Ends ends{ph.y0.data(), b.a0.data(), b.y1.data(), b.a1.data(), ph.sphi, ph.cphi, lp.s1, lp.c1};
-    accumulate(ph, sy, st, lp.t, lp.tau, ends, lp.ledger, lp.extrema, b, lp.opt.with_energy, given);
+    accumulate(ph, sy, st, lp.t, lp.tau, ends, lp.ledger, lp.extrema, b, lp.opt.with_energy, given,
+               lp.opt.screen_extrema ? &lp.w.screen : nullptr);
     if (lp.opt.sample_dt > 0.0)
         samples_inside(ph, sy, lp.out.samples, lp.j_next, lp.opt.sample_dt, lp.t_run0, lp.t, lp.tau, lp.opt.t_end,
                        b);
@@ -824,6 +829,7 @@ void finish_run(Loop& lp) {
     close_chatters(st, lp.sy, lp.out.chatters);
     lp.control.add_work(lp.work - lp.published);
     lp.control.at(CTL_EVALS).fetch_add(lp.ph.evaluations, std::memory_order_relaxed);
+    lp.control.at(CTL_SERIES).fetch_add(lp.ph.series_made, std::memory_order_relaxed);
     double kin1, iso1, bmp1;
     energies(st, lp.sy, kin1, iso1, bmp1);
     ledger[L_KINETIC] = kin1 - lp.kin0;

@@ -17,6 +17,9 @@ struct RunOptions {
     double rtol = 1e-10;      // of the numerical integration of nonlinear phases
     int64_t max_events = 10000000;
     bool with_energy = true;  // the energy ledger outside contacts (a sweep's steps need only the contacts')
+    // a record's extrema inside a sub-interval screened from its ends (screen.hpp: the same numbers; false
+    // finds every one, for the tests that show it)
+    bool screen_extrema = true;
 };
 
 struct RunResult {

@@ -8,6 +8,7 @@
 #include "core.hpp"
 #include "events.hpp"
 #include "phase.hpp"
+#include "screen.hpp"
 
 namespace pounding::run_parts {
 
@@ -100,8 +101,9 @@ struct Ends { const double *y0, *a0, *y1, *a1; double s0, c0, s1, c1; };
 struct Given { bool have = false; double vcv = 0.0, gv = 0.0; };
 
 // the energy integrals, contact statistics and extrema of the sub-interval [t0, t0 + tau] of the phase
+// (screen: the phase's screen of its extrema, screen.hpp; nullptr for none)
 void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, const Ends& e, double* ledger,
-                double* extrema, Buffers& b, bool with_energy, const Given& given);
+                double* extrema, Buffers& b, bool with_energy, const Given& given, ExtremaScreen* screen);
 
 // ---------------------------------------------------------------- the state at an event (jump.cpp)
 

@@ -23,7 +23,8 @@ CTL_STOP = 0     # set to 1 by Python (Ctrl-C): kernels return with INTERRUPTED 
 CTL_WORK = 1     # work done so far (sub-intervals), added to by every kernel call sharing the array
 CTL_BUDGET = 2   # kernels return with BUDGET once CTL_WORK would pass it
 CTL_EVALS = 3    # evaluations of the trajectory at an instant inside a sub-interval (the cost of events)
-CTL_LEN = 4
+CTL_SERIES = 4   # a linear phase's sub-intervals whose power series was made (the dearest part of their work)
+CTL_LEN = 5
 DEFAULT_MAX_STEPS = 100_000_000  # about 1-3 minutes of one core
 
 

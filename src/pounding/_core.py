@@ -302,12 +302,25 @@ def _f64(a: Any) -> np.ndarray:
     return np.ascontiguousarray(a, dtype=np.float64)
 
 
+def _ctl(ctl: np.ndarray) -> np.ndarray:
+    """``ctl`` as the kernels write it: the run control's int64 array of ``LAYOUT["CTL_LEN"]``
+    (``pounding._control.new_control``); a ValueError otherwise (they write to each slot)."""
+    if not (isinstance(ctl, np.ndarray) and ctl.dtype == np.int64 and ctl.shape == (LAYOUT["CTL_LEN"],)
+            and ctl.flags.c_contiguous and ctl.flags.writeable):
+        raise ValueError(f"ctl: the run control, a writable int64 array of {LAYOUT['CTL_LEN']} "
+                         f"(pounding._control.new_control); got {getattr(ctl, 'dtype', type(ctl))!s} "
+                         f"{getattr(ctl, 'shape', '')}")
+    return ctl
+
+
 def run(sy: System, forcing: Forcing, state0: np.ndarray, t_end: float, sample_dt: float, rtol: float,
-        max_events: int, with_energy: bool, ctl: np.ndarray) -> RunOutput:
+        max_events: int, with_energy: bool, ctl: np.ndarray, screen_extrema: bool = True) -> RunOutput:
     """Simulate ``sy`` under ``forcing`` (:class:`Forcing`) from ``state0`` to ``t_end``.
 
     ``sample_dt`` is the history's step (0: events only; -1: not even those); ``with_energy`` False
-    skips the energy integrals outside contacts (the ledger is then NaN)."""
+    skips the energy integrals outside contacts (the ledger is then NaN); ``screen_extrema`` False
+    finds every extremum inside a record's sub-interval rather than screening them from its ends
+    (the same numbers: for the tests that show it)."""
     rec_b = _f64(forcing.rec_b)
     harmonic = forcing.kind == EXCITATION["harmonic"]
     sizes_b = (0,) if harmonic else (0, np.size(forcing.rec_t))
@@ -317,7 +330,8 @@ def run(sy: System, forcing: Forcing, state0: np.ndarray, t_end: float, sample_d
                          f"{np.size(forcing.p)}, rec_b {rec_b.size}")
     state, samples, contacts, events, ledger, extrema, status, chatters = _c.run(
         sy, int(forcing.kind), _f64(forcing.p), _f64(forcing.rec_t), _f64(forcing.rec_a), rec_b, _f64(state0),
-        float(t_end), float(sample_dt), float(rtol), int(max_events), bool(with_energy), ctl)
+        float(t_end), float(sample_dt), float(rtol), int(max_events), bool(with_energy), _ctl(ctl),
+        bool(screen_extrema))
     return RunOutput(state=state, samples=samples, contacts=contacts, events=events, ledger=ledger,
                      extrema=extrema, status=int(status), chatters=chatters)
 
@@ -330,7 +344,7 @@ def step(sy: System, amp: float, omega: float, state0: np.ndarray, steady: tuple
     adaptive, n_cycles, measure_cycles, steady_rtol, max_period = steady
     state, cycles_run, period_multiple, window, window_state, window_strobes, status = _c.step(
         sy, float(amp), float(omega), _f64(state0), bool(adaptive), int(n_cycles), int(measure_cycles),
-        float(steady_rtol), int(max_period), float(rtol), int(max_events), ctl)
+        float(steady_rtol), int(max_period), float(rtol), int(max_events), _ctl(ctl))
     return StepOutput(state=state, cycles_run=int(cycles_run), period_multiple=int(period_multiple),
                       window=window, window_state=window_state, window_strobes=window_strobes,
                       status=int(status))
@@ -356,7 +370,7 @@ def law_force_many(law: int, p: np.ndarray, d: np.ndarray, dd: np.ndarray, out: 
 def spectrum(t: np.ndarray, acc: np.ndarray, omegas: np.ndarray, zeta: float, out: np.ndarray,
              ctl: np.ndarray) -> int:
     """Exact peaks (max |u|, |u'|, |a_abs|) of each oscillator under the record into ``out``; the status."""
-    return _c.spectrum(_f64(t), _f64(acc), _f64(omegas), float(zeta), out, ctl)
+    return _c.spectrum(_f64(t), _f64(acc), _f64(omegas), float(zeta), out, _ctl(ctl))
 
 
 def spectrum_pair(t: np.ndarray, ax: np.ndarray, ay: np.ndarray, omegas: np.ndarray, zeta: float,
@@ -365,7 +379,7 @@ def spectrum_pair(t: np.ndarray, ax: np.ndarray, ay: np.ndarray, omegas: np.ndar
     ``a`` (its columns) under a pair of components; the status."""
     angles = _f64(angles_rad)
     return _c.spectrum_pair(_f64(t), _f64(ax), _f64(ay), _f64(omegas), float(zeta), np.cos(angles),
-                            np.sin(angles), out, ctl)
+                            np.sin(angles), out, _ctl(ctl))
 
 
 def monodromy(sy: System, state0: np.ndarray, events: np.ndarray, t_end: float, omega: float, amp: float,
