@@ -270,10 +270,18 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
                           double* extrema, ExtremaScreen* sc) {
     const int n = ph.n;
     const Layout& L = sy.lay;
-    // (a displacement's fourth derivative is an acceleration's second: at most beta Z, a pair's twice that)
-    auto clears = [&](double f0, double d0, double f1, double d1, double times, const double* ex) {
+    // whether the pair (i, j) may be extreme inside: its velocity may cross zero there (where no event of the
+    // sub-interval asked for a velocity's zeros, none is kept that could say otherwise), and the screen does
+    // not clear it (a displacement's fourth derivative is an acceleration's second: at most beta Z, a pair's
+    // twice that)
+    const bool none_kept = ph.zeros.empty();
+    auto may_be_extreme = [&](int i, int j, const double* ex) {
+        const bool may_cross = velocity_may_cross(ph, i, j);
+        if (!may_cross) return !none_kept;
+        if (sc == nullptr) return true;
         const ExtremaScreen& s = ready(*sc, ph, e, tau);
-        return surely_within(f0, d0, f1, d1, tau, times * s.beta * s.z, ex[EX_D_MIN], ex[EX_D_MAX], s.xscale);
+        return !surely_within(rel(e.y0, i, j), rel(e.y0 + n, i, j), rel(e.y1, i, j), rel(e.y1 + n, i, j), tau,
+                              (j >= 0 ? 2.0 : 1.0) * s.beta * s.z, ex[EX_D_MIN], ex[EX_D_MAX], s.xscale);
     };
     // displacement extrema of each dof, at its velocity's zeros and the ends (none inside where the screen
     // clears it: within the largest and smallest so far)
@@ -281,9 +289,7 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
         double* ex = extrema + DOF_EXTREMA * i;
         track_displacement(ex, t0, e.y0[i]);
         track_displacement(ex, t0 + tau, e.y1[i]);
-        if (sc != nullptr && velocity_may_cross(ph, i, GROUND) &&
-            clears(e.y0[i], e.y0[n + i], e.y1[i], e.y1[n + i], 1.0, ex))
-            continue;
+        if (!may_be_extreme(i, GROUND, ex)) continue;
         const Phase::Zeros& z = velocity_zeros(ph, i, GROUND);
         for (int k = 0; k < z.count; ++k)
             if (z.t[k] < tau) track_displacement(ex, t0 + z.t[k], z.x[k]);
@@ -294,9 +300,7 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
         const int i = sy.track_i[static_cast<size_t>(p)], j = sy.track_j[static_cast<size_t>(p)];
         track_displacement(ex, t0, rel(e.y0, i, j));
         track_displacement(ex, t0 + tau, rel(e.y1, i, j));
-        if (sc != nullptr && velocity_may_cross(ph, i, j) &&
-            clears(rel(e.y0, i, j), rel(e.y0 + n, i, j), rel(e.y1, i, j), rel(e.y1 + n, i, j), j >= 0 ? 2.0 : 1.0, ex))
-            continue;
+        if (!may_be_extreme(i, j, ex)) continue;
         const Phase::Zeros& z = velocity_zeros(ph, i, j);
         for (int k = 0; k < z.count; ++k)
             if (z.t[k] < tau) track_displacement(ex, t0 + z.t[k], z.x[k]);
