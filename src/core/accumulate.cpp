@@ -396,7 +396,10 @@ void free_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, 
     if (linear) {
         // a linear phase's absolute acceleration -(K x + C v + R0)_i / m_i and its rate at the ends; the
         // polynomial only where the rate changes sign
-        const double aa0 = abs_acc_linear(ph, i, e.y0), aa1 = abs_acc_linear(ph, i, e.y1);
+        // (the start's is the last sub-interval's end's where the same phase went on from it: the same numbers)
+        double& kept = b.aa_end[static_cast<size_t>(i)];
+        const double aa0 = b.went_on ? kept : abs_acc_linear(ph, i, e.y0), aa1 = abs_acc_linear(ph, i, e.y1);
+        kept = aa1;
         const double r0 = abs_acc_rate_linear(ph, i, e.y0, e.a0), r1 = abs_acc_rate_linear(ph, i, e.y1, e.a1);
         track_abs_acceleration(ex, t0, aa0);
         track_abs_acceleration(ex, t0 + tau, aa1);

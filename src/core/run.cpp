@@ -66,23 +66,23 @@ void eom_acceleration(const Phase& ph, const double* y, double tau, double s, do
     ph.stk.project(ph.mass, a);
 }
 
-// u^T Q u over u's entries that are not zero (nz: their indices; a product with a zero adds a zero, which
-// leaves a sum of finite terms as it is: the same numbers as the whole sum)
-double quad_form(const double* Q, const double* u, int dim, const int* nz, int n_nz) {
+// u^T Q u over u's entries that are not zero (nz: their indices, uc: their values; a product with a zero adds
+// a zero, which leaves a sum of finite terms as it is: the same numbers as the whole sum)
+double quad_form(const double* Q, const double* uc, int dim, const int* nz, int n_nz) {
     double s = 0.0;
     for (int ia = 0; ia < n_nz; ++ia) {
-        const int a = nz[ia];
+        const double* qa = Q + nz[ia] * dim;
         double r = 0.0;
-        for (int ic = 0; ic < n_nz; ++ic) r += Q[a * dim + nz[ic]] * u[nz[ic]];
-        s += u[a] * r;
+        for (int ic = 0; ic < n_nz; ++ic) r += qa[nz[ic]] * uc[ic];
+        s += uc[ia] * r;
     }
     return s;
 }
 
 // the row's product with u over u's entries that are not zero
-double row_product(const double* row, const double* u, const int* nz, int n_nz) {
+double row_product(const double* row, const double* uc, const int* nz, int n_nz) {
     double s = 0.0;
-    for (int k = 0; k < n_nz; ++k) s += row[nz[k]] * u[nz[k]];
+    for (int k = 0; k < n_nz; ++k) s += row[nz[k]] * uc[k];
     return s;
 }
 
@@ -510,6 +510,7 @@ void next_subinterval(Loop& lp) {
     const System& sy = lp.sy;
     const double* st = lp.st;
     const double t = lp.t = st[T];
+    lp.b.went_on = lp.continuing;
     const Piece pc = lp.pc = excitation_piece(lp.fo, t, lp.j_rec);
     lp.j_rec = pc.j;
     double h;
@@ -598,10 +599,13 @@ bool advance_to_end(Loop& lp) {
             const int dim = lp.tr->dim;
             b.n_nz = 0;
             for (int k = 0; k < dim; ++k)
-                if (b.u[static_cast<size_t>(k)] != 0.0) b.nz[static_cast<size_t>(b.n_nz++)] = k;
+                if (b.u[static_cast<size_t>(k)] != 0.0) {
+                    b.uc[static_cast<size_t>(b.n_nz)] = b.u[static_cast<size_t>(k)];
+                    b.nz[static_cast<size_t>(b.n_nz++)] = k;
+                }
             for (int q = 0; q < 2 * n; ++q)
                 b.y1[static_cast<size_t>(q)] =
-                    row_product(&lp.tr->T[static_cast<size_t>(q * dim)], b.u.data(), b.nz.data(), b.n_nz);
+                    row_product(&lp.tr->T[static_cast<size_t>(q * dim)], b.uc.data(), b.nz.data(), b.n_nz);
             const Angle an = angle_at(ph, lp.pc.omega, lp.h, lp.rot);
             eom_acceleration(ph, b.y1.data(), lp.h, an.s, an.c, b.a1.data());
         } else {
@@ -691,20 +695,21 @@ Given transition_integrals(Loop& lp) {
     const int n = lp.n, dim = tr->dim;
     const double* u = b.u.data();
     const int* nz = b.nz.data();
+    const double* uc = b.uc.data();
     const int n_nz = b.n_nz;
     given.have = true;
     if (lp.opt.with_energy) {
-        given.vcv = quad_form(tr->Q.data(), u, dim, nz, n_nz);
+        given.vcv = quad_form(tr->Q.data(), uc, dim, nz, n_nz);
         for (int k = 0; k < 4; ++k) {
             if (u[2 * n + n + k] == 0.0) continue;
-            given.gv += u[2 * n + n + k] * row_product(&tr->R[static_cast<size_t>(k * dim)], u, nz, n_nz);
+            given.gv += u[2 * n + n + k] * row_product(&tr->R[static_cast<size_t>(k * dim)], uc, nz, n_nz);
         }
     }
     for (int c = 0; c < lp.sy.nc(); ++c) {
         if (!lp.ph.ct[static_cast<size_t>(c)].in) continue;
         const int p = lp.w.transitions.pair_of[static_cast<size_t>(c)];
-        b.du[static_cast<size_t>(c)] = row_product(&tr->L[static_cast<size_t>(p * dim)], u, nz, n_nz);
-        b.dvv[static_cast<size_t>(c)] = quad_form(&tr->Qp[static_cast<size_t>(p * dim * dim)], u, dim, nz, n_nz);
+        b.du[static_cast<size_t>(c)] = row_product(&tr->L[static_cast<size_t>(p * dim)], uc, nz, n_nz);
+        b.dvv[static_cast<size_t>(c)] = quad_form(&tr->Qp[static_cast<size_t>(p * dim * dim)], uc, dim, nz, n_nz);
     }
     return given;
 }

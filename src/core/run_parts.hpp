@@ -55,7 +55,12 @@ int event_pairs(const System& sy, int* pi, int* pj);
 struct Buffers {
     std::vector<double> y0s, y1, a0, a1, ym, am, du, dvv, u;
     std::vector<int> nz;    // (u's entries that are not zero: the products with a kept transition skip the rest)
+    std::vector<double> uc; // (and their values)
     int n_nz = 0;
+    // each free dof's absolute acceleration at the last linear sub-interval's end, and whether this
+    // sub-interval goes on from that one in the same phase (its start the same state)
+    std::vector<double> aa_end;
+    bool went_on = false;
     std::vector<double> q;  // internal forces
     void size(int n, int nc) {
         y0s.assign(static_cast<size_t>(2 * n), 0.0);
@@ -67,6 +72,8 @@ struct Buffers {
         q.assign(static_cast<size_t>(n), 0.0);
         u.assign(static_cast<size_t>(3 * n + 4), 0.0);
         nz.assign(static_cast<size_t>(3 * n + 4), 0);
+        uc.assign(static_cast<size_t>(3 * n + 4), 0.0);
+        aa_end.assign(static_cast<size_t>(n), 0.0);
         du.assign(static_cast<size_t>(std::max(nc, 1)), 0.0);
         dvv.assign(static_cast<size_t>(std::max(nc, 1)), 0.0);
     }
