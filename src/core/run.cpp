@@ -160,18 +160,23 @@ bool surely_no_turn(const ForceTurn& e0, const ForceTurn& e1) {
 // its threshold and come back unseen between two extrema; cut where its rate turns (a linear phase's
 // polynomial), each part then holding one extremum at most.  The cut instant (or h).  With the sub-interval's
 // ends (y0 and b's a0, y1, a1 at h), a force that surely does not turn there is passed over without its
-// polynomial (the phase's series, the most of a stuck sub-interval's work otherwise).
-double force_turn_cut(Phase& ph, const EventRow* evs, int n_ev, double h, const Buffers* ends) {
+// polynomial (the phase's series, the most of a stuck sub-interval's work otherwise).  turns: each bond's
+// rate and bend at the end, kept for the next sub-interval (start_kept: this one starts where the last ended,
+// on the same piece of the table, so the start's are those; a screen's values, the same to rounding)
+double force_turn_cut(Phase& ph, const EventRow* evs, int n_ev, double h, const Buffers* ends, ForceTurn* turns,
+                      bool start_kept) {
     double cut = h;
     int last_side = -1;
     for (int i = 0; i < n_ev; ++i) {
         // (a tie's two thresholds share its force: its turns are looked at once)
         if (evs[i].kind != KIND_STICK || evs[i].side == last_side) continue;
         last_side = evs[i].side;
-        if (ends != nullptr &&
-            surely_no_turn(held_force_turn(ph, evs[i].side, 0.0, ph.y0.data(), ends->a0.data()),
-                           held_force_turn(ph, evs[i].side, h, ends->y1.data(), ends->a1.data())))
-            continue;
+        if (ends != nullptr) {
+            ForceTurn& kept = turns[evs[i].side];
+            const ForceTurn e0 = start_kept ? kept : held_force_turn(ph, evs[i].side, 0.0, ph.y0.data(), ends->a0.data());
+            kept = held_force_turn(ph, evs[i].side, h, ends->y1.data(), ends->a1.data());
+            if (surely_no_turn(e0, kept)) continue;
+        }
         Fn rate, bend;
         Poly force;
         held_force_poly(ph, evs[i].side, force);
@@ -280,6 +285,7 @@ struct RunWorkspace::Impl {
     std::vector<int> pair_i, pair_j;
     TransitionCache transitions;
     ExtremaScreen screen;  // (the present phase's)
+    std::vector<ForceTurn> turns;  // (each bond's held force's rate and bend at the last sub-interval's end)
 };
 
 RunWorkspace::RunWorkspace() : impl(new Impl()) {}
@@ -345,6 +351,7 @@ struct Loop {
     int64_t j_next = 1, j_rec = 0;
     int64_t work = 0, published = 0, next_poll = 0;
     double h_flight = INF;  // (the last rigid rebound's flight, to first order)
+    bool turns_at_end = false;  // (w.turns are the last sub-interval's end's, at its full length)
     // a record's step met at its knot by a phase faster than it, cut in equal parts: their length (0: none), how
     // many are left (the last ends at the knot), whether this sub-interval is one, and whether the last
     // sub-interval ended at a knot
@@ -406,6 +413,7 @@ void fit_workspace(RunWorkspace::Impl& w, const System& sy) {
         w.b.size(sy.n, sy.nc());
         w.row.assign(static_cast<size_t>(sy.lay.sample_cols()), 0.0);
         w.transitions.setup(sy);
+        w.turns.assign(static_cast<size_t>(sy.nc() + sy.n_h()), ForceTurn{0.0, 0.0, 0.0, 0.0});
     }
     const size_t rows = static_cast<size_t>(
         std::max(MAX_EVENTS_PER_PHASE, 2 * sy.n_springs() + sy.n_h() + 6 * sy.nc() + 1));
@@ -658,8 +666,16 @@ void earliest(Loop& lp) {
     ph.e_a1 = b.a1.data();
     ph.e_h = lp.h;
     double cut = velocity_cuts(ph, lp.sy, lp.h, b, lp.w.pair_i.data(), lp.w.pair_j.data(), lp.n_pairs);
-    if (!ph.numeric && !lp.sy.ties.empty())  // (the ends known where no velocity cut came first)
-        cut = std::min(cut, force_turn_cut(ph, lp.w.evs.data(), lp.n_ev, cut, cut == lp.h ? &b : nullptr));
+    // (the ends known where no velocity cut came first; the ties' turns at the start kept from the last
+    // sub-interval's end where it went the whole way to this one's start, on the same piece of the table)
+    const bool turns_kept = lp.turns_at_end && lp.b.went_on && !lp.at_knot;
+    lp.turns_at_end = false;
+    if (!ph.numeric && !lp.sy.ties.empty()) {
+        const double h = cut;
+        cut = std::min(cut, force_turn_cut(ph, lp.w.evs.data(), lp.n_ev, cut, cut == lp.h ? &b : nullptr,
+                                           lp.w.turns.data(), turns_kept));
+        lp.turns_at_end = h == lp.h && cut == lp.h;
+    }
     if (cut < lp.h) {
         lp.h = cut;
         lp.to_stop = false;
