@@ -12,6 +12,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 import pounding as pd_
+from pounding import _core
 from pounding._control import CTL_SERIES, CTL_WORK, new_control
 from pounding._core import run as run_kernel
 from pounding.engine.assembly import assemble
@@ -128,4 +129,37 @@ def test_peaks_that_pass_the_largest_by_a_hair_are_each_found(levels):
     start = run_kernel(system, forcing, np.array(pd_.State.at_rest(building).vector), 40.0, 0.0, 1e-10, 10**6,
                        True, new_control(10**9)).state
     (screened, _), (found, _) = both(building, rec, 100.0, start)
+    assert_identical(screened, found)
+
+
+def test_a_last_part_s_transition_off_by_the_clock_s_drift_is_screened_as_such():
+    # two unit masses, a 1e10 N/m spring between them and a soft one to the ground, in free vibration of their
+    # soft mode (its half period the record's step) under a zero record late in time (4e6 s): each 0.02 s
+    # step goes in 3602 parts, and its last one takes the parts' transition though it is longer or shorter by
+    # the clock's drift over them, so that its end is the motion a few ns off; every peak falls in such a
+    # part, and the screen, widened by that shift, clears none it should not (without the widening the
+    # largest comes a cycle early)
+    k_stiff, step, t0 = 1e10, 0.02, 4e6
+    w_target = np.pi / step
+    lo, hi = 0.0, 4 * w_target**2
+    for _ in range(200):  # (the soft spring that puts the soft mode at w_target)
+        mid = 0.5 * (lo + hi)
+        stiffness = np.array([[mid + k_stiff, -k_stiff], [-k_stiff, k_stiff]])
+        lo, hi = (mid, hi) if np.sqrt(np.linalg.eigvalsh(stiffness).min()) < w_target else (lo, mid)
+    stiffness = np.array([[0.5 * (lo + hi) + k_stiff, -k_stiff], [-k_stiff, k_stiff]])
+    values, vectors = np.linalg.eigh(stiffness)
+    w, shape = np.sqrt(values[0]), vectors[:, 0] / vectors[0, 0]
+    system = _core.system(np.ones(2), stiffness, np.zeros((2, 2)), [], np.zeros(_core.LAYOUT["BW_PARAMS"]),
+                          False, [], tracked=((1, 0),))
+    rec_t = t0 + step * np.arange(int(4.0 / step) + 2)
+    forcing = _core.Forcing(kind=_core.EXCITATION["record"], p=np.array([step, 0.0, 0.0]), rec_t=rec_t,
+                            rec_a=np.zeros(rec_t.size))
+    t_peak = step - 0.4711 * step / 3602  # (the soft mode's peaks: inside each step's last part)
+    layout = system.layout
+    y0 = np.zeros(system.state_size)
+    y0[0] = t0
+    y0[layout["x"]:layout["x"] + 2] = 0.01 * shape * np.cos(-w * t_peak)
+    y0[layout["v"]:layout["v"] + 2] = -0.01 * shape * w * np.sin(-w * t_peak)
+    screened, found = (run_kernel(system, forcing, y0, t0 + 24.5 * step, 0.0, 1e-10, 10**7, True,
+                                  new_control(10**13), screen_extrema=screen) for screen in (True, False))
     assert_identical(screened, found)

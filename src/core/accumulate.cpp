@@ -280,8 +280,15 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
         if (!may_cross) return !none_kept;
         if (sc == nullptr) return true;
         const ExtremaScreen& s = ready(*sc, ph, e, tau);
-        return !surely_within(rel(e.y0, i, j), rel(e.y0 + n, i, j), rel(e.y1, i, j), rel(e.y1 + n, i, j), tau,
-                              (j >= 0 ? 2.0 : 1.0) * s.beta * s.z, ex[EX_D_MIN], ex[EX_D_MAX], s.xscale);
+        const double times = j >= 0 ? 2.0 : 1.0;
+        // (y1 the motion at tau give or take the shift: f1 off by at most |d1| shift + |f''| shift^2 / 2 and d1
+        // by |f''| shift, f'' within |a1| + times Z shift there; the cubic moves by the first and 4 tau / 27 of
+        // the second, counted twice)
+        const double d1 = rel(e.y1 + n, i, j);
+        const double f2 = std::abs(rel(e.a1, i, j)) + times * s.z * s.shift;
+        const double off = s.shift == 0.0 ? 0.0 : 2.0 * s.shift * (std::abs(d1) + f2 * (s.shift + 0.15 * tau));
+        return !surely_within(rel(e.y0, i, j), rel(e.y0 + n, i, j), rel(e.y1, i, j), d1, tau, times * s.beta * s.z,
+                              ex[EX_D_MIN] + off, ex[EX_D_MAX] - off, s.xscale);
     };
     // displacement extrema of each dof, at its velocity's zeros and the ends (none inside where the screen
     // clears it: within the largest and smallest so far)
@@ -410,7 +417,10 @@ void free_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, 
                 const double a4 = (kr + cr * s.alpha) * s.beta * s.z;
                 const double scale = kr * s.xscale + cr * s.vscale +
                                      std::abs(ph.minv[static_cast<size_t>(i)] * ph.R0[static_cast<size_t>(i)]);
-                const double top = ex[EX_A_ABS_MAX];
+                // (y1 off by the shift: the acceleration's second derivative at most (kr / s + cr) Z)
+                const double f2 = ((s.s > 0.0 ? kr / s.s : 0.0) + cr) * s.z;
+                const double off = s.shift == 0.0 ? 0.0 : 2.0 * s.shift * (std::abs(r1) + f2 * (s.shift + 0.15 * tau));
+                const double top = ex[EX_A_ABS_MAX] - off;
                 if (surely_within(aa0, r0, aa1, r1, tau, a4, -top, top, scale)) return;
             }
             Fn fa, fr;

@@ -739,6 +739,9 @@ bool move_to_end(Loop& lp) {
     double* st = lp.st;
     const Given given = transition_integrals(lp);
     const Ends ends{ph.y0.data(), b.a0.data(), b.y1.data(), b.a1.data(), ph.sphi, ph.cphi, lp.s1, lp.c1};
+    // (a kept transition of another length than tau gave y1: the last part of a split step, or a record's step
+    // within a few ulps of the clock; the screen widens its margin by how far y1 may be from the motion at tau)
+    lp.w.screen.shift = lp.tr != nullptr ? std::abs(lp.tr->h - lp.tau) : 0.0;
     accumulate(ph, sy, st, lp.t, lp.tau, ends, lp.ledger, lp.extrema, b, lp.opt.with_energy, given,
                lp.opt.screen_extrema ? &lp.w.screen : nullptr);
     if (lp.opt.sample_dt > 0.0)

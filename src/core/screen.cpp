@@ -29,6 +29,7 @@ void screen_phase(ExtremaScreen& sc, const Phase& ph) {
         sc.kr[static_cast<size_t>(i)] = ph.minv[static_cast<size_t>(i)] * k;
         sc.cr[static_cast<size_t>(i)] = ph.minv[static_cast<size_t>(i)] * c;
         kmax = std::max(kmax, sc.kr[static_cast<size_t>(i)]);
+        sc.on = sc.on && std::isfinite(sc.kr[static_cast<size_t>(i)]) && std::isfinite(sc.cr[static_cast<size_t>(i)]);
     }
     sc.s = std::sqrt(kmax);
     sc.beta = 0.0;

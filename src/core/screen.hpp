@@ -16,7 +16,9 @@
 // interpolant by at most h^4 / 384 max |f''''| inside; for a dof's displacement f'''' = a_i'' (at most beta Z),
 // for its absolute acceleration -(M^-1 (K a'' + C a'''))_i (at most (kr_i + cr_i alpha) beta Z).  The cubic's
 // range on [0, h] is found in closed form; with that bound and a margin far above the rounding of the series'
-// own extremum, an extremum whose range stays inside the largest so far is passed over.
+// own extremum, an extremum whose range stays inside the largest so far is passed over.  Where the end is the
+// motion at tau give or take a shift (a kept transition of a length a few ulps of the clock off: a step's last
+// part), the bounds are narrowed by how far the shift moves the end's value and rate (accumulate.cpp).
 #pragma once
 
 #include <vector>
@@ -36,6 +38,9 @@ struct ExtremaScreen {
     // the sub-interval's (made when first asked for): its length, Z (m/s^3), and the ends' largest |x| and
     // |v| with the run's scales (the series' rounding is relative to them)
     double tau = -1.0, z = 0.0, xscale = 0.0, vscale = 0.0;
+    // |tau - the length y1 is the motion at| (a kept transition's of another length: the last of a step's
+    // parts, or a record's step, within a few ulps of the clock), set by the loop for each sub-interval
+    double shift = 0.0;
 };
 
 // the phase's rates (a phase that is not linear, or whose table is not a line, is not screened)
