@@ -43,6 +43,7 @@ def test_statuses_actions_and_the_control_array_agree_with_the_core():
     assert sorted(_core.ACTIONS.values()) == list(range(len(_core.ACTIONS)))
     assert _control.CTL_LEN == _core.LAYOUT["CTL_LEN"]
     assert _control.CTL_SERIES == _core.LAYOUT["CTL_SERIES"]
+    assert (_control.CTL_AUDITED, _control.CTL_ESCAPES) == (_core.LAYOUT["CTL_AUDITED"], _core.LAYOUT["CTL_ESCAPES"])
     assert layout.LEDGER_LEN == layout.L_BUMPER + 1
 
 

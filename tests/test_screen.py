@@ -13,7 +13,7 @@ from hypothesis import strategies as st
 
 import pounding as pd_
 from pounding import _core
-from pounding._control import CTL_SERIES, CTL_WORK, new_control
+from pounding._control import CTL_AUDITED, CTL_ESCAPES, CTL_SERIES, CTL_WORK, new_control
 from pounding._core import run as run_kernel
 from pounding.engine.assembly import assemble
 from pounding.engine.simulate import kernel_forcing
@@ -35,6 +35,13 @@ def both(model, excitation, t_end, state=None, sample_dt=0.0):
         runs.append((run_kernel(system, forcing, y0, t_end, sample_dt, 1e-10, 10**6, True, ctl,
                                 screen_extrema=screen), ctl))
     return runs
+
+
+def audited(system, forcing, y0, t_end):
+    """The screened run with its audit: (the extrema it cleared, those outside the range its bound gives)."""
+    ctl = new_control(10**9)
+    run_kernel(system, forcing, y0, t_end, 0.0, 1e-10, 10**6, True, ctl, audit_screen=True)
+    return int(ctl[CTL_AUDITED]), int(ctl[CTL_ESCAPES])
 
 
 def assert_identical(screened, found):
@@ -91,6 +98,8 @@ def test_a_screened_building_is_the_same_to_the_last_bit(building, rec, pga, v0,
     state = pd_.State.at_rest(building, velocity_m_s=v0)
     (screened, _), (found, _) = both(building, rec, 4.2, state, 0.01 if sampled else 0.0)
     assert_identical(screened, found)
+    # every extremum it cleared, found all the same, lies within the range its bound gives
+    assert audited(assemble(building).system, kernel_forcing(rec), np.array(state.vector), 4.2)[1] == 0
 
 
 @settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -163,3 +172,35 @@ def test_a_last_part_s_transition_off_by_the_clock_s_drift_is_screened_as_such()
     screened, found = (run_kernel(system, forcing, y0, t0 + 24.5 * step, 0.0, 1e-10, 10**7, True,
                                   new_control(10**13), screen_extrema=screen) for screen in (True, False))
     assert_identical(screened, found)
+
+
+@pytest.mark.parametrize("damping_n_s_m", [0.0, 2.0e3])
+@pytest.mark.parametrize("shape", ["sine", "noise"])
+def test_every_extremum_the_screen_clears_lies_within_its_bound(damping_n_s_m, shape):
+    # a single isolated mass under a sine or white noise: the audit finds each extremum the screen cleared all
+    # the same, and every one lies within the cubic's range widened by the bound on its fourth derivative
+    # (that bound is within a factor of about 2 of the truth here: half of it, or Z without its growth
+    # e^(alpha t) or without the jerk, lets extrema out)
+    mass = pd_.Structure(2.0e4, pd_.Isolator((6.0e5,), damping_n_s_m=damping_n_s_m), [], [])
+    t = np.arange(0.0, 30.0 + 1e-9, 0.01)
+    noise = np.random.default_rng(3).normal(0.0, 2.0, t.size)
+    accel = 2.0 * np.sin(2.0 * np.pi * 0.9 * t) if shape == "sine" else noise
+    cleared, escapes = audited(assemble(mass).system, kernel_forcing(pd_.Record(t, accel)),
+                               np.array(pd_.State.at_rest(mass).vector), 30.0)
+    assert cleared > 20 and escapes == 0, (cleared, escapes)
+
+
+def test_a_drift_s_bound_is_twice_a_level_s():
+    # two unit masses in free vibration of their mode (1, -1) under a zero record: the drift's fourth
+    # derivative is the two levels' accelerations' second derivatives apart, twice either's bound; every peak
+    # equals the largest, so the screen clears none (with a drift's bound taken as a level's it clears some,
+    # and they lie outside it)
+    stiffness = np.array([[1.0 + 1e4, -1e4], [-1e4, 1e4]])
+    system = _core.system(np.ones(2), stiffness, np.zeros((2, 2)), [], np.zeros(_core.LAYOUT["BW_PARAMS"]),
+                          False, [], tracked=((1, 0),))
+    t = np.arange(0.0, 2.0 + 1e-9, 0.01)
+    forcing = _core.Forcing(kind=_core.EXCITATION["record"], p=np.array([0.01, 0.0, 0.0]), rec_t=t,
+                            rec_a=np.zeros(t.size))
+    y0 = np.zeros(system.state_size)
+    y0[system.layout["x"]:system.layout["x"] + 2] = (0.01, -0.01)
+    assert audited(system, forcing, y0, 2.0) == (0, 0)

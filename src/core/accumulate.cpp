@@ -287,8 +287,15 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
         const double d1 = rel(e.y1 + n, i, j);
         const double f2 = std::abs(rel(e.a1, i, j)) + times * s.z * s.shift;
         const double off = s.shift == 0.0 ? 0.0 : 2.0 * s.shift * (std::abs(d1) + f2 * (s.shift + 0.15 * tau));
-        return !surely_within(rel(e.y0, i, j), rel(e.y0 + n, i, j), rel(e.y1, i, j), d1, tau, times * s.beta * s.z,
-                              ex[EX_D_MIN] + off, ex[EX_D_MAX] - off, s.xscale);
+        const double f0 = rel(e.y0, i, j), v0 = rel(e.y0 + n, i, j), f1 = rel(e.y1, i, j), x4 = times * s.beta * s.z;
+        if (!surely_within(f0, v0, f1, d1, tau, x4, ex[EX_D_MIN] + off, ex[EX_D_MAX] - off, s.xscale)) return true;
+        if (sc->audit) {  // (found all the same, and held against the bound)
+            const Range r = hermite_range(f0, v0, f1, d1, tau, x4);
+            const Phase::Zeros& z = velocity_zeros(ph, i, j);
+            for (int k = 0; k < z.count; ++k)
+                if (z.t[k] < tau) audit_value(*sc, r, off, z.x[k]);
+        }
+        return false;
     };
     // displacement extrema of each dof, at its velocity's zeros and the ends (none inside where the screen
     // clears it: within the largest and smallest so far)
@@ -421,7 +428,17 @@ void free_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, 
                 const double f2 = ((s.s > 0.0 ? kr / s.s : 0.0) + cr) * s.z;
                 const double off = s.shift == 0.0 ? 0.0 : 2.0 * s.shift * (std::abs(r1) + f2 * (s.shift + 0.15 * tau));
                 const double top = ex[EX_A_ABS_MAX] - off;
-                if (surely_within(aa0, r0, aa1, r1, tau, a4, -top, top, scale)) return;
+                if (surely_within(aa0, r0, aa1, r1, tau, a4, -top, top, scale)) {
+                    if (sc->audit) {  // (found all the same, and held against the bound)
+                        Fn fa, fr;
+                        abs_acc_poly(ph, i, fa.q);
+                        poly_deriv(fa.q, fr.q);
+                        fr.kind = FN_POLY;
+                        const double tm = find_root(fr, ph, 0.0, tau, r0, r1, NaN, NaN, XTOL_EXTREMUM_S);
+                        audit_value(*sc, hermite_range(aa0, r0, aa1, r1, tau, a4), off, poly_val(fa.q, tm));
+                    }
+                    return;
+                }
             }
             Fn fa, fr;
             abs_acc_poly(ph, i, fa.q);

@@ -467,6 +467,7 @@ void set_up(Loop& lp) {
     ph.evaluations = 0;
     ph.poly_evaluations = 0;
     ph.series_made = 0;
+    lp.w.screen.audited = lp.w.screen.escapes = 0;
     lp.z_max = sy.bw[0] != 0.0 ? std::pow(sy.bw[2] / (sy.bw[3] + sy.bw[4]), 1.0 / sy.bw[5]) : 0.0;
     const double v_res = RESOLUTION * ph.vrun;
     lp.resolution[0] = v_res;
@@ -542,6 +543,7 @@ void next_subinterval(Loop& lp) {
         set_phase(ph, st, sy, pc);
         lp.phase_id = ++lp.w.transitions.phases;
         screen_phase(lp.w.screen, ph);
+        lp.w.screen.audit = lp.opt.audit_screen;
         const double horizon = lp.has_ml ? relax_horizon(st, sy) : INF;
         h = TWO_PI / (SUBINTERVALS_PER_PERIOD * std::max(std::max(ph.rate, pc.omega), 1e-300));
         if (lp.has_ml) lp.t_horizon = t + horizon;
@@ -854,6 +856,8 @@ void finish_run(Loop& lp) {
     lp.control.add_work(lp.work - lp.published);
     lp.control.at(CTL_EVALS).fetch_add(lp.ph.evaluations, std::memory_order_relaxed);
     lp.control.at(CTL_SERIES).fetch_add(lp.ph.series_made, std::memory_order_relaxed);
+    lp.control.at(CTL_AUDITED).fetch_add(lp.w.screen.audited, std::memory_order_relaxed);
+    lp.control.at(CTL_ESCAPES).fetch_add(lp.w.screen.escapes, std::memory_order_relaxed);
     double kin1, iso1, bmp1;
     energies(st, lp.sy, kin1, iso1, bmp1);
     ledger[L_KINETIC] = kin1 - lp.kin0;

@@ -20,6 +20,9 @@ struct RunOptions {
     // a record's extrema inside a sub-interval screened from its ends (screen.hpp: the same numbers; false
     // finds every one, for the tests that show it)
     bool screen_extrema = true;
+    // (the tests': each extremum the screen clears found all the same and held against its bound, the counts in
+    // the run control's CTL_AUDITED and CTL_ESCAPES)
+    bool audit_screen = false;
 };
 
 struct RunResult {

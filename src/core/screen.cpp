@@ -68,9 +68,7 @@ void screen_interval(ExtremaScreen& sc, const Phase& ph, const double* y0, const
     sc.vscale = vs;
 }
 
-bool surely_within(double f0, double d0, double f1, double d1, double h, double f4, double lo, double hi,
-                   double scale) {
-    if (!(h > 0.0) || !std::isfinite(f4)) return false;
+Range hermite_range(double f0, double d0, double f1, double d1, double h, double f4) {
     // the cubic Hermite interpolant c0 + c1 s + c2 s^2 + c3 s^3 on s = t / h in [0, 1]
     const double c0 = f0, c1 = h * d0;
     const double c2 = 3.0 * (f1 - f0) - 2.0 * h * d0 - h * d1;
@@ -99,9 +97,22 @@ bool surely_within(double f0, double d0, double f1, double d1, double h, double 
     }
     const double h2 = h * h;
     const double err = h2 * h2 / 384.0 * f4;
-    const double size = std::abs(f0) + std::abs(f1) + h * (std::abs(d0) + std::abs(d1)) + err;
-    const double margin = err + RELATIVE_MARGIN * size + SCALE_MARGIN * scale;
-    return top + margin <= hi && bottom - margin >= lo;
+    return {bottom - err, top + err, std::abs(f0) + std::abs(f1) + h * (std::abs(d0) + std::abs(d1)) + err};
+}
+
+bool surely_within(double f0, double d0, double f1, double d1, double h, double f4, double lo, double hi,
+                   double scale) {
+    if (!(h > 0.0) || !std::isfinite(f4)) return false;
+    const Range r = hermite_range(f0, d0, f1, d1, h, f4);
+    const double margin = RELATIVE_MARGIN * r.size + SCALE_MARGIN * scale;
+    return r.hi + margin <= hi && r.lo - margin >= lo;
+}
+
+void audit_value(ExtremaScreen& sc, const Range& r, double off, double value) {
+    constexpr double ROUNDED = 1e-12;  // (of the values' size: the exact path's own rounding, far below)
+    const double tol = off + ROUNDED * r.size;
+    sc.audited += 1;
+    if (value > r.hi + tol || value < r.lo - tol) sc.escapes += 1;
 }
 
 }  // namespace pounding

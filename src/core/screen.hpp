@@ -41,6 +41,10 @@ struct ExtremaScreen {
     // |tau - the length y1 is the motion at| (a kept transition's of another length: the last of a step's
     // parts, or a record's step, within a few ulps of the clock), set by the loop for each sub-interval
     double shift = 0.0;
+    // the audit (RunOptions::audit_screen): each extremum the screen clears is found all the same, and counted
+    // where it falls outside the range the bound gives
+    bool audit = false;
+    int64_t audited = 0, escapes = 0;
 };
 
 // the phase's rates (a phase that is not linear, or whose table is not a line, is not screened)
@@ -49,6 +53,16 @@ void screen_phase(ExtremaScreen& sc, const Phase& ph);
 // the sub-interval [0, tau]'s Z and scales, from its ends (y0, a0 at 0; y1 at tau)
 void screen_interval(ExtremaScreen& sc, const Phase& ph, const double* y0, const double* a0, const double* y1,
                      double tau);
+
+// the range on [0, h] of the cubic Hermite interpolant of f's values f0, f1 and rates d0, d1 at the ends,
+// widened by the bound h^4 / 384 f4 on f's distance from it (|f''''| at most f4): f's own range; and the size
+// of the terms
+struct Range { double lo, hi, size; };
+Range hermite_range(double f0, double d0, double f1, double d1, double h, double f4);
+
+// (the audit, for the tests: an extremum the screen cleared, found all the same, counted in escapes when it
+// lies outside the widened range r by more than off and the rounding)
+void audit_value(ExtremaScreen& sc, const Range& r, double off, double value);
 
 // whether f surely stays within [lo, hi] on [0, h]: its values f0, f1 and rates d0, d1 at the ends, |f''''| at
 // most f4 inside, rounding relative to scale

@@ -24,7 +24,9 @@ CTL_WORK = 1     # work done so far (sub-intervals), added to by every kernel ca
 CTL_BUDGET = 2   # kernels return with BUDGET once CTL_WORK would pass it
 CTL_EVALS = 3    # evaluations of the trajectory at an instant inside a sub-interval (the cost of events)
 CTL_SERIES = 4   # a linear phase's sub-intervals whose power series was made (the dearest part of their work)
-CTL_LEN = 5
+CTL_AUDITED = 5  # (the tests' audit of the extrema's screen: the extrema it cleared, found all the same)
+CTL_ESCAPES = 6  # (and those outside the range its bound gives)
+CTL_LEN = 7
 DEFAULT_MAX_STEPS = 100_000_000  # about 1-3 minutes of one core
 
 
