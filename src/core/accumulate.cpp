@@ -293,7 +293,7 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
             const Range r = hermite_range(f0, v0, f1, d1, tau, x4);
             const Phase::Zeros& z = velocity_zeros(ph, i, j);
             for (int k = 0; k < z.count; ++k)
-                if (z.t[k] < tau) audit_value(*sc, r, off, z.x[k]);
+                if (z.t[k] < tau) audit_value(*sc, r, off, s.xscale, z.x[k]);
         }
         return false;
     };
@@ -424,8 +424,9 @@ void free_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, 
                 const double a4 = (kr + cr * s.alpha) * s.beta * s.z;
                 const double scale = kr * s.xscale + cr * s.vscale +
                                      std::abs(ph.minv[static_cast<size_t>(i)] * ph.R0[static_cast<size_t>(i)]);
-                // (y1 off by the shift: the acceleration's second derivative at most (kr / s + cr) Z)
-                const double f2 = ((s.s > 0.0 ? kr / s.s : 0.0) + cr) * s.z;
+                // (y1 off by the shift: the acceleration's second derivative at most (kr / s + cr) Z, and the
+                // end's rate read with the table's value at tau, off by its slope over the shift through C)
+                const double f2 = ((s.s > 0.0 ? kr / s.s : 0.0) + cr) * s.z + cr * std::abs(ph.ax1);
                 const double off = s.shift == 0.0 ? 0.0 : 2.0 * s.shift * (std::abs(r1) + f2 * (s.shift + 0.15 * tau));
                 const double top = ex[EX_A_ABS_MAX] - off;
                 if (surely_within(aa0, r0, aa1, r1, tau, a4, -top, top, scale)) {
@@ -435,7 +436,7 @@ void free_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, 
                         poly_deriv(fa.q, fr.q);
                         fr.kind = FN_POLY;
                         const double tm = find_root(fr, ph, 0.0, tau, r0, r1, NaN, NaN, XTOL_EXTREMUM_S);
-                        audit_value(*sc, hermite_range(aa0, r0, aa1, r1, tau, a4), off, poly_val(fa.q, tm));
+                        audit_value(*sc, hermite_range(aa0, r0, aa1, r1, tau, a4), off, scale, poly_val(fa.q, tm));
                     }
                     return;
                 }

@@ -38,7 +38,7 @@ void screen_phase(ExtremaScreen& sc, const Phase& ph) {
         sc.beta = std::max(sc.beta, row);
     }
     sc.alpha = std::max(sc.s, sc.beta);
-    sc.on = std::isfinite(sc.alpha);
+    sc.on = sc.on && std::isfinite(sc.alpha);
 }
 
 void screen_interval(ExtremaScreen& sc, const Phase& ph, const double* y0, const double* a0, const double* y1,
@@ -108,9 +108,10 @@ bool surely_within(double f0, double d0, double f1, double d1, double h, double 
     return r.hi + margin <= hi && r.lo - margin >= lo;
 }
 
-void audit_value(ExtremaScreen& sc, const Range& r, double off, double value) {
-    constexpr double ROUNDED = 1e-12;  // (of the values' size: the exact path's own rounding, far below)
-    const double tol = off + ROUNDED * r.size;
+void audit_value(ExtremaScreen& sc, const Range& r, double off, double scale, double value) {
+    // (the exact path's own rounding: of the values' size, and of the scales the series' rounding is of)
+    constexpr double ROUNDED = 1e-12;
+    const double tol = off + ROUNDED * r.size + SCALE_MARGIN * scale;
     sc.audited += 1;
     if (value > r.hi + tol || value < r.lo - tol) sc.escapes += 1;
 }

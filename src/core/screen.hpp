@@ -61,8 +61,8 @@ struct Range { double lo, hi, size; };
 Range hermite_range(double f0, double d0, double f1, double d1, double h, double f4);
 
 // (the audit, for the tests: an extremum the screen cleared, found all the same, counted in escapes when it
-// lies outside the widened range r by more than off and the rounding)
-void audit_value(ExtremaScreen& sc, const Range& r, double off, double value);
+// lies outside the widened range r by more than off and the rounding, of the values and of scale)
+void audit_value(ExtremaScreen& sc, const Range& r, double off, double scale, double value);
 
 // whether f surely stays within [lo, hi] on [0, h]: its values f0, f1 and rates d0, d1 at the ends, |f''''| at
 // most f4 inside, rounding relative to scale
