@@ -43,8 +43,25 @@ def test_statuses_actions_and_the_control_array_agree_with_the_core():
     assert sorted(_core.ACTIONS.values()) == list(range(len(_core.ACTIONS)))
     assert _control.CTL_LEN == _core.LAYOUT["CTL_LEN"]
     assert _control.CTL_SERIES == _core.LAYOUT["CTL_SERIES"]
-    assert (_control.CTL_AUDITED, _control.CTL_ESCAPES) == (_core.LAYOUT["CTL_AUDITED"], _core.LAYOUT["CTL_ESCAPES"])
+    assert _control.CTL_AUDITED == _core.LAYOUT["CTL_AUDITED"]
+    assert _control.CTL_ESCAPES == _core.LAYOUT["CTL_ESCAPES"]
     assert layout.LEDGER_LEN == layout.L_BUMPER + 1
+
+
+def test_the_core_s_door_refuses_a_run_control_it_would_write_past():
+    # the kernels write every slot of the control: one made for an older core (4 slots), of another type or
+    # read-only is refused before the call, naming the control and its maker
+    from pounding._control import new_control
+
+    osc = pd_.presets.paper_damped()
+    sy, forcing = kernel_system(osc), kernel_forcing(pd_.Harmonic(0.1, 1.0))
+    y0 = np.array(pd_.State.at_rest(osc).vector)
+    read_only = new_control(10**6)
+    read_only.setflags(write=False)
+    for ctl in (np.zeros(4, dtype=np.int64), new_control(10**6).astype(np.int32), read_only):
+        with pytest.raises(ValueError, match="ctl: the run control.*new_control"):
+            _core.run(sy, forcing, y0, 1.0, 0.0, 1e-10, 10**5, True, ctl)
+    assert _core.run(sy, forcing, y0, 1.0, 0.0, 1e-10, 10**5, True, new_control(10**6)).status == 0
 
 
 def test_a_system_pickles_and_runs_the_same_after():

@@ -27,7 +27,7 @@ def refuse_rigid_stops(isolator: Any, laws: Any) -> None:
     for field_name, law in laws:
         if law is not None and is_rigid(law):
             raise InputError(Problem.WRONG_CONFIGURATION, field_name, law,
-                             got="with a rigid stop on a friction isolator (not supported yet: an impulse on a "
-                                 "sticking base)",
+                             got="with a rigid stop on a friction isolator (not supported yet: an impulse "
+                                 "on a sticking base)",
                              fix="give it a compliant law (KelvinVoigt or HertzDamp with the stop's "
                                  "stiffness), or the isolator an elastic pre-slip (preslip_m)")
