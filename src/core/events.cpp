@@ -528,6 +528,28 @@ const Phase::Zeros& velocity_zeros(Phase& ph, int i, int j) {
 
 double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, double gp0, double tol0, double g1,
                     double gp1, double tol1, double xtol) {
+    double* y = ph.ye.data();
+    double* a = ph.ae.data();
+    // a slip's end, the slip from rest: its velocity starts at zero the way it slips, its acceleration zero but
+    // for the rounding (its force at the threshold), whose sign says nothing; where the run's velocity scale
+    // is below that rounding (a free vibration: no table), the polynomial's dip right at the start on it
+    // would be taken for the slip's end at once.  The sub-interval is looked at from where it already moves
+    // the way it starts (velocity_zeros does the same)
+    double t_lo = 0.0;
+    const EventRow& row = evs[i];
+    if (row.side == SIDE_VELOCITY && row.kind == KIND_LINEAR && row.gamma != 0.0 && g0 > tol0 &&
+        rel(ph.y0.data() + ph.n, row.i, row.j) == 0.0 && gp0 * g0 <= 0.0) {
+        for (double tp = 0.5 * h; tp > 1e-12 * h; tp *= 0.5) {
+            phase_eval(ph, tp, y, a);
+            const EventValue ev = event_value(row, ph, tp, y, a);
+            if (ev.g > tol0) {
+                t_lo = tp;
+                g0 = ev.g;
+                gp0 = ev.gp;
+                break;
+            }
+        }
+    }
     const bool crosses = g0 > tol0 && g1 <= 0.0;
     const bool leaves = g0 <= tol0 && g1 < -tol1;
     if (!crosses && !leaves && !(gp0 < 0.0 && gp1 > 0.0)) return -1.0;  // (at zero, moving away: nothing)
@@ -548,8 +570,6 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
         made_rate = true;
         return rate;
     };
-    double* y = ph.ye.data();
-    double* a = ph.ae.data();
     // its minimum inside, when it falls at the start and rises at the end: (time, value, scale).  A function of
     // the pair's displacement alone has it where the pair's velocity is zero (found once for every such event
     // of the sub-interval)
@@ -562,7 +582,7 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
             gm = e.alpha + e.beta * z.x[0];
             sc = std::abs(e.alpha) + std::abs(e.beta * z.x[0]) + (e.side == SIDE_NONE ? 0.0 : ph.xround);
         } else {
-            tm = find_root(the_rate(), ph, 0.0, h, gp0, gp1, NaN, NaN, xtol);
+            tm = find_root(the_rate(), ph, t_lo, h, gp0, gp1, NaN, NaN, xtol);
             phase_eval(ph, tm, y, a);
             const EventValue ev = event_value(e, ph, tm, y, a);
             gm = ev.g;
@@ -575,9 +595,9 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
         if (gp0 < 0.0 && gp1 > 0.0 && g1 >= -tol1) {
             double tm, gm, sc;
             minimum(tm, gm, sc);
-            if (gm < 0.0 && tm > 0.0) return find_root(the_fn(), ph, 0.0, tm, g0, gm, gp0, 0.0, xtol);
+            if (gm < 0.0 && tm > t_lo) return find_root(the_fn(), ph, t_lo, tm, g0, gm, gp0, 0.0, xtol);
         }
-        return find_root(the_fn(), ph, 0.0, h, g0, g1, gp0, gp1, xtol);
+        return find_root(the_fn(), ph, t_lo, h, g0, g1, gp0, gp1, xtol);
     }
     if (leaves && kind == FN_POLY && gp0 > 0.0 && gp1 < 0.0 && evs[i].action == ACT_CONTACT &&
         law_is_rigid(slot(ph, evs[i].side).law)) {
@@ -591,7 +611,7 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
             gm = e.alpha + e.beta * z.x[0];
         } else {
             double unused;
-            tm = find_root(the_rate(), ph, 0.0, h, gp0, gp1, NaN, NaN, xtol);
+            tm = find_root(the_rate(), ph, t_lo, h, gp0, gp1, NaN, NaN, xtol);
             fn_eval(the_fn(), ph, tm, gm, unused);
         }
         if (gm <= tol0) return tm;
@@ -606,7 +626,7 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
             if (ev.g > ROUNDING * ev.scale) return find_root(the_fn(), ph, tp, h, ev.g, g1, ev.gp, gp1, xtol);
         }
         // it first rose, by less than the rounding, and came back: where it turned
-        if (gp0 > 0.0 && gp1 < 0.0) return find_root(the_rate(), ph, 0.0, h, gp0, gp1, NaN, NaN, xtol);
+        if (gp0 > 0.0 && gp1 < 0.0) return find_root(the_rate(), ph, t_lo, h, gp0, gp1, NaN, NaN, xtol);
         return 0.0;
     }
     if (!(gp0 < 0.0 && gp1 > 0.0)) return -1.0;
@@ -615,7 +635,7 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
     minimum(tm, gm, sc);
     if (gm >= -ROUNDING * sc) return -1.0;
     if (g0 <= tol0) return 0.0;  // it leaves the boundary on the wrong side at once
-    return find_root(the_fn(), ph, 0.0, tm, g0, gm, gp0, 0.0, xtol);
+    return find_root(the_fn(), ph, t_lo, tm, g0, gm, gp0, 0.0, xtol);
 }
 
 int bumper_events(const double* st, const Phase& ph, const System& sy, EventRow* evs, int n) {
