@@ -120,3 +120,40 @@ def records(draw, duration_s=3.0):
     if start > 0.0:
         accel[0] = 0.0
     return pd_.Record(t, accel)
+
+
+@st.composite
+def building_isolators(draw):
+    kind = draw(st.sampled_from(["linear", "bilinear", "flat", "pendulum", "triple"]))
+    if kind == "linear":
+        return pd_.Isolator((draw(st.floats(2e4, 4e5)),), damping_n_s_m=draw(st.floats(0.0, 4e3)))
+    if kind == "bilinear":
+        k = draw(st.floats(1e5, 1e6))
+        return pd_.Isolator((k, 0.1 * k), (draw(st.floats(0.005, 0.03)),),
+                            damping_n_s_m=draw(st.floats(0.0, 2e3)))
+    if kind == "triple":
+        return pd_.TripleFrictionPendulum(radii_m=(2.1, 0.3, 0.3, 2.1), mu=(0.05, 0.02, 0.02, 0.08),
+                                          capacities_m=(0.3, 0.05, 0.05, 0.3))
+    return pd_.FrictionIsolator(mu=draw(st.floats(0.02, 0.15)),
+                                radius_m=None if kind == "flat" else draw(st.floats(1.0, 4.0)),
+                                damping_n_s_m=draw(st.sampled_from([0.0, 1e3])))
+
+
+@st.composite
+def buildings(draw, min_levels=1):
+    """A random building of ``min_levels`` to 5 levels on a linear, bilinear or friction isolator, with a wall
+    (a linear law's or a rigid stop's) at one of its levels, or none."""
+    n = draw(st.integers(min_levels, 5))
+    masses = [draw(st.floats(1e3, 2e4)) for _ in range(n)]
+    storeys = [pd_.Storey(m, draw(st.floats(1e6, 1e8)), draw(st.floats(0.0, 1e5))) for m in masses[1:]]
+    isolator = draw(building_isolators())
+    walls = []
+    if draw(st.booleans()):
+        laws = [pd_.KelvinVoigt(draw(st.floats(1e6, 5e7)), draw(st.floats(0.0, 1e4))),
+                pd_.MultilinearBumper((2e6, 2e7), (0.004,), damping=1e3)]
+        if isinstance(isolator, pd_.Isolator):  # (a rigid stop beside friction is refused)
+            laws.append(pd_.RigidStop(draw(st.floats(0.0, 0.9))))
+        law = draw(st.sampled_from(laws))
+        gaps = (draw(st.floats(0.005, 0.08)), draw(st.floats(0.005, 0.08)))
+        walls = [pd_.Wall(draw(st.integers(0, n - 1)), *gaps, law)]
+    return pd_.Structure(masses[0], isolator, storeys, walls)

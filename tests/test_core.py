@@ -45,6 +45,7 @@ def test_statuses_actions_and_the_control_array_agree_with_the_core():
     assert _control.CTL_SERIES == _core.LAYOUT["CTL_SERIES"]
     assert _control.CTL_AUDITED == _core.LAYOUT["CTL_AUDITED"]
     assert _control.CTL_ESCAPES == _core.LAYOUT["CTL_ESCAPES"]
+    assert _control.CTL_WHOLE == _core.LAYOUT["CTL_WHOLE"]
     assert layout.LEDGER_LEN == layout.L_BUMPER + 1
 
 

@@ -17,7 +17,7 @@ from pounding._control import CTL_AUDITED, CTL_ESCAPES, CTL_SERIES, CTL_WORK, ne
 from pounding._core import run as run_kernel
 from pounding.engine.assembly import assemble
 from pounding.engine.simulate import kernel_forcing
-from strategies import LINEAR_LAWS, oscillators, records
+from strategies import LINEAR_LAWS, buildings, oscillators, records
 
 G = 9.80665
 
@@ -33,14 +33,14 @@ def both(model, excitation, t_end, state=None, sample_dt=0.0):
     for screen in (True, False):
         ctl = new_control(10**9)
         runs.append((run_kernel(system, forcing, y0, t_end, sample_dt, 1e-10, 10**6, True, ctl,
-                                screen_extrema=screen), ctl))
+                                screen_extrema=screen, whole_steps=False), ctl))
     return runs
 
 
 def audited(system, forcing, y0, t_end):
     """The screened run with its audit: (the extrema it cleared, those outside the range its bound gives)."""
     ctl = new_control(10**9)
-    run_kernel(system, forcing, y0, t_end, 0.0, 1e-10, 10**6, True, ctl, audit_screen=True)
+    run_kernel(system, forcing, y0, t_end, 0.0, 1e-10, 10**6, True, ctl, audit_screen=True, whole_steps=False)
     return int(ctl[CTL_AUDITED]), int(ctl[CTL_ESCAPES])
 
 
@@ -48,43 +48,6 @@ def assert_identical(screened, found):
     for name in ("state", "samples", "contacts", "events", "ledger", "extrema", "chatters"):
         np.testing.assert_array_equal(getattr(screened, name), getattr(found, name), err_msg=name)
     assert screened.status == found.status
-
-
-@st.composite
-def isolators(draw):
-    kind = draw(st.sampled_from(["linear", "bilinear", "flat", "pendulum", "triple"]))
-    if kind == "linear":
-        return pd_.Isolator((draw(st.floats(2e4, 4e5)),), damping_n_s_m=draw(st.floats(0.0, 4e3)))
-    if kind == "bilinear":
-        k = draw(st.floats(1e5, 1e6))
-        return pd_.Isolator((k, 0.1 * k), (draw(st.floats(0.005, 0.03)),),
-                            damping_n_s_m=draw(st.floats(0.0, 2e3)))
-    if kind == "triple":
-        return pd_.TripleFrictionPendulum(radii_m=(2.1, 0.3, 0.3, 2.1), mu=(0.05, 0.02, 0.02, 0.08),
-                                          capacities_m=(0.3, 0.05, 0.05, 0.3))
-    return pd_.FrictionIsolator(mu=draw(st.floats(0.02, 0.15)),
-                                radius_m=None if kind == "flat" else draw(st.floats(1.0, 4.0)),
-                                damping_n_s_m=draw(st.sampled_from([0.0, 1e3])))
-
-
-@st.composite
-def buildings(draw):
-    """A random building of 1 to 5 levels on a linear, bilinear or friction isolator, with a wall (a linear
-    law's or a rigid stop's) at one of its levels, or none."""
-    n = draw(st.integers(1, 5))
-    masses = [draw(st.floats(1e3, 2e4)) for _ in range(n)]
-    storeys = [pd_.Storey(m, draw(st.floats(1e6, 1e8)), draw(st.floats(0.0, 1e5))) for m in masses[1:]]
-    isolator = draw(isolators())
-    walls = []
-    if draw(st.booleans()):
-        laws = [pd_.KelvinVoigt(draw(st.floats(1e6, 5e7)), draw(st.floats(0.0, 1e4))),
-                pd_.MultilinearBumper((2e6, 2e7), (0.004,), damping=1e3)]
-        if isinstance(isolator, pd_.Isolator):  # (a rigid stop beside friction is refused)
-            laws.append(pd_.RigidStop(draw(st.floats(0.0, 0.9))))
-        law = draw(st.sampled_from(laws))
-        gaps = (draw(st.floats(0.005, 0.08)), draw(st.floats(0.005, 0.08)))
-        walls = [pd_.Wall(draw(st.integers(0, n - 1)), *gaps, law)]
-    return pd_.Structure(masses[0], isolator, storeys, walls)
 
 
 @settings(max_examples=60, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -170,7 +133,8 @@ def test_a_last_part_s_transition_off_by_the_clock_s_drift_is_screened_as_such()
     y0[layout["x"]:layout["x"] + 2] = 0.01 * shape * np.cos(-w * t_peak)
     y0[layout["v"]:layout["v"] + 2] = -0.01 * shape * w * np.sin(-w * t_peak)
     screened, found = (run_kernel(system, forcing, y0, t0 + 24.5 * step, 0.0, 1e-10, 10**7, True,
-                                  new_control(10**13), screen_extrema=screen) for screen in (True, False))
+                                  new_control(10**13), screen_extrema=screen, whole_steps=False)
+                        for screen in (True, False))
     assert_identical(screened, found)
 
 

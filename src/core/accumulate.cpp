@@ -264,6 +264,41 @@ const ExtremaScreen& ready(ExtremaScreen& sc, const Phase& ph, const Ends& e, do
     return sc;
 }
 
+// the pair (i, j)'s displacement's range on [0, tau] from the screen (a displacement's fourth derivative is an
+// acceleration's second: at most beta Z, a pair's twice that), and how far y1's shift moves it (off)
+struct Screened { Range r; double off; };
+Screened displacement_range(const ExtremaScreen& s, const Phase& ph, const Ends& e, double tau, int i, int j) {
+    const int n = ph.n;
+    const double times = j >= 0 ? 2.0 : 1.0;
+    // (y1 the motion at tau give or take the shift: f1 off by at most |d1| shift + |f''| shift^2 / 2 and d1
+    // by |f''| shift, f'' within |a1| + times Z shift there; the cubic moves by the first and 4 tau / 27 of
+    // the second, counted twice)
+    const double d1 = rel(e.y1 + n, i, j);
+    const double f2 = std::abs(rel(e.a1, i, j)) + times * s.z * s.shift;
+    const double off = s.shift == 0.0 ? 0.0 : 2.0 * s.shift * (std::abs(d1) + f2 * (s.shift + 0.15 * tau));
+    return {hermite_range(rel(e.y0, i, j), rel(e.y0 + n, i, j), rel(e.y1, i, j), d1, tau, times * s.beta * s.z), off};
+}
+
+// whether the range stays within [lo, hi] beyond any doubt of rounding (screen.hpp's surely_within)
+bool range_within(const Screened& sr, double lo, double hi, double scale) {
+    return surely_within(sr.r, lo + sr.off, hi - sr.off, scale);
+}
+
+// a free dof's absolute acceleration's range on [0, tau] from the screen (its fourth derivative:
+// -(M^-1 (K a'' + C a^(3)))_i, screen.hpp), from its values aa and rates r at the ends; and its scale
+struct ScreenedAcc { Screened sr; double scale; };
+ScreenedAcc abs_acceleration_range(const ExtremaScreen& s, const Phase& ph, double tau, int i, double aa0, double r0,
+                                   double aa1, double r1) {
+    const double kr = s.kr[static_cast<size_t>(i)], cr = s.cr[static_cast<size_t>(i)];
+    const double a4 = (kr + cr * s.alpha) * s.beta * s.z;
+    const double scale = kr * s.xscale + cr * s.vscale + std::abs(ph.minv[static_cast<size_t>(i)] * ph.R0[static_cast<size_t>(i)]);
+    // (y1 off by the shift: the acceleration's second derivative at most (kr / s + cr) Z, and the end's rate
+    // read with the table's value at tau, off by its slope over the shift through C)
+    const double f2 = ((s.s > 0.0 ? kr / s.s : 0.0) + cr) * s.z + cr * std::abs(ph.ax1);
+    const double off = s.shift == 0.0 ? 0.0 : 2.0 * s.shift * (std::abs(r1) + f2 * (s.shift + 0.15 * tau));
+    return {{hermite_range(aa0, r0, aa1, r1, tau, a4), off}, scale};
+}
+
 // each dof's displacement extrema and each tracked pair's (a storey's drift), at the velocity's zeros and the
 // ends (none inside where the screen clears it); each contact in progress's deepest compression
 void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, double tau, const Ends& e,
@@ -280,20 +315,12 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
         if (!may_cross) return !none_kept;
         if (sc == nullptr) return true;
         const ExtremaScreen& s = ready(*sc, ph, e, tau);
-        const double times = j >= 0 ? 2.0 : 1.0;
-        // (y1 the motion at tau give or take the shift: f1 off by at most |d1| shift + |f''| shift^2 / 2 and d1
-        // by |f''| shift, f'' within |a1| + times Z shift there; the cubic moves by the first and 4 tau / 27 of
-        // the second, counted twice)
-        const double d1 = rel(e.y1 + n, i, j);
-        const double f2 = std::abs(rel(e.a1, i, j)) + times * s.z * s.shift;
-        const double off = s.shift == 0.0 ? 0.0 : 2.0 * s.shift * (std::abs(d1) + f2 * (s.shift + 0.15 * tau));
-        const double f0 = rel(e.y0, i, j), v0 = rel(e.y0 + n, i, j), f1 = rel(e.y1, i, j), x4 = times * s.beta * s.z;
-        if (!surely_within(f0, v0, f1, d1, tau, x4, ex[EX_D_MIN] + off, ex[EX_D_MAX] - off, s.xscale)) return true;
+        const Screened sr = displacement_range(s, ph, e, tau, i, j);
+        if (!range_within(sr, ex[EX_D_MIN], ex[EX_D_MAX], s.xscale)) return true;
         if (sc->audit) {  // (found all the same, and held against the bound)
-            const Range r = hermite_range(f0, v0, f1, d1, tau, x4);
             const Phase::Zeros& z = velocity_zeros(ph, i, j);
             for (int k = 0; k < z.count; ++k)
-                if (z.t[k] < tau) audit_value(*sc, r, off, s.xscale, z.x[k]);
+                if (z.t[k] < tau) audit_value(*sc, sr.r, sr.off, s.xscale, z.x[k]);
         }
         return false;
     };
@@ -418,25 +445,17 @@ void free_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, 
         track_abs_acceleration(ex, t0, aa0);
         track_abs_acceleration(ex, t0 + tau, aa1);
         if (r0 * r1 < 0.0) {
-            if (sc != nullptr) {  // (its fourth derivative: -(M^-1 (K a'' + C a^(3)))_i, screen.hpp)
+            if (sc != nullptr) {
                 const ExtremaScreen& s = ready(*sc, ph, e, tau);
-                const double kr = s.kr[static_cast<size_t>(i)], cr = s.cr[static_cast<size_t>(i)];
-                const double a4 = (kr + cr * s.alpha) * s.beta * s.z;
-                const double scale = kr * s.xscale + cr * s.vscale +
-                                     std::abs(ph.minv[static_cast<size_t>(i)] * ph.R0[static_cast<size_t>(i)]);
-                // (y1 off by the shift: the acceleration's second derivative at most (kr / s + cr) Z, and the
-                // end's rate read with the table's value at tau, off by its slope over the shift through C)
-                const double f2 = ((s.s > 0.0 ? kr / s.s : 0.0) + cr) * s.z + cr * std::abs(ph.ax1);
-                const double off = s.shift == 0.0 ? 0.0 : 2.0 * s.shift * (std::abs(r1) + f2 * (s.shift + 0.15 * tau));
-                const double top = ex[EX_A_ABS_MAX] - off;
-                if (surely_within(aa0, r0, aa1, r1, tau, a4, -top, top, scale)) {
+                const ScreenedAcc sa = abs_acceleration_range(s, ph, tau, i, aa0, r0, aa1, r1);
+                if (range_within(sa.sr, -ex[EX_A_ABS_MAX], ex[EX_A_ABS_MAX], sa.scale)) {
                     if (sc->audit) {  // (found all the same, and held against the bound)
                         Fn fa, fr;
                         abs_acc_poly(ph, i, fa.q);
                         poly_deriv(fa.q, fr.q);
                         fr.kind = FN_POLY;
                         const double tm = find_root(fr, ph, 0.0, tau, r0, r1, NaN, NaN, XTOL_EXTREMUM_S);
-                        audit_value(*sc, hermite_range(aa0, r0, aa1, r1, tau, a4), off, scale, poly_val(fa.q, tm));
+                        audit_value(*sc, sa.sr.r, sa.sr.off, sa.scale, poly_val(fa.q, tm));
                     }
                     return;
                 }
@@ -504,10 +523,62 @@ void peak_contact_forces(Phase& ph, const Layout& L, double* st, double tau, con
 
 }  // namespace
 
+// whether no extremum accumulate looks for can lie inside [0, tau] beyond those at its ends (a record's whole
+// step, run.cpp): each dof's displacement and each tracked pair's within the largest and smallest so far and at
+// the ends, or its velocity of one sign throughout (its fourth derivative an acceleration's third: at most
+// beta alpha Z, a pair's twice that); each free dof's absolute acceleration within the largest so far and at
+// the ends; a held dof on the ground (the table a line: its ends).  Not cleared: a contact in progress, a
+// held rigid stop, a group held off the ground (their extrema are found on the phase's polynomials)
+bool extrema_surely_inside(const Phase& ph, const System& sy, double tau, const Ends& e, const double* extrema,
+                           ExtremaScreen& sc) {
+    const int n = ph.n;
+    if (!sc.on || !(tau > 0.0) || !(sc.s > 0.0)) return false;
+    for (const ContactPhase& k : ph.ct)
+        if (k.in) return false;
+    if (ph.stk.any)
+        for (const int c : ph.stk.held)
+            if (c < ph.stk.nc) return false;
+    const ExtremaScreen& s = ready(sc, ph, e, tau);
+    auto pair_inside = [&](int i, int j, const double* ex) {
+        // its velocity of one sign throughout (y1's shift moves v1 by |a1| shift and more, a1 by |v''| shift,
+        // |v''| at most times Z), looked at first where its ends' are of one sign
+        const double v0 = rel(e.y0 + n, i, j), v1 = rel(e.y1 + n, i, j);
+        if (v0 * v1 > 0.0) {
+            const double times = j >= 0 ? 2.0 : 1.0;
+            const double a0 = rel(e.a0, i, j), a1 = rel(e.a1, i, j);
+            const double off = s.shift == 0.0 ? 0.0 : 2.0 * s.shift * (std::abs(a1) + times * s.z * (s.shift + 0.15 * tau));
+            const Screened sv{hermite_range(v0, a0, v1, a1, tau, times * s.beta * s.alpha * s.z), off};
+            if (v0 > 0.0 ? range_within(sv, 0.0, INF, s.vscale) : range_within(sv, -INF, 0.0, s.vscale)) return true;
+        }
+        const double f0 = rel(e.y0, i, j), f1 = rel(e.y1, i, j);
+        return range_within(displacement_range(s, ph, e, tau, i, j), std::min({ex[EX_D_MIN], f0, f1}),
+                            std::max({ex[EX_D_MAX], f0, f1}), s.xscale);
+    };
+    for (int i = 0; i < n; ++i) {
+        const double* ex = extrema + DOF_EXTREMA * i;
+        if (ph.stk.any && ph.stk.grp[static_cast<size_t>(i)] >= 0) {  // (held on the ground: it stays)
+            if (!ph.stk.grounded[static_cast<size_t>(ph.stk.grp[static_cast<size_t>(i)])]) return false;
+            continue;
+        }
+        if (!pair_inside(i, GROUND, ex)) return false;
+        const double aa0 = abs_acc_linear(ph, i, e.y0), aa1 = abs_acc_linear(ph, i, e.y1);
+        const double r0 = abs_acc_rate_linear(ph, i, e.y0, e.a0), r1 = abs_acc_rate_linear(ph, i, e.y1, e.a1);
+        const double top = std::max({ex[EX_A_ABS_MAX], std::abs(aa0), std::abs(aa1)});
+        const ScreenedAcc sa = abs_acceleration_range(s, ph, tau, i, aa0, r0, aa1, r1);
+        if (!range_within(sa.sr, -top, top, sa.scale)) return false;
+    }
+    for (int p = 0; p < sy.n_track(); ++p)
+        if (!pair_inside(sy.track_i[static_cast<size_t>(p)], sy.track_j[static_cast<size_t>(p)],
+                         extrema + DOF_EXTREMA * n + PAIR_EXTREMA * p))
+            return false;
+    return true;
+}
+
 // what a sub-interval adds: the energy integrals and contact statistics, the held stops' impulses, then the
 // extrema (displacements, drifts, compressions, absolute accelerations, contact forces)
 void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, const Ends& e, double* ledger,
-                double* extrema, Buffers& b, bool with_energy, const Given& given, ExtremaScreen* screen) {
+                double* extrema, Buffers& b, bool with_energy, const Given& given, ExtremaScreen* screen,
+                bool ends_only) {
     bool any_in = false;
     for (const ContactPhase& k : ph.ct) any_in = any_in || k.in;
     const bool linear = !ph.numeric;
@@ -516,6 +587,30 @@ void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, 
     else if (tau > 0.0 && (with_energy || any_in))
         numeric_contributions(ph, sy, st, tau, e, ledger, b);
     if (ph.stk.any && tau > 0.0) held_statistics(ph, sy.lay, st, tau, e, linear, b);
+    if (ends_only && linear) {  // (a whole step the screen cleared: its extrema at its ends, if anywhere)
+        const int n = ph.n;
+        for (int i = 0; i < n; ++i) {
+            double* ex = extrema + DOF_EXTREMA * i;
+            track_displacement(ex, t0, e.y0[i]);
+            track_displacement(ex, t0 + tau, e.y1[i]);
+            if (ph.stk.any && ph.stk.grp[static_cast<size_t>(i)] >= 0) {
+                held_abs_acceleration(ph, i, ex, t0, tau, e, linear);
+                continue;
+            }
+            double& kept = b.aa_end[static_cast<size_t>(i)];
+            const double aa0 = b.went_on ? kept : abs_acc_linear(ph, i, e.y0), aa1 = abs_acc_linear(ph, i, e.y1);
+            kept = aa1;
+            track_abs_acceleration(ex, t0, aa0);
+            track_abs_acceleration(ex, t0 + tau, aa1);
+        }
+        for (int p = 0; p < sy.n_track(); ++p) {
+            double* ex = extrema + DOF_EXTREMA * n + PAIR_EXTREMA * p;
+            const int i = sy.track_i[static_cast<size_t>(p)], j = sy.track_j[static_cast<size_t>(p)];
+            track_displacement(ex, t0, rel(e.y0, i, j));
+            track_displacement(ex, t0 + tau, rel(e.y1, i, j));
+        }
+        return;
+    }
     ExtremaScreen* sc = nullptr;  // (the screen of what is extreme inside: a record's linear phase)
     if (screen != nullptr && screen->on && linear && tau > 0.0) {
         screen->tau = -1.0;  // (its bound made when first asked for: ready)

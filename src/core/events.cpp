@@ -638,6 +638,63 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
     return find_root(the_fn(), ph, t_lo, tm, g0, gm, gp0, 0.0, xtol);
 }
 
+bool events_surely_absent(const EventRow* evs, int n_ev, Phase& ph, const ExtremaScreen& sc, double h,
+                          const double* y0, const double* a0, const double* y1, const double* a1, double* ends) {
+    const int n = ph.n;
+    if (!(sc.tau == h) || !(sc.s > 0.0)) return false;
+    const double z = sc.z, beta = sc.beta, alpha = sc.alpha;
+    // (a tie's two thresholds share its held force and its bounds)
+    int tie = -1;
+    EventValue d0{}, d1{};
+    double d2 = 0.0, d4 = 0.0;
+    for (int i = 0; i < n_ev; ++i) {
+        const EventRow& e = evs[i];
+        EventValue e0, e1;
+        double g2, g4;  // bounds of the function's second and fourth derivatives over [0, h]
+        if (e.kind == KIND_STICK) {
+            if (e.side != tie) {
+                tie = e.side;
+                d0 = held_force(ph, tie, 0.0, y0, a0);
+                d1 = held_force(ph, tie, h, y1, a1);
+                // D = sum_k side_k m_k (au_k - a_k) (held_force), the table a line: au_k'' = -(M^-1 (K a + C a'))_k
+                // and au_k'''' = -(M^-1 (K a'' + C a'''))_k; |a_k| <= Z / s, |a_k'| <= Z, |a_k''| <= beta Z,
+                // |a_k'''| <= beta alpha Z, |a_k''''| <= beta alpha^2 Z (screen.hpp)
+                const Sticking& stk = ph.stk;
+                const char* side = &stk.side[static_cast<size_t>(stk.held_of[static_cast<size_t>(tie)] * n)];
+                d2 = d4 = 0.0;
+                for (int k = 0; k < n; ++k) {
+                    if (!side[k]) continue;
+                    const double m = std::abs(side[k] * ph.mass[static_cast<size_t>(k)]);
+                    const double kr = sc.kr[static_cast<size_t>(k)], cr = sc.cr[static_cast<size_t>(k)];
+                    d2 += m * ((kr / sc.s + cr) * z + beta * z);
+                    d4 += m * ((kr + cr * alpha) * beta * z + beta * alpha * alpha * z);
+                }
+            }
+            e0 = stick_value(e, d0);
+            e1 = stick_value(e, d1);
+            g2 = std::abs(e.beta) * d2;
+            g4 = std::abs(e.beta) * d4;
+        } else if (e.kind == KIND_LINEAR && !(e.side >= 0 && e.action == ACT_CONTACT && slot(ph, e.side).def0 > 0.0)) {
+            e0 = event_value(e, ph, 0.0, y0, a0);
+            e1 = event_value(e, ph, h, y1, a1);
+            const double times = e.j >= 0 ? 2.0 : 1.0;
+            g2 = times * (std::abs(e.beta) / sc.s + std::abs(e.gamma)) * z;
+            g4 = times * (std::abs(e.beta) + std::abs(e.gamma) * alpha) * beta * z;
+        } else {
+            return false;
+        }
+        // (y1 the motion at h give or take the shift: as the extrema's, accumulate.cpp)
+        const double off = sc.shift == 0.0 ? 0.0 : 2.0 * sc.shift * (std::abs(e1.gp) + g2 * (sc.shift + 0.15 * h));
+        const double scale = e0.scale + e1.scale;
+        if (!surely_within(e0.g, e0.gp, e1.g, e1.gp, h, g4, ROUNDING * scale + off, INF, scale)) return false;
+        double* end = ends + 3 * i;
+        end[0] = e1.g;
+        end[1] = e1.gp;
+        end[2] = e1.scale;
+    }
+    return true;
+}
+
 int bumper_events(const double* st, const Phase& ph, const System& sy, EventRow* evs, int n) {
     if (!sy.has_b) return n;
     const Layout& L = sy.lay;

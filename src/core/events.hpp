@@ -10,6 +10,7 @@
 
 #include "core.hpp"
 #include "phase.hpp"
+#include "screen.hpp"
 
 namespace pounding {
 
@@ -97,6 +98,14 @@ bool velocity_may_cross(const Phase& ph, int i, int j);
 // turns back inside) and the relative displacement there, from the sub-interval's ends; kept for the
 // sub-interval (a shorter end asked later reads the same zeros below it)
 const Phase::Zeros& velocity_zeros(Phase& ph, int i, int j);
+
+// whether no event can fire in (0, h] (a record's whole step taken at once, run.cpp), beyond any doubt: each
+// row's function, linear in the motion (a pair's alpha + beta dx + gamma dv, or a stick's held force), stays
+// above its rounding on the screen's bound (sc: its interval [0, h] made, screen.hpp; y1, a1 the motion at h
+// give or take sc.shift); a row of another kind, or a contact's relaxing surface, is not cleared.  ends: each
+// row's value, rate and scale at h (3 a row), written as it goes
+bool events_surely_absent(const EventRow* evs, int n_ev, Phase& ph, const ExtremaScreen& sc, double h,
+                          const double* y0, const double* a0, const double* y1, const double* a1, double* ends);
 
 // the contacts' event rows: appended from row n on, the new count returned
 int bumper_events(const double* st, const Phase& ph, const System& sy, EventRow* evs, int n);

@@ -24,6 +24,10 @@ using namespace run_parts;
 namespace {
 
 constexpr double SUBINTERVALS_PER_PERIOD = 8.0;
+// a record's step met at its knot by a phase faster than it, taken at once where the screen clears it (its end
+// the kept transition's, exact at any length): at most 1 / this of the phase's fastest period, so that the
+// series stays short where samples or a fallback ask for it
+constexpr double WHOLE_STEPS_PER_PERIOD = 2.5;
 constexpr int ZENO_REPEATS = 200;
 constexpr int64_t POLL_EVERY = 64;     // sub-intervals between two looks at the run control
 constexpr double RESOLUTION = 1e-9;    // relative to the run's scales: below it, a touch is no impact
@@ -282,6 +286,7 @@ struct RunWorkspace::Impl {
     std::vector<double> row;
     std::vector<EventRow> evs;
     std::vector<double> ev_end;
+    std::vector<double> ev_whole;  // (a whole step's ends, ev_end's once it is taken)
     std::vector<int> pair_i, pair_j;
     TransitionCache transitions;
     ExtremaScreen screen;  // (the present phase's)
@@ -358,6 +363,8 @@ struct Loop {
     double h_split = 0.0;
     int parts = 0, parts_left = 0;
     bool in_part = false;
+    bool whole = false;  // (this sub-interval the whole step, its parts' count set for a fallback)
+    int64_t wholes = 0;  // (the steps taken whole)
     bool at_knot = false;
     // this sub-interval's
     Piece pc{};
@@ -420,6 +427,7 @@ void fit_workspace(RunWorkspace::Impl& w, const System& sy) {
     if (w.evs.size() < rows) {
         w.evs.assign(rows, EventRow());
         w.ev_end.assign(3 * rows, 0.0);
+        w.ev_whole.assign(3 * rows, 0.0);
     }
 }
 
@@ -559,6 +567,7 @@ void next_subinterval(Loop& lp) {
     // full sub-intervals and a remainder that would take the phase's series; the m-th part ends at the knot.
     // Only a step as the record's times give it (within a few ulps of the clock): another span's parts would
     // each need a transition of their own, dearer than the series they spare
+    lp.whole = false;
     if (!lp.continuing || !lp.record) {
         lp.h_split = 0.0;
     } else if (lp.at_knot) {
@@ -569,10 +578,17 @@ void next_subinterval(Loop& lp) {
             const double m = std::ceil(span / h);
             lp.h_split = step / m;
             lp.parts = lp.parts_left = static_cast<int>(m);
+            // (tried at once first, where it would spare two parts or more: earliest takes it, or falls back to
+            // the parts; its screen costs about what a part does)
+            lp.whole = lp.opt.whole_steps && lp.opt.screen_extrema && lp.w.screen.on && ph.plain && m >= 3.0 &&
+                       span <= h * (SUBINTERVALS_PER_PERIOD / WHOLE_STEPS_PER_PERIOD);
         }
     }
-    lp.in_part = lp.h_split > 0.0 && lp.t_stop == pc.t_next;
-    if (lp.in_part) {
+    lp.in_part = lp.h_split > 0.0 && lp.t_stop == pc.t_next && !lp.whole;
+    if (lp.whole) {
+        lp.to_stop = true;
+        h = lp.t_stop - t;
+    } else if (lp.in_part) {
         lp.to_stop = lp.parts_left <= 1 || lp.h_split >= lp.t_stop - t;
         h = lp.to_stop ? lp.t_stop - t : lp.h_split;
     } else {
@@ -639,6 +655,73 @@ bool advance_to_end(Loop& lp) {
     return true;
 }
 
+// whether a record's whole step surely holds no event and no extremum but at its ends (the screen's bounds,
+// screen.hpp): then it is taken at once, its rows' values at its end kept
+bool whole_step_clear(Loop& lp) {
+    Phase& ph = lp.ph;
+    Buffers& b = lp.b;
+    ExtremaScreen& sc = lp.w.screen;
+    if (lp.tr == nullptr || !sc.on) return false;
+    sc.shift = std::abs(lp.tr->h - lp.h);
+    screen_interval(sc, ph, ph.y0.data(), b.a0.data(), b.y1.data(), lp.h);
+    // (the events first: a step they do not clear is the likelier)
+    if (!events_surely_absent(lp.w.evs.data(), lp.n_ev, ph, sc, lp.h, b.y0s.data(), b.a0.data(), b.y1.data(),
+                              b.a1.data(), lp.w.ev_whole.data()))
+        return false;
+    const Ends ends{ph.y0.data(), b.a0.data(), b.y1.data(), b.a1.data(), ph.sphi, ph.cphi, 0.0, 1.0};
+    if (!extrema_surely_inside(ph, lp.sy, lp.h, ends, lp.extrema, sc)) return false;
+    std::copy(lp.w.ev_whole.begin(), lp.w.ev_whole.begin() + 3 * lp.n_ev, lp.w.ev_end.begin());
+    return true;
+}
+
+// (the audit, for the tests: a whole step taken looked at on 31 inner instants of the phase's series, each event
+// row's function there below zero, or a dof's displacement, a tracked pair's or a free dof's absolute
+// acceleration beyond the extremes so far and the step's ends, counted in the screen's escapes)
+void audit_whole_step(Loop& lp) {
+    Phase& ph = lp.ph;
+    const Buffers& b = lp.b;
+    ExtremaScreen& sc = lp.w.screen;
+    const int n = lp.n;
+    constexpr double ROUNDED = 1e-12;  // (of the values' sizes: the series' own rounding)
+    constexpr int INSIDE = 32;
+    double* y = ph.ye.data();
+    double* a = ph.ae.data();
+    for (int k = 1; k < INSIDE; ++k) {
+        const double tk = lp.h * k / INSIDE;
+        phase_eval(ph, tk, y, a);
+        bool escaped = false;
+        for (int i = 0; i < lp.n_ev; ++i) {
+            const EventValue ev = event_value(lp.w.evs[static_cast<size_t>(i)], ph, tk, y, a);
+            escaped = escaped || ev.g < -ROUNDED * ev.scale;
+        }
+        auto beyond = [&](double v, double lo, double hi, double size) {
+            const double tol = ROUNDED * (size + std::abs(v)) + 1e-12 * ph.xround;
+            return v > hi + tol || v < lo - tol;
+        };
+        for (int i = 0; i < n; ++i) {
+            const double* ex = lp.extrema + DOF_EXTREMA * i;
+            const double x0 = ph.y0[static_cast<size_t>(i)], x1 = b.y1[static_cast<size_t>(i)];
+            escaped = escaped || beyond(y[i], std::min({ex[EX_D_MIN], x0, x1}), std::max({ex[EX_D_MAX], x0, x1}),
+                                        std::abs(x0) + std::abs(x1));
+            if (ph.stk.any && ph.stk.grp[static_cast<size_t>(i)] >= 0) continue;
+            const double aa = a[i] + table_on(ph, i, tk);
+            const double aa0 = b.a0[static_cast<size_t>(i)] + table_on(ph, i, 0.0);
+            const double aa1 = b.a1[static_cast<size_t>(i)] + table_on(ph, i, lp.h);
+            const double top = std::max({ex[EX_A_ABS_MAX], std::abs(aa0), std::abs(aa1)});
+            escaped = escaped || beyond(aa, -top, top, top);
+        }
+        for (int p = 0; p < lp.sy.n_track(); ++p) {
+            const double* ex = lp.extrema + DOF_EXTREMA * n + PAIR_EXTREMA * p;
+            const int i = lp.sy.track_i[static_cast<size_t>(p)], j = lp.sy.track_j[static_cast<size_t>(p)];
+            const double d0 = rel(ph.y0.data(), i, j), d1 = rel(b.y1.data(), i, j);
+            escaped = escaped || beyond(rel(y, i, j), std::min({ex[EX_D_MIN], d0, d1}),
+                                        std::max({ex[EX_D_MAX], d0, d1}), std::abs(d0) + std::abs(d1));
+        }
+        sc.audited += 1;
+        if (escaped) sc.escapes += 1;
+    }
+}
+
 // the earliest event inside the sub-interval (a velocity's zero cut first), the sub-interval ended there
 // (tau), and whether the same phase goes on after it (stopped at a record's knot, not at a relaxing law's
 // horizon or the end)
@@ -667,6 +750,27 @@ void earliest(Loop& lp) {
     ph.e_y1 = b.y1.data();
     ph.e_a1 = b.a1.data();
     ph.e_h = lp.h;
+    if (lp.whole && !whole_step_clear(lp)) {  // (the step in its parts: the first part's end)
+        lp.whole = false;
+        lp.in_part = true;
+        lp.to_stop = lp.parts_left <= 1 || lp.h_split >= lp.t_stop - lp.t;
+        lp.h = lp.to_stop ? lp.t_stop - lp.t : lp.h_split;
+        advance_to_end(lp);
+        ph.e_h = lp.h;
+    }
+    if (lp.whole) {
+        lp.wholes += 1;
+        if (lp.opt.audit_screen) audit_whole_step(lp);
+        lp.h_split = 0.0;
+        lp.tau = lp.h;
+        lp.i_ev = -1;
+        lp.turns_at_end = false;
+        lp.continuing = lp.record && lp.pc.t_next < std::min(lp.t_horizon, lp.opt.t_end);
+        const Angle end_angle = angle_at(ph, lp.pc.omega, lp.tau, lp.rot);
+        lp.s1 = end_angle.s;
+        lp.c1 = end_angle.c;
+        return;
+    }
     double cut = velocity_cuts(ph, lp.sy, lp.h, b, lp.w.pair_i.data(), lp.w.pair_j.data(), lp.n_pairs);
     // (the ends known where no velocity cut came first; the ties' turns at the start kept from the last
     // sub-interval's end where it went the whole way to this one's start, on the same piece of the table)
@@ -745,7 +849,7 @@ bool move_to_end(Loop& lp) {
     // within a few ulps of the clock; the screen widens its margin by how far y1 may be from the motion at tau)
     lp.w.screen.shift = lp.tr != nullptr ? std::abs(lp.tr->h - lp.tau) : 0.0;
     accumulate(ph, sy, st, lp.t, lp.tau, ends, lp.ledger, lp.extrema, b, lp.opt.with_energy, given,
-               lp.opt.screen_extrema ? &lp.w.screen : nullptr);
+               lp.opt.screen_extrema ? &lp.w.screen : nullptr, lp.whole);
     if (lp.opt.sample_dt > 0.0)
         samples_inside(ph, sy, lp.out.samples, lp.j_next, lp.opt.sample_dt, lp.t_run0, lp.t, lp.tau, lp.opt.t_end,
                        b);
@@ -858,6 +962,7 @@ void finish_run(Loop& lp) {
     lp.control.at(CTL_SERIES).fetch_add(lp.ph.series_made, std::memory_order_relaxed);
     lp.control.at(CTL_AUDITED).fetch_add(lp.w.screen.audited, std::memory_order_relaxed);
     lp.control.at(CTL_ESCAPES).fetch_add(lp.w.screen.escapes, std::memory_order_relaxed);
+    lp.control.at(CTL_WHOLE).fetch_add(lp.wholes, std::memory_order_relaxed);
     double kin1, iso1, bmp1;
     energies(st, lp.sy, kin1, iso1, bmp1);
     ledger[L_KINETIC] = kin1 - lp.kin0;

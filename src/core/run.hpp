@@ -23,6 +23,9 @@ struct RunOptions {
     // (the tests': each extremum the screen clears found all the same and held against its bound, the counts in
     // the run control's CTL_AUDITED and CTL_ESCAPES)
     bool audit_screen = false;
+    // a record's step whose parts the screen clears of every event and extremum taken at once, by one kept
+    // transition (run.cpp; false: in its parts, as the screen alone would)
+    bool whole_steps = true;
 };
 
 struct RunResult {

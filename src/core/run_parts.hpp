@@ -109,8 +109,13 @@ struct Given { bool have = false; double vcv = 0.0, gv = 0.0; };
 
 // the energy integrals, contact statistics and extrema of the sub-interval [t0, t0 + tau] of the phase
 // (screen: the phase's screen of its extrema, screen.hpp; nullptr for none)
+// whether no extremum accumulate looks for can lie inside [0, tau] but at its ends, beyond any doubt (the
+// screen's bound, screen.hpp; sc's interval made here): a record's whole step taken at once (run.cpp)
+bool extrema_surely_inside(const Phase& ph, const System& sy, double tau, const Ends& e, const double* extrema,
+                           ExtremaScreen& sc);
 void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, const Ends& e, double* ledger,
-                double* extrema, Buffers& b, bool with_energy, const Given& given, ExtremaScreen* screen);
+                double* extrema, Buffers& b, bool with_energy, const Given& given, ExtremaScreen* screen,
+                bool ends_only = false);
 
 // ---------------------------------------------------------------- the state at an event (jump.cpp)
 

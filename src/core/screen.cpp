@@ -103,7 +103,11 @@ Range hermite_range(double f0, double d0, double f1, double d1, double h, double
 bool surely_within(double f0, double d0, double f1, double d1, double h, double f4, double lo, double hi,
                    double scale) {
     if (!(h > 0.0) || !std::isfinite(f4)) return false;
-    const Range r = hermite_range(f0, d0, f1, d1, h, f4);
+    return surely_within(hermite_range(f0, d0, f1, d1, h, f4), lo, hi, scale);
+}
+
+bool surely_within(const Range& r, double lo, double hi, double scale) {
+    if (!std::isfinite(r.lo) || !std::isfinite(r.hi)) return false;
     const double margin = RELATIVE_MARGIN * r.size + SCALE_MARGIN * scale;
     return r.hi + margin <= hi && r.lo - margin >= lo;
 }

@@ -68,5 +68,7 @@ void audit_value(ExtremaScreen& sc, const Range& r, double off, double scale, do
 // most f4 inside, rounding relative to scale
 bool surely_within(double f0, double d0, double f1, double d1, double h, double f4, double lo, double hi,
                    double scale);
+// the same from the range (hermite_range's, over an h > 0 and a finite f4)
+bool surely_within(const Range& r, double lo, double hi, double scale);
 
 }  // namespace pounding

@@ -26,7 +26,8 @@ CTL_EVALS = 3    # evaluations of the trajectory at an instant inside a sub-inte
 CTL_SERIES = 4   # a linear phase's sub-intervals whose power series was made (the dearest part of their work)
 CTL_AUDITED = 5  # (the tests' audit of the extrema's screen: the extrema it cleared, found all the same)
 CTL_ESCAPES = 6  # (and those outside the range its bound gives)
-CTL_LEN = 7
+CTL_WHOLE = 7    # a record's steps taken whole (the screen cleared them of every event and extremum inside)
+CTL_LEN = 8
 DEFAULT_MAX_STEPS = 100_000_000  # about 1-3 minutes of one core
 
 

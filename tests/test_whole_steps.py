@@ -1,0 +1,204 @@
+"""A record's step taken whole (the core's ``run.cpp``, ``events.cpp`` and ``accumulate.cpp``): a step that a
+phase faster than it would cut into three parts or more is tried at once, by one kept transition, and taken so
+only where the screen (``screen.hpp``) proves from its ends that no event fires inside it and no extremum lies
+inside it beyond those so far; elsewhere it goes in its parts as before.  Its results are the parts' to
+rounding: every event and every extremum the parts find is found, at the same instant."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+import pounding as pd_
+from pounding import _core
+from pounding._control import CTL_AUDITED, CTL_ESCAPES, CTL_SERIES, CTL_WHOLE, new_control
+from pounding._core import run as run_kernel
+from pounding.engine.assembly import assemble
+from pounding.engine.simulate import kernel_forcing
+from strategies import buildings
+
+G = 9.80665
+
+
+def both(system, forcing, y0, t_end, sample_dt=0.0):
+    """The kernel's run taken whole where it may, and in parts: (outputs, control) for each.  The first is
+    audited (``audit_screen``): each step it took whole looked at on 31 inner instants, where no event's
+    function may be below zero and nothing tracked beyond its extremes so far; none is."""
+    runs = []
+    for whole in (True, False):
+        ctl = new_control(10**9)
+        runs.append((run_kernel(system, forcing, np.asarray(y0, dtype=float), t_end, sample_dt, 1e-10, 10**6,
+                                True, ctl, whole_steps=whole, audit_screen=whole), ctl))
+    ctl = runs[0][1]
+    assert ctl[CTL_ESCAPES] == 0, (int(ctl[CTL_ESCAPES]), int(ctl[CTL_AUDITED]), int(ctl[CTL_WHOLE]))
+    return runs
+
+
+def assert_alike(whole, parts, rtol=1e-9):
+    """The same events (kinds and elements; instants to rounding), extrema (values and instants), ledger and
+    end state to ``rtol`` of their sizes."""
+    assert whole.status == parts.status
+    assert whole.events.shape == parts.events.shape, (whole.events, parts.events)
+    np.testing.assert_array_equal(whole.events[:, 1:], parts.events[:, 1:])
+    np.testing.assert_allclose(whole.events[:, 0], parts.events[:, 0], rtol=0, atol=1e-9)
+    for name in ("extrema", "state", "ledger"):
+        a, b = getattr(whole, name), getattr(parts, name)
+        scale = np.nanmax(np.abs(b)) if np.size(b) else 0.0
+        np.testing.assert_allclose(a, b, rtol=rtol, atol=rtol * scale, err_msg=name)
+    assert whole.samples.shape == parts.samples.shape
+
+
+def sub_interval_s(system) -> float:
+    """A phase's sub-interval as the core sizes it (a period of its fastest rate over 8), from the system's
+    mass, stiffness and damping without its isolator's or contacts' stiffness."""
+    state = system.__getstate__()
+    m = np.asarray(state["mass"])
+    n = m.size
+    k, c = np.abs(np.reshape(state["k0"], (n, n))), np.abs(np.reshape(state["c0"], (n, n)))
+    scale = 1.0 / np.sqrt(np.outer(m, m))
+    kap, gam = (k * scale).sum(axis=1).max(), (c * scale).sum(axis=1).max()
+    rate = max(np.sqrt(kap + (0.5 * gam) ** 2), gam, 1e-300)
+    return 2.0 * np.pi / (8.0 * rate)
+
+
+@settings(max_examples=40, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(building=buildings(min_levels=2), ratio=st.floats(2.05, 3.15), seed=st.integers(0, 2**32 - 1),
+       pga=st.floats(0.5, 8.0), smooth=st.booleans(), sampled=st.booleans())
+def test_random_buildings_taken_whole_are_their_parts(building, ratio, seed, pga, smooth, sampled):
+    # random buildings (linear, bilinear and friction isolators; a wall of a linear law, a rigid stop or none)
+    # under a random record whose step is 2 to 3 of their phases' sub-intervals: the steps the screen clears
+    # are taken whole, and the run is the one in parts to rounding
+    system = assemble(building).system
+    dt = ratio * sub_interval_s(system)
+    t = dt * np.arange(int(4.0 / dt) + 2)
+    accel = np.random.default_rng(seed).normal(0.0, 1.0, t.size)
+    if smooth:
+        accel = np.convolve(accel, np.ones(5) / 5, mode="same")
+    rec = pd_.Record(t, accel * pga / max(np.abs(accel).max(), 1e-12))
+    y0 = pd_.State.at_rest(building).vector
+    (whole, _), (parts, _) = both(system, kernel_forcing(rec), y0, t[-1], 0.01 if sampled else 0.0)
+    assert_alike(whole, parts)
+
+
+def test_most_steps_of_a_sliding_building_under_a_record_are_taken_whole():
+    # a 4-level building on a friction pendulum under El Centro (its step 2.3 of the phases' sub-intervals):
+    # most steps are taken whole, the series is made less often, and the results are the parts'
+    iso = pd_.FrictionIsolator(mu=0.06, radius_m=2.2)
+    building = pd_.Structure(3.0e4, iso, [pd_.Storey(2.0e4, 4.0e7, 4.0e4)] * 3, [])
+    rec = pd_.records.el_centro().scaled(pga_g=0.6)
+    system, forcing, y0 = assemble(building).system, kernel_forcing(rec), pd_.State.at_rest(building).vector
+    (whole, ctl_w), (parts, ctl_p) = both(system, forcing, y0, rec.duration_s)
+    assert_alike(whole, parts)
+    steps = rec.t.size - 1
+    assert ctl_w[CTL_WHOLE] > steps / 2 and ctl_p[CTL_WHOLE] == 0, (ctl_w[CTL_WHOLE], steps)
+    ctl = new_control(10**9)  # (not audited: the audit makes the series it looks at the steps on)
+    run_kernel(system, forcing, np.array(y0), rec.duration_s, 0.0, 1e-10, 10**6, True, ctl)
+    assert ctl[CTL_SERIES] < ctl_p[CTL_SERIES], (ctl[CTL_SERIES], ctl_p[CTL_SERIES])
+    assert len(whole.events) > 50  # (sticks and slips throughout)
+
+
+def _free_vibration(mu, wall_gap_m=None, peak_at=0.5, excess=1e-3, damping_n_s_m=0.0, steps=12):
+    """Two levels of 20 t on a flat slider of friction coefficient ``mu``, stuck, a storey of 4e7 N/m (its
+    dashpot ``damping_n_s_m``) between them: the upper level in free vibration under a zero record of
+    ``steps`` steps, each 0.2 of its period (about 2.3 of the phases' sub-intervals: three parts), from a zero
+    crossing, so that its first peak falls at ``peak_at`` of the second step.  The amplitude puts that peak
+    ``excess`` (relative) beyond the slider's friction force mu W (a stick's end), or beyond the gap to a wall
+    at the upper level (a contact); the cubic through the step's ends falls short of it by about 1 %.
+    (system, forcing, y0, t_end, the peak's instant, the step)."""
+    storey = pd_.Storey(2.0e4, 4.0e7, damping_n_s_m)
+    w = np.sqrt(storey.stiffness_n_m / storey.mass_kg)
+    period = 2.0 * np.pi / w
+    dt = 0.2 * period
+    t_peak = (1.0 + peak_at) * dt
+    t0 = t_peak - 0.25 * period
+    if wall_gap_m is None:
+        amplitude = mu * 4.0e4 * G / storey.stiffness_n_m * (1.0 + excess)
+        walls = []
+    else:
+        amplitude = wall_gap_m * (1.0 + excess)
+        walls = [pd_.Wall(1, wall_gap_m, wall_gap_m, pd_.KelvinVoigt(1e8, 0.0))]
+    building = pd_.Structure(2.0e4, pd_.FrictionIsolator(mu=mu, radius_m=None), [storey], walls)
+    system = assemble(building).system
+    t = dt * np.arange(steps)
+    forcing = kernel_forcing(pd_.Record(t, np.zeros(t.size)))
+    y0 = np.array(pd_.State.at_rest(building, time_s=t0).vector)
+    y0[system.layout["v"] + 1] = amplitude * w  # (the upper level at 0 at t0, on its way to the peak)
+    return system, forcing, y0, t[-1], t_peak, dt
+
+
+@pytest.mark.parametrize("peak_at", [0.3, 0.5, 0.7])
+def test_a_stick_whose_force_peaks_inside_a_step_ends_there(peak_at):
+    # a building stuck on a flat slider, its upper level swinging: the force the slider needs to hold peaks
+    # 1e-3 beyond mu W inside a step the cubic through its ends shows 1 % below it; the step is not taken
+    # whole, and the slip starts where the parts find it (without the bound on the force's fourth derivative
+    # the step is taken whole and the slip missed)
+    system, forcing, y0, t_end, t_peak, dt = _free_vibration(0.05, peak_at=peak_at)
+    (whole, _), (parts, _) = both(system, forcing, y0, t_end)
+    assert len(parts.events) >= 1 and abs(parts.events[0, 0] - t_peak) < 0.05 * dt, (parts.events, t_peak)
+    assert_alike(whole, parts)
+    # the same with mu W 5 % beyond the peak and the swing damped: no slip, and most steps taken whole (the
+    # peaks, each below the last, cleared)
+    system, forcing, y0, t_end, _, _ = _free_vibration(0.05, peak_at=peak_at, excess=-0.05, damping_n_s_m=4e4,
+                                                       steps=30)
+    (held, ctl), _ = both(system, forcing, y0, t_end)
+    assert len(held.events) == 0 and ctl[CTL_WHOLE] >= 15, (held.events, ctl[CTL_WHOLE])
+
+
+@pytest.mark.parametrize("peak_at", [0.3, 0.5, 0.7])
+def test_a_wall_reached_inside_a_step_is_struck_there(peak_at):
+    # the same building held on its slider, its upper level swinging 1e-3 beyond the gap to a wall inside a
+    # step the cubic through its ends shows 1 % short of it: the step is not taken whole, and the contact
+    # starts where the parts find it (without the bound on the gap's fourth derivative the contact is missed)
+    # (the swing lightly damped: each peak a little lower than the last, none tying another to rounding)
+    system, forcing, y0, t_end, t_peak, dt = _free_vibration(0.3, wall_gap_m=0.002, peak_at=peak_at,
+                                                             damping_n_s_m=500.0)
+    (whole, _), (parts, _) = both(system, forcing, y0, t_end)
+    assert len(parts.contacts) >= 1, parts.contacts
+    assert abs(parts.contacts[0, 1] - t_peak) < 0.05 * dt, (parts.contacts, t_peak)
+    assert_alike(whole, parts)
+    np.testing.assert_allclose(whole.contacts, parts.contacts, rtol=1e-9, atol=1e-12)
+    system, forcing, y0, t_end, _, _ = _free_vibration(0.3, wall_gap_m=0.002, peak_at=peak_at, excess=-0.05,
+                                                       damping_n_s_m=4e4, steps=30)
+    (clear, ctl), _ = both(system, forcing, y0, t_end)
+    assert len(clear.contacts) == 0 and ctl[CTL_WHOLE] >= 15, (clear.contacts, ctl[CTL_WHOLE])
+
+
+def test_peaks_that_pass_the_largest_by_a_hair_inside_whole_steps_are_each_found():
+    # a building on a soft, damped rubber bearing with a stiff light storey, in its steady response to a
+    # sampled 0.5 Hz sine growing by 1e-9 a second, its step 2.5 of the storey's sub-intervals: every period's
+    # peak of the base passes the largest so far by about 1e-9 of it, inside a step; the steps holding one are
+    # not taken whole, most others are, and the largest and its instant are the parts' (with no bound on the
+    # displacement's fourth derivative the largest is a period or more late)
+    building = pd_.Structure(2.0e4, pd_.Isolator((2.0e5,), damping_n_s_m=2.5e4),
+                             [pd_.Storey(2.0e3, 8.0e6, 2.0e3)], [])
+    system = assemble(building).system
+    dt = 2.5 * sub_interval_s(system)
+    period = round(2.0 / dt) * dt  # (a whole number of steps: every period's samples the same)
+    t = dt * np.arange(int(200.0 / dt) + 2)
+    rec = pd_.Record(t, 2.0 * (1.0 + 1e-9 * t) * np.sin(2.0 * np.pi * t / period))
+    forcing = kernel_forcing(rec)
+    y0 = np.array(pd_.State.at_rest(building).vector)
+    start = run_kernel(system, forcing, y0, 100.0, 0.0, 1e-10, 10**6, True, new_control(10**9)).state
+    (whole, ctl_w), (parts, _) = both(system, forcing, start, t[-1])
+    assert_alike(whole, parts, rtol=1e-12)
+    assert whole.extrema[1] > t[-1] - period, whole.extrema[:2]  # (the largest in the last period)
+    steps = int((t[-1] - 100.0) / dt)
+    assert steps / 5 < ctl_w[CTL_WHOLE] < steps, (ctl_w[CTL_WHOLE], steps)
+
+
+def test_the_door_takes_whole_steps_only_where_asked():
+    # whole_steps=False at the core's door: no step taken whole; the screen's own off (screen_extrema=False)
+    # takes none either
+    iso = pd_.FrictionIsolator(mu=0.06, radius_m=2.2)
+    building = pd_.Structure(3.0e4, iso, [pd_.Storey(2.0e4, 4.0e7, 4.0e4)] * 3, [])
+    rec = pd_.records.el_centro().scaled(pga_g=0.6)
+    system, forcing, y0 = assemble(building).system, kernel_forcing(rec), pd_.State.at_rest(building).vector
+    counts = []
+    for options in ({}, {"whole_steps": False}, {"screen_extrema": False}):
+        ctl = new_control(10**9)
+        run_kernel(system, forcing, np.array(y0), 5.0, 0.0, 1e-10, 10**6, True, ctl, **options)
+        counts.append(int(ctl[CTL_WHOLE]))
+    assert counts[0] > 0 and counts[1:] == [0, 0], counts
+    assert _core.LAYOUT["CTL_WHOLE"] == CTL_WHOLE
