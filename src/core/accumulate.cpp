@@ -546,7 +546,10 @@ bool extrema_surely_inside(const Phase& ph, const System& sy, double tau, const 
         if (v0 * v1 > 0.0) {
             const double times = j >= 0 ? 2.0 : 1.0;
             const double a0 = rel(e.a0, i, j), a1 = rel(e.a1, i, j);
-            const double off = s.shift == 0.0 ? 0.0 : 2.0 * s.shift * (std::abs(a1) + times * s.z * (s.shift + 0.15 * tau));
+            // (a1 read with the table at tau: off by its slope over the shift, for a level against the ground)
+            const double slope = j >= 0 ? 0.0 : std::abs(ph.ax1);
+            const double off =
+                s.shift == 0.0 ? 0.0 : 2.0 * s.shift * (std::abs(a1) + (times * s.z + slope) * (s.shift + 0.15 * tau));
             const Screened sv{hermite_range(v0, a0, v1, a1, tau, times * s.beta * s.alpha * s.z), off};
             if (v0 > 0.0 ? range_within(sv, 0.0, INF, s.vscale) : range_within(sv, -INF, 0.0, s.vscale)) return true;
         }

@@ -530,22 +530,24 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
                     double gp1, double tol1, double xtol) {
     double* y = ph.ye.data();
     double* a = ph.ae.data();
-    // a slip's end, the slip from rest: its velocity starts at zero the way it slips, its acceleration zero but
-    // for the rounding (its force at the threshold), whose sign says nothing; where the run's velocity scale
-    // is below that rounding (a free vibration: no table), the polynomial's dip right at the start on it
-    // would be taken for the slip's end at once.  The sub-interval is looked at from where it already moves
-    // the way it starts (velocity_zeros does the same)
+    // a slip's end, the slip from rest: its velocity starts at zero the way it slips (g0's sign), its
+    // acceleration zero but for the rounding (its force at the threshold), whose sign says nothing.  Where
+    // that rounding points back, the polynomial dips right at the start, and where the run's velocity scale is
+    // below the dip (a free vibration, a table of next to nothing) the dip would be taken for the slip's end
+    // at once.  The sub-interval is then looked at from where its velocity already has the slip's sign
+    // (velocity_zeros does the same), moving: no longer at the boundary
     double t_lo = 0.0;
     const EventRow& row = evs[i];
-    if (row.side == SIDE_VELOCITY && row.kind == KIND_LINEAR && row.gamma != 0.0 && g0 > tol0 &&
-        rel(ph.y0.data() + ph.n, row.i, row.j) == 0.0 && gp0 * g0 <= 0.0) {
+    if (row.side == SIDE_VELOCITY && row.kind == KIND_LINEAR && row.gamma != 0.0 && g0 != 0.0 &&
+        gp0 * g0 <= 0.0 && rel(ph.y0.data() + ph.n, row.i, row.j) == 0.0) {
         for (double tp = 0.5 * h; tp > 1e-12 * h; tp *= 0.5) {
             phase_eval(ph, tp, y, a);
             const EventValue ev = event_value(row, ph, tp, y, a);
-            if (ev.g > tol0) {
+            if (ev.g != 0.0 && (ev.g < 0.0) == (g0 < 0.0)) {
                 t_lo = tp;
                 g0 = ev.g;
                 gp0 = ev.gp;
+                tol0 = 0.0;
                 break;
             }
         }
@@ -646,11 +648,14 @@ bool events_surely_absent(const EventRow* evs, int n_ev, Phase& ph, const Extrem
     // (a tie's two thresholds share its held force and its bounds)
     int tie = -1;
     EventValue d0{}, d1{};
-    double d2 = 0.0, d4 = 0.0;
+    double d2 = 0.0, d4 = 0.0, table = 0.0;  // (table: how fast the tie's force moves with the table's line)
     for (int i = 0; i < n_ev; ++i) {
         const EventRow& e = evs[i];
         EventValue e0, e1;
         double g2, g4;  // bounds of the function's second and fourth derivatives over [0, h]
+        // (its end's value and rate read with the table at h, not at the instant y1 is the motion at: off by
+        // these times the shift)
+        double value_slope, rate_slope;
         if (e.kind == KIND_STICK) {
             if (e.side != tie) {
                 tie = e.side;
@@ -662,29 +667,42 @@ bool events_surely_absent(const EventRow* evs, int n_ev, Phase& ph, const Extrem
                 const Sticking& stk = ph.stk;
                 const char* side = &stk.side[static_cast<size_t>(stk.held_of[static_cast<size_t>(tie)] * n)];
                 d2 = d4 = 0.0;
+                table = 0.0;
                 for (int k = 0; k < n; ++k) {
                     if (!side[k]) continue;
                     const double m = std::abs(side[k] * ph.mass[static_cast<size_t>(k)]);
                     const double kr = sc.kr[static_cast<size_t>(k)], cr = sc.cr[static_cast<size_t>(k)];
-                    d2 += m * ((kr / sc.s + cr) * z + beta * z);
-                    d4 += m * ((kr + cr * alpha) * beta * z + beta * alpha * alpha * z);
+                    // (a dof held on the ground: a_k is zero throughout)
+                    const int g = stk.grp[static_cast<size_t>(k)];
+                    const bool still = g >= 0 && stk.grounded[static_cast<size_t>(g)];
+                    d2 += m * ((kr / sc.s + cr) * z + (still ? 0.0 : beta * z));
+                    d4 += m * ((kr + cr * alpha) * beta * z + (still ? 0.0 : beta * alpha * alpha * z));
+                    table += m;
                 }
+                table *= std::abs(ph.ax1);
             }
             e0 = stick_value(e, d0);
             e1 = stick_value(e, d1);
             g2 = std::abs(e.beta) * d2;
             g4 = std::abs(e.beta) * d4;
+            value_slope = std::abs(e.beta) * table;
+            rate_slope = 0.0;
         } else if (e.kind == KIND_LINEAR && !(e.side >= 0 && e.action == ACT_CONTACT && slot(ph, e.side).def0 > 0.0)) {
             e0 = event_value(e, ph, 0.0, y0, a0);
             e1 = event_value(e, ph, h, y1, a1);
             const double times = e.j >= 0 ? 2.0 : 1.0;
             g2 = times * (std::abs(e.beta) / sc.s + std::abs(e.gamma)) * z;
             g4 = times * (std::abs(e.beta) + std::abs(e.gamma) * alpha) * beta * z;
+            value_slope = 0.0;
+            rate_slope = e.j >= 0 ? 0.0 : std::abs(e.gamma * ph.ax1);
         } else {
             return false;
         }
-        // (y1 the motion at h give or take the shift: as the extrema's, accumulate.cpp)
-        const double off = sc.shift == 0.0 ? 0.0 : 2.0 * sc.shift * (std::abs(e1.gp) + g2 * (sc.shift + 0.15 * h));
+        // (y1 the motion at h give or take the shift: as the extrema's, accumulate.cpp; the end's value and rate
+        // read with the table at h, off by its slope over the shift)
+        const double off = sc.shift == 0.0 ? 0.0
+                                           : 2.0 * sc.shift * (std::abs(e1.gp) + value_slope +
+                                                               (g2 + rate_slope) * (sc.shift + 0.15 * h));
         const double scale = e0.scale + e1.scale;
         if (!surely_within(e0.g, e0.gp, e1.g, e1.gp, h, g4, ROUNDING * scale + off, INF, scale)) return false;
         double* end = ends + 3 * i;
