@@ -875,9 +875,8 @@ bool move_to_end(Loop& lp) {
 
 // a stick whose force touched mu W without passing it (to rounding): the slip it began came back to rest
 // before any other event, its element moved no more than the rounding of the run's lengths, and it sticks
-// again; neither is an event (the slip's row, and its sample where none came after it, are taken back; the
-// samples within it show the element held), so that a table whose force peaks at mu W leaves no slips of no
-// length
+// again; neither is an event (the slip's row and its sample are taken back; the samples within it show the
+// element held), so that a table whose force peaks at mu W leaves no slips of no length
 bool touched_mu_w(Loop& lp, int e) {
     const Loop::Touch& t = lp.touch;
     Rows& events = lp.out.events;
@@ -887,11 +886,16 @@ bool touched_mu_w(Loop& lp, int e) {
     events.n -= 1;
     iso_hold_at(lp.sy, e, t.u, lp.st + lp.L.x, lp.st + lp.L.v);
     std::copy(t.springs.begin(), t.springs.end(), lp.st + lp.L.base + lp.sy.hyst[static_cast<size_t>(e)].first);
-    for (int64_t r = t.samples; r < lp.out.samples.n; ++r) {
-        double* row = lp.out.samples.row(r);
+    Rows& samples = lp.out.samples;
+    for (int64_t r = t.samples; r < samples.n; ++r) {
+        double* row = samples.row(r);
         iso_hold_at(lp.sy, e, t.u, row + 1, row + 1 + lp.sy.n);
     }
-    if (t.sampled && lp.out.samples.n == t.samples) lp.out.samples.n -= 1;
+    if (t.sampled && t.samples >= 1 && t.samples <= samples.n) {  // (the slip's own sample out, those after it up)
+        for (int64_t r = t.samples; r < samples.n; ++r)
+            std::copy(samples.row(r), samples.row(r) + samples.cols, samples.row(r - 1));
+        samples.n -= 1;
+    }
     return true;
 }
 
