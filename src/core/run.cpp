@@ -598,6 +598,46 @@ void next_subinterval(Loop& lp) {
     lp.h = h;
 }
 
+// the sub-interval's start with the signs its sign tests take (b.y0s): a start at rest moves the way its
+// acceleration points, the velocity taken as the smallest of that sign; a friction slip from rest moves the
+// way it slips (its force starts at the threshold, where the pair's acceleration is zero but for the
+// rounding, whose sign says nothing)
+inline void start_signs(Loop& lp) {
+    const Phase& ph = lp.ph;
+    Buffers& b = lp.b;
+    const int n = lp.n;
+    for (int q = 0; q < 2 * n; ++q) b.y0s[static_cast<size_t>(q)] = ph.y0[static_cast<size_t>(q)];
+    for (int i = 0; i < n; ++i)
+        if (b.y0s[static_cast<size_t>(n + i)] == 0.0 && b.a0[static_cast<size_t>(i)] != 0.0)
+            b.y0s[static_cast<size_t>(n + i)] = std::copysign(TINY_SPEED, b.a0[static_cast<size_t>(i)]);
+    for (const int e : lp.sy.ties) {
+        const Hysteretic& hy = lp.sy.hyst[static_cast<size_t>(e)];
+        const double s = lp.st[lp.sy.lay.region + e];
+        if (s == 0.0 || rel(ph.y0.data() + n, hy.i, hy.j) != 0.0) continue;
+        b.y0s[static_cast<size_t>(n + hy.i)] = (hy.j >= 0 ? b.y0s[static_cast<size_t>(n + hy.j)] : 0.0) + s * TINY_SPEED;
+    }
+}
+
+// whether a record's whole step surely holds no event and no extremum but at its ends (the screen's bounds,
+// screen.hpp): then it is taken at once, its rows' values at its end kept
+[[gnu::noinline]] bool whole_step_clear(Loop& lp) {
+    Phase& ph = lp.ph;
+    Buffers& b = lp.b;
+    ExtremaScreen& sc = lp.w.screen;
+    if (lp.tr == nullptr || !sc.on) return false;
+    start_signs(lp);
+    sc.shift = std::abs(lp.tr->h - lp.h);
+    screen_interval(sc, ph, ph.y0.data(), b.a0.data(), b.y1.data(), lp.h);
+    // (the events first: a step they do not clear is the likelier)
+    if (!events_surely_absent(lp.w.evs.data(), lp.n_ev, ph, sc, lp.h, b.y0s.data(), b.a0.data(), b.y1.data(),
+                              b.a1.data(), lp.w.ev_whole.data()))
+        return false;
+    const Ends ends{ph.y0.data(), b.a0.data(), b.y1.data(), b.a1.data(), ph.sphi, ph.cphi, 0.0, 1.0};
+    if (!extrema_surely_inside(ph, lp.sy, lp.h, ends, lp.extrema, sc)) return false;
+    std::copy(lp.w.ev_whole.begin(), lp.w.ev_whole.begin() + 3 * lp.n_ev, lp.w.ev_end.begin());
+    return true;
+}
+
 // the state at the sub-interval's end: by the phase's kept transition (a full sub-interval, or a record's
 // whole step), its series, or a numerical step (a nonlinear phase; false when it failed)
 bool advance_to_end(Loop& lp) {
@@ -605,7 +645,7 @@ bool advance_to_end(Loop& lp) {
     Buffers& b = lp.b;
     const int n = lp.n;
     lp.tr = nullptr;
-    if (!ph.numeric) {
+    while (!ph.numeric) {  // (once; twice where a whole step is not cleared: its first part then)
         ph.tc_ok = false;  // (the series: made when first asked for)
         ph.series_h = lp.h;
         // (computed the first time, the same numbers every time: a run's path never depends on what an
@@ -638,7 +678,13 @@ bool advance_to_end(Loop& lp) {
             lin_eval(ph, lp.h, b.y1.data(), b.a1.data());
             ph.evaluations -= 1;  // (the end of the sub-interval: not an evaluation inside it)
         }
-        return true;
+        if (!lp.whole || whole_step_clear(lp)) return true;
+        // (the step in its parts, as without the screen: the first part's end)
+        lp.whole = false;
+        lp.in_part = true;
+        lp.to_stop = lp.parts_left <= 1 || lp.h_split >= lp.t_stop - lp.t;
+        lp.h = lp.to_stop ? lp.t_stop - lp.t : lp.h_split;
+        lp.tr = nullptr;
     }
     const NumStep ns = numeric_step(ph, lp.h, lp.h_num, lp.opt.rtol, lp.t);
     lp.h = ns.h;
@@ -655,29 +701,10 @@ bool advance_to_end(Loop& lp) {
     return true;
 }
 
-// whether a record's whole step surely holds no event and no extremum but at its ends (the screen's bounds,
-// screen.hpp): then it is taken at once, its rows' values at its end kept
-bool whole_step_clear(Loop& lp) {
-    Phase& ph = lp.ph;
-    Buffers& b = lp.b;
-    ExtremaScreen& sc = lp.w.screen;
-    if (lp.tr == nullptr || !sc.on) return false;
-    sc.shift = std::abs(lp.tr->h - lp.h);
-    screen_interval(sc, ph, ph.y0.data(), b.a0.data(), b.y1.data(), lp.h);
-    // (the events first: a step they do not clear is the likelier)
-    if (!events_surely_absent(lp.w.evs.data(), lp.n_ev, ph, sc, lp.h, b.y0s.data(), b.a0.data(), b.y1.data(),
-                              b.a1.data(), lp.w.ev_whole.data()))
-        return false;
-    const Ends ends{ph.y0.data(), b.a0.data(), b.y1.data(), b.a1.data(), ph.sphi, ph.cphi, 0.0, 1.0};
-    if (!extrema_surely_inside(ph, lp.sy, lp.h, ends, lp.extrema, sc)) return false;
-    std::copy(lp.w.ev_whole.begin(), lp.w.ev_whole.begin() + 3 * lp.n_ev, lp.w.ev_end.begin());
-    return true;
-}
-
 // (the audit, for the tests: a whole step taken looked at on 31 inner instants of the phase's series, each event
 // row's function there below zero, or a dof's displacement, a tracked pair's or a free dof's absolute
 // acceleration beyond the extremes so far and the step's ends, counted in the screen's escapes)
-void audit_whole_step(Loop& lp) {
+[[gnu::noinline]] void audit_whole_step(Loop& lp) {
     Phase& ph = lp.ph;
     const Buffers& b = lp.b;
     ExtremaScreen& sc = lp.w.screen;
@@ -730,35 +757,14 @@ void earliest(Loop& lp) {
     Buffers& b = lp.b;
     const int n = lp.n;
     if (!lp.continuing) lp.n_ev = phase_events(ph, lp.st, lp.sy, lp.w.evs.data());  // (until one fires)
-    // a start at rest moves the way its acceleration points: the sign tests take the velocity as the
-    // smallest of that sign
-    for (int q = 0; q < 2 * n; ++q) b.y0s[static_cast<size_t>(q)] = ph.y0[static_cast<size_t>(q)];
-    for (int i = 0; i < n; ++i)
-        if (b.y0s[static_cast<size_t>(n + i)] == 0.0 && b.a0[static_cast<size_t>(i)] != 0.0)
-            b.y0s[static_cast<size_t>(n + i)] = std::copysign(TINY_SPEED, b.a0[static_cast<size_t>(i)]);
-    // a friction slip from rest moves the way it slips: its force starts at the threshold, where the pair's
-    // acceleration is zero but for the rounding, whose sign says nothing
-    for (const int e : lp.sy.ties) {
-        const Hysteretic& hy = lp.sy.hyst[static_cast<size_t>(e)];
-        const double s = lp.st[lp.sy.lay.region + e];
-        if (s == 0.0 || rel(ph.y0.data() + n, hy.i, hy.j) != 0.0) continue;
-        b.y0s[static_cast<size_t>(n + hy.i)] = (hy.j >= 0 ? b.y0s[static_cast<size_t>(n + hy.j)] : 0.0) + s * TINY_SPEED;
-    }
+    start_signs(lp);
     ph.zeros.clear();
     ph.e_y0 = b.y0s.data();
     ph.e_a0 = b.a0.data();
     ph.e_y1 = b.y1.data();
     ph.e_a1 = b.a1.data();
     ph.e_h = lp.h;
-    if (lp.whole && !whole_step_clear(lp)) {  // (the step in its parts: the first part's end)
-        lp.whole = false;
-        lp.in_part = true;
-        lp.to_stop = lp.parts_left <= 1 || lp.h_split >= lp.t_stop - lp.t;
-        lp.h = lp.to_stop ? lp.t_stop - lp.t : lp.h_split;
-        advance_to_end(lp);
-        ph.e_h = lp.h;
-    }
-    if (lp.whole) {
+    if (lp.whole) {  // (a whole step the screen cleared, advance_to_end: no event inside)
         lp.wholes += 1;
         if (lp.opt.audit_screen) audit_whole_step(lp);
         lp.h_split = 0.0;
