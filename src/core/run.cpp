@@ -578,8 +578,8 @@ void next_subinterval(Loop& lp) {
             const double m = std::ceil(span / h);
             lp.h_split = step / m;
             lp.parts = lp.parts_left = static_cast<int>(m);
-            // (tried at once first, where it would spare two parts or more: earliest takes it, or falls back to
-            // the parts; its screen costs about what a part does)
+            // (tried at once first, where it would spare two parts or more: advance_to_end takes it where the
+            // screen clears it, or goes on with the first part; the screen costs about what a part does)
             lp.whole = lp.opt.whole_steps && lp.opt.screen_extrema && lp.w.screen.on && ph.plain && m >= 3.0 &&
                        span <= h * (SUBINTERVALS_PER_PERIOD / WHOLE_STEPS_PER_PERIOD);
         }
