@@ -138,8 +138,8 @@ def _free_vibration(mu, wall_gap_m=None, peak_at=0.5, excess=1e-3, damping_n_s_m
 def test_a_stick_whose_force_peaks_inside_a_step_ends_there(peak_at):
     # a building stuck on a flat slider, its upper level swinging: the force the slider needs to hold peaks
     # 1e-3 beyond mu W inside a step the cubic through its ends shows 1 % below it; the step is not taken
-    # whole, and the slip starts where the parts find it (without the bound on the force's fourth derivative
-    # the step is taken whole and the slip missed)
+    # whole, and the slip starts where the parts find it (the swing's own peak, a new largest, keeps that
+    # step in parts too; in the stuck building under a table below, only the events' bound does)
     system, forcing, y0, t_end, t_peak, dt = _free_vibration(0.05, peak_at=peak_at)
     (whole, _), (parts, _) = both(system, forcing, y0, t_end)
     assert len(parts.events) >= 1 and abs(parts.events[0, 0] - t_peak) < 0.05 * dt, (parts.events, t_peak)
@@ -156,8 +156,8 @@ def test_a_stick_whose_force_peaks_inside_a_step_ends_there(peak_at):
 def test_a_wall_reached_inside_a_step_is_struck_there(peak_at):
     # the same building held on its slider, its upper level swinging 1e-3 beyond the gap to a wall inside a
     # step the cubic through its ends shows 1 % short of it: the step is not taken whole, and the contact
-    # starts where the parts find it (without the bound on the gap's fourth derivative the contact is missed)
-    # (the swing lightly damped: each peak a little lower than the last, none tying another to rounding)
+    # starts where the parts find it (as above, the swing's new largest keeps that step in parts too; the
+    # swing lightly damped: each peak a little lower than the last, none tying another to rounding)
     system, forcing, y0, t_end, t_peak, dt = _free_vibration(0.3, wall_gap_m=0.002, peak_at=peak_at,
                                                              damping_n_s_m=500.0)
     (whole, _), (parts, _) = both(system, forcing, y0, t_end)
@@ -210,8 +210,9 @@ def test_peaks_that_pass_the_largest_by_a_hair_inside_whole_steps_are_each_found
     # a building on a soft, damped rubber bearing with a stiff light storey, in its steady response to a
     # sampled 0.5 Hz sine growing by 1e-9 a second, its step 2.5 of the storey's sub-intervals: every period's
     # peak of the base passes the largest so far by about 1e-9 of it, inside a step; the steps holding one are
-    # not taken whole, most others are, and the largest and its instant are the parts' (with no bound on the
-    # displacement's fourth derivative the largest is a period or more late)
+    # not taken whole, most others are, and the largest and its instant are the parts' (the displacement's
+    # bound and the absolute acceleration's each refuse those steps: with either alone left out, the other
+    # still does)
     building = pd_.Structure(2.0e4, pd_.Isolator((2.0e5,), damping_n_s_m=2.5e4),
                              [pd_.Storey(2.0e3, 8.0e6, 2.0e3)], [])
     system = assemble(building).system
