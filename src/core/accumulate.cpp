@@ -302,7 +302,7 @@ ScreenedAcc abs_acceleration_range(const ExtremaScreen& s, const Phase& ph, doub
 // each dof's displacement extrema and each tracked pair's (a storey's drift), at the velocity's zeros and the
 // ends (none inside where the screen clears it); each contact in progress's deepest compression
 void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, double tau, const Ends& e,
-                          double* extrema, ExtremaScreen* sc) {
+                          double* extrema, ExtremaScreen* sc, bool inside) {
     const int n = ph.n;
     const Layout& L = sy.lay;
     // whether the pair (i, j) may be extreme inside: its velocity may cross zero there (where no event of the
@@ -330,7 +330,7 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
         double* ex = extrema + DOF_EXTREMA * i;
         track_displacement(ex, t0, e.y0[i]);
         track_displacement(ex, t0 + tau, e.y1[i]);
-        if (!may_be_extreme(i, GROUND, ex)) continue;
+        if (!inside || !may_be_extreme(i, GROUND, ex)) continue;
         const Phase::Zeros& z = velocity_zeros(ph, i, GROUND);
         for (int k = 0; k < z.count; ++k)
             if (z.t[k] < tau) track_displacement(ex, t0 + z.t[k], z.x[k]);
@@ -341,7 +341,7 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
         const int i = sy.track_i[static_cast<size_t>(p)], j = sy.track_j[static_cast<size_t>(p)];
         track_displacement(ex, t0, rel(e.y0, i, j));
         track_displacement(ex, t0 + tau, rel(e.y1, i, j));
-        if (!may_be_extreme(i, j, ex)) continue;
+        if (!inside || !may_be_extreme(i, j, ex)) continue;
         const Phase::Zeros& z = velocity_zeros(ph, i, j);
         for (int k = 0; k < z.count; ++k)
             if (z.t[k] < tau) track_displacement(ex, t0 + z.t[k], z.x[k]);
@@ -433,7 +433,7 @@ void held_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, 
 // a free dof's: a linear phase's at the ends and where its polynomial's rate changes sign (skipped when the
 // polynomial's bound is below the largest so far), a nonlinear one's where the numerical rate does
 void free_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, const Ends& e, bool linear,
-                           Buffers& b, ExtremaScreen* sc) {
+                           Buffers& b, ExtremaScreen* sc, bool inside) {
     if (linear) {
         // a linear phase's absolute acceleration -(K x + C v + R0)_i / m_i and its rate at the ends; the
         // polynomial only where the rate changes sign
@@ -441,9 +441,10 @@ void free_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, 
         double& kept = b.aa_end[static_cast<size_t>(i)];
         const double aa0 = b.went_on ? kept : abs_acc_linear(ph, i, e.y0), aa1 = abs_acc_linear(ph, i, e.y1);
         kept = aa1;
-        const double r0 = abs_acc_rate_linear(ph, i, e.y0, e.a0), r1 = abs_acc_rate_linear(ph, i, e.y1, e.a1);
         track_abs_acceleration(ex, t0, aa0);
         track_abs_acceleration(ex, t0 + tau, aa1);
+        if (!inside) return;
+        const double r0 = abs_acc_rate_linear(ph, i, e.y0, e.a0), r1 = abs_acc_rate_linear(ph, i, e.y1, e.a1);
         if (r0 * r1 < 0.0) {
             if (sc != nullptr) {
                 const ExtremaScreen& s = ready(*sc, ph, e, tau);
@@ -590,42 +591,20 @@ void accumulate(Phase& ph, const System& sy, double* st, double t0, double tau, 
     else if (tau > 0.0 && (with_energy || any_in))
         numeric_contributions(ph, sy, st, tau, e, ledger, b);
     if (ph.stk.any && tau > 0.0) held_statistics(ph, sy.lay, st, tau, e, linear, b);
-    if (ends_only && linear) {  // (a whole step the screen cleared: its extrema at its ends, if anywhere)
-        const int n = ph.n;
-        for (int i = 0; i < n; ++i) {
-            double* ex = extrema + DOF_EXTREMA * i;
-            track_displacement(ex, t0, e.y0[i]);
-            track_displacement(ex, t0 + tau, e.y1[i]);
-            if (ph.stk.any && ph.stk.grp[static_cast<size_t>(i)] >= 0) {
-                held_abs_acceleration(ph, i, ex, t0, tau, e, linear);
-                continue;
-            }
-            double& kept = b.aa_end[static_cast<size_t>(i)];
-            const double aa0 = b.went_on ? kept : abs_acc_linear(ph, i, e.y0), aa1 = abs_acc_linear(ph, i, e.y1);
-            kept = aa1;
-            track_abs_acceleration(ex, t0, aa0);
-            track_abs_acceleration(ex, t0 + tau, aa1);
-        }
-        for (int p = 0; p < sy.n_track(); ++p) {
-            double* ex = extrema + DOF_EXTREMA * n + PAIR_EXTREMA * p;
-            const int i = sy.track_i[static_cast<size_t>(p)], j = sy.track_j[static_cast<size_t>(p)];
-            track_displacement(ex, t0, rel(e.y0, i, j));
-            track_displacement(ex, t0 + tau, rel(e.y1, i, j));
-        }
-        return;
-    }
     ExtremaScreen* sc = nullptr;  // (the screen of what is extreme inside: a record's linear phase)
     if (screen != nullptr && screen->on && linear && tau > 0.0) {
         screen->tau = -1.0;  // (its bound made when first asked for: ready)
         sc = screen;
     }
-    displacement_extrema(ph, sy, st, t0, tau, e, extrema, sc);
+    // (a whole step the screen cleared, ends_only: its extrema at its ends, if anywhere)
+    const bool inside = !(ends_only && linear);
+    displacement_extrema(ph, sy, st, t0, tau, e, extrema, sc, inside);
     for (int i = 0; i < ph.n; ++i) {
         double* ex = extrema + DOF_EXTREMA * i;
         if (ph.stk.any && ph.stk.grp[static_cast<size_t>(i)] >= 0)
             held_abs_acceleration(ph, i, ex, t0, tau, e, linear);
         else
-            free_abs_acceleration(ph, i, ex, t0, tau, e, linear, b, sc);
+            free_abs_acceleration(ph, i, ex, t0, tau, e, linear, b, sc, inside);
     }
     peak_contact_forces(ph, sy.lay, st, tau, e, linear, b);
 }

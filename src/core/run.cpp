@@ -757,7 +757,7 @@ void earliest(Loop& lp) {
     Buffers& b = lp.b;
     const int n = lp.n;
     if (!lp.continuing) lp.n_ev = phase_events(ph, lp.st, lp.sy, lp.w.evs.data());  // (until one fires)
-    start_signs(lp);
+    if (!lp.whole) start_signs(lp);  // (a whole step's: its screen's, whole_step_clear)
     ph.zeros.clear();
     ph.e_y0 = b.y0s.data();
     ph.e_a0 = b.a0.data();
