@@ -20,7 +20,7 @@ double iso_force(const System& sy, int e, const double* st) {
     const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
     const IsoLinear iso = iso_linear(sy, e, st);
     const Layout& L = sy.lay;
-    const double u = rel(st + L.x, h.i, h.j), du = rel(st + L.v, h.i, h.j);
+    const double u = rel(st + L.x, h), du = rel(st + L.v, h);
     return iso.k * u + iso.r0 + h.c_d * du + (e == 0 ? sy.bw[0] * st[L.zeta] : 0.0) +
            iso_rate_force(h, iso_slip(sy, e, st), du);
 }
@@ -40,8 +40,7 @@ void outputs(const double* st, const System& sy, double* q, double* row) {
     for (int e = 0; e < sy.n_h(); ++e) {
         const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
         const double f = iso_force(sy, e, st);
-        q[h.i] += f;
-        if (h.j >= 0) q[h.j] -= f;
+        push_pair(q, h, f);
         row[1 + 3 * n + e] = f;
     }
     double* fc = row + 1 + 3 * n + sy.n_h();
@@ -49,11 +48,10 @@ void outputs(const double* st, const System& sy, double* q, double* row) {
         fc[c] = 0.0;
         if (st[L.in_at(c)] == 0.0) continue;
         const Contact& ct = sy.contact[static_cast<size_t>(c)];
-        const double f = law_force(ct.law, ct.p, ct.sign * rel(x, ct.i, ct.j) - ct.gap, ct.sign * rel(v, ct.i, ct.j),
+        const double f = law_force(ct.law, ct.p, ct.sign * rel(x, ct) - ct.gap, ct.sign * rel(v, ct),
                                    st + L.z_at(c)).f;
         fc[c] = f;
-        q[ct.i] += ct.sign * f;
-        if (ct.j >= 0) q[ct.j] -= ct.sign * f;
+        push_pair(q, ct, ct.sign * f);
     }
     row[0] = st[T];
     for (int i = 0; i < n; ++i) {
@@ -75,10 +73,10 @@ void outputs_in_phase(Phase& ph, const System& sy, double t, double tau, const d
     }
     for (int e = 0; e < sy.n_h(); ++e) {  // each element's force, the isolator's Bouc-Wen spring with its own
         const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
-        double f = ph.el_k[static_cast<size_t>(e)] * rel(y, h.i, h.j) + ph.el_r[static_cast<size_t>(e)] +
-                   h.c_d * rel(y + n, h.i, h.j);
+        double f = ph.el_k[static_cast<size_t>(e)] * rel(y, h) + ph.el_r[static_cast<size_t>(e)] +
+                   h.c_d * rel(y + n, h);
         if (e == 0 && ph.bw[0] != 0.0) f += ph.bw[0] * phase_zeta(ph, tau);
-        f += iso_rate_force(h, ph.el_s[static_cast<size_t>(e)], rel(y + n, h.i, h.j));
+        f += iso_rate_force(h, ph.el_s[static_cast<size_t>(e)], rel(y + n, h));
         if (ph.stk.any && ph.stk.held_of[static_cast<size_t>(ph.nc + e)] >= 0)  // (sticking: its friction)
             f += held_force(ph, ph.nc + e, tau, y, a).g;
         row[1 + 3 * n + e] = f;
@@ -189,7 +187,7 @@ void linear_contributions(Phase& ph, const System& sy, double* st, double tau, c
         if (!k.in) continue;
         const double sg = k.sign, gap = k.gap;
         const int acc = L.acc_at(c);
-        const double x0 = sg * rel(e.y0, k.i, k.j) - gap, x1 = sg * rel(e.y1, k.i, k.j) - gap;
+        const double x0 = sg * rel(e.y0, k) - gap, x1 = sg * rel(e.y1, k) - gap;
         st[acc + A_IMPULSE] += k.kb * (sg * b.du[c] - gap * tau) + k.rb * tau + k.cb * (x1 - x0);
         st[acc + A_WORK] += 0.5 * k.kb * (x1 * x1 - x0 * x0) + k.rb * (x1 - x0) + k.cb * b.dvv[c];
         ledger[L_BUMPER_LOSS] += k.cb * b.dvv[c] + law_branch_loss(k.law, k.p, k.jb, x0, x1, k.lz);
@@ -233,9 +231,9 @@ void numeric_contributions(Phase& ph, const System& sy, double* st, double tau, 
         }
         ledger[L_INPUT] -= ph.plain ? wq * ag * mv : wq * (ag * mv + bg * mvb);
         ledger[L_VISCOUS] += wq * vcv;
-        if (bw != 0.0) ledger[L_HYSTERETIC] += wq * bw * phase_zeta(ph, tq) * rel(v, ph.iso_i, ph.iso_j);
+        if (bw != 0.0) ledger[L_HYSTERETIC] += wq * bw * phase_zeta(ph, tq) * rel(v, ph.iso);
         for (const Phase::RateFriction& r : ph.rate_fr) {  // (a velocity-dependent friction's rest)
-            const double du = rel(v, r.h->i, r.h->j);
+            const double du = rel(v, *r.h);
             ledger[L_HYSTERETIC] += wq * iso_rate_force(*r.h, r.s, du) * du;
         }
         for (int c = 0; c < ph.nc; ++c) {
@@ -252,8 +250,8 @@ void numeric_contributions(Phase& ph, const System& sy, double* st, double tau, 
     for (int c = 0; c < ph.nc; ++c) {  // a linear law's branch in a numerical phase: its spring's loss
         const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
         if (k.in && law_is_linear(k.law)) {
-            ledger[L_BUMPER_LOSS] += law_branch_loss(k.law, k.p, k.jb, k.sign * rel(e.y0, k.i, k.j) - k.gap,
-                                                     k.sign * rel(e.y1, k.i, k.j) - k.gap, k.lz);
+            ledger[L_BUMPER_LOSS] += law_branch_loss(k.law, k.p, k.jb, k.sign * rel(e.y0, k) - k.gap,
+                                                     k.sign * rel(e.y1, k) - k.gap, k.lz);
         }
     }
 }
@@ -267,16 +265,16 @@ const ExtremaScreen& ready(ExtremaScreen& sc, const Phase& ph, const Ends& e, do
 // the pair (i, j)'s displacement's range on [0, tau] from the screen (a displacement's fourth derivative is an
 // acceleration's second: at most beta Z, a pair's twice that), and how far y1's shift moves it (off)
 struct Screened { Range r; double off; };
-Screened displacement_range(const ExtremaScreen& s, const Phase& ph, const Ends& e, double tau, int i, int j) {
+Screened displacement_range(const ExtremaScreen& s, const Phase& ph, const Ends& e, double tau, const Pair& pr) {
     const int n = ph.n;
-    const double times = j >= 0 ? 2.0 : 1.0;
+    const double times = pr.weight();
     // (y1 the motion at tau give or take the shift: f1 off by at most |d1| shift + |f''| shift^2 / 2 and d1
     // by |f''| shift, f'' within |a1| + times Z shift there; the cubic moves by the first and 4 tau / 27 of
     // the second, counted twice)
-    const double d1 = rel(e.y1 + n, i, j);
-    const double f2 = std::abs(rel(e.a1, i, j)) + times * s.z * s.shift;
+    const double d1 = rel(e.y1 + n, pr);
+    const double f2 = std::abs(rel(e.a1, pr)) + times * s.z * s.shift;
     const double off = s.shift == 0.0 ? 0.0 : 2.0 * s.shift * (std::abs(d1) + f2 * (s.shift + 0.15 * tau));
-    return {hermite_range(rel(e.y0, i, j), rel(e.y0 + n, i, j), rel(e.y1, i, j), d1, tau, times * s.beta * s.z), off};
+    return {hermite_range(rel(e.y0, pr), rel(e.y0 + n, pr), rel(e.y1, pr), d1, tau, times * s.beta * s.z), off};
 }
 
 // whether the range stays within [lo, hi] beyond any doubt of rounding (screen.hpp's surely_within)
@@ -311,14 +309,14 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
     // twice that)
     const bool none_kept = ph.zeros.empty();
     auto may_be_extreme = [&](int i, int j, const double* ex) {
-        const bool may_cross = velocity_may_cross(ph, i, j);
+        const bool may_cross = velocity_may_cross(ph, Pair{i, j});
         if (!may_cross) return !none_kept;
         if (sc == nullptr) return true;
         const ExtremaScreen& s = ready(*sc, ph, e, tau);
-        const Screened sr = displacement_range(s, ph, e, tau, i, j);
+        const Screened sr = displacement_range(s, ph, e, tau, Pair{i, j});
         if (!range_within(sr, ex[EX_D_MIN], ex[EX_D_MAX], s.xscale)) return true;
         if (sc->audit) {  // (found all the same, and held against the bound)
-            const Phase::Zeros& z = velocity_zeros(ph, i, j);
+            const Phase::Zeros& z = velocity_zeros(ph, Pair{i, j});
             for (int k = 0; k < z.count; ++k)
                 if (z.t[k] < tau) audit_value(*sc, sr.r, sr.off, s.xscale, z.x[k]);
         }
@@ -331,7 +329,7 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
         track_displacement(ex, t0, e.y0[i]);
         track_displacement(ex, t0 + tau, e.y1[i]);
         if (!inside || !may_be_extreme(i, GROUND, ex)) continue;
-        const Phase::Zeros& z = velocity_zeros(ph, i, GROUND);
+        const Phase::Zeros& z = velocity_zeros(ph, Pair{i, GROUND});
         for (int k = 0; k < z.count; ++k)
             if (z.t[k] < tau) track_displacement(ex, t0 + z.t[k], z.x[k]);
     }
@@ -342,7 +340,7 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
         track_displacement(ex, t0, rel(e.y0, i, j));
         track_displacement(ex, t0 + tau, rel(e.y1, i, j));
         if (!inside || !may_be_extreme(i, j, ex)) continue;
-        const Phase::Zeros& z = velocity_zeros(ph, i, j);
+        const Phase::Zeros& z = velocity_zeros(ph, Pair{i, j});
         for (int k = 0; k < z.count; ++k)
             if (z.t[k] < tau) track_displacement(ex, t0 + z.t[k], z.x[k]);
     }
@@ -351,9 +349,9 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
         const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
         if (!k.in) continue;
         double& mc = st[L.acc_at(c) + A_MAXCOMP];
-        mc = std::max(mc, k.sign * rel(e.y0, k.i, k.j) - k.gap);
-        mc = std::max(mc, k.sign * rel(e.y1, k.i, k.j) - k.gap);
-        const Phase::Zeros& z = velocity_zeros(ph, k.i, k.j);
+        mc = std::max(mc, k.sign * rel(e.y0, k) - k.gap);
+        mc = std::max(mc, k.sign * rel(e.y1, k) - k.gap);
+        const Phase::Zeros& z = velocity_zeros(ph, k);
         for (int q = 0; q < z.count; ++q)
             if (z.t[q] < tau) mc = std::max(mc, k.sign * z.x[q] - k.gap);
     }
@@ -503,7 +501,7 @@ void peak_contact_forces(Phase& ph, const Layout& L, double* st, double tau, con
         if (fa.rate * fb.rate < 0.0) {
             if (linear) {
                 Fn ff, fr;
-                pair_poly(ph, k.i, k.j, k.rb - k.kb * k.gap, k.kb * k.sign, k.cb * k.sign, 0.0, ff.q);
+                pair_poly(ph, k, k.rb - k.kb * k.gap, k.kb * k.sign, k.cb * k.sign, 0.0, ff.q);
                 poly_deriv(ff.q, fr.q);
                 fr.kind = FN_POLY;
                 const double tm = find_root(fr, ph, 0.0, tau, fa.rate, fb.rate, NaN, NaN, XTOL_EXTREMUM_S);
@@ -555,7 +553,7 @@ bool extrema_surely_inside(const Phase& ph, const System& sy, double tau, const 
             if (v0 > 0.0 ? range_within(sv, 0.0, INF, s.vscale) : range_within(sv, -INF, 0.0, s.vscale)) return true;
         }
         const double f0 = rel(e.y0, i, j), f1 = rel(e.y1, i, j);
-        return range_within(displacement_range(s, ph, e, tau, i, j), std::min({ex[EX_D_MIN], f0, f1}),
+        return range_within(displacement_range(s, ph, e, tau, Pair{i, j}), std::min({ex[EX_D_MIN], f0, f1}),
                             std::max({ex[EX_D_MAX], f0, f1}), s.xscale);
     };
     for (int i = 0; i < n; ++i) {

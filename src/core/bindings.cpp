@@ -59,7 +59,26 @@ Array2 rows_array(Rows& r) {
 
 // A system enters by name: its contact slots (ContactSlot) and hysteretic elements (Element) built with keyword
 // arguments, the System from them the same way; a pickle carries each by name too.  (The sizes and indices are
-// checked in Python, pounding._core.system: the core trusts its inputs.)
+// checked in Python, pounding._core.system: the core trusts its inputs.)  A pair's levers (Pair) come apart:
+// lever_i, arm_i_m, lever_j, arm_j_m (-1 and 0: none).
+void set_levers(Pair& p, int lever_i, double arm_i, int lever_j, double arm_j) {
+    p.li = lever_i;
+    p.ai = lever_i >= 0 ? arm_i : 0.0;
+    p.lj = lever_j;
+    p.aj = lever_j >= 0 ? arm_j : 0.0;
+}
+void levers_state(nb::dict& d, const Pair& p) {
+    d["lever_i"] = p.li;
+    d["arm_i_m"] = p.ai;
+    d["lever_j"] = p.lj;
+    d["arm_j_m"] = p.aj;
+}
+void levers_from_state(Pair& p, const nb::dict& d) {
+    if (!d.contains("lever_i")) return;  // (a pickle from before levers)
+    set_levers(p, nb::cast<int>(d["lever_i"]), nb::cast<double>(d["arm_i_m"]), nb::cast<int>(d["lever_j"]),
+               nb::cast<double>(d["arm_j_m"]));
+}
+
 Contact contact_of(int i, int j, double sign, double gap_m, int law, const std::vector<double>& params) {
     Contact c;
     c.i = i;
@@ -97,13 +116,16 @@ nb::dict contact_state(const Contact& c) {
     d["gap_m"] = c.gap;
     d["law"] = c.law;
     d["params"] = std::vector<double>(c.p, c.p + N_LAW_PARAMS);
+    levers_state(d, c);
     return d;
 }
 
 Contact contact_from_state(const nb::dict& d) {
-    return contact_of(nb::cast<int>(d["i"]), nb::cast<int>(d["j"]), nb::cast<double>(d["sign"]),
-                      nb::cast<double>(d["gap_m"]), nb::cast<int>(d["law"]),
-                      nb::cast<std::vector<double>>(d["params"]));
+    Contact c = contact_of(nb::cast<int>(d["i"]), nb::cast<int>(d["j"]), nb::cast<double>(d["sign"]),
+                           nb::cast<double>(d["gap_m"]), nb::cast<int>(d["law"]),
+                           nb::cast<std::vector<double>>(d["params"]));
+    levers_from_state(c, d);
+    return c;
 }
 
 nb::dict element_state(const Hysteretic& h) {
@@ -119,11 +141,12 @@ nb::dict element_state(const Hysteretic& h) {
     d["friction_rate_s_m"] = h.friction_rate;
     d["surface_friction_n"] = h.surface_friction;
     d["surface_ring_n_m"] = h.surface_ring;
+    levers_state(d, h);
     return d;
 }
 
 Hysteretic element_from_state(const nb::dict& d) {
-    return element_of(nb::cast<int>(d["i"]), nb::cast<int>(d["j"]), nb::cast<double>(d["c_d"]),
+    Hysteretic h = element_of(nb::cast<int>(d["i"]), nb::cast<int>(d["j"]), nb::cast<double>(d["c_d"]),
                       nb::cast<std::vector<double>>(d["slopes"]), nb::cast<std::vector<double>>(d["breaks"]),
                       nb::cast<int>(d["rule"]), d.contains("friction_n") ? nb::cast<double>(d["friction_n"]) : 0.0,
                       d.contains("friction_fast_n") ? nb::cast<double>(d["friction_fast_n"]) : 0.0,
@@ -132,6 +155,8 @@ Hysteretic element_from_state(const nb::dict& d) {
                                                        : std::vector<double>{},
                       d.contains("surface_ring_n_m") ? nb::cast<std::vector<double>>(d["surface_ring_n_m"])
                                                      : std::vector<double>{});
+    levers_from_state(h, d);
+    return h;
 }
 
 void fill_system(System& s, int n, const std::vector<double>& mass, const std::vector<double>& k0,
@@ -208,13 +233,20 @@ NB_MODULE(_pounding_core, m) {
 
     nb::class_<Contact>(m, "ContactSlot")
         .def("__init__",
-             [](Contact* c, int i, int j, double sign, double gap_m, int law, const std::vector<double>& params) {
+             [](Contact* c, int i, int j, double sign, double gap_m, int law, const std::vector<double>& params,
+                int lever_i, double arm_i_m, int lever_j, double arm_j_m) {
                  new (c) Contact(contact_of(i, j, sign, gap_m, law, params));
+                 set_levers(*c, lever_i, arm_i_m, lever_j, arm_j_m);
              },
              nb::kw_only(), nb::arg("i"), nb::arg("j"), nb::arg("sign"), nb::arg("gap_m"), nb::arg("law"),
-             nb::arg("params"))
+             nb::arg("params"), nb::arg("lever_i") = -1, nb::arg("arm_i_m") = 0.0, nb::arg("lever_j") = -1,
+             nb::arg("arm_j_m") = 0.0)
         .def_ro("i", &Contact::i)
         .def_ro("j", &Contact::j)
+        .def_ro("lever_i", &Contact::li)
+        .def_ro("arm_i_m", &Contact::ai)
+        .def_ro("lever_j", &Contact::lj)
+        .def_ro("arm_j_m", &Contact::aj)
         .def_ro("sign", &Contact::sign)
         .def_ro("gap_m", &Contact::gap)
         .def_ro("law", &Contact::law)
@@ -227,16 +259,23 @@ NB_MODULE(_pounding_core, m) {
              [](Hysteretic* h, int i, int j, double c_d, const std::vector<double>& slopes,
                 const std::vector<double>& breaks, int rule, double friction_n, double friction_fast_n,
                 double friction_rate_s_m, const std::vector<double>& surface_friction_n,
-                const std::vector<double>& surface_ring_n_m) {
+                const std::vector<double>& surface_ring_n_m, int lever_i, double arm_i_m, int lever_j,
+                double arm_j_m) {
                  new (h) Hysteretic(element_of(i, j, c_d, slopes, breaks, rule, friction_n, friction_fast_n,
                                                friction_rate_s_m, surface_friction_n, surface_ring_n_m));
+                 set_levers(*h, lever_i, arm_i_m, lever_j, arm_j_m);
              },
              nb::kw_only(), nb::arg("i"), nb::arg("j"), nb::arg("c_d"), nb::arg("slopes"), nb::arg("breaks"),
              nb::arg("rule"), nb::arg("friction_n") = 0.0, nb::arg("friction_fast_n") = 0.0,
              nb::arg("friction_rate_s_m") = 0.0, nb::arg("surface_friction_n") = std::vector<double>{},
-             nb::arg("surface_ring_n_m") = std::vector<double>{})
+             nb::arg("surface_ring_n_m") = std::vector<double>{}, nb::arg("lever_i") = -1, nb::arg("arm_i_m") = 0.0,
+             nb::arg("lever_j") = -1, nb::arg("arm_j_m") = 0.0)
         .def_ro("i", &Hysteretic::i)
         .def_ro("j", &Hysteretic::j)
+        .def_ro("lever_i", &Hysteretic::li)
+        .def_ro("arm_i_m", &Hysteretic::ai)
+        .def_ro("lever_j", &Hysteretic::lj)
+        .def_ro("arm_j_m", &Hysteretic::aj)
         .def_ro("c_d", &Hysteretic::c_d)
         .def_ro("slopes", &Hysteretic::slopes)
         .def_ro("breaks", &Hysteretic::breaks)
@@ -266,6 +305,13 @@ NB_MODULE(_pounding_core, m) {
         .def_ro("plain", &System::plain)
         .def_ro("infl", &System::infl)
         .def_prop_ro("n_elements", &System::n_h)
+        .def_prop_ro("levered", [](const System& s) {  // (a contact or an element on a lever)
+            for (const Contact& c : s.contact)
+                if (c.levered()) return true;
+            for (const Hysteretic& h : s.hyst)
+                if (h.levered()) return true;
+            return false;
+        })
         .def_ro("has_b", &System::has_b)
         .def_prop_ro("state_size", &System::state_size)
         .def_prop_ro("layout", [](const System& s) {

@@ -116,11 +116,49 @@ constexpr double TWO_PI = 6.283185307179586;
 constexpr double MIN_NORMAL = 2.2250738585072014e-308;
 constexpr double EXP_NORMAL_LIMIT = 708.39;  // exp(-x) is below the smallest normal double for larger x
 
-// One contact: a bumper (or a stop) between dof i and dof j (or the ground) behind a gap.  Its compression
-// is sign (x_i - x_j) - gap in contact; it pushes dof i by -sign F and dof j by +sign F.  (A one-mass
-// system's left bumper is sign -1, its right one +1.)
-struct Contact {
+// What a contact or an element acts between, a Pair: dof i, plus arm ai times dof li (a lever: a point of a
+// floor in plan moves as x - y_c theta), against dof j (plus aj times dof lj) or the ground.  Its relative
+// value is w . y, w its weights (+1 on i, +ai on li, -1 on j, -aj on lj), and a force f along it pushes the
+// dofs by f w.  Without levers (li, lj -1) that is y_i - y_j, number for number as a pair always was.
+struct Pair {
     int i = 0, j = GROUND;
+    int li = -1, lj = -1;  // the lever dofs (-1: none)
+    double ai = 0.0, aj = 0.0;
+    bool levered() const { return li >= 0 || lj >= 0; }
+    // sum |w|: how much larger |w . y| can be than the largest |y_k|
+    double weight() const {
+        if (!levered()) return j >= 0 ? 2.0 : 1.0;
+        return 1.0 + (li >= 0 ? std::abs(ai) : 0.0) + (j >= 0 ? 1.0 + (lj >= 0 ? std::abs(aj) : 0.0) : 0.0);
+    }
+    // its weights as (dof, weight) entries into d, w (4 each at most); their count
+    int entries(int* d, double* w) const {
+        int m = 0;
+        d[m] = i, w[m++] = 1.0;
+        if (li >= 0) d[m] = li, w[m++] = ai;
+        if (j >= 0) {
+            d[m] = j, w[m++] = -1.0;
+            if (lj >= 0) d[m] = lj, w[m++] = -aj;
+        }
+        return m;
+    }
+};
+// the weight of dof d in a pair's w (0: not in it)
+inline double weight_on(const Pair& p, int d) {
+    double w = 0.0;
+    if (p.i == d) w += 1.0;
+    if (p.li == d) w += p.ai;
+    if (p.j >= 0 && p.j == d) w -= 1.0;
+    if (p.j >= 0 && p.lj == d) w -= p.aj;
+    return w;
+}
+inline bool same_pair(const Pair& a, const Pair& b) {
+    return a.i == b.i && a.j == b.j && a.li == b.li && a.lj == b.lj && a.ai == b.ai && a.aj == b.aj;
+}
+
+// One contact: a bumper (or a stop) on a pair (Pair: dof i against dof j or the ground) behind a gap.  Its
+// compression is sign (x_i - x_j) - gap in contact; it pushes dof i by -sign F and dof j by +sign F.  (A
+// one-mass system's left bumper is sign -1, its right one +1.)
+struct Contact : Pair {
     double sign = 1.0;
     double gap = 0.0;
     int law = 0;
@@ -131,8 +169,7 @@ struct Contact {
 // with its rule (0 kinematic, 1 elastic, 2 Coulomb friction: isolator.hpp) and a dashpot c_d (N s/m), between
 // dof i and dof j (or the ground), deformed by u = x_i - x_j.  The isolator is element 0 of a system, and carries its Bouc-Wen
 // spring if it has one; a storey with a hysteretic backbone is another.
-struct Hysteretic {
-    int i = 0, j = GROUND;
+struct Hysteretic : Pair {
     double c_d = 0.0;
     std::vector<double> slopes, breaks;
     int rule = 0;
@@ -195,7 +232,7 @@ struct System {
         c_lin = c0;
         if (static_cast<int>(c_lin.size()) != n * n) c_lin.assign(static_cast<size_t>(n * n), 0.0);
         if (static_cast<int>(k0.size()) != n * n) k0.assign(static_cast<size_t>(n * n), 0.0);
-        for (const Hysteretic& h : hyst) add_pair(c_lin, h.i, h.j, h.c_d);
+        for (const Hysteretic& h : hyst) add_pair(c_lin, h, h.c_d);
         rigid.clear();
         for (int c = 0; c < nc(); ++c)
             if (law_is_rigid(contact[static_cast<size_t>(c)].law)) rigid.push_back(c);
@@ -221,10 +258,34 @@ struct System {
             a[static_cast<size_t>(j * n + i)] -= s;
         }
     }
+    // s w w^T of a pair (Pair) into an n x n matrix
+    void add_pair(std::vector<double>& a, const Pair& p, double s) const {
+        if (!p.levered()) return add_pair(a, p.i, p.j, s);
+        int d[4];
+        double w[4];
+        const int m = p.entries(d, w);
+        for (int r = 0; r < m; ++r)
+            for (int c = 0; c < m; ++c) a[static_cast<size_t>(d[r] * n + d[c])] += s * w[r] * w[c];
+    }
 };
 
 // a pair's relative value: y[i] - y[j] (y[i] against the ground)
 inline double rel(const double* y, int i, int j) { return j >= 0 ? y[i] - y[j] : y[i]; }
+// a pair's (Pair): w . y
+inline double rel(const double* y, const Pair& p) {
+    if (!p.levered()) return rel(y, p.i, p.j);
+    const double a = y[p.i] + (p.li >= 0 ? p.ai * y[p.li] : 0.0);
+    return p.j >= 0 ? a - (y[p.j] + (p.lj >= 0 ? p.aj * y[p.lj] : 0.0)) : a;
+}
+// a force f along a pair onto q (n): q += f w
+inline void push_pair(double* q, const Pair& p, double f) {
+    q[p.i] += f;
+    if (p.li >= 0) q[p.li] += p.ai * f;
+    if (p.j >= 0) {
+        q[p.j] -= f;
+        if (p.lj >= 0) q[p.lj] -= p.aj * f;
+    }
+}
 
 // The excitation: harmonic (p = amplitude m/s^2, omega rad/s, phase rad) or a record (times s and
 // accelerations m/s^2, linear between samples; p[0] its uniform step, 0 if none).  It moves the ground,

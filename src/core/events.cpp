@@ -22,12 +22,17 @@ double abs_acceleration_rate(Phase& ph, int i, double tau, const double* y, cons
         const ContactPhase& k = slot(ph, c);
         if (!k.nl) continue;
         const double rate = k.sign * contact_force(ph, c, y, a).rate;
+        if (k.levered()) {
+            q += weight_on(k, i) * rate;
+            continue;
+        }
         if (k.i == i) q += rate;
         if (k.j == i) q -= rate;
     }
-    if (ph.bw[0] != 0.0 && (ph.iso_i == i || ph.iso_j == i)) {
-        const double rate = ph.bw[0] * zeta_rate(ph, rel(v, ph.iso_i, ph.iso_j), phase_zeta(ph, tau));
-        q += ph.iso_i == i ? rate : -rate;
+    const double w_iso = ph.bw[0] != 0.0 ? weight_on(ph.iso, i) : 0.0;
+    if (w_iso != 0.0) {
+        const double rate = ph.bw[0] * zeta_rate(ph, rel(v, ph.iso), phase_zeta(ph, tau));
+        q += ph.iso.levered() ? w_iso * rate : ph.iso.i == i ? rate : -rate;
     }
     return -ph.minv[static_cast<size_t>(i)] * q;
 }
@@ -140,11 +145,11 @@ EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y
     const int n = ph.n;
     if (e.kind == KIND_ZETA) {  // (alpha: minus z's sign at the phase start)
         const double z = phase_zeta(ph, tau);
-        return {-e.alpha * z, -e.alpha * zeta_rate(ph, rel(y + n, ph.iso_i, ph.iso_j), z), 1.0};
+        return {-e.alpha * z, -e.alpha * zeta_rate(ph, rel(y + n, ph.iso), z), 1.0};
     }
     if (e.kind == KIND_HELD) return held_force(ph, e.side, tau, y, a);
     if (e.kind == KIND_STICK) return stick_value(e, held_force(ph, e.side, tau, y, a));
-    const double dx = rel(y, e.i, e.j), dv = rel(y + n, e.i, e.j), da = rel(a, e.i, e.j);
+    const double dx = rel(y, e), dv = rel(y + n, e), da = rel(a, e);
     if (e.kind == KIND_LINEAR) {
         const double g = e.alpha + e.beta * dx + e.gamma * dv;
         const double gp = e.beta * dv + e.gamma * da;
@@ -212,11 +217,11 @@ void fn_eval(const Fn& fn, Phase& ph, double tau, double& f, double& fp) {
             fp = NaN;
             return;
         case FN_PAIR_V:
-            f = rel(y + n, fn.i, fn.j);
-            fp = rel(a, fn.i, fn.j);
+            f = rel(y + n, fn);
+            fp = rel(a, fn);
             return;
         case FN_PAIR_A:
-            f = rel(a, fn.i, fn.j);
+            f = rel(a, fn);
             fp = NaN;
             return;
         case FN_AABS_RATE:
@@ -391,8 +396,7 @@ void event_fn(const EventRow* evs, int i, Phase& ph, Fn& fn) {
     const EventRow& e = evs[i];
     fn.evs = evs;
     fn.idx = i;
-    fn.i = e.i;
-    fn.j = e.j;
+    static_cast<Pair&>(fn) = e;
     fn.kind = event_fn_kind(e, ph);
     if (fn.kind == FN_EVENT) return;
     if (e.kind == KIND_HELD) {  // a held rigid stop's force: a polynomial of the series
@@ -406,13 +410,13 @@ void event_fn(const EventRow* evs, int i, Phase& ph, Fn& fn) {
         return;
     }
     if (e.kind == KIND_LINEAR) {
-        pair_poly(ph, e.i, e.j, e.alpha, e.beta, e.gamma, 0.0, fn.q);
+        pair_poly(ph, e, e.alpha, e.beta, e.gamma, 0.0, fn.q);
         if (fn.kind == FN_POLY_RELAX) fn.idx = e.side;  // (against a relaxing surface)
         return;
     }
     // a linear law's release: its branch's force kb x + rb + cb x' with x = sign (x_i - x_j) - gap
     const ContactPhase& k = slot(ph, e.side);
-    pair_poly(ph, e.i, e.j, k.rb - k.kb * k.gap, k.kb * k.sign, k.cb * k.sign, 0.0, fn.q);
+    pair_poly(ph, e, k.rb - k.kb * k.gap, k.kb * k.sign, k.cb * k.sign, 0.0, fn.q);
 }
 
 namespace {
@@ -420,8 +424,7 @@ namespace {
 void rate_fn(const Fn& fn, Fn& out) {
     out.evs = fn.evs;
     out.idx = fn.idx;
-    out.i = fn.i;
-    out.j = fn.j;
+    static_cast<Pair&>(out) = fn;
     if (fn.kind == FN_POLY) {
         poly_deriv(fn.q, out.q);
         out.kind = FN_POLY;
@@ -445,32 +448,31 @@ bool may_turn_back(double h, double v0, double v1, double a0, double a1) {
     return !(v_c * v0 > 0.0 && std::abs(v_c) > margin);
 }
 
-bool velocity_may_cross(const Phase& ph, int i, int j) {
+bool velocity_may_cross(const Phase& ph, const Pair& pr) {
     const int n = ph.n;
     const double h = ph.e_h;
-    const double v0 = rel(ph.e_y0 + n, i, j), v1 = rel(ph.e_y1 + n, i, j);
-    const double a0 = rel(ph.e_a0, i, j), a1 = rel(ph.e_a1, i, j);
+    const double v0 = rel(ph.e_y0 + n, pr), v1 = rel(ph.e_y1 + n, pr);
+    const double a0 = rel(ph.e_a0, pr), a1 = rel(ph.e_a1, pr);
     return h > 0.0 && (v0 * v1 < 0.0 || (v0 * v1 > 0.0 && a0 * a1 < 0.0 && may_turn_back(h, v0, v1, a0, a1)));
 }
 
-const Phase::Zeros& velocity_zeros(Phase& ph, int i, int j) {
+const Phase::Zeros& velocity_zeros(Phase& ph, const Pair& pr) {
     const double h = ph.e_h;
     for (const Phase::Zeros& z : ph.zeros)
-        if (z.i == i && z.j == j && z.h >= h) return z;  // (found on this sub-interval, up to h or beyond)
-    Phase::Zeros z{i, j, h, 0, {0.0, 0.0}, {0.0, 0.0}};
+        if (same_pair(z, pr) && z.h >= h) return z;  // (found on this sub-interval, up to h or beyond)
+    Phase::Zeros z{pr, h, 0, {0.0, 0.0}, {0.0, 0.0}};
     const int n = ph.n;
-    const double v0 = rel(ph.e_y0 + n, i, j), v1 = rel(ph.e_y1 + n, i, j);
-    const double a0 = rel(ph.e_a0, i, j), a1 = rel(ph.e_a1, i, j);
+    const double v0 = rel(ph.e_y0 + n, pr), v1 = rel(ph.e_y1 + n, pr);
+    const double a0 = rel(ph.e_a0, pr), a1 = rel(ph.e_a1, pr);
     Fn fv, fa;
     const bool poly = !ph.numeric;
     auto velocity_fn = [&]() {  // (made only where a zero may be: the polynomial needs the phase's series)
         if (poly) {
-            pair_poly(ph, i, j, 0.0, 0.0, 1.0, 0.0, fv.q);
+            pair_poly(ph, pr, 0.0, 0.0, 1.0, 0.0, fv.q);
             fv.kind = FN_POLY;
         } else {
             fv.kind = FN_PAIR_V;
-            fv.i = i;
-            fv.j = j;
+            static_cast<Pair&>(fv) = pr;
         }
     };
     if (h > 0.0 && v0 * v1 < 0.0) {
@@ -501,8 +503,7 @@ const Phase::Zeros& velocity_zeros(Phase& ph, int i, int j) {
             fa.kind = FN_POLY;
         } else {
             fa.kind = FN_PAIR_A;
-            fa.i = i;
-            fa.j = j;
+            static_cast<Pair&>(fa) = pr;
         }
         const double t_a = find_root(fa, ph, 0.0, h, a0, a1, NaN, NaN, XTOL_EXTREMUM_S);
         double vm, am;
@@ -516,10 +517,10 @@ const Phase::Zeros& velocity_zeros(Phase& ph, int i, int j) {
     for (int k = 0; k < z.count; ++k) {  // the relative displacement there
         if (poly) {
             ph.poly_evaluations += 1;
-            z.x[k] = pair_x(ph, i, j, z.t[k]);
+            z.x[k] = pair_x(ph, pr, z.t[k]);
         } else {
             phase_eval(ph, z.t[k], ph.ye.data(), ph.ae.data());
-            z.x[k] = rel(ph.ye.data(), i, j);
+            z.x[k] = rel(ph.ye.data(), pr);
         }
     }
     ph.zeros.push_back(z);
@@ -539,7 +540,7 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
     double t_lo = 0.0;
     const EventRow& row = evs[i];
     if (row.side == SIDE_VELOCITY && row.kind == KIND_LINEAR && row.gamma != 0.0 && g0 != 0.0 &&
-        gp0 * g0 <= 0.0 && rel(ph.y0.data() + ph.n, row.i, row.j) == 0.0) {
+        gp0 * g0 <= 0.0 && rel(ph.y0.data() + ph.n, row) == 0.0) {
         for (double tp = 0.5 * h; tp > 1e-12 * h; tp *= 0.5) {
             phase_eval(ph, tp, y, a);
             const EventValue ev = event_value(row, ph, tp, y, a);
@@ -577,7 +578,7 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
     // of the sub-interval)
     auto minimum = [&](double& tm, double& gm, double& sc) {
         const EventRow& e = evs[i];
-        const Phase::Zeros& z = velocity_zeros(ph, e.i, e.j);
+        const Phase::Zeros& z = velocity_zeros(ph, e);
         if (kind == FN_POLY && e.kind == KIND_LINEAR && e.gamma == 0.0 && e.beta != 0.0 && z.count == 1 &&
             z.t[0] < h) {
             tm = z.t[0];
@@ -606,7 +607,7 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
         // a rebound off a rigid stop, rising first: where it turns (the pair's velocity zero, found once for
         // the sub-interval), then its root beyond (or there, when the rise is below the rounding)
         const EventRow& e = evs[i];
-        const Phase::Zeros& z = velocity_zeros(ph, e.i, e.j);
+        const Phase::Zeros& z = velocity_zeros(ph, e);
         double tm, gm;
         if (e.kind == KIND_LINEAR && e.gamma == 0.0 && z.count == 1 && 0.0 < z.t[0] && z.t[0] < h) {
             tm = z.t[0];
@@ -690,11 +691,12 @@ bool events_surely_absent(const EventRow* evs, int n_ev, Phase& ph, const Extrem
         } else if (e.kind == KIND_LINEAR && !(e.side >= 0 && e.action == ACT_CONTACT && slot(ph, e.side).def0 > 0.0)) {
             e0 = event_value(e, ph, 0.0, y0, a0);
             e1 = event_value(e, ph, h, y1, a1);
-            const double times = e.j >= 0 ? 2.0 : 1.0;
+            const double times = e.weight();  // (|w . a| at most sum |w| max |a_k|)
             g2 = times * (std::abs(e.beta) / sc.s + std::abs(e.gamma)) * z;
             g4 = times * (std::abs(e.beta) + std::abs(e.gamma) * alpha) * beta * z;
             value_slope = 0.0;
-            rate_slope = e.j >= 0 ? 0.0 : std::abs(e.gamma * ph.ax1);
+            rate_slope = e.levered() ? std::abs(e.gamma * table_slope_on(ph, e))
+                                     : e.j >= 0 ? 0.0 : std::abs(e.gamma * ph.ax1);
         } else {
             return false;
         }
@@ -728,8 +730,7 @@ int bumper_events(const double* st, const Phase& ph, const System& sy, EventRow*
             if (turn != 0.0) {  // the compression rate sign u' (of sign ``turn`` on the branch) crossing zero
                 EventRow& r = evs[n++];
                 r = EventRow();
-                r.i = ct.i;
-                r.j = ct.j;
+                static_cast<Pair&>(r) = ct;
                 r.gamma = turn * sg;
                 r.side = SIDE_NONE;  // (a velocity: rounded as the isolator's reversals are)
                 r.action = ACT_LAW_BRANCH;
@@ -741,8 +742,7 @@ int bumper_events(const double* st, const Phase& ph, const System& sy, EventRow*
                 if (edge < 0.0) continue;
                 EventRow& r = evs[n++];
                 r = EventRow();
-                r.i = ct.i;
-                r.j = ct.j;
+                static_cast<Pair&>(r) = ct;
                 r.alpha = up ? (gap + edge) : -(gap + edge);  // upper - x, or x - lower
                 r.beta = up ? -sg : sg;
                 r.side = c;
@@ -753,8 +753,7 @@ int bumper_events(const double* st, const Phase& ph, const System& sy, EventRow*
         }
         EventRow& r = evs[n];
         r = EventRow();
-        r.i = ct.i;
-        r.j = ct.j;
+        static_cast<Pair&>(r) = ct;
         r.index = c;
         r.side = c;
         if (in_contact && law_is_rigid(ct.law)) {  // held shut: released when its force would pull

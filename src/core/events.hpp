@@ -24,9 +24,8 @@ constexpr double XTOL_S = 1e-15;          // event instants and displacement ext
 constexpr double TINY_SPEED = 1e-300;     // the velocity of a start at rest, for the direction it moves, m/s
 constexpr double XTOL_EXTREMUM_S = 1e-10; // instants of the other extrema
 
-struct EventRow {
+struct EventRow : Pair {  // (its pair)
     int kind = KIND_LINEAR;
-    int i = 0, j = GROUND;  // the pair
     double alpha = 0.0, beta = 0.0, gamma = 0.0;
     int side = SIDE_NONE;   // the contact whose relaxing surface or release it is (rounding against lengths)
     int action = 0;
@@ -63,9 +62,9 @@ enum FnKind : int {
     FN_AABS_RATE,      // numerical: dof idx's absolute acceleration's rate (no derivative)
     FN_FORCE_RATE      // numerical: contact idx's force rate (no derivative)
 };
-struct Fn {
+struct Fn : Pair {  // (FN_PAIR_V, FN_PAIR_A: its pair)
     int kind = FN_POLY;
-    int idx = 0, i = 0, j = GROUND;
+    int idx = 0;
     const EventRow* evs = nullptr;
     Poly q;
 };
@@ -93,11 +92,11 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
 bool may_turn_back(double h, double v0, double v1, double a0, double a1);
 // whether the pair (i, j)'s relative velocity may cross zero inside the sub-interval (velocity_zeros looks
 // for its zeros only then): of opposite signs at its ends, or turning back inside
-bool velocity_may_cross(const Phase& ph, int i, int j);
+bool velocity_may_cross(const Phase& ph, const Pair& pr);
 // the instants in (0, e_h) where the relative velocity of the pair (i, j) crosses zero (0, 1, or 2 where it
 // turns back inside) and the relative displacement there, from the sub-interval's ends; kept for the
 // sub-interval (a shorter end asked later reads the same zeros below it)
-const Phase::Zeros& velocity_zeros(Phase& ph, int i, int j);
+const Phase::Zeros& velocity_zeros(Phase& ph, const Pair& pr);
 
 // whether no event can fire in (0, h] (a record's whole step taken at once, run.cpp), beyond any doubt: each
 // row's function, linear in the motion (a pair's alpha + beta dx + gamma dv, or a stick's held force), stays

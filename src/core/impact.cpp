@@ -291,13 +291,13 @@ void after_velocity_jump(double* st, const System& sy) {
         double dir = 0.0;
         for (int i = 0; i < h.n_springs(); ++i)
             if (st[L.base + L.n_sp + h.first + i] != 0.0) dir = st[L.base + L.n_sp + h.first + i];
-        if (dir != 0.0 && dir * rel(v, h.i, h.j) <= 0.0) iso_transition(sy, st, ACT_REVERSAL, e, 0.0);
+        if (dir != 0.0 && dir * rel(v, h) <= 0.0) iso_transition(sy, st, ACT_REVERSAL, e, 0.0);
     }
     for (int c = 0; c < sy.nc(); ++c) {
         const Contact& ct = sy.contact[static_cast<size_t>(c)];
         if (st[L.in_at(c)] == 0.0 || law_is_rigid(ct.law)) continue;
         const double turn = law_turn_sign(ct.law, ct.p, st + L.z_at(c));
-        if (turn != 0.0 && turn * ct.sign * rel(v, ct.i, ct.j) <= 0.0)
+        if (turn != 0.0 && turn * ct.sign * rel(v, ct) <= 0.0)
             law_after_event(ct.law, ct.p, st + L.z_at(c), st[L.def_at(c)], 0.0);
     }
 }

@@ -193,8 +193,7 @@ int add(const Hysteretic& h, EventRow* evs, int n, double alpha, double beta, do
         double direction, int kind = KIND_LINEAR, int side = SIDE_NONE) {
     EventRow& r = evs[n];
     r.kind = kind;
-    r.i = h.i;
-    r.j = h.j;
+    static_cast<Pair&>(r) = h;
     r.alpha = alpha;
     r.beta = beta;
     r.gamma = gamma;
@@ -302,7 +301,7 @@ double iso_advance(const System& sy, double* st, const double* x_start, const do
         const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
         if (h.rule == RULE_ELASTIC) continue;
         const int n_sp = h.n_springs();
-        const double d_start = rel(x_start, h.i, h.j), d_end = rel(x_end, h.i, h.j);
+        const double d_start = rel(x_start, h), d_end = rel(x_end, h);
         if (h.series()) {  // (the slipping surfaces moved with the force, each doing its friction's work)
             const double s = st[sy.lay.region + e];
             if (s == 0.0) continue;
@@ -493,8 +492,8 @@ IsoGuard iso_guard(const System& sy, int action, int index, const double* st, co
     }
     if (action == ACT_REVERSAL) return {index, 0.0, 1.0, -1, 0.0};  // the slipping springs stop: u' = 0
     const Hysteretic& h = sy.hyst[static_cast<size_t>(index)];  // ACT_REGION: u at a break
-    const double u_rate = rel(v, h.i, h.j);
-    const double heading = u_rate != 0.0 ? u_rate : rel(acc, h.i, h.j);
+    const double u_rate = rel(v, h);
+    const double heading = u_rate != 0.0 ? u_rate : rel(acc, h);
     return {index, 1.0, 0.0, -1, heading > 0.0 ? 1.0 : -1.0};
 }
 

@@ -46,7 +46,7 @@ struct EventRow;  // events.hpp
 struct IsoLinear { double k, r0; };  // the force is k u + r0 until the element's next event
 
 inline double iso_u(const System& sy, int e, const double* st) {
-    return rel(st + sy.lay.x, sy.hyst[static_cast<size_t>(e)].i, sy.hyst[static_cast<size_t>(e)].j);
+    return rel(st + sy.lay.x, sy.hyst[static_cast<size_t>(e)]);
 }
 
 // the displacements x and velocities v (n each) with element e held at u, its pair's relative velocity none:

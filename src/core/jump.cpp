@@ -38,7 +38,7 @@ void move_bumpers(double* st, const System& sy, const double* y1, double tau, do
         const int idx = L.def_at(c);
         double* z = st + L.z_at(c);
         if (st[L.in_at(c)] != 0.0) {
-            st[idx] = std::max(0.0, ct.sign * rel(y1, ct.i, ct.j) - ct.gap);
+            st[idx] = std::max(0.0, ct.sign * rel(y1, ct) - ct.gap);
             law_moved(ct.law, ct.p, z, st[idx], true);
         } else if (st[idx] > 0.0) {
             const double relaxed = law_relax(ct.law, ct.p, st[idx], tau, z).d;
@@ -62,7 +62,7 @@ void jump(double* st, const System& sy, const EventRow& ev, Rows& contacts, cons
         const Contact& ct = sy.contact[static_cast<size_t>(index)];
         st[L.in_at(index)] = 1.0;
         const double comp = st[L.def_at(index)];
-        const double v_in = rel(st + L.v, ct.i, ct.j);
+        const double v_in = rel(st + L.v, ct);
         st[acc + A_TSTART] = t_ev;
         st[acc + A_VIN] = std::abs(v_in) > v_res ? v_in : 0.0;  // below the resolution: met at rest
         law_contact_state(ct.law, ct.p, ct.sign * st[acc + A_VIN], st + L.z_at(index), comp);
@@ -78,7 +78,7 @@ void jump(double* st, const System& sy, const EventRow& ev, Rows& contacts, cons
         law_release_state(ct.law, ct.p, st + L.z_at(index), st[L.def_at(index)]);
         // a touch below the resolution in both depth and impulse is no impact: computed, not listed
         if (st[acc + A_MAXCOMP] - st[acc + A_DSTART] > depth_res || std::abs(st[acc + A_IMPULSE]) > impulse_res) {
-            contact_row(contacts, index, st + acc, t_ev, rel(st + L.v, ct.i, ct.j));
+            contact_row(contacts, index, st + acc, t_ev, rel(st + L.v, ct));
         }
     } else if (action == ACT_LAW_BRANCH) {
         const Contact& ct = sy.contact[static_cast<size_t>(index)];

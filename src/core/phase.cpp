@@ -164,8 +164,7 @@ void hermite_end(Phase& ph, int order, const std::vector<double>& c_lin, const s
         const ContactPhase& ct = ph.ct[static_cast<size_t>(c)];
         if (!ct.in || ct.nl) continue;
         double W[HERMITE_ORDER + 2];
-        for (int m = 0; m <= order + 1; ++m)
-            W[m] = ct.j >= 0 ? D[m * n + ct.i] - D[m * n + ct.j] : D[m * n + ct.i];
+        for (int m = 0; m <= order + 1; ++m) W[m] = rel(D + m * n, ct);
         double s_u = 0.0, s_vv = 0.0;
         for (int k = 0; k <= order; ++k) {
             double f = 0.0;
@@ -399,12 +398,20 @@ void table_derivatives(const Phase& ph, double tau, double s, double c, int m, d
     if (m >= 1) gb[1] += ph.bx1;
 }
 
-void pair_poly(const Phase& ph, int i, int j, double alpha, double beta, double gamma, double delta, Poly& q) {
+void pair_poly(const Phase& ph, const Pair& pr, double alpha, double beta, double gamma, double delta, Poly& q) {
     ensure_series(ph);
     const int n = ph.n, ny = ph.ny, nt = ph.nt;
     const double* t = ph.tc.data();
+    const int i = pr.i, j = pr.j;
     q.deg = nt - 1;
-    if (j < 0) {
+    if (pr.levered()) {
+        for (int k = 0; k < nt; ++k) {
+            const double* Yk = t + k * ny;
+            q.c[k] = beta * rel(Yk, pr) + gamma * rel(Yk + n, pr);
+        }
+        if (delta != 0.0)
+            for (int k = 0; k + 1 < nt; ++k) q.c[k] += delta * (k + 1) * rel(t + (k + 1) * ny + n, pr);
+    } else if (j < 0) {
         const double* xi = t + i;
         const double* vi = t + n + i;
         for (int k = 0; k < nt; ++k) q.c[k] = beta * xi[k * ny] + gamma * vi[k * ny];
@@ -424,12 +431,15 @@ void pair_poly(const Phase& ph, int i, int j, double alpha, double beta, double 
     q.c[0] += alpha;
 }
 
-double pair_x(const Phase& ph, int i, int j, double tau) {
+double pair_x(const Phase& ph, const Pair& pr, double tau) {
     ensure_series(ph);
     const int ny = ph.ny;
     const double* t = ph.tc.data();
+    const int i = pr.i, j = pr.j;
     double f = 0.0;
-    if (j < 0) {
+    if (pr.levered()) {
+        for (int k = ph.nt - 1; k >= 0; --k) f = f * tau + rel(t + k * ny, pr);
+    } else if (j < 0) {
         for (int k = ph.nt - 1; k >= 0; --k) f = f * tau + t[k * ny + i];
     } else {
         for (int k = ph.nt - 1; k >= 0; --k) f = f * tau + (t[k * ny + i] - t[k * ny + j]);
@@ -580,20 +590,17 @@ void phase_rhs(Phase& ph, double tau, const double* y, double z, double* a, bool
     }
     if (ph.bw[0] != 0.0) {
         const double f = ph.bw[0] * z;
-        a[ph.iso_i] -= f;
-        if (ph.iso_j >= 0) a[ph.iso_j] += f;
+        push_pair(a, ph.iso, -f);
     }
     for (const Phase::RateFriction& r : ph.rate_fr) {  // (a velocity-dependent friction's rest, isolator.hpp)
-        const double f = iso_rate_force(*r.h, r.s, rel(v, r.h->i, r.h->j));
-        a[r.h->i] -= f;
-        if (r.h->j >= 0) a[r.h->j] += f;
+        const double f = iso_rate_force(*r.h, r.s, rel(v, *r.h));
+        push_pair(a, *r.h, -f);
     }
     for (int c = ph.nc - 1; c >= 0; --c) {
         const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
         if (!k.nl) continue;
-        const double f = law_force(k.law, k.p, k.sign * rel(x, k.i, k.j) - k.gap, k.sign * rel(v, k.i, k.j), k.lz).f;
-        a[k.i] -= k.sign * f;
-        if (k.j >= 0) a[k.j] += k.sign * f;
+        const double f = law_force(k.law, k.p, k.sign * rel(x, k) - k.gap, k.sign * rel(v, k), k.lz).f;
+        push_pair(a, k, -(k.sign * f));
     }
     for (int i = 0; i < n; ++i) a[i] /= ph.mass[static_cast<size_t>(i)];
     if (held) ph.stk.project(ph.mass, a);
@@ -644,7 +651,7 @@ Dp5 dp5_step(Phase& ph, double h) {
     auto slope = [&](double tau, const double* y, double z, double* k) {
         for (int i = 0; i < n; ++i) k[i] = y[n + i];
         phase_rhs(ph, tau, y, z, k + n);
-        k[ny] = zeta_rate(ph, rel(y + n, ph.iso_i, ph.iso_j), z);
+        k[ny] = zeta_rate(ph, rel(y + n, ph.iso), z);
     };
     auto stage = [&](const double* coef, int m) {  // yt = y0 + h sum_j coef_j k_j
         for (int q = 0; q <= ny; ++q) {

@@ -32,11 +32,10 @@ namespace pounding {
 constexpr int MAX_TERMS = 48;  // of a sub-interval's series (about 20 are used: the bound is a safeguard)
 
 // a contact slot in this phase
-struct ContactPhase {
+struct ContactPhase : Pair {
     bool in = false, nl = false;  // in contact; with a nonlinear law (integrated numerically)
     int law = 0;
     const double* p = nullptr;
-    int i = 0, j = GROUND;
     double sign = 1.0, gap = 0.0;
     double def0 = 0.0;             // the compression at the start (a relaxing bumper's)
     double kb = 0.0, cb = 0.0, rb = 0.0;  // a linear law's branch: F = kb x + rb + cb x'
@@ -67,7 +66,7 @@ struct Phase {
     std::vector<ContactPhase> ct;
     Sticking stk;  // the rigid stops held shut in this phase: every acceleration is projected by it
     // the isolator: its pair, dashpot and linear branch (force kiso u + riso + cd u'), its Bouc-Wen spring
-    int iso_i = 0, iso_j = GROUND;
+    Pair iso;
     double cd = 0.0, kiso = 0.0, riso = 0.0;
     std::vector<double> el_k, el_r;  // every hysteretic element's branch (force el_k u + el_r), for the outputs
     std::vector<double> el_s;        // and its friction's slip direction (0: sticking, or no friction rule)
@@ -95,7 +94,7 @@ struct Phase {
     // accelerations), its length, and the relative velocities' zeros found on it so far (per pair)
     const double *e_y0 = nullptr, *e_a0 = nullptr, *e_y1 = nullptr, *e_a1 = nullptr;
     double e_h = 0.0;
-    struct Zeros { int i, j; double h; int count; double t[2], x[2]; };
+    struct Zeros : Pair { double h; int count; double t[2], x[2]; };
     std::vector<Zeros> zeros;
     // evaluations of the trajectory at an instant inside a sub-interval (a series summed, a numerical step),
     // and of scalar polynomials (a root finder's iterations on a linear phase)
@@ -160,9 +159,10 @@ void table_series(const Phase& ph, int m, double* ga, double* gb);
 void table_derivatives(const Phase& ph, double tau, double s, double c, int m, double* g, double* gb = nullptr);
 
 // scalar polynomials of the current series: alpha + beta (x_i - x_j) + gamma (v_i - v_j) + delta (a_i - a_j)
-void pair_poly(const Phase& ph, int i, int j, double alpha, double beta, double gamma, double delta, Poly& q);
+// (x_i - x_j: the pair's w . x)
+void pair_poly(const Phase& ph, const Pair& pr, double alpha, double beta, double gamma, double delta, Poly& q);
 // the relative displacement x_i - x_j at tau of the current series (as pair_poly's polynomial of it would give)
-double pair_x(const Phase& ph, int i, int j, double tau);
+double pair_x(const Phase& ph, const Pair& pr, double tau);
 // dof i's absolute acceleration -(K x + C v + R0)_i / m_i (a linear phase's: no sine)
 void abs_acc_poly(const Phase& ph, int i, Poly& q);
 // the derivative of q
@@ -227,6 +227,15 @@ inline double table_b(const Phase& ph, double tau) {
 inline double table_on(const Phase& ph, int i, double tau) {
     return ph.on(i, table_acceleration(ph, tau), table_b(ph, tau));
 }
+// the table acceleration's slope along a pair: w . (each dof's)
+inline double table_slope_on(const Phase& ph, const Pair& pr) {
+    int d[4];
+    double w[4];
+    const int m = pr.entries(d, w);
+    double s = 0.0;
+    for (int r = 0; r < m; ++r) s += w[r] * ph.on(d[r], ph.ax1, ph.bx1);
+    return s;
+}
 // the table acceleration on every dof at tau into ag (n)
 inline void table_on_dofs(const Phase& ph, double tau, double* ag) {
     const double ga = table_acceleration(ph, tau), gb = table_b(ph, tau);
@@ -239,7 +248,7 @@ struct ContactForce { double f, elastic, rate, dx; };
 inline ContactForce contact_force(const Phase& ph, int c, const double* y, const double* a) {
     const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
     const double sg = k.sign;
-    const double dd = sg * rel(y, k.i, k.j) - k.gap, dv = sg * rel(y + ph.n, k.i, k.j), da = sg * rel(a, k.i, k.j);
+    const double dd = sg * rel(y, k) - k.gap, dv = sg * rel(y + ph.n, k), da = sg * rel(a, k);
     if (law_is_linear(k.law)) {
         const double fel = k.kb * dd + k.rb;
         return {fel + k.cb * dv, fel, k.kb * dv + k.cb * da, dv};

@@ -110,19 +110,18 @@ void eval_end(Phase& ph, double h, Buffers& b) {
 // where a sub-interval must end early: a pair's velocity turning back inside (two zeros: a dip of a
 // displacement event could hide between them), or, in a numerical phase whose right-hand side has a kink
 // there, its velocity's zero.  The cut instant (or h).
-double velocity_cuts(Phase& ph, const System& sy, double h, const Buffers& b, const int* pi, const int* pj, int np) {
+double velocity_cuts(Phase& ph, const System& sy, double h, const Buffers& b, const Pair* pairs, int np) {
     const int n = ph.n;
     double cut = h;
     const bool kinks = ph.numeric && (law_switches(ph) || sy.bw[0] != 0.0);
     for (int p = 0; p < np; ++p) {
-        const int i = pi[p], j = pj[p];
-        const double v0 = rel(b.y0s.data() + n, i, j), v1 = rel(b.y1.data() + n, i, j);
-        const double a0 = rel(b.a0.data(), i, j), a1 = rel(b.a1.data(), i, j);
+        const Pair& pr = pairs[p];
+        const double v0 = rel(b.y0s.data() + n, pr), v1 = rel(b.y1.data() + n, pr);
+        const double a0 = rel(b.a0.data(), pr), a1 = rel(b.a1.data(), pr);
         if (v0 * v1 < 0.0 && kinks) {
             Fn fv;
             fv.kind = FN_PAIR_V;
-            fv.i = i;
-            fv.j = j;
+            static_cast<Pair&>(fv) = pr;
             const double t_v = find_root(fv, ph, 0.0, h, v0, v1, a0, a1, XTOL_S);
             if (0.0 < t_v && t_v < cut) cut = t_v;
             continue;
@@ -130,15 +129,15 @@ double velocity_cuts(Phase& ph, const System& sy, double h, const Buffers& b, co
         if (!(v0 * v1 > 0.0 && a0 * a1 < 0.0) || !may_turn_back(h, v0, v1, a0, a1)) continue;
         Fn fa, fv;
         if (!ph.numeric) {
-            pair_poly(ph, i, j, 0.0, 0.0, 0.0, 1.0, fa.q);
+            pair_poly(ph, pr, 0.0, 0.0, 0.0, 1.0, fa.q);
             fa.kind = FN_POLY;
-            pair_poly(ph, i, j, 0.0, 0.0, 1.0, 0.0, fv.q);
+            pair_poly(ph, pr, 0.0, 0.0, 1.0, 0.0, fv.q);
             fv.kind = FN_POLY;
         } else {
             fa.kind = FN_PAIR_A;
             fv.kind = FN_PAIR_V;
-            fa.i = fv.i = i;
-            fa.j = fv.j = j;
+            static_cast<Pair&>(fa) = pr;
+            static_cast<Pair&>(fv) = pr;
         }
         const double t_a = find_root(fa, ph, 0.0, h, a0, a1, NaN, NaN, XTOL_EXTREMUM_S);
         double v_a, unused;
@@ -267,18 +266,14 @@ struct RunWorkspace::Impl {
     // the system it was made for: what its buffers' sizes and its transitions depend on
     int n = -1, nc = -1;
     std::vector<double> mass, c_lin, k0;
-    std::vector<int> pairs, elements;  // the contacts' pairs; the hysteretic elements' (the outputs' columns)
+    std::vector<Pair> pairs, elements;  // the contacts' pairs; the hysteretic elements' (the outputs' columns)
     bool fits(const System& s) const {
         if (s.n != n || s.nc() != nc || s.mass != mass || s.c_lin != c_lin || s.k0 != k0) return false;
-        if (static_cast<int>(elements.size()) != 2 * s.n_h()) return false;
+        if (static_cast<int>(elements.size()) != s.n_h()) return false;
         for (int e = 0; e < s.n_h(); ++e)
-            if (elements[static_cast<size_t>(2 * e)] != s.hyst[static_cast<size_t>(e)].i ||
-                elements[static_cast<size_t>(2 * e + 1)] != s.hyst[static_cast<size_t>(e)].j)
-                return false;
+            if (!same_pair(elements[static_cast<size_t>(e)], s.hyst[static_cast<size_t>(e)])) return false;
         for (int c = 0; c < nc; ++c)
-            if (pairs[static_cast<size_t>(2 * c)] != s.contact[static_cast<size_t>(c)].i ||
-                pairs[static_cast<size_t>(2 * c + 1)] != s.contact[static_cast<size_t>(c)].j)
-                return false;
+            if (!same_pair(pairs[static_cast<size_t>(c)], s.contact[static_cast<size_t>(c)])) return false;
         return true;
     }
     Phase ph;
@@ -287,7 +282,7 @@ struct RunWorkspace::Impl {
     std::vector<EventRow> evs;
     std::vector<double> ev_end;
     std::vector<double> ev_whole;  // (a whole step's ends, ev_end's once it is taken)
-    std::vector<int> pair_i, pair_j;
+    std::vector<Pair> event_pairs;
     TransitionCache transitions;
     ExtremaScreen screen;  // (the present phase's)
     std::vector<ForceTurn> turns;  // (each bond's held force's rate and bend at the last sub-interval's end)
@@ -407,15 +402,9 @@ void fit_workspace(RunWorkspace::Impl& w, const System& sy) {
         w.c_lin = sy.c_lin;
         w.k0 = sy.k0;
         w.pairs.clear();
-        for (const Contact& c : sy.contact) {
-            w.pairs.push_back(c.i);
-            w.pairs.push_back(c.j);
-        }
+        for (const Contact& c : sy.contact) w.pairs.push_back(c);
         w.elements.clear();
-        for (const Hysteretic& h : sy.hyst) {
-            w.elements.push_back(h.i);
-            w.elements.push_back(h.j);
-        }
+        for (const Hysteretic& h : sy.hyst) w.elements.push_back(h);
         w.ph.size(sy.n, sy.nc());
         w.b.size(sy.n, sy.nc());
         w.row.assign(static_cast<size_t>(sy.lay.sample_cols()), 0.0);
@@ -481,11 +470,9 @@ void set_up(Loop& lp) {
     lp.resolution[0] = v_res;
     lp.resolution[1] = RESOLUTION * ph.xrun;
     lp.resolution[2] = sy.total_mass * v_res;
-    std::vector<int>& pair_i = lp.w.pair_i;  // (each element's pair and each contact's: n_h + nc at most)
-    std::vector<int>& pair_j = lp.w.pair_j;
-    pair_i.resize(static_cast<size_t>(sy.n_h() + sy.nc() + 1));
-    pair_j.resize(static_cast<size_t>(sy.n_h() + sy.nc() + 1));
-    lp.n_pairs = event_pairs(sy, pair_i.data(), pair_j.data());
+    std::vector<Pair>& pairs = lp.w.event_pairs;  // (each element's pair and each contact's: n_h + nc at most)
+    pairs.resize(static_cast<size_t>(sy.n_h() + sy.nc() + 1));
+    lp.n_pairs = event_pairs(sy, pairs.data());
     lp.record = lp.fo.kind != EXC_HARMONIC;
     if (sy.has_b)
         for (const Contact& c : sy.contact)
@@ -777,7 +764,7 @@ void earliest(Loop& lp) {
         lp.c1 = end_angle.c;
         return;
     }
-    double cut = velocity_cuts(ph, lp.sy, lp.h, b, lp.w.pair_i.data(), lp.w.pair_j.data(), lp.n_pairs);
+    double cut = velocity_cuts(ph, lp.sy, lp.h, b, lp.w.event_pairs.data(), lp.n_pairs);
     // (the ends known where no velocity cut came first; the ties' turns at the start kept from the last
     // sub-interval's end where it went the whole way to this one's start, on the same piece of the table)
     const bool turns_kept = lp.turns_at_end && lp.b.went_on && !lp.at_knot;

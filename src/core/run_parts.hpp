@@ -48,7 +48,7 @@ NumStep numeric_step(Phase& ph, double h, double h_num, double rtol, double t);
 int phase_events(const Phase& ph, const double* st, const System& sy, EventRow* evs);
 
 // the pairs whose relative displacement events are functions of: the isolator's and the contacts'
-int event_pairs(const System& sy, int* pi, int* pj);
+int event_pairs(const System& sy, Pair* pairs);
 
 // ---------------------------------------------------------------- the run's buffers
 

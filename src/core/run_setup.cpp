@@ -143,9 +143,8 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
     for (int e = 0; e < sy.n_h(); ++e) {  // each element's present branch
         const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
         const IsoLinear el = iso_linear(sy, e, st);
-        sy.add_pair(ph.K, h.i, h.j, el.k);
-        ph.R0[static_cast<size_t>(h.i)] += el.r0;
-        if (h.j >= 0) ph.R0[static_cast<size_t>(h.j)] -= el.r0;
+        sy.add_pair(ph.K, h, el.k);
+        push_pair(ph.R0.data(), h, el.r0);
         ph.el_k[static_cast<size_t>(e)] = el.k;
         ph.el_r[static_cast<size_t>(e)] = el.r0;
         const double s = iso_slip(sy, e, st);
@@ -166,12 +165,10 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
         if (law_is_linear(ct.law)) {
             // F = kb x + rb + cb x' with x = sign (x_i - x_j) - gap, pushing dof i by -sign F
             const Branch br = law_linear_branch(ct.law, ct.p, st[L.def_at(q)],
-                                                ct.sign * rel(st + L.v, ct.i, ct.j), st + L.z_at(q));
-            sy.add_pair(ph.K, ct.i, ct.j, br.k);
-            sy.add_pair(ph.C, ct.i, ct.j, br.c);
-            const double r = ct.sign * (br.r - br.k * ct.gap);
-            ph.R0[static_cast<size_t>(ct.i)] += r;
-            if (ct.j >= 0) ph.R0[static_cast<size_t>(ct.j)] -= r;
+                                                ct.sign * rel(st + L.v, ct), st + L.z_at(q));
+            sy.add_pair(ph.K, ct, br.k);
+            sy.add_pair(ph.C, ct, br.c);
+            push_pair(ph.R0.data(), ct, ct.sign * (br.r - br.k * ct.gap));
             k.kb = br.k;
             k.cb = br.c;
             k.rb = br.r;
@@ -205,9 +202,18 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
     double k_extra = 0.0;
     if (k_bw != 0.0) {
         const Hysteretic& h = sy.iso();
-        const double mi = ph.minv[static_cast<size_t>(h.i)];
-        const double mj = h.j >= 0 ? ph.minv[static_cast<size_t>(h.j)] : 0.0;
-        k_extra = k_bw * (mi + mj + (h.j >= 0 ? 2.0 * std::sqrt(mi * mj) : 0.0));
+        if (h.levered()) {  // (k w^T M^-1 w at most k (sum |w_k| sqrt(1 / m_k))^2)
+            int d[4];
+            double w[4];
+            const int m = h.entries(d, w);
+            double s = 0.0;
+            for (int r = 0; r < m; ++r) s += std::abs(w[r]) * std::sqrt(ph.minv[static_cast<size_t>(d[r])]);
+            k_extra = k_bw * s * s;
+        } else {
+            const double mi = ph.minv[static_cast<size_t>(h.i)];
+            const double mj = h.j >= 0 ? ph.minv[static_cast<size_t>(h.j)] : 0.0;
+            k_extra = k_bw * (mi + mj + (h.j >= 0 ? 2.0 * std::sqrt(mi * mj) : 0.0));
+        }
     }
     ph.rate = rate_bound(ph, k_extra);
 }
@@ -234,13 +240,11 @@ void run_constants(Phase& ph, const System& sy, const Forcing& fo) {
         k.law = ct.law;
         k.p = ct.p;
         k.sign = ct.sign;
-        k.i = ct.i;
-        k.j = ct.j;
+        static_cast<Pair&>(k) = ct;
     }
     // the isolator's numbers for its output column and its Bouc-Wen spring (none: a fixed base, force 0)
     ph.cd = sy.n_h() > 0 ? sy.iso().c_d : 0.0;
-    ph.iso_i = sy.n_h() > 0 ? sy.iso().i : 0;
-    ph.iso_j = sy.n_h() > 0 ? sy.iso().j : GROUND;
+    ph.iso = sy.n_h() > 0 ? static_cast<const Pair&>(sy.iso()) : Pair();
     for (int j = 0; j < BW_PARAMS; ++j) ph.bw[j] = sy.bw[j];
 }
 
@@ -278,8 +282,7 @@ int phase_events(const Phase& ph, const double* st, const System& sy, EventRow* 
         EventRow& r = evs[n++];
         r = EventRow();
         r.kind = KIND_ZETA;
-        r.i = sy.iso().i;
-        r.j = sy.iso().j;
+        static_cast<Pair&>(r) = sy.iso();
         r.alpha = -std::copysign(1.0, st[sy.lay.zeta]);
         r.action = ACT_BOUC_WEN;
     }
@@ -287,18 +290,16 @@ int phase_events(const Phase& ph, const double* st, const System& sy, EventRow* 
 }
 
 // the pairs whose relative displacement events are functions of: the elements' and the contacts'
-int event_pairs(const System& sy, int* pi, int* pj) {
+int event_pairs(const System& sy, Pair* pairs) {
     int np = 0;
-    auto add = [&](int i, int j) {
+    auto add = [&](const Pair& p) {
         for (int q = 0; q < np; ++q)
-            if (pi[q] == i && pj[q] == j) return;
-        pi[np] = i;
-        pj[np] = j;
-        ++np;
+            if (same_pair(pairs[q], p)) return;
+        pairs[np++] = p;
     };
-    for (const Hysteretic& h : sy.hyst) add(h.i, h.j);
+    for (const Hysteretic& h : sy.hyst) add(h);
     if (sy.has_b)
-        for (const Contact& c : sy.contact) add(c.i, c.j);
+        for (const Contact& c : sy.contact) add(c);
     return np;
 }
 }  // namespace pounding::run_parts

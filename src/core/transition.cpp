@@ -35,18 +35,13 @@ void TransitionCache::setup(const System& sy) {
     entries.assign(N_CACHE, Transition());
     next = 0;
     recent[0] = recent[1] = Recent();
-    pi.clear();
-    pj.clear();
+    pairs.clear();
     pair_of.assign(static_cast<size_t>(sy.nc()), 0);
     for (int c = 0; c < sy.nc(); ++c) {
         const Contact& ct = sy.contact[static_cast<size_t>(c)];
         int p = 0;
-        while (p < static_cast<int>(pi.size()) && !(pi[static_cast<size_t>(p)] == ct.i && pj[static_cast<size_t>(p)] == ct.j))
-            ++p;
-        if (p == static_cast<int>(pi.size())) {
-            pi.push_back(ct.i);
-            pj.push_back(ct.j);
-        }
+        while (p < static_cast<int>(pairs.size()) && !same_pair(pairs[static_cast<size_t>(p)], ct)) ++p;
+        if (p == static_cast<int>(pairs.size())) pairs.push_back(ct);
         pair_of[static_cast<size_t>(c)] = p;
     }
 }
@@ -87,7 +82,7 @@ const Transition* TransitionCache::get(const Phase& ph, const System& sy, double
     next = (next + 1) % N_CACHE;
     e.made = ++made;
     remember(idx);
-    const int n = ph.n, ny = ph.ny, dim = 3 * n + 4, np = static_cast<int>(pi.size());
+    const int n = ph.n, ny = ph.ny, dim = 3 * n + 4, np = static_cast<int>(pairs.size());
     e.K = ph.K;
     e.C = ph.C;
     e.grp = ph.stk.grp;
@@ -164,10 +159,25 @@ const Transition* TransitionCache::get(const Phase& ph, const System& sy, double
         for (int k = 0; k < 4; ++k)
             for (int col = 0; col < dim; ++col) e.R[static_cast<size_t>(k * dim + col)] += wq * basis[k] * mv[static_cast<size_t>(col)];
         for (int p = 0; p < np; ++p) {
-            const int i = pi[static_cast<size_t>(p)], j = pj[static_cast<size_t>(p)];
+            const Pair& pr = pairs[static_cast<size_t>(p)];
+            const int i = pr.i, j = pr.j;
+            int d[4];
+            double w[4];
+            const int m = pr.entries(d, w);
             for (int col = 0; col < dim; ++col) {
-                const double dx = j >= 0 ? X(i, col) - X(j, col) : X(i, col);
-                dv[static_cast<size_t>(col)] = j >= 0 ? V(i, col) - V(j, col) : V(i, col);
+                double dx, dvc;
+                if (pr.levered()) {  // (w . X's column, w . V's)
+                    dx = 0.0;
+                    dvc = 0.0;
+                    for (int r = 0; r < m; ++r) {
+                        dx += w[r] * X(d[r], col);
+                        dvc += w[r] * V(d[r], col);
+                    }
+                } else {
+                    dx = j >= 0 ? X(i, col) - X(j, col) : X(i, col);
+                    dvc = j >= 0 ? V(i, col) - V(j, col) : V(i, col);
+                }
+                dv[static_cast<size_t>(col)] = dvc;
                 e.L[static_cast<size_t>(p * dim + col)] += wq * dx;
             }
             double* qp = &e.Qp[static_cast<size_t>(p * dim * dim)];

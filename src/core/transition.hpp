@@ -35,7 +35,7 @@ struct Transition {
 struct TransitionCache {
     std::vector<Transition> entries;
     int next = 0;
-    std::vector<int> pi, pj;  // the contacts' distinct pairs (their integrals' rows)
+    std::vector<Pair> pairs;  // the contacts' distinct pairs (their integrals' rows)
     std::vector<int> pair_of; // each contact slot's pair
     std::vector<double> scratch;
     // the last two found for a phase (its run's phase count: the same phase, its key unchanged), so that a phase

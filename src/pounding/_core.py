@@ -42,9 +42,13 @@ except ImportError as exc:  # pragma: no cover  (a source tree never built)
         "compiles it with CMake; see docs/building.md)") from exc
 
 System = _c.System
-ContactSlot = _c.ContactSlot  # (built by keyword: i, j, sign, gap_m, law, params)
+ContactSlot = _c.ContactSlot  # (built by keyword: i, j, sign, gap_m, law, params; levers as below)
 Element = _c.Element  # (by keyword: i, j, c_d, slopes, breaks, rule, friction_n, friction_fast_n,
-#                        friction_rate_s_m, surface_friction_n, surface_ring_n_m)
+#                        friction_rate_s_m, surface_friction_n, surface_ring_n_m; levers as below)
+# Either acts on a pair: dof i, plus arm_i_m times dof lever_i (a lever: a point of a floor in plan moves
+# as x - y_c theta, so arm_i_m = -y_c on the rotation's dof), against dof j (plus arm_j_m times dof lever_j)
+# or the ground; lever -1: none.  Its relative displacement is w . x (w: 1 on i, arm_i_m on lever_i, -1 on
+# j, -arm_j_m on lever_j), and its force f pushes the dofs by -f w.
 LAYOUT: dict[str, int] = dict(_c.LAYOUT)
 LAW_IDS: dict[str, int] = dict(_c.LAW_IDS)
 STATUS: dict[str, int] = dict(_c.STATUS)
@@ -213,10 +217,23 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
             raise ValueError(f"{what}: the pair ({i}, {j}) is not two of the {n} dofs (or one and the "
                              "ground, -1)")
 
+    def levers(p: Any, what: str) -> bool:  # (whether it has any)
+        for end, lever, arm in (("i", p.lever_i, p.arm_i_m), ("j", p.lever_j, p.arm_j_m)):
+            if lever == -1:
+                continue
+            own = p.i if end == "i" else p.j
+            if not (0 <= lever < n and lever != own and own != -1 and math.isfinite(arm)):
+                raise ValueError(f"{what}: the lever of end {end} ({lever}, arm {arm}) is not another of the "
+                                 f"{n} dofs than {own} with a finite arm (the ground's end has none)")
+        return p.lever_i != -1 or p.lever_j != -1
+
     for e, el in enumerate(elements):
         if not isinstance(el, Element):
             raise ValueError(f"element {e}: an Element, got {type(el).__name__}")
         pair(el.i, el.j, f"element {e}")
+        if levers(el, f"element {e}") and el.rule == 2:
+            raise ValueError(f"element {e}: a friction element on a lever is not supported yet (its tie "
+                             "holds a dof, not a point): place it on a dof of its own")
         surfaces = len(el.surface_friction_n)
         if surfaces:  # (a series of friction surfaces: a slope, a travel and a friction each)
             if (el.rule != 2 or surfaces < 2 or len(el.slopes) != surfaces or len(el.breaks) != surfaces
@@ -252,6 +269,9 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
         pair(slot.i, slot.j, f"contact {c}")
         if slot.sign not in (-1.0, 1.0) or slot.law not in LAW_IDS.values():
             raise ValueError(f"contact {c}: sign +-1 and a law id of LAW_IDS")
+        if levers(slot, f"contact {c}") and slot.law == LAW_IDS["rigid"]:
+            raise ValueError(f"contact {c}: a rigid stop on a lever is not supported yet (its impact's "
+                             "impulse is a dof's): use a compliant law there")
     for q, (i, j) in enumerate(tracked):
         pair(i, j, f"tracked pair {q}")
     infl: list[float] = []
@@ -266,28 +286,35 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
                      track_i=[int(i) for i, _ in tracked], track_j=[int(j) for _, j in tracked], infl=infl)
 
 
-def contact_slot(*, i: int, j: int, sign: float, gap_m: float, law: int, params: Any) -> ContactSlot:
+def contact_slot(*, i: int, j: int, sign: float, gap_m: float, law: int, params: Any, lever_i: int = -1,
+                 arm_i_m: float = 0.0, lever_j: int = -1, arm_j_m: float = 0.0) -> ContactSlot:
     """A contact slot (:class:`ContactSlot`) from numbers as the model gives them: ``params`` at most
-    ``N_LAW_PARAMS`` numbers (the rest 0)."""
+    ``N_LAW_PARAMS`` numbers (the rest 0); its pair's levers (-1: none) and arms (m per unit of the lever's
+    dof: a rotation's, m/rad)."""
     params = [float(x) for x in params]
     if len(params) > LAYOUT["N_LAW_PARAMS"]:
         raise ValueError(f"a contact law's parameters: at most {LAYOUT['N_LAW_PARAMS']}, got {len(params)}")
-    return ContactSlot(i=int(i), j=int(j), sign=float(sign), gap_m=float(gap_m), law=int(law), params=params)
+    return ContactSlot(i=int(i), j=int(j), sign=float(sign), gap_m=float(gap_m), law=int(law), params=params,
+                       lever_i=int(lever_i), arm_i_m=float(arm_i_m), lever_j=int(lever_j),
+                       arm_j_m=float(arm_j_m))
 
 
 def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int, friction_n: float = 0.0,
             friction_fast_n: float = 0.0, friction_rate_s_m: float = 0.0,
-            surface_friction_n: Any = (), surface_ring_n_m: Any = ()) -> Element:
+            surface_friction_n: Any = (), surface_ring_n_m: Any = (), lever_i: int = -1, arm_i_m: float = 0.0,
+            lever_j: int = -1, arm_j_m: float = 0.0) -> Element:
     """A hysteretic element (:class:`Element`) from numbers as the model gives them (``friction_n``: the
     friction of rule 2 at rest, N; with ``friction_rate_s_m`` > 0, s/m, a slip's friction is
     ``friction_fast_n - (friction_fast_n - friction_n) exp(-friction_rate_s_m |u'|)``; ``surface_friction_n``:
     rule 2's surfaces in series, each surface's friction N, its stiffness in ``slopes`` N/m and its travel to
-    its ring in ``breaks`` m; ``surface_ring_n_m``: each ring's stiffness, N/m, 0 or none given: rigid)."""
+    its ring in ``breaks`` m; ``surface_ring_n_m``: each ring's stiffness, N/m, 0 or none given: rigid; its
+    pair's levers and arms as :func:`contact_slot`'s)."""
     return Element(i=int(i), j=int(j), c_d=float(c_d), slopes=[float(x) for x in slopes],
                    breaks=[float(x) for x in breaks], rule=int(rule), friction_n=float(friction_n),
                    friction_fast_n=float(friction_fast_n), friction_rate_s_m=float(friction_rate_s_m),
                    surface_friction_n=[float(x) for x in surface_friction_n],
-                   surface_ring_n_m=[float(x) for x in surface_ring_n_m])
+                   surface_ring_n_m=[float(x) for x in surface_ring_n_m], lever_i=int(lever_i),
+                   arm_i_m=float(arm_i_m), lever_j=int(lever_j), arm_j_m=float(arm_j_m))
 
 
 def _one_component(sy: System, what: str) -> None:
@@ -392,6 +419,9 @@ def monodromy(sy: System, state0: np.ndarray, events: np.ndarray, t_end: float, 
     """The exact Jacobian of ``sy``'s map from the state vector ``state0`` to ``t_end`` along ``events``
     (rows of t, action, index) under ``amp sin(omega t + phase)``."""
     _one_component(sy, "monodromy")
+    if sy.levered:
+        raise ValueError("monodromy: a system with levers (a contact or an element on a point of a floor in "
+                         "plan) has no exact monodromy yet")
     jac, x_end, code = _c.monodromy(sy, _f64(state0), _f64(events).reshape(-1, 3), float(t_end), float(omega),
                                     float(amp), float(phase))
     return Monodromy(jacobian=jac, x_end=x_end, code=int(code))

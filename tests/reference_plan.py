@@ -1,0 +1,209 @@
+"""A slow, obviously-correct reference for structures in plan: scipy's solve_ivp (DOP853) with events,
+restarted at each of them.
+
+The structure restated directly, sharing no code with the engine: n coordinates q (each floor's x, y and
+rotation, relative to the ground), ``M q'' + C q' + K q + f_plastic + f_walls = -M R a_g(t)``, M diagonal (the
+masses and the floors' rotational inertias), R the influence of the ground's two components (n, 2), a_g(t) the
+pair of components linear between their samples. Every nonlinear force acts along a weight vector w (a
+point of a floor: its displacement along an axis is w . q, e.g. ``x - y_c theta``) and pushes the coordinates
+by its force times w:
+
+* an elastic-perfectly-plastic spring (stiffness k_p, yield displacement D; a bilinear bearing is one beside
+  a linear spring in K): stuck, its force is k_p (w . q - slip); it slips when w . q - slip reaches +-D and
+  sticks again when w . q' turns back;
+* a Kelvin-Voigt wall (stiffness k_b, dashpot c_b) behind a gap, on one side (sign +-1): in contact its force
+  is k_b d + c_b d' (d = sign w . q - gap) until it would pull; out of contact its compression relaxes as
+  d_r exp(-k_b (t - t_r) / c_b) from where it was released, and contact starts when the point meets that
+  surface.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.integrate import solve_ivp
+
+from reference_ndof import TouchAtRest, _stepped_over
+
+
+@dataclass
+class PlanModel:
+    mass: np.ndarray       # (n,): kg, kg m^2 for a rotation
+    k: np.ndarray          # (n, n), N/m (the linear springs, the bearings' elastic part among them)
+    c: np.ndarray          # (n, n), N s/m
+    influence: np.ndarray  # (n, 2)
+    record: tuple          # (t s, a_x m/s^2, a_y m/s^2): linear between the samples, zero outside
+    # elastic-perfectly-plastic springs: (w (n,), k_p N/m, D m)
+    plastic: list = field(default_factory=list)
+    # Kelvin-Voigt walls: (w (n,), sign +-1, gap m, k_b N/m, c_b N s/m)
+    walls: list = field(default_factory=list)
+
+
+@dataclass
+class PlanResult:
+    yields: list = field(default_factory=list)          # (spring, t): began to slip
+    sticks: list = field(default_factory=list)          # (spring, t): stuck again
+    contact_starts: list = field(default_factory=list)  # (wall, t)
+    contact_ends: list = field(default_factory=list)
+    y: np.ndarray | None = None                         # the final (q, q')
+
+
+def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, atol: float = 1e-15,
+              steps_per_period: float = 100.0) -> PlanResult:
+    n = s.mass.size
+    inv_m = 1.0 / s.mass
+    ws = [np.asarray(w, dtype=float) for w, *_ in s.walls]
+    wp = [np.asarray(w, dtype=float) for w, *_ in s.plastic]
+
+    def longest_step(kk):  # (a hundredth of the fastest period: no dip of an event between two steps' signs)
+        w_max = math.sqrt(max(float(np.max(np.linalg.eigvals(kk * inv_m[:, None]).real)), 0.0))
+        return 2.0 * math.pi / w_max / steps_per_period if w_max > 0.0 else np.inf
+
+    k_stuck = s.k + sum((k_p * np.outer(w, w) for w, (_, k_p, _) in zip(wp, s.plastic)), np.zeros((n, n)))
+    k_in = k_stuck + sum((k_b * np.outer(w, w) for w, (_, _, _, k_b, _) in zip(ws, s.walls)),
+                         np.zeros((n, n)))
+    step_in, step_out = longest_step(k_in), longest_step(k_stuck)
+
+    inside = [False] * len(s.walls)
+    relax = [(0.0, 0.0)] * len(s.walls)  # (compression at release, release time)
+    slip = [0.0] * len(s.plastic)
+    mode = [0] * len(s.plastic)  # 0 stuck, +-1 slipping that way
+    out = PlanResult()
+
+    def along(y, w):  # (displacement, velocity) of a point along w
+        return float(w @ y[:n]), float(w @ y[n:])
+
+    def surface(c, t):
+        d_r, t_r = relax[c]
+        _, _, _, k_b, c_b = s.walls[c]
+        if d_r == 0.0 or c_b == 0.0:
+            return 0.0
+        return d_r * math.exp(-k_b * (t - t_r) / c_b)
+
+    def nonlinear_forces(y):
+        f = np.zeros(n)
+        for q, (w, (_, k_p, d)) in enumerate(zip(wp, s.plastic)):
+            f += (k_p * (along(y, w)[0] - slip[q]) if mode[q] == 0 else mode[q] * k_p * d) * w
+        for c, (w, (_, sg, gap, k_b, c_b)) in enumerate(zip(ws, s.walls)):
+            if inside[c]:
+                u, du = along(y, w)
+                f += sg * (k_b * (sg * u - gap) + c_b * sg * du) * w
+        return f
+
+    a_lin = np.zeros((2 * n, 2 * n))
+    a_lin[:n, n:] = np.eye(n)
+    a_lin[n:, :n] = -inv_m[:, None] * s.k
+    a_lin[n:, n:] = -inv_m[:, None] * s.c
+    t_rec, ax, ay = (np.asarray(a, dtype=float) for a in s.record)
+
+    def rhs(t, y):
+        g = np.array([float(np.interp(t, t_rec, ax, left=0.0, right=0.0)),
+                      float(np.interp(t, t_rec, ay, left=0.0, right=0.0))])
+        dy = a_lin @ y
+        dy[n:] -= s.influence @ g + inv_m * nonlinear_forces(y)
+        return dy
+
+    def make_events(quiet_contact=None):
+        evs = []
+        for c, (w, (_, sg, gap, k_b, c_b)) in enumerate(zip(ws, s.walls)):
+            if c == quiet_contact:
+                continue
+            if inside[c]:
+                def release(t, y, w=w, sg=sg, gap=gap, k_b=k_b, c_b=c_b):
+                    u, du = along(y, w)
+                    return k_b * (sg * u - gap) + c_b * sg * du
+
+                def emptied(t, y, w=w, sg=sg, gap=gap):  # (the compression back to 0: the contact ends too)
+                    return sg * along(y, w)[0] - gap
+                emptied.terminal = True
+                emptied.direction = -1.0
+                emptied.contact = c
+                evs.append(emptied)
+            else:
+                def release(t, y, c=c, w=w, sg=sg, gap=gap):
+                    return gap + surface(c, t) - sg * along(y, w)[0]
+            release.terminal = True
+            release.direction = -1.0
+            release.contact = c
+            evs.append(release)
+        for q, (w, (_, _, d)) in enumerate(zip(wp, s.plastic)):
+            for sg in (1.0, -1.0):
+                if mode[q] == 0:  # stuck: the spring's strain reaches +-D
+                    def change(t, y, q=q, w=w, sg=sg, d=d):
+                        return d - sg * (along(y, w)[0] - slip[q])
+
+                    def rate(t, y, w=w, sg=sg):  # (change's derivative: its minima are the strain's turns)
+                        return -sg * along(y, w)[1]
+                    change.rate = rate
+                elif mode[q] == sg:  # slipping: its rate turns back
+                    def change(t, y, w=w, sg=sg):
+                        return sg * along(y, w)[1]
+                else:
+                    continue
+                change.terminal = True
+                change.direction = -1.0
+                change.plastic = (q, sg)
+                evs.append(change)
+        return evs
+
+    t, y = 0.0, np.array(y0, dtype=float)
+    quiet = None  # (a wall just released, until when its start is not looked for)
+    while t < t_end:
+        quiet_now = quiet is not None and t < quiet[1]
+        evs = make_events(quiet[0] if quiet_now else None)
+        after = t_rec[t_rec > t * (1.0 + 1e-15) + 1e-15]  # (a record's kink: a stretch ends at the next)
+        t_next = min(t_end, float(after[0])) if after.size else t_end
+        if quiet_now:
+            t_next = min(t_next, quiet[1])
+        sol = solve_ivp(rhs, (t, t_next), y, method="DOP853", rtol=rtol, atol=atol, events=evs,
+                        dense_output=True, max_step=step_in if any(inside) else step_out)
+        if sol.status == -1:
+            raise RuntimeError(sol.message)
+        hits = [(float(te[0]), c) for c, te in enumerate(sol.t_events) if te.size and te[0] > t + 1e-13]
+        dip = _stepped_over(evs, sol, t)
+        if dip is not None:
+            hits.append(dip)
+        for q, (w, (_, _, d)) in enumerate(zip(wp, s.plastic)):  # (a stretch that slipped: the slip followed)
+            if mode[q] != 0:
+                end = sol.sol(min(hits)[0]) if hits else sol.y[:, -1]
+                slip[q] = along(end, w)[0] - mode[q] * d
+        if not hits:
+            if sol.status != 0:
+                fired = [evs[k] for k, te in enumerate(sol.t_events) if te.size]
+                just = [f.contact for f in fired if hasattr(f, "contact") and not inside[f.contact]
+                        and relax[f.contact][1] == t]
+                if just and (quiet is None or quiet[1] <= t):  # (as reference_ndof: a release at rest)
+                    quiet = (just[0], t + 1e-9)
+                    continue
+                raise TouchAtRest(f"an event fires again at its own instant, t = {t}")
+            t, y = float(sol.t[-1]), sol.y[:, -1]
+            if t_next < t_end:
+                continue
+            break
+        t_hit = min(hits)[0]
+        y = sol.sol(t_hit)
+        t = t_hit
+        # (every event at that instant, to 1e-12 s, once: solve_ivp's and a stepped-over dip may be the same)
+        for c in sorted({c for t_c, c in hits if t_c <= t_hit + 1e-12}):
+            if hasattr(evs[c], "plastic"):
+                q, sg = evs[c].plastic
+                if mode[q] == 0:
+                    mode[q] = int(sg)
+                    out.yields.append((q, t))
+                else:
+                    mode[q] = 0
+                    out.sticks.append((q, t))
+                continue
+            c = evs[c].contact
+            _, sg, gap, _, _ = s.walls[c]
+            if inside[c]:
+                inside[c] = False
+                relax[c] = (max(sg * along(y, ws[c])[0] - gap, 0.0), t)
+                out.contact_ends.append((c, t))
+            else:
+                inside[c] = True
+                out.contact_starts.append((c, t))
+    out.y = y
+    return out

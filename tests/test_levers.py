@@ -1,0 +1,363 @@
+"""Contacts and elements on levers, at the core's door: a pair whose end is a point of a floor in plan (its
+displacement along an axis ``x - y_c theta``: a dof plus an arm times another).
+
+* A building in plan (each floor's x, y and rotation) on bilinear bearings at its corners, its base's
+  corners against a rectangular moat of Kelvin-Voigt walls, under a pair of record components: against an
+  independent solve_ivp reference with events (tests/reference_plan.py), contact starts and ends, yields and
+  sticks within 1e-9 s; the energy ledger closes.
+* Three masses on a line under one component (a plain table: kept transitions, whole steps and the screens),
+  their bilinear elements and walls on weighted combinations of them: the same reference.
+* A lever of arm zero is no lever: a line building's run, its contacts and elements each given a lever of
+  arm 0, is the plain run number for number (every levered path gives the plain path's numbers).
+* The door refuses what levers cannot carry yet (a rigid stop's impulse, a friction element's tie, the
+  monodromy) and a lever that is no other dof.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, assume, event, given, settings
+from hypothesis import strategies as st
+
+import pounding as pd_
+from pounding import _control, _core
+from pounding.engine.layout import L_INPUT
+from pounding.engine.run_parts import EnergyLedger
+from reference_ndof import TouchAtRest
+from reference_plan import PlanModel, reference
+
+KELVIN_VOIGT = _core.LAW_IDS["kelvin_voigt"]
+BW = np.zeros(_core.LAYOUT["BW_PARAMS"])
+ACT = _core.ACTIONS
+
+
+def _run(sy, forcing, state0, t_end, sample_dt=0.0):
+    return _core.run(sy, forcing, np.asarray(state0, dtype=float), t_end, sample_dt, 1e-10, 10**6, True,
+                     _control.new_control(10**10))
+
+
+def _record(rng, duration_s, dt, pga):
+    """A pair of smooth random components (m/s^2) on one time base."""
+    t = np.arange(0.0, duration_s + dt / 2, dt)
+    comps = []
+    for _ in range(2):
+        a = np.convolve(rng.normal(0.0, 1.0, t.size), np.ones(7) / 7, "same")
+        comps.append(pga * a / np.max(np.abs(a)))
+    return t, comps[0], comps[1]
+
+
+def _weights(n, entries):
+    w = np.zeros(n)
+    for d, v in entries:
+        w[d] += v
+    return w
+
+
+def plan_building(rng, levels, gap_m):
+    """A building in plan of ``levels`` floors (dofs 3 l, 3 l + 1, 3 l + 2: x, y, rotation), on four bilinear
+    bearings at its base's corners (an element per axis, kinematic rule), its base's corners against a
+    rectangular moat of Kelvin-Voigt walls ``gap_m`` away (two corners against each wall); its storeys are
+    lateral lines (frames) placed in plan. As the core takes it and as the reference restates it."""
+    n = 3 * levels
+    a, b = rng.uniform(10.0, 30.0, 2)  # (the plan's sides, m)
+    mass = np.zeros(n)
+    for level in range(levels):
+        m = rng.uniform(2e5, 6e5)
+        mass[3 * level:3 * level + 2] = m
+        mass[3 * level + 2] = m * (a * a + b * b) / 12.0 * rng.uniform(0.8, 1.2)
+    k = np.zeros((n, n))
+    for level in range(1, levels):  # (two frames each way at drawn places: stiffness off the mass's centre)
+        lo, hi = 3 * (level - 1), 3 * level
+        for axis in (0, 1):
+            for _ in range(2):
+                at = rng.uniform(-0.5, 0.5) * (b if axis == 0 else a)
+                arm = -at if axis == 0 else at
+                w = _weights(n, [(hi + axis, 1.0), (hi + 2, arm), (lo + axis, -1.0), (lo + 2, -arm)])
+                k += rng.uniform(5e7, 2e8) * np.outer(w, w)
+    c = 0.02 * np.diag(mass) + 0.001 * k
+    # (the reference's linear springs and dashpots: the storeys' and the bearings' elastic parts)
+    k_ref, c_ref = k.copy(), c.copy()
+    elements, plastic = [], []
+    corners = [(sx * a / 2, sy * b / 2) for sx in (-1.0, 1.0) for sy in (-1.0, 1.0)]
+    for cx, cy in corners:  # (each near a corner, none two on one line: their yields and sticks apart)
+        px, py = cx * rng.uniform(0.7, 0.95), cy * rng.uniform(0.7, 0.95)
+        k1, dy = rng.uniform(5e6, 2e7), rng.uniform(0.005, 0.02)
+        k2 = k1 * rng.uniform(0.05, 0.3)
+        c_d = rng.uniform(0.0, 2e4)
+        for axis, arm in ((0, -py), (1, px)):  # (the corner's x is x - py theta, its y is y + px theta)
+            elements.append(_core.element(i=axis, j=-1, c_d=c_d, slopes=[k1, k2], breaks=[dy], rule=0,
+                                          lever_i=2, arm_i_m=arm))
+            w = _weights(n, [(axis, 1.0), (2, arm)])
+            k_ref += k2 * np.outer(w, w)
+            c_ref += c_d * np.outer(w, w)
+            plastic.append((w, k1 - k2, dy))
+    k_b, c_b = rng.uniform(5e7, 3e8), rng.uniform(2e4, 2e5)
+    params = np.zeros(_core.LAYOUT["N_LAW_PARAMS"])
+    params[:2] = k_b, c_b
+    contacts, walls = [], []
+    for axis, sign in ((0, 1.0), (0, -1.0), (1, 1.0), (1, -1.0)):
+        for px, py in corners:
+            if (px if axis == 0 else py) * sign < 0.0:  # (the two corners on that wall's side)
+                continue
+            arm = -py if axis == 0 else px
+            contacts.append(_core.contact_slot(i=axis, j=-1, sign=sign, gap_m=gap_m, law=KELVIN_VOIGT,
+                                               params=params, lever_i=2, arm_i_m=arm))
+            walls.append((_weights(n, [(axis, 1.0), (2, arm)]), sign, gap_m, k_b, c_b))
+    if levels >= 2:  # (the first storey: a yielding frame each way, and drift limiters at a corner)
+        for axis in (0, 1):
+            at = rng.uniform(-0.5, 0.5) * (b if axis == 0 else a)
+            arm = -at if axis == 0 else at
+            k1, dy = rng.uniform(2e7, 5e7), rng.uniform(0.002, 0.01)
+            k2 = k1 * rng.uniform(0.05, 0.5)
+            elements.append(_core.element(i=3 + axis, j=axis, c_d=0.0, slopes=[k1, k2], breaks=[dy], rule=0,
+                                          lever_i=5, arm_i_m=arm, lever_j=2, arm_j_m=arm))
+            w = _weights(n, [(3 + axis, 1.0), (5, arm), (axis, -1.0), (2, -arm)])
+            k_ref += k2 * np.outer(w, w)
+            plastic.append((w, k1 - k2, dy))
+        arm = -b / 2
+        w = _weights(n, [(3, 1.0), (5, arm), (0, -1.0), (2, -arm)])
+        for sign in (1.0, -1.0):
+            contacts.append(_core.contact_slot(i=3, j=0, sign=sign, gap_m=gap_m / 4, law=KELVIN_VOIGT,
+                                               params=params, lever_i=5, arm_i_m=arm, lever_j=2, arm_j_m=arm))
+            walls.append((w, sign, gap_m / 4, k_b, c_b))
+    influence = np.zeros((n, 2))
+    influence[0::3, 0] = 1.0
+    influence[1::3, 1] = 1.0
+    sy = _core.system(mass, k, c, elements, BW, True, contacts, influence=influence)
+    model = PlanModel(mass=mass, k=k_ref, c=c_ref, influence=influence, record=(np.zeros(1),) * 3,
+                      plastic=plastic, walls=walls)
+    return sy, model
+
+
+def _record_forcing(t, ax, ay):
+    return _core.Forcing(kind=_core.EXCITATION["record"], p=np.array([t[1] - t[0], 0.0, 0.0]), rec_t=t,
+                         rec_a=ax, rec_b=ay)
+
+
+def _events(out, action):
+    ev = out.events
+    return ev[ev[:, 1] == ACT[action]]
+
+
+def _times(rows):
+    return np.array([t for _, t in rows]), [int(c) for c, _ in rows]
+
+
+def _assert_same_events(out, action, rows):
+    got = _events(out, action)
+    times, index = _times(rows)
+    assert [int(c) for c in got[:, 2]] == index, action
+    np.testing.assert_allclose(got[:, 0], times, rtol=0, atol=1e-9, err_msg=action)
+
+
+def _ledger_closes(out):
+    e = EnergyLedger.of(out.ledger)
+    assert out.ledger[L_INPUT] != 0.0
+    assert abs(e.residual) <= 1e-9 * max(abs(e.input_work), e.viscous, e.kinetic, e.hysteretic)
+
+
+@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(seed=st.integers(0, 2**32 - 1), levels=st.integers(1, 2), gap_m=st.floats(0.02, 0.12),
+       pga=st.floats(2.0, 5.0))
+def test_a_plan_building_on_bearings_against_a_moat_matches_the_reference(seed, levels, gap_m, pga):
+    rng = np.random.default_rng(seed)
+    sy, model = plan_building(rng, levels, gap_m)
+    t, ax, ay = _record(rng, 2.0, 0.01, pga)
+    model.record = (t, ax, ay)
+    out = _run(sy, _record_forcing(t, ax, ay), np.zeros(sy.state_size), t[-1])
+    assert out.status == 0, out.status
+    try:
+        ref = reference(model, t[-1], np.zeros(2 * sy.n))
+    except TouchAtRest:
+        assume(False)
+    event(f"{'walls struck' if ref.contact_starts else 'no wall struck'}, {levels} floor(s)")
+    _assert_same_events(out, "contact_start", ref.contact_starts)
+    _assert_same_events(out, "contact_end", ref.contact_ends)
+    _assert_same_events(out, "yield", ref.yields)
+    _assert_same_events(out, "reversal", ref.sticks)
+    n = sy.n
+    scale = np.max(np.abs(ref.y), axis=None)
+    np.testing.assert_allclose(out.state[1:1 + 2 * n], ref.y, rtol=0, atol=1e-8 * scale)
+    theta = np.abs(ref.y[2:n:3])
+    assert np.max(theta) * 10.0 > 1e-3 * np.max(np.abs(ref.y[:n]))  # (the floors turn: no bystander)
+    _ledger_closes(out)
+
+
+def test_a_moat_struck_at_a_corner_turns_the_building():
+    # the reference's draw with most walls struck: the starts, the ends and the whole state
+    rng = np.random.default_rng(3)
+    sy, model = plan_building(rng, 2, 0.06)
+    t, ax, ay = _record(rng, 3.0, 0.01, 3.0)
+    model.record = (t, ax, ay)
+    out = _run(sy, _record_forcing(t, ax, ay), np.zeros(sy.state_size), t[-1], 1e-3)
+    ref = reference(model, t[-1], np.zeros(2 * sy.n))
+    assert len(ref.contact_starts) >= 10 and len({c for c, _ in ref.contact_starts}) >= 6
+    # (the floor's turn moves the struck corner by a fifth of the gap and more: the lever is no bystander)
+    turn = [abs(model.walls[c][0][2] * out.samples[np.searchsorted(out.samples[:, 0], t_c), 3])
+            for c, t_c in ref.contact_starts]
+    assert max(turn) > 0.2 * 0.06
+    for action, rows in (("contact_start", ref.contact_starts), ("contact_end", ref.contact_ends),
+                         ("yield", ref.yields), ("reversal", ref.sticks)):
+        _assert_same_events(out, action, rows)
+    _ledger_closes(out)
+
+
+def _line_building(lever: bool):
+    """A line of three masses on a bilinear isolator, a bilinear storey, Kelvin-Voigt walls at the base and
+    a Hunt-Crossley bumper between the top two: every pair given a lever of arm 0 on another dof when
+    ``lever``."""
+    def arms(i, j):
+        if not lever:
+            return {}
+        out = {"lever_i": (i + 1) % 3, "arm_i_m": 0.0}
+        if j >= 0:
+            out.update(lever_j=(j + 2) % 3 if (j + 2) % 3 != j else (j + 1) % 3, arm_j_m=0.0)
+        return out
+
+    mass = np.array([4.0e3, 2.5e3, 2.0e3])
+    k0 = np.array([[0.0, 0.0, 0.0], [0.0, 3.0e6, -3.0e6], [0.0, -3.0e6, 3.0e6]])
+    c0 = 1e-3 * k0
+    elements = [_core.element(i=0, j=-1, c_d=800.0, slopes=[4.0e5, 4.0e4], breaks=[0.01], rule=0,
+                              **arms(0, -1)),
+                _core.element(i=1, j=0, c_d=0.0, slopes=[5.0e6, 1.0e6], breaks=[0.004], rule=0,
+                              **arms(1, 0))]
+    kv = np.zeros(_core.LAYOUT["N_LAW_PARAMS"])
+    kv[:2] = 2.0e7, 4.0e3
+    hc = pd_.HuntCrossley(stiffness=3.0e8, exponent=1.5, damping=0.4).params()
+    contacts = [_core.contact_slot(i=0, j=-1, sign=s, gap_m=0.03, law=KELVIN_VOIGT, params=kv, **arms(0, -1))
+                for s in (-1.0, 1.0)]
+    contacts.append(_core.contact_slot(i=2, j=1, sign=1.0, gap_m=0.004, law=_core.LAW_IDS["hunt_crossley"],
+                                       params=hc, **arms(2, 1)))
+    return _core.system(mass, k0, c0, elements, BW, True, contacts, tracked=((1, 0), (2, 1)))
+
+
+def _same(a, b):
+    return np.array_equal(a, b, equal_nan=True)
+
+
+@pytest.mark.parametrize("excitation", ["record", "harmonic"])
+def test_a_lever_of_arm_zero_is_no_lever(excitation):
+    # every path a lever takes (forces, stiffness, event rows and their polynomials, velocity zeros, kept
+    # transitions, the screens, the numerical phases) gives the plain pair's numbers when its arms are 0
+    plain, levered = _line_building(False), _line_building(True)
+    assert levered.levered and not plain.levered
+    if excitation == "record":
+        rng = np.random.default_rng(5)
+        t, ax, _ = _record(rng, 6.0, 0.01, 6.0)
+        forcing = _core.Forcing(kind=_core.EXCITATION["record"], p=np.array([0.01, 0.0, 0.0]), rec_t=t,
+                                rec_a=ax)
+    else:
+        forcing = _core.Forcing(kind=_core.EXCITATION["harmonic"], p=np.array([5.0, 2 * math.pi * 1.2, 0.0]),
+                                rec_t=np.zeros(1), rec_a=np.zeros(1))
+    a, b = (_run(sy, forcing, np.zeros(sy.state_size), 6.0, 0.01) for sy in (plain, levered))
+    assert a.status == b.status == 0
+    assert len(_events(a, "contact_start")) >= 4 and len(_events(a, "yield")) >= 4
+    for name in ("state", "samples", "contacts", "events", "ledger", "extrema"):
+        assert _same(getattr(a, name), getattr(b, name)), name
+
+
+def test_a_system_with_levers_travels_by_pickle():
+    import pickle
+
+    sy = _line_building(True)
+    again = pickle.loads(pickle.dumps(sy))
+    assert again.levered
+    forcing = _core.Forcing(kind=_core.EXCITATION["harmonic"], p=np.array([5.0, 7.0, 0.0]), rec_t=np.zeros(1),
+                            rec_a=np.zeros(1))
+    a, b = (_run(s, forcing, np.zeros(s.state_size), 2.0, 0.01) for s in (sy, again))
+    assert _same(a.samples, b.samples) and _same(a.events, b.events)
+
+
+def _refused(match, **changes):
+    kv = np.zeros(_core.LAYOUT["N_LAW_PARAMS"])
+    kv[:2] = 1e7, 1e3
+    contact = dict(i=0, j=-1, sign=1.0, gap_m=0.05, law=KELVIN_VOIGT, params=kv)
+    element = dict(i=0, j=-1, c_d=0.0, slopes=[1e6], breaks=[], rule=1)
+    target = contact if changes.pop("on", "contact") == "contact" else element
+    target.update(changes)
+    with pytest.raises(ValueError, match=match):
+        _core.system(np.ones(3), np.zeros((3, 3)), np.zeros((3, 3)), [_core.element(**element)], BW, True,
+                     [_core.contact_slot(**contact)])
+
+
+def test_the_door_refuses_a_lever_it_cannot_carry():
+    _refused("not another of the 3 dofs", lever_i=0, arm_i_m=1.0)  # (its own dof)
+    _refused("not another of the 3 dofs", lever_i=3, arm_i_m=1.0)
+    _refused("not another of the 3 dofs", lever_j=2, arm_j_m=1.0)  # (the ground's end)
+    _refused("not another of the 3 dofs", lever_i=2, arm_i_m=math.inf)
+    _refused("not another of the 3 dofs", on="element", lever_i=1, arm_i_m=math.nan)
+    _refused("rigid stop on a lever", law=_core.LAW_IDS["rigid"], params=np.zeros(10), lever_i=2, arm_i_m=1.0)
+    _refused("friction element on a lever", on="element", rule=2, friction_n=100.0, lever_i=2, arm_i_m=1.0)
+    sy = _line_building(True)
+    with pytest.raises(ValueError, match="levers"):
+        _core.monodromy(sy, np.zeros(sy.state_size), np.zeros((0, 3)), 1.0, 6.0, 1.0, 0.0)
+
+
+def line_with_levers(rng):
+    """Three masses on a line moved by one component (a plain table: kept transitions, whole steps and the
+    screens on), whose elements and walls act on weighted combinations of them (levers of drawn arms): as the
+    core takes it and as the reference restates it."""
+    n = 3
+    mass = rng.uniform(2e3, 6e3, n)
+    k = np.zeros((n, n))
+    for lo in range(n - 1):
+        w = _weights(n, [(lo + 1, 1.0), (lo, -1.0)])
+        k += rng.uniform(2e6, 8e6) * np.outer(w, w)
+    c = 1e-3 * k
+    k_ref, c_ref = k.copy(), c.copy()
+    arm = rng.uniform(-0.6, 0.6, 6)
+    elements, plastic = [], []
+    for (i, li, ai, j, lj, aj), (k1, ratio, dy, c_d) in zip(
+            [(0, 1, arm[0], -1, -1, 0.0), (1, 2, arm[1], 0, 2, arm[2])],
+            [(rng.uniform(3e5, 8e5), rng.uniform(0.05, 0.3), rng.uniform(0.004, 0.015), rng.uniform(0, 2e3)),
+             (rng.uniform(2e6, 6e6), rng.uniform(0.1, 0.5), rng.uniform(0.002, 0.006), 0.0)]):
+        elements.append(_core.element(i=i, j=j, c_d=c_d, slopes=[k1, k1 * ratio], breaks=[dy], rule=0,
+                                      lever_i=li, arm_i_m=ai, lever_j=lj, arm_j_m=aj))
+        w = _weights(n, [(i, 1.0), (li, ai)] + ([(j, -1.0), (lj, -aj)] if j >= 0 else []))
+        k_ref += k1 * ratio * np.outer(w, w)
+        c_ref += c_d * np.outer(w, w)
+        plastic.append((w, k1 * (1.0 - ratio), dy))
+    k_b, c_b = rng.uniform(1e7, 5e7), rng.uniform(1e3, 1e4)
+    params = np.zeros(_core.LAYOUT["N_LAW_PARAMS"])
+    params[:2] = k_b, c_b
+    contacts, walls = [], []
+    gap = rng.uniform(0.01, 0.04)
+    for i, li, ai, j, lj, aj, sign, g in [(0, 2, arm[3], -1, -1, 0.0, 1.0, gap),
+                                          (0, 2, arm[3], -1, -1, 0.0, -1.0, gap),
+                                          (2, 0, arm[4], 1, 0, arm[5], 1.0, gap / 3)]:
+        contacts.append(_core.contact_slot(i=i, j=j, sign=sign, gap_m=g, law=KELVIN_VOIGT, params=params,
+                                           lever_i=li, arm_i_m=ai, lever_j=lj, arm_j_m=aj))
+        w = _weights(n, [(i, 1.0), (li, ai)] + ([(j, -1.0), (lj, -aj)] if j >= 0 else []))
+        walls.append((w, sign, g, k_b, c_b))
+    sy = _core.system(mass, k, c, elements, BW, True, contacts)
+    influence = np.column_stack([np.ones(n), np.zeros(n)])
+    return sy, PlanModel(mass=mass, k=k_ref, c=c_ref, influence=influence, record=(np.zeros(1),) * 3,
+                         plastic=plastic, walls=walls)
+
+
+@settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(seed=st.integers(0, 2**32 - 1), pga=st.floats(2.0, 6.0))
+def test_levers_on_a_line_match_the_reference(seed, pga):
+    rng = np.random.default_rng(seed)
+    sy, model = line_with_levers(rng)
+    assert sy.plain
+    t, ax, _ = _record(rng, 2.5, 0.02, pga)  # (a step of several sub-intervals: some go whole)
+    model.record = (t, ax, np.zeros_like(ax))
+    forcing = _core.Forcing(kind=_core.EXCITATION["record"], p=np.array([0.02, 0.0, 0.0]), rec_t=t, rec_a=ax)
+    ctl = _control.new_control(10**10)
+    out = _core.run(sy, forcing, np.zeros(sy.state_size), t[-1], 0.0, 1e-10, 10**6, True, ctl)
+    assert out.status == 0, out.status
+    try:
+        ref = reference(model, t[-1], np.zeros(2 * sy.n))
+    except TouchAtRest:
+        assume(False)
+    whole = int(ctl[_core.LAYOUT["CTL_WHOLE"]] > 0)
+    event(f"{'walls struck' if ref.contact_starts else 'no wall struck'}, {whole} whole steps")
+    for action, rows in (("contact_start", ref.contact_starts), ("contact_end", ref.contact_ends),
+                         ("yield", ref.yields), ("reversal", ref.sticks)):
+        _assert_same_events(out, action, rows)
+    np.testing.assert_allclose(out.state[1:1 + 2 * sy.n], ref.y, rtol=0, atol=1e-8 * np.max(np.abs(ref.y)))
+    _ledger_closes(out)
