@@ -39,6 +39,8 @@ class PlanModel:
     plastic: list = field(default_factory=list)
     # Kelvin-Voigt walls: (w (n,), sign +-1, gap m, k_b N/m, c_b N s/m)
     walls: list = field(default_factory=list)
+    # points whose displacement's extrema are found (w (n,) each: a bearing's along an axis, a corner's)
+    tracked: list = field(default_factory=list)
 
 
 @dataclass
@@ -48,6 +50,8 @@ class PlanResult:
     contact_starts: list = field(default_factory=list)  # (wall, t)
     contact_ends: list = field(default_factory=list)
     y: np.ndarray | None = None                         # the final (q, q')
+    tracked_max: np.ndarray | None = None               # each tracked point's largest and smallest w . q, m
+    tracked_min: np.ndarray | None = None
 
 
 def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, atol: float = 1e-15,
@@ -149,6 +153,16 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         return evs
 
     t, y = 0.0, np.array(y0, dtype=float)
+    wt = [np.asarray(w, dtype=float) for w in s.tracked]
+    top = np.array([along(y, w)[0] for w in wt])
+    bottom = top.copy()
+
+    def turn(w):  # (a tracked point's velocity: its zeros are its extrema; not terminal)
+        def f(t, y):
+            return float(w @ y[n:])
+        f.terminal = False
+        return f
+
     quiet = None  # (a wall just released, until when its start is not looked for)
     while t < t_end:
         quiet_now = quiet is not None and t < quiet[1]
@@ -157,21 +171,29 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         t_next = min(t_end, float(after[0])) if after.size else t_end
         if quiet_now:
             t_next = min(t_next, quiet[1])
-        sol = solve_ivp(rhs, (t, t_next), y, method="DOP853", rtol=rtol, atol=atol, events=evs,
-                        dense_output=True, max_step=step_in if any(inside) else step_out)
+        sol = solve_ivp(rhs, (t, t_next), y, method="DOP853", rtol=rtol, atol=atol,
+                        events=evs + [turn(w) for w in wt], dense_output=True,
+                        max_step=step_in if any(inside) else step_out)
         if sol.status == -1:
             raise RuntimeError(sol.message)
-        hits = [(float(te[0]), c) for c, te in enumerate(sol.t_events) if te.size and te[0] > t + 1e-13]
+        hits = [(float(te[0]), c) for c, te in enumerate(sol.t_events[:len(evs)])
+                if te.size and te[0] > t + 1e-13]
         dip = _stepped_over(evs, sol, t)
         if dip is not None:
             hits.append(dip)
+        t_stop = min(hits)[0] if hits else float(sol.t[-1])
+        for q, w in enumerate(wt):  # (the extrema up to where this stretch stops: its turns and its end)
+            xs = [along(sol.sol(t_stop), w)[0]] + [float(w @ ye[:n]) for te, ye in
+                                                     zip(sol.t_events[len(evs) + q], sol.y_events[len(evs) + q])
+                                                     if te <= t_stop]
+            top[q], bottom[q] = max(top[q], *xs), min(bottom[q], *xs)
         for q, (w, (_, _, d)) in enumerate(zip(wp, s.plastic)):  # (a stretch that slipped: the slip followed)
             if mode[q] != 0:
                 end = sol.sol(min(hits)[0]) if hits else sol.y[:, -1]
                 slip[q] = along(end, w)[0] - mode[q] * d
         if not hits:
             if sol.status != 0:
-                fired = [evs[k] for k, te in enumerate(sol.t_events) if te.size]
+                fired = [evs[k] for k, te in enumerate(sol.t_events[:len(evs)]) if te.size]
                 just = [f.contact for f in fired if hasattr(f, "contact") and not inside[f.contact]
                         and relax[f.contact][1] == t]
                 if just and (quiet is None or quiet[1] <= t):  # (as reference_ndof: a release at rest)
@@ -206,4 +228,5 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
                 inside[c] = True
                 out.contact_starts.append((c, t))
     out.y = y
+    out.tracked_max, out.tracked_min = top, bottom
     return out

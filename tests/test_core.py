@@ -155,7 +155,7 @@ def test_a_system_goes_in_by_name_and_comes_back_from_a_pickle_by_name():
     sy = _core.system([500.0], np.zeros((1, 1)), np.zeros((1, 1)), [iso], np.zeros(6), True, [slot])
     back = pickle.loads(pickle.dumps(sy))
     assert back.__getstate__() == sy.__getstate__()
-    named = {"n", "mass", "k0", "c0", "elements", "bw", "has_b", "contacts", "track_i", "track_j", "infl"}
+    named = {"n", "mass", "k0", "c0", "elements", "bw", "has_b", "contacts", "tracked", "infl"}
     assert set(sy.__getstate__()) == named
     assert pickle.loads(pickle.dumps(slot)).gap_m == 0.03
     assert pickle.loads(pickle.dumps(iso)).breaks == [0.015]

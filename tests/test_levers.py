@@ -7,6 +7,8 @@ displacement along an axis ``x - y_c theta``: a dof plus an arm times another).
   sticks within 1e-9 s; the energy ledger closes.
 * Three masses on a line under one component (a plain table: kept transitions, whole steps and the screens),
   their bilinear elements and walls on weighted combinations of them: the same reference.
+* Tracked pairs on levers (a bearing's displacement along an axis, a frame's drift at its place, a wall's
+  point): their exact extrema as the reference's, to 1e-9.
 * A lever of arm zero is no lever: a line building's run, its contacts and elements each given a lever of
   arm 0, is the plain run number for number (every levered path gives the plain path's numbers).
 * The door refuses what levers cannot carry yet (a rigid stop's impulse, a friction element's tie, the
@@ -32,6 +34,7 @@ from reference_plan import PlanModel, reference
 KELVIN_VOIGT = _core.LAW_IDS["kelvin_voigt"]
 BW = np.zeros(_core.LAYOUT["BW_PARAMS"])
 ACT = _core.ACTIONS
+PX = _core.PAIR_EXTREMA
 
 
 def _run(sy, forcing, state0, t_end, sample_dt=0.0):
@@ -126,9 +129,12 @@ def plan_building(rng, levels, gap_m):
     influence = np.zeros((n, 2))
     influence[0::3, 0] = 1.0
     influence[1::3, 1] = 1.0
-    sy = _core.system(mass, k, c, elements, BW, True, contacts, influence=influence)
+    # (every element's displacement tracked: each bearing's along each axis, each frame's drift)
+    tracked = [_core.TrackedPair(i=el.i, j=el.j, lever_i=el.lever_i, arm_i_m=el.arm_i_m, lever_j=el.lever_j,
+                                 arm_j_m=el.arm_j_m) for el in elements]
+    sy = _core.system(mass, k, c, elements, BW, True, contacts, tracked, influence=influence)
     model = PlanModel(mass=mass, k=k_ref, c=c_ref, influence=influence, record=(np.zeros(1),) * 3,
-                      plastic=plastic, walls=walls)
+                      plastic=plastic, walls=walls, tracked=[w for w, _, _ in plastic])
     return sy, model
 
 
@@ -184,6 +190,16 @@ def test_a_plan_building_on_bearings_against_a_moat_matches_the_reference(seed, 
     theta = np.abs(ref.y[2:n:3])
     assert np.max(theta) * 10.0 > 1e-3 * np.max(np.abs(ref.y[:n]))  # (the floors turn: no bystander)
     _ledger_closes(out)
+    _same_extrema(out, sy.n, ref)
+
+
+def _same_extrema(out, n, ref):
+    """Each tracked point's exact extrema (a bearing's displacement along an axis, a frame's drift at its
+    place) as the reference's, to 1e-9 of the largest."""
+    per_pair = out.per_pair(n)
+    scale = max(np.max(np.abs(ref.tracked_max)), np.max(np.abs(ref.tracked_min)))
+    np.testing.assert_allclose(per_pair[:, PX["max"]], ref.tracked_max, rtol=0, atol=1e-9 * scale)
+    np.testing.assert_allclose(per_pair[:, PX["min"]], ref.tracked_min, rtol=0, atol=1e-9 * scale)
 
 
 def test_a_moat_struck_at_a_corner_turns_the_building():
@@ -332,10 +348,13 @@ def line_with_levers(rng):
                                            lever_i=li, arm_i_m=ai, lever_j=lj, arm_j_m=aj))
         w = _weights(n, [(i, 1.0), (li, ai)] + ([(j, -1.0), (lj, -aj)] if j >= 0 else []))
         walls.append((w, sign, g, k_b, c_b))
-    sy = _core.system(mass, k, c, elements, BW, True, contacts)
+    tracked = [_core.TrackedPair(i=p.i, j=p.j, lever_i=p.lever_i, arm_i_m=p.arm_i_m, lever_j=p.lever_j,
+                                 arm_j_m=p.arm_j_m) for p in (*elements, contacts[0], contacts[2])]
+    sy = _core.system(mass, k, c, elements, BW, True, contacts, tracked)
     influence = np.column_stack([np.ones(n), np.zeros(n)])
     return sy, PlanModel(mass=mass, k=k_ref, c=c_ref, influence=influence, record=(np.zeros(1),) * 3,
-                         plastic=plastic, walls=walls)
+                         plastic=plastic, walls=walls,
+                         tracked=[w for w, _, _ in plastic] + [walls[0][0], walls[2][0]])
 
 
 @settings(max_examples=8, deadline=None, suppress_health_check=[HealthCheck.too_slow])
@@ -361,3 +380,4 @@ def test_levers_on_a_line_match_the_reference(seed, pga):
         _assert_same_events(out, action, rows)
     np.testing.assert_allclose(out.state[1:1 + 2 * sy.n], ref.y, rtol=0, atol=1e-8 * np.max(np.abs(ref.y)))
     _ledger_closes(out)
+    _same_extrema(out, sy.n, ref)

@@ -308,15 +308,15 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
     // not clear it (a displacement's fourth derivative is an acceleration's second: at most beta Z, a pair's
     // twice that)
     const bool none_kept = ph.zeros.empty();
-    auto may_be_extreme = [&](int i, int j, const double* ex) {
-        const bool may_cross = velocity_may_cross(ph, Pair{i, j});
+    auto may_be_extreme = [&](const Pair& pr, const double* ex) {
+        const bool may_cross = velocity_may_cross(ph, pr);
         if (!may_cross) return !none_kept;
         if (sc == nullptr) return true;
         const ExtremaScreen& s = ready(*sc, ph, e, tau);
-        const Screened sr = displacement_range(s, ph, e, tau, Pair{i, j});
+        const Screened sr = displacement_range(s, ph, e, tau, pr);
         if (!range_within(sr, ex[EX_D_MIN], ex[EX_D_MAX], s.xscale)) return true;
         if (sc->audit) {  // (found all the same, and held against the bound)
-            const Phase::Zeros& z = velocity_zeros(ph, Pair{i, j});
+            const Phase::Zeros& z = velocity_zeros(ph, pr);
             for (int k = 0; k < z.count; ++k)
                 if (z.t[k] < tau) audit_value(*sc, sr.r, sr.off, s.xscale, z.x[k]);
         }
@@ -328,19 +328,20 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
         double* ex = extrema + DOF_EXTREMA * i;
         track_displacement(ex, t0, e.y0[i]);
         track_displacement(ex, t0 + tau, e.y1[i]);
-        if (!inside || !may_be_extreme(i, GROUND, ex)) continue;
-        const Phase::Zeros& z = velocity_zeros(ph, Pair{i, GROUND});
+        const Pair own{i, GROUND};
+        if (!inside || !may_be_extreme(own, ex)) continue;
+        const Phase::Zeros& z = velocity_zeros(ph, own);
         for (int k = 0; k < z.count; ++k)
             if (z.t[k] < tau) track_displacement(ex, t0 + z.t[k], z.x[k]);
     }
     // the tracked pairs' relative displacement (a storey's drift): the same, on the pair
     for (int p = 0; p < sy.n_track(); ++p) {
         double* ex = extrema + DOF_EXTREMA * n + PAIR_EXTREMA * p;
-        const int i = sy.track_i[static_cast<size_t>(p)], j = sy.track_j[static_cast<size_t>(p)];
-        track_displacement(ex, t0, rel(e.y0, i, j));
-        track_displacement(ex, t0 + tau, rel(e.y1, i, j));
-        if (!inside || !may_be_extreme(i, j, ex)) continue;
-        const Phase::Zeros& z = velocity_zeros(ph, Pair{i, j});
+        const Pair& pr = sy.track[static_cast<size_t>(p)];
+        track_displacement(ex, t0, rel(e.y0, pr));
+        track_displacement(ex, t0 + tau, rel(e.y1, pr));
+        if (!inside || !may_be_extreme(pr, ex)) continue;
+        const Phase::Zeros& z = velocity_zeros(ph, pr);
         for (int k = 0; k < z.count; ++k)
             if (z.t[k] < tau) track_displacement(ex, t0 + z.t[k], z.x[k]);
     }
@@ -538,22 +539,22 @@ bool extrema_surely_inside(const Phase& ph, const System& sy, double tau, const 
         for (const int c : ph.stk.held)
             if (c < ph.stk.nc) return false;
     const ExtremaScreen& s = ready(sc, ph, e, tau);
-    auto pair_inside = [&](int i, int j, const double* ex) {
+    auto pair_inside = [&](const Pair& pr, const double* ex) {
         // its velocity of one sign throughout (y1's shift moves v1 by |a1| shift and more, a1 by |v''| shift,
         // |v''| at most times Z), looked at first where its ends' are of one sign
-        const double v0 = rel(e.y0 + n, i, j), v1 = rel(e.y1 + n, i, j);
+        const double v0 = rel(e.y0 + n, pr), v1 = rel(e.y1 + n, pr);
         if (v0 * v1 > 0.0) {
-            const double times = j >= 0 ? 2.0 : 1.0;
-            const double a0 = rel(e.a0, i, j), a1 = rel(e.a1, i, j);
+            const double times = pr.weight();
+            const double a0 = rel(e.a0, pr), a1 = rel(e.a1, pr);
             // (a1 read with the table at tau: off by its slope over the shift, for a level against the ground)
-            const double slope = j >= 0 ? 0.0 : std::abs(ph.ax1);
+            const double slope = pr.levered() ? std::abs(table_slope_on(ph, pr)) : pr.j >= 0 ? 0.0 : std::abs(ph.ax1);
             const double off =
                 s.shift == 0.0 ? 0.0 : 2.0 * s.shift * (std::abs(a1) + (times * s.z + slope) * (s.shift + 0.15 * tau));
             const Screened sv{hermite_range(v0, a0, v1, a1, tau, times * s.beta * s.alpha * s.z), off};
             if (v0 > 0.0 ? range_within(sv, 0.0, INF, s.vscale) : range_within(sv, -INF, 0.0, s.vscale)) return true;
         }
-        const double f0 = rel(e.y0, i, j), f1 = rel(e.y1, i, j);
-        return range_within(displacement_range(s, ph, e, tau, Pair{i, j}), std::min({ex[EX_D_MIN], f0, f1}),
+        const double f0 = rel(e.y0, pr), f1 = rel(e.y1, pr);
+        return range_within(displacement_range(s, ph, e, tau, pr), std::min({ex[EX_D_MIN], f0, f1}),
                             std::max({ex[EX_D_MAX], f0, f1}), s.xscale);
     };
     for (int i = 0; i < n; ++i) {
@@ -562,7 +563,7 @@ bool extrema_surely_inside(const Phase& ph, const System& sy, double tau, const 
             if (!ph.stk.grounded[static_cast<size_t>(ph.stk.grp[static_cast<size_t>(i)])]) return false;
             continue;
         }
-        if (!pair_inside(i, GROUND, ex)) return false;
+        if (!pair_inside(Pair{i, GROUND}, ex)) return false;
         const double aa0 = abs_acc_linear(ph, i, e.y0), aa1 = abs_acc_linear(ph, i, e.y1);
         const double r0 = abs_acc_rate_linear(ph, i, e.y0, e.a0), r1 = abs_acc_rate_linear(ph, i, e.y1, e.a1);
         const double top = std::max({ex[EX_A_ABS_MAX], std::abs(aa0), std::abs(aa1)});
@@ -570,8 +571,7 @@ bool extrema_surely_inside(const Phase& ph, const System& sy, double tau, const 
         if (!range_within(sa.sr, -top, top, sa.scale)) return false;
     }
     for (int p = 0; p < sy.n_track(); ++p)
-        if (!pair_inside(sy.track_i[static_cast<size_t>(p)], sy.track_j[static_cast<size_t>(p)],
-                         extrema + DOF_EXTREMA * n + PAIR_EXTREMA * p))
+        if (!pair_inside(sy.track[static_cast<size_t>(p)], extrema + DOF_EXTREMA * n + PAIR_EXTREMA * p))
             return false;
     return true;
 }

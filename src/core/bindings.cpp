@@ -79,6 +79,27 @@ void levers_from_state(Pair& p, const nb::dict& d) {
                nb::cast<double>(d["arm_j_m"]));
 }
 
+// a tracked pair (its relative displacement's exact extrema): dof i against dof j or the ground, with levers
+Pair tracked_of(int i, int j, int lever_i, double arm_i, int lever_j, double arm_j) {
+    Pair p;
+    p.i = i;
+    p.j = j;
+    set_levers(p, lever_i, arm_i, lever_j, arm_j);
+    return p;
+}
+nb::dict tracked_state(const Pair& p) {
+    nb::dict d;
+    d["i"] = p.i;
+    d["j"] = p.j;
+    levers_state(d, p);
+    return d;
+}
+Pair tracked_from_state(const nb::dict& d) {
+    Pair p = tracked_of(nb::cast<int>(d["i"]), nb::cast<int>(d["j"]), -1, 0.0, -1, 0.0);
+    levers_from_state(p, d);
+    return p;
+}
+
 Contact contact_of(int i, int j, double sign, double gap_m, int law, const std::vector<double>& params) {
     Contact c;
     c.i = i;
@@ -161,8 +182,8 @@ Hysteretic element_from_state(const nb::dict& d) {
 
 void fill_system(System& s, int n, const std::vector<double>& mass, const std::vector<double>& k0,
                  const std::vector<double>& c0, const std::vector<Hysteretic>& elements, const std::vector<double>& bw,
-                 bool has_b, const std::vector<Contact>& contacts, const std::vector<int>& track_i,
-                 const std::vector<int>& track_j, const std::vector<double>& infl) {
+                 bool has_b, const std::vector<Contact>& contacts, const std::vector<Pair>& tracked,
+                 const std::vector<double>& infl) {
     s.n = n;
     s.mass = mass;
     s.k0 = k0;
@@ -171,8 +192,7 @@ void fill_system(System& s, int n, const std::vector<double>& mass, const std::v
     for (int j = 0; j < BW_PARAMS; ++j) s.bw[j] = j < static_cast<int>(bw.size()) ? bw[j] : 0.0;
     s.has_b = has_b;
     s.contact = contacts;
-    s.track_i = track_i;
-    s.track_j = track_j;
+    s.track = tracked;
     if (!infl.empty() && static_cast<int>(infl.size()) != 2 * n)
         throw std::invalid_argument("infl: 2 n values (each dof's influence of the two components), or none");
     s.infl = infl;
@@ -192,8 +212,9 @@ nb::dict system_state(const System& s) {
     d["bw"] = std::vector<double>(s.bw, s.bw + BW_PARAMS);
     d["has_b"] = s.has_b;
     d["contacts"] = contacts;
-    d["track_i"] = s.track_i;
-    d["track_j"] = s.track_j;
+    nb::list tracked;
+    for (const Pair& p : s.track) tracked.append(tracked_state(p));
+    d["tracked"] = tracked;
     d["infl"] = s.infl;
     return d;
 }
@@ -201,6 +222,13 @@ nb::dict system_state(const System& s) {
 void system_from_state(System& s, const nb::dict& d) {
     std::vector<Hysteretic> elements;
     std::vector<Contact> contacts;
+    std::vector<Pair> tracked;
+    if (d.contains("tracked")) {
+        for (nb::handle p : nb::cast<nb::list>(d["tracked"])) tracked.push_back(tracked_from_state(nb::cast<nb::dict>(p)));
+    } else {  // (a pickle from before levers: the pairs' ends apart)
+        const std::vector<int> ti = nb::cast<std::vector<int>>(d["track_i"]), tj = nb::cast<std::vector<int>>(d["track_j"]);
+        for (size_t q = 0; q < ti.size(); ++q) tracked.push_back(tracked_of(ti[q], tj[q], -1, 0.0, -1, 0.0));
+    }
     for (nb::handle e : nb::cast<nb::list>(d["elements"]))
         elements.push_back(element_from_state(nb::cast<nb::dict>(e)));
     for (nb::handle c : nb::cast<nb::list>(d["contacts"]))
@@ -208,7 +236,7 @@ void system_from_state(System& s, const nb::dict& d) {
     fill_system(s, nb::cast<int>(d["n"]), nb::cast<std::vector<double>>(d["mass"]),
                 nb::cast<std::vector<double>>(d["k0"]), nb::cast<std::vector<double>>(d["c0"]), elements,
                 nb::cast<std::vector<double>>(d["bw"]), nb::cast<bool>(d["has_b"]), contacts,
-                nb::cast<std::vector<int>>(d["track_i"]), nb::cast<std::vector<int>>(d["track_j"]),
+                tracked,
                 d.contains("infl") ? nb::cast<std::vector<double>>(d["infl"]) : std::vector<double>());
 }
 
@@ -230,6 +258,22 @@ Forcing forcing_of(int kind, Vec p, Vec rec_t, Vec rec_a, Vec rec_b) {
 
 NB_MODULE(_pounding_core, m) {
     m.doc() = "pounding's compiled core (C++17): the event-driven engine and its kernels.";
+
+    nb::class_<Pair>(m, "TrackedPair")
+        .def("__init__",
+             [](Pair* p, int i, int j, int lever_i, double arm_i_m, int lever_j, double arm_j_m) {
+                 new (p) Pair(tracked_of(i, j, lever_i, arm_i_m, lever_j, arm_j_m));
+             },
+             nb::kw_only(), nb::arg("i"), nb::arg("j"), nb::arg("lever_i") = -1, nb::arg("arm_i_m") = 0.0,
+             nb::arg("lever_j") = -1, nb::arg("arm_j_m") = 0.0)
+        .def_ro("i", &Pair::i)
+        .def_ro("j", &Pair::j)
+        .def_ro("lever_i", &Pair::li)
+        .def_ro("arm_i_m", &Pair::ai)
+        .def_ro("lever_j", &Pair::lj)
+        .def_ro("arm_j_m", &Pair::aj)
+        .def("__getstate__", &tracked_state)
+        .def("__setstate__", [](Pair& p, const nb::dict& d) { new (&p) Pair(tracked_from_state(d)); });
 
     nb::class_<Contact>(m, "ContactSlot")
         .def("__init__",
@@ -293,12 +337,12 @@ NB_MODULE(_pounding_core, m) {
              [](System* s, int n, const std::vector<double>& mass, const std::vector<double>& k0,
                 const std::vector<double>& c0, const std::vector<Hysteretic>& elements,
                 const std::vector<double>& bw, bool has_b, const std::vector<Contact>& contacts,
-                const std::vector<int>& track_i, const std::vector<int>& track_j, const std::vector<double>& infl) {
+                const std::vector<Pair>& tracked, const std::vector<double>& infl) {
                  new (s) System();
-                 fill_system(*s, n, mass, k0, c0, elements, bw, has_b, contacts, track_i, track_j, infl);
+                 fill_system(*s, n, mass, k0, c0, elements, bw, has_b, contacts, tracked, infl);
              },
              nb::kw_only(), nb::arg("n"), nb::arg("mass"), nb::arg("k0"), nb::arg("c0"), nb::arg("elements"),
-             nb::arg("bw"), nb::arg("has_b"), nb::arg("contacts"), nb::arg("track_i"), nb::arg("track_j"),
+             nb::arg("bw"), nb::arg("has_b"), nb::arg("contacts"), nb::arg("tracked"),
              nb::arg("infl") = std::vector<double>())
         .def_ro("n", &System::n)
         .def_ro("mass", &System::mass)

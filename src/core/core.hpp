@@ -200,7 +200,7 @@ struct System {
     double bw[BW_PARAMS] = {0};   // element 0's Bouc-Wen spring (bw[0] 0: none)
     bool has_b = false;           // the contacts are active
     std::vector<Contact> contact; // the contact slots
-    std::vector<int> track_i, track_j;  // pairs whose relative displacement's extrema a run finds (drifts)
+    std::vector<Pair> track;  // pairs whose relative displacement's extrema a run finds (drifts, a bearing's)
     // how the ground's two components move each dof (n x 2, row by dof: the table acceleration on dof i is
     // infl[2 i] a_x + infl[2 i + 1] a_y); empty: every dof moves with the first component (a line's table)
     std::vector<double> infl;
@@ -218,7 +218,7 @@ struct System {
         return s;
     }
     int n_h() const { return static_cast<int>(hyst.size()); }
-    int n_track() const { return static_cast<int>(track_i.size()); }
+    int n_track() const { return static_cast<int>(track.size()); }
     const Hysteretic& iso() const { return hyst[0]; }
     int state_size() const { return lay.size; }
     int nc() const { return static_cast<int>(contact.size()); }

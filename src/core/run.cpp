@@ -385,7 +385,7 @@ void start_extrema(const System& sy, const double* st, double t_run0, double* ex
     }
     for (int p = 0; p < sy.n_track(); ++p) {
         double* ex = extrema + DOF_EXTREMA * sy.n + PAIR_EXTREMA * p;
-        const double d = rel(st + L.x, sy.track_i[static_cast<size_t>(p)], sy.track_j[static_cast<size_t>(p)]);
+        const double d = rel(st + L.x, sy.track[static_cast<size_t>(p)]);
         ex[PX_MAX] = ex[PX_MIN] = d;
         ex[PX_MAX_T] = ex[PX_MIN_T] = t_run0;
     }
@@ -726,9 +726,9 @@ bool advance_to_end(Loop& lp) {
         }
         for (int p = 0; p < lp.sy.n_track(); ++p) {
             const double* ex = lp.extrema + DOF_EXTREMA * n + PAIR_EXTREMA * p;
-            const int i = lp.sy.track_i[static_cast<size_t>(p)], j = lp.sy.track_j[static_cast<size_t>(p)];
-            const double d0 = rel(ph.y0.data(), i, j), d1 = rel(b.y1.data(), i, j);
-            escaped = escaped || beyond(rel(y, i, j), std::min({ex[EX_D_MIN], d0, d1}),
+            const Pair& pr = lp.sy.track[static_cast<size_t>(p)];
+            const double d0 = rel(ph.y0.data(), pr), d1 = rel(b.y1.data(), pr);
+            escaped = escaped || beyond(rel(y, pr), std::min({ex[EX_D_MIN], d0, d1}),
                                         std::max({ex[EX_D_MAX], d0, d1}), std::abs(d0) + std::abs(d1));
         }
         sc.audited += 1;

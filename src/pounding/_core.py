@@ -6,8 +6,8 @@ compiled module, and only the engine calls its runs (the protocols and analyses 
 ``engine.kernels``).
 
 * :class:`System` - a system as the core takes it (:func:`system`, from :class:`ContactSlot` and
-  :class:`Element`, each built by keyword: :func:`contact_slot`, :func:`element`); picklable by name, so it
-  travels to worker processes.
+  :class:`Element`, each built by keyword: :func:`contact_slot`, :func:`element`, and the pairs whose
+  extrema it tracks, :class:`TrackedPair`); picklable by name, so it travels to worker processes.
 * :class:`Forcing` - the excitation as the core takes it.
 * :func:`run` - the event-driven run (``engine.simulate``'s kernel).
 * :func:`step` - one frequency step of a sweep, cycles until steady (``engine.kernels.run_step``).
@@ -42,6 +42,7 @@ except ImportError as exc:  # pragma: no cover  (a source tree never built)
         "compiles it with CMake; see docs/building.md)") from exc
 
 System = _c.System
+TrackedPair = _c.TrackedPair  # (by keyword: i, j; levers as below)
 ContactSlot = _c.ContactSlot  # (built by keyword: i, j, sign, gap_m, law, params; levers as below)
 Element = _c.Element  # (by keyword: i, j, c_d, slopes, breaks, rule, friction_n, friction_fast_n,
 #                        friction_rate_s_m, surface_friction_n, surface_ring_n_m; levers as below)
@@ -188,7 +189,7 @@ _N_DOF_EXTREMA, _N_PAIR_EXTREMA = LAYOUT["DOF_EXTREMA"], LAYOUT["PAIR_EXTREMA"]
 
 
 def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Element], bw: np.ndarray,
-           has_b: bool, contacts: list[ContactSlot], tracked: tuple[tuple[int, int], ...] = (),
+           has_b: bool, contacts: list[ContactSlot], tracked: tuple[tuple[int, int] | TrackedPair, ...] = (),
            influence: np.ndarray | None = None) -> System:
     """A system as the core takes it: ``mass`` (kg, shape (n,)), the linear springs and dashpots ``k0``,
     ``c0`` (N/m, N s/m, shape (n, n)), the hysteretic elements (:class:`Element`: dof ``i`` against dof ``j``,
@@ -197,8 +198,9 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
     carries the Bouc-Wen numbers ``bw``, zeros for none; no element
     at all: a structure fixed at its base), and the contact slots (:class:`ContactSlot`: dof ``i`` against dof
     ``j``, -1 the ground, compressed by ``sign (x_i - x_j) - gap_m``; its ``law`` id of :data:`LAW_IDS` and
-    ``params``); ``has_b`` makes them active.  ``tracked``: pairs ``(i, j)`` whose relative displacement's
-    exact extrema a run adds after the dofs' (:data:`PAIR_EXTREMA`; a storey's drift).  ``influence``
+    ``params``); ``has_b`` makes them active.  ``tracked``: pairs ``(i, j)``, or :class:`TrackedPair` (on
+    levers: a bearing's displacement along an axis), whose relative displacement's exact extrema a run adds
+    after the dofs' (:data:`PAIR_EXTREMA`; a storey's drift).  ``influence``
     (shape (n, 2), finite): how the ground's two components move each dof (dof ``i`` feels
     ``-m_i (influence[i, 0] a + influence[i, 1] b)``); None: every dof with the first alone, ``(1, 0)``.
 
@@ -272,8 +274,11 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
         if levers(slot, f"contact {c}") and slot.law == LAW_IDS["rigid"]:
             raise ValueError(f"contact {c}: a rigid stop on a lever is not supported yet (its impact's "
                              "impulse is a dof's): use a compliant law there")
-    for q, (i, j) in enumerate(tracked):
-        pair(i, j, f"tracked pair {q}")
+    pairs_tracked = [p if isinstance(p, TrackedPair) else TrackedPair(i=int(p[0]), j=int(p[1]))
+                     for p in tracked]
+    for q, p in enumerate(pairs_tracked):
+        pair(p.i, p.j, f"tracked pair {q}")
+        levers(p, f"tracked pair {q}")
     infl: list[float] = []
     if influence is not None:
         r = np.asarray(influence, dtype=float)
@@ -283,7 +288,7 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
     return _c.System(n=n, mass=m.tolist(), k0=k0.reshape(n * n).tolist(), c0=c0.reshape(n * n).tolist(),
                      elements=list(elements), bw=[float(x) for x in bw], has_b=bool(has_b),
                      contacts=list(contacts),
-                     track_i=[int(i) for i, _ in tracked], track_j=[int(j) for _, j in tracked], infl=infl)
+                     tracked=pairs_tracked, infl=infl)
 
 
 def contact_slot(*, i: int, j: int, sign: float, gap_m: float, law: int, params: Any, lever_i: int = -1,
