@@ -183,9 +183,8 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
             hits.append(dip)
         t_stop = min(hits)[0] if hits else float(sol.t[-1])
         for q, w in enumerate(wt):  # (the extrema up to where this stretch stops: its turns and its end)
-            xs = [along(sol.sol(t_stop), w)[0]] + [float(w @ ye[:n]) for te, ye in
-                                                     zip(sol.t_events[len(evs) + q], sol.y_events[len(evs) + q])
-                                                     if te <= t_stop]
+            turns = zip(sol.t_events[len(evs) + q], sol.y_events[len(evs) + q])
+            xs = [along(sol.sol(t_stop), w)[0]] + [float(w @ ye[:n]) for te, ye in turns if te <= t_stop]
             top[q], bottom[q] = max(top[q], *xs), min(bottom[q], *xs)
         for q, (w, (_, _, d)) in enumerate(zip(wp, s.plastic)):  # (a stretch that slipped: the slip followed)
             if mode[q] != 0:
