@@ -41,6 +41,9 @@ class PlanModel:
     walls: list = field(default_factory=list)
     # points whose displacement's extrema are found (w (n,) each: a bearing's along an axis, a corner's)
     tracked: list = field(default_factory=list)
+    # vectors of two tracked points each (indices into tracked: a bearing's x and y), whose length's largest
+    # is found
+    vectors: list = field(default_factory=list)
 
 
 @dataclass
@@ -52,6 +55,7 @@ class PlanResult:
     y: np.ndarray | None = None                         # the final (q, q')
     tracked_max: np.ndarray | None = None               # each tracked point's largest and smallest w . q, m
     tracked_min: np.ndarray | None = None
+    vector_max: np.ndarray | None = None                # each vector's longest, m
 
 
 def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, atol: float = 1e-15,
@@ -163,6 +167,19 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         f.terminal = False
         return f
 
+    def length(y, p, q):
+        return math.hypot(along(y, wt[p])[0], along(y, wt[q])[0])
+
+    def lengthening(p, q):  # (u . u': its downward zeros are the vector's longest; not terminal)
+        def f(t, y):
+            (u, du), (w, dw) = along(y, wt[p]), along(y, wt[q])
+            return u * du + w * dw
+        f.terminal = False
+        f.direction = -1.0
+        return f
+
+    longest = np.array([length(y, p, q) for p, q in s.vectors])
+
     quiet = None  # (a wall just released, until when its start is not looked for)
     while t < t_end:
         quiet_now = quiet is not None and t < quiet[1]
@@ -172,7 +189,8 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         if quiet_now:
             t_next = min(t_next, quiet[1])
         sol = solve_ivp(rhs, (t, t_next), y, method="DOP853", rtol=rtol, atol=atol,
-                        events=evs + [turn(w) for w in wt], dense_output=True,
+                        events=evs + [turn(w) for w in wt] + [lengthening(p, q) for p, q in s.vectors],
+                        dense_output=True,
                         max_step=step_in if any(inside) else step_out)
         if sol.status == -1:
             raise RuntimeError(sol.message)
@@ -186,6 +204,11 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
             turns = zip(sol.t_events[len(evs) + q], sol.y_events[len(evs) + q])
             xs = [along(sol.sol(t_stop), w)[0]] + [float(w @ ye[:n]) for te, ye in turns if te <= t_stop]
             top[q], bottom[q] = max(top[q], *xs), min(bottom[q], *xs)
+        for k, (p, q) in enumerate(s.vectors):
+            at = len(evs) + len(wt) + k
+            rs = [length(sol.sol(t_stop), p, q)] + [length(ye, p, q) for te, ye in
+                                                    zip(sol.t_events[at], sol.y_events[at]) if te <= t_stop]
+            longest[k] = max(longest[k], *rs)
         for q, (w, (_, _, d)) in enumerate(zip(wp, s.plastic)):  # (a stretch that slipped: the slip followed)
             if mode[q] != 0:
                 end = sol.sol(min(hits)[0]) if hits else sol.y[:, -1]
@@ -228,4 +251,5 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
                 out.contact_starts.append((c, t))
     out.y = y
     out.tracked_max, out.tracked_min = top, bottom
+    out.vector_max = longest
     return out

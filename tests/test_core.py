@@ -125,11 +125,12 @@ def test_the_door_names_what_a_run_returns_and_every_index_is_the_core_s():
                     5.0, 0.0, 1e-10, 10**6, True, _control.new_control(10**9))
     with pytest.raises(TypeError):
         out[0]  # (fields, never positions)
-    fields = {"state", "samples", "contacts", "events", "ledger", "extrema", "status", "chatters"}
+    fields = {"state", "samples", "contacts", "events", "ledger", "extrema", "status", "chatters", "norms"}
     assert set(type(out).__slots__) == fields
     # every column and slot named once, each name on its own index
     for names, size in ((_core.CONTACT_COLUMNS, "CONTACT_COLS"), (_core.LEDGER, "LEDGER_LEN"),
-                        (_core.DOF_EXTREMA, "DOF_EXTREMA"), (_core.PAIR_EXTREMA, "PAIR_EXTREMA")):
+                        (_core.DOF_EXTREMA, "DOF_EXTREMA"), (_core.PAIR_EXTREMA, "PAIR_EXTREMA"),
+                        (_core.NORM_EXTREMA, "NORM_EXTREMA")):
         assert sorted(names.values()) == list(range(_core.LAYOUT[size])), (size, names)
     assert out.contacts.shape[1] == _core.LAYOUT["CONTACT_COLS"] and len(out.contacts) > 0
     # the named places are where the public run reads them
@@ -155,7 +156,8 @@ def test_a_system_goes_in_by_name_and_comes_back_from_a_pickle_by_name():
     sy = _core.system([500.0], np.zeros((1, 1)), np.zeros((1, 1)), [iso], np.zeros(6), True, [slot])
     back = pickle.loads(pickle.dumps(sy))
     assert back.__getstate__() == sy.__getstate__()
-    named = {"n", "mass", "k0", "c0", "elements", "bw", "has_b", "contacts", "tracked", "infl"}
+    named = {"n", "mass", "k0", "c0", "elements", "bw", "has_b", "contacts", "tracked", "infl", "norm_p",
+             "norm_q"}
     assert set(sy.__getstate__()) == named
     assert pickle.loads(pickle.dumps(slot)).gap_m == 0.03
     assert pickle.loads(pickle.dumps(iso)).breaks == [0.015]

@@ -35,6 +35,7 @@ KELVIN_VOIGT = _core.LAW_IDS["kelvin_voigt"]
 BW = np.zeros(_core.LAYOUT["BW_PARAMS"])
 ACT = _core.ACTIONS
 PX = _core.PAIR_EXTREMA
+NX = _core.NORM_EXTREMA
 
 
 def _run(sy, forcing, state0, t_end, sample_dt=0.0):
@@ -130,11 +131,13 @@ def plan_building(rng, levels, gap_m):
     influence[0::3, 0] = 1.0
     influence[1::3, 1] = 1.0
     # (every element's displacement tracked: each bearing's along each axis, each frame's drift)
+    # (and each bearing's displacement in plan: the vector of its x and y, elements 2 b and 2 b + 1)
     tracked = [_core.TrackedPair(i=el.i, j=el.j, lever_i=el.lever_i, arm_i_m=el.arm_i_m, lever_j=el.lever_j,
                                  arm_j_m=el.arm_j_m) for el in elements]
-    sy = _core.system(mass, k, c, elements, BW, True, contacts, tracked, influence=influence)
+    vectors = [(2 * b, 2 * b + 1) for b in range(len(corners))]
+    sy = _core.system(mass, k, c, elements, BW, True, contacts, tracked, influence=influence, vectors=vectors)
     model = PlanModel(mass=mass, k=k_ref, c=c_ref, influence=influence, record=(np.zeros(1),) * 3,
-                      plastic=plastic, walls=walls, tracked=[w for w, _, _ in plastic])
+                      plastic=plastic, walls=walls, tracked=[w for w, _, _ in plastic], vectors=vectors)
     return sy, model
 
 
@@ -200,6 +203,10 @@ def _same_extrema(out, n, ref):
     scale = max(np.max(np.abs(ref.tracked_max)), np.max(np.abs(ref.tracked_min)))
     np.testing.assert_allclose(per_pair[:, PX["max"]], ref.tracked_max, rtol=0, atol=1e-9 * scale)
     np.testing.assert_allclose(per_pair[:, PX["min"]], ref.tracked_min, rtol=0, atol=1e-9 * scale)
+    if ref.vector_max is not None and ref.vector_max.size:
+        np.testing.assert_allclose(out.norms[:, NX["max"]], ref.vector_max, rtol=0, atol=1e-9 * scale)
+        np.testing.assert_allclose(np.hypot(out.norms[:, NX["at_p"]], out.norms[:, NX["at_q"]]),
+                                   out.norms[:, NX["max"]], rtol=1e-15, atol=0)
 
 
 def test_a_moat_struck_at_a_corner_turns_the_building():
@@ -381,3 +388,37 @@ def test_levers_on_a_line_match_the_reference(seed, pga):
         _assert_same_events(out, action, rows)
     np.testing.assert_allclose(out.state[1:1 + 2 * sy.n], ref.y, rtol=0, atol=1e-8 * np.max(np.abs(ref.y)))
     _same_extrema(out, sy.n, ref)
+
+
+@pytest.mark.parametrize("with_elements", [False, True])
+@pytest.mark.parametrize("m, k, c, amp_x, amp_y, w", [(2.0, 80.0, 1.5, 0.7, 0.3, 4.1),
+                                                     (1.0e4, 4.0e5, 0.0, 0.5, 1.2, 9.0),
+                                                     (3.0, 30.0, 4.0, 0.2, 0.25, 3.0)])
+def test_an_elliptic_orbit_s_longest_is_the_closed_form(with_elements, m, k, c, amp_x, amp_y, w):
+    # a_x = A cos(w t), a_y = B sin(w t) on a linear isotropic oscillator: its steady orbit is the ellipse
+    # x = Re(-A e^(i w t) / D), y = Re(i B e^(i w t) / D), D = k/m - w^2 + i c w/m, whose longest radius is
+    # max(A, B) / |D|, reached twice a period inside the run's sub-intervals
+    if with_elements:
+        elements = [_core.element(i=i, j=-1, c_d=c, slopes=[k], breaks=[], rule=1) for i in (0, 1)]
+        k0 = c0 = np.zeros((2, 2))
+    else:
+        elements, k0, c0 = [], k * np.eye(2), c * np.eye(2)
+    sy = _core.system([m, m], k0, c0, elements, BW, False, [], ((0, -1), (1, -1)), influence=np.eye(2),
+                      vectors=((0, 1),))
+    den = complex(k / m - w * w, c * w / m)
+    zx, zy = -amp_x / den, 1j * amp_y / den
+    state0 = np.zeros(sy.state_size)
+    lay = sy.layout
+    state0[lay["x"]:lay["x"] + 2] = zx.real, zy.real
+    state0[lay["v"]:lay["v"] + 2] = (1j * w * zx).real, (1j * w * zy).real
+    forcing = _core.Forcing(kind=_core.EXCITATION["harmonic"], p=np.array([amp_x, w, np.pi / 2, amp_y, 0.0]),
+                            rec_t=np.zeros(1), rec_a=np.zeros(1))
+    period = 2 * np.pi / w
+    out = _run(sy, forcing, state0, 3.3 * period, 0.0)
+    longest = max(amp_x, amp_y) / abs(den)
+    np.testing.assert_allclose(out.norms[0, NX["max"]], longest, rtol=1e-9)
+    # (reached where the closed form puts it: at a whole number of half periods past the phase of D)
+    t_max = out.norms[0, NX["max_t"]]
+    x, y = (z * np.exp(1j * w * t_max) for z in (zx, zy))
+    np.testing.assert_allclose(np.hypot(x.real, y.real), longest, rtol=1e-9)
+    assert 0.0 < t_max < 3.3 * period

@@ -297,8 +297,68 @@ ScreenedAcc abs_acceleration_range(const ExtremaScreen& s, const Phase& ph, doub
     return {{hermite_range(aa0, r0, aa1, r1, tau, a4), off}, scale};
 }
 
+// tracked vector q's length (two tracked pairs its components: a bearing's displacement in plan), its largest
+// into ex: at the ends, and inside where u . u' crosses zero downwards (u . u' of one sign at the ends and
+// turning back inside: both its zeros, found on its rate's); looked for inside only where each component's own
+// largest magnitude on the sub-interval (its ends and its velocity's zeros) could make it longer than the
+// longest so far
+void norm_extrema(Phase& ph, const System& sy, int q, double t0, double tau, const Ends& e, double* ex,
+                  bool inside) {
+    const int n = ph.n;
+    const Pair& pp = sy.track[static_cast<size_t>(sy.norm_p[static_cast<size_t>(q)])];
+    const Pair& pq = sy.track[static_cast<size_t>(sy.norm_q[static_cast<size_t>(q)])];
+    auto at = [&](double t, double u, double w) {
+        const double r = std::hypot(u, w);
+        if (r > ex[NX_MAX]) {
+            ex[NX_MAX] = r;
+            ex[NX_MAX_T] = t;
+            ex[NX_AT_P] = u;
+            ex[NX_AT_Q] = w;
+        }
+    };
+    const double u0 = rel(e.y0, pp), w0 = rel(e.y0, pq), u1 = rel(e.y1, pp), w1 = rel(e.y1, pq);
+    at(t0, u0, w0);
+    at(t0 + tau, u1, w1);
+    if (!inside) return;
+    auto largest = [&](const Pair& pr, double f0, double f1) {
+        double m = std::max(std::abs(f0), std::abs(f1));
+        const Phase::Zeros& z = velocity_zeros(ph, pr);
+        for (int k = 0; k < z.count; ++k)
+            if (z.t[k] < tau) m = std::max(m, std::abs(z.x[k]));
+        return m;
+    };
+    if (std::hypot(largest(pp, u0, u1), largest(pq, w0, w1)) <= ex[NX_MAX]) return;
+    const double vp0 = rel(e.y0 + n, pp), vq0 = rel(e.y0 + n, pq), vp1 = rel(e.y1 + n, pp), vq1 = rel(e.y1 + n, pq);
+    const double g0 = u0 * vp0 + w0 * vq0, g1 = u1 * vp1 + w1 * vq1;
+    const double b0 = vp0 * vp0 + vq0 * vq0 + u0 * rel(e.a0, pp) + w0 * rel(e.a0, pq);
+    const double b1 = vp1 * vp1 + vq1 * vq1 + u1 * rel(e.a1, pp) + w1 * rel(e.a1, pq);
+    Fn fg;
+    fg.kind = FN_NORM_RATE;
+    static_cast<Pair&>(fg) = pp;
+    fg.second = pq;
+    auto length_at = [&](double t) {
+        if (!(0.0 < t && t < tau)) return;
+        phase_eval(ph, t, ph.ye.data(), ph.ae.data());
+        at(t0 + t, rel(ph.ye.data(), pp), rel(ph.ye.data(), pq));
+    };
+    if (g0 > 0.0 && g1 < 0.0) {
+        length_at(find_root(fg, ph, 0.0, tau, g0, g1, b0, b1, XTOL_EXTREMUM_S));
+    } else if (g0 * g1 > 0.0 && b0 * b1 < 0.0 && may_turn_back(tau, g0, g1, b0, b1)) {
+        Fn fb = fg;
+        fb.kind = FN_NORM_BEND;
+        const double t_b = find_root(fb, ph, 0.0, tau, b0, b1, NaN, NaN, XTOL_EXTREMUM_S);
+        double g_b, b_b;
+        fn_eval(fg, ph, t_b, g_b, b_b);
+        if (0.0 < t_b && t_b < tau && g_b * g0 < 0.0) {
+            length_at(find_root(fg, ph, 0.0, t_b, g0, g_b, b0, b_b, XTOL_EXTREMUM_S));
+            length_at(find_root(fg, ph, t_b, tau, g_b, g1, b_b, b1, XTOL_EXTREMUM_S));
+        }
+    }
+}
+
 // each dof's displacement extrema and each tracked pair's (a storey's drift), at the velocity's zeros and the
-// ends (none inside where the screen clears it); each contact in progress's deepest compression
+// ends (none inside where the screen clears it); each tracked vector's longest; each contact in progress's
+// deepest compression
 void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, double tau, const Ends& e,
                           double* extrema, ExtremaScreen* sc, bool inside) {
     const int n = ph.n;
@@ -345,6 +405,8 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
         for (int k = 0; k < z.count; ++k)
             if (z.t[k] < tau) track_displacement(ex, t0 + z.t[k], z.x[k]);
     }
+    for (int q = 0; q < sy.n_norm(); ++q)
+        norm_extrema(ph, sy, q, t0, tau, e, extrema + sy.norm_extrema_at() + NORM_EXTREMA * q, inside);
     // the contacts' deepest compression: the ends and the pair's velocity zeros
     for (int c = 0; c < ph.nc; ++c) {
         const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
@@ -533,6 +595,7 @@ bool extrema_surely_inside(const Phase& ph, const System& sy, double tau, const 
                            ExtremaScreen& sc) {
     const int n = ph.n;
     if (!sc.on || !(tau > 0.0) || !(sc.s > 0.0)) return false;
+    if (sy.n_norm() > 0) return false;  // (a tracked vector's length: no bound of its own here yet)
     for (const ContactPhase& k : ph.ct)
         if (k.in) return false;
     if (ph.stk.any)

@@ -183,7 +183,7 @@ Hysteretic element_from_state(const nb::dict& d) {
 void fill_system(System& s, int n, const std::vector<double>& mass, const std::vector<double>& k0,
                  const std::vector<double>& c0, const std::vector<Hysteretic>& elements, const std::vector<double>& bw,
                  bool has_b, const std::vector<Contact>& contacts, const std::vector<Pair>& tracked,
-                 const std::vector<double>& infl) {
+                 const std::vector<double>& infl, const std::vector<int>& norm_p, const std::vector<int>& norm_q) {
     s.n = n;
     s.mass = mass;
     s.k0 = k0;
@@ -193,6 +193,8 @@ void fill_system(System& s, int n, const std::vector<double>& mass, const std::v
     s.has_b = has_b;
     s.contact = contacts;
     s.track = tracked;
+    s.norm_p = norm_p;
+    s.norm_q = norm_q;
     if (!infl.empty() && static_cast<int>(infl.size()) != 2 * n)
         throw std::invalid_argument("infl: 2 n values (each dof's influence of the two components), or none");
     s.infl = infl;
@@ -215,6 +217,8 @@ nb::dict system_state(const System& s) {
     nb::list tracked;
     for (const Pair& p : s.track) tracked.append(tracked_state(p));
     d["tracked"] = tracked;
+    d["norm_p"] = s.norm_p;
+    d["norm_q"] = s.norm_q;
     d["infl"] = s.infl;
     return d;
 }
@@ -237,7 +241,9 @@ void system_from_state(System& s, const nb::dict& d) {
                 nb::cast<std::vector<double>>(d["k0"]), nb::cast<std::vector<double>>(d["c0"]), elements,
                 nb::cast<std::vector<double>>(d["bw"]), nb::cast<bool>(d["has_b"]), contacts,
                 tracked,
-                d.contains("infl") ? nb::cast<std::vector<double>>(d["infl"]) : std::vector<double>());
+                d.contains("infl") ? nb::cast<std::vector<double>>(d["infl"]) : std::vector<double>(),
+                d.contains("norm_p") ? nb::cast<std::vector<int>>(d["norm_p"]) : std::vector<int>(),
+                d.contains("norm_q") ? nb::cast<std::vector<int>>(d["norm_q"]) : std::vector<int>());
 }
 
 // (p: amplitude, omega, phase, then the second component's amplitude and phase; rec_b empty: no second
@@ -337,13 +343,15 @@ NB_MODULE(_pounding_core, m) {
              [](System* s, int n, const std::vector<double>& mass, const std::vector<double>& k0,
                 const std::vector<double>& c0, const std::vector<Hysteretic>& elements,
                 const std::vector<double>& bw, bool has_b, const std::vector<Contact>& contacts,
-                const std::vector<Pair>& tracked, const std::vector<double>& infl) {
+                const std::vector<Pair>& tracked, const std::vector<double>& infl, const std::vector<int>& norm_p,
+                const std::vector<int>& norm_q) {
                  new (s) System();
-                 fill_system(*s, n, mass, k0, c0, elements, bw, has_b, contacts, tracked, infl);
+                 fill_system(*s, n, mass, k0, c0, elements, bw, has_b, contacts, tracked, infl, norm_p, norm_q);
              },
              nb::kw_only(), nb::arg("n"), nb::arg("mass"), nb::arg("k0"), nb::arg("c0"), nb::arg("elements"),
              nb::arg("bw"), nb::arg("has_b"), nb::arg("contacts"), nb::arg("tracked"),
-             nb::arg("infl") = std::vector<double>())
+             nb::arg("infl") = std::vector<double>(), nb::arg("norm_p") = std::vector<int>(),
+             nb::arg("norm_q") = std::vector<int>())
         .def_ro("n", &System::n)
         .def_ro("mass", &System::mass)
         .def_ro("plain", &System::plain)
@@ -403,8 +411,9 @@ NB_MODULE(_pounding_core, m) {
               }
               return nb::make_tuple(array1(out.state.data(), out.state.size()), rows_array(out.samples),
                                     rows_array(out.contacts), rows_array(out.events),
-                                    array1(out.ledger, LEDGER_LEN), array1(out.extrema.data(), out.extrema.size()),
-                                    out.status, rows_array(out.chatters));
+                                    array1(out.ledger, LEDGER_LEN), array1(out.extrema.data(), sy.norm_extrema_at()),
+                                    out.status, rows_array(out.chatters),
+                                    array1(out.extrema.data() + sy.norm_extrema_at(), NORM_EXTREMA * sy.n_norm()));
           },
           nb::arg("system"), nb::arg("kind"), nb::arg("p"), nb::arg("rec_t"), nb::arg("rec_a"), nb::arg("rec_b"),
           nb::arg("state0"), nb::arg("t_end"), nb::arg("sample_dt"), nb::arg("rtol"), nb::arg("max_events"), nb::arg("with_energy"),
@@ -515,6 +524,7 @@ NB_MODULE(_pounding_core, m) {
     layout["CONTACT_COLS"] = static_cast<int>(CONTACT_COLS);
     layout["DOF_EXTREMA"] = static_cast<int>(DOF_EXTREMA);
     layout["PAIR_EXTREMA"] = static_cast<int>(PAIR_EXTREMA);
+    layout["NORM_EXTREMA"] = static_cast<int>(NORM_EXTREMA);
     layout["EVENT_COLS"] = static_cast<int>(EVENT_COLS);
     layout["LEDGER_LEN"] = static_cast<int>(LEDGER_LEN);
     layout["WINDOW_COLS"] = WINDOW_COLS;
@@ -563,6 +573,8 @@ NB_MODULE(_pounding_core, m) {
                                    {"a_abs_max_t", EX_A_ABS_MAX_T}, {"a_at_max", EX_A_AT_MAX}});  // a dof's
     m.attr("PAIR_EXTREMA") = named({{"max", PX_MAX}, {"max_t", PX_MAX_T}, {"min", PX_MIN},
                                     {"min_t", PX_MIN_T}});  // a tracked pair's (a storey's drift)
+    // a tracked vector's (a bearing's displacement in plan): its length's largest, when, its components there
+    m.attr("NORM_EXTREMA") = named({{"max", NX_MAX}, {"max_t", NX_MAX_T}, {"at_p", NX_AT_P}, {"at_q", NX_AT_Q}});
     m.attr("EXCITATION") = named({{"harmonic", EXC_HARMONIC}, {"record", EXC_RECORD}});  // the forcing's kinds
     nb::dict laws;  // each law's id: the Python dataclasses' LAW_ID (tests/test_core.py holds them equal)
     laws["kelvin_voigt"] = static_cast<int>(KELVIN_VOIGT);

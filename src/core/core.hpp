@@ -48,6 +48,9 @@ constexpr int A_TSTART = 0, A_VIN = 1, A_DSTART = 2, A_IMPULSE = 3, A_PEAK = 4, 
 enum DofExtremum : int { EX_D_MAX = 0, EX_D_MAX_T, EX_D_MIN, EX_D_MIN_T, EX_A_ABS_MAX, EX_A_ABS_MAX_T, EX_A_AT_MAX,
                          DOF_EXTREMA };
 enum PairExtremum : int { PX_MAX = 0, PX_MAX_T, PX_MIN, PX_MIN_T, PAIR_EXTREMA };
+// then per tracked vector (two tracked pairs as its components: a bearing's displacement in plan, x and y),
+// its length's largest (m), its time (s) and the two components there
+enum NormExtremum : int { NX_MAX = 0, NX_MAX_T, NX_AT_P, NX_AT_Q, NORM_EXTREMA };
 
 // where each block of the state vector starts, for n dofs, nc contact slots, n_h hysteretic elements and n_sp
 // springs of theirs in all
@@ -201,6 +204,8 @@ struct System {
     bool has_b = false;           // the contacts are active
     std::vector<Contact> contact; // the contact slots
     std::vector<Pair> track;  // pairs whose relative displacement's extrema a run finds (drifts, a bearing's)
+    // vectors whose length's largest a run finds: two tracked pairs each (indices into track), its components
+    std::vector<int> norm_p, norm_q;
     // how the ground's two components move each dof (n x 2, row by dof: the table acceleration on dof i is
     // infl[2 i] a_x + infl[2 i + 1] a_y); empty: every dof moves with the first component (a line's table)
     std::vector<double> infl;
@@ -219,6 +224,9 @@ struct System {
     }
     int n_h() const { return static_cast<int>(hyst.size()); }
     int n_track() const { return static_cast<int>(track.size()); }
+    int n_norm() const { return static_cast<int>(norm_p.size()); }
+    // where the tracked vectors' extrema start in a run's extrema (after the dofs' and the pairs')
+    int norm_extrema_at() const { return DOF_EXTREMA * n + PAIR_EXTREMA * n_track(); }
     const Hysteretic& iso() const { return hyst[0]; }
     int state_size() const { return lay.size; }
     int nc() const { return static_cast<int>(contact.size()); }

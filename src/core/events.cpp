@@ -228,6 +228,15 @@ void fn_eval(const Fn& fn, Phase& ph, double tau, double& f, double& fp) {
             f = abs_acceleration_rate(ph, fn.idx, tau, y, a);
             fp = NaN;
             return;
+        case FN_NORM_RATE:
+        case FN_NORM_BEND: {
+            const double up = rel(y, fn), uq = rel(y, fn.second);
+            const double vp = rel(y + n, fn), vq = rel(y + n, fn.second);
+            const double bend = vp * vp + vq * vq + up * rel(a, fn) + uq * rel(a, fn.second);
+            f = fn.kind == FN_NORM_RATE ? up * vp + uq * vq : bend;
+            fp = fn.kind == FN_NORM_RATE ? bend : NaN;
+            return;
+        }
         default:  // FN_FORCE_RATE
             f = contact_force(ph, fn.idx, y, a).rate;
             fp = NaN;

@@ -60,11 +60,14 @@ enum FnKind : int {
     FN_PAIR_V,         // numerical: v_i - v_j (rate: a_i - a_j)
     FN_PAIR_A,         // numerical: a_i - a_j (no derivative)
     FN_AABS_RATE,      // numerical: dof idx's absolute acceleration's rate (no derivative)
-    FN_FORCE_RATE      // numerical: contact idx's force rate (no derivative)
+    FN_FORCE_RATE,     // numerical: contact idx's force rate (no derivative)
+    FN_NORM_RATE,      // u . u' / 1 of the vector (u_p, u_q) of its two pairs (rate: |u'|^2 + u . u'')
+    FN_NORM_BEND       // that rate (no derivative)
 };
-struct Fn : Pair {  // (FN_PAIR_V, FN_PAIR_A: its pair)
+struct Fn : Pair {  // (FN_PAIR_V, FN_PAIR_A: its pair; FN_NORM_*: its first, `second` the other)
     int kind = FN_POLY;
     int idx = 0;
+    Pair second;
     const EventRow* evs = nullptr;
     Poly q;
 };

@@ -389,6 +389,15 @@ void start_extrema(const System& sy, const double* st, double t_run0, double* ex
         ex[PX_MAX] = ex[PX_MIN] = d;
         ex[PX_MAX_T] = ex[PX_MIN_T] = t_run0;
     }
+    for (int q = 0; q < sy.n_norm(); ++q) {
+        double* ex = extrema + sy.norm_extrema_at() + NORM_EXTREMA * q;
+        const double u = rel(st + L.x, sy.track[static_cast<size_t>(sy.norm_p[static_cast<size_t>(q)])]);
+        const double w = rel(st + L.x, sy.track[static_cast<size_t>(sy.norm_q[static_cast<size_t>(q)])]);
+        ex[NX_MAX] = std::hypot(u, w);
+        ex[NX_MAX_T] = t_run0;
+        ex[NX_AT_P] = u;
+        ex[NX_AT_Q] = w;
+    }
 }
 
 // the workspace made for this system (another system: new buffers, no transitions kept), with room for the

@@ -47,7 +47,7 @@ struct RunResult {
         contacts.clear();
         events.clear();
         chatters.clear();
-        extrema.assign(static_cast<size_t>(sy.lay.extrema_len() + PAIR_EXTREMA * sy.n_track()), 0.0);
+        extrema.assign(static_cast<size_t>(sy.norm_extrema_at() + NORM_EXTREMA * sy.n_norm()), 0.0);
         status = SUCCESS;
     }
 };

@@ -21,7 +21,7 @@ What comes back is named, never positional: :class:`RunOutput`, :class:`StepOutp
 Every index is the core's own, by name: ``LAYOUT`` the state vector's offsets and the outputs' sizes,
 ``CONTACT_COLUMNS`` a contact table's columns, ``EVENT_COLUMNS`` an event table's, ``LEDGER`` the energy
 ledger's slots, ``DOF_EXTREMA`` and ``PAIR_EXTREMA`` a run's extrema per dof and per tracked pair,
-``EXCITATION`` the forcing's kinds,
+``NORM_EXTREMA`` a tracked vector's (its length's largest), ``EXCITATION`` the forcing's kinds,
 ``LAW_IDS`` each contact law's id, ``STATUS`` the codes a run ends with, ``ACTIONS`` the events' codes.
 """
 
@@ -59,6 +59,7 @@ EVENT_COLUMNS: dict[str, int] = dict(_c.EVENT_COLUMNS)
 LEDGER: dict[str, int] = dict(_c.LEDGER)
 DOF_EXTREMA: dict[str, int] = dict(_c.DOF_EXTREMA)
 PAIR_EXTREMA: dict[str, int] = dict(_c.PAIR_EXTREMA)
+NORM_EXTREMA: dict[str, int] = dict(_c.NORM_EXTREMA)
 EXCITATION: dict[str, int] = dict(_c.EXCITATION)
 
 
@@ -114,6 +115,9 @@ class RunOutput:
     chatters : ndarray, shape (q, 5)
         The rigid stops' chatter sequences: contact, first impact s, accumulation or last impact s,
         impacts, accumulated 1/0.
+    norms : ndarray, shape (v, NORM_EXTREMA)
+        Each tracked vector's (:func:`system`'s ``vectors``) exact largest length (m), its time (s) and its
+        two components there (m), columns :data:`NORM_EXTREMA`.
     """
 
     state: np.ndarray
@@ -124,6 +128,7 @@ class RunOutput:
     extrema: np.ndarray
     status: int
     chatters: np.ndarray
+    norms: np.ndarray = field(default_factory=lambda: np.zeros((0, len(NORM_EXTREMA))))
 
     def per_dof(self, n: int) -> np.ndarray:
         """The extrema of each of the ``n`` dofs, shape (n, DOF_EXTREMA), columns :data:`DOF_EXTREMA`."""
@@ -190,7 +195,7 @@ _N_DOF_EXTREMA, _N_PAIR_EXTREMA = LAYOUT["DOF_EXTREMA"], LAYOUT["PAIR_EXTREMA"]
 
 def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Element], bw: np.ndarray,
            has_b: bool, contacts: list[ContactSlot], tracked: tuple[tuple[int, int] | TrackedPair, ...] = (),
-           influence: np.ndarray | None = None) -> System:
+           influence: np.ndarray | None = None, vectors: tuple[tuple[int, int], ...] = ()) -> System:
     """A system as the core takes it: ``mass`` (kg, shape (n,)), the linear springs and dashpots ``k0``,
     ``c0`` (N/m, N s/m, shape (n, n)), the hysteretic elements (:class:`Element`: dof ``i`` against dof ``j``,
     -1 the ground; its dashpot ``c_d`` N s/m, backbone ``slopes`` N/m and ``breaks`` m, ``rule`` 0 kinematic,
@@ -203,6 +208,8 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
     after the dofs' (:data:`PAIR_EXTREMA`; a storey's drift).  ``influence``
     (shape (n, 2), finite): how the ground's two components move each dof (dof ``i`` feels
     ``-m_i (influence[i, 0] a + influence[i, 1] b)``); None: every dof with the first alone, ``(1, 0)``.
+    ``vectors``: pairs ``(p, q)`` of indices into ``tracked``, each a vector of those two components (a
+    bearing's displacement in plan: its x and y) whose length's exact largest a run finds (``norms``).
 
     The core trusts what it is given: the sizes and indices are checked here (a ``ValueError`` is a
     caller's bug; the public functions check what users give before)."""
@@ -279,6 +286,11 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
     for q, p in enumerate(pairs_tracked):
         pair(p.i, p.j, f"tracked pair {q}")
         levers(p, f"tracked pair {q}")
+    for v, pq in enumerate(vectors):
+        ok = all(isinstance(k, (int, np.integer)) and 0 <= k < len(pairs_tracked) for k in pq)
+        if len(pq) != 2 or not ok or pq[0] == pq[1]:
+            raise ValueError(f"vector {v}: two different indices of the {len(pairs_tracked)} tracked pairs, "
+                             f"got {pq!r}")
     infl: list[float] = []
     if influence is not None:
         r = np.asarray(influence, dtype=float)
@@ -288,7 +300,8 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
     return _c.System(n=n, mass=m.tolist(), k0=k0.reshape(n * n).tolist(), c0=c0.reshape(n * n).tolist(),
                      elements=list(elements), bw=[float(x) for x in bw], has_b=bool(has_b),
                      contacts=list(contacts),
-                     tracked=pairs_tracked, infl=infl)
+                     tracked=pairs_tracked, infl=infl, norm_p=[int(p) for p, _ in vectors],
+                     norm_q=[int(q) for _, q in vectors])
 
 
 def contact_slot(*, i: int, j: int, sign: float, gap_m: float, law: int, params: Any, lever_i: int = -1,
@@ -365,12 +378,13 @@ def run(sy: System, forcing: Forcing, state0: np.ndarray, t_end: float, sample_d
         raise ValueError(f"a harmonic's p holds 3 or 5 numbers and no rec_b; a record's p 3 and rec_b none "
                          f"or as many values as rec_t ({np.size(forcing.rec_t)}): got p "
                          f"{np.size(forcing.p)}, rec_b {rec_b.size}")
-    state, samples, contacts, events, ledger, extrema, status, chatters = _c.run(
+    state, samples, contacts, events, ledger, extrema, status, chatters, norms = _c.run(
         sy, int(forcing.kind), _f64(forcing.p), _f64(forcing.rec_t), _f64(forcing.rec_a), rec_b, _f64(state0),
         float(t_end), float(sample_dt), float(rtol), int(max_events), bool(with_energy), _ctl(ctl),
         bool(screen_extrema), bool(audit_screen), bool(whole_steps))
     return RunOutput(state=state, samples=samples, contacts=contacts, events=events, ledger=ledger,
-                     extrema=extrema, status=int(status), chatters=chatters)
+                     extrema=extrema, status=int(status), chatters=chatters,
+                     norms=norms.reshape(-1, len(NORM_EXTREMA)))
 
 
 def step(sy: System, amp: float, omega: float, state0: np.ndarray, steady: tuple, rtol: float,
