@@ -60,11 +60,13 @@ def _weights(n, entries):
     return w
 
 
-def plan_building(rng, levels, gap_m):
+def plan_building(rng, levels, gap_m, moat=None):
     """A building in plan of ``levels`` floors (dofs 3 l, 3 l + 1, 3 l + 2: x, y, rotation), on four bilinear
     bearings at its base's corners (an element per axis, kinematic rule), its base's corners against a
     rectangular moat of Kelvin-Voigt walls ``gap_m`` away (two corners against each wall); its storeys are
-    lateral lines (frames) placed in plan. As the core takes it and as the reference restates it."""
+    lateral lines (frames) placed in plan. As the core takes it and as the reference restates it (``moat``: a
+    law of the package for the moat's walls instead, which the reference does not restate: the walls it
+    gets are then not the core's)."""
     n = 3 * levels
     a, b = rng.uniform(10.0, 30.0, 2)  # (the plan's sides, m)
     mass = np.zeros(n)
@@ -107,8 +109,9 @@ def plan_building(rng, levels, gap_m):
             if (px if axis == 0 else py) * sign < 0.0:  # (the two corners on that wall's side)
                 continue
             arm = -py if axis == 0 else px
-            contacts.append(_core.contact_slot(i=axis, j=-1, sign=sign, gap_m=gap_m, law=KELVIN_VOIGT,
-                                               params=params, lever_i=2, arm_i_m=arm))
+            law, numbers = (KELVIN_VOIGT, params) if moat is None else (moat.LAW_ID, moat.params())
+            contacts.append(_core.contact_slot(i=axis, j=-1, sign=sign, gap_m=gap_m, law=law,
+                                               params=numbers, lever_i=2, arm_i_m=arm))
             walls.append((_weights(n, [(axis, 1.0), (2, arm)]), sign, gap_m, k_b, c_b))
     if levels >= 2:  # (the first storey: a yielding frame each way, and drift limiters at a corner)
         for axis in (0, 1):
@@ -374,8 +377,11 @@ def test_levers_on_a_line_match_the_reference(seed, pga):
     model.record = (t, ax, np.zeros_like(ax))
     forcing = _core.Forcing(kind=_core.EXCITATION["record"], p=np.array([0.02, 0.0, 0.0]), rec_t=t, rec_a=ax)
     ctl = _control.new_control(10**10)
-    out = _core.run(sy, forcing, np.zeros(sy.state_size), t[-1], 0.0, 1e-10, 10**6, True, ctl)
+    # (audited: each extremum or whole step the screens clear is looked at all the same, none escapes)
+    out = _core.run(sy, forcing, np.zeros(sy.state_size), t[-1], 0.0, 1e-10, 10**6, True, ctl,
+                    audit_screen=True)
     assert out.status == 0, out.status
+    assert ctl[_core.LAYOUT["CTL_ESCAPES"]] == 0 and ctl[_core.LAYOUT["CTL_AUDITED"]] > 0
     _ledger_closes(out)
     try:
         ref = reference(model, t[-1], np.zeros(2 * sy.n))
@@ -422,3 +428,40 @@ def test_an_elliptic_orbit_s_longest_is_the_closed_form(with_elements, m, k, c, 
     x, y = (z * np.exp(1j * w * t_max) for z in (zx, zy))
     np.testing.assert_allclose(np.hypot(x.real, y.real), longest, rtol=1e-9)
     assert 0.0 < t_max < 3.3 * period
+
+
+def test_a_plan_building_s_exact_extrema_bound_its_samples():
+    # a moat of Hunt-Crossley walls (a law integrated numerically while in contact: the absolute
+    # accelerations' rates through the levers, the Dormand-Prince phases) struck at the corners: every sample
+    # of every dof, of every tracked point and of every bearing's vector lies within the run's exact extrema,
+    # and the extrema are reached (the samples come within a hair of them)
+    rng = np.random.default_rng(21)
+    sy, model = plan_building(rng, 2, 0.05, moat=pd_.HuntCrossley(stiffness=2.0e9, exponent=1.5, damping=0.3))
+    t, ax, ay = _record(rng, 3.0, 0.01, 3.5)
+    out = _run(sy, _record_forcing(t, ax, ay), np.zeros(sy.state_size), t[-1], 1e-4)
+    assert out.status == 0
+    assert len(_events(out, "contact_start")) >= 4
+    _ledger_closes(out)
+    n, s = sy.n, out.samples
+    x, acc = s[:, 1:1 + n], s[:, 1 + 2 * n:1 + 3 * n]
+    per_dof = out.per_dof(n)
+    ex = _core.DOF_EXTREMA
+    for q in range(n):
+        scale = np.max(np.abs(x[:, q]))
+        assert per_dof[q, ex["d_max"]] >= np.max(x[:, q]) - 1e-12 * scale
+        assert per_dof[q, ex["d_min"]] <= np.min(x[:, q]) + 1e-12 * scale
+        assert np.max(x[:, q]) >= per_dof[q, ex["d_max"]] - 1e-4 * scale
+        top = per_dof[q, ex["a_abs_max"]]
+        assert top >= np.max(np.abs(acc[:, q])) * (1.0 - 1e-9), q
+        assert np.max(np.abs(acc[:, q])) >= top * (1.0 - 1e-2), q
+    ws = [w for w, _, _ in model.plastic]
+    u = x @ np.array(ws).T  # (each tracked point's samples)
+    per_pair = out.per_pair(n)
+    for p in range(len(ws)):
+        scale = np.max(np.abs(u[:, p]))
+        assert per_pair[p, PX["max"]] >= np.max(u[:, p]) - 1e-12 * scale
+        assert per_pair[p, PX["min"]] <= np.min(u[:, p]) + 1e-12 * scale
+    for v, (p, q) in enumerate(model.vectors):
+        length = np.hypot(u[:, p], u[:, q])
+        assert out.norms[v, NX["max"]] >= np.max(length) * (1.0 - 1e-12)
+        assert np.max(length) >= out.norms[v, NX["max"]] * (1.0 - 1e-4)

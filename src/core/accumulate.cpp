@@ -334,8 +334,8 @@ void norm_extrema(Phase& ph, const System& sy, int q, double t0, double tau, con
     const double b1 = vp1 * vp1 + vq1 * vq1 + u1 * rel(e.a1, pp) + w1 * rel(e.a1, pq);
     Fn fg;
     fg.kind = FN_NORM_RATE;
-    static_cast<Pair&>(fg) = pp;
-    fg.second = pq;
+    fg.pair = &pp;
+    fg.second = &pq;
     auto length_at = [&](double t) {
         if (!(0.0 < t && t < tau)) return;
         phase_eval(ph, t, ph.ye.data(), ph.ae.data());

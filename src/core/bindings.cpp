@@ -62,10 +62,7 @@ Array2 rows_array(Rows& r) {
 // checked in Python, pounding._core.system: the core trusts its inputs.)  A pair's levers (Pair) come apart:
 // lever_i, arm_i_m, lever_j, arm_j_m (-1 and 0: none).
 void set_levers(Pair& p, int lever_i, double arm_i, int lever_j, double arm_j) {
-    p.li = lever_i;
-    p.ai = lever_i >= 0 ? arm_i : 0.0;
-    p.lj = lever_j;
-    p.aj = lever_j >= 0 ? arm_j : 0.0;
+    p.set_levers(lever_i, arm_i, lever_j, arm_j);
 }
 void levers_state(nb::dict& d, const Pair& p) {
     d["lever_i"] = p.li;

@@ -125,9 +125,17 @@ constexpr double EXP_NORMAL_LIMIT = 708.39;  // exp(-x) is below the smallest no
 // dofs by f w.  Without levers (li, lj -1) that is y_i - y_j, number for number as a pair always was.
 struct Pair {
     int i = 0, j = GROUND;
-    int li = -1, lj = -1;  // the lever dofs (-1: none)
+    int li = -1, lj = -1;  // the lever dofs (-1: none; set_levers sets them)
     double ai = 0.0, aj = 0.0;
-    bool levered() const { return li >= 0 || lj >= 0; }
+    bool lev = false;      // li >= 0 || lj >= 0, kept (the hot paths ask it at every relative value)
+    bool levered() const { return lev; }
+    void set_levers(int lever_i, double arm_i, int lever_j, double arm_j) {
+        li = lever_i;
+        ai = lever_i >= 0 ? arm_i : 0.0;
+        lj = lever_j;
+        aj = lever_j >= 0 ? arm_j : 0.0;
+        lev = li >= 0 || lj >= 0;
+    }
     // sum |w|: how much larger |w . y| can be than the largest |y_k|
     double weight() const {
         if (!levered()) return j >= 0 ? 2.0 : 1.0;
@@ -155,7 +163,8 @@ inline double weight_on(const Pair& p, int d) {
     return w;
 }
 inline bool same_pair(const Pair& a, const Pair& b) {
-    return a.i == b.i && a.j == b.j && a.li == b.li && a.lj == b.lj && a.ai == b.ai && a.aj == b.aj;
+    return a.i == b.i && a.j == b.j && a.lev == b.lev &&
+           (!a.lev || (a.li == b.li && a.lj == b.lj && a.ai == b.ai && a.aj == b.aj));
 }
 
 // One contact: a bumper (or a stop) on a pair (Pair: dof i against dof j or the ground) behind a gap.  Its
@@ -281,7 +290,7 @@ struct System {
 inline double rel(const double* y, int i, int j) { return j >= 0 ? y[i] - y[j] : y[i]; }
 // a pair's (Pair): w . y
 inline double rel(const double* y, const Pair& p) {
-    if (!p.levered()) return rel(y, p.i, p.j);
+    if (__builtin_expect(!p.lev, 1)) return rel(y, p.i, p.j);
     const double a = y[p.i] + (p.li >= 0 ? p.ai * y[p.li] : 0.0);
     return p.j >= 0 ? a - (y[p.j] + (p.lj >= 0 ? p.aj * y[p.lj] : 0.0)) : a;
 }

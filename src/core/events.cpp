@@ -217,11 +217,11 @@ void fn_eval(const Fn& fn, Phase& ph, double tau, double& f, double& fp) {
             fp = NaN;
             return;
         case FN_PAIR_V:
-            f = rel(y + n, fn);
-            fp = rel(a, fn);
+            f = rel(y + n, *fn.pair);
+            fp = rel(a, *fn.pair);
             return;
         case FN_PAIR_A:
-            f = rel(a, fn);
+            f = rel(a, *fn.pair);
             fp = NaN;
             return;
         case FN_AABS_RATE:
@@ -230,9 +230,10 @@ void fn_eval(const Fn& fn, Phase& ph, double tau, double& f, double& fp) {
             return;
         case FN_NORM_RATE:
         case FN_NORM_BEND: {
-            const double up = rel(y, fn), uq = rel(y, fn.second);
-            const double vp = rel(y + n, fn), vq = rel(y + n, fn.second);
-            const double bend = vp * vp + vq * vq + up * rel(a, fn) + uq * rel(a, fn.second);
+            const Pair &p = *fn.pair, &q = *fn.second;
+            const double up = rel(y, p), uq = rel(y, q);
+            const double vp = rel(y + n, p), vq = rel(y + n, q);
+            const double bend = vp * vp + vq * vq + up * rel(a, p) + uq * rel(a, q);
             f = fn.kind == FN_NORM_RATE ? up * vp + uq * vq : bend;
             fp = fn.kind == FN_NORM_RATE ? bend : NaN;
             return;
@@ -405,7 +406,7 @@ void event_fn(const EventRow* evs, int i, Phase& ph, Fn& fn) {
     const EventRow& e = evs[i];
     fn.evs = evs;
     fn.idx = i;
-    static_cast<Pair&>(fn) = e;
+    fn.pair = &e;
     fn.kind = event_fn_kind(e, ph);
     if (fn.kind == FN_EVENT) return;
     if (e.kind == KIND_HELD) {  // a held rigid stop's force: a polynomial of the series
@@ -433,7 +434,7 @@ namespace {
 void rate_fn(const Fn& fn, Fn& out) {
     out.evs = fn.evs;
     out.idx = fn.idx;
-    static_cast<Pair&>(out) = fn;
+    out.pair = fn.pair;
     if (fn.kind == FN_POLY) {
         poly_deriv(fn.q, out.q);
         out.kind = FN_POLY;
@@ -481,7 +482,7 @@ const Phase::Zeros& velocity_zeros(Phase& ph, const Pair& pr) {
             fv.kind = FN_POLY;
         } else {
             fv.kind = FN_PAIR_V;
-            static_cast<Pair&>(fv) = pr;
+            fv.pair = &pr;
         }
     };
     if (h > 0.0 && v0 * v1 < 0.0) {
@@ -512,7 +513,7 @@ const Phase::Zeros& velocity_zeros(Phase& ph, const Pair& pr) {
             fa.kind = FN_POLY;
         } else {
             fa.kind = FN_PAIR_A;
-            static_cast<Pair&>(fa) = pr;
+            fa.pair = &pr;
         }
         const double t_a = find_root(fa, ph, 0.0, h, a0, a1, NaN, NaN, XTOL_EXTREMUM_S);
         double vm, am;

@@ -64,10 +64,13 @@ enum FnKind : int {
     FN_NORM_RATE,      // u . u' / 1 of the vector (u_p, u_q) of its two pairs (rate: |u'|^2 + u . u'')
     FN_NORM_BEND       // that rate (no derivative)
 };
-struct Fn : Pair {  // (FN_PAIR_V, FN_PAIR_A: its pair; FN_NORM_*: its first, `second` the other)
+struct Fn {
     int kind = FN_POLY;
     int idx = 0;
-    Pair second;
+    // FN_PAIR_V, FN_PAIR_A: its pair; FN_NORM_*: its two (pointers: a root finder's function is made often,
+    // and they outlive it)
+    const Pair* pair = nullptr;
+    const Pair* second = nullptr;
     const EventRow* evs = nullptr;
     Poly q;
 };

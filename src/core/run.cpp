@@ -121,7 +121,7 @@ double velocity_cuts(Phase& ph, const System& sy, double h, const Buffers& b, co
         if (v0 * v1 < 0.0 && kinks) {
             Fn fv;
             fv.kind = FN_PAIR_V;
-            static_cast<Pair&>(fv) = pr;
+            fv.pair = &pr;
             const double t_v = find_root(fv, ph, 0.0, h, v0, v1, a0, a1, XTOL_S);
             if (0.0 < t_v && t_v < cut) cut = t_v;
             continue;
@@ -136,8 +136,8 @@ double velocity_cuts(Phase& ph, const System& sy, double h, const Buffers& b, co
         } else {
             fa.kind = FN_PAIR_A;
             fv.kind = FN_PAIR_V;
-            static_cast<Pair&>(fa) = pr;
-            static_cast<Pair&>(fv) = pr;
+            fa.pair = &pr;
+            fv.pair = &pr;
         }
         const double t_a = find_root(fa, ph, 0.0, h, a0, a1, NaN, NaN, XTOL_EXTREMUM_S);
         double v_a, unused;
