@@ -302,7 +302,7 @@ ScreenedAcc abs_acceleration_range(const ExtremaScreen& s, const Phase& ph, doub
 // turning back inside: both its zeros, found on its rate's); looked for inside only where each component's own
 // largest magnitude on the sub-interval (its ends and its velocity's zeros) could make it longer than the
 // longest so far
-void norm_extrema(Phase& ph, const System& sy, int q, double t0, double tau, const Ends& e, double* ex,
+[[gnu::noinline]] void norm_extrema(Phase& ph, const System& sy, int q, double t0, double tau, const Ends& e, double* ex,
                   bool inside) {
     const int n = ph.n;
     const Pair& pp = sy.track[static_cast<size_t>(sy.norm_p[static_cast<size_t>(q)])];
@@ -388,7 +388,7 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
         double* ex = extrema + DOF_EXTREMA * i;
         track_displacement(ex, t0, e.y0[i]);
         track_displacement(ex, t0 + tau, e.y1[i]);
-        const Pair own{i, GROUND};
+        const Pair& own = sy.dof_pair[static_cast<size_t>(i)];
         if (!inside || !may_be_extreme(own, ex)) continue;
         const Phase::Zeros& z = velocity_zeros(ph, own);
         for (int k = 0; k < z.count; ++k)
@@ -626,7 +626,7 @@ bool extrema_surely_inside(const Phase& ph, const System& sy, double tau, const 
             if (!ph.stk.grounded[static_cast<size_t>(ph.stk.grp[static_cast<size_t>(i)])]) return false;
             continue;
         }
-        if (!pair_inside(Pair{i, GROUND}, ex)) return false;
+        if (!pair_inside(sy.dof_pair[static_cast<size_t>(i)], ex)) return false;
         const double aa0 = abs_acc_linear(ph, i, e.y0), aa1 = abs_acc_linear(ph, i, e.y1);
         const double r0 = abs_acc_rate_linear(ph, i, e.y0, e.a0), r1 = abs_acc_rate_linear(ph, i, e.y1, e.a1);
         const double top = std::max({ex[EX_A_ABS_MAX], std::abs(aa0), std::abs(aa1)});

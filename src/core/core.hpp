@@ -215,6 +215,7 @@ struct System {
     std::vector<Pair> track;  // pairs whose relative displacement's extrema a run finds (drifts, a bearing's)
     // vectors whose length's largest a run finds: two tracked pairs each (indices into track), its components
     std::vector<int> norm_p, norm_q;
+    std::vector<Pair> dof_pair;  // (derived: each dof against the ground, made once for the hot paths)
     // how the ground's two components move each dof (n x 2, row by dof: the table acceleration on dof i is
     // infl[2 i] a_x + infl[2 i + 1] a_y); empty: every dof moves with the first component (a line's table)
     std::vector<double> infl;
@@ -246,6 +247,8 @@ struct System {
             first += h.n_springs();
         }
         lay = Layout(n, nc(), n_h(), n_springs());
+        dof_pair.assign(static_cast<size_t>(n), Pair());
+        for (int i = 0; i < n; ++i) dof_pair[static_cast<size_t>(i)].i = i;
         c_lin = c0;
         if (static_cast<int>(c_lin.size()) != n * n) c_lin.assign(static_cast<size_t>(n * n), 0.0);
         if (static_cast<int>(k0.size()) != n * n) k0.assign(static_cast<size_t>(n * n), 0.0);
