@@ -262,8 +262,8 @@ const ExtremaScreen& ready(ExtremaScreen& sc, const Phase& ph, const Ends& e, do
     return sc;
 }
 
-// the pair (i, j)'s displacement's range on [0, tau] from the screen (a displacement's fourth derivative is an
-// acceleration's second: at most beta Z, a pair's twice that), and how far y1's shift moves it (off)
+// a pair's displacement's range on [0, tau] from the screen (a displacement's fourth derivative is an
+// acceleration's second: at most beta Z, a pair's sum |w| times that), and how far y1's shift moves it (off)
 struct Screened { Range r; double off; };
 Screened displacement_range(const ExtremaScreen& s, const Phase& ph, const Ends& e, double tau, const Pair& pr) {
     const int n = ph.n;
@@ -363,10 +363,10 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
                           double* extrema, ExtremaScreen* sc, bool inside) {
     const int n = ph.n;
     const Layout& L = sy.lay;
-    // whether the pair (i, j) may be extreme inside: its velocity may cross zero there (where no event of the
+    // whether a pair may be extreme inside: its velocity may cross zero there (where no event of the
     // sub-interval asked for a velocity's zeros, none is kept that could say otherwise), and the screen does
     // not clear it (a displacement's fourth derivative is an acceleration's second: at most beta Z, a pair's
-    // twice that)
+    // sum |w| times that)
     const bool none_kept = ph.zeros.empty();
     auto may_be_extreme = [&](const Pair& pr, const double* ex) {
         const bool may_cross = velocity_may_cross(ph, pr);
@@ -588,7 +588,7 @@ void peak_contact_forces(Phase& ph, const Layout& L, double* st, double tau, con
 // whether no extremum accumulate looks for can lie inside [0, tau] beyond those at its ends (a record's whole
 // step, run.cpp): each dof's displacement and each tracked pair's within the largest and smallest so far and at
 // the ends, or its velocity of one sign throughout (its fourth derivative an acceleration's third: at most
-// beta alpha Z, a pair's twice that); each free dof's absolute acceleration within the largest so far and at
+// beta alpha Z, a pair's sum |w| times that); each free dof's absolute acceleration within the largest so far and at
 // the ends; a held dof on the ground (the table a line: its ends).  Not cleared: a contact in progress, a
 // held rigid stop, a group held off the ground (their extrema are found on the phase's polynomials)
 bool extrema_surely_inside(const Phase& ph, const System& sy, double tau, const Ends& e, const double* extrema,

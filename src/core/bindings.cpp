@@ -97,6 +97,12 @@ Pair tracked_from_state(const nb::dict& d) {
     return p;
 }
 
+// a pair's levers as read-only fields of its Python class (a TrackedPair's, a ContactSlot's, an Element's)
+template <class T>
+void with_levers(nb::class_<T>& c) {
+    c.def_ro("lever_i", &T::li).def_ro("arm_i_m", &T::ai).def_ro("lever_j", &T::lj).def_ro("arm_j_m", &T::aj);
+}
+
 Contact contact_of(int i, int j, double sign, double gap_m, int law, const std::vector<double>& params) {
     Contact c;
     c.i = i;
@@ -262,7 +268,7 @@ Forcing forcing_of(int kind, Vec p, Vec rec_t, Vec rec_a, Vec rec_b) {
 NB_MODULE(_pounding_core, m) {
     m.doc() = "pounding's compiled core (C++17): the event-driven engine and its kernels.";
 
-    nb::class_<Pair>(m, "TrackedPair")
+    auto tracked = nb::class_<Pair>(m, "TrackedPair")
         .def("__init__",
              [](Pair* p, int i, int j, int lever_i, double arm_i_m, int lever_j, double arm_j_m) {
                  new (p) Pair(tracked_of(i, j, lever_i, arm_i_m, lever_j, arm_j_m));
@@ -271,14 +277,12 @@ NB_MODULE(_pounding_core, m) {
              nb::arg("lever_j") = -1, nb::arg("arm_j_m") = 0.0)
         .def_ro("i", &Pair::i)
         .def_ro("j", &Pair::j)
-        .def_ro("lever_i", &Pair::li)
-        .def_ro("arm_i_m", &Pair::ai)
-        .def_ro("lever_j", &Pair::lj)
-        .def_ro("arm_j_m", &Pair::aj)
         .def("__getstate__", &tracked_state)
         .def("__setstate__", [](Pair& p, const nb::dict& d) { new (&p) Pair(tracked_from_state(d)); });
 
-    nb::class_<Contact>(m, "ContactSlot")
+    with_levers(tracked);
+
+    auto slot = nb::class_<Contact>(m, "ContactSlot")
         .def("__init__",
              [](Contact* c, int i, int j, double sign, double gap_m, int law, const std::vector<double>& params,
                 int lever_i, double arm_i_m, int lever_j, double arm_j_m) {
@@ -290,10 +294,6 @@ NB_MODULE(_pounding_core, m) {
              nb::arg("arm_j_m") = 0.0)
         .def_ro("i", &Contact::i)
         .def_ro("j", &Contact::j)
-        .def_ro("lever_i", &Contact::li)
-        .def_ro("arm_i_m", &Contact::ai)
-        .def_ro("lever_j", &Contact::lj)
-        .def_ro("arm_j_m", &Contact::aj)
         .def_ro("sign", &Contact::sign)
         .def_ro("gap_m", &Contact::gap)
         .def_ro("law", &Contact::law)
@@ -301,7 +301,9 @@ NB_MODULE(_pounding_core, m) {
         .def("__getstate__", &contact_state)
         .def("__setstate__", [](Contact& c, const nb::dict& d) { new (&c) Contact(contact_from_state(d)); });
 
-    nb::class_<Hysteretic>(m, "Element")
+    with_levers(slot);
+
+    auto element = nb::class_<Hysteretic>(m, "Element")
         .def("__init__",
              [](Hysteretic* h, int i, int j, double c_d, const std::vector<double>& slopes,
                 const std::vector<double>& breaks, int rule, double friction_n, double friction_fast_n,
@@ -319,10 +321,6 @@ NB_MODULE(_pounding_core, m) {
              nb::arg("lever_j") = -1, nb::arg("arm_j_m") = 0.0)
         .def_ro("i", &Hysteretic::i)
         .def_ro("j", &Hysteretic::j)
-        .def_ro("lever_i", &Hysteretic::li)
-        .def_ro("arm_i_m", &Hysteretic::ai)
-        .def_ro("lever_j", &Hysteretic::lj)
-        .def_ro("arm_j_m", &Hysteretic::aj)
         .def_ro("c_d", &Hysteretic::c_d)
         .def_ro("slopes", &Hysteretic::slopes)
         .def_ro("breaks", &Hysteretic::breaks)
@@ -334,6 +332,8 @@ NB_MODULE(_pounding_core, m) {
         .def_ro("surface_ring_n_m", &Hysteretic::surface_ring)
         .def("__getstate__", &element_state)
         .def("__setstate__", [](Hysteretic& h, const nb::dict& d) { new (&h) Hysteretic(element_from_state(d)); });
+
+    with_levers(element);
 
     nb::class_<System>(m, "System")
         .def("__init__",

@@ -167,9 +167,9 @@ inline bool same_pair(const Pair& a, const Pair& b) {
            (!a.lev || (a.li == b.li && a.lj == b.lj && a.ai == b.ai && a.aj == b.aj));
 }
 
-// One contact: a bumper (or a stop) on a pair (Pair: dof i against dof j or the ground) behind a gap.  Its
-// compression is sign (x_i - x_j) - gap in contact; it pushes dof i by -sign F and dof j by +sign F.  (A
-// one-mass system's left bumper is sign -1, its right one +1.)
+// One contact: a bumper (or a stop) on a pair (Pair: dof i against dof j or the ground, x_i - x_j its w . x
+// on levers) behind a gap.  Its compression is sign (x_i - x_j) - gap in contact; it pushes dof i by -sign F
+// and dof j by +sign F (the dofs by -sign F w).  (A one-mass system's left bumper is sign -1, its right +1.)
 struct Contact : Pair {
     double sign = 1.0;
     double gap = 0.0;
@@ -179,8 +179,9 @@ struct Contact : Pair {
 
 // A hysteretic element: a rate-independent multi-linear spring (slopes N/m, n_springs + 1; breaks m, n_springs)
 // with its rule (0 kinematic, 1 elastic, 2 Coulomb friction: isolator.hpp) and a dashpot c_d (N s/m), between
-// dof i and dof j (or the ground), deformed by u = x_i - x_j.  The isolator is element 0 of a system, and carries its Bouc-Wen
-// spring if it has one; a storey with a hysteretic backbone is another.
+// dof i and dof j (or the ground), deformed by u = x_i - x_j (its pair's w . x on levers: a bearing at a plan
+// position).  The isolator is element 0 of a system, and carries its Bouc-Wen spring if it has one; a storey
+// with a hysteretic backbone is another.
 struct Hysteretic : Pair {
     double c_d = 0.0;
     std::vector<double> slopes, breaks;

@@ -3,7 +3,7 @@
 // An event is a function of the trajectory that fires when it crosses zero downwards: the isolator's yields,
 // reversals and branch edges, a contact's start (against the bumper's relaxing surface) and release (the
 // force would pull), a law's branch edges and turns, the Bouc-Wen z back through zero.  Most are linear in
-// the relative motion of a pair of dofs (i, j), alpha + beta (x_i - x_j) + gamma (v_i - v_j); a contact start
+// the relative motion of a pair (Pair: dofs i, j, on levers w . x), alpha + beta (x_i - x_j) + gamma (v_i - v_j); a contact start
 // adds the relaxing compression, a release is the law's own function.  In a linear phase each is a polynomial
 // of the sub-interval's series (plus the relaxation), and its root is found on it.
 #pragma once
@@ -96,10 +96,10 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
 
 // may a velocity, of one sign at both ends with accelerations of opposite signs, turn back inside?
 bool may_turn_back(double h, double v0, double v1, double a0, double a1);
-// whether the pair (i, j)'s relative velocity may cross zero inside the sub-interval (velocity_zeros looks
+// whether a pair's relative velocity may cross zero inside the sub-interval (velocity_zeros looks
 // for its zeros only then): of opposite signs at its ends, or turning back inside
 bool velocity_may_cross(const Phase& ph, const Pair& pr);
-// the instants in (0, e_h) where the relative velocity of the pair (i, j) crosses zero (0, 1, or 2 where it
+// the instants in (0, e_h) where the relative velocity of a pair crosses zero (0, 1, or 2 where it
 // turns back inside) and the relative displacement there, from the sub-interval's ends; kept for the
 // sub-interval (a shorter end asked later reads the same zeros below it)
 const Phase::Zeros& velocity_zeros(Phase& ph, const Pair& pr);

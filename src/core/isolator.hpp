@@ -1,5 +1,6 @@
 // A hysteretic element's rate-independent spring (core.hpp's Hysteretic: the isolator is element 0), between
-// dofs i and j (or the ground) of deformation u = x_i - x_j: a multi-linear backbone with one of two rules.
+// dofs i and j (or the ground) of deformation u = x_i - x_j (w . x on levers): a multi-linear backbone with one
+// of two rules.
 //   kinematic (rule 0): a spring of the last slope in parallel with n - 1 elastic-perfectly-plastic springs
 //     (spring i of stiffness K_i - K_(i+1), slipping when its strain u - u_i reaches +-D_i); state: the slips
 //     u_i and slip directions s_i at the layout's base, from the element's first spring on.

@@ -116,8 +116,20 @@ double velocity_cuts(Phase& ph, const System& sy, double h, const Buffers& b, co
     const bool kinks = ph.numeric && (law_switches(ph) || sy.bw[0] != 0.0);
     for (int p = 0; p < np; ++p) {
         const Pair& pr = pairs[p];
-        const double v0 = rel(b.y0s.data() + n, pr), v1 = rel(b.y1.data() + n, pr);
+        double v0 = rel(b.y0s.data() + n, pr);
+        const double v1 = rel(b.y1.data() + n, pr);
         const double a0 = rel(b.a0.data(), pr), a1 = rel(b.a1.data(), pr);
+        if (pr.levered() && a0 != 0.0) {
+            // a levered pair's velocity at a start cut at its zero is the rounding of its terms (w . v of dofs
+            // that all move): at rest there, heading the way it accelerates, as start_signs makes a dof at rest
+            // (else its zero is found again a rounding's time on, and again: the clock would stand still)
+            int d[4];
+            double w[4];
+            const int m = pr.entries(d, w);
+            double size = 0.0;
+            for (int r = 0; r < m; ++r) size += std::abs(w[r] * b.y0s[static_cast<size_t>(n + d[r])]);
+            if (std::abs(v0) <= 8.0 * EPS * size) v0 = std::copysign(TINY_SPEED, a0);
+        }
         if (v0 * v1 < 0.0 && kinks) {
             Fn fv;
             fv.kind = FN_PAIR_V;

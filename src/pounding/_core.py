@@ -42,14 +42,15 @@ except ImportError as exc:  # pragma: no cover  (a source tree never built)
         "compiles it with CMake; see docs/building.md)") from exc
 
 System = _c.System
-TrackedPair = _c.TrackedPair  # (by keyword: i, j; levers as below)
+TrackedPair = _c.TrackedPair  # (by keyword: i, j; levers as below; tracked_pair checks them)
 ContactSlot = _c.ContactSlot  # (built by keyword: i, j, sign, gap_m, law, params; levers as below)
 Element = _c.Element  # (by keyword: i, j, c_d, slopes, breaks, rule, friction_n, friction_fast_n,
 #                        friction_rate_s_m, surface_friction_n, surface_ring_n_m; levers as below)
 # Either acts on a pair: dof i, plus arm_i_m times dof lever_i (a lever: a point of a floor in plan moves
 # as x - y_c theta, so arm_i_m = -y_c on the rotation's dof), against dof j (plus arm_j_m times dof lever_j)
 # or the ground; lever -1: none.  Its relative displacement is w . x (w: 1 on i, arm_i_m on lever_i, -1 on
-# j, -arm_j_m on lever_j), and its force f pushes the dofs by -f w.
+# j, -arm_j_m on lever_j), and its force f enters the dofs' restoring forces as f w (a pair's +f on i, -f
+# on j).
 LAYOUT: dict[str, int] = dict(_c.LAYOUT)
 LAW_IDS: dict[str, int] = dict(_c.LAW_IDS)
 STATUS: dict[str, int] = dict(_c.STATUS)
@@ -227,13 +228,21 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
                              "ground, -1)")
 
     def levers(p: Any, what: str) -> bool:  # (whether it has any)
+        weights: dict[int, float] = {}
         for end, lever, arm in (("i", p.lever_i, p.arm_i_m), ("j", p.lever_j, p.arm_j_m)):
+            own = p.i if end == "i" else p.j
+            side = 1.0 if end == "i" else -1.0
+            if own >= 0:
+                weights[own] = weights.get(own, 0.0) + side
             if lever == -1:
                 continue
-            own = p.i if end == "i" else p.j
             if not (0 <= lever < n and lever != own and own != -1 and math.isfinite(arm)):
                 raise ValueError(f"{what}: the lever of end {end} ({lever}, arm {arm}) is not another of the "
                                  f"{n} dofs than {own} with a finite arm (the ground's end has none)")
+            weights[lever] = weights.get(lever, 0.0) + side * arm
+        if not any(weights.values()):
+            raise ValueError(f"{what}: its levers cancel its ends (its relative displacement is 0 whatever "
+                             "the motion): a pair moves with its dofs")
         return p.lever_i != -1 or p.lever_j != -1
 
     for e, el in enumerate(elements):
@@ -304,6 +313,23 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
                      norm_q=[int(q) for _, q in vectors])
 
 
+def _lever_args(lever_i: int, arm_i_m: float, lever_j: int, arm_j_m: float) -> dict:
+    """A pair's levers as the core's classes take them; a ValueError for an arm without its lever (the core
+    would drop it) or one that is not finite."""
+    for end, lever, arm in (("i", lever_i, arm_i_m), ("j", lever_j, arm_j_m)):
+        if not math.isfinite(float(arm)) or (int(lever) == -1 and float(arm) != 0.0):
+            raise ValueError(f"the arm of end {end} ({arm}): finite, and 0 without a lever (lever_{end} "
+                             f"{lever})")
+    return dict(lever_i=int(lever_i), arm_i_m=float(arm_i_m), lever_j=int(lever_j), arm_j_m=float(arm_j_m))
+
+
+def tracked_pair(*, i: int, j: int, lever_i: int = -1, arm_i_m: float = 0.0, lever_j: int = -1,
+                 arm_j_m: float = 0.0) -> TrackedPair:
+    """A tracked pair (:class:`TrackedPair`): dof ``i`` against dof ``j`` (-1: the ground), with levers as
+    :func:`contact_slot`'s; :func:`system` checks it against the system's dofs."""
+    return TrackedPair(i=int(i), j=int(j), **_lever_args(lever_i, arm_i_m, lever_j, arm_j_m))
+
+
 def contact_slot(*, i: int, j: int, sign: float, gap_m: float, law: int, params: Any, lever_i: int = -1,
                  arm_i_m: float = 0.0, lever_j: int = -1, arm_j_m: float = 0.0) -> ContactSlot:
     """A contact slot (:class:`ContactSlot`) from numbers as the model gives them: ``params`` at most
@@ -313,8 +339,7 @@ def contact_slot(*, i: int, j: int, sign: float, gap_m: float, law: int, params:
     if len(params) > LAYOUT["N_LAW_PARAMS"]:
         raise ValueError(f"a contact law's parameters: at most {LAYOUT['N_LAW_PARAMS']}, got {len(params)}")
     return ContactSlot(i=int(i), j=int(j), sign=float(sign), gap_m=float(gap_m), law=int(law), params=params,
-                       lever_i=int(lever_i), arm_i_m=float(arm_i_m), lever_j=int(lever_j),
-                       arm_j_m=float(arm_j_m))
+                       **_lever_args(lever_i, arm_i_m, lever_j, arm_j_m))
 
 
 def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int, friction_n: float = 0.0,
@@ -331,8 +356,8 @@ def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int, 
                    breaks=[float(x) for x in breaks], rule=int(rule), friction_n=float(friction_n),
                    friction_fast_n=float(friction_fast_n), friction_rate_s_m=float(friction_rate_s_m),
                    surface_friction_n=[float(x) for x in surface_friction_n],
-                   surface_ring_n_m=[float(x) for x in surface_ring_n_m], lever_i=int(lever_i),
-                   arm_i_m=float(arm_i_m), lever_j=int(lever_j), arm_j_m=float(arm_j_m))
+                   surface_ring_n_m=[float(x) for x in surface_ring_n_m],
+                   **_lever_args(lever_i, arm_i_m, lever_j, arm_j_m))
 
 
 def _one_component(sy: System, what: str) -> None:
