@@ -147,9 +147,20 @@ def plan_building(rng, levels, gap_m, moat=None):
     return sy, model
 
 
-def _record_forcing(t, ax, ay):
+def _record_forcing(t, ax, ay=None):
+    """A record's forcing (``ay``: its second component, if any) on its uniform step."""
     return _core.Forcing(kind=_core.EXCITATION["record"], p=np.array([t[1] - t[0], 0.0, 0.0]), rec_t=t,
-                         rec_a=ax, rec_b=ay)
+                         rec_a=ax, rec_b=np.zeros(0) if ay is None else ay)
+
+
+def _forcing(excitation, seed, amp, freq_hz, phase):
+    """One component: a record of ``amp`` peak (m/s^2; 6 s at 0.01 s, drawn from ``seed``) or a sine of
+    ``amp`` at ``freq_hz`` and ``phase`` (rad)."""
+    if excitation == "record":
+        t, ax, _ = _record(np.random.default_rng(seed), 6.0, 0.01, amp)
+        return _record_forcing(t, ax)
+    return _core.Forcing(kind=_core.EXCITATION["harmonic"], p=np.array([amp, 2 * math.pi * freq_hz, phase]),
+                         rec_t=np.zeros(1), rec_a=np.zeros(1))
 
 
 def _events(out, action):
@@ -273,14 +284,7 @@ def test_a_lever_of_arm_zero_is_no_lever(excitation):
     # transitions, the screens, the numerical phases) gives the plain pair's numbers when its arms are 0
     plain, levered = _line_building(False), _line_building(True)
     assert levered.levered and not plain.levered
-    if excitation == "record":
-        rng = np.random.default_rng(5)
-        t, ax, _ = _record(rng, 6.0, 0.01, 6.0)
-        forcing = _core.Forcing(kind=_core.EXCITATION["record"], p=np.array([0.01, 0.0, 0.0]), rec_t=t,
-                                rec_a=ax)
-    else:
-        forcing = _core.Forcing(kind=_core.EXCITATION["harmonic"], p=np.array([5.0, 2 * math.pi * 1.2, 0.0]),
-                                rec_t=np.zeros(1), rec_a=np.zeros(1))
+    forcing = _forcing(excitation, 5, 6.0 if excitation == "record" else 5.0, 1.2, 0.0)
     a, b = (_run(sy, forcing, np.zeros(sy.state_size), 6.0, 0.01) for sy in (plain, levered))
     assert a.status == b.status == 0
     assert len(_events(a, "contact_start")) >= 4 and len(_events(a, "yield")) >= 4
@@ -387,7 +391,7 @@ def test_levers_on_a_line_match_the_reference(seed, pga):
     assert sy.plain
     t, ax, _ = _record(rng, 2.5, 0.02, pga)  # (a step of several sub-intervals: some go whole)
     model.record = (t, ax, np.zeros_like(ax))
-    forcing = _core.Forcing(kind=_core.EXCITATION["record"], p=np.array([0.02, 0.0, 0.0]), rec_t=t, rec_a=ax)
+    forcing = _record_forcing(t, ax)
     ctl = _control.new_control(BUDGET)
     # (audited: each extremum or whole step the screens clear is looked at all the same, none escapes)
     out = _core.run(sy, forcing, np.zeros(sy.state_size), t[-1], 0.0, 1e-10, 10**6, True, ctl,
@@ -488,7 +492,7 @@ def test_long_levers_keep_the_screens_bounds(seed, arm_scale):
     rng = np.random.default_rng(seed)
     sy, _ = line_with_levers(rng, arm_scale)
     t, ax, _ = _record(rng, 2.5, 0.02, 4.0)
-    forcing = _core.Forcing(kind=_core.EXCITATION["record"], p=np.array([0.02, 0.0, 0.0]), rec_t=t, rec_a=ax)
+    forcing = _record_forcing(t, ax)
     ctl = _control.new_control(BUDGET)
     out = _core.run(sy, forcing, np.zeros(sy.state_size), t[-1], 0.0, 1e-10, 10**6, True, ctl,
                     audit_screen=True)
@@ -557,13 +561,7 @@ def test_a_lever_is_a_change_of_coordinates(law1, law2, bouc_wen, rules, excitat
     # a levered pair's zero used to be found again a rounding's time on, for ever), elastic and kinematic
     # elements: the levered run is its plain twin's, mapped back, to rounding
     levered, plain, t_of = _twins(law1, law2, bouc_wen, rules)
-    if excitation == "record":
-        t, ax, _ = _record(np.random.default_rng(1), 6.0, 0.01, 10.0)
-        forcing = _core.Forcing(kind=_core.EXCITATION["record"], p=np.array([0.01, 0.0, 0.0]), rec_t=t,
-                                rec_a=ax)
-    else:
-        forcing = _core.Forcing(kind=_core.EXCITATION["harmonic"], p=np.array([10.0, 2 * math.pi * 1.3, 0.2]),
-                                rec_t=np.zeros(1), rec_a=np.zeros(1))
+    forcing = _forcing(excitation, 1, 10.0, 1.3, 0.2)
     a, b = (_run(sy, forcing, np.zeros(sy.state_size), 6.0, 0.01) for sy in (levered, plain))
     assert a.status == b.status == 0, (a.status, b.status)
     assert len(_events(a, "contact_start")) >= 2
