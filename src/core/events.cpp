@@ -18,22 +18,14 @@ double abs_acceleration_rate(Phase& ph, int i, double tau, const double* y, cons
     const double* rc = &ph.C[static_cast<size_t>(i * n)];
     double q = 0.0;
     for (int j = 0; j < n; ++j) q += rk[j] * v[j] + rc[j] * a[j];
+    // (each force along its pair's w: dof i takes its weight there, +-1 on a plain pair, exact)
     for (int c = 0; c < ph.nc; ++c) {
         const ContactPhase& k = slot(ph, c);
-        if (!k.nl) continue;
-        const double rate = k.sign * contact_force(ph, c, y, a).rate;
-        if (k.levered()) {
-            q += weight_on(k, i) * rate;
-            continue;
-        }
-        if (k.i == i) q += rate;
-        if (k.j == i) q -= rate;
+        const double w = k.nl ? weight_on(k, i) : 0.0;
+        if (w != 0.0) q += w * (k.sign * contact_force(ph, c, y, a).rate);
     }
     const double w_iso = ph.bw[0] != 0.0 ? weight_on(ph.iso, i) : 0.0;
-    if (w_iso != 0.0) {
-        const double rate = ph.bw[0] * zeta_rate(ph, rel(v, ph.iso), phase_zeta(ph, tau));
-        q += ph.iso.levered() ? w_iso * rate : ph.iso.i == i ? rate : -rate;
-    }
+    if (w_iso != 0.0) q += w_iso * (ph.bw[0] * zeta_rate(ph, rel(v, ph.iso), phase_zeta(ph, tau)));
     return -ph.minv[static_cast<size_t>(i)] * q;
 }
 

@@ -241,8 +241,9 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
                                  f"{n} dofs than {own} with a finite arm (the ground's end has none)")
             weights[lever] = weights.get(lever, 0.0) + side * arm
         if not any(weights.values()):
-            raise ValueError(f"{what}: its levers cancel its ends (its relative displacement is 0 whatever "
-                             "the motion): a pair moves with its dofs")
+            raise ValueError(f"{what}: its levers cancel its ends (lever_i {p.lever_i}, arm_i_m {p.arm_i_m}; "
+                             f"lever_j {p.lever_j}, arm_j_m {p.arm_j_m}): its relative displacement is 0 "
+                             "whatever the motion; give levers and arms that leave it a motion")
         return p.lever_i != -1 or p.lever_j != -1
 
     for e, el in enumerate(elements):
