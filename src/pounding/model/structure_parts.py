@@ -42,6 +42,26 @@ def _check_mass_spring(part: Any, prefix: str) -> float:
     return k
 
 
+def check_backbone_after(part: Any, prefix: str, k: float) -> None:
+    """Validate (and store as tuples) a multi-linear part's ``slopes_after_n_m``, ``breakpoints_m`` (drifts,
+    m) and ``hysteresis`` after its first slope ``k`` (N/m), named ``prefix.<field>`` in errors: a storey's,
+    a frame's."""
+    after = real_tuple(f"{prefix}.slopes_after_n_m", part.slopes_after_n_m)
+    try:
+        slopes, breaks = backbone(prefix, (k, *after), part.breakpoints_m, MAX_STOREY_STIFFNESS, " N/m",
+                                  "give the slopes in N/m", 10.0, "give the drifts in m (2 cm is 0.02)")
+    except InputError as exc:  # (the helper's names: <prefix>.slopes[j], j >= 1, and <prefix>.breakpoints)
+        if exc.field.startswith(f"{prefix}.slopes["):
+            j = int(exc.field[len(f"{prefix}.slopes["):-1])
+            raise exc.relabel(exc.field, f"{prefix}.slopes_after_n_m[{j - 1}]") from None
+        raise exc.relabel(f"{prefix}.breakpoints", f"{prefix}.breakpoints_m") from None
+    object.__setattr__(part, "slopes_after_n_m", slopes[1:])
+    object.__setattr__(part, "breakpoints_m", breaks)
+    if part.hysteresis not in HYSTERESIS_RULES:
+        raise InputError(Problem.NOT_ONE_OF, f"{prefix}.hysteresis", part.hysteresis,
+                         choices=", ".join(map(repr, HYSTERESIS_RULES)))
+
+
 @dataclass(frozen=True)
 class Storey:
     """One storey of a shear building: the floor's mass and the storey's lateral spring and dashpot
@@ -93,20 +113,7 @@ class Storey:
         at_most("storey.height_m", h, 1e3, " m", "give the height in m")
         plausible("storey.height_m", h, 0.1, 20.0, "heights are in m (a storey of 3 m is 3.0)")
         object.__setattr__(self, "height_m", h)
-        after = real_tuple("storey.slopes_after_n_m", self.slopes_after_n_m)
-        try:
-            slopes, breaks = backbone("storey", (k, *after), self.breakpoints_m, MAX_STOREY_STIFFNESS, " N/m",
-                                      "give the slopes in N/m", 10.0, "give the drifts in m (2 cm is 0.02)")
-        except InputError as exc:  # (the helper's names: storey.slopes[j], j >= 1, and storey.breakpoints)
-            if exc.field.startswith("storey.slopes["):
-                j = int(exc.field[len("storey.slopes["):-1])
-                raise exc.relabel(exc.field, f"storey.slopes_after_n_m[{j - 1}]") from None
-            raise exc.relabel("storey.breakpoints", "storey.breakpoints_m") from None
-        object.__setattr__(self, "slopes_after_n_m", slopes[1:])
-        object.__setattr__(self, "breakpoints_m", breaks)
-        if self.hysteresis not in HYSTERESIS_RULES:
-            raise InputError(Problem.NOT_ONE_OF, "storey.hysteresis", self.hysteresis,
-                             choices=", ".join(map(repr, HYSTERESIS_RULES)))
+        check_backbone_after(self, "storey", k)
 
     @property
     def is_linear(self) -> bool:

@@ -1,0 +1,115 @@
+"""A building in plan (:class:`pounding.model.plan.PlanBuilding`) assembled into the core's system
+(:func:`assemble_plan`): each floor's x, y and rotation, every bearing's axes and every multi-linear frame a
+hysteretic element on levers (a point of a floor in plan moves as a dof plus an arm times its rotation), the
+linear frames in the springs, the moat's walls each struck at the floor's two corners on its side; the
+ground's two components along x and y; where each part went (:class:`PlanAssembly`).
+
+Tracked (their exact extrema): each bearing's displacement along x and along y (the two make a vector, whose
+exact longest a run finds), each frame's drift at its place, and each corner of the moat's floor along x and
+along y (its clearance to the walls)."""
+
+from __future__ import annotations
+
+from typing import NamedTuple
+
+import numpy as np
+
+from .. import _core
+from ..model.isolator import HYSTERESIS_RULES
+from ..model.plan import PlanBuilding, point_weights
+from ..model.plan_parts import Bearing
+
+BW_NONE = np.zeros(_core.LAYOUT["BW_PARAMS"])
+
+
+class PlanAssembly(NamedTuple):
+    """A building in plan as the core's system, and where each part went.
+
+    ``elements[e]``: ``("bearing", b, axis)`` or ``("frame", f, axis)``; ``contacts[c]``: ``(side, corner)``,
+    the moat's wall (index of :data:`~pounding.model.plan_parts.MOAT_SIDES`) and the floor's corner
+    (:meth:`Floor.corners_m`'s order); ``tracked[q]``: ``("bearing", b, axis)``, ``("frame", f, axis)`` or
+    ``("corner", k, axis)``; ``vectors[v]``: bearing ``v``'s x and y (indices into ``tracked``);
+    ``contact_tracks[c]``: contact ``c``'s corner along its axis (an index into ``tracked``)."""
+
+    system: _core.System
+    elements: tuple
+    contacts: tuple
+    tracked: tuple
+    vectors: tuple
+    contact_tracks: tuple
+    masses: np.ndarray  # (3 n,): kg, kg, kg m^2 per floor
+
+
+def _levers(building: PlanBuilding, storey: int, axis: int, p: tuple[float, float]) -> dict:
+    """A line at point ``p`` of floor ``storey`` along ``axis`` against the same point of the floor below
+    (the ground below the base) as the core's pair: its dofs, levers and arms (no lever for an arm of 0)."""
+    floors = building.placed_floors
+    out = {}
+    for end, level in (("i", storey), ("j", storey - 1)):
+        if level < 0:
+            out[end] = -1
+            continue
+        (dof, _), (lever, arm) = point_weights(floors[level], level, axis, p)
+        out[end] = dof
+        if arm != 0.0:
+            out[f"lever_{end}"], out[f"arm_{end}_m"] = lever, arm
+    return out
+
+
+def assemble_plan(building: PlanBuilding) -> PlanAssembly:
+    """The core's system of a building in plan and where each part went (the module's docstring)."""
+    n = building.n_dofs
+    masses = np.diag(building.mass_matrix).copy()
+    k0, c0 = np.zeros((n, n)), np.zeros((n, n))
+    elements, element_names, tracked, tracked_names = [], [], [], []
+    for storey, axis, index, at, part in building.lines():
+        p = (0.0, at) if axis == 0 else (at, 0.0)
+        pair = _levers(building, storey, axis, p)
+        kind = "bearing" if isinstance(part, Bearing) else "frame"
+        if kind == "frame" and part.is_linear:
+            w = building.line_weights(storey, axis, at)
+            k0 += part.stiffness_n_m * np.outer(w, w)
+            c0 += part.damping_n_s_m * np.outer(w, w)
+        elif kind == "frame":
+            w = building.line_weights(storey, axis, at)
+            c0 += part.damping_n_s_m * np.outer(w, w)
+            elements.append(_core.element(c_d=0.0, slopes=[part.stiffness_n_m, *part.slopes_after_n_m],
+                                          breaks=list(part.breakpoints_m),
+                                          rule=HYSTERESIS_RULES.index(part.hysteresis), **pair))
+            element_names.append((kind, index, axis))
+        else:
+            slopes, breaks, rule, _ = part.laws[axis].kernel_arrays()
+            elements.append(_core.element(c_d=part.laws[axis].damping_n_s_m, slopes=slopes, breaks=breaks,
+                                          rule=int(rule), **pair))
+            element_names.append((kind, index, axis))
+        tracked.append(_core.tracked_pair(**pair))
+        tracked_names.append((kind, index, axis))
+    vectors = tuple((tracked_names.index(("bearing", b, 0)), tracked_names.index(("bearing", b, 1)))
+                    for b in range(len(building.bearings)))
+    contacts, contact_names, contact_tracks = [], [], []
+    moat = building.moat
+    if moat is not None:
+        corners = building.floors[moat.level].corners_m()
+        for k, corner in enumerate(corners):  # (each corner along x and y: its clearance to the walls)
+            for axis in (0, 1):
+                tracked.append(_core.tracked_pair(**_levers(building, moat.level, axis, corner)))
+                tracked_names.append(("corner", k, axis))
+        for side, (axis, sign) in enumerate(((0, -1.0), (0, 1.0), (1, -1.0), (1, 1.0))):
+            for k, corner in enumerate(corners):
+                if corner[axis] * sign < 0.0:  # (the two corners on that wall's side)
+                    continue
+                pair = _levers(building, moat.level, axis, corner)
+                contacts.append(_core.contact_slot(sign=sign, gap_m=moat.gap_m[side], law=moat.law.LAW_ID,
+                                                   params=moat.law.params(), **pair))
+                contact_names.append((side, k))
+                contact_tracks.append(tracked_names.index(("corner", k, axis)))
+    influence = np.zeros((n, 2))
+    influence[0::3, 0] = 1.0
+    influence[1::3, 1] = 1.0
+    system = _core.system(masses, k0, c0, elements, BW_NONE, bool(contacts), contacts, tuple(tracked),
+                          influence=influence, vectors=vectors)
+    return PlanAssembly(system, tuple(element_names), tuple(contact_names), tuple(tracked_names), vectors,
+                        tuple(contact_tracks), masses)
+
+
+__all__ = ["PlanAssembly", "assemble_plan"]

@@ -1,0 +1,262 @@
+"""The parts of a building in plan (:class:`pounding.model.plan.PlanBuilding`): a rigid floor, a lateral
+line (a frame or a wall) placed in plan, a bearing at a plan position, a rectangular moat.
+
+Plan coordinates: x and y in metres from the centre of the floors' rectangles; a rotation ``theta``
+(rad) turns x towards y.  A point ``(p_x, p_y)`` of a floor whose centre of mass ``(c_x, c_y)`` moves
+by ``(u, v)`` and turns by ``theta`` moves by ``(u - (p_y - c_y) theta, v + (p_x - c_x) theta)``
+(small rotations)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any, ClassVar, Optional
+
+from .._checks import at_most, integer, non_negative, one_of, plausible, positive, real, real_tuple
+from .._errors import InputError, Problem
+from .contact_laws import check_law, law_to_dict
+from .contact_laws.rigid_stop import is_rigid
+from .isolator import Isolator
+from .structure_parts import (MAX_GAP_M, MAX_STOREY_STIFFNESS, MAX_STOREYS, check_backbone_after,
+                              check_mass)
+
+AXES = ("x", "y")
+MAX_PLAN_M = 1e3  # a floor's side, m, refused beyond (a unit error)
+
+
+def _pair(field: str, value: Any) -> tuple[float, float]:
+    """Two finite numbers (a point or a size in plan, m) as a tuple."""
+    out = real_tuple(field, value)
+    if len(out) != 2:
+        raise InputError(Problem.LENGTH_MISMATCH, field, list(out), got=len(out), expected=2,
+                         hint=" (x then y, in m)")
+    return out  # type: ignore[return-value]
+
+
+@dataclass(frozen=True)
+class Floor:
+    """A rigid floor in plan: its mass, its rectangle and where its mass is.
+
+    Parameters
+    ----------
+    mass_kg : float
+        The floor's mass, kg, > 0.
+    size_m : (float, float)
+        Its plan's sides along x and y, m, > 0: a rectangle centred on the plan's origin (its corners
+        are where it strikes a moat).
+    inertia_kg_m2 : float, optional
+        Its rotational inertia about its centre of mass, kg m^2, > 0; default: a uniform rectangle's,
+        ``mass_kg (a^2 + b^2) / 12``.
+    centre_m : (float, float)
+        Its centre of mass in plan, m (default the rectangle's centre): the actual eccentricity.
+
+    Examples
+    --------
+    >>> import pounding.model.plan as plan
+    >>> f = plan.Floor(4.0e5, (30.0, 12.0))
+    >>> round(f.inertia_kg_m2 / 1e6, 3)  # kg m^2 (millions)
+    34.8
+    """
+
+    mass_kg: float
+    size_m: tuple
+    inertia_kg_m2: Optional[float] = None
+    centre_m: tuple = (0.0, 0.0)
+
+    FIELDS: ClassVar[tuple[str, ...]] = ("mass_kg", "size_m", "inertia_kg_m2", "centre_m")
+
+    def __post_init__(self) -> None:
+        m = check_mass("floor.mass_kg", self.mass_kg)
+        object.__setattr__(self, "mass_kg", m)
+        size = _pair("floor.size_m", self.size_m)
+        for j, side in enumerate(size):
+            positive(f"floor.size_m[{j}]", side, "m")
+            at_most(f"floor.size_m[{j}]", side, MAX_PLAN_M, " m", "give the plan's sides in m")
+            plausible(f"floor.size_m[{j}]", side, 1.0, 300.0, "a plan's sides are in m (30 m is 30.0)")
+        object.__setattr__(self, "size_m", size)
+        centre = _pair("floor.centre_m", self.centre_m)
+        for j, (c, side) in enumerate(zip(centre, size)):
+            if abs(c) > side / 2:
+                raise InputError(Problem.OUT_OF_RANGE, f"floor.centre_m[{j}]", c,
+                                 range=f"[{-side / 2:g}, {side / 2:g}] m",
+                                 hint=" (the centre of mass is inside the floor's rectangle, centred on 0)")
+        object.__setattr__(self, "centre_m", centre)
+        if self.inertia_kg_m2 is None:
+            inertia = m * (size[0] ** 2 + size[1] ** 2) / 12.0
+        else:
+            inertia = positive("floor.inertia_kg_m2", self.inertia_kg_m2, "kg m^2")
+            at_most("floor.inertia_kg_m2", inertia, 1e12 * MAX_PLAN_M**2, " kg m^2",
+                    "give the inertia in kg m^2")
+            ratio = inertia / (m * (size[0] ** 2 + size[1] ** 2) / 12.0)
+            plausible("floor.inertia_kg_m2", ratio, 0.1, 10.0,
+                      "an inertia in kg m^2 near a uniform floor's mass_kg (a^2 + b^2) / 12")
+        object.__setattr__(self, "inertia_kg_m2", float(inertia))
+
+    def corners_m(self) -> tuple[tuple[float, float], ...]:
+        """The rectangle's corners, m: (-x, -y), (-x, +y), (+x, -y), (+x, +y)."""
+        a, b = self.size_m
+        return tuple((sx * a / 2, sy * b / 2) for sx in (-1.0, 1.0) for sy in (-1.0, 1.0))
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"mass_kg": self.mass_kg, "size_m": list(self.size_m), "inertia_kg_m2": self.inertia_kg_m2,
+                "centre_m": list(self.centre_m)}
+
+
+@dataclass(frozen=True)
+class Frame:
+    """A lateral line of a storey (a frame or a wall) placed in plan: it resists the storey's drift along
+    its axis at its place.
+
+    Parameters
+    ----------
+    storey : int
+        The storey it stands in, >= 1: between floor ``storey`` and the floor below it.
+    axis : {"x", "y"}
+        The direction it resists.
+    at_m : float
+        Where it stands across its axis, m: a line along x at ``y = at_m``, along y at ``x = at_m``.
+    stiffness_n_m : float
+        Its lateral stiffness, N/m, > 0.
+    damping_n_s_m : float
+        Its dashpot, N s/m, >= 0.
+    slopes_after_n_m, breakpoints_m, hysteresis :
+        A multi-linear frame, as a :class:`pounding.Storey`'s.
+    """
+
+    storey: int
+    axis: str
+    at_m: float
+    stiffness_n_m: float
+    damping_n_s_m: float = 0.0
+    slopes_after_n_m: tuple = ()
+    breakpoints_m: tuple = ()
+    hysteresis: str = "kinematic"
+
+    FIELDS: ClassVar[tuple[str, ...]] = ("storey", "axis", "at_m", "stiffness_n_m", "damping_n_s_m",
+                                         "slopes_after_n_m", "breakpoints_m", "hysteresis")
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "storey", integer("frame.storey", self.storey, 1, MAX_STOREYS))
+        one_of("frame.axis", self.axis, AXES)
+        at = real("frame.at_m", self.at_m)
+        at_most("frame.at_m", abs(at), MAX_PLAN_M, " m", "give its place in m")
+        object.__setattr__(self, "at_m", at)
+        k = positive("frame.stiffness_n_m", self.stiffness_n_m, "N/m")
+        at_most("frame.stiffness_n_m", k, MAX_STOREY_STIFFNESS, " N/m", "give the stiffness in N/m")
+        object.__setattr__(self, "stiffness_n_m", k)
+        c = non_negative("frame.damping_n_s_m", self.damping_n_s_m, "N s/m")
+        at_most("frame.damping_n_s_m", c, MAX_STOREY_STIFFNESS, " N s/m", "give the damping in N s/m")
+        object.__setattr__(self, "damping_n_s_m", c)
+        check_backbone_after(self, "frame", k)
+
+    @property
+    def is_linear(self) -> bool:
+        """A linear frame (no breakpoints)."""
+        return not self.breakpoints_m
+
+    def to_dict(self) -> dict[str, Any]:
+        return {f: (list(v) if isinstance(v, tuple) else v) for f in self.FIELDS
+                if (v := getattr(self, f)) != ()}
+
+
+@dataclass(frozen=True)
+class Bearing:
+    """An isolation bearing at a plan position under the base: a law on each axis, uncoupled.
+
+    Parameters
+    ----------
+    at_m : (float, float)
+        Where it stands, m.
+    isolator : Isolator
+        Its law along x, and along y unless ``isolator_y`` is given (a rubber bearing's backbone and
+        hysteresis; without a Bouc-Wen spring).
+    isolator_y : Isolator, optional
+        Its law along y.
+    """
+
+    at_m: tuple
+    isolator: Isolator
+    isolator_y: Optional[Isolator] = None
+
+    FIELDS: ClassVar[tuple[str, ...]] = ("at_m", "isolator", "isolator_y")
+
+    def __post_init__(self) -> None:
+        at = _pair("bearing.at_m", self.at_m)
+        for j, p in enumerate(at):
+            at_most(f"bearing.at_m[{j}]", abs(p), MAX_PLAN_M, " m", "give its place in m")
+        object.__setattr__(self, "at_m", at)
+        for name in ("isolator", "isolator_y"):
+            iso = getattr(self, name)
+            if iso is None and name == "isolator_y":
+                continue
+            if not isinstance(iso, Isolator):
+                raise InputError(Problem.WRONG_TYPE, f"bearing.{name}", iso, got=type(iso).__name__,
+                                 expected="pounding.Isolator (a bearing's law on one axis; friction "
+                                          "bearings in plan are not supported yet)")
+            if iso.bouc_wen is not None:
+                raise InputError(Problem.WRONG_CONFIGURATION, f"bearing.{name}.bouc_wen", None,
+                                 got="with a Bouc-Wen spring in a bearing in plan (not supported yet)",
+                                 fix="give the bearing a multi-linear backbone (slopes_n_m, breakpoints_m)")
+
+    @property
+    def laws(self) -> tuple[Isolator, Isolator]:
+        """Its law along x and along y."""
+        return self.isolator, self.isolator if self.isolator_y is None else self.isolator_y
+
+    def to_dict(self) -> dict[str, Any]:
+        out: dict[str, Any] = {"at_m": list(self.at_m), "isolator": self.isolator.to_dict()}
+        if self.isolator_y is not None:
+            out["isolator_y"] = self.isolator_y.to_dict()
+        return out
+
+
+MOAT_SIDES = ("x-", "x+", "y-", "y+")  # (a rectangular moat's walls, in its gaps' order)
+
+
+@dataclass(frozen=True)
+class RectangularMoat:
+    """A rectangular moat around a floor: four walls, each struck by the floor's two corners on its side.
+
+    Parameters
+    ----------
+    gap_m : float or (float, float, float, float)
+        The clearance at rest between the floor's rectangle and each wall, m, >= 0: one for all four, or
+        the walls at -x, +x, -y and +y.
+    law : contact law
+        The walls' contact law (any compliant law; a :class:`pounding.RigidStop` is not supported in plan
+        yet).
+    level : int
+        The floor it surrounds (default 0: the base).
+    """
+
+    gap_m: Any
+    law: Any
+    level: int = 0
+
+    FIELDS: ClassVar[tuple[str, ...]] = ("gap_m", "law", "level")
+
+    def __post_init__(self) -> None:
+        gaps = real_tuple("moat.gap_m", self.gap_m)
+        if len(gaps) == 1:
+            gaps = gaps * 4
+        if len(gaps) != 4:
+            raise InputError(Problem.LENGTH_MISMATCH, "moat.gap_m", list(gaps), got=len(gaps), expected=4,
+                             hint=" (one for every wall, or the walls at -x, +x, -y, +y)")
+        for j, g in enumerate(gaps):
+            non_negative(f"moat.gap_m[{j}]", g, "m")
+            at_most(f"moat.gap_m[{j}]", g, MAX_GAP_M, " m", "give the gap in m (30 cm is 0.30)")
+            plausible(f"moat.gap_m[{j}]", g, 0.0, 2.0, "gaps are in m (a 30 cm moat is 0.30)")
+        object.__setattr__(self, "gap_m", gaps)
+        check_law("moat.law", self.law)
+        if is_rigid(self.law):
+            raise InputError(Problem.WRONG_CONFIGURATION, "moat.law", self.law,
+                             got="with a rigid stop for a moat in plan (not supported yet: its impulse at a "
+                                 "corner turns the floor)",
+                             fix="give the walls a compliant law (KelvinVoigt or HertzDamp with the wall's "
+                                 "stiffness)")
+        object.__setattr__(self, "level", integer("moat.level", self.level, 0, MAX_STOREYS))
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"gap_m": list(self.gap_m), "law": law_to_dict(self.law), "level": self.level}
+
+
+__all__ = ["AXES", "Bearing", "Floor", "Frame", "MOAT_SIDES", "RectangularMoat"]
