@@ -18,6 +18,7 @@ from .. import _core
 from .._checks import instance_of
 from ..model.adjacent import Adjacent
 from ..model.oscillator import Oscillator
+from ..model.plan import PlanBuilding
 from ..model.structure import Structure
 from .layout import P_MAX, P_MIN, X_D_MAX, X_D_MIN
 
@@ -94,6 +95,12 @@ def kind_of(system: Any) -> str | None:
         if isinstance(system, cls):
             return kind
     return None
+
+
+def is_plan(system: Any) -> bool:
+    """Whether ``system`` is a building in plan (a :class:`~pounding.model.plan.PlanBuilding`): ``simulate``
+    runs it on its own path (``engine.plan_run``); the protocols do not take it yet."""
+    return isinstance(system, PlanBuilding)
 
 
 def is_single_mass(system: Any) -> bool:

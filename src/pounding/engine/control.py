@@ -36,17 +36,7 @@ def fastest_rates(asm: Assembly) -> tuple[float, float]:
     """
     m = asm.masses
     k, c = asm.k_fast.copy(), asm.c_all.copy()
-    scale = 1.0 / np.sqrt(m)
-
-    def rate(k: np.ndarray, c: np.ndarray) -> float:  # (K v = lam M v: M^-1/2 K M^-1/2's eigenvalues)
-        if m.size == 1:  # (one mass: k / m itself, no eigensolver)
-            lam, decay = float(k[0, 0]) / float(m[0]), float(c[0, 0]) / float(m[0])
-        else:
-            lam = float(np.linalg.eigvalsh(k * np.outer(scale, scale))[-1])
-            decay = float(np.max(np.diag(c) / m))
-        return max(math.sqrt(max(lam, 0.0) + (0.5 * decay) ** 2), decay)
-
-    free = rate(k, c)
+    free = fastest_of(m, k, c)
     for i, j, _, _, law in asm.pairs:
         if is_rigid(law):
             continue
@@ -55,7 +45,19 @@ def fastest_rates(asm: Assembly) -> tuple[float, float]:
             return free, math.inf
         _add_pair(k, i, j, form[0])
         _add_pair(c, i, j, form[1])
-    return free, rate(k, c)
+    return free, fastest_of(m, k, c)
+
+
+def fastest_of(m: np.ndarray, k: np.ndarray, c: np.ndarray) -> float:
+    """The fastest rate of the motion ``M x'' + C x' + K x = 0`` (``m`` the diagonal of M), rad/s: the largest
+    undamped frequency, or the fastest damping rate when larger (:func:`fastest_rates`)."""
+    if m.size == 1:  # (one mass: k / m itself, no eigensolver)
+        lam, decay = float(k[0, 0]) / float(m[0]), float(c[0, 0]) / float(m[0])
+    else:  # (K v = lam M v: M^-1/2 K M^-1/2's eigenvalues)
+        scale = 1.0 / np.sqrt(m)
+        lam = float(np.linalg.eigvalsh(k * np.outer(scale, scale))[-1])
+        decay = float(np.max(np.diag(c) / m))
+    return max(math.sqrt(max(lam, 0.0) + (0.5 * decay) ** 2), decay)
 
 
 def model_rates(model: Any, asm: Assembly) -> tuple[float, float]:

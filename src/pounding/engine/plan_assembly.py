@@ -10,7 +10,7 @@ along y (its clearance to the walls)."""
 
 from __future__ import annotations
 
-from typing import NamedTuple
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -37,7 +37,12 @@ class PlanAssembly(NamedTuple):
     tracked: tuple
     vectors: tuple
     contact_tracks: tuple
-    masses: np.ndarray  # (3 n,): kg, kg, kg m^2 per floor
+    masses: np.ndarray          # (3 n,): kg, kg, kg m^2 per floor
+    k_fast: np.ndarray          # (3 n, 3 n): the linear springs and every element at its stiffest slope
+    c_all: np.ndarray           # (3 n, 3 n): every dashpot
+    contact_weights: np.ndarray  # (contacts, 3 n): each contact's corner along its axis, as weights
+    tracked_weights: np.ndarray  # (tracked, 3 n): each tracked pair's displacement, as weights
+    dofs: tuple = ()            # ((0, 1, ..., 3 n - 1),): the floors' dofs, as a State holds them
 
 
 def _levers(building: PlanBuilding, storey: int, axis: int, p: tuple[float, float]) -> dict:
@@ -56,44 +61,57 @@ def _levers(building: PlanBuilding, storey: int, axis: int, p: tuple[float, floa
     return out
 
 
+def _point(floor: Any, level: int, axis: int, p: tuple[float, float], n: int) -> np.ndarray:
+    """Point ``p`` of floor ``level``'s displacement along ``axis`` as weights on the ``n`` dofs."""
+    w = np.zeros(n)
+    for dof, v in point_weights(floor, level, axis, p):
+        w[dof] += v
+    return w
+
+
 def assemble_plan(building: PlanBuilding) -> PlanAssembly:
     """The core's system of a building in plan and where each part went (the module's docstring)."""
     n = building.n_dofs
     masses = np.diag(building.mass_matrix).copy()
     k0, c0 = np.zeros((n, n)), np.zeros((n, n))
-    elements, element_names, tracked, tracked_names = [], [], [], []
+    k_fast, c_all = np.zeros((n, n)), np.zeros((n, n))  # (the elements' stiffest slopes and dashpots)
+    elements, element_names, tracked, tracked_names, tracked_weights = [], [], [], [], []
     for storey, axis, index, at, part in building.lines():
         p = (0.0, at) if axis == 0 else (at, 0.0)
         pair = _levers(building, storey, axis, p)
         kind = "bearing" if isinstance(part, Bearing) else "frame"
+        w = building.line_weights(storey, axis, at)
         if kind == "frame" and part.is_linear:
-            w = building.line_weights(storey, axis, at)
             k0 += part.stiffness_n_m * np.outer(w, w)
             c0 += part.damping_n_s_m * np.outer(w, w)
         elif kind == "frame":
-            w = building.line_weights(storey, axis, at)
             c0 += part.damping_n_s_m * np.outer(w, w)
+            k_fast += max(part.stiffness_n_m, *part.slopes_after_n_m) * np.outer(w, w)
             elements.append(_core.element(c_d=0.0, slopes=[part.stiffness_n_m, *part.slopes_after_n_m],
                                           breaks=list(part.breakpoints_m),
                                           rule=HYSTERESIS_RULES.index(part.hysteresis), **pair))
             element_names.append((kind, index, axis))
         else:
             slopes, breaks, rule, _ = part.laws[axis].kernel_arrays()
+            k_fast += float(np.max(np.abs(slopes))) * np.outer(w, w)
+            c_all += part.laws[axis].damping_n_s_m * np.outer(w, w)
             elements.append(_core.element(c_d=part.laws[axis].damping_n_s_m, slopes=slopes, breaks=breaks,
                                           rule=int(rule), **pair))
             element_names.append((kind, index, axis))
         tracked.append(_core.tracked_pair(**pair))
         tracked_names.append((kind, index, axis))
+        tracked_weights.append(w)
     vectors = tuple((tracked_names.index(("bearing", b, 0)), tracked_names.index(("bearing", b, 1)))
                     for b in range(len(building.bearings)))
-    contacts, contact_names, contact_tracks = [], [], []
+    contacts, contact_names, contact_tracks, contact_weights = [], [], [], []
     moat = building.moat
     if moat is not None:
-        corners = building.floors[moat.level].corners_m()
+        floor, corners = building.placed_floors[moat.level], building.floors[moat.level].corners_m()
         for k, corner in enumerate(corners):  # (each corner along x and y: its clearance to the walls)
             for axis in (0, 1):
                 tracked.append(_core.tracked_pair(**_levers(building, moat.level, axis, corner)))
                 tracked_names.append(("corner", k, axis))
+                tracked_weights.append(_point(floor, moat.level, axis, corner, n))
         for side, (axis, sign) in enumerate(((0, -1.0), (0, 1.0), (1, -1.0), (1, 1.0))):
             for k, corner in enumerate(corners):
                 if corner[axis] * sign < 0.0:  # (the two corners on that wall's side)
@@ -103,13 +121,16 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
                                                    params=moat.law.params(), **pair))
                 contact_names.append((side, k))
                 contact_tracks.append(tracked_names.index(("corner", k, axis)))
+                contact_weights.append(_point(floor, moat.level, axis, corner, n))
     influence = np.zeros((n, 2))
     influence[0::3, 0] = 1.0
     influence[1::3, 1] = 1.0
     system = _core.system(masses, k0, c0, elements, BW_NONE, bool(contacts), contacts, tuple(tracked),
                           influence=influence, vectors=vectors)
     return PlanAssembly(system, tuple(element_names), tuple(contact_names), tuple(tracked_names), vectors,
-                        tuple(contact_tracks), masses)
+                        tuple(contact_tracks), masses, k0 + k_fast, c0 + c_all,
+                        np.array(contact_weights).reshape(len(contacts), n), np.array(tracked_weights),
+                        (tuple(range(n)),))
 
 
 __all__ = ["PlanAssembly", "assemble_plan"]

@@ -9,7 +9,7 @@ import numpy as np
 
 from .._checks import instance_of, integer, non_negative, positive
 from .._errors import InputError, Problem
-from ..excitation import Harmonic, Record
+from ..excitation import Harmonic, Record, RecordPair
 from ._system import Forcing
 from .assembly import Assembly, assemble
 from .state import State
@@ -25,8 +25,12 @@ def check_rtol(rtol: float) -> float:
     return rtol
 
 
-def kernel_forcing(excitation: Harmonic | Record) -> Forcing:
-    """The excitation as the kernels' forcing record."""
+def kernel_forcing(excitation: Harmonic | Record | RecordPair) -> Forcing:
+    """The excitation as the kernels' forcing record (a pair's: its x component first, its y second)."""
+    if isinstance(excitation, RecordPair):
+        kind, p, rec_t, rec_a = excitation.x.kernel_arrays()
+        return Forcing(kind=int(kind), p=p, rec_t=rec_t, rec_a=rec_a,
+                       rec_b=np.array(excitation.y.accel, dtype=float))
     kind, p, rec_t, rec_a = excitation.kernel_arrays()
     return Forcing(kind=int(kind), p=p, rec_t=rec_t, rec_a=rec_a)
 

@@ -20,7 +20,7 @@ from .run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPL
                         MAX_SAMPLES, check_rtol, checked_run_args, history_rate, kernel_forcing)
 from .adjacent_result import AdjacentRun
 from .result import EnergyLedger, Run
-from .assembly import Assembly, assemble, check_system, clearances, is_single_mass, structures_of
+from .assembly import Assembly, assemble, check_system, clearances, is_plan, is_single_mass, structures_of
 from .structure_result import StructureRun
 from .state import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, State, one_mass_layout
 from .state_check import _FIX, check_fits, check_layout, check_state, contact_name  # noqa: F401  (check_state: here too)
@@ -109,6 +109,10 @@ def simulate(
     >>> float(later.t[0]), float(later.t[-1]), len(later.contacts)  # s, s, impacts
     (5.0, 10.0, 20)
     """
+    if is_plan(system):
+        from .plan_run import simulate_plan
+
+        return simulate_plan(system, excitation, duration, state, rtol, sample_rate_hz, max_events, max_steps)
     return _run(system, excitation, duration, state, rtol, sample_rate_hz, max_events, max_steps, True)
 
 

@@ -103,6 +103,17 @@ class RecordPair:
         ry = Record.from_csv(path, accel=y, time=time, dt=dt, units=units, g=g, name=str(y))
         return cls(rx, ry, Path(path).stem if name is None else name, {"source": str(path)})
 
+    @classmethod
+    def of_direction(cls, record: Record, angle_deg: float) -> "RecordPair":
+        """One component ``record`` along the direction ``angle_deg`` (from x towards y, degrees): the pair
+        ``(cos(a) record, sin(a) record)``; ``meta["direction_deg"]`` says which."""
+        instance_of("record", record, Record, "pounding.Record")
+        a = math.radians(real("angle_deg", angle_deg))
+        meta = {**record.meta, "direction_deg": float(angle_deg)}
+        x = record._derived(math.cos(a) * record.accel, record.meta)
+        y = record._derived(math.sin(a) * record.accel, record.meta)
+        return _pair(x, y, f"{record.name} at {float(angle_deg):g} deg".strip(), meta)
+
     # ---- what it is --------------------------------------------------------------------------
     @property
     def t(self) -> np.ndarray:

@@ -1,0 +1,220 @@
+"""What a building in plan's run returns: :class:`PlanRun` (each floor's x, y and rotation, each bearing's
+displacement in plan with its exact vector-sum largest, each frame's exact drift, each corner's exact
+excursion and each moat wall's clearance, the contacts at the moat with where they struck, the energy
+ledger)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import TYPE_CHECKING, Any, Optional
+
+import numpy as np
+import pandas as pd
+
+from .._errors import Status
+from .layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
+from .run_parts import EnergyLedger, Outcome, events_frame
+
+if TYPE_CHECKING:
+    from ..model.plan import PlanBuilding
+    from .state import State
+
+# the moat's contacts: its wall and the corner that struck it, where on the wall, then the core's columns
+PLAN_CONTACT_COLUMNS = ("wall", "corner", "at_m", "t_start_s", "t_end_s", "v_in_m_s", "v_out_m_s",
+                        "impulse_n_s", "peak_force_n", "max_compression_m", "bumper_dissipation_j")
+
+
+@dataclass(frozen=True)
+class PlanRun(Outcome):
+    """A building in plan's run (:func:`pounding.simulate` of a
+    :class:`~pounding.model.plan.PlanBuilding`).
+
+    Attributes
+    ----------
+    t : ndarray, shape (k,)
+        Sample times, s (the uniform samples, and one after each event).
+    displacement, velocity : ndarray, shape (k, n_levels, 3)
+        Each floor's centre of mass relative to the ground: x and y (m, m/s) and its rotation (rad,
+        rad/s), in that order on the last axis.
+    displacement_max, displacement_min : ndarray, shape (n_levels, 3)
+        Their exact extrema over the run (not from the samples); their times in ``*_time_s``.
+    abs_acceleration_max : ndarray, shape (n_levels, 3)
+        Each floor's exact largest absolute acceleration along x and y (m/s^2) and rotational
+        acceleration (rad/s^2).
+    bearing_displacement : ndarray, shape (k, n_bearings, 2)
+        Each bearing's displacement along x and y at its place, m.
+    bearing_force : ndarray, shape (k, n_bearings, 2)
+        Each bearing's force along x and y, N.
+    bearing_displacement_max_m : ndarray, shape (n_bearings,)
+        Each bearing's exact largest displacement in plan (the vector sum of its two directions at each
+        instant), m; when (``bearing_displacement_max_time_s``) and its x and y then
+        (``bearing_displacement_at_max_m``, shape (n_bearings, 2)).
+    bearing_axis_max_m, bearing_axis_min_m : ndarray, shape (n_bearings, 2)
+        Each bearing's exact extrema along x and along y, m.
+    frame_drift_max_m, frame_drift_min_m : ndarray, shape (n_frames,)
+        Each frame's exact extrema of drift at its place (its floor's point less the floor below's), m.
+    corner_displacement_max_m, corner_displacement_min_m : ndarray, shape (4, 2)
+        The moat's floor's corners' exact extrema along x and y, m (empty without a moat); corners in
+        :meth:`Floor.corners_m`'s order.
+    clearance_m : ndarray, shape (4,)
+        Each moat wall's (``-x, +x, -y, +y``) smallest clearance over the run (its gap less its corners'
+        largest approach, exact; negative: struck), m.
+    contact_force : ndarray, shape (k, n_contacts)
+        Each wall's force at each corner, N (>= 0), in the order of ``contacts``'s slots.
+    contact_table, event_table : ndarray
+        The core's rows behind :attr:`contacts` and :attr:`events`.
+    energy : EnergyLedger
+        The energy ledger.
+    final_state : State
+        Pass as ``state`` to continue.
+    status : Status
+        How the run ended (``message`` says it in words).
+    building, excitation, sample_rate_hz :
+        What was run, under what, and the samples' rate (Hz).
+    """
+
+    building: "PlanBuilding"
+    excitation: Any
+    sample_rate_hz: float
+    t: np.ndarray
+    displacement: np.ndarray
+    velocity: np.ndarray
+    displacement_max: np.ndarray
+    displacement_max_time_s: np.ndarray
+    displacement_min: np.ndarray
+    displacement_min_time_s: np.ndarray
+    abs_acceleration_max: np.ndarray
+    bearing_displacement: np.ndarray
+    bearing_force: np.ndarray
+    bearing_displacement_max_m: np.ndarray
+    bearing_displacement_max_time_s: np.ndarray
+    bearing_displacement_at_max_m: np.ndarray
+    bearing_axis_max_m: np.ndarray
+    bearing_axis_min_m: np.ndarray
+    frame_drift_max_m: np.ndarray
+    frame_drift_min_m: np.ndarray
+    corner_displacement_max_m: np.ndarray
+    corner_displacement_min_m: np.ndarray
+    clearance_m: np.ndarray
+    contact_force: np.ndarray = field(repr=False)
+    contact_slots: tuple = field(repr=False)
+    contact_table: np.ndarray = field(repr=False)
+    event_table: np.ndarray = field(repr=False)
+    energy: Optional[EnergyLedger] = field(repr=False)
+    final_state: Optional["State"] = field(repr=False)
+    status: Status = Status.SUCCESS
+
+    # ------------------------------------------------------------------ tables
+    @property
+    def contacts(self) -> pd.DataFrame:
+        """One row per contact at the moat: ``wall`` (``-x``, ``+x``, ``-y``, ``+y``), the ``corner`` that
+        struck it (:meth:`Floor.corners_m`'s index), ``at_m`` where along the wall it struck (the corner's
+        y for a wall across x, its x for one across y, m, in plan coordinates), ``t_start_s``, ``t_end_s``,
+        the corner's velocities in and out ``v_in_m_s``, ``v_out_m_s``, ``impulse_n_s``, ``peak_force_n``,
+        ``max_compression_m`` and ``bumper_dissipation_j`` (what the wall's law took)."""
+        from ..model.plan_parts import MOAT_SIDES
+
+        table = self.contact_table
+        slots = table[:, CORE_CONTACT_COLUMNS["contact"]].astype(int)
+        walls = [self.contact_slots[s][0] for s in slots]
+        corners = [self.contact_slots[s][1] for s in slots]
+        return pd.DataFrame({
+            "wall": pd.Categorical([MOAT_SIDES[w] for w in walls], categories=list(MOAT_SIDES)),
+            "corner": np.array(corners, dtype=int),
+            "at_m": np.array([self._struck_at(w, k, t) for w, k, t in
+                              zip(walls, corners, table[:, CORE_CONTACT_COLUMNS["t_start_s"]])]),
+            **{name: table[:, CORE_CONTACT_COLUMNS[name]] for name in PLAN_CONTACT_COLUMNS[3:]},
+        })
+
+    def _struck_at(self, wall: int, corner: int, t_s: float) -> float:
+        """Where along ``wall`` the ``corner`` was at ``t_s`` (the sample there: one follows every event)."""
+        building = self.building
+        level = building.moat.level
+        floor = building.placed_floors[level]
+        p = building.floors[level].corners_m()[corner]
+        along = 1 if wall < 2 else 0  # (a wall across x: the corner's y)
+        q = min(int(np.searchsorted(self.t, t_s)), self.t.size - 1)
+        u = self.displacement[q, level]
+        arm = (p[0] - floor.centre_m[0]) if along == 1 else -(p[1] - floor.centre_m[1])
+        return float(p[along] + u[along] + arm * u[2])
+
+    @property
+    def events(self) -> pd.DataFrame:
+        """Every event: ``t_s``, what happened (``kind``) and the ``index`` of what it happened to: a
+        contact slot (:attr:`contacts`'s order of walls and corners) for a contact's start or end, an
+        element (each bearing's x then y, then each yielding frame) for a yield or a reversal."""
+        return events_frame(self.event_table)
+
+    def peaks(self) -> pd.DataFrame:
+        """One row per floor: the exact extrema of its centre's x and y (m), its rotation (rad) and the
+        largest absolute accelerations (m/s^2, rad/s^2)."""
+        names = (("x", "m"), ("y", "m"), ("theta", "rad"))
+        data: dict[str, Any] = {"level": np.arange(self.displacement_max.shape[0])}
+        for j, (name, unit) in enumerate(names):
+            data[f"{name}_max_{unit}"] = self.displacement_max[:, j]
+            data[f"{name}_min_{unit}"] = self.displacement_min[:, j]
+        for j, (name, unit) in enumerate((("x", "m_s2"), ("y", "m_s2"), ("theta", "rad_s2"))):
+            data[f"abs_acceleration_{name}_max_{unit}"] = self.abs_acceleration_max[:, j]
+        return pd.DataFrame(data).set_index("level")
+
+    def bearings(self) -> pd.DataFrame:
+        """One row per bearing: its place (``at_x_m``, ``at_y_m``), its exact largest displacement in plan
+        ``displacement_max_m`` (the vector sum), when, and its x and y then; its exact extrema along x and
+        y (m)."""
+        at = np.array([b.at_m for b in self.building.bearings]).reshape(-1, 2)
+        return pd.DataFrame({
+            "bearing": np.arange(at.shape[0]), "at_x_m": at[:, 0], "at_y_m": at[:, 1],
+            "displacement_max_m": self.bearing_displacement_max_m,
+            "displacement_max_time_s": self.bearing_displacement_max_time_s,
+            "x_at_max_m": self.bearing_displacement_at_max_m[:, 0],
+            "y_at_max_m": self.bearing_displacement_at_max_m[:, 1],
+            "x_max_m": self.bearing_axis_max_m[:, 0], "x_min_m": self.bearing_axis_min_m[:, 0],
+            "y_max_m": self.bearing_axis_max_m[:, 1], "y_min_m": self.bearing_axis_min_m[:, 1],
+        }).set_index("bearing")
+
+    def summary(self) -> pd.Series:
+        """The run in a few numbers, each name with its unit: ``t_end_s``; the largest bearing
+        displacement in plan ``bearing_displacement_max_m`` (exact, over every bearing) and which bearing;
+        the base's largest rotation ``theta_max_rad``; ``contacts`` at the moat and ``clearance_min_m``
+        (negative: struck); ``peak_force_max_n``; ``input_work_j`` and ``energy_residual_j``;
+        ``status``."""
+        nan = float("nan")
+        b = int(np.argmax(self.bearing_displacement_max_m))
+        energy = self.energy
+        return pd.Series({
+            "t_end_s": self.final_state.time_s if self.final_state is not None else nan,
+            "bearing_displacement_max_m": float(self.bearing_displacement_max_m[b]),
+            "bearing_of_max": b,
+            "theta_max_rad": float(max(abs(self.displacement_max[0, 2]), abs(self.displacement_min[0, 2]))),
+            "contacts": int(self.contact_table.shape[0]),
+            "clearance_min_m": float(np.min(self.clearance_m)) if self.clearance_m.size else nan,
+            "peak_force_max_n": (float(np.max(self.contact_table[:, CORE_CONTACT_COLUMNS["peak_force_n"]]))
+                                 if self.contact_table.shape[0] else nan),
+            "input_work_j": energy.input_work if energy is not None else nan,
+            "energy_residual_j": energy.residual if energy is not None else nan,
+            "status": self.status.name,
+        })
+
+    def to_dataframe(self) -> pd.DataFrame:
+        """The samples, one row each: ``t_s``; each floor's ``level<l>_x_m``, ``_y_m``, ``_theta_rad``;
+        each bearing's ``bearing<b>_x_m``, ``_y_m``."""
+        data: dict[str, Any] = {"t_s": self.t}
+        for level in range(self.displacement.shape[1]):
+            for j, name in enumerate(("x_m", "y_m", "theta_rad")):
+                data[f"level{level}_{name}"] = self.displacement[:, level, j]
+        for b in range(self.bearing_displacement.shape[1]):
+            for j, name in enumerate(("x_m", "y_m")):
+                data[f"bearing{b}_{name}"] = self.bearing_displacement[:, b, j]
+        return pd.DataFrame(data)
+
+    def plot(self, ax: Any = None) -> Any:
+        """The orbit in plan: each corner of the moat's floor (or each bearing, without a moat) as it moved,
+        the moat's clearance drawn around where the corners started, each bearing's largest displacement
+        marked; returns the Figure."""
+        from ..plots import figure_of
+        from ..plots.plan import plot_plan_orbit
+
+        return figure_of(plot_plan_orbit(self, ax=ax), ax)
+
+
+__all__ = ["PLAN_CONTACT_COLUMNS", "PlanRun"]

@@ -1,0 +1,78 @@
+"""A building in plan's run: the orbit in plan of its corners (or its bearings) with the moat drawn."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+
+from .._docs import fill_doc
+
+
+@fill_doc
+def plot_plan_orbit(run: Any, ax: Any = None) -> list:
+    """The orbit in plan of a :class:`~pounding.engine.plan_result.PlanRun`: each corner of the moat's
+    floor as it moved (its displacement, mm: every corner starts at the origin), inside the moat's
+    clearance (the rectangle each corner may move in before it meets a wall: ``-gap_x-`` to ``+gap_x+``,
+    ``-gap_y-`` to ``+gap_y+``), the contacts marked where they began; without a moat, each bearing's orbit.
+    A circle marks the largest bearing displacement in plan (exact).
+
+    Parameters
+    ----------
+    run : PlanRun
+        What :func:`pounding.simulate` returned for a building in plan.
+    {ax}
+
+    Returns
+    -------
+    list of matplotlib artists
+        The orbits, the moat's rectangle, the contacts' markers and the circle.
+    """
+    import matplotlib.pyplot as plt
+    from matplotlib.patches import Circle, Rectangle
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(8.0, 5.0), constrained_layout=True)
+    building = run.building
+    artists: list = []
+    mm = 1e3
+    moat = building.moat
+    if moat is not None:
+        level = moat.level
+        floor = building.placed_floors[level]
+        u = run.displacement[:, level]
+        for k, (px, py) in enumerate(building.floors[level].corners_m()):
+            x = u[:, 0] - (py - floor.centre_m[1]) * u[:, 2]
+            y = u[:, 1] + (px - floor.centre_m[0]) * u[:, 2]
+            artists += ax.plot(x * mm, y * mm, lw=0.8, label=f"corner ({px:g}, {py:g}) m")
+        g = np.asarray(moat.gap_m) * mm
+        artists.append(ax.add_patch(Rectangle((-g[0], -g[2]), g[0] + g[1], g[2] + g[3], fill=False, lw=1.5,
+                                              color="k", label="moat clearance")))
+        contacts = run.contacts
+        if len(contacts):
+            q = np.minimum(np.searchsorted(run.t, contacts["t_start_s"].to_numpy()), run.t.size - 1)
+            corners = building.floors[level].corners_m()
+            xs, ys = [], []
+            for row, k in zip(q, contacts["corner"].to_numpy()):
+                px, py = corners[k]
+                xs.append(u[row, 0] - (py - floor.centre_m[1]) * u[row, 2])
+                ys.append(u[row, 1] + (px - floor.centre_m[0]) * u[row, 2])
+            artists += ax.plot(np.array(xs) * mm, np.array(ys) * mm, "x", color="C3", ms=6,
+                               label=f"contacts ({len(contacts)})")
+    else:
+        for b, bearing in enumerate(building.bearings):
+            artists += ax.plot(run.bearing_displacement[:, b, 0] * mm, run.bearing_displacement[:, b, 1] * mm,
+                               lw=0.8, label=f"bearing at ({bearing.at_m[0]:g}, {bearing.at_m[1]:g}) m")
+    r = float(np.max(run.bearing_displacement_max_m)) * mm
+    artists.append(ax.add_patch(Circle((0.0, 0.0), r, fill=False, ls="--", color="0.4",
+                                       label=f"largest bearing displacement {r:.4g} mm")))
+    ax.set_aspect("equal", adjustable="datalim")
+    ax.autoscale_view()
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("y (mm)")
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), frameon=False)
+    ax.set_title("orbit in plan", fontsize=9)
+    return artists
+
+
+__all__ = ["plot_plan_orbit"]
