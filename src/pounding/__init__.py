@@ -19,7 +19,7 @@ _NAMES = {
                   "continuation", "largest_exponents", "lyapunov", "periodic_orbit"),
     "._errors": ("InputError", "Interrupted", "MissingExtra", "OutputError", "PoundingWarning", "Problem",
                  "Status", "StoreError"),
-    ".engine": ("AdjacentRun", "EnergyLedger", "Run", "State", "StructureRun", "simulate"),
+    ".engine": ("AdjacentRun", "EnergyLedger", "PlanRun", "Run", "State", "StructureRun", "simulate"),
     ".excitation": ("Harmonic", "Record", "RecordPair"),
     ".excitation.spectrum": ("response_spectrum",),
     ".excitation.rotd": ("rotd_spectrum",),
@@ -29,7 +29,8 @@ _NAMES = {
     ".model": ("Adjacent", "Link", "BoucWen", "Bumpers", "ElasticPlastic", "FrictionIsolator", "Hertzdamp",
                "HuntCrossley", "Isolator", "Jankowski",
                "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "RigidStop", "Sensor",
-               "Stand", "Storey", "Structure", "TripleFrictionPendulum", "Wall"),
+               "Stand", "Storey", "Structure", "TripleFrictionPendulum", "Wall",
+               "Bearing", "Floor", "Frame", "PlanBuilding", "RectangularMoat"),
     ".protocols": ("BasinStabilityMap", "Basins", "BifurcationDiagram", "CampaignResult", "Orientations",
                    "PoundingSpectrum", "SweepResult", "basin_stability_map", "basins",
                    "bifurcation_diagram",
@@ -80,7 +81,7 @@ if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
     from .analysis import (Bifurcation, BifurcationCurve, Branch, CoexistenceMap, LyapunovSpectrum,  # noqa: F401
                            PeriodicOrbit, bifurcation_curve, coexistence_map,
                            continuation, largest_exponents, lyapunov, periodic_orbit)
-    from .engine import AdjacentRun, EnergyLedger, Run, State, StructureRun, simulate  # noqa: F401
+    from .engine import AdjacentRun, EnergyLedger, PlanRun, Run, State, StructureRun, simulate  # noqa: F401
     from .excitation import Harmonic, Record, RecordPair  # noqa: F401
     from .excitation.rotd import rotd_spectrum  # noqa: F401
     from .excitation.spectrum import response_spectrum  # noqa: F401
@@ -90,7 +91,7 @@ if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
     from .model import (Adjacent, BoucWen, Bumpers, ElasticPlastic, FrictionIsolator,  # noqa: F401
                         Hertzdamp, HuntCrossley, Isolator, Jankowski, KelvinVoigt, Link, MeasurementChain,
                         MultilinearBumper, Oscillator, RigidStop, Sensor, Stand, Storey, Structure,
-                        TripleFrictionPendulum, Wall)
+                        TripleFrictionPendulum, Wall, Bearing, Floor, Frame, PlanBuilding, RectangularMoat)
     from .protocols import (BasinStabilityMap, Basins, BifurcationDiagram, CampaignResult,  # noqa: F401
                             Orientations, PoundingSpectrum, SweepResult, basin_stability_map, basins,
                             bifurcation_diagram,

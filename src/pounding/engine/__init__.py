@@ -5,9 +5,11 @@ from .state import State
 from .simulate import simulate, structure_runs
 from .adjacent_result import AdjacentRun
 from .structure_result import StructureRun
+from .plan_result import PlanRun
 from .._errors import old_names
 
-__all__ = ["AdjacentRun", "EnergyLedger", "Run", "State", "StructureRun", "simulate", "structure_runs"]
+__all__ = ["AdjacentRun", "EnergyLedger", "PlanRun", "Run", "State", "StructureRun", "simulate",
+           "structure_runs"]
 
 
 # 0.1's names, one class for every system now: they still answer for one release, with a FutureWarning

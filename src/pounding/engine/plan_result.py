@@ -37,7 +37,9 @@ class PlanRun(Outcome):
         Each floor's centre of mass relative to the ground: x and y (m, m/s) and its rotation (rad,
         rad/s), in that order on the last axis.
     displacement_max, displacement_min : ndarray, shape (n_levels, 3)
-        Their exact extrema over the run (not from the samples); their times in ``*_time_s``.
+        Their exact extrema over the run (not from the samples).
+    displacement_max_time_s, displacement_min_time_s : ndarray, shape (n_levels, 3)
+        When they were reached, s.
     abs_acceleration_max : ndarray, shape (n_levels, 3)
         Each floor's exact largest absolute acceleration along x and y (m/s^2) and rotational
         acceleration (rad/s^2).
@@ -47,8 +49,11 @@ class PlanRun(Outcome):
         Each bearing's force along x and y, N.
     bearing_displacement_max_m : ndarray, shape (n_bearings,)
         Each bearing's exact largest displacement in plan (the vector sum of its two directions at each
-        instant), m; when (``bearing_displacement_max_time_s``) and its x and y then
-        (``bearing_displacement_at_max_m``, shape (n_bearings, 2)).
+        instant), m.
+    bearing_displacement_max_time_s : ndarray, shape (n_bearings,)
+        When, s.
+    bearing_displacement_at_max_m : ndarray, shape (n_bearings, 2)
+        Its x and y then, m.
     bearing_axis_max_m, bearing_axis_min_m : ndarray, shape (n_bearings, 2)
         Each bearing's exact extrema along x and along y, m.
     frame_drift_max_m, frame_drift_min_m : ndarray, shape (n_frames,)
@@ -69,8 +74,40 @@ class PlanRun(Outcome):
         Pass as ``state`` to continue.
     status : Status
         How the run ended (``message`` says it in words).
-    building, excitation, sample_rate_hz :
-        What was run, under what, and the samples' rate (Hz).
+    building : PlanBuilding
+        What was run.
+    excitation : RecordPair, Record or Harmonic
+        What shook it.
+    sample_rate_hz : float
+        The uniform samples' rate, Hz (0: events only).
+    contact_slots : tuple of (int, int)
+        Each contact slot's moat wall (0 to 3: ``-x, +x, -y, +y``) and corner, in ``contact_force``'s
+        column order.
+
+    Examples
+    --------
+    A floor 24 m by 16 m, its mass 1.2 m off centre, on four bilinear bearings in a moat 8 cm wide,
+    under El Centro at 0.5 g along 30 degrees:
+
+    >>> import pounding
+    >>> from pounding import Bearing, Floor, PlanBuilding, RectangularMoat
+    >>> iso = pounding.Isolator(slopes_n_m=[1.2e7, 1.2e6], breakpoints_m=[0.01])
+    >>> bearings = [Bearing((sx * 10.0, sy * 6.0), iso)
+    ...             for sx in (-1, 1) for sy in (-1, 1)]
+    >>> moat = RectangularMoat(0.08, pounding.KelvinVoigt(5.0e8, 1.0e6))
+    >>> b = PlanBuilding([Floor(6.0e5, (24.0, 16.0), centre_m=(1.2, 0.0))],
+    ...                  bearings, moat=moat)
+    >>> el_centro = pounding.records.el_centro().scaled(pga_g=0.5)
+    >>> quake = pounding.RecordPair.of_direction(el_centro, 30.0)
+    >>> run = pounding.simulate(b, quake, 10.0)
+    >>> run.bearings()["displacement_max_m"].round(3).tolist()  # m, in plan
+    [0.093, 0.093, 0.094, 0.093]
+    >>> run.clearance_m.round(3).tolist()  # m: walls -x, +x struck
+    [-0.004, -0.004, 0.027, 0.03]
+    >>> run.contacts[["wall", "corner", "at_m"]].round(2).head(2)
+      wall  corner  at_m
+    0   x-       0 -8.03
+    1   x+       2 -7.95
     """
 
     building: "PlanBuilding"

@@ -26,8 +26,11 @@ from .state import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, State, one_mass_layout
 from .state_check import _FIX, check_fits, check_layout, check_state, contact_name  # noqa: F401  (check_state: here too)
 
 if TYPE_CHECKING:
+    from ..excitation import RecordPair
     from ..model.adjacent import Adjacent
+    from ..model.plan import PlanBuilding
     from ..model.structure import Structure
+    from .plan_result import PlanRun
 
 def kernel_system(oscillator: Oscillator) -> System:
     """The oscillator as the core's system: the one-level structure it is, assembled (:func:`assemble`: its
@@ -37,8 +40,8 @@ def kernel_system(oscillator: Oscillator) -> System:
 
 @renamed_keyword("oscillator", "system")
 def simulate(
-    system: "Oscillator | Structure | Adjacent",
-    excitation: Harmonic | Record,
+    system: "Oscillator | Structure | Adjacent | PlanBuilding",
+    excitation: "Harmonic | Record | RecordPair",
     duration: float,
     state: Optional[State] = None,
     *,
@@ -46,18 +49,22 @@ def simulate(
     sample_rate_hz: Optional[float] = None,
     max_events: int = 10_000_000,
     max_steps: int = DEFAULT_MAX_STEPS,
-) -> "Run | StructureRun | AdjacentRun":
+) -> "Run | StructureRun | AdjacentRun | PlanRun":
     """Simulate the system under a base excitation, exactly at every non-smooth instant.
 
     Parameters
     ----------
-    system : Oscillator, Structure or Adjacent
+    system : Oscillator, Structure, Adjacent or PlanBuilding
         The system: one mass, or a structure of several (then ``state`` is a
         :class:`State` of its own and a :class:`StructureRun` is returned: each level's histories
         and exact extrema, contacts per wall side), or two adjacent structures (an
-        :class:`AdjacentRun`: each one's, and the contacts at their links).
-    excitation : Harmonic or Record
-        Base (table) acceleration.
+        :class:`AdjacentRun`: each one's, and the contacts at their links), or a building in plan (a
+        :class:`PlanRun`: each floor's x, y and rotation, each bearing's exact largest displacement in
+        plan, the contacts at its moat).
+    excitation : Harmonic, Record or RecordPair
+        Base (table) acceleration; a building in plan takes a :class:`RecordPair` (its two components
+        along the plan's x and y; :meth:`RecordPair.of_direction`: one along any direction), or one
+        component along x.
     duration : float
         Simulated time in s, > 0; the run covers ``[t0, t0 + duration]`` with ``t0`` the
         time of ``state``.
@@ -80,7 +87,7 @@ def simulate(
 
     Returns
     -------
-    Run, StructureRun or AdjacentRun
+    Run, StructureRun, AdjacentRun or PlanRun
         Histories, exact extrema, contacts, energy ledger, final state, status and message (a
         single mass's, each level's, each structure's and their links'). A run that stops early
         keeps what it computed; ``status`` and ``message`` say why.

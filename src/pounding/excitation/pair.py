@@ -106,7 +106,16 @@ class RecordPair:
     @classmethod
     def of_direction(cls, record: Record, angle_deg: float) -> "RecordPair":
         """One component ``record`` along the direction ``angle_deg`` (from x towards y, degrees): the pair
-        ``(cos(a) record, sin(a) record)``; ``meta["direction_deg"]`` says which."""
+        ``(cos(a) record, sin(a) record)``; ``meta["direction_deg"]`` says which.
+
+        Examples
+        --------
+        >>> import pounding
+        >>> quake = pounding.records.el_centro()
+        >>> pair = pounding.RecordPair.of_direction(quake, 30.0)
+        >>> [round(p / quake.pga_g, 3) for p in pair.pga_g]  # cos 30, sin 30
+        [0.866, 0.5]
+        """
         instance_of("record", record, Record, "pounding.Record")
         a = math.radians(real("angle_deg", angle_deg))
         meta = {**record.meta, "direction_deg": float(angle_deg)}

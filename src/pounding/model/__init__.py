@@ -6,6 +6,8 @@ from .friction import FrictionIsolator
 from .isolator import BoucWen, Isolator
 from .measurement import MeasurementChain, Sensor
 from .oscillator import Oscillator
+from .plan import PlanBuilding
+from .plan_parts import Bearing, Floor, Frame, RectangularMoat
 from .adjacent import Adjacent, Link
 from .structure import Structure
 from .structure_parts import Bumpers, Stand, Storey, Wall
@@ -16,4 +18,5 @@ __all__ = ["Adjacent", "Link", "BoucWen", "Bumpers", "ElasticPlastic", "Friction
            "Isolator",
            "Jankowski",
            "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "RigidStop", "Sensor",
-           "Stand", "Storey", "Structure", "TripleFrictionPendulum", "Wall"]
+           "Stand", "Storey", "Structure", "TripleFrictionPendulum", "Wall",
+           "Bearing", "Floor", "Frame", "PlanBuilding", "RectangularMoat"]

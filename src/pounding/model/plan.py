@@ -73,14 +73,16 @@ class PlanBuilding(TomlFile):
     A two-storey building 30 m by 12 m on four bearings, its stiff walls on one side:
 
     >>> import pounding
-    >>> from pounding.model.plan import Bearing, Floor, Frame, PlanBuilding
+    >>> from pounding import Bearing, Floor, Frame, PlanBuilding
     >>> floors = [Floor(4.0e5, (30.0, 12.0))] * 3
     >>> iso = pounding.Isolator(slopes_n_m=[3.0e6, 4.0e5], breakpoints_m=[0.02])
-    >>> bearings = [Bearing((sx * 14.0, sy * 5.0), iso) for sx in (-1, 1) for sy in (-1, 1)]
+    >>> bearings = [Bearing((sx * 14.0, sy * 5.0), iso)
+    ...             for sx in (-1, 1) for sy in (-1, 1)]
     >>> frames = [Frame(s, "x", y, 4.0e8) for s in (1, 2) for y in (-6.0, 6.0)]
-    >>> frames += [Frame(s, "y", x, k) for s in (1, 2) for x, k in ((-15.0, 9.0e8), (15.0, 3.0e8))]
+    >>> frames += [Frame(s, "y", x, k) for s in (1, 2)
+    ...            for x, k in ((-15.0, 9.0e8), (15.0, 3.0e8))]
     >>> b = PlanBuilding(floors, bearings, frames)
-    >>> b.centres_of_stiffness_m().round(2).tolist()  # m: the bearings', then each storey's
+    >>> b.centres_of_stiffness_m().round(2).tolist()  # m: bearings', storeys'
     [[0.0, 0.0], [-7.5, 0.0], [-7.5, 0.0]]
     >>> b.modes().periods_s[:3].round(3).tolist()  # s: along y, along x, turning
     [1.995, 1.994, 1.251]

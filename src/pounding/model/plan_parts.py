@@ -51,10 +51,14 @@ class Floor:
 
     Examples
     --------
-    >>> import pounding.model.plan as plan
-    >>> f = plan.Floor(4.0e5, (30.0, 12.0))
-    >>> round(f.inertia_kg_m2 / 1e6, 3)  # kg m^2 (millions)
+    A floor of 400 t, 30 m by 12 m, its mass 1.5 m off the centre along x:
+
+    >>> import pounding
+    >>> f = pounding.Floor(4.0e5, (30.0, 12.0), centre_m=(1.5, 0.0))
+    >>> round(f.inertia_kg_m2 / 1e6, 1)  # kg m^2, millions: a uniform slab's
     34.8
+    >>> f.corners_m()[3]  # m
+    (15.0, 6.0)
     """
 
     mass_kg: float
@@ -118,8 +122,24 @@ class Frame:
         Its lateral stiffness, N/m, > 0.
     damping_n_s_m : float
         Its dashpot, N s/m, >= 0.
-    slopes_after_n_m, breakpoints_m, hysteresis :
-        A multi-linear frame, as a :class:`pounding.Storey`'s.
+    slopes_after_n_m : sequence of float
+        A multi-linear frame: its backbone's slopes after the first, N/m, as a :class:`pounding.Storey`'s.
+    breakpoints_m : sequence of float
+        The drifts where the slope changes, m.
+    hysteresis : {"kinematic", "elastic"}
+        How a multi-linear frame unloads.
+
+    Examples
+    --------
+    A shear wall along y at x = -15 m in the first storey, and a frame along x at y = 6 m that yields at
+    a drift of 1 cm:
+
+    >>> import pounding
+    >>> wall = pounding.Frame(1, "y", -15.0, 9.0e8)
+    >>> frame = pounding.Frame(1, "x", 6.0, 4.0e8, slopes_after_n_m=[4.0e7],
+    ...                        breakpoints_m=[0.01])
+    >>> wall.is_linear, frame.is_linear
+    (True, False)
     """
 
     storey: int
@@ -171,6 +191,16 @@ class Bearing:
         hysteresis; without a Bouc-Wen spring).
     isolator_y : Isolator, optional
         Its law along y.
+
+    Examples
+    --------
+    A lead-rubber bearing near a corner, bilinear along both axes:
+
+    >>> import pounding
+    >>> lrb = pounding.Isolator(slopes_n_m=[1.2e7, 1.2e6], breakpoints_m=[0.01])
+    >>> b = pounding.Bearing((14.0, 5.0), lrb)
+    >>> b.laws[0] is b.laws[1]  # the same law along x and y
+    True
     """
 
     at_m: tuple
@@ -226,6 +256,16 @@ class RectangularMoat:
         yet).
     level : int
         The floor it surrounds (default 0: the base).
+
+    Examples
+    --------
+    A moat 30 cm wide on three sides and 20 cm on the fourth, its walls of concrete behind a pad:
+
+    >>> import pounding
+    >>> pad = pounding.KelvinVoigt(stiffness=5.0e8, damping=1.0e6)
+    >>> moat = pounding.RectangularMoat((0.3, 0.3, 0.3, 0.2), pad)
+    >>> moat.gap_m  # m: the walls at -x, +x, -y, +y
+    (0.3, 0.3, 0.3, 0.2)
     """
 
     gap_m: Any

@@ -27,6 +27,23 @@ def plot_plan_orbit(run: Any, ax: Any = None) -> list:
     -------
     list of matplotlib artists
         The orbits, the moat's rectangle, the contacts' markers and the circle.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> from pounding import Bearing, Floor, PlanBuilding, RectangularMoat
+    >>> iso = pounding.Isolator(slopes_n_m=[1.2e7, 1.2e6], breakpoints_m=[0.01])
+    >>> bearings = [Bearing((sx * 10.0, sy * 6.0), iso)
+    ...             for sx in (-1, 1) for sy in (-1, 1)]
+    >>> moat = RectangularMoat(0.08, pounding.KelvinVoigt(5.0e8, 1.0e6))
+    >>> b = PlanBuilding([Floor(6.0e5, (24.0, 16.0), centre_m=(1.2, 0.0))],
+    ...                  bearings, moat=moat)
+    >>> quake = pounding.RecordPair.of_direction(
+    ...     pounding.records.el_centro().scaled(pga_g=0.5), 30.0)
+    >>> run = pounding.simulate(b, quake, 10.0, sample_rate_hz=100.0)
+    >>> artists = pounding.plots.plot_plan_orbit(run)
+    >>> len(artists)  # four corners, the moat, the contacts, the circle
+    7
     """
     import matplotlib.pyplot as plt
     from matplotlib.patches import Circle, Rectangle
