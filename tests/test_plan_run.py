@@ -357,3 +357,38 @@ def test_a_plan_run_s_bearing_forces_and_contact_places():
         across_x = wall in ("x-", "x+")
         expected = (py + y[q] + (px - 1.0) * th[q]) if across_x else (px + x[q] - (py + 0.5) * th[q])
         assert at == pytest.approx(expected, abs=1e-12)
+
+
+# ---------------------------------------------------------------------------------------- the command line
+def test_the_command_line_runs_a_building_in_plan_and_refuses_what_it_cannot(tmp_path):
+    from pathlib import Path
+
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+
+    examples = Path(__file__).parents[1] / "examples"
+    plan, line = str(examples / "plan_building.toml"), str(examples / "building_moat.toml")
+    record = str(examples / "el_centro_ns.AT2")
+    runner = CliRunner()
+    history = str(tmp_path / "h.csv")
+    done = runner.invoke(app, ["simulate", plan, "--record", record, "--scale-pga", "0.5",
+                               "--direction", "60", "--history", history], catch_exceptions=False)
+    assert done.exit_code == 0, done.output
+    assert "largest bearing displacement in plan" in done.output and "along 60 deg" in done.output
+    building = PlanBuilding.from_toml(plan)
+    quake = pounding.RecordPair.of_direction(pounding.Record.from_at2(record).scaled(pga_g=0.5), 60.0)
+    run = pounding.simulate(building, quake, quake.t[-1], sample_rate_hz=0.0)
+    assert f"{run.bearing_displacement_max_m.max() * 1e3:.2f}" in done.output
+    assert (tmp_path / "h.csv").stat().st_size > 0
+    both = runner.invoke(app, ["simulate", plan, "--record", record, "--record-y", record,
+                               "--direction", "10", "--duration", "2"], catch_exceptions=False)
+    assert both.exit_code == 0 and "turned by 10 deg" in both.output, both.output
+    sine = ["--a-g", "0.1", "--freq", "1"]
+    for args, words in ((["simulate", line, "--record", record, "--direction", "10"], "building in plan"),
+                        (["simulate", line, "--record", record, "--record-y", record], "building in plan"),
+                        (["simulate", plan, *sine, "--direction", "10"], "harmonic"),
+                        (["simulate", plan, *sine, "--velocity", "0.1"], "at rest"),
+                        (["simulate", plan, *sine, "--record-y", record], "--record")):
+        refused = runner.invoke(app, args)
+        assert refused.exit_code != 0 and words in refused.output, (args, refused.output)

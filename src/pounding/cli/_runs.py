@@ -54,7 +54,14 @@ def simulate(
     record_dt: Optional[float] = typer.Option(None, "--record-dt",
                                               help="The time step (s) of a one-column record."),
     record_units: str = typer.Option("g", "--record-units", help="A text record's unit: g, m/s2 or cm/s2."),
-    scale_pga: Optional[float] = typer.Option(None, "--scale-pga", help="Scale the record to this PGA, g."),
+    scale_pga: Optional[float] = typer.Option(None, "--scale-pga", help="Scale the record to this PGA, g (a "
+                                              "pair: both components by the factor that scales --record's)."),
+    record_y: Optional[Path] = typer.Option(
+        None, "--record-y", help="A building in plan: the record's second component, along y (read as "
+        "--record is); --record is then the component along x."),
+    direction: Optional[float] = typer.Option(
+        None, "--direction", help="A building in plan: the angle, degrees from x towards y, of --record's "
+        "component alone, or by which the pair (with --record-y) is turned."),
     duration: Optional[float] = typer.Option(
         None, "--duration", help="Simulated time, s (default 20 s; with --record, the record's length)."),
     preset: Optional[str] = OPT_PRESET,
@@ -79,7 +86,7 @@ def simulate(
     and the links."""
     from ..engine import State, structure_runs
     from ..engine import simulate as run_simulation
-    from ..engine.assembly import structures_of
+    from ..engine.assembly import is_plan, structures_of
 
     out = files(contacts=(contacts, CSV), history=(history, CSV))
     plot = figure_path("--plot", plot)
@@ -87,6 +94,16 @@ def simulate(
     exc, what = excitation(a_g, freq, record, record_dt, record_units, scale_pga)
     if duration is None:
         duration = exc.t[-1] if record is not None else 20.0
+    if is_plan(osc):
+        from ._plan import simulate_plan
+
+        exc, what = plan_excitation(exc, what, record_y, direction, record_dt, record_units)
+        simulate_plan(osc, exc, what, duration, velocity, sample_rate, out, plot, system_file)
+        return
+    for name, value in (("--record-y", record_y), ("--direction", direction)):
+        if value is not None:
+            raise typer.BadParameter(f"{name} is for a building in plan (a SYSTEM.toml with [[floors]]): a "
+                                     "structure on a line moves along one direction")
     start = State.at_rest(osc, velocity_m_s=velocity)  # (a structure's moving levels all at it, as one body)
     wants_history = history is not None or plot is not None
     rate = sample_rate if wants_history else 0.0  # nothing to sample for: the events only (extrema are exact)
@@ -254,6 +271,38 @@ def excitation(a_g: float | None, freq: float | None, record: Path | None, recor
     if scale_pga is not None:
         rec = rec.scaled(pga_g=scale_pga)
     return rec, f"record {rec.name} (PGA {rec.pga_g:.3g} g, {rec.duration_s:g} s)"
+
+
+def plan_excitation(exc: Any, what: str, record_y: Path | None, direction: float | None,
+                    record_dt: float | None, record_units: str) -> tuple[Any, str]:
+    """A building in plan's excitation from the command line's: ``exc`` (--record's, scaled, or a harmonic)
+    with --record-y's second component (read as --record was, scaled by the same factor), turned by
+    --direction; a harmonic or one record without --direction along x."""
+    from .._checks import real
+    from ..excitation import Harmonic, Record, RecordPair
+
+    angle = None if direction is None else real("--direction", direction)
+    if record_y is None:
+        if angle is None or isinstance(exc, Harmonic):
+            if angle is not None:
+                raise typer.BadParameter("--direction is for a record (--record): a harmonic shakes a "
+                                         "building in plan along x")
+            return exc, what + ", along x"
+        return RecordPair.of_direction(exc, angle), what + f", along {angle:g} deg"
+    if not isinstance(exc, Record):
+        raise typer.BadParameter("--record-y is the second component of --record: give --record too")
+    if record_y.suffix.lower() == ".at2":
+        second = Record.from_at2(record_y)
+    elif record_dt is not None:
+        second = Record.from_csv(record_y, accel=0, dt=record_dt, units=record_units)
+    else:
+        second = Record.from_csv(record_y, time=0, accel=1, units=record_units)
+    factor = exc.meta.get("scale_factor", 1.0)  # (--scale-pga's, on --record: the pair scaled as one)
+    pair = RecordPair(exc, second if factor == 1.0 else second.scaled(factor=factor))
+    what = f"records {pair.name} (PGA {pair.pga_g[0]:.3g} g, {pair.pga_g[1]:.3g} g)"
+    if angle is not None:
+        pair, what = pair.rotated(angle), what + f", turned by {angle:g} deg"
+    return pair, what
 
 
 def _text_columns(path: Path) -> int:

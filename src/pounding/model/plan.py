@@ -285,6 +285,10 @@ class PlanBuilding(TomlFile):
         shapes = shapes / shapes[big, np.arange(shapes.shape[1])]
         return Modes(periods, shapes)
 
+    def without_bumpers(self) -> "PlanBuilding":
+        """The building without its moat (no walls to strike), as :meth:`Structure.without_bumpers`."""
+        return dataclasses.replace(self, moat=None)
+
     # ------------------------------------------------------------------ TOML
     def to_dict(self) -> dict[str, Any]:
         """The building as nested tables with the constructor's field names."""

@@ -8,20 +8,24 @@ from typing import Any
 
 from .adjacent import Adjacent
 from .oscillator import Oscillator
+from .plan import PlanBuilding
 from .structure import Structure
 
 
 def system_type(table: dict[str, Any]) -> type:
-    """The class a system's tables are of: two adjacent structures (``links``), a structure (``storeys`` or
-    ``base_mass_kg``) or one mass (an ``Oscillator``'s)."""
+    """The class a system's tables are of: two adjacent structures (``links``), a building in plan
+    (``floors``), a structure (``storeys`` or ``base_mass_kg``) or one mass (an ``Oscillator``'s)."""
     if "links" in table:
         return Adjacent
+    if "floors" in table:
+        return PlanBuilding
     if "storeys" in table or "base_mass_kg" in table:
         return Structure
     return Oscillator
 
 
 def system_from_dict(table: dict[str, Any]) -> Any:
-    """A system from its tables (``to_dict``'s): an ``Oscillator``, a ``Structure`` or an ``Adjacent``."""
+    """A system from its tables (``to_dict``'s): an ``Oscillator``, a ``Structure``, an ``Adjacent`` or a
+    ``PlanBuilding``."""
     return system_type(table).from_dict(table)
 
