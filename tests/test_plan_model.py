@@ -93,6 +93,8 @@ def _building(**changes):
     (lambda: Frame(1, "z", 0.0, 1e8), "frame.axis"),
     (lambda: Frame(1, "x", float("inf"), 1e8), "frame.at_m"),
     (lambda: Frame(1, "x", 0.0, 1e8, breakpoints_m=[0.01]), "frame.breakpoints_m"),
+    (lambda: Frame(1, "x", 0.0, 1e8, height_m=0.0), "frame.height_m"),
+    (lambda: Frame(1, "x", 0.0, -1e8), "frame.stiffness_n_m"),
     (lambda: Bearing((0.0, 0.0, 1.0), _iso(1e6)), "bearing.at_m"),
     (lambda: Bearing((0.0, 0.0), pounding.FrictionIsolator(mu=0.05, radius_m=2.0)),
      "bearing.isolator"),

@@ -6,6 +6,7 @@ against one long run; the checks of its arguments; its tables and plot."""
 from __future__ import annotations
 
 import dataclasses
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -118,7 +119,10 @@ def _restated(b: PlanBuilding) -> PlanModel:
     influence = np.zeros((n, 2))
     influence[0::3, 0] = 1.0
     influence[1::3, 1] = 1.0
+    first = len(tracked)  # (each floor's centre of mass along x and y: a vector too)
+    tracked += [point(level, axis, *centres[level]) for level in range(len(b.floors)) for axis in (0, 1)]
     vectors = [(2 * i, 2 * i + 1) for i in range(len(b.bearings))]
+    vectors += [(first + 2 * level, first + 2 * level + 1) for level in range(len(b.floors))]
     return PlanModel(mass=mass, k=k, c=c, influence=influence, record=(np.zeros(1),) * 3, plastic=plastic,
                      walls=walls, tracked=tracked, vectors=vectors)
 
@@ -170,10 +174,13 @@ def test_a_building_in_plan_runs_as_the_reference(seed, levels, gap_m, pga):
     np.testing.assert_allclose(run.bearing_axis_min_m.ravel(), bottom[:2 * nb], **close)
     np.testing.assert_allclose(run.frame_drift_max_m, top[2 * nb:2 * nb + nf], **close)
     np.testing.assert_allclose(run.frame_drift_min_m, bottom[2 * nb:2 * nb + nf], **close)
-    np.testing.assert_allclose(run.corner_displacement_max_m.ravel(), top[2 * nb + nf:], **close)
-    np.testing.assert_allclose(run.corner_displacement_min_m.ravel(), bottom[2 * nb + nf:], **close)
-    np.testing.assert_allclose(run.bearing_displacement_max_m, ref.vector_max, **close)
-    corners = top[2 * nb + nf:].reshape(4, 2), bottom[2 * nb + nf:].reshape(4, 2)
+    at = slice(2 * nb + nf, 2 * nb + nf + 8)  # (the corners', then the floors' centres)
+    np.testing.assert_allclose(run.corner_displacement_max_m.ravel(), top[at], **close)
+    np.testing.assert_allclose(run.corner_displacement_min_m.ravel(), bottom[at], **close)
+    np.testing.assert_allclose(run.bearing_displacement_max_m, ref.vector_max[:nb], **close)
+    np.testing.assert_allclose(run.plan_displacement_max_m, ref.vector_max[nb:], **close)
+    np.testing.assert_allclose(run.displacement_max[:, :2].ravel(), top[at.stop:], **close)
+    corners = top[at].reshape(4, 2), bottom[at].reshape(4, 2)
     approach = [-corners[1][:, 0].min(), corners[0][:, 0].max(),
                 -corners[1][:, 1].min(), corners[0][:, 1].max()]
     np.testing.assert_allclose(run.clearance_m, np.array(b.moat.gap_m) - approach, **close)
@@ -361,8 +368,6 @@ def test_a_plan_run_s_bearing_forces_and_contact_places():
 
 # ---------------------------------------------------------------------------------------- the command line
 def test_the_command_line_runs_a_building_in_plan_and_refuses_what_it_cannot(tmp_path):
-    from pathlib import Path
-
     from typer.testing import CliRunner
 
     from pounding.cli import app
@@ -392,3 +397,24 @@ def test_the_command_line_runs_a_building_in_plan_and_refuses_what_it_cannot(tmp
                         (["simulate", plan, *sine, "--record-y", record], "--record")):
         refused = runner.invoke(app, args)
         assert refused.exit_code != 0 and words in refused.output, (args, refused.output)
+
+
+# ---------------------------------------------------------------------------------------- the protocols
+def test_the_orientations_of_a_pair_turn_a_building_in_plan():
+    b = PlanBuilding.from_toml(Path(__file__).parents[1] / "examples" / "plan_building.toml")
+    quake = pounding.records.el_centro().scaled(pga_g=0.5)
+    pair = pounding.RecordPair(quake, quake.scaled(factor=0.7))
+    found = pounding.orientations(b, pair, [0.0, 75.0, 180.0, 255.0], duration_s=8.0)
+    # each angle is the run under the pair turned by it (both components, in the building's axes)
+    run = pounding.simulate(b, pair.rotated(75.0), 8.0)
+    peaks = run.quantities()
+    for name in ("disp_max_m", "theta_max_rad", "clearance_min_m", "impacts", "drift_ratio_max", "acc_max_g"):
+        assert found.data.loc[75.0, name] == peaks[name], name
+    assert peaks["disp_max_m"] == np.max(run.bearing_displacement_max_m)
+    assert peaks["top_disp_max_m"] == run.plan_displacement_max_m[-1]
+    # the motion turned by 180 degrees is the motion reversed: a building with equal gaps on opposite sides
+    # and symmetric laws moves as its mirror through its centre, to the same peaks
+    for a in (0.0, 75.0):
+        assert found.data.loc[a + 180.0, "disp_max_m"] == pytest.approx(found.data.loc[a, "disp_max_m"],
+                                                                          rel=1e-12)
+    assert found.critical("disp_max_m")[1] == found.data["disp_max_m"].max()

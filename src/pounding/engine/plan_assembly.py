@@ -5,8 +5,8 @@ linear frames in the springs, the moat's walls each struck at the floor's two co
 ground's two components along x and y; where each part went (:class:`PlanAssembly`).
 
 Tracked (their exact extrema): each bearing's displacement along x and along y (the two make a vector, whose
-exact longest a run finds), each frame's drift at its place, and each corner of the moat's floor along x and
-along y (its clearance to the walls)."""
+exact longest a run finds), each frame's drift at its place, each corner of the moat's floor along x and
+along y (its clearance to the walls), and each floor's centre of mass along x and y (a vector too)."""
 
 from __future__ import annotations
 
@@ -28,7 +28,8 @@ class PlanAssembly(NamedTuple):
     ``elements[e]``: ``("bearing", b, axis)`` or ``("frame", f, axis)``; ``contacts[c]``: ``(side, corner)``,
     the moat's wall (index of :data:`~pounding.model.plan_parts.MOAT_SIDES`) and the floor's corner
     (:meth:`Floor.corners_m`'s order); ``tracked[q]``: ``("bearing", b, axis)``, ``("frame", f, axis)`` or
-    ``("corner", k, axis)``; ``vectors[v]``: bearing ``v``'s x and y (indices into ``tracked``);
+    ``("corner", k, axis)`` or ``("centre", level, axis)``; ``vectors[v]``: bearing ``v``'s x and y (indices
+    into ``tracked``), then each floor's centre's;
     ``contact_tracks[c]``: contact ``c``'s corner along its axis (an index into ``tracked``)."""
 
     system: _core.System
@@ -122,6 +123,13 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
                 contact_names.append((side, k))
                 contact_tracks.append(tracked_names.index(("corner", k, axis)))
                 contact_weights.append(_point(floor, moat.level, axis, corner, n))
+    for level in range(building.n_levels):  # (each floor's centre of mass in plan: its x and y, a vector)
+        for axis in (0, 1):
+            tracked.append(_core.tracked_pair(i=3 * level + axis, j=-1))
+            tracked_names.append(("centre", level, axis))
+            tracked_weights.append(np.eye(n)[3 * level + axis])
+    vectors += tuple((tracked_names.index(("centre", level, 0)), tracked_names.index(("centre", level, 1)))
+                     for level in range(building.n_levels))
     influence = np.zeros((n, 2))
     influence[0::3, 0] = 1.0
     influence[1::3, 1] = 1.0

@@ -43,6 +43,9 @@ class PlanRun(Outcome):
     abs_acceleration_max : ndarray, shape (n_levels, 3)
         Each floor's exact largest absolute acceleration along x and y (m/s^2) and rotational
         acceleration (rad/s^2).
+    plan_displacement_max_m : ndarray, shape (n_levels,)
+        Each floor's centre of mass's exact largest displacement in plan (the vector sum of its x and y at
+        each instant), m.
     bearing_displacement : ndarray, shape (k, n_bearings, 2)
         Each bearing's displacement along x and y at its place, m.
     bearing_force : ndarray, shape (k, n_bearings, 2)
@@ -121,6 +124,7 @@ class PlanRun(Outcome):
     displacement_min: np.ndarray
     displacement_min_time_s: np.ndarray
     abs_acceleration_max: np.ndarray
+    plan_displacement_max_m: np.ndarray
     bearing_displacement: np.ndarray
     bearing_force: np.ndarray
     bearing_displacement_max_m: np.ndarray
@@ -230,6 +234,38 @@ class PlanRun(Outcome):
             "input_work_j": energy.input_work if energy is not None else nan,
             "energy_residual_j": energy.residual if energy is not None else nan,
             "status": self.status.name,
+        })
+
+    def quantities(self) -> dict[str, float]:
+        """The run in a few peaks, as every run gives them (a protocol's: :func:`pounding.orientations`):
+        ``disp_max_m`` the largest bearing displacement in plan (the isolation system's, the moat's demand),
+        ``acc_max_g`` the largest absolute acceleration of a floor's centre along x or y (g), ``impacts``
+        at the moat with their ``impact_force_max_n``, ``impact_speed_max_m_s`` and
+        ``compression_max_m``, the top floor's centre's ``top_disp_max_m`` (in plan) and ``top_acc_max_g``,
+        the frames' ``drift_ratio_max`` (NaN without storeys), and a building in plan's own:
+        ``theta_max_rad`` (the base's largest rotation) and ``clearance_min_m`` (NaN without a moat);
+        ``status``."""
+        from .._tables import RunQuantities
+        from .layout import force_max
+
+        g = self.excitation.g
+        rows, n = self.contact_table, self.contact_table.shape[0]
+        speed, depth = CORE_CONTACT_COLUMNS["v_in_m_s"], CORE_CONTACT_COLUMNS["max_compression_m"]
+        heights = np.array([f.height_m for f in self.building.frames])
+        drift = np.maximum(np.abs(self.frame_drift_max_m), np.abs(self.frame_drift_min_m))
+        return RunQuantities({
+            "acc_max_g": float(np.max(self.abs_acceleration_max[:, :2])) / g,
+            "disp_max_m": float(np.max(self.bearing_displacement_max_m)),
+            "impacts": float(n),
+            "impact_force_max_n": force_max(rows),
+            "impact_speed_max_m_s": float(np.abs(rows[:, speed]).max()) if n else 0.0,
+            "compression_max_m": float(rows[:, depth].max()) if n else 0.0,
+            "top_disp_max_m": float(self.plan_displacement_max_m[-1]),
+            "top_acc_max_g": float(np.max(self.abs_acceleration_max[-1, :2])) / g,
+            "drift_ratio_max": float(np.max(drift / heights)) if heights.size else float("nan"),
+            "theta_max_rad": float(max(abs(self.displacement_max[0, 2]), abs(self.displacement_min[0, 2]))),
+            "clearance_min_m": float(np.min(self.clearance_m)) if self.clearance_m.size else float("nan"),
+            "status": float(self.status),
         })
 
     def to_dataframe(self) -> pd.DataFrame:

@@ -128,7 +128,13 @@ def peaks(system: "Oscillator | Structure | Adjacent", excitation: Harmonic | Re
     """``simulate(system, excitation, duration, state, sample_rate_hz=0, max_steps=max_steps).quantities()``,
     number for number, without the energy integrals, which no peak reads (a tenth to a quarter of a record
     sample's work): what a study's point, a pounding spectrum's run and an orientation's run are read for.
-    Checks, raises and interrupts as :func:`simulate` does."""
+    Checks, raises and interrupts as :func:`simulate` does (a building in plan: its run's, energy
+    included)."""
+    if is_plan(system):
+        from .plan_run import simulate_plan
+
+        run = simulate_plan(system, excitation, duration, state, 1e-10, 0.0, 10_000_000, max_steps)
+        return run.quantities()
     return _run(system, excitation, duration, state, 1e-10, 0.0, 10_000_000, max_steps, False).quantities()
 
 

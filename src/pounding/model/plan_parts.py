@@ -128,6 +128,8 @@ class Frame:
         The drifts where the slope changes, m.
     hysteresis : {"kinematic", "elastic"}
         How a multi-linear frame unloads.
+    height_m : float
+        The storey's height, m, > 0 (for drift ratios; default 3 m).
 
     Examples
     --------
@@ -150,9 +152,10 @@ class Frame:
     slopes_after_n_m: tuple = ()
     breakpoints_m: tuple = ()
     hysteresis: str = "kinematic"
+    height_m: float = 3.0
 
     FIELDS: ClassVar[tuple[str, ...]] = ("storey", "axis", "at_m", "stiffness_n_m", "damping_n_s_m",
-                                         "slopes_after_n_m", "breakpoints_m", "hysteresis")
+                                         "slopes_after_n_m", "breakpoints_m", "hysteresis", "height_m")
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "storey", integer("frame.storey", self.storey, 1, MAX_STOREYS))
@@ -167,6 +170,10 @@ class Frame:
         at_most("frame.damping_n_s_m", c, MAX_STOREY_STIFFNESS, " N s/m", "give the damping in N s/m")
         object.__setattr__(self, "damping_n_s_m", c)
         check_backbone_after(self, "frame", k)
+        h = positive("frame.height_m", self.height_m, "m")
+        at_most("frame.height_m", h, 1e3, " m", "give the height in m")
+        plausible("frame.height_m", h, 0.1, 20.0, "heights are in m (a storey of 3 m is 3.0)")
+        object.__setattr__(self, "height_m", h)
 
     @property
     def is_linear(self) -> bool:

@@ -2,7 +2,8 @@
 of a set, and the most critical orientation of each peak.
 
 A system on one line (a single mass, a structure, a pair of structures) takes the pair's motion along its
-line: turned by ``a``, the motion along x is ``pair.along(a)`` (:class:`~pounding.RecordPair`).  Codes
+line: turned by ``a``, the motion along x is ``pair.along(a)`` (:class:`~pounding.RecordPair`).  A building
+in plan takes both components, the pair turned by ``a`` (``pair.rotated(a)``: its x along ``a``).  Codes
 (ASCE 7-16 chapter 17, EN 1998-1 section 10) ask for the response to several orientations of each pair; a
 gap checked against one orientation may be too small for another.
 """
@@ -136,9 +137,12 @@ def orientations(system: Any, pair: RecordPair, angles_deg: Any = None, duration
 
     Parameters
     ----------
-    system : Oscillator, Structure or Adjacent
+    system : Oscillator, Structure, Adjacent or PlanBuilding
         Any system on one line: it takes the pair's motion along its line, x, with the pair turned by each
-        angle (the motion ``cos(a) x + sin(a) y``: :meth:`RecordPair.along`).
+        angle (the motion ``cos(a) x + sin(a) y``: :meth:`RecordPair.along`).  A building in plan takes
+        both components, the pair turned by each angle (:meth:`RecordPair.rotated`): its peaks are its
+        run's (``disp_max_m`` the largest bearing displacement in plan, ``theta_max_rad``,
+        ``clearance_min_m``, ...: :meth:`PlanRun.quantities`).
     pair : RecordPair
         The ground motion's two components.
     angles_deg : array_like, shape (a,), optional
@@ -185,10 +189,12 @@ def orientations(system: Any, pair: RecordPair, angles_deg: Any = None, duration
     angles = orientation_angles(angles_deg)
     duration = pair.duration_s if duration_s is None else positive("duration_s", duration_s, "s")
     max_steps = integer("max_steps", max_steps, 1)
+    from ..engine.assembly import is_plan
     from ..engine.simulate import simulate
 
-    simulate(system, pair.along(float(angles[0])), min(duration, 1e-3), sample_rate_hz=0)  # (refused here)
-    tasks = [(system, pair.along(float(a)), duration, max_steps) for a in angles]
+    turned = pair.rotated if is_plan(system) else pair.along  # (a building in plan takes both components)
+    simulate(system, turned(float(angles[0])), min(duration, 1e-3), sample_rate_hz=0)  # (refused here)
+    tasks = [(system, turned(float(a)), duration, max_steps) for a in angles]
     done = run_tasks(_one_angle, tasks, scheduler=scheduler, workers=workers, progress=progress,
                      label="orientations")
     done.raise_first_error(lambda i: f"angle {angles[i]:g} deg")
