@@ -107,6 +107,11 @@ def _building(**changes):
     (lambda: _building(frames=[Frame(2, "x", 0.0, 1e8)]), "frames[0].storey"),
     (lambda: _building(frames=[Frame(1, "x", y, 1e8) for y in (-5.0, 5.0)]), "frames"),
     (lambda: _building(frames=[Frame(1, "x", 0.0, 1e8), Frame(1, "y", 0.0, 1e8)]), "frames"),
+    (lambda: _building(frames=[Frame(1, "x", 3.0, 1e8), Frame(1, "y", 5.0, 2e8)]), "frames"),  # (off centre)
+    (lambda: _building(floors=[Floor(3e5, (20.0, 10.0))], frames=[Frame(1, "x", 0.0, 1e8)]),
+     "frames[0].storey"),
+    (lambda: _building(floors=[Floor(3e5, (20.0, 10.0), centre_m=(9.5, 0.0))] * 2,
+                       accidental_eccentricity=(0.05, 0.0)), "accidental_eccentricity"),
     (lambda: _building(bearings=[Bearing((0.0, 0.0), _iso(1e6))]), "bearings"),
     (lambda: _building(moat=RectangularMoat(0.1, pounding.KelvinVoigt(1e9, 1e6), level=2)), "moat.level"),
     (lambda: _building(accidental_eccentricity=(0.5, 0.0)), "accidental_eccentricity[0]"),
@@ -135,3 +140,18 @@ def test_a_building_in_plan_reads_back_from_toml(tmp_path):
     text = b.to_toml_text().replace("stiffness_n_m = 100000000.0", "stiffnes_n_m = 100000000.0", 1)
     with pytest.raises(InputError, match=r"frames\[0\]\.stiffnes_n_m"):
         PlanBuilding.from_toml_text(text)
+
+
+def test_a_mode_that_turns_is_scaled_by_the_motion_of_a_corner():
+    # a floor on two lines along y only near its centre and stiff lines along x: its torsional mode turns
+    # mostly; its shape is scaled so that its largest motion (a translation, or a corner's from the turn) is 1
+    b = _square(ecc=(0.1, 0.0))
+    modes = b.modes()
+    reach = 0.5 * np.hypot(*b.floors[0].size_m)
+    for col in range(3):
+        shape = modes.shapes[:, col]
+        motions = np.abs(shape) * np.array([1.0, 1.0, reach])
+        assert np.max(motions) == pytest.approx(1.0, rel=1e-12)
+        assert shape[np.argmax(motions)] > 0
+    turning = np.argmax(np.abs(modes.shapes[2]))
+    assert abs(modes.shapes[2, turning]) * reach == pytest.approx(1.0, rel=1e-12)

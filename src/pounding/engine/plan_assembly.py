@@ -18,6 +18,7 @@ from .. import _core
 from ..model.isolator import HYSTERESIS_RULES
 from ..model.plan import PlanBuilding, point_weights
 from ..model.plan_parts import Bearing
+from .assembly import HystereticElement, Pair
 
 BW_NONE = np.zeros(_core.LAYOUT["BW_PARAMS"])
 
@@ -25,15 +26,15 @@ BW_NONE = np.zeros(_core.LAYOUT["BW_PARAMS"])
 class PlanAssembly(NamedTuple):
     """A building in plan as the core's system, and where each part went.
 
-    ``elements[e]``: ``("bearing", b, axis)`` or ``("frame", f, axis)``; ``contacts[c]``: ``(side, corner)``,
-    the moat's wall (index of :data:`~pounding.model.plan_parts.MOAT_SIDES`) and the floor's corner
+    ``element_names[e]``: ``("bearing", b, axis)`` or ``("frame", f, axis)``; ``contacts[c]``: ``(side,
+    corner)``, the moat's wall (index of :data:`~pounding.model.plan_parts.MOAT_SIDES`) and the floor's corner
     (:meth:`Floor.corners_m`'s order); ``tracked[q]``: ``("bearing", b, axis)``, ``("frame", f, axis)`` or
     ``("corner", k, axis)`` or ``("centre", level, axis)``; ``vectors[v]``: bearing ``v``'s x and y (indices
     into ``tracked``), then each floor's centre's;
     ``contact_tracks[c]``: contact ``c``'s corner along its axis (an index into ``tracked``)."""
 
     system: _core.System
-    elements: tuple
+    element_names: tuple
     contacts: tuple
     tracked: tuple
     vectors: tuple
@@ -43,15 +44,21 @@ class PlanAssembly(NamedTuple):
     c_all: np.ndarray           # (3 n, 3 n): every dashpot
     contact_weights: np.ndarray  # (contacts, 3 n): each contact's corner along its axis, as weights
     tracked_weights: np.ndarray  # (tracked, 3 n): each tracked pair's displacement, as weights
-    dofs: tuple = ()            # ((0, 1, ..., 3 n - 1),): the floors' dofs, as a State holds them
+    element_weights: np.ndarray  # (elements, 3 n): each element's displacement, as weights
+    pairs: tuple                 # each contact slot's assembly.Pair (its dofs without their levers)
+    elements: tuple              # each element's assembly.HystereticElement (the same)
+    dofs: tuple = ()             # ((0, 1, ..., 3 n - 1),): the floors' dofs, as a State holds them
+    system_bw: np.ndarray = BW_NONE  # (no Bouc-Wen spring)
 
 
-def _levers(building: PlanBuilding, storey: int, axis: int, p: tuple[float, float]) -> dict:
+def _levers(building: PlanBuilding, storey: int, axis: int, p: tuple[float, float],
+            ground: bool = False) -> dict:
     """A line at point ``p`` of floor ``storey`` along ``axis`` against the same point of the floor below
-    (the ground below the base) as the core's pair: its dofs, levers and arms (no lever for an arm of 0)."""
+    (the ground below the base; ``ground``: against the ground whatever the floor, a moat's wall) as the
+    core's pair: its dofs, levers and arms (no lever for an arm of 0)."""
     floors = building.placed_floors
     out = {}
-    for end, level in (("i", storey), ("j", storey - 1)):
+    for end, level in (("i", storey), ("j", -1 if ground else storey - 1)):
         if level < 0:
             out[end] = -1
             continue
@@ -77,6 +84,7 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
     k0, c0 = np.zeros((n, n)), np.zeros((n, n))
     k_fast, c_all = np.zeros((n, n)), np.zeros((n, n))  # (the elements' stiffest slopes and dashpots)
     elements, element_names, tracked, tracked_names, tracked_weights = [], [], [], [], []
+    element_weights, pairs = [], []
     for storey, axis, index, at, part in building.lines():
         p = (0.0, at) if axis == 0 else (at, 0.0)
         pair = _levers(building, storey, axis, p)
@@ -92,6 +100,7 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
                                           breaks=list(part.breakpoints_m),
                                           rule=HYSTERESIS_RULES.index(part.hysteresis), **pair))
             element_names.append((kind, index, axis))
+            element_weights.append(w)
         else:
             slopes, breaks, rule, _ = part.laws[axis].kernel_arrays()
             k_fast += float(np.max(np.abs(slopes))) * np.outer(w, w)
@@ -99,6 +108,7 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
             elements.append(_core.element(c_d=part.laws[axis].damping_n_s_m, slopes=slopes, breaks=breaks,
                                           rule=int(rule), **pair))
             element_names.append((kind, index, axis))
+            element_weights.append(w)
         tracked.append(_core.tracked_pair(**pair))
         tracked_names.append((kind, index, axis))
         tracked_weights.append(w)
@@ -110,14 +120,15 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
         floor, corners = building.placed_floors[moat.level], building.floors[moat.level].corners_m()
         for k, corner in enumerate(corners):  # (each corner along x and y: its clearance to the walls)
             for axis in (0, 1):
-                tracked.append(_core.tracked_pair(**_levers(building, moat.level, axis, corner)))
+                tracked.append(_core.tracked_pair(**_levers(building, moat.level, axis, corner, ground=True)))
                 tracked_names.append(("corner", k, axis))
                 tracked_weights.append(_point(floor, moat.level, axis, corner, n))
         for side, (axis, sign) in enumerate(((0, -1.0), (0, 1.0), (1, -1.0), (1, 1.0))):
             for k, corner in enumerate(corners):
                 if corner[axis] * sign < 0.0:  # (the two corners on that wall's side)
                     continue
-                pair = _levers(building, moat.level, axis, corner)
+                pair = _levers(building, moat.level, axis, corner, ground=True)
+                pairs.append(Pair(pair["i"], pair["j"], sign, float(moat.gap_m[side]), moat.law))
                 contacts.append(_core.contact_slot(sign=sign, gap_m=moat.gap_m[side], law=moat.law.LAW_ID,
                                                    params=moat.law.params(), **pair))
                 contact_names.append((side, k))
@@ -138,7 +149,9 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
     return PlanAssembly(system, tuple(element_names), tuple(contact_names), tuple(tracked_names), vectors,
                         tuple(contact_tracks), masses, k0 + k_fast, c0 + c_all,
                         np.array(contact_weights).reshape(len(contacts), n), np.array(tracked_weights),
-                        (tuple(range(n)),))
+                        np.array(element_weights).reshape(len(elements), n), tuple(pairs),
+                        tuple(HystereticElement(el.i, el.j, list(el.slopes), list(el.breaks), el.rule)
+                              for el in elements), (tuple(range(n)),))
 
 
 __all__ = ["PlanAssembly", "assemble_plan"]

@@ -280,6 +280,41 @@ class PlanRun(Outcome):
                 data[f"bearing{b}_{name}"] = self.bearing_displacement[:, b, j]
         return pd.DataFrame(data)
 
+    def to_xarray(self) -> Any:
+        """The histories and the exact extrema as a Dataset: along ``sample`` (its coordinate ``time_s``),
+        ``level``, ``dof`` (``x``, ``y``, ``theta``: m, m and rad; m/s and rad/s), ``bearing``, ``axis``
+        (``x``, ``y``), ``frame`` and ``wall`` (``-x``, ``+x``, ``-y``, ``+y``); each variable's unit in its
+        ``units``; ``status`` and ``message`` as attributes."""
+        import xarray as xr
+
+        from ..model.plan_parts import MOAT_SIDES
+
+        mixed = "m (x, y), rad (theta)"
+        ds = xr.Dataset(
+            {"displacement": (("sample", "level", "dof"), self.displacement, {"units": mixed}),
+             "velocity": (("sample", "level", "dof"), self.velocity, {"units": "m/s (x, y), rad/s (theta)"}),
+             "displacement_max": (("level", "dof"), self.displacement_max, {"units": mixed}),
+             "displacement_min": (("level", "dof"), self.displacement_min, {"units": mixed}),
+             "abs_acceleration_max": (("level", "dof"), self.abs_acceleration_max,
+                                      {"units": "m/s^2 (x, y), rad/s^2 (theta)"}),
+             "plan_displacement_max_m": ("level", self.plan_displacement_max_m, {"units": "m"}),
+             "bearing_displacement_m": (("sample", "bearing", "axis"), self.bearing_displacement,
+                                        {"units": "m"}),
+             "bearing_force_n": (("sample", "bearing", "axis"), self.bearing_force, {"units": "N"}),
+             "bearing_displacement_max_m": ("bearing", self.bearing_displacement_max_m, {"units": "m"}),
+             "bearing_displacement_max_time_s": ("bearing", self.bearing_displacement_max_time_s,
+                                                 {"units": "s"}),
+             "frame_drift_max_m": ("frame", self.frame_drift_max_m, {"units": "m"}),
+             "frame_drift_min_m": ("frame", self.frame_drift_min_m, {"units": "m"}),
+             "clearance_m": ("wall", self.clearance_m, {"units": "m"})},
+            coords={"time_s": ("sample", self.t, {"units": "s"}),
+                    "level": np.arange(self.displacement_max.shape[0]), "dof": ["x", "y", "theta"],
+                    "bearing": np.arange(self.bearing_displacement_max_m.size), "axis": ["x", "y"],
+                    "frame": np.arange(self.frame_drift_max_m.size),
+                    "wall": list(MOAT_SIDES)[:self.clearance_m.size]},
+            attrs={"status": self.status.name, "message": self.message})
+        return ds
+
     def plot(self, ax: Any = None) -> Any:
         """The orbit in plan: each corner of the moat's floor (or each bearing, without a moat) as it moved,
         the moat's clearance drawn around where the corners started, each bearing's largest displacement

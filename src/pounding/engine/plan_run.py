@@ -19,6 +19,7 @@ from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Harmonic, Record, RecordPair
 from ..model.contact_laws import linear_form
 from ..model.plan import PlanBuilding
+from ..model.plan_parts import MOAT_SIDES
 from .control import check_budget, fastest_of, new_control, run_interruptibly, steps_per_second
 from .layout import P_MAX, P_MIN, X_A_MAX, X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T
 from .plan_assembly import PlanAssembly, assemble_plan
@@ -26,6 +27,7 @@ from .plan_result import PlanRun
 from .run_args import DIRECT_CALL_STEPS, check_rtol, history_rate, kernel_forcing
 from .run_parts import EnergyLedger
 from .state import MAX_TIME_S, State
+from .state_check import check_fits
 
 _FIX = "start from rest (state=None) or from a run of this building (run.final_state)"
 
@@ -47,8 +49,8 @@ def _kept(building: PlanBuilding) -> tuple[PlanAssembly, float, float]:
 
 
 def _start(state: Optional[State], asm: PlanAssembly) -> State:
-    """``state``, or rest at t = 0 when None: one of this building's states (its layout, finite, its contact
-    flags 0 or 1 and compressions >= 0)."""
+    """``state``, or rest at t = 0 when None: one of this building's states (its layout, its numbers finite,
+    a time >= 0, and each contact's and element's state fitting the displacements: ``check_fits``)."""
     lay = asm.system.layout
     if state is None:
         return State._of(np.zeros(lay["size"]), asm.dofs, lay)
@@ -59,13 +61,13 @@ def _start(state: Optional[State], asm: PlanAssembly) -> State:
         raise InputError(Problem.BAD_STATE, "state", state,
                          why=f"is a state of {vec.size} numbers and levels {state.dofs}, not one of this "
                              f"building's ({lay['size']} numbers, {asm.system.n} dofs)", fix=_FIX)
-    if not np.all(np.isfinite(vec)) or not 0.0 <= vec[0] <= MAX_TIME_S:
+    if not np.all(np.isfinite(vec)):
         raise InputError(Problem.BAD_STATE, "state", state, why="holds a number that is not finite", fix=_FIX)
-    nc = len(asm.contacts)
-    flags, comps = vec[lay["in"]:lay["in"] + nc], vec[lay["def"]:lay["def"] + nc]
-    if np.any((flags != 0.0) & (flags != 1.0)) or np.any(comps < 0.0):
-        raise InputError(Problem.BAD_STATE, "state.in_contact", flags.tolist(),
-                         why="holds a contact flag other than 0 or 1, or a negative compression", fix=_FIX)
+    if not 0.0 <= vec[0] <= MAX_TIME_S:
+        raise InputError(Problem.BAD_STATE, "state.time_s", float(vec[0]),
+                         why=f"is outside [0, {MAX_TIME_S:g}] s", fix=_FIX)
+    names = [f"moat wall {MOAT_SIDES[side]} at corner {k}" for side, k in asm.contacts]
+    check_fits(vec, asm, _FIX, (asm.contact_weights, asm.element_weights, names))
     return state
 
 
@@ -122,7 +124,7 @@ def plan_run_of(building: PlanBuilding, asm: PlanAssembly, excitation: Any, rate
     frame_q = [asm.tracked.index(("frame", f, "xy".index(fr.axis))) for f, fr in enumerate(building.frames)]
     corner_q = np.array([[q for q, name in enumerate(asm.tracked) if name == ("corner", c, axis)]
                          for c in range(4) for axis in (0, 1)]).reshape(-1)
-    element_of = {name: e for e, name in enumerate(asm.elements)}
+    element_of = {name: e for e, name in enumerate(asm.element_names)}
     bearing_e = [[element_of[("bearing", b, axis)] for axis in (0, 1)] for b in range(nb)]
     x = samples[:, 1:1 + n]
     weights = asm.tracked_weights[bearing_q]  # (nb, 2, n)

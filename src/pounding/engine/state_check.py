@@ -66,9 +66,13 @@ def check_layout(state: State, asm: Assembly, fix: str) -> None:
         raise InputError(Problem.BAD_STATE, "state", state, why="holds a number that is not finite", fix=fix)
 
 
-def check_fits(vec: np.ndarray, asm: Assembly, fix: str) -> None:
+def check_fits(vec: np.ndarray, asm: Assembly, fix: str, levered: Optional[tuple] = None) -> None:
     """An InputError (its field a :class:`State` property's, or ``vector[i]``) unless the state vector
     ``vec`` (laid out as the assembly's, its numbers finite) is a state the system can be in.
+
+    ``levered``: for pairs on levers (a building in plan's), ``(contact_weights, element_weights,
+    contact_names)``: each contact's and each element's displacement as weights on the dofs (shape
+    (pairs, n)), and each contact's name; without, a pair's displacement is ``x_i - x_j``.
 
     Read as Python floats: a solver checks one a run, and numpy's scalars cost several times more."""
     x_all = vec.tolist()
@@ -86,11 +90,15 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str) -> None:
     def rel(i: int, j: int) -> float:
         return x[i] - (x[j] if j >= 0 else 0.0)
 
+    if levered is not None:  # (each pair's displacement from its weights)
+        along = [list(np.asarray(w) @ np.asarray(x)) for w in levered[:2]]
     pair = len(asm.dofs) > 1
     for c, (i, j, sign, gap, law) in enumerate(asm.pairs):
         comp, flag = x_all[lay["def"] + c], x_all[lay["in"] + c]
-        side = ("left", "right")[c] if single else contact_name(asm.slots[c], pair)
-        depth = sign * rel(i, j) - gap  # (how far the pair is past its gap: beyond the bumper's free surface)
+        side = (levered[2][c] if levered is not None else ("left", "right")[c] if single
+                else contact_name(asm.slots[c], pair))
+        # (how far the pair is past its gap: beyond the bumper's free surface)
+        depth = sign * (along[0][c] if levered is not None else rel(i, j)) - gap
         if flag not in (0.0, 1.0):
             raise bad(f"in_contact[{c}]", flag, f"is the {side} bumper's contact flag: 0 or 1")
         if comp < 0.0:
@@ -113,7 +121,7 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str) -> None:
     first = 0
     for e, (i, j, slopes, breaks, rule, rings, _) in enumerate(asm.elements):
         n_sp = len(breaks)
-        u = rel(i, j)
+        u = along[1][e] if levered is not None else rel(i, j)
         who = "the isolator's" if single else f"element {e}'s"
         if rule == 1:  # (elastic: the branch of its deformation; no slips, their places unused)
             region = x_all[lay["region"] + e]

@@ -84,7 +84,7 @@ class PlanBuilding(TomlFile):
     >>> b = PlanBuilding(floors, bearings, frames)
     >>> b.centres_of_stiffness_m().round(2).tolist()  # m: bearings', storeys'
     [[0.0, 0.0], [-7.5, 0.0], [-7.5, 0.0]]
-    >>> b.modes().periods_s[:3].round(3).tolist()  # s: along y, along x, turning
+    >>> b.modes().periods_s[:3].round(3).tolist()  # s: along x, along y, turning
     [1.995, 1.994, 1.251]
     """
 
@@ -114,11 +114,16 @@ class PlanBuilding(TomlFile):
                                  fix=f"give at most {most}")
             object.__setattr__(self, name, items)
         for i, f in enumerate(self.frames):
+            if len(self.floors) == 1:
+                raise InputError(Problem.WRONG_CONFIGURATION, f"frames[{i}].storey", f.storey,
+                                 got="of one floor, the base: it has no storey for a frame to stand in",
+                                 fix="add the floors the storeys carry (floors: the base, then one per "
+                                     "storey), or leave the frames out")
             if f.storey >= len(self.floors):
                 raise InputError(Problem.OUT_OF_RANGE, f"frames[{i}].storey", f.storey,
                                  range=f"[1, {len(self.floors) - 1}]",
                                  hint=f" (a storey carries a floor above the base; there are "
-                                      f"{len(self.floors)})")
+                                      f"{len(self.floors)} floors)")
         if self.moat is not None:
             instance_of("moat", self.moat, RectangularMoat, "pounding.model.plan.RectangularMoat or None")
             if self.moat.level >= len(self.floors):
@@ -136,6 +141,15 @@ class PlanBuilding(TomlFile):
             plausible(f"accidental_eccentricity[{j}]", abs(e), 0.0, 0.1,
                       "a fraction of the side (the codes' 5 % is 0.05)")
         object.__setattr__(self, "accidental_eccentricity", ecc)
+        for level, f in enumerate(self.floors):  # (each centre of mass moved: still on its floor)
+            moved = [c + e * side for c, e, side in zip(f.centre_m, ecc, f.size_m)]
+            if any(abs(c) > side / 2 for c, side in zip(moved, f.size_m)):
+                raise InputError(Problem.BAD_STATE, "accidental_eccentricity", list(ecc),
+                                 why=f"moves floor {level}'s centre of mass to ({moved[0]:g}, {moved[1]:g}) "
+                                     f"m, off its rectangle ({f.size_m[0]:g} m by {f.size_m[1]:g} m, "
+                                     "centred on 0)",
+                                 fix="give a smaller eccentricity, or the floors' centres of mass nearer "
+                                     "their middle")
         self._check_restrained()
 
     def _check_restrained(self) -> None:
@@ -151,7 +165,9 @@ class PlanBuilding(TomlFile):
                 lacks = (f"nothing along {' and '.join(axes)}" if axes else
                          "nothing against rotation (its lines along x and y all meet at one point)")
                 field_name = "bearings" if s == 0 else "frames"
-                raise InputError(Problem.WRONG_CONFIGURATION, field_name, None,
+                places = ([list(b.at_m) for b in self.bearings] if s == 0 else
+                          [f"{f.axis} at {f.at_m:g} m" for f in self.frames if f.storey == s])
+                raise InputError(Problem.WRONG_CONFIGURATION, field_name, places,
                                  got=f"where {what} resist {lacks}",
                                  fix="add lines along x and y away from one point (two parallel lines apart "
                                      "resist the floor's rotation)" if s else
@@ -263,8 +279,9 @@ class PlanBuilding(TomlFile):
     def modes(self, fixed_base: bool = False) -> Modes:
         """Undamped modes about rest, every bearing and frame at its initial stiffness: periods (s, longest
         first) and shapes (3 n, m), rows by dof (``x, y, theta`` per floor: m, m, rad), each column scaled
-        to a largest translation of +1 (a mode that only turns: to a rotation of +1 rad).  ``fixed_base``:
-        the base held (the storeys alone)."""
+        so that its largest motion, a translation or the motion a rotation gives a floor's corner (the
+        rotation times the floor's half-diagonal), is +1 m.  ``fixed_base``: the base held (the storeys
+        alone)."""
         from scipy.linalg import eigh
 
         k, m = self.stiffness_matrix(), self.mass_matrix
@@ -276,13 +293,9 @@ class PlanBuilding(TomlFile):
         periods = 2.0 * np.pi / np.sqrt(w2)
         floors = self.floors[1:] if fixed_base else self.floors
         reach = np.array([[1.0, 1.0, 0.5 * float(np.hypot(*f.size_m))] for f in floors]).ravel()
-        moves = np.abs(shapes) * reach[:, None]  # (a rotation by the displacement it gives a corner)
-        moving = np.ones(m.shape[0], bool)
-        moving[2::3] = False
-        translates = moves[moving].max(axis=0) >= 1e-9 * moves.max(axis=0)
-        big = np.where(translates, np.argmax(np.where(moving[:, None], moves, -1.0), axis=0),
-                       np.argmax(np.abs(shapes), axis=0))
-        shapes = shapes / shapes[big, np.arange(shapes.shape[1])]
+        big = np.argmax(np.abs(shapes) * reach[:, None], axis=0)  # (a rotation: the motion of a corner)
+        columns = np.arange(shapes.shape[1])
+        shapes = shapes / (shapes[big, columns] * reach[big])
         return Modes(periods, shapes)
 
     def without_bumpers(self) -> "PlanBuilding":
