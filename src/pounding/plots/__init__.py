@@ -15,7 +15,7 @@ from .identification import plot_identification
 from .isolator import plot_isolator_loop
 from .lyapunov import plot_lyapunov
 from .orientations import plot_orientations
-from .plan import plot_plan_orbit
+from .plan import plot_moat_design, plot_plan_orbit
 from .periodic import plot_orbit
 from .record import plot_pair, plot_record, plot_response_spectrum, plot_rotd_spectrum
 from .run import plot_adjacent_run, plot_run, plot_structure_run
@@ -32,7 +32,7 @@ __all__ = ["figure_of", "plot_adjacent_run", "plot_basin_stability", "plot_basin
            "plot_hazard_curve", "plot_responses", "plot_scaled_suite", "plot_stripes", "plot_identification",
            "plot_lyapunov",
            "plot_hysteresis", "plot_isolator_loop", "plot_lab_sweep", "plot_orbit", "plot_orientations",
-           "plot_plan_orbit",
+           "plot_plan_orbit", "plot_moat_design",
            "plot_pounding_spectrum",
            "plot_pair", "plot_record",
            "plot_response_spectrum", "plot_rotd_spectrum", "plot_run", "plot_structure_run",

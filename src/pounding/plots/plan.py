@@ -92,4 +92,57 @@ def plot_plan_orbit(run: Any, ax: Any = None) -> list:
     return artists
 
 
-__all__ = ["plot_plan_orbit"]
+@fill_doc
+def plot_moat_design(design: Any, ax: Any = None) -> list:
+    """A :class:`~pounding.design.MoatDesign`: each pair's largest bearing displacement in plan at its most
+    critical orientation (bars, the angle on each), the design value (the suite's mean or largest) and,
+    when given, the code's total maximum displacement with torsion.
+
+    Parameters
+    ----------
+    design : MoatDesign
+        What :func:`pounding.design.moat_design` returned.
+    {ax}
+
+    Returns
+    -------
+    list of matplotlib artists
+        The bars and the lines.
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> import pounding
+    >>> from pounding.design import MoatDesign
+    >>> runs = [("a", 0.0), ("a", 90.0), ("b", 0.0), ("b", 90.0)]
+    >>> index = pd.MultiIndex.from_tuples(runs, names=["pair", "angle_deg"])
+    >>> data = pd.DataFrame({"disp_max_m": [0.2, 0.3, 0.25, 0.22]}, index=index)
+    >>> artists = pounding.plots.plot_moat_design(MoatDesign.of(data, None))
+    >>> len(artists)  # two bars, the design value
+    3
+    """
+    import matplotlib.pyplot as plt
+
+    if ax is None:
+        _, ax = plt.subplots(figsize=(7.0, 3.8), constrained_layout=True)
+    critical = design.critical
+    mm = 1e3
+    x = np.arange(len(critical))
+    artists: list = list(ax.bar(x, critical["disp_max_m"].to_numpy() * mm, 0.6, color="C0",
+                                label="largest bearing displacement in plan, its critical angle"))
+    for k, (angle, value) in enumerate(zip(critical["angle_deg"], critical["disp_max_m"])):
+        ax.annotate(f"{angle:g} deg", (k, value * mm), ha="center", va="bottom", fontsize=7)
+    rule = design.attrs.get("rule", "")
+    artists.append(ax.axhline(design.design_displacement_m * mm, color="C3", lw=1.5,
+                              label=f"design ({rule}): {design.design_displacement_m * mm:.4g} mm"))
+    if design.code:
+        d_tm = design.code["d_tm_m"] * mm
+        artists.append(ax.axhline(d_tm, color="k", ls="--", lw=1.2,
+                                  label=f"code D_TM with torsion: {d_tm:.4g} mm"))
+    ax.set_xticks(x, [str(name) for name in critical.index], rotation=30, ha="right", fontsize=7)
+    ax.set_ylabel("displacement (mm)")
+    ax.legend(fontsize=7, frameon=False)
+    return artists
+
+
+__all__ = ["plot_moat_design", "plot_plan_orbit"]

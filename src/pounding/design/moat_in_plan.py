@@ -1,0 +1,262 @@
+"""A moat's gap for a building in plan: its bearings' largest displacement in plan under a suite of pairs,
+each at its most critical orientation, against the code's total maximum displacement with its torsion.
+
+ASCE 7-16 (17.6.3.3) and EN 1998-1 (4.3.3.4.3) take the mean of the peak responses over seven pairs or more
+(the largest over fewer); the isolation system's displacement is the vector sum of its two directions at each
+instant, and the moat's gap is at least the total maximum displacement (ASCE 7-16 17.2.5.2), which adds
+torsion to the centre's displacement: ``D_TM = D_M [1 + (y / P_T^2) 12 e / (b^2 + d^2)]`` (17.5-3), at least
+``1.15 D_M``.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+import pandas as pd
+
+from .._checks import instance_of, one_or_more, positive
+from .._errors import InputError, Interrupted, Problem
+from .._runner import Progress
+from ..excitation.pair import RecordPair
+from ..model.plan import ACCIDENTAL, PlanBuilding
+
+MIN_PAIRS_FOR_MEAN = 7  # ASCE 7-16 17.6.3.3, EN 1998-1 4.3.3.4.3: the mean of seven pairs or more
+
+
+def asce7_torsion(building: PlanBuilding, d_m_m: float) -> dict[str, float]:
+    """ASCE 7-16's total maximum displacement of a building's farthest bearing, with the torsion of its actual
+    and accidental eccentricity (17.5-3), along x and along y.
+
+    For the motion along x: ``y`` the farthest bearing from the bearings' centre of stiffness across x, ``e``
+    the base's centre of mass from it across x plus 5 % of the plan's side across x (the accidental
+    eccentricity); the same along y.  ``b`` and ``d`` the base's shorter and longer sides, ``P_T`` the ratio
+    of the isolation system's translational to torsional period, ``sqrt(sum(x_i^2 + y_i^2) / N) / r_I``
+    (bearings from the centre of mass; ``r_I`` the rectangle's radius of gyration), at least 1.
+
+    Parameters
+    ----------
+    building : PlanBuilding
+        The building (its base: floor 0, and its bearings).
+    d_m_m : float
+        The maximum displacement ``D_M`` at the centre (m): :func:`asce7_displacement`'s, or a run's.
+
+    Returns
+    -------
+    dict
+        ``d_tm_x_m``, ``d_tm_y_m`` (each at least ``1.15 D_M``), ``d_tm_m`` (the larger), ``p_t``.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> from pounding import Bearing, Floor, PlanBuilding, design
+    >>> iso = pounding.Isolator(slopes_n_m=[1.2e7, 1.2e6], breakpoints_m=[0.01])
+    >>> b = PlanBuilding([Floor(6.0e5, (24.0, 16.0), centre_m=(1.2, 0.0))],
+    ...                  [Bearing((sx * 10.0, sy * 6.0), iso)
+    ...                   for sx in (-1, 1) for sy in (-1, 1)])
+    >>> out = design.asce7_torsion(b, 0.30)
+    >>> round(out["p_t"], 3), round(out["d_tm_x_m"], 4), round(out["d_tm_y_m"], 4)
+    (1.408, 0.345, 0.3524)
+    """
+    instance_of("building", building, PlanBuilding, "pounding.PlanBuilding")
+    d_m = positive("d_m_m", d_m_m, "m")
+    base = building.floors[0]
+    centre = np.array(building.placed_floors[0].centre_m)
+    rigidity = building.centres_of_stiffness_m()[0]
+    at = np.array([b.at_m for b in building.bearings]).reshape(-1, 2)
+    sides = np.array(base.size_m)
+    b_short, d_long = float(sides.min()), float(sides.max())
+    r_i = math.sqrt((b_short**2 + d_long**2) / 12.0)
+    p_t = max(1.0, math.sqrt(float(np.mean(np.sum((at - centre) ** 2, axis=1)))) / r_i)
+    out = {}
+    for axis, name in ((0, "x"), (1, "y")):
+        across = 1 - axis  # (the motion along x: distances and eccentricity across it, along y)
+        y = float(np.max(np.abs(at[:, across] - rigidity[across])))
+        e = abs(float(centre[across] - rigidity[across])) + ACCIDENTAL * float(sides[across])
+        factor = 1.0 + (y / p_t**2) * 12.0 * e / (b_short**2 + d_long**2)
+        out[f"d_tm_{name}_m"] = max(d_m * factor, 1.15 * d_m)
+    out["d_tm_m"] = max(out["d_tm_x_m"], out["d_tm_y_m"])
+    out["p_t"] = p_t
+    return out
+
+
+@dataclass(frozen=True, eq=False)
+class MoatDesign:
+    """A moat's gap from a suite of pairs (:func:`moat_design`).
+
+    Attributes
+    ----------
+    data : pandas.DataFrame
+        One row per pair and angle (index ``pair``, ``angle_deg``): the run's peaks
+        (:meth:`PlanRun.quantities`: ``disp_max_m`` the largest bearing displacement in plan, ...).
+    critical : pandas.DataFrame
+        One row per pair: its most critical angle and its largest bearing displacement in plan there
+        (``angle_deg``, ``disp_max_m``).
+    design_displacement_m : float
+        The mean of the pairs' critical displacements (seven pairs or more), or their largest (fewer), m.
+    code : dict
+        The code's total maximum displacement with torsion (:func:`asce7_torsion`) from ``d_m_m``, when given.
+    attrs : dict
+        What else is known (``rule``: ``"mean"`` or ``"largest"``; ``complete``).
+
+    Examples
+    --------
+    >>> import pandas as pd
+    >>> from pounding.design import MoatDesign
+    >>> runs = [("a", 0.0), ("a", 90.0), ("b", 0.0), ("b", 90.0)]
+    >>> index = pd.MultiIndex.from_tuples(runs, names=["pair", "angle_deg"])
+    >>> data = pd.DataFrame({"disp_max_m": [0.2, 0.3, 0.25, 0.22]}, index=index)
+    >>> found = MoatDesign.of(data, None)
+    >>> found.critical["disp_max_m"].tolist()  # m, each pair's critical
+    [0.3, 0.25]
+    >>> found.design_displacement_m  # m: two pairs, their largest
+    0.3
+    """
+
+    data: pd.DataFrame
+    critical: pd.DataFrame
+    design_displacement_m: float
+    code: dict = field(default_factory=dict)
+    attrs: dict = field(default_factory=dict, repr=False)
+
+    @classmethod
+    def of(cls, data: pd.DataFrame, code: dict | None, complete: bool = True) -> "MoatDesign":
+        """The design from the runs' peaks (``data``, indexed by pair and angle)."""
+        rows = []
+        for name, group in data.groupby(level="pair", sort=False):
+            values = group["disp_max_m"].to_numpy(dtype=float)
+            at = int(np.nanargmax(values)) if np.isfinite(values).any() else 0
+            rows.append((name, float(group.index.get_level_values("angle_deg")[at]), float(values[at])))
+        critical = pd.DataFrame(rows, columns=["pair", "angle_deg", "disp_max_m"]).set_index("pair")
+        peaks = critical["disp_max_m"].to_numpy()
+        rule = "mean" if len(peaks) >= MIN_PAIRS_FOR_MEAN else "largest"
+        value = float(np.mean(peaks) if rule == "mean" else np.max(peaks))
+        return cls(data, critical, value, dict(code or {}), {"rule": rule, "complete": int(complete)})
+
+    def to_dataframe(self) -> pd.DataFrame:
+        """:attr:`data` (a copy)."""
+        return self.data.copy()
+
+    def to_xarray(self) -> Any:
+        """:attr:`data` as a Dataset along ``pair`` and ``angle_deg``, the design displacement as an
+        attribute."""
+        import xarray as xr
+
+        return xr.Dataset.from_dataframe(self.data).assign_attrs(
+            design_displacement_m=self.design_displacement_m, **self.attrs,
+            **{k: v for k, v in self.code.items()})
+
+    def plot(self, ax: Any = None) -> Any:
+        """Each pair's critical bearing displacement in plan, the design value and the code's, as bars;
+        returns the Figure."""
+        from ..plots import figure_of
+        from ..plots.plan import plot_moat_design
+
+        return figure_of(plot_moat_design(self, ax=ax), ax)
+
+    def __repr__(self) -> str:
+        code = f", code D_TM {self.code['d_tm_m']:.4g} m" if self.code else ""
+        return (f"MoatDesign({len(self.critical)} pairs, {self.attrs['rule']} "
+                f"{self.design_displacement_m:.4g} m{code})")
+
+
+def moat_design(building: PlanBuilding, pairs: Any, angles_deg: Any = None, duration_s: float | None = None,
+                *, d_m_m: float | None = None, workers: int | None = None, scheduler: Any = None,
+                progress: Progress = False, max_steps: int = 10_000_000) -> MoatDesign:
+    """The moat's gap a building in plan needs under a suite of pairs: each pair at each orientation
+    (:func:`pounding.orientations`), its most critical one, and the suite's design value.
+
+    Parameters
+    ----------
+    building : PlanBuilding
+        The building; its moat, if any, is taken away for the runs (the gap is what they find).
+    pairs : RecordPair or sequence of RecordPair
+        The suite (seven or more: their mean; fewer: their largest), scaled as the design asks.
+    angles_deg : array_like, optional
+        The orientations, degrees (default: every 15 degrees).
+    duration_s : float, optional
+        Each run's length, s (default: each pair's).
+    d_m_m : float, optional
+        The code's maximum displacement at the centre, m (:func:`asce7_displacement`): its total maximum
+        displacement with torsion (:func:`asce7_torsion`) is given beside, as ``code``.
+    workers : int, optional
+        Threads or processes (default: every core).
+    scheduler : str or dask.distributed.Client, optional
+        As :func:`pounding.orientations`'s.
+    progress : bool or callable
+        A progress bar, or a callable taking the runs finished (each pair's).
+    max_steps : int
+        Each run's budget of engine sub-intervals.
+
+    Returns
+    -------
+    MoatDesign
+        Every run's peaks, each pair's critical orientation, the design displacement, the code's.
+
+    Raises
+    ------
+    InputError
+        A bad argument (named).
+    Interrupted
+        On Ctrl-C: ``partial`` holds the pairs done.
+
+    Examples
+    --------
+    >>> import pounding
+    >>> from pounding import Bearing, Floor, PlanBuilding, design
+    >>> iso = pounding.Isolator(slopes_n_m=[1.2e7, 1.2e6], breakpoints_m=[0.01])
+    >>> b = PlanBuilding([Floor(6.0e5, (24.0, 16.0), centre_m=(1.2, 0.0))],
+    ...                  [Bearing((sx * 10.0, sy * 6.0), iso)
+    ...                   for sx in (-1, 1) for sy in (-1, 1)])
+    >>> quake = pounding.records.el_centro().scaled(pga_g=0.4)
+    >>> pairs = [pounding.RecordPair(quake, quake.scaled(factor=f))
+    ...          for f in (0.5, 0.8)]
+    >>> found = design.moat_design(b, pairs, [0.0, 45.0, 90.0], duration_s=10.0,
+    ...                            d_m_m=0.1)
+    >>> found.critical["angle_deg"].tolist()  # each pair's critical orientation
+    [0.0, 45.0]
+    >>> found.critical["disp_max_m"].round(3).tolist()  # m
+    [0.1, 0.12]
+    >>> round(found.design_displacement_m, 3), found.attrs["rule"]  # m
+    (0.12, 'largest')
+    >>> round(found.code["d_tm_m"], 4)  # m: the code's D_TM, with torsion
+    0.1175
+    """
+    from ..protocols.orientations import orientations
+
+    instance_of("building", building, PlanBuilding, "pounding.PlanBuilding")
+    suite = one_or_more("pairs", pairs, RecordPair, "pounding.RecordPair")
+    code = None if d_m_m is None else asce7_torsion(building, d_m_m)
+    if duration_s is not None:
+        positive("duration_s", duration_s, "s")
+    free = building.without_bumpers()
+    names: list[str] = []
+    for p in suite:  # (each pair named once: a suite may repeat a record's name)
+        name, k = p.name or "pair", 2
+        while (name if k == 2 else f"{name} ({k - 1})") in names:
+            k += 1
+        names.append(name if k == 2 else f"{name} ({k - 1})")
+    tables: list[pd.DataFrame] = []
+    for name, p in zip(names, suite):
+        try:
+            found = orientations(free, p, angles_deg, duration_s, workers=workers, scheduler=scheduler,
+                                 progress=progress, max_steps=max_steps)
+        except Interrupted as stop:
+            if stop.partial is not None:
+                tables.append(stop.partial.data.assign(pair=name))
+            partial = MoatDesign.of(_joined(tables), code, complete=False) if tables else None
+            raise Interrupted(partial, len(tables), len(suite), "pairs") from None
+        tables.append(found.data.assign(pair=name))
+    return MoatDesign.of(_joined(tables), code)
+
+
+def _joined(tables: list[pd.DataFrame]) -> pd.DataFrame:
+    """The pairs' tables as one, indexed by pair and angle."""
+    if not tables:
+        raise InputError(Problem.EMPTY, "pairs", [], hint=" (one pair or more)")
+    return pd.concat(tables).reset_index().set_index(["pair", "angle_deg"])
+
+
+__all__ = ["MIN_PAIRS_FOR_MEAN", "MoatDesign", "asce7_torsion", "moat_design"]

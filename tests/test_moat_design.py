@@ -1,0 +1,83 @@
+"""A moat's gap for a building in plan (pounding.design.moat_design): each pair at its most critical
+orientation, the suite's mean (seven pairs or more) or largest; the code's total maximum displacement with
+torsion (design.asce7_torsion) against ASCE 7-16's formula written out here."""
+
+from __future__ import annotations
+
+import math
+
+import matplotlib
+import numpy as np
+import pytest
+
+import pounding
+from pounding import Bearing, Floor, InputError, PlanBuilding, RectangularMoat, design
+
+matplotlib.use("Agg")
+
+
+def _building(centre=(1.2, 0.0), at=(10.0, 6.0), moat=None):
+    iso = pounding.Isolator(slopes_n_m=[1.2e7, 1.2e6], breakpoints_m=[0.01], damping_n_s_m=2e4)
+    bearings = [Bearing((sx * at[0], sy * at[1]), iso) for sx in (-1, 1) for sy in (-1, 1)]
+    return PlanBuilding([Floor(6.0e5, (24.0, 16.0), centre_m=centre)], bearings, moat=moat)
+
+
+@pytest.mark.parametrize("centre, at", [((1.2, 0.0), (10.0, 6.0)), ((-2.0, 1.5), (11.0, 7.0)),
+                                        ((0.0, 0.0), (2.0, 1.0))])
+def test_the_code_s_torsion_is_its_formula(centre, at):
+    b = _building(centre, at)
+    d_m = 0.3
+    out = design.asce7_torsion(b, d_m)
+    # ASCE 7-16 17.5-3: D_TM = D_M (1 + y / P_T^2 12 e / (b^2 + d^2)), e with 5 % of the side across the
+    # motion; P_T = sqrt(mean(x_i^2 + y_i^2)) / r_I >= 1, r_I = sqrt((b^2 + d^2) / 12); D_TM >= 1.15 D_M
+    short, long_ = 16.0, 24.0
+    r_i = math.sqrt((short**2 + long_**2) / 12.0)
+    dist2 = [(sx * at[0] - centre[0]) ** 2 + (sy * at[1] - centre[1]) ** 2
+             for sx in (-1, 1) for sy in (-1, 1)]
+    p_t = max(1.0, math.sqrt(sum(dist2) / 4.0) / r_i)
+    along_x = d_m * (1.0 + at[1] / p_t**2 * 12.0 * (abs(centre[1]) + 0.05 * 16.0) / (short**2 + long_**2))
+    along_y = d_m * (1.0 + at[0] / p_t**2 * 12.0 * (abs(centre[0]) + 0.05 * 24.0) / (short**2 + long_**2))
+    assert out["p_t"] == pytest.approx(p_t, rel=1e-12)
+    assert out["d_tm_x_m"] == pytest.approx(max(along_x, 1.15 * d_m), rel=1e-12)
+    assert out["d_tm_y_m"] == pytest.approx(max(along_y, 1.15 * d_m), rel=1e-12)
+    assert out["d_tm_m"] == max(out["d_tm_x_m"], out["d_tm_y_m"])
+
+
+def test_seven_pairs_take_their_mean_each_at_its_critical_orientation():
+    quake = pounding.records.el_centro().scaled(pga_g=0.4)
+    pairs = [pounding.RecordPair(quake, quake.scaled(factor=f), name=f"pair {k}")
+             for k, f in enumerate((0.3, 0.45, 0.6, 0.75, 0.9, 1.05, 1.2))]
+    moat = RectangularMoat(0.02, pounding.KelvinVoigt(1e9, 1e6))  # (taken away: the gap is what runs find)
+    b = _building(moat=moat)
+    found = design.moat_design(b, pairs, [0.0, 60.0, 135.0], duration_s=6.0, d_m_m=0.1)
+    assert found.attrs["rule"] == "mean" and len(found.critical) == 7
+    assert found.design_displacement_m == pytest.approx(found.critical["disp_max_m"].mean(), rel=1e-15)
+    assert (found.data["impacts"] == 0).all()  # (no moat in the runs)
+    one = pounding.orientations(b.without_bumpers(), pairs[3], [0.0, 60.0, 135.0], duration_s=6.0)
+    angle, value = one.critical("disp_max_m")
+    assert found.critical.loc["pair 3", "angle_deg"] == angle
+    assert found.critical.loc["pair 3", "disp_max_m"] == value
+    assert found.code == design.asce7_torsion(b, 0.1)
+    assert found.plot().axes[0].get_ylabel() == "displacement (mm)"
+    assert found.to_xarray().attrs["rule"] == "mean"
+    # fewer than seven: the largest
+    few = design.moat_design(b, pairs[:2], [0.0], duration_s=6.0)
+    assert few.attrs["rule"] == "largest"
+    assert few.design_displacement_m == few.critical["disp_max_m"].max() and not few.code
+
+
+def test_a_moat_design_s_bad_arguments_are_refused_by_name():
+    quake = pounding.records.el_centro()
+    pair = pounding.RecordPair(quake, quake)
+    b = _building()
+    for call, field in ((lambda: design.moat_design(b, []), "pairs"),
+                        (lambda: design.moat_design(b, [quake]), "pairs[0]"),
+                        (lambda: design.moat_design("building", pair), "building"),
+                        (lambda: design.moat_design(b, pair, d_m_m=-0.1), "d_m_m"),
+                        (lambda: design.moat_design(b, pair, duration_s=0.0), "duration_s"),
+                        (lambda: design.moat_design(b, pair, [400.0]), "angles_deg[0]"),
+                        (lambda: design.asce7_torsion(b, float("nan")), "d_m_m")):
+        with pytest.raises(InputError) as info:
+            call()
+        assert info.value.field == field, str(info.value)
+    assert np.isfinite(design.asce7_torsion(b, 0.2)["d_tm_m"])
