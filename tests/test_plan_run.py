@@ -495,3 +495,53 @@ def test_a_plan_run_as_a_dataset():
     np.testing.assert_array_equal(ds["displacement"].sel(dof="theta").values, run.displacement[:, :, 2])
     np.testing.assert_array_equal(ds["bearing_displacement_max_m"].values, run.bearing_displacement_max_m)
     assert list(ds["wall"].values) == ["x-", "x+", "y-", "y+"] and ds.attrs["status"] == "SUCCESS"
+
+
+# ---------------------------------------------------------------------------------------- closed forms
+def _isotropic(gap_m=None):
+    """A square floor on four equal linear bearings (each 2.5 MN/m, 150 kN s/m), its mass centred: x and y
+    alike, apart from the turn; a moat of ``gap_m`` (stiff walls)."""
+    iso = pounding.Isolator(slopes_n_m=[2.5e6], breakpoints_m=[], damping_n_s_m=1.5e5)
+    moat = None if gap_m is None else RectangularMoat(gap_m, pounding.KelvinVoigt(1e9, 1e6))
+    return PlanBuilding([Floor(4e5, (20.0, 20.0))], [Bearing((sx * 8.0, sy * 8.0), iso) for sx in (-1, 1)
+                                                     for sy in (-1, 1)], moat=moat)
+
+
+def _dynamic_factor(freq_hz):
+    """|k/m - w^2 + i c w / m| of the isolated floor (its four bearings together)."""
+    w = 2.0 * np.pi * freq_hz
+    k_m, c_m = 4 * 2.5e6 / 4e5, 4 * 1.5e5 / 4e5
+    return float(np.hypot(k_m - w * w, c_m * w))
+
+
+@pytest.mark.parametrize("freq_hz, a_g", [(0.7, 0.2), (0.3, 0.05), (1.6, 0.4)])
+def test_circular_shaking_drives_a_circular_orbit_of_the_closed_form_radius(freq_hz, a_g):
+    # a_x = A sin(w t), a_y = A cos(w t) on an isotropic isolator: the steady orbit is a circle of radius
+    # A / |k/m - w^2 + i c w / m|; after the transient (zeta = 0.15 at 5 rad/s: e^-30 in 40 s), every
+    # bearing's largest displacement in plan over a further run is that radius, and it turns not at all
+    b = _isotropic()
+    table = pounding.HarmonicPair.circular(a_g, freq_hz)
+    radius = a_g * 9.81 / _dynamic_factor(freq_hz)
+    steady = pounding.simulate(b, table, 40.0, sample_rate_hz=0.0).final_state
+    run = pounding.simulate(b, table, 2.0 / freq_hz, state=steady, sample_rate_hz=200.0)
+    np.testing.assert_allclose(run.plan_displacement_max_m, radius, rtol=1e-9)
+    np.testing.assert_allclose(run.bearing_displacement_max_m, radius, rtol=1e-9)
+    np.testing.assert_allclose(np.hypot(run.displacement[:, 0, 0], run.displacement[:, 0, 1]), radius,
+                               rtol=1e-9)  # (every sample on the circle)
+    assert np.max(np.abs(run.displacement[:, 0, 2])) < 1e-12
+
+
+def test_a_moat_around_the_circle_is_grazed_at_the_closed_form_amplitude():
+    # the orbit's radius reaches the moat's gap at A = gap |k/m - w^2 + i c w / m|: just below, no contact and
+    # a clearance of the radius's shortfall, exactly; just above (by more than the engine's length
+    # resolution, 1e-9 of the system's lengths), contacts
+    gap, freq_hz = 0.2, 0.7
+    graze_g = gap * _dynamic_factor(freq_hz) / 9.81
+    far, near = _isotropic(1.0), _isotropic(gap)
+    for excess, struck in ((-1e-9, False), (-1e-7, False), (1e-8, True), (1e-6, True)):
+        table = pounding.HarmonicPair.circular(graze_g * (1.0 + excess), freq_hz)
+        steady = pounding.simulate(far, table, 40.0, sample_rate_hz=0.0).final_state  # (the moat's layout)
+        run = pounding.simulate(near, table, 3.0, state=steady, sample_rate_hz=0.0)
+        assert (len(run.contacts) > 0) == struck, excess
+        if not struck:
+            np.testing.assert_allclose(run.clearance_m, -gap * excess, rtol=1e-3)

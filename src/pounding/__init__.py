@@ -20,7 +20,7 @@ _NAMES = {
     "._errors": ("InputError", "Interrupted", "MissingExtra", "OutputError", "PoundingWarning", "Problem",
                  "Status", "StoreError"),
     ".engine": ("AdjacentRun", "EnergyLedger", "PlanRun", "Run", "State", "StructureRun", "simulate"),
-    ".excitation": ("Harmonic", "Record", "RecordPair"),
+    ".excitation": ("Harmonic", "HarmonicPair", "Record", "RecordPair"),
     ".excitation.spectrum": ("response_spectrum",),
     ".excitation.rotd": ("rotd_spectrum",),
     ".identification": ("ContactLawFit", "Identification", "ModelFamily", "SystemFamily", "Targets",
@@ -82,7 +82,7 @@ if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
                            PeriodicOrbit, bifurcation_curve, coexistence_map,
                            continuation, largest_exponents, lyapunov, periodic_orbit)
     from .engine import AdjacentRun, EnergyLedger, PlanRun, Run, State, StructureRun, simulate  # noqa: F401
-    from .excitation import Harmonic, Record, RecordPair  # noqa: F401
+    from .excitation import Harmonic, HarmonicPair, Record, RecordPair  # noqa: F401
     from .excitation.rotd import rotd_spectrum  # noqa: F401
     from .excitation.spectrum import response_spectrum  # noqa: F401
     from .identification import (ContactLawFit, Identification, ModelFamily, SystemFamily,  # noqa: F401

@@ -16,7 +16,7 @@ import numpy as np
 from .. import _core
 from .._checks import instance_of, integer, positive
 from .._errors import InputError, Interrupted, Problem, Status
-from ..excitation import Harmonic, Record, RecordPair
+from ..excitation import Harmonic, HarmonicPair, Record, RecordPair
 from ..model.contact_laws import linear_form
 from ..model.plan import PlanBuilding
 from ..model.plan_parts import MOAT_SIDES
@@ -74,8 +74,9 @@ def _start(state: Optional[State], asm: PlanAssembly) -> State:
 def simulate_plan(building: PlanBuilding, excitation: Any, duration: Any, state: Optional[State], rtol: Any,
                   sample_rate_hz: Any, max_events: Any, max_steps: Any) -> PlanRun:
     """``simulate`` of a building in plan: the arguments checked in their order, the run, its result."""
-    instance_of("excitation", excitation, (RecordPair, Record, Harmonic),
-                "pounding.RecordPair (two components), pounding.Record or pounding.Harmonic (along x)")
+    instance_of("excitation", excitation, (RecordPair, HarmonicPair, Record, Harmonic),
+                "pounding.RecordPair or pounding.HarmonicPair (two components), pounding.Record or "
+                "pounding.Harmonic (along x)")
     duration = positive("duration", duration, "s")
     rtol = check_rtol(rtol)
     max_events = integer("max_events", max_events, 1)
@@ -84,9 +85,10 @@ def simulate_plan(building: PlanBuilding, excitation: Any, duration: Any, state:
     state = _start(state, asm)
     rate = history_rate(sample_rate_hz, duration)
     t0 = state.time_s
-    omega = excitation.omega_rad_s if isinstance(excitation, Harmonic) else 0.0
+    harmonic = isinstance(excitation, (Harmonic, HarmonicPair))
+    omega = excitation.omega_rad_s if harmonic else 0.0
     knots = 0
-    if not isinstance(excitation, Harmonic):
+    if not harmonic:
         knots = int(np.count_nonzero((excitation.t >= t0) & (excitation.t <= t0 + duration)))
     why = (f"the forcing, {omega:.3g} rad/s" if omega > free else
            f"the building's fastest motion {free:.3g} rad/s")

@@ -19,6 +19,7 @@ from .harmonic import (
                        RECORD,
                        GRAVITY_M_S2,
                        Harmonic,
+                       HarmonicPair,
 )
 from .pair import RecordPair
 from .record import Record
@@ -26,4 +27,4 @@ from .record import Record
 Excitation = Union[Harmonic, Record]
 
 __all__ = ["HARMONIC", "MAX_ACCEL_M_S2", "MAX_A_G", "MAX_FREQ_HZ", "MAX_TIME_S", "RECORD", "GRAVITY_M_S2",
-           "Excitation", "Harmonic", "Record", "RecordPair"]
+           "Excitation", "Harmonic", "HarmonicPair", "Record", "RecordPair"]

@@ -97,3 +97,95 @@ class Harmonic:
     def kernel_arrays(self) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
         """The excitation as the compiled engine takes it: a kind code and three float arrays (internal)."""
         return HARMONIC, np.array([self.peak_m_s2, self.omega_rad_s, self.phase]), np.zeros(1), np.zeros(1)
+
+
+@dataclass(frozen=True)
+class HarmonicPair:
+    """Two harmonic components at one frequency, applied together along the plan's x and y (a building in
+    plan's shaking): ``a_x = x.a_g g sin(2 pi f t + x.phase)``, ``a_y = y.a_g g sin(2 pi f t + y.phase)``.
+
+    Parameters
+    ----------
+    x, y : Harmonic
+        The components along x and along y; their ``freq_hz`` and ``g`` must agree.
+
+    Examples
+    --------
+    Circularly polarised shaking at 0.2 g and 0.8 Hz (the table's acceleration turns at a constant
+    length), and the same motion along 30 degrees:
+
+    >>> import pounding
+    >>> table = pounding.HarmonicPair.circular(a_g=0.2, freq_hz=0.8)
+    >>> acc = table.acceleration([0.0, 0.3, 0.7])  # m/s^2, (x, y) at each time
+    >>> (acc ** 2).sum(axis=1).round(6).tolist() == [round((0.2 * 9.81) ** 2, 6)] * 3
+    True
+    >>> round(table.along(30.0).a_g, 6)  # the motion along any direction: 0.2 g too
+    0.2
+    """
+
+    x: Harmonic
+    y: Harmonic
+
+    def __post_init__(self) -> None:
+        from .._checks import instance_of
+        from .._errors import InputError, Problem
+
+        instance_of("pair.x", self.x, Harmonic, "pounding.Harmonic")
+        instance_of("pair.y", self.y, Harmonic, "pounding.Harmonic")
+        for name in ("freq_hz", "g"):
+            if getattr(self.x, name) != getattr(self.y, name):
+                raise InputError(Problem.BAD_STATE, f"pair.y.{name}", getattr(self.y, name),
+                                 why=f"differs from pair.x.{name} = {getattr(self.x, name)!r}: the two "
+                                     "components of a harmonic pair share one frequency and one g",
+                                 fix=f"give both components the same {name}")
+
+    @classmethod
+    def circular(cls, a_g: float, freq_hz: float, g: float = GRAVITY_M_S2) -> "HarmonicPair":
+        """Circularly polarised: ``a_x = A sin(w t)``, ``a_y = A cos(w t)`` (``A = a_g g``), turning from y
+        towards x."""
+        return cls(Harmonic(a_g, freq_hz, 0.0, g), Harmonic(a_g, freq_hz, 0.5 * math.pi, g))
+
+    @property
+    def freq_hz(self) -> float:
+        """The frequency, Hz."""
+        return self.x.freq_hz
+
+    @property
+    def omega_rad_s(self) -> float:
+        """``2 pi f``, rad/s."""
+        return self.x.omega_rad_s
+
+    @property
+    def g(self) -> float:
+        """Gravity's acceleration, m/s^2."""
+        return self.x.g
+
+    @property
+    def name(self) -> str:
+        """What it is, in words."""
+        return (f"harmonic pair {self.freq_hz:g} Hz, {self.x.a_g:g} g and {self.y.a_g:g} g "
+                f"({math.degrees(self.y.phase - self.x.phase):g} deg apart)")
+
+    def along(self, angle_deg: float) -> Harmonic:
+        """The motion along the direction ``angle_deg`` (from x towards y, degrees): ``cos(a) a_x + sin(a)
+        a_y``, one harmonic of the same frequency."""
+        a = math.radians(real("angle_deg", angle_deg))
+        # (phasors: A e^(i phase) of each component, summed)
+        z = (math.cos(a) * self.x.a_g * complex(math.cos(self.x.phase), math.sin(self.x.phase))
+             + math.sin(a) * self.y.a_g * complex(math.cos(self.y.phase), math.sin(self.y.phase)))
+        return Harmonic(abs(z), self.freq_hz, math.atan2(z.imag, z.real), self.g)
+
+    def rotated(self, angle_deg: float) -> "HarmonicPair":
+        """The same motion in axes turned by ``angle_deg`` (from x towards y): the new x along
+        ``angle_deg``, the new y along ``angle_deg + 90``."""
+        return HarmonicPair(self.along(angle_deg), self.along(real("angle_deg", angle_deg) + 90.0))
+
+    def acceleration(self, t: np.ndarray) -> np.ndarray:
+        """The table's acceleration (m/s^2) at times ``t`` (s), shape (k, 2): x then y."""
+        return np.column_stack([self.x.acceleration(t), self.y.acceleration(t)])
+
+    def kernel_arrays(self) -> tuple[int, np.ndarray, np.ndarray, np.ndarray]:
+        """The excitation as the compiled engine takes it: its x component's numbers, then its y's amplitude
+        and phase (internal)."""
+        return (HARMONIC, np.array([self.x.peak_m_s2, self.omega_rad_s, self.x.phase, self.y.peak_m_s2,
+                                    self.y.phase]), np.zeros(1), np.zeros(1))
