@@ -114,11 +114,12 @@ class HarmonicPair:
     Circularly polarised shaking at 0.2 g and 0.8 Hz (the table's acceleration turns at a constant
     length), and the same motion along 30 degrees:
 
+    >>> import numpy as np
     >>> import pounding
     >>> table = pounding.HarmonicPair.circular(a_g=0.2, freq_hz=0.8)
     >>> acc = table.acceleration([0.0, 0.3, 0.7])  # m/s^2, (x, y) at each time
-    >>> (acc ** 2).sum(axis=1).round(6).tolist() == [round((0.2 * 9.81) ** 2, 6)] * 3
-    True
+    >>> np.hypot(acc[:, 0], acc[:, 1]).round(4).tolist()  # m/s^2: 0.2 g
+    [1.962, 1.962, 1.962]
     >>> round(table.along(30.0).a_g, 6)  # the motion along any direction: 0.2 g too
     0.2
     """
