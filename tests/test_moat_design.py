@@ -81,3 +81,20 @@ def test_a_moat_design_s_bad_arguments_are_refused_by_name():
             call()
         assert info.value.field == field, str(info.value)
     assert np.isfinite(design.asce7_torsion(b, 0.2)["d_tm_m"])
+
+
+def test_the_code_s_centre_of_stiffness_is_the_bearings_effective_one():
+    # two yielding bearings on the left, two stiffer elastic ones on the right: at D_M = 0.3 m the left
+    # ones' secant stiffness is (12e6 * 0.01 + 1.2e6 * 0.29) / 0.3 = 1.56e6 N/m, the right ones' 4e6 N/m
+    lrb = pounding.Isolator(slopes_n_m=[1.2e7, 1.2e6], breakpoints_m=[0.01])
+    elastic = pounding.Isolator(slopes_n_m=[4.0e6], breakpoints_m=[])
+    bearings = [Bearing((sx * 10.0, sy * 6.0), lrb if sx < 0 else elastic)
+                for sx in (-1, 1) for sy in (-1, 1)]
+    b = PlanBuilding([Floor(6.0e5, (24.0, 16.0))], bearings)
+    out = design.asce7_torsion(b, 0.3)
+    k_left, k_right = (1.2e7 * 0.01 + 1.2e6 * 0.29) / 0.3, 4.0e6
+    expected = (-10.0 * k_left + 10.0 * k_right) / (k_left + k_right)
+    assert out["rigidity_m"][0] == pytest.approx(expected, rel=1e-12)
+    assert out["rigidity_m"][1] == pytest.approx(0.0, abs=1e-12)
+    # (at rest the yielding ones are the stiffer: the centre on the other side)
+    assert b.centres_of_stiffness_m()[0, 0] < 0.0 < out["rigidity_m"][0]

@@ -99,7 +99,12 @@ def _building(**changes):
     (lambda: Bearing((0.0, 0.0), pounding.FrictionIsolator(mu=0.05, radius_m=2.0)),
      "bearing.isolator"),
     (lambda: RectangularMoat((0.1, 0.2), pounding.KelvinVoigt(1e9, 1e6)), "moat.gap_m"),
-    (lambda: RectangularMoat(-0.1, pounding.KelvinVoigt(1e9, 1e6)), "moat.gap_m[0]"),
+    (lambda: RectangularMoat(-0.1, pounding.KelvinVoigt(1e9, 1e6)), "moat.gap_m"),
+    (lambda: RectangularMoat((0.1, -0.1, 0.1, 0.1), pounding.KelvinVoigt(1e9, 1e6)), "moat.gap_m[1]"),
+    (lambda: _building(bearings=[Bearing((sx * 11.0, sy * 4.0), _iso(2e6)) for sx in (-1, 1)
+                                 for sy in (-1, 1)]), "bearings[0].at_m"),
+    (lambda: _building(frames=[Frame(1, "x", 6.0, 1e8), Frame(1, "x", -5.0, 1e8), Frame(1, "y", 9.0, 1e8)]),
+     "frames[0].at_m"),
     (lambda: RectangularMoat(0.1, pounding.RigidStop(0.5)), "moat.law"),
     (lambda: RectangularMoat(0.1, "steel"), "moat.law"),
     (lambda: _building(floors=[]), "floors"),

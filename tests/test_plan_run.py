@@ -342,8 +342,8 @@ def test_a_plan_run_s_tables_and_plot(tmp_path):
     np.testing.assert_allclose(np.hypot(bearings["x_at_max_m"], bearings["y_at_max_m"]),
                                bearings["displacement_max_m"], rtol=1e-14)
     contacts = run.contacts
-    assert len(contacts) > 0 and set(contacts["wall"].astype(str)) <= {"x-", "x+", "y-", "y+"}
-    struck_x = contacts["wall"].astype(str).isin(["x-", "x+"])
+    assert len(contacts) > 0 and set(contacts["wall"].astype(str)) <= {"-x", "+x", "-y", "+y"}
+    struck_x = contacts["wall"].astype(str).isin(["-x", "+x"])
     assert np.all(np.abs(contacts.loc[struck_x, "at_m"]) <= 8.0 + 0.1)  # (a corner's y, near +-8 m)
     summary = run.summary()
     assert summary["contacts"] == len(contacts) and summary["status"] == "SUCCESS"
@@ -381,7 +381,7 @@ def test_a_plan_run_s_bearing_forces_and_contact_places():
         q = int(np.searchsorted(run.t, t0))
         assert run.t[q] == t0
         px, py = corners[corner]
-        across_x = wall in ("x-", "x+")
+        across_x = wall in ("-x", "+x")
         expected = (py + y[q] + (px - cx) * th[q]) if across_x else (px + x[q] - (py - cy) * th[q])
         assert at == pytest.approx(expected, abs=1e-12)
 
@@ -494,7 +494,7 @@ def test_a_plan_run_as_a_dataset():
     assert ds.sizes["sample"] == run.t.size and ds.sizes["level"] == 2 and ds.sizes["bearing"] == 4
     np.testing.assert_array_equal(ds["displacement"].sel(dof="theta").values, run.displacement[:, :, 2])
     np.testing.assert_array_equal(ds["bearing_displacement_max_m"].values, run.bearing_displacement_max_m)
-    assert list(ds["wall"].values) == ["x-", "x+", "y-", "y+"] and ds.attrs["status"] == "SUCCESS"
+    assert list(ds["wall"].values) == ["-x", "+x", "-y", "+y"] and ds.attrs["status"] == "SUCCESS"
 
 
 # ---------------------------------------------------------------------------------------- closed forms

@@ -76,14 +76,16 @@ def simulate(
     contacts: Optional[Path] = typer.Option(None, "--contacts", help="Write the contact table (CSV)."),
     history: Optional[Path] = typer.Option(None, "--history", help="Write the sampled histories (CSV)."),
     plot: Optional[Path] = typer.Option(
-        None, "--plot", help="Draw displacement and acceleration (PNG, PDF...)."
+        None, "--plot", help="Draw displacement and acceleration (PNG, PDF...); a building in plan: its "
+        "orbit in plan."
     ),
 ) -> None:
     """Simulate a harmonic excitation or a record and summarise the run (exact extrema, contacts, energy).
 
     SYSTEM.toml may be a structure of several masses (examples/building_moat.toml), or two adjacent ones
     (examples/adjacent_buildings.toml): a row per level; --contacts then writes every contact, at the walls
-    and the links."""
+    and the links. A building in plan (examples/plan_building.toml: [[floors]], [[bearings]], a [moat]) takes
+    --record along --direction, or with its second component --record-y."""
     from ..engine import State, structure_runs
     from ..engine import simulate as run_simulation
     from ..engine.assembly import is_plan, structures_of

@@ -32,9 +32,11 @@ def asce7_torsion(building: PlanBuilding, d_m_m: float) -> dict[str, float]:
 
     For the motion along x: ``y`` the farthest bearing from the bearings' centre of stiffness across x, ``e``
     the base's centre of mass from it across x plus 5 % of the plan's side across x (the accidental
-    eccentricity); the same along y.  ``b`` and ``d`` the base's shorter and longer sides, ``P_T`` the ratio
-    of the isolation system's translational to torsional period, ``sqrt(sum(x_i^2 + y_i^2) / N) / r_I``
-    (bearings from the centre of mass; ``r_I`` the rectangle's radius of gyration), at least 1.
+    eccentricity); the same along y.  The centre of stiffness is the bearings' effective one at ``D_M``
+    (each bearing's secant stiffness there: its backbone's force at ``D_M`` over ``D_M``), as the code's
+    properties at the maximum displacement ask.  ``b`` and ``d`` the base's shorter and longer sides, ``P_T``
+    the ratio of the isolation system's translational to torsional period, ``sqrt(sum(x_i^2 + y_i^2) / N) /
+    r_I`` (bearings from the centre of mass; ``r_I`` the rectangle's radius of gyration), at least 1.
 
     Parameters
     ----------
@@ -46,7 +48,9 @@ def asce7_torsion(building: PlanBuilding, d_m_m: float) -> dict[str, float]:
     Returns
     -------
     dict
-        ``d_tm_x_m``, ``d_tm_y_m`` (each at least ``1.15 D_M``), ``d_tm_m`` (the larger), ``p_t``.
+        ``d_tm_x_m``, ``d_tm_y_m`` (each at least ``1.15 D_M``), ``d_tm_m`` (the larger), ``p_t``, and
+        ``rigidity_m`` (the effective centre of stiffness, x and y).  (:func:`asce7_displacement`'s
+        ``d_tm_m`` is the least the code allows, ``1.15 D_M``; this one adds the building's torsion.)
 
     Examples
     --------
@@ -64,8 +68,11 @@ def asce7_torsion(building: PlanBuilding, d_m_m: float) -> dict[str, float]:
     d_m = positive("d_m_m", d_m_m, "m")
     base = building.floors[0]
     centre = np.array(building.placed_floors[0].centre_m)
-    rigidity = building.centres_of_stiffness_m()[0]
     at = np.array([b.at_m for b in building.bearings]).reshape(-1, 2)
+    rigidity = np.zeros(2)
+    for axis in (0, 1):  # (lines along x place the centre's y: the bearings' secant stiffnesses at D_M)
+        k = np.array([_secant(b.laws[axis], d_m) for b in building.bearings])
+        rigidity[1 - axis] = float(np.sum(k * at[:, 1 - axis]) / np.sum(k))
     sides = np.array(base.size_m)
     b_short, d_long = float(sides.min()), float(sides.max())
     r_i = math.sqrt((b_short**2 + d_long**2) / 12.0)
@@ -79,7 +86,20 @@ def asce7_torsion(building: PlanBuilding, d_m_m: float) -> dict[str, float]:
         out[f"d_tm_{name}_m"] = max(d_m * factor, 1.15 * d_m)
     out["d_tm_m"] = max(out["d_tm_x_m"], out["d_tm_y_m"])
     out["p_t"] = p_t
+    out["rigidity_m"] = (float(rigidity[0]), float(rigidity[1]))
     return out
+
+
+def _secant(isolator: Any, d_m: float) -> float:
+    """An isolator's secant stiffness at ``d_m`` (m) on its backbone, N/m: the force there over ``d_m``."""
+    force, before = 0.0, 0.0
+    for k, edge in zip(isolator.slopes_n_m, (*isolator.breakpoints_m, math.inf)):
+        upto = min(d_m, edge)
+        force += k * (upto - before)
+        before = upto
+        if upto >= d_m:
+            break
+    return force / d_m
 
 
 @dataclass(frozen=True, eq=False)
@@ -175,7 +195,8 @@ def moat_design(building: PlanBuilding, pairs: Any, angles_deg: Any = None, dura
     pairs : RecordPair or sequence of RecordPair
         The suite (seven or more: their mean; fewer: their largest), scaled as the design asks.
     angles_deg : array_like, optional
-        The orientations, degrees (default: every 15 degrees).
+        The orientations, degrees (default: every 15 degrees from 0 to 165: without the moat, a pair
+        turned by 180 degrees is the motion reversed, and the bearings' laws are symmetric).
     duration_s : float, optional
         Each run's length, s (default: each pair's).
     d_m_m : float, optional
@@ -232,6 +253,8 @@ def moat_design(building: PlanBuilding, pairs: Any, angles_deg: Any = None, dura
     if duration_s is not None:
         positive("duration_s", duration_s, "s")
     free = building.without_bumpers()
+    if angles_deg is None:
+        angles_deg = np.arange(0.0, 180.0, 15.0)
     names: list[str] = []
     for p in suite:  # (each pair named once: a suite may repeat a record's name)
         name, k = p.name or "pair", 2

@@ -109,8 +109,8 @@ class PlanRun(Outcome):
     [-0.004, -0.004, 0.027, 0.03]
     >>> run.contacts[["wall", "corner", "at_m"]].round(2).head(2)
       wall  corner  at_m
-    0   x-       0 -8.03
-    1   x+       2 -7.95
+    0   -x       0 -8.03
+    1   +x       2 -7.95
     """
 
     building: "PlanBuilding"

@@ -150,7 +150,27 @@ class PlanBuilding(TomlFile):
                                      "centred on 0)",
                                  fix="give a smaller eccentricity, or the floors' centres of mass nearer "
                                      "their middle")
+        self._check_within()
         self._check_restrained()
+
+    def _check_within(self) -> None:
+        """Every bearing under the base's rectangle, every frame within its floors' (an InputError naming
+        it)."""
+        a, b = self.floors[0].size_m
+        for i, bearing in enumerate(self.bearings):
+            x, y = bearing.at_m
+            if abs(x) > a / 2 or abs(y) > b / 2:
+                raise InputError(Problem.OUT_OF_RANGE, f"bearings[{i}].at_m", [x, y],
+                                 range=f"[-{a / 2:g}, {a / 2:g}] x [-{b / 2:g}, {b / 2:g}] m",
+                                 hint=" (a bearing stands under the base's rectangle, centred on 0)")
+        for i, f in enumerate(self.frames):
+            across = min(self.floors[f.storey].size_m[1 - AXES.index(f.axis)],
+                         self.floors[f.storey - 1].size_m[1 - AXES.index(f.axis)]) / 2
+            if abs(f.at_m) > across:
+                raise InputError(Problem.OUT_OF_RANGE, f"frames[{i}].at_m", f.at_m,
+                                 range=f"[-{across:g}, {across:g}] m",
+                                 hint=f" (a line along {f.axis} stands within the floors it joins, centred "
+                                      "on 0)")
 
     def _check_restrained(self) -> None:
         """Every storey and the bearings resist x, y and rotation: the stiffness at rest is positive

@@ -8,11 +8,12 @@ by ``(u, v)`` and turns by ``theta`` moves by ``(u - (p_y - c_y) theta, v + (p_x
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from typing import Any, ClassVar, Optional
 
 from .._checks import at_most, integer, non_negative, one_of, plausible, positive, real, real_tuple
-from .._errors import InputError, Problem
+from .._errors import InputError, PoundingWarning, Problem
 from .contact_laws import check_law, law_to_dict
 from .contact_laws.rigid_stop import is_rigid
 from .isolator import Isolator
@@ -84,6 +85,11 @@ class Floor:
                                  range=f"[{-side / 2:g}, {side / 2:g}] m",
                                  hint=" (the centre of mass is inside the floor's rectangle, centred on 0)")
         object.__setattr__(self, "centre_m", centre)
+        density = m / (size[0] * size[1])
+        if not 50.0 <= density <= 1e4:  # (a building's floors: some 500 to 1500 kg per m^2 of plan)
+            warnings.warn(f"floor.mass_kg = {m!r} is {density:.3g} kg per m^2 of its {size[0]:g} m by "
+                          f"{size[1]:g} m plan, outside the plausible [50, 1e4] kg/m^2: masses are in kg "
+                          "(500 t is 5.0e5)", PoundingWarning, stacklevel=3)
         if self.inertia_kg_m2 is None:
             inertia = m * (size[0] ** 2 + size[1] ** 2) / 12.0
         else:
@@ -230,7 +236,7 @@ class Bearing:
                                  expected="pounding.Isolator (a bearing's law on one axis; friction "
                                           "bearings in plan are not supported yet)")
             if iso.bouc_wen is not None:
-                raise InputError(Problem.WRONG_CONFIGURATION, f"bearing.{name}.bouc_wen", None,
+                raise InputError(Problem.WRONG_CONFIGURATION, f"bearing.{name}.bouc_wen", iso.bouc_wen,
                                  got="with a Bouc-Wen spring in a bearing in plan (not supported yet)",
                                  fix="give the bearing a multi-linear backbone (slopes_n_m, breakpoints_m)")
 
@@ -246,7 +252,7 @@ class Bearing:
         return out
 
 
-MOAT_SIDES = ("x-", "x+", "y-", "y+")  # (a rectangular moat's walls, in its gaps' order)
+MOAT_SIDES = ("-x", "+x", "-y", "+y")  # (a rectangular moat's walls, in its gaps' order)
 
 
 @dataclass(frozen=True)
@@ -283,22 +289,21 @@ class RectangularMoat:
 
     def __post_init__(self) -> None:
         gaps = real_tuple("moat.gap_m", self.gap_m)
-        if len(gaps) == 1:
-            gaps = gaps * 4
-        if len(gaps) != 4:
+        if len(gaps) not in (1, 4):
             raise InputError(Problem.LENGTH_MISMATCH, "moat.gap_m", list(gaps), got=len(gaps), expected=4,
                              hint=" (one for every wall, or the walls at -x, +x, -y, +y)")
-        for j, g in enumerate(gaps):
-            non_negative(f"moat.gap_m[{j}]", g, "m")
-            at_most(f"moat.gap_m[{j}]", g, MAX_GAP_M, " m", "give the gap in m (30 cm is 0.30)")
-            plausible(f"moat.gap_m[{j}]", g, 0.0, 2.0, "gaps are in m (a 30 cm moat is 0.30)")
-        object.__setattr__(self, "gap_m", gaps)
+        for j, g in enumerate(gaps):  # (one gap for all: checked, and warned of, once)
+            name = "moat.gap_m" if len(gaps) == 1 else f"moat.gap_m[{j}]"
+            non_negative(name, g, "m")
+            at_most(name, g, MAX_GAP_M, " m", "give the gap in m (30 cm is 0.30)")
+            plausible(name, g, 0.0, 2.0, "gaps are in m (a 30 cm moat is 0.30)")
+        object.__setattr__(self, "gap_m", gaps * 4 if len(gaps) == 1 else gaps)
         check_law("moat.law", self.law)
         if is_rigid(self.law):
             raise InputError(Problem.WRONG_CONFIGURATION, "moat.law", self.law,
                              got="with a rigid stop for a moat in plan (not supported yet: its impulse at a "
                                  "corner turns the floor)",
-                             fix="give the walls a compliant law (KelvinVoigt or HertzDamp with the wall's "
+                             fix="give the walls a compliant law (KelvinVoigt or Hertzdamp with the wall's "
                                  "stiffness)")
         object.__setattr__(self, "level", integer("moat.level", self.level, 0, MAX_STOREYS))
 

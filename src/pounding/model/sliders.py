@@ -29,5 +29,5 @@ def refuse_rigid_stops(isolator: Any, laws: Any) -> None:
             raise InputError(Problem.WRONG_CONFIGURATION, field_name, law,
                              got="with a rigid stop on a friction isolator (not supported yet: an impulse "
                                  "on a sticking base)",
-                             fix="give it a compliant law (KelvinVoigt or HertzDamp with the stop's "
+                             fix="give it a compliant law (KelvinVoigt or Hertzdamp with the stop's "
                                  "stiffness), or the isolator an elastic pre-slip (preslip_m)")

@@ -88,7 +88,8 @@ def plot_plan_orbit(run: Any, ax: Any = None) -> list:
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), frameon=False)
-    ax.set_title("orbit in plan", fontsize=9)
+    ax.set_title("orbit in plan" + (" (each corner meets only the two walls on its sides)" if moat is not None
+                                    else ""), fontsize=9)
     return artists
 
 
@@ -141,7 +142,8 @@ def plot_moat_design(design: Any, ax: Any = None) -> list:
                                   label=f"code D_TM with torsion: {d_tm:.4g} mm"))
     ax.set_xticks(x, [str(name) for name in critical.index], rotation=30, ha="right", fontsize=7)
     ax.set_ylabel("displacement (mm)")
-    ax.legend(fontsize=7, frameon=False)
+    ax.set_ylim(0.0, ax.get_ylim()[1] * 1.25)  # (room for the legend above the bars)
+    ax.legend(fontsize=7, frameon=False, loc="upper left", ncol=2)
     return artists
 
 

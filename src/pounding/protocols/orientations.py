@@ -23,6 +23,7 @@ from .._runner import Context, Progress, run_tasks
 from ..excitation.pair import RecordPair
 
 DEFAULT_STEP_DEG = 15.0
+SMALLER_IS_CRITICAL = frozenset({"clearance_min_m"})  # (the quantities whose least value is the worst)
 
 
 @dataclass(frozen=True, eq=False)
@@ -67,11 +68,12 @@ class Orientations:
 
     def critical(self, quantity: str = "disp_max_m") -> tuple[float, float]:
         """The most critical orientation for ``quantity`` (a column of :attr:`data`): ``(angle_deg, its
-        largest value)``."""
+        largest value)``; for a clearance (``clearance_min_m``: the smaller, the nearer a wall), its
+        smallest."""
         column = self._column(quantity)
         if not np.isfinite(column).any():
             return math.nan, math.nan
-        at = int(np.nanargmax(column))
+        at = int(np.nanargmin(column) if quantity in SMALLER_IS_CRITICAL else np.nanargmax(column))
         return float(self.angles_deg[at]), float(column[at])
 
     def _column(self, quantity: str) -> np.ndarray:
