@@ -160,3 +160,15 @@ def test_a_mode_that_turns_is_scaled_by_the_motion_of_a_corner():
         assert shape[np.argmax(motions)] > 0
     turning = np.argmax(np.abs(modes.shapes[2]))
     assert abs(modes.shapes[2, turning]) * reach == pytest.approx(1.0, rel=1e-12)
+
+
+def test_implausible_masses_and_gaps_warn_once():
+    import warnings
+
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        Floor(500.0, (40.0, 20.0))  # (tonnes given as kg)
+        RectangularMoat(300.0, pounding.KelvinVoigt(1e9, 1e6))  # (mm given as m: one warning, not four)
+    messages = [str(w.message) for w in caught]
+    assert len(messages) == 2, messages
+    assert "kg/m^2" in messages[0] and "moat.gap_m = 300.0" in messages[1]

@@ -438,6 +438,7 @@ def test_the_orientations_of_a_pair_turn_a_building_in_plan():
         assert found.data.loc[a + 180.0, "disp_max_m"] == pytest.approx(found.data.loc[a, "disp_max_m"],
                                                                           rel=1e-12)
     assert found.critical("disp_max_m")[1] == found.data["disp_max_m"].max()
+    assert found.critical("clearance_min_m")[1] == found.data["clearance_min_m"].min()  # (the nearest a wall)
 
 
 def test_a_run_s_times_of_its_extrema_are_where_they_were_reached():
