@@ -46,6 +46,17 @@ class PlanModel:
     vectors: list = field(default_factory=list)
 
 
+def record_pair(rng: np.random.Generator, duration_s: float, dt: float, pga: float) -> tuple:
+    """A pair of smooth random components (m/s^2, each of peak ``pga``) on one time base: ``(t, a_x,
+    a_y)``."""
+    t = np.arange(0.0, duration_s + dt / 2, dt)
+    comps = []
+    for _ in range(2):
+        a = np.convolve(rng.normal(0.0, 1.0, t.size), np.ones(7) / 7, "same")
+        comps.append(pga * a / np.max(np.abs(a)))
+    return t, comps[0], comps[1]
+
+
 @dataclass
 class PlanResult:
     yields: list = field(default_factory=list)          # (spring, t): began to slip

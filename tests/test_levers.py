@@ -30,6 +30,7 @@ from pounding.engine.layout import L_INPUT
 from pounding.engine.run_parts import EnergyLedger
 from reference_ndof import TouchAtRest
 from reference_plan import PlanModel, reference
+from reference_plan import record_pair as _record
 
 KELVIN_VOIGT = _core.LAW_IDS["kelvin_voigt"]
 BW = np.zeros(_core.LAYOUT["BW_PARAMS"])
@@ -44,16 +45,6 @@ BUDGET = 2 * 10**6  # (sub-intervals: far above what these runs take, so that a 
 def _run(sy, forcing, state0, t_end, sample_dt=0.0):
     return _core.run(sy, forcing, np.asarray(state0, dtype=float), t_end, sample_dt, 1e-10, 10**6, True,
                      _control.new_control(BUDGET))
-
-
-def _record(rng, duration_s, dt, pga):
-    """A pair of smooth random components (m/s^2) on one time base."""
-    t = np.arange(0.0, duration_s + dt / 2, dt)
-    comps = []
-    for _ in range(2):
-        a = np.convolve(rng.normal(0.0, 1.0, t.size), np.ones(7) / 7, "same")
-        comps.append(pga * a / np.max(np.abs(a)))
-    return t, comps[0], comps[1]
 
 
 def _weights(n, entries):

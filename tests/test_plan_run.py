@@ -19,6 +19,7 @@ from pounding.model.plan import PlanBuilding
 from pounding.model.plan_parts import Bearing, Floor, Frame, RectangularMoat
 from reference_ndof import TouchAtRest
 from reference_plan import PlanModel, reference
+from reference_plan import record_pair as _record
 
 ACT = _core.ACTIONS
 
@@ -27,15 +28,6 @@ def _iso(k1, k2=None, dy=0.0, c=0.0):
     if k2 is None:
         return pounding.Isolator(slopes_n_m=[k1], breakpoints_m=[], damping_n_s_m=c)
     return pounding.Isolator(slopes_n_m=[k1, k2], breakpoints_m=[dy], damping_n_s_m=c)
-
-
-def _record(rng, duration_s, dt, pga):
-    t = np.arange(0.0, duration_s + dt / 2, dt)
-    comps = []
-    for _ in range(2):
-        a = np.convolve(rng.normal(0.0, 1.0, t.size), np.ones(7) / 7, "same")
-        comps.append(pga * a / np.max(np.abs(a)))
-    return t, comps[0], comps[1]
 
 
 def _draw_building(rng, levels, gap_m, moat_level=None):

@@ -40,6 +40,18 @@ def one_or_more(field: str, value: Any, kind: type, expected: str, entry: str | 
                      expected=f"{expected} or a non-empty list of them")
 
 
+def sequence_of(field: str, items: Any, kind: type, expected: str) -> tuple:
+    """``items`` (a sequence of ``kind``, each checked and named ``field[i]``) as a tuple; ``expected`` says
+    what one is, in words (``"pounding.Storey"``)."""
+    if isinstance(items, (str, bytes, dict)) or not hasattr(items, "__iter__"):
+        raise InputError(Problem.WRONG_TYPE, field, items, got=type(items).__name__,
+                         expected=f"sequence of {kind.__name__}")
+    items = tuple(items)
+    for i, item in enumerate(items):
+        instance_of(f"{field}[{i}]", item, kind, expected)
+    return items
+
+
 def real(field: str, value: Any) -> float:
     """Return ``value`` as a finite float, or raise naming ``field``."""
     if isinstance(value, (bool, str, bytes)):  # (text that reads as a number is still text)

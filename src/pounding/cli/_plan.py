@@ -10,8 +10,7 @@ import typer
 from rich.markup import escape
 
 from .._errors import Interrupted
-from .._io import interrupts_deferred
-from ._app import console, interrupted, kv_table, save_figure, working, write_csv
+from ._app import console, kv_table, working
 
 
 def simulate_plan(building: Any, exc: Any, what: str, duration: float, velocity: float,
@@ -60,18 +59,6 @@ def simulate_plan(building: Any, exc: Any, what: str, duration: float, velocity:
         bearings.add_row(str(b), f"{row['at_x_m']:g}, {row['at_y_m']:g}",
                          f"{row['displacement_max_m'] * 1e3:.2f}", f"{row['displacement_max_time_s']:.3f}")
     console.print(bearings)
-    with interrupts_deferred() as held:  # the files are written whole, whatever Ctrl-C comes
-        if out["contacts"] is not None:
-            write_csv(run.contacts, out["contacts"])
-            console.print(f"contacts -> {out['contacts']}")
-        if out["history"] is not None:
-            write_csv(run.to_dataframe(), out["history"])
-            note = " (events only: --sample-rate 0)" if run.sample_rate_hz == 0 else ""
-            console.print(f"history -> {out['history']}{note}")
-        if plot is not None:
-            save_figure(run.plot, plot)
-    if not complete or held:
-        interrupted(f"the run up to t = {run.final_state.time_s:g} s of {duration:g} s is in the summary"
-                    + (" and the files written" if any(out.values()) or plot else ""))
-    if not run.success:
-        raise typer.Exit(code=1)
+    from ._runs import run_files
+
+    run_files(run, out, plot, duration, complete)

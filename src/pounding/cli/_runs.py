@@ -128,6 +128,12 @@ def simulate(
     add_row("energy in / residual [J]", f"{s['input_work_j']:.6g} / {s['energy_residual_j']:.2e}")
     console.print(table)
     _level_tables(run, exc)
+    run_files(run, out, plot, duration, complete)
+
+
+def run_files(run: Any, out: dict, plot: Optional[Path], duration: float, complete: bool) -> None:
+    """What ``pounding simulate`` writes of any run (its contacts, its history, its plot), whole whatever
+    Ctrl-C comes; then the word on an interrupted run, and exit code 1 for a run that did not finish."""
     with interrupts_deferred() as held:  # the files are written whole, whatever Ctrl-C comes
         if out["contacts"] is not None:
             write_csv(run.contacts, out["contacts"])

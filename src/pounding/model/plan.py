@@ -14,7 +14,7 @@ from typing import Any, ClassVar, Optional
 
 import numpy as np
 
-from .._checks import instance_of, plausible, real_tuple
+from .._checks import instance_of, plausible, real_tuple, sequence_of
 from .._errors import InputError, Problem
 from ._toml import TomlFile
 from .contact_laws import law_from_dict
@@ -99,13 +99,7 @@ class PlanBuilding(TomlFile):
     def __post_init__(self) -> None:
         for name, kind, most in (("floors", Floor, MAX_STOREYS + 1), ("bearings", Bearing, MAX_BEARINGS),
                                  ("frames", Frame, None)):
-            items = getattr(self, name)
-            if isinstance(items, (str, bytes, dict)) or not hasattr(items, "__iter__"):
-                raise InputError(Problem.WRONG_TYPE, name, items, got=type(items).__name__,
-                                 expected=f"sequence of {kind.__name__}")
-            items = tuple(items)
-            for i, item in enumerate(items):
-                instance_of(f"{name}[{i}]", item, kind, f"pounding.model.plan.{kind.__name__}")
+            items = sequence_of(name, getattr(self, name), kind, f"pounding.{kind.__name__}")
             if not items and name != "frames":
                 raise InputError(Problem.EMPTY, name, [],
                                  hint=f" ({'the base' if name == 'floors' else 'one'})")

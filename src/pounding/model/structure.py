@@ -14,7 +14,7 @@ from typing import Any, ClassVar, NamedTuple, Optional, Union
 
 import numpy as np
 
-from .._checks import (instance_of, plausible, real_tuple)
+from .._checks import (instance_of, plausible, real_tuple, sequence_of)
 from .._errors import InputError, Problem
 from ._toml import TomlFile
 from .contact_laws import law_from_dict
@@ -107,14 +107,7 @@ class Structure(TomlFile):
             instance_of("isolator", self.isolator, ISOLATORS,
                         "Isolator, FrictionIsolator, TripleFrictionPendulum or None")
         for name, kind in (("storeys", Storey), ("walls", Wall)):
-            items = getattr(self, name)
-            if isinstance(items, (str, bytes, dict)) or not hasattr(items, "__iter__"):
-                raise InputError(Problem.WRONG_TYPE, name, items, got=type(items).__name__,
-                                 expected=f"sequence of {kind.__name__}")
-            items = tuple(items)
-            for i, item in enumerate(items):
-                instance_of(f"{name}[{i}]", item, kind, kind.__name__)
-            object.__setattr__(self, name, items)
+            object.__setattr__(self, name, sequence_of(name, getattr(self, name), kind, kind.__name__))
         if len(self.storeys) > MAX_STOREYS:
             raise InputError(Problem.TOO_LARGE, "storeys", len(self.storeys), maximum=MAX_STOREYS,
                              what=" storeys", fix=f"give at most {MAX_STOREYS} storeys")
