@@ -98,3 +98,45 @@ def test_the_code_s_centre_of_stiffness_is_the_bearings_effective_one():
     assert out["rigidity_m"][1] == pytest.approx(0.0, abs=1e-12)
     # (at rest the yielding ones are the stiffer: the centre on the other side)
     assert b.centres_of_stiffness_m()[0, 0] < 0.0 < out["rigidity_m"][0]
+
+
+def test_the_command_line_designs_a_moat_and_refuses_a_line(tmp_path):
+    from pathlib import Path
+
+    import pandas as pd
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+
+    examples = Path(__file__).parents[1] / "examples"
+    plan, record = examples / "plan_building.toml", examples / "el_centro_ns.AT2"
+    runner = CliRunner()
+    args = ["moat", str(plan), "--record-x", str(record), "--record-y", str(record), "--scale", "0.5",
+            "--angles", "0,45,90", "--duration", "5", "--d-m", "0.05", "--scheduler", "serial",
+            "--out", str(tmp_path)]
+    done = runner.invoke(app, args, catch_exceptions=False)
+    assert done.exit_code == 0, done.output
+    building = PlanBuilding.from_toml(plan)
+    quake = pounding.Record.from_at2(record)
+    pair = pounding.RecordPair(quake, quake).scaled(0.5)
+    found = design.moat_design(building, pair, [0.0, 45.0, 90.0], 5.0, d_m_m=0.05, scheduler="serial")
+    words = " ".join(done.output.split())
+    assert f"the design displacement: {found.design_displacement_m:.4g} m, the largest of 1 pairs" in words
+    assert f"D_TM: {found.code['d_tm_m']:.4g} m" in words
+    need = max(found.design_displacement_m, found.code["d_tm_m"])
+    verdict = "enough" if 0.15 >= need else f"short by {need - 0.15:.4g} m"
+    assert f"the moat's smallest gap 0.15 m against {need:.4g} m: {verdict}" in words
+    runs = pd.read_csv(tmp_path / "moat_runs.csv")
+    assert runs["disp_max_m"].to_numpy() == pytest.approx(found.data["disp_max_m"].to_numpy(), rel=1e-12)
+    critical = pd.read_csv(tmp_path / "moat_critical.csv")
+    assert critical["angle_deg"].tolist() == found.critical["angle_deg"].tolist()
+    assert (tmp_path / "moat_design.png").stat().st_size > 0
+    line = examples / "building_moat.toml"
+    for bad, words in ((["moat", str(line), "--record-x", str(record), "--record-y", str(record)],
+                        "not a building in plan"),
+                       (["moat", str(plan), "--record-x", str(record), "--record-y", str(record),
+                         "--scale", "-1"], "--scale"),
+                       (["moat", str(plan), "--record-x", str(record)], "--record-y")):
+        refused = runner.invoke(app, [*bad, "--out", str(tmp_path / "no")])
+        assert refused.exit_code != 0 and words in " ".join(refused.output.split()), (bad, refused.output)
+    assert not (tmp_path / "no").exists()

@@ -1,7 +1,7 @@
 """The ``pounding`` command: ``simulate``, ``sweep``, ``campaign``, ``reproduce``, ``identify``,
-``lab``, ``spectrum``, ``rotd``, ``orientations``, ``study``, ``design``, ``continue``, ``coexistence``,
-``bifurcation``, ``basins``, ``lyapunov`` (and ``warm-up``, hidden: a no-op since the core is compiled at
-install, kept for scripts).
+``lab``, ``spectrum``, ``rotd``, ``orientations``, ``moat``, ``study``, ``design``, ``continue``,
+``coexistence``, ``bifurcation``, ``basins``, ``lyapunov`` (and ``warm-up``, hidden: a no-op since the
+core is compiled at install, kept for scripts).
 
 Every command checks its inputs and its output paths before any work, writes its files
 atomically, answers bad input with exit code 2 and a line naming the field and the fix, a

@@ -130,3 +130,72 @@ def orientations(
                   f"{least:.4g} m) over {result.angles_deg.size} angles; files -> {out}")
     if not complete or held:
         interrupted(f"the finished angles are in {out} (NaN where a run did not finish)")
+
+
+@command("moat")
+def moat(
+    path: Path = typer.Argument(..., metavar="PLAN.toml",
+                                help="A building in plan ([[floors]], [[bearings]]; see "
+                                     "examples/plan_building.toml)."),
+    record_x: Optional[Path] = OPT_X,
+    record_y: Optional[Path] = OPT_Y,
+    record_set: Optional[str] = OPT_SET,
+    normalized: bool = OPT_NORMALIZED,
+    scale: float = typer.Option(1.0, "--scale", help="Every pair's components times this factor."),
+    angles: str = typer.Option("0:165:15", "--angles", help="Orientations, degrees from x towards y: "
+                               "start:stop:step or a list, in [0, 360)."),
+    duration: Optional[float] = typer.Option(None, "--duration", help="Each run's length, s (default: each "
+                                             "pair's)."),
+    d_m: Optional[float] = typer.Option(None, "--d-m", help="The code's maximum displacement D_M at the "
+                                        "centre, m: its total maximum displacement with torsion beside."),
+    scheduler: str = OPT_SCHEDULER,
+    workers: Optional[int] = typer.Option(None, "--workers",
+                                          help="Threads or processes (default: every core)."),
+    out: Path = typer.Option(..., "--out", help="Directory for the CSV, netCDF and PNG files."),
+) -> None:
+    """The moat's gap a building in plan needs: each pair at each orientation without the moat, each pair's
+    most critical one, the suite's mean (seven pairs or more) or largest, and the code's D_TM beside."""
+    from .._checks import positive
+    from ..design.moat_in_plan import moat_design
+    from ..model.plan import PlanBuilding
+
+    out = folder("--out", out)
+    building = system(path, None)
+    if not isinstance(building, PlanBuilding):
+        raise typer.BadParameter(f"{path} is not a building in plan ([[floors]]): for a structure on a line, "
+                                 "pounding design chooses its gap")
+    positive("--scale", scale, "")
+    pairs = _pairs(record_x, record_y, record_set, normalized)
+    if scale != 1.0:
+        pairs = [p.scaled(scale) for p in pairs]
+    angles_deg = grid("--angles", angles)
+    n_angles = len(angles_deg)
+    console.print(f"{len(pairs)} pair(s) x {n_angles} orientations = {len(pairs) * n_angles} runs without "
+                  "the moat")
+    try:
+        found = moat_design(building, pairs, angles_deg, duration, d_m_m=d_m, workers=workers,
+                            scheduler=scheduler, progress=True)
+    except Interrupted as stop:
+        if stop.partial is None:
+            interrupted("no pair had finished: nothing was written")
+            return
+        found = stop.partial
+    with interrupts_deferred() as held:  # every file whole
+        out.mkdir(parents=True, exist_ok=True)
+        write_csv(found.to_dataframe().reset_index(), out / "moat_runs.csv")
+        write_csv(found.critical.reset_index(), out / "moat_critical.csv")
+        save_figure(lambda: found.plot(), out / "moat_design.png")
+    rule = "mean" if found.attrs["rule"] == "mean" else "largest"
+    console.print(f"the design displacement: {found.design_displacement_m:.4g} m, the {rule} of "
+                  f"{len(found.critical)} pairs' critical largest bearing displacements in plan")
+    if found.code:
+        console.print(f"the code's total maximum displacement with torsion D_TM: "
+                      f"{found.code['d_tm_m']:.4g} m (P_T {found.code['p_t']:.3g})")
+    if building.moat is not None:
+        gap = min(building.moat.gap_m)
+        need = max(found.design_displacement_m, found.code.get("d_tm_m", 0.0))
+        said = "enough" if gap >= need else f"short by {need - gap:.4g} m"
+        console.print(f"the moat's smallest gap {gap:.4g} m against {need:.4g} m: {said}")
+    console.print(f"files -> {out}")
+    if not found.attrs["complete"] or held:
+        interrupted(f"the finished pairs are in {out}")
