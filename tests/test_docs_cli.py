@@ -93,9 +93,10 @@ def test_every_shipped_example_file_reads_without_a_warning():
         pounding.ModelFamily.from_toml(examples / "family.toml")
         for name in ("study_gaps", "study_moat"):
             StudySpec.from_toml(examples / f"{name}.toml")
-        for name in ("design_ups", "design_building"):
+        for name in ("design_ups", "design_building", "design_plan_building"):
             DesignPlan.from_toml(examples / f"{name}.toml")
         pounding.Record.from_at2(examples / "el_centro_ns.AT2")
     shipped = {p.stem for p in examples.glob("*.toml")}
     assert shipped == set(SYSTEMS) | {"targets", "family", "study_gaps", "study_moat", "design_ups",
-                                      "design_building"}, "a new example: read it here too"
+                                      "design_building", "design_plan_building"}, \
+        "a new example: read it here too"

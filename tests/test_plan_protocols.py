@@ -101,3 +101,107 @@ def test_stripes_of_a_building_in_plan_under_pairs(tmp_path):
         free.outcomes("contact")
     reach = free.outcomes("contact", 0.1)
     assert np.array_equal(reach.values, (free.data["disp_max_m"] >= 0.1).astype(float).values)
+
+
+# ---------------------------------------------------------------------------------------- the design
+def test_a_suite_of_pairs_is_scaled_by_its_rotd100():
+    pairs = pounding.records.fema_p695_pairs("far_field")[:3]
+    target = design.asce7_spectrum(1.0, 0.6)
+    suite = design.scale_suite(pairs, target, period_range_s=(1.5, 2.5), n_periods=5)
+    rule = np.geomspace(1.5, 2.5, 5)
+    rotd100 = pounding.rotd_spectrum(pairs, rule)["rotd100_psa_g"].values  # (pairs, periods)
+    # one factor, the smallest that keeps the mean RotD100 nowhere below the target (ASCE 7-16 17.3.3)
+    factor = float(np.max(target.sa_g(rule) / rotd100.mean(axis=0)))
+    assert suite.factors == pytest.approx([factor] * 3, rel=1e-12)
+    assert suite.shortfall() == pytest.approx(1.0, rel=1e-9)
+    assert all(isinstance(p, pounding.RecordPair) for p in suite.records)
+    assert suite.records[1].x.accel == pytest.approx(factor * pairs[1].x.accel, rel=1e-15)
+    assert suite.records[1].y.accel == pytest.approx(factor * pairs[1].y.accel, rel=1e-15)
+    assert float(suite.spectra["pga_g"][0]) == pytest.approx(factor * pairs[0].peak_vector_g, rel=1e-12)
+    assert "3 pairs" in repr(suite)
+    with pytest.raises(InputError, match="records"):
+        design.scale_suite([pairs[0], pounding.records.el_centro()], target, period_s=2.0)
+
+
+PLAN_DESIGN = """
+title = "a moat in plan"
+[system]
+file = "{plan}"
+[site]
+code = "asce7-16"
+s_ds_g = 1.0
+s_d1_g = 0.6
+[records]
+suite = ["fema-p695-pair:far_field:0", "fema-p695-pair:far_field:4"]
+period_s = 2.5
+levels_g = [0.2, 0.5]
+[design]
+gaps_m = [0.1, 0.5]
+target_probability = 0.5
+t_m_s = 2.5
+beta_m = 0.15
+[run]
+scheduler = "serial"
+"""
+
+
+def _design_file(tmp_path, text=PLAN_DESIGN):
+    path = tmp_path / "design.toml"
+    path.write_text(text.replace("{plan}", (EXAMPLES / "plan_building.toml").as_posix()))
+    return path
+
+
+def test_a_design_file_designs_a_building_in_plan_s_moat(tmp_path):
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+    from pounding.design.plan import DesignPlan
+
+    plan = DesignPlan.from_toml(_design_file(tmp_path))
+    b = PlanBuilding.from_toml(EXAMPLES / "plan_building.toml")
+    assert plan.in_plan and plan.gap_dim == "moat.gap_m" and plan.grid == {"moat.gap_m": [0.1, 0.5]}
+    # the code's clearance: D_TM with the building's torsion, from D_M at T_M
+    d_m = design.asce7_displacement(1.5 * 0.6, 2.5, 0.15)["d_m_m"]
+    assert plan.code_minimum_gap_m == design.asce7_torsion(b, d_m)["d_tm_m"] > 1.15 * d_m
+    out = tmp_path / "report"
+    done = CliRunner().invoke(app, ["design", str(_design_file(tmp_path)), "--out", str(out)])
+    assert done.exit_code == 0, done.output
+    analysis = design.open_stripe_analysis(out / "runs.zarr")
+    alone = design.stripe_analysis(b, plan.records, plan.levels_g, period_s=2.5,
+                                   store=str(tmp_path / "again.zarr"), grid=plan.grid, scheduler="serial",
+                                   progress=False)
+    assert np.array_equal(analysis.data["impacts"].values, alone.data["impacts"].values)
+    page = (out / "index.html").read_text()
+    assert "a corner of the floor the moat surrounds strikes a wall" in page and "mean RotD100" in page
+    import pandas as pd
+
+    table = pd.read_csv(out / "decision.csv")
+    assert list(table["moat.gap_m"]) == [0.1, 0.5]
+
+
+SUITE = 'suite = ["fema-p695-pair:far_field:0", "fema-p695-pair:far_field:4"]'
+
+
+@pytest.mark.parametrize("change, field, words", [
+    ((SUITE, 'suite = "fema-p695:far_field"'), "records.suite", "pairs of components"),
+    (("gaps_m = [0.1, 0.5]", "gaps_m = [0.1, 0.5]\nwall = 0"), "design.wall", "moat.gap_m"),
+])
+def test_a_bad_design_of_a_building_in_plan_is_named(tmp_path, change, field, words):
+    from pounding.design.plan import DesignPlan
+
+    with pytest.raises(InputError) as err:
+        DesignPlan.from_toml(_design_file(tmp_path, PLAN_DESIGN.replace(*change)))
+    assert err.value.field == field and words in str(err.value)
+
+
+def test_a_design_needs_a_moat_in_plan_and_a_line_refuses_pairs(tmp_path):
+    from pounding.design.plan import DesignPlan
+
+    free = tmp_path / "free.toml"
+    PlanBuilding.from_toml(EXAMPLES / "plan_building.toml").without_bumpers().to_toml(free)
+    with pytest.raises(InputError, match="moat"):
+        DesignPlan.from_toml(_design_file(tmp_path, PLAN_DESIGN.replace("{plan}", free.as_posix())))
+    line = PLAN_DESIGN.replace("{plan}", (EXAMPLES / "building_moat.toml").as_posix())
+    with pytest.raises(InputError) as err:
+        DesignPlan.from_toml(_design_file(tmp_path, line))
+    assert err.value.field == "records.suite" and "single components" in str(err.value)

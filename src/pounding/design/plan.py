@@ -19,11 +19,13 @@ from .._checks import float_array, integer, one_of, parse_toml, positive, read_t
 from .._errors import InputError, Problem
 from ..model import Oscillator
 from ..model.oscillator import check_keys
+from ..model.plan import PlanBuilding
 from ..engine.assembly import MASS, STRUCTURE, is_single_mass, kind_of, structures_of
 from ..studies.spec import check_table, system_from_table
 from .hazard import HazardCurve
 from .site import hazard_curve_of, site_spectra, text_field as _text
 from .spectra import DesignSpectrum, asce7_displacement
+from .moat_in_plan import asce7_torsion
 from .bumper_types import BumperType, bumper_types, grid_of, typed_store
 from .stripes import suite_sources
 
@@ -45,16 +47,17 @@ class DesignPlan:
     Attributes
     ----------
     title : str
-    system : Oscillator or Structure
+    system : Oscillator, Structure or PlanBuilding
         The base system, with its bumpers (the grid varies their gap and numbers); or a building
-        with its moat's wall (the grid varies that wall's gaps, ``walls[w].gap_m``).
+        with its moat's wall (the grid varies that wall's gaps, ``walls[w].gap_m``); or a building in
+        plan with its moat (the grid varies its four gaps, ``moat.gap_m``), under pairs of components.
     design_spectrum, mce_spectrum : DesignSpectrum
         The two levels (ASCE 7-16: design and MCE_R; EN 1998-1: the spectrum and ``mce_factor``
         times it; a user's: two tables).
     hazard : HazardCurve or None
         The site's hazard curve for Sa(``period_s``), if given.
     records : list of str
-        The suite's record names.
+        The suite's record names (a building in plan's: pairs, ``fema-p695-pair:<set>:<index>``).
     period_s : float
         The intensity measure's period.
     levels_g : numpy.ndarray
@@ -70,7 +73,8 @@ class DesignPlan:
     level : str
     years : float
     code_minimum_gap_m : float or None
-        ASCE 7-16's D_TM from ``t_m_s`` and ``beta_m`` (when given).
+        ASCE 7-16's D_TM from ``t_m_s`` and ``beta_m`` (when given; a building in plan's with its
+        torsion, :func:`asce7_torsion`).
     scheduler : str or None
     workers : int or None
     store : Path or None
@@ -80,7 +84,8 @@ class DesignPlan:
     bumper_types : tuple of BumperType
         (above)
     gap_dim : str
-        The grid's gap: ``bumpers.gap_m``, or a building's ``walls[w].gap_m`` (``[design] wall``).
+        The grid's gap: ``bumpers.gap_m``, a building's ``walls[w].gap_m`` (``[design] wall``), or a
+        building in plan's ``moat.gap_m``.
     event : str
         The demand the target is on: ``contact`` (pounding, default), or ``displacement``,
         ``acceleration`` (one mass), ``drift``, ``top_acceleration`` (a building) beyond ``limit``.
@@ -113,8 +118,13 @@ class DesignPlan:
 
     @property
     def building(self) -> bool:
-        """Whether the system is a building (a Structure) rather than one mass."""
+        """Whether the system is a building (a Structure or a PlanBuilding) rather than one mass."""
         return not is_single_mass(self.system)
+
+    @property
+    def in_plan(self) -> bool:
+        """Whether the system is a building in plan (its records pairs of components)."""
+        return isinstance(self.system, PlanBuilding)
 
     @property
     def kinds(self) -> tuple:
@@ -145,16 +155,21 @@ class DesignPlan:
         check_keys(table, "", TOP_KEYS, ("system", "site", "records", "design"))
         system = system_from_table(table["system"], base)
         kind = kind_of(system)
-        building = kind == STRUCTURE
-        if kind not in (MASS, STRUCTURE):
+        in_plan = isinstance(system, PlanBuilding)
+        building = kind == STRUCTURE or in_plan
+        if kind not in (MASS, STRUCTURE) and not in_plan:
             raise InputError(Problem.WRONG_MODE, "system", type(system).__name__,
-                             mode="one mass (an Oscillator) or one building (a Structure)",
+                             mode="one mass (an Oscillator), one building (a Structure) or one building "
+                                  "in plan (a PlanBuilding)",
                              fix="design the gap of one building at a time: give its file")
         if building and "bumpers" in table:
             raise InputError(Problem.WRONG_MODE, "bumpers", "[bumpers]", mode="one mass's design",
                              fix="a building's walls are in its file: its design varies a wall's gaps "
                                  "(design.gaps_m, and design.wall for a wall other than walls[0])")
-        if building and not system.walls:
+        if in_plan and system.moat is None:
+            raise InputError(Problem.MISSING_KEY, "system", None,
+                             choices="a building in plan with its [moat]: a design chooses its gap")
+        if building and not in_plan and not system.walls:
             raise InputError(Problem.MISSING_KEY, "system", None,
                              choices="a building with a wall (walls[0], its moat): a design chooses its gap")
         if "bumpers" in table:
@@ -174,6 +189,13 @@ class DesignPlan:
         check_keys(rec, "records.", RECORD_KEYS, ("suite", "period_s"))
         records = suite_sources(rec["suite"])
         records = [_path(r, base) for r in records]
+        if in_plan != all(isinstance(r, str) and r.startswith("fema-p695-pair:") for r in records):
+            raise InputError(Problem.WRONG_MODE, "records.suite", rec["suite"],
+                             mode="a building in plan" if not in_plan else "a system on a line",
+                             fix=("a building in plan is designed under pairs of components: suite = "
+                                  "\"fema-p695-pair:far_field\" (or near_field), or a list of "
+                                  "\"fema-p695-pair:<set>:<index>\"") if in_plan else
+                                 "give single components (\"fema-p695:far_field\") to a system on a line")
         period = positive("records.period_s", rec["period_s"], "s")
         try:
             design_sa, mce_sa = float(design_spec.sa_g(period)), float(mce_spec.sa_g(period))
@@ -225,7 +247,13 @@ class DesignPlan:
                 fix=f"give the gaps in m ({gaps[i]:g} mm is {gaps[i] / 1e3:g})",
             )
         gap_dim = "bumpers.gap_m"
-        if building:
+        if in_plan:
+            if "wall" in des:
+                raise InputError(Problem.WRONG_MODE, "design.wall", des["wall"], mode="a building's design",
+                                 fix="leave design.wall out: a building in plan's moat has its four gaps "
+                                     "(moat.gap_m)")
+            gap_dim = "moat.gap_m"
+        elif building:
             wall = integer("design.wall", des.get("wall", 0), 0, len(system.walls) - 1,
                            f"the building has {len(system.walls)} wall(s): walls[0] ...")
             gap_dim = f"walls[{wall}].gap_m"
@@ -263,7 +291,8 @@ class DesignPlan:
                 raise InputError(Problem.MISSING_KEY, "design.t_m_s", None, choices="t_m_s with beta_m")
             s_m1 = 1.5 * design_spec.params["s_d1_g"]
             try:
-                code_min = asce7_displacement(s_m1, des["t_m_s"], des.get("beta_m", 0.05))["d_tm_m"]
+                code = asce7_displacement(s_m1, des["t_m_s"], des.get("beta_m", 0.05))
+                code_min = asce7_torsion(system, code["d_m_m"])["d_tm_m"] if in_plan else code["d_tm_m"]
             except InputError as exc:
                 raise exc.relabel("damping_ratio", "design.beta_m").relabel(
                     "period_s", "design.t_m_s"
@@ -321,6 +350,8 @@ class DesignPlan:
 def own_kind(system: Any, grid: dict, gap_dim: str) -> BumperType:
     """The base system's own bumpers over the design grid, named by their law; a building's: the wall of
     ``gap_dim`` (``walls[w].gap_m``), named by its left side's law."""
+    if isinstance(system, PlanBuilding):
+        return BumperType(system.moat.law.TYPE, system, grid)
     wall = int(gap_dim.split("[")[1].split("]")[0]) if gap_dim.startswith("walls[") else 0  # (bumpers: 0)
     return BumperType(structures_of(system)[0][0].walls[wall].left.TYPE, system, grid)
 
@@ -352,7 +383,8 @@ def _check_runs(system: Any, records: list, levels: np.ndarray, period: float, g
 
 def _path(value: Any, base: Path) -> Any:
     """A record file or a store, relative to the design file (names of built-in records kept)."""
-    if not isinstance(value, str) or value == "el-centro" or value.startswith("fema-p695:"):
+    if not isinstance(value, str) or value == "el-centro" or value.startswith(("fema-p695:",
+                                                                                "fema-p695-pair:")):
         return value
     return str((base / Path(value).expanduser()).resolve())
 
@@ -380,12 +412,13 @@ def run_plan(
     without bumpers (:func:`free_store`), the fragility of pounding at every design point and the
     decision over them all."""
     from ..excitation.spectrum import check_records
-    from ..studies.points import load_record
+    from ..studies.points import load_pair, load_record
     from .decision import decide
     from .stripes import stripe_analysis
     from .suite import scale_suite
 
-    recs = check_records([load_record(r) for r in plan.records])
+    recs = [load_pair(r) for r in plan.records] if plan.in_plan else check_records([load_record(r)
+                                                                                   for r in plan.records])
     suite = scale_suite(recs, plan.mce_spectrum, period_range_s=plan.scale_range_s, n_periods=21)
     common = dict(
         period_s=plan.period_s,
@@ -409,7 +442,8 @@ def run_plan(
                 fragilities[key] = analysis.fragility(plan.event, plan.limit, at=at, n_bootstrap=500)
             except InputError:  # (no estimate: all or nothing, or separated stripes; the table says which)
                 continue
-    alone = replace(plan.system, walls=()) if plan.building else plan.system.without_bumpers()
+    alone = (replace(plan.system, walls=()) if plan.building and not plan.in_plan
+             else plan.system.without_bumpers())
     free = stripe_analysis(alone, plan.records, plan.levels_g, store=free_store(store), **common)
     decision = decide(
         analyses if len(analyses) > 1 else next(iter(analyses.values())),

@@ -8,6 +8,8 @@ Two rules, as codes and FEMA P695 use them:
   suite's mean pseudo-spectral acceleration is nowhere below ``not_below`` times the target in
   the range (ASCE 7-16 17.3.3 asks this of isolated structures over 0.75 T_M to 1.25 T_M).
 
+A suite of pairs of components is scaled by its maximum-direction spectra (RotD100,
+:func:`pounding.rotd_spectrum`), each pair's two components by one factor, as ASCE 7-16 17.3.3 asks.
 The spectra are exact for the records as the engine sees them
 (:func:`pounding.response_spectrum`); a linear oscillator's response scales with its input,
 so each record's spectrum is computed once and multiplied.
@@ -22,8 +24,9 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import instance_of, integer, positive, real
+from .._checks import instance_of, integer, one_or_more, positive, real
 from .._errors import InputError, PoundingWarning, Problem
+from ..excitation.pair import RecordPair
 from ..excitation.record import Record
 from ..excitation.spectrum import check_records, response_spectrum
 from .spectra import DesignSpectrum
@@ -39,8 +42,8 @@ class ScaledSuite:
 
     Attributes
     ----------
-    records : tuple of Record, shape (r,)
-        The scaled records (``meta["scale_factor"]`` says by how much).
+    records : tuple of Record or of RecordPair, shape (r,)
+        The scaled records or pairs (``meta["scale_factor"]`` says by how much).
     factors : numpy.ndarray, shape (r,)
         The factor of each record (all equal over a period range).
     target : DesignSpectrum
@@ -50,8 +53,9 @@ class ScaledSuite:
     not_below : float
         The fraction of the target the mean was kept above (range rule).
     spectra : xarray.Dataset
-        The scaled records' spectra (:func:`pounding.response_spectrum`'s variables) at
-        ``PLOT_PERIODS_S`` and the rule's periods, dims ``(record, period_s)``.
+        The scaled records' spectra (:func:`pounding.response_spectrum`'s variables; a pair's: its
+        RotD100 ``psa_g`` and ``sd_m``, its peak vector as ``pga_g``) at ``PLOT_PERIODS_S`` and the
+        rule's periods, dims ``(record, period_s)``.
 
     Examples
     --------
@@ -64,7 +68,7 @@ class ScaledSuite:
     [2.183, 0.696, 0.3]
     """
 
-    records: tuple[Record, ...]
+    records: tuple[Record | RecordPair, ...]
     factors: np.ndarray
     target: DesignSpectrum
     method: str
@@ -121,14 +125,15 @@ class ScaledSuite:
     def __repr__(self) -> str:
         lo, hi = self.period_range_s
         where = f"at {lo:g} s" if lo == hi else f"over {lo:g}-{hi:g} s"
+        what = "pairs" if isinstance(self.records[0], RecordPair) else "records"
         return (
-            f"ScaledSuite({len(self.records)} records {where}, factors {self.factors.min():.3g}-"
+            f"ScaledSuite({len(self.records)} {what} {where}, factors {self.factors.min():.3g}-"
             f"{self.factors.max():.3g}, target {self.target.name!r})"
         )
 
 
 def scale_suite(
-    records: Record | Sequence[Record],
+    records: Record | RecordPair | Sequence[Record] | Sequence[RecordPair],
     target: DesignSpectrum,
     *,
     period_s: float | None = None,
@@ -141,8 +146,9 @@ def scale_suite(
 
     Parameters
     ----------
-    records : Record or sequence of Record
-        The suite (e.g. :func:`pounding.records.fema_p695`).
+    records : Record, RecordPair or a sequence of either
+        The suite (e.g. :func:`pounding.records.fema_p695`), or a suite of pairs
+        (:func:`pounding.records.fema_p695_pairs`), scaled by their RotD100 spectra.
     target : DesignSpectrum
         From :func:`asce7_spectrum`, :func:`ec8_spectrum` or :func:`user_spectrum`.
     period_s : float, optional
@@ -179,7 +185,10 @@ def scale_suite(
     >>> round(float(suite.factors[0]), 3)
     3.275
     """
-    recs = check_records(records)
+    pairs = isinstance(records, RecordPair) or (isinstance(records, Sequence) and len(records) > 0
+                                                 and isinstance(records[0], RecordPair))
+    recs = (one_or_more("records", records, RecordPair, "pounding.RecordPair (a suite is all pairs or all "
+                        "records)") if pairs else check_records(records))
     instance_of("target", target, DesignSpectrum,
                 "pounding.design.DesignSpectrum (asce7_spectrum, ec8_spectrum, ...)")
     if (period_s is None) == (period_range_s is None):
@@ -211,7 +220,7 @@ def scale_suite(
         )
     wanted = target.sa_g(rule)
     periods = np.unique(np.concatenate([PLOT_PERIODS_S, rule]))
-    raw = response_spectrum(recs, periods, zeta)
+    raw = _rotd100(recs, periods, zeta) if pairs else response_spectrum(recs, periods, zeta)
     psa = raw["psa_g"].sel(period_s=rule).values  # (records, rule periods)
     names = list(raw["record"].values)
     if method == "period":
@@ -251,10 +260,27 @@ def scale_suite(
     scaled = tuple(_scaled(r, f) for r, f in zip(recs, factors))
     spectra = raw.copy()
     for var in ("sd_m", "sv_m_s", "sa_m_s2", "psv_m_s", "psa_m_s2", "sa_g", "psa_g"):
-        spectra[var] = raw[var] * factors[:, None]
+        if var in raw:
+            spectra[var] = raw[var] * factors[:, None]
     spectra["pga_g"] = raw["pga_g"] * factors
     spectra["scale_factor"] = ("record", factors)
     return ScaledSuite(scaled, factors, target, method, (lo, hi), fraction, spectra)
+
+
+def _rotd100(pairs: list[RecordPair], periods: np.ndarray, zeta: float) -> Any:
+    """The pairs' maximum-direction spectra as a suite's: ``psa_g`` and ``sd_m`` their RotD100, ``pga_g``
+    their peak vector, dims ``(record, period_s)``."""
+    import xarray as xr
+
+    from ..excitation.rotd import rotd_spectrum
+
+    rot = rotd_spectrum(pairs, periods, zeta)
+    dims = ("record", "period_s")
+    return xr.Dataset({"psa_g": (dims, rot["rotd100_psa_g"].values, {"units": "g"}),
+                       "sd_m": (dims, rot["rotd100_sd_m"].values, {"units": "m"}),
+                       "pga_g": ("record", rot["peak_vector_g"].values, {"units": "g"})},
+                      coords={"record": rot["pair"].values, "period_s": rot["period_s"].values},
+                      attrs={**rot.attrs, "measure": "RotD100"})
 
 
 def _range(period_range_s: Any) -> tuple[float, float]:
@@ -278,7 +304,9 @@ def _range(period_range_s: Any) -> tuple[float, float]:
     return lo, hi
 
 
-def _scaled(record: Record, factor: float) -> Record:
+def _scaled(record: Record | RecordPair, factor: float) -> Record | RecordPair:
+    if isinstance(record, RecordPair):
+        return record.scaled(float(factor))
     return record.scaled(factor=float(factor))
 
 

@@ -150,7 +150,8 @@ def plot_scaled_suite(suite: Any, ax: Any = None) -> list:
             suite.mean_psa_g().values,
             color="C0",
             lw=2.2,
-            label=f"mean of {len(suite.records)} scaled records",
+            label=(f"mean RotD100 of {len(suite.records)} scaled pairs" if suite.spectra.attrs.get("measure")
+                   else f"mean of {len(suite.records)} scaled records"),
         )[0]
     )
     tt = t[(t >= t.min()) & (t <= t.max())]
@@ -174,7 +175,8 @@ def plot_scaled_suite(suite: Any, ax: Any = None) -> list:
         artists.append(ax.axvline(lo, color="C1", lw=1.0, label=f"scaled at {lo:g} s"))
     ax.set_xscale("log")
     ax.set_xlabel("period T [s]")
-    ax.set_ylabel(f"PSa [g], {100 * suite.damping_ratio:g} % damping")
+    measure = suite.spectra.attrs.get("measure")
+    ax.set_ylabel(f"{measure + ' ' if measure else ''}PSa [g], {100 * suite.damping_ratio:g} % damping")
     ax.set_ylim(bottom=0.0)
     place_legend(ax)
     return artists

@@ -12,6 +12,14 @@ import pandas as pd
 from .._io import atomic_write, write_text
 from .html import CSS, figure_html
 
+ONE_DIRECTION = ("The records are single horizontal components and the mass moves in one direction: the "
+                 "codes' maximum-direction or SRSS spectra of two components are not formed.")
+IN_PLAN = ("Each run takes a pair's two components at once, in the building's axes as recorded; each pair is "
+           "scaled by one factor (its maximum-direction spectrum, RotD100, for the intensity measure and the "
+           "suite's scaling). A run pounds when a corner of the floor the moat surrounds strikes a wall; the "
+           "code's clearance is its total maximum displacement D_TM with the building's torsion (actual and "
+           "5 % accidental eccentricity). Other orientations of the pairs are not run: pounding.orientations "
+           "and pounding moat turn them.")
 NOTES = (
     "The intensity measure is the pseudo-spectral acceleration at the stated period, with the stated "
     "damping, of each record as the engine sees it (linear between samples); each record is scaled to each "
@@ -27,8 +35,7 @@ NOTES = (
     "above the target, the runs cannot show the target is met, and the verdict says so.",
     "The probability in the exposure time needs the site's hazard curve for the same intensity and a fitted "
     "curve; it is blank for a design point without one.",
-    "The records are single horizontal components and the mass moves in one direction: the codes' "
-    "maximum-direction or SRSS spectra of two components are not formed.",
+    ONE_DIRECTION,
     "A run that stopped early (over its budget, a Zeno sequence) counts when it had already pounded, and "
     "is left out otherwise; the table of statuses says how many stopped.",
 )
@@ -300,7 +307,8 @@ def write_report(outcome: Any, folder: Path) -> Path:
         f"<h2>Fragility of {e(decision.event_words())} per design point</h2>",
         _table(fragility) if len(fragility) else "<p>No design point has a fitted curve.</p>",
         "<h2>The suite scaled to the MCE level</h2>",
-        f"<p>One factor for the suite so that its mean is not below the MCE spectrum from "
+        f"<p>One factor for the suite so that its mean{' RotD100' if plan.in_plan else ''} is not below the "
+        f"MCE spectrum from "
         f"{plan.scale_range_s[0]:g} to {plan.scale_range_s[1]:g} s: "
         f"x {outcome.suite.factors[0]:.4g}.</p>",
         "<h2>Figures</h2>",
@@ -311,7 +319,7 @@ def write_report(outcome: Any, folder: Path) -> Path:
     for kind in plan.kinds:
         parts += [f"<h3>{e(kind.name)} bumpers</h3>" if several else "", f"<pre>{e(repr(kind.system))}</pre>"]
     parts.append("<h2>Reading the results</h2><ul>")
-    parts += [f"<li>{e(n)}</li>" for n in NOTES]
+    parts += [f"<li>{e(IN_PLAN if n == ONE_DIRECTION and plan.in_plan else n)}</li>" for n in NOTES]
     parts += ["</ul></body></html>"]
     page = folder / "index.html"
     write_text(page, "\n".join(parts))
