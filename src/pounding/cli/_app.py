@@ -20,7 +20,7 @@ from rich.table import Table
 from typer.core import TyperCommand, TyperGroup
 
 from .._errors import InputError, MissingExtra, OutputError, PoundingWarning, Problem, StoreError
-from .._io import FIGURE_SUFFIXES, atomic_write, output_dir, output_file
+from .._io import FIGURE_SUFFIXES, atomic_write, interrupts_deferred, output_dir, output_file
 
 NO_METAVAR = ""  # flags show no "<bool>" in the help
 
@@ -416,3 +416,25 @@ def float_list(option: str, text: str) -> list[float]:
             raise typer.BadParameter(f"{part.strip()!r} is not a number; give numbers separated by commas, "
                                      f"e.g. {option} 1.4,1.6,1.8") from None
     return out
+
+
+def run_files(run: Any, out: dict, plot: Optional[Path], duration: float, complete: bool) -> None:
+    """What ``pounding simulate`` writes of any run (its contacts, its history, its plot), whole whatever
+    Ctrl-C comes; then the word on an interrupted run, and exit code 1 for a run that did not finish."""
+    with interrupts_deferred() as held:  # the files are written whole, whatever Ctrl-C comes
+        if out["contacts"] is not None:
+            write_csv(run.contacts, out["contacts"])
+            console.print(f"contacts -> {out['contacts']}")
+        if out["history"] is not None:
+            write_csv(run.to_dataframe(), out["history"])
+            note = " (events only: --sample-rate 0)" if run.sample_rate_hz == 0 else ""
+            console.print(f"history -> {out['history']}{note}")
+        if plot is not None:
+            save_figure(run.plot, plot)
+    if not complete or held:
+        interrupted(
+            f"the run up to t = {run.final_state.time_s:g} s of {duration:g} s is in the summary"
+            + (" and the files written" if any(out.values()) or plot else "")
+        )
+    if not run.success:
+        raise typer.Exit(code=1)

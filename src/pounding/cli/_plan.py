@@ -10,7 +10,7 @@ import typer
 from rich.markup import escape
 
 from .._errors import Interrupted
-from ._app import console, kv_table, working
+from ._app import console, kv_table, run_files, working
 
 
 def simulate_plan(building: Any, exc: Any, what: str, duration: float, velocity: float,
@@ -59,6 +59,4 @@ def simulate_plan(building: Any, exc: Any, what: str, duration: float, velocity:
         bearings.add_row(str(b), f"{row['at_x_m']:g}, {row['at_y_m']:g}",
                          f"{row['displacement_max_m'] * 1e3:.2f}", f"{row['displacement_max_time_s']:.3f}")
     console.print(bearings)
-    from ._runs import run_files
-
     run_files(run, out, plot, duration, complete)

@@ -32,6 +32,7 @@ from ._app import (
     frequencies,
     interrupted,
     kv_table,
+    run_files,
     save_figure,
     steady_options,
     system,
@@ -129,28 +130,6 @@ def simulate(
     console.print(table)
     _level_tables(run, exc)
     run_files(run, out, plot, duration, complete)
-
-
-def run_files(run: Any, out: dict, plot: Optional[Path], duration: float, complete: bool) -> None:
-    """What ``pounding simulate`` writes of any run (its contacts, its history, its plot), whole whatever
-    Ctrl-C comes; then the word on an interrupted run, and exit code 1 for a run that did not finish."""
-    with interrupts_deferred() as held:  # the files are written whole, whatever Ctrl-C comes
-        if out["contacts"] is not None:
-            write_csv(run.contacts, out["contacts"])
-            console.print(f"contacts -> {out['contacts']}")
-        if out["history"] is not None:
-            write_csv(run.to_dataframe(), out["history"])
-            note = " (events only: --sample-rate 0)" if run.sample_rate_hz == 0 else ""
-            console.print(f"history -> {out['history']}{note}")
-        if plot is not None:
-            save_figure(run.plot, plot)
-    if not complete or held:
-        interrupted(
-            f"the run up to t = {run.final_state.time_s:g} s of {duration:g} s is in the summary"
-            + (" and the files written" if any(out.values()) or plot else "")
-        )
-    if not run.success:
-        raise typer.Exit(code=1)
 
 
 def _run_rows(add_row: Any, s: Any, exc: Any, harmonic: bool, several: bool, fixed: bool) -> None:
