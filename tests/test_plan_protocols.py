@@ -205,3 +205,68 @@ def test_a_design_needs_a_moat_in_plan_and_a_line_refuses_pairs(tmp_path):
     with pytest.raises(InputError) as err:
         DesignPlan.from_toml(_design_file(tmp_path, line))
     assert err.value.field == "records.suite" and "single components" in str(err.value)
+
+
+# ---------------------------------------------------------------------------------------- pounding spectra
+def test_a_pounding_spectrum_of_a_building_in_plan_is_its_runs():
+    from pounding.protocols.pounding_spectrum import PLAN_QUANTITIES, bearings_at, isolated_period_s
+
+    b = _building()
+    mass = sum(f.mass_kg for f in b.floors)
+    stiffness = sum(bearing.isolator.slopes_n_m[0] for bearing in b.bearings)
+    assert isolated_period_s(b) == pytest.approx(2.0 * np.pi * np.sqrt(mass / stiffness), rel=1e-15)
+    at = bearings_at(b, 2.5)
+    assert isolated_period_s(at) == pytest.approx(2.5, rel=1e-12)
+    factor = (isolated_period_s(b) / 2.5) ** 2
+    iso, now = b.bearings[0].isolator, at.bearings[0].isolator
+    assert now.slopes_n_m == pytest.approx([k * factor for k in iso.slopes_n_m], rel=1e-15)
+    assert now.breakpoints_m == iso.breakpoints_m
+    assert now.damping_n_s_m == pytest.approx(iso.damping_n_s_m * np.sqrt(factor), rel=1e-15)
+    pairs = [p.scaled(0.6) for p in pounding.records.fema_p695_pairs("far_field")[:2]]
+    ps = pounding.pounding_spectrum(pairs, [1.5, 3.0], gaps_m=[0.08, 0.3], structure=b, scheduler="serial")
+    assert "isolated period" in ps.data.attrs["period"] and "clearance_min_m_free" not in ps.data
+    assert ps.data["pga_g"].values.tolist() == [p.peak_vector_g for p in pairs]
+    for r, pair in enumerate(pairs):
+        for period in (1.5, 3.0):
+            building = bearings_at(b, period)
+            free = pounding.simulate(building.without_bumpers(), pair, pair.t[-1]).quantities()
+            point = {"record": r, "period_s": period}
+            assert float(ps.data["disp_max_free_m"].isel(record=r).sel(period_s=period)) == free["disp_max_m"]
+            assert float(ps.data["theta_max_rad_free"][point["record"]].sel(period_s=period)) == \
+                free["theta_max_rad"]
+            for gap in (0.08, 0.3):
+                moat = replace(building.moat, gap_m=gap)
+                q = pounding.simulate(replace(building, moat=moat), pair, pair.t[-1]).quantities()
+                cell = ps.data.isel(record=r).sel(period_s=period, gap_m=gap)
+                for name in PLAN_QUANTITIES:
+                    assert float(cell[name]) == pytest.approx(q[name], rel=1e-12, nan_ok=True), name
+    assert float(ps.data["impacts"].sel(gap_m=0.08).min()) > 0
+
+
+def test_a_pounding_spectrum_in_plan_refuses_a_building_without_its_moat():
+    quake = pounding.records.el_centro()
+    with pytest.raises(InputError, match="moat"):
+        pounding.pounding_spectrum(quake, [2.0], gaps_m=[0.1], structure=_building().without_bumpers())
+    with pytest.raises(InputError, match="RecordPair, not pounding.Record"):  # (a pair, on a line)
+        pounding.pounding_spectrum(pounding.RecordPair(quake, quake), [2.0], gaps_m=[0.1])
+
+
+def test_pounding_spectrum_on_the_command_line_takes_a_building_in_plan(tmp_path):
+    from typer.testing import CliRunner
+
+    from pounding.cli import app
+
+    out = tmp_path / "sp"
+    done = CliRunner().invoke(app, ["spectrum", "--structure", str(EXAMPLES / "plan_building.toml"),
+                                    "--set", "fema-p695-far-field", "--periods", "2", "--gaps", "0.2",
+                                    "--scale-pga", "0.4", "--scheduler", "serial", "--out", str(out)],
+                              catch_exceptions=False)
+    assert done.exit_code == 0, done.output
+    assert "22 pair(s) x 1 periods x 1 gaps" in " ".join(done.output.split())
+    import xarray as xr
+
+    with xr.open_dataset(out / "pounding_spectrum.nc") as ds:
+        assert ds.sizes["record"] == 22 and "theta_max_rad" in ds
+        assert ds["pga_g"].values == pytest.approx(0.4, rel=1e-12)  # (each pair's peak vector at 0.4 g)
+    for name in ("rotation.png", "elastic_spectrum.csv", "drift_ratio.png"):
+        assert (out / name).stat().st_size > 0

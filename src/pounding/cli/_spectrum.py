@@ -57,20 +57,22 @@ def spectrum(
     mass: float = typer.Option(500.0, "--mass", help="The isolated mass, kg."),
     structure: Optional[Path] = typer.Option(
         None, "--structure", help="A building's TOML file (its walls at each gap): the periods are then its "
-        "superstructure's first fixed-base period, s."),
+        "superstructure's first fixed-base period, s; or a building in plan's (its moat at each gap, a set's "
+        "pairs): its isolated period on its bearings' initial stiffnesses, s."),
     scheduler: str = OPT_SCHEDULER,
     workers: Optional[int] = typer.Option(None, "--workers",
                                           help="Threads or processes (default: every core)."),
     out: Path = typer.Option(..., "--out", help="Directory for the netCDF, CSV and PNG files."),
 ) -> None:
-    """Elastic and pounding spectra (with bumpers at each gap, and without) of a record or a record set."""
+    """Elastic and pounding spectra (with bumpers at each gap, and without) of a record or a record set; of
+    a building in its moat, on a line or in plan (--structure)."""
     from ..excitation.spectrum import response_spectrum
     from ..protocols.pounding_spectrum import pounding_spectrum
 
     out = folder("--out", out)
     scheduler_kind(scheduler)  # (a wrong one is refused before the records are read)
     periods_s, gaps_m = grid("--periods", periods), float_list("--gaps", gaps)
-    building = None
+    building, in_plan = None, False
     if structure is not None:
         from ..engine.assembly import PAIR, STRUCTURE, kind_of
 
@@ -79,9 +81,11 @@ def spectrum(
                                      "file")
         from ._app import system
 
+        from ..model.plan import PlanBuilding
+
         building = system(structure, None)
-        kind = kind_of(building)
-        if kind != STRUCTURE:
+        kind, in_plan = kind_of(building), isinstance(building, PlanBuilding)
+        if kind != STRUCTURE and not in_plan:
             other = ("two adjacent ones" if kind == PAIR
                      else "a single mass's (its spectrum: without --structure)")
             raise typer.BadParameter(f"--structure {structure}: give one building's file (a Structure with "
@@ -95,12 +99,20 @@ def spectrum(
             raise typer.BadParameter(f"--set {record_set!r}: use one of {', '.join(SETS)}")
         if record_dt is not None or record_units != "g":
             raise typer.BadParameter("--record-dt and --record-units are for --record (a set gives its own)")
-        from ..records import fema_p695
+        from ..records import fema_p695, fema_p695_pairs
 
-        recs = fema_p695(SETS[record_set])  # (without the records extra: one line, exit 2)
-        if scale_pga is not None:
-            recs = [r.scaled(pga_g=scale_pga) for r in recs]
-    elastic = response_spectrum(recs, periods_s, damping_ratio=damping)
+        # (without the records extra: one line, exit 2); a building in plan takes each event's two components
+        recs = fema_p695_pairs(SETS[record_set]) if in_plan else fema_p695(SETS[record_set])
+        if scale_pga is not None:  # (a pair by one factor: its peak vector to the PGA)
+            recs = [r.scaled(scale_pga / r.peak_vector_g) if in_plan else r.scaled(pga_g=scale_pga)
+                    for r in recs]
+    rotd = in_plan and record is None
+    if rotd:  # (a pair's elastic spectra: its RotD50 and RotD100)
+        from ..excitation.rotd import rotd_spectrum
+
+        elastic = rotd_spectrum(recs, periods_s, damping)
+    else:
+        elastic = response_spectrum(recs, periods_s, damping_ratio=damping)
     complete = True
     try:
         result = pounding_spectrum(recs, periods_s, gaps_m=gaps_m, damping_ratio=damping, mass_kg=mass,
@@ -112,13 +124,19 @@ def spectrum(
         result.to_netcdf(out / "pounding_spectrum.nc")
         write_csv(result.to_dataframe(), out / "pounding_spectrum.csv")
         write_csv(result.summary().to_dataframe().reset_index(), out / "pounding_summary.csv")
-        write_csv(elastic.drop_vars("pga_g").to_dataframe().reset_index(), out / "elastic_spectrum.csv")
+        if rotd:
+            write_csv(elastic[["rotd50_psa_g", "rotd100_psa_g", "rotd50_sd_m", "rotd100_sd_m"]].to_dataframe()
+                      .reset_index(), out / "elastic_spectrum.csv")
+        else:
+            write_csv(elastic.drop_vars("pga_g").to_dataframe().reset_index(), out / "elastic_spectrum.csv")
         save_figure(lambda: result.plot(), out / "amplification.png")
         save_figure(lambda: result.plot(kind="map"), out / "amplification_map.png")
         save_figure(lambda: result.plot(quantity="disp_max_m"), out / "displacement.png")
         if building is not None:
             save_figure(lambda: result.plot(quantity="drift_ratio_max"), out / "drift_ratio.png")
-        save_figure(lambda: _elastic_plot(elastic), out / "elastic_spectrum.png")
+        if in_plan:
+            save_figure(lambda: result.plot(quantity="theta_max_rad"), out / "rotation.png")
+        save_figure(lambda: _elastic_plot(elastic, rotd), out / "elastic_spectrum.png")
     stats = result.summary()["amplification"].sel(percentile=50.0)
     worst = stats.where(np.isfinite(stats), -np.inf).argmax(dim=("period_s", "gap_m"))
     at = {k: float(stats[k][int(v)]) for k, v in worst.items()}
@@ -126,14 +144,15 @@ def spectrum(
     largest = (f"unbounded (inf: a rigid stop's impulses) at {unbounded} of {stats.size} periods and gaps"
                if unbounded else f"{float(stats.max()):.3g} at T = {at['period_s']:g} s, gap "
                f"{at['gap_m'] * 1e3:g} mm")
-    console.print(f"{len(recs)} record(s) x {len(periods_s)} periods x {len(gaps_m)} gaps: the largest "
+    what = "pair(s)" if rotd else "record(s)"
+    console.print(f"{len(recs)} {what} x {len(periods_s)} periods x {len(gaps_m)} gaps: the largest "
                   f"median amplification by pounding {largest}; files -> {out}")
     if not complete or held:
         interrupted(f"the finished runs are in {out} (NaN where a run did not finish)")
 
 
-def _elastic_plot(elastic: Any) -> list:
-    from ..plots.record import plot_response_spectrum
+def _elastic_plot(elastic: Any, rotd: bool) -> list:
+    from ..plots.record import plot_response_spectrum, plot_rotd_spectrum
 
-    return plot_response_spectrum(elastic)
+    return plot_rotd_spectrum(elastic) if rotd else plot_response_spectrum(elastic)
 

@@ -62,7 +62,9 @@ def plot_pounding_spectrum(spectrum: Any, ax: Any = None, *, kind: str = "curves
     units = ds[quantity].attrs.get("units", "")
     label = f"{quantity} [{units}]" if units and units != "1" else quantity
     n = ds.sizes["record"]
-    x_label = ("superstructure's fixed-base period T [s]" if "structure" in ds.attrs
+    x_label = ("isolated period T on the bearings' initial stiffness [s]"
+               if "isolated" in ds.attrs.get("period", "")
+               else "superstructure's fixed-base period T [s]" if "structure" in ds.attrs
                else "isolation period T [s]")
     artists: list = []
     if kind == "curves":

@@ -1,5 +1,5 @@
 """Pounding spectra: the isolated mass under records, with bumpers behind a gap and without, over
-isolation periods and gaps.
+isolation periods and gaps; a building in its moat, on a line or in plan, likewise.
 
 For each record, period ``T`` and gap ``g`` (each side), the oscillator is the mass on an isolator
 of period ``T`` (linear, or a given isolator's shape scaled to that initial period) with the damping
@@ -17,15 +17,16 @@ from typing import Any
 
 import numpy as np
 
-from .._checks import float_array, instance_of, integer, positive
+from .._checks import float_array, instance_of, integer, one_or_more, positive
 from .._errors import InputError, Interrupted, Problem, Status
-from ..excitation import Record
+from ..excitation import Record, RecordPair
 from ..excitation.spectrum import check_records, damping_ratio_value, periods_array
 from .._units import GRAVITY_M_S2
 from ..model import Bumpers, FrictionIsolator, Isolator, Oscillator, Structure
+from ..model.plan import PlanBuilding
 from .._runner import Context, run_tasks
 from .._runner.progress import Progress
-from .pounding_spectrum_result import QUANTITIES, STRUCTURE_QUANTITIES, PoundingSpectrum
+from .pounding_spectrum_result import PLAN_QUANTITIES, QUANTITIES, STRUCTURE_QUANTITIES, PoundingSpectrum
 
 MAX_RUNS = 2_000_000  # records x periods x (gaps + 1): beyond, refused (hours of work)
 
@@ -58,10 +59,40 @@ def superstructure_at(structure: Structure, period_s: float) -> Structure:
     return replace(structure, storeys=storeys)
 
 
+def isolated_period_s(building: PlanBuilding) -> float:
+    """A building in plan's isolated period along x on its bearings' initial stiffnesses, its floors moving
+    as one rigid body: ``2 pi sqrt(sum m / sum k_x)``, s."""
+    mass = sum(f.mass_kg for f in building.floors)
+    stiffness = sum(b.isolator.slopes_n_m[0] for b in building.bearings)
+    return 2.0 * math.pi * math.sqrt(mass / stiffness)
+
+
+def bearings_at(building: PlanBuilding, period_s: float) -> PlanBuilding:
+    """``building`` with its bearings' stiffnesses (every slope, along x and y) scaled so that its isolated
+    period (:func:`isolated_period_s`) is ``period_s``, their dashpots by the square root (their damping
+    ratios kept), their breakpoints and hysteresis kept."""
+    factor = (isolated_period_s(building) / period_s) ** 2
+    root = math.sqrt(factor)
+
+    def scaled(iso: Isolator | None) -> Isolator | None:
+        return None if iso is None else replace(iso, slopes_n_m=tuple(k * factor for k in iso.slopes_n_m),
+                                                damping_n_s_m=iso.damping_n_s_m * root)
+
+    return replace(building, bearings=tuple(replace(b, isolator=scaled(b.isolator),
+                                                    isolator_y=scaled(b.isolator_y))
+                                            for b in building.bearings))
+
+
 def _systems(task: tuple, period: float) -> list:
-    """A task's systems at one period: without bumpers (walls), then with them at each gap (a building's
-    walls each with its own laws, or all with ``bumper``'s when one was given)."""
+    """A task's systems at one period: without bumpers (walls, moat), then with them at each gap (a
+    building's walls each with its own laws, a building in plan's moat its four gaps, or all with
+    ``bumper``'s when one was given)."""
     _, _, bumpers, zeta, mass_kg, template, _, structure, override = task
+    if isinstance(structure, PlanBuilding):
+        building = bearings_at(structure, period)
+        law = {"law": override} if override is not None else {}
+        return [building.without_bumpers()] + [
+            replace(building, moat=replace(building.moat, gap_m=b.gap_left_m, **law)) for b in bumpers]
     if structure is not None:
         building = superstructure_at(structure, period)
 
@@ -83,7 +114,7 @@ def _one_record(task: tuple, ctx: Context) -> tuple[np.ndarray, np.ndarray]:
     from ..engine.simulate import peaks
 
     rec, periods, bumpers, _, _, _, max_steps, structure, _ = task
-    names = QUANTITIES if structure is None else STRUCTURE_QUANTITIES
+    names = _names(structure)
     free = np.full((periods.size, len(names)), np.nan)
     hit = np.full((periods.size, len(bumpers), len(names)), np.nan)
     duration = float(rec.t[-1])
@@ -111,18 +142,21 @@ def _one_record(task: tuple, ctx: Context) -> tuple[np.ndarray, np.ndarray]:
     return free, hit
 
 
-def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gaps_m: Any,
-                      damping_ratio: float = 0.05, mass_kg: float = 500.0, bumper: Any = None,
-                      isolator: Isolator | FrictionIsolator | None = None, structure: Structure | None = None,
+def pounding_spectrum(records: Record | RecordPair | Sequence[Record] | Sequence[RecordPair], periods_s: Any,
+                      *, gaps_m: Any, damping_ratio: float = 0.05, mass_kg: float = 500.0, bumper: Any = None,
+                      isolator: Isolator | FrictionIsolator | None = None,
+                      structure: Structure | PlanBuilding | None = None,
                       workers: int | None = None, scheduler: Any = None, progress: Progress = False,
                       max_steps: int = 10_000_000) -> PoundingSpectrum:
     """Peak responses of the isolated mass with bumpers and without, over records, periods and gaps; or of
-    a building in its moat over its superstructure's period and the moat's gap.
+    a building in its moat over its superstructure's period and the moat's gap; or of a building in plan
+    over its isolated period and its moat's gap, under pairs of components.
 
     Parameters
     ----------
-    records : Record or sequence of Record
-        E.g. ``pounding.records.fema_p695("far_field")``.
+    records : Record, RecordPair or a sequence of either
+        E.g. ``pounding.records.fema_p695("far_field")``; pairs (``fema_p695_pairs``) for a building in
+        plan, which takes both components in its axes (one record: along x).
     periods_s : array_like, shape (p,)
         Isolation periods (s), > 0 and increasing: the isolator's initial period.
     gaps_m : array_like, shape (q,)
@@ -147,7 +181,12 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
         law (or ``bumper``); without walls is the reference.  Its peaks are ``STRUCTURE_QUANTITIES``:
         ``disp_max_m`` the base's (the moat's demand), ``acc_max_g`` the largest over the floors,
         ``top_acc_max_g``, ``drift_ratio_max``, the impacts.  ``damping_ratio``, ``mass_kg`` and
-        ``isolator`` are the single mass's: left at their defaults.
+        ``isolator`` are the single mass's: left at their defaults.  Or a building in plan with its moat
+        (:class:`pounding.PlanBuilding`): ``periods_s`` are then its isolated period on its bearings'
+        initial stiffnesses, its floors rigid (:func:`isolated_period_s`; every bearing's slopes scaled to
+        it, its dashpot by the square root, :func:`bearings_at`), and its moat stands at each gap on its
+        four sides; its peaks are ``PLAN_QUANTITIES``: a building's, ``disp_max_m`` its largest bearing
+        displacement in plan, and ``theta_max_rad`` and ``clearance_min_m`` (the smallest to a wall).
     workers : int, optional
         Worker threads or processes (default: every core).
     scheduler : str or dask.distributed.Client, optional
@@ -193,7 +232,9 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
     """
     from ..presets import paper_damped
 
-    recs = check_records(records)
+    in_plan = isinstance(structure, PlanBuilding)
+    recs = (one_or_more("records", records, (Record, RecordPair), "pounding.Record or pounding.RecordPair")
+            if in_plan else check_records(records))
     periods = periods_array(periods_s)
     if (periods <= 0.0).any():
         raise InputError(Problem.NOT_POSITIVE, "periods_s", periods.tolist()[:6], unit="s")
@@ -206,8 +247,8 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
     mass_kg = positive("mass_kg", mass_kg, "kg")
     if structure is not None:
         _check_structure(structure, isolator, mass_kg, zeta)
-    law = (paper_damped().bumpers.law if structure is None else structure.walls[0].law) if bumper is None \
-        else bumper
+    law = (paper_damped().bumpers.law if structure is None else structure.moat.law if in_plan
+           else structure.walls[0].law) if bumper is None else bumper
     bumpers = [Bumpers(float(g), float(g), law) for g in gaps]  # (checked here, warned once, not in a worker)
     if isolator is not None:
         instance_of("isolator", isolator, (Isolator, FrictionIsolator),
@@ -235,7 +276,7 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
                      scheduler=scheduler, workers=workers, progress=progress, label="pounding spectrum",
                      total=runs)
     done.raise_first_error(lambda i: f"record {i} ({recs[i].name or 'unnamed'})")
-    names = QUANTITIES if structure is None else STRUCTURE_QUANTITIES
+    names = _names(structure)
     free = np.full((len(recs), periods.size, len(names)), np.nan)
     hit = np.full((len(recs), periods.size, gaps.size, len(names)), np.nan)
     for i, value in enumerate(done.values):
@@ -248,6 +289,10 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
         attrs = {"structure": structure.to_toml_text(), "complete": int(not interrupted),
                  "bumper": "each wall's own laws" if bumper is None else repr(law),
                  "period": "the superstructure's first fixed-base period, s"}
+    if in_plan:
+        attrs["period"] = ("the isolated period along x on the bearings' initial stiffnesses, the floors "
+                           "rigid, s")
+        attrs["bumper"] = "the moat's own law" if bumper is None else repr(law)
     result = PoundingSpectrum.build(recs, periods, gaps, free, hit, attrs, names)
     if interrupted:
         finished = int(np.isfinite(hit[..., 0]).sum() + np.isfinite(free[..., 0]).sum())
@@ -255,20 +300,34 @@ def pounding_spectrum(records: Record | Sequence[Record], periods_s: Any, *, gap
     return result
 
 
+def _names(structure: Any) -> tuple[str, ...]:
+    """The peaks a spectrum keeps: the single mass's, a building's, or a building in plan's."""
+    if structure is None:
+        return QUANTITIES
+    return PLAN_QUANTITIES if isinstance(structure, PlanBuilding) else STRUCTURE_QUANTITIES
+
+
 def _check_structure(structure: Any, isolator: Any, mass_kg: float, zeta: float) -> None:
-    """A building for the spectrum: a Structure with storeys and at least one wall; the single mass's
-    arguments left alone."""
-    instance_of("structure", structure, Structure, "pounding.Structure (a building with its walls) or None")
-    if not structure.storeys:
+    """A building for the spectrum: a Structure with storeys and at least one wall, or a PlanBuilding with
+    its moat; the single mass's arguments left alone."""
+    instance_of("structure", structure, (Structure, PlanBuilding),
+                "pounding.Structure (a building with its walls), pounding.PlanBuilding (with its moat) or "
+                "None")
+    if isinstance(structure, PlanBuilding):
+        if structure.moat is None:
+            raise InputError(Problem.BAD_STATE, "structure", "PlanBuilding(moat=None)",
+                             why="has no moat to put at each gap",
+                             fix="give the building in plan with its moat (RectangularMoat)")
+    elif not structure.storeys:
         raise InputError(Problem.BAD_STATE, "structure", "Structure(storeys=[])",
                          why="has no superstructure whose period could be varied",
                          fix="give a building with storeys, or use the single mass (structure=None)")
-    if structure.fixed:
+    elif structure.fixed:
         raise InputError(Problem.BAD_STATE, "structure", "Structure.fixed_base(...)",
                          why="has no isolated base: the spectrum's displacement is the base's in its moat",
                          fix="give a building on an isolator with its moat wall (or simulate the fixed-base "
                              "one under each record)")
-    if not structure.walls:
+    elif not structure.walls:
         raise InputError(Problem.BAD_STATE, "structure", "Structure(walls=[])",
                          why="has no wall to put at each gap",
                          fix="give the building with its moat wall (a Wall at level 0) or its stops")
@@ -279,4 +338,5 @@ def _check_structure(structure: Any, isolator: Any, mass_kg: float, zeta: float)
                              "its own")
 
 
-__all__ = ["QUANTITIES", "STRUCTURE_QUANTITIES", "pounding_spectrum", "superstructure_at"]
+__all__ = ["PLAN_QUANTITIES", "QUANTITIES", "STRUCTURE_QUANTITIES", "bearings_at", "isolated_period_s",
+           "pounding_spectrum", "superstructure_at"]

@@ -21,11 +21,15 @@ QUANTITIES = ("acc_max_g", "disp_max_m", "impacts", "impact_force_max_n", "impac
 # a building's (``structure=``): the same, ``disp_max_m`` its base's and ``acc_max_g`` the largest over its
 # floors, and its top floor's acceleration and largest storey drift ratio
 STRUCTURE_QUANTITIES = QUANTITIES + ("top_acc_max_g", "drift_ratio_max")
+# a building in plan's (``structure=PlanBuilding``): a building's, ``disp_max_m`` its largest bearing
+# displacement in plan, and its base's largest rotation and the moat's smallest clearance
+PLAN_QUANTITIES = STRUCTURE_QUANTITIES + ("theta_max_rad", "clearance_min_m")
 UNITS = {"acc_max_g": "g", "disp_max_m": "m", "impacts": "1", "impact_force_max_n": "N",
          "impact_speed_max_m_s": "m/s",
          "status": "pounding.Status", "amplification": "1", "disp_ratio": "1", "acc_max_free_g": "g",
          "disp_max_free_m": "m", "top_acc_max_g": "g", "drift_ratio_max": "1", "top_acc_max_free_g": "g",
-         "drift_ratio_max_free": "1"}
+         "drift_ratio_max_free": "1", "theta_max_rad": "rad", "clearance_min_m": "m",
+         "theta_max_rad_free": "rad", "clearance_min_m_free": "m"}
 PERCENTILES = (16.0, 50.0, 84.0)
 
 
@@ -43,7 +47,7 @@ class PoundingSpectrum:
         ``disp_ratio = disp_max_m / disp_max_free_m``; dims ``(record, period_s)``: the same without
         bumpers, ``acc_max_free_g``, ``disp_max_free_m``, ``status_free``.  NaN where a run did not
         finish (interrupted).  Each record's metadata (``pga_g``, ``event``...) as coordinates on
-        ``record``.
+        ``record`` (a pair's ``pga_g`` its peak vector).
 
     Examples
     --------
@@ -79,6 +83,8 @@ class PoundingSpectrum:
         data["disp_max_free_m"] = (dims[:2], free[..., 1], {"units": "m"})
         data["status_free"] = (dims[:2], free[..., 5], {"units": "pounding.Status"})
         for k, q in enumerate(names[len(QUANTITIES):], start=len(QUANTITIES)):  # (a building's own)
+            if q == "clearance_min_m":  # (no moat, no clearance)
+                continue
             free_name = q.replace("_g", "_free_g") if q.endswith("_g") else f"{q}_free"
             data[free_name] = (dims[:2], free[..., k], {"units": UNITS[free_name]})
         with np.errstate(divide="ignore", invalid="ignore"):
@@ -86,8 +92,11 @@ class PoundingSpectrum:
                                      {"long_name": "peak acceleration with bumpers over without"})
             data["disp_ratio"] = (dims, hit[..., 1] / free[..., 1][..., None],
                                   {"long_name": "peak displacement with bumpers over without"})
+        from ..excitation.pair import RecordPair
+
         coords = {"record": record_names(recs), "period_s": periods, "gap_m": gaps,
-                  "pga_g": ("record", np.array([r.pga_g for r in recs]))}
+                  "pga_g": ("record", np.array([r.peak_vector_g if isinstance(r, RecordPair) else r.pga_g
+                                                for r in recs]))}
         for key in ("event", "year", "station", "component", "magnitude"):
             values = [r.meta.get(key) for r in recs]
             if all(v is not None for v in values):
