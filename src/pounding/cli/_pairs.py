@@ -188,12 +188,14 @@ def moat(
     rule = "mean" if found.attrs["rule"] == "mean" else "largest"
     console.print(f"the design displacement: {found.design_displacement_m:.4g} m, the {rule} of "
                   f"{len(found.critical)} pairs' critical largest bearing displacements in plan")
+    console.print(f"the moat's demand: {found.moat_demand_m:.4g} m, the {rule} of the pairs' largest "
+                  "displacements of the moat's floor's corners towards a wall")
     if found.code:
         console.print(f"the code's total maximum displacement with torsion D_TM: "
                       f"{found.code['d_tm_m']:.4g} m (P_T {found.code['p_t']:.3g})")
     if building.moat is not None:
         gap = min(building.moat.gap_m)
-        need = max(found.design_displacement_m, found.code.get("d_tm_m", 0.0))
+        need = max(found.moat_demand_m, found.code.get("d_tm_m", 0.0))
         said = "enough" if gap >= need else f"short by {need - gap:.4g} m"
         console.print(f"the moat's smallest gap {gap:.4g} m against {need:.4g} m: {said}")
     console.print(f"files -> {out}")

@@ -17,7 +17,7 @@ from typing import Any
 import numpy as np
 import pandas as pd
 
-from .._checks import instance_of, one_or_more, positive
+from .._checks import instance_of, one_of, one_or_more, positive
 from .._errors import InputError, Interrupted, Problem
 from .._runner import Progress
 from ..excitation.pair import RecordPair
@@ -26,12 +26,13 @@ from ..model.plan import ACCIDENTAL, PlanBuilding
 MIN_PAIRS_FOR_MEAN = 7  # ASCE 7-16 17.6.3.3, EN 1998-1 4.3.3.4.3: the mean of seven pairs or more
 
 
-def asce7_torsion(building: PlanBuilding, d_m_m: float) -> dict[str, float]:
-    """ASCE 7-16's total maximum displacement of a building's farthest bearing, with the torsion of its actual
-    and accidental eccentricity (17.5-3), along x and along y.
+def asce7_torsion(building: PlanBuilding, d_m_m: float, element: str = "bearing") -> dict[str, float]:
+    """ASCE 7-16's total maximum displacement of a building's farthest bearing (or its farthest edge), with
+    the torsion of its actual and accidental eccentricity (17.5-3), along x and along y.
 
-    For the motion along x: ``y`` the farthest bearing from the bearings' centre of stiffness across x, ``e``
-    the base's centre of mass from it across x plus 5 % of the plan's side across x (the accidental
+    For the motion along x: ``y`` the farthest bearing (or edge of the base) from the bearings' centre of
+    stiffness across x, ``e`` the base's centre of mass as built (its ``accidental_eccentricity`` left out:
+    the code adds its own) from it across x plus 5 % of the plan's side across x (the accidental
     eccentricity); the same along y.  The centre of stiffness is the bearings' effective one at ``D_M``
     (each bearing's secant stiffness there: its backbone's force at ``D_M`` over ``D_M``), as the code's
     properties at the maximum displacement ask.  ``b`` and ``d`` the base's shorter and longer sides, ``P_T``
@@ -44,6 +45,9 @@ def asce7_torsion(building: PlanBuilding, d_m_m: float) -> dict[str, float]:
         The building (its base: floor 0, and its bearings).
     d_m_m : float
         The maximum displacement ``D_M`` at the centre (m): :func:`asce7_displacement`'s, or a run's.
+    element : {"bearing", "edge"}
+        The element of interest: the farthest bearing (the isolation system's ``D_TM``), or the base's
+        farthest edge (a moat's clearance, 17.2.5.2: the edge moves further than the bearings inside it).
 
     Returns
     -------
@@ -66,8 +70,9 @@ def asce7_torsion(building: PlanBuilding, d_m_m: float) -> dict[str, float]:
     """
     instance_of("building", building, PlanBuilding, "pounding.PlanBuilding")
     d_m = positive("d_m_m", d_m_m, "m")
+    element = one_of("element", element, ("bearing", "edge"))
     base = building.floors[0]
-    centre = np.array(building.placed_floors[0].centre_m)
+    centre = np.array(base.centre_m)
     at = np.array([b.at_m for b in building.bearings]).reshape(-1, 2)
     rigidity = np.zeros(2)
     for axis in (0, 1):  # (lines along x place the centre's y: the bearings' secant stiffnesses at D_M)
@@ -80,7 +85,8 @@ def asce7_torsion(building: PlanBuilding, d_m_m: float) -> dict[str, float]:
     out = {}
     for axis, name in ((0, "x"), (1, "y")):
         across = 1 - axis  # (the motion along x: distances and eccentricity across it, along y)
-        y = float(np.max(np.abs(at[:, across] - rigidity[across])))
+        y = (float(np.max(np.abs(at[:, across] - rigidity[across]))) if element == "bearing"
+             else 0.5 * float(sides[across]) + abs(float(rigidity[across])))
         e = abs(float(centre[across] - rigidity[across])) + ACCIDENTAL * float(sides[across])
         factor = 1.0 + (y / p_t**2) * 12.0 * e / (b_short**2 + d_long**2)
         out[f"d_tm_{name}_m"] = max(d_m * factor, 1.15 * d_m)
@@ -113,9 +119,15 @@ class MoatDesign:
         (:meth:`PlanRun.quantities`: ``disp_max_m`` the largest bearing displacement in plan, ...).
     critical : pandas.DataFrame
         One row per pair: its most critical angle and its largest bearing displacement in plan there
-        (``angle_deg``, ``disp_max_m``).
+        (``angle_deg``, ``disp_max_m``); and where the runs have it, the largest demand on the moat over the
+        angles and its angle (``moat_demand_m``, ``demand_angle_deg``: the moat's floor's corners' largest
+        displacement towards a wall, :meth:`PlanRun.quantities`).
     design_displacement_m : float
-        The mean of the pairs' critical displacements (seven pairs or more), or their largest (fewer), m.
+        The mean of the pairs' critical displacements (seven pairs or more), or their largest (fewer), m:
+        the isolation system's, as the codes ask.
+    moat_demand_m : float
+        The same rule over the pairs' demands on the moat, m: the gap a moat of equal gaps needs (its
+        corners reach further than the bearings when the building turns; NaN where the runs lack it).
     code : dict
         The code's total maximum displacement with torsion (:func:`asce7_torsion`) from ``d_m_m``, when given.
     attrs : dict
@@ -138,6 +150,7 @@ class MoatDesign:
     data: pd.DataFrame
     critical: pd.DataFrame
     design_displacement_m: float
+    moat_demand_m: float = math.nan
     code: dict = field(default_factory=dict)
     attrs: dict = field(default_factory=dict, repr=False)
 
@@ -145,15 +158,28 @@ class MoatDesign:
     def of(cls, data: pd.DataFrame, code: dict | None, complete: bool = True) -> "MoatDesign":
         """The design from the runs' peaks (``data``, indexed by pair and angle)."""
         rows = []
+        columns = [c for c in ("disp_max_m", "moat_demand_m") if c in data]
         for name, group in data.groupby(level="pair", sort=False):
-            values = group["disp_max_m"].to_numpy(dtype=float)
-            at = int(np.nanargmax(values)) if np.isfinite(values).any() else 0
-            rows.append((name, float(group.index.get_level_values("angle_deg")[at]), float(values[at])))
-        critical = pd.DataFrame(rows, columns=["pair", "angle_deg", "disp_max_m"]).set_index("pair")
-        peaks = critical["disp_max_m"].to_numpy()
-        rule = "mean" if len(peaks) >= MIN_PAIRS_FOR_MEAN else "largest"
-        value = float(np.mean(peaks) if rule == "mean" else np.max(peaks))
-        return cls(data, critical, value, dict(code or {}), {"rule": rule, "complete": int(complete)})
+            row: list = [name]
+            for column in columns:
+                values = group[column].to_numpy(dtype=float)
+                at = int(np.nanargmax(values)) if np.isfinite(values).any() else 0
+                row += [float(group.index.get_level_values("angle_deg")[at]), float(values[at])]
+            rows.append(row)
+        heads = {"disp_max_m": ["angle_deg", "disp_max_m"],
+                 "moat_demand_m": ["demand_angle_deg", "moat_demand_m"]}
+        critical = pd.DataFrame(rows, columns=["pair", *(h for c in columns for h in heads[c])])
+        critical = critical.set_index("pair")
+        rule = "mean" if len(critical) >= MIN_PAIRS_FOR_MEAN else "largest"
+
+        def by_rule(column: str) -> float:
+            if column not in critical:
+                return math.nan
+            peaks = critical[column].to_numpy()
+            return float(np.mean(peaks) if rule == "mean" else np.max(peaks))
+
+        return cls(data, critical, by_rule("disp_max_m"), moat_demand_m=by_rule("moat_demand_m"),
+                   code=dict(code or {}), attrs={"rule": rule, "complete": int(complete)})
 
     def to_dataframe(self) -> pd.DataFrame:
         """:attr:`data` (a copy)."""
@@ -165,7 +191,7 @@ class MoatDesign:
         import xarray as xr
 
         return xr.Dataset.from_dataframe(self.data).assign_attrs(
-            design_displacement_m=self.design_displacement_m, **self.attrs,
+            design_displacement_m=self.design_displacement_m, moat_demand_m=self.moat_demand_m, **self.attrs,
             **{k: v for k, v in self.code.items()})
 
     def plot(self, ax: Any = None) -> Any:
@@ -201,7 +227,8 @@ def moat_design(building: PlanBuilding, pairs: Any, angles_deg: Any = None, dura
         Each run's length, s (default: each pair's).
     d_m_m : float, optional
         The code's maximum displacement at the centre, m (:func:`asce7_displacement`): its total maximum
-        displacement with torsion (:func:`asce7_torsion`) is given beside, as ``code``.
+        displacement with torsion at the base's farthest edge (:func:`asce7_torsion`, ``element="edge"``:
+        the moat's clearance) is given beside, as ``code``.
     workers : int, optional
         Threads or processes (default: every core).
     scheduler : str or dask.distributed.Client, optional
@@ -249,7 +276,7 @@ def moat_design(building: PlanBuilding, pairs: Any, angles_deg: Any = None, dura
 
     instance_of("building", building, PlanBuilding, "pounding.PlanBuilding")
     suite = one_or_more("pairs", pairs, RecordPair, "pounding.RecordPair")
-    code = None if d_m_m is None else asce7_torsion(building, d_m_m)
+    code = None if d_m_m is None else asce7_torsion(building, d_m_m, "edge")
     if duration_s is not None:
         positive("duration_s", duration_s, "s")
     free = building.without_bumpers()

@@ -292,7 +292,8 @@ class DesignPlan:
             s_m1 = 1.5 * design_spec.params["s_d1_g"]
             try:
                 code = asce7_displacement(s_m1, des["t_m_s"], des.get("beta_m", 0.05))
-                code_min = asce7_torsion(system, code["d_m_m"])["d_tm_m"] if in_plan else code["d_tm_m"]
+                code_min = (asce7_torsion(system, code["d_m_m"], "edge")["d_tm_m"] if in_plan
+                            else code["d_tm_m"])
             except InputError as exc:
                 raise exc.relabel("damping_ratio", "design.beta_m").relabel(
                     "period_s", "design.t_m_s"

@@ -123,6 +123,8 @@ class StripeAnalysis:
             lim = positive("limit", limit, {"acceleration": "g", "top_acceleration": "g",
                                             "drift": "(a ratio)"}.get(event, "m"))
             quantity = _QUANTITY[event]
+            if event == "contact" and "moat_demand_m" in ds:  # (a building in plan: its corners reach a wall)
+                quantity = "moat_demand_m"
             if quantity not in ds:
                 raise InputError(
                     Problem.NOT_IN_RESULT, "event", event, choices=", ".join(v for v in ds.data_vars)

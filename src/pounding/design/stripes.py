@@ -81,7 +81,8 @@ def stripe_analysis(
         gap, for every gap at once); or a building with its walls (a moat wall: a grid over
         ``walls[0].gap_m``), its runs' events its drift ratio and floor accelerations besides contact;
         or a building in plan (its moat's four gaps: a grid over ``moat.gap_m``; without a moat, a
-        contact is its largest bearing displacement in plan reaching a gap) under pairs of components.
+        contact is its base's corners reaching a gap towards a wall, ``moat_demand_m``) under pairs of
+        components.
     records : str or sequence of str
         The suite: ``"fema-p695:far_field"``, ``"fema-p695:near_field"``, ``"el-centro"``, the sets'
         pairs (``"fema-p695-pair:far_field"``: a building in plan takes both components, a structure on

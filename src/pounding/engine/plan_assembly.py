@@ -5,8 +5,9 @@ linear frames in the springs, the moat's walls each struck at the floor's two co
 ground's two components along x and y; where each part went (:class:`PlanAssembly`).
 
 Tracked (their exact extrema): each bearing's displacement along x and along y (the two make a vector, whose
-exact longest a run finds), each frame's drift at its place, each corner of the moat's floor along x and
-along y (its clearance to the walls), and each floor's centre of mass along x and y (a vector too)."""
+exact longest a run finds), each frame's drift at its place, each corner of the moat's floor (the base's
+without a moat) along x and along y (its clearance to the walls, or the moat's demand), and each floor's
+centre of mass along x and y (a vector too)."""
 
 from __future__ import annotations
 
@@ -116,13 +117,14 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
                     for b in range(len(building.bearings)))
     contacts, contact_names, contact_tracks, contact_weights = [], [], [], []
     moat = building.moat
+    level = 0 if moat is None else moat.level  # (without a moat: the base's corners, its demand on one)
+    floor, corners = building.placed_floors[level], building.floors[level].corners_m()
+    for k, corner in enumerate(corners):  # (each corner along x and y: its clearance to the walls)
+        for axis in (0, 1):
+            tracked.append(_core.tracked_pair(**_levers(building, level, axis, corner, ground=True)))
+            tracked_names.append(("corner", k, axis))
+            tracked_weights.append(_point(floor, level, axis, corner, n))
     if moat is not None:
-        floor, corners = building.placed_floors[moat.level], building.floors[moat.level].corners_m()
-        for k, corner in enumerate(corners):  # (each corner along x and y: its clearance to the walls)
-            for axis in (0, 1):
-                tracked.append(_core.tracked_pair(**_levers(building, moat.level, axis, corner, ground=True)))
-                tracked_names.append(("corner", k, axis))
-                tracked_weights.append(_point(floor, moat.level, axis, corner, n))
         for side, (axis, sign) in enumerate(((0, -1.0), (0, 1.0), (1, -1.0), (1, 1.0))):
             for k, corner in enumerate(corners):
                 if corner[axis] * sign < 0.0:  # (the two corners on that wall's side)

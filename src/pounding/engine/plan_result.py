@@ -62,8 +62,8 @@ class PlanRun(Outcome):
     frame_drift_max_m, frame_drift_min_m : ndarray, shape (n_frames,)
         Each frame's exact extrema of drift at its place (its floor's point less the floor below's), m.
     corner_displacement_max_m, corner_displacement_min_m : ndarray, shape (4, 2)
-        The moat's floor's corners' exact extrema along x and y, m (empty without a moat); corners in
-        :meth:`Floor.corners_m`'s order.
+        The moat's floor's corners' exact extrema along x and y (the base's without a moat), m; corners
+        in :meth:`Floor.corners_m`'s order.
     clearance_m : ndarray, shape (4,)
         Each moat wall's (``-x, +x, -y, +y``) smallest clearance over the run (its gap less its corners'
         largest approach, exact; negative: struck), m.
@@ -236,6 +236,14 @@ class PlanRun(Outcome):
             "status": self.status.name,
         })
 
+    @property
+    def wall_demand_m(self) -> np.ndarray:
+        """Towards each side (``-x, +x, -y, +y``), the largest displacement of the moat's floor's corners
+        along its normal (the base's without a moat), m, exact: the gap a wall there needs not to be struck
+        (with a moat, its gap less its clearance), shape (4,)."""
+        hi, lo = self.corner_displacement_max_m, self.corner_displacement_min_m
+        return np.array([-lo[:, 0].min(), hi[:, 0].max(), -lo[:, 1].min(), hi[:, 1].max()])
+
     def quantities(self) -> dict[str, float]:
         """The run in a few peaks, as every run gives them (a protocol's: :func:`pounding.orientations`):
         ``disp_max_m`` the largest bearing displacement in plan (the isolation system's, the moat's demand),
@@ -243,7 +251,9 @@ class PlanRun(Outcome):
         at the moat with their ``impact_force_max_n``, ``impact_speed_max_m_s`` and
         ``compression_max_m``, the top floor's centre's ``top_disp_max_m`` (in plan) and ``top_acc_max_g``,
         the frames' ``drift_ratio_max`` (NaN without storeys), and a building in plan's own:
-        ``theta_max_rad`` (the base's largest rotation) and ``clearance_min_m`` (NaN without a moat);
+        ``theta_max_rad`` (the base's largest rotation), ``clearance_min_m`` (NaN without a moat) and
+        ``moat_demand_m``, the moat's floor's corners' largest displacement towards any wall (the base's
+        without a moat: :attr:`wall_demand_m`), the gap a moat of equal gaps needs not to be struck;
         ``status``."""
         from .._tables import RunQuantities
         from .layout import force_max
@@ -265,6 +275,7 @@ class PlanRun(Outcome):
             "drift_ratio_max": float(np.max(drift / heights)) if heights.size else float("nan"),
             "theta_max_rad": float(max(abs(self.displacement_max[0, 2]), abs(self.displacement_min[0, 2]))),
             "clearance_min_m": float(np.min(self.clearance_m)) if self.clearance_m.size else float("nan"),
+            "moat_demand_m": float(np.max(self.wall_demand_m)),
             "status": float(self.status),
         })
 

@@ -186,7 +186,9 @@ def pounding_spectrum(records: Record | RecordPair | Sequence[Record] | Sequence
         initial stiffnesses, its floors rigid (:func:`isolated_period_s`; every bearing's slopes scaled to
         it, its dashpot by the square root, :func:`bearings_at`), and its moat stands at each gap on its
         four sides; its peaks are ``PLAN_QUANTITIES``: a building's, ``disp_max_m`` its largest bearing
-        displacement in plan, and ``theta_max_rad`` and ``clearance_min_m`` (the smallest to a wall).
+        displacement in plan, ``theta_max_rad``, ``clearance_min_m`` (the smallest to a wall) and
+        ``moat_demand_m`` (its floor's corners' largest displacement towards a wall; without the moat, the
+        gap it would need).
     workers : int, optional
         Worker threads or processes (default: every core).
     scheduler : str or dask.distributed.Client, optional

@@ -22,14 +22,16 @@ QUANTITIES = ("acc_max_g", "disp_max_m", "impacts", "impact_force_max_n", "impac
 # floors, and its top floor's acceleration and largest storey drift ratio
 STRUCTURE_QUANTITIES = QUANTITIES + ("top_acc_max_g", "drift_ratio_max")
 # a building in plan's (``structure=PlanBuilding``): a building's, ``disp_max_m`` its largest bearing
-# displacement in plan, and its base's largest rotation and the moat's smallest clearance
-PLAN_QUANTITIES = STRUCTURE_QUANTITIES + ("theta_max_rad", "clearance_min_m")
+# displacement in plan, its base's largest rotation, the moat's smallest clearance and the moat's demand (its
+# floor's corners' largest displacement towards a wall)
+PLAN_QUANTITIES = STRUCTURE_QUANTITIES + ("theta_max_rad", "clearance_min_m", "moat_demand_m")
 UNITS = {"acc_max_g": "g", "disp_max_m": "m", "impacts": "1", "impact_force_max_n": "N",
          "impact_speed_max_m_s": "m/s",
          "status": "pounding.Status", "amplification": "1", "disp_ratio": "1", "acc_max_free_g": "g",
          "disp_max_free_m": "m", "top_acc_max_g": "g", "drift_ratio_max": "1", "top_acc_max_free_g": "g",
          "drift_ratio_max_free": "1", "theta_max_rad": "rad", "clearance_min_m": "m",
-         "theta_max_rad_free": "rad", "clearance_min_m_free": "m"}
+         "theta_max_rad_free": "rad", "clearance_min_m_free": "m", "moat_demand_m": "m",
+         "moat_demand_m_free": "m"}
 PERCENTILES = (16.0, 50.0, 84.0)
 
 

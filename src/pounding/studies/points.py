@@ -25,7 +25,7 @@ STRUCTURE_SWEEP_QUANTITIES = STRUCTURE_SWEEP_NAMES + ("steps_done", "status")
 QUANTITIES = {"sweep": SWEEP_QUANTITIES, "simulate": RUN_QUANTITIES, "record": RUN_QUANTITIES}
 STRUCTURE_QUANTITIES = {**QUANTITIES, "sweep": STRUCTURE_SWEEP_QUANTITIES}
 # a building in plan's run: every system's, and its own (PlanRun.quantities); it has no sweep
-PLAN_RUN_QUANTITIES = RUN_QUANTITIES[:-1] + ("theta_max_rad", "clearance_min_m", "status")
+PLAN_RUN_QUANTITIES = RUN_QUANTITIES[:-1] + ("theta_max_rad", "clearance_min_m", "moat_demand_m", "status")
 PLAN_QUANTITIES = {"simulate": PLAN_RUN_QUANTITIES, "record": PLAN_RUN_QUANTITIES}
 # a quantity's names before (a store written before keeps its array under them): new -> old
 NAMES_BEFORE = {new: old for old, new in RunQuantities.OLD.items()}
@@ -34,7 +34,7 @@ UNITS = {**RUN_UNITS, "nu_r": "1", "alpha": "1", "eta": "1", "e": "1", "contact_
          "peak_force_over_mg": "1", "dissipated_energy_per_mass": "m^2/s^2", "restitution": "1",
          "steps_done": "1", "compression_max_m": "m", "top_disp_max_m": "m",
          "top_acc_max_g": "g", "drift_ratio_max": "1", "nu_r_top": "1", "alpha_top_max": "1",
-         "alpha_base_max": "1", "theta_max_rad": "rad", "clearance_min_m": "m"}
+         "alpha_base_max": "1", "theta_max_rad": "rad", "clearance_min_m": "m", "moat_demand_m": "m"}
 SWEEP_ARGS = ("steady", "cycles", "measure_cycles", "max_cycles", "steady_rtol", "f_ref_hz", "rtol")
 SET_PREFIX = "fema-p695:"
 PAIR_PREFIX = "fema-p695-pair:"
