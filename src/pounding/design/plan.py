@@ -164,7 +164,9 @@ class DesignPlan:
                              fix="design the gap of one building at a time: give its file")
         if building and "bumpers" in table:
             raise InputError(Problem.WRONG_MODE, "bumpers", "[bumpers]", mode="one mass's design",
-                             fix="a building's walls are in its file: its design varies a wall's gaps "
+                             fix="a building in plan's moat is in its file: its design varies the moat's "
+                                 "gaps (design.gaps_m)" if in_plan else
+                                 "a building's walls are in its file: its design varies a wall's gaps "
                                  "(design.gaps_m, and design.wall for a wall other than walls[0])")
         if in_plan and system.moat is None:
             raise InputError(Problem.MISSING_KEY, "system", None,
@@ -189,7 +191,8 @@ class DesignPlan:
         check_keys(rec, "records.", RECORD_KEYS, ("suite", "period_s"))
         records = suite_sources(rec["suite"])
         records = [_path(r, base) for r in records]
-        if in_plan != all(isinstance(r, str) and r.startswith("fema-p695-pair:") for r in records):
+        pairs = [isinstance(r, str) and r.startswith("fema-p695-pair:") for r in records]
+        if (in_plan and not all(pairs)) or (not in_plan and any(pairs)):
             raise InputError(Problem.WRONG_MODE, "records.suite", rec["suite"],
                              mode="a building in plan" if not in_plan else "a system on a line",
                              fix=("a building in plan is designed under pairs of components: suite = "
@@ -249,7 +252,8 @@ class DesignPlan:
         gap_dim = "bumpers.gap_m"
         if in_plan:
             if "wall" in des:
-                raise InputError(Problem.WRONG_MODE, "design.wall", des["wall"], mode="a building's design",
+                raise InputError(Problem.WRONG_MODE, "design.wall", des["wall"],
+                                 mode="a building on a line (a Structure)",
                                  fix="leave design.wall out: a building in plan's moat has its four gaps "
                                      "(moat.gap_m)")
             gap_dim = "moat.gap_m"
@@ -313,7 +317,8 @@ class DesignPlan:
         if building and "bumper_types" in des:
             raise InputError(Problem.WRONG_MODE, "design.bumper_types", list(des["bumper_types"]),
                              mode="one mass's design",
-                             fix="give the wall's law in the building's file (one design per law so far)")
+                             fix=f"give the {'moat' if in_plan else 'wall'}'s law in the building's file "
+                                 "(one design per law so far)")
         types = () if building else bumper_types(system, des, grid, gaps)
         for kind in types or (own_kind(system, grid, gap_dim),):
             try:

@@ -107,8 +107,11 @@ class Floor:
         return tuple((sx * a / 2, sy * b / 2) for sx in (-1.0, 1.0) for sy in (-1.0, 1.0))
 
     def to_dict(self) -> dict[str, Any]:
-        return {"mass_kg": self.mass_kg, "size_m": list(self.size_m), "inertia_kg_m2": self.inertia_kg_m2,
-                "centre_m": list(self.centre_m)}
+        # (a uniform slab's inertia is left out: it follows the mass and the size wherever they are changed,
+        # as a study's grid changes them)
+        slab = self.mass_kg * (self.size_m[0] ** 2 + self.size_m[1] ** 2) / 12.0
+        return {"mass_kg": self.mass_kg, "size_m": list(self.size_m), "centre_m": list(self.centre_m),
+                **({} if self.inertia_kg_m2 == slab else {"inertia_kg_m2": self.inertia_kg_m2})}
 
 
 @dataclass(frozen=True)

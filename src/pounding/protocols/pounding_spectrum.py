@@ -24,6 +24,7 @@ from ..excitation.spectrum import check_records, damping_ratio_value, periods_ar
 from .._units import GRAVITY_M_S2
 from ..model import Bumpers, FrictionIsolator, Isolator, Oscillator, Structure
 from ..model.plan import PlanBuilding
+from ..model.plan_parts import RectangularMoat
 from .._runner import Context, run_tasks
 from .._runner.progress import Progress
 from .pounding_spectrum_result import PLAN_QUANTITIES, QUANTITIES, STRUCTURE_QUANTITIES, PoundingSpectrum
@@ -88,11 +89,9 @@ def _systems(task: tuple, period: float) -> list:
     building's walls each with its own laws, a building in plan's moat its four gaps, or all with
     ``bumper``'s when one was given)."""
     _, _, bumpers, zeta, mass_kg, template, _, structure, override = task
-    if isinstance(structure, PlanBuilding):
+    if isinstance(structure, PlanBuilding):  # (``bumpers``: its moat at each gap)
         building = bearings_at(structure, period)
-        law = {"law": override} if override is not None else {}
-        return [building.without_bumpers()] + [
-            replace(building, moat=replace(building.moat, gap_m=b.gap_left_m, **law)) for b in bumpers]
+        return [building.without_bumpers()] + [replace(building, moat=moat) for moat in bumpers]
     if structure is not None:
         building = superstructure_at(structure, period)
 
@@ -251,7 +250,9 @@ def pounding_spectrum(records: Record | RecordPair | Sequence[Record] | Sequence
         _check_structure(structure, isolator, mass_kg, zeta)
     law = (paper_damped().bumpers.law if structure is None else structure.moat.law if in_plan
            else structure.walls[0].law) if bumper is None else bumper
-    bumpers = [Bumpers(float(g), float(g), law) for g in gaps]  # (checked here, warned once, not in a worker)
+    # (checked here, warned once, not in a worker; a building in plan's moat at each gap on its four sides)
+    bumpers = ([RectangularMoat(float(g), law, structure.moat.level) for g in gaps] if in_plan
+               else [Bumpers(float(g), float(g), law) for g in gaps])
     if isolator is not None:
         instance_of("isolator", isolator, (Isolator, FrictionIsolator),
                     "pounding.Isolator, pounding.FrictionIsolator or None (linear)")

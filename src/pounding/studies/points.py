@@ -156,7 +156,9 @@ def _fema_set(name: str) -> tuple[Record, ...]:
 
 def excitation_of(options: dict[str, Any], plan: bool = False) -> Harmonic | Record | RecordPair | None:
     """The excitation of a point (None for a sweep, whose steps make their own); for a building in plan
-    (``plan``), a pair's two components turned by ``angle_deg`` and one record along it."""
+    (``plan``), the motion's axes turned by ``angle_deg`` against the building's (:meth:`RecordPair.rotated`,
+    as :func:`pounding.orientations` turns them): a pair's two components, or one record, its x component
+    then acting along ``-angle_deg`` in the building's axes."""
     kind = options["kind"]
     if kind == "simulate":
         return Harmonic(options["a_g"], options["freq_hz"], options.get("phase_rad", 0.0))
@@ -184,7 +186,8 @@ def excitation_of(options: dict[str, Any], plan: bool = False) -> Harmonic | Rec
             zeta = options.get("sa_damping_ratio")
             rec = record_at_sa(options["record"], options["sa_g"], options["sa_period_s"],
                                0.05 if zeta is None else zeta)
-        return RecordPair.of_direction(rec, options["angle_deg"]) if options.get("angle_deg") else rec
+        # (one record turned as a pair is, its second component nil: along -angle_deg in the building's axes)
+        return RecordPair.of_direction(rec, -options["angle_deg"]) if options.get("angle_deg") else rec
     return None
 
 

@@ -62,9 +62,10 @@ class StudySpec:
         acceleration; ``duration_s``, default the record's) or under a pair of components
         (``"fema-p695-pair:<set>:<index>"``, an event's two), its motion along x turned by ``angle_deg``
         (default 0: ``RecordPair.along``), the pair scaled by one factor to its largest direction's
-        (RotD100) ``scale_pga_g`` or ``sa_g``. A building in plan takes both of a pair's components turned
-        by ``angle_deg`` (``RecordPair.rotated``), and one record along ``angle_deg``
-        (``RecordPair.of_direction``); its points are runs, never sweeps.
+        (RotD100) ``scale_pga_g`` or ``sa_g``. A building in plan takes both of a pair's components, the
+        motion's axes turned by ``angle_deg`` against the building's (``RecordPair.rotated``, as
+        ``pounding.orientations`` turns them), one record the same way (its motion then along
+        ``-angle_deg`` in the building's axes); its points are runs, never sweeps.
     grid : dict
         Dotted name -> values (one axis each, in order): a number of the system
         (``"mass_kg"``, ``"isolator.damping_n_s_m"``, ``"isolator.slopes_n_m[0]"``, ``"bumpers.gap_left_m"``,
