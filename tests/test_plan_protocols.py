@@ -102,6 +102,9 @@ def test_stripes_of_a_building_in_plan_under_pairs(tmp_path):
     free = design.stripe_analysis(_building().without_bumpers(), sources, levels, period_s=period,
                                   store=str(tmp_path / "f.zarr"), scheduler="serial", progress=False)
     assert not free.has_bumpers
+    with pytest.raises(InputError, match="single components"):  # (a pair on a line: refused)
+        design.stripe_analysis(pounding.presets.paper_damped(), sources, levels, period_s=period,
+                               store=str(tmp_path / "line.zarr"), progress=False)
     with pytest.raises(InputError, match="limit"):
         free.outcomes("contact")
     reach = free.outcomes("contact", 0.1)

@@ -58,7 +58,8 @@ def design(
     stores = (where if len(parsed.kinds) == 1 else
               ", ".join(typed_store(where, kind.name) for kind in parsed.kinds))
     types = "" if len(parsed.kinds) == 1 else f" of {len(parsed.kinds)} bumper types"
-    console.print(f"{parsed.title}: {len(parsed.records)} records x {len(parsed.levels_g)} stripes x "
+    what = "pairs" if parsed.in_plan else "records"
+    console.print(f"{parsed.title}: {len(parsed.records)} {what} x {len(parsed.levels_g)} stripes x "
                   f"{n_design} designs{types} = {per_design * n_design} runs -> {stores}, and {per_design} "
                   f"without bumpers -> {free_store(where)}")
     out.mkdir(parents=True, exist_ok=True)

@@ -57,8 +57,8 @@ def spectrum(
     mass: float = typer.Option(500.0, "--mass", help="The isolated mass, kg."),
     structure: Optional[Path] = typer.Option(
         None, "--structure", help="A building's TOML file (its walls at each gap): the periods are then its "
-        "superstructure's first fixed-base period, s; or a building in plan's (its moat at each gap, a set's "
-        "pairs): its isolated period on its bearings' initial stiffnesses, s."),
+        "superstructure's first fixed-base period, s; or a building in plan's (its moat at each gap; a set's "
+        "pairs, or one --record along x): its isolated period on its bearings' initial stiffnesses, s."),
     scheduler: str = OPT_SCHEDULER,
     workers: Optional[int] = typer.Option(None, "--workers",
                                           help="Threads or processes (default: every core)."),

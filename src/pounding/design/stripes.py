@@ -135,6 +135,10 @@ def stripe_analysis(
                 "pounding.Oscillator, pounding.Structure (a building with its walls) or "
                 "pounding.PlanBuilding")
     sources = suite_sources(records)
+    if not isinstance(system, PlanBuilding) and any(s.startswith("fema-p695-pair:") for s in sources):
+        raise InputError(Problem.WRONG_MODE, "records", records, mode="a building in plan",
+                         fix="give a system on a line single components (\"fema-p695:far_field\"): a pair is "
+                             "scaled by its RotD100, which its motion along one line does not reach")
     levels = float_array("levels_g", levels_g)
     for i, v in enumerate(levels):
         positive(f"levels_g[{i}]", v, "g")
