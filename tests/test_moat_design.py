@@ -73,6 +73,8 @@ def test_seven_pairs_take_their_mean_each_at_its_critical_orientation():
     demand = found.data["moat_demand_m"].groupby(level="pair").max()
     assert found.critical["moat_demand_m"].tolist() == demand.loc[found.critical.index].tolist()
     assert found.moat_demand_m == pytest.approx(demand.mean(), rel=1e-15)
+    # the figure: seven bars, the design value, the pairs' demands and the suite's, the code's D_TM
+    assert len(pounding.plots.plot_moat_design(found)) == 7 + 1 + 2 + 1
     assert found.plot().axes[0].get_ylabel() == "displacement (mm)"
     assert found.to_xarray().attrs["rule"] == "mean"
     # fewer than seven: the largest

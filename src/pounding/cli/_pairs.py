@@ -128,6 +128,9 @@ def orientations(
     least = float(result.data["disp_max_m"].min())
     console.print(f"{pair.name}: the largest displacement {value:.4g} m at {angle:g} deg (the least "
                   f"{least:.4g} m) over {result.angles_deg.size} angles; files -> {out}")
+    if "moat_demand_m" in result.data:  # (a building in plan: its corners towards a wall)
+        angle, value = result.critical("moat_demand_m")
+        console.print(f"the moat's largest demand {value:.4g} m at {angle:g} deg")
     if not complete or held:
         interrupted(f"the finished angles are in {out} (NaN where a run did not finish)")
 

@@ -96,8 +96,9 @@ def plot_plan_orbit(run: Any, ax: Any = None) -> list:
 @fill_doc
 def plot_moat_design(design: Any, ax: Any = None) -> list:
     """A :class:`~pounding.design.MoatDesign`: each pair's largest bearing displacement in plan at its most
-    critical orientation (bars, the angle on each), the design value (the suite's mean or largest) and,
-    when given, the code's total maximum displacement with torsion.
+    critical orientation (bars, the angle on each), the design value (the suite's mean or largest), the
+    moat's demand (each pair's, dots, and the suite's, where the runs have it) and, when given, the code's
+    total maximum displacement with torsion.
 
     Parameters
     ----------
@@ -136,6 +137,11 @@ def plot_moat_design(design: Any, ax: Any = None) -> list:
     rule = design.attrs.get("rule", "")
     artists.append(ax.axhline(design.design_displacement_m * mm, color="C3", lw=1.5,
                               label=f"design ({rule}): {design.design_displacement_m * mm:.4g} mm"))
+    if "moat_demand_m" in critical:
+        artists.append(ax.plot(x, critical["moat_demand_m"].to_numpy() * mm, "o", color="C1", ms=5,
+                               label="the moat's demand (its corners towards a wall)")[0])
+        artists.append(ax.axhline(design.moat_demand_m * mm, color="C1", lw=1.2, ls=":",
+                                  label=f"the moat's demand ({rule}): {design.moat_demand_m * mm:.4g} mm"))
     if design.code:
         d_tm = design.code["d_tm_m"] * mm
         artists.append(ax.axhline(d_tm, color="k", ls="--", lw=1.2,
