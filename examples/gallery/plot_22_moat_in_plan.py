@@ -2,14 +2,15 @@
 A moat's gap in plan: seven pairs, every orientation, and the code's torsion
 ============================================================================
 
-The two-storey building of the previous example, its masses 3 m off centre, at an ASCE 7-16 site with
-S_DS = 1.0 g and S_D1 = 0.6 g. Seven pairs of the FEMA P695 far-field set are scaled together so that
-their mean maximum-direction spectrum (RotD100) is nowhere below the MCE_R spectrum from 0.75 to 1.25 times
-the isolated period (ASCE 7-16 17.3.3). Each pair is turned to every orientation from 0 to 165 degrees in
-the building's axes, the moat taken away; its most critical orientation gives its largest bearing
-displacement in plan, and the mean of the seven is the moat's design displacement (17.6.3.3). Beside it,
-the code's total maximum displacement with torsion, D_TM, from D_M and the building's actual and 5 %
-accidental eccentricity (17.5-3).
+The two-storey building of the previous example, its masses 3 m off centre, at an ASCE 7-16 site with S_DS =
+1.0 g and S_D1 = 0.6 g. Seven pairs of the FEMA P695 far-field set are scaled together so that their mean
+maximum-direction spectrum (RotD100) is nowhere below the MCE_R spectrum from 0.75 to 1.25 times the isolated
+period (ASCE 7-16 17.3.3): the bearings' effective period at the code's maximum displacement D_M, which their
+effective stiffness and damping there give (found by iteration). Each pair is turned to every orientation from
+0 to 165 degrees in the building's axes, the moat taken away; its most critical orientation gives its largest
+bearing displacement in plan, and the mean of the seven is the design displacement (17.6.3.3), with the moat's
+demand beside it (its corners' largest displacement towards a wall). Beside it, the code's total maximum
+displacement with torsion, D_TM, from D_M and the building's actual and 5 % accidental eccentricity (17.5-3).
 """
 
 import matplotlib.pyplot as plt
@@ -25,16 +26,18 @@ frames += [Frame(s, "y", x, k, 1.0e5) for s in (1, 2) for x, k in ((-15.0, 9.0e8
 moat = RectangularMoat(gap_m=0.3, law=pounding.KelvinVoigt(stiffness=5.0e8, damping=1.0e6))
 building = PlanBuilding([Floor(4.0e5, (30.0, 12.0), centre_m=(3.0, 0.0))] * 3, bearings, frames, moat)
 
-t_m, beta_m = 2.5, 0.15  # the isolated period at the design displacement (s) and its damping ratio
+code = design.asce7_bearings_displacement(building, s_m1_g=1.5 * 0.6)  # D_M, T_M, beta_M
+t_m, d_m = code["t_m_x_s"], code["d_m_m"]
+print(f"T_M {t_m:.2f} s, beta_M {code['beta_m_x']:.3f}, D_M {d_m:.3f} m")
 mce = design.asce7_spectrum(1.0, 0.6, level="mce")
 pairs = pounding.records.fema_p695_pairs("far_field")[:7]
 suite = design.scale_suite(pairs, mce, period_range_s=(0.75 * t_m, 1.25 * t_m))
 print(suite)
-d_m = design.asce7_displacement(1.5 * 0.6, t_m, beta_m)["d_m_m"]
 found = design.moat_design(building, list(suite.records), duration_s=20.0, d_m_m=d_m)
 print(found.critical.round(3))
-print(f"design displacement {found.design_displacement_m:.3f} m ({found.attrs['rule']} of 7 pairs); "
-      f"code D_M {d_m:.3f} m, D_TM {found.code['d_tm_m']:.3f} m (P_T {found.code['p_t']:.2f})")
+print(f"design displacement {found.design_displacement_m:.3f} m ({found.attrs['rule']} of 7 pairs), the "
+      f"moat's demand {found.moat_demand_m:.3f} m; code D_M {d_m:.3f} m, D_TM {found.code['d_tm_m']:.3f} m "
+      f"(P_T {found.code['p_t']:.2f})")
 
 # %%
 # Each pair's critical bearing displacement in plan, the design value and the code's.

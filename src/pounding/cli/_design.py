@@ -61,7 +61,7 @@ def design(
     what = "pairs" if parsed.in_plan else "records"
     console.print(f"{parsed.title}: {len(parsed.records)} {what} x {len(parsed.levels_g)} stripes x "
                   f"{n_design} designs{types} = {per_design * n_design} runs -> {stores}, and {per_design} "
-                  f"without bumpers -> {free_store(where)}")
+                  f"without {'the moat' if parsed.in_plan else 'bumpers'} -> {free_store(where)}")
     out.mkdir(parents=True, exist_ok=True)
     try:
         outcome = run_plan(parsed, where, progress=True, resume=not restart)

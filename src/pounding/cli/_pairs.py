@@ -154,7 +154,7 @@ def moat(
     scheduler: str = OPT_SCHEDULER,
     workers: Optional[int] = typer.Option(None, "--workers",
                                           help="Threads or processes (default: every core)."),
-    out: Path = typer.Option(..., "--out", help="Directory for the CSV, netCDF and PNG files."),
+    out: Path = typer.Option(..., "--out", help="Directory for the CSV and PNG files."),
 ) -> None:
     """The moat's gap a building in plan needs: each pair at each orientation without the moat, each pair's
     most critical one, the suite's mean (seven pairs or more) or largest, and the code's D_TM beside."""
@@ -204,7 +204,8 @@ def moat(
         gap = min(building.moat.gap_m)
         need = max(found.moat_demand_m, found.code.get("d_tm_m", 0.0))
         said = "enough" if gap >= need else f"short by {need - gap:.4g} m"
-        console.print(f"the moat's smallest gap {gap:.4g} m against {need:.4g} m: {said}")
+        unchecked = "" if found.code else " (the code's D_TM not checked: give --d-m)"
+        console.print(f"the moat's smallest gap {gap:.4g} m against {need:.4g} m: {said}{unchecked}")
     console.print(f"files -> {out}")
     if not found.attrs["complete"] or held:
         interrupted(f"the finished pairs are in {out}")

@@ -61,8 +61,9 @@ def simulate(
         None, "--record-y", help="A building in plan: the record's second component, along y (read as "
         "--record is); --record is then the component along x."),
     direction: Optional[float] = typer.Option(
-        None, "--direction", help="A building in plan: the angle, degrees from x towards y, of --record's "
-        "component alone, or by which the pair (with --record-y) is turned."),
+        None, "--direction", help="A building in plan: --record alone moves it along this angle, degrees "
+        "from x towards y; with --record-y, the pair's axes are turned by it against the building's (as "
+        "pounding moat and orientations turn them: --record's component then acts along -DEG)."),
     duration: Optional[float] = typer.Option(
         None, "--duration", help="Simulated time, s (default 20 s; with --record, the record's length)."),
     preset: Optional[str] = OPT_PRESET,

@@ -16,7 +16,7 @@
 """
 
 from .decision import Decision, decide
-from .moat_in_plan import MoatDesign, asce7_torsion, moat_design
+from .moat_in_plan import MoatDesign, asce7_bearings_displacement, asce7_torsion, moat_design
 from .capacities import fit_fragility_capacities, fit_fragility_intervals
 from .fragility import Fragility, fit_fragility
 from .hazard import HazardCurve, probability_in_years
@@ -29,6 +29,7 @@ from .suite import ScaledSuite, scale_suite, stripe_factors
 __all__ = [
     "Decision",
     "MoatDesign",
+    "asce7_bearings_displacement",
     "asce7_torsion",
     "moat_design",
     "DesignSpectrum",

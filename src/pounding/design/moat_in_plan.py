@@ -19,6 +19,7 @@ import pandas as pd
 
 from .._checks import instance_of, one_of, one_or_more, positive
 from .._errors import InputError, Interrupted, Problem
+from .._units import GRAVITY_M_S2
 from .._runner import Progress
 from ..excitation.pair import RecordPair
 from ..model.plan import ACCIDENTAL, PlanBuilding
@@ -94,6 +95,95 @@ def asce7_torsion(building: PlanBuilding, d_m_m: float, element: str = "bearing"
     out["p_t"] = p_t
     out["rigidity_m"] = (float(rigidity[0]), float(rigidity[1]))
     return out
+
+
+def asce7_bearings_displacement(building: PlanBuilding, s_m1_g: float, *, rtol: float = 1e-10,
+                                max_iterations: int = 500) -> dict[str, float]:
+    """ASCE 7-16's maximum displacement ``D_M`` at the centre of a building in plan from its bearings'
+    effective properties at ``D_M`` (17.5-1, 17.5-2, 17.8.5), along x and along y.
+
+    At a trial ``D``: the effective stiffness ``K_M`` is the bearings' secant stiffness on their backbones,
+    ``T_M = 2 pi sqrt(m / K_M)`` (``m`` the floors' masses), the effective damping ``beta_M = E_M / (2 pi K_M
+    D^2)`` with ``E_M`` the energy of a cycle at ``D``: each kinematic (Masing) bearing's loop,
+    ``8 int_0^D F - 4 F(D) D`` (a bilinear one's ``4 Q (D - D_y)``), and each dashpot's ``pi c (2 pi / T_M)
+    D^2``; then ``D_M = g S_M1 T_M / (4 pi^2 B_M)`` (:func:`asce7_displacement`), until ``D`` stops moving.
+
+    Parameters
+    ----------
+    building : PlanBuilding
+        The building (its floors' masses and its bearings' laws).
+    s_m1_g : float
+        The MCE_R spectral acceleration at 1 s, g (``1.5 S_D1``).
+    rtol : float
+        The iteration stops when ``D`` moves by less than this fraction of itself.
+    max_iterations : int
+        A bound on the iterations (refused beyond: no fixed point found).
+
+    Returns
+    -------
+    dict
+        ``d_m_m`` (the larger of the two axes'), and per axis ``d_m_x_m``, ``t_m_x_s``, ``beta_m_x``,
+        ``k_m_x_n_m`` (and ``_y_``).
+
+    Examples
+    --------
+    >>> import pounding
+    >>> from pounding import Bearing, Floor, PlanBuilding, design
+    >>> iso = pounding.Isolator(slopes_n_m=[1.2e7, 1.2e6], breakpoints_m=[0.01])
+    >>> b = PlanBuilding([Floor(6.0e5, (24.0, 16.0))],
+    ...                  [Bearing((sx * 10.0, sy * 6.0), iso)
+    ...                   for sx in (-1, 1) for sy in (-1, 1)])
+    >>> out = design.asce7_bearings_displacement(b, 0.9)
+    >>> round(out["d_m_m"], 4), round(out["t_m_x_s"], 3), round(out["beta_m_x"], 4)
+    (0.3445, 1.978, 0.128)
+    """
+    from .._checks import integer
+    from .spectra import asce7_displacement
+
+    instance_of("building", building, PlanBuilding, "pounding.PlanBuilding")
+    s_m1 = positive("s_m1_g", s_m1_g, "g")
+    tol = positive("rtol", rtol, "(a fraction)")
+    bound = integer("max_iterations", max_iterations, 1, 100_000)
+    mass = sum(f.mass_kg for f in building.floors)
+    out: dict[str, float] = {}
+    for axis, name in ((0, "x"), (1, "y")):
+        laws = [b.laws[axis] for b in building.bearings]
+        post = sum(law.slopes_n_m[-1] for law in laws)
+        d = GRAVITY_M_S2 * s_m1 * 2.0 * math.pi * math.sqrt(mass / post) / (4.0 * math.pi**2)  # (a start)
+        for _ in range(bound):
+            k = sum(_secant(law, d) * d for law in laws) / d
+            t = 2.0 * math.pi * math.sqrt(mass / k)
+            energy = sum(_loop_energy(law, d) + math.pi * law.damping_n_s_m * (2.0 * math.pi / t) * d * d
+                         for law in laws)
+            beta = energy / (2.0 * math.pi * k * d * d)
+            new = asce7_displacement(s_m1, t, min(beta, 0.5))["d_m_m"]
+            done = abs(new - d) <= tol * new
+            d = 0.5 * (d + new)  # (relaxed: the secant softens as D grows)
+            if done:
+                break
+        else:
+            raise InputError(Problem.NO_FIT, "building", f"bearings along {name}",
+                             why=f"found no D_M in {bound} iterations (last {d:.6g} m)",
+                             fix="give D_M from asce7_displacement with the period and damping you chose")
+        out.update({f"d_m_{name}_m": d, f"t_m_{name}_s": t, f"beta_m_{name}": beta, f"k_m_{name}_n_m": k})
+    out["d_m_m"] = max(out["d_m_x_m"], out["d_m_y_m"])
+    return out
+
+
+def _loop_energy(isolator: Any, d: float) -> float:
+    """The energy of one cycle of amplitude ``d`` (m) of a bearing's law, J: a kinematic (Masing) loop's
+    ``8 int_0^d F - 4 F(d) d`` on its backbone; none for an elastic one."""
+    if isolator.hysteresis == "elastic":
+        return 0.0
+    area, force, before = 0.0, 0.0, 0.0
+    for k, edge in zip(isolator.slopes_n_m, (*isolator.breakpoints_m, math.inf)):
+        upto = min(d, edge)
+        area += force * (upto - before) + 0.5 * k * (upto - before) ** 2
+        force += k * (upto - before)
+        before = upto
+        if upto >= d:
+            break
+    return max(0.0, 8.0 * area - 4.0 * force * d)
 
 
 def _secant(isolator: Any, d_m: float) -> float:
@@ -309,4 +399,4 @@ def _joined(tables: list[pd.DataFrame]) -> pd.DataFrame:
     return pd.concat(tables).reset_index().set_index(["pair", "angle_deg"])
 
 
-__all__ = ["MIN_PAIRS_FOR_MEAN", "MoatDesign", "asce7_torsion", "moat_design"]
+__all__ = ["MIN_PAIRS_FOR_MEAN", "MoatDesign", "asce7_bearings_displacement", "asce7_torsion", "moat_design"]

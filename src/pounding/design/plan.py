@@ -25,7 +25,7 @@ from ..studies.spec import check_table, system_from_table
 from .hazard import HazardCurve
 from .site import hazard_curve_of, site_spectra, text_field as _text
 from .spectra import DesignSpectrum, asce7_displacement
-from .moat_in_plan import asce7_torsion
+from .moat_in_plan import asce7_bearings_displacement, asce7_torsion
 from .bumper_types import BumperType, bumper_types, grid_of, typed_store
 from .stripes import suite_sources
 
@@ -73,8 +73,10 @@ class DesignPlan:
     level : str
     years : float
     code_minimum_gap_m : float or None
-        ASCE 7-16's D_TM from ``t_m_s`` and ``beta_m`` (when given; a building in plan's with its
-        torsion, :func:`asce7_torsion`).
+        ASCE 7-16's D_TM from ``t_m_s`` and ``beta_m`` (when given); a building in plan's with its
+        torsion at its base's edge (:func:`asce7_torsion`), its D_M from ``t_m_s`` and ``beta_m`` or, at
+        an ASCE 7-16 site without them, from its bearings' effective properties
+        (:func:`asce7_bearings_displacement`).
     scheduler : str or None
     workers : int or None
     store : Path or None
@@ -302,6 +304,9 @@ class DesignPlan:
                 raise exc.relabel("damping_ratio", "design.beta_m").relabel(
                     "period_s", "design.t_m_s"
                 ) from None
+        elif in_plan and design_spec.kind == "asce7-16":  # (D_M from the bearings' effective properties)
+            d_m = asce7_bearings_displacement(system, 1.5 * design_spec.params["s_d1_g"])["d_m_m"]
+            code_min = asce7_torsion(system, d_m, "edge")["d_tm_m"]
         run = check_table("run", table.get("run", {}))
         check_keys(run, "run.", RUN_KEYS, ())
         store = None if "store" not in run else _path(_text("run.store", run["store"]), base)

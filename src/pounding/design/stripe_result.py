@@ -115,6 +115,11 @@ class StripeAnalysis:
                     "displacement reaching it",
                 )
             hit = ds["impacts"] > 0.0
+        elif event == "contact" and self.has_bumpers and "moat_demand_m" in ds:
+            raise InputError(Problem.WRONG_MODE, "limit", limit, mode="runs without a moat",
+                             fix="leave limit out: these runs had their moat, and a contact is an impact on "
+                                 "it (run the building without its moat to ask at which gap its corners "
+                                 "reach)")
         else:
             if limit is None and event == "compression" and self.capacity_m is not None:
                 limit = self.capacity_m

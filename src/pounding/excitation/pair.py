@@ -175,9 +175,15 @@ class RecordPair:
         object.__setattr__(rec, "name", f"{self.name} at {float(angle_deg):g} deg".strip())
         return rec
 
-    def scaled(self, factor: float) -> "RecordPair":
-        """Both components times one ``factor`` (> 0), as codes and FEMA P695 scale a pair;
+    def scaled(self, factor: float | None = None, *, pga_g: float | None = None) -> "RecordPair":
+        """Both components times one ``factor`` (> 0), as codes and FEMA P695 scale a pair, or by the one
+        factor that brings its peak vector (:attr:`peak_vector_g`, the largest direction's PGA) to ``pga_g``;
         ``meta["scale_factor"]`` multiplies any earlier one."""
+        if (factor is None) == (pga_g is None):
+            raise InputError(Problem.MISSING_INPUT, "factor", factor,
+                             what="one of factor= (both components times it) or pga_g= (the peak vector's)")
+        if pga_g is not None:
+            factor = positive("pga_g", pga_g, "g") / self.peak_vector_g
         f = positive("factor", factor, "(a factor)")
         plausible("factor", f, 0.01, 100.0, "a record scaled that far no longer resembles shaking")
         meta = {**self.meta, "scale_factor": self.meta.get("scale_factor", 1.0) * f}

@@ -126,7 +126,7 @@ def plot_moat_design(design: Any, ax: Any = None) -> list:
     import matplotlib.pyplot as plt
 
     if ax is None:
-        _, ax = plt.subplots(figsize=(7.0, 3.8), constrained_layout=True)
+        _, ax = plt.subplots(figsize=(9.0, 3.8), constrained_layout=True)
     critical = design.critical
     mm = 1e3
     x = np.arange(len(critical))
@@ -148,8 +148,8 @@ def plot_moat_design(design: Any, ax: Any = None) -> list:
                                   label=f"code D_TM with torsion: {d_tm:.4g} mm"))
     ax.set_xticks(x, [str(name) for name in critical.index], rotation=30, ha="right", fontsize=7)
     ax.set_ylabel("displacement (mm)")
-    ax.set_ylim(0.0, ax.get_ylim()[1] * 1.25)  # (room for the legend above the bars)
-    ax.legend(fontsize=7, frameon=False, loc="upper left", ncol=2)
+    ax.set_ylim(0.0, ax.get_ylim()[1] * 1.08)  # (room for the angles above the bars)
+    ax.legend(fontsize=7, frameon=False, loc="upper left", bbox_to_anchor=(1.01, 1.0))  # (beside the axes)
     return artists
 
 
