@@ -359,8 +359,8 @@ def moat_design(building: PlanBuilding, pairs: Any, angles_deg: Any = None, dura
     [0.1, 0.12]
     >>> round(found.design_displacement_m, 3), found.attrs["rule"]  # m
     (0.12, 'largest')
-    >>> round(found.code["d_tm_m"], 4)  # m: the code's D_TM, with torsion
-    0.1175
+    >>> round(found.code["d_tm_m"], 4)  # m: D_TM at the edge, with torsion
+    0.121
     """
     from ..protocols.orientations import orientations
 
