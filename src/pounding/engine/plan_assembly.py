@@ -32,7 +32,9 @@ class PlanAssembly(NamedTuple):
     (:meth:`Floor.corners_m`'s order); ``tracked[q]``: ``("bearing", b, axis)``, ``("frame", f, axis)`` or
     ``("corner", k, axis)`` or ``("centre", level, axis)``; ``vectors[v]``: bearing ``v``'s x and y (indices
     into ``tracked``), then each floor's centre's;
-    ``contact_tracks[c]``: contact ``c``'s corner along its axis (an index into ``tracked``)."""
+    ``contact_tracks[c]``: contact ``c``'s corner along its axis (an index into ``tracked``);
+    ``corner_tracks[k][axis]``: corner ``k``'s along each axis (two corners on one edge move alike across it:
+    one tracked pair serves both, named by the first)."""
 
     system: _core.System
     element_names: tuple
@@ -50,6 +52,7 @@ class PlanAssembly(NamedTuple):
     elements: tuple              # each element's assembly.HystereticElement (the same)
     dofs: tuple = ()             # ((0, 1, ..., 3 n - 1),): the floors' dofs, as a State holds them
     system_bw: np.ndarray = BW_NONE  # (no Bouc-Wen spring)
+    corner_tracks: tuple = ()    # (4, 2): each corner's tracked pair along x and y
 
 
 def _levers(building: PlanBuilding, storey: int, axis: int, p: tuple[float, float],
@@ -119,11 +122,19 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
     moat = building.moat
     level = 0 if moat is None else moat.level  # (without a moat: the base's corners, its demand on one)
     floor, corners = building.placed_floors[level], building.floors[level].corners_m()
+    edges: dict = {}  # (a corner's motion along x is x - (p_y - c_y) theta: its edge's across x, p_y)
+    corner_tracks = []
     for k, corner in enumerate(corners):  # (each corner along x and y: its clearance to the walls)
+        row = []
         for axis in (0, 1):
-            tracked.append(_core.tracked_pair(**_levers(building, level, axis, corner, ground=True)))
-            tracked_names.append(("corner", k, axis))
-            tracked_weights.append(_point(floor, level, axis, corner, n))
+            edge = (axis, corner[1 - axis])
+            if edge not in edges:
+                tracked.append(_core.tracked_pair(**_levers(building, level, axis, corner, ground=True)))
+                tracked_names.append(("corner", k, axis))
+                tracked_weights.append(_point(floor, level, axis, corner, n))
+                edges[edge] = len(tracked) - 1
+            row.append(edges[edge])
+        corner_tracks.append(tuple(row))
     if moat is not None:
         for side, (axis, sign) in enumerate(((0, -1.0), (0, 1.0), (1, -1.0), (1, 1.0))):
             for k, corner in enumerate(corners):
@@ -134,7 +145,7 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
                 contacts.append(_core.contact_slot(sign=sign, gap_m=moat.gap_m[side], law=moat.law.LAW_ID,
                                                    params=moat.law.params(), **pair))
                 contact_names.append((side, k))
-                contact_tracks.append(tracked_names.index(("corner", k, axis)))
+                contact_tracks.append(corner_tracks[k][axis])
                 contact_weights.append(_point(floor, moat.level, axis, corner, n))
     for level in range(building.n_levels):  # (each floor's centre of mass in plan: its x and y, a vector)
         for axis in (0, 1):
@@ -153,7 +164,7 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
                         np.array(contact_weights).reshape(len(contacts), n), np.array(tracked_weights),
                         np.array(element_weights).reshape(len(elements), n), tuple(pairs),
                         tuple(HystereticElement(el.i, el.j, list(el.slopes), list(el.breaks), el.rule)
-                              for el in elements), (tuple(range(n)),))
+                              for el in elements), (tuple(range(n)),), BW_NONE, tuple(corner_tracks))
 
 
 __all__ = ["PlanAssembly", "assemble_plan"]

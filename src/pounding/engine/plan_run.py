@@ -124,13 +124,11 @@ def plan_run_of(building: PlanBuilding, asm: PlanAssembly, excitation: Any, rate
     nb = len(building.bearings)
     bearing_q = np.array([[asm.tracked.index(("bearing", b, axis)) for axis in (0, 1)] for b in range(nb)])
     frame_q = [asm.tracked.index(("frame", f, "xy".index(fr.axis))) for f, fr in enumerate(building.frames)]
-    corner_q = np.array([[q for q, name in enumerate(asm.tracked) if name == ("corner", c, axis)]
-                         for c in range(4) for axis in (0, 1)]).reshape(-1)
     element_of = {name: e for e, name in enumerate(asm.element_names)}
     bearing_e = [[element_of[("bearing", b, axis)] for axis in (0, 1)] for b in range(nb)]
     x = samples[:, 1:1 + n]
     weights = asm.tracked_weights[bearing_q]  # (nb, 2, n)
-    corners = corner_q.reshape(-1, 2) if corner_q.size else np.zeros((0, 2), dtype=int)
+    corners = np.array(asm.corner_tracks, dtype=int).reshape(4, 2)
     return PlanRun(
         building=building, excitation=excitation, sample_rate_hz=rate, t=samples[:, 0],
         displacement=x.reshape(k, levels, 3), velocity=samples[:, 1 + n:1 + 2 * n].reshape(k, levels, 3),
