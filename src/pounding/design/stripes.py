@@ -85,8 +85,8 @@ def stripe_analysis(
         components.
     records : str or sequence of str
         The suite: ``"fema-p695:far_field"``, ``"fema-p695:near_field"``, ``"el-centro"``, the sets'
-        pairs (``"fema-p695-pair:far_field"``: a building in plan takes both components, a structure on
-        a line their motion along x), or record names and paths (:func:`suite_sources`).
+        pairs for a building in plan (``"fema-p695-pair:far_field"``: both components at once; refused
+        for a system on a line), or record names and paths (:func:`suite_sources`).
     levels_g : array_like, shape (s,)
         The stripes: pseudo-spectral accelerations (g) at ``period_s``, > 0, increasing.  Each
         record is scaled to each (:func:`stripe_factors`; a pair by one factor, to its RotD100).
