@@ -11,6 +11,11 @@ by its force times w:
 * an elastic-perfectly-plastic spring (stiffness k_p, yield displacement D; a bilinear bearing is one beside
   a linear spring in K): stuck, its force is k_p (w . q - slip); it slips when w . q - slip reaches +-D and
   sticks again when w . q' turns back;
+* a Bouc-Wen spring (its force f_z z, z' = w . q' / u_y (a - |z|^n (gamma + beta sgn(w . q' z))), z one more
+  state; the integration restarts where z and where w . q' cross zero, its law's kinks); two of them may be
+  one bidirectional spring (Park, Wen and Ang's, of any n): with u'_k = w_k . q', the vector z = (z_1, z_2),
+  z_k' = (a u'_k - |z|^(n-2) z_k sum_j u'_j z_j (gamma + beta sgn(u'_j z_j))) / u_y, yielding under the
+  resultant (one spring along a line when the other's z and u' are 0);
 * a Kelvin-Voigt wall (stiffness k_b, dashpot c_b) behind a gap, on one side (sign +-1): in contact its force
   is k_b d + c_b d' (d = sign w . q - gap) until it would pull; out of contact its compression relaxes as
   d_r exp(-k_b (t - t_r) / c_b) from where it was released, and contact starts when the point meets that
@@ -39,6 +44,10 @@ class PlanModel:
     plastic: list = field(default_factory=list)
     # Kelvin-Voigt walls: (w (n,), sign +-1, gap m, k_b N/m, c_b N s/m)
     walls: list = field(default_factory=list)
+    # Bouc-Wen springs: (w (n,), (f_z N, u_y m, a, beta, gamma, n)); their z start at 0
+    bouc_wen: list = field(default_factory=list)
+    # the bidirectional ones: pairs of indices into bouc_wen (the same numbers), each one spring in the plane
+    bidirectional: list = field(default_factory=list)
     # points whose displacement's extrema are found (w (n,) each: a bearing's along an axis, a corner's)
     tracked: list = field(default_factory=list)
     # vectors of two tracked points each (indices into tracked: a bearing's x and y), whose length's largest
@@ -64,6 +73,8 @@ class PlanResult:
     contact_starts: list = field(default_factory=list)  # (wall, t)
     contact_ends: list = field(default_factory=list)
     y: np.ndarray | None = None                         # the final (q, q')
+    z: np.ndarray | None = None                         # the final Bouc-Wen z
+    z_zeros: list = field(default_factory=list)         # (spring, t): its z back through zero
     tracked_max: np.ndarray | None = None               # each tracked point's largest and smallest w . q, m
     tracked_min: np.ndarray | None = None
     vector_max: np.ndarray | None = None                # each vector's longest, m
@@ -75,6 +86,13 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
     inv_m = 1.0 / s.mass
     ws = [np.asarray(w, dtype=float) for w, *_ in s.walls]
     wp = [np.asarray(w, dtype=float) for w, *_ in s.plastic]
+    wz = [np.asarray(w, dtype=float) for w, _ in s.bouc_wen]
+    bws = [p for _, p in s.bouc_wen]
+    z_max = [(a / (beta + gamma)) ** (1.0 / ne) for _, _, a, beta, gamma, ne in bws]
+    nz = len(bws)
+    mate = [-1] * nz
+    for b1, b2 in s.bidirectional:
+        mate[b1], mate[b2] = b2, b1
 
     def longest_step(kk):  # (a hundredth of the fastest period: no dip of an event between two steps' signs)
         w_max = math.sqrt(max(float(np.max(np.linalg.eigvals(kk * inv_m[:, None]).real)), 0.0))
@@ -92,7 +110,7 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
     out = PlanResult()
 
     def along(y, w):  # (displacement, velocity) of a point along w
-        return float(w @ y[:n]), float(w @ y[n:])
+        return float(w @ y[:n]), float(w @ y[n:2 * n])
 
     def surface(c, t):
         d_r, t_r = relax[c]
@@ -109,7 +127,24 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
             if inside[c]:
                 u, du = along(y, w)
                 f += sg * (k_b * (sg * u - gap) + c_b * sg * du) * w
+        for b, w in enumerate(wz):
+            f += bws[b][0] * y[2 * n + b] * w
         return f
+
+    def z_rates(y):
+        out = np.zeros(nz)
+        for b, (w, (_, u_y, a, beta, gamma, ne)) in enumerate(zip(wz, bws)):
+            du, z = float(w @ y[n:2 * n]), float(y[2 * n + b])
+            if mate[b] < 0:
+                # (|z| held at 2 z_max in the power: a rejected trial stage can leave |z| <= z_max)
+                zn = min(abs(z), 2.0 * z_max[b]) ** ne
+                out[b] = du / u_y * (a - zn * (beta * np.sign(du * z) + gamma))
+                continue
+            dm, zm = float(wz[mate[b]] @ y[n:2 * n]), float(y[2 * n + mate[b]])
+            both = du * z * (gamma + beta * np.sign(du * z)) + dm * zm * (gamma + beta * np.sign(dm * zm))
+            size = min(math.hypot(z, zm), 2.0 * z_max[b])
+            out[b] = (a * du - (size ** (ne - 2.0) * z * both if size > 0.0 else 0.0)) / u_y
+        return out
 
     a_lin = np.zeros((2 * n, 2 * n))
     a_lin[:n, n:] = np.eye(n)
@@ -120,8 +155,10 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
     def rhs(t, y):
         g = np.array([float(np.interp(t, t_rec, ax, left=0.0, right=0.0)),
                       float(np.interp(t, t_rec, ay, left=0.0, right=0.0))])
-        dy = a_lin @ y
-        dy[n:] -= s.influence @ g + inv_m * nonlinear_forces(y)
+        dy = np.zeros(y.size)
+        dy[:2 * n] = a_lin @ y[:2 * n]
+        dy[n:2 * n] -= s.influence @ g + inv_m * nonlinear_forces(y)
+        dy[2 * n:] = z_rates(y)
         return dy
 
     def make_events(quiet_contact=None):
@@ -165,16 +202,37 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
                 change.direction = -1.0
                 change.plastic = (q, sg)
                 evs.append(change)
+        if nz:
+            dy = rhs(t, y)
+        for b, w in enumerate(wz):  # (a Bouc-Wen spring's kinks: its z and its rate w . q' through zero)
+            # (z is set to 0 where it crosses zero, as the engine does: it has none while it is 0, and leaves
+            # 0 with w . q''s sign; w . q' at rest heads where w . q'' does; from rest at rest, nowhere yet)
+            z = y[2 * n + b]
+            du, ddu = float(w @ y[n:2 * n]), float(w @ dy[n:2 * n])
+            kinks = []
+            if z != 0.0:
+                def z_kink(t, y, b=b, sz=math.copysign(1.0, z)):
+                    return sz * y[2 * n + b]
+                kinks.append((z_kink, True))
+            if abs(du) > 1e-13 or ddu != 0.0:
+                def u_kink(t, y, w=w, su=math.copysign(1.0, du if abs(du) > 1e-13 else ddu)):
+                    return su * float(w @ y[n:2 * n])
+                kinks.append((u_kink, False))
+            for f, zero in kinks:
+                f.terminal = True
+                f.direction = -1.0
+                f.kink = (b, zero)
+                evs.append(f)
         return evs
 
-    t, y = 0.0, np.array(y0, dtype=float)
+    t, y = 0.0, np.concatenate((np.asarray(y0, dtype=float), np.zeros(nz)))
     wt = [np.asarray(w, dtype=float) for w in s.tracked]
     top = np.array([along(y, w)[0] for w in wt])
     bottom = top.copy()
 
     def turn(w):  # (a tracked point's velocity: its zeros are its extrema; not terminal)
         def f(t, y):
-            return float(w @ y[n:])
+            return float(w @ y[n:2 * n])
         f.terminal = False
         return f
 
@@ -242,6 +300,12 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         t = t_hit
         # (every event at that instant, to 1e-12 s, once: solve_ivp's and a stepped-over dip may be the same)
         for c in sorted({c for t_c, c in hits if t_c <= t_hit + 1e-12}):
+            if hasattr(evs[c], "kink"):  # (a Bouc-Wen kink: the integration restarts there)
+                b, zero = evs[c].kink
+                if zero:
+                    out.z_zeros.append((b, t))
+                    y[2 * n + b] = 0.0
+                continue
             if hasattr(evs[c], "plastic"):
                 q, sg = evs[c].plastic
                 if mode[q] == 0:
@@ -260,7 +324,7 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
             else:
                 inside[c] = True
                 out.contact_starts.append((c, t))
-    out.y = y
+    out.y, out.z = y[:2 * n], y[2 * n:]
     out.tracked_max, out.tracked_min = top, bottom
     out.vector_max = longest
     return out

@@ -153,14 +153,24 @@ def test_a_system_goes_in_by_name_and_comes_back_from_a_pickle_by_name():
     with pytest.raises(ValueError, match="at most"):  # (more parameters than a slot holds: refused, not cut)
         _core.contact_slot(i=0, j=-1, sign=1.0, gap_m=0.03, law=1, params=[1.0] * 11)
     iso = _core.element(i=0, j=-1, c_d=1000.0, slopes=[38e3, 2e3], breaks=[0.015], rule=0)
-    sy = _core.system([500.0], np.zeros((1, 1)), np.zeros((1, 1)), [iso], np.zeros(6), True, [slot])
+    sy = _core.system([500.0], np.zeros((1, 1)), np.zeros((1, 1)), [iso], True, [slot])
     back = pickle.loads(pickle.dumps(sy))
     assert back.__getstate__() == sy.__getstate__()
-    named = {"n", "mass", "k0", "c0", "elements", "bw", "has_b", "contacts", "tracked", "infl", "norm_p",
-             "norm_q"}
+    named = {"n", "mass", "k0", "c0", "elements", "has_b", "contacts", "tracked", "infl", "norm_p", "norm_q"}
     assert set(sy.__getstate__()) == named
     assert pickle.loads(pickle.dumps(slot)).gap_m == 0.03
     assert pickle.loads(pickle.dumps(iso)).breaks == [0.015]
+    # a Bouc-Wen spring is an element's, and travels with it; a pickle from before (the system's, element
+    # 0's) comes back as element 0's
+    bw = [900.0, 0.004, 1.0, 0.5, 0.5, 1.0]
+    with_bw = _core.element(i=0, j=-1, c_d=0.0, slopes=[1e3], breaks=[], rule=1, bw=bw)
+    assert pickle.loads(pickle.dumps(with_bw)).bw == bw and iso.bw == [0.0] * 6
+    old = sy.__getstate__() | {"bw": bw}
+    again = _core.System.__new__(_core.System)
+    again.__setstate__(old)
+    assert again.__getstate__()["elements"][0]["bw"] == bw and again.layout["n_bouc_wen"] == 1
+    with pytest.raises(ValueError, match="bw"):
+        _core.element(i=0, j=-1, c_d=0.0, slopes=[1e3], breaks=[], rule=1, bw=[1.0, 0.0, 1.0, 0.5, 0.5, 1.0])
     with pytest.raises(ValueError, match="ContactSlot"):
-        _core.system([500.0], np.zeros((1, 1)), np.zeros((1, 1)), [iso], np.zeros(6), True,
+        _core.system([500.0], np.zeros((1, 1)), np.zeros((1, 1)), [iso], True,
                      [(0, -1, 1.0, 0.03, 1, [5e8])])

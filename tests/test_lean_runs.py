@@ -70,7 +70,7 @@ def test_a_model_that_differs_gets_its_own_assembly_and_its_own_run():
 
 def test_what_is_kept_cannot_be_changed_in_place():
     asm = assembly.assemble(_building())
-    for name in ("masses", "k_fast", "c_all", "system_bw"):
+    for name in ("masses", "k_fast", "c_all", "bouc_wen"):
         with pytest.raises(ValueError, match="read-only"):
             getattr(asm, name)[0] = 1.0
 

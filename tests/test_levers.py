@@ -33,7 +33,6 @@ from reference_plan import PlanModel, reference
 from reference_plan import record_pair as _record
 
 KELVIN_VOIGT = _core.LAW_IDS["kelvin_voigt"]
-BW = np.zeros(_core.LAYOUT["BW_PARAMS"])
 ACT = _core.ACTIONS
 PX = _core.PAIR_EXTREMA
 NX = _core.NORM_EXTREMA
@@ -132,7 +131,7 @@ def plan_building(rng, levels, gap_m, moat=None):
     tracked = [_core.tracked_pair(i=el.i, j=el.j, lever_i=el.lever_i, arm_i_m=el.arm_i_m, lever_j=el.lever_j,
                                  arm_j_m=el.arm_j_m) for el in elements]
     vectors = [(2 * b, 2 * b + 1) for b in range(len(corners))]
-    sy = _core.system(mass, k, c, elements, BW, True, contacts, tracked, influence=influence, vectors=vectors)
+    sy = _core.system(mass, k, c, elements, True, contacts, tracked, influence=influence, vectors=vectors)
     model = PlanModel(mass=mass, k=k_ref, c=c_ref, influence=influence, record=(np.zeros(1),) * 3,
                       plastic=plastic, walls=walls, tracked=[w for w, _, _ in plastic], vectors=vectors)
     return sy, model
@@ -262,7 +261,7 @@ def _line_building(lever: bool):
                 for s in (-1.0, 1.0)]
     contacts.append(_core.contact_slot(i=2, j=1, sign=1.0, gap_m=0.004, law=_core.LAW_IDS["hunt_crossley"],
                                        params=hc, **arms(2, 1)))
-    return _core.system(mass, k0, c0, elements, BW, True, contacts, tracked=((1, 0), (2, 1)))
+    return _core.system(mass, k0, c0, elements, True, contacts, tracked=((1, 0), (2, 1)))
 
 
 def _same(a, b):
@@ -305,7 +304,7 @@ def _refused(match, **changes):
     target = contact if changes.pop("on", "contact") == "contact" else element
     target.update(changes)
     with pytest.raises(ValueError, match=match):
-        _core.system(np.ones(3), np.zeros((3, 3)), np.zeros((3, 3)), [_core.element(**element)], BW, True,
+        _core.system(np.ones(3), np.zeros((3, 3)), np.zeros((3, 3)), [_core.element(**element)], True,
                      [_core.contact_slot(**contact)])
 
 
@@ -367,7 +366,7 @@ def line_with_levers(rng, arm_scale=1.0):
         walls.append((w, sign, g, k_b, c_b))
     tracked = [_core.tracked_pair(i=p.i, j=p.j, lever_i=p.lever_i, arm_i_m=p.arm_i_m, lever_j=p.lever_j,
                                  arm_j_m=p.arm_j_m) for p in (*elements, contacts[0], contacts[2])]
-    sy = _core.system(mass, k, c, elements, BW, True, contacts, tracked)
+    sy = _core.system(mass, k, c, elements, True, contacts, tracked)
     influence = np.column_stack([np.ones(n), np.zeros(n)])
     return sy, PlanModel(mass=mass, k=k_ref, c=c_ref, influence=influence, record=(np.zeros(1),) * 3,
                          plastic=plastic, walls=walls,
@@ -416,7 +415,7 @@ def test_an_elliptic_orbit_s_longest_is_the_closed_form(with_elements, m, k, c, 
         k0 = c0 = np.zeros((2, 2))
     else:
         elements, k0, c0 = [], k * np.eye(2), c * np.eye(2)
-    sy = _core.system([m, m], k0, c0, elements, BW, False, [], ((0, -1), (1, -1)), influence=np.eye(2),
+    sy = _core.system([m, m], k0, c0, elements, False, [], ((0, -1), (1, -1)), influence=np.eye(2),
                       vectors=((0, 1),))
     den = complex(k / m - w * w, c * w / m)
     zx, zy = -amp_x / den, 1j * amp_y / den
@@ -521,8 +520,7 @@ def _twins(law1, law2, bouc_wen, rules):
     rot, t_of = _coordinates()
     k = np.array([[800.0, -240.0, 0.0], [-240.0, 472.0, -300.0], [0.0, -300.0, 3000.0]])
     c = 0.01 * k + np.diag([2.0, 1.0, 0.5])
-    bw = (pd_.BoucWen(stiffness_n_m=600.0, yield_displacement_m=0.004).kernel_array() if bouc_wen
-          else np.zeros(_core.LAYOUT["BW_PARAMS"]))
+    bw = pd_.BoucWen(stiffness_n_m=600.0, yield_displacement_m=0.004).kernel_array() if bouc_wen else ()
     (l1, p1), (l2, p2) = ((int(law.LAW_ID), law.params()) for law in (EQ_LAWS[law1](), EQ_LAWS[law2]()))
 
     def build(lever):
@@ -530,12 +528,12 @@ def _twins(law1, law2, bouc_wen, rules):
                   else (dict(i=0, j=-1), dict(i=1, j=-1)))
         kk, cc = (k, c) if lever else (t_of.T @ k @ t_of, t_of.T @ c @ t_of)
         infl = None if lever else np.column_stack([rot @ np.sqrt(EQ_M), np.zeros(3)])
-        els = [_core.element(c_d=40.0, slopes=[2e3, 300.0], breaks=[0.01], rule=rules[0], **e1),
+        els = [_core.element(c_d=40.0, slopes=[2e3, 300.0], breaks=[0.01], rule=rules[0], bw=bw, **e1),
                _core.element(c_d=0.0, slopes=[1.5e3, 400.0], breaks=[0.006], rule=rules[1], **e2)]
         cts = [_core.contact_slot(sign=s, gap_m=0.012, law=l1, params=p1, **e1) for s in (-1.0, 1.0)]
         cts.append(_core.contact_slot(sign=1.0, gap_m=0.004, law=l2, params=p2, **e2))
         tracked = [_core.tracked_pair(**e1), _core.tracked_pair(**e2)]
-        return _core.system(EQ_M if lever else np.ones(3), kk, cc, els, bw, True, cts, tracked,
+        return _core.system(EQ_M if lever else np.ones(3), kk, cc, els, True, cts, tracked,
                             influence=infl)
 
     return build(True), build(False), t_of

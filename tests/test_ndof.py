@@ -44,7 +44,7 @@ def core_system(s: Structure, bumpers: bool = True):
                                    params=params)
                 for partner, sign, gap in zip(s.partners, (-1.0, 1.0), s.gaps)]
     isolator = _core.element(i=0, j=-1, c_d=s.c_iso, slopes=[s.k_iso], breaks=[], rule=1)
-    return _core.system(s.mass, s.k0, s.c0, [isolator], np.zeros(6), bumpers, contacts)
+    return _core.system(s.mass, s.k0, s.c0, [isolator], bumpers, contacts)
 
 
 def core_run(s: Structure, t_end: float, y0: np.ndarray, bumpers: bool = True, sample_dt: float = 0.0):

@@ -121,8 +121,7 @@ def test_a_last_part_s_transition_off_by_the_clock_s_drift_is_screened_as_such()
     stiffness = np.array([[0.5 * (lo + hi) + k_stiff, -k_stiff], [-k_stiff, k_stiff]])
     values, vectors = np.linalg.eigh(stiffness)
     w, shape = np.sqrt(values[0]), vectors[:, 0] / vectors[0, 0]
-    system = _core.system(np.ones(2), stiffness, np.zeros((2, 2)), [], np.zeros(_core.LAYOUT["BW_PARAMS"]),
-                          False, [], tracked=((1, 0),))
+    system = _core.system(np.ones(2), stiffness, np.zeros((2, 2)), [], False, [], tracked=((1, 0),))
     rec_t = t0 + step * np.arange(int(4.0 / step) + 2)
     forcing = _core.Forcing(kind=_core.EXCITATION["record"], p=np.array([step, 0.0, 0.0]), rec_t=rec_t,
                             rec_a=np.zeros(rec_t.size))
@@ -160,8 +159,7 @@ def test_a_drift_s_bound_is_twice_a_level_s():
     # equals the largest, so the screen clears none (with a drift's bound taken as a level's it clears some,
     # and they lie outside it)
     stiffness = np.array([[1.0 + 1e4, -1e4], [-1e4, 1e4]])
-    system = _core.system(np.ones(2), stiffness, np.zeros((2, 2)), [], np.zeros(_core.LAYOUT["BW_PARAMS"]),
-                          False, [], tracked=((1, 0),))
+    system = _core.system(np.ones(2), stiffness, np.zeros((2, 2)), [], False, [], tracked=((1, 0),))
     t = np.arange(0.0, 2.0 + 1e-9, 0.01)
     forcing = _core.Forcing(kind=_core.EXCITATION["record"], p=np.array([0.01, 0.0, 0.0]), rec_t=t,
                             rec_a=np.zeros(t.size))

@@ -47,7 +47,7 @@ def _plane_oscillator(m, k, c, with_elements):
         k0 = c0 = np.zeros((2, 2))
     else:
         elements, k0, c0 = [], k * np.eye(2), c * np.eye(2)
-    return _core.system([m, m], k0, c0, elements, np.zeros(_core.LAYOUT["BW_PARAMS"]), False, [],
+    return _core.system([m, m], k0, c0, elements, False, [],
                         influence=np.eye(2))
 
 
@@ -99,7 +99,7 @@ def _plan_body():
 
 def test_a_linear_body_in_plan_matches_the_exact_first_order_hold():
     mass, k, c = _plan_body()
-    sy = _core.system(mass, k, c, [], np.zeros(_core.LAYOUT["BW_PARAMS"]), False, [],
+    sy = _core.system(mass, k, c, [], False, [],
                       influence=np.array([[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]]))
     rng = np.random.default_rng(12)
     dt = 0.01
@@ -227,8 +227,8 @@ def test_a_held_pair_moved_by_different_tables_has_each_dof_s_own_acceleration_e
     # plus its own table, and the exact extrema are the crests of that (a review found them the group's mean
     # table's: up to 5 % below the finely sampled peak)
     stop = _core.contact_slot(i=0, j=1, sign=1.0, gap_m=1e-9, law=_core.LAW_IDS["rigid"], params=[0.0] * 10)
-    sy = _core.system([1.0, 3.0], np.diag([4.0, 2.0]), np.diag([0.05, 0.05]), [],
-                      np.zeros(_core.LAYOUT["BW_PARAMS"]), True, [stop], influence=np.array(influence))
+    sy = _core.system([1.0, 3.0], np.diag([4.0, 2.0]), np.diag([0.05, 0.05]), [], True, [stop],
+                      influence=np.array(influence))
     forcing = _core.Forcing(kind=_core.EXCITATION["harmonic"], p=np.array(p), rec_t=np.zeros(1),
                             rec_a=np.zeros(1))
     out = _run(sy, forcing, np.zeros(sy.state_size), 3.0, 1e-4)
@@ -257,7 +257,7 @@ def test_the_door_refuses_a_second_component_it_cannot_place():
         with pytest.raises(ValueError, match="rec_b"):
             _run(sy, forcing, state0, 1.0)
     with pytest.raises(ValueError, match="influence"):
-        _core.system([1.0, 1.0], np.eye(2), np.zeros((2, 2)), [], np.zeros(_core.LAYOUT["BW_PARAMS"]), False,
+        _core.system([1.0, 1.0], np.eye(2), np.zeros((2, 2)), [], False,
                      [], influence=np.ones((2, 3)))
     state = sy.__getstate__()
     state["infl"] = [1.0, 0.0, 0.0]  # (not 2 n values: refused, not read as a line's table)

@@ -15,13 +15,13 @@ namespace pounding::run_parts {
 
 // ---------------------------------------------------------------- outputs at an instant
 
-// element e's force on its pair (k u + r0 + c_d u', and the isolator's Bouc-Wen spring's)
+// element e's force on its pair (k u + r0 + c_d u', and its Bouc-Wen spring's)
 double iso_force(const System& sy, int e, const double* st) {
     const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
     const IsoLinear iso = iso_linear(sy, e, st);
     const Layout& L = sy.lay;
     const double u = rel(st + L.x, h), du = rel(st + L.v, h);
-    return iso.k * u + iso.r0 + h.c_d * du + (e == 0 ? sy.bw[0] * st[L.zeta] : 0.0) +
+    return iso.k * u + iso.r0 + h.c_d * du + (h.has_bw() ? h.bw[0] * st[L.zeta + h.bw_slot] : 0.0) +
            iso_rate_force(h, iso_slip(sy, e, st), du);
 }
 
@@ -71,11 +71,12 @@ void outputs_in_phase(Phase& ph, const System& sy, double t, double tau, const d
         row[1 + n + i] = y[n + i];
         row[1 + 2 * n + i] = a[i] + ph.on(i, ag, bg);
     }
-    for (int e = 0; e < sy.n_h(); ++e) {  // each element's force, the isolator's Bouc-Wen spring with its own
+    const double* z = phase_zeta(ph, tau);
+    for (int e = 0; e < sy.n_h(); ++e) {  // each element's force, its Bouc-Wen spring's with its own
         const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
         double f = ph.el_k[static_cast<size_t>(e)] * rel(y, h) + ph.el_r[static_cast<size_t>(e)] +
                    h.c_d * rel(y + n, h);
-        if (e == 0 && ph.bw[0] != 0.0) f += ph.bw[0] * phase_zeta(ph, tau);
+        if (h.has_bw()) f += h.bw[0] * z[h.bw_slot];
         f += iso_rate_force(h, ph.el_s[static_cast<size_t>(e)], rel(y + n, h));
         if (ph.stk.any && ph.stk.held_of[static_cast<size_t>(ph.nc + e)] >= 0)  // (sticking: its friction)
             f += held_force(ph, ph.nc + e, tau, y, a).g;
@@ -95,12 +96,18 @@ void energies(const double* st, const System& sy, double& kin, double& iso, doub
     const double* v = st + L.v;
     kin = 0.0;
     for (int i = 0; i < n; ++i) kin += 0.5 * sy.mass[static_cast<size_t>(i)] * v[i] * v[i];
-    const double e_bw = sy.bw[0] != 0.0 ? 0.5 * sy.bw[0] * sy.bw[1] * st[L.zeta] * st[L.zeta] / sy.bw[2] : 0.0;
+    // (element e's Bouc-Wen spring's energy)
+    auto e_bw = [&](int e) {
+        const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+        if (!h.has_bw()) return 0.0;
+        const double z = st[L.zeta + h.bw_slot];
+        return 0.5 * h.bw[0] * h.bw[1] * z * z / h.bw[2];
+    };
     double e_k0 = 0.0;
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) e_k0 += 0.5 * x[i] * sy.k0[static_cast<size_t>(i * n + j)] * x[j];
-    iso = (sy.n_h() > 0 ? iso_energy(sy, 0, st, iso_u(sy, 0, st)) : 0.0) + e_bw + e_k0;
-    for (int e = 1; e < sy.n_h(); ++e) iso += iso_energy(sy, e, st, iso_u(sy, e, st));
+    iso = (sy.n_h() > 0 ? iso_energy(sy, 0, st, iso_u(sy, 0, st)) + e_bw(0) : 0.0) + e_k0;
+    for (int e = 1; e < sy.n_h(); ++e) iso += iso_energy(sy, e, st, iso_u(sy, e, st)) + e_bw(e);
     bmp = 0.0;
     for (int c = 0; c < sy.nc(); ++c) {
         const Contact& ct = sy.contact[static_cast<size_t>(c)];
@@ -194,13 +201,12 @@ void linear_contributions(Phase& ph, const System& sy, double* st, double tau, c
     }
 }
 
-// a nonlinear phase's: the same by 7-point Gauss-Lobatto, with the Bouc-Wen spring's hysteresis and a linear
+// a nonlinear phase's: the same by 7-point Gauss-Lobatto, with the Bouc-Wen springs' hysteresis and a linear
 // law's branch loss
 void numeric_contributions(Phase& ph, const System& sy, double* st, double tau, const Ends& e, double* ledger,
                            Buffers& b) {
     const int n = ph.n;
     const Layout& L = sy.lay;
-    const double bw = ph.bw[0];
     double* y = b.ym.data();
     double* a = b.am.data();
     for (int qn = 0; qn < N_LOBATTO; ++qn) {
@@ -231,7 +237,13 @@ void numeric_contributions(Phase& ph, const System& sy, double* st, double tau, 
         }
         ledger[L_INPUT] -= ph.plain ? wq * ag * mv : wq * (ag * mv + bg * mvb);
         ledger[L_VISCOUS] += wq * vcv;
-        if (bw != 0.0) ledger[L_HYSTERETIC] += wq * bw * phase_zeta(ph, tq) * rel(v, ph.iso);
+        if (ph.nbw > 0) {
+            const double* z = phase_zeta(ph, tq);
+            for (int q = 0; q < ph.nbw; ++q) {
+                const Hysteretic& h = *ph.bw[static_cast<size_t>(q)];
+                ledger[L_HYSTERETIC] += wq * h.bw[0] * z[q] * rel(v, h);
+            }
+        }
         for (const Phase::RateFriction& r : ph.rate_fr) {  // (a velocity-dependent friction's rest)
             const double du = rel(v, *r.h);
             ledger[L_HYSTERETIC] += wq * iso_rate_force(*r.h, r.s, du) * du;
@@ -245,8 +257,8 @@ void numeric_contributions(Phase& ph, const System& sy, double* st, double tau, 
             ledger[L_BUMPER_LOSS] += wq * (f.f - f.elastic) * f.dx;
         }
     }
-    if (bw != 0.0)
-        ledger[L_HYSTERETIC] -= bouc_wen_energy(ph, phase_zeta(ph, tau)) - bouc_wen_energy(ph, ph.zeta0);
+    if (ph.nbw > 0)
+        ledger[L_HYSTERETIC] -= bouc_wen_energy(ph, phase_zeta(ph, tau)) - bouc_wen_energy(ph, ph.zeta0.data());
     for (int c = 0; c < ph.nc; ++c) {  // a linear law's branch in a numerical phase: its spring's loss
         const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
         if (k.in && law_is_linear(k.law)) {

@@ -116,7 +116,8 @@ Contact contact_of(int i, int j, double sign, double gap_m, int law, const std::
 
 Hysteretic element_of(int i, int j, double c_d, const std::vector<double>& slopes, const std::vector<double>& breaks,
                       int rule, double friction, double friction_fast, double friction_rate,
-                      const std::vector<double>& surface_friction, const std::vector<double>& surface_ring) {
+                      const std::vector<double>& surface_friction, const std::vector<double>& surface_ring,
+                      const std::vector<double>& bw) {
     Hysteretic h;
     h.i = i;
     h.j = j;
@@ -129,6 +130,7 @@ Hysteretic element_of(int i, int j, double c_d, const std::vector<double>& slope
     h.friction_rate = friction_rate;
     h.surface_friction = surface_friction;
     h.surface_ring = surface_ring;
+    for (int k = 0; k < BW_PARAMS; ++k) h.bw[k] = k < static_cast<int>(bw.size()) ? bw[k] : 0.0;
     return h;
 }
 
@@ -165,6 +167,7 @@ nb::dict element_state(const Hysteretic& h) {
     d["friction_rate_s_m"] = h.friction_rate;
     d["surface_friction_n"] = h.surface_friction;
     d["surface_ring_n_m"] = h.surface_ring;
+    d["bw"] = std::vector<double>(h.bw, h.bw + BW_PARAMS);
     levers_state(d, h);
     return d;
 }
@@ -178,21 +181,20 @@ Hysteretic element_from_state(const nb::dict& d) {
                       d.contains("surface_friction_n") ? nb::cast<std::vector<double>>(d["surface_friction_n"])
                                                        : std::vector<double>{},
                       d.contains("surface_ring_n_m") ? nb::cast<std::vector<double>>(d["surface_ring_n_m"])
-                                                     : std::vector<double>{});
+                                                     : std::vector<double>{},
+                      d.contains("bw") ? nb::cast<std::vector<double>>(d["bw"]) : std::vector<double>{});
     levers_from_state(h, d);
     return h;
 }
 
 void fill_system(System& s, int n, const std::vector<double>& mass, const std::vector<double>& k0,
-                 const std::vector<double>& c0, const std::vector<Hysteretic>& elements, const std::vector<double>& bw,
-                 bool has_b, const std::vector<Contact>& contacts, const std::vector<Pair>& tracked,
+                 const std::vector<double>& c0, const std::vector<Hysteretic>& elements, bool has_b, const std::vector<Contact>& contacts, const std::vector<Pair>& tracked,
                  const std::vector<double>& infl, const std::vector<int>& norm_p, const std::vector<int>& norm_q) {
     s.n = n;
     s.mass = mass;
     s.k0 = k0;
     s.c0 = c0;
     s.hyst = elements;
-    for (int j = 0; j < BW_PARAMS; ++j) s.bw[j] = j < static_cast<int>(bw.size()) ? bw[j] : 0.0;
     s.has_b = has_b;
     s.contact = contacts;
     s.track = tracked;
@@ -214,7 +216,6 @@ nb::dict system_state(const System& s) {
     for (const Hysteretic& h : s.hyst) elements.append(element_state(h));
     for (const Contact& c : s.contact) contacts.append(contact_state(c));
     d["elements"] = elements;
-    d["bw"] = std::vector<double>(s.bw, s.bw + BW_PARAMS);
     d["has_b"] = s.has_b;
     d["contacts"] = contacts;
     nb::list tracked;
@@ -240,9 +241,13 @@ void system_from_state(System& s, const nb::dict& d) {
         elements.push_back(element_from_state(nb::cast<nb::dict>(e)));
     for (nb::handle c : nb::cast<nb::list>(d["contacts"]))
         contacts.push_back(contact_from_state(nb::cast<nb::dict>(c)));
+    if (d.contains("bw") && !elements.empty()) {  // (a pickle from before each element had its own: element 0's)
+        const std::vector<double> bw = nb::cast<std::vector<double>>(d["bw"]);
+        for (int k = 0; k < BW_PARAMS && k < static_cast<int>(bw.size()); ++k) elements[0].bw[k] = bw[k];
+    }
     fill_system(s, nb::cast<int>(d["n"]), nb::cast<std::vector<double>>(d["mass"]),
                 nb::cast<std::vector<double>>(d["k0"]), nb::cast<std::vector<double>>(d["c0"]), elements,
-                nb::cast<std::vector<double>>(d["bw"]), nb::cast<bool>(d["has_b"]), contacts,
+                nb::cast<bool>(d["has_b"]), contacts,
                 tracked,
                 d.contains("infl") ? nb::cast<std::vector<double>>(d["infl"]) : std::vector<double>(),
                 d.contains("norm_p") ? nb::cast<std::vector<int>>(d["norm_p"]) : std::vector<int>(),
@@ -308,16 +313,17 @@ NB_MODULE(_pounding_core, m) {
              [](Hysteretic* h, int i, int j, double c_d, const std::vector<double>& slopes,
                 const std::vector<double>& breaks, int rule, double friction_n, double friction_fast_n,
                 double friction_rate_s_m, const std::vector<double>& surface_friction_n,
-                const std::vector<double>& surface_ring_n_m, int lever_i, double arm_i_m, int lever_j,
-                double arm_j_m) {
+                const std::vector<double>& surface_ring_n_m, const std::vector<double>& bw, int lever_i,
+                double arm_i_m, int lever_j, double arm_j_m) {
                  new (h) Hysteretic(element_of(i, j, c_d, slopes, breaks, rule, friction_n, friction_fast_n,
-                                               friction_rate_s_m, surface_friction_n, surface_ring_n_m));
+                                               friction_rate_s_m, surface_friction_n, surface_ring_n_m, bw));
                  set_levers(*h, lever_i, arm_i_m, lever_j, arm_j_m);
              },
              nb::kw_only(), nb::arg("i"), nb::arg("j"), nb::arg("c_d"), nb::arg("slopes"), nb::arg("breaks"),
              nb::arg("rule"), nb::arg("friction_n") = 0.0, nb::arg("friction_fast_n") = 0.0,
              nb::arg("friction_rate_s_m") = 0.0, nb::arg("surface_friction_n") = std::vector<double>{},
-             nb::arg("surface_ring_n_m") = std::vector<double>{}, nb::arg("lever_i") = -1, nb::arg("arm_i_m") = 0.0,
+             nb::arg("surface_ring_n_m") = std::vector<double>{}, nb::arg("bw") = std::vector<double>{},
+             nb::arg("lever_i") = -1, nb::arg("arm_i_m") = 0.0,
              nb::arg("lever_j") = -1, nb::arg("arm_j_m") = 0.0)
         .def_ro("i", &Hysteretic::i)
         .def_ro("j", &Hysteretic::j)
@@ -330,6 +336,7 @@ NB_MODULE(_pounding_core, m) {
         .def_ro("friction_rate_s_m", &Hysteretic::friction_rate)
         .def_ro("surface_friction_n", &Hysteretic::surface_friction)
         .def_ro("surface_ring_n_m", &Hysteretic::surface_ring)
+        .def_prop_ro("bw", [](const Hysteretic& h) { return std::vector<double>(h.bw, h.bw + BW_PARAMS); })
         .def("__getstate__", &element_state)
         .def("__setstate__", [](Hysteretic& h, const nb::dict& d) { new (&h) Hysteretic(element_from_state(d)); });
 
@@ -339,14 +346,14 @@ NB_MODULE(_pounding_core, m) {
         .def("__init__",
              [](System* s, int n, const std::vector<double>& mass, const std::vector<double>& k0,
                 const std::vector<double>& c0, const std::vector<Hysteretic>& elements,
-                const std::vector<double>& bw, bool has_b, const std::vector<Contact>& contacts,
+                bool has_b, const std::vector<Contact>& contacts,
                 const std::vector<Pair>& tracked, const std::vector<double>& infl, const std::vector<int>& norm_p,
                 const std::vector<int>& norm_q) {
                  new (s) System();
-                 fill_system(*s, n, mass, k0, c0, elements, bw, has_b, contacts, tracked, infl, norm_p, norm_q);
+                 fill_system(*s, n, mass, k0, c0, elements, has_b, contacts, tracked, infl, norm_p, norm_q);
              },
              nb::kw_only(), nb::arg("n"), nb::arg("mass"), nb::arg("k0"), nb::arg("c0"), nb::arg("elements"),
-             nb::arg("bw"), nb::arg("has_b"), nb::arg("contacts"), nb::arg("tracked"),
+             nb::arg("has_b"), nb::arg("contacts"), nb::arg("tracked"),
              nb::arg("infl") = std::vector<double>(), nb::arg("norm_p") = std::vector<int>(),
              nb::arg("norm_q") = std::vector<int>())
         .def_ro("n", &System::n)
@@ -373,6 +380,7 @@ NB_MODULE(_pounding_core, m) {
             d["acc"] = s.lay.acc;
             d["z"] = s.lay.z;
             d["zeta"] = s.lay.zeta;
+            d["n_bouc_wen"] = s.lay.n_bw;
             d["base"] = s.lay.base;
             d["n_springs"] = s.lay.n_sp;
             d["size"] = s.lay.size;
@@ -494,7 +502,7 @@ NB_MODULE(_pounding_core, m) {
     nb::dict layout;
     // the state's offsets and the outputs' columns of a one-mass system with its two contact slots (the left
     // and the right bumper); a system's own: System.layout
-    const Layout one(1, 2, 1, 0);
+    const Layout one(1, 2, 1, 0, 1);
     layout["T"] = T;
     layout["D"] = one.x;
     layout["V"] = one.v;

@@ -13,7 +13,8 @@
 //   T time s | x + i displacements m | v + i velocities m/s | def + c compressions | in + c in contact (1.0)
 //   region + e element e's backbone branch (elastic rule) or its slip (friction rule: -1, 0 sticking, +1)
 //   | acc + N_ACC c a contact's running totals
-//   z + N_LAW_STATE c a contact law's state | zeta Bouc-Wen z | base + g slips of every element's springs
+//   z + N_LAW_STATE c a contact law's state | zeta + b the Bouc-Wen z of spring b (one slot when there is none)
+//   | base + g slips of every element's springs
 //   (element e's from its first), then base + n_sp + g their slip directions (a series of friction surfaces:
 //   each surface's displacement, then its state: +-1 slipping, 0 held, +-2 held at its ring on that side)
 // For n = 1 and two contact slots that is Python's long-standing layout (T 0, D 1, V 2, ..., STATE_BASE 37).
@@ -35,7 +36,7 @@ namespace pounding {
 constexpr int N_LAW_PARAMS = 10;
 constexpr int N_LAW_STATE = 7;
 constexpr int N_ACC = 7;
-constexpr int BW_PARAMS = 6;    // Bouc-Wen: force per unit z (k u_y), u_y, a, beta, gamma, n
+constexpr int BW_PARAMS = 6;    // Bouc-Wen: force per unit z (k u_y), u_y, a, beta, gamma, n (an element's)
 constexpr int MAX_BRANCHES = 4; // of a multi-linear contact law
 constexpr int GROUND = -1;      // a pair's second end when it is the ground (the table)
 
@@ -52,14 +53,14 @@ enum PairExtremum : int { PX_MAX = 0, PX_MAX_T, PX_MIN, PX_MIN_T, PAIR_EXTREMA }
 // its length's largest (m), its time (s) and the two components there
 enum NormExtremum : int { NX_MAX = 0, NX_MAX_T, NX_AT_P, NX_AT_Q, NORM_EXTREMA };
 
-// where each block of the state vector starts, for n dofs, nc contact slots, n_h hysteretic elements and n_sp
-// springs of theirs in all
+// where each block of the state vector starts, for n dofs, nc contact slots, n_h hysteretic elements, n_sp
+// springs of theirs in all and n_bw Bouc-Wen springs (their z: one slot at least, 0 without any)
 struct Layout {
-    int n = 1, nc = 2, n_h = 1, n_sp = 0;
+    int n = 1, nc = 2, n_h = 1, n_sp = 0, n_bw = 0;
     int x = 1, v = 2, def = 3, in = 5, region = 7, acc = 8, z = 22, zeta = 36, base = 37, size = 37;
     Layout() = default;
-    Layout(int n_dof, int n_contacts, int n_elements, int n_springs)
-        : n(n_dof), nc(n_contacts), n_h(n_elements), n_sp(n_springs) {
+    Layout(int n_dof, int n_contacts, int n_elements, int n_springs, int n_bouc_wen)
+        : n(n_dof), nc(n_contacts), n_h(n_elements), n_sp(n_springs), n_bw(n_bouc_wen) {
         x = 1;
         v = x + n;
         def = v + n;
@@ -68,7 +69,7 @@ struct Layout {
         acc = region + n_h;
         z = acc + N_ACC * nc;
         zeta = z + N_LAW_STATE * nc;
-        base = zeta + 1;
+        base = zeta + std::max(1, n_bw);
         size = base + 2 * n_sp;
     }
     int def_at(int c) const { return def + c; }
@@ -195,6 +196,11 @@ struct Hysteretic : Pair {
     std::vector<double> surface_friction;
     // each surface's ring stiffness (N/m; 0: rigid), empty: every ring rigid
     std::vector<double> surface_ring;
+    // its Bouc-Wen spring (bw[0] 0: none), in parallel: force bw[0] z, z' = u' / u_y (a - |z|^n (gamma +
+    // beta sgn(u' z))), z of layout slot zeta + bw_slot (set by System::finish, -1: none)
+    double bw[BW_PARAMS] = {0};
+    int bw_slot = -1;
+    bool has_bw() const { return bw[0] != 0.0; }
     int first = 0;  // its first spring's index among the system's (set by System::finish)
     bool series() const { return !surface_friction.empty(); }
     // its springs: a series's surfaces (each with a displacement and a state), the backbone's breaks otherwise
@@ -210,7 +216,6 @@ struct System {
     std::vector<double> mass;     // kg, n
     std::vector<double> k0, c0;   // the linear springs and dashpots besides the elements (N/m, N s/m), n x n
     std::vector<Hysteretic> hyst; // the hysteretic elements, the isolator first (none: a fixed base)
-    double bw[BW_PARAMS] = {0};   // element 0's Bouc-Wen spring (bw[0] 0: none)
     bool has_b = false;           // the contacts are active
     std::vector<Contact> contact; // the contact slots
     std::vector<Pair> track;  // pairs whose relative displacement's extrema a run finds (drifts, a bearing's)
@@ -224,6 +229,7 @@ struct System {
     std::vector<double> c_lin;
     std::vector<int> rigid;  // the contacts with a rigid stop's law
     std::vector<int> ties;   // the elements with the friction rule (each ties its pair while it sticks)
+    std::vector<int> bw_el;  // the elements with a Bouc-Wen spring, by their z's slot
     double total_mass = 0.0;
     bool plain = true;  // the table moves every dof with its first component alone (infl's rows 1, 0)
     Layout lay;
@@ -241,13 +247,19 @@ struct System {
     const Hysteretic& iso() const { return hyst[0]; }
     int state_size() const { return lay.size; }
     int nc() const { return static_cast<int>(contact.size()); }
+    int n_bw() const { return static_cast<int>(bw_el.size()); }
+    const Hysteretic& bw_of(int b) const { return hyst[static_cast<size_t>(bw_el[static_cast<size_t>(b)])]; }
     void finish() {
         int first = 0;
-        for (Hysteretic& h : hyst) {
+        bw_el.clear();
+        for (int e = 0; e < n_h(); ++e) {
+            Hysteretic& h = hyst[static_cast<size_t>(e)];
             h.first = first;
             first += h.n_springs();
+            h.bw_slot = h.has_bw() ? n_bw() : -1;
+            if (h.has_bw()) bw_el.push_back(e);
         }
-        lay = Layout(n, nc(), n_h(), n_springs());
+        lay = Layout(n, nc(), n_h(), n_springs(), n_bw());
         dof_pair.assign(static_cast<size_t>(n), Pair());
         for (int i = 0; i < n; ++i) dof_pair[static_cast<size_t>(i)].i = i;
         c_lin = c0;

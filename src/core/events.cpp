@@ -24,8 +24,14 @@ double abs_acceleration_rate(Phase& ph, int i, double tau, const double* y, cons
         const double w = k.nl ? weight_on(k, i) : 0.0;
         if (w != 0.0) q += w * (k.sign * contact_force(ph, c, y, a).rate);
     }
-    const double w_iso = ph.bw[0] != 0.0 ? weight_on(ph.iso, i) : 0.0;
-    if (w_iso != 0.0) q += w_iso * (ph.bw[0] * zeta_rate(ph, rel(v, ph.iso), phase_zeta(ph, tau)));
+    if (ph.nbw > 0) {
+        const double* z = phase_zeta(ph, tau);
+        for (int b = 0; b < ph.nbw; ++b) {
+            const Hysteretic& h = *ph.bw[static_cast<size_t>(b)];
+            const double w_b = weight_on(h, i);
+            if (w_b != 0.0) q += w_b * (h.bw[0] * zeta_rate(h, rel(v, h), z[b]));
+        }
+    }
     return -ph.minv[static_cast<size_t>(i)] * q;
 }
 
@@ -39,7 +45,7 @@ EventValue held_force(Phase& ph, int c, double tau, const double* y, const doubl
     const int g_c = st.grp[static_cast<size_t>(st.end_i[static_cast<size_t>(h)])];
     double* au = ph.au.data();
     double* aur = ph.aur.data();
-    free_acceleration(ph, tau, y, ph.bw[0] != 0.0 ? phase_zeta(ph, tau) : 0.0, au);
+    free_acceleration(ph, tau, y, phase_zeta(ph, tau), au);
     // the table acceleration and its rate
     const double ang = ph.w * tau + ph.phi;
     const double ag = ph.ax0 + ph.ax1 * tau + ph.axh * std::sin(ang);
@@ -135,9 +141,10 @@ EventValue stick_value(const EventRow& e, const EventValue& d) {
 
 EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y, const double* a) {
     const int n = ph.n;
-    if (e.kind == KIND_ZETA) {  // (alpha: minus z's sign at the phase start)
-        const double z = phase_zeta(ph, tau);
-        return {-e.alpha * z, -e.alpha * zeta_rate(ph, rel(y + n, ph.iso), z), 1.0};
+    if (e.kind == KIND_ZETA) {  // (alpha: minus z's sign at the phase start; side: its z's slot)
+        const double z = phase_zeta(ph, tau)[e.side];
+        const Hysteretic& h = *ph.bw[static_cast<size_t>(e.side)];
+        return {-e.alpha * z, -e.alpha * zeta_rate(h, rel(y + n, h), z), 1.0};
     }
     if (e.kind == KIND_HELD) return held_force(ph, e.side, tau, y, a);
     if (e.kind == KIND_STICK) return stick_value(e, held_force(ph, e.side, tau, y, a));

@@ -84,7 +84,7 @@ void jump(double* st, const System& sy, const EventRow& ev, Rows& contacts, cons
         const Contact& ct = sy.contact[static_cast<size_t>(index)];
         law_after_event(ct.law, ct.p, st + L.z_at(index), st[L.def_at(index)], ev.dir);
     } else if (action == ACT_BOUC_WEN) {
-        st[L.zeta] = 0.0;
+        st[L.zeta + sy.hyst[static_cast<size_t>(index)].bw_slot] = 0.0;
     } else {
         iso_transition(sy, st, action, index, ev.dir);
     }

@@ -561,16 +561,15 @@ void linear_integrals(Phase& ph, const std::vector<double>& c_lin, const std::ve
 
 // ---------------------------------------------------------------- the numerical phase
 
-double zeta_rate(const Phase& ph, double du, double z) {
-    if (ph.bw[0] == 0.0) return 0.0;
-    const double a = ph.bw[2], beta = ph.bw[3], gamma = ph.bw[4], nexp = ph.bw[5];
+double zeta_rate(const Hysteretic& h, double du, double z) {
+    const double a = h.bw[2], beta = h.bw[3], gamma = h.bw[4], nexp = h.bw[5];
     const double az = std::abs(z);
     const double zn = nexp == 1.0 ? az : std::pow(az, nexp);
     const double s = du * z > 0.0 ? beta : -beta;
-    return du / ph.bw[1] * (a - zn * (s + gamma));
+    return du / h.bw[1] * (a - zn * (s + gamma));
 }
 
-void phase_rhs(Phase& ph, double tau, const double* y, double z, double* a, bool held) {
+void phase_rhs(Phase& ph, double tau, const double* y, const double* z, double* a, bool held) {
     // dof i: (-R0_i - m_i a_g(tau) - (C v)_i - (K x)_i - the Bouc-Wen spring's - the nonlinear contacts') / m_i,
     // summed in that order (a one-mass system's numbers as the engine has always summed them)
     const int n = ph.n;
@@ -588,9 +587,9 @@ void phase_rhs(Phase& ph, double tau, const double* y, double z, double* a, bool
         for (int j = 0; j < n; ++j) f -= rk[j] * x[j];
         a[i] = f;
     }
-    if (ph.bw[0] != 0.0) {
-        const double f = ph.bw[0] * z;
-        push_pair(a, ph.iso, -f);
+    for (int q = 0; q < ph.nbw; ++q) {
+        const Hysteretic& h = *ph.bw[static_cast<size_t>(q)];
+        push_pair(a, h, -(h.bw[0] * z[q]));
     }
     for (const Phase::RateFriction& r : ph.rate_fr) {  // (a velocity-dependent friction's rest, isolator.hpp)
         const double f = iso_rate_force(*r.h, r.s, rel(v, *r.h));
@@ -606,7 +605,7 @@ void phase_rhs(Phase& ph, double tau, const double* y, double z, double* a, bool
     if (held) ph.stk.project(ph.mass, a);
 }
 
-void free_acceleration(Phase& ph, double tau, const double* y, double zeta, double* au) {
+void free_acceleration(Phase& ph, double tau, const double* y, const double* zeta, double* au) {
     phase_rhs(ph, tau, y, zeta, au, false);
 }
 
@@ -639,23 +638,27 @@ void held_force_poly(const Phase& ph, int c, Poly& q) {
 }
 
 Dp5 dp5_step(Phase& ph, double h) {
-    const int n = ph.n, ny = ph.ny;
-    double* out = ph.dp5.data();  // y (ny), a (n), ey (ny), z, ez
-    if (ph.dp5_h == h) return {out, out + ny, out + ny + n, out[2 * ny + n], out[2 * ny + n + 1]};
+    const int n = ph.n, ny = ph.ny, nb = ph.nbw;
+    double* out = ph.dp5.data();  // y (ny), a (n), ey (ny), z (nb), ez (nb)
+    const Dp5 res{out, out + ny, out + ny + n, out + 2 * ny + n, out + 2 * ny + n + nb};
+    if (ph.dp5_h == h) return res;
     ph.evaluations += 1;
-    const int w = ny + 1;  // a stage's slope: (v, a, z')
+    const int w = ny + nb;  // a stage's slope: (v, a, z')
     double* ks = ph.work.data() + ph.w_stage;  // 7 stages
-    double* yt = ks + 7 * w;                        // a stage's state (ny + 1)
+    double* yt = ks + 7 * w;                        // a stage's state (ny + nb)
     const double* y0 = ph.y0.data();
-    const double z0 = ph.zeta0;
-    auto slope = [&](double tau, const double* y, double z, double* k) {
+    const double* z0 = ph.zeta0.data();
+    auto slope = [&](double tau, const double* y, const double* z, double* k) {
         for (int i = 0; i < n; ++i) k[i] = y[n + i];
         phase_rhs(ph, tau, y, z, k + n);
-        k[ny] = zeta_rate(ph, rel(y + n, ph.iso), z);
+        for (int q = 0; q < nb; ++q) {
+            const Hysteretic& hq = *ph.bw[static_cast<size_t>(q)];
+            k[ny + q] = zeta_rate(hq, rel(y + n, hq), z[q]);
+        }
     };
     auto stage = [&](const double* coef, int m) {  // yt = y0 + h sum_j coef_j k_j
-        for (int q = 0; q <= ny; ++q) {
-            const double start = q < ny ? y0[q] : z0;
+        for (int q = 0; q < w; ++q) {
+            const double start = q < ny ? y0[q] : z0[q - ny];
             if (m == 1) {  // (h a21 k1, associated as the engine always has)
                 yt[q] = start + h * coef[0] * ks[q];
                 continue;
@@ -670,29 +673,29 @@ Dp5 dp5_step(Phase& ph, double h) {
     const double a2[1] = {A21}, a3[2] = {A31, A32}, a4[3] = {A41, A42, A43}, a5[4] = {A51, A52, A53, A54};
     const double a6[5] = {A61, A62, A63, A64, A65}, b[6] = {B1, 0.0, B3, B4, B5, B6};
     stage(a2, 1);
-    slope(C2 * h, yt, yt[ny], ks + w);
+    slope(C2 * h, yt, yt + ny, ks + w);
     stage(a3, 2);
-    slope(C3 * h, yt, yt[ny], ks + 2 * w);
+    slope(C3 * h, yt, yt + ny, ks + 2 * w);
     stage(a4, 3);
-    slope(C4 * h, yt, yt[ny], ks + 3 * w);
+    slope(C4 * h, yt, yt + ny, ks + 3 * w);
     stage(a5, 4);
-    slope(C5 * h, yt, yt[ny], ks + 4 * w);
+    slope(C5 * h, yt, yt + ny, ks + 4 * w);
     stage(a6, 5);
-    slope(h, yt, yt[ny], ks + 5 * w);
+    slope(h, yt, yt + ny, ks + 5 * w);
     stage(b, 6);
-    slope(h, yt, yt[ny], ks + 6 * w);
+    slope(h, yt, yt + ny, ks + 6 * w);
     const double e[7] = {E1, 0.0, E3, E4, E5, E6, E7};
     for (int q = 0; q < ny; ++q) out[q] = yt[q];
     for (int i = 0; i < n; ++i) out[ny + i] = ks[6 * w + n + i];
-    for (int q = 0; q <= ny; ++q) {
+    for (int q = 0; q < w; ++q) {
         double s = e[0] * ks[q];
         for (int j = 2; j < 7; ++j) s += e[j] * ks[j * w + q];
         if (q < ny) out[ny + n + q] = h * s;
-        else out[2 * ny + n + 1] = h * s;
+        else out[2 * ny + n + nb + (q - ny)] = h * s;
     }
-    out[2 * ny + n] = yt[ny];
+    for (int q = 0; q < nb; ++q) out[2 * ny + n + q] = yt[ny + q];
     ph.dp5_h = h;
-    return {out, out + ny, out + ny + n, out[2 * ny + n], out[2 * ny + n + 1]};
+    return res;
 }
 
 void phase_eval(Phase& ph, double tau, double* y, double* a) {
@@ -702,7 +705,7 @@ void phase_eval(Phase& ph, double tau, double* y, double* a) {
     }
     if (tau == 0.0) {
         for (int q = 0; q < ph.ny; ++q) y[q] = ph.y0[static_cast<size_t>(q)];
-        phase_rhs(ph, 0.0, y, ph.zeta0, a);
+        phase_rhs(ph, 0.0, y, ph.zeta0.data(), a);
         return;
     }
     const Dp5 r = dp5_step(ph, tau);
@@ -710,9 +713,9 @@ void phase_eval(Phase& ph, double tau, double* y, double* a) {
     for (int i = 0; i < ph.n; ++i) a[i] = r.a[i];
 }
 
-double phase_zeta(Phase& ph, double tau) {
-    if (ph.bw[0] == 0.0) return 0.0;
-    if (tau == 0.0) return ph.zeta0;
+const double* phase_zeta(Phase& ph, double tau) {
+    if (ph.nbw == 0) return nullptr;
+    if (tau == 0.0) return ph.zeta0.data();
     return dp5_step(ph, tau).z;
 }
 

@@ -61,18 +61,21 @@ struct Phase {
     bool plain = true;
     std::vector<double> rA, rB;
     std::vector<double> y0;  // the sub-interval's start: x (n) then v (n)
-    double zeta0 = 0.0;
+    // the Bouc-Wen springs (System::bw_el's elements, by their z's slot: each its pair and numbers) and their z
+    // at the start
+    std::vector<const Hysteretic*> bw;
+    int nbw = 0;
+    std::vector<double> zeta0;
     bool numeric = false;
     std::vector<ContactPhase> ct;
     Sticking stk;  // the rigid stops held shut in this phase: every acceleration is projected by it
-    // the isolator: its pair, dashpot and linear branch (force kiso u + riso + cd u'), its Bouc-Wen spring
+    // the isolator: its pair, dashpot and linear branch (force kiso u + riso + cd u')
     Pair iso;
     double cd = 0.0, kiso = 0.0, riso = 0.0;
     std::vector<double> el_k, el_r;  // every hysteretic element's branch (force el_k u + el_r), for the outputs
     std::vector<double> el_s;        // and its friction's slip direction (0: sticking, or no friction rule)
     struct RateFriction { const Hysteretic* h; double s; };
     std::vector<RateFriction> rate_fr;  // the elements slipping with a velocity-dependent friction (numerical)
-    double bw[BW_PARAMS] = {0};
     // the run's and the phase's length (m) and velocity (m/s) scales, what event values are rounded against
     double xrun = 0.0, vrun = 0.0, xround = 0.0, vround = 0.0;
     double rate = 0.0;  // a bound on the phase's |eigenvalues|, 1/s
@@ -83,7 +86,7 @@ struct Phase {
     double series_h = 0.0;
     mutable std::vector<double> tc;
     mutable std::vector<double> rbuf;  // M^-1 R0
-    // the last Dormand-Prince step: its length (-1: none); y (ny), a (n), the error (ny), z, its error
+    // the last Dormand-Prince step: its length (-1: none); y (ny), a (n), the error (ny), z (nbw), its error (nbw)
     double dp5_h = -1.0;
     std::vector<double> dp5;
     std::vector<double> work;  // scratch: the derivatives at an end, the table's, m . D, forces, DP5 stages
@@ -102,7 +105,9 @@ struct Phase {
     mutable int64_t poly_evaluations = 0;
     mutable int64_t series_made = 0;  // (the sub-intervals' series made: the dearest work of a linear one)
 
-    void size(int n_dof, int n_contacts) {
+    void size(int n_dof, int n_contacts, int n_bouc_wen) {
+        nbw = n_bouc_wen;
+        zeta0.assign(static_cast<size_t>(std::max(nbw, 1)), 0.0);
         n = n_dof;
         ny = 2 * n;
         nc = n_contacts;
@@ -119,14 +124,14 @@ struct Phase {
         ae.assign(static_cast<size_t>(n), 0.0);
         au.assign(static_cast<size_t>(n), 0.0);
         aur.assign(static_cast<size_t>(n), 0.0);
-        dp5.assign(static_cast<size_t>(2 * ny + n + 2), 0.0);
+        dp5.assign(static_cast<size_t>(2 * ny + n + 2 * nbw), 0.0);
         w_D = 0;                 // 10 n
         w_g = 10 * n;            // 10
         w_gb = w_g + 10;         // 10
         w_P = w_gb + 10;         // 10
         w_q = w_P + 10;          // 9 n (C D_m; the forces in phase_rhs)
-        w_stage = w_q + 9 * n;   // 8 (ny + 1)
-        work.assign(static_cast<size_t>(w_stage + 8 * (ny + 1)), 0.0);
+        w_stage = w_q + 9 * n;   // 8 (ny + nbw)
+        work.assign(static_cast<size_t>(w_stage + 8 * (ny + nbw)), 0.0);
     }
     // the table acceleration on dof i from its components' values (or derivatives) ga and gb
     double on(int i, double ga, double gb) const {
@@ -194,25 +199,27 @@ void linear_integrals(Phase& ph, const std::vector<double>& c_lin, const std::ve
 
 // ---------------------------------------------------------------- held rigid stops
 
-// the accelerations (n) at (tau, y) without the held stops' constraint (zeta: the Bouc-Wen z there)
-void free_acceleration(Phase& ph, double tau, const double* y, double zeta, double* au);
+// the accelerations (n) at (tau, y) without the held stops' constraint (zeta: the Bouc-Wen z there, nbw)
+void free_acceleration(Phase& ph, double tau, const double* y, const double* zeta, double* au);
 // the held force of contact c as a polynomial of the current series (a linear phase)
 void held_force_poly(const Phase& ph, int c, Poly& q);
 
 // ---------------------------------------------------------------- the numerical phase
 
-double zeta_rate(const Phase& ph, double du, double z);
-// the accelerations (n) at (tau, y, z) with the nonlinear forces
-void phase_rhs(Phase& ph, double tau, const double* y, double z, double* a, bool held = true);
-// the step of length h from the start: y (ny), a (n), z; the error estimates
-struct Dp5 { const double* y; const double* a; const double* ey; double z, ez; };
+// the rate of a Bouc-Wen spring's z (h: its element) at its deformation's rate du and z
+double zeta_rate(const Hysteretic& h, double du, double z);
+// the accelerations (n) at (tau, y, z) with the nonlinear forces (z: the Bouc-Wen springs', nbw)
+void phase_rhs(Phase& ph, double tau, const double* y, const double* z, double* a, bool held = true);
+// the step of length h from the start: y (ny), a (n), z (nbw); the error estimates
+struct Dp5 { const double* y; const double* a; const double* ey; const double* z; const double* ez; };
 Dp5 dp5_step(Phase& ph, double h);
 
 // ---------------------------------------------------------------- the trajectory inside a sub-interval
 
 // y (ny), a (n) at tau: the series of a linear phase, a numerical step of a nonlinear one
 void phase_eval(Phase& ph, double tau, double* y, double* a);
-double phase_zeta(Phase& ph, double tau);
+// the Bouc-Wen springs' z at tau (nbw; nullptr without any)
+const double* phase_zeta(Phase& ph, double tau);
 
 inline double table_acceleration(const Phase& ph, double tau) {
     return ph.ax0 + ph.ax1 * tau + ph.axh * std::sin(ph.w * tau + ph.phi);
@@ -257,9 +264,13 @@ inline ContactForce contact_force(const Phase& ph, int c, const double* y, const
     return {f.f, f.elastic, f.df_dd * dv + f.df_ddd * da, dv};
 }
 
-inline double bouc_wen_energy(const Phase& ph, double z) {
-    if (ph.bw[0] == 0.0) return 0.0;
-    return 0.5 * ph.bw[0] * ph.bw[1] * z * z / ph.bw[2];
+// the energy a Bouc-Wen spring (its element h) holds at z
+inline double bouc_wen_energy(const Hysteretic& h, double z) { return 0.5 * h.bw[0] * h.bw[1] * z * z / h.bw[2]; }
+// the Bouc-Wen springs' together at z (nbw)
+inline double bouc_wen_energy(const Phase& ph, const double* z) {
+    double e = 0.0;
+    for (int b = 0; b < ph.nbw; ++b) e += bouc_wen_energy(*ph.bw[static_cast<size_t>(b)], z[b]);
+    return e;
 }
 
 }  // namespace pounding

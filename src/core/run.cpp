@@ -113,7 +113,7 @@ void eval_end(Phase& ph, double h, Buffers& b) {
 double velocity_cuts(Phase& ph, const System& sy, double h, const Buffers& b, const Pair* pairs, int np) {
     const int n = ph.n;
     double cut = h;
-    const bool kinks = ph.numeric && (law_switches(ph) || sy.bw[0] != 0.0);
+    const bool kinks = ph.numeric && (law_switches(ph) || sy.n_bw() > 0);
     for (int p = 0; p < np; ++p) {
         const Pair& pr = pairs[p];
         double v0 = rel(b.y0s.data() + n, pr);
@@ -276,11 +276,11 @@ void samples_inside(Phase& ph, const System& sy, Rows& samples, int64_t& j_next,
 
 struct RunWorkspace::Impl {
     // the system it was made for: what its buffers' sizes and its transitions depend on
-    int n = -1, nc = -1;
+    int n = -1, nc = -1, nbw = -1;
     std::vector<double> mass, c_lin, k0;
     std::vector<Pair> pairs, elements;  // the contacts' pairs; the hysteretic elements' (the outputs' columns)
     bool fits(const System& s) const {
-        if (s.n != n || s.nc() != nc || s.mass != mass || s.c_lin != c_lin || s.k0 != k0) return false;
+        if (s.n != n || s.nc() != nc || s.n_bw() != nbw || s.mass != mass || s.c_lin != c_lin || s.k0 != k0) return false;
         if (static_cast<int>(elements.size()) != s.n_h()) return false;
         for (int e = 0; e < s.n_h(); ++e)
             if (!same_pair(elements[static_cast<size_t>(e)], s.hyst[static_cast<size_t>(e)])) return false;
@@ -329,7 +329,7 @@ struct Loop {
     std::vector<double>& row;
     Control control;
     // the run's constants
-    double z_max = 0.0;
+    std::vector<double> z_max;  // (each Bouc-Wen spring's largest |z|)
     double resolution[3] = {0.0, 0.0, 0.0};
     bool record = false;
     bool has_ml = false;
@@ -419,6 +419,7 @@ void fit_workspace(RunWorkspace::Impl& w, const System& sy) {
     if (!w.fits(sy)) {
         w.n = sy.n;
         w.nc = sy.nc();
+        w.nbw = sy.n_bw();
         w.mass = sy.mass;
         w.c_lin = sy.c_lin;
         w.k0 = sy.k0;
@@ -426,7 +427,7 @@ void fit_workspace(RunWorkspace::Impl& w, const System& sy) {
         for (const Contact& c : sy.contact) w.pairs.push_back(c);
         w.elements.clear();
         for (const Hysteretic& h : sy.hyst) w.elements.push_back(h);
-        w.ph.size(sy.n, sy.nc());
+        w.ph.size(sy.n, sy.nc(), sy.n_bw());
         w.b.size(sy.n, sy.nc());
         w.row.assign(static_cast<size_t>(sy.lay.sample_cols()), 0.0);
         w.transitions.setup(sy);
@@ -486,7 +487,11 @@ void set_up(Loop& lp) {
     ph.poly_evaluations = 0;
     ph.series_made = 0;
     lp.w.screen.audited = lp.w.screen.escapes = 0;
-    lp.z_max = sy.bw[0] != 0.0 ? std::pow(sy.bw[2] / (sy.bw[3] + sy.bw[4]), 1.0 / sy.bw[5]) : 0.0;
+    lp.z_max.resize(static_cast<size_t>(sy.n_bw()));
+    for (int q = 0; q < sy.n_bw(); ++q) {
+        const double* bw = sy.bw_of(q).bw;
+        lp.z_max[static_cast<size_t>(q)] = std::pow(bw[2] / (bw[3] + bw[4]), 1.0 / bw[5]);
+    }
     const double v_res = RESOLUTION * ph.vrun;
     lp.resolution[0] = v_res;
     lp.resolution[1] = RESOLUTION * ph.xrun;
@@ -705,7 +710,7 @@ bool advance_to_end(Loop& lp) {
     const Dp5 r = dp5_step(ph, lp.h);
     std::copy(r.y, r.y + 2 * n, b.y1.begin());
     std::copy(r.a, r.a + n, b.a1.begin());
-    phase_rhs(ph, 0.0, ph.y0.data(), ph.zeta0, b.a0.data());
+    phase_rhs(ph, 0.0, ph.y0.data(), ph.zeta0.data(), b.a0.data());
     return true;
 }
 
@@ -875,7 +880,13 @@ bool move_to_end(Loop& lp) {
         return false;
     }
     lp.ledger[L_HYSTERETIC] += iso_advance(sy, st, ph.y0.data(), b.y1.data());  // (the isolator at the end)
-    if (sy.bw[0] != 0.0) st[lp.L.zeta] = std::min(std::max(phase_zeta(ph, lp.tau), -lp.z_max), lp.z_max);
+    if (sy.n_bw() > 0) {
+        const double* z = phase_zeta(ph, lp.tau);
+        for (int q = 0; q < sy.n_bw(); ++q) {
+            const double zm = lp.z_max[static_cast<size_t>(q)];
+            st[lp.L.zeta + q] = std::min(std::max(z[q], -zm), zm);
+        }
+    }
     for (int q = 0; q < 2 * lp.n; ++q) st[lp.L.x + q] = b.y1[static_cast<size_t>(q)];
     st[T] = lp.to_stop ? lp.t_stop : lp.t + lp.tau;
     lp.at_knot = lp.to_stop && lp.t_stop == lp.pc.t_next;

@@ -191,28 +191,28 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
     ph.bs = pc.bs;
     ph.bc = pc.bc;
     for (int q = 0; q < 2 * n; ++q) ph.y0[static_cast<size_t>(q)] = st[L.x + q];
-    ph.numeric = any_nl || sy.bw[0] != 0.0 || !ph.rate_fr.empty();
-    ph.zeta0 = st[L.zeta];
+    ph.numeric = any_nl || sy.n_bw() > 0 || !ph.rate_fr.empty();
+    for (int q = 0; q < sy.n_bw(); ++q) ph.zeta0[static_cast<size_t>(q)] = st[L.zeta + q];
     ph.dp5_h = -1.0;
     ph.tc_ok = false;
     ph.kiso = iso.k;
     ph.riso = iso.r0;
-    // (a Bouc-Wen spring's initial stiffness bounds the rate too)
-    const double k_bw = sy.bw[0] != 0.0 ? sy.bw[0] * sy.bw[2] / sy.bw[1] : 0.0;
+    // (the Bouc-Wen springs' initial stiffnesses bound the rate too)
     double k_extra = 0.0;
-    if (k_bw != 0.0) {
-        const Hysteretic& h = sy.iso();
+    for (int q = 0; q < sy.n_bw(); ++q) {
+        const Hysteretic& h = sy.bw_of(q);
+        const double k_bw = h.bw[0] * h.bw[2] / h.bw[1];
         if (h.levered()) {  // (k w^T M^-1 w at most k (sum |w_k| sqrt(1 / m_k))^2)
             int d[4];
             double w[4];
             const int m = h.entries(d, w);
             double s = 0.0;
             for (int r = 0; r < m; ++r) s += std::abs(w[r]) * std::sqrt(ph.minv[static_cast<size_t>(d[r])]);
-            k_extra = k_bw * s * s;
+            k_extra += k_bw * s * s;
         } else {
             const double mi = ph.minv[static_cast<size_t>(h.i)];
             const double mj = h.j >= 0 ? ph.minv[static_cast<size_t>(h.j)] : 0.0;
-            k_extra = k_bw * (mi + mj + (h.j >= 0 ? 2.0 * std::sqrt(mi * mj) : 0.0));
+            k_extra += k_bw * (mi + mj + (h.j >= 0 ? 2.0 * std::sqrt(mi * mj) : 0.0));
         }
     }
     ph.rate = rate_bound(ph, k_extra);
@@ -245,7 +245,8 @@ void run_constants(Phase& ph, const System& sy, const Forcing& fo) {
     // the isolator's numbers for its output column and its Bouc-Wen spring (none: a fixed base, force 0)
     ph.cd = sy.n_h() > 0 ? sy.iso().c_d : 0.0;
     ph.iso = sy.n_h() > 0 ? static_cast<const Pair&>(sy.iso()) : Pair();
-    for (int j = 0; j < BW_PARAMS; ++j) ph.bw[j] = sy.bw[j];
+    ph.bw.resize(static_cast<size_t>(sy.n_bw()));
+    for (int q = 0; q < sy.n_bw(); ++q) ph.bw[static_cast<size_t>(q)] = &sy.bw_of(q);
 }
 
 NumStep numeric_step(Phase& ph, double h, double h_num, double rtol, double t) {
@@ -258,7 +259,8 @@ NumStep numeric_step(Phase& ph, double h, double h_num, double rtol, double t) {
     const double atol_d = rtol * 1e-3, atol_v = rtol * 1e-2;
     while (true) {
         const Dp5 r = dp5_step(ph, h);
-        double err = std::abs(r.ez) / (rtol * (1.0 + std::abs(r.z)));
+        double err = 0.0;
+        for (int q = 0; q < ph.nbw; ++q) err = std::max(err, std::abs(r.ez[q]) / (rtol * (1.0 + std::abs(r.z[q]))));
         for (int i = 0; i < n; ++i) {
             const double y0x = ph.y0[static_cast<size_t>(i)], y0v = ph.y0[static_cast<size_t>(n + i)];
             err = std::max(err, std::abs(r.ey[i]) / (atol_d + rtol * std::max(std::abs(y0x), std::abs(r.y[i]))));
@@ -278,12 +280,16 @@ NumStep numeric_step(Phase& ph, double h, double h_num, double rtol, double t) {
 int phase_events(const Phase& ph, const double* st, const System& sy, EventRow* evs) {
     int n = iso_events(sy, st, evs, 0);
     n = bumper_events(st, ph, sy, evs, n);
-    if (sy.bw[0] != 0.0 && st[sy.lay.zeta] != 0.0) {  // the Bouc-Wen z back through zero: its law changes form
+    for (int q = 0; q < sy.n_bw(); ++q) {  // a Bouc-Wen z back through zero: its law changes form
+        const double z = st[sy.lay.zeta + q];
+        if (z == 0.0) continue;
         EventRow& r = evs[n++];
         r = EventRow();
         r.kind = KIND_ZETA;
-        static_cast<Pair&>(r) = sy.iso();
-        r.alpha = -std::copysign(1.0, st[sy.lay.zeta]);
+        static_cast<Pair&>(r) = sy.bw_of(q);
+        r.side = q;  // (its z's slot)
+        r.index = sy.bw_el[static_cast<size_t>(q)];
+        r.alpha = -std::copysign(1.0, z);
         r.action = ACT_BOUC_WEN;
     }
     return n;

@@ -127,7 +127,8 @@ void step_kernel(const System& sy, double amp, double omega, const double* state
     const int n_sp = sy.n_springs();
     const int nd = sy.n, nc = sy.nc();
     const int n_cycles = steady.n_cycles;
-    const int cols = 2 * nd + n_sp + nc * N_LAW_STATE + 1;  // x, v, the slips, the bumpers' law states, z
+    const int nz = std::max(1, sy.n_bw());
+    const int cols = 2 * nd + n_sp + nc * N_LAW_STATE + nz;  // x, v, the slips, the bumpers' law states, z
     std::vector<double> strobe(static_cast<size_t>(n_cycles) * cols);
     std::vector<double> starts(static_cast<size_t>(n_cycles) * n_state);
     std::vector<double> cyc(static_cast<size_t>(n_cycles) * CYCLE_COLS, 0.0);
@@ -165,7 +166,9 @@ void step_kernel(const System& sy, double amp, double omega, const double* state
         for (int c = 0; c < nc; ++c)
             for (int q = 0; q < N_LAW_STATE; ++q)
                 sb[2 * nd + n_sp + c * N_LAW_STATE + q] = memory[static_cast<size_t>(c)] ? st[L.z_at(c) + q] : 0.0;
-        sb[cols - 1] = st[L.zeta] * sy.bw[1];  // (the Bouc-Wen z as a length)
+        sb[cols - nz] = 0.0;
+        for (int q = 0; q < sy.n_bw(); ++q)  // (each Bouc-Wen z as a length)
+            sb[cols - nz + q] = st[L.zeta + q] * sy.bw_of(q).bw[1];
         n += 1;
         if (status != SUCCESS) break;
         if (steady.adaptive) {

@@ -45,7 +45,7 @@ System = _c.System
 TrackedPair = _c.TrackedPair  # (by keyword: i, j; levers as below; tracked_pair checks them)
 ContactSlot = _c.ContactSlot  # (built by keyword: i, j, sign, gap_m, law, params; levers as below)
 Element = _c.Element  # (by keyword: i, j, c_d, slopes, breaks, rule, friction_n, friction_fast_n,
-#                        friction_rate_s_m, surface_friction_n, surface_ring_n_m; levers as below)
+#                        friction_rate_s_m, surface_friction_n, surface_ring_n_m, bw; levers as below)
 # Either acts on a pair: dof i, plus arm_i_m times dof lever_i (a lever: a point of a floor in plan moves
 # as x - y_c theta, so arm_i_m = -y_c on the rotation's dof), against dof j (plus arm_j_m times dof lever_j)
 # or the ground; lever -1: none.  Its relative displacement is w . x (w: 1 on i, arm_i_m on lever_i, -1 on
@@ -194,15 +194,15 @@ class Monodromy:
 _N_DOF_EXTREMA, _N_PAIR_EXTREMA = LAYOUT["DOF_EXTREMA"], LAYOUT["PAIR_EXTREMA"]
 
 
-def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Element], bw: np.ndarray,
-           has_b: bool, contacts: list[ContactSlot], tracked: tuple[tuple[int, int] | TrackedPair, ...] = (),
+def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Element], has_b: bool,
+           contacts: list[ContactSlot], tracked: tuple[tuple[int, int] | TrackedPair, ...] = (),
            influence: np.ndarray | None = None, vectors: tuple[tuple[int, int], ...] = ()) -> System:
     """A system as the core takes it: ``mass`` (kg, shape (n,)), the linear springs and dashpots ``k0``,
     ``c0`` (N/m, N s/m, shape (n, n)), the hysteretic elements (:class:`Element`: dof ``i`` against dof ``j``,
     -1 the ground; its dashpot ``c_d`` N s/m, backbone ``slopes`` N/m and ``breaks`` m, ``rule`` 0 kinematic,
-    1 elastic or 2 Coulomb friction (one slope, its force ``friction_n`` N); the isolator first, which
-    carries the Bouc-Wen numbers ``bw``, zeros for none; no element
-    at all: a structure fixed at its base), and the contact slots (:class:`ContactSlot`: dof ``i`` against dof
+    1 elastic or 2 Coulomb friction (one slope, its force ``friction_n`` N); a Bouc-Wen spring in parallel
+    by its numbers ``bw``, none for none; the isolator first; no element at all: a structure fixed at its
+    base), and the contact slots (:class:`ContactSlot`: dof ``i`` against dof
     ``j``, -1 the ground, compressed by ``sign (x_i - x_j) - gap_m``; its ``law`` id of :data:`LAW_IDS` and
     ``params``); ``has_b`` makes them active.  ``tracked``: pairs ``(i, j)``, or :class:`TrackedPair` (on
     levers: a bearing's displacement along an axis), whose relative displacement's exact extrema a run adds
@@ -219,8 +219,6 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
     k0, c0 = np.asarray(k0, dtype=float), np.asarray(c0, dtype=float)
     if m.ndim != 1 or n < 1 or k0.shape != (n, n) or c0.shape != (n, n):
         raise ValueError(f"mass (n,) and k0, c0 (n, n): got {m.shape}, {k0.shape}, {c0.shape}")
-    if not elements and any(bw):
-        raise ValueError("a Bouc-Wen spring is the isolator's: a system without elements has none")
 
     def pair(i: int, j: int, what: str) -> None:
         if not (0 <= i < n and (j == -1 or (0 <= j < n and j != i))):
@@ -257,7 +255,7 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
         if surfaces:  # (a series of friction surfaces: a slope, a travel and a friction each)
             if (el.rule != 2 or surfaces < 2 or len(el.slopes) != surfaces or len(el.breaks) != surfaces
                     or el.friction_n != 0.0 or el.friction_rate_s_m != 0.0 or el.j != -1
-                    or (e == 0 and any(bw)) or min(el.slopes) <= 0.0 or min(el.breaks) <= 0.0
+                    or any(el.bw) or min(el.slopes) <= 0.0 or min(el.breaks) <= 0.0
                     or min(el.surface_friction_n) <= 0.0
                     or len(el.surface_ring_n_m) not in (0, surfaces)
                     or not all(0.0 <= r < math.inf for r in el.surface_ring_n_m)):
@@ -272,7 +270,7 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
             raise ValueError(f"element {e}: {len(el.slopes)} slopes need {len(el.slopes) - 1} breaks, "
                              "rule 0, 1 or 2")
         if (el.rule == 2) != (el.friction_n > 0.0) or (el.rule == 2 and (len(el.slopes) != 1 or el.j != -1
-                                                                         or (e == 0 and any(bw)))):
+                                                                         or any(el.bw))):
             raise ValueError(f"element {e}: the friction rule (2) is an isolator's (on the ground), of one "
                              "slope, a friction force > 0 and no Bouc-Wen spring; no other rule has a "
                              "friction force")
@@ -280,8 +278,6 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
                 el.friction_rate_s_m > 0.0 and el.rule != 2):
             raise ValueError(f"element {e}: a velocity-dependent friction is the friction rule's, with a "
                              "fast friction > 0 and a rate > 0 together")
-    if len(bw) != LAYOUT["BW_PARAMS"]:
-        raise ValueError(f"bw: {LAYOUT['BW_PARAMS']} numbers, got {len(bw)}")
     for c, slot in enumerate(contacts):
         if not isinstance(slot, ContactSlot):
             raise ValueError(f"contact {c}: a ContactSlot, got {type(slot).__name__}")
@@ -308,7 +304,7 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
             raise ValueError(f"influence: finite, shape ({n}, 2), got {r.shape}")
         infl = r.reshape(2 * n).tolist()
     return _c.System(n=n, mass=m.tolist(), k0=k0.reshape(n * n).tolist(), c0=c0.reshape(n * n).tolist(),
-                     elements=list(elements), bw=[float(x) for x in bw], has_b=bool(has_b),
+                     elements=list(elements), has_b=bool(has_b),
                      contacts=list(contacts),
                      tracked=pairs_tracked, infl=infl, norm_p=[int(p) for p, _ in vectors],
                      norm_q=[int(q) for _, q in vectors])
@@ -345,19 +341,25 @@ def contact_slot(*, i: int, j: int, sign: float, gap_m: float, law: int, params:
 
 def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int, friction_n: float = 0.0,
             friction_fast_n: float = 0.0, friction_rate_s_m: float = 0.0,
-            surface_friction_n: Any = (), surface_ring_n_m: Any = (), lever_i: int = -1, arm_i_m: float = 0.0,
-            lever_j: int = -1, arm_j_m: float = 0.0) -> Element:
+            surface_friction_n: Any = (), surface_ring_n_m: Any = (), bw: Any = (), lever_i: int = -1,
+            arm_i_m: float = 0.0, lever_j: int = -1, arm_j_m: float = 0.0) -> Element:
     """A hysteretic element (:class:`Element`) from numbers as the model gives them (``friction_n``: the
     friction of rule 2 at rest, N; with ``friction_rate_s_m`` > 0, s/m, a slip's friction is
     ``friction_fast_n - (friction_fast_n - friction_n) exp(-friction_rate_s_m |u'|)``; ``surface_friction_n``:
     rule 2's surfaces in series, each surface's friction N, its stiffness in ``slopes`` N/m and its travel to
-    its ring in ``breaks`` m; ``surface_ring_n_m``: each ring's stiffness, N/m, 0 or none given: rigid; its
-    pair's levers and arms as :func:`contact_slot`'s)."""
+    its ring in ``breaks`` m; ``surface_ring_n_m``: each ring's stiffness, N/m, 0 or none given: rigid;
+    ``bw``: a Bouc-Wen spring in parallel, its ``BW_PARAMS`` numbers (force per unit z N, yield displacement
+    m, a, beta, gamma, n), none or zeros for none; its pair's levers and arms as :func:`contact_slot`'s)."""
+    bw = [float(x) for x in bw]
+    if bw and (len(bw) != LAYOUT["BW_PARAMS"] or (bw[0] != 0.0 and not (
+            bw[1] > 0.0 and bw[2] > 0.0 and bw[3] + bw[4] > 0.0 and bw[5] > 0.0))):
+        raise ValueError(f"bw: none, or {LAYOUT['BW_PARAMS']} numbers (force per unit z, u_y > 0, a > 0, "
+                         f"beta + gamma > 0, n > 0; the first 0: none), got {bw}")
     return Element(i=int(i), j=int(j), c_d=float(c_d), slopes=[float(x) for x in slopes],
                    breaks=[float(x) for x in breaks], rule=int(rule), friction_n=float(friction_n),
                    friction_fast_n=float(friction_fast_n), friction_rate_s_m=float(friction_rate_s_m),
                    surface_friction_n=[float(x) for x in surface_friction_n],
-                   surface_ring_n_m=[float(x) for x in surface_ring_n_m],
+                   surface_ring_n_m=[float(x) for x in surface_ring_n_m], bw=bw,
                    **_lever_args(lever_i, arm_i_m, lever_j, arm_j_m))
 
 

@@ -19,7 +19,7 @@ from typing import Any, Optional
 
 import numpy as np
 
-from .._errors import InputError
+from .._errors import InputError, Problem
 from ..engine.assembly import Assembly, assemble, structures_of
 from ..engine.layout import C_SLOT, C_T_END, C_T_START, C_V_IN, X_A_MAX, X_D_MAX, X_D_MIN
 from ..engine.run_args import kernel_forcing
@@ -58,6 +58,11 @@ class _Shooter(_Newton):
         structures = structures_of(model)[0]
         bw_iso = [s.isolator.bouc_wen for s in structures if s.isolator is not None
                   and s.isolator.bouc_wen is not None]
+        if len(bw_iso) > 1:
+            raise InputError(Problem.WRONG_CONFIGURATION, "system", type(model).__name__,
+                             got="with two isolators' Bouc-Wen springs (an orbit's coordinates hold one z)",
+                             fix="give a Bouc-Wen spring to one of the two isolators at most, or simulate "
+                                 "the pair without orbits")
         self.z_max = bw_iso[0].z_max if bw_iso else 0.0
         # each contact slot: (i, j, sign, gap, relaxes: a Kelvin-Voigt law with damping, free when apart)
         self.slots = [(i, j, sign, gap, bool((linear_form(law) or (0.0, 0.0))[1] > 0.0))

@@ -144,6 +144,14 @@ def asce7_bearings_displacement(building: PlanBuilding, s_m1_g: float, *, rtol: 
     s_m1 = positive("s_m1_g", s_m1_g, "g")
     tol = positive("rtol", rtol, "(a fraction)")
     bound = integer("max_iterations", max_iterations, 1, 100_000)
+    for q, b in enumerate(building.bearings):
+        for axis, law in enumerate(b.laws):
+            if law.bouc_wen is not None:
+                raise InputError(Problem.WRONG_CONFIGURATION, f"building.bearings[{q}].laws[{axis}].bouc_wen",
+                                 law.bouc_wen, got="a Bouc-Wen spring, whose effective stiffness and damping "
+                                                   "at D_M are not on a backbone",
+                                 fix="give D_M from design.asce7_displacement with the effective period and "
+                                     "damping of its tests (t_m_s and beta_m in a design file)")
     mass = sum(f.mass_kg for f in building.floors)
     out: dict[str, float] = {}
     for axis, name in ((0, "x"), (1, "y")):

@@ -66,7 +66,7 @@ class Assembly(NamedTuple):
     c_all: np.ndarray      # (n, n) N s/m: the dashpots
     pairs: tuple           # each contact slot's Pair
     elements: tuple        # each hysteretic element's HystereticElement, in the core's order
-    system_bw: np.ndarray  # the Bouc-Wen numbers (the core's, zeros for none)
+    bouc_wen: np.ndarray   # (b, BW_PARAMS): each Bouc-Wen spring's numbers (the core's), by its z's slot
     contact_tracks: tuple = ()  # each contact slot's tracked pair (its extrema), -1: against the ground
 
 
@@ -159,7 +159,7 @@ def can_keep(model: Any) -> bool:
 @functools.lru_cache(maxsize=ASSEMBLIES_KEPT)
 def _kept(model: Oscillator | Structure | Adjacent) -> Assembly:
     asm = _assemble(model)
-    for a in (asm.masses, asm.k_fast, asm.c_all, asm.system_bw):
+    for a in (asm.masses, asm.k_fast, asm.c_all, asm.bouc_wen):
         a.flags.writeable = False
     return asm
 
@@ -207,15 +207,16 @@ def _assemble(model: Oscillator | Structure | Adjacent) -> Assembly:
         c0[np.ix_(at, at)] += cs[np.ix_(inside, inside)]
     order = sorted(range(len(structures)), key=lambda b: not (structures[b].isolator is not None
                                                              and structures[b].isolator.bouc_wen is not None))
-    elements, isolator, bw = [], [-1] * len(structures), np.zeros(_core.LAYOUT["BW_PARAMS"])
+    elements, isolator = [], [-1] * len(structures)
     friction: dict[int, dict] = {}  # (an isolator's friction, by its element: a friction isolator's)
+    bws: dict[int, np.ndarray] = {}  # (an isolator's Bouc-Wen spring, by its element)
     for b in order:
         s = structures[b]
         if s.fixed:
             continue
         slopes, breaks, rule, b_w = s.isolator.kernel_arrays()
-        if not elements:
-            bw = b_w
+        if b_w[0] != 0.0:
+            bws[len(elements)] = np.asarray(b_w, dtype=float)
         isolator[b] = len(elements)
         friction[len(elements)] = s.isolator.kernel_friction
         elements.append((dofs[b][0], -1, float(s.isolator.damping_n_s_m), slopes, breaks, int(rule)))
@@ -226,7 +227,8 @@ def _assemble(model: Oscillator | Structure | Adjacent) -> Assembly:
                 elements.append((top, bottom, *st.kernel_element(i)[2:]))
     k_fast, c_all = k0.copy(), c0.copy()
     for e, (i, j, c_d, slopes, _, _) in enumerate(elements):
-        k = max(abs(x) for x in slopes) + (bw[0] * bw[2] / bw[1] if e == 0 and bw[0] != 0.0 else 0.0)
+        bw = bws.get(e)
+        k = max(abs(x) for x in slopes) + (bw[0] * bw[2] / bw[1] if bw is not None else 0.0)
         _add_pair(k_fast, i, j, k)
         _add_pair(c_all, i, j, c_d)
     contacts, slots, pairs = [], [], []
@@ -255,16 +257,23 @@ def _assemble(model: Oscillator | Structure | Adjacent) -> Assembly:
     contact_tracks = tuple(len(tracked) + between.index(c) if c in between else -1 for c in range(len(pairs)))
     tracked += tuple((pairs[c].i, pairs[c].j) for c in between)
     kernel_elements = [_core.element(i=i, j=j, c_d=c_d, slopes=slopes, breaks=breaks, rule=rule,
-                                     **friction.get(e, {}))
+                                     bw=bws.get(e, ()), **friction.get(e, {}))
                        for e, (i, j, c_d, slopes, breaks, rule) in enumerate(elements)]
-    system = _core.system(masses, k0, c0, kernel_elements, bw, bool(contacts), contacts, tracked)
+    system = _core.system(masses, k0, c0, kernel_elements, bool(contacts), contacts, tracked)
     return Assembly(system, tuple(dofs), tuple(isolator), tuple(slots), tuple(stands), np.array(masses),
                     k_fast, c_all, tuple(pairs),
                     tuple(HystereticElement(i, j, list(slopes), list(breaks), rule,
                                             tuple(friction.get(e, {}).get("surface_ring_n_m", ())),
                                             tuple(friction.get(e, {}).get("surface_friction_n", ())))
                           for e, (i, j, _, slopes, breaks, rule) in enumerate(elements)),
-                    np.asarray(bw, dtype=float), contact_tracks)
+                    bouc_wen_numbers(kernel_elements), contact_tracks)
+
+
+def bouc_wen_numbers(elements: list) -> np.ndarray:
+    """The Bouc-Wen springs' numbers of the core's ``elements`` (:class:`pounding._core.Element`), by their
+    z's slot (the elements that have one, in order), shape (b, BW_PARAMS)."""
+    rows = [list(el.bw) for el in elements if el.bw[0] != 0.0]
+    return np.array(rows, dtype=float).reshape(len(rows), _core.LAYOUT["BW_PARAMS"])
 
 
 def _add_pair(a: np.ndarray, i: int, j: int, value: float) -> None:

@@ -19,9 +19,7 @@ from .. import _core
 from ..model.isolator import HYSTERESIS_RULES
 from ..model.plan import PlanBuilding, point_weights
 from ..model.plan_parts import Bearing
-from .assembly import HystereticElement, Pair
-
-BW_NONE = np.zeros(_core.LAYOUT["BW_PARAMS"])
+from .assembly import HystereticElement, Pair, bouc_wen_numbers
 
 
 class PlanAssembly(NamedTuple):
@@ -51,7 +49,7 @@ class PlanAssembly(NamedTuple):
     pairs: tuple                 # each contact slot's assembly.Pair (its dofs without their levers)
     elements: tuple              # each element's assembly.HystereticElement (the same)
     dofs: tuple = ()             # ((0, 1, ..., 3 n - 1),): the floors' dofs, as a State holds them
-    system_bw: np.ndarray = BW_NONE  # (no Bouc-Wen spring)
+    bouc_wen: np.ndarray = np.zeros((0, _core.LAYOUT["BW_PARAMS"]))  # (b, BW_PARAMS): each Bouc-Wen spring's
     corner_tracks: tuple = ()    # (4, 2): each corner's tracked pair along x and y
 
 
@@ -106,11 +104,12 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
             element_names.append((kind, index, axis))
             element_weights.append(w)
         else:
-            slopes, breaks, rule, _ = part.laws[axis].kernel_arrays()
-            k_fast += float(np.max(np.abs(slopes))) * np.outer(w, w)
+            slopes, breaks, rule, bw = part.laws[axis].kernel_arrays()
+            k_bw = bw[0] * bw[2] / bw[1] if bw[0] != 0.0 else 0.0  # (a Bouc-Wen spring's initial stiffness)
+            k_fast += (float(np.max(np.abs(slopes))) + k_bw) * np.outer(w, w)
             c_all += part.laws[axis].damping_n_s_m * np.outer(w, w)
             elements.append(_core.element(c_d=part.laws[axis].damping_n_s_m, slopes=slopes, breaks=breaks,
-                                          rule=int(rule), **pair))
+                                          rule=int(rule), bw=bw if bw[0] != 0.0 else (), **pair))
             element_names.append((kind, index, axis))
             element_weights.append(w)
         tracked.append(_core.tracked_pair(**pair))
@@ -157,14 +156,15 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
     influence = np.zeros((n, 2))
     influence[0::3, 0] = 1.0
     influence[1::3, 1] = 1.0
-    system = _core.system(masses, k0, c0, elements, BW_NONE, bool(contacts), contacts, tuple(tracked),
+    system = _core.system(masses, k0, c0, elements, bool(contacts), contacts, tuple(tracked),
                           influence=influence, vectors=vectors)
     return PlanAssembly(system, tuple(element_names), tuple(contact_names), tuple(tracked_names), vectors,
                         tuple(contact_tracks), masses, k0 + k_fast, c0 + c_all,
                         np.array(contact_weights).reshape(len(contacts), n), np.array(tracked_weights),
                         np.array(element_weights).reshape(len(elements), n), tuple(pairs),
                         tuple(HystereticElement(el.i, el.j, list(el.slopes), list(el.breaks), el.rule)
-                              for el in elements), (tuple(range(n)),), BW_NONE, tuple(corner_tracks))
+                              for el in elements), (tuple(range(n)),), bouc_wen_numbers(elements),
+                        tuple(corner_tracks))
 
 
 __all__ = ["PlanAssembly", "assemble_plan"]

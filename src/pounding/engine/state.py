@@ -277,8 +277,16 @@ class State:
 
     @property
     def bouc_wen_z(self) -> float:
-        """The Bouc-Wen variable ``z`` of the isolator that has one (0 without a Bouc-Wen spring)."""
+        """The Bouc-Wen variable ``z`` of the first element that has a Bouc-Wen spring (the isolator's; 0
+        without any); :attr:`bouc_wen_zs` has every spring's."""
         return float(self.vector[self._lay["zeta"]])
+
+    @property
+    def bouc_wen_zs(self) -> np.ndarray:
+        """Every Bouc-Wen spring's ``z``, in the order of the elements that have one (two isolators'; a
+        building in plan's bearings, each axis's), shape (b,); one 0 without any."""
+        lay = self._lay
+        return self.vector[lay["zeta"]:lay["base"]].copy()
 
     @property
     def isolator_branch(self) -> int:
@@ -443,7 +451,7 @@ def _layout(layout: Any) -> dict:
     x, v, d, i, region, acc, z, zeta, base, n_springs, size = at
     n, nc = v - x, i - d
     if not (x == I_D and n >= 1 and d == v + n and region == i + nc and acc >= region
-            and z == acc + nc * (ACC_R - ACC_L) and zeta == z + nc * N_LAW_STATE and base == zeta + 1
+            and z == acc + nc * (ACC_R - ACC_L) and zeta == z + nc * N_LAW_STATE and base > zeta
             and n_springs >= 0 and size == base + 2 * n_springs):
         raise _bad_state("layout", layout, "is no layout the core makes (its blocks out of order)",
                          _FROM_A_RUN)

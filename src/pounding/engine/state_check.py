@@ -165,13 +165,18 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str, levered: Optional[tuple
                           f"leaves {who} spring {k}'s strain {strain:g} m beyond its yield displacement "
                           f"{brk:g} m" + ("" if direction == 0.0 else " (or off it while it slips)"))
         first += n_sp
-    bw = asm.system_bw
-    z = x_all[lay["zeta"]]
-    if bw[0] == 0.0 and z != 0.0:
-        raise bad(f"vector[{lay['zeta']}]", z, "is a Bouc-Wen z, but no isolator here has a Bouc-Wen spring")
-    if bw[0] != 0.0 and abs(z) > (bw[2] / (bw[3] + bw[4])) ** (1.0 / bw[5]) * (1.0 + 1e-9):
-        raise bad(f"vector[{lay['zeta']}]", z, "is beyond the Bouc-Wen spring's largest |z|, "
-                                               f"{(bw[2] / (bw[3] + bw[4])) ** (1.0 / bw[5]):g}")
+    springs = asm.bouc_wen
+    for q in range(max(1, len(springs))):  # (each Bouc-Wen spring's z; one slot, 0, without any)
+        at = lay["zeta"] + q
+        z = x_all[at]
+        if q >= len(springs):
+            if z != 0.0:
+                raise bad(f"vector[{at}]", z, "is a Bouc-Wen z, but no isolator here has a Bouc-Wen spring")
+            continue
+        bw = springs[q]
+        z_max = (bw[2] / (bw[3] + bw[4])) ** (1.0 / bw[5])
+        if abs(z) > z_max * (1.0 + 1e-9):
+            raise bad(f"vector[{at}]", z, f"is beyond the Bouc-Wen spring's largest |z|, {z_max:g}")
 
 
 _FIX = "start from State.at_rest(system) or a final_state of this system"

@@ -135,11 +135,6 @@ class Adjacent(TomlFile):
         object.__setattr__(self, "links", links)
         for s in (self.first, self.second):  # (a friction isolator's system: no rigid stop yet)
             refuse_rigid_stops(s.isolator, [(f"links[{i}].law", link.law) for i, link in enumerate(links)])
-        with_bw = [s for s in (self.first, self.second) if s.isolator is not None and s.isolator.bouc_wen]
-        if len(with_bw) > 1:
-            raise InputError(Problem.WRONG_CONFIGURATION, "second.isolator", self.second.isolator,
-                             got="whose isolator has a Bouc-Wen spring, as the first's has",
-                             fix="give a Bouc-Wen spring to one of the two isolators at most")
 
     @property
     def structures(self) -> tuple[Structure, Structure]:

@@ -204,7 +204,8 @@ class Bearing:
         Where it stands, m.
     isolator : Isolator
         Its law along x, and along y unless ``isolator_y`` is given (a rubber bearing's backbone and
-        hysteresis; without a Bouc-Wen spring).
+        hysteresis, and its Bouc-Wen spring if it has one: each axis's yields under its own component,
+        uncoupled).
     isolator_y : Isolator, optional
         Its law along y.
 
@@ -238,10 +239,6 @@ class Bearing:
                 raise InputError(Problem.WRONG_TYPE, f"bearing.{name}", iso, got=type(iso).__name__,
                                  expected="pounding.Isolator (a bearing's law on one axis; friction "
                                           "bearings in plan are not supported yet)")
-            if iso.bouc_wen is not None:
-                raise InputError(Problem.WRONG_CONFIGURATION, f"bearing.{name}.bouc_wen", iso.bouc_wen,
-                                 got="with a Bouc-Wen spring in a bearing in plan (not supported yet)",
-                                 fix="give the bearing a multi-linear backbone (slopes_n_m, breakpoints_m)")
 
     @property
     def laws(self) -> tuple[Isolator, Isolator]:
