@@ -30,15 +30,15 @@ def _bw_isolator(rng, k_post=None, damping=None):
     return pounding.Isolator((k_post,), (), "kinematic", damping, bw)
 
 
-def _plan_building(rng, gap_m):
+def _plan_building(rng, gap_m, bidirectional=False):
     side = rng.uniform(12.0, 30.0, 2)
     floor = Floor(rng.uniform(2e5, 6e5), tuple(side), centre_m=tuple(rng.uniform(-0.1, 0.1, 2) * side))
     bearings = []
     for sx in (-1.0, 1.0):
         for sy in (-1.0, 1.0):
             at = (sx * side[0] / 2 * rng.uniform(0.7, 0.95), sy * side[1] / 2 * rng.uniform(0.7, 0.95))
-            y_law = _bw_isolator(rng) if rng.random() < 0.5 else None
-            bearings.append(Bearing(at, _bw_isolator(rng), y_law))
+            y_law = _bw_isolator(rng) if rng.random() < 0.5 and not bidirectional else None
+            bearings.append(Bearing(at, _bw_isolator(rng), y_law, bidirectional=bidirectional))
     moat = RectangularMoat(tuple(gap_m * rng.uniform(0.8, 1.2, 4)),
                            pounding.KelvinVoigt(rng.uniform(5e7, 3e8), rng.uniform(2e4, 2e5)))
     return PlanBuilding([floor], bearings, [], moat)
@@ -56,7 +56,7 @@ def _restated(b: PlanBuilding) -> PlanModel:
         return w
 
     k, c = np.zeros((3, 3)), np.zeros((3, 3))
-    springs, tracked = [], []
+    springs, tracked, pairs = [], [], []
     for bearing in b.bearings:
         for axis, law in enumerate(bearing.laws):
             w = point(axis, *bearing.at_m)
@@ -66,6 +66,8 @@ def _restated(b: PlanBuilding) -> PlanModel:
             springs.append((w, (bw.stiffness_n_m * bw.yield_displacement_m, bw.yield_displacement_m, bw.a,
                                 bw.beta, bw.gamma, bw.n)))
             tracked.append(w)
+        if bearing.bidirectional:
+            pairs.append((len(springs) - 2, len(springs) - 1))
     a, bb = f.size_m
     walls = []
     for side, (axis, sign) in enumerate(((0, -1.0), (0, 1.0), (1, -1.0), (1, 1.0))):
@@ -75,7 +77,8 @@ def _restated(b: PlanBuilding) -> PlanModel:
                               b.moat.law.damping))
     influence = np.array([[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]])
     return PlanModel(mass=np.array([f.mass_kg, f.mass_kg, f.inertia_kg_m2]), k=k, c=c, influence=influence,
-                     record=(np.zeros(1),) * 3, walls=walls, bouc_wen=springs, tracked=tracked,
+                     record=(np.zeros(1),) * 3, walls=walls, bouc_wen=springs, bidirectional=pairs,
+                     tracked=tracked,
                      vectors=[(2 * q, 2 * q + 1) for q in range(len(b.bearings))])
 
 
@@ -99,10 +102,12 @@ def _compare(run, ref, n, bouc_wen_events=True):
     assert abs(e.residual) <= 1e-8 * max(abs(e.input_work), e.viscous, e.kinetic, e.hysteretic)
 
 
-@pytest.mark.parametrize("seed", [1, 4, 7])
-def test_a_building_in_plan_on_bouc_wen_bearings_runs_as_the_reference(seed):
+@pytest.mark.parametrize("seed, bidirectional", [(1, False), (4, False), (7, False), (2, True), (3, True),
+                                                 (9, True)])
+def test_a_building_in_plan_on_bouc_wen_bearings_runs_as_the_reference(seed, bidirectional):
+    # each axis's spring on its own, or the two one bidirectional spring (Park, Wen and Ang's, n 1 or 2)
     rng = np.random.default_rng(seed)
-    b = _plan_building(rng, 0.06)
+    b = _plan_building(rng, 0.06, bidirectional)
     model = _restated(b)
     t, ax, ay = _record(rng, 2.0, 0.01, 4.0)
     model.record = (t, ax, ay)
@@ -197,3 +202,76 @@ def test_a_state_s_every_z_is_checked_and_one_z_is_what_an_orbit_carries():
     with pytest.raises(InputError, match="Bouc-Wen"):
         pounding.design.asce7_bearings_displacement(b, 0.9)
 
+
+def _square(bouc_wen, bidirectional, gap_m=None):
+    """A square floor on four equal rubber bearings, symmetric (under circular shaking: a circular orbit)."""
+    iso = pounding.Isolator((4e5,), (), "kinematic", 1e4, bouc_wen)
+    bearings = [Bearing((sx * 8.0, sy * 8.0), iso, bidirectional=bidirectional) for sx in (-1, 1)
+                for sy in (-1, 1)]
+    moat = None if gap_m is None else RectangularMoat(gap_m, pounding.KelvinVoigt(2e8, 2e5))
+    return PlanBuilding([Floor(4e5, (20.0, 20.0))], bearings, [], moat)
+
+
+@pytest.mark.parametrize("n", [1.0, 2.0])
+def test_a_bidirectional_spring_yields_under_the_resultant(n):
+    # circular shaking far beyond yield: a bidirectional spring's z turns with the motion at its largest
+    # |z| = (a / (beta + gamma))^(1/n) = 1 (its force k u_y along the velocity), never beyond; the same
+    # springs along each axis on their own each saturate, their resultant near sqrt(2)
+    bw = pounding.BoucWen(4e6, 0.005, beta=0.6, gamma=0.4, n=n)
+    shake = pounding.HarmonicPair.circular(0.3, 0.5)
+    sizes = {}
+    for bidirectional in (True, False):
+        b = _square(bw, bidirectional)
+        run = pounding.simulate(b, shake, 6.0, sample_rate_hz=0, rtol=1e-10)
+        e = run.energy
+        assert abs(e.residual) <= 1e-8 * max(abs(e.input_work), e.viscous, e.kinetic, e.hysteretic)
+        assert e.hysteretic > 0.0
+        seen = []  # (each bearing's |z| at eight instants over the next cycle of 2 s)
+        for _ in range(8):
+            run = pounding.simulate(b, shake, 0.25, run.final_state, sample_rate_hz=0, rtol=1e-10)
+            assert run.success, run.message
+            z = run.final_state.bouc_wen_zs.reshape(4, 2)
+            seen.append(np.hypot(z[:, 0], z[:, 1]))
+        sizes[bidirectional] = np.array(seen)
+    assert np.all(sizes[True] <= 1.0 + 1e-12) and np.all(sizes[True] > 0.99)
+    assert np.max(sizes[False]) > 1.3
+
+
+def test_a_bidirectional_spring_moved_along_one_axis_is_the_spring_on_its_line():
+    # shaken along x, a symmetric building's y and turn stay 0 (to rounding), each bearing's z_y too: the
+    # bidirectional spring is its line's (the same numbers to rounding)
+    bw = pounding.BoucWen(4e6, 0.005, beta=0.55, gamma=0.45, n=2.0)
+    quake = pounding.records.el_centro().scaled(pga_g=0.4)
+    both, each = (pounding.simulate(_square(bw, flag, 0.1), quake, 8.0, rtol=1e-11) for flag in (True, False))
+    assert len(both.contacts) >= 1
+    zb, ze = both.final_state.bouc_wen_zs.reshape(4, 2), each.final_state.bouc_wen_zs.reshape(4, 2)
+    assert np.all(np.abs(zb[:, 1]) < 1e-15) and np.all(np.abs(ze[:, 1]) < 1e-15)
+    assert np.all(np.abs(zb[:, 0]) > 0.1)
+    np.testing.assert_allclose(zb[:, 0], ze[:, 0], rtol=1e-9, atol=1e-12)
+    scale = np.max(np.abs(each.bearing_axis_max_m))
+    for name in ("bearing_axis_max_m", "bearing_axis_min_m", "bearing_displacement_max_m", "clearance_m"):
+        np.testing.assert_allclose(getattr(both, name), getattr(each, name), rtol=0, atol=1e-9 * scale)
+    np.testing.assert_allclose(both.contacts["t_start_s"], each.contacts["t_start_s"], rtol=0, atol=1e-9)
+
+
+def test_a_bidirectional_bearing_s_laws_and_its_toml(tmp_path):
+    bw = pounding.BoucWen(4e6, 0.005)
+    iso = pounding.Isolator((4e5,), (), "kinematic", 1e4, bw)
+    other = pounding.Isolator((4e5,), (), "kinematic", 1e4, pounding.BoucWen(5e6, 0.005))
+    with pytest.raises(InputError, match="bidirectional") as info:
+        Bearing((0.0, 0.0), iso, other)
+    assert "isolator_y.bouc_wen" in str(info.value)
+    assert not Bearing((0.0, 0.0), iso, other, bidirectional=False).coupled
+    assert Bearing((0.0, 0.0), iso).coupled and not Bearing((0.0, 0.0), iso, bidirectional=False).coupled
+    with pytest.raises(InputError, match="bearing.bidirectional"):
+        Bearing((0.0, 0.0), iso, bidirectional="yes")
+    for flag in (True, False):
+        b = _square(bw, flag, 0.1)
+        path = b.to_toml(tmp_path / f"b{flag}.toml")
+        assert PlanBuilding.from_toml(path) == b
+    end = pounding.simulate(_square(bw, True), pounding.HarmonicPair.circular(0.3, 0.5), 2.0).final_state
+    vec, lay = end.vector.copy(), end.layout
+    vec[lay["zeta"]:lay["zeta"] + 2] = 0.8  # (each component below 1, their resultant beyond)
+    with pytest.raises(InputError, match="other component"):
+        pounding.simulate(_square(bw, True), pounding.HarmonicPair.circular(0.3, 0.5), 1.0,
+                          pounding.State._of(vec, end.dofs, lay))

@@ -171,6 +171,15 @@ def test_a_system_goes_in_by_name_and_comes_back_from_a_pickle_by_name():
     assert again.__getstate__()["elements"][0]["bw"] == bw and again.layout["n_bouc_wen"] == 1
     with pytest.raises(ValueError, match="bw"):
         _core.element(i=0, j=-1, c_d=0.0, slopes=[1e3], breaks=[], rule=1, bw=[1.0, 0.0, 1.0, 0.5, 0.5, 1.0])
+    # a bidirectional spring: two elements, each the other's mate, the same numbers; anything else refused
+    def pair(mate_x, mate_y, bw_y=bw):
+        return [_core.element(i=0, j=-1, c_d=0.0, slopes=[1e3], breaks=[], rule=1, bw=bw, bw_mate=mate_x),
+                _core.element(i=1, j=-1, c_d=0.0, slopes=[1e3], breaks=[], rule=1, bw=bw_y, bw_mate=mate_y)]
+    two = _core.system([500.0, 500.0], np.zeros((2, 2)), np.zeros((2, 2)), pair(1, 0), False, [])
+    assert [e["bw_mate"] for e in pickle.loads(pickle.dumps(two)).__getstate__()["elements"]] == [1, 0]
+    for bad in (pair(1, -1), pair(0, 1), pair(1, 0, [1.1e3, 0.004, 1.0, 0.5, 0.5, 1.0]), pair(2, 0)):
+        with pytest.raises(ValueError, match="mate"):
+            _core.system([500.0, 500.0], np.zeros((2, 2)), np.zeros((2, 2)), bad, False, [])
     with pytest.raises(ValueError, match="ContactSlot"):
         _core.system([500.0], np.zeros((1, 1)), np.zeros((1, 1)), [iso], True,
                      [(0, -1, 1.0, 0.03, 1, [5e8])])

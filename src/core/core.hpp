@@ -197,9 +197,13 @@ struct Hysteretic : Pair {
     // each surface's ring stiffness (N/m; 0: rigid), empty: every ring rigid
     std::vector<double> surface_ring;
     // its Bouc-Wen spring (bw[0] 0: none), in parallel: force bw[0] z, z' = u' / u_y (a - |z|^n (gamma +
-    // beta sgn(u' z))), z of layout slot zeta + bw_slot (set by System::finish, -1: none)
+    // beta sgn(u' z))), z of layout slot zeta + bw_slot (set by System::finish, -1: none).  With a mate (the
+    // element of the same bearing along the other axis, the same numbers) the two are one bidirectional
+    // spring, Park, Wen and Ang's yielding under the resultant (phase.cpp's zeta_rate)
     double bw[BW_PARAMS] = {0};
     int bw_slot = -1;
+    int bw_mate = -1;       // its mate's element (-1: none)
+    int bw_mate_slot = -1;  // its mate's z slot (set by System::finish)
     bool has_bw() const { return bw[0] != 0.0; }
     int first = 0;  // its first spring's index among the system's (set by System::finish)
     bool series() const { return !surface_friction.empty(); }
@@ -259,6 +263,8 @@ struct System {
             h.bw_slot = h.has_bw() ? n_bw() : -1;
             if (h.has_bw()) bw_el.push_back(e);
         }
+        for (Hysteretic& h : hyst)
+            h.bw_mate_slot = h.bw_mate >= 0 ? hyst[static_cast<size_t>(h.bw_mate)].bw_slot : -1;
         lay = Layout(n, nc(), n_h(), n_springs(), n_bw());
         dof_pair.assign(static_cast<size_t>(n), Pair());
         for (int i = 0; i < n; ++i) dof_pair[static_cast<size_t>(i)].i = i;

@@ -29,7 +29,7 @@ double abs_acceleration_rate(Phase& ph, int i, double tau, const double* y, cons
         for (int b = 0; b < ph.nbw; ++b) {
             const Hysteretic& h = *ph.bw[static_cast<size_t>(b)];
             const double w_b = weight_on(h, i);
-            if (w_b != 0.0) q += w_b * (h.bw[0] * zeta_rate(h, rel(v, h), z[b]));
+            if (w_b != 0.0) q += w_b * (h.bw[0] * zeta_rate(ph, b, v, z));
         }
     }
     return -ph.minv[static_cast<size_t>(i)] * q;
@@ -142,9 +142,8 @@ EventValue stick_value(const EventRow& e, const EventValue& d) {
 EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y, const double* a) {
     const int n = ph.n;
     if (e.kind == KIND_ZETA) {  // (alpha: minus z's sign at the phase start; side: its z's slot)
-        const double z = phase_zeta(ph, tau)[e.side];
-        const Hysteretic& h = *ph.bw[static_cast<size_t>(e.side)];
-        return {-e.alpha * z, -e.alpha * zeta_rate(h, rel(y + n, h), z), 1.0};
+        const double* z = phase_zeta(ph, tau);
+        return {-e.alpha * z[e.side], -e.alpha * zeta_rate(ph, e.side, y + n, z), 1.0};
     }
     if (e.kind == KIND_HELD) return held_force(ph, e.side, tau, y, a);
     if (e.kind == KIND_STICK) return stick_value(e, held_force(ph, e.side, tau, y, a));

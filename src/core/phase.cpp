@@ -561,12 +561,26 @@ void linear_integrals(Phase& ph, const std::vector<double>& c_lin, const std::ve
 
 // ---------------------------------------------------------------- the numerical phase
 
-double zeta_rate(const Hysteretic& h, double du, double z) {
+double zeta_rate(const Phase& ph, int q, const double* v, const double* z) {
+    const Hysteretic& h = *ph.bw[static_cast<size_t>(q)];
     const double a = h.bw[2], beta = h.bw[3], gamma = h.bw[4], nexp = h.bw[5];
-    const double az = std::abs(z);
-    const double zn = nexp == 1.0 ? az : std::pow(az, nexp);
-    const double s = du * z > 0.0 ? beta : -beta;
-    return du / h.bw[1] * (a - zn * (s + gamma));
+    const double du = rel(v, h), zq = z[q];
+    if (h.bw_mate_slot < 0) {  // (along its line: u' / u_y (a - |z|^n (gamma + beta sgn(u' z))))
+        const double az = std::abs(zq);
+        const double zn = nexp == 1.0 ? az : std::pow(az, nexp);
+        const double s = du * zq > 0.0 ? beta : -beta;
+        return du / h.bw[1] * (a - zn * (s + gamma));
+    }
+    // bidirectional (Park, Wen and Ang, any n): z_q' = (a u'_q - |z|^(n-2) z_q sum_k u'_k z_k (gamma + beta
+    // sgn(u'_k z_k))) / u_y over its two components k: yielding under the resultant, |z| <= (a / (beta +
+    // gamma))^(1/n), and dissipating (k u_y / a) |z|^n sum_k |u'_k z_k| (beta + gamma sgn(u'_k z_k)) >= 0
+    const int m = h.bw_mate_slot;
+    const double dm = rel(v, *ph.bw[static_cast<size_t>(m)]), zm = z[m];
+    const double pq = du * zq, pm = dm * zm;
+    const double sum = pq * (gamma + (pq > 0.0 ? beta : -beta)) + pm * (gamma + (pm > 0.0 ? beta : -beta));
+    const double size = std::hypot(zq, zm);
+    const double lead = size == 0.0 ? 0.0 : nexp == 2.0 ? 1.0 : std::pow(size, nexp - 2.0);
+    return (a * du - lead * zq * sum) / h.bw[1];
 }
 
 void phase_rhs(Phase& ph, double tau, const double* y, const double* z, double* a, bool held) {
@@ -651,10 +665,7 @@ Dp5 dp5_step(Phase& ph, double h) {
     auto slope = [&](double tau, const double* y, const double* z, double* k) {
         for (int i = 0; i < n; ++i) k[i] = y[n + i];
         phase_rhs(ph, tau, y, z, k + n);
-        for (int q = 0; q < nb; ++q) {
-            const Hysteretic& hq = *ph.bw[static_cast<size_t>(q)];
-            k[ny + q] = zeta_rate(hq, rel(y + n, hq), z[q]);
-        }
+        for (int q = 0; q < nb; ++q) k[ny + q] = zeta_rate(ph, q, y + n, z);
     };
     auto stage = [&](const double* coef, int m) {  // yt = y0 + h sum_j coef_j k_j
         for (int q = 0; q < w; ++q) {

@@ -206,8 +206,8 @@ void held_force_poly(const Phase& ph, int c, Poly& q);
 
 // ---------------------------------------------------------------- the numerical phase
 
-// the rate of a Bouc-Wen spring's z (h: its element) at its deformation's rate du and z
-double zeta_rate(const Hysteretic& h, double du, double z);
+// the rate of Bouc-Wen spring q's z at the velocities v (n) and the springs' z (nbw)
+double zeta_rate(const Phase& ph, int q, const double* v, const double* z);
 // the accelerations (n) at (tau, y, z) with the nonlinear forces (z: the Bouc-Wen springs', nbw)
 void phase_rhs(Phase& ph, double tau, const double* y, const double* z, double* a, bool held = true);
 // the step of length h from the start: y (ny), a (n), z (nbw); the error estimates

@@ -884,7 +884,10 @@ bool move_to_end(Loop& lp) {
         const double* z = phase_zeta(ph, lp.tau);
         for (int q = 0; q < sy.n_bw(); ++q) {
             const double zm = lp.z_max[static_cast<size_t>(q)];
-            st[lp.L.zeta + q] = std::min(std::max(z[q], -zm), zm);
+            const int mate = sy.bw_of(q).bw_mate_slot;
+            // (a bidirectional spring's resultant held to its largest, as a line's z: rounding's guard)
+            const double size = mate < 0 ? std::abs(z[q]) : std::hypot(z[q], z[mate]);
+            st[lp.L.zeta + q] = mate < 0 ? std::min(std::max(z[q], -zm), zm) : size > zm ? z[q] * (zm / size) : z[q];
         }
     }
     for (int q = 0; q < 2 * lp.n; ++q) st[lp.L.x + q] = b.y1[static_cast<size_t>(q)];

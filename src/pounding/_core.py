@@ -278,6 +278,14 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
                 el.friction_rate_s_m > 0.0 and el.rule != 2):
             raise ValueError(f"element {e}: a velocity-dependent friction is the friction rule's, with a "
                              "fast friction > 0 and a rate > 0 together")
+    for e, el in enumerate(elements):  # (a bidirectional Bouc-Wen spring: two elements, each the other's)
+        mate = el.bw_mate
+        if mate == -1:
+            continue
+        if not (0 <= mate < len(elements) and mate != e and elements[mate].bw_mate == e and el.bw[0] != 0.0
+                and list(elements[mate].bw) == list(el.bw)):
+            raise ValueError(f"element {e}: its Bouc-Wen mate {mate} is another element whose mate it is, "
+                             "both with the same Bouc-Wen numbers")
     for c, slot in enumerate(contacts):
         if not isinstance(slot, ContactSlot):
             raise ValueError(f"contact {c}: a ContactSlot, got {type(slot).__name__}")
@@ -341,15 +349,17 @@ def contact_slot(*, i: int, j: int, sign: float, gap_m: float, law: int, params:
 
 def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int, friction_n: float = 0.0,
             friction_fast_n: float = 0.0, friction_rate_s_m: float = 0.0,
-            surface_friction_n: Any = (), surface_ring_n_m: Any = (), bw: Any = (), lever_i: int = -1,
-            arm_i_m: float = 0.0, lever_j: int = -1, arm_j_m: float = 0.0) -> Element:
+            surface_friction_n: Any = (), surface_ring_n_m: Any = (), bw: Any = (), bw_mate: int = -1,
+            lever_i: int = -1, arm_i_m: float = 0.0, lever_j: int = -1, arm_j_m: float = 0.0) -> Element:
     """A hysteretic element (:class:`Element`) from numbers as the model gives them (``friction_n``: the
     friction of rule 2 at rest, N; with ``friction_rate_s_m`` > 0, s/m, a slip's friction is
     ``friction_fast_n - (friction_fast_n - friction_n) exp(-friction_rate_s_m |u'|)``; ``surface_friction_n``:
     rule 2's surfaces in series, each surface's friction N, its stiffness in ``slopes`` N/m and its travel to
     its ring in ``breaks`` m; ``surface_ring_n_m``: each ring's stiffness, N/m, 0 or none given: rigid;
     ``bw``: a Bouc-Wen spring in parallel, its ``BW_PARAMS`` numbers (force per unit z N, yield displacement
-    m, a, beta, gamma, n), none or zeros for none; its pair's levers and arms as :func:`contact_slot`'s)."""
+    m, a, beta, gamma, n), none or zeros for none; ``bw_mate``: the element whose Bouc-Wen spring makes one
+    bidirectional spring with this one's (a bearing's other axis: the same numbers; :func:`system` checks
+    them), -1 none; its pair's levers and arms as :func:`contact_slot`'s)."""
     bw = [float(x) for x in bw]
     if bw and (len(bw) != LAYOUT["BW_PARAMS"] or (bw[0] != 0.0 and not (
             bw[1] > 0.0 and bw[2] > 0.0 and bw[3] + bw[4] > 0.0 and bw[5] > 0.0))):
@@ -359,7 +369,7 @@ def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int, 
                    breaks=[float(x) for x in breaks], rule=int(rule), friction_n=float(friction_n),
                    friction_fast_n=float(friction_fast_n), friction_rate_s_m=float(friction_rate_s_m),
                    surface_friction_n=[float(x) for x in surface_friction_n],
-                   surface_ring_n_m=[float(x) for x in surface_ring_n_m], bw=bw,
+                   surface_ring_n_m=[float(x) for x in surface_ring_n_m], bw=bw, bw_mate=int(bw_mate),
                    **_lever_args(lever_i, arm_i_m, lever_j, arm_j_m))
 
 

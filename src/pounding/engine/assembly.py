@@ -269,6 +269,13 @@ def _assemble(model: Oscillator | Structure | Adjacent) -> Assembly:
                     bouc_wen_numbers(kernel_elements), contact_tracks)
 
 
+def bouc_wen_mates(elements: list) -> tuple:
+    """Each Bouc-Wen spring's mate (the z slot of the spring it makes one bidirectional spring with, -1
+    none), by its z's slot, for the core's ``elements``."""
+    slots = [e for e, el in enumerate(elements) if el.bw[0] != 0.0]
+    return tuple(slots.index(elements[e].bw_mate) if elements[e].bw_mate >= 0 else -1 for e in slots)
+
+
 def bouc_wen_numbers(elements: list) -> np.ndarray:
     """The Bouc-Wen springs' numbers of the core's ``elements`` (:class:`pounding._core.Element`), by their
     z's slot (the elements that have one, in order), shape (b, BW_PARAMS)."""

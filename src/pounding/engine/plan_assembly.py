@@ -19,7 +19,7 @@ from .. import _core
 from ..model.isolator import HYSTERESIS_RULES
 from ..model.plan import PlanBuilding, point_weights
 from ..model.plan_parts import Bearing
-from .assembly import HystereticElement, Pair, bouc_wen_numbers
+from .assembly import HystereticElement, Pair, bouc_wen_mates, bouc_wen_numbers
 
 
 class PlanAssembly(NamedTuple):
@@ -51,6 +51,7 @@ class PlanAssembly(NamedTuple):
     dofs: tuple = ()             # ((0, 1, ..., 3 n - 1),): the floors' dofs, as a State holds them
     bouc_wen: np.ndarray = np.zeros((0, _core.LAYOUT["BW_PARAMS"]))  # (b, BW_PARAMS): each Bouc-Wen spring's
     corner_tracks: tuple = ()    # (4, 2): each corner's tracked pair along x and y
+    bouc_wen_mates: tuple = ()   # each Bouc-Wen spring's mate's slot (a bidirectional one's), -1 none
 
 
 def _levers(building: PlanBuilding, storey: int, axis: int, p: tuple[float, float],
@@ -108,8 +109,11 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
             k_bw = bw[0] * bw[2] / bw[1] if bw[0] != 0.0 else 0.0  # (a Bouc-Wen spring's initial stiffness)
             k_fast += (float(np.max(np.abs(slopes))) + k_bw) * np.outer(w, w)
             c_all += part.laws[axis].damping_n_s_m * np.outer(w, w)
+            # (a bidirectional spring: the bearing's x and y elements, each the other's mate)
+            mate = len(elements) + (1 if axis == 0 else -1) if part.coupled else -1
             elements.append(_core.element(c_d=part.laws[axis].damping_n_s_m, slopes=slopes, breaks=breaks,
-                                          rule=int(rule), bw=bw if bw[0] != 0.0 else (), **pair))
+                                          rule=int(rule), bw=bw if bw[0] != 0.0 else (), bw_mate=mate,
+                                          **pair))
             element_names.append((kind, index, axis))
             element_weights.append(w)
         tracked.append(_core.tracked_pair(**pair))
@@ -164,7 +168,7 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
                         np.array(element_weights).reshape(len(elements), n), tuple(pairs),
                         tuple(HystereticElement(el.i, el.j, list(el.slopes), list(el.breaks), el.rule)
                               for el in elements), (tuple(range(n)),), bouc_wen_numbers(elements),
-                        tuple(corner_tracks))
+                        tuple(corner_tracks), bouc_wen_mates(elements))
 
 
 __all__ = ["PlanAssembly", "assemble_plan"]

@@ -175,8 +175,12 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str, levered: Optional[tuple
             continue
         bw = springs[q]
         z_max = (bw[2] / (bw[3] + bw[4])) ** (1.0 / bw[5])
-        if abs(z) > z_max * (1.0 + 1e-9):
-            raise bad(f"vector[{at}]", z, f"is beyond the Bouc-Wen spring's largest |z|, {z_max:g}")
+        mates = getattr(asm, "bouc_wen_mates", ())
+        mate = mates[q] if q < len(mates) else -1  # (a bidirectional spring's: its resultant)
+        size = abs(z) if mate < 0 else float(np.hypot(z, x_all[lay["zeta"] + mate]))
+        if size > z_max * (1.0 + 1e-9):
+            what = "" if mate < 0 else f" (with vector[{lay['zeta'] + mate}], its other component: {size:g})"
+            raise bad(f"vector[{at}]", z, f"is beyond the Bouc-Wen spring's largest |z|, {z_max:g}{what}")
 
 
 _FIX = "start from State.at_rest(system) or a final_state of this system"

@@ -12,7 +12,8 @@ import warnings
 from dataclasses import dataclass
 from typing import Any, ClassVar, Optional
 
-from .._checks import at_most, integer, non_negative, one_of, plausible, positive, real, real_tuple
+from .._checks import (at_most, instance_of, integer, non_negative, one_of, plausible, positive, real,
+                       real_tuple)
 from .._errors import InputError, PoundingWarning, Problem
 from .contact_laws import check_law, law_to_dict
 from .contact_laws.rigid_stop import is_rigid
@@ -204,10 +205,14 @@ class Bearing:
         Where it stands, m.
     isolator : Isolator
         Its law along x, and along y unless ``isolator_y`` is given (a rubber bearing's backbone and
-        hysteresis, and its Bouc-Wen spring if it has one: each axis's yields under its own component,
-        uncoupled).
+        hysteresis, uncoupled; and its Bouc-Wen spring if it has one, see ``bidirectional``).
     isolator_y : Isolator, optional
         Its law along y.
+    bidirectional : bool
+        Whether its Bouc-Wen spring is one spring in the plane (default), yielding under the resultant of
+        its two components (Park, Wen and Ang's: both axes must carry the same :class:`pounding.BoucWen`),
+        or one along each axis, each yielding under its own component (False).  Without a Bouc-Wen spring
+        it changes nothing.
 
     Examples
     --------
@@ -223,8 +228,9 @@ class Bearing:
     at_m: tuple
     isolator: Isolator
     isolator_y: Optional[Isolator] = None
+    bidirectional: bool = True
 
-    FIELDS: ClassVar[tuple[str, ...]] = ("at_m", "isolator", "isolator_y")
+    FIELDS: ClassVar[tuple[str, ...]] = ("at_m", "isolator", "isolator_y", "bidirectional")
 
     def __post_init__(self) -> None:
         at = _pair("bearing.at_m", self.at_m)
@@ -239,6 +245,19 @@ class Bearing:
                 raise InputError(Problem.WRONG_TYPE, f"bearing.{name}", iso, got=type(iso).__name__,
                                  expected="pounding.Isolator (a bearing's law on one axis; friction "
                                           "bearings in plan are not supported yet)")
+        instance_of("bearing.bidirectional", self.bidirectional, bool, "true or false")
+        springs = [law.bouc_wen for law in self.laws]
+        if self.bidirectional and springs[0] != springs[1]:
+            raise InputError(Problem.WRONG_CONFIGURATION, "bearing.isolator_y.bouc_wen", springs[1],
+                             got=f"whose Bouc-Wen spring along y differs from x's ({springs[0]}): a "
+                                 "bidirectional spring is one spring in the plane",
+                             fix="give both axes the same BoucWen, or bidirectional=False (false in a "
+                                 "TOML file) for one spring along each axis")
+
+    @property
+    def coupled(self) -> bool:
+        """Whether its two axes' Bouc-Wen springs are one bidirectional spring."""
+        return self.bidirectional and self.isolator.bouc_wen is not None
 
     @property
     def laws(self) -> tuple[Isolator, Isolator]:
@@ -249,6 +268,8 @@ class Bearing:
         out: dict[str, Any] = {"at_m": list(self.at_m), "isolator": self.isolator.to_dict()}
         if self.isolator_y is not None:
             out["isolator_y"] = self.isolator_y.to_dict()
+        if not self.bidirectional:
+            out["bidirectional"] = False
         return out
 
 

@@ -1,0 +1,64 @@
+"""What rubber bearings' Bouc-Wen springs cost a building in plan: CPU time of one run.
+
+The building of ``opensees_plan.py`` (5 storeys above its base, 18 dofs) under the far-field set's first
+pair x2, its whole record, events only, on its four bilinear lead-rubber bearings (exact phases), then on
+high-damping rubber bearings of about the same initial and post-yield stiffness: each a linear spring
+beside a Bouc-Wen spring, one bidirectional spring per bearing (Park, Wen and Ang: yielding under the
+resultant), and the same springs uncoupled (one along each axis).  Every phase with a Bouc-Wen spring is
+integrated numerically (Dormand-Prince 5(4) at the run's rtol), so the ratio is that integration's cost.
+
+    python benchmarks/plan_rubber.py [--storeys 5] [--rounds 3]
+"""
+
+from __future__ import annotations
+
+import argparse
+import dataclasses
+
+from opensees_building import cpu_timed
+from opensees_plan import SCALE, building
+
+import pounding as pd_
+
+
+def rubber(b: pd_.PlanBuilding, bidirectional: bool) -> pd_.PlanBuilding:
+    """``b`` on high-damping rubber bearings: the bilinear law's post-yield slope as the linear spring, a
+    Bouc-Wen spring of the rest of its initial stiffness yielding at its breakpoint (n = 1)."""
+    lrb = b.bearings[0].isolator
+    k1, k2 = lrb.slopes_n_m
+    bw = pd_.BoucWen(stiffness_n_m=k1 - k2, yield_displacement_m=lrb.breakpoints_m[0])
+    hdr = pd_.Isolator(slopes_n_m=[k2], breakpoints_m=[], damping_n_s_m=lrb.damping_n_s_m, bouc_wen=bw)
+    bearings = tuple(dataclasses.replace(x, isolator=hdr, bidirectional=bidirectional) for x in b.bearings)
+    return dataclasses.replace(b, bearings=bearings)
+
+
+def main() -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--storeys", type=int, default=5)
+    ap.add_argument("--rounds", type=int, default=3)
+    args = ap.parse_args()
+    base = building(args.storeys)
+    pair = pd_.records.fema_p695_pairs("far_field")[0].scaled(SCALE)
+    print(f"pounding {pd_.__version__}: a building in plan of {args.storeys} storeys ({base.n_dofs} dofs) "
+          f"under {pair.name} x{SCALE:g}, {pair.duration_s:g} s, events only; CPU time of one run (best of "
+          f"{args.rounds})")
+    rows = []
+    for label, b in (("bilinear bearings (exact phases)", base),
+                     ("Bouc-Wen bearings, bidirectional", rubber(base, True)),
+                     ("Bouc-Wen bearings, one spring per axis", rubber(base, False))):
+        def run(b=b):
+            out = pd_.simulate(b, pair, pair.duration_s, sample_rate_hz=0)
+            if not out.success:
+                raise RuntimeError(out.message)
+            return out
+        run()
+        best, _, out = cpu_timed(run, args.rounds)
+        rows.append((label, best, out))
+    first = rows[0][1]
+    for label, best, out in rows:
+        print(f"  {label:42s} {best * 1e3:8.1f} ms  ({best / first:5.1f}x)  largest bearing displacement "
+              f"{out.bearing_displacement_max_m.max() * 1e3:6.1f} mm, {len(out.contacts)} contacts")
+
+
+if __name__ == "__main__":
+    main()
