@@ -119,6 +119,7 @@ double velocity_cuts(Phase& ph, const System& sy, double h, const Buffers& b, co
         double v0 = rel(b.y0s.data() + n, pr);
         const double v1 = rel(b.y1.data() + n, pr);
         const double a0 = rel(b.a0.data(), pr), a1 = rel(b.a1.data(), pr);
+        bool rested = false;  // (a levered pair's start taken at rest: its velocity there is rounding's)
         if (pr.levered() && a0 != 0.0) {
             // a levered pair's velocity at a start cut at its zero is the rounding of its terms (w . v of dofs
             // that all move): at rest there, heading the way it accelerates, as start_signs makes a dof at rest
@@ -128,29 +129,49 @@ double velocity_cuts(Phase& ph, const System& sy, double h, const Buffers& b, co
             const int m = pr.entries(d, w);
             double size = 0.0;
             for (int r = 0; r < m; ++r) size += std::abs(w[r] * b.y0s[static_cast<size_t>(n + d[r])]);
-            if (std::abs(v0) <= 8.0 * EPS * size) v0 = std::copysign(TINY_SPEED, a0);
+            // (in a numerical phase, also a velocity whose zero lies within the roots' resolution in time:
+            // a cut there found by the root finder on a step of the integration may stop a hair short of it)
+            const double resolution = ph.numeric ? 4.0 * XTOL_S * std::abs(a0) : 0.0;
+            if (std::abs(v0) <= 8.0 * EPS * size + resolution) {
+                v0 = std::copysign(TINY_SPEED, a0);
+                rested = true;
+            }
         }
-        if (v0 * v1 < 0.0 && kinks) {
-            Fn fv;
-            fv.kind = FN_PAIR_V;
-            fv.pair = &pr;
-            const double t_v = find_root(fv, ph, 0.0, h, v0, v1, a0, a1, XTOL_S);
+        // its velocity's and its acceleration's functions (polynomials of a linear phase's series), made when
+        // asked for
+        Fn fa, fv;
+        auto functions = [&]() {
+            if (!ph.numeric) {
+                pair_poly(ph, pr, 0.0, 0.0, 0.0, 1.0, fa.q);
+                fa.kind = FN_POLY;
+                pair_poly(ph, pr, 0.0, 0.0, 1.0, 0.0, fv.q);
+                fv.kind = FN_POLY;
+            } else {
+                fa.kind = FN_PAIR_A;
+                fv.kind = FN_PAIR_V;
+                fa.pair = &pr;
+                fv.pair = &pr;
+            }
+        };
+        if (v0 * v1 < 0.0 && kinks) {  // (kinks: a numerical phase)
+            functions();
+            double t_lo = 0.0, v_lo = v0, a_lo = a0;
+            if (rested) {
+                // at rest heading the way it accelerates, and back across zero at the end: the zero is the
+                // one after its turn (its rounding at the start would read as a zero there, again and again)
+                if (!(a0 * a1 < 0.0)) continue;  // (no turn: the start's rounding alone changed its sign)
+                t_lo = find_root(fa, ph, 0.0, h, a0, a1, NaN, NaN, XTOL_EXTREMUM_S);
+                double unused;
+                fn_eval(fv, ph, t_lo, v_lo, unused);
+                if (!(v_lo * v1 < 0.0)) continue;
+                a_lo = NaN;
+            }
+            const double t_v = find_root(fv, ph, t_lo, h, v_lo, v1, a_lo, a1, XTOL_S);
             if (0.0 < t_v && t_v < cut) cut = t_v;
             continue;
         }
         if (!(v0 * v1 > 0.0 && a0 * a1 < 0.0) || !may_turn_back(h, v0, v1, a0, a1)) continue;
-        Fn fa, fv;
-        if (!ph.numeric) {
-            pair_poly(ph, pr, 0.0, 0.0, 0.0, 1.0, fa.q);
-            fa.kind = FN_POLY;
-            pair_poly(ph, pr, 0.0, 0.0, 1.0, 0.0, fv.q);
-            fv.kind = FN_POLY;
-        } else {
-            fa.kind = FN_PAIR_A;
-            fv.kind = FN_PAIR_V;
-            fa.pair = &pr;
-            fv.pair = &pr;
-        }
+        functions();
         const double t_a = find_root(fa, ph, 0.0, h, a0, a1, NaN, NaN, XTOL_EXTREMUM_S);
         double v_a, unused;
         fn_eval(fv, ph, t_a, v_a, unused);
