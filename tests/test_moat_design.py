@@ -76,6 +76,11 @@ def test_seven_pairs_take_their_mean_each_at_its_critical_orientation():
     # the figure: seven bars, the design value, the pairs' demands and the suite's, the code's D_TM
     assert len(pounding.plots.plot_moat_design(found)) == 7 + 1 + 2 + 1
     assert found.plot().axes[0].get_ylabel() == "displacement (mm)"
+    # and a moat's gap across (the file's own, in pounding moat's figure)
+    labels = [a.get_label() for a in pounding.plots.plot_moat_design(found, gap_m=0.3)]
+    assert len(labels) == 7 + 1 + 2 + 1 + 1 and labels[-1] == "the moat's gap: 300 mm"
+    with pytest.raises(pounding.InputError, match="gap_m"):
+        found.plot(gap_m=-0.1)
     assert found.to_xarray().attrs["rule"] == "mean"
     # fewer than seven: the largest
     few = design.moat_design(b, pairs[:2], [0.0], duration_s=6.0)

@@ -97,6 +97,7 @@ def test_a_building_design_file_decides_the_moat_gap_for_drift(tmp_path):
     assert result.exit_code == 0, result.output
     page = (tmp_path / "report" / "index.html").read_text()
     assert "Fragility of a storey drift ratio above 0.001" in page and "moat gap [m]" in page
+    assert "bumpers" not in page and "with / without the moat" in page  # (a building's walls: its moat)
     assert "P(a storey drift ratio above 0.001 | MCE)" in page
     written = pd.read_csv(tmp_path / "report" / "decision.csv")
     np.testing.assert_allclose(written["p_drift_mce"], d.to_dataframe()["p_drift_mce"])

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Optional
 
 import numpy as np
 import pandas as pd
@@ -292,13 +292,13 @@ class MoatDesign:
             design_displacement_m=self.design_displacement_m, moat_demand_m=self.moat_demand_m, **self.attrs,
             **{k: v for k, v in self.code.items()})
 
-    def plot(self, ax: Any = None) -> Any:
-        """Each pair's critical bearing displacement in plan, the design value and the code's, as bars;
-        returns the Figure."""
+    def plot(self, ax: Any = None, gap_m: Optional[float] = None) -> Any:
+        """Each pair's critical bearing displacement in plan, the design value and the code's, as bars, and
+        a moat's gap (m) across when given (:func:`pounding.plots.plot_moat_design`); returns the Figure."""
         from ..plots import figure_of
         from ..plots.plan import plot_moat_design
 
-        return figure_of(plot_moat_design(self, ax=ax), ax)
+        return figure_of(plot_moat_design(self, ax=ax, gap_m=gap_m), ax)
 
     def __repr__(self) -> str:
         code = f", code D_TM {self.code['d_tm_m']:.4g} m" if self.code else ""

@@ -2,10 +2,11 @@
 
 from __future__ import annotations
 
-from typing import Any
+from typing import Any, Optional
 
 import numpy as np
 
+from .._checks import non_negative
 from .._docs import fill_doc
 
 
@@ -94,17 +95,19 @@ def plot_plan_orbit(run: Any, ax: Any = None) -> list:
 
 
 @fill_doc
-def plot_moat_design(design: Any, ax: Any = None) -> list:
+def plot_moat_design(design: Any, ax: Any = None, gap_m: Optional[float] = None) -> list:
     """A :class:`~pounding.design.MoatDesign`: each pair's largest bearing displacement in plan at its most
     critical orientation (bars, the angle on each), the design value (the suite's mean or largest), the
-    moat's demand (each pair's, dots, and the suite's, where the runs have it) and, when given, the code's
-    total maximum displacement with torsion.
+    moat's demand (each pair's, dots, and the suite's, where the runs have it), when given the code's
+    total maximum displacement with torsion, and a moat's gap to compare them with.
 
     Parameters
     ----------
     design : MoatDesign
         What :func:`pounding.design.moat_design` returned.
     {ax}
+    gap_m : float, optional
+        A moat's gap (its smallest), m, drawn across: the building's own, say.
 
     Returns
     -------
@@ -146,6 +149,9 @@ def plot_moat_design(design: Any, ax: Any = None) -> list:
         d_tm = design.code["d_tm_m"] * mm
         artists.append(ax.axhline(d_tm, color="k", ls="--", lw=1.2,
                                   label=f"code D_TM with torsion: {d_tm:.4g} mm"))
+    if gap_m is not None:
+        gap = non_negative("gap_m", gap_m, "m") * mm
+        artists.append(ax.axhline(gap, color="C2", lw=2.0, label=f"the moat's gap: {gap:.4g} mm"))
     ax.set_xticks(x, [str(name) for name in critical.index], rotation=30, ha="right", fontsize=7)
     ax.set_ylabel("displacement (mm)")
     ax.set_ylim(0.0, ax.get_ylim()[1] * 1.08)  # (room for the angles above the bars)

@@ -66,6 +66,8 @@ def _words(plan: Any, decision: Any) -> dict:
     """The decision table's column names in words: the gap's, and the chosen event's probabilities."""
     words = dict(COLUMN_WORDS)
     words[plan.gap_dim] = "moat gap [m]" if plan.building else "gap [m]"
+    if plan.building:  # (a building's walls are its moat's)
+        words["acc_penalty_median"] = "acceleration with / without the moat"
     if decision.event != "contact":
         for lvl, at in (("design", " | design"), ("mce", " | MCE"), ("years", " in the exposure time")):
             words[f"p_{decision.event}_{lvl}"] = f"P({decision.event_words()}{at})"
@@ -180,7 +182,7 @@ def figures(outcome: Any, folder: Path) -> dict[str, tuple[Path, str]]:
         f"{'; one panel per bumper type' if several else ''}",
     )
     fig, axes = plt.subplots(2, 2, figsize=(11.0, 8.0), constrained_layout=True)
-    _cost(decision, axes.ravel())
+    _cost(decision, axes.ravel(), "the moat" if plan.building else "bumpers")
     out["What pounding costs"] = (
         _save(fig, folder / "cost.png"),
         f"median over the records at the stripe nearest the MCE level "
@@ -197,13 +199,14 @@ def figures(outcome: Any, folder: Path) -> dict[str, tuple[Path, str]]:
     return out
 
 
-def _cost(decision: Any, axes: Any) -> None:
-    """Median peak acceleration, its penalty (with bumpers over without), impact force, and peak
-    acceleration of the runs that pounded against the gap, per value of the other dimensions."""
+def _cost(decision: Any, axes: Any, walls: str = "bumpers") -> None:
+    """Median peak acceleration, its penalty (with the ``walls``, bumpers or the moat, over without), impact
+    force, and peak acceleration of the runs that pounded against the gap, per value of the other
+    dimensions."""
     gap = decision.gap_dim
     columns = (
         ("acc_median_g", "peak absolute acceleration (g)"),
-        ("acc_penalty_median", "peak acceleration with bumpers / without"),
+        ("acc_penalty_median", f"peak acceleration with {walls} / without"),
         ("force_median_n", "peak impact force (N)"),
         ("acc_pounding_median_g", "peak acceleration of the runs that pounded (g)"),
     )
