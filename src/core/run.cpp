@@ -455,7 +455,7 @@ void fit_workspace(RunWorkspace::Impl& w, const System& sy) {
         w.turns.assign(static_cast<size_t>(sy.nc() + sy.n_h()), ForceTurn{0.0, 0.0, 0.0, 0.0});
     }
     const size_t rows = static_cast<size_t>(
-        std::max(MAX_EVENTS_PER_PHASE, 2 * sy.n_springs() + sy.n_h() + 6 * sy.nc() + 1));
+        std::max(MAX_EVENTS_PER_PHASE, 2 * sy.n_springs() + sy.n_h() + 6 * sy.nc() + std::max(1, sy.n_bw())));
     if (w.evs.size() < rows) {
         w.evs.assign(rows, EventRow());
         w.ev_end.assign(3 * rows, 0.0);
