@@ -14,7 +14,8 @@ ROOT = Path(pounding.__file__).resolve().parent
 
 # lowest first: each line may import from itself and the lines above it
 LAYERS = [
-    ("_errors", "_checks", "_io", "_core", "_control", "_delimited", "_units", "_tables", "_docs", "data"),
+    ("_errors", "_checks", "_io", "_core_checks", "_core", "_control", "_delimited", "_units", "_tables",
+     "_docs", "data"),
     ("model",),
     ("presets",),
     ("excitation", "records"),

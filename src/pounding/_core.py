@@ -34,6 +34,8 @@ import math
 
 import numpy as np
 
+from ._core_checks import check_contacts, check_elements, check_levers, check_pair
+
 try:
     from . import _pounding_core as _c
 except ImportError as exc:  # pragma: no cover  (a source tree never built)
@@ -220,86 +222,13 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
     if m.ndim != 1 or n < 1 or k0.shape != (n, n) or c0.shape != (n, n):
         raise ValueError(f"mass (n,) and k0, c0 (n, n): got {m.shape}, {k0.shape}, {c0.shape}")
 
-    def pair(i: int, j: int, what: str) -> None:
-        if not (0 <= i < n and (j == -1 or (0 <= j < n and j != i))):
-            raise ValueError(f"{what}: the pair ({i}, {j}) is not two of the {n} dofs (or one and the "
-                             "ground, -1)")
-
-    def levers(p: Any, what: str) -> bool:  # (whether it has any)
-        weights: dict[int, float] = {}
-        for end, lever, arm in (("i", p.lever_i, p.arm_i_m), ("j", p.lever_j, p.arm_j_m)):
-            own = p.i if end == "i" else p.j
-            side = 1.0 if end == "i" else -1.0
-            if own >= 0:
-                weights[own] = weights.get(own, 0.0) + side
-            if lever == -1:
-                continue
-            if not (0 <= lever < n and lever != own and own != -1 and math.isfinite(arm)):
-                raise ValueError(f"{what}: the lever of end {end} ({lever}, arm {arm}) is not another of the "
-                                 f"{n} dofs than {own} with a finite arm (the ground's end has none)")
-            weights[lever] = weights.get(lever, 0.0) + side * arm
-        if not any(weights.values()):
-            raise ValueError(f"{what}: its levers cancel its ends (lever_i {p.lever_i}, arm_i_m {p.arm_i_m}; "
-                             f"lever_j {p.lever_j}, arm_j_m {p.arm_j_m}): its relative displacement is 0 "
-                             "whatever the motion; give levers and arms that leave it a motion")
-        return p.lever_i != -1 or p.lever_j != -1
-
-    for e, el in enumerate(elements):
-        if not isinstance(el, Element):
-            raise ValueError(f"element {e}: an Element, got {type(el).__name__}")
-        pair(el.i, el.j, f"element {e}")
-        if levers(el, f"element {e}") and el.rule == 2:
-            raise ValueError(f"element {e}: a friction element on a lever is not supported yet (its tie "
-                             "holds a dof, not a point): place it on a dof of its own")
-        surfaces = len(el.surface_friction_n)
-        if surfaces:  # (a series of friction surfaces: a slope, a travel and a friction each)
-            if (el.rule != 2 or surfaces < 2 or len(el.slopes) != surfaces or len(el.breaks) != surfaces
-                    or el.friction_n != 0.0 or el.friction_rate_s_m != 0.0 or el.j != -1
-                    or any(el.bw) or min(el.slopes) <= 0.0 or min(el.breaks) <= 0.0
-                    or min(el.surface_friction_n) <= 0.0
-                    or len(el.surface_ring_n_m) not in (0, surfaces)
-                    or not all(0.0 <= r < math.inf for r in el.surface_ring_n_m)):
-                raise ValueError(f"element {e}: surfaces in series are the friction rule's (2), on the "
-                                 "ground, at least two, each a slope > 0, a travel > 0 (inf: no ring), a "
-                                 "friction > 0 and a finite ring stiffness >= 0 (0: rigid; none: all rigid); "
-                                 "no friction_n, velocity dependence or Bouc-Wen spring beside them")
-            continue
-        if len(el.surface_ring_n_m):
-            raise ValueError(f"element {e}: ring stiffnesses are a series of surfaces' (surface_friction_n)")
-        if len(el.slopes) < 1 or len(el.breaks) != len(el.slopes) - 1 or el.rule not in (0, 1, 2):
-            raise ValueError(f"element {e}: {len(el.slopes)} slopes need {len(el.slopes) - 1} breaks, "
-                             "rule 0, 1 or 2")
-        if (el.rule == 2) != (el.friction_n > 0.0) or (el.rule == 2 and (len(el.slopes) != 1 or el.j != -1
-                                                                         or any(el.bw))):
-            raise ValueError(f"element {e}: the friction rule (2) is an isolator's (on the ground), of one "
-                             "slope, a friction force > 0 and no Bouc-Wen spring; no other rule has a "
-                             "friction force")
-        if el.friction_rate_s_m < 0.0 or (el.friction_rate_s_m > 0.0) != (el.friction_fast_n > 0.0) or (
-                el.friction_rate_s_m > 0.0 and el.rule != 2):
-            raise ValueError(f"element {e}: a velocity-dependent friction is the friction rule's, with a "
-                             "fast friction > 0 and a rate > 0 together")
-    for e, el in enumerate(elements):  # (a bidirectional Bouc-Wen spring: two elements, each the other's)
-        mate = el.bw_mate
-        if mate == -1:
-            continue
-        if not (0 <= mate < len(elements) and mate != e and elements[mate].bw_mate == e and el.bw[0] != 0.0
-                and list(elements[mate].bw) == list(el.bw)):
-            raise ValueError(f"element {e}: its Bouc-Wen mate {mate} is another element whose mate it is, "
-                             "both with the same Bouc-Wen numbers")
-    for c, slot in enumerate(contacts):
-        if not isinstance(slot, ContactSlot):
-            raise ValueError(f"contact {c}: a ContactSlot, got {type(slot).__name__}")
-        pair(slot.i, slot.j, f"contact {c}")
-        if slot.sign not in (-1.0, 1.0) or slot.law not in LAW_IDS.values():
-            raise ValueError(f"contact {c}: sign +-1 and a law id of LAW_IDS")
-        if levers(slot, f"contact {c}") and slot.law == LAW_IDS["rigid"]:
-            raise ValueError(f"contact {c}: a rigid stop on a lever is not supported yet (its impact's "
-                             "impulse is a dof's): use a compliant law there")
+    check_elements(elements, n, Element)
+    check_contacts(contacts, n, ContactSlot, LAW_IDS)
     pairs_tracked = [p if isinstance(p, TrackedPair) else TrackedPair(i=int(p[0]), j=int(p[1]))
                      for p in tracked]
     for q, p in enumerate(pairs_tracked):
-        pair(p.i, p.j, f"tracked pair {q}")
-        levers(p, f"tracked pair {q}")
+        check_pair(p.i, p.j, n, f"tracked pair {q}")
+        check_levers(p, n, f"tracked pair {q}")
     for v, pq in enumerate(vectors):
         ok = all(isinstance(k, (int, np.integer)) and 0 <= k < len(pairs_tracked) for k in pq)
         if len(pq) != 2 or not ok or pq[0] == pq[1]:

@@ -66,7 +66,7 @@ class Assembly(NamedTuple):
     c_all: np.ndarray      # (n, n) N s/m: the dashpots
     pairs: tuple           # each contact slot's Pair
     elements: tuple        # each hysteretic element's HystereticElement, in the core's order
-    bouc_wen: np.ndarray   # (b, BW_PARAMS): each Bouc-Wen spring's numbers (the core's), by its z's slot
+    bouc_wen: "BoucWenSprings"  # each Bouc-Wen spring's numbers and mate, by its z's slot
     contact_tracks: tuple = ()  # each contact slot's tracked pair (its extrema), -1: against the ground
 
 
@@ -159,7 +159,7 @@ def can_keep(model: Any) -> bool:
 @functools.lru_cache(maxsize=ASSEMBLIES_KEPT)
 def _kept(model: Oscillator | Structure | Adjacent) -> Assembly:
     asm = _assemble(model)
-    for a in (asm.masses, asm.k_fast, asm.c_all, asm.bouc_wen):
+    for a in (asm.masses, asm.k_fast, asm.c_all, asm.bouc_wen.numbers):
         a.flags.writeable = False
     return asm
 
@@ -266,21 +266,26 @@ def _assemble(model: Oscillator | Structure | Adjacent) -> Assembly:
                                             tuple(friction.get(e, {}).get("surface_ring_n_m", ())),
                                             tuple(friction.get(e, {}).get("surface_friction_n", ())))
                           for e, (i, j, _, slopes, breaks, rule) in enumerate(elements)),
-                    bouc_wen_numbers(kernel_elements), contact_tracks)
+                    bouc_wen_springs(kernel_elements), contact_tracks)
 
 
-def bouc_wen_mates(elements: list) -> tuple:
-    """Each Bouc-Wen spring's mate (the z slot of the spring it makes one bidirectional spring with, -1
-    none), by its z's slot, for the core's ``elements``."""
+class BoucWenSprings(NamedTuple):
+    """A system's Bouc-Wen springs, by their z's slot (the elements that have one, in order): ``numbers``,
+    each spring's (the core's ``BW_PARAMS``: force per unit z N, yield displacement m, a, beta, gamma, n),
+    shape (b, BW_PARAMS); ``mates``, each spring's mate's slot (the spring it makes one bidirectional spring
+    with, a bearing's other axis), -1 none."""
+
+    numbers: np.ndarray
+    mates: tuple
+
+
+def bouc_wen_springs(elements: list) -> BoucWenSprings:
+    """The Bouc-Wen springs of the core's ``elements`` (:class:`pounding._core.Element`)."""
     slots = [e for e, el in enumerate(elements) if el.bw[0] != 0.0]
-    return tuple(slots.index(elements[e].bw_mate) if elements[e].bw_mate >= 0 else -1 for e in slots)
-
-
-def bouc_wen_numbers(elements: list) -> np.ndarray:
-    """The Bouc-Wen springs' numbers of the core's ``elements`` (:class:`pounding._core.Element`), by their
-    z's slot (the elements that have one, in order), shape (b, BW_PARAMS)."""
-    rows = [list(el.bw) for el in elements if el.bw[0] != 0.0]
-    return np.array(rows, dtype=float).reshape(len(rows), _core.LAYOUT["BW_PARAMS"])
+    rows = [list(elements[e].bw) for e in slots]
+    return BoucWenSprings(np.array(rows, dtype=float).reshape(len(rows), _core.LAYOUT["BW_PARAMS"]),
+                          tuple(slots.index(elements[e].bw_mate) if elements[e].bw_mate >= 0 else -1
+                                for e in slots))
 
 
 def _add_pair(a: np.ndarray, i: int, j: int, value: float) -> None:

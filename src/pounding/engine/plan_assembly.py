@@ -19,7 +19,7 @@ from .. import _core
 from ..model.isolator import HYSTERESIS_RULES
 from ..model.plan import PlanBuilding, point_weights
 from ..model.plan_parts import Bearing
-from .assembly import HystereticElement, Pair, bouc_wen_mates, bouc_wen_numbers
+from .assembly import BoucWenSprings, HystereticElement, Pair, bouc_wen_springs
 
 
 class PlanAssembly(NamedTuple):
@@ -49,9 +49,8 @@ class PlanAssembly(NamedTuple):
     pairs: tuple                 # each contact slot's assembly.Pair (its dofs without their levers)
     elements: tuple              # each element's assembly.HystereticElement (the same)
     dofs: tuple = ()             # ((0, 1, ..., 3 n - 1),): the floors' dofs, as a State holds them
-    bouc_wen: np.ndarray = np.zeros((0, _core.LAYOUT["BW_PARAMS"]))  # (b, BW_PARAMS): each Bouc-Wen spring's
+    bouc_wen: BoucWenSprings = BoucWenSprings(np.zeros((0, _core.LAYOUT["BW_PARAMS"])), ())  # (its springs)
     corner_tracks: tuple = ()    # (4, 2): each corner's tracked pair along x and y
-    bouc_wen_mates: tuple = ()   # each Bouc-Wen spring's mate's slot (a bidirectional one's), -1 none
 
 
 def _levers(building: PlanBuilding, storey: int, axis: int, p: tuple[float, float],
@@ -167,8 +166,8 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
                         np.array(contact_weights).reshape(len(contacts), n), np.array(tracked_weights),
                         np.array(element_weights).reshape(len(elements), n), tuple(pairs),
                         tuple(HystereticElement(el.i, el.j, list(el.slopes), list(el.breaks), el.rule)
-                              for el in elements), (tuple(range(n)),), bouc_wen_numbers(elements),
-                        tuple(corner_tracks), bouc_wen_mates(elements))
+                              for el in elements), (tuple(range(n)),), bouc_wen_springs(elements),
+                        tuple(corner_tracks))
 
 
 __all__ = ["PlanAssembly", "assemble_plan"]

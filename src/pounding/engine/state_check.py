@@ -165,7 +165,7 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str, levered: Optional[tuple
                           f"leaves {who} spring {k}'s strain {strain:g} m beyond its yield displacement "
                           f"{brk:g} m" + ("" if direction == 0.0 else " (or off it while it slips)"))
         first += n_sp
-    springs = asm.bouc_wen
+    springs, mates = asm.bouc_wen
     for q in range(max(1, len(springs))):  # (each Bouc-Wen spring's z; one slot, 0, without any)
         at = lay["zeta"] + q
         z = x_all[at]
@@ -175,8 +175,7 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str, levered: Optional[tuple
             continue
         bw = springs[q]
         z_max = (bw[2] / (bw[3] + bw[4])) ** (1.0 / bw[5])
-        mates = getattr(asm, "bouc_wen_mates", ())
-        mate = mates[q] if q < len(mates) else -1  # (a bidirectional spring's: its resultant)
+        mate = mates[q]  # (a bidirectional spring's: its resultant)
         size = abs(z) if mate < 0 else float(np.hypot(z, x_all[lay["zeta"] + mate]))
         if size > z_max * (1.0 + 1e-9):
             what = "" if mate < 0 else f" (with vector[{lay['zeta'] + mate}], its other component: {size:g})"

@@ -412,6 +412,8 @@ def _check_grid(value: Any, compute: dict[str, Any], system: System) -> dict[str
 def _check_points(spec: StudySpec) -> None:
     """Every value of every axis builds a valid system (named by its grid entry), and every point
     does too (named by its values); records are read once each."""
+    from .points import check_options
+
     size = spec.size
     if size > MAX_POINTS:
         raise InputError(Problem.TOO_MUCH_WORK, "grid", dict(spec.shape and zip(spec.dims, spec.shape)),
@@ -457,49 +459,3 @@ def _named(exc: InputError, name: str, value: Any) -> InputError:
     fix = exc.problem.fix.format(**exc._details)
     return InputError(Problem.BAD_STATE, f"grid.{name}", value,
                       why=f"is refused: it makes {exc.field} = {exc.value!r}, which {why}", fix=fix)
-
-
-def check_options(system: System, options: dict[str, Any]) -> None:
-    """The compute options of one point are valid: its excitation builds (a record reads) and
-    its duration is positive; a sweep's plan is made (every sweep option checked)."""
-    from .._checks import positive
-    from .points import SWEEP_ARGS, excitation_of
-
-    if options["kind"] == "sweep":
-        from ..protocols.sweep import make_plan
-
-        kwargs = {k: options[k] for k in SWEEP_ARGS if options.get(k) is not None}
-        freqs = options.get("freqs_hz")
-        make_plan(system, options["a_g"], None if freqs is None else np.asarray(freqs, dtype=float),
-                  options.get("direction", "up"), **kwargs)
-        return
-    if options["kind"] == "record":
-        _check_sa(options)
-    excitation_of(options, isinstance(system, PlanBuilding))
-    if isinstance(system, PlanBuilding) and options.get("v0_m_s"):
-        raise InputError(Problem.WRONG_MODE, "v0_m_s", options["v0_m_s"], mode="a structure on a line",
-                         fix="leave v0_m_s out: a building in plan starts at rest")
-    if options.get("duration_s") is not None:
-        positive("duration_s", options["duration_s"], "s")
-
-
-def _check_sa(options: dict[str, Any]) -> None:
-    """A record point's scaling: ``scale_pga_g`` or ``sa_g`` (with ``sa_period_s``), not both."""
-    from .._checks import positive
-
-    if options.get("sa_g") is None:
-        for key in ("sa_period_s", "sa_damping_ratio"):
-            if options.get(key) is not None:
-                raise InputError(Problem.MISSING_INPUT, "sa_g", None,
-                                 what=f"sa_g (g) with {key}, or leave {key} out")
-        return
-    if options.get("scale_pga_g") is not None:
-        raise InputError(Problem.DUPLICATE, "sa_g", options["sa_g"],
-                         repeated="scale_pga_g (a record is scaled to a PGA or to a spectral acceleration)")
-    positive("sa_g", options["sa_g"], "g")
-    if options.get("sa_period_s") is None:
-        raise InputError(Problem.MISSING_INPUT, "sa_period_s", None, what="the period (s) of sa_g")
-    positive("sa_period_s", options["sa_period_s"], "s")
-    zeta = options.get("sa_damping_ratio")
-    if zeta is not None and not 0.0 <= zeta < 1.0:
-        raise InputError(Problem.OUT_OF_RANGE, "sa_damping_ratio", zeta, range="[0, 1)")
