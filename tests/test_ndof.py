@@ -58,8 +58,8 @@ def core_run(s: Structure, t_end: float, y0: np.ndarray, bumpers: bool = True, s
 
 
 @st.composite
-def structures(draw, n=None):
-    n = draw(st.integers(2, 6)) if n is None else n
+def structures(draw, n=None, n_max=6):
+    n = draw(st.integers(2, n_max)) if n is None else n
     rng = np.random.default_rng(draw(st.integers(0, 2**32 - 1)))
     mass = rng.uniform(100.0, 2000.0, n)
     k_storey = rng.uniform(1e5, 5e6, n - 1)
@@ -93,10 +93,11 @@ def last_digit_spread(s: Structure, y0: np.ndarray, starts: np.ndarray, t_end: f
 
 
 @settings(max_examples=12, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(s=structures(), v0=st.floats(-0.4, 0.4), data=st.data())
+@given(s=structures(n_max=9), v0=st.floats(-0.4, 0.4), data=st.data())
 def test_bumpers_between_two_masses_match_the_reference(s, v0, data):
     # the bumpers on one mass, each against another mass or the ground (a contact pair i, j): the force on
-    # both, the compression of their relative motion
+    # both, the compression of their relative motion (from 6 masses on, a shear building's phases walk their
+    # rows' nonzeros only: a bumper between distant masses is what the pattern must hold)
     n = s.mass.size
     level = data.draw(st.integers(0, n - 1))
     others = [-1] + [j for j in range(n) if j != level]

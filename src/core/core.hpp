@@ -236,6 +236,10 @@ struct System {
     std::vector<int> bw_el;  // the elements with a Bouc-Wen spring, by their z's slot
     double total_mass = 0.0;
     bool plain = true;  // the table moves every dof with its first component alone (infl's rows 1, 0)
+    // where any phase's stiffness or damping can be nonzero (k0, c_lin and every element's and contact's pair),
+    // row by row: row i's columns kc_col[kc_start[i]..kc_start[i + 1]) in ascending order; empty below 6 dofs
+    // or above half the entries, where the plain loops are as quick (derived by finish())
+    std::vector<int> kc_start, kc_col;
     Layout lay;
 
     int n_springs() const {  // the elements' springs, all together
@@ -287,6 +291,33 @@ struct System {
         plain = true;
         for (int i = 0; i < n; ++i)
             plain = plain && infl[static_cast<size_t>(2 * i)] == 1.0 && infl[static_cast<size_t>(2 * i + 1)] == 0.0;
+        pattern();
+    }
+    // kc_start, kc_col: the union of the nonzeros k0, c_lin and every pair's w w^T can place
+    void pattern() {
+        std::vector<char> on(static_cast<size_t>(n * n), 0);
+        for (int q = 0; q < n * n; ++q)
+            on[static_cast<size_t>(q)] = k0[static_cast<size_t>(q)] != 0.0 || c_lin[static_cast<size_t>(q)] != 0.0;
+        auto mark = [&](const Pair& p) {
+            int d[4];
+            double w[4];
+            const int m = p.entries(d, w);
+            for (int r = 0; r < m; ++r)
+                for (int c = 0; c < m; ++c) on[static_cast<size_t>(d[r] * n + d[c])] = 1;
+        };
+        for (const Hysteretic& h : hyst) mark(h);
+        for (const Contact& c : contact) mark(c);
+        int nnz = 0;
+        for (char b : on) nnz += b;
+        kc_start.clear();
+        kc_col.clear();
+        if (n < 6 || 2 * nnz > n * n) return;  // (small or dense enough: the plain loops are as quick)
+        kc_start.push_back(0);
+        for (int i = 0; i < n; ++i) {
+            for (int j = 0; j < n; ++j)
+                if (on[static_cast<size_t>(i * n + j)]) kc_col.push_back(j);
+            kc_start.push_back(static_cast<int>(kc_col.size()));
+        }
     }
     // a spring (or dashpot) of constant s between dofs i and j (or the ground) into an n x n matrix
     void add_pair(std::vector<double>& a, int i, int j, double s) const {

@@ -49,24 +49,15 @@ constexpr double BINOM[HERMITE_ORDER + 1][HERMITE_ORDER + 1] = {
 inline void minv_ab(const Phase& ph, const std::vector<double>& A, const double* x, const std::vector<double>& B,
                     const double* v, double* out) {
     const int n = ph.n;
-    for (int i = 0; i < n; ++i) {
-        const double* ra = &A[static_cast<size_t>(i * n)];
-        const double* rb = &B[static_cast<size_t>(i * n)];
-        double s = 0.0;
-        for (int j = 0; j < n; ++j) s += ra[j] * x[j] + rb[j] * v[j];
-        out[i] = ph.minv[static_cast<size_t>(i)] * s;
-    }
-}
-
-inline double quad(const std::vector<double>& A, const double* x, const double* y, int n) {
-    double s = 0.0;
-    for (int i = 0; i < n; ++i) {
-        const double* r = &A[static_cast<size_t>(i * n)];
-        double t = 0.0;
-        for (int j = 0; j < n; ++j) t += r[j] * y[j];
-        s += x[i] * t;
-    }
-    return s;
+    with_rows(ph, [&](const auto& row) {
+        for (int i = 0; i < n; ++i) {
+            const double* ra = &A[static_cast<size_t>(i * n)];
+            const double* rb = &B[static_cast<size_t>(i * n)];
+            double s = 0.0;
+            row(i, [&](int j) { s += ra[j] * x[j] + rb[j] * v[j]; });
+            out[i] = ph.minv[static_cast<size_t>(i)] * s;
+        }
+    });
 }
 
 // the displacements' derivatives D_0..D_9 (each n) at one end, from x, v, a there and the table acceleration's
@@ -121,12 +112,14 @@ void hermite_end(Phase& ph, int order, const std::vector<double>& c_lin, const s
         for (int m = 1; m <= order + 1; ++m) {
             const double* d = D + m * n;
             double* out = CD + (m - 1) * n;
-            for (int i = 0; i < n; ++i) {
-                const double* r = &c_lin[static_cast<size_t>(i * n)];
-                double s = 0.0;
-                for (int j = 0; j < n; ++j) s += r[j] * d[j];
-                out[i] = s;
-            }
+            with_rows(ph, [&](const auto& row) {  // (c_lin's nonzeros are within K's and C's pattern)
+                for (int i = 0; i < n; ++i) {
+                    const double* r = &c_lin[static_cast<size_t>(i * n)];
+                    double s = 0.0;
+                    row(i, [&](int j) { s += r[j] * d[j]; });
+                    out[i] = s;
+                }
+            });
         }
         // (m . v, or each component's influence weighted so: a_g's power is sum_i m_i (rA_i a_g + rB_i b_g) v_i)
         for (int k = 0; k <= order; ++k) {
@@ -282,46 +275,48 @@ int series(const Phase& ph, const double* y0, const double* r, double a0, double
     if (n == 1)
         return plain ? series_one<true>(ph, y0, r, a0, a1, amp, sp, cp, h, t, need, scale, held)
                      : series_one<false>(ph, y0, r, a0, a1, amp, sp, cp, h, t, need, scale, held);
-    double wk = 1.0;  // w^k / k!
-    double hk = 1.0;  // h^k
-    for (int k = 0;; ++k) {
-        const int m4 = k % 4;
-        // the table acceleration's series: a0 + a1 tau + amp sin(w tau + phi) (and its second component's)
-        double g = amp * wk * (m4 == 0 ? sp : m4 == 1 ? cp : m4 == 2 ? -sp : -cp);
-        if (k == 0) g += a0;
-        if (k == 1) g += a1;
-        const double gb = ph.plain ? 0.0 : table_b_term(ph, k, wk, sp, cp);
-        const double inv = INV.v[k + 1];
-        wk *= w * inv;
-        const double* Xk = t + k * ny;
-        const double* Vk = Xk + n;
-        double* Xn = t + (k + 1) * ny;
-        double* Vn = Xn + n;
-        for (int i = 0; i < n; ++i) {
-            const double* rk = K + i * n;
-            const double* rc = C + i * n;
-            double s = 0.0;
-            for (int j = 0; j < n; ++j) s += rk[j] * Xk[j] + rc[j] * Vk[j];
-            double f = minv[i] * s;
-            if (k == 0 && r != nullptr) f += r[i];
-            Vn[i] = (-f - (plain ? g : rA[i] * g + rB[i] * gb)) * inv;
-            Xn[i] = Vk[i] * inv;
-        }
-        if (held) ph.stk.project(ph.mass, Vn);
-        const int m = k + 1;  // the term just computed
-        hk *= h;
-        if (m + 1 >= need) {
-            // its size and the last one's, as lengths over [0, h]: both below the tail bound, done
-            double e_m = 0.0, e_p = 0.0;
-            const double hp = hk / (h > 0.0 ? h : 1.0);
+    return with_rows(ph, [&](const auto& row) -> int {  // (the loop once for each way to walk a row)
+        double wk = 1.0;  // w^k / k!
+        double hk = 1.0;  // h^k
+        for (int k = 0;; ++k) {
+            const int m4 = k % 4;
+            // the table acceleration's series: a0 + a1 tau + amp sin(w tau + phi) (and its second component's)
+            double g = amp * wk * (m4 == 0 ? sp : m4 == 1 ? cp : m4 == 2 ? -sp : -cp);
+            if (k == 0) g += a0;
+            if (k == 1) g += a1;
+            const double gb = ph.plain ? 0.0 : table_b_term(ph, k, wk, sp, cp);
+            const double inv = INV.v[k + 1];
+            wk *= w * inv;
+            const double* Xk = t + k * ny;
+            const double* Vk = Xk + n;
+            double* Xn = t + (k + 1) * ny;
+            double* Vn = Xn + n;
             for (int i = 0; i < n; ++i) {
-                e_m = std::max(e_m, hk * (std::abs(Xn[i]) + h * std::abs(Vn[i])));
-                e_p = std::max(e_p, hp * (std::abs(Xk[i]) + h * std::abs(Vk[i])));
+                const double* rk = K + i * n;
+                const double* rc = C + i * n;
+                double s = 0.0;
+                row(i, [&](int j) { s += rk[j] * Xk[j] + rc[j] * Vk[j]; });
+                double f = minv[i] * s;
+                if (k == 0 && r != nullptr) f += r[i];
+                Vn[i] = (-f - (plain ? g : rA[i] * g + rB[i] * gb)) * inv;
+                Xn[i] = Vk[i] * inv;
             }
-            if ((e_m <= SERIES_TAIL * scale && e_p <= 1e3 * SERIES_TAIL * scale) || m + 1 >= MAX_TERMS || h == 0.0)
-                return m + 1;
+            if (held) ph.stk.project(ph.mass, Vn);
+            const int m = k + 1;  // the term just computed
+            hk *= h;
+            if (m + 1 >= need) {
+                // its size and the last one's, as lengths over [0, h]: both below the tail bound, done
+                double e_m = 0.0, e_p = 0.0;
+                const double hp = hk / (h > 0.0 ? h : 1.0);
+                for (int i = 0; i < n; ++i) {
+                    e_m = std::max(e_m, hk * (std::abs(Xn[i]) + h * std::abs(Vn[i])));
+                    e_p = std::max(e_p, hp * (std::abs(Xk[i]) + h * std::abs(Vk[i])));
+                }
+                if ((e_m <= SERIES_TAIL * scale && e_p <= 1e3 * SERIES_TAIL * scale) || m + 1 >= MAX_TERMS || h == 0.0)
+                    return m + 1;
+            }
         }
-    }
+    });
 }
 
 void taylor(const Phase& ph, double h) {

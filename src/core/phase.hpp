@@ -54,6 +54,9 @@ struct Phase {
     // the equation of motion: stiffness and damping (the isolator's branch, linear contacts' branches), the
     // restoring force at x = 0, the inverse masses; the table acceleration's piece
     std::vector<double> K, C, R0, minv, mass;
+    // where K and C can be nonzero (System::kc_start, kc_col; sparse false: everywhere), what with_rows walks
+    std::vector<int> kc_start, kc_col;
+    bool sparse = false;
     double ax0 = 0.0, ax1 = 0.0, axh = 0.0, w = 0.0, phi = 0.0, sphi = 0.0, cphi = 1.0;
     // the table's second component, on the first's angle: bx0 + bx1 tau + bs sin(w tau + phi) + bc cos(w tau +
     // phi); how the two move each dof (rA, rB: System::infl's columns), plain: the first alone, on every dof
@@ -111,6 +114,9 @@ struct Phase {
         n = n_dof;
         ny = 2 * n;
         nc = n_contacts;
+        kc_start.clear();
+        kc_col.clear();
+        sparse = false;
         K.assign(static_cast<size_t>(n * n), 0.0);
         C.assign(static_cast<size_t>(n * n), 0.0);
         R0.assign(static_cast<size_t>(n), 0.0);
@@ -133,6 +139,12 @@ struct Phase {
         w_stage = w_q + 9 * n;   // 8 (ny + nbw)
         work.assign(static_cast<size_t>(w_stage + 8 * (ny + nbw)), 0.0);
     }
+    // the pattern of the system's K and C (System::pattern), kept for the phase's loops
+    void pattern(const System& sy) {
+        kc_start = sy.kc_start;
+        kc_col = sy.kc_col;
+        sparse = !kc_start.empty();
+    }
     // the table acceleration on dof i from its components' values (or derivatives) ga and gb
     double on(int i, double ga, double gb) const {
         return plain ? ga : rA[static_cast<size_t>(i)] * ga + rB[static_cast<size_t>(i)] * gb;
@@ -140,6 +152,34 @@ struct Phase {
     const double* X(int k) const { return &tc[static_cast<size_t>(k * ny)]; }
     const double* Vk(int k) const { return &tc[static_cast<size_t>(k * ny + n)]; }
 };
+
+// ---------------------------------------------------------------- walking a row of K and C
+
+// each column j of a row, f(j) in ascending order: every one (DenseRows), or those where the phase's K or C can
+// be nonzero (SparseRows, its pattern): a sum over them is the dense row's sum without its zero terms, the
+// same number
+struct DenseRows {
+    int n;
+    template <class F>
+    void operator()(int, F&& f) const {
+        for (int j = 0; j < n; ++j) f(j);
+    }
+};
+struct SparseRows {
+    const int* start;
+    const int* col;
+    template <class F>
+    void operator()(int i, F&& f) const {
+        for (int q = start[i], e = start[i + 1]; q < e; ++q) f(col[q]);
+    }
+};
+// body(rows) with the phase's way to walk a row, chosen once for the whole body (a loop over rows inside it is
+// the plain loop, instruction for instruction, on a dense phase)
+template <class B>
+auto with_rows(const Phase& ph, B&& body) {
+    if (ph.sparse) return body(SparseRows{ph.kc_start.data(), ph.kc_col.data()});
+    return body(DenseRows{ph.n});
+}
 
 // ---------------------------------------------------------------- the linear phase's series
 

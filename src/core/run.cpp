@@ -449,6 +449,7 @@ void fit_workspace(RunWorkspace::Impl& w, const System& sy) {
         w.elements.clear();
         for (const Hysteretic& h : sy.hyst) w.elements.push_back(h);
         w.ph.size(sy.n, sy.nc(), sy.n_bw());
+        w.ph.pattern(sy);
         w.b.size(sy.n, sy.nc());
         w.row.assign(static_cast<size_t>(sy.lay.sample_cols()), 0.0);
         w.transitions.setup(sy);
