@@ -586,16 +586,18 @@ void phase_rhs(Phase& ph, double tau, const double* y, const double* z, double* 
     const double* v = y + n;
     const double sn = std::sin(ph.w * tau + ph.phi);
     const double ga = ph.plain ? 0.0 : table_acceleration(ph, tau), gb = table_b(ph, tau);
-    for (int i = 0; i < n; ++i) {
-        const double m = ph.mass[static_cast<size_t>(i)];
-        const double* rk = &ph.K[static_cast<size_t>(i * n)];
-        const double* rc = &ph.C[static_cast<size_t>(i * n)];
-        double f = ph.plain ? (-ph.R0[static_cast<size_t>(i)] - m * ph.ax0) + (-m * ph.ax1) * tau + (-m * ph.axh) * sn
-                            : -ph.R0[static_cast<size_t>(i)] - m * ph.on(i, ga, gb);
-        for (int j = 0; j < n; ++j) f -= rc[j] * v[j];
-        for (int j = 0; j < n; ++j) f -= rk[j] * x[j];
-        a[i] = f;
-    }
+    with_rows(ph, [&](const auto& row) {
+        for (int i = 0; i < n; ++i) {
+            const double m = ph.mass[static_cast<size_t>(i)];
+            const double* rk = &ph.K[static_cast<size_t>(i * n)];
+            const double* rc = &ph.C[static_cast<size_t>(i * n)];
+            double f = ph.plain ? (-ph.R0[static_cast<size_t>(i)] - m * ph.ax0) + (-m * ph.ax1) * tau + (-m * ph.axh) * sn
+                                : -ph.R0[static_cast<size_t>(i)] - m * ph.on(i, ga, gb);
+            row(i, [&](int j) { f -= rc[j] * v[j]; });
+            row(i, [&](int j) { f -= rk[j] * x[j]; });
+            a[i] = f;
+        }
+    });
     for (int q = 0; q < ph.nbw; ++q) {
         const Hysteretic& h = *ph.bw[static_cast<size_t>(q)];
         push_pair(a, h, -(h.bw[0] * z[q]));

@@ -59,14 +59,16 @@ void eom_acceleration(const Phase& ph, const double* y, double tau, double s, do
     const double g = (ph.ax0 + ph.ax1 * tau) + ph.axh * s;
     // (the second component's, at the same angle)
     const double gb = ph.plain ? 0.0 : (ph.bx0 + ph.bx1 * tau) + ph.bs * s + ph.bc * c;
-    for (int i = 0; i < n; ++i) {
-        const double* rk = &ph.K[static_cast<size_t>(i * n)];
-        const double* rc = &ph.C[static_cast<size_t>(i * n)];
-        double q = 0.0;
-        for (int j = 0; j < n; ++j) q += rk[j] * y[j] + rc[j] * y[n + j];
-        const double f = ph.minv[static_cast<size_t>(i)] * q + ph.minv[static_cast<size_t>(i)] * ph.R0[static_cast<size_t>(i)];
-        a[i] = -f - ph.on(i, g, gb);
-    }
+    with_rows(ph, [&](const auto& row) {
+        for (int i = 0; i < n; ++i) {
+            const double* rk = &ph.K[static_cast<size_t>(i * n)];
+            const double* rc = &ph.C[static_cast<size_t>(i * n)];
+            double q = 0.0;
+            row(i, [&](int j) { q += rk[j] * y[j] + rc[j] * y[n + j]; });
+            const double f = ph.minv[static_cast<size_t>(i)] * q + ph.minv[static_cast<size_t>(i)] * ph.R0[static_cast<size_t>(i)];
+            a[i] = -f - ph.on(i, g, gb);
+        }
+    });
     ph.stk.project(ph.mass, a);
 }
 
