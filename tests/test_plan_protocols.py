@@ -260,6 +260,20 @@ def test_a_pounding_spectrum_of_a_building_in_plan_is_its_runs():
     assert now.slopes_n_m == pytest.approx([k * factor for k in iso.slopes_n_m], rel=1e-15)
     assert now.breakpoints_m == iso.breakpoints_m
     assert now.damping_n_s_m == pytest.approx(iso.damping_n_s_m * np.sqrt(factor), rel=1e-15)
+    # bearings with a Bouc-Wen spring: its a k in the initial stiffness, its stiffness scaled with the slopes
+    bw = pounding.BoucWen(2e6, 0.02, a=0.9)
+    rubber = replace(b, bearings=tuple(replace(q, isolator=replace(q.isolator, bouc_wen=bw), isolator_y=None)
+                                       for q in b.bearings))
+    stiffness = sum(q.isolator.slopes_n_m[0] + 0.9 * 2e6 for q in rubber.bearings)
+    assert isolated_period_s(rubber) == pytest.approx(2.0 * np.pi * np.sqrt(mass / stiffness), rel=1e-15)
+    at = bearings_at(rubber, 2.5)
+    assert isolated_period_s(at) == pytest.approx(2.5, rel=1e-12)
+    factor = (isolated_period_s(rubber) / 2.5) ** 2
+    for q, now in zip(rubber.bearings, at.bearings):
+        assert now.isolator.slopes_n_m == pytest.approx([k * factor for k in q.isolator.slopes_n_m],
+                                                        rel=1e-15)
+        assert now.isolator.bouc_wen.stiffness_n_m == pytest.approx(2e6 * factor, rel=1e-15)
+        assert now.isolator.bouc_wen.yield_displacement_m == 0.02 and now.isolator.bouc_wen.a == 0.9
     pairs = [p.scaled(0.6) for p in pounding.records.fema_p695_pairs("far_field")[:2]]
     ps = pounding.pounding_spectrum(pairs, [1.5, 3.0], gaps_m=[0.08, 0.3], structure=b, scheduler="serial")
     assert "isolated period" in ps.data.attrs["period"] and "clearance_min_m_free" not in ps.data

@@ -32,10 +32,26 @@ from .pounding_spectrum_result import PLAN_QUANTITIES, QUANTITIES, STRUCTURE_QUA
 MAX_RUNS = 2_000_000  # records x periods x (gaps + 1): beyond, refused (hours of work)
 
 
+def _initial_stiffness(iso: Isolator) -> float:
+    """An isolator's initial stiffness, N/m: its backbone's first slope, and its Bouc-Wen spring's ``a k``."""
+    bw = iso.bouc_wen
+    return iso.slopes_n_m[0] + (0.0 if bw is None else bw.a * bw.stiffness_n_m)
+
+
+def _scaled(iso: Isolator, factor: float, damping_n_s_m: float) -> Isolator:
+    """``iso`` with every force of its law times ``factor``: its slopes and its Bouc-Wen spring's stiffness
+    (its ``z`` is a function of the displacement alone, its yield displacement kept), its breakpoints and
+    hysteresis kept; its dashpot ``damping_n_s_m``."""
+    bw = iso.bouc_wen
+    return replace(iso, slopes_n_m=tuple(k * factor for k in iso.slopes_n_m), damping_n_s_m=damping_n_s_m,
+                   bouc_wen=None if bw is None else replace(bw, stiffness_n_m=bw.stiffness_n_m * factor))
+
+
 def _isolator(template: Isolator | FrictionIsolator | None, mass_kg: float, period_s: float,
               zeta: float) -> Isolator | FrictionIsolator:
-    """The isolator of initial period ``period_s``: linear, or ``template``'s shape scaled to it (a friction
-    pendulum's radius ``g (T / 2 pi)^2``, its friction kept)."""
+    """The isolator of initial period ``period_s``: linear, or ``template``'s shape scaled to it (its law's
+    forces times one factor, a Bouc-Wen spring's with them; a friction pendulum's radius ``g (T / 2 pi)^2``,
+    its friction kept)."""
     k = mass_kg * (2.0 * math.pi / period_s) ** 2
     c = 2.0 * zeta * math.sqrt(k * mass_kg)
     if template is None:
@@ -43,10 +59,7 @@ def _isolator(template: Isolator | FrictionIsolator | None, mass_kg: float, peri
     if isinstance(template, FrictionIsolator):
         return replace(template, radius_m=GRAVITY_M_S2 * (period_s / (2.0 * math.pi)) ** 2, damping_n_s_m=c,
                        weight_n=None, weight_carried=False)
-    scale = k / template.slopes_n_m[0]
-    return replace(template, slopes_n_m=tuple(s * scale for s in template.slopes_n_m), damping_n_s_m=c)
-
-
+    return _scaled(template, k / _initial_stiffness(template), c)
 
 
 def superstructure_at(structure: Structure, period_s: float) -> Structure:
@@ -61,23 +74,23 @@ def superstructure_at(structure: Structure, period_s: float) -> Structure:
 
 
 def isolated_period_s(building: PlanBuilding) -> float:
-    """A building in plan's isolated period along x on its bearings' initial stiffnesses, its floors moving
-    as one rigid body: ``2 pi sqrt(sum m / sum k_x)``, s."""
+    """A building in plan's isolated period along x on its bearings' initial stiffnesses (a Bouc-Wen
+    spring's ``a k`` with its backbone's first slope), its floors moving as one rigid body: ``2 pi sqrt(sum m
+    / sum k_x)``, s."""
     mass = sum(f.mass_kg for f in building.floors)
-    stiffness = sum(b.isolator.slopes_n_m[0] for b in building.bearings)
+    stiffness = sum(_initial_stiffness(b.isolator) for b in building.bearings)
     return 2.0 * math.pi * math.sqrt(mass / stiffness)
 
 
 def bearings_at(building: PlanBuilding, period_s: float) -> PlanBuilding:
-    """``building`` with its bearings' stiffnesses (every slope, along x and y) scaled so that its isolated
-    period (:func:`isolated_period_s`) is ``period_s``, their dashpots by the square root (their damping
-    ratios kept), their breakpoints and hysteresis kept."""
+    """``building`` with its bearings' stiffnesses (every slope, along x and y, and a Bouc-Wen spring's)
+    scaled so that its isolated period (:func:`isolated_period_s`) is ``period_s``, their dashpots by the
+    square root (their damping ratios kept), their breakpoints, yield displacements and hysteresis kept."""
     factor = (isolated_period_s(building) / period_s) ** 2
     root = math.sqrt(factor)
 
     def scaled(iso: Isolator | None) -> Isolator | None:
-        return None if iso is None else replace(iso, slopes_n_m=tuple(k * factor for k in iso.slopes_n_m),
-                                                damping_n_s_m=iso.damping_n_s_m * root)
+        return None if iso is None else _scaled(iso, factor, iso.damping_n_s_m * root)
 
     return replace(building, bearings=tuple(replace(b, isolator=scaled(b.isolator),
                                                     isolator_y=scaled(b.isolator_y))
@@ -168,9 +181,10 @@ def pounding_spectrum(records: Record | RecordPair | Sequence[Record] | Sequence
         The bumpers' law (e.g. ``pounding.KelvinVoigt(1.46e6, 400.0)``); default the paper's
         (``presets.paper_damped()``).
     isolator : Isolator or FrictionIsolator, optional
-        A nonlinear isolator's shape: its slopes scaled so that its first is ``m (2 pi / T)^2`` at
-        each period, its breakpoints and hysteresis kept, its damping set by ``damping_ratio``.
-        Default: linear.  (A Bouc-Wen spring is not scaled: refused.)  A friction pendulum's radius is
+        A nonlinear isolator's shape: its slopes (and a Bouc-Wen spring's stiffness) scaled by one
+        factor so that its initial stiffness (the first slope, plus the spring's ``a k``) is ``m (2 pi /
+        T)^2`` at each period, its breakpoints, yield displacement and hysteresis kept, its damping set by
+        ``damping_ratio``.  Default: linear.  A friction pendulum's radius is
         the period's, ``g (T / 2 pi)^2``, its friction kept (``damping_ratio`` 0 for none besides it; a
         flat slider has no period: refused).
     structure : Structure, optional
@@ -182,12 +196,12 @@ def pounding_spectrum(records: Record | RecordPair | Sequence[Record] | Sequence
         ``top_acc_max_g``, ``drift_ratio_max``, the impacts.  ``damping_ratio``, ``mass_kg`` and
         ``isolator`` are the single mass's: left at their defaults.  Or a building in plan with its moat
         (:class:`pounding.PlanBuilding`): ``periods_s`` are then its isolated period on its bearings'
-        initial stiffnesses, its floors rigid (:func:`isolated_period_s`; every bearing's slopes scaled to
-        it, its dashpot by the square root, :func:`bearings_at`), and its moat stands at each gap on its
-        four sides; its peaks are ``PLAN_QUANTITIES``: a building's, ``disp_max_m`` its largest bearing
-        displacement in plan, ``theta_max_rad``, ``clearance_min_m`` (the smallest to a wall) and
-        ``moat_demand_m`` (its floor's corners' largest displacement towards a wall; without the moat, the
-        gap it would need).
+        initial stiffnesses, its floors rigid (:func:`isolated_period_s`; every bearing's slopes and
+        Bouc-Wen spring scaled to it, its dashpot by the square root, :func:`bearings_at`), and its moat
+        stands at each gap on its four sides; its peaks are ``PLAN_QUANTITIES``: a building's,
+        ``disp_max_m`` its largest bearing displacement in plan, ``theta_max_rad``, ``clearance_min_m``
+        (the smallest to a wall) and ``moat_demand_m`` (its floor's corners' largest displacement towards
+        a wall; without the moat, the gap it would need).
     workers : int, optional
         Worker threads or processes (default: every core).
     scheduler : str or dask.distributed.Client, optional
@@ -260,10 +274,6 @@ def pounding_spectrum(records: Record | RecordPair | Sequence[Record] | Sequence
             raise InputError(Problem.BAD_STATE, "isolator", isolator,
                              why="is a flat slider: it has no period",
                              fix="give a friction pendulum (its radius_m is then each period's)")
-        if isolator.bouc_wen is not None:
-            raise InputError(Problem.BAD_STATE, "isolator", "Isolator(..., bouc_wen=...)",
-                             why="a Bouc-Wen spring has no single stiffness to scale to each period",
-                             fix="give an isolator without bouc_wen, or run simulate over your own systems")
     runs = len(recs) * periods.size * (gaps.size + 1)
     if runs > MAX_RUNS:
         raise InputError(Problem.TOO_MUCH_WORK, "periods_s",
