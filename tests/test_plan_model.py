@@ -97,6 +97,9 @@ def _building(**changes):
     (lambda: Frame(1, "x", 0.0, -1e8), "frame.stiffness_n_m"),
     (lambda: Bearing((0.0, 0.0, 1.0), _iso(1e6)), "bearing.at_m"),
     (lambda: Bearing((0.0, 0.0), pounding.FrictionIsolator(mu=0.05, radius_m=2.0)),
+     "bearing.isolator.preslip_m"),
+    (lambda: Bearing((0.0, 0.0), pounding.TripleFrictionPendulum(
+        radii_m=(2.1, 0.3, 0.3, 2.1), mu=(0.05, 0.02, 0.02, 0.08), capacities_m=(0.3, 0.05, 0.05, 0.3))),
      "bearing.isolator"),
     (lambda: RectangularMoat((0.1, 0.2), pounding.KelvinVoigt(1e9, 1e6)), "moat.gap_m"),
     (lambda: RectangularMoat(-0.1, pounding.KelvinVoigt(1e9, 1e6)), "moat.gap_m"),

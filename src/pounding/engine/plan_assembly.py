@@ -104,7 +104,7 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
             element_names.append((kind, index, axis))
             element_weights.append(w)
         else:
-            slopes, breaks, rule, bw = part.laws[axis].kernel_arrays()
+            slopes, breaks, rule, bw = part.kernel_arrays(axis)
             k_bw = bw[0] * bw[2] / bw[1] if bw[0] != 0.0 else 0.0  # (a Bouc-Wen spring's initial stiffness)
             k_fast += (float(np.max(np.abs(slopes))) + k_bw) * np.outer(w, w)
             c_all += part.laws[axis].damping_n_s_m * np.outer(w, w)

@@ -19,11 +19,15 @@ import numpy as np
 from .._checks import at_most, boolean, non_negative, plausible, positive
 from .._errors import InputError, Problem
 from .._units import GRAVITY_M_S2
-from .isolator import BW_PARAMS, MAX_BREAKPOINT_M, MAX_DAMPING_N_S_M, MAX_STIFFNESS_N_M
+from .isolator import BW_PARAMS, MAX_BREAKPOINT_M, MAX_DAMPING_N_S_M, MAX_STIFFNESS_N_M, BoucWen
 
 RULE_KINEMATIC, RULE_FRICTION = 0, 2  # (the core's rules: isolator.hpp)
 MAX_MU = 1.0
 MAX_WEIGHT_N = 1e12
+CIRCLE_N = 2.0  # the friction circle's Bouc-Wen sharpness in plan (Constantinou, Mokha and Reinhorn 1990)
+PRESLIP_IN_PLAN = ("give preslip_m > 0 (0.0005 m is usual): in plan a friction bearing deforms elastically up "
+                   "to it, as OpenSees' and SAP2000's do (several bearings stuck under one rigid floor share "
+                   "their force in no one way without it)")
 
 
 class CarriesWeight:
@@ -251,6 +255,11 @@ class FrictionIsolator(CarriesWeight):
         return (self._preslip_stiffness() + k_r, k_r) if self.preslip_m > 0.0 else (k_r,)
 
     @property
+    def initial_stiffness_n_m(self) -> float:
+        """Its stiffness from rest, N/m: ``mu W / preslip_m + W / R`` (inf for a rigid stick)."""
+        return self.slopes_n_m[0] if self.preslip_m > 0.0 else math.inf
+
+    @property
     def breakpoints_m(self) -> tuple[float, ...]:
         """``(preslip_m,)`` with a pre-slip, else ``()``."""
         return (self.preslip_m,) if self.preslip_m > 0.0 else ()
@@ -297,6 +306,19 @@ class FrictionIsolator(CarriesWeight):
         rule = RULE_KINEMATIC if self.preslip_m > 0.0 else RULE_FRICTION
         return (np.array(self.slopes_n_m, dtype=float), np.array(self.breakpoints_m, dtype=float), rule,
                 np.zeros(BW_PARAMS))
+
+    def kernel_arrays_in_plane(self) -> tuple[np.ndarray, np.ndarray, int, np.ndarray]:
+        """``(slopes, breakpoints, rule, bouc_wen)`` of one axis of a bearing in plan with the friction
+        circle (:data:`CIRCLE_N` and the class's notes): the pendulum's ``W / R`` (0 for a flat slider) and a
+        Bouc-Wen spring of stiffness ``mu W / preslip_m`` and yield displacement ``preslip_m`` (``a = 1``,
+        ``beta = gamma = 1/2``: its force ``mu W z``, ``|z| <= 1``), which the bearing's two axes share
+        (Constantinou, Mokha and Reinhorn 1990).  It needs an elastic pre-slip."""
+        if not self.preslip_m > 0.0:
+            raise InputError(Problem.WRONG_CONFIGURATION, "isolator.preslip_m", self.preslip_m,
+                             got="with a rigid stick (no pre-slip) for the friction circle in plan",
+                             fix=PRESLIP_IN_PLAN)
+        spring = BoucWen(self.friction_force_n / self.preslip_m, self.preslip_m, 1.0, 0.5, 0.5, CIRCLE_N)
+        return (np.array([self.restoring_stiffness_n_m]), np.zeros(0), RULE_KINEMATIC, spring.kernel_array())
 
     @property
     def kernel_friction(self) -> dict[str, float]:

@@ -231,6 +231,12 @@ class Isolator:
         return len(self.slopes_n_m)
 
     @property
+    def initial_stiffness_n_m(self) -> float:
+        """Its stiffness from rest, N/m: the backbone's first slope, and its Bouc-Wen spring's ``a k``."""
+        bw = self.bouc_wen
+        return self.slopes_n_m[0] + (0.0 if bw is None else bw.a * bw.stiffness_n_m)
+
+    @property
     def yield_forces(self) -> np.ndarray:
         """Backbone force at each breakpoint, N, shape (n - 1,) (the paper's "yielding forces")."""
         return self.backbone(np.asarray(self.breakpoints_m))

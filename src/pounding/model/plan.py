@@ -107,6 +107,10 @@ class PlanBuilding(TomlFile):
                 raise InputError(Problem.TOO_LARGE, name, len(items), maximum=most, what=f" {name}",
                                  fix=f"give at most {most}")
             object.__setattr__(self, name, items)
+        share_kg = sum(f.mass_kg for f in self.floors) / len(self.bearings)  # (a friction bearing's weight)
+        object.__setattr__(self, "bearings", tuple(
+            dataclasses.replace(b, isolator=b.isolator.carrying(share_kg)) if b.is_friction else b
+            for b in self.bearings))
         for i, f in enumerate(self.frames):
             if len(self.floors) == 1:
                 raise InputError(Problem.WRONG_CONFIGURATION, f"frames[{i}].storey", f.storey,
@@ -246,7 +250,7 @@ class PlanBuilding(TomlFile):
 
     def _initial_stiffness(self, part: Any, axis: int) -> float:
         if isinstance(part, Bearing):
-            return part.laws[axis].slopes_n_m[0]
+            return part.laws[axis].initial_stiffness_n_m
         return part.stiffness_n_m
 
     def stiffness_matrix(self, storey: Optional[int] = None) -> np.ndarray:

@@ -17,6 +17,7 @@ from .._checks import (at_most, instance_of, integer, non_negative, one_of, plau
 from .._errors import InputError, PoundingWarning, Problem
 from .contact_laws import check_law, law_to_dict
 from .contact_laws.rigid_stop import is_rigid
+from .friction import PRESLIP_IN_PLAN, FrictionIsolator
 from .isolator import Isolator
 from .structure_parts import (MAX_GAP_M, MAX_STOREY_STIFFNESS, MAX_STOREYS, check_backbone_after,
                               check_mass)
@@ -197,22 +198,31 @@ class Frame:
 
 @dataclass(frozen=True)
 class Bearing:
-    """An isolation bearing at a plan position under the base: a law on each axis, uncoupled.
+    """An isolation bearing at a plan position under the base: a law on each axis, or one in the plane.
 
     Parameters
     ----------
     at_m : (float, float)
         Where it stands, m.
-    isolator : Isolator
+    isolator : Isolator or FrictionIsolator
         Its law along x, and along y unless ``isolator_y`` is given (a rubber bearing's backbone and
-        hysteresis, uncoupled; and its Bouc-Wen spring if it has one, see ``bidirectional``).
-    isolator_y : Isolator, optional
-        Its law along y.
+        hysteresis, uncoupled; and its Bouc-Wen spring if it has one, see ``bidirectional``).  A
+        :class:`pounding.FrictionIsolator` (a friction pendulum or a flat slider) needs an elastic
+        pre-slip in plan (``preslip_m > 0``) and a constant ``mu``; its weight, unless given
+        (``weight_n``), is an equal share of the building's: ``g`` times every floor's mass over the
+        bearings.
+    isolator_y : Isolator or FrictionIsolator, optional
+        Its law along y (a friction bearing's is its ``isolator``'s: leave it out).
     bidirectional : bool
         Whether its Bouc-Wen spring is one spring in the plane (default), yielding under the resultant of
         its two components (Park, Wen and Ang's: both axes must carry the same :class:`pounding.BoucWen`),
         or one along each axis, each yielding under its own component (False).  Without a Bouc-Wen spring
-        it changes nothing.
+        it changes nothing.  A friction bearing's default is the friction circle: it slips along its
+        velocity once the force in the plane reaches ``mu W``, modelled as Constantinou, Mokha and
+        Reinhorn's (1990) sliding bearing and SAP2000's and 3D-BASIS's, a bidirectional Bouc-Wen spring
+        of stiffness ``mu W / preslip_m``, yield displacement ``preslip_m``, ``a = 1``, ``beta = gamma =
+        1/2`` and ``n = 2``, beside the pendulum's ``W / R`` along each axis; False: one bilinear friction
+        along each axis, each slipping under its own component at ``mu W`` (a bearing on a line's law).
 
     Examples
     --------
@@ -226,8 +236,8 @@ class Bearing:
     """
 
     at_m: tuple
-    isolator: Isolator
-    isolator_y: Optional[Isolator] = None
+    isolator: Any
+    isolator_y: Optional[Any] = None
     bidirectional: bool = True
 
     FIELDS: ClassVar[tuple[str, ...]] = ("at_m", "isolator", "isolator_y", "bidirectional")
@@ -241,11 +251,13 @@ class Bearing:
             iso = getattr(self, name)
             if iso is None and name == "isolator_y":
                 continue
-            if not isinstance(iso, Isolator):
+            if not isinstance(iso, (Isolator, FrictionIsolator)):
                 raise InputError(Problem.WRONG_TYPE, f"bearing.{name}", iso, got=type(iso).__name__,
-                                 expected="pounding.Isolator (a bearing's law on one axis; friction "
-                                          "bearings in plan are not supported yet)")
+                                 expected="pounding.Isolator or pounding.FrictionIsolator (a bearing's law; "
+                                          "a triple friction pendulum in plan is not supported yet)")
         instance_of("bearing.bidirectional", self.bidirectional, bool, "true or false")
+        if self.is_friction or isinstance(self.isolator_y, FrictionIsolator):
+            self._check_friction()
         springs = [law.bouc_wen for law in self.laws]
         if self.bidirectional and springs[0] != springs[1]:
             raise InputError(Problem.WRONG_CONFIGURATION, "bearing.isolator_y.bouc_wen", springs[1],
@@ -254,13 +266,44 @@ class Bearing:
                              fix="give both axes the same BoucWen, or bidirectional=False (false in a "
                                  "TOML file) for one spring along each axis")
 
-    @property
-    def coupled(self) -> bool:
-        """Whether its two axes' Bouc-Wen springs are one bidirectional spring."""
-        return self.bidirectional and self.isolator.bouc_wen is not None
+    def _check_friction(self) -> None:
+        """A friction bearing in plan: one law for both axes, with an elastic pre-slip and a constant mu."""
+        if self.isolator_y is not None:
+            raise InputError(Problem.WRONG_CONFIGURATION, "bearing.isolator_y", self.isolator_y,
+                             got="with a friction isolator on one axis (a sliding bearing's friction is the same "
+                                 "along x and y)",
+                             fix="leave isolator_y out and give a friction isolator as isolator (it serves "
+                                 "both axes)")
+        iso = self.isolator
+        if iso.mu_fast is not None:
+            raise InputError(Problem.WRONG_CONFIGURATION, "bearing.isolator.mu_fast", iso.mu_fast,
+                             got="with a velocity-dependent friction in plan (not supported yet: it needs the "
+                                 "rigid stick)",
+                             fix="leave mu_fast out (a constant mu) and give preslip_m")
+        if not iso.preslip_m > 0.0:
+            raise InputError(Problem.WRONG_CONFIGURATION, "bearing.isolator.preslip_m", iso.preslip_m,
+                             got="with a rigid stick (no pre-slip) in plan", fix=PRESLIP_IN_PLAN)
 
     @property
-    def laws(self) -> tuple[Isolator, Isolator]:
+    def is_friction(self) -> bool:
+        """Whether it is a sliding bearing (a :class:`pounding.FrictionIsolator`)."""
+        return isinstance(self.isolator, FrictionIsolator)
+
+    @property
+    def coupled(self) -> bool:
+        """Whether its two axes share one bidirectional spring: a Bouc-Wen spring's, or a friction bearing's
+        circle."""
+        return self.bidirectional and (self.is_friction or self.isolator.bouc_wen is not None)
+
+    def kernel_arrays(self, axis: int) -> tuple:
+        """Its law along ``axis`` (0: x, 1: y) as the engine takes it (``Isolator.kernel_arrays``'s four
+        arrays): a friction bearing's circle in plan its Bouc-Wen form
+        (:meth:`pounding.FrictionIsolator.kernel_arrays_in_plane`)."""
+        law = self.laws[axis]
+        return law.kernel_arrays_in_plane() if self.is_friction and self.bidirectional else law.kernel_arrays()
+
+    @property
+    def laws(self) -> tuple[Any, Any]:
         """Its law along x and along y."""
         return self.isolator, self.isolator if self.isolator_y is None else self.isolator_y
 

@@ -32,12 +32,6 @@ from .pounding_spectrum_result import PLAN_QUANTITIES, QUANTITIES, STRUCTURE_QUA
 MAX_RUNS = 2_000_000  # records x periods x (gaps + 1): beyond, refused (hours of work)
 
 
-def _initial_stiffness(iso: Isolator) -> float:
-    """An isolator's initial stiffness, N/m: its backbone's first slope, and its Bouc-Wen spring's ``a k``."""
-    bw = iso.bouc_wen
-    return iso.slopes_n_m[0] + (0.0 if bw is None else bw.a * bw.stiffness_n_m)
-
-
 def _scaled(iso: Isolator, factor: float, damping_n_s_m: float) -> Isolator:
     """``iso`` with every force of its law times ``factor``: its slopes and its Bouc-Wen spring's stiffness
     (its ``z`` is a function of the displacement alone, its yield displacement kept), its breakpoints and
@@ -59,7 +53,7 @@ def _isolator(template: Isolator | FrictionIsolator | None, mass_kg: float, peri
     if isinstance(template, FrictionIsolator):
         return replace(template, radius_m=GRAVITY_M_S2 * (period_s / (2.0 * math.pi)) ** 2, damping_n_s_m=c,
                        weight_n=None, weight_carried=False)
-    return _scaled(template, k / _initial_stiffness(template), c)
+    return _scaled(template, k / template.initial_stiffness_n_m, c)
 
 
 def superstructure_at(structure: Structure, period_s: float) -> Structure:
@@ -73,24 +67,49 @@ def superstructure_at(structure: Structure, period_s: float) -> Structure:
     return replace(structure, storeys=storeys)
 
 
+def _sliding(building: PlanBuilding) -> bool:
+    """Whether a building in plan stands on friction pendulums alone (False: on no friction bearing; an
+    InputError for a mixture or a flat slider, which have no one period to scale)."""
+    friction = [b.is_friction for b in building.bearings]
+    if not any(friction):
+        return False
+    for q, b in enumerate(building.bearings):
+        if not b.is_friction or b.isolator.radius_m is None:
+            raise InputError(Problem.WRONG_CONFIGURATION, f"structure.bearings[{q}].isolator", b.isolator,
+                             got="with a flat slider (no period to scale)" if b.is_friction else
+                                 "with rubber bearings beside friction bearings (a spectrum scales a friction pendulum's radius "
+                                 "and a rubber bearing's stiffness: a mixture has no one isolated period)",
+                             fix="give every bearing a friction pendulum (radius_m), or none a friction "
+                                 "isolator")
+    return True
+
+
 def isolated_period_s(building: PlanBuilding) -> float:
-    """A building in plan's isolated period along x on its bearings' initial stiffnesses (a Bouc-Wen
-    spring's ``a k`` with its backbone's first slope), its floors moving as one rigid body: ``2 pi sqrt(sum m
-    / sum k_x)``, s."""
+    """A building in plan's isolated period along x, its floors moving as one rigid body: ``2 pi sqrt(sum m
+    / sum k_x)``, s, on its bearings' initial stiffnesses (a Bouc-Wen spring's ``a k`` with its backbone's
+    first slope), or on friction pendulums their restoring stiffnesses ``W / R`` (the sliding period)."""
     mass = sum(f.mass_kg for f in building.floors)
-    stiffness = sum(_initial_stiffness(b.isolator) for b in building.bearings)
+    if _sliding(building):
+        stiffness = sum(b.isolator.restoring_stiffness_n_m for b in building.bearings)
+    else:
+        stiffness = sum(b.isolator.initial_stiffness_n_m for b in building.bearings)
     return 2.0 * math.pi * math.sqrt(mass / stiffness)
 
 
 def bearings_at(building: PlanBuilding, period_s: float) -> PlanBuilding:
     """``building`` with its bearings' stiffnesses (every slope, along x and y, and a Bouc-Wen spring's)
     scaled so that its isolated period (:func:`isolated_period_s`) is ``period_s``, their dashpots by the
-    square root (their damping ratios kept), their breakpoints, yield displacements and hysteresis kept."""
+    square root (their damping ratios kept), their breakpoints, yield displacements and hysteresis kept; on
+    friction pendulums their radii scaled instead, their friction and pre-slip kept."""
     factor = (isolated_period_s(building) / period_s) ** 2
     root = math.sqrt(factor)
 
-    def scaled(iso: Isolator | None) -> Isolator | None:
-        return None if iso is None else _scaled(iso, factor, iso.damping_n_s_m * root)
+    def scaled(iso: Any) -> Any:
+        if iso is None:
+            return None
+        if isinstance(iso, FrictionIsolator):
+            return replace(iso, radius_m=iso.radius_m / factor, damping_n_s_m=iso.damping_n_s_m * root)
+        return _scaled(iso, factor, iso.damping_n_s_m * root)
 
     return replace(building, bearings=tuple(replace(b, isolator=scaled(b.isolator),
                                                     isolator_y=scaled(b.isolator_y))
