@@ -92,7 +92,9 @@ class FrictionIsolator(CarriesWeight):
     preslip_m : float
         An elastic pre-slip, m, >= 0: the bearing deforms elastically up to ``preslip_m`` before it slips
         (its initial stiffness ``mu W / preslip_m``), as OpenSees' sliders do.  0 (the default): a rigid
-        stick, exact.
+        stick, exact.  A bearing in plan (:class:`pounding.Bearing`) needs one: there its friction is the
+        friction circle, a bidirectional Bouc-Wen spring of this yield displacement
+        (:meth:`kernel_arrays_in_plane`).
     weight_n : float, optional
         The weight it carries, N.  None: the weight of the system it isolates, ``g`` times its whole mass
         (the structure's or the single mass's), set when it is put into one (``weight_carried`` then
@@ -309,7 +311,7 @@ class FrictionIsolator(CarriesWeight):
 
     def kernel_arrays_in_plane(self) -> tuple[np.ndarray, np.ndarray, int, np.ndarray]:
         """``(slopes, breakpoints, rule, bouc_wen)`` of one axis of a bearing in plan with the friction
-        circle (:data:`CIRCLE_N` and the class's notes): the pendulum's ``W / R`` (0 for a flat slider) and a
+        circle: the pendulum's ``W / R`` (0 for a flat slider) and a
         Bouc-Wen spring of stiffness ``mu W / preslip_m`` and yield displacement ``preslip_m`` (``a = 1``,
         ``beta = gamma = 1/2``: its force ``mu W z``, ``|z| <= 1``), which the bearing's two axes share
         (Constantinou, Mokha and Reinhorn 1990).  It needs an elastic pre-slip."""
