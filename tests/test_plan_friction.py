@@ -42,7 +42,8 @@ def test_a_bearing_carries_its_share_of_the_building_s_weight_unless_given():
     assert [x.isolator.weight_n for x in given.bearings] == [1e6] * 4
     # its initial stiffness is the pre-slip's, mu W / preslip_m + W / R, along x and y
     w = G * 6e5 / 4
-    np.testing.assert_allclose(np.diag(b.stiffness_matrix(0))[:2], 4 * (0.06 * w / 5e-4 + w / 2.0), rtol=1e-14)
+    np.testing.assert_allclose(np.diag(b.stiffness_matrix(0))[:2], 4 * (0.06 * w / 5e-4 + w / 2.0),
+                               rtol=1e-14)
 
 
 def test_the_friction_circle_is_its_bidirectional_bouc_wen_spring():

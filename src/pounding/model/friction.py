@@ -25,9 +25,9 @@ RULE_KINEMATIC, RULE_FRICTION = 0, 2  # (the core's rules: isolator.hpp)
 MAX_MU = 1.0
 MAX_WEIGHT_N = 1e12
 CIRCLE_N = 2.0  # the friction circle's Bouc-Wen sharpness in plan (Constantinou, Mokha and Reinhorn 1990)
-PRESLIP_IN_PLAN = ("give preslip_m > 0 (0.0005 m is usual): in plan a friction bearing deforms elastically up "
-                   "to it, as OpenSees' and SAP2000's do (several bearings stuck under one rigid floor share "
-                   "their force in no one way without it)")
+PRESLIP_IN_PLAN = ("give preslip_m > 0 (0.0005 m is usual): in plan a friction bearing deforms elastically "
+                   "up to it, as OpenSees' and SAP2000's do (several bearings stuck under one rigid floor "
+                   "share their force in no one way without it)")
 
 
 class CarriesWeight:

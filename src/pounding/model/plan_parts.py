@@ -270,15 +270,15 @@ class Bearing:
         """A friction bearing in plan: one law for both axes, with an elastic pre-slip and a constant mu."""
         if self.isolator_y is not None:
             raise InputError(Problem.WRONG_CONFIGURATION, "bearing.isolator_y", self.isolator_y,
-                             got="with a friction isolator on one axis (a sliding bearing's friction is the same "
-                                 "along x and y)",
+                             got="with a friction isolator on one axis (a sliding bearing's friction is the "
+                                 "same along x and y)",
                              fix="leave isolator_y out and give a friction isolator as isolator (it serves "
                                  "both axes)")
         iso = self.isolator
         if iso.mu_fast is not None:
             raise InputError(Problem.WRONG_CONFIGURATION, "bearing.isolator.mu_fast", iso.mu_fast,
-                             got="with a velocity-dependent friction in plan (not supported yet: it needs the "
-                                 "rigid stick)",
+                             got="with a velocity-dependent friction in plan (not supported yet: it needs "
+                                 "the rigid stick)",
                              fix="leave mu_fast out (a constant mu) and give preslip_m")
         if not iso.preslip_m > 0.0:
             raise InputError(Problem.WRONG_CONFIGURATION, "bearing.isolator.preslip_m", iso.preslip_m,
@@ -300,7 +300,8 @@ class Bearing:
         arrays): a friction bearing's circle in plan its Bouc-Wen form
         (:meth:`pounding.FrictionIsolator.kernel_arrays_in_plane`)."""
         law = self.laws[axis]
-        return law.kernel_arrays_in_plane() if self.is_friction and self.bidirectional else law.kernel_arrays()
+        circle = self.is_friction and self.bidirectional
+        return law.kernel_arrays_in_plane() if circle else law.kernel_arrays()
 
     @property
     def laws(self) -> tuple[Any, Any]:
