@@ -77,9 +77,9 @@ def _sliding(building: PlanBuilding) -> bool:
         if not b.is_friction or b.isolator.radius_m is None:
             raise InputError(Problem.WRONG_CONFIGURATION, f"structure.bearings[{q}].isolator", b.isolator,
                              got="with a flat slider (no period to scale)" if b.is_friction else
-                                 "with rubber bearings beside friction bearings (a spectrum scales a friction "
-                                 "pendulum's radius and a rubber bearing's stiffness: a mixture has no one "
-                                 "isolated period)",
+                                 "with rubber bearings beside friction bearings (a spectrum scales a "
+                                 "friction pendulum's radius and a rubber bearing's stiffness: a mixture has "
+                                 "no one isolated period)",
                              fix="give every bearing a friction pendulum (radius_m), or none a friction "
                                  "isolator")
     return True
