@@ -181,3 +181,17 @@ def test_a_friction_bearing_reads_back_from_toml(tmp_path):
     back = PlanBuilding.from_toml(path)
     assert back == b
     assert not back.bearings[0].coupled
+
+
+def test_the_code_s_displacement_on_friction_pendulums_is_their_effective_stiffness_and_damping():
+    # ASCE 7's D_M on friction pendulums: k_eff = W / R + mu W / D and beta = 2 mu / (pi (mu + D / R)) at
+    # the D it finds, the loop's area 4 mu W (D - preslip) with the pre-slip
+    from pounding import design
+
+    b = _square(FrictionIsolator(mu=0.06, radius_m=2.5, preslip_m=5e-4))
+    out = design.asce7_bearings_displacement(b, s_m1_g=0.6, rtol=1e-12)
+    d, weight = out["d_m_x_m"], G * 4e5
+    assert out["k_m_x_n_m"] == pytest.approx(weight / 2.5 + 0.06 * weight / d, rel=1e-12)
+    assert out["beta_m_x"] == pytest.approx(2 * 0.06 / (math.pi * (0.06 + d / 2.5)) * (1.0 - 5e-4 / d),
+                                            rel=1e-12)
+    assert out["d_m_y_m"] == d
