@@ -1,4 +1,5 @@
-"""What rubber bearings' Bouc-Wen springs cost a building in plan: CPU time of one run.
+"""What rubber bearings' Bouc-Wen springs, and sliding bearings' friction circle, cost a building in plan:
+CPU time of one run.
 
 The building of ``opensees_plan.py`` (5 storeys above its base, 18 dofs) under the far-field set's first
 pair x2, its whole record, events only, on its four bilinear lead-rubber bearings (exact phases), then on
@@ -6,6 +7,9 @@ high-damping rubber bearings of about the same initial and post-yield stiffness:
 beside a Bouc-Wen spring, one bidirectional spring per bearing (Park, Wen and Ang: yielding under the
 resultant), and the same springs uncoupled (one along each axis).  Every phase with a Bouc-Wen spring is
 integrated numerically (Dormand-Prince 5(4) at the run's rtol), so the ratio is that integration's cost.
+Then on friction pendulums of the bilinear law's post-yield period (R = g / (k2 / m) per bearing's share,
+mu from its yield force, an elastic pre-slip of 0.5 mm): the friction circle (a bidirectional Bouc-Wen
+spring of that yield displacement, n = 2), and one bilinear friction per axis (exact phases).
 
     python benchmarks/plan_rubber.py [--storeys 5] [--rounds 3]
 """
@@ -32,6 +36,18 @@ def rubber(b: pd_.PlanBuilding, bidirectional: bool) -> pd_.PlanBuilding:
     return dataclasses.replace(b, bearings=bearings)
 
 
+def sliding(b: pd_.PlanBuilding, bidirectional: bool) -> pd_.PlanBuilding:
+    """``b`` on friction pendulums: each of its bearing's share of the weight, the bilinear law's post-yield
+    stiffness as W / R, its yield force as mu W, a pre-slip of 0.5 mm."""
+    lrb = b.bearings[0].isolator
+    k1, k2 = lrb.slopes_n_m
+    weight = 9.81 * sum(f.mass_kg for f in b.floors) / len(b.bearings)
+    fps = pd_.FrictionIsolator(mu=(k1 - k2) * lrb.breakpoints_m[0] / weight, radius_m=weight / k2,
+                               preslip_m=5e-4, damping_n_s_m=lrb.damping_n_s_m)
+    bearings = tuple(dataclasses.replace(x, isolator=fps, bidirectional=bidirectional) for x in b.bearings)
+    return dataclasses.replace(b, bearings=bearings)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--storeys", type=int, default=5)
@@ -45,7 +61,9 @@ def main() -> None:
     rows = []
     for label, b in (("bilinear bearings (exact phases)", base),
                      ("Bouc-Wen bearings, bidirectional", rubber(base, True)),
-                     ("Bouc-Wen bearings, one spring per axis", rubber(base, False))):
+                     ("Bouc-Wen bearings, one spring per axis", rubber(base, False)),
+                     ("friction pendulums, the friction circle", sliding(base, True)),
+                     ("friction pendulums, one friction per axis", sliding(base, False))):
         def run(b=b):
             out = pd_.simulate(b, pair, pair.duration_s, sample_rate_hz=0)
             if not out.success:

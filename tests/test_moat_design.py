@@ -88,6 +88,38 @@ def test_seven_pairs_take_their_mean_each_at_its_critical_orientation():
     assert few.design_displacement_m == few.critical["disp_max_m"].max() and not few.code
 
 
+def test_the_accidental_eccentricity_runs_its_four_cases_and_takes_the_largest():
+    # accidental=0.05: every pair at every angle at the four shifted buildings, each pair's critical run the
+    # largest of them, named by its case: the same as designing each shifted building alone and taking the
+    # largest
+    quake = pounding.records.el_centro().scaled(pga_g=0.5)
+    pairs = [pounding.RecordPair(quake, quake.scaled(factor=f), name=f"pair {k}")
+             for k, f in enumerate((0.4, 0.9))]
+    b = _building(centre=(0.0, 0.0), moat=RectangularMoat(0.02, pounding.KelvinVoigt(1e9, 1e6)))
+    found = design.moat_design(b, pairs, [0.0, 60.0], duration_s=5.0, accidental=0.05)
+    assert found.data.index.names == ["pair", "eccentricity", "angle_deg"] and len(found.data) == 2 * 4 * 2
+    alone = {case: design.moat_design(shifted, pairs, [0.0, 60.0], duration_s=5.0)
+             for case, shifted in zip(("+x+y", "+x-y", "-x+y", "-x-y"), b.accidental_cases(0.05))}
+    for name in ("pair 0", "pair 1"):
+        peaks = {case: d.critical.loc[name, "disp_max_m"] for case, d in alone.items()}
+        case = max(peaks, key=peaks.get)
+        assert found.critical.loc[name, "disp_max_m"] == peaks[case]
+        assert found.critical.loc[name, "eccentricity"] == case
+        assert found.critical.loc[name, "angle_deg"] == alone[case].critical.loc[name, "angle_deg"]
+        demands = {c: d.critical.loc[name, "moat_demand_m"] for c, d in alone.items()}
+        assert found.critical.loc[name, "moat_demand_m"] == max(demands.values())
+    # a symmetric building shifted turns: its bearings move further than as built
+    as_built = design.moat_design(b, pairs, [0.0, 60.0], duration_s=5.0)
+    assert found.design_displacement_m > as_built.design_displacement_m
+    assert len(pounding.plots.plot_moat_design(found)) == 2 + 1 + 2
+    # the building's own accidental eccentricity and this one together: refused, as are bad fractions
+    own = pounding.PlanBuilding(b.floors, b.bearings, accidental_eccentricity=(0.05, 0.0))
+    for building, fraction in ((own, 0.05), (b, -0.05), (b, 0.5), (b, float("nan"))):
+        with pytest.raises(InputError) as info:
+            design.moat_design(building, pairs, [0.0], duration_s=5.0, accidental=fraction)
+        assert info.value.field == "accidental", str(info.value)
+
+
 def test_a_moat_design_s_bad_arguments_are_refused_by_name():
     quake = pounding.records.el_centro()
     pair = pounding.RecordPair(quake, quake)
@@ -155,6 +187,19 @@ def test_the_command_line_designs_a_moat_and_refuses_a_line(tmp_path):
     critical = pd.read_csv(tmp_path / "moat_critical.csv")
     assert critical["angle_deg"].tolist() == found.critical["angle_deg"].tolist()
     assert (tmp_path / "moat_design.png").stat().st_size > 0
+    # the accidental eccentricity's four cases: each pair's critical run and its case in the table
+    shifted = runner.invoke(app, [*args[:-1], str(tmp_path / "acc"), "--accidental", "0.05"],
+                            catch_exceptions=False)
+    assert shifted.exit_code == 0, shifted.output
+    assert "1 pair(s) x 3 orientations x 4 accidental eccentricities = 12 runs" in " ".join(
+        shifted.output.split())
+    found = design.moat_design(building, pair, [0.0, 45.0, 90.0], 5.0, d_m_m=0.05, accidental=0.05,
+                               scheduler="serial")
+    critical = pd.read_csv(tmp_path / "acc" / "moat_critical.csv")
+    assert critical["eccentricity"].tolist() == found.critical["eccentricity"].tolist()
+    assert critical["disp_max_m"].to_numpy() == pytest.approx(found.critical["disp_max_m"].to_numpy(),
+                                                              rel=1e-12)
+    assert len(pd.read_csv(tmp_path / "acc" / "moat_runs.csv")) == 12
     line = examples / "building_moat.toml"
     for bad, words in ((["moat", str(line), "--record-x", str(record), "--record-y", str(record)],
                         "not a building in plan"),

@@ -151,6 +151,9 @@ def moat(
                                              "pair's)."),
     d_m: Optional[float] = typer.Option(None, "--d-m", help="The code's maximum displacement D_M at the "
                                         "centre, m: its total maximum displacement with torsion beside."),
+    accidental: float = typer.Option(0.0, "--accidental", help="The accidental eccentricity, a fraction of "
+                                     "the sides (the codes' 0.05): every run at its four cases, each pair's "
+                                     "largest over them (0: the building as built)."),
     scheduler: str = OPT_SCHEDULER,
     workers: Optional[int] = typer.Option(None, "--workers",
                                           help="Threads or processes (default: every core)."),
@@ -177,11 +180,13 @@ def moat(
         pairs = [p.scaled(scale) for p in pairs]
     angles_deg = grid("--angles", angles)
     n_angles = len(angles_deg)
-    console.print(f"{len(pairs)} pair(s) x {n_angles} orientations = {len(pairs) * n_angles} runs without "
-                  "the moat")
+    n_cases = 4 if accidental else 1
+    cases = f" x {n_cases} accidental eccentricities" if accidental else ""
+    runs = len(pairs) * n_angles * n_cases
+    console.print(f"{len(pairs)} pair(s) x {n_angles} orientations{cases} = {runs} runs without the moat")
     try:
-        found = moat_design(building, pairs, angles_deg, duration, d_m_m=d_m, workers=workers,
-                            scheduler=scheduler, progress=True)
+        found = moat_design(building, pairs, angles_deg, duration, d_m_m=d_m, accidental=accidental,
+                            workers=workers, scheduler=scheduler, progress=True)
     except Interrupted as stop:
         if stop.partial is None:
             interrupted("no pair had finished: nothing was written")

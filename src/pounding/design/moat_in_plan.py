@@ -17,7 +17,7 @@ from typing import Any, Optional
 import numpy as np
 import pandas as pd
 
-from .._checks import instance_of, one_of, one_or_more, positive
+from .._checks import at_most, instance_of, non_negative, one_of, one_or_more, plausible, positive
 from .._errors import InputError, Interrupted, Problem
 from .._units import GRAVITY_M_S2
 from .._runner import Progress
@@ -257,15 +257,19 @@ class MoatDesign:
         """The design from the runs' peaks (``data``, indexed by pair and angle)."""
         rows = []
         columns = [c for c in ("disp_max_m", "moat_demand_m") if c in data]
+        cased = "eccentricity" in data.index.names  # (the accidental cases: each critical run's named)
         for name, group in data.groupby(level="pair", sort=False):
             row: list = [name]
             for column in columns:
                 values = group[column].to_numpy(dtype=float)
                 at = int(np.nanargmax(values)) if np.isfinite(values).any() else 0
                 row += [float(group.index.get_level_values("angle_deg")[at]), float(values[at])]
+                if cased:
+                    row.append(str(group.index.get_level_values("eccentricity")[at]))
             rows.append(row)
-        heads = {"disp_max_m": ["angle_deg", "disp_max_m"],
-                 "moat_demand_m": ["demand_angle_deg", "moat_demand_m"]}
+        heads = {"disp_max_m": ["angle_deg", "disp_max_m", *(["eccentricity"] if cased else [])],
+                 "moat_demand_m": ["demand_angle_deg", "moat_demand_m",
+                                   *(["demand_eccentricity"] if cased else [])]}
         critical = pd.DataFrame(rows, columns=["pair", *(h for c in columns for h in heads[c])])
         critical = critical.set_index("pair")
         rule = "mean" if len(critical) >= MIN_PAIRS_FOR_MEAN else "largest"
@@ -307,8 +311,8 @@ class MoatDesign:
 
 
 def moat_design(building: PlanBuilding, pairs: Any, angles_deg: Any = None, duration_s: float | None = None,
-                *, d_m_m: float | None = None, workers: int | None = None, scheduler: Any = None,
-                progress: Progress = False, max_steps: int = 10_000_000) -> MoatDesign:
+                *, d_m_m: float | None = None, accidental: float = 0.0, workers: int | None = None,
+                scheduler: Any = None, progress: Progress = False, max_steps: int = 10_000_000) -> MoatDesign:
     """The moat's gap a building in plan needs under a suite of pairs: each pair at each orientation
     (:func:`pounding.orientations`), its most critical one, and the suite's design value.
 
@@ -327,6 +331,13 @@ def moat_design(building: PlanBuilding, pairs: Any, angles_deg: Any = None, dura
         The code's maximum displacement at the centre, m (:func:`asce7_displacement`): its total maximum
         displacement with torsion at the base's farthest edge (:func:`asce7_torsion`, ``element="edge"``:
         the moat's clearance) is given beside, as ``code``.
+    accidental : float
+        The accidental eccentricity, a fraction of each floor's sides (the codes' 0.05; 0, the default: the
+        building as built): each pair at each orientation is run at the four cases of
+        :meth:`PlanBuilding.accidental_cases` (every centre of mass moved by that fraction of its sides along
+        x and y, each of the four signs), and each pair's critical run is the largest over the angles and
+        the cases (ASCE 7-16 17.6.3.3 asks for the mass so shifted in a response history analysis).  The
+        building must then have no ``accidental_eccentricity`` of its own.
     workers : int, optional
         Threads or processes (default: every core).
     scheduler : str or dask.distributed.Client, optional
@@ -377,7 +388,7 @@ def moat_design(building: PlanBuilding, pairs: Any, angles_deg: Any = None, dura
     code = None if d_m_m is None else asce7_torsion(building, d_m_m, "edge")
     if duration_s is not None:
         positive("duration_s", duration_s, "s")
-    free = building.without_bumpers()
+    cases = _cases(building, accidental)
     if angles_deg is None:
         angles_deg = np.arange(0.0, 180.0, 15.0)
     names: list[str] = []
@@ -387,24 +398,48 @@ def moat_design(building: PlanBuilding, pairs: Any, angles_deg: Any = None, dura
             k += 1
         names.append(name if k == 2 else f"{name} ({k - 1})")
     tables: list[pd.DataFrame] = []
+    done = 0
     for name, p in zip(names, suite):
-        try:
-            found = orientations(free, p, angles_deg, duration_s, workers=workers, scheduler=scheduler,
-                                 progress=progress, max_steps=max_steps)
-        except Interrupted as stop:
-            if stop.partial is not None:
-                tables.append(stop.partial.data.assign(pair=name))
-            partial = MoatDesign.of(_joined(tables), code, complete=False) if tables else None
-            raise Interrupted(partial, len(tables), len(suite), "pairs") from None
-        tables.append(found.data.assign(pair=name))
+        for case, free in cases:
+            label = {} if case is None else {"eccentricity": case}
+            try:
+                found = orientations(free, p, angles_deg, duration_s, workers=workers, scheduler=scheduler,
+                                     progress=progress, max_steps=max_steps)
+            except Interrupted as stop:
+                if stop.partial is not None:
+                    tables.append(stop.partial.data.assign(pair=name, **label))
+                partial = MoatDesign.of(_joined(tables), code, complete=False) if tables else None
+                raise Interrupted(partial, done, len(suite), "pairs") from None
+            tables.append(found.data.assign(pair=name, **label))
+        done += 1
     return MoatDesign.of(_joined(tables), code)
 
 
+ACCIDENTAL_CASES = ("+x+y", "+x-y", "-x+y", "-x-y")  # (PlanBuilding.accidental_cases' order)
+
+
+def _cases(building: PlanBuilding, accidental: float) -> list[tuple[Optional[str], PlanBuilding]]:
+    """The buildings a design runs, without their moat, each with its case's name (None: as built)."""
+    fraction = non_negative("accidental", accidental, "(a fraction of the sides)")
+    if fraction == 0.0:
+        return [(None, building.without_bumpers())]
+    at_most("accidental", fraction, 0.25, "", "give a fraction of the sides (the codes' 5 % is 0.05)")
+    plausible("accidental", fraction, 0.0, 0.1, "a fraction of the sides (the codes' 5 % is 0.05)")
+    if any(building.accidental_eccentricity):
+        raise InputError(Problem.WRONG_CONFIGURATION, "accidental", fraction,
+                         got=f"whose building has its own accidental_eccentricity "
+                             f"{list(building.accidental_eccentricity)}",
+                         fix="give the building as built (accidental_eccentricity (0, 0)), or accidental 0")
+    return [(name, b.without_bumpers())
+            for name, b in zip(ACCIDENTAL_CASES, building.accidental_cases(fraction))]
+
+
 def _joined(tables: list[pd.DataFrame]) -> pd.DataFrame:
-    """The pairs' tables as one, indexed by pair and angle."""
+    """The pairs' tables as one, indexed by pair (and accidental case) and angle."""
     if not tables:
         raise InputError(Problem.EMPTY, "pairs", [], hint=" (one pair or more)")
-    return pd.concat(tables).reset_index().set_index(["pair", "angle_deg"])
+    data = pd.concat(tables).reset_index()
+    return data.set_index(["pair", *(["eccentricity"] if "eccentricity" in data else []), "angle_deg"])
 
 
 __all__ = ["MIN_PAIRS_FOR_MEAN", "MoatDesign", "asce7_bearings_displacement", "asce7_torsion", "moat_design"]

@@ -135,8 +135,10 @@ def plot_moat_design(design: Any, ax: Any = None, gap_m: Optional[float] = None)
     x = np.arange(len(critical))
     artists: list = list(ax.bar(x, critical["disp_max_m"].to_numpy() * mm, 0.6, color="C0",
                                 label="largest bearing displacement in plan, its critical angle"))
-    for k, (angle, value) in enumerate(zip(critical["angle_deg"], critical["disp_max_m"])):
-        ax.annotate(f"{angle:g} deg", (k, value * mm), ha="center", va="bottom", fontsize=7)
+    cases = critical["eccentricity"] if "eccentricity" in critical else [None] * len(critical)
+    for k, (angle, value, case) in enumerate(zip(critical["angle_deg"], critical["disp_max_m"], cases)):
+        label = f"{angle:g} deg" if case is None else f"{angle:g} deg\n{case}"
+        ax.annotate(label, (k, value * mm), ha="center", va="bottom", fontsize=7)
     rule = design.attrs.get("rule", "")
     artists.append(ax.axhline(design.design_displacement_m * mm, color="C3", lw=1.5,
                               label=f"design ({rule}): {design.design_displacement_m * mm:.4g} mm"))
