@@ -157,6 +157,8 @@ def asce7_bearings_displacement(building: PlanBuilding, s_m1_g: float, *, rtol: 
     for axis, name in ((0, "x"), (1, "y")):
         laws = [b.laws[axis] for b in building.bearings]
         post = sum(law.slopes_n_m[-1] for law in laws)
+        if post <= 0.0:  # (flat sliders, a perfectly plastic last slope: their secant at 0.1 m instead)
+            post = sum(_secant(law, 0.1) for law in laws)
         d = GRAVITY_M_S2 * s_m1 * 2.0 * math.pi * math.sqrt(mass / post) / (4.0 * math.pi**2)  # (a start)
         for _ in range(bound):
             k = sum(_secant(law, d) * d for law in laws) / d
