@@ -113,6 +113,10 @@ def test_the_accidental_eccentricity_runs_its_four_cases_and_takes_the_largest()
     assert found.design_displacement_m > as_built.design_displacement_m
     assert len(pounding.plots.plot_moat_design(found)) == 2 + 1 + 2
     # the building's own accidental eccentricity and this one together: refused, as are bad fractions
+    edge = _building(centre=(11.5, 0.0))  # (its centre of mass 0.5 m from its side: 5 % moves it off)
+    with pytest.raises(InputError, match="four cases") as info:
+        design.moat_design(edge, pairs, [0.0], duration_s=5.0, accidental=0.05)
+    assert info.value.field == "accidental"
     own = pounding.PlanBuilding(b.floors, b.bearings, accidental_eccentricity=(0.05, 0.0))
     for building, fraction in ((own, 0.05), (b, -0.05), (b, 0.5), (b, float("nan"))):
         with pytest.raises(InputError) as info:

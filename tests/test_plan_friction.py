@@ -46,6 +46,40 @@ def test_a_bearing_carries_its_share_of_the_building_s_weight_unless_given():
                                rtol=1e-14)
 
 
+def test_the_bearings_without_a_weight_share_what_the_others_leave():
+    fps = FrictionIsolator(mu=0.06, radius_m=2.0, preslip_m=5e-4)
+    floors = [Floor(4e5, (20.0, 12.0))]
+    at = [(sx * 8.0, sy * 4.0) for sx in (-1, 1) for sy in (-1, 1)]
+    total = G * 4e5
+    laws = [dataclasses.replace(fps, weight_n=0.4 * total)] + [fps] * 3
+    b = PlanBuilding(floors, [Bearing(p, law) for p, law in zip(at, laws)])
+    assert [x.isolator.weight_n for x in b.bearings] == pytest.approx([0.4 * total] + [0.2 * total] * 3,
+                                                                      rel=1e-14)
+    # the weights given leave nothing for the others: refused; every weight given, far from the building's:
+    # a warning (a weight in kg?)
+    with pytest.raises(InputError, match="leave nothing") as err:
+        PlanBuilding(floors, [Bearing(p, dataclasses.replace(fps, weight_n=total) if q < 2 else fps)
+                              for q, p in enumerate(at)])
+    assert err.value.field == "bearings"
+    with pytest.warns(pounding.PoundingWarning, match="weights sum to"):
+        PlanBuilding(floors, [Bearing(p, dataclasses.replace(fps, weight_n=4e5 / 4)) for p in at])
+    # a share whose pre-slip stiffness is beyond any isolator's: the bearing named
+    with pytest.raises(InputError) as err:
+        PlanBuilding([Floor(1e9, (20.0, 12.0))],  # (mu W / preslip_m: 0.9 x 2.45e9 N / 1e-6 m > 1e15 N/m)
+                     [Bearing(p, FrictionIsolator(mu=0.9, radius_m=2.0, preslip_m=1e-6)) for p in at])
+    assert err.value.field == "bearings[0].isolator.preslip_m", str(err.value)
+
+
+def test_a_tiny_pre_slip_warns_and_a_bad_number_in_a_file_names_its_bearing(tmp_path):
+    with pytest.warns(pounding.PoundingWarning, match="preslip_m"):
+        Bearing((0.0, 0.0), FrictionIsolator(mu=0.06, radius_m=2.0, preslip_m=2e-5))
+    b = _square(FrictionIsolator(mu=0.06, radius_m=2.0, preslip_m=5e-4))
+    text = b.to_toml_text().replace("preslip_m = 0.0005", 'preslip_m = "0.0005"', 1)
+    with pytest.raises(InputError) as err:
+        PlanBuilding.from_toml_text(text)
+    assert err.value.field == "bearings[0].isolator.preslip_m", str(err.value)
+
+
 def test_the_friction_circle_is_its_bidirectional_bouc_wen_spring():
     # a friction pendulum bearing in plan is, number for number, a bearing whose law is the pendulum's W / R
     # with a bidirectional Bouc-Wen spring of stiffness mu W / preslip_m, yield displacement preslip_m, a = 1,
@@ -156,6 +190,12 @@ def test_a_spectrum_scales_the_pendulums_radii():
     flat = _square(FrictionIsolator(mu=0.06, preslip_m=5e-4))
     with pytest.raises(InputError, match="flat slider"):
         isolated_period_s(flat)
+    for period in (0.0, -3.0, float("inf"), "3", None, 1000.0):  # (1000 s: a radius beyond any pendulum's)
+        with pytest.raises(InputError) as err:
+            bearings_at(b, period)
+        assert err.value.field == "period_s", str(err.value)
+    with pytest.raises(InputError, match="building"):
+        isolated_period_s(None)
 
 
 @pytest.mark.parametrize("iso, field", [

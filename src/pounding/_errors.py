@@ -129,6 +129,8 @@ class InputError(ValueError):
         details = {"hint": "", **details}  # ({hint}: an optional last word of a fix)
         why = problem.why.format(**details)
         fix = problem.fix.format(**details)
+        if fix.endswith(" in "):  # (a quantity without a unit)
+            fix = fix[:-4]
         super().__init__(f"{field} = {value!r} {why}. Fix: {fix}.")
 
     def __reduce__(self) -> tuple:

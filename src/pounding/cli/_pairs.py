@@ -180,6 +180,9 @@ def moat(
         pairs = [p.scaled(scale) for p in pairs]
     angles_deg = grid("--angles", angles)
     n_angles = len(angles_deg)
+    if not 0.0 <= accidental <= 0.25:
+        raise typer.BadParameter(f"{accidental:g}: give a fraction of the sides in [0, 0.25] (the codes' 5 % "
+                                 "is 0.05)", param_hint="--accidental")
     n_cases = 4 if accidental else 1
     cases = f" x {n_cases} accidental eccentricities" if accidental else ""
     runs = len(pairs) * n_angles * n_cases

@@ -422,7 +422,7 @@ ACCIDENTAL_CASES = ("+x+y", "+x-y", "-x+y", "-x-y")  # (PlanBuilding.accidental_
 
 def _cases(building: PlanBuilding, accidental: float) -> list[tuple[Optional[str], PlanBuilding]]:
     """The buildings a design runs, without their moat, each with its case's name (None: as built)."""
-    fraction = non_negative("accidental", accidental, "(a fraction of the sides)")
+    fraction = non_negative("accidental", accidental, "")
     if fraction == 0.0:
         return [(None, building.without_bumpers())]
     at_most("accidental", fraction, 0.25, "", "give a fraction of the sides (the codes' 5 % is 0.05)")
@@ -432,8 +432,14 @@ def _cases(building: PlanBuilding, accidental: float) -> list[tuple[Optional[str
                          got=f"whose building has its own accidental_eccentricity "
                              f"{list(building.accidental_eccentricity)}",
                          fix="give the building as built (accidental_eccentricity (0, 0)), or accidental 0")
-    return [(name, b.without_bumpers())
-            for name, b in zip(ACCIDENTAL_CASES, building.accidental_cases(fraction))]
+    try:
+        shifted = building.accidental_cases(fraction)
+    except InputError as exc:  # (a centre of mass moved off its floor)
+        raise InputError(Problem.BAD_STATE, "accidental", fraction,
+                         why=f"shifts a centre of mass off its floor in one of its four cases: {exc}",
+                         fix="give a smaller fraction, or the floors' centres of mass nearer their middle") \
+            from None
+    return [(name, b.without_bumpers()) for name, b in zip(ACCIDENTAL_CASES, shifted)]
 
 
 def _joined(tables: list[pd.DataFrame]) -> pd.DataFrame:

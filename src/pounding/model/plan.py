@@ -9,13 +9,15 @@ Degrees of freedom: floor ``l`` (0 the base) has ``3 l`` (x of its centre of mas
 from __future__ import annotations
 
 import dataclasses
+import warnings
 from dataclasses import dataclass
 from typing import Any, ClassVar, Optional
 
 import numpy as np
 
 from .._checks import instance_of, plausible, real_tuple, sequence_of
-from .._errors import InputError, Problem
+from .._errors import InputError, PoundingWarning, Problem
+from .._units import GRAVITY_M_S2
 from ._toml import TomlFile
 from .contact_laws import law_from_dict
 from .oscillator import check_keys, isolator_from_dict
@@ -35,6 +37,14 @@ def point_weights(floor: Floor, level: int, axis: int,
     cx, cy = floor.centre_m
     arm = -(p[1] - cy) if axis == 0 else p[0] - cx
     return ((3 * level + axis, 1.0), (3 * level + 2, arm))
+
+
+def _isolator_from_dict(table: Any, prefix: str) -> Any:
+    """A bearing's isolator from its TOML table, its own checks' errors named where the table stands."""
+    try:
+        return isolator_from_dict(table, prefix)
+    except InputError as exc:
+        raise exc.relabel("isolator.", prefix) from None
 
 
 @dataclass(frozen=True)
@@ -107,10 +117,7 @@ class PlanBuilding(TomlFile):
                 raise InputError(Problem.TOO_LARGE, name, len(items), maximum=most, what=f" {name}",
                                  fix=f"give at most {most}")
             object.__setattr__(self, name, items)
-        share_kg = sum(f.mass_kg for f in self.floors) / len(self.bearings)  # (a friction bearing's weight)
-        object.__setattr__(self, "bearings", tuple(
-            dataclasses.replace(b, isolator=b.isolator.carrying(share_kg)) if b.is_friction else b
-            for b in self.bearings))
+        self._share_weight()
         for i, f in enumerate(self.frames):
             if len(self.floors) == 1:
                 raise InputError(Problem.WRONG_CONFIGURATION, f"frames[{i}].storey", f.storey,
@@ -150,6 +157,35 @@ class PlanBuilding(TomlFile):
                                      "their middle")
         self._check_within()
         self._check_restrained()
+
+    def _share_weight(self) -> None:
+        """Each friction bearing without a weight of its own (``weight_n``) carries an equal share of what
+        the bearings given one leave of the building's weight: an InputError where they leave none, a warning
+        where every bearing has one and they do not sum to it."""
+        total_n = GRAVITY_M_S2 * sum(f.mass_kg for f in self.floors)
+        given = [b.isolator.weight_n if b.is_friction and not b.isolator.weight_carried
+                 and b.isolator.weight_n is not None else None for b in self.bearings]
+        rest = [i for i, w in enumerate(given) if w is None]
+        left_n = total_n - sum(w for w in given if w is not None)
+        if rest and any(self.bearings[i].is_friction for i in rest) and left_n <= 0.0:
+            raise InputError(Problem.BAD_STATE, "bearings", [w for w in given if w is not None],
+                             why=f"(the weights given, N) leave nothing of the building's {total_n:.6g} N "
+                                 f"for the {len(rest)} bearing(s) without one",
+                             fix="give weights that sum to the building's weight, or leave weight_n out (an "
+                                 "equal share each)")
+        if not rest and abs(left_n) > 0.1 * total_n:
+            warnings.warn(f"bearings: their weights sum to {total_n - left_n:.6g} N, the building's is "
+                          f"{total_n:.6g} N (g times every floor's mass): a weight_n in kg, or a bearing "
+                          "left out?", PoundingWarning, stacklevel=4)
+        bearings = list(self.bearings)
+        for i in rest:
+            if bearings[i].is_friction:
+                try:
+                    iso = bearings[i].isolator.carrying(left_n / GRAVITY_M_S2 / len(rest))
+                except InputError as exc:  # (a stiffness the weight makes too large: the bearing named)
+                    raise exc.relabel("isolator.", f"bearings[{i}].isolator.") from None
+                bearings[i] = dataclasses.replace(bearings[i], isolator=iso)
+        object.__setattr__(self, "bearings", tuple(bearings))
 
     def _check_within(self) -> None:
         """Every bearing under the base's rectangle, every frame within its floors' (an InputError naming
@@ -349,7 +385,7 @@ class PlanBuilding(TomlFile):
                 prefix = f"{name}[{i}]."
                 check_keys(row, prefix, kind.FIELDS, required=required)
                 if kind is Bearing:
-                    row = {**row, **{k: isolator_from_dict(row[k], prefix + k + ".")
+                    row = {**row, **{k: _isolator_from_dict(row[k], prefix + k + ".")
                                      for k in ("isolator", "isolator_y") if k in row}}
                 try:
                     parts[name].append(kind(**row))

@@ -8,6 +8,7 @@ by ``(u, v)`` and turns by ``theta`` moves by ``(u - (p_y - c_y) theta, v + (p_x
 
 from __future__ import annotations
 
+import math
 import warnings
 from dataclasses import dataclass
 from typing import Any, ClassVar, Optional
@@ -209,8 +210,8 @@ class Bearing:
         hysteresis, uncoupled; and its Bouc-Wen spring if it has one, see ``bidirectional``).  A
         :class:`pounding.FrictionIsolator` (a friction pendulum or a flat slider) needs an elastic
         pre-slip in plan (``preslip_m > 0``) and a constant ``mu``; its weight, unless given
-        (``weight_n``), is an equal share of the building's: ``g`` times every floor's mass over the
-        bearings.
+        (``weight_n``), is an equal share of what the bearings given one leave of the building's (``g``
+        times every floor's mass), shared among every bearing without one.
     isolator_y : Isolator or FrictionIsolator, optional
         Its law along y (a friction bearing's is its ``isolator``'s: leave it out).
     bidirectional : bool
@@ -269,8 +270,9 @@ class Bearing:
     def _check_friction(self) -> None:
         """A friction bearing in plan: one law for both axes, with an elastic pre-slip and a constant mu."""
         if self.isolator_y is not None:
+            which = "as isolator_y" if isinstance(self.isolator_y, FrictionIsolator) else "on one axis"
             raise InputError(Problem.WRONG_CONFIGURATION, "bearing.isolator_y", self.isolator_y,
-                             got="with a friction isolator on one axis (a sliding bearing's friction is the "
+                             got=f"with a friction isolator {which} (a sliding bearing's friction is the "
                                  "same along x and y)",
                              fix="leave isolator_y out and give a friction isolator as isolator (it serves "
                                  "both axes)")
@@ -283,6 +285,10 @@ class Bearing:
         if not iso.preslip_m > 0.0:
             raise InputError(Problem.WRONG_CONFIGURATION, "bearing.isolator.preslip_m", iso.preslip_m,
                              got="with a rigid stick (no pre-slip) in plan", fix=PRESLIP_IN_PLAN)
+        if self.bidirectional:  # (the friction circle's Bouc-Wen z relaxes at |v| / preslip_m: short steps)
+            plausible("bearing.isolator.preslip_m", iso.preslip_m, 1e-4, math.inf,
+                      "a pre-slip in m (0.5 mm is usual; below 0.1 mm the friction circle's Bouc-Wen spring "
+                      "is stiff and its runs take many short steps)")
 
     @property
     def is_friction(self) -> bool:

@@ -89,6 +89,7 @@ def isolated_period_s(building: PlanBuilding) -> float:
     """A building in plan's isolated period along x, its floors moving as one rigid body: ``2 pi sqrt(sum m
     / sum k_x)``, s, on its bearings' initial stiffnesses (a Bouc-Wen spring's ``a k`` with its backbone's
     first slope), or on friction pendulums their restoring stiffnesses ``W / R`` (the sliding period)."""
+    instance_of("building", building, PlanBuilding, "pounding.PlanBuilding")
     mass = sum(f.mass_kg for f in building.floors)
     if _sliding(building):
         stiffness = sum(b.isolator.restoring_stiffness_n_m for b in building.bearings)
@@ -102,7 +103,8 @@ def bearings_at(building: PlanBuilding, period_s: float) -> PlanBuilding:
     scaled so that its isolated period (:func:`isolated_period_s`) is ``period_s``, their dashpots by the
     square root (their damping ratios kept), their breakpoints, yield displacements and hysteresis kept; on
     friction pendulums their radii scaled instead, their friction and pre-slip kept."""
-    factor = (isolated_period_s(building) / period_s) ** 2
+    period = positive("period_s", period_s, "s")
+    factor = (isolated_period_s(building) / period) ** 2
     root = math.sqrt(factor)
 
     def scaled(iso: Any) -> Any:
@@ -112,9 +114,15 @@ def bearings_at(building: PlanBuilding, period_s: float) -> PlanBuilding:
             return replace(iso, radius_m=iso.radius_m / factor, damping_n_s_m=iso.damping_n_s_m * root)
         return _scaled(iso, factor, iso.damping_n_s_m * root)
 
-    return replace(building, bearings=tuple(replace(b, isolator=scaled(b.isolator),
-                                                    isolator_y=scaled(b.isolator_y))
-                                            for b in building.bearings))
+    try:
+        return replace(building, bearings=tuple(replace(b, isolator=scaled(b.isolator),
+                                                        isolator_y=scaled(b.isolator_y))
+                                                for b in building.bearings))
+    except InputError as exc:  # (a period the bearings cannot have: the period named, the law's words kept)
+        raise InputError(Problem.BAD_STATE, "period_s", period_s,
+                         why=f"is beyond what the bearings can be scaled to: {exc}",
+                         fix="give a period the bearings can have (a friction pendulum's radius g (T / 2 "
+                             "pi)^2)") from None
 
 
 def _systems(task: tuple, period: float) -> list:
