@@ -242,3 +242,9 @@ def test_the_code_s_displacement_on_friction_pendulums_is_their_effective_stiffn
     d = flat["d_m_x_m"]
     assert flat["k_m_x_n_m"] == pytest.approx(0.06 * weight / d, rel=1e-12)
     assert flat["beta_m_x"] == pytest.approx(2.0 / math.pi * (1.0 - 5e-4 / d), rel=1e-12)
+
+
+def test_a_unitless_number_s_fix_names_no_unit():
+    with pytest.raises(InputError) as err:
+        FrictionIsolator(mu=0.0)
+    assert str(err.value).endswith("Fix: give a positive value."), str(err.value)
