@@ -33,38 +33,71 @@ def test_a_bearing_carries_its_share_of_the_building_s_weight_unless_given():
     b = PlanBuilding([Floor(4e5, (20.0, 12.0)), Floor(2e5, (20.0, 12.0))],
                      [Bearing((sx * 8.0, sy * 4.0), fps) for sx in (-1, 1) for sy in (-1, 1)],
                      [pounding.Frame(1, axis, s * 3.0, 2e8) for axis in "xy" for s in (-1, 1)])
-    assert [x.isolator.weight_n for x in b.bearings] == pytest.approx([G * 6e5 / 4] * 4, rel=1e-15)
+    assert [x.isolator.weight_n for x in b.bearings] == pytest.approx([G * 6e5 / 4] * 4, rel=1e-14)
     # a floor heavier: the shares follow; a weight given: kept
     heavier = dataclasses.replace(b, floors=[Floor(8e5, (20.0, 12.0)), Floor(2e5, (20.0, 12.0))])
-    assert heavier.bearings[0].isolator.weight_n == pytest.approx(G * 1e6 / 4, rel=1e-15)
-    given = dataclasses.replace(b, bearings=[Bearing(x.at_m, dataclasses.replace(fps, weight_n=1e6))
+    assert heavier.bearings[0].isolator.weight_n == pytest.approx(G * 1e6 / 4, rel=1e-14)
+    given = dataclasses.replace(b, bearings=[Bearing(x.at_m, dataclasses.replace(fps, weight_n=1.5e6))
                                              for x in b.bearings])
-    assert [x.isolator.weight_n for x in given.bearings] == [1e6] * 4
+    assert [x.isolator.weight_n for x in given.bearings] == [1.5e6] * 4
     # its initial stiffness is the pre-slip's, mu W / preslip_m + W / R, along x and y
     w = G * 6e5 / 4
     np.testing.assert_allclose(np.diag(b.stiffness_matrix(0))[:2], 4 * (0.06 * w / 5e-4 + w / 2.0),
                                rtol=1e-14)
 
 
-def test_the_bearings_without_a_weight_share_what_the_others_leave():
+def _balanced(b):
+    """Each bearing's weight (N), and their sum and moments less the building's weight at its centre of mass:
+    zero where the bearings hold the building up as it stands."""
+    w = np.array([x.isolator.weight_n for x in b.bearings])
+    at = np.array([x.at_m for x in b.bearings])
+    floors = b.placed_floors
+    mass = sum(f.mass_kg for f in floors)
+    centre = sum(f.mass_kg * np.asarray(f.centre_m) for f in floors) / mass
+    return w, np.array([w.sum() - G * mass, *(w @ at - G * mass * centre)]) / (G * mass)
+
+
+def test_the_bearings_carry_the_building_where_it_stands():
+    # the shares balance the building's weight at its centre of mass (as a rigid base on equally stiff
+    # bearings shares it: linear in the bearings' places), with the accidental eccentricity; a bearing given
+    # its weight keeps it, the others share what it leaves
     fps = FrictionIsolator(mu=0.06, radius_m=2.0, preslip_m=5e-4)
+    at = [(sx * 8.0, sy * 4.0) for sx in (-1, 1) for sy in (-1, 1)] + [(0.0, 5.0)]
+    floors = [Floor(4e5, (20.0, 12.0), centre_m=(2.0, -1.0)), Floor(2e5, (20.0, 12.0), centre_m=(-1.0, 0.5))]
+    frames = [pounding.Frame(1, axis, s * 3.0, 2e8) for axis in "xy" for s in (-1, 1)]
+    rubber = pounding.Isolator([1e6])
+    for laws, ecc in (([fps] * 5, (0.0, 0.0)), ([fps] * 4 + [rubber], (0.05, -0.05)),
+                      ([dataclasses.replace(fps, weight_n=2e6)] + [fps] * 4, (0.0, 0.0))):
+        b = PlanBuilding(floors, [Bearing(p, law) for p, law in zip(at, laws)], frames,
+                         accidental_eccentricity=ecc)
+        if isinstance(laws[-1], pounding.Isolator):  # (a rubber bearing carries its share too)
+            w = np.array([x.isolator.weight_n for x in b.bearings[:4]])
+            assert np.all(w > 0.0) and w.sum() < G * 6e5
+            continue
+        w, off = _balanced(b)
+        assert np.all(w > 0.0) and np.max(np.abs(off)) < 1e-14, off
+        assert w[0] == (2e6 if laws[0].weight_n else w[0])
+    # a centre of mass beyond the bearings: a share would pull, refused; every weight given, far from the
+    # building's: a warning (a weight in kg?)
+    with pytest.raises(InputError, match="pulling") as err:
+        PlanBuilding([Floor(4e5, (20.0, 12.0), centre_m=(9.5, 0.0))], [Bearing(p, fps) for p in at[:4]])
+    assert err.value.field.startswith("bearings[") and err.value.field.endswith("].at_m")
     floors = [Floor(4e5, (20.0, 12.0))]
-    at = [(sx * 8.0, sy * 4.0) for sx in (-1, 1) for sy in (-1, 1)]
+    at = at[:4]
     total = G * 4e5
-    laws = [dataclasses.replace(fps, weight_n=0.4 * total)] + [fps] * 3
-    b = PlanBuilding(floors, [Bearing(p, law) for p, law in zip(at, laws)])
-    assert [x.isolator.weight_n for x in b.bearings] == pytest.approx([0.4 * total] + [0.2 * total] * 3,
-                                                                      rel=1e-14)
-    # the weights given leave nothing for the others: refused; every weight given, far from the building's:
-    # a warning (a weight in kg?)
-    with pytest.raises(InputError, match="leave nothing") as err:
+    with pytest.raises(InputError, match="leave nothing"):
         PlanBuilding(floors, [Bearing(p, dataclasses.replace(fps, weight_n=total) if q < 2 else fps)
                               for q, p in enumerate(at)])
-    assert err.value.field == "bearings"
     with pytest.warns(pounding.PoundingWarning, match="weights sum to"):
         PlanBuilding(floors, [Bearing(p, dataclasses.replace(fps, weight_n=4e5 / 4)) for p in at])
+    # the two on one side given 0.1 W each: the two left on the other line cannot balance the moment (they
+    # carry the rest, 0.4 W each, and a warning says the building turns as if its mass were elsewhere)
+    with pytest.warns(pounding.PoundingWarning, match="cannot balance"):
+        b = PlanBuilding(floors, [Bearing(p, dataclasses.replace(fps, weight_n=0.1 * total) if q < 2 else fps)
+                                  for q, p in enumerate(at)])
+    assert [x.isolator.weight_n for x in b.bearings[2:]] == pytest.approx([0.4 * total] * 2, rel=1e-14)
     # a share whose pre-slip stiffness is beyond any isolator's: the bearing named
-    with pytest.raises(InputError) as err:
+    with pytest.raises(InputError) as err, pytest.warns(pounding.PoundingWarning):  # (implausible numbers)
         PlanBuilding([Floor(1e9, (20.0, 12.0))],  # (mu W / preslip_m: 0.9 x 2.45e9 N / 1e-6 m > 1e15 N/m)
                      [Bearing(p, FrictionIsolator(mu=0.9, radius_m=2.0, preslip_m=1e-6)) for p in at])
     assert err.value.field == "bearings[0].isolator.preslip_m", str(err.value)
@@ -91,10 +124,13 @@ def test_the_friction_circle_is_its_bidirectional_bouc_wen_spring():
     at = [(sx * 10.0, sy * 6.0) for sx in (-1, 1) for sy in (-1, 1)]
     moat = RectangularMoat(0.15, pounding.KelvinVoigt(2e8, 4e5))
     sliding = PlanBuilding(floors, [Bearing(p, fps) for p in at], frames, moat)
-    w = G * 5.5e5 / 4
-    rubber = pounding.Isolator(slopes_n_m=[w / 2.5], damping_n_s_m=2e4,
-                               bouc_wen=pounding.BoucWen(0.05 * w / 1e-3, 1e-3, 1.0, 0.5, 0.5, 2.0))
-    spring = PlanBuilding(floors, [Bearing(p, rubber) for p in at], frames, moat)
+
+    def rubber(w):
+        return pounding.Isolator(slopes_n_m=[w / 2.5], damping_n_s_m=2e4,
+                                 bouc_wen=pounding.BoucWen(0.05 * w / 1e-3, 1e-3, 1.0, 0.5, 0.5, 2.0))
+
+    spring = PlanBuilding(floors, [Bearing(p, rubber(x.isolator.weight_n))
+                                   for p, x in zip(at, sliding.bearings)], frames, moat)
     rec = pounding.records.el_centro().scaled(pga_g=0.8)
     pair = pounding.RecordPair.of_direction(rec, 30.0)
     a, b = pounding.simulate(sliding, pair, 8.0), pounding.simulate(spring, pair, 8.0)
@@ -116,6 +152,21 @@ def test_a_sliding_bearing_s_friction_stays_inside_its_circle_and_reaches_it():
     assert np.max(length) <= 0.06 * w * (1.0 + 1e-9)
     assert np.max(length) >= 0.06 * w * (1.0 - 1e-3)
     assert np.max(run.bearing_displacement_max_m) > 50 * 5e-4  # (it slid, far beyond the pre-slip)
+
+
+def test_a_building_on_pendulums_turns_only_as_its_masses_make_it():
+    # a rigid floor on friction pendulums whose centre of mass is 3 m off the bearings' middle: each
+    # bearing's load, and so its W / R and mu W, follows where the mass stands, the bearings' centre of
+    # stiffness is the centre of mass, and shaking across the offset turns it not at all (with equal
+    # shares it turned by 3 mrad and its bearings moved 87 and 173 mm)
+    fps = FrictionIsolator(mu=0.06, radius_m=2.5, preslip_m=5e-4)
+    b = PlanBuilding([Floor(1.2e6, (30.0, 12.0), centre_m=(3.0, 0.0))],
+                     [Bearing((sx * 14.0, sy * 5.0), fps) for sx in (-1, 1) for sy in (-1, 1)])
+    rec = pounding.records.el_centro().scaled(pga_g=0.5)
+    run = pounding.simulate(b, pounding.RecordPair.of_direction(rec, 90.0), 8.0)
+    assert np.max(run.bearing_displacement_max_m) > 0.05
+    assert np.max(np.abs(run.displacement[:, 0, 2])) < 1e-15
+    np.testing.assert_allclose(run.bearing_displacement_max_m, run.bearing_displacement_max_m[0], rtol=1e-12)
 
 
 def _steady_radius(fps, c_per_bearing, freq_hz, a_g):
@@ -186,6 +237,7 @@ def test_a_spectrum_scales_the_pendulums_radii():
     iso = at.bearings[0].isolator
     assert iso.radius_m == pytest.approx(G * (4.0 / (2.0 * math.pi)) ** 2, rel=1e-14)
     assert (iso.mu, iso.preslip_m) == (0.06, 5e-4)
+    assert iso.damping_n_s_m == pytest.approx(1e4 * isolated_period_s(b) / 4.0, rel=1e-14)  # (its ratio kept)
     assert iso.weight_n == pytest.approx(G * 4e5 / 4, rel=1e-15)
     flat = _square(FrictionIsolator(mu=0.06, preslip_m=5e-4))
     with pytest.raises(InputError, match="flat slider"):
@@ -198,16 +250,17 @@ def test_a_spectrum_scales_the_pendulums_radii():
         isolated_period_s(None)
 
 
-@pytest.mark.parametrize("iso, field", [
-    (FrictionIsolator(mu=0.06, radius_m=2.0), "preslip_m"),
-    (FrictionIsolator(mu=0.06, radius_m=2.0, mu_fast=0.1, rate_s_m=20.0), "mu_fast"),
+@pytest.mark.parametrize("iso, field, fix", [
+    (FrictionIsolator(mu=0.06, radius_m=2.0), "preslip_m", "give preslip_m > 0"),
+    (FrictionIsolator(mu=0.06, radius_m=2.0, mu_fast=0.1, rate_s_m=20.0), "mu_fast", "leave mu_fast out"),
     (pounding.TripleFrictionPendulum(radii_m=(2.1, 0.3, 0.3, 2.1), mu=(0.05, 0.02, 0.02, 0.08),
-                                     capacities_m=(0.3, 0.05, 0.05, 0.3)), "triple friction pendulum"),
+                                     capacities_m=(0.3, 0.05, 0.05, 0.3)), "triple friction pendulum",
+     "give a pounding.Isolator or pounding.FrictionIsolator"),
 ])
-def test_what_a_friction_bearing_in_plan_cannot_be_is_refused_by_name(iso, field):
+def test_what_a_friction_bearing_in_plan_cannot_be_is_refused_by_name(iso, field, fix):
     with pytest.raises(InputError, match=field) as err:
         Bearing((0.0, 0.0), iso)
-    assert "Fix:" in str(err.value) or "expected" in str(err.value)
+    assert fix in str(err.value).split("Fix:")[1], str(err.value)
     for x, y in ((FrictionIsolator(mu=0.06, preslip_m=1e-3), pounding.Isolator([1e6])),
                  (pounding.Isolator([1e6]), FrictionIsolator(mu=0.06, preslip_m=1e-3))):
         with pytest.raises(InputError, match="isolator_y"):

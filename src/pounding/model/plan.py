@@ -117,7 +117,6 @@ class PlanBuilding(TomlFile):
                 raise InputError(Problem.TOO_LARGE, name, len(items), maximum=most, what=f" {name}",
                                  fix=f"give at most {most}")
             object.__setattr__(self, name, items)
-        self._share_weight()
         for i, f in enumerate(self.frames):
             if len(self.floors) == 1:
                 raise InputError(Problem.WRONG_CONFIGURATION, f"frames[{i}].storey", f.storey,
@@ -155,33 +154,66 @@ class PlanBuilding(TomlFile):
                                      "centred on 0)",
                                  fix="give a smaller eccentricity, or the floors' centres of mass nearer "
                                      "their middle")
+        self._share_weight()
         self._check_within()
         self._check_restrained()
 
     def _share_weight(self) -> None:
-        """Each friction bearing without a weight of its own (``weight_n``) carries an equal share of what
-        the bearings given one leave of the building's weight: an InputError where they leave none, a warning
-        where every bearing has one and they do not sum to it."""
-        total_n = GRAVITY_M_S2 * sum(f.mass_kg for f in self.floors)
-        given = [b.isolator.weight_n if b.is_friction and not b.isolator.weight_carried
-                 and b.isolator.weight_n is not None else None for b in self.bearings]
-        rest = [i for i, w in enumerate(given) if w is None]
-        left_n = total_n - sum(w for w in given if w is not None)
-        if rest and any(self.bearings[i].is_friction for i in rest) and left_n <= 0.0:
-            raise InputError(Problem.BAD_STATE, "bearings", [w for w in given if w is not None],
+        """Each friction bearing without a weight of its own (``weight_n``) carries its share of the
+        building's weight as a rigid base shares it among equally stiff bearings: ``W_i = a + b x_i + c y_i``
+        over the bearings without one (rubber ones too), whose sum and moments balance what those given one
+        leave of the building's weight at its centre of mass (every floor's, with the accidental
+        eccentricity; by least squares where they stand on one line).  An InputError where a share is not
+        positive (the centre of mass beyond the bearings, or weights given that leave none); a warning
+        where every bearing has its own and they miss the building's by more than 10 %."""
+        if not any(b.is_friction for b in self.bearings):
+            return
+        floors = self.placed_floors
+        mass = sum(f.mass_kg for f in floors)
+        total_n = GRAVITY_M_S2 * mass
+        centre = sum(f.mass_kg * np.asarray(f.centre_m) for f in floors) / mass
+        at = np.array([b.at_m for b in self.bearings])
+        given = np.array([b.isolator.weight_n if b.is_friction and not b.isolator.weight_carried
+                          and b.isolator.weight_n is not None else np.nan for b in self.bearings])
+        rest = np.flatnonzero(np.isnan(given))
+        known = ~np.isnan(given)
+        force = total_n - given[known].sum()
+        if rest.size == 0:
+            if abs(force) > 0.1 * total_n:
+                warnings.warn(f"bearings: their weights sum to {total_n - force:.6g} N, the building's is "
+                              f"{total_n:.6g} N (g times every floor's mass): a weight_n in kg, or a bearing "
+                              "left out?", PoundingWarning, stacklevel=4)
+            return
+        if force <= 0.0:
+            raise InputError(Problem.BAD_STATE, "bearings", list(given[known]),
                              why=f"(the weights given, N) leave nothing of the building's {total_n:.6g} N "
-                                 f"for the {len(rest)} bearing(s) without one",
-                             fix="give weights that sum to the building's weight, or leave weight_n out (an "
-                                 "equal share each)")
-        if not rest and abs(left_n) > 0.1 * total_n:
-            warnings.warn(f"bearings: their weights sum to {total_n - left_n:.6g} N, the building's is "
-                          f"{total_n:.6g} N (g times every floor's mass): a weight_n in kg, or a bearing "
-                          "left out?", PoundingWarning, stacklevel=4)
+                                 f"for the {rest.size} bearing(s) without one",
+                             fix="give weights that sum to the building's weight, or leave weight_n out")
+        moment = total_n * centre - given[known] @ at[known]
+        a = np.vstack([np.ones(rest.size), at[rest, 0], at[rest, 1]])  # (the sum, its moments about x and y)
+        rhs = np.array([force, *moment])
+        shares = a.T @ np.linalg.lstsq(a @ a.T, rhs, rcond=None)[0]
+        if abs(shares.sum() - force) > 1e-9 * total_n:  # (on one line, beside weights given: the sum kept)
+            shares = np.full(rest.size, force / rest.size)
+        size = max(1.0, float(np.max(np.abs(at))))
+        if np.max(np.abs(a[1:] @ shares - moment)) > 1e-9 * total_n * size:
+            warnings.warn(f"bearings: their loads cannot balance the building's weight at its centre of "
+                          f"mass ({centre[0]:.4g}, {centre[1]:.4g}) m (the bearings without a weight_n stand "
+                          "on one line): it turns as if its mass were elsewhere; give every bearing its "
+                          "weight_n, or place them around the centre of mass", PoundingWarning, stacklevel=4)
+        if np.any(shares <= 0.0):
+            q = int(rest[np.argmin(shares)])
+            raise InputError(Problem.BAD_STATE, f"bearings[{q}].at_m", list(self.bearings[q].at_m),
+                             why=f"would carry {shares.min():.6g} N of the building's {total_n:.6g} N: the "
+                                 f"centre of mass ({centre[0]:.4g}, {centre[1]:.4g}) m lies beyond what the "
+                                 "bearings without a weight_n can hold without pulling",
+                             fix="place bearings around the centre of mass, or give each bearing its "
+                                 "weight_n")
         bearings = list(self.bearings)
-        for i in rest:
+        for i, share in zip(rest, shares):
             if bearings[i].is_friction:
                 try:
-                    iso = bearings[i].isolator.carrying(left_n / GRAVITY_M_S2 / len(rest))
+                    iso = bearings[i].isolator.carrying(share / GRAVITY_M_S2)
                 except InputError as exc:  # (a stiffness the weight makes too large: the bearing named)
                     raise exc.relabel("isolator.", f"bearings[{i}].isolator.") from None
                 bearings[i] = dataclasses.replace(bearings[i], isolator=iso)

@@ -8,7 +8,6 @@ by ``(u, v)`` and turns by ``theta`` moves by ``(u - (p_y - c_y) theta, v + (p_x
 
 from __future__ import annotations
 
-import math
 import warnings
 from dataclasses import dataclass
 from typing import Any, ClassVar, Optional
@@ -285,10 +284,10 @@ class Bearing:
         if not iso.preslip_m > 0.0:
             raise InputError(Problem.WRONG_CONFIGURATION, "bearing.isolator.preslip_m", iso.preslip_m,
                              got="with a rigid stick (no pre-slip) in plan", fix=PRESLIP_IN_PLAN)
-        if self.bidirectional:  # (the friction circle's Bouc-Wen z relaxes at |v| / preslip_m: short steps)
-            plausible("bearing.isolator.preslip_m", iso.preslip_m, 1e-4, math.inf,
-                      "a pre-slip in m (0.5 mm is usual; below 0.1 mm the friction circle's Bouc-Wen spring "
-                      "is stiff and its runs take many short steps)")
+        if self.bidirectional and iso.preslip_m < 1e-4:  # (the circle's z relaxes at |v| / preslip_m)
+            warnings.warn(f"bearing.isolator.preslip_m = {iso.preslip_m!r} is below 0.1 mm: the friction "
+                          "circle's Bouc-Wen spring is then stiff and its runs take many short steps (0.5 mm "
+                          "is usual)", PoundingWarning, stacklevel=3)
 
     @property
     def is_friction(self) -> bool:
