@@ -209,8 +209,10 @@ class Bearing:
         hysteresis, uncoupled; and its Bouc-Wen spring if it has one, see ``bidirectional``).  A
         :class:`pounding.FrictionIsolator` (a friction pendulum or a flat slider) needs an elastic
         pre-slip in plan (``preslip_m > 0``) and a constant ``mu``; its weight, unless given
-        (``weight_n``), is an equal share of what the bearings given one leave of the building's (``g``
-        times every floor's mass), shared among every bearing without one.
+        (``weight_n``), is its share of the building's (``g`` times every floor's mass) as a rigid base
+        shares it among equally stiff bearings, balanced at the centre of mass
+        (:class:`pounding.PlanBuilding`), and stays that load (overturning, vertical motion and uplift do
+        not change it).
     isolator_y : Isolator or FrictionIsolator, optional
         Its law along y (a friction bearing's is its ``isolator``'s: leave it out).
     bidirectional : bool

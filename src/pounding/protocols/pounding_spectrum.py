@@ -225,7 +225,8 @@ def pounding_spectrum(records: Record | RecordPair | Sequence[Record] | Sequence
         ``isolator`` are the single mass's: left at their defaults.  Or a building in plan with its moat
         (:class:`pounding.PlanBuilding`): ``periods_s`` are then its isolated period on its bearings'
         initial stiffnesses, its floors rigid (:func:`isolated_period_s`; every bearing's slopes and
-        Bouc-Wen spring scaled to it, its dashpot by the square root, :func:`bearings_at`), and its moat
+        Bouc-Wen spring scaled to it, its dashpot by the square root, :func:`bearings_at`; on friction
+        pendulums their sliding period, their radii scaled), and its moat
         stands at each gap on its four sides; its peaks are ``PLAN_QUANTITIES``: a building's,
         ``disp_max_m`` its largest bearing displacement in plan, ``theta_max_rad``, ``clearance_min_m``
         (the smallest to a wall) and ``moat_demand_m`` (its floor's corners' largest displacement towards
