@@ -7,8 +7,8 @@ high-damping rubber bearings of about the same initial and post-yield stiffness:
 beside a Bouc-Wen spring, one bidirectional spring per bearing (Park, Wen and Ang: yielding under the
 resultant), and the same springs uncoupled (one along each axis).  Every phase with a Bouc-Wen spring is
 integrated numerically (Dormand-Prince 5(4) at the run's rtol), so the ratio is that integration's cost.
-Then on friction pendulums of the bilinear law's post-yield period (R = g / (k2 / m) per bearing's share,
-mu from its yield force, an elastic pre-slip of 0.5 mm): the friction circle (a bidirectional Bouc-Wen
+Then on friction pendulums of the bilinear law's post-yield stiffness (W / R = k2) and characteristic
+strength (mu W = (k1 - k2) d_y), an elastic pre-slip of 0.5 mm: the friction circle (a bidirectional Bouc-Wen
 spring of that yield displacement, n = 2), and one bilinear friction per axis (exact phases).
 
     python benchmarks/plan_rubber.py [--storeys 5] [--rounds 3]
@@ -37,8 +37,8 @@ def rubber(b: pd_.PlanBuilding, bidirectional: bool) -> pd_.PlanBuilding:
 
 
 def sliding(b: pd_.PlanBuilding, bidirectional: bool) -> pd_.PlanBuilding:
-    """``b`` on friction pendulums: each of its bearing's share of the weight, the bilinear law's post-yield
-    stiffness as W / R, its yield force as mu W, a pre-slip of 0.5 mm."""
+    """``b`` on friction pendulums: the bilinear law's post-yield stiffness as W / R and its characteristic
+    strength ``Q = (k1 - k2) d_y`` as mu W (W an equal share of the weight), a pre-slip of 0.5 mm."""
     lrb = b.bearings[0].isolator
     k1, k2 = lrb.slopes_n_m
     weight = 9.81 * sum(f.mass_kg for f in b.floors) / len(b.bearings)

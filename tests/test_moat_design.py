@@ -111,7 +111,14 @@ def test_the_accidental_eccentricity_runs_its_four_cases_and_takes_the_largest()
     # a symmetric building shifted turns: its bearings move further than as built
     as_built = design.moat_design(b, pairs, [0.0, 60.0], duration_s=5.0)
     assert found.design_displacement_m > as_built.design_displacement_m
-    assert len(pounding.plots.plot_moat_design(found)) == 2 + 1 + 2
+    import matplotlib.pyplot as plt
+
+    _, ax = plt.subplots()
+    assert len(pounding.plots.plot_moat_design(found, ax=ax)) == 2 + 1 + 2
+    labels = [t.get_text() for t in ax.texts]  # (each bar's angle and case)
+    critical = found.critical
+    assert labels == [f"{a:g} deg\n{c}" for a, c in zip(critical["angle_deg"], critical["eccentricity"])]
+    plt.close("all")
     # the building's own accidental eccentricity and this one together: refused, as are bad fractions
     edge = _building(centre=(11.5, 0.0))  # (its centre of mass 0.5 m from its side: 5 % moves it off)
     with pytest.raises(InputError, match="four cases") as info:

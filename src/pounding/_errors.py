@@ -129,7 +129,7 @@ class InputError(ValueError):
         details = {"hint": "", **details}  # ({hint}: an optional last word of a fix)
         why = problem.why.format(**details)
         fix = problem.fix.format(**details)
-        if fix.endswith(" in "):  # (a quantity without a unit)
+        if details.get("unit") == "" and fix.endswith(" in "):  # (a quantity without a unit: no "in")
             fix = fix[:-4]
         super().__init__(f"{field} = {value!r} {why}. Fix: {fix}.")
 

@@ -162,7 +162,7 @@ def moat(
     """The moat's gap a building in plan needs: each pair at each orientation without the moat, each pair's
     most critical one, the suite's mean (seven pairs or more) or largest, and the code's D_TM beside."""
     from .._checks import positive
-    from ..design.moat_in_plan import moat_design
+    from ..design.moat_in_plan import accidental_fraction, moat_design
     from ..model.plan import PlanBuilding
 
     out = folder("--out", out)
@@ -180,9 +180,7 @@ def moat(
         pairs = [p.scaled(scale) for p in pairs]
     angles_deg = grid("--angles", angles)
     n_angles = len(angles_deg)
-    if not 0.0 <= accidental <= 0.25:
-        raise typer.BadParameter(f"{accidental:g}: give a fraction of the sides in [0, 0.25] (the codes' 5 % "
-                                 "is 0.05)", param_hint="--accidental")
+    accidental_fraction(accidental, "--accidental")
     n_cases = 4 if accidental else 1
     cases = f" x {n_cases} accidental eccentricities" if accidental else ""
     runs = len(pairs) * n_angles * n_cases

@@ -11,6 +11,7 @@ torsion to the centre's displacement: ``D_TM = D_M [1 + (y / P_T^2) 12 e / (b^2 
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass, field
 from typing import Any, Optional
 
@@ -18,7 +19,7 @@ import numpy as np
 import pandas as pd
 
 from .._checks import at_most, instance_of, non_negative, one_of, one_or_more, plausible, positive
-from .._errors import InputError, Interrupted, Problem
+from .._errors import InputError, Interrupted, PoundingWarning, Problem
 from .._units import GRAVITY_M_S2
 from .._runner import Progress
 from ..excitation.pair import RecordPair
@@ -123,7 +124,9 @@ def asce7_bearings_displacement(building: PlanBuilding, s_m1_g: float, *, rtol: 
     -------
     dict
         ``d_m_m`` (the larger of the two axes'), and per axis ``d_m_x_m``, ``t_m_x_s``, ``beta_m_x``,
-        ``k_m_x_n_m`` (and ``_y_``).
+        ``k_m_x_n_m`` (and ``_y_``).  ``beta_m_x`` is the loops' own; ``B_M`` takes it up to 0.5, as the
+        code's table ends there.  On flat sliders, which have no restoring force (ASCE 7-16 17.2.4.4 asks
+        for one), a PoundingWarning says so: the value is the formulas', not the code's.
 
     Examples
     --------
@@ -158,6 +161,10 @@ def asce7_bearings_displacement(building: PlanBuilding, s_m1_g: float, *, rtol: 
         laws = [b.laws[axis] for b in building.bearings]
         post = sum(law.slopes_n_m[-1] for law in laws)
         if post <= 0.0:  # (flat sliders, a perfectly plastic last slope: their secant at 0.1 m instead)
+            if axis == 0:
+                warnings.warn("building.bearings: they have no restoring force (flat sliders), which ASCE "
+                              "7-16 17.2.4.4 asks of an isolation system: the D_M found is the formulas', "
+                              "not the code's", PoundingWarning, stacklevel=2)
             post = sum(_secant(law, 0.1) for law in laws)
         d = GRAVITY_M_S2 * s_m1 * 2.0 * math.pi * math.sqrt(mass / post) / (4.0 * math.pi**2)  # (a start)
         for _ in range(bound):
@@ -215,13 +222,16 @@ class MoatDesign:
     Attributes
     ----------
     data : pandas.DataFrame
-        One row per pair and angle (index ``pair``, ``angle_deg``): the run's peaks
-        (:meth:`PlanRun.quantities`: ``disp_max_m`` the largest bearing displacement in plan, ...).
+        One row per pair and angle (index ``pair``, ``angle_deg``; with the accidental eccentricity
+        ``pair``, ``eccentricity``, ``angle_deg``, the case one of ``"+x+y"``, ``"+x-y"``, ``"-x+y"``,
+        ``"-x-y"``): the run's peaks (:meth:`PlanRun.quantities`: ``disp_max_m`` the largest bearing
+        displacement in plan, ...).
     critical : pandas.DataFrame
         One row per pair: its most critical angle and its largest bearing displacement in plan there
         (``angle_deg``, ``disp_max_m``); and where the runs have it, the largest demand on the moat over the
         angles and its angle (``moat_demand_m``, ``demand_angle_deg``: the moat's floor's corners' largest
-        displacement towards a wall, :meth:`PlanRun.quantities`).
+        displacement towards a wall, :meth:`PlanRun.quantities`); with the accidental eccentricity, each
+        one's case too (``eccentricity``, ``demand_eccentricity``).
     design_displacement_m : float
         The mean of the pairs' critical displacements (seven pairs or more), or their largest (fewer), m:
         the isolation system's, as the codes ask.
@@ -256,7 +266,8 @@ class MoatDesign:
 
     @classmethod
     def of(cls, data: pd.DataFrame, code: dict | None, complete: bool = True) -> "MoatDesign":
-        """The design from the runs' peaks (``data``, indexed by pair and angle)."""
+        """The design from the runs' peaks (``data``, indexed by pair, the accidental case if any, and
+        angle)."""
         rows = []
         columns = [c for c in ("disp_max_m", "moat_demand_m") if c in data]
         cased = "eccentricity" in data.index.names  # (the accidental cases: each critical run's named)
@@ -290,8 +301,8 @@ class MoatDesign:
         return self.data.copy()
 
     def to_xarray(self) -> Any:
-        """:attr:`data` as a Dataset along ``pair`` and ``angle_deg``, the design displacement as an
-        attribute."""
+        """:attr:`data` as a Dataset along ``pair`` (``eccentricity``) and ``angle_deg``, the design
+        displacement as an attribute."""
         import xarray as xr
 
         return xr.Dataset.from_dataframe(self.data).assign_attrs(
@@ -420,23 +431,30 @@ def moat_design(building: PlanBuilding, pairs: Any, angles_deg: Any = None, dura
 ACCIDENTAL_CASES = ("+x+y", "+x-y", "-x+y", "-x-y")  # (PlanBuilding.accidental_cases' order)
 
 
+def accidental_fraction(value: Any, field: str = "accidental") -> float:
+    """An accidental eccentricity as a fraction of the sides, checked: in [0, 0.25], a warning beyond 0.1."""
+    fraction = non_negative(field, value, "")
+    at_most(field, fraction, 0.25, "", "give a fraction of the sides (the codes' 5 % is 0.05)")
+    plausible(field, fraction, 0.0, 0.1, "a fraction of the sides (the codes' 5 % is 0.05)")
+    return fraction
+
+
 def _cases(building: PlanBuilding, accidental: float) -> list[tuple[Optional[str], PlanBuilding]]:
     """The buildings a design runs, without their moat, each with its case's name (None: as built)."""
-    fraction = non_negative("accidental", accidental, "")
+    fraction = accidental_fraction(accidental)
     if fraction == 0.0:
         return [(None, building.without_bumpers())]
-    at_most("accidental", fraction, 0.25, "", "give a fraction of the sides (the codes' 5 % is 0.05)")
-    plausible("accidental", fraction, 0.0, 0.1, "a fraction of the sides (the codes' 5 % is 0.05)")
     if any(building.accidental_eccentricity):
-        raise InputError(Problem.WRONG_CONFIGURATION, "accidental", fraction,
-                         got=f"whose building has its own accidental_eccentricity "
-                             f"{list(building.accidental_eccentricity)}",
+        raise InputError(Problem.BAD_STATE, "accidental", fraction,
+                         why=f"is given to a building with its own accidental_eccentricity "
+                             f"{list(building.accidental_eccentricity)}: they would count twice",
                          fix="give the building as built (accidental_eccentricity (0, 0)), or accidental 0")
     try:
         shifted = building.accidental_cases(fraction)
     except InputError as exc:  # (a centre of mass moved off its floor)
         raise InputError(Problem.BAD_STATE, "accidental", fraction,
-                         why=f"shifts a centre of mass off its floor in one of its four cases: {exc}",
+                         why=f"shifts a centre of mass off its floor in one of its four cases "
+                             f"({exc.field} {exc.value!r})",
                          fix="give a smaller fraction, or the floors' centres of mass nearer their middle") \
             from None
     return [(name, b.without_bumpers()) for name, b in zip(ACCIDENTAL_CASES, shifted)]

@@ -316,8 +316,8 @@ class FrictionIsolator(CarriesWeight):
         ``beta = gamma = 1/2``: its force ``mu W z``, ``|z| <= 1``), which the bearing's two axes share
         (Constantinou, Mokha and Reinhorn 1990).  It needs an elastic pre-slip."""
         if not self.preslip_m > 0.0:
-            raise InputError(Problem.WRONG_CONFIGURATION, "isolator.preslip_m", self.preslip_m,
-                             got="with a rigid stick (no pre-slip) for the friction circle in plan",
+            raise InputError(Problem.BAD_STATE, "isolator.preslip_m", self.preslip_m,
+                             why="is a rigid stick, which the friction circle in plan cannot have",
                              fix=PRESLIP_IN_PLAN)
         spring = BoucWen(self.friction_force_n / self.preslip_m, self.preslip_m, 1.0, 0.5, 0.5, CIRCLE_N)
         return (np.array([self.restoring_stiffness_n_m]), np.zeros(0), RULE_KINEMATIC, spring.kernel_array())

@@ -271,21 +271,21 @@ class Bearing:
     def _check_friction(self) -> None:
         """A friction bearing in plan: one law for both axes, with an elastic pre-slip and a constant mu."""
         if self.isolator_y is not None:
-            which = "as isolator_y" if isinstance(self.isolator_y, FrictionIsolator) else "on one axis"
-            raise InputError(Problem.WRONG_CONFIGURATION, "bearing.isolator_y", self.isolator_y,
-                             got=f"with a friction isolator {which} (a sliding bearing's friction is the "
-                                 "same along x and y)",
+            why = ("is a friction isolator" if isinstance(self.isolator_y, FrictionIsolator) else
+                   "is given beside a friction isolator")
+            raise InputError(Problem.BAD_STATE, "bearing.isolator_y", self.isolator_y,
+                             why=f"{why} (a sliding bearing's friction is the same along x and y)",
                              fix="leave isolator_y out and give a friction isolator as isolator (it serves "
                                  "both axes)")
         iso = self.isolator
         if iso.mu_fast is not None:
-            raise InputError(Problem.WRONG_CONFIGURATION, "bearing.isolator.mu_fast", iso.mu_fast,
-                             got="with a velocity-dependent friction in plan (not supported yet: it needs "
-                                 "the rigid stick)",
+            raise InputError(Problem.BAD_STATE, "bearing.isolator.mu_fast", iso.mu_fast,
+                             why="is a velocity-dependent friction, not supported in plan yet (it needs the "
+                                 "rigid stick)",
                              fix="leave mu_fast out (a constant mu) and give preslip_m")
         if not iso.preslip_m > 0.0:
-            raise InputError(Problem.WRONG_CONFIGURATION, "bearing.isolator.preslip_m", iso.preslip_m,
-                             got="with a rigid stick (no pre-slip) in plan", fix=PRESLIP_IN_PLAN)
+            raise InputError(Problem.BAD_STATE, "bearing.isolator.preslip_m", iso.preslip_m,
+                             why="is a rigid stick, which a bearing in plan cannot have", fix=PRESLIP_IN_PLAN)
         if self.bidirectional and iso.preslip_m < 1e-4:  # (the circle's z relaxes at |v| / preslip_m)
             warnings.warn(f"bearing.isolator.preslip_m = {iso.preslip_m!r} is below 0.1 mm: the friction "
                           "circle's Bouc-Wen spring is then stiff and its runs take many short steps (0.5 mm "

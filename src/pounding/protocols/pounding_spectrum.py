@@ -75,9 +75,9 @@ def _sliding(building: PlanBuilding) -> bool:
         return False
     for q, b in enumerate(building.bearings):
         if not b.is_friction or b.isolator.radius_m is None:
-            raise InputError(Problem.WRONG_CONFIGURATION, f"structure.bearings[{q}].isolator", b.isolator,
-                             got="with a flat slider (no period to scale)" if b.is_friction else
-                                 "with rubber bearings beside friction bearings (a spectrum scales a "
+            raise InputError(Problem.BAD_STATE, f"structure.bearings[{q}].isolator", b.isolator,
+                             why="is a flat slider: it has no period to scale" if b.is_friction else
+                                 "is a rubber bearing beside friction bearings (a spectrum scales a "
                                  "friction pendulum's radius and a rubber bearing's stiffness: a mixture has "
                                  "no one isolated period)",
                              fix="give every bearing a friction pendulum (radius_m), or none a friction "
@@ -120,9 +120,9 @@ def bearings_at(building: PlanBuilding, period_s: float) -> PlanBuilding:
                                                 for b in building.bearings))
     except InputError as exc:  # (a period the bearings cannot have: the period named, the law's words kept)
         raise InputError(Problem.BAD_STATE, "period_s", period_s,
-                         why=f"is beyond what the bearings can be scaled to: {exc}",
-                         fix="give a period the bearings can have (a friction pendulum's radius g (T / 2 "
-                             "pi)^2)") from None
+                         why=f"is beyond what the bearings can be scaled to (it makes {exc.field} "
+                             f"{exc.value!r})",
+                         fix="give a period the bearings can have") from None
 
 
 def _systems(task: tuple, period: float) -> list:
