@@ -33,10 +33,10 @@ def test_a_bearing_carries_its_share_of_the_building_s_weight_unless_given():
     b = PlanBuilding([Floor(4e5, (20.0, 12.0)), Floor(2e5, (20.0, 12.0))],
                      [Bearing((sx * 8.0, sy * 4.0), fps) for sx in (-1, 1) for sy in (-1, 1)],
                      [pounding.Frame(1, axis, s * 3.0, 2e8) for axis in "xy" for s in (-1, 1)])
-    assert [x.isolator.weight_n for x in b.bearings] == pytest.approx([G * 6e5 / 4] * 4, rel=1e-14)
+    assert [x.isolator.weight_n for x in b.bearings] == pytest.approx([G * 6e5 / 4] * 4, rel=1e-15)
     # a floor heavier: the shares follow; a weight given: kept
     heavier = dataclasses.replace(b, floors=[Floor(8e5, (20.0, 12.0)), Floor(2e5, (20.0, 12.0))])
-    assert heavier.bearings[0].isolator.weight_n == pytest.approx(G * 1e6 / 4, rel=1e-14)
+    assert heavier.bearings[0].isolator.weight_n == pytest.approx(G * 1e6 / 4, rel=1e-15)
     given = dataclasses.replace(b, bearings=[Bearing(x.at_m, dataclasses.replace(fps, weight_n=1.5e6))
                                              for x in b.bearings])
     assert [x.isolator.weight_n for x in given.bearings] == [1.5e6] * 4

@@ -129,8 +129,7 @@ class InputError(ValueError):
         details = {"hint": "", **details}  # ({hint}: an optional last word of a fix)
         why = problem.why.format(**details)
         fix = problem.fix.format(**details)
-        if details.get("unit") == "" and fix.endswith(" in "):  # (a quantity without a unit: no "in")
-            fix = fix[:-4]
+        fix = fix[:-4] if details.get("unit") == "" and fix.endswith(" in ") else fix  # (no unit: no "in")
         super().__init__(f"{field} = {value!r} {why}. Fix: {fix}.")
 
     def __reduce__(self) -> tuple:

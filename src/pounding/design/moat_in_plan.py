@@ -23,7 +23,8 @@ from .._errors import InputError, Interrupted, PoundingWarning, Problem
 from .._units import GRAVITY_M_S2
 from .._runner import Progress
 from ..excitation.pair import RecordPair
-from ..model.plan import ACCIDENTAL, PlanBuilding
+from ..model.plan import (ACCIDENTAL, ACCIDENTAL_CASE_NAMES, MAX_ACCIDENTAL, PLAUSIBLE_ACCIDENTAL,
+                          PlanBuilding)
 
 MIN_PAIRS_FOR_MEAN = 7  # ASCE 7-16 17.6.3.3, EN 1998-1 4.3.3.4.3: the mean of seven pairs or more
 
@@ -428,14 +429,11 @@ def moat_design(building: PlanBuilding, pairs: Any, angles_deg: Any = None, dura
     return MoatDesign.of(_joined(tables), code)
 
 
-ACCIDENTAL_CASES = ("+x+y", "+x-y", "-x+y", "-x-y")  # (PlanBuilding.accidental_cases' order)
-
-
 def accidental_fraction(value: Any, field: str = "accidental") -> float:
     """An accidental eccentricity as a fraction of the sides, checked: in [0, 0.25], a warning beyond 0.1."""
     fraction = non_negative(field, value, "")
-    at_most(field, fraction, 0.25, "", "give a fraction of the sides (the codes' 5 % is 0.05)")
-    plausible(field, fraction, 0.0, 0.1, "a fraction of the sides (the codes' 5 % is 0.05)")
+    at_most(field, fraction, MAX_ACCIDENTAL, "", "give a fraction of the sides (the codes' 5 % is 0.05)")
+    plausible(field, fraction, 0.0, PLAUSIBLE_ACCIDENTAL, "a fraction of the sides (the codes' 5 % is 0.05)")
     return fraction
 
 
@@ -457,7 +455,7 @@ def _cases(building: PlanBuilding, accidental: float) -> list[tuple[Optional[str
                              f"({exc.field} {exc.value!r})",
                          fix="give a smaller fraction, or the floors' centres of mass nearer their middle") \
             from None
-    return [(name, b.without_bumpers()) for name, b in zip(ACCIDENTAL_CASES, shifted)]
+    return [(name, b.without_bumpers()) for name, b in zip(ACCIDENTAL_CASE_NAMES, shifted)]
 
 
 def _joined(tables: list[pd.DataFrame]) -> pd.DataFrame:

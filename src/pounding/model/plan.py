@@ -28,6 +28,10 @@ from .structure_parts import MAX_STOREYS
 MAX_BEARINGS = 400  # refused beyond
 DOF_NAMES = ("x", "y", "theta")  # a floor's three dofs, in order
 ACCIDENTAL = 0.05  # the codes' accidental eccentricity, a fraction of the plan's side (ASCE 7, EN 1998)
+MAX_ACCIDENTAL, PLAUSIBLE_ACCIDENTAL = 0.25, 0.1  # (a fraction of the side: refused, warned beyond)
+ACCIDENTAL_SIGNS = ((1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0))  # (accidental_cases' four, in order)
+ACCIDENTAL_CASE_NAMES = tuple("".join(("+" if s > 0 else "-") + axis for s, axis in zip(signs, "xy"))
+                              for signs in ACCIDENTAL_SIGNS)  # ("+x+y", "+x-y", "-x+y", "-x-y")
 
 
 def point_weights(floor: Floor, level: int, axis: int,
@@ -138,11 +142,11 @@ class PlanBuilding(TomlFile):
             raise InputError(Problem.LENGTH_MISMATCH, "accidental_eccentricity", list(ecc), got=len(ecc),
                              expected=2, hint=" (fractions of the sides along x and y, such as (0.05, 0.0))")
         for j, e in enumerate(ecc):
-            if abs(e) > 0.25:
+            if abs(e) > MAX_ACCIDENTAL:
                 raise InputError(Problem.OUT_OF_RANGE, f"accidental_eccentricity[{j}]", e,
-                                 range="[-0.25, 0.25]",
+                                 range=f"[-{MAX_ACCIDENTAL:g}, {MAX_ACCIDENTAL:g}]",
                                  hint=" (a fraction of the side: the codes' 5 % is 0.05)")
-            plausible(f"accidental_eccentricity[{j}]", abs(e), 0.0, 0.1,
+            plausible(f"accidental_eccentricity[{j}]", abs(e), 0.0, PLAUSIBLE_ACCIDENTAL,
                       "a fraction of the side (the codes' 5 % is 0.05)")
         object.__setattr__(self, "accidental_eccentricity", ecc)
         for level, f in enumerate(self.floors):  # (each centre of mass moved: still on its floor)
@@ -283,9 +287,9 @@ class PlanBuilding(TomlFile):
 
     def accidental_cases(self, fraction: float = ACCIDENTAL) -> tuple["PlanBuilding", ...]:
         """The building with its centres of mass moved by ``fraction`` of each side, each of the four
-        signs: ``(+x, +y), (+x, -y), (-x, +y), (-x, -y)``."""
+        signs: ``(+x, +y), (+x, -y), (-x, +y), (-x, -y)`` (:data:`ACCIDENTAL_CASE_NAMES`)."""
         return tuple(dataclasses.replace(self, accidental_eccentricity=(sx * fraction, sy * fraction))
-                     for sx in (1.0, -1.0) for sy in (1.0, -1.0))
+                     for sx, sy in ACCIDENTAL_SIGNS)
 
     # ------------------------------------------------------------------ matrices
     @property
@@ -432,4 +436,4 @@ class PlanBuilding(TomlFile):
                    table.get("accidental_eccentricity", (0.0, 0.0)))
 
 
-__all__ = ["ACCIDENTAL", "DOF_NAMES", "PlanBuilding", "point_weights"]
+__all__ = ["ACCIDENTAL", "ACCIDENTAL_CASE_NAMES", "DOF_NAMES", "PlanBuilding", "point_weights"]
