@@ -156,8 +156,13 @@ def test_a_system_goes_in_by_name_and_comes_back_from_a_pickle_by_name():
     sy = _core.system([500.0], np.zeros((1, 1)), np.zeros((1, 1)), [iso], True, [slot])
     back = pickle.loads(pickle.dumps(sy))
     assert back.__getstate__() == sy.__getstate__()
-    named = {"n", "mass", "k0", "c0", "elements", "has_b", "contacts", "tracked", "infl", "norm_p", "norm_q"}
+    named = {"n", "mass", "k0", "c0", "elements", "has_b", "contacts", "tracked", "infl", "norm_p", "norm_q",
+             "norm_at"}
     assert set(sy.__getstate__()) == named
+    before = {k: v for k, v in sy.__getstate__().items() if k != "norm_at"}  # (a pickle from before offsets)
+    again = _core.System.__new__(_core.System)
+    again.__setstate__(before)
+    assert again.__getstate__() == sy.__getstate__()
     assert pickle.loads(pickle.dumps(slot)).gap_m == 0.03
     assert pickle.loads(pickle.dumps(iso)).breaks == [0.015]
     # a Bouc-Wen spring is an element's, and travels with it; a pickle from before (the system's, element

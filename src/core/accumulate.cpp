@@ -48,10 +48,10 @@ void outputs(const double* st, const System& sy, double* q, double* row) {
         fc[c] = 0.0;
         if (st[L.in_at(c)] == 0.0) continue;
         const Contact& ct = sy.contact[static_cast<size_t>(c)];
-        const double f = law_force(ct.law, ct.p, ct.sign * rel(x, ct) - ct.gap, ct.sign * rel(v, ct),
-                                   st + L.z_at(c)).f;
+        const Compression cp = compression(ct, x, v);
+        const double f = law_force(ct.law, ct.p, cp.d, cp.dv, st + L.z_at(c)).f;
         fc[c] = f;
-        push_pair(q, ct, ct.sign * f);
+        push_contact(q, ct, x, f);
     }
     row[0] = st[T];
     for (int i = 0; i < n; ++i) {
@@ -262,8 +262,8 @@ void numeric_contributions(Phase& ph, const System& sy, double* st, double tau, 
     for (int c = 0; c < ph.nc; ++c) {  // a linear law's branch in a numerical phase: its spring's loss
         const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
         if (k.in && law_is_linear(k.law)) {
-            ledger[L_BUMPER_LOSS] += law_branch_loss(k.law, k.p, k.jb, k.sign * rel(e.y0, k) - k.gap,
-                                                     k.sign * rel(e.y1, k) - k.gap, k.lz);
+            ledger[L_BUMPER_LOSS] += law_branch_loss(k.law, k.p, k.jb, compression_of(k, e.y0),
+                                                     compression_of(k, e.y1), k.lz);
         }
     }
 }
@@ -319,8 +319,10 @@ ScreenedAcc abs_acceleration_range(const ExtremaScreen& s, const Phase& ph, doub
     const int n = ph.n;
     const Pair& pp = sy.track[static_cast<size_t>(sy.norm_p[static_cast<size_t>(q)])];
     const Pair& pq = sy.track[static_cast<size_t>(sy.norm_q[static_cast<size_t>(q)])];
+    const double op = sy.norm_at[static_cast<size_t>(2 * q)], oq = sy.norm_at[static_cast<size_t>(2 * q + 1)];
+    // (u, w: the components' displacements; the length is the offset's plus theirs)
     auto at = [&](double t, double u, double w) {
-        const double r = std::hypot(u, w);
+        const double r = std::hypot(op + u, oq + w);
         if (r > ex[NX_MAX]) {
             ex[NX_MAX] = r;
             ex[NX_MAX_T] = t;
@@ -332,22 +334,25 @@ ScreenedAcc abs_acceleration_range(const ExtremaScreen& s, const Phase& ph, doub
     at(t0, u0, w0);
     at(t0 + tau, u1, w1);
     if (!inside) return;
-    auto largest = [&](const Pair& pr, double f0, double f1) {
-        double m = std::max(std::abs(f0), std::abs(f1));
+    auto largest = [&](const Pair& pr, double o, double f0, double f1) {
+        double m = std::max(std::abs(o + f0), std::abs(o + f1));
         const Phase::Zeros& z = velocity_zeros(ph, pr);
         for (int k = 0; k < z.count; ++k)
-            if (z.t[k] < tau) m = std::max(m, std::abs(z.x[k]));
+            if (z.t[k] < tau) m = std::max(m, std::abs(o + z.x[k]));
         return m;
     };
-    if (std::hypot(largest(pp, u0, u1), largest(pq, w0, w1)) <= ex[NX_MAX]) return;
+    if (std::hypot(largest(pp, op, u0, u1), largest(pq, oq, w0, w1)) <= ex[NX_MAX]) return;
     const double vp0 = rel(e.y0 + n, pp), vq0 = rel(e.y0 + n, pq), vp1 = rel(e.y1 + n, pp), vq1 = rel(e.y1 + n, pq);
-    const double g0 = u0 * vp0 + w0 * vq0, g1 = u1 * vp1 + w1 * vq1;
-    const double b0 = vp0 * vp0 + vq0 * vq0 + u0 * rel(e.a0, pp) + w0 * rel(e.a0, pq);
-    const double b1 = vp1 * vp1 + vq1 * vq1 + u1 * rel(e.a1, pp) + w1 * rel(e.a1, pq);
+    const double U0 = op + u0, W0 = oq + w0, U1 = op + u1, W1 = oq + w1;
+    const double g0 = U0 * vp0 + W0 * vq0, g1 = U1 * vp1 + W1 * vq1;
+    const double b0 = vp0 * vp0 + vq0 * vq0 + U0 * rel(e.a0, pp) + W0 * rel(e.a0, pq);
+    const double b1 = vp1 * vp1 + vq1 * vq1 + U1 * rel(e.a1, pp) + W1 * rel(e.a1, pq);
     Fn fg;
     fg.kind = FN_NORM_RATE;
     fg.pair = &pp;
     fg.second = &pq;
+    fg.at[0] = op;
+    fg.at[1] = oq;
     auto length_at = [&](double t) {
         if (!(0.0 < t && t < tau)) return;
         phase_eval(ph, t, ph.ye.data(), ph.ae.data());
@@ -364,6 +369,35 @@ ScreenedAcc abs_acceleration_range(const ExtremaScreen& s, const Phase& ph, doub
         if (0.0 < t_b && t_b < tau && g_b * g0 < 0.0) {
             length_at(find_root(fg, ph, 0.0, t_b, g0, g_b, b0, b_b, XTOL_EXTREMUM_S));
             length_at(find_root(fg, ph, t_b, tau, g_b, g1, b_b, b1, XTOL_EXTREMUM_S));
+        }
+    }
+}
+
+// a ring's contact (core.hpp's Radial) in progress: its compression's largest inside (0, tau) into mc, where
+// its rate crosses zero (once, or twice where it turns back inside)
+void deepest_on_ring(Phase& ph, int c, double tau, const Ends& e, double& mc) {
+    const int n = ph.n;
+    const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
+    const Compression c0 = compression(k, e.y0, e.y0 + n, e.a0), c1 = compression(k, e.y1, e.y1 + n, e.a1);
+    Fn fr;
+    fr.kind = FN_COMPRESSION_RATE;
+    fr.idx = c;
+    auto deepest_at = [&](double t) {
+        phase_eval(ph, t, ph.ye.data(), ph.ae.data());
+        mc = std::max(mc, compression_of(k, ph.ye.data()));
+    };
+    if (c0.dv * c1.dv < 0.0) {
+        deepest_at(find_root(fr, ph, 0.0, tau, c0.dv, c1.dv, c0.da, c1.da, XTOL_S));
+    } else if (c0.dv * c1.dv > 0.0 && c0.da * c1.da < 0.0 && may_turn_back(tau, c0.dv, c1.dv, c0.da, c1.da)) {
+        Fn fb;
+        fb.kind = FN_COMPRESSION_BEND;
+        fb.idx = c;
+        const double t_b = find_root(fb, ph, 0.0, tau, c0.da, c1.da, NaN, NaN, XTOL_EXTREMUM_S);
+        double v_b, a_b;
+        fn_eval(fr, ph, t_b, v_b, a_b);
+        if (0.0 < t_b && t_b < tau && v_b * c0.dv < 0.0) {
+            deepest_at(find_root(fr, ph, 0.0, t_b, c0.dv, v_b, c0.da, a_b, XTOL_S));
+            deepest_at(find_root(fr, ph, t_b, tau, v_b, c1.dv, a_b, c1.da, XTOL_S));
         }
     }
 }
@@ -424,8 +458,12 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
         const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
         if (!k.in) continue;
         double& mc = st[L.acc_at(c) + A_MAXCOMP];
-        mc = std::max(mc, k.sign * rel(e.y0, k) - k.gap);
-        mc = std::max(mc, k.sign * rel(e.y1, k) - k.gap);
+        mc = std::max(mc, compression_of(k, e.y0));
+        mc = std::max(mc, compression_of(k, e.y1));
+        if (k.radial.on) {  // (a ring's: where its compression's rate is zero inside)
+            deepest_on_ring(ph, c, tau, e, mc);
+            continue;
+        }
         const Phase::Zeros& z = velocity_zeros(ph, k);
         for (int q = 0; q < z.count; ++q)
             if (z.t[q] < tau) mc = std::max(mc, k.sign * z.x[q] - k.gap);

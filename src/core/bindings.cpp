@@ -135,6 +135,15 @@ Hysteretic element_of(int i, int j, double c_d, const std::vector<double>& slope
     return h;
 }
 
+// a contact on a ring's wall (Radial): the point's pair along y, its place from the centre at rest, the radius
+void set_ring(Contact& c, const Pair& y, double px, double py, double radius) {
+    c.radial.on = true;
+    c.radial.y = y;
+    c.radial.px = px;
+    c.radial.py = py;
+    c.radial.radius = radius;
+}
+
 nb::dict contact_state(const Contact& c) {
     nb::dict d;
     d["i"] = c.i;
@@ -144,6 +153,12 @@ nb::dict contact_state(const Contact& c) {
     d["law"] = c.law;
     d["params"] = std::vector<double>(c.p, c.p + N_LAW_PARAMS);
     levers_state(d, c);
+    if (c.radial.on) {
+        d["ring_y"] = tracked_state(c.radial.y);
+        d["ring_px_m"] = c.radial.px;
+        d["ring_py_m"] = c.radial.py;
+        d["ring_radius_m"] = c.radial.radius;
+    }
     return d;
 }
 
@@ -152,6 +167,10 @@ Contact contact_from_state(const nb::dict& d) {
                            nb::cast<double>(d["gap_m"]), nb::cast<int>(d["law"]),
                            nb::cast<std::vector<double>>(d["params"]));
     levers_from_state(c, d);
+    if (d.contains("ring_y")) {  // (a ring's wall: core.hpp's Radial)
+        set_ring(c, tracked_from_state(nb::cast<nb::dict>(d["ring_y"])), nb::cast<double>(d["ring_px_m"]),
+                 nb::cast<double>(d["ring_py_m"]), nb::cast<double>(d["ring_radius_m"]));
+    }
     return c;
 }
 
@@ -192,7 +211,8 @@ Hysteretic element_from_state(const nb::dict& d) {
 
 void fill_system(System& s, int n, const std::vector<double>& mass, const std::vector<double>& k0,
                  const std::vector<double>& c0, const std::vector<Hysteretic>& elements, bool has_b, const std::vector<Contact>& contacts, const std::vector<Pair>& tracked,
-                 const std::vector<double>& infl, const std::vector<int>& norm_p, const std::vector<int>& norm_q) {
+                 const std::vector<double>& infl, const std::vector<int>& norm_p, const std::vector<int>& norm_q,
+                 const std::vector<double>& norm_at) {
     s.n = n;
     s.mass = mass;
     s.k0 = k0;
@@ -203,6 +223,9 @@ void fill_system(System& s, int n, const std::vector<double>& mass, const std::v
     s.track = tracked;
     s.norm_p = norm_p;
     s.norm_q = norm_q;
+    if (!norm_at.empty() && norm_at.size() != 2 * norm_p.size())
+        throw std::invalid_argument("norm_at: 2 values a vector (its offset), or none");
+    s.norm_at = norm_at;
     if (!infl.empty() && static_cast<int>(infl.size()) != 2 * n)
         throw std::invalid_argument("infl: 2 n values (each dof's influence of the two components), or none");
     s.infl = infl;
@@ -226,6 +249,7 @@ nb::dict system_state(const System& s) {
     d["tracked"] = tracked;
     d["norm_p"] = s.norm_p;
     d["norm_q"] = s.norm_q;
+    d["norm_at"] = s.norm_at;
     d["infl"] = s.infl;
     return d;
 }
@@ -254,7 +278,8 @@ void system_from_state(System& s, const nb::dict& d) {
                 tracked,
                 d.contains("infl") ? nb::cast<std::vector<double>>(d["infl"]) : std::vector<double>(),
                 d.contains("norm_p") ? nb::cast<std::vector<int>>(d["norm_p"]) : std::vector<int>(),
-                d.contains("norm_q") ? nb::cast<std::vector<int>>(d["norm_q"]) : std::vector<int>());
+                d.contains("norm_q") ? nb::cast<std::vector<int>>(d["norm_q"]) : std::vector<int>(),
+                d.contains("norm_at") ? nb::cast<std::vector<double>>(d["norm_at"]) : std::vector<double>());
 }
 
 // (p: amplitude, omega, phase, then the second component's amplitude and phase; rec_b empty: no second
@@ -293,19 +318,28 @@ NB_MODULE(_pounding_core, m) {
     auto slot = nb::class_<Contact>(m, "ContactSlot")
         .def("__init__",
              [](Contact* c, int i, int j, double sign, double gap_m, int law, const std::vector<double>& params,
-                int lever_i, double arm_i_m, int lever_j, double arm_j_m) {
+                int lever_i, double arm_i_m, int lever_j, double arm_j_m, const Pair* ring_y, double ring_px_m,
+                double ring_py_m, double ring_radius_m) {
                  new (c) Contact(contact_of(i, j, sign, gap_m, law, params));
                  set_levers(*c, lever_i, arm_i_m, lever_j, arm_j_m);
+                 if (ring_y != nullptr) set_ring(*c, *ring_y, ring_px_m, ring_py_m, ring_radius_m);
              },
              nb::kw_only(), nb::arg("i"), nb::arg("j"), nb::arg("sign"), nb::arg("gap_m"), nb::arg("law"),
              nb::arg("params"), nb::arg("lever_i") = -1, nb::arg("arm_i_m") = 0.0, nb::arg("lever_j") = -1,
-             nb::arg("arm_j_m") = 0.0)
+             nb::arg("arm_j_m") = 0.0, nb::arg("ring_y").none() = nb::none(), nb::arg("ring_px_m") = 0.0,
+             nb::arg("ring_py_m") = 0.0, nb::arg("ring_radius_m") = 0.0)
         .def_ro("i", &Contact::i)
         .def_ro("j", &Contact::j)
         .def_ro("sign", &Contact::sign)
         .def_ro("gap_m", &Contact::gap)
         .def_ro("law", &Contact::law)
         .def_prop_ro("params", [](const Contact& c) { return std::vector<double>(c.p, c.p + N_LAW_PARAMS); })
+        .def_prop_ro("ring_y", [](const Contact& c) -> nb::object {
+            return c.radial.on ? nb::cast(c.radial.y) : nb::none();
+        })
+        .def_prop_ro("ring_px_m", [](const Contact& c) { return c.radial.px; })
+        .def_prop_ro("ring_py_m", [](const Contact& c) { return c.radial.py; })
+        .def_prop_ro("ring_radius_m", [](const Contact& c) { return c.radial.radius; })
         .def("__getstate__", &contact_state)
         .def("__setstate__", [](Contact& c, const nb::dict& d) { new (&c) Contact(contact_from_state(d)); });
 
@@ -353,14 +387,15 @@ NB_MODULE(_pounding_core, m) {
                 const std::vector<double>& c0, const std::vector<Hysteretic>& elements,
                 bool has_b, const std::vector<Contact>& contacts,
                 const std::vector<Pair>& tracked, const std::vector<double>& infl, const std::vector<int>& norm_p,
-                const std::vector<int>& norm_q) {
+                const std::vector<int>& norm_q, const std::vector<double>& norm_at) {
                  new (s) System();
-                 fill_system(*s, n, mass, k0, c0, elements, has_b, contacts, tracked, infl, norm_p, norm_q);
+                 fill_system(*s, n, mass, k0, c0, elements, has_b, contacts, tracked, infl, norm_p, norm_q,
+                             norm_at);
              },
              nb::kw_only(), nb::arg("n"), nb::arg("mass"), nb::arg("k0"), nb::arg("c0"), nb::arg("elements"),
              nb::arg("has_b"), nb::arg("contacts"), nb::arg("tracked"),
              nb::arg("infl") = std::vector<double>(), nb::arg("norm_p") = std::vector<int>(),
-             nb::arg("norm_q") = std::vector<int>())
+             nb::arg("norm_q") = std::vector<int>(), nb::arg("norm_at") = std::vector<double>())
         .def_ro("n", &System::n)
         .def_ro("mass", &System::mass)
         .def_ro("plain", &System::plain)

@@ -168,6 +168,18 @@ inline bool same_pair(const Pair& a, const Pair& b) {
            (!a.lev || (a.li == b.li && a.lj == b.lj && a.ai == b.ai && a.aj == b.aj));
 }
 
+// A radial contact: a ring's wall (a circular moat) struck by a point of a floor.  The point sits at (px, py)
+// from the ring's centre at rest and moves by (u_x, u_y): its contact's own pair's w . x and pair y's.  Its
+// compression is |(px + u_x, py + u_y)| - radius, and the wall pushes it back along the normal there, n = (px +
+// u_x, py + u_y) / |.|: a force f pushes the dofs by -f (n_x w_x + n_y w_y).  Not a linear function of the
+// motion: a phase in contact with it is integrated numerically, and its start's event is evaluated on the
+// trajectory (events.cpp's KIND_RADIAL).
+struct Radial {
+    bool on = false;
+    Pair y;
+    double px = 0.0, py = 0.0, radius = 0.0;
+};
+
 // One contact: a bumper (or a stop) on a pair (Pair: dof i against dof j or the ground, x_i - x_j its w . x
 // on levers) behind a gap.  Its compression is sign (x_i - x_j) - gap in contact; it pushes dof i by -sign F
 // and dof j by +sign F (the dofs by -sign F w).  (A one-mass system's left bumper is sign -1, its right +1.)
@@ -176,6 +188,7 @@ struct Contact : Pair {
     double gap = 0.0;
     int law = 0;
     double p[N_LAW_PARAMS] = {0};
+    Radial radial;  // (on: a ring's wall, struck along its normal; sign +1, gap its clearance at rest)
 };
 
 // A hysteretic element: a rate-independent multi-linear spring (slopes N/m, n_springs + 1; breaks m, n_springs)
@@ -225,6 +238,9 @@ struct System {
     std::vector<Pair> track;  // pairs whose relative displacement's extrema a run finds (drifts, a bearing's)
     // vectors whose length's largest a run finds: two tracked pairs each (indices into track), its components
     std::vector<int> norm_p, norm_q;
+    // and each vector's offset (2 a vector, m: a floor's corner's place from a ring's centre, whose distance
+    // from it is the length found); empty: none
+    std::vector<double> norm_at;
     std::vector<Pair> dof_pair;  // (derived: each dof against the ground, made once for the hot paths)
     // how the ground's two components move each dof (n x 2, row by dof: the table acceleration on dof i is
     // infl[2 i] a_x + infl[2 i + 1] a_y); empty: every dof moves with the first component (a line's table)
@@ -288,6 +304,7 @@ struct System {
             infl.assign(static_cast<size_t>(2 * n), 0.0);
             for (int i = 0; i < n; ++i) infl[static_cast<size_t>(2 * i)] = 1.0;
         }
+        if (static_cast<int>(norm_at.size()) != 2 * n_norm()) norm_at.assign(static_cast<size_t>(2 * n_norm()), 0.0);
         plain = true;
         for (int i = 0; i < n; ++i)
             plain = plain && infl[static_cast<size_t>(2 * i)] == 1.0 && infl[static_cast<size_t>(2 * i + 1)] == 0.0;

@@ -21,6 +21,11 @@ double abs_acceleration_rate(Phase& ph, int i, double tau, const double* y, cons
     // (each force along its pair's w: dof i takes its weight there, +-1 on a plain pair, exact)
     for (int c = 0; c < ph.nc; ++c) {
         const ContactPhase& k = slot(ph, c);
+        if (k.radial.on) {  // (its normal turns: its force's direction has a rate too)
+            const ContactForce f = contact_force(ph, c, y, a);
+            q += push_contact_rate(k, i, y, y + n, f.f, f.rate);
+            continue;
+        }
         const double w = k.nl ? weight_on(k, i) : 0.0;
         if (w != 0.0) q += w * (k.sign * contact_force(ph, c, y, a).rate);
     }
@@ -147,6 +152,18 @@ EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y
     }
     if (e.kind == KIND_HELD) return held_force(ph, e.side, tau, y, a);
     if (e.kind == KIND_STICK) return stick_value(e, held_force(ph, e.side, tau, y, a));
+    if (e.kind == KIND_RADIAL) {  // (alpha + beta x + gamma x', x the compression: rounded against the
+                                  // ring's radius and the run's lengths, its rate against the run's speeds)
+        const ContactPhase& k = slot(ph, e.side);
+        const Compression cp = compression(k, y, y + n, a);
+        const double g = e.alpha + e.beta * cp.d + e.gamma * cp.dv, gp = e.beta * cp.dv + e.gamma * cp.da;
+        const double scale = std::abs(e.alpha) + std::abs(e.beta) * (k.radial.radius + ph.xround) +
+                             std::abs(e.gamma) * (std::abs(cp.dv) + ph.vround);
+        if (e.action != ACT_CONTACT || !(k.def0 > 0.0)) return {g, gp, scale};
+        // (its start against the wall's relaxing surface: the compression reaches what is left of it)
+        const Relaxed r = law_relax(k.law, k.p, k.def0, tau, k.lz);
+        return {g + r.d, gp + r.rate, scale + r.d};
+    }
     const double dx = rel(y, e), dv = rel(y + n, e), da = rel(a, e);
     if (e.kind == KIND_LINEAR) {
         const double g = e.alpha + e.beta * dx + e.gamma * dv;
@@ -164,7 +181,11 @@ EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y
     }
     const ContactPhase& k = slot(ph, e.side);
     const double sg = k.sign;
-    const double dd = sg * dx - k.gap, ddv = sg * dv, dda = sg * da;
+    double dd = sg * dx - k.gap, ddv = sg * dv, dda = sg * da;
+    if (k.radial.on) {
+        const Compression cp = compression(k, y, y + n, a);
+        dd = cp.d, ddv = cp.dv, dda = cp.da;
+    }
     double g, gp;
     if (law_is_linear(k.law)) {
         // the phase's own branch, not the one the compression is in: at a breakpoint, the slope the motion
@@ -229,11 +250,18 @@ void fn_eval(const Fn& fn, Phase& ph, double tau, double& f, double& fp) {
         case FN_NORM_RATE:
         case FN_NORM_BEND: {
             const Pair &p = *fn.pair, &q = *fn.second;
-            const double up = rel(y, p), uq = rel(y, q);
+            const double up = fn.at[0] + rel(y, p), uq = fn.at[1] + rel(y, q);
             const double vp = rel(y + n, p), vq = rel(y + n, q);
             const double bend = vp * vp + vq * vq + up * rel(a, p) + uq * rel(a, q);
             f = fn.kind == FN_NORM_RATE ? up * vp + uq * vq : bend;
             fp = fn.kind == FN_NORM_RATE ? bend : NaN;
+            return;
+        }
+        case FN_COMPRESSION_RATE:
+        case FN_COMPRESSION_BEND: {
+            const Compression cp = compression(slot(ph, fn.idx), y, y + n, a);
+            f = fn.kind == FN_COMPRESSION_RATE ? cp.dv : cp.da;
+            fp = fn.kind == FN_COMPRESSION_RATE ? cp.da : NaN;
             return;
         }
         default:  // FN_FORCE_RATE
@@ -386,7 +414,7 @@ double find_root(const Fn& fn, Phase& ph, double xa, double xb, double fa, doubl
     if (fa == 0.0) return xa;
     if (fb == 0.0) return xb;
     if (fn.kind == FN_POLY) return halley(fn, ph, xa, xb, fa, fb, ra, rb, xtol);
-    if (fn.kind == FN_POLY_RELAX || fn.kind == FN_EVENT || fn.kind == FN_PAIR_V)
+    if (fn.kind == FN_POLY_RELAX || fn.kind == FN_EVENT || fn.kind == FN_PAIR_V || fn.kind == FN_COMPRESSION_RATE)
         return rtsafe(fn, ph, xa, xb, fa, fb, ra, rb, xtol);
     return brent(fn, ph, xa, xb, fa, fb, xtol);
 }
@@ -394,7 +422,7 @@ double find_root(const Fn& fn, Phase& ph, double xa, double xb, double fa, doubl
 namespace {
 // the kind of event function event_fn makes
 int event_fn_kind(const EventRow& e, const Phase& ph) {
-    if (ph.numeric || e.kind == KIND_ZETA) return FN_EVENT;
+    if (ph.numeric || e.kind == KIND_ZETA || e.kind == KIND_RADIAL) return FN_EVENT;
     if (e.kind == KIND_LINEAR && e.action == ACT_CONTACT && slot(ph, e.side).def0 > 0.0) return FN_POLY_RELAX;
     return FN_POLY;
 }
@@ -586,7 +614,9 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
     // of the sub-interval)
     auto minimum = [&](double& tm, double& gm, double& sc) {
         const EventRow& e = evs[i];
-        const Phase::Zeros& z = velocity_zeros(ph, e);
+        // (a ring's own pair's zeros say nothing of its compression's: not looked for)
+        static const Phase::Zeros none{};
+        const Phase::Zeros& z = e.kind == KIND_RADIAL ? none : velocity_zeros(ph, e);
         if (kind == FN_POLY && e.kind == KIND_LINEAR && e.gamma == 0.0 && e.beta != 0.0 && z.count == 1 &&
             z.t[0] < h) {
             tm = z.t[0];
@@ -723,65 +753,59 @@ bool events_surely_absent(const EventRow* evs, int n_ev, Phase& ph, const Extrem
     return true;
 }
 
+namespace {
+// contact c's event row a + b x + g x' in its compression x (and its rate): on a line's pair alpha + beta u +
+// gamma u' (x = sign u - gap), on a ring's its own kind (KIND_RADIAL: events.hpp); side: a line's rounding
+// (a ring's is its own)
+void contact_row(EventRow& r, const Contact& ct, int c, double a, double b, double g, int action, int side) {
+    r = EventRow();
+    static_cast<Pair&>(r) = ct;
+    r.index = c;
+    r.action = action;
+    if (ct.radial.on) {
+        r.kind = KIND_RADIAL;
+        r.alpha = a, r.beta = b, r.gamma = g;
+        r.side = c;
+        return;
+    }
+    r.alpha = a - b * ct.gap;
+    r.beta = b * ct.sign;
+    r.gamma = g * ct.sign;
+    r.side = side;
+}
+}  // namespace
+
 int bumper_events(const double* st, const Phase& ph, const System& sy, EventRow* evs, int n) {
     if (!sy.has_b) return n;
     const Layout& L = sy.lay;
     for (int c = 0; c < sy.nc(); ++c) {
         const Contact& ct = sy.contact[static_cast<size_t>(c)];
-        const double sg = ct.sign;
-        const double gap = ct.gap;
         const bool in_contact = st[L.in_at(c)] != 0.0;
-        if (in_contact && law_is_linear(ct.law)) {  // its branch's ends (compression x = sign u - gap)
+        if (in_contact && law_is_linear(ct.law)) {  // its branch's ends (in the compression x)
             const double* z = st + L.z_at(c);
             const Edges edges = law_branch_edges(ct.law, ct.p, slot(ph, c).jb, z);
             const double turn = law_turn_sign(ct.law, ct.p, z);
-            if (turn != 0.0) {  // the compression rate sign u' (of sign ``turn`` on the branch) crossing zero
-                EventRow& r = evs[n++];
-                r = EventRow();
-                static_cast<Pair&>(r) = ct;
-                r.gamma = turn * sg;
-                r.side = SIDE_NONE;  // (a velocity: rounded as the isolator's reversals are)
-                r.action = ACT_LAW_BRANCH;
-                r.index = c;
-            }
+            if (turn != 0.0)  // the compression rate x' (of sign ``turn`` on the branch) crossing zero
+                // (a velocity: rounded as the isolator's reversals are)
+                contact_row(evs[n++], ct, c, 0.0, 0.0, turn, ACT_LAW_BRANCH, SIDE_NONE);
             for (int k = 0; k < 2; ++k) {
                 const bool up = k == 1;
                 const double edge = up ? edges.upper : edges.lower;
                 if (edge < 0.0) continue;
-                EventRow& r = evs[n++];
-                r = EventRow();
-                static_cast<Pair&>(r) = ct;
-                r.alpha = up ? (gap + edge) : -(gap + edge);  // upper - x, or x - lower
-                r.beta = up ? -sg : sg;
-                r.side = c;
-                r.action = ACT_LAW_BRANCH;
-                r.index = c;
+                EventRow& r = evs[n++];  // upper - x, or x - lower
+                contact_row(r, ct, c, up ? edge : -edge, up ? -1.0 : 1.0, 0.0, ACT_LAW_BRANCH, c);
                 r.dir = up ? EDGE_UP_STATE : EDGE_DOWN_STATE;
             }
         }
-        EventRow& r = evs[n];
-        r = EventRow();
-        static_cast<Pair&>(r) = ct;
-        r.index = c;
-        r.side = c;
         if (in_contact && law_is_rigid(ct.law)) {  // held shut: released when its force would pull
-            r.kind = KIND_HELD;
-            r.action = ACT_RELEASE;
-            n += 1;
+            contact_row(evs[n], ct, c, 0.0, 0.0, 0.0, ACT_RELEASE, c);
+            evs[n++].kind = KIND_HELD;
             continue;
         }
-        if (!in_contact) {
-            // surface at sign (gap + relaxing compression): g = gap + d(t) - sign u
-            r.alpha = gap;
-            r.beta = -sg;
-            r.action = ACT_CONTACT;
-            n += 1;
-        } else {
-            // the compression back to zero, or the law's force-based release
-            r.alpha = -gap;
-            r.beta = sg;
-            r.action = ACT_RELEASE;
-            n += 1;
+        if (!in_contact) {  // its surface met (g = d(t) - x, d the relaxing compression)
+            contact_row(evs[n++], ct, c, 0.0, -1.0, 0.0, ACT_CONTACT, c);
+        } else {  // the compression back to zero, or the law's force-based release
+            contact_row(evs[n++], ct, c, 0.0, 1.0, 0.0, ACT_RELEASE, c);
             evs[n] = evs[n - 1];
             evs[n].kind = KIND_RELEASE;
             n += 1;

@@ -15,7 +15,9 @@
 namespace pounding {
 
 // (held: a rigid stop's force; stick: alpha + beta D, D the force a sticking friction element's tie needs)
-constexpr int KIND_LINEAR = 0, KIND_RELEASE = 1, KIND_ZETA = 2, KIND_HELD = 3, KIND_STICK = 4;
+// (radial: beta times a ring's compression, contact side's: its start, -1, or its end, +1; always evaluated on
+// the trajectory, its function not a polynomial of the series)
+constexpr int KIND_LINEAR = 0, KIND_RELEASE = 1, KIND_ZETA = 2, KIND_HELD = 3, KIND_STICK = 4, KIND_RADIAL = 5;
 // an event row's side when it is no contact's: SIDE_NONE (rounded against its own terms), SIDE_VELOCITY (a
 // velocity rounded against the run's velocity too: a friction slip's end, which starts at rest)
 constexpr int SIDE_NONE = -1, SIDE_VELOCITY = -2;
@@ -61,8 +63,10 @@ enum FnKind : int {
     FN_PAIR_A,         // numerical: a_i - a_j (no derivative)
     FN_AABS_RATE,      // numerical: dof idx's absolute acceleration's rate (no derivative)
     FN_FORCE_RATE,     // numerical: contact idx's force rate (no derivative)
-    FN_NORM_RATE,      // u . u' / 1 of the vector (u_p, u_q) of its two pairs (rate: |u'|^2 + u . u'')
-    FN_NORM_BEND       // that rate (no derivative)
+    FN_NORM_RATE,      // u . u' of the vector u = at + (u_p, u_q) of its two pairs (rate: |u'|^2 + u . u'')
+    FN_NORM_BEND,      // that rate (no derivative)
+    FN_COMPRESSION_RATE,  // numerical: contact idx's compression's rate (rate: its second derivative)
+    FN_COMPRESSION_BEND   // that second derivative (no derivative)
 };
 struct Fn {
     int kind = FN_POLY;
@@ -72,6 +76,7 @@ struct Fn {
     const Pair* pair = nullptr;
     const Pair* second = nullptr;
     const EventRow* evs = nullptr;
+    double at[2] = {0.0, 0.0};  // FN_NORM_*: the vector's offset
     Poly q;
 };
 // f and its rate at tau (fp NaN where the kind has none)

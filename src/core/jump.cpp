@@ -14,6 +14,12 @@ namespace {
 
 // a contact table's row from a contact's running totals (acc: its block of the state), its end and the
 // pair's velocity there
+// a contact's velocity as its rows give it: its pair's (a line's), or the rate of its compression (a ring's:
+// sign +1, the point's speed along the wall's normal)
+double contact_speed(const Contact& ct, const double* st, const Layout& L) {
+    return ct.radial.on ? compression(ct, st + L.x, st + L.v).dv : rel(st + L.v, ct);
+}
+
 void contact_row(Rows& contacts, int c, const double* acc, double t_end, double v_out) {
     double* r = contacts.push();
     r[CC_CONTACT] = static_cast<double>(c);
@@ -38,7 +44,7 @@ void move_bumpers(double* st, const System& sy, const double* y1, double tau, do
         const int idx = L.def_at(c);
         double* z = st + L.z_at(c);
         if (st[L.in_at(c)] != 0.0) {
-            st[idx] = std::max(0.0, ct.sign * rel(y1, ct) - ct.gap);
+            st[idx] = std::max(0.0, compression_of(ct, y1));
             law_moved(ct.law, ct.p, z, st[idx], true);
         } else if (st[idx] > 0.0) {
             const double relaxed = law_relax(ct.law, ct.p, st[idx], tau, z).d;
@@ -62,7 +68,7 @@ void jump(double* st, const System& sy, const EventRow& ev, Rows& contacts, cons
         const Contact& ct = sy.contact[static_cast<size_t>(index)];
         st[L.in_at(index)] = 1.0;
         const double comp = st[L.def_at(index)];
-        const double v_in = rel(st + L.v, ct);
+        const double v_in = contact_speed(ct, st, L);
         st[acc + A_TSTART] = t_ev;
         st[acc + A_VIN] = std::abs(v_in) > v_res ? v_in : 0.0;  // below the resolution: met at rest
         law_contact_state(ct.law, ct.p, ct.sign * st[acc + A_VIN], st + L.z_at(index), comp);
@@ -78,7 +84,7 @@ void jump(double* st, const System& sy, const EventRow& ev, Rows& contacts, cons
         law_release_state(ct.law, ct.p, st + L.z_at(index), st[L.def_at(index)]);
         // a touch below the resolution in both depth and impulse is no impact: computed, not listed
         if (st[acc + A_MAXCOMP] - st[acc + A_DSTART] > depth_res || std::abs(st[acc + A_IMPULSE]) > impulse_res) {
-            contact_row(contacts, index, st + acc, t_ev, rel(st + L.v, ct));
+            contact_row(contacts, index, st + acc, t_ev, contact_speed(ct, st, L));
         }
     } else if (action == ACT_LAW_BRANCH) {
         const Contact& ct = sy.contact[static_cast<size_t>(index)];

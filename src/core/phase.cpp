@@ -609,8 +609,11 @@ void phase_rhs(Phase& ph, double tau, const double* y, const double* z, double* 
     for (int c = ph.nc - 1; c >= 0; --c) {
         const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
         if (!k.nl) continue;
-        const double f = law_force(k.law, k.p, k.sign * rel(x, k) - k.gap, k.sign * rel(v, k), k.lz).f;
-        push_pair(a, k, -(k.sign * f));
+        const Compression cp = compression(k, x, v);
+        // (a ring's linear law: its phase's branch, as its events and outputs take it)
+        const double f = law_is_linear(k.law) ? k.kb * cp.d + k.rb + k.cb * cp.dv
+                                              : law_force(k.law, k.p, cp.d, cp.dv, k.lz).f;
+        push_contact(a, k, x, -f);
     }
     for (int i = 0; i < n; ++i) a[i] /= ph.mass[static_cast<size_t>(i)];
     if (held) ph.stk.project(ph.mass, a);

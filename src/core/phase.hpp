@@ -23,6 +23,7 @@
 #include <cmath>
 #include <vector>
 
+#include "compression.hpp"
 #include "core.hpp"
 #include "laws.hpp"
 #include "sticking.hpp"
@@ -41,6 +42,7 @@ struct ContactPhase : Pair {
     double kb = 0.0, cb = 0.0, rb = 0.0;  // a linear law's branch: F = kb x + rb + cb x'
     int jb = 0;
     double lz[N_LAW_STATE] = {0};  // the law's state in this phase
+    Radial radial;                 // (a ring's wall: core.hpp)
 };
 
 // a polynomial in tau: c[0] + c[1] tau + ... + c[deg] tau^deg
@@ -294,8 +296,8 @@ inline void table_on_dofs(const Phase& ph, double tau, double* ag) {
 struct ContactForce { double f, elastic, rate, dx; };
 inline ContactForce contact_force(const Phase& ph, int c, const double* y, const double* a) {
     const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
-    const double sg = k.sign;
-    const double dd = sg * rel(y, k) - k.gap, dv = sg * rel(y + ph.n, k), da = sg * rel(a, k);
+    const Compression cp = compression(k, y, y + ph.n, a);
+    const double dd = cp.d, dv = cp.dv, da = cp.da;
     if (law_is_linear(k.law)) {
         const double fel = k.kb * dd + k.rb;
         return {fel + k.cb * dv, fel, k.kb * dv + k.cb * da, dv};

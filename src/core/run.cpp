@@ -182,6 +182,31 @@ double velocity_cuts(Phase& ph, const System& sy, double h, const Buffers& b, co
     return cut;
 }
 
+// the same for a ring's contact (core.hpp's Radial), its compression's rate in its pair's place: of one sign at
+// both ends and turning back inside (two zeros: a dip of its start or its branch's edge could hide between
+// them), cut where it turns.  The cut instant (or h).  (A law with a kink where that rate is zero, Jankowski's,
+// is not taken on a ring: the door refuses it.)
+double ring_cuts(Phase& ph, double h, const Buffers& b) {
+    const int n = ph.n;
+    double cut = h;
+    for (int c = 0; c < ph.nc; ++c) {
+        const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
+        if (!k.radial.on) continue;
+        const Compression c0 = compression(k, b.y0s.data(), b.y0s.data() + n, b.a0.data());
+        const Compression c1 = compression(k, b.y1.data(), b.y1.data() + n, b.a1.data());
+        Fn fr, fb;
+        fr.kind = FN_COMPRESSION_RATE;
+        fb.kind = FN_COMPRESSION_BEND;
+        fr.idx = fb.idx = c;
+        if (!(c0.dv * c1.dv > 0.0 && c0.da * c1.da < 0.0) || !may_turn_back(h, c0.dv, c1.dv, c0.da, c1.da)) continue;
+        const double t_b = find_root(fb, ph, 0.0, h, c0.da, c1.da, NaN, NaN, XTOL_EXTREMUM_S);
+        double v_b, unused;
+        fn_eval(fr, ph, t_b, v_b, unused);
+        if (v_b * c0.dv < 0.0 && 0.0 < t_b && t_b < cut) cut = t_b;
+    }
+    return cut;
+}
+
 // whether a held force's rate and bend at a sub-interval's two ends (held_force_turn) say, beyond any doubt of
 // rounding, that it does not turn back and forth inside: its rates of opposite signs, or its bends of one sign
 bool surely_no_turn(const ForceTurn& e0, const ForceTurn& e1) {
@@ -356,6 +381,7 @@ struct Loop {
     double resolution[3] = {0.0, 0.0, 0.0};
     bool record = false;
     bool has_ml = false;
+    bool has_ring = false;  // (a ring's contact: its compression's turns cut a sub-interval, ring_cuts)
     int n_pairs = 0;
     double kin0 = 0.0, iso0 = 0.0, bmp0 = 0.0;
     // what goes from one sub-interval to the next
@@ -428,7 +454,9 @@ void start_extrema(const System& sy, const double* st, double t_run0, double* ex
         double* ex = extrema + sy.norm_extrema_at() + NORM_EXTREMA * q;
         const double u = rel(st + L.x, sy.track[static_cast<size_t>(sy.norm_p[static_cast<size_t>(q)])]);
         const double w = rel(st + L.x, sy.track[static_cast<size_t>(sy.norm_q[static_cast<size_t>(q)])]);
-        ex[NX_MAX] = std::hypot(u, w);
+        // (its length with its offset: a corner's distance from a ring's centre)
+        const double* at = &sy.norm_at[static_cast<size_t>(2 * q)];
+        ex[NX_MAX] = std::hypot(at[0] + u, at[1] + w);
         ex[NX_MAX_T] = t_run0;
         ex[NX_AT_P] = u;
         ex[NX_AT_Q] = w;
@@ -527,6 +555,7 @@ void set_up(Loop& lp) {
     if (sy.has_b)
         for (const Contact& c : sy.contact)
             if (c.law == MULTILINEAR || c.law == MULTILINEAR_KINEMATIC) lp.has_ml = true;
+    for (const Contact& c : sy.contact) lp.has_ring = lp.has_ring || c.radial.on;
     lp.ag_now.assign(static_cast<size_t>(lp.n), 0.0);
     table_at(lp.fo, sy, lp.st[T], lp.ag_now.data());
     start_friction(lp);
@@ -815,6 +844,7 @@ void earliest(Loop& lp) {
         return;
     }
     double cut = velocity_cuts(ph, lp.sy, lp.h, b, lp.w.event_pairs.data(), lp.n_pairs);
+    if (lp.has_ring) cut = std::min(cut, ring_cuts(ph, lp.h, b));  // (b's ends at h, as velocity_cuts reads them)
     // (the ends known where no velocity cut came first; the ties' turns at the start kept from the last
     // sub-interval's end where it went the whole way to this one's start, on the same piece of the table)
     const bool turns_kept = lp.turns_at_end && lp.b.went_on && !lp.at_knot;

@@ -165,14 +165,19 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
         if (law_is_linear(ct.law)) {
             // F = kb x + rb + cb x' with x = sign (x_i - x_j) - gap, pushing dof i by -sign F
             const Branch br = law_linear_branch(ct.law, ct.p, st[L.def_at(q)],
-                                                ct.sign * rel(st + L.v, ct), st + L.z_at(q));
-            sy.add_pair(ph.K, ct, br.k);
-            sy.add_pair(ph.C, ct, br.c);
-            push_pair(ph.R0.data(), ct, ct.sign * (br.r - br.k * ct.gap));
+                                                compression(ct, st + L.x, st + L.v).dv, st + L.z_at(q));
             k.kb = br.k;
             k.cb = br.c;
             k.rb = br.r;
             k.jb = br.j;
+            if (ct.radial.on) {  // (a ring's: its normal turns, the phase is nonlinear)
+                k.nl = true;
+                any_nl = true;
+                continue;
+            }
+            sy.add_pair(ph.K, ct, br.k);
+            sy.add_pair(ph.C, ct, br.c);
+            push_pair(ph.R0.data(), ct, ct.sign * (br.r - br.k * ct.gap));
         } else {
             k.nl = true;
             any_nl = true;
@@ -240,6 +245,7 @@ void run_constants(Phase& ph, const System& sy, const Forcing& fo) {
         k.law = ct.law;
         k.p = ct.p;
         k.sign = ct.sign;
+        k.radial = ct.radial;
         static_cast<Pair&>(k) = ct;
     }
     // the isolator's numbers for its output column and its Bouc-Wen spring (none: a fixed base, force 0)

@@ -28,7 +28,7 @@ ledger's slots, ``DOF_EXTREMA`` and ``PAIR_EXTREMA`` a run's extrema per dof and
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Any
+from typing import Any, Optional
 
 import math
 
@@ -198,7 +198,8 @@ _N_DOF_EXTREMA, _N_PAIR_EXTREMA = LAYOUT["DOF_EXTREMA"], LAYOUT["PAIR_EXTREMA"]
 
 def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Element], has_b: bool,
            contacts: list[ContactSlot], tracked: tuple[tuple[int, int] | TrackedPair, ...] = (),
-           influence: np.ndarray | None = None, vectors: tuple[tuple[int, int], ...] = ()) -> System:
+           influence: np.ndarray | None = None, vectors: tuple[tuple[int, int], ...] = (),
+           vector_offsets_m: np.ndarray | None = None) -> System:
     """A system as the core takes it: ``mass`` (kg, shape (n,)), the linear springs and dashpots ``k0``,
     ``c0`` (N/m, N s/m, shape (n, n)), the hysteretic elements (:class:`Element`: dof ``i`` against dof ``j``,
     -1 the ground; its dashpot ``c_d`` N s/m, backbone ``slopes`` N/m and ``breaks`` m, ``rule`` 0 kinematic,
@@ -212,7 +213,9 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
     (shape (n, 2), finite): how the ground's two components move each dof (dof ``i`` feels
     ``-m_i (influence[i, 0] a + influence[i, 1] b)``); None: every dof with the first alone, ``(1, 0)``.
     ``vectors``: pairs ``(p, q)`` of indices into ``tracked``, each a vector of those two components (a
-    bearing's displacement in plan: its x and y) whose length's exact largest a run finds (``norms``).
+    bearing's displacement in plan: its x and y) whose length's exact largest a run finds (``norms``);
+    ``vector_offsets_m`` (shape (len(vectors), 2), finite; None: zeros): each vector's offset, m, added to
+    it before its length is taken (a floor's corner's place from a ring's centre: its distance from it).
 
     The core trusts what it is given: the sizes and indices are checked here (a ``ValueError`` is a
     caller's bug; the public functions check what users give before)."""
@@ -234,6 +237,12 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
         if len(pq) != 2 or not ok or pq[0] == pq[1]:
             raise ValueError(f"vector {v}: two different indices of the {len(pairs_tracked)} tracked pairs, "
                              f"got {pq!r}")
+    at: list[float] = []
+    if vector_offsets_m is not None:
+        o = np.asarray(vector_offsets_m, dtype=float)
+        if o.shape != (len(vectors), 2) or not np.all(np.isfinite(o)):
+            raise ValueError(f"vector_offsets_m: finite, shape ({len(vectors)}, 2), got {o.shape}")
+        at = o.reshape(-1).tolist()
     infl: list[float] = []
     if influence is not None:
         r = np.asarray(influence, dtype=float)
@@ -244,7 +253,7 @@ def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Elem
                      elements=list(elements), has_b=bool(has_b),
                      contacts=list(contacts),
                      tracked=pairs_tracked, infl=infl, norm_p=[int(p) for p, _ in vectors],
-                     norm_q=[int(q) for _, q in vectors])
+                     norm_q=[int(q) for _, q in vectors], norm_at=at)
 
 
 def _lever_args(lever_i: int, arm_i_m: float, lever_j: int, arm_j_m: float) -> dict:
@@ -265,15 +274,23 @@ def tracked_pair(*, i: int, j: int, lever_i: int = -1, arm_i_m: float = 0.0, lev
 
 
 def contact_slot(*, i: int, j: int, sign: float, gap_m: float, law: int, params: Any, lever_i: int = -1,
-                 arm_i_m: float = 0.0, lever_j: int = -1, arm_j_m: float = 0.0) -> ContactSlot:
+                 arm_i_m: float = 0.0, lever_j: int = -1, arm_j_m: float = 0.0,
+                 ring_y: Optional[TrackedPair] = None, ring_at_m: tuple[float, float] = (0.0, 0.0),
+                 ring_radius_m: float = 0.0) -> ContactSlot:
     """A contact slot (:class:`ContactSlot`) from numbers as the model gives them: ``params`` at most
     ``N_LAW_PARAMS`` numbers (the rest 0); its pair's levers (-1: none) and arms (m per unit of the lever's
-    dof: a rotation's, m/rad)."""
+    dof: a rotation's, m/rad).  ``ring_y`` (a :class:`TrackedPair`): the slot is a ring's wall (a circular
+    moat) struck by a point at ``ring_at_m`` (m, from the ring's centre at rest) that moves by its pair
+    (``i``, ``j`` and levers) along x and by ``ring_y`` along y; compressed by its distance from the centre
+    less ``ring_radius_m`` (m), pushed back along the ring's normal; ``sign`` +1 and ``gap_m`` its clearance
+    at rest (the law one of ``_core_checks.RING_LAWS``)."""
     params = [float(x) for x in params]
     if len(params) > LAYOUT["N_LAW_PARAMS"]:
         raise ValueError(f"a contact law's parameters: at most {LAYOUT['N_LAW_PARAMS']}, got {len(params)}")
+    ring = {} if ring_y is None else dict(ring_y=ring_y, ring_px_m=float(ring_at_m[0]),
+                                          ring_py_m=float(ring_at_m[1]), ring_radius_m=float(ring_radius_m))
     return ContactSlot(i=int(i), j=int(j), sign=float(sign), gap_m=float(gap_m), law=int(law), params=params,
-                       **_lever_args(lever_i, arm_i_m, lever_j, arm_j_m))
+                       **_lever_args(lever_i, arm_i_m, lever_j, arm_j_m), **ring)
 
 
 def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int, friction_n: float = 0.0,

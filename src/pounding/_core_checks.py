@@ -6,6 +6,11 @@ from __future__ import annotations
 import math
 from typing import Any
 
+# the laws a ring's wall takes: every compliant law but Jankowski's, whose force has a kink where the
+# compression's rate is zero (a line's phases are cut there, at its pair's velocity's zero; a ring's are not)
+RING_LAWS = ("kelvin_voigt", "hunt_crossley", "multilinear", "elastic_plastic", "hertzdamp",
+             "multilinear_kinematic")
+
 
 def check_pair(i: int, j: int, n: int, what: str) -> None:
     """A ValueError unless dofs ``i`` and ``j`` are two of the ``n`` dofs (``j`` -1: the ground)."""
@@ -92,6 +97,15 @@ def check_contacts(contacts: list, n: int, slot_type: type, law_ids: dict) -> No
         check_pair(slot.i, slot.j, n, f"contact {c}")
         if slot.sign not in (-1.0, 1.0) or slot.law not in law_ids.values():
             raise ValueError(f"contact {c}: sign +-1 and a law id of LAW_IDS")
+        if slot.ring_y is not None:  # (a ring's wall: its point's pair along y, its place, the radius)
+            check_pair(slot.ring_y.i, slot.ring_y.j, n, f"contact {c}'s ring_y")
+            check_levers(slot.ring_y, n, f"contact {c}'s ring_y")
+            place = (slot.ring_px_m, slot.ring_py_m, slot.ring_radius_m)
+            if slot.sign != 1.0 or not all(math.isfinite(v) for v in place) or not slot.ring_radius_m > 0.0:
+                raise ValueError(f"contact {c}: a ring's wall has sign +1, a finite place and a radius > 0")
+            if slot.law not in [law_ids[name] for name in RING_LAWS]:
+                raise ValueError(f"contact {c}: a ring's wall takes a compliant law but Jankowski's "
+                                 f"({', '.join(RING_LAWS)})")
         if check_levers(slot, n, f"contact {c}") and slot.law == law_ids["rigid"]:
             raise ValueError(f"contact {c}: a rigid stop on a lever is not supported yet (its impact's "
                              "impulse is a dof's): use a compliant law there")
