@@ -19,7 +19,11 @@ by its force times w:
 * a Kelvin-Voigt wall (stiffness k_b, dashpot c_b) behind a gap, on one side (sign +-1): in contact its force
   is k_b d + c_b d' (d = sign w . q - gap) until it would pull; out of contact its compression relaxes as
   d_r exp(-k_b (t - t_r) / c_b) from where it was released, and contact starts when the point meets that
-  surface.
+  surface;
+* a Kelvin-Voigt ring (a circular moat's wall, radius R) struck by a point at (p_x, p_y) from its centre that
+  moves by (w_x . q, w_y . q): its compression d = |(p_x + w_x . q, p_y + w_y . q)| - R, its force
+  k_b d + c_b d' along the ring's normal n there (pushing the coordinates by it times n_x w_x + n_y w_y), the
+  same contact rules as a wall's.
 """
 
 from __future__ import annotations
@@ -44,6 +48,9 @@ class PlanModel:
     plastic: list = field(default_factory=list)
     # Kelvin-Voigt walls: (w (n,), sign +-1, gap m, k_b N/m, c_b N s/m)
     walls: list = field(default_factory=list)
+    # Kelvin-Voigt rings, after the walls in the contacts' numbering: (w_x (n,), w_y (n,), p_x m, p_y m,
+    # R m, k_b N/m, c_b N s/m)
+    rings: list = field(default_factory=list)
     # Bouc-Wen springs: (w (n,), (f_z N, u_y m, a, beta, gamma, n)); their z start at 0
     bouc_wen: list = field(default_factory=list)
     # the bidirectional ones: pairs of indices into bouc_wen (the same numbers), each one spring in the plane
@@ -53,6 +60,9 @@ class PlanModel:
     # vectors of two tracked points each (indices into tracked: a bearing's x and y), whose length's largest
     # is found
     vectors: list = field(default_factory=list)
+    # each vector's offset (m, m; none given: zeros): its length is the offset's plus it (a corner's distance
+    # from a ring's centre)
+    vector_offsets: list = field(default_factory=list)
 
 
 def record_pair(rng: np.random.Generator, duration_s: float, dt: float, pga: float) -> tuple:
@@ -84,7 +94,26 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
               steps_per_period: float = 100.0) -> PlanResult:
     n = s.mass.size
     inv_m = 1.0 / s.mass
-    ws = [np.asarray(w, dtype=float) for w, *_ in s.walls]
+    # every contact as its compression's value and rate, its gradient (what its force pushes along), k_b, c_b
+    contacts = []
+    for w, sg, gap, k_b, c_b in s.walls:
+        w = np.asarray(w, dtype=float)
+        contacts.append((lambda y, w=w, sg=sg, gap=gap: (sg * float(w @ y[:n]) - gap,
+                                                         sg * float(w @ y[n:2 * n])),
+                         lambda y, w=w, sg=sg: sg * w, k_b, c_b))
+    for wx, wy, px, py, radius, k_b, c_b in s.rings:
+        wx, wy = np.asarray(wx, dtype=float), np.asarray(wy, dtype=float)
+
+        def normal(y, wx=wx, wy=wy, px=px, py=py):
+            x, yy = px + float(wx @ y[:n]), py + float(wy @ y[:n])
+            r = math.hypot(x, yy)
+            return r, x / r, yy / r
+
+        def depth(y, wx=wx, wy=wy, radius=radius, normal=normal):
+            r, nx, ny = normal(y)
+            return r - radius, nx * float(wx @ y[n:2 * n]) + ny * float(wy @ y[n:2 * n])
+        contacts.append((depth, lambda y, wx=wx, wy=wy, normal=normal: normal(y)[1] * wx + normal(y)[2] * wy,
+                         k_b, c_b))
     wp = [np.asarray(w, dtype=float) for w, *_ in s.plastic]
     wz = [np.asarray(w, dtype=float) for w, _ in s.bouc_wen]
     bws = [p for _, p in s.bouc_wen]
@@ -99,12 +128,13 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         return 2.0 * math.pi / w_max / steps_per_period if w_max > 0.0 else np.inf
 
     k_stuck = s.k + sum((k_p * np.outer(w, w) for w, (_, k_p, _) in zip(wp, s.plastic)), np.zeros((n, n)))
-    k_in = k_stuck + sum((k_b * np.outer(w, w) for w, (_, _, _, k_b, _) in zip(ws, s.walls)),
-                         np.zeros((n, n)))
+    k_in = k_stuck + sum((k_b * np.outer(w, w) for w, _, _, k_b, _ in s.walls), np.zeros((n, n)))
+    k_in = k_in + sum((k_b * (np.outer(wx, wx) + np.outer(wy, wy)) for wx, wy, _, _, _, k_b, _ in s.rings),
+                      np.zeros((n, n)))
     step_in, step_out = longest_step(k_in), longest_step(k_stuck)
 
-    inside = [False] * len(s.walls)
-    relax = [(0.0, 0.0)] * len(s.walls)  # (compression at release, release time)
+    inside = [False] * len(contacts)
+    relax = [(0.0, 0.0)] * len(contacts)  # (compression at release, release time)
     slip = [0.0] * len(s.plastic)
     mode = [0] * len(s.plastic)  # 0 stuck, +-1 slipping that way
     out = PlanResult()
@@ -114,7 +144,7 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
 
     def surface(c, t):
         d_r, t_r = relax[c]
-        _, _, _, k_b, c_b = s.walls[c]
+        _, _, k_b, c_b = contacts[c]
         if d_r == 0.0 or c_b == 0.0:
             return 0.0
         return d_r * math.exp(-k_b * (t - t_r) / c_b)
@@ -123,10 +153,10 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         f = np.zeros(n)
         for q, (w, (_, k_p, d)) in enumerate(zip(wp, s.plastic)):
             f += (k_p * (along(y, w)[0] - slip[q]) if mode[q] == 0 else mode[q] * k_p * d) * w
-        for c, (w, (_, sg, gap, k_b, c_b)) in enumerate(zip(ws, s.walls)):
+        for c, (depth, grad, k_b, c_b) in enumerate(contacts):
             if inside[c]:
-                u, du = along(y, w)
-                f += sg * (k_b * (sg * u - gap) + c_b * sg * du) * w
+                d, dd = depth(y)
+                f += (k_b * d + c_b * dd) * grad(y)
         for b, w in enumerate(wz):
             f += bws[b][0] * y[2 * n + b] * w
         return f
@@ -163,23 +193,23 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
 
     def make_events(quiet_contact=None):
         evs = []
-        for c, (w, (_, sg, gap, k_b, c_b)) in enumerate(zip(ws, s.walls)):
+        for c, (depth, _, k_b, c_b) in enumerate(contacts):
             if c == quiet_contact:
                 continue
             if inside[c]:
-                def release(t, y, w=w, sg=sg, gap=gap, k_b=k_b, c_b=c_b):
-                    u, du = along(y, w)
-                    return k_b * (sg * u - gap) + c_b * sg * du
+                def release(t, y, depth=depth, k_b=k_b, c_b=c_b):
+                    d, dd = depth(y)
+                    return k_b * d + c_b * dd
 
-                def emptied(t, y, w=w, sg=sg, gap=gap):  # (the compression back to 0: the contact ends too)
-                    return sg * along(y, w)[0] - gap
+                def emptied(t, y, depth=depth):  # (the compression back to 0: the contact ends too)
+                    return depth(y)[0]
                 emptied.terminal = True
                 emptied.direction = -1.0
                 emptied.contact = c
                 evs.append(emptied)
             else:
-                def release(t, y, c=c, w=w, sg=sg, gap=gap):
-                    return gap + surface(c, t) - sg * along(y, w)[0]
+                def release(t, y, c=c, depth=depth):
+                    return surface(c, t) - depth(y)[0]
             release.terminal = True
             release.direction = -1.0
             release.contact = c
@@ -236,18 +266,20 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         f.terminal = False
         return f
 
-    def length(y, p, q):
-        return math.hypot(along(y, wt[p])[0], along(y, wt[q])[0])
+    offsets = s.vector_offsets or [(0.0, 0.0)] * len(s.vectors)
 
-    def lengthening(p, q):  # (u . u': its downward zeros are the vector's longest; not terminal)
+    def length(y, p, q, o):
+        return math.hypot(o[0] + along(y, wt[p])[0], o[1] + along(y, wt[q])[0])
+
+    def lengthening(p, q, o):  # (u . u': its downward zeros are the vector's longest; not terminal)
         def f(t, y):
             (u, du), (w, dw) = along(y, wt[p]), along(y, wt[q])
-            return u * du + w * dw
+            return (o[0] + u) * du + (o[1] + w) * dw
         f.terminal = False
         f.direction = -1.0
         return f
 
-    longest = np.array([length(y, p, q) for p, q in s.vectors])
+    longest = np.array([length(y, p, q, o) for (p, q), o in zip(s.vectors, offsets)])
 
     quiet = None  # (a wall just released, until when its start is not looked for)
     while t < t_end:
@@ -258,7 +290,8 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         if quiet_now:
             t_next = min(t_next, quiet[1])
         sol = solve_ivp(rhs, (t, t_next), y, method="DOP853", rtol=rtol, atol=atol,
-                        events=evs + [turn(w) for w in wt] + [lengthening(p, q) for p, q in s.vectors],
+                        events=evs + [turn(w) for w in wt] + [lengthening(p, q, o)
+                                                               for (p, q), o in zip(s.vectors, offsets)],
                         dense_output=True,
                         max_step=step_in if any(inside) else step_out)
         if sol.status == -1:
@@ -273,10 +306,10 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
             turns = zip(sol.t_events[len(evs) + q], sol.y_events[len(evs) + q])
             xs = [along(sol.sol(t_stop), w)[0]] + [float(w @ ye[:n]) for te, ye in turns if te <= t_stop]
             top[q], bottom[q] = max(top[q], *xs), min(bottom[q], *xs)
-        for k, (p, q) in enumerate(s.vectors):
+        for k, ((p, q), o) in enumerate(zip(s.vectors, offsets)):
             at = len(evs) + len(wt) + k
-            rs = [length(sol.sol(t_stop), p, q)] + [length(ye, p, q) for te, ye in
-                                                    zip(sol.t_events[at], sol.y_events[at]) if te <= t_stop]
+            rs = [length(sol.sol(t_stop), p, q, o)] + [
+                length(ye, p, q, o) for te, ye in zip(sol.t_events[at], sol.y_events[at]) if te <= t_stop]
             longest[k] = max(longest[k], *rs)
         for q, (w, (_, _, d)) in enumerate(zip(wp, s.plastic)):  # (a stretch that slipped: the slip followed)
             if mode[q] != 0:
@@ -316,10 +349,9 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
                     out.sticks.append((q, t))
                 continue
             c = evs[c].contact
-            _, sg, gap, _, _ = s.walls[c]
             if inside[c]:
                 inside[c] = False
-                relax[c] = (max(sg * along(y, ws[c])[0] - gap, 0.0), t)
+                relax[c] = (max(contacts[c][0](y)[0], 0.0), t)
                 out.contact_ends.append((c, t))
             else:
                 inside[c] = True

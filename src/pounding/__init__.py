@@ -30,7 +30,7 @@ _NAMES = {
                "HuntCrossley", "Isolator", "Jankowski",
                "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "RigidStop", "Sensor",
                "Stand", "Storey", "Structure", "TripleFrictionPendulum", "Wall",
-               "Bearing", "Floor", "Frame", "PlanBuilding", "RectangularMoat"),
+               "Bearing", "CircularMoat", "Floor", "Frame", "PlanBuilding", "RectangularMoat"),
     ".protocols": ("BasinStabilityMap", "Basins", "BifurcationDiagram", "CampaignResult", "Orientations",
                    "PoundingSpectrum", "SweepResult", "basin_stability_map", "basins",
                    "bifurcation_diagram",
@@ -91,7 +91,8 @@ if TYPE_CHECKING:  # pragma: no cover  (what static tools and IDEs see)
     from .model import (Adjacent, BoucWen, Bumpers, ElasticPlastic, FrictionIsolator,  # noqa: F401
                         Hertzdamp, HuntCrossley, Isolator, Jankowski, KelvinVoigt, Link, MeasurementChain,
                         MultilinearBumper, Oscillator, RigidStop, Sensor, Stand, Storey, Structure,
-                        TripleFrictionPendulum, Wall, Bearing, Floor, Frame, PlanBuilding, RectangularMoat)
+                        TripleFrictionPendulum, Wall, Bearing, CircularMoat, Floor, Frame, PlanBuilding,
+                        RectangularMoat)
     from .protocols import (BasinStabilityMap, Basins, BifurcationDiagram, CampaignResult,  # noqa: F401
                             Orientations, PoundingSpectrum, SweepResult, basin_stability_map, basins,
                             bifurcation_diagram,

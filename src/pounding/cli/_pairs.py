@@ -164,6 +164,7 @@ def moat(
     from .._checks import positive
     from ..design.moat_in_plan import accidental_fraction, moat_design
     from ..model.plan import PlanBuilding
+    from ..model.plan_parts import CircularMoat
 
     out = folder("--out", out)
     building = system(path, None)
@@ -184,7 +185,8 @@ def moat(
     n_cases = 4 if accidental else 1
     cases = f" x {n_cases} accidental eccentricities" if accidental else ""
     runs = len(pairs) * n_angles * n_cases
-    console.print(f"{len(pairs)} pair(s) x {n_angles} orientations{cases} = {runs} runs without the moat")
+    without = "its ring out of reach" if isinstance(building.moat, CircularMoat) else "without the moat"
+    console.print(f"{len(pairs)} pair(s) x {n_angles} orientations{cases} = {runs} runs {without}")
     try:
         found = moat_design(building, pairs, angles_deg, duration, d_m_m=d_m, accidental=accidental,
                             workers=workers, scheduler=scheduler, progress=True)
@@ -197,18 +199,20 @@ def moat(
         out.mkdir(parents=True, exist_ok=True)
         write_csv(found.to_dataframe().reset_index(), out / "moat_runs.csv")
         write_csv(found.critical.reset_index(), out / "moat_critical.csv")
-        gap_m = None if building.moat is None else min(building.moat.gap_m)  # (the file's, drawn across)
+        gap_m = None if building.moat is None else building.moat.smallest_gap_m  # (the file's, drawn across)
         save_figure(lambda: found.plot(gap_m=gap_m), out / "moat_design.png")
     rule = "mean" if found.attrs["rule"] == "mean" else "largest"
     console.print(f"the design displacement: {found.design_displacement_m:.4g} m, the {rule} of "
                   f"{len(found.critical)} pairs' critical largest bearing displacements in plan")
-    console.print(f"the moat's demand: {found.moat_demand_m:.4g} m, the {rule} of the pairs' largest "
-                  "displacements of the moat's floor's corners towards a wall")
+    reach = ("distances of the moat's floor's corners from the ring's centre, less their own"
+             if isinstance(building.moat, CircularMoat) else
+             "displacements of the moat's floor's corners towards a wall")
+    console.print(f"the moat's demand: {found.moat_demand_m:.4g} m, the {rule} of the pairs' largest {reach}")
     if found.code:
         console.print(f"the code's total maximum displacement with torsion D_TM: "
                       f"{found.code['d_tm_m']:.4g} m (P_T {found.code['p_t']:.3g})")
     if building.moat is not None:
-        gap = min(building.moat.gap_m)
+        gap = building.moat.smallest_gap_m
         need = max(found.moat_demand_m, found.code.get("d_tm_m", 0.0))
         said = "enough" if gap >= need else f"short by {need - gap:.4g} m"
         unchecked = "" if found.code else " (the code's D_TM not checked: give --d-m)"

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import warnings
+import dataclasses
 from dataclasses import dataclass, field
 from typing import Any, Optional
 
@@ -25,8 +26,10 @@ from .._runner import Progress
 from ..excitation.pair import RecordPair
 from ..model.plan import (ACCIDENTAL, ACCIDENTAL_CASE_NAMES, MAX_ACCIDENTAL, PLAUSIBLE_ACCIDENTAL,
                           PlanBuilding)
+from ..model.plan_parts import CircularMoat
 
 MIN_PAIRS_FOR_MEAN = 7  # ASCE 7-16 17.6.3.3, EN 1998-1 4.3.3.4.3: the mean of seven pairs or more
+OUT_OF_REACH_M = 100.0  # a ring's gap while a design runs it: no building's corner moves this far
 
 
 def asce7_torsion(building: PlanBuilding, d_m_m: float, element: str = "bearing") -> dict[str, float]:
@@ -231,14 +234,16 @@ class MoatDesign:
         One row per pair: its most critical angle and its largest bearing displacement in plan there
         (``angle_deg``, ``disp_max_m``); and where the runs have it, the largest demand on the moat over the
         angles and its angle (``moat_demand_m``, ``demand_angle_deg``: the moat's floor's corners' largest
-        displacement towards a wall, :meth:`PlanRun.quantities`); with the accidental eccentricity, each
+        displacement towards a wall, or a ring's: their largest distance from its centre less their own,
+        :meth:`PlanRun.quantities`); with the accidental eccentricity, each
         one's case too (``eccentricity``, ``demand_eccentricity``).
     design_displacement_m : float
         The mean of the pairs' critical displacements (seven pairs or more), or their largest (fewer), m:
         the isolation system's, as the codes ask.
     moat_demand_m : float
-        The same rule over the pairs' demands on the moat, m: the gap a moat of equal gaps needs (its
-        corners reach further than the bearings when the building turns; NaN where the runs lack it).
+        The same rule over the pairs' demands on the moat, m: the gap a moat of equal gaps (or a ring)
+        needs (its corners reach further than the bearings when the building turns; NaN where the runs
+        lack it).
     code : dict
         The code's total maximum displacement with torsion (:func:`asce7_torsion`) from ``d_m_m``, when given.
     attrs : dict
@@ -333,7 +338,8 @@ def moat_design(building: PlanBuilding, pairs: Any, angles_deg: Any = None, dura
     Parameters
     ----------
     building : PlanBuilding
-        The building; its moat, if any, is taken away for the runs (the gap is what they find).
+        The building; its moat, if any, is taken away for the runs (the gap is what they find; a ring is
+        moved out of reach, so that its demand is found: the gap a ring around the building needs).
     pairs : RecordPair or sequence of RecordPair
         The suite (seven or more: their mean; fewer: their largest), scaled as the design asks.
     angles_deg : array_like, optional
@@ -437,11 +443,21 @@ def accidental_fraction(value: Any, field: str = "accidental") -> float:
     return fraction
 
 
+def _open(building: PlanBuilding) -> PlanBuilding:
+    """The building as a design runs it: without its moat, or a ring's out of reach (never struck, its
+    demand tracked: the corners' largest distance from its centre, exact, less their own)."""
+    if not isinstance(building.moat, CircularMoat):
+        return building.without_bumpers()
+    with warnings.catch_warnings():  # (a gap far beyond a plausible one, on purpose)
+        warnings.simplefilter("ignore", PoundingWarning)
+        return dataclasses.replace(building, moat=dataclasses.replace(building.moat, gap_m=OUT_OF_REACH_M))
+
+
 def _cases(building: PlanBuilding, accidental: float) -> list[tuple[Optional[str], PlanBuilding]]:
-    """The buildings a design runs, without their moat, each with its case's name (None: as built)."""
+    """The buildings a design runs (:func:`_open`), each with its case's name (None: as built)."""
     fraction = accidental_fraction(accidental)
     if fraction == 0.0:
-        return [(None, building.without_bumpers())]
+        return [(None, _open(building))]
     if any(building.accidental_eccentricity):
         raise InputError(Problem.BAD_STATE, "accidental", fraction,
                          why=f"is given to a building with its own accidental_eccentricity "
@@ -455,7 +471,7 @@ def _cases(building: PlanBuilding, accidental: float) -> list[tuple[Optional[str
                              f"({exc.field} {exc.value!r})",
                          fix="give a smaller fraction, or the floors' centres of mass nearer their middle") \
             from None
-    return [(name, b.without_bumpers()) for name, b in zip(ACCIDENTAL_CASE_NAMES, shifted)]
+    return [(name, _open(b)) for name, b in zip(ACCIDENTAL_CASE_NAMES, shifted)]
 
 
 def _joined(tables: list[pd.DataFrame]) -> pd.DataFrame:

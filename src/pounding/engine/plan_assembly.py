@@ -18,19 +18,23 @@ import numpy as np
 from .. import _core
 from ..model.isolator import HYSTERESIS_RULES
 from ..model.plan import PlanBuilding, point_weights
-from ..model.plan_parts import Bearing
+from ..model.plan_parts import MOAT_SIDES, Bearing, CircularMoat
 from .assembly import BoucWenSprings, HystereticElement, Pair, bouc_wen_springs
+
+
+RING_SIDE = len(MOAT_SIDES)  # (a circular moat's contacts' side: after the rectangle's four walls)
 
 
 class PlanAssembly(NamedTuple):
     """A building in plan as the core's system, and where each part went.
 
     ``element_names[e]``: ``("bearing", b, axis)`` or ``("frame", f, axis)``; ``contacts[c]``: ``(side,
-    corner)``, the moat's wall (index of :data:`~pounding.model.plan_parts.MOAT_SIDES`) and the floor's corner
-    (:meth:`Floor.corners_m`'s order); ``tracked[q]``: ``("bearing", b, axis)``, ``("frame", f, axis)`` or
-    ``("corner", k, axis)`` or ``("centre", level, axis)``; ``vectors[v]``: bearing ``v``'s x and y (indices
-    into ``tracked``), then each floor's centre's;
-    ``contact_tracks[c]``: contact ``c``'s corner along its axis (an index into ``tracked``);
+    corner)``, the moat's wall (index of :data:`~pounding.model.plan_parts.MOAT_SIDES`, :data:`RING_SIDE` a
+    circular moat's ring) and the floor's corner (:meth:`Floor.corners_m`'s order); ``tracked[q]``:
+    ``("bearing", b, axis)``, ``("frame", f, axis)`` or ``("corner", k, axis)`` or ``("centre", level,
+    axis)``; ``vectors[v]``: bearing ``v``'s x and y (indices into ``tracked``), then each floor's centre's,
+    then a ring's corners' (offset by their places: their distances from its centre);
+    ``contact_tracks[c]``: contact ``c``'s corner along its axis (an index into ``tracked``; a ring's: x);
     ``corner_tracks[k][axis]``: corner ``k``'s along each axis (two corners on one edge move alike across it:
     one tracked pair serves both, named by the first)."""
 
@@ -51,6 +55,10 @@ class PlanAssembly(NamedTuple):
     dofs: tuple = ()             # ((0, 1, ..., 3 n - 1),): the floors' dofs, as a State holds them
     bouc_wen: BoucWenSprings = BoucWenSprings(np.zeros((0, _core.LAYOUT["BW_PARAMS"])), ())  # (its springs)
     corner_tracks: tuple = ()    # (4, 2): each corner's tracked pair along x and y
+    # a circular moat's: each contact's ring (None: a wall's) as (its point's y weights (3 n,), its place from
+    # the ring's centre (m, m), the radius m); each corner's vector from the centre (an index into vectors)
+    rings: tuple = ()
+    ring_vectors: tuple = ()
 
 
 def _levers(building: PlanBuilding, storey: int, axis: int, p: tuple[float, float],
@@ -137,7 +145,25 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
                 edges[edge] = len(tracked) - 1
             row.append(edges[edge])
         corner_tracks.append(tuple(row))
-    if moat is not None:
+    rings, ring_vectors, offsets = [], [], [(0.0, 0.0)] * len(vectors)
+    if isinstance(moat, CircularMoat):  # (each corner against the ring, along its normal)
+        radius = moat.radius_m(building.floors[moat.level])
+        for k, corner in enumerate(corners):
+            pair = _levers(building, moat.level, 0, corner, ground=True)
+            along_y = _levers(building, moat.level, 1, corner, ground=True)
+            pairs.append(Pair(pair["i"], pair["j"], 1.0, moat.gap_m, moat.law))
+            contacts.append(_core.contact_slot(
+                sign=1.0, gap_m=moat.gap_m, law=moat.law.LAW_ID, params=moat.law.params(), **pair,
+                ring_y=_core.tracked_pair(**along_y), ring_at_m=corner, ring_radius_m=radius))
+            contact_names.append((RING_SIDE, k))
+            contact_tracks.append(corner_tracks[k][0])
+            contact_weights.append(_point(floor, moat.level, 0, corner, n))
+            rings.append((_point(floor, moat.level, 1, corner, n), float(corner[0]), float(corner[1]),
+                          radius))
+            ring_vectors.append(len(vectors) + k)
+        vectors += tuple(corner_tracks)
+        offsets += [tuple(map(float, corner)) for corner in corners]
+    elif moat is not None:
         for side, (axis, sign) in enumerate(((0, -1.0), (0, 1.0), (1, -1.0), (1, 1.0))):
             for k, corner in enumerate(corners):
                 if corner[axis] * sign < 0.0:  # (the two corners on that wall's side)
@@ -154,20 +180,26 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
             tracked.append(_core.tracked_pair(i=3 * level + axis, j=-1))
             tracked_names.append(("centre", level, axis))
             tracked_weights.append(np.eye(n)[3 * level + axis])
-    vectors += tuple((tracked_names.index(("centre", level, 0)), tracked_names.index(("centre", level, 1)))
-                     for level in range(building.n_levels))
+    centres = tuple((tracked_names.index(("centre", level, 0)), tracked_names.index(("centre", level, 1)))
+                    for level in range(building.n_levels))
+    # (the floors' centres after the bearings, then a ring's corners: each vector's place in a run's norms)
+    ring_vectors = [v + len(centres) for v in ring_vectors]
+    nb = len(building.bearings)
+    vectors = vectors[:nb] + centres + vectors[nb:]
+    offsets = offsets[:nb] + [(0.0, 0.0)] * len(centres) + offsets[nb:]
     influence = np.zeros((n, 2))
     influence[0::3, 0] = 1.0
     influence[1::3, 1] = 1.0
     system = _core.system(masses, k0, c0, elements, bool(contacts), contacts, tuple(tracked),
-                          influence=influence, vectors=vectors)
+                          influence=influence, vectors=vectors,
+                          vector_offsets_m=np.array(offsets).reshape(len(vectors), 2) if rings else None)
     return PlanAssembly(system, tuple(element_names), tuple(contact_names), tuple(tracked_names), vectors,
                         tuple(contact_tracks), masses, k0 + k_fast, c0 + c_all,
                         np.array(contact_weights).reshape(len(contacts), n), np.array(tracked_weights),
                         np.array(element_weights).reshape(len(elements), n), tuple(pairs),
                         tuple(HystereticElement(el.i, el.j, list(el.slopes), list(el.breaks), el.rule)
                               for el in elements), (tuple(range(n)),), bouc_wen_springs(elements),
-                        tuple(corner_tracks))
+                        tuple(corner_tracks), tuple(rings), tuple(ring_vectors))
 
 
-__all__ = ["PlanAssembly", "assemble_plan"]
+__all__ = ["RING_SIDE", "PlanAssembly", "assemble_plan"]

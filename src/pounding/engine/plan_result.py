@@ -64,9 +64,10 @@ class PlanRun(Outcome):
     corner_displacement_max_m, corner_displacement_min_m : ndarray, shape (4, 2)
         The moat's floor's corners' exact extrema along x and y (the base's without a moat), m; corners
         in :meth:`Floor.corners_m`'s order.
-    clearance_m : ndarray, shape (4,)
+    clearance_m : ndarray, shape (4,) or (1,)
         Each moat wall's (``-x, +x, -y, +y``) smallest clearance over the run (its gap less its corners'
-        largest approach, exact; negative: struck), m.
+        largest approach, exact; negative: struck), m; a circular moat's ring's (one: its radius less the
+        corners' largest distance from its centre, exact).
     contact_force : ndarray, shape (k, n_contacts)
         Each wall's force at each corner, N (>= 0), in the order of ``contacts``'s slots.
     contact_table, event_table : ndarray
@@ -153,14 +154,14 @@ class PlanRun(Outcome):
         y for a wall across x, its x for one across y, m, in plan coordinates), ``t_start_s``, ``t_end_s``,
         the corner's velocities in and out ``v_in_m_s``, ``v_out_m_s``, ``impulse_n_s``, ``peak_force_n``,
         ``max_compression_m`` and ``bumper_dissipation_j`` (what the wall's law took)."""
-        from ..model.plan_parts import MOAT_SIDES
+        from ..model.plan_parts import MOAT_WALLS
 
         table = self.contact_table
         slots = table[:, CORE_CONTACT_COLUMNS["contact"]].astype(int)
         walls = [self.contact_slots[s][0] for s in slots]
         corners = [self.contact_slots[s][1] for s in slots]
         return pd.DataFrame({
-            "wall": pd.Categorical([MOAT_SIDES[w] for w in walls], categories=list(MOAT_SIDES)),
+            "wall": pd.Categorical([MOAT_WALLS[w] for w in walls], categories=list(MOAT_WALLS)),
             "corner": np.array(corners, dtype=int),
             "at_m": np.array([self._struck_at(w, k, t) for w, k, t in
                               zip(walls, corners, table[:, CORE_CONTACT_COLUMNS["t_start_s"]])]),
@@ -168,16 +169,21 @@ class PlanRun(Outcome):
         })
 
     def _struck_at(self, wall: int, corner: int, t_s: float) -> float:
-        """Where along ``wall`` the ``corner`` was at ``t_s`` (the sample there: one follows every event)."""
+        """Where along ``wall`` the ``corner`` was at ``t_s`` (the sample there: one follows every event):
+        a side's, its coordinate along it; the ring's, the arc from its +x point counter-clockwise."""
+        from ..model.plan_parts import MOAT_SIDES
+
         building = self.building
         level = building.moat.level
         floor = building.placed_floors[level]
         p = building.floors[level].corners_m()[corner]
-        along = 1 if wall < 2 else 0  # (a wall across x: the corner's y)
         q = min(int(np.searchsorted(self.t, t_s)), self.t.size - 1)
         u = self.displacement[q, level]
-        arm = (p[0] - floor.centre_m[0]) if along == 1 else -(p[1] - floor.centre_m[1])
-        return float(p[along] + u[along] + arm * u[2])
+        x = p[0] + u[0] - (p[1] - floor.centre_m[1]) * u[2]
+        y = p[1] + u[1] + (p[0] - floor.centre_m[0]) * u[2]
+        if wall == len(MOAT_SIDES):
+            return float(building.moat.radius_m(building.floors[level]) * (np.arctan2(y, x) % (2.0 * np.pi)))
+        return float(y if wall < 2 else x)  # (a wall across x: the corner's y)
 
     @property
     def events(self) -> pd.DataFrame:
@@ -253,8 +259,8 @@ class PlanRun(Outcome):
         the frames' ``drift_ratio_max`` (NaN without storeys), and a building in plan's own:
         ``theta_max_rad`` (the base's largest rotation), ``clearance_min_m`` (NaN without a moat) and
         ``moat_demand_m``, the moat's floor's corners' largest displacement towards any wall (the base's
-        without a moat: :attr:`wall_demand_m`), the gap a moat of equal gaps needs not to be struck;
-        ``status``."""
+        without a moat: :attr:`wall_demand_m`), the gap a moat of equal gaps needs not to be struck (a
+        circular moat's: the gap its ring needs, its gap less its clearance); ``status``."""
         from .._tables import RunQuantities
         from .layout import force_max
 
@@ -275,7 +281,8 @@ class PlanRun(Outcome):
             "drift_ratio_max": float(np.max(drift / heights)) if heights.size else float("nan"),
             "theta_max_rad": float(max(abs(self.displacement_max[0, 2]), abs(self.displacement_min[0, 2]))),
             "clearance_min_m": float(np.min(self.clearance_m)) if self.clearance_m.size else float("nan"),
-            "moat_demand_m": float(np.max(self.wall_demand_m)),
+            "moat_demand_m": (self.building.moat.gap_m - float(self.clearance_m[0])
+                              if self.clearance_m.size == 1 else float(np.max(self.wall_demand_m))),
             "status": float(self.status),
         })
 
@@ -298,8 +305,9 @@ class PlanRun(Outcome):
         ``units``; ``status`` and ``message`` as attributes."""
         import xarray as xr
 
-        from ..model.plan_parts import MOAT_SIDES
+        from ..model.plan_parts import MOAT_SIDES, RING_WALL
 
+        walls = [RING_WALL] if self.clearance_m.size == 1 else list(MOAT_SIDES)[:self.clearance_m.size]
         mixed = "m (x, y), rad (theta)"
         ds = xr.Dataset(
             {"displacement": (("sample", "level", "dof"), self.displacement, {"units": mixed}),
@@ -322,7 +330,7 @@ class PlanRun(Outcome):
                     "level": np.arange(self.displacement_max.shape[0]), "dof": ["x", "y", "theta"],
                     "bearing": np.arange(self.bearing_displacement_max_m.size), "axis": ["x", "y"],
                     "frame": np.arange(self.frame_drift_max_m.size),
-                    "wall": list(MOAT_SIDES)[:self.clearance_m.size]},
+                    "wall": walls},
             attrs={"status": self.status.name, "message": self.message})
         return ds
 

@@ -19,7 +19,7 @@ from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Harmonic, HarmonicPair, Record, RecordPair
 from ..model.contact_laws import linear_form
 from ..model.plan import PlanBuilding
-from ..model.plan_parts import MOAT_SIDES
+from ..model.plan_parts import wall_name
 from .control import check_budget, fastest_of, new_control, run_interruptibly, steps_per_second
 from .layout import P_MAX, P_MIN, X_A_MAX, X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T
 from .plan_assembly import PlanAssembly, assemble_plan
@@ -40,8 +40,8 @@ def _kept(building: PlanBuilding) -> tuple[PlanAssembly, float, float]:
     m, k, c = asm.masses, asm.k_fast.copy(), asm.c_all.copy()
     free, touching = fastest_of(m, k, c), math.inf
     form = linear_form(building.moat.law) if building.moat is not None else (0.0, 0.0)
-    if form is not None:
-        for w in asm.contact_weights:
+    if form is not None:  # (a ring's contact pushes along x and y: both counted)
+        for w in [*asm.contact_weights, *(ring[0] for ring in asm.rings)]:
             k += form[0] * np.outer(w, w)
             c += form[1] * np.outer(w, w)
         touching = fastest_of(m, k, c)
@@ -66,9 +66,18 @@ def _start(state: Optional[State], asm: PlanAssembly) -> State:
     if not 0.0 <= vec[0] <= MAX_TIME_S:
         raise InputError(Problem.BAD_STATE, "state.time_s", float(vec[0]),
                          why=f"is outside [0, {MAX_TIME_S:g}] s", fix=_FIX)
-    names = [f"moat wall {MOAT_SIDES[side]} at corner {k}" for side, k in asm.contacts]
-    check_fits(vec, asm, _FIX, (asm.contact_weights, asm.element_weights, names))
+    names = [f"moat {wall_name(side)} at corner {k}" for side, k in asm.contacts]
+    check_fits(vec, asm, _FIX, (asm.contact_weights, asm.element_weights, names, _ring_depths(asm, vec)))
     return state
+
+
+def _ring_depths(asm: PlanAssembly, vec: np.ndarray) -> dict:
+    """A circular moat's contacts' depths past the ring in the state ``vec`` (m, by contact: a corner's
+    distance from the ring's centre less its radius), none for a rectangle's walls."""
+    lay = asm.system.layout
+    x = vec[lay["x"]:lay["x"] + asm.system.n]
+    return {c: math.hypot(px + float(asm.contact_weights[c] @ x), py + float(w_y @ x)) - radius
+            for c, (w_y, px, py, radius) in enumerate(asm.rings)}
 
 
 def simulate_plan(building: PlanBuilding, excitation: Any, duration: Any, state: Optional[State], rtol: Any,
@@ -142,22 +151,26 @@ def plan_run_of(building: PlanBuilding, asm: PlanAssembly, excitation: Any, rate
         bearing_displacement_max_m=norms[:nb, nx["max"]].copy(),
         bearing_displacement_max_time_s=norms[:nb, nx["max_t"]].copy(),
         bearing_displacement_at_max_m=norms[:nb, [nx["at_p"], nx["at_q"]]].copy(),
-        plan_displacement_max_m=norms[nb:, nx["max"]].copy(),
+        plan_displacement_max_m=norms[nb:nb + levels, nx["max"]].copy(),
         bearing_axis_max_m=tracked[bearing_q, P_MAX], bearing_axis_min_m=tracked[bearing_q, P_MIN],
         frame_drift_max_m=tracked[frame_q, P_MAX], frame_drift_min_m=tracked[frame_q, P_MIN],
         corner_displacement_max_m=tracked[corners, P_MAX], corner_displacement_min_m=tracked[corners, P_MIN],
-        clearance_m=_clearances(building, asm, tracked),
+        clearance_m=_clearances(building, asm, tracked, norms[:, nx["max"]]),
         contact_force=samples[:, [1 + 3 * n + nh + c for c in range(len(asm.contacts))]],
         contact_slots=asm.contacts, contact_table=out.contacts, event_table=out.events,
         energy=EnergyLedger.of(out.ledger), final_state=State._of(out.state, asm.dofs, asm.system.layout),
         status=status)
 
 
-def _clearances(building: PlanBuilding, asm: PlanAssembly, tracked: np.ndarray) -> np.ndarray:
+def _clearances(building: PlanBuilding, asm: PlanAssembly, tracked: np.ndarray,
+                lengths: np.ndarray) -> np.ndarray:
     """Each moat wall's smallest clearance over the run, m: its gap less its corners' largest approach
-    (exact, from the corners' tracked extrema); empty without a moat."""
+    (exact, from the corners' tracked extrema); a ring's (one): its radius less its corners' largest distance
+    from its centre (exact, the corners' vectors' ``lengths``); empty without a moat."""
     if building.moat is None:
         return np.zeros(0)
+    if asm.rings:
+        return np.array([asm.rings[0][3] - float(np.max(lengths[list(asm.ring_vectors)]))])
     out = np.full(4, np.inf)
     for (side, _), q in zip(asm.contacts, asm.contact_tracks):
         approach = tracked[q, P_MAX] if side % 2 == 1 else -tracked[q, P_MIN]

@@ -71,8 +71,9 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str, levered: Optional[tuple
     ``vec`` (laid out as the assembly's, its numbers finite) is a state the system can be in.
 
     ``levered``: for pairs on levers (a building in plan's), ``(contact_weights, element_weights,
-    contact_names)``: each contact's and each element's displacement as weights on the dofs (shape
-    (pairs, n)), and each contact's name; without, a pair's displacement is ``x_i - x_j``.
+    contact_names[, depths])``: each contact's and each element's displacement as weights on the dofs (shape
+    (pairs, n)), and each contact's name; without, a pair's displacement is ``x_i - x_j``; ``depths``: the
+    contacts (by index) whose depth past their gap is given (a ring's, not a line's).
 
     Read as Python floats: a solver checks one a run, and numpy's scalars cost several times more."""
     x_all = vec.tolist()
@@ -99,6 +100,8 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str, levered: Optional[tuple
                 else contact_name(asm.slots[c], pair))
         # (how far the pair is past its gap: beyond the bumper's free surface)
         depth = sign * (along[0][c] if levered is not None else rel(i, j)) - gap
+        if levered is not None and len(levered) > 3 and c in levered[3]:  # (a ring's: from its centre)
+            depth = levered[3][c]
         if flag not in (0.0, 1.0):
             raise bad(f"in_contact[{c}]", flag, f"is the {side} bumper's contact flag: 0 or 1")
         if comp < 0.0:

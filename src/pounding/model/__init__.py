@@ -7,7 +7,7 @@ from .isolator import BoucWen, Isolator
 from .measurement import MeasurementChain, Sensor
 from .oscillator import Oscillator
 from .plan import PlanBuilding
-from .plan_parts import Bearing, Floor, Frame, RectangularMoat
+from .plan_parts import Bearing, CircularMoat, Floor, Frame, RectangularMoat
 from .adjacent import Adjacent, Link
 from .structure import Structure
 from .structure_parts import Bumpers, Stand, Storey, Wall
@@ -19,4 +19,4 @@ __all__ = ["Adjacent", "Link", "BoucWen", "Bumpers", "ElasticPlastic", "Friction
            "Jankowski",
            "KelvinVoigt", "MeasurementChain", "MultilinearBumper", "Oscillator", "RigidStop", "Sensor",
            "Stand", "Storey", "Structure", "TripleFrictionPendulum", "Wall",
-           "Bearing", "Floor", "Frame", "PlanBuilding", "RectangularMoat"]
+           "Bearing", "CircularMoat", "Floor", "Frame", "PlanBuilding", "RectangularMoat"]

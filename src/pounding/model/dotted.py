@@ -47,11 +47,14 @@ def current_name(name: str) -> str:
     return new
 
 
-def alias_of(name: str) -> tuple[str, ...] | None:
+def alias_of(name: str, table: dict | None = None) -> tuple[str, ...] | None:
     """The names an alias sets together (``bumpers.gap_m``: both gaps; ``walls[2].gap_m``: that wall's two
     gaps, ``second.walls[0].gap_m`` a pair's; ``moat.gap_m``: a building in plan's four), or None for a name
-    that is not one."""
+    that is not one (in the system ``table`` when given: a circular moat's ``moat.gap_m`` is one number)."""
     name = current_name(name)
+    moat = table.get("moat", {}) if table is not None else {}
+    if name == "moat.gap_m" and table is not None and not isinstance(moat.get("gap_m"), list):
+        return None
     if name in ALIASES:
         return ALIASES[name]
     m = _WALL_GAP.match(name)
@@ -62,8 +65,8 @@ def set_value(table: dict, name: str, value: Any) -> None:
     """Set the dotted ``name`` (``bumpers.law.stiffness``, ``isolator.slopes_n_m[0]``, or an alias:
     ``bumpers.gap_m`` sets both gaps) in nested tables."""
     name = current_name(name)
-    if alias_of(name):
-        for each in alias_of(name):
+    if alias_of(name, table):
+        for each in alias_of(name, table):
             set_value(table, each, value)
         return
     parts = name.split(".")
@@ -86,8 +89,8 @@ def set_value(table: dict, name: str, value: Any) -> None:
 def why_unresolved(table: dict, name: str) -> str | None:
     """None when the dotted ``name`` reaches a number of the system ``table``; else why not."""
     name = current_name(name)
-    if alias_of(name):
-        for each in alias_of(name):
+    if alias_of(name, table):
+        for each in alias_of(name, table):
             why = why_unresolved(table, each)
             if why is not None:
                 return why
@@ -116,8 +119,8 @@ def why_unresolved(table: dict, name: str) -> str | None:
 def get_value(table: dict, name: str) -> Any:
     """The value at the dotted ``name`` (one :func:`why_unresolved` accepts; an alias's first)."""
     name = current_name(name)
-    if alias_of(name):
-        return get_value(table, alias_of(name)[0])
+    if alias_of(name, table):
+        return get_value(table, alias_of(name, table)[0])
     node: Any = table
     for part in name.split("."):
         key, idx = _INDEX.match(part).groups()

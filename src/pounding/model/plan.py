@@ -1,6 +1,6 @@
 """A base-isolated building in plan: rigid floors with x, y and rotation, storeys of lateral lines placed
-in plan, bearings at plan positions and a rectangular moat; its matrices, centres of stiffness and modes;
-TOML in and out.
+in plan, bearings at plan positions and a moat (four walls or a ring); its matrices, centres of stiffness
+and modes; TOML in and out.
 
 Degrees of freedom: floor ``l`` (0 the base) has ``3 l`` (x of its centre of mass, m), ``3 l + 1`` (y, m) and
 ``3 l + 2`` (its rotation, rad), each relative to the ground.
@@ -15,19 +15,20 @@ from typing import Any, ClassVar, Optional
 
 import numpy as np
 
-from .._checks import instance_of, plausible, real_tuple, sequence_of
+from .._checks import instance_of, one_of, plausible, real_tuple, sequence_of
 from .._errors import InputError, PoundingWarning, Problem
 from .._units import GRAVITY_M_S2
 from ._toml import TomlFile
 from .contact_laws import law_from_dict
 from .oscillator import check_keys, isolator_from_dict
-from .plan_parts import AXES, Bearing, Floor, Frame, RectangularMoat
+from .plan_parts import AXES, Bearing, CircularMoat, Floor, Frame, RectangularMoat
 from .structure import Modes
 from .structure_parts import MAX_STOREYS
 
 MAX_BEARINGS = 400  # refused beyond
 DOF_NAMES = ("x", "y", "theta")  # a floor's three dofs, in order
 ACCIDENTAL = 0.05  # the codes' accidental eccentricity, a fraction of the plan's side (ASCE 7, EN 1998)
+MOAT_SHAPES = ("rectangle", "circle")  # (a file's moat.shape: RectangularMoat, CircularMoat)
 MAX_ACCIDENTAL, PLAUSIBLE_ACCIDENTAL = 0.25, 0.1  # (a fraction of the side: refused, warned beyond)
 ACCIDENTAL_SIGNS = ((1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0))  # (accidental_cases' four, in order)
 ACCIDENTAL_CASE_NAMES = tuple("".join(("+" if s > 0 else "-") + axis for s, axis in zip(signs, "xy"))
@@ -55,7 +56,7 @@ def _isolator_from_dict(table: Any, prefix: str) -> Any:
 class PlanBuilding(TomlFile):
     """A base-isolated building in plan: the base and the floors above it, each a rigid floor with x, y and
     rotation; the storeys' lateral lines (frames or walls) placed in plan; bearings under the base at plan
-    positions; a rectangular moat.
+    positions; a moat, four walls or a ring.
 
     Equations of motion (``q``: each floor's x, y and rotation about its centre of mass, relative to the
     ground)::
@@ -76,8 +77,8 @@ class PlanBuilding(TomlFile):
     frames : sequence of Frame
         Each storey's lateral lines: every storey needs lines along x and along y that resist its rotation
         too (two parallel lines apart, or lines along both axes off one point).
-    moat : RectangularMoat, optional
-        The moat around a floor (the base by default).
+    moat : RectangularMoat or CircularMoat, optional
+        The moat around a floor (the base by default): four walls, or a ring.
     accidental_eccentricity : (float, float)
         Each floor's centre of mass moved by these fractions of its sides along x and y (signed; the codes
         ask 0.05 of either sign: :meth:`accidental_cases`).
@@ -105,7 +106,7 @@ class PlanBuilding(TomlFile):
     floors: tuple
     bearings: tuple
     frames: tuple = ()
-    moat: Optional[RectangularMoat] = None
+    moat: Optional[RectangularMoat | CircularMoat] = None
     accidental_eccentricity: tuple = (0.0, 0.0)
 
     FIELDS: ClassVar[tuple[str, ...]] = ("floors", "bearings", "frames", "moat", "accidental_eccentricity")
@@ -133,7 +134,8 @@ class PlanBuilding(TomlFile):
                                  hint=f" (a storey carries a floor above the base; there are "
                                       f"{len(self.floors)} floors)")
         if self.moat is not None:
-            instance_of("moat", self.moat, RectangularMoat, "pounding.model.plan.RectangularMoat or None")
+            instance_of("moat", self.moat, (RectangularMoat, CircularMoat),
+                        "pounding.RectangularMoat, pounding.CircularMoat or None")
             if self.moat.level >= len(self.floors):
                 raise InputError(Problem.OUT_OF_RANGE, "moat.level", self.moat.level,
                                  range=f"[0, {len(self.floors) - 1}]", hint=" (a floor: 0 is the base)")
@@ -429,9 +431,11 @@ class PlanBuilding(TomlFile):
                     raise exc.relabel(kind.__name__.lower() + ".", prefix) from None
         moat = None
         if "moat" in table:
-            check_keys(table["moat"], "moat.", RectangularMoat.FIELDS, required=("gap_m", "law"))
             row = table["moat"]
-            moat = RectangularMoat(row["gap_m"], law_from_dict(row["law"], "moat.law"), row.get("level", 0))
+            check_keys(row, "moat.", ("shape", *RectangularMoat.FIELDS), required=("gap_m", "law"))
+            shape = one_of("moat.shape", row.get("shape", "rectangle"), MOAT_SHAPES)
+            kind = CircularMoat if shape == "circle" else RectangularMoat
+            moat = kind(row["gap_m"], law_from_dict(row["law"], "moat.law"), row.get("level", 0))
         return cls(tuple(parts["floors"]), tuple(parts["bearings"]), tuple(parts["frames"]), moat,
                    table.get("accidental_eccentricity", (0.0, 0.0)))
 

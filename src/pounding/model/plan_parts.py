@@ -1,5 +1,6 @@
 """The parts of a building in plan (:class:`pounding.model.plan.PlanBuilding`): a rigid floor, a lateral
-line (a frame or a wall) placed in plan, a bearing at a plan position, a rectangular moat.
+line (a frame or a wall) placed in plan, a bearing at a plan position, a rectangular or a circular
+moat.
 
 Plan coordinates: x and y in metres from the centre of the floors' rectangles; a rotation ``theta``
 (rad) turns x towards y.  A point ``(p_x, p_y)`` of a floor whose centre of mass ``(c_x, c_y)`` moves
@@ -8,6 +9,7 @@ by ``(u, v)`` and turns by ``theta`` moves by ``(u - (p_y - c_y) theta, v + (p_x
 
 from __future__ import annotations
 
+import math
 import warnings
 from dataclasses import dataclass
 from typing import Any, ClassVar, Optional
@@ -17,6 +19,8 @@ from .._checks import (at_most, instance_of, integer, non_negative, one_of, plau
 from .._errors import InputError, PoundingWarning, Problem
 from .contact_laws import check_law, law_to_dict
 from .contact_laws.rigid_stop import is_rigid
+from .._core import LAW_IDS
+from .._core_checks import RING_LAWS
 from .friction import PRESLIP_IN_PLAN, FrictionIsolator
 from .isolator import Isolator
 from .structure_parts import (MAX_GAP_M, MAX_STOREY_STIFFNESS, MAX_STOREYS, check_backbone_after,
@@ -325,6 +329,7 @@ class Bearing:
 
 
 MOAT_SIDES = ("-x", "+x", "-y", "+y")  # (a rectangular moat's walls, in its gaps' order)
+RING_LAW_IDS = tuple(LAW_IDS[name] for name in RING_LAWS)  # (the laws a circular moat's wall takes)
 
 
 @dataclass(frozen=True)
@@ -379,8 +384,86 @@ class RectangularMoat:
                                  "stiffness)")
         object.__setattr__(self, "level", integer("moat.level", self.level, 0, MAX_STOREYS))
 
+    @property
+    def smallest_gap_m(self) -> float:
+        """The smallest of its four gaps, m."""
+        return float(min(self.gap_m))
+
     def to_dict(self) -> dict[str, Any]:
         return {"gap_m": list(self.gap_m), "law": law_to_dict(self.law), "level": self.level}
 
 
-__all__ = ["AXES", "Bearing", "Floor", "Frame", "MOAT_SIDES", "RectangularMoat"]
+RING_WALL = "ring"  # (a circular moat's wall, as its contacts name it)
+MOAT_WALLS = (*MOAT_SIDES, RING_WALL)  # (every wall a contact may strike: a side's index, then the ring)
+
+
+def wall_name(side: int) -> str:
+    """A moat's wall by its index in :data:`MOAT_WALLS`, as messages name it: ``wall -x``, ``ring``."""
+    return RING_WALL if side == len(MOAT_SIDES) else f"wall {MOAT_SIDES[side]}"
+
+
+@dataclass(frozen=True)
+class CircularMoat:
+    """A circular moat around a floor: a ring centred on the floor's rectangle, struck by its corners along
+    the ring's normal (the wall pushes back towards the centre).
+
+    Parameters
+    ----------
+    gap_m : float
+        The clearance at rest between the floor's corners and the ring, m, >= 0: the ring's radius is the
+        rectangle's half-diagonal plus it (:meth:`radius_m`).
+    law : contact law
+        The wall's contact law: any compliant law but :class:`pounding.Jankowski` (its dashpot's kink at
+        zero compression rate is not located on a ring yet); a :class:`pounding.RigidStop` is not supported
+        in plan yet.
+    level : int
+        The floor it surrounds (default 0: the base).
+
+    Examples
+    --------
+    A ring 25 cm clear of the corners of a 30 m by 12 m base:
+
+    >>> import pounding
+    >>> pad = pounding.KelvinVoigt(stiffness=5.0e8, damping=1.0e6)
+    >>> moat = pounding.CircularMoat(0.25, pad)
+    >>> round(moat.radius_m(pounding.Floor(2.0e6, (30.0, 12.0))), 3)  # m
+    16.405
+    """
+
+    gap_m: Any
+    law: Any
+    level: int = 0
+
+    FIELDS: ClassVar[tuple[str, ...]] = ("gap_m", "law", "level")
+
+    def __post_init__(self) -> None:
+        gap = real("moat.gap_m", self.gap_m)
+        non_negative("moat.gap_m", gap, "m")
+        at_most("moat.gap_m", gap, MAX_GAP_M, " m", "give the gap in m (30 cm is 0.30)")
+        plausible("moat.gap_m", gap, 0.0, 2.0, "gaps are in m (a 30 cm moat is 0.30)")
+        object.__setattr__(self, "gap_m", gap)
+        check_law("moat.law", self.law)
+        if getattr(self.law, "LAW_ID", None) not in RING_LAW_IDS:
+            raise InputError(Problem.WRONG_CONFIGURATION, "moat.law", self.law,
+                             got=f"with a {type(self.law).__name__} for a circular moat (not supported yet: "
+                                 "a rigid stop in plan, or Jankowski's law on a ring)",
+                             fix="give the ring a compliant law (KelvinVoigt, Hertzdamp, HuntCrossley, "
+                                 "MultilinearBumper or ElasticPlastic) with the wall's stiffness")
+        object.__setattr__(self, "level", integer("moat.level", self.level, 0, MAX_STOREYS))
+
+    @property
+    def smallest_gap_m(self) -> float:
+        """Its gap, m (a rectangle's smallest: one name for both)."""
+        return self.gap_m
+
+    def radius_m(self, floor: Floor) -> float:
+        """The ring's radius around ``floor`` (the one it surrounds), m: its half-diagonal plus the gap."""
+        a, b = floor.size_m
+        return float(math.hypot(a / 2.0, b / 2.0) + self.gap_m)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"shape": "circle", "gap_m": self.gap_m, "law": law_to_dict(self.law), "level": self.level}
+
+
+__all__ = ["AXES", "Bearing", "CircularMoat", "Floor", "Frame", "MOAT_SIDES", "MOAT_WALLS", "RING_WALL",
+           "RectangularMoat", "wall_name"]

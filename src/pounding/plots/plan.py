@@ -15,7 +15,9 @@ def plot_plan_orbit(run: Any, ax: Any = None) -> list:
     """The orbit in plan of a :class:`~pounding.engine.plan_result.PlanRun`: each corner of the moat's
     floor as it moved (its displacement, mm: every corner starts at the origin), inside the moat's
     clearance (the rectangle each corner may move in before it meets a wall: ``-gap_x-`` to ``+gap_x+``,
-    ``-gap_y-`` to ``+gap_y+``), the contacts marked where they began; without a moat, each bearing's orbit.
+    ``-gap_y-`` to ``+gap_y+``; a circular moat's ring as each corner meets it, an arc ``gap_m`` beyond
+    its start along its diagonal, in its colour), the contacts marked where they began; without a moat,
+    each bearing's orbit.
     A circle marks the largest bearing displacement in plan (exact).
 
     Parameters
@@ -63,9 +65,13 @@ def plot_plan_orbit(run: Any, ax: Any = None) -> list:
             x = u[:, 0] - (py - floor.centre_m[1]) * u[:, 2]
             y = u[:, 1] + (px - floor.centre_m[0]) * u[:, 2]
             artists += ax.plot(x * mm, y * mm, lw=0.8, label=f"corner ({px:g}, {py:g}) m")
-        g = np.asarray(moat.gap_m) * mm
-        artists.append(ax.add_patch(Rectangle((-g[0], -g[2]), g[0] + g[1], g[2] + g[3], fill=False, lw=1.5,
-                                              color="k", label="moat clearance")))
+        if np.ndim(moat.gap_m) == 0:  # (a ring: where each corner meets it, an arc about its own start)
+            colours = [a.get_color() for a in artists]
+            artists += _ring_arcs(ax, moat, building.floors[level], u, colours)
+        else:
+            g = np.asarray(moat.gap_m) * mm
+            artists.append(ax.add_patch(Rectangle((-g[0], -g[2]), g[0] + g[1], g[2] + g[3], fill=False,
+                                                  lw=1.5, color="k", label="moat clearance")))
         contacts = run.contacts
         if len(contacts):
             q = np.minimum(np.searchsorted(run.t, contacts["t_start_s"].to_numpy()), run.t.size - 1)
@@ -89,8 +95,25 @@ def plot_plan_orbit(run: Any, ax: Any = None) -> list:
     ax.set_xlabel("x (mm)")
     ax.set_ylabel("y (mm)")
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), frameon=False)
-    ax.set_title("orbit in plan" + (" (each corner meets only the two walls on its sides)" if moat is not None
+    ring = moat is not None and np.ndim(moat.gap_m) == 0
+    ax.set_title("orbit in plan" + (" (each corner meets the ring along its arc)" if ring else
+                                    " (each corner meets only the two walls on its sides)" if moat is not None
                                     else ""), fontsize=9)
+    return artists
+
+
+def _ring_arcs(ax: Any, moat: Any, outline: Any, u: np.ndarray, colours: list) -> list:
+    """A circular moat as each corner meets it, in that corner's displacement (mm): the ring's arc
+    ``|p + d| = R`` about where the corner started, wide enough for its orbit, in the corner's colour."""
+    radius, mm = moat.radius_m(outline), 1e3
+    reach = max(float(np.max(np.abs(u[:, :2]))) if u.size else 0.0, moat.gap_m) * 2.0 + 1e-3
+    artists: list = []
+    for k, (px, py) in enumerate(outline.corners_m()):
+        at = np.arctan2(py, px)
+        phi = at + np.linspace(-1.0, 1.0, 121) * min(np.pi, reach / radius)
+        dx, dy = radius * np.cos(phi) - px, radius * np.sin(phi) - py
+        artists += ax.plot(dx * mm, dy * mm, lw=1.5, color=colours[k] if k < len(colours) else "k",
+                           ls="-", alpha=0.9, label="ring, as each corner meets it" if k == 0 else None)
     return artists
 
 

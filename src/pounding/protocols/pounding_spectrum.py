@@ -24,7 +24,6 @@ from ..excitation.spectrum import check_records, damping_ratio_value, periods_ar
 from .._units import GRAVITY_M_S2
 from ..model import Bumpers, FrictionIsolator, Isolator, Oscillator, Structure
 from ..model.plan import PlanBuilding
-from ..model.plan_parts import RectangularMoat
 from .._runner import Context, run_tasks
 from .._runner.progress import Progress
 from .pounding_spectrum_result import PLAN_QUANTITIES, QUANTITIES, STRUCTURE_QUANTITIES, PoundingSpectrum
@@ -294,7 +293,7 @@ def pounding_spectrum(records: Record | RecordPair | Sequence[Record] | Sequence
     law = (paper_damped().bumpers.law if structure is None else structure.moat.law if in_plan
            else structure.walls[0].law) if bumper is None else bumper
     # (checked here, warned once, not in a worker; a building in plan's moat at each gap on its four sides)
-    bumpers = ([RectangularMoat(float(g), law, structure.moat.level) for g in gaps] if in_plan
+    bumpers = ([type(structure.moat)(float(g), law, structure.moat.level) for g in gaps] if in_plan
                else [Bumpers(float(g), float(g), law) for g in gaps])
     if isolator is not None:
         instance_of("isolator", isolator, (Isolator, FrictionIsolator),
@@ -359,7 +358,7 @@ def _check_structure(structure: Any, isolator: Any, mass_kg: float, zeta: float)
         if structure.moat is None:
             raise InputError(Problem.BAD_STATE, "structure", "PlanBuilding(moat=None)",
                              why="has no moat to put at each gap",
-                             fix="give the building in plan with its moat (RectangularMoat)")
+                             fix="give the building in plan with its moat (RectangularMoat or CircularMoat)")
     elif not structure.storeys:
         raise InputError(Problem.BAD_STATE, "structure", "Structure(storeys=[])",
                          why="has no superstructure whose period could be varied",

@@ -394,7 +394,7 @@ def _check_grid(value: Any, compute: dict[str, Any], system: System) -> dict[str
             raise InputError(Problem.DUPLICATE, field, values, repeated="a value")
         out[name] = tuple(values)
     for alias in out:  # (an alias and what it sets on two axes: which one wins?)
-        names = alias_of(alias) or ()
+        names = alias_of(alias, table) or ()
         both = [n for n in names if n in out]
         if both:
             raise InputError(Problem.DUPLICATE, f"grid.{both[0]}", list(out[both[0]]),

@@ -1,0 +1,274 @@
+"""A circular moat (:class:`pounding.CircularMoat`): a ring around a floor, struck by its corners along the
+ring's normal.  Against the independent solve_ivp reference in plan (tests/reference_plan.py's rings: random
+buildings with eccentricity, their contacts' starts and ends within 1e-9 s, the final state, the corners'
+exact largest distances from the centre, the ledger), against the closed form of a circular orbit's grazing
+amplitude, and its refusals, file and plot."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+from hypothesis import HealthCheck, assume, event, given, settings
+from hypothesis import strategies as st
+
+import pounding
+from pounding import InputError
+from pounding.model.plan import PlanBuilding
+from pounding.model.plan_parts import Bearing, CircularMoat, Floor, RectangularMoat
+from reference_ndof import TouchAtRest
+from reference_plan import reference
+from reference_plan import record_pair as _record
+from test_plan_run import _draw_building, _dynamic_factor, _pair, _restated, _same_events
+
+
+def _ringed(b: PlanBuilding, gap_m: float) -> tuple[PlanBuilding, object]:
+    """``b`` with a ring of clearance ``gap_m`` at its moat's floor's corners (its law kept), and the
+    reference's model of it: the walls become the ring, each corner's distance from the centre a vector."""
+    moat = CircularMoat(gap_m, b.moat.law, b.moat.level)
+    model = _restated(b)
+    level = b.moat.level
+    a, bb = b.floors[level].size_m
+    corners = [(sx * a / 2, sy * bb / 2) for sx in (-1.0, 1.0) for sy in (-1.0, 1.0)]
+    radius = float(np.hypot(a / 2, bb / 2) + gap_m)
+    first = 2 * len(b.bearings) + len(b.frames)  # (the corners' tracked points: x then y, corner by corner)
+    model.walls = []
+    model.rings = [(model.tracked[first + 2 * k], model.tracked[first + 2 * k + 1], px, py, radius,
+                    b.moat.law.stiffness, b.moat.law.damping) for k, (px, py) in enumerate(corners)]
+    model.vector_offsets = [(0.0, 0.0)] * len(model.vectors) + corners
+    model.vectors = model.vectors + [(first + 2 * k, first + 2 * k + 1) for k in range(4)]
+    return dataclasses.replace(b, moat=moat), model
+
+
+def _same_as_the_reference(rng, levels, gap_m, pga):
+    """A drawn building in a ring against the reference: events, final state, extrema, clearance, ledger
+    (None where the reference cannot follow the draw)."""
+    b, model = _ringed(_draw_building(rng, levels, gap_m), gap_m)
+    t, ax, ay = _record(rng, 2.0, 0.01, pga)
+    model.record = (t, ax, ay)
+    run = pounding.simulate(b, _pair(t, ax, ay), t[-1], sample_rate_hz=200.0)
+    assert run.success, run.message
+    try:
+        ref = reference(model, t[-1], np.zeros(2 * 3 * levels))
+    except TouchAtRest:
+        return None
+    for action, rows in (("contact_start", ref.contact_starts), ("contact_end", ref.contact_ends),
+                         ("yield", ref.yields), ("reversal", ref.sticks)):
+        _same_events(run, action, rows)
+    n = 3 * levels
+    scale = np.max(np.abs(ref.y))
+    lay = run.final_state.layout
+    end = run.final_state.vector
+    np.testing.assert_allclose(end[lay["x"]:lay["x"] + n], ref.y[:n], rtol=0, atol=1e-8 * scale)
+    np.testing.assert_allclose(end[lay["v"]:lay["v"] + n], ref.y[n:], rtol=0, atol=1e-8 * scale)
+    nb = len(b.bearings)
+    lengths = ref.vector_max[nb + levels:]  # (each corner's largest distance from the ring's centre)
+    close = dict(rtol=0, atol=1e-9 * max(np.max(np.abs(ref.tracked_max)), np.max(np.abs(ref.tracked_min))))
+    np.testing.assert_allclose(run.bearing_displacement_max_m, ref.vector_max[:nb], **close)
+    np.testing.assert_allclose(run.plan_displacement_max_m, ref.vector_max[nb:nb + levels], **close)
+    radius = b.moat.radius_m(b.floors[b.moat.level])
+    np.testing.assert_allclose(run.clearance_m, [radius - np.max(lengths)], **close)
+    contacts = run.contacts
+    assert set(contacts["wall"]) <= {"ring"}
+    if len(contacts):  # (each contact's deepest compression: at most the ring's largest overlap)
+        assert contacts["max_compression_m"].max() <= -run.clearance_m[0] + close["atol"]
+        assert np.all((0.0 <= contacts["at_m"]) & (contacts["at_m"] < 2 * np.pi * radius))
+    e = run.energy
+    assert abs(e.residual) <= 1e-9 * max(abs(e.input_work), e.viscous, e.kinetic, e.hysteretic)
+    return ref
+
+
+@settings(max_examples=5, deadline=None, suppress_health_check=[HealthCheck.too_slow])
+@given(seed=st.integers(0, 2**32 - 1), levels=st.integers(1, 2), gap_m=st.floats(0.02, 0.1),
+       pga=st.floats(2.0, 5.0))
+def test_a_building_in_a_ring_runs_as_the_reference(seed, levels, gap_m, pga):
+    ref = _same_as_the_reference(np.random.default_rng(seed), levels, gap_m, pga)
+    assume(ref is not None)
+    event(f"{'ring struck' if ref.contact_starts else 'ring not struck'}, {levels} floor(s)")
+
+
+@pytest.mark.parametrize("seed", [5, 11])
+def test_a_ring_struck_again_and_again_runs_as_the_reference(seed):
+    # (a narrow ring and strong shaking: corners strike it several times, the floor turning)
+    ref = _same_as_the_reference(np.random.default_rng(seed), 1, 0.02, 5.0)
+    assert ref is not None and len(ref.contact_starts) >= 2
+
+
+def _isotropic(gap_m):
+    """A square floor on four equal linear bearings, its mass centred (test_plan_run's), in a ring."""
+    iso = pounding.Isolator(slopes_n_m=[2.5e6], breakpoints_m=[], damping_n_s_m=1.5e5)
+    return PlanBuilding([Floor(4e5, (20.0, 20.0))], [Bearing((sx * 8.0, sy * 8.0), iso) for sx in (-1, 1)
+                                                     for sy in (-1, 1)],
+                        moat=CircularMoat(gap_m, pounding.KelvinVoigt(1e9, 1e6)))
+
+
+def test_a_ring_around_the_circular_orbit_is_grazed_at_the_closed_form_amplitude():
+    # a_x = A sin(w t), a_y = A cos(w t): the floor's steady orbit is a circle of radius A / |k/m - w^2 + i c
+    # w / m| without turning, so each corner's largest distance from the ring's centre is its own plus the
+    # radius; the ring is grazed where the radius is its gap, A = gap |k/m - w^2 + i c w / m|: just below, no
+    # contact and a clearance of the radius's shortfall, exactly; just above, contacts
+    gap, freq_hz = 0.2, 0.7
+    graze_g = gap * _dynamic_factor(freq_hz) / 9.81
+    far, near = _isotropic(1.0), _isotropic(gap)
+    for excess, struck in ((-1e-9, False), (-1e-7, False), (1e-8, True), (1e-6, True)):
+        table = pounding.HarmonicPair.circular(graze_g * (1.0 + excess), freq_hz)
+        steady = pounding.simulate(far, table, 40.0, sample_rate_hz=0.0).final_state  # (the ring's layout)
+        run = pounding.simulate(near, table, 3.0, state=steady, sample_rate_hz=0.0)
+        assert (len(run.contacts) > 0) == struck, excess
+        if not struck:
+            np.testing.assert_allclose(run.clearance_m, [-gap * excess], rtol=1e-3)
+        else:
+            assert run.summary()["clearance_min_m"] < 0.0
+
+
+def test_a_ring_takes_compliant_laws_and_refuses_the_others():
+    kv = pounding.KelvinVoigt(5e8, 1e6)
+    for law in (kv, pounding.Hertzdamp(1e10, 0.5), pounding.HuntCrossley(1e10, 1.5, 1e4),
+                pounding.MultilinearBumper([1e8, 2e8], [0.01]), pounding.ElasticPlastic(5e8, 1e7, 0.002)):
+        assert CircularMoat(0.1, law).law is law
+    for law in (pounding.RigidStop(0.5), pounding.Jankowski(1e10, 0.1, 1e5)):
+        with pytest.raises(InputError, match="moat.law"):
+            CircularMoat(0.1, law)
+    for gap in (-0.1, float("nan"), "0.1"):
+        with pytest.raises(InputError, match="moat.gap_m"):
+            CircularMoat(gap, kv)
+    with pytest.raises(InputError, match="moat.level"):
+        PlanBuilding([Floor(4e5, (20.0, 20.0))], [Bearing((0.0, 0.0), pounding.Isolator([1e7], []))],
+                     moat=CircularMoat(0.1, kv, level=1))
+
+
+def test_a_ring_in_a_file_and_back():
+    b = _isotropic(0.15)
+    table = b.to_dict()
+    assert table["moat"]["shape"] == "circle"
+    assert PlanBuilding.from_dict(table) == b
+    table["moat"]["shape"] = "oval"
+    with pytest.raises(InputError, match="moat.shape"):
+        PlanBuilding.from_dict(table)
+    rect = dataclasses.replace(b, moat=RectangularMoat(0.15, b.moat.law))
+    assert PlanBuilding.from_dict(rect.to_dict()) == rect
+
+
+def test_a_ring_struck_reports_where_and_plots(tmp_path):
+    b = _isotropic(0.05)
+    run = pounding.simulate(b, pounding.HarmonicPair.circular(0.3, 0.7), 6.0, sample_rate_hz=100.0)
+    contacts = run.contacts
+    assert len(contacts) > 0 and set(contacts["wall"]) == {"ring"}
+    radius = b.moat.radius_m(b.floors[0])
+    assert radius == pytest.approx(np.hypot(10.0, 10.0) + 0.05)
+    # (a corner strikes the ring near its own bearing from the centre: corner 3, (+10, +10), at 45 deg)
+    for corner, at in zip(contacts["corner"], contacts["at_m"]):
+        px, py = b.floors[0].corners_m()[corner]
+        angle = np.arctan2(py, px) % (2 * np.pi)
+        assert abs(at / radius - angle) < 0.05
+    ds = run.to_xarray()
+    assert list(ds["wall"].values) == ["ring"]
+    q = run.quantities()
+    assert q["moat_demand_m"] == pytest.approx(0.05 - run.clearance_m[0], abs=1e-15)
+    fig = run.plot()
+    fig.savefig(tmp_path / "ring.png")
+    # the core's system with its ring travels by pickle (to a worker) and runs the same there
+    import pickle
+
+    from pounding import _core
+    from pounding._control import new_control
+    from pounding.engine.plan_assembly import assemble_plan
+    from pounding.engine.run_args import kernel_forcing
+
+    system = assemble_plan(b).system
+    copy = pickle.loads(pickle.dumps(system))
+    table = kernel_forcing(pounding.HarmonicPair.circular(0.3, 0.7))
+    outs = [_core.run(s, table, np.zeros(s.layout["size"]), 6.0, 0.0, 1e-10, 10**6, True, new_control(10**9))
+            for s in (system, copy)]
+    np.testing.assert_array_equal(outs[0].contacts, outs[1].contacts)
+    np.testing.assert_array_equal(outs[0].norms, outs[1].norms)
+    assert outs[0].contacts.shape[0] == len(contacts)
+
+
+def test_a_ring_s_gap_is_a_study_s_axis_and_a_pounding_spectrum_s(tmp_path):
+    from pathlib import Path
+
+    from pounding.protocols.pounding_spectrum import bearings_at
+    from pounding.studies.points import PLAN_RUN_QUANTITIES, load_pair, pair_factor
+
+    b = PlanBuilding.from_toml(Path(__file__).parents[1] / "examples" / "plan_building.toml")
+    law = b.moat.law
+    b = dataclasses.replace(b, moat=CircularMoat(0.15, law))
+    source = "fema-p695-pair:far_field:3"
+    spec = pounding.StudySpec(b, {"kind": "record", "record": source, "scale_pga_g": 0.5, "duration_s": 6.0},
+                              {"moat.gap_m": [0.04, 0.3]})
+    ds = pounding.study(spec, str(tmp_path / "r.zarr"), scheduler="serial", progress=False).load()
+    pair = load_pair(source).scaled(pair_factor(source, 0.5, None, None, 0.05))
+    for gap in (0.04, 0.3):  # (moat.gap_m sets the ring's one gap)
+        ringed = dataclasses.replace(b, moat=CircularMoat(gap, law))
+        expected = pounding.simulate(ringed, pair, 6.0).quantities()
+        point = ds.sel({"moat.gap_m": gap})
+        for name in PLAN_RUN_QUANTITIES:
+            assert float(point[name]) == pytest.approx(expected[name], rel=1e-12, nan_ok=True), name
+    assert float(ds["impacts"].sel({"moat.gap_m": 0.04})) > 0
+    assert float(ds["impacts"].sel({"moat.gap_m": 0.3})) == 0
+    ps = pounding.pounding_spectrum([pair], [2.0], gaps_m=[0.04, 0.3], structure=b, scheduler="serial")
+    building = bearings_at(b, 2.0)
+    for gap in (0.04, 0.3):
+        q = pounding.simulate(dataclasses.replace(building, moat=CircularMoat(gap, law)), pair,
+                              pair.t[-1]).quantities()
+        cell = ps.data.isel(record=0).sel(period_s=2.0, gap_m=gap)
+        for name in ("impacts", "clearance_min_m", "moat_demand_m", "disp_max_m"):
+            assert float(cell[name]) == pytest.approx(q[name], rel=1e-12, nan_ok=True), name
+
+
+def test_a_moat_design_finds_the_gap_a_ring_needs():
+    # the design runs the building with its ring out of reach: each run's demand is the corners' largest
+    # distance from the ring's centre less their own, the gap a ring needs not to be struck by that run
+    from pounding import design
+
+    quake = pounding.records.el_centro().scaled(pga_g=0.4)
+    pairs = [pounding.RecordPair(quake, quake.scaled(factor=0.6), name="a")]
+    b = _isotropic(0.1)
+    found = design.moat_design(b, pairs, [0.0, 60.0], duration_s=8.0)
+    for angle in (0.0, 60.0):
+        far = pounding.simulate(dataclasses.replace(b, moat=CircularMoat(1.0, b.moat.law)),
+                                pairs[0].rotated(angle), 8.0)
+        demand = float(found.data.loc[("a", angle), "moat_demand_m"])
+        assert len(far.contacts) == 0
+        assert demand == pytest.approx(1.0 - far.clearance_m[0], rel=0, abs=1e-12)
+        # (a ring of that gap is grazed: just wider, never struck; narrower, struck)
+        for gap, struck in ((demand * (1 + 1e-6), False), (demand * (1 - 1e-3), True)):
+            run = pounding.simulate(dataclasses.replace(b, moat=CircularMoat(gap, b.moat.law)),
+                                    pairs[0].rotated(angle), 8.0)
+            assert (len(run.contacts) > 0) == struck, (angle, gap)
+    assert found.moat_demand_m == pytest.approx(found.data["moat_demand_m"].max(), rel=1e-15)
+
+
+def _struck(law, duration_s=6.0):
+    b = dataclasses.replace(_isotropic(0.03), moat=CircularMoat(0.03, law))
+    return pounding.simulate(b, pounding.HarmonicPair.circular(0.3, 0.7), duration_s, sample_rate_hz=400.0)
+
+
+def test_a_ring_s_multilinear_law_of_one_slope_is_its_kelvin_voigt_law():
+    # two equal slopes: its branch's edge is an event that changes nothing; the run is Kelvin-Voigt's
+    kv = _struck(pounding.KelvinVoigt(2e8, 1e6))
+    ml = _struck(pounding.MultilinearBumper([2e8, 2e8], [0.004], damping=1e6))
+    assert len(kv.contacts) >= 3 and (ml.event_table[:, 1] == pounding._core.ACTIONS["bumper_branch"]).any()
+    cols = ["corner", "t_start_s", "t_end_s", "peak_force_n", "max_compression_m"]
+    np.testing.assert_allclose(ml.contacts[cols].to_numpy(), kv.contacts[cols].to_numpy(), rtol=1e-9)
+    np.testing.assert_allclose(ml.final_state.vector, kv.final_state.vector, rtol=0,
+                               atol=1e-9 * np.max(np.abs(kv.final_state.vector)))
+
+
+@pytest.mark.parametrize("law", [pounding.ElasticPlastic(2e8, 2e7, 0.002),
+                                 pounding.MultilinearBumper([2e8, 5e7], [0.003], damping=5e5,
+                                                            hysteresis="kinematic"),
+                                 pounding.Hertzdamp(5e9, 0.3)])
+def test_a_ring_s_hysteretic_and_nonlinear_laws_keep_the_ledger_and_never_pull(law):
+    run = _struck(law)
+    assert run.success and len(run.contacts) >= 2
+    e = run.energy
+    # (in contact the phases are numerical: the ledger to tests/test_invariants.py's 1e-8 of the flows, as
+    # Bouc-Wen runs' are; measured 1.4e-9 for Hertzdamp's, 6e-11 and below for the others)
+    assert abs(e.residual) <= 1e-8 * max(abs(e.input_work), e.kinetic, e.hysteretic + e.viscous)
+    assert e.contact_dissipation > 0.0
+    assert np.all(run.contact_force >= -1e-9 * np.max(run.contact_force))  # (a wall never pulls)
+    assert np.all(run.contacts["max_compression_m"] > 0.0)
+    assert run.contacts["max_compression_m"].max() <= -run.clearance_m[0] + 1e-12
