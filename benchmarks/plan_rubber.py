@@ -1,5 +1,5 @@
-"""What rubber bearings' Bouc-Wen springs, and sliding bearings' friction circle, cost a building in plan:
-CPU time of one run.
+"""What rubber bearings' Bouc-Wen springs, sliding bearings' friction circle and a circular moat cost a
+building in plan: CPU time of one run.
 
 The building of ``opensees_plan.py`` (5 storeys above its base, 18 dofs) under the far-field set's first
 pair x2, its whole record, events only, on its four bilinear lead-rubber bearings (exact phases), then on
@@ -9,7 +9,9 @@ resultant), and the same springs uncoupled (one along each axis).  Every phase w
 integrated numerically (Dormand-Prince 5(4) at the run's rtol), so the ratio is that integration's cost.
 Then on friction pendulums of the bilinear law's post-yield stiffness (W / R = k2) and characteristic
 strength (mu W = (k1 - k2) d_y), an elastic pre-slip of 0.5 mm: the friction circle (a bidirectional Bouc-Wen
-spring of that yield displacement, n = 2), and one bilinear friction per axis (exact phases).
+spring of that yield displacement, n = 2), and one bilinear friction per axis (exact phases).  Last, the
+bilinear bearings with a ring for a moat instead of four walls, the same clearance at the corners: its
+contacts' starts located on the exact phases, each contact integrated numerically.
 
     python benchmarks/plan_rubber.py [--storeys 5] [--rounds 3]
 """
@@ -48,6 +50,11 @@ def sliding(b: pd_.PlanBuilding, bidirectional: bool) -> pd_.PlanBuilding:
     return dataclasses.replace(b, bearings=bearings)
 
 
+def ringed(b: pd_.PlanBuilding) -> pd_.PlanBuilding:
+    """``b`` with a ring for a moat, its smallest gap clear of the base's corners, the walls' law."""
+    return dataclasses.replace(b, moat=pd_.CircularMoat(b.moat.smallest_gap_m, b.moat.law, b.moat.level))
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--storeys", type=int, default=5)
@@ -63,7 +70,8 @@ def main() -> None:
                      ("Bouc-Wen bearings, bidirectional", rubber(base, True)),
                      ("Bouc-Wen bearings, one spring per axis", rubber(base, False)),
                      ("friction pendulums, the friction circle", sliding(base, True)),
-                     ("friction pendulums, one friction per axis", sliding(base, False))):
+                     ("friction pendulums, one friction per axis", sliding(base, False)),
+                     ("bilinear bearings, a ring for a moat", ringed(base))):
         def run(b=b):
             out = pd_.simulate(b, pair, pair.duration_s, sample_rate_hz=0)
             if not out.success:

@@ -69,7 +69,7 @@ def test_every_command_line_example_of_the_docs_runs_and_gives_something(page, c
 SYSTEMS = ("adjacent_buildings", "building_moat", "elastic_plastic_ybs", "friction_pendulum_moat",
            "masing_ybs", "paper_printed_nbs", "paper_printed_ybs", "paper_slider_nbs", "paper_slider_ybs",
            "soft_stop_building", "triple_friction_moat", "plan_building", "plan_rubber_building",
-           "plan_friction_building")
+           "plan_friction_building", "plan_ring_building")
 
 
 def test_every_shipped_example_file_reads_without_a_warning():
