@@ -12,14 +12,14 @@ namespace pounding::run_parts {
 
 namespace {
 
-// a contact table's row from a contact's running totals (acc: its block of the state), its end and the
-// pair's velocity there
 // a contact's velocity as its rows give it: its pair's (a line's), or the rate of its compression (a ring's:
 // sign +1, the point's speed along the wall's normal)
 double contact_speed(const Contact& ct, const double* st, const Layout& L) {
     return ct.radial.on ? compression(ct, st + L.x, st + L.v).dv : rel(st + L.v, ct);
 }
 
+// a contact table's row from a contact's running totals (acc: its block of the state), its end and the
+// contact's velocity there (contact_speed)
 void contact_row(Rows& contacts, int c, const double* acc, double t_end, double v_out) {
     double* r = contacts.push();
     r[CC_CONTACT] = static_cast<double>(c);
