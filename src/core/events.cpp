@@ -22,6 +22,7 @@ double abs_acceleration_rate(Phase& ph, int i, double tau, const double* y, cons
     for (int c = 0; c < ph.nc; ++c) {
         const ContactPhase& k = slot(ph, c);
         if (k.radial.on) {  // (its normal turns: its force's direction has a rate too)
+            if (!k.nl) continue;  // (out of contact: no force)
             const ContactForce f = contact_force(ph, c, y, a);
             q += push_contact_rate(k, i, y, y + n, f.f, f.rate);
             continue;

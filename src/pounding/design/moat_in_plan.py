@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import math
 import warnings
-import dataclasses
 from dataclasses import dataclass, field
 from typing import Any, Optional
 
@@ -26,10 +25,8 @@ from .._runner import Progress
 from ..excitation.pair import RecordPair
 from ..model.plan import (ACCIDENTAL, ACCIDENTAL_CASE_NAMES, MAX_ACCIDENTAL, PLAUSIBLE_ACCIDENTAL,
                           PlanBuilding)
-from ..model.plan_parts import CircularMoat
 
 MIN_PAIRS_FOR_MEAN = 7  # ASCE 7-16 17.6.3.3, EN 1998-1 4.3.3.4.3: the mean of seven pairs or more
-OUT_OF_REACH_M = 100.0  # a ring's gap while a design runs it: no building's corner moves this far
 
 
 def asce7_torsion(building: PlanBuilding, d_m_m: float, element: str = "bearing") -> dict[str, float]:
@@ -443,21 +440,12 @@ def accidental_fraction(value: Any, field: str = "accidental") -> float:
     return fraction
 
 
-def _open(building: PlanBuilding) -> PlanBuilding:
-    """The building as a design runs it: without its moat, or a ring's out of reach (never struck, its
-    demand tracked: the corners' largest distance from its centre, exact, less their own)."""
-    if not isinstance(building.moat, CircularMoat):
-        return building.without_bumpers()
-    with warnings.catch_warnings():  # (a gap far beyond a plausible one, on purpose)
-        warnings.simplefilter("ignore", PoundingWarning)
-        return dataclasses.replace(building, moat=dataclasses.replace(building.moat, gap_m=OUT_OF_REACH_M))
-
-
 def _cases(building: PlanBuilding, accidental: float) -> list[tuple[Optional[str], PlanBuilding]]:
-    """The buildings a design runs (:func:`_open`), each with its case's name (None: as built)."""
+    """The buildings a design runs (:meth:`PlanBuilding.moat_out_of_reach`), each with its case's name
+    (None: as built)."""
     fraction = accidental_fraction(accidental)
     if fraction == 0.0:
-        return [(None, _open(building))]
+        return [(None, building.moat_out_of_reach())]
     if any(building.accidental_eccentricity):
         raise InputError(Problem.BAD_STATE, "accidental", fraction,
                          why=f"is given to a building with its own accidental_eccentricity "
@@ -471,7 +459,7 @@ def _cases(building: PlanBuilding, accidental: float) -> list[tuple[Optional[str
                              f"({exc.field} {exc.value!r})",
                          fix="give a smaller fraction, or the floors' centres of mass nearer their middle") \
             from None
-    return [(name, _open(b)) for name, b in zip(ACCIDENTAL_CASE_NAMES, shifted)]
+    return [(name, b.moat_out_of_reach()) for name, b in zip(ACCIDENTAL_CASE_NAMES, shifted)]
 
 
 def _joined(tables: list[pd.DataFrame]) -> pd.DataFrame:

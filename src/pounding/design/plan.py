@@ -50,7 +50,8 @@ class DesignPlan:
     system : Oscillator, Structure or PlanBuilding
         The base system, with its bumpers (the grid varies their gap and numbers); or a building
         with its moat's wall (the grid varies that wall's gaps, ``walls[w].gap_m``); or a building in
-        plan with its moat (the grid varies its four gaps, ``moat.gap_m``), under pairs of components.
+        plan with its moat (the grid varies its four gaps or a ring's, ``moat.gap_m``), under pairs of
+        components.
     design_spectrum, mce_spectrum : DesignSpectrum
         The two levels (ASCE 7-16: design and MCE_R; EN 1998-1: the spectrum and ``mce_factor``
         times it; a user's: two tables).
@@ -455,7 +456,7 @@ def run_plan(
             except InputError:  # (no estimate: all or nothing, or separated stripes; the table says which)
                 continue
     alone = (replace(plan.system, walls=()) if plan.building and not plan.in_plan
-             else plan.system.without_bumpers())
+             else plan.system.moat_out_of_reach() if plan.in_plan else plan.system.without_bumpers())
     free = stripe_analysis(alone, plan.records, plan.levels_g, store=free_store(store), **common)
     decision = decide(
         analyses if len(analyses) > 1 else next(iter(analyses.values())),

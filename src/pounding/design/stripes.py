@@ -80,9 +80,9 @@ def stripe_analysis(
         The base system (its bumpers, or none: then a contact is the peak displacement reaching a
         gap, for every gap at once); or a building with its walls (a moat wall: a grid over
         ``walls[0].gap_m``), its runs' events its drift ratio and floor accelerations besides contact;
-        or a building in plan (its moat's four gaps: a grid over ``moat.gap_m``; without a moat, a
-        contact is its base's corners reaching a gap towards a wall, ``moat_demand_m``) under pairs of
-        components.
+        or a building in plan (its moat's four gaps or a ring's: a grid over ``moat.gap_m``; without a
+        moat, or with its ring out of reach, a contact is its corners reaching a gap, ``moat_demand_m``)
+        under pairs of components.
     records : str or sequence of str
         The suite: ``"fema-p695:far_field"``, ``"fema-p695:near_field"``, ``"el-centro"``, the sets'
         pairs for a building in plan (``"fema-p695-pair:far_field"``: both components at once; refused
@@ -163,7 +163,7 @@ def stripe_analysis(
         {"sa_g": levels.tolist(), "record": sources, **design_grid},
     )
     if isinstance(system, PlanBuilding):
-        has_bumpers, capacity = system.moat is not None, None
+        has_bumpers, capacity = system.moat_in_reach, None
     else:
         has_bumpers = any(s.walls for s in structures_of(system)[0])
         capacity = system.bumpers.capacity_m if has_bumpers and is_single_mass(system) else None

@@ -55,8 +55,9 @@ class PlanAssembly(NamedTuple):
     dofs: tuple = ()             # ((0, 1, ..., 3 n - 1),): the floors' dofs, as a State holds them
     bouc_wen: BoucWenSprings = BoucWenSprings(np.zeros((0, _core.LAYOUT["BW_PARAMS"])), ())  # (its springs)
     corner_tracks: tuple = ()    # (4, 2): each corner's tracked pair along x and y
-    # a circular moat's: each contact's ring (None: a wall's) as (its point's y weights (3 n,), its place from
-    # the ring's centre (m, m), the radius m); each corner's vector from the centre (an index into vectors)
+    # a circular moat's (empty with four walls: a building has one or the other): each contact's ring as (its
+    # point's y weights (3 n,), its place from the ring's centre (m, m), the radius m), contact by contact;
+    # each corner's vector from the centre (an index into vectors)
     rings: tuple = ()
     ring_vectors: tuple = ()
 

@@ -149,19 +149,22 @@ class PlanRun(Outcome):
     # ------------------------------------------------------------------ tables
     @property
     def contacts(self) -> pd.DataFrame:
-        """One row per contact at the moat: ``wall`` (``-x``, ``+x``, ``-y``, ``+y``), the ``corner`` that
-        struck it (:meth:`Floor.corners_m`'s index), ``at_m`` where along the wall it struck (the corner's
-        y for a wall across x, its x for one across y, m, in plan coordinates), ``t_start_s``, ``t_end_s``,
-        the corner's velocities in and out ``v_in_m_s``, ``v_out_m_s``, ``impulse_n_s``, ``peak_force_n``,
-        ``max_compression_m`` and ``bumper_dissipation_j`` (what the wall's law took)."""
-        from ..model.plan_parts import MOAT_WALLS
+        """One row per contact at the moat: ``wall`` (``-x``, ``+x``, ``-y``, ``+y``; a circular moat's
+        ``ring``), the ``corner`` that struck it (:meth:`Floor.corners_m`'s index), ``at_m`` where along the
+        wall it struck (the corner's y for a wall across x, its x for one across y, m, in plan coordinates;
+        on a ring the arc from its +x point counter-clockwise, m), ``t_start_s``, ``t_end_s``, the corner's
+        velocities in and out ``v_in_m_s``, ``v_out_m_s`` (along the wall's axis; on a ring along its
+        normal, outwards: positive coming in), ``impulse_n_s``, ``peak_force_n``, ``max_compression_m`` and
+        ``bumper_dissipation_j`` (what the wall's law took)."""
+        from ..model.plan_parts import MOAT_SIDES, MOAT_WALLS, RING_WALL
 
         table = self.contact_table
         slots = table[:, CORE_CONTACT_COLUMNS["contact"]].astype(int)
         walls = [self.contact_slots[s][0] for s in slots]
         corners = [self.contact_slots[s][1] for s in slots]
+        kinds = [RING_WALL] if self.clearance_m.size == 1 else list(MOAT_SIDES)  # (the moat's own walls)
         return pd.DataFrame({
-            "wall": pd.Categorical([MOAT_WALLS[w] for w in walls], categories=list(MOAT_WALLS)),
+            "wall": pd.Categorical([MOAT_WALLS[w] for w in walls], categories=kinds),
             "corner": np.array(corners, dtype=int),
             "at_m": np.array([self._struck_at(w, k, t) for w, k, t in
                               zip(walls, corners, table[:, CORE_CONTACT_COLUMNS["t_start_s"]])]),
@@ -234,7 +237,7 @@ class PlanRun(Outcome):
             "bearing_of_max": b,
             "theta_max_rad": float(max(abs(self.displacement_max[0, 2]), abs(self.displacement_min[0, 2]))),
             "contacts": int(self.contact_table.shape[0]),
-            "clearance_min_m": float(np.min(self.clearance_m)) if self.clearance_m.size else nan,
+            "clearance_min_m": float(np.min(self.clearance_m)) if self.building.moat_in_reach else nan,
             "peak_force_max_n": (float(np.max(self.contact_table[:, CORE_CONTACT_COLUMNS["peak_force_n"]]))
                                  if self.contact_table.shape[0] else nan),
             "input_work_j": energy.input_work if energy is not None else nan,
@@ -246,7 +249,8 @@ class PlanRun(Outcome):
     def wall_demand_m(self) -> np.ndarray:
         """Towards each side (``-x, +x, -y, +y``), the largest displacement of the moat's floor's corners
         along its normal (the base's without a moat), m, exact: the gap a wall there needs not to be struck
-        (with a moat, its gap less its clearance), shape (4,)."""
+        (with four walls, each one's gap less its clearance; a ring's demand is ``quantities()``'s
+        ``moat_demand_m``), shape (4,)."""
         hi, lo = self.corner_displacement_max_m, self.corner_displacement_min_m
         return np.array([-lo[:, 0].min(), hi[:, 0].max(), -lo[:, 1].min(), hi[:, 1].max()])
 
@@ -257,7 +261,8 @@ class PlanRun(Outcome):
         at the moat with their ``impact_force_max_n``, ``impact_speed_max_m_s`` and
         ``compression_max_m``, the top floor's centre's ``top_disp_max_m`` (in plan) and ``top_acc_max_g``,
         the frames' ``drift_ratio_max`` (NaN without storeys), and a building in plan's own:
-        ``theta_max_rad`` (the base's largest rotation), ``clearance_min_m`` (NaN without a moat) and
+        ``theta_max_rad`` (the base's largest rotation), ``clearance_min_m`` (NaN without a moat or with
+        its ring out of reach, :meth:`PlanBuilding.moat_out_of_reach`) and
         ``moat_demand_m``, the moat's floor's corners' largest displacement towards any wall (the base's
         without a moat: :attr:`wall_demand_m`), the gap a moat of equal gaps needs not to be struck (a
         circular moat's: the gap its ring needs, its gap less its clearance); ``status``."""
@@ -280,7 +285,8 @@ class PlanRun(Outcome):
             "top_acc_max_g": float(np.max(self.abs_acceleration_max[-1, :2])) / g,
             "drift_ratio_max": float(np.max(drift / heights)) if heights.size else float("nan"),
             "theta_max_rad": float(max(abs(self.displacement_max[0, 2]), abs(self.displacement_min[0, 2]))),
-            "clearance_min_m": float(np.min(self.clearance_m)) if self.clearance_m.size else float("nan"),
+            "clearance_min_m": (float(np.min(self.clearance_m)) if self.building.moat_in_reach
+                                else float("nan")),
             "moat_demand_m": (self.building.moat.gap_m - float(self.clearance_m[0])
                               if self.clearance_m.size == 1 else float(np.max(self.wall_demand_m))),
             "status": float(self.status),

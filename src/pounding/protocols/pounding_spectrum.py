@@ -126,12 +126,12 @@ def bearings_at(building: PlanBuilding, period_s: float) -> PlanBuilding:
 
 def _systems(task: tuple, period: float) -> list:
     """A task's systems at one period: without bumpers (walls, moat), then with them at each gap (a
-    building's walls each with its own laws, a building in plan's moat its four gaps, or all with
+    building's walls each with its own laws, a building in plan's moat its four gaps or a ring's, or all with
     ``bumper``'s when one was given)."""
     _, _, bumpers, zeta, mass_kg, template, _, structure, override = task
     if isinstance(structure, PlanBuilding):  # (``bumpers``: its moat at each gap)
         building = bearings_at(structure, period)
-        return [building.without_bumpers()] + [replace(building, moat=moat) for moat in bumpers]
+        return [building.moat_out_of_reach()] + [replace(building, moat=moat) for moat in bumpers]
     if structure is not None:
         building = superstructure_at(structure, period)
 
@@ -226,10 +226,11 @@ def pounding_spectrum(records: Record | RecordPair | Sequence[Record] | Sequence
         initial stiffnesses, its floors rigid (:func:`isolated_period_s`; every bearing's slopes and
         Bouc-Wen spring scaled to it, its dashpot by the square root, :func:`bearings_at`; on friction
         pendulums their sliding period, their radii scaled), and its moat
-        stands at each gap on its four sides; its peaks are ``PLAN_QUANTITIES``: a building's,
-        ``disp_max_m`` its largest bearing displacement in plan, ``theta_max_rad``, ``clearance_min_m``
-        (the smallest to a wall) and ``moat_demand_m`` (its floor's corners' largest displacement towards
-        a wall; without the moat, the gap it would need).
+        stands at each gap on its four sides (a ring: its one gap); its peaks are ``PLAN_QUANTITIES``: a
+        building's, ``disp_max_m`` its largest bearing displacement in plan, ``theta_max_rad``,
+        ``clearance_min_m`` (the smallest to a wall) and ``moat_demand_m`` (its floor's corners' largest
+        displacement towards a wall, or a ring's demand; without the moat, or its ring out of reach,
+        :meth:`PlanBuilding.moat_out_of_reach`, the gap it would need).
     workers : int, optional
         Worker threads or processes (default: every core).
     scheduler : str or dask.distributed.Client, optional
@@ -292,7 +293,7 @@ def pounding_spectrum(records: Record | RecordPair | Sequence[Record] | Sequence
         _check_structure(structure, isolator, mass_kg, zeta)
     law = (paper_damped().bumpers.law if structure is None else structure.moat.law if in_plan
            else structure.walls[0].law) if bumper is None else bumper
-    # (checked here, warned once, not in a worker; a building in plan's moat at each gap on its four sides)
+    # (checked here, warned once, not in a worker; a building in plan's moat at each gap, 4 sides or a ring)
     bumpers = ([type(structure.moat)(float(g), law, structure.moat.level) for g in gaps] if in_plan
                else [Bumpers(float(g), float(g), law) for g in gaps])
     if isolator is not None:
