@@ -148,6 +148,24 @@ def test_a_ring_in_a_file_and_back():
         PlanBuilding.from_dict(table)
     rect = dataclasses.replace(b, moat=RectangularMoat(0.15, b.moat.law))
     assert PlanBuilding.from_dict(rect.to_dict()) == rect
+    table = b.to_dict()
+    table["moat"]["gap_m"] = [0.1, 0.2]
+    with pytest.raises(InputError, match="moat.gap_m .*a ring has one gap"):
+        PlanBuilding.from_dict(table)
+    # a ring out of reach (a free run's) travels by its file, without a warning of its own
+    import warnings
+
+    free = b.moat_out_of_reach()
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", pounding.PoundingWarning)
+        assert PlanBuilding.from_dict(free.to_dict()) == free
+    assert free.moat.out_of_reach and not free.moat_in_reach and b.moat_in_reach
+    table = rect.to_dict()
+    table["moat"]["out_of_reach"] = True
+    with pytest.raises(InputError, match="moat.out_of_reach"):
+        PlanBuilding.from_dict(table)
+    with pytest.raises(InputError, match="floor"):
+        b.moat.radius_m(None)
 
 
 def test_a_ring_struck_reports_where_and_plots(tmp_path):
@@ -164,6 +182,11 @@ def test_a_ring_struck_reports_where_and_plots(tmp_path):
         assert abs(at / radius - angle) < 0.05
     ds = run.to_xarray()
     assert list(ds["wall"].values) == ["ring"]
+    # (a real ring 100 m wide keeps its clearance: out of reach is a ring's own flag, not a gap)
+    with pytest.warns(pounding.PoundingWarning, match="moat.gap_m"):
+        wide = dataclasses.replace(b, moat=CircularMoat(100.0, b.moat.law))
+    assert np.isfinite(pounding.simulate(wide, pounding.HarmonicPair.circular(0.3, 0.7), 1.0)
+                       .quantities()["clearance_min_m"])
     # the ring's demand: the corners' exact largest distance from its centre less their own, at least what
     # the samples (2 kHz) show and near it
     fine = pounding.simulate(b, pounding.HarmonicPair.circular(0.3, 0.7), 6.0, sample_rate_hz=2000.0)

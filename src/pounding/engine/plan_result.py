@@ -287,7 +287,7 @@ class PlanRun(Outcome):
             "theta_max_rad": float(max(abs(self.displacement_max[0, 2]), abs(self.displacement_min[0, 2]))),
             "clearance_min_m": (float(np.min(self.clearance_m)) if self.building.moat_in_reach
                                 else float("nan")),
-            "moat_demand_m": (self.building.moat.gap_m - float(self.clearance_m[0])
+            "moat_demand_m": (self.building.moat.reach_m - float(self.clearance_m[0])
                               if self.clearance_m.size == 1 else float(np.max(self.wall_demand_m))),
             "status": float(self.status),
         })

@@ -29,7 +29,6 @@ MAX_BEARINGS = 400  # refused beyond
 DOF_NAMES = ("x", "y", "theta")  # a floor's three dofs, in order
 ACCIDENTAL = 0.05  # the codes' accidental eccentricity, a fraction of the plan's side (ASCE 7, EN 1998)
 MOAT_SHAPES = ("rectangle", "circle")  # (a file's moat.shape: RectangularMoat, CircularMoat)
-OUT_OF_REACH_M = 100.0  # a ring's gap in a free run (moat_out_of_reach): no building's corner moves this far
 MAX_ACCIDENTAL, PLAUSIBLE_ACCIDENTAL = 0.25, 0.1  # (a fraction of the side: refused, warned beyond)
 ACCIDENTAL_SIGNS = ((1.0, 1.0), (1.0, -1.0), (-1.0, 1.0), (-1.0, -1.0))  # (accidental_cases' four, in order)
 ACCIDENTAL_CASE_NAMES = tuple("".join(("+" if s > 0 else "-") + axis for s, axis in zip(signs, "xy"))
@@ -399,19 +398,17 @@ class PlanBuilding(TomlFile):
     def moat_in_reach(self) -> bool:
         """Whether its corners can strike its moat: False without one, or with a ring out of reach
         (:meth:`moat_out_of_reach`)."""
-        return self.moat is not None and not (isinstance(self.moat, CircularMoat)
-                                              and self.moat.gap_m >= OUT_OF_REACH_M)
+        return self.moat is not None and not getattr(self.moat, "out_of_reach", False)
 
     def moat_out_of_reach(self) -> "PlanBuilding":
         """The building as a free run takes it, its demand on its own moat tracked: without its moat
         (:meth:`without_bumpers`: the corners' displacements towards four walls are tracked anyway), or
-        with its ring moved out of reach (``OUT_OF_REACH_M``: never struck, the corners' distances from its
-        centre tracked; a run's ``quantities()`` give its ``moat_demand_m`` and no clearance)."""
+        with its ring moved out of reach (``CircularMoat.out_of_reach``: its radius ``OUT_OF_REACH_M``
+        beyond the corners, never struck, their distances from its centre tracked; a run's
+        ``quantities()`` give its ``moat_demand_m`` and no clearance)."""
         if not isinstance(self.moat, CircularMoat):
             return self.without_bumpers()
-        with warnings.catch_warnings():  # (a gap far beyond a plausible one, on purpose)
-            warnings.simplefilter("ignore", PoundingWarning)
-            return dataclasses.replace(self, moat=dataclasses.replace(self.moat, gap_m=OUT_OF_REACH_M))
+        return dataclasses.replace(self, moat=dataclasses.replace(self.moat, out_of_reach=True))
 
     # ------------------------------------------------------------------ TOML
     def to_dict(self) -> dict[str, Any]:
@@ -451,10 +448,14 @@ class PlanBuilding(TomlFile):
         moat = None
         if "moat" in table:
             row = table["moat"]
-            check_keys(row, "moat.", ("shape", *RectangularMoat.FIELDS), required=("gap_m", "law"))
+            check_keys(row, "moat.", ("shape", *CircularMoat.FIELDS), required=("gap_m", "law"))
             shape = one_of("moat.shape", row.get("shape", "rectangle"), MOAT_SHAPES)
             kind = CircularMoat if shape == "circle" else RectangularMoat
-            moat = kind(row["gap_m"], law_from_dict(row["law"], "moat.law"), row.get("level", 0))
+            ring = {"out_of_reach": row["out_of_reach"]} if "out_of_reach" in row else {}
+            if ring and kind is RectangularMoat:
+                raise InputError(Problem.UNKNOWN_KEY, "moat.out_of_reach", row["out_of_reach"],
+                                 choices="a rectangle's keys (out_of_reach is a ring's: shape = \"circle\")")
+            moat = kind(row["gap_m"], law_from_dict(row["law"], "moat.law"), row.get("level", 0), **ring)
         return cls(tuple(parts["floors"]), tuple(parts["bearings"]), tuple(parts["frames"]), moat,
                    table.get("accidental_eccentricity", (0.0, 0.0)))
 

@@ -11,6 +11,8 @@ from __future__ import annotations
 
 import math
 import warnings
+
+import numpy as np
 from dataclasses import dataclass
 from typing import Any, ClassVar, Optional
 
@@ -330,6 +332,7 @@ class Bearing:
 
 MOAT_SIDES = ("-x", "+x", "-y", "+y")  # (a rectangular moat's walls, in its gaps' order)
 RING_LAW_IDS = tuple(LAW_IDS[name] for name in RING_LAWS)  # (the laws a circular moat's wall takes)
+OUT_OF_REACH_M = 100.0  # a ring's gap in a free run (out_of_reach): no building's corner moves this far
 
 
 @dataclass(frozen=True)
@@ -433,15 +436,21 @@ class CircularMoat:
     gap_m: Any
     law: Any
     level: int = 0
+    out_of_reach: bool = False
 
-    FIELDS: ClassVar[tuple[str, ...]] = ("gap_m", "law", "level")
+    FIELDS: ClassVar[tuple[str, ...]] = ("gap_m", "law", "level", "out_of_reach")
 
     def __post_init__(self) -> None:
+        if isinstance(self.gap_m, (list, tuple, np.ndarray)):
+            raise InputError(Problem.WRONG_TYPE, "moat.gap_m", self.gap_m, got=type(self.gap_m).__name__,
+                             expected="number (a ring has one gap; four: a RectangularMoat, shape = "
+                                      "\"rectangle\" in a file)")
         gap = real("moat.gap_m", self.gap_m)
         non_negative("moat.gap_m", gap, "m")
         at_most("moat.gap_m", gap, MAX_GAP_M, " m", "give the gap in m (30 cm is 0.30)")
         plausible("moat.gap_m", gap, 0.0, 2.0, "gaps are in m (a 30 cm moat is 0.30)")
-        object.__setattr__(self, "gap_m", gap)
+        object.__setattr__(self, "gap_m", gap + 0.0)  # (-0.0 as 0.0)
+        instance_of("moat.out_of_reach", self.out_of_reach, bool, "true or false")
         check_law("moat.law", self.law)
         if getattr(self.law, "LAW_ID", None) not in RING_LAW_IDS:
             raise InputError(Problem.WRONG_CONFIGURATION, "moat.law", self.law,
@@ -456,13 +465,23 @@ class CircularMoat:
         """Its gap, m (a rectangle's smallest: one name for both)."""
         return self.gap_m
 
+    @property
+    def reach_m(self) -> float:
+        """How far its corners may move towards it, m: its gap, or :data:`OUT_OF_REACH_M` for a ring moved
+        out of reach (``out_of_reach``: never struck, the demand on it tracked; a free run's,
+        :meth:`PlanBuilding.moat_out_of_reach`)."""
+        return OUT_OF_REACH_M if self.out_of_reach else self.gap_m
+
     def radius_m(self, floor: Floor) -> float:
-        """The ring's radius around ``floor`` (the one it surrounds), m: its half-diagonal plus the gap."""
+        """The ring's radius around ``floor`` (the one it surrounds), m: its half-diagonal plus the gap
+        (:attr:`reach_m`)."""
+        instance_of("floor", floor, Floor, "pounding.Floor")
         a, b = floor.size_m
-        return float(math.hypot(a / 2.0, b / 2.0) + self.gap_m)
+        return float(math.hypot(a / 2.0, b / 2.0) + self.reach_m)
 
     def to_dict(self) -> dict[str, Any]:
-        return {"shape": "circle", "gap_m": self.gap_m, "law": law_to_dict(self.law), "level": self.level}
+        return {"shape": "circle", "gap_m": self.gap_m, "law": law_to_dict(self.law), "level": self.level,
+                **({"out_of_reach": True} if self.out_of_reach else {})}
 
 
 __all__ = ["AXES", "Bearing", "CircularMoat", "Floor", "Frame", "MOAT_SIDES", "MOAT_WALLS", "RING_WALL",
