@@ -421,6 +421,10 @@ class CircularMoat:
         in plan yet.
     level : int
         The floor it surrounds (default 0: the base).
+    out_of_reach : bool
+        A ring moved out of reach (default False): its radius ``OUT_OF_REACH_M`` beyond the corners, never
+        struck, the corners' distances from its centre tracked: what a free run of a building in a ring
+        takes (:meth:`PlanBuilding.moat_out_of_reach`), its ``moat_demand_m`` the gap a ring needs.
 
     Examples
     --------
