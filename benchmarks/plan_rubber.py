@@ -8,8 +8,10 @@ beside a Bouc-Wen spring, one bidirectional spring per bearing (Park, Wen and An
 resultant), and the same springs uncoupled (one along each axis).  Every phase with a Bouc-Wen spring is
 integrated numerically (Dormand-Prince 5(4) at the run's rtol), so the ratio is that integration's cost.
 Then on friction pendulums of the bilinear law's post-yield stiffness (W / R = k2) and characteristic
-strength (mu W = (k1 - k2) d_y), an elastic pre-slip of 0.5 mm: the friction circle (a bidirectional Bouc-Wen
-spring of that yield displacement, n = 2), and one bilinear friction per axis (exact phases).  Last, the
+strength (mu W = (k1 - k2) d_y), an elastic pre-slip of 0.5 mm: the plastic friction circle (the default:
+its sticks and slips located as events, integrated numerically between them), the Bouc-Wen circle (a
+bidirectional Bouc-Wen spring of that yield displacement, n = 2), and one bilinear friction per axis (exact
+phases).  Last, the
 bilinear bearings with a ring for a moat instead of four walls, the same clearance at the corners: its
 contacts' starts located on the exact phases, each contact integrated numerically.
 
@@ -38,7 +40,7 @@ def rubber(b: pd_.PlanBuilding, bidirectional: bool) -> pd_.PlanBuilding:
     return dataclasses.replace(b, bearings=bearings)
 
 
-def sliding(b: pd_.PlanBuilding, bidirectional: bool) -> pd_.PlanBuilding:
+def sliding(b: pd_.PlanBuilding, bidirectional: bool, circle: str = "plastic") -> pd_.PlanBuilding:
     """``b`` on friction pendulums: the bilinear law's post-yield stiffness as W / R and its characteristic
     strength ``Q = (k1 - k2) d_y`` as mu W (W an equal share of the weight), a pre-slip of 0.5 mm."""
     lrb = b.bearings[0].isolator
@@ -46,7 +48,8 @@ def sliding(b: pd_.PlanBuilding, bidirectional: bool) -> pd_.PlanBuilding:
     weight = 9.81 * sum(f.mass_kg for f in b.floors) / len(b.bearings)
     fps = pd_.FrictionIsolator(mu=(k1 - k2) * lrb.breakpoints_m[0] / weight, radius_m=weight / k2,
                                preslip_m=5e-4, damping_n_s_m=lrb.damping_n_s_m)
-    bearings = tuple(dataclasses.replace(x, isolator=fps, bidirectional=bidirectional) for x in b.bearings)
+    bearings = tuple(dataclasses.replace(x, isolator=fps, bidirectional=bidirectional, friction_circle=circle)
+                     for x in b.bearings)
     return dataclasses.replace(b, bearings=bearings)
 
 
@@ -69,7 +72,8 @@ def main() -> None:
     for label, b in (("bilinear bearings (exact phases)", base),
                      ("Bouc-Wen bearings, bidirectional", rubber(base, True)),
                      ("Bouc-Wen bearings, one spring per axis", rubber(base, False)),
-                     ("friction pendulums, the friction circle", sliding(base, True)),
+                     ("friction pendulums, the plastic circle", sliding(base, True)),
+                     ("friction pendulums, the Bouc-Wen circle", sliding(base, True, "bouc_wen")),
                      ("friction pendulums, one friction per axis", sliding(base, False)),
                      ("bilinear bearings, a ring for a moat", ringed(base))):
         def run(b=b):

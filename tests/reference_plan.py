@@ -15,7 +15,10 @@ by its force times w:
   state; the integration restarts where z and where w . q' cross zero, its law's kinks); two of them may be
   one bidirectional spring (Park, Wen and Ang's, of any n): with u'_k = w_k . q', the vector z = (z_1, z_2),
   z_k' = (a u'_k - |z|^(n-2) z_k sum_j u'_j z_j (gamma + beta sgn(u'_j z_j))) / u_y, yielding under the
-  resultant (one spring along a line when the other's z and u' are 0);
+  resultant (one spring along a line when the other's z and u' are 0); or one elastic-perfectly-plastic circle
+  (a friction bearing's: its numbers' a = 1, its force still f_z z): inside |z| = 1, z' = u' / u_y (stuck,
+  elastic); on it, while z . u' > 0, z' = (u' - (z . u') z) / u_y (slipping); the integration restarts where
+  |z| reaches 1 (it slips) and where z . u' comes back to 0 (it sticks);
 * a Kelvin-Voigt wall (stiffness k_b, dashpot c_b) behind a gap, on one side (sign +-1): in contact its force
   is k_b d + c_b d' (d = sign w . q - gap) until it would pull; out of contact its compression relaxes as
   d_r exp(-k_b (t - t_r) / c_b) from where it was released, and contact starts when the point meets that
@@ -55,6 +58,8 @@ class PlanModel:
     bouc_wen: list = field(default_factory=list)
     # the bidirectional ones: pairs of indices into bouc_wen (the same numbers), each one spring in the plane
     bidirectional: list = field(default_factory=list)
+    # the plastic circles: pairs of indices into bouc_wen (a = 1), each one elastic-perfectly-plastic circle
+    circles: list = field(default_factory=list)
     # points whose displacement's extrema are found (w (n,) each: a bearing's along an axis, a corner's)
     tracked: list = field(default_factory=list)
     # vectors of two tracked points each (indices into tracked: a bearing's x and y), whose length's largest
@@ -85,6 +90,8 @@ class PlanResult:
     y: np.ndarray | None = None                         # the final (q, q')
     z: np.ndarray | None = None                         # the final Bouc-Wen z
     z_zeros: list = field(default_factory=list)         # (spring, t): its z back through zero
+    circle_slips: list = field(default_factory=list)    # (circle, t): it reached its circle and slips
+    circle_sticks: list = field(default_factory=list)   # (circle, t): it sticks again (inside)
     tracked_max: np.ndarray | None = None               # each tracked point's largest and smallest w . q, m
     tracked_min: np.ndarray | None = None
     vector_max: np.ndarray | None = None                # each vector's longest, m
@@ -120,14 +127,18 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
     z_max = [(a / (beta + gamma)) ** (1.0 / ne) for _, _, a, beta, gamma, ne in bws]
     nz = len(bws)
     mate = [-1] * nz
-    for b1, b2 in s.bidirectional:
+    for b1, b2 in [*s.bidirectional, *s.circles]:
         mate[b1], mate[b2] = b2, b1
+    circle_of = {b: q for q, pair in enumerate(s.circles) for b in pair}
+    on_circle = [False] * len(s.circles)  # (slipping on it)
 
     def longest_step(kk):  # (a hundredth of the fastest period: no dip of an event between two steps' signs)
         w_max = math.sqrt(max(float(np.max(np.linalg.eigvals(kk * inv_m[:, None]).real)), 0.0))
         return 2.0 * math.pi / w_max / steps_per_period if w_max > 0.0 else np.inf
 
     k_stuck = s.k + sum((k_p * np.outer(w, w) for w, (_, k_p, _) in zip(wp, s.plastic)), np.zeros((n, n)))
+    k_stuck = k_stuck + sum((bws[b][0] / bws[b][1] * np.outer(wz[b], wz[b]) for b in circle_of),
+                            np.zeros((n, n)))  # (a circle's elastic stiffness)
     k_in = k_stuck + sum((k_b * np.outer(w, w) for w, _, _, k_b, _ in s.walls), np.zeros((n, n)))
     k_in = k_in + sum((k_b * (np.outer(wx, wx) + np.outer(wy, wy)) for wx, wy, _, _, _, k_b, _ in s.rings),
                       np.zeros((n, n)))
@@ -165,6 +176,10 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         out = np.zeros(nz)
         for b, (w, (_, u_y, a, beta, gamma, ne)) in enumerate(zip(wz, bws)):
             du, z = float(w @ y[n:2 * n]), float(y[2 * n + b])
+            if b in circle_of:  # (a plastic circle: elastic inside, turning on it while it slips)
+                zm, dm = float(y[2 * n + mate[b]]), float(wz[mate[b]] @ y[n:2 * n])
+                out[b] = (du - z * (du * z + dm * zm) if on_circle[circle_of[b]] else du) / u_y
+                continue
             if mate[b] < 0:
                 # (|z| held at 2 z_max in the power: a rejected trial stage can leave |z| <= z_max)
                 zn = min(abs(z), 2.0 * z_max[b]) ** ne
@@ -234,7 +249,19 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
                 evs.append(change)
         if nz:
             dy = rhs(t, y)
+        for q, (b1, b2) in enumerate(s.circles):  # (a circle reached; a slip's z . u' back to zero)
+            def circle(t, y, q=q, b1=b1, b2=b2):
+                z1, z2 = y[2 * n + b1], y[2 * n + b2]
+                if on_circle[q]:
+                    return z1 * float(wz[b1] @ y[n:2 * n]) + z2 * float(wz[b2] @ y[n:2 * n])
+                return 1.0 - (z1 * z1 + z2 * z2)
+            circle.terminal = True
+            circle.direction = -1.0
+            circle.circle = q
+            evs.append(circle)
         for b, w in enumerate(wz):  # (a Bouc-Wen spring's kinks: its z and its rate w . q' through zero)
+            if b in circle_of:
+                continue
             # (z is set to 0 where it crosses zero, as the engine does: it has none while it is 0, and leaves
             # 0 with w . q''s sign; w . q' at rest heads where w . q'' does; from rest at rest, nowhere yet)
             z = y[2 * n + b]
@@ -333,6 +360,14 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         t = t_hit
         # (every event at that instant, to 1e-12 s, once: solve_ivp's and a stepped-over dip may be the same)
         for c in sorted({c for t_c, c in hits if t_c <= t_hit + 1e-12}):
+            if hasattr(evs[c], "circle"):  # (a circle's switch: slipping on it, |z| = 1; or inside)
+                q = evs[c].circle
+                on_circle[q] = not on_circle[q]
+                (out.circle_slips if on_circle[q] else out.circle_sticks).append((q, t))
+                if on_circle[q]:
+                    at = [2 * n + b for b in s.circles[q]]
+                    y[at] /= math.hypot(*y[at])
+                continue
             if hasattr(evs[c], "kink"):  # (a Bouc-Wen kink: the integration restarts there)
                 b, zero = evs[c].kink
                 if zero:

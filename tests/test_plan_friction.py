@@ -113,8 +113,9 @@ def test_a_tiny_pre_slip_warns_and_a_bad_number_in_a_file_names_its_bearing(tmp_
     assert err.value.field == "bearings[0].isolator.preslip_m", str(err.value)
 
 
-def test_the_friction_circle_is_its_bidirectional_bouc_wen_spring():
-    # a friction pendulum bearing in plan is, number for number, a bearing whose law is the pendulum's W / R
+def test_the_bouc_wen_friction_circle_is_its_bidirectional_bouc_wen_spring():
+    # a friction pendulum bearing in plan with friction_circle="bouc_wen" (Constantinou, Mokha and Reinhorn's
+    # smooth circle) is, number for number, a bearing whose law is the pendulum's W / R
     # with a bidirectional Bouc-Wen spring of stiffness mu W / preslip_m, yield displacement preslip_m, a = 1,
     # beta = gamma = 1/2, n = 2 (its force mu W z, |z| <= 1)
     fps = FrictionIsolator(mu=0.05, radius_m=2.5, preslip_m=1e-3, damping_n_s_m=2e4)
@@ -123,7 +124,7 @@ def test_the_friction_circle_is_its_bidirectional_bouc_wen_spring():
               pounding.Frame(1, "y", -10.0, 3e8, 1e5), pounding.Frame(1, "y", 11.0, 2e8, 1e5)]
     at = [(sx * 10.0, sy * 6.0) for sx in (-1, 1) for sy in (-1, 1)]
     moat = RectangularMoat(0.15, pounding.KelvinVoigt(2e8, 4e5))
-    sliding = PlanBuilding(floors, [Bearing(p, fps) for p in at], frames, moat)
+    sliding = PlanBuilding(floors, [Bearing(p, fps, friction_circle="bouc_wen") for p in at], frames, moat)
 
     def rubber(w):
         return pounding.Isolator(slopes_n_m=[w / 2.5], damping_n_s_m=2e4,

@@ -3,12 +3,14 @@ Friction pendulums in plan: the friction circle
 ================================================
 
 The two-storey building of the previous examples on four friction pendulums (R = 2.5 m, mu = 0.06, an
-elastic pre-slip of 0.5 mm), shaken by El Centro 1940 at 0.5 g along 60 degrees. A sliding bearing slips
-along its velocity once the force in the plane reaches mu W: its friction stays on a circle of radius mu W
-(the friction circle, a bidirectional Bouc-Wen spring as in Constantinou, Mokha and Reinhorn's model and
-SAP2000's), whatever the direction it slides in. The same bearings with one friction along each axis
-(``bidirectional=False``), each slipping under its own component, resist a diagonal slide with up to
-sqrt(2) mu W: their friction fills a square, and the building slides less than it should.
+elastic pre-slip of 0.5 mm), shaken by El Centro 1940 at 0.5 g along 60 degrees. A sliding bearing sticks
+while the force in the plane stays inside mu W and slips along its velocity once it reaches it: its friction
+stays inside a circle of radius mu W (the friction circle), whatever the direction it slides in. By default
+the circle is elastic-perfectly-plastic, each stick and slip located as an event; Constantinou, Mokha and
+Reinhorn's smooth circle (a bidirectional Bouc-Wen spring, SAP2000's, ``friction_circle="bouc_wen"``)
+rounds its corners. The same bearings with one friction along each axis (``bidirectional=False``), each
+slipping under its own component, resist a diagonal slide with up to sqrt(2) mu W: their friction fills a
+square, and the building slides less than it should.
 """
 
 import matplotlib.pyplot as plt
@@ -23,15 +25,16 @@ frames += [Frame(s, "y", x, k, 1.0e5) for s in (1, 2) for x, k in ((-15.0, 9.0e8
 moat = RectangularMoat(gap_m=0.2, law=pounding.KelvinVoigt(stiffness=5.0e8, damping=1.0e6))
 
 
-def building(bidirectional):
-    bearings = [Bearing((sx * 14.0, sy * 5.0), fps, bidirectional=bidirectional)
+def building(bidirectional, circle="plastic"):
+    bearings = [Bearing((sx * 14.0, sy * 5.0), fps, bidirectional=bidirectional, friction_circle=circle)
                 for sx in (-1, 1) for sy in (-1, 1)]
     return PlanBuilding([Floor(4.0e5, (30.0, 12.0), centre_m=(3.0, 0.0))] * 3, bearings, frames, moat)
 
 
 quake = pounding.RecordPair.of_direction(pounding.records.el_centro().scaled(pga_g=0.5), 60.0)
-runs = {name: pounding.simulate(building(flag), quake, duration=15.0, sample_rate_hz=200.0)
-        for name, flag in (("friction circle", True), ("one friction per axis", False))}
+runs = {name: pounding.simulate(building(*how), quake, duration=15.0, sample_rate_hz=200.0)
+        for name, how in (("plastic circle", (True,)), ("Bouc-Wen circle", (True, "bouc_wen")),
+                          ("one friction per axis", (False,)))}
 weight = building(True).bearings[2].isolator.weight_n  # N: bearing 2's share, nearer the mass
 for name, run in runs.items():
     print(f"{name}: largest bearing displacement {1e3 * run.bearing_displacement_max_m.max():.1f} mm, "
@@ -39,7 +42,7 @@ for name, run in runs.items():
 
 # %%
 # Bearing 2's friction in the plane (its force less the pendulum's W / R u), over the circle mu W.
-fig, axes = plt.subplots(1, 2, figsize=(8, 3.8), constrained_layout=True)
+fig, axes = plt.subplots(1, 3, figsize=(11, 3.8), constrained_layout=True)
 for ax, (name, run) in zip(axes, runs.items()):
     f = run.bearing_force[:, 2, :] - (weight / 2.5) * run.bearing_displacement[:, 2, :]
     ax.plot(f[:, 0] / 1e3, f[:, 1] / 1e3, lw=0.6)
@@ -54,5 +57,5 @@ axes[0].legend(fontsize=8, loc="lower right")
 plt.show()
 
 # %%
-# The corners' orbits inside the moat's clearance, on the friction circle.
-runs["friction circle"].plot()
+# The corners' orbits inside the moat's clearance, on the plastic friction circle.
+runs["plastic circle"].plot()

@@ -117,7 +117,7 @@ Contact contact_of(int i, int j, double sign, double gap_m, int law, const std::
 Hysteretic element_of(int i, int j, double c_d, const std::vector<double>& slopes, const std::vector<double>& breaks,
                       int rule, double friction, double friction_fast, double friction_rate,
                       const std::vector<double>& surface_friction, const std::vector<double>& surface_ring,
-                      const std::vector<double>& bw, int bw_mate) {
+                      const std::vector<double>& bw, int bw_mate, bool bw_plastic) {
     Hysteretic h;
     h.i = i;
     h.j = j;
@@ -132,6 +132,7 @@ Hysteretic element_of(int i, int j, double c_d, const std::vector<double>& slope
     h.surface_ring = surface_ring;
     for (int k = 0; k < BW_PARAMS; ++k) h.bw[k] = k < static_cast<int>(bw.size()) ? bw[k] : 0.0;
     h.bw_mate = bw_mate;
+    h.bw_plastic = bw_plastic;
     return h;
 }
 
@@ -189,6 +190,7 @@ nb::dict element_state(const Hysteretic& h) {
     d["surface_ring_n_m"] = h.surface_ring;
     d["bw"] = std::vector<double>(h.bw, h.bw + BW_PARAMS);
     d["bw_mate"] = h.bw_mate;
+    if (h.bw_plastic) d["bw_plastic"] = true;  // (a plastic circle's; absent before it was one)
     levers_state(d, h);
     return d;
 }
@@ -204,7 +206,8 @@ Hysteretic element_from_state(const nb::dict& d) {
                       d.contains("surface_ring_n_m") ? nb::cast<std::vector<double>>(d["surface_ring_n_m"])
                                                      : std::vector<double>{},
                       d.contains("bw") ? nb::cast<std::vector<double>>(d["bw"]) : std::vector<double>{},
-                      d.contains("bw_mate") ? nb::cast<int>(d["bw_mate"]) : -1);
+                      d.contains("bw_mate") ? nb::cast<int>(d["bw_mate"]) : -1,
+                      d.contains("bw_plastic") && nb::cast<bool>(d["bw_plastic"]));
     levers_from_state(h, d);
     return h;
 }
@@ -351,17 +354,17 @@ NB_MODULE(_pounding_core, m) {
                 const std::vector<double>& breaks, int rule, double friction_n, double friction_fast_n,
                 double friction_rate_s_m, const std::vector<double>& surface_friction_n,
                 const std::vector<double>& surface_ring_n_m, const std::vector<double>& bw, int bw_mate,
-                int lever_i, double arm_i_m, int lever_j, double arm_j_m) {
+                bool bw_plastic, int lever_i, double arm_i_m, int lever_j, double arm_j_m) {
                  new (h) Hysteretic(element_of(i, j, c_d, slopes, breaks, rule, friction_n, friction_fast_n,
                                                friction_rate_s_m, surface_friction_n, surface_ring_n_m, bw,
-                                               bw_mate));
+                                               bw_mate, bw_plastic));
                  set_levers(*h, lever_i, arm_i_m, lever_j, arm_j_m);
              },
              nb::kw_only(), nb::arg("i"), nb::arg("j"), nb::arg("c_d"), nb::arg("slopes"), nb::arg("breaks"),
              nb::arg("rule"), nb::arg("friction_n") = 0.0, nb::arg("friction_fast_n") = 0.0,
              nb::arg("friction_rate_s_m") = 0.0, nb::arg("surface_friction_n") = std::vector<double>{},
              nb::arg("surface_ring_n_m") = std::vector<double>{}, nb::arg("bw") = std::vector<double>{},
-             nb::arg("bw_mate") = -1, nb::arg("lever_i") = -1, nb::arg("arm_i_m") = 0.0,
+             nb::arg("bw_mate") = -1, nb::arg("bw_plastic") = false, nb::arg("lever_i") = -1, nb::arg("arm_i_m") = 0.0,
              nb::arg("lever_j") = -1, nb::arg("arm_j_m") = 0.0)
         .def_ro("i", &Hysteretic::i)
         .def_ro("j", &Hysteretic::j)
@@ -376,6 +379,7 @@ NB_MODULE(_pounding_core, m) {
         .def_ro("surface_ring_n_m", &Hysteretic::surface_ring)
         .def_prop_ro("bw", [](const Hysteretic& h) { return std::vector<double>(h.bw, h.bw + BW_PARAMS); })
         .def_ro("bw_mate", &Hysteretic::bw_mate)
+        .def_ro("bw_plastic", &Hysteretic::bw_plastic)
         .def("__getstate__", &element_state)
         .def("__setstate__", [](Hysteretic& h, const nb::dict& d) { new (&h) Hysteretic(element_from_state(d)); });
 
@@ -654,6 +658,8 @@ NB_MODULE(_pounding_core, m) {
     actions["surface_slip"] = static_cast<int>(ACT_SURFACE_SLIP);
     actions["ring"] = static_cast<int>(ACT_RING);
     actions["ring_off"] = static_cast<int>(ACT_RING_OFF);
+    actions["circle_slip"] = static_cast<int>(ACT_CIRCLE_SLIP);
+    actions["circle_stick"] = static_cast<int>(ACT_CIRCLE_STICK);
     m.attr("ACTIONS") = actions;
     m.attr("N_LAW_STATE") = N_LAW_STATE;
     m.attr("N_LAW_PARAMS") = N_LAW_PARAMS;

@@ -92,7 +92,8 @@ enum Status : int {
 // events' actions (their codes in a run's event table)
 enum Action : int {
     ACT_YIELD = 0, ACT_REVERSAL = 1, ACT_REGION = 2, ACT_CONTACT = 3, ACT_RELEASE = 4, ACT_LAW_BRANCH = 5,
-    ACT_BOUC_WEN = 6, ACT_STICK = 7, ACT_SLIP = 8, ACT_SURFACE_SLIP = 9, ACT_RING = 10, ACT_RING_OFF = 11
+    ACT_BOUC_WEN = 6, ACT_STICK = 7, ACT_SLIP = 8, ACT_SURFACE_SLIP = 9, ACT_RING = 10, ACT_RING_OFF = 11,
+    ACT_CIRCLE_SLIP = 12, ACT_CIRCLE_STICK = 13  // (a plastic circle's: Hysteretic::bw_plastic)
 };
 
 // the run control Python shares with a running kernel (int64): a stop flag, the work done (sub-intervals),
@@ -217,6 +218,12 @@ struct Hysteretic : Pair {
     int bw_slot = -1;
     int bw_mate = -1;       // its mate's element (-1: none)
     int bw_mate_slot = -1;  // its mate's z slot (set by System::finish)
+    // its bidirectional spring elastic-perfectly-plastic (with a mate, the same flag; a = 1): Bouc-Wen's limit
+    // n -> infinity, |z| <= 1.  Inside the circle z' = u' / u_y (elastic: it sticks), on it while z . u' > 0
+    // z' = (u' - (z . u') z) / u_y (it slips, its force bw[0] z turning along the slip: the friction circle).
+    // State: region + e, the same in both mates, 0 inside, 1 slipping; the switches are events (the circle
+    // reached, ACT_CIRCLE_SLIP; z . u' back through zero, ACT_CIRCLE_STICK: phase.cpp's circle_event)
+    bool bw_plastic = false;
     bool has_bw() const { return bw[0] != 0.0; }
     int first = 0;  // its first spring's index among the system's (set by System::finish)
     bool series() const { return !surface_friction.empty(); }

@@ -41,6 +41,21 @@ double abs_acceleration_rate(Phase& ph, int i, double tau, const double* y, cons
     return -ph.minv[static_cast<size_t>(i)] * q;
 }
 
+// a plastic circle's switch (core.hpp's bw_plastic), z slot q's with its mate's: inside it, 1 - |z|^2 (zero where
+// it is reached); slipping on it, z . u' (zero where the slip turns back inside)
+EventValue circle_value(Phase& ph, int q, double tau, const double* y, const double* a) {
+    const Hysteretic& h = *ph.bw[static_cast<size_t>(q)];
+    const int m = h.bw_mate_slot;
+    const Hysteretic& hm = *ph.bw[static_cast<size_t>(m)];
+    const double* z = phase_zeta(ph, tau);
+    const double* v = y + ph.n;
+    const double du = rel(v, h), dm = rel(v, hm), uy = h.bw[1];
+    if (!ph.bw_slip[static_cast<size_t>(q)]) return {1.0 - (z[q] * z[q] + z[m] * z[m]), -2.0 * (z[q] * du + z[m] * dm) / uy, 1.0};
+    const double p = z[q] * du + z[m] * dm;
+    const double rq = (du - z[q] * p) / uy, rm = (dm - z[m] * p) / uy;  // (z's rates)
+    return {p, rq * du + rm * dm + z[q] * rel(a, h) + z[m] * rel(a, hm), std::hypot(du, dm) + ph.vround};
+}
+
 }  // namespace
 
 EventValue held_force(Phase& ph, int c, double tau, const double* y, const double* a) {
@@ -151,6 +166,7 @@ EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y
         const double* z = phase_zeta(ph, tau);
         return {-e.alpha * z[e.side], -e.alpha * zeta_rate(ph, e.side, y + n, z), 1.0};
     }
+    if (e.kind == KIND_CIRCLE) return circle_value(ph, e.side, tau, y, a);
     if (e.kind == KIND_HELD) return held_force(ph, e.side, tau, y, a);
     if (e.kind == KIND_STICK) return stick_value(e, held_force(ph, e.side, tau, y, a));
     if (e.kind == KIND_RADIAL) {  // (alpha + beta x + gamma x', x the compression: rounded against the
@@ -423,7 +439,7 @@ double find_root(const Fn& fn, Phase& ph, double xa, double xb, double fa, doubl
 namespace {
 // the kind of event function event_fn makes
 int event_fn_kind(const EventRow& e, const Phase& ph) {
-    if (ph.numeric || e.kind == KIND_ZETA || e.kind == KIND_RADIAL) return FN_EVENT;
+    if (ph.numeric || e.kind == KIND_ZETA || e.kind == KIND_RADIAL || e.kind == KIND_CIRCLE) return FN_EVENT;
     if (e.kind == KIND_LINEAR && e.action == ACT_CONTACT && slot(ph, e.side).def0 > 0.0) return FN_POLY_RELAX;
     return FN_POLY;
 }
@@ -615,9 +631,9 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
     // of the sub-interval)
     auto minimum = [&](double& tm, double& gm, double& sc) {
         const EventRow& e = evs[i];
-        // (a ring's own pair's zeros say nothing of its compression's: not looked for)
+        // (a ring's or a circle's own pair's zeros say nothing of its function's: not looked for)
         static const Phase::Zeros none{};
-        const Phase::Zeros& z = e.kind == KIND_RADIAL ? none : velocity_zeros(ph, e);
+        const Phase::Zeros& z = e.kind == KIND_RADIAL || e.kind == KIND_CIRCLE ? none : velocity_zeros(ph, e);
         if (kind == FN_POLY && e.kind == KIND_LINEAR && e.gamma == 0.0 && e.beta != 0.0 && z.count == 1 &&
             z.t[0] < h) {
             tm = z.t[0];

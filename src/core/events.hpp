@@ -17,7 +17,9 @@ namespace pounding {
 // (held: a rigid stop's force; stick: alpha + beta D, D the force a sticking friction element's tie needs)
 // (radial: alpha + beta x + gamma x' in a ring's compression x, contact side's: its start, its end, its law's
 // branch edges and turns; always evaluated on the trajectory, its function not a polynomial of the series)
-constexpr int KIND_LINEAR = 0, KIND_RELEASE = 1, KIND_ZETA = 2, KIND_HELD = 3, KIND_STICK = 4, KIND_RADIAL = 5;
+// (circle: a plastic circle's switch, side its first z slot: inside, 1 - |z|^2; slipping, z . u')
+constexpr int KIND_LINEAR = 0, KIND_RELEASE = 1, KIND_ZETA = 2, KIND_HELD = 3, KIND_STICK = 4, KIND_RADIAL = 5,
+              KIND_CIRCLE = 6;
 // an event row's side when it is no contact's: SIDE_NONE (rounded against its own terms), SIDE_VELOCITY (a
 // velocity rounded against the run's velocity too: a friction slip's end, which starts at rest)
 constexpr int SIDE_NONE = -1, SIDE_VELOCITY = -2;

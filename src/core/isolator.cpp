@@ -335,6 +335,17 @@ double iso_advance(const System& sy, double* st, const double* x_start, const do
 
 void iso_transition(const System& sy, double* st, int action, int index, double direction) {
     const int base = sy.lay.base, n_sp = sy.lay.n_sp;
+    if (action == ACT_CIRCLE_SLIP || action == ACT_CIRCLE_STICK) {  // (a plastic circle: both mates switch)
+        const Hysteretic& h = sy.hyst[static_cast<size_t>(index)];
+        const bool slip = action == ACT_CIRCLE_SLIP;
+        st[sy.lay.region + index] = st[sy.lay.region + h.bw_mate] = slip ? 1.0 : 0.0;
+        double& zq = st[sy.lay.zeta + h.bw_slot];
+        double& zm = st[sy.lay.zeta + h.bw_mate_slot];
+        const double size = std::hypot(zq, zm);
+        if (slip && size > 0.0) zq /= size, zm /= size;  // (on the circle: |z| = 1, not its rounding)
+        (void)direction;
+        return;
+    }
     if (action == ACT_REGION) {
         st[sy.lay.region + index] += direction;
     } else if (action == ACT_YIELD) {  // (index: the spring's among the system's)

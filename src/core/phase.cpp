@@ -571,6 +571,10 @@ double zeta_rate(const Phase& ph, int q, const double* v, const double* z) {
     // gamma))^(1/n), and dissipating (k u_y / a) |z|^n sum_k |u'_k z_k| (beta + gamma sgn(u'_k z_k)) >= 0
     const int m = h.bw_mate_slot;
     const double dm = rel(v, *ph.bw[static_cast<size_t>(m)]), zm = z[m];
+    if (h.bw_plastic) {  // (the plastic circle: elastic inside it; on it, slipping, z turns with u''s tangent)
+        if (!ph.bw_slip[static_cast<size_t>(q)]) return du / h.bw[1];
+        return (du - zq * (du * zq + dm * zm)) / h.bw[1];
+    }
     const double pq = du * zq, pm = dm * zm;
     const double sum = pq * (gamma + (pq > 0.0 ? beta : -beta)) + pm * (gamma + (pm > 0.0 ? beta : -beta));
     const double size = std::hypot(zq, zm);

@@ -71,6 +71,7 @@ struct Phase {
     std::vector<const Hysteretic*> bw;
     int nbw = 0;
     std::vector<double> zeta0;
+    std::vector<char> bw_slip;  // per spring: 1 a plastic circle's slipping on it (core.hpp's bw_plastic)
     bool numeric = false;
     std::vector<ContactPhase> ct;
     Sticking stk;  // the rigid stops held shut in this phase: every acceleration is projected by it
@@ -113,6 +114,7 @@ struct Phase {
     void size(int n_dof, int n_contacts, int n_bouc_wen) {
         nbw = n_bouc_wen;
         zeta0.assign(static_cast<size_t>(std::max(nbw, 1)), 0.0);
+        bw_slip.assign(static_cast<size_t>(std::max(nbw, 1)), 0);
         n = n_dof;
         ny = 2 * n;
         nc = n_contacts;

@@ -197,7 +197,11 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
     ph.bc = pc.bc;
     for (int q = 0; q < 2 * n; ++q) ph.y0[static_cast<size_t>(q)] = st[L.x + q];
     ph.numeric = any_nl || sy.n_bw() > 0 || !ph.rate_fr.empty();
-    for (int q = 0; q < sy.n_bw(); ++q) ph.zeta0[static_cast<size_t>(q)] = st[L.zeta + q];
+    for (int q = 0; q < sy.n_bw(); ++q) {
+        ph.zeta0[static_cast<size_t>(q)] = st[L.zeta + q];
+        const bool plastic = sy.bw_of(q).bw_plastic;
+        ph.bw_slip[static_cast<size_t>(q)] = plastic && st[L.region + sy.bw_el[static_cast<size_t>(q)]] != 0.0;
+    }
     ph.dp5_h = -1.0;
     ph.tc_ok = false;
     ph.kiso = iso.k;
@@ -287,6 +291,19 @@ int phase_events(const Phase& ph, const double* st, const System& sy, EventRow* 
     int n = iso_events(sy, st, evs, 0);
     n = bumper_events(st, ph, sy, evs, n);
     for (int q = 0; q < sy.n_bw(); ++q) {  // a Bouc-Wen z back through zero: its law changes form
+        const Hysteretic& h = sy.bw_of(q);
+        if (h.bw_plastic) {  // (a plastic circle's, one for both mates: reached, or its slip's end)
+            if (h.bw_mate_slot < q) continue;
+            EventRow& r = evs[n++];
+            r = EventRow();
+            r.kind = KIND_CIRCLE;
+            static_cast<Pair&>(r) = h;
+            r.side = q;
+            r.index = sy.bw_el[static_cast<size_t>(q)];
+            const bool slipping = st[sy.lay.region + r.index] != 0.0;
+            r.action = slipping ? ACT_CIRCLE_STICK : ACT_CIRCLE_SLIP;
+            continue;
+        }
         const double z = st[sy.lay.zeta + q];
         if (z == 0.0) continue;
         EventRow& r = evs[n++];

@@ -296,7 +296,8 @@ def contact_slot(*, i: int, j: int, sign: float, gap_m: float, law: int, params:
 def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int, friction_n: float = 0.0,
             friction_fast_n: float = 0.0, friction_rate_s_m: float = 0.0,
             surface_friction_n: Any = (), surface_ring_n_m: Any = (), bw: Any = (), bw_mate: int = -1,
-            lever_i: int = -1, arm_i_m: float = 0.0, lever_j: int = -1, arm_j_m: float = 0.0) -> Element:
+            bw_plastic: bool = False, lever_i: int = -1, arm_i_m: float = 0.0, lever_j: int = -1,
+            arm_j_m: float = 0.0) -> Element:
     """A hysteretic element (:class:`Element`) from numbers as the model gives them (``friction_n``: the
     friction of rule 2 at rest, N; with ``friction_rate_s_m`` > 0, s/m, a slip's friction is
     ``friction_fast_n - (friction_fast_n - friction_n) exp(-friction_rate_s_m |u'|)``; ``surface_friction_n``:
@@ -305,7 +306,9 @@ def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int, 
     ``bw``: a Bouc-Wen spring in parallel, its ``BW_PARAMS`` numbers (force per unit z N, yield displacement
     m, a, beta, gamma, n), none or zeros for none; ``bw_mate``: the element whose Bouc-Wen spring makes one
     bidirectional spring with this one's (a bearing's other axis: the same numbers; :func:`system` checks
-    them), -1 none; its pair's levers and arms as :func:`contact_slot`'s)."""
+    them), -1 none; ``bw_plastic``: that bidirectional spring elastic-perfectly-plastic (both mates; ``a = 1``
+    and ``beta + gamma = 1``, its ``n`` unused): elastic inside the circle ``|z| = 1``, slipping on it, its
+    switches located as events (the friction circle); its pair's levers and arms as :func:`contact_slot`'s)."""
     bw = [float(x) for x in bw]
     if bw and (len(bw) != LAYOUT["BW_PARAMS"] or (bw[0] != 0.0 and not (
             bw[1] > 0.0 and bw[2] > 0.0 and bw[3] + bw[4] > 0.0 and bw[5] > 0.0))):
@@ -316,6 +319,7 @@ def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int, 
                    friction_fast_n=float(friction_fast_n), friction_rate_s_m=float(friction_rate_s_m),
                    surface_friction_n=[float(x) for x in surface_friction_n],
                    surface_ring_n_m=[float(x) for x in surface_ring_n_m], bw=bw, bw_mate=int(bw_mate),
+                   bw_plastic=bool(bw_plastic),
                    **_lever_args(lever_i, arm_i_m, lever_j, arm_j_m))
 
 

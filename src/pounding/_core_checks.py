@@ -86,6 +86,14 @@ def check_elements(elements: list, n: int, element_type: type) -> None:
                 and list(elements[mate].bw) == list(el.bw)):
             raise ValueError(f"element {e}: its Bouc-Wen mate {mate} is another element whose mate it is, "
                              "both with the same Bouc-Wen numbers")
+        if el.bw_plastic != elements[mate].bw_plastic or (el.bw_plastic and not (
+                el.rule == 0 and el.bw[2] == 1.0 and el.bw[3] + el.bw[4] == 1.0)):
+            raise ValueError(f"element {e}: a plastic circle (bw_plastic) is both mates', on the kinematic "
+                             "rule (0), with a = 1 and beta + gamma = 1")
+    for e, el in enumerate(elements):
+        if el.bw_plastic and el.bw_mate == -1:
+            raise ValueError(f"element {e}: a plastic circle (bw_plastic) is a bidirectional spring's: give "
+                             "its mate (bw_mate)")
 
 
 def check_contacts(contacts: list, n: int, slot_type: type, law_ids: dict) -> None:

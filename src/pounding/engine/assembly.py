@@ -273,10 +273,13 @@ class BoucWenSprings(NamedTuple):
     """A system's Bouc-Wen springs, by their z's slot (the elements that have one, in order): ``numbers``,
     each spring's (the core's ``BW_PARAMS``: force per unit z N, yield displacement m, a, beta, gamma, n),
     shape (b, BW_PARAMS); ``mates``, each spring's mate's slot (the spring it makes one bidirectional spring
-    with, a bearing's other axis), -1 none."""
+    with, a bearing's other axis), -1 none; ``elements``, each spring's element; ``plastic``, whether it is
+    a plastic circle's (the core's ``bw_plastic``: elastic inside ``|z| = 1``, slipping on it)."""
 
     numbers: np.ndarray
     mates: tuple
+    elements: tuple = ()
+    plastic: tuple = ()
 
 
 def bouc_wen_springs(elements: list) -> BoucWenSprings:
@@ -285,7 +288,7 @@ def bouc_wen_springs(elements: list) -> BoucWenSprings:
     rows = [list(elements[e].bw) for e in slots]
     return BoucWenSprings(np.array(rows, dtype=float).reshape(len(rows), _core.LAYOUT["BW_PARAMS"]),
                           tuple(slots.index(elements[e].bw_mate) if elements[e].bw_mate >= 0 else -1
-                                for e in slots))
+                                for e in slots), tuple(slots), tuple(bool(elements[e].bw_plastic) for e in slots))
 
 
 def _add_pair(a: np.ndarray, i: int, j: int, value: float) -> None:

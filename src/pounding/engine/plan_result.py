@@ -192,7 +192,9 @@ class PlanRun(Outcome):
     def events(self) -> pd.DataFrame:
         """Every event: ``t_s``, what happened (``kind``) and the ``index`` of what it happened to: a
         contact slot (:attr:`contacts`'s order of walls and corners) for a contact's start or end, an
-        element (each bearing's x then y, then each yielding frame) for a yield or a reversal."""
+        element (each bearing's x then y, then each yielding frame) for a yield or a reversal; a friction
+        bearing's plastic circle's ``circle_slip`` and ``circle_stick`` its x element's (twice the
+        bearing's index)."""
         return events_frame(self.event_table)
 
     def peaks(self) -> pd.DataFrame:

@@ -151,9 +151,11 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str, levered: Optional[tuple
                 _check_surfaces(x_all, lay, first, breaks, rings, u, slip, tol, who, bad)
             first += n_sp
             continue
-        if x_all[lay["region"] + e] != 0.0:
+        circle = e in asm.bouc_wen.elements and asm.bouc_wen.plastic[asm.bouc_wen.elements.index(e)]
+        if x_all[lay["region"] + e] not in ((0.0, 1.0) if circle else (0.0,)):
             field = "isolator_branch" if e == 0 else f"vector[{lay['region'] + e}]"
             raise bad(field, x_all[lay["region"] + e],
+                      f"is {who} slip on its friction circle: 0 (inside) or 1 (slipping)" if circle else
                       f"is {who} backbone branch, but a kinematic element has no branch state")
         for k in range(n_sp):
             slip = x_all[lay["base"] + first + k]
@@ -168,7 +170,7 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str, levered: Optional[tuple
                           f"leaves {who} spring {k}'s strain {strain:g} m beyond its yield displacement "
                           f"{brk:g} m" + ("" if direction == 0.0 else " (or off it while it slips)"))
         first += n_sp
-    springs, mates = asm.bouc_wen
+    springs, mates = asm.bouc_wen.numbers, asm.bouc_wen.mates
     for q in range(max(1, len(springs))):  # (each Bouc-Wen spring's z; one slot, 0, without any)
         at = lay["zeta"] + q
         z = x_all[at]
@@ -183,6 +185,13 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str, levered: Optional[tuple
         if size > z_max * (1.0 + 1e-9):
             what = "" if mate < 0 else f" (with vector[{lay['zeta'] + mate}], its other component: {size:g})"
             raise bad(f"vector[{at}]", z, f"is beyond the Bouc-Wen spring's largest |z|, {z_max:g}{what}")
+        e = asm.bouc_wen.elements[q] if asm.bouc_wen.elements else -1
+        if asm.bouc_wen.plastic and asm.bouc_wen.plastic[q] and (
+                x_all[lay["region"] + e] != x_all[lay["region"] + asm.bouc_wen.elements[mate]]
+                or (x_all[lay["region"] + e] == 1.0 and size < 1.0 - 1e-9)):
+            raise bad(f"vector[{lay['region'] + e}]", x_all[lay["region"] + e],
+                      f"is a friction circle's slip (1: slipping, its |z| = 1; here {size:g}), the same for "
+                      f"both its axes (vector[{lay['region'] + asm.bouc_wen.elements[mate]}])")
 
 
 _FIX = "start from State.at_rest(system) or a final_state of this system"

@@ -93,8 +93,8 @@ class FrictionIsolator(CarriesWeight):
         An elastic pre-slip, m, >= 0: the bearing deforms elastically up to ``preslip_m`` before it slips
         (its initial stiffness ``mu W / preslip_m``), as OpenSees' sliders do.  0 (the default): a rigid
         stick, exact.  A bearing in plan (:class:`pounding.Bearing`) needs one: there its friction is the
-        friction circle, a bidirectional Bouc-Wen spring of this yield displacement
-        (:meth:`kernel_arrays_in_plane`).
+        friction circle of this yield displacement, elastic-perfectly-plastic or Constantinou's smooth
+        Bouc-Wen spring (``Bearing.friction_circle``; :meth:`kernel_arrays_in_plane`).
     weight_n : float, optional
         The weight it carries, N.  None: the weight of the system it isolates, ``g`` times its whole mass
         (the structure's or the single mass's), set when it is put into one (``weight_carried`` then
@@ -314,7 +314,8 @@ class FrictionIsolator(CarriesWeight):
         circle: the pendulum's ``W / R`` (0 for a flat slider) and a
         Bouc-Wen spring of stiffness ``mu W / preslip_m`` and yield displacement ``preslip_m`` (``a = 1``,
         ``beta = gamma = 1/2``: its force ``mu W z``, ``|z| <= 1``), which the bearing's two axes share
-        (Constantinou, Mokha and Reinhorn 1990).  It needs an elastic pre-slip."""
+        (Constantinou, Mokha and Reinhorn 1990; the plastic circle takes the same numbers, its ``n`` unused:
+        the engine's ``bw_plastic``).  It needs an elastic pre-slip."""
         if not self.preslip_m > 0.0:
             raise InputError(Problem.BAD_STATE, "isolator.preslip_m", self.preslip_m,
                              why="is a rigid stick, which the friction circle in plan cannot have",

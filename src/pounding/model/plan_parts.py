@@ -226,11 +226,19 @@ class Bearing:
         its two components (Park, Wen and Ang's: both axes must carry the same :class:`pounding.BoucWen`),
         or one along each axis, each yielding under its own component (False).  Without a Bouc-Wen spring
         it changes nothing.  A friction bearing's default is the friction circle: it slips along its
-        velocity once the force in the plane reaches ``mu W``, modelled as Constantinou, Mokha and
-        Reinhorn's (1990) sliding bearing and SAP2000's and 3D-BASIS's, a bidirectional Bouc-Wen spring
-        of stiffness ``mu W / preslip_m``, yield displacement ``preslip_m``, ``a = 1``, ``beta = gamma =
-        1/2`` and ``n = 2``, beside the pendulum's ``W / R`` along each axis; False: one bilinear friction
-        along each axis, each slipping under its own component at ``mu W`` (a bearing on a line's law).
+        velocity once the force in the plane reaches ``mu W`` (``friction_circle``), beside the pendulum's
+        ``W / R`` along each axis; False: one bilinear friction along each axis, each slipping under its
+        own component at ``mu W`` (a bearing on a line's law).
+    friction_circle : {"plastic", "bouc_wen"}
+        A friction bearing's circle (``bidirectional``), its force ``mu W z`` (``|z| <= 1``, ``z`` moving
+        by the bearing's displacement over ``preslip_m``).  ``"plastic"`` (the default): elastic-perfectly
+        plastic, exact: it sticks (elastic, ``z' = u' / preslip_m``) while the force stays inside ``mu
+        W`` and slips on the circle (the force ``mu W`` along the slip) while the motion pushes outwards,
+        its every stick and slip located as an event (``circle_slip``, ``circle_stick``).
+        ``"bouc_wen"``: Constantinou, Mokha and Reinhorn's (1990) smooth model, SAP2000's and
+        3D-BASIS's: a bidirectional Bouc-Wen spring of stiffness ``mu W / preslip_m``, yield displacement
+        ``preslip_m``, ``a = 1``, ``beta = gamma = 1/2`` and ``n = 2``, which never quite sticks.  Other
+        bearings: unused.
 
     Examples
     --------
@@ -247,8 +255,9 @@ class Bearing:
     isolator: Any
     isolator_y: Optional[Any] = None
     bidirectional: bool = True
+    friction_circle: str = "plastic"
 
-    FIELDS: ClassVar[tuple[str, ...]] = ("at_m", "isolator", "isolator_y", "bidirectional")
+    FIELDS: ClassVar[tuple[str, ...]] = ("at_m", "isolator", "isolator_y", "bidirectional", "friction_circle")
 
     def __post_init__(self) -> None:
         at = _pair("bearing.at_m", self.at_m)
@@ -264,6 +273,9 @@ class Bearing:
                                  expected="pounding.Isolator or pounding.FrictionIsolator (a bearing's law; "
                                           "a triple friction pendulum in plan is not supported yet)")
         instance_of("bearing.bidirectional", self.bidirectional, bool, "true or false")
+        if self.friction_circle not in FRICTION_CIRCLES:
+            raise InputError(Problem.NOT_ONE_OF, "bearing.friction_circle", self.friction_circle,
+                             choices=FRICTION_CIRCLES)
         if self.is_friction or isinstance(self.isolator_y, FrictionIsolator):
             self._check_friction()
         springs = [law.bouc_wen for law in self.laws]
@@ -294,8 +306,8 @@ class Bearing:
                              why="is a rigid stick, which a bearing in plan cannot have", fix=PRESLIP_IN_PLAN)
         if self.bidirectional and iso.preslip_m < 1e-4:  # (the circle's z relaxes at |v| / preslip_m)
             warnings.warn(f"bearing.isolator.preslip_m = {iso.preslip_m!r} is below 0.1 mm: the friction "
-                          "circle's Bouc-Wen spring is then stiff and its runs take many short steps (0.5 mm "
-                          "is usual)", PoundingWarning, stacklevel=3)
+                          "circle's elastic stiffness (mu W / preslip_m) is then large and its runs take many "
+                          "short steps (0.5 mm is usual)", PoundingWarning, stacklevel=3)
 
     @property
     def is_friction(self) -> bool:
@@ -307,6 +319,12 @@ class Bearing:
         """Whether its two axes share one bidirectional spring: a Bouc-Wen spring's, or a friction bearing's
         circle."""
         return self.bidirectional and (self.is_friction or self.isolator.bouc_wen is not None)
+
+    @property
+    def plastic_circle(self) -> bool:
+        """Whether its two axes share an elastic-perfectly-plastic friction circle (a friction bearing's,
+        ``bidirectional``, ``friction_circle = "plastic"``)."""
+        return self.is_friction and self.bidirectional and self.friction_circle == "plastic"
 
     def kernel_arrays(self, axis: int) -> tuple:
         """Its law along ``axis`` (0: x, 1: y) as the engine takes it (``Isolator.kernel_arrays``'s four
@@ -327,9 +345,12 @@ class Bearing:
             out["isolator_y"] = self.isolator_y.to_dict()
         if not self.bidirectional:
             out["bidirectional"] = False
+        if self.friction_circle != "plastic":
+            out["friction_circle"] = self.friction_circle
         return out
 
 
+FRICTION_CIRCLES = ("plastic", "bouc_wen")  # (a friction bearing's circle in plan: Bearing.friction_circle)
 MOAT_SIDES = ("-x", "+x", "-y", "+y")  # (a rectangular moat's walls, in its gaps' order)
 RING_LAW_IDS = tuple(LAW_IDS[name] for name in RING_LAWS)  # (the laws a circular moat's wall takes)
 OUT_OF_REACH_M = 100.0  # a ring's gap in a free run (out_of_reach): no building's corner moves this far

@@ -1,0 +1,230 @@
+"""The plastic friction circle (``Bearing(..., friction_circle="plastic")``, a friction bearing's default in
+plan): elastic-perfectly-plastic in the plane, its sticks and slips located as events.  Against the
+independent solve_ivp reference (random eccentric buildings, pairs of components, a moat), along one axis
+against the line's exact friction isolator, its force never beyond mu W, a continued run, the state's checks,
+the door's and the model's refusals."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+from reference_plan import PlanModel, reference
+from reference_plan import record_pair as _record
+
+import pounding
+from pounding import Bearing, Floor, FrictionIsolator, InputError, PlanBuilding, RectangularMoat, _core
+
+ACT = _core.ACTIONS
+G = 9.81
+
+
+def _building(rng, moat=True):
+    """One eccentric floor on four friction bearings (pendulums or flat sliders, their numbers drawn)."""
+    side = rng.uniform(12.0, 30.0, 2)
+    floor = Floor(rng.uniform(2e5, 6e5), tuple(side), centre_m=tuple(rng.uniform(-0.1, 0.1, 2) * side))
+    fps = FrictionIsolator(mu=rng.uniform(0.04, 0.1), radius_m=rng.choice([None, rng.uniform(1.5, 4.0)]),
+                           preslip_m=rng.uniform(3e-4, 2e-3), damping_n_s_m=rng.uniform(0.0, 2e4))
+    bearings = [Bearing((sx * side[0] / 2 * rng.uniform(0.7, 0.95), sy * side[1] / 2 * rng.uniform(0.7, 0.95)),
+                        fps) for sx in (-1.0, 1.0) for sy in (-1.0, 1.0)]
+    gap = RectangularMoat(tuple(0.04 * rng.uniform(0.8, 1.2, 4)),
+                          pounding.KelvinVoigt(rng.uniform(5e7, 3e8), rng.uniform(2e4, 2e5)))
+    return PlanBuilding([floor], bearings, [], gap if moat else None)
+
+
+def _restated(b: PlanBuilding) -> PlanModel:
+    """The one-floor building as the reference takes it, from its numbers alone: each bearing the pendulum's
+    W / R and its dashpot along x and y, and one plastic circle of force mu W z, yield displacement
+    preslip_m."""
+    f = b.floors[0]
+    cx, cy = f.centre_m
+
+    def point(axis, px, py):  # (its displacement along axis: x - (py - cy) th, y + (px - cx) th)
+        w = np.zeros(3)
+        w[axis] = 1.0
+        w[2] = -(py - cy) if axis == 0 else (px - cx)
+        return w
+
+    k, c = np.zeros((3, 3)), np.zeros((3, 3))
+    springs, tracked, circles = [], [], []
+    for bearing in b.bearings:
+        law = bearing.isolator
+        for axis in (0, 1):
+            w = point(axis, *bearing.at_m)
+            k += (law.weight_n / law.radius_m if law.radius_m else 0.0) * np.outer(w, w)
+            c += law.damping_n_s_m * np.outer(w, w)
+            springs.append((w, (law.mu * law.weight_n, law.preslip_m, 1.0, 0.5, 0.5, 2.0)))
+            tracked.append(w)
+        circles.append((len(springs) - 2, len(springs) - 1))
+    walls = []
+    if b.moat is not None:
+        a, bb = f.size_m
+        for side, (axis, sign) in enumerate(((0, -1.0), (0, 1.0), (1, -1.0), (1, 1.0))):
+            for p in [(sx * a / 2, sy * bb / 2) for sx in (-1.0, 1.0) for sy in (-1.0, 1.0)]:
+                if p[axis] * sign > 0.0:
+                    walls.append((point(axis, *p), sign, b.moat.gap_m[side], b.moat.law.stiffness,
+                                  b.moat.law.damping))
+    influence = np.array([[1.0, 0.0], [0.0, 1.0], [0.0, 0.0]])
+    return PlanModel(mass=np.array([f.mass_kg, f.mass_kg, f.inertia_kg_m2]), k=k, c=c, influence=influence,
+                     record=(np.zeros(1),) * 3, walls=walls, bouc_wen=springs, circles=circles,
+                     tracked=tracked, vectors=[(2 * q, 2 * q + 1) for q in range(len(b.bearings))])
+
+
+def _switches(run, action):
+    """A run's circle events of ``action`` as (bearing, t): its x element's index is twice the bearing's."""
+    e = run.event_table
+    rows = e[e[:, 1] == ACT[action]]
+    return sorted((int(i) // 2, float(t)) for t, _, i in rows)
+
+
+@pytest.mark.parametrize("seed", [1, 2, 5, 8])
+def test_a_building_on_plastic_friction_circles_runs_as_the_reference(seed):
+    rng = np.random.default_rng(seed)
+    b = _building(rng, moat=seed % 2 == 0)
+    model = _restated(b)
+    t, ax, ay = _record(rng, 2.5, 0.01, rng.uniform(2.0, 4.0))
+    model.record = (t, ax, ay)
+    pair = pounding.RecordPair(pounding.Record(t, ax, name="x"), pounding.Record(t, ay, name="y"))
+    run = pounding.simulate(b, pair, t[-1], sample_rate_hz=200.0, rtol=1e-12)
+    assert run.success, run.message
+    ref = reference(model, t[-1], np.zeros(6))
+    # every stick and slip of every bearing's circle, where the reference has it
+    for action, want in (("circle_slip", ref.circle_slips), ("circle_stick", ref.circle_sticks)):
+        got = _switches(run, action)
+        assert [q for q, _ in got] == [q for q, _ in sorted(want)], action
+        np.testing.assert_allclose([t for _, t in got], [t for _, t in sorted(want)], rtol=0, atol=1e-8)
+    assert len(ref.circle_slips) >= 4 and len(ref.circle_sticks) >= 4  # (it slid and stuck again)
+    if b.moat is not None:
+        starts = run.event_table[run.event_table[:, 1] == ACT["contact_start"]]
+        np.testing.assert_allclose(starts[:, 0], [t for _, t in ref.contact_starts], rtol=0, atol=1e-8)
+    lay, end = run.final_state.layout, run.final_state.vector
+    np.testing.assert_allclose(end[lay["x"]:lay["x"] + 3], ref.y[:3], rtol=0,
+                               atol=1e-7 * np.max(np.abs(ref.y[:3])))
+    np.testing.assert_allclose(end[lay["v"]:lay["v"] + 3], ref.y[3:], rtol=0,
+                               atol=1e-7 * np.max(np.abs(ref.y[3:])))
+    np.testing.assert_allclose(run.final_state.bouc_wen_zs, ref.z, rtol=0, atol=1e-7)
+    top = max(np.max(np.abs(ref.tracked_max)), np.max(np.abs(ref.tracked_min)))
+    np.testing.assert_allclose(run.bearing_displacement_max_m, ref.vector_max, rtol=0, atol=1e-7 * top)
+    e = run.energy  # (the ledger closes to the numerical phases' tolerance)
+    assert abs(e.residual) <= 1e-8 * max(abs(e.input_work), e.viscous, e.kinetic, e.hysteretic)
+
+
+def test_along_one_axis_the_plastic_circle_is_the_line_s_friction_isolator():
+    # a symmetric building shaken along x: every z stays on the x axis, and the circle is the line's
+    # elastic-perfectly-plastic friction (its pre-slip a kinematic bilinear spring: exact phases)
+    fps = FrictionIsolator(mu=0.07, radius_m=2.2, preslip_m=1e-3, damping_n_s_m=1e4)
+    floors = [Floor(3e5, (24.0, 16.0))] * 2
+    frames = [pounding.Frame(1, axis, s * at, 1.5e8, 1e5) for axis, at in (("x", 7.0), ("y", 11.0))
+              for s in (-1.0, 1.0)]
+    b = PlanBuilding(floors, [Bearing((sx * 10.0, sy * 6.0), fps) for sx in (-1, 1) for sy in (-1, 1)],
+                     frames)
+    assert all(x.plastic_circle for x in b.bearings)
+    line = pounding.Structure(3e5, dataclasses.replace(fps, damping_n_s_m=4e4),
+                              [pounding.Storey(3e5, 3e8, 2e5)], [])
+    rec = pounding.records.el_centro().scaled(pga_g=0.5)
+    run, ref = pounding.simulate(b, rec, 10.0), pounding.simulate(line, rec, 10.0)
+    assert ref.displacement_max[0] > 0.05  # (it slid)
+    np.testing.assert_allclose(run.displacement_max[:, 0], ref.displacement_max, rtol=1e-9)
+    np.testing.assert_allclose(run.displacement_min[:, 0], ref.displacement_min, rtol=1e-9)
+    assert run.energy.input_work == pytest.approx(ref.energy.input_work, rel=1e-9)
+    assert run.energy.hysteretic == pytest.approx(ref.energy.hysteretic, rel=1e-8)
+    # its slips start where the line's spring yields (each bearing's circle at once: one event per bearing)
+    yields = ref.event_table[ref.event_table[:, 1] == ACT["yield"], 0]
+    slips = _switches(run, "circle_slip")
+    np.testing.assert_allclose([t for q, t in slips if q == 0], yields, rtol=0, atol=1e-9)
+
+
+def test_a_plastic_circle_s_friction_never_exceeds_mu_w_and_sticks_inside_it():
+    # each bearing's force less the pendulum's W / R u: the friction, inside mu W to the rounding, on it
+    # while it slips; between a stick and the next slip its bearing moves elastically (within 2 preslip_m)
+    fps = FrictionIsolator(mu=0.06, radius_m=2.0, preslip_m=5e-4)
+    b = PlanBuilding([Floor(4e5, (20.0, 20.0), centre_m=(1.5, -1.0))],
+                     [Bearing((sx * 8.0, sy * 8.0), fps) for sx in (-1, 1) for sy in (-1, 1)])
+    rec = pounding.records.el_centro().scaled(pga_g=0.6)
+    run = pounding.simulate(b, pounding.RecordPair.of_direction(rec, 25.0), 6.0, sample_rate_hz=500.0)
+    w = np.array([x.isolator.weight_n for x in b.bearings])
+    friction = run.bearing_force - (w / 2.0)[None, :, None] * run.bearing_displacement
+    length = np.hypot(friction[..., 0], friction[..., 1]) / (0.06 * w)
+    assert np.max(length) <= 1.0 + 1e-9
+    assert np.max(length) >= 1.0 - 1e-9  # (it slid: on the circle)
+    assert np.max(run.bearing_displacement_max_m) > 50 * 5e-4
+    slips, sticks = _switches(run, "circle_slip"), _switches(run, "circle_stick")
+    assert len(sticks) >= 8 and abs(len(slips) - len(sticks)) <= 4
+    t = run.t
+    for q in range(4):
+        for (_, t0), (_, t1) in zip([s for s in sticks if s[0] == q], [s for s in slips if s[0] == q][1:]):
+            inside = (t > t0) & (t < t1)
+            if inside.sum() > 2:
+                u = run.bearing_displacement[inside, q]
+                assert np.max(np.hypot(*(u - u[0]).T)) <= 2.0 * 5e-4 * (1.0 + 1e-6)
+                assert np.all(length[inside, q] <= 1.0 + 1e-9)
+
+
+def test_a_continued_run_of_a_plastic_circle_equals_one_long_run():
+    rng = np.random.default_rng(3)
+    b = _building(rng, moat=False)
+    t, ax, ay = _record(rng, 4.0, 0.01, 3.0)
+    pair = pounding.RecordPair(pounding.Record(t, ax, name="x"), pounding.Record(t, ay, name="y"))
+    whole = pounding.simulate(b, pair, 4.0, rtol=1e-11)
+    first = pounding.simulate(b, pair, 2.0, rtol=1e-11)
+    lay, mid = first.final_state.layout, first.final_state.vector
+    assert set(mid[lay["region"]:lay["region"] + 8]) <= {0.0, 1.0}
+    second = pounding.simulate(b, pair, 2.0, state=first.final_state, rtol=1e-11)
+    end, want = second.final_state.vector, whole.final_state.vector
+    np.testing.assert_allclose(end[lay["x"]:lay["x"] + 6], want[lay["x"]:lay["x"] + 6], rtol=0,
+                               atol=1e-8 * np.max(np.abs(want[lay["x"]:lay["x"] + 6])))
+    np.testing.assert_array_equal(end[lay["region"]:lay["region"] + 8], want[lay["region"]:lay["region"] + 8])
+
+
+def test_a_state_off_its_circle_while_slipping_is_refused_by_name():
+    rng = np.random.default_rng(3)
+    b = _building(rng, moat=False)
+    run = pounding.simulate(b, pounding.RecordPair.of_direction(pounding.records.el_centro(), 20.0), 1.0)
+    state = run.final_state
+    lay = state.layout
+    for at, value, match in ((lay["region"], 2.0, "slip on its friction circle"),
+                             (lay["region"], 1.0, "friction circle's slip")):
+        vec = state.vector.copy()
+        vec[at] = value
+        vec[lay["region"] + 1] = value  # (its mate's the same)
+        if value == 1.0:
+            vec[lay["zeta"]:lay["zeta"] + 2] = (0.3, 0.4)  # (|z| = 0.5: not on the circle)
+        bad = dataclasses.replace(state, vector=vec)
+        with pytest.raises(InputError, match=match) as err:
+            pounding.simulate(b, pounding.Harmonic(0.1, 1.0), 0.1, state=bad)
+        assert err.value.field in ("state.isolator_branch", f"state.vector[{lay['region']}]")
+
+
+def test_the_model_and_the_door_refuse_what_is_no_plastic_circle(tmp_path):
+    fps = FrictionIsolator(mu=0.06, radius_m=2.0, preslip_m=5e-4)
+    with pytest.raises(InputError) as err:
+        Bearing((0.0, 0.0), fps, friction_circle="exact")
+    assert err.value.field == "bearing.friction_circle" and "plastic" in str(err.value)
+    smooth = Bearing((0.0, 0.0), fps, friction_circle="bouc_wen")
+    assert not smooth.plastic_circle and Bearing((0.0, 0.0), fps).plastic_circle
+    assert not Bearing((0.0, 0.0), fps, bidirectional=False).plastic_circle
+    # a file keeps a Bouc-Wen circle; the default is left out
+    b = PlanBuilding([Floor(4e5, (20.0, 20.0))], [smooth, Bearing((5.0, 0.0), fps), Bearing((0.0, 5.0), fps)])
+    text = b.to_toml_text()
+    assert text.count("friction_circle") == 1
+    assert PlanBuilding.from_toml_text(text) == b
+    with pytest.raises(InputError) as err:
+        PlanBuilding.from_toml_text(text.replace('"bouc_wen"', '"smooth"'))
+    assert err.value.field == "bearings[0].friction_circle"
+    # the door: a plastic circle is two mates' (a = 1, beta + gamma = 1, the kinematic rule)
+    bw = [30.0, 5e-4, 1.0, 0.5, 0.5, 2.0]
+
+    def system(first, second):
+        return _core.system(np.ones(2), np.zeros((2, 2)), np.zeros((2, 2)), [first, second], False, [])
+
+    def el(i, mate, plastic, numbers=bw, rule=0):
+        return _core.element(i=i, j=-1, c_d=0.0, slopes=[1.0], breaks=[], rule=rule, bw=numbers, bw_mate=mate,
+                             bw_plastic=plastic)
+
+    system(el(0, 1, True), el(1, 0, True))
+    for first, second in ((el(0, -1, True), el(1, -1, False)), (el(0, 1, True), el(1, 0, False)),
+                          (el(0, 1, True, [30.0, 5e-4, 0.9, 0.5, 0.5, 2.0]),
+                           el(1, 0, True, [30.0, 5e-4, 0.9, 0.5, 0.5, 2.0]))):
+        with pytest.raises(ValueError, match="plastic circle"):
+            system(first, second)
