@@ -288,7 +288,8 @@ def bouc_wen_springs(elements: list) -> BoucWenSprings:
     rows = [list(elements[e].bw) for e in slots]
     return BoucWenSprings(np.array(rows, dtype=float).reshape(len(rows), _core.LAYOUT["BW_PARAMS"]),
                           tuple(slots.index(elements[e].bw_mate) if elements[e].bw_mate >= 0 else -1
-                                for e in slots), tuple(slots), tuple(bool(elements[e].bw_plastic) for e in slots))
+                                for e in slots), tuple(slots),
+                          tuple(bool(elements[e].bw_plastic) for e in slots))
 
 
 def _add_pair(a: np.ndarray, i: int, j: int, value: float) -> None:

@@ -257,7 +257,8 @@ class Bearing:
     bidirectional: bool = True
     friction_circle: str = "plastic"
 
-    FIELDS: ClassVar[tuple[str, ...]] = ("at_m", "isolator", "isolator_y", "bidirectional", "friction_circle")
+    FIELDS: ClassVar[tuple[str, ...]] = ("at_m", "isolator", "isolator_y", "bidirectional",
+                                         "friction_circle")
 
     def __post_init__(self) -> None:
         at = _pair("bearing.at_m", self.at_m)
