@@ -26,8 +26,11 @@ def _building(rng, moat=True):
     floor = Floor(rng.uniform(2e5, 6e5), tuple(side), centre_m=tuple(rng.uniform(-0.1, 0.1, 2) * side))
     fps = FrictionIsolator(mu=rng.uniform(0.04, 0.1), radius_m=rng.choice([None, rng.uniform(1.5, 4.0)]),
                            preslip_m=rng.uniform(3e-4, 2e-3), damping_n_s_m=rng.uniform(0.0, 2e4))
-    bearings = [Bearing((sx * side[0] / 2 * rng.uniform(0.7, 0.95),
-                         sy * side[1] / 2 * rng.uniform(0.7, 0.95)), fps) for sx in (-1.0, 1.0) for sy in (-1.0, 1.0)]
+    bearings = []
+    for sx in (-1.0, 1.0):
+        for sy in (-1.0, 1.0):
+            at = (sx * side[0] / 2 * rng.uniform(0.7, 0.95), sy * side[1] / 2 * rng.uniform(0.7, 0.95))
+            bearings.append(Bearing(at, fps))
     gap = RectangularMoat(tuple(0.04 * rng.uniform(0.8, 1.2, 4)),
                           pounding.KelvinVoigt(rng.uniform(5e7, 3e8), rng.uniform(2e4, 2e5)))
     return PlanBuilding([floor], bearings, [], gap if moat else None)

@@ -307,8 +307,9 @@ def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int, 
     m, a, beta, gamma, n), none or zeros for none; ``bw_mate``: the element whose Bouc-Wen spring makes one
     bidirectional spring with this one's (a bearing's other axis: the same numbers; :func:`system` checks
     them), -1 none; ``bw_plastic``: that bidirectional spring elastic-perfectly-plastic (both mates;
-    ``a = 1`` and ``beta + gamma = 1``, its ``n`` unused): elastic inside the circle ``|z| = 1``, slipping on it, its
-    switches located as events (the friction circle); its pair's levers and arms as :func:`contact_slot`'s)."""
+    ``a = 1`` and ``beta + gamma = 1``, its ``n`` unused): elastic inside the circle ``|z| = 1``,
+    slipping on it, its switches located as events (the friction circle); its pair's levers and arms as
+    :func:`contact_slot`'s)."""
     bw = [float(x) for x in bw]
     if bw and (len(bw) != LAYOUT["BW_PARAMS"] or (bw[0] != 0.0 and not (
             bw[1] > 0.0 and bw[2] > 0.0 and bw[3] + bw[4] > 0.0 and bw[5] > 0.0))):

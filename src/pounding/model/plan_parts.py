@@ -307,8 +307,8 @@ class Bearing:
                              why="is a rigid stick, which a bearing in plan cannot have", fix=PRESLIP_IN_PLAN)
         if self.bidirectional and iso.preslip_m < 1e-4:  # (the circle's z relaxes at |v| / preslip_m)
             warnings.warn(f"bearing.isolator.preslip_m = {iso.preslip_m!r} is below 0.1 mm: the friction "
-                          "circle's elastic stiffness (mu W / preslip_m) is then large and its runs take many "
-                          "short steps (0.5 mm is usual)", PoundingWarning, stacklevel=3)
+                          "circle's elastic stiffness (mu W / preslip_m) is then large and its runs take "
+                          "many short steps (0.5 mm is usual)", PoundingWarning, stacklevel=3)
 
     @property
     def is_friction(self) -> bool:
