@@ -71,7 +71,7 @@ void outputs_in_phase(Phase& ph, const System& sy, double t, double tau, const d
         row[1 + n + i] = y[n + i];
         row[1 + 2 * n + i] = a[i] + ph.on(i, ag, bg);
     }
-    const double* z = phase_zeta(ph, tau);
+    const double* z = phase_zeta(ph, tau, y);
     for (int e = 0; e < sy.n_h(); ++e) {  // each element's force, its Bouc-Wen spring's with its own
         const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
         double f = ph.el_k[static_cast<size_t>(e)] * rel(y, h) + ph.el_r[static_cast<size_t>(e)] +
@@ -238,7 +238,7 @@ void numeric_contributions(Phase& ph, const System& sy, double* st, double tau, 
         ledger[L_INPUT] -= ph.plain ? wq * ag * mv : wq * (ag * mv + bg * mvb);
         ledger[L_VISCOUS] += wq * vcv;
         if (ph.nbw > 0) {
-            const double* z = phase_zeta(ph, tq);
+            const double* z = phase_zeta(ph, tq, y);
             for (int q = 0; q < ph.nbw; ++q) {
                 const Hysteretic& h = *ph.bw[static_cast<size_t>(q)];
                 ledger[L_HYSTERETIC] += wq * h.bw[0] * z[q] * rel(v, h);
@@ -258,7 +258,7 @@ void numeric_contributions(Phase& ph, const System& sy, double* st, double tau, 
         }
     }
     if (ph.nbw > 0)
-        ledger[L_HYSTERETIC] -= bouc_wen_energy(ph, phase_zeta(ph, tau)) - bouc_wen_energy(ph, ph.zeta0.data());
+        ledger[L_HYSTERETIC] -= bouc_wen_energy(ph, phase_zeta(ph, tau, e.y1)) - bouc_wen_energy(ph, ph.zeta0.data());
     for (int c = 0; c < ph.nc; ++c) {  // a linear law's branch in a numerical phase: its spring's loss
         const ContactPhase& k = ph.ct[static_cast<size_t>(c)];
         if (k.in && law_is_linear(k.law)) {

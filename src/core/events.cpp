@@ -31,8 +31,9 @@ double abs_acceleration_rate(Phase& ph, int i, double tau, const double* y, cons
         if (w != 0.0) q += w * (k.sign * contact_force(ph, c, y, a).rate);
     }
     if (ph.nbw > 0) {
-        const double* z = phase_zeta(ph, tau);
+        const double* z = phase_zeta(ph, tau, y);
         for (int b = 0; b < ph.nbw; ++b) {
+            if (ph.bw_lin[static_cast<size_t>(b)]) continue;  // (a plastic circle inside: its rate in K v)
             const Hysteretic& h = *ph.bw[static_cast<size_t>(b)];
             const double w_b = weight_on(h, i);
             if (w_b != 0.0) q += w_b * (h.bw[0] * zeta_rate(ph, b, v, z));
@@ -47,10 +48,14 @@ EventValue circle_value(Phase& ph, int q, double tau, const double* y, const dou
     const Hysteretic& h = *ph.bw[static_cast<size_t>(q)];
     const int m = h.bw_mate_slot;
     const Hysteretic& hm = *ph.bw[static_cast<size_t>(m)];
-    const double* z = phase_zeta(ph, tau);
+    const double* z = phase_zeta(ph, tau, y);
     const double* v = y + ph.n;
     const double du = rel(v, h), dm = rel(v, hm), uy = h.bw[1];
-    if (!ph.bw_slip[static_cast<size_t>(q)]) return {1.0 - (z[q] * z[q] + z[m] * z[m]), -2.0 * (z[q] * du + z[m] * dm) / uy, 1.0};
+    if (!ph.bw_slip[static_cast<size_t>(q)]) {  // (rounded as z's terms: z0 + u / u_y on a linear phase)
+        const double terms = ph.numeric ? 1.0 : 1.0 + 2.0 * (std::abs(ph.zoff[static_cast<size_t>(q)]) +
+                                                             std::abs(ph.zoff[static_cast<size_t>(m)]));
+        return {1.0 - (z[q] * z[q] + z[m] * z[m]), -2.0 * (z[q] * du + z[m] * dm) / uy, terms};
+    }
     const double p = z[q] * du + z[m] * dm;
     const double rq = (du - z[q] * p) / uy, rm = (dm - z[m] * p) / uy;  // (z's rates)
     return {p, rq * du + rm * dm + z[q] * rel(a, h) + z[m] * rel(a, hm), std::hypot(du, dm) + ph.vround};
@@ -66,7 +71,7 @@ EventValue held_force(Phase& ph, int c, double tau, const double* y, const doubl
     const int g_c = st.grp[static_cast<size_t>(st.end_i[static_cast<size_t>(h)])];
     double* au = ph.au.data();
     double* aur = ph.aur.data();
-    free_acceleration(ph, tau, y, phase_zeta(ph, tau), au);
+    free_acceleration(ph, tau, y, phase_zeta(ph, tau, y), au);
     // the table acceleration and its rate
     const double ang = ph.w * tau + ph.phi;
     const double ag = ph.ax0 + ph.ax1 * tau + ph.axh * std::sin(ang);
@@ -163,7 +168,7 @@ EventValue stick_value(const EventRow& e, const EventValue& d) {
 EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y, const double* a) {
     const int n = ph.n;
     if (e.kind == KIND_ZETA) {  // (alpha: minus z's sign at the phase start; side: its z's slot)
-        const double* z = phase_zeta(ph, tau);
+        const double* z = phase_zeta(ph, tau, y);
         return {-e.alpha * z[e.side], -e.alpha * zeta_rate(ph, e.side, y + n, z), 1.0};
     }
     if (e.kind == KIND_CIRCLE) return circle_value(ph, e.side, tau, y, a);
@@ -272,6 +277,18 @@ void fn_eval(const Fn& fn, Phase& ph, double tau, double& f, double& fp) {
             const double bend = vp * vp + vq * vq + up * rel(a, p) + uq * rel(a, q);
             f = fn.kind == FN_NORM_RATE ? up * vp + uq * vq : bend;
             fp = fn.kind == FN_NORM_RATE ? bend : NaN;
+            return;
+        }
+        case FN_CIRCLE_RATE:
+        case FN_CIRCLE_BEND: {  // (|z|^2 of a plastic circle inside, z' = u' / u_y: its rate and bend)
+            const Hysteretic &h = *ph.bw[static_cast<size_t>(fn.idx)], &hm = *ph.bw[static_cast<size_t>(h.bw_mate_slot)];
+            const double* z = phase_zeta(ph, tau, y);
+            const double zq = z[fn.idx], zm = z[h.bw_mate_slot], uy = h.bw[1];
+            const double dq = rel(y + n, h), dm = rel(y + n, hm);
+            const double rate = 2.0 * (zq * dq + zm * dm) / uy;
+            const double bend = 2.0 * ((dq * dq + dm * dm) / uy + zq * rel(a, h) + zm * rel(a, hm)) / uy;
+            f = fn.kind == FN_CIRCLE_RATE ? rate : bend;
+            fp = fn.kind == FN_CIRCLE_RATE ? bend : NaN;
             return;
         }
         case FN_COMPRESSION_RATE:
@@ -431,7 +448,8 @@ double find_root(const Fn& fn, Phase& ph, double xa, double xb, double fa, doubl
     if (fa == 0.0) return xa;
     if (fb == 0.0) return xb;
     if (fn.kind == FN_POLY) return halley(fn, ph, xa, xb, fa, fb, ra, rb, xtol);
-    if (fn.kind == FN_POLY_RELAX || fn.kind == FN_EVENT || fn.kind == FN_PAIR_V || fn.kind == FN_COMPRESSION_RATE)
+    if (fn.kind == FN_POLY_RELAX || fn.kind == FN_EVENT || fn.kind == FN_PAIR_V || fn.kind == FN_COMPRESSION_RATE ||
+        fn.kind == FN_CIRCLE_RATE)
         return rtsafe(fn, ph, xa, xb, fa, fb, ra, rb, xtol);
     return brent(fn, ph, xa, xb, fa, fb, xtol);
 }

@@ -68,7 +68,9 @@ enum FnKind : int {
     FN_NORM_RATE,      // u . u' of the vector u = at + (u_p, u_q) of its two pairs (rate: |u'|^2 + u . u'')
     FN_NORM_BEND,      // that rate (no derivative)
     FN_COMPRESSION_RATE,  // numerical: contact idx's compression's rate (rate: its second derivative)
-    FN_COMPRESSION_BEND   // that second derivative (no derivative)
+    FN_COMPRESSION_BEND,  // that second derivative (no derivative)
+    FN_CIRCLE_RATE,    // numerical: |z|^2's rate of plastic circle idx (its first z slot; rate: its bend)
+    FN_CIRCLE_BEND     // that bend (no derivative)
 };
 struct Fn {
     int kind = FN_POLY;

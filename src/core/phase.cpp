@@ -603,6 +603,7 @@ void phase_rhs(Phase& ph, double tau, const double* y, const double* z, double* 
         }
     });
     for (int q = 0; q < ph.nbw; ++q) {
+        if (ph.bw_lin[static_cast<size_t>(q)]) continue;  // (a plastic circle inside: in K and R0)
         const Hysteretic& h = *ph.bw[static_cast<size_t>(q)];
         push_pair(a, h, -(h.bw[0] * z[q]));
     }
@@ -728,8 +729,15 @@ void phase_eval(Phase& ph, double tau, double* y, double* a) {
     for (int i = 0; i < ph.n; ++i) a[i] = r.a[i];
 }
 
-const double* phase_zeta(Phase& ph, double tau) {
+const double* phase_zeta(Phase& ph, double tau, const double* x) {
     if (ph.nbw == 0) return nullptr;
+    if (!ph.numeric) {  // (every spring a plastic circle inside: z = zoff + u / u_y, through the sub-intervals)
+        for (int q = 0; q < ph.nbw; ++q) {
+            const Hysteretic& h = *ph.bw[static_cast<size_t>(q)];
+            ph.zlin[static_cast<size_t>(q)] = ph.zoff[static_cast<size_t>(q)] + rel(x, h) / h.bw[1];
+        }
+        return ph.zlin.data();
+    }
     if (tau == 0.0) return ph.zeta0.data();
     return dp5_step(ph, tau).z;
 }

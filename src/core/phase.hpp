@@ -72,6 +72,10 @@ struct Phase {
     int nbw = 0;
     std::vector<double> zeta0;
     std::vector<char> bw_slip;  // per spring: 1 a plastic circle's slipping on it (core.hpp's bw_plastic)
+    // per spring: 1 a plastic circle's inside it, its force bw[0] z = (bw[0] / u_y) u + bw[0] zoff in the
+    // phase's K and R0 (linear: z = zoff + u / u_y, zoff set with the phase); zlin: z so found (phase_zeta)
+    std::vector<char> bw_lin;
+    std::vector<double> zoff, zlin;
     bool numeric = false;
     std::vector<ContactPhase> ct;
     Sticking stk;  // the rigid stops held shut in this phase: every acceleration is projected by it
@@ -115,6 +119,9 @@ struct Phase {
         nbw = n_bouc_wen;
         zeta0.assign(static_cast<size_t>(std::max(nbw, 1)), 0.0);
         bw_slip.assign(static_cast<size_t>(std::max(nbw, 1)), 0);
+        bw_lin.assign(static_cast<size_t>(std::max(nbw, 1)), 0);
+        zoff.assign(static_cast<size_t>(std::max(nbw, 1)), 0.0);
+        zlin.assign(static_cast<size_t>(std::max(nbw, 1)), 0.0);
         n = n_dof;
         ny = 2 * n;
         nc = n_contacts;
@@ -262,8 +269,9 @@ Dp5 dp5_step(Phase& ph, double h);
 
 // y (ny), a (n) at tau: the series of a linear phase, a numerical step of a nonlinear one
 void phase_eval(Phase& ph, double tau, double* y, double* a);
-// the Bouc-Wen springs' z at tau (nbw; nullptr without any)
-const double* phase_zeta(Phase& ph, double tau);
+// the Bouc-Wen springs' z at tau (nbw; nullptr without any); x: the displacements there (a linear phase's z
+// follow them: its springs are plastic circles inside, bw_lin)
+const double* phase_zeta(Phase& ph, double tau, const double* x);
 
 inline double table_acceleration(const Phase& ph, double tau) {
     return ph.ax0 + ph.ax1 * tau + ph.axh * std::sin(ph.w * tau + ph.phi);

@@ -207,6 +207,28 @@ double ring_cuts(Phase& ph, double h, const Buffers& b) {
     return cut;
 }
 
+// the same for a plastic circle inside (core.hpp's bw_plastic; a ring in z: |z|^2 = 1 its reach, z following
+// its pairs), |z|^2's rate of one sign at both ends and turning back inside: cut where it turns
+double circle_cuts(Phase& ph, double h) {
+    double cut = h;
+    for (int q = 0; q < ph.nbw; ++q) {
+        if (!ph.bw_lin[static_cast<size_t>(q)] || ph.bw[static_cast<size_t>(q)]->bw_mate_slot < q) continue;
+        Fn fr, fb;
+        fr.kind = FN_CIRCLE_RATE;
+        fb.kind = FN_CIRCLE_BEND;
+        fr.idx = fb.idx = q;
+        double r0, b0, r1, b1;
+        fn_eval(fr, ph, 0.0, r0, b0);
+        fn_eval(fr, ph, h, r1, b1);
+        if (!(r0 * r1 > 0.0 && b0 * b1 < 0.0) || !may_turn_back(h, r0, r1, b0, b1)) continue;
+        const double t_b = find_root(fb, ph, 0.0, h, b0, b1, NaN, NaN, XTOL_EXTREMUM_S);
+        double r_b, unused;
+        fn_eval(fr, ph, t_b, r_b, unused);
+        if (r_b * r0 < 0.0 && 0.0 < t_b && t_b < cut) cut = t_b;
+    }
+    return cut;
+}
+
 // whether a held force's rate and bend at a sub-interval's two ends (held_force_turn) say, beyond any doubt of
 // rounding, that it does not turn back and forth inside: its rates of opposite signs, or its bends of one sign
 bool surely_no_turn(const ForceTurn& e0, const ForceTurn& e1) {
@@ -382,6 +404,7 @@ struct Loop {
     bool record = false;
     bool has_ml = false;
     bool has_ring = false;  // (a ring's contact: its compression's turns cut a sub-interval, ring_cuts)
+    bool has_circle = false;  // (a plastic circle: its |z|'s turns inside it cut one too, circle_cuts)
     int n_pairs = 0;
     double kin0 = 0.0, iso0 = 0.0, bmp0 = 0.0;
     // what goes from one sub-interval to the next
@@ -556,6 +579,7 @@ void set_up(Loop& lp) {
         for (const Contact& c : sy.contact)
             if (c.law == MULTILINEAR || c.law == MULTILINEAR_KINEMATIC) lp.has_ml = true;
     for (const Contact& c : sy.contact) lp.has_ring = lp.has_ring || c.radial.on;
+    for (const Hysteretic& h : sy.hyst) lp.has_circle = lp.has_circle || h.bw_plastic;
     lp.ag_now.assign(static_cast<size_t>(lp.n), 0.0);
     table_at(lp.fo, sy, lp.st[T], lp.ag_now.data());
     start_friction(lp);
@@ -845,6 +869,7 @@ void earliest(Loop& lp) {
     }
     double cut = velocity_cuts(ph, lp.sy, lp.h, b, lp.w.event_pairs.data(), lp.n_pairs);
     if (lp.has_ring) cut = std::min(cut, ring_cuts(ph, lp.h, b));  // (b's ends at h, as velocity_cuts reads them)
+    if (lp.has_circle) cut = std::min(cut, circle_cuts(ph, lp.h));
     // (the ends known where no velocity cut came first; the ties' turns at the start kept from the last
     // sub-interval's end where it went the whole way to this one's start, on the same piece of the table)
     const bool turns_kept = lp.turns_at_end && lp.b.went_on && !lp.at_knot;
@@ -935,7 +960,7 @@ bool move_to_end(Loop& lp) {
     }
     lp.ledger[L_HYSTERETIC] += iso_advance(sy, st, ph.y0.data(), b.y1.data());  // (the isolator at the end)
     if (sy.n_bw() > 0) {
-        const double* z = phase_zeta(ph, lp.tau);
+        const double* z = phase_zeta(ph, lp.tau, b.y1.data());
         for (int q = 0; q < sy.n_bw(); ++q) {
             const double zm = lp.z_max[static_cast<size_t>(q)];
             const int mate = sy.bw_of(q).bw_mate_slot;

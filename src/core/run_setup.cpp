@@ -196,12 +196,24 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
     ph.bs = pc.bs;
     ph.bc = pc.bc;
     for (int q = 0; q < 2 * n; ++q) ph.y0[static_cast<size_t>(q)] = st[L.x + q];
-    ph.numeric = any_nl || sy.n_bw() > 0 || !ph.rate_fr.empty();
+    bool all_linear = true;  // (every Bouc-Wen spring a plastic circle inside: a linear spring, exact phases)
     for (int q = 0; q < sy.n_bw(); ++q) {
         ph.zeta0[static_cast<size_t>(q)] = st[L.zeta + q];
-        const bool plastic = sy.bw_of(q).bw_plastic;
-        ph.bw_slip[static_cast<size_t>(q)] = plastic && st[L.region + sy.bw_el[static_cast<size_t>(q)]] != 0.0;
+        const Hysteretic& h = sy.bw_of(q);
+        const bool plastic = h.bw_plastic;
+        const bool slip = plastic && st[L.region + sy.bw_el[static_cast<size_t>(q)]] != 0.0;
+        ph.bw_slip[static_cast<size_t>(q)] = slip;
+        ph.bw_lin[static_cast<size_t>(q)] = plastic && !slip;
+        all_linear = all_linear && plastic && !slip;
+        if (!plastic || slip) continue;
+        // (inside: z = z0 + (u - u0) / u_y, its force bw[0] z a spring of bw[0] / u_y and a constant)
+        const double k_c = h.bw[0] / h.bw[1];
+        const double zoff = st[L.zeta + q] - rel(st + L.x, h) / h.bw[1];
+        ph.zoff[static_cast<size_t>(q)] = zoff;
+        sy.add_pair(ph.K, h, k_c);
+        push_pair(ph.R0.data(), h, h.bw[0] * zoff);
     }
+    ph.numeric = any_nl || !all_linear || !ph.rate_fr.empty();
     ph.dp5_h = -1.0;
     ph.tc_ok = false;
     ph.kiso = iso.k;
