@@ -26,7 +26,10 @@ by its force times w:
 * a Kelvin-Voigt ring (a circular moat's wall, radius R) struck by a point at (p_x, p_y) from its centre that
   moves by (w_x . q, w_y . q): its compression d = |(p_x + w_x . q, p_y + w_y . q)| - R, its force
   k_b d + c_b d' along the ring's normal n there (pushing the coordinates by it times n_x w_x + n_y w_y), the
-  same contact rules as a wall's.
+  same contact rules as a wall's; or a Jankowski ring (its entry's eighth number, the exponent n: its force
+  k_b d^n + c_b d^((n-1)/2) d' while d' > 0, k_b d^n while it recovers, never pulling: the contact ends where
+  d is back to 0, the integration restarting where d' crosses zero in contact, its dashpot's kink; no
+  relaxing surface).
 """
 
 from __future__ import annotations
@@ -52,7 +55,8 @@ class PlanModel:
     # Kelvin-Voigt walls: (w (n,), sign +-1, gap m, k_b N/m, c_b N s/m)
     walls: list = field(default_factory=list)
     # Kelvin-Voigt rings, after the walls in the contacts' numbering: (w_x (n,), w_y (n,), p_x m, p_y m,
-    # R m, k_b N/m, c_b N s/m)
+    # R m, k_b N/m, c_b N s/m), or Jankowski rings: the same and its exponent n (k_b N/m^n, c_b
+    # N s/m^((n+1)/2))
     rings: list = field(default_factory=list)
     # Bouc-Wen springs: (w (n,), (f_z N, u_y m, a, beta, gamma, n)); their z start at 0
     bouc_wen: list = field(default_factory=list)
@@ -101,14 +105,17 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
               steps_per_period: float = 100.0) -> PlanResult:
     n = s.mass.size
     inv_m = 1.0 / s.mass
-    # every contact as its compression's value and rate, its gradient (what its force pushes along), k_b, c_b
-    contacts = []
+    # every contact as its compression's value and rate, its gradient (what its force pushes along), k_b, c_b;
+    # jankowski: each contact's exponent (None: Kelvin-Voigt's)
+    contacts, jankowski = [], []
     for w, sg, gap, k_b, c_b in s.walls:
         w = np.asarray(w, dtype=float)
         contacts.append((lambda y, w=w, sg=sg, gap=gap: (sg * float(w @ y[:n]) - gap,
                                                          sg * float(w @ y[n:2 * n])),
                          lambda y, w=w, sg=sg: sg * w, k_b, c_b))
-    for wx, wy, px, py, radius, k_b, c_b in s.rings:
+        jankowski.append(None)
+    for wx, wy, px, py, radius, k_b, c_b, *law in s.rings:
+        jankowski.append(law[0] if law else None)
         wx, wy = np.asarray(wx, dtype=float), np.asarray(wy, dtype=float)
 
         def normal(y, wx=wx, wy=wy, px=px, py=py):
@@ -140,7 +147,7 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
     k_stuck = k_stuck + sum((bws[b][0] / bws[b][1] * np.outer(wz[b], wz[b]) for b in circle_of),
                             np.zeros((n, n)))  # (a circle's elastic stiffness)
     k_in = k_stuck + sum((k_b * np.outer(w, w) for w, _, _, k_b, _ in s.walls), np.zeros((n, n)))
-    k_in = k_in + sum((k_b * (np.outer(wx, wx) + np.outer(wy, wy)) for wx, wy, _, _, _, k_b, _ in s.rings),
+    k_in = k_in + sum((k_b * (np.outer(wx, wx) + np.outer(wy, wy)) for wx, wy, _, _, _, k_b, *_ in s.rings),
                       np.zeros((n, n)))
     step_in, step_out = longest_step(k_in), longest_step(k_stuck)
 
@@ -156,7 +163,7 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
     def surface(c, t):
         d_r, t_r = relax[c]
         _, _, k_b, c_b = contacts[c]
-        if d_r == 0.0 or c_b == 0.0:
+        if d_r == 0.0 or c_b == 0.0 or jankowski[c] is not None:
             return 0.0
         return d_r * math.exp(-k_b * (t - t_r) / c_b)
 
@@ -167,7 +174,11 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         for c, (depth, grad, k_b, c_b) in enumerate(contacts):
             if inside[c]:
                 d, dd = depth(y)
-                f += (k_b * d + c_b * dd) * grad(y)
+                if jankowski[c] is None:
+                    f += (k_b * d + c_b * dd) * grad(y)
+                else:
+                    ne, dp = jankowski[c], max(d, 0.0)
+                    f += (k_b * dp**ne + (c_b * dp ** (0.5 * (ne - 1.0)) * dd if dd > 0.0 else 0.0)) * grad(y)
         for b, w in enumerate(wz):
             f += bws[b][0] * y[2 * n + b] * w
         return f
@@ -222,6 +233,18 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
                 emptied.direction = -1.0
                 emptied.contact = c
                 evs.append(emptied)
+                if jankowski[c] is not None:  # (it never pulls: it ends when emptied; its dashpot's kink)
+                    # (signed to fall through zero next: at its zero, the way it leaves it, as a BW kink)
+                    rate = depth(y)[1]
+                    if abs(rate) <= 1e-12 * float(np.max(np.abs(y[n:2 * n]))):
+                        rate = depth(y + 1e-9 * rhs(t, y))[1]
+                    def rate_zero(t, y, depth=depth, sr=math.copysign(1.0, rate)):
+                        return sr * depth(y)[1]
+                    rate_zero.terminal = True
+                    rate_zero.direction = -1.0
+                    rate_zero.kink = (-1, False)
+                    evs.append(rate_zero)
+                    continue
             else:
                 def release(t, y, c=c, depth=depth):
                     return surface(c, t) - depth(y)[0]

@@ -257,6 +257,7 @@ struct System {
     std::vector<int> rigid;  // the contacts with a rigid stop's law
     std::vector<int> ties;   // the elements with the friction rule (each ties its pair while it sticks)
     std::vector<int> bw_el;  // the elements with a Bouc-Wen spring, by their z's slot
+    bool bw_kinks = false;   // a Bouc-Wen spring but a plastic circle: its law's kinks at u' = 0 (velocity_cuts)
     double total_mass = 0.0;
     bool plain = true;  // the table moves every dof with its first component alone (infl's rows 1, 0)
     // where any phase's stiffness or damping can be nonzero (k0, c_lin and every element's and contact's pair),
@@ -283,12 +284,14 @@ struct System {
     void finish() {
         int first = 0;
         bw_el.clear();
+        bw_kinks = false;
         for (int e = 0; e < n_h(); ++e) {
             Hysteretic& h = hyst[static_cast<size_t>(e)];
             h.first = first;
             first += h.n_springs();
             h.bw_slot = h.has_bw() ? n_bw() : -1;
             if (h.has_bw()) bw_el.push_back(e);
+            bw_kinks = bw_kinks || (h.has_bw() && !h.bw_plastic);
         }
         for (Hysteretic& h : hyst)
             h.bw_mate_slot = h.bw_mate >= 0 ? hyst[static_cast<size_t>(h.bw_mate)].bw_slot : -1;

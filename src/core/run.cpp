@@ -115,7 +115,7 @@ void eval_end(Phase& ph, double h, Buffers& b) {
 double velocity_cuts(Phase& ph, const System& sy, double h, const Buffers& b, const Pair* pairs, int np) {
     const int n = ph.n;
     double cut = h;
-    const bool kinks = ph.numeric && (law_switches(ph) || sy.n_bw() > 0);
+    const bool kinks = ph.numeric && (law_switches(ph) || sy.bw_kinks);
     for (int p = 0; p < np; ++p) {
         const Pair& pr = pairs[p];
         double v0 = rel(b.y0s.data() + n, pr);
@@ -184,8 +184,9 @@ double velocity_cuts(Phase& ph, const System& sy, double h, const Buffers& b, co
 
 // the same for a ring's contact (core.hpp's Radial), its compression's rate in its pair's place: of one sign at
 // both ends and turning back inside (two zeros: a dip of its start or its branch's edge could hide between
-// them), cut where it turns.  The cut instant (or h).  (A law with a kink where that rate is zero, Jankowski's,
-// is not taken on a ring: the door refuses it.)
+// them), cut where it turns.  The cut instant (or h).  (Jankowski's dashpot's kink where that rate is zero, in
+// contact, is left to the numerical step's control: cutting there changed its contacts' instants by nothing
+// measurable against the reference, tests/test_plan_ring.py.)
 double ring_cuts(Phase& ph, double h, const Buffers& b) {
     const int n = ph.n;
     double cut = h;
@@ -209,8 +210,18 @@ double ring_cuts(Phase& ph, double h, const Buffers& b) {
 
 // the same for a plastic circle inside (core.hpp's bw_plastic; a ring in z: |z|^2 = 1 its reach, z following
 // its pairs), |z|^2's rate of one sign at both ends and turning back inside: cut where it turns
-double circle_cuts(Phase& ph, double h) {
+double circle_cuts(Phase& ph, double h, const Buffers& b) {
+    const int n = ph.n;
     double cut = h;
+    // (|z|^2's rate and bend at an end, from the sub-interval's ends as the loop has them: no series made)
+    auto turn = [&](int q, double tau, const double* y, const double* a, double& rate, double& bend) {
+        const Hysteretic &h_q = *ph.bw[static_cast<size_t>(q)], &h_m = *ph.bw[static_cast<size_t>(h_q.bw_mate_slot)];
+        const double* z = phase_zeta(ph, tau, y);
+        const double zq = z[q], zm = z[h_q.bw_mate_slot], uy = h_q.bw[1];
+        const double dq = rel(y + n, h_q), dm = rel(y + n, h_m);
+        rate = 2.0 * (zq * dq + zm * dm) / uy;
+        bend = 2.0 * ((dq * dq + dm * dm) / uy + zq * rel(a, h_q) + zm * rel(a, h_m)) / uy;
+    };
     for (int q = 0; q < ph.nbw; ++q) {
         if (!ph.bw_lin[static_cast<size_t>(q)] || ph.bw[static_cast<size_t>(q)]->bw_mate_slot < q) continue;
         Fn fr, fb;
@@ -218,8 +229,8 @@ double circle_cuts(Phase& ph, double h) {
         fb.kind = FN_CIRCLE_BEND;
         fr.idx = fb.idx = q;
         double r0, b0, r1, b1;
-        fn_eval(fr, ph, 0.0, r0, b0);
-        fn_eval(fr, ph, h, r1, b1);
+        turn(q, 0.0, b.y0s.data(), b.a0.data(), r0, b0);
+        turn(q, h, b.y1.data(), b.a1.data(), r1, b1);
         if (!(r0 * r1 > 0.0 && b0 * b1 < 0.0) || !may_turn_back(h, r0, r1, b0, b1)) continue;
         const double t_b = find_root(fb, ph, 0.0, h, b0, b1, NaN, NaN, XTOL_EXTREMUM_S);
         double r_b, unused;
@@ -869,7 +880,7 @@ void earliest(Loop& lp) {
     }
     double cut = velocity_cuts(ph, lp.sy, lp.h, b, lp.w.event_pairs.data(), lp.n_pairs);
     if (lp.has_ring) cut = std::min(cut, ring_cuts(ph, lp.h, b));  // (b's ends at h, as velocity_cuts reads them)
-    if (lp.has_circle) cut = std::min(cut, circle_cuts(ph, lp.h));
+    if (lp.has_circle) cut = std::min(cut, circle_cuts(ph, lp.h, b));
     // (the ends known where no velocity cut came first; the ties' turns at the start kept from the last
     // sub-interval's end where it went the whole way to this one's start, on the same piece of the table)
     const bool turns_kept = lp.turns_at_end && lp.b.went_on && !lp.at_knot;

@@ -201,7 +201,9 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
         ph.zeta0[static_cast<size_t>(q)] = st[L.zeta + q];
         const Hysteretic& h = sy.bw_of(q);
         const bool plastic = h.bw_plastic;
-        const bool slip = plastic && st[L.region + sy.bw_el[static_cast<size_t>(q)]] != 0.0;
+        // (one flag for both mates: the circle's first element's, whatever a state made by hand has in the other)
+        const int first = plastic ? std::min(q, h.bw_mate_slot) : q;
+        const bool slip = plastic && st[L.region + sy.bw_el[static_cast<size_t>(first)]] != 0.0;
         ph.bw_slip[static_cast<size_t>(q)] = slip;
         ph.bw_lin[static_cast<size_t>(q)] = plastic && !slip;
         all_linear = all_linear && plastic && !slip;
@@ -221,6 +223,7 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
     // (the Bouc-Wen springs' initial stiffnesses bound the rate too)
     double k_extra = 0.0;
     for (int q = 0; q < sy.n_bw(); ++q) {
+        if (ph.bw_lin[static_cast<size_t>(q)]) continue;  // (a plastic circle inside: in K already)
         const Hysteretic& h = sy.bw_of(q);
         const double k_bw = h.bw[0] * h.bw[2] / h.bw[1];
         if (h.levered()) {  // (k w^T M^-1 w at most k (sum |w_k| sqrt(1 / m_k))^2)
@@ -282,7 +285,10 @@ NumStep numeric_step(Phase& ph, double h, double h_num, double rtol, double t) {
     while (true) {
         const Dp5 r = dp5_step(ph, h);
         double err = 0.0;
-        for (int q = 0; q < ph.nbw; ++q) err = std::max(err, std::abs(r.ez[q]) / (rtol * (1.0 + std::abs(r.z[q]))));
+        for (int q = 0; q < ph.nbw; ++q) {  // (a plastic circle inside: its z the displacements', checked there)
+            if (ph.bw_lin[static_cast<size_t>(q)]) continue;
+            err = std::max(err, std::abs(r.ez[q]) / (rtol * (1.0 + std::abs(r.z[q]))));
+        }
         for (int i = 0; i < n; ++i) {
             const double y0x = ph.y0[static_cast<size_t>(i)], y0v = ph.y0[static_cast<size_t>(n + i)];
             err = std::max(err, std::abs(r.ey[i]) / (atol_d + rtol * std::max(std::abs(y0x), std::abs(r.y[i]))));

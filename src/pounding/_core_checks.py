@@ -6,9 +6,8 @@ from __future__ import annotations
 import math
 from typing import Any
 
-# the laws a ring's wall takes: every compliant law but Jankowski's, whose force has a kink where the
-# compression's rate is zero (a line's phases are cut there, at its pair's velocity's zero; a ring's are not)
-RING_LAWS = ("kelvin_voigt", "hunt_crossley", "multilinear", "elastic_plastic", "hertzdamp",
+# the laws a ring's wall takes: every compliant law (a rigid stop in plan is not supported yet)
+RING_LAWS = ("kelvin_voigt", "hunt_crossley", "jankowski", "multilinear", "elastic_plastic", "hertzdamp",
              "multilinear_kinematic")
 
 
@@ -78,6 +77,13 @@ def check_elements(elements: list, n: int, element_type: type) -> None:
                 el.friction_rate_s_m > 0.0 and el.rule != 2):
             raise ValueError(f"element {e}: a velocity-dependent friction is the friction rule's, with a "
                              "fast friction > 0 and a rate > 0 together")
+    for e, el in enumerate(elements):
+        if el.bw_plastic and el.bw[0] == 0.0:
+            raise ValueError(f"element {e}: a plastic circle (bw_plastic) is a Bouc-Wen spring's: give its "
+                             "numbers (bw)")
+        if el.bw_plastic and el.bw_mate == -1:
+            raise ValueError(f"element {e}: a plastic circle (bw_plastic) is a bidirectional spring's: give "
+                             "its mate (bw_mate)")
     for e, el in enumerate(elements):  # (a bidirectional Bouc-Wen spring: two elements, each the other's)
         mate = el.bw_mate
         if mate == -1:
@@ -90,10 +96,6 @@ def check_elements(elements: list, n: int, element_type: type) -> None:
                 el.rule == 0 and el.bw[2] == 1.0 and el.bw[3] + el.bw[4] == 1.0)):
             raise ValueError(f"element {e}: a plastic circle (bw_plastic) is both mates', on the kinematic "
                              "rule (0), with a = 1 and beta + gamma = 1")
-    for e, el in enumerate(elements):
-        if el.bw_plastic and el.bw_mate == -1:
-            raise ValueError(f"element {e}: a plastic circle (bw_plastic) is a bidirectional spring's: give "
-                             "its mate (bw_mate)")
 
 
 def check_contacts(contacts: list, n: int, slot_type: type, law_ids: dict) -> None:
@@ -112,8 +114,7 @@ def check_contacts(contacts: list, n: int, slot_type: type, law_ids: dict) -> No
             if slot.sign != 1.0 or not all(math.isfinite(v) for v in place) or not slot.ring_radius_m > 0.0:
                 raise ValueError(f"contact {c}: a ring's wall has sign +1, a finite place and a radius > 0")
             if slot.law not in [law_ids[name] for name in RING_LAWS]:
-                raise ValueError(f"contact {c}: a ring's wall takes a compliant law but Jankowski's "
-                                 f"({', '.join(RING_LAWS)})")
+                raise ValueError(f"contact {c}: a ring's wall takes a compliant law ({', '.join(RING_LAWS)})")
         if check_levers(slot, n, f"contact {c}") and slot.law == law_ids["rigid"]:
             raise ValueError(f"contact {c}: a rigid stop on a lever is not supported yet (its impact's "
                              "impulse is a dof's): use a compliant law there")

@@ -185,13 +185,37 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str, levered: Optional[tuple
         if size > z_max * (1.0 + 1e-9):
             what = "" if mate < 0 else f" (with vector[{lay['zeta'] + mate}], its other component: {size:g})"
             raise bad(f"vector[{at}]", z, f"is beyond the Bouc-Wen spring's largest |z|, {z_max:g}{what}")
-        e = asm.bouc_wen.elements[q] if asm.bouc_wen.elements else -1
-        if asm.bouc_wen.plastic and asm.bouc_wen.plastic[q] and (
-                x_all[lay["region"] + e] != x_all[lay["region"] + asm.bouc_wen.elements[mate]]
-                or (x_all[lay["region"] + e] == 1.0 and size < 1.0 - 1e-9)):
-            raise bad(f"vector[{lay['region'] + e}]", x_all[lay["region"] + e],
-                      f"is a friction circle's slip (1: slipping, its |z| = 1; here {size:g}), the same for "
-                      f"both its axes (vector[{lay['region'] + asm.bouc_wen.elements[mate]}])")
+        if asm.bouc_wen.plastic and asm.bouc_wen.plastic[q] and mate > q:
+            _check_circle(x_all, lay, asm, levered, q, mate, size, bad)
+
+
+def _check_circle(x_all: list, lay: dict, asm: Assembly, levered: Optional[tuple], q: int, mate: int,
+                  size: float, bad: Any) -> None:
+    """A plastic friction circle's state (Bouc-Wen springs ``q`` and ``mate``, ``size`` its ``|z|``): its
+    two elements' slip flags alike, 0 or 1, slipping only on the circle and moving outwards."""
+    e, f = asm.bouc_wen.elements[q], asm.bouc_wen.elements[mate]
+    flag, other = x_all[lay["region"] + e], x_all[lay["region"] + f]
+    field = f"vector[{lay['region'] + e}]"
+    if flag != other:
+        raise bad(field, flag, f"is a friction circle's slip, but its other axis's "
+                               f"(vector[{lay['region'] + f}]) is {other:g}: one circle, one flag")
+    if flag != 1.0:
+        return
+    if size < 1.0 - 1e-9:
+        raise bad(field, flag, f"is a friction circle's slip (1: slipping), but its |z| is {size:g}, inside "
+                               "the circle (a slip is on it, |z| = 1)")
+    v = np.asarray(x_all[lay["v"]:lay["v"] + int(asm.system.n)])
+    rates = []
+    for el in (e, f):
+        if levered is not None:
+            rates.append(float(np.asarray(levered[1][el]) @ v))
+        else:
+            i, j = asm.elements[el].i, asm.elements[el].j
+            rates.append(float(v[i] - (v[j] if j >= 0 else 0.0)))
+    outwards = x_all[lay["zeta"] + q] * rates[0] + x_all[lay["zeta"] + mate] * rates[1]
+    if outwards < 0.0:
+        raise bad(field, flag, f"is a friction circle's slip, against its bearing's velocity (z . u' = "
+                               f"{outwards:g} m/s: a slip goes outwards, else it sticks)")
 
 
 _FIX = "start from State.at_rest(system) or a final_state of this system"

@@ -21,8 +21,6 @@ from .._checks import (at_most, instance_of, integer, non_negative, one_of, plau
 from .._errors import InputError, PoundingWarning, Problem
 from .contact_laws import check_law, law_to_dict
 from .contact_laws.rigid_stop import is_rigid
-from .._core import LAW_IDS
-from .._core_checks import RING_LAWS
 from .friction import PRESLIP_IN_PLAN, FrictionIsolator
 from .isolator import Isolator
 from .structure_parts import (MAX_GAP_M, MAX_STOREY_STIFFNESS, MAX_STOREYS, check_backbone_after,
@@ -232,9 +230,10 @@ class Bearing:
     friction_circle : {"plastic", "bouc_wen"}
         A friction bearing's circle (``bidirectional``), its force ``mu W z`` (``|z| <= 1``, ``z`` moving
         by the bearing's displacement over ``preslip_m``).  ``"plastic"`` (the default): elastic-perfectly
-        plastic, exact: it sticks (elastic, ``z' = u' / preslip_m``) while the force stays inside ``mu
-        W`` and slips on the circle (the force ``mu W`` along the slip) while the motion pushes outwards,
-        its every stick and slip located as an event (``circle_slip``, ``circle_stick``).
+        plastic: it sticks (elastic, ``z' = u' / preslip_m``: exact phases) while the force stays inside
+        ``mu W`` and slips on the circle (the force ``mu W`` along the slip, integrated numerically) while
+        the motion pushes outwards, its every stick and slip located as an event (``circle_slip``,
+        ``circle_stick``).
         ``"bouc_wen"``: Constantinou, Mokha and Reinhorn's (1990) smooth model, SAP2000's and
         3D-BASIS's: a bidirectional Bouc-Wen spring of stiffness ``mu W / preslip_m``, yield displacement
         ``preslip_m``, ``a = 1``, ``beta = gamma = 1/2`` and ``n = 2``, which never quite sticks.  Other
@@ -277,6 +276,11 @@ class Bearing:
         if self.friction_circle not in FRICTION_CIRCLES:
             raise InputError(Problem.NOT_ONE_OF, "bearing.friction_circle", self.friction_circle,
                              choices=FRICTION_CIRCLES)
+        if self.friction_circle != "plastic" and not (self.is_friction and self.bidirectional):
+            raise InputError(Problem.WRONG_CONFIGURATION, "bearing.friction_circle", self.friction_circle,
+                             got="for a bearing without a friction circle (a rubber bearing's law, or one "
+                                 "friction along each axis: bidirectional false)",
+                             fix="leave friction_circle out: it is a friction bearing's in the plane's")
         if self.is_friction or isinstance(self.isolator_y, FrictionIsolator):
             self._check_friction()
         springs = [law.bouc_wen for law in self.laws]
@@ -353,8 +357,26 @@ class Bearing:
 
 FRICTION_CIRCLES = ("plastic", "bouc_wen")  # (a friction bearing's circle in plan: Bearing.friction_circle)
 MOAT_SIDES = ("-x", "+x", "-y", "+y")  # (a rectangular moat's walls, in its gaps' order)
-RING_LAW_IDS = tuple(LAW_IDS[name] for name in RING_LAWS)  # (the laws a circular moat's wall takes)
 OUT_OF_REACH_M = 100.0  # a ring's gap in a free run (out_of_reach): no building's corner moves this far
+
+
+def _moat_gap(name: str, gap: float) -> float:
+    """A moat's gap (m, a real number) checked: >= 0, at most the largest, warned of if implausible."""
+    non_negative(name, gap, "m")
+    at_most(name, gap, MAX_GAP_M, " m", "give the gap in m (30 cm is 0.30)")
+    plausible(name, gap, 0.0, 2.0, "gaps are in m (a 30 cm moat is 0.30)")
+    return gap
+
+
+def _moat_law(law: Any) -> None:
+    """A moat's wall law checked: any compliant law (a rigid stop in plan is not supported yet)."""
+    check_law("moat.law", law)
+    if is_rigid(law):
+        raise InputError(Problem.WRONG_CONFIGURATION, "moat.law", law,
+                         got="with a rigid stop for a moat in plan (not supported yet: its impulse at a "
+                             "corner turns the floor)",
+                         fix="give the walls a compliant law (KelvinVoigt or Hertzdamp with the wall's "
+                             "stiffness)")
 
 
 @dataclass(frozen=True)
@@ -395,18 +417,9 @@ class RectangularMoat:
             raise InputError(Problem.LENGTH_MISMATCH, "moat.gap_m", list(gaps), got=len(gaps), expected=4,
                              hint=" (one for every wall, or the walls at -x, +x, -y, +y)")
         for j, g in enumerate(gaps):  # (one gap for all: checked, and warned of, once)
-            name = "moat.gap_m" if len(gaps) == 1 else f"moat.gap_m[{j}]"
-            non_negative(name, g, "m")
-            at_most(name, g, MAX_GAP_M, " m", "give the gap in m (30 cm is 0.30)")
-            plausible(name, g, 0.0, 2.0, "gaps are in m (a 30 cm moat is 0.30)")
+            _moat_gap("moat.gap_m" if len(gaps) == 1 else f"moat.gap_m[{j}]", g)
         object.__setattr__(self, "gap_m", gaps * 4 if len(gaps) == 1 else gaps)
-        check_law("moat.law", self.law)
-        if is_rigid(self.law):
-            raise InputError(Problem.WRONG_CONFIGURATION, "moat.law", self.law,
-                             got="with a rigid stop for a moat in plan (not supported yet: its impulse at a "
-                                 "corner turns the floor)",
-                             fix="give the walls a compliant law (KelvinVoigt or Hertzdamp with the wall's "
-                                 "stiffness)")
+        _moat_law(self.law)
         object.__setattr__(self, "level", integer("moat.level", self.level, 0, MAX_STOREYS))
 
     @property
@@ -438,9 +451,8 @@ class CircularMoat:
         The clearance at rest between the floor's corners and the ring, m, >= 0: the ring's radius is the
         rectangle's half-diagonal plus it (:meth:`radius_m`).
     law : contact law
-        The wall's contact law: any compliant law but :class:`pounding.Jankowski` (its dashpot's kink at
-        zero compression rate is not located on a ring yet); a :class:`pounding.RigidStop` is not supported
-        in plan yet.
+        The wall's contact law: any compliant law (a :class:`pounding.RigidStop` is not supported in plan
+        yet).
     level : int
         The floor it surrounds (default 0: the base).
     out_of_reach : bool
@@ -471,19 +483,10 @@ class CircularMoat:
             raise InputError(Problem.WRONG_TYPE, "moat.gap_m", self.gap_m, got=type(self.gap_m).__name__,
                              expected="number (a ring has one gap; four: a RectangularMoat, shape = "
                                       "\"rectangle\" in a file)")
-        gap = real("moat.gap_m", self.gap_m)
-        non_negative("moat.gap_m", gap, "m")
-        at_most("moat.gap_m", gap, MAX_GAP_M, " m", "give the gap in m (30 cm is 0.30)")
-        plausible("moat.gap_m", gap, 0.0, 2.0, "gaps are in m (a 30 cm moat is 0.30)")
+        gap = _moat_gap("moat.gap_m", real("moat.gap_m", self.gap_m))
         object.__setattr__(self, "gap_m", gap + 0.0)  # (-0.0 as 0.0)
         instance_of("moat.out_of_reach", self.out_of_reach, bool, "true or false")
-        check_law("moat.law", self.law)
-        if getattr(self.law, "LAW_ID", None) not in RING_LAW_IDS:
-            raise InputError(Problem.WRONG_CONFIGURATION, "moat.law", self.law,
-                             got=f"with a {type(self.law).__name__} for a circular moat (not supported yet: "
-                                 "a rigid stop in plan, or Jankowski's law on a ring)",
-                             fix="give the ring a compliant law (KelvinVoigt, Hertzdamp, HuntCrossley, "
-                                 "MultilinearBumper or ElasticPlastic) with the wall's stiffness")
+        _moat_law(self.law)
         object.__setattr__(self, "level", integer("moat.level", self.level, 0, MAX_STOREYS))
 
     @property
