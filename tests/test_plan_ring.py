@@ -20,7 +20,8 @@ from pounding.model.plan_parts import Bearing, CircularMoat, Floor, RectangularM
 from reference_ndof import TouchAtRest
 from reference_plan import reference
 from reference_plan import record_pair as _record
-from test_plan_run import _draw_building, _dynamic_factor, _pair, _restated, _same_events
+from test_plan_run import _draw_building, _pair, _restated, _same_events
+from test_plan_run import _isotropic as _isotropic_run
 
 
 def _ringed(b: PlanBuilding, gap_m: float) -> tuple[PlanBuilding, object]:
@@ -98,8 +99,9 @@ def test_a_ring_struck_again_and_again_runs_as_the_reference(seed):
 @pytest.mark.parametrize("seed", [5, 11])
 def test_a_ring_of_jankowski_s_law_runs_as_the_reference(seed):
     # its dashpot works on the approach only: a kink where the compression's rate crosses zero in contact,
-    # where the engine cuts its numerical phase (as a line's at its pair's velocity's zero) and the reference
-    # restarts; contact starts and ends, the final state, the ledger
+    # where the reference restarts and the engine's numerical step control takes it (cutting the step there
+    # changed the instants by nothing measurable: up to 9e-9 s either way at rtol 1e-10, 8e-11 s at 1e-12,
+    # hence rtol 1e-12 here); contact starts and ends, the final state, the ledger
     rng = np.random.default_rng(seed)
     b, model = _ringed(_draw_building(rng, 1, 0.02), 0.02)
     law = pounding.Jankowski(rng.uniform(5e9, 2e10), rng.uniform(0.2, 0.5), rng.uniform(1e5, 4e5))
@@ -126,29 +128,7 @@ def test_a_ring_of_jankowski_s_law_runs_as_the_reference(seed):
 
 def _isotropic(gap_m):
     """A square floor on four equal linear bearings, its mass centred (test_plan_run's), in a ring."""
-    iso = pounding.Isolator(slopes_n_m=[2.5e6], breakpoints_m=[], damping_n_s_m=1.5e5)
-    return PlanBuilding([Floor(4e5, (20.0, 20.0))], [Bearing((sx * 8.0, sy * 8.0), iso) for sx in (-1, 1)
-                                                     for sy in (-1, 1)],
-                        moat=CircularMoat(gap_m, pounding.KelvinVoigt(1e9, 1e6)))
-
-
-def test_a_ring_around_the_circular_orbit_is_grazed_at_the_closed_form_amplitude():
-    # a_x = A sin(w t), a_y = A cos(w t): the floor's steady orbit is a circle of radius A / |k/m - w^2 + i c
-    # w / m| without turning, so each corner's largest distance from the ring's centre is its own plus the
-    # radius; the ring is grazed where the radius is its gap, A = gap |k/m - w^2 + i c w / m|: just below, no
-    # contact and a clearance of the radius's shortfall, exactly; just above, contacts
-    gap, freq_hz = 0.2, 0.7
-    graze_g = gap * _dynamic_factor(freq_hz) / 9.81
-    far, near = _isotropic(1.0), _isotropic(gap)
-    for excess, struck in ((-1e-9, False), (-1e-7, False), (1e-8, True), (1e-6, True)):
-        table = pounding.HarmonicPair.circular(graze_g * (1.0 + excess), freq_hz)
-        steady = pounding.simulate(far, table, 40.0, sample_rate_hz=0.0).final_state  # (the ring's layout)
-        run = pounding.simulate(near, table, 3.0, state=steady, sample_rate_hz=0.0)
-        assert (len(run.contacts) > 0) == struck, excess
-        if not struck:
-            np.testing.assert_allclose(run.clearance_m, [-gap * excess], rtol=1e-3)
-        else:
-            assert run.summary()["clearance_min_m"] < 0.0
+    return _isotropic_run(gap_m, CircularMoat)
 
 
 def test_a_ring_takes_compliant_laws_and_refuses_the_others():

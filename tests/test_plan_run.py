@@ -16,7 +16,7 @@ from hypothesis import strategies as st
 import pounding
 from pounding import InputError, _core
 from pounding.model.plan import PlanBuilding
-from pounding.model.plan_parts import Bearing, Floor, Frame, RectangularMoat
+from pounding.model.plan_parts import Bearing, CircularMoat, Floor, Frame, RectangularMoat
 from reference_ndof import TouchAtRest
 from reference_plan import PlanModel, reference
 from reference_plan import record_pair as _record
@@ -491,11 +491,11 @@ def test_a_plan_run_as_a_dataset():
 
 
 # ---------------------------------------------------------------------------------------- closed forms
-def _isotropic(gap_m=None):
+def _isotropic(gap_m=None, moat_kind=RectangularMoat):
     """A square floor on four equal linear bearings (each 2.5 MN/m, 150 kN s/m), its mass centred: x and y
-    alike, apart from the turn; a moat of ``gap_m`` (stiff walls)."""
+    alike, apart from the turn; a moat (``moat_kind``: four walls, or a ring) of ``gap_m`` (stiff walls)."""
     iso = pounding.Isolator(slopes_n_m=[2.5e6], breakpoints_m=[], damping_n_s_m=1.5e5)
-    moat = None if gap_m is None else RectangularMoat(gap_m, pounding.KelvinVoigt(1e9, 1e6))
+    moat = None if gap_m is None else moat_kind(gap_m, pounding.KelvinVoigt(1e9, 1e6))
     return PlanBuilding([Floor(4e5, (20.0, 20.0))], [Bearing((sx * 8.0, sy * 8.0), iso) for sx in (-1, 1)
                                                      for sy in (-1, 1)], moat=moat)
 
@@ -524,13 +524,15 @@ def test_circular_shaking_drives_a_circular_orbit_of_the_closed_form_radius(freq
     assert np.max(np.abs(run.displacement[:, 0, 2])) < 1e-12
 
 
-def test_a_moat_around_the_circle_is_grazed_at_the_closed_form_amplitude():
+@pytest.mark.parametrize("moat_kind", [RectangularMoat, CircularMoat])
+def test_a_moat_around_the_circle_is_grazed_at_the_closed_form_amplitude(moat_kind):
     # the orbit's radius reaches the moat's gap at A = gap |k/m - w^2 + i c w / m|: just below, no contact and
     # a clearance of the radius's shortfall, exactly; just above (by more than the engine's length
-    # resolution, 1e-9 of the system's lengths), contacts
+    # resolution, 1e-9 of the system's lengths), contacts.  A ring's too: the floor does not turn, so each
+    # corner's largest distance from the ring's centre is its own plus the orbit's radius
     gap, freq_hz = 0.2, 0.7
     graze_g = gap * _dynamic_factor(freq_hz) / 9.81
-    far, near = _isotropic(1.0), _isotropic(gap)
+    far, near = _isotropic(1.0, moat_kind), _isotropic(gap, moat_kind)
     for excess, struck in ((-1e-9, False), (-1e-7, False), (1e-8, True), (1e-6, True)):
         table = pounding.HarmonicPair.circular(graze_g * (1.0 + excess), freq_hz)
         steady = pounding.simulate(far, table, 40.0, sample_rate_hz=0.0).final_state  # (the moat's layout)
