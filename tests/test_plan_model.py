@@ -11,7 +11,8 @@ import pytest
 import pounding
 from pounding import InputError
 from pounding.model.plan import PlanBuilding
-from pounding.model.plan_parts import Bearing, Floor, Frame, RectangularMoat
+from pounding.model.moats import RectangularMoat
+from pounding.model.plan_parts import Bearing, Floor, Frame
 
 
 

@@ -16,7 +16,8 @@ from hypothesis import strategies as st
 import pounding
 from pounding import InputError
 from pounding.model.plan import PlanBuilding
-from pounding.model.plan_parts import Bearing, CircularMoat, Floor, RectangularMoat
+from pounding.model.moats import CircularMoat, RectangularMoat
+from pounding.model.plan_parts import Bearing, Floor
 from reference_ndof import TouchAtRest
 from reference_plan import reference
 from reference_plan import record_pair as _record

@@ -164,7 +164,7 @@ def moat(
     from .._checks import positive
     from ..design.moat_in_plan import accidental_fraction, moat_design
     from ..model.plan import PlanBuilding
-    from ..model.plan_parts import CircularMoat
+    from ..model.moats import CircularMoat
 
     out = folder("--out", out)
     building = system(path, None)

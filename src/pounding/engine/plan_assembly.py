@@ -18,7 +18,8 @@ import numpy as np
 from .. import _core
 from ..model.isolator import HYSTERESIS_RULES
 from ..model.plan import PlanBuilding, point_weights
-from ..model.plan_parts import MOAT_SIDES, Bearing, CircularMoat
+from ..model.moats import MOAT_SIDES, CircularMoat
+from ..model.plan_parts import Bearing
 from .assembly import BoucWenSprings, HystereticElement, Pair, bouc_wen_springs
 
 
@@ -29,7 +30,7 @@ class PlanAssembly(NamedTuple):
     """A building in plan as the core's system, and where each part went.
 
     ``element_names[e]``: ``("bearing", b, axis)`` or ``("frame", f, axis)``; ``contacts[c]``: ``(side,
-    corner)``, the moat's wall (index of :data:`~pounding.model.plan_parts.MOAT_SIDES`, :data:`RING_SIDE` a
+    corner)``, the moat's wall (index of :data:`~pounding.model.moats.MOAT_SIDES`, :data:`RING_SIDE` a
     circular moat's ring) and the floor's corner (:meth:`Floor.corners_m`'s order); ``tracked[q]``:
     ``("bearing", b, axis)``, ``("frame", f, axis)`` or ``("corner", k, axis)`` or ``("centre", level,
     axis)``; ``vectors[v]``: bearing ``v``'s x and y (indices into ``tracked``), then each floor's centre's,

@@ -156,7 +156,7 @@ class PlanRun(Outcome):
         velocities in and out ``v_in_m_s``, ``v_out_m_s`` (along the wall's axis; on a ring along its
         normal, outwards: positive coming in), ``impulse_n_s``, ``peak_force_n``, ``max_compression_m`` and
         ``bumper_dissipation_j`` (what the wall's law took)."""
-        from ..model.plan_parts import MOAT_SIDES, MOAT_WALLS, RING_WALL
+        from ..model.moats import MOAT_SIDES, MOAT_WALLS, RING_WALL
 
         table = self.contact_table
         slots = table[:, CORE_CONTACT_COLUMNS["contact"]].astype(int)
@@ -174,7 +174,7 @@ class PlanRun(Outcome):
     def _struck_at(self, wall: int, corner: int, t_s: float) -> float:
         """Where along ``wall`` the ``corner`` was at ``t_s`` (the sample there: one follows every event):
         a side's, its coordinate along it; the ring's, the arc from its +x point counter-clockwise."""
-        from ..model.plan_parts import MOAT_SIDES
+        from ..model.moats import MOAT_SIDES
 
         building = self.building
         level = building.moat.level
@@ -313,7 +313,7 @@ class PlanRun(Outcome):
         ``units``; ``status`` and ``message`` as attributes."""
         import xarray as xr
 
-        from ..model.plan_parts import MOAT_SIDES, RING_WALL
+        from ..model.moats import MOAT_SIDES, RING_WALL
 
         walls = [RING_WALL] if self.clearance_m.size == 1 else list(MOAT_SIDES)[:self.clearance_m.size]
         mixed = "m (x, y), rad (theta)"

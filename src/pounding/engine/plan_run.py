@@ -19,7 +19,7 @@ from .._errors import InputError, Interrupted, Problem, Status
 from ..excitation import Harmonic, HarmonicPair, Record, RecordPair
 from ..model.contact_laws import linear_form
 from ..model.plan import PlanBuilding
-from ..model.plan_parts import wall_name
+from ..model.moats import wall_name
 from .control import check_budget, fastest_of, new_control, run_interruptibly, steps_per_second
 from .layout import P_MAX, P_MIN, X_A_MAX, X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T
 from .plan_assembly import PlanAssembly, assemble_plan

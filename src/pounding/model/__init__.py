@@ -7,7 +7,8 @@ from .isolator import BoucWen, Isolator
 from .measurement import MeasurementChain, Sensor
 from .oscillator import Oscillator
 from .plan import PlanBuilding
-from .plan_parts import Bearing, CircularMoat, Floor, Frame, RectangularMoat
+from .moats import CircularMoat, RectangularMoat
+from .plan_parts import Bearing, Floor, Frame
 from .adjacent import Adjacent, Link
 from .structure import Structure
 from .structure_parts import Bumpers, Stand, Storey, Wall

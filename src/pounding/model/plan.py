@@ -21,7 +21,8 @@ from .._units import GRAVITY_M_S2
 from ._toml import TomlFile
 from .contact_laws import law_from_dict
 from .oscillator import check_keys, isolator_from_dict
-from .plan_parts import AXES, Bearing, CircularMoat, Floor, Frame, RectangularMoat
+from .moats import CircularMoat, RectangularMoat
+from .plan_parts import AXES, Bearing, Floor, Frame
 from .structure import Modes
 from .structure_parts import MAX_STOREYS
 
