@@ -222,7 +222,7 @@ struct Hysteretic : Pair {
     // n -> infinity, |z| <= 1.  Inside the circle z' = u' / u_y (elastic: it sticks), on it while z . u' > 0
     // z' = (u' - (z . u') z) / u_y (it slips, its force bw[0] z turning along the slip: the friction circle).
     // State: region + e, the same in both mates, 0 inside, 1 slipping; the switches are events (the circle
-    // reached, ACT_CIRCLE_SLIP; z . u' back through zero, ACT_CIRCLE_STICK: phase.cpp's circle_event)
+    // reached, ACT_CIRCLE_SLIP; z . u' back through zero, ACT_CIRCLE_STICK: events.cpp's circle_value)
     bool bw_plastic = false;
     bool has_bw() const { return bw[0] != 0.0; }
     int first = 0;  // its first spring's index among the system's (set by System::finish)

@@ -165,6 +165,15 @@ EventValue stick_value(const EventRow& e, const EventValue& d) {
     return {e.alpha + e.beta * d.g, e.beta * d.gp, std::abs(e.alpha) + d.scale};
 }
 
+void circle_turn(Phase& ph, int q, double tau, const double* y, const double* a, double& rate, double& bend) {
+    const Hysteretic &h = *ph.bw[static_cast<size_t>(q)], &hm = *ph.bw[static_cast<size_t>(h.bw_mate_slot)];
+    const double* z = phase_zeta(ph, tau, y);
+    const double zq = z[q], zm = z[h.bw_mate_slot], uy = h.bw[1];
+    const double dq = rel(y + ph.n, h), dm = rel(y + ph.n, hm);
+    rate = 2.0 * (zq * dq + zm * dm) / uy;
+    bend = 2.0 * ((dq * dq + dm * dm) / uy + zq * rel(a, h) + zm * rel(a, hm)) / uy;
+}
+
 EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y, const double* a) {
     const int n = ph.n;
     if (e.kind == KIND_ZETA) {  // (alpha: minus z's sign at the phase start; side: its z's slot)
@@ -280,13 +289,9 @@ void fn_eval(const Fn& fn, Phase& ph, double tau, double& f, double& fp) {
             return;
         }
         case FN_CIRCLE_RATE:
-        case FN_CIRCLE_BEND: {  // (|z|^2 of a plastic circle inside, z' = u' / u_y: its rate and bend)
-            const Hysteretic &h = *ph.bw[static_cast<size_t>(fn.idx)], &hm = *ph.bw[static_cast<size_t>(h.bw_mate_slot)];
-            const double* z = phase_zeta(ph, tau, y);
-            const double zq = z[fn.idx], zm = z[h.bw_mate_slot], uy = h.bw[1];
-            const double dq = rel(y + n, h), dm = rel(y + n, hm);
-            const double rate = 2.0 * (zq * dq + zm * dm) / uy;
-            const double bend = 2.0 * ((dq * dq + dm * dm) / uy + zq * rel(a, h) + zm * rel(a, hm)) / uy;
+        case FN_CIRCLE_BEND: {
+            double rate, bend;
+            circle_turn(ph, fn.idx, tau, y, a, rate, bend);
             f = fn.kind == FN_CIRCLE_RATE ? rate : bend;
             fp = fn.kind == FN_CIRCLE_RATE ? bend : NaN;
             return;

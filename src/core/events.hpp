@@ -105,6 +105,9 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
 
 // may a velocity, of one sign at both ends with accelerations of opposite signs, turn back inside?
 bool may_turn_back(double h, double v0, double v1, double a0, double a1);
+// a plastic circle inside (core.hpp's bw_plastic; z slot q, its first), |z|^2's rate and bend at tau (y, a: the
+// trajectory there): 2 z . u' / u_y and 2 (|u'|^2 / u_y + z . u'') / u_y
+void circle_turn(Phase& ph, int q, double tau, const double* y, const double* a, double& rate, double& bend);
 // whether a pair's relative velocity may cross zero inside the sub-interval (velocity_zeros looks
 // for its zeros only then): of opposite signs at its ends, or turning back inside
 bool velocity_may_cross(const Phase& ph, const Pair& pr);

@@ -211,17 +211,7 @@ double ring_cuts(Phase& ph, double h, const Buffers& b) {
 // the same for a plastic circle inside (core.hpp's bw_plastic; a ring in z: |z|^2 = 1 its reach, z following
 // its pairs), |z|^2's rate of one sign at both ends and turning back inside: cut where it turns
 double circle_cuts(Phase& ph, double h, const Buffers& b) {
-    const int n = ph.n;
     double cut = h;
-    // (|z|^2's rate and bend at an end, from the sub-interval's ends as the loop has them: no series made)
-    auto turn = [&](int q, double tau, const double* y, const double* a, double& rate, double& bend) {
-        const Hysteretic &h_q = *ph.bw[static_cast<size_t>(q)], &h_m = *ph.bw[static_cast<size_t>(h_q.bw_mate_slot)];
-        const double* z = phase_zeta(ph, tau, y);
-        const double zq = z[q], zm = z[h_q.bw_mate_slot], uy = h_q.bw[1];
-        const double dq = rel(y + n, h_q), dm = rel(y + n, h_m);
-        rate = 2.0 * (zq * dq + zm * dm) / uy;
-        bend = 2.0 * ((dq * dq + dm * dm) / uy + zq * rel(a, h_q) + zm * rel(a, h_m)) / uy;
-    };
     for (int q = 0; q < ph.nbw; ++q) {
         if (!ph.bw_lin[static_cast<size_t>(q)] || ph.bw[static_cast<size_t>(q)]->bw_mate_slot < q) continue;
         Fn fr, fb;
@@ -229,8 +219,9 @@ double circle_cuts(Phase& ph, double h, const Buffers& b) {
         fb.kind = FN_CIRCLE_BEND;
         fr.idx = fb.idx = q;
         double r0, b0, r1, b1;
-        turn(q, 0.0, b.y0s.data(), b.a0.data(), r0, b0);
-        turn(q, h, b.y1.data(), b.a1.data(), r1, b1);
+        // (at the sub-interval's ends as the loop has them: no series made)
+        circle_turn(ph, q, 0.0, b.y0s.data(), b.a0.data(), r0, b0);
+        circle_turn(ph, q, h, b.y1.data(), b.a1.data(), r1, b1);
         if (!(r0 * r1 > 0.0 && b0 * b1 < 0.0) || !may_turn_back(h, r0, r1, b0, b1)) continue;
         const double t_b = find_root(fb, ph, 0.0, h, b0, b1, NaN, NaN, XTOL_EXTREMUM_S);
         double r_b, unused;
