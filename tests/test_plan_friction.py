@@ -210,18 +210,25 @@ def test_circular_shaking_drives_the_closed_form_orbit_of_the_friction_circle(ra
     assert 3.5 < errors[0] / errors[1] < 6.5
 
 
-def test_one_friction_per_axis_along_x_is_the_line_s_friction_isolator():
-    # bidirectional=False: each axis a bilinear friction (the line's law with its pre-slip); a symmetric
-    # building shaken along x is the line's structure on one isolator carrying the whole weight
+def along_x_and_its_line(bidirectional):
+    """A symmetric two-floor building on four friction pendulums (``bidirectional``: their circle, or one
+    friction per axis), the line's structure it is along x (one isolator carrying the whole weight), and
+    El Centro at 0.5 g: ``(building, line, record)``."""
     fps = FrictionIsolator(mu=0.07, radius_m=2.2, preslip_m=1e-3, damping_n_s_m=1e4)
     floors = [Floor(3e5, (24.0, 16.0))] * 2
     frames = [pounding.Frame(1, axis, s * at, 1.5e8, 1e5) for axis, at in (("x", 7.0), ("y", 11.0))
               for s in (-1.0, 1.0)]
-    b = PlanBuilding(floors, [Bearing((sx * 10.0, sy * 6.0), fps, bidirectional=False)
+    b = PlanBuilding(floors, [Bearing((sx * 10.0, sy * 6.0), fps, bidirectional=bidirectional)
                               for sx in (-1, 1) for sy in (-1, 1)], frames)
     line = pounding.Structure(3e5, dataclasses.replace(fps, damping_n_s_m=4e4),
                               [pounding.Storey(3e5, 3e8, 2e5)], [])
-    rec = pounding.records.el_centro().scaled(pga_g=0.5)
+    return b, line, pounding.records.el_centro().scaled(pga_g=0.5)
+
+
+def test_one_friction_per_axis_along_x_is_the_line_s_friction_isolator():
+    # bidirectional=False: each axis a bilinear friction (the line's law with its pre-slip); a symmetric
+    # building shaken along x is the line's structure on one isolator carrying the whole weight
+    b, line, rec = along_x_and_its_line(False)
     run, ref = pounding.simulate(b, rec, 10.0), pounding.simulate(line, rec, 10.0)
     assert ref.displacement_max[0] > 0.05  # (it slid)
     np.testing.assert_allclose(run.displacement_max[:, 0], ref.displacement_max, rtol=1e-9)

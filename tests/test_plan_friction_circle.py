@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 from reference_plan import PlanModel, reference
 from reference_plan import record_pair as _record
+from test_plan_friction import along_x_and_its_line
 
 import pounding
 from pounding import Bearing, Floor, FrictionIsolator, InputError, PlanBuilding, RectangularMoat, _core
@@ -119,16 +120,8 @@ def test_a_building_on_plastic_friction_circles_runs_as_the_reference(seed, moat
 def test_along_one_axis_the_plastic_circle_is_the_line_s_friction_isolator():
     # a symmetric building shaken along x: every z stays on the x axis, and the circle is the line's
     # elastic-perfectly-plastic friction (its pre-slip a kinematic bilinear spring: exact phases)
-    fps = FrictionIsolator(mu=0.07, radius_m=2.2, preslip_m=1e-3, damping_n_s_m=1e4)
-    floors = [Floor(3e5, (24.0, 16.0))] * 2
-    frames = [pounding.Frame(1, axis, s * at, 1.5e8, 1e5) for axis, at in (("x", 7.0), ("y", 11.0))
-              for s in (-1.0, 1.0)]
-    b = PlanBuilding(floors, [Bearing((sx * 10.0, sy * 6.0), fps) for sx in (-1, 1) for sy in (-1, 1)],
-                     frames)
+    b, line, rec = along_x_and_its_line(True)
     assert all(x.plastic_circle for x in b.bearings)
-    line = pounding.Structure(3e5, dataclasses.replace(fps, damping_n_s_m=4e4),
-                              [pounding.Storey(3e5, 3e8, 2e5)], [])
-    rec = pounding.records.el_centro().scaled(pga_g=0.5)
     run, ref = pounding.simulate(b, rec, 10.0), pounding.simulate(line, rec, 10.0)
     assert ref.displacement_max[0] > 0.05  # (it slid)
     np.testing.assert_allclose(run.displacement_max[:, 0], ref.displacement_max, rtol=1e-9)
