@@ -82,10 +82,11 @@ def _restated(b: PlanBuilding) -> PlanModel:
         for axis in (0, 1):
             iso = bearing.isolator if axis == 0 or bearing.isolator_y is None else bearing.isolator_y
             w = point(0, axis, px, py)
-            k1, k2 = iso.slopes_n_m
+            k1, k2 = (*iso.slopes_n_m, iso.slopes_n_m[0])[:2]  # (a linear one: its slope twice)
             k += k2 * np.outer(w, w)
             c += iso.damping_n_s_m * np.outer(w, w)
-            plastic.append((w, k1 - k2, iso.breakpoints_m[0]))
+            if iso.breakpoints_m:
+                plastic.append((w, k1 - k2, iso.breakpoints_m[0]))
     for f in b.frames:
         axis = "xy".index(f.axis)
         px, py = (0.0, f.at_m) if axis == 0 else (f.at_m, 0.0)
@@ -112,7 +113,8 @@ def _restated(b: PlanBuilding) -> PlanModel:
     for side, (axis, sign) in enumerate(((0, -1.0), (0, 1.0), (1, -1.0), (1, 1.0))):
         for p in corners:
             if p[axis] * sign > 0.0:
-                walls.append((point(level, axis, *p), sign, b.moat.gap_m[side], law.stiffness, law.damping))
+                walls.append((point(level, axis, *p), sign, b.moat.gap_m[side],  # (a rigid stop: no k, c)
+                              getattr(law, "stiffness", None), getattr(law, "damping", None)))
     influence = np.zeros((n, 2))
     influence[0::3, 0] = 1.0
     influence[1::3, 1] = 1.0

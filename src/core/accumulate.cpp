@@ -470,6 +470,19 @@ void displacement_extrema(Phase& ph, const System& sy, double* st, double t0, do
     }
 }
 
+// an absolute acceleration's polynomial fa's extremum inside [0, tau], where its rate (fr) changes sign
+void extreme_inside(Phase& ph, Fn& fa, Fn& fr, double* ex, double t0, double tau) {
+    poly_deriv(fa.q, fr.q);
+    fr.kind = FN_POLY;
+    const double r0 = poly_val(fr.q, 0.0), r1 = poly_val(fr.q, tau);
+    ph.poly_evaluations += 2;
+    if (r0 * r1 < 0.0) {
+        const double tm = find_root(fr, ph, 0.0, tau, r0, r1, NaN, NaN, XTOL_EXTREMUM_S);
+        ph.poly_evaluations += 1;
+        track_abs_acceleration(ex, t0 + tm, poly_val(fa.q, tm));
+    }
+}
+
 // a held dof's absolute acceleration extrema: its group's motion (on the ground: the table's crests inside)
 void held_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, const Ends& e, bool linear) {
     const int n = ph.n;
@@ -499,6 +512,27 @@ void held_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, 
                 if (0.0 < s && s < tau) track_abs_acceleration(ex, t0 + s, table_on(ph, i, s));
             }
         }
+    } else if (linear && ph.stk.general) {
+        // held by constraints (sticking.hpp's general mode): its relative acceleration the projection of the
+        // free ones, a_i = sum_k P_ik (aa_k - table_k), aa_k = -(K x + C v + R0)_k / m_k, then its own table
+        Fn fa, fr, fk;
+        fa.q.deg = 0;
+        fa.q.c[0] = 0.0;
+        double ra = ph.plain ? 1.0 : ph.rA[static_cast<size_t>(i)], rb = ph.plain ? 0.0 : ph.rB[static_cast<size_t>(i)];
+        for (int k = 0; k < n; ++k) {
+            const double w = ph.stk.projector(ph.mass, i, k);
+            if (w == 0.0) continue;
+            abs_acc_poly(ph, k, fk.q);
+            for (int m = fa.q.deg + 1; m <= fk.q.deg; ++m) fa.q.c[m] = 0.0;
+            fa.q.deg = std::max(fa.q.deg, fk.q.deg);
+            for (int m = 0; m <= fk.q.deg; ++m) fa.q.c[m] += w * fk.q.c[m];
+            ra -= w * (ph.plain ? 1.0 : ph.rA[static_cast<size_t>(k)]);
+            rb -= w * (ph.plain ? 0.0 : ph.rB[static_cast<size_t>(k)]);
+        }
+        double ga[MAX_TERMS + 1], gb[MAX_TERMS + 1];
+        table_series(ph, fa.q.deg, ga, gb);
+        for (int m = 0; m <= fa.q.deg; ++m) fa.q.c[m] += ra * ga[m] + rb * gb[m];
+        extreme_inside(ph, fa, fr, ex, t0, tau);
     } else if (linear && !ph.stk.grounded[static_cast<size_t>(g)]) {
         // a group moving as one: its absolute acceleration the mass-weighted mean of its dofs' free
         // ones, -(K x + C v + R0)_k / M (the holds' forces inside it cancel), extreme where its rate
@@ -529,15 +563,7 @@ void held_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, 
             table_series(ph, fa.q.deg, ga, gb);
             for (int m = 0; m <= fa.q.deg; ++m) fa.q.c[m] += ra * ga[m] + rb * gb[m];
         }
-        poly_deriv(fa.q, fr.q);
-        fr.kind = FN_POLY;
-        const double r0 = poly_val(fr.q, 0.0), r1 = poly_val(fr.q, tau);
-        ph.poly_evaluations += 2;
-        if (r0 * r1 < 0.0) {
-            const double tm = find_root(fr, ph, 0.0, tau, r0, r1, NaN, NaN, XTOL_EXTREMUM_S);
-            ph.poly_evaluations += 1;
-            track_abs_acceleration(ex, t0 + tm, poly_val(fa.q, tm));
-        }
+        extreme_inside(ph, fa, fr, ex, t0, tau);
     }
 }
 

@@ -256,6 +256,7 @@ struct System {
     std::vector<double> c_lin;
     std::vector<int> rigid;  // the contacts with a rigid stop's law
     std::vector<int> ties;   // the elements with the friction rule (each ties its pair while it sticks)
+    bool lever_holds = false;  // a rigid contact or a tie on a lever: holds are linear constraints (sticking.hpp)
     std::vector<int> bw_el;  // the elements with a Bouc-Wen spring, by their z's slot
     bool bw_kinks = false;   // a Bouc-Wen spring but a plastic circle: its law's kinks at u' = 0 (velocity_cuts)
     double total_mass = 0.0;
@@ -308,6 +309,9 @@ struct System {
         ties.clear();
         for (int e = 0; e < n_h(); ++e)
             if (iso_is_friction(hyst[static_cast<size_t>(e)])) ties.push_back(e);
+        lever_holds = false;
+        for (const int c : rigid) lever_holds = lever_holds || contact[static_cast<size_t>(c)].levered();
+        for (const int e : ties) lever_holds = lever_holds || hyst[static_cast<size_t>(e)].levered();
         total_mass = 0.0;
         for (double m : mass) total_mass += m;
         if (static_cast<int>(infl.size()) != 2 * n) {

@@ -67,7 +67,7 @@ EventValue held_force(Phase& ph, int c, double tau, const double* y, const doubl
     const int n = ph.n;
     const Sticking& st = ph.stk;
     const int h = st.held_of[static_cast<size_t>(c)];
-    const char* side = &st.side[static_cast<size_t>(h * n)];
+    const double* side = &st.side[static_cast<size_t>(h * n)];
     const int g_c = st.grp[static_cast<size_t>(st.end_i[static_cast<size_t>(h)])];
     double* au = ph.au.data();
     double* aur = ph.aur.data();
@@ -80,18 +80,25 @@ EventValue held_force(Phase& ph, int c, double tau, const double* y, const doubl
     const double bg = table_b(ph, tau);
     const double bgr = ph.plain ? 0.0 : ph.bx1 + ph.w * (ph.bs * std::cos(ang) - ph.bc * std::sin(ang));
     double mean_rate = 0.0;  // the group's acceleration rate (0 on the ground)
-    for (int k = 0; k < n; ++k) {
-        if (st.grp[static_cast<size_t>(k)] != g_c) continue;
-        aur[k] = abs_acceleration_rate(ph, k, tau, y, a) - ph.on(k, agr, bgr);
-        mean_rate += ph.mass[static_cast<size_t>(k)] * aur[k];
+    static thread_local std::vector<double> held_rate;  // (general mode: every dof's, the holds' projection's)
+    if (st.general) {
+        held_rate.resize(static_cast<size_t>(n));
+        for (int k = 0; k < n; ++k) held_rate[static_cast<size_t>(k)] = aur[k] = abs_acceleration_rate(ph, k, tau, y, a) - ph.on(k, agr, bgr);
+        st.project(ph.mass, held_rate.data());
+    } else {
+        for (int k = 0; k < n; ++k) {
+            if (st.grp[static_cast<size_t>(k)] != g_c) continue;
+            aur[k] = abs_acceleration_rate(ph, k, tau, y, a) - ph.on(k, agr, bgr);
+            mean_rate += ph.mass[static_cast<size_t>(k)] * aur[k];
+        }
+        mean_rate = st.grounded[static_cast<size_t>(g_c)] ? 0.0 : mean_rate / st.gmass[static_cast<size_t>(g_c)];
     }
-    mean_rate = st.grounded[static_cast<size_t>(g_c)] ? 0.0 : mean_rate / st.gmass[static_cast<size_t>(g_c)];
     double f = 0.0, rate = 0.0, scale = 0.0;
     for (int k = 0; k < n; ++k) {
         if (!side[k]) continue;
         const double m = side[k] * ph.mass[static_cast<size_t>(k)];
         f += m * (au[k] - a[k]);
-        rate += m * (aur[k] - mean_rate);
+        rate += m * (aur[k] - (st.general ? held_rate[static_cast<size_t>(k)] : mean_rate));
         double s = std::abs(ph.R0[static_cast<size_t>(k)]) + std::abs(m) * (std::abs(ph.on(k, ag, bg)) + std::abs(a[k]));
         for (int j = 0; j < n; ++j)
             s += std::abs(ph.K[static_cast<size_t>(k * n + j)] * y[j]) + std::abs(ph.C[static_cast<size_t>(k * n + j)] * y[n + j]);
@@ -105,7 +112,7 @@ ForceTurn held_force_turn(Phase& ph, int c, double tau, const double* y, const d
     const int n = ph.n;
     const Sticking& st = ph.stk;
     const int h = st.held_of[static_cast<size_t>(c)];
-    const char* side = &st.side[static_cast<size_t>(h * n)];
+    const double* side = &st.side[static_cast<size_t>(h * n)];
     const double* v = y + n;
     double* jerk = ph.au.data();
     double* snap = ph.aur.data();
@@ -744,7 +751,7 @@ bool events_surely_absent(const EventRow* evs, int n_ev, Phase& ph, const Extrem
                 // and au_k'''' = -(M^-1 (K a'' + C a'''))_k; |a_k| <= Z / s, |a_k'| <= Z, |a_k''| <= beta Z,
                 // |a_k'''| <= beta alpha Z, |a_k''''| <= beta alpha^2 Z (screen.hpp)
                 const Sticking& stk = ph.stk;
-                const char* side = &stk.side[static_cast<size_t>(stk.held_of[static_cast<size_t>(tie)] * n)];
+                const double* side = &stk.side[static_cast<size_t>(stk.held_of[static_cast<size_t>(tie)] * n)];
                 d2 = d4 = 0.0;
                 table = 0.0;
                 for (int k = 0; k < n; ++k) {

@@ -42,12 +42,39 @@ inline double& seq_first(double* st, const Layout& L, int c) { return st[L.acc_a
 inline double& seq_count(double* st, const Layout& L, int c) { return st[L.acc_at(c) + A_DSTART]; }
 inline double& seq_last(double* st, const Layout& L, int c) { return st[L.acc_at(c) + A_PEAK]; }
 
+// the struck pair's sides' masses (a group's, infinite where it cannot move; on the line) and its inverse mass
+// with the holds (1/kg: 0 where neither end can move)
+struct Struck {
+    double mi = INF, mj = INF, inv = 0.0;
+};
+Struck struck(const Sticking& stk, const System& sy, const Contact& ct) {
+    Struck s;
+    if (stk.general) {
+        s.inv = stk.inverse_mass(sy.mass, ct);
+        return s;
+    }
+    s.mi = stk.side_mass(sy.mass, ct.i);
+    s.mj = stk.side_mass(sy.mass, ct.j);
+    s.inv = (s.mi < INF ? 1.0 / s.mi : 0.0) + (s.mj < INF ? 1.0 / s.mj : 0.0);
+    return s;
+}
+
+// an impulse p on contact ct (pushing its dofs by -sign p w) into the velocities v (or, scaled, displacements)
+void kick(const Sticking& stk, const System& sy, const Contact& ct, const Struck& s, double* v, double p) {
+    if (stk.general) {
+        stk.impulse(sy.mass, v, ct, -ct.sign * p);
+        return;
+    }
+    if (s.mi < INF) stk.add_velocity(v, ct.i, -ct.sign * p / s.mi);
+    if (s.mj < INF) stk.add_velocity(v, ct.j, ct.sign * p / s.mj);
+}
+
 // the push of contact c shut (its relative acceleration towards compression, m/s^2) in the state
 double push_of(const double* st, const System& sy, const Sticking& stk, int c, const double* ag, double* q, double* row,
                std::vector<double>& au, std::vector<double>& a) {
     const Contact& ct = sy.contact[static_cast<size_t>(c)];
     state_accelerations(st, sy, stk, ag, q, row, au, a);
-    return ct.sign * (a[static_cast<size_t>(ct.i)] - (ct.j >= 0 ? a[static_cast<size_t>(ct.j)] : 0.0));
+    return ct.sign * rel(a.data(), ct);
 }
 
 // the push of contact c's rates in time, d^k P / dt^k for k = 1..order (m/s^(2+k)), along the motion held at
@@ -94,8 +121,7 @@ void held_push_rates(std::vector<double>& s0, const System& sy, const Phase& ph,
             held.project(sy.mass, next);
         }
         stk.project(sy.mass, rate_u.data());
-        const double rel_j = ct.j >= 0 ? rate_u[static_cast<size_t>(ct.j)] : 0.0;
-        rates[k - 1] = ct.sign * (rate_u[static_cast<size_t>(ct.i)] - rel_j);
+        rates[k - 1] = ct.sign * rel(rate_u.data(), ct);
     }
 }
 
@@ -210,7 +236,7 @@ bool local_flight(const LocalChatter& m, double s, double u, double& tau, double
     return back > 0.0;
 }
 
-// The time from the impact to the accumulation of a chatter that rebounded at u (mi, mj: the sides' masses)
+// The time from the impact to the accumulation of a chatter that rebounded at u (sides: the struck pair's)
 // under the local model above.  While the first-order sum of the rest would neglect more than the rounding of
 // the accumulation's instant t + T (its rebounds still a sizeable share of the flight's velocity scales, P / c,
 // P^2 / J, P / sqrt(kappa)), the model's flights are taken one by one (exactly, by their series); the rest is
@@ -218,7 +244,7 @@ bool local_flight(const LocalChatter& m, double s, double u, double& tau, double
 // can come while the rebounds are still large against those scales: the first order alone missed its second,
 // T eps^2 / (1 - e)^2, there.)
 double accumulation(const double* st, const System& sy, const Phase& ph, double tau, const Sticking& stk, int c,
-                    const double* ag, double u, double mi, double mj, double* q, double* row) {
+                    const double* ag, double u, const Struck& sides, double* q, double* row) {
     const Layout& L = sy.lay;
     const Contact& ct = sy.contact[static_cast<size_t>(c)];
     const double e = law_restitution(ct.p);
@@ -226,16 +252,14 @@ double accumulation(const double* st, const System& sy, const Phase& ph, double 
     // the state at rest against the stop: the relative velocity brought to zero
     s0.assign(st, st + L.size);
     double* v = s0.data() + L.v;
-    const double mu = 1.0 / ((mi < INF ? 1.0 / mi : 0.0) + (mj < INF ? 1.0 / mj : 0.0));
-    if (mi < INF) stk.add_velocity(v, ct.i, ct.sign * mu * u / mi);
-    if (mj < INF) stk.add_velocity(v, ct.j, -ct.sign * mu * u / mj);
+    const double mu = 1.0 / sides.inv;
+    kick(stk, sy, ct, sides, v, -(mu * u));
     const double p_rest = push_of(s0.data(), sy, stk, c, ag, q, row, au, a);
     const double p_out = push_of(st, sy, stk, c, ag, q, row, au, a);
     // the push at the stop opened by dx at rest (the sides moved apart as the impulse moves them)
     double* x = s0.data() + L.x;
     const double dx = 1e-6 * ph.xrun;
-    if (mi < INF) stk.add_velocity(x, ct.i, -ct.sign * mu * dx / mi);
-    if (mj < INF) stk.add_velocity(x, ct.j, ct.sign * mu * dx / mj);
+    kick(stk, sy, ct, sides, x, mu * dx);
     const double p_open = push_of(s0.data(), sy, stk, c, ag, q, row, au, a);
     std::copy(st + L.x, st + L.x + sy.n, x);
     LocalChatter m;
@@ -307,22 +331,31 @@ namespace {
 // the impulse each held stop of the struck groups would carry were the impulse J (on contact c, Newton's, along
 // its normal) to move them as one: P_h = sign_h sum_(its side) side_k m_k (dv_k alone - dv of k's group); the
 // first that would pull (P_h < 0), or -1
-int tensile_hold(const System& sy, const Sticking& stk, int c, double impulse, double mi, double mj) {
+int tensile_hold(const System& sy, const Sticking& stk, int c, double impulse, const Struck& sides) {
     const Contact& ct = sy.contact[static_cast<size_t>(c)];
     const int n = sy.n;
+    const double mi = sides.mi, mj = sides.mj;
     static thread_local std::vector<double> alone, group;
     alone.assign(static_cast<size_t>(n), 0.0);
     group.assign(static_cast<size_t>(n), 0.0);
-    alone[static_cast<size_t>(ct.i)] -= ct.sign * impulse / sy.mass[static_cast<size_t>(ct.i)];
-    if (ct.j >= 0) alone[static_cast<size_t>(ct.j)] += ct.sign * impulse / sy.mass[static_cast<size_t>(ct.j)];
-    stk.add_velocity(group.data(), ct.i, mi < INF ? -ct.sign * impulse / mi : 0.0);
-    if (ct.j >= 0) stk.add_velocity(group.data(), ct.j, mj < INF ? ct.sign * impulse / mj : 0.0);
+    if (stk.general) {  // (alone: M^-1 w's; with the holds: P M^-1 w's)
+        int d[4];
+        double w[4];
+        const int m = ct.entries(d, w);
+        for (int q = 0; q < m; ++q) alone[static_cast<size_t>(d[q])] -= ct.sign * impulse * w[q] / sy.mass[static_cast<size_t>(d[q])];
+        kick(stk, sy, ct, sides, group.data(), impulse);
+    } else {
+        alone[static_cast<size_t>(ct.i)] -= ct.sign * impulse / sy.mass[static_cast<size_t>(ct.i)];
+        if (ct.j >= 0) alone[static_cast<size_t>(ct.j)] += ct.sign * impulse / sy.mass[static_cast<size_t>(ct.j)];
+        stk.add_velocity(group.data(), ct.i, mi < INF ? -ct.sign * impulse / mi : 0.0);
+        if (ct.j >= 0) stk.add_velocity(group.data(), ct.j, mj < INF ? ct.sign * impulse / mj : 0.0);
+    }
     for (size_t h = 0; h < stk.held.size(); ++h) {
         if (is_tie(stk, static_cast<int>(h))) continue;  // (a system with a friction rule has no rigid stop)
-        const char* side = &stk.side[h * static_cast<size_t>(n)];
+        const double* side = &stk.side[h * static_cast<size_t>(n)];
         double p = 0.0, scale = 0.0;
         for (int k = 0; k < n; ++k) {
-            if (!side[k]) continue;
+            if (side[k] == 0.0) continue;
             const double m = side[k] * sy.mass[static_cast<size_t>(k)];
             p += m * (alone[static_cast<size_t>(k)] - group[static_cast<size_t>(k)]);
             scale += std::abs(m) * (std::abs(alone[static_cast<size_t>(k)]) + std::abs(group[static_cast<size_t>(k)]));
@@ -363,13 +396,13 @@ void release_tensile(double* st, const System& sy, Sticking& stk, int c, Rows& c
     for (int pass = 0; pass < sy.nc(); ++pass) {
         stk.build(sy, st);
         if (!stk.any) return;
-        const double vn = ct.sign * rel(st + L.v, ct.i, ct.j);
+        const double vn = ct.sign * rel(st + L.v, ct);
         if (!(vn > 0.0)) return;
-        const double mi = stk.side_mass(sy.mass, ct.i), mj = stk.side_mass(sy.mass, ct.j);
-        const double inv = (mi < INF ? 1.0 / mi : 0.0) + (mj < INF ? 1.0 / mj : 0.0);
+        const Struck sides = struck(stk, sy, ct);
+        const double inv = sides.inv;
         if (inv == 0.0) return;
         const double impulse = (1.0 + law_restitution(ct.p)) * vn / inv;
-        const int h = tensile_hold(sy, stk, c, impulse, mi, mj);
+        const int h = tensile_hold(sy, stk, c, impulse, sides);
         if (h < 0) return;
         rigid_release(st, sy, h, contacts);
     }
@@ -393,7 +426,7 @@ bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, St
         return true;
     }
     const Contact& ct = sy.contact[static_cast<size_t>(c)];
-    const bool jump = ct.sign * rel(st + sy.lay.v, ct.i, ct.j) > 0.0;  // (an impulse to come: velocities jump)
+    const bool jump = ct.sign * rel(st + sy.lay.v, ct) > 0.0;  // (an impulse to come: velocities jump)
     const bool resolved = rigid_contact_(st, sy, ph, tau, stk, c, ag, sc, ledger, contacts, chatters, q, row, flight);
     if (jump) {
         stk.build(sy, st);
@@ -415,20 +448,19 @@ bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, S
     double* v = st + L.v;
     release_tensile(st, sy, stk, c, contacts);  // (a hold the impulse would have to pull through lets go)
     stk.build(sy, st);
-    const double mi = stk.side_mass(sy.mass, ct.i), mj = stk.side_mass(sy.mass, ct.j);
-    const double inv = (mi < INF ? 1.0 / mi : 0.0) + (mj < INF ? 1.0 / mj : 0.0);
+    const Struck sides = struck(stk, sy, ct);
+    const double inv = sides.inv;
     if (inv == 0.0) return false;  // (both ends immovable)
     const double mu = 1.0 / inv;
     // the sequence this impact belongs to
     count_impact(st, L, c, t, sc.window_s, chatters);
     // Newton's impact: the normal velocity from vn to -e vn
-    const double vn = ct.sign * rel(v, ct.i, ct.j);
-    const double v_in = rel(v, ct.i, ct.j);
+    const double vn = ct.sign * rel(v, ct);
+    const double v_in = rel(v, ct);
     double u = 0.0, impulse = 0.0, loss = 0.0;  // the rebound's speed, the impulse, the energy lost
     if (vn > 0.0) {
         impulse = mu * (1.0 + e) * vn;
-        if (mi < INF) stk.add_velocity(v, ct.i, -ct.sign * impulse / mi);
-        if (mj < INF) stk.add_velocity(v, ct.j, ct.sign * impulse / mj);
+        kick(stk, sy, ct, sides, v, impulse);
         u = e * vn;
         after_velocity_jump(st, sy);
         loss = 0.5 * mu * (1.0 - e * e) * vn * vn;
@@ -440,7 +472,7 @@ bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, S
         r[CC_T_START] = t;
         r[CC_T_END] = t;
         r[CC_V_IN] = v_in;
-        r[CC_V_OUT] = rel(v, ct.i, ct.j);
+        r[CC_V_OUT] = rel(v, ct);
         r[CC_IMPULSE] = impulse;
         r[CC_PEAK_FORCE] = NaN;  // (an impulse has no peak force)
         r[CC_MAX_COMPRESSION] = 0.0;
@@ -453,9 +485,17 @@ bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, S
     std::vector<double>& a = scratch.a;
     std::vector<double>& s0 = scratch.s0;
     state_accelerations(st, sy, stk, ag, q, row, au, a);
-    double push = ct.sign * (a[static_cast<size_t>(ct.i)] - (ct.j >= 0 ? a[static_cast<size_t>(ct.j)] : 0.0));
-    const double round = ROUNDING * (std::abs(ag[ct.i]) + std::abs(au[static_cast<size_t>(ct.i)]) +
-                                     (ct.j >= 0 ? std::abs(au[static_cast<size_t>(ct.j)]) : 0.0));
+    double push = ct.sign * rel(a.data(), ct);
+    double round = ROUNDING * (std::abs(ag[ct.i]) + std::abs(au[static_cast<size_t>(ct.i)]) +
+                               (ct.j >= 0 ? std::abs(au[static_cast<size_t>(ct.j)]) : 0.0));
+    if (ct.levered()) {  // (every dof of its pair's, by its weight)
+        int d[4];
+        double w[4];
+        const int m = ct.entries(d, w);
+        double s = 0.0;
+        for (int k = 0; k < m; ++k) s += std::abs(w[k]) * (std::abs(ag[d[k]]) + std::abs(au[static_cast<size_t>(d[k])]));
+        round = ROUNDING * s;
+    }
     if (u == 0.0 && std::abs(push) <= round) {  // (no push to rounding, met at rest: the push's rate decides)
         s0.assign(st, st + L.size);
         // (a rate of 0 too, met at rest: the push grows at a higher order, the motion went into the stop)
@@ -470,15 +510,14 @@ bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, S
     }
     if (sticking_closes_loop(sy, st, c)) return u > 0.0;  // (a loop of held stops: it bounces instead)
     // (e = 1: a rebound below the resolution never accumulates; it is held at once)
-    const double t_acc = u > 0.0 && e < 1.0 ? t + accumulation(st, sy, ph, tau, stk, c, ag, u, mi, mj, q, row) : t;
+    const double t_acc = u > 0.0 && e < 1.0 ? t + accumulation(st, sy, ph, tau, stk, c, ag, u, sides, q, row) : t;
     if (u > 0.0) {  // the chatter's remainder at once: the relative velocity to rest (in the chatter's row)
         const double impulse = mu * u;
-        if (mi < INF) stk.add_velocity(v, ct.i, ct.sign * impulse / mi);
-        if (mj < INF) stk.add_velocity(v, ct.j, -ct.sign * impulse / mj);
+        kick(stk, sy, ct, sides, v, -impulse);
         const double loss = 0.5 * mu * u * u;
         ledger[L_BUMPER_LOSS] += loss;
     }
-    if (ct.j < 0 && stk.grp[static_cast<size_t>(ct.i)] < 0) {  // on the stop exactly, at rest on it
+    if (!stk.general && ct.j < 0 && stk.grp[static_cast<size_t>(ct.i)] < 0) {  // on the stop exactly, at rest on it
         st[L.x + ct.i] = ct.sign * ct.gap;
         v[ct.i] = 0.0;
     }

@@ -26,7 +26,7 @@ bool touching(const double* st, const System& sy, int d, double h) {
     const Contact& ct = sy.contact[static_cast<size_t>(d)];
     if (!law_is_rigid(ct.law)) return false;
     if (st[sy.lay.in_at(d)] != 0.0) return true;
-    return ct.sign * rel(st + sy.lay.x, ct.i, ct.j) - ct.gap >= -h;
+    return ct.sign * rel(st + sy.lay.x, ct) - ct.gap >= -h;
 }
 
 // the touching rigid stops that reach contact c through shared dofs (c first)
@@ -34,9 +34,17 @@ std::vector<int> cluster_of(const double* st, const System& sy, int c, double h)
     std::vector<int> out{c};
     std::vector<char> dof(static_cast<size_t>(sy.n), 0), in(static_cast<size_t>(sy.nc()), 0);
     in[static_cast<size_t>(c)] = 1;
+    int d4[4];
+    double w4[4];
     auto mark = [&](const Contact& ct) {
-        dof[static_cast<size_t>(ct.i)] = 1;
-        if (ct.j >= 0) dof[static_cast<size_t>(ct.j)] = 1;
+        const int m = ct.entries(d4, w4);
+        for (int q = 0; q < m; ++q) dof[static_cast<size_t>(d4[q])] = 1;
+    };
+    auto shares = [&](const Contact& ct) {
+        const int m = ct.entries(d4, w4);
+        for (int q = 0; q < m; ++q)
+            if (dof[static_cast<size_t>(d4[q])]) return true;
+        return false;
     };
     mark(sy.contact[static_cast<size_t>(c)]);
     for (bool grew = true; grew;) {
@@ -44,7 +52,7 @@ std::vector<int> cluster_of(const double* st, const System& sy, int c, double h)
         for (int d = 0; d < sy.nc(); ++d) {
             if (in[static_cast<size_t>(d)] || !touching(st, sy, d, h)) continue;
             const Contact& ct = sy.contact[static_cast<size_t>(d)];
-            if (!dof[static_cast<size_t>(ct.i)] && !(ct.j >= 0 && dof[static_cast<size_t>(ct.j)])) continue;
+            if (!shares(ct)) continue;
             in[static_cast<size_t>(d)] = 1;
             out.push_back(d);
             mark(ct);
@@ -108,7 +116,8 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
     for (int a = 0; a < k; ++a) {
         const int d = set[static_cast<size_t>(a)];
         if (a > 0) other_free = other_free || st[L.in_at(d)] == 0.0;
-        bodies = bodies || sy.contact[static_cast<size_t>(d)].j >= 0;
+        // (a stop on a lever, a moat's wall struck at a floor's corner, moves a floor's two dofs: a body's)
+        bodies = bodies || sy.contact[static_cast<size_t>(d)].j >= 0 || sy.contact[static_cast<size_t>(d)].levered();
     }
     // (one contact, or the held groups' masses do; or one dof between stops on the ground: it is clamped,
     // one stop after the other)
@@ -120,6 +129,13 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
     std::vector<double> u0(static_cast<size_t>(k)), b(static_cast<size_t>(k)), lam;
     for (int a = 0; a < k; ++a) {
         const Contact& ct = sy.contact[static_cast<size_t>(set[static_cast<size_t>(a)])];
+        if (ct.levered()) {
+            int d[4];
+            double w[4];
+            const int m = ct.entries(d, w);
+            for (int q = 0; q < m; ++q) J[static_cast<size_t>(a * n + d[q])] += ct.sign * w[q];
+            continue;
+        }
         J[static_cast<size_t>(a * n + ct.i)] += ct.sign;
         if (ct.j >= 0) J[static_cast<size_t>(a * n + ct.j)] -= ct.sign;
     }
@@ -142,7 +158,7 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
     std::vector<double> v_in(static_cast<size_t>(k));
     for (int a = 0; a < k; ++a) {
         const Contact& ct = sy.contact[static_cast<size_t>(set[static_cast<size_t>(a)])];
-        v_in[static_cast<size_t>(a)] = rel(v, ct.i, ct.j);
+        v_in[static_cast<size_t>(a)] = rel(v, ct);
     }
     for (int a = 0; a < k; ++a)
         for (int i = 0; i < n; ++i)
@@ -170,7 +186,7 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
             r[CC_T_START] = t;
             r[CC_T_END] = t;
             r[CC_V_IN] = v_in[static_cast<size_t>(a)];
-            r[CC_V_OUT] = rel(v, ct.i, ct.j);
+            r[CC_V_OUT] = rel(v, ct);
             r[CC_IMPULSE] = la;
             r[CC_PEAK_FORCE] = NaN;
             r[CC_MAX_COMPRESSION] = 0.0;
@@ -230,9 +246,7 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
                 if (f <= mass * round && stk.force(ct.sign, h, sy.mass, ju.data(), jh.data()) < -mass * round_rate)
                     return false;
             } else {  // free: the motion does not push it shut, nor is about to
-                auto closing = [&](const std::vector<double>& x) {
-                    return ct.sign * (x[static_cast<size_t>(ct.i)] - (ct.j >= 0 ? x[static_cast<size_t>(ct.j)] : 0.0));
-                };
+                auto closing = [&](const std::vector<double>& x) { return ct.sign * rel(x.data(), ct); };
                 const double push = closing(a), rate = closing(jh);
                 if (push > round || (push >= -round && rate > round_rate)) return false;
                 // (contact c's own event found its free motion closing it, at a higher order where these
@@ -255,7 +269,7 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
         const int acc = L.acc_at(d);
         end_sequence(st, L, d, t, chatters);
         const Contact& ct = sy.contact[static_cast<size_t>(d)];
-        if (ct.j < 0) {  // (on the stop exactly, at rest on it)
+        if (ct.j < 0 && !ct.levered()) {  // (on the stop exactly, at rest on it)
             st[L.x + ct.i] = ct.sign * ct.gap;
             v[ct.i] = 0.0;
         }

@@ -634,7 +634,7 @@ void held_force_poly(const Phase& ph, int c, Poly& q) {
     const double* t = ph.tc.data();
     const Sticking& st = ph.stk;
     const int h = st.held_of[static_cast<size_t>(c)];
-    const char* side = &st.side[static_cast<size_t>(h * n)];
+    const double* side = &st.side[static_cast<size_t>(h * n)];
     const double sign = st.end_sign[static_cast<size_t>(h)];
     q.deg = nt - 1;
     double ga[MAX_TERMS + 1], gb[MAX_TERMS + 1];  // (the table's series, each component's)

@@ -4,6 +4,7 @@
 
 #include "isolator.hpp"
 #include "laws.hpp"
+#include "linalg.hpp"
 
 namespace pounding {
 
@@ -52,9 +53,46 @@ void each_held(const System& sy, const double* st, Visit&& visit) {
         }
 }
 
+// bond b's pair: contact b's, or (b >= nc) element b - nc's
+const Pair& bond_pair(const System& sy, int b) {
+    if (b < sy.nc()) return sy.contact[static_cast<size_t>(b)];
+    return sy.hyst[static_cast<size_t>(b - sy.nc())];
+}
+
+// the rows w of the bonds (W, nb x n) and X = A^-1 W M^-1, A = W M^-1 W^T; false when the rows are dependent
+// (A singular to 1e-12 of its largest diagonal: a loop)
+bool constraint_rows(const System& sy, const int* bonds, int nb, std::vector<double>& W, std::vector<double>& X) {
+    const int n = sy.n;
+    W.assign(static_cast<size_t>(nb * n), 0.0);
+    for (int h = 0; h < nb; ++h) {
+        int d[4];
+        double w[4];
+        const int m = bond_pair(sy, bonds[h]).entries(d, w);
+        for (int q = 0; q < m; ++q) W[static_cast<size_t>(h * n + d[q])] += w[q];
+    }
+    Mat A(nb, nb), R(nb, n);
+    double top = 0.0;
+    for (int h = 0; h < nb; ++h) {
+        for (int g = 0; g < nb; ++g) {
+            double s = 0.0;
+            for (int k = 0; k < n; ++k)
+                s += W[static_cast<size_t>(h * n + k)] * W[static_cast<size_t>(g * n + k)] / sy.mass[static_cast<size_t>(k)];
+            A(h, g) = s;
+        }
+        top = std::max(top, A(h, h));
+        for (int k = 0; k < n; ++k) R(h, k) = W[static_cast<size_t>(h * n + k)] / sy.mass[static_cast<size_t>(k)];
+    }
+    if (!solve_checked(A, R, 1e-12 * top)) return false;
+    X.resize(static_cast<size_t>(nb * n));
+    for (int h = 0; h < nb; ++h)
+        for (int k = 0; k < n; ++k) X[static_cast<size_t>(h * n + k)] = R(h, k);
+    return true;
+}
+
 }  // namespace
 
 bool Sticking::build(const System& sy, const double* st) {
+    general = sy.lever_holds;
     if (!any && n == sy.n && held_of.size() == static_cast<size_t>(sy.nc() + sy.n_h()) &&
         grp.size() == static_cast<size_t>(sy.n)) {
         bool none = true;
@@ -84,6 +122,38 @@ bool Sticking::build(const System& sy, const double* st) {
     ngrp = 0;
     if (held.empty()) return true;
     any = true;
+    if (general) {  // (the holds as constraints: one group of the dofs they touch, never grounded)
+        const int nh = static_cast<int>(held.size());
+        const bool independent = constraint_rows(sy, held.data(), nh, wrow, side);
+        if (!independent) {  // (a loop: the holds of the largest independent rows in order, the others idle)
+            static thread_local std::vector<int> kept;
+            static thread_local std::vector<double> W, X;
+            kept.clear();
+            for (int h = 0; h < nh; ++h) {
+                kept.push_back(held[static_cast<size_t>(h)]);
+                if (!constraint_rows(sy, kept.data(), static_cast<int>(kept.size()), W, X)) kept.pop_back();
+            }
+            constraint_rows(sy, kept.data(), static_cast<int>(kept.size()), W, X);
+            side.assign(static_cast<size_t>(nh * n), 0.0);
+            for (size_t q = 0; q < kept.size(); ++q) {
+                const int h = held_of[static_cast<size_t>(kept[q])];
+                std::copy(X.begin() + static_cast<std::ptrdiff_t>(q * static_cast<size_t>(n)),
+                          X.begin() + static_cast<std::ptrdiff_t>((q + 1) * static_cast<size_t>(n)),
+                          side.begin() + static_cast<std::ptrdiff_t>(h * n));
+            }
+        }
+        ngrp = 1;
+        grounded.assign(1, 0);
+        gmass.assign(1, 0.0);
+        for (int k = 0; k < n; ++k) {
+            bool touched = false;
+            for (int h = 0; h < nh; ++h) touched = touched || wrow[static_cast<size_t>(h * n + k)] != 0.0;
+            if (!touched) continue;
+            grp[static_cast<size_t>(k)] = 0;
+            gmass[0] += sy.mass[static_cast<size_t>(k)];
+        }
+        return independent;
+    }
     Sets sets(up, n + 1);
     const int nh = static_cast<int>(held.size());
     auto node_j = [&](int h) { return end_j[static_cast<size_t>(h)] >= 0 ? end_j[static_cast<size_t>(h)] : n; };
@@ -112,15 +182,15 @@ bool Sticking::build(const System& sy, const double* st) {
     }
     // each held bond's side: the dofs one of its ends reaches through the other held bonds, the ground left out:
     // its first end's (+1), unless another held bond ties those to the ground, then its second end's (-1)
-    side.assign(static_cast<size_t>(nh * n), 0);
+    side.assign(static_cast<size_t>(nh * n), 0.0);
     std::vector<int>& stack = stack_;
     for (int h = 0; h < nh; ++h) {
-        char* s = &side[static_cast<size_t>(h * n)];
+        double* s = &side[static_cast<size_t>(h * n)];
         const int own_i = end_i[static_cast<size_t>(h)], own_j = end_j[static_cast<size_t>(h)];
         for (const int end : {own_i, own_j}) {
             if (end < 0) break;  // (the second end the ground: the first's side never reaches it)
-            const char mark = end == own_i ? 1 : -1;
-            std::fill(s, s + n, 0);
+            const double mark = end == own_i ? 1.0 : -1.0;
+            std::fill(s, s + n, 0.0);
             bool grounded_side = false;
             stack.assign(1, end);
             s[end] = mark;
@@ -134,7 +204,7 @@ bool Sticking::build(const System& sy, const double* st) {
                     if (qi == k) other = qj;
                     else if (qj == k) other = qi;
                     if (other == GROUND) grounded_side = true;
-                    if (other >= 0 && !s[other]) {
+                    if (other >= 0 && s[other] == 0.0) {
                         s[other] = mark;
                         stack.push_back(other);
                     }
@@ -148,6 +218,23 @@ bool Sticking::build(const System& sy, const double* st) {
 
 void Sticking::project(const std::vector<double>& mass, double* a) const {
     if (!any) return;
+    if (general) {  // a -= M^-1 W^T (X M a)
+        const int nh = static_cast<int>(held.size());
+        static thread_local std::vector<double> t;  // (X M a: a held bond's each)
+        t.resize(static_cast<size_t>(nh));
+        for (int h = 0; h < nh; ++h) {
+            const double* x = &side[static_cast<size_t>(h * n)];
+            double s = 0.0;
+            for (int k = 0; k < n; ++k) s += x[k] * mass[static_cast<size_t>(k)] * a[k];
+            t[static_cast<size_t>(h)] = s;
+        }
+        for (int k = 0; k < n; ++k) {
+            double s = 0.0;
+            for (int h = 0; h < nh; ++h) s += wrow[static_cast<size_t>(h * n + k)] * t[static_cast<size_t>(h)];
+            a[k] -= s / mass[static_cast<size_t>(k)];
+        }
+        return;
+    }
     for (int g = 0; g < ngrp; ++g) {
         double mean = 0.0;
         if (!grounded[static_cast<size_t>(g)]) {
@@ -163,10 +250,10 @@ void Sticking::project(const std::vector<double>& mass, double* a) const {
 
 double Sticking::force(double sign, int h, const std::vector<double>& mass, const double* au,
                        const double* a) const {
-    const char* s = &side[static_cast<size_t>(h * n)];
+    const double* s = &side[static_cast<size_t>(h * n)];
     double f = 0.0;
     for (int k = 0; k < n; ++k)
-        if (s[k]) f += s[k] * mass[static_cast<size_t>(k)] * (au[k] - a[k]);
+        if (s[k] != 0.0) f += s[k] * mass[static_cast<size_t>(k)] * (au[k] - a[k]);
     return sign * f;
 }
 
@@ -189,7 +276,57 @@ void Sticking::add_velocity(double* v, int k, double dv) const {
         if (grp[static_cast<size_t>(q)] == g) v[q] += dv;
 }
 
+double Sticking::inverse_mass(const std::vector<double>& mass, const Pair& p) const {
+    int d[4];
+    double w[4];
+    const int m = p.entries(d, w);
+    double inv = 0.0;
+    for (int q = 0; q < m; ++q) inv += w[q] * w[q] / mass[static_cast<size_t>(d[q])];
+    if (!any) return inv;
+    for (size_t h = 0; h < held.size(); ++h) {  // - (W M^-1 w)_h (X w)_h
+        double wm = 0.0, xw = 0.0;
+        for (int q = 0; q < m; ++q) {
+            wm += wrow[h * static_cast<size_t>(n) + static_cast<size_t>(d[q])] * w[q] / mass[static_cast<size_t>(d[q])];
+            xw += side[h * static_cast<size_t>(n) + static_cast<size_t>(d[q])] * w[q];
+        }
+        inv -= wm * xw;
+    }
+    return std::max(inv, 0.0);
+}
+
+void Sticking::impulse(const std::vector<double>& mass, double* v, const Pair& p, double s) const {
+    int d[4];
+    double w[4];
+    const int m = p.entries(d, w);
+    for (int q = 0; q < m; ++q) v[d[q]] += s * w[q] / mass[static_cast<size_t>(d[q])];
+    if (!any) return;
+    for (size_t h = 0; h < held.size(); ++h) {  // - M^-1 W^T (X w) s
+        double xw = 0.0;
+        for (int q = 0; q < m; ++q) xw += side[h * static_cast<size_t>(n) + static_cast<size_t>(d[q])] * w[q];
+        if (xw == 0.0) continue;
+        for (int k = 0; k < n; ++k)
+            v[k] -= s * wrow[h * static_cast<size_t>(n) + static_cast<size_t>(k)] * xw / mass[static_cast<size_t>(k)];
+    }
+}
+
+double Sticking::projector(const std::vector<double>& mass, int i, int k) const {
+    double s = 0.0;
+    for (size_t h = 0; h < held.size(); ++h)
+        s += wrow[h * static_cast<size_t>(n) + static_cast<size_t>(i)] * side[h * static_cast<size_t>(n) + static_cast<size_t>(k)];
+    return (i == k ? 1.0 : 0.0) - s * mass[static_cast<size_t>(k)] / mass[static_cast<size_t>(i)];
+}
+
 bool sticking_closes_loop(const System& sy, const double* st, int c) {
+    if (sy.lever_holds) {  // (the rows of the held bonds and c's dependent)
+        static thread_local std::vector<int> bonds;
+        static thread_local std::vector<double> W, X;
+        bonds.clear();
+        each_held(sy, st, [&](int b, int, int, double) {
+            if (b != c) bonds.push_back(b);
+        });
+        bonds.push_back(c);
+        return !constraint_rows(sy, bonds.data(), static_cast<int>(bonds.size()), W, X);
+    }
     static thread_local std::vector<int> buf;
     Sets sets(buf, sy.n + 1);
     each_held(sy, st, [&](int b, int i, int j, double) {

@@ -11,6 +11,14 @@
 // A friction element that sticks (isolator.hpp's rule 2) ties its pair the same way: a bond like a held stop's,
 // of sign +1, whose force is the friction the stick needs.  Bonds are indexed: contact c is bond c, element e's
 // tie bond nc + e.
+//
+// On levers (System::lever_holds: a wall of a moat in plan struck at a floor's corner, whose motion is x - y_c
+// theta) the holds are linear constraints instead: each held bond h a row w_h of W (its pair's weights), the
+// accelerations held to W a = 0 by the forces W^T lambda, lambda = -A^-1 W a_free, A = W M^-1 W^T (the
+// general mode; the same numbers as the groups' where the pairs have no levers, which keep the groups).  A
+// bond's force is then sign (X M (a_free - a))_h, X = A^-1 W M^-1 (its row in side), and an impulse p along a
+// pair w moves the velocities by P M^-1 w p, P = I - M^-1 W^T A^-1 W, the holds' projection.  A dependent set
+// of rows (A singular) is a loop.
 #pragma once
 
 #include <vector>
@@ -21,6 +29,7 @@ namespace pounding {
 
 struct Sticking {
     bool any = false;
+    bool general = false;       // the holds as linear constraints (System::lever_holds)
     int n = 0, ngrp = 0;
     std::vector<int> grp;       // per dof: its group, -1 when no held stop binds it
     std::vector<int> grounded;  // per group: 1 when a held stop ties it to the ground
@@ -28,8 +37,10 @@ struct Sticking {
     std::vector<int> held;      // the held bonds (a contact's index, or nc + an element's)
     std::vector<int> end_i, end_j;  // per held bond: its pair (end_j GROUND for the ground)
     std::vector<double> end_sign;   // per held bond: its sign (a contact's; +1 for a tie)
-    std::vector<char> side;     // per held bond (held.size() x n): +1 dof k on its first end's side, -1 on its
-                                // second's (when the first's is held to the ground), 0 neither
+    std::vector<double> side;   // per held bond (held.size() x n): +1 dof k on its first end's side, -1 on its
+                                // second's (when the first's is held to the ground), 0 neither; in general
+                                // mode its row of X = A^-1 W M^-1 (its force's weights on m_k (au_k - a_k))
+    std::vector<double> wrow;   // (general mode: per held bond its pair's weights w, n each)
     std::vector<int> held_of;   // per bond (nc + n_h): its index in held, -1 when not held
     int nc = 0;                 // (the first tie's bond: the contacts' count)
     std::vector<int> up;        // (scratch: the union-find's parents)
@@ -42,10 +53,17 @@ struct Sticking {
     void project(const std::vector<double>& mass, double* a) const;
     // held bond h's force, N (sign: the bond's), from the accelerations without (au) and with (a) the held bonds
     double force(double sign, int h, const std::vector<double>& mass, const double* au, const double* a) const;
-    // a dof's side of an impact: its group's mass (infinite when it cannot move), kg
+    // a dof's side of an impact: its group's mass (infinite when it cannot move), kg (not in general mode)
     double side_mass(const std::vector<double>& mass, int k) const;
-    // add dv to the velocity of dof k and every dof moving with it (nothing for the ground or a grounded group)
+    // add dv to the velocity of dof k and every dof moving with it (nothing for the ground or a grounded group;
+    // not in general mode)
     void add_velocity(double* v, int k, double dv) const;
+    // general mode: w . P M^-1 w for a pair's w (1/kg: 0 where the holds keep it from moving)
+    double inverse_mass(const std::vector<double>& mass, const Pair& p) const;
+    // general mode: v += s P M^-1 w (an impulse -s along the pair's w with the holds: s in N s)
+    void impulse(const std::vector<double>& mass, double* v, const Pair& p, double s) const;
+    // general mode: P's entry (i, k) (held dof i's acceleration's weight on dof k's free one)
+    double projector(const std::vector<double>& mass, int i, int k) const;
 };
 
 // is a held bond a tie (a sticking friction element's)?

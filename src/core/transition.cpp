@@ -71,7 +71,8 @@ const Transition* TransitionCache::get(const Phase& ph, const System& sy, double
     for (int idx = 0; idx < N_CACHE; ++idx) {
         Transition& e = entries[static_cast<size_t>(idx)];
         if (e.h == h && e.w == ph.w && e.xrun == ph.xrun && e.vrun == ph.vrun && same(e.K, ph.K) &&
-            same(e.C, ph.C) && e.grp == ph.stk.grp && e.grounded == ph.stk.grounded) {
+            same(e.C, ph.C) && e.grp == ph.stk.grp && e.grounded == ph.stk.grounded &&
+            (!ph.stk.general || e.held == ph.stk.held)) {
             e.uses += 1;
             remember(idx);
             return &e;
@@ -87,6 +88,7 @@ const Transition* TransitionCache::get(const Phase& ph, const System& sy, double
     e.C = ph.C;
     e.grp = ph.stk.grp;
     e.grounded = ph.stk.grounded;
+    e.held = ph.stk.held;
     e.h = h;
     e.w = ph.w;
     e.xrun = ph.xrun;

@@ -20,6 +20,7 @@ namespace pounding {
 
 struct Transition {
     std::vector<int> grp, grounded;  // the held stops' groups it was made with
+    std::vector<int> held;  // (general mode's holds: their constraints, sticking.hpp)
     std::vector<double> K, C;  // the key: the phase's stiffness and damping, h, w and the run's scales (the
     double h = -1.0, w = 0.0;  // series' truncation is relative to them: a transition is a function of its key)
     double xrun = 0.0, vrun = 0.0;

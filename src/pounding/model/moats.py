@@ -29,15 +29,15 @@ def _moat_gap(name: str, gap: float) -> float:
     return gap
 
 
-def _moat_law(law: Any) -> None:
-    """A moat's wall law checked: any compliant law (a rigid stop in plan is not supported yet)."""
+def _moat_law(law: Any, rigid_allowed: bool) -> None:
+    """A moat's wall law checked: any law, a rigid stop only where ``rigid_allowed`` (a rectangle's walls)."""
     check_law("moat.law", law)
-    if is_rigid(law):
+    if is_rigid(law) and not rigid_allowed:
         raise InputError(Problem.WRONG_CONFIGURATION, "moat.law", law,
-                         got="with a rigid stop for a moat in plan (not supported yet: its impulse at a "
-                             "corner turns the floor)",
-                         fix="give the walls a compliant law (KelvinVoigt or Hertzdamp with the wall's "
-                             "stiffness)")
+                         got="with a rigid stop for a circular moat (not supported yet: held on the "
+                             "ring, a corner slides along a curve)",
+                         fix="give the ring a compliant law (KelvinVoigt or Hertzdamp with the wall's "
+                             "stiffness), or use a RectangularMoat, whose walls take a RigidStop")
 
 
 @dataclass(frozen=True)
@@ -50,8 +50,9 @@ class RectangularMoat:
         The clearance at rest between the floor's rectangle and each wall, m, >= 0: one for all four, or
         the walls at -x, +x, -y and +y.
     law : contact law
-        The walls' contact law (any compliant law; a :class:`pounding.RigidStop` is not supported in plan
-        yet).
+        The walls' contact law: any law, a :class:`pounding.RigidStop` included (a corner's impact turns
+        the floor: its impulse acts on the floor's x or y and its rotation, and a corner held on a wall is
+        a constraint on both).
     level : int
         The floor it surrounds (default 0: the base).
 
@@ -80,7 +81,7 @@ class RectangularMoat:
         for j, g in enumerate(gaps):  # (one gap for all: checked, and warned of, once)
             _moat_gap("moat.gap_m" if len(gaps) == 1 else f"moat.gap_m[{j}]", g)
         object.__setattr__(self, "gap_m", gaps * 4 if len(gaps) == 1 else gaps)
-        _moat_law(self.law)
+        _moat_law(self.law, rigid_allowed=True)
         object.__setattr__(self, "level", integer("moat.level", self.level, 0, MAX_STOREYS))
 
     @property
@@ -112,8 +113,8 @@ class CircularMoat:
         The clearance at rest between the floor's corners and the ring, m, >= 0: the ring's radius is the
         rectangle's half-diagonal plus it (:meth:`radius_m`).
     law : contact law
-        The wall's contact law: any compliant law (a :class:`pounding.RigidStop` is not supported in plan
-        yet).
+        The wall's contact law: any compliant law (a :class:`pounding.RigidStop` on a ring is not
+        supported yet: a :class:`RectangularMoat`'s walls take one).
     level : int
         The floor it surrounds (default 0: the base).
     out_of_reach : bool
@@ -147,7 +148,7 @@ class CircularMoat:
         gap = _moat_gap("moat.gap_m", real("moat.gap_m", self.gap_m))
         object.__setattr__(self, "gap_m", gap + 0.0)  # (-0.0 as 0.0)
         instance_of("moat.out_of_reach", self.out_of_reach, bool, "true or false")
-        _moat_law(self.law)
+        _moat_law(self.law, rigid_allowed=False)
         object.__setattr__(self, "level", integer("moat.level", self.level, 0, MAX_STOREYS))
 
     @property
