@@ -197,3 +197,22 @@ def test_a_ring_refuses_a_rigid_stop_and_a_rectangle_takes_one_in_a_file(tmp_pat
     b.to_toml(path)
     again = PlanBuilding.from_toml(path)
     assert again.moat.law == pounding.RigidStop(0.3)
+
+
+def test_an_elastic_wall_s_chatter_accumulates_and_holds_the_corner():
+    lrb = pounding.Isolator(slopes_n_m=[1.2e7, 1.2e6], breakpoints_m=[0.01], damping_n_s_m=3.0e4)
+    bearings = [Bearing((sx * 14.0, sy * 5.0), lrb) for sx in (-1, 1) for sy in (-1, 1)]
+    frames = [Frame(s, "x", y, 4.0e8, 1.0e5) for s in (1, 2) for y in (-6.0, 6.0)]
+    frames += [Frame(s, "y", x, k, 1.0e5) for s in (1, 2) for x, k in ((-15.0, 9.0e8), (15.0, 3.0e8))]
+    b = PlanBuilding([Floor(4.0e5, (30.0, 12.0), centre_m=(3.0, 0.0))] * 3, bearings, frames,
+                     RectangularMoat(0.08, pounding.RigidStop(0.6)))
+    quake = pounding.RecordPair.of_direction(pounding.records.el_centro().scaled(pga_g=0.5), 60.0)
+    run = pounding.simulate(b, quake, 7.0, sample_rate_hz=50.0)
+    assert run.success, run.message
+    chatters = run.chatters
+    accumulated = chatters[chatters.accumulated]
+    assert len(accumulated) >= 3 and (accumulated.impacts >= 3).all()
+    held = run.contacts[run.contacts.t_end_s > run.contacts.t_start_s]
+    for c in accumulated.itertuples():  # (its corner held on its wall from the chatter's last impact on)
+        mine = held[(held.wall == c.wall) & (held.corner == c.corner)]
+        assert ((mine.t_start_s >= c.t_first_s) & (mine.t_start_s <= c.t_end_s)).sum() == 1

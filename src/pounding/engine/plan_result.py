@@ -70,8 +70,8 @@ class PlanRun(Outcome):
         corners' largest distance from its centre, exact).
     contact_force : ndarray, shape (k, n_contacts)
         Each wall's force at each corner, N (>= 0), in the order of ``contacts``'s slots.
-    contact_table, event_table : ndarray
-        The core's rows behind :attr:`contacts` and :attr:`events`.
+    contact_table, event_table, chatter_table : ndarray
+        The core's rows behind :attr:`contacts`, :attr:`events` and :attr:`chatters`.
     energy : EnergyLedger
         The energy ledger.
     final_state : State
@@ -145,6 +145,7 @@ class PlanRun(Outcome):
     energy: Optional[EnergyLedger] = field(repr=False)
     final_state: Optional["State"] = field(repr=False)
     status: Status = Status.SUCCESS
+    chatter_table: np.ndarray = field(default_factory=lambda: np.zeros((0, 5)), repr=False)
 
     # ------------------------------------------------------------------ tables
     @property
@@ -169,6 +170,24 @@ class PlanRun(Outcome):
             "at_m": np.array([self._struck_at(w, k, t) for w, k, t in
                               zip(walls, corners, table[:, CORE_CONTACT_COLUMNS["t_start_s"]])]),
             **{name: table[:, CORE_CONTACT_COLUMNS[name]] for name in PLAN_CONTACT_COLUMNS[3:]},
+        })
+
+    @property
+    def chatters(self) -> pd.DataFrame:
+        """A rigid moat's (:class:`pounding.RigidStop` walls) chatter sequences, one row each: ``wall``,
+        ``corner``, ``t_first_s`` (its first impact), ``t_end_s`` (where its impacts accumulated, or its
+        last), ``impacts`` and ``accumulated`` (the corner's rebounds summed in closed form and the corner
+        held on the wall from then on; see :class:`pounding.RigidStop`)."""
+        from ..model.moats import MOAT_SIDES, MOAT_WALLS
+
+        table = np.asarray(self.chatter_table).reshape(-1, 5)
+        slots = table[:, 0].astype(int)
+        return pd.DataFrame({
+            "wall": pd.Categorical([MOAT_WALLS[self.contact_slots[s][0]] for s in slots],
+                                   categories=list(MOAT_SIDES)),
+            "corner": np.array([self.contact_slots[s][1] for s in slots], dtype=int),
+            "t_first_s": table[:, 1], "t_end_s": table[:, 2],
+            "impacts": table[:, 3].astype(int), "accumulated": table[:, 4] != 0.0,
         })
 
     def _struck_at(self, wall: int, corner: int, t_s: float) -> float:

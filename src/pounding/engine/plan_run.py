@@ -158,8 +158,8 @@ def plan_run_of(building: PlanBuilding, asm: PlanAssembly, excitation: Any, rate
         clearance_m=_clearances(building, asm, tracked, norms[:, nx["max"]]),
         contact_force=samples[:, [1 + 3 * n + nh + c for c in range(len(asm.contacts))]],
         contact_slots=asm.contacts, contact_table=out.contacts, event_table=out.events,
-        energy=EnergyLedger.of(out.ledger), final_state=State._of(out.state, asm.dofs, asm.system.layout),
-        status=status)
+        chatter_table=out.chatters, energy=EnergyLedger.of(out.ledger),
+        final_state=State._of(out.state, asm.dofs, asm.system.layout), status=status)
 
 
 def _clearances(building: PlanBuilding, asm: PlanAssembly, tracked: np.ndarray,
