@@ -1,5 +1,5 @@
-"""What rubber bearings' Bouc-Wen springs, sliding bearings' friction circle and a circular moat cost a
-building in plan: CPU time of one run.
+"""What rubber bearings' Bouc-Wen springs, sliding bearings' friction circle, a circular moat and rigid walls
+cost a building in plan: CPU time of one run.
 
 The building of ``opensees_plan.py`` (5 storeys above its base, 18 dofs) under the far-field set's first
 pair x2, its whole record, events only, on its four bilinear lead-rubber bearings (exact phases), then on
@@ -13,7 +13,9 @@ its sticks and slips located as events, integrated numerically between them), th
 bidirectional Bouc-Wen spring of that yield displacement, n = 2), and one bilinear friction per axis (exact
 phases).  Last, the
 bilinear bearings with a ring for a moat instead of four walls, the same clearance at the corners: its
-contacts' starts located on the exact phases, each contact integrated numerically.
+contacts' starts located on the exact phases, each contact integrated numerically; and with four rigid walls
+(plastic, ``RigidStop(0)``): impulses at the corners, corners held on their walls (constraints) on exact
+phases.
 
     python benchmarks/plan_rubber.py [--storeys 5] [--rounds 3]
 """
@@ -58,6 +60,11 @@ def ringed(b: pd_.PlanBuilding) -> pd_.PlanBuilding:
     return dataclasses.replace(b, moat=pd_.CircularMoat(b.moat.smallest_gap_m, b.moat.law, b.moat.level))
 
 
+def rigid(b: pd_.PlanBuilding) -> pd_.PlanBuilding:
+    """``b`` with its four walls rigid and plastic (restitution 0)."""
+    return dataclasses.replace(b, moat=dataclasses.replace(b.moat, law=pd_.RigidStop(0.0)))
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--storeys", type=int, default=5)
@@ -75,7 +82,8 @@ def main() -> None:
                      ("friction pendulums, the plastic circle", sliding(base, True)),
                      ("friction pendulums, the Bouc-Wen circle", sliding(base, True, "bouc_wen")),
                      ("friction pendulums, one friction per axis", sliding(base, False)),
-                     ("bilinear bearings, a ring for a moat", ringed(base))):
+                     ("bilinear bearings, a ring for a moat", ringed(base)),
+                     ("bilinear bearings, four rigid walls", rigid(base))):
         def run(b=b):
             out = pd_.simulate(b, pair, pair.duration_s, sample_rate_hz=0)
             if not out.success:
