@@ -65,6 +65,8 @@ def _saddle(mass: np.ndarray, rows: np.ndarray, top: np.ndarray, bottom: np.ndar
 def rigid_reference(s: PlanModel, restitution: float, t_end: float, y0: np.ndarray, rtol: float = 1e-12,
                     atol: float = 1e-15) -> RigidResult:
     n = s.mass.size
+    if s.plastic or s.bouc_wen or s.rings:
+        raise ValueError("rigid_reference takes linear springs and rigid walls only")
     towards = [sign * np.asarray(w, dtype=float) for w, sign, *_ in s.walls]  # (d = towards . q)
     gaps = [float(gap) for _, _, gap, *_ in s.walls]
     t_rec, ax, ay = (np.asarray(a, dtype=float) for a in s.record)

@@ -314,6 +314,8 @@ def test_the_door_refuses_a_lever_it_cannot_carry():
     _refused("not another of the 3 dofs", lever_j=2, arm_j_m=1.0)  # (the ground's end)
     _refused("arm of end i", lever_i=2, arm_i_m=math.inf)
     _refused("arm of end i", on="element", lever_i=1, arm_i_m=math.nan)
+    _refused("rigid stop on levers between two dofs", law=_core.LAW_IDS["rigid"], params=np.zeros(10), j=1,
+             lever_i=2, arm_i_m=1.0)
     _refused("friction element on a lever", on="element", rule=2, friction_n=100.0, lever_i=2, arm_i_m=1.0)
     _refused("levers cancel", i=0, j=1, lever_i=1, arm_i_m=1.0, lever_j=0, arm_j_m=1.0)
     for builder in (_core.contact_slot, _core.element, _core.tracked_pair):  # (an arm the core would drop)

@@ -6,9 +6,9 @@ The two-storey building of the earlier examples, its masses 3 m off centre, in a
 are rigid stops: a corner that reaches a wall is struck by an impulse along its line, ``x - y_c theta``, which
 turns the floor as it stops the corner (Newton's law with the restitution ``e``); two corners meeting a wall
 flat are struck at one instant (Moreau's law); a corner met at rest and pushed on is held on the wall, the
-floor turning about it, until the wall's force comes back to zero. The same building against concrete walls
-behind a stiff pad (a Kelvin-Voigt law) strikes them at nearly the same instants: a rigid stop is the pad's
-limit, every impact located exactly rather than followed through its few milliseconds.
+floor turning about it, until the wall's force comes back to zero. Beside them, the same building against
+concrete walls behind a stiff pad (a Kelvin-Voigt law), each contact followed through its few milliseconds:
+after the first contacts the three motions part ways, each wall sending the building off differently.
 """
 
 import matplotlib.pyplot as plt

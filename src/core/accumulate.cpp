@@ -516,8 +516,9 @@ void held_abs_acceleration(Phase& ph, int i, double* ex, double t0, double tau, 
         // held by constraints (sticking.hpp's general mode): its relative acceleration the projection of the
         // free ones, a_i = sum_k P_ik (aa_k - table_k), aa_k = -(K x + C v + R0)_k / m_k, then its own table
         Fn fa, fr, fk;
-        fa.q.deg = 0;
-        fa.q.c[0] = 0.0;
+        abs_acc_poly(ph, i, fk.q);  // (its degree: the series', the table's with it where P's row is all 0)
+        fa.q.deg = fk.q.deg;
+        std::fill(fa.q.c, fa.q.c + fa.q.deg + 1, 0.0);
         double ra = ph.plain ? 1.0 : ph.rA[static_cast<size_t>(i)], rb = ph.plain ? 0.0 : ph.rB[static_cast<size_t>(i)];
         for (int k = 0; k < n; ++k) {
             const double w = ph.stk.projector(ph.mass, i, k);

@@ -283,6 +283,7 @@ double Sticking::inverse_mass(const std::vector<double>& mass, const Pair& p) co
     double inv = 0.0;
     for (int q = 0; q < m; ++q) inv += w[q] * w[q] / mass[static_cast<size_t>(d[q])];
     if (!any) return inv;
+    const double alone = inv;
     for (size_t h = 0; h < held.size(); ++h) {  // - (W M^-1 w)_h (X w)_h
         double wm = 0.0, xw = 0.0;
         for (int q = 0; q < m; ++q) {
@@ -291,7 +292,7 @@ double Sticking::inverse_mass(const std::vector<double>& mass, const Pair& p) co
         }
         inv -= wm * xw;
     }
-    return std::max(inv, 0.0);
+    return inv > 64.0 * EPS * alone ? inv : 0.0;  // (the holds keep it from moving, to the rounding)
 }
 
 void Sticking::impulse(const std::vector<double>& mass, double* v, const Pair& p, double s) const {

@@ -115,4 +115,7 @@ def check_contacts(contacts: list, n: int, slot_type: type, law_ids: dict) -> No
                 raise ValueError(f"contact {c}: a ring's wall has sign +1, a finite place and a radius > 0")
             if slot.law not in [law_ids[name] for name in RING_LAWS]:
                 raise ValueError(f"contact {c}: a ring's wall takes a compliant law ({', '.join(RING_LAWS)})")
-        check_levers(slot, n, f"contact {c}")
+        if check_levers(slot, n, f"contact {c}") and slot.law == law_ids["rigid"] and slot.j >= 0:
+            raise ValueError(f"contact {c}: a rigid stop on levers between two dofs is not supported yet "
+                             "(its impulse's weights would add where a lever is the other end): put its wall "
+                             "on the ground, or use a compliant law")
