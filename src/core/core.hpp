@@ -164,6 +164,16 @@ inline double weight_on(const Pair& p, int d) {
     if (p.j >= 0 && p.lj == d) w -= p.aj;
     return w;
 }
+// whether two pairs move a dof in common (their ends' and levers': the ground is none)
+inline bool shares_dof(const Pair& a, const Pair& b) {
+    int da[4], db[4];
+    double w[4];
+    const int m = a.entries(da, w), k = b.entries(db, w);
+    for (int p = 0; p < m; ++p)
+        for (int q = 0; q < k; ++q)
+            if (da[p] == db[q]) return true;
+    return false;
+}
 inline bool same_pair(const Pair& a, const Pair& b) {
     return a.i == b.i && a.j == b.j && a.lev == b.lev &&
            (!a.lev || (a.li == b.li && a.lj == b.lj && a.ai == b.ai && a.aj == b.aj));

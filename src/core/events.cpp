@@ -83,7 +83,10 @@ EventValue held_force(Phase& ph, int c, double tau, const double* y, const doubl
     static thread_local std::vector<double> held_rate;  // (general mode: every dof's, the holds' projection's)
     if (st.general) {
         held_rate.resize(static_cast<size_t>(n));
-        for (int k = 0; k < n; ++k) held_rate[static_cast<size_t>(k)] = aur[k] = abs_acceleration_rate(ph, k, tau, y, a) - ph.on(k, agr, bgr);
+        for (int k = 0; k < n; ++k) {
+            aur[k] = abs_acceleration_rate(ph, k, tau, y, a) - ph.on(k, agr, bgr);
+            held_rate[static_cast<size_t>(k)] = aur[k];
+        }
         st.project(ph.mass, held_rate.data());
     } else {
         for (int k = 0; k < n; ++k) {

@@ -28,15 +28,7 @@ inline bool others_touch(const double* st, const System& sy, int c, double h) {
     for (const int d : sy.rigid) {
         if (d == c || st[L.in_at(d)] != 0.0) continue;
         const Contact& ct = sy.contact[static_cast<size_t>(d)];
-        bool shares = ct.i == own.i || ct.j == own.i || (own.j >= 0 && (ct.i == own.j || ct.j == own.j));
-        if (!shares && (own.levered() || ct.levered())) {  // (on levers: any dof of the one in the other)
-            int d[4], e[4];
-            double w[4];
-            const int m = own.entries(d, w), k = ct.entries(e, w);
-            for (int p = 0; p < m && !shares; ++p)
-                for (int q = 0; q < k && !shares; ++q) shares = d[p] == e[q];
-        }
-        if (shares && ct.sign * rel(st + L.x, ct) - ct.gap >= -h) return true;
+        if (shares_dof(own, ct) && ct.sign * rel(st + L.x, ct) - ct.gap >= -h) return true;
     }
     return false;
 }

@@ -129,15 +129,7 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
     std::vector<double> u0(static_cast<size_t>(k)), b(static_cast<size_t>(k)), lam;
     for (int a = 0; a < k; ++a) {
         const Contact& ct = sy.contact[static_cast<size_t>(set[static_cast<size_t>(a)])];
-        if (ct.levered()) {
-            int d[4];
-            double w[4];
-            const int m = ct.entries(d, w);
-            for (int q = 0; q < m; ++q) J[static_cast<size_t>(a * n + d[q])] += ct.sign * w[q];
-            continue;
-        }
-        J[static_cast<size_t>(a * n + ct.i)] += ct.sign;
-        if (ct.j >= 0) J[static_cast<size_t>(a * n + ct.j)] -= ct.sign;
+        push_pair(&J[static_cast<size_t>(a * n)], ct, ct.sign);  // (its weights w, signed)
     }
     for (int a = 0; a < k; ++a) {
         double u = 0.0;

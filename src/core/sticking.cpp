@@ -64,12 +64,7 @@ const Pair& bond_pair(const System& sy, int b) {
 bool constraint_rows(const System& sy, const int* bonds, int nb, std::vector<double>& W, std::vector<double>& X) {
     const int n = sy.n;
     W.assign(static_cast<size_t>(nb * n), 0.0);
-    for (int h = 0; h < nb; ++h) {
-        int d[4];
-        double w[4];
-        const int m = bond_pair(sy, bonds[h]).entries(d, w);
-        for (int q = 0; q < m; ++q) W[static_cast<size_t>(h * n + d[q])] += w[q];
-    }
+    for (int h = 0; h < nb; ++h) push_pair(&W[static_cast<size_t>(h * n)], bond_pair(sy, bonds[h]), 1.0);
     Mat A(nb, nb), R(nb, n);
     double top = 0.0;
     for (int h = 0; h < nb; ++h) {
