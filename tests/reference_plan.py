@@ -19,6 +19,9 @@ by its force times w:
   (a friction bearing's: its numbers' a = 1, its force still f_z z): inside |z| = 1, z' = u' / u_y (stuck,
   elastic); on it, while z . u' > 0, z' = (u' - (z . u') z) / u_y (slipping); the integration restarts where
   |z| reaches 1 (it slips) and where z . u' comes back to 0 (it sticks);
+* a friction circle's velocity dependence (``fast``: a bidirectional spring's or a plastic circle's): its
+  force f_z z times r - (r - 1) exp(-c s), r = mu_fast / mu, c the rate (s/m), at the slip's rate s: z . u'
+  while a plastic circle slips (none while it sticks inside), |u'| on a bidirectional Bouc-Wen spring;
 * a Kelvin-Voigt wall (stiffness k_b, dashpot c_b) behind a gap, on one side (sign +-1): in contact its force
   is k_b d + c_b d' (d = sign w . q - gap) until it would pull; out of contact its compression relaxes as
   d_r exp(-k_b (t - t_r) / c_b) from where it was released, and contact starts when the point meets that
@@ -39,6 +42,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 from scipy.integrate import solve_ivp
+from scipy.optimize import minimize_scalar
 
 from reference_ndof import TouchAtRest, _stepped_over
 
@@ -64,6 +68,8 @@ class PlanModel:
     bidirectional: list = field(default_factory=list)
     # the plastic circles: pairs of indices into bouc_wen (a = 1), each one elastic-perfectly-plastic circle
     circles: list = field(default_factory=list)
+    # a velocity-dependent friction on a circle: {its first Bouc-Wen index: (mu_fast / mu, rate s/m)}
+    fast: dict = field(default_factory=dict)
     # points whose displacement's extrema are found (w (n,) each: a bearing's along an axis, a corner's)
     tracked: list = field(default_factory=list)
     # vectors of two tracked points each (indices into tracked: a bearing's x and y), whose length's largest
@@ -99,10 +105,11 @@ class PlanResult:
     tracked_max: np.ndarray | None = None               # each tracked point's largest and smallest w . q, m
     tracked_min: np.ndarray | None = None
     vector_max: np.ndarray | None = None                # each vector's longest, m
+    abs_acc_max: np.ndarray | None = None               # each coordinate's largest |absolute acceleration|
 
 
 def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, atol: float = 1e-15,
-              steps_per_period: float = 100.0) -> PlanResult:
+              steps_per_period: float = 100.0, track_acceleration: bool = False) -> PlanResult:
     n = s.mass.size
     inv_m = 1.0 / s.mass
     # every contact as its compression's value and rate, its gradient (what its force pushes along), k_b, c_b;
@@ -180,8 +187,18 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
                     ne, dp = jankowski[c], max(d, 0.0)
                     f += (k_b * dp**ne + (c_b * dp ** (0.5 * (ne - 1.0)) * dd if dd > 0.0 else 0.0)) * grad(y)
         for b, w in enumerate(wz):
-            f += bws[b][0] * y[2 * n + b] * w
+            f += bws[b][0] * y[2 * n + b] * speed_factor(y, b) * w
         return f
+
+    def speed_factor(y, b):  # (a circle's velocity dependence: 1 without one, or inside a plastic circle)
+        pair = min(b, mate[b])
+        if pair not in s.fast or (b in circle_of and not on_circle[circle_of[b]]):
+            return 1.0
+        ratio, rate = s.fast[pair]
+        du, dm = float(wz[b] @ y[n:2 * n]), float(wz[mate[b]] @ y[n:2 * n])
+        z, zm = float(y[2 * n + b]), float(y[2 * n + mate[b]])
+        speed = du * z + dm * zm if b in circle_of else math.hypot(du, dm)
+        return ratio - (ratio - 1.0) * math.exp(-rate * speed)
 
     def z_rates(y):
         out = np.zeros(nz)
@@ -331,6 +348,26 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
 
     longest = np.array([length(y, p, q, o) for (p, q), o in zip(s.vectors, offsets)])
 
+    def abs_acc(t, y):  # (each coordinate's absolute acceleration: the relative one and the ground's)
+        g = np.array([float(np.interp(t, t_rec, ax, left=0.0, right=0.0)),
+                      float(np.interp(t, t_rec, ay, left=0.0, right=0.0))])
+        return rhs(t, y)[n:2 * n] + s.influence @ g
+
+    acc_top = np.abs(abs_acc(t, y))
+
+    def acc_extrema(sol, t0, t1):  # (on a grid of the stretch, each largest refined on the dense output)
+        grid = np.linspace(t0, t1, 65)
+        values = np.abs(np.array([abs_acc(tg, sol.sol(tg)) for tg in grid]))
+        for i in range(n):
+            k = int(np.argmax(values[:, i]))
+            best = values[k, i]
+            if best > acc_top[i] * (1.0 - 1e-6):
+                lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
+                r = minimize_scalar(lambda tt, i=i: -abs(abs_acc(tt, sol.sol(tt))[i]), bounds=(lo, hi),
+                                    method="bounded", options={"xatol": 1e-14})
+                best = max(best, -float(r.fun))
+            acc_top[i] = max(acc_top[i], best)
+
     quiet = None  # (a wall just released, until when its start is not looked for)
     while t < t_end:
         quiet_now = quiet is not None and t < quiet[1]
@@ -361,6 +398,8 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
             rs = [length(sol.sol(t_stop), p, q, o)] + [
                 length(ye, p, q, o) for te, ye in zip(sol.t_events[at], sol.y_events[at]) if te <= t_stop]
             longest[k] = max(longest[k], *rs)
+        if track_acceleration:
+            acc_extrema(sol, t, t_stop)
         for q, (w, (_, _, d)) in enumerate(zip(wp, s.plastic)):  # (a stretch that slipped: the slip followed)
             if mode[q] != 0:
                 end = sol.sol(min(hits)[0]) if hits else sol.y[:, -1]
@@ -417,4 +456,5 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
     out.y, out.z = y[:2 * n], y[2 * n:]
     out.tracked_max, out.tracked_min = top, bottom
     out.vector_max = longest
+    out.abs_acc_max = acc_top if track_acceleration else None
     return out

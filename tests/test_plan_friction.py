@@ -260,7 +260,7 @@ def test_a_spectrum_scales_the_pendulums_radii():
 
 @pytest.mark.parametrize("iso, field, fix", [
     (FrictionIsolator(mu=0.06, radius_m=2.0), "preslip_m", "give preslip_m > 0"),
-    (FrictionIsolator(mu=0.06, radius_m=2.0, mu_fast=0.1, rate_s_m=20.0), "mu_fast", "leave mu_fast out"),
+    (FrictionIsolator(mu=0.06, radius_m=2.0, mu_fast=0.1, rate_s_m=20.0), "preslip_m", "give preslip_m > 0"),
     (pounding.TripleFrictionPendulum(radii_m=(2.1, 0.3, 0.3, 2.1), mu=(0.05, 0.02, 0.02, 0.08),
                                      capacities_m=(0.3, 0.05, 0.05, 0.3)), "triple friction pendulum",
      "give a pounding.Isolator or pounding.FrictionIsolator"),

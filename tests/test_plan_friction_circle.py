@@ -92,7 +92,7 @@ def test_a_building_on_plastic_friction_circles_runs_as_the_reference(seed, moat
     pair = pounding.RecordPair(pounding.Record(t, ax, name="x"), pounding.Record(t, ay, name="y"))
     run = pounding.simulate(b, pair, t[-1], sample_rate_hz=200.0, rtol=1e-12)
     assert run.success, run.message
-    ref = reference(model, t[-1], np.zeros(6))
+    ref = reference(model, t[-1], np.zeros(6), track_acceleration=True)
     # every stick and slip of every bearing's circle, where the reference has it (measured: switches within
     # 1.1e-14 s, the final state 1.1e-13 of its largest, z 4e-13, the ledger 3e-13 of the flows; the bounds
     # below leave a thousandfold margin for other machines' rounding)
@@ -113,6 +113,7 @@ def test_a_building_on_plastic_friction_circles_runs_as_the_reference(seed, moat
     np.testing.assert_allclose(run.final_state.bouc_wen_zs, ref.z, rtol=0, atol=1e-10)
     top = max(np.max(np.abs(ref.tracked_max)), np.max(np.abs(ref.tracked_min)))
     np.testing.assert_allclose(run.bearing_displacement_max_m, ref.vector_max, rtol=0, atol=1e-10 * top)
+    np.testing.assert_allclose(run.abs_acceleration_max[0], ref.abs_acc_max, rtol=1e-9)  # (each largest)
     e = run.energy  # (the ledger closes to the numerical phases' tolerance)
     assert abs(e.residual) <= 1e-10 * max(abs(e.input_work), e.viscous, e.kinetic, e.hysteretic)
 

@@ -59,3 +59,26 @@ plt.show()
 # %%
 # The corners' orbits inside the moat's clearance, on the plastic friction circle.
 runs["plastic circle"].plot()
+
+# %%
+# PTFE grips less at rest than when it slides fast (``mu_fast``, OpenSees' ``VelDependent``): the circle's
+# radius then follows the slip's rate, mu W at a stick's start and end, up to mu_fast W in a fast slide.
+# Bearing 2's friction in the plane against its speed, on the plastic circle: its slips on mu(v), its
+# sticks below mu W (it moves there within its elastic pre-slip, and the building turns).
+fast = pounding.FrictionIsolator(mu=0.06, radius_m=2.5, preslip_m=0.0005, mu_fast=0.1, rate_s_m=25.0)
+vel = PlanBuilding([Floor(4.0e5, (30.0, 12.0), centre_m=(3.0, 0.0))] * 3,
+                   [Bearing((sx * 14.0, sy * 5.0), fast) for sx in (-1, 1) for sy in (-1, 1)], frames, moat)
+run = pounding.simulate(vel, quake, duration=15.0, sample_rate_hz=200.0)
+print(f"velocity-dependent: largest bearing displacement {1e3 * run.bearing_displacement_max_m.max():.1f} mm")
+u = run.bearing_displacement[:, 2, :]
+speed = np.hypot(*np.gradient(u, run.t, axis=0).T)
+friction = np.hypot(*(run.bearing_force[:, 2, :] - (weight / 2.5) * u).T)
+v = np.linspace(0.0, speed.max(), 100)
+fig, ax = plt.subplots(figsize=(5.5, 3.6), constrained_layout=True)
+ax.plot(speed, friction / weight, ".", ms=2, label="bearing 2, every sample")
+bearing = vel.bearings[2].isolator  # (it carries its share of the weight)
+ax.plot(v, bearing.friction_at(v) / bearing.weight_n, "k--", lw=1, label="mu(v)")
+ax.set_xlabel("bearing speed (m/s)")
+ax.set_ylabel("friction / W")
+ax.legend(fontsize=8)
+plt.show()

@@ -21,7 +21,8 @@ double iso_force(const System& sy, int e, const double* st) {
     const IsoLinear iso = iso_linear(sy, e, st);
     const Layout& L = sy.lay;
     const double u = rel(st + L.x, h), du = rel(st + L.v, h);
-    return iso.k * u + iso.r0 + h.c_d * du + (h.has_bw() ? h.bw[0] * st[L.zeta + h.bw_slot] : 0.0) +
+    return iso.k * u + iso.r0 + h.c_d * du +
+           (h.has_bw() ? h.bw[0] * st[L.zeta + h.bw_slot] * circle_factor(sy, e, st) : 0.0) +
            iso_rate_force(h, iso_slip(sy, e, st), du);
 }
 
@@ -76,7 +77,7 @@ void outputs_in_phase(Phase& ph, const System& sy, double t, double tau, const d
         const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
         double f = ph.el_k[static_cast<size_t>(e)] * rel(y, h) + ph.el_r[static_cast<size_t>(e)] +
                    h.c_d * rel(y + n, h);
-        if (h.has_bw()) f += h.bw[0] * z[h.bw_slot];
+        if (h.has_bw()) f += h.bw[0] * z[h.bw_slot] * circle_scale(ph, h.bw_slot, y + n, z).f;
         f += iso_rate_force(h, ph.el_s[static_cast<size_t>(e)], rel(y + n, h));
         if (ph.stk.any && ph.stk.held_of[static_cast<size_t>(ph.nc + e)] >= 0)  // (sticking: its friction)
             f += held_force(ph, ph.nc + e, tau, y, a).g;
@@ -241,7 +242,10 @@ void numeric_contributions(Phase& ph, const System& sy, double* st, double tau, 
             const double* z = phase_zeta(ph, tq, y);
             for (int q = 0; q < ph.nbw; ++q) {
                 const Hysteretic& h = *ph.bw[static_cast<size_t>(q)];
-                ledger[L_HYSTERETIC] += wq * h.bw[0] * z[q] * rel(v, h);
+                if (h.friction_rate != 0.0)  // (a friction circle's velocity dependence)
+                    ledger[L_HYSTERETIC] += wq * h.bw[0] * z[q] * circle_scale(ph, q, v, z).f * rel(v, h);
+                else
+                    ledger[L_HYSTERETIC] += wq * h.bw[0] * z[q] * rel(v, h);
             }
         }
         for (const Phase::RateFriction& r : ph.rate_fr) {  // (a velocity-dependent friction's rest)

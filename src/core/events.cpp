@@ -36,8 +36,19 @@ double abs_acceleration_rate(Phase& ph, int i, double tau, const double* y, cons
             if (ph.bw_lin[static_cast<size_t>(b)]) continue;  // (a plastic circle inside: its rate in K v)
             const Hysteretic& h = *ph.bw[static_cast<size_t>(b)];
             const double w_b = weight_on(h, i);
-            if (w_b != 0.0) q += w_b * (h.bw[0] * zeta_rate(ph, b, v, z));
+            if (w_b == 0.0) continue;
+            if (h.friction_rate != 0.0) {  // (a circle's velocity dependence: bw[0] (f z' + z f' s'))
+                double s_rate = 0.0;
+                const CircleScale f = circle_scale(ph, b, v, z, a, &s_rate);
+                q += w_b * (h.bw[0] * (f.f * zeta_rate(ph, b, v, z) + z[b] * f.df * s_rate));
+                continue;
+            }
+            q += w_b * (h.bw[0] * zeta_rate(ph, b, v, z));
         }
+    }
+    for (const Phase::RateFriction& r : ph.rate_fr) {  // (a velocity-dependent friction's rest, isolator.hpp)
+        const double w_r = weight_on(*r.h, i);
+        if (w_r != 0.0) q += w_r * iso_rate_force_rate(*r.h, r.s, rel(v, *r.h), rel(a, *r.h));
     }
     return -ph.minv[static_cast<size_t>(i)] * q;
 }

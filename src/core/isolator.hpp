@@ -34,6 +34,7 @@
 // slip's the element's; a surface's slip or ring the spring's (its surface's) among the system's.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "core.hpp"
@@ -72,6 +73,39 @@ inline double iso_slip(const System& sy, int e, const double* st) {
 inline double iso_rate_force(const Hysteretic& h, double s, double du) {
     if (s == 0.0 || h.friction_rate == 0.0) return 0.0;
     return -s * (h.friction_fast - h.friction) * std::exp(-h.friction_rate * s * du);
+}
+// A friction circle's velocity dependence (a bidirectional Bouc-Wen spring's, the friction circle of a sliding
+// bearing in plan, with friction_rate > 0): its force is bw[0] z times (F_fast - (F_fast - F) e^(-rate s)) / F,
+// F = bw[0] (mu W at rest) and F_fast = friction_fast, at the slip's rate s (m/s): z . u' (both mates') while
+// a plastic circle slips, none while it sticks inside (its force bw[0] z exactly: its phases stay linear), |u'|
+// on Bouc-Wen's smooth circle (Constantinou's, 3D-BASIS's and SAP2000's).  The factor f and df / ds.
+struct CircleScale { double f, df; };
+inline CircleScale circle_scale(const Hysteretic& h, double s) {
+    if (h.friction_rate == 0.0) return {1.0, 0.0};
+    const double r = h.friction_fast / h.bw[0], e = std::exp(-h.friction_rate * s);
+    return {r - (r - 1.0) * e, h.friction_rate * (r - 1.0) * e};
+}
+// the slip's rate it reads: u' (du, dm) and z (zq, zm) the two mates', slipping a plastic circle's state
+inline double circle_speed(const Hysteretic& h, bool slipping, double du, double dm, double zq, double zm) {
+    return h.bw_plastic ? (slipping ? zq * du + zm * dm : 0.0) : std::hypot(du, dm);
+}
+// the factor on element e's Bouc-Wen force in the state st (outside a phase): 1 without a velocity dependence
+// or inside a plastic circle
+inline double circle_factor(const System& sy, int e, const double* st) {
+    const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+    if (h.friction_rate == 0.0 || !h.has_bw() || h.bw_mate < 0) return 1.0;
+    const Layout& L = sy.lay;
+    const Hysteretic& m = sy.hyst[static_cast<size_t>(h.bw_mate)];
+    const bool slipping = st[L.region + std::min(e, h.bw_mate)] != 0.0;  // (the circle's first element's flag)
+    if (h.bw_plastic && !slipping) return 1.0;
+    const double s = circle_speed(h, slipping, rel(st + L.v, h), rel(st + L.v, m), st[L.zeta + h.bw_slot],
+                                  st[L.zeta + m.bw_slot]);
+    return circle_scale(h, s).f;
+}
+// its rate at the acceleration ddu (u''): (F_fast - F) rate e^(-rate s du) ddu
+inline double iso_rate_force_rate(const Hysteretic& h, double s, double du, double ddu) {
+    if (s == 0.0 || h.friction_rate == 0.0) return 0.0;
+    return (h.friction_fast - h.friction) * h.friction_rate * std::exp(-h.friction_rate * s * du) * ddu;
 }
 double iso_energy(const System& sy, int e, const double* st, double d);
 // every element's event rows after the n already in evs; the new count

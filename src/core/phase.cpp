@@ -582,6 +582,24 @@ double zeta_rate(const Phase& ph, int q, const double* v, const double* z) {
     return (a * du - lead * zq * sum) / h.bw[1];
 }
 
+CircleScale circle_scale(const Phase& ph, int q, const double* v, const double* z, const double* acc,
+                         double* rate) {
+    const Hysteretic& h = *ph.bw[static_cast<size_t>(q)];
+    if (rate) *rate = 0.0;
+    const bool slipping = ph.bw_slip[static_cast<size_t>(q)] != 0;
+    if (h.friction_rate == 0.0 || h.bw_mate_slot < 0 || (h.bw_plastic && !slipping)) return {1.0, 0.0};
+    const int m = h.bw_mate_slot;
+    const Hysteretic& hm = *ph.bw[static_cast<size_t>(m)];
+    const double du = rel(v, h), dm = rel(v, hm);
+    const double s = circle_speed(h, slipping, du, dm, z[q], z[m]);
+    if (rate && acc) {  // (s' : z' . u' + z . u'' slipping on a plastic circle, u' . u'' / |u'| on Bouc-Wen's)
+        const double aq = rel(acc, h), am = rel(acc, hm);
+        *rate = h.bw_plastic ? zeta_rate(ph, q, v, z) * du + zeta_rate(ph, m, v, z) * dm + z[q] * aq + z[m] * am
+                             : (s > 0.0 ? (du * aq + dm * am) / s : 0.0);
+    }
+    return circle_scale(h, s);
+}
+
 void phase_rhs(Phase& ph, double tau, const double* y, const double* z, double* a, bool held) {
     // dof i: (-R0_i - m_i a_g(tau) - (C v)_i - (K x)_i - the Bouc-Wen spring's - the nonlinear contacts') / m_i,
     // summed in that order (a one-mass system's numbers as the engine has always summed them)
@@ -605,6 +623,10 @@ void phase_rhs(Phase& ph, double tau, const double* y, const double* z, double* 
     for (int q = 0; q < ph.nbw; ++q) {
         if (ph.bw_lin[static_cast<size_t>(q)]) continue;  // (a plastic circle inside: in K and R0)
         const Hysteretic& h = *ph.bw[static_cast<size_t>(q)];
+        if (h.friction_rate != 0.0) {  // (a friction circle's velocity dependence: isolator.hpp)
+            push_pair(a, h, -(h.bw[0] * z[q] * circle_scale(ph, q, v, z).f));
+            continue;
+        }
         push_pair(a, h, -(h.bw[0] * z[q]));
     }
     for (const Phase::RateFriction& r : ph.rate_fr) {  // (a velocity-dependent friction's rest, isolator.hpp)

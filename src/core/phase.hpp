@@ -25,6 +25,7 @@
 
 #include "compression.hpp"
 #include "core.hpp"
+#include "isolator.hpp"
 #include "laws.hpp"
 #include "sticking.hpp"
 
@@ -259,6 +260,11 @@ void held_force_poly(const Phase& ph, int c, Poly& q);
 
 // the rate of Bouc-Wen spring q's z at the velocities v (n) and the springs' z (nbw)
 double zeta_rate(const Phase& ph, int q, const double* v, const double* z);
+// the factor a friction circle's velocity dependence puts on Bouc-Wen spring q's force (isolator.hpp's
+// circle_scale) at the velocities v (n) and z (nbw); with acc (the accelerations, n) and rate, its slip's rate's
+// derivative into *rate (0 where it has none)
+CircleScale circle_scale(const Phase& ph, int q, const double* v, const double* z, const double* acc = nullptr,
+                         double* rate = nullptr);
 // the accelerations (n) at (tau, y, z) with the nonlinear forces (z: the Bouc-Wen springs', nbw)
 void phase_rhs(Phase& ph, double tau, const double* y, const double* z, double* a, bool held = true);
 // the step of length h from the start: y (ny), a (n), z (nbw); the error estimates

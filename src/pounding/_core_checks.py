@@ -74,9 +74,10 @@ def check_elements(elements: list, n: int, element_type: type) -> None:
                              "slope, a friction force > 0 and no Bouc-Wen spring; no other rule has a "
                              "friction force")
         if el.friction_rate_s_m < 0.0 or (el.friction_rate_s_m > 0.0) != (el.friction_fast_n > 0.0) or (
-                el.friction_rate_s_m > 0.0 and el.rule != 2):
-            raise ValueError(f"element {e}: a velocity-dependent friction is the friction rule's, with a "
-                             "fast friction > 0 and a rate > 0 together")
+                el.friction_rate_s_m > 0.0 and el.rule != 2 and el.bw_mate == -1):
+            raise ValueError(f"element {e}: a velocity-dependent friction is the friction rule's or a "
+                             "friction circle's (a bidirectional Bouc-Wen spring, bw_mate), with a fast "
+                             "friction > 0 and a rate > 0 together")
     for e, el in enumerate(elements):
         if el.bw_plastic and el.bw[0] == 0.0:
             raise ValueError(f"element {e}: a plastic circle (bw_plastic) is a Bouc-Wen spring's: give its "
@@ -89,9 +90,11 @@ def check_elements(elements: list, n: int, element_type: type) -> None:
         if mate == -1:
             continue
         if not (0 <= mate < len(elements) and mate != e and elements[mate].bw_mate == e and el.bw[0] != 0.0
-                and list(elements[mate].bw) == list(el.bw)):
+                and list(elements[mate].bw) == list(el.bw)
+                and (elements[mate].friction_fast_n, elements[mate].friction_rate_s_m)
+                == (el.friction_fast_n, el.friction_rate_s_m)):
             raise ValueError(f"element {e}: its Bouc-Wen mate {mate} is another element whose mate it is, "
-                             "both with the same Bouc-Wen numbers")
+                             "both with the same Bouc-Wen numbers and velocity dependence")
         if el.bw_plastic != elements[mate].bw_plastic or (el.bw_plastic and not (
                 el.rule == 0 and el.bw[2] == 1.0 and el.bw[3] + el.bw[4] == 1.0)):
             raise ValueError(f"element {e}: a plastic circle (bw_plastic) is both mates', on the kinematic "

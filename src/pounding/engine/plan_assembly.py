@@ -122,7 +122,7 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
             mate = len(elements) + (1 if axis == 0 else -1) if part.coupled else -1
             elements.append(_core.element(c_d=part.laws[axis].damping_n_s_m, slopes=slopes, breaks=breaks,
                                           rule=int(rule), bw=bw if bw[0] != 0.0 else (), bw_mate=mate,
-                                          bw_plastic=part.plastic_circle, **pair))
+                                          bw_plastic=part.plastic_circle, **part.kernel_friction, **pair))
             element_names.append((kind, index, axis))
             element_weights.append(w)
         tracked.append(_core.tracked_pair(**pair))

@@ -105,8 +105,9 @@ class FrictionIsolator(CarriesWeight):
         A velocity-dependent friction (OpenSees' ``VelDependent``): a slip's friction coefficient is
         ``mu_fast - (mu_fast - mu) exp(-rate_s_m |v|)``, ``mu`` at rest (which still decides where a stick
         ends) and ``mu_fast`` fast (> 0, at most 1; larger or smaller than ``mu``).  Its slips are then
-        integrated numerically, their ends still located as events.  None (the default): Coulomb's
-        constant ``mu``.
+        integrated numerically, their ends still located as events.  On a line it needs the rigid stick
+        (``preslip_m = 0``); in plan a pre-slip, ``v`` there the friction circle's slip rate
+        (:class:`pounding.Bearing`).  None (the default): Coulomb's constant ``mu``.
     rate_s_m : float
         How fast the friction goes from ``mu`` to ``mu_fast``, s/m (> 0 with ``mu_fast``, 0 without; 20 to
         30 are usual for PTFE on steel: within 2 % of ``mu_fast`` from about 0.15 m/s).
@@ -201,11 +202,16 @@ class FrictionIsolator(CarriesWeight):
                                  "30 are usual), or leave mu_fast out (Coulomb's constant mu)")
         plausible("isolator.rate_s_m", rate, 1.0, 1000.0, "the rate at which friction reaches mu_fast, s/m "
                                                           "(20 to 30 are usual)")
-        if self.preslip_m > 0.0:
-            raise InputError(Problem.WRONG_CONFIGURATION, "isolator.preslip_m", self.preslip_m,
-                             got="with a velocity-dependent friction (mu_fast)",
-                             fix="leave preslip_m 0 (the velocity dependence is for the rigid stick), or "
-                                 "mu_fast out")
+
+    def check_on_a_line(self, field_name: str = "isolator") -> None:
+        """Raises unless a system on a line can take it: there a velocity-dependent friction (``mu_fast``)
+        is the rigid stick's (``preslip_m = 0``); with a pre-slip it is a bearing in plan's (its friction
+        circle, :class:`pounding.Bearing`)."""
+        if self.mu_fast is not None and self.preslip_m > 0.0:
+            raise InputError(Problem.WRONG_CONFIGURATION, f"{field_name}.preslip_m", self.preslip_m,
+                             got="with a velocity-dependent friction (mu_fast) on a line (there it is the "
+                                 "rigid stick's; with a pre-slip, a bearing in plan's friction circle)",
+                             fix="leave preslip_m 0 (the exact rigid stick), or mu_fast out")
 
     # ---------------------------------------------------------------- its numbers
 
@@ -322,6 +328,15 @@ class FrictionIsolator(CarriesWeight):
                              fix=PRESLIP_IN_PLAN)
         spring = BoucWen(self.friction_force_n / self.preslip_m, self.preslip_m, 1.0, 0.5, 0.5, CIRCLE_N)
         return (np.array([self.restoring_stiffness_n_m]), np.zeros(0), RULE_KINEMATIC, spring.kernel_array())
+
+    @property
+    def kernel_friction_in_plane(self) -> dict[str, float]:
+        """A friction circle's velocity dependence as the engine takes it on each axis's element
+        (``pounding._core.element``'s ``friction_fast_n``, N, and ``friction_rate_s_m``, s/m: its force
+        ``mu W z`` scaled to ``friction_at`` the slip's rate); none without one."""
+        if self.mu_fast is None:
+            return {}
+        return {"friction_fast_n": self.friction_fast_force_n, "friction_rate_s_m": self.rate_s_m}
 
     @property
     def kernel_friction(self) -> dict[str, float]:

@@ -208,7 +208,8 @@ class Bearing:
         Its law along x, and along y unless ``isolator_y`` is given (a rubber bearing's backbone and
         hysteresis, uncoupled; and its Bouc-Wen spring if it has one, see ``bidirectional``).  A
         :class:`pounding.FrictionIsolator` (a friction pendulum or a flat slider) needs an elastic
-        pre-slip in plan (``preslip_m > 0``) and a constant ``mu``; its weight, unless given
+        pre-slip in plan (``preslip_m > 0``); its friction may depend on the velocity (``mu_fast``,
+        on its friction circle: see ``friction_circle``); its weight, unless given
         (``weight_n``), is its share of the building's (``g`` times every floor's mass) as a rigid base
         shares it among equally stiff bearings, balanced at the centre of mass
         (:class:`pounding.PlanBuilding`), and stays that load (overturning, vertical motion and uplift do
@@ -232,8 +233,11 @@ class Bearing:
         ``circle_stick``).
         ``"bouc_wen"``: Constantinou, Mokha and Reinhorn's (1990) smooth model, SAP2000's and
         3D-BASIS's: a bidirectional Bouc-Wen spring of stiffness ``mu W / preslip_m``, yield displacement
-        ``preslip_m``, ``a = 1``, ``beta = gamma = 1/2`` and ``n = 2``, which never quite sticks.  Other
-        bearings: unused.
+        ``preslip_m``, ``a = 1``, ``beta = gamma = 1/2`` and ``n = 2``, which never quite sticks.  With a
+        velocity-dependent friction (the isolator's ``mu_fast``) either circle's force is ``W mu(s) z``
+        (:meth:`pounding.FrictionIsolator.friction_at` at ``s``), ``s`` the slip's rate: ``z . u'`` while
+        the plastic circle slips (its sticks stay exact, at ``mu``), the bearing's speed ``|u'|`` on the
+        Bouc-Wen circle.  Other bearings: unused.
 
     Examples
     --------
@@ -288,7 +292,8 @@ class Bearing:
                                  "TOML file) for one spring along each axis")
 
     def _check_friction(self) -> None:
-        """A friction bearing in plan: one law for both axes, with an elastic pre-slip and a constant mu."""
+        """A friction bearing in plan: one law for both axes, with an elastic pre-slip; a velocity
+        dependence on its friction circle alone."""
         if self.isolator_y is not None:
             why = ("is a friction isolator" if isinstance(self.isolator_y, FrictionIsolator) else
                    "is given beside a friction isolator")
@@ -297,11 +302,11 @@ class Bearing:
                              fix="leave isolator_y out and give a friction isolator as isolator (it serves "
                                  "both axes)")
         iso = self.isolator
-        if iso.mu_fast is not None:
-            raise InputError(Problem.BAD_STATE, "bearing.isolator.mu_fast", iso.mu_fast,
-                             why="is a velocity-dependent friction, not supported in plan yet (it needs the "
-                                 "rigid stick)",
-                             fix="leave mu_fast out (a constant mu) and give preslip_m")
+        if iso.mu_fast is not None and not self.bidirectional:
+            raise InputError(Problem.WRONG_CONFIGURATION, "bearing.isolator.mu_fast", iso.mu_fast,
+                             got="with one friction along each axis (bidirectional false): a velocity "
+                                 "dependence is the friction circle's",
+                             fix="leave bidirectional out (the friction circle), or mu_fast out")
         if not iso.preslip_m > 0.0:
             raise InputError(Problem.BAD_STATE, "bearing.isolator.preslip_m", iso.preslip_m,
                              why="is a rigid stick, which a bearing in plan cannot have", fix=PRESLIP_IN_PLAN)
@@ -334,6 +339,12 @@ class Bearing:
         law = self.laws[axis]
         circle = self.is_friction and self.bidirectional
         return law.kernel_arrays_in_plane() if circle else law.kernel_arrays()
+
+    @property
+    def kernel_friction(self) -> dict[str, float]:
+        """Its friction circle's velocity dependence as the engine takes it on each axis's element
+        (:attr:`pounding.FrictionIsolator.kernel_friction_in_plane`); none for other bearings."""
+        return self.isolator.kernel_friction_in_plane if self.is_friction and self.bidirectional else {}
 
     @property
     def laws(self) -> tuple[Any, Any]:

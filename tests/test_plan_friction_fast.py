@@ -1,0 +1,218 @@
+"""A velocity-dependent friction circle in plan (``FrictionIsolator(mu_fast=..., rate_s_m=...)`` under a
+:class:`pounding.Bearing`): its force ``W (mu_fast - (mu_fast - mu) exp(-rate_s_m s)) z`` at the slip's rate
+``s``.  Against the independent solve_ivp reference (random eccentric buildings, pairs of components, a moat;
+both circles), Coulomb's numbers when ``mu_fast = mu``, the closed-form orbit under circular shaking at the
+friction of its speed, the line's exact rigid stick as the pre-slip shrinks, the ledger, a continued run, a
+file, and the refusals."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+from reference_plan import reference
+from reference_plan import record_pair as _record
+from test_plan_friction import _square
+from test_plan_friction_circle import _building, _restated, _switches
+
+import pounding
+from pounding import Bearing, Floor, FrictionIsolator, InputError, PlanBuilding, _core
+
+G = 9.81
+
+
+def _fast(b: PlanBuilding, mu_fast: float, rate_s_m: float, circle: str) -> PlanBuilding:
+    """The building with every bearing's friction velocity-dependent and its circle ``circle``."""
+    bearings = [Bearing(x.at_m, dataclasses.replace(x.isolator, mu_fast=mu_fast, rate_s_m=rate_s_m),
+                        friction_circle=circle) for x in b.bearings]
+    return dataclasses.replace(b, bearings=bearings)
+
+
+def _restated_fast(b: PlanBuilding):
+    """The reference's model of ``b`` (one floor): each bearing's circle with its velocity dependence."""
+    model = _restated(b)
+    law = b.bearings[0].isolator
+    model.fast = {first: (law.mu_fast / law.mu, law.rate_s_m) for first, _ in model.circles}
+    if b.bearings[0].friction_circle == "bouc_wen":  # (Bouc-Wen's smooth circle: a bidirectional spring)
+        model.bidirectional, model.circles = model.circles, []
+    return model
+
+
+CASES = [(1, False, "plastic", 1.8), (4, True, "plastic", 0.6), (5, False, "bouc_wen", 1.8),
+         (8, True, "bouc_wen", 0.6)]
+
+
+@pytest.mark.parametrize("seed, moat, circle, ratio", CASES)
+def test_a_velocity_dependent_friction_circle_runs_as_the_reference(seed, moat, circle, ratio):
+    rng = np.random.default_rng(seed)
+    plain = _building(rng, moat=moat)
+    b = _fast(plain, ratio * plain.bearings[0].isolator.mu, 25.0, circle)
+    model = _restated_fast(b)
+    t, ax, ay = _record(rng, 2.5, 0.01, rng.uniform(2.0, 4.0))
+    model.record = (t, ax, ay)
+    pair = pounding.RecordPair(pounding.Record(t, ax, name="x"), pounding.Record(t, ay, name="y"))
+    run = pounding.simulate(b, pair, t[-1], sample_rate_hz=200.0, rtol=1e-12)
+    assert run.success, run.message
+    ref = reference(model, t[-1], np.zeros(6), track_acceleration=True)
+    if circle == "plastic":  # (every stick and slip of every bearing's circle, where the reference has it)
+        for action, want in (("circle_slip", ref.circle_slips), ("circle_stick", ref.circle_sticks)):
+            got = _switches(run, action)
+            assert [q for q, _ in got] == [q for q, _ in sorted(want)], action
+            np.testing.assert_allclose([t for _, t in got], [t for _, t in sorted(want)], rtol=0, atol=1e-11)
+        assert len(ref.circle_slips) >= 4 and len(ref.circle_sticks) >= 4  # (it slid and stuck again)
+    if b.moat is not None:
+        starts = run.event_table[run.event_table[:, 1] == _core.ACTIONS["contact_start"]]
+        assert len(starts) >= 4
+        np.testing.assert_allclose(starts[:, 0], [t for _, t in ref.contact_starts], rtol=0, atol=1e-11)
+    lay, end = run.final_state.layout, run.final_state.vector
+    np.testing.assert_allclose(end[lay["x"]:lay["x"] + 3], ref.y[:3], rtol=0,
+                               atol=1e-10 * np.max(np.abs(ref.y[:3])))
+    np.testing.assert_allclose(end[lay["v"]:lay["v"] + 3], ref.y[3:], rtol=0,
+                               atol=1e-10 * np.max(np.abs(ref.y[3:])))
+    np.testing.assert_allclose(run.final_state.bouc_wen_zs, ref.z, rtol=0, atol=1e-10)
+    top = max(np.max(np.abs(ref.tracked_max)), np.max(np.abs(ref.tracked_min)))
+    np.testing.assert_allclose(run.bearing_displacement_max_m, ref.vector_max, rtol=0, atol=1e-10 * top)
+    # each floor's largest absolute acceleration, located where its rate (the circle's f' s' term in it)
+    # crosses zero
+    np.testing.assert_allclose(run.abs_acceleration_max[0], ref.abs_acc_max, rtol=1e-9)
+    # the velocity dependence moved it: against the same building's Coulomb friction
+    coulomb = pounding.simulate(_fast(plain, plain.bearings[0].isolator.mu, 25.0, circle), pair, t[-1])
+    assert np.max(np.abs(coulomb.final_state.vector[:6] - end[:6])) > 1e-3 * np.max(np.abs(end[:6]))
+    e = run.energy  # (the ledger closes to the numerical phases' tolerance)
+    assert abs(e.residual) <= 1e-10 * max(abs(e.input_work), e.viscous, e.kinetic, e.hysteretic)
+
+
+@pytest.mark.parametrize("circle", ["plastic", "bouc_wen"])
+def test_mu_fast_equal_to_mu_is_coulomb_s_friction_number_for_number(circle):
+    rng = np.random.default_rng(2)
+    b = _building(rng, moat=True)
+    coulomb = dataclasses.replace(b, bearings=[Bearing(x.at_m, x.isolator, friction_circle=circle)
+                                               for x in b.bearings])
+    same = _fast(b, b.bearings[0].isolator.mu, 25.0, circle)
+    pair = pounding.RecordPair.of_direction(pounding.records.el_centro().scaled(pga_g=0.5), 30.0)
+    a, c = pounding.simulate(coulomb, pair, 4.0), pounding.simulate(same, pair, 4.0)
+    assert np.max(a.bearing_displacement_max_m) > 20 * 5e-4 * 4  # (it slid)
+    for name in ("displacement", "velocity", "bearing_force", "bearing_displacement_max_m"):
+        np.testing.assert_array_equal(getattr(a, name), getattr(c, name))
+    np.testing.assert_array_equal(a.final_state.vector, c.final_state.vector)
+    assert a.energy == c.energy
+
+
+def _speed_radius(fps, c_per_bearing, freq_hz, a_g):
+    """The steady orbit's radius of the square floor on ``fps`` under circular shaking (about its own
+    centre), and the closed form of the rigid-plastic circle whose friction is that of the orbit's speed:
+    ``|(k - m w^2) r + i (c w r + W mu(w r))| = m A``, solved for r."""
+    from scipy.optimize import brentq
+
+    b = _square(fps, c_per_bearing)
+    table = pounding.HarmonicPair.circular(a_g, freq_hz)
+    steady = pounding.simulate(b, table, 12.0, sample_rate_hz=0.0).final_state
+    run = pounding.simulate(b, table, 1.0 / freq_hz, state=steady, sample_rate_hz=400.0)
+    x, y = run.displacement[:, 0, 0], run.displacement[:, 0, 1]
+    d, e, _ = np.linalg.lstsq(np.column_stack([x, y, np.ones_like(x)]), -(x * x + y * y), rcond=None)[0]
+    got = np.hypot(x + 0.5 * d, y + 0.5 * e)
+    w = 2.0 * math.pi * freq_hz
+    k_m = 0.0 if fps.radius_m is None else G / fps.radius_m
+    c_m, acc = 4 * c_per_bearing / 4e5, a_g * G
+
+    def gap(r):  # (per unit mass: the force the table gives against the one the orbit needs)
+        mu = fps.mu if fps.mu_fast is None else fps.mu_fast - (fps.mu_fast - fps.mu) * math.exp(
+            -fps.rate_s_m * w * r)
+        return math.hypot((k_m - w * w) * r, c_m * w * r + mu * G) - acc
+
+    return got, brentq(gap, 1e-6, 10.0, xtol=1e-15, rtol=1e-15)
+
+
+@pytest.mark.parametrize("radius_m, mu_fast, freq_hz, a_g", [(2.0, 0.1, 0.7, 0.3), (None, 0.03, 0.7, 0.3)])
+def test_circular_shaking_drives_the_closed_form_orbit_at_its_speed_friction(radius_m, mu_fast, freq_hz, a_g):
+    # a rigid floor on sliding bearings under circularly polarised shaking settles on a circle at a steady
+    # speed w r, its friction W mu(w r) along the velocity: the rigid-plastic closed form at that friction.
+    # The pre-slip lags the force: the radius differs to the first order of preslip / r (five times less
+    # pre-slip, five times less difference)
+    errors = []
+    for preslip in (1e-3, 2e-4):
+        fps = FrictionIsolator(mu=0.06, radius_m=radius_m, preslip_m=preslip, mu_fast=mu_fast, rate_s_m=5.0)
+        got, closed = _speed_radius(fps, 3e5, freq_hz, a_g)
+        coulomb, _ = _speed_radius(dataclasses.replace(fps, mu_fast=None, rate_s_m=0.0), 3e5, freq_hz, a_g)
+        assert abs(np.mean(coulomb) / closed - 1.0) > 5 * preslip / closed  # (mu(w r) is not mu)
+        assert np.ptp(got) < 1e-6 * closed  # (a circle)
+        error = abs(float(np.mean(got)) / closed - 1.0)
+        assert error < preslip / closed, (preslip, error)
+        errors.append(error)
+    assert 3.5 < errors[0] / errors[1] < 6.5
+
+
+def test_along_one_axis_a_shrinking_pre_slip_tends_to_the_line_s_rigid_stick():
+    # a symmetric floor shaken along x: each circle's z stays on the x axis and its slip's rate is the
+    # bearing's velocity, so the circle is the line's velocity-dependent friction with an elastic pre-slip;
+    # the line's isolator sticks rigidly and exactly.  The difference shrinks with the pre-slip
+    rec = pounding.records.el_centro().scaled(pga_g=0.8)
+    line = pounding.Structure(3e5, FrictionIsolator(mu=0.06, radius_m=2.2, mu_fast=0.11, rate_s_m=20.0),
+                              [pounding.Storey(3e5, 3e8, 2e5)], [])
+    ref = pounding.simulate(line, rec, 10.0)
+    assert ref.displacement_max[0] > 0.05  # (it slid)
+    errors = []
+    for preslip in (4e-4, 1e-4):
+        fps = FrictionIsolator(mu=0.06, radius_m=2.2, preslip_m=preslip, mu_fast=0.11, rate_s_m=20.0)
+        frames = [pounding.Frame(1, axis, s * at, 1.5e8, 1e5) for axis, at in (("x", 7.0), ("y", 11.0))
+                  for s in (-1.0, 1.0)]
+        b = PlanBuilding([Floor(3e5, (24.0, 16.0))] * 2,
+                         [Bearing((sx * 10.0, sy * 6.0), fps) for sx in (-1, 1) for sy in (-1, 1)], frames)
+        run = pounding.simulate(b, rec, 10.0)
+        assert np.max(np.abs(run.displacement[..., 1:])) < 1e-15 * np.max(run.displacement_max)  # (along x)
+        errors.append(abs(run.displacement_max[0, 0] / ref.displacement_max[0] - 1.0))
+    # (measured: 6.1 % and 2.0 %, and 1.0 % at 2.5e-5 m; Coulomb's friction the same way 2.2, 1.1 and 0.3 %:
+    # the pre-slip's own lag, which the velocity dependence leaves alone)
+    assert errors[0] < 0.08 and errors[1] < 0.5 * errors[0], errors
+
+
+def test_a_continued_run_equals_one_long_run_and_the_ledger_closes():
+    rng = np.random.default_rng(3)
+    plain = _building(rng, moat=False)
+    b = _fast(plain, 1.6 * plain.bearings[0].isolator.mu, 30.0, "plastic")
+    t, ax, ay = _record(rng, 4.0, 0.01, 3.0)
+    pair = pounding.RecordPair(pounding.Record(t, ax, name="x"), pounding.Record(t, ay, name="y"))
+    whole = pounding.simulate(b, pair, 4.0, rtol=1e-11)
+    first = pounding.simulate(b, pair, 2.0, rtol=1e-11)
+    lay, mid = first.final_state.layout, first.final_state.vector
+    assert set(mid[lay["region"]:lay["region"] + 8]) == {1.0}  # (cut in mid-slip)
+    second = pounding.simulate(b, pair, 2.0, state=first.final_state, rtol=1e-11)
+    end, want = second.final_state.vector, whole.final_state.vector
+    np.testing.assert_allclose(end[lay["x"]:lay["x"] + 6], want[lay["x"]:lay["x"] + 6], rtol=0,
+                               atol=1e-8 * np.max(np.abs(want[lay["x"]:lay["x"] + 6])))
+    e = whole.energy
+    assert abs(e.residual) <= 1e-10 * max(abs(e.input_work), e.hysteretic)
+    assert e.hysteretic > 0.3 * e.input_work  # (the friction took most of it)
+
+
+def test_a_file_keeps_it_and_what_cannot_take_it_refuses_by_name():
+    fast = FrictionIsolator(mu=0.06, radius_m=2.0, preslip_m=5e-4, mu_fast=0.1, rate_s_m=25.0)
+    b = PlanBuilding([Floor(4e5, (20.0, 20.0))], [Bearing((sx * 8.0, sy * 8.0), fast) for sx in (-1, 1)
+                                                  for sy in (-1, 1)])
+    assert PlanBuilding.from_toml_text(b.to_toml_text()) == b
+    # a line's velocity dependence is its rigid stick's; one friction per axis has none
+    for make in (lambda: pounding.Structure(3e5, fast, [pounding.Storey(3e5, 3e8)], []),
+                 lambda: pounding.Oscillator(3e5, fast)):
+        with pytest.raises(InputError) as err:
+            make()
+        assert err.value.field == "isolator.preslip_m" and "mu_fast" in str(err.value)
+    with pytest.raises(InputError) as err:
+        Bearing((0.0, 0.0), fast, bidirectional=False)
+    assert err.value.field == "bearing.isolator.mu_fast" and "bidirectional" in str(err.value)
+    # the door: a velocity dependence is the friction rule's or a circle's, the same in both mates
+    bw = [30.0, 5e-4, 1.0, 0.5, 0.5, 2.0]
+
+    def el(i, mate, fast_n=40.0, rate=25.0):
+        return _core.element(i=i, j=-1, c_d=0.0, slopes=[1.0], breaks=[], rule=0, bw=bw, bw_mate=mate,
+                             bw_plastic=mate >= 0, friction_fast_n=fast_n, friction_rate_s_m=rate)
+
+    def system(first, second):
+        return _core.system(np.ones(2), np.zeros((2, 2)), np.zeros((2, 2)), [first, second], False, [])
+
+    system(el(0, 1), el(1, 0))
+    for first, second, match in ((el(0, -1), el(1, -1, 0.0, 0.0), "friction circle's"),
+                                 (el(0, 1), el(1, 0, 50.0), "velocity dependence")):
+        with pytest.raises(ValueError, match=match):
+            system(first, second)
