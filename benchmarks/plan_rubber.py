@@ -15,7 +15,8 @@ phases).  Last, the
 bilinear bearings with a ring for a moat instead of four walls, the same clearance at the corners: its
 contacts' starts located on the exact phases, each contact integrated numerically; and with four rigid walls
 (plastic, ``RigidStop(0)``): impulses at the corners, corners held on their walls (constraints) on exact
-phases.
+phases.  The two circles also with a velocity-dependent friction (``mu_fast = 1.8 mu``, 25 s/m): their slips'
+force at the slip's rate.
 
     python benchmarks/plan_rubber.py [--storeys 5] [--rounds 3]
 """
@@ -42,14 +43,18 @@ def rubber(b: pd_.PlanBuilding, bidirectional: bool) -> pd_.PlanBuilding:
     return dataclasses.replace(b, bearings=bearings)
 
 
-def sliding(b: pd_.PlanBuilding, bidirectional: bool, circle: str = "plastic") -> pd_.PlanBuilding:
+def sliding(b: pd_.PlanBuilding, bidirectional: bool, circle: str = "plastic",
+            fast: float = 0.0) -> pd_.PlanBuilding:
     """``b`` on friction pendulums: the bilinear law's post-yield stiffness as W / R and its characteristic
-    strength ``Q = (k1 - k2) d_y`` as mu W (W an equal share of the weight), a pre-slip of 0.5 mm."""
+    strength ``Q = (k1 - k2) d_y`` as mu W (W an equal share of the weight), a pre-slip of 0.5 mm; with
+    ``fast`` > 0 its friction velocity-dependent, ``fast`` times mu fast (a rate of 25 s/m)."""
     lrb = b.bearings[0].isolator
     k1, k2 = lrb.slopes_n_m
     weight = 9.81 * sum(f.mass_kg for f in b.floors) / len(b.bearings)
-    fps = pd_.FrictionIsolator(mu=(k1 - k2) * lrb.breakpoints_m[0] / weight, radius_m=weight / k2,
-                               preslip_m=5e-4, damping_n_s_m=lrb.damping_n_s_m)
+    mu = (k1 - k2) * lrb.breakpoints_m[0] / weight
+    speed = {"mu_fast": fast * mu, "rate_s_m": 25.0} if fast > 0.0 else {}
+    fps = pd_.FrictionIsolator(mu=mu, radius_m=weight / k2, preslip_m=5e-4, damping_n_s_m=lrb.damping_n_s_m,
+                               **speed)
     bearings = tuple(dataclasses.replace(x, isolator=fps, bidirectional=bidirectional, friction_circle=circle)
                      for x in b.bearings)
     return dataclasses.replace(b, bearings=bearings)
@@ -82,6 +87,8 @@ def main() -> None:
                      ("friction pendulums, the plastic circle", sliding(base, True)),
                      ("friction pendulums, the Bouc-Wen circle", sliding(base, True, "bouc_wen")),
                      ("friction pendulums, one friction per axis", sliding(base, False)),
+                     ("the plastic circle, mu_fast = 1.8 mu", sliding(base, True, fast=1.8)),
+                     ("the Bouc-Wen circle, mu_fast = 1.8 mu", sliding(base, True, "bouc_wen", 1.8)),
                      ("bilinear bearings, a ring for a moat", ringed(base)),
                      ("bilinear bearings, four rigid walls", rigid(base))):
         def run(b=b):

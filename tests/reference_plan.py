@@ -10,7 +10,8 @@ by its force times w:
 
 * an elastic-perfectly-plastic spring (stiffness k_p, yield displacement D; a bilinear bearing is one beside
   a linear spring in K): stuck, its force is k_p (w . q - slip); it slips when w . q - slip reaches +-D and
-  sticks again when w . q' turns back;
+  sticks again when w . q' turns back; with a velocity dependence (``plastic_fast``: a sliding bearing's
+  pre-slip) its slip's force the way m is m k_p D (r - (r - 1) exp(-c m w . q')), r = mu_fast / mu;
 * a Bouc-Wen spring (its force f_z z, z' = w . q' / u_y (a - |z|^n (gamma + beta sgn(w . q' z))), z one more
   state; the integration restarts where z and where w . q' cross zero, its law's kinks); two of them may be
   one bidirectional spring (Park, Wen and Ang's, of any n): with u'_k = w_k . q', the vector z = (z_1, z_2),
@@ -56,6 +57,8 @@ class PlanModel:
     record: tuple          # (t s, a_x m/s^2, a_y m/s^2): linear between the samples, zero outside
     # elastic-perfectly-plastic springs: (w (n,), k_p N/m, D m)
     plastic: list = field(default_factory=list)
+    # their velocity dependence: {index into plastic: (mu_fast / mu, rate s/m)}
+    plastic_fast: dict = field(default_factory=dict)
     # Kelvin-Voigt walls: (w (n,), sign +-1, gap m, k_b N/m, c_b N s/m)
     walls: list = field(default_factory=list)
     # Kelvin-Voigt rings, after the walls in the contacts' numbering: (w_x (n,), w_y (n,), p_x m, p_y m,
@@ -177,7 +180,14 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
     def nonlinear_forces(y):
         f = np.zeros(n)
         for q, (w, (_, k_p, d)) in enumerate(zip(wp, s.plastic)):
-            f += (k_p * (along(y, w)[0] - slip[q]) if mode[q] == 0 else mode[q] * k_p * d) * w
+            if mode[q] == 0:
+                f += k_p * (along(y, w)[0] - slip[q]) * w
+                continue
+            factor = 1.0
+            if q in s.plastic_fast:  # (a velocity dependence at the slip's rate)
+                ratio, rate = s.plastic_fast[q]
+                factor = ratio - (ratio - 1.0) * math.exp(-rate * mode[q] * along(y, w)[1])
+            f += mode[q] * k_p * d * factor * w
         for c, (depth, grad, k_b, c_b) in enumerate(contacts):
             if inside[c]:
                 d, dd = depth(y)

@@ -3,7 +3,7 @@
 ``s``.  Against the independent solve_ivp reference (random eccentric buildings, pairs of components, a moat;
 both circles), Coulomb's numbers when ``mu_fast = mu``, the closed-form orbit under circular shaking at the
 friction of its speed, the line's exact rigid stick as the pre-slip shrinks, the ledger, a continued run, a
-file, and the refusals."""
+file, and the door.
 
 from __future__ import annotations
 
@@ -18,7 +18,7 @@ from test_plan_friction import _square
 from test_plan_friction_circle import _building, _restated, _switches
 
 import pounding
-from pounding import Bearing, Floor, FrictionIsolator, InputError, PlanBuilding, _core
+from pounding import Bearing, Floor, FrictionIsolator, PlanBuilding, _core
 
 G = 9.81
 
@@ -56,6 +56,8 @@ def test_a_velocity_dependent_friction_circle_runs_as_the_reference(seed, moat, 
     run = pounding.simulate(b, pair, t[-1], sample_rate_hz=200.0, rtol=1e-12)
     assert run.success, run.message
     ref = reference(model, t[-1], np.zeros(6), track_acceleration=True)
+    # (measured: switches within 1e-14 s, peak accelerations 1.7e-13 (plastic) and 4.3e-11 (Bouc-Wen) of
+    # theirs; without the f' s' term in their rate 4e-8 to 6e-6)
     if circle == "plastic":  # (every stick and slip of every bearing's circle, where the reference has it)
         for action, want in (("circle_slip", ref.circle_slips), ("circle_stick", ref.circle_sticks)):
             got = _switches(run, action)
@@ -187,20 +189,13 @@ def test_a_continued_run_equals_one_long_run_and_the_ledger_closes():
     assert e.hysteretic > 0.3 * e.input_work  # (the friction took most of it)
 
 
-def test_a_file_keeps_it_and_what_cannot_take_it_refuses_by_name():
+def test_a_file_keeps_it_and_the_door_takes_it_on_two_mates_alike():
     fast = FrictionIsolator(mu=0.06, radius_m=2.0, preslip_m=5e-4, mu_fast=0.1, rate_s_m=25.0)
-    b = PlanBuilding([Floor(4e5, (20.0, 20.0))], [Bearing((sx * 8.0, sy * 8.0), fast) for sx in (-1, 1)
-                                                  for sy in (-1, 1)])
-    assert PlanBuilding.from_toml_text(b.to_toml_text()) == b
-    # a line's velocity dependence is its rigid stick's; one friction per axis has none
-    for make in (lambda: pounding.Structure(3e5, fast, [pounding.Storey(3e5, 3e8)], []),
-                 lambda: pounding.Oscillator(3e5, fast)):
-        with pytest.raises(InputError) as err:
-            make()
-        assert err.value.field == "isolator.preslip_m" and "mu_fast" in str(err.value)
-    with pytest.raises(InputError) as err:
-        Bearing((0.0, 0.0), fast, bidirectional=False)
-    assert err.value.field == "bearing.isolator.mu_fast" and "bidirectional" in str(err.value)
+    for circle in ("plastic", "bouc_wen"):
+        at = [(sx * 8.0, sy * 8.0) for sx in (-1, 1) for sy in (-1, 1)]
+        b = PlanBuilding([Floor(4e5, (20.0, 20.0))], [Bearing(p, fast, friction_circle=circle) for p in at])
+        text = b.to_toml_text()
+        assert "mu_fast" in text and PlanBuilding.from_toml_text(text) == b
     # the door: a velocity dependence is the friction rule's or a circle's, the same in both mates
     bw = [30.0, 5e-4, 1.0, 0.5, 0.5, 2.0]
 

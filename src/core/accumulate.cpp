@@ -23,7 +23,7 @@ double iso_force(const System& sy, int e, const double* st) {
     const double u = rel(st + L.x, h), du = rel(st + L.v, h);
     return iso.k * u + iso.r0 + h.c_d * du +
            (h.has_bw() ? h.bw[0] * st[L.zeta + h.bw_slot] * circle_factor(sy, e, st) : 0.0) +
-           iso_rate_force(h, iso_slip(sy, e, st), du);
+           iso_rate_force(h, iso_rate_slip(sy, e, st), du);
 }
 
 // a sample row (or the absolute accelerations and forces) from the state, outside a phase

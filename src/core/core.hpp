@@ -213,7 +213,8 @@ struct Hysteretic : Pair {
     int rule = 0;
     double friction = 0.0;  // N: the Coulomb force of rule 2 (a friction isolator: mu W), 0 for the others
     // rule 2's velocity dependence: a slip's force F_fast - (F_fast - friction) e^(-rate |u'|) (friction at
-    // rest, F_fast fast), as OpenSees' VelDependent; rate 0 (s/m): Coulomb's constant friction.  On a
+    // rest, F_fast fast), as OpenSees' VelDependent; rate 0 (s/m): Coulomb's constant friction.  The same on
+    // the kinematic rule of one break (a sliding bearing's elastic pre-slip: friction its yield force).  On a
     // bidirectional Bouc-Wen spring (a friction circle: both mates the same numbers) the same dependence of its
     // force bw[0] z, friction unused (bw[0] is the force at rest: isolator.hpp's circle_scale)
     double friction_fast = 0.0, friction_rate = 0.0;

@@ -68,11 +68,28 @@ inline double& iso_slip_slot(const System& sy, int e, double* st) { return st[sy
 inline double iso_slip(const System& sy, int e, const double* st) {
     return iso_is_friction(sy.hyst[static_cast<size_t>(e)]) ? st[sy.lay.region + e] : 0.0;
 }
+// the way element e's velocity-dependent friction slips in the state (+-1; 0 sticking, or none): the friction
+// rule's, or a pre-slip's (the kinematic rule of one break with friction_rate: a sliding bearing's elastic
+// pre-slip, its spring's slip direction)
+inline double iso_rate_slip(const System& sy, int e, const double* st) {
+    const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+    if (h.rule == RULE_FRICTION) return st[sy.lay.region + e];
+    if (h.friction_rate == 0.0 || h.rule != RULE_KINEMATIC || h.has_bw() || h.n_springs() != 1) return 0.0;
+    return st[sy.lay.base + sy.lay.n_sp + h.first];
+}
 // element e's force beyond its linear branch's while it slips the way s at the rate du (u'): a
-// velocity-dependent friction's -s (F_fast - F) e^(-rate s du); 0 for every other element and state
+// velocity-dependent friction's -s (F_fast - F) e^(-rate s du) on the friction rule (its branch holds s F_fast),
+// s (F_fast - F) (1 - e^(-rate s du)) on a pre-slip's (its branch holds its yield force, s F); 0 for every other
+// element and state
 inline double iso_rate_force(const Hysteretic& h, double s, double du) {
     if (s == 0.0 || h.friction_rate == 0.0) return 0.0;
-    return -s * (h.friction_fast - h.friction) * std::exp(-h.friction_rate * s * du);
+    if (h.rule == RULE_FRICTION) return -s * (h.friction_fast - h.friction) * std::exp(-h.friction_rate * s * du);
+    return s * (h.friction_fast - h.friction) * (1.0 - std::exp(-h.friction_rate * s * du));
+}
+// whether element e slipping the way s has that rest (a numerical phase): a velocity dependence whose fast
+// friction is not its friction at rest
+inline bool iso_rate_dependent(const Hysteretic& h, double s) {
+    return s != 0.0 && h.friction_rate != 0.0 && h.friction_fast != h.friction;
 }
 // A friction circle's velocity dependence (a bidirectional Bouc-Wen spring's, the friction circle of a sliding
 // bearing in plan, with friction_rate > 0): its force is bw[0] z times (F_fast - (F_fast - F) e^(-rate s)) / F,
@@ -102,7 +119,7 @@ inline double circle_factor(const System& sy, int e, const double* st) {
                                   st[L.zeta + m.bw_slot]);
     return circle_scale(h, s).f;
 }
-// its rate at the acceleration ddu (u''): (F_fast - F) rate e^(-rate s du) ddu
+// its rate at the acceleration ddu (u''): (F_fast - F) rate e^(-rate s du) ddu (either rule's)
 inline double iso_rate_force_rate(const Hysteretic& h, double s, double du, double ddu) {
     if (s == 0.0 || h.friction_rate == 0.0) return 0.0;
     return (h.friction_fast - h.friction) * h.friction_rate * std::exp(-h.friction_rate * s * du) * ddu;

@@ -84,7 +84,7 @@ struct Phase {
     Pair iso;
     double cd = 0.0, kiso = 0.0, riso = 0.0;
     std::vector<double> el_k, el_r;  // every hysteretic element's branch (force el_k u + el_r), for the outputs
-    std::vector<double> el_s;        // and its friction's slip direction (0: sticking, or no friction rule)
+    std::vector<double> el_s;        // and its velocity-dependent friction's slip direction (isolator.hpp)
     struct RateFriction { const Hysteretic* h; double s; };
     std::vector<RateFriction> rate_fr;  // the elements slipping with a velocity-dependent friction (numerical)
     // the run's and the phase's length (m) and velocity (m/s) scales, what event values are rounded against

@@ -147,9 +147,9 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
         push_pair(ph.R0.data(), h, el.r0);
         ph.el_k[static_cast<size_t>(e)] = el.k;
         ph.el_r[static_cast<size_t>(e)] = el.r0;
-        const double s = iso_slip(sy, e, st);
+        const double s = iso_rate_slip(sy, e, st);
         ph.el_s[static_cast<size_t>(e)] = s;
-        if (iso_rate_force(h, s, 0.0) != 0.0) ph.rate_fr.push_back({&h, s});
+        if (iso_rate_dependent(h, s)) ph.rate_fr.push_back({&h, s});
         if (e == 0) iso = el;
     }
     bool any_nl = false;

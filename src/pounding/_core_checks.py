@@ -68,16 +68,19 @@ def check_elements(elements: list, n: int, element_type: type) -> None:
         if len(el.slopes) < 1 or len(el.breaks) != len(el.slopes) - 1 or el.rule not in (0, 1, 2):
             raise ValueError(f"element {e}: {len(el.slopes)} slopes need {len(el.slopes) - 1} breaks, "
                              "rule 0, 1 or 2")
-        if (el.rule == 2) != (el.friction_n > 0.0) or (el.rule == 2 and (len(el.slopes) != 1 or el.j != -1
-                                                                         or any(el.bw))):
+        preslip = (el.rule == 0 and el.friction_rate_s_m > 0.0 and len(el.slopes) == 2
+                   and not any(el.bw))  # (a sliding bearing's pre-slip with a velocity dependence)
+        if (el.rule == 2 or preslip) != (el.friction_n > 0.0) or (
+                el.rule == 2 and (len(el.slopes) != 1 or el.j != -1 or any(el.bw))):
             raise ValueError(f"element {e}: the friction rule (2) is an isolator's (on the ground), of one "
-                             "slope, a friction force > 0 and no Bouc-Wen spring; no other rule has a "
-                             "friction force")
+                             "slope, a friction force > 0 and no Bouc-Wen spring; a pre-slip's velocity "
+                             "dependence (rule 0 of two slopes) has its friction at rest too; no other rule "
+                             "has a friction force")
         if el.friction_rate_s_m < 0.0 or (el.friction_rate_s_m > 0.0) != (el.friction_fast_n > 0.0) or (
-                el.friction_rate_s_m > 0.0 and el.rule != 2 and el.bw_mate == -1):
-            raise ValueError(f"element {e}: a velocity-dependent friction is the friction rule's or a "
-                             "friction circle's (a bidirectional Bouc-Wen spring, bw_mate), with a fast "
-                             "friction > 0 and a rate > 0 together")
+                el.friction_rate_s_m > 0.0 and el.rule != 2 and el.bw_mate == -1 and not preslip):
+            raise ValueError(f"element {e}: a velocity-dependent friction is the friction rule's, a "
+                             "pre-slip's (rule 0 of two slopes) or a friction circle's (a bidirectional "
+                             "Bouc-Wen spring, bw_mate), with a fast friction > 0 and a rate > 0 together")
     for e, el in enumerate(elements):
         if el.bw_plastic and el.bw[0] == 0.0:
             raise ValueError(f"element {e}: a plastic circle (bw_plastic) is a Bouc-Wen spring's: give its "

@@ -105,8 +105,8 @@ class FrictionIsolator(CarriesWeight):
         A velocity-dependent friction (OpenSees' ``VelDependent``): a slip's friction coefficient is
         ``mu_fast - (mu_fast - mu) exp(-rate_s_m |v|)``, ``mu`` at rest (which still decides where a stick
         ends) and ``mu_fast`` fast (> 0, at most 1; larger or smaller than ``mu``).  Its slips are then
-        integrated numerically, their ends still located as events.  On a line it needs the rigid stick
-        (``preslip_m = 0``); in plan a pre-slip, ``v`` there the friction circle's slip rate
+        integrated numerically, their ends still located as events.  With a pre-slip ``v`` is the slip's
+        rate (a slip's friction starts and ends at ``mu``); in plan the friction circle's
         (:class:`pounding.Bearing`).  None (the default): Coulomb's constant ``mu``.
     rate_s_m : float
         How fast the friction goes from ``mu`` to ``mu_fast``, s/m (> 0 with ``mu_fast``, 0 without; 20 to
@@ -202,16 +202,6 @@ class FrictionIsolator(CarriesWeight):
                                  "30 are usual), or leave mu_fast out (Coulomb's constant mu)")
         plausible("isolator.rate_s_m", rate, 1.0, 1000.0, "the rate at which friction reaches mu_fast, s/m "
                                                           "(20 to 30 are usual)")
-
-    def check_on_a_line(self, field_name: str = "isolator") -> None:
-        """Raises unless a system on a line can take it: there a velocity-dependent friction (``mu_fast``)
-        is the rigid stick's (``preslip_m = 0``); with a pre-slip it is a bearing in plan's (its friction
-        circle, :class:`pounding.Bearing`)."""
-        if self.mu_fast is not None and self.preslip_m > 0.0:
-            raise InputError(Problem.WRONG_CONFIGURATION, f"{field_name}.preslip_m", self.preslip_m,
-                             got="with a velocity-dependent friction (mu_fast) on a line (there it is the "
-                                 "rigid stick's; with a pre-slip, a bearing in plan's friction circle)",
-                             fix="leave preslip_m 0 (the exact rigid stick), or mu_fast out")
 
     # ---------------------------------------------------------------- its numbers
 
@@ -342,8 +332,9 @@ class FrictionIsolator(CarriesWeight):
     def kernel_friction(self) -> dict[str, float]:
         """The friction the engine's friction rule takes (``pounding._core.element``'s ``friction_n``, N,
         at rest; ``friction_fast_n`` N and ``friction_rate_s_m`` s/m, a velocity dependence's, 0 without):
-        none with a pre-slip (the kinematic rule has it in its slopes)."""
-        if self.preslip_m > 0.0:
+        with a pre-slip none (the kinematic rule has it in its slopes), or a velocity dependence's three (its
+        slips' rest beyond the yield force ``mu W``)."""
+        if self.preslip_m > 0.0 and self.mu_fast is None:
             return {}
         if self.mu_fast is None:
             return {"friction_n": self.friction_force_n}

@@ -74,8 +74,6 @@ class Oscillator(TomlFile):
         if self.bumpers is not None and not isinstance(self.bumpers, Bumpers):
             raise InputError(Problem.WRONG_TYPE, "bumpers", self.bumpers,
                              got=type(self.bumpers).__name__, expected="Bumpers or None")
-        if isinstance(self.isolator, FrictionIsolator):
-            self.isolator.check_on_a_line()
         if is_friction(self.isolator):  # (it carries the mass's weight)
             object.__setattr__(self, "isolator", self.isolator.carrying(self.mass_kg))
             if self.bumpers is not None:

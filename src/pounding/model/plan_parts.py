@@ -208,8 +208,8 @@ class Bearing:
         Its law along x, and along y unless ``isolator_y`` is given (a rubber bearing's backbone and
         hysteresis, uncoupled; and its Bouc-Wen spring if it has one, see ``bidirectional``).  A
         :class:`pounding.FrictionIsolator` (a friction pendulum or a flat slider) needs an elastic
-        pre-slip in plan (``preslip_m > 0``); its friction may depend on the velocity (``mu_fast``,
-        on its friction circle: see ``friction_circle``); its weight, unless given
+        pre-slip in plan (``preslip_m > 0``); its friction may depend on the velocity (``mu_fast``;
+        on its friction circle see ``friction_circle``); its weight, unless given
         (``weight_n``), is its share of the building's (``g`` times every floor's mass) as a rigid base
         shares it among equally stiff bearings, balanced at the centre of mass
         (:class:`pounding.PlanBuilding`), and stays that load (overturning, vertical motion and uplift do
@@ -292,8 +292,7 @@ class Bearing:
                                  "TOML file) for one spring along each axis")
 
     def _check_friction(self) -> None:
-        """A friction bearing in plan: one law for both axes, with an elastic pre-slip; a velocity
-        dependence on its friction circle alone."""
+        """A friction bearing in plan: one law for both axes, with an elastic pre-slip."""
         if self.isolator_y is not None:
             why = ("is a friction isolator" if isinstance(self.isolator_y, FrictionIsolator) else
                    "is given beside a friction isolator")
@@ -302,11 +301,6 @@ class Bearing:
                              fix="leave isolator_y out and give a friction isolator as isolator (it serves "
                                  "both axes)")
         iso = self.isolator
-        if iso.mu_fast is not None and not self.bidirectional:
-            raise InputError(Problem.WRONG_CONFIGURATION, "bearing.isolator.mu_fast", iso.mu_fast,
-                             got="with one friction along each axis (bidirectional false): a velocity "
-                                 "dependence is the friction circle's",
-                             fix="leave bidirectional out (the friction circle), or mu_fast out")
         if not iso.preslip_m > 0.0:
             raise InputError(Problem.BAD_STATE, "bearing.isolator.preslip_m", iso.preslip_m,
                              why="is a rigid stick, which a bearing in plan cannot have", fix=PRESLIP_IN_PLAN)
@@ -342,9 +336,13 @@ class Bearing:
 
     @property
     def kernel_friction(self) -> dict[str, float]:
-        """Its friction circle's velocity dependence as the engine takes it on each axis's element
-        (:attr:`pounding.FrictionIsolator.kernel_friction_in_plane`); none for other bearings."""
-        return self.isolator.kernel_friction_in_plane if self.is_friction and self.bidirectional else {}
+        """A friction bearing's velocity dependence as the engine takes it on each axis's element: its
+        circle's (:attr:`pounding.FrictionIsolator.kernel_friction_in_plane`), or its pre-slip's along each
+        axis (``bidirectional`` false: :attr:`pounding.FrictionIsolator.kernel_friction`); none for others."""
+        if not self.is_friction:
+            return {}
+        law = self.isolator
+        return law.kernel_friction_in_plane if self.bidirectional else law.kernel_friction
 
     @property
     def laws(self) -> tuple[Any, Any]:

@@ -106,8 +106,6 @@ class Structure(TomlFile):
             object.__setattr__(self, "base_mass_kg", check_mass("base_mass_kg", self.base_mass_kg))
             instance_of("isolator", self.isolator, ISOLATORS,
                         "Isolator, FrictionIsolator, TripleFrictionPendulum or None")
-            if isinstance(self.isolator, FrictionIsolator):
-                self.isolator.check_on_a_line()
         for name, kind in (("storeys", Storey), ("walls", Wall)):
             object.__setattr__(self, name, sequence_of(name, getattr(self, name), kind, kind.__name__))
         if len(self.storeys) > MAX_STOREYS:
