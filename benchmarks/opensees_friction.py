@@ -22,11 +22,17 @@ stiffness ``kInit = mu W / u_y``, the pre-slip displacement ``u_y`` the comparis
 Compared: the peak base displacement and the residual one (at the record's end), pounding's exact against
 OpenSees' at its steps, over u_y and the step; the CPU time of one run; the speed ratio where OpenSees
 first agrees within 1 % on both.
+
+``--velocity``: the same models with a velocity-dependent friction (mu 0.06 at rest, 0.11 fast, 25 s/m:
+OpenSees' ``VelDependent``) and, in both, the elastic pre-slip u_y (pounding's ``preslip_m``, exact between
+its slips, each slip's friction at its rate): OpenSees' steps converging to pounding's run of the same
+pre-slip, for u_y 1 mm and 0.1 mm.
 """
 
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import time
 from pathlib import Path
 
@@ -39,6 +45,7 @@ PRESLIPS_M = (1e-3, 1e-4, 1e-5, 1e-6)   # OpenSees' u_y = mu W / kInit
 STEPS = (1, 10, 100)                     # OpenSees' steps: the record's step over these
 QUICK_PRESLIPS_M, QUICK_STEPS = (1e-4,), (1, 10)
 TARGET_ERROR, TARGET_SPEED = 0.01, 100.0
+VELOCITY_MU_FAST, VELOCITY_RATE_S_M, VELOCITY_PRESLIPS_M = 0.11, 25.0, (1e-3, 1e-4)
 GROUND = 1000  # the ground's node; level i is node i + 1
 
 
@@ -73,7 +80,10 @@ def opensees_model(ops, b: pd_.Structure, rec, preslip_m: float) -> None:
         ops.node(level + 1, 0.0, 0.0)
         ops.mass(level + 1, float(m), 0.0, 0.0)
         ops.fix(level + 1, 0, 0 if level == 0 else 1, 1)  # (the base free vertically: the bearing's axial)
-    ops.frictionModel("Coulomb", 1, iso.mu)
+    if iso.mu_fast is None:
+        ops.frictionModel("Coulomb", 1, iso.mu)
+    else:
+        ops.frictionModel("VelDependent", 1, iso.mu, iso.mu_fast, iso.rate_s_m)
     ops.uniaxialMaterial("Elastic", 1, 1e12)
     ops.uniaxialMaterial("Elastic", 2, 1e12)
     k_init = iso.friction_force_n / preslip_m
@@ -149,6 +159,8 @@ def main() -> None:
     ap.add_argument("--toml", type=Path, default=None,
                     help="the building (default examples/friction_pendulum_moat.toml)")
     ap.add_argument("--pga", type=float, default=PGA_G, help=f"El Centro's PGA, g (default {PGA_G})")
+    ap.add_argument("--velocity", action="store_true",
+                    help="a velocity-dependent friction with the same pre-slip in both (see the docstring)")
     args = ap.parse_args()
     preslips, steps = (QUICK_PRESLIPS_M, QUICK_STEPS) if args.quick else (PRESLIPS_M, STEPS)
     rounds = 1 if args.quick else 3
@@ -158,6 +170,9 @@ def main() -> None:
     if ops is None:
         raise SystemExit(f"OpenSeesPy left out: {missing}")
     iso = building.isolator
+    if args.velocity:
+        velocity_dependent(ops, building, rec, steps, rounds)
+        return
 
     pd_best, pd_median, out, ref = pounding_reference(building, rec, rounds)
     kinds = out.events["kind"].value_counts()
@@ -174,6 +189,23 @@ def main() -> None:
                              pd_best, preslips, steps, rounds)
     print()
     equal_accuracy(rows, pd_best, TARGET_ERROR, TARGET_SPEED)
+
+
+def velocity_dependent(ops, building: pd_.Structure, rec, steps, rounds: int) -> None:
+    """The building's bearing with a velocity-dependent friction and the same pre-slip u_y in both codes,
+    for u_y 1 mm and 0.1 mm: OpenSees' runs over its step against pounding's of that pre-slip."""
+    fast = dataclasses.replace(building.isolator, mu_fast=VELOCITY_MU_FAST, rate_s_m=VELOCITY_RATE_S_M)
+    print(f"pounding {pd_.__version__} against OpenSeesPy singleFPBearing, VelDependent friction: mu "
+          f"{fast.mu:g} at rest, {fast.mu_fast:g} fast, {fast.rate_s_m:g} s/m; record {rec.name} at PGA "
+          f"{rec.pga_g:.3g} g; both with the pre-slip u_y")
+    for uy in VELOCITY_PRESLIPS_M:
+        b = dataclasses.replace(building, isolator=dataclasses.replace(fast, preslip_m=uy))
+        pd_best, _, out, ref = pounding_reference(b, rec, rounds)
+        print(f"\nu_y {uy:g} m: pounding's peak base displacement {ref['d_peak']:.6f} m, residual "
+              f"{ref['d_residual']:+.6f} m, {pd_best * 1e3:.2f} CPU ms a run")
+        rows = convergence_table(lambda dt, u: opensees_run(ops, b, rec, dt, u), rec, ref, pd_best, (uy,),
+                                 steps, rounds)
+        equal_accuracy(rows, pd_best, TARGET_ERROR)
 
 
 def pounding_reference(building: pd_.Structure, rec, rounds: int):

@@ -207,7 +207,7 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         ratio, rate = s.fast[pair]
         du, dm = float(wz[b] @ y[n:2 * n]), float(wz[mate[b]] @ y[n:2 * n])
         z, zm = float(y[2 * n + b]), float(y[2 * n + mate[b]])
-        speed = du * z + dm * zm if b in circle_of else math.hypot(du, dm)
+        speed = max(du * z + dm * zm, 0.0) if b in circle_of else math.hypot(du, dm)
         return ratio - (ratio - 1.0) * math.exp(-rate * speed)
 
     def z_rates(y):

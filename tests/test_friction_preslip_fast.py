@@ -14,6 +14,8 @@ import pytest
 from reference_plan import PlanModel, reference
 from reference_plan import record_pair as _record
 from test_plan_friction import along_x_and_its_line
+from test_plan_friction_circle import _building
+from test_plan_friction_circle import _restated as _restated_circles
 
 import pounding
 from pounding import FrictionIsolator, _core
@@ -127,3 +129,37 @@ def test_the_door_takes_a_pre_slip_s_velocity_dependence_on_two_slopes_only():
                       ({"friction_rate_s_m": 0.0, "friction_fast_n": 0.0}, "no other rule")):
         with pytest.raises(ValueError, match=match):
             system(el(**kw))
+
+
+def test_one_friction_per_axis_in_plan_runs_as_the_reference():
+    # bidirectional=False: each bearing's x and y a pre-slip of its own with the velocity dependence, both
+    # slipping under a pair of components (an eccentric floor: it turns)
+    rng = np.random.default_rng(7)
+    plain = _building(rng, moat=False)
+    fast = {"mu_fast": 1.7 * plain.bearings[0].isolator.mu, "rate_s_m": 25.0}
+    b = dataclasses.replace(plain, bearings=[
+        pounding.Bearing(x.at_m, dataclasses.replace(x.isolator, **fast), bidirectional=False)
+        for x in plain.bearings])
+    model = _restated_circles(b)
+    plastic = []
+    for bearing, (w_x, w_y) in zip(b.bearings, zip(model.tracked[::2], model.tracked[1::2])):
+        law = bearing.isolator
+        k1, k2 = law.slopes_n_m
+        for w in (w_x, w_y):
+            plastic.append((w, k1 - k2, law.preslip_m))
+    model.plastic = plastic
+    model.plastic_fast = {q: (law.mu_fast / law.mu, law.rate_s_m) for q in range(len(plastic))}
+    model.bouc_wen, model.circles = [], []
+    t, ax, ay = _record(rng, 2.5, 0.01, 3.0)
+    model.record = (t, ax, ay)
+    pair = pounding.RecordPair(pounding.Record(t, ax, name="x"), pounding.Record(t, ay, name="y"))
+    run = pounding.simulate(b, pair, t[-1], rtol=1e-12)
+    ref = reference(model, t[-1], np.zeros(6), track_acceleration=True)
+    assert len(ref.yields) >= 8
+    got = np.sort(run.event_table[run.event_table[:, 1] == ACT["yield"], 0])
+    np.testing.assert_allclose(got, sorted(t for _, t in ref.yields), rtol=0, atol=1e-11)
+    lay, end = run.final_state.layout, run.final_state.vector
+    np.testing.assert_allclose(end[lay["x"]:lay["x"] + 3], ref.y[:3], rtol=0,
+                               atol=1e-10 * np.max(np.abs(ref.y[:3])))
+    np.testing.assert_allclose(run.abs_acceleration_max[0], ref.abs_acc_max, rtol=1e-9)
+    np.testing.assert_allclose(run.bearing_displacement_max_m, ref.vector_max, rtol=1e-10)

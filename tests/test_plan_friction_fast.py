@@ -3,7 +3,7 @@
 ``s``.  Against the independent solve_ivp reference (random eccentric buildings, pairs of components, a moat;
 both circles), Coulomb's numbers when ``mu_fast = mu``, the closed-form orbit under circular shaking at the
 friction of its speed, the line's exact rigid stick as the pre-slip shrinks, the ledger, a continued run, a
-file, and the door.
+file, and the door."""
 
 from __future__ import annotations
 
@@ -100,6 +100,11 @@ def test_mu_fast_equal_to_mu_is_coulomb_s_friction_number_for_number(circle):
         np.testing.assert_array_equal(getattr(a, name), getattr(c, name))
     np.testing.assert_array_equal(a.final_state.vector, c.final_state.vector)
     assert a.energy == c.energy
+    # (the engine's factor is F_fast over the circle's own force at rest, bw[0] = (mu W / preslip_m)
+    # preslip_m, which is not mu W in about one draw in ten: F_fast is laid on it, so that mu_fast = mu is 1)
+    for w, preslip in rng.uniform([1e3, 1e-4], [1e7, 2e-3], (300, 2)):
+        iso = FrictionIsolator(mu=0.06, preslip_m=preslip, weight_n=w, mu_fast=0.06, rate_s_m=25.0)
+        assert iso.kernel_friction_in_plane["friction_fast_n"] == iso.kernel_arrays_in_plane()[3][0]
 
 
 def _speed_radius(fps, c_per_bearing, freq_hz, a_g):
@@ -211,3 +216,22 @@ def test_a_file_keeps_it_and_the_door_takes_it_on_two_mates_alike():
                                  (el(0, 1), el(1, 0, 50.0), "velocity dependence")):
         with pytest.raises(ValueError, match=match):
             system(first, second)
+
+
+def test_rigid_walls_struck_while_the_circles_slip_leave_the_friction_inside_its_law():
+    # an impulse can turn a slipping circle's motion inwards (z . u' < 0) until its stick is found: its slip's
+    # rate is then held at 0 (mu W), never read backwards (at -0.2 m/s mu(s) W would be -117 mu W)
+    fps = FrictionIsolator(mu=0.06, radius_m=2.0, preslip_m=5e-4, mu_fast=0.11, rate_s_m=25.0)
+    b = PlanBuilding([Floor(4e5, (20.0, 14.0), centre_m=(1.0, -0.5))],
+                     [Bearing((sx * 8.0, sy * 5.0), fps) for sx in (-1, 1) for sy in (-1, 1)],
+                     moat=pounding.RectangularMoat(0.03, pounding.RigidStop(0.5)))
+    pair = pounding.RecordPair.of_direction(pounding.records.el_centro().scaled(pga_g=0.6), 30.0)
+    run = pounding.simulate(b, pair, 8.0, sample_rate_hz=1000.0)
+    assert run.success, run.message
+    assert len(run.contacts) >= 10  # (struck again and again)
+    w = np.array([x.isolator.weight_n for x in b.bearings])
+    friction = run.bearing_force - (w / 2.0)[None, :, None] * run.bearing_displacement
+    ratio = np.hypot(friction[..., 0], friction[..., 1]) / w
+    assert np.max(ratio) <= 0.11 * (1.0 + 1e-9) and np.max(ratio) > 0.09  # (within mu_fast W, and fast)
+    e = run.energy
+    assert abs(e.residual) <= 1e-9 * max(abs(e.input_work), e.hysteretic)

@@ -13,7 +13,9 @@
 //     Every phase is linear.  (F = mu W and k = W / R: a friction pendulum; k = 0: a flat slider.)
 //     With a velocity dependence (friction_rate > 0) a slip's force is k u + s (F_fast - (F_fast - F)
 //     e^(-rate |u'|)): its linear phase holds s F_fast, and the rest (iso_rate_force) makes the slip's phases
-//     numerical; a stick and its end, and the decision where a slip ends, are F's (the friction at rest).
+//     numerical; a stick and its end, and the decision where a slip ends, are F's (the friction at rest).  The
+//     same dependence on the kinematic rule of one break (a sliding bearing's elastic pre-slip, F its yield
+//     force): while its spring slips the way s the rest is s (F_fast - F) (1 - e^(-rate |u'|)).
 //   Surfaces in series (Hysteretic::series(): the series model of a triple friction pendulum, Fenz and
 //     Constantinou 2008): surface g a spring of stiffness k_g (slopes[g]) in parallel with its friction F_g
 //     (surface_friction[g]), the surfaces one after another without mass between them, each carrying the
@@ -102,9 +104,10 @@ inline CircleScale circle_scale(const Hysteretic& h, double s) {
     const double r = h.friction_fast / h.bw[0], e = std::exp(-h.friction_rate * s);
     return {r - (r - 1.0) * e, h.friction_rate * (r - 1.0) * e};
 }
-// the slip's rate it reads: u' (du, dm) and z (zq, zm) the two mates', slipping a plastic circle's state
+// the slip's rate it reads: u' (du, dm) and z (zq, zm) the two mates', slipping a plastic circle's state (its
+// z . u' at least 0: a slip turned inwards by an impulse is at rest until its stick is found)
 inline double circle_speed(const Hysteretic& h, bool slipping, double du, double dm, double zq, double zm) {
-    return h.bw_plastic ? (slipping ? zq * du + zm * dm : 0.0) : std::hypot(du, dm);
+    return h.bw_plastic ? (slipping ? std::max(zq * du + zm * dm, 0.0) : 0.0) : std::hypot(du, dm);
 }
 // the factor on element e's Bouc-Wen force in the state st (outside a phase): 1 without a velocity dependence
 // or inside a plastic circle

@@ -592,10 +592,10 @@ CircleScale circle_scale(const Phase& ph, int q, const double* v, const double* 
     const Hysteretic& hm = *ph.bw[static_cast<size_t>(m)];
     const double du = rel(v, h), dm = rel(v, hm);
     const double s = circle_speed(h, slipping, du, dm, z[q], z[m]);
-    if (rate && acc) {  // (s' : z' . u' + z . u'' slipping on a plastic circle, u' . u'' / |u'| on Bouc-Wen's)
-        const double aq = rel(acc, h), am = rel(acc, hm);
+    if (rate && acc && s > 0.0) {  // (s': z' . u' + z . u'' slipping on a plastic circle, u' . u'' / |u'| on
+        const double aq = rel(acc, h), am = rel(acc, hm);  // Bouc-Wen's; none where s is held at 0)
         *rate = h.bw_plastic ? zeta_rate(ph, q, v, z) * du + zeta_rate(ph, m, v, z) * dm + z[q] * aq + z[m] * am
-                             : (s > 0.0 ? (du * aq + dm * am) / s : 0.0);
+                             : (du * aq + dm * am) / s;
     }
     return circle_scale(h, s);
 }

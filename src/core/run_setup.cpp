@@ -225,7 +225,8 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
     for (int q = 0; q < sy.n_bw(); ++q) {
         if (ph.bw_lin[static_cast<size_t>(q)]) continue;  // (a plastic circle inside: in K already)
         const Hysteretic& h = sy.bw_of(q);
-        const double k_bw = h.bw[0] * h.bw[2] / h.bw[1];
+        double k_bw = h.bw[0] * h.bw[2] / h.bw[1];
+        if (h.friction_rate != 0.0) k_bw *= std::max(1.0, h.friction_fast / h.bw[0]);  // (a circle's mu(s))
         if (h.levered()) {  // (k w^T M^-1 w at most k (sum |w_k| sqrt(1 / m_k))^2)
             int d[4];
             double w[4];

@@ -300,7 +300,10 @@ def element(*, i: int, j: int, c_d: float, slopes: Any, breaks: Any, rule: int, 
             arm_j_m: float = 0.0) -> Element:
     """A hysteretic element (:class:`Element`) from numbers as the model gives them (``friction_n``: the
     friction of rule 2 at rest, N; with ``friction_rate_s_m`` > 0, s/m, a slip's friction is
-    ``friction_fast_n - (friction_fast_n - friction_n) exp(-friction_rate_s_m |u'|)``; ``surface_friction_n``:
+    ``friction_fast_n - (friction_fast_n - friction_n) exp(-friction_rate_s_m |u'|)``, on rule 2, on rule 0
+    of two slopes (a pre-slip: ``friction_n`` its yield force) while its spring slips, or on a bidirectional
+    Bouc-Wen spring (a friction circle: ``friction_n`` 0, its force at rest ``bw[0]`` scaled so at the
+    slip's rate); ``surface_friction_n``:
     rule 2's surfaces in series, each surface's friction N, its stiffness in ``slopes`` N/m and its travel to
     its ring in ``breaks`` m; ``surface_ring_n_m``: each ring's stiffness, N/m, 0 or none given: rigid;
     ``bw``: a Bouc-Wen spring in parallel, its ``BW_PARAMS`` numbers (force per unit z N, yield displacement

@@ -105,9 +105,11 @@ class FrictionIsolator(CarriesWeight):
         A velocity-dependent friction (OpenSees' ``VelDependent``): a slip's friction coefficient is
         ``mu_fast - (mu_fast - mu) exp(-rate_s_m |v|)``, ``mu`` at rest (which still decides where a stick
         ends) and ``mu_fast`` fast (> 0, at most 1; larger or smaller than ``mu``).  Its slips are then
-        integrated numerically, their ends still located as events.  With a pre-slip ``v`` is the slip's
-        rate (a slip's friction starts and ends at ``mu``); in plan the friction circle's
-        (:class:`pounding.Bearing`).  None (the default): Coulomb's constant ``mu``.
+        integrated numerically, their ends still located as events.  With a pre-slip a slip starts where
+        its force reaches ``mu W`` and its friction is then ``W mu(v)`` at the slip's rate ``v`` (a step
+        where it starts fast; OpenSees' sliders let that threshold follow the bearing's velocity instead),
+        ``mu W`` again where it ends; in plan the friction circle's (:class:`pounding.Bearing`).  None (the
+        default): Coulomb's constant ``mu``.
     rate_s_m : float
         How fast the friction goes from ``mu`` to ``mu_fast``, s/m (> 0 with ``mu_fast``, 0 without; 20 to
         30 are usual for PTFE on steel: within 2 % of ``mu_fast`` from about 0.15 m/s).
@@ -316,8 +318,11 @@ class FrictionIsolator(CarriesWeight):
             raise InputError(Problem.BAD_STATE, "isolator.preslip_m", self.preslip_m,
                              why="is a rigid stick, which the friction circle in plan cannot have",
                              fix=PRESLIP_IN_PLAN)
-        spring = BoucWen(self.friction_force_n / self.preslip_m, self.preslip_m, 1.0, 0.5, 0.5, CIRCLE_N)
-        return (np.array([self.restoring_stiffness_n_m]), np.zeros(0), RULE_KINEMATIC, spring.kernel_array())
+        return (np.array([self.restoring_stiffness_n_m]), np.zeros(0), RULE_KINEMATIC,
+                self._circle_spring().kernel_array())
+
+    def _circle_spring(self) -> BoucWen:
+        return BoucWen(self.friction_force_n / self.preslip_m, self.preslip_m, 1.0, 0.5, 0.5, CIRCLE_N)
 
     @property
     def kernel_friction_in_plane(self) -> dict[str, float]:
@@ -326,7 +331,9 @@ class FrictionIsolator(CarriesWeight):
         ``mu W z`` scaled to ``friction_at`` the slip's rate); none without one."""
         if self.mu_fast is None:
             return {}
-        return {"friction_fast_n": self.friction_fast_force_n, "friction_rate_s_m": self.rate_s_m}
+        # (its fast force on the circle's own force at rest, as the engine has it: mu_fast = mu is 1 exactly)
+        at_rest = float(self._circle_spring().kernel_array()[0])
+        return {"friction_fast_n": at_rest * (self.mu_fast / self.mu), "friction_rate_s_m": self.rate_s_m}
 
     @property
     def kernel_friction(self) -> dict[str, float]:
