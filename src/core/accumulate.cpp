@@ -77,7 +77,9 @@ void outputs_in_phase(Phase& ph, const System& sy, double t, double tau, const d
         const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
         double f = ph.el_k[static_cast<size_t>(e)] * rel(y, h) + ph.el_r[static_cast<size_t>(e)] +
                    h.c_d * rel(y + n, h);
-        if (h.has_bw()) f += h.bw[0] * z[h.bw_slot] * circle_scale(ph, h.bw_slot, y + n, z).f;
+        if (h.has_bw())  // (a friction circle's velocity dependence: isolator.hpp)
+            f += h.friction_rate != 0.0 ? h.bw[0] * z[h.bw_slot] * circle_scale(ph, h.bw_slot, y + n, z).f
+                                        : h.bw[0] * z[h.bw_slot];
         f += iso_rate_force(h, ph.el_s[static_cast<size_t>(e)], rel(y + n, h));
         if (ph.stk.any && ph.stk.held_of[static_cast<size_t>(ph.nc + e)] >= 0)  // (sticking: its friction)
             f += held_force(ph, ph.nc + e, tau, y, a).g;
