@@ -116,7 +116,7 @@ def test_a_building_in_plan_shaken_along_x_is_the_line_s_pre_slip_with_mu_fast(b
 
 def test_the_door_takes_a_pre_slip_s_velocity_dependence_on_two_slopes_only():
     def el(**kw):
-        return _core.element(i=0, j=-1, c_d=0.0, **({"slopes": [1e6, 1e4], "breaks": [1e-3], "rule": 0,
+        return _core.element(i=0, j=-1, c_d=0.0, **({"slopes": [1.01e6, 1e4], "breaks": [1e-3], "rule": 0,
                                                     "friction_n": 1e3, "friction_fast_n": 2e3,
                                                     "friction_rate_s_m": 20.0} | kw))
 
@@ -125,6 +125,8 @@ def test_the_door_takes_a_pre_slip_s_velocity_dependence_on_two_slopes_only():
 
     system(el())
     for kw, match in (({"friction_n": 0.0}, "friction at rest"),
+                      ({"friction_n": 2e3}, "the force at which it slips"),
+                      ({"slopes": [1e4, 1e6]}, "the force at which it slips"),
                       ({"slopes": [1e6, 1e5, 1e4], "breaks": [1e-3, 2e-3]}, "no other rule"),
                       ({"friction_rate_s_m": 0.0, "friction_fast_n": 0.0}, "no other rule")):
         with pytest.raises(ValueError, match=match):

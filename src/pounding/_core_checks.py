@@ -76,6 +76,12 @@ def check_elements(elements: list, n: int, element_type: type) -> None:
                              "slope, a friction force > 0 and no Bouc-Wen spring; a pre-slip's velocity "
                              "dependence (rule 0 of two slopes) has its friction at rest too; no other rule "
                              "has a friction force")
+        if preslip and not (el.slopes[0] > el.slopes[1] and el.breaks[0] > 0.0 and math.isclose(
+                el.friction_n, (el.slopes[0] - el.slopes[1]) * el.breaks[0], rel_tol=1e-9)):
+            at = (el.slopes[0] - el.slopes[1]) * el.breaks[0]
+            raise ValueError(f"element {e}: a pre-slip's friction at rest is the force at which it slips, "
+                             f"(slopes[0] - slopes[1]) breaks[0] = {at!r} N, its first slope the stiffer; "
+                             f"got friction_n {el.friction_n!r}")
         if el.friction_rate_s_m < 0.0 or (el.friction_rate_s_m > 0.0) != (el.friction_fast_n > 0.0) or (
                 el.friction_rate_s_m > 0.0 and el.rule != 2 and el.bw_mate == -1 and not preslip):
             raise ValueError(f"element {e}: a velocity-dependent friction is the friction rule's, a "
