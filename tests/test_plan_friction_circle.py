@@ -203,6 +203,19 @@ def test_a_state_off_its_circle_while_slipping_is_refused_by_name():
         with pytest.raises(InputError, match=match) as err:
             pounding.simulate(b, pounding.Harmonic(0.1, 1.0), 0.1, state=bad)
         assert err.value.field in ("state.isolator_branch", f"state.vector[{lay['region']}]")
+    # a slip at a run's end can turn inwards by rounding (z . u' = -6e-17 m/s was refused, a final_state of a
+    # rigid moat's run): within 1e-9 of |u'| it is taken, beyond it refused
+    across = np.array([-inwards[1], inwards[0]])
+    for tilt, taken in ((1e-13, True), (1e-6, False)):
+        vec = state.vector.copy()
+        vec[lay["region"]:lay["region"] + 2] = 1.0
+        vec[lay["zeta"]:lay["zeta"] + 2] = np.cos(tilt) * across + np.sin(tilt) * inwards
+        tilted = dataclasses.replace(state, vector=vec)
+        if taken:
+            assert pounding.simulate(b, pounding.Harmonic(0.1, 1.0), 0.1, state=tilted).success
+        else:
+            with pytest.raises(InputError, match="against its bearing's velocity"):
+                pounding.simulate(b, pounding.Harmonic(0.1, 1.0), 0.1, state=tilted)
 
 
 def test_the_model_and_the_door_refuse_what_is_no_plastic_circle(tmp_path):

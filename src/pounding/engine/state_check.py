@@ -213,7 +213,7 @@ def _check_circle(x_all: list, lay: dict, asm: Assembly, levered: Optional[tuple
             i, j = asm.elements[el].i, asm.elements[el].j
             rates.append(float(v[i] - (v[j] if j >= 0 else 0.0)))
     outwards = x_all[lay["zeta"] + q] * rates[0] + x_all[lay["zeta"] + mate] * rates[1]
-    if outwards < 0.0:
+    if outwards < -1e-9 * math.hypot(*rates):  # (a run's final state's slip may end inwards by rounding)
         raise bad(field, flag, f"is a friction circle's slip, against its bearing's velocity (z . u' = "
                                f"{outwards:g} m/s: a slip goes outwards, else it sticks)")
 
