@@ -170,10 +170,9 @@ def test_a_building_on_pendulums_turns_only_as_its_masses_make_it():
     np.testing.assert_allclose(run.bearing_displacement_max_m, run.bearing_displacement_max_m[0], rtol=1e-12)
 
 
-def _steady_radius(fps, c_per_bearing, freq_hz, a_g):
+def steady_orbit_radius(fps, c_per_bearing, freq_hz, a_g):
     """The steady orbit's radius (half its width, about its own centre) of the square floor on ``fps``
-    under circular shaking, and the closed form of the rigid-plastic friction circle:
-    |(k - m w^2) r + i (c w r + mu W)| = m A."""
+    under circular shaking, at each sample of its last period."""
     b = _square(fps, c_per_bearing)
     table = pounding.HarmonicPair.circular(a_g, freq_hz)
     steady = pounding.simulate(b, table, 12.0, sample_rate_hz=0.0).final_state
@@ -183,13 +182,19 @@ def _steady_radius(fps, c_per_bearing, freq_hz, a_g):
     # is centred where its transient left it)
     d, e, _ = np.linalg.lstsq(np.column_stack([x, y, np.ones_like(x)]), -(x * x + y * y), rcond=None)[0]
     centre = (-0.5 * d, -0.5 * e)
-    got = np.hypot(x - centre[0], y - centre[1])
+    assert np.max(np.abs(run.displacement[:, 0, 2])) < 1e-15  # (a symmetric floor never turns)
+    return np.hypot(x - centre[0], y - centre[1])
+
+
+def _steady_radius(fps, c_per_bearing, freq_hz, a_g):
+    """The steady orbit's radius (:func:`steady_orbit_radius`) and the closed form of the rigid-plastic
+    friction circle: |(k - m w^2) r + i (c w r + mu W)| = m A."""
+    got = steady_orbit_radius(fps, c_per_bearing, freq_hz, a_g)
     w = 2.0 * math.pi * freq_hz
     k_m = 0.0 if fps.radius_m is None else G / fps.radius_m
     c_m, mu_g, acc = 4 * c_per_bearing / 4e5, fps.mu * G, a_g * G
     a2, b1, c0 = (k_m - w * w) ** 2 + (c_m * w) ** 2, 2.0 * c_m * w * mu_g, mu_g**2 - acc**2
     closed = (-b1 + math.sqrt(b1 * b1 - 4.0 * a2 * c0)) / (2.0 * a2)
-    assert np.max(np.abs(run.displacement[:, 0, 2])) < 1e-15  # (a symmetric floor never turns)
     return got, closed
 
 
@@ -208,6 +213,15 @@ def test_circular_shaking_drives_the_closed_form_orbit_of_the_friction_circle(ra
         assert error < preslip / closed, (preslip, error)
         errors.append(error)
     assert 3.5 < errors[0] / errors[1] < 6.5
+
+
+def assert_along_x_is_the_line(run, ref):
+    """A plan building's run along x (``run``) against its line's (``ref``): every floor's extremes along x
+    to 1e-9, the input work to 1e-9 and the hysteretic work to 1e-8."""
+    np.testing.assert_allclose(run.displacement_max[:, 0], ref.displacement_max, rtol=1e-9)
+    np.testing.assert_allclose(run.displacement_min[:, 0], ref.displacement_min, rtol=1e-9)
+    assert run.energy.input_work == pytest.approx(ref.energy.input_work, rel=1e-9)
+    assert run.energy.hysteretic == pytest.approx(ref.energy.hysteretic, rel=1e-8)
 
 
 def along_x_and_its_line(bidirectional):

@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from reference_plan import PlanModel, reference
 from reference_plan import record_pair as _record
-from test_plan_friction import along_x_and_its_line
+from test_plan_friction import along_x_and_its_line, assert_along_x_is_the_line
 
 import pounding
 from pounding import Bearing, Floor, FrictionIsolator, InputError, PlanBuilding, RectangularMoat, _core
@@ -75,6 +75,36 @@ def _restated(b: PlanBuilding) -> PlanModel:
                      tracked=tracked, vectors=[(2 * q, 2 * q + 1) for q in range(len(b.bearings))])
 
 
+def assert_switches_as_the_reference(run, ref):
+    """Every stick and slip of every bearing's plastic circle where the reference has it, to 1e-11 s, and
+    at least 4 of each (it slid and stuck again)."""
+    for action, want in (("circle_slip", ref.circle_slips), ("circle_stick", ref.circle_sticks)):
+        got = _switches(run, action)
+        assert [q for q, _ in got] == [q for q, _ in sorted(want)], action
+        np.testing.assert_allclose([t for _, t in got], [t for _, t in sorted(want)], rtol=0, atol=1e-11)
+    assert len(ref.circle_slips) >= 4 and len(ref.circle_sticks) >= 4
+
+
+def assert_one_floor_as_the_reference(run, ref, moat):
+    """A one-floor plan run against the reference's: the moat's contacts' starts to 1e-11 s (at least 4:
+    the moats' seeds are drawn so), the final state to 1e-10 of its largest, the Bouc-Wen z to 1e-10, each
+    bearing's longest displacement to 1e-10 of the largest and each largest absolute acceleration to
+    1e-9."""
+    if moat:
+        starts = run.event_table[run.event_table[:, 1] == ACT["contact_start"]]
+        assert len(starts) >= 4
+        np.testing.assert_allclose(starts[:, 0], [t for _, t in ref.contact_starts], rtol=0, atol=1e-11)
+    lay, end = run.final_state.layout, run.final_state.vector
+    np.testing.assert_allclose(end[lay["x"]:lay["x"] + 3], ref.y[:3], rtol=0,
+                               atol=1e-10 * np.max(np.abs(ref.y[:3])))
+    np.testing.assert_allclose(end[lay["v"]:lay["v"] + 3], ref.y[3:], rtol=0,
+                               atol=1e-10 * np.max(np.abs(ref.y[3:])))
+    np.testing.assert_allclose(run.final_state.bouc_wen_zs, ref.z, rtol=0, atol=1e-10)
+    top = max(np.max(np.abs(ref.tracked_max)), np.max(np.abs(ref.tracked_min)))
+    np.testing.assert_allclose(run.bearing_displacement_max_m, ref.vector_max, rtol=0, atol=1e-10 * top)
+    np.testing.assert_allclose(run.abs_acceleration_max[0], ref.abs_acc_max, rtol=1e-9)
+
+
 def _switches(run, action):
     """A run's circle events of ``action`` as (bearing, t): its x element's index is twice the bearing's."""
     e = run.event_table
@@ -96,24 +126,8 @@ def test_a_building_on_plastic_friction_circles_runs_as_the_reference(seed, moat
     # every stick and slip of every bearing's circle, where the reference has it (measured: switches within
     # 1.1e-14 s, the final state 1.1e-13 of its largest, z 4e-13, the ledger 3e-13 of the flows; the bounds
     # below leave a thousandfold margin for other machines' rounding)
-    for action, want in (("circle_slip", ref.circle_slips), ("circle_stick", ref.circle_sticks)):
-        got = _switches(run, action)
-        assert [q for q, _ in got] == [q for q, _ in sorted(want)], action
-        np.testing.assert_allclose([t for _, t in got], [t for _, t in sorted(want)], rtol=0, atol=1e-11)
-    assert len(ref.circle_slips) >= 4 and len(ref.circle_sticks) >= 4  # (it slid and stuck again)
-    if b.moat is not None:
-        starts = run.event_table[run.event_table[:, 1] == ACT["contact_start"]]
-        assert len(starts) >= 4  # (struck: the moat's seeds are drawn so)
-        np.testing.assert_allclose(starts[:, 0], [t for _, t in ref.contact_starts], rtol=0, atol=1e-11)
-    lay, end = run.final_state.layout, run.final_state.vector
-    np.testing.assert_allclose(end[lay["x"]:lay["x"] + 3], ref.y[:3], rtol=0,
-                               atol=1e-10 * np.max(np.abs(ref.y[:3])))
-    np.testing.assert_allclose(end[lay["v"]:lay["v"] + 3], ref.y[3:], rtol=0,
-                               atol=1e-10 * np.max(np.abs(ref.y[3:])))
-    np.testing.assert_allclose(run.final_state.bouc_wen_zs, ref.z, rtol=0, atol=1e-10)
-    top = max(np.max(np.abs(ref.tracked_max)), np.max(np.abs(ref.tracked_min)))
-    np.testing.assert_allclose(run.bearing_displacement_max_m, ref.vector_max, rtol=0, atol=1e-10 * top)
-    np.testing.assert_allclose(run.abs_acceleration_max[0], ref.abs_acc_max, rtol=1e-9)  # (each largest)
+    assert_switches_as_the_reference(run, ref)
+    assert_one_floor_as_the_reference(run, ref, b.moat is not None)
     e = run.energy  # (the ledger closes to the numerical phases' tolerance)
     assert abs(e.residual) <= 1e-10 * max(abs(e.input_work), e.viscous, e.kinetic, e.hysteretic)
 
@@ -125,10 +139,7 @@ def test_along_one_axis_the_plastic_circle_is_the_line_s_friction_isolator():
     assert all(x.plastic_circle for x in b.bearings)
     run, ref = pounding.simulate(b, rec, 10.0), pounding.simulate(line, rec, 10.0)
     assert ref.displacement_max[0] > 0.05  # (it slid)
-    np.testing.assert_allclose(run.displacement_max[:, 0], ref.displacement_max, rtol=1e-9)
-    np.testing.assert_allclose(run.displacement_min[:, 0], ref.displacement_min, rtol=1e-9)
-    assert run.energy.input_work == pytest.approx(ref.energy.input_work, rel=1e-9)
-    assert run.energy.hysteretic == pytest.approx(ref.energy.hysteretic, rel=1e-8)
+    assert_along_x_is_the_line(run, ref)
     # its slips start where the line's spring yields and end where it reverses (each bearing's circle at
     # once: one event per bearing)
     for mine, theirs in (("circle_slip", "yield"), ("circle_stick", "reversal")):

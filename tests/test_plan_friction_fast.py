@@ -14,8 +14,9 @@ import numpy as np
 import pytest
 from reference_plan import reference
 from reference_plan import record_pair as _record
-from test_plan_friction import _square
-from test_plan_friction_circle import _building, _restated, _switches
+from test_plan_friction import steady_orbit_radius
+from test_plan_friction_circle import (_building, _restated, assert_one_floor_as_the_reference,
+                                       assert_switches_as_the_reference)
 
 import pounding
 from pounding import Bearing, Floor, FrictionIsolator, PlanBuilding, _core
@@ -59,26 +60,11 @@ def test_a_velocity_dependent_friction_circle_runs_as_the_reference(seed, moat, 
     # (measured: switches within 1e-14 s, peak accelerations 1.7e-13 (plastic) and 4.3e-11 (Bouc-Wen) of
     # theirs; without the f' s' term in their rate 4e-8 to 6e-6)
     if circle == "plastic":  # (every stick and slip of every bearing's circle, where the reference has it)
-        for action, want in (("circle_slip", ref.circle_slips), ("circle_stick", ref.circle_sticks)):
-            got = _switches(run, action)
-            assert [q for q, _ in got] == [q for q, _ in sorted(want)], action
-            np.testing.assert_allclose([t for _, t in got], [t for _, t in sorted(want)], rtol=0, atol=1e-11)
-        assert len(ref.circle_slips) >= 4 and len(ref.circle_sticks) >= 4  # (it slid and stuck again)
-    if b.moat is not None:
-        starts = run.event_table[run.event_table[:, 1] == _core.ACTIONS["contact_start"]]
-        assert len(starts) >= 4
-        np.testing.assert_allclose(starts[:, 0], [t for _, t in ref.contact_starts], rtol=0, atol=1e-11)
-    lay, end = run.final_state.layout, run.final_state.vector
-    np.testing.assert_allclose(end[lay["x"]:lay["x"] + 3], ref.y[:3], rtol=0,
-                               atol=1e-10 * np.max(np.abs(ref.y[:3])))
-    np.testing.assert_allclose(end[lay["v"]:lay["v"] + 3], ref.y[3:], rtol=0,
-                               atol=1e-10 * np.max(np.abs(ref.y[3:])))
-    np.testing.assert_allclose(run.final_state.bouc_wen_zs, ref.z, rtol=0, atol=1e-10)
-    top = max(np.max(np.abs(ref.tracked_max)), np.max(np.abs(ref.tracked_min)))
-    np.testing.assert_allclose(run.bearing_displacement_max_m, ref.vector_max, rtol=0, atol=1e-10 * top)
-    # each floor's largest absolute acceleration, located where its rate (the circle's f' s' term in it)
-    # crosses zero
-    np.testing.assert_allclose(run.abs_acceleration_max[0], ref.abs_acc_max, rtol=1e-9)
+        assert_switches_as_the_reference(run, ref)
+    # (and each floor's largest absolute acceleration, located where its rate, the circle's f' s' term in
+    # it, crosses zero)
+    assert_one_floor_as_the_reference(run, ref, b.moat is not None)
+    end = run.final_state.vector
     # the velocity dependence moved it: against the same building's Coulomb friction
     coulomb = pounding.simulate(_fast(plain, plain.bearings[0].isolator.mu, 25.0, circle), pair, t[-1])
     assert np.max(np.abs(coulomb.final_state.vector[:6] - end[:6])) > 1e-3 * np.max(np.abs(end[:6]))
@@ -113,13 +99,7 @@ def _speed_radius(fps, c_per_bearing, freq_hz, a_g):
     ``|(k - m w^2) r + i (c w r + W mu(w r))| = m A``, solved for r."""
     from scipy.optimize import brentq
 
-    b = _square(fps, c_per_bearing)
-    table = pounding.HarmonicPair.circular(a_g, freq_hz)
-    steady = pounding.simulate(b, table, 12.0, sample_rate_hz=0.0).final_state
-    run = pounding.simulate(b, table, 1.0 / freq_hz, state=steady, sample_rate_hz=400.0)
-    x, y = run.displacement[:, 0, 0], run.displacement[:, 0, 1]
-    d, e, _ = np.linalg.lstsq(np.column_stack([x, y, np.ones_like(x)]), -(x * x + y * y), rcond=None)[0]
-    got = np.hypot(x + 0.5 * d, y + 0.5 * e)
+    got = steady_orbit_radius(fps, c_per_bearing, freq_hz, a_g)
     w = 2.0 * math.pi * freq_hz
     k_m = 0.0 if fps.radius_m is None else G / fps.radius_m
     c_m, acc = 4 * c_per_bearing / 4e5, a_g * G
