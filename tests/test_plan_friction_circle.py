@@ -229,6 +229,30 @@ def test_a_state_off_its_circle_while_slipping_is_refused_by_name():
                 pounding.simulate(b, pounding.Harmonic(0.1, 1.0), 0.1, state=tilted)
 
 
+
+def test_a_floor_held_still_by_walls_while_its_circles_slip_goes_on_as_one_long_run():
+    # plastic walls stop a floor in a corner while its circles slip: its velocities are the rounding of the
+    # impulses that stopped it (1e-17 m/s), and so is a circle's slip rate, either way; such final states were
+    # refused as starts (z . u' = -1.1e-17 m/s at 6.1 s)
+    fps = FrictionIsolator(mu=0.05, radius_m=2.5, preslip_m=1e-3)
+    b = PlanBuilding([Floor(4e5, (20.0, 20.0), centre_m=(1.0, 0.5))],
+                     [Bearing((sx * 8.0, sy * 8.0), fps) for sx in (-1, 1) for sy in (-1, 1)],
+                     moat=RectangularMoat(0.01, pounding.RigidStop(0.0)))
+    pair = pounding.records.fema_p695_pairs("far_field")[0].scaled(1.5)
+    whole = pounding.simulate(b, pair, 12.0, sample_rate_hz=0.0)
+    lay = whole.final_state.layout
+    held_at = 0
+    for t in np.linspace(0.3, 11.7, 60)[[30, 42, 46]]:  # (measured: three such ends among the 60)
+        first = pounding.simulate(b, pair, float(t), sample_rate_hz=0.0)
+        vec = first.final_state.vector
+        still = np.max(np.abs(vec[lay["v"]:lay["v"] + 3])) < 1e-15 and np.any(vec[lay["in"]:lay["in"] + 8])
+        held_at += bool(still and np.any(vec[lay["region"]:lay["region"] + 8] == 1.0))
+        rest = pounding.simulate(b, pair, 12.0 - float(t), state=first.final_state, sample_rate_hz=0.0)
+        # (measured: within 3.7e-15 m and m/s)
+        np.testing.assert_allclose(rest.final_state.vector[lay["x"]:lay["x"] + 6],
+                                   whole.final_state.vector[lay["x"]:lay["x"] + 6], rtol=0, atol=1e-12)
+    assert held_at == 3
+
 def test_the_model_and_the_door_refuse_what_is_no_plastic_circle(tmp_path):
     fps = FrictionIsolator(mu=0.06, radius_m=2.0, preslip_m=5e-4)
     with pytest.raises(InputError) as err:

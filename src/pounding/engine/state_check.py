@@ -27,6 +27,8 @@ from .state import LAYOUT_KEYS, State, shifted
 if TYPE_CHECKING:
     from ..model import Adjacent, Structure
 
+ROUNDED_RATE_M_S = 1e-12  # (a friction circle's slip rate this small, inwards, is a bearing at rest)
+
 
 def contact_name(slot: tuple, pair: bool) -> str:
     """A contact slot's name in a structure's (or a pair's) tables: ``wall 0 left``, ``first wall 1 right``,
@@ -205,15 +207,22 @@ def _check_circle(x_all: list, lay: dict, asm: Assembly, levered: Optional[tuple
         raise bad(field, flag, f"is a friction circle's slip (1: slipping), but its |z| is {size:g}, inside "
                                "the circle (a slip is on it, |z| = 1)")
     v = np.asarray(x_all[lay["v"]:lay["v"] + int(asm.system.n)])
-    rates = []
+    rates, levers = [], []
     for el in (e, f):
         if levered is not None:
-            rates.append(float(np.asarray(levered[1][el]) @ v))
+            w = np.asarray(levered[1][el])
+            rates.append(float(w @ v))
+            levers.append(float(np.sum(np.abs(w))))
         else:
             i, j = asm.elements[el].i, asm.elements[el].j
             rates.append(float(v[i] - (v[j] if j >= 0 else 0.0)))
+            levers.append(2.0)
     outwards = x_all[lay["zeta"] + q] * rates[0] + x_all[lay["zeta"] + mate] * rates[1]
-    if outwards < -1e-9 * math.hypot(*rates):  # (a run's final state's slip may end inwards by rounding)
+    # (a run's final state's slip may end inwards by rounding: of the rate itself, of the velocities it is
+    # made of, or, where walls hold the bearing's floor still, of the impulses that stopped it: a rate below
+    # ROUNDED_RATE_M_S is a floor at rest)
+    scale = max(math.hypot(*rates), max(levers) * float(np.max(np.abs(v))))
+    if outwards < -1e-9 * scale - ROUNDED_RATE_M_S:
         raise bad(field, flag, f"is a friction circle's slip, against its bearing's velocity (z . u' = "
                                f"{outwards:g} m/s: a slip goes outwards, else it sticks)")
 
