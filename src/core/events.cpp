@@ -719,16 +719,32 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
         if (gm <= tol0) return tm;
         return find_root(the_fn(), ph, tm, h, gm, g1, 0.0, gp1, xtol);
     }
+    if (leaves && g0 < -tol0 && g1 >= g0 - tol1 && std::max(std::abs(gp0), std::abs(gp1)) <= ROUNDING * ph.vround &&
+        evs[i].action == ACT_CONTACT && law_is_rigid(slot(ph, evs[i].side).law))
+        // a free rigid stop past its stop by more than the rounding at the start, not moving at either end and
+        // no deeper at the end: a corner its floor's holds keep still, 1e-10 m into its wall by the holds' own
+        // rounding.  Nothing meets it (its impact could move nothing: the floor cannot move)
+        return -1.0;
     if (leaves) {
         double tp = h;
+        double t_up = -1.0, gp_up = 0.0;  // (the earliest instant looked at where it still moved away)
         for (int it = 0; it < 60; ++it) {
             tp *= 0.5;
             phase_eval(ph, tp, y, a);
             const EventValue ev = event_value(evs[i], ph, tp, y, a);
             if (ev.g > ROUNDING * ev.scale) return find_root(the_fn(), ph, tp, h, ev.g, g1, ev.gp, gp1, xtol);
+            if (ev.gp > 0.0) {
+                t_up = tp;
+                gp_up = ev.gp;
+            }
         }
-        // it first rose, by less than the rounding, and came back: where it turned
+        // it first rose, by less than the rounding, and came back: where it turned.  Its rate at the start may
+        // be the rounding of zero either way (a rigid stop left at rest by an impulse on a floor's corner, the
+        // corner's rate summed from the floor's motions): where it still moved away soon after, it turned there
         if (gp0 > 0.0 && gp1 < 0.0) return find_root(the_rate(), ph, t_lo, h, gp0, gp1, NaN, NaN, xtol);
+        if (gp1 < 0.0 && t_up > 0.0 && std::abs(gp0) <= ROUNDING * ph.vround && evs[i].action == ACT_CONTACT &&
+            law_is_rigid(slot(ph, evs[i].side).law))
+            return find_root(the_rate(), ph, t_up, h, gp_up, gp1, NaN, NaN, xtol);
         return 0.0;
     }
     if (!(gp0 < 0.0 && gp1 > 0.0)) return -1.0;

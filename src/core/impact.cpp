@@ -306,6 +306,20 @@ void end_sequence(double* st, const Layout& L, int c, double t, Rows& chatters) 
 
 // After a velocity jump: the springs a hysteretic element slips and the turns of a deformable bumper's law
 // follow the new velocities (their reversal events watch a velocity crossing zero, which a jump steps over)
+void settle_holds(double* st, const System& sy, const Sticking& stk, double* ledger) {
+    if (!stk.general || !stk.any) return;
+    double* v = st + sy.lay.v;
+    static thread_local std::vector<double> before;
+    before.assign(v, v + sy.n);
+    stk.project(sy.mass, v);
+    double loss = 0.0;  // (P is the mass's orthogonal projection: the energy taken is the change's own)
+    for (int k = 0; k < sy.n; ++k) {
+        const double dv = before[static_cast<size_t>(k)] - v[k];
+        loss += 0.5 * sy.mass[static_cast<size_t>(k)] * dv * dv;
+    }
+    ledger[L_BUMPER_LOSS] += loss;
+}
+
 void after_velocity_jump(double* st, const System& sy) {
     const Layout& L = sy.lay;
     const double* v = st + L.v;
@@ -389,15 +403,16 @@ void release_pulling(double* st, const System& sy, Sticking& stk, int c, const d
     }
 }
 
-// before an impact on contact c: the holds its impulse would have to pull through let go (their rows)
-void release_tensile(double* st, const System& sy, Sticking& stk, int c, Rows& contacts) {
+// before an impact on contact c: the holds its impulse would have to pull through let go (their rows); a
+// meeting slower than v_res lets none go (its impulse is the rounding's: the motion's forces decide, after it)
+void release_tensile(double* st, const System& sy, Sticking& stk, int c, double v_res, Rows& contacts) {
     const Layout& L = sy.lay;
     const Contact& ct = sy.contact[static_cast<size_t>(c)];
     for (int pass = 0; pass < sy.nc(); ++pass) {
         stk.build(sy, st);
         if (!stk.any) return;
         const double vn = ct.sign * rel(st + L.v, ct);
-        if (!(vn > 0.0)) return;
+        if (!(vn > v_res)) return;
         const Struck sides = struck(stk, sy, ct);
         const double inv = sides.inv;
         if (inv == 0.0) return;
@@ -446,7 +461,7 @@ bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, S
     const double t = st[T];
     const double e = law_restitution(ct.p);
     double* v = st + L.v;
-    release_tensile(st, sy, stk, c, contacts);  // (a hold the impulse would have to pull through lets go)
+    release_tensile(st, sy, stk, c, sc.v_res, contacts);  // (a hold the impulse would pull through lets go)
     stk.build(sy, st);
     const Struck sides = struck(stk, sy, ct);
     const double inv = sides.inv;
@@ -532,6 +547,7 @@ bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, S
     for (int k = 0; k < N_ACC; ++k) st[acc + k] = 0.0;
     st[acc + A_TSTART] = t;
     stk.build(sy, st);
+    settle_holds(st, sy, stk, ledger);
     return true;
 }
 

@@ -32,6 +32,11 @@ inline bool others_touch(const double* st, const System& sy, int c, double h) {
     }
     return false;
 }
+// general mode (holds on levers): the velocities moved onto the held stops' constraints (W v = 0), the
+// kinetic energy this takes added to the contacts' loss.  Moreau's impacts leave a held stop separating, or a
+// stop at rest closing, at up to v_res; held at that rate, a corner would drift off or into its wall while
+// its hold's force worked on it, outside the ledger
+void settle_holds(double* st, const System& sy, const Sticking& stk, double* ledger);
 // (ph, tau: the phase that led to the instant, for the rates of the forces that are zero to the rounding)
 bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, Sticking& stk, int c, const double* ag,
                      const ImpactScales& sc, double* ledger, Rows& contacts, Rows& chatters, double* q,

@@ -270,6 +270,7 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
         st[acc + A_TSTART] = t;
     }
     stk.build(sy, st);
+    settle_holds(st, sy, stk, ledger);
     return true;
 }
 
