@@ -237,9 +237,10 @@ def _on_sliders_in_a_plastic_moat(seed):
     rectangular moat of plastic rigid walls at its base, and a FEMA far-field pair scaled by 1 to 2.5."""
     rng = np.random.default_rng(seed)
     b = _draw_building(rng, 3, 0.03)
+    mu = rng.uniform(0.03, 0.1)
     radius = rng.choice([None, rng.uniform(1.5, 4.0)])
-    fps = pounding.FrictionIsolator(mu=rng.uniform(0.03, 0.1), radius_m=radius,
-                                    preslip_m=rng.uniform(3e-4, 2e-3), damping_n_s_m=rng.uniform(0.0, 2e4))
+    fps = pounding.FrictionIsolator(mu=mu, radius_m=radius, preslip_m=rng.uniform(3e-4, 2e-3),
+                                    damping_n_s_m=rng.uniform(0.0, 2e4))
     moat = RectangularMoat(tuple(rng.uniform(0.005, 0.03, 4)), pounding.RigidStop(0.0), 0)
     b = dataclasses.replace(b, bearings=[Bearing(q.at_m, fps) for q in b.bearings], moat=moat)
     pairs = pounding.records.fema_p695_pairs("far_field")
