@@ -277,3 +277,25 @@ def test_a_corner_held_on_its_wall_does_not_move_along_its_normal():
     assert len(held) == 3
     for c in held:  # (measured: within 1.3e-16 m/s)
         assert abs(np.asarray(asm.contact_weights[c]) @ v) <= 1e-14
+
+
+@pytest.mark.parametrize("seed", [1056, 1131])
+def test_a_corner_newly_held_lets_go_the_holds_it_would_make_pull(seed):
+    # a fuzz's draws (bilinear bearings, plastic walls around an upper floor, a FEMA pair at an angle): a
+    # corner met at rest and held added its constraint to the floor's other holds, one of which then pulled
+    # (-15.7 kN of 10 MN, for 29 us) until the next impact let it go
+    rng = np.random.default_rng(seed)
+    levels = int(rng.integers(1, 4))
+    b = _draw_building(rng, levels, 0.03)
+    assert int(rng.integers(0, 3)) == 2  # (the fuzz's bearings: the drawn building's own)
+    walls = pounding.RigidStop(float(rng.choice([0.0, 0.3, 0.6])))
+    b = dataclasses.replace(b, moat=RectangularMoat(tuple(rng.uniform(0.005, 0.04, 4)), walls,
+                                                    int(rng.integers(0, levels))))
+    pairs = pounding.records.fema_p695_pairs("far_field")
+    pair = pairs[int(rng.integers(0, len(pairs)))]
+    pair = pair.scaled(float(rng.uniform(0.7, 2.5))).rotated(float(rng.uniform(0.0, 180.0)))
+    run = pounding.simulate(b, pair, 20.0, sample_rate_hz=50.0)
+    assert run.success, run.message
+    force = np.asarray(run.contact_force)
+    assert len(run.contacts) > 400 and b.moat.level >= 1
+    assert float(np.min(force)) >= -1e-12 * float(np.max(force))  # (measured: -2.7e-9 N of 1e7)

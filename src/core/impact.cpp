@@ -304,8 +304,6 @@ void end_sequence(double* st, const Layout& L, int c, double t, Rows& chatters) 
         push_chatter(chatters, c, seq_first(st, L, c), t, seq_count(st, L, c), false);
 }
 
-// After a velocity jump: the springs a hysteretic element slips and the turns of a deformable bumper's law
-// follow the new velocities (their reversal events watch a velocity crossing zero, which a jump steps over)
 void settle_holds(double* st, const System& sy, const Sticking& stk, double* ledger) {
     if (!stk.general || !stk.any) return;
     double* v = st + sy.lay.v;
@@ -320,6 +318,8 @@ void settle_holds(double* st, const System& sy, const Sticking& stk, double* led
     ledger[L_BUMPER_LOSS] += loss;
 }
 
+// After a velocity jump: the springs a hysteretic element slips and the turns of a deformable bumper's law
+// follow the new velocities (their reversal events watch a velocity crossing zero, which a jump steps over)
 void after_velocity_jump(double* st, const System& sy) {
     const Layout& L = sy.lay;
     const double* v = st + L.v;
@@ -442,8 +442,10 @@ bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, St
     }
     const Contact& ct = sy.contact[static_cast<size_t>(c)];
     const bool jump = ct.sign * rel(st + sy.lay.v, ct) > 0.0;  // (an impulse to come: velocities jump)
+    const bool was_held = st[sy.lay.in_at(c)] != 0.0;
     const bool resolved = rigid_contact_(st, sy, ph, tau, stk, c, ag, sc, ledger, contacts, chatters, q, row, flight);
-    if (jump) {
+    // (and where it is newly held: on levers a new hold's constraint changes every other hold's force)
+    if (jump || (sy.lever_holds && !was_held && st[sy.lay.in_at(c)] != 0.0)) {
         stk.build(sy, st);
         if (stk.any) release_pulling(st, sy, stk, c, ag, q, row, contacts);
     }
