@@ -215,7 +215,8 @@ def test_a_state_off_its_circle_while_slipping_is_refused_by_name():
             pounding.simulate(b, pounding.Harmonic(0.1, 1.0), 0.1, state=bad)
         assert err.value.field in ("state.isolator_branch", f"state.vector[{lay['region']}]")
     # a slip at a run's end can turn inwards by rounding (z . u' = -6e-17 m/s was refused, a final_state of a
-    # rigid moat's run): within 1e-9 of |u'| it is taken, beyond it refused
+    # rigid moat's run): within 1e-9 of the velocities (|u'|, or the levers times the largest) and 1e-12 m/s
+    # it is taken, beyond it refused
     across = np.array([-inwards[1], inwards[0]])
     for tilt, taken in ((1e-13, True), (1e-6, False)):
         vec = state.vector.copy()
