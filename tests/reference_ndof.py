@@ -121,6 +121,9 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
     # each plastic spring: its slip u_p and its mode (0 stuck, +-1 slipping that way)
     slip = [0.0] * len(s.plastic)
     mode = [0] * len(s.plastic)
+    # a spring just stuck from slipping that way (+-1; 0 none): its strain leaves that yield by less than the
+    # rounding at first, so that yield is looked for only once the strain turns back towards it
+    left = [0] * len(s.plastic)
 
     def drift(y, i):
         return y[i + 1] - y[i]
@@ -190,7 +193,11 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
             evs.append(release)
         for q, (i, _, d_y) in enumerate(s.plastic):
             for sg in (1.0, -1.0):
-                if mode[q] == 0:  # stuck: the spring's strain reaches +-D
+                if mode[q] == 0 and left[q] == sg:  # just stuck from this side: the drift turns back
+                    def change(t, y, i=i, sg=sg):
+                        return -sg * (y[n + i + 1] - y[n + i])
+                    change.turn = True
+                elif mode[q] == 0:  # stuck: the spring's strain reaches +-D
                     def change(t, y, q=q, i=i, sg=sg, d_y=d_y):
                         return d_y - sg * (drift(y, i) - slip[q])
 
@@ -267,11 +274,17 @@ def reference(s: Structure, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
         t = t_hit
         if hasattr(evs[c], "plastic"):
             q, sg = evs[c].plastic
-            if mode[q] == 0:
-                mode[q] = int(sg)
-                out.yields.append((s.plastic[q][0], t))
+            i = s.plastic[q][0]
+            if hasattr(evs[c], "turn"):  # (its drift turned back: its yield is looked for again)
+                left[q] = 0
+            elif mode[q] == 0:
+                mode[q], left[q] = int(sg), 0
+                out.yields.append((i, t))
             else:
                 mode[q] = 0
+                # (it leaves the yield it stuck at where the drift's acceleration heads away from it)
+                a = rhs(t, y)
+                left[q] = int(sg) if -sg * (a[n + i + 1] - a[n + i]) > 0.0 else 0
             continue
         c = evs[c].contact
         sg = SIGNS[c]

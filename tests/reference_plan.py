@@ -165,6 +165,9 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
     relax = [(0.0, 0.0)] * len(contacts)  # (compression at release, release time)
     slip = [0.0] * len(s.plastic)
     mode = [0] * len(s.plastic)  # 0 stuck, +-1 slipping that way
+    # a spring just stuck from slipping that way (+-1; 0 none): its strain leaves that yield by less than the
+    # rounding at first, so that yield is looked for only once the strain turns back towards it
+    left = [0] * len(s.plastic)
     out = PlanResult()
 
     def along(y, w):  # (displacement, velocity) of a point along w
@@ -281,7 +284,11 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
             evs.append(release)
         for q, (w, (_, _, d)) in enumerate(zip(wp, s.plastic)):
             for sg in (1.0, -1.0):
-                if mode[q] == 0:  # stuck: the spring's strain reaches +-D
+                if mode[q] == 0 and left[q] == sg:  # just stuck from this side: the strain turns back
+                    def change(t, y, w=w, sg=sg):
+                        return -sg * along(y, w)[1]
+                    change.turn = True
+                elif mode[q] == 0:  # stuck: the spring's strain reaches +-D
                     def change(t, y, q=q, w=w, sg=sg, d=d):
                         return d - sg * (along(y, w)[0] - slip[q])
 
@@ -448,12 +455,16 @@ def reference(s: PlanModel, t_end: float, y0: np.ndarray, rtol: float = 1e-12, a
                 continue
             if hasattr(evs[c], "plastic"):
                 q, sg = evs[c].plastic
-                if mode[q] == 0:
-                    mode[q] = int(sg)
+                if hasattr(evs[c], "turn"):  # (its strain turned back: its yield is looked for again)
+                    left[q] = 0
+                elif mode[q] == 0:
+                    mode[q], left[q] = int(sg), 0
                     out.yields.append((q, t))
                 else:
                     mode[q] = 0
                     out.sticks.append((q, t))
+                    # (it leaves the yield it stuck at where its strain's acceleration heads away from it)
+                    left[q] = int(sg) if -sg * along(rhs(t, y), wp[q])[1] > 0.0 else 0
                 continue
             c = evs[c].contact
             if inside[c]:

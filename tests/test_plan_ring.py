@@ -10,7 +10,7 @@ import dataclasses
 
 import numpy as np
 import pytest
-from hypothesis import HealthCheck, assume, event, given, settings
+from hypothesis import HealthCheck, assume, event, example, given, settings
 from hypothesis import strategies as st
 
 import pounding
@@ -84,6 +84,9 @@ def _same_as_the_reference(rng, levels, gap_m, pga):
 @settings(max_examples=5, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(seed=st.integers(0, 2**32 - 1), levels=st.integers(1, 2), gap_m=st.floats(0.02, 0.1),
        pga=st.floats(2.0, 5.0))
+# (a draw where two bearings' elements reverse 5e-10 s apart: the reference yielded one again 4e-10 s after
+# its reversal, its strain 2e-19 m from the yield, below the rounding, while moving away from it)
+@example(seed=2525, levels=1, gap_m=0.0625, pga=3.655890567700044)
 def test_a_building_in_a_ring_runs_as_the_reference(seed, levels, gap_m, pga):
     ref = _same_as_the_reference(np.random.default_rng(seed), levels, gap_m, pga)
     assume(ref is not None)
