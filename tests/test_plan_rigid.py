@@ -251,8 +251,11 @@ def _on_sliders_in_a_plastic_moat(seed):
 # the rounding of zero, the wall found struck again at once though the corner lifted off by less than the
 # rounding before it came back; 48 and 541, a corner on two walls at once, each impact of rounding's speed on
 # one letting the other's hold go; 14, a corner 2e-10 m into its wall (the holds' rounding), its floor held
-# still by three others, struck at once again and again.  520's ledger missed by 1.1e-8 (below)
-@pytest.mark.parametrize("seed", [511, 61, 48, 541, 14, 520])
+# still by three others, struck at once again and again.  520's ledger missed by 1.1e-8 (below).  176, a
+# corner left at rest by an impulse while the bearings' circles slip (a numerical phase): it lifts off by
+# 9e-17 m for 1.8 us and comes back, and its rate near the start, the rounding of zero either way, turned
+# every 3e-15 to 9e-15 s, each turn taken for its meeting (449 at 8.1241182009 s)
+@pytest.mark.parametrize("seed", [511, 61, 48, 541, 14, 520, 176])
 def test_floors_on_sliders_struck_and_held_by_plastic_walls_run_to_their_end(seed):
     b, pair = _on_sliders_in_a_plastic_moat(seed)
     run = pounding.simulate(b, pair, 20.0, sample_rate_hz=0.0)

@@ -728,6 +728,7 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
     if (leaves) {
         double tp = h;
         double t_up = -1.0, gp_up = 0.0;  // (the earliest instant looked at where it still moved away)
+        double t_sure = -1.0, gp_sure = 0.0;  // (the latest where it moved away by more than the rounding)
         for (int it = 0; it < 60; ++it) {
             tp *= 0.5;
             phase_eval(ph, tp, y, a);
@@ -737,6 +738,16 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
                 t_up = tp;
                 gp_up = ev.gp;
             }
+            if (t_sure < 0.0 && ev.gp > ROUNDING * ph.vround) {
+                t_sure = tp;
+                gp_sure = ev.gp;
+            }
+        }
+        // (near the start of a numerical phase its rate is the rounding of zero either way, a turn of its own
+        // every few 1e-15 s: the turn sought is bracketed from where it surely moved away)
+        if (t_sure > 0.0) {
+            t_up = t_sure;
+            gp_up = gp_sure;
         }
         // it first rose, by less than the rounding, and came back: where it turned.  Its rate at the start may
         // be the rounding of zero either way (a rigid stop left at rest by an impulse on a floor's corner, the
