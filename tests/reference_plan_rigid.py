@@ -21,6 +21,13 @@ weights: ``x - y_c theta`` for a corner), at ``d = gap``.
   corner of the moat by three or four corners: the forces not unique) raise :class:`Chatter`.
 * A rebound too small to follow (the same wall struck again within ``MIN_FLIGHT_S``: a chatter the engine
   sums in closed form) raises :class:`Chatter`: the draw is not compared.
+
+A ring (a circular moat's rigid wall, radius R, PlanModel's ``rings``: its stiffness and damping unused) is
+struck by a point at ``P = (p_x + w_x . q, p_y + w_y . q)`` from its centre where ``|P| = R``, along its
+normal ``n = P / |P|``: its row is ``n_x w_x + n_y w_y`` there, and it changes as the point moves.  Held, the
+point slides along the ring: ``d/dt (row . q') = row . q'' + (|P'|^2 - (n . P')^2) / |P|``, the last term the
+centripetal one, so the held motion's bottom row is minus it instead of 0 (integrated as it is: a held
+point drifts off its ring by the integration's error, within 4e-15 m on drawn buildings).
 """
 
 from __future__ import annotations
@@ -37,6 +44,7 @@ from reference_plan import PlanModel
 
 MIN_FLIGHT_S = 1e-6
 TOUCH_M = 1e-12  # (a point this close to its wall touches it: struck with it at once)
+MAX_STRETCHES = 100_000  # (solve_ivp's calls, each to an event or a record's kink: a bound on the loop)
 
 
 class Chatter(RuntimeError):
@@ -65,10 +73,41 @@ def _saddle(mass: np.ndarray, rows: np.ndarray, top: np.ndarray, bottom: np.ndar
 def rigid_reference(s: PlanModel, restitution: float, t_end: float, y0: np.ndarray, rtol: float = 1e-12,
                     atol: float = 1e-15) -> RigidResult:
     n = s.mass.size
-    if s.plastic or s.bouc_wen or s.rings:
-        raise ValueError("rigid_reference takes linear springs and rigid walls only")
+    if s.plastic or s.bouc_wen:
+        raise ValueError("rigid_reference takes linear springs and rigid walls or rings only")
     towards = [sign * np.asarray(w, dtype=float) for w, sign, *_ in s.walls]  # (d = towards . q)
     gaps = [float(gap) for _, _, gap, *_ in s.walls]
+    rings = [(np.asarray(wx, dtype=float), np.asarray(wy, dtype=float), float(px), float(py), float(radius))
+             for wx, wy, px, py, radius, *_ in s.rings]
+    n_walls = len(towards)
+
+    def point(c, y):  # (a ring's point from its centre, and its velocity)
+        wx, wy, px, py, _ = rings[c - n_walls]
+        return (np.array([px + wx @ y[:n], py + wy @ y[:n]]), np.array([wx @ y[n:2 * n], wy @ y[n:2 * n]]))
+
+    def gap(c, y):  # (>= 0 open)
+        if c < n_walls:
+            return gaps[c] - float(towards[c] @ y[:n])
+        p, _ = point(c, y)
+        return rings[c - n_walls][4] - math.hypot(*p)
+
+    def row(c, y):  # (the closing rate is row . q')
+        if c < n_walls:
+            return towards[c]
+        wx, wy, *_ = rings[c - n_walls]
+        p, _ = point(c, y)
+        nx, ny = p / math.hypot(*p)
+        return nx * wx + ny * wy
+
+    def curvature(c, y):  # (d/dt (row . q') - row . q'': 0 on a wall, centripetal on a ring)
+        if c < n_walls:
+            return 0.0
+        p, dp = point(c, y)
+        r = math.hypot(*p)
+        along = float(p @ dp) / r
+        return (float(dp @ dp) - along * along) / r
+
+    n_cons = n_walls + len(rings)
     t_rec, ax, ay = (np.asarray(a, dtype=float) for a in s.record)
     w_max = math.sqrt(max(float(np.max(np.linalg.eigvals(s.k / s.mass[:, None]).real)), 0.0))
     max_step = 2.0 * math.pi / w_max / 100.0 if w_max > 0.0 else np.inf
@@ -85,7 +124,8 @@ def rigid_reference(s: PlanModel, restitution: float, t_end: float, y0: np.ndarr
         f = free_force(t, y)
         if not walls:
             return f / s.mass, np.zeros(0)
-        a, lam = _saddle(s.mass, np.array([towards[c] for c in walls]), f, np.zeros(len(walls)))
+        a, lam = _saddle(s.mass, np.array([row(c, y) for c in walls]), f,
+                         np.array([-curvature(c, y) for c in walls]))
         return a, lam  # (M a = F - J^T f: each wall pushes its point back by f)
 
     def rhs(t, y):
@@ -93,7 +133,7 @@ def rigid_reference(s: PlanModel, restitution: float, t_end: float, y0: np.ndarr
 
     def events():
         evs = []
-        for c in range(len(towards)):
+        for c in range(n_cons):
             if c in held:
                 def let_go(t, y, k=held.index(c)):
                     return motion(t, y, held)[1][k]
@@ -101,7 +141,7 @@ def rigid_reference(s: PlanModel, restitution: float, t_end: float, y0: np.ndarr
                 evs.append(let_go)
             else:
                 def strike(t, y, c=c):
-                    return gaps[c] - float(towards[c] @ y[:n])
+                    return gap(c, y)
                 strike.wall, strike.held, strike.contact = c, False, c
                 evs.append(strike)
         for f in evs:
@@ -109,15 +149,15 @@ def rigid_reference(s: PlanModel, restitution: float, t_end: float, y0: np.ndarr
         return evs
 
     def touching(y):  # (the walls whose points are at them, to TOUCH_M, held or not)
-        return [k for k in range(len(towards)) if gaps[k] - float(towards[k] @ y[:n]) <= TOUCH_M]
+        return [k for k in range(n_cons) if gap(k, y) <= TOUCH_M]
 
     def independent(rows):
         return rows.shape[0] == 0 or np.linalg.matrix_rank(rows) == rows.shape[0]
 
-    def smallest_consistent(walls, test):  # (the first subset, smallest first, that passes test)
+    def smallest_consistent(walls, test, y):  # (the first subset, smallest first, that passes test)
         for size in range(len(walls) + 1):
             for subset in itertools.combinations(walls, size):
-                rows = np.array([towards[k] for k in subset]).reshape(len(subset), n)
+                rows = np.array([row(k, y) for k in subset]).reshape(len(subset), n)
                 if independent(rows):
                     found = test(list(subset), rows)
                     if found is not None:
@@ -128,7 +168,7 @@ def rigid_reference(s: PlanModel, restitution: float, t_end: float, y0: np.ndarr
         walls = touching(y)
         v = y[n:]
         scale = float(np.max(np.abs(v)))
-        every = np.array([towards[k] for k in walls])
+        every = np.array([row(k, y) for k in walls])
 
         def kkt(subset, rows):  # (J_S v+ = 0 with impulses >= 0, and no other touching wall closing)
             dv, p = _saddle(s.mass, rows, np.zeros(n), -rows @ v) if subset else (np.zeros(n), np.zeros(0))
@@ -137,13 +177,13 @@ def rigid_reference(s: PlanModel, restitution: float, t_end: float, y0: np.ndarr
             if np.any(every @ (v + dv) > 1e-13 * scale):
                 return None
             return subset, p, v + dv
-        subset, impulses, v_plus = smallest_consistent(walls, kkt)
-        resting = [k for k in walls if abs(float(towards[k] @ v_plus)) <= 1e-12 * scale]
-        if not independent(np.array([towards[k] for k in resting]).reshape(len(resting), n)):
+        subset, impulses, v_plus = smallest_consistent(walls, kkt, y)
+        resting = [k for k in walls if abs(float(row(k, y) @ v_plus)) <= 1e-12 * scale]
+        if not independent(np.array([row(k, y) for k in resting]).reshape(len(resting), n)):
             raise Chatter(f"more walls at rest than the floor has motions, t = {t}")  # (forces not unique)
         for k, p in zip(subset, impulses):
             if k not in held:
-                out.impacts.append((k, t, float(towards[k] @ v), float(p)))
+                out.impacts.append((k, t, float(row(k, y) @ v), float(p)))
         return np.concatenate((y[:n], v_plus)), resting
 
     def hold(t, y, resting):  # (the smallest set of resting walls that push, with none of the others pushed)
@@ -151,10 +191,10 @@ def rigid_reference(s: PlanModel, restitution: float, t_end: float, y0: np.ndarr
             a, f = motion(t, y, subset)
             big = float(np.max(np.abs(a)))
             others = [k for k in resting if k not in subset]
-            if np.any(f < 0.0) or any(float(towards[k] @ a) > 1e-12 * big for k in others):
+            if np.any(f < 0.0) or any(float(row(k, y) @ a) + curvature(k, y) > 1e-12 * big for k in others):
                 return None
             return subset
-        now = smallest_consistent(resting, pushing)
+        now = smallest_consistent(resting, pushing, y)
         for k in held:
             if k not in now:
                 out.releases.append((k, t))
@@ -164,7 +204,7 @@ def rigid_reference(s: PlanModel, restitution: float, t_end: float, y0: np.ndarr
         held[:] = now
 
     def strike(t, y, c):
-        if float(towards[c] @ y[n:]) <= 0.0:
+        if float(row(c, y) @ y[n:]) <= 0.0:
             return y
         if t - last_impact.get(c, -np.inf) < MIN_FLIGHT_S:
             raise Chatter(f"wall {c} struck again at t = {t} within {MIN_FLIGHT_S} s")
@@ -175,13 +215,15 @@ def rigid_reference(s: PlanModel, restitution: float, t_end: float, y0: np.ndarr
             return y
         if len(touching(y)) > 1:  # (at once, Newton's law one after the other is not Moreau's: not followed)
             raise Chatter(f"impacts at one instant, t = {t}")
-        u = float(towards[c] @ y[n:])
-        dv, p = _saddle(s.mass, towards[c][None, :], np.zeros(n), np.array([-(1.0 + restitution) * u]))
+        u = float(row(c, y) @ y[n:])
+        dv, p = _saddle(s.mass, row(c, y)[None, :], np.zeros(n), np.array([-(1.0 + restitution) * u]))
         out.impacts.append((c, t, u, float(p[0])))
         return np.concatenate((y[:n], y[n:] + dv))
 
     t, y = 0.0, np.asarray(y0, dtype=float).copy()
-    while t < t_end:
+    for _ in range(MAX_STRETCHES):
+        if t >= t_end:
+            break
         after = t_rec[t_rec > t * (1.0 + 1e-15) + 1e-15]
         t_next = min(t_end, float(after[0])) if after.size else t_end
         evs = events()
@@ -204,5 +246,7 @@ def rigid_reference(s: PlanModel, restitution: float, t_end: float, y0: np.ndarr
             out.releases.append((f.wall, t))
         else:
             y = strike(t, y, f.wall)
+    else:
+        raise RuntimeError(f"more than {MAX_STRETCHES} stretches by t = {t}")
     out.y = y
     return out
