@@ -72,6 +72,20 @@ EventValue circle_value(Phase& ph, int q, double tau, const double* y, const dou
     return {p, rq * du + rm * dm + z[q] * rel(a, h) + z[m] * rel(a, hm), std::hypot(du, dm) + ph.vround};
 }
 
+// the accuracy of a plastic circle's slip rate z . u' in a numerical phase, m/s: the step's tolerance of the velocities
+// v it is made of (phase.hpp's NUMERIC_V_FLOOR_M_S), weighted by both mates' pairs (|z| <= 1)
+double circle_rate_accuracy(const Phase& ph, int q, const double* v) {
+    const Hysteretic& h = *ph.bw[static_cast<size_t>(q)];
+    double s = 0.0;
+    for (const Hysteretic* e : {&h, ph.bw[static_cast<size_t>(h.bw_mate_slot)]}) {
+        int d[4];
+        double w[4];
+        const int m = e->entries(d, w);
+        for (int r = 0; r < m; ++r) s += std::abs(w[r]) * ph.rtol * (NUMERIC_V_FLOOR_M_S + std::abs(v[d[r]]));
+    }
+    return s;
+}
+
 }  // namespace
 
 EventValue held_force(Phase& ph, int c, double tau, const double* y, const double* a) {
@@ -762,7 +776,12 @@ double locate_event(const EventRow* evs, int i, Phase& ph, double h, double g0, 
     // a local minimum inside: does it dip below zero?
     double tm, gm, sc;
     minimum(tm, gm, sc);
-    if (gm >= -ROUNDING * sc) return -1.0;
+    // (a circle's slip rate in a numerical phase: each instant's value is a step of its own from the start, within
+    // the step's tolerance of the velocities it is made of, not their rounding: a dip of 1e-11 m/s, within that
+    // accuracy, taken for the slip's end on a floor at rest, stuck it and slipped it again at one instant, without end)
+    double noise = ROUNDING * sc;
+    if (evs[i].kind == KIND_CIRCLE && ph.numeric) noise = std::max(noise, circle_rate_accuracy(ph, evs[i].side, y + ph.n));
+    if (gm >= -noise) return -1.0;
     if (g0 <= tol0) return 0.0;  // it leaves the boundary on the wrong side at once
     return find_root(the_fn(), ph, t_lo, tm, g0, gm, gp0, 0.0, xtol);
 }

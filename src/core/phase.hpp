@@ -31,6 +31,9 @@
 
 namespace pounding {
 
+// a numerical phase's step keeps its error within rtol (NUMERIC_X_FLOOR_M + |x|) on each displacement and rtol
+// (NUMERIC_V_FLOOR_M_S + |v|) on each velocity (run_setup.cpp's numeric_step)
+constexpr double NUMERIC_X_FLOOR_M = 1e-3, NUMERIC_V_FLOOR_M_S = 1e-2;
 constexpr int MAX_TERMS = 48;  // of a sub-interval's series (about 20 are used: the bound is a safeguard)
 
 // a contact slot in this phase
@@ -78,6 +81,7 @@ struct Phase {
     std::vector<char> bw_lin;
     std::vector<double> zoff, zlin;
     bool numeric = false;
+    double rtol = 0.0;  // the run's relative tolerance: a numerical phase's accuracy (run.cpp's numeric_step)
     std::vector<ContactPhase> ct;
     Sticking stk;  // the rigid stops held shut in this phase: every acceleration is projected by it
     // the isolator: its pair, dashpot and linear branch (force kiso u + riso + cd u')

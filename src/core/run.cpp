@@ -560,6 +560,7 @@ void set_up(Loop& lp) {
     const System& sy = lp.sy;
     Phase& ph = lp.ph;
     run_constants(ph, sy, lp.fo);
+    ph.rtol = lp.opt.rtol;
     ph.evaluations = 0;
     ph.poly_evaluations = 0;
     ph.series_made = 0;

@@ -282,7 +282,7 @@ NumStep numeric_step(Phase& ph, double h, double h_num, double rtol, double t) {
         shortened = true;
     }
     const int n = ph.n;
-    const double atol_d = rtol * 1e-3, atol_v = rtol * 1e-2;
+    const double atol_d = rtol * NUMERIC_X_FLOOR_M, atol_v = rtol * NUMERIC_V_FLOOR_M_S;
     while (true) {
         const Dp5 r = dp5_step(ph, h);
         double err = 0.0;
