@@ -166,13 +166,14 @@ class _Newton:
                 self.fell_back = f"; the exact monodromy gave way to finite differences: {exc}"
         return self.differences(vec, free_idx, emb)[free_idx]
 
-    def differences(self, vec: np.ndarray, free_idx: np.ndarray, emb: np.ndarray) -> np.ndarray:
+    def differences(self, vec: np.ndarray, free_idx: np.ndarray, emb: np.ndarray,
+                    step_rel: float = 1e-6) -> np.ndarray:
         """The map's derivatives along each free coordinate (the columns of ``emb``), by finite
-        differences: every entry of ``coords`` of the image, shape (n, r).  Central, but one-sided
-        (second order, inwards) where the coordinate sits at a bound (a compression near 0, z near
-        ``z_max``)."""
+        differences of ``step_rel`` times each coordinate's scale: every entry of ``coords`` of the image,
+        shape (n, r).  Central, but one-sided (second order, inwards) where the coordinate sits at a bound
+        (a compression near 0, z near ``z_max``)."""
         cols = []
-        for j, step in enumerate(1e-6 * self._scales(free_idx)):
+        for j, step in enumerate(step_rel * self._scales(free_idx)):
             def image(d: float) -> np.ndarray:
                 return self.coords(self._image(self._moved(vec, emb[:, j] * d))[0])
 
