@@ -11,7 +11,7 @@ import pytest
 import pounding
 from pounding import InputError
 from pounding.model.plan import PlanBuilding
-from pounding.model.moats import CircularMoat, RectangularMoat
+from pounding.model.moats import RectangularMoat
 from pounding.model.plan_parts import Bearing, Floor, Frame
 
 
@@ -109,7 +109,6 @@ def _building(**changes):
                                  for sy in (-1, 1)]), "bearings[0].at_m"),
     (lambda: _building(frames=[Frame(1, "x", 6.0, 1e8), Frame(1, "x", -5.0, 1e8), Frame(1, "y", 9.0, 1e8)]),
      "frames[0].at_m"),
-    (lambda: CircularMoat(0.1, pounding.RigidStop(0.5)), "moat.law"),  # (a ring's rigid stop)
     (lambda: RectangularMoat(0.1, "steel"), "moat.law"),
     (lambda: _building(floors=[]), "floors"),
     (lambda: _building(bearings=[]), "bearings"),

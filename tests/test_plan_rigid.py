@@ -14,8 +14,7 @@ import numpy as np
 import pytest
 
 import pounding
-from pounding import InputError
-from pounding.model.moats import CircularMoat, RectangularMoat
+from pounding.model.moats import RectangularMoat
 from pounding.model.plan import PlanBuilding
 from pounding.model.plan_parts import Bearing, Floor, Frame
 from reference_plan import record_pair
@@ -191,10 +190,7 @@ def test_a_continued_run_through_holds_equals_one_long_run():
     np.testing.assert_allclose(rest.final_state.vector, whole.final_state.vector, rtol=1e-12, atol=1e-15)
 
 
-def test_a_ring_refuses_a_rigid_stop_and_a_rectangle_takes_one_in_a_file(tmp_path):
-    with pytest.raises(InputError, match="moat.law") as err:
-        CircularMoat(0.1, pounding.RigidStop(0.5))
-    assert "RectangularMoat" in str(err.value)
+def test_a_rectangle_takes_a_rigid_stop_in_a_file(tmp_path):
     b = _square(0.3)
     path = tmp_path / "rigid.toml"
     b.to_toml(path)

@@ -1,7 +1,6 @@
 """The rigid moat's reference (tests/reference_plan_rigid.py) on a ring, against closed forms and invariants:
 a point struck and held on a ring slides along it at its speed; elastic impacts on a ring keep an undamped,
-unshaken building's energy.  (The engine does not take a rigid ring yet: this is the reference it will be
-tested against.)"""
+unshaken building's energy.  (The engine's rigid rings are tested against it in test_plan_rigid_ring.py.)"""
 
 from __future__ import annotations
 

@@ -492,6 +492,12 @@ NB_MODULE(_pounding_core, m) {
         return nb::make_tuple(k, mm);
     });
 
+    m.def("held_force_probe", [](const System& sy, int kind, Vec p, Vec rec_t, Vec rec_a, Vec rec_b, Vec state) {
+        const Forcing fo = forcing_of(kind, p, rec_t, rec_a, rec_b);
+        std::vector<double> out;
+        held_force_probe(sy, fo, state.data(), out);
+        return array2(out.data(), out.size() / 3, 3);
+    });
     m.def("impact_row", [](Vec contact, double mass, OutVec out) { impact_row(contact.data(), mass, out.data()); });
 
     m.def("law_force_many", [](int law, Vec p, Vec d, Vec dd, OutVec out) {

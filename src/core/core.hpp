@@ -323,7 +323,8 @@ struct System {
         for (int e = 0; e < n_h(); ++e)
             if (iso_is_friction(hyst[static_cast<size_t>(e)])) ties.push_back(e);
         lever_holds = false;
-        for (const int c : rigid) lever_holds = lever_holds || contact[static_cast<size_t>(c)].levered();
+        for (const int c : rigid)  // (a ring's row turns: a linear constraint too, sticking.hpp)
+            lever_holds = lever_holds || contact[static_cast<size_t>(c)].levered() || contact[static_cast<size_t>(c)].radial.on;
         for (const int e : ties) lever_holds = lever_holds || hyst[static_cast<size_t>(e)].levered();
         total_mass = 0.0;
         for (double m : mass) total_mass += m;

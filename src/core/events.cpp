@@ -132,6 +132,7 @@ EventValue held_force(Phase& ph, int c, double tau, const double* y, const doubl
             s += std::abs(ph.K[static_cast<size_t>(k * n + j)] * y[j]) + std::abs(ph.C[static_cast<size_t>(k * n + j)] * y[n + j]);
         scale += s;
     }
+    if (st.rings) rate += st.ring_rate(h, y, y + n, au, a);  // (a ring held: its rows turn)
     const double sign = st.end_sign[static_cast<size_t>(h)];
     return {sign * f, sign * rate, scale};
 }

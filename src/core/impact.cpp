@@ -21,7 +21,14 @@ void state_accelerations(const double* st, const System& sy, const Sticking& stk
         au[static_cast<size_t>(k)] = row[1 + 2 * n + k] - ag[k];
         a[static_cast<size_t>(k)] = au[static_cast<size_t>(k)];
     }
-    stk.project(sy.mass, a.data());
+    if (stk.rings) {  // (a ring held: its row and bias at this state's displacements and velocities)
+        static thread_local Sticking fresh;
+        fresh = stk;
+        fresh.refresh(st + sy.lay.x, st + sy.lay.v);
+        fresh.hold(sy.mass, a.data());
+        return;
+    }
+    stk.hold(sy.mass, a.data());
 }
 
 namespace {
@@ -46,9 +53,16 @@ inline double& seq_last(double* st, const Layout& L, int c) { return st[L.acc_at
 // with the holds (1/kg: 0 where neither end can move)
 struct Struck {
     double mi = INF, mj = INF, inv = 0.0;
+    std::vector<double> row;  // (a ring's: its compression's gradient at the impact, its normal's; a line's: empty)
 };
-Struck struck(const Sticking& stk, const System& sy, const Contact& ct) {
+Struck struck(const Sticking& stk, const System& sy, const Contact& ct, const double* x) {
     Struck s;
+    if (ct.radial.on) {  // (a ring's: always general mode, System::lever_holds)
+        s.row.assign(static_cast<size_t>(sy.n), 0.0);
+        push_contact(s.row.data(), ct, x, 1.0);
+        s.inv = stk.inverse_mass_row(sy.mass, s.row.data());
+        return s;
+    }
     if (stk.general) {
         s.inv = stk.inverse_mass(sy.mass, ct);
         return s;
@@ -61,6 +75,10 @@ Struck struck(const Sticking& stk, const System& sy, const Contact& ct) {
 
 // an impulse p on contact ct (pushing its dofs by -sign p w) into the velocities v (or, scaled, displacements)
 void kick(const Sticking& stk, const System& sy, const Contact& ct, const Struck& s, double* v, double p) {
+    if (!s.row.empty()) {
+        stk.impulse_row(sy.mass, v, s.row.data(), -p);
+        return;
+    }
     if (stk.general) {
         stk.impulse(sy.mass, v, ct, -ct.sign * p);
         return;
@@ -74,7 +92,23 @@ double push_of(const double* st, const System& sy, const Sticking& stk, int c, c
                std::vector<double>& au, std::vector<double>& a) {
     const Contact& ct = sy.contact[static_cast<size_t>(c)];
     state_accelerations(st, sy, stk, ag, q, row, au, a);
-    return ct.sign * rel(a.data(), ct);
+    return compression(ct, st + sy.lay.x, st + sy.lay.v, a.data()).da;
+}
+
+// a ring's push's rates along the held motion (held_push_rates' for a line): P = n . a_s + kappa (a_s the
+// accelerations with the other holds, kappa the centripetal term), its first rate n' . a_s + n . a_s' + kappa'
+// along the held motion's velocities and accelerations (a_h), a_s' the free accelerations' rate with the other
+// holds' projection (jerk: exact where those are lines'); its higher rates left 0 (the chatter's remainder then
+// its first order: a chatter's reported end, the state held at its impact either way)
+void ring_push_rates(const std::vector<double>& s0, const System& sy, const Sticking& stk, int c, const double* ag,
+                     double* q, double* row, const std::vector<double>& jerk, const std::vector<double>& a_h,
+                     int order, double* rates) {
+    const Layout& L = sy.lay;
+    const Contact& ct = sy.contact[static_cast<size_t>(c)];
+    static thread_local std::vector<double> au, a_s;
+    state_accelerations(s0.data(), sy, stk, ag, q, row, au, a_s);
+    rates[0] = ring_push_rate(ct, s0.data() + L.x, s0.data() + L.v, a_s.data(), a_h.data(), jerk.data());
+    for (int k = 1; k < order; ++k) rates[k] = 0.0;
 }
 
 // the push of contact c's rates in time, d^k P / dt^k for k = 1..order (m/s^(2+k)), along the motion held at
@@ -103,7 +137,8 @@ void held_push_rates(std::vector<double>& s0, const System& sy, const Phase& ph,
     const double turn[4] = {sn, cs, -sn, -cs};  // (sin's derivatives at the angle)
     const double turn_c[4] = {cs, -sn, -cs, sn};  // (cos's)
     double wk = ph.w;  // (w^k)
-    for (int k = 1; k <= order; ++k, wk *= ph.w) {
+    const int loop_order = ct.radial.on ? 1 : order;  // (a ring's: its first rate, ring_push_rates)
+    for (int k = 1; k <= loop_order; ++k, wk *= ph.w) {
         // the table's k-th rate: ax1 (k = 1) and the harmonic's, axh w^k sin^(k) (and its second component's)
         const double ag_k = (k == 1 ? ph.ax1 : 0.0) + ph.axh * wk * turn[k % 4];
         const double bg_k = ph.plain ? 0.0 : (k == 1 ? ph.bx1 : 0.0) + wk * (ph.bs * turn[k % 4] + ph.bc * turn_c[k % 4]);
@@ -115,7 +150,7 @@ void held_push_rates(std::vector<double>& s0, const System& sy, const Phase& ph,
                 s += ph.K[static_cast<size_t>(i * n + j)] * x[j] + ph.C[static_cast<size_t>(i * n + j)] * x1[j];
             rate_u[static_cast<size_t>(i)] = -ph.minv[static_cast<size_t>(i)] * s - ph.on(i, ag_k, bg_k);
         }
-        if (k < order) {  // (the held motion's next derivative: the same with c held)
+        if (k < loop_order) {  // (the held motion's next derivative: the same with c held)
             double* next = &xs[static_cast<size_t>((k + 1) * n)];
             std::copy(rate_u.begin(), rate_u.end(), next);
             held.project(sy.mass, next);
@@ -123,6 +158,7 @@ void held_push_rates(std::vector<double>& s0, const System& sy, const Phase& ph,
         stk.project(sy.mass, rate_u.data());
         rates[k - 1] = ct.sign * rel(rate_u.data(), ct);
     }
+    if (ct.radial.on) ring_push_rates(s0, sy, stk, c, ag, q, row, rate_u, a, order, rates);  // (rate_u: k = 1's)
 }
 
 // the rate in time of the push of contact c (m/s^3) along the motion held at the stop from the state s0
@@ -352,7 +388,10 @@ int tensile_hold(const System& sy, const Sticking& stk, int c, double impulse, c
     static thread_local std::vector<double> alone, group;
     alone.assign(static_cast<size_t>(n), 0.0);
     group.assign(static_cast<size_t>(n), 0.0);
-    if (stk.general) {  // (alone: M^-1 w's; with the holds: P M^-1 w's)
+    if (!sides.row.empty()) {  // (a ring's row)
+        for (int k = 0; k < n; ++k) alone[static_cast<size_t>(k)] -= impulse * sides.row[static_cast<size_t>(k)] / sy.mass[static_cast<size_t>(k)];
+        kick(stk, sy, ct, sides, group.data(), impulse);
+    } else if (stk.general) {  // (alone: M^-1 w's; with the holds: P M^-1 w's)
         int d[4];
         double w[4];
         const int m = ct.entries(d, w);
@@ -411,9 +450,9 @@ void release_tensile(double* st, const System& sy, Sticking& stk, int c, double 
     for (int pass = 0; pass < sy.nc(); ++pass) {
         stk.build(sy, st);
         if (!stk.any) return;
-        const double vn = ct.sign * rel(st + L.v, ct);
+        const double vn = compression(ct, st + L.x, st + L.v).dv;
         if (!(vn > v_res)) return;
-        const Struck sides = struck(stk, sy, ct);
+        const Struck sides = struck(stk, sy, ct, st + L.x);
         const double inv = sides.inv;
         if (inv == 0.0) return;
         const double impulse = (1.0 + law_restitution(ct.p)) * vn / inv;
@@ -441,7 +480,7 @@ bool rigid_contact(double* st, const System& sy, const Phase& ph, double tau, St
         return true;
     }
     const Contact& ct = sy.contact[static_cast<size_t>(c)];
-    const bool jump = ct.sign * rel(st + sy.lay.v, ct) > 0.0;  // (an impulse to come: velocities jump)
+    const bool jump = compression(ct, st + sy.lay.x, st + sy.lay.v).dv > 0.0;  // (an impulse to come: velocities jump)
     const bool was_held = st[sy.lay.in_at(c)] != 0.0;
     const bool resolved = rigid_contact_(st, sy, ph, tau, stk, c, ag, sc, ledger, contacts, chatters, q, row, flight);
     // (and where it is newly held: on levers a new hold's constraint changes every other hold's force)
@@ -465,15 +504,15 @@ bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, S
     double* v = st + L.v;
     release_tensile(st, sy, stk, c, sc.v_res, contacts);  // (a hold the impulse would pull through lets go)
     stk.build(sy, st);
-    const Struck sides = struck(stk, sy, ct);
+    const Struck sides = struck(stk, sy, ct, st + L.x);
     const double inv = sides.inv;
     if (inv == 0.0) return false;  // (both ends immovable)
     const double mu = 1.0 / inv;
     // the sequence this impact belongs to
     count_impact(st, L, c, t, sc.window_s, chatters);
     // Newton's impact: the normal velocity from vn to -e vn
-    const double vn = ct.sign * rel(v, ct);
-    const double v_in = rel(v, ct);
+    const double vn = compression(ct, st + L.x, v).dv;
+    const double v_in = ct.radial.on ? vn : rel(v, ct);  // (a ring's: its normal's, jump.cpp's contact_speed)
     double u = 0.0, impulse = 0.0, loss = 0.0;  // the rebound's speed, the impulse, the energy lost
     if (vn > 0.0) {
         impulse = mu * (1.0 + e) * vn;
@@ -489,7 +528,7 @@ bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, S
         r[CC_T_START] = t;
         r[CC_T_END] = t;
         r[CC_V_IN] = v_in;
-        r[CC_V_OUT] = rel(v, ct);
+        r[CC_V_OUT] = ct.radial.on ? compression(ct, st + L.x, v).dv : rel(v, ct);
         r[CC_IMPULSE] = impulse;
         r[CC_PEAK_FORCE] = NaN;  // (an impulse has no peak force)
         r[CC_MAX_COMPRESSION] = 0.0;
@@ -502,10 +541,15 @@ bool rigid_contact_(double* st, const System& sy, const Phase& ph, double tau, S
     std::vector<double>& a = scratch.a;
     std::vector<double>& s0 = scratch.s0;
     state_accelerations(st, sy, stk, ag, q, row, au, a);
-    double push = ct.sign * rel(a.data(), ct);
+    double push = compression(ct, st + L.x, v, a.data()).da;
     double round = ROUNDING * (std::abs(ag[ct.i]) + std::abs(au[static_cast<size_t>(ct.i)]) +
                                (ct.j >= 0 ? std::abs(au[static_cast<size_t>(ct.j)]) : 0.0));
-    if (ct.levered()) {  // (every dof of its pair's, by its weight)
+    if (ct.radial.on) {  // (a ring's: every dof of its row's, by its weight, and its centripetal term)
+        double s = 0.0;
+        for (int k = 0; k < sy.n; ++k)
+            s += std::abs(sides.row[static_cast<size_t>(k)]) * (std::abs(ag[k]) + std::abs(au[static_cast<size_t>(k)]));
+        round = ROUNDING * (s + std::abs(ring_bend(ct, st + L.x, v)));
+    } else if (ct.levered()) {  // (every dof of its pair's, by its weight)
         int d[4];
         double w[4];
         const int m = ct.entries(d, w);
@@ -590,7 +634,7 @@ void held_outputs(const double* st, const System& sy, Sticking& stk, const doubl
     au.resize(static_cast<size_t>(n));
     a.resize(static_cast<size_t>(n));
     for (int k = 0; k < n; ++k) au[static_cast<size_t>(k)] = a[static_cast<size_t>(k)] = row[1 + 2 * n + k] - ag[k];
-    stk.project(sy.mass, a.data());
+    stk.hold(sy.mass, a.data());
     for (int k = 0; k < n; ++k) row[1 + 2 * n + k] = a[static_cast<size_t>(k)] + ag[k];
     double* fe = row + 1 + 3 * n;  // (each element's force, then each contact's)
     for (size_t h = 0; h < stk.held.size(); ++h) {

@@ -21,6 +21,12 @@ void end_sequence(double* st, const Layout& L, int c, double t, Rows& chatters);
 // those left at rest held where the motion pushes them shut.  False where contact c meets its stop alone
 // (or with held stops only: their groups' masses take the impact) or the problem was not solved: the
 // impacts are then taken one by one
+// whether two contacts move a dof in common (a ring's second pair, its y, too)
+inline bool contacts_share_dof(const Contact& a, const Contact& b) {
+    if (shares_dof(a, b)) return true;
+    if (a.radial.on && (shares_dof(a.radial.y, b) || (b.radial.on && shares_dof(a.radial.y, b.radial.y)))) return true;
+    return b.radial.on && shares_dof(a, b.radial.y);
+}
 // whether another free rigid stop touches (within h) at a dof of contact c's (most impacts: none)
 inline bool others_touch(const double* st, const System& sy, int c, double h) {
     const Layout& L = sy.lay;
@@ -28,7 +34,7 @@ inline bool others_touch(const double* st, const System& sy, int c, double h) {
     for (const int d : sy.rigid) {
         if (d == c || st[L.in_at(d)] != 0.0) continue;
         const Contact& ct = sy.contact[static_cast<size_t>(d)];
-        if (shares_dof(own, ct) && ct.sign * rel(st + L.x, ct) - ct.gap >= -h) return true;
+        if (contacts_share_dof(own, ct) && compression_of(ct, st + L.x) >= -h) return true;
     }
     return false;
 }

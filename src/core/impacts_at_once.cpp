@@ -26,7 +26,7 @@ bool touching(const double* st, const System& sy, int d, double h) {
     const Contact& ct = sy.contact[static_cast<size_t>(d)];
     if (!law_is_rigid(ct.law)) return false;
     if (st[sy.lay.in_at(d)] != 0.0) return true;
-    return ct.sign * rel(st + sy.lay.x, ct) - ct.gap >= -h;
+    return compression_of(ct, st + sy.lay.x) >= -h;
 }
 
 // the touching rigid stops that reach contact c through shared dofs (c first)
@@ -36,14 +36,20 @@ std::vector<int> cluster_of(const double* st, const System& sy, int c, double h)
     in[static_cast<size_t>(c)] = 1;
     int d4[4];
     double w4[4];
-    auto mark = [&](const Contact& ct) {
-        const int m = ct.entries(d4, w4);
-        for (int q = 0; q < m; ++q) dof[static_cast<size_t>(d4[q])] = 1;
+    auto mark = [&](const Contact& ct) {  // (a ring's second pair too)
+        for (const Pair* p : {static_cast<const Pair*>(&ct), ct.radial.on ? &ct.radial.y : nullptr}) {
+            if (p == nullptr) continue;
+            const int m = p->entries(d4, w4);
+            for (int q = 0; q < m; ++q) dof[static_cast<size_t>(d4[q])] = 1;
+        }
     };
     auto shares = [&](const Contact& ct) {
-        const int m = ct.entries(d4, w4);
-        for (int q = 0; q < m; ++q)
-            if (dof[static_cast<size_t>(d4[q])]) return true;
+        for (const Pair* p : {static_cast<const Pair*>(&ct), ct.radial.on ? &ct.radial.y : nullptr}) {
+            if (p == nullptr) continue;
+            const int m = p->entries(d4, w4);
+            for (int q = 0; q < m; ++q)
+                if (dof[static_cast<size_t>(d4[q])]) return true;
+        }
         return false;
     };
     mark(sy.contact[static_cast<size_t>(c)]);
@@ -129,7 +135,7 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
     std::vector<double> u0(static_cast<size_t>(k)), b(static_cast<size_t>(k)), lam;
     for (int a = 0; a < k; ++a) {
         const Contact& ct = sy.contact[static_cast<size_t>(set[static_cast<size_t>(a)])];
-        push_pair(&J[static_cast<size_t>(a * n)], ct, ct.sign);  // (its weights w, signed)
+        push_contact(&J[static_cast<size_t>(a * n)], ct, st + L.x, 1.0);  // (its weights w, signed; a ring's normal)
     }
     for (int a = 0; a < k; ++a) {
         double u = 0.0;
@@ -150,7 +156,7 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
     std::vector<double> v_in(static_cast<size_t>(k));
     for (int a = 0; a < k; ++a) {
         const Contact& ct = sy.contact[static_cast<size_t>(set[static_cast<size_t>(a)])];
-        v_in[static_cast<size_t>(a)] = rel(v, ct);
+        v_in[static_cast<size_t>(a)] = ct.radial.on ? u0[static_cast<size_t>(a)] : rel(v, ct);
     }
     for (int a = 0; a < k; ++a)
         for (int i = 0; i < n; ++i)
@@ -178,7 +184,7 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
             r[CC_T_START] = t;
             r[CC_T_END] = t;
             r[CC_V_IN] = v_in[static_cast<size_t>(a)];
-            r[CC_V_OUT] = rel(v, ct);
+            r[CC_V_OUT] = ct.radial.on ? u1 : rel(v, ct);
             r[CC_IMPULSE] = la;
             r[CC_PEAK_FORCE] = NaN;
             r[CC_MAX_COMPRESSION] = 0.0;
@@ -239,7 +245,10 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
                     return false;
             } else {  // free: the motion does not push it shut, nor is about to
                 auto closing = [&](const std::vector<double>& x) { return ct.sign * rel(x.data(), ct); };
-                const double push = closing(a), rate = closing(jh);
+                // (a ring's: its compression's second derivative and that's rate, its normal turning)
+                const double push = ct.radial.on ? compression(ct, st + L.x, v, a.data()).da : closing(a);
+                const double rate = ct.radial.on ? ring_push_rate(ct, st + L.x, v, a.data(), a.data(), jh.data())
+                                                 : closing(jh);
                 if (push > round || (push >= -round && rate > round_rate)) return false;
                 // (contact c's own event found its free motion closing it, at a higher order where these
                 // are zero to the rounding: it is held)
@@ -261,7 +270,7 @@ bool impacts_at_once(double* st, const System& sy, const Phase& ph, double tau, 
         const int acc = L.acc_at(d);
         end_sequence(st, L, d, t, chatters);
         const Contact& ct = sy.contact[static_cast<size_t>(d)];
-        if (ct.j < 0 && !ct.levered()) {  // (on the stop exactly, at rest on it)
+        if (ct.j < 0 && !ct.levered() && !ct.radial.on) {  // (on the stop exactly, at rest on it)
             st[L.x + ct.i] = ct.sign * ct.gap;
             v[ct.i] = 0.0;
         }

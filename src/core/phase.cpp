@@ -643,7 +643,8 @@ void phase_rhs(Phase& ph, double tau, const double* y, const double* z, double* 
         push_contact(a, k, x, -f);
     }
     for (int i = 0; i < n; ++i) a[i] /= ph.mass[static_cast<size_t>(i)];
-    if (held) ph.stk.project(ph.mass, a);
+    if (ph.stk.rings) ph.stk.refresh(x, v);  // (a ring's hold: its row and bias at this state)
+    if (held) ph.stk.hold(ph.mass, a);
 }
 
 void free_acceleration(Phase& ph, double tau, const double* y, const double* zeta, double* au) {

@@ -65,4 +65,9 @@ class RunWorkspace {
 void run_kernel(const System& sy, const Forcing& fo, const double* state0, const RunOptions& opt, int64_t* ctl,
                 RunResult& out, RunWorkspace* workspace = nullptr);
 
+// the held rigid stops' forces and their rates in time in the state st under fo, as a phase's held-release
+// events take them (events.cpp's held_force): per held contact (contact, N, N/s) into out, 3 each (for the
+// tests: a rate against the force's differences along a run)
+void held_force_probe(const System& sy, const Forcing& fo, const double* st, std::vector<double>& out);
+
 }  // namespace pounding

@@ -171,6 +171,8 @@ void set_phase(Phase& ph, const double* st, const System& sy, const Piece& pc) {
             k.rb = br.r;
             k.jb = br.j;
             if (ct.radial.on) {  // (a ring's: its normal turns, the phase is nonlinear)
+                any_nl = true;
+                if (law_is_rigid(ct.law)) continue;  // (held on it: a constraint, sticking.hpp, no force law)
                 k.nl = true;
                 any_nl = true;
                 continue;
@@ -351,3 +353,25 @@ int event_pairs(const System& sy, Pair* pairs) {
     return np;
 }
 }  // namespace pounding::run_parts
+
+namespace pounding {
+
+void held_force_probe(const System& sy, const Forcing& fo, const double* st, std::vector<double>& out) {
+    using namespace run_parts;
+    Phase ph;
+    ph.size(sy.n, sy.nc(), sy.n_bw());
+    ph.pattern(sy);
+    run_constants(ph, sy, fo);
+    set_phase(ph, st, sy, excitation_piece(fo, st[T], 0));
+    std::vector<double> a(static_cast<size_t>(sy.n));
+    phase_rhs(ph, 0.0, ph.y0.data(), ph.zeta0.data(), a.data(), true);
+    out.clear();
+    for (size_t h = 0; h < ph.stk.held.size(); ++h) {
+        const int c = ph.stk.held[h];
+        if (c >= sy.nc()) continue;  // (a tie's: not a stop)
+        const EventValue v = held_force(ph, c, 0.0, ph.y0.data(), a.data());
+        out.insert(out.end(), {static_cast<double>(c), v.g, v.gp});
+    }
+}
+
+}  // namespace pounding

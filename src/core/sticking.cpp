@@ -1,9 +1,11 @@
 #include "sticking.hpp"
 
+#include <cmath>
 #include <numeric>
 
 #include "isolator.hpp"
 #include "laws.hpp"
+#include "compression.hpp"
 #include "linalg.hpp"
 
 namespace pounding {
@@ -59,13 +61,22 @@ const Pair& bond_pair(const System& sy, int b) {
     return sy.hyst[static_cast<size_t>(b - sy.nc())];
 }
 
-// the rows w of the bonds (W, nb x n) and X = A^-1 W M^-1, A = W M^-1 W^T; false when the rows are dependent
-// (A singular to 1e-12 of its largest diagonal: a loop)
-bool constraint_rows(const System& sy, const int* bonds, int nb, std::vector<double>& W, std::vector<double>& X) {
+// is bond b a ring's (a rigid stop on a circular moat's wall: its row the normal's, turning as the point moves)?
+bool ring_bond(const System& sy, int b) { return b < sy.nc() && sy.contact[static_cast<size_t>(b)].radial.on; }
+
+// the rows w of the bonds (W, nb x n) at the displacements x and X = A^-1 W M^-1, A = W M^-1 W^T; false when
+// the rows are dependent (A singular to 1e-12 of its largest diagonal: a loop).  A ring's row is its
+// compression's gradient at x (compression.hpp); with a ring among them (Ainv not null) A^-1 (nb x nb) too.
+bool constraint_rows(const System& sy, const double* x, const int* bonds, int nb, std::vector<double>& W,
+                     std::vector<double>& X, std::vector<double>* Ainv = nullptr) {
     const int n = sy.n;
     W.assign(static_cast<size_t>(nb * n), 0.0);
-    for (int h = 0; h < nb; ++h) push_pair(&W[static_cast<size_t>(h * n)], bond_pair(sy, bonds[h]), 1.0);
-    Mat A(nb, nb), R(nb, n);
+    for (int h = 0; h < nb; ++h) {
+        if (ring_bond(sy, bonds[h])) push_contact(&W[static_cast<size_t>(h * n)], sy.contact[static_cast<size_t>(bonds[h])], x, 1.0);
+        else push_pair(&W[static_cast<size_t>(h * n)], bond_pair(sy, bonds[h]), 1.0);
+    }
+    const int extra = Ainv != nullptr ? nb : 0;  // (the identity's columns beside: A^-1)
+    Mat A(nb, nb), R(nb, n + extra);
     double top = 0.0;
     for (int h = 0; h < nb; ++h) {
         for (int g = 0; g < nb; ++g) {
@@ -76,11 +87,17 @@ bool constraint_rows(const System& sy, const int* bonds, int nb, std::vector<dou
         }
         top = std::max(top, A(h, h));
         for (int k = 0; k < n; ++k) R(h, k) = W[static_cast<size_t>(h * n + k)] / sy.mass[static_cast<size_t>(k)];
+        for (int g = 0; g < extra; ++g) R(h, n + g) = h == g ? 1.0 : 0.0;
     }
     if (!solve_checked(A, R, 1e-12 * top)) return false;
     X.resize(static_cast<size_t>(nb * n));
     for (int h = 0; h < nb; ++h)
         for (int k = 0; k < n; ++k) X[static_cast<size_t>(h * n + k)] = R(h, k);
+    if (Ainv != nullptr) {
+        Ainv->resize(static_cast<size_t>(nb * nb));
+        for (int h = 0; h < nb; ++h)
+            for (int g = 0; g < nb; ++g) (*Ainv)[static_cast<size_t>(h * nb + g)] = R(h, n + g);
+    }
     return true;
 }
 
@@ -88,6 +105,7 @@ bool constraint_rows(const System& sy, const int* bonds, int nb, std::vector<dou
 
 bool Sticking::build(const System& sy, const double* st) {
     general = sy.lever_holds;
+    sys = &sy;
     if (!any && n == sy.n && held_of.size() == static_cast<size_t>(sy.nc() + sy.n_h()) &&
         grp.size() == static_cast<size_t>(sy.n)) {
         bool none = true;
@@ -104,6 +122,7 @@ bool Sticking::build(const System& sy, const double* st) {
     end_sign.clear();
     held_of.assign(static_cast<size_t>(sy.nc() + sy.n_h()), -1);
     any = false;
+    rings = false;
     each_held(sy, st, [&](int b, int i, int j, double sign) {
         held_of[static_cast<size_t>(b)] = static_cast<int>(held.size());
         held.push_back(b);
@@ -119,24 +138,9 @@ bool Sticking::build(const System& sy, const double* st) {
     any = true;
     if (general) {  // (the holds as constraints: one group of the dofs they touch, never grounded)
         const int nh = static_cast<int>(held.size());
-        const bool independent = constraint_rows(sy, held.data(), nh, wrow, side);
-        if (!independent) {  // (a loop: the holds of the largest independent rows in order, the others idle)
-            static thread_local std::vector<int> kept;
-            static thread_local std::vector<double> W, X;
-            kept.clear();
-            for (int h = 0; h < nh; ++h) {
-                kept.push_back(held[static_cast<size_t>(h)]);
-                if (!constraint_rows(sy, kept.data(), static_cast<int>(kept.size()), W, X)) kept.pop_back();
-            }
-            constraint_rows(sy, kept.data(), static_cast<int>(kept.size()), W, X);
-            side.assign(static_cast<size_t>(nh * n), 0.0);
-            for (size_t q = 0; q < kept.size(); ++q) {
-                const int h = held_of[static_cast<size_t>(kept[q])];
-                std::copy(X.begin() + static_cast<std::ptrdiff_t>(q * static_cast<size_t>(n)),
-                          X.begin() + static_cast<std::ptrdiff_t>((q + 1) * static_cast<size_t>(n)),
-                          side.begin() + static_cast<std::ptrdiff_t>(h * n));
-            }
-        }
+        rings = false;
+        for (int h = 0; h < nh; ++h) rings = rings || ring_bond(sy, held[static_cast<size_t>(h)]);
+        const bool independent = general_rows(sy, st + sy.lay.x, st + sy.lay.v);
         ngrp = 1;
         grounded.assign(1, 0);
         gmass.assign(1, 0.0);
@@ -209,6 +213,115 @@ bool Sticking::build(const System& sy, const double* st) {
         }
     }
     return tree;
+}
+
+bool Sticking::general_rows(const System& sy, const double* x, const double* v) {
+    const int nh = static_cast<int>(held.size());
+    std::vector<double>* inv = rings ? &ainv : nullptr;
+    const bool independent = constraint_rows(sy, x, held.data(), nh, wrow, side, inv);
+    if (!independent) {  // (a loop: the holds of the largest independent rows in order, the others idle)
+        static thread_local std::vector<int> kept;
+        static thread_local std::vector<double> W, X, I;
+        kept.clear();
+        for (int h = 0; h < nh; ++h) {
+            kept.push_back(held[static_cast<size_t>(h)]);
+            if (!constraint_rows(sy, x, kept.data(), static_cast<int>(kept.size()), W, X)) kept.pop_back();
+        }
+        const int nk = static_cast<int>(kept.size());
+        constraint_rows(sy, x, kept.data(), nk, W, X, rings ? &I : nullptr);
+        side.assign(static_cast<size_t>(nh * n), 0.0);
+        if (rings) ainv.assign(static_cast<size_t>(nh * nh), 0.0);
+        for (int q = 0; q < nk; ++q) {
+            const int h = held_of[static_cast<size_t>(kept[static_cast<size_t>(q)])];
+            std::copy(X.begin() + static_cast<std::ptrdiff_t>(q * n), X.begin() + static_cast<std::ptrdiff_t>((q + 1) * n),
+                      side.begin() + static_cast<std::ptrdiff_t>(h * n));
+            if (!rings) continue;
+            for (int r = 0; r < nk; ++r) {
+                const int g = held_of[static_cast<size_t>(kept[static_cast<size_t>(r)])];
+                ainv[static_cast<size_t>(h * nh + g)] = I[static_cast<size_t>(q * nk + r)];
+            }
+        }
+    }
+    bias.assign(static_cast<size_t>(nh), 0.0);
+    if (!rings) return independent;
+    // the rings' centripetal terms kappa (a held point's compression's second derivative at zero acceleration):
+    // the holds keep W a = -kappa, a bias A^-1 kappa on each hold's multiplier
+    bend.assign(static_cast<size_t>(nh), 0.0);
+    for (int g = 0; g < nh; ++g)
+        if (ring_bond(sy, held[static_cast<size_t>(g)]))
+            bend[static_cast<size_t>(g)] = ring_bend(sy.contact[static_cast<size_t>(held[static_cast<size_t>(g)])], x, v);
+    for (int h = 0; h < nh; ++h) {
+        double s = 0.0;
+        for (int g = 0; g < nh; ++g) s += ainv[static_cast<size_t>(h * nh + g)] * bend[static_cast<size_t>(g)];
+        bias[static_cast<size_t>(h)] = s;
+    }
+    return independent;
+}
+
+void Sticking::refresh(const double* x, const double* v) {
+    if (rings) general_rows(*sys, x, v);
+}
+
+void Sticking::hold(const std::vector<double>& mass, double* a) const {
+    if (!rings) return project(mass, a);
+    const int nh = static_cast<int>(held.size());
+    static thread_local std::vector<double> t;  // (X M a + A^-1 kappa: a held bond's each)
+    t.resize(static_cast<size_t>(nh));
+    for (int h = 0; h < nh; ++h) {
+        const double* x = &side[static_cast<size_t>(h * n)];
+        double s = 0.0;
+        for (int k = 0; k < n; ++k) s += x[k] * mass[static_cast<size_t>(k)] * a[k];
+        t[static_cast<size_t>(h)] = s + bias[static_cast<size_t>(h)];
+    }
+    for (int k = 0; k < n; ++k) {
+        double s = 0.0;
+        for (int h = 0; h < nh; ++h) s += wrow[static_cast<size_t>(h * n + k)] * t[static_cast<size_t>(h)];
+        a[k] -= s / mass[static_cast<size_t>(k)];
+    }
+}
+
+double Sticking::ring_rate(int h, const double* x, const double* v, const double* au, const double* a) const {
+    // d/dt A^-1 (W au + kappa) less A^-1 W au' (the lines' part, from the free accelerations' rate):
+    // A^-1 (W' a - W M^-1 W'^T lam + kappa'), lam = A^-1 (W au + kappa) = X M (au - a) the multipliers
+    // (with W a = -kappa: sticking.hpp), W' a ring's row's rate (its normal's turn n' = (P' - n (n . P')) / |P|)
+    const System& sy = *sys;
+    const int nh = static_cast<int>(held.size());
+    static thread_local std::vector<double> lam, turn, c;
+    lam.assign(static_cast<size_t>(nh), 0.0);
+    turn.assign(static_cast<size_t>(n), 0.0);
+    c.assign(static_cast<size_t>(nh), 0.0);
+    for (int g = 0; g < nh; ++g) {
+        const double* xs = &side[static_cast<size_t>(g * n)];
+        double s = 0.0;
+        for (int k = 0; k < n; ++k) s += xs[k] * sy.mass[static_cast<size_t>(k)] * (au[k] - a[k]);
+        lam[static_cast<size_t>(g)] = s;
+    }
+    for (int g = 0; g < nh; ++g) {
+        if (!ring_bond(sy, held[static_cast<size_t>(g)])) continue;
+        const Contact& ct = sy.contact[static_cast<size_t>(held[static_cast<size_t>(g)])];
+        const Radial& q = ct.radial;
+        const double px = q.px + rel(x, ct), py = q.py + rel(x, q.y);
+        const double r = std::hypot(px, py);
+        const double nx = px / r, ny = py / r;
+        const double vx = rel(v, ct), vy = rel(v, q.y), ax = rel(a, ct), ay = rel(a, q.y);
+        const double dv = nx * vx + ny * vy;
+        const double tx = (vx - nx * dv) / r, ty = (vy - ny * dv) / r;  // (n')
+        const double bend_g = (vx * vx + vy * vy - dv * dv) / r;
+        const double na = nx * ax + ny * ay;
+        const double bend_rate = (2.0 * (vx * ax + vy * ay) - 2.0 * dv * (bend_g + na) - bend_g * dv) / r;
+        c[static_cast<size_t>(g)] += tx * ax + ty * ay + bend_rate;
+        push_pair(turn.data(), ct, lam[static_cast<size_t>(g)] * tx);  // (W'^T lam)
+        push_pair(turn.data(), q.y, lam[static_cast<size_t>(g)] * ty);
+    }
+    for (int g = 0; g < nh; ++g) {
+        const double* w = &wrow[static_cast<size_t>(g * n)];
+        double s = 0.0;
+        for (int k = 0; k < n; ++k) s += w[k] * turn[static_cast<size_t>(k)] / sy.mass[static_cast<size_t>(k)];
+        c[static_cast<size_t>(g)] -= s;
+    }
+    double out = 0.0;
+    for (int g = 0; g < nh; ++g) out += ainv[static_cast<size_t>(h * nh + g)] * c[static_cast<size_t>(g)];
+    return out;
 }
 
 void Sticking::project(const std::vector<double>& mass, double* a) const {
@@ -305,6 +418,36 @@ void Sticking::impulse(const std::vector<double>& mass, double* v, const Pair& p
     }
 }
 
+double Sticking::inverse_mass_row(const std::vector<double>& mass, const double* w) const {
+    double inv = 0.0;
+    for (int k = 0; k < n; ++k)
+        if (w[k] != 0.0) inv += w[k] * w[k] / mass[static_cast<size_t>(k)];
+    if (!any) return inv;
+    const double alone = inv;
+    for (size_t h = 0; h < held.size(); ++h) {  // - (W M^-1 w)_h (X w)_h
+        double wm = 0.0, xw = 0.0;
+        for (int k = 0; k < n; ++k) {
+            if (w[k] == 0.0) continue;
+            wm += wrow[h * static_cast<size_t>(n) + static_cast<size_t>(k)] * w[k] / mass[static_cast<size_t>(k)];
+            xw += side[h * static_cast<size_t>(n) + static_cast<size_t>(k)] * w[k];
+        }
+        inv -= wm * xw;
+    }
+    return inv > 64.0 * EPS * alone ? inv : 0.0;
+}
+
+void Sticking::impulse_row(const std::vector<double>& mass, double* v, const double* w, double s) const {
+    for (int k = 0; k < n; ++k) v[k] += s * w[k] / mass[static_cast<size_t>(k)];
+    if (!any) return;
+    for (size_t h = 0; h < held.size(); ++h) {
+        double xw = 0.0;
+        for (int k = 0; k < n; ++k) xw += side[h * static_cast<size_t>(n) + static_cast<size_t>(k)] * w[k];
+        if (xw == 0.0) continue;
+        for (int k = 0; k < n; ++k)
+            v[k] -= s * wrow[h * static_cast<size_t>(n) + static_cast<size_t>(k)] * xw / mass[static_cast<size_t>(k)];
+    }
+}
+
 double Sticking::projector(const std::vector<double>& mass, int i, int k) const {
     double s = 0.0;
     for (size_t h = 0; h < held.size(); ++h)
@@ -321,7 +464,7 @@ bool sticking_closes_loop(const System& sy, const double* st, int c) {
             if (b != c) bonds.push_back(b);
         });
         bonds.push_back(c);
-        return !constraint_rows(sy, bonds.data(), static_cast<int>(bonds.size()), W, X);
+        return !constraint_rows(sy, st + sy.lay.x, bonds.data(), static_cast<int>(bonds.size()), W, X);
     }
     static thread_local std::vector<int> buf;
     Sets sets(buf, sy.n + 1);

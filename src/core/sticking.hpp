@@ -40,17 +40,35 @@ struct Sticking {
     std::vector<double> side;   // per held bond (held.size() x n): +1 dof k on its first end's side, -1 on its
                                 // second's (when the first's is held to the ground), 0 neither; in general
                                 // mode its row of X = A^-1 W M^-1 (its force's weights on m_k (au_k - a_k))
-    std::vector<double> wrow;   // (general mode: per held bond its pair's weights w, n each)
+    std::vector<double> wrow;   // (general mode: per held bond its pair's weights w, n each; a ring's its
+                                // compression's gradient at the state's displacements, compression.hpp)
+    // general mode with a ring held (a rigid stop on a circular moat's wall): its row turns as the point moves
+    // along the ring (refresh: the rows at another state), and the hold keeps W a = -kappa, kappa its
+    // centripetal term (|P'|^2 - (n . P')^2) / |P| (bend, per held bond: 0 on a line's), by the multipliers'
+    // bias A^-1 kappa (bias; ainv: A^-1, nh x nh)
+    bool rings = false;
+    std::vector<double> bend, bias, ainv;
     std::vector<int> held_of;   // per bond (nc + n_h): its index in held, -1 when not held
     int nc = 0;                 // (the first tie's bond: the contacts' count)
     std::vector<int> up;        // (scratch: the union-find's parents)
     std::vector<int> roots;     // (scratch: each root's group)
     std::vector<int> stack_;    // (scratch: the walk over the held stops)
+    // (general mode: wrow, side, ainv and bias at x and v; false when the rows are dependent)
+    bool general_rows(const System& sy, const double* x, const double* v);
     // the groups of the rigid stops in contact in the state (st[in] != 0) and the friction elements sticking;
     // false when they close a loop
     bool build(const System& sy, const double* st);
-    // the accelerations a (n) with the held stops, from those without them (in place)
+    // the accelerations a (n) with the held stops, from those without them (in place): project and, with a
+    // ring held, its centripetal bias
+    void hold(const std::vector<double>& mass, double* a) const;
+    // the projection P alone (velocities, and the rates of accelerations on lines' holds), in place
     void project(const std::vector<double>& mass, double* a) const;
+    // general mode with a ring held: the rows, A^-1 and the bias at the displacements x and velocities v
+    void refresh(const double* x, const double* v);
+    // general mode with a ring held: held bond h's multiplier's rate beyond A^-1 W au' (its rows' turn and
+    // the centripetal terms' rates), at x, v with the accelerations without (au) and with (a) the holds
+    double ring_rate(int h, const double* x, const double* v, const double* au, const double* a) const;
+    const System* sys = nullptr;  // (the system of the last build: what refresh reads)
     // held bond h's force, N (sign: the bond's), from the accelerations without (au) and with (a) the held bonds
     double force(double sign, int h, const std::vector<double>& mass, const double* au, const double* a) const;
     // a dof's side of an impact: its group's mass (infinite when it cannot move), kg (not in general mode)
@@ -62,6 +80,9 @@ struct Sticking {
     double inverse_mass(const std::vector<double>& mass, const Pair& p) const;
     // general mode: v += s P M^-1 w (an impulse -s along the pair's w with the holds: s in N s)
     void impulse(const std::vector<double>& mass, double* v, const Pair& p, double s) const;
+    // the same for a row w given whole (n: a ring's contact's, its compression's gradient at the state)
+    double inverse_mass_row(const std::vector<double>& mass, const double* w) const;
+    void impulse_row(const std::vector<double>& mass, double* v, const double* w, double s) const;
     // general mode: P's entry (i, k) (held dof i's acceleration's weight on dof k's free one)
     double projector(const std::vector<double>& mass, int i, int k) const;
 };

@@ -15,6 +15,7 @@ compiled module, and only the engine calls its runs (the protocols and analyses 
   under a pair of components (RotD spectra).
 * :func:`monodromy` - the exact monodromy of a hybrid system of linear modes.
 * :func:`impact_row`, :func:`law_force_many`, :func:`periodicity`, :func:`expm` - the smaller kernels.
+* :func:`held_force_probe` - the held rigid stops' forces and their rates in a state (for the tests).
 
 Each run releases the GIL, and polls its run control (``pounding._control``: Ctrl-C and the work budget).
 What comes back is named, never positional: :class:`RunOutput`, :class:`StepOutput`, :class:`Monodromy`.
@@ -377,6 +378,14 @@ def run(sy: System, forcing: Forcing, state0: np.ndarray, t_end: float, sample_d
     return RunOutput(state=state, samples=samples, contacts=contacts, events=events, ledger=ledger,
                      extrema=extrema, status=int(status), chatters=chatters,
                      norms=norms.reshape(-1, len(NORM_EXTREMA)))
+
+
+def held_force_probe(sy: System, forcing: Forcing, state: np.ndarray) -> np.ndarray:
+    """The held rigid stops' forces and their rates in time in ``state`` under ``forcing``, as a run's
+    held-release events take them: shape (held stops, 3), each ``(contact, force N, rate N/s)`` (for the
+    tests: a rate against its force's differences along a run)."""
+    return _c.held_force_probe(sy, int(forcing.kind), _f64(forcing.p), _f64(forcing.rec_t),
+                               _f64(forcing.rec_a), _f64(forcing.rec_b), _f64(state))
 
 
 def step(sy: System, amp: float, omega: float, state0: np.ndarray, steady: tuple, rtol: float,

@@ -6,9 +6,9 @@ from __future__ import annotations
 import math
 from typing import Any
 
-# the laws a ring's wall takes: every compliant law (a rigid stop on a ring is not supported yet)
+# the laws a ring's wall takes: every law (a rigid stop's held corner slides along the ring)
 RING_LAWS = ("kelvin_voigt", "hunt_crossley", "jankowski", "multilinear", "elastic_plastic", "hertzdamp",
-             "multilinear_kinematic")
+             "multilinear_kinematic", "rigid")
 
 
 def check_pair(i: int, j: int, n: int, what: str) -> None:

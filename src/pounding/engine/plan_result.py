@@ -174,17 +174,17 @@ class PlanRun(Outcome):
 
     @property
     def chatters(self) -> pd.DataFrame:
-        """A rigid moat's (:class:`pounding.RigidStop` walls) chatter sequences, one row each: ``wall``,
-        ``corner``, ``t_first_s`` (its first impact), ``t_end_s`` (where its impacts accumulated, or its
-        last), ``impacts`` and ``accumulated`` (the corner's rebounds summed in closed form and the corner
-        held on the wall from then on; see :class:`pounding.RigidStop`)."""
-        from ..model.moats import MOAT_SIDES, MOAT_WALLS
+        """A rigid moat's (:class:`pounding.RigidStop` walls or ring) chatter sequences, one row each:
+        ``wall``, ``corner``, ``t_first_s`` (its first impact), ``t_end_s`` (where its impacts accumulated,
+        or its last), ``impacts`` and ``accumulated`` (the corner's rebounds summed in closed form and the
+        corner held on the wall from then on; see :class:`pounding.RigidStop`)."""
+        from ..model.moats import MOAT_SIDES, MOAT_WALLS, RING_WALL
 
         table = np.asarray(self.chatter_table).reshape(-1, 5)
         slots = table[:, 0].astype(int)
+        kinds = [RING_WALL] if self.clearance_m.size == 1 else list(MOAT_SIDES)  # (the moat's own walls)
         return pd.DataFrame({
-            "wall": pd.Categorical([MOAT_WALLS[self.contact_slots[s][0]] for s in slots],
-                                   categories=list(MOAT_SIDES)),
+            "wall": pd.Categorical([MOAT_WALLS[self.contact_slots[s][0]] for s in slots], categories=kinds),
             "corner": np.array([self.contact_slots[s][1] for s in slots], dtype=int),
             "t_first_s": table[:, 1], "t_end_s": table[:, 2],
             "impacts": table[:, 3].astype(int), "accumulated": table[:, 4] != 0.0,

@@ -13,7 +13,6 @@ import numpy as np
 from .._checks import at_most, instance_of, integer, non_negative, plausible, real, real_tuple
 from .._errors import InputError, Problem
 from .contact_laws import check_law, law_to_dict
-from .contact_laws.rigid_stop import is_rigid
 from .plan_parts import Floor
 from .structure_parts import MAX_GAP_M, MAX_STOREYS
 
@@ -27,17 +26,6 @@ def _moat_gap(name: str, gap: float) -> float:
     at_most(name, gap, MAX_GAP_M, " m", "give the gap in m (30 cm is 0.30)")
     plausible(name, gap, 0.0, 2.0, "gaps are in m (a 30 cm moat is 0.30)")
     return gap
-
-
-def _moat_law(law: Any, rigid_allowed: bool) -> None:
-    """A moat's wall law checked: any law, a rigid stop only where ``rigid_allowed`` (a rectangle's walls)."""
-    check_law("moat.law", law)
-    if is_rigid(law) and not rigid_allowed:
-        raise InputError(Problem.WRONG_CONFIGURATION, "moat.law", law,
-                         got="with a rigid stop for a circular moat (not supported yet: held on the "
-                             "ring, a corner slides along a curve)",
-                         fix="give the ring a compliant law (KelvinVoigt or Hertzdamp with the wall's "
-                             "stiffness), or use a RectangularMoat, whose walls take a RigidStop")
 
 
 @dataclass(frozen=True)
@@ -81,7 +69,7 @@ class RectangularMoat:
         for j, g in enumerate(gaps):  # (one gap for all: checked, and warned of, once)
             _moat_gap("moat.gap_m" if len(gaps) == 1 else f"moat.gap_m[{j}]", g)
         object.__setattr__(self, "gap_m", gaps * 4 if len(gaps) == 1 else gaps)
-        _moat_law(self.law, rigid_allowed=True)
+        check_law("moat.law", self.law)
         object.__setattr__(self, "level", integer("moat.level", self.level, 0, MAX_STOREYS))
 
     @property
@@ -113,8 +101,8 @@ class CircularMoat:
         The clearance at rest between the floor's corners and the ring, m, >= 0: the ring's radius is the
         rectangle's half-diagonal plus it (:meth:`radius_m`).
     law : contact law
-        The wall's contact law: any compliant law (a :class:`pounding.RigidStop` on a ring is not
-        supported yet: a :class:`RectangularMoat`'s walls take one).
+        The wall's contact law: any law, a :class:`pounding.RigidStop` included (a corner it holds slides
+        along the ring, let go where the hold would pull).
     level : int
         The floor it surrounds (default 0: the base).
     out_of_reach : bool
@@ -148,7 +136,7 @@ class CircularMoat:
         gap = _moat_gap("moat.gap_m", real("moat.gap_m", self.gap_m))
         object.__setattr__(self, "gap_m", gap + 0.0)  # (-0.0 as 0.0)
         instance_of("moat.out_of_reach", self.out_of_reach, bool, "true or false")
-        _moat_law(self.law, rigid_allowed=False)
+        check_law("moat.law", self.law)
         object.__setattr__(self, "level", integer("moat.level", self.level, 0, MAX_STOREYS))
 
     @property
