@@ -15,7 +15,8 @@ phases).  Last, the
 bilinear bearings with a ring for a moat instead of four walls, the same clearance at the corners: its
 contacts' starts located on the exact phases, each contact integrated numerically; and with four rigid walls
 (plastic, ``RigidStop(0)``): impulses at the corners, corners held on their walls (constraints) on exact
-phases.  The two circles also with a velocity-dependent friction (``mu_fast = 1.8 mu``, 25 s/m): their slips'
+phases; and with a rigid ring (plastic): its corners held on the ring (a constraint whose row turns with
+the corner) integrated numerically.  The two circles also with a velocity-dependent friction (``mu_fast = 1.8 mu``, 25 s/m): their slips'
 force at the slip's rate.
 
     python benchmarks/plan_rubber.py [--storeys 5] [--rounds 3]
@@ -90,7 +91,8 @@ def main() -> None:
                      ("the plastic circle, mu_fast = 1.8 mu", sliding(base, True, fast=1.8)),
                      ("the Bouc-Wen circle, mu_fast = 1.8 mu", sliding(base, True, "bouc_wen", 1.8)),
                      ("bilinear bearings, a ring for a moat", ringed(base)),
-                     ("bilinear bearings, four rigid walls", rigid(base))):
+                     ("bilinear bearings, four rigid walls", rigid(base)),
+                     ("bilinear bearings, a rigid ring", ringed(rigid(base)))):
         def run(b=b):
             out = pd_.simulate(b, pair, pair.duration_s, sample_rate_hz=0)
             if not out.success:

@@ -360,7 +360,6 @@ def test_the_door_refuses_a_ring_slot_it_cannot_run():
     mass, zero = np.ones(3), np.zeros((3, 3))
     for bad, words in ((dict(sign=-1.0, law=0), "sign"), (dict(sign=1.0, law=0, ring_radius_m=0.0), "radius"),
                        (dict(sign=1.0, law=0, ring_at_m=(np.nan, 0.0)), "finite"),
-                       (dict(sign=1.0, law=_core.LAW_IDS["rigid"]), "compliant law"),
                        (dict(sign=1.0, law=0, ring_y=_core.tracked_pair(i=5, j=-1)), "ring_y")):
         slot = _core.contact_slot(**(ring | bad))
         with pytest.raises(ValueError, match=words):

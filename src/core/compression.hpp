@@ -47,22 +47,30 @@ inline double ring_bend(const C& c, const double* x, const double* v) {
     const double dv = (px / r) * vx + (py / r) * vy;
     return (vx * vx + vy * vy - dv * dv) / r;
 }
-// a ring's push's rate (m/s^3): d/dt (n . a_p + kappa), the point's compression's second derivative with the
-// accelerations a_p (n, those pushing it) and their rate jerk, along a motion of velocities v and accelerations
-// a_m (its turn n' = (P' - n (n . P')) / |P|, kappa's rate from P' and P'')
+// a ring's point along a motion of velocities v and accelerations a_m: its normal n, the normal's turn
+// n' = (P' - n (n . P')) / |P|, the centripetal term kappa and its rate (kappa' from P' and P'')
+struct RingTurn { double nx, ny, tx, ty, bend, bend_rate; };
 template <class C>
-inline double ring_push_rate(const C& c, const double* x, const double* v, const double* a_p, const double* a_m,
-                             const double* jerk) {
+inline RingTurn ring_turn(const C& c, const double* x, const double* v, const double* a_m) {
     const Radial& q = c.radial;
     const double px = q.px + rel(x, c), py = q.py + rel(x, q.y);
     const double r = std::hypot(px, py);
     const double nx = px / r, ny = py / r;
     const double vx = rel(v, c), vy = rel(v, q.y), ax = rel(a_m, c), ay = rel(a_m, q.y);
     const double dv = nx * vx + ny * vy;
-    const double tx = (vx - nx * dv) / r, ty = (vy - ny * dv) / r;
     const double bend = (vx * vx + vy * vy - dv * dv) / r;
     const double bend_rate = (2.0 * (vx * ax + vy * ay) - 2.0 * dv * (bend + nx * ax + ny * ay) - bend * dv) / r;
-    return tx * rel(a_p, c) + ty * rel(a_p, q.y) + nx * rel(jerk, c) + ny * rel(jerk, q.y) + bend_rate;
+    return {nx, ny, (vx - nx * dv) / r, (vy - ny * dv) / r, bend, bend_rate};
+}
+// a ring's push's rate (m/s^3): d/dt (n . a_p + kappa), the point's compression's second derivative with the
+// accelerations a_p (n, those pushing it) and their rate jerk, along a motion of velocities v and
+// accelerations a_m
+template <class C>
+inline double ring_push_rate(const C& c, const double* x, const double* v, const double* a_p, const double* a_m,
+                             const double* jerk) {
+    const RingTurn t = ring_turn(c, x, v, a_m);
+    return t.tx * rel(a_p, c) + t.ty * rel(a_p, c.radial.y) + t.nx * rel(jerk, c) + t.ny * rel(jerk, c.radial.y) +
+           t.bend_rate;
 }
 // a force f along a contact's compression onto q (n): q += f grad(compression) (a line's f sign w; a ring's
 // f (n_x w_x + n_y w_y) at the displacements x)

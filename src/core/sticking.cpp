@@ -299,19 +299,11 @@ double Sticking::ring_rate(int h, const double* x, const double* v, const double
     for (int g = 0; g < nh; ++g) {
         if (!ring_bond(sy, held[static_cast<size_t>(g)])) continue;
         const Contact& ct = sy.contact[static_cast<size_t>(held[static_cast<size_t>(g)])];
-        const Radial& q = ct.radial;
-        const double px = q.px + rel(x, ct), py = q.py + rel(x, q.y);
-        const double r = std::hypot(px, py);
-        const double nx = px / r, ny = py / r;
-        const double vx = rel(v, ct), vy = rel(v, q.y), ax = rel(a, ct), ay = rel(a, q.y);
-        const double dv = nx * vx + ny * vy;
-        const double tx = (vx - nx * dv) / r, ty = (vy - ny * dv) / r;  // (n')
-        const double bend_g = (vx * vx + vy * vy - dv * dv) / r;
-        const double na = nx * ax + ny * ay;
-        const double bend_rate = (2.0 * (vx * ax + vy * ay) - 2.0 * dv * (bend_g + na) - bend_g * dv) / r;
-        c[static_cast<size_t>(g)] += tx * ax + ty * ay + bend_rate;
+        const RingTurn t = ring_turn(ct, x, v, a);
+        const double tx = t.tx, ty = t.ty;
+        c[static_cast<size_t>(g)] += tx * rel(a, ct) + ty * rel(a, ct.radial.y) + t.bend_rate;
         push_pair(turn.data(), ct, lam[static_cast<size_t>(g)] * tx);  // (W'^T lam)
-        push_pair(turn.data(), q.y, lam[static_cast<size_t>(g)] * ty);
+        push_pair(turn.data(), ct.radial.y, lam[static_cast<size_t>(g)] * ty);
     }
     for (int g = 0; g < nh; ++g) {
         const double* w = &wrow[static_cast<size_t>(g * n)];

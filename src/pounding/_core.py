@@ -284,7 +284,7 @@ def contact_slot(*, i: int, j: int, sign: float, gap_m: float, law: int, params:
     moat) struck by a point at ``ring_at_m`` (m, from the ring's centre at rest) that moves by its pair
     (``i``, ``j`` and levers) along x and by ``ring_y`` along y; compressed by its distance from the centre
     less ``ring_radius_m`` (m), pushed back along the ring's normal; ``sign`` +1 and ``gap_m`` its clearance
-    at rest (the law one of ``_core_checks.RING_LAWS``)."""
+    at rest (any law: a rigid stop's held point slides along the ring)."""
     params = [float(x) for x in params]
     if len(params) > LAYOUT["N_LAW_PARAMS"]:
         raise ValueError(f"a contact law's parameters: at most {LAYOUT['N_LAW_PARAMS']}, got {len(params)}")

@@ -6,11 +6,6 @@ from __future__ import annotations
 import math
 from typing import Any
 
-# the laws a ring's wall takes: every law (a rigid stop's held corner slides along the ring)
-RING_LAWS = ("kelvin_voigt", "hunt_crossley", "jankowski", "multilinear", "elastic_plastic", "hertzdamp",
-             "multilinear_kinematic", "rigid")
-
-
 def check_pair(i: int, j: int, n: int, what: str) -> None:
     """A ValueError unless dofs ``i`` and ``j`` are two of the ``n`` dofs (``j`` -1: the ground)."""
     if not (0 <= i < n and (j == -1 or (0 <= j < n and j != i))):
@@ -125,8 +120,6 @@ def check_contacts(contacts: list, n: int, slot_type: type, law_ids: dict) -> No
             place = (slot.ring_px_m, slot.ring_py_m, slot.ring_radius_m)
             if slot.sign != 1.0 or not all(math.isfinite(v) for v in place) or not slot.ring_radius_m > 0.0:
                 raise ValueError(f"contact {c}: a ring's wall has sign +1, a finite place and a radius > 0")
-            if slot.law not in [law_ids[name] for name in RING_LAWS]:
-                raise ValueError(f"contact {c}: a ring's wall takes a compliant law ({', '.join(RING_LAWS)})")
         if check_levers(slot, n, f"contact {c}") and slot.law == law_ids["rigid"] and slot.j >= 0:
             raise ValueError(f"contact {c}: a rigid stop on levers between two dofs is not supported yet "
                              "(its impulse's weights would add where a lever is the other end): put its wall "
