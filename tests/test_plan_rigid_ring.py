@@ -12,12 +12,16 @@ from __future__ import annotations
 
 import dataclasses
 import math
+from pathlib import Path
 
 import numpy as np
+import pandas as pd
 import pytest
+from typer.testing import CliRunner
 
 import pounding
 from pounding import _core
+from pounding.cli import app
 from pounding.engine.plan_assembly import assemble_plan
 from pounding.engine.plan_run import _ring_depths
 from pounding.engine.run_args import kernel_forcing
@@ -29,6 +33,8 @@ from reference_plan_rigid import rigid_reference
 from test_plan_rigid import _impacts, _mirrored, _rigid_building
 from test_plan_ring import _ringed
 from test_plan_run import _pair
+
+ROOT = Path(__file__).resolve().parents[1]
 
 
 def _rigid_ringed(rng, levels, gap_m, restitution):
@@ -238,3 +244,21 @@ def test_a_held_corner_s_force_rate_is_its_force_s_derivative_along_the_run():
         assert probes[0][:, 0].tolist() == probes[1][:, 0].tolist() == probes[2][:, 0].tolist()  # (one hold)
         differences = (probes[2][:, 1] - probes[0][:, 1]) / (2.0 * dt)
         np.testing.assert_allclose(probes[1][:, 2], differences, rtol=1e-8)
+
+
+def test_simulate_runs_a_rigid_ring_from_a_file_and_says_its_impacts_are_impulses(tmp_path):
+    text = (ROOT / "examples" / "plan_ring_building.toml").read_text()
+    law = 'law = { type = "kelvin_voigt", stiffness = 5.0e8, damping = 1.0e6 }'
+    assert law in text
+    path = tmp_path / "rigid_ring.toml"
+    path.write_text(text.replace(law, 'law = { type = "rigid", restitution = 0.0 }'))
+    args = ["simulate", str(path), "--record", str(ROOT / "examples" / "el_centro_ns.AT2"), "--scale-pga",
+            "0.8", "--direction", "60", "--duration", "8", "--contacts", str(tmp_path / "contacts.csv")]
+    result = CliRunner().invoke(app, args)
+    assert result.exit_code == 0, result.output
+    out = " ".join(result.output.split())
+    assert "max peak force [kN] │ inf" in out and "The run reached its end time" in out
+    contacts = pd.read_csv(tmp_path / "contacts.csv")
+    assert len(contacts) > 3 and (contacts.wall == "ring").all()
+    held = contacts[contacts.t_end_s > contacts.t_start_s]
+    assert len(held) > 0 and (held.peak_force_n > 0.0).all()  # (held on the ring, pushing)

@@ -3,6 +3,8 @@ and bearings' tables, its files."""
 
 from __future__ import annotations
 
+import math
+
 from pathlib import Path
 from typing import Any, Optional
 
@@ -40,7 +42,9 @@ def simulate_plan(building: Any, exc: Any, what: str, duration: float, velocity:
         add_row("contacts with the moat", str(s["contacts"]))
         add_row("smallest clearance [mm]", f"{s['clearance_min_m'] * 1e3:.2f}"
                 + (" (struck)" if s["clearance_min_m"] < 0 else ""))
-        if s["contacts"]:
+        if s["contacts"] and math.isinf(s["peak_force_max_n"]):
+            add_row("max peak force [kN]", "inf (the rigid impacts' impulses: see the contacts' impulse_n_s)")
+        elif s["contacts"]:
             add_row("max peak force [kN]", f"{s['peak_force_max_n'] / 1e3:.3f}")
     add_row("energy in / residual [J]", f"{s['input_work_j']:.6g} / {s['energy_residual_j']:.2e}")
     console.print(table)

@@ -5,6 +5,8 @@ ledger)."""
 
 from __future__ import annotations
 
+import math
+
 from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any, Optional
 
@@ -247,11 +249,15 @@ class PlanRun(Outcome):
         """The run in a few numbers, each name with its unit: ``t_end_s``; the largest bearing
         displacement in plan ``bearing_displacement_max_m`` (exact, over every bearing) and which bearing;
         the base's largest rotation ``theta_max_rad``; ``contacts`` at the moat and ``clearance_min_m``
-        (negative: struck); ``peak_force_max_n``; ``input_work_j`` and ``energy_residual_j``;
+        (negative: struck); ``peak_force_max_n`` (inf with rigid impacts: their impulses are the
+        contacts' ``impulse_n_s``; NaN without contacts); ``input_work_j`` and ``energy_residual_j``;
         ``status``."""
         nan = float("nan")
         b = int(np.argmax(self.bearing_displacement_max_m))
         energy = self.energy
+        peaks = self.contact_table[:, CORE_CONTACT_COLUMNS["peak_force_n"]]
+        # (a rigid impact's peak is NaN, an impulse's: inf, as a line's summary has it)
+        peak = nan if not peaks.size else math.inf if np.isnan(peaks).any() else float(np.max(peaks))
         return pd.Series({
             "t_end_s": self.final_state.time_s if self.final_state is not None else nan,
             "bearing_displacement_max_m": float(self.bearing_displacement_max_m[b]),
@@ -259,8 +265,7 @@ class PlanRun(Outcome):
             "theta_max_rad": float(max(abs(self.displacement_max[0, 2]), abs(self.displacement_min[0, 2]))),
             "contacts": int(self.contact_table.shape[0]),
             "clearance_min_m": float(np.min(self.clearance_m)) if self.building.moat_in_reach else nan,
-            "peak_force_max_n": (float(np.max(self.contact_table[:, CORE_CONTACT_COLUMNS["peak_force_n"]]))
-                                 if self.contact_table.shape[0] else nan),
+            "peak_force_max_n": peak,
             "input_work_j": energy.input_work if energy is not None else nan,
             "energy_residual_j": energy.residual if energy is not None else nan,
             "status": self.status.name,
