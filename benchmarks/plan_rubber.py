@@ -16,8 +16,8 @@ bilinear bearings with a ring for a moat instead of four walls, the same clearan
 contacts' starts located on the exact phases, each contact integrated numerically; and with four rigid walls
 (plastic, ``RigidStop(0)``): impulses at the corners, corners held on their walls (constraints) on exact
 phases; and with a rigid ring (plastic): its corners held on the ring (a constraint whose row turns with
-the corner) integrated numerically.  The two circles also with a velocity-dependent friction (``mu_fast = 1.8 mu``, 25 s/m): their slips'
-force at the slip's rate.
+the corner) integrated numerically.  The two circles also with a velocity-dependent friction
+(``mu_fast = 1.8 mu``, 25 s/m): their slips' force at the slip's rate.
 
     python benchmarks/plan_rubber.py [--storeys 5] [--rounds 3]
 """
