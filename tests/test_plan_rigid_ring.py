@@ -144,7 +144,7 @@ def test_a_rigid_ring_never_pulls_and_the_ledger_closes(restitution):
     assert restitution > 0.0 or float(np.max(force)) > 0.0  # (a plastic ring holds corners: pushing)
     assert float(np.min(force)) >= -1e-12 * max(float(np.max(force)), 1.0)
     e = run.energy
-    assert abs(e.residual) <= 1e-9 * e.input_work  # (measured: 1e-15 to 3e-11 of it)
+    assert abs(e.residual) <= 1e-9 * e.input_work  # (measured: 1.0e-13 plastic, 1.6e-16 at e = 0.5)
     assert len(run.contacts) > 10 and (run.contacts.wall == "ring").all()
 
 
