@@ -159,27 +159,35 @@ def _mirrored(b: PlanBuilding) -> PlanBuilding:
                                                         -b.accidental_eccentricity[1]))
 
 
-@pytest.mark.parametrize("restitution", [0.0, 0.5])
-def test_the_mirrored_building_moves_as_the_mirror_image(restitution):
-    rng = np.random.default_rng(2)
-    b = _rigid_building(rng, 2, 0.03, restitution)
+def _moves_as_its_mirror_image(b, mirrored, rng):
+    """``b`` and its ``mirrored`` image under a drawn pair and its mirror (y reversed): the mirror's motion
+    the run's reflected (to 1e-12 of its peak), its contacts at the same instants; (run, mirror)."""
     t, ax, ay = record_pair(rng, 1.5, 0.01, 6.0)
     run = pounding.simulate(b, _pair(t, ax, ay), t[-1], sample_rate_hz=200.0)
-    mirror = pounding.simulate(_mirrored(b), _pair(t, ax, -ay), t[-1], sample_rate_hz=200.0)
+    mirror = pounding.simulate(mirrored, _pair(t, ax, -ay), t[-1], sample_rate_hz=200.0)
     assert run.success and mirror.success
     assert len(run.contacts) > 3
     flip = np.array([1.0, -1.0, -1.0])  # (x kept, y and the turn reversed: each floor's)
     d = np.asarray(run.displacement)
     np.testing.assert_allclose(np.asarray(mirror.displacement), d * flip, rtol=0,
                                atol=1e-12 * float(np.max(np.abs(d))))  # (measured: 1.4e-18 of the peak)
+    np.testing.assert_allclose(mirror.contacts.t_start_s, run.contacts.t_start_s, rtol=0, atol=1e-12)
+    return run, mirror
+
+
+@pytest.mark.parametrize("restitution", [0.0, 0.5])
+def test_the_mirrored_building_moves_as_the_mirror_image(restitution):
+    rng = np.random.default_rng(2)
+    b = _rigid_building(rng, 2, 0.03, restitution)
+    run, mirror = _moves_as_its_mirror_image(b, _mirrored(b), rng)
     swap = {"-x": "-x", "+x": "+x", "-y": "+y", "+y": "-y"}
     assert [swap[w] for w in run.contacts.wall] == list(mirror.contacts.wall)
-    np.testing.assert_allclose(mirror.contacts.t_start_s, run.contacts.t_start_s, rtol=0, atol=1e-12)
 
 
-def test_a_continued_run_through_holds_equals_one_long_run():
+def _continued_through_a_hold_equals_one_long_run(b):
+    """``b`` under the far-field set's first pair for 16 s, and the same stopped halfway through its first
+    hold and continued from its final state: the two ends equal (rtol 1e-12)."""
     pair = pounding.records.fema_p695_pairs("far_field")[0]
-    b = _square(0.0, centre=(1.0, 0.5), gap_m=0.05)
     whole = pounding.simulate(b, pair, 16.0, sample_rate_hz=0.0)
     held = whole.contacts[whole.contacts.t_end_s > whole.contacts.t_start_s]
     assert len(held) > 0
@@ -188,6 +196,10 @@ def test_a_continued_run_through_holds_equals_one_long_run():
     rest = pounding.simulate(b, pair, 16.0 - mid, state=first.final_state, sample_rate_hz=0.0)
     # (measured: equal number for number)
     np.testing.assert_allclose(rest.final_state.vector, whole.final_state.vector, rtol=1e-12, atol=1e-15)
+
+
+def test_a_continued_run_through_holds_equals_one_long_run():
+    _continued_through_a_hold_equals_one_long_run(_square(0.0, centre=(1.0, 0.5), gap_m=0.05))
 
 
 def test_a_rectangle_takes_a_rigid_stop_in_a_file(tmp_path):

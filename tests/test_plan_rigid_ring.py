@@ -30,7 +30,8 @@ from pounding.model.plan import PlanBuilding
 from pounding.model.plan_parts import Bearing, Floor, Frame
 from reference_plan import record_pair
 from reference_plan_rigid import rigid_reference
-from test_plan_rigid import _impacts, _mirrored, _rigid_building
+from test_plan_rigid import (_continued_through_a_hold_equals_one_long_run, _impacts, _mirrored,
+                             _moves_as_its_mirror_image, _rigid_building)
 from test_plan_ring import _ringed
 from test_plan_run import _pair
 
@@ -171,30 +172,12 @@ def test_a_corner_held_on_the_ring_stays_on_it():
 def test_the_mirrored_building_in_a_ring_moves_as_the_mirror_image(restitution):
     rng = np.random.default_rng(2)
     b, _ = _rigid_ringed(rng, 2, 0.03, restitution)
-    t, ax, ay = record_pair(rng, 1.5, 0.01, 6.0)
     mirrored = _mirrored(dataclasses.replace(b, moat=RectangularMoat(0.03, b.moat.law, b.moat.level)))
-    mirrored = dataclasses.replace(mirrored, moat=b.moat)
-    run = pounding.simulate(b, _pair(t, ax, ay), t[-1], sample_rate_hz=200.0)
-    mirror = pounding.simulate(mirrored, _pair(t, ax, -ay), t[-1], sample_rate_hz=200.0)
-    assert run.success and mirror.success
-    assert len(run.contacts) > 3
-    flip = np.array([1.0, -1.0, -1.0])  # (x kept, y and the turn reversed: each floor's)
-    d = np.asarray(run.displacement)
-    np.testing.assert_allclose(np.asarray(mirror.displacement), d * flip, rtol=0,
-                               atol=1e-12 * float(np.max(np.abs(d))))
-    np.testing.assert_allclose(mirror.contacts.t_start_s, run.contacts.t_start_s, rtol=0, atol=1e-12)
+    _moves_as_its_mirror_image(b, dataclasses.replace(mirrored, moat=b.moat), rng)
 
 
 def test_a_continued_run_through_a_hold_on_the_ring_equals_one_long_run():
-    pair = pounding.records.fema_p695_pairs("far_field")[0]
-    b = _square_in_a_ring(0.0, centre=(1.0, 0.5), gap_m=0.05)
-    whole = pounding.simulate(b, pair, 16.0, sample_rate_hz=0.0)
-    held = whole.contacts[whole.contacts.t_end_s > whole.contacts.t_start_s]
-    assert len(held) > 0
-    mid = float(0.5 * (held.t_start_s.iloc[0] + held.t_end_s.iloc[0]))  # (while a corner is held)
-    first = pounding.simulate(b, pair, mid, sample_rate_hz=0.0)
-    rest = pounding.simulate(b, pair, 16.0 - mid, state=first.final_state, sample_rate_hz=0.0)
-    np.testing.assert_allclose(rest.final_state.vector, whole.final_state.vector, rtol=1e-12, atol=1e-15)
+    _continued_through_a_hold_equals_one_long_run(_square_in_a_ring(0.0, centre=(1.0, 0.5), gap_m=0.05))
 
 
 def test_a_rigid_ring_in_a_file_round_trips(tmp_path):
