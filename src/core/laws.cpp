@@ -654,4 +654,126 @@ void law_force_many(int law, const double* p, const double* d, const double* dd,
     for (int64_t i = 0; i < n; ++i) out[i] = law_force(law, p, d[i], dd[i], z).f;
 }
 
+// ---------------------------------------------------------------- the memory as the monodromy's coordinates
+
+int law_memory_size(int law, const double* p) {
+    if (law == ELASTIC_PLASTIC) return 1;
+    if (law == MULTILINEAR_KINEMATIC) return multilinear(p).n - 1;
+    return 0;
+}
+
+void law_memory_read(int law, const double* p, const double* z, double d, double* m) {
+    if (law == ELASTIC_PLASTIC) {  // the offset the elastic line would have if the branch turned here
+        const EpP ep = elastic_plastic(p);
+        const double soft = 1.0 - ep.k2 / ep.k1;
+        if (z[0] == EP_YIELD) m[0] = d * soft - (ep.k1 - ep.k2) * ep.dy / ep.k1;
+        else if (z[0] == EP_UNLOAD) m[0] = d * soft;
+        else m[0] = z[0];
+    } else if (law == MULTILINEAR_KINEMATIC) {
+        for (int i = 0; i < multilinear(p).n - 1; ++i) m[i] = z[1 + i];
+    }
+}
+
+void law_memory_write(int law, const double* p, double* z, const double* m) {
+    if (law == ELASTIC_PLASTIC) {
+        if (z[0] >= 0.0) z[0] = std::max(m[0], 0.0);
+    } else if (law == MULTILINEAR_KINEMATIC) {
+        for (int i = 0; i < multilinear(p).n - 1; ++i) z[1 + i] = m[i];
+    }
+}
+
+MemoryBranch law_memory_branch(int law, const double* p, double d, double dd, const double* z, bool in_contact) {
+    MemoryBranch b{};
+    b.lower = -1.0;
+    if (law == ELASTIC_PLASTIC) {  // (no free recovery: it springs back on release)
+        if (!in_contact) return b;
+        const EpP ep = elastic_plastic(p);
+        const EpLine l = ep_line(ep, z[0]);
+        b.k = l.k;
+        b.j = l.j;
+        if (l.j == EP_ELASTIC) b.g[0] = -ep.k1;  // k1 (d - m)
+        else b.follow[0] = 1.0 - ep.k2 / ep.k1;
+        if (l.j == EP_YIELD_BRANCH) b.r = l.r;
+        return b;
+    }
+    if (law == MULTILINEAR_KINEMATIC) {
+        const MlP ml = multilinear(p);
+        b.c = ml.c;
+        if (in_contact) {
+            const KbSpring s = kb_spring(ml, z, d, dd);
+            b.k = s.k, b.r = s.r, b.j = s.m;
+            for (int i = 0; i < ml.n - 1; ++i) {
+                const double step = ml.k[i] - ml.k[i + 1];
+                if (!(step > 0.0)) continue;
+                if (z[4 + i] == 0.0) {  // stuck: step (d - u_i), its u_i term out of r
+                    b.r += step * z[1 + i];
+                    b.g[i] = -step;
+                } else {
+                    b.follow[i] = 1.0;
+                }
+            }
+            return b;
+        }
+        const Line pc = kb_down_piece(ml, z, d);
+        b.k = pc.k, b.r = pc.offset;
+        if (!(d > 0.0) && pc.offset > 0.0) {  // (at zero, pushed there: a small compression back at once)
+            b.c = 0.0;
+            b.forgets = true;
+        }
+        for (int i = 0; i < ml.n - 1; ++i) {
+            const double bi = ml.b[i];
+            const double step = ml.k[i] - ml.k[i + 1];
+            if (!(step > 0.0)) continue;
+            const double u = z[1 + i];
+            if (z[4 + i] == 0.0 && d - (u - bi) > KB_TIE * bi) {  // (as kb_down_piece has it)
+                b.r += step * u;
+                b.g[i] = -step;
+            } else {
+                b.follow[i] = 1.0;  // slipping back with the compression
+            }
+        }
+        if (law_relax_horizon(law, p, d, z) < INF) {
+            b.lower = pc.lower;
+            for (int i = 0; i < ml.n - 1; ++i)  // (the stuck spring whose slip sets lower)
+                if (b.g[i] != 0.0 && z[1 + i] - ml.b[i] == pc.lower) {
+                    b.dlower[i] = 1.0;
+                    break;
+                }
+        }
+        return b;
+    }
+    if (law == MULTILINEAR && !in_contact) {
+        const MlP ml = multilinear(p);
+        const DownBranch db = ml_down_branch(ml, d);
+        b.k = db.k, b.c = ml.c, b.r = db.offset;
+        if (db.t_edge < INF) b.lower = db.lower;
+        return b;
+    }
+    const Branch br = law_linear_branch(law, p, d, dd, z);
+    b.k = br.k, b.c = br.c, b.r = br.r, b.j = br.j;
+    return b;
+}
+
+void law_edge_memory(int law, const double* p, int j, const double* z, bool upper, double* out) {
+    for (int i = 0; i < MAX_LAW_MEMORY; ++i) out[i] = 0.0;
+    if (law == ELASTIC_PLASTIC) {
+        const EpP ep = elastic_plastic(p);
+        if (z[0] >= 0.0 && (upper || z[0] > 0.0)) out[0] = ep.k1 / (ep.k1 - ep.k2);
+        return;
+    }
+    if (law != MULTILINEAR_KINEMATIC) return;
+    const MlP ml = multilinear(p);
+    const Edges edges = kb_edges(ml, j, z);
+    const double edge = upper ? edges.upper : edges.lower;
+    for (int i = 0; i < ml.n - 1; ++i) {  // (the stuck spring whose slip sets it, as kb_edges finds it)
+        if (!(ml.k[i] - ml.k[i + 1] > 0.0) || z[4 + i] != 0.0) continue;
+        if ((upper ? z[1 + i] + ml.b[i] : z[1 + i] - ml.b[i]) == edge) {
+            out[i] = 1.0;
+            return;
+        }
+    }
+}
+
+bool law_forgets_on_release(int law) { return law == ELASTIC_PLASTIC; }
+
 }  // namespace pounding

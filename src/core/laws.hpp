@@ -48,4 +48,31 @@ Relaxed law_release(int law, const double* p, double d, double dd, double ddd, c
 // the force along a path of compressions from the unloaded state (a hysteretic law follows it)
 void law_force_many(int law, const double* p, const double* d, const double* dd, double* out, int64_t n);
 
+// ---- a law's memory as coordinates of the exact monodromy (monodromy.cpp)
+// The numbers a law's state carries from one branch or contact to the next that its force depends on: an
+// elastic-plastic bumper's plastic offset (1), a kinematic multi-linear bumper's springs' slips (one per
+// breakpoint; a hardening one's unused).  On each branch the force is linear in them and they move with the
+// compression or not, so the motion stays a linear mode in the coordinates with them.
+constexpr int MAX_LAW_MEMORY = 3;
+// In contact: the branch of the state z at compression d and rate dd, F = k d + r + c dd + sum_i g[i] m[i],
+// m[i]' = follow[i] d'.  Out of contact (a free recovery, c > 0): the piece it falls on, d' = -(k d + r +
+// sum_i g[i] m[i]) / c, m[i]' = follow[i] d', down to lower (-1: none reached), lower's derivative in m[i]
+// dlower[i]; at zero compression with a force that would push it further (a kinematic bumper's springs set
+// below zero), forgets: a small compression is back at zero at once (c zero).
+struct MemoryBranch {
+    double k, c, r, lower;
+    int j;
+    bool forgets;
+    double g[MAX_LAW_MEMORY], follow[MAX_LAW_MEMORY], dlower[MAX_LAW_MEMORY];
+};
+int law_memory_size(int law, const double* p);
+// m from z at compression d (the elastic-plastic offset where the branch puts it), and back into z
+void law_memory_read(int law, const double* p, const double* z, double d, double* m);
+void law_memory_write(int law, const double* p, double* z, const double* m);
+MemoryBranch law_memory_branch(int law, const double* p, double d, double dd, const double* z, bool in_contact);
+// the derivative in m[i] of branch j's upper (or lower) edge (law_branch_edges) into out[i]
+void law_edge_memory(int law, const double* p, int j, const double* z, bool upper, double* out);
+// whether the law forgets its memory when the contact ends (its memory then zero)
+bool law_forgets_on_release(int law);
+
 }  // namespace pounding

@@ -13,12 +13,25 @@ namespace pounding {
 
 namespace {
 
-// where each block of x starts
+// where each block of x starts; after x (monodromy_size), the contacts' laws' memory (law_memory_size: an
+// elastic-plastic bumper's plastic offset, a kinematic multi-linear bumper's slips), propagated with x and
+// left out of the map's Jacobian (a start's memory held, as the map's finite differences hold it)
 struct Coords {
-    int n, nc, nsp, v, def, slip, size;
+    int n, nc, nsp, v, def, slip, pub, mem, size;
+    std::vector<int> mem_at;  // each contact's first memory coordinate
     explicit Coords(const System& sy)
         : n(sy.n), nc(sy.nc()), nsp(sy.n_springs()), v(sy.n), def(2 * sy.n), slip(2 * sy.n + sy.nc()),
-          size(monodromy_size(sy)) {}
+          pub(monodromy_size(sy)), mem(pub), size(pub) {
+        for (int c = 0; sy.has_b && c < nc; ++c) {
+            const Contact& ct = sy.contact[static_cast<size_t>(c)];
+            mem_at.push_back(size);
+            size += law_memory_size(ct.law, ct.p);
+        }
+    }
+    int memory(const System& sy, int c) const {
+        const Contact& ct = sy.contact[static_cast<size_t>(c)];
+        return law_memory_size(ct.law, ct.p);
+    }
 };
 
 // x into the state vector st and back (the mode's numbers stay in st)
@@ -29,6 +42,10 @@ void to_state(const System& sy, const Coords& cx, const std::vector<double>& xa,
     }
     for (int c = 0; c < cx.nc; ++c) st[sy.lay.def_at(c)] = xa[cx.def + c];
     for (int s = 0; s < cx.nsp; ++s) st[sy.lay.base + s] = xa[cx.slip + s];
+    for (int c = 0; c < static_cast<int>(cx.mem_at.size()); ++c) {
+        const Contact& ct = sy.contact[static_cast<size_t>(c)];
+        if (cx.memory(sy, c) > 0) law_memory_write(ct.law, ct.p, st + sy.lay.z_at(c), xa.data() + cx.mem_at[c]);
+    }
 }
 
 void from_state(const System& sy, const Coords& cx, const double* st, std::vector<double>& xa) {
@@ -38,11 +55,25 @@ void from_state(const System& sy, const Coords& cx, const double* st, std::vecto
     }
     for (int c = 0; c < cx.nc; ++c) xa[cx.def + c] = st[sy.lay.def_at(c)];
     for (int s = 0; s < cx.nsp; ++s) xa[cx.slip + s] = st[sy.lay.base + s];
+    for (int c = 0; c < static_cast<int>(cx.mem_at.size()); ++c) {
+        const Contact& ct = sy.contact[static_cast<size_t>(c)];
+        if (cx.memory(sy, c) > 0)
+            law_memory_read(ct.law, ct.p, st + sy.lay.z_at(c), st[sy.lay.def_at(c)], xa.data() + cx.mem_at[c]);
+    }
 }
 
-Branch branch_of(const System& sy, int c, const double* st) {
+// a contact's compression rate in st (touching: its pair's)
+double compression_rate(const System& sy, const double* st, int c) {
     const Contact& ct = sy.contact[static_cast<size_t>(c)];
-    return law_linear_branch(ct.law, ct.p, st[sy.lay.def_at(c)], 0.0, st + sy.lay.z_at(c));
+    return ct.sign * rel(st + sy.lay.v, ct.i, ct.j);
+}
+
+// the branch (in contact) or the free recovery's piece (apart) of contact c in st, in the law's memory
+MemoryBranch branch_of(const System& sy, int c, const double* st) {
+    const Contact& ct = sy.contact[static_cast<size_t>(c)];
+    const bool in = st[sy.lay.in_at(c)] != 0.0;
+    return law_memory_branch(ct.law, ct.p, st[sy.lay.def_at(c)], in ? compression_rate(sy, st, c) : 0.0,
+                             st + sy.lay.z_at(c), in);
 }
 
 // (i, j) += s as a pair's spring into an n x n matrix
@@ -84,10 +115,11 @@ Mat augmented(const System& sy, const Coords& cx, const double* st, double omega
             }
         }
     }
+    Mat Gm = Mat::Zero(n, std::max(size - cx.mem, 1));  // (each contact's force on the dofs per unit of memory)
     for (int c = 0; sy.has_b && c < cx.nc; ++c) {  // each contact: -sign F on dof i, +sign F on dof j
         const Contact& ct = sy.contact[static_cast<size_t>(c)];
-        const Branch b = branch_of(sy, c, st);
-        const int row = cx.def + c;
+        const MemoryBranch b = branch_of(sy, c, st);
+        const int row = cx.def + c, nm = cx.memory(sy, c), at = cx.mem_at[static_cast<size_t>(c)];
         if (st[sy.lay.in_at(c)] != 0.0) {
             add_pair(K, ct.i, ct.j, b.k);
             add_pair(C, ct.i, ct.j, b.c);
@@ -96,8 +128,19 @@ Mat augmented(const System& sy, const Coords& cx, const double* st, double omega
             if (ct.j >= 0) R[static_cast<size_t>(ct.j)] -= r;
             a(row, cx.v + ct.i) = ct.sign;  // the compression follows the pair
             if (ct.j >= 0) a(row, cx.v + ct.j) = -ct.sign;
-        } else if (b.c > 0.0) {
-            a(row, row) = law_relax(ct.law, ct.p, 1.0, 0.0, st + sy.lay.z_at(c)).rate;  // relaxing
+            for (int q = 0; q < nm; ++q) {
+                Gm(ct.i, at + q - cx.mem) += ct.sign * b.g[q];
+                if (ct.j >= 0) Gm(ct.j, at + q - cx.mem) -= ct.sign * b.g[q];
+                if (b.follow[q] != 0.0)
+                    for (int col = 0; col < size; ++col) a(at + q, col) = b.follow[q] * a(row, col);
+            }
+        } else if (b.c > 0.0) {  // relaxing: c d' = -(k d + r + g . m)
+            a(row, row) = -b.k / b.c;
+            if (b.r != 0.0) a(row, one) = -b.r / b.c;
+            for (int q = 0; q < nm; ++q) a(row, at + q) = -b.g[q] / b.c;
+            for (int q = 0; q < nm; ++q)
+                if (b.follow[q] != 0.0)
+                    for (int col = 0; col < size + 3; ++col) a(at + q, col) = b.follow[q] * a(row, col);
         }
     }
     for (int i = 0; i < n; ++i) {
@@ -108,6 +151,7 @@ Mat augmented(const System& sy, const Coords& cx, const double* st, double omega
             a(cx.v + i, cx.v + j) = -C(i, j) / m;
         }
         for (int s = 0; s < cx.nsp; ++s) a(cx.v + i, cx.slip + s) = -G(i, s) / m;
+        for (int q = cx.mem; q < size; ++q) a(cx.v + i, q) = -Gm(i, q - cx.mem) / m;
         a(cx.v + i, one) = -R[static_cast<size_t>(i)] / m;
         a(cx.v + i, s_) = -amp * sy.infl[static_cast<size_t>(2 * i)];  // the table moves every mass (its first
         // component: a monodromy's forcing has no second)
@@ -227,12 +271,82 @@ Mat top_left(const Mat& m, int n) {
         for (int j = 0; j < n; ++j) out(i, j) = m(i, j);
     return out;
 }
+
+// the saltation matrix of a guard whose gradient is grad, the field f_before before and f_after after, applied
+// to jac; false where the guard is met tangentially and the field jumps (no saltation matrix)
+bool saltation(const std::vector<double>& grad, const std::vector<double>& f_before,
+               const std::vector<double>& f_after, Mat& jac) {
+    const int n = static_cast<int>(jac.rows());
+    double rate = 0.0;
+    for (int i = 0; i < n; ++i) rate += grad[static_cast<size_t>(i)] * f_before[static_cast<size_t>(i)];
+    if (rate == 0.0) {  // (tangent: no saltation, unless the field does not jump)
+        for (int i = 0; i < n; ++i)
+            if (f_after[static_cast<size_t>(i)] != f_before[static_cast<size_t>(i)]) return false;
+        return true;
+    }
+    Mat jump = Mat::Identity(n, n);
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+            jump(i, j) += (f_after[static_cast<size_t>(i)] - f_before[static_cast<size_t>(i)]) *
+                          grad[static_cast<size_t>(j)] / rate;
+    jac = (jump * jac).eval();
+    return true;
+}
+
+// From t to t_end in the mode a, across the edges of the free recoveries' pieces on the way: a multi-linear
+// bumper apart falls from branch to branch, a kinematic one's springs start to slip back, one reaches zero.
+// These are no events of the run (the engine takes a recovery's pieces in closed form within a sub-interval),
+// so they are found here, each from its piece's closed form (law_relax_horizon).  False where one is met
+// tangentially.
+bool propagate(const System& sy, const Coords& cx, std::vector<double>& st, std::vector<double>& xa, Mat& jac,
+               Mat& a, double& t, double t_end, double omega, double amp) {
+    const int n = cx.size;
+    for (int pass = 0;; ++pass) {
+        for (int c = 0; sy.has_b && c < cx.nc; ++c)  // (a recovery at zero that forgets a compression at once)
+            if (st[sy.lay.in_at(c)] == 0.0 && branch_of(sy, c, st.data()).forgets) jac.row(cx.def + c).setZero();
+        double h = t_end - t;
+        int which = -1;
+        MemoryBranch b{};  // (the piece that ends first: its edge and how the memory moves it)
+        for (int c = 0; pass < 4 * cx.nc + 64 && sy.has_b && c < cx.nc; ++c) {
+            if (st[sy.lay.in_at(c)] != 0.0 || !(st[sy.lay.def_at(c)] > 0.0)) continue;
+            const Contact& ct = sy.contact[static_cast<size_t>(c)];
+            const double edge = law_relax_horizon(ct.law, ct.p, st[sy.lay.def_at(c)], st.data() + sy.lay.z_at(c));
+            if (edge < h) {
+                h = edge;
+                which = c;
+                b = branch_of(sy, c, st.data());
+            }
+        }
+        const Mat step = exponential(a, h);
+        xa = matvec(step, xa);
+        jac = (top_left(step, n) * jac).eval();
+        if (which < 0) {
+            t = t_end;
+            to_state(sy, cx, xa, st.data());
+            return true;
+        }
+        t += h;
+        const std::vector<double> f_before = matvec(a, xa);
+        to_state(sy, cx, xa, st.data());
+        const Contact& ct = sy.contact[static_cast<size_t>(which)];
+        std::vector<double> grad(static_cast<size_t>(n), 0.0);  // d - lower(m)
+        grad[static_cast<size_t>(cx.def + which)] = 1.0;
+        const int at = cx.mem_at[static_cast<size_t>(which)];
+        for (int q = 0; q < cx.memory(sy, which); ++q) grad[static_cast<size_t>(at + q)] = -b.dlower[q];
+        st[sy.lay.def_at(which)] = std::max(b.lower, 0.0);  // (where the engine puts it: law_relax)
+        law_moved(ct.law, ct.p, st.data() + sy.lay.z_at(which), st[sy.lay.def_at(which)], false);
+        from_state(sy, cx, st.data(), xa);
+        a = mode(sy, cx, st.data(), omega, amp);
+        if (!saltation(grad, f_before, matvec(a, xa), jac)) return false;
+    }
+}
 }  // namespace
 
-int monodromy(const System& sy, const double* st0, const double* events, int n_events, double t_end, double omega,
-              double amp, double phase, Mat& jac, std::vector<double>& x_end) {
+namespace {
+int propagated(const System& sy, const double* st0, const double* events, int n_events, double t_end,
+               double omega, double amp, double phase, Mat& jac, std::vector<double>& x_end) {
     const Coords cx(sy);
-    const int n = cx.size;
+    const int n = cx.size, pub = cx.pub;
     std::vector<double> st(st0, st0 + sy.state_size()), next(st.size());
     double t = st0[T];
     std::vector<double> xa(static_cast<size_t>(n + 3), 0.0);
@@ -240,16 +354,20 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
     xa[static_cast<size_t>(n)] = std::sin(omega * t + phase);
     xa[static_cast<size_t>(n + 1)] = std::cos(omega * t + phase);
     xa[static_cast<size_t>(n + 2)] = 1.0;
-    jac = Mat::Identity(n, n);
+    jac = Mat::Identity(n, pub);  // (the memory's rows zero at the start: held, ...
+    for (int c = 0; sy.has_b && c < cx.nc; ++c) {  // ... but where it moves with the compression: there by it)
+        const MemoryBranch b = branch_of(sy, c, st.data());
+        for (int q = 0; q < cx.memory(sy, c); ++q) jac(cx.mem_at[static_cast<size_t>(c)] + q, cx.def + c) = b.follow[q];
+    }
     tied_velocities(sy, cx, st.data(), jac);
     Mat a = mode(sy, cx, st.data(), omega, amp);
     for (int e = 0; e <= n_events; ++e) {
         if (e > 0) follow_force(sy, cx, st.data(), jac);  // (after an event)
         const double t_ev = e < n_events ? events[3 * e] : t_end;
-        const Mat step = exponential(a, t_ev - t);
-        xa = matvec(step, xa);
-        jac = (top_left(step, n) * jac).eval();
-        t = t_ev;
+        if (!propagate(sy, cx, st, xa, jac, a, t, t_ev, omega, amp)) {
+            x_end.assign(xa.begin(), xa.begin() + pub);
+            return e;
+        }
         if (e == n_events) break;
         const int action = static_cast<int>(events[3 * e + 1]), index = static_cast<int>(events[3 * e + 2]);
         const std::vector<double> f_before = matvec(a, xa);
@@ -299,7 +417,7 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
             double rate = 0.0;
             for (int q = 0; q < n; ++q) rate += grad[static_cast<size_t>(q)] * f_before[static_cast<size_t>(q)];
             if (!(rate > 0.0)) {  // (met at rest or grazing: no saltation)
-                x_end.assign(xa.begin(), xa.begin() + n);
+                x_end.assign(xa.begin(), xa.begin() + pub);
                 return e;
             }
             std::vector<double> xr(xa);
@@ -333,16 +451,53 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
         }
         if (action == ACT_CONTACT || action == ACT_RELEASE) {
             const Contact& ct = sy.contact[static_cast<size_t>(index)];
-            const Branch b = branch_of(sy, index, st.data());
+            const MemoryBranch b = branch_of(sy, index, st.data());
+            const int nm = cx.memory(sy, index), at = cx.mem_at[static_cast<size_t>(index)];
+            double* z_next = next.data() + sy.lay.z_at(index);
             if (action == ACT_CONTACT) {  // sign (x_i - x_j) - gap reaches the (relaxing) compression
+                // (a law with memory and no damping may rest compressed, where its force fell to zero: that
+                // depth's own perturbation is not followed here)
+                if (nm > 0 && !(b.c > 0.0) && !law_forgets_on_release(ct.law) && st[sy.lay.def_at(index)] > 0.0)
+                    return -2 - e;
                 add_rel(grad, 0, ct.i, ct.j, ct.sign);
                 if (b.c > 0.0) grad[static_cast<size_t>(cx.def + index)] = -1.0;
                 next[sy.lay.in_at(index)] = 1.0;
+                law_contact_state(ct.law, ct.p, 0.0, z_next, next[sy.lay.def_at(index)]);
             } else {  // the force falls to 0
                 add_rel(grad, 0, ct.i, ct.j, ct.sign * b.k);
                 add_rel(grad, cx.v, ct.i, ct.j, ct.sign * b.c);
+                for (int q = 0; q < nm; ++q) grad[static_cast<size_t>(at + q)] = b.g[q];
                 next[sy.lay.in_at(index)] = 0.0;
+                law_release_state(ct.law, ct.p, z_next, next[sy.lay.def_at(index)]);
             }
+        } else if (action == ACT_LAW_BRANCH && sy.has_b && law_is_linear(sy.contact[static_cast<size_t>(index)].law)) {
+            // a contact law's branch: the compression at an edge of its branch (which the law's memory may
+            // move), or its rate through zero on a branch that ends there (a turn); which of them, from where
+            // the state is (the event table does not say)
+            const Contact& ct = sy.contact[static_cast<size_t>(index)];
+            const double d = st[sy.lay.def_at(index)], dd = compression_rate(sy, st.data(), index);
+            const double* z = st.data() + sy.lay.z_at(index);
+            // the branch before the event: the one the compression leaves (at an edge, the law's ties take the
+            // branch the rate goes to)
+            const int j = law_memory_branch(ct.law, ct.p, d, -dd, z, true).j;
+            const Edges edges = law_branch_edges(ct.law, ct.p, j, z);
+            const auto at_edge = [&](double edge) {
+                return edge >= 0.0 && std::abs(d - edge) <= 1e-7 * edge + 64.0 * ROUNDING * ct.gap;
+            };
+            double code = 0.0, dedge[MAX_LAW_MEMORY];
+            const bool up = at_edge(edges.upper);
+            if (up || at_edge(edges.lower)) {  // d - edge(m)
+                code = up ? EDGE_UP_STATE : EDGE_DOWN_STATE;
+                grad[static_cast<size_t>(cx.def + index)] = 1.0;
+                law_edge_memory(ct.law, ct.p, j, z, up, dedge);
+                const int at = cx.mem_at[static_cast<size_t>(index)];
+                for (int q = 0; q < cx.memory(sy, index); ++q) grad[static_cast<size_t>(at + q)] = -dedge[q];
+            } else if (law_turn_sign(ct.law, ct.p, z) != 0.0) {  // d' through zero
+                add_rel(grad, cx.v, ct.i, ct.j, ct.sign);
+            } else {
+                return -2 - e;  // (neither: not this law's event)
+            }
+            law_after_event(ct.law, ct.p, next.data() + sy.lay.z_at(index), d, code);
         } else if (action == ACT_SLIP) {
             // a stick's end (its tie's force at mu W) or the start's slip: the slip begins from the force's
             // balance, the pair's relative acceleration zero on both sides, so the field goes on continuous (no
@@ -382,23 +537,13 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
             return -2 - e;  // (a contact law's branch, a Bouc-Wen spring: no linear modes)
         }
         const Mat a_after = mode(sy, cx, next.data(), omega, amp);
-        const std::vector<double> f_after = matvec(a_after, xa);
-        double rate = 0.0;
-        for (int i = 0; i < n; ++i) rate += grad[static_cast<size_t>(i)] * f_before[static_cast<size_t>(i)];
-        if (rate == 0.0) {  // (tangent: no saltation, unless the field does not jump)
-            for (int i = 0; i < n; ++i) {
-                if (f_after[static_cast<size_t>(i)] != f_before[static_cast<size_t>(i)]) {
-                    x_end.assign(xa.begin(), xa.begin() + n);
-                    return e;
-                }
-            }
-        } else {
-            Mat jump = Mat::Identity(n, n);
-            for (int i = 0; i < n; ++i)
-                for (int j = 0; j < n; ++j)
-                    jump(i, j) += (f_after[static_cast<size_t>(i)] - f_before[static_cast<size_t>(i)]) *
-                                  grad[static_cast<size_t>(j)] / rate;
-            jac = (jump * jac).eval();
+        if (!saltation(grad, f_before, matvec(a_after, xa), jac)) {
+            x_end.assign(xa.begin(), xa.begin() + pub);
+            return e;
+        }
+        if (action == ACT_RELEASE && law_forgets_on_release(sy.contact[static_cast<size_t>(index)].law)) {
+            const int at = cx.mem_at[static_cast<size_t>(index)];  // (its memory back to zero whatever it was)
+            for (int q = 0; q < cx.memory(sy, index); ++q) jac.row(at + q).setZero();
         }
         if (action == ACT_CONTACT) {  // the compression is the depth (the relaxing surface's, met)
             const Contact& ct = sy.contact[static_cast<size_t>(index)];
@@ -408,8 +553,16 @@ int monodromy(const System& sy, const double* st0, const double* events, int n_e
         from_state(sy, cx, st.data(), xa);  // (a yield's slip put on its break)
         a = a_after;
     }
-    x_end.assign(xa.begin(), xa.begin() + n);
+    x_end.assign(xa.begin(), xa.begin() + pub);
     return -1;
+}
+}  // namespace
+
+int monodromy(const System& sy, const double* st0, const double* events, int n_events, double t_end, double omega,
+              double amp, double phase, Mat& jac, std::vector<double>& x_end) {
+    const int out = propagated(sy, st0, events, n_events, t_end, omega, amp, phase, jac, x_end);
+    jac = jac.topRows(monodromy_size(sy)).eval();  // (the laws' memory left out)
+    return out;
 }
 
 }  // namespace pounding
