@@ -135,8 +135,9 @@ def test_lines_are_joined_in_the_order_of_their_x_axis(drawn):
         if name in CLOSED:
             continue
         for ln in _lines(fig):
-            if ln.get_gid() == "branch" or ln.get_linestyle() in ("None", "", " "):
-                continue  # (a branch folds back in the frequency: its order is the arclength's)
+            if ln.get_gid() in ("branch", "curve") or ln.get_linestyle() in ("None", "", " "):
+                continue  # (a branch folds back in the frequency, a fold curve in the (f, a_G) plane turns
+                # back in either: their order is the arclength's)
             x = np.asarray(ln.get_xdata(), float)
             x = x[np.isfinite(x)]
             if x.size >= 3:

@@ -217,7 +217,7 @@ def test_refusals_name_the_field_and_the_fix():
         pd_.periodic_orbit(b, pd_.Harmonic(0.1, 1.5), guess=pd_.State.at_rest(pd_.presets.paper_damped()))
     hc = pd_.Structure(2.0e3, b.isolator, b.storeys,
                        [pd_.Wall(1, 0.02, 0.02, pd_.HuntCrossley(1e9, 1.5, 1e9))])
-    with pytest.raises(pd_.InputError, match="wall 0's left law is HuntCrossley"):
+    with pytest.raises(pd_.InputError, match="wall 0's left law: HuntCrossley"):
         pd_.periodic_orbit(hc, pd_.Harmonic(0.1, 1.5), method="exact")
     orbit = pd_.periodic_orbit(hc, pd_.Harmonic(0.1, 1.5), settle_cycles=30)
     assert orbit.method == "finite-difference" and orbit.converged, orbit.message

@@ -3,7 +3,8 @@ monodromy of a periodic orbit.
 
 For the systems whose every phase is linear (multi-linear isolators and storeys, elastic or kinematic,
 without a Bouc-Wen spring; friction isolators of a constant friction, a triple friction pendulum's surfaces
-in series; Kelvin-Voigt or rigid contacts) the motion between two events obeys
+in series; Kelvin-Voigt, multi-linear, elastic-plastic or rigid contacts: a law's memory, its springs'
+slips or its plastic offset, joins the coordinates the core propagates) the motion between two events obeys
 ``x' = A_m x + b(t)`` with ``A_m`` constant in the mode ``m`` (which contacts touch, which springs slip
 or which backbone branch holds).  With the forcing written as two more states, ``(sin theta, cos theta)``
 with ``theta = Omega t + phase``, and a constant 1, the augmented system is homogeneous,
@@ -29,7 +30,7 @@ from ..engine.layout import (ACT_CONTACT, ACT_REGION, ACT_RELEASE, ACT_REVERSAL,
 from ..engine.kernels import System
 from ..engine.kernels import monodromy as exact_monodromy
 from ..engine.assembly import structures_of
-from ..model.contact_laws import is_rigid, linear_form
+from ..model.contact_laws import monodromy_caveat
 
 if TYPE_CHECKING:
     from ..model import Adjacent, Oscillator, Structure
@@ -48,12 +49,15 @@ def unsupported(system: "Oscillator | Structure | Adjacent") -> str | None:
             return f"{who}isolator's friction depends on the velocity (a nonlinear phase)"
         for w, wall in enumerate(s.walls):
             for side, law in (("left", wall.left), ("right", wall.right)):
-                if linear_form(law) is None and not is_rigid(law):
-                    return f"{who}wall {w}'s {side} law is {type(law).__name__} (exact: Kelvin-Voigt, rigid)"
+                if (why := monodromy_caveat(law)) is not None:
+                    return f"{who}wall {w}'s {side} law: {why}" + EXACT_LAWS
     for k, link in enumerate(links):
-        if linear_form(link.law) is None and not is_rigid(link.law):
-            return f"link {k}'s law is {type(link.law).__name__} (exact: Kelvin-Voigt, rigid)"
+        if (why := monodromy_caveat(link.law)) is not None:
+            return f"link {k}'s law: {why}" + EXACT_LAWS
     return None
+
+
+EXACT_LAWS = " (exact: Kelvin-Voigt, multi-linear, elastic-plastic, rigid)"
 
 
 class NoExactMonodromy(Exception):

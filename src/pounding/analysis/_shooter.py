@@ -27,7 +27,7 @@ from ..engine.simulate import NotAState, ShortRun, short_run
 from ..engine.state import State
 from ..excitation import Harmonic
 from ..excitation.peak import ground_peak
-from ..model.contact_laws import is_rigid, linear_form
+from ..model.contact_laws import is_rigid
 from . import _hybrid as hy
 from ._shooting import _Failed, _Newton, at_section, finished_contacts
 
@@ -64,8 +64,10 @@ class _Shooter(_Newton):
                              fix="give a Bouc-Wen spring to one of the two isolators at most, or simulate "
                                  "the pair without orbits")
         self.z_max = bw_iso[0].z_max if bw_iso else 0.0
-        # each contact slot: (i, j, sign, gap, relaxes: a Kelvin-Voigt law with damping, free when apart)
-        self.slots = [(i, j, sign, gap, bool((linear_form(law) or (0.0, 0.0))[1] > 0.0))
+        # each contact slot: (i, j, sign, gap, relaxes: a piecewise linear law with damping and no memory, its
+        # compression free when apart: it recovers over time; a kinematic bumper's is held with its springs')
+        self.slots = [(i, j, sign, gap, bool(law.PIECEWISE and getattr(law, "damping", 0.0) > 0.0
+                                             and not getattr(law, "has_memory", False)))
                       for i, j, sign, gap, law in self.asm.pairs]
         self.springs = []  # each kinematic spring: (global index, i, j, break)
         self.elastic = []  # each element of the elastic rule: (element, i, j, breaks)

@@ -8,8 +8,8 @@ orthonormal frame of tangent vectors, re-orthonormalised after every period (Ben
 with QR).  The exponents are the averages of the logarithms of the diagonal of R per second.
 
 The tangent coordinates are the state's (:func:`pounding.periodic_orbit`'s names): every level's
-displacement and velocity (a single mass's ``x_0`` and ``v_0``), the compression of a Kelvin-Voigt
-contact with a dashpot (out of contact it relaxes: a state of its own), the slip of each
+displacement and velocity (a single mass's ``x_0`` and ``v_0``), the compression of a Kelvin-Voigt or
+elastic multi-linear contact with a dashpot (out of contact it relaxes: a state of its own), the slip of each
 spring that slips during the run (a spring that never does is a constant, a parameter of the
 response, as in :func:`pounding.periodic_orbit`), the Bouc-Wen z.  At each section a coordinate
 that follows the mass there (a touched bumper's compression, a slipping spring's slip) is put back

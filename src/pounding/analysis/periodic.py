@@ -4,16 +4,17 @@ stroboscopic map, with its Floquet multipliers.
 The map takes the state of any system (a single mass, a structure, a pair) at a time ``t0`` to the
 state one forcing period (or ``period_multiple`` periods) later, by the engine (exact at every event;
 the map: ``_shooter``).  Its Jacobian, the monodromy matrix, is composed exactly for systems whose
-phases are all linear (multi-linear isolators and storeys without a Bouc-Wen spring, Kelvin-Voigt or
-rigid contacts): the closed-form state-transition matrices of the phases between the engine's events,
-and a saltation matrix at every event (``_hybrid``).  For the other systems it is a central finite
-difference of the map (``PeriodicOrbit.method`` says which).
+phases are all linear (multi-linear isolators and storeys without a Bouc-Wen spring; Kelvin-Voigt,
+multi-linear, elastic-plastic or rigid contacts): the closed-form state-transition matrices of the phases
+between the engine's events, and a saltation matrix at every event (``_hybrid``).  For the other systems
+it is a central finite difference of the map (``PeriodicOrbit.method`` says which).
 
 The shooting coordinates are the state's free numbers at ``t0``: every level's displacement and
 velocity, the compression of a Kelvin-Voigt contact not touched (it relaxes), the slip of a spring
 that does not slip; a contact in progress and a slipping spring follow the masses.  The contacts of
-other laws are no coordinates: their compressions and their own states follow the motion (a stiff
-contact's relaxation is over long before the period ends).
+other laws (and of laws with memory: a kinematic multi-linear bumper, an elastic-plastic one) are no
+coordinates: their compressions and their own states follow the motion (a stiff contact's relaxation is
+over long before the period ends).
 """
 
 from __future__ import annotations
@@ -194,7 +195,8 @@ def periodic_orbit(
         structure's :class:`State` (its
         shooting coordinates every mass's displacement and velocity, the relaxing contacts'
         compressions and the sticking springs' slips; the monodromy exact, saltation at each
-        contact, for Kelvin-Voigt contacts and multi-linear isolators and storeys).
+        contact, for Kelvin-Voigt, multi-linear, elastic-plastic and rigid contacts and multi-linear
+        isolators and storeys).
     excitation : Harmonic
         The table's harmonic acceleration.
     guess : State, optional

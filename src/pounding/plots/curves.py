@@ -80,7 +80,9 @@ def plot_curves(curves: list, ax: Any = None, *, matrix: Optional[Any] = None,
         left = c.side.endswith("left")
         color = kwargs.get("color") or ("C0" if c.kind == "fold" else "C2" if left else "C1")
         kw = {k: v for k, v in kwargs.items() if k != "color"}
-        artists += ax.plot(df["freq_hz"], df["a_g"], STYLE.get(c.kind, "-"), color=color, label=label, **kw)
+        # (gid "curve": a curve in the plane may turn back in either parameter, its order the arclength's)
+        artists += ax.plot(df["freq_hz"], df["a_g"], STYLE.get(c.kind, "-"), color=color, label=label,
+                           gid="curve", **kw)
         short = _stopped_ends(c, df, box)
         if short:
             f, a = zip(*short)

@@ -41,6 +41,17 @@ def linear_form(law: Any) -> Optional[tuple[float, float]]:
     return (law.stiffness, law.damping) if law.LINEAR else None
 
 
+def monodromy_caveat(law: Any) -> Optional[str]:
+    """Why the exact monodromy cannot follow ``law`` (None: it can: a rigid stop, or a law whose force is
+    linear in the compression, its rate and its memory on each branch, its ``PIECEWISE``)."""
+    if is_rigid(law):
+        return None
+    if not law.PIECEWISE:
+        return f"{type(law).__name__} is nonlinear in the compression"
+    caveat = getattr(law, "monodromy_caveat", None)
+    return caveat() if caveat is not None else None
+
+
 ContactLaw = Union[KelvinVoigt, HuntCrossley, Jankowski, MultilinearBumper, ElasticPlastic, Hertzdamp,
                    RigidStop]
 LAWS: dict[str, type] = {KelvinVoigt.TYPE: KelvinVoigt, HuntCrossley.TYPE: HuntCrossley,

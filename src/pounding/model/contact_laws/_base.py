@@ -26,16 +26,19 @@ MAX_DAMPING_RATIO = 100.0  # Jankowski's xi: 10 already gives a restitution of a
 
 
 def engine_needs(type_name: str, state_check: Callable, *, linear: bool, law_id: int | None = None,
-                 rigid: bool = False) -> Callable[[type], type]:
+                 rigid: bool = False, piecewise: bool = False) -> Callable[[type], type]:
     """A contact law's class decorator: what the engine asks of the law, declared in one line above it (its
     C++ side: src/core/laws.cpp).  It sets the class's ``TYPE`` (its ``type`` in a system's file),
     ``STATE_CHECK`` (what its block of the state may hold: :mod:`.law_states`), ``LINEAR`` (whether its force
     is stiffness d + damping dd at every compression: the exact monodromy and the rate bound need it),
-    ``RIGID`` (a rigid stop: an impact law, no force) and ``LAW_ID`` (the core's id; None: the class gives
-    its own, e.g. a property)."""
+    ``RIGID`` (a rigid stop: an impact law, no force), ``PIECEWISE`` (its force linear in ``d``, ``dd`` and
+    its state's memory on each of its branches, as ``LINEAR`` laws' everywhere: the exact monodromy composes
+    its branches; a class may name a case it does not cover in ``monodromy_caveat()``) and ``LAW_ID`` (the
+    core's id; None: the class gives its own, e.g. a property)."""
 
     def declare(cls: type) -> type:
         cls.TYPE, cls.LINEAR, cls.RIGID = type_name, linear, rigid  # type: ignore[attr-defined]
+        cls.PIECEWISE = piecewise or linear  # type: ignore[attr-defined]
         cls.STATE_CHECK = staticmethod(state_check)  # type: ignore[attr-defined]
         if law_id is not None:
             cls.LAW_ID = law_id  # type: ignore[attr-defined]

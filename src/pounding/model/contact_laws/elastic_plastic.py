@@ -15,7 +15,8 @@ from . import law_states
 from ._base import ELASTIC_PLASTIC, coefficient, engine_needs, padded
 
 
-@engine_needs("elastic_plastic", law_states.elastic_plastic, linear=False, law_id=ELASTIC_PLASTIC)
+@engine_needs("elastic_plastic", law_states.elastic_plastic, linear=False, law_id=ELASTIC_PLASTIC,
+              piecewise=True)
 @dataclass(frozen=True)
 class ElasticPlastic:
     """An elastic-plastic impact law: yield in compression, stiffer elastic unloading

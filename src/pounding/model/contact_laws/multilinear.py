@@ -16,7 +16,7 @@ from ._base import (MAX_BRANCHES, MAX_LAW_COEFFICIENT, MULTILINEAR, MULTILINEAR_
                     engine_needs, padded)
 
 
-@engine_needs("multilinear", law_states.multilinear, linear=False)
+@engine_needs("multilinear", law_states.multilinear, linear=False, piecewise=True)
 @fill_doc
 @dataclass(frozen=True)
 class MultilinearBumper:
@@ -112,6 +112,18 @@ class MultilinearBumper:
     def LAW_ID(self) -> int:  # noqa: N802  (the name every law's id has)
         """The compiled kernels' id: the elastic or the kinematic multi-linear law."""
         return MULTILINEAR_KINEMATIC if self.hysteresis == "kinematic" else MULTILINEAR
+
+    @property
+    def has_memory(self) -> bool:
+        """Whether its state carries its springs' slips from one contact to the next (kinematic)."""
+        return self.hysteresis == "kinematic"
+
+    def monodromy_caveat(self) -> str | None:
+        """Why the exact monodromy cannot follow this bumper (None: it can): without a dashpot, a kinematic
+        one rests compressed at its set once a contact ends, a depth that moves with the state."""
+        if self.hysteresis == "kinematic" and self.damping == 0.0:
+            return "its kinematic multi-linear law has no damping (its set after a contact)"
+        return None
 
     def params(self) -> np.ndarray:
         """Parameters as the compiled kernels take them, shape (N_LAW_PARAMS,): damping, the
