@@ -3,13 +3,14 @@ what ``periodic_orbit``, ``continuation`` and ``lyapunov`` shoot with (the Newto
 
 The map takes the core's state vector at the section time to the one a period (or ``period_multiple``
 periods) later, by the core's short runs (``engine.simulate.short_run``).  Its coordinates are the core's
-monodromy coordinates: every dof's displacement and velocity, each contact's compression, each
-hysteretic element's slips (then a Bouc-Wen z, where there is one).  The free ones are the shooting
-coordinates: the displacements and velocities, the compression of a Kelvin-Voigt contact not touched (it
-relaxes), the slip of a spring that sticks and yields over the period, the displacement of a friction
-surface held in series with others (a triple friction pendulum's) that moves over the period.  A contact in
-progress, a slipping spring, the slipping surfaces of a series (where the force puts them) and, while the
-series sticks, its surface that slips first (the base's displacement less the others') follow the masses.
+monodromy coordinates: every dof's displacement and velocity, each contact's compression, each hysteretic
+element's slips (then a Bouc-Wen z, where there is one). The free ones are the shooting coordinates: the
+displacements and velocities, the compression of a damped Kelvin-Voigt or elastic multi-linear contact not
+touched (it relaxes), the slip of a spring that sticks and yields over the period, the displacement of a
+friction surface held in series with others (a triple friction pendulum's) that moves over the period. A
+contact in progress, a slipping spring, the slipping surfaces of a series (where the force puts them) and,
+while the series sticks, its surface that slips first (the base's displacement less the others') follow the
+masses.
 """
 
 from __future__ import annotations

@@ -9,12 +9,12 @@ multi-linear, elastic-plastic or rigid contacts): the closed-form state-transiti
 between the engine's events, and a saltation matrix at every event (``_hybrid``).  For the other systems
 it is a central finite difference of the map (``PeriodicOrbit.method`` says which).
 
-The shooting coordinates are the state's free numbers at ``t0``: every level's displacement and
-velocity, the compression of a Kelvin-Voigt contact not touched (it relaxes), the slip of a spring
-that does not slip; a contact in progress and a slipping spring follow the masses.  The contacts of
-other laws (and of laws with memory: a kinematic multi-linear bumper, an elastic-plastic one) are no
-coordinates: their compressions and their own states follow the motion (a stiff contact's relaxation is
-over long before the period ends).
+The shooting coordinates are the state's free numbers at ``t0``: every level's displacement and velocity,
+the compression of a damped Kelvin-Voigt or elastic multi-linear contact not touched (it relaxes), the slip
+of a spring that does not slip; a contact in progress and a slipping spring follow the masses. The contacts
+of other laws (and of laws with memory: a kinematic multi-linear bumper, an elastic-plastic one) are no
+coordinates: their compressions and their own states follow the motion (a stiff contact's relaxation is over
+long before the period ends).
 """
 
 from __future__ import annotations
