@@ -30,7 +30,7 @@ def engine_needs(type_name: str, state_check: Callable, *, linear: bool, law_id:
     """A contact law's class decorator: what the engine asks of the law, declared in one line above it (its
     C++ side: src/core/laws.cpp).  It sets the class's ``TYPE`` (its ``type`` in a system's file),
     ``STATE_CHECK`` (what its block of the state may hold: :mod:`.law_states`), ``LINEAR`` (whether its force
-    is stiffness d + damping dd at every compression: the exact monodromy and the rate bound need it),
+    is stiffness d + damping dd at every compression: the rate bound needs it),
     ``RIGID`` (a rigid stop: an impact law, no force), ``PIECEWISE`` (its force linear in ``d``, ``dd`` and
     its state's memory on each of its branches, as ``LINEAR`` laws' everywhere: the exact monodromy composes
     its branches; a class may name a case it does not cover in ``monodromy_caveat()``) and ``LAW_ID`` (the
