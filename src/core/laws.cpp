@@ -719,6 +719,8 @@ MemoryBranch law_memory_branch(int law, const double* p, double d, double dd, co
         if (!(d > 0.0) && pc.offset > 0.0) {  // (at zero, pushed there: a small compression back at once)
             b.c = 0.0;
             b.forgets = true;
+        } else if (!(d > 0.0) && pc.offset < 0.0) {
+            b.c = 0.0;  // (at zero with a set that would pull it open: kb_relax keeps it there)
         }
         for (int i = 0; i < ml.n - 1; ++i) {
             const double bi = ml.b[i];

@@ -297,7 +297,7 @@ bool saltation(const std::vector<double>& grad, const std::vector<double>& f_bef
 // bumper apart falls from branch to branch, a kinematic one's springs start to slip back, one reaches zero.
 // These are no events of the run (the engine takes a recovery's pieces in closed form within a sub-interval),
 // so they are found here, each from its piece's closed form (law_relax_horizon).  False where one is met
-// tangentially.
+// tangentially, or beyond a bound on their number.
 bool propagate(const System& sy, const Coords& cx, std::vector<double>& st, std::vector<double>& xa, Mat& jac,
                Mat& a, double& t, double t_end, double omega, double amp) {
     const int n = cx.size;
@@ -307,7 +307,7 @@ bool propagate(const System& sy, const Coords& cx, std::vector<double>& st, std:
         double h = t_end - t;
         int which = -1;
         MemoryBranch b{};  // (the piece that ends first: its edge and how the memory moves it)
-        for (int c = 0; pass < 4 * cx.nc + 64 && sy.has_b && c < cx.nc; ++c) {
+        for (int c = 0; sy.has_b && c < cx.nc; ++c) {
             if (st[sy.lay.in_at(c)] != 0.0 || !(st[sy.lay.def_at(c)] > 0.0)) continue;
             const Contact& ct = sy.contact[static_cast<size_t>(c)];
             const double edge = law_relax_horizon(ct.law, ct.p, st[sy.lay.def_at(c)], st.data() + sy.lay.z_at(c));
@@ -317,6 +317,7 @@ bool propagate(const System& sy, const Coords& cx, std::vector<double>& st, std:
                 b = branch_of(sy, c, st.data());
             }
         }
+        if (which >= 0 && pass >= 4 * cx.nc + 64) return false;  // (more pieces than a recovery has: refused)
         const Mat step = exponential(a, h);
         xa = matvec(step, xa);
         jac = (top_left(step, n) * jac).eval();
