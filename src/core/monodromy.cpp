@@ -62,10 +62,9 @@ void from_state(const System& sy, const Coords& cx, const double* st, std::vecto
     }
 }
 
-// a contact's compression rate in st (touching: its pair's)
+// a contact's compression rate in st (compression.hpp's)
 double compression_rate(const System& sy, const double* st, int c) {
-    const Contact& ct = sy.contact[static_cast<size_t>(c)];
-    return ct.sign * rel(st + sy.lay.v, ct.i, ct.j);
+    return compression(sy.contact[static_cast<size_t>(c)], st + sy.lay.x, st + sy.lay.v).dv;
 }
 
 // the branch (in contact) or the free recovery's piece (apart) of contact c in st, in the law's memory
@@ -302,8 +301,10 @@ bool propagate(const System& sy, const Coords& cx, std::vector<double>& st, std:
                Mat& a, double& t, double t_end, double omega, double amp) {
     const int n = cx.size;
     for (int pass = 0;; ++pass) {
-        for (int c = 0; sy.has_b && c < cx.nc; ++c)  // (a recovery at zero that forgets a compression at once)
-            if (st[sy.lay.in_at(c)] == 0.0 && branch_of(sy, c, st.data()).forgets) jac.row(cx.def + c).setZero();
+        for (int c = 0; sy.has_b && c < cx.nc; ++c)  // (a recovery at zero that forgets a compression at once:
+            // a law with memory's)
+            if (cx.memory(sy, c) > 0 && st[sy.lay.in_at(c)] == 0.0 && branch_of(sy, c, st.data()).forgets)
+                jac.row(cx.def + c).setZero();
         double h = t_end - t;
         int which = -1;
         MemoryBranch b{};  // (the piece that ends first: its edge and how the memory moves it)
