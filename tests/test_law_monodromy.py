@@ -14,6 +14,10 @@ from hypothesis import HealthCheck, assume, given, settings
 from hypothesis import strategies as st
 
 import pounding as pd_
+from pounding.analysis._hybrid import NoExactMonodromy
+from pounding.analysis._shooter import _Shooter
+from pounding.engine.layout import ACT_LAW_BRANCH, C_MAX_COMPRESSION, C_T_END
+from pounding.engine.simulate import short_run
 from test_friction_monodromy import _exact_against_differences
 
 _ISOLATOR = pd_.Isolator([40e3, 18.8e3, 14.9e3], [0.0101, 0.066], "kinematic", 305.0)
@@ -102,3 +106,39 @@ def test_an_undamped_kinematic_bumper_is_refused_by_name():
         pd_.periodic_orbit(osc, pd_.Harmonic(0.1, 1.3), method="exact")
     orbit = pd_.periodic_orbit(osc, pd_.Harmonic(0.1, 1.3), settle_cycles=20)
     assert orbit.method == "finite-difference"
+
+
+def test_a_turn_a_hair_below_the_next_edge_is_refused_not_taken_for_the_edge():
+    """A kinematic bumper's slipping spring turns (the compression's rate through zero) at a depth 1e-8 of it
+    below the next breakpoint: the same run, event for event, as with that breakpoint far off. The event is
+    told by its rate (still: a turn), not by its depth (at the edge to 1e-7): met still at an edge, it is
+    refused (a grazing of the edge). Taken for the edge, as it was when told by depth, its saltation divides
+    by a rate of rounding and the Jacobian is off the differences by a third of its largest entry. With the
+    breakpoint 1 % farther the event is a plain turn, and exact."""
+    k1, b1, table = 1e7, 4e-4, pd_.Harmonic(0.1, 2.0, phase=1.0)
+
+    def period(b2):
+        law = pd_.MultilinearBumper([k1, 0.3 * k1, 0.8 * k1], [b1, b2], 0.002 * k1, "kinematic")
+        system = pd_.Oscillator(500.0, _ISOLATOR, pd_.Bumpers(0.006, 0.006, law))
+        vec = np.array(pd_.simulate(system, table, 3.0, sample_rate_hz=0).final_state.vector)
+        shooter = _Shooter(system, table, table.period_s, True)
+        shooter.scale_d = 1e-3
+        return shooter, vec, short_run(system, table, table.period_s, vec, shooter.asm)
+
+    far, vec, run = period(20 * b1)
+    assert np.count_nonzero(run.event_table[:, 1] == ACT_LAW_BRANCH) >= 2
+    done = run.contact_table[np.isfinite(run.contact_table[:, C_T_END])]
+    deepest = float(done[:, C_MAX_COMPRESSION].max())
+    assert b1 < deepest < 20 * b1  # (its spring slips, and turns there)
+    for rel, refused in ((1e-8, True), (1e-2, False)):
+        shooter, vec_b, run_b = period(deepest * (1.0 + rel))
+        np.testing.assert_array_equal(run_b.event_table, run.event_table)
+        np.testing.assert_array_equal(vec_b, vec)
+        if refused:
+            with pytest.raises(NoExactMonodromy, match="bumper_branch event .* grazing of an edge"):
+                shooter._propagate(vec_b, run_b)
+            continue
+        free, emb = shooter._layout(vec_b, shooter.frozen(vec_b, run_b))
+        exact = shooter._propagate(vec_b, run_b)[0][free] @ emb
+        differenced = shooter.differences(vec_b, free, emb, 1e-7)[free]
+        assert np.abs(exact - differenced).max() <= 1e-5 * np.abs(differenced).max()

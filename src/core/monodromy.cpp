@@ -13,6 +13,10 @@ namespace pounding {
 
 namespace {
 
+// a contact law's branch event is a turn where the compression's rate is at most this much of the motion's
+// velocity scale, an edge where it is more (monodromy's ACT_LAW_BRANCH)
+constexpr double BRANCH_TURN_RATE = 1e-6;
+
 // where each block of x starts; after x (monodromy_size), the contacts' laws' memory (law_memory_size: an
 // elastic-plastic bumper's plastic offset, a kinematic multi-linear bumper's slips), propagated with x and
 // left out of the map's Jacobian (a start's memory held, as the map's finite differences hold it)
@@ -474,8 +478,12 @@ int propagated(const System& sy, const double* st0, const double* events, int n_
             }
         } else if (action == ACT_LAW_BRANCH && sy.has_b && law_is_linear(sy.contact[static_cast<size_t>(index)].law)) {
             // a contact law's branch: the compression at an edge of its branch (which the law's memory may
-            // move), or its rate through zero on a branch that ends there (a turn); which of them, from where
-            // the state is (the event table does not say)
+            // move), or its rate through zero on a branch that ends there (a turn).  Which of them, from the rate
+            // (the event table does not say): still at a turn (to the root's rounding: at most 1e-11 of the
+            // motion's velocity scale, the table's amp / omega or the fastest mass's, over the random draws of
+            // tests/test_law_monodromy.py), moving at an edge (2e-3 of it at least there); the bound between them
+            // is 1e-6 of it.  An edge met still is a grazing of the edge, and a turn away from an edge no turn of
+            // this law: both refused, never taken for the other
             const Contact& ct = sy.contact[static_cast<size_t>(index)];
             const double d = st[sy.lay.def_at(index)], dd = compression_rate(sy, st.data(), index);
             const double* z = st.data() + sy.lay.z_at(index);
@@ -486,18 +494,21 @@ int propagated(const System& sy, const double* st0, const double* events, int n_
             const auto at_edge = [&](double edge) {
                 return edge >= 0.0 && std::abs(d - edge) <= 1e-7 * edge + 64.0 * ROUNDING * ct.gap;
             };
+            double v_scale = amp != 0.0 ? std::abs(amp) / omega : 0.0;
+            for (int i = 0; i < sy.n; ++i) v_scale = std::max(v_scale, std::abs(st[sy.lay.v + i]));
+            const bool still = std::abs(dd) <= BRANCH_TURN_RATE * v_scale;
+            const bool up = at_edge(edges.upper), down = at_edge(edges.lower);
             double code = 0.0, dedge[MAX_LAW_MEMORY];
-            const bool up = at_edge(edges.upper);
-            if (up || at_edge(edges.lower)) {  // d - edge(m)
+            if (!still && (up || down)) {  // d - edge(m)
                 code = up ? EDGE_UP_STATE : EDGE_DOWN_STATE;
                 grad[static_cast<size_t>(cx.def + index)] = 1.0;
                 law_edge_memory(ct.law, ct.p, j, z, up, dedge);
                 const int at = cx.mem_at[static_cast<size_t>(index)];
                 for (int q = 0; q < cx.memory(sy, index); ++q) grad[static_cast<size_t>(at + q)] = -dedge[q];
-            } else if (law_turn_sign(ct.law, ct.p, z) != 0.0) {  // d' through zero
+            } else if (still && !(up || down) && law_turn_sign(ct.law, ct.p, z) != 0.0) {  // d' through zero
                 add_rel(grad, cx.v, ct.i, ct.j, ct.sign);
             } else {
-                return -2 - e;  // (neither: not this law's event)
+                return -2 - e;  // (neither, or both: not an event this propagation can take)
             }
             law_after_event(ct.law, ct.p, next.data() + sy.lay.z_at(index), d, code);
         } else if (action == ACT_SLIP) {

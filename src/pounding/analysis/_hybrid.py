@@ -27,6 +27,7 @@ from threadpoolctl import threadpool_limits
 
 from ..engine.layout import (ACT_CONTACT, ACT_REGION, ACT_RELEASE, ACT_REVERSAL, E_ACTION, E_INDEX,  # noqa: F401  (the
                               ACT_YIELD)  # events' codes, here)
+from ..engine.layout import ACT_LAW_BRANCH, EVENT_NAMES
 from ..engine.kernels import System
 from ..engine.kernels import monodromy as exact_monodromy
 from ..engine.assembly import structures_of
@@ -95,8 +96,17 @@ def monodromy(system: System, vec0: np.ndarray, events: np.ndarray, t_end: float
     jac, x_end, bad = m.jacobian, m.x_end, m.code
     if bad >= 0:
         row = rows[bad]
-        raise NoExactMonodromy(f"event {int(row[1])} at t = {row[0]} is tangent (a grazing)")
+        raise NoExactMonodromy(f"the {_action(row[1])} event at t = {row[0]} is tangent (a grazing)")
     if bad <= -2:
         row = rows[-2 - bad]
-        raise NoExactMonodromy(f"event {int(row[1])} at t = {row[0]} ends a phase that is not linear")
+        why = "ends a phase that is not linear"
+        if int(row[1]) == ACT_LAW_BRANCH:
+            why = ("is neither surely an edge of its branch (met moving) nor surely a turn (met still, away "
+                   "from an edge): a grazing of an edge")
+        raise NoExactMonodromy(f"the {_action(row[1])} event at t = {row[0]} {why}")
     return jac, x_end
+
+
+def _action(code: float) -> str:
+    """An event table's action code by its name (``bumper_branch``)."""
+    return EVENT_NAMES[int(code)] if 0 <= int(code) < len(EVENT_NAMES) else f"code {int(code)}"
