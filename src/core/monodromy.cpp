@@ -482,8 +482,9 @@ int propagated(const System& sy, const double* st0, const double* events, int n_
             // (the event table does not say): still at a turn (to the root's rounding: at most 1e-11 of the
             // motion's velocity scale, the table's amp / omega or the fastest mass's, over the random draws of
             // tests/test_law_monodromy.py), moving at an edge (2e-3 of it at least there); the bound between them
-            // is 1e-6 of it.  An edge met still is a grazing of the edge, and a turn away from an edge no turn of
-            // this law: both refused, never taken for the other
+            // is 1e-6 of it (the scale at least the gap times omega: a table at rest).  Refused, never taken for
+            // the other: an edge met still (a grazing of the edge), an event met moving away from every edge, one
+            // met still, away from an edge, on a law that cannot turn
             const Contact& ct = sy.contact[static_cast<size_t>(index)];
             const double d = st[sy.lay.def_at(index)], dd = compression_rate(sy, st.data(), index);
             const double* z = st.data() + sy.lay.z_at(index);
@@ -494,7 +495,7 @@ int propagated(const System& sy, const double* st0, const double* events, int n_
             const auto at_edge = [&](double edge) {
                 return edge >= 0.0 && std::abs(d - edge) <= 1e-7 * edge + 64.0 * ROUNDING * ct.gap;
             };
-            double v_scale = amp != 0.0 ? std::abs(amp) / omega : 0.0;
+            double v_scale = std::max(amp != 0.0 ? std::abs(amp) / omega : 0.0, ct.gap * omega);
             for (int i = 0; i < sy.n; ++i) v_scale = std::max(v_scale, std::abs(st[sy.lay.v + i]));
             const bool still = std::abs(dd) <= BRANCH_TURN_RATE * v_scale;
             const bool up = at_edge(edges.upper), down = at_edge(edges.lower);

@@ -101,8 +101,9 @@ def monodromy(system: System, vec0: np.ndarray, events: np.ndarray, t_end: float
         row = rows[-2 - bad]
         why = "ends a phase that is not linear"
         if int(row[1]) == ACT_LAW_BRANCH:
-            why = ("is neither surely an edge of its branch (met moving) nor surely a turn (met still, away "
-                   "from an edge): a grazing of an edge")
+            why = ("is neither surely an edge of its branch (crossed moving) nor surely a turn (met still, "
+                   "away from an edge, on a law that turns): a grazing of an edge, or a state the "
+                   "propagation left")
         raise NoExactMonodromy(f"the {_action(row[1])} event at t = {row[0]} {why}")
     return jac, x_end
 
