@@ -7,11 +7,12 @@ The machines here are noisy: a CPU time moves by tens of per cent from one run t
 count does not. Each work below is built and run once (warm: its caches made, its modules imported), then run
 once more in a fresh process under ``valgrind --tool=callgrind`` with collection switched on only inside that
 one call (``--toggle-collect`` on ``operator.call``, through which it is made): its count is the whole call's,
-Python and the core together, and the same from run to run to a few parts in a thousand (Python's hashing
-and allocator: 52.6 M and 52.7 M for the long run in two runs). A work whose core runs in a thread of its
-own (a sweep's steps, a spectrum's runs, a long run's: callgrind's toggle follows one thread) is counted as
-the whole process with two calls less the process with one. The CPU time is the best of a few runs of the
-same call, in this process.
+Python and the core together, with Python's hashing seeded (``PYTHONHASHSEED=0``) and its garbage collector
+held off during the call: the same count in every run. A work whose core runs in a thread of its own (a
+sweep's steps, a spectrum's runs, a long run's) is also collected in every other thread from its start
+(``--toggle-collect=thread_run``) and counted as the process with two calls less the process with one (the
+same to 1e-4 from run to run). The CPU time is the best of a few runs of the same call, in this process,
+collector on.
 
 Work (each the call a benchmark script times, or one of the many it makes, or a part callgrind runs in a
 minute): the long run, the up sweep and the campaign of ``run.py`` (and ``laws.py``'s campaign); the record
@@ -27,8 +28,10 @@ under their records. The table goes to benchmarks/RESULTS.md between its ``instr
 from __future__ import annotations
 
 import argparse
+import gc
 import math
 import operator
+import os
 import re
 import shutil
 import subprocess
@@ -250,17 +253,24 @@ def count_one(name: str, calls: int) -> None:
     through ``operator.call`` (where callgrind collects, unless it collects the whole process)."""
     work = WORKS[name][1]()
     work.call()
+    gc.collect()
+    gc.freeze()  # (what the warm call left: out of every later collection)
+    gc.disable()  # (no collection inside a counted call: when one falls is not the call's own work)
     for _ in range(calls):
         operator.call(work.call)
 
 
-def _callgrind(name: str, calls: int, toggled: bool) -> int:
+def _callgrind(name: str, calls: int) -> int:
+    """What callgrind collects in a fresh process that runs ``name``'s work warm, then ``calls`` times:
+    inside ``operator.call`` in this thread, and in every other thread from its start (``thread_run``, where
+    a Python thread begins: a worker's every call, the warm one's too where the thread lives on)."""
     with tempfile.TemporaryDirectory() as tmp:
-        collect = ["--collect-atstart=no", "--toggle-collect=_operator_call*"] if toggled else []
         out = subprocess.run(
-            ["valgrind", "--tool=callgrind", *collect, f"--callgrind-out-file={Path(tmp) / 'callgrind.out'}",
+            ["valgrind", "--tool=callgrind", "--collect-atstart=no", "--toggle-collect=_operator_call*",
+             "--toggle-collect=thread_run", f"--callgrind-out-file={Path(tmp) / 'callgrind.out'}",
              sys.executable, str(HERE), "--count", name, "--calls", str(calls)],
-            capture_output=True, text=True, cwd=HERE.parent)
+            capture_output=True, text=True, cwd=HERE.parent,
+            env={**os.environ, "PYTHONHASHSEED": "0"})  # (the same imports' work in every process)
     found = re.search(r"Collected : (\d+)", out.stderr)
     if out.returncode != 0 or found is None:
         raise RuntimeError(f"callgrind on {name!r} failed (exit {out.returncode}):\n{out.stderr[-2000:]}")
@@ -268,12 +278,12 @@ def _callgrind(name: str, calls: int, toggled: bool) -> int:
 
 
 def instructions(name: str, threaded: bool) -> int:
-    """The instructions callgrind counts in one warm call of ``name``'s work, in a fresh process: inside
-    ``operator.call``; or, for a work whose core runs in a thread of its own (callgrind's toggle follows one
-    thread), the whole process's count with two calls less its count with one."""
+    """The instructions of one warm call of ``name``'s work: what callgrind collects in it; for a work whose
+    core runs in a thread of its own, the count with two calls less the count with one (a worker thread
+    collected from its start may hold the warm call's work too)."""
     if not threaded:
-        return _callgrind(name, 1, True)
-    return _callgrind(name, 2, False) - _callgrind(name, 1, False)
+        return _callgrind(name, 1)
+    return _callgrind(name, 2) - _callgrind(name, 1)
 
 
 def cpu_best(call: Callable[[], object], repeat: int) -> float:
