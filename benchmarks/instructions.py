@@ -16,7 +16,7 @@ collector on.
 
 Work (each the call a benchmark script times, or one of the many it makes, or a part callgrind runs in a
 minute): the long run, the up sweep and the campaign of ``run.py`` (and ``laws.py``'s campaign); the record
-run, the elastic and the pounding spectrum of ``records.py`` (the spectrum for one record);
+run, the elastic and the pounding spectrum of ``records.py`` (the latter for one record, 20 periods);
 ``structures.py``'s buildings of N = 1, 2, 4 and 8 levels; ``continuation.py``'s branch of the calibrated
 preset, an orbit and a Lyapunov spectrum of it; ``diagram.py``'s diagram (by 0.1 Hz); a point of
 ``study.py``; ``rigid_stops.py``'s chatter; a run of ``design.py``'s stripes; ``rotd.py``'s spectra of one
@@ -107,7 +107,7 @@ def elastic_spectrum() -> Work:
 
 
 def pounding_spectrum() -> Work:
-    rec, periods, gaps = _record(), np.linspace(0.05, 5.0, 100), (0.01, 0.02, 0.05)
+    rec, periods, gaps = _record(), np.linspace(0.05, 5.0, 20), (0.01, 0.02, 0.05)
     return Work(lambda: pd_.pounding_spectrum([rec], periods, gaps_m=gaps, workers=1), periods.size * 4,
                 "run", threaded=True)
 
@@ -223,7 +223,7 @@ WORKS: dict[str, tuple[str, Callable[[], Work]]] = {
     "sweep": ("up sweep, printed YBs, 46 steps of 30 cycles", sweep_up),
     "record": ("one record, printed YBs, at the record's step", record_run),
     "spectrum": ("elastic response spectrum of that record, 100 periods", elastic_spectrum),
-    "pounding": ("pounding spectrum of that record, 100 periods x 3 gaps and none, one worker",
+    "pounding": ("pounding spectrum of that record, 20 periods x 3 gaps and none, one worker",
                  pounding_spectrum),
     **{f"building{n}": (f"building of N = {n} under El Centro, PGA 0.5 g", building(n))
        for n in (1, 2, 4, 8)},
