@@ -328,7 +328,8 @@ def main() -> None:
         if count < 2e8 * cpu:  # (far fewer than its CPU time takes: its core ran in a thread left out)
             raise RuntimeError(f"{name}: {count:,} instructions in {cpu * 1e3:.1f} ms of CPU: its core "
                                "runs in a thread of its own; mark its Work threaded=True")
-        lines.append(f"| {title} | {cpu * 1e3:.2f} | {count / 1e6:,.1f} | {work.units:,} {work.unit}s "
+        unit = work.unit if work.units == 1 else f"{work.unit}s"
+        lines.append(f"| {title} | {cpu * 1e3:.2f} | {count / 1e6:,.1f} | {work.units:,} {unit} "
                      f"| {cpu / work.units * 1e6:,.2f} | {count / work.units:,.0f} |")
         print(lines[-1], flush=True)
     lines.append(END)
