@@ -125,7 +125,7 @@ def test_a_turn_a_hair_below_the_next_edge_is_refused_not_taken_for_the_edge():
         shooter.scale_d = 1e-3
         return shooter, vec, short_run(system, table, table.period_s, vec, shooter.asm)
 
-    far, vec, run = period(20 * b1)
+    _, vec, run = period(20 * b1)
     assert np.count_nonzero(run.event_table[:, E_ACTION] == ACT_LAW_BRANCH) >= 2
     done = run.contact_table[np.isfinite(run.contact_table[:, C_T_END])]
     deepest = float(done[:, C_MAX_COMPRESSION].max())
