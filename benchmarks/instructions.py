@@ -250,7 +250,7 @@ QUICK = ("long", "orbit", "building4")
 
 def count_one(name: str, calls: int) -> None:
     """(In the process callgrind runs.) Build ``name``'s work, run it once warm, then ``calls`` times
-    through ``operator.call`` (where callgrind collects, unless it collects the whole process)."""
+    through ``operator.call`` (where callgrind collects in this thread: :func:`_callgrind`)."""
     work = WORKS[name][1]()
     work.call()
     gc.collect()
@@ -304,6 +304,8 @@ def main() -> None:
     parser.add_argument("--count", choices=sorted(WORKS), help=argparse.SUPPRESS)  # (callgrind's process)
     parser.add_argument("--calls", type=int, default=1, help=argparse.SUPPRESS)
     args = parser.parse_args()
+    if args.repeat < 1 or args.calls < 1:
+        parser.error("--repeat (and --calls) take a whole number of runs, 1 or more")
     if args.count:
         count_one(args.count, args.calls)
         return
