@@ -1,6 +1,6 @@
 """Instruction counts (callgrind) beside CPU times, for the work every benchmark script times (issue 66).
 
-    python benchmarks/instructions.py            # about 20 minutes; --quick, --no-write, --only NAME
+    python benchmarks/instructions.py            # about 35 minutes; --quick, --no-write, --only NAME
     (needs valgrind on the PATH: apt install valgrind; the FEMA P695 sets: pip install -e ".[records]")
 
 The machines here are noisy: a CPU time moves by tens of per cent from one run to the next, an instruction
