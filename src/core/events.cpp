@@ -210,7 +210,7 @@ void circle_turn(Phase& ph, int q, double tau, const double* y, const double* a,
     bend = 2.0 * ((dq * dq + dm * dm) / uy + zq * rel(a, h) + zm * rel(a, hm)) / uy;
 }
 
-EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y, const double* a) {
+EventValue event_value_of(const EventRow& e, Phase& ph, double tau, const double* y, const double* a) {
     const int n = ph.n;
     if (e.kind == KIND_ZETA) {  // (alpha: minus z's sign at the phase start; side: its z's slot)
         const double* z = phase_zeta(ph, tau, y);
@@ -232,17 +232,11 @@ EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y
         return {g + r.d, gp + r.rate, scale + r.d};
     }
     const double dx = rel(y, e), dv = rel(y + n, e), da = rel(a, e);
-    if (e.kind == KIND_LINEAR) {
+    if (e.kind == KIND_LINEAR) {  // (a contact's start against its relaxing surface: event_value's others)
         const double g = e.alpha + e.beta * dx + e.gamma * dv;
         const double gp = e.beta * dv + e.gamma * da;
-        double scale = std::abs(e.alpha) + std::abs(e.beta * dx) + std::abs(e.gamma * dv);
-        if (e.side == SIDE_NONE) return {g, gp, scale};  // the isolator's events (most of them)
-        if (e.side == SIDE_VELOCITY) return {g, gp, scale + ph.vround};
-        // a contact's displacement is rounded relative to the run's and the phase's lengths, not its own size
-        scale += ph.xround;
-        if (e.action != ACT_CONTACT) return {g, gp, scale};
+        const double scale = std::abs(e.alpha) + std::abs(e.beta * dx) + std::abs(e.gamma * dv) + ph.xround;
         const ContactPhase& k = slot(ph, e.side);
-        if (!(k.def0 > 0.0)) return {g, gp, scale};  // (no surface relaxing: law_relax's nothing)
         const Relaxed r = law_relax(k.law, k.p, k.def0, tau, k.lz);
         return {g + r.d, gp + r.rate, scale + r.d};
     }

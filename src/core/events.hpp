@@ -39,7 +39,25 @@ struct EventRow : Pair {  // (its pair)
 
 struct EventValue { double g, gp, scale; };  // value, rate, size of the terms summed
 
-EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y, const double* a);
+EventValue event_value_of(const EventRow& e, Phase& ph, double tau, const double* y, const double* a);
+// a row's value, rate and scale at tau (y, a: the trajectory there).  A linear row (most rows of most
+// sub-intervals) is its pair's alpha + beta dx + gamma dv here, inline, but a contact's start against its
+// bumper's relaxing surface; every other row is event_value_of's
+inline EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y, const double* a) {
+    if (e.kind != KIND_LINEAR) return event_value_of(e, ph, tau, y, a);
+    const int n = ph.n;
+    const double dx = rel(y, e), dv = rel(y + n, e), da = rel(a, e);
+    const double g = e.alpha + e.beta * dx + e.gamma * dv;
+    const double gp = e.beta * dv + e.gamma * da;
+    const double scale = std::abs(e.alpha) + std::abs(e.beta * dx) + std::abs(e.gamma * dv);
+    if (e.side == SIDE_NONE) return {g, gp, scale};  // the isolator's events (most of them)
+    if (e.side == SIDE_VELOCITY) return {g, gp, scale + ph.vround};
+    // a contact's displacement is rounded relative to the run's and the phase's lengths, not its own size
+    if (e.action != ACT_CONTACT || !(ph.ct[static_cast<size_t>(e.side)].def0 > 0.0))
+        return {g, gp, scale + ph.xround};
+    return event_value_of(e, ph, tau, y, a);  // (its relaxing surface: law_relax's)
+}
+
 // a stick's event value from its tie's held force d (held_force: a tie's two thresholds share it)
 EventValue stick_value(const EventRow& e, const EventValue& d);
 
