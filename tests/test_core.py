@@ -46,6 +46,7 @@ def test_statuses_actions_and_the_control_array_agree_with_the_core():
     assert _control.CTL_AUDITED == _core.LAYOUT["CTL_AUDITED"]
     assert _control.CTL_ESCAPES == _core.LAYOUT["CTL_ESCAPES"]
     assert _control.CTL_WHOLE == _core.LAYOUT["CTL_WHOLE"]
+    assert _control.CTL_OWN == _core.LAYOUT["CTL_OWN"]
     assert layout.LEDGER_LEN == layout.L_BUMPER + 1
 
 

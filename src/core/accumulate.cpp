@@ -144,25 +144,6 @@ void track_displacement(double* ex, double t, double d) {
 
 namespace {
 
-// dof i's absolute acceleration in a linear phase, -(K x + C v + R0)_i / m_i, and its rate -(K v + C a)_i / m_i
-double abs_acc_linear(const Phase& ph, int i, const double* y) {
-    const int n = ph.n;
-    const double* rk = &ph.K[static_cast<size_t>(i * n)];
-    const double* rc = &ph.C[static_cast<size_t>(i * n)];
-    double q = ph.R0[static_cast<size_t>(i)];
-    for (int j = 0; j < n; ++j) q += rk[j] * y[j] + rc[j] * y[n + j];
-    return -ph.minv[static_cast<size_t>(i)] * q;
-}
-
-double abs_acc_rate_linear(const Phase& ph, int i, const double* y, const double* a) {
-    const int n = ph.n;
-    const double* rk = &ph.K[static_cast<size_t>(i * n)];
-    const double* rc = &ph.C[static_cast<size_t>(i * n)];
-    double q = 0.0;
-    for (int j = 0; j < n; ++j) q += rk[j] * y[n + j] + rc[j] * a[j];
-    return -ph.minv[static_cast<size_t>(i)] * q;
-}
-
 // the held rigid stops' impulse and peak force over the sub-interval: exactly on a linear phase's polynomial,
 // by Gauss-Lobatto on a numerical one
 void held_statistics(Phase& ph, const Layout& L, double* st, double tau, const Ends& e, bool linear, Buffers& b);

@@ -440,12 +440,13 @@ NB_MODULE(_pounding_core, m) {
     m.def("run",
           [](const System& sy, int kind, Vec p, Vec rec_t, Vec rec_a, Vec rec_b, Vec state0, double t_end,
              double sample_dt, double rtol, int64_t max_events, bool with_energy, Ctl ctl, bool screen_extrema,
-             bool audit_screen, bool whole_steps) {
+             bool audit_screen, bool whole_steps, bool own_samples) {
               const Forcing fo = forcing_of(kind, p, rec_t, rec_a, rec_b);
               RunOptions opt;
               opt.screen_extrema = screen_extrema;
               opt.audit_screen = audit_screen;
               opt.whole_steps = whole_steps;
+              opt.own_samples = own_samples;
               opt.t_end = t_end;
               opt.sample_dt = sample_dt;
               opt.rtol = rtol;
@@ -467,7 +468,7 @@ NB_MODULE(_pounding_core, m) {
           nb::arg("system"), nb::arg("kind"), nb::arg("p"), nb::arg("rec_t"), nb::arg("rec_a"), nb::arg("rec_b"),
           nb::arg("state0"), nb::arg("t_end"), nb::arg("sample_dt"), nb::arg("rtol"), nb::arg("max_events"), nb::arg("with_energy"),
           nb::arg("ctl"), nb::arg("screen_extrema") = true, nb::arg("audit_screen") = false,
-          nb::arg("whole_steps") = true);
+          nb::arg("whole_steps") = true, nb::arg("own_samples") = true);
 
     m.def("step",
           [](const System& sy, double amp, double omega, Vec state0, bool adaptive, int n_cycles, int measure_cycles,
@@ -590,6 +591,7 @@ NB_MODULE(_pounding_core, m) {
     layout["CTL_AUDITED"] = CTL_AUDITED;
     layout["CTL_ESCAPES"] = CTL_ESCAPES;
     layout["CTL_WHOLE"] = CTL_WHOLE;
+    layout["CTL_OWN"] = CTL_OWN;
     layout["CTL_LEN"] = CTL_LEN;
     // a step's per-cycle record and window (step.hpp), and a contact side's sums within them
     layout["CY_DMAX"] = CY_DMAX;

@@ -98,9 +98,9 @@ enum Action : int {
 
 // the run control Python shares with a running kernel (int64): a stop flag, the work done (sub-intervals),
 // its budget, and the trajectory evaluations at an instant (what locating events costs); the series made, the
-// screen's audit, and a record's steps taken whole
+// screen's audit, a record's steps taken whole, and its samples taken by their own (run.cpp's own_sample)
 constexpr int CTL_STOP = 0, CTL_WORK = 1, CTL_BUDGET = 2, CTL_EVALS = 3, CTL_SERIES = 4, CTL_AUDITED = 5,
-              CTL_ESCAPES = 6, CTL_WHOLE = 7, CTL_LEN = 8;
+              CTL_ESCAPES = 6, CTL_WHOLE = 7, CTL_OWN = 8, CTL_LEN = 9;
 
 // outputs' columns (bindings.cpp exports each by name: pounding._core reads them by these names)
 // a contact's row: its slot, start and end (s), velocities in and out (m/s), impulse (N s), peak force (N),

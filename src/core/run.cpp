@@ -447,6 +447,10 @@ struct Loop {
     bool whole = false;  // (this sub-interval the whole step, its parts' count set for a fallback)
     int64_t wholes = 0;  // (the steps taken whole)
     bool at_knot = false;
+    // a record's samples at its own step taken one by one by own_sample, where the run asks for nothing that
+    // such a sample needs the loop's steps for (set up once), and how many were
+    bool own_samples = false;
+    int64_t owns = 0;
     // this sub-interval's
     Piece pc{};
     double t = 0.0, h = 0.0, t_stop = 0.0, tau = 0.0;
@@ -583,6 +587,11 @@ void set_up(Loop& lp) {
             if (c.law == MULTILINEAR || c.law == MULTILINEAR_KINEMATIC) lp.has_ml = true;
     for (const Contact& c : sy.contact) lp.has_ring = lp.has_ring || c.radial.on;
     for (const Hysteretic& h : sy.hyst) lp.has_circle = lp.has_circle || h.bw_plastic;
+    bool levered = false;
+    for (int p = 0; p < lp.n_pairs; ++p) levered = levered || pairs[static_cast<size_t>(p)].levered();
+    for (const Pair& p : sy.track) levered = levered || p.levered();
+    lp.own_samples = lp.opt.own_samples && lp.record && lp.opt.sample_dt <= 0.0 && sy.ties.empty() &&
+                     !lp.has_ring && !lp.has_circle && sy.n_bw() == 0 && !levered && sy.n_norm() == 0;
     lp.ag_now.assign(static_cast<size_t>(lp.n), 0.0);
     table_at(lp.fo, sy, lp.st[T], lp.ag_now.data());
     start_friction(lp);
@@ -613,6 +622,26 @@ bool poll(Loop& lp) {
     return true;
 }
 
+// the same phase moved on to the state at t: its start values and the forcing's piece pc
+void continue_phase(Loop& lp, const Piece& pc, double t) {
+    Phase& ph = lp.ph;
+    const double* st = lp.st;
+    ph.phi = pc.phase;
+    for (int q = 0; q < 2 * lp.n; ++q) ph.y0[static_cast<size_t>(q)] = st[lp.L.x + q];
+    ph.dp5_h = -1.0;
+    for (int c = 0; c < lp.sy.nc(); ++c) ph.ct[static_cast<size_t>(c)].def0 = st[lp.L.def_at(c)];
+    if (lp.record) {  // (the record's piece: a0 + a1 tau, a new one at each knot)
+        ph.ax0 = pc.a0;
+        ph.ax1 = pc.a1;
+        ph.bx0 = pc.b0;
+        ph.bx1 = pc.b1;
+    }
+    // the forcing angle where the last sub-interval ended, moved on by the rounding of the clock
+    const double wd = pc.omega * ((t - lp.t_last) - lp.h_last);
+    ph.sphi = lp.s1 + wd * lp.c1;
+    ph.cphi = lp.c1 - wd * lp.s1;
+}
+
 // the next sub-interval: the same phase moved on (only the start values and the forcing move), or a new
 // phase; its length h, cut at the forcing's next piece, the end and a relaxing law's horizon
 void next_subinterval(Loop& lp) {
@@ -625,20 +654,7 @@ void next_subinterval(Loop& lp) {
     lp.j_rec = pc.j;
     double h;
     if (lp.continuing) {
-        ph.phi = pc.phase;
-        for (int q = 0; q < 2 * lp.n; ++q) ph.y0[static_cast<size_t>(q)] = st[lp.L.x + q];
-        ph.dp5_h = -1.0;
-        for (int c = 0; c < sy.nc(); ++c) ph.ct[static_cast<size_t>(c)].def0 = st[lp.L.def_at(c)];
-        if (lp.record) {  // (the record's piece: a0 + a1 tau, a new one at each knot)
-            ph.ax0 = pc.a0;
-            ph.ax1 = pc.a1;
-            ph.bx0 = pc.b0;
-            ph.bx1 = pc.b1;
-        }
-        // the forcing angle where the last sub-interval ended, moved on by the rounding of the clock
-        const double wd = pc.omega * ((t - lp.t_last) - lp.h_last);
-        ph.sphi = lp.s1 + wd * lp.c1;
-        ph.cphi = lp.c1 - wd * lp.s1;
+        continue_phase(lp, pc, t);
         h = lp.h_phase;
     } else {
         set_phase(ph, st, sy, pc);
@@ -731,6 +747,45 @@ inline void start_signs(Loop& lp) {
     return true;
 }
 
+// a linear phase's kept transition over the sub-interval (lp.tr; none: its series will be made), and its
+// acceleration at the start (b.a0)
+void kept_transition(Loop& lp) {
+    Phase& ph = lp.ph;
+    ph.tc_ok = false;  // (the series: made when first asked for)
+    ph.series_h = lp.h;
+    // (computed the first time, the same numbers every time: a run's path never depends on what an
+    // earlier run kept; a step of the record's as its times give it: k dt rounded, so within a few ulps
+    // of the clock)
+    const double step = lp.fo.kind != EXC_HARMONIC ? lp.fo.p[0] : 0.0;
+    // (a table of two components, or not on every dof alike: no transition, its inputs are one table's)
+    if (!ph.plain) lp.tr = nullptr;
+    else if (lp.h == lp.h_phase) lp.tr = lp.w.transitions.get(ph, lp.sy, lp.h, lp.phase_id);
+    else if (lp.in_part && std::abs(lp.h - lp.h_split) <= (8.0 + lp.parts) * EPS * (std::abs(lp.t) + step))
+        lp.tr = lp.w.transitions.get(ph, lp.sy, lp.h_split, lp.phase_id);  // (the last: the clock's drift over the parts)
+    else if (step > 0.0 && std::abs(lp.h - step) <= 8.0 * EPS * (std::abs(lp.t) + step))
+        lp.tr = lp.w.transitions.get(ph, lp.sy, step, lp.phase_id);
+    eom_acceleration(ph, ph.y0.data(), 0.0, ph.sphi, ph.cphi, lp.b.a0.data());
+}
+
+// the state and its acceleration at the sub-interval's end h by its kept transition (b.y1, b.a1; b.u and its
+// entries that are not zero, b.uc and b.nz, for its integrals)
+void by_transition(Loop& lp) {
+    Phase& ph = lp.ph;
+    Buffers& b = lp.b;
+    transition_inputs(ph, b.u.data());
+    const int dim = lp.tr->dim;
+    b.n_nz = 0;
+    for (int k = 0; k < dim; ++k)
+        if (b.u[static_cast<size_t>(k)] != 0.0) {
+            b.uc[static_cast<size_t>(b.n_nz)] = b.u[static_cast<size_t>(k)];
+            b.nz[static_cast<size_t>(b.n_nz++)] = k;
+        }
+    for (int q = 0; q < 2 * lp.n; ++q)
+        b.y1[static_cast<size_t>(q)] = row_product(&lp.tr->T[static_cast<size_t>(q * dim)], b.uc.data(), b.nz.data(), b.n_nz);
+    const Angle an = angle_at(ph, lp.pc.omega, lp.h, lp.rot);
+    eom_acceleration(ph, b.y1.data(), lp.h, an.s, an.c, b.a1.data());
+}
+
 // the state at the sub-interval's end: by the phase's kept transition (a full sub-interval, or a record's
 // whole step), its series, or a numerical step (a nonlinear phase; false when it failed)
 bool advance_to_end(Loop& lp) {
@@ -739,34 +794,9 @@ bool advance_to_end(Loop& lp) {
     const int n = lp.n;
     lp.tr = nullptr;
     while (!ph.numeric) {  // (once; twice where a whole step is not cleared: its first part then)
-        ph.tc_ok = false;  // (the series: made when first asked for)
-        ph.series_h = lp.h;
-        // (computed the first time, the same numbers every time: a run's path never depends on what an
-        // earlier run kept; a step of the record's as its times give it: k dt rounded, so within a few ulps
-        // of the clock)
-        const double step = lp.fo.kind != EXC_HARMONIC ? lp.fo.p[0] : 0.0;
-        // (a table of two components, or not on every dof alike: no transition, its inputs are one table's)
-        if (!ph.plain) lp.tr = nullptr;
-        else if (lp.h == lp.h_phase) lp.tr = lp.w.transitions.get(ph, lp.sy, lp.h, lp.phase_id);
-        else if (lp.in_part && std::abs(lp.h - lp.h_split) <= (8.0 + lp.parts) * EPS * (std::abs(lp.t) + step))
-            lp.tr = lp.w.transitions.get(ph, lp.sy, lp.h_split, lp.phase_id);  // (the last: the clock's drift over the parts)
-        else if (step > 0.0 && std::abs(lp.h - step) <= 8.0 * EPS * (std::abs(lp.t) + step))
-            lp.tr = lp.w.transitions.get(ph, lp.sy, step, lp.phase_id);
-        eom_acceleration(ph, ph.y0.data(), 0.0, ph.sphi, ph.cphi, b.a0.data());
+        kept_transition(lp);
         if (lp.tr != nullptr) {
-            transition_inputs(ph, b.u.data());
-            const int dim = lp.tr->dim;
-            b.n_nz = 0;
-            for (int k = 0; k < dim; ++k)
-                if (b.u[static_cast<size_t>(k)] != 0.0) {
-                    b.uc[static_cast<size_t>(b.n_nz)] = b.u[static_cast<size_t>(k)];
-                    b.nz[static_cast<size_t>(b.n_nz++)] = k;
-                }
-            for (int q = 0; q < 2 * n; ++q)
-                b.y1[static_cast<size_t>(q)] =
-                    row_product(&lp.tr->T[static_cast<size_t>(q * dim)], b.uc.data(), b.nz.data(), b.n_nz);
-            const Angle an = angle_at(ph, lp.pc.omega, lp.h, lp.rot);
-            eom_acceleration(ph, b.y1.data(), lp.h, an.s, an.c, b.a1.data());
+            by_transition(lp);
         } else {
             lin_eval(ph, lp.h, b.y1.data(), b.a1.data());
             ph.evaluations -= 1;  // (the end of the sub-interval: not an evaluation inside it)
@@ -842,6 +872,16 @@ bool advance_to_end(Loop& lp) {
     }
 }
 
+// the sub-interval's ends as the event locators and the velocities' zeros read them (no zeros found yet)
+void mark_ends(Phase& ph, const Buffers& b, double h) {
+    ph.zeros.clear();
+    ph.e_y0 = b.y0s.data();
+    ph.e_a0 = b.a0.data();
+    ph.e_y1 = b.y1.data();
+    ph.e_a1 = b.a1.data();
+    ph.e_h = h;
+}
+
 // the earliest event inside the sub-interval (a velocity's zero cut first), the sub-interval ended there
 // (tau), and whether the same phase goes on after it (stopped at a record's knot, not at a relaxing law's
 // horizon or the end)
@@ -851,12 +891,7 @@ void earliest(Loop& lp) {
     const int n = lp.n;
     if (!lp.continuing) lp.n_ev = phase_events(ph, lp.st, lp.sy, lp.w.evs.data());  // (until one fires)
     if (!lp.whole) start_signs(lp);  // (a whole step's: its screen's, whole_step_clear)
-    ph.zeros.clear();
-    ph.e_y0 = b.y0s.data();
-    ph.e_a0 = b.a0.data();
-    ph.e_y1 = b.y1.data();
-    ph.e_a1 = b.a1.data();
-    ph.e_h = lp.h;
+    mark_ends(ph, b, lp.h);
     if (lp.whole) {  // (a whole step the screen cleared, advance_to_end: no event inside)
         lp.wholes += 1;
         if (lp.opt.audit_screen) audit_whole_step(lp);
@@ -1077,6 +1112,7 @@ void finish_run(Loop& lp) {
     lp.control.at(CTL_AUDITED).fetch_add(lp.w.screen.audited, std::memory_order_relaxed);
     lp.control.at(CTL_ESCAPES).fetch_add(lp.w.screen.escapes, std::memory_order_relaxed);
     lp.control.at(CTL_WHOLE).fetch_add(lp.wholes, std::memory_order_relaxed);
+    lp.control.at(CTL_OWN).fetch_add(lp.owns, std::memory_order_relaxed);
     double kin1, iso1, bmp1;
     energies(st, lp.sy, kin1, iso1, bmp1);
     ledger[L_KINETIC] = kin1 - lp.kin0;
@@ -1085,6 +1121,119 @@ void finish_run(Loop& lp) {
     if (!lp.opt.with_energy)
         for (int j = 0; j < LEDGER_LEN; ++j) ledger[j] = NaN;
     lp.out.status = lp.status;
+}
+
+// A record's sample at the record's own step by the step's kept transition, in a run that asks for no history,
+// where the sample needs none of the loop's steps' other cases: the same linear phase going on from the knot
+// before (the table's one component on every dof, no contact in progress or relaxing, no hold), the step
+// within the phase's sub-interval, no velocity turning back or crossing zero inside, no event row that its
+// values at the ends do not clear, no absolute acceleration's rate changing sign.  What the loop's steps would
+// do then comes down to the transition's products, the equation of motion at the end, the rows' values there,
+// the extrema and the energy integrals: done here by the same functions (next_subinterval, advance_to_end,
+// earliest, accumulate and move_to_end for such a sample, without their tests for the other cases).  Any
+// other sample is left to the loop (false): what this wrote, the loop's next_subinterval writes again.
+bool own_sample(Loop& lp) {
+    Phase& ph = lp.ph;
+    const System& sy = lp.sy;
+    const Layout& L = lp.L;
+    Buffers& b = lp.b;
+    const int n = lp.n;
+    double* st = lp.st;
+    // (a step far longer than the phase's sub-interval: its parts', or a whole step's)
+    if (!(lp.continuing && lp.at_knot) || ph.numeric || !ph.plain || ph.stk.any || lp.fo.p[0] > 2.0 * lp.h_phase)
+        return false;
+    for (int c = 0; c < sy.nc(); ++c)
+        if (ph.ct[static_cast<size_t>(c)].in || st[L.in_at(c)] != 0.0 || st[L.def_at(c)] != 0.0) return false;
+    // the sample's span: the whole step, to the next knot (next_subinterval's)
+    const double t = lp.t = st[T];
+    const Piece pc = lp.pc = excitation_piece(lp.fo, t, lp.j_rec);
+    lp.j_rec = pc.j;
+    const double t_stop = std::min({pc.t_next, lp.opt.t_end, lp.t_horizon});
+    const double span = pc.t_next - t, step = lp.fo.p[0];
+    const bool own_step = step > 0.0 && std::abs(span - step) <= 8.0 * EPS * (std::abs(t) + step);
+    if (!(own_step && t_stop == pc.t_next && span <= lp.h_phase)) return false;
+    lp.t_stop = t_stop;
+    lp.h = t_stop - t;
+    lp.whole = lp.in_part = false;
+    lp.h_split = 0.0;
+    continue_phase(lp, pc, t);
+    kept_transition(lp);
+    if (lp.tr == nullptr) return false;
+    by_transition(lp);
+    const double h = lp.h;
+    for (int q = 0; q < 2 * n; ++q)
+        if (!(std::abs(b.y1[static_cast<size_t>(q)]) <= DBL_MAXV)) return false;  // (the loop stops the run)
+    // nothing inside (earliest's and accumulate's tests)
+    start_signs(lp);
+    mark_ends(ph, b, h);
+    for (int p = 0; p < lp.n_pairs; ++p) {  // (no velocity cut: velocity_cuts's test)
+        const Pair& pr = lp.w.event_pairs[static_cast<size_t>(p)];
+        const double v0 = rel(b.y0s.data() + n, pr), v1 = rel(b.y1.data() + n, pr);
+        const double a0 = rel(b.a0.data(), pr), a1 = rel(b.a1.data(), pr);
+        if (v0 * v1 > 0.0 && a0 * a1 < 0.0 && may_turn_back(h, v0, v1, a0, a1)) return false;
+    }
+    for (int i = 0; i < n; ++i) {  // (no displacement extremum inside, no absolute acceleration's)
+        if (velocity_may_cross(ph, sy.dof_pair[static_cast<size_t>(i)])) return false;
+        const double r0 = abs_acc_rate_linear(ph, i, ph.y0.data(), b.a0.data());
+        const double r1 = abs_acc_rate_linear(ph, i, b.y1.data(), b.a1.data());
+        if (r0 * r1 < 0.0) return false;
+    }
+    for (const Pair& pr : sy.track)  // (no tracked pair's extremum inside: a storey's drift)
+        if (velocity_may_cross(ph, pr)) return false;
+    double* ends = lp.w.ev_whole.data();  // (each row's value, rate and scale at the end: ev_end's once taken)
+    for (int i = 0; i < lp.n_ev; ++i) {  // (no event: earliest_event's test)
+        const EventRow& ev = lp.w.evs[static_cast<size_t>(i)];
+        if (ev.kind != KIND_LINEAR) return false;
+        const double* start = &lp.w.ev_end[static_cast<size_t>(3 * i)];
+        const EventValue e1 = event_value(ev, ph, h, b.y1.data(), b.a1.data());
+        if (!(start[0] > ROUNDING * start[2] && e1.g > 0.0 && !(start[1] < 0.0 && e1.gp > 0.0))) return false;
+        ends[3 * i] = e1.g;
+        ends[3 * i + 1] = e1.gp;
+        ends[3 * i + 2] = e1.scale;
+    }
+    // taken: what the sample adds (accumulate's, for it), the isolator and the state at its end, the loop's own
+    // as its steps leave it
+    std::copy(ends, ends + 3 * lp.n_ev, lp.w.ev_end.begin());
+    if (lp.opt.with_energy) {  // (linear_contributions's, no contact in progress)
+        const Given given = transition_integrals(lp);
+        lp.ledger[L_INPUT] -= given.gv;
+        lp.ledger[L_VISCOUS] += given.vcv;
+    }
+    lp.w.screen.shift = std::abs(lp.tr->h - h);
+    if (lp.opt.screen_extrema && lp.w.screen.on) lp.w.screen.tau = -1.0;
+    for (int i = 0; i < n; ++i) {
+        double* ex = lp.extrema + DOF_EXTREMA * i;
+        track_displacement(ex, t, ph.y0[static_cast<size_t>(i)]);
+        track_displacement(ex, t + h, b.y1[static_cast<size_t>(i)]);
+        double& kept = b.aa_end[static_cast<size_t>(i)];
+        const double aa0 = kept, aa1 = abs_acc_linear(ph, i, b.y1.data());
+        kept = aa1;
+        track_abs_acceleration(ex, t, aa0);
+        track_abs_acceleration(ex, t + h, aa1);
+    }
+    for (int p = 0; p < sy.n_track(); ++p) {
+        double* ex = lp.extrema + DOF_EXTREMA * n + PAIR_EXTREMA * p;
+        const Pair& pr = sy.track[static_cast<size_t>(p)];
+        track_displacement(ex, t, rel(ph.y0.data(), pr));
+        track_displacement(ex, t + h, rel(b.y1.data(), pr));
+    }
+    lp.ledger[L_HYSTERETIC] += iso_advance(sy, st, ph.y0.data(), b.y1.data());
+    for (int q = 0; q < 2 * n; ++q) st[L.x + q] = b.y1[static_cast<size_t>(q)];
+    st[T] = t_stop;
+    b.went_on = true;
+    lp.to_stop = true;
+    lp.tau = h;
+    lp.i_ev = -1;
+    lp.turns_at_end = false;
+    lp.continuing = pc.t_next < std::min(lp.t_horizon, lp.opt.t_end);
+    const Angle end_angle = angle_at(ph, pc.omega, h, lp.rot);
+    lp.s1 = end_angle.s;
+    lp.c1 = end_angle.c;
+    lp.at_knot = true;
+    lp.t_last = t;
+    lp.h_last = h;
+    lp.owns += 1;
+    return true;
 }
 
 }  // namespace
@@ -1108,6 +1257,7 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
     set_up(lp);
     while (st[T] < opt.t_end) {
         if (!poll(lp)) break;
+        if (lp.own_samples && own_sample(lp)) continue;
         next_subinterval(lp);
         if (!advance_to_end(lp)) break;
         earliest(lp);

@@ -99,6 +99,25 @@ void energies(const double* st, const System& sy, double& kin, double& iso, doub
 void track_abs_acceleration(double* ex, double t, double a);
 void track_displacement(double* ex, double t, double d);
 
+// dof i's absolute acceleration in a linear phase, -(K x + C v + R0)_i / m_i, and its rate -(K v + C a)_i / m_i
+inline double abs_acc_linear(const Phase& ph, int i, const double* y) {
+    const int n = ph.n;
+    const double* rk = &ph.K[static_cast<size_t>(i * n)];
+    const double* rc = &ph.C[static_cast<size_t>(i * n)];
+    double q = ph.R0[static_cast<size_t>(i)];
+    for (int j = 0; j < n; ++j) q += rk[j] * y[j] + rc[j] * y[n + j];
+    return -ph.minv[static_cast<size_t>(i)] * q;
+}
+
+inline double abs_acc_rate_linear(const Phase& ph, int i, const double* y, const double* a) {
+    const int n = ph.n;
+    const double* rk = &ph.K[static_cast<size_t>(i * n)];
+    const double* rc = &ph.C[static_cast<size_t>(i * n)];
+    double q = 0.0;
+    for (int j = 0; j < n; ++j) q += rk[j] * y[n + j] + rc[j] * a[j];
+    return -ph.minv[static_cast<size_t>(i)] * q;
+}
+
 // ---------------------------------------------------------------- what a sub-interval adds (accumulate.cpp)
 
 // a sub-interval's ends: states, accelerations, the forcing angle's sine and cosine

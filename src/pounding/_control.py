@@ -27,7 +27,8 @@ CTL_SERIES = 4   # a linear phase's sub-intervals whose power series was made (t
 CTL_AUDITED = 5  # (the tests' audit of the extrema's screen: the extrema it cleared, found all the same)
 CTL_ESCAPES = 6  # (and those outside the range its bound gives)
 CTL_WHOLE = 7    # a record's steps taken whole (the screen cleared them of every event and extremum inside)
-CTL_LEN = 8
+CTL_OWN = 8      # a record's samples at its step taken by their own (no event, no extremum inside: run.cpp)
+CTL_LEN = 9
 DEFAULT_MAX_STEPS = 100_000_000  # about 1-3 minutes of one core
 
 

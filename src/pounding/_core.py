@@ -353,7 +353,7 @@ def _ctl(ctl: np.ndarray) -> np.ndarray:
 
 def run(sy: System, forcing: Forcing, state0: np.ndarray, t_end: float, sample_dt: float, rtol: float,
         max_events: int, with_energy: bool, ctl: np.ndarray, screen_extrema: bool = True,
-        audit_screen: bool = False, whole_steps: bool = True) -> RunOutput:
+        audit_screen: bool = False, whole_steps: bool = True, own_samples: bool = True) -> RunOutput:
     """Simulate ``sy`` under ``forcing`` (:class:`Forcing`) from ``state0`` to ``t_end``.
 
     ``sample_dt`` is the history's step (0: events only; -1: not even those); ``with_energy`` False
@@ -363,7 +363,10 @@ def run(sy: System, forcing: Forcing, state0: np.ndarray, t_end: float, sample_d
     clears all the same and counts it in ``ctl[CTL_AUDITED]``, and in ``ctl[CTL_ESCAPES]`` where it
     lies outside the range the screen's bound gives (for the tests); ``whole_steps`` False takes a record's
     step in the parts a phase faster than it is cut into, even where the screen clears the step of every
-    event and extremum (the results then differ from the default's by rounding: for the tests)."""
+    event and extremum (the results then differ from the default's by rounding: for the tests);
+    ``own_samples`` False takes every sample of a record at its own step through the general loop's steps,
+    even in a run without history where most need none of their cases (the same numbers: for the tests that
+    show it)."""
     rec_b = _f64(forcing.rec_b)
     harmonic = forcing.kind == EXCITATION["harmonic"]
     sizes_b = (0,) if harmonic else (0, np.size(forcing.rec_t))
@@ -374,7 +377,7 @@ def run(sy: System, forcing: Forcing, state0: np.ndarray, t_end: float, sample_d
     state, samples, contacts, events, ledger, extrema, status, chatters, norms = _c.run(
         sy, int(forcing.kind), _f64(forcing.p), _f64(forcing.rec_t), _f64(forcing.rec_a), rec_b, _f64(state0),
         float(t_end), float(sample_dt), float(rtol), int(max_events), bool(with_energy), _ctl(ctl),
-        bool(screen_extrema), bool(audit_screen), bool(whole_steps))
+        bool(screen_extrema), bool(audit_screen), bool(whole_steps), bool(own_samples))
     return RunOutput(state=state, samples=samples, contacts=contacts, events=events, ledger=ledger,
                      extrema=extrema, status=int(status), chatters=chatters,
                      norms=norms.reshape(-1, len(NORM_EXTREMA)))
