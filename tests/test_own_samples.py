@@ -7,6 +7,7 @@ run is the same to the bit with ``own_samples`` off, where every sample goes thr
 from __future__ import annotations
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -89,17 +90,19 @@ def test_random_buildings_are_the_same_to_the_bit(building, ratio, seed, pga, wi
         assert ctl[CTL_OWN] == 0
 
 
-def test_most_samples_of_a_pounding_mass_under_a_record_are_taken_by_their_own():
-    # the printed YBs system under El Centro at its own step (0.02 s; its phases' sub-interval about 0.1 s),
-    # 94 contacts: most samples are taken by their own (1,072 of 1,558), the contact phases' and the events'
+@pytest.mark.parametrize("preset", ["paper_printed", "paper_calibrated"])
+def test_most_samples_of_a_pounding_mass_under_a_record_are_taken_by_their_own(preset):
+    # the YBs systems under El Centro at its own step (0.02 s; their phases' sub-interval about 0.1 s), the
+    # printed one with 94 contacts, the calibrated one's multi-linear bumpers relaxing after each of its 40:
+    # most samples are taken by their own (1,083 and 1,269 of 1,558), the contact phases' and the events'
     # through the loop's steps, and the run is the loop's to the bit, with its energy ledger and without
-    osc = pd_.presets.paper_printed()
+    osc = getattr(pd_.presets, preset)()
     rec = pd_.records.el_centro().scaled(pga_g=0.4)
     for with_energy in (True, False):
         (own, ctl), (loop, ctl_loop) = both(osc, rec, with_energy)
         assert_same(own, loop)
         samples = rec.t.size - 1
-        assert len(own.contacts) > 50 and ctl[CTL_OWN] > 0.5 * samples, (len(own.contacts), ctl[CTL_OWN])
+        assert len(own.contacts) > 20 and ctl[CTL_OWN] > 0.5 * samples, (len(own.contacts), ctl[CTL_OWN])
         assert ctl_loop[CTL_OWN] == 0
 
 

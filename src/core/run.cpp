@@ -1125,11 +1125,11 @@ void finish_run(Loop& lp) {
 
 // A record's sample at the record's own step by the step's kept transition, in a run that asks for no history,
 // where the sample needs none of the loop's steps' other cases: the same linear phase going on from the knot
-// before (the table's one component on every dof, no contact in progress or relaxing, no hold), the step
+// before (the table's one component on every dof, no contact in progress, no hold), the step
 // within the phase's sub-interval, no velocity turning back or crossing zero inside, no event row that its
 // values at the ends do not clear, no absolute acceleration's rate changing sign.  What the loop's steps would
 // do then comes down to the transition's products, the equation of motion at the end, the rows' values there,
-// the extrema and the energy integrals: done here by the same functions (next_subinterval, advance_to_end,
+// the extrema, the energy integrals and a bumper's relaxing surface: done here by the same functions (next_subinterval, advance_to_end,
 // earliest, accumulate and move_to_end for such a sample, without their tests for the other cases).  Any
 // other sample is left to the loop (false): what this wrote, the loop's next_subinterval writes again.
 bool own_sample(Loop& lp) {
@@ -1143,7 +1143,7 @@ bool own_sample(Loop& lp) {
     if (!(lp.continuing && lp.at_knot) || ph.numeric || !ph.plain || ph.stk.any || lp.fo.p[0] > 2.0 * lp.h_phase)
         return false;
     for (int c = 0; c < sy.nc(); ++c)
-        if (ph.ct[static_cast<size_t>(c)].in || st[L.in_at(c)] != 0.0 || st[L.def_at(c)] != 0.0) return false;
+        if (ph.ct[static_cast<size_t>(c)].in || st[L.in_at(c)] != 0.0) return false;
     // the sample's span: the whole step, to the next knot (next_subinterval's)
     const double t = lp.t = st[T];
     const Piece pc = lp.pc = excitation_piece(lp.fo, t, lp.j_rec);
@@ -1217,6 +1217,7 @@ bool own_sample(Loop& lp) {
         track_displacement(ex, t, rel(ph.y0.data(), pr));
         track_displacement(ex, t + h, rel(b.y1.data(), pr));
     }
+    move_bumpers(st, sy, b.y1.data(), h, lp.ledger);  // (a bumper's surface relaxing after its contact)
     lp.ledger[L_HYSTERETIC] += iso_advance(sy, st, ph.y0.data(), b.y1.data());
     for (int q = 0; q < 2 * n; ++q) st[L.x + q] = b.y1[static_cast<size_t>(q)];
     st[T] = t_stop;
