@@ -1142,8 +1142,11 @@ bool own_sample(Loop& lp) {
     // (a step far longer than the phase's sub-interval: its parts', or a whole step's)
     if (!(lp.continuing && lp.at_knot) || ph.numeric || !ph.plain || ph.stk.any || lp.fo.p[0] > 2.0 * lp.h_phase)
         return false;
-    for (int c = 0; c < sy.nc(); ++c)
+    bool relaxing = false;  // (a bumper's surface recovering after its contact)
+    for (int c = 0; c < sy.nc(); ++c) {
         if (ph.ct[static_cast<size_t>(c)].in || st[L.in_at(c)] != 0.0) return false;
+        relaxing = relaxing || st[L.def_at(c)] > 0.0;
+    }
     // the sample's span: the whole step, to the next knot (next_subinterval's)
     const double t = lp.t = st[T];
     const Piece pc = lp.pc = excitation_piece(lp.fo, t, lp.j_rec);
@@ -1217,7 +1220,7 @@ bool own_sample(Loop& lp) {
         track_displacement(ex, t, rel(ph.y0.data(), pr));
         track_displacement(ex, t + h, rel(b.y1.data(), pr));
     }
-    move_bumpers(st, sy, b.y1.data(), h, lp.ledger);  // (a bumper's surface relaxing after its contact)
+    if (relaxing) move_bumpers(st, sy, b.y1.data(), h, lp.ledger);  // (none moves otherwise)
     lp.ledger[L_HYSTERETIC] += iso_advance(sy, st, ph.y0.data(), b.y1.data());
     for (int q = 0; q < 2 * n; ++q) st[L.x + q] = b.y1[static_cast<size_t>(q)];
     st[T] = t_stop;
