@@ -106,13 +106,19 @@ def test_most_samples_of_a_pounding_mass_under_a_record_are_taken_by_their_own(p
         assert ctl_loop[CTL_OWN] == 0
 
 
-def test_no_sample_is_taken_by_its_own_in_a_run_with_a_history_or_under_a_harmonic():
-    # a history's samples fall inside the record's (the loop's samples_inside); a harmonic has no knots
+def test_no_sample_is_taken_by_its_own_with_a_history_uneven_steps_or_a_harmonic():
+    # a history's samples fall inside the record's (the loop's samples_inside); a record of uneven steps has
+    # no step of its own (its transitions would be one a sample); a harmonic has no knots
     osc = pd_.presets.paper_damped()
     rec = pd_.records.el_centro().scaled(pga_g=0.3)
     (own, ctl), (loop, _) = both(osc, rec, True, sample_dt=0.01, t_end=5.0)
     assert_same(own, loop)
     assert ctl[CTL_OWN] == 0 and own.samples.shape[0] > 400
+    t = np.concatenate([[0.0], np.cumsum(0.01 * np.random.default_rng(3).uniform(0.5, 1.5, 500))])
+    uneven = pd_.Record(t, np.interp(t, rec.t, rec.accel))
+    (own, ctl), (loop, _) = both(osc, uneven, False)
+    assert_same(own, loop)
+    assert ctl[CTL_OWN] == 0 and len(own.events) > 0
     system, y0 = assemble(osc).system, pd_.State.at_rest(osc).vector
     ctl = new_control(10**9)
     harmonic = kernel_forcing(pd_.Harmonic(0.1, 1.5))

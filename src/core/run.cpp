@@ -1129,9 +1129,10 @@ void finish_run(Loop& lp) {
 // within the phase's sub-interval, no velocity turning back or crossing zero inside, no event row that its
 // values at the ends do not clear, no absolute acceleration's rate changing sign.  What the loop's steps would
 // do then comes down to the transition's products, the equation of motion at the end, the rows' values there,
-// the extrema, the energy integrals and a bumper's relaxing surface: done here by the same functions (next_subinterval, advance_to_end,
-// earliest, accumulate and move_to_end for such a sample, without their tests for the other cases).  Any
-// other sample is left to the loop (false): what this wrote, the loop's next_subinterval writes again.
+// the extrema, the energy integrals and a bumper's relaxing surface: done here by the same functions
+// (next_subinterval, advance_to_end, earliest, accumulate and move_to_end for such a sample, without their
+// tests for the other cases).  Any other sample is left to the loop (false): what this wrote, the loop's
+// next_subinterval writes again.
 bool own_sample(Loop& lp) {
     Phase& ph = lp.ph;
     const System& sy = lp.sy;
@@ -1139,8 +1140,11 @@ bool own_sample(Loop& lp) {
     Buffers& b = lp.b;
     const int n = lp.n;
     double* st = lp.st;
-    // (a step far longer than the phase's sub-interval: its parts', or a whole step's)
-    if (!(lp.continuing && lp.at_knot) || ph.numeric || !ph.plain || ph.stk.any || lp.fo.p[0] > 2.0 * lp.h_phase)
+    // (a record of uneven steps, none of them its own; a step far longer than the phase's sub-interval: its
+    // parts', or a whole step's)
+    const double step = lp.fo.p[0];
+    if (!(lp.continuing && lp.at_knot) || ph.numeric || !ph.plain || ph.stk.any || !(step > 0.0) ||
+        step > 2.0 * lp.h_phase)
         return false;
     bool relaxing = false;  // (a bumper's surface recovering after its contact)
     for (int c = 0; c < sy.nc(); ++c) {
@@ -1152,8 +1156,8 @@ bool own_sample(Loop& lp) {
     const Piece pc = lp.pc = excitation_piece(lp.fo, t, lp.j_rec);
     lp.j_rec = pc.j;
     const double t_stop = std::min({pc.t_next, lp.opt.t_end, lp.t_horizon});
-    const double span = pc.t_next - t, step = lp.fo.p[0];
-    const bool own_step = step > 0.0 && std::abs(span - step) <= 8.0 * EPS * (std::abs(t) + step);
+    const double span = pc.t_next - t;
+    const bool own_step = std::abs(span - step) <= 8.0 * EPS * (std::abs(t) + step);
     if (!(own_step && t_stop == pc.t_next && span <= lp.h_phase)) return false;
     lp.t_stop = t_stop;
     lp.h = t_stop - t;
