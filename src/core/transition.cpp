@@ -23,78 +23,22 @@ bool same(const std::vector<double>& a, const std::vector<double>& b) {
     return true;
 }
 
-// y at tau of a series of nt terms (coefficient k at t[k ny])
-void series_at(const double* t, int nt, int ny, double tau, double* y) {
+// y at tau of a series of nt terms (coefficient k at t[k ny]); NY the state's length fixed at compile time
+// (0: ny_run, known at run time)
+template <int NY>
+void series_at(const double* t, int nt, int ny_run, double tau, double* y) {
+    const int ny = NY > 0 ? NY : ny_run;
     for (int q = 0; q < ny; ++q) y[q] = t[(nt - 1) * ny + q];
     for (int k = nt - 2; k >= 0; --k)
         for (int q = 0; q < ny; ++q) y[q] = y[q] * tau + t[k * ny + q];
 }
-}  // namespace
 
-void TransitionCache::setup(const System& sy) {
-    entries.assign(N_CACHE, Transition());
-    next = 0;
-    recent[0] = recent[1] = Recent();
-    pairs.clear();
-    pair_of.assign(static_cast<size_t>(sy.nc()), 0);
-    for (int c = 0; c < sy.nc(); ++c) {
-        const Contact& ct = sy.contact[static_cast<size_t>(c)];
-        int p = 0;
-        while (p < static_cast<int>(pairs.size()) && !same_pair(pairs[static_cast<size_t>(p)], ct)) ++p;
-        if (p == static_cast<int>(pairs.size())) pairs.push_back(ct);
-        pair_of[static_cast<size_t>(c)] = p;
-    }
-}
-
-void transition_inputs(const Phase& ph, double* out) {
-    const int n = ph.n, ny = ph.ny;
-    for (int q = 0; q < ny; ++q) out[q] = ph.y0[static_cast<size_t>(q)];
-    for (int i = 0; i < n; ++i) out[ny + i] = ph.minv[static_cast<size_t>(i)] * ph.R0[static_cast<size_t>(i)];
-    out[ny + n] = ph.ax0;
-    out[ny + n + 1] = ph.ax1;
-    out[ny + n + 2] = ph.axh * ph.cphi;
-    out[ny + n + 3] = ph.axh * ph.sphi;
-}
-
-const Transition* TransitionCache::get(const Phase& ph, const System& sy, double h, uint64_t phase) {
-    // (found for this phase and h before, and not made over since: the same entry the search finds, as an
-    // entry is made only where none has its key)
-    for (const Recent& r : recent)
-        if (r.phase == phase && r.h == h && entries[static_cast<size_t>(r.idx)].made == r.made) {
-            entries[static_cast<size_t>(r.idx)].uses += 1;
-            return &entries[static_cast<size_t>(r.idx)];
-        }
-    auto remember = [&](int idx) {
-        recent[1] = recent[0];
-        recent[0] = Recent{phase, entries[static_cast<size_t>(idx)].made, h, idx};
-    };
-    for (int idx = 0; idx < N_CACHE; ++idx) {
-        Transition& e = entries[static_cast<size_t>(idx)];
-        if (e.h == h && e.w == ph.w && e.xrun == ph.xrun && e.vrun == ph.vrun && same(e.K, ph.K) &&
-            same(e.C, ph.C) && e.grp == ph.stk.grp && e.grounded == ph.stk.grounded &&
-            (!ph.stk.general || e.held == ph.stk.held)) {
-            e.uses += 1;
-            remember(idx);
-            return &e;
-        }
-    }
-    const int idx = next;
-    Transition& e = entries[static_cast<size_t>(next)];
-    next = (next + 1) % N_CACHE;
-    e.made = ++made;
-    remember(idx);
-    const int n = ph.n, ny = ph.ny, dim = 3 * n + 4, np = static_cast<int>(pairs.size());
-    e.K = ph.K;
-    e.C = ph.C;
-    e.grp = ph.stk.grp;
-    e.grounded = ph.stk.grounded;
-    e.held = ph.stk.held;
-    e.h = h;
-    e.w = ph.w;
-    e.xrun = ph.xrun;
-    e.vrun = ph.vrun;
-    e.dim = dim;
-    e.uses = 1;
+// the transition's numbers (T, Q, R, L, Qp) for the phase over h, from each input's unit response; NF the
+// masses fixed at compile time (0: ph.n, known at run time): one source, the same sums in the same order
+template <int NF>
+void make(Transition& e, const Phase& ph, const System& sy, double h, const std::vector<Pair>& pairs,
+          std::vector<double>& scratch) {
+    const int n = NF > 0 ? NF : ph.n, ny = 2 * n, dim = 3 * n + 4, np = static_cast<int>(pairs.size());
     e.T.assign(static_cast<size_t>(ny * dim), 0.0);
     e.Q.assign(static_cast<size_t>(dim * dim), 0.0);
     e.R.assign(static_cast<size_t>(4 * dim), 0.0);
@@ -127,8 +71,8 @@ const Transition* TransitionCache::get(const Phase& ph, const System& sy, double
             sp = 1.0;
         }
         const int nt = series(ph, unit, r, a0, a1, amp, sp, cp, h, t);
-        for (int q = 0; q < N_GAUSS; ++q) series_at(t, nt, ny, h * GAUSS_X[q], at + (q * dim + col) * ny);
-        series_at(t, nt, ny, h, at + (N_GAUSS * dim + col) * ny);
+        for (int q = 0; q < N_GAUSS; ++q) series_at<2 * NF>(t, nt, ny, h * GAUSS_X[q], at + (q * dim + col) * ny);
+        series_at<2 * NF>(t, nt, ny, h, at + (N_GAUSS * dim + col) * ny);
     }
     for (int q = 0; q < ny; ++q)
         for (int col = 0; col < dim; ++col) e.T[static_cast<size_t>(q * dim + col)] = at[(N_GAUSS * dim + col) * ny + q];
@@ -187,6 +131,74 @@ const Transition* TransitionCache::get(const Phase& ph, const System& sy, double
                 for (int b = 0; b < dim; ++b) qp[a * dim + b] += wq * dv[static_cast<size_t>(a)] * dv[static_cast<size_t>(b)];
         }
     }
+}
+}  // namespace
+
+void TransitionCache::setup(const System& sy) {
+    entries.assign(N_CACHE, Transition());
+    next = 0;
+    recent[0] = recent[1] = Recent();
+    pairs.clear();
+    pair_of.assign(static_cast<size_t>(sy.nc()), 0);
+    for (int c = 0; c < sy.nc(); ++c) {
+        const Contact& ct = sy.contact[static_cast<size_t>(c)];
+        int p = 0;
+        while (p < static_cast<int>(pairs.size()) && !same_pair(pairs[static_cast<size_t>(p)], ct)) ++p;
+        if (p == static_cast<int>(pairs.size())) pairs.push_back(ct);
+        pair_of[static_cast<size_t>(c)] = p;
+    }
+}
+
+void transition_inputs(const Phase& ph, double* out) {
+    const int n = ph.n, ny = ph.ny;
+    for (int q = 0; q < ny; ++q) out[q] = ph.y0[static_cast<size_t>(q)];
+    for (int i = 0; i < n; ++i) out[ny + i] = ph.minv[static_cast<size_t>(i)] * ph.R0[static_cast<size_t>(i)];
+    out[ny + n] = ph.ax0;
+    out[ny + n + 1] = ph.ax1;
+    out[ny + n + 2] = ph.axh * ph.cphi;
+    out[ny + n + 3] = ph.axh * ph.sphi;
+}
+
+const Transition* TransitionCache::get(const Phase& ph, const System& sy, double h, uint64_t phase) {
+    // (found for this phase and h before, and not made over since: the same entry the search finds, as an
+    // entry is made only where none has its key)
+    for (const Recent& r : recent)
+        if (r.phase == phase && r.h == h && entries[static_cast<size_t>(r.idx)].made == r.made) {
+            entries[static_cast<size_t>(r.idx)].uses += 1;
+            return &entries[static_cast<size_t>(r.idx)];
+        }
+    auto remember = [&](int idx) {
+        recent[1] = recent[0];
+        recent[0] = Recent{phase, entries[static_cast<size_t>(idx)].made, h, idx};
+    };
+    for (int idx = 0; idx < N_CACHE; ++idx) {
+        Transition& e = entries[static_cast<size_t>(idx)];
+        if (e.h == h && e.w == ph.w && e.xrun == ph.xrun && e.vrun == ph.vrun && same(e.K, ph.K) &&
+            same(e.C, ph.C) && e.grp == ph.stk.grp && e.grounded == ph.stk.grounded &&
+            (!ph.stk.general || e.held == ph.stk.held)) {
+            e.uses += 1;
+            remember(idx);
+            return &e;
+        }
+    }
+    const int idx = next;
+    Transition& e = entries[static_cast<size_t>(next)];
+    next = (next + 1) % N_CACHE;
+    e.made = ++made;
+    remember(idx);
+    e.K = ph.K;
+    e.C = ph.C;
+    e.grp = ph.stk.grp;
+    e.grounded = ph.stk.grounded;
+    e.held = ph.stk.held;
+    e.h = h;
+    e.w = ph.w;
+    e.xrun = ph.xrun;
+    e.vrun = ph.vrun;
+    e.dim = 3 * ph.n + 4;
+    e.uses = 1;
+    if (ph.n == 1) make<1>(e, ph, sy, h, pairs, scratch);
+    else make<0>(e, ph, sy, h, pairs, scratch);
     return &e;
 }
 
