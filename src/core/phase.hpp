@@ -191,10 +191,11 @@ struct SparseRows {
 };
 // body(rows) with the phase's way to walk a row, chosen once for the whole body (a loop over rows inside it is
 // the plain loop, instruction for instruction, on a dense phase)
-template <class B>
+// (NF: the phase's n fixed at compile time, 0 known at run time only)
+template <int NF = 0, class B>
 auto with_rows(const Phase& ph, B&& body) {
     if (ph.sparse) return body(SparseRows{ph.kc_start.data(), ph.kc_col.data()});
-    return body(DenseRows{ph.n});
+    return body(DenseRows{NF > 0 ? NF : ph.n});
 }
 
 // ---------------------------------------------------------------- the linear phase's series

@@ -53,13 +53,14 @@ Angle angle_at(const Phase& ph, double w, double tau, Rotation& rot) {
 }
 
 // a linear phase's accelerations at tau from the equation of motion (s, c: the forcing angle's sine and cosine
-// there)
-void eom_acceleration(const Phase& ph, const double* y, double tau, double s, double c, double* a) {
-    const int n = ph.n;
+// there); NF the masses fixed at compile time (0: ph.n at run time), eom_acceleration's choice
+template <int NF>
+void eom_acceleration_of(const Phase& ph, const double* y, double tau, double s, double c, double* a) {
+    const int n = NF > 0 ? NF : ph.n;
     const double g = (ph.ax0 + ph.ax1 * tau) + ph.axh * s;
     // (the second component's, at the same angle)
     const double gb = ph.plain ? 0.0 : (ph.bx0 + ph.bx1 * tau) + ph.bs * s + ph.bc * c;
-    with_rows(ph, [&](const auto& row) {
+    with_rows<NF>(ph, [&](const auto& row) {
         for (int i = 0; i < n; ++i) {
             const double* rk = &ph.K[static_cast<size_t>(i * n)];
             const double* rc = &ph.C[static_cast<size_t>(i * n)];
@@ -69,7 +70,12 @@ void eom_acceleration(const Phase& ph, const double* y, double tau, double s, do
             a[i] = -f - ph.on(i, g, gb);
         }
     });
-    ph.stk.project(ph.mass, a);
+    if (ph.stk.any) ph.stk.project(ph.mass, a);
+}
+
+inline void eom_acceleration(const Phase& ph, const double* y, double tau, double s, double c, double* a) {
+    if (ph.n == 1) eom_acceleration_of<1>(ph, y, tau, s, c, a);
+    else eom_acceleration_of<0>(ph, y, tau, s, c, a);
 }
 
 // u^T Q u over u's entries that are not zero (nz: their indices, uc: their values; a product with a zero adds
@@ -89,6 +95,22 @@ double quad_form(const double* Q, const double* uc, int dim, const int* nz, int 
 double row_product(const double* row, const double* uc, const int* nz, int n_nz) {
     double s = 0.0;
     for (int k = 0; k < n_nz; ++k) s += row[nz[k]] * uc[k];
+    return s;
+}
+
+// row_product and quad_form over every entry of a u of D entries, D fixed at compile time: the same numbers
+// (a product with a zero of u adds a zero, which leaves the sum as it is; before the first product that is not
+// zero the sum is +0 either way), without the search for the entries that are not zero
+template <int D>
+double dense_row_product(const double* row, const double* u) {
+    double s = 0.0;
+    for (int k = 0; k < D; ++k) s += row[k] * u[k];
+    return s;
+}
+template <int D>
+double dense_quad_form(const double* Q, const double* u) {
+    double s = 0.0;
+    for (int a = 0; a < D; ++a) s += u[a] * dense_row_product<D>(Q + a * D, u);
     return s;
 }
 
@@ -769,21 +791,36 @@ void kept_transition(Loop& lp) {
 
 // the state and its acceleration at the sub-interval's end h by its kept transition (b.y1, b.a1; b.u and its
 // entries that are not zero, b.uc and b.nz, for its integrals)
-void by_transition(Loop& lp) {
+// (NF: the masses fixed at compile time, 0 known at run time only: by_transition's choice)
+template <int NF>
+void by_transition_of(Loop& lp) {
     Phase& ph = lp.ph;
     Buffers& b = lp.b;
-    transition_inputs(ph, b.u.data());
-    const int dim = lp.tr->dim;
-    b.n_nz = 0;
-    for (int k = 0; k < dim; ++k)
-        if (b.u[static_cast<size_t>(k)] != 0.0) {
-            b.uc[static_cast<size_t>(b.n_nz)] = b.u[static_cast<size_t>(k)];
-            b.nz[static_cast<size_t>(b.n_nz++)] = k;
-        }
-    for (int q = 0; q < 2 * lp.n; ++q)
-        b.y1[static_cast<size_t>(q)] = row_product(&lp.tr->T[static_cast<size_t>(q * dim)], b.uc.data(), b.nz.data(), b.n_nz);
+    const int n = NF > 0 ? NF : lp.n, dim = 3 * n + 4;
+    transition_inputs<NF>(ph, b.u.data());
+    const double* u = b.u.data();
+    const double* T = lp.tr->T.data();
+    if constexpr (NF > 0) {  // (u whole: transition_integrals_of<NF> likewise)
+        for (int q = 0; q < 2 * n; ++q) b.y1[static_cast<size_t>(q)] = dense_row_product<3 * NF + 4>(T + q * dim, u);
+    } else {
+        double* uc = b.uc.data();
+        int* nz = b.nz.data();
+        int n_nz = 0;
+        for (int k = 0; k < dim; ++k)
+            if (u[k] != 0.0) {
+                uc[n_nz] = u[k];
+                nz[n_nz++] = k;
+            }
+        b.n_nz = n_nz;
+        for (int q = 0; q < 2 * n; ++q) b.y1[static_cast<size_t>(q)] = row_product(T + q * dim, uc, nz, n_nz);
+    }
     const Angle an = angle_at(ph, lp.pc.omega, lp.h, lp.rot);
-    eom_acceleration(ph, b.y1.data(), lp.h, an.s, an.c, b.a1.data());
+    eom_acceleration_of<NF>(ph, b.y1.data(), lp.h, an.s, an.c, b.a1.data());
+}
+
+void by_transition(Loop& lp) {
+    if (lp.n == 1) by_transition_of<1>(lp);
+    else by_transition_of<0>(lp);
 }
 
 // the state at the sub-interval's end: by the phase's kept transition (a full sub-interval, or a record's
@@ -944,32 +981,47 @@ void earliest(Loop& lp) {
 }
 
 // a kept transition's integrals over the sub-interval, as forms of its inputs: the dashpots' and the
-// forcing's work, and each contact in progress's compression change and its rate's square
-Given transition_integrals(Loop& lp) {
+// forcing's work, and each contact in progress's compression change and its rate's square (NF: the masses
+// fixed at compile time, by_transition_of<NF>'s u whole; 0: n at run time, u's entries that are not zero)
+template <int NF>
+Given transition_integrals_of(Loop& lp) {
     Given given;
     const Transition* tr = lp.tr;
     if (tr == nullptr) return given;
     Buffers& b = lp.b;
-    const int n = lp.n, dim = tr->dim;
+    const int n = NF > 0 ? NF : lp.n, dim = tr->dim;
+    constexpr int D = 3 * NF + 4;
     const double* u = b.u.data();
     const int* nz = b.nz.data();
     const double* uc = b.uc.data();
     const int n_nz = b.n_nz;
+    auto row = [&](const double* r) {
+        if constexpr (NF > 0) return dense_row_product<D>(r, u);
+        else return row_product(r, uc, nz, n_nz);
+    };
+    auto quad = [&](const double* q) {
+        if constexpr (NF > 0) return dense_quad_form<D>(q, u);
+        else return quad_form(q, uc, dim, nz, n_nz);
+    };
     given.have = true;
     if (lp.opt.with_energy) {
-        given.vcv = quad_form(tr->Q.data(), uc, dim, nz, n_nz);
+        given.vcv = quad(tr->Q.data());
         for (int k = 0; k < 4; ++k) {
             if (u[2 * n + n + k] == 0.0) continue;
-            given.gv += u[2 * n + n + k] * row_product(&tr->R[static_cast<size_t>(k * dim)], uc, nz, n_nz);
+            given.gv += u[2 * n + n + k] * row(&tr->R[static_cast<size_t>(k * dim)]);
         }
     }
     for (int c = 0; c < lp.sy.nc(); ++c) {
         if (!lp.ph.ct[static_cast<size_t>(c)].in) continue;
         const int p = lp.w.transitions.pair_of[static_cast<size_t>(c)];
-        b.du[static_cast<size_t>(c)] = row_product(&tr->L[static_cast<size_t>(p * dim)], uc, nz, n_nz);
-        b.dvv[static_cast<size_t>(c)] = quad_form(&tr->Qp[static_cast<size_t>(p * dim * dim)], uc, dim, nz, n_nz);
+        b.du[static_cast<size_t>(c)] = row(&tr->L[static_cast<size_t>(p * dim)]);
+        b.dvv[static_cast<size_t>(c)] = quad(&tr->Qp[static_cast<size_t>(p * dim * dim)]);
     }
     return given;
+}
+
+Given transition_integrals(Loop& lp) {
+    return lp.n == 1 ? transition_integrals_of<1>(lp) : transition_integrals_of<0>(lp);
 }
 
 // what the sub-interval adds (energies, extrema, contact statistics, samples), then the state at its end:

@@ -149,16 +149,6 @@ void TransitionCache::setup(const System& sy) {
     }
 }
 
-void transition_inputs(const Phase& ph, double* out) {
-    const int n = ph.n, ny = ph.ny;
-    for (int q = 0; q < ny; ++q) out[q] = ph.y0[static_cast<size_t>(q)];
-    for (int i = 0; i < n; ++i) out[ny + i] = ph.minv[static_cast<size_t>(i)] * ph.R0[static_cast<size_t>(i)];
-    out[ny + n] = ph.ax0;
-    out[ny + n + 1] = ph.ax1;
-    out[ny + n + 2] = ph.axh * ph.cphi;
-    out[ny + n + 3] = ph.axh * ph.sphi;
-}
-
 const Transition* TransitionCache::get(const Phase& ph, const System& sy, double h, uint64_t phase) {
     // (found for this phase and h before, and not made over since: the same entry the search finds, as an
     // entry is made only where none has its key)

@@ -54,7 +54,19 @@ struct TransitionCache {
     const Transition* get(const Phase& ph, const System& sy, double h, uint64_t phase);
 };
 
-// u of the current sub-interval (3 n + 4 values) into out
-void transition_inputs(const Phase& ph, double* out);
+// u of the current sub-interval (3 n + 4 values) into out (NF: n fixed at compile time, 0 ph.n at run time)
+template <int NF = 0>
+inline void transition_inputs(const Phase& ph, double* out) {
+    const int n = NF > 0 ? NF : ph.n, ny = 2 * n;
+    const double* y0 = ph.y0.data();
+    const double* minv = ph.minv.data();
+    const double* R0 = ph.R0.data();
+    for (int q = 0; q < ny; ++q) out[q] = y0[q];
+    for (int i = 0; i < n; ++i) out[ny + i] = minv[i] * R0[i];
+    out[ny + n] = ph.ax0;
+    out[ny + n + 1] = ph.ax1;
+    out[ny + n + 2] = ph.axh * ph.cphi;
+    out[ny + n + 3] = ph.axh * ph.sphi;
+}
 
 }  // namespace pounding
