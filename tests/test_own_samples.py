@@ -73,43 +73,6 @@ def test_random_masses_are_the_same_to_the_bit(data, law, seed, ratio, pga, with
 
 
 @settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
-@given(data=st.data(), law=st.sampled_from(LINEAR_LAWS), seed=st.integers(0, 2**32 - 1),
-       ratio=st.one_of(st.floats(1.05, 2.0), st.floats(3.3, 6.0)), pga=st.floats(0.5, 8.0),
-       with_energy=st.booleans())
-def test_a_step_cut_in_parts_takes_its_parts_by_their_own_to_the_bit(data, law, seed, ratio, pga, with_energy):
-    # a record's step 1.05 to 6 of the free phase's sub-interval: the loop cuts it in m equal parts, each by
-    # the part's kept transition; a quiet part is taken by its own as a quiet step is, and the run is the
-    # loop's to the bit (steps of 2 to 3.2 sub-intervals left out: the loop tries those whole first, and a
-    # whole step the screen clears has no parts)
-    osc = data.draw(oscillators(law=law))
-    m, c = osc.mass_kg, osc.isolator.damping_n_s_m
-    rate = max(np.sqrt(max(osc.isolator.slopes_n_m) / m + (0.5 * c / m) ** 2), c / m)
-    dt = ratio * 2.0 * np.pi / (8.0 * rate)
-    rec = own_step_record(seed, dt, 600 * dt, pga)
-    (own, ctl), (loop, ctl_loop) = both(osc, rec, with_energy)
-    assert_same(own, loop)
-    assert ctl_loop[CTL_OWN] == 0 and ctl[CTL_WORK] == ctl_loop[CTL_WORK]
-    assert ctl[CTL_WORK] > 1.05 * (rec.t.size - 1)  # (the steps went in parts)
-
-
-def test_a_stiff_mass_under_a_record_takes_the_quiet_parts_of_its_steps_by_their_own():
-    # a mass of period 40 ms, 5 % damped, between bumpers 0.1 mm away, under El Centro (0.02 s steps: each
-    # cut in 4 parts of 5 ms, too long to be tried whole): the quiet parts go by their own, the run is the
-    # loop's to the bit
-    m, period_s = 500.0, 0.04
-    k = m * (2.0 * np.pi / period_s) ** 2
-    iso = pd_.Isolator(slopes_n_m=[k], damping_n_s_m=2.0 * 0.05 * np.sqrt(k * m))
-    osc = pd_.Oscillator(m, iso, pd_.Bumpers(1.0e-4, 1.0e-4, pd_.KelvinVoigt(1.0e9, 1.0e4)))
-    rec = pd_.records.el_centro().scaled(pga_g=0.5)
-    for with_energy in (True, False):
-        (own, ctl), (loop, ctl_loop) = both(osc, rec, with_energy)
-        assert_same(own, loop)
-        steps = rec.t.size - 1
-        assert len(own.contacts) > 10 and ctl[CTL_WORK] > 3 * steps, (len(own.contacts), int(ctl[CTL_WORK]))
-        assert ctl[CTL_OWN] > steps and ctl_loop[CTL_OWN] == 0, int(ctl[CTL_OWN])
-
-
-@settings(max_examples=30, deadline=None, suppress_health_check=[HealthCheck.too_slow])
 @given(building=buildings(), ratio=st.floats(0.3, 0.95), seed=st.integers(0, 2**32 - 1),
        pga=st.floats(0.5, 8.0), with_energy=st.booleans())
 def test_random_buildings_are_the_same_to_the_bit(building, ratio, seed, pga, with_energy):

@@ -1177,15 +1177,14 @@ void finish_run(Loop& lp) {
 
 // A record's sample at the record's own step by the step's kept transition, in a run that asks for no history,
 // where the sample needs none of the loop's steps' other cases: the same linear phase going on from the knot
-// before (the table's one component on every dof, no contact in progress, no hold), the step within the
-// phase's sub-interval or one of the equal parts the loop cuts a longer one in (each by the part's kept
-// transition; not a step the screen would try whole first), no velocity turning back or crossing zero inside,
-// no event row that its values at the ends do not clear, no absolute acceleration's rate changing sign.  What
-// the loop's steps would do then comes down to the transition's products, the equation of motion at the end,
-// the rows' values there, the extrema, the energy integrals and a bumper's relaxing surface: done here by the
-// same functions (next_subinterval, advance_to_end, earliest, accumulate and move_to_end for such a sample,
-// without their tests for the other cases).  Any other sample is left to the loop (false): what this wrote,
-// the loop's next_subinterval writes again (a part's count and length as they were).
+// before (the table's one component on every dof, no contact in progress, no hold), the step
+// within the phase's sub-interval, no velocity turning back or crossing zero inside, no event row that its
+// values at the ends do not clear, no absolute acceleration's rate changing sign.  What the loop's steps would
+// do then comes down to the transition's products, the equation of motion at the end, the rows' values there,
+// the extrema, the energy integrals and a bumper's relaxing surface: done here by the same functions
+// (next_subinterval, advance_to_end, earliest, accumulate and move_to_end for such a sample, without their
+// tests for the other cases).  Any other sample is left to the loop (false): what this wrote, the loop's
+// next_subinterval writes again.
 bool own_sample(Loop& lp) {
     Phase& ph = lp.ph;
     const System& sy = lp.sy;
@@ -1193,47 +1192,29 @@ bool own_sample(Loop& lp) {
     Buffers& b = lp.b;
     const int n = lp.n;
     double* st = lp.st;
-    // (a record of uneven steps, none of them its own; a step met anywhere but at its knot or one of its
-    // equal parts' ends)
+    // (a record of uneven steps, none of them its own; a step far longer than the phase's sub-interval: its
+    // parts', or a whole step's)
     const double step = lp.fo.p[0];
-    if (!lp.continuing || !(lp.at_knot || lp.h_split > 0.0) || ph.numeric || !ph.plain || ph.stk.any ||
-        !(step > 0.0))
+    if (!(lp.continuing && lp.at_knot) || ph.numeric || !ph.plain || ph.stk.any || !(step > 0.0) ||
+        step > 2.0 * lp.h_phase)
         return false;
     bool relaxing = false;  // (a bumper's surface recovering after its contact)
     for (int c = 0; c < sy.nc(); ++c) {
         if (ph.ct[static_cast<size_t>(c)].in || st[L.in_at(c)] != 0.0) return false;
         relaxing = relaxing || st[L.def_at(c)] > 0.0;
     }
-    // the sub-interval, as next_subinterval cuts it: the whole step to the next knot, or its next equal part
-    // where the step is longer than the phase's sub-interval (but for a whole step the screen would try first)
+    // the sample's span: the whole step, to the next knot (next_subinterval's)
     const double t = lp.t = st[T];
     const Piece pc = lp.pc = excitation_piece(lp.fo, t, lp.j_rec);
     lp.j_rec = pc.j;
     const double t_stop = std::min({pc.t_next, lp.opt.t_end, lp.t_horizon});
-    if (t_stop != pc.t_next) return false;
-    double h_split = lp.h_split;
-    int parts = lp.parts, parts_left = lp.parts_left;
-    if (lp.at_knot) {
-        const double span = pc.t_next - t;
-        if (!(std::abs(span - step) <= 8.0 * EPS * (std::abs(t) + step))) return false;
-        h_split = 0.0;
-        if (span > lp.h_phase) {
-            const double m = std::ceil(span / lp.h_phase);
-            if (lp.opt.whole_steps && lp.opt.screen_extrema && lp.w.screen.on && m >= 3.0 &&
-                span <= lp.h_phase * (SUBINTERVALS_PER_PERIOD / WHOLE_STEPS_PER_PERIOD))
-                return false;
-            h_split = step / m;
-            parts = parts_left = static_cast<int>(m);
-        }
-    }
-    lp.whole = false;
-    lp.in_part = h_split > 0.0;
-    lp.h_split = h_split;
-    lp.parts = parts;
-    lp.parts_left = parts_left;
-    lp.to_stop = !lp.in_part || parts_left <= 1 || h_split >= t_stop - t;
+    const double span = pc.t_next - t;
+    const bool own_step = std::abs(span - step) <= 8.0 * EPS * (std::abs(t) + step);
+    if (!(own_step && t_stop == pc.t_next && span <= lp.h_phase)) return false;
     lp.t_stop = t_stop;
-    lp.h = lp.to_stop ? t_stop - t : h_split;
+    lp.h = t_stop - t;
+    lp.whole = lp.in_part = false;
+    lp.h_split = 0.0;
     continue_phase(lp, pc, t);
     kept_transition(lp);
     if (lp.tr == nullptr) return false;
@@ -1298,18 +1279,17 @@ bool own_sample(Loop& lp) {
     if (relaxing) move_bumpers(st, sy, b.y1.data(), h, lp.ledger);  // (none moves otherwise)
     lp.ledger[L_HYSTERETIC] += iso_advance(sy, st, ph.y0.data(), b.y1.data());
     for (int q = 0; q < 2 * n; ++q) st[L.x + q] = b.y1[static_cast<size_t>(q)];
-    st[T] = lp.to_stop ? t_stop : t + h;
+    st[T] = t_stop;
     b.went_on = true;
+    lp.to_stop = true;
     lp.tau = h;
     lp.i_ev = -1;
     lp.turns_at_end = false;
-    lp.continuing = !lp.to_stop || pc.t_next < std::min(lp.t_horizon, lp.opt.t_end);
+    lp.continuing = pc.t_next < std::min(lp.t_horizon, lp.opt.t_end);
     const Angle end_angle = angle_at(ph, pc.omega, h, lp.rot);
     lp.s1 = end_angle.s;
     lp.c1 = end_angle.c;
-    lp.at_knot = lp.to_stop;
-    if (lp.in_part) lp.parts_left -= 1;  // (move_to_end's count: a part gone the whole way)
-    if (lp.in_part && lp.parts_left <= 0) lp.h_split = 0.0;
+    lp.at_knot = true;
     lp.t_last = t;
     lp.h_last = h;
     lp.owns += 1;
