@@ -21,6 +21,7 @@
 #pragma once
 
 #include <cmath>
+#include <type_traits>
 #include <vector>
 
 #include "compression.hpp"
@@ -191,6 +192,21 @@ struct SparseRows {
 };
 // body(rows) with the phase's way to walk a row, chosen once for the whole body (a loop over rows inside it is
 // the plain loop, instruction for instruction, on a dense phase)
+// body(N) with N a std::integral_constant of the masses n fixed at compile time, for the small systems the core
+// has its kernels sized for (1 to MAX_FIXED_N masses), 0 beyond (n known at run time only): one source, each
+// instantiation the same sums in the same order
+constexpr int MAX_FIXED_N = 4;
+template <class B>
+decltype(auto) sized(int n, B&& body) {
+    switch (n) {
+        case 1: return body(std::integral_constant<int, 1>{});
+        case 2: return body(std::integral_constant<int, 2>{});
+        case 3: return body(std::integral_constant<int, 3>{});
+        case 4: return body(std::integral_constant<int, 4>{});
+        default: return body(std::integral_constant<int, 0>{});
+    }
+}
+
 // (NF: the phase's n fixed at compile time, 0 known at run time only)
 template <int NF = 0, class B>
 auto with_rows(const Phase& ph, B&& body) {

@@ -74,8 +74,7 @@ void eom_acceleration_of(const Phase& ph, const double* y, double tau, double s,
 }
 
 inline void eom_acceleration(const Phase& ph, const double* y, double tau, double s, double c, double* a) {
-    if (ph.n == 1) eom_acceleration_of<1>(ph, y, tau, s, c, a);
-    else eom_acceleration_of<0>(ph, y, tau, s, c, a);
+    sized(ph.n, [&](auto N) { eom_acceleration_of<decltype(N)::value>(ph, y, tau, s, c, a); });
 }
 
 // u^T Q u over u's entries that are not zero (nz: their indices, uc: their values; a product with a zero adds
@@ -819,8 +818,7 @@ void by_transition_of(Loop& lp) {
 }
 
 void by_transition(Loop& lp) {
-    if (lp.n == 1) by_transition_of<1>(lp);
-    else by_transition_of<0>(lp);
+    sized(lp.n, [&](auto N) { by_transition_of<decltype(N)::value>(lp); });
 }
 
 // the state at the sub-interval's end: by the phase's kept transition (a full sub-interval, or a record's
@@ -1021,7 +1019,7 @@ Given transition_integrals_of(Loop& lp) {
 }
 
 Given transition_integrals(Loop& lp) {
-    return lp.n == 1 ? transition_integrals_of<1>(lp) : transition_integrals_of<0>(lp);
+    return sized(lp.n, [&](auto N) { return transition_integrals_of<decltype(N)::value>(lp); });
 }
 
 // what the sub-interval adds (energies, extrema, contact statistics, samples), then the state at its end:

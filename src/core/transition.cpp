@@ -187,8 +187,7 @@ const Transition* TransitionCache::get(const Phase& ph, const System& sy, double
     e.vrun = ph.vrun;
     e.dim = 3 * ph.n + 4;
     e.uses = 1;
-    if (ph.n == 1) make<1>(e, ph, sy, h, pairs, scratch);
-    else make<0>(e, ph, sy, h, pairs, scratch);
+    sized(ph.n, [&](auto N) { make<decltype(N)::value>(e, ph, sy, h, pairs, scratch); });
     return &e;
 }
 
