@@ -190,12 +190,9 @@ struct SparseRows {
         for (int q = start[i], e = start[i + 1]; q < e; ++q) f(col[q]);
     }
 };
-// body(rows) with the phase's way to walk a row, chosen once for the whole body (a loop over rows inside it is
-// the plain loop, instruction for instruction, on a dense phase)
 // body(N) with N a std::integral_constant of the masses n fixed at compile time, for the small systems the core
-// has its kernels sized for (1 to MAX_FIXED_N masses), 0 beyond (n known at run time only): one source, each
+// has its kernels sized for (1 to 4 masses), 0 beyond (n known at run time only): one source, each
 // instantiation the same sums in the same order
-constexpr int MAX_FIXED_N = 4;
 template <class B>
 decltype(auto) sized(int n, B&& body) {
     switch (n) {
@@ -207,7 +204,9 @@ decltype(auto) sized(int n, B&& body) {
     }
 }
 
-// (NF: the phase's n fixed at compile time, 0 known at run time only)
+// body(rows) with the phase's way to walk a row, chosen once for the whole body (a loop over rows inside it is
+// the plain loop, instruction for instruction, on a dense phase; NF: the phase's n fixed at compile time, 0
+// known at run time only)
 template <int NF = 0, class B>
 auto with_rows(const Phase& ph, B&& body) {
     if (ph.sparse) return body(SparseRows{ph.kc_start.data(), ph.kc_col.data()});

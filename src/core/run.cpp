@@ -788,9 +788,9 @@ void kept_transition(Loop& lp) {
     eom_acceleration(ph, ph.y0.data(), 0.0, ph.sphi, ph.cphi, lp.b.a0.data());
 }
 
-// the state and its acceleration at the sub-interval's end h by its kept transition (b.y1, b.a1; b.u and its
-// entries that are not zero, b.uc and b.nz, for its integrals)
-// (NF: the masses fixed at compile time, 0 known at run time only: by_transition's choice)
+// the state and its acceleration at the sub-interval's end h by its kept transition (b.y1, b.a1; b.u for its
+// integrals, and where n is known at run time only its entries that are not zero, b.uc and b.nz; NF: the
+// masses fixed at compile time, 0 known at run time only: by_transition's choice)
 template <int NF>
 void by_transition_of(Loop& lp) {
     Phase& ph = lp.ph;
