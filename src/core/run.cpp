@@ -113,7 +113,23 @@ double dense_quad_form(const double* Q, const double* u) {
     return s;
 }
 
-
+// a kept transition's rows and forms times the sub-interval's inputs u: over u whole where the masses are fixed
+// at compile time (NF > 0), over its entries that are not zero (nz, uc: by_transition_of's) where not
+template <int NF>
+struct InputProducts {
+    const double* u;
+    const double* uc;
+    const int* nz;
+    int n_nz, dim;
+    double row(const double* r) const {
+        if constexpr (NF > 0) return dense_row_product<3 * NF + 4>(r, u);
+        else return row_product(r, uc, nz, n_nz);
+    }
+    double quad(const double* q) const {
+        if constexpr (NF > 0) return dense_quad_form<3 * NF + 4>(q, u);
+        else return quad_form(q, uc, dim, nz, n_nz);
+    }
+};
 
 // a rigid stop's scales in the phase (h_phase: its sub-interval, short against its periods)
 ImpactScales impact_scales(const Phase& ph, double h_phase, double v_res) {
@@ -798,21 +814,17 @@ void by_transition_of(Loop& lp) {
     const int n = NF > 0 ? NF : lp.n, dim = 3 * n + 4;
     transition_inputs<NF>(ph, b.u.data());
     const double* u = b.u.data();
-    const double* T = lp.tr->T.data();
-    if constexpr (NF > 0) {  // (u whole: transition_integrals_of<NF> likewise)
-        for (int q = 0; q < 2 * n; ++q) b.y1[static_cast<size_t>(q)] = dense_row_product<3 * NF + 4>(T + q * dim, u);
-    } else {
-        double* uc = b.uc.data();
-        int* nz = b.nz.data();
-        int n_nz = 0;
+    if constexpr (NF == 0) {  // (u's entries that are not zero, for the products here and in the integrals)
+        b.n_nz = 0;
         for (int k = 0; k < dim; ++k)
             if (u[k] != 0.0) {
-                uc[n_nz] = u[k];
-                nz[n_nz++] = k;
+                b.uc[static_cast<size_t>(b.n_nz)] = u[k];
+                b.nz[static_cast<size_t>(b.n_nz++)] = k;
             }
-        b.n_nz = n_nz;
-        for (int q = 0; q < 2 * n; ++q) b.y1[static_cast<size_t>(q)] = row_product(T + q * dim, uc, nz, n_nz);
     }
+    const InputProducts<NF> in{u, b.uc.data(), b.nz.data(), b.n_nz, dim};
+    const double* T = lp.tr->T.data();
+    for (int q = 0; q < 2 * n; ++q) b.y1[static_cast<size_t>(q)] = in.row(T + q * dim);
     const Angle an = angle_at(ph, lp.pc.omega, lp.h, lp.rot);
     eom_acceleration_of<NF>(ph, b.y1.data(), lp.h, an.s, an.c, b.a1.data());
 }
@@ -988,32 +1000,21 @@ Given transition_integrals_of(Loop& lp) {
     if (tr == nullptr) return given;
     Buffers& b = lp.b;
     const int n = NF > 0 ? NF : lp.n, dim = tr->dim;
-    constexpr int D = 3 * NF + 4;
     const double* u = b.u.data();
-    const int* nz = b.nz.data();
-    const double* uc = b.uc.data();
-    const int n_nz = b.n_nz;
-    auto row = [&](const double* r) {
-        if constexpr (NF > 0) return dense_row_product<D>(r, u);
-        else return row_product(r, uc, nz, n_nz);
-    };
-    auto quad = [&](const double* q) {
-        if constexpr (NF > 0) return dense_quad_form<D>(q, u);
-        else return quad_form(q, uc, dim, nz, n_nz);
-    };
+    const InputProducts<NF> in{u, b.uc.data(), b.nz.data(), b.n_nz, dim};
     given.have = true;
     if (lp.opt.with_energy) {
-        given.vcv = quad(tr->Q.data());
+        given.vcv = in.quad(tr->Q.data());
         for (int k = 0; k < 4; ++k) {
             if (u[2 * n + n + k] == 0.0) continue;
-            given.gv += u[2 * n + n + k] * row(&tr->R[static_cast<size_t>(k * dim)]);
+            given.gv += u[2 * n + n + k] * in.row(&tr->R[static_cast<size_t>(k * dim)]);
         }
     }
     for (int c = 0; c < lp.sy.nc(); ++c) {
         if (!lp.ph.ct[static_cast<size_t>(c)].in) continue;
         const int p = lp.w.transitions.pair_of[static_cast<size_t>(c)];
-        b.du[static_cast<size_t>(c)] = row(&tr->L[static_cast<size_t>(p * dim)]);
-        b.dvv[static_cast<size_t>(c)] = quad(&tr->Qp[static_cast<size_t>(p * dim * dim)]);
+        b.du[static_cast<size_t>(c)] = in.row(&tr->L[static_cast<size_t>(p * dim)]);
+        b.dvv[static_cast<size_t>(c)] = in.quad(&tr->Qp[static_cast<size_t>(p * dim * dim)]);
     }
     return given;
 }
