@@ -57,6 +57,11 @@ Array2 rows_array(Rows& r) {
     return Array2(owned, {rows, cols}, owner);
 }
 
+// a table's NumPy array, None without rows (the caller makes its empty array)
+nb::object table(Rows& r) {
+    return r.n > 0 ? nb::cast(rows_array(r)) : nb::none();
+}
+
 // A system enters by name: its contact slots (ContactSlot) and hysteretic elements (Element) built with keyword
 // arguments, the System from them the same way; a pickle carries each by name too.  (The sizes and indices are
 // checked in Python, pounding._core.system: the core trusts its inputs.)  A pair's levers (Pair) come apart:
@@ -414,6 +419,8 @@ NB_MODULE(_pounding_core, m) {
         })
         .def_ro("has_b", &System::has_b)
         .def_prop_ro("state_size", &System::state_size)
+        .def_prop_ro("sample_cols", [](const System& s) { return s.lay.sample_cols(); })
+        .def_prop_ro("norm_extrema_at", &System::norm_extrema_at)
         .def_prop_ro("layout", [](const System& s) {
             nb::dict d;
             d["x"] = s.lay.x;
@@ -459,11 +466,14 @@ NB_MODULE(_pounding_core, m) {
                   thread_local RunWorkspace workspace;
                   run_kernel(sy, fo, state0.data(), opt, ctl.data(), out, &workspace);
               }
-              return nb::make_tuple(array1(out.state.data(), out.state.size()), rows_array(out.samples),
-                                    rows_array(out.contacts), rows_array(out.events),
-                                    array1(out.ledger, LEDGER_LEN), array1(out.extrema.data(), sy.norm_extrema_at()),
-                                    out.status, rows_array(out.chatters),
-                                    array1(out.extrema.data() + sy.norm_extrema_at(), NORM_EXTREMA * sy.n_norm()));
+              // the fixed-size outputs as one array (the state, the ledger, the extrema, the norms: Python takes
+              // views of it), a table without rows as None: a NumPy array costs a short run more than its
+              // arithmetic (nanobind's export and its release, some 3,700 instructions each)
+              std::vector<double> small(out.state);
+              small.insert(small.end(), out.ledger, out.ledger + LEDGER_LEN);
+              small.insert(small.end(), out.extrema.begin(), out.extrema.end());
+              return nb::make_tuple(array1(small.data(), small.size()), out.status, table(out.samples),
+                                    table(out.contacts), table(out.events), table(out.chatters));
           },
           nb::arg("system"), nb::arg("kind"), nb::arg("p"), nb::arg("rec_t"), nb::arg("rec_a"), nb::arg("rec_b"),
           nb::arg("state0"), nb::arg("t_end"), nb::arg("sample_dt"), nb::arg("rtol"), nb::arg("max_events"), nb::arg("with_energy"),

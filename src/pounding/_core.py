@@ -195,6 +195,8 @@ class Monodromy:
 
 
 _N_DOF_EXTREMA, _N_PAIR_EXTREMA = LAYOUT["DOF_EXTREMA"], LAYOUT["PAIR_EXTREMA"]
+_N_NORM_EXTREMA, _LEDGER_LEN = len(NORM_EXTREMA), LAYOUT["LEDGER_LEN"]
+_CONTACT_COLS, _EVENT_COLS = LAYOUT["CONTACT_COLS"], LAYOUT["EVENT_COLS"]
 
 
 def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Element], has_b: bool,
@@ -374,13 +376,24 @@ def run(sy: System, forcing: Forcing, state0: np.ndarray, t_end: float, sample_d
         raise ValueError(f"a harmonic's p holds 3 or 5 numbers and no rec_b; a record's p 3 and rec_b none "
                          f"or as many values as rec_t ({np.size(forcing.rec_t)}): got p "
                          f"{np.size(forcing.p)}, rec_b {rec_b.size}")
-    state, samples, contacts, events, ledger, extrema, status, chatters, norms = _c.run(
+    small, status, samples, contacts, events, chatters = _c.run(
         sy, int(forcing.kind), _f64(forcing.p), _f64(forcing.rec_t), _f64(forcing.rec_a), rec_b, _f64(state0),
         float(t_end), float(sample_dt), float(rtol), int(max_events), bool(with_energy), _ctl(ctl),
         bool(screen_extrema), bool(audit_screen), bool(whole_steps), bool(own_samples))
-    return RunOutput(state=state, samples=samples, contacts=contacts, events=events, ledger=ledger,
-                     extrema=extrema, status=int(status), chatters=chatters,
-                     norms=norms.reshape(-1, len(NORM_EXTREMA)))
+    # (the fixed-size outputs come as one array, read here by views; a table without rows as None)
+    size = sy.state_size
+    at = size + _LEDGER_LEN
+    norms_at = at + sy.norm_extrema_at
+    return RunOutput(state=small[:size], samples=_rows(samples, sy.sample_cols),
+                     contacts=_rows(contacts, _CONTACT_COLS), events=_rows(events, _EVENT_COLS),
+                     ledger=small[size:at], extrema=small[at:norms_at],
+                     status=int(status), chatters=_rows(chatters, 5),
+                     norms=small[norms_at:].reshape(-1, _N_NORM_EXTREMA))
+
+
+def _rows(table: Optional[np.ndarray], cols: int) -> np.ndarray:
+    """A table as the core returns it, its empty array (``cols`` columns) where it returns None."""
+    return np.empty((0, cols)) if table is None else table
 
 
 def held_force_probe(sy: System, forcing: Forcing, state: np.ndarray) -> np.ndarray:
