@@ -144,6 +144,29 @@ def test_the_door_names_what_a_run_returns_and_every_index_is_the_core_s():
     assert set(_core.EXCITATION) == {"harmonic", "record"}
 
 
+def test_a_run_s_outputs_keep_their_shapes_with_and_without_rows():
+    # (the core returns the fixed-size outputs as one array and a table without rows as None: the door
+    # gives each its own array, a table without rows empty with its columns)
+    osc = pd_.presets.paper_damped()
+    sy, fo = kernel_system(osc), kernel_forcing(pd_.Harmonic(0.1, 2.0))
+    rest = pd_.State.at_rest(osc).vector
+    quiet = _core.run(sy, fo, rest, 0.01, -1.0, 1e-10, 10**6, True, _control.new_control(10**9))
+    busy = _core.run(sy, fo, rest, 5.0, 0.01, 1e-10, 10**6, True, _control.new_control(10**9))
+    cols = {"samples": sy.sample_cols, "contacts": _core.LAYOUT["CONTACT_COLS"],
+            "events": _core.LAYOUT["EVENT_COLS"], "chatters": 5}
+    for name, k in cols.items():
+        assert getattr(quiet, name).shape == ((2, k) if name == "samples" else (0, k)), name  # (its ends)
+        assert getattr(busy, name).shape[1] == k and getattr(busy, name).dtype == np.float64, name
+    assert len(busy.samples) > 400 and len(busy.contacts) > 0 and len(busy.events) > 0
+    for out in (quiet, busy):
+        assert out.state.shape == (sy.state_size,) and out.ledger.shape == (_core.LAYOUT["LEDGER_LEN"],)
+        assert out.extrema.shape == (sy.norm_extrema_at,) and out.norms.shape == (0, len(_core.NORM_EXTREMA))
+    assert busy.state[0] == 5.0 and np.isfinite(busy.ledger).all()
+    # (each its own numbers: the state a run goes on from is the state's, the extrema the run's)
+    later = _core.run(sy, fo, busy.state, 6.0, 0.0, 1e-10, 10**6, True, _control.new_control(10**9))
+    assert later.state[0] == 6.0 and busy.extrema[_core.DOF_EXTREMA["d_max"]] == busy.per_dof(1)[0, 0]
+
+
 def test_a_system_goes_in_by_name_and_comes_back_from_a_pickle_by_name():
     slot = _core.contact_slot(i=0, j=-1, sign=1.0, gap_m=0.03, law=_core.LAW_IDS["hunt_crossley"],
                               params=[5e8, 1.5, 2e8])

@@ -248,14 +248,17 @@ def test_the_door_refuses_a_second_component_it_cannot_place():
     harmonic, record = _core.EXCITATION["harmonic"], _core.EXCITATION["record"]
     t = np.linspace(0.0, 1.0, 11)
     none = {"rec_t": np.zeros(1), "rec_a": np.zeros(1)}
-    bad = [_core.Forcing(kind=harmonic, p=np.array([1.0, 2.0, 0.0, 1.0]), **none),
-           _core.Forcing(kind=harmonic, p=np.array([1.0, 2.0, 0.0]), rec_b=np.zeros(1), **none),
-           _core.Forcing(kind=record, p=np.array([0.1, 0.0, 0.0]), rec_t=t, rec_a=np.zeros(11),
-                         rec_b=np.zeros(10)),
-           _core.Forcing(kind=record, p=np.array([0.1, 0.0, 0.0, 1.0, 0.0]), rec_t=t, rec_a=np.zeros(11))]
-    for forcing in bad:
+    bad = [dict(kind=harmonic, p=np.array([1.0, 2.0, 0.0, 1.0]), **none),
+           dict(kind=harmonic, p=np.array([1.0, 2.0, 0.0]), rec_b=np.zeros(1), **none),
+           dict(kind=record, p=np.array([0.1, 0.0, 0.0]), rec_t=t, rec_a=np.zeros(11), rec_b=np.zeros(10)),
+           dict(kind=record, p=np.array([0.1, 0.0, 0.0, 1.0, 0.0]), rec_t=t, rec_a=np.zeros(11)),
+           dict(kind=7, p=np.array([1.0, 2.0, 0.0]), **none)]
+    for numbers in bad:  # (refused as the forcing is made, once for every run that takes it)
         with pytest.raises(ValueError, match="rec_b"):
-            _run(sy, forcing, state0, 1.0)
+            _core.Forcing(**numbers)
+    good = _core.Forcing(kind=harmonic, p=[1.0, 2.0, 0.0], **none)  # (its arrays made contiguous float64)
+    assert good.p.dtype == np.float64 and good.p.flags.c_contiguous and good.rec_b.size == 0
+    assert _run(sy, good, state0, 1.0).status == _core.STATUS["SUCCESS"]
     with pytest.raises(ValueError, match="influence"):
         _core.system([1.0, 1.0], np.eye(2), np.zeros((2, 2)), [], False,
                      [], influence=np.ones((2, 3)))

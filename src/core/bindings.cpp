@@ -472,8 +472,9 @@ NB_MODULE(_pounding_core, m) {
               std::vector<double> small(out.state);
               small.insert(small.end(), out.ledger, out.ledger + LEDGER_LEN);
               small.insert(small.end(), out.extrema.begin(), out.extrema.end());
-              return nb::make_tuple(array1(small.data(), small.size()), out.status, table(out.samples),
-                                    table(out.contacts), table(out.events), table(out.chatters));
+              const size_t size = out.state.size(), norms_at = size + LEDGER_LEN + sy.norm_extrema_at();
+              return nb::make_tuple(array1(small.data(), small.size()), size, norms_at, out.status,
+                                    table(out.samples), table(out.contacts), table(out.events), table(out.chatters));
           },
           nb::arg("system"), nb::arg("kind"), nb::arg("p"), nb::arg("rec_t"), nb::arg("rec_a"), nb::arg("rec_b"),
           nb::arg("state0"), nb::arg("t_end"), nb::arg("sample_dt"), nb::arg("rtol"), nb::arg("max_events"), nb::arg("with_energy"),

@@ -85,7 +85,9 @@ class Forcing:
         A record's second component (m/s^2) on the same times; empty: none.
 
     The table acceleration on dof ``i`` is ``influence[i, 0] a + influence[i, 1] b`` (:func:`system`'s
-    ``influence``; by default every dof moves with the first component alone).
+    ``influence``; by default every dof moves with the first component alone).  Its sizes are checked and
+    its arrays made contiguous float64 once, here (a ValueError for a caller's bug), for the many runs
+    that take it.
     """
 
     kind: int
@@ -93,6 +95,18 @@ class Forcing:
     rec_t: np.ndarray
     rec_a: np.ndarray
     rec_b: np.ndarray = field(default_factory=lambda: np.zeros(0))
+
+    def __post_init__(self) -> None:
+        for name in ("p", "rec_t", "rec_a", "rec_b"):
+            object.__setattr__(self, name, _f64(getattr(self, name)))
+        object.__setattr__(self, "kind", int(self.kind))
+        harmonic = self.kind == EXCITATION["harmonic"]
+        if self.kind not in EXCITATION.values() or self.rec_b.size not in ((0,) if harmonic else (
+                0, self.rec_t.size)) or self.p.size not in ((3, 5) if harmonic else (3,)):
+            raise ValueError(f"a Forcing's kind is one of {EXCITATION}; a harmonic's p holds 3 or 5 numbers "
+                             f"and no rec_b; a record's p 3 and rec_b none or as many values as rec_t "
+                             f"({self.rec_t.size}): got kind {self.kind}, p {self.p.size}, rec_b "
+                             f"{self.rec_b.size}")
 
 
 @dataclass(frozen=True, slots=True)
@@ -132,7 +146,7 @@ class RunOutput:
     extrema: np.ndarray
     status: int
     chatters: np.ndarray
-    norms: np.ndarray = field(default_factory=lambda: np.zeros((0, len(NORM_EXTREMA))))
+    norms: np.ndarray
 
     def per_dof(self, n: int) -> np.ndarray:
         """The extrema of each of the ``n`` dofs, shape (n, DOF_EXTREMA), columns :data:`DOF_EXTREMA`."""
@@ -197,6 +211,8 @@ class Monodromy:
 _N_DOF_EXTREMA, _N_PAIR_EXTREMA = LAYOUT["DOF_EXTREMA"], LAYOUT["PAIR_EXTREMA"]
 _N_NORM_EXTREMA, _LEDGER_LEN = len(NORM_EXTREMA), LAYOUT["LEDGER_LEN"]
 _CONTACT_COLS, _EVENT_COLS = LAYOUT["CONTACT_COLS"], LAYOUT["EVENT_COLS"]
+_INT64, _CTL_SHAPE = np.dtype(np.int64), (LAYOUT["CTL_LEN"],)
+_CHATTER_COLS = 5  # (RunOutput.chatters')
 
 
 def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Element], has_b: bool,
@@ -345,8 +361,9 @@ def _f64(a: Any) -> np.ndarray:
 def _ctl(ctl: np.ndarray) -> np.ndarray:
     """``ctl`` as the kernels write it: the run control's int64 array of ``LAYOUT["CTL_LEN"]``
     (``pounding._control.new_control``); a ValueError otherwise (they write to each slot)."""
-    if not (isinstance(ctl, np.ndarray) and ctl.dtype == np.int64 and ctl.shape == (LAYOUT["CTL_LEN"],)
-            and ctl.flags.c_contiguous and ctl.flags.writeable):
+    flags = getattr(ctl, "flags", None)
+    if not (type(ctl) is np.ndarray and ctl.dtype is _INT64 and ctl.shape == _CTL_SHAPE and flags.c_contiguous
+            and flags.writeable):
         raise ValueError(f"ctl: the run control, a writable int64 array of {LAYOUT['CTL_LEN']} "
                          f"(pounding._control.new_control); got {getattr(ctl, 'dtype', type(ctl))!s} "
                          f"{getattr(ctl, 'shape', '')}")
@@ -369,31 +386,20 @@ def run(sy: System, forcing: Forcing, state0: np.ndarray, t_end: float, sample_d
     ``own_samples`` False takes every sample of a record at its own step through the general loop's steps,
     even in a run without history where most need none of their cases (the same numbers: for the tests that
     show it)."""
-    rec_b = _f64(forcing.rec_b)
-    harmonic = forcing.kind == EXCITATION["harmonic"]
-    sizes_b = (0,) if harmonic else (0, np.size(forcing.rec_t))
-    if rec_b.size not in sizes_b or np.size(forcing.p) not in ((3, 5) if harmonic else (3,)):
-        raise ValueError(f"a harmonic's p holds 3 or 5 numbers and no rec_b; a record's p 3 and rec_b none "
-                         f"or as many values as rec_t ({np.size(forcing.rec_t)}): got p "
-                         f"{np.size(forcing.p)}, rec_b {rec_b.size}")
-    small, status, samples, contacts, events, chatters = _c.run(
-        sy, int(forcing.kind), _f64(forcing.p), _f64(forcing.rec_t), _f64(forcing.rec_a), rec_b, _f64(state0),
+    small, size, norms_at, status, samples, contacts, events, chatters = _c.run(
+        sy, forcing.kind, forcing.p, forcing.rec_t, forcing.rec_a, forcing.rec_b, _f64(state0),
         float(t_end), float(sample_dt), float(rtol), int(max_events), bool(with_energy), _ctl(ctl),
         bool(screen_extrema), bool(audit_screen), bool(whole_steps), bool(own_samples))
-    # (the fixed-size outputs come as one array, read here by views; a table without rows as None)
-    size = sy.state_size
+    # (the fixed-size outputs come as one array, read here by views: the state's size, then the ledger, the
+    # extrema up to norms_at, the norms; a table without rows as None)
     at = size + _LEDGER_LEN
-    norms_at = at + sy.norm_extrema_at
-    return RunOutput(state=small[:size], samples=_rows(samples, sy.sample_cols),
-                     contacts=_rows(contacts, _CONTACT_COLS), events=_rows(events, _EVENT_COLS),
-                     ledger=small[size:at], extrema=small[at:norms_at],
-                     status=int(status), chatters=_rows(chatters, 5),
+    return RunOutput(state=small[:size],
+                     samples=np.empty((0, sy.sample_cols)) if samples is None else samples,
+                     contacts=np.empty((0, _CONTACT_COLS)) if contacts is None else contacts,
+                     events=np.empty((0, _EVENT_COLS)) if events is None else events,
+                     ledger=small[size:at], extrema=small[at:norms_at], status=status,
+                     chatters=np.empty((0, _CHATTER_COLS)) if chatters is None else chatters,
                      norms=small[norms_at:].reshape(-1, _N_NORM_EXTREMA))
-
-
-def _rows(table: Optional[np.ndarray], cols: int) -> np.ndarray:
-    """A table as the core returns it, its empty array (``cols`` columns) where it returns None."""
-    return np.empty((0, cols)) if table is None else table
 
 
 def held_force_probe(sy: System, forcing: Forcing, state: np.ndarray) -> np.ndarray:

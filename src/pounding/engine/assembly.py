@@ -262,7 +262,8 @@ def _assemble(model: Oscillator | Structure | Adjacent) -> Assembly:
     system = _core.system(masses, k0, c0, kernel_elements, bool(contacts), contacts, tracked)
     return Assembly(system, tuple(dofs), tuple(isolator), tuple(slots), tuple(stands), np.array(masses),
                     k_fast, c_all, tuple(pairs),
-                    tuple(HystereticElement(i, j, list(slopes), list(breaks), rule,
+                    tuple(HystereticElement(i, j, [float(x) for x in slopes], [float(x) for x in breaks],
+                                            rule,
                                             tuple(friction.get(e, {}).get("surface_ring_n_m", ())),
                                             tuple(friction.get(e, {}).get("surface_friction_n", ())))
                           for e, (i, j, _, slopes, breaks, rule) in enumerate(elements)),
