@@ -127,16 +127,16 @@ def structures_of(model: Oscillator | Structure | Adjacent) -> tuple[tuple[Struc
     return (model,), ()
 
 
-@functools.lru_cache(maxsize=64)
+# assemblies kept (:func:`assemble`): a pounding spectrum's systems at every period and gap (100 periods of 4
+# systems), each met again by every record a worker runs; a few kB each
+ASSEMBLIES_KEPT = 1024
+
+@functools.lru_cache(maxsize=ASSEMBLIES_KEPT)  # (as many as the assemblies: a spectrum's masses)
 def _one_level(oscillator: Oscillator) -> Structure:
     """The one-level structure a single mass is (:meth:`Structure.from_oscillator`), built once for the many
     runs of one system (a sweep's, a study's, a continuation's)."""
     return Structure.from_oscillator(oscillator)
 
-
-# assemblies kept (:func:`assemble`): a pounding spectrum's systems at every period and gap (100 periods of 4
-# systems), each met again by every record a worker runs; a few kB each
-ASSEMBLIES_KEPT = 1024
 
 
 def assemble(model: Oscillator | Structure | Adjacent) -> Assembly:
