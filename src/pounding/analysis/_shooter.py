@@ -51,7 +51,7 @@ class _Shooter(_Newton):
             return
         self.asm: Assembly = assemble(model)
         self.system = self.asm.system
-        lay = self.lay = self.system.layout
+        lay = self.lay = self.asm.layout
         self.n = int(self.system.n)
         self.nc = len(self.asm.pairs)
         self.n_sp = int(lay["n_springs"])

@@ -38,7 +38,7 @@ def window_states(system: Any, sweep: Any) -> Iterator[tuple[int, float, Any]]:
     from ._shooting import at_section
 
     asm = assemble(system)
-    layout, n_contacts = asm.system.layout, len(asm.pairs)
+    layout, n_contacts = asm.layout, len(asm.pairs)
     for i in range(int(sweep.steps_done)):
         vec = at_section(np.array(sweep.window_states[i], dtype=float), layout, n_contacts)
         yield i, float(sweep.freqs_hz[i]), State._of(vec, asm.dofs, layout)

@@ -315,7 +315,7 @@ class Branch(FollowedTable):
         from ..engine.assembly import assemble
 
         asm = assemble(self.oscillator)
-        return State._of(self.states[index], asm.dofs, asm.system.layout)
+        return State._of(self.states[index], asm.dofs, asm.layout)
 
     def plot(self, ax: Any = None, *, y: str = "alpha", x: Optional[str] = None,
              sweeps: "SweepResult | Sequence[SweepResult] | None" = None, **kwargs: Any) -> Any:

@@ -398,7 +398,7 @@ def largest_exponents(diagram: BifurcationDiagram, *, cycles: int = 200, align_c
 
     done = 0
     asm = assemble(diagram.oscillator)  # (a single mass: the one-level structure it is)
-    layout, n_contacts = asm.system.layout, len(asm.pairs)
+    layout, n_contacts = asm.layout, len(asm.pairs)
 
     def state_of(vec: np.ndarray) -> Any:
         return State._of(vec, asm.dofs, layout)

@@ -54,7 +54,8 @@ class Assembly(NamedTuple):
 
     ``dofs[b][level]``: the core's dof of structure ``b``'s level (-1: the ground, a fixed base's level
     0); ``isolator[b]``: the element of its isolator (-1: a fixed base); ``slots[c]``: what contact slot
-    ``c`` is, ``(b, wall, side)`` for a structure's wall (side 0 left, 1 right) or ``(-1, link, 0)``."""
+    ``c`` is, ``(b, wall, side)`` for a structure's wall (side 0 left, 1 right) or ``(-1, link, 0)``;
+    ``layout``: ``system.layout`` as read once, shared by every run of a kept assembly (never written to)."""
 
     system: _core.System
     dofs: tuple
@@ -67,6 +68,7 @@ class Assembly(NamedTuple):
     pairs: tuple           # each contact slot's Pair
     elements: tuple        # each hysteretic element's HystereticElement, in the core's order
     bouc_wen: "BoucWenSprings"  # each Bouc-Wen spring's numbers and mate, by its z's slot
+    layout: dict           # the system's ``layout``, read once (the core makes a new dict each time)
     contact_tracks: tuple = ()  # each contact slot's tracked pair (its extrema), -1: against the ground
 
 
@@ -267,7 +269,7 @@ def _assemble(model: Oscillator | Structure | Adjacent) -> Assembly:
                                             tuple(friction.get(e, {}).get("surface_ring_n_m", ())),
                                             tuple(friction.get(e, {}).get("surface_friction_n", ())))
                           for e, (i, j, _, slopes, breaks, rule) in enumerate(elements)),
-                    bouc_wen_springs(kernel_elements), contact_tracks)
+                    bouc_wen_springs(kernel_elements), system.layout, contact_tracks)
 
 
 class BoucWenSprings(NamedTuple):

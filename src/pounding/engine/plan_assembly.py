@@ -53,6 +53,7 @@ class PlanAssembly(NamedTuple):
     element_weights: np.ndarray  # (elements, 3 n): each element's displacement, as weights
     pairs: tuple                 # each contact slot's assembly.Pair (its dofs without their levers)
     elements: tuple              # each element's assembly.HystereticElement (the same)
+    layout: dict                 # the system's ``layout``, read once (as an Assembly's); read-only
     dofs: tuple = ()             # ((0, 1, ..., 3 n - 1),): the floors' dofs, as a State holds them
     bouc_wen: BoucWenSprings = BoucWenSprings(np.zeros((0, _core.LAYOUT["BW_PARAMS"])), ())  # (its springs)
     corner_tracks: tuple = ()    # (4, 2): each corner's tracked pair along x and y
@@ -200,7 +201,8 @@ def assemble_plan(building: PlanBuilding) -> PlanAssembly:
                         np.array(contact_weights).reshape(len(contacts), n), np.array(tracked_weights),
                         np.array(element_weights).reshape(len(elements), n), tuple(pairs),
                         tuple(HystereticElement(el.i, el.j, list(el.slopes), list(el.breaks), el.rule)
-                              for el in elements), (tuple(range(n)),), bouc_wen_springs(elements),
+                              for el in elements), system.layout, (tuple(range(n)),),
+                        bouc_wen_springs(elements),
                         tuple(corner_tracks), tuple(rings), tuple(ring_vectors))
 
 

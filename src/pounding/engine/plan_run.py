@@ -51,7 +51,7 @@ def _kept(building: PlanBuilding) -> tuple[PlanAssembly, float, float]:
 def _start(state: Optional[State], asm: PlanAssembly) -> State:
     """``state``, or rest at t = 0 when None: one of this building's states (its layout, its numbers finite,
     a time >= 0, and each contact's and element's state fitting the displacements: ``check_fits``)."""
-    lay = asm.system.layout
+    lay = asm.layout
     if state is None:
         return State._of(np.zeros(lay["size"]), asm.dofs, lay)
     instance_of("state", state, State, "pounding.State (a run's final_state)")
@@ -74,7 +74,7 @@ def _start(state: Optional[State], asm: PlanAssembly) -> State:
 def _ring_depths(asm: PlanAssembly, vec: np.ndarray) -> dict:
     """A circular moat's contacts' depths past the ring in the state ``vec`` (m, by contact: a corner's
     distance from the ring's centre less its radius), none for a rectangle's walls."""
-    lay = asm.system.layout
+    lay = asm.layout
     x = vec[lay["x"]:lay["x"] + asm.system.n]
     return {c: math.hypot(px + float(asm.contact_weights[c] @ x), py + float(w_y @ x)) - radius
             for c, (w_y, px, py, radius) in enumerate(asm.rings)}
@@ -159,7 +159,7 @@ def plan_run_of(building: PlanBuilding, asm: PlanAssembly, excitation: Any, rate
         contact_force=samples[:, [1 + 3 * n + nh + c for c in range(len(asm.contacts))]],
         contact_slots=asm.contacts, contact_table=out.contacts, event_table=out.events,
         chatter_table=out.chatters, energy=EnergyLedger.of(out.ledger),
-        final_state=State._of(out.state, asm.dofs, asm.system.layout), status=status)
+        final_state=State._of(out.state, asm.dofs, asm.layout), status=status)
 
 
 def _clearances(building: PlanBuilding, asm: PlanAssembly, tracked: np.ndarray,

@@ -207,7 +207,7 @@ class ShortRun:
 
     @property
     def final_state(self) -> State:
-        return State._of(self.vector, self.asm.dofs, self.asm.system.layout)
+        return State._of(self.vector, self.asm.dofs, self.asm.layout)
 
 
 class NotAState(Exception):
@@ -232,7 +232,7 @@ def short_run(model: "Oscillator | Structure | Adjacent", excitation: Harmonic, 
     """
     if asm is None:
         asm = assemble(model)
-    lay = asm.system.layout
+    lay = asm.layout
     n = int(asm.system.n)
     if isinstance(state, np.ndarray):
         # the moves of a solver change the continuous numbers only: those are checked here (a vector that
@@ -274,7 +274,7 @@ def run_of(system: "Oscillator | Structure | Adjacent", asm: Assembly, excitatio
     finite_ledger = not with_energy or np.isfinite(out.ledger).all()
     if status == Status.SUCCESS and not (finite_ledger and np.isfinite(out.extrema).all()):
         status = Status.NONFINITE
-    final = State._of(out.state, asm.dofs, asm.system.layout)
+    final = State._of(out.state, asm.dofs, asm.layout)
     levels = _structures_run(system, asm, excitation, rate, out, status, energy, final, t0)
     if is_single_mass(system):  # (its Run: the one-level structure's run, read as one mass's)
         return Run._of_levels(levels, system, out.chatters)

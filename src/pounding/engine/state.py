@@ -323,7 +323,7 @@ def one_mass_layout(layout: Optional[dict]) -> Optional[dict]:
 def shifted(asm: "Assembly", time_s: float, d: float, v: float) -> State:
     """A structure's (or a pair's) state at rest, its first structure shifted as one body (``at_rest``),
     from its assembly; an InputError where the shift closes a wall or a link."""
-    lay = asm.system.layout
+    lay = asm.layout
     vec = np.zeros(lay["size"])
     vec[0] = time_s
     moved = [dof for dof in asm.dofs[0] if dof >= 0]

@@ -48,7 +48,7 @@ def one_mass(asm: Assembly) -> bool:
 def check_layout(state: State, asm: Assembly, fix: str) -> None:
     """An InputError unless ``state`` is laid out as the assembly's states are (its size, levels and
     blocks), its numbers finite."""
-    lay = asm.system.layout
+    lay = asm.layout
     if state.vector.size != lay["size"] or state.dofs != asm.dofs or any(
             state._lay[k] != lay[k] for k in LAYOUT_KEYS):
         n_contacts = lay["in"] - lay["def"]
@@ -79,7 +79,7 @@ def check_fits(vec: np.ndarray, asm: Assembly, fix: str, levered: Optional[tuple
 
     Read as Python floats: a solver checks one a run, and numpy's scalars cost several times more."""
     x_all = vec.tolist()
-    lay = asm.system.layout
+    lay = asm.layout
     n = int(asm.system.n)
     x = x_all[lay["x"]:lay["x"] + n]
     single = one_mass(asm)
@@ -251,7 +251,7 @@ def _without_bumpers(state: State, asm: Assembly) -> State:
     for every mass, or a run's with bumpers), given to a mass without bumpers: the same state in that
     system's layout (no contact slots; a finished contact's running totals and the laws' states are left
     behind), with a ``FutureWarning``; refused while a bumper touches or is compressed."""
-    lay = asm.system.layout
+    lay = asm.layout
     if state.layout is not None or state.dofs != asm.dofs or lay["in"] != lay["def"]:
         return state
     old, vec = state._lay, state.vector

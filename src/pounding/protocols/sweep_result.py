@@ -459,7 +459,7 @@ class SweepResult:
         points = integer("points_per_cycle", points_per_cycle, 8)
         f = float(self.freqs_hz[i])
         asm = assemble(self.system)
-        state = State._of(self.window_states[i], asm.dofs, asm.system.layout)
+        state = State._of(self.window_states[i], asm.dofs, asm.layout)
         omega = 2 * math.pi * f
         n_cyc = max(1, int(self.period_multiple[i]))
         exc = Harmonic(self.a_g, f, phase=-(omega * float(self.step_start_s[i])), g=self.g)
