@@ -133,12 +133,12 @@ def structures_of(model: Oscillator | Structure | Adjacent) -> tuple[tuple[Struc
 # systems), each met again by every record a worker runs; a few kB each
 ASSEMBLIES_KEPT = 1024
 
+
 @functools.lru_cache(maxsize=ASSEMBLIES_KEPT)  # (as many as the assemblies: a spectrum's masses)
 def _one_level(oscillator: Oscillator) -> Structure:
     """The one-level structure a single mass is (:meth:`Structure.from_oscillator`), built once for the many
     runs of one system (a sweep's, a study's, a continuation's)."""
     return Structure.from_oscillator(oscillator)
-
 
 
 def assemble(model: Oscillator | Structure | Adjacent) -> Assembly:
