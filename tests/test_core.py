@@ -161,10 +161,13 @@ def test_a_run_s_outputs_keep_their_shapes_with_and_without_rows():
     for out in (quiet, busy):
         assert out.state.shape == (sy.state_size,) and out.ledger.shape == (_core.LAYOUT["LEDGER_LEN"],)
         assert out.extrema.shape == (sy.norm_extrema_at,) and out.norms.shape == (0, len(_core.NORM_EXTREMA))
-    assert busy.state[0] == 5.0 and np.isfinite(busy.ledger).all()
-    # (each its own numbers: the state a run goes on from is the state's, the extrema the run's)
-    later = _core.run(sy, fo, busy.state, 6.0, 0.0, 1e-10, 10**6, True, _control.new_control(10**9))
-    assert later.state[0] == 6.0 and busy.extrema[_core.DOF_EXTREMA["d_max"]] == busy.per_dof(1)[0, 0]
+    # (each part of the one array in its place: the public run's state, ledger and extrema, read apart)
+    run = pd_.simulate(osc, pd_.Harmonic(0.1, 2.0), 5.0, sample_rate_hz=100.0)
+    assert np.array_equal(busy.state, run.final_state.vector)
+    assert busy.ledger[_core.LEDGER["input"]] == run.energy.input_work
+    ex, at = busy.per_dof(1)[0], _core.DOF_EXTREMA
+    assert (ex[at["d_max"]], ex[at["d_min"]], ex[at["a_abs_max"]]) == (
+        run.displacement_max, run.displacement_min, run.abs_acceleration_max)
 
 
 def test_a_system_goes_in_by_name_and_comes_back_from_a_pickle_by_name():

@@ -41,6 +41,20 @@ Array1 array1(const double* values, size_t n) {
     return Array1(data, {n}, owner);
 }
 
+// a NumPy array owning a copy of several buffers, one after the other (each: its values, its length)
+Array1 array1_of(std::initializer_list<std::pair<const double*, size_t>> parts) {
+    size_t n = 0;
+    for (const auto& part : parts) n += part.second;
+    double* data = new double[n > 0 ? n : 1];
+    size_t at = 0;
+    for (const auto& part : parts) {
+        if (part.second > 0) std::memcpy(data + at, part.first, part.second * sizeof(double));
+        at += part.second;
+    }
+    nb::capsule owner(data, [](void* p) noexcept { delete[] static_cast<double*>(p); });
+    return Array1(data, {n}, owner);
+}
+
 Array2 array2(const double* values, size_t rows, size_t cols) {
     const size_t n = rows * cols;
     double* data = new double[n > 0 ? n : 1];
@@ -469,11 +483,10 @@ NB_MODULE(_pounding_core, m) {
               // the fixed-size outputs as one array (the state, the ledger, the extrema, the norms: Python takes
               // views of it), a table without rows as None: a NumPy array costs a short run more than its
               // arithmetic (nanobind's export and its release, some 3,700 instructions each)
-              std::vector<double> small(out.state);
-              small.insert(small.end(), out.ledger, out.ledger + LEDGER_LEN);
-              small.insert(small.end(), out.extrema.begin(), out.extrema.end());
               const size_t size = out.state.size(), norms_at = size + LEDGER_LEN + sy.norm_extrema_at();
-              return nb::make_tuple(array1(small.data(), small.size()), size, norms_at, out.status,
+              return nb::make_tuple(array1_of({{out.state.data(), size}, {out.ledger, size_t(LEDGER_LEN)},
+                                               {out.extrema.data(), out.extrema.size()}}),
+                                    size, norms_at, out.status,
                                     table(out.samples), table(out.contacts), table(out.events), table(out.chatters));
           },
           nb::arg("system"), nb::arg("kind"), nb::arg("p"), nb::arg("rec_t"), nb::arg("rec_a"), nb::arg("rec_b"),

@@ -136,6 +136,9 @@ class RunOutput:
     norms : ndarray, shape (v, NORM_EXTREMA)
         Each tracked vector's (:func:`system`'s ``vectors``) exact largest length (m), its time (s) and its
         two components there (m), columns :data:`NORM_EXTREMA`.
+
+    ``state``, ``ledger``, ``extrema`` and ``norms`` are views of one array (the core returns them so): each
+    its own numbers, but keeping one keeps the others' memory, and none can be resized in place.
     """
 
     state: np.ndarray
@@ -362,8 +365,8 @@ def _ctl(ctl: np.ndarray) -> np.ndarray:
     """``ctl`` as the kernels write it: the run control's int64 array of ``LAYOUT["CTL_LEN"]``
     (``pounding._control.new_control``); a ValueError otherwise (they write to each slot)."""
     flags = getattr(ctl, "flags", None)
-    if not (type(ctl) is np.ndarray and ctl.dtype is _INT64 and ctl.shape == _CTL_SHAPE and flags.c_contiguous
-            and flags.writeable):
+    if not (isinstance(ctl, np.ndarray) and (ctl.dtype is _INT64 or ctl.dtype == _INT64)
+            and ctl.shape == _CTL_SHAPE and flags.c_contiguous and flags.writeable):
         raise ValueError(f"ctl: the run control, a writable int64 array of {LAYOUT['CTL_LEN']} "
                          f"(pounding._control.new_control); got {getattr(ctl, 'dtype', type(ctl))!s} "
                          f"{getattr(ctl, 'shape', '')}")
@@ -406,8 +409,8 @@ def held_force_probe(sy: System, forcing: Forcing, state: np.ndarray) -> np.ndar
     """The held rigid stops' forces and their rates in time in ``state`` under ``forcing``, as a run's
     held-release events take them: shape (held stops, 3), each ``(contact, force N, rate N/s)`` (for the
     tests: a rate against its force's differences along a run)."""
-    return _c.held_force_probe(sy, int(forcing.kind), _f64(forcing.p), _f64(forcing.rec_t),
-                               _f64(forcing.rec_a), _f64(forcing.rec_b), _f64(state))
+    return _c.held_force_probe(sy, forcing.kind, forcing.p, forcing.rec_t, forcing.rec_a, forcing.rec_b,
+                               _f64(state))
 
 
 def step(sy: System, amp: float, omega: float, state0: np.ndarray, steady: tuple, rtol: float,
