@@ -14,6 +14,7 @@
 
 #include "core.hpp"
 #include "events.hpp"
+#include "impact.hpp"
 #include "laws.hpp"
 #include "monodromy.hpp"
 #include "run.hpp"
@@ -607,6 +608,7 @@ NB_MODULE(_pounding_core, m) {
     layout["NORM_EXTREMA"] = static_cast<int>(NORM_EXTREMA);
     layout["EVENT_COLS"] = static_cast<int>(EVENT_COLS);
     layout["LEDGER_LEN"] = static_cast<int>(LEDGER_LEN);
+    layout["CHATTER_COLS"] = run_parts::CHATTER_COLS;
     layout["WINDOW_COLS"] = WINDOW_COLS;
     layout["CYCLE_COLS"] = CYCLE_COLS;
     layout["SIDE_SUMS"] = SIDE_SUMS;

@@ -214,8 +214,8 @@ class Monodromy:
 _N_DOF_EXTREMA, _N_PAIR_EXTREMA = LAYOUT["DOF_EXTREMA"], LAYOUT["PAIR_EXTREMA"]
 _N_NORM_EXTREMA, _LEDGER_LEN = len(NORM_EXTREMA), LAYOUT["LEDGER_LEN"]
 _CONTACT_COLS, _EVENT_COLS = LAYOUT["CONTACT_COLS"], LAYOUT["EVENT_COLS"]
+_CHATTER_COLS = LAYOUT["CHATTER_COLS"]
 _INT64, _CTL_SHAPE = np.dtype(np.int64), (LAYOUT["CTL_LEN"],)
-_CHATTER_COLS = 5  # (RunOutput.chatters')
 
 
 def system(mass: np.ndarray, k0: np.ndarray, c0: np.ndarray, elements: list[Element], has_b: bool,
