@@ -97,24 +97,21 @@ double row_product(const double* row, const double* uc, const int* nz, int n_nz)
     return s;
 }
 
-// row_product and quad_form over every entry of a u of D entries, D fixed at compile time: the same numbers
-// (a product with a zero of u adds a zero, which leaves the sum as it is; before the first product that is not
-// zero the sum is +0 either way), without the search for the entries that are not zero
+// row_product and quad_form where the masses are fixed at compile time (NF > 0): over u's state (its first 2 NF
+// entries) whole, then over the rest's entries that are not zero (nz, uc: by_transition_of's; the masses' constant
+// forces, often none, and the forcing's pair that is not the run's, always none).  The same numbers as over u
+// whole: a product with a zero of u adds a zero, which leaves the sum as it is (the sum starts at +0 and a sum of
+// finite terms from +0 is never -0), and the entries left are summed in the same order
 template <int D>
 double dense_row_product(const double* row, const double* u) {
     double s = 0.0;
     for (int k = 0; k < D; ++k) s += row[k] * u[k];
     return s;
 }
-template <int D>
-double dense_quad_form(const double* Q, const double* u) {
-    double s = 0.0;
-    for (int a = 0; a < D; ++a) s += u[a] * dense_row_product<D>(Q + a * D, u);
-    return s;
-}
 
-// a kept transition's rows and forms times the sub-interval's inputs u: over u whole where the masses are fixed
-// at compile time (NF > 0), over its entries that are not zero (nz, uc: by_transition_of's) where not
+// a kept transition's rows and forms times the sub-interval's inputs u (3 n + 4 entries): over the state whole and
+// the rest's entries that are not zero where the masses are fixed at compile time (NF > 0), over every entry that
+// is not zero where not (nz, uc: by_transition_of's)
 template <int NF>
 struct InputProducts {
     const double* u;
@@ -122,12 +119,24 @@ struct InputProducts {
     const int* nz;
     int n_nz, dim;
     double row(const double* r) const {
-        if constexpr (NF > 0) return dense_row_product<3 * NF + 4>(r, u);
-        else return row_product(r, uc, nz, n_nz);
+        if constexpr (NF > 0) {
+            double s = dense_row_product<2 * NF>(r, u);
+            for (int k = 0; k < n_nz; ++k) s += r[nz[k]] * uc[k];
+            return s;
+        } else {
+            return row_product(r, uc, nz, n_nz);
+        }
     }
     double quad(const double* q) const {
-        if constexpr (NF > 0) return dense_quad_form<3 * NF + 4>(q, u);
-        else return quad_form(q, uc, dim, nz, n_nz);
+        if constexpr (NF > 0) {
+            constexpr int D = 3 * NF + 4;
+            double s = 0.0;
+            for (int a = 0; a < 2 * NF; ++a) s += u[a] * row(q + a * D);
+            for (int k = 0; k < n_nz; ++k) s += uc[k] * row(q + nz[k] * D);
+            return s;
+        } else {
+            return quad_form(q, uc, dim, nz, n_nz);
+        }
     }
 };
 
@@ -805,7 +814,7 @@ void kept_transition(Loop& lp) {
 }
 
 // the state and its acceleration at the sub-interval's end h by its kept transition (b.y1, b.a1; b.u for its
-// integrals, and where n is known at run time only its entries that are not zero, b.uc and b.nz; NF: the
+// integrals, and its entries that are not zero, past its state where n is fixed, b.uc and b.nz; NF: the
 // masses fixed at compile time, 0 known at run time only: by_transition's choice)
 template <int NF>
 void by_transition_of(Loop& lp) {
@@ -814,14 +823,13 @@ void by_transition_of(Loop& lp) {
     const int n = NF > 0 ? NF : lp.n, dim = 3 * n + 4;
     transition_inputs<NF>(ph, b.u.data());
     const double* u = b.u.data();
-    if constexpr (NF == 0) {  // (u's entries that are not zero, for the products here and in the integrals)
-        b.n_nz = 0;
-        for (int k = 0; k < dim; ++k)
-            if (u[k] != 0.0) {
-                b.uc[static_cast<size_t>(b.n_nz)] = u[k];
-                b.nz[static_cast<size_t>(b.n_nz++)] = k;
-            }
-    }
+    // (u's entries that are not zero, for the products here and in the integrals: past the state where n is fixed)
+    b.n_nz = 0;
+    for (int k = NF > 0 ? 2 * n : 0; k < dim; ++k)
+        if (u[k] != 0.0) {
+            b.uc[static_cast<size_t>(b.n_nz)] = u[k];
+            b.nz[static_cast<size_t>(b.n_nz++)] = k;
+        }
     const InputProducts<NF> in{u, b.uc.data(), b.nz.data(), b.n_nz, dim};
     const double* T = lp.tr->T.data();
     for (int q = 0; q < 2 * n; ++q) b.y1[static_cast<size_t>(q)] = in.row(T + q * dim);

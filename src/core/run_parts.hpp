@@ -54,8 +54,8 @@ int event_pairs(const System& sy, Pair* pairs);
 
 struct Buffers {
     std::vector<double> y0s, y1, a0, a1, ym, am, du, dvv, u;
-    std::vector<int> nz;    // (u's entries that are not zero: the products with a kept transition skip the rest
-                            // where n is known at run time only; u whole where it is fixed: by_transition_of)
+    std::vector<int> nz;    // (u's entries that are not zero, past its state where n is fixed at compile time: the
+                            // products with a kept transition skip the rest, by_transition_of)
     std::vector<double> uc; // (and their values)
     int n_nz = 0;
     // each free dof's absolute acceleration at the last linear sub-interval's end, and whether this
