@@ -191,8 +191,8 @@ struct SparseRows {
     }
 };
 // body(N) with N a std::integral_constant of the masses n fixed at compile time, for the small systems the core
-// has its kernels sized for (1 to 4 masses), 0 beyond (n known at run time only): one source, each
-// instantiation the same sums in the same order
+// has its kernels sized for (1 to 8 masses: a building of up to 8 levels), 0 beyond (n known at run time only):
+// one source, each instantiation the same sums in the same order
 template <class B>
 decltype(auto) sized(int n, B&& body) {
     switch (n) {
@@ -200,6 +200,10 @@ decltype(auto) sized(int n, B&& body) {
         case 2: return body(std::integral_constant<int, 2>{});
         case 3: return body(std::integral_constant<int, 3>{});
         case 4: return body(std::integral_constant<int, 4>{});
+        case 5: return body(std::integral_constant<int, 5>{});
+        case 6: return body(std::integral_constant<int, 6>{});
+        case 7: return body(std::integral_constant<int, 7>{});
+        case 8: return body(std::integral_constant<int, 8>{});
         default: return body(std::integral_constant<int, 0>{});
     }
 }
