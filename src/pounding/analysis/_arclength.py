@@ -137,9 +137,11 @@ class Family:
         return max(abs(x) for x in self._ref.extent(run))
 
     # ------------------------------------------------------------------ pieces
-    def image(self, vec: np.ndarray, p: float, a_g: Optional[float] = None) -> tuple[np.ndarray, Run]:
-        """``(x of P(vec; p), the run)``; raises _Failed where the engine cannot run it."""
-        end, run = self.shooter(p, a_g)._image(vec)
+    def image(self, vec: np.ndarray, p: float, a_g: Optional[float] = None,
+              checked: bool = False) -> tuple[np.ndarray, Run]:
+        """``(x of P(vec; p), the run)``; raises _Failed where the engine cannot run it (``checked``: ``vec`` ran
+        from before on the system at ``p``, not checked again)."""
+        end, run = self.shooter(p, a_g)._image(vec, checked)
         return self.coords(end), run
 
     def residual(self, vec: np.ndarray, p: float,
@@ -160,14 +162,16 @@ class Family:
             self.fell_back = sh.fell_back
         free, _ = sh._layout(vec, frozen)
         h = 1e-6 * self.p_scale
+        # (vec ran at p: the same system at p +- h where p is the forcing's, so not checked again)
+        same = self.table is None
         try:
-            diff = (self.image(vec, p + h)[0] - self.image(vec, p - h)[0]) / (2.0 * h)
+            diff = (self.image(vec, p + h, checked=same)[0] - self.image(vec, p - h, checked=same)[0]) / (2.0 * h)
         except _Failed:  # (p next to a bound of its values, e.g. a gap of 0: one-sided)
             x0 = self.coords(run.final_state.vector)
             try:
-                diff = (self.image(vec, p + h)[0] - x0) / h
+                diff = (self.image(vec, p + h, checked=same)[0] - x0) / h
             except _Failed:
-                diff = (x0 - self.image(vec, p - h)[0]) / h
+                diff = (x0 - self.image(vec, p - h, checked=same)[0]) / h
         return jac, diff[free]
 
     def bordered(self, jac: np.ndarray, dp: np.ndarray, free: np.ndarray, emb: np.ndarray,

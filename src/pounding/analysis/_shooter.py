@@ -356,11 +356,13 @@ class _Shooter(_Newton):
             s[free_idx == self.size] = 1.0  # (z is dimensionless, |z| <= z_max about 1)
         return s
 
-    def _image(self, vec: np.ndarray) -> tuple[np.ndarray, ShortRun]:
+    def _image(self, vec: np.ndarray, checked: bool = False) -> tuple[np.ndarray, ShortRun]:
+        """(the state vector a period from ``vec``, the run); ``checked``: ``vec`` ran from before, on this
+        shooter's system (not checked again)."""
         try:
             if self._forcing is None:
                 self._forcing = kernel_forcing(self.exc)
-            run = short_run(self.model, self.exc, self.period, vec, self.asm, self._forcing)
+            run = short_run(self.model, self.exc, self.period, vec, self.asm, self._forcing, checked)
         except NotAState as exc:
             raise _Failed(f"a trial state left the system's states ({exc})") from None
         if not run.success:

@@ -217,7 +217,7 @@ class NotAState(Exception):
 
 def short_run(model: "Oscillator | Structure | Adjacent", excitation: Harmonic, duration: float,
               state: State | np.ndarray, asm: Optional[Assembly] = None,
-              forcing: Optional[Forcing] = None) -> ShortRun:
+              forcing: Optional[Forcing] = None, checked: bool = False) -> ShortRun:
     """A run of a period or so, events only, for the periodic-orbit solvers' many runs: the state
     checked, the arguments trusted (the caller checked them), the kernel called in this thread
     (no helper thread: Ctrl-C lands when it returns) within ``SHORT_RUN_STEPS`` sub-intervals
@@ -226,7 +226,9 @@ def short_run(model: "Oscillator | Structure | Adjacent", excitation: Harmonic, 
     ``model`` is any system (a single mass, a structure, a pair).  ``state`` may be a raw state vector
     (the solvers' own: only what ties it to this system is checked, and one that is none of its states
     raises :class:`NotAState`); ``asm`` the model's :func:`assemble` and ``forcing`` the excitation's
-    :func:`kernel_forcing`, when the caller keeps them for many runs.  A continuation makes some 15,000
+    :func:`kernel_forcing`, when the caller keeps them for many runs; ``checked`` True: ``state`` is a vector an
+    earlier short run of this system took (a solver's same state under another forcing), not checked again.
+    A continuation makes some 15,000
     runs of about 12 us in the kernel each: the public ``simulate``'s checks and ``Run`` took 90 us a run
     around them.
     """
@@ -234,7 +236,9 @@ def short_run(model: "Oscillator | Structure | Adjacent", excitation: Harmonic, 
         asm = assemble(model)
     lay = asm.layout
     n = int(asm.system.n)
-    if isinstance(state, np.ndarray):
+    if checked and isinstance(state, np.ndarray):
+        vector, t0 = np.array(state, dtype=float), float(state[0])
+    elif isinstance(state, np.ndarray):
         # the moves of a solver change the continuous numbers only: those are checked here (a vector that
         # fails: in full, for the message)
         x = state.tolist()
