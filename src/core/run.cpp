@@ -98,42 +98,69 @@ double row_product(const double* row, const double* uc, const int* nz, int n_nz)
 }
 
 // row_product and quad_form where the masses are fixed at compile time (NF > 0): over u's state (its first 2 NF
-// entries) whole, then over the rest's entries that are not zero (nz, uc: by_transition_of's; the masses' constant
-// forces, often none, and the forcing's pair that is not the run's, always none).  The same numbers as over u
-// whole: a product with a zero of u adds a zero, which leaves the sum as it is (the sum starts at +0 and a sum of
-// finite terms from +0 is never -0), and the entries left are summed in the same order
+// entries) whole, then over the masses' constant forces that are not zero (the next NF entries: nz, n_nz, often
+// none on a storey), then over the forcing's entries of the run's kind (M, by_transition_of's: FORCING_LINE a
+// record's line a0 + a1 tau, FORCING_SINE a harmonic's cosine and sine, FORCING_BOTH the two pairs), the other
+// pair's zeros left out.  The same numbers as over u whole: a product with a zero of u adds a zero, which leaves
+// the sum as it is (the sum starts at +0 and a sum of finite terms from +0 is never -0), and the entries left are
+// summed in the same order
+enum ForcingTerms : int { FORCING_LINE = 0, FORCING_SINE, FORCING_BOTH };
 template <int D>
 double dense_row_product(const double* row, const double* u) {
     double s = 0.0;
     for (int k = 0; k < D; ++k) s += row[k] * u[k];
     return s;
 }
+template <int NF, int M>
+double row_of(const double* r, const double* u, const int* nz, int n_nz) {
+    constexpr int F = 3 * NF;
+    double s = dense_row_product<2 * NF>(r, u);
+    for (int k = 0; k < n_nz; ++k) s += r[nz[k]] * u[nz[k]];
+    if constexpr (M != FORCING_SINE) {
+        s += r[F] * u[F];
+        s += r[F + 1] * u[F + 1];
+    }
+    if constexpr (M != FORCING_LINE) {
+        s += r[F + 2] * u[F + 2];
+        s += r[F + 3] * u[F + 3];
+    }
+    return s;
+}
+template <int NF, int M>
+double quad_of(const double* q, const double* u, const int* nz, int n_nz) {
+    constexpr int F = 3 * NF, D = F + 4;
+    double s = 0.0;
+    for (int a = 0; a < 2 * NF; ++a) s += u[a] * row_of<NF, M>(q + a * D, u, nz, n_nz);
+    for (int k = 0; k < n_nz; ++k) s += u[nz[k]] * row_of<NF, M>(q + nz[k] * D, u, nz, n_nz);
+    for (int a = M == FORCING_SINE ? F + 2 : F; a < (M == FORCING_LINE ? F + 2 : D); ++a)
+        s += u[a] * row_of<NF, M>(q + a * D, u, nz, n_nz);
+    return s;
+}
 
-// a kept transition's rows and forms times the sub-interval's inputs u (3 n + 4 entries): over the state whole and
-// the rest's entries that are not zero where the masses are fixed at compile time (NF > 0), over every entry that
-// is not zero where not (nz, uc: by_transition_of's)
+// a kept transition's rows and forms times the sub-interval's inputs u (3 n + 4 entries): where the masses are
+// fixed at compile time (NF > 0), over u's state whole, its constant forces that are not zero (nz, n_nz) and its
+// forcing's entries of the run's kind (terms, one of ForcingTerms); over every entry that is not zero where not
+// (nz, uc: by_transition_of's)
 template <int NF>
 struct InputProducts {
     const double* u;
     const double* uc;
     const int* nz;
-    int n_nz, dim;
+    int n_nz, dim, terms;
     double row(const double* r) const {
         if constexpr (NF > 0) {
-            double s = dense_row_product<2 * NF>(r, u);
-            for (int k = 0; k < n_nz; ++k) s += r[nz[k]] * uc[k];
-            return s;
+            if (terms == FORCING_LINE) return row_of<NF, FORCING_LINE>(r, u, nz, n_nz);
+            if (terms == FORCING_SINE) return row_of<NF, FORCING_SINE>(r, u, nz, n_nz);
+            return row_of<NF, FORCING_BOTH>(r, u, nz, n_nz);
         } else {
             return row_product(r, uc, nz, n_nz);
         }
     }
     double quad(const double* q) const {
         if constexpr (NF > 0) {
-            constexpr int D = 3 * NF + 4;
-            double s = 0.0;
-            for (int a = 0; a < 2 * NF; ++a) s += u[a] * row(q + a * D);
-            for (int k = 0; k < n_nz; ++k) s += uc[k] * row(q + nz[k] * D);
-            return s;
+            if (terms == FORCING_LINE) return quad_of<NF, FORCING_LINE>(q, u, nz, n_nz);
+            if (terms == FORCING_SINE) return quad_of<NF, FORCING_SINE>(q, u, nz, n_nz);
+            return quad_of<NF, FORCING_BOTH>(q, u, nz, n_nz);
         } else {
             return quad_form(q, uc, dim, nz, n_nz);
         }
@@ -814,8 +841,9 @@ void kept_transition(Loop& lp) {
 }
 
 // the state and its acceleration at the sub-interval's end h by its kept transition (b.y1, b.a1; b.u for its
-// integrals, and its entries that are not zero, past its state where n is fixed, b.uc and b.nz; NF: the
-// masses fixed at compile time, 0 known at run time only: by_transition's choice)
+// integrals, and which of its entries they take: where n is fixed its constant forces that are not zero (b.nz) and
+// its forcing's terms (b.terms), where not its entries that are not zero (b.uc and b.nz); NF: the masses fixed at
+// compile time, 0 known at run time only: by_transition's choice)
 template <int NF>
 void by_transition_of(Loop& lp) {
     Phase& ph = lp.ph;
@@ -823,14 +851,21 @@ void by_transition_of(Loop& lp) {
     const int n = NF > 0 ? NF : lp.n, dim = 3 * n + 4;
     transition_inputs<NF>(ph, b.u.data());
     const double* u = b.u.data();
-    // (u's entries that are not zero, for the products here and in the integrals: past the state where n is fixed)
+    // (the entries of u the products here and in the integrals take: where n is fixed, the constant forces that are
+    // not zero and the forcing's pair that is not, or both; where not, every entry that is not zero)
     b.n_nz = 0;
-    for (int k = NF > 0 ? 2 * n : 0; k < dim; ++k)
+    for (int k = NF > 0 ? 2 * n : 0; k < (NF > 0 ? 3 * n : dim); ++k)
         if (u[k] != 0.0) {
             b.uc[static_cast<size_t>(b.n_nz)] = u[k];
             b.nz[static_cast<size_t>(b.n_nz++)] = k;
         }
-    const InputProducts<NF> in{u, b.uc.data(), b.nz.data(), b.n_nz, dim};
+    if constexpr (NF > 0) {
+        constexpr int F = 3 * NF;
+        b.terms = u[F + 2] == 0.0 && u[F + 3] == 0.0 ? FORCING_LINE
+                  : u[F] == 0.0 && u[F + 1] == 0.0   ? FORCING_SINE
+                                                     : FORCING_BOTH;
+    }
+    const InputProducts<NF> in{u, b.uc.data(), b.nz.data(), b.n_nz, dim, b.terms};
     const double* T = lp.tr->T.data();
     for (int q = 0; q < 2 * n; ++q) b.y1[static_cast<size_t>(q)] = in.row(T + q * dim);
     const Angle an = angle_at(ph, lp.pc.omega, lp.h, lp.rot);
@@ -1009,7 +1044,7 @@ Given transition_integrals_of(Loop& lp) {
     Buffers& b = lp.b;
     const int n = NF > 0 ? NF : lp.n, dim = tr->dim;
     const double* u = b.u.data();
-    const InputProducts<NF> in{u, b.uc.data(), b.nz.data(), b.n_nz, dim};
+    const InputProducts<NF> in{u, b.uc.data(), b.nz.data(), b.n_nz, dim, b.terms};
     given.have = true;
     if (lp.opt.with_energy) {
         given.vcv = in.quad(tr->Q.data());

@@ -54,10 +54,12 @@ int event_pairs(const System& sy, Pair* pairs);
 
 struct Buffers {
     std::vector<double> y0s, y1, a0, a1, ym, am, du, dvv, u;
-    std::vector<int> nz;    // (u's entries that are not zero, past its state where n is fixed at compile time: the
-                            // products with a kept transition skip the rest, by_transition_of)
+    std::vector<int> nz;    // (u's entries that are not zero, its constant forces' only where n is fixed at compile
+                            // time: the products with a kept transition skip the rest, by_transition_of)
     std::vector<double> uc; // (and their values)
     int n_nz = 0;
+    int terms = 0;          // (where n is fixed at compile time: the forcing's entries of u they take, run.cpp's
+                            // ForcingTerms)
     // each free dof's absolute acceleration at the last linear sub-interval's end, and whether this
     // sub-interval goes on from that one in the same phase (its start the same state)
     std::vector<double> aa_end;
