@@ -118,8 +118,8 @@ def building(levels: int) -> Callable[[], Work]:
         from structures import building as shear_building
 
         b, quake = shear_building(levels), pd_.records.el_centro().scaled(pga_g=PGA_G)
-        # (threaded: a run whose sub-intervals may pass simulate's direct call's bound runs in a helper thread,
-        # the 8-level building's among them; its count in the main thread alone was the waiting's)
+        # (threaded: a run whose sub-intervals may pass simulate's direct call's bound runs in a helper
+        # thread, the 8-level building's among them; its count in the main thread alone was the waiting's)
         return Work(lambda: pd_.simulate(b, quake, quake.duration_s, sample_rate_hz=0), len(quake.t),
                     "sample", threaded=True)
 

@@ -139,8 +139,8 @@ class Family:
     # ------------------------------------------------------------------ pieces
     def image(self, vec: np.ndarray, p: float, a_g: Optional[float] = None,
               checked: bool = False) -> tuple[np.ndarray, Run]:
-        """``(x of P(vec; p), the run)``; raises _Failed where the engine cannot run it (``checked``: ``vec`` ran
-        from before on the system at ``p``, not checked again)."""
+        """``(x of P(vec; p), the run)``; raises _Failed where the engine cannot run it (``checked``:
+        ``vec`` ran from before on the system at ``p``, not checked again)."""
         end, run = self.shooter(p, a_g)._image(vec, checked)
         return self.coords(end), run
 
@@ -165,7 +165,8 @@ class Family:
         # (vec ran at p: the same system at p +- h where p is the forcing's, so not checked again)
         same = self.table is None
         try:
-            diff = (self.image(vec, p + h, checked=same)[0] - self.image(vec, p - h, checked=same)[0]) / (2.0 * h)
+            diff = (self.image(vec, p + h, checked=same)[0]
+                    - self.image(vec, p - h, checked=same)[0]) / (2.0 * h)
         except _Failed:  # (p next to a bound of its values, e.g. a gap of 0: one-sided)
             x0 = self.coords(run.final_state.vector)
             try:

@@ -226,9 +226,9 @@ def short_run(model: "Oscillator | Structure | Adjacent", excitation: Harmonic, 
     ``model`` is any system (a single mass, a structure, a pair).  ``state`` may be a raw state vector
     (the solvers' own: only what ties it to this system is checked, and one that is none of its states
     raises :class:`NotAState`); ``asm`` the model's :func:`assemble` and ``forcing`` the excitation's
-    :func:`kernel_forcing`, when the caller keeps them for many runs; ``checked`` True: ``state`` is a vector an
-    earlier short run of this system took (a solver's same state under another forcing), not checked again.
-    A continuation makes some 15,000
+    :func:`kernel_forcing`, when the caller keeps them for many runs; ``checked`` True: ``state`` is a
+    vector an earlier short run of this system took (a solver's same state under another forcing), not
+    checked again.  A continuation makes some 15,000
     runs of about 12 us in the kernel each: the public ``simulate``'s checks and ``Run`` took 90 us a run
     around them.
     """
