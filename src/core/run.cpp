@@ -856,7 +856,7 @@ void by_transition_of(Loop& lp) {
     b.n_nz = 0;
     for (int k = NF > 0 ? 2 * n : 0; k < (NF > 0 ? 3 * n : dim); ++k)
         if (u[k] != 0.0) {
-            b.uc[static_cast<size_t>(b.n_nz)] = u[k];
+            if constexpr (NF == 0) b.uc[static_cast<size_t>(b.n_nz)] = u[k];  // (where n is fixed: read from u)
             b.nz[static_cast<size_t>(b.n_nz++)] = k;
         }
     if constexpr (NF > 0) {

@@ -56,7 +56,7 @@ struct Buffers {
     std::vector<double> y0s, y1, a0, a1, ym, am, du, dvv, u;
     std::vector<int> nz;    // (u's entries that are not zero, its constant forces' only where n is fixed at compile
                             // time: the products with a kept transition skip the rest, by_transition_of)
-    std::vector<double> uc; // (and their values)
+    std::vector<double> uc; // (and their values, where n is known at run time only)
     int n_nz = 0;
     int terms = 0;          // (where n is fixed at compile time: the forcing's entries of u they take, run.cpp's
                             // ForcingTerms)
