@@ -1,8 +1,8 @@
-"""A record's samples at its own step taken by their own (the core's ``run.cpp``, ``own_sample``): in a run
-that asks for no history, a sample of the same linear phase that no event, no velocity's turn or zero and no
-absolute acceleration's extremum falls inside is taken by the step's kept transition and the functions the
-loop's steps would call for it, without those steps' other cases.  Its numbers are theirs: every output of a
-run is the same to the bit with ``own_samples`` off, where every sample goes through the loop's steps."""
+"""A record's samples at its own step taken by their own (the core's ``run.cpp``, ``own_samples_of``): in
+a run that asks for no history, a sample of the same linear phase that no event, no velocity's turn or zero
+and no absolute acceleration's extremum falls inside is taken by the step's kept transition and the functions
+the loop's steps would call for it, without those steps' other cases.  Its numbers are theirs: every output of
+a run is the same to the bit with ``own_samples`` off, where every sample goes through the loop's steps."""
 
 from __future__ import annotations
 
@@ -104,6 +104,29 @@ def test_most_samples_of_a_pounding_mass_under_a_record_are_taken_by_their_own(p
         samples = rec.t.size - 1
         assert len(own.contacts) > 20 and ctl[CTL_OWN] > 0.5 * samples, (len(own.contacts), ctl[CTL_OWN])
         assert ctl_loop[CTL_OWN] == 0
+
+
+@pytest.mark.parametrize("budget", [1, 63, 64, 65, 200, 1000, 1001, 2047])
+def test_a_budget_spent_among_samples_taken_by_their_own_stops_where_the_loop_does(budget):
+    # samples taken by their own one after another count as the loop's steps would, one each, and the run
+    # control is looked at where the loop would look at it (every 64): a budget spent among them stops the run
+    # at the same sample, the same state to the bit, as the loop's steps (the printed system under El Centro:
+    # its stretches of such samples a few to some tens long, between its events)
+    osc = pd_.presets.paper_printed()
+    rec = pd_.records.el_centro().scaled(pga_g=0.4)
+    system, forcing = assemble(osc).system, kernel_forcing(rec)
+    y0 = pd_.State.at_rest(osc).vector
+    runs = []
+    for own in (True, False):
+        ctl = new_control(budget)
+        out = run_kernel(system, forcing, np.array(y0, dtype=float), rec.t[-1], 0.0, 1e-10, 10**6, False, ctl,
+                         own_samples=own)
+        runs.append((out, ctl))
+    (own, ctl), (loop, ctl_loop) = runs
+    assert own.status == int(pd_.Status.BUDGET) and 0.0 < own.state[0] < rec.t[-1]
+    assert_same(own, loop)
+    assert ctl[CTL_WORK] == ctl_loop[CTL_WORK]
+    assert budget < 200 or ctl[CTL_OWN] > 0.3 * budget  # (a good part of a longer budget: such samples)
 
 
 def test_no_sample_is_taken_by_its_own_with_a_history_uneven_steps_or_a_harmonic():

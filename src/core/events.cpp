@@ -554,14 +554,6 @@ bool may_turn_back(double h, double v0, double v1, double a0, double a1) {
     return !(v_c * v0 > 0.0 && std::abs(v_c) > margin);
 }
 
-bool velocity_may_cross(const Phase& ph, const Pair& pr) {
-    const int n = ph.n;
-    const double h = ph.e_h;
-    const double v0 = rel(ph.e_y0 + n, pr), v1 = rel(ph.e_y1 + n, pr);
-    const double a0 = rel(ph.e_a0, pr), a1 = rel(ph.e_a1, pr);
-    return h > 0.0 && (v0 * v1 < 0.0 || (v0 * v1 > 0.0 && a0 * a1 < 0.0 && may_turn_back(h, v0, v1, a0, a1)));
-}
-
 const Phase::Zeros& velocity_zeros(Phase& ph, const Pair& pr) {
     const double h = ph.e_h;
     for (const Phase::Zeros& z : ph.zeros)

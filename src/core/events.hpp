@@ -40,22 +40,38 @@ struct EventRow : Pair {  // (its pair)
 struct EventValue { double g, gp, scale; };  // value, rate, size of the terms summed
 
 EventValue event_value_of(const EventRow& e, Phase& ph, double tau, const double* y, const double* a);
-// a row's value, rate and scale at tau (y, a: the trajectory there).  A linear row (most rows of most
-// sub-intervals) is its pair's alpha + beta dx + gamma dv here, inline, but a contact's start against its
-// bumper's relaxing surface; every other row is event_value_of's
-inline EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y, const double* a) {
-    if (e.kind != KIND_LINEAR) return event_value_of(e, ph, tau, y, a);
-    const int n = ph.n;
+// a linear row's value, rate and scale (y, a: the trajectory there) into v: its pair's alpha + beta dx + gamma dv,
+// false for a contact's start against its bumper's relaxing surface (event_value_of's: law_relax's); NF: the
+// masses fixed at compile time (0: at run time)
+template <int NF = 0>
+inline bool linear_value(const EventRow& e, const Phase& ph, const double* y, const double* a, EventValue& v) {
+    const int n = NF > 0 ? NF : ph.n;
     const double dx = rel(y, e), dv = rel(y + n, e), da = rel(a, e);
     const double g = e.alpha + e.beta * dx + e.gamma * dv;
     const double gp = e.beta * dv + e.gamma * da;
     const double scale = std::abs(e.alpha) + std::abs(e.beta * dx) + std::abs(e.gamma * dv);
-    if (e.side == SIDE_NONE) return {g, gp, scale};  // the isolator's events (most of them)
-    if (e.side == SIDE_VELOCITY) return {g, gp, scale + ph.vround};
+    if (e.side == SIDE_NONE) {  // the isolator's events (most of them)
+        v = {g, gp, scale};
+        return true;
+    }
+    if (e.side == SIDE_VELOCITY) {
+        v = {g, gp, scale + ph.vround};
+        return true;
+    }
     // a contact's displacement is rounded relative to the run's and the phase's lengths, not its own size
-    if (e.action != ACT_CONTACT || !(ph.ct[static_cast<size_t>(e.side)].def0 > 0.0))
-        return {g, gp, scale + ph.xround};
-    return event_value_of(e, ph, tau, y, a);  // (its relaxing surface: law_relax's)
+    if (e.action != ACT_CONTACT || !(ph.ct[static_cast<size_t>(e.side)].def0 > 0.0)) {
+        v = {g, gp, scale + ph.xround};
+        return true;
+    }
+    return false;
+}
+// a row's value, rate and scale at tau (y, a: the trajectory there).  A linear row (most rows of most
+// sub-intervals) is linear_value's, inline, but a contact's start against its bumper's relaxing surface; every
+// other row is event_value_of's
+inline EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y, const double* a) {
+    EventValue v;
+    if (e.kind == KIND_LINEAR && linear_value(e, ph, y, a, v)) return v;
+    return event_value_of(e, ph, tau, y, a);
 }
 
 // a stick's event value from its tie's held force d (held_force: a tie's two thresholds share it)
@@ -128,7 +144,13 @@ bool may_turn_back(double h, double v0, double v1, double a0, double a1);
 void circle_turn(Phase& ph, int q, double tau, const double* y, const double* a, double& rate, double& bend);
 // whether a pair's relative velocity may cross zero inside the sub-interval (velocity_zeros looks
 // for its zeros only then): of opposite signs at its ends, or turning back inside
-bool velocity_may_cross(const Phase& ph, const Pair& pr);
+inline bool velocity_may_cross(const Phase& ph, const Pair& pr) {
+    const int n = ph.n;
+    const double h = ph.e_h;
+    const double v0 = rel(ph.e_y0 + n, pr), v1 = rel(ph.e_y1 + n, pr);
+    const double a0 = rel(ph.e_a0, pr), a1 = rel(ph.e_a1, pr);
+    return h > 0.0 && (v0 * v1 < 0.0 || (v0 * v1 > 0.0 && a0 * a1 < 0.0 && may_turn_back(h, v0, v1, a0, a1)));
+}
 // the instants in (0, e_h) where the relative velocity of a pair crosses zero (0, 1, or 2 where it
 // turns back inside) and the relative displacement there, from the sub-interval's ends; kept for the
 // sub-interval (a shorter end asked later reads the same zeros below it)

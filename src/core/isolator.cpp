@@ -333,6 +333,21 @@ double iso_advance(const System& sy, double* st, const double* x_start, const do
     return work;
 }
 
+bool iso_slips(const System& sy, const double* st) {
+    for (int e = 0; e < sy.n_h(); ++e) {
+        const Hysteretic& h = sy.hyst[static_cast<size_t>(e)];
+        if (h.rule == RULE_ELASTIC) continue;
+        if (h.series() || h.rule == RULE_FRICTION) {
+            if (st[sy.lay.region + e] != 0.0) return true;
+            continue;
+        }
+        const double* dir = st + sy.lay.base + sy.lay.n_sp + h.first;
+        for (int i = 0; i < h.n_springs(); ++i)
+            if (dir[i] != 0.0) return true;
+    }
+    return false;
+}
+
 void iso_transition(const System& sy, double* st, int action, int index, double direction) {
     const int base = sy.lay.base, n_sp = sy.lay.n_sp;
     if (action == ACT_CIRCLE_SLIP || action == ACT_CIRCLE_STICK) {  // (a plastic circle: both mates switch)

@@ -132,6 +132,9 @@ double iso_energy(const System& sy, int e, const double* st, double d);
 int iso_events(const System& sy, const double* st, EventRow* evs, int n);
 // the slipping springs moved with their elements from x_start to x_end (displacements, n): the work they did
 double iso_advance(const System& sy, double* st, const double* x_start, const double* x_end);
+// whether iso_advance has an element to move in st (a spring that slips, a friction element or a series of
+// surfaces that slips): where none, it does no work and leaves st as it is
+bool iso_slips(const System& sy, const double* st);
 void iso_transition(const System& sy, double* st, int action, int index, double direction);
 // a friction element's slip that has come to rest (u' = 0), given the force D its tie would need there (N): it
 // sticks (|D| <= F: its pair's relative velocity set to zero) or slips on, the way D pushes; the action taken

@@ -520,7 +520,7 @@ struct Loop {
     bool whole = false;  // (this sub-interval the whole step, its parts' count set for a fallback)
     int64_t wholes = 0;  // (the steps taken whole)
     bool at_knot = false;
-    // a record's samples at its own step taken one by one by own_sample, where the run asks for nothing that
+    // a record's samples at its own step taken one by one by own_samples_of, where the run asks for nothing that
     // such a sample needs the loop's steps for (set up once), and how many were
     bool own_samples = false;
     int64_t owns = 0;
@@ -1217,125 +1217,162 @@ void finish_run(Loop& lp) {
     lp.out.status = lp.status;
 }
 
-// A record's sample at the record's own step by the step's kept transition, in a run that asks for no history,
-// where the sample needs none of the loop's steps' other cases: the same linear phase going on from the knot
-// before (the table's one component on every dof, no contact in progress, no hold), the step
-// within the phase's sub-interval, no velocity turning back or crossing zero inside, no event row that its
-// values at the ends do not clear, no absolute acceleration's rate changing sign.  What the loop's steps would
-// do then comes down to the transition's products, the equation of motion at the end, the rows' values there,
-// the extrema, the energy integrals and a bumper's relaxing surface: done here by the same functions
-// (next_subinterval, advance_to_end, earliest, accumulate and move_to_end for such a sample, without their
-// tests for the other cases).  Any other sample is left to the loop (false): what this wrote, the loop's
-// next_subinterval writes again.
-bool own_sample(Loop& lp) {
+// A record's samples at the record's own step, one after another, each by the step's kept transition, in a run
+// that asks for no history, where a sample needs none of the loop's steps' other cases: the same linear phase going
+// on from the knot before (the table's one component on every dof, no contact in progress, no hold), the step
+// within the phase's sub-interval, no velocity turning back or crossing zero inside, no event row that its values
+// at the ends do not clear, no absolute acceleration's rate changing sign.  What the loop's steps would do then
+// comes down to the transition's products, the equation of motion at the end, the rows' values there, the
+// extrema, the energy integrals and a bumper's relaxing surface: done here by the same functions
+// (next_subinterval, advance_to_end, earliest, accumulate and move_to_end for such a sample, without their tests
+// for the other cases).  The phase's tests are made once for the samples that follow one another; each sample
+// after the first counts as the loop's poll would count it, and the loop polls where its poll is due.  A sample
+// that is not such is left to the loop's steps: what this wrote for it, the loop's next_subinterval writes again.
+// NF: the masses fixed at compile time (0: at run time)
+enum OwnEnd : int {
+    OWN_NONE = 0,  // no sample taken: the loop's steps take this one
+    OWN_POLL,      // samples taken, up to the loop's poll (due, or the phase or the run ended)
+    OWN_REFUSED    // samples taken, then one that is not such: the loop's steps take it (counted, not polled)
+};
+
+template <int NF>
+OwnEnd own_samples_of(Loop& lp) {
     Phase& ph = lp.ph;
     const System& sy = lp.sy;
     const Layout& L = lp.L;
     Buffers& b = lp.b;
-    const int n = lp.n;
+    const int n = NF > 0 ? NF : lp.n;
     double* st = lp.st;
     // (a record of uneven steps, none of them its own; a step far longer than the phase's sub-interval: its
     // parts', or a whole step's)
     const double step = lp.fo.p[0];
     if (!(lp.continuing && lp.at_knot) || ph.numeric || !ph.plain || ph.stk.any || !(step > 0.0) ||
         step > 2.0 * lp.h_phase)
-        return false;
+        return OWN_NONE;
     bool relaxing = false;  // (a bumper's surface recovering after its contact)
     for (int c = 0; c < sy.nc(); ++c) {
-        if (ph.ct[static_cast<size_t>(c)].in || st[L.in_at(c)] != 0.0) return false;
+        if (ph.ct[static_cast<size_t>(c)].in || st[L.in_at(c)] != 0.0) return OWN_NONE;
         relaxing = relaxing || st[L.def_at(c)] > 0.0;
     }
-    // the sample's span: the whole step, to the next knot (next_subinterval's)
-    const double t = lp.t = st[T];
-    const Piece pc = lp.pc = excitation_piece(lp.fo, t, lp.j_rec);
-    lp.j_rec = pc.j;
-    const double t_stop = std::min({pc.t_next, lp.opt.t_end, lp.t_horizon});
-    const double span = pc.t_next - t;
-    const bool own_step = std::abs(span - step) <= 8.0 * EPS * (std::abs(t) + step);
-    if (!(own_step && t_stop == pc.t_next && span <= lp.h_phase)) return false;
-    lp.t_stop = t_stop;
-    lp.h = t_stop - t;
-    lp.whole = lp.in_part = false;
-    lp.h_split = 0.0;
-    continue_phase(lp, pc, t);
-    kept_transition(lp);
-    if (lp.tr == nullptr) return false;
-    by_transition(lp);
-    const double h = lp.h;
-    for (int q = 0; q < 2 * n; ++q)
-        if (!(std::abs(b.y1[static_cast<size_t>(q)]) <= DBL_MAXV)) return false;  // (the loop stops the run)
-    // nothing inside (earliest's and accumulate's tests)
-    start_signs(lp);
-    mark_ends(ph, b, h);
-    for (int p = 0; p < lp.n_pairs; ++p) {  // (no velocity cut: velocity_cuts's test)
-        const Pair& pr = lp.w.event_pairs[static_cast<size_t>(p)];
-        const double v0 = rel(b.y0s.data() + n, pr), v1 = rel(b.y1.data() + n, pr);
-        const double a0 = rel(b.a0.data(), pr), a1 = rel(b.a1.data(), pr);
-        if (v0 * v1 > 0.0 && a0 * a1 < 0.0 && may_turn_back(h, v0, v1, a0, a1)) return false;
+    for (int i = 0; i < lp.n_ev; ++i)
+        if (lp.w.evs[static_cast<size_t>(i)].kind != KIND_LINEAR) return OWN_NONE;
+    const bool slips = iso_slips(sy, st);  // (an element that moves with the masses: the same while these go on)
+    const Transition* at_step = nullptr;  // (the step's kept transition, once found)
+    for (int64_t taken = 0;; ++taken) {
+        const OwnEnd no = taken > 0 ? OWN_REFUSED : OWN_NONE;
+        if (taken > 0) {  // (the loop's poll: its look at the run control where due, else its count)
+            if (!(st[T] < lp.opt.t_end) || !lp.continuing || lp.work >= lp.next_poll) return OWN_POLL;
+            lp.work += 1;
+            if (relaxing) {
+                relaxing = false;
+                for (int c = 0; c < sy.nc(); ++c) relaxing = relaxing || st[L.def_at(c)] > 0.0;
+            }
+        }
+        // the sample's span: the whole step, to the next knot (next_subinterval's)
+        const double t = lp.t = st[T];
+        const Piece pc = lp.pc = excitation_piece(lp.fo, t, lp.j_rec);
+        lp.j_rec = pc.j;
+        const double t_stop = std::min({pc.t_next, lp.opt.t_end, lp.t_horizon});
+        const double span = pc.t_next - t;
+        const bool own_step = std::abs(span - step) <= 8.0 * EPS * (std::abs(t) + step);
+        if (!(own_step && t_stop == pc.t_next && span <= lp.h_phase)) return no;
+        lp.t_stop = t_stop;
+        lp.h = t_stop - t;
+        lp.whole = lp.in_part = false;
+        lp.h_split = 0.0;
+        continue_phase(lp, pc, t);
+        // (kept_transition's, for such a sample: the step's, or the phase's sub-interval's where the span is it)
+        ph.tc_ok = false;
+        ph.series_h = lp.h;
+        if (lp.h == lp.h_phase) {
+            lp.tr = lp.w.transitions.get(ph, sy, lp.h, lp.phase_id);
+            at_step = nullptr;  // (it may have taken the step's place among the kept ones)
+        } else {
+            if (at_step == nullptr) at_step = lp.w.transitions.get(ph, sy, step, lp.phase_id);
+            lp.tr = at_step;
+        }
+        eom_acceleration_of<NF>(ph, ph.y0.data(), 0.0, ph.sphi, ph.cphi, b.a0.data());
+        by_transition_of<NF>(lp);
+        const double h = lp.h;
+        for (int q = 0; q < 2 * n; ++q)
+            if (!(std::abs(b.y1[static_cast<size_t>(q)]) <= DBL_MAXV)) return no;  // (the loop stops the run)
+        // nothing inside (earliest's and accumulate's tests)
+        start_signs(lp);
+        mark_ends(ph, b, h);
+        for (int p = 0; p < lp.n_pairs; ++p) {  // (no velocity cut: velocity_cuts's test)
+            const Pair& pr = lp.w.event_pairs[static_cast<size_t>(p)];
+            const double v0 = rel(b.y0s.data() + n, pr), v1 = rel(b.y1.data() + n, pr);
+            const double a0 = rel(b.a0.data(), pr), a1 = rel(b.a1.data(), pr);
+            if (v0 * v1 > 0.0 && a0 * a1 < 0.0 && may_turn_back(h, v0, v1, a0, a1)) return no;
+        }
+        for (int i = 0; i < n; ++i) {  // (no displacement extremum inside, no absolute acceleration's)
+            if (velocity_may_cross(ph, sy.dof_pair[static_cast<size_t>(i)])) return no;
+            const double r0 = abs_acc_rate_linear(ph, i, ph.y0.data(), b.a0.data());
+            const double r1 = abs_acc_rate_linear(ph, i, b.y1.data(), b.a1.data());
+            if (r0 * r1 < 0.0) return no;
+        }
+        for (const Pair& pr : sy.track)  // (no tracked pair's extremum inside: a storey's drift)
+            if (velocity_may_cross(ph, pr)) return no;
+        double* ends = lp.w.ev_whole.data();  // (each row's value, rate and scale at the end: ev_end's once taken)
+        for (int i = 0; i < lp.n_ev; ++i) {  // (no event: earliest_event's test)
+            const EventRow& ev = lp.w.evs[static_cast<size_t>(i)];
+            const double* start = &lp.w.ev_end[static_cast<size_t>(3 * i)];
+            EventValue e1;
+            if (!linear_value<NF>(ev, ph, b.y1.data(), b.a1.data(), e1))
+                e1 = event_value(ev, ph, h, b.y1.data(), b.a1.data());  // (a contact's against a relaxing surface)
+            if (!(start[0] > ROUNDING * start[2] && e1.g > 0.0 && !(start[1] < 0.0 && e1.gp > 0.0))) return no;
+            ends[3 * i] = e1.g;
+            ends[3 * i + 1] = e1.gp;
+            ends[3 * i + 2] = e1.scale;
+        }
+        // taken: what the sample adds (accumulate's, for it), the isolator and the state at its end, the loop's
+        // own as its steps leave it
+        std::copy(ends, ends + 3 * lp.n_ev, lp.w.ev_end.begin());
+        if (lp.opt.with_energy) {  // (linear_contributions's, no contact in progress)
+            const Given given = transition_integrals(lp);
+            lp.ledger[L_INPUT] -= given.gv;
+            lp.ledger[L_VISCOUS] += given.vcv;
+        }
+        lp.w.screen.shift = std::abs(lp.tr->h - h);
+        if (lp.opt.screen_extrema && lp.w.screen.on) lp.w.screen.tau = -1.0;
+        for (int i = 0; i < n; ++i) {
+            double* ex = lp.extrema + DOF_EXTREMA * i;
+            track_displacement(ex, t, ph.y0[static_cast<size_t>(i)]);
+            track_displacement(ex, t + h, b.y1[static_cast<size_t>(i)]);
+            double& kept = b.aa_end[static_cast<size_t>(i)];
+            const double aa0 = kept, aa1 = abs_acc_linear(ph, i, b.y1.data());
+            kept = aa1;
+            track_abs_acceleration(ex, t, aa0);
+            track_abs_acceleration(ex, t + h, aa1);
+        }
+        for (int p = 0; p < sy.n_track(); ++p) {
+            double* ex = lp.extrema + DOF_EXTREMA * n + PAIR_EXTREMA * p;
+            const Pair& pr = sy.track[static_cast<size_t>(p)];
+            track_displacement(ex, t, rel(ph.y0.data(), pr));
+            track_displacement(ex, t + h, rel(b.y1.data(), pr));
+        }
+        if (relaxing) move_bumpers(st, sy, b.y1.data(), h, lp.ledger);  // (none moves otherwise)
+        if (slips) lp.ledger[L_HYSTERETIC] += iso_advance(sy, st, ph.y0.data(), b.y1.data());
+        for (int q = 0; q < 2 * n; ++q) st[L.x + q] = b.y1[static_cast<size_t>(q)];
+        st[T] = t_stop;
+        b.went_on = true;
+        lp.to_stop = true;
+        lp.tau = h;
+        lp.i_ev = -1;
+        lp.turns_at_end = false;
+        lp.continuing = pc.t_next < std::min(lp.t_horizon, lp.opt.t_end);
+        const Angle end_angle = angle_at(ph, pc.omega, h, lp.rot);
+        lp.s1 = end_angle.s;
+        lp.c1 = end_angle.c;
+        lp.at_knot = true;
+        lp.t_last = t;
+        lp.h_last = h;
+        lp.owns += 1;
     }
-    for (int i = 0; i < n; ++i) {  // (no displacement extremum inside, no absolute acceleration's)
-        if (velocity_may_cross(ph, sy.dof_pair[static_cast<size_t>(i)])) return false;
-        const double r0 = abs_acc_rate_linear(ph, i, ph.y0.data(), b.a0.data());
-        const double r1 = abs_acc_rate_linear(ph, i, b.y1.data(), b.a1.data());
-        if (r0 * r1 < 0.0) return false;
-    }
-    for (const Pair& pr : sy.track)  // (no tracked pair's extremum inside: a storey's drift)
-        if (velocity_may_cross(ph, pr)) return false;
-    double* ends = lp.w.ev_whole.data();  // (each row's value, rate and scale at the end: ev_end's once taken)
-    for (int i = 0; i < lp.n_ev; ++i) {  // (no event: earliest_event's test)
-        const EventRow& ev = lp.w.evs[static_cast<size_t>(i)];
-        if (ev.kind != KIND_LINEAR) return false;
-        const double* start = &lp.w.ev_end[static_cast<size_t>(3 * i)];
-        const EventValue e1 = event_value(ev, ph, h, b.y1.data(), b.a1.data());
-        if (!(start[0] > ROUNDING * start[2] && e1.g > 0.0 && !(start[1] < 0.0 && e1.gp > 0.0))) return false;
-        ends[3 * i] = e1.g;
-        ends[3 * i + 1] = e1.gp;
-        ends[3 * i + 2] = e1.scale;
-    }
-    // taken: what the sample adds (accumulate's, for it), the isolator and the state at its end, the loop's own
-    // as its steps leave it
-    std::copy(ends, ends + 3 * lp.n_ev, lp.w.ev_end.begin());
-    if (lp.opt.with_energy) {  // (linear_contributions's, no contact in progress)
-        const Given given = transition_integrals(lp);
-        lp.ledger[L_INPUT] -= given.gv;
-        lp.ledger[L_VISCOUS] += given.vcv;
-    }
-    lp.w.screen.shift = std::abs(lp.tr->h - h);
-    if (lp.opt.screen_extrema && lp.w.screen.on) lp.w.screen.tau = -1.0;
-    for (int i = 0; i < n; ++i) {
-        double* ex = lp.extrema + DOF_EXTREMA * i;
-        track_displacement(ex, t, ph.y0[static_cast<size_t>(i)]);
-        track_displacement(ex, t + h, b.y1[static_cast<size_t>(i)]);
-        double& kept = b.aa_end[static_cast<size_t>(i)];
-        const double aa0 = kept, aa1 = abs_acc_linear(ph, i, b.y1.data());
-        kept = aa1;
-        track_abs_acceleration(ex, t, aa0);
-        track_abs_acceleration(ex, t + h, aa1);
-    }
-    for (int p = 0; p < sy.n_track(); ++p) {
-        double* ex = lp.extrema + DOF_EXTREMA * n + PAIR_EXTREMA * p;
-        const Pair& pr = sy.track[static_cast<size_t>(p)];
-        track_displacement(ex, t, rel(ph.y0.data(), pr));
-        track_displacement(ex, t + h, rel(b.y1.data(), pr));
-    }
-    if (relaxing) move_bumpers(st, sy, b.y1.data(), h, lp.ledger);  // (none moves otherwise)
-    lp.ledger[L_HYSTERETIC] += iso_advance(sy, st, ph.y0.data(), b.y1.data());
-    for (int q = 0; q < 2 * n; ++q) st[L.x + q] = b.y1[static_cast<size_t>(q)];
-    st[T] = t_stop;
-    b.went_on = true;
-    lp.to_stop = true;
-    lp.tau = h;
-    lp.i_ev = -1;
-    lp.turns_at_end = false;
-    lp.continuing = pc.t_next < std::min(lp.t_horizon, lp.opt.t_end);
-    const Angle end_angle = angle_at(ph, pc.omega, h, lp.rot);
-    lp.s1 = end_angle.s;
-    lp.c1 = end_angle.c;
-    lp.at_knot = true;
-    lp.t_last = t;
-    lp.h_last = h;
-    lp.owns += 1;
-    return true;
+}
+
+OwnEnd take_own_samples(Loop& lp) {
+    return sized(lp.n, [&](auto N) { return own_samples_of<decltype(N)::value>(lp); });
 }
 
 }  // namespace
@@ -1359,7 +1396,7 @@ void run_kernel(const System& sy, const Forcing& fo, const double* state0, const
     set_up(lp);
     while (st[T] < opt.t_end) {
         if (!poll(lp)) break;
-        if (lp.own_samples && own_sample(lp)) continue;
+        if (lp.own_samples && take_own_samples(lp) == OWN_POLL) continue;
         next_subinterval(lp);
         if (!advance_to_end(lp)) break;
         earliest(lp);

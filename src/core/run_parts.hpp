@@ -23,7 +23,28 @@ struct Piece {
     double b0 = 0.0, b1 = 0.0, bs = 0.0, bc = 0.0;
 };
 
-Piece excitation_piece(const Forcing& fo, double t, int64_t j_hint);
+// a record's piece j at t (rt[j] <= t < rt[j + 1]): its line a0 + a1 (t' - t) and its end
+inline Piece record_piece(const Forcing& fo, double t, int64_t j) {
+    const double* rt = fo.rec_t;
+    const double* ra = fo.rec_a;
+    const double slope = (ra[j + 1] - ra[j]) / (rt[j + 1] - rt[j]);
+    Piece pc{ra[j] + slope * (t - rt[j]), slope, 0.0, 0.0, 0.0, rt[j + 1], j};
+    if (fo.rec_b != nullptr) {
+        const double* rb = fo.rec_b;
+        pc.b1 = (rb[j + 1] - rb[j]) / (rt[j + 1] - rt[j]);
+        pc.b0 = rb[j] + pc.b1 * (t - rt[j]);
+    }
+    return pc;
+}
+// the forcing's piece at t (a record's: found from the piece j_hint; a harmonic's: its angle there)
+Piece excitation_piece_of(const Forcing& fo, double t, int64_t j_hint);
+// excitation_piece_of's, the piece after j_hint (a record's next sample) inline
+inline Piece excitation_piece(const Forcing& fo, double t, int64_t j_hint) {
+    if (fo.kind != EXC_HARMONIC && j_hint >= 0 && j_hint + 2 < fo.n_rec && fo.rec_t[j_hint + 1] <= t &&
+        t < fo.rec_t[j_hint + 2])
+        return record_piece(fo, t, j_hint + 1);
+    return excitation_piece_of(fo, t, j_hint);
+}
 
 // the table's acceleration on each dof at t, outside a phase, into ag (n)
 void table_at(const Forcing& fo, const System& sy, double t, double* ag);

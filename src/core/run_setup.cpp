@@ -13,7 +13,7 @@ namespace pounding::run_parts {
 
 // ---------------------------------------------------------------- the excitation
 
-Piece excitation_piece(const Forcing& fo, double t, int64_t j_hint) {
+Piece excitation_piece_of(const Forcing& fo, double t, int64_t j_hint) {
     if (fo.kind == EXC_HARMONIC) {
         const double omega = fo.p[1];
         const double angle = omega * t + fo.p[2];
@@ -28,7 +28,6 @@ Piece excitation_piece(const Forcing& fo, double t, int64_t j_hint) {
     }
     const int64_t n = fo.n_rec;
     const double* rt = fo.rec_t;
-    const double* ra = fo.rec_a;
     if (t < rt[0]) return {0.0, 0.0, 0.0, 0.0, 0.0, rt[0], j_hint};
     if (t >= rt[n - 1]) return {0.0, 0.0, 0.0, 0.0, 0.0, INF, j_hint};
     int64_t j = std::min(std::max(j_hint, int64_t(0)), n - 2);
@@ -45,14 +44,7 @@ Piece excitation_piece(const Forcing& fo, double t, int64_t j_hint) {
             }
         }
     }
-    const double slope = (ra[j + 1] - ra[j]) / (rt[j + 1] - rt[j]);
-    Piece pc{ra[j] + slope * (t - rt[j]), slope, 0.0, 0.0, 0.0, rt[j + 1], j};
-    if (fo.rec_b != nullptr) {
-        const double* rb = fo.rec_b;
-        pc.b1 = (rb[j + 1] - rb[j]) / (rt[j + 1] - rt[j]);
-        pc.b0 = rb[j] + pc.b1 * (t - rt[j]);
-    }
-    return pc;
+    return record_piece(fo, t, j);
 }
 
 void table_at(const Forcing& fo, const System& sy, double t, double* ag) {
