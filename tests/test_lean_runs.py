@@ -96,6 +96,8 @@ def _systems() -> dict:
                                      capacities_m=(0.3, 0.05, 0.05, 0.3))
     bouc_wen = pd_.Isolator((2.0e4,), (), "kinematic", 300.0, pd_.BoucWen(8.0e4, 0.004))
     bilinear = pd_.Isolator(slopes_n_m=[4.0e6, 1.0e6], breakpoints_m=[0.02], damping_n_s_m=2.0e4)
+    linear = pd_.Isolator((2.0e4,), (), damping_n_s_m=300.0)
+    stops = pd_.Bumpers(0.01, 0.01, pd_.RigidStop(0.7))
     rigid = pd_.Structure(3.0e4, bilinear, [pd_.Storey(2.0e4, 4.0e7, 4.0e4)] * 2,
                           [pd_.Wall(0, 0.015, 0.015, pd_.RigidStop(0.6))])
     return {
@@ -109,6 +111,9 @@ def _systems() -> dict:
         "triple friction pendulum": pd_.Oscillator(1.0e4, tfp),
         "Bouc-Wen isolator (numerical phases)": pd_.Oscillator(500.0, bouc_wen,
                                                                pd_.presets.paper_damped().bumpers),
+        "fixed-base building (its ground a level)": pd_.Structure.fixed_base(
+            [pd_.Storey(2.0e4, 4.0e7, 4.0e4)] * 3, [pd_.Wall(2, 0.01, 0.01, pd_.KelvinVoigt(5.0e7, 1.0e4))]),
+        "single mass between rigid stops": pd_.Oscillator(500.0, linear, stops),
         "two adjacent buildings": pd_.Adjacent.from_toml(
             Path(__file__).parents[1] / "examples" / "adjacent_buildings.toml"),
     }

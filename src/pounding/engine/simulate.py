@@ -21,7 +21,7 @@ from .run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPL
 from .adjacent_result import AdjacentRun
 from .result import EnergyLedger, Run
 from .assembly import Assembly, assemble, check_system, clearances, is_plan, is_single_mass, structures_of
-from .structure_result import StructureRun
+from .structure_result import PartPeaks, StructureRun, run_peaks
 from .state import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, State, one_mass_layout
 from .state_check import _FIX, check_fits, check_layout, check_state, contact_name  # noqa: F401  (check_state: here too)
 
@@ -135,13 +135,17 @@ def peaks(system: "Oscillator | Structure | Adjacent", excitation: Harmonic | Re
 
         run = simulate_plan(system, excitation, duration, state, 1e-10, 0.0, 10_000_000, max_steps)
         return run.quantities()
-    return _run(system, excitation, duration, state, 1e-10, 0.0, 10_000_000, max_steps, False).quantities()
+    return _run(system, excitation, duration, state, 1e-10, 0.0, 10_000_000, max_steps, False,
+                peaks_only=True)
 
 
 def _run(system: "Oscillator | Structure | Adjacent", excitation: Harmonic | Record, duration: float,
          state: Optional[State], rtol: float, sample_rate_hz: Optional[float], max_events: int,
-         max_steps: int, with_energy: bool) -> "Run | StructureRun | AdjacentRun":
-    """:func:`simulate` (``with_energy`` False: the energy ledger left NaN, not computed)."""
+         max_steps: int, with_energy: bool,
+         peaks_only: bool = False) -> "Run | StructureRun | AdjacentRun | dict[str, float]":
+    """:func:`simulate` (``with_energy`` False: the energy ledger left NaN, not computed; ``peaks_only``: the
+    run's :meth:`~StructureRun.quantities` alone, read off the core's run without the result's histories
+    and tables, the same numbers)."""
     check_system(system)
     asm, state, duration, rtol, rate, max_events, max_steps, omega, knots = checked_run_args(
         system, excitation, duration, state, rtol, sample_rate_hz, max_events, max_steps)
@@ -160,6 +164,8 @@ def _run(system: "Oscillator | Structure | Adjacent", excitation: Harmonic | Rec
     out = run_interruptibly(lambda: _core.run(
         asm.system, forcing, state.vector.copy(), t0 + duration, 1.0 / rate if rate > 0 else 0.0, rtol,
         int(max_events), with_energy, ctl), [ctl], direct=most < DIRECT_CALL_STEPS)
+    if peaks_only and out.status != Status.INTERRUPTED:
+        return peaks_of_output(system, asm, excitation, out, t0, with_energy)
     run = run_of(system, asm, excitation, rate, out, t0, with_energy)
     if run.status == Status.INTERRUPTED:
         raise Interrupted(run, round(run.final_state.time_s - t0, 6), duration, "simulated seconds")
@@ -274,15 +280,44 @@ def run_of(system: "Oscillator | Structure | Adjacent", asm: Assembly, excitatio
     run's extrema or ledger are not finite; ``t0``: when it started, s; ``with_energy`` False: a run made
     without its ledger, NaN, which then says nothing of the run)."""
     energy = EnergyLedger.of(out.ledger)
-    status = Status(out.status)
-    finite_ledger = not with_energy or np.isfinite(out.ledger).all()
-    if status == Status.SUCCESS and not (finite_ledger and np.isfinite(out.extrema).all()):
-        status = Status.NONFINITE
+    status = _status_of(out, with_energy)
     final = State._of(out.state, asm.dofs, asm.layout)
     levels = _structures_run(system, asm, excitation, rate, out, status, energy, final, t0)
     if is_single_mass(system):  # (its Run: the one-level structure's run, read as one mass's)
         return Run._of_levels(levels, system, out.chatters)
     return levels
+
+
+def _status_of(out: _core.RunOutput, with_energy: bool) -> Status:
+    """A run's status: the core's, ``NONFINITE`` where a successful run's extrema or ledger (``with_energy``)
+    are not finite."""
+    status = Status(out.status)
+    finite_ledger = not with_energy or np.isfinite(out.ledger).all()
+    if status == Status.SUCCESS and not (finite_ledger and np.isfinite(out.extrema).all()):
+        status = Status.NONFINITE
+    return status
+
+
+def peaks_of_output(system: "Oscillator | Structure | Adjacent", asm: Assembly, excitation: Harmonic | Record,
+                    out: _core.RunOutput, t0: float, with_energy: bool = False) -> dict[str, float]:
+    """``run_of(...).quantities()`` of the core's run ``out`` of any system, read off its extrema and
+    contact rows alone (:func:`~pounding.engine.structure_result.run_peaks`): what a study's point, a pounding
+    spectrum's run and a stripe's run are read for, without the result's histories, events and energy."""
+    structures = structures_of(system)[0]
+    parts = [PartPeaks.of(s, b, asm, structures, excitation, out, t0) for b, s in enumerate(structures)]
+    status = _status_of(out, with_energy)
+    if len(structures) == 1:
+        return run_peaks(parts, None, (), status, excitation.g)
+    return run_peaks(parts, _link_rows(asm, out.contacts)[1], system.links, status, excitation.g)
+
+
+def _link_rows(asm: Assembly, contacts: np.ndarray) -> tuple[list, np.ndarray]:
+    """A pair's links (their contact slots) and their contact rows, each numbered as its link."""
+    links = [c for c, (owner, _, _) in enumerate(asm.slots) if owner == -1]
+    slot = CONTACT_COLUMNS["contact"]
+    link_rows = contacts[np.isin(contacts[:, slot], links)].copy()
+    link_rows[:, slot] -= links[0]
+    return links, link_rows
 
 
 def structure_runs(run: "Run | StructureRun | AdjacentRun") -> tuple:
@@ -333,10 +368,7 @@ def _structures_run(model: "Structure | Adjacent", asm: Assembly, excitation: Ha
                                 event_table=_isolator_switches(out.events, asm.isolator[b],
                                                                surfaces(asm.isolator[b])))
              for b, s in enumerate(structures)]
-    links = [c for c, (owner, _, _) in enumerate(asm.slots) if owner == -1]
-    slot = CONTACT_COLUMNS["contact"]
-    link_rows = contacts[np.isin(contacts[:, slot], links)].copy()
-    link_rows[:, slot] -= links[0]
+    links, link_rows = _link_rows(asm, contacts)
     n, nh = asm.system.n, asm.system.n_elements
     return AdjacentRun(model, excitation, rate, parts[0], parts[1], samples[:, 0],
                        samples[:, [1 + 3 * n + nh + c for c in links]], link_rows, out.events, energy, final,

@@ -153,7 +153,7 @@ class StructureRun(NamedChatters, Outcome):
         """Structure ``b``'s columns of a joint run (``out``: the core's ``RunOutput``; ``asm``: the
         assembly, engine.assembly; ``whole``: the fields of the run as a whole, where ``b`` is all of it)."""
         n, nh = asm.system.n, asm.system.n_elements
-        samples, contacts = out.samples, out.contacts
+        samples = out.samples
         dofs = asm.dofs[b]
         t = samples[:, 0]
         k = t.size
@@ -172,25 +172,8 @@ class StructureRun(NamedChatters, Outcome):
         isolator_force = samples[:, 1 + 3 * n + e].copy() if e >= 0 else np.full(k, np.nan)
         mine = [c for c, (owner, _, _) in enumerate(asm.slots) if owner == b]
         contact_force = _columns(samples, [1 + 3 * n + nh + c for c in mine])
-        per_dof, tracked = out.per_dof(n), out.per_pair(n)
-        first = sum(len(s.storeys) for s in asm_structures[:b])  # (this structure's storeys' drifts)
-        drifts = tracked[first:first + len(structure.storeys)]
-        if fixed:
-            ground = np.full(DOF_EXTREMA_LEN, np.nan)  # (a fixed base's level: still, shaken by the table)
-            ground[[X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T]] = (0.0, t0, 0.0, t0)
-            ground[[X_A_MAX, X_A_MAX_T]] = ground_peak(excitation, t0, t[-1] if k else t0)
-            ex = np.array([per_dof[d] if d >= 0 else ground for d in dofs]).reshape(len(dofs),
-                                                                                   DOF_EXTREMA_LEN)
-        else:
-            ex = per_dof[list(dofs)]
-        if len(mine) == len(asm.slots):  # (every contact slot its own, numbered as its)
-            table = contacts.copy()
-        else:
-            slot = CORE_CONTACT_COLUMNS["contact"]
-            owned = np.zeros(len(asm.slots), dtype=bool)
-            owned[mine] = True
-            table = contacts[owned[contacts[:, slot].astype(int)]]
-            table[:, slot] = np.searchsorted(mine, table[:, slot])  # (slot numbers of this structure's own)
+        ex, drifts, table = part_extrema(structure, b, asm, asm_structures, excitation, out, t0)
+        per_dof = out.per_dof(n)
         on = [dof for _, _, dof in asm.stands[b]]
         stand_ex = per_dof[on]
         parts = {"event_table": np.zeros((0, 3)), "energy": None, "final_state": None, **whole}
@@ -424,6 +407,62 @@ class StructureRun(NamedChatters, Outcome):
         return figure_of(plot_isolator_loop(self, ax=ax, **kwargs), ax)
 
 
+def part_extrema(structure: "Structure", b: int, asm: Any, asm_structures: tuple, excitation: Any, out: Any,
+                 t0: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Structure ``b``'s exact extrema and contacts in a joint run (``out``: the core's ``RunOutput``;
+    ``asm``: the assembly): each level's extrema, shape (levels, DOF_EXTREMA_LEN) (a fixed base's level 0
+    the ground's, still and shaken by the table from ``t0`` to the run's last row), each storey's drift's,
+    shape (storeys, PAIR_EXTREMA_LEN), and its contact rows, shape (contacts, columns), their slots numbered
+    as its own."""
+    n = asm.system.n
+    t = out.samples[:, 0]
+    dofs = asm.dofs[b]
+    per_dof, tracked = out.per_dof(n), out.per_pair(n)
+    first = sum(len(s.storeys) for s in asm_structures[:b])  # (this structure's storeys' drifts)
+    drifts = tracked[first:first + len(structure.storeys)]
+    if min(dofs, default=0) < 0:  # (a fixed base's level 0: the ground, still, shaken by the table)
+        ground = np.full(DOF_EXTREMA_LEN, np.nan)
+        ground[[X_D_MAX, X_D_MAX_T, X_D_MIN, X_D_MIN_T]] = (0.0, t0, 0.0, t0)
+        ground[[X_A_MAX, X_A_MAX_T]] = ground_peak(excitation, t0, t[-1] if t.size else t0)
+        ex = np.array([per_dof[d] if d >= 0 else ground for d in dofs]).reshape(len(dofs), DOF_EXTREMA_LEN)
+    else:
+        ex = per_dof[list(dofs)]
+    mine = [c for c, (owner, _, _) in enumerate(asm.slots) if owner == b]
+    contacts = out.contacts
+    if len(mine) == len(asm.slots):  # (every contact slot its own, numbered as its)
+        table = contacts.copy()
+    else:
+        slot = CORE_CONTACT_COLUMNS["contact"]
+        owned = np.zeros(len(asm.slots), dtype=bool)
+        owned[mine] = True
+        table = contacts[owned[contacts[:, slot].astype(int)]]
+        table[:, slot] = np.searchsorted(mine, table[:, slot])  # (slot numbers of this structure's own)
+    return ex, drifts, table
+
+
+@dataclass(frozen=True, slots=True)
+class PartPeaks:
+    """What :func:`run_peaks` reads of one structure's part of a run: its model, each level's largest and
+    smallest displacement and largest absolute acceleration, each storey's largest and smallest drift, its
+    contact rows (a :class:`StructureRun` has each of these; this is them alone, read off the core's run)."""
+
+    structure: Any
+    displacement_max: np.ndarray
+    displacement_min: np.ndarray
+    abs_acceleration_max: np.ndarray
+    drift_max: np.ndarray
+    drift_min: np.ndarray
+    contact_table: np.ndarray
+
+    @classmethod
+    def of(cls, structure: "Structure", b: int, asm: Any, asm_structures: tuple, excitation: Any, out: Any,
+           t0: float) -> "PartPeaks":
+        ex, drifts, table = part_extrema(structure, b, asm, asm_structures, excitation, out, t0)
+        return cls(structure=structure, displacement_max=ex[:, X_D_MAX], displacement_min=ex[:, X_D_MIN],
+                   abs_acceleration_max=ex[:, X_A_MAX], drift_max=drifts[:, P_MAX],
+                   drift_min=drifts[:, P_MIN], contact_table=table)
+
+
 def _columns(samples: np.ndarray, cols: list) -> np.ndarray:
     """The samples' columns ``cols``, shape (k, len(cols)): a view where they are consecutive (every
     system's run is read this way, a single mass's too: no copy of its histories)."""
@@ -449,24 +488,34 @@ def peaks_of(run: Any, g: float) -> dict[str, float]:
     ratio (``drift_ratio_max``, NaN without storeys); ``status``.  A rigid stop's impact is an impulse: its
     force, and the acceleration of the level it strikes, are unbounded (inf), the rest exact.  The name
     before of ``disp_max_m``, ``base_disp_max_m``, still answers (``RunQuantities``)."""
-    parts = [run.first, run.second] if hasattr(run, "link_table") else [run]  # (two adjacent ones, or one)
+    if hasattr(run, "link_table"):  # (two adjacent ones)
+        return run_peaks([run.first, run.second], run.link_table, run.adjacent.links, run.status, g)
+    return run_peaks([run], None, (), run.status, g)
+
+
+def run_peaks(parts: list, link_table: Optional[np.ndarray], links: tuple, status: Status,
+              g: float) -> dict[str, float]:
+    """:func:`peaks_of` of a run's parts (each structure's :class:`StructureRun`, or its :class:`PartPeaks`
+    alone), a pair's link rows and its links (``link_table`` None: one structure), its status; ``g`` the
+    excitation's, m/s^2."""
     first = parts[0]
 
-    def peak(part: StructureRun, level: int) -> float:
+    def peak(part: Any, level: int) -> float:
         return max(abs(float(part.displacement_max[level])), abs(float(part.displacement_min[level])))
 
-    ratios = [part.peak_drift / np.array([s.height_m for s in part.structure.storeys])
+    ratios = [np.maximum(np.abs(part.drift_max), np.abs(part.drift_min))
+              / np.array([s.height_m for s in part.structure.storeys])
               for part in parts if len(part.structure.storeys)]
-    tables = [part.contact_table for part in parts] + ([run.link_table] if len(parts) > 1 else [])
+    tables = [part.contact_table for part in parts] + ([link_table] if link_table is not None else [])
     rows = tables[0] if len(tables) == 1 else np.concatenate(tables)  # (never empty: the first part's)
     struck: list[set] = [set() for _ in parts]  # (each part's levels a rigid impact hit)
     if len(rows) and impulses(rows).any():
         for part, levels in zip(parts, struck):
             levels.update(part.structure.walls[int(slot) // 2].level
                           for slot in part.contact_table[impulses(part.contact_table), C_SLOT])
-        if len(parts) > 1:
-            for slot in run.link_table[impulses(run.link_table), C_SLOT]:
-                link = run.adjacent.links[int(slot)]
+        if link_table is not None:
+            for slot in link_table[impulses(link_table), C_SLOT]:
+                link = links[int(slot)]
                 struck[0].add(link.level_first)
                 struck[1].add(link.level_second)
     top = len(first.structure.storeys)
@@ -482,4 +531,4 @@ def peaks_of(run: Any, g: float) -> dict[str, float]:
         "top_disp_max_m": peak(first, -1),
         "top_acc_max_g": math.inf if top in struck[0] else float(first.abs_acceleration_max[-1]) / g,
         "drift_ratio_max": float(max(np.max(r) for r in ratios)) if ratios else math.nan,
-        "status": float(run.status)})
+        "status": float(status)})
