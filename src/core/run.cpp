@@ -40,9 +40,13 @@ struct Rotation { double w = NaN, h = NaN, s = 0.0, c = 1.0; };  // sin and cos 
 struct Angle { double s, c; };
 
 // sin and cos of the forcing angle tau after the sub-interval's start, by angle addition (sin w tau and
-// cos w tau kept for the last tau asked: the phase's sub-interval, most of the time)
-Angle angle_at(const Phase& ph, double w, double tau, Rotation& rot) {
+// cos w tau kept for the last tau asked: the phase's sub-interval, most of the time); a record's (w = 0) inline
+Angle turned_angle(const Phase& ph, double w, double tau, Rotation& rot);
+inline Angle angle_at(const Phase& ph, double w, double tau, Rotation& rot) {
     if (w == 0.0) return {ph.sphi, ph.cphi};
+    return turned_angle(ph, w, tau, rot);
+}
+Angle turned_angle(const Phase& ph, double w, double tau, Rotation& rot) {
     if (!(rot.w == w && rot.h == tau)) {
         rot.w = w;
         rot.h = tau;
@@ -845,25 +849,28 @@ void kept_transition(Loop& lp) {
 // its forcing's terms (b.terms), where not its entries that are not zero (b.uc and b.nz); NF: the masses fixed at
 // compile time, 0 known at run time only: by_transition's choice)
 template <int NF>
-void by_transition_of(Loop& lp) {
+void by_transition_of(Loop& lp, bool pattern_known = false) {
     Phase& ph = lp.ph;
     Buffers& b = lp.b;
     const int n = NF > 0 ? NF : lp.n, dim = 3 * n + 4;
     transition_inputs<NF>(ph, b.u.data());
     const double* u = b.u.data();
     // (the entries of u the products here and in the integrals take: where n is fixed, the constant forces that are
-    // not zero and the forcing's pair that is not, or both; where not, every entry that is not zero)
-    b.n_nz = 0;
-    for (int k = NF > 0 ? 2 * n : 0; k < (NF > 0 ? 3 * n : dim); ++k)
-        if (u[k] != 0.0) {
-            if constexpr (NF == 0) b.uc[static_cast<size_t>(b.n_nz)] = u[k];  // (where n is fixed: read from u)
-            b.nz[static_cast<size_t>(b.n_nz++)] = k;
+    // not zero and the forcing's pair that is not, or both; where not, every entry that is not zero.  pattern_known:
+    // where n is fixed, the same as the last call's, which was of the same phase and the same kind of forcing)
+    if (!(NF > 0 && pattern_known)) {
+        b.n_nz = 0;
+        for (int k = NF > 0 ? 2 * n : 0; k < (NF > 0 ? 3 * n : dim); ++k)
+            if (u[k] != 0.0) {
+                if constexpr (NF == 0) b.uc[static_cast<size_t>(b.n_nz)] = u[k];  // (where n is fixed: read from u)
+                b.nz[static_cast<size_t>(b.n_nz++)] = k;
+            }
+        if constexpr (NF > 0) {
+            constexpr int F = 3 * NF;
+            b.terms = u[F + 2] == 0.0 && u[F + 3] == 0.0 ? FORCING_LINE
+                      : u[F] == 0.0 && u[F + 1] == 0.0   ? FORCING_SINE
+                                                         : FORCING_BOTH;
         }
-    if constexpr (NF > 0) {
-        constexpr int F = 3 * NF;
-        b.terms = u[F + 2] == 0.0 && u[F + 3] == 0.0 ? FORCING_LINE
-                  : u[F] == 0.0 && u[F + 1] == 0.0   ? FORCING_SINE
-                                                     : FORCING_BOTH;
     }
     const InputProducts<NF> in{u, b.uc.data(), b.nz.data(), b.n_nz, dim, b.terms};
     const double* T = lp.tr->T.data();
@@ -1292,7 +1299,8 @@ OwnEnd own_samples_of(Loop& lp) {
             lp.tr = at_step;
         }
         eom_acceleration_of<NF>(ph, ph.y0.data(), 0.0, ph.sphi, ph.cphi, b.a0.data());
-        by_transition_of<NF>(lp);
+        // (the inputs' pattern: the phase's constant forces, the record's line, as the sample before's)
+        by_transition_of<NF>(lp, taken > 0);
         const double h = lp.h;
         for (int q = 0; q < 2 * n; ++q)
             if (!(std::abs(b.y1[static_cast<size_t>(q)]) <= DBL_MAXV)) return no;  // (the loop stops the run)
