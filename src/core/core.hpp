@@ -98,7 +98,7 @@ enum Action : int {
 
 // the run control Python shares with a running kernel (int64): a stop flag, the work done (sub-intervals),
 // its budget, and the trajectory evaluations at an instant (what locating events costs); the series made, the
-// screen's audit, a record's steps taken whole, and its samples taken by their own (run.cpp's own_sample)
+// screen's audit, a record's steps taken whole, and its samples taken by their own (run.cpp's own_samples_of)
 constexpr int CTL_STOP = 0, CTL_WORK = 1, CTL_BUDGET = 2, CTL_EVALS = 3, CTL_SERIES = 4, CTL_AUDITED = 5,
               CTL_ESCAPES = 6, CTL_WHOLE = 7, CTL_OWN = 8, CTL_LEN = 9;
 

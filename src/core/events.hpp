@@ -69,8 +69,9 @@ inline bool linear_value(const EventRow& e, const Phase& ph, const double* y, co
 // sub-intervals) is linear_value's, inline, but a contact's start against its bumper's relaxing surface; every
 // other row is event_value_of's
 inline EventValue event_value(const EventRow& e, Phase& ph, double tau, const double* y, const double* a) {
+    if (e.kind != KIND_LINEAR) return event_value_of(e, ph, tau, y, a);
     EventValue v;
-    if (e.kind == KIND_LINEAR && linear_value(e, ph, y, a, v)) return v;
+    if (linear_value(e, ph, y, a, v)) return v;
     return event_value_of(e, ph, tau, y, a);
 }
 

@@ -1277,7 +1277,7 @@ OwnEnd own_samples_of(Loop& lp) {
         }
         // the sample's span: the whole step, to the next knot (next_subinterval's)
         const double t = lp.t = st[T];
-        const Piece pc = lp.pc = excitation_piece(lp.fo, t, lp.j_rec);
+        const Piece pc = lp.pc = next_excitation_piece(lp.fo, t, lp.j_rec);
         lp.j_rec = pc.j;
         const double t_stop = std::min({pc.t_next, lp.opt.t_end, lp.t_horizon});
         const double span = pc.t_next - t;

@@ -26,9 +26,9 @@ struct RunOptions {
     // a record's step whose parts the screen clears of every event and extremum taken at once, by one kept
     // transition (run.cpp; false: in its parts, as the screen alone would)
     bool whole_steps = true;
-    // a record's samples at its own step taken one by one by the step's kept transition, in a run without history,
-    // where nothing in a sample needs the loop's other cases (run.cpp's own_sample: the same numbers; false:
-    // every sample by the loop's steps, for the tests that show it)
+    // a record's samples at its own step taken one after another by the step's kept transition, in a run without
+    // history, where nothing in a sample needs the loop's other cases (run.cpp's own_samples_of: the same numbers;
+    // false: every sample by the loop's steps, for the tests that show it)
     bool own_samples = true;
 };
 

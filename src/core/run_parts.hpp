@@ -37,13 +37,13 @@ inline Piece record_piece(const Forcing& fo, double t, int64_t j) {
     return pc;
 }
 // the forcing's piece at t (a record's: found from the piece j_hint; a harmonic's: its angle there)
-Piece excitation_piece_of(const Forcing& fo, double t, int64_t j_hint);
-// excitation_piece_of's, the piece after j_hint (a record's next sample) inline
-inline Piece excitation_piece(const Forcing& fo, double t, int64_t j_hint) {
+Piece excitation_piece(const Forcing& fo, double t, int64_t j_hint);
+// excitation_piece's where t is most likely in the piece after j_hint (a record's next sample): that one inline
+inline Piece next_excitation_piece(const Forcing& fo, double t, int64_t j_hint) {
     if (fo.kind != EXC_HARMONIC && j_hint >= 0 && j_hint + 2 < fo.n_rec && fo.rec_t[j_hint + 1] <= t &&
         t < fo.rec_t[j_hint + 2])
         return record_piece(fo, t, j_hint + 1);
-    return excitation_piece_of(fo, t, j_hint);
+    return excitation_piece(fo, t, j_hint);
 }
 
 // the table's acceleration on each dof at t, outside a phase, into ag (n)

@@ -13,7 +13,7 @@ namespace pounding::run_parts {
 
 // ---------------------------------------------------------------- the excitation
 
-Piece excitation_piece_of(const Forcing& fo, double t, int64_t j_hint) {
+Piece excitation_piece(const Forcing& fo, double t, int64_t j_hint) {
     if (fo.kind == EXC_HARMONIC) {
         const double omega = fo.p[1];
         const double angle = omega * t + fo.p[2];
