@@ -77,7 +77,7 @@ def test_every_run_gives_its_quantities_as_a_study_keeps_them():
     assert bq["impact_force_max_n"] == brun.contacts["peak_force_n"].max()
     assert bq["compression_max_m"] == brun.contacts["max_compression_m"].max() > 0
     # one name, one meaning for every system: a single mass is its structure's base and top, without storeys
-    assert tuple(q) == tuple(bq) == pd_.engine.structure_result.RUN_QUANTITIES
+    assert tuple(q) == tuple(bq) == pd_.engine.run_quantities.RUN_QUANTITIES
     assert q["top_disp_max_m"] == q["disp_max_m"] and q["top_acc_max_g"] == q["acc_max_g"]
     assert np.isnan(q["drift_ratio_max"]) and bq["drift_ratio_max"] > 0
     for read in (lambda q: q["base_disp_max_m"], lambda q: q.get("base_disp_max_m")):

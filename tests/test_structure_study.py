@@ -26,7 +26,7 @@ def test_each_point_keeps_what_a_direct_run_of_its_structure_gives(tmp_path):
     spec = pd_.StudySpec(b, {"kind": "simulate", "a_g": 0.3, "freq_hz": 0.9, "duration_s": 6.0},
                          {"walls[0].gap_m": [0.02, 0.5], "storeys[2].stiffness_n_m": [2.0e6, 6.0e6]})
     ds = pd_.study(spec, str(tmp_path / "s.zarr"), scheduler="serial").compute()
-    assert tuple(ds.attrs["quantities"]) == pd_.engine.structure_result.RUN_QUANTITIES
+    assert tuple(ds.attrs["quantities"]) == pd_.engine.run_quantities.RUN_QUANTITIES
     assert ds["walls[0].gap_m"].attrs["units"] == "m"
     assert ds["storeys[2].stiffness_n_m"].attrs["units"] == "N/m"
     for gap in (0.02, 0.5):

@@ -15,7 +15,8 @@ from ._chatter import NamedChatters
 from .layout import C_SLOT
 from .layout import CONTACT_COLUMNS as CORE_CONTACT_COLUMNS
 from .run_parts import CONTACT_COLUMNS, EnergyLedger, Outcome, events_frame, impact_frame
-from .structure_result import StructureRun, peaks_of
+from .run_quantities import peaks_of
+from .structure_result import StructureRun
 
 
 @dataclass(frozen=True)
@@ -163,7 +164,7 @@ class AdjacentRun(NamedChatters, Outcome):
     def quantities(self) -> dict[str, float]:
         """The pair's run in a few peaks: the first structure's base and top floor, the largest acceleration
         and drift ratio over both, the contacts at every wall and link; see
-        :func:`~pounding.engine.structure_result.peaks_of`."""
+        :func:`~pounding.engine.run_quantities.peaks_of`."""
         return peaks_of(self, self.excitation.g)
 
     @property

@@ -201,7 +201,7 @@ class Run:
     def quantities(self) -> dict[str, float]:
         """The run in a few peaks (a study's point, a pounding spectrum's run, a design's stripe), as every
         run's: the one-level structure's (:attr:`levels`), see
-        :func:`~pounding.engine.structure_result.peaks_of`: ``acc_max_g`` (inf where a rigid stop struck:
+        :func:`~pounding.engine.run_quantities.peaks_of`: ``acc_max_g`` (inf where a rigid stop struck:
         an impulse), ``disp_max_m`` (the largest of ``|D|``), ``impacts``, ``impact_force_max_n`` (inf with
         rigid impacts; 0 without contact), ``impact_speed_max_m_s``, ``compression_max_m`` (the bumpers'
         deepest), ``top_disp_max_m`` and ``top_acc_max_g`` (the mass's again: it is its structure's top),

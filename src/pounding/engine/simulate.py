@@ -21,7 +21,8 @@ from .run_args import (DEFAULT_SAMPLE_RATE_HZ, DIRECT_CALL_STEPS, MAX_AUTO_SAMPL
 from .adjacent_result import AdjacentRun
 from .result import EnergyLedger, Run
 from .assembly import Assembly, assemble, check_system, clearances, is_plan, is_single_mass, structures_of
-from .structure_result import PartPeaks, StructureRun, run_peaks
+from .run_quantities import PartPeaks, run_peaks
+from .structure_result import StructureRun
 from .state import MAX_DISPLACEMENT_M, MAX_VELOCITY_M_S, State, one_mass_layout
 from .state_check import _FIX, check_fits, check_layout, check_state, contact_name  # noqa: F401  (check_state: here too)
 
@@ -301,7 +302,7 @@ def _status_of(out: _core.RunOutput, with_energy: bool) -> Status:
 def peaks_of_output(system: "Oscillator | Structure | Adjacent", asm: Assembly, excitation: Harmonic | Record,
                     out: _core.RunOutput, t0: float, with_energy: bool = False) -> dict[str, float]:
     """``run_of(...).quantities()`` of the core's run ``out`` of any system, read off its extrema and
-    contact rows alone (:func:`~pounding.engine.structure_result.run_peaks`): what a study's point, a pounding
+    contact rows alone (:func:`~pounding.engine.run_quantities.run_peaks`): what a study's point, a pounding
     spectrum's run and a stripe's run are read for, without the result's histories, events and energy."""
     structures = structures_of(system)[0]
     parts = [PartPeaks.of(s, b, asm, structures, excitation, out, t0) for b, s in enumerate(structures)]

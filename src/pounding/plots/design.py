@@ -425,7 +425,7 @@ def plot_responses(analysis: Any, quantity: str = "acc_max_g", ax: Any = None) -
 
     from .._errors import InputError, Problem
     from .._tables import RunQuantities
-    from ..engine.structure_result import RUN_QUANTITIES
+    from ..engine.run_quantities import RUN_QUANTITIES
 
     ds = analysis.data
     names = RUN_QUANTITIES[:-1]  # (not the status)

@@ -17,7 +17,7 @@ from ..protocols.campaign import TABLE2_QUANTITIES, TABLE3_QUANTITIES, TABLE4_QU
 from ..protocols.sweep_features import STRUCTURE_QUANTITIES as STRUCTURE_SWEEP_NAMES
 from ..protocols.pounding_spectrum_result import UNITS as RUN_UNITS
 from .._tables import RunQuantities
-from ..engine.structure_result import RUN_QUANTITIES
+from ..engine.run_quantities import RUN_QUANTITIES
 
 SWEEP_QUANTITIES = TABLE2_QUANTITIES + TABLE3_QUANTITIES + TABLE4_QUANTITIES + ("steps_done", "status")
 STRUCTURE_SWEEP_QUANTITIES = STRUCTURE_SWEEP_NAMES + ("steps_done", "status")
